@@ -1,0 +1,95 @@
+//! GGX (Trowbridge-Reitz) in any roughness form (TK19 supplement section 1; Heitz 2014).
+
+use super::ndf::Ndf;
+use super::roughness::{AxisAligned, Isotropic, Roughness, RoughnessMatrix};
+use super::{F, Vec2, Vec3};
+use crate::error::RoughnessError;
+use crate::math as m;
+
+const PI: F = core::f64::consts::PI as F;
+
+/// The GGX / Trowbridge-Reitz distribution with roughness form `R`.
+///
+/// - `P22(s) = 1 / (pi sqrt(det A) (1 + s^T A^-1 s)^2)` (slope domain).
+/// - `D(m) = 1 / (pi sqrt(det A) (m_xy^T A^-1 m_xy + m_z^2)^2)` for `m_z > 0` (TK19
+///   supplement, non-axis-aligned GGX), computed in this homogeneous form so that it stays
+///   finite and accurate up to the horizon.
+/// - `Lambda(w) = (sqrt(1 + w_xy^T A w_xy / w_z^2) - 1) / 2` (TK19 supplement), evaluated as
+///   `q / (2 |w_z| (sqrt(w_z^2 + q) + |w_z|))` without cancellation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ggx<R: Roughness> {
+    /// The roughness.
+    pub roughness: R,
+}
+
+impl<R: Roughness> Ggx<R> {
+    /// GGX with the given roughness.
+    #[inline]
+    pub const fn new(roughness: R) -> Self {
+        Self { roughness }
+    }
+}
+
+impl Ggx<Isotropic> {
+    /// Isotropic GGX, checked (see [`Isotropic::new`]).
+    #[inline]
+    pub fn isotropic(alpha: F) -> Result<Self, RoughnessError> {
+        Isotropic::new(alpha).map(Self::new)
+    }
+}
+
+impl Ggx<AxisAligned> {
+    /// Axis-aligned GGX, checked (see [`AxisAligned::new`]).
+    #[inline]
+    pub fn axis_aligned(alpha_x: F, alpha_y: F) -> Result<Self, RoughnessError> {
+        AxisAligned::new(alpha_x, alpha_y).map(Self::new)
+    }
+}
+
+impl Ggx<RoughnessMatrix> {
+    /// Full-matrix GGX, checked (see [`RoughnessMatrix::new`]).
+    #[inline]
+    pub fn matrix(a11: F, a12: F, a22: F) -> Result<Self, RoughnessError> {
+        RoughnessMatrix::new(a11, a12, a22).map(Self::new)
+    }
+}
+
+/// GGX Smith `Lambda` from `q = w_xy^T A w_xy` and `|w_z|` (shared with the sampling and
+/// temporal modules; one source of truth).
+#[inline]
+pub(crate) fn ggx_lambda(q: F, abs_wz: F) -> F {
+    if q <= 0.0 {
+        return 0.0;
+    }
+    if abs_wz <= 0.0 {
+        return F::INFINITY;
+    }
+    let r = m::sqrt(abs_wz * abs_wz + q);
+    if !r.is_finite() {
+        return F::INFINITY;
+    }
+    q / (2.0 * abs_wz * (r + abs_wz))
+}
+
+impl<R: Roughness> Ndf for Ggx<R> {
+    #[inline]
+    fn p22(&self, s: Vec2) -> F {
+        let t = 1.0 + self.roughness.inv_quadratic(s);
+        1.0 / (PI * self.roughness.sqrt_det() * t * t)
+    }
+
+    #[inline]
+    fn d(&self, mn: Vec3) -> F {
+        if mn.z <= 0.0 {
+            return 0.0;
+        }
+        let t = self.roughness.inv_quadratic(Vec2::new(mn.x, mn.y)) + mn.z * mn.z;
+        let v = 1.0 / (PI * self.roughness.sqrt_det() * t * t);
+        if v.is_finite() { v } else { 0.0 }
+    }
+
+    #[inline]
+    fn lambda(&self, w: Vec3) -> F {
+        ggx_lambda(self.roughness.quadratic(Vec2::new(w.x, w.y)), w.z.abs())
+    }
+}

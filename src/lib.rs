@@ -1,0 +1,70 @@
+//! # filtered-ndf
+//!
+//! Microfacet normal distribution functions (Beckmann and GGX in isotropic, axis-aligned and
+//! full-matrix roughness) and the filtered-NDF kernels that stop glossy highlights from
+//! sparkling and flickering: the pixel footprint is carried into the slope domain and the
+//! NDF is filtered over it (Kaplanyan, Hill, Patney, Lefohn 2016, "KHPL16"; Tokuyoshi and
+//! Kaplanyan 2019, "TK19"; Tessari et al. 2020 for motion blur).
+//!
+//! ## Layout
+//! Every formula exists once and is compiled twice: [`f32`](mod@f32) (shading) and [`f64`](mod@f64) (reference
+//! and offline) hold the same modules over glam's `Vec2/Vec3/Mat2` and `DVec2/DVec3/DMat2`.
+//!
+//! ```
+//! use filtered_ndf::f32::{Ggx, Ndf};
+//! use glam::{Vec2, Vec3};
+//!
+//! let ggx = Ggx::isotropic(0.1).unwrap();
+//! let peak = ggx.d(Vec3::Z); // 1 / (pi alpha^2)
+//! assert!((peak - 1.0 / (core::f32::consts::PI * 0.01)).abs() < 1e-3 * peak);
+//! assert_eq!(ggx.p22(Vec2::ZERO), peak);
+//! ```
+//!
+//! ## Conventions
+//! Tangent frame with `z` along the shading normal; slope `s = -h_xy / h_z`; `p22` is a
+//! density per unit slope area, `d` per steradian with `integral d(m) m_z dm = 1`.
+//!
+//! ## Features
+//! - `std` (default): standard-library float intrinsics.
+//! - `libm`: all float math through `libm` (required for `no_std`).
+//! - `testing`: proptest strategies and f64 quadrature references for downstream tests.
+#![cfg_attr(not(feature = "std"), no_std)]
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+#![allow(clippy::duplicate_mod)]
+
+pub mod error;
+pub mod math;
+
+pub use error::RoughnessError;
+
+/// Declares the precision-generic modules inside [`f32`] and [`f64`]. Each file is written
+/// once against the aliases `F`, `Vec2`, `Vec3`, `Mat2` of its parent module.
+macro_rules! precision_modules {
+    () => {
+        // Each file is deliberately loaded once per precision.
+        #[path = "slope.rs"]
+        pub mod slope;
+        #[path = "roughness.rs"]
+        pub mod roughness;
+        #[path = "ndf.rs"]
+        pub mod ndf;
+        #[path = "ggx.rs"]
+        pub mod ggx;
+        #[path = "beckmann.rs"]
+        pub mod beckmann;
+
+        pub use beckmann::Beckmann;
+        pub use ggx::Ggx;
+        pub use ndf::Ndf;
+        pub use roughness::{
+            ALPHA_MAX, ALPHA_MIN, AxisAligned, Isotropic, Roughness, RoughnessMatrix,
+        };
+    };
+}
+
+pub mod f32;
+pub mod f64;
+
+#[cfg(feature = "testing")]
+pub mod testing;

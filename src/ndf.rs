@@ -1,0 +1,48 @@
+//! The interface shared by every NDF, and the Smith terms derived from `Lambda` once.
+//!
+//! Conventions (all NDFs, all roughness forms):
+//! - Tangent frame with `z` the shading normal; directions are unit vectors in that frame.
+//! - Slope of a micronormal `m` (`m_z > 0`): `s = (-m_x / m_z, -m_y / m_z)` (TK19 supplement
+//!   eq. 5, Heitz 2014); see [`super::slope`].
+//! - `p22(s)`: slope-domain density, per unit slope area, integrating to 1 over the plane.
+//! - `d(m) = p22(s(m)) / m_z^4`: solid-angle density, normalised so that the projected area
+//!   is one, `integral of d(m) m_z dm = 1` over the upper hemisphere (KHPL16 eq. 2).
+
+use super::{F, Vec3};
+
+/// A microfacet normal distribution with Smith masking-shadowing.
+pub trait Ndf {
+    /// Slope-domain density `P22(s)` (per unit slope area). Finite and `>= 0` for finite `s`;
+    /// `0` where `s` is so far in the tail that the density underflows.
+    fn p22(&self, s: super::Vec2) -> F;
+
+    /// Solid-angle density `D(m) = P22(s(m)) / m_z^4` (per steradian, KHPL16 eq. 2) for a
+    /// unit micronormal `m`. `0` for `m_z <= 0` (the `chi+` factor); finite for finite input.
+    fn d(&self, m: Vec3) -> F;
+
+    /// Smith `Lambda(w)` for a unit direction `w`, using `|w_z|` (TK19 supplement section 1).
+    /// `+inf` at `w_z = 0` (the correct limit: a grazing direction is fully masked), `0` for a
+    /// zero vector.
+    fn lambda(&self, w: Vec3) -> F;
+
+    /// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` (TK19 supplement section 1).
+    /// In `[0, 1]`; `0` for `w.m <= 0` and for grazing `w`.
+    #[inline]
+    fn g1(&self, w: Vec3, m: Vec3) -> F {
+        if w.dot(m) <= 0.0 {
+            return 0.0;
+        }
+        1.0 / (1.0 + self.lambda(w))
+    }
+
+    /// Height-correlated masking-shadowing
+    /// `G2(i, o, m) = chi+(i.m) chi+(o.m) / (1 + Lambda(i) + Lambda(o))` (TK19 supplement
+    /// section 1; Heitz 2014 eq. 99). In `[0, 1]`.
+    #[inline]
+    fn g2(&self, i: Vec3, o: Vec3, m: Vec3) -> F {
+        if i.dot(m) <= 0.0 || o.dot(m) <= 0.0 {
+            return 0.0;
+        }
+        1.0 / (1.0 + self.lambda(i) + self.lambda(o))
+    }
+}

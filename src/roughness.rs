@@ -1,0 +1,369 @@
+//! The three roughness forms and the one trait every NDF accepts them through.
+//!
+//! A roughness is the matrix `A` of TK19 supplement section 1 (Heitz 2014 section 5.4): the
+//! slope-domain density of both Beckmann and GGX depends on the slope `s` only through the
+//! quadratic form `s^T A^-1 s` and on `sqrt(det A)`, and Smith's `Lambda(w)` only through
+//! `w_xy^T A w_xy`. The three forms compute those three numbers at three costs:
+//!
+//! | form | `A` | `s^T A^-1 s` costs |
+//! |---|---|---|
+//! | [`Isotropic`] `alpha` | `alpha^2 I` | 1 dot, 1 mul |
+//! | [`AxisAligned`] `(alpha_x, alpha_y)` | `diag(alpha_x^2, alpha_y^2)` | 2 mul-adds |
+//! | [`RoughnessMatrix`] `A` | any symmetric positive definite | 3 mul-adds |
+//!
+//! Conversions go one way, for free: `Isotropic -> AxisAligned -> RoughnessMatrix`.
+//! Roughness is dimensionless (a slope-domain length: `alpha` is the slope at which the GGX
+//! density falls to a quarter of its peak).
+//!
+//! Domain: every `alpha` (every eigenvalue of `A`, square-rooted) in `[ALPHA_MIN, ALPHA_MAX]`,
+//! where all densities and their squares stay inside the `f32` range. Checked constructors
+//! return [`RoughnessError`] outside it; `*_clamped` constructors clamp into it (NaN maps to
+//! `ALPHA_MIN`).
+
+use super::{F, Mat2, Vec2};
+use crate::error::RoughnessError;
+use crate::math as m;
+
+/// Smallest supported roughness `alpha` (`A`'s smallest eigenvalue is `ALPHA_MIN^2`).
+pub const ALPHA_MIN: F = 1e-8;
+/// Largest supported roughness `alpha` (`A`'s largest eigenvalue is `ALPHA_MAX^2`).
+pub const ALPHA_MAX: F = 1e4;
+
+mod sealed {
+    pub trait Sealed {}
+}
+
+/// A roughness form: what the NDFs need of a roughness matrix `A`.
+///
+/// Sealed; implemented by [`Isotropic`], [`AxisAligned`] and [`RoughnessMatrix`]. Each method
+/// is exact for its form (no conversion to the matrix form happens at evaluation time).
+pub trait Roughness: Copy + sealed::Sealed {
+    /// `s^T A^-1 s` for a slope `s` (dimensionless, `>= 0`). For the matrix form `A^-1` is
+    /// `adj(A) / max(det A, tau)` (TK19 supplement, "Practical Implementation") and the result
+    /// is clamped to `>= 0`.
+    fn inv_quadratic(&self, s: Vec2) -> F;
+    /// `w^T A w` for a tangent-plane vector `w` (the projected roughness of Smith's
+    /// `Lambda`, TK19 supplement section 1), `>= 0`.
+    fn quadratic(&self, w: Vec2) -> F;
+    /// `sqrt(det A)` (for the matrix form `sqrt(max(det A, tau))`): `alpha^2` isotropic,
+    /// `alpha_x alpha_y` axis-aligned. Strictly positive.
+    fn sqrt_det(&self) -> F;
+    /// This roughness as a full [`RoughnessMatrix`] (no determinant clamp).
+    fn to_matrix(&self) -> RoughnessMatrix;
+}
+
+#[inline]
+fn check_alpha(alpha: F) -> Result<F, RoughnessError> {
+    if !alpha.is_finite() {
+        Err(RoughnessError::NotFinite)
+    } else if alpha <= 0.0 {
+        Err(RoughnessError::NotPositive)
+    } else if !(ALPHA_MIN..=ALPHA_MAX).contains(&alpha) {
+        Err(RoughnessError::OutOfRange)
+    } else {
+        Ok(alpha)
+    }
+}
+
+/// Clamps `alpha` into `[ALPHA_MIN, ALPHA_MAX]`; NaN and non-positive values map to
+/// `ALPHA_MIN`, `+inf` to `ALPHA_MAX`.
+#[inline]
+pub fn clamp_alpha(alpha: F) -> F {
+    if alpha >= ALPHA_MIN {
+        if alpha <= ALPHA_MAX { alpha } else { ALPHA_MAX }
+    } else {
+        ALPHA_MIN
+    }
+}
+
+/// Isotropic roughness `alpha`: `A = alpha^2 I`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Isotropic {
+    alpha: F,
+    inv_alpha2: F,
+}
+
+impl Isotropic {
+    /// Checked constructor: `alpha` finite and in `[ALPHA_MIN, ALPHA_MAX]`.
+    #[inline]
+    pub fn new(alpha: F) -> Result<Self, RoughnessError> {
+        check_alpha(alpha).map(Self::from_valid)
+    }
+
+    /// Never fails: `alpha` is first passed through [`clamp_alpha`].
+    #[inline]
+    pub fn new_clamped(alpha: F) -> Self {
+        Self::from_valid(clamp_alpha(alpha))
+    }
+
+    #[inline]
+    fn from_valid(alpha: F) -> Self {
+        Self {
+            alpha,
+            inv_alpha2: 1.0 / (alpha * alpha),
+        }
+    }
+
+    /// The roughness `alpha`.
+    #[inline]
+    pub fn alpha(&self) -> F {
+        self.alpha
+    }
+}
+
+impl sealed::Sealed for Isotropic {}
+impl Roughness for Isotropic {
+    #[inline]
+    fn inv_quadratic(&self, s: Vec2) -> F {
+        s.length_squared() * self.inv_alpha2
+    }
+    #[inline]
+    fn quadratic(&self, w: Vec2) -> F {
+        w.length_squared() * (self.alpha * self.alpha)
+    }
+    #[inline]
+    fn sqrt_det(&self) -> F {
+        self.alpha * self.alpha
+    }
+    #[inline]
+    fn to_matrix(&self) -> RoughnessMatrix {
+        AxisAligned::from(*self).to_matrix()
+    }
+}
+
+/// Axis-aligned anisotropic roughness `(alpha_x, alpha_y)` along the tangent and bitangent:
+/// `A = diag(alpha_x^2, alpha_y^2)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AxisAligned {
+    alpha: Vec2,
+    inv_alpha2: Vec2,
+}
+
+impl AxisAligned {
+    /// Checked constructor: both values finite and in `[ALPHA_MIN, ALPHA_MAX]`.
+    #[inline]
+    pub fn new(alpha_x: F, alpha_y: F) -> Result<Self, RoughnessError> {
+        Ok(Self::from_valid(Vec2::new(
+            check_alpha(alpha_x)?,
+            check_alpha(alpha_y)?,
+        )))
+    }
+
+    /// Never fails: each value is first passed through [`clamp_alpha`].
+    #[inline]
+    pub fn new_clamped(alpha_x: F, alpha_y: F) -> Self {
+        Self::from_valid(Vec2::new(clamp_alpha(alpha_x), clamp_alpha(alpha_y)))
+    }
+
+    #[inline]
+    fn from_valid(alpha: Vec2) -> Self {
+        Self {
+            alpha,
+            inv_alpha2: Vec2::ONE / (alpha * alpha),
+        }
+    }
+
+    /// `(alpha_x, alpha_y)`.
+    #[inline]
+    pub fn alpha(&self) -> Vec2 {
+        self.alpha
+    }
+}
+
+impl From<Isotropic> for AxisAligned {
+    #[inline]
+    fn from(r: Isotropic) -> Self {
+        Self::from_valid(Vec2::splat(r.alpha))
+    }
+}
+
+impl sealed::Sealed for AxisAligned {}
+impl Roughness for AxisAligned {
+    #[inline]
+    fn inv_quadratic(&self, s: Vec2) -> F {
+        (s * s).dot(self.inv_alpha2)
+    }
+    #[inline]
+    fn quadratic(&self, w: Vec2) -> F {
+        (w * w).dot(self.alpha * self.alpha)
+    }
+    #[inline]
+    fn sqrt_det(&self) -> F {
+        self.alpha.x * self.alpha.y
+    }
+    #[inline]
+    fn to_matrix(&self) -> RoughnessMatrix {
+        let a = self.alpha * self.alpha;
+        RoughnessMatrix {
+            a11: a.x,
+            a12: 0.0,
+            a22: a.y,
+            inv11: self.inv_alpha2.x,
+            inv12: 0.0,
+            inv22: self.inv_alpha2.y,
+            sqrt_det: self.alpha.x * self.alpha.y,
+        }
+    }
+}
+
+/// Full symmetric positive-definite roughness matrix `A = [[a11, a12], [a12, a22]]` (TK19
+/// supplement section 1; Heitz 2014 section 5.4). For a Beckmann lobe `A` is twice the slope
+/// covariance (KHPL16 eq. 14); rotating the lobe by `R` maps `A` to `R A R^T`.
+///
+/// With a determinant clamp `tau >= 0` (TK19 supplement, "Practical Implementation") the
+/// density uses `sqrt(max(det A, tau))` and `A^-1 = adj(A) / max(det A, tau)`. The clamp
+/// protects the inverse of an elongated, filtered matrix whose determinant has lost its
+/// precision to cancellation; when filtering, `tau = det(A_unfiltered)` (`alpha_x^2 alpha_y^2`)
+/// is exact, since filtering can only grow the determinant. Its bias is zero whenever
+/// `det A >= tau` holds in exact arithmetic.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoughnessMatrix {
+    a11: F,
+    a12: F,
+    a22: F,
+    inv11: F,
+    inv12: F,
+    inv22: F,
+    sqrt_det: F,
+}
+
+impl RoughnessMatrix {
+    /// Checked constructor from the three distinct entries, no determinant clamp: entries
+    /// finite, `a11 > 0`, `a22 > 0`, `det A > 0`, eigenvalues in `[ALPHA_MIN^2, ALPHA_MAX^2]`.
+    #[inline]
+    pub fn new(a11: F, a12: F, a22: F) -> Result<Self, RoughnessError> {
+        Self::new_with_det_clamp(a11, a12, a22, 0.0)
+    }
+
+    /// Checked constructor from a [`Mat2`]: as [`RoughnessMatrix::new`], and the matrix must
+    /// be symmetric to within 8 ulps of its largest entry.
+    #[inline]
+    pub fn from_mat2(a: Mat2) -> Result<Self, RoughnessError> {
+        let (a11, a21, a12, a22) = (a.x_axis.x, a.x_axis.y, a.y_axis.x, a.y_axis.y);
+        if !(a11.is_finite() && a12.is_finite() && a21.is_finite() && a22.is_finite()) {
+            return Err(RoughnessError::NotFinite);
+        }
+        let scale = a11.abs().max(a22.abs()).max(a12.abs());
+        if (a12 - a21).abs() > 8.0 * F::EPSILON * scale {
+            return Err(RoughnessError::NotSymmetric);
+        }
+        Self::new(a11, 0.5 * (a12 + a21), a22)
+    }
+
+    /// Checked constructor with the TK19 determinant clamp `tau`.
+    ///
+    /// With `tau > 0` a matrix whose computed determinant is non-positive only by rounding
+    /// (`det A >= -8 eps a11 a22`) is accepted and evaluated with `max(det A, tau)`; a clearly
+    /// indefinite one is still refused. `tau` itself must be finite and `>= 0` (else
+    /// `NotFinite` / `NotPositive`).
+    pub fn new_with_det_clamp(a11: F, a12: F, a22: F, tau: F) -> Result<Self, RoughnessError> {
+        if !(a11.is_finite() && a12.is_finite() && a22.is_finite() && tau.is_finite()) {
+            return Err(RoughnessError::NotFinite);
+        }
+        if a11 <= 0.0 || a22 <= 0.0 || tau < 0.0 {
+            return Err(RoughnessError::NotPositive);
+        }
+        let det = a11 * a22 - a12 * a12;
+        let indefinite = if tau > 0.0 {
+            det < -8.0 * F::EPSILON * a11 * a22
+        } else {
+            det <= 0.0
+        };
+        if indefinite {
+            return Err(RoughnessError::NotPositiveDefinite);
+        }
+        // Eigenvalues: mean +/- sqrt(((a11 - a22)/2)^2 + a12^2).
+        let mean = 0.5 * (a11 + a22);
+        let rad = m::hypot(0.5 * (a11 - a22), a12);
+        let lambda_max = mean + rad;
+        let lambda_min = det.max(tau) / lambda_max;
+        let (lo, hi) = (ALPHA_MIN * ALPHA_MIN, ALPHA_MAX * ALPHA_MAX);
+        if lambda_max > hi || lambda_min < lo * (1.0 - 16.0 * F::EPSILON) {
+            return Err(RoughnessError::OutOfRange);
+        }
+        Ok(Self::from_entries_clamped(a11, a12, a22, tau))
+    }
+
+    /// Builds the matrix without checks, with determinant clamp `tau`. The caller guarantees
+    /// `a11 > 0`, `a22 > 0` and `max(det A, tau) > 0` (the filtering kernels, which add a
+    /// positive semi-definite kernel to a valid roughness, do).
+    #[inline]
+    pub(crate) fn from_entries_clamped(a11: F, a12: F, a22: F, tau: F) -> Self {
+        let det = (a11 * a22 - a12 * a12).max(tau);
+        let inv_det = 1.0 / det;
+        Self {
+            a11,
+            a12,
+            a22,
+            inv11: a22 * inv_det,
+            inv12: -a12 * inv_det,
+            inv22: a11 * inv_det,
+            sqrt_det: m::sqrt(det),
+        }
+    }
+
+    /// The same matrix evaluated with the determinant clamp `tau` (see the type docs). A
+    /// non-finite or negative `tau` is treated as `0` (no clamp).
+    #[inline]
+    pub fn with_det_clamp(self, tau: F) -> Self {
+        let tau = if tau.is_finite() && tau > 0.0 { tau } else { 0.0 };
+        Self::from_entries_clamped(self.a11, self.a12, self.a22, tau)
+    }
+
+    /// `A` as a [`Mat2`] (columns `(a11, a12)`, `(a12, a22)`).
+    #[inline]
+    pub fn to_mat2(&self) -> Mat2 {
+        Mat2::from_cols(Vec2::new(self.a11, self.a12), Vec2::new(self.a12, self.a22))
+    }
+
+    /// The entries `(a11, a12, a22)`.
+    #[inline]
+    pub fn entries(&self) -> (F, F, F) {
+        (self.a11, self.a12, self.a22)
+    }
+
+    /// `A^-1` as used by the density, i.e. `adj(A) / max(det A, tau)`.
+    #[inline]
+    pub fn inverse(&self) -> Mat2 {
+        Mat2::from_cols(
+            Vec2::new(self.inv11, self.inv12),
+            Vec2::new(self.inv12, self.inv22),
+        )
+    }
+}
+
+impl From<AxisAligned> for RoughnessMatrix {
+    #[inline]
+    fn from(r: AxisAligned) -> Self {
+        r.to_matrix()
+    }
+}
+
+impl From<Isotropic> for RoughnessMatrix {
+    #[inline]
+    fn from(r: Isotropic) -> Self {
+        r.to_matrix()
+    }
+}
+
+impl sealed::Sealed for RoughnessMatrix {}
+impl Roughness for RoughnessMatrix {
+    #[inline]
+    fn inv_quadratic(&self, s: Vec2) -> F {
+        let q = self.inv11 * s.x * s.x + 2.0 * self.inv12 * s.x * s.y + self.inv22 * s.y * s.y;
+        q.max(0.0)
+    }
+    #[inline]
+    fn quadratic(&self, w: Vec2) -> F {
+        let q = self.a11 * w.x * w.x + 2.0 * self.a12 * w.x * w.y + self.a22 * w.y * w.y;
+        q.max(0.0)
+    }
+    #[inline]
+    fn sqrt_det(&self) -> F {
+        self.sqrt_det
+    }
+    #[inline]
+    fn to_matrix(&self) -> RoughnessMatrix {
+        *self
+    }
+}

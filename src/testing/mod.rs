@@ -1,0 +1,5 @@
+//! Test-harness exports (feature `testing`, std only): the f64 quadrature that every kernel of
+//! the crate is tested against, so that a downstream renderer can test its own port the same
+//! way.
+
+pub mod quadrature;
