@@ -53,8 +53,11 @@ macro_rules! precision_modules {
         pub mod ggx;
         #[path = "beckmann.rs"]
         pub mod beckmann;
+        #[path = "footprint.rs"]
+        pub mod footprint;
 
         pub use beckmann::Beckmann;
+        pub use footprint::{Covariance, Footprint};
         pub use ggx::Ggx;
         pub use ndf::Ndf;
         pub use roughness::{
