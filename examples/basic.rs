@@ -12,7 +12,10 @@ fn main() {
     let matrix = RoughnessMatrix::new(alpha * alpha, 0.5 * alpha * alpha, 4.0 * alpha * alpha)
         .expect("valid roughness");
     println!("micronormal m = {m:?}");
-    println!("{:<28} {:>14} {:>14}", "roughness", "GGX D(m)", "Beckmann D(m)");
+    println!(
+        "{:<28} {:>14} {:>14}",
+        "roughness", "GGX D(m)", "Beckmann D(m)"
+    );
     println!(
         "{:<28} {:>14.6} {:>14.6}",
         "isotropic 0.05",

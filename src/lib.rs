@@ -43,18 +43,18 @@ pub use error::RoughnessError;
 macro_rules! precision_modules {
     () => {
         // Each file is deliberately loaded once per precision.
-        #[path = "slope.rs"]
-        pub mod slope;
-        #[path = "roughness.rs"]
-        pub mod roughness;
-        #[path = "ndf.rs"]
-        pub mod ndf;
-        #[path = "ggx.rs"]
-        pub mod ggx;
         #[path = "beckmann.rs"]
         pub mod beckmann;
         #[path = "footprint.rs"]
         pub mod footprint;
+        #[path = "ggx.rs"]
+        pub mod ggx;
+        #[path = "ndf.rs"]
+        pub mod ndf;
+        #[path = "roughness.rs"]
+        pub mod roughness;
+        #[path = "slope.rs"]
+        pub mod slope;
 
         pub use beckmann::Beckmann;
         pub use footprint::{Covariance, Footprint};

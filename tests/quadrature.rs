@@ -29,21 +29,34 @@ fn gaussian_on_the_line_and_its_error_estimate_bounds_the_error() {
         let exact = s * PI.sqrt();
         let err = (e.value - exact).abs();
         assert!(err <= 1e-11 * exact, "c={c} s={s}: {e:?} vs {exact}");
-        assert!(err <= e.error.max(1e-15 * exact), "estimate {e:?} below true error {err}");
+        assert!(
+            err <= e.error.max(1e-15 * exact),
+            "estimate {e:?} below true error {err}"
+        );
     }
 }
 
 #[test]
 fn heavy_tail_on_the_line() {
     // integral (1 + x^2)^-2 dx = pi / 2 (the GGX profile).
-    let e = integrate_line(|x| (1.0 + x * x).powi(-2), 0.0, 1.0, Tolerance::relative(1e-12));
+    let e = integrate_line(
+        |x| (1.0 + x * x).powi(-2),
+        0.0,
+        1.0,
+        Tolerance::relative(1e-12),
+    );
     assert!((e.value - PI / 2.0).abs() < 1e-11, "{e:?}");
 }
 
 #[test]
 fn nested_2d_on_a_rectangle() {
     // integral over [0,1]x[0,2] of x y^2 = 1/2 * 8/3.
-    let e = integrate_2d(|x, y| x * y * y, (0.0, 1.0), (0.0, 2.0), Tolerance::default());
+    let e = integrate_2d(
+        |x, y| x * y * y,
+        (0.0, 1.0),
+        (0.0, 2.0),
+        Tolerance::default(),
+    );
     assert!((e.value - 4.0 / 3.0).abs() < 1e-13, "{e:?}");
     // A narrow peak inside a rectangle: integral of 1/(1+r^2/a^2)^2 over the plane is pi a^2.
     let a: f64 = 1e-3;

@@ -115,7 +115,10 @@ fn adaptive<G: FnMut(f64) -> (f64, f64)>(mut g: G, a: f64, b: f64, tol: Toleranc
         let (idx, _) = intervals
             .iter()
             .enumerate()
-            .fold((0, -1.0), |best, (i, iv)| if iv.3 > best.1 { (i, iv.3) } else { best });
+            .fold(
+                (0, -1.0),
+                |best, (i, iv)| if iv.3 > best.1 { (i, iv.3) } else { best },
+            );
         let (lo, hi, v0, e0) = intervals.swap_remove(idx);
         let mid = 0.5 * (lo + hi);
         if mid <= lo || mid >= hi {

@@ -1,0 +1,256 @@
+//! The oracle's evaluator: one JSON object in, one JSON object out. Shared by
+//! `examples/oracle/main.rs` and the end-to-end test `tests/oracle.rs` (one source).
+
+use filtered_ndf::math::Real;
+use serde_json::{Value, json};
+
+/// One op of the evaluator: its name, arguments and the equation it implements.
+pub struct OpInfo {
+    /// The op name (`"op"` field).
+    pub name: &'static str,
+    /// Its arguments, `name: description`.
+    pub args: &'static str,
+    /// What it returns and the paper equation it implements.
+    pub returns: &'static str,
+}
+
+/// Every op, for `--list`.
+pub const OPS: &[OpInfo] = &[
+    OpInfo {
+        name: "ndf",
+        args: "dist (\"ggx\"|\"beckmann\"), roughness, m (unit micronormal, tangent frame)",
+        returns: "D(m) per steradian; GGX: TK19 supp. sec. 1, Beckmann: KHPL16 eq. 14 / Heitz 2014",
+    },
+    OpInfo {
+        name: "slope_pdf",
+        args: "dist, roughness, slope ([sx, sy], s = -m_xy/m_z)",
+        returns: "P22(slope) per unit slope area (TK19 supp. sec. 1)",
+    },
+    OpInfo {
+        name: "lambda",
+        args: "dist, roughness, w (unit direction)",
+        returns: "Smith Lambda(w) (TK19 supp. sec. 1; Heitz 2014 eq. 72, 80)",
+    },
+];
+
+/// `{"ok": ...}` or `{"error": ...}` for one input line. Never panics.
+pub fn eval_line(line: &str) -> String {
+    let out = match serde_json::from_str::<Value>(line) {
+        Ok(v) => match eval(&v) {
+            Ok(ok) => json!({ "ok": ok }),
+            Err(e) => json!({ "error": e }),
+        },
+        Err(e) => json!({ "error": format!("malformed JSON: {e}") }),
+    };
+    out.to_string()
+}
+
+/// The precision an op evaluates in.
+#[derive(Clone, Copy)]
+enum Precision {
+    F32,
+    F64,
+}
+
+fn precision(v: &Value) -> Result<Precision, String> {
+    match v.get("precision") {
+        None => Ok(Precision::F64),
+        Some(Value::String(s)) if s == "f64" => Ok(Precision::F64),
+        Some(Value::String(s)) if s == "f32" => Ok(Precision::F32),
+        Some(other) => Err(format!("precision must be \"f32\" or \"f64\", got {other}")),
+    }
+}
+
+#[allow(dead_code)] // used by the filtering ops
+fn number(v: &Value, key: &str) -> Result<f64, String> {
+    let x = v
+        .get(key)
+        .ok_or_else(|| format!("missing argument `{key}`"))?;
+    finite(x, key)
+}
+
+fn finite(x: &Value, key: &str) -> Result<f64, String> {
+    let f = x
+        .as_f64()
+        .ok_or_else(|| format!("argument `{key}` must be a number, got {x}"))?;
+    if f.is_finite() {
+        Ok(f)
+    } else {
+        Err(format!("argument `{key}` is not finite"))
+    }
+}
+
+fn array<const N: usize>(v: &Value, key: &str) -> Result<[f64; N], String> {
+    let a = v
+        .get(key)
+        .ok_or_else(|| format!("missing argument `{key}`"))?
+        .as_array()
+        .ok_or_else(|| format!("argument `{key}` must be an array of {N} numbers"))?;
+    if a.len() != N {
+        return Err(format!(
+            "argument `{key}` must have {N} elements, has {}",
+            a.len()
+        ));
+    }
+    let mut out = [0.0; N];
+    for (o, x) in out.iter_mut().zip(a) {
+        *o = finite(x, key)?;
+    }
+    Ok(out)
+}
+
+/// Roughness as given: a number, `[ax, ay]`, or `[[a11, a12], [a21, a22]]`.
+enum RoughnessArg {
+    Iso(f64),
+    Aniso(f64, f64),
+    Matrix([[f64; 2]; 2]),
+}
+
+fn roughness_arg(v: &Value) -> Result<RoughnessArg, String> {
+    let r = v.get("roughness").ok_or("missing argument `roughness`")?;
+    if r.is_number() {
+        return Ok(RoughnessArg::Iso(finite(r, "roughness")?));
+    }
+    let a = r
+        .as_array()
+        .ok_or("roughness must be a number, [ax, ay] or [[a11, a12], [a12, a22]]")?;
+    match a.as_slice() {
+        [x, y] if x.is_number() && y.is_number() => Ok(RoughnessArg::Aniso(
+            finite(x, "roughness")?,
+            finite(y, "roughness")?,
+        )),
+        [r1, r2] if r1.is_array() && r2.is_array() => {
+            let row = |r: &Value| -> Result<[f64; 2], String> {
+                match r.as_array().map(|a| a.as_slice()) {
+                    Some([a, b]) => Ok([finite(a, "roughness")?, finite(b, "roughness")?]),
+                    _ => Err("roughness matrix rows must have 2 numbers".into()),
+                }
+            };
+            Ok(RoughnessArg::Matrix([row(r1)?, row(r2)?]))
+        }
+        _ => Err("roughness must be a number, [ax, ay] or [[a11, a12], [a12, a22]]".into()),
+    }
+}
+
+fn dist(v: &Value) -> Result<&str, String> {
+    match v.get("dist").and_then(Value::as_str) {
+        Some(d @ ("ggx" | "beckmann")) => Ok(d),
+        Some(other) => Err(format!(
+            "dist must be \"ggx\" or \"beckmann\", got \"{other}\""
+        )),
+        None => Err("missing argument `dist` (\"ggx\" or \"beckmann\")".into()),
+    }
+}
+
+/// Widens a result to f64 and refuses NaN (a NaN here is a crate bug, reported as such).
+fn out<T: Real>(x: T) -> Result<Value, String> {
+    let x = x.to_f64();
+    if x.is_nan() {
+        return Err("internal error: NaN result".into());
+    }
+    // JSON has no infinity: report it as the string "inf" (documented in --list).
+    Ok(if x.is_infinite() {
+        json!(if x > 0.0 { "inf" } else { "-inf" })
+    } else {
+        json!(x)
+    })
+}
+
+/// Runs `$body` with `$p` bound to the precision module (`filtered_ndf::f32` or `f64`).
+macro_rules! in_precision {
+    ($prec:expr, $p:ident, $body:block) => {
+        match $prec {
+            Precision::F32 => {
+                use filtered_ndf::f32 as $p;
+                $body
+            }
+            Precision::F64 => {
+                use filtered_ndf::f64 as $p;
+                $body
+            }
+        }
+    };
+}
+
+/// Runs `$body` with `$ndf` bound to the NDF `$dist` of roughness `$r` (three forms).
+macro_rules! with_ndf {
+    ($p:ident, $dist:expr, $r:expr, $ndf:ident, $body:expr) => {{
+        let c = |x: f64| <$p::F as Real>::from_f64(x);
+        match ($dist, $r) {
+            (d, RoughnessArg::Iso(a)) => {
+                let r = $p::Isotropic::new(c(a)).map_err(|e| e.to_string())?;
+                if d == "ggx" {
+                    let $ndf = $p::Ggx::new(r);
+                    $body
+                } else {
+                    let $ndf = $p::Beckmann::new(r);
+                    $body
+                }
+            }
+            (d, RoughnessArg::Aniso(ax, ay)) => {
+                let r = $p::AxisAligned::new(c(ax), c(ay)).map_err(|e| e.to_string())?;
+                if d == "ggx" {
+                    let $ndf = $p::Ggx::new(r);
+                    $body
+                } else {
+                    let $ndf = $p::Beckmann::new(r);
+                    $body
+                }
+            }
+            (d, RoughnessArg::Matrix(m)) => {
+                let r = $p::RoughnessMatrix::from_mat2($p::Mat2::from_cols(
+                    $p::Vec2::new(c(m[0][0]), c(m[1][0])),
+                    $p::Vec2::new(c(m[0][1]), c(m[1][1])),
+                ))
+                .map_err(|e| e.to_string())?;
+                if d == "ggx" {
+                    let $ndf = $p::Ggx::new(r);
+                    $body
+                } else {
+                    let $ndf = $p::Beckmann::new(r);
+                    $body
+                }
+            }
+        }
+    }};
+}
+
+fn eval(v: &Value) -> Result<Value, String> {
+    if !v.is_object() {
+        return Err("each line must be a JSON object with an `op` field".into());
+    }
+    let op = v
+        .get("op")
+        .and_then(Value::as_str)
+        .ok_or("missing `op` (string); run with --list for the ops")?;
+    let prec = precision(v)?;
+    match op {
+        "ndf" => {
+            let (d, r, mv) = (dist(v)?, roughness_arg(v)?, array::<3>(v, "m")?);
+            in_precision!(prec, p, {
+                let c = |x: f64| <p::F as Real>::from_f64(x);
+                let m = p::Vec3::new(c(mv[0]), c(mv[1]), c(mv[2]));
+                with_ndf!(p, d, r, ndf, out(p::Ndf::d(&ndf, m)))
+            })
+        }
+        "slope_pdf" => {
+            let (d, r, sv) = (dist(v)?, roughness_arg(v)?, array::<2>(v, "slope")?);
+            in_precision!(prec, p, {
+                let c = |x: f64| <p::F as Real>::from_f64(x);
+                let s = p::Vec2::new(c(sv[0]), c(sv[1]));
+                with_ndf!(p, d, r, ndf, out(p::Ndf::p22(&ndf, s)))
+            })
+        }
+        "lambda" => {
+            let (d, r, wv) = (dist(v)?, roughness_arg(v)?, array::<3>(v, "w")?);
+            in_precision!(prec, p, {
+                let c = |x: f64| <p::F as Real>::from_f64(x);
+                let w = p::Vec3::new(c(wv[0]), c(wv[1]), c(wv[2]));
+                with_ndf!(p, d, r, ndf, out(p::Ndf::lambda(&ndf, w)))
+            })
+        }
+        other => Err(format!(
+            "unknown op \"{other}\"; run with --list for the ops"
+        )),
+    }
+}
