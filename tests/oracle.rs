@@ -1,0 +1,74 @@
+//! End-to-end test of the oracle example's evaluator on a file of queries, bad lines
+//! included. Expected values are closed forms written out here, not the crate's output.
+
+#[path = "../examples/oracle/eval.rs"]
+#[allow(dead_code)]
+mod eval;
+
+use serde_json::Value;
+use std::f64::consts::PI;
+
+fn run_session() -> Vec<Value> {
+    let input = include_str!("data/oracle_session.jsonl");
+    input
+        .lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| serde_json::from_str(&eval::eval_line(l)).expect("every reply is JSON"))
+        .collect()
+}
+
+fn ok(v: &Value) -> f64 {
+    v.get("ok")
+        .and_then(Value::as_f64)
+        .unwrap_or_else(|| panic!("expected ok number, got {v}"))
+}
+
+fn err(v: &Value) -> &str {
+    v.get("error")
+        .and_then(Value::as_str)
+        .unwrap_or_else(|| panic!("expected error, got {v}"))
+}
+
+#[test]
+fn session_replies_line_by_line_with_closed_form_values() {
+    let r = run_session();
+    assert_eq!(r.len(), 16, "one reply per input line");
+    // GGX peak 1 / (pi alpha^2); f64 to 1e-15 relative, f32 to one f32 rounding (6e-8).
+    let peak = 1.0 / (PI * 0.01);
+    assert!((ok(&r[0]) - peak).abs() < 1e-15 * peak);
+    assert!((ok(&r[1]) - peak).abs() < 2e-7 * peak);
+    assert_ne!(ok(&r[0]), ok(&r[1]), "f32 evaluation is really done in f32");
+    // Beckmann peak 1 / (pi ax ay).
+    let b = 1.0 / (PI * 0.1 * 0.2);
+    assert!((ok(&r[2]) - b).abs() < 1e-14 * b);
+    // Matrix GGX slope density at 0: 1 / (pi sqrt(det A)).
+    let s = 1.0 / (PI * (0.04f64 * 0.09 - 0.01 * 0.01).sqrt());
+    assert!((ok(&r[3]) - s).abs() < 1e-14 * s);
+    // GGX Lambda = (sqrt(1 + alpha^2 tan^2) - 1) / 2 with tan = 0.75.
+    let l = ((1.0f64 + 0.25 * 0.5625).sqrt() - 1.0) / 2.0;
+    assert!((ok(&r[4]) - l).abs() < 1e-15);
+    // Grazing direction: Lambda is infinite, written as the string "inf".
+    assert_eq!(r[5]["ok"], "inf");
+    assert!(err(&r[6]).contains("malformed"));
+    assert!(err(&r[7]).contains("negative"));
+    assert!(err(&r[8]).contains("missing argument `m`"));
+    assert!(err(&r[9]).contains("dist"));
+    assert!(err(&r[10]).contains("symmetric"));
+    assert!(err(&r[11]).contains("positive definite"));
+    assert!(err(&r[12]).contains("unknown op"));
+    assert!(err(&r[13]).contains("precision"));
+    assert!(err(&r[14]).contains("object"));
+    assert!(err(&r[15]).contains("must be a number"));
+}
+
+#[test]
+fn every_listed_op_is_dispatched() {
+    for op in eval::OPS {
+        let reply = eval::eval_line(&format!("{{\"op\":\"{}\"}}", op.name));
+        assert!(
+            !reply.contains("unknown op"),
+            "op {} is listed but not evaluated: {reply}",
+            op.name
+        );
+    }
+}
