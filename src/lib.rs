@@ -55,9 +55,14 @@ macro_rules! precision_modules {
         pub mod beckmann;
         #[path = "footprint.rs"]
         pub mod footprint;
+        #[path = "jacobian.rs"]
+        pub mod jacobian;
+        #[path = "geometry.rs"]
+        pub mod geometry;
 
         pub use beckmann::Beckmann;
         pub use footprint::{Covariance, Footprint};
+        pub use geometry::{Endpoint, PinholeRay, ShadingFrame};
         pub use ggx::Ggx;
         pub use ndf::Ndf;
         pub use roughness::{
