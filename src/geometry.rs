@@ -172,12 +172,7 @@ fn slope_derivative(frame: &ShadingFrame, h: Vec3, dh: Vec3, k: usize) -> Vec2 {
 /// derivative. Output layout, units and sign in the module docs; degenerate input gives
 /// `Mat2::ZERO`. Compare [`half_vector_jacobian_far_field`] (eq. 17), which drops the first
 /// term.
-pub fn half_vector_jacobian(
-    x: Vec3,
-    eye: Endpoint,
-    light: Endpoint,
-    frame: &ShadingFrame,
-) -> Mat2 {
+pub fn half_vector_jacobian(x: Vec3, eye: Endpoint, light: Endpoint, frame: &ShadingFrame) -> Mat2 {
     let (Some((o, ko)), Some((i, ki))) = (eye.direction_from(x), light.direction_from(x)) else {
         return Mat2::ZERO;
     };

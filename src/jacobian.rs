@@ -156,7 +156,8 @@ pub fn sphere_to_projected(h: Vec3) -> Mat2 {
 /// supplement eq. 6): `-1 / h_z^3 [[1 - h_y^2, h_x h_y], [h_x h_y, 1 - h_x^2]]` (symmetric),
 /// with `1 - h_y^2` evaluated as `h_x^2 + h_z^2` for accuracy at the horizon. Determinant
 /// `1 / h_z^4` ([`det_projected_to_slope`]); `-I` at the pole. Horizon clamp as in the module
-/// docs. Units: slope per unit disk length.
+/// docs. Units: slope per unit disk length. For a disk point `p`, pass
+/// `slope::sphere_from_projected(p)`.
 #[inline]
 pub fn projected_to_slope(h: Vec3) -> Mat2 {
     let h = polar(h).h;

@@ -11,9 +11,9 @@
 
 use filtered_ndf::f32::geometry as g32;
 use filtered_ndf::f64::geometry::{
-    self as g, Endpoint, PinholeRay, ShadingFrame, footprint, footprint_projected,
-    half_vector, half_vector_jacobian, half_vector_jacobian_deferred,
-    half_vector_jacobian_far_field, tangent_plane_differentials,
+    self as g, Endpoint, PinholeRay, ShadingFrame, footprint, footprint_projected, half_vector,
+    half_vector_jacobian, half_vector_jacobian_deferred, half_vector_jacobian_far_field,
+    tangent_plane_differentials,
 };
 use glam::{DMat2, DVec2, DVec3, Mat2, Vec2, Vec3};
 
@@ -40,7 +40,11 @@ fn sphere(x: f64, y: f64) -> (f64, DVec2, DVec3) {
 fn cylinder(x: f64, _y: f64) -> (f64, DVec2, DVec3) {
     // Cylinder of radius R around the y axis, upper half.
     let z = (R * R - x * x).sqrt();
-    (z, DVec2::new(-x / z, 0.0), DVec3::new(-R * R / (z * z * z), 0.0, 0.0))
+    (
+        z,
+        DVec2::new(-x / z, 0.0),
+        DVec3::new(-R * R / (z * z * z), 0.0, 0.0),
+    )
 }
 
 fn saddle(x: f64, y: f64) -> (f64, DVec2, DVec3) {
@@ -53,9 +57,18 @@ fn saddle(x: f64, y: f64) -> (f64, DVec2, DVec3) {
 }
 
 const SURFACES: [Graph; 3] = [
-    Graph { name: "sphere", f: sphere },
-    Graph { name: "cylinder", f: cylinder },
-    Graph { name: "saddle", f: saddle },
+    Graph {
+        name: "sphere",
+        f: sphere,
+    },
+    Graph {
+        name: "cylinder",
+        f: cylinder,
+    },
+    Graph {
+        name: "saddle",
+        f: saddle,
+    },
 ];
 
 struct Sample {
@@ -84,7 +97,10 @@ fn sample(surf: Graph, u: f64, v: f64) -> Sample {
     let s_u = (puu - s * s.dot(puu)) / pu.length();
     let s_v = (puv - s * s.dot(puv)) / pu.length();
     // (du, dv) -> (x_s, x_t) and its inverse.
-    let gm = DMat2::from_cols(DVec2::new(pu.dot(s), pu.dot(t)), DVec2::new(pv.dot(s), pv.dot(t)));
+    let gm = DMat2::from_cols(
+        DVec2::new(pu.dot(s), pu.dot(t)),
+        DVec2::new(pv.dot(s), pv.dot(t)),
+    );
     let ginv = gm.inverse();
     let along = |a_u: DVec3, a_v: DVec3, k: usize| {
         let c = ginv.col(k);
@@ -123,7 +139,10 @@ fn fd_m(surf: Graph, uv: DVec2, eye: Endpoint, light: Endpoint, step: f64) -> DM
 }
 
 fn rel(a: DMat2, b: DMat2) -> f64 {
-    let num = (a - b).to_cols_array().iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let num = (a - b)
+        .to_cols_array()
+        .iter()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
     let den = b.to_cols_array().iter().fold(0.0f64, |m, x| m.max(x.abs()));
     num / den
 }
@@ -188,13 +207,21 @@ fn m_matches_finite_differences_on_curved_surfaces() {
             assert!(rel(md, fd_m(surf, uv, ed, ld, 1e-5)) < 1e-7);
         }
     }
-    println!("worst relative FD discrepancy of M: {:.3e} ({})", worst.0, worst.1);
+    println!(
+        "worst relative FD discrepancy of M: {:.3e} ({})",
+        worst.0, worst.1
+    );
 }
 
 #[test]
 fn far_field_and_deferred_approximations_converge_like_one_over_distance() {
-    println!("relative error of KHPL16 eq. 17 against the full M (R = 1, point eye and light at distance D)");
-    println!("{:>9} {:>8} {:>12} {:>12}", "surface", "D / R", "far field", "deferred");
+    println!(
+        "relative error of KHPL16 eq. 17 against the full M (R = 1, point eye and light at distance D)"
+    );
+    println!(
+        "{:>9} {:>8} {:>12} {:>12}",
+        "surface", "D / R", "far field", "deferred"
+    );
     for surf in SURFACES {
         let uv = DVec2::new(0.3, -0.2);
         let smp = sample(surf, uv.x, uv.y);
@@ -206,18 +233,31 @@ fn far_field_and_deferred_approximations_converge_like_one_over_distance() {
         let mut prev: Option<(f64, f64)> = None;
         for d in [1.0, 10.0, 100.0, 1e3, 1e4, 1e5] {
             let e = Endpoint::Point(smp.p + o * d);
-            let full_other = half_vector_jacobian(smp.p, e, Endpoint::Point(smp.p + i_other * d), &smp.frame);
+            let full_other =
+                half_vector_jacobian(smp.p, e, Endpoint::Point(smp.p + i_other * d), &smp.frame);
             let ff = half_vector_jacobian_far_field(o + i_other, &smp.frame);
-            let full_mirror = half_vector_jacobian(smp.p, e, Endpoint::Point(smp.p + i_mirror * d), &smp.frame);
+            let full_mirror =
+                half_vector_jacobian(smp.p, e, Endpoint::Point(smp.p + i_mirror * d), &smp.frame);
             let def = half_vector_jacobian_deferred(&smp.frame);
             let (e_ff, e_def) = (rel(ff, full_other), rel(def, full_mirror));
-            println!("{:>9} {:>8.0e} {:>12.3e} {:>12.3e}", surf.name, d, e_ff, e_def);
+            println!(
+                "{:>9} {:>8.0e} {:>12.3e} {:>12.3e}",
+                surf.name, d, e_ff, e_def
+            );
             if let (Some((p_ff, p_def)), true) = (prev, d >= 100.0) {
                 // First order in 1/D once D >> R: each tenfold distance cuts the error by 10
                 // (7..13 allows for the O(1/D^2) remainder from D = 10 to 100; at D = R the
                 // expansion has not started).
-                assert!((7.0..13.0).contains(&(p_ff / e_ff)), "{} {d} {p_ff} {e_ff}", surf.name);
-                assert!((7.0..13.0).contains(&(p_def / e_def)), "{} {d} {p_def} {e_def}", surf.name);
+                assert!(
+                    (7.0..13.0).contains(&(p_ff / e_ff)),
+                    "{} {d} {p_ff} {e_ff}",
+                    surf.name
+                );
+                assert!(
+                    (7.0..13.0).contains(&(p_def / e_def)),
+                    "{} {d} {p_def} {e_def}",
+                    surf.name
+                );
             }
             prev = Some((e_ff, e_def));
         }
@@ -283,7 +323,10 @@ fn ray_differential_footprints_match_finite_differences_of_pixel_rays() {
         let fx_u = fdx(hit_sphere(eye, dir(h, 0.0)), hit_sphere(eye, dir(-h, 0.0)));
         let fx_v = fdx(hit_sphere(eye, dir(0.0, h)), hit_sphere(eye, dir(0.0, -h)));
         // 1e-6 relative: FD truncation above plus roundoff 1e-16 / 1e-5.
-        assert!((fx_u - dx_u).length() < 1e-6 * dx_u.length(), "{fx_u} {dx_u}");
+        assert!(
+            (fx_u - dx_u).length() < 1e-6 * dx_u.length(),
+            "{fx_u} {dx_u}"
+        );
         assert!((fx_v - dx_v).length() < 1e-6 * dx_v.length());
         // The slope footprint M dx against the slope change of neighbouring pixels' hits.
         let e = Endpoint::Point(eye);
@@ -348,24 +391,54 @@ fn bad_input_gives_zero_or_none() {
     let p = |v: Vec3| g32::Endpoint::Point(v);
     let up = Vec3::Z;
     // Shading point on the eye or the light; i + o = 0; NaN and infinite input.
-    assert_eq!(g32::half_vector_jacobian(Vec3::ZERO, p(Vec3::ZERO), p(up), &flat), Mat2::ZERO);
-    assert_eq!(g32::half_vector_jacobian(Vec3::ZERO, p(up), p(Vec3::ZERO), &flat), Mat2::ZERO);
-    assert_eq!(g32::half_vector_jacobian(Vec3::ZERO, p(Vec3::X), p(-Vec3::X), &flat), Mat2::ZERO);
-    assert_eq!(g32::half_vector_jacobian(Vec3::NAN, p(up), p(up), &flat), Mat2::ZERO);
-    assert_eq!(g32::half_vector_jacobian(Vec3::ZERO, p(Vec3::INFINITY), p(up), &flat), Mat2::ZERO);
     assert_eq!(
-        g32::half_vector_jacobian(Vec3::ZERO, g32::Endpoint::Direction(Vec3::ZERO), p(up), &flat),
+        g32::half_vector_jacobian(Vec3::ZERO, p(Vec3::ZERO), p(up), &flat),
         Mat2::ZERO
     );
-    assert_eq!(g32::half_vector_jacobian_far_field(Vec3::ZERO, &flat), Mat2::ZERO);
-    assert_eq!(g32::half_vector_jacobian_far_field(Vec3::NAN, &flat), Mat2::ZERO);
-    assert_eq!(g32::half_vector(Vec3::ZERO, p(Vec3::X), p(-Vec3::X), &flat), Vec3::Z);
+    assert_eq!(
+        g32::half_vector_jacobian(Vec3::ZERO, p(up), p(Vec3::ZERO), &flat),
+        Mat2::ZERO
+    );
+    assert_eq!(
+        g32::half_vector_jacobian(Vec3::ZERO, p(Vec3::X), p(-Vec3::X), &flat),
+        Mat2::ZERO
+    );
+    assert_eq!(
+        g32::half_vector_jacobian(Vec3::NAN, p(up), p(up), &flat),
+        Mat2::ZERO
+    );
+    assert_eq!(
+        g32::half_vector_jacobian(Vec3::ZERO, p(Vec3::INFINITY), p(up), &flat),
+        Mat2::ZERO
+    );
+    assert_eq!(
+        g32::half_vector_jacobian(
+            Vec3::ZERO,
+            g32::Endpoint::Direction(Vec3::ZERO),
+            p(up),
+            &flat
+        ),
+        Mat2::ZERO
+    );
+    assert_eq!(
+        g32::half_vector_jacobian_far_field(Vec3::ZERO, &flat),
+        Mat2::ZERO
+    );
+    assert_eq!(
+        g32::half_vector_jacobian_far_field(Vec3::NAN, &flat),
+        Mat2::ZERO
+    );
+    assert_eq!(
+        g32::half_vector(Vec3::ZERO, p(Vec3::X), p(-Vec3::X), &flat),
+        Vec3::Z
+    );
     // Half vector below the shading horizon (eye and light under the surface): finite, from
     // the documented clamp h . n >= HZ_MIN.
     let below = g32::half_vector_jacobian(Vec3::ZERO, p(Vec3::new(1.0, 0.0, -1.0)), p(-up), &flat);
     assert!(below.is_finite() && below != Mat2::ZERO);
     // Grazing: finite at exactly h . n = 0.
-    let graze = g32::half_vector_jacobian(Vec3::ZERO, p(Vec3::X), p(Vec3::new(1.0, 1.0, 0.0)), &flat);
+    let graze =
+        g32::half_vector_jacobian(Vec3::ZERO, p(Vec3::X), p(Vec3::new(1.0, 1.0, 0.0)), &flat);
     assert!(graze.is_finite());
     // Huge frame derivatives overflow to infinity: zero matrix, not inf.
     let wild = g32::ShadingFrame {
@@ -386,8 +459,17 @@ fn bad_input_gives_zero_or_none() {
         ddir_du: Vec3::Y,
         ddir_dv: Vec3::Z,
     };
-    assert_eq!(g32::tangent_plane_differentials(&ray, Vec3::ZERO, Vec3::Z), None);
-    let nan_ray = g32::PinholeRay { dir: Vec3::NAN, ..ray };
-    assert_eq!(g32::tangent_plane_differentials(&nan_ray, Vec3::ZERO, Vec3::Z), None);
+    assert_eq!(
+        g32::tangent_plane_differentials(&ray, Vec3::ZERO, Vec3::Z),
+        None
+    );
+    let nan_ray = g32::PinholeRay {
+        dir: Vec3::NAN,
+        ..ray
+    };
+    assert_eq!(
+        g32::tangent_plane_differentials(&nan_ray, Vec3::ZERO, Vec3::Z),
+        None
+    );
     let _ = g::Endpoint::Direction(DVec3::Z);
 }

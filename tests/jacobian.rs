@@ -6,9 +6,9 @@
 //! of `(psi_x, psi_y)` coordinates to `h`), written with the test's own trigonometry; the code
 //! under test computes the same frame from `h` alone.
 
+use filtered_ndf::f32::jacobian as j32;
 use filtered_ndf::f64::jacobian as j64;
 use filtered_ndf::f64::slope;
-use filtered_ndf::f32::jacobian as j32;
 use glam::{DMat2, DVec2, DVec3, Vec3};
 use proptest::prelude::*;
 
@@ -57,14 +57,12 @@ fn check_against_fd(theta: f64, phi: f64) -> f64 {
     // Spherical step: the maps vary on the angular scale h_z (slope ~ 1/h_z), so a step of
     // 1e-5 h_z gives truncation ~1e-10 and roundoff ~1e-16 / 1e-5 = 1e-11 relative.
     let dpsi = 1e-5 * hz.min(1.0);
-    let sph = |map: fn(DVec3) -> DVec2| {
-        fd2(
-            |q| map(displaced(theta, phi, q.x, q.y)),
-            DVec2::ZERO,
-            dpsi,
-        )
-    };
-    let e1 = rel(j64::sphere_to_projected(h), sph(slope::projected_from_sphere));
+    let sph =
+        |map: fn(DVec3) -> DVec2| fd2(|q| map(displaced(theta, phi, q.x, q.y)), DVec2::ZERO, dpsi);
+    let e1 = rel(
+        j64::sphere_to_projected(h),
+        sph(slope::projected_from_sphere),
+    );
     let e2 = rel(j64::sphere_to_slope(h), sph(slope::slope_from_sphere));
     // Disk step: the disk map's scale is the distance to the unit circle, 1 - |p| ~ h_z^2 / 2;
     // 1e-4 h_z^2 keeps truncation ~1e-8 and the cancellation in 1 - |p|^2 (~1e-16 / h_z^2)
@@ -156,8 +154,14 @@ fn determinants_are_positive_and_match_finite_differences() {
             DVec2::ZERO,
             1e-5,
         );
-        assert!((fdp.determinant() - hz).abs() < 1e-6 * hz, "{theta} {} {hz}", fdp.determinant());
-        assert!((j64::projected_to_slope(h).determinant() - hz.powi(-4)).abs() < 1e-10 * hz.powi(-4));
+        assert!(
+            (fdp.determinant() - hz).abs() < 1e-6 * hz,
+            "{theta} {} {hz}",
+            fdp.determinant()
+        );
+        assert!(
+            (j64::projected_to_slope(h).determinant() - hz.powi(-4)).abs() < 1e-10 * hz.powi(-4)
+        );
     }
 }
 
@@ -187,7 +191,10 @@ fn error_propagation_of_tk19_section_3_1() {
         // The basis: matches eq. 3 columns, orthonormal, right-handed, e_y = n x h / |n x h|.
         let (bx, by) = j64::spherical_basis(h);
         // 1e-12: the code derives (cos phi, sin phi) from h by a hypot and a division.
-        assert!((bx - ex).length() < 1e-12 && (by - ey).length() < 1e-12, "{theta}");
+        assert!(
+            (bx - ex).length() < 1e-12 && (by - ey).length() < 1e-12,
+            "{theta}"
+        );
         assert!((bx.cross(by) - h).length() < 1e-12);
         let nxh = DVec3::Z.cross(h);
         assert!((nxh / nxh.length() - by).length() < 1e-12);
@@ -269,7 +276,10 @@ fn grazing_and_below_horizon_clamp_to_hz_min() {
             // 1e-15 / 1e-14: the azimuth is recomputed from h by hypot and division (an ulp).
             assert!((j64::sanitize(h) - at_min).length() < 1e-15, "{h}");
             assert!(rel(j64::sphere_to_slope(h), j64::sphere_to_slope(at_min)) < 1e-14);
-            assert_eq!(j64::det_sphere_to_slope(h), j64::det_sphere_to_slope(at_min));
+            assert_eq!(
+                j64::det_sphere_to_slope(h),
+                j64::det_sphere_to_slope(at_min)
+            );
         }
     }
     // The documented finite values at the clamp, in both precisions.
@@ -301,7 +311,10 @@ fn bad_input_is_the_pole_and_scale_is_ignored() {
         assert_eq!(j32::sphere_to_slope(h), pole32);
         assert_eq!(j32::sphere_to_projected(h), glam::Mat2::IDENTITY);
         assert_eq!(j32::det_sphere_to_slope(h), 1.0);
-        assert_eq!(j32::spherical_to_slope(h, glam::Vec2::new(1.0, 2.0)), -glam::Vec2::new(1.0, 2.0));
+        assert_eq!(
+            j32::spherical_to_slope(h, glam::Vec2::new(1.0, 2.0)),
+            -glam::Vec2::new(1.0, 2.0)
+        );
     }
     // Huge, tiny and unnormalised inputs give the result of the unit vector. 1e-6: f32 ulps.
     let unit = Vec3::new(1.0, 0.5, 2.0).normalize();
@@ -329,7 +342,8 @@ fn f32_agrees_with_f64() {
             ] {
                 worst = worst.max(rel(a.as_dmat2(), b));
             }
-            let d = (j32::det_sphere_to_slope(h32) as f64 / j64::det_sphere_to_slope(h64) - 1.0).abs();
+            let d =
+                (j32::det_sphere_to_slope(h32) as f64 / j64::det_sphere_to_slope(h64) - 1.0).abs();
             worst = worst.max(d);
         }
     }
