@@ -19,6 +19,23 @@
 //! The crate's slope sign is opposite to KHPL16's (`h_xy / h_z`), so `M` here is KHPL16's `M`
 //! negated.
 //!
+//! ```
+//! use filtered_ndf::f32::geometry::{
+//!     Endpoint, ShadingFrame, footprint, half_vector_jacobian, tangent_plane_differentials,
+//!     PinholeRay,
+//! };
+//! use glam::{Mat2, Vec2, Vec3};
+//!
+//! // A unit sphere's north pole: shape operator I / R, no twist.
+//! let frame = ShadingFrame { s: Vec3::X, t: Vec3::Y, n: Vec3::Z, dn: Mat2::IDENTITY, twist: Vec2::ZERO };
+//! let (x, eye) = (Vec3::Z, Vec3::new(0.0, -3.0, 5.0));
+//! let m = half_vector_jacobian(x, Endpoint::Point(eye), Endpoint::Direction(Vec3::new(0.0, 0.6, 0.8)), &frame);
+//! let ray = PinholeRay { origin: eye, dir: x - eye, ddir_du: Vec3::X * 1e-3, ddir_dv: Vec3::Y * 1e-3 };
+//! let (dx_u, dx_v) = tangent_plane_differentials(&ray, x, frame.n).unwrap();
+//! let fp = footprint(m, &frame, dx_u, dx_v); // slope change per pixel
+//! assert!(fp.dh_u.length() > 0.0 && fp.dh_v.length() > 0.0);
+//! ```
+//!
 //! ## Bad input
 //! Nothing here panics or returns NaN. A degenerate configuration (the shading point on the
 //! eye or the light, `i + o = 0`, or any non-finite input or intermediate) gives the zero
@@ -116,15 +133,19 @@ impl Endpoint {
     /// degenerate (zero or non-finite).
     #[inline]
     fn direction_from(&self, x: Vec3) -> Option<(Vec3, F)> {
-        let (d, inv_dist) = match *self {
-            Endpoint::Point(p) => {
-                let d = p - x;
-                let len = m::sqrt(d.length_squared());
-                (d / len, 1.0 / len)
-            }
-            Endpoint::Direction(d) => (d / m::sqrt(d.length_squared()), 0.0),
+        let (d, is_point) = match *self {
+            Endpoint::Point(p) => (p - x, true),
+            Endpoint::Direction(d) => (d, false),
         };
-        (d.is_finite() && inv_dist.is_finite()).then_some((d, inv_dist))
+        // Scale first so huge (but finite) vectors normalise without overflow.
+        let big = d.abs().max_element();
+        if !d.is_finite() || big <= 0.0 {
+            return None;
+        }
+        let d = d / big;
+        let len = m::sqrt(d.length_squared());
+        let inv_dist = if is_point { 1.0 / (len * big) } else { 0.0 };
+        Some((d / len, inv_dist))
     }
 }
 

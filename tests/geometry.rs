@@ -449,6 +449,25 @@ fn bad_input_gives_zero_or_none() {
         g32::half_vector_jacobian(Vec3::ZERO, p(Vec3::new(3.0, 0.0, 1.0)), p(up), &wild),
         Mat2::ZERO
     );
+    // Huge but finite directions normalise without overflow (same M as the unit direction).
+    let eye = p(Vec3::new(1.0, -2.0, 4.0));
+    let huge = g32::half_vector_jacobian(
+        Vec3::ZERO,
+        eye,
+        g32::Endpoint::Direction(Vec3::new(3e38, 1e38, 3e38)),
+        &flat,
+    );
+    let unit = g32::half_vector_jacobian(
+        Vec3::ZERO,
+        eye,
+        g32::Endpoint::Direction(Vec3::new(3.0, 1.0, 3.0)),
+        &flat,
+    );
+    // 1e-6: f32 rounding of the rescaled direction.
+    assert!(
+        rel(huge.as_dmat2(), unit.as_dmat2()) < 1e-6,
+        "{huge} {unit}"
+    );
     // Footprints: NaN differentials give the zero footprint.
     let fp = g32::footprint(Mat2::IDENTITY, &flat, Vec3::NAN, Vec3::X);
     assert_eq!(fp, filtered_ndf::f32::Footprint::ZERO);
