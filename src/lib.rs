@@ -47,8 +47,12 @@ macro_rules! precision_modules {
         pub mod beckmann;
         #[path = "footprint.rs"]
         pub mod footprint;
+        #[path = "geometry.rs"]
+        pub mod geometry;
         #[path = "ggx.rs"]
         pub mod ggx;
+        #[path = "jacobian.rs"]
+        pub mod jacobian;
         #[path = "ndf.rs"]
         pub mod ndf;
         #[path = "roughness.rs"]
@@ -58,6 +62,7 @@ macro_rules! precision_modules {
 
         pub use beckmann::Beckmann;
         pub use footprint::{Covariance, Footprint};
+        pub use geometry::{Endpoint, PinholeRay, ShadingFrame};
         pub use ggx::Ggx;
         pub use ndf::Ndf;
         pub use roughness::{
