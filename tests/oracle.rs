@@ -32,7 +32,7 @@ fn err(v: &Value) -> &str {
 #[test]
 fn session_replies_line_by_line_with_closed_form_values() {
     let r = run_session();
-    assert_eq!(r.len(), 16, "one reply per input line");
+    assert_eq!(r.len(), 18, "one reply per input line");
     // GGX peak 1 / (pi alpha^2); f64 to 1e-15 relative, f32 to one f32 rounding (6e-8).
     let peak = 1.0 / (PI * 0.01);
     assert!((ok(&r[0]) - peak).abs() < 1e-15 * peak);
@@ -59,6 +59,17 @@ fn session_replies_line_by_line_with_closed_form_values() {
     assert!(err(&r[13]).contains("precision"));
     assert!(err(&r[14]).contains("object"));
     assert!(err(&r[15]).contains("must be a number"));
+    // TK19 supp. eq. 7 at h = (0.6, 0, 0.8): -1/(h_z^2 sqrt(1 - h_z^2)) [[h_x, -h_y h_z],
+    // [h_y, h_x h_z]] = [[-1.5625, 0], [0, -1.25]].
+    let j = &r[16]["ok"];
+    let expect = [[-1.5625, 0.0], [0.0, -1.25]];
+    for (i, row) in expect.iter().enumerate() {
+        for (k, e) in row.iter().enumerate() {
+            let got = j[i][k].as_f64().expect("number");
+            assert!((got - e).abs() < 1e-14, "J[{i}][{k}] = {got}, expected {e}");
+        }
+    }
+    assert!(err(&r[17]).contains("kind"));
 }
 
 #[test]

@@ -31,6 +31,11 @@ pub const OPS: &[OpInfo] = &[
         args: "dist, roughness, w (unit direction)",
         returns: "Smith Lambda(w) (TK19 supp. sec. 1; Heitz 2014 eq. 72, 80)",
     },
+    OpInfo {
+        name: "jacobian",
+        args: "kind (\"sphere_to_slope\"|\"sphere_to_projected\"|\"projected_to_slope\"), h (unit half vector)",
+        returns: "2x2 matrix [[j11, j12], [j21, j22]], j_ik = d out_i / d in_k; TK19 supp. eq. 7, 4, 6",
+    },
 ];
 
 /// `{"ok": ...}` or `{"error": ...}` for one input line. Never panics.
@@ -247,6 +252,25 @@ fn eval(v: &Value) -> Result<Value, String> {
                 let c = |x: f64| <p::F as Real>::from_f64(x);
                 let w = p::Vec3::new(c(wv[0]), c(wv[1]), c(wv[2]));
                 with_ndf!(p, d, r, ndf, out(p::Ndf::lambda(&ndf, w)))
+            })
+        }
+        "jacobian" => {
+            let hv = array::<3>(v, "h")?;
+            let kind = v.get("kind").and_then(Value::as_str).unwrap_or("");
+            in_precision!(prec, p, {
+                let c = |x: f64| <p::F as Real>::from_f64(x);
+                let h = p::Vec3::new(c(hv[0]), c(hv[1]), c(hv[2]));
+                let j = match kind {
+                    "sphere_to_slope" => p::jacobian::sphere_to_slope(h),
+                    "sphere_to_projected" => p::jacobian::sphere_to_projected(h),
+                    "projected_to_slope" => p::jacobian::projected_to_slope(h),
+                    _ => return Err(format!("unknown jacobian kind \"{kind}\"; see --list")),
+                };
+                // glam is column-major: x_axis holds d out / d in_1.
+                Ok(json!([
+                    [out(j.x_axis.x)?, out(j.y_axis.x)?],
+                    [out(j.x_axis.y)?, out(j.y_axis.y)?]
+                ]))
             })
         }
         other => Err(format!(
