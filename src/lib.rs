@@ -55,10 +55,15 @@ macro_rules! precision_modules {
         pub mod beckmann;
         #[path = "footprint.rs"]
         pub mod footprint;
+        #[path = "isotropic.rs"]
+        pub mod isotropic;
+        #[path = "presets.rs"]
+        pub mod presets;
 
         pub use beckmann::Beckmann;
         pub use footprint::{Covariance, Footprint};
         pub use ggx::Ggx;
+        pub use isotropic::{Bandwidth, KernelConvention};
         pub use ndf::Ndf;
         pub use roughness::{
             ALPHA_MAX, ALPHA_MIN, AxisAligned, Isotropic, Roughness, RoughnessMatrix,
