@@ -62,13 +62,13 @@ pub enum Bandwidth {
 
 impl Bandwidth {
     /// The kernel's squared roughness before the clamp, from a slope-domain covariance
-    /// (slope^2): `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`. A covariance with a negative
-    /// or NaN entry yields what [`Covariance::eigenvalues`] / [`Covariance::trace`] give
-    /// (eigenvalues are clamped to `>= 0`); [`filtered_alpha`] treats a NaN kernel as maximal.
+    /// (slope^2): `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`. A covariance with a
+    /// non-finite entry gives NaN (which [`filtered_alpha`] treats as the maximal, clamped
+    /// kernel); negative eigenvalues of an indefinite covariance are clamped to 0.
     #[inline]
     pub fn kernel(self, sigma: &Covariance) -> F {
         match self {
-            Self::Max => 2.0 * sigma.eigenvalues().1,
+            Self::Max => 2.0 * lambda_max(sigma),
             Self::Trace => 2.0 * sigma.trace(),
             Self::Average => sigma.trace(),
         }
@@ -86,6 +86,17 @@ impl Bandwidth {
             Self::Trace => super::presets::TK19_TRACE,
             Self::Average => super::presets::TK19_AVERAGE,
         }
+    }
+}
+
+/// `lambda_max(Sigma)` (clamped to `>= 0`), or NaN if an entry is not finite (the
+/// eigenvalue routine would otherwise turn NaN into 0, an under-filtering kernel).
+#[inline]
+fn lambda_max(sigma: &Covariance) -> F {
+    if sigma.s11.is_finite() && sigma.s12.is_finite() && sigma.s22.is_finite() {
+        sigma.eigenvalues().1
+    } else {
+        F::NAN
     }
 }
 
@@ -181,7 +192,8 @@ pub enum Norm {
 }
 
 impl Norm {
-    /// The measure of `(dn_u, dn_v)` (`>= 0`; NaN if an input is NaN).
+    /// The measure of `(dn_u, dn_v)` (`>= 0`; NaN if an input is NaN, and for
+    /// [`Norm::MaxEigenvalue`] also if the Gram matrix overflows).
     #[inline]
     pub fn eval(self, dn_u: Vec3, dn_v: Vec3) -> F {
         match self {
@@ -194,9 +206,7 @@ impl Norm {
                     a.max(b)
                 }
             }
-            Self::MaxEigenvalue => normal_difference_covariance(dn_u, dn_v, 1.0)
-                .eigenvalues()
-                .1,
+            Self::MaxEigenvalue => lambda_max(&normal_difference_covariance(dn_u, dn_v, 1.0)),
             Self::MaxAbsComponent => {
                 let d = dn_u.abs().max(dn_v.abs());
                 if d.is_nan() {
