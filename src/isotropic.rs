@@ -151,7 +151,11 @@ impl Domain {
             Self::Perceptual => m::sqrt(alpha),
             Self::ProjectedAlpha2 => {
                 let a2 = alpha * alpha;
-                if a2 < 1.0 { a2 / (1.0 - a2) } else { F::INFINITY }
+                if a2 < 1.0 {
+                    a2 / (1.0 - a2)
+                } else {
+                    F::INFINITY
+                }
             }
         }
     }
@@ -209,11 +213,7 @@ impl Norm {
             Self::MaxEigenvalue => lambda_max(&normal_difference_covariance(dn_u, dn_v, 1.0)),
             Self::MaxAbsComponent => {
                 let d = dn_u.abs().max(dn_v.abs());
-                if d.is_nan() {
-                    F::NAN
-                } else {
-                    d.max_element()
-                }
+                if d.is_nan() { F::NAN } else { d.max_element() }
             }
         }
     }
@@ -292,7 +292,11 @@ impl KernelConvention {
     /// [`ALPHA_MAX`]; the result is in `[0, ALPHA_MAX]` and never NaN.
     #[inline]
     pub fn apply_kernel(&self, alpha: F, k: F) -> F {
-        let alpha = if alpha > 0.0 { alpha.min(ALPHA_MAX) } else { 0.0 };
+        let alpha = if alpha > 0.0 {
+            alpha.min(ALPHA_MAX)
+        } else {
+            0.0
+        };
         // sqrt(alpha) >= floor  <=>  alpha >= floor^2 (no sqrt round trip).
         let alpha = alpha.max(self.perceptual_floor * self.perceptual_floor);
         let v = self.domain.from_alpha(alpha);

@@ -27,9 +27,10 @@ use super::isotropic::{Combine, Domain, KernelConvention, Norm};
 
 const PI: F = core::f64::consts::PI as F;
 
-/// TK19 eq. 4 and Listing 2 (conservative, trace bandwidth): `alpha_bar^2 = saturate(alpha^2
-/// + min(2 sigma^2 (|dn_u|^2 + |dn_v|^2), kappa))`, `sigma^2 = 0.25`, `kappa = 0.18`.
-/// Source: Tokuyoshi and Kaplanyan 2019, "Improved Geometric Specular Antialiasing", sect. 4.5.
+/// TK19 eq. 4 and Listing 2 (conservative, trace bandwidth):
+/// `alpha_bar^2 = saturate(alpha^2 + min(2 sigma^2 (|dn_u|^2 + |dn_v|^2), kappa))` with
+/// `sigma^2 = 0.25`, `kappa = 0.18`. Source: Tokuyoshi and Kaplanyan 2019, "Improved
+/// Geometric Specular Antialiasing", sect. 4.5.
 pub const TK19_TRACE: KernelConvention = KernelConvention {
     domain: Domain::Alpha2,
     norm: Norm::SumSquared,
@@ -110,10 +111,10 @@ pub const UNITY_HDRP: KernelConvention = KernelConvention {
 };
 
 /// Unity HDRP's projected-space variant (`ProjectedSpaceNormalFiltering` in the same
-/// `CommonMaterial.hlsl`, after TK21): the kernel of [`UNITY_HDRP`] is added to `P =
-/// alpha^2 / (1 - alpha^2)`, the sum is saturated in that domain, and `alpha_bar^2 = P' / (1
-/// + P')`. Because the saturate acts on `P'`, the result never exceeds `alpha_bar =
-/// sqrt(1/2)`.
+/// `CommonMaterial.hlsl`, after TK21): the kernel of [`UNITY_HDRP`] is added to
+/// `P = alpha^2 / (1 - alpha^2)`, the sum is saturated in that domain, and
+/// `alpha_bar^2 = P' / (1 + P')`. Because the saturate acts on `P'`, the result never exceeds
+/// `alpha_bar = sqrt(1/2)`. Compiled in only when `PROJECTED_SPACE_NDF_FILTERING` is defined.
 pub const UNITY_HDRP_PROJECTED: KernelConvention = KernelConvention {
     domain: Domain::ProjectedAlpha2,
     ..UNITY_HDRP

@@ -154,14 +154,22 @@ fn eq4_normal_difference_trace_equals_footprint_covariance_trace() {
         );
         let sigma = fp.covariance(0.5);
         let eq4 = 0.25 * ((n - nu).length_squared() + (n - nv).length_squared());
-        assert!((sigma.trace() - eq4).abs() <= 1e-12 * eq4, "h={h}: {} vs {eq4}", sigma.trace());
+        assert!(
+            (sigma.trace() - eq4).abs() <= 1e-12 * eq4,
+            "h={h}: {} vs {eq4}",
+            sigma.trace()
+        );
 
         // Common frame at the centre normal (first-order footprint).
-        let fc = Footprint::from_slope_derivatives(disk(nu, n) - disk(n, n), disk(nv, n) - disk(n, n));
+        let fc =
+            Footprint::from_slope_derivatives(disk(nu, n) - disk(n, n), disk(nv, n) - disk(n, n));
         let gram = normal_difference_covariance(n - nu, n - nv, 0.25);
         let gap = (fc.covariance(0.5).eigenvalues().1 - gram.eigenvalues().1).abs()
             / gram.eigenvalues().1;
-        assert!(gap < prev_gap, "h={h}: gap {gap} did not shrink from {prev_gap}");
+        assert!(
+            gap < prev_gap,
+            "h={h}: gap {gap} did not shrink from {prev_gap}"
+        );
         prev_gap = gap;
     }
     // At h = 1e-3 the normals differ by ~1e-3 rad: second-order gap ~1e-6.
@@ -202,7 +210,11 @@ fn bad_input_is_documented_behaviour() {
     assert_eq!(t.apply(f64::INFINITY, d, d), 1.0);
     // NaN or infinite normal differences give the maximal (clamped) kernel.
     let kmax = (0.01f64 + 0.18).sqrt();
-    for bad in [DVec3::NAN, DVec3::new(f64::INFINITY, 0.0, 0.0), DVec3::new(0.0, f64::NAN, 1.0)] {
+    for bad in [
+        DVec3::NAN,
+        DVec3::new(f64::INFINITY, 0.0, 0.0),
+        DVec3::new(0.0, f64::NAN, 1.0),
+    ] {
         for b in [Bandwidth::Max, Bandwidth::Trace, Bandwidth::Average] {
             let got = b.convention().apply(0.1, bad, d);
             assert!((got - kmax).abs() < 1e-15, "{b:?} {bad:?}: {got}");
@@ -232,10 +244,35 @@ fn bad_input_is_documented_behaviour() {
 fn generic_configuration_never_returns_nan() {
     // A configuration without clamp or saturate, in every domain and both combines: the
     // result stays finite and within [0, ALPHA_MAX] for any input.
-    let inputs = [0.0, -1.0, f64::NAN, f64::INFINITY, 1e-30, 0.5, 1.0, 3.0, 1e300];
-    let diffs = [DVec3::ZERO, DVec3::NAN, DVec3::splat(f64::INFINITY), DVec3::splat(1e200)];
-    for domain in [Domain::Alpha2, Domain::Alpha, Domain::Perceptual, Domain::ProjectedAlpha2] {
-        for norm in [Norm::SumSquared, Norm::MaxSquared, Norm::MaxEigenvalue, Norm::MaxAbsComponent] {
+    let inputs = [
+        0.0,
+        -1.0,
+        f64::NAN,
+        f64::INFINITY,
+        1e-30,
+        0.5,
+        1.0,
+        3.0,
+        1e300,
+    ];
+    let diffs = [
+        DVec3::ZERO,
+        DVec3::NAN,
+        DVec3::splat(f64::INFINITY),
+        DVec3::splat(1e200),
+    ];
+    for domain in [
+        Domain::Alpha2,
+        Domain::Alpha,
+        Domain::Perceptual,
+        Domain::ProjectedAlpha2,
+    ] {
+        for norm in [
+            Norm::SumSquared,
+            Norm::MaxSquared,
+            Norm::MaxEigenvalue,
+            Norm::MaxAbsComponent,
+        ] {
             for combine in [Combine::Add, Combine::Max] {
                 let c = KernelConvention {
                     domain,

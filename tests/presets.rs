@@ -26,22 +26,46 @@ fn close(got: f64, expect: f64, what: &str) {
 #[test]
 fn tk19_presets_pinned() {
     // eq. 4: alpha^2 + min(2 * 0.25 * 0.0625, 0.18) = 0.0016 + 0.03125.
-    close(presets::TK19_TRACE.apply(A, U, V), (0.0016f64 + 0.03125).sqrt(), "TK19 trace");
+    close(
+        presets::TK19_TRACE.apply(A, U, V),
+        (0.0016f64 + 0.03125).sqrt(),
+        "TK19 trace",
+    );
     // eq. 5: 0.0016 + 0.25 * 0.0625.
-    close(presets::TK19_AVERAGE.apply(A, U, V), (0.0016f64 + 0.015625).sqrt(), "TK19 avg");
+    close(
+        presets::TK19_AVERAGE.apply(A, U, V),
+        (0.0016f64 + 0.015625).sqrt(),
+        "TK19 avg",
+    );
     // eq. 1: Gram [[0.05, 0.01], [0.01, 0.0125]]: lambda_max = 0.03125 + sqrt(0.01875^2 +
     // 0.01^2) = 0.03125 + 0.02125 = 0.0525; kernel 2 * 0.25 * 0.0525 = 0.02625.
-    close(presets::TK19_MAX.apply(A, U, V), (0.0016f64 + 0.02625).sqrt(), "TK19 max");
+    close(
+        presets::TK19_MAX.apply(A, U, V),
+        (0.0016f64 + 0.02625).sqrt(),
+        "TK19 max",
+    );
     // O3DE is Listing 2 verbatim.
-    close(presets::O3DE.apply(A, U, V), (0.0016f64 + 0.03125).sqrt(), "O3DE");
+    close(
+        presets::O3DE.apply(A, U, V),
+        (0.0016f64 + 0.03125).sqrt(),
+        "O3DE",
+    );
     // TK21 listing 5: 0.0016 + 0.0625 / (2 pi).
-    close(presets::TK21.apply(A, U, V), (0.0016 + 0.0625 / (2.0 * PI)).sqrt(), "TK21");
+    close(
+        presets::TK21.apply(A, U, V),
+        (0.0016 + 0.0625 / (2.0 * PI)).sqrt(),
+        "TK21",
+    );
 }
 
 #[test]
 fn engine_presets_pinned() {
     // Filament: 0.0016 + min(2 * 0.15 * 0.0625, 0.2^2) = 0.0016 + 0.01875.
-    close(presets::FILAMENT.apply(A, U, V), (0.0016f64 + 0.01875).sqrt(), "Filament");
+    close(
+        presets::FILAMENT.apply(A, U, V),
+        (0.0016f64 + 0.01875).sqrt(),
+        "Filament",
+    );
     // Filament floor: perceptual 0.001^0.5 < 0.045 -> alpha = 0.045^2 = 0.002025.
     close(
         presets::FILAMENT.apply(1e-6, U, V),
@@ -50,14 +74,30 @@ fn engine_presets_pinned() {
     );
     // Filament clamp: large differences -> kernel 0.04.
     let big = DVec3::new(1.0, 0.0, 0.0);
-    close(presets::FILAMENT.apply(A, big, big), (0.0016f64 + 0.04).sqrt(), "Filament clamp");
+    close(
+        presets::FILAMENT.apply(A, big, big),
+        (0.0016f64 + 0.04).sqrt(),
+        "Filament clamp",
+    );
     // HDRP: 0.0016 + min(2 * 0.1 * 0.0625, 0.2^2) = 0.0016 + 0.0125.
-    close(presets::UNITY_HDRP.apply(A, U, V), (0.0016f64 + 0.0125).sqrt(), "HDRP");
+    close(
+        presets::UNITY_HDRP.apply(A, U, V),
+        (0.0016f64 + 0.0125).sqrt(),
+        "HDRP",
+    );
     // HDRP projected: P = 0.0016 / 0.9984, P' = saturate(P + 0.0125), alpha^2 = P' / (1 + P').
     let p: f64 = 0.0016 / (1.0 - 0.0016) + 0.0125;
-    close(presets::UNITY_HDRP_PROJECTED.apply(A, U, V), (p / (1.0 + p)).sqrt(), "HDRP proj");
+    close(
+        presets::UNITY_HDRP_PROJECTED.apply(A, U, V),
+        (p / (1.0 + p)).sqrt(),
+        "HDRP proj",
+    );
     // HDRP projected saturates P' at 1: alpha^2 <= 1/2.
-    close(presets::UNITY_HDRP_PROJECTED.apply(0.99, big, big), 0.5f64.sqrt(), "HDRP proj sat");
+    close(
+        presets::UNITY_HDRP_PROJECTED.apply(0.99, big, big),
+        0.5f64.sqrt(),
+        "HDRP proj sat",
+    );
     // Godot: r^2 = alpha = 0.04; min(1, 0.04 + min(2 * 0.25 * 0.0625, 0.18)) = 0.07125 = r'^2.
     close(presets::GODOT.apply(A, U, V), 0.07125, "Godot");
     // Godot clamp 0.18 on alpha: 0.04 + 0.18.
@@ -76,7 +116,11 @@ fn engine_presets_pinned() {
     // r' = min(max(0.2, 0.0525) + 0.2, 1) = 0.4 -> alpha = 0.16.
     close(presets::THREE_JS.apply(A, U, V), 0.16, "three.js");
     // three.js floor: max(0, 0.0525) + 0.2 = 0.2525.
-    close(presets::THREE_JS.apply(0.0, U, V), 0.2525 * 0.2525, "three.js floor");
+    close(
+        presets::THREE_JS.apply(0.0, U, V),
+        0.2525 * 0.2525,
+        "three.js floor",
+    );
 }
 
 /// Which domain a black-box `alpha -> alpha_bar` map adds its kernel in: the domain whose
@@ -87,14 +131,19 @@ fn engine_presets_pinned() {
 fn additive_domain(f: impl Fn(f64) -> f64) -> Option<Domain> {
     let (a1, a2) = (0.01, 0.09);
     let (b1, b2) = (f(a1), f(a2));
-    [Domain::Alpha2, Domain::Alpha, Domain::Perceptual, Domain::ProjectedAlpha2]
-        .into_iter()
-        .find(|d| {
-            let i1 = d.from_alpha(b1) - d.from_alpha(a1);
-            let i2 = d.from_alpha(b2) - d.from_alpha(a2);
-            // Exact in real arithmetic; the other domains differ by > 1e-2 relative here.
-            (i1 - i2).abs() <= 1e-9 * i1.abs().max(i2.abs())
-        })
+    [
+        Domain::Alpha2,
+        Domain::Alpha,
+        Domain::Perceptual,
+        Domain::ProjectedAlpha2,
+    ]
+    .into_iter()
+    .find(|d| {
+        let i1 = d.from_alpha(b1) - d.from_alpha(a1);
+        let i2 = d.from_alpha(b2) - d.from_alpha(a2);
+        // Exact in real arithmetic; the other domains differ by > 1e-2 relative here.
+        (i1 - i2).abs() <= 1e-9 * i1.abs().max(i2.abs())
+    })
 }
 
 #[test]
@@ -119,7 +168,10 @@ fn preset_family_spans_the_domains_and_a_wrong_domain_is_detected() {
     for ((name, c), (ename, dom)) in ALL.iter().zip(expected) {
         assert_eq!(*name, ename);
         let got = additive_domain(|a| c.apply(a, u, v));
-        assert_eq!(got, dom, "{name}: kernel added in {got:?}, source says {dom:?}");
+        assert_eq!(
+            got, dom,
+            "{name}: kernel added in {got:?}, source says {dom:?}"
+        );
     }
     // Max-combined presets: a smooth material gets alpha = k^2 with the published perceptual
     // kernel k = max(0.05^2, 0.03^2)^0.333 = 0.0025^0.333.
@@ -128,7 +180,11 @@ fn preset_family_spans_the_domains_and_a_wrong_domain_is_detected() {
         let got = c.apply(1e-4, u, v);
         assert!((got - k * k).abs() <= 1e-13 * k * k, "{got} vs {}", k * k);
         // Ported to the alpha domain by mistake, the floor would be k itself: detected.
-        let wrong = KernelConvention { domain: Domain::Alpha, ..c }.apply(1e-4, u, v);
+        let wrong = KernelConvention {
+            domain: Domain::Alpha,
+            ..c
+        }
+        .apply(1e-4, u, v);
         assert!((wrong - k).abs() <= 1e-13 * k && (wrong - k * k).abs() > 0.1 * k * k);
     }
     // The classic porting bugs are caught: Godot's constants on alpha^2, TK19's on alpha,
@@ -148,7 +204,10 @@ fn preset_family_spans_the_domains_and_a_wrong_domain_is_detected() {
     // And the squared-threshold bug: Filament's 0.2 used unsquared as the clamp differs from
     // the published 0.04 as soon as the clamp is active.
     let big = DVec3::new(1.0, 0.0, 0.0);
-    let unsquared = KernelConvention { clamp: 0.2, ..presets::FILAMENT };
+    let unsquared = KernelConvention {
+        clamp: 0.2,
+        ..presets::FILAMENT
+    };
     assert!(unsquared.apply(0.04, big, big) > presets::FILAMENT.apply(0.04, big, big) * 1.5);
 }
 
@@ -204,11 +263,17 @@ fn peak_reference_agrees_with_a_radial_integral() {
         .value;
         let plane = filtered_peak(a, l, l);
         // Both converge to 1e-9 relative; allow 1e-7.
-        assert!((plane / radial - 1.0).abs() < 1e-7, "a={a} l={l}: {plane} vs {radial}");
+        assert!(
+            (plane / radial - 1.0).abs() < 1e-7,
+            "a={a} l={l}: {plane} vs {radial}"
+        );
         // Filtering never raises the peak.
         assert!(plane <= p22(a, 0.0, 0.0));
     }
 }
+
+/// A preset (or the identity) as `(alpha, dn_u, dn_v) -> alpha_bar`.
+type AlphaMap = Box<dyn Fn(f64, DVec3, DVec3) -> f64>;
 
 /// splitmix64, for seeded footprints.
 struct Rng(u64);
@@ -225,7 +290,7 @@ impl Rng {
 /// Seeded normal differences in the tangent plane of n = z: lengths log-uniform in
 /// [1e-3, 0.5] per pixel, independent uniform directions.
 fn footprints(n: usize) -> Vec<(DVec3, DVec3)> {
-    let mut rng = Rng(0x15_07_0F1C);
+    let mut rng = Rng(0x1507_0F1C);
     (0..n)
         .map(|_| {
             let mut d = || {
@@ -262,7 +327,7 @@ fn measured_peak_error_of_each_preset_against_exact_gaussian_filtering() {
         "preset", "median", "min", "max", "|err|med", "under%", alphas
     );
     let mut summary = Vec::new();
-    let mut rows: Vec<(&str, Box<dyn Fn(f64, DVec3, DVec3) -> f64>)> =
+    let mut rows: Vec<(&str, AlphaMap)> =
         vec![("unfiltered", Box::new(|a: f64, _: DVec3, _: DVec3| a))];
     for (name, c) in ALL {
         rows.push((name, Box::new(move |a, u, v| c.apply(a, u, v))));
@@ -283,11 +348,17 @@ fn measured_peak_error_of_each_preset_against_exact_gaussian_filtering() {
         let per_alpha: Vec<String> = alphas
             .iter()
             .map(|&a| {
-                let e = refs.iter().zip(&errs).filter(|(r, _)| r.0 == a).map(|(_, e)| *e);
+                let e = refs
+                    .iter()
+                    .zip(&errs)
+                    .filter(|(r, _)| r.0 == a)
+                    .map(|(_, e)| *e);
                 format!("{:+.3}", median(e.collect()))
             })
             .collect();
-        let (lo, hi) = errs.iter().fold((f64::MAX, f64::MIN), |(l, h), e| (l.min(*e), h.max(*e)));
+        let (lo, hi) = errs
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(l, h), e| (l.min(*e), h.max(*e)));
         let med = median(errs.clone());
         let amed = median(errs.iter().map(|e| e.abs()).collect());
         println!(
@@ -307,7 +378,11 @@ fn measured_peak_error_of_each_preset_against_exact_gaussian_filtering() {
     assert!(get("unfiltered").2 >= -1e-9);
     // TK19's bandwidths order as the paper says: average <= max <= trace in kernel size, so
     // their peak errors order the other way at every footprint; checked on the medians.
-    let (avg, max, tr) = (get("TK19 average (eq. 5)"), get("TK19 max (eq. 1)"), get("TK19 trace (eq. 4)"));
+    let (avg, max, tr) = (
+        get("TK19 average (eq. 5)"),
+        get("TK19 max (eq. 1)"),
+        get("TK19 trace (eq. 4)"),
+    );
     assert!(avg.1 >= max.1 && max.1 >= tr.1);
     // Claims stated in the report, so that they are measured rather than written by hand:
     // the conservative TK19 trace (= O3DE) never under-filters on this sample and
@@ -317,6 +392,10 @@ fn measured_peak_error_of_each_preset_against_exact_gaussian_filtering() {
     let godot = get("Godot 4");
     assert!(godot.1 > 0.0, "Godot {godot:?}");
     for s in &summary[1..] {
-        assert!(s.3 <= godot.3, "{} under-filters more than Godot: {s:?}", s.0);
+        assert!(
+            s.3 <= godot.3,
+            "{} under-filters more than Godot: {s:?}",
+            s.0
+        );
     }
 }
