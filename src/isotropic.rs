@@ -212,8 +212,12 @@ impl Norm {
             }
             Self::MaxEigenvalue => lambda_max(&normal_difference_covariance(dn_u, dn_v, 1.0)),
             Self::MaxAbsComponent => {
-                let d = dn_u.abs().max(dn_v.abs());
-                if d.is_nan() { F::NAN } else { d.max_element() }
+                // Vec3::max drops a NaN operand: test the inputs, not the result.
+                if dn_u.is_nan() || dn_v.is_nan() {
+                    F::NAN
+                } else {
+                    dn_u.abs().max(dn_v.abs()).max_element()
+                }
             }
         }
     }

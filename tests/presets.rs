@@ -399,3 +399,55 @@ fn measured_peak_error_of_each_preset_against_exact_gaussian_filtering() {
         );
     }
 }
+
+#[test]
+fn every_preset_handles_bad_input_and_agrees_across_precisions() {
+    use filtered_ndf::f32::presets::ALL as ALL32;
+    let d = DVec3::new(0.02, -0.01, 0.005);
+    let bad = [
+        DVec3::NAN,
+        DVec3::new(f64::NAN, 0.0, 0.0),
+        DVec3::new(0.0, f64::INFINITY, 0.0),
+        DVec3::splat(f64::NEG_INFINITY),
+        DVec3::splat(1e300),
+    ];
+    for (name, c) in ALL {
+        // Never NaN; alpha in [0, 1] gives alpha_bar in [0, 1]; NaN, infinite or overflowing
+        // differences give exactly the maximal (clamped) kernel.
+        for &a in &[0.0, 1e-8, 0.04, 0.5, 1.0] {
+            let good = c.apply(a, d, d);
+            assert!((0.0..=1.0).contains(&good), "{name} a={a}: {good}");
+            for &b in &bad {
+                for (u, v) in [(b, d), (d, b)] {
+                    let got = c.apply(a, u, v);
+                    let max = c.apply_kernel(a, f64::INFINITY);
+                    assert!(good <= max && max <= 1.0, "{name} a={a}: {good} {max}");
+                    assert_eq!(got, max, "{name} a={a} {u:?} {v:?}");
+                }
+            }
+        }
+        for &a in &[f64::NAN, -1.0, f64::NEG_INFINITY] {
+            assert_eq!(c.apply(a, d, d), c.apply(0.0, d, d), "{name} a={a}");
+        }
+        let inf = c.apply(f64::INFINITY, d, d);
+        assert!(inf.is_finite() && inf > 0.0, "{name}: {inf}");
+    }
+    // f32 and f64 compute the same published formula: agreement to f32 rounding (a few ulps
+    // through powf/sqrt round trips: 1e-5 relative) on a grid.
+    for ((name, c64), (_, c32)) in ALL.iter().zip(ALL32.iter()) {
+        for &a in &[1e-3, 0.01, 0.04, 0.2, 0.7] {
+            for &s in &[1e-3, 0.03, 0.3] {
+                let (u, v) = (
+                    DVec3::new(s, 0.3 * s, -0.2 * s),
+                    DVec3::new(-0.5 * s, s, 0.1 * s),
+                );
+                let x64 = c64.apply(a, u, v);
+                let x32 = c32.apply(a as f32, u.as_vec3(), v.as_vec3()) as f64;
+                assert!(
+                    (x32 - x64).abs() <= 1e-5 * x64,
+                    "{name} a={a} s={s}: {x32} vs {x64}"
+                );
+            }
+        }
+    }
+}
