@@ -23,6 +23,22 @@
 //! TK19 variants are themselves such values ([`Bandwidth::convention`]), so the formula exists
 //! once.
 //!
+//! ```
+//! use filtered_ndf::f32::isotropic::{Bandwidth, KAPPA, filtered_alpha, normal_difference_covariance};
+//! use filtered_ndf::f32::presets;
+//! use glam::Vec3;
+//!
+//! // ddx(normal), ddy(normal) of the G-buffer normal, and the material roughness.
+//! let (dn_u, dn_v) = (Vec3::new(0.1, 0.2, 0.0), Vec3::new(0.0, 0.05, -0.1));
+//! let alpha = 0.04;
+//! // TK19 eq. 4 (Listing 2): alpha_bar^2 = saturate(alpha^2 + min(0.5 (0.05 + 0.0125), 0.18)).
+//! let a = presets::TK19_TRACE.apply(alpha, dn_u, dn_v);
+//! assert!((a * a - (0.0016 + 0.03125)).abs() < 1e-6);
+//! // The same through the covariance form (TK19 eq. 2 with eq. 3).
+//! let sigma = normal_difference_covariance(dn_u, dn_v, 0.25);
+//! assert!((filtered_alpha(alpha, &sigma, Bandwidth::Trace, KAPPA) - a).abs() < 1e-6);
+//! ```
+//!
 //! ## Normal differences
 //! `dn_u`, `dn_v` are the differences of the unit world-space shading normal between
 //! neighbouring pixels (`ddx(normal)`, `ddy(normal)`; TK19 Listing 2). TK19 section 4.4 shows
