@@ -63,9 +63,9 @@ pub const TK19_MAX: KernelConvention = KernelConvention {
 /// Tokuyoshi and Kaplanyan 2021, "Stable Geometric Specular Antialiasing with Projected-Space
 /// NDF Filtering" (JCGT 10(2)), Listing 5: `alpha_bar^2 = saturate(alpha^2 + min((|dn_u|^2 +
 /// |dn_v|^2) / (2 pi), 0.18))`. The pixel-filter variance is `1 / (2 pi)` and there is no
-/// factor 2. Checked against the listing as reproduced in public code (file
-/// `NDFFiltering.hlsli`, constants `SIGMA2 = 0.15915494`, `KAPPA = 0.18`); the paper itself
-/// was not available here.
+/// factor 2. Checked against the listing as reproduced, with attribution, in public HLSL
+/// headers (`IsotropicNDFFiltering`, constants `SIGMA2 = 0.15915494`, `KAPPA = 0.18`; the
+/// repository was not identified); the paper itself was not available here.
 pub const TK21: KernelConvention = KernelConvention {
     scale: 1.0 / (2.0 * PI),
     ..TK19_TRACE
