@@ -51,10 +51,14 @@ macro_rules! precision_modules {
         pub mod geometry;
         #[path = "ggx.rs"]
         pub mod ggx;
+        #[path = "isotropic.rs"]
+        pub mod isotropic;
         #[path = "jacobian.rs"]
         pub mod jacobian;
         #[path = "ndf.rs"]
         pub mod ndf;
+        #[path = "presets.rs"]
+        pub mod presets;
         #[path = "roughness.rs"]
         pub mod roughness;
         #[path = "slope.rs"]
@@ -64,6 +68,7 @@ macro_rules! precision_modules {
         pub use footprint::{Covariance, Footprint};
         pub use geometry::{Endpoint, PinholeRay, ShadingFrame};
         pub use ggx::Ggx;
+        pub use isotropic::{Bandwidth, KernelConvention};
         pub use ndf::Ndf;
         pub use roughness::{
             ALPHA_MAX, ALPHA_MIN, AxisAligned, Isotropic, Roughness, RoughnessMatrix,
