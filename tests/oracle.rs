@@ -32,7 +32,7 @@ fn err(v: &Value) -> &str {
 #[test]
 fn session_replies_line_by_line_with_closed_form_values() {
     let r = run_session();
-    assert_eq!(r.len(), 18, "one reply per input line");
+    assert_eq!(r.len(), 21, "one reply per input line");
     // GGX peak 1 / (pi alpha^2); f64 to 1e-15 relative, f32 to one f32 rounding (6e-8).
     let peak = 1.0 / (PI * 0.01);
     assert!((ok(&r[0]) - peak).abs() < 1e-15 * peak);
@@ -70,6 +70,12 @@ fn session_replies_line_by_line_with_closed_form_values() {
         }
     }
     assert!(err(&r[17]).contains("kind"));
+    // TK19 eq. 4: alpha_bar^2 = alpha^2 + min(2 * 0.25 * (|dn_u|^2 + |dn_v|^2), 0.18)
+    //           = 0.0016 + 0.5 * (0.05 + 0.0125).
+    let a = (0.0016f64 + 0.5 * 0.0625).sqrt();
+    assert!((ok(&r[18]) - a).abs() < 1e-15, "{}", r[18]);
+    assert!(err(&r[19]).contains("variant"));
+    assert!(err(&r[20]).contains("must be a number"));
 }
 
 #[test]

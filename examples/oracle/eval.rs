@@ -36,6 +36,11 @@ pub const OPS: &[OpInfo] = &[
         args: "kind (\"sphere_to_slope\"|\"sphere_to_projected\"|\"projected_to_slope\"), h (unit half vector)",
         returns: "2x2 matrix [[j11, j12], [j21, j22]], j_ik = d out_i / d in_k; TK19 supp. eq. 7, 4, 6",
     },
+    OpInfo {
+        name: "isotropic_roughness",
+        args: "alpha, dn_u, dn_v (world-space normal differences, [x, y, z]), variant (\"max\"|\"trace\"|\"average\"), optional kappa (default 0.18)",
+        returns: "filtered alpha = sqrt(saturate(alpha^2 + min(kernel, kappa))); TK19 eq. 1, 4, 5 with eq. 3, sigma^2 = 0.25",
+    },
 ];
 
 /// `{"ok": ...}` or `{"error": ...}` for one input line. Never panics.
@@ -66,7 +71,6 @@ fn precision(v: &Value) -> Result<Precision, String> {
     }
 }
 
-#[allow(dead_code)] // used by the filtering ops
 fn number(v: &Value, key: &str) -> Result<f64, String> {
     let x = v
         .get(key)
@@ -271,6 +275,38 @@ fn eval(v: &Value) -> Result<Value, String> {
                     [out(j.x_axis.x)?, out(j.y_axis.x)?],
                     [out(j.x_axis.y)?, out(j.y_axis.y)?]
                 ]))
+            })
+        }
+        "isotropic_roughness" => {
+            let alpha = number(v, "alpha")?;
+            let (du, dv) = (array::<3>(v, "dn_u")?, array::<3>(v, "dn_v")?);
+            let kappa = match v.get("kappa") {
+                None => 0.18,
+                Some(k) => finite(k, "kappa")?,
+            };
+            let variant = v.get("variant").and_then(Value::as_str).unwrap_or("");
+            if alpha < 0.0 {
+                return Err("alpha must be >= 0".into());
+            }
+            in_precision!(prec, p, {
+                use p::isotropic::{
+                    Bandwidth, SIGMA2, filtered_alpha, normal_difference_covariance,
+                };
+                let c = |x: f64| <p::F as Real>::from_f64(x);
+                let bw = match variant {
+                    "max" => Bandwidth::Max,
+                    "trace" => Bandwidth::Trace,
+                    "average" => Bandwidth::Average,
+                    _ => {
+                        return Err(format!(
+                            "variant must be \"max\", \"trace\" or \"average\", got \"{variant}\""
+                        ));
+                    }
+                };
+                let dn_u = p::Vec3::new(c(du[0]), c(du[1]), c(du[2]));
+                let dn_v = p::Vec3::new(c(dv[0]), c(dv[1]), c(dv[2]));
+                let sigma = normal_difference_covariance(dn_u, dn_v, SIGMA2);
+                out(filtered_alpha(c(alpha), &sigma, bw, c(kappa)))
             })
         }
         other => Err(format!(
