@@ -55,14 +55,23 @@ macro_rules! precision_modules {
         pub mod beckmann;
         #[path = "footprint.rs"]
         pub mod footprint;
+        #[path = "implicit.rs"]
+        pub mod implicit;
+        #[path = "quadric.rs"]
+        pub mod quadric;
+        #[path = "temporal.rs"]
+        pub mod temporal;
 
         pub use beckmann::Beckmann;
         pub use footprint::{Covariance, Footprint};
         pub use ggx::Ggx;
+        pub use implicit::{HitRates, LevelSetSample, MovingRay, Sym3};
         pub use ndf::Ndf;
+        pub use quadric::{LocalQuadric, RigidMotion};
         pub use roughness::{
             ALPHA_MAX, ALPHA_MIN, AxisAligned, Isotropic, Roughness, RoughnessMatrix,
         };
+        pub use temporal::{TemporalLobe, TemporalRoughness};
     };
 }
 
