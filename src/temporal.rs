@@ -237,49 +237,47 @@ pub fn widen<R: Roughness>(base: R, p: Covariance) -> RoughnessMatrix {
 /// masking-shadowing is that of the base roughness (section 3.2, eq. 17, Fig. 6-7:
 /// `G_conv = G_mu`, since microfacets at different instants do not shadow each other).
 ///
-/// - [`Ndf::p22`], [`Ndf::d`]: those of `widened` (eq. 16).
-/// - [`Ndf::lambda`], [`Ndf::g1`], [`Ndf::g2`]: those of `base`.
+/// - [`Ndf::p22`], [`Ndf::d`]: those of `widened` (`W`, eq. 16).
+/// - [`Ndf::lambda`], [`Ndf::g1`], [`Ndf::g2`]: those of `base` (`B`), evaluated by the base
+///   NDF itself in its own roughness form, so they are bit-identical to the base lobe's.
 ///
 /// `base` is the roughness the masking should see: the BSDF roughness, or the spatially
 /// filtered one (KHPL16 curvature) when both filters are used.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TemporalLobe<N> {
+pub struct TemporalLobe<W, B = W> {
     /// The NDF for `D`: base convolved with the temporal kernel (eq. 16).
-    pub widened: N,
+    pub widened: W,
     /// The NDF for `Lambda`, `G1`, `G2`: the base roughness only (eq. 17).
-    pub base: N,
+    pub base: B,
 }
 
-impl<N: Ndf> TemporalLobe<N> {
+impl<W: Ndf, B: Ndf> TemporalLobe<W, B> {
     /// From the two NDFs (not checked to be related).
     #[inline]
-    pub const fn new(widened: N, base: N) -> Self {
+    pub const fn new(widened: W, base: B) -> Self {
         Self { widened, base }
     }
 }
 
-impl TemporalLobe<Beckmann<RoughnessMatrix>> {
+impl<R: Roughness> TemporalLobe<Beckmann<RoughnessMatrix>, Beckmann<R>> {
     /// Beckmann: `D` from `A_mu + 2 P` ([`widen`], exact Gaussian convolution in the slope
     /// domain), `G` from `A_mu`.
     #[inline]
-    pub fn beckmann<R: Roughness>(base: R, p: Covariance) -> Self {
-        Self::new(
-            Beckmann::new(widen(base, p)),
-            Beckmann::new(base.to_matrix()),
-        )
+    pub fn beckmann(base: R, p: Covariance) -> Self {
+        Self::new(Beckmann::new(widen(base, p)), Beckmann::new(base))
     }
 }
 
-impl TemporalLobe<Ggx<RoughnessMatrix>> {
+impl<R: Roughness> TemporalLobe<Ggx<RoughnessMatrix>, Ggx<R>> {
     /// GGX: `D` from `A_mu + 2 P` ([`widen`], the roughness-matrix approximation of the
     /// convolution), `G` from `A_mu`.
     #[inline]
-    pub fn ggx<R: Roughness>(base: R, p: Covariance) -> Self {
-        Self::new(Ggx::new(widen(base, p)), Ggx::new(base.to_matrix()))
+    pub fn ggx(base: R, p: Covariance) -> Self {
+        Self::new(Ggx::new(widen(base, p)), Ggx::new(base))
     }
 }
 
-impl<N: Ndf> Ndf for TemporalLobe<N> {
+impl<W: Ndf, B: Ndf> Ndf for TemporalLobe<W, B> {
     #[inline]
     fn p22(&self, s: Vec2) -> F {
         self.widened.p22(s)
