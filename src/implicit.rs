@@ -227,7 +227,7 @@ impl LevelSetSample {
     /// Zero for a zero gradient or non-finite input.
     pub fn shape_operator(&self) -> Sym3 {
         let g = norm(self.grad);
-        if !(g > 0.0 && g.is_finite()) || !self.hess.is_finite() {
+        if !(g > 0.0 && g.is_finite() && self.hess.is_finite()) {
             return Sym3::ZERO;
         }
         let n = self.grad / g;
@@ -348,7 +348,7 @@ pub fn hit_rates(sample: &LevelSetSample, ray: &MovingRay, s: F) -> HitRates {
     // Work with the unit gradient: eq. 20 is homogeneous of degree 0 in phi.
     let gh = g / gn;
     let denom = gh.dot(ray.dir);
-    if !(denom.abs() > 8.0 * F::EPSILON * dn) {
+    if denom.is_nan() || denom.abs() <= 8.0 * F::EPSILON * dn {
         return HitRates::ZERO;
     }
     let fixed_rate = ray.d_origin + ray.d_dir * s;

@@ -100,13 +100,12 @@ impl LocalQuadric {
     /// Returns `None` if an input is non-finite, `N` is zero, or `e1` is within `1e-3` rad of
     /// parallel to `N`.
     pub fn new(p: Vec3, n: Vec3, e1: Vec3, k1: F, k2: F) -> Option<Self> {
-        if !(p.is_finite() && n.is_finite() && e1.is_finite() && k1.is_finite() && k2.is_finite())
-        {
+        if !(p.is_finite() && n.is_finite() && e1.is_finite() && k1.is_finite() && k2.is_finite()) {
             return None;
         }
         let n = n.try_normalize()?;
         let t = e1 - n * n.dot(e1);
-        if !(t.length_squared() > 1e-6 * e1.length_squared()) {
+        if t.length_squared() <= 1e-6 * e1.length_squared() {
             return None;
         }
         let e1 = t.try_normalize()?;

@@ -119,7 +119,7 @@ impl TemporalRoughness {
     #[inline]
     pub fn cosine_weighted(self, cos_theta: F) -> Self {
         let c = cos_theta.abs();
-        if !(c > 0.0) {
+        if c.is_nan() || c <= 0.0 {
             return Self::ZERO;
         }
         Self {
@@ -135,7 +135,7 @@ impl TemporalRoughness {
     /// gives [`Self::ZERO`].
     #[inline]
     pub fn share(self, fraction: F) -> Self {
-        if !(fraction > 0.0) {
+        if fraction.is_nan() || fraction <= 0.0 {
             return Self::ZERO;
         }
         Self {

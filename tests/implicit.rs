@@ -59,8 +59,14 @@ fn sweep<B: Body>(
             rates.dn_dt
         );
         // The single-quantity entry points agree with the combined one.
-        assert_eq!(hit_distance_rate(&sample(&scene, hit.x), &ray, hit.s), rates.ds_dt);
-        assert_eq!(hit_normal_rate(&sample(&scene, hit.x), &ray, hit.s), rates.dn_dt);
+        assert_eq!(
+            hit_distance_rate(&sample(&scene, hit.x), &ray, hit.s),
+            rates.ds_dt
+        );
+        assert_eq!(
+            hit_normal_rate(&sample(&scene, hit.x), &ray, hit.s),
+            rates.dn_dt
+        );
         // dN/dt is orthogonal to N (eq. 27-28 project out the normal).
         assert!(rates.dn_dt.dot(hit.n).abs() < 1e-12 * (1.0 + rates.dn_dt.length()));
         worst_s = worst_s.max(es);
@@ -147,7 +153,10 @@ fn rotating_sphere_about_its_centre_shows_no_normal_change() {
         angular_velocity: DVec3::new(0.5, 2.0, -1.0),
     };
     let smp = m.level_set_sample(x, body.grad(x), sym3(body.hess(x)));
-    let ray = MovingRay::fixed(x + DVec3::new(0.0, 1.0, 2.0), DVec3::new(0.0, -1.0, -2.0) / 2.0);
+    let ray = MovingRay::fixed(
+        x + DVec3::new(0.0, 1.0, 2.0),
+        DVec3::new(0.0, -1.0, -2.0) / 2.0,
+    );
     let r = hit_rates(&smp, &ray, 2.0);
     assert!(r.ds_dt.abs() < 1e-14 && r.dn_dt.length() < 1e-14, "{r:?}");
 }
@@ -174,14 +183,30 @@ fn shape_operator_is_the_spatial_derivative_of_the_normal() {
             let e = (sop.mul_vec3(w) - fd).length() / (fd.length() + 1e-2);
             assert!(e < 1e-7, "S w {:?} vs fd {fd:?}", sop.mul_vec3(w));
             // eq. 28 agrees with eq. 29 on tangent vectors.
-            assert!((smp.normal_gradient_apply(w) - sop.mul_vec3(w)).length() < 1e-12 * (1.0 + fd.length()));
+            assert!(
+                (smp.normal_gradient_apply(w) - sop.mul_vec3(w)).length()
+                    < 1e-12 * (1.0 + fd.length())
+            );
         }
-        assert!(sop.mul_vec3(n).length() < 1e-12 * (1.0 + sop.xx.abs() + sop.yy.abs() + sop.zz.abs()));
+        assert!(
+            sop.mul_vec3(n).length() < 1e-12 * (1.0 + sop.xx.abs() + sop.yy.abs() + sop.zz.abs())
+        );
     }
     // The local quadric at P: S = k1 e1 e1^T + k2 e2 e2^T exactly (principal curvatures).
-    let q = LocalQuadric::new(DVec3::ONE, DVec3::new(0.0, 0.0, 2.0), DVec3::new(1.0, 1.0, 0.3), 1.5, -0.5).unwrap();
+    let q = LocalQuadric::new(
+        DVec3::ONE,
+        DVec3::new(0.0, 0.0, 2.0),
+        DVec3::new(1.0, 1.0, 0.3),
+        1.5,
+        -0.5,
+    )
+    .unwrap();
     let (p, n, e1, e2) = q.frame();
-    let smp = LevelSetSample { grad: q.gradient(p), hess: q.hessian(), ..Default::default() };
+    let smp = LevelSetSample {
+        grad: q.gradient(p),
+        hess: q.hessian(),
+        ..Default::default()
+    };
     let sop = smp.shape_operator();
     assert!((sop.mul_vec3(e1) - 1.5 * e1).length() < 1e-14);
     assert!((sop.mul_vec3(e2) + 0.5 * e2).length() < 1e-14);
@@ -198,7 +223,10 @@ fn derivative_of_a_normalised_vector_matches_finite_differences() {
         let dv = rng.vec(3.0);
         let fd = ((v + H * dv).normalize() - (v - H * dv).normalize()) / (2.0 * H);
         let a = d_normalized(v, dv);
-        assert!((a - fd).length() < 1e-8 * (1.0 + fd.length()), "{a:?} vs {fd:?}");
+        assert!(
+            (a - fd).length() < 1e-8 * (1.0 + fd.length()),
+            "{a:?} vs {fd:?}"
+        );
         // Projection (eq. 25): kills v, keeps the orthogonal part, idempotent.
         let w = rng.vec(2.0);
         let pw = project(v, w);
@@ -236,7 +264,10 @@ fn degenerate_inputs_give_zero_rates() {
     };
     assert_ne!(hit_rates(&good, &ray, 2.0), HitRates::ZERO);
     // Zero gradient.
-    let zero_grad = LevelSetSample { grad: DVec3::ZERO, ..good };
+    let zero_grad = LevelSetSample {
+        grad: DVec3::ZERO,
+        ..good
+    };
     assert_eq!(hit_rates(&zero_grad, &ray, 2.0), HitRates::ZERO);
     assert_eq!(zero_grad.normal(), DVec3::ZERO);
     assert_eq!(zero_grad.normal_partial_t(), DVec3::ZERO);
@@ -244,18 +275,48 @@ fn degenerate_inputs_give_zero_rates() {
     assert_eq!(d_normalized(DVec3::ZERO, DVec3::ONE), DVec3::ZERO);
     assert_eq!(project(DVec3::ZERO, DVec3::ONE), DVec3::ONE);
     // Ray tangent to the surface, zero direction.
-    let grazing = MovingRay { dir: DVec3::X, ..ray };
+    let grazing = MovingRay {
+        dir: DVec3::X,
+        ..ray
+    };
     assert_eq!(hit_rates(&good, &grazing, 2.0), HitRates::ZERO);
-    let zero_dir = MovingRay { dir: DVec3::ZERO, ..ray };
+    let zero_dir = MovingRay {
+        dir: DVec3::ZERO,
+        ..ray
+    };
     assert_eq!(hit_rates(&good, &zero_dir, 2.0), HitRates::ZERO);
     // NaN / inf anywhere.
     for bad in [f64::NAN, f64::INFINITY, -f64::INFINITY] {
         let v = DVec3::new(bad, 0.0, 1.0);
         let cases = [
             hit_rates(&LevelSetSample { grad: v, ..good }, &ray, 2.0),
-            hit_rates(&LevelSetSample { dgrad_dt: v, ..good }, &ray, 2.0),
-            hit_rates(&LevelSetSample { dphi_dt: bad, ..good }, &ray, 2.0),
-            hit_rates(&LevelSetSample { hess: Sym3 { xy: bad, ..good.hess }, ..good }, &ray, 2.0),
+            hit_rates(
+                &LevelSetSample {
+                    dgrad_dt: v,
+                    ..good
+                },
+                &ray,
+                2.0,
+            ),
+            hit_rates(
+                &LevelSetSample {
+                    dphi_dt: bad,
+                    ..good
+                },
+                &ray,
+                2.0,
+            ),
+            hit_rates(
+                &LevelSetSample {
+                    hess: Sym3 {
+                        xy: bad,
+                        ..good.hess
+                    },
+                    ..good
+                },
+                &ray,
+                2.0,
+            ),
             hit_rates(&good, &MovingRay { origin: v, ..ray }, 2.0),
             hit_rates(&good, &MovingRay { dir: v, ..ray }, 2.0),
             hit_rates(&good, &MovingRay { d_origin: v, ..ray }, 2.0),
@@ -270,11 +331,22 @@ fn degenerate_inputs_give_zero_rates() {
         assert!(project(v, DVec3::ONE).is_finite());
         assert!(project(DVec3::ONE, v).is_finite());
         assert!(LevelSetSample { grad: v, ..good }.normal().is_finite());
-        let s = LevelSetSample { hess: Sym3 { zz: bad, ..good.hess }, ..good }.shape_operator();
+        let s = LevelSetSample {
+            hess: Sym3 {
+                zz: bad,
+                ..good.hess
+            },
+            ..good
+        }
+        .shape_operator();
         assert!(s.is_finite());
     }
     // Huge but finite gradients do not overflow the norm.
-    let huge = LevelSetSample { grad: DVec3::splat(1e300), hess: Sym3::IDENTITY, ..good };
+    let huge = LevelSetSample {
+        grad: DVec3::splat(1e300),
+        hess: Sym3::IDENTITY,
+        ..good
+    };
     assert!((huge.normal().length() - 1.0).abs() < 1e-15);
     let r = hit_rates(&huge, &ray, 2.0);
     assert!(r.ds_dt.is_finite() && r.dn_dt.is_finite());

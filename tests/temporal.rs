@@ -31,7 +31,6 @@ const SWEEPS: [f64; 13] = [
 const K: usize = 4001;
 
 struct Row {
-    sweep: f64,
     /// `|P - C|_F / |C|_F`, `C` the sample covariance of the true slopes.
     err_cov: f64,
     /// Same against the raw second moment about the reference slope (the model's lobe is
@@ -43,7 +42,8 @@ struct Row {
 
 fn frob_rel(p: Covariance, c: [f64; 3]) -> f64 {
     let d = [p.s11 - c[0], p.s12 - c[1], p.s22 - c[2]];
-    ((d[0] * d[0] + 2.0 * d[1] * d[1] + d[2] * d[2]) / (c[0] * c[0] + 2.0 * c[1] * c[1] + c[2] * c[2]))
+    ((d[0] * d[0] + 2.0 * d[1] * d[1] + d[2] * d[2])
+        / (c[0] * c[0] + 2.0 * c[1] * c[1] + c[2] * c[2]))
         .sqrt()
 }
 
@@ -72,7 +72,8 @@ fn shutter_table<B: Body>(name: &str, scene: &Scene<B>) -> Vec<Option<Row>> {
         .iter()
         .map(|&sweep| {
             let shutter = sweep / speed;
-            let model = TemporalRoughness::from_world_rate(rates.dn_dt, t, b, box_shutter_dt(shutter));
+            let model =
+                TemporalRoughness::from_world_rate(rates.dn_dt, t, b, box_shutter_dt(shutter));
             let p = model.covariance();
             let pc = model.cosine_weighted(cos_view).covariance();
             let mut sum = DVec2::ZERO;
@@ -98,7 +99,6 @@ fn shutter_table<B: Body>(name: &str, scene: &Scene<B>) -> Vec<Option<Row>> {
                 raw[2] - mean.y * mean.y,
             ];
             let row = Row {
-                sweep,
                 err_cov: frob_rel(p, cov),
                 err_raw: frob_rel(p, raw),
                 err_cos: frob_rel(pc, cov),
@@ -122,15 +122,20 @@ fn shutter_table<B: Body>(name: &str, scene: &Scene<B>) -> Vec<Option<Row>> {
 }
 
 /// Checks the convergence of one table and returns the first sweep whose covariance error
-/// exceeds 10% (or where the ray leaves the surface).
-fn check_table(name: &str, rows: &[Option<Row>]) -> f64 {
+/// exceeds 10% (or where the ray leaves the surface); it must be `expected` (the measured
+/// breakpoint, stated in the module report).
+fn check_table(name: &str, rows: &[Option<Row>], expected: f64) -> f64 {
     let r0 = rows[0].as_ref().expect("smallest shutter hits");
     let r1 = rows[1].as_ref().expect("second shutter hits");
     // First-order model: the covariance error is O(sweep^2) (the next terms of s(t) add
     // O(T^4) to a T^2 covariance), so at 0.01 rad it is ~1e-4 and doubling the shutter
     // multiplies it by ~4. A wrong scale (e.g. dt = T instead of T / sqrt(6), or A = Sigma
     // instead of 2 Sigma) gives an O(1) error that does not vanish.
-    assert!(r0.err_cov < 1e-3, "{name}: error {} at 0.01 rad", r0.err_cov);
+    assert!(
+        r0.err_cov < 1e-3,
+        "{name}: error {} at 0.01 rad",
+        r0.err_cov
+    );
     let order = (r1.err_cov / r0.err_cov).log2();
     assert!(
         (1.7..2.3).contains(&order),
@@ -145,6 +150,7 @@ fn check_table(name: &str, rows: &[Option<Row>]) -> f64 {
         .map(|(_, s)| s)
         .unwrap_or(f64::INFINITY);
     println!("{name}: first sweep with error > 10%: {first} rad");
+    assert_eq!(first, expected, "{name}: breakpoint moved");
     first
 }
 
@@ -170,8 +176,7 @@ fn sphere() -> Scene<Ellipsoid> {
 fn shutter_table_translating_sphere() {
     // Near-frontal view (cos 0.94): the hit point slides over the sphere.
     let rows = shutter_table("translating sphere, static camera", &sphere());
-    let first = check_table("translating sphere", &rows);
-    assert!(first >= 0.3, "first-order model fails already at {first} rad");
+    check_table("translating sphere", &rows, 1.0);
 }
 
 #[test]
@@ -181,7 +186,7 @@ fn shutter_table_translating_sphere_oblique() {
     s.o0 = DVec3::new(0.85, 0.2, 5.0);
     s.velocity = DVec3::new(-0.6, 0.0, 0.8);
     let rows = shutter_table("translating sphere, oblique view", &s);
-    check_table("oblique sphere", &rows);
+    check_table("oblique sphere", &rows, 0.4);
 }
 
 #[test]
@@ -190,7 +195,10 @@ fn shutter_table_rotating_ellipsoid_moving_camera() {
         body: Ellipsoid {
             center: DVec3::ZERO,
             axes: DVec3::new(1.0, 0.5, 0.3),
-            orient: DMat3::from_quat(DQuat::from_axis_angle(DVec3::new(1.0, 1.0, 0.0).normalize(), 0.7)),
+            orient: DMat3::from_quat(DQuat::from_axis_angle(
+                DVec3::new(1.0, 1.0, 0.0).normalize(),
+                0.7,
+            )),
         },
         center: DVec3::ZERO,
         velocity: DVec3::new(0.2, 0.0, 0.0),
@@ -202,7 +210,7 @@ fn shutter_table_rotating_ellipsoid_moving_camera() {
         s_hint: 0.0,
     };
     let rows = shutter_table("rotating ellipsoid, moving camera", &s);
-    check_table("rotating ellipsoid", &rows);
+    check_table("rotating ellipsoid", &rows, 0.7);
 }
 
 #[test]
@@ -229,7 +237,113 @@ fn shutter_table_moving_saddle_quadric_moving_camera() {
         s_hint: 3.0,
     };
     let rows = shutter_table("moving saddle quadric, moving camera", &s);
-    check_table("saddle quadric", &rows);
+    check_table("saddle quadric", &rows, 0.7);
+}
+
+/// The covariance error of the first-order model at angular sweep `sweep` for one scene,
+/// with `k` time samples; `None` if the ray leaves the surface.
+fn sweep_error<B: Body>(scene: &Scene<B>, sweep: f64, k: usize) -> Option<f64> {
+    let hit = scene.hit(0.0)?;
+    let r = hit_rates(&scene.sample_by_hand(hit.x), &scene.moving_ray(), hit.s);
+    let n0 = hit.n;
+    let (t, b) = n0.any_orthonormal_pair();
+    let shutter = sweep / r.dn_dt.length();
+    let p = TemporalRoughness::from_world_rate(r.dn_dt, t, b, box_shutter_dt(shutter)).covariance();
+    let (mut sum, mut m2) = (DVec2::ZERO, [0.0; 3]);
+    for i in 0..k {
+        let h = scene.hit(shutter * ((i as f64 + 0.5) / k as f64 - 0.5))?;
+        if h.n.dot(n0) <= 0.0 {
+            return None;
+        }
+        let s = slope_in_frame(h.n, t, b, n0);
+        sum += s;
+        m2 = [m2[0] + s.x * s.x, m2[1] + s.x * s.y, m2[2] + s.y * s.y];
+    }
+    let (kf, mean) = (k as f64, sum / k as f64);
+    Some(frob_rel(
+        p,
+        [
+            m2[0] / kf - mean.x * mean.x,
+            m2[1] / kf - mean.x * mean.y,
+            m2[2] / kf - mean.y * mean.y,
+        ],
+    ))
+}
+
+/// Over random scenes: the smallest sweep (grid step 0.05 rad) where the error exceeds 10%,
+/// and there the dimensionless second-order ratio `T |N''| / |N'|` (`N''` by central second
+/// differences of the exact normal, step 1e-3: error ~1e-6 relative).
+fn breakpoints<B: Body>(name: &str, mut make: impl FnMut(&mut Rng) -> Scene<B>) -> Vec<(f64, f64)> {
+    let mut rng = Rng(0xb4ea_4001);
+    let mut out = Vec::new();
+    for _ in 0..60 {
+        let scene = make(&mut rng);
+        let hit = scene.hit(0.0).unwrap();
+        let n1 = hit_rates(&scene.sample_by_hand(hit.x), &scene.moving_ray(), hit.s)
+            .dn_dt
+            .length();
+        // A scene whose normal does not move has no breakpoint; skip it.
+        if n1 < 1e-3 {
+            continue;
+        }
+        let h = 1e-3;
+        let n2 = match (scene.hit(-h), scene.hit(h)) {
+            (Some(a), Some(b)) => ((a.n + b.n - 2.0 * hit.n) / (h * h)).length(),
+            _ => continue,
+        };
+        let first = (1..=40)
+            .map(|j| 0.05 * j as f64)
+            .find(|&sw| sweep_error(&scene, sw, 801).is_none_or(|e| e > 0.1))
+            .unwrap_or(f64::INFINITY);
+        out.push((first, first / n1 * n2 / n1));
+    }
+    let q = |v: &mut Vec<f64>, f: f64| {
+        v.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        v[((v.len() - 1) as f64 * f) as usize]
+    };
+    let mut th: Vec<f64> = out.iter().map(|p| p.0).collect();
+    let mut ra: Vec<f64> = out.iter().map(|p| p.1).collect();
+    println!(
+        "{name}: {} scenes; error > 10% from sweep T|N'| = min {:.2}, 10% {:.2}, median {:.2}, \
+         90% {:.2}, max {:.2} rad; there T|N''|/|N'| = min {:.2}, 10% {:.2}, median {:.2}, \
+         90% {:.2}, max {:.2}",
+        out.len(),
+        q(&mut th, 0.0),
+        q(&mut th, 0.1),
+        q(&mut th, 0.5),
+        q(&mut th, 0.9),
+        q(&mut th, 1.0),
+        q(&mut ra, 0.0),
+        q(&mut ra, 0.1),
+        q(&mut ra, 0.5),
+        q(&mut ra, 0.9),
+        q(&mut ra, 1.0)
+    );
+    out
+}
+
+#[test]
+fn breakpoint_distribution_over_random_scenes() {
+    // Views down to cos 0.2 from the normal, moving cameras, rotations up to 2 rad/T.
+    // 801 time samples: midpoint error O(k^-2) ~ 2e-6, negligible at the 10% level.
+    let mut all = Vec::new();
+    all.extend(breakpoints("random translating spheres", |r| {
+        common::sphere_scene(r, true)
+    }));
+    all.extend(breakpoints("random rotating ellipsoids", |r| {
+        common::ellipsoid_scene(r, true)
+    }));
+    all.extend(breakpoints("random moving quadrics", |r| {
+        common::quadric_scene(r, true)
+    }));
+    // The error is governed by the curvature of the normal's trajectory more than by the
+    // sweep alone: at the first grid sweep above 10%, T |N''| / |N'| was >= 0.49 in all 180
+    // scenes (seeded; 10% quantiles 0.68-0.98) while the sweep itself ranged from 0.05 rad
+    // up. The bound 0.4 leaves room for the 0.05 rad grid quantisation.
+    let min_ratio = all.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+    assert!(min_ratio >= 0.4, "breakpoint at T|N''|/|N'| = {min_ratio}");
+    let min_sweep = all.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
+    assert!(min_sweep > 0.0);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -305,7 +419,12 @@ fn widened_beckmann_is_the_slope_convolution() {
 fn check_normalised<N: Ndf>(name: &str, lobe: &N, tol: f64) {
     // integral of P22 over the slope plane = 1 and integral of D(m) m_z over the hemisphere
     // = 1 (the same identity through the slope-to-sphere Jacobian).
-    let e = integrate_plane(|x, y| lobe.p22(DVec2::new(x, y)), (0.0, 0.0), (0.2, 0.2), Tolerance::relative(1e-9));
+    let e = integrate_plane(
+        |x, y| lobe.p22(DVec2::new(x, y)),
+        (0.0, 0.0),
+        (0.2, 0.2),
+        Tolerance::relative(1e-9),
+    );
     assert!((e.value - 1.0).abs() < tol, "{name}: slope integral {e:?}");
     let h = integrate_2d(
         |th, ph| {
@@ -316,8 +435,15 @@ fn check_normalised<N: Ndf>(name: &str, lobe: &N, tol: f64) {
         (0.0, 2.0 * PI),
         Tolerance::relative(1e-8),
     );
-    assert!((h.value - 1.0).abs() < tol, "{name}: hemisphere integral {h:?}");
-    println!("{name}: slope-plane integral {:.3e} off, hemisphere {:.3e} off", e.value - 1.0, h.value - 1.0);
+    assert!(
+        (h.value - 1.0).abs() < tol,
+        "{name}: hemisphere integral {h:?}"
+    );
+    println!(
+        "{name}: slope-plane integral {:.3e} off, hemisphere {:.3e} off",
+        e.value - 1.0,
+        h.value - 1.0
+    );
 }
 
 #[test]
@@ -325,7 +451,11 @@ fn temporal_lobes_are_normalised() {
     // Tolerance 1e-6: quadrature goals 1e-8..1e-9; the GGX tail beyond the mapped plane
     // converges like |s|^-2 and is resolved by the adaptive rule to ~1e-8.
     let p = temporal().covariance();
-    check_normalised("Beckmann temporal lobe", &TemporalLobe::beckmann(base_rm(), p), 1e-6);
+    check_normalised(
+        "Beckmann temporal lobe",
+        &TemporalLobe::beckmann(base_rm(), p),
+        1e-6,
+    );
     check_normalised("GGX temporal lobe", &TemporalLobe::ggx(base_rm(), p), 1e-6);
     // With a spatial kernel added (covariances add, KHPL16 eq. 15).
     let spatial = Covariance::new(0.002, -0.001, 0.004);
@@ -353,22 +483,46 @@ fn masking_uses_the_base_roughness_only() {
             let l = TemporalLobe::beckmann(base_rm(), tr.covariance());
             let b = Beckmann::new(base_rm());
             let w = Beckmann::new(widen(base_rm(), tr.covariance()));
-            ("Beckmann", l.g1(i, m), l.g2(i, o, m), b.g1(i, m), b.g2(i, o, m), w.g1(i, m), w.g2(i, o, m))
+            (
+                "Beckmann",
+                l.g1(i, m),
+                l.g2(i, o, m),
+                b.g1(i, m),
+                b.g2(i, o, m),
+                w.g1(i, m),
+                w.g2(i, o, m),
+            )
         },
         {
             let l = TemporalLobe::ggx(base_rm(), tr.covariance());
             let b = Ggx::new(base_rm());
             let w = Ggx::new(widen(base_rm(), tr.covariance()));
-            ("GGX", l.g1(i, m), l.g2(i, o, m), b.g1(i, m), b.g2(i, o, m), w.g1(i, m), w.g2(i, o, m))
+            (
+                "GGX",
+                l.g1(i, m),
+                l.g2(i, o, m),
+                b.g1(i, m),
+                b.g2(i, o, m),
+                w.g1(i, m),
+                w.g2(i, o, m),
+            )
         },
     ] {
         // Exact: the lobe evaluates the base NDF's masking through the same code path.
         assert_eq!(lobe_g1, base_g1, "{name}");
         assert_eq!(lobe_g2, base_g2, "{name}");
         // The widened masking is clearly different (>5%), so a leak would be caught.
-        assert!(wide_g1 < 0.95 * base_g1, "{name}: G1 wide {wide_g1} base {base_g1}");
-        assert!(wide_g2 < 0.95 * base_g2, "{name}: G2 wide {wide_g2} base {base_g2}");
-        println!("{name}: G1 base {base_g1:.4} widened {wide_g1:.4}; G2 base {base_g2:.4} widened {wide_g2:.4}");
+        assert!(
+            wide_g1 < 0.95 * base_g1,
+            "{name}: G1 wide {wide_g1} base {base_g1}"
+        );
+        assert!(
+            wide_g2 < 0.95 * base_g2,
+            "{name}: G2 wide {wide_g2} base {base_g2}"
+        );
+        println!(
+            "{name}: G1 base {base_g1:.4} widened {wide_g1:.4}; G2 base {base_g2:.4} widened {wide_g2:.4}"
+        );
     }
     // D is the widened one.
     let l = TemporalLobe::beckmann(base_rm(), tr.covariance());
@@ -390,9 +544,13 @@ fn path_split_preserves_the_total_variance() {
     let shares: Vec<_> = w.iter().map(|&f| tr.share(f)).collect();
     let sum_sq: f64 = shares.iter().map(|s| s.alpha().powi(2)).sum();
     assert!((sum_sq - tr.alpha().powi(2)).abs() < 1e-15);
-    let total = shares.iter().fold(Covariance::ZERO, |acc, s| acc + s.covariance());
+    let total = shares
+        .iter()
+        .fold(Covariance::ZERO, |acc, s| acc + s.covariance());
     let p = tr.covariance();
-    assert!((total.s11 - p.s11).abs() + (total.s12 - p.s12).abs() + (total.s22 - p.s22).abs() < 1e-15);
+    assert!(
+        (total.s11 - p.s11).abs() + (total.s12 - p.s12).abs() + (total.s22 - p.s22).abs() < 1e-15
+    );
     // Each share keeps the axis.
     assert_eq!(shares[1].axis(), tr.axis());
 }
@@ -418,7 +576,11 @@ fn bad_inputs_are_documented_and_nan_free() {
         (DVec2::ONE, f64::NAN),
         (DVec2::ONE, f64::INFINITY),
     ] {
-        assert_eq!(TemporalRoughness::from_normal_rate(rate, dt), z, "{rate:?} {dt}");
+        assert_eq!(
+            TemporalRoughness::from_normal_rate(rate, dt),
+            z,
+            "{rate:?} {dt}"
+        );
     }
     assert_eq!(box_shutter_dt(f64::NAN), 0.0);
     assert_eq!(box_shutter_dt(-1.0), 0.0);
@@ -449,7 +611,14 @@ fn bad_inputs_are_documented_and_nan_free() {
         ] {
             let l = TemporalLobe::beckmann(base, p);
             let g = TemporalLobe::ggx(base, p);
-            for v in [l.p22(DVec2::new(0.1, 0.0)), l.d(m), l.g1(m, m), g.p22(DVec2::ONE), g.d(m), g.g2(m, m, m)] {
+            for v in [
+                l.p22(DVec2::new(0.1, 0.0)),
+                l.d(m),
+                l.g1(m, m),
+                g.p22(DVec2::ONE),
+                g.d(m),
+                g.g2(m, m, m),
+            ] {
                 assert!(v.is_finite() && v >= 0.0, "{p:?} {base:?}: {v}");
             }
         }

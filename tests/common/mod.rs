@@ -77,7 +77,11 @@ impl Body for Ellipsoid {
     fn intersect(&self, o: DVec3, d: DVec3, _hint: f64) -> Option<f64> {
         let lo = self.local(o) / self.axes;
         let ld = (self.orient.transpose() * d) / self.axes;
-        let r = quadratic_roots(ld.length_squared(), 2.0 * lo.dot(ld), lo.length_squared() - 1.0);
+        let r = quadratic_roots(
+            ld.length_squared(),
+            2.0 * lo.dot(ld),
+            lo.length_squared() - 1.0,
+        );
         r.into_iter().find(|&s| s > 0.0)
     }
 }
@@ -95,7 +99,8 @@ pub struct Quadric {
 impl Body for Quadric {
     fn phi(&self, y: DVec3) -> f64 {
         let d = y - self.p;
-        0.5 * self.k1 * d.dot(self.e1).powi(2) + 0.5 * self.k2 * d.dot(self.e2).powi(2)
+        0.5 * self.k1 * d.dot(self.e1).powi(2)
+            + 0.5 * self.k2 * d.dot(self.e2).powi(2)
             + d.dot(self.n)
     }
     fn grad(&self, y: DVec3) -> DVec3 {
@@ -103,8 +108,16 @@ impl Body for Quadric {
         self.k1 * d.dot(self.e1) * self.e1 + self.k2 * d.dot(self.e2) * self.e2 + self.n
     }
     fn hess(&self, _y: DVec3) -> DMat3 {
-        let o1 = DMat3::from_cols(self.e1 * self.e1.x, self.e1 * self.e1.y, self.e1 * self.e1.z);
-        let o2 = DMat3::from_cols(self.e2 * self.e2.x, self.e2 * self.e2.y, self.e2 * self.e2.z);
+        let o1 = DMat3::from_cols(
+            self.e1 * self.e1.x,
+            self.e1 * self.e1.y,
+            self.e1 * self.e1.z,
+        );
+        let o2 = DMat3::from_cols(
+            self.e2 * self.e2.x,
+            self.e2 * self.e2.y,
+            self.e2 * self.e2.z,
+        );
         o1 * self.k1 + o2 * self.k2
     }
     fn intersect(&self, o: DVec3, d: DVec3, hint: f64) -> Option<f64> {
@@ -234,7 +247,9 @@ impl Rng {
         self.unit() * self.uniform(0.0, r)
     }
     pub fn rotation(&mut self) -> DMat3 {
-        DMat3::from_quat(DQuat::from_scaled_axis(self.unit() * self.uniform(0.0, 3.0)))
+        DMat3::from_quat(DQuat::from_scaled_axis(
+            self.unit() * self.uniform(0.0, 3.0),
+        ))
     }
     /// A view direction within `acos(0.2)` of `n`: `normalize(1.5 n + r)`, `r` unit.
     pub fn view_dir(&mut self, n: DVec3) -> DVec3 {
@@ -243,7 +258,12 @@ impl Rng {
 }
 
 /// Camera motion: origin velocity, angular velocity, direction scale.
-fn camera(rng: &mut Rng, x: DVec3, n: DVec3, moving_camera: bool) -> (DVec3, DVec3, DVec3, DVec3, f64) {
+fn camera(
+    rng: &mut Rng,
+    x: DVec3,
+    n: DVec3,
+    moving_camera: bool,
+) -> (DVec3, DVec3, DVec3, DVec3, f64) {
     let w = rng.view_dir(n);
     let l = rng.uniform(2.0, 6.0);
     let scale = rng.uniform(0.5, 2.0);
@@ -259,7 +279,11 @@ fn camera(rng: &mut Rng, x: DVec3, n: DVec3, moving_camera: bool) -> (DVec3, DVe
 pub fn sphere_scene(rng: &mut Rng, moving_camera: bool) -> Scene<Ellipsoid> {
     let r = rng.uniform(0.5, 2.0);
     let c = rng.vec(3.0);
-    let body = Ellipsoid { center: c, axes: DVec3::splat(r), orient: DMat3::IDENTITY };
+    let body = Ellipsoid {
+        center: c,
+        axes: DVec3::splat(r),
+        orient: DMat3::IDENTITY,
+    };
     let n = rng.unit();
     let x = c + r * n;
     let (o0, d0, d_o, omega_cam, s0) = camera(rng, x, n, moving_camera);
@@ -279,9 +303,17 @@ pub fn sphere_scene(rng: &mut Rng, moving_camera: bool) -> Scene<Ellipsoid> {
 /// An ellipsoid with axes in `[0.3, 1.5]`, random orientation, rotating (up to 2 rad per unit
 /// time about a centre near its own) and translating.
 pub fn ellipsoid_scene(rng: &mut Rng, moving_camera: bool) -> Scene<Ellipsoid> {
-    let axes = DVec3::new(rng.uniform(0.3, 1.5), rng.uniform(0.3, 1.5), rng.uniform(0.3, 1.5));
+    let axes = DVec3::new(
+        rng.uniform(0.3, 1.5),
+        rng.uniform(0.3, 1.5),
+        rng.uniform(0.3, 1.5),
+    );
     let c = rng.vec(3.0);
-    let body = Ellipsoid { center: c, axes, orient: rng.rotation() };
+    let body = Ellipsoid {
+        center: c,
+        axes,
+        orient: rng.rotation(),
+    };
     let x = c + body.orient * (axes * rng.unit());
     let n = body.grad(x).normalize();
     let (o0, d0, d_o, omega_cam, s0) = camera(rng, x, n, moving_camera);
@@ -306,7 +338,14 @@ pub fn quadric_scene(rng: &mut Rng, moving_camera: bool) -> Scene<Quadric> {
     let (e1, e2) = n.any_orthonormal_pair();
     let a = rng.uniform(0.0, std::f64::consts::TAU);
     let (e1, e2) = (e1 * a.cos() + e2 * a.sin(), -e1 * a.sin() + e2 * a.cos());
-    let body = Quadric { p, n, e1, e2, k1: rng.uniform(-2.0, 2.0), k2: rng.uniform(-2.0, 2.0) };
+    let body = Quadric {
+        p,
+        n,
+        e1,
+        e2,
+        k1: rng.uniform(-2.0, 2.0),
+        k2: rng.uniform(-2.0, 2.0),
+    };
     let (o0, d0, d_o, omega_cam, s0) = camera(rng, p, n, moving_camera);
     Scene {
         body,
