@@ -21,6 +21,9 @@
 //! value", so `alpha_t = m` and its covariance is `P = (alpha_t^2 / 2) a a^T` with `a` the unit
 //! direction of `dN/dt` in the tangent plane. Eq. 16 in roughness form is therefore
 //! `A_conv = A_mu + 2 P = A_mu + alpha_t^2 a a^T`.
+//! (Eq. 2 prints the Gaussian's normalisation as `pi |Sigma|`; the density that integrates to
+//! one is `exp(-s^T Sigma^-1 s / 2) / (2 pi sqrt(det Sigma)) = exp(-s^T A^-1 s) / (pi
+//! sqrt(det A))`, which is what [`Beckmann`] evaluates.)
 //!
 //! The paper leaves `dt` as "a subset of the shutter". A box shutter of length `T` sweeps the
 //! linearised slope uniformly over `[-T/2, T/2] |dN/dt|`, whose variance `T^2 |dN/dt|^2 / 12`
