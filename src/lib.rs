@@ -51,6 +51,8 @@ macro_rules! precision_modules {
         pub mod geometry;
         #[path = "ggx.rs"]
         pub mod ggx;
+        #[path = "implicit.rs"]
+        pub mod implicit;
         #[path = "isotropic.rs"]
         pub mod isotropic;
         #[path = "jacobian.rs"]
@@ -59,20 +61,27 @@ macro_rules! precision_modules {
         pub mod ndf;
         #[path = "presets.rs"]
         pub mod presets;
+        #[path = "quadric.rs"]
+        pub mod quadric;
         #[path = "roughness.rs"]
         pub mod roughness;
         #[path = "slope.rs"]
         pub mod slope;
+        #[path = "temporal.rs"]
+        pub mod temporal;
 
         pub use beckmann::Beckmann;
         pub use footprint::{Covariance, Footprint};
         pub use geometry::{Endpoint, PinholeRay, ShadingFrame};
         pub use ggx::Ggx;
+        pub use implicit::{HitRates, LevelSetSample, MovingRay, Sym3};
         pub use isotropic::{Bandwidth, KernelConvention};
         pub use ndf::Ndf;
+        pub use quadric::{LocalQuadric, RigidMotion};
         pub use roughness::{
             ALPHA_MAX, ALPHA_MIN, AxisAligned, Isotropic, Roughness, RoughnessMatrix,
         };
+        pub use temporal::{TemporalLobe, TemporalRoughness};
     };
 }
 
