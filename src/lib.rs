@@ -55,9 +55,15 @@ macro_rules! precision_modules {
         pub mod beckmann;
         #[path = "footprint.rs"]
         pub mod footprint;
+        #[path = "clamp.rs"]
+        pub mod clamp;
+        #[path = "filter.rs"]
+        pub mod filter;
 
         pub use beckmann::Beckmann;
-        pub use footprint::{Covariance, Footprint};
+        pub use clamp::{ClampRules, ExtentFloor};
+        pub use filter::LeanMoments;
+        pub use footprint::{BoundingRect, Covariance, Footprint};
         pub use ggx::Ggx;
         pub use ndf::Ndf;
         pub use roughness::{

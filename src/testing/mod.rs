@@ -3,3 +3,4 @@
 //! way.
 
 pub mod quadrature;
+pub mod gaussian_reference;
