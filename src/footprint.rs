@@ -73,9 +73,10 @@ impl Covariance {
     /// `Sigma' = V min(Lambda, max) V^T`. This is the matrix form of TK19 eq. 1's
     /// `min(2 lambda, kappa)` (see [`super::clamp::ClampRules::kernel`]).
     ///
-    /// Computed as `Sigma - (lambda_max - max) v v^T` with
-    /// `v v^T = (Sigma - lambda_min I) / (lambda_max - lambda_min)` when only `lambda_max`
-    /// exceeds `max` (no eigenvector is formed, no cancellation), and `max I` when both do.
+    /// Computed as `max P_max + lambda_min P_min` with the spectral projectors
+    /// `P_max = (Sigma - lambda_min I) / (lambda_max - lambda_min)`, `P_min = I - P_max` when
+    /// only `lambda_max` exceeds `max` (no eigenvector is formed, every term is non-negative),
+    /// and `max I` when both do.
     /// Entries larger than `max` are first scaled to unity so nothing overflows. A negative or
     /// NaN `max` yields [`Covariance::ZERO`]; the input should be [`Covariance::sanitized`].
     pub fn clamp_eigenvalues(&self, max: F) -> Self {
@@ -103,8 +104,15 @@ impl Covariance {
         let p = r + d.abs();
         let q = if p > 0.0 { s.s12 * s.s12 / p } else { 0.0 };
         let (e11, e22) = if d >= 0.0 { (p, q) } else { (q, p) };
-        let w = (lmax - c) / (2.0 * r);
-        Self::new(s.s11 - w * e11, s.s12 - w * s.s12, s.s22 - w * e22) * k
+        // Sigma' = c P_max + lambda_min P_min with the spectral projectors
+        // P_max = [[e11, s12], [s12, e22]] / 2r and P_min = [[e22, -s12], [-s12, e11]] / 2r:
+        // sums of non-negative terms, no cancellation.
+        let inv = 1.0 / (2.0 * r);
+        Self::new(
+            (c * e11 + lmin * e22) * inv,
+            (c - lmin) * s.s12 * inv,
+            (c * e22 + lmin * e11) * inv,
+        ) * k
     }
 
     /// A finite, symmetric positive semi-definite covariance whose eigenvalues are at most
