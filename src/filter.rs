@@ -33,10 +33,18 @@ pub fn gaussian<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatr
 
 /// [`gaussian`] with an explicit determinant clamp `tau` (`0` disables it; NaN, infinite or
 /// negative `tau` is treated as `0`). The kernel is [`Covariance::sanitized`] first.
-pub fn gaussian_with_tau<R: Roughness>(roughness: R, kernel: Covariance, tau: F) -> RoughnessMatrix {
+pub fn gaussian_with_tau<R: Roughness>(
+    roughness: R,
+    kernel: Covariance,
+    tau: F,
+) -> RoughnessMatrix {
     let k = kernel.sanitized();
     let (a11, a12, a22) = roughness.to_matrix().entries();
-    let tau = if tau.is_finite() && tau > 0.0 { tau } else { 0.0 };
+    let tau = if tau.is_finite() && tau > 0.0 {
+        tau
+    } else {
+        0.0
+    };
     // a11, a22 > 0 and det(A + 2K) >= det(A) > 0 for K PSD: the unchecked builder is valid.
     // A rounding-negative determinant (a12 ~ sqrt(a11 a22)) is caught by the floor below.
     let floor = {
@@ -47,7 +55,11 @@ pub fn gaussian_with_tau<R: Roughness>(roughness: R, kernel: Covariance, tau: F)
         a11 + 2.0 * k.s11,
         a12 + 2.0 * k.s12,
         a22 + 2.0 * k.s22,
-        if tau > 0.0 { tau } else { floor_if_lost(a11, a12, a22, k, floor) },
+        if tau > 0.0 {
+            tau
+        } else {
+            floor_if_lost(a11, a12, a22, k, floor)
+        },
     )
 }
 
@@ -56,7 +68,11 @@ pub fn gaussian_with_tau<R: Roughness>(roughness: R, kernel: Covariance, tau: F)
 #[inline]
 fn floor_if_lost(a11: F, a12: F, a22: F, k: Covariance, floor: F) -> F {
     let (b11, b12, b22) = (a11 + 2.0 * k.s11, a12 + 2.0 * k.s12, a22 + 2.0 * k.s22);
-    if b11 * b22 - b12 * b12 > 0.0 { 0.0 } else { floor }
+    if b11 * b22 - b12 * b12 > 0.0 {
+        0.0
+    } else {
+        floor
+    }
 }
 
 /// First and second moments of normal-map slopes over a texel footprint, as stored by LEAN
@@ -100,7 +116,11 @@ impl LeanMoments {
 /// and the pixel kernel are independent Gaussians, so their covariances add, and the result
 /// is filtered by [`gaussian`]: `A' = A + 2 (Sigma_L + Sigma_P)`, `tau = det(A)`.
 #[inline]
-pub fn lean<R: Roughness>(roughness: R, pixel: Covariance, moments: &LeanMoments) -> RoughnessMatrix {
+pub fn lean<R: Roughness>(
+    roughness: R,
+    pixel: Covariance,
+    moments: &LeanMoments,
+) -> RoughnessMatrix {
     gaussian(roughness, pixel.sanitized() + moments.covariance())
 }
 
@@ -161,6 +181,10 @@ pub fn projected<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMat
     let b12 = q.s12 / den;
     let b22 = (q.s22 + d) / den;
     let (r11, r12, r22) = (b11 + excess.s11, b12 + excess.s12, b22 + excess.s22);
-    let floor = if r11 * r22 - r12 * r12 > 0.0 { tau } else { tau.max(F::MIN_POSITIVE) };
+    let floor = if r11 * r22 - r12 * r12 > 0.0 {
+        tau
+    } else {
+        tau.max(F::MIN_POSITIVE)
+    };
     RoughnessMatrix::from_entries_clamped(r11, r12, r22, floor)
 }

@@ -80,11 +80,11 @@ impl Covariance {
     /// Entries larger than `max` are first scaled to unity so nothing overflows. A negative or
     /// NaN `max` yields [`Covariance::ZERO`]; the input should be [`Covariance::sanitized`].
     pub fn clamp_eigenvalues(&self, max: F) -> Self {
-        if !(max >= 0.0) {
+        if max.is_nan() || max < 0.0 {
             return Self::ZERO;
         }
         let scale = self.s11.abs().max(self.s22.abs()).max(self.s12.abs());
-        if !(scale > 0.0) || !scale.is_finite() {
+        if scale.is_nan() || scale <= 0.0 || !scale.is_finite() {
             return if scale.is_finite() { *self } else { Self::ZERO };
         }
         // Work on Sigma / scale (entries <= 1) against max / scale.
@@ -258,7 +258,13 @@ impl Footprint {
     /// [`Footprint::from_normal_differences`] for world-space differences and a world-space
     /// orthonormal tangent frame `(t, b, n)`: the differences are first expressed in the frame
     /// (`(t.dn, b.dn, n.dn)`).
-    pub fn from_world_normal_differences(t: Vec3, b: Vec3, n: Vec3, dn_u: Vec3, dn_v: Vec3) -> Self {
+    pub fn from_world_normal_differences(
+        t: Vec3,
+        b: Vec3,
+        n: Vec3,
+        dn_u: Vec3,
+        dn_v: Vec3,
+    ) -> Self {
         let local = |d: Vec3| Vec3::new(t.dot(d), b.dot(d), n.dot(d));
         Self::from_normal_differences(local(dn_u), local(dn_v))
     }

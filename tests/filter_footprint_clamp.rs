@@ -126,7 +126,10 @@ fn max_extent_rescales_the_parallelogram_and_clamps_the_rectangle() {
     for fp in [
         s::Footprint::from_slope_derivatives(Vec2::splat(1e3), Vec2::new(1e3, -1e3)),
         s::Footprint::from_slope_derivatives(Vec2::splat(1e30), Vec2::new(1e30, -1e30)),
-        s::Footprint::from_slope_derivatives(Vec2::new(f32::INFINITY, 0.0), Vec2::new(1.0, f32::NEG_INFINITY)),
+        s::Footprint::from_slope_derivatives(
+            Vec2::new(f32::INFINITY, 0.0),
+            Vec2::new(1.0, f32::NEG_INFINITY),
+        ),
     ] {
         let c = rules.footprint(fp);
         assert!((c.max_extent() - 1.0).abs() < 1e-6, "{fp:?} -> {c:?}");
@@ -135,9 +138,15 @@ fn max_extent_rescales_the_parallelogram_and_clamps_the_rectangle() {
     assert_eq!(rules.footprint(nan), s::Footprint::ZERO);
     assert_eq!(rules.footprint(s::Footprint::ZERO), s::Footprint::ZERO);
     // Rectangle: per-axis clamp to [floor, lambda].
-    let r = rules.rect(s::BoundingRect::new(Vec2::new(5.0, 1e-5)), Vec2::splat(0.01));
+    let r = rules.rect(
+        s::BoundingRect::new(Vec2::new(5.0, 1e-5)),
+        Vec2::splat(0.01),
+    );
     assert_eq!(r.half_extent, Vec2::new(1.0, 1e-3));
-    let r = rules.rect(s::BoundingRect::new(Vec2::new(f32::NAN, f32::INFINITY)), Vec2::splat(0.01));
+    let r = rules.rect(
+        s::BoundingRect::new(Vec2::new(f32::NAN, f32::INFINITY)),
+        Vec2::splat(0.01),
+    );
     assert_eq!(r.half_extent, Vec2::new(1e-3, 1.0));
     // GDC floor: min(alpha, 0.1) per axis.
     let g = s::ClampRules::GDC2016;
@@ -146,7 +155,11 @@ fn max_extent_rescales_the_parallelogram_and_clamps_the_rectangle() {
     // NONE leaves everything.
     let n = s::ClampRules::NONE;
     assert_eq!(n.footprint(big), big);
-    assert_eq!(n.rect(s::BoundingRect::new(Vec2::new(5.0, 0.0)), Vec2::ONE).half_extent, Vec2::new(5.0, 0.0));
+    assert_eq!(
+        n.rect(s::BoundingRect::new(Vec2::new(5.0, 0.0)), Vec2::ONE)
+            .half_extent,
+        Vec2::new(5.0, 0.0)
+    );
 }
 
 #[test]
@@ -181,7 +194,10 @@ fn kappa_caps_the_kernel_roughness_per_direction() {
 
 #[test]
 fn sanitized_covariance_contract() {
-    assert_eq!(s::Covariance::new(f32::NAN, 0.0, 1.0).sanitized(), s::Covariance::ZERO);
+    assert_eq!(
+        s::Covariance::new(f32::NAN, 0.0, 1.0).sanitized(),
+        s::Covariance::ZERO
+    );
     let inf = s::Covariance::new(f32::INFINITY, 0.0, 1.0).sanitized();
     assert_eq!(inf, s::Covariance::new(1e8, 0.0, 1e8));
     // Negative variances and an over-large correlation are projected to PSD.

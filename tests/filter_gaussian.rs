@@ -1,10 +1,10 @@
 //! Gaussian filtering (`filter::gaussian`, `filter::lean`) against the f64 quadrature
 //! reference of the Gaussian-filtered slope density, and the reference against closed forms.
 
-use filtered_ndf::f64 as d;
 use filtered_ndf::f32 as s;
-use filtered_ndf::f32::Roughness as _;
 use filtered_ndf::f32::Ndf as _;
+use filtered_ndf::f32::Roughness as _;
+use filtered_ndf::f64 as d;
 use filtered_ndf::f64::Ndf as _;
 use filtered_ndf::testing::gaussian_reference as gref;
 use filtered_ndf::testing::quadrature::{Tolerance, integrate_plane};
@@ -55,7 +55,10 @@ fn reference_beckmann_matches_closed_form_near_and_far_from_the_peak() {
                 "a=({ax},{ay}) k={k:?} s={sl}: ref {e:?} closed {exact}"
             );
             // The reference's error estimate must bound its true error (up to rounding).
-            assert!(err <= e.error + 1e-13 * exact + 1e-300, "estimate {e:?} < {err}");
+            assert!(
+                err <= e.error + 1e-13 * exact + 1e-300,
+                "estimate {e:?} < {err}"
+            );
         }
     }
 }
@@ -76,7 +79,10 @@ fn reference_handles_zero_and_singular_kernels() {
     let k1 = d::Covariance::new(4e-4, 0.0, 1e-12);
     let e0 = gref::ggx(r, k0, sl, Tolerance::relative(REF_REL));
     let e1 = gref::ggx(r, k1, sl, Tolerance::relative(REF_REL));
-    assert!((e0.value - e1.value).abs() <= 1e-8 * e0.value, "{e0:?} {e1:?}");
+    assert!(
+        (e0.value - e1.value).abs() <= 1e-8 * e0.value,
+        "{e0:?} {e1:?}"
+    );
     // Beckmann through the singular path equals the closed form.
     let b = d::Isotropic::new(0.05).unwrap();
     let eb = gref::beckmann(b, k0, sl, Tolerance::relative(REF_REL));
@@ -246,7 +252,10 @@ fn gaussian_is_a_plain_sum_with_tau() {
     let (a11, a12, a22) = f.entries();
     let (x, y) = (0.1f32 * 0.1, 0.2f32 * 0.2);
     // Bit-exact: the same f32 operations.
-    assert_eq!((a11, a12, a22), (x + 2.0 * 0.01, 2.0 * 0.002, y + 2.0 * 0.03));
+    assert_eq!(
+        (a11, a12, a22),
+        (x + 2.0 * 0.01, 2.0 * 0.002, y + 2.0 * 0.03)
+    );
     // tau = det(A) = alpha_x^2 alpha_y^2 is only a floor.
     let det = a11 * a22 - a12 * a12;
     // 1e-6: f32 rounding of the determinant of entries ~0.1.

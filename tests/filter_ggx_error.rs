@@ -109,10 +109,19 @@ fn tk19_matrix_approximation_error_against_exact_gaussian_filtered_ggx() {
          at the peak signed relative error in [{peak_signed_min:.3e}, {peak_signed_max:.3e}]"
     );
     // Measured: the Gaussian-matched GGX overestimates the exact filtered peak in every case.
-    assert!(peak_signed_min > 0.0 && peak_signed_max < 0.3, "{peak_signed_min} {peak_signed_max}");
+    assert!(
+        peak_signed_min > 0.0 && peak_signed_max < 0.3,
+        "{peak_signed_min} {peak_signed_max}"
+    );
     // Brackets around the measured figures (factor 1.25 either way).
-    assert!((MED_GAUSS / 1.25..MED_GAUSS * 1.25).contains(&med), "median {med}");
-    assert!((MAX_GAUSS / 1.25..MAX_GAUSS * 1.25).contains(&max), "max {max}");
+    assert!(
+        (MED_GAUSS / 1.25..MED_GAUSS * 1.25).contains(&med),
+        "median {med}"
+    );
+    assert!(
+        (MAX_GAUSS / 1.25..MAX_GAUSS * 1.25).contains(&max),
+        "max {max}"
+    );
 }
 
 #[test]
@@ -133,9 +142,17 @@ fn projected_space_error_against_exact_projected_gaussian_filtered_ggx() {
         };
         // The density's spread on the disk is P = A (I - A)^-1 ~ A for these alphas.
         let p = d::slope::projected_from_slope(c.s);
-        let e = gref::gaussian_convolution(density, DVec2::ZERO, c.a, c.k, p, Tolerance::relative(1e-8));
+        let e = gref::gaussian_convolution(
+            density,
+            DVec2::ZERO,
+            c.a,
+            c.k,
+            p,
+            Tolerance::relative(1e-8),
+        );
         assert!(e.error <= 1e-6 * e.value, "{e:?}");
-        let approx = d::Ggx::new(d::filter::projected(c.a, c.k)).d(d::slope::sphere_from_projected(p));
+        let approx =
+            d::Ggx::new(d::filter::projected(c.a, c.k)).d(d::slope::sphere_from_projected(p));
         rel.push((approx - e.value).abs() / e.value);
     }
     let (med, p90, max) = stats(rel);
@@ -143,8 +160,14 @@ fn projected_space_error_against_exact_projected_gaussian_filtered_ggx() {
         "TK21 projected-space filter vs exact projected-space Gaussian-filtered GGX (64 seeded \
          cases): relative error median {med:.3e}, p90 {p90:.3e}, max {max:.3e}"
     );
-    assert!((MED_PROJ / 1.25..MED_PROJ * 1.25).contains(&med), "median {med}");
-    assert!((MAX_PROJ / 1.25..MAX_PROJ * 1.25).contains(&max), "max {max}");
+    assert!(
+        (MED_PROJ / 1.25..MED_PROJ * 1.25).contains(&med),
+        "median {med}"
+    );
+    assert!(
+        (MAX_PROJ / 1.25..MAX_PROJ * 1.25).contains(&max),
+        "max {max}"
+    );
 }
 
 // Measured figures (see the test output).

@@ -13,7 +13,11 @@ fn mat(r: d::RoughnessMatrix) -> DMat2 {
 
 fn rotated(a1: f64, a2: f64, phi: f64) -> (f64, f64, f64) {
     let (c, sn) = (phi.cos(), phi.sin());
-    (c * c * a1 + sn * sn * a2, c * sn * (a1 - a2), sn * sn * a1 + c * c * a2)
+    (
+        c * c * a1 + sn * sn * a2,
+        c * sn * (a1 - a2),
+        sn * sn * a1 + c * c * a2,
+    )
 }
 
 /// Smallest eigenvalue of a symmetric 2x2.
@@ -43,7 +47,10 @@ fn ggx_on_the_projected_disk_is_ggx_with_matrix_p() {
             let lhs = d::Ggx::new(a).d(h);
             let rhs = d::Ggx::new(p).p22(pp) / jac;
             // 1e-9: f64 rounding amplified by the 1/alpha^2-scaled quadratic forms.
-            assert!((lhs - rhs).abs() <= 1e-9 * lhs, "{a:?} p={pp}: {lhs} vs {rhs}");
+            assert!(
+                (lhs - rhs).abs() <= 1e-9 * lhs,
+                "{a:?} p={pp}: {lhs} vs {rhs}"
+            );
         }
     }
 }
@@ -93,8 +100,11 @@ fn zero_kernel_round_trips_in_f32() {
         for &(ratio, phi) in &[(1.0f32, 0.0f32), (0.3, 0.7), (0.01, -1.2)] {
             let (a1, a2) = (alpha * alpha, (alpha * ratio).powi(2));
             let (c, sn) = (phi.cos(), phi.sin());
-            let (a11, a12, a22) =
-                (c * c * a1 + sn * sn * a2, c * sn * (a1 - a2), sn * sn * a1 + c * c * a2);
+            let (a11, a12, a22) = (
+                c * c * a1 + sn * sn * a2,
+                c * sn * (a1 - a2),
+                sn * sn * a1 + c * c * a2,
+            );
             let Ok(a) = s::RoughnessMatrix::new(a11, a12, a22) else {
                 continue;
             };
@@ -148,11 +158,15 @@ fn bad_kernels_give_finite_spd_results() {
         s::Covariance::new(-1.0, 5.0, -2.0),
         s::Covariance::new(1e30, 1e30, 1e30),
         s::Covariance::ZERO,
-        s::Footprint::from_slope_derivatives(Vec2::splat(1e3), Vec2::new(-1e3, 1e3)).covariance(0.5),
+        s::Footprint::from_slope_derivatives(Vec2::splat(1e3), Vec2::new(-1e3, 1e3))
+            .covariance(0.5),
     ] {
         for f in [s::filter::projected(a, k), s::filter::gaussian(a, k)] {
             let (a11, a12, a22) = f.entries();
-            assert!(a11.is_finite() && a12.is_finite() && a22.is_finite(), "{k:?}: {f:?}");
+            assert!(
+                a11.is_finite() && a12.is_finite() && a22.is_finite(),
+                "{k:?}: {f:?}"
+            );
             let g = s::Ggx::new(f);
             for h in [glam::Vec3::Z, glam::Vec3::new(0.6, 0.0, 0.8), glam::Vec3::X] {
                 let v = g.d(h);

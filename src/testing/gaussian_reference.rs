@@ -103,7 +103,14 @@ pub fn gaussian_convolution<Fd: FnMut(Vec2) -> f64>(
 /// The Gaussian-filtered GGX slope density `(P22_GGX * N_Sigma)(s)` (per unit slope area).
 pub fn ggx<R: Roughness>(roughness: R, kernel: Covariance, s: Vec2, tol: Tolerance) -> Estimate {
     let ndf = Ggx::new(roughness);
-    gaussian_convolution(|r| ndf.p22(r), Vec2::ZERO, roughness.to_matrix(), kernel, s, tol)
+    gaussian_convolution(
+        |r| ndf.p22(r),
+        Vec2::ZERO,
+        roughness.to_matrix(),
+        kernel,
+        s,
+        tol,
+    )
 }
 
 /// The Gaussian-filtered Beckmann slope density `(P22_Beckmann * N_Sigma)(s)`; in closed form
@@ -115,7 +122,14 @@ pub fn beckmann<R: Roughness>(
     tol: Tolerance,
 ) -> Estimate {
     let ndf = Beckmann::new(roughness);
-    gaussian_convolution(|r| ndf.p22(r), Vec2::ZERO, roughness.to_matrix(), kernel, s, tol)
+    gaussian_convolution(
+        |r| ndf.p22(r),
+        Vec2::ZERO,
+        roughness.to_matrix(),
+        kernel,
+        s,
+        tol,
+    )
 }
 
 /// The 1D normal density of standard deviation `sd > 0` at `x`.
