@@ -129,7 +129,8 @@ impl ClampRules {
     /// lobe's per-axis roughness for [`ExtentFloor::AlphaCapped`]. If the floor exceeds
     /// `lambda` the floor wins (as GLSL `clamp` with `min > max` is undefined, we pick the
     /// conservative side). NaN half-extents become `0` before the floor; `+inf` becomes
-    /// `lambda`; negative values are taken by magnitude.
+    /// `lambda` (and stays infinite under [`ClampRules::NONE`]); negative values are taken by
+    /// magnitude.
     pub fn rect(&self, r: BoundingRect, alpha: Vec2) -> BoundingRect {
         let floor = match self.floor {
             ExtentFloor::None => Vec2::ZERO,

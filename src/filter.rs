@@ -9,6 +9,22 @@
 //! [`Covariance::sanitized`], so any kernel (NaN, infinite, indefinite) gives a finite,
 //! positive-definite result. Clamps (extent, `kappa`) are applied by the caller or by
 //! [`super::clamp::ClampRules::filter_gaussian`].
+//!
+//! ```
+//! use filtered_ndf::f32::{filter, Beckmann, ClampRules, Footprint, Ggx, Isotropic, Ndf};
+//! use glam::{Vec2, Vec3};
+//!
+//! let a = Isotropic::new(0.01).unwrap();
+//! // ddx / ddy of the half vector's slope (KHPL16) or of h_xy on the disk (TK19).
+//! let fp = Footprint::from_slope_derivatives(Vec2::new(0.02, 0.0), Vec2::new(0.0, 0.005));
+//! let sigma = fp.covariance(0.5); // SIGMA_PIXEL
+//! let beckmann = Beckmann::new(filter::gaussian(a, sigma)); // exact (KHPL16 eq. 15)
+//! let ggx = Ggx::new(filter::projected(a, sigma)); // TK21 projected space
+//! let clamped = ClampRules::default().filter_gaussian(a, fp, 0.5); // lambda, kappa, tau
+//! let h = Vec3::new(0.005, 0.0, 1.0).normalize();
+//! assert!(beckmann.d(h) < Beckmann::new(a).d(Vec3::Z));
+//! assert!(ggx.d(h).is_finite() && Ggx::new(clamped).d(h).is_finite());
+//! ```
 
 use super::footprint::Covariance;
 use super::roughness::{Roughness, RoughnessMatrix};

@@ -6,6 +6,13 @@
 //! deviation `sigma` pixels (0.5 in both papers) carried into the slope domain has covariance
 //! `Sigma = sigma^2 U^T U` with `U` the matrix whose rows are `dh_u` and `dh_v` (TK19
 //! section 2.2; KHPL16 eq. 13 with `sigma` folded into the vectors).
+//!
+//! - Constructors: from slope derivatives (KHPL16 4.2, 5.1), from projected-disk derivatives
+//!   (TK19 3.2, used directly or mapped to slope space), from normal differences (TK19 eq. 3).
+//! - Kernel shapes: [`Covariance`] (the Gaussian, [`Footprint::covariance`]) and
+//!   [`BoundingRect`] (the conservative rectangle of KHPL16 5.3 and its Gaussian
+//!   equivalent). The isotropic bandwidths of TK19 eq. 1, 2/4, 5 are functions of a
+//!   [`Covariance`] (its eigenvalues and trace).
 
 use super::roughness::ALPHA_MAX;
 use super::{F, Vec2, Vec3};
@@ -238,8 +245,9 @@ impl Footprint {
     /// `dn_bar_u = 2 (n_bar_u)_xy = 2 (dn_u)_xy / |2 e_z + dn_u|`, whose norm is exactly
     /// `|dn_u|` for unit normals (eq. 3: `|dn_bar_perp| = |dn|`) and whose direction is that of
     /// the tangential part of `dn_u`. Hence `tr(covariance(sigma)) = sigma^2 (|dn_u|^2 +
-    /// |dn_v|^2)` (TK19 eq. 4). Opposite normals (`n_u = -n`) have no half-way normal; the
-    /// denominator is clamped to `>= 1e-6` (a huge, finite footprint). Non-finite input gives
+    /// |dn_v|^2)` (TK19 eq. 4). Near-opposite normals (`n_u ~ -n`) have no half-way normal;
+    /// the denominator is clamped to `>= 1e-6` (a huge, finite footprint; zero for exactly
+    /// opposite normals, which have no tangential difference). Non-finite input gives
     /// [`Footprint::ZERO`].
     pub fn from_normal_differences(dn_u: Vec3, dn_v: Vec3) -> Self {
         if !(dn_u.is_finite() && dn_v.is_finite()) {

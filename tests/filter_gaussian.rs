@@ -261,3 +261,34 @@ fn gaussian_is_a_plain_sum_with_tau() {
     // 1e-6: f32 rounding of the determinant of entries ~0.1.
     assert!((f.sqrt_det() - det.sqrt()).abs() < 1e-6 * det.sqrt());
 }
+
+#[test]
+fn reference_ggx_agrees_with_a_plain_plane_quadrature() {
+    // An independent path for GGX: integrate_plane over the kernel offset t of
+    // P22(s - t) N(t; 0, Sigma), for lobe and kernel of comparable width (where a single
+    // centred map resolves both features).
+    let r = d::AxisAligned::new(0.05, 0.03).unwrap();
+    let g = d::Ggx::new(r);
+    let (s11, s12, s22) = (1e-3, 3e-4, 6e-4);
+    let det = s11 * s22 - s12 * s12;
+    let pdf = |x: f64, y: f64| {
+        let q = (s22 * x * x - 2.0 * s12 * x * y + s11 * y * y) / det;
+        (-0.5 * q).exp() / (2.0 * std::f64::consts::PI * det.sqrt())
+    };
+    let k = d::Covariance::new(s11, s12, s22);
+    for &(x, y) in &[(0.0, 0.0), (0.04, -0.02), (0.15, 0.1)] {
+        let sl = DVec2::new(x, y);
+        let plain = integrate_plane(
+            |tx, ty| g.p22(sl - DVec2::new(tx, ty)) * pdf(tx, ty),
+            (0.0, 0.0),
+            (s11.sqrt(), s22.sqrt()),
+            Tolerance::relative(1e-10),
+        );
+        let e = gref::ggx(r, k, sl, Tolerance::relative(REF_REL));
+        // Both aim at <= 1e-9; agreement to 1e-8 relative.
+        assert!(
+            (plain.value - e.value).abs() <= 1e-8 * e.value,
+            "{plain:?} vs {e:?}"
+        );
+    }
+}
