@@ -48,7 +48,9 @@ pub fn gaussian<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatr
 }
 
 /// [`gaussian`] with an explicit determinant clamp `tau` (`0` disables it; NaN, infinite or
-/// negative `tau` is treated as `0`). The kernel is [`Covariance::sanitized`] first.
+/// negative `tau` is treated as `0`). The kernel is [`Covariance::sanitized`] first. Even
+/// with `tau = 0`, a filtered determinant that rounds to `<= 0` (an extremely elongated
+/// kernel) is replaced by `det(A)`, its exact lower bound, so the result is always valid.
 pub fn gaussian_with_tau<R: Roughness>(
     roughness: R,
     kernel: Covariance,
