@@ -85,28 +85,32 @@ fn tk19_matrix_approximation_error_against_exact_gaussian_filtered_ggx() {
     let mut rel = Vec::new();
     let mut near = Vec::new();
     let mut peak = Vec::new();
+    let mut of_peak = Vec::new();
     for c in &cases {
         let approx = d::Ggx::new(d::filter::gaussian(c.a, c.k));
-        let e = gref::ggx(c.a, c.k, c.s, Tolerance::relative(1e-8));
+        let e = gref::ggx(c.a, c.k, c.s, Tolerance::relative(1e-7));
         // The reference is converged far below the errors measured here.
-        assert!(e.error <= 1e-6 * e.value, "{e:?}");
+        assert!(e.error <= 1e-5 * e.value, "{e:?}");
         let r = (approx.p22(c.s) - e.value).abs() / e.value;
         rel.push(r);
         if c.widths <= 1.0 {
             near.push(r);
         }
-        let e0 = gref::ggx(c.a, c.k, DVec2::ZERO, Tolerance::relative(1e-8));
+        let e0 = gref::ggx(c.a, c.k, DVec2::ZERO, Tolerance::relative(1e-7));
         peak.push((approx.p22(DVec2::ZERO) - e0.value) / e0.value);
+        of_peak.push((approx.p22(c.s) - e.value).abs() / e0.value);
     }
     let (med, p90, max) = stats(rel);
     let (nmed, _, nmax) = stats(near);
+    let (_, _, pmax) = stats(of_peak);
     let peak_signed_min = peak.iter().cloned().fold(f64::INFINITY, f64::min);
     let peak_signed_max = peak.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
     println!(
         "TK19 A + 2 Sigma for GGX vs exact Gaussian-filtered GGX (96 seeded cases): \
          relative error median {med:.3e}, p90 {p90:.3e}, max {max:.3e}; \
          within one width of the peak median {nmed:.3e}, max {nmax:.3e}; \
-         at the peak signed relative error in [{peak_signed_min:.3e}, {peak_signed_max:.3e}]"
+         at the peak signed relative error in [{peak_signed_min:.3e}, {peak_signed_max:.3e}]; \
+         largest error relative to the exact filtered peak {pmax:.3e}"
     );
     // Measured: the Gaussian-matched GGX overestimates the exact filtered peak in every case.
     assert!(
@@ -148,9 +152,9 @@ fn projected_space_error_against_exact_projected_gaussian_filtered_ggx() {
             c.a,
             c.k,
             p,
-            Tolerance::relative(1e-8),
+            Tolerance::relative(1e-7),
         );
-        assert!(e.error <= 1e-6 * e.value, "{e:?}");
+        assert!(e.error <= 1e-5 * e.value, "{e:?}");
         let approx =
             d::Ggx::new(d::filter::projected(c.a, c.k)).d(d::slope::sphere_from_projected(p));
         rel.push((approx - e.value).abs() / e.value);
