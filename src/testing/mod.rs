@@ -2,5 +2,5 @@
 //! the crate is tested against, so that a downstream renderer can test its own port the same
 //! way.
 
-pub mod quadrature;
 pub mod gaussian_reference;
+pub mod quadrature;
