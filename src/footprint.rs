@@ -83,9 +83,9 @@ impl Covariance {
     /// Computed as `max P_max + lambda_min P_min` with the spectral projectors
     /// `P_max = (Sigma - lambda_min I) / (lambda_max - lambda_min)`, `P_min = I - P_max` when
     /// only `lambda_max` exceeds `max` (no eigenvector is formed, every term is non-negative),
-    /// and `max I` when both do.
-    /// Entries larger than `max` are first scaled to unity so nothing overflows. A negative or
-    /// NaN `max` yields [`Covariance::ZERO`]; the input should be [`Covariance::sanitized`].
+    /// and `max I` when both do. A matrix with entries above 1 is first scaled to unit size so
+    /// nothing overflows. A negative or NaN `max` yields [`Covariance::ZERO`], a non-finite
+    /// input [`Covariance::ZERO`] (use [`Covariance::sanitized`] for the full contract).
     pub fn clamp_eigenvalues(&self, max: F) -> Self {
         if max.is_nan() || max < 0.0 {
             return Self::ZERO;
