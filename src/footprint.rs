@@ -6,8 +6,16 @@
 //! deviation `sigma` pixels (0.5 in both papers) carried into the slope domain has covariance
 //! `Sigma = sigma^2 U^T U` with `U` the matrix whose rows are `dh_u` and `dh_v` (TK19
 //! section 2.2; KHPL16 eq. 13 with `sigma` folded into the vectors).
+//!
+//! - Constructors: from slope derivatives (KHPL16 4.2, 5.1), from projected-disk derivatives
+//!   (TK19 3.2, used directly or mapped to slope space), from normal differences (TK19 eq. 3).
+//! - Kernel shapes: [`Covariance`] (the Gaussian, [`Footprint::covariance`]) and
+//!   [`BoundingRect`] (the conservative rectangle of KHPL16 5.3 and its Gaussian
+//!   equivalent). The isotropic bandwidths of TK19 eq. 1, 2/4, 5 are functions of a
+//!   [`Covariance`] (its eigenvalues and trace).
 
-use super::{F, Vec2};
+use super::roughness::ALPHA_MAX;
+use super::{F, Vec2, Vec3};
 use crate::math as m;
 
 /// The standard deviation of the pixel filter used by KHPL16 and TK19, in pixels.
@@ -67,7 +75,83 @@ impl Covariance {
         };
         (min, max)
     }
+
+    /// Clamps both eigenvalues to `<= max` without rotating the eigenvectors:
+    /// `Sigma' = V min(Lambda, max) V^T`. This is the matrix form of TK19 eq. 1's
+    /// `min(2 lambda, kappa)` (see [`super::clamp::ClampRules::kernel`]).
+    ///
+    /// Computed as `max P_max + lambda_min P_min` with the spectral projectors
+    /// `P_max = (Sigma - lambda_min I) / (lambda_max - lambda_min)`, `P_min = I - P_max` when
+    /// only `lambda_max` exceeds `max` (no eigenvector is formed, every term is non-negative),
+    /// and `max I` when both do. A matrix with entries above 1 is first scaled to unit size so
+    /// nothing overflows. A negative or NaN `max` yields [`Covariance::ZERO`], a non-finite
+    /// input [`Covariance::ZERO`] (use [`Covariance::sanitized`] for the full contract).
+    pub fn clamp_eigenvalues(&self, max: F) -> Self {
+        if max.is_nan() || max < 0.0 {
+            return Self::ZERO;
+        }
+        let scale = self.s11.abs().max(self.s22.abs()).max(self.s12.abs());
+        if scale.is_nan() || scale <= 0.0 || !scale.is_finite() {
+            return if scale.is_finite() { *self } else { Self::ZERO };
+        }
+        // Work on Sigma / scale (entries <= 1) against max / scale.
+        let k = if scale > 1.0 { scale } else { 1.0 };
+        let s = *self * (1.0 / k);
+        let c = max / k;
+        let (lmin, lmax) = s.eigenvalues();
+        if lmax <= c {
+            return *self;
+        }
+        if lmin >= c {
+            return Self::new(c, 0.0, c) * k;
+        }
+        // lmin < c < lmax, so lmax - lmin > 0.
+        let d = 0.5 * (s.s11 - s.s22);
+        let r = m::hypot(d, s.s12);
+        let p = r + d.abs();
+        let q = if p > 0.0 { s.s12 * s.s12 / p } else { 0.0 };
+        let (e11, e22) = if d >= 0.0 { (p, q) } else { (q, p) };
+        // Sigma' = c P_max + lambda_min P_min with the spectral projectors
+        // P_max = [[e11, s12], [s12, e22]] / 2r and P_min = [[e22, -s12], [-s12, e11]] / 2r:
+        // sums of non-negative terms, no cancellation.
+        let inv = 1.0 / (2.0 * r);
+        Self::new(
+            (c * e11 + lmin * e22) * inv,
+            (c - lmin) * s.s12 * inv,
+            (c * e22 + lmin * e11) * inv,
+        ) * k
+    }
+
+    /// A finite, symmetric positive semi-definite covariance whose eigenvalues are at most
+    /// [`KERNEL_MAX`] (`ALPHA_MAX^2`, a kernel already wider than the widest supported lobe):
+    ///
+    /// - any NaN entry: [`Covariance::ZERO`] (no information, no filtering);
+    /// - any infinite entry: `KERNEL_MAX * I` (the widest kernel, direction unknown);
+    /// - negative variances are raised to `0` and `|s12|` lowered to `sqrt(s11 s22)` (the
+    ///   nearest PSD matrix with the same diagonal; only rounding produces these from
+    ///   [`Footprint::covariance`]);
+    /// - then [`Covariance::clamp_eigenvalues`] with `KERNEL_MAX`.
+    ///
+    /// Every filtering function applies this first, so their results are NaN-free for any
+    /// input.
+    pub fn sanitized(&self) -> Self {
+        let e = [self.s11, self.s12, self.s22];
+        if e.iter().any(|x| x.is_nan()) {
+            return Self::ZERO;
+        }
+        if e.iter().any(|x| x.is_infinite()) {
+            return Self::new(KERNEL_MAX, 0.0, KERNEL_MAX);
+        }
+        let s11 = self.s11.max(0.0);
+        let s22 = self.s22.max(0.0);
+        let bound = m::sqrt(s11) * m::sqrt(s22);
+        let s12 = self.s12.clamp(-bound, bound);
+        Self::new(s11, s12, s22).clamp_eigenvalues(KERNEL_MAX)
+    }
 }
+
+/// The largest kernel eigenvalue kept by [`Covariance::sanitized`] (slope^2): `ALPHA_MAX^2`.
+pub const KERNEL_MAX: F = ALPHA_MAX * ALPHA_MAX;
 
 impl core::ops::Add for Covariance {
     type Output = Self;
@@ -109,6 +193,90 @@ impl Footprint {
         Self { dh_u, dh_v }
     }
 
+    /// From derivatives of the projected half vector `p = (h_x, h_y)` on the unit disk
+    /// (TK19 section 3.2 and Listing 1: `ddx(halfvectorTS.xy)`, `ddy(halfvectorTS.xy)`).
+    ///
+    /// TK19 builds the kernel from these vectors directly, as if they were slope changes:
+    /// the slope-domain change would be `J dp` with the Jacobian of TK19 supplement eq. 6,
+    /// whose determinant `1 / h_z^3` blows the footprint (and its estimation error) up at
+    /// grazing half vectors. Dropping it shrinks the bandwidth there by `det J_o->perp = h_z`
+    /// relative to the sphere (TK19 section 3.2) and equals the slope footprint at `h = n`,
+    /// where `J = -I`. Units: disk units per pixel, used as slope units. For the exact slope
+    /// change use [`Footprint::from_projected_derivatives_in_slope`].
+    #[inline]
+    pub const fn from_projected_derivatives(dp_u: Vec2, dp_v: Vec2) -> Self {
+        Self {
+            dh_u: dp_u,
+            dh_v: dp_v,
+        }
+    }
+
+    /// The slope-domain footprint of disk derivatives at the unit half vector `h`:
+    /// `dh = J_perp->par dp` with `J_perp->par = -1/h_z^3 [[1 - h_y^2, h_x h_y],
+    /// [h_x h_y, 1 - h_x^2]]` (TK19 supplement eq. 6), i.e. the first-order change of the slope
+    /// `s = -p / sqrt(1 - |p|^2)`. `h_z` is clamped to `>= 1e-6` (the footprint of a grazing
+    /// half vector is then huge and finite; clamp it with
+    /// [`super::clamp::ClampRules::footprint`]). A non-finite `h` gives [`Footprint::ZERO`].
+    pub fn from_projected_derivatives_in_slope(h: Vec3, dp_u: Vec2, dp_v: Vec2) -> Self {
+        if !h.is_finite() {
+            return Self::ZERO;
+        }
+        let hz = h.z.max(1e-6);
+        let k = -1.0 / (hz * hz * hz);
+        let j = |d: Vec2| {
+            Vec2::new(
+                (1.0 - h.y * h.y) * d.x + h.x * h.y * d.y,
+                h.x * h.y * d.x + (1.0 - h.x * h.x) * d.y,
+            ) * k
+        };
+        Self {
+            dh_u: j(dp_u),
+            dh_v: j(dp_v),
+        }
+    }
+
+    /// The deferred-rendering footprint from normal differences between neighbouring pixels
+    /// (TK19 section 4.4, eq. 3), in the tangent frame of the current normal `n` (`z = n`).
+    ///
+    /// `dn_u = n_u - n` and `dn_v = n_v - n` are the differences to the unit normals of the
+    /// horizontal and vertical neighbours (`ddx(normal)`, `ddy(normal)` expressed in the
+    /// tangent frame). TK19 differentiates the half-way normal `n_bar_u = (n + n_u) /
+    /// |n + n_u|` on the projected disk over the half-pixel step to it:
+    /// `dn_bar_u = 2 (n_bar_u)_xy = 2 (dn_u)_xy / |2 e_z + dn_u|`, whose norm is exactly
+    /// `|dn_u|` for unit normals (eq. 3: `|dn_bar_perp| = |dn|`) and whose direction is that of
+    /// the tangential part of `dn_u`. Hence `tr(covariance(sigma)) = sigma^2 (|dn_u|^2 +
+    /// |dn_v|^2)` (TK19 eq. 4). Near-opposite normals (`n_u ~ -n`) have no half-way normal;
+    /// the denominator is clamped to `>= 1e-6` (a huge, finite footprint; zero for exactly
+    /// opposite normals, which have no tangential difference). Non-finite input gives
+    /// [`Footprint::ZERO`].
+    pub fn from_normal_differences(dn_u: Vec3, dn_v: Vec3) -> Self {
+        if !(dn_u.is_finite() && dn_v.is_finite()) {
+            return Self::ZERO;
+        }
+        let half = |d: Vec3| {
+            let len = (Vec3::new(0.0, 0.0, 2.0) + d).length().max(1e-6);
+            Vec2::new(d.x, d.y) * (2.0 / len)
+        };
+        Self {
+            dh_u: half(dn_u),
+            dh_v: half(dn_v),
+        }
+    }
+
+    /// [`Footprint::from_normal_differences`] for world-space differences and a world-space
+    /// orthonormal tangent frame `(t, b, n)`: the differences are first expressed in the frame
+    /// (`(t.dn, b.dn, n.dn)`).
+    pub fn from_world_normal_differences(
+        t: Vec3,
+        b: Vec3,
+        n: Vec3,
+        dn_u: Vec3,
+        dn_v: Vec3,
+    ) -> Self {
+        let local = |d: Vec3| Vec3::new(t.dot(d), b.dot(d), n.dot(d));
+        Self::from_normal_differences(local(dn_u), local(dn_v))
+    }
+
     /// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels.
     #[inline]
     pub fn covariance(&self, sigma: F) -> Covariance {
@@ -118,5 +286,64 @@ impl Footprint {
             u.x * u.y + v.x * v.y,
             u.y * u.y + v.y * v.y,
         ) * (sigma * sigma)
+    }
+
+    /// The axis-aligned bounding rectangle of the one-pixel parallelogram
+    /// `{a dh_u + b dh_v : |a|, |b| <= 1/2}` (KHPL16 section 5.3; GDC 2016 listing
+    /// `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`; TK19 Listing 3 `abs(dU) + abs(dV)`
+    /// is its full side): half-extent `(|dh_u| + |dh_v|) / 2` per axis.
+    #[inline]
+    pub fn bounding_rect(&self) -> BoundingRect {
+        BoundingRect {
+            half_extent: (self.dh_u.abs() + self.dh_v.abs()) * 0.5,
+        }
+    }
+
+    /// The largest distance from the centre to a vertex of the one-pixel parallelogram,
+    /// `max(|dh_u + dh_v|, |dh_u - dh_v|) / 2`: the extent clamped by KHPL16 section 5.2.
+    /// It bounds both half-extents of [`Footprint::bounding_rect`].
+    #[inline]
+    pub fn max_extent(&self) -> F {
+        0.5 * (self.dh_u + self.dh_v)
+            .length()
+            .max((self.dh_u - self.dh_v).length())
+    }
+}
+
+/// An axis-aligned slope-domain rectangle centred on the half vector's slope, stored by its
+/// half-extents (half the side lengths, slope units): KHPL16 section 5.3's conservative
+/// region `R` and the `footprint` argument of the GDC 2016 `GGXRectIntegral`.
+///
+/// Convention: the rectangle bounds the *one-pixel* parallelogram (`|a|, |b| <= 1/2` pixel
+/// steps), so `half_extent = (|dh_u| + |dh_v|) / 2` and the full side `w = |dh_u| + |dh_v|`
+/// is TK19 Listing 3's `boundingRectangle`. Half-extents were chosen because the rectangle
+/// integral takes them and the clamps of the GDC listing act on them.
+///
+/// Its Gaussian equivalent ([`BoundingRect::covariance`]) treats the full side like the
+/// footprint vectors: `Sigma_R = sigma^2 diag(w_x^2, w_y^2) = diag((2 sigma h_x)^2,
+/// (2 sigma h_y)^2)`, which is `diag(h_x^2, h_y^2)` for `sigma = 1/2` (GDC 2016 Beckmann
+/// listing `rghns_sq += fp * fp * 2`, TK19 Listing 3 `SIGMA2 * maxWidth^2`). It has the same
+/// or larger variance than the parallelogram's `Sigma` along each axis, and `2 Sigma_R -
+/// Sigma` is positive semi-definite (Cauchy-Schwarz), but `Sigma_R` alone does not dominate
+/// `Sigma` along diagonals (a footprint along `(1, 1)` has twice the variance there).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BoundingRect {
+    /// Half-extents along the tangent `x` and bitangent `y` (slope units, `>= 0`).
+    pub half_extent: Vec2,
+}
+
+impl BoundingRect {
+    /// From half-extents (not checked; see [`super::clamp::ClampRules::rect`]).
+    #[inline]
+    pub const fn new(half_extent: Vec2) -> Self {
+        Self { half_extent }
+    }
+
+    /// The Gaussian-equivalent diagonal covariance `diag((2 sigma h_x)^2, (2 sigma h_y)^2)`
+    /// (see the type docs), `sigma` in pixels.
+    #[inline]
+    pub fn covariance(&self, sigma: F) -> Covariance {
+        let w = self.half_extent * (2.0 * sigma);
+        Covariance::new(w.x * w.x, 0.0, w.y * w.y)
     }
 }

@@ -45,6 +45,10 @@ macro_rules! precision_modules {
         // Each file is deliberately loaded once per precision.
         #[path = "beckmann.rs"]
         pub mod beckmann;
+        #[path = "clamp.rs"]
+        pub mod clamp;
+        #[path = "filter.rs"]
+        pub mod filter;
         #[path = "footprint.rs"]
         pub mod footprint;
         #[path = "geometry.rs"]
@@ -71,7 +75,9 @@ macro_rules! precision_modules {
         pub mod temporal;
 
         pub use beckmann::Beckmann;
-        pub use footprint::{Covariance, Footprint};
+        pub use clamp::{ClampRules, ExtentFloor};
+        pub use filter::LeanMoments;
+        pub use footprint::{BoundingRect, Covariance, Footprint};
         pub use geometry::{Endpoint, PinholeRay, ShadingFrame};
         pub use ggx::Ggx;
         pub use implicit::{HitRates, LevelSetSample, MovingRay, Sym3};

@@ -46,5 +46,6 @@
 //! assert!((total.value - 1.0).abs() < 1e-7);
 //! ```
 
+pub mod gaussian_reference;
 pub mod quadrature;
 pub mod strategies;

@@ -1,0 +1,201 @@
+//! The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, the GDC
+//! 2016 talk, TK19 eq. 1 and its supplement).
+//!
+//! Every rule trades aliasing (or a numerical failure) for bias. [`ClampRules::default`]
+//! holds the papers' defaults; [`ClampRules::NONE`] disables all of them (the unbiased
+//! filter, for references); [`ClampRules::GDC2016`] is the GDC listing's configuration.
+//!
+//! | rule | field | default | protects against | costs |
+//! |---|---|---|---|---|
+//! | maximum extent | `max_extent` | `lambda = 1` (KHPL16 5.2) | footprints that cover the slope plane (grazing views, silhouettes, quad extrapolation): false highlights and flattened lobes | footprints wider than `lambda` are under-filtered: aliasing is left where the footprint estimate exceeds `lambda` |
+//! | rectangle floor | `floor` | `epsilon = 1e-3` (KHPL16 5.2) | the printed eight-term GGX rectangle formula dividing a cancelled difference by a tiny area | every rectangle is at least `2 epsilon` wide: the peak of a lobe with `alpha << epsilon` is capped near `1 / (4 epsilon_x epsilon_y)` (`2.5e5` for `1e-3`) instead of `1 / (pi alpha^2)` |
+//! | GDC floor | `floor` | `min(alpha, 0.1)` ([`ClampRules::GDC2016`]) | the same, scaled to the lobe; flicker of sub-pixel footprints | always blurs, even at zero footprint: the peak of an isotropic lobe with `alpha <= 0.1` drops to the average over `[-alpha, alpha]^2` (measured in `tests/filter_clamp.rs`) |
+//! | kernel roughness | `kappa` | `kappa = 0.18` (TK19 eq. 1) | derivative estimation errors at edges and grazing angles (TK19 3.1) that blow the kernel up | kernel roughness^2 is capped at `kappa` per eigen-direction: under-filtering (residual aliasing) where `2 lambda > kappa`, i.e. where the footprint is wider than `sqrt(0.18) = 0.42` in roughness units |
+//! | determinant clamp | `det_clamp` | on, `tau = det(A)` (TK19 supplement) | an elongated filtered matrix whose determinant lost its digits to cancellation (the inverse explodes) | none in exact arithmetic (`det(A + 2 Sigma) >= det(A)`); in floats it caps the filtered peak at the unfiltered one |
+
+use super::filter;
+use super::footprint::{BoundingRect, Covariance, Footprint};
+use super::roughness::{Roughness, RoughnessMatrix};
+use super::{F, Vec2};
+
+/// The lower bound on a rectangle's half-extents (KHPL16 section 5.2; GDC 2016).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ExtentFloor {
+    /// No floor: half-extents may be `0` (needs an exact rectangle integral).
+    None,
+    /// Half-extents `>= epsilon` on both axes (KHPL16 section 5.2: `epsilon = 1e-3`).
+    Constant(F),
+    /// Half-extents `>= min(alpha_axis, cap)` per axis (GDC 2016 listing:
+    /// `fp_min = min(roughness, 0.1)`).
+    AlphaCapped(F),
+}
+
+/// The clamping rules (see the module docs for what each protects against and costs).
+///
+/// A rule is off when its bound is `F::INFINITY` (`max_extent`, `kappa`),
+/// [`ExtentFloor::None`] or `false` (`det_clamp`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClampRules {
+    /// `lambda`: the largest centre-to-vertex extent of the parallelogram
+    /// ([`Footprint::max_extent`]) and the largest half-extent of a rectangle (slope units).
+    pub max_extent: F,
+    /// The rectangle floor.
+    pub floor: ExtentFloor,
+    /// `kappa`: the largest kernel roughness^2 `2 lambda_i(Sigma)` per eigen-direction
+    /// (TK19 eq. 1, `min(2 lambda, kappa)`).
+    pub kappa: F,
+    /// Evaluate filtered matrices with `tau = det(A_unfiltered)` (TK19 supplement).
+    pub det_clamp: bool,
+}
+
+impl Default for ClampRules {
+    /// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
+    fn default() -> Self {
+        Self {
+            max_extent: 1.0,
+            floor: ExtentFloor::Constant(1e-3),
+            kappa: 0.18,
+            det_clamp: true,
+        }
+    }
+}
+
+impl ClampRules {
+    /// No clamping at all (unbiased; for references and for an exact rectangle integral).
+    pub const NONE: Self = Self {
+        max_extent: F::INFINITY,
+        floor: ExtentFloor::None,
+        kappa: F::INFINITY,
+        det_clamp: false,
+    };
+
+    /// The GDC 2016 listing: `fp = clamp(fp, min(roughness, 0.1), fp_max = 1)`, no `kappa`,
+    /// with the determinant clamp.
+    pub const GDC2016: Self = Self {
+        max_extent: 1.0,
+        floor: ExtentFloor::AlphaCapped(0.1),
+        kappa: F::INFINITY,
+        det_clamp: true,
+    };
+
+    /// The maximum-extent rule on a parallelogram (KHPL16 section 5.2, "rescaling the
+    /// parallelogram"): both vectors are scaled by `min(1, lambda / max_extent)`, keeping the
+    /// shape. Non-finite input: a NaN component gives [`Footprint::ZERO`]; infinite
+    /// components keep their sign (finite ones become `0`) and the result is rescaled to
+    /// extent `lambda` (with an infinite `lambda` they are returned unchanged, and the
+    /// filters' [`Covariance::sanitized`] turns them into the widest kernel). A NaN or
+    /// negative `lambda` is treated as `0`.
+    pub fn footprint(&self, fp: Footprint) -> Footprint {
+        let c = [fp.dh_u.x, fp.dh_u.y, fp.dh_v.x, fp.dh_v.y];
+        if c.iter().any(|x| x.is_nan()) {
+            return Footprint::ZERO;
+        }
+        let lambda = if self.max_extent >= 0.0 {
+            self.max_extent
+        } else {
+            0.0
+        };
+        if c.iter().any(|x| x.is_infinite()) {
+            if !lambda.is_finite() {
+                return fp;
+            }
+            let dir = |v: F| {
+                if v.is_infinite() { v.signum() } else { 0.0 }
+            };
+            return scaled_to(
+                Footprint::from_slope_derivatives(
+                    Vec2::new(dir(fp.dh_u.x), dir(fp.dh_u.y)),
+                    Vec2::new(dir(fp.dh_v.x), dir(fp.dh_v.y)),
+                ),
+                lambda,
+            );
+        }
+        let scale = fp.dh_u.abs().max(fp.dh_v.abs()).max_element();
+        if scale == 0.0 {
+            return fp;
+        }
+        // Extent of fp / scale (no overflow), compared with lambda / scale.
+        let unit = Footprint::from_slope_derivatives(fp.dh_u / scale, fp.dh_v / scale);
+        let e = unit.max_extent();
+        if e * scale <= lambda {
+            fp
+        } else {
+            scaled_to(unit, lambda)
+        }
+    }
+
+    /// The rectangle rules: half-extents clamped to `[floor, lambda]` per axis (KHPL16
+    /// section 5.2 "clamping h_s and h_t"; GDC 2016 `clamp(fp, fp_min, fp_max)`), `alpha` the
+    /// lobe's per-axis roughness for [`ExtentFloor::AlphaCapped`]. If the floor exceeds
+    /// `lambda` the floor wins (as GLSL `clamp` with `min > max` is undefined, we pick the
+    /// conservative side). NaN half-extents become `0` before the floor; `+inf` becomes
+    /// `lambda` (and stays infinite under [`ClampRules::NONE`]); negative values are taken by
+    /// magnitude.
+    pub fn rect(&self, r: BoundingRect, alpha: Vec2) -> BoundingRect {
+        let floor = match self.floor {
+            ExtentFloor::None => Vec2::ZERO,
+            ExtentFloor::Constant(e) => Vec2::splat(e),
+            ExtentFloor::AlphaCapped(cap) => alpha.abs().min(Vec2::splat(cap)),
+        };
+        let fix = |v: F| if v.is_nan() { 0.0 } else { v.abs() };
+        let floor_fix = |v: F| if v >= 0.0 && v.is_finite() { v } else { 0.0 };
+        let lambda = if self.max_extent >= 0.0 {
+            self.max_extent
+        } else {
+            0.0
+        };
+        let h = Vec2::new(fix(r.half_extent.x), fix(r.half_extent.y)).min(Vec2::splat(lambda));
+        let f = Vec2::new(floor_fix(floor.x), floor_fix(floor.y));
+        BoundingRect::new(h.max(f))
+    }
+
+    /// The kernel-roughness rule of TK19 eq. 1 in matrix form: `2 Sigma'` has the
+    /// eigenvalues `min(2 lambda_i, kappa)` and `Sigma`'s eigenvectors
+    /// ([`Covariance::clamp_eigenvalues`] with `kappa / 2`), after
+    /// [`Covariance::sanitized`]. For an isotropic kernel this is exactly eq. 1. A NaN or
+    /// negative `kappa` is treated as `0` (no filtering).
+    pub fn kernel(&self, k: Covariance) -> Covariance {
+        let k = k.sanitized();
+        if self.kappa.is_infinite() && self.kappa > 0.0 {
+            return k;
+        }
+        let kappa = if self.kappa >= 0.0 { self.kappa } else { 0.0 };
+        k.clamp_eigenvalues(0.5 * kappa)
+    }
+
+    /// The determinant clamp for filtering `roughness`: `tau = det(A)` (`alpha_x^2 alpha_y^2`
+    /// for an axis-aligned lobe, TK19 supplement) if `det_clamp`, else `0`.
+    #[inline]
+    pub fn tau<R: Roughness>(&self, roughness: R) -> F {
+        if self.det_clamp {
+            let s = roughness.sqrt_det();
+            s * s
+        } else {
+            0.0
+        }
+    }
+
+    /// The whole Gaussian pipeline: [`ClampRules::footprint`] -> [`Footprint::covariance`]
+    /// (`sigma` pixels) -> [`ClampRules::kernel`] -> `A' = A + 2 Sigma` with
+    /// [`ClampRules::tau`] ([`filter::gaussian_with_tau`]). Exact for Beckmann, the TK19
+    /// approximation for GGX.
+    pub fn filter_gaussian<R: Roughness>(
+        &self,
+        roughness: R,
+        fp: Footprint,
+        sigma: F,
+    ) -> RoughnessMatrix {
+        let k = self.kernel(self.footprint(fp).covariance(sigma));
+        filter::gaussian_with_tau(roughness, k, self.tau(roughness))
+    }
+}
+
+/// Scales a footprint with nonzero, finite extent to extent `e` (else zero).
+fn scaled_to(fp: Footprint, e: F) -> Footprint {
+    let cur = fp.max_extent();
+    if !(cur > 0.0 && cur.is_finite()) {
+        return Footprint::ZERO;
+    }
+    let k = e / cur;
+    Footprint::from_slope_derivatives(fp.dh_u * k, fp.dh_v * k)
+}
