@@ -38,7 +38,7 @@ use super::beckmann::Beckmann;
 use super::footprint::Covariance;
 use super::ggx::Ggx;
 use super::ndf::Ndf;
-use super::roughness::{ALPHA_MAX, ALPHA_MIN, Roughness, RoughnessMatrix, clamp_alpha};
+use super::roughness::{ALPHA_MAX, Roughness, RoughnessMatrix, clamp_alpha};
 use super::{F, Vec2, Vec3};
 use crate::math as m;
 
@@ -196,23 +196,6 @@ impl TemporalRoughness {
     }
 }
 
-/// Makes a covariance usable as a filter kernel: NaN entries become `0`, the variances are
-/// clamped to `[0, ALPHA_MAX^2 / 4]` and the covariance to `|s12| <= sqrt(s11 s22)`
-/// (positive semi-definite).
-#[inline]
-fn sanitize(p: Covariance) -> Covariance {
-    let cap = 0.25 * ALPHA_MAX * ALPHA_MAX;
-    let var = |x: F| if x > 0.0 { x.min(cap) } else { 0.0 };
-    let (s11, s22) = (var(p.s11), var(p.s22));
-    let lim = m::sqrt(s11 * s22);
-    let s12 = if p.s12.is_finite() {
-        p.s12.clamp(-lim, lim)
-    } else {
-        0.0
-    };
-    Covariance::new(s11, s12, s22)
-}
-
 /// Eq. 16 in roughness form: `A_conv = A_mu + 2 P` (the Gaussian convolution
 /// `Sigma_conv = Sigma_mu + P` with `A = 2 Sigma`, KHPL16 eq. 14), evaluated with the TK19
 /// determinant clamp `tau = det A_mu` (the convolution can only grow the determinant, so the
@@ -221,19 +204,12 @@ fn sanitize(p: Covariance) -> Covariance {
 /// Exact for Beckmann in the slope domain (Gaussians convolve to Gaussians); for GGX the same
 /// matrix is the usual "roughness-matrix route" approximation (KHPL16, TK19). `p` is any slope
 /// covariance: temporal ([`TemporalRoughness::covariance`]), spatial
-/// ([`super::footprint::Footprint::covariance`]) or their sum. An invalid `p` is made usable:
-/// NaN entries are `0`, variances are clamped to `[0, ALPHA_MAX^2 / 4]` and the covariance
-/// to `|s12| <= sqrt(s11 s22)`.
+/// ([`super::footprint::Footprint::covariance`]) or their sum. An invalid `p` is made usable
+/// by [`Covariance::sanitized`](super::footprint::Covariance::sanitized) (NaN: no widening;
+/// infinite: the largest kernel; indefinite: projected to positive semi-definite).
 pub fn widen<R: Roughness>(base: R, p: Covariance) -> RoughnessMatrix {
-    let p = sanitize(p);
-    let (a11, a12, a22) = base.to_matrix().entries();
-    let sd = base.sqrt_det();
-    RoughnessMatrix::from_entries_clamped(
-        a11 + 2.0 * p.s11,
-        a12 + 2.0 * p.s12,
-        a22 + 2.0 * p.s22,
-        (sd * sd).max(ALPHA_MIN * ALPHA_MIN * ALPHA_MIN * ALPHA_MIN),
-    )
+    // One source of truth for A + 2 Sigma with tau = det A: the spatial Gaussian filter.
+    super::filter::gaussian(base, p)
 }
 
 /// A microfacet lobe whose distribution is widened by the temporal roughness but whose
