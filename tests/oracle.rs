@@ -32,7 +32,7 @@ fn err(v: &Value) -> &str {
 #[test]
 fn session_replies_line_by_line_with_closed_form_values() {
     let r = run_session();
-    assert_eq!(r.len(), 21, "one reply per input line");
+    assert_eq!(r.len(), 23, "one reply per input line");
     // GGX peak 1 / (pi alpha^2); f64 to 1e-15 relative, f32 to one f32 rounding (6e-8).
     let peak = 1.0 / (PI * 0.01);
     assert!((ok(&r[0]) - peak).abs() < 1e-15 * peak);
@@ -76,6 +76,17 @@ fn session_replies_line_by_line_with_closed_form_values() {
     assert!((ok(&r[18]) - a).abs() < 1e-15, "{}", r[18]);
     assert!(err(&r[19]).contains("variant"));
     assert!(err(&r[20]).contains("must be a number"));
+    // KHPL16 eq. 13-15: A + 2 sigma^2 (du du^T + dv dv^T), sigma = 0.5, worked by hand:
+    // diag(0.01, 0.04) + 0.5 [[4e-4, 2e-4], [2e-4, 1.7e-3]].
+    let a = &r[21]["ok"];
+    let expect = [[0.0102, 1e-4], [1e-4, 0.04085]];
+    for (i, row) in expect.iter().enumerate() {
+        for (k, e) in row.iter().enumerate() {
+            let got = a[i][k].as_f64().expect("number");
+            assert!((got - e).abs() < 1e-15, "A'[{i}][{k}] = {got}, expected {e}");
+        }
+    }
+    assert!(err(&r[22]).contains("footprint"));
 }
 
 #[test]

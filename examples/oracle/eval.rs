@@ -41,6 +41,11 @@ pub const OPS: &[OpInfo] = &[
         args: "alpha, dn_u, dn_v (world-space normal differences, [x, y, z]), variant (\"max\"|\"trace\"|\"average\"), optional kappa (default 0.18)",
         returns: "filtered alpha = sqrt(saturate(alpha^2 + min(kernel, kappa))); TK19 eq. 1, 4, 5 with eq. 3, sigma^2 = 0.25",
     },
+    OpInfo {
+        name: "filter_roughness",
+        args: "roughness, footprint ([[dhu_x, dhu_y], [dhv_x, dhv_y]], slope change per pixel), optional sigma (pixels, default 0.5)",
+        returns: "filtered roughness matrix [[a11, a12], [a12, a22]] = A + 2 Sigma, Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T); KHPL16 eq. 13-15, TK19 sec. 2.2 (exact for Beckmann)",
+    },
 ];
 
 /// `{"ok": ...}` or `{"error": ...}` for one input line. Never panics.
@@ -181,47 +186,48 @@ macro_rules! in_precision {
     };
 }
 
-/// Runs `$body` with `$ndf` bound to the NDF `$dist` of roughness `$r` (three forms).
-macro_rules! with_ndf {
-    ($p:ident, $dist:expr, $r:expr, $ndf:ident, $body:expr) => {{
+/// Runs `$body` with `$r` bound to the checked roughness (one of three forms) of `$arg`.
+macro_rules! with_roughness {
+    ($p:ident, $arg:expr, $r:ident, $body:expr) => {{
         let c = |x: f64| <$p::F as Real>::from_f64(x);
-        match ($dist, $r) {
-            (d, RoughnessArg::Iso(a)) => {
-                let r = $p::Isotropic::new(c(a)).map_err(|e| e.to_string())?;
-                if d == "ggx" {
-                    let $ndf = $p::Ggx::new(r);
-                    $body
-                } else {
-                    let $ndf = $p::Beckmann::new(r);
-                    $body
-                }
+        match $arg {
+            RoughnessArg::Iso(a) => {
+                let $r = $p::Isotropic::new(c(a)).map_err(|e| e.to_string())?;
+                $body
             }
-            (d, RoughnessArg::Aniso(ax, ay)) => {
-                let r = $p::AxisAligned::new(c(ax), c(ay)).map_err(|e| e.to_string())?;
-                if d == "ggx" {
-                    let $ndf = $p::Ggx::new(r);
-                    $body
-                } else {
-                    let $ndf = $p::Beckmann::new(r);
-                    $body
-                }
+            RoughnessArg::Aniso(ax, ay) => {
+                let $r = $p::AxisAligned::new(c(ax), c(ay)).map_err(|e| e.to_string())?;
+                $body
             }
-            (d, RoughnessArg::Matrix(m)) => {
-                let r = $p::RoughnessMatrix::from_mat2($p::Mat2::from_cols(
+            RoughnessArg::Matrix(m) => {
+                let $r = $p::RoughnessMatrix::from_mat2($p::Mat2::from_cols(
                     $p::Vec2::new(c(m[0][0]), c(m[1][0])),
                     $p::Vec2::new(c(m[0][1]), c(m[1][1])),
                 ))
                 .map_err(|e| e.to_string())?;
-                if d == "ggx" {
-                    let $ndf = $p::Ggx::new(r);
-                    $body
-                } else {
-                    let $ndf = $p::Beckmann::new(r);
-                    $body
-                }
+                $body
             }
         }
     }};
+}
+
+/// Runs `$body` with `$ndf` bound to the NDF `$dist` of roughness `$arg` (three forms).
+macro_rules! with_ndf {
+    ($p:ident, $dist:expr, $arg:expr, $ndf:ident, $body:expr) => {
+        with_roughness!($p, $arg, r, {
+            if $dist == "ggx" {
+                let $ndf = $p::Ggx::new(r);
+                $body
+            } else {
+                let $ndf = $p::Beckmann::new(r);
+                $body
+            }
+        })
+    };
+}
+
+fn matrix_json<T: Real>(a11: T, a12: T, a22: T) -> Result<Value, String> {
+    Ok(json!([[out(a11)?, out(a12)?], [out(a12)?, out(a22)?]]))
 }
 
 fn eval(v: &Value) -> Result<Value, String> {
@@ -307,6 +313,36 @@ fn eval(v: &Value) -> Result<Value, String> {
                 let dn_v = p::Vec3::new(c(dv[0]), c(dv[1]), c(dv[2]));
                 let sigma = normal_difference_covariance(dn_u, dn_v, SIGMA2);
                 out(filtered_alpha(c(alpha), &sigma, bw, c(kappa)))
+            })
+        }
+        "filter_roughness" => {
+            let r = roughness_arg(v)?;
+            let fp = v.get("footprint").ok_or("missing argument `footprint`")?;
+            let rows = fp
+                .as_array()
+                .filter(|a| a.len() == 2)
+                .ok_or("footprint must be [[dhu_x, dhu_y], [dhv_x, dhv_y]]")?;
+            let wrap = |x: &Value| json!({ "footprint": x });
+            let du = array::<2>(&wrap(&rows[0]), "footprint")?;
+            let dv = array::<2>(&wrap(&rows[1]), "footprint")?;
+            let sigma = match v.get("sigma") {
+                None => 0.5,
+                Some(x) => finite(x, "sigma")?,
+            };
+            if sigma < 0.0 {
+                return Err("sigma must be >= 0".into());
+            }
+            in_precision!(prec, p, {
+                let c = |x: f64| <p::F as Real>::from_f64(x);
+                let fp = p::Footprint::from_slope_derivatives(
+                    p::Vec2::new(c(du[0]), c(du[1])),
+                    p::Vec2::new(c(dv[0]), c(dv[1])),
+                );
+                with_roughness!(p, r, rr, {
+                    let (a11, a12, a22) =
+                        p::filter::gaussian(rr, fp.covariance(c(sigma))).entries();
+                    matrix_json(a11, a12, a22)
+                })
             })
         }
         other => Err(format!(
