@@ -90,6 +90,10 @@ impl Covariance {
         if max.is_nan() || max < 0.0 {
             return Self::ZERO;
         }
+        // Fast path: a PSD kernel whose trace (lambda_min + lambda_max) is within the bound.
+        if self.s11 >= 0.0 && self.s22 >= 0.0 && self.s11 + self.s22 <= max {
+            return *self;
+        }
         let scale = self.s11.abs().max(self.s22.abs()).max(self.s12.abs());
         if scale.is_nan() || scale <= 0.0 || !scale.is_finite() {
             return if scale.is_finite() { *self } else { Self::ZERO };
@@ -135,7 +139,13 @@ impl Covariance {
     /// Every filtering function applies this first, so their results are NaN-free for any
     /// input.
     pub fn sanitized(&self) -> Self {
-        let e = [self.s11, self.s12, self.s22];
+        let (a, b, c) = (self.s11, self.s12, self.s22);
+        // Fast path (every footprint covariance): finite, positive semi-definite and with
+        // trace <= KERNEL_MAX, which bounds both eigenvalues. NaN fails every comparison.
+        if a >= 0.0 && c >= 0.0 && a + c <= KERNEL_MAX && b * b <= a * c {
+            return *self;
+        }
+        let e = [a, b, c];
         if e.iter().any(|x| x.is_nan()) {
             return Self::ZERO;
         }

@@ -83,7 +83,10 @@ fn session_replies_line_by_line_with_closed_form_values() {
     for (i, row) in expect.iter().enumerate() {
         for (k, e) in row.iter().enumerate() {
             let got = a[i][k].as_f64().expect("number");
-            assert!((got - e).abs() < 1e-15, "A'[{i}][{k}] = {got}, expected {e}");
+            assert!(
+                (got - e).abs() < 1e-15,
+                "A'[{i}][{k}] = {got}, expected {e}"
+            );
         }
     }
     assert!(err(&r[22]).contains("footprint"));

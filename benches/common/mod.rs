@@ -1,0 +1,105 @@
+//! Seeded, realistic inputs shared by every benchmark and by the trade-table example
+//! (`examples/tradeoff.rs` includes this file), so that cost and error are measured on the
+//! same distribution.
+#![allow(dead_code)]
+
+/// SplitMix64: the same stream on every run and platform.
+pub struct Rng(pub u64);
+
+impl Rng {
+    /// Uniform in `[0, 1)`.
+    pub fn uniform(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Log-uniform in `[lo, hi]`.
+    pub fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        (lo.ln() + (hi.ln() - lo.ln()) * self.uniform()).exp()
+    }
+
+    /// Standard normal (Box-Muller).
+    pub fn normal(&mut self) -> f64 {
+        let u = self.uniform().max(1e-300);
+        let v = self.uniform();
+        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * v).cos()
+    }
+}
+
+/// One shading situation a renderer meets: a material, a half vector and a pixel footprint.
+#[derive(Clone, Copy, Debug)]
+pub struct Case {
+    /// Roughness `(alpha_x, alpha_y)` of an axis-aligned material.
+    pub alpha: [f64; 2],
+    /// Unit half vector in the tangent frame.
+    pub h: [f64; 3],
+    /// Slope-domain footprint `dh_u`, `dh_v` (per pixel).
+    pub dh_u: [f64; 2],
+    /// See `dh_u`.
+    pub dh_v: [f64; 2],
+}
+
+impl Case {
+    /// Slope of `h`: `-h_xy / h_z`.
+    pub fn slope(&self) -> [f64; 2] {
+        [-self.h[0] / self.h[2], -self.h[1] / self.h[2]]
+    }
+}
+
+fn unit_from_slope(s: [f64; 2]) -> [f64; 3] {
+    let n = (1.0 + s[0] * s[0] + s[1] * s[1]).sqrt();
+    [-s[0] / n, -s[1] / n, 1.0 / n]
+}
+
+/// `n` realistic cases (seeded): glossy materials (alpha log-uniform in `[0.005, 0.5]`,
+/// anisotropy ratio up to 4 in one case in four), half vectors near the lobe (slope
+/// Gaussian with twice the roughness plus the footprint scale; one case in eight far in the
+/// tail, one in eight grazing up to 89 degrees), footprints with extents log-uniform in
+/// `[1e-4, 0.3]` slope per pixel and random orientation and shear.
+pub fn realistic_cases(n: usize, seed: u64) -> Vec<Case> {
+    let mut rng = Rng(seed);
+    (0..n)
+        .map(|i| {
+            let a = rng.log_uniform(0.005, 0.5);
+            let ratio = if i % 4 == 3 {
+                rng.log_uniform(1.0, 4.0)
+            } else {
+                1.0
+            };
+            let alpha = [a, (a * ratio).min(1.0)];
+            let ext = rng.log_uniform(1e-4, 0.3);
+            let (p1, p2) = (
+                std::f64::consts::TAU * rng.uniform(),
+                std::f64::consts::TAU * rng.uniform(),
+            );
+            let e2 = ext * rng.log_uniform(0.1, 1.0);
+            let dh_u = [ext * p1.cos(), ext * p1.sin()];
+            let dh_v = [e2 * p2.cos(), e2 * p2.sin()];
+            let h = match i % 8 {
+                6 => {
+                    let r = 10.0 * a * (1.0 + rng.uniform());
+                    let phi = std::f64::consts::TAU * rng.uniform();
+                    unit_from_slope([r * phi.cos(), r * phi.sin()])
+                }
+                7 => {
+                    let t = (60.0 + 29.0 * rng.uniform()).to_radians();
+                    let phi = std::f64::consts::TAU * rng.uniform();
+                    [t.sin() * phi.cos(), t.sin() * phi.sin(), t.cos()]
+                }
+                _ => {
+                    let w = 2.0 * a + ext;
+                    unit_from_slope([w * rng.normal(), w * rng.normal()])
+                }
+            };
+            Case {
+                alpha,
+                h,
+                dh_u,
+                dh_v,
+            }
+        })
+        .collect()
+}
