@@ -55,11 +55,16 @@ macro_rules! precision_modules {
         pub mod beckmann;
         #[path = "footprint.rs"]
         pub mod footprint;
+        #[path = "sampling.rs"]
+        pub mod sampling;
+        #[path = "sample_beckmann.rs"]
+        pub mod sample_beckmann;
 
         pub use beckmann::Beckmann;
         pub use footprint::{Covariance, Footprint};
         pub use ggx::Ggx;
         pub use ndf::Ndf;
+        pub use sampling::NdfSampling;
         pub use roughness::{
             ALPHA_MAX, ALPHA_MIN, AxisAligned, Isotropic, Roughness, RoughnessMatrix,
         };
