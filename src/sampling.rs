@@ -100,22 +100,38 @@ pub trait NdfSampling: Ndf {
     /// vectors. `wi` may lie below the surface (the sampler produces such directions; the
     /// BRDF's `G2` then vanishes). `0` for `wo_z <= 0`, for `wi = -wo` (no half vector), where
     /// `wo.m <= 0`, and for non-finite input.
+    ///
+    /// Conditioning: the recomputed half vector carries a direction error of about
+    /// `eps / (2 wo.m)`; when that exceeds the lobe width (`f32`, roughness near `1e-4`, views
+    /// beyond about 89.9 degrees) the value is unreliable (possibly `0`). For the pdf of a
+    /// direction this trait sampled, use [`NdfSampling::reflection_pdf_from_normal`] with the
+    /// sampled `m`, which has no such loss.
     #[inline]
     fn reflection_pdf(&self, wo: Vec3, wi: Vec3) -> F {
-        if !(wo.is_finite() && wi.is_finite()) || !(wo.z > 0.0) {
+        if !(wo.is_finite() && wi.is_finite()) || !(wo.z > 0.0) || wi == Vec3::ZERO {
             return 0.0;
         }
-        let (o, i) = (normalize_scaled(wo), normalize_scaled(wi));
-        let h = o + i;
+        let h = normalize_scaled(wo) + normalize_scaled(wi);
         let len = m::sqrt(h.length_squared());
         if !(len > 0.0) {
             return 0.0;
         }
-        let mh = h / len;
-        if !(o.dot(mh) > 0.0) {
+        self.reflection_pdf_from_normal(wo, h / len)
+    }
+
+    /// The density per steradian of `wi = reflect(wo, m)` given the unit half vector `m`
+    /// itself: `D_wo(m) / (4 wo.m) = G1(wo) D(m) / (4 wo_z)` (Walter et al. 2007 eq. 14, `wo`
+    /// normalised here). `0` for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0` and non-finite input.
+    #[inline]
+    fn reflection_pdf_from_normal(&self, wo: Vec3, m: Vec3) -> F {
+        if !(wo.is_finite() && m.is_finite()) || !(wo.z > 0.0) {
             return 0.0;
         }
-        let v = self.d(mh) / (4.0 * o.z * (1.0 + self.lambda(o)));
+        let o = normalize_scaled(wo);
+        if !(o.dot(m) > 0.0) {
+            return 0.0;
+        }
+        let v = self.d(m) / (4.0 * o.z * (1.0 + self.lambda(o)));
         if v.is_finite() { v } else { 0.0 }
     }
 }
