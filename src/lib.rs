@@ -64,10 +64,10 @@ macro_rules! precision_modules {
         pub use footprint::{Covariance, Footprint};
         pub use ggx::Ggx;
         pub use ndf::Ndf;
-        pub use sampling::NdfSampling;
         pub use roughness::{
             ALPHA_MAX, ALPHA_MIN, AxisAligned, Isotropic, Roughness, RoughnessMatrix,
         };
+        pub use sampling::NdfSampling;
     };
 }
 

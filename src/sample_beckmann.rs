@@ -54,7 +54,7 @@ pub(crate) fn invert_visible_slope_cdf(c: f64, s: f64, u: f64) -> f64 {
     // that C(hi) = 1 exactly and every u < 1 has its root strictly inside the bracket.
     let norm = cdf_terms(hi, c, s).0;
     let target = u * norm;
-    if !(target > 0.0) {
+    if target.is_nan() || target <= 0.0 {
         return lo;
     }
     let tol = 8.0 * f64::EPSILON * target + f64::MIN_POSITIVE;
@@ -111,6 +111,10 @@ pub fn visible_slope_quantile(cos_theta: F, sin_theta: F, u: F) -> F {
         (1.0, 0.0)
     };
     let u = u.to_f64();
-    let u = if u >= 0.0 { u.min(1.0 - 0.5 * f64::EPSILON) } else { 0.0 };
+    let u = if u >= 0.0 {
+        u.min(1.0 - 0.5 * f64::EPSILON)
+    } else {
+        0.0
+    };
     F::from_f64(invert_visible_slope_cdf(c, s, u))
 }

@@ -81,11 +81,11 @@ pub trait NdfSampling: Ndf {
     /// non-finite input.
     #[inline]
     fn visible_normal_pdf(&self, wo: Vec3, m: Vec3) -> F {
-        if !(wo.is_finite() && m.is_finite()) || !(wo.z > 0.0) {
+        if !(wo.is_finite() && m.is_finite() && positive(wo.z)) {
             return 0.0;
         }
         let wom = wo.dot(m);
-        if !(wom > 0.0) {
+        if !positive(wom) {
             return 0.0;
         }
         // G1 / wo_z with the wo scale cancelling in wo.m / wo_z and in Lambda.
@@ -108,12 +108,12 @@ pub trait NdfSampling: Ndf {
     /// sampled `m`, which has no such loss.
     #[inline]
     fn reflection_pdf(&self, wo: Vec3, wi: Vec3) -> F {
-        if !(wo.is_finite() && wi.is_finite()) || !(wo.z > 0.0) || wi == Vec3::ZERO {
+        if !(wo.is_finite() && wi.is_finite() && positive(wo.z)) || wi == Vec3::ZERO {
             return 0.0;
         }
         let h = normalize_scaled(wo) + normalize_scaled(wi);
         let len = m::sqrt(h.length_squared());
-        if !(len > 0.0) {
+        if !positive(len) {
             return 0.0;
         }
         self.reflection_pdf_from_normal(wo, h / len)
@@ -124,11 +124,11 @@ pub trait NdfSampling: Ndf {
     /// normalised here). `0` for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0` and non-finite input.
     #[inline]
     fn reflection_pdf_from_normal(&self, wo: Vec3, m: Vec3) -> F {
-        if !(wo.is_finite() && m.is_finite()) || !(wo.z > 0.0) {
+        if !(wo.is_finite() && m.is_finite() && positive(wo.z)) {
             return 0.0;
         }
         let o = normalize_scaled(wo);
-        if !(o.dot(m) > 0.0) {
+        if !positive(o.dot(m)) {
             return 0.0;
         }
         let v = self.d(m) / (4.0 * o.z * (1.0 + self.lambda(o)));
@@ -141,6 +141,12 @@ pub trait NdfSampling: Ndf {
 #[inline]
 pub fn reflect(wo: Vec3, m: Vec3) -> Vec3 {
     2.0 * wo.dot(m) * m - wo
+}
+
+/// `x > 0`, false for NaN.
+#[inline]
+fn positive(x: F) -> bool {
+    x > 0.0
 }
 
 /// Clamps a uniform number into `[0, 1 - eps/2]`; NaN maps to `0`.
@@ -211,7 +217,7 @@ impl Warp {
 /// The view direction in the unit-roughness space, or `None` for `wo_z <= 0` / non-finite.
 #[inline]
 fn standard_view(warp: &Warp, wo: Vec3) -> Option<Vec3> {
-    if !wo.is_finite() || !(wo.z > 0.0) {
+    if !(wo.is_finite() && positive(wo.z)) {
         return None;
     }
     Some(normalize_scaled(warp.stretch(wo)))
@@ -274,7 +280,11 @@ impl<R: Roughness> NdfSampling for Beckmann<R> {
         let wi = standard_view(&warp, wo)?;
         let (wx, wy, c) = (wi.x.to_f64(), wi.y.to_f64(), wi.z.to_f64());
         let s = m::hypot(wx, wy);
-        let (cphi, sphi) = if s > 0.0 { (wx / s, wy / s) } else { (1.0, 0.0) };
+        let (cphi, sphi) = if s > 0.0 {
+            (wx / s, wy / s)
+        } else {
+            (1.0, 0.0)
+        };
         let x = invert_visible_slope_cdf(c, s, clamp_unit(u.x).to_f64());
         let y = invert_visible_slope_cdf(1.0, 0.0, clamp_unit(u.y).to_f64());
         let (tx, ty) = (cphi * x - sphi * y, sphi * x + cphi * y);

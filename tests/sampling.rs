@@ -3,7 +3,7 @@
 //! robustness contract at the extremes (both precisions). The chi-square fits are in
 //! `tests/sampling_chi2.rs`.
 
-use filtered_ndf::testing::quadrature::{Tolerance, integrate, integrate_2d};
+use filtered_ndf::testing::quadrature::{Tolerance, integrate};
 use std::f64::consts::PI;
 
 // ---------------------------------------------------------------------------------------
@@ -64,7 +64,11 @@ mod f64_helpers {
                 let v = pdf(m) * m.z.powi(3) * self.sqrt_det / (c * c * c);
                 if v.is_finite() { v } else { 0.0 }
             };
-            let inner_tol = Tolerance { rel: tol.rel * 0.1, abs: tol.abs * 0.1, ..tol };
+            let inner_tol = Tolerance {
+                rel: tol.rel * 0.1,
+                abs: tol.abs * 0.1,
+                ..tol
+            };
             integrate(
                 |phi| {
                     let cut = wo.and_then(|wo| {
@@ -121,8 +125,12 @@ use glam::{DVec2, DVec3};
 fn rotated(a: f64, cond: f64, angle: f64) -> RoughnessMatrix {
     let (l1, l2) = (a * a, a * a / cond);
     let (c, s) = (angle.cos(), angle.sin());
-    RoughnessMatrix::new(c * c * l1 + s * s * l2, c * s * (l1 - l2), s * s * l1 + c * c * l2)
-        .unwrap()
+    RoughnessMatrix::new(
+        c * c * l1 + s * s * l2,
+        c * s * (l1 - l2),
+        s * s * l1 + c * c * l2,
+    )
+    .unwrap()
 }
 
 // ---------------------------------------------------------------------------------------
@@ -131,13 +139,23 @@ fn rotated(a: f64, cond: f64, angle: f64) -> RoughnessMatrix {
 fn check_normalised<N: NdfSampling, R: Roughness>(name: &str, ndf: &N, r: &R) {
     let wh = Whitening::new(r);
     // rel 1e-10 requested, 1e-9 asserted (the nested rule's error adds over the outer nodes).
-    let tol = Tolerance { abs: 1e-13, rel: 1e-10, max_intervals: 2000 };
+    let tol = Tolerance {
+        abs: 1e-13,
+        rel: 1e-10,
+        max_intervals: 2000,
+    };
     let total = wh.integrate_hemisphere(|m| ndf.normal_pdf(m), None, tol);
-    assert!((total - 1.0).abs() < 1e-9, "{name}: D cos integrates to {total}");
+    assert!(
+        (total - 1.0).abs() < 1e-9,
+        "{name}: D cos integrates to {total}"
+    );
     for &deg in &[0.0, 15.0, 30.0, 80.0, 89.9, 89.99] {
         let wo = view(deg, 0.7);
         let total = wh.integrate_hemisphere(|m| ndf.visible_normal_pdf(wo, m), Some(wo), tol);
-        assert!((total - 1.0).abs() < 1e-9, "{name} view {deg}: D_wo integrates to {total}");
+        assert!(
+            (total - 1.0).abs() < 1e-9,
+            "{name} view {deg}: D_wo integrates to {total}"
+        );
     }
 }
 
@@ -156,13 +174,15 @@ fn pdfs_integrate_to_one() {
     }
 }
 
+type BoxedPdf = Box<dyn Fn(DVec3, DVec3) -> f64>;
+
 #[test]
 fn reflection_pdf_integrates_to_one_over_the_sphere() {
     // Every m maps to one wi, so the reflection density integrates to 1 over the whole sphere
     // of wi (including directions below the surface). Integrated to rel 1e-9; asserted to
     // 1e-7 (nested-rule error).
     for &a in &[0.2, 0.8] {
-        let ndfs: [(&str, Box<dyn Fn(DVec3, DVec3) -> f64>); 3] = [
+        let ndfs: [(&str, BoxedPdf); 3] = [
             ("ggx iso", {
                 let n = Ggx::new(Isotropic::new(a).unwrap());
                 Box::new(move |o, i| n.reflection_pdf(o, i))
@@ -183,7 +203,11 @@ fn reflection_pdf_integrates_to_one_over_the_sphere() {
                 // wi_z = -wo_z (where the half vector crosses the horizon and GGX's D(m) stays
                 // positive), and the lobe sits at the mirror direction (wi_z = wo_z, phi_i =
                 // phi_o + pi), where the outer and inner rules are split as well.
-                let tol = Tolerance { abs: 1e-13, rel: 1e-10, max_intervals: 2000 };
+                let tol = Tolerance {
+                    abs: 1e-13,
+                    rel: 1e-10,
+                    max_intervals: 2000,
+                };
                 let phi_r = 0.3 + PI;
                 let inner = |phi: f64| {
                     let mut sum = 0.0;
@@ -210,7 +234,10 @@ fn reflection_pdf_integrates_to_one_over_the_sphere() {
                     value: e.value + e2.value,
                     error: e.error + e2.error,
                 };
-                assert!((e.value - 1.0).abs() < 1e-7, "{name} a={a} view {deg}: {e:?}");
+                assert!(
+                    (e.value - 1.0).abs() < 1e-7,
+                    "{name} a={a} view {deg}: {e:?}"
+                );
             }
         }
     }
@@ -224,13 +251,18 @@ fn reflection_pdf_is_the_half_vector_jacobian_of_the_visible_pdf() {
     let wo = view(50.0, 2.0);
     let mut rng = SplitMix(7);
     for _ in 0..200 {
-        let m = ndf.sample_visible_normal(wo, DVec2::new(rng.next_f64(), rng.next_f64())).unwrap();
+        let m = ndf
+            .sample_visible_normal(wo, DVec2::new(rng.next_f64(), rng.next_f64()))
+            .unwrap();
         let wi = filtered_ndf::f64::sampling::reflect(wo, m);
         let expect = ndf.visible_normal_pdf(wo, m) / (4.0 * wo.dot(m));
         let got = ndf.reflection_pdf(wo, wi);
         assert!((got - expect).abs() <= 1e-12 * expect, "{got} vs {expect}");
         let from_m = ndf.reflection_pdf_from_normal(wo, m);
-        assert!((from_m - expect).abs() <= 1e-12 * expect, "{from_m} vs {expect}");
+        assert!(
+            (from_m - expect).abs() <= 1e-12 * expect,
+            "{from_m} vs {expect}"
+        );
         assert!((wi.length() - 1.0).abs() < 1e-14);
     }
 }
@@ -285,7 +317,12 @@ fn check_slope_statistics(name: &str, s: &[DVec2], a: RoughnessMatrix, beckmann:
     // Projections v.s: Beckmann N(0, v^T A v / 2); GGX Student-t with 2 dof and scale
     // sqrt(v^T A v / 2) (P22 is the bivariate t_2 with scale matrix A / 2), CDF
     // 1/2 + z / (2 sqrt(2 + z^2)). These see the orientation of A, which q does not.
-    for v in [DVec2::X, DVec2::Y, DVec2::new(1.0, 1.0), DVec2::new(1.0, -2.0)] {
+    for v in [
+        DVec2::X,
+        DVec2::Y,
+        DVec2::new(1.0, 1.0),
+        DVec2::new(1.0, -2.0),
+    ] {
         let v = v.normalize();
         let sigma = (0.5 * (a11 * v.x * v.x + 2.0 * a12 * v.x * v.y + a22 * v.y * v.y)).sqrt();
         let proj: Vec<f64> = s.iter().map(|s| s.dot(v) / sigma).collect();
@@ -294,7 +331,10 @@ fn check_slope_statistics(name: &str, s: &[DVec2], a: RoughnessMatrix, beckmann:
         } else {
             ks_statistic(proj, |z| 0.5 + z / (2.0 * (2.0 + z * z).sqrt()))
         };
-        assert!(d < ks_max, "{name}: KS of the projection on {v} = {d} > {ks_max}");
+        assert!(
+            d < ks_max,
+            "{name}: KS of the projection on {v} = {d} > {ks_max}"
+        );
     }
     if beckmann {
         // Mean 0 and covariance A / 2 (KHPL16 eq. 14), each within 5 standard errors:
@@ -312,8 +352,14 @@ fn check_slope_statistics(name: &str, s: &[DVec2], a: RoughnessMatrix, beckmann:
         let (s11, s12, s22) = (a11 / 2.0, a12 / 2.0, a22 / 2.0);
         assert!(mean.x.abs() < 5.0 * (s11 / n).sqrt(), "{name}: mean {mean}");
         assert!(mean.y.abs() < 5.0 * (s22 / n).sqrt(), "{name}: mean {mean}");
-        assert!((c11 - s11).abs() < 5.0 * (2.0 * s11 * s11 / n).sqrt(), "{name}: c11 {c11} vs {s11}");
-        assert!((c22 - s22).abs() < 5.0 * (2.0 * s22 * s22 / n).sqrt(), "{name}: c22 {c22} vs {s22}");
+        assert!(
+            (c11 - s11).abs() < 5.0 * (2.0 * s11 * s11 / n).sqrt(),
+            "{name}: c11 {c11} vs {s11}"
+        );
+        assert!(
+            (c22 - s22).abs() < 5.0 * (2.0 * s22 * s22 / n).sqrt(),
+            "{name}: c22 {c22} vs {s22}"
+        );
         assert!(
             (c12 - s12).abs() < 5.0 * ((s11 * s22 + s12 * s12) / n).sqrt(),
             "{name}: c12 {c12} vs {s12}"
@@ -325,18 +371,31 @@ fn check_slope_statistics(name: &str, s: &[DVec2], a: RoughnessMatrix, beckmann:
 fn full_matrix_slope_statistics_match_closed_forms() {
     // D cos sampling and, at normal incidence (where D_wo(m) = D(m) m_z), visible-normal
     // sampling, for a moderate and a condition-1e4 matrix.
-    for (k, a) in [rotated(0.5, 6.0, 0.7), rotated(0.05, 1e4, -1.2)].into_iter().enumerate() {
+    for (k, a) in [rotated(0.5, 6.0, 0.7), rotated(0.05, 1e4, -1.2)]
+        .into_iter()
+        .enumerate()
+    {
         let seed = 100 * k as u64;
         let g = Ggx::new(a);
         let b = Beckmann::new(a);
-        check_slope_statistics("ggx D cos", &slopes(|u| g.sample_normal(u), seed + 1), a, false);
+        check_slope_statistics(
+            "ggx D cos",
+            &slopes(|u| g.sample_normal(u), seed + 1),
+            a,
+            false,
+        );
         check_slope_statistics(
             "ggx visible 0",
             &slopes(|u| g.sample_visible_normal(DVec3::Z, u).unwrap(), seed + 2),
             a,
             false,
         );
-        check_slope_statistics("beck D cos", &slopes(|u| b.sample_normal(u), seed + 3), a, true);
+        check_slope_statistics(
+            "beck D cos",
+            &slopes(|u| b.sample_normal(u), seed + 3),
+            a,
+            true,
+        );
         check_slope_statistics(
             "beck visible 0",
             &slopes(|u| b.sample_visible_normal(DVec3::Z, u).unwrap(), seed + 4),
@@ -352,10 +411,18 @@ fn full_matrix_slope_statistics_match_closed_forms() {
 #[test]
 fn beckmann_visible_slope_quantile_matches_the_quadrature_cdf() {
     use filtered_ndf::f64::sample_beckmann::visible_slope_quantile;
-    let tol = Tolerance { abs: 1e-300, rel: 1e-14, max_intervals: 2000 };
+    let tol = Tolerance {
+        abs: 1e-300,
+        rel: 1e-14,
+        max_intervals: 2000,
+    };
     for &deg in &[0.0, 15.0, 45.0, 80.0, 89.0, 89.9, 89.999, 90.0] {
         let t: f64 = f64::to_radians(deg);
-        let (c, s) = if deg == 90.0 { (0.0, 1.0) } else { (t.cos(), t.sin()) };
+        let (c, s) = if deg == 90.0 {
+            (0.0, 1.0)
+        } else {
+            (t.cos(), t.sin())
+        };
         let mu = if s > 0.0 { (c / s).min(30.0) } else { 30.0 };
         let density = |x: f64| (-x * x).exp() * (c - s * x).max(0.0);
         let total = integrate(density, -30.0, mu, tol).value;
@@ -363,7 +430,10 @@ fn beckmann_visible_slope_quantile_matches_the_quadrature_cdf() {
         for &u in &[1e-12, 1e-6, 0.01, 0.3, 0.5, 0.9, 0.999_999, 1.0 - 1e-12] {
             let x = visible_slope_quantile(c, s, u);
             assert!(x > prev, "view {deg}: not increasing in u at {u}");
-            assert!(s * x < c || (deg == 90.0 && x <= 0.0), "view {deg} u {u}: x={x} >= cot");
+            assert!(
+                s * x < c || (deg == 90.0 && x <= 0.0),
+                "view {deg} u {u}: x={x} >= cot"
+            );
             prev = x;
             let cdf = integrate(density, -30.0, x, tol).value / total;
             // The solver's residual bound is 8 ulps of u (relative) plus the rounding of erfc
@@ -477,7 +547,11 @@ macro_rules! robustness {
                 for bad in [V3::ZERO, V3::NEG_Z, V3::new(F::NAN, 0.0, 1.0), -wo] {
                     assert_eq!(ndf.visible_normal_pdf(wo, bad), 0.0, "{name}: {bad}");
                     assert_eq!(ndf.normal_pdf(bad), 0.0, "{name}: {bad}");
-                    assert_eq!(ndf.reflection_pdf_from_normal(wo, bad), 0.0, "{name}: {bad}");
+                    assert_eq!(
+                        ndf.reflection_pdf_from_normal(wo, bad),
+                        0.0,
+                        "{name}: {bad}"
+                    );
                 }
                 assert_eq!(ndf.reflection_pdf(wo, -wo), 0.0, "{name}: wi = -wo");
                 assert_eq!(ndf.reflection_pdf(wo, V3::new(F::NAN, 0.0, 1.0)), 0.0);
@@ -508,7 +582,10 @@ macro_rules! robustness {
             fn extremes_never_nan_never_behind_the_horizon() {
                 for &a in &[1e-4, 1e-3, 0.5, 1.0, 10.0, 1e3] {
                     both(&format!("iso {a}"), Isotropic::new(a).unwrap());
-                    both(&format!("axis {a}"), AxisAligned::new(a, (a * 0.01).max(1e-4)).unwrap());
+                    both(
+                        &format!("axis {a}"),
+                        AxisAligned::new(a, (a * 0.01).max(1e-4)).unwrap(),
+                    );
                 }
                 // Condition number 1e4 (eigenvalues a^2 and a^2 / 1e4), smallest alpha 1e-4.
                 for &a in &[1e-2, 1.0, 100.0] {
@@ -541,7 +618,9 @@ fn f32_and_f64_samplers_agree() {
         let u = DVec2::new(rng.next_f64(), 0.99 * rng.next_f64());
         let u32 = glam::Vec2::new(u.x as f32, u.y as f32);
         let m64 = Beckmann::new(a64).sample_visible_normal(wo, u).unwrap();
-        let m32 = s::Beckmann::new(a32).sample_visible_normal(wo32, u32).unwrap();
+        let m32 = s::Beckmann::new(a32)
+            .sample_visible_normal(wo32, u32)
+            .unwrap();
         assert!((m64.as_vec3() - m32).length() < 1e-4, "{m64} vs {m32}");
         let g64 = Ggx::new(a64).sample_visible_normal(wo, u).unwrap();
         let g32 = s::Ggx::new(a32).sample_visible_normal(wo32, u32).unwrap();
