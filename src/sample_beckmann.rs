@@ -26,10 +26,14 @@ const INV_SQRT_PI: f64 = 0.564_189_583_547_756_3;
 /// resolution of any uniform number of that precision.
 const X_MAX: f64 = if F::MANTISSA_DIGITS > 24 { 26.0 } else { 9.0 };
 
-/// Iteration cap of the safeguarded Newton solve. Every non-Newton step halves the bracket
-/// of width `< 2 X_MAX`, and a Newton step is only accepted when it shrinks the residual
-/// faster than bisection would, so 100 steps are far beyond the `~ 50` a pure bisection
-/// needs to reach `f64` resolution; the tests observe at most about 10.
+/// Iteration cap of the safeguarded Newton solve. A Newton step is taken only if it stays in
+/// the bracket and shrinks the residual faster than bisection would (Numerical Recipes'
+/// `rtsafe` rule), otherwise the bracket (width `< 2 X_MAX`) is halved, so the cap is never
+/// the binding stop: a pure bisection reaches `1e-13` resolution in about 50 steps. Measured
+/// (the same algorithm over 13 view angles from 0 to 90 degrees, 20 000 uniform `u` each):
+/// 7.7 evaluations of `erfc` and `exp` on average and at most 19 for uniform `u`; up to 54 in
+/// the far tails (`u <= 1e-12`, `u = 1 - 2^-53`), where the residual goal sits at the rounding
+/// level of `erfc` and the bracket-width test ends the solve.
 const MAX_ITERATIONS: usize = 100;
 
 /// `K(x)` and `K'(x)` (see the module docs).

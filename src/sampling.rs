@@ -56,6 +56,22 @@ const ONE_MINUS_EPS: F = 1.0 - 0.5 * F::EPSILON;
 
 /// Sampling routines and pdfs of a microfacet NDF (see the module docs for the formulas and
 /// the out-of-domain contract).
+///
+/// ```
+/// use filtered_ndf::f32::sampling::reflect;
+/// use filtered_ndf::f32::{Ggx, NdfSampling, RoughnessMatrix};
+/// use glam::{Vec2, Vec3};
+///
+/// // A filtered, sheared lobe: A = [[0.04, 0.01], [0.01, 0.09]].
+/// let ggx = Ggx::new(RoughnessMatrix::new(0.04, 0.01, 0.09).unwrap());
+/// let wo = Vec3::new(0.3, 0.1, 0.9).normalize();
+/// let m = ggx.sample_visible_normal(wo, Vec2::new(0.3, 0.7)).unwrap();
+/// assert!(m.z > 0.0 && wo.dot(m) > 0.0);
+/// let wi = reflect(wo, m);
+/// // pdf of the sampled direction, and the same pdf as MIS would evaluate it for a light sample.
+/// let pdf = ggx.reflection_pdf_from_normal(wo, m);
+/// assert!((ggx.reflection_pdf(wo, wi) - pdf).abs() < 1e-4 * pdf);
+/// ```
 pub trait NdfSampling: Ndf {
     /// Samples a unit micronormal `m` with density `D(m) m_z` per steradian (the NDF itself,
     /// projected-area normalised, KHPL16 eq. 2) from `u` in `[0, 1)^2`. Always `m_z > 0`.

@@ -1,7 +1,8 @@
 //! Chi-square goodness of fit of every sampler against its own pdf integrated per cell by
 //! adaptive quadrature (the Mitsuba / pbrt test), for GGX and Beckmann in the three roughness
 //! forms, roughness 1e-3, 0.1 and 0.8, `D(m) m_z` sampling and visible normals at view
-//! angles 0, 15, 30, 80 and 89.9 degrees: 2 x 3 x 3 x 6 = 108 tests.
+//! angles 0, 15, 30, 80 and 89.9 degrees: 2 x 3 x 3 x 6 = 108 tests; plus 8 tests of the
+//! `f32` samplers (full matrix, roughness 0.1) against the `f64` pdf: 116 in all.
 //!
 //! ## The grid
 //! A `(cos theta, phi)` grid on the hemisphere of `m` cannot resolve a lobe of roughness
@@ -21,7 +22,7 @@
 //! that cell into the smallest other if still below 5). A sample in a cell of zero expected
 //! count fails outright. The p-value `Q(dof/2, chi2/2)` uses the regularised incomplete
 //! gamma function implemented (and tested) below. The significance level is Sidak-corrected
-//! for the 108 tests: `1 - (1 - 0.01)^(1/108)`, so the whole suite has a 1% false-alarm rate.
+//! for the 116 tests: `1 - (1 - 0.01)^(1/116)`, so the whole suite has a 1% false-alarm rate.
 
 use filtered_ndf::f64::{
     AxisAligned, Beckmann, Ggx, Isotropic, NdfSampling, Roughness, RoughnessMatrix,
@@ -202,7 +203,7 @@ const N_SAMPLES: usize = 40_000;
 const N_R: usize = 40;
 const N_PHI: usize = 40;
 const MIN_EXPECTED: f64 = 5.0;
-const N_TESTS: usize = 108;
+const N_TESTS: usize = 116;
 const ALPHA_SUITE: f64 = 0.01;
 
 #[derive(Clone, Copy, PartialEq)]
@@ -277,7 +278,9 @@ fn chi2_test(
     let wh = Whitening::new(roughness);
     let cell_of = |m: DVec3| -> usize {
         assert!(m.is_finite() && m.z > 0.0, "sample {m} below the horizon");
-        assert!((m.length() - 1.0).abs() < 1e-12, "sample {m} not unit");
+        // 1e-6: the f32 samplers are tested here too (f64 ones are checked to 1e-12 in
+        // tests/sampling.rs).
+        assert!((m.length() - 1.0).abs() < 1e-6, "sample {m} not unit");
         let s = DVec2::new(-m.x / m.z, -m.y / m.z);
         let w = Whitening::apply(&wh.b_inv, s);
         let r = radial.r_of_q(w.length_squared());
@@ -507,4 +510,82 @@ fn chi2_beckmann_matrix() {
         let r = matrix(a);
         (Beckmann::new(r), r)
     });
+}
+
+#[test]
+fn chi2_f32_samplers_against_the_f64_pdf() {
+    // The f32 samplers, fed with f32-rounded uniform numbers, against the f64 pdf of the same
+    // (f32-representable) matrix: D m_z and visible normals at 0, 80 and 89.9 degrees.
+    use filtered_ndf::f32 as s32;
+    use filtered_ndf::f32::NdfSampling as _;
+    let alpha_test = 1.0 - (1.0 - ALPHA_SUITE).powf(1.0 / N_TESTS as f64);
+    let (a11, a12, a22) = matrix(0.1).entries();
+    let (a11, a12, a22) = (a11 as f32, a12 as f32, a22 as f32);
+    let r64 = RoughnessMatrix::new(a11 as f64, a12 as f64, a22 as f64).unwrap();
+    let r32 = s32::RoughnessMatrix::new(a11, a12, a22).unwrap();
+    let u32of = |u: DVec2| glam::Vec2::new(u.x as f32, u.y as f32);
+    let mut failures = Vec::new();
+    for (k, view_deg) in [None, Some(0.0), Some(80.0), Some(89.9)]
+        .into_iter()
+        .enumerate()
+    {
+        let wo = view_deg.map(view).unwrap_or(DVec3::Z);
+        let wo32 = wo.as_vec3();
+        let (g32, b32) = (s32::Ggx::new(r32), s32::Beckmann::new(r32));
+        let (g64, b64) = (Ggx::new(r64), Beckmann::new(r64));
+        let seed = 9000 + k as u64;
+        let (og, ob) = match view_deg {
+            None => (
+                chi2_test(
+                    &r64,
+                    Radial::Ggx,
+                    seed,
+                    |u| g32.sample_normal(u32of(u)).as_dvec3(),
+                    |m| g64.normal_pdf(m),
+                ),
+                chi2_test(
+                    &r64,
+                    Radial::Beckmann,
+                    seed + 100,
+                    |u| b32.sample_normal(u32of(u)).as_dvec3(),
+                    |m| b64.normal_pdf(m),
+                ),
+            ),
+            Some(_) => (
+                chi2_test(
+                    &r64,
+                    Radial::Ggx,
+                    seed,
+                    |u| {
+                        g32.sample_visible_normal(wo32, u32of(u))
+                            .unwrap()
+                            .as_dvec3()
+                    },
+                    |m| g64.visible_normal_pdf(wo, m),
+                ),
+                chi2_test(
+                    &r64,
+                    Radial::Beckmann,
+                    seed + 100,
+                    |u| {
+                        b32.sample_visible_normal(wo32, u32of(u))
+                            .unwrap()
+                            .as_dvec3()
+                    },
+                    |m| b64.visible_normal_pdf(wo, m),
+                ),
+            ),
+        };
+        for (name, o) in [("ggx f32", og), ("beck f32", ob)] {
+            let label = view_deg.map_or("D cos".to_string(), |d| format!("vis {d:>4}"));
+            println!(
+                "| {name} | 0.1 mat | {label} | {:>8.1} | {:>4} | {:>8.4} |",
+                o.chi2, o.dof, o.p
+            );
+            if o.p.is_nan() || o.p <= alpha_test {
+                failures.push(format!("{name} {label}: p = {}", o.p));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
 }
