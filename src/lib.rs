@@ -69,6 +69,10 @@ macro_rules! precision_modules {
         pub mod quadric;
         #[path = "roughness.rs"]
         pub mod roughness;
+        #[path = "sample_beckmann.rs"]
+        pub mod sample_beckmann;
+        #[path = "sampling.rs"]
+        pub mod sampling;
         #[path = "slope.rs"]
         pub mod slope;
         #[path = "temporal.rs"]
@@ -87,6 +91,7 @@ macro_rules! precision_modules {
         pub use roughness::{
             ALPHA_MAX, ALPHA_MIN, AxisAligned, Isotropic, Roughness, RoughnessMatrix,
         };
+        pub use sampling::NdfSampling;
         pub use temporal::{TemporalLobe, TemporalRoughness};
     };
 }

@@ -1,0 +1,591 @@
+//! Chi-square goodness of fit of every sampler against its own pdf integrated per cell by
+//! adaptive quadrature (the Mitsuba / pbrt test), for GGX and Beckmann in the three roughness
+//! forms, roughness 1e-3, 0.1 and 0.8, `D(m) m_z` sampling and visible normals at view
+//! angles 0, 15, 30, 80 and 89.9 degrees: 2 x 3 x 3 x 6 = 108 tests; plus 8 tests of the
+//! `f32` samplers (full matrix, roughness 0.1) against the `f64` pdf: 116 in all.
+//!
+//! ## The grid
+//! A `(cos theta, phi)` grid on the hemisphere of `m` cannot resolve a lobe of roughness
+//! `1e-3` (it covers `1e-6` of the `cos theta` range). The grid is instead a `(cos theta,
+//! phi)` grid of the *whitened* normal: the slope `s = -m_xy / m_z` is whitened with this
+//! test's own symmetric square root `B = A^{1/2}` (eigen-decomposition, independent of the
+//! Cholesky warp of the code under test), `w = B^-1 s`, and the cell coordinates are
+//! `r = F(|w|^2)` and `phi = atan2(w_y, w_x)`, with `F(q) = q / (1 + q)` (GGX; this is
+//! `sin^2` of the whitened normal, i.e. a `cos theta` grid) or `F(q) = 1 - exp(-q)`
+//! (Beckmann), the radial CDFs of the unit-roughness `D(m) m_z`. The grid thus scales with
+//! the lobe at every roughness and in every form, and at normal incidence its cells are
+//! equiprobable. The density in `(r, phi)` is `pdf(m) m_z^3 sqrt(det A) (dq/dr) / 2`
+//! (`d omega = m_z^3 ds`, `ds = sqrt(det A) dw`, `dw = dq dphi / 2`).
+//!
+//! ## The statistic
+//! 40 x 40 cells, 40 000 samples. Cells with expected count below 5 are pooled into one (and
+//! that cell into the smallest other if still below 5). A sample in a cell of zero expected
+//! count fails outright. The p-value `Q(dof/2, chi2/2)` uses the regularised incomplete
+//! gamma function implemented (and tested) below. The significance level is Sidak-corrected
+//! for the 116 tests: `1 - (1 - 0.01)^(1/116)`, so the whole suite has a 1% false-alarm rate.
+
+use filtered_ndf::f64::{
+    AxisAligned, Beckmann, Ggx, Isotropic, NdfSampling, Roughness, RoughnessMatrix,
+};
+use filtered_ndf::testing::quadrature::{Tolerance, integrate_2d};
+use glam::{DVec2, DVec3};
+use std::f64::consts::PI;
+
+// ---------------------------------------------------------------------------------------
+// Regularised incomplete gamma function (series + Lentz continued fraction, after Numerical
+// Recipes 6.2; written for this test).
+
+/// `ln Gamma(x)` for `x > 0` by the Lanczos approximation (g = 7, 9 terms; relative error
+/// about 1e-15).
+fn ln_gamma(x: f64) -> f64 {
+    const C: [f64; 9] = [
+        0.999_999_999_999_809_9,
+        676.520_368_121_885_1,
+        -1_259.139_216_722_402_8,
+        771.323_428_777_653_1,
+        -176.615_029_162_140_6,
+        12.507_343_278_686_905,
+        -0.138_571_095_265_720_12,
+        9.984_369_578_019_572e-6,
+        1.505_632_735_149_311_6e-7,
+    ];
+    if x < 0.5 {
+        // Reflection: Gamma(x) Gamma(1 - x) = pi / sin(pi x).
+        return (PI / (PI * x).sin()).ln() - ln_gamma(1.0 - x);
+    }
+    let x = x - 1.0;
+    let mut a = C[0];
+    for (i, c) in C.iter().enumerate().skip(1) {
+        a += c / (x + i as f64);
+    }
+    let t = x + 7.5;
+    0.5 * (2.0 * PI).ln() + (x + 0.5) * t.ln() - t + a.ln()
+}
+
+/// Upper regularised incomplete gamma `Q(a, x) = Gamma(a, x) / Gamma(a)`, `a > 0`, `x >= 0`.
+fn gamma_q(a: f64, x: f64) -> f64 {
+    assert!(a > 0.0 && x >= 0.0, "gamma_q({a}, {x})");
+    if x == 0.0 {
+        return 1.0;
+    }
+    let prefactor = (-x + a * x.ln() - ln_gamma(a)).exp();
+    if x < a + 1.0 {
+        // Series for P(a, x): sum x^n / (a (a+1) ... (a+n)).
+        let (mut ap, mut del) = (a, 1.0 / a);
+        let mut sum = del;
+        for _ in 0..10_000 {
+            ap += 1.0;
+            del *= x / ap;
+            sum += del;
+            if del.abs() < sum.abs() * 1e-16 {
+                break;
+            }
+        }
+        1.0 - sum * prefactor
+    } else {
+        // Continued fraction for Q(a, x) by the modified Lentz method.
+        const TINY: f64 = 1e-300;
+        let mut b = x + 1.0 - a;
+        let mut c = 1.0 / TINY;
+        let mut d = 1.0 / b;
+        let mut h = d;
+        for i in 1..10_000 {
+            let an = -(i as f64) * (i as f64 - a);
+            b += 2.0;
+            d = an * d + b;
+            if d.abs() < TINY {
+                d = TINY;
+            }
+            c = b + an / c;
+            if c.abs() < TINY {
+                c = TINY;
+            }
+            d = 1.0 / d;
+            let del = d * c;
+            h *= del;
+            if (del - 1.0).abs() < 1e-16 {
+                break;
+            }
+        }
+        prefactor * h
+    }
+}
+
+/// Survival function of the chi-square distribution with `dof` degrees of freedom.
+fn chi2_sf(chi2: f64, dof: usize) -> f64 {
+    gamma_q(0.5 * dof as f64, 0.5 * chi2)
+}
+
+#[test]
+fn ln_gamma_known_values() {
+    // Exact values: Gamma(n) = (n-1)!, Gamma(1/2) = sqrt(pi), Gamma(n + 1/2) from the
+    // recurrence. Tolerance 1e-13 absolute: the Lanczos sum is good to ~1e-15 relative.
+    let mut fact = 1.0_f64;
+    for n in 1..30 {
+        assert!((ln_gamma(n as f64) - fact.ln()).abs() < 1e-13 * (1.0 + fact.ln()));
+        fact *= n as f64;
+    }
+    let mut g = PI.sqrt(); // Gamma(1/2)
+    for n in 0..30 {
+        let a = n as f64 + 0.5;
+        assert!(
+            (ln_gamma(a) - g.ln()).abs() < 1e-13 * (1.0 + g.ln().abs()),
+            "a={a}"
+        );
+        g *= a;
+    }
+}
+
+#[test]
+fn incomplete_gamma_known_values() {
+    // Integer a: Q(n, x) = exp(-x) sum_{k<n} x^k / k! (the Poisson CDF); half-integer a:
+    // Q(1/2, x) = erfc(sqrt x) and Q(a + 1, x) = Q(a, x) + x^a exp(-x) / Gamma(a + 1).
+    // Both branches (series below a + 1, continued fraction above) are crossed. Tolerance
+    // 1e-12 relative (plus 1e-15 absolute where Q is near 0 or 1 and cancels).
+    for &x in &[0.01_f64, 0.3, 1.0, 2.5, 7.0, 15.0, 40.0, 90.0] {
+        let mut term = (-x).exp();
+        let mut poisson = 0.0;
+        for n in 1..60 {
+            poisson += term;
+            term *= x / n as f64;
+            let q = gamma_q(n as f64, x);
+            assert!(
+                (q - poisson).abs() < 1e-12 * poisson + 1e-15,
+                "Q({n},{x})={q} vs {poisson}"
+            );
+        }
+        let mut q_half = filtered_ndf::math::erfc(x.sqrt());
+        let mut a = 0.5_f64;
+        for _ in 0..40 {
+            let q = gamma_q(a, x);
+            assert!(
+                (q - q_half).abs() < 1e-12 * q_half + 1e-15,
+                "Q({a},{x})={q} vs {q_half}"
+            );
+            q_half += (a * x.ln() - x - ln_gamma(a + 1.0)).exp();
+            a += 1.0;
+        }
+    }
+    // Tabulated chi-square critical values (upper 5% and 1% points).
+    for &(x, dof, p) in &[
+        (3.841_458_820_694_124, 1, 0.05),
+        (6.634_896_601_021_214, 1, 0.01),
+        (18.307_038_053_275_146, 10, 0.05),
+        (124.342_113_404_004_07, 100, 0.05),
+    ] {
+        let q = chi2_sf(x, dof);
+        assert!((q - p).abs() < 1e-9 * p, "dof {dof}: {q} vs {p}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Seeded uniform numbers (splitmix64).
+
+struct SplitMix(u64);
+impl SplitMix {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [0, 1) with 53 random bits.
+    fn next_f64(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// The harness.
+
+const N_SAMPLES: usize = 40_000;
+const N_R: usize = 40;
+const N_PHI: usize = 40;
+const MIN_EXPECTED: f64 = 5.0;
+const N_TESTS: usize = 116;
+const ALPHA_SUITE: f64 = 0.01;
+
+#[derive(Clone, Copy, PartialEq)]
+enum Radial {
+    Ggx,
+    Beckmann,
+}
+
+impl Radial {
+    /// `r = F(q)` and `dq/dr` at `r`.
+    fn r_of_q(self, q: f64) -> f64 {
+        match self {
+            Radial::Ggx => q / (1.0 + q),
+            Radial::Beckmann => -(-q).exp_m1(),
+        }
+    }
+    fn q_of_r(self, r: f64) -> (f64, f64) {
+        match self {
+            Radial::Ggx => (r / (1.0 - r), 1.0 / ((1.0 - r) * (1.0 - r))),
+            Radial::Beckmann => (-(-r).ln_1p(), 1.0 / (1.0 - r)),
+        }
+    }
+}
+
+/// Symmetric square root of `A` and its inverse (test-side, by eigen-decomposition).
+struct Whitening {
+    b: [[f64; 2]; 2],
+    b_inv: [[f64; 2]; 2],
+    sqrt_det: f64,
+}
+
+impl Whitening {
+    fn new<R: Roughness>(r: &R) -> Self {
+        let (a11, a12, a22) = r.to_matrix().entries();
+        let mean = 0.5 * (a11 + a22);
+        let rad = (0.5 * (a11 - a22)).hypot(a12);
+        let (l1, l2) = (mean + rad, (a11 * a22 - a12 * a12) / (mean + rad));
+        let theta = 0.5 * (2.0 * a12).atan2(a11 - a22);
+        let (c, s) = (theta.cos(), theta.sin());
+        let sq = |f1: f64, f2: f64| {
+            [
+                [c * c * f1 + s * s * f2, c * s * (f1 - f2)],
+                [c * s * (f1 - f2), s * s * f1 + c * c * f2],
+            ]
+        };
+        Self {
+            b: sq(l1.sqrt(), l2.sqrt()),
+            b_inv: sq(1.0 / l1.sqrt(), 1.0 / l2.sqrt()),
+            sqrt_det: (l1 * l2).sqrt(),
+        }
+    }
+    fn apply(m: &[[f64; 2]; 2], v: DVec2) -> DVec2 {
+        DVec2::new(m[0][0] * v.x + m[0][1] * v.y, m[1][0] * v.x + m[1][1] * v.y)
+    }
+}
+
+struct Outcome {
+    chi2: f64,
+    dof: usize,
+    p: f64,
+    expected_total: f64,
+}
+
+/// Runs one chi-square test: `sample(u)` against `pdf(m)` (per steradian).
+fn chi2_test(
+    roughness: &impl Roughness,
+    radial: Radial,
+    seed: u64,
+    sample: impl Fn(DVec2) -> DVec3,
+    pdf: impl Fn(DVec3) -> f64,
+) -> Outcome {
+    let wh = Whitening::new(roughness);
+    let cell_of = |m: DVec3| -> usize {
+        assert!(m.is_finite() && m.z > 0.0, "sample {m} below the horizon");
+        // 1e-6: the f32 samplers are tested here too (f64 ones are checked to 1e-12 in
+        // tests/sampling.rs).
+        assert!((m.length() - 1.0).abs() < 1e-6, "sample {m} not unit");
+        let s = DVec2::new(-m.x / m.z, -m.y / m.z);
+        let w = Whitening::apply(&wh.b_inv, s);
+        let r = radial.r_of_q(w.length_squared());
+        let phi = w.y.atan2(w.x).rem_euclid(2.0 * PI);
+        let ir = ((r * N_R as f64) as usize).min(N_R - 1);
+        let ip = ((phi / (2.0 * PI) * N_PHI as f64) as usize).min(N_PHI - 1);
+        ir * N_PHI + ip
+    };
+    let mut observed = vec![0.0_f64; N_R * N_PHI];
+    let mut rng = SplitMix(seed);
+    for _ in 0..N_SAMPLES {
+        let u = DVec2::new(rng.next_f64(), rng.next_f64());
+        observed[cell_of(sample(u))] += 1.0;
+    }
+    // Density in (r, phi): pdf(m) m_z^3 sqrt(det A) (dq/dr) / 2.
+    let density = |r: f64, phi: f64| -> f64 {
+        let (q, dq) = radial.q_of_r(r);
+        let w = DVec2::new(phi.cos(), phi.sin()) * q.sqrt();
+        let s = Whitening::apply(&wh.b, w);
+        let m = DVec3::new(-s.x, -s.y, 1.0).normalize();
+        let v = pdf(m) * m.z.powi(3) * wh.sqrt_det * dq * 0.5;
+        if v.is_finite() { v } else { 0.0 }
+    };
+    // Cell integrals: relative 1e-7 (the expected counts need ~1e-4 at most; the pdf has a
+    // kink at the visibility cut-off, which the adaptive rule resolves).
+    let tol = Tolerance {
+        abs: 1e-12,
+        rel: 1e-7,
+        max_intervals: 60,
+    };
+    let mut expected = vec![0.0_f64; N_R * N_PHI];
+    for ir in 0..N_R {
+        for ip in 0..N_PHI {
+            let r = (ir as f64 / N_R as f64, (ir + 1) as f64 / N_R as f64);
+            let p = (
+                ip as f64 / N_PHI as f64 * 2.0 * PI,
+                (ip + 1) as f64 / N_PHI as f64 * 2.0 * PI,
+            );
+            let e = integrate_2d(|phi, rr| density(rr, phi), p, r, tol);
+            expected[ir * N_PHI + ip] = e.value * N_SAMPLES as f64;
+        }
+    }
+    let expected_total: f64 = expected.iter().sum::<f64>() / N_SAMPLES as f64;
+    // Pooling.
+    let (mut pooled_e, mut pooled_o) = (0.0, 0.0);
+    let mut cells: Vec<(f64, f64)> = Vec::new();
+    for (&e, &o) in expected.iter().zip(&observed) {
+        if e < 1e-9 * N_SAMPLES as f64 {
+            assert!(o == 0.0, "{o} samples in a cell of expected count {e}");
+        }
+        if e < MIN_EXPECTED {
+            pooled_e += e;
+            pooled_o += o;
+        } else {
+            cells.push((e, o));
+        }
+    }
+    if pooled_e > 0.0 {
+        if pooled_e < MIN_EXPECTED && !cells.is_empty() {
+            let (i, _) = cells
+                .iter()
+                .enumerate()
+                .min_by(|a, b| a.1.0.total_cmp(&b.1.0))
+                .unwrap();
+            cells[i].0 += pooled_e;
+            cells[i].1 += pooled_o;
+        } else {
+            cells.push((pooled_e, pooled_o));
+        }
+    }
+    // Normalise the expected counts to the number of samples (the cell integrals sum to
+    // 1 +- ~1e-7, checked by the caller through expected_total).
+    let scale = N_SAMPLES as f64 / cells.iter().map(|c| c.0).sum::<f64>();
+    let chi2: f64 = cells
+        .iter()
+        .map(|&(e, o)| {
+            let e = e * scale;
+            (o - e) * (o - e) / e
+        })
+        .sum();
+    let dof = cells.len() - 1;
+    Outcome {
+        chi2,
+        dof,
+        p: chi2_sf(chi2, dof),
+        expected_total,
+    }
+}
+
+const ROUGHNESS: [f64; 3] = [1e-3, 0.1, 0.8];
+const VIEW_DEG: [f64; 5] = [0.0, 15.0, 30.0, 80.0, 89.9];
+/// View azimuth: off every axis of the anisotropic forms.
+const VIEW_PHI: f64 = 1.0;
+
+fn view(theta_deg: f64) -> DVec3 {
+    let t = theta_deg.to_radians();
+    DVec3::new(t.sin() * VIEW_PHI.cos(), t.sin() * VIEW_PHI.sin(), t.cos())
+}
+
+/// All 18 cases of one NDF and form: `D m_z` sampling, then visible normals per view angle.
+/// Prints one table row per case (`cargo test --release --test sampling_chi2 -- --nocapture`).
+fn run_suite<R: Roughness, N: NdfSampling>(
+    name: &str,
+    radial: Radial,
+    seed_base: u64,
+    make: impl Fn(f64) -> (N, R),
+) {
+    let alpha_test = 1.0 - (1.0 - ALPHA_SUITE).powf(1.0 / N_TESTS as f64);
+    let mut failures = Vec::new();
+    let mut case = 0u64;
+    for &a in &ROUGHNESS {
+        let (ndf, rough) = make(a);
+        let views: Vec<Option<f64>> = std::iter::once(None)
+            .chain(VIEW_DEG.iter().map(|&d| Some(d)))
+            .collect();
+        for v in views {
+            case += 1;
+            let seed = seed_base.wrapping_mul(1000).wrapping_add(case);
+            let start = std::time::Instant::now();
+            let out = match v {
+                None => chi2_test(
+                    &rough,
+                    radial,
+                    seed,
+                    |u| ndf.sample_normal(u),
+                    |m| ndf.normal_pdf(m),
+                ),
+                Some(deg) => {
+                    let wo = view(deg);
+                    chi2_test(
+                        &rough,
+                        radial,
+                        seed,
+                        |u| {
+                            let m = ndf.sample_visible_normal(wo, u).expect("wo above surface");
+                            assert!(wo.dot(m) > 0.0, "sample {m} faces away from {wo}");
+                            m
+                        },
+                        |m| ndf.visible_normal_pdf(wo, m),
+                    )
+                }
+            };
+            let label = match v {
+                None => "D cos".to_string(),
+                Some(d) => format!("vis {d:>4}"),
+            };
+            println!(
+                "| {name} | {a:>6} | {label} | {:>8.1} | {:>4} | {:>8.4} | {:>6.0} ms | sum {:.2e} |",
+                out.chi2,
+                out.dof,
+                out.p,
+                start.elapsed().as_secs_f64() * 1e3,
+                out.expected_total - 1.0
+            );
+            // The cell integrals must add up to the pdf's total mass, 1 (tolerance 1e-5:
+            // 1600 cells, each to ~1e-7 relative, plus the mass beyond the last radial cell,
+            // which is inside it by construction: r < 1 covers the whole hemisphere).
+            if (out.expected_total - 1.0).abs() > 1e-5 {
+                failures.push(format!("{name} a={a} {label}: mass {}", out.expected_total));
+            }
+            if out.p.is_nan() || out.p <= alpha_test {
+                failures.push(format!(
+                    "{name} a={a} {label}: p = {} < {alpha_test}",
+                    out.p
+                ));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+fn matrix(a: f64) -> RoughnessMatrix {
+    // diag(a^2, (a/4)^2) rotated by 0.6 rad: condition number 16, all entries non-zero.
+    let (l1, l2) = (a * a, a * a / 16.0);
+    let (c, s) = (0.6_f64.cos(), 0.6_f64.sin());
+    RoughnessMatrix::new(
+        c * c * l1 + s * s * l2,
+        c * s * (l1 - l2),
+        s * s * l1 + c * c * l2,
+    )
+    .unwrap()
+}
+
+#[test]
+fn chi2_ggx_isotropic() {
+    run_suite("ggx iso", Radial::Ggx, 1, |a| {
+        let r = Isotropic::new(a).unwrap();
+        (Ggx::new(r), r)
+    });
+}
+
+#[test]
+fn chi2_ggx_axis_aligned() {
+    run_suite("ggx axis", Radial::Ggx, 2, |a| {
+        let r = AxisAligned::new(a, 0.5 * a).unwrap();
+        (Ggx::new(r), r)
+    });
+}
+
+#[test]
+fn chi2_ggx_matrix() {
+    run_suite("ggx mat", Radial::Ggx, 3, |a| {
+        let r = matrix(a);
+        (Ggx::new(r), r)
+    });
+}
+
+#[test]
+fn chi2_beckmann_isotropic() {
+    run_suite("beck iso", Radial::Beckmann, 4, |a| {
+        let r = Isotropic::new(a).unwrap();
+        (Beckmann::new(r), r)
+    });
+}
+
+#[test]
+fn chi2_beckmann_axis_aligned() {
+    run_suite("beck axis", Radial::Beckmann, 5, |a| {
+        let r = AxisAligned::new(a, 0.5 * a).unwrap();
+        (Beckmann::new(r), r)
+    });
+}
+
+#[test]
+fn chi2_beckmann_matrix() {
+    run_suite("beck mat", Radial::Beckmann, 6, |a| {
+        let r = matrix(a);
+        (Beckmann::new(r), r)
+    });
+}
+
+#[test]
+fn chi2_f32_samplers_against_the_f64_pdf() {
+    // The f32 samplers, fed with f32-rounded uniform numbers, against the f64 pdf of the same
+    // (f32-representable) matrix: D m_z and visible normals at 0, 80 and 89.9 degrees.
+    use filtered_ndf::f32 as s32;
+    use filtered_ndf::f32::NdfSampling as _;
+    let alpha_test = 1.0 - (1.0 - ALPHA_SUITE).powf(1.0 / N_TESTS as f64);
+    let (a11, a12, a22) = matrix(0.1).entries();
+    let (a11, a12, a22) = (a11 as f32, a12 as f32, a22 as f32);
+    let r64 = RoughnessMatrix::new(a11 as f64, a12 as f64, a22 as f64).unwrap();
+    let r32 = s32::RoughnessMatrix::new(a11, a12, a22).unwrap();
+    let u32of = |u: DVec2| glam::Vec2::new(u.x as f32, u.y as f32);
+    let mut failures = Vec::new();
+    for (k, view_deg) in [None, Some(0.0), Some(80.0), Some(89.9)]
+        .into_iter()
+        .enumerate()
+    {
+        let wo = view_deg.map(view).unwrap_or(DVec3::Z);
+        let wo32 = wo.as_vec3();
+        let (g32, b32) = (s32::Ggx::new(r32), s32::Beckmann::new(r32));
+        let (g64, b64) = (Ggx::new(r64), Beckmann::new(r64));
+        let seed = 9000 + k as u64;
+        let (og, ob) = match view_deg {
+            None => (
+                chi2_test(
+                    &r64,
+                    Radial::Ggx,
+                    seed,
+                    |u| g32.sample_normal(u32of(u)).as_dvec3(),
+                    |m| g64.normal_pdf(m),
+                ),
+                chi2_test(
+                    &r64,
+                    Radial::Beckmann,
+                    seed + 100,
+                    |u| b32.sample_normal(u32of(u)).as_dvec3(),
+                    |m| b64.normal_pdf(m),
+                ),
+            ),
+            Some(_) => (
+                chi2_test(
+                    &r64,
+                    Radial::Ggx,
+                    seed,
+                    |u| {
+                        g32.sample_visible_normal(wo32, u32of(u))
+                            .unwrap()
+                            .as_dvec3()
+                    },
+                    |m| g64.visible_normal_pdf(wo, m),
+                ),
+                chi2_test(
+                    &r64,
+                    Radial::Beckmann,
+                    seed + 100,
+                    |u| {
+                        b32.sample_visible_normal(wo32, u32of(u))
+                            .unwrap()
+                            .as_dvec3()
+                    },
+                    |m| b64.visible_normal_pdf(wo, m),
+                ),
+            ),
+        };
+        for (name, o) in [("ggx f32", og), ("beck f32", ob)] {
+            let label = view_deg.map_or("D cos".to_string(), |d| format!("vis {d:>4}"));
+            println!(
+                "| {name} | 0.1 mat | {label} | {:>8.1} | {:>4} | {:>8.4} |",
+                o.chi2, o.dof, o.p
+            );
+            if o.p.is_nan() || o.p <= alpha_test {
+                failures.push(format!("{name} {label}: p = {}", o.p));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
