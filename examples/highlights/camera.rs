@@ -1,13 +1,12 @@
 //! Pinhole camera with analytic ray differentials (Igehy 1999).
 
-use crate::scene::{Hit, Ray};
+use crate::scene::{Hit, Lod, Ray};
 use glam::Vec3;
 
 /// A pinhole camera looking from `eye` at `target`, image `width x height` pixels.
 #[derive(Clone, Copy, Debug)]
 pub struct Camera {
     pub eye: Vec3,
-    forward: Vec3,
     /// Change of the unnormalised ray direction per pixel step in x and y.
     step_x: Vec3,
     step_y: Vec3,
@@ -35,7 +34,6 @@ impl Camera {
         let corner = forward - right * half_w + up * half_h;
         Self {
             eye,
-            forward,
             step_x,
             step_y,
             corner,
@@ -59,9 +57,17 @@ impl Camera {
         }
     }
 
-    #[allow(dead_code)]
-    pub fn forward(&self) -> Vec3 {
-        self.forward
+    /// The angle one pixel subtends at the image centre (radians).
+    pub fn pixel_angle(&self) -> f32 {
+        self.step_y.length()
+    }
+
+    /// The water's level of detail for this view.
+    pub fn lod(&self) -> Lod {
+        Lod {
+            eye: self.eye,
+            pixel_angle: self.pixel_angle(),
+        }
     }
 }
 

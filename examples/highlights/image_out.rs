@@ -40,7 +40,12 @@ impl Image {
     /// RMSE of the tone-mapped display values (in `[0, 1]`) against `other`.
     pub fn rmse_display(&self, other: &Image, exposure: f32) -> f64 {
         let tm = |c: Vec3| tonemap(c, exposure);
-        rmse(self.data.iter().zip(&other.data).map(|(a, b)| (tm(*a), tm(*b))))
+        rmse(
+            self.data
+                .iter()
+                .zip(&other.data)
+                .map(|(a, b)| (tm(*a), tm(*b))),
+        )
     }
 
     /// 8-bit sRGB after tone mapping with `exposure`.
@@ -157,7 +162,13 @@ pub fn contact_sheet(tiles: &[(String, Rgb8)], columns: usize, zoom: usize) -> R
     for (i, (label, img)) in tiles.iter().enumerate() {
         let (x0, y0) = (pad + (i % columns) * cw, pad + (i / columns) * ch);
         sheet.blit(img, x0, y0, zoom);
-        sheet.text(&label.to_uppercase(), x0, y0 + th + 4, scale, [235, 235, 235]);
+        sheet.text(
+            &label.to_uppercase(),
+            x0,
+            y0 + th + 4,
+            scale,
+            [235, 235, 235],
+        );
     }
     sheet
 }

@@ -3,7 +3,7 @@
 //! filtering method and compared with a supersampled reference.
 //!
 //! Run: `cargo run --release --example highlights -- [--width 256] [--height 160]
-//! [--spp 512] [--frames 24] [--out target/highlights] [--methods a,b,..|all]
+//! [--spp 512] [--frames 16] [--out target/highlights] [--methods a,b,..|all]
 //! [--footprint quad|rays] [--threads 2] [--seed 1]`.
 
 mod camera;
@@ -54,7 +54,7 @@ fn parse_args() -> Options {
         width: 256,
         height: 160,
         spp: 512,
-        frames: 24,
+        frames: 16,
         out: PathBuf::from("target/highlights"),
         methods: Method::DEFAULT.to_vec(),
         route: FootprintRoute::Quad,
@@ -85,7 +85,10 @@ fn parse_args() -> Options {
                 o.methods = if value == "all" {
                     Method::ALL.to_vec()
                 } else {
-                    value.split(',').map(|s| Method::parse(s.trim()).unwrap_or_else(|| usage())).collect()
+                    value
+                        .split(',')
+                        .map(|s| Method::parse(s.trim()).unwrap_or_else(|| usage()))
+                        .collect()
                 }
             }
             _ => usage(),
@@ -99,22 +102,37 @@ fn parse_args() -> Options {
 pub fn camera_at(frame: usize, width: usize, height: usize) -> Camera {
     let k = frame as f32;
     let eye = glam::Vec3::new(0.004 * k, 1.6, 4.0 - 0.01 * k);
-    Camera::new(eye, eye + glam::Vec3::new(0.0, -0.14, -1.0), 38.0, width, height)
+    Camera::new(
+        eye,
+        eye + glam::Vec3::new(0.0, -0.14, -1.0),
+        38.0,
+        width,
+        height,
+    )
 }
 
 fn main() -> std::io::Result<()> {
     let o = parse_args();
     std::fs::create_dir_all(&o.out)?;
     let start = Instant::now();
-    let scene = Scene::new();
     let cam = camera_at(0, o.width, o.height);
+    let scene = Scene::new(cam.lod());
     eprintln!(
         "highlights: {}x{}, reference {} spp, {} frames, {} threads, footprints: {:?}",
         o.width, o.height, o.spp, o.frames, o.threads, o.route
     );
 
     let t = Instant::now();
-    let reference = render::reference(&scene, &cam, o.width, o.height, o.spp, o.seed, o.threads, Some("reference"));
+    let reference = render::reference(
+        &scene,
+        &cam,
+        o.width,
+        o.height,
+        o.spp,
+        o.seed,
+        o.threads,
+        Some("reference"),
+    );
     let ref_time = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -130,14 +148,20 @@ fn main() -> std::io::Result<()> {
         let img = reference.full(family);
         let name = format!("reference-{}", family.name().to_lowercase());
         save(&o, &name, img)?;
-        tiles.push((format!("Reference {} {}spp", family.name(), o.spp), img.to_rgb8(o.exposure)));
+        tiles.push((
+            format!("Reference {} {}spp", family.name(), o.spp),
+            img.to_rgb8(o.exposure),
+        ));
     }
     let mut worst_change: f64 = 0.0;
     for &method in &o.methods {
         let t = Instant::now();
         let img = render::shade(&scene, &gb, &derivs, method, o.threads);
         let ms = base_ms + t.elapsed().as_secs_f64() * 1e3;
-        let (full, half) = (reference.full(method.family()), reference.half(method.family()));
+        let (full, half) = (
+            reference.full(method.family()),
+            reference.half(method.family()),
+        );
         let (rmse, rmse_half) = (img.rmse(full), img.rmse(half));
         let change = (rmse_half - rmse).abs() / rmse.max(1e-30);
         worst_change = worst_change.max(change);
@@ -160,7 +184,10 @@ fn main() -> std::io::Result<()> {
     let sheet_path = o.out.join("contact_sheet.png");
     contact_sheet(&tiles, 3, zoom).save(&sheet_path)?;
 
-    println!("## Still frame ({}x{}, 1 shading sample per pixel)\n", o.width, o.height);
+    println!(
+        "## Still frame ({}x{}, 1 shading sample per pixel)\n",
+        o.width, o.height
+    );
     print!("{table}");
     println!(
         "\nReference: {} spp per pixel ({:.1} s); doubling {} -> {} spp changes each RMSE by at most {:.2}%{}.",
@@ -169,25 +196,39 @@ fn main() -> std::io::Result<()> {
         o.spp / 2,
         o.spp,
         100.0 * worst_change,
-        if worst_change < 0.01 { " (< 1%: converged)" } else { " (>= 1%: raise --spp)" }
+        if worst_change < 0.01 {
+            " (< 1%: converged)"
+        } else {
+            " (>= 1%: raise --spp)"
+        }
     );
 
     let temporal_md = if o.frames >= 2 {
-        temporal::run(&scene, &o)?
+        temporal::run(&o)?
     } else {
         String::new()
     };
     print!("{temporal_md}");
     let mut md = String::new();
-    writeln!(md, "## Still frame ({}x{}, 1 shading sample per pixel)\n\n{table}", o.width, o.height).unwrap();
+    writeln!(
+        md,
+        "## Still frame ({}x{}, 1 shading sample per pixel)\n\n{table}",
+        o.width, o.height
+    )
+    .unwrap();
     writeln!(md, "Reference: {} spp; doubling {} -> {} spp changes each RMSE by at most {:.2}%.\n{temporal_md}", o.spp, o.spp / 2, o.spp, 100.0 * worst_change).unwrap();
     std::fs::write(o.out.join("results.md"), md)?;
-    println!("\nTotal {:.1} s. Images, contact sheet, plot and results.md in {}", start.elapsed().as_secs_f64(), o.out.display());
+    println!(
+        "\nTotal {:.1} s. Images, contact sheet, plot and results.md in {}",
+        start.elapsed().as_secs_f64(),
+        o.out.display()
+    );
     Ok(())
 }
 
 fn save(o: &Options, name: &str, img: &Image) -> std::io::Result<()> {
-    img.to_rgb8(o.exposure).save(&o.out.join(format!("{name}.png")))
+    img.to_rgb8(o.exposure)
+        .save(&o.out.join(format!("{name}.png")))
 }
 
 fn mean_luminance(img: &Image) -> f64 {

@@ -175,7 +175,7 @@ pub fn filtered_d(method: Method, sp: &ShadingPoint) -> f32 {
 /// `tau = det A = alpha^4` (filtering only grows the determinant).
 fn beckmann_parallelogram(sp: &ShadingPoint) -> f32 {
     let a2 = sp.alpha * sp.alpha;
-    let sigma = sp.footprint.covariance(SIGMA_PIXEL);
+    let sigma = clamp_extent(sp.footprint, MAX_EXTENT).covariance(SIGMA_PIXEL);
     let filtered = RoughnessMatrix::new_with_det_clamp(
         a2 + 2.0 * sigma.s11,
         2.0 * sigma.s12,
@@ -187,6 +187,25 @@ fn beckmann_parallelogram(sp: &ShadingPoint) -> f32 {
         // Non-finite footprint (e.g. a derivative across a silhouette that overflowed):
         // fall back to the unfiltered lobe rather than a NaN pixel.
         Err(_) => Family::Beckmann.d(sp.alpha, sp.h),
+    }
+}
+
+/// KHPL16 section 5.2: the largest linear extent of the slope-domain filtering region.
+pub const MAX_EXTENT: f32 = 1.0;
+
+/// KHPL16 section 5.2: rescales the parallelogram spanned by `dh_u`, `dh_v` so that its
+/// longest side is at most `lambda` (grazing outliers otherwise smear the lobe over slopes
+/// where `1 / h_z^4` explodes). Non-finite footprints become zero (unfiltered).
+/// (Local stand-in for the clamping rules of the filtering branch.)
+fn clamp_extent(f: Footprint, lambda: f32) -> Footprint {
+    let extent = f.dh_u.length().max(f.dh_v.length());
+    if !extent.is_finite() {
+        Footprint::ZERO
+    } else if extent > lambda {
+        let k = lambda / extent;
+        Footprint::from_slope_derivatives(f.dh_u * k, f.dh_v * k)
+    } else {
+        f
     }
 }
 

@@ -14,10 +14,25 @@ pub fn line_plot(title: &str, series: &[Series], width: usize, height: usize) ->
     let mut img = Rgb8::new(width, height, [250, 250, 250]);
     let (left, right, top, bottom) = (60i64, 200i64, 30i64, 30i64);
     let (pw, ph) = (width as i64 - left - right, height as i64 - top - bottom);
-    let positive = series.iter().flat_map(|s| s.values.iter().copied()).filter(|v| *v > 0.0);
+    let positive = series
+        .iter()
+        .flat_map(|s| s.values.iter().copied())
+        .filter(|v| *v > 0.0);
     let (lo, hi) = positive.fold((f32::MAX, f32::MIN), |(a, b), v| (a.min(v), b.max(v)));
-    let (lo, hi) = if lo > hi { (1.0, 10.0) } else { (lo.log10().floor(), hi.log10().ceil().max(lo.log10().floor() + 1.0)) };
-    let n = series.iter().map(|s| s.values.len()).max().unwrap_or(1).max(2);
+    let (lo, hi) = if lo > hi {
+        (1.0, 10.0)
+    } else {
+        (
+            lo.log10().floor(),
+            hi.log10().ceil().max(lo.log10().floor() + 1.0),
+        )
+    };
+    let n = series
+        .iter()
+        .map(|s| s.values.len())
+        .max()
+        .unwrap_or(1)
+        .max(2);
     let to_px = |i: usize, v: f32| {
         let x = left + (i as i64 * pw) / (n as i64 - 1);
         let t = (v.max(1e-30).log10().clamp(lo, hi) - lo) / (hi - lo);
@@ -28,12 +43,24 @@ pub fn line_plot(title: &str, series: &[Series], width: usize, height: usize) ->
     for d in lo as i64..=hi as i64 {
         let (_, y) = to_px(0, 10f32.powi(d as i32));
         line(&mut img, (left, y), (left + pw, y), grey);
-        img.text(&format!("1E{d}"), 8, (y - 3).max(0) as usize, 1, [60, 60, 60]);
+        img.text(
+            &format!("1E{d}"),
+            8,
+            (y - 3).max(0) as usize,
+            1,
+            [60, 60, 60],
+        );
     }
     line(&mut img, (left, top), (left, top + ph), [0, 0, 0]);
     line(&mut img, (left, top + ph), (left + pw, top + ph), [0, 0, 0]);
     img.text(&title.to_uppercase(), left as usize, 10, 1, [0, 0, 0]);
-    img.text("FRAME", (left + pw / 2) as usize, (top + ph + 12) as usize, 1, [0, 0, 0]);
+    img.text(
+        "FRAME",
+        (left + pw / 2) as usize,
+        (top + ph + 12) as usize,
+        1,
+        [0, 0, 0],
+    );
     for (k, s) in series.iter().enumerate() {
         for (i, w) in s.values.windows(2).enumerate() {
             let (a, b) = (to_px(i, w[0]), to_px(i + 1, w[1]));

@@ -84,7 +84,7 @@ pub fn radiance(scene: &Scene, s: &Surface, family: Family, d: impl FnOnce(Vec3)
     let irradiance = scene.light_intensity * (cos_i / s.dist2);
     let cos_o = wo.z.max(1e-4);
     let fresnel = scene.f0 + (1.0 - scene.f0) * (1.0 - wi.dot(h).clamp(0.0, 1.0)).powi(5);
-    let spec = fresnel * d(h) * family.g2(scene.alpha, wi, wo, h) / (4.0 * cos_i * cos_o);
+    let spec = fresnel * d(h) * family.g2(s.hit.alpha, wi, wo, h) / (4.0 * cos_i * cos_o);
     l += irradiance * (albedo * std::f32::consts::FRAC_1_PI + Vec3::splat(spec));
     l
 }
@@ -99,13 +99,22 @@ pub struct GBuffer {
     pub sky: Vec<Vec3>,
 }
 
-pub fn gbuffer(scene: &Scene, cam: &Camera, width: usize, height: usize, threads: usize) -> GBuffer {
+pub fn gbuffer(
+    scene: &Scene,
+    cam: &Camera,
+    width: usize,
+    height: usize,
+    threads: usize,
+) -> GBuffer {
     let px = parallel::rows(height, threads, None, |y| {
         (0..width)
             .map(|x| {
                 let r = cam.ray(x as f32 + 0.5, y as f32 + 0.5);
                 let hit = scene.intersect(&r.ray);
-                (hit.map(|h| (Surface::new(scene, cam.eye, h), r)), scene.sky(r.ray.dir))
+                (
+                    hit.map(|h| (Surface::new(scene, cam.eye, h), r)),
+                    scene.sky(r.ray.dir),
+                )
             })
             .collect()
     });
@@ -118,6 +127,9 @@ pub fn gbuffer(scene: &Scene, cam: &Camera, width: usize, height: usize, threads
         sky,
     }
 }
+
+/// See [`GBuffer::partner`].
+const DISCONTINUITY: f32 = 3.0;
 
 /// Per-pixel filtering inputs.
 #[derive(Clone, Copy, Debug, Default)]
@@ -135,19 +147,33 @@ impl GBuffer {
     /// The neighbour a 2x2 quad differences against along one axis (`coord ^ 1`), or the
     /// opposite neighbour when the quad partner is off-image or on another object. Returns
     /// the neighbour and the sign of the step (+1 if it is the next pixel).
-    fn partner(&self, x: usize, y: usize, horizontal: bool, obj: u32) -> Option<(&Surface, f32)> {
+    ///
+    /// A neighbour also counts as another surface when it lies across a depth discontinuity
+    /// (a wave crest hiding the water behind it): its distance from this hit is more than
+    /// [`DISCONTINUITY`] times the step the ray differentials predict on the tangent plane.
+    fn partner(&self, x: usize, y: usize, horizontal: bool) -> Option<(&Surface, f32)> {
+        let (c, ray) = self.pixels[y * self.width + x].as_ref()?;
+        let (dx_u, dx_v) = ray.footprint_on_plane(&c.hit);
+        let predicted = if horizontal { dx_u } else { dx_v }.length();
         let coord = if horizontal { x } else { y };
         let quad = coord ^ 1;
-        let other = if quad > coord { coord.checked_sub(1) } else { Some(coord + 1) };
+        let other = if quad > coord {
+            coord.checked_sub(1)
+        } else {
+            Some(coord + 1)
+        };
         let limit = if horizontal { self.width } else { self.height };
         [Some(quad), other]
             .into_iter()
             .flatten()
-            .filter(|&c| c < limit)
-            .find_map(|c| {
-                let (nx, ny) = if horizontal { (c, y) } else { (x, c) };
+            .filter(|&k| k < limit)
+            .find_map(|k| {
+                let (nx, ny) = if horizontal { (k, y) } else { (x, k) };
                 let s = self.at(nx, ny)?;
-                (s.hit.object == obj).then_some((s, if c > coord { 1.0 } else { -1.0 }))
+                let step = s.hit.position.distance(c.hit.position);
+                let continuous = step <= DISCONTINUITY * predicted;
+                let sign = if k > coord { 1.0 } else { -1.0 };
+                (s.hit.object == c.hit.object && continuous).then_some((s, sign))
             })
     }
 
@@ -158,7 +184,7 @@ impl GBuffer {
             return PixelDerivatives::default();
         };
         let s0 = c.slope_of(c.h, c.hit.normal);
-        let diff = |horizontal: bool| match self.partner(x, y, horizontal, c.hit.object) {
+        let diff = |horizontal: bool| match self.partner(x, y, horizontal) {
             Some((n, sign)) => (
                 (c.slope_of(n.h, n.hit.normal) - s0) * sign,
                 (n.hit.normal - c.hit.normal) * sign,
@@ -210,7 +236,13 @@ impl GBuffer {
 }
 
 /// One shading sample per pixel with `method`.
-pub fn shade(scene: &Scene, gb: &GBuffer, derivs: &[PixelDerivatives], method: Method, threads: usize) -> Image {
+pub fn shade(
+    scene: &Scene,
+    gb: &GBuffer,
+    derivs: &[PixelDerivatives],
+    method: Method,
+    threads: usize,
+) -> Image {
     let data = parallel::rows(gb.height, threads, None, |y| {
         (0..gb.width)
             .map(|x| {
@@ -223,7 +255,7 @@ pub fn shade(scene: &Scene, gb: &GBuffer, derivs: &[PixelDerivatives], method: M
                             method,
                             &ShadingPoint {
                                 h,
-                                alpha: scene.alpha,
+                                alpha: s.hit.alpha,
                                 footprint: dv.footprint,
                                 dn_dx: dv.dn_dx,
                                 dn_dy: dv.dn_dy,
@@ -253,8 +285,10 @@ impl Reference {
     }
 }
 
-/// Renders the reference with `spp` jittered sub-pixel samples drawn from the same Gaussian
-/// pixel filter (sigma = 0.5 pixel) the footprint kernels assume, unfiltered NDFs.
+/// Renders the reference with `spp` sub-pixel samples drawn from the same Gaussian pixel
+/// filter (sigma = 0.5 pixel) the footprint kernels assume, unfiltered NDFs. Each half of the
+/// samples is a randomly shifted rank-1 lattice (stratified for any count, unbiased thanks to
+/// the per-pixel random shift) mapped to the Gaussian by Box-Muller.
 #[allow(clippy::too_many_arguments)]
 pub fn reference(
     scene: &Scene,
@@ -266,30 +300,40 @@ pub fn reference(
     threads: usize,
     progress: Option<&str>,
 ) -> Reference {
-    let spp = spp.max(2);
+    let n = (spp / 2).max(1);
+    let lattice = Lattice::new(n);
     let families = [Family::Beckmann, Family::Ggx];
     let px: Vec<[Vec3; 4]> = parallel::rows(height, threads, progress, |y| {
         (0..width)
             .map(|x| {
                 let mut rng = Rng::new(seed, (y * width + x) as u64);
-                let mut sum = [Vec3::ZERO; 2];
-                let mut half = [Vec3::ZERO; 2];
-                for k in 0..spp {
-                    let (ox, oy) = rng.gaussian2(methods::SIGMA_PIXEL);
-                    let r = cam.ray(x as f32 + 0.5 + ox, y as f32 + 0.5 + oy);
-                    let hit = scene.intersect(&r.ray).map(|h| Surface::new(scene, cam.eye, h));
-                    for (f, family) in families.iter().enumerate() {
-                        sum[f] += match &hit {
-                            None => scene.sky(r.ray.dir),
-                            Some(s) => radiance(scene, s, *family, |h| family.d(scene.alpha, h)),
-                        };
-                    }
-                    if k + 1 == spp / 2 {
-                        half = sum;
+                let mut sums = [[Vec3::ZERO; 2]; 2];
+                for sum in &mut sums {
+                    let shift = (rng.uniform(), rng.uniform());
+                    for j in 0..n {
+                        let (ox, oy) = lattice.gaussian(j, shift, methods::SIGMA_PIXEL);
+                        let r = cam.ray(x as f32 + 0.5 + ox, y as f32 + 0.5 + oy);
+                        let hit = scene
+                            .intersect(&r.ray)
+                            .map(|h| Surface::new(scene, cam.eye, h));
+                        for (f, family) in families.iter().enumerate() {
+                            sum[f] += match &hit {
+                                None => scene.sky(r.ray.dir),
+                                Some(s) => {
+                                    radiance(scene, s, *family, |h| family.d(s.hit.alpha, h))
+                                }
+                            };
+                        }
                     }
                 }
-                let (nh, nf) = ((spp / 2) as f32, spp as f32);
-                [half[0] / nh, half[1] / nh, sum[0] / nf, sum[1] / nf]
+                let n = n as f32;
+                let [a, b] = sums;
+                [
+                    a[0] / n,
+                    a[1] / n,
+                    (a[0] + b[0]) / (2.0 * n),
+                    (a[1] + b[1]) / (2.0 * n),
+                ]
             })
             .collect()
     });
@@ -297,6 +341,37 @@ pub fn reference(
     Reference {
         half: [img(0), img(1)],
         full: [img(2), img(3)],
+    }
+}
+
+/// A rank-1 lattice of `n` points `(j / n, j g / n)`, `g` coprime to `n` near `n / phi`.
+struct Lattice {
+    n: usize,
+    g: usize,
+}
+
+impl Lattice {
+    fn new(n: usize) -> Self {
+        let gcd = |mut a: usize, mut b: usize| {
+            while b != 0 {
+                (a, b) = (b, a % b);
+            }
+            a
+        };
+        let mut g = ((n as f64 * 0.618_034).round() as usize).max(1);
+        while gcd(g, n) != 1 {
+            g += 1;
+        }
+        Self { n, g }
+    }
+
+    /// Point `j` shifted by `shift` (mod 1), mapped to a 2D normal deviate of std `sigma`.
+    fn gaussian(&self, j: usize, shift: (f32, f32), sigma: f32) -> (f32, f32) {
+        let u = ((j as f32 / self.n as f32) + shift.0).fract();
+        let v = (((j * self.g) % self.n) as f32 / self.n as f32 + shift.1).fract();
+        let r = sigma * (-2.0 * (1.0 - u).max(1e-12).ln()).sqrt();
+        let (s, c) = (std::f32::consts::TAU * v).sin_cos();
+        (r * c, r * s)
     }
 }
 
@@ -319,11 +394,5 @@ impl Rng {
     /// Uniform in `(0, 1]`.
     fn uniform(&mut self) -> f32 {
         ((self.next() >> 40) as f32 + 1.0) / (1u64 << 24) as f32
-    }
-    /// Two independent normal deviates of standard deviation `sigma` (Box-Muller).
-    fn gaussian2(&mut self, sigma: f32) -> (f32, f32) {
-        let r = sigma * (-2.0 * self.uniform().ln()).sqrt();
-        let (s, c) = (std::f32::consts::TAU * self.uniform()).sin_cos();
-        (r * c, r * s)
     }
 }

@@ -4,13 +4,14 @@
 
 use crate::methods::Method;
 use crate::plot::{Series, line_plot};
+use crate::scene::Scene;
 use crate::{Options, camera_at, render};
 use std::fmt::Write as _;
 
 /// Resolution divisor and reference sample divisor of the temporal frames (keeps the default
 /// run short; the peaks are compared at the same resolution for every method).
 const DOWNSCALE: usize = 2;
-const SPP_DIVISOR: usize = 4;
+const SPP_DIVISOR: usize = 8;
 
 const COLORS: [[u8; 3]; 9] = [
     [220, 40, 40],
@@ -24,7 +25,7 @@ const COLORS: [[u8; 3]; 9] = [
     [90, 90, 90],
 ];
 
-pub fn run(scene: &crate::scene::Scene, o: &Options) -> std::io::Result<String> {
+pub fn run(o: &Options) -> std::io::Result<String> {
     let (w, h) = ((o.width / DOWNSCALE).max(2), (o.height / DOWNSCALE).max(2));
     let spp = (o.spp / SPP_DIVISOR).max(2);
     let mut peaks = vec![Vec::new(); o.methods.len()];
@@ -32,7 +33,8 @@ pub fn run(scene: &crate::scene::Scene, o: &Options) -> std::io::Result<String> 
     let bar = crate::parallel::Progress::new("temporal frames", o.frames);
     for f in 0..o.frames {
         let cam = camera_at(f, w, h);
-        let reference = render::reference(scene, &cam, w, h, spp, o.seed + f as u64, o.threads, None);
+        let scene = &Scene::new(cam.lod());
+        let reference = render::reference(scene, &cam, w, h, spp, o.seed, o.threads, None);
         for (k, img) in reference.full.iter().enumerate() {
             ref_peaks[k].push(img.peak());
         }
@@ -46,14 +48,29 @@ pub fn run(scene: &crate::scene::Scene, o: &Options) -> std::io::Result<String> 
     bar.finish();
 
     let mut md = String::new();
-    writeln!(md, "\n## Temporal test ({} frames, {}x{}, reference {} spp)\n", o.frames, w, h, spp).unwrap();
+    writeln!(
+        md,
+        "\n## Temporal test ({} frames, {}x{}, reference {} spp)\n",
+        o.frames, w, h, spp
+    )
+    .unwrap();
     writeln!(md, "Peak HDR luminance per frame: mean, mean frame-to-frame change |P(t) - P(t-1)| / mean P, and mean distance |P(t) - P_ref(t)| / mean P_ref.\n").unwrap();
-    writeln!(md, "| method | mean peak | frame-to-frame variation | distance to reference |").unwrap();
+    writeln!(
+        md,
+        "| method | mean peak | frame-to-frame variation | distance to reference |"
+    )
+    .unwrap();
     writeln!(md, "|---|---:|---:|---:|").unwrap();
     let mut series = Vec::new();
     for (k, name) in ["Reference Beckmann", "Reference GGX"].iter().enumerate() {
         let p = &ref_peaks[k];
-        writeln!(md, "| {name} | {:.1} | {:.1}% | - |", mean(p), 100.0 * variation(p)).unwrap();
+        writeln!(
+            md,
+            "| {name} | {:.1} | {:.1}% | - |",
+            mean(p),
+            100.0 * variation(p)
+        )
+        .unwrap();
         series.push(Series {
             label: name.to_string(),
             color: [[0, 0, 0], [110, 110, 110]][k],
@@ -63,7 +80,15 @@ pub fn run(scene: &crate::scene::Scene, o: &Options) -> std::io::Result<String> 
     for (i, &m) in o.methods.iter().enumerate() {
         let p = &peaks[i];
         let r = &ref_peaks[m.family() as usize];
-        writeln!(md, "| {} | {:.1} | {:.1}% | {:.1}% |", m.label(), mean(p), 100.0 * variation(p), 100.0 * distance(p, r)).unwrap();
+        writeln!(
+            md,
+            "| {} | {:.1} | {:.1}% | {:.1}% |",
+            m.label(),
+            mean(p),
+            100.0 * variation(p),
+            100.0 * distance(p, r)
+        )
+        .unwrap();
         series.push(Series {
             label: m.label().to_string(),
             color: COLORS[index_of(m) % COLORS.len()],
