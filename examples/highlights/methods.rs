@@ -240,15 +240,14 @@ fn tk19_isotropic(_sp: &ShadingPoint, _variant: IsoVariant) -> f32 {
 
 /// The offline-renderer route: footprint `(dx_u M, dx_v M)` from the tangent-plane ray
 /// differentials `dx_u`, `dx_v` (world, per pixel step) and the half-vector Jacobian `M` at
-/// the hit (KHPL16 eq. 4-6). `frame` holds the tangent-frame axes (world), `dn_dp` the shape
-/// operator (world normal change per world displacement in the tangent plane).
-#[allow(dead_code)]
+/// the hit (KHPL16 eq. 4-6), expressed in the tangent frame `input.frame` (slope
+/// convention `-h_xy / h_z`). Selected with `--footprint rays`.
 pub fn footprint_from_ray_differentials(_g: &AnalyticInput) -> Footprint {
     unimplemented!("needs the half-vector Jacobian from branch jacobian")
 }
 
-/// Input of [`footprint_from_ray_differentials`] (all world space).
-#[allow(dead_code)]
+/// Input of [`footprint_from_ray_differentials`] (all world space; the light is a point).
+#[allow(dead_code)] // read by the Jacobian route once wired
 #[derive(Clone, Copy, Debug)]
 pub struct AnalyticInput {
     pub position: Vec3,
