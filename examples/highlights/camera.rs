@@ -1,0 +1,92 @@
+//! Pinhole camera with analytic ray differentials (Igehy 1999).
+
+use crate::scene::{Hit, Lod, Ray};
+use glam::Vec3;
+
+/// A pinhole camera looking from `eye` at `target`, image `width x height` pixels.
+#[derive(Clone, Copy, Debug)]
+pub struct Camera {
+    pub eye: Vec3,
+    /// Change of the unnormalised ray direction per pixel step in x and y.
+    step_x: Vec3,
+    step_y: Vec3,
+    /// Unnormalised direction through the image corner (0, 0).
+    corner: Vec3,
+}
+
+/// A primary ray and the derivatives of its unit direction per pixel step.
+#[derive(Clone, Copy, Debug)]
+pub struct DiffRay {
+    pub ray: Ray,
+    pub d_dir_dx: Vec3,
+    pub d_dir_dy: Vec3,
+}
+
+impl Camera {
+    pub fn new(eye: Vec3, target: Vec3, vfov_deg: f32, width: usize, height: usize) -> Self {
+        let forward = (target - eye).normalize();
+        let right = forward.cross(Vec3::Y).normalize();
+        let up = right.cross(forward);
+        let half_h = (0.5 * vfov_deg.to_radians()).tan();
+        let half_w = half_h * width as f32 / height as f32;
+        let step_x = right * (2.0 * half_w / width as f32);
+        let step_y = -up * (2.0 * half_h / height as f32);
+        let corner = forward - right * half_w + up * half_h;
+        Self {
+            eye,
+            step_x,
+            step_y,
+            corner,
+        }
+    }
+
+    /// The ray through the continuous image point `(x, y)` (pixel centres at `i + 0.5`), with
+    /// Igehy's direction differentials `dD/dx = (d.d s - (d.s) d) / |d|^3`.
+    pub fn ray(&self, x: f32, y: f32) -> DiffRay {
+        let d = self.corner + x * self.step_x + y * self.step_y;
+        let len = d.length();
+        let dir = d / len;
+        let diff = |s: Vec3| (s - dir * dir.dot(s)) / len;
+        DiffRay {
+            ray: Ray {
+                origin: self.eye,
+                dir,
+            },
+            d_dir_dx: diff(self.step_x),
+            d_dir_dy: diff(self.step_y),
+        }
+    }
+
+    /// The angle one pixel subtends at the image centre (radians).
+    pub fn pixel_angle(&self) -> f32 {
+        self.step_y.length()
+    }
+
+    /// The water's level of detail for this view.
+    pub fn lod(&self) -> Lod {
+        Lod {
+            eye: self.eye,
+            pixel_angle: self.pixel_angle(),
+        }
+    }
+}
+
+impl DiffRay {
+    /// Igehy's transfer to the hit's tangent plane: `dP = t dD + dt D` with
+    /// `dt = -(t dD . n) / (D . n)` (the origin differential is zero for a pinhole).
+    /// Returns `(dx_u, dx_v)`, the world offsets per pixel step in x and y.
+    #[allow(dead_code)]
+    pub fn footprint_on_plane(&self, hit: &Hit) -> (Vec3, Vec3) {
+        let dn = self.ray.dir.dot(hit.normal);
+        let transfer = |dd: Vec3| {
+            let dp = hit.t * dd;
+            let dt = if dn.abs() > 1e-6 {
+                -dp.dot(hit.normal) / dn
+            } else {
+                0.0
+            };
+            dp + dt * self.ray.dir
+        };
+        (transfer(self.d_dir_dx), transfer(self.d_dir_dy))
+    }
+}

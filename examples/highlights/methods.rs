@@ -1,0 +1,264 @@
+//! The shading methods compared by the demo, behind one function: [`filtered_d`].
+//!
+//! Every method answers the same question: the (filtered) microfacet density `D(h)` per
+//! steradian at the half vector `h` of one shading point, given its slope-domain pixel
+//! footprint. The renderer multiplies it by the same Fresnel, Smith `G2` (base roughness) and
+//! light terms for every method, so the images differ only by the NDF filter.
+//!
+//! Methods whose kernels live on other branches are stubs at the bottom of this file; they
+//! panic with `unimplemented!` and are left out of [`Method::DEFAULT`] until wired.
+
+use filtered_ndf::f32::{Beckmann, Footprint, Ggx, Isotropic, Ndf, RoughnessMatrix};
+use glam::Vec3;
+
+/// The microfacet distribution a method filters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Family {
+    Beckmann,
+    Ggx,
+}
+
+impl Family {
+    /// Unfiltered `D(h)` of this family at roughness `alpha`.
+    pub fn d(self, alpha: f32, h: Vec3) -> f32 {
+        let r = Isotropic::new_clamped(alpha);
+        match self {
+            Family::Beckmann => Beckmann::new(r).d(h),
+            Family::Ggx => Ggx::new(r).d(h),
+        }
+    }
+
+    /// Unfiltered Smith `G2` of this family at roughness `alpha` (tangent frame).
+    pub fn g2(self, alpha: f32, wi: Vec3, wo: Vec3, h: Vec3) -> f32 {
+        let r = Isotropic::new_clamped(alpha);
+        match self {
+            Family::Beckmann => Beckmann::new(r).g2(wi, wo, h),
+            Family::Ggx => Ggx::new(r).g2(wi, wo, h),
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::Beckmann => "Beckmann",
+            Family::Ggx => "GGX",
+        }
+    }
+}
+
+/// The isotropic deferred roughness variants of TK19 (eq. 1, 2/4, 5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IsoVariant {
+    Max,
+    Trace,
+    Average,
+}
+
+/// One way of shading a pixel with a single sample.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// The NDF at the pixel centre, no filtering.
+    Unfiltered(Family),
+    /// KHPL16 parallelogram (Gaussian) kernel on Beckmann: `A' = A + 2 Sigma`.
+    BeckmannParallelogram,
+    /// KHPL16 axis-aligned rectangle, exact box integral of GGX.
+    GgxRectExact,
+    /// KHPL16 / GDC GGX proxy: an effective isotropic roughness for the rectangle.
+    GgxProxy,
+    /// TK19 (TK21) projected-space kernel on full-matrix GGX.
+    Tk19Projected,
+    /// TK19 isotropic deferred roughness from world-space normal differences.
+    Tk19Isotropic(IsoVariant),
+}
+
+impl Method {
+    /// Methods implemented on this branch, rendered by default.
+    pub const DEFAULT: [Method; 3] = [
+        Method::Unfiltered(Family::Beckmann),
+        Method::Unfiltered(Family::Ggx),
+        Method::BeckmannParallelogram,
+    ];
+
+    /// Every method, in display order.
+    pub const ALL: [Method; 9] = [
+        Method::Unfiltered(Family::Beckmann),
+        Method::Unfiltered(Family::Ggx),
+        Method::BeckmannParallelogram,
+        Method::GgxRectExact,
+        Method::GgxProxy,
+        Method::Tk19Projected,
+        Method::Tk19Isotropic(IsoVariant::Max),
+        Method::Tk19Isotropic(IsoVariant::Trace),
+        Method::Tk19Isotropic(IsoVariant::Average),
+    ];
+
+    /// The NDF this method filters (its reference is rendered with the same family).
+    pub fn family(self) -> Family {
+        match self {
+            Method::Unfiltered(f) => f,
+            Method::BeckmannParallelogram => Family::Beckmann,
+            _ => Family::Ggx,
+        }
+    }
+
+    /// Short command-line / file name.
+    pub fn slug(self) -> &'static str {
+        match self {
+            Method::Unfiltered(Family::Beckmann) => "unfiltered-beckmann",
+            Method::Unfiltered(Family::Ggx) => "unfiltered-ggx",
+            Method::BeckmannParallelogram => "khpl16-beckmann",
+            Method::GgxRectExact => "ggx-rect-exact",
+            Method::GgxProxy => "ggx-proxy",
+            Method::Tk19Projected => "tk19-projected",
+            Method::Tk19Isotropic(IsoVariant::Max) => "tk19-iso-max",
+            Method::Tk19Isotropic(IsoVariant::Trace) => "tk19-iso-trace",
+            Method::Tk19Isotropic(IsoVariant::Average) => "tk19-iso-average",
+        }
+    }
+
+    /// Human-readable label (contact sheet, tables).
+    pub fn label(self) -> &'static str {
+        match self {
+            Method::Unfiltered(Family::Beckmann) => "Unfiltered Beckmann",
+            Method::Unfiltered(Family::Ggx) => "Unfiltered GGX",
+            Method::BeckmannParallelogram => "KHPL16 Beckmann A+2S",
+            Method::GgxRectExact => "GGX rect exact",
+            Method::GgxProxy => "GGX proxy",
+            Method::Tk19Projected => "TK19 projected",
+            Method::Tk19Isotropic(IsoVariant::Max) => "TK19 iso max",
+            Method::Tk19Isotropic(IsoVariant::Trace) => "TK19 iso trace",
+            Method::Tk19Isotropic(IsoVariant::Average) => "TK19 iso average",
+        }
+    }
+
+    /// Parses a slug (see [`Method::slug`]).
+    pub fn parse(s: &str) -> Option<Method> {
+        Method::ALL.into_iter().find(|m| m.slug() == s)
+    }
+}
+
+/// Everything a method may use at one shading point. Vectors in the shading point's tangent
+/// frame (`z` = shading normal) unless marked world.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadingPoint {
+    /// Unit half vector.
+    pub h: Vec3,
+    /// Base (unfiltered) isotropic roughness.
+    pub alpha: f32,
+    /// Slope-domain footprint: slope change of `h` per pixel step in x and y.
+    pub footprint: Footprint,
+    /// World-space shading-normal difference per pixel step in x and y (deferred methods;
+    /// read by the TK19 isotropic kernels once wired).
+    #[allow(dead_code)]
+    pub dn_dx: Vec3,
+    /// See `dn_dx`.
+    #[allow(dead_code)]
+    pub dn_dy: Vec3,
+}
+
+/// The standard deviation of the Gaussian pixel filter in pixels (KHPL16, TK19).
+pub const SIGMA_PIXEL: f32 = filtered_ndf::f32::footprint::SIGMA_PIXEL;
+
+/// The (filtered) `D(h)` per steradian of `method` at `sp`.
+pub fn filtered_d(method: Method, sp: &ShadingPoint) -> f32 {
+    match method {
+        Method::Unfiltered(family) => family.d(sp.alpha, sp.h),
+        Method::BeckmannParallelogram => beckmann_parallelogram(sp),
+        Method::GgxRectExact => ggx_rect_exact(sp),
+        Method::GgxProxy => ggx_proxy(sp),
+        Method::Tk19Projected => tk19_projected(sp),
+        Method::Tk19Isotropic(variant) => tk19_isotropic(sp, variant),
+    }
+}
+
+/// KHPL16 eq. 13-15: the Gaussian footprint `Sigma = sigma^2 U^T U` convolved with Beckmann
+/// is Beckmann with `A' = A + 2 Sigma`, evaluated with the TK19 determinant clamp
+/// `tau = det A = alpha^4` (filtering only grows the determinant).
+fn beckmann_parallelogram(sp: &ShadingPoint) -> f32 {
+    let a2 = sp.alpha * sp.alpha;
+    let sigma = clamp_extent(sp.footprint, MAX_EXTENT).covariance(SIGMA_PIXEL);
+    let filtered = RoughnessMatrix::new_with_det_clamp(
+        a2 + 2.0 * sigma.s11,
+        2.0 * sigma.s12,
+        a2 + 2.0 * sigma.s22,
+        a2 * a2,
+    );
+    match filtered {
+        Ok(r) => Beckmann::new(r).d(sp.h),
+        // Non-finite footprint (e.g. a derivative across a silhouette that overflowed):
+        // fall back to the unfiltered lobe rather than a NaN pixel.
+        Err(_) => Family::Beckmann.d(sp.alpha, sp.h),
+    }
+}
+
+/// KHPL16 section 5.2: the largest linear extent of the slope-domain filtering region.
+pub const MAX_EXTENT: f32 = 1.0;
+
+/// KHPL16 section 5.2: rescales the parallelogram spanned by `dh_u`, `dh_v` so that its
+/// longest side is at most `lambda` (grazing outliers otherwise smear the lobe over slopes
+/// where `1 / h_z^4` explodes). Non-finite footprints become zero (unfiltered).
+/// (Local stand-in for the clamping rules of the filtering branch.)
+fn clamp_extent(f: Footprint, lambda: f32) -> Footprint {
+    let extent = f.dh_u.length().max(f.dh_v.length());
+    if !extent.is_finite() {
+        Footprint::ZERO
+    } else if extent > lambda {
+        let k = lambda / extent;
+        Footprint::from_slope_derivatives(f.dh_u * k, f.dh_v * k)
+    } else {
+        f
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Stubs: the lead replaces each body with a call into the crate once the branch is merged.
+// ---------------------------------------------------------------------------------------
+
+/// KHPL16 section 5.3: the axis-aligned bounding rectangle of the footprint (half extents
+/// from `sp.footprint`, `sigma = SIGMA_PIXEL`), exact box integral of GGX `P22` over it,
+/// returned per steradian (`/ h_z^4`).
+fn ggx_rect_exact(_sp: &ShadingPoint) -> f32 {
+    unimplemented!("needs the exact GGX rectangle integral from branch rect")
+}
+
+/// KHPL16 / GDC 2016: the GGX proxy, an effective isotropic roughness for the same
+/// rectangle, then unfiltered GGX `D(h)` with it.
+fn ggx_proxy(_sp: &ShadingPoint) -> f32 {
+    unimplemented!("needs the GGX proxy from branch rect")
+}
+
+/// TK19 / TK21 projected-space filtering: `P = A (I - A)^-1`, `P' = P + kernel`,
+/// `A' = P' (I + P')^-1`, then full-matrix GGX `D(h)` with the tau clamp.
+fn tk19_projected(_sp: &ShadingPoint) -> f32 {
+    unimplemented!("needs projected-space filtering from branch filter")
+}
+
+/// TK19 eq. 1 / 2,4 / 5: isotropic deferred roughness from `sp.dn_dx`, `sp.dn_dy`
+/// (kappa = 0.18), then isotropic GGX `D(h)` with it.
+fn tk19_isotropic(_sp: &ShadingPoint, _variant: IsoVariant) -> f32 {
+    unimplemented!("needs isotropic deferred roughness from branch isotropic")
+}
+
+/// The offline-renderer route: footprint `(dx_u M, dx_v M)` from the tangent-plane ray
+/// differentials `dx_u`, `dx_v` (world, per pixel step) and the half-vector Jacobian `M` at
+/// the hit (KHPL16 eq. 4-6), expressed in the tangent frame `input.frame` (slope
+/// convention `-h_xy / h_z`). Selected with `--footprint rays`.
+pub fn footprint_from_ray_differentials(_g: &AnalyticInput) -> Footprint {
+    unimplemented!("needs the half-vector Jacobian from branch jacobian")
+}
+
+/// Input of [`footprint_from_ray_differentials`] (all world space; the light is a point).
+#[allow(dead_code)] // read by the Jacobian route once wired
+#[derive(Clone, Copy, Debug)]
+pub struct AnalyticInput {
+    pub position: Vec3,
+    pub eye: Vec3,
+    pub light: Vec3,
+    /// Tangent, bitangent, normal.
+    pub frame: [Vec3; 3],
+    /// Normal change along the tangent and the bitangent (shape operator columns).
+    pub dn_dt: Vec3,
+    pub dn_db: Vec3,
+    /// Ray-differential offsets on the tangent plane per pixel step in x and y.
+    pub dx_u: Vec3,
+    pub dx_v: Vec3,
+}

@@ -1,0 +1,398 @@
+//! The renderer: a G-buffer of pixel-centre hits, GPU-style footprints from 2x2-quad
+//! differences, one-sample shading per method, and the supersampled reference.
+
+use crate::camera::{Camera, DiffRay};
+use crate::image_out::Image;
+use crate::methods::{self, Family, Method, ShadingPoint};
+use crate::parallel;
+use crate::scene::{Hit, Scene};
+use filtered_ndf::f32::Footprint;
+use filtered_ndf::f32::slope::slope_from_sphere;
+use glam::{Mat3, Quat, Vec2, Vec3};
+
+/// How footprints are obtained.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FootprintRoute {
+    /// ddx/ddy of the half-vector slope between neighbouring pixels (what a GPU does).
+    Quad,
+    /// Ray differentials and the half-vector Jacobian (offline route; needs branch jacobian).
+    RayDifferentials,
+}
+
+/// Everything shading needs at one primary hit.
+#[derive(Clone, Copy, Debug)]
+pub struct Surface {
+    pub hit: Hit,
+    /// Tangent frame: columns tangent, bitangent, normal (world).
+    pub frame: Mat3,
+    /// Unit directions to the eye and to the light, and the half vector (world).
+    pub wo: Vec3,
+    pub wi: Vec3,
+    pub h: Vec3,
+    /// Squared distance to the light.
+    pub dist2: f32,
+}
+
+impl Surface {
+    pub fn new(scene: &Scene, eye: Vec3, hit: Hit) -> Self {
+        let wo = (eye - hit.position).normalize();
+        let to_light = scene.light_position - hit.position;
+        let wi = to_light.normalize();
+        Self {
+            hit,
+            frame: tangent_frame(hit.normal),
+            wo,
+            wi,
+            h: (wi + wo).normalize_or(hit.normal),
+            dist2: to_light.length_squared(),
+        }
+    }
+
+    /// A world vector in this surface's tangent frame.
+    fn local(&self, v: Vec3) -> Vec3 {
+        self.frame.transpose() * v
+    }
+
+    /// Slope `-h_xy / h_z` of a world half vector `h_other` found at a surface with normal
+    /// `n_other`, carried to this surface by the rotation taking `n_other` to this normal.
+    fn slope_of(&self, h_other: Vec3, n_other: Vec3) -> Vec2 {
+        let carried = Quat::from_rotation_arc(n_other, self.hit.normal) * h_other;
+        slope_from_sphere(self.local(carried))
+    }
+}
+
+/// An orthonormal frame around `n` (Duff et al. 2017), columns `(t, b, n)`.
+fn tangent_frame(n: Vec3) -> Mat3 {
+    let sign = 1.0f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    let t = Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    let bt = Vec3::new(b, sign + n.y * n.y * a, -n.y);
+    Mat3::from_cols(t, bt, n)
+}
+
+/// Outgoing radiance at `s` with the microfacet density `d` (per steradian, evaluated at the
+/// local half vector by the caller) and the Smith term of `family` at the base roughness.
+pub fn radiance(scene: &Scene, s: &Surface, family: Family, d: impl FnOnce(Vec3) -> f32) -> Vec3 {
+    let (wi, wo, h) = (s.local(s.wi), s.local(s.wo), s.local(s.h));
+    let albedo = s.hit.albedo;
+    let mut l = albedo * scene.ambient;
+    let cos_i = wi.z;
+    if cos_i <= 0.0 {
+        return l;
+    }
+    let irradiance = scene.light_intensity * (cos_i / s.dist2);
+    let cos_o = wo.z.max(1e-4);
+    let fresnel = scene.f0 + (1.0 - scene.f0) * (1.0 - wi.dot(h).clamp(0.0, 1.0)).powi(5);
+    let spec = fresnel * d(h) * family.g2(s.hit.alpha, wi, wo, h) / (4.0 * cos_i * cos_o);
+    l += irradiance * (albedo * std::f32::consts::FRAC_1_PI + Vec3::splat(spec));
+    l
+}
+
+/// The pixel-centre hits of one frame.
+pub struct GBuffer {
+    pub width: usize,
+    pub height: usize,
+    pub eye: Vec3,
+    pub pixels: Vec<Option<(Surface, DiffRay)>>,
+    /// Background radiance of the pixels that miss.
+    pub sky: Vec<Vec3>,
+}
+
+pub fn gbuffer(
+    scene: &Scene,
+    cam: &Camera,
+    width: usize,
+    height: usize,
+    threads: usize,
+) -> GBuffer {
+    let px = parallel::rows(height, threads, None, |y| {
+        (0..width)
+            .map(|x| {
+                let r = cam.ray(x as f32 + 0.5, y as f32 + 0.5);
+                let hit = scene.intersect(&r.ray);
+                (
+                    hit.map(|h| (Surface::new(scene, cam.eye, h), r)),
+                    scene.sky(r.ray.dir),
+                )
+            })
+            .collect()
+    });
+    let (pixels, sky) = px.into_iter().unzip();
+    GBuffer {
+        width,
+        height,
+        eye: cam.eye,
+        pixels,
+        sky,
+    }
+}
+
+/// See [`GBuffer::partner`].
+const DISCONTINUITY: f32 = 3.0;
+
+/// Per-pixel filtering inputs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PixelDerivatives {
+    pub footprint: Footprint,
+    pub dn_dx: Vec3,
+    pub dn_dy: Vec3,
+}
+
+impl GBuffer {
+    fn at(&self, x: usize, y: usize) -> Option<&Surface> {
+        self.pixels[y * self.width + x].as_ref().map(|(s, _)| s)
+    }
+
+    /// The neighbour a 2x2 quad differences against along one axis (`coord ^ 1`), or the
+    /// opposite neighbour when the quad partner is off-image or on another object. Returns
+    /// the neighbour and the sign of the step (+1 if it is the next pixel).
+    ///
+    /// A neighbour also counts as another surface when it lies across a depth discontinuity
+    /// (a wave crest hiding the water behind it): its distance from this hit is more than
+    /// [`DISCONTINUITY`] times the step the ray differentials predict on the tangent plane.
+    fn partner(&self, x: usize, y: usize, horizontal: bool) -> Option<(&Surface, f32)> {
+        let (c, ray) = self.pixels[y * self.width + x].as_ref()?;
+        let (dx_u, dx_v) = ray.footprint_on_plane(&c.hit);
+        let predicted = if horizontal { dx_u } else { dx_v }.length();
+        let coord = if horizontal { x } else { y };
+        let quad = coord ^ 1;
+        let other = if quad > coord {
+            coord.checked_sub(1)
+        } else {
+            Some(coord + 1)
+        };
+        let limit = if horizontal { self.width } else { self.height };
+        [Some(quad), other]
+            .into_iter()
+            .flatten()
+            .filter(|&k| k < limit)
+            .find_map(|k| {
+                let (nx, ny) = if horizontal { (k, y) } else { (x, k) };
+                let s = self.at(nx, ny)?;
+                let step = s.hit.position.distance(c.hit.position);
+                let continuous = step <= DISCONTINUITY * predicted;
+                let sign = if k > coord { 1.0 } else { -1.0 };
+                (s.hit.object == c.hit.object && continuous).then_some((s, sign))
+            })
+    }
+
+    /// GPU-style derivatives: `ddx`/`ddy` of the half-vector slope (in this pixel's tangent
+    /// frame) and of the world normal, from the quad neighbours.
+    pub fn quad_derivatives(&self, x: usize, y: usize) -> PixelDerivatives {
+        let Some(c) = self.at(x, y) else {
+            return PixelDerivatives::default();
+        };
+        let s0 = c.slope_of(c.h, c.hit.normal);
+        let diff = |horizontal: bool| match self.partner(x, y, horizontal) {
+            Some((n, sign)) => (
+                (c.slope_of(n.h, n.hit.normal) - s0) * sign,
+                (n.hit.normal - c.hit.normal) * sign,
+            ),
+            None => (Vec2::ZERO, Vec3::ZERO),
+        };
+        let (dh_u, dn_dx) = diff(true);
+        let (dh_v, dn_dy) = diff(false);
+        PixelDerivatives {
+            footprint: Footprint::from_slope_derivatives(dh_u, dh_v),
+            dn_dx,
+            dn_dy,
+        }
+    }
+
+    /// Derivatives through the analytic route (ray differentials + half-vector Jacobian).
+    pub fn analytic_derivatives(&self, x: usize, y: usize) -> PixelDerivatives {
+        let quad = self.quad_derivatives(x, y);
+        let Some((s, ray)) = self.pixels[y * self.width + x].as_ref() else {
+            return quad;
+        };
+        let (dx_u, dx_v) = ray.footprint_on_plane(&s.hit);
+        let input = methods::AnalyticInput {
+            position: s.hit.position,
+            eye: self.eye,
+            light: s.hit.position + s.wi * s.dist2.sqrt(),
+            frame: [s.frame.x_axis, s.frame.y_axis, s.frame.z_axis],
+            dn_dt: s.hit.dn_dp * s.frame.x_axis,
+            dn_db: s.hit.dn_dp * s.frame.y_axis,
+            dx_u,
+            dx_v,
+        };
+        PixelDerivatives {
+            footprint: methods::footprint_from_ray_differentials(&input),
+            ..quad
+        }
+    }
+
+    pub fn derivatives(&self, route: FootprintRoute, threads: usize) -> Vec<PixelDerivatives> {
+        parallel::rows(self.height, threads, None, |y| {
+            (0..self.width)
+                .map(|x| match route {
+                    FootprintRoute::Quad => self.quad_derivatives(x, y),
+                    FootprintRoute::RayDifferentials => self.analytic_derivatives(x, y),
+                })
+                .collect()
+        })
+    }
+}
+
+/// One shading sample per pixel with `method`.
+pub fn shade(
+    scene: &Scene,
+    gb: &GBuffer,
+    derivs: &[PixelDerivatives],
+    method: Method,
+    threads: usize,
+) -> Image {
+    let data = parallel::rows(gb.height, threads, None, |y| {
+        (0..gb.width)
+            .map(|x| {
+                let i = y * gb.width + x;
+                match &gb.pixels[i] {
+                    None => gb.sky[i],
+                    Some((s, _)) => radiance(scene, s, method.family(), |h| {
+                        let dv = derivs[i];
+                        methods::filtered_d(
+                            method,
+                            &ShadingPoint {
+                                h,
+                                alpha: s.hit.alpha,
+                                footprint: dv.footprint,
+                                dn_dx: dv.dn_dx,
+                                dn_dy: dv.dn_dy,
+                            },
+                        )
+                    }),
+                }
+            })
+            .collect()
+    });
+    Image::new(gb.width, gb.height, data)
+}
+
+/// The supersampled references of one frame: for each family, the average over the first
+/// half of the samples and over all of them (nested, so the convergence check is free).
+pub struct Reference {
+    pub half: [Image; 2],
+    pub full: [Image; 2],
+}
+
+impl Reference {
+    pub fn full(&self, family: Family) -> &Image {
+        &self.full[family as usize]
+    }
+    pub fn half(&self, family: Family) -> &Image {
+        &self.half[family as usize]
+    }
+}
+
+/// Renders the reference with `spp` sub-pixel samples drawn from the same Gaussian pixel
+/// filter (sigma = 0.5 pixel) the footprint kernels assume, unfiltered NDFs. Each half of the
+/// samples is a randomly shifted rank-1 lattice (stratified for any count, unbiased thanks to
+/// the per-pixel random shift) mapped to the Gaussian by Box-Muller.
+#[allow(clippy::too_many_arguments)]
+pub fn reference(
+    scene: &Scene,
+    cam: &Camera,
+    width: usize,
+    height: usize,
+    spp: usize,
+    seed: u64,
+    threads: usize,
+    progress: Option<&str>,
+) -> Reference {
+    let n = (spp / 2).max(1);
+    let lattice = Lattice::new(n);
+    let families = [Family::Beckmann, Family::Ggx];
+    let px: Vec<[Vec3; 4]> = parallel::rows(height, threads, progress, |y| {
+        (0..width)
+            .map(|x| {
+                let mut rng = Rng::new(seed, (y * width + x) as u64);
+                let mut sums = [[Vec3::ZERO; 2]; 2];
+                for sum in &mut sums {
+                    let shift = (rng.uniform(), rng.uniform());
+                    for j in 0..n {
+                        let (ox, oy) = lattice.gaussian(j, shift, methods::SIGMA_PIXEL);
+                        let r = cam.ray(x as f32 + 0.5 + ox, y as f32 + 0.5 + oy);
+                        let hit = scene
+                            .intersect(&r.ray)
+                            .map(|h| Surface::new(scene, cam.eye, h));
+                        for (f, family) in families.iter().enumerate() {
+                            sum[f] += match &hit {
+                                None => scene.sky(r.ray.dir),
+                                Some(s) => {
+                                    radiance(scene, s, *family, |h| family.d(s.hit.alpha, h))
+                                }
+                            };
+                        }
+                    }
+                }
+                let n = n as f32;
+                let [a, b] = sums;
+                [
+                    a[0] / n,
+                    a[1] / n,
+                    (a[0] + b[0]) / (2.0 * n),
+                    (a[1] + b[1]) / (2.0 * n),
+                ]
+            })
+            .collect()
+    });
+    let img = |k: usize| Image::new(width, height, px.iter().map(|p| p[k]).collect());
+    Reference {
+        half: [img(0), img(1)],
+        full: [img(2), img(3)],
+    }
+}
+
+/// A rank-1 lattice of `n` points `(j / n, j g / n)`, `g` coprime to `n` near `n / phi`.
+struct Lattice {
+    n: usize,
+    g: usize,
+}
+
+impl Lattice {
+    fn new(n: usize) -> Self {
+        let gcd = |mut a: usize, mut b: usize| {
+            while b != 0 {
+                (a, b) = (b, a % b);
+            }
+            a
+        };
+        let mut g = ((n as f64 * 0.618_034).round() as usize).max(1);
+        while gcd(g, n) != 1 {
+            g += 1;
+        }
+        Self { n, g }
+    }
+
+    /// Point `j` shifted by `shift` (mod 1), mapped to a 2D normal deviate of std `sigma`.
+    fn gaussian(&self, j: usize, shift: (f32, f32), sigma: f32) -> (f32, f32) {
+        let u = ((j as f32 / self.n as f32) + shift.0).fract();
+        let v = (((j * self.g) % self.n) as f32 / self.n as f32 + shift.1).fract();
+        let r = sigma * (-2.0 * (1.0 - u).max(1e-12).ln()).sqrt();
+        let (s, c) = (std::f32::consts::TAU * v).sin_cos();
+        (r * c, r * s)
+    }
+}
+
+/// A small deterministic generator (SplitMix64), one stream per pixel.
+struct Rng(u64);
+
+impl Rng {
+    fn new(seed: u64, stream: u64) -> Self {
+        let mut r = Rng(seed ^ stream.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        r.next();
+        r
+    }
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in `(0, 1]`.
+    fn uniform(&mut self) -> f32 {
+        ((self.next() >> 40) as f32 + 1.0) / (1u64 << 24) as f32
+    }
+}

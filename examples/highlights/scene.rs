@@ -1,0 +1,337 @@
+//! The procedural scene: a tile of wavy water (a sum of sines, as in KHPL16 Fig. 2) with a
+//! few small glossy spheres floating on it, lit by one small point light low over the horizon
+//! so that the water shows a glitter path. World space is `y`-up.
+
+use glam::{Mat3, Vec3};
+
+/// A ray `origin + t dir`, `dir` unit.
+#[derive(Clone, Copy, Debug)]
+pub struct Ray {
+    pub origin: Vec3,
+    pub dir: Vec3,
+}
+
+/// What a ray hit.
+#[derive(Clone, Copy, Debug)]
+pub struct Hit {
+    pub t: f32,
+    pub position: Vec3,
+    /// Unit shading normal (world).
+    pub normal: Vec3,
+    /// Shape operator: world normal change per world displacement in the tangent plane.
+    pub dn_dp: Mat3,
+    /// 0 = water, 1.. = spheres.
+    pub object: u32,
+    pub albedo: Vec3,
+    /// Isotropic roughness at the hit: the scene's `alpha`, plus on the water the slope
+    /// variance of the waves the level of detail removed.
+    pub alpha: f32,
+}
+
+/// One sine wave `a sin(k . (x, z) + phase)`.
+#[derive(Clone, Copy, Debug)]
+struct Wave {
+    wavelength: f32,
+    kx: f32,
+    kz: f32,
+    amplitude: f32,
+    phase: f32,
+}
+
+/// Level of detail, as a real ocean renderer does it: a wave is faded out where its
+/// wavelength covers fewer than [`LOD_PIXELS`] pixels of the (foreshortened) pixel footprint,
+/// and its lost slope variance moves into the roughness (LEAN-style, KHPL16 section 5.5).
+/// The geometry is then band-limited to the pixel grid, as KHPL16 assume of normals, and the
+/// same for every method and for the reference.
+#[derive(Clone, Copy, Debug)]
+pub struct Lod {
+    /// Eye position.
+    pub eye: Vec3,
+    /// Angle subtended by one pixel (radians).
+    pub pixel_angle: f32,
+}
+
+/// Wavelength, in pixels of footprint, under which a wave starts to fade (gone at half).
+const LOD_PIXELS: f32 = 2.0;
+
+/// The height field `y = h(x, z)` on `|x| <= half_width`, `z_far <= z <= z_near`.
+pub struct Water {
+    lod: Lod,
+    waves: Vec<Wave>,
+    bound: f32,
+    slope_bound: f32,
+    half_width: f32,
+    z_near: f32,
+    z_far: f32,
+}
+
+impl Water {
+    fn new(lod: Lod) -> Self {
+        // Eight octaves: wavelength 2.4 m down to 0.2 m, steepness a k = 0.16 each.
+        let waves: Vec<Wave> = (0..8)
+            .map(|i| {
+                let fi = i as f32;
+                let wavelength = 2.4 * 0.7f32.powi(i);
+                let k = std::f32::consts::TAU / wavelength;
+                let angle = 0.3 + 1.7 * fi;
+                Wave {
+                    wavelength,
+                    kx: k * angle.cos(),
+                    kz: k * angle.sin(),
+                    amplitude: 0.16 / k / (1.0 + 0.15 * fi),
+                    phase: 2.3 * fi,
+                }
+            })
+            .collect();
+        let bound = waves.iter().map(|w| w.amplitude).sum();
+        let slope_bound = waves.iter().map(|w| w.amplitude * w.kx.hypot(w.kz)).sum();
+        Self {
+            lod,
+            waves,
+            bound,
+            slope_bound,
+            half_width: 120.0,
+            z_near: 10.0,
+            z_far: -250.0,
+        }
+    }
+
+    /// Per-wave amplitude factors at `(x, z)`: `smoothstep` of the wavelength measured in
+    /// pixel footprints, `len = pixel_angle (d^2 + H^2) / H` (distance `d`, eye height `H`).
+    fn fades(&self, x: f32, z: f32) -> impl Iterator<Item = (&Wave, f32)> {
+        let e = self.lod.eye;
+        let height = e.y.max(0.5);
+        let d2 = (x - e.x).powi(2) + (z - e.z).powi(2);
+        let len = self.lod.pixel_angle * (d2 + height * height) / height;
+        let inv_len = 1.0 / len;
+        self.waves.iter().map(move |w| {
+            let pixels = w.wavelength * inv_len;
+            let t = ((pixels - 0.5 * LOD_PIXELS) / (0.5 * LOD_PIXELS)).clamp(0.0, 1.0);
+            (w, t * t * (3.0 - 2.0 * t))
+        })
+    }
+
+    fn height(&self, x: f32, z: f32) -> f32 {
+        self.fades(x, z)
+            .map(|(w, f)| f * w.amplitude * fast_sin(w.kx * x + w.kz * z + w.phase))
+            .sum()
+    }
+
+    /// `(h, h_x, h_z, h_xx, h_xz, h_zz)` (the fade treated as locally constant) and the
+    /// slope variance the fade removed, as an isotropic Beckmann `alpha^2` increment:
+    /// each wave's slope `a k cos(.)` along `k` has per-axis `alpha^2 = (a k)^2 / 2`.
+    fn derivatives(&self, x: f32, z: f32) -> ([f32; 6], f32) {
+        let mut d = [0.0; 6];
+        let mut lost = 0.0;
+        for (w, f) in self.fades(x, z) {
+            let (s, c) = (w.kx * x + w.kz * z + w.phase).sin_cos();
+            let a = f * w.amplitude;
+            d[0] += a * s;
+            d[1] += a * w.kx * c;
+            d[2] += a * w.kz * c;
+            d[3] -= a * w.kx * w.kx * s;
+            d[4] -= a * w.kx * w.kz * s;
+            d[5] -= a * w.kz * w.kz * s;
+            let slope = w.amplitude * w.kx.hypot(w.kz);
+            lost += (1.0 - f * f) * slope * slope * 0.5;
+        }
+        (d, lost)
+    }
+
+    fn inside(&self, p: Vec3) -> bool {
+        p.x.abs() <= self.half_width && p.z <= self.z_near && p.z >= self.z_far
+    }
+
+    /// Marches the ray through the slab `|y| <= bound` with half-Lipschitz steps, then
+    /// bisects the bracketed crossing.
+    fn intersect(&self, ray: &Ray, t_max: f32, alpha: f32) -> Option<Hit> {
+        let d = ray.dir;
+        if d.y.abs() < 1e-6 {
+            return None;
+        }
+        let t_top = (self.bound - ray.origin.y) / d.y;
+        let t_bottom = (-self.bound - ray.origin.y) / d.y;
+        let (mut t, t_end) = (t_top.min(t_bottom).max(0.0), t_top.max(t_bottom).min(t_max));
+        let lip = d.y.abs() + 0.5 * self.slope_bound * (d.x * d.x + d.z * d.z).sqrt();
+        let f = |t: f32| {
+            let p = ray.origin + t * d;
+            p.y - self.height(p.x, p.z)
+        };
+        let mut f0 = f(t);
+        if f0 < 0.0 {
+            return None; // starts below the water
+        }
+        for _ in 0..400 {
+            if t >= t_end {
+                return None;
+            }
+            let step = (f0 / lip).max(2e-3 * t).max(1e-4);
+            let t1 = (t + step).min(t_end);
+            let f1 = f(t1);
+            if f1 < 0.0 {
+                // Bisect [t, t1].
+                let (mut lo, mut hi, mut flo, mut fhi) = (t, t1, f0, f1);
+                for _ in 0..6 {
+                    let mid = 0.5 * (lo + hi);
+                    let fm = f(mid);
+                    if fm < 0.0 {
+                        (hi, fhi) = (mid, fm);
+                    } else {
+                        (lo, flo) = (mid, fm);
+                    }
+                }
+                // Final secant step inside the bracket.
+                return self.hit_at(ray, lo + (hi - lo) * flo / (flo - fhi), alpha);
+            }
+            t = t1;
+            f0 = f1;
+        }
+        None
+    }
+
+    fn hit_at(&self, ray: &Ray, t: f32, alpha: f32) -> Option<Hit> {
+        let p = ray.origin + t * ray.dir;
+        if !self.inside(p) {
+            return None;
+        }
+        let ([_, hx, hz, hxx, hxz, hzz], lost) = self.derivatives(p.x, p.z);
+        // n = g / |g|, g = (-h_x, 1, -h_z); dn = (I - n n^T) dg / |g|.
+        let g = Vec3::new(-hx, 1.0, -hz);
+        let len = g.length();
+        let n = g / len;
+        let proj = (Mat3::IDENTITY - outer(n, n)) * (1.0 / len);
+        let dg = Mat3::from_cols(
+            Vec3::new(-hxx, 0.0, -hxz),
+            Vec3::ZERO,
+            Vec3::new(-hxz, 0.0, -hzz),
+        );
+        Some(Hit {
+            t,
+            position: p,
+            normal: n,
+            dn_dp: proj * dg,
+            object: 0,
+            albedo: Vec3::new(0.02, 0.06, 0.08),
+            alpha: (alpha * alpha + lost).sqrt(),
+        })
+    }
+}
+
+/// `sin(x)` to about 1e-7 absolute for moderate `|x|` (the march evaluates millions of
+/// sines): Cody-Waite reduction by `pi`, then the odd Taylor polynomial to `x^11` on
+/// `[-pi/2, pi/2]`.
+fn fast_sin(x: f32) -> f32 {
+    const PI_HI: f32 = 3.140_625;
+    const PI_LO: f32 = 9.676_536e-4;
+    let k = (x * std::f32::consts::FRAC_1_PI).round();
+    let r = (x - k * PI_HI) - k * PI_LO;
+    let r2 = r * r;
+    let p = -1.0 / 39_916_800.0;
+    let p = p * r2 + 1.0 / 362_880.0;
+    let p = p * r2 - 1.0 / 5040.0;
+    let p = p * r2 + 1.0 / 120.0;
+    let p = p * r2 - 1.0 / 6.0;
+    let s = r + r * r2 * p;
+    if (k as i64) & 1 == 0 { s } else { -s }
+}
+
+fn outer(a: Vec3, b: Vec3) -> Mat3 {
+    Mat3::from_cols(a * b.x, a * b.y, a * b.z)
+}
+
+/// A sphere.
+#[derive(Clone, Copy, Debug)]
+struct Sphere {
+    center: Vec3,
+    radius: f32,
+    albedo: Vec3,
+}
+
+impl Sphere {
+    fn intersect(&self, ray: &Ray, object: u32, alpha: f32) -> Option<Hit> {
+        let oc = ray.origin - self.center;
+        let b = oc.dot(ray.dir);
+        let c = oc.length_squared() - self.radius * self.radius;
+        let disc = b * b - c;
+        if disc < 0.0 {
+            return None;
+        }
+        let sq = disc.sqrt();
+        let t = if -b - sq > 1e-4 { -b - sq } else { -b + sq };
+        if t <= 1e-4 {
+            return None;
+        }
+        let p = ray.origin + t * ray.dir;
+        let n = (p - self.center) / self.radius;
+        Some(Hit {
+            t,
+            position: p,
+            normal: n,
+            dn_dp: (Mat3::IDENTITY - outer(n, n)) * (1.0 / self.radius),
+            object,
+            albedo: self.albedo,
+            alpha,
+        })
+    }
+}
+
+/// The whole scene.
+pub struct Scene {
+    water: Water,
+    spheres: Vec<Sphere>,
+    /// Point light position (world) and radiant intensity (RGB, per steradian).
+    pub light_position: Vec3,
+    pub light_intensity: Vec3,
+    /// Constant ambient radiance (lets the diffuse term show the shapes).
+    pub ambient: Vec3,
+    /// Base GGX / Beckmann roughness of every surface (see [`Hit::alpha`]).
+    pub alpha: f32,
+    /// Normal-incidence Fresnel reflectance.
+    pub f0: f32,
+}
+
+impl Scene {
+    /// The scene as seen from `lod.eye` (the water's level of detail follows the eye).
+    pub fn new(lod: Lod) -> Self {
+        let sphere = |x: f32, z: f32, r: f32, albedo: [f32; 3]| Sphere {
+            center: Vec3::new(x, 0.35 * r, z),
+            radius: r,
+            albedo: Vec3::from(albedo),
+        };
+        Self {
+            water: Water::new(lod),
+            spheres: vec![
+                sphere(-1.6, -3.0, 0.45, [0.5, 0.08, 0.05]),
+                sphere(-0.5, -5.0, 0.35, [0.6, 0.45, 0.05]),
+                sphere(0.9, -3.6, 0.4, [0.05, 0.3, 0.5]),
+                sphere(2.1, -6.0, 0.5, [0.3, 0.3, 0.32]),
+                sphere(-2.8, -7.5, 0.55, [0.1, 0.4, 0.1]),
+            ],
+            light_position: Vec3::new(0.0, 9.0, -90.0),
+            light_intensity: Vec3::new(1.0, 0.9, 0.75) * 6.0e3,
+            ambient: Vec3::new(0.35, 0.45, 0.6),
+            alpha: 0.01,
+            f0: 0.04,
+        }
+    }
+
+    /// The nearest hit along `ray`, if any.
+    pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        for (i, s) in self.spheres.iter().enumerate() {
+            if let Some(h) = s.intersect(ray, i as u32 + 1, self.alpha) {
+                if best.is_none_or(|b| h.t < b.t) {
+                    best = Some(h);
+                }
+            }
+        }
+        let t_max = best.map_or(f32::INFINITY, |b| b.t);
+        self.water.intersect(ray, t_max, self.alpha).or(best)
+    }
+
+    /// Background radiance for a ray that hits nothing: a dim sky gradient.
+    pub fn sky(&self, dir: Vec3) -> Vec3 {
+        let k = dir.y.clamp(0.0, 1.0);
+        Vec3::new(0.25, 0.3, 0.42).lerp(Vec3::new(0.05, 0.09, 0.2), k.sqrt())
+    }
+}
