@@ -8,7 +8,10 @@
 //! Methods whose kernels live on other branches are stubs at the bottom of this file; they
 //! panic with `unimplemented!` and are left out of [`Method::DEFAULT`] until wired.
 
-use filtered_ndf::f32::{Beckmann, Footprint, Ggx, Isotropic, Ndf, RoughnessMatrix};
+use filtered_ndf::f32::{
+    Beckmann, ClampRules, Endpoint, ExtentFloor, Footprint, Ggx, Isotropic, Ndf, ShadingFrame,
+    filter, geometry,
+};
 use glam::Vec3;
 
 /// The microfacet distribution a method filters.
@@ -64,8 +67,10 @@ pub enum Method {
     GgxRectExact,
     /// KHPL16 / GDC GGX proxy: an effective isotropic roughness for the rectangle.
     GgxProxy,
-    /// TK19 (TK21) projected-space kernel on full-matrix GGX.
+    /// TK19 projected-derivative kernel on full-matrix GGX (`A + 2 Sigma`).
     Tk19Projected,
+    /// Tokuyoshi-Kaplanyan 2021 projected-space filtering of full-matrix GGX.
+    Tk21Projected,
     /// TK19 isotropic deferred roughness from world-space normal differences.
     Tk19Isotropic(IsoVariant),
 }
@@ -79,13 +84,14 @@ impl Method {
     ];
 
     /// Every method, in display order.
-    pub const ALL: [Method; 9] = [
+    pub const ALL: [Method; 10] = [
         Method::Unfiltered(Family::Beckmann),
         Method::Unfiltered(Family::Ggx),
         Method::BeckmannParallelogram,
         Method::GgxRectExact,
         Method::GgxProxy,
         Method::Tk19Projected,
+        Method::Tk21Projected,
         Method::Tk19Isotropic(IsoVariant::Max),
         Method::Tk19Isotropic(IsoVariant::Trace),
         Method::Tk19Isotropic(IsoVariant::Average),
@@ -109,6 +115,7 @@ impl Method {
             Method::GgxRectExact => "ggx-rect-exact",
             Method::GgxProxy => "ggx-proxy",
             Method::Tk19Projected => "tk19-projected",
+            Method::Tk21Projected => "tk21-projected",
             Method::Tk19Isotropic(IsoVariant::Max) => "tk19-iso-max",
             Method::Tk19Isotropic(IsoVariant::Trace) => "tk19-iso-trace",
             Method::Tk19Isotropic(IsoVariant::Average) => "tk19-iso-average",
@@ -124,6 +131,7 @@ impl Method {
             Method::GgxRectExact => "GGX rect exact",
             Method::GgxProxy => "GGX proxy",
             Method::Tk19Projected => "TK19 projected",
+            Method::Tk21Projected => "TK21 projected",
             Method::Tk19Isotropic(IsoVariant::Max) => "TK19 iso max",
             Method::Tk19Isotropic(IsoVariant::Trace) => "TK19 iso trace",
             Method::Tk19Isotropic(IsoVariant::Average) => "TK19 iso average",
@@ -146,12 +154,9 @@ pub struct ShadingPoint {
     pub alpha: f32,
     /// Slope-domain footprint: slope change of `h` per pixel step in x and y.
     pub footprint: Footprint,
-    /// World-space shading-normal difference per pixel step in x and y (deferred methods;
-    /// read by the TK19 isotropic kernels once wired).
-    #[allow(dead_code)]
+    /// World-space shading-normal difference per pixel step in x and y (deferred methods).
     pub dn_dx: Vec3,
     /// See `dn_dx`.
-    #[allow(dead_code)]
     pub dn_dy: Vec3,
 }
 
@@ -166,47 +171,26 @@ pub fn filtered_d(method: Method, sp: &ShadingPoint) -> f32 {
         Method::GgxRectExact => ggx_rect_exact(sp),
         Method::GgxProxy => ggx_proxy(sp),
         Method::Tk19Projected => tk19_projected(sp),
+        Method::Tk21Projected => tk21_projected(sp),
         Method::Tk19Isotropic(variant) => tk19_isotropic(sp, variant),
     }
 }
+
+/// KHPL16's clamping for the parallelogram kernels: the maximum extent `lambda = 1`
+/// (section 5.2) and the TK19 determinant clamp, no rectangle floor and no `kappa`.
+const KHPL16: ClampRules = ClampRules {
+    max_extent: 1.0,
+    floor: ExtentFloor::None,
+    kappa: f32::INFINITY,
+    det_clamp: true,
+};
 
 /// KHPL16 eq. 13-15: the Gaussian footprint `Sigma = sigma^2 U^T U` convolved with Beckmann
 /// is Beckmann with `A' = A + 2 Sigma`, evaluated with the TK19 determinant clamp
 /// `tau = det A = alpha^4` (filtering only grows the determinant).
 fn beckmann_parallelogram(sp: &ShadingPoint) -> f32 {
-    let a2 = sp.alpha * sp.alpha;
-    let sigma = clamp_extent(sp.footprint, MAX_EXTENT).covariance(SIGMA_PIXEL);
-    let filtered = RoughnessMatrix::new_with_det_clamp(
-        a2 + 2.0 * sigma.s11,
-        2.0 * sigma.s12,
-        a2 + 2.0 * sigma.s22,
-        a2 * a2,
-    );
-    match filtered {
-        Ok(r) => Beckmann::new(r).d(sp.h),
-        // Non-finite footprint (e.g. a derivative across a silhouette that overflowed):
-        // fall back to the unfiltered lobe rather than a NaN pixel.
-        Err(_) => Family::Beckmann.d(sp.alpha, sp.h),
-    }
-}
-
-/// KHPL16 section 5.2: the largest linear extent of the slope-domain filtering region.
-pub const MAX_EXTENT: f32 = 1.0;
-
-/// KHPL16 section 5.2: rescales the parallelogram spanned by `dh_u`, `dh_v` so that its
-/// longest side is at most `lambda` (grazing outliers otherwise smear the lobe over slopes
-/// where `1 / h_z^4` explodes). Non-finite footprints become zero (unfiltered).
-/// (Local stand-in for the clamping rules of the filtering branch.)
-fn clamp_extent(f: Footprint, lambda: f32) -> Footprint {
-    let extent = f.dh_u.length().max(f.dh_v.length());
-    if !extent.is_finite() {
-        Footprint::ZERO
-    } else if extent > lambda {
-        let k = lambda / extent;
-        Footprint::from_slope_derivatives(f.dh_u * k, f.dh_v * k)
-    } else {
-        f
-    }
+    let r = Isotropic::new_clamped(sp.alpha);
+    Beckmann::new(KHPL16.filter_gaussian(r, sp.footprint, SIGMA_PIXEL)).d(sp.h)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -226,28 +210,56 @@ fn ggx_proxy(_sp: &ShadingPoint) -> f32 {
     unimplemented!("needs the GGX proxy from branch rect")
 }
 
-/// TK19 / TK21 projected-space filtering: `P = A (I - A)^-1`, `P' = P + kernel`,
-/// `A' = P' (I + P')^-1`, then full-matrix GGX `D(h)` with the tau clamp.
-fn tk19_projected(_sp: &ShadingPoint) -> f32 {
-    unimplemented!("needs projected-space filtering from branch filter")
+/// TK19 section 3.2: the kernel built from the derivatives of the projected half vector
+/// `h_xy` (narrower at grazing half vectors), `A' = A + 2 Sigma` on full-matrix GGX with the
+/// TK19 clamps (`kappa = 0.18`, `tau = det A`).
+fn tk19_projected(sp: &ShadingPoint) -> f32 {
+    let r = Isotropic::new_clamped(sp.alpha);
+    let fp = geometry::footprint_projected(sp.footprint, sp.h);
+    Ggx::new(ClampRules::default().filter_gaussian(r, fp, SIGMA_PIXEL)).d(sp.h)
+}
+
+/// Tokuyoshi and Kaplanyan 2021: the same projected-derivative kernel added in projected
+/// space, `P = A (I - A)^-1`, `A' = P' (I + P')^-1`, then full-matrix GGX `D(h)`.
+fn tk21_projected(sp: &ShadingPoint) -> f32 {
+    let r = Isotropic::new_clamped(sp.alpha);
+    let rules = ClampRules::default();
+    let fp = rules.footprint(geometry::footprint_projected(sp.footprint, sp.h));
+    Ggx::new(filter::projected(r, rules.kernel(fp.covariance(SIGMA_PIXEL)))).d(sp.h)
 }
 
 /// TK19 eq. 1 / 2,4 / 5: isotropic deferred roughness from `sp.dn_dx`, `sp.dn_dy`
-/// (kappa = 0.18), then isotropic GGX `D(h)` with it.
-fn tk19_isotropic(_sp: &ShadingPoint, _variant: IsoVariant) -> f32 {
-    unimplemented!("needs isotropic deferred roughness from branch isotropic")
+/// (`sigma^2 = 0.25`, `kappa = 0.18`, saturate), then isotropic GGX `D(h)` with it.
+fn tk19_isotropic(sp: &ShadingPoint, variant: IsoVariant) -> f32 {
+    use filtered_ndf::f32::isotropic::Bandwidth;
+    let bw = match variant {
+        IsoVariant::Max => Bandwidth::Max,
+        IsoVariant::Trace => Bandwidth::Trace,
+        IsoVariant::Average => Bandwidth::Average,
+    };
+    let alpha = bw.convention().apply(sp.alpha, sp.dn_dx, sp.dn_dy);
+    Ggx::new(Isotropic::new_clamped(alpha)).d(sp.h)
 }
 
 /// The offline-renderer route: footprint `(dx_u M, dx_v M)` from the tangent-plane ray
 /// differentials `dx_u`, `dx_v` (world, per pixel step) and the half-vector Jacobian `M` at
 /// the hit (KHPL16 eq. 4-6), expressed in the tangent frame `input.frame` (slope
 /// convention `-h_xy / h_z`). Selected with `--footprint rays`.
-pub fn footprint_from_ray_differentials(_g: &AnalyticInput) -> Footprint {
-    unimplemented!("needs the half-vector Jacobian from branch jacobian")
+pub fn footprint_from_ray_differentials(g: &AnalyticInput) -> Footprint {
+    let [t, b, n] = g.frame;
+    // The scene provides the shape operator but not the frame's twist about `n`; the twist
+    // only rotates `h_xy`, which is small near a highlight, so it is taken as zero here.
+    let frame = ShadingFrame::from_derivatives(t, b, n, [g.dn_dt, g.dn_db], [Vec3::ZERO; 2]);
+    let m = geometry::half_vector_jacobian(
+        g.position,
+        Endpoint::Point(g.eye),
+        Endpoint::Point(g.light),
+        &frame,
+    );
+    geometry::footprint(m, &frame, g.dx_u, g.dx_v)
 }
 
 /// Input of [`footprint_from_ray_differentials`] (all world space; the light is a point).
-#[allow(dead_code)] // read by the Jacobian route once wired
 #[derive(Clone, Copy, Debug)]
 pub struct AnalyticInput {
     pub position: Vec3,
