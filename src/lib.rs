@@ -55,6 +55,10 @@ macro_rules! precision_modules {
         pub mod beckmann;
         #[path = "footprint.rs"]
         pub mod footprint;
+        #[path = "ggx_rect.rs"]
+        pub mod ggx_rect;
+        #[path = "ggx_proxy.rs"]
+        pub mod ggx_proxy;
 
         pub use beckmann::Beckmann;
         pub use footprint::{Covariance, Footprint};
