@@ -28,19 +28,22 @@
 //! `0 / 0` for a zero footprint. [`p22_rect`] instead (all internal arithmetic in `f64`, for
 //! both precisions; rectangle normalised as above, `L_u^2 = 1 + u_c^2 + d_v^2`,
 //! `L_v^2 = 1 + v_c^2 + d_u^2` with `d_u`, `d_v` the distances of the rectangle from the
-//! peak along each axis, i.e. the distances to the density's complex poles):
-//! 1. **Small rectangle** (`H_u < 0.1 L_u` and `H_v < 0.1 L_v`): tensor Gauss-Legendre rule,
-//!    2 x 2 points below `0.01 L`, else 4 x 4. The rule's error decays like
-//!    `(H / 2L)^(2n)`; the switch points were chosen by measured error (below `1e-8`).
-//! 2. **One short side** (say `H_v < 0.1 L_v`): 4-point Gauss-Legendre in `v` of the exact 1D
-//!    average in `u`, written without cancellation (`mean_1d`): with
+//! peak along each axis, i.e. the distances to the density's complex poles).
+//! Each axis gets a tier from its ratio `H / L`: 2-point Gauss-Legendre below `0.01`, 4-point
+//! below `0.1`, the closed form above (the rule's error decays like `(H / 2L)^(2n)`; the switch
+//! points were chosen by measured error, below `1e-8` in `f64` at the switch; both sides of a
+//! switch agree to that level, so the switch is invisible in `f32`).
+//! 1. **Both axes short**: the tensor Gauss-Legendre rule of the two tiers (4 to 16 nodes, one
+//!    division per symmetric pair of nodes).
+//! 2. **One long side** (say `u`): the Gauss-Legendre rule in `v` of the exact 1D average in
+//!    `u`, written without cancellation (`mean_1d`): with
 //!    `c^2 = 1 + v^2`, `delta = atan2(c Delta u, c^2 + u_0 u_1)` (the atan-difference
 //!    identity) and `r_i^2 = c^2 + u_i^2`,
 //!    `int f du = delta / (2 c^3) + Delta u (c^2 - u_0 u_1) / (2 c^2 r_0^2 r_1^2)` when the
 //!    interval straddles `0`, and otherwise
 //!    `(delta - sin delta) / (2 c^3) + Delta u / (2 r_0^2 r_1^2) [1 + (u_0^2 + u_1^2 + c^2) /
 //!    (r_0 r_1 + u_0 u_1)]`, all terms positive (`delta - sin delta` by its series below 1).
-//!    A zero half-extent on one axis is the exact 1D average.
+//!    A zero half extent on one axis is the exact 1D average (both nodes coincide).
 //! 3. **Both sides long**: the closed form as four edge terms (Lambert's contour form of the
 //!    projected solid angle), each edge's two arctangents merged into one by
 //!    `atan p - atan q = atan2(p - q, 1 + p q)` with the difference `p - q` taken from the side
@@ -85,11 +88,24 @@ const GL4_X: [f64; 2] = [0.339_981_043_584_856_3, 0.861_136_311_594_052_6];
 /// 4-point Gauss-Legendre weights, halved so that the rule averages over `[-1, 1]`.
 const GL4_W: [f64; 2] = [0.326_072_577_431_273_07, 0.173_927_422_568_726_93];
 
-/// `f(u, v) = (1 + u^2 + v^2)^-2`.
+/// The mean over `v` in `[c - h, c + h]` of `f(u, v) = (1 + u^2 + v^2)^-2` by the
+/// Gauss-Legendre rule of tier `t`, one division per pair of symmetric nodes:
+/// `f(u, c - a) + f(u, c + a) = (s_1 + s_2) / (s_1 s_2)`, `s_i = t_i^2`. With the inputs
+/// clamped to `BIG`, `s_i <= 1e243`: a product that overflows gives `finite / inf = 0`, the
+/// (underflowing) right value.
 #[inline(always)]
-fn f(u: f64, v: f64) -> f64 {
-    let t = 1.0 + u * u + v * v;
-    1.0 / (t * t)
+fn gl_f(t: Tier, u: f64, c: f64, h: f64) -> f64 {
+    let q = 1.0 + u * u;
+    let pair = |a: f64| {
+        let (v0, v1) = (c - a, c + a);
+        let (t0, t1) = (q + v0 * v0, q + v1 * v1);
+        let (s0, s1) = (t0 * t0, t1 * t1);
+        (s0 + s1) / (s0 * s1)
+    };
+    match t {
+        Tier::Gl2 => 0.5 * pair(h * GL2_X),
+        _ => GL4_W[0] * pair(h * GL4_X[0]) + GL4_W[1] * pair(h * GL4_X[1]),
+    }
 }
 
 /// `delta - sin(delta)` for `delta` in `[0, pi]`, given `sin(delta)` (series below 1, where
@@ -122,7 +138,7 @@ fn mean_1d(xc: f64, hx: f64, c2: f64) -> f64 {
     let r12 = c2 + x1 * x1;
     let x01 = x0 * x1;
     // atan(x1 / c) - atan(x0 / c), exactly, in (0, pi).
-    let d = m::atan2(c * dx, c2 + x01);
+    let d = atan2_upper(c * dx, c2 + x01);
     let j = if x0 <= 0.0 {
         d / (2.0 * c * c2) + dx * (c2 - x01) / (2.0 * c2 * r02 * r12)
     } else {
@@ -133,12 +149,23 @@ fn mean_1d(xc: f64, hx: f64, c2: f64) -> f64 {
     j / dx
 }
 
+/// `atan2(y, x)` for `y > 0`, in `(0, pi)`, with one `atan` and one division (cheaper than a
+/// general `atan2`; relative error that of `atan`, since `atan(z) / z` is well conditioned).
+#[inline(always)]
+fn atan2_upper(y: f64, x: f64) -> f64 {
+    if x > 0.0 {
+        m::atan(y / x)
+    } else {
+        0.5 * PI64 + m::atan(-x / y)
+    }
+}
+
 /// One edge of the contour form: `u / S atan2(dv S, S^2 + v0 v1)`, `S = sqrt(1 + u^2)`.
 #[inline(always)]
 fn edge(u: f64, dv: f64, v01: f64) -> f64 {
     let s2 = 1.0 + u * u;
     let s = m::sqrt(s2);
-    u / s * m::atan2(dv * s, s2 + v01)
+    u / s * atan2_upper(dv * s, s2 + v01)
 }
 
 /// Mean of `f` over the normalised rectangle `[uc +/- hu] x [vc +/- hv]` (`hu, hv >= 0`,
@@ -149,30 +176,9 @@ fn mean_f(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
     let lu2 = 1.0 + uc * uc + dv * dv;
     let lv2 = 1.0 + vc * vc + du * du;
     let (hu2, hv2) = (hu * hu, hv * hv);
-    let small_u = hu2 < TAU_GL4 * TAU_GL4 * lu2;
-    let small_v = hv2 < TAU_GL4 * TAU_GL4 * lv2;
-    match (small_u, small_v) {
-        (true, true) => {
-            if hu2 < TAU_GL2 * TAU_GL2 * lu2 && hv2 < TAU_GL2 * TAU_GL2 * lv2 {
-                let (a, b) = (hu * GL2_X, hv * GL2_X);
-                0.25 * (f(uc - a, vc - b) + f(uc + a, vc - b) + f(uc - a, vc + b) + f(uc + a, vc + b))
-            } else {
-                let mut acc = 0.0;
-                for (&xi, &wi) in GL4_X.iter().zip(GL4_W.iter()) {
-                    let (u0, u1) = (uc - hu * xi, uc + hu * xi);
-                    let mut row = 0.0;
-                    for (&xj, &wj) in GL4_X.iter().zip(GL4_W.iter()) {
-                        let (v0, v1) = (vc - hv * xj, vc + hv * xj);
-                        row += wj * (f(u0, v0) + f(u0, v1) + f(u1, v0) + f(u1, v1));
-                    }
-                    acc += wi * row;
-                }
-                acc
-            }
-        }
-        (false, true) => gl4_of_1d(uc, hu, vc, hv),
-        (true, false) => gl4_of_1d(vc, hv, uc, hu),
-        (false, false) => {
+    let (tu, tv) = (tier(hu2, lu2), tier(hv2, lv2));
+    match (tu, tv) {
+        (Tier::Closed, Tier::Closed) => {
             let (u0, u1, v0, v1) = (uc - hu, uc + hu, vc - hv, vc + hv);
             let (du, dv) = (2.0 * hu, 2.0 * hv);
             let (u01, v01) = (u0 * u1, v0 * v1);
@@ -181,24 +187,54 @@ fn mean_f(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
                     + (edge(v1, du, u01) - edge(v0, du, u01)));
             i / (du * dv)
         }
+        (Tier::Closed, t) => gl_of(t, vc, hv, |y| mean_1d(uc, hu, 1.0 + y * y)),
+        (t, Tier::Closed) => gl_of(t, uc, hu, |x| mean_1d(vc, hv, 1.0 + x * x)),
+        (t, t2) => gl_of(t, uc, hu, |x| gl_f(t2, x, vc, hv)),
     }
 }
 
-/// 4-point Gauss-Legendre over `y` in `[yc +/- hy]` of the exact 1D mean over `x`.
-#[inline]
-fn gl4_of_1d(xc: f64, hx: f64, yc: f64, hy: f64) -> f64 {
-    let mut acc = 0.0;
-    for (&xj, &wj) in GL4_X.iter().zip(GL4_W.iter()) {
-        let (y0, y1) = (yc - hy * xj, yc + hy * xj);
-        acc += wj * (mean_1d(xc, hx, 1.0 + y0 * y0) + mean_1d(xc, hx, 1.0 + y1 * y1));
+/// How an axis of the rectangle is integrated, from `H^2` and `L^2` (module docs).
+#[derive(Clone, Copy)]
+enum Tier {
+    /// 2-point Gauss-Legendre (`H < 0.01 L`).
+    Gl2,
+    /// 4-point Gauss-Legendre (`H < 0.1 L`).
+    Gl4,
+    /// Closed form.
+    Closed,
+}
+
+#[inline(always)]
+fn tier(h2: f64, l2: f64) -> Tier {
+    if h2 < TAU_GL2 * TAU_GL2 * l2 {
+        Tier::Gl2
+    } else if h2 < TAU_GL4 * TAU_GL4 * l2 {
+        Tier::Gl4
+    } else {
+        Tier::Closed
     }
-    acc
+}
+
+/// The mean of `g` over `[c - h, c + h]` by the Gauss-Legendre rule of tier `t` (`Gl2` or
+/// `Gl4`).
+#[inline(always)]
+fn gl_of(t: Tier, c: f64, h: f64, mut g: impl FnMut(f64) -> f64) -> f64 {
+    match t {
+        Tier::Gl2 => {
+            let a = h * GL2_X;
+            0.5 * (g(c - a) + g(c + a))
+        }
+        _ => {
+            let (a, b) = (h * GL4_X[0], h * GL4_X[1]);
+            GL4_W[0] * (g(c - a) + g(c + a)) + GL4_W[1] * (g(c - b) + g(c + b))
+        }
+    }
 }
 
 /// Sanitised `f64` half extent: `|h|`, NaN as `0`, at most `BIG`.
 #[inline(always)]
-fn half64(h: F, alpha: F) -> f64 {
-    let v = (h.to_f64() / alpha.to_f64()).abs();
+fn half64(h: F, inv_alpha: f64) -> f64 {
+    let v = (h.to_f64() * inv_alpha).abs();
     if v.is_nan() { 0.0 } else { v.min(BIG) }
 }
 
@@ -207,15 +243,16 @@ fn half64(h: F, alpha: F) -> f64 {
 fn p22_rect64(r: AxisAligned, center: (f64, f64), half_extent: Vec2) -> Option<f64> {
     let alpha = r.alpha();
     let (a, b) = (alpha.x.to_f64(), alpha.y.to_f64());
-    let uc = center.0 / a;
-    let vc = center.1 / b;
+    let (ia, ib) = (1.0 / a, 1.0 / b);
+    let uc = center.0 * ia;
+    let vc = center.1 * ib;
     if uc.is_nan() || vc.is_nan() {
         return None;
     }
     let (uc, vc) = (uc.clamp(-BIG, BIG), vc.clamp(-BIG, BIG));
-    let hu = half64(half_extent.x, alpha.x);
-    let hv = half64(half_extent.y, alpha.y);
-    Some(mean_f(uc, vc, hu, hv) / (PI64 * a * b))
+    let hu = half64(half_extent.x, ia);
+    let hv = half64(half_extent.y, ib);
+    Some(mean_f(uc, vc, hu, hv) * (ia * ib * (1.0 / PI64)))
 }
 
 /// Exact box-filtered GGX slope density: the average of the axis-aligned GGX `P22` over the
@@ -254,18 +291,18 @@ pub fn p22_rect(r: AxisAligned, center: Vec2, half_extent: Vec2) -> F {
 /// for finite half extents. Half extents as in [`p22_rect`]. Never NaN.
 #[inline]
 pub fn d_rect(r: AxisAligned, h: Vec3, half_extent: Vec2) -> F {
-    if !(h.z > 0.0) || !h.is_finite() {
+    if !h.is_finite() || h.z <= 0.0 {
         return 0.0;
     }
     if (half_extent.x == 0.0 && half_extent.y == 0.0) || h.z.to_f64() < 1e-70 {
         return Ggx::new(r).d(h);
     }
-    let hz = h.z.to_f64();
-    let center = (-h.x.to_f64() / hz, -h.y.to_f64() / hz);
-    let hz2 = hz * hz;
+    let ihz = 1.0 / h.z.to_f64();
+    let center = (-h.x.to_f64() * ihz, -h.y.to_f64() * ihz);
+    let ihz2 = ihz * ihz;
     match p22_rect64(r, center, half_extent) {
         Some(v) => {
-            let d = F::from_f64(v / (hz2 * hz2));
+            let d = F::from_f64(v * (ihz2 * ihz2));
             if d.is_finite() { d } else { F::MAX }
         }
         None => 0.0,
