@@ -30,13 +30,14 @@
 //! `L_v^2 = 1 + v_c^2 + d_u^2` with `d_u`, `d_v` the distances of the rectangle from the
 //! peak along each axis, i.e. the distances to the density's complex poles).
 //! Each axis gets a tier from its ratio `H / L`: 2-point Gauss-Legendre below `0.01`, 4-point
-//! below `0.1`, the closed form above (the rule's error decays like `(H / 2L)^(2n)`; the switch
+//! below `0.1`, 6-point below `0.25`, the closed form above (the rule's error decays like `(H / 2L)^(2n)`; the switch
 //! points were chosen by measured error, below `1e-8` in `f64` at the switch; both sides of a
 //! switch agree to that level, so the switch is invisible in `f32`).
-//! 1. **Both axes short**: the tensor Gauss-Legendre rule of the two tiers (4 to 16 nodes, one
+//! 1. **Both axes short**: the tensor Gauss-Legendre rule of the two tiers (4 to 36 nodes, one
 //!    division per symmetric pair of nodes).
-//! 2. **One long side** (say `u`): the Gauss-Legendre rule in `v` of the exact 1D average in
-//!    `u`, written without cancellation (`mean_1d`): with
+//! 2. **One long side** (say `u`): the closed form of case 3 while its cancellation allows
+//!    (`(1 + u_c^2 + v_c^2)^(3/2) / H_v < 1e6`, error below `1e-10`), else the Gauss-Legendre
+//!    rule in `v` of the exact 1D average in `u`, written without cancellation (`mean_1d`): with
 //!    `c^2 = 1 + v^2`, `delta = atan2(c Delta u, c^2 + u_0 u_1)` (the atan-difference
 //!    identity) and `r_i^2 = c^2 + u_i^2`,
 //!    `int f du = delta / (2 c^3) + Delta u (c^2 - u_0 u_1) / (2 c^2 r_0^2 r_1^2)` when the
@@ -49,7 +50,7 @@
 //!    `atan p - atan q = atan2(p - q, 1 + p q)` with the difference `p - q` taken from the side
 //!    length directly: `2 I = sum over edges of +/- u_e / S_e atan2(Delta v S_e, S_e^2 + v_0 v_1)`,
 //!    `S_e = sqrt(1 + u_e^2)`. Four `atan2` instead of eight `atan`; its cancellation is bounded
-//!    by `(L / H)^3 <= 1000 L^2`, harmless in `f64`.
+//!    by `(L / H)^3 <= 64 L^2`, harmless in `f64`.
 //!
 //! Measured against a 60-digit reference of the same closed form (and the `f64` adaptive
 //! quadrature in the tests): relative error below `1e-8` except for rectangles of size about
@@ -80,6 +81,8 @@ const BIG: f64 = 1e60;
 const TAU_GL2: f64 = 0.01;
 /// Below this ratio `H / L` per axis: 4-point Gauss-Legendre.
 const TAU_GL4: f64 = 0.1;
+/// Below this ratio `H / L` per axis: 6-point Gauss-Legendre.
+const TAU_GL6: f64 = 0.25;
 
 /// 2-point Gauss-Legendre node on `[-1, 1]` (`1 / sqrt 3`); weights `1/2` each for a mean.
 const GL2_X: f64 = 0.577_350_269_189_625_8;
@@ -87,6 +90,18 @@ const GL2_X: f64 = 0.577_350_269_189_625_8;
 const GL4_X: [f64; 2] = [0.339_981_043_584_856_3, 0.861_136_311_594_052_6];
 /// 4-point Gauss-Legendre weights, halved so that the rule averages over `[-1, 1]`.
 const GL4_W: [f64; 2] = [0.326_072_577_431_273_07, 0.173_927_422_568_726_93];
+/// 6-point Gauss-Legendre nodes on `[-1, 1]` (positive halves).
+const GL6_X: [f64; 3] = [
+    0.238_619_186_083_196_9,
+    0.661_209_386_466_264_5,
+    0.932_469_514_203_152_1,
+];
+/// 6-point Gauss-Legendre weights, halved.
+const GL6_W: [f64; 3] = [
+    0.233_956_967_286_345_5,
+    0.180_380_786_524_069_3,
+    0.085_662_246_189_585_2,
+];
 
 /// The mean over `v` in `[c - h, c + h]` of `f(u, v) = (1 + u^2 + v^2)^-2` by the
 /// Gauss-Legendre rule of tier `t`, one division per pair of symmetric nodes:
@@ -104,7 +119,12 @@ fn gl_f(t: Tier, u: f64, c: f64, h: f64) -> f64 {
     };
     match t {
         Tier::Gl2 => 0.5 * pair(h * GL2_X),
-        _ => GL4_W[0] * pair(h * GL4_X[0]) + GL4_W[1] * pair(h * GL4_X[1]),
+        Tier::Gl4 => GL4_W[0] * pair(h * GL4_X[0]) + GL4_W[1] * pair(h * GL4_X[1]),
+        _ => {
+            GL6_W[0] * pair(h * GL6_X[0])
+                + GL6_W[1] * pair(h * GL6_X[1])
+                + GL6_W[2] * pair(h * GL6_X[2])
+        }
     }
 }
 
@@ -116,11 +136,11 @@ fn delta_minus_sin(d: f64, sin_d: f64) -> f64 {
         let d2 = d * d;
         // d^3/6 (1 - d^2/20 (1 - d^2/42 (1 - d^2/72 (1 - d^2/110 (1 - d^2/156))))): the next
         // term is below 1e-17 relative at d = 1.
-        let s = 1.0 - d2 / 110.0 * (1.0 - d2 / 156.0);
-        let s = 1.0 - d2 / 72.0 * s;
-        let s = 1.0 - d2 / 42.0 * s;
-        let s = 1.0 - d2 / 20.0 * s;
-        d * d2 / 6.0 * s
+        let s = 1.0 - d2 * (1.0 / 110.0) * (1.0 - d2 * (1.0 / 156.0));
+        let s = 1.0 - d2 * (1.0 / 72.0) * s;
+        let s = 1.0 - d2 * (1.0 / 42.0) * s;
+        let s = 1.0 - d2 * (1.0 / 20.0) * s;
+        d * d2 * (1.0 / 6.0) * s
     } else {
         d - sin_d
     }
@@ -139,14 +159,15 @@ fn mean_1d(xc: f64, hx: f64, c2: f64) -> f64 {
     let x01 = x0 * x1;
     // atan(x1 / c) - atan(x0 / c), exactly, in (0, pi).
     let d = atan2_upper(c * dx, c2 + x01);
-    let j = if x0 <= 0.0 {
-        d / (2.0 * c * c2) + dx * (c2 - x01) / (2.0 * c2 * r02 * r12)
+    // The divisions below do not depend on `d`: they overlap with the `atan`.
+    let inv = 1.0 / (2.0 * c * c2 * dx);
+    let p2 = 2.0 * r02 * r12;
+    if x0 <= 0.0 {
+        d * inv + (c2 - x01) / (c2 * p2)
     } else {
         let rr = m::sqrt(r02 * r12);
-        delta_minus_sin(d, c * dx / rr) / (2.0 * c * c2)
-            + dx / (2.0 * r02 * r12) * (1.0 + (x0 * x0 + x1 * x1 + c2) / (rr + x01))
-    };
-    j / dx
+        delta_minus_sin(d, c * dx / rr) * inv + (1.0 + (x0 * x0 + x1 * x1 + c2) / (rr + x01)) / p2
+    }
 }
 
 /// `atan2(y, x)` for `y > 0`, in `(0, pi)`, with one `atan` and one division (cheaper than a
@@ -178,19 +199,43 @@ fn mean_f(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
     let (hu2, hv2) = (hu * hu, hv * hv);
     let (tu, tv) = (tier(hu2, lu2), tier(hv2, lv2));
     match (tu, tv) {
-        (Tier::Closed, Tier::Closed) => {
-            let (u0, u1, v0, v1) = (uc - hu, uc + hu, vc - hv, vc + hv);
-            let (du, dv) = (2.0 * hu, 2.0 * hv);
-            let (u01, v01) = (u0 * u1, v0 * v1);
-            let i = 0.5
-                * ((edge(u1, dv, v01) - edge(u0, dv, v01))
-                    + (edge(v1, du, u01) - edge(v0, du, u01)));
-            i / (du * dv)
+        (Tier::Closed, Tier::Closed) => edges(uc, vc, hu, hv),
+        (Tier::Closed, t) => {
+            if edges_ok(uc, vc, hv) {
+                edges(uc, vc, hu, hv)
+            } else {
+                gl_of(t, vc, hv, |y| mean_1d(uc, hu, 1.0 + y * y))
+            }
         }
-        (Tier::Closed, t) => gl_of(t, vc, hv, |y| mean_1d(uc, hu, 1.0 + y * y)),
-        (t, Tier::Closed) => gl_of(t, uc, hu, |x| mean_1d(vc, hv, 1.0 + x * x)),
+        (t, Tier::Closed) => {
+            if edges_ok(uc, vc, hu) {
+                edges(uc, vc, hu, hv)
+            } else {
+                gl_of(t, uc, hu, |x| mean_1d(vc, hv, 1.0 + x * x))
+            }
+        }
         (t, t2) => gl_of(t, uc, hu, |x| gl_f(t2, x, vc, hv)),
     }
+}
+
+/// The four-edge closed form (module docs, case 3): the mean of `f` over the rectangle.
+#[inline]
+fn edges(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
+    let (u0, u1, v0, v1) = (uc - hu, uc + hu, vc - hv, vc + hv);
+    let (du, dv) = (2.0 * hu, 2.0 * hv);
+    let (u01, v01) = (u0 * u1, v0 * v1);
+    let i =
+        0.5 * ((edge(u1, dv, v01) - edge(u0, dv, v01)) + (edge(v1, du, u01) - edge(v0, du, u01)));
+    i / (du * dv)
+}
+
+/// Whether the four-edge form is accurate for a rectangle whose short half side is `h_short`:
+/// its relative error is about `1e-16 (1 + u_c^2 + v_c^2)^(3/2) / h_short` (measured), so it is
+/// used while that stays below `1e-10` (and is cheaper than the 1D closed form at 2 to 6 nodes).
+#[inline(always)]
+fn edges_ok(uc: f64, vc: f64, h_short: f64) -> bool {
+    let l2 = 1.0 + uc * uc + vc * vc;
+    l2 * l2 * l2 < 1e12 * h_short * h_short
 }
 
 /// How an axis of the rectangle is integrated, from `H^2` and `L^2` (module docs).
@@ -200,6 +245,8 @@ enum Tier {
     Gl2,
     /// 4-point Gauss-Legendre (`H < 0.1 L`).
     Gl4,
+    /// 6-point Gauss-Legendre (`H < 0.25 L`).
+    Gl6,
     /// Closed form.
     Closed,
 }
@@ -210,13 +257,15 @@ fn tier(h2: f64, l2: f64) -> Tier {
         Tier::Gl2
     } else if h2 < TAU_GL4 * TAU_GL4 * l2 {
         Tier::Gl4
+    } else if h2 < TAU_GL6 * TAU_GL6 * l2 {
+        Tier::Gl6
     } else {
         Tier::Closed
     }
 }
 
-/// The mean of `g` over `[c - h, c + h]` by the Gauss-Legendre rule of tier `t` (`Gl2` or
-/// `Gl4`).
+/// The mean of `g` over `[c - h, c + h]` by the Gauss-Legendre rule of tier `t` (`Gl2`,
+/// `Gl4` or `Gl6`).
 #[inline(always)]
 fn gl_of(t: Tier, c: f64, h: f64, mut g: impl FnMut(f64) -> f64) -> f64 {
     match t {
@@ -224,9 +273,15 @@ fn gl_of(t: Tier, c: f64, h: f64, mut g: impl FnMut(f64) -> f64) -> f64 {
             let a = h * GL2_X;
             0.5 * (g(c - a) + g(c + a))
         }
-        _ => {
+        Tier::Gl4 => {
             let (a, b) = (h * GL4_X[0], h * GL4_X[1]);
             GL4_W[0] * (g(c - a) + g(c + a)) + GL4_W[1] * (g(c - b) + g(c + b))
+        }
+        _ => {
+            let (a, b, d) = (h * GL6_X[0], h * GL6_X[1], h * GL6_X[2]);
+            GL6_W[0] * (g(c - a) + g(c + a))
+                + GL6_W[1] * (g(c - b) + g(c + b))
+                + GL6_W[2] * (g(c - d) + g(c + d))
         }
     }
 }
