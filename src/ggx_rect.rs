@@ -29,10 +29,11 @@
 //! both precisions; rectangle normalised as above, `L_u^2 = 1 + u_c^2 + d_v^2`,
 //! `L_v^2 = 1 + v_c^2 + d_u^2` with `d_u`, `d_v` the distances of the rectangle from the
 //! peak along each axis, i.e. the distances to the density's complex poles).
-//! Each axis gets a tier from its ratio `H / L`: 2-point Gauss-Legendre below `0.01`, 4-point
-//! below `0.1`, 6-point below `0.25`, the closed form above (the rule's error decays like `(H / 2L)^(2n)`; the switch
-//! points were chosen by measured error, below `1e-8` in `f64` at the switch; both sides of a
-//! switch agree to that level, so the switch is invisible in `f32`).
+//! Each axis gets a tier from its ratio `H / L`: 2-point Gauss-Legendre below `0.01`,
+//! 4-point below `0.1`, 6-point below `0.25`, the closed form above. The rule's error decays
+//! like `(H / 2L)^(2n)`; the switch points were chosen by measured error (below `1e-8` in `f64`
+//! at each switch, so both sides of a switch agree to that level and the switch is invisible in
+//! `f32`).
 //! 1. **Both axes short**: the tensor Gauss-Legendre rule of the two tiers (4 to 36 nodes, one
 //!    division per symmetric pair of nodes).
 //! 2. **One long side** (say `u`): the closed form of case 3 while its cancellation allows
@@ -49,15 +50,15 @@
 //!    projected solid angle), each edge's two arctangents merged into one by
 //!    `atan p - atan q = atan2(p - q, 1 + p q)` with the difference `p - q` taken from the side
 //!    length directly: `2 I = sum over edges of +/- u_e / S_e atan2(Delta v S_e, S_e^2 + v_0 v_1)`,
-//!    `S_e = sqrt(1 + u_e^2)`. Four `atan2` instead of eight `atan`; its cancellation is bounded
-//!    by `(L / H)^3 <= 64 L^2`, harmless in `f64`.
+//!    `S_e = sqrt(1 + u_e^2)`. Four `atan2` (each one `atan`) instead of eight `atan`. Its
+//!    relative error is about `1e-16 (1 + u_c^2 + v_c^2)^(3/2) / H_short` (measured): below
+//!    `1e-10` near the peak, up to `2e-6` for rectangles of `0.25 L` to `L` at normalised
+//!    distances `L ~ 5e4` (`|slope| / alpha ~ 5e4`, the corner of the domain).
 //!
-//! Measured against a 60-digit reference of the same closed form (and the `f64` adaptive
-//! quadrature in the tests): relative error below `1e-8` except for rectangles of size about
-//! `0.1 L` to `L` at a normalised distance `L > 1e4` (`|slope| / alpha > 1e4`), where it is below
-//! `2e-6`. The `f32` result is therefore within a few ulps (at worst `2e-6`) of the exact
-//! average over alpha `1e-4..1`, anisotropy up to `100`, `|center|` up to 4, half sides
-//! `0..1`.
+//! Measured (tests, 2000 seeded samples over alpha `1e-4..1`, anisotropy up to `100`,
+//! `|center|` components up to 4, half sides `1e-8..1`, against `f64` adaptive quadrature): `f32`
+//! relative error median `2.1e-8`, max `6.4e-8` (about one ulp); `f64` median `5e-15`, max
+//! `2.4e-8`. The printed formula in `f32` on the same sample: median `3.1e-3`, max `4e14`.
 //!
 //! # Inputs outside the domain
 //! Negative half extents are used by their absolute value (the rectangle is the same); NaN half
@@ -343,7 +344,8 @@ pub fn p22_rect(r: AxisAligned, center: Vec2, half_extent: Vec2) -> F {
 ///
 /// Outside the domain: `0` for `h_z <= 0` (below the horizon) and for non-finite `h`; for
 /// `0 < h_z < 1e-70` (reachable in `f64` only) the unfiltered `D(h)`, which is the limit there
-/// for finite half extents. Half extents as in [`p22_rect`]. Never NaN.
+/// for finite half extents. Half extents as in [`p22_rect`]. Never NaN; a value beyond the
+/// range of `F` (only for a non-unit `h` with a tiny `h_z`) saturates at `F::MAX`.
 #[inline]
 pub fn d_rect(r: AxisAligned, h: Vec3, half_extent: Vec2) -> F {
     if !h.is_finite() || h.z <= 0.0 {
