@@ -35,7 +35,7 @@
 //! at each switch, so both sides of a switch agree to that level and the switch is invisible in
 //! `f32`).
 //! 1. **Both axes short**: the tensor Gauss-Legendre rule of the two tiers (4 to 36 nodes, one
-//!    division per symmetric pair of nodes).
+//!    division per row of nodes).
 //! 2. **One long side** (say `u`): the closed form of case 3 while its cancellation allows
 //!    (`(1 + u_c^2 + v_c^2)^(3/2) / H_v < 1e6`, error below `1e-10`), else the Gauss-Legendre
 //!    rule in `v` of the exact 1D average in `u`, written without cancellation (`mean_1d`): with
@@ -105,10 +105,13 @@ const GL6_W: [f64; 3] = [
 ];
 
 /// The mean over `v` in `[c - h, c + h]` of `f(u, v) = (1 + u^2 + v^2)^-2` by the
-/// Gauss-Legendre rule of tier `t`, one division per pair of symmetric nodes:
-/// `f(u, c - a) + f(u, c + a) = (s_1 + s_2) / (s_1 s_2)`, `s_i = t_i^2`. With the inputs
-/// clamped to `BIG`, `s_i <= 1e243`: a product that overflows gives `finite / inf = 0`, the
-/// (underflowing) right value.
+/// Gauss-Legendre rule of tier `t`. A symmetric pair of nodes is
+/// `f(u, c - a) + f(u, c + a) = (s_1 + s_2) / (s_1 s_2)`, `s_i = t_i^2`, and while every
+/// `t_i < 1e25` (so that a product of six `s_i` stays below `1e300`) all pairs share one
+/// division: `sum_k w_k n_k / p_k = (sum_k w_k n_k prod_{j != k} p_j) / prod_k p_k`, all terms
+/// positive. Beyond that, one division per pair; with the inputs clamped to `BIG`,
+/// `s_i <= 1e243`, and a product that overflows gives `finite / inf = 0`, the (underflowing)
+/// right value.
 #[inline(always)]
 fn gl_f(t: Tier, u: f64, c: f64, h: f64) -> f64 {
     let q = 1.0 + u * u;
@@ -116,15 +119,34 @@ fn gl_f(t: Tier, u: f64, c: f64, h: f64) -> f64 {
         let (v0, v1) = (c - a, c + a);
         let (t0, t1) = (q + v0 * v0, q + v1 * v1);
         let (s0, s1) = (t0 * t0, t1 * t1);
-        (s0 + s1) / (s0 * s1)
+        (s0 + s1, s0 * s1)
     };
+    let reach = c.abs() + h;
+    let shared = q + reach * reach < 1e25;
     match t {
-        Tier::Gl2 => 0.5 * pair(h * GL2_X),
-        Tier::Gl4 => GL4_W[0] * pair(h * GL4_X[0]) + GL4_W[1] * pair(h * GL4_X[1]),
+        Tier::Gl2 => {
+            let (n, p) = pair(h * GL2_X);
+            0.5 * n / p
+        }
+        Tier::Gl4 => {
+            let (n0, p0) = pair(h * GL4_X[0]);
+            let (n1, p1) = pair(h * GL4_X[1]);
+            if shared {
+                (GL4_W[0] * n0 * p1 + GL4_W[1] * n1 * p0) / (p0 * p1)
+            } else {
+                GL4_W[0] * n0 / p0 + GL4_W[1] * n1 / p1
+            }
+        }
         _ => {
-            GL6_W[0] * pair(h * GL6_X[0])
-                + GL6_W[1] * pair(h * GL6_X[1])
-                + GL6_W[2] * pair(h * GL6_X[2])
+            let (n0, p0) = pair(h * GL6_X[0]);
+            let (n1, p1) = pair(h * GL6_X[1]);
+            let (n2, p2) = pair(h * GL6_X[2]);
+            if shared {
+                (GL6_W[0] * n0 * (p1 * p2) + (GL6_W[1] * n1 * p2 + GL6_W[2] * n2 * p1) * p0)
+                    / (p0 * p1 * p2)
+            } else {
+                GL6_W[0] * n0 / p0 + GL6_W[1] * n1 / p1 + GL6_W[2] * n2 / p2
+            }
         }
     }
 }

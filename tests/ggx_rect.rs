@@ -151,6 +151,9 @@ fn hand_picked_extremes() {
         (0.01, 0.01, (0.1, 0.1), (0.01, 0.01)),
         (0.01, 0.01, (0.1, 0.1), (0.1, 0.1)),
         (0.3, 0.3, (1.0, 0.0), (0.1, 0.03)),
+        // outside the domain, |s| / alpha = 1e13: the per-pair divisions of the far field
+        (2e-8, 2e-8, (2e5, 0.0), (2e3, 1e4)),
+        (2e-8, 2e-8, (2e5, 2e5), (4e4, 2e4)),
     ];
     for &(a, b, c, h) in cases {
         let (e32, e64, r) = errors(a, b, c, h);
