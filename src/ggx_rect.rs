@@ -287,26 +287,28 @@ fn tier(h2: f64, l2: f64) -> Tier {
     }
 }
 
-/// The mean of `g` over `[c - h, c + h]` by the Gauss-Legendre rule of tier `t` (`Gl2`,
-/// `Gl4` or `Gl6`).
+/// The positive nodes and halved weights of the Gauss-Legendre rule of tier `t` (`Gl2`, `Gl4`
+/// or `Gl6`; `Closed` has no rule and is never passed).
+#[inline(always)]
+fn rule(t: Tier) -> (&'static [f64], &'static [f64]) {
+    match t {
+        Tier::Gl2 => (&[GL2_X], &[0.5]),
+        Tier::Gl4 => (&GL4_X, &GL4_W),
+        _ => (&GL6_X, &GL6_W),
+    }
+}
+
+/// The mean of `g` over `[c - h, c + h]` by the Gauss-Legendre rule of tier `t` (one loop, so
+/// that `g` is inlined once).
 #[inline(always)]
 fn gl_of(t: Tier, c: f64, h: f64, mut g: impl FnMut(f64) -> f64) -> f64 {
-    match t {
-        Tier::Gl2 => {
-            let a = h * GL2_X;
-            0.5 * (g(c - a) + g(c + a))
-        }
-        Tier::Gl4 => {
-            let (a, b) = (h * GL4_X[0], h * GL4_X[1]);
-            GL4_W[0] * (g(c - a) + g(c + a)) + GL4_W[1] * (g(c - b) + g(c + b))
-        }
-        _ => {
-            let (a, b, d) = (h * GL6_X[0], h * GL6_X[1], h * GL6_X[2]);
-            GL6_W[0] * (g(c - a) + g(c + a))
-                + GL6_W[1] * (g(c - b) + g(c + b))
-                + GL6_W[2] * (g(c - d) + g(c + d))
-        }
+    let (xs, ws) = rule(t);
+    let mut acc = 0.0;
+    for (&x, &w) in xs.iter().zip(ws) {
+        let a = h * x;
+        acc += w * (g(c - a) + g(c + a));
     }
+    acc
 }
 
 /// Sanitised `f64` half extent: `|h|`, NaN as `0`, at most `BIG`.
