@@ -55,6 +55,10 @@ macro_rules! precision_modules {
         pub mod geometry;
         #[path = "ggx.rs"]
         pub mod ggx;
+        #[path = "ggx_proxy.rs"]
+        pub mod ggx_proxy;
+        #[path = "ggx_rect.rs"]
+        pub mod ggx_rect;
         #[path = "implicit.rs"]
         pub mod implicit;
         #[path = "isotropic.rs"]

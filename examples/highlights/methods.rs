@@ -225,7 +225,11 @@ fn tk21_projected(sp: &ShadingPoint) -> f32 {
     let r = Isotropic::new_clamped(sp.alpha);
     let rules = ClampRules::default();
     let fp = rules.footprint(geometry::footprint_projected(sp.footprint, sp.h));
-    Ggx::new(filter::projected(r, rules.kernel(fp.covariance(SIGMA_PIXEL)))).d(sp.h)
+    Ggx::new(filter::projected(
+        r,
+        rules.kernel(fp.covariance(SIGMA_PIXEL)),
+    ))
+    .d(sp.h)
 }
 
 /// TK19 eq. 1 / 2,4 / 5: isotropic deferred roughness from `sp.dn_dx`, `sp.dn_dy`
