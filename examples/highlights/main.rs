@@ -56,7 +56,7 @@ fn parse_args() -> Options {
         spp: 512,
         frames: 16,
         out: PathBuf::from("target/highlights"),
-        methods: Method::DEFAULT.to_vec(),
+        methods: Method::ALL.to_vec(),
         route: FootprintRoute::Quad,
         threads: 2,
         seed: 1,

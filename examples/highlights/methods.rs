@@ -5,12 +5,11 @@
 //! footprint. The renderer multiplies it by the same Fresnel, Smith `G2` (base roughness) and
 //! light terms for every method, so the images differ only by the NDF filter.
 //!
-//! Methods whose kernels live on other branches are stubs at the bottom of this file; they
-//! panic with `unimplemented!` and are left out of [`Method::DEFAULT`] until wired.
+//! Every method calls the crate; nothing here re-implements a kernel.
 
 use filtered_ndf::f32::{
-    Beckmann, ClampRules, Endpoint, ExtentFloor, Footprint, Ggx, Isotropic, Ndf, ShadingFrame,
-    filter, geometry,
+    AxisAligned, Beckmann, ClampRules, Endpoint, ExtentFloor, Footprint, Ggx, Isotropic, Ndf,
+    ShadingFrame, filter, geometry, ggx_proxy, ggx_rect,
 };
 use glam::Vec3;
 
@@ -76,13 +75,6 @@ pub enum Method {
 }
 
 impl Method {
-    /// Methods implemented on this branch, rendered by default.
-    pub const DEFAULT: [Method; 3] = [
-        Method::Unfiltered(Family::Beckmann),
-        Method::Unfiltered(Family::Ggx),
-        Method::BeckmannParallelogram,
-    ];
-
     /// Every method, in display order.
     pub const ALL: [Method; 10] = [
         Method::Unfiltered(Family::Beckmann),
@@ -193,21 +185,26 @@ fn beckmann_parallelogram(sp: &ShadingPoint) -> f32 {
     Beckmann::new(KHPL16.filter_gaussian(r, sp.footprint, SIGMA_PIXEL)).d(sp.h)
 }
 
-// ---------------------------------------------------------------------------------------
-// Stubs: the lead replaces each body with a call into the crate once the branch is merged.
-// ---------------------------------------------------------------------------------------
-
-/// KHPL16 section 5.3: the axis-aligned bounding rectangle of the footprint (half extents
-/// from `sp.footprint`, `sigma = SIGMA_PIXEL`), exact box integral of GGX `P22` over it,
-/// returned per steradian (`/ h_z^4`).
-fn ggx_rect_exact(_sp: &ShadingPoint) -> f32 {
-    unimplemented!("needs the exact GGX rectangle integral from branch rect")
+/// The KHPL16 section 5.3 rectangle: the axis-aligned bounding rectangle of the footprint,
+/// half-extents clamped to `lambda = 1` (no lower floor: the crate's integral is exact).
+fn rect_half_extent(sp: &ShadingPoint) -> glam::Vec2 {
+    KHPL16
+        .rect(sp.footprint.bounding_rect(), glam::Vec2::splat(sp.alpha))
+        .half_extent
 }
 
-/// KHPL16 / GDC 2016: the GGX proxy, an effective isotropic roughness for the same
-/// rectangle, then unfiltered GGX `D(h)` with it.
-fn ggx_proxy(_sp: &ShadingPoint) -> f32 {
-    unimplemented!("needs the GGX proxy from branch rect")
+/// KHPL16 eq. 16 / section 5.3: exact box integral of GGX `P22` over the bounding rectangle,
+/// per steradian (`/ h_z^4`).
+fn ggx_rect_exact(sp: &ShadingPoint) -> f32 {
+    let r = AxisAligned::from(Isotropic::new_clamped(sp.alpha));
+    ggx_rect::d_rect(r, sp.h, rect_half_extent(sp))
+}
+
+/// KHPL16 eq. 19-20: the GGX proxy, the effective roughness whose peak matches the
+/// rectangle-filtered peak (per axis), then unfiltered GGX `D(h)` with it.
+fn ggx_proxy(sp: &ShadingPoint) -> f32 {
+    let r = AxisAligned::from(Isotropic::new_clamped(sp.alpha));
+    Ggx::new(ggx_proxy::proxy(r, rect_half_extent(sp))).d(sp.h)
 }
 
 /// TK19 section 3.2: the kernel built from the derivatives of the projected half vector
