@@ -2,4 +2,5 @@
 //! the crate is tested against, so that a downstream renderer can test its own port the same
 //! way.
 
+pub mod cases;
 pub mod quadrature;
