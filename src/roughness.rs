@@ -84,7 +84,8 @@ pub struct Isotropic {
 }
 
 impl Isotropic {
-    /// Checked constructor: `alpha` finite and in `[ALPHA_MIN, ALPHA_MAX]`.
+    /// Checked constructor: `alpha` finite and in `[ALPHA_MIN, ALPHA_MAX]`; else
+    /// `NotFinite` (NaN, inf), `NotPositive` (`<= 0`, including `-0`) or `OutOfRange`.
     #[inline]
     pub fn new(alpha: F) -> Result<Self, RoughnessError> {
         check_alpha(alpha).map(Self::from_valid)
@@ -140,7 +141,8 @@ pub struct AxisAligned {
 }
 
 impl AxisAligned {
-    /// Checked constructor: both values finite and in `[ALPHA_MIN, ALPHA_MAX]`.
+    /// Checked constructor: both values finite and in `[ALPHA_MIN, ALPHA_MAX]`. When both
+    /// are invalid, the error describes `alpha_x`.
     #[inline]
     pub fn new(alpha_x: F, alpha_y: F) -> Result<Self, RoughnessError> {
         Ok(Self::from_valid(Vec2::new(

@@ -3,4 +3,5 @@
 //! way.
 
 pub mod cases;
+pub mod fuzz;
 pub mod quadrature;
