@@ -60,5 +60,9 @@ pub(crate) fn rescale_direction(w: Vec3) -> Vec3 {
         return w;
     }
     let mx = w.abs().max_element();
-    if mx > 0.0 && mx.is_finite() { w / mx } else { w }
+    if mx > 0.0 && mx.is_finite() {
+        w / mx
+    } else {
+        w
+    }
 }

@@ -340,7 +340,11 @@ impl RoughnessMatrix {
     /// non-finite or negative `tau` is treated as `0` (no clamp).
     #[inline]
     pub fn with_det_clamp(self, tau: F) -> Self {
-        let tau = if tau.is_finite() && tau > 0.0 { tau } else { 0.0 };
+        let tau = if tau.is_finite() && tau > 0.0 {
+            tau
+        } else {
+            0.0
+        };
         Self::from_entries_clamped(self.a11, self.a12, self.a22, tau)
     }
 

@@ -21,7 +21,11 @@ use crate::math as m;
 pub fn slope_from_sphere(h: Vec3) -> Vec2 {
     let z = h.z.max(F::MIN_POSITIVE);
     let s = Vec2::new(-h.x / z, -h.y / z);
-    if s.is_finite() { s } else { s.clamp(Vec2::splat(-F::MAX), Vec2::splat(F::MAX)) }
+    if s.is_finite() {
+        s
+    } else {
+        s.clamp(Vec2::splat(-F::MAX), Vec2::splat(F::MAX))
+    }
 }
 
 /// Unit vector of a slope: `h = (-s_x, -s_y, 1) / sqrt(1 + |s|^2)` (inverse of

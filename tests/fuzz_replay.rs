@@ -59,7 +59,9 @@ fn regressions() {
         &[],
         // Huge finite directions (f32::MAX components): Lambda once overflowed its quadratic
         // form; now rescaled.
-        &[0, 13, 13, 13, 13, 13, 13, 11, 11, 11, 11, 11, 11, 11, 11, 11],
+        &[
+            0, 13, 13, 13, 13, 13, 13, 11, 11, 11, 11, 11, 11, 11, 11, 11,
+        ],
         &[1, 13, 13, 13, 13, 13, 13, 5, 5, 5, 5, 5, 5, 5, 5, 5],
     ];
     for c in cases {

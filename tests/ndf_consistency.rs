@@ -14,9 +14,7 @@
 //!   above): `64 cond(A) (2 + x) eps`.
 
 use filtered_ndf::f32::{self as s, Ndf as _};
-use filtered_ndf::f64::{
-    AxisAligned, Beckmann, Ggx, Isotropic, Ndf, Roughness, RoughnessMatrix,
-};
+use filtered_ndf::f64::{AxisAligned, Beckmann, Ggx, Isotropic, Ndf, Roughness, RoughnessMatrix};
 use filtered_ndf::testing::cases;
 use glam::{DMat2, DVec2, DVec3, Vec3};
 use proptest::prelude::*;
@@ -29,7 +27,11 @@ fn close(a: f64, b: f64, tol_eps: f64) -> bool {
 
 /// Exponent `x` of a Beckmann evaluation (for the tolerance), from the density's peak.
 fn x_of(v: f64, peak: f64) -> f64 {
-    if v > 0.0 { (peak / v).ln().max(0.0) } else { 0.0 }
+    if v > 0.0 {
+        (peak / v).ln().max(0.0)
+    } else {
+        0.0
+    }
 }
 
 fn micronormal(d: [f64; 3]) -> DVec3 {
@@ -42,7 +44,13 @@ fn evals<R: Roughness>(r: R, s: DVec2, m: DVec3, w: DVec3) -> [f64; 6] {
     [g.p22(s), g.d(m), g.lambda(w), b.p22(s), b.d(m), b.lambda(w)]
 }
 
-fn assert_same(x: [f64; 6], y: [f64; 6], peak: f64, m: DVec3, what: &str) -> Result<(), TestCaseError> {
+fn assert_same(
+    x: [f64; 6],
+    y: [f64; 6],
+    peak: f64,
+    m: DVec3,
+    what: &str,
+) -> Result<(), TestCaseError> {
     for (k, (a, b)) in x.iter().zip(y.iter()).enumerate() {
         // Beckmann densities (indices 3, 4) get the exponent amplification; Beckmann Lambda
         // (5) falls like exp(-a^2) and gets it through its own value's logarithm.

@@ -87,15 +87,26 @@ fn normalisation_at_the_corners() {
             Form::Isotropic(2.0),
             Form::AxisAligned(1e-4, 1e-1),
             Form::AxisAligned(2.0, 2e-3),
-            Form::Rotated { alpha_x: 1e-4, alpha_y: 0.1, phi: 0.7 },
-            Form::Rotated { alpha_x: 2.0, alpha_y: 2e-3, phi: 2.0 },
+            Form::Rotated {
+                alpha_x: 1e-4,
+                alpha_y: 0.1,
+                phi: 0.7,
+            },
+            Form::Rotated {
+                alpha_x: 2.0,
+                alpha_y: 2e-3,
+                phi: 2.0,
+            },
         ] {
             let case = NdfCase { model, form };
             for (name, (v, err)) in [
                 ("plane", slope_plane_integral(&case)),
                 ("hemisphere", hemisphere_integral(&case)),
             ] {
-                assert!(err < 1e-8 && (v - 1.0).abs() < TOL, "{case:?} {name}: {v} +- {err}");
+                assert!(
+                    err < 1e-8 && (v - 1.0).abs() < TOL,
+                    "{case:?} {name}: {v} +- {err}"
+                );
             }
         }
     }

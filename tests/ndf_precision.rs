@@ -125,7 +125,11 @@ fn check(
     what: &dyn Fn() -> String,
 ) {
     assert!(got.is_finite() && got >= 0.0, "{}: f32 gave {got}", what());
-    assert!(want.is_finite() && want >= 0.0, "{}: f64 gave {want}", what());
+    assert!(
+        want.is_finite() && want >= 0.0,
+        "{}: f64 gave {want}",
+        what()
+    );
     let w = table.entry(key).or_default();
     w.n += 1;
     if want < f64::from(f32::MIN_POSITIVE) {
@@ -227,9 +231,14 @@ fn run_case(table: &mut BTreeMap<Key, Worst>, rng: &mut Rng, case: NdfCase, inpu
         let (wf, w64) = r3(DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos()));
         let want = g.lambda(w64);
         let tol = lambda_tol(&case, w64);
-        check(table, (mn, "lambda", fname), f.lambda(wf), want, tol, &|| {
-            format!("{case:?} lambda({wf:?})")
-        });
+        check(
+            table,
+            (mn, "lambda", fname),
+            f.lambda(wf),
+            want,
+            tol,
+            &|| format!("{case:?} lambda({wf:?})"),
+        );
     }
 }
 
@@ -274,9 +283,14 @@ fn extremes_alpha_1e4_peak_tail_and_grazing() {
             let g = case.build_f64().unwrap();
             // The peak: exactly 1 / (pi sqrt(det A)) in both precisions' rounding.
             let want = g.d(DVec3::Z);
-            check(&mut table, ("", "d", "peak"), f.d(Vec3::Z), want, 8.0, &|| {
-                format!("{case:?} peak")
-            });
+            check(
+                &mut table,
+                ("", "d", "peak"),
+                f.d(Vec3::Z),
+                want,
+                8.0,
+                &|| format!("{case:?} peak"),
+            );
             // Far in the tail and grazing: slopes 1e-6 .. 1e6 along several azimuths and
             // polar angles up to 89.999 degrees.
             for k in -6..=6 {
@@ -301,9 +315,14 @@ fn extremes_alpha_1e4_peak_tail_and_grazing() {
                     } else {
                         32.0 + 2.0 * amp
                     };
-                    check(&mut table, ("", "p22", "tail"), f.p22(sf), want, tol, &|| {
-                        format!("{case:?} p22({sf:?})")
-                    });
+                    check(
+                        &mut table,
+                        ("", "p22", "tail"),
+                        f.p22(sf),
+                        want,
+                        tol,
+                        &|| format!("{case:?} p22({sf:?})"),
+                    );
                 }
             }
             for deg in [89.9, 89.99, 89.999] {
@@ -315,9 +334,14 @@ fn extremes_alpha_1e4_peak_tail_and_grazing() {
                 // the sample test, `(32 + 8 a^2) eps` (its value may underflow f32 when
                 // `a = w_z / sqrt(q)` is large: then the absolute check applies).
                 let tol = lambda_tol(&case, w64);
-                check(&mut table, ("", "lambda", "grazing"), f.lambda(wf), want, tol, &|| {
-                    format!("{case:?} lambda at {deg} deg")
-                });
+                check(
+                    &mut table,
+                    ("", "lambda", "grazing"),
+                    f.lambda(wf),
+                    want,
+                    tol,
+                    &|| format!("{case:?} lambda at {deg} deg"),
+                );
             }
         }
     }

@@ -140,11 +140,15 @@ fn smith_identity_at_the_corners() {
             Form::Isotropic(1e-4),
             Form::Isotropic(2.0),
             Form::AxisAligned(1e-4, 1e-1),
-            Form::Rotated { alpha_x: 2.0, alpha_y: 2e-3, phi: 0.4 },
+            Form::Rotated {
+                alpha_x: 2.0,
+                alpha_y: 2e-3,
+                phi: 0.4,
+            },
         ] {
             let case = NdfCase { model, form };
             for deg in [0.0f64, 30.0, 60.0, 85.0, 89.9] {
-                for az in [0.0f64, 0.4, 1.5707963267948966, 2.0] {
+                for az in [0.0f64, 0.4, std::f64::consts::FRAC_PI_2, 2.0] {
                     let t = deg.to_radians();
                     let o = DVec3::new(t.sin() * az.cos(), t.sin() * az.sin(), t.cos());
                     check_identity(&case, o).unwrap();
@@ -157,7 +161,10 @@ fn smith_identity_at_the_corners() {
 #[test]
 fn lambda_limits() {
     for model in [Model::Ggx, Model::Beckmann] {
-        let case = NdfCase { model, form: Form::Isotropic(0.3) };
+        let case = NdfCase {
+            model,
+            form: Form::Isotropic(0.3),
+        };
         let ndf = case.build_f64().unwrap();
         // Normal incidence: no masking. Horizon: infinite Lambda, G1 = 0.
         assert_eq!(ndf.lambda(DVec3::Z), 0.0);

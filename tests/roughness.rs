@@ -10,8 +10,8 @@ macro_rules! per_precision {
         mod $name {
             use super::*;
             use filtered_ndf::$prec::{
-                ALPHA_MAX, ALPHA_MIN, AxisAligned, Beckmann, Ggx, Isotropic, Mat2, Ndf,
-                Roughness, RoughnessMatrix, Vec2, Vec3,
+                ALPHA_MAX, ALPHA_MIN, AxisAligned, Beckmann, Ggx, Isotropic, Mat2, Ndf, Roughness,
+                RoughnessMatrix, Vec2, Vec3,
             };
             type F = $t;
             const EPS: F = F::EPSILON;
@@ -30,7 +30,13 @@ macro_rules! per_precision {
                 for bad in [0.0, -0.0, -1.0, -F::MIN_POSITIVE, -F::MAX] {
                     assert_eq!(iso_err(bad), Some(NotPositive), "{bad}");
                 }
-                for bad in [ALPHA_MIN * 0.5, 1e-30, F::MIN_POSITIVE, ALPHA_MAX * 2.0, F::MAX] {
+                for bad in [
+                    ALPHA_MIN * 0.5,
+                    1e-30,
+                    F::MIN_POSITIVE,
+                    ALPHA_MAX * 2.0,
+                    F::MAX,
+                ] {
                     assert_eq!(iso_err(bad), Some(OutOfRange), "{bad}");
                 }
                 for ok in [ALPHA_MIN, 1e-4, 1.0, ALPHA_MAX] {
@@ -56,20 +62,47 @@ macro_rules! per_precision {
 
             #[test]
             fn matrix_errors() {
-                assert_eq!(RoughnessMatrix::new(F::NAN, 0.0, 1.0).err(), Some(NotFinite));
-                assert_eq!(RoughnessMatrix::new(1.0, F::INFINITY, 1.0).err(), Some(NotFinite));
+                assert_eq!(
+                    RoughnessMatrix::new(F::NAN, 0.0, 1.0).err(),
+                    Some(NotFinite)
+                );
+                assert_eq!(
+                    RoughnessMatrix::new(1.0, F::INFINITY, 1.0).err(),
+                    Some(NotFinite)
+                );
                 assert_eq!(RoughnessMatrix::new(0.0, 0.0, 1.0).err(), Some(NotPositive));
-                assert_eq!(RoughnessMatrix::new(1.0, 0.0, -1.0).err(), Some(NotPositive));
+                assert_eq!(
+                    RoughnessMatrix::new(1.0, 0.0, -1.0).err(),
+                    Some(NotPositive)
+                );
                 // Indefinite, and exactly singular, without a clamp.
-                assert_eq!(RoughnessMatrix::new(1.0, 2.0, 1.0).err(), Some(NotPositiveDefinite));
-                assert_eq!(RoughnessMatrix::new(1.0, 1.0, 1.0).err(), Some(NotPositiveDefinite));
-                assert_eq!(RoughnessMatrix::new(1.0, -1.0, 1.0).err(), Some(NotPositiveDefinite));
+                assert_eq!(
+                    RoughnessMatrix::new(1.0, 2.0, 1.0).err(),
+                    Some(NotPositiveDefinite)
+                );
+                assert_eq!(
+                    RoughnessMatrix::new(1.0, 1.0, 1.0).err(),
+                    Some(NotPositiveDefinite)
+                );
+                assert_eq!(
+                    RoughnessMatrix::new(1.0, -1.0, 1.0).err(),
+                    Some(NotPositiveDefinite)
+                );
                 // Eigenvalues out of [ALPHA_MIN^2, ALPHA_MAX^2].
                 let hi = ALPHA_MAX * ALPHA_MAX;
                 let lo = ALPHA_MIN * ALPHA_MIN;
-                assert_eq!(RoughnessMatrix::new(hi * 4.0, 0.0, 1.0).err(), Some(OutOfRange));
-                assert_eq!(RoughnessMatrix::new(1.0, 0.0, lo * 0.25).err(), Some(OutOfRange));
-                assert_eq!(RoughnessMatrix::new(F::MAX, 0.0, F::MAX).err(), Some(OutOfRange));
+                assert_eq!(
+                    RoughnessMatrix::new(hi * 4.0, 0.0, 1.0).err(),
+                    Some(OutOfRange)
+                );
+                assert_eq!(
+                    RoughnessMatrix::new(1.0, 0.0, lo * 0.25).err(),
+                    Some(OutOfRange)
+                );
+                assert_eq!(
+                    RoughnessMatrix::new(F::MAX, 0.0, F::MAX).err(),
+                    Some(OutOfRange)
+                );
                 assert!(RoughnessMatrix::new(hi, 0.0, lo).is_ok());
                 // Near-singular: det = 1 - (1 - d)^2 ~ 2 d, fine without clamp while positive.
                 let d: F = 1e3 * EPS;
@@ -100,11 +133,21 @@ macro_rules! per_precision {
                 let m = |a11: F, a21: F, a12: F, a22: F| {
                     Mat2::from_cols(Vec2::new(a11, a21), Vec2::new(a12, a22))
                 };
-                assert_eq!(RoughnessMatrix::from_mat2(m(1.0, 0.1, 0.2, 1.0)).err(), Some(NotSymmetric));
-                assert_eq!(RoughnessMatrix::from_mat2(m(1.0, F::NAN, 0.1, 1.0)).err(), Some(NotFinite));
-                assert_eq!(RoughnessMatrix::from_mat2(m(1.0, 2.0, 2.0, 1.0)).err(), Some(NotPositiveDefinite));
+                assert_eq!(
+                    RoughnessMatrix::from_mat2(m(1.0, 0.1, 0.2, 1.0)).err(),
+                    Some(NotSymmetric)
+                );
+                assert_eq!(
+                    RoughnessMatrix::from_mat2(m(1.0, F::NAN, 0.1, 1.0)).err(),
+                    Some(NotFinite)
+                );
+                assert_eq!(
+                    RoughnessMatrix::from_mat2(m(1.0, 2.0, 2.0, 1.0)).err(),
+                    Some(NotPositiveDefinite)
+                );
                 // Asymmetric by a couple of ulps: accepted and symmetrised.
-                let r = RoughnessMatrix::from_mat2(m(1.0, 0.25, 0.25 + 2.0 * EPS * 0.25, 1.0)).unwrap();
+                let r =
+                    RoughnessMatrix::from_mat2(m(1.0, 0.25, 0.25 + 2.0 * EPS * 0.25, 1.0)).unwrap();
                 let (_, a12, _) = r.entries();
                 assert!((a12 - 0.25).abs() <= 2.0 * EPS);
                 assert_eq!(r.to_mat2().x_axis.y, r.to_mat2().y_axis.x);

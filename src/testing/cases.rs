@@ -50,7 +50,11 @@ impl Form {
         };
         let (s, c) = phi.sin_cos();
         let (l1, l2) = (ax * ax, ay * ay);
-        (l1 * c * c + l2 * s * s, (l1 - l2) * c * s, l1 * s * s + l2 * c * c)
+        (
+            l1 * c * c + l2 * s * s,
+            (l1 - l2) * c * s,
+            l1 * s * s + l2 * c * c,
+        )
     }
 
     /// The eigen-frame widths and angle `(sqrt(l1), sqrt(l2), phi)` of `A`.
@@ -82,9 +86,7 @@ macro_rules! build {
         let r = |x: f64| x as $t;
         let nd: Box<dyn Ndf> = match ($self.model, $self.form) {
             (Model::Ggx, Form::Isotropic(a)) => Box::new(Ggx::new(Isotropic::new(r(a))?)),
-            (Model::Beckmann, Form::Isotropic(a)) => {
-                Box::new(Beckmann::new(Isotropic::new(r(a))?))
-            }
+            (Model::Beckmann, Form::Isotropic(a)) => Box::new(Beckmann::new(Isotropic::new(r(a))?)),
             (Model::Ggx, Form::AxisAligned(x, y)) => {
                 Box::new(Ggx::new(AxisAligned::new(r(x), r(y))?))
             }
@@ -153,9 +155,8 @@ pub fn alpha(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
 /// A roughness form with every `alpha` log-uniform in `[1e-4, 2]`, anisotropy ratios
 /// log-uniform up to `1e3` (then clamped into the range) and uniform rotations.
 pub fn form() -> impl Strategy<Value = Form> {
-    let aniso = || {
-        (alpha(1e-4, 2.0), alpha(1e-3, 1e3)).prop_map(|(a, r)| (a, (a * r).clamp(1e-4, 2.0)))
-    };
+    let aniso =
+        || (alpha(1e-4, 2.0), alpha(1e-3, 1e3)).prop_map(|(a, r)| (a, (a * r).clamp(1e-4, 2.0)));
     prop_oneof![
         alpha(1e-4, 2.0).prop_map(Form::Isotropic),
         aniso().prop_map(|(x, y)| Form::AxisAligned(x, y)),
@@ -182,9 +183,13 @@ pub fn case() -> impl Strategy<Value = NdfCase> {
 /// A unit direction `(x, y, z)` at polar angle uniform in `[0, max_theta_deg]` degrees from
 /// the normal and uniform azimuth.
 pub fn direction(max_theta_deg: f64) -> impl Strategy<Value = [f64; 3]> {
-    (0.0..=max_theta_deg.to_radians(), 0.0..core::f64::consts::TAU).prop_map(|(t, p)| {
-        let (st, ct) = t.sin_cos();
-        let (sp, cp) = p.sin_cos();
-        [st * cp, st * sp, ct]
-    })
+    (
+        0.0..=max_theta_deg.to_radians(),
+        0.0..core::f64::consts::TAU,
+    )
+        .prop_map(|(t, p)| {
+            let (st, ct) = t.sin_cos();
+            let (sp, cp) = p.sin_cos();
+            [st * cp, st * sp, ct]
+        })
 }

@@ -145,7 +145,10 @@ macro_rules! check_precision {
             let g1 = ndf.g1(w, mm);
             let g2 = ndf.g2(i, w, mm);
             if s.is_finite() {
-                assert!(p22.is_finite() && p22 >= 0.0, "p22({s}) = {p22} for {inp:?}");
+                assert!(
+                    p22.is_finite() && p22 >= 0.0,
+                    "p22({s}) = {p22} for {inp:?}"
+                );
             }
             if mm.is_finite() {
                 assert!(d.is_finite() && d >= 0.0, "d({mm}) = {d} for {inp:?}");
@@ -210,10 +213,8 @@ macro_rules! check_precision {
                         }
                     }
                 }
-                let m2 = crate::$prec::Mat2::from_cols(
-                    Vec2::new(p[0], p[1]),
-                    Vec2::new(p[3], p[2]),
-                );
+                let m2 =
+                    crate::$prec::Mat2::from_cols(Vec2::new(p[0], p[1]), Vec2::new(p[3], p[2]));
                 if let Ok(r) = RoughnessMatrix::from_mat2(m2) {
                     eval(r, fam, inp);
                 }
@@ -224,14 +225,29 @@ macro_rules! check_precision {
         let h = Vec3::new(c(inp.vecs[0][0]), c(inp.vecs[0][1]), c(inp.vecs[0][2]));
         let sl = Vec2::new(c(inp.s[0]), c(inp.s[1]));
         if h.is_finite() {
-            assert!(slope::slope_from_sphere(h).is_finite(), "slope_from_sphere({h})");
+            assert!(
+                slope::slope_from_sphere(h).is_finite(),
+                "slope_from_sphere({h})"
+            );
             let p = slope::projected_from_sphere(h).truncate_or_self();
-            assert!(slope::sphere_from_projected(p).is_finite(), "sphere_from_projected({p})");
-            assert!(slope::slope_from_projected(p).is_finite(), "slope_from_projected({p})");
+            assert!(
+                slope::sphere_from_projected(p).is_finite(),
+                "sphere_from_projected({p})"
+            );
+            assert!(
+                slope::slope_from_projected(p).is_finite(),
+                "slope_from_projected({p})"
+            );
         }
         if sl.is_finite() {
-            assert!(slope::sphere_from_slope(sl).is_finite(), "sphere_from_slope({sl})");
-            assert!(slope::projected_from_slope(sl).is_finite(), "projected_from_slope({sl})");
+            assert!(
+                slope::sphere_from_slope(sl).is_finite(),
+                "sphere_from_slope({sl})"
+            );
+            assert!(
+                slope::projected_from_slope(sl).is_finite(),
+                "projected_from_slope({sl})"
+            );
         }
     }};
 }
