@@ -22,7 +22,7 @@
 
 use super::{F, Mat2, Vec2};
 use crate::error::RoughnessError;
-use crate::math as m;
+use crate::math::{self as m, Real};
 
 /// Smallest supported roughness `alpha` (`A`'s smallest eigenvalue is `ALPHA_MIN^2`).
 pub const ALPHA_MIN: F = 1e-8;
@@ -219,7 +219,8 @@ impl Roughness for AxisAligned {
 /// is exact, since filtering can only grow the determinant. Its bias is zero whenever
 /// `det A >= tau` holds in exact arithmetic.
 ///
-/// Precision: the constructor computes `det A` with Kahan's fused difference of products and
+/// Precision: the constructor computes `det A` without cancellation error (exactly rounded
+/// products) and
 /// stores `A` in its eigenbasis `A = R diag(l1, l2) R^T`, so both quadratic forms are sums of
 /// two non-negative squares. Evaluating `s^T A^-1 s` from the entries of `A^-1` instead would
 /// cancel to a relative error of `cond(A) eps` (6 % in `f32` at an anisotropy ratio of
@@ -238,9 +239,15 @@ pub struct RoughnessMatrix {
     sqrt_det: F,
 }
 
-/// `a b - c d` to within about one ulp (Kahan's algorithm with two fused multiply-adds).
+/// `a b - c d` to within about one ulp, whatever the cancellation: in `f32` through `f64`
+/// (the products of two `f32` are exact there), in `f64` by Kahan's algorithm with two fused
+/// multiply-adds.
 #[inline]
 fn diff_of_products(a: F, b: F, c: F, d: F) -> F {
+    if core::mem::size_of::<F>() == 4 {
+        let (a, b, c, d) = (a.to_f64(), b.to_f64(), c.to_f64(), d.to_f64());
+        return F::from_f64(a * b - c * d);
+    }
     let cd = c * d;
     let err = m::mul_add(-c, d, cd);
     m::mul_add(a, b, -cd) + err
@@ -315,7 +322,12 @@ impl RoughnessMatrix {
         // Eigen-decomposition: l1 = mean + rad (no cancellation), l2 = det / l1 (accurate
         // because det is), eigenvector of l1 from whichever row avoids cancellation.
         let half_diff = 0.5 * (a11 - a22);
-        let rad = m::hypot(half_diff, a12);
+        let rad = m::sqrt(half_diff * half_diff + a12 * a12);
+        let rad = if rad.is_finite() {
+            rad
+        } else {
+            m::hypot(half_diff, a12)
+        };
         let l1 = 0.5 * (a11 + a22) + rad;
         let l2 = det / l1;
         let v = if half_diff >= 0.0 {
