@@ -1,24 +1,42 @@
 //! Beckmann in any roughness form (Beckmann and Spizzichino 1963; Heitz 2014 section 5.4;
 //! KHPL16 eq. 14: `A = 2 B` with `B` the slope covariance).
 
-use super::ndf::Ndf;
+use super::ndf::{Ndf, rescale_direction};
 use super::roughness::{AxisAligned, Isotropic, Roughness, RoughnessMatrix};
 use super::{F, Vec2, Vec3};
 use crate::error::RoughnessError;
 use crate::math::{self as m, Real};
 
 const PI: F = core::f64::consts::PI as F;
+/// `exp(-x)` is a normal float for `x` below this (`-ln(F::MIN_POSITIVE)` less one binade).
+const EXP_NORMAL_LIMIT: F = -(F::MIN_EXP as F) * core::f64::consts::LN_2 as F;
+
+/// `exp(-x) / den` for `x >= 0` and `den = exp(ln_den)`, without losing the result to an
+/// intermediate subnormal `exp(-x)`: past [`EXP_NORMAL_LIMIT`] the division moves into the
+/// exponent, `exp(-x - ln den)` (one `ln` more, far in the tail only).
+#[inline]
+fn exp_neg_over(x: F, den: F, ln_den: impl FnOnce() -> F) -> F {
+    if x < EXP_NORMAL_LIMIT {
+        m::exp(-x) / den
+    } else {
+        m::exp(-x - ln_den())
+    }
+}
 
 /// The Beckmann distribution with roughness form `R`: a bivariate Gaussian of slopes with
 /// covariance `A / 2`.
 ///
 /// - `P22(s) = exp(-s^T A^-1 s) / (pi sqrt(det A))` (slope domain).
 /// - `D(m) = exp(-m_xy^T A^-1 m_xy / m_z^2) / (pi sqrt(det A) m_z^4)` for `m_z > 0`, `0`
-///   below the horizon and where the exponential underflows.
+///   below the horizon and where the result underflows. Far in the tail (exponent past the
+///   normal range of `F`) the normalisation moves into the exponent, so a density that is
+///   representable is returned to full relative precision even when `exp(-x)` alone is not.
 /// - `Lambda(w) = (exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2` with
 ///   `a = |w_z| / sqrt(w_xy^T A w_xy)` (Heitz 2014 eq. 80 with the projected roughness of a
 ///   matrix lobe). Evaluated in `f64` for both precisions, because the two terms cancel to
-///   a relative `1 / (2 a^2)` for large `a`.
+///   a relative `1 / (2 a^2)` for large `a`; `exp(-a^2)` uses the exact split of `a^2`, so the
+///   result carries a relative error of about `2 a^2 eps_f64` (`< 1e-12` wherever `Lambda`
+///   is a normal `f64`), plus `2 a^2` times the relative error of the inputs `q`, `w_z`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Beckmann<R: Roughness> {
     /// The roughness.
@@ -73,14 +91,21 @@ pub(crate) fn beckmann_lambda(q: F, abs_wz: F) -> F {
         return 0.0;
     }
     let inv_sqrt_pi = 0.564_189_583_547_756_3_f64;
-    let l = 0.5 * (m::exp(-a * a) * inv_sqrt_pi / a - m::erfc(a));
+    // exp(-a^2) with a^2 split exactly into a2 + a2_lo: the rounding of a * a alone would
+    // cost a relative a^2 eps, which the cancellation below amplifies by another 2 a^2.
+    let a2 = a * a;
+    let a2_lo = m::mul_add(a, a, -a2);
+    let e = m::exp(-a2) * (1.0 - a2_lo);
+    let l = 0.5 * (e * inv_sqrt_pi / a - m::erfc(a));
     F::from_f64(l.max(0.0))
 }
 
 impl<R: Roughness> Ndf for Beckmann<R> {
     #[inline]
     fn p22(&self, s: Vec2) -> F {
-        m::exp(-self.roughness.inv_quadratic(s)) / (PI * self.roughness.sqrt_det())
+        let den = PI * self.roughness.sqrt_det();
+        let v = exp_neg_over(self.roughness.inv_quadratic(s), den, || m::ln(den));
+        if v.is_finite() { v } else { 0.0 }
     }
 
     #[inline]
@@ -89,16 +114,17 @@ impl<R: Roughness> Ndf for Beckmann<R> {
             return 0.0;
         }
         let inv_z2 = 1.0 / (mn.z * mn.z);
-        let e = m::exp(-self.roughness.inv_quadratic(Vec2::new(mn.x, mn.y)) * inv_z2);
-        if e == 0.0 {
-            return 0.0;
-        }
-        let v = e * inv_z2 * inv_z2 / (PI * self.roughness.sqrt_det());
+        let x = self.roughness.inv_quadratic(Vec2::new(mn.x, mn.y)) * inv_z2;
+        let c = PI * self.roughness.sqrt_det();
+        let v = exp_neg_over(x, c * (mn.z * mn.z) * (mn.z * mn.z), || {
+            m::ln(c) + 4.0 * m::ln(mn.z)
+        });
         if v.is_finite() { v } else { 0.0 }
     }
 
     #[inline]
     fn lambda(&self, w: Vec3) -> F {
+        let w = rescale_direction(w);
         beckmann_lambda(self.roughness.quadratic(Vec2::new(w.x, w.y)), w.z.abs())
     }
 }

@@ -1,6 +1,6 @@
 //! GGX (Trowbridge-Reitz) in any roughness form (TK19 supplement section 1; Heitz 2014).
 
-use super::ndf::Ndf;
+use super::ndf::{Ndf, rescale_direction};
 use super::roughness::{AxisAligned, Isotropic, Roughness, RoughnessMatrix};
 use super::{F, Vec2, Vec3};
 use crate::error::RoughnessError;
@@ -90,6 +90,7 @@ impl<R: Roughness> Ndf for Ggx<R> {
 
     #[inline]
     fn lambda(&self, w: Vec3) -> F {
+        let w = rescale_direction(w);
         ggx_lambda(self.roughness.quadratic(Vec2::new(w.x, w.y)), w.z.abs())
     }
 }

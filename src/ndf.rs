@@ -20,9 +20,10 @@ pub trait Ndf {
     /// unit micronormal `m`. `0` for `m_z <= 0` (the `chi+` factor); finite for finite input.
     fn d(&self, m: Vec3) -> F;
 
-    /// Smith `Lambda(w)` for a unit direction `w`, using `|w_z|` (TK19 supplement section 1).
-    /// `+inf` at `w_z = 0` (the correct limit: a grazing direction is fully masked), `0` for a
-    /// zero vector.
+    /// Smith `Lambda(w)` for a direction `w`, using `|w_z|` (TK19 supplement section 1).
+    /// `Lambda` is homogeneous of degree 0, so `w` need not be unit: a vector far from unit
+    /// length (huge or tiny but finite) is rescaled first. `+inf` at `w_z = 0` (the correct
+    /// limit: a grazing direction is fully masked), `0` for a zero vector.
     fn lambda(&self, w: Vec3) -> F;
 
     /// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` (TK19 supplement section 1).
@@ -44,5 +45,24 @@ pub trait Ndf {
             return 0.0;
         }
         1.0 / (1.0 + self.lambda(i) + self.lambda(o))
+    }
+}
+
+/// `w` rescaled by its largest component when `|w|^2` is outside `[2^-40, 2^40]`, so that the
+/// quadratic forms of `Lambda` neither overflow nor underflow for huge or tiny finite input.
+/// Unit vectors pass through untouched (one compare).
+#[inline]
+pub(crate) fn rescale_direction(w: Vec3) -> Vec3 {
+    let l2 = w.length_squared();
+    const LO: F = 1.0 / (1u64 << 40) as F;
+    const HI: F = (1u64 << 40) as F;
+    if l2 > LO && l2 < HI {
+        return w;
+    }
+    let mx = w.abs().max_element();
+    if mx > 0.0 && mx.is_finite() {
+        w / mx
+    } else {
+        w
     }
 }

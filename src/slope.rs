@@ -62,7 +62,8 @@ pub fn sphere_from_projected(p: Vec2) -> Vec3 {
     if r2 < 1.0 {
         Vec3::new(p.x, p.y, m::sqrt(1.0 - r2))
     } else {
-        let q = p.normalize_or_zero();
+        // Rescale first so that a huge `p` does not overflow the length.
+        let q = (p / p.abs().max_element()).normalize_or_zero();
         Vec3::new(q.x, q.y, 0.0)
     }
 }

@@ -46,6 +46,8 @@
 //! assert!((total.value - 1.0).abs() < 1e-7);
 //! ```
 
+pub mod cases;
+pub mod fuzz;
 pub mod gaussian_reference;
 pub mod quadrature;
 pub mod strategies;

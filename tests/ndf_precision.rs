@@ -1,0 +1,365 @@
+//! `f32` against `f64` on identical inputs: every parameter and every vector is first rounded
+//! to `f32`, then evaluated by both precisions, so the difference is the `f32` evaluation
+//! error alone (not the input rounding, which the `f64` reference cannot see).
+//!
+//! Tolerances come from counting roundings (`eps = f32::EPSILON = 2^-23`, one rounding costs
+//! at most `eps / 2` relative). The measured worst cases use 30-50 % of each bound (printed
+//! as "worst / tolerance"), so the bounds are tight and still deterministic-safe:
+//! - GGX `p22`, `d`: about a dozen correctly rounded operations (quadratic form, square,
+//!   product, reciprocal, the stored `1 / alpha^2`) and no cancellation: `8 eps`.
+//! - GGX `lambda`: the same count through `q / (2 |w_z| (sqrt(w_z^2 + q) + |w_z|))`: `8 eps`.
+//! - Beckmann `p22`, `d`: `exp(-x)` turns an absolute error of `x` into a relative error of
+//!   the result; `x` carries about four roundings (`2 eps` relative), so `(8 + 4 x) eps`.
+//! - Beckmann `lambda`: computed in `f64` from `q` and `|w_z|` rounded in `f32`; `Lambda`
+//!   falls like `exp(-a^2)`, `a^2 = w_z^2 / q`, so the few-ulp error of `q` is amplified by
+//!   `a^2`: `(8 + 4 a^2) eps`.
+//! - Matrix form: the eigenvector of `A` is computed from the `f32` entries with an angle
+//!   error `delta` of about one `eps`, and the rotation of `s` into the eigenbasis has an
+//!   absolute error of `eps |s|` (cancellation is inherent in `c s_y - s s_x`). Together they
+//!   move the quadratic form by `2 delta |s| (|u1| / l1 + |u2| / l2)` with `u` the eigen
+//!   coordinates; with `delta = 2 eps` that is `4 r eps`, `r = |s| (|u1| / l1 + |u2| / l2)`,
+//!   added to the error of `x` above (GGX: times 2, from the square of `1 + q`). Near the
+//!   lobe `r` is the anisotropy ratio `sqrt(l1 / l2)`, so at a `1e3 : 1` rotated lobe `f32`
+//!   carries about `1e-3` relative error. This is the conditioning of `A`'s eigenbasis in
+//!   `f32`, not a defect; the entrywise `A^-1` used before had `cond(A) eps = ratio^2 eps`
+//!   (measured: up to 4.6e-2 relative for GGX and 3.5 for Beckmann `p22` on this sample).
+//!
+//! Results whose `f64` value is below `f32::MIN_POSITIVE` (subnormal or zero in `f32`) are
+//! compared absolutely: `|f32 - f64| <= f32::MIN_POSITIVE`. Run with `--nocapture` to see the
+//! measured worst cases, printed as multiples of `eps`.
+
+use filtered_ndf::f32 as s;
+use filtered_ndf::f64 as d;
+use filtered_ndf::testing::cases::{Form, Model, NdfCase};
+use glam::{DVec2, DVec3, Vec2, Vec3};
+use std::collections::BTreeMap;
+
+const EPS: f64 = f32::EPSILON as f64;
+
+/// SplitMix64: a seeded, dependency-free generator for the measured sample.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn uniform(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        (lo.ln() + (hi.ln() - lo.ln()) * self.uniform()).exp()
+    }
+    fn normal(&mut self) -> f64 {
+        let u = self.uniform().max(1e-300);
+        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * self.uniform()).cos()
+    }
+}
+
+fn random_case(rng: &mut Rng) -> NdfCase {
+    let model = if rng.next() & 1 == 0 {
+        Model::Ggx
+    } else {
+        Model::Beckmann
+    };
+    let a = rng.log_uniform(1e-4, 2.0);
+    let b = (a * rng.log_uniform(1e-3, 1e3)).clamp(1e-4, 2.0);
+    let form = match rng.next() % 3 {
+        0 => Form::Isotropic(a),
+        1 => Form::AxisAligned(a, b),
+        _ => Form::Rotated {
+            alpha_x: a,
+            alpha_y: b,
+            phi: std::f64::consts::PI * rng.uniform(),
+        },
+    };
+    NdfCase { model, form }.rounded_to_f32()
+}
+
+fn r3(v: DVec3) -> (Vec3, DVec3) {
+    let f = v.as_vec3();
+    (f, f.as_dvec3())
+}
+
+/// A slope drawn around the lobe: Gaussian in the eigen frame times a scale from the peak
+/// (`1e-3` widths) to the far tail (`1e3` widths).
+fn lobe_slope(rng: &mut Rng, form: Form) -> DVec2 {
+    let (ax, ay, phi) = form.axes();
+    let k = rng.log_uniform(1e-3, 1e3);
+    let u = DVec2::new(rng.normal() * ax, rng.normal() * ay) * k;
+    DVec2::from_angle(phi).rotate(u)
+}
+
+#[derive(Default, Clone, Copy)]
+struct Worst {
+    ulps: f64,
+    /// Largest error as a fraction of its tolerance (how tight the stated bound is).
+    used: f64,
+    n: usize,
+}
+
+type Key = (&'static str, &'static str, &'static str);
+
+fn form_name(f: Form) -> &'static str {
+    match f {
+        Form::Isotropic(_) => "isotropic",
+        Form::AxisAligned(..) => "axis-aligned",
+        Form::Rotated { .. } => "matrix",
+    }
+}
+
+fn model_name(m: Model) -> &'static str {
+    match m {
+        Model::Ggx => "GGX",
+        Model::Beckmann => "Beckmann",
+    }
+}
+
+/// Checks one pair and records it; `tol_eps` is the tolerance in units of `eps`.
+fn check(
+    table: &mut BTreeMap<Key, Worst>,
+    key: Key,
+    got: f32,
+    want: f64,
+    tol_eps: f64,
+    what: &dyn Fn() -> String,
+) {
+    assert!(got.is_finite() && got >= 0.0, "{}: f32 gave {got}", what());
+    assert!(
+        want.is_finite() && want >= 0.0,
+        "{}: f64 gave {want}",
+        what()
+    );
+    let w = table.entry(key).or_default();
+    w.n += 1;
+    if want < f64::from(f32::MIN_POSITIVE) {
+        assert!(
+            (f64::from(got) - want).abs() <= f64::from(f32::MIN_POSITIVE),
+            "{}: f32 {got} vs f64 {want} (below the f32 normal range)",
+            what()
+        );
+        return;
+    }
+    let ulps = ((f64::from(got) - want) / want).abs() / EPS;
+    w.ulps = w.ulps.max(ulps);
+    w.used = w.used.max(ulps / tol_eps);
+    assert!(
+        ulps <= tol_eps,
+        "{}: f32 {got} vs f64 {want}: {ulps:.1} eps > {tol_eps:.1} eps",
+        what()
+    );
+}
+
+fn exponent_of(case: &NdfCase, p22_64: f64) -> f64 {
+    let (ax, ay, _) = case.form.axes();
+    (-(p22_64 * std::f64::consts::PI * ax * ay).ln()).max(0.0)
+}
+
+/// `r = |v| (|u1| / l1 + |u2| / l2)` of the matrix form for a slope-plane vector `v` (0 for
+/// the isotropic and axis-aligned forms, which do not rotate).
+fn rot_amp(case: &NdfCase, v: DVec2) -> f64 {
+    let Form::Rotated { .. } = case.form else {
+        return 0.0;
+    };
+    let (ax, ay, phi) = case.form.axes();
+    let u = DVec2::from_angle(-phi).rotate(v);
+    v.length() * (u.x.abs() / (ax * ax) + u.y.abs() / (ay * ay))
+}
+
+/// The `lambda` tolerance in `eps`: `q = w^T A w` carries a few roundings plus, for the
+/// matrix form, the eigenbasis error `8 |w| (l1 |u1| + l2 |u2|) / q` relative; GGX passes
+/// the relative error of `q` through about unchanged, Beckmann amplifies it by `a^2`.
+fn lambda_tol(case: &NdfCase, w: DVec3) -> f64 {
+    let (ax, ay, phi) = case.form.axes();
+    let u = DVec2::from_angle(-phi).rotate(w.truncate());
+    let q = u.x * u.x * ax * ax + u.y * u.y * ay * ay;
+    let amp = match case.form {
+        Form::Rotated { .. } => {
+            4.0 * w.truncate().length() * (u.x.abs() * ax * ax + u.y.abs() * ay * ay) / q
+        }
+        _ => 0.0,
+    };
+    match case.model {
+        Model::Ggx => 8.0 + amp,
+        Model::Beckmann => 8.0 + (4.0 + amp) * (w.z * w.z / q).max(1.0),
+    }
+}
+
+fn run_case(table: &mut BTreeMap<Key, Worst>, rng: &mut Rng, case: NdfCase, inputs: usize) {
+    let f = case.build_f32().expect("f32 build");
+    let g = case.build_f64().expect("f64 build");
+    let (mn, fname) = (model_name(case.model), form_name(case.form));
+    let beck = case.model == Model::Beckmann;
+    for i in 0..inputs {
+        // Slope domain.
+        let sl = lobe_slope(rng, case.form);
+        let sf = sl.as_vec2();
+        let s64 = sf.as_dvec2();
+        let want = g.p22(s64);
+        let amp = 4.0 * rot_amp(&case, s64);
+        let tol = if beck {
+            8.0 + 4.0 * exponent_of(&case, want) + amp
+        } else {
+            8.0 + 2.0 * amp
+        };
+        check(table, (mn, "p22", fname), f.p22(sf), want, tol, &|| {
+            format!("{case:?} p22({sf:?})")
+        });
+        // Micronormal: the same slope on the sphere, or every fourth one grazing.
+        let mv = if i % 4 == 3 {
+            let t = (89.0 + 0.999 * rng.uniform()).to_radians();
+            let p = std::f64::consts::TAU * rng.uniform();
+            DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
+        } else {
+            DVec3::new(-sl.x, -sl.y, 1.0).normalize()
+        };
+        let (mf, m64) = r3(mv);
+        let want = g.d(m64);
+        let amp = 4.0 * rot_amp(&case, m64.truncate() / m64.z);
+        let tol = if beck {
+            let p22 = want * m64.z.powi(4);
+            8.0 + 4.0 * exponent_of(&case, p22) + amp
+        } else {
+            8.0 + 2.0 * amp
+        };
+        check(table, (mn, "d", fname), f.d(mf), want, tol, &|| {
+            format!("{case:?} d({mf:?})")
+        });
+        // Lambda: directions up to 89.9 degrees, half of them within 60 degrees.
+        let tmax: f64 = if i % 2 == 0 { 60.0 } else { 89.9 };
+        let t = (tmax * rng.uniform()).to_radians();
+        let p = std::f64::consts::TAU * rng.uniform();
+        let (wf, w64) = r3(DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos()));
+        let want = g.lambda(w64);
+        let tol = lambda_tol(&case, w64);
+        check(
+            table,
+            (mn, "lambda", fname),
+            f.lambda(wf),
+            want,
+            tol,
+            &|| format!("{case:?} lambda({wf:?})"),
+        );
+    }
+}
+
+#[test]
+fn f32_matches_f64_on_a_seeded_sample_and_reports_the_worst_case() {
+    let mut rng = Rng(0x5EED_F00D);
+    let mut table = BTreeMap::new();
+    for _ in 0..3000 {
+        let case = random_case(&mut rng);
+        run_case(&mut table, &mut rng, case, 16);
+    }
+    println!("worst f32 relative error vs f64 on identical inputs, in eps = 2^-23:");
+    println!(
+        "| NDF | function | form | worst (eps) | worst (relative) | worst / tolerance | samples |"
+    );
+    println!("|---|---|---|---|---|---|---|");
+    for ((m, func, form), w) in &table {
+        println!(
+            "| {m} | {func} | {form} | {:.2} | {:.2e} | {:.3} | {} |",
+            w.ulps,
+            w.ulps * EPS,
+            w.used,
+            w.n
+        );
+    }
+}
+
+#[test]
+fn extremes_alpha_1e4_peak_tail_and_grazing() {
+    let mut table = BTreeMap::new();
+    let mut rng = Rng(7);
+    for model in [Model::Ggx, Model::Beckmann] {
+        for form in [
+            Form::Isotropic(1e-4),
+            Form::AxisAligned(1e-4, 1e-1),
+            Form::Rotated {
+                alpha_x: 1e-4,
+                alpha_y: 1e-1,
+                phi: 0.3,
+            },
+            Form::Isotropic(2.0),
+        ] {
+            let case = NdfCase { model, form }.rounded_to_f32();
+            let f = case.build_f32().unwrap();
+            let g = case.build_f64().unwrap();
+            // The peak: exactly 1 / (pi sqrt(det A)) in both precisions' rounding.
+            let want = g.d(DVec3::Z);
+            check(
+                &mut table,
+                ("", "d", "peak"),
+                f.d(Vec3::Z),
+                want,
+                8.0,
+                &|| format!("{case:?} peak"),
+            );
+            // Far in the tail and grazing: slopes 1e-6 .. 1e6 along several azimuths and
+            // polar angles up to 89.999 degrees.
+            for k in -6..=6 {
+                for az in 0..8 {
+                    let sl = DVec2::from_angle(f64::from(az) * 0.7) * 10f64.powi(k);
+                    let (mf, m64) = r3(DVec3::new(-sl.x, -sl.y, 1.0).normalize());
+                    let want = g.d(m64);
+                    let amp = 4.0 * rot_amp(&case, m64.truncate() / m64.z);
+                    let tol = if model == Model::Beckmann {
+                        8.0 + 4.0 * exponent_of(&case, want * m64.z.powi(4)) + amp
+                    } else {
+                        8.0 + 2.0 * amp
+                    };
+                    check(&mut table, ("", "d", "tail"), f.d(mf), want, tol, &|| {
+                        format!("{case:?} d({mf:?})")
+                    });
+                    let sf = sl.as_vec2();
+                    let want = g.p22(sf.as_dvec2());
+                    let amp = 4.0 * rot_amp(&case, sf.as_dvec2());
+                    let tol = if model == Model::Beckmann {
+                        8.0 + 4.0 * exponent_of(&case, want) + amp
+                    } else {
+                        8.0 + 2.0 * amp
+                    };
+                    check(
+                        &mut table,
+                        ("", "p22", "tail"),
+                        f.p22(sf),
+                        want,
+                        tol,
+                        &|| format!("{case:?} p22({sf:?})"),
+                    );
+                }
+            }
+            for deg in [89.9, 89.99, 89.999] {
+                let t = f64::to_radians(deg);
+                let p = std::f64::consts::TAU * rng.uniform();
+                let (wf, w64) = r3(DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos()));
+                let want = g.lambda(w64);
+                // Grazing: GGX Lambda ~ sqrt(q) / (2 w_z), a few roundings; Beckmann as in
+                // the sample test, `(32 + 8 a^2) eps` (its value may underflow f32 when
+                // `a = w_z / sqrt(q)` is large: then the absolute check applies).
+                let tol = lambda_tol(&case, w64);
+                check(
+                    &mut table,
+                    ("", "lambda", "grazing"),
+                    f.lambda(wf),
+                    want,
+                    tol,
+                    &|| format!("{case:?} lambda at {deg} deg"),
+                );
+            }
+        }
+    }
+    println!("extremes (alpha = 1e-4 .. 2, slopes 1e-6 .. 1e6, 89.9 .. 89.999 degrees):");
+    for ((_, func, region), w) in &table {
+        println!(
+            "  {func} {region}: worst {:.2} eps ({:.2e}), {:.3} of tolerance, {} samples",
+            w.ulps,
+            w.ulps * EPS,
+            w.used,
+            w.n
+        );
+    }
+    let _ = (s::ALPHA_MIN, d::ALPHA_MIN, Vec2::ZERO);
+}
