@@ -5,6 +5,7 @@
 #[allow(dead_code)]
 mod eval;
 
+use filtered_ndf::testing::quadrature::{Tolerance, integrate_2d};
 use serde_json::Value;
 use std::f64::consts::PI;
 
@@ -32,7 +33,7 @@ fn err(v: &Value) -> &str {
 #[test]
 fn session_replies_line_by_line_with_closed_form_values() {
     let r = run_session();
-    assert_eq!(r.len(), 23, "one reply per input line");
+    assert_eq!(r.len(), 29, "one reply per input line");
     // GGX peak 1 / (pi alpha^2); f64 to 1e-15 relative, f32 to one f32 rounding (6e-8).
     let peak = 1.0 / (PI * 0.01);
     assert!((ok(&r[0]) - peak).abs() < 1e-15 * peak);
@@ -90,6 +91,24 @@ fn session_replies_line_by_line_with_closed_form_values() {
         }
     }
     assert!(err(&r[22]).contains("footprint"));
+    // Zero footprint: the unfiltered GGX peak 1 / (pi ax ay).
+    let peak = 1.0 / (PI * 0.1 * 0.2);
+    assert!((ok(&r[23]) - peak).abs() < 1e-14 * peak);
+    // An off-centre rectangle in f32 against f64 adaptive quadrature of the GGX density:
+    // the crate's f32 bound is 1e-5 relative; quadrature is good to 1e-10.
+    let p22 = |x: f64, y: f64| 1.0 / (PI * 0.01 * (1.0 + (x * x + y * y) / 0.01).powi(2));
+    let q = integrate_2d(p22, (-0.05, 0.15), (-0.05, 0.01), Tolerance::relative(1e-11));
+    let mean = q.value / (0.2 * 0.06);
+    assert!((ok(&r[24]) - mean).abs() < 1e-5 * mean, "{} vs {mean}", r[24]);
+    assert!(err(&r[25]).contains("axis-aligned"));
+    // KHPL16 eq. 19 solved for the full side d = 2H:
+    // alpha'^2 = d sqrt(4 alpha^2 + d^2) / (4 atan(d / sqrt(4 alpha^2 + d^2))).
+    let (a, d) = (0.1f64, 0.2f64);
+    let w = (4.0 * a * a + d * d).sqrt();
+    let exact = (d * w / (4.0 * (d / w).atan())).sqrt();
+    assert!((ok(&r[26]) - exact).abs() < 1e-14, "{} vs {exact}", r[26]);
+    assert!((ok(&r[27]) - (0.02f64).sqrt()).abs() < 1e-15);
+    assert!(err(&r[28]).contains("variant"));
 }
 
 #[test]
@@ -102,4 +121,52 @@ fn every_listed_op_is_dispatched() {
             op.name
         );
     }
+}
+
+#[test]
+fn never_panics_on_mutated_queries() {
+    // Every argument of every valid query in the session replaced by bad values, or removed:
+    // the reply is always one JSON object with exactly one of `ok` / `error`, and an `ok`
+    // number is never NaN (JSON cannot carry one anyway).
+    let bad = [
+        serde_json::json!(null),
+        serde_json::json!("x"),
+        serde_json::json!(1e308),
+        serde_json::json!(-1e308),
+        serde_json::json!(0.0),
+        serde_json::json!(-0.0),
+        serde_json::json!(1e-308),
+        serde_json::json!([]),
+        serde_json::json!([1e308, -1e308, 1e308]),
+        serde_json::json!([[1e308, 0], [0, 1e308]]),
+        serde_json::json!({}),
+    ];
+    let mut count = 0;
+    for line in include_str!("data/oracle_session.jsonl").lines() {
+        let Ok(Value::Object(q)) = serde_json::from_str::<Value>(line) else {
+            continue;
+        };
+        for key in q.keys().filter(|k| *k != "op") {
+            let mut variants: Vec<Value> = bad
+                .iter()
+                .map(|b| {
+                    let mut m = q.clone();
+                    m.insert(key.clone(), b.clone());
+                    Value::Object(m)
+                })
+                .collect();
+            let mut removed = q.clone();
+            removed.remove(key);
+            variants.push(Value::Object(removed));
+            for v in variants {
+                let reply: Value = serde_json::from_str(&eval::eval_line(&v.to_string()))
+                    .expect("reply is JSON");
+                let obj = reply.as_object().expect("reply is an object");
+                assert_eq!(obj.len(), 1, "{v} -> {reply}");
+                assert!(obj.contains_key("ok") || obj.contains_key("error"), "{reply}");
+                count += 1;
+            }
+        }
+    }
+    assert!(count > 500, "mutated {count} queries");
 }

@@ -46,6 +46,16 @@ pub const OPS: &[OpInfo] = &[
         args: "roughness, footprint ([[dhu_x, dhu_y], [dhv_x, dhv_y]], slope change per pixel), optional sigma (pixels, default 0.5)",
         returns: "filtered roughness matrix [[a11, a12], [a12, a22]] = A + 2 Sigma, Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T); KHPL16 eq. 13-15, TK19 sec. 2.2 (exact for Beckmann)",
     },
+    OpInfo {
+        name: "ggx_rect",
+        args: "roughness (number or [ax, ay]; axis-aligned), center ([sx, sy], slope), half_extent ([hx, hy], slope)",
+        returns: "average of the GGX slope density over center +/- half_extent, per unit slope area; KHPL16 eq. 16 (Appendix A corrected), exact",
+    },
+    OpInfo {
+        name: "ggx_proxy",
+        args: "alpha, half_extent (slope, one axis), variant (\"exact\"|\"simple\")",
+        returns: "effective GGX alpha whose peak 1/(pi alpha'^2) matches the rectangle-filtered peak (KHPL16 eq. 19-20, eq. 20 corrected: exact), or sqrt(alpha^2 + H^2) (simple)",
+    },
 ];
 
 /// `{"ok": ...}` or `{"error": ...}` for one input line. Never panics.
@@ -343,6 +353,45 @@ fn eval(v: &Value) -> Result<Value, String> {
                         p::filter::gaussian(rr, fp.covariance(c(sigma))).entries();
                     matrix_json(a11, a12, a22)
                 })
+            })
+        }
+        "ggx_rect" => {
+            let r = roughness_arg(v)?;
+            let (cv, hv) = (array::<2>(v, "center")?, array::<2>(v, "half_extent")?);
+            let (ax, ay) = match r {
+                RoughnessArg::Iso(a) => (a, a),
+                RoughnessArg::Aniso(ax, ay) => (ax, ay),
+                RoughnessArg::Matrix(_) => {
+                    return Err(
+                        "ggx_rect needs an axis-aligned roughness (number or [ax, ay])".into(),
+                    );
+                }
+            };
+            in_precision!(prec, p, {
+                let c = |x: f64| <p::F as Real>::from_f64(x);
+                let r = p::AxisAligned::new(c(ax), c(ay)).map_err(|e| e.to_string())?;
+                out(p::ggx_rect::p22_rect(
+                    r,
+                    p::Vec2::new(c(cv[0]), c(cv[1])),
+                    p::Vec2::new(c(hv[0]), c(hv[1])),
+                ))
+            })
+        }
+        "ggx_proxy" => {
+            let (alpha, h) = (number(v, "alpha")?, number(v, "half_extent")?);
+            let variant = v.get("variant").and_then(Value::as_str).unwrap_or("");
+            in_precision!(prec, p, {
+                let c = |x: f64| <p::F as Real>::from_f64(x);
+                let a = p::Isotropic::new(c(alpha))
+                    .map_err(|e| e.to_string())?
+                    .alpha();
+                match variant {
+                    "exact" => out(p::ggx_proxy::effective_alpha(a, c(h))),
+                    "simple" => out(p::ggx_proxy::effective_alpha_simple(a, c(h))),
+                    _ => Err(format!(
+                        "variant must be \"exact\" or \"simple\", got \"{variant}\""
+                    )),
+                }
             })
         }
         other => Err(format!(
