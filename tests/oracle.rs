@@ -97,9 +97,18 @@ fn session_replies_line_by_line_with_closed_form_values() {
     // An off-centre rectangle in f32 against f64 adaptive quadrature of the GGX density:
     // the crate's f32 bound is 1e-5 relative; quadrature is good to 1e-10.
     let p22 = |x: f64, y: f64| 1.0 / (PI * 0.01 * (1.0 + (x * x + y * y) / 0.01).powi(2));
-    let q = integrate_2d(p22, (-0.05, 0.15), (-0.05, 0.01), Tolerance::relative(1e-11));
+    let q = integrate_2d(
+        p22,
+        (-0.05, 0.15),
+        (-0.05, 0.01),
+        Tolerance::relative(1e-11),
+    );
     let mean = q.value / (0.2 * 0.06);
-    assert!((ok(&r[24]) - mean).abs() < 1e-5 * mean, "{} vs {mean}", r[24]);
+    assert!(
+        (ok(&r[24]) - mean).abs() < 1e-5 * mean,
+        "{} vs {mean}",
+        r[24]
+    );
     assert!(err(&r[25]).contains("axis-aligned"));
     // KHPL16 eq. 19 solved for the full side d = 2H:
     // alpha'^2 = d sqrt(4 alpha^2 + d^2) / (4 atan(d / sqrt(4 alpha^2 + d^2))).
@@ -159,11 +168,14 @@ fn never_panics_on_mutated_queries() {
             removed.remove(key);
             variants.push(Value::Object(removed));
             for v in variants {
-                let reply: Value = serde_json::from_str(&eval::eval_line(&v.to_string()))
-                    .expect("reply is JSON");
+                let reply: Value =
+                    serde_json::from_str(&eval::eval_line(&v.to_string())).expect("reply is JSON");
                 let obj = reply.as_object().expect("reply is an object");
                 assert_eq!(obj.len(), 1, "{v} -> {reply}");
-                assert!(obj.contains_key("ok") || obj.contains_key("error"), "{reply}");
+                assert!(
+                    obj.contains_key("ok") || obj.contains_key("error"),
+                    "{reply}"
+                );
                 count += 1;
             }
         }

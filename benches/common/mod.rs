@@ -54,11 +54,13 @@ fn unit_from_slope(s: [f64; 2]) -> [f64; 3] {
     [-s[0] / n, -s[1] / n, 1.0 / n]
 }
 
-/// `n` realistic cases (seeded): glossy materials (alpha log-uniform in `[0.005, 0.5]`,
-/// anisotropy ratio up to 4 in one case in four), half vectors near the lobe (slope
-/// Gaussian with twice the roughness plus the footprint scale; one case in eight far in the
-/// tail, one in eight grazing up to 89 degrees), footprints with extents log-uniform in
-/// `[1e-4, 0.3]` slope per pixel and random orientation and shear.
+/// `n` realistic cases (seeded) of the situations NDF filtering exists for: glossy materials
+/// (alpha log-uniform in `[0.005, 0.5]`, anisotropy ratio up to 4 in one case in four),
+/// pixel footprints from a twentieth of the lobe width to twenty times it (extent
+/// `alpha * [0.05, 20]` log-uniform, at most 1 slope per pixel, random orientation and
+/// shear), half vectors near the lobe (slope Gaussian with twice the roughness plus the
+/// footprint scale; one case in eight far in the tail, one in eight grazing, 60 to 89
+/// degrees).
 pub fn realistic_cases(n: usize, seed: u64) -> Vec<Case> {
     let mut rng = Rng(seed);
     (0..n)
@@ -70,7 +72,7 @@ pub fn realistic_cases(n: usize, seed: u64) -> Vec<Case> {
                 1.0
             };
             let alpha = [a, (a * ratio).min(1.0)];
-            let ext = rng.log_uniform(1e-4, 0.3);
+            let ext = (a * rng.log_uniform(0.05, 20.0)).min(1.0);
             let (p1, p2) = (
                 std::f64::consts::TAU * rng.uniform(),
                 std::f64::consts::TAU * rng.uniform(),
