@@ -4,6 +4,7 @@
 //!
 //! Run: `cargo run --release --example highlights -- [--width 256] [--height 160]
 //! [--spp 512] [--frames 16] [--out target/highlights] [--methods a,b,..|all]
+//! [--presets on|off]
 //! [--footprint quad|rays] [--threads 2] [--seed 1]`.
 
 mod camera;
@@ -37,13 +38,16 @@ pub struct Options {
     pub threads: usize,
     pub seed: u64,
     pub exposure: f32,
+    /// Also shade the engine presets (table only).
+    pub presets: bool,
 }
 
 fn usage() -> ! {
     let slugs: Vec<&str> = Method::ALL.iter().map(|m| m.slug()).collect();
     eprintln!(
         "usage: highlights [--width N] [--height N] [--spp N] [--frames N] [--out DIR]\n\
-         \x20                 [--methods all|{}] [--footprint quad|rays] [--threads N] [--seed N]",
+         \x20                 [--methods all|{}] [--footprint quad|rays] [--threads N] [--seed N]\n\
+         \x20                 [--presets on|off]",
         slugs.join(",")
     );
     std::process::exit(2)
@@ -61,6 +65,7 @@ fn parse_args() -> Options {
         threads: 2,
         seed: 1,
         exposure: 1.0,
+        presets: true,
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -73,6 +78,7 @@ fn parse_args() -> Options {
             "--frames" => o.frames = num(&value),
             "--threads" => o.threads = num(&value).max(1),
             "--seed" => o.seed = num(&value) as u64,
+            "--presets" => o.presets = value != "off",
             "--out" => o.out = PathBuf::from(value),
             "--footprint" => {
                 o.route = match value.as_str() {
@@ -180,6 +186,27 @@ fn main() -> std::io::Result<()> {
         save(&o, method.slug(), &img)?;
         tiles.push((method.label().to_string(), img.to_rgb8(o.exposure)));
     }
+    // Engine conventions (issue: which one over- or under-filters on this scene): the same
+    // still frame, table only; mean luminance / reference < 1 means over-filtering.
+    let mut preset_table = String::new();
+    writeln!(preset_table, "| engine preset (GGX, deferred) | RMSE (HDR) | RMSE (display) | mean luminance / reference | peak / reference peak |").unwrap();
+    writeln!(preset_table, "|---|---:|---:|---:|---:|").unwrap();
+    if o.presets {
+        for method in Method::presets() {
+            let img = render::shade(&scene, &gb, &derivs, method, o.threads);
+            let full = reference.full(method.family());
+            writeln!(
+                preset_table,
+                "| {} | {:.4} | {:.4} | {:.3} | {:.3} |",
+                method.label(),
+                img.rmse(full),
+                img.rmse_display(full, o.exposure),
+                mean_luminance(&img) / mean_luminance(full),
+                peak_luminance(&img) / peak_luminance(full),
+            )
+            .unwrap();
+        }
+    }
     let zoom = if o.width <= 320 { 2 } else { 1 };
     let sheet_path = o.out.join("contact_sheet.png");
     contact_sheet(&tiles, 3, zoom).save(&sheet_path)?;
@@ -189,6 +216,10 @@ fn main() -> std::io::Result<()> {
         o.width, o.height
     );
     print!("{table}");
+    if o.presets {
+        println!("\n## Engine presets on the same frame\n");
+        print!("{preset_table}");
+    }
     println!(
         "\nReference: {} spp per pixel ({:.1} s); doubling {} -> {} spp changes each RMSE by at most {:.2}%{}.",
         o.spp,
@@ -216,6 +247,9 @@ fn main() -> std::io::Result<()> {
         o.width, o.height
     )
     .unwrap();
+    if o.presets {
+        writeln!(md, "## Engine presets on the same frame\n\n{preset_table}").unwrap();
+    }
     writeln!(md, "Reference: {} spp; doubling {} -> {} spp changes each RMSE by at most {:.2}%.\n{temporal_md}", o.spp, o.spp / 2, o.spp, 100.0 * worst_change).unwrap();
     std::fs::write(o.out.join("results.md"), md)?;
     println!(
@@ -229,6 +263,13 @@ fn main() -> std::io::Result<()> {
 fn save(o: &Options, name: &str, img: &Image) -> std::io::Result<()> {
     img.to_rgb8(o.exposure)
         .save(&o.out.join(format!("{name}.png")))
+}
+
+fn peak_luminance(img: &Image) -> f64 {
+    img.data
+        .iter()
+        .map(|&c| luminance(c) as f64)
+        .fold(0.0, f64::max)
 }
 
 fn mean_luminance(img: &Image) -> f64 {

@@ -9,7 +9,7 @@
 
 use filtered_ndf::f32::{
     AxisAligned, Beckmann, ClampRules, Endpoint, ExtentFloor, Footprint, Ggx, Isotropic, Ndf,
-    ShadingFrame, filter, geometry, ggx_proxy, ggx_rect,
+    ShadingFrame, filter, geometry, ggx_proxy, ggx_rect, presets,
 };
 use glam::Vec3;
 
@@ -72,6 +72,9 @@ pub enum Method {
     Tk21Projected,
     /// TK19 isotropic deferred roughness from world-space normal differences.
     Tk19Isotropic(IsoVariant),
+    /// An engine convention from `presets::ALL` (index), applied to the G-buffer normal
+    /// differences, on GGX.
+    Preset(usize),
 }
 
 impl Method {
@@ -88,6 +91,11 @@ impl Method {
         Method::Tk19Isotropic(IsoVariant::Trace),
         Method::Tk19Isotropic(IsoVariant::Average),
     ];
+
+    /// Every engine preset of the crate (`presets::ALL`), as methods.
+    pub fn presets() -> Vec<Method> {
+        (0..presets::ALL.len()).map(Method::Preset).collect()
+    }
 
     /// The NDF this method filters (its reference is rendered with the same family).
     pub fn family(self) -> Family {
@@ -111,6 +119,7 @@ impl Method {
             Method::Tk19Isotropic(IsoVariant::Max) => "tk19-iso-max",
             Method::Tk19Isotropic(IsoVariant::Trace) => "tk19-iso-trace",
             Method::Tk19Isotropic(IsoVariant::Average) => "tk19-iso-average",
+            Method::Preset(i) => PRESET_SLUGS[i.min(PRESET_SLUGS.len() - 1)],
         }
     }
 
@@ -127,14 +136,34 @@ impl Method {
             Method::Tk19Isotropic(IsoVariant::Max) => "TK19 iso max",
             Method::Tk19Isotropic(IsoVariant::Trace) => "TK19 iso trace",
             Method::Tk19Isotropic(IsoVariant::Average) => "TK19 iso average",
+            Method::Preset(i) => presets::ALL[i.min(presets::ALL.len() - 1)].0,
         }
     }
 
     /// Parses a slug (see [`Method::slug`]).
     pub fn parse(s: &str) -> Option<Method> {
-        Method::ALL.into_iter().find(|m| m.slug() == s)
+        Method::ALL
+            .into_iter()
+            .chain(Method::presets())
+            .find(|m| m.slug() == s)
     }
 }
+
+/// File names of the presets, in the order of `presets::ALL`.
+const PRESET_SLUGS: [&str; 12] = [
+    "preset-tk19-max",
+    "preset-tk19-trace",
+    "preset-tk19-average",
+    "preset-tk21",
+    "preset-filament",
+    "preset-unity-hdrp",
+    "preset-unity-hdrp-projected",
+    "preset-godot",
+    "preset-o3de",
+    "preset-unreal",
+    "preset-babylon",
+    "preset-threejs",
+];
 
 /// Everything a method may use at one shading point. Vectors in the shading point's tangent
 /// frame (`z` = shading normal) unless marked world.
@@ -165,6 +194,11 @@ pub fn filtered_d(method: Method, sp: &ShadingPoint) -> f32 {
         Method::Tk19Projected => tk19_projected(sp),
         Method::Tk21Projected => tk21_projected(sp),
         Method::Tk19Isotropic(variant) => tk19_isotropic(sp, variant),
+        Method::Preset(i) => {
+            let conv = presets::ALL[i.min(presets::ALL.len() - 1)].1;
+            let alpha = conv.apply(sp.alpha, sp.dn_dx, sp.dn_dy);
+            Ggx::new(Isotropic::new_clamped(alpha)).d(sp.h)
+        }
     }
 }
 
