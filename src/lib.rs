@@ -20,6 +20,27 @@
 //! assert_eq!(ggx.p22(Vec2::ZERO), peak);
 //! ```
 //!
+//! Filtering one shading point, three ways (TK19 matrix, KHPL16 exact box, deferred):
+//!
+//! ```
+//! use filtered_ndf::f32::{ClampRules, Footprint, Ggx, Isotropic, Ndf, ggx_rect, presets};
+//! use glam::{Vec2, Vec3};
+//!
+//! let alpha = Isotropic::new(0.01).unwrap();
+//! let h = Vec3::new(0.001, 0.0, 1.0).normalize(); // near the peak of the lobe
+//! // ddx/ddy of the half vector's slope (KHPL16 section 5.1).
+//! let fp = Footprint::from_slope_derivatives(Vec2::new(0.03, 0.0), Vec2::new(0.0, 0.02));
+//! let d_matrix = Ggx::new(ClampRules::default().filter_gaussian(alpha, fp, 0.5)).d(h);
+//! let d_box = ggx_rect::d_rect(alpha.into(), h, fp.bounding_rect().half_extent);
+//! // Deferred: one isotropic roughness from G-buffer normal differences (TK19 eq. 4).
+//! let a = presets::TK19_TRACE.apply(0.01, Vec3::new(0.03, 0.0, 0.0), Vec3::new(0.0, 0.02, 0.0));
+//! let d_iso = Ggx::isotropic(a).unwrap().d(h);
+//! let unfiltered = Ggx::new(alpha).d(h);
+//! for d in [d_matrix, d_box, d_iso] {
+//!     assert!(d.is_finite() && d < unfiltered); // the sub-pixel peak is spread out
+//! }
+//! ```
+//!
 //! ## Conventions
 //! Tangent frame with `z` along the shading normal; slope `s = -h_xy / h_z`; `p22` is a
 //! density per unit slope area, `d` per steradian with `integral d(m) m_z dm = 1`.
