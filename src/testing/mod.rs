@@ -50,4 +50,5 @@ pub mod cases;
 pub mod fuzz;
 pub mod gaussian_reference;
 pub mod quadrature;
+pub mod rng;
 pub mod strategies;

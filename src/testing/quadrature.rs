@@ -201,29 +201,15 @@ pub fn integrate_plane<Fxy: FnMut(f64, f64) -> f64>(
     scale: (f64, f64),
     tol: Tolerance,
 ) -> Estimate {
-    let inner_tol = Tolerance {
-        rel: tol.rel * 0.1,
-        abs: tol.abs * 0.1,
-        ..tol
-    };
-    adaptive(
-        |ty| {
-            let (yy, jy) = line_map(ty, center.1, scale.1);
-            let e = adaptive(
-                |tx| {
-                    let (xx, jx) = line_map(tx, center.0, scale.0);
-                    let v = f(xx, yy) * jx;
-                    (if v.is_finite() { v } else { 0.0 }, 0.0)
-                },
-                -1.0,
-                1.0,
-                inner_tol,
-            );
-            let (v, err) = (e.value * jy, e.error * jy);
-            if v.is_finite() { (v, err) } else { (0.0, 0.0) }
+    integrate_2d(
+        |tx, ty| {
+            let (x, jx) = line_map(tx, center.0, scale.0);
+            let (y, jy) = line_map(ty, center.1, scale.1);
+            let v = f(x, y) * jx * jy;
+            if v.is_finite() { v } else { 0.0 }
         },
-        -1.0,
-        1.0,
+        (-1.0, 1.0),
+        (-1.0, 1.0),
         tol,
     )
 }
