@@ -370,6 +370,19 @@ fn svg(rows: &[Row], path: &std::path::Path) -> std::io::Result<()> {
     std::fs::write(path, s)
 }
 
+/// The CPU model from `/proc/cpuinfo` where there is one, else the architecture.
+fn cpu_name() -> String {
+    std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| std::env::consts::ARCH.to_string())
+}
+
 fn main() -> std::io::Result<()> {
     let mut n = 400;
     let mut out = std::path::PathBuf::from("target/tradeoff");
@@ -428,13 +441,13 @@ fn main() -> std::io::Result<()> {
         .unwrap_or(1.0);
     let mut md = String::new();
     md += &format!(
-        "Measured on {} cases ({} realistic + extremes), f32 kernels vs f64 quadrature of the exact Gaussian-filtered NDF; machine: {} cores, {}.\n\n",
+        "Measured on {} cases ({} realistic + extremes), f32 kernels vs f64 quadrature of the \
+         exact Gaussian-filtered NDF; machine: {}, {} cores. Costs are single-threaded wall \
+         time in one run: compare ratios.\n\n",
         cases.len(),
         n,
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1),
-        std::env::consts::ARCH
+        cpu_name(),
+        std::thread::available_parallelism().map_or(1, |n| n.get()),
     );
     md += "| kernel | median rel. err | p99 rel. err | max rel. err | max err / filtered peak | ns / eval | cost vs unfiltered | supersampling N for same median |\n";
     md += "|---|---:|---:|---:|---:|---:|---:|---:|\n";
