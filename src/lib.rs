@@ -56,6 +56,7 @@
 
 pub mod error;
 pub mod math;
+pub mod tables;
 
 pub use error::RoughnessError;
 
