@@ -286,83 +286,133 @@ fn measure(name: String, family: &'static str, cases: &[Case], f: &dyn Fn(&Case)
     }
 }
 
-fn svg(rows: &[Row], path: &std::path::Path) -> std::io::Result<()> {
-    let (w, h, m) = (900.0, 620.0, 70.0);
-    let pts: Vec<(f64, f64)> = rows
+/// One log-log scatter panel (cost on x, an error on y) at `(ox, oy)`, points numbered.
+fn panel(s: &mut String, all: &[Row], err: &dyn Fn(&Row) -> Option<f64>, title: &str, ox: f64) {
+    let (w, h, m, oy) = (520.0, 440.0, 60.0, 40.0);
+    // Keep the legend numbering of `all`; skip rows without this error.
+    let shown: Vec<(usize, &Row, f64)> = all
         .iter()
-        .map(|r| (r.ns.max(0.1), r.median.max(1e-9)))
+        .enumerate()
+        .filter_map(|(i, r)| err(r).map(|e| (i, r, e.clamp(1e-9, 1e9))))
         .collect();
-    let (x0, x1) = (
-        0.5f64.log10(),
-        pts.iter().map(|p| p.0).fold(1.0, f64::max).log10() + 0.2,
+    let rows: Vec<&Row> = shown.iter().map(|t| t.1).collect();
+    let pts: Vec<(f64, f64)> = shown.iter().map(|t| (t.1.ns.max(0.5), t.2)).collect();
+    let lx = |v: f64| v.log10();
+    let x0 = pts
+        .iter()
+        .map(|p| lx(p.0))
+        .fold(f64::INFINITY, f64::min)
+        .floor();
+    let x1 = pts
+        .iter()
+        .map(|p| lx(p.0))
+        .fold(f64::NEG_INFINITY, f64::max)
+        .ceil();
+    let y0 = pts
+        .iter()
+        .map(|p| lx(p.1))
+        .fold(f64::INFINITY, f64::min)
+        .floor();
+    let y1 = pts
+        .iter()
+        .map(|p| lx(p.1))
+        .fold(f64::NEG_INFINITY, f64::max)
+        .ceil();
+    let sx = |x: f64| ox + m + (lx(x) - x0) / (x1 - x0).max(1.0) * (w - 1.5 * m);
+    let sy = |y: f64| oy + h - m - (lx(y) - y0) / (y1 - y0).max(1.0) * (h - 1.5 * m);
+    *s += &format!(
+        "<text x=\"{}\" y=\"{}\" font-size=\"13\" text-anchor=\"middle\">{title}</text>\n",
+        ox + w / 2.0,
+        oy + 12.0
     );
-    let (y0, y1) = (
-        -9.0,
-        pts.iter().map(|p| p.1).fold(1e-3, f64::max).log10() + 0.5,
-    );
-    let sx = |x: f64| m + (x.log10() - x0) / (x1 - x0) * (w - 2.0 * m);
-    let sy = |y: f64| h - m - (y.log10() - y0) / (y1 - y0) * (h - 2.0 * m);
-    let mut s = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-    );
-    s += &format!(
-        "<text x=\"{}\" y=\"24\" font-size=\"15\" text-anchor=\"middle\">Filtered NDF kernels: median relative error vs. cost (f32, log-log)</text>\n",
-        w / 2.0
-    );
-    for d in (x0.floor() as i32)..=(x1.ceil() as i32) {
+    for d in (x0 as i32)..=(x1 as i32) {
         let x = sx(10f64.powi(d));
-        if x >= m && x <= w - m {
-            s += &format!(
-                "<line x1=\"{x}\" y1=\"{m}\" x2=\"{x}\" y2=\"{}\" stroke=\"#ddd\"/><text x=\"{x}\" y=\"{}\" text-anchor=\"middle\">1e{d} ns</text>\n",
-                h - m,
-                h - m + 16.0
-            );
-        }
+        *s += &format!(
+            "<line x1=\"{x}\" y1=\"{}\" x2=\"{x}\" y2=\"{}\" stroke=\"#ddd\"/><text x=\"{x}\" y=\"{}\" text-anchor=\"middle\">1e{d}</text>\n",
+            sy(10f64.powi(y1 as i32)),
+            oy + h - m,
+            oy + h - m + 14.0
+        );
     }
-    for d in (y0 as i32)..=(y1.ceil() as i32) {
+    for d in (y0 as i32)..=(y1 as i32) {
         let y = sy(10f64.powi(d));
-        if y >= m && y <= h - m {
-            s += &format!(
-                "<line x1=\"{m}\" y1=\"{y}\" x2=\"{}\" y2=\"{y}\" stroke=\"#ddd\"/><text x=\"{}\" y=\"{}\" text-anchor=\"end\">1e{d}</text>\n",
-                w - m,
-                m - 6.0,
-                y + 4.0
-            );
-        }
+        *s += &format!(
+            "<line x1=\"{}\" y1=\"{y}\" x2=\"{}\" y2=\"{y}\" stroke=\"#ddd\"/><text x=\"{}\" y=\"{}\" text-anchor=\"end\">1e{d}</text>\n",
+            ox + m,
+            sx(10f64.powi(x1 as i32)),
+            ox + m - 4.0,
+            y + 4.0
+        );
     }
-    s += &format!(
-        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">cost per evaluation (ns)</text>\n",
-        w / 2.0,
-        h - 20.0
-    );
-    s += &format!(
-        "<text x=\"18\" y=\"{}\" transform=\"rotate(-90 18 {})\" text-anchor=\"middle\">median relative error vs exact Gaussian-filtered NDF</text>\n",
-        h / 2.0,
-        h / 2.0
+    *s += &format!(
+        "<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">ns per evaluation (f32)</text>\n",
+        ox + w / 2.0,
+        oy + h - m + 30.0
     );
     let ss: Vec<String> = rows
         .iter()
         .zip(&pts)
-        .filter(|(r, _)| r.name.starts_with("GGX supersampling"))
+        .filter(|(r, _)| r.name.contains("supersampling"))
         .map(|(_, p)| format!("{},{}", sx(p.0), sy(p.1)))
         .collect();
-    s += &format!(
+    *s += &format!(
         "<polyline points=\"{}\" fill=\"none\" stroke=\"#c33\" stroke-width=\"1.5\"/>\n",
         ss.join(" ")
     );
-    for (r, p) in rows.iter().zip(&pts) {
-        let color = if r.name.contains("supersampling") {
-            "#c33"
-        } else if r.family == "Beckmann" {
-            "#393"
-        } else {
-            "#33c"
-        };
+    for ((i, r, _), p) in shown.iter().zip(&pts) {
         let (x, y) = (sx(p.0), sy(p.1));
+        *s += &format!(
+            "<circle cx=\"{x}\" cy=\"{y}\" r=\"3.5\" fill=\"{}\"/><text x=\"{}\" y=\"{}\" font-size=\"10\">{}</text>\n",
+            color(r),
+            x + 4.0,
+            y - 3.0,
+            i + 1
+        );
+    }
+}
+
+fn color(r: &Row) -> &'static str {
+    if r.name.contains("supersampling") {
+        "#c33"
+    } else if r.family == "Beckmann" {
+        "#393"
+    } else if r.name.contains("deferred") {
+        "#a6a"
+    } else {
+        "#33c"
+    }
+}
+
+fn svg(rows: &[Row], path: &std::path::Path) -> std::io::Result<()> {
+    // Beckmann rows have no peak-relative error: the right panel shows GGX rows only.
+    let legend_lines = rows.len().div_ceil(2);
+    let (w, h) = (1080.0, 500.0 + 16.0 * legend_lines as f64);
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"20\" font-size=\"15\" text-anchor=\"middle\">Filtered NDF kernels vs the exact Gaussian-filtered NDF: error against cost (log-log)</text>\n",
+        w / 2.0
+    );
+    panel(
+        &mut s,
+        rows,
+        &|r| Some(r.median),
+        "median relative error",
+        10.0,
+    );
+    panel(
+        &mut s,
+        rows,
+        &|r| (!r.max_peak.is_nan()).then_some(r.max_peak),
+        "worst error / exact filtered peak (GGX)",
+        550.0,
+    );
+    for (i, r) in rows.iter().enumerate() {
+        let (col, line) = (i / legend_lines, i % legend_lines);
         s += &format!(
-            "<circle cx=\"{x}\" cy=\"{y}\" r=\"4\" fill=\"{color}\"/><text x=\"{}\" y=\"{}\" fill=\"{color}\">{}</text>\n",
-            x + 6.0,
-            y - 4.0,
+            "<text x=\"{}\" y=\"{}\" fill=\"{}\">{:>2}. {}</text>\n",
+            40.0 + 520.0 * col as f64,
+            500.0 + 16.0 * line as f64,
+            color(r),
+            i + 1,
             r.name.replace('&', "and")
         );
     }
