@@ -1,7 +1,7 @@
 //! One benchmark group per kernel family, each in f32 and f64, over the seeded realistic
 //! cases of `benches/common` (the trade table measures error on the same cases):
 //! filtered Beckmann vs unfiltered Beckmann, filtered GGX (TK19 matrix, TK21 projected) vs
-//! unfiltered GGX, the isotropic deferred variants and engine presets, the Jacobians, the
+//! unfiltered GGX, the GGX proxy (exact and simple), the isotropic deferred variants and engine presets, the Jacobians, the
 //! footprint-to-kernel conversions, and the supersampling baseline (unfiltered GGX averaged
 //! over N = 1..256 jittered points of the same Gaussian footprint).
 //!
@@ -20,7 +20,7 @@ macro_rules! families {
         use filtered_ndf::math::Real;
         use filtered_ndf::$prec::{
             AxisAligned, Beckmann, ClampRules, Footprint, Ggx, Ndf, RoughnessMatrix, Vec2, Vec3,
-            filter, isotropic, jacobian, presets, slope,
+            filter, ggx_proxy, isotropic, jacobian, presets, slope,
         };
         type Wall<'a> = BenchmarkGroup<'a, criterion::measurement::WallTime>;
         let c = |x: f64| <$t as Real>::from_f64(x);
@@ -88,6 +88,17 @@ macro_rules! families {
         run(&mut g, "tk21_projected", |i| {
             let a = filter::projected(ins[i].r, ins[i].fp.covariance(0.5));
             Ggx::new(a).d(ins[i].h)
+        });
+        g.finish();
+
+        let mut g = group($c, "ggx_proxy");
+        run(&mut g, "exact_eq19", |i| {
+            let he = ins[i].fp.bounding_rect().half_extent;
+            Ggx::new(ggx_proxy::proxy(ins[i].r, he)).d(ins[i].h)
+        });
+        run(&mut g, "simple_eq20", |i| {
+            let he = ins[i].fp.bounding_rect().half_extent;
+            Ggx::new(ggx_proxy::proxy_simple(ins[i].r, he)).d(ins[i].h)
         });
         g.finish();
 
