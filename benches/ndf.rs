@@ -5,21 +5,11 @@
 //! `cargo bench --bench ndf` (add `-- --quick` for a short run).
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+// The crate's seeded SplitMix64, so the input set is identical on every run.
+use filtered_ndf::testing::rng::SplitMix64 as Rng;
 use std::hint::black_box;
 
 const N: usize = 1024;
-
-/// SplitMix64, so the input set is identical on every run.
-struct Rng(u64);
-impl Rng {
-    fn uniform(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 /// Micronormals for a lobe of roughness about `alpha`: slopes Gaussian with std `alpha`
 /// (3/4), times 10 (tail, 1/8), or polar angles 80..89.9 degrees (grazing, 1/8).

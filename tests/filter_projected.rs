@@ -183,13 +183,8 @@ fn f32_agrees_with_f64() {
     // Both filters in f32 against the same code in f64, over a seeded log-uniform sample of
     // alpha in [1e-4, 0.9], anisotropy up to 100 and kernels from 1e-2 to 1e2 alpha wide.
     // Error measure: max entry difference over the largest eigenvalue of the f64 result.
-    let mut state = 0x1234_5678_u64;
-    let mut next = || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = filtered_ndf::testing::rng::SplitMix64(0x1234_5678);
+    let mut next = || rng.uniform();
     let (mut worst_g, mut worst_p) = (0.0f64, 0.0f64);
     for _ in 0..2000 {
         let alpha = 10f64.powf(-4.0 + 3.95 * next());

@@ -15,6 +15,7 @@ use filtered_ndf::f64::geometry::{
     half_vector_jacobian, half_vector_jacobian_deferred, half_vector_jacobian_far_field,
     tangent_plane_differentials,
 };
+use filtered_ndf::testing::rng::SplitMix64 as Rng;
 use glam::{DMat2, DVec2, DVec3, Mat2, Vec2, Vec3};
 
 /// A graph surface `z = f(x, y)`: value, gradient and Hessian `(f_xx, f_xy, f_yy)`.
@@ -147,24 +148,17 @@ fn rel(a: DMat2, b: DMat2) -> f64 {
     num / den
 }
 
-/// Deterministic pseudo-random numbers in [0, 1) (splitmix64), for reproducible configurations.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn unit_upper(&mut self, around: DVec3, max_cos: f64) -> DVec3 {
-        // A direction within the cone { d . around >= 1 - max_cos } (rejection sampling).
-        loop {
-            let d = DVec3::new(self.next() - 0.5, self.next() - 0.5, self.next() - 0.5);
-            let l = d.length();
-            if l > 0.05 && l < 0.5 && (d / l).dot(around) > 1.0 - max_cos {
-                return d / l;
-            }
+/// A direction within the cone `{ d . around >= 1 - max_cos }` (rejection sampling).
+fn unit_upper(rng: &mut Rng, around: DVec3, max_cos: f64) -> DVec3 {
+    loop {
+        let d = DVec3::new(
+            rng.uniform() - 0.5,
+            rng.uniform() - 0.5,
+            rng.uniform() - 0.5,
+        );
+        let l = d.length();
+        if l > 0.05 && l < 0.5 && (d / l).dot(around) > 1.0 - max_cos {
+            return d / l;
         }
     }
 }
@@ -175,13 +169,13 @@ fn m_matches_finite_differences_on_curved_surfaces() {
     let mut worst = (0.0f64, "");
     for surf in SURFACES {
         for _ in 0..200 {
-            let uv = DVec2::new(rng.next() - 0.5, rng.next() - 0.5) * 1.2;
+            let uv = DVec2::new(rng.uniform() - 0.5, rng.uniform() - 0.5) * 1.2;
             let smp = sample(surf, uv.x, uv.y);
             let n = smp.frame.n;
             // Eye and light 0.5 .. 5 R away, within 80 degrees of the normal so the half vector
             // stays above the shading horizon.
-            let eye = smp.p + rng.unit_upper(n, 0.8) * (0.5 + 4.5 * rng.next());
-            let light = smp.p + rng.unit_upper(n, 0.8) * (0.5 + 4.5 * rng.next());
+            let eye = smp.p + unit_upper(&mut rng, n, 0.8) * (0.5 + 4.5 * rng.uniform());
+            let light = smp.p + unit_upper(&mut rng, n, 0.8) * (0.5 + 4.5 * rng.uniform());
             let (e, l) = (Endpoint::Point(eye), Endpoint::Point(light));
             let m = half_vector_jacobian(smp.p, e, l, &smp.frame);
             // Step 1e-5 R: truncation ~ (1e-5 / 0.5)^2 = 4e-10 relative, roundoff

@@ -2,6 +2,7 @@
 //! density, in both precisions, plus the printed GDC formula as the baseline.
 
 use filtered_ndf::testing::quadrature::{Tolerance, integrate, integrate_2d, integrate_plane};
+use filtered_ndf::testing::rng::SplitMix64 as Rng;
 use filtered_ndf::{f32 as s, f64 as d};
 use proptest::prelude::*;
 use std::f64::consts::PI;
@@ -257,21 +258,6 @@ fn appendix_a_as_printed_is_four_times_the_average() {
     }
 }
 
-/// splitmix64, for a seeded sample independent of proptest.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn log(&mut self, lo: f64, hi: f64) -> f64 {
-        (lo.ln() + (hi.ln() - lo.ln()) * self.next()).exp()
-    }
-}
-
 fn stats(mut v: Vec<f64>) -> (f64, f64, f64) {
     v.sort_by(|a, b| a.partial_cmp(b).unwrap());
     let n = v.len();
@@ -286,16 +272,16 @@ fn exact_vs_printed_on_a_seeded_sample() {
     let mut rng = Rng(0x5eed);
     let (mut ex, mut pr, mut e6) = (Vec::new(), Vec::new(), Vec::new());
     for _ in 0..2000 {
-        let a = rng.log(1e-4, 1.0);
-        let k = rng.log(1.0, 100.0);
-        let b = if rng.next() < 0.5 { a * k } else { a / k }.clamp(1e-4, 1.0);
+        let a = rng.log_uniform(1e-4, 1.0);
+        let k = rng.log_uniform(1.0, 100.0);
+        let b = if rng.uniform() < 0.5 { a * k } else { a / k }.clamp(1e-4, 1.0);
         let mut c = || {
-            let v = rng.log(1e-6, 4.0);
-            if rng.next() < 0.5 { -v } else { v }
+            let v = rng.log_uniform(1e-6, 4.0);
+            if rng.uniform() < 0.5 { -v } else { v }
         };
         let (cx, cy) = (c(), c());
         // The printed formula is 0/0 at a zero footprint: nonzero half sides here.
-        let (hx, hy) = (rng.log(1e-8, 1.0), rng.log(1e-8, 1.0));
+        let (hx, hy) = (rng.log_uniform(1e-8, 1.0), rng.log_uniform(1e-8, 1.0));
         let (a, b, cx, cy, hx, hy) = (
             a as f32, b as f32, cx as f32, cy as f32, hx as f32, hy as f32,
         );

@@ -4,7 +4,9 @@
 
 mod common;
 
-use common::{Body, Ellipsoid, Rng, Scene, ellipsoid_scene, quadric_scene, sphere_scene, sym3};
+use common::{
+    Body, Ellipsoid, Rng, RngExt, Scene, ellipsoid_scene, quadric_scene, sphere_scene, sym3,
+};
 use filtered_ndf::f64::implicit::{
     HitRates, LevelSetSample, MovingRay, Sym3, d_normalized, hit_distance_rate, hit_normal_rate,
     hit_rates, project,
@@ -219,7 +221,7 @@ fn derivative_of_a_normalised_vector_matches_finite_differences() {
     // eq. 26 against d/dt normalize(v + t dv); FD error ~ h^2 |v|^-3 |dv|^3 ~ 1e-10.
     let mut rng = Rng(11);
     for _ in 0..200 {
-        let v = rng.unit() * rng.uniform(0.2, 5.0);
+        let v = rng.unit() * rng.range(0.2, 5.0);
         let dv = rng.vec(3.0);
         let fd = ((v + H * dv).normalize() - (v - H * dv).normalize()) / (2.0 * H);
         let a = d_normalized(v, dv);

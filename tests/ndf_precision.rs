@@ -31,42 +31,21 @@
 use filtered_ndf::f32 as s;
 use filtered_ndf::f64 as d;
 use filtered_ndf::testing::cases::{Form, Model, NdfCase};
+use filtered_ndf::testing::rng::SplitMix64 as Rng;
 use glam::{DVec2, DVec3, Vec2, Vec3};
 use std::collections::BTreeMap;
 
 const EPS: f64 = f32::EPSILON as f64;
 
-/// SplitMix64: a seeded, dependency-free generator for the measured sample.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn uniform(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        (lo.ln() + (hi.ln() - lo.ln()) * self.uniform()).exp()
-    }
-    fn normal(&mut self) -> f64 {
-        let u = self.uniform().max(1e-300);
-        (-2.0 * u.ln()).sqrt() * (std::f64::consts::TAU * self.uniform()).cos()
-    }
-}
-
 fn random_case(rng: &mut Rng) -> NdfCase {
-    let model = if rng.next() & 1 == 0 {
+    let model = if rng.next_u64() & 1 == 0 {
         Model::Ggx
     } else {
         Model::Beckmann
     };
     let a = rng.log_uniform(1e-4, 2.0);
     let b = (a * rng.log_uniform(1e-3, 1e3)).clamp(1e-4, 2.0);
-    let form = match rng.next() % 3 {
+    let form = match rng.next_u64() % 3 {
         0 => Form::Isotropic(a),
         1 => Form::AxisAligned(a, b),
         _ => Form::Rotated {

@@ -5,6 +5,7 @@
 use filtered_ndf::f64::isotropic::{Domain, KernelConvention};
 use filtered_ndf::f64::presets::{self, ALL};
 use filtered_ndf::testing::quadrature::{Tolerance, integrate_line, integrate_plane};
+use filtered_ndf::testing::rng::SplitMix64 as Rng;
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -275,18 +276,6 @@ fn peak_reference_agrees_with_a_radial_integral() {
 /// A preset (or the identity) as `(alpha, dn_u, dn_v) -> alpha_bar`.
 type AlphaMap = Box<dyn Fn(f64, DVec3, DVec3) -> f64>;
 
-/// splitmix64, for seeded footprints.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// Seeded normal differences in the tangent plane of n = z: lengths log-uniform in
 /// [1e-3, 0.5] per pixel, independent uniform directions.
 fn footprints(n: usize) -> Vec<(DVec3, DVec3)> {
@@ -294,8 +283,8 @@ fn footprints(n: usize) -> Vec<(DVec3, DVec3)> {
     (0..n)
         .map(|_| {
             let mut d = || {
-                let len = 10f64.powf(-3.0 + rng.next() * (0.5f64.log10() + 3.0));
-                let phi = 2.0 * PI * rng.next();
+                let len = 10f64.powf(-3.0 + rng.uniform() * (0.5f64.log10() + 3.0));
+                let phi = 2.0 * PI * rng.uniform();
                 DVec3::new(len * phi.cos(), len * phi.sin(), 0.0)
             };
             (d(), d())

@@ -9,116 +9,81 @@ use std::f64::consts::PI;
 // ---------------------------------------------------------------------------------------
 // Shared helpers (f64).
 
+mod common;
+
 mod f64_helpers {
     use super::*;
-    use filtered_ndf::f64::Roughness;
+    use crate::common::whitening::Whitening;
     use glam::{DVec2, DVec3};
 
-    /// Symmetric square root `B` of `A` (eigen-decomposition, test-side) and `sqrt(det A)`.
-    pub struct Whitening {
-        pub b: [[f64; 2]; 2],
-        pub sqrt_det: f64,
-    }
-
-    impl Whitening {
-        pub fn new<R: Roughness>(r: &R) -> Self {
-            let (a11, a12, a22) = r.to_matrix().entries();
-            let mean = 0.5 * (a11 + a22);
-            let rad = (0.5 * (a11 - a22)).hypot(a12);
-            let (l1, l2) = (mean + rad, (a11 * a22 - a12 * a12) / (mean + rad));
-            let theta = 0.5 * (2.0 * a12).atan2(a11 - a22);
-            let (c, s) = (theta.cos(), theta.sin());
-            let (f1, f2) = (l1.sqrt(), l2.sqrt());
-            Self {
-                b: [
-                    [c * c * f1 + s * s * f2, c * s * (f1 - f2)],
-                    [c * s * (f1 - f2), s * s * f1 + c * c * f2],
-                ],
-                sqrt_det: (l1 * l2).sqrt(),
-            }
-        }
-
-        /// `integral of pdf(m) d omega` over the hemisphere, in the polar coordinates
-        /// `(cos theta, phi)` of the whitened normal `n ~ (-w, 1)` (`s = B w`,
-        /// `|w|^2 = (1 - c^2) / c^2`, `d omega = m_z^3 ds`, `ds = sqrt(det A) dw`,
-        /// `dw = d|w|^2 dphi / 2`), so that the lobe is resolved at every roughness and
-        /// condition number, and the grazing tail of the visible pdf (which grows like
-        /// `|w|` against the `|w|^-4` of P22) stays bounded near `c = 0`.
-        ///
-        /// With a view direction the inner integral is split at the visibility cut-off
-        /// `wo.m = 0`, which in whitened slopes is the line `w.(B wo_xy) = wo_z`: at low
-        /// roughness it lies deep in the tail (`c ~ alpha`), where no quadrature node of an
-        /// unsplit rule would land.
-        pub fn integrate_hemisphere(
-            &self,
-            pdf: impl Fn(DVec3) -> f64,
-            wo: Option<DVec3>,
-            tol: Tolerance,
-        ) -> f64 {
-            let b = self.b;
-            let f = |phi: f64, c: f64| {
-                let q = (1.0 - c * c) / (c * c);
-                let w = DVec2::new(phi.cos(), phi.sin()) * q.sqrt();
-                let s = DVec2::new(b[0][0] * w.x + b[0][1] * w.y, b[1][0] * w.x + b[1][1] * w.y);
-                let m = DVec3::new(-s.x, -s.y, 1.0).normalize();
-                let v = pdf(m) * m.z.powi(3) * self.sqrt_det / (c * c * c);
-                if v.is_finite() { v } else { 0.0 }
-            };
-            let inner_tol = Tolerance {
-                rel: tol.rel * 0.1,
-                abs: tol.abs * 0.1,
-                ..tol
-            };
-            integrate(
-                |phi| {
-                    let cut = wo.and_then(|wo| {
-                        let wxy = DVec2::new(
-                            b[0][0] * wo.x + b[0][1] * wo.y,
-                            b[1][0] * wo.x + b[1][1] * wo.y,
-                        );
-                        let d = wxy.dot(DVec2::new(phi.cos(), phi.sin()));
-                        (d > 0.0).then(|| {
-                            let rho = wo.z / d;
-                            1.0 / (1.0 + rho * rho).sqrt()
-                        })
-                    });
-                    match cut {
-                        Some(cc) if cc > 0.0 && cc < 1.0 => {
-                            integrate(|c| f(phi, c), 0.0, cc, inner_tol).value
-                                + integrate(|c| f(phi, c), cc, 1.0, inner_tol).value
-                        }
-                        _ => integrate(|c| f(phi, c), 0.0, 1.0, inner_tol).value,
+    /// `integral of pdf(m) d omega` over the hemisphere, in the polar coordinates
+    /// `(cos theta, phi)` of the whitened normal `n ~ (-w, 1)` (`s = B w`,
+    /// `|w|^2 = (1 - c^2) / c^2`, `d omega = m_z^3 ds`, `ds = sqrt(det A) dw`,
+    /// `dw = d|w|^2 dphi / 2`), so that the lobe is resolved at every roughness and
+    /// condition number, and the grazing tail of the visible pdf (which grows like
+    /// `|w|` against the `|w|^-4` of P22) stays bounded near `c = 0`.
+    ///
+    /// With a view direction the inner integral is split at the visibility cut-off
+    /// `wo.m = 0`, which in whitened slopes is the line `w.(B wo_xy) = wo_z`: at low
+    /// roughness it lies deep in the tail (`c ~ alpha`), where no quadrature node of an
+    /// unsplit rule would land.
+    pub fn integrate_hemisphere(
+        wh: &Whitening,
+        pdf: impl Fn(DVec3) -> f64,
+        wo: Option<DVec3>,
+        tol: Tolerance,
+    ) -> f64 {
+        let b = wh.b;
+        let f = |phi: f64, c: f64| {
+            let q = (1.0 - c * c) / (c * c);
+            let w = DVec2::new(phi.cos(), phi.sin()) * q.sqrt();
+            let s = Whitening::apply(&b, w);
+            let m = DVec3::new(-s.x, -s.y, 1.0).normalize();
+            let v = pdf(m) * m.z.powi(3) * wh.sqrt_det / (c * c * c);
+            if v.is_finite() { v } else { 0.0 }
+        };
+        let inner_tol = Tolerance {
+            rel: tol.rel * 0.1,
+            abs: tol.abs * 0.1,
+            ..tol
+        };
+        integrate(
+            |phi| {
+                let cut = wo.and_then(|wo| {
+                    let wxy = Whitening::apply(&b, DVec2::new(wo.x, wo.y));
+                    let d = wxy.dot(DVec2::new(phi.cos(), phi.sin()));
+                    (d > 0.0).then(|| {
+                        let rho = wo.z / d;
+                        1.0 / (1.0 + rho * rho).sqrt()
+                    })
+                });
+                match cut {
+                    Some(cc) if cc > 0.0 && cc < 1.0 => {
+                        integrate(|c| f(phi, c), 0.0, cc, inner_tol).value
+                            + integrate(|c| f(phi, c), cc, 1.0, inner_tol).value
                     }
-                },
-                0.0,
-                2.0 * PI,
-                tol,
-            )
-            .value
-        }
+                    _ => integrate(|c| f(phi, c), 0.0, 1.0, inner_tol).value,
+                }
+            },
+            0.0,
+            2.0 * PI,
+            tol,
+        )
+        .value
     }
 
     pub fn view(theta_deg: f64, phi: f64) -> DVec3 {
         let t = theta_deg.to_radians();
         DVec3::new(t.sin() * phi.cos(), t.sin() * phi.sin(), t.cos())
     }
-
-    pub struct SplitMix(pub u64);
-    impl SplitMix {
-        pub fn next_f64(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            (z ^ (z >> 31)) as f64 * (1.0 / 18_446_744_073_709_551_616.0)
-        }
-    }
 }
 
-use f64_helpers::{SplitMix, Whitening, view};
+use common::whitening::Whitening;
+use f64_helpers::{integrate_hemisphere, view};
 use filtered_ndf::f64::{
     AxisAligned, Beckmann, Ggx, Isotropic, NdfSampling, Roughness, RoughnessMatrix,
 };
+use filtered_ndf::testing::rng::SplitMix64;
 use glam::{DVec2, DVec3};
 
 /// `diag(a^2, a^2 / cond)` rotated by `angle`.
@@ -144,14 +109,14 @@ fn check_normalised<N: NdfSampling, R: Roughness>(name: &str, ndf: &N, r: &R) {
         rel: 1e-10,
         max_intervals: 2000,
     };
-    let total = wh.integrate_hemisphere(|m| ndf.normal_pdf(m), None, tol);
+    let total = integrate_hemisphere(&wh, |m| ndf.normal_pdf(m), None, tol);
     assert!(
         (total - 1.0).abs() < 1e-9,
         "{name}: D cos integrates to {total}"
     );
     for &deg in &[0.0, 15.0, 30.0, 80.0, 89.9, 89.99] {
         let wo = view(deg, 0.7);
-        let total = wh.integrate_hemisphere(|m| ndf.visible_normal_pdf(wo, m), Some(wo), tol);
+        let total = integrate_hemisphere(&wh, |m| ndf.visible_normal_pdf(wo, m), Some(wo), tol);
         assert!(
             (total - 1.0).abs() < 1e-9,
             "{name} view {deg}: D_wo integrates to {total}"
@@ -249,10 +214,10 @@ fn reflection_pdf_is_the_half_vector_jacobian_of_the_visible_pdf() {
     // visible pdf (1e-12 relative: the two paths round differently).
     let ndf = Beckmann::new(rotated(0.3, 20.0, 0.5));
     let wo = view(50.0, 2.0);
-    let mut rng = SplitMix(7);
+    let mut rng = SplitMix64(7);
     for _ in 0..200 {
         let m = ndf
-            .sample_visible_normal(wo, DVec2::new(rng.next_f64(), rng.next_f64()))
+            .sample_visible_normal(wo, DVec2::new(rng.uniform(), rng.uniform()))
             .unwrap();
         let wi = filtered_ndf::f64::sampling::reflect(wo, m);
         let expect = ndf.visible_normal_pdf(wo, m) / (4.0 * wo.dot(m));
@@ -289,10 +254,10 @@ fn ks_statistic(mut xs: Vec<f64>, cdf: impl Fn(f64) -> f64) -> f64 {
 }
 
 fn slopes(mut sample: impl FnMut(DVec2) -> DVec3, seed: u64) -> Vec<DVec2> {
-    let mut rng = SplitMix(seed);
+    let mut rng = SplitMix64(seed);
     (0..N_MOMENTS)
         .map(|_| {
-            let m = sample(DVec2::new(rng.next_f64(), rng.next_f64()));
+            let m = sample(DVec2::new(rng.uniform(), rng.uniform()));
             DVec2::new(-m.x / m.z, -m.y / m.z)
         })
         .collect()
@@ -607,7 +572,7 @@ fn f32_and_f64_samplers_agree() {
     // warp (1e-4 absolute on a unit vector for moderate roughness and views).
     use filtered_ndf::f32 as s;
     use filtered_ndf::f32::NdfSampling as _;
-    let mut rng = SplitMix(42);
+    let mut rng = SplitMix64(42);
     let a64 = rotated(0.3, 10.0, 0.8);
     let (a11, a12, a22) = a64.entries();
     let a32 = s::RoughnessMatrix::new(a11 as f32, a12 as f32, a22 as f32).unwrap();
@@ -615,7 +580,7 @@ fn f32_and_f64_samplers_agree() {
     let wo32 = glam::Vec3::new(wo.x as f32, wo.y as f32, wo.z as f32);
     for _ in 0..1000 {
         // u below 0.99: near u = 1 the GGX tail amplifies the f32 rounding of u itself.
-        let u = DVec2::new(rng.next_f64(), 0.99 * rng.next_f64());
+        let u = DVec2::new(rng.uniform(), 0.99 * rng.uniform());
         let u32 = glam::Vec2::new(u.x as f32, u.y as f32);
         let m64 = Beckmann::new(a64).sample_visible_normal(wo, u).unwrap();
         let m32 = s::Beckmann::new(a32)

@@ -24,10 +24,14 @@
 //! gamma function implemented (and tested) below. The significance level is Sidak-corrected
 //! for the 116 tests: `1 - (1 - 0.01)^(1/116)`, so the whole suite has a 1% false-alarm rate.
 
+mod common;
+
+use common::whitening::Whitening;
 use filtered_ndf::f64::{
     AxisAligned, Beckmann, Ggx, Isotropic, NdfSampling, Roughness, RoughnessMatrix,
 };
 use filtered_ndf::testing::quadrature::{Tolerance, integrate_2d};
+use filtered_ndf::testing::rng::SplitMix64;
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
 
@@ -179,24 +183,6 @@ fn incomplete_gamma_known_values() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Seeded uniform numbers (splitmix64).
-
-struct SplitMix(u64);
-impl SplitMix {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [0, 1) with 53 random bits.
-    fn next_f64(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-}
-
-// ---------------------------------------------------------------------------------------
 // The harness.
 
 const N_SAMPLES: usize = 40_000;
@@ -225,38 +211,6 @@ impl Radial {
             Radial::Ggx => (r / (1.0 - r), 1.0 / ((1.0 - r) * (1.0 - r))),
             Radial::Beckmann => (-(-r).ln_1p(), 1.0 / (1.0 - r)),
         }
-    }
-}
-
-/// Symmetric square root of `A` and its inverse (test-side, by eigen-decomposition).
-struct Whitening {
-    b: [[f64; 2]; 2],
-    b_inv: [[f64; 2]; 2],
-    sqrt_det: f64,
-}
-
-impl Whitening {
-    fn new<R: Roughness>(r: &R) -> Self {
-        let (a11, a12, a22) = r.to_matrix().entries();
-        let mean = 0.5 * (a11 + a22);
-        let rad = (0.5 * (a11 - a22)).hypot(a12);
-        let (l1, l2) = (mean + rad, (a11 * a22 - a12 * a12) / (mean + rad));
-        let theta = 0.5 * (2.0 * a12).atan2(a11 - a22);
-        let (c, s) = (theta.cos(), theta.sin());
-        let sq = |f1: f64, f2: f64| {
-            [
-                [c * c * f1 + s * s * f2, c * s * (f1 - f2)],
-                [c * s * (f1 - f2), s * s * f1 + c * c * f2],
-            ]
-        };
-        Self {
-            b: sq(l1.sqrt(), l2.sqrt()),
-            b_inv: sq(1.0 / l1.sqrt(), 1.0 / l2.sqrt()),
-            sqrt_det: (l1 * l2).sqrt(),
-        }
-    }
-    fn apply(m: &[[f64; 2]; 2], v: DVec2) -> DVec2 {
-        DVec2::new(m[0][0] * v.x + m[0][1] * v.y, m[1][0] * v.x + m[1][1] * v.y)
     }
 }
 
@@ -290,9 +244,9 @@ fn chi2_test(
         ir * N_PHI + ip
     };
     let mut observed = vec![0.0_f64; N_R * N_PHI];
-    let mut rng = SplitMix(seed);
+    let mut rng = SplitMix64(seed);
     for _ in 0..N_SAMPLES {
-        let u = DVec2::new(rng.next_f64(), rng.next_f64());
+        let u = DVec2::new(rng.uniform(), rng.uniform());
         observed[cell_of(sample(u))] += 1.0;
     }
     // Density in (r, phi): pdf(m) m_z^3 sqrt(det A) (dq/dr) / 2.

@@ -8,6 +8,7 @@ use crate::parallel;
 use crate::scene::{Hit, Scene};
 use filtered_ndf::f32::Footprint;
 use filtered_ndf::f32::slope::slope_from_sphere;
+use filtered_ndf::testing::rng::SplitMix64;
 use glam::{Mat3, Quat, Vec2, Vec3};
 
 /// How footprints are obtained.
@@ -306,10 +307,10 @@ pub fn reference(
     let px: Vec<[Vec3; 4]> = parallel::rows(height, threads, progress, |y| {
         (0..width)
             .map(|x| {
-                let mut rng = Rng::new(seed, (y * width + x) as u64);
+                let mut rng = pixel_rng(seed, (y * width + x) as u64);
                 let mut sums = [[Vec3::ZERO; 2]; 2];
                 for sum in &mut sums {
-                    let shift = (rng.uniform(), rng.uniform());
+                    let shift = (uniform_f32(&mut rng), uniform_f32(&mut rng));
                     for j in 0..n {
                         let (ox, oy) = lattice.gaussian(j, shift, methods::SIGMA_PIXEL);
                         let r = cam.ray(x as f32 + 0.5 + ox, y as f32 + 0.5 + oy);
@@ -375,24 +376,14 @@ impl Lattice {
     }
 }
 
-/// A small deterministic generator (SplitMix64), one stream per pixel.
-struct Rng(u64);
+/// The crate's seeded SplitMix64, one stream per pixel.
+fn pixel_rng(seed: u64, stream: u64) -> SplitMix64 {
+    let mut r = SplitMix64(seed ^ stream.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+    r.next_u64();
+    r
+}
 
-impl Rng {
-    fn new(seed: u64, stream: u64) -> Self {
-        let mut r = Rng(seed ^ stream.wrapping_mul(0x9E37_79B9_7F4A_7C15));
-        r.next();
-        r
-    }
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in `(0, 1]`.
-    fn uniform(&mut self) -> f32 {
-        ((self.next() >> 40) as f32 + 1.0) / (1u64 << 24) as f32
-    }
+/// Uniform in `(0, 1]` as `f32` (24 random bits).
+fn uniform_f32(r: &mut SplitMix64) -> f32 {
+    ((r.next_u64() >> 40) as f32 + 1.0) / (1u64 << 24) as f32
 }

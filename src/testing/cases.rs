@@ -39,15 +39,7 @@ pub enum Form {
 impl Form {
     /// The entries `(a11, a12, a22)` of `A` (computed in `f64`).
     pub fn entries(&self) -> (f64, f64, f64) {
-        let (ax, ay, phi) = match *self {
-            Form::Isotropic(a) => (a, a, 0.0),
-            Form::AxisAligned(ax, ay) => (ax, ay, 0.0),
-            Form::Rotated {
-                alpha_x,
-                alpha_y,
-                phi,
-            } => (alpha_x, alpha_y, phi),
-        };
+        let (ax, ay, phi) = self.axes();
         let (s, c) = phi.sin_cos();
         let (l1, l2) = (ax * ax, ay * ay);
         (

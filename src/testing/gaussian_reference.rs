@@ -102,15 +102,7 @@ pub fn gaussian_convolution<Fd: FnMut(Vec2) -> f64>(
 
 /// The Gaussian-filtered GGX slope density `(P22_GGX * N_Sigma)(s)` (per unit slope area).
 pub fn ggx<R: Roughness>(roughness: R, kernel: Covariance, s: Vec2, tol: Tolerance) -> Estimate {
-    let ndf = Ggx::new(roughness);
-    gaussian_convolution(
-        |r| ndf.p22(r),
-        Vec2::ZERO,
-        roughness.to_matrix(),
-        kernel,
-        s,
-        tol,
-    )
+    filtered_p22(Ggx::new(roughness), roughness, kernel, s, tol)
 }
 
 /// The Gaussian-filtered Beckmann slope density `(P22_Beckmann * N_Sigma)(s)`; in closed form
@@ -121,7 +113,17 @@ pub fn beckmann<R: Roughness>(
     s: Vec2,
     tol: Tolerance,
 ) -> Estimate {
-    let ndf = Beckmann::new(roughness);
+    filtered_p22(Beckmann::new(roughness), roughness, kernel, s, tol)
+}
+
+/// `(P22 * N_Sigma)(s)` of a centred lobe `ndf` of roughness `roughness`.
+fn filtered_p22<N: Ndf, R: Roughness>(
+    ndf: N,
+    roughness: R,
+    kernel: Covariance,
+    s: Vec2,
+    tol: Tolerance,
+) -> Estimate {
     gaussian_convolution(
         |r| ndf.p22(r),
         Vec2::ZERO,

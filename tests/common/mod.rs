@@ -1,5 +1,7 @@
-//! Moving test scenes with exact, independent ray-surface intersections (analytic roots of
-//! quadratics), shared by `tests/implicit.rs` and `tests/temporal.rs`.
+//! Test-side helpers shared between test files: moving test scenes with exact, independent
+//! ray-surface intersections (analytic roots of quadratics), shared by `tests/implicit.rs`
+//! and `tests/temporal.rs`; the roughness-matrix square root of the sampling tests
+//! ([`whitening`]).
 //!
 //! Every scene is a static body (defined in world coordinates at the reference time
 //! `t0 = 0`) moved rigidly by `x(t) = c + R(t) (y - c) + v t` with `R(t)` the exact rotation
@@ -10,6 +12,8 @@
 
 use filtered_ndf::f64::implicit::{LevelSetSample, MovingRay, Sym3};
 use glam::{DMat3, DQuat, DVec3};
+
+pub mod whitening;
 
 /// Roots of `a s^2 + b s + c = 0` (real, ascending), stable form; linear if `a` ~ 0.
 pub fn quadratic_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
@@ -215,27 +219,28 @@ pub fn slope_in_frame(n: DVec3, t: DVec3, b: DVec3, n0: DVec3) -> glam::DVec2 {
     glam::DVec2::new(-n.dot(t) / z, -n.dot(b) / z)
 }
 
-/// SplitMix64: a seeded, dependency-free generator for deterministic scene sweeps.
-pub struct Rng(pub u64);
+pub use filtered_ndf::testing::rng::SplitMix64 as Rng;
 
-impl Rng {
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in `[a, b)`.
-    pub fn uniform(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
-    }
-    pub fn unit(&mut self) -> DVec3 {
+/// Random directions, vectors and rotations for the scene sweeps, drawn from the crate's
+/// shared seeded generator.
+pub trait RngExt {
+    /// A unit vector, uniform on the sphere (rejection from the cube).
+    fn unit(&mut self) -> DVec3;
+    /// `unit() * uniform[0, r)`.
+    fn vec(&mut self, r: f64) -> DVec3;
+    /// A rotation by up to 3 rad about a random axis.
+    fn rotation(&mut self) -> DMat3;
+    /// A view direction within `acos(0.2)` of `n`: `normalize(1.5 n + r)`, `r` unit.
+    fn view_dir(&mut self, n: DVec3) -> DVec3;
+}
+
+impl RngExt for Rng {
+    fn unit(&mut self) -> DVec3 {
         loop {
             let v = DVec3::new(
-                self.uniform(-1.0, 1.0),
-                self.uniform(-1.0, 1.0),
-                self.uniform(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
             );
             let l = v.length();
             if l > 0.1 && l <= 1.0 {
@@ -243,16 +248,13 @@ impl Rng {
             }
         }
     }
-    pub fn vec(&mut self, r: f64) -> DVec3 {
-        self.unit() * self.uniform(0.0, r)
+    fn vec(&mut self, r: f64) -> DVec3 {
+        self.unit() * self.range(0.0, r)
     }
-    pub fn rotation(&mut self) -> DMat3 {
-        DMat3::from_quat(DQuat::from_scaled_axis(
-            self.unit() * self.uniform(0.0, 3.0),
-        ))
+    fn rotation(&mut self) -> DMat3 {
+        DMat3::from_quat(DQuat::from_scaled_axis(self.unit() * self.range(0.0, 3.0)))
     }
-    /// A view direction within `acos(0.2)` of `n`: `normalize(1.5 n + r)`, `r` unit.
-    pub fn view_dir(&mut self, n: DVec3) -> DVec3 {
+    fn view_dir(&mut self, n: DVec3) -> DVec3 {
         (1.5 * n + self.unit()).normalize()
     }
 }
@@ -265,8 +267,8 @@ fn camera(
     moving_camera: bool,
 ) -> (DVec3, DVec3, DVec3, DVec3, f64) {
     let w = rng.view_dir(n);
-    let l = rng.uniform(2.0, 6.0);
-    let scale = rng.uniform(0.5, 2.0);
+    let l = rng.range(2.0, 6.0);
+    let scale = rng.range(0.5, 2.0);
     let (d_o, om) = if moving_camera {
         (rng.vec(1.0), rng.vec(0.3))
     } else {
@@ -277,7 +279,7 @@ fn camera(
 
 /// A sphere of radius in `[0.5, 2]` translating with speed up to 2, hit at a random point.
 pub fn sphere_scene(rng: &mut Rng, moving_camera: bool) -> Scene<Ellipsoid> {
-    let r = rng.uniform(0.5, 2.0);
+    let r = rng.range(0.5, 2.0);
     let c = rng.vec(3.0);
     let body = Ellipsoid {
         center: c,
@@ -304,9 +306,9 @@ pub fn sphere_scene(rng: &mut Rng, moving_camera: bool) -> Scene<Ellipsoid> {
 /// time about a centre near its own) and translating.
 pub fn ellipsoid_scene(rng: &mut Rng, moving_camera: bool) -> Scene<Ellipsoid> {
     let axes = DVec3::new(
-        rng.uniform(0.3, 1.5),
-        rng.uniform(0.3, 1.5),
-        rng.uniform(0.3, 1.5),
+        rng.range(0.3, 1.5),
+        rng.range(0.3, 1.5),
+        rng.range(0.3, 1.5),
     );
     let c = rng.vec(3.0);
     let body = Ellipsoid {
@@ -336,15 +338,15 @@ pub fn quadric_scene(rng: &mut Rng, moving_camera: bool) -> Scene<Quadric> {
     let p = rng.vec(3.0);
     let n = rng.unit();
     let (e1, e2) = n.any_orthonormal_pair();
-    let a = rng.uniform(0.0, std::f64::consts::TAU);
+    let a = rng.range(0.0, std::f64::consts::TAU);
     let (e1, e2) = (e1 * a.cos() + e2 * a.sin(), -e1 * a.sin() + e2 * a.cos());
     let body = Quadric {
         p,
         n,
         e1,
         e2,
-        k1: rng.uniform(-2.0, 2.0),
-        k2: rng.uniform(-2.0, 2.0),
+        k1: rng.range(-2.0, 2.0),
+        k2: rng.range(-2.0, 2.0),
     };
     let (o0, d0, d_o, omega_cam, s0) = camera(rng, p, n, moving_camera);
     Scene {
