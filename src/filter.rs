@@ -51,6 +51,7 @@ pub fn gaussian<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatr
 /// negative `tau` is treated as `0`). The kernel is [`Covariance::sanitized`] first. Even
 /// with `tau = 0`, a filtered determinant that rounds to `<= 0` (an extremely elongated
 /// kernel) is replaced by `det(A)`, its exact lower bound, so the result is always valid.
+#[inline]
 pub fn gaussian_with_tau<R: Roughness>(
     roughness: R,
     kernel: Covariance,
