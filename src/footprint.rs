@@ -138,13 +138,22 @@ impl Covariance {
     ///
     /// Every filtering function applies this first, so their results are NaN-free for any
     /// input.
+    #[inline]
     pub fn sanitized(&self) -> Self {
         let (a, b, c) = (self.s11, self.s12, self.s22);
         // Fast path (every footprint covariance): finite, positive semi-definite and with
         // trace <= KERNEL_MAX, which bounds both eigenvalues. NaN fails every comparison.
+        // Inlined into the filtering kernels; the rest is out of line.
         if a >= 0.0 && c >= 0.0 && a + c <= KERNEL_MAX && b * b <= a * c {
             return *self;
         }
+        Self::sanitized_slow(self.s11, self.s12, self.s22)
+    }
+
+    /// The general case of [`Covariance::sanitized`].
+    #[cold]
+    #[inline(never)]
+    fn sanitized_slow(a: F, b: F, c: F) -> Self {
         let e = [a, b, c];
         if e.iter().any(|x| x.is_nan()) {
             return Self::ZERO;
@@ -152,10 +161,10 @@ impl Covariance {
         if e.iter().any(|x| x.is_infinite()) {
             return Self::new(KERNEL_MAX, 0.0, KERNEL_MAX);
         }
-        let s11 = self.s11.max(0.0);
-        let s22 = self.s22.max(0.0);
+        let s11 = a.max(0.0);
+        let s22 = c.max(0.0);
         let bound = m::sqrt(s11) * m::sqrt(s22);
-        let s12 = self.s12.clamp(-bound, bound);
+        let s12 = b.clamp(-bound, bound);
         Self::new(s11, s12, s22).clamp_eigenvalues(KERNEL_MAX)
     }
 }
