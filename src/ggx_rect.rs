@@ -238,7 +238,17 @@ fn mean_f(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
             }
         }
         (Tier::Gl2, Tier::Gl2) => gl2x2(uc, vc, hu, hv),
-        (t, t2) => gl_of(t, uc, hu, |x| gl_f(t2, x, vc, hv)),
+        (t, t2) => {
+            // The tensor rule, written out rather than through `gl_of`'s closure: the
+            // closure (two call sites) was not inlined, a call per row.
+            let (xs, ws) = rule(t);
+            let mut acc = 0.0;
+            for (&x, &w) in xs.iter().zip(ws) {
+                let a = hu * x;
+                acc += w * (gl_f(t2, uc - a, vc, hv) + gl_f(t2, uc + a, vc, hv));
+            }
+            acc
+        }
     }
 }
 
