@@ -13,8 +13,9 @@
 //!
 //! **Vectorisation** (stable Rust, `std` feature, x86-64 baseline SSE2; checked by
 //! disassembling the `batch` benchmark, see its header): [`ggx_d`] compiles to packed
-//! `mulps`/`divps`/`addps` (4 lanes in `f32`, 2 in `f64`) for [`super::Isotropic`] and
-//! [`super::AxisAligned`], because [`super::Ndf::d`] of GGX is branch-free (one select). The
+//! `mulps`/`divps`/`addps` (4 lanes in `f32`, 2 in `f64`) for all three roughness forms
+//! (the matrix form's two representations are loop-invariant, and the loop is unswitched),
+//! because its body is GGX's `D` with its checks written as one select. The
 //! others call `exp`, `sqrt` of a data-dependent branch, `atan` or the rectangle integral's
 //! case analysis per element and run as scalar loops; they exist for the convenience of a
 //! uniform slice API (and measure the same as a hand-written scalar loop).
@@ -71,7 +72,7 @@ impl Footprints<'_> {
 /// [`Ndf::d`] of GGX (per steradian, TK19 supplement) for each micronormal
 /// `m_i = (mx[i], my[i], mz[i])`: `out[i] = Ggx::new(*r).d(m_i)`. Returns the number of
 /// elements written (the shortest slice length). Vectorises for `Isotropic` and
-/// `AxisAligned` (module docs).
+/// `AxisAligned` and `RoughnessMatrix` (module docs).
 #[inline]
 pub fn ggx_d<R: Roughness>(r: &R, mx: &[F], my: &[F], mz: &[F], out: &mut [F]) -> usize {
     let n = out.len().min(mx.len()).min(my.len()).min(mz.len());
@@ -79,7 +80,12 @@ pub fn ggx_d<R: Roughness>(r: &R, mx: &[F], my: &[F], mz: &[F], out: &mut [F]) -
     // Re-slicing to `n` lets the compiler drop the bounds checks and vectorise.
     let (mx, my, mz, out) = (&mx[..n], &my[..n], &mz[..n], &mut out[..n]);
     for i in 0..n {
-        out[i] = ggx.d(Vec3::new(mx[i], my[i], mz[i]));
+        // Ndf::d's checks as one select (`&`, and `abs() < inf` rather than `is_finite`,
+        // which compiles to integer bit tests): the same value, bit for bit, without a
+        // branch in the loop body.
+        let v = ggx.d_unchecked(Vec3::new(mx[i], my[i], mz[i]));
+        let keep = (mz[i] > 0.0) & (v.abs() < F::INFINITY);
+        out[i] = if keep { v } else { 0.0 };
     }
     n
 }

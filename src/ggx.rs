@@ -54,6 +54,17 @@ impl Ggx<RoughnessMatrix> {
     }
 }
 
+impl<R: Roughness> Ggx<R> {
+    /// The formula of [`Ndf::d`] without its two checks (`m_z > 0`, finite result): the one
+    /// source of `D` for the scalar path (which branches on the checks, cheapest for a single
+    /// evaluation) and for `batch::ggx_d` (which selects, so that the loop vectorises).
+    #[inline(always)]
+    pub(crate) fn d_unchecked(&self, mn: Vec3) -> F {
+        let t = self.roughness.inv_quadratic(Vec2::new(mn.x, mn.y)) + mn.z * mn.z;
+        1.0 / (PI * self.roughness.sqrt_det() * t * t)
+    }
+}
+
 /// GGX Smith `Lambda` from `q = w_xy^T A w_xy` and `|w_z|` (shared with the sampling and
 /// temporal modules; one source of truth).
 #[inline]
@@ -80,14 +91,11 @@ impl<R: Roughness> Ndf for Ggx<R> {
 
     #[inline]
     fn d(&self, mn: Vec3) -> F {
-        // Branch-free (one select): the same result as returning 0 early for `m_z <= 0`, and
-        // the form `batch::ggx_d` vectorises.
-        let t = self.roughness.inv_quadratic(Vec2::new(mn.x, mn.y)) + mn.z * mn.z;
-        let v = 1.0 / (PI * self.roughness.sqrt_det() * t * t);
-        // `&` (not `&&`) and `abs() < inf` (not `is_finite`, which compiles to integer bit
-        // tests) keep this one select that the loop vectoriser can if-convert.
-        let keep = (mn.z > 0.0) & (v.abs() < F::INFINITY);
-        if keep { v } else { 0.0 }
+        if mn.z <= 0.0 {
+            return 0.0;
+        }
+        let v = self.d_unchecked(mn);
+        if v.is_finite() { v } else { 0.0 }
     }
 
     #[inline]
