@@ -324,7 +324,10 @@ impl RoughnessMatrix {
         if indefinite {
             return Err(RoughnessError::NotPositiveDefinite);
         }
-        let lambda_max = 0.5 * (a11 + a22) + m::hypot(0.5 * (a11 - a22), a12);
+        // |entries| <= ALPHA_MAX^2 = 1e8 (checked above): the squares cannot overflow, so a
+        // plain square root replaces `hypot` (a libm call).
+        let half_diff = 0.5 * (a11 - a22);
+        let lambda_max = 0.5 * (a11 + a22) + m::sqrt(half_diff * half_diff + a12 * a12);
         let lambda_min = det.max(tau) / lambda_max;
         if lambda_max > hi || lambda_min < lo * (1.0 - 16.0 * F::EPSILON) {
             return Err(RoughnessError::OutOfRange);
