@@ -4,7 +4,9 @@
 //! reported time divided by `N` (criterion prints it as throughput).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use filtered_ndf::f32::{AxisAligned, Beckmann, Ggx, Ndf, RoughnessMatrix, ggx_rect, slope};
+use filtered_ndf::f32::{
+    AxisAligned, Beckmann, Covariance, Ggx, Ndf, RoughnessMatrix, filter, ggx_rect, slope,
+};
 use glam::{Vec2, Vec3};
 use std::hint::black_box;
 
@@ -19,6 +21,8 @@ struct Input {
     /// Filtered-matrix entries `A + 2 Sigma` and the clamp `tau`, for building the Beckmann
     /// matrix per evaluation.
     entries: (f32, f32, f32, f32),
+    /// The same kernel `Sigma`, for the filtering path `filter::gaussian`.
+    cov: Covariance,
 }
 
 /// splitmix64 in [0, 1).
@@ -67,6 +71,7 @@ fn inputs() -> Vec<Input> {
                 hpp: Vec2::new(h.x / h.z, h.y / h.z),
                 half,
                 entries,
+                cov: Covariance::new(s11, s12, s22),
             }
         })
         .collect()
@@ -111,6 +116,15 @@ fn bench(c: &mut Criterion) {
                 if let Ok(m) = RoughnessMatrix::new_with_det_clamp(a11, a12, a22, tau) {
                     acc += Beckmann::new(m).d(x.h);
                 }
+            }
+            acc
+        })
+    });
+    g.bench_function("beckmann_filtered_d", |bch| {
+        bch.iter(|| {
+            let mut acc = 0.0f32;
+            for x in black_box(&xs) {
+                acc += Beckmann::new(filter::gaussian(x.r, x.cov)).d(x.h);
             }
             acc
         })

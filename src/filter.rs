@@ -51,6 +51,7 @@ pub fn gaussian<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatr
 /// negative `tau` is treated as `0`). The kernel is [`Covariance::sanitized`] first. Even
 /// with `tau = 0`, a filtered determinant that rounds to `<= 0` (an extremely elongated
 /// kernel) is replaced by `det(A)`, its exact lower bound, so the result is always valid.
+#[inline]
 pub fn gaussian_with_tau<R: Roughness>(
     roughness: R,
     kernel: Covariance,
@@ -171,6 +172,7 @@ pub const PROJECTED_EIGEN_MAX: F = 0.99;
 /// `A' = proj(A_c) + (A - A_c)`. This is exact below the limit, continuous across it, and
 /// never sharpens (`A' >= A`, as `P -> P (I + P)^-1` is operator monotone); lobes that rough
 /// need no filtering (TK19 section 3.2).
+#[inline]
 pub fn projected<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatrix {
     let k = kernel.sanitized();
     let (a11, a12, a22) = roughness.to_matrix().entries();

@@ -86,25 +86,37 @@ impl Covariance {
     /// and `max I` when both do. A matrix with entries above 1 is first scaled to unit size so
     /// nothing overflows. A negative or NaN `max` yields [`Covariance::ZERO`], a non-finite
     /// input [`Covariance::ZERO`] (use [`Covariance::sanitized`] for the full contract).
+    #[inline]
     pub fn clamp_eigenvalues(&self, max: F) -> Self {
-        if max.is_nan() || max < 0.0 {
-            return Self::ZERO;
-        }
-        // Fast path: a PSD kernel whose trace (lambda_min + lambda_max) is within the bound.
+        // Fast path: a PSD kernel whose trace (lambda_min + lambda_max) is within the bound
+        // (`max` is then not NaN and >= 0). Inlined; the rest is out of line, by value (a
+        // by-reference call from inlined code measured a store-forwarding stall).
         if self.s11 >= 0.0 && self.s22 >= 0.0 && self.s11 + self.s22 <= max {
             return *self;
         }
-        let scale = self.s11.abs().max(self.s22.abs()).max(self.s12.abs());
+        Self::clamp_eigenvalues_slow(self.s11, self.s12, self.s22, max)
+    }
+
+    /// The general case of [`Covariance::clamp_eigenvalues`].
+    #[cold]
+    #[inline(never)]
+    fn clamp_eigenvalues_slow(s11: F, s12: F, s22: F, max: F) -> Self {
+        let this = Self::new(s11, s12, s22);
+        let this = &this;
+        if max.is_nan() || max < 0.0 {
+            return Self::ZERO;
+        }
+        let scale = this.s11.abs().max(this.s22.abs()).max(this.s12.abs());
         if scale.is_nan() || scale <= 0.0 || !scale.is_finite() {
-            return if scale.is_finite() { *self } else { Self::ZERO };
+            return if scale.is_finite() { *this } else { Self::ZERO };
         }
         // Work on Sigma / scale (entries <= 1) against max / scale.
         let k = if scale > 1.0 { scale } else { 1.0 };
-        let s = *self * (1.0 / k);
+        let s = *this * (1.0 / k);
         let c = max / k;
         let (lmin, lmax) = s.eigenvalues();
         if lmax <= c {
-            return *self;
+            return *this;
         }
         if lmin >= c {
             return Self::new(c, 0.0, c) * k;
@@ -138,13 +150,22 @@ impl Covariance {
     ///
     /// Every filtering function applies this first, so their results are NaN-free for any
     /// input.
+    #[inline]
     pub fn sanitized(&self) -> Self {
         let (a, b, c) = (self.s11, self.s12, self.s22);
         // Fast path (every footprint covariance): finite, positive semi-definite and with
         // trace <= KERNEL_MAX, which bounds both eigenvalues. NaN fails every comparison.
+        // Inlined into the filtering kernels; the rest is out of line.
         if a >= 0.0 && c >= 0.0 && a + c <= KERNEL_MAX && b * b <= a * c {
             return *self;
         }
+        Self::sanitized_slow(self.s11, self.s12, self.s22)
+    }
+
+    /// The general case of [`Covariance::sanitized`].
+    #[cold]
+    #[inline(never)]
+    fn sanitized_slow(a: F, b: F, c: F) -> Self {
         let e = [a, b, c];
         if e.iter().any(|x| x.is_nan()) {
             return Self::ZERO;
@@ -152,10 +173,10 @@ impl Covariance {
         if e.iter().any(|x| x.is_infinite()) {
             return Self::new(KERNEL_MAX, 0.0, KERNEL_MAX);
         }
-        let s11 = self.s11.max(0.0);
-        let s22 = self.s22.max(0.0);
+        let s11 = a.max(0.0);
+        let s22 = c.max(0.0);
         let bound = m::sqrt(s11) * m::sqrt(s22);
-        let s12 = self.s12.clamp(-bound, bound);
+        let s12 = b.clamp(-bound, bound);
         Self::new(s11, s12, s22).clamp_eigenvalues(KERNEL_MAX)
     }
 }

@@ -54,6 +54,17 @@ impl Ggx<RoughnessMatrix> {
     }
 }
 
+impl<R: Roughness> Ggx<R> {
+    /// The formula of [`Ndf::d`] without its two checks (`m_z > 0`, finite result): the one
+    /// source of `D` for the scalar path (which branches on the checks, cheapest for a single
+    /// evaluation) and for `batch::ggx_d` (which selects, so that the loop vectorises).
+    #[inline(always)]
+    pub(crate) fn d_unchecked(&self, mn: Vec3) -> F {
+        let t = self.roughness.inv_quadratic(Vec2::new(mn.x, mn.y)) + mn.z * mn.z;
+        1.0 / (PI * self.roughness.sqrt_det() * t * t)
+    }
+}
+
 /// GGX Smith `Lambda` from `q = w_xy^T A w_xy` and `|w_z|` (shared with the sampling and
 /// temporal modules; one source of truth).
 #[inline]
@@ -83,8 +94,7 @@ impl<R: Roughness> Ndf for Ggx<R> {
         if mn.z <= 0.0 {
             return 0.0;
         }
-        let t = self.roughness.inv_quadratic(Vec2::new(mn.x, mn.y)) + mn.z * mn.z;
-        let v = 1.0 / (PI * self.roughness.sqrt_det() * t * t);
+        let v = self.d_unchecked(mn);
         if v.is_finite() { v } else { 0.0 }
     }
 

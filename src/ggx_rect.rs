@@ -237,7 +237,43 @@ fn mean_f(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
                 gl_of(t, uc, hu, |x| mean_1d(vc, hv, 1.0 + x * x))
             }
         }
-        (t, t2) => gl_of(t, uc, hu, |x| gl_f(t2, x, vc, hv)),
+        (Tier::Gl2, Tier::Gl2) => gl2x2(uc, vc, hu, hv),
+        (t, t2) => {
+            // The tensor rule, written out rather than through `gl_of`'s closure: the
+            // closure (two call sites) was not inlined, a call per row.
+            let (xs, ws) = rule(t);
+            let mut acc = 0.0;
+            for (&x, &w) in xs.iter().zip(ws) {
+                let a = hu * x;
+                acc += w * (gl_f(t2, uc - a, vc, hv) + gl_f(t2, uc + a, vc, hv));
+            }
+            acc
+        }
+    }
+}
+
+/// The 2 x 2-point tensor Gauss-Legendre rule (both axes in tier `Gl2`, the most common case
+/// for pixel footprints): the mean of `f` at the four nodes, `(n0 / p0 + n1 / p1) / 4` per
+/// row pair as in [`gl_f`], with one division for both rows while `p0 p1` stays below
+/// `1e300` (a few `f64` ulps from two divisions; all terms positive).
+#[inline(always)]
+fn gl2x2(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
+    let (a, b) = (hu * GL2_X, hv * GL2_X);
+    let (v0, v1) = (vc - b, vc + b);
+    let (w0, w1) = (v0 * v0, v1 * v1);
+    let row = |u: f64| {
+        let q = 1.0 + u * u;
+        let (t0, t1) = (q + w0, q + w1);
+        let (s0, s1) = (t0 * t0, t1 * t1);
+        (s0 + s1, s0 * s1)
+    };
+    let (n0, p0) = row(uc - a);
+    let (n1, p1) = row(uc + a);
+    let pp = p0 * p1;
+    if pp < 1e300 {
+        0.25 * (n0 * p1 + n1 * p0) / pp
+    } else {
+        0.25 * (n0 / p0 + n1 / p1)
     }
 }
 

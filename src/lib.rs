@@ -65,6 +65,8 @@ pub use error::RoughnessError;
 macro_rules! precision_modules {
     () => {
         // Each file is deliberately loaded once per precision.
+        #[path = "batch.rs"]
+        pub mod batch;
         #[path = "beckmann.rs"]
         pub mod beckmann;
         #[path = "clamp.rs"]

@@ -204,6 +204,8 @@ impl Roughness for AxisAligned {
             eig: a,
             inv_eig: self.inv_alpha2,
             sqrt_det: self.alpha.x * self.alpha.y,
+            inv_det_wide: 0.0,
+            wide: false,
         }
     }
 }
@@ -225,6 +227,14 @@ impl Roughness for AxisAligned {
 /// two non-negative squares. Evaluating `s^T A^-1 s` from the entries of `A^-1` instead would
 /// cancel to a relative error of `cond(A) eps` (6 % in `f32` at an anisotropy ratio of
 /// `1e3`); in the eigenbasis it is a few ulps at any condition number.
+///
+/// In `f32`, a matrix with `cond(A) < 2^24` (every filtered lobe of a realistic material)
+/// is instead kept as its entries and `1 / max(det A, tau)` in `f64`, and the quadratic forms
+/// are evaluated from the entries in `f64`: the cancellation above then costs a relative
+/// `4 eps_f64 cond(A) < 2e-9`, below half an `f32` ulp, and the construction needs one
+/// division and one square root instead of an eigen-decomposition (this is what makes a
+/// per-pixel filtered lobe cheap). Both representations give the same values to within the
+/// stated accuracy; `PartialEq` compares representations, not only the matrix.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RoughnessMatrix {
     a11: F,
@@ -237,7 +247,17 @@ pub struct RoughnessMatrix {
     /// Eigenvalues of the clamped inverse `adj(A) / max(det A, tau)`: `(l2, l1) / max(det, tau)`.
     inv_eig: Vec2,
     sqrt_det: F,
+    /// `1 / max(det A, tau)` in `f64`, for the wide path (`0` on the eigenbasis path).
+    inv_det_wide: f64,
+    /// Whether the quadratic forms are evaluated from the entries in `f64` (the wide path,
+    /// `F = f32` only; see [`RoughnessMatrix::from_entries_clamped`]).
+    wide: bool,
 }
+
+/// The wide path is compiled in for `f32` only (`f64` has no wider type).
+const WIDE: bool = core::mem::size_of::<F>() == 4;
+/// The wide path is taken while `tr(A)^2 / det(A) < COND_WIDE` (`>= cond(A)`).
+const COND_WIDE: f64 = (1u64 << 24) as f64;
 
 /// `a b - c d` to within about one ulp, whatever the cancellation: in `f32` through `f64`
 /// (the products of two `f32` are exact there), in `f64` by Kahan's algorithm with two fused
@@ -304,7 +324,10 @@ impl RoughnessMatrix {
         if indefinite {
             return Err(RoughnessError::NotPositiveDefinite);
         }
-        let lambda_max = 0.5 * (a11 + a22) + m::hypot(0.5 * (a11 - a22), a12);
+        // |entries| <= ALPHA_MAX^2 = 1e8 (checked above): the squares cannot overflow, so a
+        // plain square root replaces `hypot` (a libm call).
+        let half_diff = 0.5 * (a11 - a22);
+        let lambda_max = 0.5 * (a11 + a22) + m::sqrt(half_diff * half_diff + a12 * a12);
         let lambda_min = det.max(tau) / lambda_max;
         if lambda_max > hi || lambda_min < lo * (1.0 - 16.0 * F::EPSILON) {
             return Err(RoughnessError::OutOfRange);
@@ -316,7 +339,39 @@ impl RoughnessMatrix {
     /// `a11 > 0`, `a22 > 0` and `max(det A, tau) > 0` (the filtering kernels, which add a
     /// positive semi-definite kernel to a valid roughness, do).
     #[inline]
+    ///
+    /// Two representations, one result (to within an `f32` ulp):
+    /// - **Wide path** (`F = f32` and `tr(A)^2 < 2^24 det A`, i.e. `cond(A) < 2^24`): only the
+    ///   entries and `1 / max(det A, tau)` in `f64` are kept, and the quadratic forms are
+    ///   evaluated from the entries in `f64`, `s^T adj(A) s / max(det, tau)`. The `f32`
+    ///   inputs' products are exact in `f64`; the one cancellation costs a relative
+    ///   `4 eps_f64 cond(A) < 2e-9`, below half an `f32` ulp. One `f64` division and one square
+    ///   root build it (the eigenbasis needs three square roots and two divisions): this is
+    ///   what makes a filtered lobe, built per pixel, cheap.
+    /// - **Eigenbasis path** (`f64`, or `cond(A) >= 2^24`, or a determinant that is not
+    ///   positive): `A = R diag(l1, l2) R^T` (see the type docs), accurate at any condition
+    ///   number.
     pub(crate) fn from_entries_clamped(a11: F, a12: F, a22: F, tau: F) -> Self {
+        if WIDE {
+            let (b11, b12, b22) = (a11.to_f64(), a12.to_f64(), a22.to_f64());
+            let det = b11 * b22 - b12 * b12;
+            let tr = b11 + b22;
+            if tr * tr < COND_WIDE * det {
+                // det > 0 here; max(det, tau) rounds to the F value the eigenbasis path uses.
+                let clamped = det.max(tau.to_f64());
+                return Self {
+                    a11,
+                    a12,
+                    a22,
+                    axis: Vec2::X,
+                    eig: Vec2::ZERO,
+                    inv_eig: Vec2::ZERO,
+                    sqrt_det: m::sqrt(F::from_f64(clamped)),
+                    inv_det_wide: 1.0 / clamped,
+                    wide: true,
+                };
+            }
+        }
         let det = diff_of_products(a11, a22, a12, a12);
         let clamped = det.max(tau);
         // Eigen-decomposition: l1 = mean + rad (no cancellation), l2 = det / l1 (accurate
@@ -330,11 +385,12 @@ impl RoughnessMatrix {
         };
         let l1 = 0.5 * (a11 + a22) + rad;
         let l2 = det / l1;
-        let v = if half_diff >= 0.0 {
-            Vec2::new(half_diff + rad, a12)
-        } else {
-            Vec2::new(a12, rad - half_diff)
-        };
+        // Unnormalised eigenvector of l1 (both rows give the same direction; the one with
+        // `rad + |half_diff|` avoids cancellation). Written as selects, not a branch: the
+        // sign of `half_diff` is data-dependent and mispredicts in a filtering loop.
+        let big = rad + half_diff.abs();
+        let neg = half_diff < 0.0;
+        let v = Vec2::new(if neg { a12 } else { big }, if neg { big } else { a12 });
         let axis = v.try_normalize().unwrap_or(Vec2::X);
         let inv_det = 1.0 / clamped;
         Self {
@@ -345,6 +401,8 @@ impl RoughnessMatrix {
             eig: Vec2::new(l1, l2),
             inv_eig: Vec2::new(l2 * inv_det, l1 * inv_det),
             sqrt_det: m::sqrt(clamped),
+            inv_det_wide: 0.0,
+            wide: false,
         }
     }
 
@@ -375,6 +433,16 @@ impl RoughnessMatrix {
     /// `A^-1` as used by the density, i.e. `adj(A) / max(det A, tau)`.
     #[inline]
     pub fn inverse(&self) -> Mat2 {
+        if WIDE && self.wide {
+            let k = self.inv_det_wide;
+            let (a11, a12, a22) = (self.a11.to_f64(), self.a12.to_f64(), self.a22.to_f64());
+            let (i11, i12, i22) = (
+                F::from_f64(a22 * k),
+                F::from_f64(-a12 * k),
+                F::from_f64(a11 * k),
+            );
+            return Mat2::from_cols(Vec2::new(i11, i12), Vec2::new(i12, i22));
+        }
         let (c, s) = (self.axis.x, self.axis.y);
         let (w1, w2) = (self.inv_eig.x, self.inv_eig.y);
         let i11 = w1 * c * c + w2 * s * s;
@@ -409,11 +477,24 @@ impl sealed::Sealed for RoughnessMatrix {}
 impl Roughness for RoughnessMatrix {
     #[inline]
     fn inv_quadratic(&self, s: Vec2) -> F {
+        if WIDE && self.wide {
+            // s^T adj(A) s / max(det, tau), in f64 (see `from_entries_clamped`).
+            let (a11, a12, a22) = (self.a11.to_f64(), self.a12.to_f64(), self.a22.to_f64());
+            let (x, y) = (s.x.to_f64(), s.y.to_f64());
+            let q = ((a22 * x) * x + (a11 * y) * y - 2.0 * (a12 * x) * y) * self.inv_det_wide;
+            return F::from_f64(q.max(0.0));
+        }
         let r = self.rotate(s);
         (r * r).dot(self.inv_eig).max(0.0)
     }
     #[inline]
     fn quadratic(&self, w: Vec2) -> F {
+        if WIDE && self.wide {
+            let (a11, a12, a22) = (self.a11.to_f64(), self.a12.to_f64(), self.a22.to_f64());
+            let (x, y) = (w.x.to_f64(), w.y.to_f64());
+            let q = (a11 * x) * x + (a22 * y) * y + 2.0 * (a12 * x) * y;
+            return F::from_f64(q.max(0.0));
+        }
         let r = self.rotate(w);
         (r * r).dot(self.eig).max(0.0)
     }

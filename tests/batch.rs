@@ -1,0 +1,297 @@
+//! The slice API (`batch`) against the scalar functions it wraps: bit-for-bit equality on
+//! seeded random and adversarial inputs (NaN, infinities, zeros, huge and tiny values,
+//! back-facing directions), the common-prefix rule for mismatched lengths, and NaN-free
+//! output. Equality is exact (`to_bits`), not a tolerance: the batch loop body calls the
+//! scalar function, so any difference (e.g. a vectorised path that reassociates) is a bug.
+
+/// SplitMix64 in [0, 1).
+fn uniform(state: &mut u64) -> f64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// Adversarial scalars mixed into every input column.
+const SPECIAL: [f64; 12] = [
+    f64::NAN,
+    f64::INFINITY,
+    f64::NEG_INFINITY,
+    0.0,
+    -0.0,
+    1e30,
+    -1e30,
+    1e-30,
+    -1e-30,
+    1.0,
+    -1.0,
+    1e-3,
+];
+
+/// `n` values: mostly realistic (unit-ish directions, small slopes), one in five special.
+fn column(n: usize, seed: u64, lo: f64, hi: f64) -> Vec<f64> {
+    let mut st = seed;
+    (0..n)
+        .map(|_| {
+            if uniform(&mut st) < 0.2 {
+                SPECIAL[(uniform(&mut st) * SPECIAL.len() as f64) as usize]
+            } else {
+                lo + (hi - lo) * uniform(&mut st)
+            }
+        })
+        .collect()
+}
+
+macro_rules! suite {
+    ($modname:ident, $prec:ident, $t:ty) => {
+        mod $modname {
+            use super::*;
+            use filtered_ndf::$prec::{
+                AxisAligned, Beckmann, Footprint, Ggx, Isotropic, Ndf, RoughnessMatrix, Vec2, Vec3,
+                batch, filter, ggx_rect,
+            };
+
+            const N: usize = 2000;
+
+            struct Cols {
+                x: Vec<$t>,
+                y: Vec<$t>,
+                z: Vec<$t>,
+                ux: Vec<$t>,
+                uy: Vec<$t>,
+                vx: Vec<$t>,
+                vy: Vec<$t>,
+                hx: Vec<$t>,
+                hy: Vec<$t>,
+            }
+
+            fn cols(seed: u64) -> Cols {
+                let c = |s: u64, lo: f64, hi: f64| -> Vec<$t> {
+                    column(N, seed ^ s, lo, hi)
+                        .into_iter()
+                        .map(|v| v as $t)
+                        .collect()
+                };
+                Cols {
+                    x: c(1, -0.7, 0.7),
+                    y: c(2, -0.7, 0.7),
+                    // Some back-facing z on purpose.
+                    z: c(3, -0.2, 1.0),
+                    ux: c(4, -0.1, 0.1),
+                    uy: c(5, -0.1, 0.1),
+                    vx: c(6, -0.1, 0.1),
+                    vy: c(7, -0.1, 0.1),
+                    hx: c(8, 0.0, 0.1),
+                    hy: c(9, -0.1, 0.1),
+                }
+            }
+
+            fn same(got: &[$t], want: impl Fn(usize) -> $t, what: &str) {
+                for (i, g) in got.iter().enumerate() {
+                    let w = want(i);
+                    assert_eq!(
+                        g.to_bits(),
+                        w.to_bits(),
+                        "{what} [{i}]: batch {g} vs scalar {w}"
+                    );
+                    assert!(!g.is_nan(), "{what} [{i}] is NaN");
+                }
+            }
+
+            fn h(c: &Cols, i: usize) -> Vec3 {
+                Vec3::new(c.x[i], c.y[i], c.z[i])
+            }
+
+            fn fp(c: &Cols, i: usize) -> Footprint {
+                Footprint::from_slope_derivatives(
+                    Vec2::new(c.ux[i], c.uy[i]),
+                    Vec2::new(c.vx[i], c.vy[i]),
+                )
+            }
+
+            fn soa(c: &Cols) -> batch::Footprints<'_> {
+                batch::Footprints {
+                    dh_u_x: &c.ux,
+                    dh_u_y: &c.uy,
+                    dh_v_x: &c.vx,
+                    dh_v_y: &c.vy,
+                }
+            }
+
+            #[test]
+            fn ndf_d_bit_for_bit() {
+                let c = cols(0xB47C);
+                let mut out = vec![0.0 as $t; N];
+                for alpha in [1e-4 as $t, 0.05, 0.5, 2.0] {
+                    let iso = Isotropic::new(alpha).unwrap();
+                    let aa = AxisAligned::new(alpha, alpha * 0.3).unwrap();
+                    let a2 = alpha * alpha;
+                    // A rotated matrix (wide path in f32) and an elongated one (cond > 2^24:
+                    // the eigenbasis path in f32).
+                    let mat = RoughnessMatrix::new(a2, 0.3 * a2, 0.5 * a2).unwrap();
+                    let long = RoughnessMatrix::new(a2, 0.0, a2 * 1e-8).unwrap();
+                    assert_eq!(batch::ggx_d(&iso, &c.x, &c.y, &c.z, &mut out), N);
+                    same(&out, |i| Ggx::new(iso).d(h(&c, i)), "ggx iso");
+                    batch::ggx_d(&aa, &c.x, &c.y, &c.z, &mut out);
+                    same(&out, |i| Ggx::new(aa).d(h(&c, i)), "ggx aa");
+                    batch::ggx_d(&mat, &c.x, &c.y, &c.z, &mut out);
+                    same(&out, |i| Ggx::new(mat).d(h(&c, i)), "ggx matrix");
+                    batch::ggx_d(&long, &c.x, &c.y, &c.z, &mut out);
+                    same(&out, |i| Ggx::new(long).d(h(&c, i)), "ggx long matrix");
+                    assert_eq!(batch::beckmann_d(&aa, &c.x, &c.y, &c.z, &mut out), N);
+                    same(&out, |i| Beckmann::new(aa).d(h(&c, i)), "beckmann aa");
+                    batch::beckmann_d(&mat, &c.x, &c.y, &c.z, &mut out);
+                    same(&out, |i| Beckmann::new(mat).d(h(&c, i)), "beckmann matrix");
+                }
+            }
+
+            #[test]
+            fn filtered_and_rect_bit_for_bit() {
+                let c = cols(0xF117);
+                let mut out = vec![0.0 as $t; N];
+                for alpha in [1e-3 as $t, 0.1, 0.8] {
+                    let aa = AxisAligned::new(alpha, alpha * 2.0).unwrap();
+                    for sigma in [0.5 as $t, 0.0, <$t>::NAN] {
+                        let n = batch::beckmann_d_filtered(
+                            &aa,
+                            &c.x,
+                            &c.y,
+                            &c.z,
+                            soa(&c),
+                            sigma,
+                            &mut out,
+                        );
+                        assert_eq!(n, N);
+                        same(
+                            &out,
+                            |i| {
+                                Beckmann::new(filter::gaussian(aa, fp(&c, i).covariance(sigma)))
+                                    .d(h(&c, i))
+                            },
+                            "filtered beckmann",
+                        );
+                        batch::ggx_d_filtered(&aa, &c.x, &c.y, &c.z, soa(&c), sigma, &mut out);
+                        same(
+                            &out,
+                            |i| {
+                                Ggx::new(filter::gaussian(aa, fp(&c, i).covariance(sigma)))
+                                    .d(h(&c, i))
+                            },
+                            "filtered ggx",
+                        );
+                    }
+                    let n = batch::d_rect(&aa, &c.x, &c.y, &c.z, &c.hx, &c.hy, &mut out);
+                    assert_eq!(n, N);
+                    same(
+                        &out,
+                        |i| ggx_rect::d_rect(aa, h(&c, i), Vec2::new(c.hx[i], c.hy[i])),
+                        "d_rect",
+                    );
+                }
+            }
+
+            #[test]
+            fn mismatched_lengths_process_the_common_prefix() {
+                let c = cols(0x1E57);
+                let aa = AxisAligned::new(0.2, 0.1).unwrap();
+                let sentinel = 12345.0 as $t;
+                // Each slice in turn is the short one (7 elements, the others 11).
+                for short in 0..4 {
+                    let len = |k: usize| if k == short { 7 } else { 11 };
+                    let (x, y, z) = (&c.x[..len(0)], &c.y[..len(1)], &c.z[..len(2)]);
+                    // `out` is the short one (7) or longer than every input (16).
+                    let mut out = vec![sentinel; if short == 3 { 7 } else { 16 }];
+                    let want_n = 7;
+                    let n = batch::ggx_d(&aa, x, y, z, &mut out);
+                    assert_eq!(n, want_n, "short input {short}");
+                    same(&out[..n], |i| Ggx::new(aa).d(h(&c, i)), "prefix");
+                    assert!(out[n..].iter().all(|&v| v == sentinel), "tail untouched");
+                }
+                // A short `out` bounds the work; empty slices do nothing.
+                let mut out = vec![sentinel; 3];
+                assert_eq!(batch::beckmann_d(&aa, &c.x, &c.y, &c.z, &mut out), 3);
+                assert_eq!(batch::ggx_d(&aa, &[], &c.y, &c.z, &mut out), 0);
+                let mut fps = soa(&c);
+                fps.dh_v_y = &c.vy[..5];
+                assert_eq!(fps.len(), 5);
+                let mut out = vec![sentinel; N];
+                assert_eq!(
+                    batch::ggx_d_filtered(&aa, &c.x, &c.y, &c.z, fps, 0.5, &mut out),
+                    5
+                );
+                assert!(out[5..].iter().all(|&v| v == sentinel));
+                assert_eq!(
+                    batch::d_rect(&aa, &c.x, &c.y, &c.z, &c.hx[..2], &c.hy, &mut out),
+                    2
+                );
+                let empty = batch::Footprints {
+                    dh_u_x: &[],
+                    dh_u_y: &[],
+                    dh_v_x: &[],
+                    dh_v_y: &[],
+                };
+                assert!(empty.is_empty());
+            }
+
+            #[test]
+            fn nan_and_back_facing_inputs_give_zero() {
+                let aa = AxisAligned::new(0.2, 0.1).unwrap();
+                let nan = <$t>::NAN;
+                let x = [nan, 0.0, 0.0, 0.0, <$t>::INFINITY];
+                let y = [0.0, nan, 0.0, 0.0, 0.0];
+                let z = [1.0, 1.0, nan, -1.0, 1.0];
+                let mut out = [1.0 as $t; 5];
+                batch::ggx_d(&aa, &x, &y, &z, &mut out);
+                assert_eq!(out, [0.0; 5], "ggx");
+                let mut out = [1.0 as $t; 5];
+                batch::beckmann_d(&aa, &x, &y, &z, &mut out);
+                assert_eq!(out, [0.0; 5], "beckmann");
+                // NaN footprints are sanitised to no filtering: the unfiltered value.
+                let f = [nan; 5];
+                let fps = batch::Footprints {
+                    dh_u_x: &f,
+                    dh_u_y: &f,
+                    dh_v_x: &f,
+                    dh_v_y: &f,
+                };
+                let (zx, zy, zz) = ([0.0 as $t; 5], [0.0 as $t; 5], [1.0 as $t; 5]);
+                let mut out = [0.0 as $t; 5];
+                batch::beckmann_d_filtered(&aa, &zx, &zy, &zz, fps, 0.5, &mut out);
+                let peak = Beckmann::new(aa).d(Vec3::Z);
+                // 4 ulps: the filtered matrix's sqrt(det) is computed from the entries, the
+                // axis-aligned one as alpha_x alpha_y (a rounding or two apart).
+                let tol = 4.0 * <$t>::EPSILON * peak;
+                assert!(
+                    out.iter().all(|&v| (v - peak).abs() <= tol),
+                    "{out:?} vs {peak}"
+                );
+                let mut out = [1.0 as $t; 5];
+                batch::d_rect(&aa, &x, &y, &z, &f, &f, &mut out);
+                assert!(out.iter().all(|v| !v.is_nan()), "{out:?}");
+            }
+
+            #[test]
+            fn ggx_peak_is_the_closed_form() {
+                // Independent check of the vectorised loop's values: D(n) = 1 / (pi alpha^2).
+                let alpha = 0.3 as $t;
+                let iso = Isotropic::new(alpha).unwrap();
+                let n = 37; // not a multiple of any vector width
+                let (x, y, z) = (vec![0.0 as $t; n], vec![0.0 as $t; n], vec![1.0 as $t; n]);
+                let mut out = vec![0.0 as $t; n];
+                batch::ggx_d(&iso, &x, &y, &z, &mut out);
+                let want = 1.0 / (std::f64::consts::PI * (alpha as f64).powi(2));
+                // 4 ulps: one division, three products and the rounding of pi.
+                for v in out {
+                    assert!(
+                        ((v as f64) - want).abs() <= 4.0 * (<$t>::EPSILON as f64) * want,
+                        "{v} vs {want}"
+                    );
+                }
+            }
+        }
+    };
+}
+
+suite!(single, f32, f32);
+suite!(double, f64, f64);
