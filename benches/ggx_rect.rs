@@ -7,6 +7,7 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use filtered_ndf::f32::{
     AxisAligned, Beckmann, Covariance, Ggx, Ndf, RoughnessMatrix, filter, ggx_rect, slope,
 };
+use filtered_ndf::testing::rng::SplitMix64;
 use glam::{Vec2, Vec3};
 use std::hint::black_box;
 
@@ -25,20 +26,12 @@ struct Input {
     cov: Covariance,
 }
 
-/// splitmix64 in [0, 1).
-fn next(state: &mut u64) -> f32 {
-    *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    let mut z = *state;
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
-}
-
 /// Realistic inputs: roughness 0.02..0.6 (log), anisotropy up to 4, half vectors within a few
 /// roughness widths of the normal (and some far), footprints 1e-3..0.1 per axis (log).
 fn inputs() -> Vec<Input> {
-    let mut st = 0x5eed_u64;
-    let log = |lo: f32, hi: f32, st: &mut u64| (lo.ln() + (hi.ln() - lo.ln()) * next(st)).exp();
+    let mut st = SplitMix64(0x5eed);
+    let next = |st: &mut SplitMix64| st.uniform() as f32;
+    let log = |lo: f32, hi: f32, st: &mut SplitMix64| st.log_uniform(lo as f64, hi as f64) as f32;
     (0..N)
         .map(|_| {
             let a = log(0.02, 0.6, &mut st);

@@ -116,7 +116,9 @@ macro_rules! precision_modules {
         pub use isotropic::{Bandwidth, KernelConvention};
         pub use ndf::Ndf;
         pub use quadric::{LocalQuadric, RigidMotion};
-        pub use roughness::{ALPHA_MAX, ALPHA_MIN, AxisAligned, Isotropic, Roughness, RoughnessMatrix};
+        pub use roughness::{
+            ALPHA_MAX, ALPHA_MIN, AxisAligned, Isotropic, Roughness, RoughnessMatrix,
+        };
         pub use sampling::NdfSampling;
         pub use temporal::{TemporalLobe, TemporalRoughness};
     };
