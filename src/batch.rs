@@ -30,7 +30,7 @@ use super::footprint::Footprint;
 use super::ggx::Ggx;
 use super::ggx_rect;
 use super::ndf::Ndf;
-use super::roughness::{AxisAligned, Roughness};
+use super::roughness::{AxisAligned, Roughness, RoughnessMatrix};
 use super::{F, Vec2, Vec3};
 
 /// Footprints in structure-of-arrays form: element `i` is the [`Footprint`] with
@@ -122,18 +122,7 @@ pub fn beckmann_d_filtered<R: Roughness>(
     sigma: F,
     out: &mut [F],
 ) -> usize {
-    let n = out
-        .len()
-        .min(hx.len())
-        .min(hy.len())
-        .min(hz.len())
-        .min(fp.len());
-    let (hx, hy, hz, out) = (&hx[..n], &hy[..n], &hz[..n], &mut out[..n]);
-    for i in 0..n {
-        let a = filter::gaussian(*r, fp.get(i).covariance(sigma));
-        out[i] = Beckmann::new(a).d(Vec3::new(hx[i], hy[i], hz[i]));
-    }
-    n
+    d_filtered(Beckmann::new, r, [hx, hy, hz], fp, sigma, out)
 }
 
 /// Filtered GGX with the TK19 (section 2.2) matrix approximation `A' = A + 2 Sigma` for each
@@ -149,6 +138,20 @@ pub fn ggx_d_filtered<R: Roughness>(
     sigma: F,
     out: &mut [F],
 ) -> usize {
+    d_filtered(Ggx::new, r, [hx, hy, hz], fp, sigma, out)
+}
+
+/// The loop shared by the Gaussian-filtered batch functions: `A' = A + 2 Sigma_i`
+/// ([`filter::gaussian`]) evaluated by the NDF `ndf(A')` at `h_i`.
+#[inline]
+fn d_filtered<R: Roughness, N: Ndf>(
+    ndf: impl Fn(RoughnessMatrix) -> N,
+    r: &R,
+    [hx, hy, hz]: [&[F]; 3],
+    fp: Footprints<'_>,
+    sigma: F,
+    out: &mut [F],
+) -> usize {
     let n = out
         .len()
         .min(hx.len())
@@ -158,7 +161,7 @@ pub fn ggx_d_filtered<R: Roughness>(
     let (hx, hy, hz, out) = (&hx[..n], &hy[..n], &hz[..n], &mut out[..n]);
     for i in 0..n {
         let a = filter::gaussian(*r, fp.get(i).covariance(sigma));
-        out[i] = Ggx::new(a).d(Vec3::new(hx[i], hy[i], hz[i]));
+        out[i] = ndf(a).d(Vec3::new(hx[i], hy[i], hz[i]));
     }
     n
 }
