@@ -13,7 +13,8 @@ use std::fmt::Write as _;
 const DOWNSCALE: usize = 2;
 const SPP_DIVISOR: usize = 8;
 
-const COLORS: [[u8; 3]; 9] = [
+/// One distinct colour per method of `Method::ALL` (ten).
+const COLORS: [[u8; 3]; 10] = [
     [220, 40, 40],
     [240, 140, 20],
     [30, 120, 220],
@@ -23,6 +24,7 @@ const COLORS: [[u8; 3]; 9] = [
     [200, 60, 140],
     [120, 120, 40],
     [90, 90, 90],
+    [110, 70, 20],
 ];
 
 pub fn run(o: &Options) -> std::io::Result<String> {
