@@ -61,7 +61,7 @@ fn parse_args() -> Options {
         frames: 16,
         out: PathBuf::from("target/highlights"),
         methods: Method::ALL.to_vec(),
-        route: FootprintRoute::Quad,
+        route: FootprintRoute::RayDifferentials,
         threads: 2,
         seed: 1,
         exposure: 1.0,
@@ -207,19 +207,45 @@ fn main() -> std::io::Result<()> {
             .unwrap();
         }
     }
+    // The other footprint route on the same frame (RMSE only): analytic ray differentials
+    // (offline) against 2x2-quad differences (what a GPU does).
+    let other = match o.route {
+        FootprintRoute::Quad => FootprintRoute::RayDifferentials,
+        FootprintRoute::RayDifferentials => FootprintRoute::Quad,
+    };
+    let other_derivs = gb.derivatives(other, o.threads);
+    let mut route_table = String::new();
+    writeln!(
+        route_table,
+        "| method | RMSE (HDR), {} | RMSE (HDR), {} |",
+        route_name(o.route),
+        route_name(other)
+    )
+    .unwrap();
+    writeln!(route_table, "|---|---:|---:|").unwrap();
+    for &method in &o.methods {
+        let full = reference.full(method.family());
+        let a = render::shade(&scene, &gb, &derivs, method, o.threads).rmse(full);
+        let b = render::shade(&scene, &gb, &other_derivs, method, o.threads).rmse(full);
+        writeln!(route_table, "| {} | {a:.4} | {b:.4} |", method.label()).unwrap();
+    }
     let zoom = if o.width <= 320 { 2 } else { 1 };
     let sheet_path = o.out.join("contact_sheet.png");
     contact_sheet(&tiles, 3, zoom).save(&sheet_path)?;
 
     println!(
-        "## Still frame ({}x{}, 1 shading sample per pixel)\n",
-        o.width, o.height
+        "## Still frame ({}x{}, 1 shading sample per pixel, footprints: {})\n",
+        o.width,
+        o.height,
+        route_name(o.route)
     );
     print!("{table}");
     if o.presets {
         println!("\n## Engine presets on the same frame\n");
         print!("{preset_table}");
     }
+    println!("\n## Both footprint routes on the same frame\n");
+    print!("{route_table}");
     println!(
         "\nReference: {} spp per pixel ({:.1} s); doubling {} -> {} spp changes each RMSE by at most {:.2}%{}.",
         o.spp,
@@ -243,13 +269,20 @@ fn main() -> std::io::Result<()> {
     let mut md = String::new();
     writeln!(
         md,
-        "## Still frame ({}x{}, 1 shading sample per pixel)\n\n{table}",
-        o.width, o.height
+        "## Still frame ({}x{}, 1 shading sample per pixel, footprints: {})\n\n{table}",
+        o.width,
+        o.height,
+        route_name(o.route)
     )
     .unwrap();
     if o.presets {
         writeln!(md, "## Engine presets on the same frame\n\n{preset_table}").unwrap();
     }
+    writeln!(
+        md,
+        "## Both footprint routes on the same frame\n\n{route_table}"
+    )
+    .unwrap();
     writeln!(md, "Reference: {} spp; doubling {} -> {} spp changes each RMSE by at most {:.2}%.\n{temporal_md}", o.spp, o.spp / 2, o.spp, 100.0 * worst_change).unwrap();
     std::fs::write(o.out.join("results.md"), md)?;
     println!(
@@ -263,6 +296,13 @@ fn main() -> std::io::Result<()> {
 fn save(o: &Options, name: &str, img: &Image) -> std::io::Result<()> {
     img.to_rgb8(o.exposure)
         .save(&o.out.join(format!("{name}.png")))
+}
+
+fn route_name(r: FootprintRoute) -> &'static str {
+    match r {
+        FootprintRoute::Quad => "2x2-quad differences (GPU)",
+        FootprintRoute::RayDifferentials => "ray differentials + M (offline)",
+    }
 }
 
 fn peak_luminance(img: &Image) -> f64 {

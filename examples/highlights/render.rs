@@ -16,7 +16,8 @@ use glam::{Mat3, Quat, Vec2, Vec3};
 pub enum FootprintRoute {
     /// ddx/ddy of the half-vector slope between neighbouring pixels (what a GPU does).
     Quad,
-    /// Ray differentials and the half-vector Jacobian (offline route; needs branch jacobian).
+    /// Analytic ray differentials and the half-vector Jacobian `M` (the offline route,
+    /// KHPL16 eq. 4-6 and section 4.2).
     RayDifferentials,
 }
 
