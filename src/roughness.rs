@@ -405,17 +405,44 @@ impl From<Isotropic> for RoughnessMatrix {
     }
 }
 
+/// A quadratic form `q = form(v)` clamped to `>= 0`. A NaN `q` for a finite `v` means that `r * r`
+/// overflowed against a zero eigenvalue (`0 * inf`, possible only under the determinant clamp,
+/// where the clamped inverse has a null direction): the form is then evaluated on `v / k`,
+/// `k = max |v_i|`, and scaled back by `k^2` (`+inf` if that overflows, `0` along the null
+/// direction). A NaN component of `v` gives NaN and an infinite one `+inf`, as in the
+/// isotropic and axis-aligned forms.
+#[inline]
+fn scaled_form(q: F, v: Vec2, form: impl Fn(Vec2) -> F) -> F {
+    if !q.is_nan() {
+        return q.max(0.0);
+    }
+    if v.is_nan() {
+        return F::NAN;
+    }
+    if !v.is_finite() {
+        return F::INFINITY;
+    }
+    let k = v.abs().max_element();
+    (form(v / k) * k * k).max(0.0)
+}
+
 impl sealed::Sealed for RoughnessMatrix {}
 impl Roughness for RoughnessMatrix {
     #[inline]
     fn inv_quadratic(&self, s: Vec2) -> F {
         let r = self.rotate(s);
-        (r * r).dot(self.inv_eig).max(0.0)
+        scaled_form((r * r).dot(self.inv_eig), s, |u| {
+            let r = self.rotate(u);
+            (r * r).dot(self.inv_eig)
+        })
     }
     #[inline]
     fn quadratic(&self, w: Vec2) -> F {
         let r = self.rotate(w);
-        (r * r).dot(self.eig).max(0.0)
+        scaled_form((r * r).dot(self.eig), w, |u| {
+            let r = self.rotate(u);
+            (r * r).dot(self.eig)
+        })
     }
     #[inline]
     fn sqrt_det(&self) -> F {
