@@ -18,7 +18,7 @@ macro_rules! contract {
                 RoughnessMatrix::new(0.09, 0.02, 0.04).unwrap()
             }
             fn singular() -> RoughnessMatrix {
-                RoughnessMatrix::new_with_det_clamp(0.01, 0.02, 0.04, 1e-6).unwrap()
+                RoughnessMatrix::new_with_det_clamp(0.25, 0.5, 1.0, 1e-4).unwrap()
             }
 
             #[test]
@@ -40,8 +40,8 @@ macro_rules! contract {
                 assert_eq!(RoughnessMatrix::new(1e9, 0.0, 1.0), Err(E::OutOfRange));
                 // Indefinite and singular matrices.
                 assert_eq!(RoughnessMatrix::new(0.1, 0.2, 0.1), Err(E::NotPositiveDefinite));
-                assert_eq!(RoughnessMatrix::new(0.01, 0.02, 0.04), Err(E::NotPositiveDefinite));
-                assert!(RoughnessMatrix::new_with_det_clamp(0.01, 0.02, 0.04, 1e-6).is_ok());
+                assert_eq!(RoughnessMatrix::new(0.25, 0.5, 1.0), Err(E::NotPositiveDefinite));
+                assert!(RoughnessMatrix::new_with_det_clamp(0.25, 0.5, 1.0, 1e-4).is_ok());
                 assert_eq!(
                     RoughnessMatrix::new_with_det_clamp(0.1, 0.2, 0.1, 1e-6),
                     Err(E::NotPositiveDefinite)
@@ -156,7 +156,7 @@ macro_rules! contract {
             #[test]
             fn ndf_lambda_g() {
                 for (ggx, n) in ndfs() {
-                    let w = Vec3::new(0.3, 0.2, 0.7);
+                    let w = Vec3::new(0.6, 0.4, 0.3);
                     let l = n.lambda(w);
                     assert!(l.is_finite() && l >= 0.0);
                     // Non-unit: homogeneous of degree 0, also for huge and tiny finite vectors.
@@ -165,7 +165,7 @@ macro_rules! contract {
                         assert!((lk - l).abs() <= 1e-5 * l, "{k}: {lk} vs {l}");
                     }
                     // Back-facing: |w_z|.
-                    assert_eq!(n.lambda(Vec3::new(0.3, 0.2, -0.7)), l);
+                    assert_eq!(n.lambda(Vec3::new(0.6, 0.4, -0.3)), l);
                     assert_eq!(n.lambda(Vec3::new(0.3, 0.2, 0.0)), INF);
                     assert_eq!(n.lambda(Vec3::ZERO), 0.0);
                     assert_eq!(n.lambda(Vec3::Z), 0.0);
@@ -316,7 +316,8 @@ macro_rules! contract {
                 let r = AxisAligned::new(0.1, 0.2).unwrap();
                 let c = Vec2::new(0.05, -0.1);
                 assert_eq!(ggx_rect::p22_rect(r, Vec2::new(NAN, 0.0), Vec2::splat(0.1)), 0.0);
-                assert_eq!(ggx_rect::p22_rect(r, c, Vec2::new(NAN, NAN)), Ggx::new(r).p22(c));
+                let (a, b) = (ggx_rect::p22_rect(r, c, Vec2::new(NAN, NAN)), Ggx::new(r).p22(c));
+                assert!((a - b).abs() <= 1e-6 * b);
                 assert_eq!(ggx_rect::p22_rect(r, c, Vec2::new(-0.1, 0.2)), ggx_rect::p22_rect(r, c, Vec2::new(0.1, 0.2)));
                 for h in [Vec2::splat(INF), Vec2::splat(F::MAX), Vec2::new(1e-30, 1e30)] {
                     let v = ggx_rect::p22_rect(r, c, h);
@@ -402,7 +403,7 @@ macro_rules! contract {
                 }
                 // Non-unit h is normalised.
                 let h = Vec3::new(0.3, 0.1, 0.8);
-                assert_eq!(jacobian::sanitize(h * 1e3), jacobian::sanitize(h));
+                assert!((jacobian::sanitize(h * 1e3) - jacobian::sanitize(h)).length() < 1e-6);
                 // Slope maps: finite at and beyond the horizon.
                 assert!(slope::slope_from_sphere(Vec3::X).is_finite());
                 assert!(slope::slope_from_sphere(Vec3::new(0.6, 0.0, -0.8)).is_finite());
@@ -454,9 +455,9 @@ macro_rules! contract {
                 assert_eq!(project(Vec3::ZERO, Vec3::X), Vec3::X);
                 assert_eq!(project(Vec3::Z, Vec3::new(NAN, 0.0, 0.0)), Vec3::ZERO);
                 assert_eq!(d_normalized(Vec3::ZERO, Vec3::X), Vec3::ZERO);
-                assert_eq!(LocalQuadric::new(Vec3::ZERO, Vec3::ZERO, Vec3::X, 1.0, 1.0), None);
-                assert_eq!(LocalQuadric::new(Vec3::ZERO, Vec3::Z, Vec3::Z, 1.0, 1.0), None);
-                assert_eq!(LocalQuadric::new(Vec3::ZERO, Vec3::Z, Vec3::X, NAN, 1.0), None);
+                assert!(LocalQuadric::new(Vec3::ZERO, Vec3::ZERO, Vec3::X, 1.0, 1.0).is_none());
+                assert!(LocalQuadric::new(Vec3::ZERO, Vec3::Z, Vec3::Z, 1.0, 1.0).is_none());
+                assert!(LocalQuadric::new(Vec3::ZERO, Vec3::Z, Vec3::X, NAN, 1.0).is_none());
                 for (rate, dt) in [(Vec2::new(NAN, 0.0), 1.0), (Vec2::ZERO, 1.0), (Vec2::X, -1.0), (Vec2::X, NAN), (Vec2::X, 0.0)] {
                     assert_eq!(TemporalRoughness::from_normal_rate(rate, dt), TemporalRoughness::ZERO);
                 }
