@@ -47,4 +47,145 @@
 //!
 //! # Extremes: measured error map
 //!
-//! ERROR_MAP_PLACEHOLDER
+//! Worst relative error `|got - ref| / max(|ref|, F::MIN_POSITIVE)` per region (a sample point
+//! counts in every region it belongs to), as `f32 / f64`, measured on the grid of the extremes
+//! sweep: roughness `alpha` 1e-7, 1e-4, 1, 10; half vectors at the pole, in the lobe, at 89.99
+//! degrees and exactly at 90 degrees; footprints 0, 1e-12 and 1e3 (isotropic and 1000:1);
+//! matrices of condition number 1e6, near-singular (`det ~ 2 eps a11 a22`) and exactly singular
+//! with the TK19 clamp `tau`. Inputs are rounded to the precision first and the reference is
+//! evaluated at the rounded input (double-double closed forms, `f64` adaptive quadrature, or
+//! `testing::gaussian_reference`), so the numbers are the kernels' own errors. `Lambda` is
+//! measured as `1 + Lambda` (what `G1` uses). A `0` means bit-exact (including the documented
+//! `0` and `+inf` values at and beyond the horizon); an empty cell, no sample.
+//!
+//! Tolerances (stated with their reasons in the tests): densities `32 eps` (GGX), `(32 + 8 q) eps`
+//! (Beckmann, the conditioning of `exp(-q)`); `1 + Lambda` `32 eps`; pdfs the density's plus `32
+//! eps` (plus `4 eps / wo.m` where `wo.m` cancels); Jacobians `16 eps` (determinants) and `64 eps`
+//! of the largest entry; `filter::gaussian` `64 (1 + kappa) eps` with `kappa` the condition number
+//! of the filtered matrix (its entries are rounded to `F` before the determinant);
+//! `filter::projected` additionally `/ (1 - lambda_max)` and `+ kappa(P + 2 Sigma)` (the
+//! projected-space sum is formed in `F`); the rectangle integral `64 eps` (`+ 1e-7` in `f64`,
+//! the module's documented worst case); proxy `16 eps`; isotropic filters `8 eps`, presets `64
+//! eps`; normalisation (f64 only) ten times the quadrature goal.
+//!
+//! Known limits visible in the map: `filter::projected` and `filter::gaussian` in `f32` lose
+//! `~kappa eps` for elongated kernels at footprint 1e3 (`1.3e-3` and `3e-4`): the
+//! filtered (projected-space) matrix is formed in `F` and its determinant cancels; the footprint
+//! clamp `lambda = 1` of [`ClampRules`](crate::f32::ClampRules) keeps shading inputs away from
+//! this region. The Beckmann densities carry the conditioning of `exp` (`1.5e-5` in `f32` at a
+//! few lobe widths).
+//!
+//! ### NDFs: worst relative error, f32 / f64
+//!
+//! | region | GGX p22 | GGX D | GGX 1+Lambda | Beckmann p22 | Beckmann D | Beckmann 1+Lambda |
+//! |---|---|---|---|---|---|---|
+//! | alpha 1e-7 | 3.8e-7 / 1.0e-15 | 2.8e-7 / 1.1e-15 | 5.2e-9 / 0 | 8.1e-6 / 2.7e-14 | 8.1e-6 / 1.2e-14 | 3.0e-10 / 0 |
+//! | isotropic | 2.2e-7 / 6.0e-16 | 2.2e-7 / 6.6e-16 | 7.6e-8 / 2.8e-16 | 1.8e-6 / 4.6e-15 | 1.8e-6 / 3.1e-15 | 3.3e-8 / 2.3e-16 |
+//! | pole | 7.8e-8 / 1.4e-16 | 7.8e-8 / 1.4e-16 | 0 / 0 | 7.8e-8 / 1.5e-15 | 7.8e-8 / 1.5e-15 | 0 / 0 |
+//! | lobe | 4.4e-7 / 9.1e-16 | 5.1e-7 / 1.2e-15 | 3.1e-7 / 6.8e-16 | 1.0e-5 / 1.1e-13 | 1.5e-5 / 1.9e-13 | 3.0e-7 / 6.0e-16 |
+//! | 89.99 deg | 5.4e-7 / 1.0e-15 | 4.8e-7 / 1.1e-15 | 2.2e-7 / 3.3e-16 | 0 / 0 | 0 / 0 | 1.6e-7 / 4.3e-16 |
+//! | 90 deg | 1.7e-80 / 1.2e-15 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 |
+//! | axis-aligned | 1.9e-7 / 7.2e-16 | 1.9e-7 / 5.3e-16 | 1.1e-7 / 1.5e-16 | 1.7e-6 / 7.2e-15 | 3.3e-6 / 6.3e-15 | 6.0e-8 / 2.7e-16 |
+//! | matrix | 2.5e-7 / 8.8e-16 | 3.6e-7 / 6.9e-16 | 1.5e-7 / 3.2e-16 | 1.0e-5 / 2.7e-14 | 1.4e-5 / 2.8e-14 | 8.8e-8 / 4.3e-16 |
+//! | cond 1e6 | 5.4e-7 / 1.2e-15 | 5.1e-7 / 1.1e-15 | 3.1e-7 / 6.8e-16 | 1.1e-7 / 2.4e-15 | 1.5e-7 / 2.4e-15 | 3.0e-7 / 6.0e-16 |
+//! | alpha 1e-4 | 4.4e-7 / 1.2e-15 | 3.8e-7 / 1.1e-15 | 1.8e-7 / 3.3e-16 | 1.0e-5 / 7.0e-14 | 1.4e-5 / 5.7e-14 | 1.6e-7 / 2.1e-16 |
+//! | near-singular | 5.1e-7 / 8.7e-16 | 4.7e-7 / 5.4e-16 | 2.0e-7 / 2.5e-16 | 4.2e-8 / 6.2e-16 | 4.2e-8 / 6.2e-16 | 1.2e-7 / 2.3e-16 |
+//! | singular + tau | 2.6e-7 / 1.0e-15 | 3.9e-7 / 1.2e-15 | 1.4e-7 / 2.4e-16 | 4.8e-6 / 1.1e-13 | 1.5e-5 / 1.9e-13 | 9.8e-8 / 2.3e-16 |
+//! | alpha 1 | 5.4e-7 / 1.0e-15 | 5.1e-7 / 1.2e-15 | 2.2e-7 / 6.8e-16 | 2.9e-6 / 8.1e-14 | 3.3e-6 / 1.5e-13 | 1.6e-7 / 6.0e-16 |
+//! | alpha 10 | 4.5e-7 / 1.0e-15 | 3.9e-7 / 9.9e-16 | 3.1e-7 / 2.9e-16 | 8.4e-6 / 1.1e-13 | 1.5e-5 / 1.9e-13 | 3.0e-7 / 3.9e-16 |
+//!
+//! ### Sampling pdfs: worst relative error, f32 / f64
+//!
+//! | region | GGX normal pdf | GGX visible pdf | GGX reflection pdf | Beckmann normal pdf | Beckmann visible pdf | Beckmann reflection pdf |
+//! |---|---|---|---|---|---|---|
+//! | alpha 1e-7 | 2.8e-7 / 1.2e-15 | 3.2e-7 / 1.2e-15 | 3.5e-7 / 1.1e-15 | 8.1e-6 / 1.2e-14 | 8.2e-6 / 1.2e-14 | 8.1e-6 / 1.2e-14 |
+//! | isotropic | 2.2e-7 / 6.6e-16 | 2.6e-7 / 8.0e-16 | 2.4e-7 / 6.6e-16 | 1.8e-6 / 3.1e-15 | 1.8e-6 / 3.1e-15 | 1.8e-6 / 3.3e-15 |
+//! | pole | 7.8e-8 / 1.4e-16 | 2.0e-7 / 2.3e-16 | 2.6e-7 / 3.3e-16 | 7.8e-8 / 1.5e-15 | 1.2e-7 / 1.5e-15 | 1.1e-7 / 1.6e-15 |
+//! | wo pole |  | 5.2e-7 / 1.2e-15 | 5.1e-7 / 1.2e-15 |  | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 |
+//! | lobe | 5.2e-7 / 1.1e-15 | 6.4e-7 / 1.4e-15 | 7.1e-7 / 1.3e-15 | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 |
+//! | 89.99 deg | 4.7e-7 / 1.2e-15 | 7.6e-7 / 1.3e-15 | 7.2e-7 / 1.1e-15 | 0 / 0 | 0 / 0 | 0 / 0 |
+//! | 90 deg | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 |
+//! | wo 89.99 deg |  | 7.6e-7 / 1.4e-15 | 7.2e-7 / 1.3e-15 |  | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 |
+//! | wo 90 deg |  | 0 / 0 | 0 / 0 |  | 0 / 0 | 0 / 0 |
+//! | axis-aligned | 2.4e-7 / 5.3e-16 | 2.4e-7 / 5.3e-16 | 2.6e-7 / 5.3e-16 | 3.3e-6 / 6.3e-15 | 3.3e-6 / 6.3e-15 | 3.3e-6 / 6.3e-15 |
+//! | matrix | 3.7e-7 / 7.1e-16 | 3.7e-7 / 7.7e-16 | 3.8e-7 / 8.1e-16 | 1.4e-5 / 2.8e-14 | 1.4e-5 / 2.8e-14 | 1.4e-5 / 2.8e-14 |
+//! | cond 1e6 | 5.2e-7 / 1.2e-15 | 7.6e-7 / 1.3e-15 | 7.2e-7 / 1.1e-15 | 1.5e-7 / 2.4e-15 | 2.9e-7 / 2.5e-15 | 2.4e-7 / 2.4e-15 |
+//! | alpha 1e-4 | 4.0e-7 / 1.0e-15 | 4.0e-7 / 1.1e-15 | 4.2e-7 / 1.1e-15 | 1.4e-5 / 5.7e-14 | 1.4e-5 / 5.7e-14 | 1.4e-5 / 5.7e-14 |
+//! | near-singular | 4.8e-7 / 5.6e-16 | 5.6e-7 / 8.2e-16 | 4.9e-7 / 5.5e-16 | 4.2e-8 / 6.2e-16 | 9.1e-8 / 6.2e-16 | 4.6e-8 / 6.2e-16 |
+//! | singular + tau | 4.2e-7 / 1.1e-15 | 4.2e-7 / 1.4e-15 | 4.4e-7 / 1.3e-15 | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 |
+//! | alpha 1 | 5.2e-7 / 1.1e-15 | 7.6e-7 / 1.4e-15 | 7.2e-7 / 1.3e-15 | 3.3e-6 / 1.5e-13 | 3.3e-6 / 1.5e-13 | 3.3e-6 / 1.5e-13 |
+//! | alpha 10 | 4.2e-7 / 1.0e-15 | 4.2e-7 / 1.3e-15 | 4.4e-7 / 1.1e-15 | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 |
+//! | normalisation (quadrature) |  | - / 3.3e-16 |  |  | - / 4.4e-16 |  |
+//!
+//! ### Jacobians: worst relative error, f32 / f64
+//!
+//! | region | det J(o->perp) | det J(perp->par) | det J(o->par) | J(o->perp) | J(perp->par) | J(par->perp) | J(o->par) |
+//! |---|---|---|---|---|---|---|---|
+//! | pole | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 |
+//! | lobe | 1.0e-7 / 1.5e-16 | 5.0e-7 / 7.4e-16 | 3.4e-7 / 6.8e-16 | 7.5e-8 / 1.4e-16 | 1.1e-7 / 7.4e-16 | 3.5e-7 / 3.6e-16 | 3.1e-7 / 4.4e-16 |
+//! | 89.99 deg | 6.1e-8 / 1.6e-16 | 2.3e-7 / 1.2e-15 | 2.2e-7 / 6.5e-16 | 4.6e-8 / 2.7e-20 | 1.3e-7 / 4.9e-16 | 2.0e-7 / 4.0e-16 | 7.2e-8 / 4.5e-16 |
+//! | 90 deg | 0 / 0 | 3.7e-9 / 0 | 4.5e-8 / 0 | 7.9e-9 / 0 | 6.5e-8 / 3.3e-16 | 3.7e-8 / 2.7e-16 | 4.4e-8 / 1.5e-22 |
+//!
+//! ### filter::gaussian and filter::projected (through p22): worst relative error, f32 / f64
+//!
+//! | region | gaussian | projected |
+//! |---|---|---|
+//! | alpha 1e-7 | 1.9e-7 / 1.3e-11 | 1.3e-3 / 3.9e-11 |
+//! | isotropic | 3.6e-7 / 1.9e-12 | 1.3e-3 / 1.3e-12 |
+//! | footprint 0 | 6.0e-7 / 7.0e-14 | 7.6e-7 / 8.4e-13 |
+//! | kernel isotropic | 1.7e-6 / 4.2e-12 | 1.5e-4 / 3.9e-11 |
+//! | kernel 1000:1 | 3.0e-4 / 2.6e-11 | 1.3e-3 / 5.1e-12 |
+//! | footprint 1e-12 | 6.0e-7 / 1.3e-11 | 7.6e-7 / 3.9e-11 |
+//! | footprint 1e3 | 3.0e-4 / 2.6e-11 | 1.3e-3 / 1.0e-11 |
+//! | cond 1e6 | 3.0e-4 / 1.3e-11 | 1.3e-3 / 3.9e-11 |
+//! | alpha 1e-4 | 3.0e-4 / 2.6e-11 | 1.3e-3 / 4.7e-12 |
+//! | singular + tau | 6.8e-7 / 2.6e-11 | 1.3e-3 / 4.7e-12 |
+//! | alpha 1 | 9.2e-5 / 2.4e-14 | 3.7e-7 / 1.0e-11 |
+//! | alpha 10 | 1.9e-4 / 5.1e-13 | 1.5e-4 / 5.1e-12 |
+//! | quadrature (gaussian_reference) | 4.2e-8 / 0 |  |
+//!
+//! ### ggx_rect: worst relative error, f32 / f64
+//!
+//! | region | d_rect | p22_rect |
+//! |---|---|---|
+//! | alpha 1e-7 | 9.6e-8 / 4.7e-12 | 2.0e-7 / 4.7e-12 |
+//! | isotropic | 1.3e-7 / 4.7e-12 | 2.0e-7 / 4.7e-12 |
+//! | footprint 0 | 3.0e-7 / 4.1e-16 | 2.0e-7 / 5.5e-16 |
+//! | square | 3.0e-7 / 4.7e-12 | 2.0e-7 / 4.7e-12 |
+//! | pole | 7.4e-8 / 6.8e-16 | 7.4e-8 / 6.8e-16 |
+//! | lobe | 3.0e-7 / 4.0e-15 | 1.5e-7 / 9.3e-15 |
+//! | 89.99 deg | 1.8e-7 / 4.7e-12 | 2.0e-7 / 4.7e-12 |
+//! | 90 deg | 0 / 0 |  |
+//! | 1000:1 | 3.0e-7 / 2.6e-12 | 2.0e-7 / 2.6e-12 |
+//! | footprint 1e-12 | 5.6e-8 / 7.6e-16 | 4.4e-8 / 3.7e-16 |
+//! | footprint 1e3 | 5.3e-8 / 4.7e-12 | 5.2e-8 / 4.7e-12 |
+//! | axis 1:3 | 3.0e-7 / 4.0e-15 | 1.2e-7 / 9.3e-15 |
+//! | alpha 1e-4 | 1.8e-7 / 4.7e-12 | 1.8e-7 / 4.7e-12 |
+//! | alpha 1 | 5.3e-8 / 4.7e-12 | 9.4e-8 / 4.7e-12 |
+//! | alpha 10 | 3.0e-7 / 4.7e-12 | 1.5e-7 / 4.7e-12 |
+//!
+//! ### ggx_proxy and isotropic filters: worst relative error, f32 / f64
+//!
+//! | region | effective_alpha | proxy | effective_alpha_simple | filtered_alpha | presets |
+//! |---|---|---|---|---|---|
+//! | alpha 1e-7 | 1.5e-8 / 2.6e-16 | 1.5e-8 / 2.6e-16 | 5.0e-11 / 0 | 8.9e-9 / 0 | 7.1e-8 / 0 |
+//! | footprint 0 | 2.6e-16 / 2.6e-16 | 2.6e-16 / 2.6e-16 | 0 / 0 | 0 / 0 | 7.1e-8 / 0 |
+//! | footprint 1e-12 | 6.7e-11 / 1.4e-16 | 6.7e-11 / 1.4e-16 | 5.0e-11 / 0 | 5.0e-11 / 0 | 7.1e-8 / 0 |
+//! | footprint 1e3 | 9.9e-8 / 2.0e-16 | 9.9e-8 / 2.0e-16 | 1.2e-8 / 0 | 3.4e-8 / 0 | 7.1e-8 / 0 |
+//! | alpha 1e-4 | 1.5e-8 / 2.0e-16 | 1.5e-8 / 2.0e-16 | 5.0e-15 / 0 | 3.4e-8 / 0 | 7.1e-8 / 0 |
+//! | alpha 1 | 9.9e-8 / 2.0e-16 | 9.9e-8 / 2.0e-16 | 1.2e-8 / 0 | 0 / 0 | 1.7e-8 / 0 |
+//! | alpha 10 | 3.7e-8 / 0 | 3.7e-8 / 0 | 1.1e-8 / 0 | 0 / 0 | 1.7e-8 / 0 |
+//! | kernel isotropic |  |  |  | 3.4e-8 / 0 |  |
+//! | kernel 1000:1 |  |  |  | 3.4e-8 / 0 |  |
+//! | TK19 max (eq. 1) |  |  |  |  | 3.4e-8 / 0 |
+//! | TK19 trace (eq. 4) |  |  |  |  | 3.4e-8 / 0 |
+//! | TK19 average (eq. 5) |  |  |  |  | 3.4e-8 / 0 |
+//! | TK21 listing 5 |  |  |  |  | 3.4e-8 / 0 |
+//! | Filament |  |  |  |  | 5.4e-8 / 0 |
+//! | Unity HDRP |  |  |  |  | 2.0e-8 / 0 |
+//! | Unity HDRP projected |  |  |  |  | 7.1e-8 / 0 |
+//! | Godot 4 |  |  |  |  | 2.4e-8 / 0 |
+//! | O3DE |  |  |  |  | 3.4e-8 / 0 |
+//! | Unreal |  |  |  |  | 7.1e-8 / 0 |
+//! | Babylon.js (Vlachos 2015) |  |  |  |  | 7.1e-8 / 0 |
+//! | three.js |  |  |  |  | 1.1e-8 / 0 |

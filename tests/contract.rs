@@ -5,8 +5,8 @@
 macro_rules! contract {
     ($m:ident, $p:ident) => {
         mod $m {
-            use filtered_ndf::$p::*;
             use filtered_ndf::RoughnessError as E;
+            use filtered_ndf::$p::*;
 
             const NAN: F = F::NAN;
             const INF: F = F::INFINITY;
@@ -39,15 +39,27 @@ macro_rules! contract {
                 assert_eq!(Isotropic::new(1e5), Err(E::OutOfRange));
                 assert_eq!(RoughnessMatrix::new(1e9, 0.0, 1.0), Err(E::OutOfRange));
                 // Indefinite and singular matrices.
-                assert_eq!(RoughnessMatrix::new(0.1, 0.2, 0.1), Err(E::NotPositiveDefinite));
-                assert_eq!(RoughnessMatrix::new(0.25, 0.5, 1.0), Err(E::NotPositiveDefinite));
+                assert_eq!(
+                    RoughnessMatrix::new(0.1, 0.2, 0.1),
+                    Err(E::NotPositiveDefinite)
+                );
+                assert_eq!(
+                    RoughnessMatrix::new(0.25, 0.5, 1.0),
+                    Err(E::NotPositiveDefinite)
+                );
                 assert!(RoughnessMatrix::new_with_det_clamp(0.25, 0.5, 1.0, 1e-4).is_ok());
                 assert_eq!(
                     RoughnessMatrix::new_with_det_clamp(0.1, 0.2, 0.1, 1e-6),
                     Err(E::NotPositiveDefinite)
                 );
-                assert_eq!(RoughnessMatrix::new_with_det_clamp(0.1, 0.0, 0.1, -1.0), Err(E::NotPositive));
-                assert_eq!(RoughnessMatrix::new_with_det_clamp(0.1, 0.0, 0.1, NAN), Err(E::NotFinite));
+                assert_eq!(
+                    RoughnessMatrix::new_with_det_clamp(0.1, 0.0, 0.1, -1.0),
+                    Err(E::NotPositive)
+                );
+                assert_eq!(
+                    RoughnessMatrix::new_with_det_clamp(0.1, 0.0, 0.1, NAN),
+                    Err(E::NotFinite)
+                );
                 // Non-symmetric Mat2.
                 let ns = Mat2::from_cols(Vec2::new(0.1, 0.01), Vec2::new(0.02, 0.1));
                 assert_eq!(RoughnessMatrix::from_mat2(ns), Err(E::NotSymmetric));
@@ -57,7 +69,10 @@ macro_rules! contract {
                 assert_eq!(Isotropic::new_clamped(NAN).alpha(), ALPHA_MIN);
                 assert_eq!(Isotropic::new_clamped(-1.0).alpha(), ALPHA_MIN);
                 assert_eq!(Isotropic::new_clamped(INF).alpha(), ALPHA_MAX);
-                assert_eq!(AxisAligned::new_clamped(NAN, INF).alpha(), Vec2::new(ALPHA_MIN, ALPHA_MAX));
+                assert_eq!(
+                    AxisAligned::new_clamped(NAN, INF).alpha(),
+                    Vec2::new(ALPHA_MIN, ALPHA_MAX)
+                );
                 assert_eq!(roughness::clamp_alpha(-INF), ALPHA_MIN);
                 // with_det_clamp: a bad tau means no clamp.
                 for t in [NAN, -1.0, INF] {
@@ -98,11 +113,17 @@ macro_rules! contract {
             fn ndfs() -> Vec<(bool, Box<dyn NdfSampling>)> {
                 vec![
                     (true, Box::new(Ggx::new(iso()))),
-                    (true, Box::new(Ggx::new(AxisAligned::new(0.1, 0.4).unwrap()))),
+                    (
+                        true,
+                        Box::new(Ggx::new(AxisAligned::new(0.1, 0.4).unwrap())),
+                    ),
                     (true, Box::new(Ggx::new(mat()))),
                     (true, Box::new(Ggx::new(singular()))),
                     (false, Box::new(Beckmann::new(iso()))),
-                    (false, Box::new(Beckmann::new(AxisAligned::new(0.1, 0.4).unwrap()))),
+                    (
+                        false,
+                        Box::new(Beckmann::new(AxisAligned::new(0.1, 0.4).unwrap())),
+                    ),
                     (false, Box::new(Beckmann::new(mat()))),
                     (false, Box::new(Beckmann::new(singular()))),
                 ]
@@ -111,7 +132,12 @@ macro_rules! contract {
             #[test]
             fn ndf_p22() {
                 for (ggx, n) in ndfs() {
-                    for s in [Vec2::ZERO, Vec2::new(0.1, -3.0), Vec2::new(1e30, 1e30), Vec2::splat(F::MAX)] {
+                    for s in [
+                        Vec2::ZERO,
+                        Vec2::new(0.1, -3.0),
+                        Vec2::new(1e30, 1e30),
+                        Vec2::splat(F::MAX),
+                    ] {
                         let v = n.p22(s);
                         assert!(v.is_finite() && v >= 0.0, "{s:?}: {v}");
                     }
@@ -183,7 +209,10 @@ macro_rules! contract {
                     assert_eq!(n.g2(w, -w, m), 0.0);
                     let g2 = n.g2(w, Vec3::new(-0.2, 0.1, 0.9), m);
                     assert!(g2 > 0.0 && g2 <= 1.0);
-                    assert_eq!(n.g1(Vec3::new(NAN, 0.0, 1.0), m), if ggx { 0.0 } else { 1.0 });
+                    assert_eq!(
+                        n.g1(Vec3::new(NAN, 0.0, 1.0), m),
+                        if ggx { 0.0 } else { 1.0 }
+                    );
                 }
             }
 
@@ -191,7 +220,12 @@ macro_rules! contract {
             fn sampling() {
                 use filtered_ndf::$p::sampling::reflect;
                 for (_, n) in ndfs() {
-                    for u in [Vec2::new(NAN, 0.5), Vec2::new(-1.0, 2.0), Vec2::new(INF, -INF), Vec2::ONE] {
+                    for u in [
+                        Vec2::new(NAN, 0.5),
+                        Vec2::new(-1.0, 2.0),
+                        Vec2::new(INF, -INF),
+                        Vec2::ONE,
+                    ] {
                         let m = n.sample_normal(u);
                         assert!(m.is_finite() && m.z > 0.0 && (m.length() - 1.0).abs() < 1e-4);
                         let wo = Vec3::new(0.5, 0.1, 0.2) * 30.0; // non-unit
@@ -199,7 +233,13 @@ macro_rules! contract {
                         assert!(m.is_finite() && m.z > 0.0 && wo.dot(m) > 0.0);
                     }
                     let u = Vec2::splat(0.3);
-                    for bad in [Vec3::new(0.5, 0.0, -0.5), Vec3::X, Vec3::ZERO, Vec3::new(NAN, 0.0, 1.0), Vec3::new(0.0, 0.0, INF)] {
+                    for bad in [
+                        Vec3::new(0.5, 0.0, -0.5),
+                        Vec3::X,
+                        Vec3::ZERO,
+                        Vec3::new(NAN, 0.0, 1.0),
+                        Vec3::new(0.0, 0.0, INF),
+                    ] {
                         assert_eq!(n.sample_visible_normal(bad, u), None, "{bad:?}");
                         assert_eq!(n.visible_normal_pdf(bad, Vec3::Z), 0.0);
                         assert_eq!(n.reflection_pdf(bad, Vec3::Z), 0.0);
@@ -209,30 +249,56 @@ macro_rules! contract {
                     assert_eq!(n.normal_pdf(-Vec3::Z), 0.0);
                     assert_eq!(n.normal_pdf(Vec3::new(NAN, 0.0, 1.0)), 0.0);
                     assert_eq!(n.visible_normal_pdf(wo, -Vec3::Z), 0.0);
-                    assert_eq!(n.visible_normal_pdf(wo, Vec3::new(-1.0, 0.0, 0.1).normalize()), 0.0);
+                    assert_eq!(
+                        n.visible_normal_pdf(wo, Vec3::new(-1.0, 0.0, 0.1).normalize()),
+                        0.0
+                    );
                     assert_eq!(n.reflection_pdf(wo, -wo), 0.0);
                     assert_eq!(n.reflection_pdf(wo, Vec3::ZERO), 0.0);
                     // Non-unit wo and wi: scale invariant.
                     let wi = Vec3::new(-0.2, 0.1, 0.9);
-                    let (a, b) = (n.reflection_pdf(wo, wi), n.reflection_pdf(wo * 1e3, wi * 1e-3));
+                    let (a, b) = (
+                        n.reflection_pdf(wo, wi),
+                        n.reflection_pdf(wo * 1e3, wi * 1e-3),
+                    );
                     assert!(a > 0.0 && (a - b).abs() <= 1e-4 * a);
                     assert_eq!(reflect(wo, Vec3::Z).length(), wo.length());
                 }
                 use filtered_ndf::$p::sample_beckmann::visible_slope_quantile;
-                for (c, s, u) in [(NAN, 0.0, 0.5), (-1.0, 0.5, 0.5), (1.0, 0.0, NAN), (0.5, 0.5, 2.0), (0.5, 0.5, -1.0)] {
+                for (c, s, u) in [
+                    (NAN, 0.0, 0.5),
+                    (-1.0, 0.5, 0.5),
+                    (1.0, 0.0, NAN),
+                    (0.5, 0.5, 2.0),
+                    (0.5, 0.5, -1.0),
+                ] {
                     assert!(visible_slope_quantile(c, s, u).is_finite());
                 }
-                assert_eq!(visible_slope_quantile(NAN, 0.0, 0.3), visible_slope_quantile(1.0, 0.0, 0.3));
+                assert_eq!(
+                    visible_slope_quantile(NAN, 0.0, 0.3),
+                    visible_slope_quantile(1.0, 0.0, 0.3)
+                );
             }
 
             #[test]
             fn footprints_and_covariances() {
-                let fp = Footprint::from_projected_derivatives_in_slope(Vec3::new(NAN, 0.0, 1.0), Vec2::X, Vec2::Y);
+                let fp = Footprint::from_projected_derivatives_in_slope(
+                    Vec3::new(NAN, 0.0, 1.0),
+                    Vec2::X,
+                    Vec2::Y,
+                );
                 assert_eq!(fp, Footprint::ZERO);
                 // Back-facing / horizon h: h_z clamped to 1e-6, a huge finite footprint.
-                let fp = Footprint::from_projected_derivatives_in_slope(Vec3::new(0.6, 0.0, -0.8), Vec2::X, Vec2::Y);
+                let fp = Footprint::from_projected_derivatives_in_slope(
+                    Vec3::new(0.6, 0.0, -0.8),
+                    Vec2::X,
+                    Vec2::Y,
+                );
                 assert!(fp.dh_u.is_finite() && fp.dh_u.length() > 1e10);
-                assert_eq!(Footprint::from_normal_differences(Vec3::new(INF, 0.0, 0.0), Vec3::ZERO), Footprint::ZERO);
+                assert_eq!(
+                    Footprint::from_normal_differences(Vec3::new(INF, 0.0, 0.0), Vec3::ZERO),
+                    Footprint::ZERO
+                );
                 let fp = Footprint::from_normal_differences(Vec3::new(1e-7, 0.0, -2.0), Vec3::ZERO);
                 assert!(fp.dh_u.is_finite());
                 // Plain arithmetic: NaN propagates.
@@ -241,14 +307,26 @@ macro_rules! contract {
                 // sanitized: NaN -> ZERO, inf -> KERNEL_MAX I, indefinite -> PSD.
                 let kmax = footprint::KERNEL_MAX;
                 assert_eq!(Covariance::new(NAN, 0.0, 1.0).sanitized(), Covariance::ZERO);
-                assert_eq!(Covariance::new(INF, 0.0, 1.0).sanitized(), Covariance::new(kmax, 0.0, kmax));
+                assert_eq!(
+                    Covariance::new(INF, 0.0, 1.0).sanitized(),
+                    Covariance::new(kmax, 0.0, kmax)
+                );
                 let s = Covariance::new(-1.0, 5.0, 2.0).sanitized();
                 assert!(s.s11 >= 0.0 && s.s22 >= 0.0 && s.det() >= -1e-6);
                 let (lo, hi) = Covariance::new(1.0, 3.0, 1.0).eigenvalues();
                 assert!(lo == 0.0 && hi > 0.0);
-                assert_eq!(Covariance::new(1.0, 0.0, 1.0).clamp_eigenvalues(NAN), Covariance::ZERO);
-                assert_eq!(Covariance::new(1.0, 0.0, 1.0).clamp_eigenvalues(-1.0), Covariance::ZERO);
-                assert_eq!(Covariance::new(INF, 0.0, 1.0).clamp_eigenvalues(1.0), Covariance::ZERO);
+                assert_eq!(
+                    Covariance::new(1.0, 0.0, 1.0).clamp_eigenvalues(NAN),
+                    Covariance::ZERO
+                );
+                assert_eq!(
+                    Covariance::new(1.0, 0.0, 1.0).clamp_eigenvalues(-1.0),
+                    Covariance::ZERO
+                );
+                assert_eq!(
+                    Covariance::new(INF, 0.0, 1.0).clamp_eigenvalues(1.0),
+                    Covariance::ZERO
+                );
                 let lean = LeanMoments::new(Vec2::new(1.0, 0.0), Covariance::new(0.5, 0.0, 0.1));
                 let c = lean.covariance();
                 assert!(c.s11 >= 0.0 && c.det() >= 0.0);
@@ -259,7 +337,12 @@ macro_rules! contract {
                 let b = Beckmann::new(m);
                 let s = Vec2::new(0.01, -0.02);
                 let (x, y) = (g.p22(s), b.p22(s));
-                m.sqrt_det() > 0.0 && m.sqrt_det().is_finite() && x.is_finite() && x > 0.0 && y.is_finite() && y >= 0.0
+                m.sqrt_det() > 0.0
+                    && m.sqrt_det().is_finite()
+                    && x.is_finite()
+                    && x > 0.0
+                    && y.is_finite()
+                    && y >= 0.0
             }
 
             #[test]
@@ -272,17 +355,29 @@ macro_rules! contract {
                     Covariance::ZERO,
                 ];
                 for k in kernels {
-                    for r in [mat(), singular(), iso().to_matrix(), Isotropic::new(10.0).unwrap().to_matrix()] {
+                    for r in [
+                        mat(),
+                        singular(),
+                        iso().to_matrix(),
+                        Isotropic::new(10.0).unwrap().to_matrix(),
+                    ] {
                         assert!(valid(filter::gaussian(r, k)), "{k:?}");
                         for tau in [NAN, -1.0, INF, 0.0] {
                             assert!(valid(filter::gaussian_with_tau(r, k, tau)));
                         }
                         assert!(valid(filter::projected(r, k)), "{k:?}");
-                        assert!(valid(filter::lean(r, k, &LeanMoments::new(Vec2::new(NAN, 1.0), k))));
+                        assert!(valid(filter::lean(
+                            r,
+                            k,
+                            &LeanMoments::new(Vec2::new(NAN, 1.0), k)
+                        )));
                         assert!(valid(temporal::widen(r, k)));
                         let rules = [ClampRules::default(), ClampRules::NONE, ClampRules::GDC2016];
                         for rule in rules {
-                            let fp = Footprint::from_slope_derivatives(Vec2::new(k.s11, k.s12), Vec2::new(k.s22, 0.0));
+                            let fp = Footprint::from_slope_derivatives(
+                                Vec2::new(k.s11, k.s12),
+                                Vec2::new(k.s22, 0.0),
+                            );
                             assert!(valid(rule.filter_gaussian(r, fp, 0.5)));
                         }
                     }
@@ -300,14 +395,24 @@ macro_rules! contract {
                 let inffp = Footprint::from_slope_derivatives(Vec2::new(INF, 0.0), Vec2::ZERO);
                 assert!((r.footprint(inffp).max_extent() - 1.0).abs() < 1e-5);
                 assert_eq!(ClampRules::NONE.footprint(inffp), inffp);
-                let neg = ClampRules { max_extent: NAN, ..r };
-                assert_eq!(neg.footprint(Footprint::from_slope_derivatives(Vec2::X, Vec2::Y)).max_extent(), 0.0);
+                let neg = ClampRules {
+                    max_extent: NAN,
+                    ..r
+                };
+                assert_eq!(
+                    neg.footprint(Footprint::from_slope_derivatives(Vec2::X, Vec2::Y))
+                        .max_extent(),
+                    0.0
+                );
                 let h = r.rect(BoundingRect::new(Vec2::new(NAN, -0.5)), Vec2::splat(0.1));
                 assert_eq!(h.half_extent, Vec2::new(1e-3, 0.5));
                 let h = r.rect(BoundingRect::new(Vec2::new(INF, 0.1)), Vec2::splat(0.1));
                 assert_eq!(h.half_extent.x, 1.0);
                 let bad_kappa = ClampRules { kappa: NAN, ..r };
-                assert_eq!(bad_kappa.kernel(Covariance::new(1.0, 0.0, 1.0)), Covariance::ZERO);
+                assert_eq!(
+                    bad_kappa.kernel(Covariance::new(1.0, 0.0, 1.0)),
+                    Covariance::ZERO
+                );
                 assert_eq!(r.tau(iso()), 0.3 * 0.3 * (0.3 * 0.3));
             }
 
@@ -315,28 +420,56 @@ macro_rules! contract {
             fn rect_and_proxy() {
                 let r = AxisAligned::new(0.1, 0.2).unwrap();
                 let c = Vec2::new(0.05, -0.1);
-                assert_eq!(ggx_rect::p22_rect(r, Vec2::new(NAN, 0.0), Vec2::splat(0.1)), 0.0);
-                let (a, b) = (ggx_rect::p22_rect(r, c, Vec2::new(NAN, NAN)), Ggx::new(r).p22(c));
+                assert_eq!(
+                    ggx_rect::p22_rect(r, Vec2::new(NAN, 0.0), Vec2::splat(0.1)),
+                    0.0
+                );
+                let (a, b) = (
+                    ggx_rect::p22_rect(r, c, Vec2::new(NAN, NAN)),
+                    Ggx::new(r).p22(c),
+                );
                 assert!((a - b).abs() <= 1e-6 * b);
-                assert_eq!(ggx_rect::p22_rect(r, c, Vec2::new(-0.1, 0.2)), ggx_rect::p22_rect(r, c, Vec2::new(0.1, 0.2)));
-                for h in [Vec2::splat(INF), Vec2::splat(F::MAX), Vec2::new(1e-30, 1e30)] {
+                assert_eq!(
+                    ggx_rect::p22_rect(r, c, Vec2::new(-0.1, 0.2)),
+                    ggx_rect::p22_rect(r, c, Vec2::new(0.1, 0.2))
+                );
+                for h in [
+                    Vec2::splat(INF),
+                    Vec2::splat(F::MAX),
+                    Vec2::new(1e-30, 1e30),
+                ] {
                     let v = ggx_rect::p22_rect(r, c, h);
                     assert!(v.is_finite() && v >= 0.0);
                 }
                 let v = ggx_rect::p22_rect(r, Vec2::splat(F::MAX), Vec2::splat(1.0));
                 assert!(v.is_finite() && v >= 0.0);
-                for h in [Vec3::new(0.1, 0.0, -1.0), Vec3::X, Vec3::ZERO, Vec3::new(NAN, 0.0, 1.0), Vec3::new(0.0, 0.0, INF)] {
+                for h in [
+                    Vec3::new(0.1, 0.0, -1.0),
+                    Vec3::X,
+                    Vec3::ZERO,
+                    Vec3::new(NAN, 0.0, 1.0),
+                    Vec3::new(0.0, 0.0, INF),
+                ] {
                     assert_eq!(ggx_rect::d_rect(r, h, Vec2::splat(0.1)), 0.0, "{h:?}");
                 }
                 let h = Vec3::new(0.1, 0.2, 1.0).normalize();
                 assert_eq!(ggx_rect::d_rect(r, h, Vec2::ZERO), Ggx::new(r).d(h));
                 let v = ggx_rect::d_rect(r, Vec3::new(1.0, 0.0, 1e-30), Vec2::splat(0.1));
                 assert!(v.is_finite() && v >= 0.0);
-                assert_eq!(ggx_rect::d_rect_printed(r, Vec2::ZERO, Vec3::Z, Vec2::ZERO), 0.0);
-                assert_eq!(ggx_rect::d_rect_printed(r, Vec2::new(NAN, 0.0), Vec3::Z, Vec2::splat(0.1)), 0.0);
+                assert_eq!(
+                    ggx_rect::d_rect_printed(r, Vec2::ZERO, Vec3::Z, Vec2::ZERO),
+                    0.0
+                );
+                assert_eq!(
+                    ggx_rect::d_rect_printed(r, Vec2::new(NAN, 0.0), Vec3::Z, Vec2::splat(0.1)),
+                    0.0
+                );
                 // Proxy: NaN half extent as 0, negative by magnitude; proxy() is always valid.
                 assert_eq!(ggx_proxy::effective_alpha(0.1, NAN), 0.1);
-                assert_eq!(ggx_proxy::effective_alpha(0.1, -0.2), ggx_proxy::effective_alpha(0.1, 0.2));
+                assert_eq!(
+                    ggx_proxy::effective_alpha(0.1, -0.2),
+                    ggx_proxy::effective_alpha(0.1, 0.2)
+                );
                 assert_eq!(ggx_proxy::effective_alpha_simple(0.1, NAN), 0.1);
                 for h in [Vec2::splat(NAN), Vec2::splat(INF), Vec2::splat(-1.0)] {
                     let p = ggx_proxy::proxy(r, h);
@@ -348,10 +481,15 @@ macro_rules! contract {
 
             #[test]
             fn isotropic_filters() {
-                use filtered_ndf::$p::isotropic::{Domain, KAPPA, filtered_alpha, normal_difference_covariance};
+                use filtered_ndf::$p::isotropic::{
+                    Domain, KAPPA, filtered_alpha, normal_difference_covariance,
+                };
                 let sig = Covariance::new(0.01, 0.0, 0.02);
                 for a in [NAN, -1.0, -INF] {
-                    assert_eq!(filtered_alpha(a, &Covariance::ZERO, Bandwidth::Max, KAPPA), 0.0);
+                    assert_eq!(
+                        filtered_alpha(a, &Covariance::ZERO, Bandwidth::Max, KAPPA),
+                        0.0
+                    );
                 }
                 assert_eq!(filtered_alpha(INF, &sig, Bandwidth::Trace, KAPPA), 1.0);
                 for bw in [Bandwidth::Max, Bandwidth::Trace, Bandwidth::Average] {
@@ -373,11 +511,18 @@ macro_rules! contract {
                     ] {
                         for a in [NAN, -1.0, 0.0, 0.5, 1e30, INF] {
                             let x = conv.apply(a, u, v);
-                            assert!(x.is_finite() && (0.0..=ALPHA_MAX).contains(&x), "{a} {u:?}: {x}");
+                            assert!(
+                                x.is_finite() && (0.0..=ALPHA_MAX).contains(&x),
+                                "{a} {u:?}: {x}"
+                            );
                         }
                     }
                 }
-                assert!(normal_difference_covariance(Vec3::new(NAN, 0.0, 0.0), Vec3::ZERO, 0.25).s11.is_nan());
+                assert!(
+                    normal_difference_covariance(Vec3::new(NAN, 0.0, 0.0), Vec3::ZERO, 0.25)
+                        .s11
+                        .is_nan()
+                );
                 assert_eq!(Domain::ProjectedAlpha2.from_alpha(1.0), INF);
                 assert_eq!(Domain::ProjectedAlpha2.to_alpha(INF), 1.0);
             }
@@ -388,9 +533,17 @@ macro_rules! contract {
                     assert_eq!(jacobian::sanitize(h), Vec3::Z);
                     assert_eq!(jacobian::sphere_to_projected(h), Mat2::IDENTITY);
                 }
-                for h in [Vec3::new(0.6, 0.8, -0.3), -Vec3::Z, Vec3::X, Vec3::new(3.0, 4.0, 0.0) * 1e20] {
+                for h in [
+                    Vec3::new(0.6, 0.8, -0.3),
+                    -Vec3::Z,
+                    Vec3::X,
+                    Vec3::new(3.0, 4.0, 0.0) * 1e20,
+                ] {
                     let s = jacobian::sanitize(h);
-                    assert!((s.z - jacobian::HZ_MIN).abs() <= 1e-3 * jacobian::HZ_MIN, "{h:?} -> {s:?}");
+                    assert!(
+                        (s.z - jacobian::HZ_MIN).abs() <= 1e-3 * jacobian::HZ_MIN,
+                        "{h:?} -> {s:?}"
+                    );
                     for m in [
                         jacobian::sphere_to_projected(h),
                         jacobian::projected_to_slope(h),
@@ -407,7 +560,10 @@ macro_rules! contract {
                 // Slope maps: finite at and beyond the horizon.
                 assert!(slope::slope_from_sphere(Vec3::X).is_finite());
                 assert!(slope::slope_from_sphere(Vec3::new(0.6, 0.0, -0.8)).is_finite());
-                assert_eq!(slope::sphere_from_slope(Vec2::new(INF, 0.0)), Vec3::new(-1.0, 0.0, 0.0));
+                assert_eq!(
+                    slope::sphere_from_slope(Vec2::new(INF, 0.0)),
+                    Vec3::new(-1.0, 0.0, 0.0)
+                );
                 assert_eq!(slope::sphere_from_projected(Vec2::new(3.0, 4.0)).z, 0.0);
                 assert!(slope::slope_from_projected(Vec2::new(2.0, 0.0)).is_finite());
             }
@@ -421,21 +577,54 @@ macro_rules! contract {
                 for (e, l) in [
                     (Endpoint::Point(x), Endpoint::Direction(Vec3::Z)),
                     (Endpoint::Direction(Vec3::X), Endpoint::Direction(-Vec3::X)),
-                    (Endpoint::Direction(Vec3::new(NAN, 0.0, 1.0)), Endpoint::Direction(Vec3::Z)),
-                    (Endpoint::Direction(Vec3::ZERO), Endpoint::Direction(Vec3::Z)),
+                    (
+                        Endpoint::Direction(Vec3::new(NAN, 0.0, 1.0)),
+                        Endpoint::Direction(Vec3::Z),
+                    ),
+                    (
+                        Endpoint::Direction(Vec3::ZERO),
+                        Endpoint::Direction(Vec3::Z),
+                    ),
                 ] {
                     assert_eq!(g::half_vector(x, e, l, &frame), Vec3::Z);
                     assert_eq!(g::half_vector_jacobian(x, e, l, &frame), Mat2::ZERO);
                 }
                 // Below the horizon: clamped, finite.
-                let m = g::half_vector_jacobian(x, Endpoint::Point(Vec3::new(1.0, 0.0, -1.0)), Endpoint::Direction(Vec3::new(1.0, 0.0, -0.1)), &frame);
+                let m = g::half_vector_jacobian(
+                    x,
+                    Endpoint::Point(Vec3::new(1.0, 0.0, -1.0)),
+                    Endpoint::Direction(Vec3::new(1.0, 0.0, -0.1)),
+                    &frame,
+                );
                 assert!(m.is_finite());
-                assert_eq!(g::half_vector_jacobian_far_field(Vec3::ZERO, &frame), Mat2::ZERO);
-                assert_eq!(g::half_vector_jacobian_far_field(Vec3::new(NAN, 0.0, 1.0), &frame), Mat2::ZERO);
-                assert_eq!(g::footprint(Mat2::from_cols(Vec2::splat(INF), Vec2::ZERO), &frame, Vec3::X, Vec3::Y), Footprint::ZERO);
-                let ray = PinholeRay { origin: Vec3::Z, dir: Vec3::X, ddir_du: Vec3::Y, ddir_dv: Vec3::Z };
+                assert_eq!(
+                    g::half_vector_jacobian_far_field(Vec3::ZERO, &frame),
+                    Mat2::ZERO
+                );
+                assert_eq!(
+                    g::half_vector_jacobian_far_field(Vec3::new(NAN, 0.0, 1.0), &frame),
+                    Mat2::ZERO
+                );
+                assert_eq!(
+                    g::footprint(
+                        Mat2::from_cols(Vec2::splat(INF), Vec2::ZERO),
+                        &frame,
+                        Vec3::X,
+                        Vec3::Y
+                    ),
+                    Footprint::ZERO
+                );
+                let ray = PinholeRay {
+                    origin: Vec3::Z,
+                    dir: Vec3::X,
+                    ddir_du: Vec3::Y,
+                    ddir_dv: Vec3::Z,
+                };
                 assert_eq!(g::tangent_plane_differentials(&ray, x, Vec3::Z), None);
-                let fp = g::footprint_projected(Footprint::from_slope_derivatives(Vec2::X, Vec2::Y), Vec3::new(NAN, 0.0, 0.0));
+                let fp = g::footprint_projected(
+                    Footprint::from_slope_derivatives(Vec2::X, Vec2::Y),
+                    Vec3::new(NAN, 0.0, 0.0),
+                );
                 assert!(fp.dh_u.is_finite());
             }
 
@@ -445,11 +634,29 @@ macro_rules! contract {
                 let zero = LevelSetSample::default();
                 let ray = MovingRay::fixed(Vec3::ZERO, Vec3::Z);
                 assert_eq!(implicit::hit_rates(&zero, &ray, 1.0), HitRates::ZERO);
-                let tangent = LevelSetSample { grad: Vec3::X, dphi_dt: 1.0, ..zero };
+                let tangent = LevelSetSample {
+                    grad: Vec3::X,
+                    dphi_dt: 1.0,
+                    ..zero
+                };
                 assert_eq!(implicit::hit_rates(&tangent, &ray, 1.0), HitRates::ZERO);
-                let nan = LevelSetSample { grad: Vec3::Z, dphi_dt: NAN, ..zero };
+                let nan = LevelSetSample {
+                    grad: Vec3::Z,
+                    dphi_dt: NAN,
+                    ..zero
+                };
                 assert_eq!(implicit::hit_rates(&nan, &ray, 1.0), HitRates::ZERO);
-                assert_eq!(implicit::hit_distance_rate(&LevelSetSample { grad: Vec3::Z, ..zero }, &ray, INF), 0.0);
+                assert_eq!(
+                    implicit::hit_distance_rate(
+                        &LevelSetSample {
+                            grad: Vec3::Z,
+                            ..zero
+                        },
+                        &ray,
+                        INF
+                    ),
+                    0.0
+                );
                 assert_eq!(zero.normal(), Vec3::ZERO);
                 assert_eq!(zero.shape_operator(), Sym3::ZERO);
                 assert_eq!(project(Vec3::ZERO, Vec3::X), Vec3::X);
@@ -458,10 +665,22 @@ macro_rules! contract {
                 assert!(LocalQuadric::new(Vec3::ZERO, Vec3::ZERO, Vec3::X, 1.0, 1.0).is_none());
                 assert!(LocalQuadric::new(Vec3::ZERO, Vec3::Z, Vec3::Z, 1.0, 1.0).is_none());
                 assert!(LocalQuadric::new(Vec3::ZERO, Vec3::Z, Vec3::X, NAN, 1.0).is_none());
-                for (rate, dt) in [(Vec2::new(NAN, 0.0), 1.0), (Vec2::ZERO, 1.0), (Vec2::X, -1.0), (Vec2::X, NAN), (Vec2::X, 0.0)] {
-                    assert_eq!(TemporalRoughness::from_normal_rate(rate, dt), TemporalRoughness::ZERO);
+                for (rate, dt) in [
+                    (Vec2::new(NAN, 0.0), 1.0),
+                    (Vec2::ZERO, 1.0),
+                    (Vec2::X, -1.0),
+                    (Vec2::X, NAN),
+                    (Vec2::X, 0.0),
+                ] {
+                    assert_eq!(
+                        TemporalRoughness::from_normal_rate(rate, dt),
+                        TemporalRoughness::ZERO
+                    );
                 }
-                assert_eq!(TemporalRoughness::from_normal_rate(Vec2::splat(F::MAX), F::MAX).alpha(), ALPHA_MAX);
+                assert_eq!(
+                    TemporalRoughness::from_normal_rate(Vec2::splat(F::MAX), F::MAX).alpha(),
+                    ALPHA_MAX
+                );
                 let t = TemporalRoughness::from_normal_rate(Vec2::X, 0.1);
                 assert_eq!(t.cosine_weighted(NAN), TemporalRoughness::ZERO);
                 assert_eq!(t.share(NAN), TemporalRoughness::ZERO);
@@ -470,7 +689,10 @@ macro_rules! contract {
                 assert_eq!(temporal::box_shutter_dt(-1.0), 0.0);
                 assert!(valid(TemporalRoughness::ZERO.roughness_matrix(NAN)));
                 let lobe = TemporalLobe::ggx(iso(), t.covariance());
-                assert_eq!(lobe.lambda(Vec3::new(0.3, 0.2, 0.7)), Ggx::new(iso()).lambda(Vec3::new(0.3, 0.2, 0.7)));
+                assert_eq!(
+                    lobe.lambda(Vec3::new(0.3, 0.2, 0.7)),
+                    Ggx::new(iso()).lambda(Vec3::new(0.3, 0.2, 0.7))
+                );
                 assert_eq!(lobe.d(-Vec3::Z), 0.0);
             }
         }

@@ -562,7 +562,9 @@ sweep!(p64, f64, F64);
 
 #[test]
 fn extremes_filter_error_map() {
-    let mut g = ErrorMap::new("filter::gaussian and filter::projected (through p22): worst relative error, f32 / f64");
+    let mut g = ErrorMap::new(
+        "filter::gaussian and filter::projected (through p22): worst relative error, f32 / f64",
+    );
     p32::gaussian(&mut g);
     p64::gaussian(&mut g);
     p32::gaussian_quadrature(&mut g);

@@ -41,12 +41,19 @@ fn visible_integral(
     tol: Tolerance,
 ) -> f64 {
     let rxy = wo[0].hypot(wo[1]);
-    let (dx, dy) = if rxy > 0.0 { (-wo[0] / rxy, -wo[1] / rxy) } else { (1.0, 0.0) };
-    // m = (-s, 1) / n, so wo.m > 0 <=> wo_z - s . wo_xy > 0 <=> u = s . d > -wo_z / rxy.
-    let u0 = if rxy > 0.0 { -wo[2] / rxy } else { f64::NEG_INFINITY };
-    let inner = |u: f64| {
-        integrate_line(|v| f(u * dx - v * dy, u * dy + v * dx), 0.0, w_min, tol).value
+    let (dx, dy) = if rxy > 0.0 {
+        (-wo[0] / rxy, -wo[1] / rxy)
+    } else {
+        (1.0, 0.0)
     };
+    // m = (-s, 1) / n, so wo.m > 0 <=> wo_z - s . wo_xy > 0 <=> u = s . d > -wo_z / rxy.
+    let u0 = if rxy > 0.0 {
+        -wo[2] / rxy
+    } else {
+        f64::NEG_INFINITY
+    };
+    let inner =
+        |u: f64| integrate_line(|v| f(u * dx - v * dy, u * dy + v * dx), 0.0, w_min, tol).value;
     if u0 == f64::NEG_INFINITY {
         return integrate_line(inner, 0.0, w, tol).value;
     }
@@ -103,16 +110,17 @@ fn directions(widths: (f64, f64)) -> Vec<(&'static str, [f64; 3])> {
         for (phi, w) in [(0.3_f64, widths.0), (2.0_f64, widths.1)] {
             let t = k * w;
             let n = (1.0 + t * t).sqrt();
-            v.push((
-                "lobe",
-                [t * phi.cos() / n, t * phi.sin() / n, 1.0 / n],
-            ));
+            v.push(("lobe", [t * phi.cos() / n, t * phi.sin() / n, 1.0 / n]));
         }
     }
     for phi in [0.0_f64, 0.7, PI / 2.0] {
         v.push((
             "89.99 deg",
-            [GRAZE.sin() * phi.cos(), GRAZE.sin() * phi.sin(), GRAZE.cos()],
+            [
+                GRAZE.sin() * phi.cos(),
+                GRAZE.sin() * phi.sin(),
+                GRAZE.cos(),
+            ],
         ));
     }
     for phi in [0.0_f64, 0.7] {
@@ -142,8 +150,8 @@ macro_rules! sweep {
         mod $name {
             use super::*;
             use filtered_ndf::$p::{
-                AxisAligned, Beckmann, F, Ggx, Isotropic, NdfSampling, RoughnessMatrix, Vec2,
-                Vec3, jacobian,
+                AxisAligned, Beckmann, F, Ggx, Isotropic, NdfSampling, RoughnessMatrix, Vec2, Vec3,
+                jacobian,
             };
 
             const PREC: usize = $prec;
@@ -319,8 +327,16 @@ macro_rules! sweep {
                 let floor = min_positive(PREC);
                 for c in cases() {
                     for (model, ndf) in build(c.spec) {
-                        let kp = if model == "GGX" { "GGX p22" } else { "Beckmann p22" };
-                        let kd = if model == "GGX" { "GGX D" } else { "Beckmann D" };
+                        let kp = if model == "GGX" {
+                            "GGX p22"
+                        } else {
+                            "Beckmann p22"
+                        };
+                        let kd = if model == "GGX" {
+                            "GGX D"
+                        } else {
+                            "Beckmann D"
+                        };
                         let kl = if model == "GGX" {
                             "GGX 1+Lambda"
                         } else {
@@ -353,9 +369,19 @@ macro_rules! sweep {
                             map.require(got.is_finite() && got >= 0.0, || {
                                 format!("{kp} not finite/non-negative at {s:?}: {got}")
                             });
-                            map.record(kp, &regions, PREC, rel_err(got, reference, floor), tol, || {
-                                format!("{} {} s = {s:?}: got {got:e}, ref {reference:e}", c.alpha, c.form)
-                            });
+                            map.record(
+                                kp,
+                                &regions,
+                                PREC,
+                                rel_err(got, reference, floor),
+                                tol,
+                                || {
+                                    format!(
+                                        "{} {} s = {s:?}: got {got:e}, ref {reference:e}",
+                                        c.alpha, c.form
+                                    )
+                                },
+                            );
 
                             // D(m).
                             let mv = v3(m);
@@ -377,9 +403,19 @@ macro_rules! sweep {
                             map.require(got.is_finite() && got >= 0.0, || {
                                 format!("{kd} not finite/non-negative at {m:?}: {got}")
                             });
-                            map.record(kd, &regions, PREC, rel_err(got, reference, floor), tol, || {
-                                format!("{} {} m = {mr:?}: got {got:e}, ref {reference:e}", c.alpha, c.form)
-                            });
+                            map.record(
+                                kd,
+                                &regions,
+                                PREC,
+                                rel_err(got, reference, floor),
+                                tol,
+                                || {
+                                    format!(
+                                        "{} {} m = {mr:?}: got {got:e}, ref {reference:e}",
+                                        c.alpha, c.form
+                                    )
+                                },
+                            );
 
                             // Lambda, measured as 1 + Lambda (what G1 = 1 / (1 + Lambda) uses; a
                             // tiny Lambda near the pole is irrelevant next to 1).
@@ -402,7 +438,12 @@ macro_rules! sweep {
                                     PREC,
                                     rel_err(1.0 + got, 1.0 + reference, 1.0),
                                     32.0 * eps,
-                                    || format!("{} {} w = {mr:?}: got {got:e}, ref {reference:e}", c.alpha, c.form),
+                                    || {
+                                        format!(
+                                            "{} {} w = {mr:?}: got {got:e}, ref {reference:e}",
+                                            c.alpha, c.form
+                                        )
+                                    },
                                 );
                             }
                         }
@@ -415,8 +456,16 @@ macro_rules! sweep {
                 let floor = min_positive(PREC);
                 for c in cases() {
                     for (model, ndf) in build(c.spec) {
-                        let kn = if model == "GGX" { "GGX normal pdf" } else { "Beckmann normal pdf" };
-                        let kv = if model == "GGX" { "GGX visible pdf" } else { "Beckmann visible pdf" };
+                        let kn = if model == "GGX" {
+                            "GGX normal pdf"
+                        } else {
+                            "Beckmann normal pdf"
+                        };
+                        let kv = if model == "GGX" {
+                            "GGX visible pdf"
+                        } else {
+                            "Beckmann visible pdf"
+                        };
                         let kr = if model == "GGX" {
                             "GGX reflection pdf"
                         } else {
@@ -425,7 +474,10 @@ macro_rules! sweep {
                         let dirs = directions(c.widths);
                         for (wlabel, wo) in [
                             ("wo pole", [0.0, 0.0, 1.0]),
-                            ("wo 89.99 deg", [GRAZE.sin() * 0.6, GRAZE.sin() * 0.8, GRAZE.cos()]),
+                            (
+                                "wo 89.99 deg",
+                                [GRAZE.sin() * 0.6, GRAZE.sin() * 0.8, GRAZE.cos()],
+                            ),
                             ("wo 90 deg", [0.6, 0.8, 0.0]),
                         ] {
                             let wov = v3(wo);
@@ -449,10 +501,22 @@ macro_rules! sweep {
                                 let tol = (64.0 + 8.0 * x) * eps;
                                 let got = ndf.normal_pdf(mv).to_f64();
                                 let reference = if mr[2] > 0.0 { d * mr[2] } else { 0.0 };
-                                map.require(got.is_finite() && got >= 0.0, || format!("{kn} at {mr:?}: {got}"));
-                                map.record(kn, &regions[..3], PREC, rel_err(got, reference, floor), tol, || {
-                                    format!("{} {} m {mr:?}: {got:e} vs {reference:e}", c.alpha, c.form)
+                                map.require(got.is_finite() && got >= 0.0, || {
+                                    format!("{kn} at {mr:?}: {got}")
                                 });
+                                map.record(
+                                    kn,
+                                    &regions[..3],
+                                    PREC,
+                                    rel_err(got, reference, floor),
+                                    tol,
+                                    || {
+                                        format!(
+                                            "{} {} m {mr:?}: {got:e} vs {reference:e}",
+                                            c.alpha, c.form
+                                        )
+                                    },
+                                );
 
                                 let lam = lambda_ref(model, &c, wr);
                                 let wom = wr[0] * mr[0] + wr[1] * mr[1] + wr[2] * mr[2];
@@ -465,10 +529,22 @@ macro_rules! sweep {
                                 // wo.m cancels for m near the horizon of wo: its error is
                                 // eps |wo| |m| / (wo.m), added to the tolerance.
                                 let cancel = if wom > 0.0 { 4.0 * eps / wom } else { 0.0 };
-                                map.require(got.is_finite() && got >= 0.0, || format!("{kv} at {wr:?} {mr:?}: {got}"));
-                                map.record(kv, &regions, PREC, rel_err(got, reference, floor), tol + cancel, || {
-                                    format!("{} {} wo {wr:?} m {mr:?}: {got:e} vs {reference:e}", c.alpha, c.form)
+                                map.require(got.is_finite() && got >= 0.0, || {
+                                    format!("{kv} at {wr:?} {mr:?}: {got}")
                                 });
+                                map.record(
+                                    kv,
+                                    &regions,
+                                    PREC,
+                                    rel_err(got, reference, floor),
+                                    tol + cancel,
+                                    || {
+                                        format!(
+                                            "{} {} wo {wr:?} m {mr:?}: {got:e} vs {reference:e}",
+                                            c.alpha, c.form
+                                        )
+                                    },
+                                );
 
                                 let got = ndf.reflection_pdf_from_normal(wov, mv).to_f64();
                                 let n = (wr[0] * wr[0] + wr[1] * wr[1] + wr[2] * wr[2]).sqrt();
@@ -477,10 +553,22 @@ macro_rules! sweep {
                                 } else {
                                     0.0
                                 };
-                                map.require(got.is_finite() && got >= 0.0, || format!("{kr} at {wr:?} {mr:?}: {got}"));
-                                map.record(kr, &regions, PREC, rel_err(got, reference, floor), tol, || {
-                                    format!("{} {} wo {wr:?} m {mr:?}: {got:e} vs {reference:e}", c.alpha, c.form)
+                                map.require(got.is_finite() && got >= 0.0, || {
+                                    format!("{kr} at {wr:?} {mr:?}: {got}")
                                 });
+                                map.record(
+                                    kr,
+                                    &regions,
+                                    PREC,
+                                    rel_err(got, reference, floor),
+                                    tol,
+                                    || {
+                                        format!(
+                                            "{} {} wo {wr:?} m {mr:?}: {got:e} vs {reference:e}",
+                                            c.alpha, c.form
+                                        )
+                                    },
+                                );
                             }
                         }
                     }
@@ -496,23 +584,41 @@ macro_rules! sweep {
                 // The goal 1e-10 (f64 only: in f32 the integrand carries rounding noise that
                 // an adaptive rule cannot converge through; the f32 pdfs are checked pointwise
                 // against the closed form above).
-                let goal = Tolerance { abs: 1e-300, rel: 1e-10, max_intervals: 400 };
+                let goal = Tolerance {
+                    abs: 1e-300,
+                    rel: 1e-10,
+                    max_intervals: 400,
+                };
                 for &(alpha, label) in &ALPHAS {
                     let a = r(alpha);
                     for (form, spec, scale) in [
                         ("isotropic", Form::Iso(a), (a, a)),
-                        ("cond 1e6", Form::Axis(a, r(1e3 * alpha).min(0.99e4)), (a, (1e3 * alpha).min(0.99e4))),
+                        (
+                            "cond 1e6",
+                            Form::Axis(a, r(1e3 * alpha).min(0.99e4)),
+                            (a, (1e3 * alpha).min(0.99e4)),
+                        ),
                     ] {
                         for (model, ndf) in build(spec) {
-                            let k = if model == "GGX" { "GGX visible pdf" } else { "Beckmann visible pdf" };
+                            let k = if model == "GGX" {
+                                "GGX visible pdf"
+                            } else {
+                                "Beckmann visible pdf"
+                            };
                             // Azimuths along the lobe's axes, so that the inner lines of the
                             // quadrature run along one axis (width known exactly).
-                            for (wlabel, theta, along_y) in
-                                [("wo pole", 0.0_f64, false), ("wo 89.99 deg", GRAZE, false), ("wo 89.99 deg", GRAZE, true)]
-                            {
+                            for (wlabel, theta, along_y) in [
+                                ("wo pole", 0.0_f64, false),
+                                ("wo 89.99 deg", GRAZE, false),
+                                ("wo 89.99 deg", GRAZE, true),
+                            ] {
                                 let (cx, cy) = if along_y { (0.0, 1.0) } else { (1.0, 0.0) };
                                 let wo = v3([theta.sin() * cx, theta.sin() * cy, theta.cos()]);
-                                let (w_outer, w_inner) = if along_y { (scale.1, scale.0) } else { (scale.0, scale.1) };
+                                let (w_outer, w_inner) = if along_y {
+                                    (scale.1, scale.0)
+                                } else {
+                                    (scale.0, scale.1)
+                                };
                                 let wr = back(wo);
                                 let total = visible_integral(
                                     |x, y| {
@@ -526,7 +632,10 @@ macro_rules! sweep {
                                     w_inner,
                                     goal,
                                 );
-                                let total = Estimate { value: total, error: 0.0 };
+                                let total = Estimate {
+                                    value: total,
+                                    error: 0.0,
+                                };
                                 // Tolerance: ten times the quadrature's goal (the clamp along
                                 // wo.m = 0 is a boundary of the integration domain, not a kink
                                 // inside it), plus 64 eps of rounding per sample.
@@ -553,7 +662,14 @@ macro_rules! sweep {
                     hs.push(("lobe", [th.sin() * 0.6, th.sin() * 0.8, th.cos()]));
                 }
                 for phi in [0.0_f64, 0.7, PI / 2.0] {
-                    hs.push(("89.99 deg", [GRAZE.sin() * phi.cos(), GRAZE.sin() * phi.sin(), GRAZE.cos()]));
+                    hs.push((
+                        "89.99 deg",
+                        [
+                            GRAZE.sin() * phi.cos(),
+                            GRAZE.sin() * phi.sin(),
+                            GRAZE.cos(),
+                        ],
+                    ));
                     hs.push(("90 deg", [phi.cos(), phi.sin(), 0.0]));
                 }
                 // Non-unit input (Jacobians normalise h).
@@ -564,7 +680,11 @@ macro_rules! sweep {
                     let n = (hr[0] * hr[0] + hr[1] * hr[1] + hr[2] * hr[2]).sqrt();
                     let mut u = [hr[0] / n, hr[1] / n, hr[2] / n];
                     let rxy = u[0].hypot(u[1]);
-                    let (cp, sp) = if rxy > 0.0 { (u[0] / rxy, u[1] / rxy) } else { (1.0, 0.0) };
+                    let (cp, sp) = if rxy > 0.0 {
+                        (u[0] / rxy, u[1] / rxy)
+                    } else {
+                        (1.0, 0.0)
+                    };
                     if u[2] < hz_min {
                         let st = (1.0 - hz_min * hz_min).sqrt();
                         u = [st * cp, st * sp, hz_min];
@@ -574,14 +694,33 @@ macro_rules! sweep {
                     // Determinants against the closed forms (TK19 section 3.1, 3.2): h_z,
                     // 1 / h_z^4, 1 / h_z^3. Tolerance 16 eps: a normalisation and a power.
                     for (k, got, reference) in [
-                        ("det J(o->perp)", jacobian::det_sphere_to_projected(hv).to_f64(), hz),
-                        ("det J(perp->par)", jacobian::det_projected_to_slope(hv).to_f64(), 1.0 / hz.powi(4)),
-                        ("det J(o->par)", jacobian::det_sphere_to_slope(hv).to_f64(), 1.0 / hz.powi(3)),
+                        (
+                            "det J(o->perp)",
+                            jacobian::det_sphere_to_projected(hv).to_f64(),
+                            hz,
+                        ),
+                        (
+                            "det J(perp->par)",
+                            jacobian::det_projected_to_slope(hv).to_f64(),
+                            1.0 / hz.powi(4),
+                        ),
+                        (
+                            "det J(o->par)",
+                            jacobian::det_sphere_to_slope(hv).to_f64(),
+                            1.0 / hz.powi(3),
+                        ),
                     ] {
-                        map.require(got.is_finite() && got > 0.0, || format!("{k} at {hr:?}: {got}"));
-                        map.record(k, &regions, PREC, rel_err(got, reference, 0.0), 16.0 * eps, || {
-                            format!("h {hr:?}: {got:e} vs {reference:e}")
+                        map.require(got.is_finite() && got > 0.0, || {
+                            format!("{k} at {hr:?}: {got}")
                         });
+                        map.record(
+                            k,
+                            &regions,
+                            PREC,
+                            rel_err(got, reference, 0.0),
+                            16.0 * eps,
+                            || format!("h {hr:?}: {got:e} vs {reference:e}"),
+                        );
                     }
                     // Matrices against the paper's closed forms (TK19 supplement eq. 4, 6, 7),
                     // evaluated here in double-double from the reference unit h, error relative
@@ -591,15 +730,29 @@ macro_rules! sweep {
                     let one_minus = |a: f64| Dd::from(1.0).sub(Dd::prod(a, a)).f();
                     let k6 = -1.0 / (hz * hz * hz);
                     let refs: [(&str, [f64; 4], Mat); 4] = [
-                        ("J(o->perp)", [hz * cp, hz * sp, -sp, cp], jacobian::sphere_to_projected(hv)),
+                        (
+                            "J(o->perp)",
+                            [hz * cp, hz * sp, -sp, cp],
+                            jacobian::sphere_to_projected(hv),
+                        ),
                         (
                             "J(perp->par)",
-                            [k6 * one_minus(hy), k6 * hx * hy, k6 * hx * hy, k6 * one_minus(hx)],
+                            [
+                                k6 * one_minus(hy),
+                                k6 * hx * hy,
+                                k6 * hx * hy,
+                                k6 * one_minus(hx),
+                            ],
                             jacobian::projected_to_slope(hv),
                         ),
                         (
                             "J(par->perp)",
-                            [-hz * one_minus(hx), hz * hx * hy, hz * hx * hy, -hz * one_minus(hy)],
+                            [
+                                -hz * one_minus(hx),
+                                hz * hx * hy,
+                                hz * hx * hy,
+                                -hz * one_minus(hy),
+                            ],
                             jacobian::slope_to_projected(hv),
                         ),
                         (
@@ -617,7 +770,9 @@ macro_rules! sweep {
                             .map(|(a, b)| (a.to_f64() - b).abs())
                             .fold(0.0, f64::max)
                             / big;
-                        map.require(g.iter().all(|x| x.is_finite()), || format!("{k} at {hr:?} not finite"));
+                        map.require(g.iter().all(|x| x.is_finite()), || {
+                            format!("{k} at {hr:?} not finite")
+                        });
                         map.record(k, &regions, PREC, err, 64.0 * eps, || {
                             format!("h {hr:?}: {g:?} vs {reference:?}")
                         });

@@ -300,7 +300,7 @@ impl ErrorMap {
                 *w = err;
             }
         }
-        if !(err <= tol) {
+        if err.is_nan() || err > tol {
             self.failures.push(format!(
                 "{kernel} [{}] {}: error {err:.3e} > tolerance {tol:.1e}: {}",
                 regions.join(", "),
