@@ -40,10 +40,13 @@ mod sealed {
 pub trait Roughness: Copy + sealed::Sealed {
     /// `s^T A^-1 s` for a slope `s` (dimensionless, `>= 0`). For the matrix form `A^-1` is
     /// `adj(A) / max(det A, tau)` (TK19 supplement, "Practical Implementation") and the result
-    /// is clamped to `>= 0`.
+    /// is clamped to `>= 0`. Every form returns `+inf` when the form overflows (also against
+    /// the null direction of a clamped singular matrix) or `s` has an infinite component, and
+    /// NaN for a NaN component.
     fn inv_quadratic(&self, s: Vec2) -> F;
     /// `w^T A w` for a tangent-plane vector `w` (the projected roughness of Smith's
-    /// `Lambda`, TK19 supplement section 1), `>= 0`.
+    /// `Lambda`, TK19 supplement section 1), `>= 0`. Overflow and non-finite input as
+    /// [`Roughness::inv_quadratic`].
     fn quadratic(&self, w: Vec2) -> F;
     /// `sqrt(det A)` (for the matrix form `sqrt(max(det A, tau))`): `alpha^2` isotropic,
     /// `alpha_x alpha_y` axis-aligned. Strictly positive.

@@ -63,6 +63,8 @@ macro_rules! contract {
                 // Non-symmetric Mat2.
                 let ns = Mat2::from_cols(Vec2::new(0.1, 0.01), Vec2::new(0.02, 0.1));
                 assert_eq!(RoughnessMatrix::from_mat2(ns), Err(E::NotSymmetric));
+                let nanm = Mat2::from_cols(Vec2::new(0.1, NAN), Vec2::new(0.0, 0.1));
+                assert_eq!(RoughnessMatrix::from_mat2(nanm), Err(E::NotFinite));
                 let ok = Mat2::from_cols(Vec2::new(0.1, 0.01), Vec2::new(0.01, 0.1));
                 assert!(RoughnessMatrix::from_mat2(ok).is_ok());
                 // Clamped constructors never fail.
@@ -471,6 +473,11 @@ macro_rules! contract {
                     ggx_proxy::effective_alpha(0.1, 0.2)
                 );
                 assert_eq!(ggx_proxy::effective_alpha_simple(0.1, NAN), 0.1);
+                assert_eq!(ggx_proxy::effective_alpha(0.1, INF), INF);
+                assert_eq!(
+                    ggx_proxy::proxy(r, Vec2::splat(INF)).alpha(),
+                    Vec2::splat(ALPHA_MAX)
+                );
                 for h in [Vec2::splat(NAN), Vec2::splat(INF), Vec2::splat(-1.0)] {
                     let p = ggx_proxy::proxy(r, h);
                     assert!(p.alpha().x >= ALPHA_MIN && p.alpha().y <= ALPHA_MAX);
@@ -566,6 +573,13 @@ macro_rules! contract {
                 );
                 assert_eq!(slope::sphere_from_projected(Vec2::new(3.0, 4.0)).z, 0.0);
                 assert!(slope::slope_from_projected(Vec2::new(2.0, 0.0)).is_finite());
+                assert_eq!(
+                    slope::slope_from_sphere(Vec3::new(NAN, 0.0, 1.0)).x,
+                    -F::MAX
+                );
+                assert!(slope::slope_from_sphere(Vec3::new(0.5, 0.0, NAN)).is_finite());
+                assert!(slope::sphere_from_slope(Vec2::new(NAN, 0.0)).x.is_nan());
+                assert_eq!(slope::sphere_from_projected(Vec2::ZERO), Vec3::Z);
             }
 
             #[test]
