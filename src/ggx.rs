@@ -77,7 +77,12 @@ pub(crate) fn ggx_lambda(q: F, abs_wz: F) -> F {
     }
     let r = m::sqrt(abs_wz * abs_wz + q);
     if !r.is_finite() {
-        return F::INFINITY;
+        // An infinite w_z with a finite q is the pole (Lambda = 0); otherwise grazing.
+        return if abs_wz.is_infinite() && q.is_finite() {
+            0.0
+        } else {
+            F::INFINITY
+        };
     }
     q / (2.0 * abs_wz * (r + abs_wz))
 }

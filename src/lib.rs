@@ -54,6 +54,7 @@
 #![deny(missing_docs)]
 #![allow(clippy::duplicate_mod)]
 
+pub mod contract;
 pub mod error;
 pub mod math;
 pub mod tables;

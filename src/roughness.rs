@@ -40,10 +40,13 @@ mod sealed {
 pub trait Roughness: Copy + sealed::Sealed {
     /// `s^T A^-1 s` for a slope `s` (dimensionless, `>= 0`). For the matrix form `A^-1` is
     /// `adj(A) / max(det A, tau)` (TK19 supplement, "Practical Implementation") and the result
-    /// is clamped to `>= 0`.
+    /// is clamped to `>= 0`. Every form returns `+inf` when the form overflows (also against
+    /// the null direction of a clamped singular matrix) or `s` has an infinite component, and
+    /// NaN for a NaN component.
     fn inv_quadratic(&self, s: Vec2) -> F;
     /// `w^T A w` for a tangent-plane vector `w` (the projected roughness of Smith's
-    /// `Lambda`, TK19 supplement section 1), `>= 0`.
+    /// `Lambda`, TK19 supplement section 1), `>= 0`. Overflow and non-finite input as
+    /// [`Roughness::inv_quadratic`].
     fn quadratic(&self, w: Vec2) -> F;
     /// `sqrt(det A)` (for the matrix form `sqrt(max(det A, tau))`): `alpha^2` isotropic,
     /// `alpha_x alpha_y` axis-aligned. Strictly positive.
@@ -473,6 +476,27 @@ impl From<Isotropic> for RoughnessMatrix {
     }
 }
 
+/// A quadratic form `q = form(v)` clamped to `>= 0`. A NaN `q` for a finite `v` means that `r * r`
+/// overflowed against a zero eigenvalue (`0 * inf`, possible only under the determinant clamp,
+/// where the clamped inverse has a null direction): the form is then evaluated on `v / k`,
+/// `k = max |v_i|`, and scaled back by `k^2` (`+inf` if that overflows, `0` along the null
+/// direction). A NaN component of `v` gives NaN and an infinite one `+inf`, as in the
+/// isotropic and axis-aligned forms.
+#[inline]
+fn scaled_form(q: F, v: Vec2, form: impl Fn(Vec2) -> F) -> F {
+    if !q.is_nan() {
+        return q.max(0.0);
+    }
+    if v.is_nan() {
+        return F::NAN;
+    }
+    if !v.is_finite() {
+        return F::INFINITY;
+    }
+    let k = v.abs().max_element();
+    (form(v / k) * k * k).max(0.0)
+}
+
 impl sealed::Sealed for RoughnessMatrix {}
 impl Roughness for RoughnessMatrix {
     #[inline]
@@ -485,7 +509,10 @@ impl Roughness for RoughnessMatrix {
             return F::from_f64(q.max(0.0));
         }
         let r = self.rotate(s);
-        (r * r).dot(self.inv_eig).max(0.0)
+        scaled_form((r * r).dot(self.inv_eig), s, |u| {
+            let r = self.rotate(u);
+            (r * r).dot(self.inv_eig)
+        })
     }
     #[inline]
     fn quadratic(&self, w: Vec2) -> F {
@@ -496,7 +523,10 @@ impl Roughness for RoughnessMatrix {
             return F::from_f64(q.max(0.0));
         }
         let r = self.rotate(w);
-        (r * r).dot(self.eig).max(0.0)
+        scaled_form((r * r).dot(self.eig), w, |u| {
+            let r = self.rotate(u);
+            (r * r).dot(self.eig)
+        })
     }
     #[inline]
     fn sqrt_det(&self) -> F {

@@ -29,7 +29,9 @@ pub fn slope_from_sphere(h: Vec3) -> Vec2 {
 }
 
 /// Unit vector of a slope: `h = (-s_x, -s_y, 1) / sqrt(1 + |s|^2)` (inverse of
-/// [`slope_from_sphere`]). For huge `|s|` the result tends to the horizon direction `-s/|s|`.
+/// [`slope_from_sphere`]). For huge `|s|` the result tends to the horizon direction `-s/|s|`;
+/// an infinite component gives the horizon direction of the infinite components' signs, a NaN
+/// component a NaN result.
 #[inline]
 pub fn sphere_from_slope(s: Vec2) -> Vec3 {
     let v = Vec3::new(-s.x, -s.y, 1.0);
@@ -41,7 +43,13 @@ pub fn sphere_from_slope(s: Vec2) -> Vec3 {
         if l.is_finite() && l > 0.0 {
             Vec3::new(-s.x / l, -s.y / l, 0.0)
         } else {
-            let d = s / s.abs().max_element();
+            // Huge: rescale first; infinite components give the direction of their signs.
+            let d = if s.is_finite() {
+                s / s.abs().max_element()
+            } else {
+                let inf = |x: F| if x.is_infinite() { x.signum() } else { 0.0 };
+                Vec2::new(inf(s.x), inf(s.y))
+            };
             let d = d / d.length();
             Vec3::new(-d.x, -d.y, 0.0)
         }

@@ -1,0 +1,191 @@
+//! The crate's robustness contract, in one place: what every public evaluation function does
+//! with bad input, and how accurate the kernels are at the edges of their domains.
+//!
+//! Documentation only; nothing here is code. Both sections are tested: the bad-input
+//! statements by `tests/contract.rs` (each row names its test; each test runs in both
+//! precisions as `contract_f32::<name>` and `contract_f64::<name>`), the error map by
+//! `tests/extremes_ndf.rs` and `tests/extremes_filter.rs`, which print the tables below with
+//! `cargo test --release --test extremes_ndf -- --nocapture` (and `extremes_filter`).
+//!
+//! # Bad input
+//!
+//! The general rule (every function): an evaluation never panics and never returns NaN for
+//! finite input; checked constructors return a [`RoughnessError`](crate::RoughnessError)
+//! instead of building an invalid value; `*_clamped` constructors never fail. The table says
+//! what each function does outside its domain. "Non-unit" means a finite, non-zero vector of
+//! any length; "back-facing" a direction with `z < 0` in the tangent frame.
+//!
+//! | functions | NaN | infinities | zero vector | non-unit vector | back-facing | roughness `<= 0` | non-symmetric / indefinite matrix | test |
+//! |---|---|---|---|---|---|---|---|---|
+//! | `Isotropic::new`, `AxisAligned::new`, `RoughnessMatrix::new`, `Ggx::{isotropic, axis_aligned, matrix}`, `Beckmann::{..}` | `Err(NotFinite)` | `Err(NotFinite)` | - | - | - | `Err(NotPositive)` (also `-0`); outside `[ALPHA_MIN, ALPHA_MAX]`: `Err(OutOfRange)` | `det <= 0`: `Err(NotPositiveDefinite)` | `roughness_constructors` |
+//! | `RoughnessMatrix::from_mat2`, `new_with_det_clamp`, `with_det_clamp` | `Err(NotFinite)`; a NaN `tau` in `with_det_clamp` means no clamp | as NaN | - | - | - | as above; negative `tau`: `Err(NotPositive)` (`with_det_clamp`: no clamp) | `from_mat2`: asymmetry above 8 ulps `Err(NotSymmetric)`; with `tau > 0`, a determinant `>= -8 eps a11 a22` is accepted (rounding), below it `Err(NotPositiveDefinite)` | `roughness_constructors` |
+//! | `*::new_clamped`, `roughness::clamp_alpha` | `ALPHA_MIN` | `+inf`: `ALPHA_MAX`, `-inf`: `ALPHA_MIN` | - | - | - | `ALPHA_MIN` | - | `roughness_constructors` |
+//! | `Roughness::inv_quadratic`, `quadratic` (all forms) | NaN | `+inf` | `0` | any length (a quadratic form) | - | - | overflow against the null direction of a clamped singular matrix: `+inf` (fixed here, it returned `0`) | `roughness_forms` |
+//! | `Ndf::p22` (GGX, Beckmann, all forms, `TemporalLobe`) | GGX: NaN; Beckmann: `0` | `0` | the peak `1 / (pi sqrt(det A))` | any slope | - | - | - | `ndf_p22` |
+//! | `Ndf::d` | `0` | `0` | `0` | homogeneous: `D(k m) = D(m) / k^4` | `0` (`m_z <= 0`, the `chi+`) | - | - | `ndf_d` |
+//! | `Ndf::lambda` | GGX: `+inf`; Beckmann: `0` | the limit direction: `w_z = +/-inf` gives `0`, an infinite `w_xy` `+inf` | `0` | homogeneous of degree 0, huge and tiny vectors rescaled | uses `abs(w_z)`; `w_z = 0`: `+inf` | - | - | `ndf_lambda_g` |
+//! | `Ndf::g1`, `g2` | through `lambda`: GGX `0`, Beckmann `1` | as `lambda` | `0` | as `lambda` | `w.m <= 0`: `0`; grazing `w`: `0` | - | - | `ndf_lambda_g` |
+//! | `NdfSampling::sample_normal` | `u` NaN counts as `0` | `u` clamped to `[0, 1 - eps/2]` | - | - | - | - | - | `sampling` |
+//! | `NdfSampling::sample_visible_normal` | `wo`: `None`; `u` as above | `wo`: `None` | `None` | scale-invariant | `wo_z <= 0`: `None` | - | - | `sampling` |
+//! | `normal_pdf`, `visible_normal_pdf`, `reflection_pdf`, `reflection_pdf_from_normal` | `0` | `0` | `0` (also `wi = -wo`) | `wo`, `wi` scale-invariant; `m` must be unit | `wo_z <= 0`, `wo.m <= 0` or `m_z <= 0`: `0` | - | - | `sampling` |
+//! | `sampling::reflect`, `sample_beckmann::visible_slope_quantile` | quantile: NaN `u` as `0`, NaN angles as normal incidence | `u` clamped; infinite angles: normal incidence | - | angle pair normalised | negative angles: normal incidence | - | - | `sampling` |
+//! | `Footprint::from_projected_derivatives_in_slope`, `from_normal_differences`, `from_world_normal_differences` | `Footprint::ZERO` | `Footprint::ZERO` | - | - | `h_z` clamped to `1e-6` (huge, finite); opposite normals: denominator clamped to `1e-6` | - | - | `footprints_and_covariances` |
+//! | `Footprint::{covariance, max_extent, bounding_rect}`, `BoundingRect::covariance`, `Covariance::{trace, det, +, *}` | plain arithmetic: NaN propagates (the filters sanitise) | propagate | - | - | - | - | - | `footprints_and_covariances` |
+//! | `Covariance::sanitized`, `eigenvalues`, `clamp_eigenvalues`, `LeanMoments::covariance` | `sanitized`: `ZERO`; `clamp_eigenvalues` with NaN bound or entry: `ZERO` | `sanitized`: `KERNEL_MAX I`; `clamp_eigenvalues`: `ZERO` | - | - | - | - | indefinite: projected to PSD (negative variances to `0`, `abs(s12) <= sqrt(s11 s22)`); eigenvalues clamped to `>= 0` | `footprints_and_covariances` |
+//! | `filter::{gaussian, gaussian_with_tau, lean, projected}`, `temporal::widen`, `ClampRules::filter_gaussian` | kernel sanitised: a valid SPD matrix, finite positive densities; NaN `tau`: no clamp | as NaN (widest kernel) | zero kernel: the lobe unchanged | - | - | - | indefinite kernel: projected to PSD first | `filters` |
+//! | `ClampRules::{footprint, rect, kernel, tau}` | footprint: `ZERO`; rect: half extent `0` (then the floor); NaN `lambda`/`kappa`: `0` | footprint rescaled to `lambda` (unchanged under `NONE`); rect: `lambda` | - | - | - | negative half extents by magnitude; negative `lambda`/`kappa`: `0` | - | `clamp_rules` |
+//! | `ggx_rect::p22_rect` | centre: `0`; half extents: `0` | clamped to `1e60` normalised (finite result) | zero half extents: `Ndf::p22` bit for bit | - | - | negative half extents by magnitude | - | `rect_and_proxy` |
+//! | `ggx_rect::d_rect`, `d_rect_printed` | `0` | `0` | `0`; zero footprint: `Ndf::d` bit for bit | `0 < h_z < 1e-70`: unfiltered `D`; overflow saturates at `F::MAX` | `h_z <= 0`: `0` | - | - | `rect_and_proxy` |
+//! | `ggx_proxy::{effective_alpha, effective_alpha_simple, proxy, proxy_simple}` | half extent as `0` | half extent taken as `F::MAX`: `effective_alpha` returns `+inf`, `proxy` clamps it to `ALPHA_MAX` | - | - | - | negative half extent by magnitude; `alpha <= 0` only through `proxy` (clamped) | - | `rect_and_proxy` |
+//! | `isotropic::filtered_alpha`, `KernelConvention::{apply, apply_kernel, kernel}`, all `presets` | `alpha`: `0`; normal differences / kernel: the clamp `kappa` (maximal kernel); result never NaN | `alpha = +inf`: `ALPHA_MAX` (then saturated); infinite differences: maximal kernel | zero differences: `max(bias, 0)` | differences of any length | - | `alpha <= 0`: `0` | indefinite covariance: negative eigenvalues count as `0` | `isotropic_filters` |
+//! | `Bandwidth::kernel`, `Norm::eval`, `normal_difference_covariance`, `Domain::{from_alpha, to_alpha}` | NaN (consumed by `apply_kernel` as the maximal kernel) | NaN / `+inf`; `ProjectedAlpha2`: `alpha >= 1` is `+inf`, `+inf` maps back to `1` | - | - | - | - | - | `isotropic_filters` |
+//! | `jacobian::*` (all maps, determinants, `sanitize`, `spherical_*`) | treated as the pole `h = n` | treated as the pole | treated as the pole | normalised | below `HZ_MIN`: clamped to the horizon at constant azimuth | - | - | `jacobians_and_slope_maps` |
+//! | `slope::*` | `slope_from_sphere`: finite for any input (a NaN `h_z` is the horizon clamp, a NaN slope component saturates at `-F::MAX`); `sphere_from_slope`: NaN | `sphere_from_slope`: the horizon direction | `sphere_from_projected(0)`: the pole | `sphere_from_projected`: outside the disk to the horizon | `slope_from_sphere`: `h_z` clamped to `MIN_POSITIVE` (finite) | - | - | `jacobians_and_slope_maps` |
+//! | `geometry::{half_vector, half_vector_jacobian, half_vector_jacobian_far_field, half_vector_jacobian_deferred, footprint, footprint_projected, tangent_plane_differentials}` | degenerate: `+z` / zero matrix / `Footprint::ZERO` / `None` | as NaN | eye or light on the point, `i + o = 0`: `+z` / zero matrix | normalised | half vector clamped to `H.n >= HZ_MIN abs(H)`; ray parallel to the plane: `None` | - | - | `geometry` |
+//! | `implicit::{hit_rates, hit_distance_rate, hit_normal_rate, project, d_normalized}`, `LevelSetSample::*` | zero rates (`HitRates::ZERO`, `0`, zero vectors) | as NaN | zero gradient: zero rates; `project(0, w) = w` | any length (homogeneous) | ray tangent to the surface: zero rates | - | - | `implicit_quadric_temporal` |
+//! | `LocalQuadric::new`, `RigidMotion::*`, `temporal::{TemporalRoughness::*, box_shutter_dt, TemporalLobe}` | `LocalQuadric::new`: `None`; rates, `dt`, fractions, cosines: `TemporalRoughness::ZERO` / `0` | as NaN; `alpha_t` capped at `ALPHA_MAX` | zero normal: `None`; zero rate: `ZERO` | normalised | - | `dt <= 0`: `ZERO`; `roughness_matrix` clamps both roughnesses | - | `implicit_quadric_temporal` |
+//!
+//! # Extremes: measured error map
+//!
+//! Worst relative error `|got - ref| / max(|ref|, F::MIN_POSITIVE)` per region (a sample point
+//! counts in every region it belongs to), as `f32 / f64`, measured on the grid of the extremes
+//! sweep: roughness `alpha` 1e-7, 1e-4, 1, 10; half vectors at the pole, in the lobe, at 89.99
+//! degrees and exactly at 90 degrees; footprints 0, 1e-12 and 1e3 (isotropic and 1000:1);
+//! matrices of condition number 1e6, near-singular (`det ~ 2 eps a11 a22`) and exactly singular
+//! with the TK19 clamp `tau`. Inputs are rounded to the precision first and the reference is
+//! evaluated at the rounded input (double-double closed forms, `f64` adaptive quadrature, or
+//! `testing::gaussian_reference`), so the numbers are the kernels' own errors. `Lambda` is
+//! measured as `1 + Lambda` (what `G1` uses). A `0` means bit-exact (including the documented
+//! `0` and `+inf` values at and beyond the horizon); an empty cell, no sample.
+//!
+//! Tolerances (stated with their reasons in the tests): densities `32 eps` (GGX), `(32 + 8 q) eps`
+//! (Beckmann, the conditioning of `exp(-q)`); `1 + Lambda` `32 eps`; pdfs the density's plus `32
+//! eps` (plus `4 eps / wo.m` where `wo.m` cancels); Jacobians `16 eps` (determinants) and `64 eps`
+//! of the largest entry; `filter::gaussian` `64 (1 + kappa) eps` with `kappa` the condition number
+//! of the filtered matrix (its entries are rounded to `F` before the determinant);
+//! `filter::projected` additionally `/ (1 - lambda_max)` and `+ kappa(P + 2 Sigma)` (the
+//! projected-space sum is formed in `F`); the rectangle integral `64 eps` (`+ 1e-7` in `f64`,
+//! the module's documented worst case); proxy `16 eps`; isotropic filters `8 eps`, presets `64
+//! eps`; normalisation (f64 only) ten times the quadrature goal.
+//!
+//! Known limits visible in the map: `filter::projected` and `filter::gaussian` in `f32` lose
+//! `~kappa eps` for elongated kernels at footprint 1e3 (`1.3e-3` and `3e-4`): the
+//! filtered (projected-space) matrix is formed in `F` and its determinant cancels; the footprint
+//! clamp `lambda = 1` of [`ClampRules`](crate::f32::ClampRules) keeps shading inputs away from
+//! this region. The Beckmann densities carry the conditioning of `exp` (`1.5e-5` in `f32` at a
+//! few lobe widths).
+//!
+//! ### NDFs: worst relative error, f32 / f64
+//!
+//! | region | GGX p22 | GGX D | GGX 1+Lambda | Beckmann p22 | Beckmann D | Beckmann 1+Lambda |
+//! |---|---|---|---|---|---|---|
+//! | alpha 1e-7 | 3.8e-7 / 1.0e-15 | 2.8e-7 / 1.1e-15 | 5.2e-9 / 0 | 8.1e-6 / 2.7e-14 | 8.1e-6 / 1.2e-14 | 3.0e-10 / 0 |
+//! | isotropic | 2.2e-7 / 6.0e-16 | 2.2e-7 / 6.6e-16 | 7.6e-8 / 2.8e-16 | 1.8e-6 / 4.6e-15 | 1.8e-6 / 3.1e-15 | 3.3e-8 / 2.3e-16 |
+//! | pole | 7.8e-8 / 1.4e-16 | 7.8e-8 / 1.4e-16 | 0 / 0 | 7.8e-8 / 1.5e-15 | 7.8e-8 / 1.5e-15 | 0 / 0 |
+//! | lobe | 4.4e-7 / 9.1e-16 | 5.1e-7 / 1.2e-15 | 3.1e-7 / 6.8e-16 | 1.0e-5 / 1.1e-13 | 1.5e-5 / 1.9e-13 | 3.0e-7 / 6.0e-16 |
+//! | 89.99 deg | 5.4e-7 / 1.0e-15 | 4.8e-7 / 1.1e-15 | 2.2e-7 / 3.3e-16 | 0 / 0 | 0 / 0 | 1.6e-7 / 4.3e-16 |
+//! | 90 deg | 1.7e-80 / 1.2e-15 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 |
+//! | axis-aligned | 1.9e-7 / 7.2e-16 | 1.9e-7 / 5.3e-16 | 1.1e-7 / 1.5e-16 | 1.7e-6 / 7.2e-15 | 3.3e-6 / 6.3e-15 | 6.0e-8 / 2.7e-16 |
+//! | matrix | 2.5e-7 / 8.8e-16 | 3.6e-7 / 6.9e-16 | 1.5e-7 / 3.2e-16 | 1.0e-5 / 2.7e-14 | 1.4e-5 / 2.8e-14 | 8.8e-8 / 4.3e-16 |
+//! | cond 1e6 | 5.4e-7 / 1.2e-15 | 5.1e-7 / 1.1e-15 | 3.1e-7 / 6.8e-16 | 1.1e-7 / 2.4e-15 | 1.5e-7 / 2.4e-15 | 3.0e-7 / 6.0e-16 |
+//! | alpha 1e-4 | 4.4e-7 / 1.2e-15 | 3.8e-7 / 1.1e-15 | 1.8e-7 / 3.3e-16 | 1.0e-5 / 7.0e-14 | 1.4e-5 / 5.7e-14 | 1.6e-7 / 2.1e-16 |
+//! | near-singular | 5.1e-7 / 8.7e-16 | 4.7e-7 / 5.4e-16 | 2.0e-7 / 2.5e-16 | 4.2e-8 / 6.2e-16 | 4.2e-8 / 6.2e-16 | 1.2e-7 / 2.3e-16 |
+//! | singular + tau | 2.6e-7 / 1.0e-15 | 3.9e-7 / 1.2e-15 | 1.4e-7 / 2.4e-16 | 4.8e-6 / 1.1e-13 | 1.5e-5 / 1.9e-13 | 9.8e-8 / 2.3e-16 |
+//! | alpha 1 | 5.4e-7 / 1.0e-15 | 5.1e-7 / 1.2e-15 | 2.2e-7 / 6.8e-16 | 2.9e-6 / 8.1e-14 | 3.3e-6 / 1.5e-13 | 1.6e-7 / 6.0e-16 |
+//! | alpha 10 | 4.5e-7 / 1.0e-15 | 3.9e-7 / 9.9e-16 | 3.1e-7 / 2.9e-16 | 8.4e-6 / 1.1e-13 | 1.5e-5 / 1.9e-13 | 3.0e-7 / 3.9e-16 |
+//!
+//! ### Sampling pdfs: worst relative error, f32 / f64
+//!
+//! | region | GGX normal pdf | GGX visible pdf | GGX reflection pdf | Beckmann normal pdf | Beckmann visible pdf | Beckmann reflection pdf |
+//! |---|---|---|---|---|---|---|
+//! | alpha 1e-7 | 2.8e-7 / 1.2e-15 | 3.2e-7 / 1.2e-15 | 3.5e-7 / 1.1e-15 | 8.1e-6 / 1.2e-14 | 8.2e-6 / 1.2e-14 | 8.1e-6 / 1.2e-14 |
+//! | isotropic | 2.2e-7 / 6.6e-16 | 2.6e-7 / 8.0e-16 | 2.4e-7 / 6.6e-16 | 1.8e-6 / 3.1e-15 | 1.8e-6 / 3.1e-15 | 1.8e-6 / 3.3e-15 |
+//! | pole | 7.8e-8 / 1.4e-16 | 2.0e-7 / 2.3e-16 | 2.6e-7 / 3.3e-16 | 7.8e-8 / 1.5e-15 | 1.2e-7 / 1.5e-15 | 1.1e-7 / 1.6e-15 |
+//! | wo pole |  | 5.2e-7 / 1.2e-15 | 5.1e-7 / 1.2e-15 |  | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 |
+//! | lobe | 5.2e-7 / 1.1e-15 | 6.4e-7 / 1.4e-15 | 7.1e-7 / 1.3e-15 | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 |
+//! | 89.99 deg | 4.7e-7 / 1.2e-15 | 7.6e-7 / 1.3e-15 | 7.2e-7 / 1.1e-15 | 0 / 0 | 0 / 0 | 0 / 0 |
+//! | 90 deg | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 |
+//! | wo 89.99 deg |  | 7.6e-7 / 1.4e-15 | 7.2e-7 / 1.3e-15 |  | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 |
+//! | wo 90 deg |  | 0 / 0 | 0 / 0 |  | 0 / 0 | 0 / 0 |
+//! | axis-aligned | 2.4e-7 / 5.3e-16 | 2.4e-7 / 5.3e-16 | 2.6e-7 / 5.3e-16 | 3.3e-6 / 6.3e-15 | 3.3e-6 / 6.3e-15 | 3.3e-6 / 6.3e-15 |
+//! | matrix | 3.7e-7 / 7.1e-16 | 3.7e-7 / 7.7e-16 | 3.8e-7 / 8.1e-16 | 1.4e-5 / 2.8e-14 | 1.4e-5 / 2.8e-14 | 1.4e-5 / 2.8e-14 |
+//! | cond 1e6 | 5.2e-7 / 1.2e-15 | 7.6e-7 / 1.3e-15 | 7.2e-7 / 1.1e-15 | 1.5e-7 / 2.4e-15 | 2.9e-7 / 2.5e-15 | 2.4e-7 / 2.4e-15 |
+//! | alpha 1e-4 | 4.0e-7 / 1.0e-15 | 4.0e-7 / 1.1e-15 | 4.2e-7 / 1.1e-15 | 1.4e-5 / 5.7e-14 | 1.4e-5 / 5.7e-14 | 1.4e-5 / 5.7e-14 |
+//! | near-singular | 4.8e-7 / 5.6e-16 | 5.6e-7 / 8.2e-16 | 4.9e-7 / 5.5e-16 | 4.2e-8 / 6.2e-16 | 9.1e-8 / 6.2e-16 | 4.6e-8 / 6.2e-16 |
+//! | singular + tau | 4.2e-7 / 1.1e-15 | 4.2e-7 / 1.4e-15 | 4.4e-7 / 1.3e-15 | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 |
+//! | alpha 1 | 5.2e-7 / 1.1e-15 | 7.6e-7 / 1.4e-15 | 7.2e-7 / 1.3e-15 | 3.3e-6 / 1.5e-13 | 3.3e-6 / 1.5e-13 | 3.3e-6 / 1.5e-13 |
+//! | alpha 10 | 4.2e-7 / 1.0e-15 | 4.2e-7 / 1.3e-15 | 4.4e-7 / 1.1e-15 | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 | 1.5e-5 / 1.9e-13 |
+//! | normalisation (quadrature) |  | - / 3.3e-16 |  |  | - / 4.4e-16 |  |
+//!
+//! ### Jacobians: worst relative error, f32 / f64
+//!
+//! | region | det J(o->perp) | det J(perp->par) | det J(o->par) | J(o->perp) | J(perp->par) | J(par->perp) | J(o->par) |
+//! |---|---|---|---|---|---|---|---|
+//! | pole | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 |
+//! | lobe | 1.0e-7 / 1.5e-16 | 5.0e-7 / 7.4e-16 | 3.4e-7 / 6.8e-16 | 7.5e-8 / 1.4e-16 | 1.1e-7 / 7.4e-16 | 3.5e-7 / 3.6e-16 | 3.1e-7 / 4.4e-16 |
+//! | 89.99 deg | 6.1e-8 / 1.6e-16 | 2.3e-7 / 1.2e-15 | 2.2e-7 / 6.5e-16 | 4.6e-8 / 2.7e-20 | 1.3e-7 / 4.9e-16 | 2.0e-7 / 4.0e-16 | 7.2e-8 / 4.5e-16 |
+//! | 90 deg | 0 / 0 | 3.7e-9 / 0 | 4.5e-8 / 0 | 7.9e-9 / 0 | 6.5e-8 / 3.3e-16 | 3.7e-8 / 2.7e-16 | 4.4e-8 / 1.5e-22 |
+//!
+//! ### filter::gaussian and filter::projected (through p22): worst relative error, f32 / f64
+//!
+//! | region | gaussian | projected |
+//! |---|---|---|
+//! | alpha 1e-7 | 1.9e-7 / 1.3e-11 | 1.3e-3 / 3.9e-11 |
+//! | isotropic | 3.6e-7 / 1.9e-12 | 1.3e-3 / 1.3e-12 |
+//! | footprint 0 | 6.0e-7 / 7.0e-14 | 7.6e-7 / 8.4e-13 |
+//! | kernel isotropic | 1.7e-6 / 4.2e-12 | 1.5e-4 / 3.9e-11 |
+//! | kernel 1000:1 | 3.0e-4 / 2.6e-11 | 1.3e-3 / 5.1e-12 |
+//! | footprint 1e-12 | 6.0e-7 / 1.3e-11 | 7.6e-7 / 3.9e-11 |
+//! | footprint 1e3 | 3.0e-4 / 2.6e-11 | 1.3e-3 / 1.0e-11 |
+//! | cond 1e6 | 3.0e-4 / 1.3e-11 | 1.3e-3 / 3.9e-11 |
+//! | alpha 1e-4 | 3.0e-4 / 2.6e-11 | 1.3e-3 / 4.7e-12 |
+//! | singular + tau | 6.8e-7 / 2.6e-11 | 1.3e-3 / 4.7e-12 |
+//! | alpha 1 | 9.2e-5 / 2.4e-14 | 3.7e-7 / 1.0e-11 |
+//! | alpha 10 | 1.9e-4 / 5.1e-13 | 1.5e-4 / 5.1e-12 |
+//! | quadrature (gaussian_reference) | 4.2e-8 / 0 |  |
+//!
+//! ### ggx_rect: worst relative error, f32 / f64
+//!
+//! | region | d_rect | p22_rect |
+//! |---|---|---|
+//! | alpha 1e-7 | 9.6e-8 / 4.7e-12 | 2.0e-7 / 4.7e-12 |
+//! | isotropic | 1.3e-7 / 4.7e-12 | 2.0e-7 / 4.7e-12 |
+//! | footprint 0 | 3.0e-7 / 4.1e-16 | 2.0e-7 / 5.5e-16 |
+//! | square | 3.0e-7 / 4.7e-12 | 2.0e-7 / 4.7e-12 |
+//! | pole | 7.4e-8 / 6.8e-16 | 7.4e-8 / 6.8e-16 |
+//! | lobe | 3.0e-7 / 4.0e-15 | 1.5e-7 / 9.3e-15 |
+//! | 89.99 deg | 1.8e-7 / 4.7e-12 | 2.0e-7 / 4.7e-12 |
+//! | 90 deg | 0 / 0 |  |
+//! | 1000:1 | 3.0e-7 / 2.6e-12 | 2.0e-7 / 2.6e-12 |
+//! | footprint 1e-12 | 5.6e-8 / 7.6e-16 | 4.4e-8 / 3.7e-16 |
+//! | footprint 1e3 | 5.3e-8 / 4.7e-12 | 5.2e-8 / 4.7e-12 |
+//! | axis 1:3 | 3.0e-7 / 4.0e-15 | 1.2e-7 / 9.3e-15 |
+//! | alpha 1e-4 | 1.8e-7 / 4.7e-12 | 1.8e-7 / 4.7e-12 |
+//! | alpha 1 | 5.3e-8 / 4.7e-12 | 9.4e-8 / 4.7e-12 |
+//! | alpha 10 | 3.0e-7 / 4.7e-12 | 1.5e-7 / 4.7e-12 |
+//!
+//! ### ggx_proxy and isotropic filters: worst relative error, f32 / f64
+//!
+//! | region | effective_alpha | proxy | effective_alpha_simple | filtered_alpha | presets |
+//! |---|---|---|---|---|---|
+//! | alpha 1e-7 | 1.5e-8 / 2.6e-16 | 1.5e-8 / 2.6e-16 | 5.0e-11 / 0 | 8.9e-9 / 0 | 7.1e-8 / 0 |
+//! | footprint 0 | 2.6e-16 / 2.6e-16 | 2.6e-16 / 2.6e-16 | 0 / 0 | 0 / 0 | 7.1e-8 / 0 |
+//! | footprint 1e-12 | 6.7e-11 / 1.4e-16 | 6.7e-11 / 1.4e-16 | 5.0e-11 / 0 | 5.0e-11 / 0 | 7.1e-8 / 0 |
+//! | footprint 1e3 | 9.9e-8 / 2.0e-16 | 9.9e-8 / 2.0e-16 | 1.2e-8 / 0 | 3.4e-8 / 0 | 7.1e-8 / 0 |
+//! | alpha 1e-4 | 1.5e-8 / 2.0e-16 | 1.5e-8 / 2.0e-16 | 5.0e-15 / 0 | 3.4e-8 / 0 | 7.1e-8 / 0 |
+//! | alpha 1 | 9.9e-8 / 2.0e-16 | 9.9e-8 / 2.0e-16 | 1.2e-8 / 0 | 0 / 0 | 1.7e-8 / 0 |
+//! | alpha 10 | 3.7e-8 / 0 | 3.7e-8 / 0 | 1.1e-8 / 0 | 0 / 0 | 1.7e-8 / 0 |
+//! | kernel isotropic |  |  |  | 3.4e-8 / 0 |  |
+//! | kernel 1000:1 |  |  |  | 3.4e-8 / 0 |  |
+//! | TK19 max (eq. 1) |  |  |  |  | 3.4e-8 / 0 |
+//! | TK19 trace (eq. 4) |  |  |  |  | 3.4e-8 / 0 |
+//! | TK19 average (eq. 5) |  |  |  |  | 3.4e-8 / 0 |
+//! | TK21 listing 5 |  |  |  |  | 3.4e-8 / 0 |
+//! | Filament |  |  |  |  | 5.4e-8 / 0 |
+//! | Unity HDRP |  |  |  |  | 2.0e-8 / 0 |
+//! | Unity HDRP projected |  |  |  |  | 7.1e-8 / 0 |
+//! | Godot 4 |  |  |  |  | 2.4e-8 / 0 |
+//! | O3DE |  |  |  |  | 3.4e-8 / 0 |
+//! | Unreal |  |  |  |  | 7.1e-8 / 0 |
+//! | Babylon.js (Vlachos 2015) |  |  |  |  | 7.1e-8 / 0 |
+//! | three.js |  |  |  |  | 1.1e-8 / 0 |

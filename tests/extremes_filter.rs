@@ -1,0 +1,590 @@
+//! The extremes sweep, part 2: the filtering kernels over the edges of their domains, in `f32`
+//! and `f64`: `filter::gaussian` and `filter::projected` (evaluated through the densities they
+//! feed), `ggx_rect::p22_rect` / `d_rect`, `ggx_proxy`, and the isotropic filters
+//! (`isotropic::filtered_alpha` and every preset).
+//!
+//! Grid: base roughness `alpha` in {1e-7, 1e-4, 1, 10} (isotropic, a matrix of condition
+//! number `1e6`, and an exactly singular matrix with the TK19 clamp `tau` where the domain
+//! admits it); footprints (kernel standard deviations, rectangle half extents, normal
+//! differences) `0`, `1e-12`, `1e3`, isotropic and elongated `1000 : 1`; rectangle centres at
+//! the pole, in the lobe, at 89.99 degrees, and half vectors exactly at 90 degrees.
+//!
+//! References: `filter::gaussian` is exact for Beckmann (KHPL16 eq. 15), so its reference is
+//! the Beckmann density of `A + 2 Sigma` in double-double, spot-checked against the quadrature
+//! convolution `testing::gaussian_reference::beckmann`; `filter::projected` against TK21's map
+//! `P = A (I - A)^-1`, `A' = P' (I + P')^-1` in double-double (with the documented eigenvalue
+//! clamp at 0.99); the rectangle integral against nested `f64` adaptive quadrature of the
+//! density; the GGX proxy against the quadrature peak of the box-filtered lobe (KHPL16 eq.
+//! 19); the isotropic filters against their closed forms (TK19 eq. 1, 4, 5, and each
+//! preset's documented formula) in `f64`.
+//!
+//! Run with `--nocapture` to print the error map (the table published in `src/contract.rs`).
+
+mod extremes_support;
+
+use extremes_support::{
+    Dd, DdSym, ErrorMap, F32, F64, beckmann_p22_ref, ggx_p22_ref, integrate_feature, max_dd,
+    rel_err,
+};
+use filtered_ndf::math::Real;
+use filtered_ndf::testing::quadrature::Tolerance;
+
+const PI: f64 = std::f64::consts::PI;
+const ALPHAS: [(f64, &str); 4] = [
+    (1e-7, "alpha 1e-7"),
+    (1e-4, "alpha 1e-4"),
+    (1.0, "alpha 1"),
+    (10.0, "alpha 10"),
+];
+const FOOTPRINTS: [(f64, &str); 3] = [
+    (0.0, "footprint 0"),
+    (1e-12, "footprint 1e-12"),
+    (1e3, "footprint 1e3"),
+];
+const GRAZE: f64 = 89.99 * PI / 180.0;
+
+fn r32(x: f64) -> f64 {
+    x as f32 as f64
+}
+
+fn eps_of(prec: usize) -> f64 {
+    if prec == F32 {
+        f32::EPSILON as f64
+    } else {
+        f64::EPSILON
+    }
+}
+
+fn floor_of(prec: usize) -> f64 {
+    if prec == F32 {
+        f32::MIN_POSITIVE as f64
+    } else {
+        f64::MIN_POSITIVE
+    }
+}
+
+/// Condition number of a symmetric positive semi-definite matrix (double-double entries).
+fn cond(a: &DdSym, tau: f64) -> f64 {
+    let (a11, a12, a22) = (a.a11.f(), a.a12.f(), a.a22.f());
+    let l1 = 0.5 * (a11 + a22) + (0.5 * (a11 - a22)).hypot(a12);
+    let det = max_dd(a.det(), tau).f();
+    l1 * l1 / det
+}
+
+/// Mean of the axis-aligned GGX slope density over `[cx +/- hx] x [cy +/- hy]`, by nested
+/// adaptive quadrature with breakpoints around the peak (f64).
+fn rect_mean_ref(a: f64, b: f64, cx: f64, cy: f64, hx: f64, hy: f64) -> f64 {
+    let p22 = |x: f64, y: f64| {
+        let t = 1.0 + (x / a) * (x / a) + (y / b) * (y / b);
+        1.0 / (PI * a * b * t * t)
+    };
+    // An axis whose half extent is below 1e-7 of the distance scale |c| + width is evaluated
+    // at its centre: the mean then differs from the point value by a relative
+    // ~ (h / (|c| + w))^2 <= 1e-14, while a quadrature over an interval of a few ulps of `c`
+    // (e.g. 1e-12 around 3400) would be dominated by the rounding of its nodes.
+    let hx = if hx <= 1e-7 * (cx.abs() + a) { 0.0 } else { hx };
+    let hy = if hy <= 1e-7 * (cy.abs() + b) { 0.0 } else { hy };
+    if hx == 0.0 && hy == 0.0 {
+        return p22(cx, cy);
+    }
+    let tol = Tolerance::relative(1e-13);
+    let inner = |y: f64| -> f64 {
+        if hx == 0.0 {
+            p22(cx, y)
+        } else {
+            integrate_feature(|x| p22(x, y), cx - hx, cx + hx, 0.0, a, tol) / (2.0 * hx)
+        }
+    };
+    if hy == 0.0 {
+        inner(cy)
+    } else {
+        integrate_feature(inner, cy - hy, cy + hy, 0.0, b, tol) / (2.0 * hy)
+    }
+}
+
+/// A base roughness of the filter sweep (entries rounded to the precision).
+struct Base {
+    alpha: &'static str,
+    form: &'static str,
+    a: DdSym,
+    tau: f64,
+    entries: (f64, f64, f64),
+}
+
+/// A kernel covariance (entries rounded to the precision).
+struct Kernel {
+    label: &'static str,
+    shape: &'static str,
+    s: (f64, f64, f64),
+}
+
+macro_rules! sweep {
+    ($name:ident, $p:ident, $prec:expr) => {
+        mod $name {
+            use super::*;
+            use filtered_ndf::$p::isotropic::{self, Bandwidth, Combine, Domain, Norm};
+            use filtered_ndf::$p::{
+                AxisAligned, Beckmann, Covariance, F, Ggx, Ndf, RoughnessMatrix, Vec2, Vec3,
+                filter, ggx_proxy, ggx_rect, presets,
+            };
+
+            const PREC: usize = $prec;
+
+            fn r(x: f64) -> f64 {
+                F::from_f64(x).to_f64()
+            }
+            fn f(x: f64) -> F {
+                F::from_f64(x)
+            }
+
+            fn bases() -> Vec<Base> {
+                let mut out = Vec::new();
+                for &(alpha, label) in &ALPHAS {
+                    let a2 = r(alpha * alpha);
+                    out.push(Base {
+                        alpha: label,
+                        form: "isotropic",
+                        a: DdSym::new(a2, 0.0, a2),
+                        tau: 0.0,
+                        entries: (a2, 0.0, a2),
+                    });
+                    let l1 = (1e6 * alpha * alpha).min(0.99e8);
+                    let (c, s) = (0.3_f64.cos(), 0.3_f64.sin());
+                    let l2 = alpha * alpha;
+                    let e = (
+                        r(l1 * c * c + l2 * s * s),
+                        r((l1 - l2) * c * s),
+                        r(l1 * s * s + l2 * c * c),
+                    );
+                    out.push(Base {
+                        alpha: label,
+                        form: "cond 1e6",
+                        a: DdSym::new(e.0, e.1, e.2),
+                        tau: 0.0,
+                        entries: e,
+                    });
+                    let (n11, n12, n22) = (a2, r(2.0 * alpha * alpha), r(4.0 * alpha * alpha));
+                    let tau = r((0.1 * alpha * alpha).powi(2));
+                    if RoughnessMatrix::new_with_det_clamp(f(n11), f(n12), f(n22), f(tau)).is_ok() {
+                        out.push(Base {
+                            alpha: label,
+                            form: "singular + tau",
+                            a: DdSym::new(n11, n12, n22),
+                            tau,
+                            entries: (n11, n12, n22),
+                        });
+                    }
+                }
+                out
+            }
+
+            fn kernels() -> Vec<Kernel> {
+                let mut out = Vec::new();
+                for &(fp, label) in &FOOTPRINTS {
+                    // Sigma = sigma^2 (u u^T + v v^T), sigma = 1/2 (KHPL16, TK19).
+                    let v = 0.25 * fp * fp;
+                    out.push(Kernel {
+                        label,
+                        shape: "kernel isotropic",
+                        s: (r(v), 0.0, r(v)),
+                    });
+                    let (c, s) = (0.4_f64.cos(), 0.4_f64.sin());
+                    let (u, w) = ([fp * c, fp * s], [-1e-3 * fp * s, 1e-3 * fp * c]);
+                    out.push(Kernel {
+                        label,
+                        shape: "kernel 1000:1",
+                        s: (
+                            r(0.25 * (u[0] * u[0] + w[0] * w[0])),
+                            r(0.25 * (u[0] * u[1] + w[0] * w[1])),
+                            r(0.25 * (u[1] * u[1] + w[1] * w[1])),
+                        ),
+                    });
+                }
+                out
+            }
+
+            fn matrix(b: &Base) -> RoughnessMatrix {
+                let (a11, a12, a22) = b.entries;
+                RoughnessMatrix::new_with_det_clamp(f(a11), f(a12), f(a22), f(b.tau)).unwrap()
+            }
+
+            /// Evaluates the filtered matrix `m` against the reference matrix `aref` (with clamp
+            /// `tau`) through the GGX and Beckmann densities at the peak and one lobe width
+            /// along each axis.
+            #[allow(clippy::too_many_arguments)]
+            fn compare(
+                map: &mut ErrorMap,
+                kernel: &str,
+                beckmann_too: bool,
+                regions: &[&str],
+                m: RoughnessMatrix,
+                aref: &DdSym,
+                tau: f64,
+                tol: f64,
+            ) {
+                let floor = floor_of(PREC);
+                let (w1, w2) = (aref.a11.f().sqrt(), aref.a22.f().sqrt());
+                for (x, y) in [(0.0, 0.0), (w1, 0.0), (0.0, w2)] {
+                    let s = Vec2::new(f(x), f(y));
+                    let (sx, sy) = (s.x.to_f64(), s.y.to_f64());
+                    let g = Ggx::new(m).p22(s).to_f64();
+                    let gr = ggx_p22_ref(aref, tau, sx, sy);
+                    map.require(g.is_finite() && g >= 0.0, || format!("{kernel}: GGX p22 {g}"));
+                    map.record(kernel, regions, PREC, rel_err(g, gr, floor), tol, || {
+                        format!("GGX at ({sx:e}, {sy:e}): {g:e} vs {gr:e}")
+                    });
+                    if beckmann_too {
+                        let bk = Beckmann::new(m).p22(s).to_f64();
+                        let br = beckmann_p22_ref(aref, tau, sx, sy);
+                        map.require(bk.is_finite() && bk >= 0.0, || format!("{kernel}: Beckmann p22 {bk}"));
+                        map.record(kernel, regions, PREC, rel_err(bk, br, floor), tol * 4.0, || {
+                            format!("Beckmann at ({sx:e}, {sy:e}): {bk:e} vs {br:e}")
+                        });
+                    }
+                }
+            }
+
+            pub fn gaussian(map: &mut ErrorMap) {
+                let eps = eps_of(PREC);
+                for b in bases() {
+                    for k in kernels() {
+                        let sig = DdSym::new(k.s.0, k.s.1, k.s.2);
+                        let aref = b.a.add(&sig.scale(2.0));
+                        let tau = max_dd(b.a.det(), b.tau).f();
+                        let m = filter::gaussian(matrix(&b), Covariance::new(f(k.s.0), f(k.s.1), f(k.s.2)));
+                        // Tolerance: the filtered entries A + 2 Sigma are rounded to F before
+                        // the determinant, so a density of a matrix of condition kappa can be
+                        // off by ~kappa eps (the clamp tau = det A bounds the loss from
+                        // below); 64 (1 + kappa) eps. Beckmann: 4x (exp of q).
+                        let tol = 64.0 * (1.0 + cond(&aref, tau)) * eps;
+                        compare(map, "gaussian", true, &[b.alpha, b.form, k.label, k.shape], m, &aref, tau, tol);
+                    }
+                }
+            }
+
+            /// TK21's projected-space filter in double-double, with the eigenvalue clamp at
+            /// 0.99 of `filter::projected` when both eigenvalues exceed it (the mixed case has
+            /// no exact reference here and is checked for monotonicity only).
+            fn projected_ref(b: &Base, sig: &DdSym) -> Option<(DdSym, f64)> {
+                let (a11, a12, a22) = (b.a.a11.f(), b.a.a12.f(), b.a.a22.f());
+                let l1 = 0.5 * (a11 + a22) + (0.5 * (a11 - a22)).hypot(a12);
+                let l2 = max_dd(b.a.det(), 0.0).f() / l1;
+                let cap = filter::PROJECTED_EIGEN_MAX.to_f64();
+                let (ac, e) = if l1 < cap {
+                    (b.a, DdSym::new(0.0, 0.0, 0.0))
+                } else if l2 >= cap {
+                    (DdSym::new(cap, 0.0, cap), b.a.add(&DdSym::new(-cap, 0.0, -cap)))
+                } else {
+                    return None;
+                };
+                let ima = ac.identity_minus();
+                let p = ac.mul_sym(&ima.adj()).div(ima.det());
+                let q = p.add(&sig.scale(2.0));
+                let ipq = q.identity_plus();
+                let bm = q.mul_sym(&ipq.adj()).div(ipq.det());
+                Some((bm.add(&e), cond(&q, 0.0)))
+            }
+
+            pub fn projected(map: &mut ErrorMap) {
+                let eps = eps_of(PREC);
+                for b in bases() {
+                    for k in kernels() {
+                        let sig = DdSym::new(k.s.0, k.s.1, k.s.2);
+                        let m = filter::projected(matrix(&b), Covariance::new(f(k.s.0), f(k.s.1), f(k.s.2)));
+                        let regions = [b.alpha, b.form, k.label, k.shape];
+                        let tau = max_dd(b.a.det(), b.tau).f();
+                        match projected_ref(&b, &sig) {
+                            Some((aref, cond_q)) => {
+                                // Tolerance: as gaussian (entries rounded to F, 64 (1 + kappa)
+                                // eps), times 1 / (1 - lambda_max) for the map P = A (I - A)^-1,
+                                // whose condition grows towards the clamp at 0.99, plus the
+                                // condition of the projected-space sum P' = P + 2 Sigma: it is
+                                // formed in F and its determinant enters A' (an elongated 1e3
+                                // kernel makes it ~1e6, the f32 result then carries ~1e-3).
+                                let (a11, a12, a22) = (b.a.a11.f(), b.a.a12.f(), b.a.a22.f());
+                                let l1 = 0.5 * (a11 + a22) + (0.5 * (a11 - a22)).hypot(a12);
+                                let amp = 1.0 / (1.0 - l1.min(0.99));
+                                let tol = 64.0 * (1.0 + cond(&aref, tau) + cond_q) * amp * eps;
+                                compare(map, "projected", false, &regions, m, &aref, tau, tol);
+                            }
+                            None => {
+                                // Mixed eigenvalues around the clamp: A' >= A (filtering never
+                                // sharpens), so the peak may not rise above the unfiltered one.
+                                let peak = Ggx::new(m).p22(Vec2::ZERO).to_f64();
+                                let base = Ggx::new(matrix(&b)).p22(Vec2::ZERO).to_f64();
+                                map.require(peak.is_finite() && peak <= base * (1.0 + 64.0 * eps), || {
+                                    format!("projected {} {}: peak {peak:e} > unfiltered {base:e}", b.alpha, b.form)
+                                });
+                            }
+                        }
+                    }
+                }
+            }
+
+            /// Spot checks of `filter::gaussian` + Beckmann against the quadrature convolution
+            /// (no closed form used): isotropic alpha 1e-4 and 1, footprints 1e-12 and 1e3, at
+            /// the peak.
+            pub fn gaussian_quadrature(map: &mut ErrorMap) {
+                use filtered_ndf::f64 as d;
+                let eps = eps_of(PREC);
+                for &(alpha, label) in &ALPHAS[1..3] {
+                    let a = r32(alpha);
+                    for &(fp, flabel) in &FOOTPRINTS[1..] {
+                        let v = r32(0.25 * fp * fp);
+                        let reference = filtered_ndf::testing::gaussian_reference::beckmann(
+                            d::Isotropic::new(a).unwrap(),
+                            d::Covariance::new(v, 0.0, v),
+                            d::Vec2::ZERO,
+                            Tolerance::relative(1e-11),
+                        );
+                        let m = filter::gaussian(
+                            filtered_ndf::$p::Isotropic::new(f(a)).unwrap(),
+                            Covariance::new(f(v), 0.0, f(v)),
+                        );
+                        let got = Beckmann::new(m).p22(Vec2::ZERO).to_f64();
+                        // Tolerance: quadrature 1e-9 (its goal 1e-11, estimate reported), plus
+                        // 64 eps for the kernel.
+                        let tol = 1e-9 + 64.0 * eps;
+                        map.record(
+                            "gaussian",
+                            &[label, flabel, "kernel isotropic", "quadrature (gaussian_reference)"],
+                            PREC,
+                            rel_err(got, reference.value, 0.0),
+                            tol,
+                            || format!("{label} {flabel}: {got:e} vs quadrature {:e} +/- {:e}", reference.value, reference.error),
+                        );
+                    }
+                }
+            }
+
+            pub fn rect(map: &mut ErrorMap, refs: &mut Vec<f64>, use_refs: bool) {
+                let eps = eps_of(PREC);
+                let floor = floor_of(PREC);
+                let mut idx = 0;
+                for &(alpha, label) in &ALPHAS {
+                    for (form, ax, ay) in [("isotropic", alpha, alpha), ("axis 1:3", alpha, 3.0 * alpha)] {
+                        let (ax, ay) = (r32(ax), r32(ay));
+                        let rough = AxisAligned::new(f(ax), f(ay)).unwrap();
+                        for &(fp, flabel) in &FOOTPRINTS {
+                            for (shape, hx, hy) in [("square", fp, fp), ("1000:1", fp, 1e-3 * fp)] {
+                                let (hx, hy) = (r32(hx), r32(hy));
+                                let half = Vec2::new(f(hx), f(hy));
+                                let hs: [(&str, [f64; 3]); 4] = [
+                                    ("pole", [0.0, 0.0, 1.0]),
+                                    ("lobe", [0.7 * ax, -1.3 * ay, 1.0]),
+                                    ("89.99 deg", [GRAZE.sin() * 0.6, GRAZE.sin() * 0.8, GRAZE.cos()]),
+                                    ("90 deg", [0.6, 0.8, 0.0]),
+                                ];
+                                for (dir, h) in hs {
+                                    let hn = (h[0] * h[0] + h[1] * h[1] + h[2] * h[2]).sqrt();
+                                    let h = [r32(h[0] / hn), r32(h[1] / hn), r32(h[2] / hn)];
+                                    let hv = Vec3::new(f(h[0]), f(h[1]), f(h[2]));
+                                    let regions = [label, form, flabel, shape, dir];
+                                    let got = ggx_rect::d_rect(rough, hv, half).to_f64();
+                                    map.require(got.is_finite() && got >= 0.0, || {
+                                        format!("d_rect {label} {form} {flabel} {dir}: {got}")
+                                    });
+                                    if h[2] <= 0.0 {
+                                        map.require(got == 0.0, || format!("d_rect at 90 deg: {got}"));
+                                        map.record("d_rect", &regions, PREC, 0.0, 0.0, String::new);
+                                        continue;
+                                    }
+                                    let (cx, cy) = (-h[0] / h[2], -h[1] / h[2]);
+                                    let mean = if use_refs {
+                                        refs[idx]
+                                    } else {
+                                        let v = rect_mean_ref(ax, ay, cx, cy, hx, hy);
+                                        refs.push(v);
+                                        v
+                                    };
+                                    idx += 1;
+                                    let reference = mean / (h[2] * h[2] * h[2] * h[2]);
+                                    // Tolerance: the module documents a few ulps in f32 and a
+                                    // worst case of 2.4e-8 in f64 (closed form far from the
+                                    // peak); 64 eps + 1e-7 covers both, plus the quadrature's
+                                    // 1e-12 goal.
+                                    let tol = 64.0 * eps + if PREC == F64 { 1e-7 } else { 0.0 };
+                                    map.record("d_rect", &regions, PREC, rel_err(got, reference, floor), tol, || {
+                                        format!("{label} {form} {flabel} {shape} {dir}: {got:e} vs {reference:e}")
+                                    });
+                                    // p22_rect at the centre rounded to f32 (its own reference).
+                                    let (px, py) = (r32(cx), r32(cy));
+                                    let pmean = if use_refs {
+                                        refs[idx]
+                                    } else {
+                                        let v = rect_mean_ref(ax, ay, px, py, hx, hy);
+                                        refs.push(v);
+                                        v
+                                    };
+                                    idx += 1;
+                                    let got = ggx_rect::p22_rect(rough, Vec2::new(f(px), f(py)), half).to_f64();
+                                    map.require(got.is_finite() && got >= 0.0, || format!("p22_rect: {got}"));
+                                    map.record("p22_rect", &regions, PREC, rel_err(got, pmean, floor), tol, || {
+                                        format!("{label} {form} {flabel} {shape} {dir}: {got:e} vs {pmean:e}")
+                                    });
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+
+            pub fn proxy(map: &mut ErrorMap) {
+                let eps = eps_of(PREC);
+                for &(alpha, label) in &ALPHAS {
+                    let a = r32(alpha);
+                    for &(fp, flabel) in &FOOTPRINTS {
+                        let h = r32(fp);
+                        // KHPL16 eq. 19: the GGX of roughness alpha' has the peak of the lobe
+                        // box-filtered over [-H, H]^2: 1 / (pi alpha'^2) = mean (quadrature).
+                        let mean = rect_mean_ref(a, a, 0.0, 0.0, h, h);
+                        let reference = 1.0 / (PI * mean).sqrt();
+                        let got = ggx_proxy::effective_alpha(f(a), f(h)).to_f64();
+                        // Tolerance: a hypot, an atan, a square root: 16 eps; quadrature 1e-12.
+                        map.record("effective_alpha", &[label, flabel], PREC, rel_err(got, reference, 0.0), 16.0 * eps + 1e-11, || {
+                            format!("{label} H {h:e}: {got:e} vs {reference:e}")
+                        });
+                        let px = ggx_proxy::proxy(AxisAligned::new(f(a), f(a)).unwrap(), Vec2::new(f(h), f(h)));
+                        let got = px.alpha().x.to_f64();
+                        map.record("proxy", &[label, flabel], PREC, rel_err(got, reference, 0.0), 16.0 * eps + 1e-11, || {
+                            format!("proxy {label} H {h:e}: {got:e} vs {reference:e}")
+                        });
+                        let got = ggx_proxy::effective_alpha_simple(f(a), f(h)).to_f64();
+                        let reference = Dd::prod(a, a).add(Dd::prod(h, h)).sqrt().f();
+                        map.record("effective_alpha_simple", &[label, flabel], PREC, rel_err(got, reference, 0.0), 4.0 * eps, || {
+                            format!("simple {label} H {h:e}: {got:e} vs {reference:e}")
+                        });
+                    }
+                }
+            }
+
+            fn domain_from(d: Domain, a: f64) -> f64 {
+                match d {
+                    Domain::Alpha2 => a * a,
+                    Domain::Alpha => a,
+                    Domain::Perceptual => a.sqrt(),
+                    Domain::ProjectedAlpha2 => {
+                        if a * a < 1.0 {
+                            a * a / (1.0 - a * a)
+                        } else {
+                            f64::INFINITY
+                        }
+                    }
+                }
+            }
+
+            fn domain_to(d: Domain, v: f64) -> f64 {
+                match d {
+                    Domain::Alpha2 => v.sqrt(),
+                    Domain::Alpha => v,
+                    Domain::Perceptual => v * v,
+                    Domain::ProjectedAlpha2 => {
+                        if v.is_finite() {
+                            (v / (1.0 + v)).sqrt()
+                        } else {
+                            1.0
+                        }
+                    }
+                }
+            }
+
+            pub fn isotropic(map: &mut ErrorMap) {
+                let eps = eps_of(PREC);
+                let kappa = isotropic::KAPPA.to_f64();
+                for &(alpha, label) in &ALPHAS {
+                    let a = r(alpha);
+                    for &(fp, flabel) in &FOOTPRINTS {
+                        for (shape, s11, s22) in [("kernel isotropic", fp * fp, fp * fp), ("kernel 1000:1", fp * fp, 1e-6 * fp * fp)] {
+                            let (s11, s22) = (r(0.25 * s11), r(0.25 * s22));
+                            let sigma = Covariance::new(f(s11), 0.0, f(s22));
+                            for (bw, kernel) in [
+                                (Bandwidth::Max, 2.0 * s11.max(s22)),
+                                (Bandwidth::Trace, 2.0 * (s11 + s22)),
+                                (Bandwidth::Average, s11 + s22),
+                            ] {
+                                let got = isotropic::filtered_alpha(f(a), &sigma, bw, isotropic::KAPPA).to_f64();
+                                let reference = (a * a + kernel.min(kappa)).min(1.0).sqrt();
+                                // Tolerance: a sum, a min and a square root: 8 eps.
+                                map.record("filtered_alpha", &[label, flabel, shape], PREC, rel_err(got, reference, 0.0), 8.0 * eps, || {
+                                    format!("{bw:?} {label} {flabel} {shape}: {got:e} vs {reference:e}")
+                                });
+                            }
+                        }
+                    }
+                }
+                // Every preset on world-space normal differences of size fp.
+                for (name, conv) in presets::ALL {
+                    for &(alpha, label) in &ALPHAS {
+                        let a = r(alpha);
+                        for &(fp, flabel) in &FOOTPRINTS {
+                            let du = [r(0.6 * fp), r(0.8 * fp), 0.0];
+                            let dv = [0.0, r(0.6e-3 * fp), r(-0.8e-3 * fp)];
+                            let got = conv
+                                .apply(f(a), Vec3::new(f(du[0]), f(du[1]), f(du[2])), Vec3::new(f(dv[0]), f(dv[1]), f(dv[2])))
+                                .to_f64();
+                            let dot = |x: [f64; 3], y: [f64; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+                            let (uu, uv, vv) = (dot(du, du), dot(du, dv), dot(dv, dv));
+                            let n = match conv.norm {
+                                Norm::SumSquared => uu + vv,
+                                Norm::MaxSquared => uu.max(vv),
+                                Norm::MaxEigenvalue => 0.5 * (uu + vv) + (0.5 * (uu - vv)).hypot(uv),
+                                Norm::MaxAbsComponent => du.iter().chain(dv.iter()).fold(0.0_f64, |m, x| m.max(x.abs())),
+                            };
+                            let (scale, expo, bias, clamp) = (conv.scale.to_f64(), conv.exponent.to_f64(), conv.bias.to_f64(), conv.clamp.to_f64());
+                            let k = (scale * n.powf(expo) + bias).max(0.0).min(clamp);
+                            let floor = conv.perceptual_floor.to_f64();
+                            let am = a.min(1e4).max(floor * floor);
+                            let v = domain_from(conv.domain, am);
+                            let mut out = match conv.combine {
+                                Combine::Add => v + k,
+                                Combine::Max => v.max(k),
+                            };
+                            if conv.saturate {
+                                out = out.min(1.0);
+                            }
+                            let reference = domain_to(conv.domain, out).clamp(0.0, 1e4);
+                            // Tolerance: each convention is a handful of operations; the
+                            // exponent 0.333 of Unreal/Babylon adds the conditioning of
+                            // powf, |0.333 ln n| eps (n = 1e-24: 18 eps). 64 eps.
+                            map.record("presets", &[label, flabel, name], PREC, rel_err(got, reference, 0.0), 64.0 * eps, || {
+                                format!("{name} {label} {flabel}: {got:e} vs {reference:e}")
+                            });
+                        }
+                    }
+                }
+            }
+        }
+    };
+}
+
+sweep!(p32, f32, F32);
+sweep!(p64, f64, F64);
+
+#[test]
+fn extremes_filter_error_map() {
+    let mut g = ErrorMap::new(
+        "filter::gaussian and filter::projected (through p22): worst relative error, f32 / f64",
+    );
+    p32::gaussian(&mut g);
+    p64::gaussian(&mut g);
+    p32::gaussian_quadrature(&mut g);
+    p64::gaussian_quadrature(&mut g);
+    p32::projected(&mut g);
+    p64::projected(&mut g);
+    let mut rect = ErrorMap::new("ggx_rect: worst relative error, f32 / f64");
+    let mut refs = Vec::new();
+    p32::rect(&mut rect, &mut refs, false);
+    p64::rect(&mut rect, &mut refs, true);
+    let mut iso = ErrorMap::new("ggx_proxy and isotropic filters: worst relative error, f32 / f64");
+    p32::proxy(&mut iso);
+    p64::proxy(&mut iso);
+    p32::isotropic(&mut iso);
+    p64::isotropic(&mut iso);
+    let mut failed = 0;
+    for m in [&g, &rect, &iso] {
+        if std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| m.finish())).is_err() {
+            failed += 1;
+        }
+    }
+    assert_eq!(failed, 0, "see the FAIL lines above");
+}
