@@ -487,14 +487,18 @@ fn scaled_form(q: F, v: Vec2, form: impl Fn(Vec2) -> F) -> F {
     if !q.is_nan() {
         return q.max(0.0);
     }
-    if v.is_nan() {
-        return F::NAN;
-    }
     if !v.is_finite() {
-        return F::INFINITY;
+        return non_finite_form(v);
     }
     let k = v.abs().max_element();
     (form(v / k) * k * k).max(0.0)
+}
+
+/// A quadratic form of a vector with a non-finite component, as in the isotropic and
+/// axis-aligned forms: NaN for a NaN component, else `+inf`.
+#[inline]
+fn non_finite_form(v: Vec2) -> F {
+    if v.is_nan() { F::NAN } else { F::INFINITY }
 }
 
 impl sealed::Sealed for RoughnessMatrix {}
@@ -506,7 +510,12 @@ impl Roughness for RoughnessMatrix {
             let (a11, a12, a22) = (self.a11.to_f64(), self.a12.to_f64(), self.a22.to_f64());
             let (x, y) = (s.x.to_f64(), s.y.to_f64());
             let q = ((a22 * x) * x + (a11 * y) * y - 2.0 * (a12 * x) * y) * self.inv_det_wide;
-            return F::from_f64(q.max(0.0));
+            // Finite f32 input cannot overflow in f64: a NaN here means a non-finite input.
+            return if q.is_nan() {
+                non_finite_form(s)
+            } else {
+                F::from_f64(q.max(0.0))
+            };
         }
         let r = self.rotate(s);
         scaled_form((r * r).dot(self.inv_eig), s, |u| {
@@ -520,7 +529,11 @@ impl Roughness for RoughnessMatrix {
             let (a11, a12, a22) = (self.a11.to_f64(), self.a12.to_f64(), self.a22.to_f64());
             let (x, y) = (w.x.to_f64(), w.y.to_f64());
             let q = (a11 * x) * x + (a22 * y) * y + 2.0 * (a12 * x) * y;
-            return F::from_f64(q.max(0.0));
+            return if q.is_nan() {
+                non_finite_form(w)
+            } else {
+                F::from_f64(q.max(0.0))
+            };
         }
         let r = self.rotate(w);
         scaled_form((r * r).dot(self.eig), w, |u| {
