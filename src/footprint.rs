@@ -69,7 +69,14 @@ impl Covariance {
         let rad = m::hypot(0.5 * (self.s11 - self.s22), self.s12);
         let max = (mean + rad).max(0.0);
         let min = if max > 0.0 {
-            (self.det() / max).max(0.0)
+            let det = self.det();
+            // `det` overflows (to inf or inf - inf = NaN) for huge finite entries: divide first.
+            let min = if det.is_finite() {
+                det / max
+            } else {
+                (self.s11 / max) * self.s22 - (self.s12 / max) * self.s12
+            };
+            min.max(0.0)
         } else {
             0.0
         };
@@ -83,11 +90,14 @@ impl Covariance {
     /// Computed as `max P_max + lambda_min P_min` with the spectral projectors
     /// `P_max = (Sigma - lambda_min I) / (lambda_max - lambda_min)`, `P_min = I - P_max` when
     /// only `lambda_max` exceeds `max` (no eigenvector is formed, every term is non-negative),
-    /// and `max I` when both do. A matrix with entries above 1 is first scaled to unit size so
-    /// nothing overflows. A negative or NaN `max` yields [`Covariance::ZERO`], a non-finite
+    /// and `max I` when both do. The matrix is first scaled to unit size (largest entry 1) so
+    /// nothing overflows or underflows. A negative or NaN `max` yields [`Covariance::ZERO`], a non-finite
     /// input [`Covariance::ZERO`] (use [`Covariance::sanitized`] for the full contract).
     pub fn clamp_eigenvalues(&self, max: F) -> Self {
-        if max.is_nan() || max < 0.0 {
+        // Non-finite entries are caught here: the fast path and `F::max` below would pass a
+        // NaN through.
+        let finite = self.s11.is_finite() && self.s12.is_finite() && self.s22.is_finite();
+        if max.is_nan() || max < 0.0 || !finite {
             return Self::ZERO;
         }
         // Fast path: a PSD kernel whose trace (lambda_min + lambda_max) is within the bound.
@@ -98,9 +108,11 @@ impl Covariance {
         if scale.is_nan() || scale <= 0.0 || !scale.is_finite() {
             return if scale.is_finite() { *self } else { Self::ZERO };
         }
-        // Work on Sigma / scale (entries <= 1) against max / scale.
-        let k = if scale > 1.0 { scale } else { 1.0 };
-        let s = *self * (1.0 / k);
+        // Work on Sigma / scale (largest entry 1) against max / scale. Tiny (subnormal) entries
+        // are scaled up too: `1 / (2 r)` below would overflow to inf (0 * inf = NaN); dividing
+        // (not multiplying by `1 / k`, which overflows for a subnormal `k`).
+        let k = scale;
+        let s = Self::new(self.s11 / k, self.s12 / k, self.s22 / k);
         let c = max / k;
         let (lmin, lmax) = s.eigenvalues();
         if lmax <= c {
@@ -141,8 +153,11 @@ impl Covariance {
     pub fn sanitized(&self) -> Self {
         let (a, b, c) = (self.s11, self.s12, self.s22);
         // Fast path (every footprint covariance): finite, positive semi-definite and with
-        // trace <= KERNEL_MAX, which bounds both eigenvalues. NaN fails every comparison.
-        if a >= 0.0 && c >= 0.0 && a + c <= KERNEL_MAX && b * b <= a * c {
+        // trace <= KERNEL_MAX, which bounds both eigenvalues. NaN fails every comparison. If
+        // `a c` is 0 (or underflows), `b * b <= a * c` may hold by underflow for a nonzero `b`:
+        // the slow path decides.
+        if a >= 0.0 && c >= 0.0 && a + c <= KERNEL_MAX && b * b <= a * c && (a * c > 0.0 || b == 0.0)
+        {
             return *self;
         }
         let e = [a, b, c];
@@ -226,11 +241,15 @@ impl Footprint {
     /// [h_x h_y, 1 - h_x^2]]` (TK19 supplement eq. 6), i.e. the first-order change of the slope
     /// `s = -p / sqrt(1 - |p|^2)`. `h_z` is clamped to `>= 1e-6` (the footprint of a grazing
     /// half vector is then huge and finite; clamp it with
-    /// [`super::clamp::ClampRules::footprint`]). A non-finite `h` gives [`Footprint::ZERO`].
+    /// [`super::clamp::ClampRules::footprint`]). `h` is normalised first (a huge non-unit `h`
+    /// would overflow `1 - h_y^2` to NaN); a zero or non-finite `h` gives [`Footprint::ZERO`].
     pub fn from_projected_derivatives_in_slope(h: Vec3, dp_u: Vec2, dp_v: Vec2) -> Self {
-        if !h.is_finite() {
+        let big = h.abs().max_element();
+        if !h.is_finite() || big <= 0.0 {
             return Self::ZERO;
         }
+        let h = h / big;
+        let h = h / m::sqrt(h.length_squared());
         let hz = h.z.max(1e-6);
         let k = -1.0 / (hz * hz * hz);
         let j = |d: Vec2| {
@@ -311,7 +330,8 @@ impl Footprint {
 
     /// The largest distance from the centre to a vertex of the one-pixel parallelogram,
     /// `max(|dh_u + dh_v|, |dh_u - dh_v|) / 2`: the extent clamped by KHPL16 section 5.2.
-    /// It bounds both half-extents of [`Footprint::bounding_rect`].
+    /// It bounds both half-extents of [`Footprint::bounding_rect`] (unless the squares in the
+    /// lengths underflow: vectors below about `1e-19` in `f32`, `1e-154` in `f64`, give `0`).
     #[inline]
     pub fn max_extent(&self) -> F {
         0.5 * (self.dh_u + self.dh_v)

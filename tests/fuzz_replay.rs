@@ -1,9 +1,12 @@
-//! Fixed-seed replay of the `ndf` fuzz target's contract (`fuzz/fuzz_targets/ndf.rs`) without
-//! a fuzzer: the same decoder and checks (`filtered_ndf::testing::fuzz::check_ndf`) over
-//! seeded random byte strings, every special value in every parameter slot, and the
+//! Fixed-seed replay of every fuzz target's contract (`fuzz/fuzz_targets/*.rs`) without a
+//! fuzzer: the same decoders and checks (`filtered_ndf::testing::fuzz::check_*`) over seeded
+//! random byte strings, every special value in every parameter slot (NDF family), and the
 //! regression inputs of every crash the fuzzer found.
 
-use filtered_ndf::testing::fuzz::check_ndf;
+use filtered_ndf::testing::fuzz::{
+    check_filter, check_isotropic, check_jacobian, check_ndf, check_rect, check_sampling,
+    check_temporal,
+};
 
 struct Rng(u64);
 impl Rng {
@@ -16,14 +19,49 @@ impl Rng {
     }
 }
 
+/// `n` seeded random byte strings of length `0..max_len` through `check`.
+fn replay(seed: u64, n: usize, max_len: u64, check: fn(&[u8])) {
+    let mut rng = Rng(seed);
+    for _ in 0..n {
+        let len = (rng.next() % max_len) as usize;
+        let bytes: Vec<u8> = (0..len).map(|_| rng.next() as u8).collect();
+        check(&bytes);
+    }
+}
+
 #[test]
 fn seeded_random_bytes() {
-    let mut rng = Rng(0xF022_0001);
-    for _ in 0..4000 {
-        let len = (rng.next() % 96) as usize;
-        let bytes: Vec<u8> = (0..len).map(|_| rng.next() as u8).collect();
-        check_ndf(&bytes);
-    }
+    replay(0xF022_0001, 4000, 96, check_ndf);
+}
+
+#[test]
+fn seeded_random_bytes_filter() {
+    replay(0xF022_0002, 3000, 256, check_filter);
+}
+
+#[test]
+fn seeded_random_bytes_rect() {
+    replay(0xF022_0003, 3000, 96, check_rect);
+}
+
+#[test]
+fn seeded_random_bytes_isotropic() {
+    replay(0xF022_0004, 3000, 128, check_isotropic);
+}
+
+#[test]
+fn seeded_random_bytes_jacobian() {
+    replay(0xF022_0005, 3000, 256, check_jacobian);
+}
+
+#[test]
+fn seeded_random_bytes_sampling() {
+    replay(0xF022_0006, 3000, 128, check_sampling);
+}
+
+#[test]
+fn seeded_random_bytes_temporal() {
+    replay(0xF022_0007, 3000, 256, check_temporal);
 }
 
 /// Every special-value tag (0..=14) in each of the first parameter and argument slots, for

@@ -1,0 +1,4 @@
+//! stub
+
+/// stub
+pub fn check_isotropic(_data: &[u8]) {}

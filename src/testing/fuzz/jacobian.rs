@@ -1,0 +1,4 @@
+//! stub
+
+/// stub
+pub fn check_jacobian(_data: &[u8]) {}

@@ -1,0 +1,4 @@
+//! stub
+
+/// stub
+pub fn check_temporal(_data: &[u8]) {}
