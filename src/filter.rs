@@ -49,8 +49,9 @@ pub fn gaussian<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatr
 
 /// [`gaussian`] with an explicit determinant clamp `tau` (`0` disables it; NaN, infinite or
 /// negative `tau` is treated as `0`). The kernel is [`Covariance::sanitized`] first. Even
-/// with `tau = 0`, a filtered determinant that rounds to `<= 0` (an extremely elongated
-/// kernel) is replaced by `det(A)`, its exact lower bound, so the result is always valid.
+/// with `tau = 0`, a filtered determinant that rounds to `<= det(A)` (an extremely elongated
+/// kernel, or underflow) is replaced by `det(A)`, its exact lower bound, so the result is
+/// always valid.
 pub fn gaussian_with_tau<R: Roughness>(
     roughness: R,
     kernel: Covariance,
@@ -86,7 +87,9 @@ pub fn gaussian_with_tau<R: Roughness>(
 #[inline]
 fn floor_if_lost(a11: F, a12: F, a22: F, k: Covariance, floor: F) -> F {
     let (b11, b12, b22) = (a11 + 2.0 * k.s11, a12 + 2.0 * k.s12, a22 + 2.0 * k.s22);
-    if b11 * b22 - b12 * b12 > 0.0 {
+    // `> floor`, not `> 0`: a determinant that rounds below det(A) (or underflows, for tiny
+    // entries accepted with a large `tau`; fuzzing) is lost too.
+    if b11 * b22 - b12 * b12 > floor {
         0.0
     } else {
         floor
@@ -203,7 +206,13 @@ pub fn projected<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMat
     let b11 = (q.s11 + d) / den;
     let b12 = q.s12 / den;
     let b22 = (q.s22 + d) / den;
-    let (r11, r12, r22) = (b11 + excess.s11, b12 + excess.s12, b22 + excess.s22);
+    // Never below A on the diagonal (exact, by monotonicity): rounding in the excess split
+    // otherwise takes a tiny (e.g. subnormal, accepted with a large `tau`) `a11` to `<= 0`.
+    let (r11, r12, r22) = (
+        (b11 + excess.s11).max(a11),
+        b12 + excess.s12,
+        (b22 + excess.s22).max(a22),
+    );
     let floor = if r11 * r22 - r12 * r12 > 0.0 {
         tau
     } else {

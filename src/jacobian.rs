@@ -83,9 +83,14 @@ fn polar(h: Vec3) -> Polar {
     }
     let h = h / big;
     let h = h * (1.0 / m::sqrt(h.length_squared()));
-    let r = m::hypot(h.x, h.y);
-    let (cos_phi, sin_phi) = if r > 0.0 {
-        (h.x / r, h.y / r)
+    // The azimuth from `h_xy` scaled to unit size: `h_x / hypot(h_x, h_y)` is not a unit
+    // pair for subnormal components (fuzzing).
+    let q = Vec2::new(h.x, h.y);
+    let qs = q.abs().max_element();
+    let (cos_phi, sin_phi) = if qs > 0.0 {
+        let q = q / qs;
+        let r = m::hypot(q.x, q.y);
+        (q.x / r, q.y / r)
     } else {
         (1.0, 0.0)
     };

@@ -108,6 +108,10 @@ impl LocalQuadric {
         if t.length_squared() <= 1e-6 * e1.length_squared() {
             return None;
         }
+        // A second Gram-Schmidt pass: one pass leaves `N . e1 ~ eps / sin(angle)` (1e-5 in
+        // f32 near the 1e-3 rad limit; found by fuzzing), two leave rounding ("twice is
+        // enough").
+        let t = t - n * n.dot(t);
         let e1 = t.try_normalize()?;
         let e2 = n.cross(e1);
         Some(Self {

@@ -31,7 +31,10 @@
 //!
 //! ## Out-of-domain input
 //! - `wo` at or below the horizon (`wo_z <= 0`), zero or non-finite: no visible normal exists;
-//!   the samplers return `None` and the pdfs `0`. A two-sided material flips `wo` (and the
+//!   the samplers return `None` and the pdfs `0`. The samplers also return `None` for a
+//!   `wo_z > 0` so small against `|wo_xy|` that `wo_z / |wo|` (after the roughness stretch)
+//!   underflows to `0` (only with `wo_z / |wo|` below about `1e-300` in `f64`, `1e-38` in
+//!   `f32`). A two-sided material flips `wo` (and the
 //!   sampled `m`) itself.
 //! - `u` outside `[0, 1)`: each component is clamped to `[0, 1 - eps/2]`, NaN to `0`.
 //! - `wo` need not be normalised (every formula is scale-invariant in `wo`); `m` must be a
@@ -88,8 +91,9 @@ pub trait NdfSampling: Ndf {
     }
 
     /// Samples a visible micronormal `m` with density `D_wo(m)` per steradian from `u` in
-    /// `[0, 1)^2` (Heitz 2014 eq. 16). `None` if `wo_z <= 0` or `wo` is not finite; otherwise
-    /// `m` is a unit vector with `m_z > 0` and `wo.m > 0`.
+    /// `[0, 1)^2` (Heitz 2014 eq. 16). `None` if `wo_z <= 0` or `wo` is not finite (or
+    /// `wo_z / |wo|` underflows, module docs); otherwise `m` is a unit vector with `m_z > 0`
+    /// and `wo.m > 0`.
     fn sample_visible_normal(&self, wo: Vec3, u: Vec2) -> Option<Vec3>;
 
     /// The visible-normal density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian
@@ -236,7 +240,11 @@ fn standard_view(warp: &Warp, wo: Vec3) -> Option<Vec3> {
     if !(wo.is_finite() && positive(wo.z)) {
         return None;
     }
-    Some(normalize_scaled(warp.stretch(wo)))
+    // Normalised first: the stretch of a huge `wo` overflows (inf / inf = NaN; fuzzing). A `wo`
+    // whose normalised `z` underflows to 0 is at the horizon: no `m` with `m_z > 0` can be
+    // certified for it.
+    let wi = normalize_scaled(warp.stretch(normalize_scaled(wo)));
+    positive(wi.z).then_some(wi)
 }
 
 /// Unit-roughness GGX visible normal by spherical caps (Dupuy and Benyoub 2023, listing 3):

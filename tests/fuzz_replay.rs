@@ -106,3 +106,30 @@ fn regressions() {
         check_ndf(c);
     }
 }
+
+/// Every crash input the fuzzer found (`tests/data/fuzz_regressions/<target>/`, copied from
+/// `fuzz/artifacts/<target>/`), replayed through its target's check.
+#[test]
+fn regression_corpus() {
+    let targets: [(&str, fn(&[u8])); 7] = [
+        ("ndf", check_ndf),
+        ("filter", check_filter),
+        ("rect", check_rect),
+        ("isotropic", check_isotropic),
+        ("jacobian", check_jacobian),
+        ("sampling", check_sampling),
+        ("temporal", check_temporal),
+    ];
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/fuzz_regressions");
+    for (name, check) in targets {
+        let Ok(dir) = std::fs::read_dir(root.join(name)) else {
+            continue;
+        };
+        for entry in dir {
+            let path = entry.unwrap().path();
+            let bytes = std::fs::read(&path).unwrap();
+            eprintln!("{}", path.display());
+            check(&bytes);
+        }
+    }
+}

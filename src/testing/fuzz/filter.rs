@@ -73,9 +73,9 @@ macro_rules! filter_prec {
             let (lo, hi) = c.eigenvalues();
             assert!(
                 hi <= bound * (1.0 + TOL) + 4.0 * F::MIN_POSITIVE,
-                "{what}: lambda_max {hi} > {bound} ({c:?})"
+                "{what}: lambda_max {hi:?} > {bound:?} ({c:?})"
             );
-            assert!(lo >= 0.0 && lo <= hi * (1.0 + TOL) + F::MIN_POSITIVE, "{what}: {lo} {hi}");
+            assert!(lo >= 0.0 && lo <= hi * (1.0 + TOL) + F::MIN_POSITIVE, "{what}: {lo:?} {hi:?}");
         };
 
         // --- Footprint constructors and shapes.
@@ -83,14 +83,14 @@ macro_rules! filter_prec {
         let _ = Footprint::from_projected_derivatives(du, dv);
         let fs = Footprint::from_projected_derivatives_in_slope(h, du, dv);
         if !h.is_finite() {
-            assert_eq!(fs, Footprint::ZERO, "in_slope: non-finite h {h}");
+            assert_eq!(fs, Footprint::ZERO, "in_slope: non-finite h {h:?}");
         } else if fin2(du) && fin2(dv) {
-            assert!(!fp_nan(&fs), "in_slope({h}, {du}, {dv}) = {fs:?}");
+            assert!(!fp_nan(&fs), "in_slope({h:?}, {du:?}, {dv:?}) = {fs:?}");
             // In the domain (unit h, disk derivatives |dp| <= 2): finite.
             if let Some(hu) = $d::unit(h) {
                 if du.abs().max_element() <= 2.0 && dv.abs().max_element() <= 2.0 {
                     let fu = Footprint::from_projected_derivatives_in_slope(hu, du, dv);
-                    assert!(fp_fin(&fu), "in_slope({hu}, {du}, {dv}) = {fu:?}");
+                    assert!(fp_fin(&fu), "in_slope({hu:?}, {du:?}, {dv:?}) = {fu:?}");
                 }
             }
         }
@@ -98,7 +98,7 @@ macro_rules! filter_prec {
         if !(n_u.is_finite() && n_v.is_finite()) {
             assert_eq!(fnd, Footprint::ZERO, "normal differences: non-finite");
         }
-        assert!(fp_fin(&fnd), "from_normal_differences({n_u}, {n_v}) = {fnd:?}");
+        assert!(fp_fin(&fnd), "from_normal_differences({n_u:?}, {n_v:?}) = {fnd:?}");
         let fw = Footprint::from_world_normal_differences(t, bt, n, n_u, n_v);
         assert!(fp_fin(&fw), "from_world_normal_differences = {fw:?}");
 
@@ -106,18 +106,18 @@ macro_rules! filter_prec {
             let r = fp.bounding_rect();
             let e = fp.max_extent();
             assert!(r.half_extent.x >= 0.0 && r.half_extent.y >= 0.0, "bounding_rect {r:?}");
-            assert!(e >= 0.0, "max_extent {e} of {fp:?}");
+            assert!(e >= 0.0, "max_extent {e:?} of {fp:?}");
             // The lengths in `max_extent` underflow below `sqrt(MIN_POSITIVE)` (documented).
             if r.half_extent.is_finite() && e.is_finite() && r.half_extent.max_element() > 1e-18 {
                 assert!(
                     r.half_extent.max_element() <= e * (1.0 + TOL) + F::MIN_POSITIVE,
-                    "max_extent {e} below half extent {r:?}"
+                    "max_extent {e:?} below half extent {r:?}"
                 );
             }
             if sigma.is_finite() {
                 let c = fp.covariance(sigma);
                 if cov_fin(&c) {
-                    assert!(psd(&c), "covariance({sigma}) = {c:?} of {fp:?}");
+                    assert!(psd(&c), "covariance({sigma:?}) = {c:?} of {fp:?}");
                 }
             }
         }
@@ -126,15 +126,15 @@ macro_rules! filter_prec {
         // --- Covariance.
         let _ = (cov.trace(), cov.det());
         let (lo, hi) = cov.eigenvalues();
-        assert!(lo >= 0.0 && hi >= 0.0, "eigenvalues {lo} {hi} of {cov:?}");
+        assert!(lo >= 0.0 && hi >= 0.0, "eigenvalues {lo:?} {hi:?} of {cov:?}");
         if cov_fin(&cov) && hi.is_finite() {
-            assert!(lo <= hi * (1.0 + TOL) + F::MIN_POSITIVE, "eigenvalues {lo} > {hi}");
+            assert!(lo <= hi * (1.0 + TOL) + F::MIN_POSITIVE, "eigenvalues {lo:?} > {hi:?}");
         }
         let ce = cov.clamp_eigenvalues(maxv);
         if maxv.is_nan() || maxv < 0.0 || !cov_fin(&cov) {
-            assert_eq!(ce, Covariance::ZERO, "clamp_eigenvalues({maxv}) of {cov:?}");
+            assert_eq!(ce, Covariance::ZERO, "clamp_eigenvalues({maxv:?}) of {cov:?}");
         } else {
-            assert!(cov_fin(&ce), "clamp_eigenvalues({maxv}) of {cov:?} = {ce:?}");
+            assert!(cov_fin(&ce), "clamp_eigenvalues({maxv:?}) of {cov:?} = {ce:?}");
             if psd_in(&cov) {
                 kernel_ok(&ce, maxv, "clamp_eigenvalues");
             }
@@ -157,12 +157,13 @@ macro_rules! filter_prec {
         // Above `F::MAX / 2` the rescaled vectors (length up to `2 lambda`) may overflow.
         if lambda <= 1e30 {
             assert!(fp_fin(&cf), "rules.footprint({fp:?}) = {cf:?} with {rules:?}");
-            // `max_extent` squares the vectors: compare where that cannot overflow (f32).
-            if lambda <= 1e15 {
+            // `max_extent` squares the vectors: compare where that cannot overflow or
+            // underflow into subnormals (f32).
+            if (1e-15..=1e15).contains(&lambda) {
                 let e = cf.max_extent();
                 assert!(
                     e <= lambda * (1.0 + TOL) + 4.0 * F::MIN_POSITIVE,
-                    "rules.footprint extent {e} > {lambda}: {fp:?} -> {cf:?}"
+                    "rules.footprint extent {e:?} > {lambda:?}: {fp:?} -> {cf:?}"
                 );
             }
         }
@@ -170,12 +171,12 @@ macro_rules! filter_prec {
         let he = rr.half_extent;
         assert!(!he.is_nan() && he.x >= 0.0 && he.y >= 0.0, "rules.rect {rr:?}");
         if lambda.is_finite() {
-            assert!(he.is_finite(), "rules.rect({du}) = {rr:?} with {rules:?}");
+            assert!(he.is_finite(), "rules.rect({du:?}) = {rr:?} with {rules:?}");
         }
         match rules.floor {
             ExtentFloor::None => assert!(he.max_element() <= lambda, "rules.rect above lambda"),
             ExtentFloor::Constant(e) if e >= 0.0 && e.is_finite() => {
-                assert!(he.min_element() >= e, "rules.rect below the floor {e}: {rr:?}")
+                assert!(he.min_element() >= e, "rules.rect below the floor {e:?}: {rr:?}")
             }
             _ => {}
         }
@@ -200,7 +201,7 @@ macro_rules! filter_prec {
         with_rough!($d, rough, r => {
             let sd = r.sqrt_det();
             let tr = rules.tau(r);
-            assert!(tr.is_finite() && tr >= 0.0, "rules.tau {tr}");
+            assert!(tr.is_finite() && tr >= 0.0, "rules.tau {tr:?}");
             let g = rules.filter_gaussian(r, fp, sigma);
             eval(&g, "rules.filter_gaussian");
             if rules.det_clamp {
@@ -211,7 +212,7 @@ macro_rules! filter_prec {
             assert!(g.sqrt_det() >= sd * (1.0 - TOL), "gaussian sharpened: {g:?} < {r:?}");
             eval(&filter::gaussian_with_tau(r, cov, tau), "filter::gaussian_with_tau");
             let p = filter::projected(r, cov);
-            eval(&p, "filter::projected");
+            eval(&p, &format!("filter::projected of {:?} by {cov:?}", r.to_matrix().entries()));
             assert!(p.sqrt_det() >= sd * (1.0 - TOL), "projected sharpened: {p:?} < {r:?}");
             let (a11, _, a22) = r.to_matrix().entries();
             let (p11, _, p22) = p.entries();
