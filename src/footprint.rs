@@ -157,7 +157,11 @@ impl Covariance {
         // trace <= KERNEL_MAX, which bounds both eigenvalues. NaN fails every comparison. If
         // `a c` is 0 (or underflows), `b * b <= a * c` may hold by underflow for a nonzero `b`:
         // the slow path decides.
-        if a >= 0.0 && c >= 0.0 && a + c <= KERNEL_MAX && b * b <= a * c && (a * c > 0.0 || b == 0.0)
+        if a >= 0.0
+            && c >= 0.0
+            && a + c <= KERNEL_MAX
+            && b * b <= a * c
+            && (a * c > 0.0 || b == 0.0)
         {
             return *self;
         }

@@ -111,7 +111,8 @@ fn regressions() {
 /// `fuzz/artifacts/<target>/`), replayed through its target's check.
 #[test]
 fn regression_corpus() {
-    let targets: [(&str, fn(&[u8])); 7] = [
+    type Check = fn(&[u8]);
+    let targets: [(&str, Check); 7] = [
         ("ndf", check_ndf),
         ("filter", check_filter),
         ("rect", check_rect),

@@ -111,7 +111,14 @@ macro_rules! decoders {
             /// caller guarantees by construction or checks here): `p22`, `d` finite and
             /// `>= 0` (`d = 0` below the horizon), `lambda >= 0`, `g1`, `g2` in `[0, 1]`,
             /// `g1 = 0` for `w.m <= 0`, `g2 <= g1`.
-            pub(crate) fn ndf_contract(ndf: &dyn Ndf, s: Vec2, mm: Vec3, w: Vec3, i: Vec3, what: &str) {
+            pub(crate) fn ndf_contract(
+                ndf: &dyn Ndf,
+                s: Vec2,
+                mm: Vec3,
+                w: Vec3,
+                i: Vec3,
+                what: &str,
+            ) {
                 if s.is_finite() {
                     let p = ndf.p22(s);
                     assert!(p.is_finite() && p >= 0.0, "{what}: p22({s}) = {p}");
@@ -151,7 +158,11 @@ macro_rules! decoders {
                     "{what}: entries {:?}",
                     r.entries()
                 );
-                assert!(sd.is_finite() && sd > 0.0, "{what}: sqrt_det {sd} of {:?}", r.entries());
+                assert!(
+                    sd.is_finite() && sd > 0.0,
+                    "{what}: sqrt_det {sd} of {:?}",
+                    r.entries()
+                );
             }
 
             #[allow(dead_code)]

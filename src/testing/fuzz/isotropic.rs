@@ -35,13 +35,20 @@ macro_rules! isotropic_prec {
             exponent: f(b),
             bias: f(b),
             clamp: f(b),
-            combine: if pick & 16 != 0 { Combine::Add } else { Combine::Max },
+            combine: if pick & 16 != 0 {
+                Combine::Add
+            } else {
+                Combine::Max
+            },
             saturate: pick & 32 != 0,
             perceptual_floor: f(b),
         };
         let bw = [Bandwidth::Max, Bandwidth::Trace, Bandwidth::Average][usize::from(head % 3)];
         let in_range = |a: F, what: &str| {
-            assert!((0.0..=ALPHA_MAX).contains(&a), "{what} = {a:?} (alpha {alpha:?})");
+            assert!(
+                (0.0..=ALPHA_MAX).contains(&a),
+                "{what} = {a:?} (alpha {alpha:?})"
+            );
         };
         use crate::$prec::F;
 
@@ -72,7 +79,10 @@ macro_rules! isotropic_prec {
         // From ALPHA_MIN: the square of a smaller alpha may underflow to 0 (f32).
         let in_dom = alpha == 0.0 || (crate::$prec::ALPHA_MIN..=1.0).contains(&alpha);
         if in_dom {
-            assert!(fk >= alpha * (1.0 - TOL), "filtered_alpha({alpha:?}) = {fk:?} sharpened");
+            assert!(
+                fk >= alpha * (1.0 - TOL),
+                "filtered_alpha({alpha:?}) = {fk:?} sharpened"
+            );
         }
         let _ = normal_difference_covariance(dn_u, dn_v, sigma2);
 
@@ -111,7 +121,10 @@ macro_rules! isotropic_prec {
             } else if dn_u.is_finite() && dn_v.is_finite() && norm != Norm::MaxEigenvalue {
                 assert!(v >= 0.0, "{norm:?}.eval({dn_u:?}, {dn_v:?}) = {v:?}");
             } else {
-                assert!(v >= 0.0 || (norm == Norm::MaxEigenvalue && v.is_nan()), "{norm:?}: {v:?}");
+                assert!(
+                    v >= 0.0 || (norm == Norm::MaxEigenvalue && v.is_nan()),
+                    "{norm:?}: {v:?}"
+                );
             }
         }
 
@@ -125,17 +138,23 @@ macro_rules! isotropic_prec {
 
         // Presets: in range, and (for alpha in [0, 1], finite differences) never sharper than
         // the material roughness, except where the saturate caps it.
-        let conventions = presets::ALL
-            .iter()
-            .map(|(name, c)| (*name, *c))
-            .chain([Bandwidth::Max, Bandwidth::Trace, Bandwidth::Average].map(|w| ("bw", w.convention())));
+        let conventions = presets::ALL.iter().map(|(name, c)| (*name, *c)).chain(
+            [Bandwidth::Max, Bandwidth::Trace, Bandwidth::Average].map(|w| ("bw", w.convention())),
+        );
         for (name, c) in conventions {
             let a = c.apply(alpha, dn_u, dn_v);
             in_range(a, name);
             if in_dom && dn_u.is_finite() && dn_v.is_finite() {
-                let cap = if c.saturate { c.domain.to_alpha(1.0) } else { F::INFINITY };
+                let cap = if c.saturate {
+                    c.domain.to_alpha(1.0)
+                } else {
+                    F::INFINITY
+                };
                 let want = alpha.min(cap);
-                assert!(a >= want * (1.0 - TOL), "{name}.apply({alpha:?}, {dn_u:?}, {dn_v:?}) = {a:?}");
+                assert!(
+                    a >= want * (1.0 - TOL),
+                    "{name}.apply({alpha:?}, {dn_u:?}, {dn_v:?}) = {a:?}"
+                );
             }
         }
     }};
