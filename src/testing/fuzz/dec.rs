@@ -164,11 +164,6 @@ macro_rules! decoders {
                     r.entries()
                 );
             }
-
-            #[allow(dead_code)]
-            pub(crate) fn to_f64(x: F) -> f64 {
-                x.to_f64()
-            }
         }
     };
 }
