@@ -97,8 +97,8 @@ impl LocalQuadric {
     /// curvatures. `N` is normalised, `e1` is made orthogonal to `N` (Gram-Schmidt) and
     /// normalised, and `e2 = N x e1`.
     ///
-    /// Returns `None` if an input is non-finite, `N` is zero, or `e1` is within `1e-3` rad of
-    /// parallel to `N`.
+    /// Returns `None` if an input is non-finite, `N` is zero (or so small or large that
+    /// `|N|^2` under- or overflows), or `e1` is within `1e-3` rad of parallel to `N`.
     pub fn new(p: Vec3, n: Vec3, e1: Vec3, k1: F, k2: F) -> Option<Self> {
         if !(p.is_finite() && n.is_finite() && e1.is_finite() && k1.is_finite() && k2.is_finite()) {
             return None;
