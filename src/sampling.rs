@@ -32,9 +32,9 @@
 //! ## Out-of-domain input
 //! - `wo` at or below the horizon (`wo_z <= 0`), zero or non-finite: no visible normal exists;
 //!   the samplers return `None` and the pdfs `0`. The samplers also return `None` for a
-//!   `wo_z > 0` so small against `|wo_xy|` that `wo_z / |wo|` (after the roughness stretch)
-//!   underflows to `0` (only with `wo_z / |wo|` below about `1e-300` in `f64`, `1e-38` in
-//!   `f32`). A two-sided material flips `wo` (and the
+//!   `wo_z > 0` so small against `|wo_xy|` that `wo_z / |wo|` after the roughness stretch is
+//!   below `sqrt(F::MIN_POSITIVE)` (`1.5e-154` in `f64`, `1.1e-19` in `f32`; the view is then
+//!   grazing to within the float range and `m_z` would underflow to `0`). A two-sided material flips `wo` (and the
 //!   sampled `m`) itself.
 //! - `u` outside `[0, 1)`: each component is clamped to `[0, 1 - eps/2]`, NaN to `0`.
 //! - `wo` need not be normalised (every formula is scale-invariant in `wo`); `m` must be a
@@ -241,10 +241,10 @@ fn standard_view(warp: &Warp, wo: Vec3) -> Option<Vec3> {
         return None;
     }
     // Normalised first: the stretch of a huge `wo` overflows (inf / inf = NaN; fuzzing). A `wo`
-    // whose normalised `z` underflows to 0 is at the horizon: no `m` with `m_z > 0` can be
-    // certified for it.
+    // whose stretched `z` squared underflows is at the horizon to within the float range: the
+    // samples and the fallback lobe centre would underflow to `m_z = 0` (fuzzing).
     let wi = normalize_scaled(warp.stretch(normalize_scaled(wo)));
-    positive(wi.z).then_some(wi)
+    (wi.z * wi.z >= F::MIN_POSITIVE).then_some(wi)
 }
 
 /// Unit-roughness GGX visible normal by spherical caps (Dupuy and Benyoub 2023, listing 3):

@@ -302,7 +302,7 @@ mod findings {
         use f64::NdfSampling;
         // f64: stretching a huge wo overflowed (NaN sample).
         let ggx = f64::Ggx::new(f64::Isotropic::new(2.0).unwrap());
-        let wo = DVec3::new(f64::MAX, f64::MAX, 3.4e38);
+        let wo = DVec3::new(f64::MAX, f64::MAX, 1e300);
         let m = ggx
             .sample_visible_normal(wo, DVec2::new(-1e30, 1.0))
             .unwrap();
@@ -313,6 +313,32 @@ mod findings {
         let u = DVec2::new(f64::MAX, f64::NEG_INFINITY);
         if let Some(m) = beckmann.sample_visible_normal(wo, u) {
             assert!(m.z > 0.0, "{m}");
+        }
+    }
+
+    #[test]
+    fn det_clamp_above_the_range_is_refused() {
+        // tau = F::MAX was accepted: sqrt_det 1.3e154 against entries 1e-16, and the samplers
+        // of that lobe returned NaN (GGX sample_normal) or normals on the horizon.
+        let r = f64::RoughnessMatrix::new_with_det_clamp(1e-16, 0.0, 1.0, f64::MAX);
+        assert_eq!(r.err(), Some(filtered_ndf::RoughnessError::OutOfRange));
+        let r = f32::RoughnessMatrix::new_with_det_clamp(1e-8, 0.0, 1e-8, 1e9);
+        assert_eq!(r.err(), Some(filtered_ndf::RoughnessError::OutOfRange));
+    }
+
+    #[test]
+    fn beckmann_visible_normal_of_a_subnormal_grazing_view() {
+        // f64: wo_z = 5e-324: the sample and the fallback lobe centre had m_z = 0.
+        use f64::NdfSampling;
+        let r = f64::RoughnessMatrix::new_with_det_clamp(1e-16, 0.0, 4.0, 4e-16).unwrap();
+        let b = f64::Beckmann::new(r);
+        for wo in [
+            DVec3::new(0.5836255802574746, 0.8120228950399897, 5e-324),
+            DVec3::new(-1.9929449743934577e-5, -0.9999999998014086, 5e-324),
+        ] {
+            if let Some(m) = b.sample_visible_normal(wo, DVec2::new(2.0, 5e-324)) {
+                assert!(m.z > 0.0, "{m}");
+            }
         }
     }
 
@@ -342,6 +368,24 @@ mod findings {
             "{:?}",
             q.frame()
         );
+    }
+
+    #[test]
+    fn quadric_frame_of_tiny_directions() {
+        // f32: |N|^2 of N = (-8.7e-23, 0, 0) is subnormal and glam's normalisation returned
+        // a vector of length 1.04.
+        let q = f32::LocalQuadric::new(
+            Vec3::ZERO,
+            Vec3::new(-8.7332614e-23, 0.0, 0.0),
+            Vec3::new(1e-30, -8.7332614e-23, 0.0),
+            1.0,
+            1.0,
+        )
+        .unwrap();
+        let (_, n, e1, e2) = q.frame();
+        for v in [n, e1, e2] {
+            assert!((v.length() - 1.0).abs() < 1e-6, "{:?}", q.frame());
+        }
     }
 
     #[test]

@@ -34,8 +34,11 @@ macro_rules! sampling_prec {
             let v = ndf.sample_visible_normal(wo, u);
             if !(wo.is_finite() && wo.z > 0.0) {
                 assert!(v.is_none(), "{what}: sample_visible_normal({wo:?}) = {v:?}");
-            } else if v.is_some() || wo.z / wo.abs().max_element() > 1e-30 {
-                // (`None` is documented where `wo_z / |wo|` underflows.)
+            } else if v.is_some()
+                || wo.z / wo.abs().max_element() > 1e5 * crate::math::sqrt(F::MIN_POSITIVE)
+            {
+                // (`None` is documented for `wo_z / |wo| < sqrt(MIN_POSITIVE)` after the
+                // stretch, which changes it by at most `ALPHA_MAX = 1e4`.)
                 let m = v.unwrap_or_else(|| panic!("{what}: no visible normal for {wo:?}"));
                 // `wo.m > 0` as documented, or for the direction of `wo` (its scale is free: a
                 // tiny `wo` underflows the product, a huge one its normalised `z`).
@@ -69,8 +72,10 @@ macro_rules! sampling_prec {
             }
         }
         with_rough!($d, rough, r => {
-            check(&Ggx::new(r), u, wo, mm, wi, "ggx");
-            check(&Beckmann::new(r), u, wo, mm, wi, "beckmann");
+            use crate::$prec::Roughness;
+            let what = format!("{:?} tau-clamped sqrt_det {:?}", r.to_matrix().entries(), r.sqrt_det());
+            check(&Ggx::new(r), u, wo, mm, wi, &format!("ggx {what}"));
+            check(&Beckmann::new(r), u, wo, mm, wi, &format!("beckmann {what}"));
         });
 
         // The Beckmann visible-slope quantile: finite, in [-X, X] (X = 9 / 26).

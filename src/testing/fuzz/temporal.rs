@@ -138,7 +138,7 @@ macro_rules! temporal_prec {
             let hr = implicit::hit_rates(&ls, &ray, sd);
             rates_ok(&hr, "hit_rates (quadric)");
             // Moderate input: the quadric's own values are finite.
-            let small = |v: Vec3| v.abs().max_element() <= 1e6;
+            let small = |v: Vec3| v.is_finite() && v.abs().max_element() <= 1e6;
             if small(x) && small(qp) && k1.abs() <= 1e6 && k2.abs() <= 1e6 {
                 assert!(q.value(x).is_finite() && v_fin(q.gradient(x)), "quadric at {x:?}");
                 assert!(q.hessian().is_finite(), "quadric hessian");
