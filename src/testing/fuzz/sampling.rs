@@ -101,8 +101,10 @@ macro_rules! sampling_prec {
 /// roughness form (valid roughness from clamped or checked constructors, arbitrary `u`, `wo`,
 /// `m`, `wi`). Panics on a violation of: `sample_normal` a unit vector with `m_z > 0` and a
 /// finite `normal_pdf`; `normal_pdf` `>= 0` (finite for unit `m`, `0` below the horizon or
-/// for non-finite `m`); `sample_visible_normal` `None` exactly for `wo_z <= 0` or non-finite
-/// `wo`, else a unit `m` with `m_z > 0` and `wo.m > 0` (for the direction of `wo`) whose pdfs
+/// for non-finite `m`); `sample_visible_normal` `None` for `wo_z <= 0` or non-finite `wo`,
+/// `Some` for other views unless documented (`wo_z / |wo| < 1e-30`, or a determinant clamp
+/// `tau > 2 a11 a22`), and every `Some(m)` a unit `m` with `m_z > 0` and `wo.m > 0` (for `wo`
+/// or its direction) whose pdfs
 /// are finite and `>= 0`; `visible_normal_pdf`, `reflection_pdf`,
 /// `reflection_pdf_from_normal` finite and `>= 0` for any input, `0` for a `wo` at or below the
 /// horizon or non-finite, and `visible_normal_pdf = 0` for `wo.m <= 0`;
