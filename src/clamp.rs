@@ -196,6 +196,6 @@ fn scaled_to(fp: Footprint, e: F) -> Footprint {
     if !(cur > 0.0 && cur.is_finite()) {
         return Footprint::ZERO;
     }
-    let k = e / cur;
-    Footprint::from_slope_derivatives(fp.dh_u * k, fp.dh_v * k)
+    // Divide first: `e / cur` alone overflows for `e` near `F::MAX`, and `0 * inf` is NaN.
+    Footprint::from_slope_derivatives(fp.dh_u / cur * e, fp.dh_v / cur * e)
 }

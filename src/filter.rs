@@ -49,8 +49,9 @@ pub fn gaussian<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatr
 
 /// [`gaussian`] with an explicit determinant clamp `tau` (`0` disables it; NaN, infinite or
 /// negative `tau` is treated as `0`). The kernel is [`Covariance::sanitized`] first. Even
-/// with `tau = 0`, a filtered determinant that rounds to `<= 0` (an extremely elongated
-/// kernel) is replaced by `det(A)`, its exact lower bound, so the result is always valid.
+/// with `tau = 0`, a filtered determinant that rounds to `<= det(A)` (an extremely elongated
+/// kernel, or underflow) is replaced by `det(A)`, its exact lower bound, so the result is
+/// always valid.
 #[inline]
 pub fn gaussian_with_tau<R: Roughness>(
     roughness: R,
@@ -87,7 +88,9 @@ pub fn gaussian_with_tau<R: Roughness>(
 #[inline]
 fn floor_if_lost(a11: F, a12: F, a22: F, k: Covariance, floor: F) -> F {
     let (b11, b12, b22) = (a11 + 2.0 * k.s11, a12 + 2.0 * k.s12, a22 + 2.0 * k.s22);
-    if b11 * b22 - b12 * b12 > 0.0 {
+    // `> floor`, not `> 0`: a determinant that rounds below det(A) (or underflows, for tiny
+    // entries accepted with a large `tau`; fuzzing) is lost too.
+    if b11 * b22 - b12 * b12 > floor {
         0.0
     } else {
         floor
@@ -193,14 +196,25 @@ pub fn projected<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMat
     );
     let det_p = (p.s11 * p.s22 - p.s12 * p.s12).max(0.0);
     let q = p + k * 2.0;
-    let d = (q.s11 * q.s22 - q.s12 * q.s12).max(det_p);
+    // det(P + 2K) = det P + 2 tr(adj(P) K) + 4 det K, every term >= 0 for P, K PSD: unlike
+    // q11 q22 - q12^2 it does not cancel when a huge, nearly rank-one K meets a tiny P (which
+    // sharpened the minor axis by 60x in f32 for alpha = 1e-8, found by fuzzing).
+    let det_k = (k.s11 * k.s22 - k.s12 * k.s12).max(0.0);
+    let cross = (p.s11 * k.s22 + p.s22 * k.s11 - 2.0 * p.s12 * k.s12).max(0.0);
+    let d = (det_p + 2.0 * cross + 4.0 * det_k).max(det_p);
     let den = 1.0 + q.s11 + q.s22 + d;
     // Each part is finite: q's entries are bounded by P (<= 1 / (1 - 0.99)^2 scale) plus the
     // sanitized kernel (<= ALPHA_MAX^2).
     let b11 = (q.s11 + d) / den;
     let b12 = q.s12 / den;
     let b22 = (q.s22 + d) / den;
-    let (r11, r12, r22) = (b11 + excess.s11, b12 + excess.s12, b22 + excess.s22);
+    // Never below A on the diagonal (exact, by monotonicity): rounding in the excess split
+    // otherwise takes a tiny (e.g. subnormal, accepted with a large `tau`) `a11` to `<= 0`.
+    let (r11, r12, r22) = (
+        (b11 + excess.s11).max(a11),
+        b12 + excess.s12,
+        (b22 + excess.s22).max(a22),
+    );
     let floor = if r11 * r22 - r12 * r12 > 0.0 {
         tau
     } else {

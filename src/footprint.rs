@@ -69,7 +69,15 @@ impl Covariance {
         let rad = m::hypot(0.5 * (self.s11 - self.s22), self.s12);
         let max = (mean + rad).max(0.0);
         let min = if max > 0.0 {
-            (self.det() / max).max(0.0)
+            let det = self.det();
+            // `det` overflows (to inf or inf - inf = NaN) for huge finite entries and loses its
+            // bits for tiny (subnormal) products: divide first then.
+            let min = if det.is_finite() && det.abs() >= F::MIN_POSITIVE {
+                det / max
+            } else {
+                (self.s11 / max) * self.s22 - (self.s12 / max) * self.s12
+            };
+            min.max(0.0)
         } else {
             0.0
         };
@@ -83,15 +91,20 @@ impl Covariance {
     /// Computed as `max P_max + lambda_min P_min` with the spectral projectors
     /// `P_max = (Sigma - lambda_min I) / (lambda_max - lambda_min)`, `P_min = I - P_max` when
     /// only `lambda_max` exceeds `max` (no eigenvector is formed, every term is non-negative),
-    /// and `max I` when both do. A matrix with entries above 1 is first scaled to unit size so
-    /// nothing overflows. A negative or NaN `max` yields [`Covariance::ZERO`], a non-finite
+    /// and `max I` when both do. The matrix is first scaled to unit size (largest entry 1) so
+    /// nothing overflows or underflows. A negative or NaN `max` yields [`Covariance::ZERO`], a non-finite
     /// input [`Covariance::ZERO`] (use [`Covariance::sanitized`] for the full contract).
     #[inline]
     pub fn clamp_eigenvalues(&self, max: F) -> Self {
-        // Fast path: a PSD kernel whose trace (lambda_min + lambda_max) is within the bound
-        // (`max` is then not NaN and >= 0). Inlined; the rest is out of line, by value (a
-        // by-reference call from inlined code measured a store-forwarding stall).
-        if self.s11 >= 0.0 && self.s22 >= 0.0 && self.s11 + self.s22 <= max {
+        // Fast path: a finite PSD kernel whose trace (lambda_min + lambda_max) is within the
+        // bound (`max` is then not NaN and >= 0). Inlined; the rest is out of line, by value
+        // (a by-reference call from inlined code measured a store-forwarding stall).
+        if self.s11 >= 0.0
+            && self.s22 >= 0.0
+            && self.s11 + self.s22 <= max
+            && (self.s11 + self.s22).is_finite()
+            && self.s12.is_finite()
+        {
             return *self;
         }
         Self::clamp_eigenvalues_slow(self.s11, self.s12, self.s22, max)
@@ -101,25 +114,30 @@ impl Covariance {
     #[cold]
     #[inline(never)]
     fn clamp_eigenvalues_slow(s11: F, s12: F, s22: F, max: F) -> Self {
-        let this = Self::new(s11, s12, s22);
-        let this = &this;
-        if max.is_nan() || max < 0.0 {
+        // Non-finite entries are caught here: `F::max` below would pass a NaN through.
+        let finite = s11.is_finite() && s12.is_finite() && s22.is_finite();
+        if max.is_nan() || max < 0.0 || !finite {
             return Self::ZERO;
         }
-        let scale = this.s11.abs().max(this.s22.abs()).max(this.s12.abs());
-        if scale.is_nan() || scale <= 0.0 || !scale.is_finite() {
-            return if scale.is_finite() { *this } else { Self::ZERO };
+        let this = Self::new(s11, s12, s22);
+        let scale = s11.abs().max(s22.abs()).max(s12.abs());
+        if scale <= 0.0 {
+            return this;
         }
-        // Work on Sigma / scale (entries <= 1) against max / scale.
-        let k = if scale > 1.0 { scale } else { 1.0 };
-        let s = *this * (1.0 / k);
-        let c = max / k;
+        // Work on Sigma / scale (largest entry 1). Tiny (subnormal) entries are scaled up too:
+        // `1 / (2 r)` below would overflow to inf (0 * inf = NaN); dividing (not multiplying by
+        // `1 / k`, which overflows for a subnormal `k`).
+        let k = scale;
+        let s = Self::new(s11 / k, s12 / k, s22 / k);
         let (lmin, lmax) = s.eigenvalues();
-        if lmax <= c {
-            return *this;
+        // Compared and rebuilt in the caller's units (`lambda * k` against `max`): `max / k`
+        // is subnormal when `max << scale` and carries only a few bits (fuzzing found 40 %
+        // overshoots in f32).
+        if lmax * k <= max {
+            return this;
         }
-        if lmin >= c {
-            return Self::new(c, 0.0, c) * k;
+        if lmin * k >= max {
+            return Self::new(max, 0.0, max);
         }
         // lmin < c < lmax, so lmax - lmin > 0.
         let d = 0.5 * (s.s11 - s.s22);
@@ -127,15 +145,13 @@ impl Covariance {
         let p = r + d.abs();
         let q = if p > 0.0 { s.s12 * s.s12 / p } else { 0.0 };
         let (e11, e22) = if d >= 0.0 { (p, q) } else { (q, p) };
-        // Sigma' = c P_max + lambda_min P_min with the spectral projectors
+        // Sigma' = max P_max + lambda_min P_min with the (scale-free) spectral projectors
         // P_max = [[e11, s12], [s12, e22]] / 2r and P_min = [[e22, -s12], [-s12, e11]] / 2r:
         // sums of non-negative terms, no cancellation.
         let inv = 1.0 / (2.0 * r);
-        Self::new(
-            (c * e11 + lmin * e22) * inv,
-            (c - lmin) * s.s12 * inv,
-            (c * e22 + lmin * e11) * inv,
-        ) * k
+        let (p11, p12, p22) = (e11 * inv, s.s12 * inv, e22 * inv);
+        let lm = lmin * k;
+        Self::new(max * p11 + lm * p22, (max - lm) * p12, max * p22 + lm * p11)
     }
 
     /// A finite, symmetric positive semi-definite covariance whose eigenvalues are at most
@@ -154,9 +170,15 @@ impl Covariance {
     pub fn sanitized(&self) -> Self {
         let (a, b, c) = (self.s11, self.s12, self.s22);
         // Fast path (every footprint covariance): finite, positive semi-definite and with
-        // trace <= KERNEL_MAX, which bounds both eigenvalues. NaN fails every comparison.
-        // Inlined into the filtering kernels; the rest is out of line.
-        if a >= 0.0 && c >= 0.0 && a + c <= KERNEL_MAX && b * b <= a * c {
+        // trace <= KERNEL_MAX, which bounds both eigenvalues. NaN fails every comparison. If
+        // `a c` is 0 (or underflows), `b * b <= a * c` may hold by underflow for a nonzero `b`:
+        // the slow path decides. Inlined into the filtering kernels; the rest is out of line.
+        if a >= 0.0
+            && c >= 0.0
+            && a + c <= KERNEL_MAX
+            && b * b <= a * c
+            && (a * c > 0.0 || b == 0.0)
+        {
             return *self;
         }
         Self::sanitized_slow(self.s11, self.s12, self.s22)
@@ -247,11 +269,15 @@ impl Footprint {
     /// [h_x h_y, 1 - h_x^2]]` (TK19 supplement eq. 6), i.e. the first-order change of the slope
     /// `s = -p / sqrt(1 - |p|^2)`. `h_z` is clamped to `>= 1e-6` (the footprint of a grazing
     /// half vector is then huge and finite; clamp it with
-    /// [`super::clamp::ClampRules::footprint`]). A non-finite `h` gives [`Footprint::ZERO`].
+    /// [`super::clamp::ClampRules::footprint`]). `h` is normalised first (a huge non-unit `h`
+    /// would overflow `1 - h_y^2` to NaN); a zero or non-finite `h` gives [`Footprint::ZERO`].
     pub fn from_projected_derivatives_in_slope(h: Vec3, dp_u: Vec2, dp_v: Vec2) -> Self {
-        if !h.is_finite() {
+        let big = h.abs().max_element();
+        if !h.is_finite() || big <= 0.0 {
             return Self::ZERO;
         }
+        let h = h / big;
+        let h = h / m::sqrt(h.length_squared());
         let hz = h.z.max(1e-6);
         let k = -1.0 / (hz * hz * hz);
         let j = |d: Vec2| {
@@ -332,7 +358,8 @@ impl Footprint {
 
     /// The largest distance from the centre to a vertex of the one-pixel parallelogram,
     /// `max(|dh_u + dh_v|, |dh_u - dh_v|) / 2`: the extent clamped by KHPL16 section 5.2.
-    /// It bounds both half-extents of [`Footprint::bounding_rect`].
+    /// It bounds both half-extents of [`Footprint::bounding_rect`] (unless the squares in the
+    /// lengths underflow: vectors below about `1e-19` in `f32`, `1e-154` in `f64`, give `0`).
     #[inline]
     pub fn max_extent(&self) -> F {
         0.5 * (self.dh_u + self.dh_v)

@@ -157,10 +157,12 @@ pub fn half_vector(x: Vec3, eye: Endpoint, light: Endpoint, frame: &ShadingFrame
     match (eye.direction_from(x), light.direction_from(x)) {
         (Some((o, _)), Some((i, _))) => {
             let h = (i + o).normalize_or_zero();
-            if h == Vec3::ZERO {
+            let local = frame.to_local(h);
+            // A non-finite frame is degenerate input too (module docs): `+z`, not NaN.
+            if h == Vec3::ZERO || !local.is_finite() {
                 Vec3::Z
             } else {
-                frame.to_local(h)
+                local
             }
         }
         _ => Vec3::Z,
@@ -258,11 +260,18 @@ pub fn footprint(jac: Mat2, frame: &ShadingFrame, dx_u: Vec3, dx_v: Vec3) -> Foo
 /// domain), `dp = J(par->perp) d sigma` ([`jacobian::slope_to_projected`] at the local unit
 /// half vector `h`, e.g. from [`half_vector`]). Returned in a [`Footprint`] whose vectors are
 /// projected-disk (not slope) changes per pixel, the quantities TK19 feeds to its covariance
-/// `sigma^2 [dp_u; dp_v]^T [dp_u; dp_v]`.
+/// `sigma^2 [dp_u; dp_v]^T [dp_u; dp_v]`. A non-finite footprint (or result) gives
+/// [`Footprint::ZERO`].
 #[inline]
 pub fn footprint_projected(slope_footprint: Footprint, h: Vec3) -> Footprint {
     let j = jacobian::slope_to_projected(h);
-    Footprint::from_slope_derivatives(j * slope_footprint.dh_u, j * slope_footprint.dh_v)
+    let f = Footprint::from_slope_derivatives(j * slope_footprint.dh_u, j * slope_footprint.dh_v);
+    // Non-finite input (or overflow): the zero footprint of the module docs, not NaN.
+    if f.dh_u.is_finite() && f.dh_v.is_finite() {
+        f
+    } else {
+        Footprint::ZERO
+    }
 }
 
 /// A pinhole camera ray and its derivatives with respect to the image coordinates `(u, v)`

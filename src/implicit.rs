@@ -199,7 +199,10 @@ impl LevelSetSample {
         if !(n > 0.0 && n.is_finite()) {
             return Vec3::ZERO;
         }
-        finite_or_zero(self.grad / n)
+        // From the gradient scaled to unit size: `grad / n` is not unit for a subnormal
+        // gradient (`n` rounds to a few significant bits there; found by fuzzing).
+        let u = self.grad / self.grad.abs().max_element();
+        finite_or_zero(u / m::sqrt(u.length_squared()))
     }
 
     /// The partial time derivative of the normal at fixed `x` (Appendix A, eq. 27):

@@ -78,9 +78,11 @@ pub enum Bandwidth {
 
 impl Bandwidth {
     /// The kernel's squared roughness before the clamp, from a slope-domain covariance
-    /// (slope^2): `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`. A covariance with a
-    /// non-finite entry gives NaN (which [`filtered_alpha`] treats as the maximal, clamped
-    /// kernel); negative eigenvalues of an indefinite covariance are clamped to 0.
+    /// (slope^2): `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`. For `Max` a covariance with a
+    /// non-finite entry gives NaN and a negative eigenvalue is clamped to 0; `Trace` and
+    /// `Average` read only the diagonal (NaN for a NaN variance, `+inf` for an infinite one,
+    /// negative for negative variances). [`filtered_alpha`] treats NaN and `+inf` as the
+    /// maximal, clamped kernel and a negative kernel as 0.
     #[inline]
     pub fn kernel(self, sigma: &Covariance) -> F {
         match self {

@@ -50,7 +50,10 @@
 //! `h` is normalised internally (any positive multiple of a direction gives the same result).
 //! Below the horizon (`h_z < HZ_MIN`, including `h = -n`, which gets `phi = 0`) the horizon
 //! clamp above applies. A zero or non-finite `h` is treated as the pole `h = n`. No function
-//! here panics or returns NaN.
+//! here panics; the matrices and determinants are finite for every input. The products with a
+//! vector (`spherical_components`, `spherical_to_slope`, `spherical_to_projected`) are NaN for
+//! a NaN vector and, like any matrix product, may overflow (to `inf`, or NaN as `inf - inf`)
+//! for finite vectors beyond about `1e26` (`f32`, at the horizon clamp).
 
 use super::{F, Mat2, Vec2, Vec3};
 use crate::math as m;
@@ -83,9 +86,14 @@ fn polar(h: Vec3) -> Polar {
     }
     let h = h / big;
     let h = h * (1.0 / m::sqrt(h.length_squared()));
-    let r = m::hypot(h.x, h.y);
-    let (cos_phi, sin_phi) = if r > 0.0 {
-        (h.x / r, h.y / r)
+    // The azimuth from `h_xy` scaled to unit size: `h_x / hypot(h_x, h_y)` is not a unit
+    // pair for subnormal components (fuzzing).
+    let q = Vec2::new(h.x, h.y);
+    let qs = q.abs().max_element();
+    let (cos_phi, sin_phi) = if qs > 0.0 {
+        let q = q / qs;
+        let r = m::hypot(q.x, q.y);
+        (q.x / r, q.y / r)
     } else {
         (1.0, 0.0)
     };

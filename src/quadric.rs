@@ -97,17 +97,29 @@ impl LocalQuadric {
     /// curvatures. `N` is normalised, `e1` is made orthogonal to `N` (Gram-Schmidt) and
     /// normalised, and `e2 = N x e1`.
     ///
-    /// Returns `None` if an input is non-finite, `N` is zero, or `e1` is within `1e-3` rad of
-    /// parallel to `N`.
+    /// Returns `None` if an input is non-finite, `N` or `e1` is zero, or `e1` is within `1e-3`
+    /// rad of parallel to `N`. Only directions matter: both are scaled to unit size first.
     pub fn new(p: Vec3, n: Vec3, e1: Vec3, k1: F, k2: F) -> Option<Self> {
         if !(p.is_finite() && n.is_finite() && e1.is_finite() && k1.is_finite() && k2.is_finite()) {
             return None;
         }
-        let n = n.try_normalize()?;
+        // Scaled by the largest component first: glam's normalisation of a tiny (or huge)
+        // vector squares it out of the normal range and returns a non-unit vector or `None`
+        // (found by fuzzing).
+        let scaled = |v: Vec3| {
+            let s = v.abs().max_element();
+            (s > 0.0).then(|| v / s)
+        };
+        let n = scaled(n)?.try_normalize()?;
+        let e1 = scaled(e1)?;
         let t = e1 - n * n.dot(e1);
         if t.length_squared() <= 1e-6 * e1.length_squared() {
             return None;
         }
+        // A second Gram-Schmidt pass: one pass leaves `N . e1 ~ eps / sin(angle)` (1e-5 in
+        // f32 near the 1e-3 rad limit; found by fuzzing), two leave rounding ("twice is
+        // enough").
+        let t = t - n * n.dot(t);
         let e1 = t.try_normalize()?;
         let e2 = n.cross(e1);
         Some(Self {

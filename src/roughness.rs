@@ -304,8 +304,8 @@ impl RoughnessMatrix {
     /// With `tau > 0` a matrix whose computed determinant is non-positive only by rounding
     /// (`det A >= -8 eps a11 a22`) is accepted and evaluated with `max(det A, tau)`; a clearly
     /// indefinite one is still refused. `tau` itself must be finite and `>= 0` (else
-    /// `NotFinite` / `NotPositive`). The range check applies to the largest eigenvalue and to
-    /// `max(det A, tau) / l_max`.
+    /// `NotFinite` / `NotPositive`). The range check `[ALPHA_MIN^2, ALPHA_MAX^2]` applies to the
+    /// largest eigenvalue and to `max(det A, tau) / l_max` (so `tau <= ALPHA_MAX^2 l_max`).
     pub fn new_with_det_clamp(a11: F, a12: F, a22: F, tau: F) -> Result<Self, RoughnessError> {
         if !(a11.is_finite() && a12.is_finite() && a22.is_finite() && tau.is_finite()) {
             return Err(RoughnessError::NotFinite);
@@ -332,7 +332,9 @@ impl RoughnessMatrix {
         let half_diff = 0.5 * (a11 - a22);
         let lambda_max = 0.5 * (a11 + a22) + m::sqrt(half_diff * half_diff + a12 * a12);
         let lambda_min = det.max(tau) / lambda_max;
-        if lambda_max > hi || lambda_min < lo * (1.0 - 16.0 * F::EPSILON) {
+        // Both bounds on `max(det A, tau) / l_max`: a huge `tau` (up to `F::MAX`) was accepted
+        // and made `sqrt_det` ~ 1e154 against entries ~ 1e-16 (found by fuzzing).
+        if lambda_max > hi || !(lo * (1.0 - 16.0 * F::EPSILON)..=hi).contains(&lambda_min) {
             return Err(RoughnessError::OutOfRange);
         }
         Ok(Self::from_entries_clamped(a11, a12, a22, tau))

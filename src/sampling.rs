@@ -31,7 +31,12 @@
 //!
 //! ## Out-of-domain input
 //! - `wo` at or below the horizon (`wo_z <= 0`), zero or non-finite: no visible normal exists;
-//!   the samplers return `None` and the pdfs `0`. A two-sided material flips `wo` (and the
+//!   the samplers return `None` and the pdfs `0`. The samplers also return `None` where
+//!   rounding leaves no certifiable sample: the `m_z` of every candidate (and of the lobe
+//!   centre) underflows to `0`. That needs a view within the float range of the stretched
+//!   lobe's horizon: `wo_z / |wo|` below about `1e-300` (`f64`) / `1e-37` (`f32`) for
+//!   roughness in the checked range, or a matrix whose determinant clamp `tau` far exceeds
+//!   `a11 a22` (its sampling stretch is then far beyond the lobe's entries). A two-sided material flips `wo` (and the
 //!   sampled `m`) itself.
 //! - `u` outside `[0, 1)`: each component is clamped to `[0, 1 - eps/2]`, NaN to `0`.
 //! - `wo` need not be normalised (every formula is scale-invariant in `wo`); `m` must be a
@@ -88,8 +93,9 @@ pub trait NdfSampling: Ndf {
     }
 
     /// Samples a visible micronormal `m` with density `D_wo(m)` per steradian from `u` in
-    /// `[0, 1)^2` (Heitz 2014 eq. 16). `None` if `wo_z <= 0` or `wo` is not finite; otherwise
-    /// `m` is a unit vector with `m_z > 0` and `wo.m > 0`.
+    /// `[0, 1)^2` (Heitz 2014 eq. 16). `None` if `wo_z <= 0` or `wo` is not finite (or the
+    /// view is grazing to within the float range, module docs); otherwise `m` is a unit vector
+    /// with `m_z > 0` and `wo.m > 0`.
     fn sample_visible_normal(&self, wo: Vec3, u: Vec2) -> Option<Vec3>;
 
     /// The visible-normal density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian
@@ -218,15 +224,19 @@ impl Warp {
 
     /// The checked final step of a visible-normal sampler: maps the unit-roughness normal
     /// `n` back and falls back to the lobe centre `unstretch(wi)` (for which
-    /// `wo.m ~ wo_xy^T A wo_xy + wo_z^2 > 0`) if rounding broke `m_z > 0` or `wo.m > 0`.
+    /// `wo.m ~ wo_xy^T A wo_xy + wo_z^2 > 0`) if rounding broke `m_z > 0` or `wo.m > 0`;
+    /// `None` if rounding breaks the centre too (its `m_z` underflows to `0`: found by
+    /// fuzzing for views within the float range of the stretched lobe's horizon).
     #[inline]
-    fn visible_result(&self, wo: Vec3, wi: Vec3, n: Vec3) -> Vec3 {
+    fn visible_result(&self, wo: Vec3, wi: Vec3, n: Vec3) -> Option<Vec3> {
         let mm = self.unstretch(n);
         if mm.is_finite() && mm.z > 0.0 && wo.dot(mm) > 0.0 {
-            mm
-        } else {
-            self.unstretch(wi)
+            return Some(mm);
         }
+        let c = self.unstretch(wi);
+        // `wo.m > 0` holds analytically; the scaled `wo` avoids under- and overflow of the dot.
+        let ok = c.is_finite() && c.z > 0.0 && (wo.dot(c) > 0.0 || normalize_scaled(wo).dot(c) > 0.0);
+        ok.then_some(c)
     }
 }
 
@@ -236,7 +246,9 @@ fn standard_view(warp: &Warp, wo: Vec3) -> Option<Vec3> {
     if !(wo.is_finite() && positive(wo.z)) {
         return None;
     }
-    Some(normalize_scaled(warp.stretch(wo)))
+    // Normalised first: the stretch of a huge `wo` overflows (inf / inf = NaN; fuzzing).
+    let wi = normalize_scaled(warp.stretch(normalize_scaled(wo)));
+    positive(wi.z).then_some(wi)
 }
 
 /// Unit-roughness GGX visible normal by spherical caps (Dupuy and Benyoub 2023, listing 3):
@@ -269,7 +281,7 @@ impl<R: Roughness> NdfSampling for Ggx<R> {
         let wi = standard_view(&warp, wo)?;
         let u = Vec2::new(clamp_unit(u.x), clamp_unit(u.y));
         let n = ggx_standard_visible(wi, u);
-        Some(warp.visible_result(wo, wi, n))
+        warp.visible_result(wo, wi, n)
     }
 }
 
@@ -305,6 +317,6 @@ impl<R: Roughness> NdfSampling for Beckmann<R> {
         let y = invert_visible_slope_cdf(1.0, 0.0, clamp_unit(u.y).to_f64());
         let (tx, ty) = (cphi * x - sphi * y, sphi * x + cphi * y);
         let n = Vec3::new(F::from_f64(-tx), F::from_f64(-ty), 1.0);
-        Some(warp.visible_result(wo, wi, n))
+        warp.visible_result(wo, wi, n)
     }
 }

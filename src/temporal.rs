@@ -186,11 +186,13 @@ impl TemporalRoughness {
         let (big, small) = (clamp_alpha(self.alpha), clamp_alpha(alpha_minor));
         let (b2, s2) = (big * big, small * small);
         let a = self.axis;
-        let d = b2 - s2;
+        // `1 - a a^T = a_perp a_perp^T` for the unit axis: the diagonal as two non-negative
+        // terms (`s2 + (b2 - s2) a_x^2` loses `b2` entirely when `alpha_minor >> alpha_t`,
+        // which gave a zero diagonal entry; found by fuzzing).
         RoughnessMatrix::from_entries_clamped(
-            s2 + d * a.x * a.x,
-            d * a.x * a.y,
-            s2 + d * a.y * a.y,
+            b2 * a.x * a.x + s2 * a.y * a.y,
+            (b2 - s2) * a.x * a.y,
+            b2 * a.y * a.y + s2 * a.x * a.x,
             b2 * s2,
         )
     }

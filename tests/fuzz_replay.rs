@@ -1,9 +1,12 @@
-//! Fixed-seed replay of the `ndf` fuzz target's contract (`fuzz/fuzz_targets/ndf.rs`) without
-//! a fuzzer: the same decoder and checks (`filtered_ndf::testing::fuzz::check_ndf`) over
-//! seeded random byte strings, every special value in every parameter slot, and the
+//! Fixed-seed replay of every fuzz target's contract (`fuzz/fuzz_targets/*.rs`) without a
+//! fuzzer: the same decoders and checks (`filtered_ndf::testing::fuzz::check_*`) over seeded
+//! random byte strings, every special value in every parameter slot (NDF family), and the
 //! regression inputs of every crash the fuzzer found.
 
-use filtered_ndf::testing::fuzz::check_ndf;
+use filtered_ndf::testing::fuzz::{
+    check_filter, check_isotropic, check_jacobian, check_ndf, check_rect, check_sampling,
+    check_temporal,
+};
 
 struct Rng(u64);
 impl Rng {
@@ -16,14 +19,49 @@ impl Rng {
     }
 }
 
+/// `n` seeded random byte strings of length `0..max_len` through `check`.
+fn replay(seed: u64, n: usize, max_len: u64, check: fn(&[u8])) {
+    let mut rng = Rng(seed);
+    for _ in 0..n {
+        let len = (rng.next() % max_len) as usize;
+        let bytes: Vec<u8> = (0..len).map(|_| rng.next() as u8).collect();
+        check(&bytes);
+    }
+}
+
 #[test]
 fn seeded_random_bytes() {
-    let mut rng = Rng(0xF022_0001);
-    for _ in 0..4000 {
-        let len = (rng.next() % 96) as usize;
-        let bytes: Vec<u8> = (0..len).map(|_| rng.next() as u8).collect();
-        check_ndf(&bytes);
-    }
+    replay(0xF022_0001, 4000, 96, check_ndf);
+}
+
+#[test]
+fn seeded_random_bytes_filter() {
+    replay(0xF022_0002, 3000, 256, check_filter);
+}
+
+#[test]
+fn seeded_random_bytes_rect() {
+    replay(0xF022_0003, 3000, 96, check_rect);
+}
+
+#[test]
+fn seeded_random_bytes_isotropic() {
+    replay(0xF022_0004, 3000, 128, check_isotropic);
+}
+
+#[test]
+fn seeded_random_bytes_jacobian() {
+    replay(0xF022_0005, 3000, 256, check_jacobian);
+}
+
+#[test]
+fn seeded_random_bytes_sampling() {
+    replay(0xF022_0006, 3000, 128, check_sampling);
+}
+
+#[test]
+fn seeded_random_bytes_temporal() {
+    replay(0xF022_0007, 3000, 256, check_temporal);
 }
 
 /// Every special-value tag (0..=14) in each of the first parameter and argument slots, for
@@ -66,5 +104,295 @@ fn regressions() {
     ];
     for c in cases {
         check_ndf(c);
+    }
+}
+
+/// Every crash input the fuzzer found (`tests/data/fuzz_regressions/<target>/`, copied from
+/// `fuzz/artifacts/<target>/`), replayed through its target's check.
+#[test]
+fn regression_corpus() {
+    type Check = fn(&[u8]);
+    let targets: [(&str, Check); 7] = [
+        ("ndf", check_ndf),
+        ("filter", check_filter),
+        ("rect", check_rect),
+        ("isotropic", check_isotropic),
+        ("jacobian", check_jacobian),
+        ("sampling", check_sampling),
+        ("temporal", check_temporal),
+    ];
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/fuzz_regressions");
+    for (name, check) in targets {
+        let Ok(dir) = std::fs::read_dir(root.join(name)) else {
+            continue;
+        };
+        for entry in dir {
+            let path = entry.unwrap().path();
+            let bytes = std::fs::read(&path).unwrap();
+            eprintln!("{}", path.display());
+            check(&bytes);
+        }
+    }
+}
+
+/// The findings of the replay and the fuzzers, one direct call each (the minimal input the
+/// decoder produced), so that each fix is pinned independently of the decoders' byte layout.
+mod findings {
+    use filtered_ndf::{f32, f64};
+    use glam::{DVec2, DVec3, Vec2, Vec3};
+
+    #[test]
+    fn clamp_eigenvalues_nan_entry_is_zero() {
+        // The fast path passed a NaN off-diagonal through.
+        let c = f64::Covariance::new(0.1, f64::NAN, 0.1).clamp_eigenvalues(1.0);
+        assert_eq!(c, f64::Covariance::ZERO);
+        let c = f64::Covariance::new(f64::INFINITY, 0.0, 0.0).clamp_eigenvalues(f64::INFINITY);
+        assert_eq!(c, f64::Covariance::ZERO);
+    }
+
+    #[test]
+    fn clamp_eigenvalues_subnormal_and_small_bounds() {
+        // f32: 1 / (2 r) overflowed for subnormal entries (NaN out).
+        let c = f32::Covariance::new(1e-40, 0.0, 0.0).clamp_eigenvalues(5e-41);
+        assert!(c.s11.is_finite() && c.s11 <= 5e-41 && c.s12 == 0.0, "{c:?}");
+        // f32: `max / scale` was subnormal and rebuilt the bound 40 % too large.
+        let c = f32::Covariance::new(1.0, 0.0, 1.0).clamp_eigenvalues(1e-30);
+        assert!(c.eigenvalues().1 <= 1e-30 * (1.0 + 1e-6), "{c:?}");
+        let c = f32::Covariance::new(1.0, 0.3, 0.5).clamp_eigenvalues(1e-30);
+        assert!(c.eigenvalues().1 <= 1e-30 * (1.0 + 1e-5), "{c:?}");
+    }
+
+    #[test]
+    fn eigenvalues_of_huge_and_tiny_entries() {
+        // f32: det overflowed to inf and lambda_min came out as inf (> lambda_max).
+        let (lo, hi) = f32::Covariance::new(1e30, 0.0, 1e30).eigenvalues();
+        assert!(
+            (lo - 1e30).abs() <= 1e24 && (hi - 1e30).abs() <= 1e24,
+            "{lo} {hi}"
+        );
+        let (lo, hi) = f32::Covariance::new(1e30, 0.0, 1e25).eigenvalues();
+        assert!((lo - 1e25).abs() <= 1e19 && hi == 1e30, "{lo} {hi}");
+        // f32: a subnormal det lost its bits (lambda_min > lambda_max).
+        let (lo, hi) = f32::Covariance::new(2e-22, 0.0, 2e-22).eigenvalues();
+        assert!(lo <= hi && (lo - 2e-22).abs() <= 1e-27, "{lo} {hi}");
+    }
+
+    #[test]
+    fn sanitized_underflowing_off_diagonal() {
+        // f32: b * b <= a * c held by underflow for an indefinite [[0, 1e-30], [1e-30, 0]].
+        let c = f32::Covariance::new(-0.0, 1e-30, 0.0).sanitized();
+        assert_eq!(c.s12, 0.0, "{c:?}");
+    }
+
+    #[test]
+    fn in_slope_footprint_of_a_huge_h() {
+        // f32: 1 - h_y^2 overflowed to -inf, times 0 = NaN.
+        let h = Vec3::new(1e30, 1e30, 1e30);
+        let f =
+            f32::Footprint::from_projected_derivatives_in_slope(h, Vec2::new(-1.0, 0.0), Vec2::Y);
+        assert!(f.dh_u.is_finite() && f.dh_v.is_finite(), "{f:?}");
+        let unit = f32::Footprint::from_projected_derivatives_in_slope(
+            Vec3::ONE.normalize(),
+            Vec2::new(-1.0, 0.0),
+            Vec2::Y,
+        );
+        assert_eq!(f, unit);
+    }
+
+    #[test]
+    fn clamp_rules_footprint_with_huge_lambda() {
+        // f64: e / cur overflowed to inf and 0 * inf gave NaN.
+        let rules = f64::ClampRules {
+            max_extent: f64::MAX,
+            ..f64::ClampRules::NONE
+        };
+        let fp = f64::Footprint::from_slope_derivatives(
+            DVec2::new(f64::INFINITY, f64::INFINITY),
+            DVec2::new(-6.7e41, -2.6e34),
+        );
+        let f = rules.footprint(fp);
+        assert!(!f.dh_u.is_nan() && !f.dh_v.is_nan(), "{f:?}");
+    }
+
+    #[test]
+    fn projected_filter_with_a_huge_rank_one_kernel() {
+        // f32: det(P + 2K) cancelled and the minor axis came out 60x sharper than alpha.
+        let a = f32::Isotropic::new(1e-8).unwrap();
+        let k = f32::Covariance::new(1e30, -1e30, 1.5013107e12);
+        let (a11, _, a22) = f32::filter::projected(a, k).entries();
+        assert!(a11 >= 1e-16 && a22 >= 1e-16 * (1.0 - 1e-4), "{a11} {a22}");
+    }
+
+    #[test]
+    fn projected_filter_keeps_a_tiny_diagonal_positive() {
+        // f64: a subnormal a11 (accepted with a large tau) became 0 or -5e-324.
+        use f64::Roughness;
+        let r = f64::RoughnessMatrix::new_with_det_clamp(5e-324, 5e-324, 0.776, 0.1).unwrap();
+        let p = f64::filter::projected(r, f64::Covariance::ZERO);
+        let (a11, _, a22) = p.entries();
+        assert!(
+            a11 > 0.0 && a22 > 0.0 && p.sqrt_det() > 0.0,
+            "{:?}",
+            p.entries()
+        );
+    }
+
+    #[test]
+    fn gaussian_with_tau_zero_and_an_underflowing_det() {
+        // f32: the filtered det underflowed to 0 without tau: sqrt_det 0, inverse inf.
+        use f32::Roughness;
+        let r = f32::RoughnessMatrix::new_with_det_clamp(2.2525264e-23, 0.0, 2.2525264e-23, 1e-16)
+            .unwrap();
+        let k = f32::Covariance::new(1.1262632e-23, 1.1262632e-23, 0.0);
+        let g = f32::filter::gaussian_with_tau(r, k, 0.0);
+        assert!(
+            g.sqrt_det() > 0.0 && g.sqrt_det().is_finite(),
+            "{:?}",
+            g.entries()
+        );
+    }
+
+    #[test]
+    fn footprint_projected_of_a_nan_footprint() {
+        let fp = f64::Footprint::from_slope_derivatives(DVec2::NAN, DVec2::NAN);
+        let h = DVec3::new(-0.0, 0.0, -1e-30);
+        assert_eq!(
+            f64::geometry::footprint_projected(fp, h),
+            f64::Footprint::ZERO
+        );
+    }
+
+    #[test]
+    fn half_vector_with_a_non_finite_frame() {
+        let frame = f64::ShadingFrame {
+            s: DVec3::new(-1e30, 0.0, 0.0),
+            t: DVec3::new(f64::INFINITY, 1.0, 0.0),
+            n: DVec3::new(1.7, 1.0, f64::NAN),
+            dn: glam::DMat2::ZERO,
+            twist: DVec2::ZERO,
+        };
+        let eye = f64::Endpoint::Direction(DVec3::Z);
+        let light = f64::Endpoint::Direction(DVec3::new(0.3, 0.0, 1.0));
+        assert_eq!(
+            f64::geometry::half_vector(DVec3::ZERO, eye, light, &frame),
+            DVec3::Z
+        );
+    }
+
+    #[test]
+    fn jacobian_azimuth_of_subnormal_components() {
+        // f64: h_x / hypot(h_x, h_y) was not a unit pair for subnormal components.
+        let h = f64::jacobian::sanitize(DVec3::new(5e-324, 5e-324, -1.1367));
+        assert!((h.length() - 1.0).abs() < 1e-15, "{h}");
+    }
+
+    #[test]
+    fn p22_rect_nan_centre_and_far_tail() {
+        let r = f32::AxisAligned::new(1.0, 1e-8).unwrap();
+        let p = f32::ggx_rect::p22_rect(r, Vec2::new(f32::NAN, f32::MAX), Vec2::ZERO);
+        assert_eq!(p, 0.0);
+        // f32, alpha = 1e-8, |center| / alpha ~ 1.7e8: the closed form cancelled below zero.
+        let r = f32::AxisAligned::new(1e-8, 1e-8).unwrap();
+        let p = f32::ggx_rect::p22_rect(r, Vec2::new(-1.7321126, -0.0), Vec2::new(0.97044325, 1.0));
+        assert!(p >= 0.0, "{p}");
+    }
+
+    #[test]
+    fn visible_normals_for_extreme_views() {
+        use f64::NdfSampling;
+        // f64: stretching a huge wo overflowed (NaN sample).
+        let ggx = f64::Ggx::new(f64::Isotropic::new(2.0).unwrap());
+        let wo = DVec3::new(f64::MAX, f64::MAX, 1e300);
+        let m = ggx
+            .sample_visible_normal(wo, DVec2::new(-1e30, 1.0))
+            .unwrap();
+        assert!((m.length() - 1.0).abs() < 1e-12 && m.z > 0.0, "{m}");
+        // f64: wo_z / |wo| underflows: a certified m with m_z > 0 does not exist.
+        let beckmann = f64::Beckmann::new(f64::Isotropic::new(1.0).unwrap());
+        let wo = DVec3::new(f64::MAX, -1.0, 1e-40);
+        let u = DVec2::new(f64::MAX, f64::NEG_INFINITY);
+        if let Some(m) = beckmann.sample_visible_normal(wo, u) {
+            assert!(m.z > 0.0, "{m}");
+        }
+    }
+
+    #[test]
+    fn det_clamp_above_the_range_is_refused() {
+        // tau = F::MAX was accepted: sqrt_det 1.3e154 against entries 1e-16, and the samplers
+        // of that lobe returned NaN (GGX sample_normal) or normals on the horizon.
+        let r = f64::RoughnessMatrix::new_with_det_clamp(1e-16, 0.0, 1.0, f64::MAX);
+        assert_eq!(r.err(), Some(filtered_ndf::RoughnessError::OutOfRange));
+        let r = f32::RoughnessMatrix::new_with_det_clamp(1e-8, 0.0, 1e-8, 1e9);
+        assert_eq!(r.err(), Some(filtered_ndf::RoughnessError::OutOfRange));
+    }
+
+    #[test]
+    fn beckmann_visible_normal_of_a_subnormal_grazing_view() {
+        // f64: wo_z = 5e-324: the sample and the fallback lobe centre had m_z = 0.
+        use f64::NdfSampling;
+        let r = f64::RoughnessMatrix::new_with_det_clamp(1e-16, 0.0, 4.0, 4e-16).unwrap();
+        let b = f64::Beckmann::new(r);
+        for wo in [
+            DVec3::new(0.5836255802574746, 0.8120228950399897, 5e-324),
+            DVec3::new(-1.9929449743934577e-5, -0.9999999998014086, 5e-324),
+        ] {
+            if let Some(m) = b.sample_visible_normal(wo, DVec2::new(2.0, 5e-324)) {
+                assert!(m.z > 0.0, "{m}");
+            }
+        }
+    }
+
+    #[test]
+    fn implicit_normal_of_a_subnormal_gradient() {
+        let s = f64::LevelSetSample {
+            grad: DVec3::splat(5e-324),
+            ..Default::default()
+        };
+        assert!((s.normal().length() - 1.0).abs() < 1e-15, "{}", s.normal());
+    }
+
+    #[test]
+    fn quadric_frame_near_the_parallel_limit() {
+        // f32: one Gram-Schmidt pass left N . e1 ~ 1e-5.
+        let q = f32::LocalQuadric::new(
+            Vec3::ZERO,
+            Vec3::new(-1.0, 0.008880751, 1e-30),
+            Vec3::new(-1.8416724, -0.0, 2.5808616e-32),
+            1.0,
+            1.0,
+        )
+        .unwrap();
+        let (_, n, e1, e2) = q.frame();
+        assert!(
+            n.dot(e1).abs() < 1e-6 && n.dot(e2).abs() < 1e-6,
+            "{:?}",
+            q.frame()
+        );
+    }
+
+    #[test]
+    fn quadric_frame_of_tiny_directions() {
+        // f32: |N|^2 of N = (-8.7e-23, 0, 0) is subnormal and glam's normalisation returned
+        // a vector of length 1.04.
+        let q = f32::LocalQuadric::new(
+            Vec3::ZERO,
+            Vec3::new(-8.7332614e-23, 0.0, 0.0),
+            Vec3::new(1e-30, -8.7332614e-23, 0.0),
+            1.0,
+            1.0,
+        )
+        .unwrap();
+        let (_, n, e1, e2) = q.frame();
+        for v in [n, e1, e2] {
+            assert!((v.length() - 1.0).abs() < 1e-6, "{:?}", q.frame());
+        }
+    }
+
+    #[test]
+    fn temporal_roughness_matrix_with_a_wide_minor_axis() {
+        // s2 + (b2 - s2) a_x^2 lost b2 entirely: a zero diagonal entry.
+        let t = f64::TemporalRoughness::from_normal_rate(DVec2::X, 1e-8);
+        let (a11, _, a22) = t.roughness_matrix(1e4).entries();
+        assert!(a11 > 0.0 && a22 > 0.0, "{a11} {a22}");
     }
 }

@@ -5,9 +5,26 @@
 //! special value: NaN, `+-inf`, `0`, `-0`, `+-1e-30`, `+-1e30`, subnormals of both precisions,
 //! the largest finite values, plus ordinary values on a linear and on a logarithmic scale.
 //! [`check_ndf`] decodes an NDF case and its arguments and panics if the documented contract
-//! is broken (see the function).
+//! is broken (see the function). One `check_*` function per further public evaluation family
+//! lives in a submodule and is re-exported here: [`check_filter`], [`check_rect`],
+//! [`check_isotropic`], [`check_jacobian`], [`check_sampling`], [`check_temporal`].
 
 use crate::RoughnessError;
+
+mod dec;
+mod filter;
+mod isotropic;
+mod jacobian;
+mod rect;
+mod sampling;
+mod temporal;
+
+pub use filter::check_filter;
+pub use isotropic::check_isotropic;
+pub use jacobian::check_jacobian;
+pub use rect::check_rect;
+pub use sampling::check_sampling;
+pub use temporal::check_temporal;
 
 /// A cursor over fuzzer bytes; reads past the end yield zeros, so every input decodes.
 #[derive(Clone, Debug)]

@@ -1,0 +1,103 @@
+//! The contract of the GGX rectangle integral and the GGX proxy.
+
+use super::Bytes;
+use super::dec::{d32, d64};
+
+macro_rules! rect_prec {
+    ($d:ident, $prec:ident, $b:expr) => {{
+        use crate::$prec::{AxisAligned, F, Ggx, Ndf, ggx_proxy, ggx_rect};
+        use $d::{TOL, f, v2, v3};
+        let b: &mut Bytes<'_> = $b;
+        let head = b.byte();
+        let (ax, ay) = (f(b), f(b));
+        let center = v2(b);
+        let half = v2(b);
+        let h = $d::dir(b, head & 1 != 0);
+        let hpp = v2(b);
+        let (alpha, he) = (f(b), f(b));
+        let r = AxisAligned::new_clamped(ax, ay);
+        let ggx = Ggx::new(r);
+        let peak = ggx.p22(crate::$prec::Vec2::ZERO);
+
+        // p22_rect: never NaN, never negative, at most the peak (an average of P22).
+        let p = ggx_rect::p22_rect(r, center, half);
+        assert!(
+            p.is_finite() && p >= 0.0,
+            "p22_rect({r:?}, {center:?}, {half:?}) = {p:?}"
+        );
+        assert!(
+            p <= peak * (1.0 + TOL),
+            "p22_rect {p:?} above the peak {peak:?}"
+        );
+        if center.is_nan() {
+            assert_eq!(p, 0.0, "p22_rect: NaN centre");
+        }
+        // d_rect: 0 below the horizon or for non-finite h; else finite (saturating), >= 0.
+        let d = ggx_rect::d_rect(r, h, half);
+        assert!(
+            d.is_finite() && d >= 0.0,
+            "d_rect({r:?}, {h:?}, {half:?}) = {d:?}"
+        );
+        if !h.is_finite() || h.z <= 0.0 {
+            assert_eq!(d, 0.0, "d_rect below the horizon / non-finite: {h:?}");
+        }
+        // The printed baseline: never NaN or infinite (a non-finite value is returned as 0).
+        let dp = ggx_rect::d_rect_printed(r, hpp, h, half);
+        assert!(
+            dp.is_finite(),
+            "d_rect_printed({r:?}, {hpp:?}, {h:?}, {half:?}) = {dp:?}"
+        );
+
+        // Proxy: alpha' >= alpha for an in-domain alpha, NaN-free, finite unless |H| overflows.
+        for (e, what) in [
+            (ggx_proxy::effective_alpha(alpha, he), "effective_alpha"),
+            (
+                ggx_proxy::effective_alpha_simple(alpha, he),
+                "effective_alpha_simple",
+            ),
+        ] {
+            if alpha.is_finite() && alpha > 0.0 {
+                assert!(
+                    !e.is_nan() && e >= alpha * (1.0 - TOL),
+                    "{what}({alpha:?}, {he:?}) = {e:?}"
+                );
+                if (he.is_nan() || he.abs() <= F::MAX / 4.0) && alpha <= F::MAX / 4.0 {
+                    assert!(e.is_finite(), "{what}({alpha:?}, {he:?}) = {e:?}");
+                }
+            }
+        }
+        let a = r.alpha();
+        for (pr, what) in [
+            (ggx_proxy::proxy(r, half), "proxy"),
+            (ggx_proxy::proxy_simple(r, half), "proxy_simple"),
+        ] {
+            let q = pr.alpha();
+            assert!(
+                AxisAligned::new(q.x, q.y).is_ok(),
+                "{what}({r:?}, {half:?}) = {pr:?} out of range"
+            );
+            assert!(
+                q.x >= a.x * (1.0 - TOL) && q.y >= a.y * (1.0 - TOL),
+                "{what}({r:?}, {half:?}) = {pr:?} sharpened"
+            );
+            if h.is_finite() {
+                let v = Ggx::new(pr).d(h);
+                assert!(v.is_finite() && v >= 0.0, "{what}: d({h:?}) = {v:?}");
+            }
+        }
+        let _ = v3;
+    }};
+}
+
+/// The rectangle-integral and proxy contract on fuzzer bytes, in both precisions (roughness
+/// from `AxisAligned::new_clamped`, all other arguments arbitrary). Panics on a violation of:
+/// `ggx_rect::p22_rect` finite, `>= 0`, at most the unfiltered peak `1 / (pi a b)`, `0` for a
+/// NaN centre; `ggx_rect::d_rect` finite, `>= 0`, `0` for non-finite `h` or `h_z <= 0`;
+/// `ggx_rect::d_rect_printed` finite (no panic; its sign is not checked: it cancels);
+/// `ggx_proxy::effective_alpha{,_simple}(alpha, H)` NaN-free and `>= alpha` for finite
+/// `alpha > 0`, finite unless `|H|` is near overflow; `ggx_proxy::proxy{,_simple}` in the
+/// checked roughness range, never below the input roughness, and evaluable.
+pub fn check_rect(data: &[u8]) {
+    rect_prec!(d64, f64, &mut Bytes::new(data));
+    rect_prec!(d32, f32, &mut Bytes::new(data));
+}
