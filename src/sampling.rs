@@ -235,7 +235,8 @@ impl Warp {
         }
         let c = self.unstretch(wi);
         // `wo.m > 0` holds analytically; the scaled `wo` avoids under- and overflow of the dot.
-        let ok = c.is_finite() && c.z > 0.0 && (wo.dot(c) > 0.0 || normalize_scaled(wo).dot(c) > 0.0);
+        let ok =
+            c.is_finite() && c.z > 0.0 && (wo.dot(c) > 0.0 || normalize_scaled(wo).dot(c) > 0.0);
         ok.then_some(c)
     }
 }
