@@ -327,21 +327,9 @@ macro_rules! sweep {
                 let floor = min_positive(PREC);
                 for c in cases() {
                     for (model, ndf) in build(c.spec) {
-                        let kp = if model == "GGX" {
-                            "GGX p22"
-                        } else {
-                            "Beckmann p22"
-                        };
-                        let kd = if model == "GGX" {
-                            "GGX D"
-                        } else {
-                            "Beckmann D"
-                        };
-                        let kl = if model == "GGX" {
-                            "GGX 1+Lambda"
-                        } else {
-                            "Beckmann 1+Lambda"
-                        };
+                        let kp = &format!("{model} p22");
+                        let kd = &format!("{model} D");
+                        let kl = &format!("{model} 1+Lambda");
                         for (dir, m) in directions(c.widths) {
                             let regions = [c.alpha, c.form, dir];
                             // p22 at the slope of m (a huge slope 1e30 for 90 degrees).
@@ -456,21 +444,9 @@ macro_rules! sweep {
                 let floor = min_positive(PREC);
                 for c in cases() {
                     for (model, ndf) in build(c.spec) {
-                        let kn = if model == "GGX" {
-                            "GGX normal pdf"
-                        } else {
-                            "Beckmann normal pdf"
-                        };
-                        let kv = if model == "GGX" {
-                            "GGX visible pdf"
-                        } else {
-                            "Beckmann visible pdf"
-                        };
-                        let kr = if model == "GGX" {
-                            "GGX reflection pdf"
-                        } else {
-                            "Beckmann reflection pdf"
-                        };
+                        let kn = &format!("{model} normal pdf");
+                        let kv = &format!("{model} visible pdf");
+                        let kr = &format!("{model} reflection pdf");
                         let dirs = directions(c.widths);
                         for (wlabel, wo) in [
                             ("wo pole", [0.0, 0.0, 1.0]),
@@ -600,11 +576,7 @@ macro_rules! sweep {
                         ),
                     ] {
                         for (model, ndf) in build(spec) {
-                            let k = if model == "GGX" {
-                                "GGX visible pdf"
-                            } else {
-                                "Beckmann visible pdf"
-                            };
+                            let k = &format!("{model} visible pdf");
                             // Azimuths along the lobe's axes, so that the inner lines of the
                             // quadrature run along one axis (width known exactly).
                             for (wlabel, theta, along_y) in [
