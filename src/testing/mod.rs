@@ -49,6 +49,7 @@
 //! assert!((total.value - 1.0).abs() < 1e-7);
 //! ```
 
+pub mod box_reference;
 pub mod cases;
 pub mod fuzz;
 pub mod gaussian_reference;
