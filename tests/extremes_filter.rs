@@ -24,7 +24,7 @@ mod extremes_support;
 
 use extremes_support::{
     Dd, DdSym, ErrorMap, F32, F64, beckmann_p22_ref, ggx_p22_ref, integrate_feature, max_dd,
-    rel_err,
+    min_positive, rel_err, unit_eps,
 };
 use filtered_ndf::math::Real;
 use filtered_ndf::testing::quadrature::Tolerance;
@@ -45,22 +45,6 @@ const GRAZE: f64 = 89.99 * PI / 180.0;
 
 fn r32(x: f64) -> f64 {
     x as f32 as f64
-}
-
-fn eps_of(prec: usize) -> f64 {
-    if prec == F32 {
-        f32::EPSILON as f64
-    } else {
-        f64::EPSILON
-    }
-}
-
-fn floor_of(prec: usize) -> f64 {
-    if prec == F32 {
-        f32::MIN_POSITIVE as f64
-    } else {
-        f64::MIN_POSITIVE
-    }
 }
 
 /// Condition number of a symmetric positive semi-definite matrix (double-double entries).
@@ -222,7 +206,7 @@ macro_rules! sweep {
                 tau: f64,
                 tol: f64,
             ) {
-                let floor = floor_of(PREC);
+                let floor = min_positive(PREC);
                 let (w1, w2) = (aref.a11.f().sqrt(), aref.a22.f().sqrt());
                 for (x, y) in [(0.0, 0.0), (w1, 0.0), (0.0, w2)] {
                     let s = Vec2::new(f(x), f(y));
@@ -245,7 +229,7 @@ macro_rules! sweep {
             }
 
             pub fn gaussian(map: &mut ErrorMap) {
-                let eps = eps_of(PREC);
+                let eps = unit_eps(PREC);
                 for b in bases() {
                     for k in kernels() {
                         let sig = DdSym::new(k.s.0, k.s.1, k.s.2);
@@ -286,7 +270,7 @@ macro_rules! sweep {
             }
 
             pub fn projected(map: &mut ErrorMap) {
-                let eps = eps_of(PREC);
+                let eps = unit_eps(PREC);
                 for b in bases() {
                     for k in kernels() {
                         let sig = DdSym::new(k.s.0, k.s.1, k.s.2);
@@ -326,7 +310,7 @@ macro_rules! sweep {
             /// the peak.
             pub fn gaussian_quadrature(map: &mut ErrorMap) {
                 use filtered_ndf::f64 as d;
-                let eps = eps_of(PREC);
+                let eps = unit_eps(PREC);
                 for &(alpha, label) in &ALPHAS[1..3] {
                     let a = r32(alpha);
                     for &(fp, flabel) in &FOOTPRINTS[1..] {
@@ -358,8 +342,8 @@ macro_rules! sweep {
             }
 
             pub fn rect(map: &mut ErrorMap, refs: &mut Vec<f64>, use_refs: bool) {
-                let eps = eps_of(PREC);
-                let floor = floor_of(PREC);
+                let eps = unit_eps(PREC);
+                let floor = min_positive(PREC);
                 let mut idx = 0;
                 for &(alpha, label) in &ALPHAS {
                     for (form, ax, ay) in [("isotropic", alpha, alpha), ("axis 1:3", alpha, 3.0 * alpha)] {
@@ -430,7 +414,7 @@ macro_rules! sweep {
             }
 
             pub fn proxy(map: &mut ErrorMap) {
-                let eps = eps_of(PREC);
+                let eps = unit_eps(PREC);
                 for &(alpha, label) in &ALPHAS {
                     let a = r32(alpha);
                     for &(fp, flabel) in &FOOTPRINTS {
@@ -489,7 +473,7 @@ macro_rules! sweep {
             }
 
             pub fn isotropic(map: &mut ErrorMap) {
-                let eps = eps_of(PREC);
+                let eps = unit_eps(PREC);
                 let kappa = isotropic::KAPPA.to_f64();
                 for &(alpha, label) in &ALPHAS {
                     let a = r(alpha);

@@ -23,7 +23,7 @@ mod extremes_support;
 
 use extremes_support::{
     Dd, DdSym, ErrorMap, F32, F64, beckmann_lambda_ref, beckmann_p22_ref, ggx_lambda_ref,
-    ggx_p22_ref, rel_err,
+    ggx_p22_ref, min_positive, rel_err, unit_eps,
 };
 use filtered_ndf::math::Real;
 use filtered_ndf::testing::quadrature::{Estimate, Tolerance, integrate, integrate_line};
@@ -127,22 +127,6 @@ fn directions(widths: (f64, f64)) -> Vec<(&'static str, [f64; 3])> {
         v.push(("90 deg", [phi.cos(), phi.sin(), 0.0]));
     }
     v
-}
-
-fn unit_eps(prec: usize) -> f64 {
-    if prec == F32 {
-        f32::EPSILON as f64
-    } else {
-        f64::EPSILON
-    }
-}
-
-fn min_positive(prec: usize) -> f64 {
-    if prec == F32 {
-        f32::MIN_POSITIVE as f64
-    } else {
-        f64::MIN_POSITIVE
-    }
 }
 
 macro_rules! sweep {
@@ -313,6 +297,19 @@ macro_rules! sweep {
                 }
             }
 
+            /// The exponent `m_xy^T A^-1 m_xy / m_z^2` of Beckmann `D` (0 for GGX and at or
+            /// below the horizon): it scales the Beckmann tolerances.
+            fn d_exponent(model: &str, c: &Case, m: [f64; 3]) -> f64 {
+                if model == "GGX" || m[2] <= 0.0 {
+                    return 0.0;
+                }
+                let det = extremes_support::max_dd(c.a.det(), c.tau);
+                c.a.adj_quadratic(m[0], m[1])
+                    .div(det)
+                    .div(Dd::prod(m[2], m[2]))
+                    .f()
+            }
+
             fn lambda_ref(model: &str, c: &Case, w: [f64; 3]) -> f64 {
                 let q = c.a.quadratic(w[0], w[1]);
                 if model == "GGX" {
@@ -376,15 +373,7 @@ macro_rules! sweep {
                             let mr = back(mv);
                             let got = ndf.d(mv).to_f64();
                             let reference = d_ref(model, &c, mr);
-                            let x = if model == "GGX" || mr[2] <= 0.0 {
-                                0.0
-                            } else {
-                                let det = extremes_support::max_dd(c.a.det(), c.tau);
-                                c.a.adj_quadratic(mr[0], mr[1])
-                                    .div(det)
-                                    .div(Dd::prod(mr[2], mr[2]))
-                                    .f()
-                            };
+                            let x = d_exponent(model, &c, mr);
                             // Tolerance: as p22 (32 eps; Beckmann (32 + 8 x) eps with x the
                             // exponent), and 0 exactly at and below the horizon.
                             let tol = (32.0 + 8.0 * x) * eps;
@@ -463,15 +452,7 @@ macro_rules! sweep {
                                 let mv = v3(*m);
                                 let mr = back(mv);
                                 let d = d_ref(model, &c, mr);
-                                let x = if model == "GGX" || mr[2] <= 0.0 {
-                                    0.0
-                                } else {
-                                    let det = extremes_support::max_dd(c.a.det(), c.tau);
-                                    c.a.adj_quadratic(mr[0], mr[1])
-                                        .div(det)
-                                        .div(Dd::prod(mr[2], mr[2]))
-                                        .f()
-                                };
+                                let x = d_exponent(model, &c, mr);
                                 // Tolerance: that of D ((32 + 8 x) eps), plus 32 eps for the
                                 // products, 1 + Lambda and the normalisation of wo.
                                 let tol = (64.0 + 8.0 * x) * eps;

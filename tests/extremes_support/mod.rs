@@ -256,6 +256,24 @@ pub struct ErrorMap {
 }
 
 pub const F32: usize = 0;
+
+/// The unit roundoff of precision `prec` ([`F32`] or f64), as f64.
+pub fn unit_eps(prec: usize) -> f64 {
+    if prec == F32 {
+        f32::EPSILON as f64
+    } else {
+        f64::EPSILON
+    }
+}
+
+/// The smallest normal number of precision `prec`, as f64.
+pub fn min_positive(prec: usize) -> f64 {
+    if prec == F32 {
+        f32::MIN_POSITIVE as f64
+    } else {
+        f64::MIN_POSITIVE
+    }
+}
 pub const F64: usize = 1;
 
 impl ErrorMap {
