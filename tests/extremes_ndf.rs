@@ -22,7 +22,7 @@
 mod extremes_support;
 
 use extremes_support::{
-    Dd, DdSym, ErrorMap, F32, F64, beckmann_lambda_ref, beckmann_p22_ref, ggx_lambda_ref,
+    ALPHAS, Dd, DdSym, ErrorMap, F32, F64, beckmann_lambda_ref, beckmann_p22_ref, ggx_lambda_ref,
     ggx_p22_ref, min_positive, rel_err, unit_eps,
 };
 use filtered_ndf::math::Real;
@@ -75,12 +75,6 @@ fn visible_integral(
 }
 
 const PI: f64 = std::f64::consts::PI;
-const ALPHAS: [(f64, &str); 4] = [
-    (1e-7, "alpha 1e-7"),
-    (1e-4, "alpha 1e-4"),
-    (1.0, "alpha 1"),
-    (10.0, "alpha 10"),
-];
 const GRAZE: f64 = 89.99 * PI / 180.0;
 
 /// A roughness case, described in `f64` from inputs already rounded to the precision.
@@ -351,14 +345,11 @@ macro_rules! sweep {
                             // Beckmann, exp(-q) turns a relative error e of q into q e: the
                             // tolerance grows like (32 + 8 q) eps (the conditioning of exp).
                             let tol = (32.0 + 8.0 * q) * eps;
-                            map.require(got.is_finite() && got >= 0.0, || {
-                                format!("{kp} not finite/non-negative at {s:?}: {got}")
-                            });
-                            map.record(
+                            map.record_density(
                                 kp,
                                 &regions,
                                 PREC,
-                                rel_err(got, reference, floor),
+                                (got, reference, floor),
                                 tol,
                                 || {
                                     format!(
@@ -377,14 +368,11 @@ macro_rules! sweep {
                             // Tolerance: as p22 (32 eps; Beckmann (32 + 8 x) eps with x the
                             // exponent), and 0 exactly at and below the horizon.
                             let tol = (32.0 + 8.0 * x) * eps;
-                            map.require(got.is_finite() && got >= 0.0, || {
-                                format!("{kd} not finite/non-negative at {m:?}: {got}")
-                            });
-                            map.record(
+                            map.record_density(
                                 kd,
                                 &regions,
                                 PREC,
-                                rel_err(got, reference, floor),
+                                (got, reference, floor),
                                 tol,
                                 || {
                                     format!(
@@ -458,14 +446,11 @@ macro_rules! sweep {
                                 let tol = (64.0 + 8.0 * x) * eps;
                                 let got = ndf.normal_pdf(mv).to_f64();
                                 let reference = if mr[2] > 0.0 { d * mr[2] } else { 0.0 };
-                                map.require(got.is_finite() && got >= 0.0, || {
-                                    format!("{kn} at {mr:?}: {got}")
-                                });
-                                map.record(
+                                map.record_density(
                                     kn,
                                     &regions[..3],
                                     PREC,
-                                    rel_err(got, reference, floor),
+                                    (got, reference, floor),
                                     tol,
                                     || {
                                         format!(
@@ -486,14 +471,11 @@ macro_rules! sweep {
                                 // wo.m cancels for m near the horizon of wo: its error is
                                 // eps |wo| |m| / (wo.m), added to the tolerance.
                                 let cancel = if wom > 0.0 { 4.0 * eps / wom } else { 0.0 };
-                                map.require(got.is_finite() && got >= 0.0, || {
-                                    format!("{kv} at {wr:?} {mr:?}: {got}")
-                                });
-                                map.record(
+                                map.record_density(
                                     kv,
                                     &regions,
                                     PREC,
-                                    rel_err(got, reference, floor),
+                                    (got, reference, floor),
                                     tol + cancel,
                                     || {
                                         format!(
@@ -510,14 +492,11 @@ macro_rules! sweep {
                                 } else {
                                     0.0
                                 };
-                                map.require(got.is_finite() && got >= 0.0, || {
-                                    format!("{kr} at {wr:?} {mr:?}: {got}")
-                                });
-                                map.record(
+                                map.record_density(
                                     kr,
                                     &regions,
                                     PREC,
-                                    rel_err(got, reference, floor),
+                                    (got, reference, floor),
                                     tol,
                                     || {
                                         format!(

@@ -257,6 +257,14 @@ pub struct ErrorMap {
 
 pub const F32: usize = 0;
 
+/// The roughness grid of the sweep, with region labels.
+pub const ALPHAS: [(f64, &str); 4] = [
+    (1e-7, "alpha 1e-7"),
+    (1e-4, "alpha 1e-4"),
+    (1.0, "alpha 1"),
+    (10.0, "alpha 10"),
+];
+
 /// The unit roundoff of precision `prec` ([`F32`] or f64), as f64.
 pub fn unit_eps(prec: usize) -> f64 {
     if prec == F32 {
@@ -330,6 +338,31 @@ impl ErrorMap {
 
     /// A check without a numeric error (the contract: finite, non-negative, a documented
     /// value).
+    /// A density check: `got` must be finite and non-negative, and its error against
+    /// `reference` (relative, with `floor` as in [`rel_err`]) is recorded against `tol`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn record_density(
+        &mut self,
+        kernel: &str,
+        regions: &[&str],
+        prec: usize,
+        (got, reference, floor): (f64, f64, f64),
+        tol: f64,
+        ctx: impl Fn() -> String,
+    ) {
+        self.require(got.is_finite() && got >= 0.0, || {
+            format!("{kernel} not finite/non-negative: {got} ({})", ctx())
+        });
+        self.record(
+            kernel,
+            regions,
+            prec,
+            rel_err(got, reference, floor),
+            tol,
+            ctx,
+        );
+    }
+
     pub fn require(&mut self, ok: bool, ctx: impl FnOnce() -> String) {
         self.checks += 1;
         if !ok {
