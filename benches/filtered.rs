@@ -45,7 +45,27 @@ macro_rules! families {
                 dn_v: Vec3::new(c(k.dh_v[0]), c(k.dh_v[1]), 0.0),
             })
             .collect();
-        let mats: Vec<RoughnessMatrix> = ins.iter().map(|i| i.r.into()).collect();
+        // The unfiltered matrix form: the material's lobe rotated by a seeded angle (a
+        // rotated anisotropic material, the general case of the form, as the filtered lobe
+        // is), and the diagonal matrix of `From<AxisAligned>` (its cheapest case).
+        let mut rot = common::Rng(0x707);
+        let mats: Vec<RoughnessMatrix> = ins
+            .iter()
+            .map(|i| {
+                let a = i.r.alpha();
+                let (l1, l2) = (a.x * a.x, a.y * a.y);
+                let t = std::f64::consts::TAU * rot.uniform();
+                let (c, s) = (c(t.cos()), c(t.sin()));
+                RoughnessMatrix::new(
+                    c * c * l1 + s * s * l2,
+                    c * s * (l1 - l2),
+                    s * s * l1 + c * c * l2,
+                )
+                .unwrap()
+            })
+            .collect();
+        let diags: Vec<RoughnessMatrix> = ins.iter().map(|i| i.r.into()).collect();
+        let kernels: Vec<_> = ins.iter().map(|i| i.fp.covariance(0.5)).collect();
         fn group<'a>(c: &'a mut Criterion, name: &str) -> Wall<'a> {
             let mut g = c.benchmark_group(format!("{}/{}", name, stringify!($prec)));
             g.throughput(Throughput::Elements(N as u64));
@@ -68,7 +88,15 @@ macro_rules! families {
         run(&mut g, "unfiltered_matrix", |i| {
             Beckmann::new(mats[i]).d(ins[i].h)
         });
+        run(&mut g, "unfiltered_matrix_diagonal", |i| {
+            Beckmann::new(diags[i]).d(ins[i].h)
+        });
+        // The filtered lobe from the material and the pixel kernel (KHPL16 eq. 15, TK19 tau).
         run(&mut g, "filtered_matrix", |i| {
+            Beckmann::new(filter::gaussian(ins[i].r, kernels[i])).d(ins[i].h)
+        });
+        // The same with the kernel formed from the footprint (+ `Footprint::covariance`).
+        run(&mut g, "filtered_matrix_from_footprint", |i| {
             let a = filter::gaussian(ins[i].r, ins[i].fp.covariance(0.5));
             Beckmann::new(a).d(ins[i].h)
         });

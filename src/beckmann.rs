@@ -11,16 +11,34 @@ const PI: F = core::f64::consts::PI as F;
 /// `exp(-x)` is a normal float for `x` below this (`-ln(F::MIN_POSITIVE)` less one binade).
 const EXP_NORMAL_LIMIT: F = -(F::MIN_EXP as F) * core::f64::consts::LN_2 as F;
 
-/// `exp(-x) / den` for `x >= 0` and `den = exp(ln_den)`, without losing the result to an
-/// intermediate subnormal `exp(-x)`: past [`EXP_NORMAL_LIMIT`] the division moves into the
-/// exponent, `exp(-x - ln den)` (one `ln` more, far in the tail only).
+/// `exp(-e)` rounds to `0` in `F` (below half the smallest subnormal) for `e` above this.
+const EXP_ZERO_LIMIT: F =
+    (-(F::MIN_EXP as F) + F::MANTISSA_DIGITS as F + 1.0) * core::f64::consts::LN_2 as F;
+
+/// `ln(F::MAX)`, rounded up.
+const LN_MAX: F = (F::MAX_EXP as F) * core::f64::consts::LN_2 as F;
+
+/// `exp(-x) k` for `x >= 0` and `k = exp(ln_k)`, without losing the result to an
+/// intermediate subnormal `exp(-x)`: past [`EXP_NORMAL_LIMIT`] the factor moves into the
+/// exponent, `exp(-(x - ln k))`, with `ln k` taken directly when `k` is a normal number and
+/// from `ln_k` (the logarithms of its factors) when it is not. A result below the subnormal
+/// range is `0` without calling `exp` (whose underflow path is slow).
 #[inline]
-fn exp_neg_over(x: F, den: F, ln_den: impl FnOnce() -> F) -> F {
+fn exp_neg_times(x: F, k: F, ln_k: impl FnOnce() -> F) -> F {
     if x < EXP_NORMAL_LIMIT {
-        m::exp(-x) / den
-    } else {
-        m::exp(-x - ln_den())
+        return m::exp(-x) * k;
     }
+    // A normal k has ln k <= ln F::MAX: beyond this the result is 0 without a logarithm.
+    if x > EXP_ZERO_LIMIT + LN_MAX && k <= F::MAX {
+        return 0.0;
+    }
+    let l = if (F::MIN_POSITIVE..=F::MAX).contains(&k) {
+        m::ln(k)
+    } else {
+        ln_k()
+    };
+    let e = x - l;
+    if e > EXP_ZERO_LIMIT { 0.0 } else { m::exp(-e) }
 }
 
 /// The Beckmann distribution with roughness form `R`: a bivariate Gaussian of slopes with
@@ -104,20 +122,21 @@ impl<R: Roughness> Ndf for Beckmann<R> {
     #[inline]
     fn p22(&self, s: Vec2) -> F {
         let den = PI * self.roughness.sqrt_det();
-        let v = exp_neg_over(self.roughness.inv_quadratic(s), den, || m::ln(den));
+        let v = exp_neg_times(self.roughness.inv_quadratic(s), 1.0 / den, || -m::ln(den));
         if v.is_finite() { v } else { 0.0 }
     }
 
-    #[inline]
+    #[inline(always)]
     fn d(&self, mn: Vec3) -> F {
         if mn.z <= 0.0 {
             return 0.0;
         }
-        let inv_z2 = 1.0 / (mn.z * mn.z);
-        let x = self.roughness.inv_quadratic(Vec2::new(mn.x, mn.y)) * inv_z2;
-        let c = PI * self.roughness.sqrt_det();
-        let v = exp_neg_over(x, c * (mn.z * mn.z) * (mn.z * mn.z), || {
-            m::ln(c) + 4.0 * m::ln(mn.z)
+        // x = m_xy^T A^-1 m_xy / m_z^2 and n = 1 / (sqrt(det A) m_z^4) from one division.
+        let (x, n) = self
+            .roughness
+            .exponent_and_norm(Vec2::new(mn.x, mn.y), mn.z * mn.z);
+        let v = exp_neg_times(x, n * (1.0 / PI), || {
+            -(m::ln(PI * self.roughness.sqrt_det()) + 4.0 * m::ln(mn.z))
         });
         if v.is_finite() { v } else { 0.0 }
     }

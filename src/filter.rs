@@ -41,10 +41,12 @@ use super::{F, Vec2};
 ///
 /// `tau = det(A)` has no bias in exact arithmetic since `det(A + 2 Sigma) >= det(A)` for
 /// `Sigma >= 0`. Units: `A` dimensionless (slope^2), `Sigma` slope^2.
-#[inline]
+#[inline(always)]
 pub fn gaussian<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatrix {
+    // tau = det(A) > 0 is valid by construction: no check, no floor (the hot path).
     let s = roughness.sqrt_det();
-    gaussian_with_tau(roughness, kernel, s * s)
+    let (b11, b12, b22) = plus_kernel(roughness, kernel.sanitized());
+    RoughnessMatrix::from_entries_clamped(b11, b12, b22, s * s)
 }
 
 /// [`gaussian`] with an explicit determinant clamp `tau` (`0` disables it; NaN, infinite or
@@ -58,43 +60,30 @@ pub fn gaussian_with_tau<R: Roughness>(
     kernel: Covariance,
     tau: F,
 ) -> RoughnessMatrix {
-    let k = kernel.sanitized();
-    let (a11, a12, a22) = roughness.to_matrix().entries();
+    let (b11, b12, b22) = plus_kernel(roughness, kernel.sanitized());
     let tau = if tau.is_finite() && tau > 0.0 {
         tau
     } else {
-        0.0
-    };
-    // a11, a22 > 0 and det(A + 2K) >= det(A) > 0 for K PSD: the unchecked builder is valid.
-    // A rounding-negative determinant (a12 ~ sqrt(a11 a22)) is caught by the floor below.
-    let floor = {
+        // a11, a22 > 0 and det(A + 2K) >= det(A) > 0 for K PSD: without a clamp the result
+        // is valid unless the determinant rounded below det(A) (a12 ~ sqrt(a11 a22), an
+        // extremely elongated kernel, or underflow; fuzzing): then det(A), its exact lower
+        // bound, is the clamp.
         let s = roughness.sqrt_det();
-        s * s
-    };
-    RoughnessMatrix::from_entries_clamped(
-        a11 + 2.0 * k.s11,
-        a12 + 2.0 * k.s12,
-        a22 + 2.0 * k.s22,
-        if tau > 0.0 {
-            tau
+        let floor = s * s;
+        if b11 * b22 - b12 * b12 > floor {
+            0.0
         } else {
-            floor_if_lost(a11, a12, a22, k, floor)
-        },
-    )
+            floor
+        }
+    };
+    RoughnessMatrix::from_entries_clamped(b11, b12, b22, tau)
 }
 
-/// Without a `tau`, the filtered determinant can only be non-positive through rounding; then
-/// the unfiltered determinant is the exact lower bound to fall back to.
-#[inline]
-fn floor_if_lost(a11: F, a12: F, a22: F, k: Covariance, floor: F) -> F {
-    let (b11, b12, b22) = (a11 + 2.0 * k.s11, a12 + 2.0 * k.s12, a22 + 2.0 * k.s22);
-    // `> floor`, not `> 0`: a determinant that rounds below det(A) (or underflows, for tiny
-    // entries accepted with a large `tau`; fuzzing) is lost too.
-    if b11 * b22 - b12 * b12 > floor {
-        0.0
-    } else {
-        floor
-    }
+/// The entries of `A + 2 K` for a sanitised kernel `K` (KHPL16 eq. 15 in roughness form).
+#[inline(always)]
+fn plus_kernel<R: Roughness>(roughness: R, k: Covariance) -> (F, F, F) {
+    let (a11, a12, a22) = roughness.to_matrix().entries();
+    (a11 + 2.0 * k.s11, a12 + 2.0 * k.s12, a22 + 2.0 * k.s22)
 }
 
 /// First and second moments of normal-map slopes over a texel footprint, as stored by LEAN

@@ -16,7 +16,7 @@
 
 use super::roughness::ALPHA_MAX;
 use super::{F, Vec2, Vec3};
-use crate::math as m;
+use crate::math::{self as m, Real};
 
 /// The standard deviation of the pixel filter used by KHPL16 and TK19, in pixels.
 pub const SIGMA_PIXEL: F = 0.5;
@@ -50,13 +50,13 @@ impl Covariance {
 
     /// `tr(Sigma) = lambda_min + lambda_max` (TK19 eq. 2).
     #[inline]
-    pub fn trace(&self) -> F {
+    pub fn trace(self) -> F {
         self.s11 + self.s22
     }
 
     /// `det(Sigma) = lambda_min lambda_max`.
     #[inline]
-    pub fn det(&self) -> F {
+    pub fn det(self) -> F {
         self.s11 * self.s22 - self.s12 * self.s12
     }
 
@@ -64,7 +64,7 @@ impl Covariance {
     /// s12)` for `lambda_max` and `det / lambda_max` for `lambda_min`, so the small one keeps
     /// its relative accuracy for elongated kernels. Both are clamped to `>= 0`.
     #[inline]
-    pub fn eigenvalues(&self) -> (F, F) {
+    pub fn eigenvalues(self) -> (F, F) {
         let mean = 0.5 * (self.s11 + self.s22);
         let rad = m::hypot(0.5 * (self.s11 - self.s22), self.s12);
         let max = (mean + rad).max(0.0);
@@ -95,7 +95,7 @@ impl Covariance {
     /// nothing overflows or underflows. A negative or NaN `max` yields [`Covariance::ZERO`], a non-finite
     /// input [`Covariance::ZERO`] (use [`Covariance::sanitized`] for the full contract).
     #[inline]
-    pub fn clamp_eigenvalues(&self, max: F) -> Self {
+    pub fn clamp_eigenvalues(self, max: F) -> Self {
         // Fast path: a finite PSD kernel whose trace (lambda_min + lambda_max) is within the
         // bound (`max` is then not NaN and >= 0). Inlined; the rest is out of line, by value
         // (a by-reference call from inlined code measured a store-forwarding stall).
@@ -105,9 +105,9 @@ impl Covariance {
             && (self.s11 + self.s22).is_finite()
             && self.s12.is_finite()
         {
-            return *self;
+            return Self::new(self.s11, self.s12, self.s22);
         }
-        Self::clamp_eigenvalues_slow(self.s11, self.s12, self.s22, max)
+        Self::clamp_eigenvalues_slow(self.s11, self.s12, self.s22, max).detached()
     }
 
     /// The general case of [`Covariance::clamp_eigenvalues`].
@@ -167,21 +167,27 @@ impl Covariance {
     /// Every filtering function applies this first, so their results are NaN-free for any
     /// input.
     #[inline]
-    pub fn sanitized(&self) -> Self {
+    pub fn sanitized(self) -> Self {
         let (a, b, c) = (self.s11, self.s12, self.s22);
         // Fast path (every footprint covariance): finite, positive semi-definite and with
-        // trace <= KERNEL_MAX, which bounds both eigenvalues. NaN fails every comparison. If
-        // `a c` is 0 (or underflows), `b * b <= a * c` may hold by underflow for a nonzero `b`:
-        // the slow path decides. Inlined into the filtering kernels; the rest is out of line.
-        if a >= 0.0
-            && c >= 0.0
-            && a + c <= KERNEL_MAX
-            && b * b <= a * c
-            && (a * c > 0.0 || b == 0.0)
-        {
-            return *self;
+        // trace <= KERNEL_MAX, which bounds both eigenvalues. Three tests: `b^2 <= a c` makes
+        // `a` and `c` of one sign (or one of them zero), so `0 <= a + c` makes both
+        // non-negative; `a + c <= KERNEL_MAX` excludes infinities, and NaN fails every
+        // comparison. In `f32` the products are formed in `f64`, where they are exact: the
+        // test is exact and cannot underflow. In `f64`, if `a c` underflows to 0, `b^2 <= a c`
+        // may hold by underflow for a nonzero `b`: the slow path decides. Inlined into the
+        // filtering kernels; the rest is out of line.
+        let psd = if core::mem::size_of::<F>() == 4 {
+            let (a, b, c) = (a.to_f64(), b.to_f64(), c.to_f64());
+            b * b <= a * c
+        } else {
+            b * b <= a * c && (a * c > 0.0 || b == 0.0)
+        };
+        let t = a + c;
+        if psd && (0.0..=KERNEL_MAX).contains(&t) {
+            return Self::new(a, b, c);
         }
-        Self::sanitized_slow(self.s11, self.s12, self.s22)
+        Self::sanitized_slow(self.s11, self.s12, self.s22).detached()
     }
 
     /// The general case of [`Covariance::sanitized`].
@@ -200,6 +206,18 @@ impl Covariance {
         let bound = m::sqrt(s11) * m::sqrt(s22);
         let s12 = b.clamp(-bound, bound);
         Self::new(s11, s12, s22).clamp_eigenvalues(KERNEL_MAX)
+    }
+}
+
+impl Covariance {
+    /// The same covariance as fresh values (`x + 0`, which only turns `-0` into `+0`), for
+    /// the result of an out-of-line slow path. An aggregate comes back from a call through
+    /// memory; returned as is, the compiler wrote the inlined fast path's value into that
+    /// memory too (it saw a plain copy) and read it back with loads straddling the stores: a
+    /// store-forwarding stall that made every filtered evaluation three times slower.
+    #[inline(always)]
+    fn detached(self) -> Self {
+        Self::new(self.s11 + 0.0, self.s12 + 0.0, self.s22 + 0.0)
     }
 }
 
@@ -336,7 +354,7 @@ impl Footprint {
 
     /// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels.
     #[inline]
-    pub fn covariance(&self, sigma: F) -> Covariance {
+    pub fn covariance(self, sigma: F) -> Covariance {
         let (u, v) = (self.dh_u, self.dh_v);
         Covariance::new(
             u.x * u.x + v.x * v.x,
@@ -350,7 +368,7 @@ impl Footprint {
     /// `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`; TK19 Listing 3 `abs(dU) + abs(dV)`
     /// is its full side): half-extent `(|dh_u| + |dh_v|) / 2` per axis.
     #[inline]
-    pub fn bounding_rect(&self) -> BoundingRect {
+    pub fn bounding_rect(self) -> BoundingRect {
         BoundingRect {
             half_extent: (self.dh_u.abs() + self.dh_v.abs()) * 0.5,
         }
@@ -361,7 +379,7 @@ impl Footprint {
     /// It bounds both half-extents of [`Footprint::bounding_rect`] (unless the squares in the
     /// lengths underflow: vectors below about `1e-19` in `f32`, `1e-154` in `f64`, give `0`).
     #[inline]
-    pub fn max_extent(&self) -> F {
+    pub fn max_extent(self) -> F {
         0.5 * (self.dh_u + self.dh_v)
             .length()
             .max((self.dh_u - self.dh_v).length())
@@ -400,7 +418,7 @@ impl BoundingRect {
     /// The Gaussian-equivalent diagonal covariance `diag((2 sigma h_x)^2, (2 sigma h_y)^2)`
     /// (see the type docs), `sigma` in pixels.
     #[inline]
-    pub fn covariance(&self, sigma: F) -> Covariance {
+    pub fn covariance(self, sigma: F) -> Covariance {
         let w = self.half_extent * (2.0 * sigma);
         Covariance::new(w.x * w.x, 0.0, w.y * w.y)
     }

@@ -29,8 +29,20 @@ pub const ALPHA_MIN: F = 1e-8;
 /// Largest supported roughness `alpha` (`A`'s largest eigenvalue is `ALPHA_MAX^2`).
 pub const ALPHA_MAX: F = 1e4;
 
-mod sealed {
-    pub trait Sealed {}
+pub(crate) mod sealed {
+    use super::{F, Vec2};
+
+    /// Crate-internal evaluation helpers of the roughness forms (unnameable outside the
+    /// crate, which also seals [`super::Roughness`]).
+    pub trait Sealed {
+        /// `(x, n)` with `x = m^T A^-1 m / z2` and `n = 1 / (sqrt(det A) z2^2)` for a
+        /// tangent-plane `m` and `z2 > 0`: the exponent and the normalisation of Beckmann's
+        /// `D` (KHPL16 eq. 2 with eq. 14) from one division, shared by both (the matrix form
+        /// merges its `1 / max(det A, tau)` into it, so building a matrix per pixel, as
+        /// filtering does, needs no division). `x` is `+inf` / NaN as
+        /// [`super::Roughness::inv_quadratic`]; `n` overflows to `+inf` for tiny `z2`.
+        fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F);
+    }
 }
 
 /// A roughness form: what the NDFs need of a roughness matrix `A`.
@@ -66,6 +78,14 @@ fn check_alpha(alpha: F) -> Result<F, RoughnessError> {
     } else {
         Ok(alpha)
     }
+}
+
+/// `(q / z2, inv_sqrt_det / z2^2)` from one division: [`sealed::Sealed::exponent_and_norm`]
+/// for the forms that store `A^-1` and `1 / sqrt(det A)`.
+#[inline(always)]
+fn over_z2(q: F, inv_sqrt_det: F, z2: F) -> (F, F) {
+    let inv_z2 = 1.0 / z2;
+    (q * inv_z2, inv_z2 * inv_z2 * inv_sqrt_det)
 }
 
 /// Clamps `alpha` into `[ALPHA_MIN, ALPHA_MAX]`; NaN and non-positive values map to
@@ -115,7 +135,13 @@ impl Isotropic {
     }
 }
 
-impl sealed::Sealed for Isotropic {}
+impl sealed::Sealed for Isotropic {
+    #[inline(always)]
+    fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F) {
+        // sqrt(det A) = alpha^2.
+        over_z2(self.inv_quadratic(m), self.inv_alpha2, z2)
+    }
+}
 impl Roughness for Isotropic {
     #[inline]
     fn inv_quadratic(&self, s: Vec2) -> F {
@@ -141,6 +167,8 @@ impl Roughness for Isotropic {
 pub struct AxisAligned {
     alpha: Vec2,
     inv_alpha2: Vec2,
+    /// `1 / (alpha_x alpha_y)`.
+    inv_sqrt_det: F,
 }
 
 impl AxisAligned {
@@ -165,6 +193,7 @@ impl AxisAligned {
         Self {
             alpha,
             inv_alpha2: Vec2::ONE / (alpha * alpha),
+            inv_sqrt_det: 1.0 / (alpha.x * alpha.y),
         }
     }
 
@@ -182,7 +211,12 @@ impl From<Isotropic> for AxisAligned {
     }
 }
 
-impl sealed::Sealed for AxisAligned {}
+impl sealed::Sealed for AxisAligned {
+    #[inline(always)]
+    fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F) {
+        over_z2(self.inv_quadratic(m), self.inv_sqrt_det, z2)
+    }
+}
 impl Roughness for AxisAligned {
     #[inline]
     fn inv_quadratic(&self, s: Vec2) -> F {
@@ -207,8 +241,11 @@ impl Roughness for AxisAligned {
             eig: a,
             inv_eig: self.inv_alpha2,
             sqrt_det: self.alpha.x * self.alpha.y,
-            inv_det_wide: 0.0,
-            wide: false,
+            inv_sqrt_det: self.inv_sqrt_det,
+            ldl_det: 0.0,
+            ldl_inv: 0.0,
+            ldl_c: 0.0,
+            ldl: false,
         }
     }
 }
@@ -224,20 +261,23 @@ impl Roughness for AxisAligned {
 /// is exact, since filtering can only grow the determinant. Its bias is zero whenever
 /// `det A >= tau` holds in exact arithmetic.
 ///
-/// Precision: the constructor computes `det A` without cancellation error (exactly rounded
-/// products) and
-/// stores `A` in its eigenbasis `A = R diag(l1, l2) R^T`, so both quadratic forms are sums of
-/// two non-negative squares. Evaluating `s^T A^-1 s` from the entries of `A^-1` instead would
-/// cancel to a relative error of `cond(A) eps` (6 % in `f32` at an anisotropy ratio of
-/// `1e3`); in the eigenbasis it is a few ulps at any condition number.
-///
-/// In `f32`, a matrix with `cond(A) < 2^24` (every filtered lobe of a realistic material)
-/// is instead kept as its entries and `1 / max(det A, tau)` in `f64`, and the quadratic forms
-/// are evaluated from the entries in `f64`: the cancellation above then costs a relative
-/// `4 eps_f64 cond(A) < 2e-9`, below half an `f32` ulp, and the construction needs one
-/// division and one square root instead of an eigen-decomposition (this is what makes a
-/// per-pixel filtered lobe cheap). Both representations give the same values to within the
-/// stated accuracy; `PartialEq` compares representations, not only the matrix.
+/// **Representations.** Two, chosen by the constructor, evaluated in `f64` for both
+/// precisions; they give the same values to within the stated accuracy (`PartialEq`
+/// compares representations, not only the matrix):
+/// - **LDL** (`cond(A) < 2^24` in `f32`, `cond(A) < 16` in `f64`: every filtered lobe of a
+///   realistic material): the entries, `det A`, and `1 / (a11 max(det A, tau))`, with
+///   `s^T adj(A) s = ((a11 s_y - a12 s_x)^2 + det(A) s_x^2) / a11` (completing the square, the
+///   2x2 `L D L^T`): a sum of two non-negative terms in which only `a11 s_y - a12 s_x` can
+///   cancel, which bounds the relative error by about `(2 sqrt(cond A) + 4) eps_f64`, plus the
+///   determinant's (exactly rounded for `f32` entries; within 10 ulps in `f64` at `cond < 16`).
+///   Built with one division and one square root: a lobe built per pixel (a filtered one, or a
+///   rotated anisotropic material) stays cheap.
+/// - **Eigenbasis** (otherwise, and whenever the determinant is not positive):
+///   `A = R diag(l1, l2) R^T` with `det A` computed without cancellation error, so both
+///   quadratic forms are sums of two non-negative squares: a few ulps at any condition number
+///   (evaluating from the entries of `A^-1` instead cancels to a relative `cond(A) eps`,
+///   6 % in `f32` at an anisotropy ratio of `1e3`). Built with two square roots and two
+///   divisions, in `f64`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RoughnessMatrix {
     a11: F,
@@ -250,30 +290,50 @@ pub struct RoughnessMatrix {
     /// Eigenvalues of the clamped inverse `adj(A) / max(det A, tau)`: `(l2, l1) / max(det, tau)`.
     inv_eig: Vec2,
     sqrt_det: F,
-    /// `1 / max(det A, tau)` in `f64`, for the wide path (`0` on the eigenbasis path).
-    inv_det_wide: f64,
-    /// Whether the quadratic forms are evaluated from the entries in `f64` (the wide path,
-    /// `F = f32` only; see [`RoughnessMatrix::from_entries_clamped`]).
-    wide: bool,
+    /// `1 / sqrt(max(det A, tau))` (eigenbasis path; `0` on the LDL path).
+    inv_sqrt_det: F,
+    /// `det A` in `f64` (LDL path; `0` on the eigenbasis path).
+    ldl_det: f64,
+    /// `1 / (a11 max(det A, tau))` in `f64` (LDL path; `0` on the eigenbasis path). Only
+    /// [`Roughness::inv_quadratic`] reads it: Beckmann's `D` divides once by
+    /// `a11 max(det A, tau) m_z^2` instead, so a filtered lobe whose matrix is built and
+    /// evaluated inline never forms it (the compiler drops the division).
+    ldl_inv: f64,
+    /// `max(det A, tau)` in `f64` (LDL path; `0` on the eigenbasis path).
+    ldl_c: f64,
+    /// Whether the LDL representation is used (see the type docs).
+    ldl: bool,
 }
 
-/// The wide path is compiled in for `f32` only (`f64` has no wider type).
+/// `F = f32` (whose products are exact in `f64`).
 const WIDE: bool = core::mem::size_of::<F>() == 4;
-/// The wide path is taken while `tr(A)^2 / det(A) < COND_WIDE` (`>= cond(A)`).
-const COND_WIDE: f64 = (1u64 << 24) as f64;
+/// The LDL representation is taken while `tr(A)^2 < COND_LDL det(A)`: `cond(A) < 2^24` in
+/// `f32` (the `f64` evaluation keeps its error below `2^-40`), `cond(A) < 16` in `f64`
+/// (`(cond + 1)^2 / cond < 18`, where the plain determinant is within 10 ulps).
+const COND_LDL: f64 = if WIDE { (1u64 << 24) as f64 } else { 18.0 };
 
-/// `a b - c d` to within about one ulp, whatever the cancellation: in `f32` through `f64`
-/// (the products of two `f32` are exact there), in `f64` by Kahan's algorithm with two fused
-/// multiply-adds.
+/// `det A = a11 a22 - a12^2` in `f64` to within about one ulp of `F`'s precision, whatever
+/// the cancellation: for `f32` entries the products are exact in `f64` (one rounding); for
+/// `f64` entries the plain expression when `a12^2 <= a11 a22 / 2` (at most one bit cancels:
+/// within 3 ulps), else Kahan's algorithm with two fused multiply-adds (calls to `fma`
+/// without the target feature, so kept off the common path).
 #[inline]
-fn diff_of_products(a: F, b: F, c: F, d: F) -> F {
-    if core::mem::size_of::<F>() == 4 {
-        let (a, b, c, d) = (a.to_f64(), b.to_f64(), c.to_f64(), d.to_f64());
-        return F::from_f64(a * b - c * d);
+fn det_of(a11: F, a12: F, a22: F) -> f64 {
+    let (a, b, c) = (a11.to_f64(), a12.to_f64(), a22.to_f64());
+    let (ac, bb) = (a * c, b * b);
+    if WIDE || bb <= 0.5 * ac {
+        return ac - bb;
     }
-    let cd = c * d;
-    let err = m::mul_add(-c, d, cd);
-    m::mul_add(a, b, -cd) + err
+    let err = m::mul_add(-b, b, bb);
+    m::mul_add(a, c, -bb) + err
+}
+
+/// `2^-e` for a positive `x = f 2^e`, `f` in `[1, 2)`: multiplying by it is exact and brings
+/// `x` into `[1, 2)`. Subnormal `x` (and `0`) get `2^1022`.
+#[inline]
+fn inv_binade(x: f64) -> f64 {
+    let e = (x.to_bits() >> 52).clamp(1, 2045);
+    f64::from_bits((2046 - e) << 52)
 }
 
 impl RoughnessMatrix {
@@ -306,6 +366,7 @@ impl RoughnessMatrix {
     /// indefinite one is still refused. `tau` itself must be finite and `>= 0` (else
     /// `NotFinite` / `NotPositive`). The range check `[ALPHA_MIN^2, ALPHA_MAX^2]` applies to the
     /// largest eigenvalue and to `max(det A, tau) / l_max` (so `tau <= ALPHA_MAX^2 l_max`).
+    #[inline]
     pub fn new_with_det_clamp(a11: F, a12: F, a22: F, tau: F) -> Result<Self, RoughnessError> {
         if !(a11.is_finite() && a12.is_finite() && a22.is_finite() && tau.is_finite()) {
             return Err(RoughnessError::NotFinite);
@@ -318,7 +379,7 @@ impl RoughnessMatrix {
         if a11 > hi || a22 > hi || a12.abs() > hi {
             return Err(RoughnessError::OutOfRange);
         }
-        let det = diff_of_products(a11, a22, a12, a12);
+        let det = F::from_f64(det_of(a11, a12, a22));
         let indefinite = if tau > 0.0 {
             det < -8.0 * F::EPSILON * a11 * a22
         } else {
@@ -343,71 +404,86 @@ impl RoughnessMatrix {
     /// Builds the matrix without checks, with determinant clamp `tau`. The caller guarantees
     /// `a11 > 0`, `a22 > 0` and `max(det A, tau) > 0` (the filtering kernels, which add a
     /// positive semi-definite kernel to a valid roughness, do).
-    #[inline]
     ///
-    /// Two representations, one result (to within an `f32` ulp):
-    /// - **Wide path** (`F = f32` and `tr(A)^2 < 2^24 det A`, i.e. `cond(A) < 2^24`): only the
-    ///   entries and `1 / max(det A, tau)` in `f64` are kept, and the quadratic forms are
-    ///   evaluated from the entries in `f64`, `s^T adj(A) s / max(det, tau)`. The `f32`
-    ///   inputs' products are exact in `f64`; the one cancellation costs a relative
-    ///   `4 eps_f64 cond(A) < 2e-9`, below half an `f32` ulp. One `f64` division and one square
-    ///   root build it (the eigenbasis needs three square roots and two divisions): this is
-    ///   what makes a filtered lobe, built per pixel, cheap.
-    /// - **Eigenbasis path** (`f64`, or `cond(A) >= 2^24`, or a determinant that is not
-    ///   positive): `A = R diag(l1, l2) R^T` (see the type docs), accurate at any condition
-    ///   number.
+    /// Picks the representation (see the type docs): LDL when `tr(A)^2 < COND_LDL det A`
+    /// (one division, one square root), else the eigenbasis (two of each).
+    #[inline(always)]
     pub(crate) fn from_entries_clamped(a11: F, a12: F, a22: F, tau: F) -> Self {
-        if WIDE {
-            let (b11, b12, b22) = (a11.to_f64(), a12.to_f64(), a22.to_f64());
-            let det = b11 * b22 - b12 * b12;
-            let tr = b11 + b22;
-            if tr * tr < COND_WIDE * det {
-                // det > 0 here; max(det, tau) rounds to the F value the eigenbasis path uses.
-                let clamped = det.max(tau.to_f64());
-                return Self {
-                    a11,
-                    a12,
-                    a22,
-                    axis: Vec2::X,
-                    eig: Vec2::ZERO,
-                    inv_eig: Vec2::ZERO,
-                    sqrt_det: m::sqrt(F::from_f64(clamped)),
-                    inv_det_wide: 1.0 / clamped,
-                    wide: true,
-                };
-            }
+        let (b11, b12, b22, t) = (a11.to_f64(), a12.to_f64(), a22.to_f64(), tau.to_f64());
+        // Exact products for f32 entries (one rounding); in f64 the test admits only
+        // `cond < 16`, where this plain determinant is within 10 ulps.
+        let det = b11 * b22 - b12 * b12;
+        let tr = b11 + b22;
+        if tr * tr < COND_LDL * det {
+            // det > 0 here (and tau >= 0 is not NaN: a select, not the NaN-aware `f64::max`).
+            let c = if det > t { det } else { t };
+            return Self {
+                a11,
+                a12,
+                a22,
+                axis: Vec2::X,
+                eig: Vec2::ZERO,
+                inv_eig: Vec2::ZERO,
+                // In F: an f32 square root is cheaper than an f64 one, and within an ulp.
+                sqrt_det: m::sqrt(F::from_f64(c)),
+                inv_sqrt_det: 0.0,
+                ldl_det: det,
+                ldl_inv: 1.0 / (b11 * c),
+                ldl_c: c,
+                ldl: true,
+            };
         }
-        let det = diff_of_products(a11, a22, a12, a12);
-        let clamped = det.max(tau);
-        // Eigen-decomposition: l1 = mean + rad (no cancellation), l2 = det / l1 (accurate
-        // because det is), eigenvector of l1 from whichever row avoids cancellation.
-        let half_diff = 0.5 * (a11 - a22);
-        let rad = m::sqrt(half_diff * half_diff + a12 * a12);
+        // Eigenbasis path, in f64 for both precisions.
+        let det = det_of(a11, a12, a22);
+        let c = det.max(t);
+        // l1 = mean + rad (no cancellation); l2 = det / l1 is never formed (see below).
+        let half_diff = 0.5 * (b11 - b22);
+        let rad = m::sqrt(half_diff * half_diff + b12 * b12);
         let rad = if rad.is_finite() {
             rad
         } else {
-            m::hypot(half_diff, a12)
+            m::hypot(half_diff, b12)
         };
-        let l1 = 0.5 * (a11 + a22) + rad;
-        let l2 = det / l1;
-        // Unnormalised eigenvector of l1 (both rows give the same direction; the one with
-        // `rad + |half_diff|` avoids cancellation). Written as selects, not a branch: the
-        // sign of `half_diff` is data-dependent and mispredicts in a filtering loop.
+        let l1 = 0.5 * (b11 + b22) + rad;
+        // Eigenvector of l1 from whichever row avoids cancellation (`big >= |b12|`), written
+        // as selects (the sign of `half_diff` would mispredict in a filtering loop). It is not
+        // normalised (a square root and a division): it is scaled by a power of two to
+        // `big` in `[1, 2)` (exact), and its squared length `nv` is folded into the
+        // eigenvalues below. `big = 0` (isotropic): any axis.
         let big = rad + half_diff.abs();
         let neg = half_diff < 0.0;
-        let v = Vec2::new(if neg { a12 } else { big }, if neg { big } else { a12 });
-        let axis = v.try_normalize().unwrap_or(Vec2::X);
-        let inv_det = 1.0 / clamped;
+        let k = inv_binade(big);
+        let v = if big > 0.0 {
+            let (p, q) = (big * k, b12 * k);
+            Vec2::new(
+                F::from_f64(if neg { q } else { p }),
+                F::from_f64(if neg { p } else { q }),
+            )
+        } else {
+            Vec2::X
+        };
+        let (vx, vy) = (v.x.to_f64(), v.y.to_f64());
+        let nv = vx * vx + vy * vy;
+        // With the unnormalised rotation r = (v.s, v_perp.s): eig = (l1, l2) / nv and
+        // inv_eig = (l2, l1) / (max(det, tau) nv), l2 = det / l1, from two reciprocals that
+        // run in parallel (`1 / max(det, tau)` does not wait for the square root). `eig` does
+        // not depend on `tau` at all (Smith's Lambda never sees the clamp).
+        let (j, ci) = (1.0 / (nv * l1), 1.0 / c);
+        let sqrt_c = m::sqrt(c);
+        let eig = (l1 * l1 * j, det * j);
         Self {
             a11,
             a12,
             a22,
-            axis,
-            eig: Vec2::new(l1, l2),
-            inv_eig: Vec2::new(l2 * inv_det, l1 * inv_det),
-            sqrt_det: m::sqrt(clamped),
-            inv_det_wide: 0.0,
-            wide: false,
+            axis: v,
+            eig: Vec2::new(F::from_f64(eig.0), F::from_f64(eig.1)),
+            inv_eig: Vec2::new(F::from_f64(eig.1 * ci), F::from_f64(eig.0 * ci)),
+            sqrt_det: F::from_f64(sqrt_c),
+            inv_sqrt_det: F::from_f64(sqrt_c * ci),
+            ldl_det: 0.0,
+            ldl_inv: 0.0,
+            ldl_c: 0.0,
+            ldl: false,
         }
     }
 
@@ -438,9 +514,10 @@ impl RoughnessMatrix {
     /// `A^-1` as used by the density, i.e. `adj(A) / max(det A, tau)`.
     #[inline]
     pub fn inverse(&self) -> Mat2 {
-        if WIDE && self.wide {
-            let k = self.inv_det_wide;
+        if self.ldl {
+            // adj(A) / max(det, tau) = adj(A) a11 ldl_inv.
             let (a11, a12, a22) = (self.a11.to_f64(), self.a12.to_f64(), self.a22.to_f64());
+            let k = a11 * self.ldl_inv;
             let (i11, i12, i22) = (
                 F::from_f64(a22 * k),
                 F::from_f64(-a12 * k),
@@ -503,21 +580,57 @@ fn non_finite_form(v: Vec2) -> F {
     if v.is_nan() { F::NAN } else { F::INFINITY }
 }
 
-impl sealed::Sealed for RoughnessMatrix {}
+/// An LDL quadratic form `q = form(v)` evaluated in `f64`, clamped to `>= 0` and rounded to
+/// `F`. A NaN `q` for a finite `v` can only come from overflow (`inf - inf`, for `f64` input;
+/// never for `f32`, whose squares fit in `f64`): the form is then evaluated on `v / k`, `k = max |v_i|`, and scaled back
+/// by `k^2` (`+inf` if that overflows). Non-finite `v` as [`non_finite_form`].
+#[inline]
+fn wide_form(q: f64, v: Vec2, form: impl Fn(f64, f64) -> f64) -> F {
+    if !q.is_nan() {
+        return F::from_f64(q.max(0.0));
+    }
+    // f32 input cannot overflow in f64: a NaN means a non-finite input (a select, which
+    // keeps `batch` loops vectorised).
+    if WIDE || !v.is_finite() {
+        return non_finite_form(v);
+    }
+    let k = v.abs().max_element().to_f64();
+    F::from_f64((form(v.x.to_f64() / k, v.y.to_f64() / k) * k * k).max(0.0))
+}
+
+impl sealed::Sealed for RoughnessMatrix {
+    #[inline(always)]
+    fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F) {
+        if self.ldl {
+            // t = 1 / (a11 max(det, tau) z2), the one division; then
+            // x = ((a11 m_y - a12 m_x)^2 + det m_x^2) t and
+            // n = 1 / (sqrt(c) z2^2) = (a11 t)^2 c sqrt(c), all in f64.
+            let (a11, a12) = (self.a11.to_f64(), self.a12.to_f64());
+            let (det, c) = (self.ldl_det, self.ldl_c);
+            let t = 1.0 / (a11 * c * z2.to_f64());
+            let form = |x: f64, y: f64| {
+                let u = a11 * y - a12 * x;
+                (u * u + det * (x * x)) * t
+            };
+            let x = wide_form(form(m.x.to_f64(), m.y.to_f64()), m, form);
+            let at = a11 * t;
+            return (x, F::from_f64(at * at * c * self.sqrt_det.to_f64()));
+        }
+        over_z2(self.inv_quadratic(m), self.inv_sqrt_det, z2)
+    }
+}
 impl Roughness for RoughnessMatrix {
     #[inline]
     fn inv_quadratic(&self, s: Vec2) -> F {
-        if WIDE && self.wide {
-            // s^T adj(A) s / max(det, tau), in f64 (see `from_entries_clamped`).
-            let (a11, a12, a22) = (self.a11.to_f64(), self.a12.to_f64(), self.a22.to_f64());
-            let (x, y) = (s.x.to_f64(), s.y.to_f64());
-            let q = ((a22 * x) * x + (a11 * y) * y - 2.0 * (a12 * x) * y) * self.inv_det_wide;
-            // Finite f32 input cannot overflow in f64: a NaN here means a non-finite input.
-            return if q.is_nan() {
-                non_finite_form(s)
-            } else {
-                F::from_f64(q.max(0.0))
+        if self.ldl {
+            // ((a11 s_y - a12 s_x)^2 + det s_x^2) / (a11 max(det, tau)), see the type docs.
+            let (a11, a12) = (self.a11.to_f64(), self.a12.to_f64());
+            let (det, inv) = (self.ldl_det, self.ldl_inv);
+            let form = |x: f64, y: f64| {
+                let u = a11 * y - a12 * x;
+                (u * u + det * (x * x)) * inv
             };
+            return wide_form(form(s.x.to_f64(), s.y.to_f64()), s, form);
         }
         let r = self.rotate(s);
         scaled_form((r * r).dot(self.inv_eig), s, |u| {
@@ -527,15 +640,15 @@ impl Roughness for RoughnessMatrix {
     }
     #[inline]
     fn quadratic(&self, w: Vec2) -> F {
-        if WIDE && self.wide {
-            let (a11, a12, a22) = (self.a11.to_f64(), self.a12.to_f64(), self.a22.to_f64());
-            let (x, y) = (w.x.to_f64(), w.y.to_f64());
-            let q = (a11 * x) * x + (a22 * y) * y + 2.0 * (a12 * x) * y;
-            return if q.is_nan() {
-                non_finite_form(w)
-            } else {
-                F::from_f64(q.max(0.0))
+        if self.ldl {
+            // ((a11 w_x + a12 w_y)^2 + det w_y^2) / a11: no tau (Lambda never sees the clamp).
+            let (a11, a12) = (self.a11.to_f64(), self.a12.to_f64());
+            let det = self.ldl_det;
+            let form = |x: f64, y: f64| {
+                let u = a11 * x + a12 * y;
+                (u * u + det * (y * y)) / a11
             };
+            return wide_form(form(w.x.to_f64(), w.y.to_f64()), w, form);
         }
         let r = self.rotate(w);
         scaled_form((r * r).dot(self.eig), w, |u| {

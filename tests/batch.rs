@@ -127,7 +127,7 @@ macro_rules! suite {
                     let iso = Isotropic::new(alpha).unwrap();
                     let aa = AxisAligned::new(alpha, alpha * 0.3).unwrap();
                     let a2 = alpha * alpha;
-                    // A rotated matrix (wide path in f32) and an elongated one (cond > 2^24:
+                    // A rotated matrix (the LDL representation) and an elongated one (cond > 2^24:
                     // the eigenbasis path in f32).
                     let mat = RoughnessMatrix::new(a2, 0.3 * a2, 0.5 * a2).unwrap();
                     let long = RoughnessMatrix::new(a2, 0.0, a2 * 1e-8).unwrap();
