@@ -85,7 +85,24 @@ impl ClampRules {
     /// extent `lambda` (with an infinite `lambda` they are returned unchanged, and the
     /// filters' [`Covariance::sanitized`] turns them into the widest kernel). A NaN or
     /// negative `lambda` is treated as `0`.
+    #[inline]
     pub fn footprint(&self, fp: Footprint) -> Footprint {
+        // Fast path (every finite footprint of a real pixel): components small enough that the
+        // squared diagonals cannot overflow; compare the squared extent with lambda^2 (no
+        // square root, no division). NaN and infinities fail `<=` and take the general path.
+        let m = fp.dh_u.abs().max(fp.dh_v.abs()).max_element();
+        if m <= FAST_COMPONENT_MAX && self.max_extent >= 0.0 {
+            let (p, q) = (fp.dh_u + fp.dh_v, fp.dh_u - fp.dh_v);
+            let e2 = 0.25 * p.length_squared().max(q.length_squared());
+            if e2 <= self.max_extent * self.max_extent {
+                return fp;
+            }
+        }
+        self.footprint_general(fp)
+    }
+
+    /// [`ClampRules::footprint`] beyond its fast path.
+    fn footprint_general(&self, fp: Footprint) -> Footprint {
         let c = [fp.dh_u.x, fp.dh_u.y, fp.dh_v.x, fp.dh_v.y];
         if c.iter().any(|x| x.is_nan()) {
             return Footprint::ZERO;
@@ -154,6 +171,7 @@ impl ClampRules {
     /// ([`Covariance::clamp_eigenvalues`] with `kappa / 2`), after
     /// [`Covariance::sanitized`]. For an isotropic kernel this is exactly eq. 1. A NaN or
     /// negative `kappa` is treated as `0` (no filtering).
+    #[inline]
     pub fn kernel(&self, k: Covariance) -> Covariance {
         let k = k.sanitized();
         if self.kappa.is_infinite() && self.kappa > 0.0 {
@@ -179,6 +197,7 @@ impl ClampRules {
     /// (`sigma` pixels) -> [`ClampRules::kernel`] -> `A' = A + 2 Sigma` with
     /// [`ClampRules::tau`] ([`filter::gaussian_with_tau`]). Exact for Beckmann, the TK19
     /// approximation for GGX.
+    #[inline]
     pub fn filter_gaussian<R: Roughness>(
         &self,
         roughness: R,
@@ -189,6 +208,15 @@ impl ClampRules {
         filter::gaussian_with_tau(roughness, k, self.tau(roughness))
     }
 }
+
+/// Largest footprint component for which [`ClampRules::footprint`]'s squared diagonals
+/// (`|dh_u +/- dh_v|^2 <= 8 m^2`) cannot overflow: `sqrt(F::MAX) / 4`, rounded down to a power
+/// of ten.
+const FAST_COMPONENT_MAX: F = (if core::mem::size_of::<F>() == 4 {
+    1e18
+} else {
+    1e153
+}) as F;
 
 /// Scales a footprint with nonzero, finite extent to extent `e` (else zero).
 fn scaled_to(fp: Footprint, e: F) -> Footprint {

@@ -170,21 +170,21 @@ impl Covariance {
     pub fn sanitized(self) -> Self {
         let (a, b, c) = (self.s11, self.s12, self.s22);
         // Fast path (every footprint covariance): finite, positive semi-definite and with
-        // trace <= KERNEL_MAX, which bounds both eigenvalues. Three tests: `b^2 <= a c` makes
-        // `a` and `c` of one sign (or one of them zero), so `0 <= a + c` makes both
-        // non-negative; `a + c <= KERNEL_MAX` excludes infinities, and NaN fails every
-        // comparison. In `f32` the products are formed in `f64`, where they are exact: the
-        // test is exact and cannot underflow. In `f64`, if `a c` underflows to 0, `b^2 <= a c`
-        // may hold by underflow for a nonzero `b`: the slow path decides. Inlined into the
-        // filtering kernels; the rest is out of line.
+        // trace <= KERNEL_MAX, which bounds both eigenvalues: `a, c >= 0`, `b^2 <= a c` and
+        // `a + c <= KERNEL_MAX` (which excludes infinities); NaN fails every comparison. The
+        // signs are tested explicitly: `a c` can underflow to -0 in `f64` (fuzzing found
+        // `a = -1e-231, c = 2e-197, b = 0` passing `b^2 <= a c` otherwise). In `f32` the
+        // products are formed in `f64`, where they are exact: `b^2 <= a c` is decided exactly.
+        // In `f64`, if `a c` underflows to 0, `b^2 <= a c` may hold by underflow for a nonzero
+        // `b`: the slow path decides. Inlined into the filtering kernels; the rest is out of
+        // line.
         let psd = if core::mem::size_of::<F>() == 4 {
             let (a, b, c) = (a.to_f64(), b.to_f64(), c.to_f64());
             b * b <= a * c
         } else {
             b * b <= a * c && (a * c > 0.0 || b == 0.0)
         };
-        let t = a + c;
-        if psd && (0.0..=KERNEL_MAX).contains(&t) {
+        if psd && a >= 0.0 && c >= 0.0 && a + c <= KERNEL_MAX {
             return Self::new(a, b, c);
         }
         Self::sanitized_slow(self.s11, self.s12, self.s22).detached()
