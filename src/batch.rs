@@ -20,9 +20,9 @@
 //! tail) or run the rectangle integral's case analysis per element: they compile to scalar
 //! loops (with a few two-lane SLP ops inside an element) and exist for the convenience of a
 //! uniform slice API; they measure 1.1 to 1.2 times a hand-written scalar loop (no bounds
-//! checks). Measured per core (`benches/batch.rs`, `f32`): `ggx_d` about 4.2 to 4.5 times the
-//! scalar loop for `Isotropic` and `AxisAligned`, 2.5 times for `RoughnessMatrix`; `f64` about
-//! 2.1 times.
+//! checks). Measured per core (`benches/batch.rs`, `f32`): `ggx_d` about 4.4 times the scalar
+//! loop for `Isotropic` and `AxisAligned`, 2.5 times for `RoughnessMatrix`; `f64` about 2.2
+//! times.
 
 use super::beckmann::Beckmann;
 use super::filter;
