@@ -40,13 +40,13 @@ use super::{F, Vec2};
 ///   `tests/filter_ggx_error.rs`.
 ///
 /// `tau = det(A)` has no bias in exact arithmetic since `det(A + 2 Sigma) >= det(A)` for
-/// `Sigma >= 0`. Units: `A` dimensionless (slope^2), `Sigma` slope^2.
+/// `Sigma >= 0`; it is `det(A)` of the entries as stored (for a clamped [`RoughnessMatrix`],
+/// its own `max(det A, tau)`). Units: `A` dimensionless (slope^2), `Sigma` slope^2.
 #[inline(always)]
 pub fn gaussian<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatrix {
     // tau = det(A) > 0 is valid by construction: no check, no floor (the hot path).
-    let s = roughness.sqrt_det();
     let (b11, b12, b22) = plus_kernel(roughness, kernel.sanitized());
-    RoughnessMatrix::from_entries_clamped(b11, b12, b22, s * s)
+    RoughnessMatrix::from_entries_det_clamped(b11, b12, b22, roughness.det_clamped())
 }
 
 /// [`gaussian`] with an explicit determinant clamp `tau` (`0` disables it; NaN, infinite or

@@ -42,6 +42,13 @@ pub(crate) mod sealed {
         /// filtering does, needs no division). `x` is `+inf` / NaN as
         /// [`super::Roughness::inv_quadratic`]; `n` overflows to `+inf` for tiny `z2`.
         fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F);
+        /// `max(det A, tau)` in `f64` (`det A` for the forms without a clamp), with `det A`
+        /// computed from the entries of [`super::Roughness::to_matrix`] exactly as the matrix
+        /// constructor computes it (`a11 a22 - a12^2` in `f64`, exact for `f32` entries; a
+        /// matrix in the eigenbasis representation keeps only its square root, in `F`): the
+        /// filtering clamp `tau`, which a kernel too small to change the entries then meets
+        /// with equality.
+        fn det_clamped(&self) -> f64;
     }
 }
 
@@ -141,6 +148,11 @@ impl sealed::Sealed for Isotropic {
         // sqrt(det A) = alpha^2.
         over_z2(self.inv_quadratic(m), self.inv_alpha2, z2)
     }
+    #[inline(always)]
+    fn det_clamped(&self) -> f64 {
+        let a = (self.alpha * self.alpha).to_f64();
+        a * a
+    }
 }
 impl Roughness for Isotropic {
     #[inline]
@@ -216,6 +228,11 @@ impl sealed::Sealed for AxisAligned {
     fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F) {
         over_z2(self.inv_quadratic(m), self.inv_sqrt_det, z2)
     }
+    #[inline(always)]
+    fn det_clamped(&self) -> f64 {
+        let a = self.alpha * self.alpha;
+        a.x.to_f64() * a.y.to_f64()
+    }
 }
 impl Roughness for AxisAligned {
     #[inline]
@@ -245,6 +262,7 @@ impl Roughness for AxisAligned {
             ldl_det: 0.0,
             ldl_inv: 0.0,
             ldl_c: 0.0,
+            ldl_c32: 0.0,
             ldl: false,
         }
     }
@@ -264,15 +282,18 @@ impl Roughness for AxisAligned {
 /// **Representations.** Two, chosen by the constructor, evaluated in `f64` for both
 /// precisions; they give the same values to within the stated accuracy (`PartialEq`
 /// compares representations, not only the matrix):
-/// - **LDL** (`cond(A) < 2^24` in `f32`, `cond(A) < 16` in `f64`: every filtered lobe of a
-///   realistic material): the entries, `det A`, and `1 / (a11 max(det A, tau))`, with
+/// - **LDL** (`det A > 0`, and in `f64` also `cond(A) < 16`: every filtered lobe of a
+///   realistic material): the entries, `det A`, `c = max(det A, tau)`, `1 / (a11 c)` and
+///   `c^(3/2)`, with
 ///   `s^T adj(A) s = ((a11 s_y - a12 s_x)^2 + det(A) s_x^2) / a11` (completing the square, the
 ///   2x2 `L D L^T`): a sum of two non-negative terms in which only `a11 s_y - a12 s_x` can
-///   cancel, which bounds the relative error by about `(2 sqrt(cond A) + 4) eps_f64`, plus the
-///   determinant's (exactly rounded for `f32` entries; within 10 ulps in `f64` at `cond < 16`).
-///   Built with one division and one square root: a lobe built per pixel (a filtered one, or a
-///   rotated anisotropic material) stays cheap.
-/// - **Eigenbasis** (otherwise, and whenever the determinant is not positive):
+///   cancel. For `f32` entries and slopes both products are exact in `f64`, so that term is
+///   exactly rounded and the whole form is within a few `eps_f64` at any condition number;
+///   for `f64` the cancellation costs about `2 sqrt(cond A) eps_f64`, plus the determinant's
+///   10 ulps, hence the `cond < 16` limit. Built with one division and one square root: a
+///   lobe built per pixel (a filtered one, or a rotated anisotropic material) stays cheap.
+/// - **Eigenbasis** (otherwise: a determinant that is not positive, only possible under the
+///   clamp, or an `f64` matrix with `cond(A) >= 16`):
 ///   `A = R diag(l1, l2) R^T` with `det A` computed without cancellation error, so both
 ///   quadratic forms are sums of two non-negative squares: a few ulps at any condition number
 ///   (evaluating from the entries of `A^-1` instead cancels to a relative `cond(A) eps`,
@@ -294,23 +315,26 @@ pub struct RoughnessMatrix {
     inv_sqrt_det: F,
     /// `det A` in `f64` (LDL path; `0` on the eigenbasis path).
     ldl_det: f64,
-    /// `1 / (a11 max(det A, tau))` in `f64` (LDL path; `0` on the eigenbasis path). Only
-    /// [`Roughness::inv_quadratic`] reads it: Beckmann's `D` divides once by
-    /// `a11 max(det A, tau) m_z^2` instead, so a filtered lobe whose matrix is built and
-    /// evaluated inline never forms it (the compiler drops the division).
+    /// `1 / (a11 c)` in `f64`, `c = max(det A, tau)` (LDL path; `0` on the eigenbasis path).
+    /// Only [`Roughness::inv_quadratic`] reads it: Beckmann's `D` divides once by
+    /// `a11 c m_z^2` instead, so a filtered lobe whose matrix is built and evaluated inline
+    /// never forms it (the compiler drops the division).
     ldl_inv: f64,
-    /// `max(det A, tau)` in `f64` (LDL path; `0` on the eigenbasis path).
+    /// `c = max(det A, tau)` in `f64` (LDL path; `0` on the eigenbasis path).
     ldl_c: f64,
+    /// `c^(3/2)` in `f64` (LDL path; `0` on the eigenbasis path): Beckmann's normalisation
+    /// is `(a11 t)^2 c^(3/2)` with `t = 1 / (a11 c m_z^2)`.
+    ldl_c32: f64,
     /// Whether the LDL representation is used (see the type docs).
     ldl: bool,
 }
 
 /// `F = f32` (whose products are exact in `f64`).
 const WIDE: bool = core::mem::size_of::<F>() == 4;
-/// The LDL representation is taken while `tr(A)^2 < COND_LDL det(A)`: `cond(A) < 2^24` in
-/// `f32` (the `f64` evaluation keeps its error below `2^-40`), `cond(A) < 16` in `f64`
-/// (`(cond + 1)^2 / cond < 18`, where the plain determinant is within 10 ulps).
-const COND_LDL: f64 = if WIDE { (1u64 << 24) as f64 } else { 18.0 };
+/// In `f64` the LDL representation is taken while `tr(A)^2 < COND_LDL det(A)`, i.e.
+/// `cond(A) < 16` (`(cond + 1)^2 / cond < 18`), where the plain determinant is within 10 ulps
+/// and the cancelling term costs at most `8 eps`. `f32` matrices need no limit (type docs).
+const COND_LDL: f64 = 18.0;
 
 /// `det A = a11 a22 - a12^2` in `f64` to within about one ulp of `F`'s precision, whatever
 /// the cancellation: for `f32` entries the products are exact in `f64` (one rounding); for
@@ -405,33 +429,35 @@ impl RoughnessMatrix {
     /// `a11 > 0`, `a22 > 0` and `max(det A, tau) > 0` (the filtering kernels, which add a
     /// positive semi-definite kernel to a valid roughness, do).
     ///
-    /// Picks the representation (see the type docs): LDL when `tr(A)^2 < COND_LDL det A`
-    /// (one division, one square root), else the eigenbasis (two of each).
+    /// Picks the representation (see the type docs): LDL when `det A > 0` (and in `f64`
+    /// `cond A < 16`; one division, one square root), else the eigenbasis (two of each).
     #[inline(always)]
     pub(crate) fn from_entries_clamped(a11: F, a12: F, a22: F, tau: F) -> Self {
-        let (b11, b12, b22, t) = (a11.to_f64(), a12.to_f64(), a22.to_f64(), tau.to_f64());
+        Self::from_entries_det_clamped(a11, a12, a22, tau.to_f64())
+    }
+
+    /// [`RoughnessMatrix::from_entries_clamped`] with `tau` in `f64`: the filtering kernels
+    /// pass `det` of the unfiltered matrix exactly as this function computes `det A`, so a
+    /// kernel too small to change the entries meets the clamp with equality.
+    #[inline(always)]
+    pub(crate) fn from_entries_det_clamped(a11: F, a12: F, a22: F, t: f64) -> Self {
+        let (b11, b12, b22) = (a11.to_f64(), a12.to_f64(), a22.to_f64());
         // Exact products for f32 entries (one rounding); in f64 the test admits only
         // `cond < 16`, where this plain determinant is within 10 ulps.
         let det = b11 * b22 - b12 * b12;
-        let tr = b11 + b22;
-        if tr * tr < COND_LDL * det {
-            // det > 0 here (and tau >= 0 is not NaN: a select, not the NaN-aware `f64::max`).
-            let c = if det > t { det } else { t };
-            return Self {
-                a11,
-                a12,
-                a22,
-                axis: Vec2::X,
-                eig: Vec2::ZERO,
-                inv_eig: Vec2::ZERO,
-                // In F: an f32 square root is cheaper than an f64 one, and within an ulp.
-                sqrt_det: m::sqrt(F::from_f64(c)),
-                inv_sqrt_det: 0.0,
-                ldl_det: det,
-                ldl_inv: 1.0 / (b11 * c),
-                ldl_c: c,
-                ldl: true,
-            };
+        let ldl = det > 0.0
+            && (WIDE || {
+                let tr = b11 + b22;
+                tr * tr < COND_LDL * det
+            });
+        if ldl {
+            if det >= t {
+                return Self::ldl(a11, a12, a22, det, det);
+            }
+            // The clamp is active (when filtering: by rounding only). Out of line, so that a
+            // filtered lobe's determinant reaches its one division directly instead of
+            // through `max(det, tau)`.
+            return Self::ldl_clamped(a11, a12, a22, det, t).detached();
         }
         // Eigenbasis path, in f64 for both precisions.
         let det = det_of(a11, a12, a22);
@@ -483,7 +509,60 @@ impl RoughnessMatrix {
             ldl_det: 0.0,
             ldl_inv: 0.0,
             ldl_c: 0.0,
+            ldl_c32: 0.0,
             ldl: false,
+        }
+    }
+
+    /// The LDL representation (see the type docs) with `c = max(det A, tau)`.
+    #[inline(always)]
+    fn ldl(a11: F, a12: F, a22: F, det: f64, c: f64) -> Self {
+        // In f64: no conversions on the way to Beckmann's normalisation.
+        let sqrt_c = m::sqrt(c);
+        Self {
+            a11,
+            a12,
+            a22,
+            axis: Vec2::X,
+            eig: Vec2::ZERO,
+            inv_eig: Vec2::ZERO,
+            sqrt_det: F::from_f64(sqrt_c),
+            inv_sqrt_det: 0.0,
+            ldl_det: det,
+            ldl_inv: 1.0 / (a11.to_f64() * c),
+            ldl_c: c,
+            ldl_c32: c * sqrt_c,
+            ldl: true,
+        }
+    }
+
+    /// [`RoughnessMatrix::ldl`] with the clamp active, `c = tau > det A`.
+    #[cold]
+    #[inline(never)]
+    fn ldl_clamped(a11: F, a12: F, a22: F, det: f64, tau: f64) -> Self {
+        Self::ldl(a11, a12, a22, det, tau)
+    }
+
+    /// The same matrix as fresh values (`x + 0`), for the result of an out-of-line path: an
+    /// aggregate returned from a call comes back through memory, and returned as is, the
+    /// compiler may route the inlined path's value through that memory too (a
+    /// store-forwarding stall; see `Covariance::detached`).
+    #[inline(always)]
+    fn detached(self) -> Self {
+        Self {
+            a11: self.a11 + 0.0,
+            a12: self.a12 + 0.0,
+            a22: self.a22 + 0.0,
+            axis: self.axis + Vec2::ZERO,
+            eig: self.eig + Vec2::ZERO,
+            inv_eig: self.inv_eig + Vec2::ZERO,
+            sqrt_det: self.sqrt_det + 0.0,
+            inv_sqrt_det: self.inv_sqrt_det + 0.0,
+            ldl_det: self.ldl_det + 0.0,
+            ldl_inv: self.ldl_inv + 0.0,
+            ldl_c: self.ldl_c + 0.0,
+            ldl_c32: self.ldl_c32 + 0.0,
+            ldl: self.ldl,
         }
     }
 
@@ -602,21 +681,31 @@ impl sealed::Sealed for RoughnessMatrix {
     #[inline(always)]
     fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F) {
         if self.ldl {
-            // t = 1 / (a11 max(det, tau) z2), the one division; then
+            // t = 1 / (a11 c z2), c = max(det, tau), the one division; then
             // x = ((a11 m_y - a12 m_x)^2 + det m_x^2) t and
-            // n = 1 / (sqrt(c) z2^2) = (a11 t)^2 c sqrt(c), all in f64.
+            // n = 1 / (sqrt(c) z2^2) = (a11 t)^2 c^(3/2), all in f64. `c (a11 z2)`: a matrix
+            // built inline (filtering) reaches the division one product after `c`.
             let (a11, a12) = (self.a11.to_f64(), self.a12.to_f64());
             let (det, c) = (self.ldl_det, self.ldl_c);
-            let t = 1.0 / (a11 * c * z2.to_f64());
+            let t = 1.0 / (c * (a11 * z2.to_f64()));
             let form = |x: f64, y: f64| {
                 let u = a11 * y - a12 * x;
                 (u * u + det * (x * x)) * t
             };
             let x = wide_form(form(m.x.to_f64(), m.y.to_f64()), m, form);
             let at = a11 * t;
-            return (x, F::from_f64(at * at * c * self.sqrt_det.to_f64()));
+            return (x, F::from_f64(at * at * self.ldl_c32));
         }
         over_z2(self.inv_quadratic(m), self.inv_sqrt_det, z2)
+    }
+    #[inline(always)]
+    fn det_clamped(&self) -> f64 {
+        if self.ldl {
+            return self.ldl_c;
+        }
+        // max(det, tau) is not kept in f64 on this path: its square root, rounded to F.
+        let s = self.sqrt_det.to_f64();
+        s * s
     }
 }
 impl Roughness for RoughnessMatrix {

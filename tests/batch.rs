@@ -127,10 +127,14 @@ macro_rules! suite {
                     let iso = Isotropic::new(alpha).unwrap();
                     let aa = AxisAligned::new(alpha, alpha * 0.3).unwrap();
                     let a2 = alpha * alpha;
-                    // A rotated matrix (the LDL representation) and an elongated one (cond > 2^24:
-                    // the eigenbasis path in f32).
+                    // A rotated matrix (the LDL representation), an elongated one (cond 1e8:
+                    // LDL in f32, the eigenbasis in f64) and the same with the determinant
+                    // clamp active (LDL built out of line in f32).
                     let mat = RoughnessMatrix::new(a2, 0.3 * a2, 0.5 * a2).unwrap();
                     let long = RoughnessMatrix::new(a2, 0.0, a2 * 1e-8).unwrap();
+                    let clamped =
+                        RoughnessMatrix::new_with_det_clamp(a2, 0.0, a2 * 1e-8, 2e-8 * a2 * a2)
+                            .unwrap();
                     assert_eq!(batch::ggx_d(&iso, &c.x, &c.y, &c.z, &mut out), N);
                     same(&out, |i| Ggx::new(iso).d(h(&c, i)), "ggx iso");
                     batch::ggx_d(&aa, &c.x, &c.y, &c.z, &mut out);
@@ -139,6 +143,12 @@ macro_rules! suite {
                     same(&out, |i| Ggx::new(mat).d(h(&c, i)), "ggx matrix");
                     batch::ggx_d(&long, &c.x, &c.y, &c.z, &mut out);
                     same(&out, |i| Ggx::new(long).d(h(&c, i)), "ggx long matrix");
+                    batch::ggx_d(&clamped, &c.x, &c.y, &c.z, &mut out);
+                    same(
+                        &out,
+                        |i| Ggx::new(clamped).d(h(&c, i)),
+                        "ggx clamped matrix",
+                    );
                     assert_eq!(batch::beckmann_d(&aa, &c.x, &c.y, &c.z, &mut out), N);
                     same(&out, |i| Beckmann::new(aa).d(h(&c, i)), "beckmann aa");
                     batch::beckmann_d(&mat, &c.x, &c.y, &c.z, &mut out);
