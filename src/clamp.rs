@@ -87,16 +87,15 @@ impl ClampRules {
     /// negative `lambda` is treated as `0`.
     #[inline]
     pub fn footprint(&self, fp: Footprint) -> Footprint {
-        // Fast path (every finite footprint of a real pixel): components small enough that the
-        // squared diagonals cannot overflow; compare the squared extent with lambda^2 (no
-        // square root, no division). NaN and infinities fail `<=` and take the general path.
-        let m = fp.dh_u.abs().max(fp.dh_v.abs()).max_element();
-        if m <= FAST_COMPONENT_MAX && self.max_extent >= 0.0 {
-            let (p, q) = (fp.dh_u + fp.dh_v, fp.dh_u - fp.dh_v);
-            let e2 = 0.25 * p.length_squared().max(q.length_squared());
-            if e2 <= self.max_extent * self.max_extent {
-                return fp;
-            }
+        // Fast path (every finite footprint of a real pixel): the squared extent against
+        // lambda^2 (no square root, no division). A NaN component makes `e2` NaN and an
+        // infinite or overflowing one `+inf`: both take the general path (`l * l` overflows
+        // too for a huge lambda: fuzzing).
+        let l = self.max_extent;
+        let (p, q) = (fp.dh_u + fp.dh_v, fp.dh_u - fp.dh_v);
+        let e2 = 0.25 * p.length_squared().max(q.length_squared());
+        if l >= 0.0 && e2 <= l * l && e2 <= F::MAX {
+            return fp;
         }
         self.footprint_general(fp)
     }
@@ -194,9 +193,10 @@ impl ClampRules {
     }
 
     /// The whole Gaussian pipeline: [`ClampRules::footprint`] -> [`Footprint::covariance`]
-    /// (`sigma` pixels) -> [`ClampRules::kernel`] -> `A' = A + 2 Sigma` with
-    /// [`ClampRules::tau`] ([`filter::gaussian_with_tau`]). Exact for Beckmann, the TK19
-    /// approximation for GGX.
+    /// (`sigma` pixels) -> [`ClampRules::kernel`] -> `A' = A + 2 Sigma`, with the
+    /// determinant clamp `tau = det(A)` of [`filter::gaussian`] if `det_clamp`, else as
+    /// [`filter::gaussian_with_tau`] with `0`. The kernel is sanitised once (by
+    /// [`ClampRules::kernel`]). Exact for Beckmann, the TK19 approximation for GGX.
     #[inline]
     pub fn filter_gaussian<R: Roughness>(
         &self,
@@ -205,18 +205,13 @@ impl ClampRules {
         sigma: F,
     ) -> RoughnessMatrix {
         let k = self.kernel(self.footprint(fp).covariance(sigma));
-        filter::gaussian_with_tau(roughness, k, self.tau(roughness))
+        if self.det_clamp {
+            filter::gaussian_sanitized(roughness, k)
+        } else {
+            filter::gaussian_with_tau_sanitized(roughness, k, 0.0)
+        }
     }
 }
-
-/// Largest footprint component for which [`ClampRules::footprint`]'s squared diagonals
-/// (`|dh_u +/- dh_v|^2 <= 8 m^2`) cannot overflow: `sqrt(F::MAX) / 4`, rounded down to a power
-/// of ten.
-const FAST_COMPONENT_MAX: F = (if core::mem::size_of::<F>() == 4 {
-    1e18
-} else {
-    1e153
-}) as F;
 
 /// Scales a footprint with nonzero, finite extent to extent `e` (else zero).
 fn scaled_to(fp: Footprint, e: F) -> Footprint {

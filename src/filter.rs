@@ -44,8 +44,15 @@ use super::{F, Vec2};
 /// its own `max(det A, tau)`). Units: `A` dimensionless (slope^2), `Sigma` slope^2.
 #[inline(always)]
 pub fn gaussian<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatrix {
+    gaussian_sanitized(roughness, kernel.sanitized())
+}
+
+/// [`gaussian`] for a kernel that [`Covariance::sanitized`] (or a clamp applied after it)
+/// has already made finite, non-negative on the diagonal and bounded.
+#[inline(always)]
+pub(crate) fn gaussian_sanitized<R: Roughness>(roughness: R, k: Covariance) -> RoughnessMatrix {
     // tau = det(A) > 0 is valid by construction: no check, no floor (the hot path).
-    let (b11, b12, b22) = plus_kernel(roughness, kernel.sanitized());
+    let (b11, b12, b22) = plus_kernel(roughness, k);
     RoughnessMatrix::from_entries_det_clamped(b11, b12, b22, roughness.det_clamped())
 }
 
@@ -60,7 +67,17 @@ pub fn gaussian_with_tau<R: Roughness>(
     kernel: Covariance,
     tau: F,
 ) -> RoughnessMatrix {
-    let (b11, b12, b22) = plus_kernel(roughness, kernel.sanitized());
+    gaussian_with_tau_sanitized(roughness, kernel.sanitized(), tau)
+}
+
+/// [`gaussian_with_tau`] for a kernel already sanitised (see [`gaussian_sanitized`]).
+#[inline]
+pub(crate) fn gaussian_with_tau_sanitized<R: Roughness>(
+    roughness: R,
+    kernel: Covariance,
+    tau: F,
+) -> RoughnessMatrix {
+    let (b11, b12, b22) = plus_kernel(roughness, kernel);
     let tau = if tau.is_finite() && tau > 0.0 {
         tau
     } else {

@@ -65,8 +65,15 @@ impl Covariance {
     /// its relative accuracy for elongated kernels. Both are clamped to `>= 0`.
     #[inline]
     pub fn eigenvalues(self) -> (F, F) {
+        let (min, max, _) = self.eigen_parts();
+        (min, max)
+    }
+
+    /// [`Covariance::eigenvalues`] and the radius `hypot(half difference, s12)`.
+    #[inline]
+    fn eigen_parts(self) -> (F, F, F) {
         let mean = 0.5 * (self.s11 + self.s22);
-        let rad = m::hypot(0.5 * (self.s11 - self.s22), self.s12);
+        let rad = radius(0.5 * (self.s11 - self.s22), self.s12);
         let max = (mean + rad).max(0.0);
         let min = if max > 0.0 {
             let det = self.det();
@@ -81,7 +88,7 @@ impl Covariance {
         } else {
             0.0
         };
-        (min, max)
+        (min, max, rad)
     }
 
     /// Clamps both eigenvalues to `<= max` without rotating the eigenvectors:
@@ -99,15 +106,22 @@ impl Covariance {
         // Fast path: a finite PSD kernel whose trace (lambda_min + lambda_max) is within the
         // bound (`max` is then not NaN and >= 0). Inlined; the rest is out of line, by value
         // (a by-reference call from inlined code measured a store-forwarding stall).
-        if self.s11 >= 0.0
-            && self.s22 >= 0.0
-            && self.s11 + self.s22 <= max
-            && (self.s11 + self.s22).is_finite()
-            && self.s12.is_finite()
-        {
-            return Self::new(self.s11, self.s12, self.s22);
+        let (a, b, c) = (self.s11, self.s12, self.s22);
+        if a >= 0.0 && c >= 0.0 && a + c <= max && (a + c).is_finite() && b.is_finite() {
+            return Self::new(a, b, c);
         }
-        Self::clamp_eigenvalues_slow(self.s11, self.s12, self.s22, max).detached()
+        // Second fast path: the largest eigenvalue `mean + sqrt(d^2 + b^2)` within the bound,
+        // tested without the square root: `d^2 + b^2 <= (max - mean)^2`. The bounds on
+        // `h = max - mean` keep `h^2` finite and normal (a square that underflows beside it
+        // is negligible; fuzzing found `h = 0` against underflowing squares); NaN fails the
+        // comparisons.
+        let (mean, d) = (0.5 * (a + c), 0.5 * (a - c));
+        let h = max - mean;
+        let h_ok = (1.0 / FAST_EIGEN_MAX..=FAST_EIGEN_MAX).contains(&h);
+        if a >= 0.0 && c >= 0.0 && h_ok && d * d + b * b <= h * h {
+            return Self::new(a, b, c);
+        }
+        Self::clamp_eigenvalues_slow(a, b, c, max).detached()
     }
 
     /// The general case of [`Covariance::clamp_eigenvalues`].
@@ -124,12 +138,16 @@ impl Covariance {
         if scale <= 0.0 {
             return this;
         }
-        // Work on Sigma / scale (largest entry 1). Tiny (subnormal) entries are scaled up too:
+        // Outside the range where every square below is a finite normal number, work on
+        // Sigma / scale (largest entry 1). Tiny (subnormal) entries are scaled up too:
         // `1 / (2 r)` below would overflow to inf (0 * inf = NaN); dividing (not multiplying by
         // `1 / k`, which overflows for a subnormal `k`).
-        let k = scale;
-        let s = Self::new(s11 / k, s12 / k, s22 / k);
-        let (lmin, lmax) = s.eigenvalues();
+        let (k, s) = if (1.0 / FAST_EIGEN_MAX..=FAST_EIGEN_MAX).contains(&scale) {
+            (1.0, this)
+        } else {
+            (scale, Self::new(s11 / scale, s12 / scale, s22 / scale))
+        };
+        let (lmin, lmax, r) = s.eigen_parts();
         // Compared and rebuilt in the caller's units (`lambda * k` against `max`): `max / k`
         // is subnormal when `max << scale` and carries only a few bits (fuzzing found 40 %
         // overshoots in f32).
@@ -141,7 +159,6 @@ impl Covariance {
         }
         // lmin < c < lmax, so lmax - lmin > 0.
         let d = 0.5 * (s.s11 - s.s22);
-        let r = m::hypot(d, s.s12);
         let p = r + d.abs();
         let q = if p > 0.0 { s.s12 * s.s12 / p } else { 0.0 };
         let (e11, e22) = if d >= 0.0 { (p, q) } else { (q, p) };
@@ -149,6 +166,11 @@ impl Covariance {
         // P_max = [[e11, s12], [s12, e22]] / 2r and P_min = [[e22, -s12], [-s12, e11]] / 2r:
         // sums of non-negative terms, no cancellation.
         let inv = 1.0 / (2.0 * r);
+        if !inv.is_finite() {
+            // lmax - lmin = 2 r below the normal range: isotropic to rounding, with `max`
+            // between its eigenvalues.
+            return Self::new(max, 0.0, max);
+        }
         let (p11, p12, p22) = (e11 * inv, s.s12 * inv, e22 * inv);
         let lm = lmin * k;
         Self::new(max * p11 + lm * p22, (max - lm) * p12, max * p22 + lm * p11)
@@ -218,6 +240,29 @@ impl Covariance {
     #[inline(always)]
     fn detached(self) -> Self {
         Self::new(self.s11 + 0.0, self.s12 + 0.0, self.s22 + 0.0)
+    }
+}
+
+/// Bounds `[1 / FAST_EIGEN_MAX, FAST_EIGEN_MAX]` on `max - mean` in
+/// [`Covariance::clamp_eigenvalues`]'s second fast path: its square is a finite normal number
+/// (`sqrt(F::MAX) / 2`, rounded down to a power of ten; its reciprocal is above
+/// `sqrt(F::MIN_POSITIVE)`).
+const FAST_EIGEN_MAX: F = (if core::mem::size_of::<F>() == 4 {
+    1e18
+} else {
+    1e153
+}) as F;
+
+/// `hypot(d, b)`: a plain square root where `d^2 + b^2` is a normal number at least
+/// `1 / eps` times the smallest (an underflowed square then weighs below `eps^2`), the
+/// library's `hypot` (a call) otherwise.
+#[inline]
+fn radius(d: F, b: F) -> F {
+    let r2 = d * d + b * b;
+    if (F::MIN_POSITIVE / F::EPSILON..=F::MAX).contains(&r2) {
+        m::sqrt(r2)
+    } else {
+        m::hypot(d, b)
     }
 }
 
