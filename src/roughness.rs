@@ -178,6 +178,8 @@ impl Roughness for Isotropic {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AxisAligned {
     alpha: Vec2,
+    /// `(alpha_x^2, alpha_y^2)`, the diagonal of `A` (a filtered lobe starts from it).
+    alpha2: Vec2,
     inv_alpha2: Vec2,
     /// `1 / (alpha_x alpha_y)`.
     inv_sqrt_det: F,
@@ -204,6 +206,7 @@ impl AxisAligned {
     fn from_valid(alpha: Vec2) -> Self {
         Self {
             alpha,
+            alpha2: alpha * alpha,
             inv_alpha2: Vec2::ONE / (alpha * alpha),
             inv_sqrt_det: 1.0 / (alpha.x * alpha.y),
         }
@@ -230,7 +233,7 @@ impl sealed::Sealed for AxisAligned {
     }
     #[inline(always)]
     fn det_clamped(&self) -> f64 {
-        let a = self.alpha * self.alpha;
+        let a = self.alpha2;
         a.x.to_f64() * a.y.to_f64()
     }
 }
@@ -241,7 +244,7 @@ impl Roughness for AxisAligned {
     }
     #[inline]
     fn quadratic(&self, w: Vec2) -> F {
-        (w * w).dot(self.alpha * self.alpha)
+        (w * w).dot(self.alpha2)
     }
     #[inline]
     fn sqrt_det(&self) -> F {
@@ -249,7 +252,7 @@ impl Roughness for AxisAligned {
     }
     #[inline]
     fn to_matrix(&self) -> RoughnessMatrix {
-        let a = self.alpha * self.alpha;
+        let a = self.alpha2;
         RoughnessMatrix {
             a11: a.x,
             a12: 0.0,
@@ -352,6 +355,15 @@ fn det_of(a11: F, a12: F, a22: F) -> f64 {
     m::mul_add(a, c, -bb) + err
 }
 
+/// `tau`, returned from out of line (see [`RoughnessMatrix::from_entries_det_clamped`]): the
+/// opaque `black_box` keeps the compiler from seeing through the call and merging the branch
+/// into a select.
+#[cold]
+#[inline(never)]
+fn clamped(tau: f64) -> f64 {
+    core::hint::black_box(tau)
+}
+
 /// `2^-e` for a positive `x = f 2^e`, `f` in `[1, 2)`: multiplying by it is exact and brings
 /// `x` into `[1, 2)`. Subnormal `x` (and `0`) get `2^1022`.
 #[inline]
@@ -451,13 +463,11 @@ impl RoughnessMatrix {
                 tr * tr < COND_LDL * det
             });
         if ldl {
-            if det >= t {
-                return Self::ldl(a11, a12, a22, det, det);
-            }
-            // The clamp is active (when filtering: by rounding only). Out of line, so that a
-            // filtered lobe's determinant reaches its one division directly instead of
-            // through `max(det, tau)`.
-            return Self::ldl_clamped(a11, a12, a22, det, t).detached();
+            // `max(det, tau)` as a branch to an out-of-line function, not a select: a filtered
+            // lobe's determinant then reaches its one division directly (the clamp is active
+            // only by rounding when filtering).
+            let c = if det >= t { det } else { clamped(t) };
+            return Self::ldl(a11, a12, a22, det, c);
         }
         // Eigenbasis path, in f64 for both precisions.
         let det = det_of(a11, a12, a22);
@@ -533,36 +543,6 @@ impl RoughnessMatrix {
             ldl_c: c,
             ldl_c32: c * sqrt_c,
             ldl: true,
-        }
-    }
-
-    /// [`RoughnessMatrix::ldl`] with the clamp active, `c = tau > det A`.
-    #[cold]
-    #[inline(never)]
-    fn ldl_clamped(a11: F, a12: F, a22: F, det: f64, tau: f64) -> Self {
-        Self::ldl(a11, a12, a22, det, tau)
-    }
-
-    /// The same matrix as fresh values (`x + 0`), for the result of an out-of-line path: an
-    /// aggregate returned from a call comes back through memory, and returned as is, the
-    /// compiler may route the inlined path's value through that memory too (a
-    /// store-forwarding stall; see `Covariance::detached`).
-    #[inline(always)]
-    fn detached(self) -> Self {
-        Self {
-            a11: self.a11 + 0.0,
-            a12: self.a12 + 0.0,
-            a22: self.a22 + 0.0,
-            axis: self.axis + Vec2::ZERO,
-            eig: self.eig + Vec2::ZERO,
-            inv_eig: self.inv_eig + Vec2::ZERO,
-            sqrt_det: self.sqrt_det + 0.0,
-            inv_sqrt_det: self.inv_sqrt_det + 0.0,
-            ldl_det: self.ldl_det + 0.0,
-            ldl_inv: self.ldl_inv + 0.0,
-            ldl_c: self.ldl_c + 0.0,
-            ldl_c32: self.ldl_c32 + 0.0,
-            ldl: self.ldl,
         }
     }
 
