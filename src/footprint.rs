@@ -138,11 +138,17 @@ impl Covariance {
         if scale <= 0.0 {
             return this;
         }
-        // Outside the range where every square below is a finite normal number, work on
-        // Sigma / scale (largest entry 1). Tiny (subnormal) entries are scaled up too:
-        // `1 / (2 r)` below would overflow to inf (0 * inf = NaN); dividing (not multiplying by
-        // `1 / k`, which overflows for a subnormal `k`).
-        let (k, s) = if (1.0 / FAST_EIGEN_MAX..=FAST_EIGEN_MAX).contains(&scale) {
+        // Unless every square below is a finite normal number (the entries within the fast
+        // range and `r^2 = d^2 + s12^2` well above the subnormals: fuzzing found `s12^2`
+        // underflowing beside normal diagonal entries), work on Sigma / scale (largest entry
+        // 1). Tiny (subnormal) entries are scaled up too: `1 / (2 r)` below would overflow to
+        // inf (0 * inf = NaN); dividing (not multiplying by `1 / k`, which overflows for a
+        // subnormal `k`).
+        let d0 = 0.5 * (s11 - s22);
+        let r2 = d0 * d0 + s12 * s12;
+        let unscaled = (1.0 / FAST_EIGEN_MAX..=FAST_EIGEN_MAX).contains(&scale)
+            && r2 >= F::MIN_POSITIVE / F::EPSILON;
+        let (k, s) = if unscaled {
             (1.0, this)
         } else {
             (scale, Self::new(s11 / scale, s12 / scale, s22 / scale))

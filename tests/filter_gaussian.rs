@@ -263,6 +263,52 @@ fn gaussian_is_a_plain_sum_with_tau() {
 }
 
 #[test]
+fn kernels_below_the_entries_rounding_keep_the_unfiltered_lobe() {
+    // A kernel too small to change the entries of A (zero, or below half an ulp of them): the
+    // filtered lobe is the unfiltered one. With a correlation only, the f32 entries of
+    // A + 2 Sigma have a determinant just below det A: the clamp tau = det A takes over (the
+    // out-of-line branch of the LDL build), so the peak never rises.
+    for (ax, ay) in [(0.5f32, 0.5f32), (0.3, 0.05), (1e-3, 2e-3), (1e-4, 1e-4)] {
+        let a = s::AxisAligned::new(ax, ay).unwrap();
+        let tiny = 1e-12 * ax * ay;
+        for k in [
+            s::Covariance::ZERO,
+            s::Covariance::new(tiny, 0.0, tiny),
+            s::Covariance::new(tiny, 0.9 * tiny, tiny),
+            s::Covariance::new(tiny, -0.9 * tiny, tiny),
+        ] {
+            let f = s::filter::gaussian(a, k);
+            // sqrt_det: the clamp, or the same determinant rounded once more (one ulp).
+            let want = ax * ay;
+            assert!((f.sqrt_det() - want).abs() <= f32::EPSILON * want, "{f:?}");
+            for (i, q) in [(0.0f32, 0.0f32), (0.7, -0.3), (-1.5, 2.0), (3.0, 0.5)]
+                .into_iter()
+                .enumerate()
+            {
+                let h = s::Vec3::new(-q.0 * ax, -q.1 * ay, 1.0).normalize();
+                let (fb, ub) = (s::Beckmann::new(f).d(h), s::Beckmann::new(a).d(h));
+                let (fg, ug) = (s::Ggx::new(f).d(h), s::Ggx::new(a).d(h));
+                // Both evaluate the same lobe through different roundings: the exponent
+                // x = |q|^2 carries a few eps, which exp turns into (1 + x) times that.
+                let x = q.0 * q.0 + q.1 * q.1;
+                let tol = 8.0 * f32::EPSILON * (1.0 + x);
+                assert!(
+                    ((fb - ub) / ub).abs() <= tol,
+                    "{i}: Beckmann {fb} vs {ub} ({k:?})"
+                );
+                assert!(
+                    ((fg - ug) / ug).abs() <= tol,
+                    "{i}: GGX {fg} vs {ug} ({k:?})"
+                );
+                if i == 0 {
+                    assert!(fb <= ub * (1.0 + f32::EPSILON), "peak rose: {fb} > {ub}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
 fn reference_ggx_agrees_with_a_plain_plane_quadrature() {
     // An independent path for GGX: integrate_plane over the kernel offset t of
     // P22(s - t) N(t; 0, Sigma), for lobe and kernel of comparable width (where a single
