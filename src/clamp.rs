@@ -17,6 +17,7 @@ use super::filter;
 use super::footprint::{BoundingRect, Covariance, Footprint};
 use super::roughness::{Roughness, RoughnessMatrix};
 use super::{F, Vec2};
+use crate::math::Real;
 
 /// The lower bound on a rectangle's half-extents (KHPL16 section 5.2; GDC 2016).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -181,12 +182,12 @@ impl ClampRules {
     }
 
     /// The determinant clamp for filtering `roughness`: `tau = det(A)` (`alpha_x^2 alpha_y^2`
-    /// for an axis-aligned lobe, TK19 supplement) if `det_clamp`, else `0`.
+    /// for an axis-aligned lobe, TK19 supplement) if `det_clamp`, else `0`. The value
+    /// [`filter::gaussian`] uses, rounded to `F`.
     #[inline]
     pub fn tau<R: Roughness>(&self, roughness: R) -> F {
         if self.det_clamp {
-            let s = roughness.sqrt_det();
-            s * s
+            F::from_f64(roughness.det_clamped())
         } else {
             0.0
         }
