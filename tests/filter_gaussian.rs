@@ -303,10 +303,12 @@ fn kernels_below_the_entries_rounding_keep_the_unfiltered_lobe() {
                 );
                 assert!(((fg - ggx) / ggx).abs() <= tol, "GGX {fg} vs {ggx} ({k:?})");
             }
-            // The peak never rises above the unfiltered one (1 / (pi alpha_x alpha_y)).
+            // The peak does not rise above the unfiltered one (1 / (pi alpha_x alpha_y)); the
+            // two are rounded along different paths, hence one ulp.
             let peak = s::Beckmann::new(f).d(s::Vec3::Z);
+            let unfiltered = s::Beckmann::new(a).d(s::Vec3::Z);
             assert!(
-                peak <= s::Beckmann::new(a).d(s::Vec3::Z),
+                peak <= unfiltered * (1.0 + f32::EPSILON),
                 "peak rose: {peak} ({k:?})"
             );
         }
