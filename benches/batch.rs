@@ -18,7 +18,7 @@ macro_rules! family {
     ($c:expr, $prec:ident, $t:ty) => {{
         use filtered_ndf::$prec::{
             AxisAligned, Beckmann, Footprint, Ggx, Isotropic, Ndf, RoughnessMatrix, Vec2, Vec3,
-            batch, filter, ggx_rect,
+            batch, filter, filter::rect,
         };
         type Wall<'a> = BenchmarkGroup<'a, criterion::measurement::WallTime>;
         let cases = common::realistic_cases(N, 0xBA7C);
@@ -108,7 +108,7 @@ macro_rules! family {
         );
         pair!(
             "d_rect",
-            |i: usize| ggx_rect::d_rect(aa, h(i), Vec2::new(rx[i], ry[i])),
+            |i: usize| rect::d_rect(aa, h(i), Vec2::new(rx[i], ry[i])),
             |o: &mut [$t]| batch::d_rect(&aa, &hx, &hy, &hz, &rx, &ry, o)
         );
     }};

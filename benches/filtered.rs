@@ -20,7 +20,8 @@ macro_rules! families {
         use filtered_ndf::math::Real;
         use filtered_ndf::$prec::{
             AxisAligned, Beckmann, ClampRules, Footprint, Ggx, Ndf, RoughnessMatrix, Vec2, Vec3,
-            filter, ggx_proxy, isotropic, jacobian, presets, slope,
+            filter, filter::deferred, filter::presets, filter::proxy, footprint::jacobian,
+            footprint::slope,
         };
         type Wall<'a> = BenchmarkGroup<'a, criterion::measurement::WallTime>;
         let c = |x: f64| <$t as Real>::from_f64(x);
@@ -122,27 +123,27 @@ macro_rules! families {
         let mut g = group($c, "ggx_proxy");
         run(&mut g, "exact_eq19", |i| {
             let he = ins[i].fp.bounding_rect().half_extent;
-            Ggx::new(ggx_proxy::proxy(ins[i].r, he)).d(ins[i].h)
+            Ggx::new(proxy::proxy(ins[i].r, he)).d(ins[i].h)
         });
         run(&mut g, "simple_eq20", |i| {
             let he = ins[i].fp.bounding_rect().half_extent;
-            Ggx::new(ggx_proxy::proxy_simple(ins[i].r, he)).d(ins[i].h)
+            Ggx::new(proxy::proxy_simple(ins[i].r, he)).d(ins[i].h)
         });
         g.finish();
 
         let mut g = group($c, "isotropic");
         for (name, bw) in [
-            ("tk19_max", isotropic::Bandwidth::Max),
-            ("tk19_trace", isotropic::Bandwidth::Trace),
-            ("tk19_average", isotropic::Bandwidth::Average),
+            ("tk19_max", deferred::Bandwidth::Max),
+            ("tk19_trace", deferred::Bandwidth::Trace),
+            ("tk19_average", deferred::Bandwidth::Average),
         ] {
             run(&mut g, name, |i| {
-                let s = isotropic::normal_difference_covariance(
+                let s = deferred::normal_difference_covariance(
                     ins[i].dn_u,
                     ins[i].dn_v,
-                    isotropic::SIGMA2,
+                    deferred::SIGMA2,
                 );
-                isotropic::filtered_alpha(ins[i].r.alpha().x, &s, bw, isotropic::KAPPA)
+                deferred::filtered_alpha(ins[i].r.alpha().x, &s, bw, deferred::KAPPA)
             });
         }
         for (name, p) in presets::ALL {

@@ -5,7 +5,8 @@
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use filtered_ndf::f32::{
-    AxisAligned, Beckmann, Covariance, Ggx, Ndf, RoughnessMatrix, filter, ggx_rect, slope,
+    AxisAligned, Beckmann, Covariance, Ggx, Ndf, RoughnessMatrix, filter, filter::rect,
+    footprint::slope,
 };
 use filtered_ndf::testing::rng::SplitMix64;
 use glam::{Vec2, Vec3};
@@ -78,7 +79,7 @@ fn bench(c: &mut Criterion) {
         bch.iter(|| {
             let mut acc = 0.0f32;
             for x in black_box(&xs) {
-                acc += ggx_rect::d_rect(x.r, x.h, x.half);
+                acc += rect::d_rect(x.r, x.h, x.half);
             }
             acc
         })
@@ -87,7 +88,7 @@ fn bench(c: &mut Criterion) {
         bch.iter(|| {
             let mut acc = 0.0f32;
             for x in black_box(&xs) {
-                acc += ggx_rect::d_rect_printed(x.r, x.hpp, x.h, x.half);
+                acc += rect::d_rect_printed(x.r, x.hpp, x.h, x.half);
             }
             acc
         })

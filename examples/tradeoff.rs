@@ -108,7 +108,7 @@ fn build(n: usize) -> Vec<Case> {
 type Kernel = Box<dyn Fn(&Case) -> f32>;
 
 fn sigma() -> f32 {
-    p::footprint::SIGMA_PIXEL
+    p::kernel::SIGMA_PIXEL
 }
 
 /// The deferred kernels: one isotropic increment added to both axes of the material.
@@ -160,33 +160,33 @@ fn ggx_kernels() -> Vec<(String, Kernel)> {
                     floor: p::ExtentFloor::None,
                     ..p::ClampRules::default()
                 };
-                p::ggx_rect::d_rect(c.alpha, c.h, rect_half_extent(c, rules))
+                p::filter::rect::d_rect(c.alpha, c.h, rect_half_extent(c, rules))
             }),
         ),
         (
             "GGX printed 8-term rect (GDC, eps floor)".into(),
             Box::new(|c: &Case| {
                 let he = rect_half_extent(c, p::ClampRules::default());
-                let hpp = p::slope::slope_from_sphere(c.h);
-                p::ggx_rect::d_rect_printed(c.alpha, hpp, c.h, he)
+                let hpp = p::footprint::slope::slope_from_sphere(c.h);
+                p::filter::rect::d_rect_printed(c.alpha, hpp, c.h, he)
             }),
         ),
         (
             "GGX proxy exact (eq. 19)".into(),
             Box::new(|c: &Case| {
                 let he = rect_half_extent(c, p::ClampRules::default());
-                p::Ggx::new(p::ggx_proxy::proxy(c.alpha, he)).d(c.h)
+                p::Ggx::new(p::filter::proxy::proxy(c.alpha, he)).d(c.h)
             }),
         ),
         (
             "GGX proxy simple (eq. 20)".into(),
             Box::new(|c: &Case| {
                 let he = rect_half_extent(c, p::ClampRules::default());
-                p::Ggx::new(p::ggx_proxy::proxy_simple(c.alpha, he)).d(c.h)
+                p::Ggx::new(p::filter::proxy::proxy_simple(c.alpha, he)).d(c.h)
             }),
         ),
     ];
-    for (name, conv) in p::presets::ALL {
+    for (name, conv) in p::filter::presets::ALL {
         k.push((
             format!("GGX deferred: {name}"),
             Box::new(move |c: &Case| deferred(c, conv)),
@@ -221,11 +221,12 @@ fn beckmann_kernels() -> Vec<(String, Kernel)> {
 /// Supersampling: the unfiltered NDF averaged over `n` points of the Gaussian footprint
 /// (seeded standard-normal jitter), which is what a renderer does without this crate.
 fn supersampled(c: &Case, jitter: &[(f32, f32)], beckmann: bool) -> f32 {
-    let s0 = p::slope::slope_from_sphere(c.h);
+    let s0 = p::footprint::slope::slope_from_sphere(c.h);
     let mut acc = 0.0f32;
     for &(a, b) in jitter {
-        let m =
-            p::slope::sphere_from_slope(s0 + c.fp.dh_u * (a * sigma()) + c.fp.dh_v * (b * sigma()));
+        let m = p::footprint::slope::sphere_from_slope(
+            s0 + c.fp.dh_u * (a * sigma()) + c.fp.dh_v * (b * sigma()),
+        );
         acc += if beckmann {
             p::Beckmann::new(c.alpha).d(m)
         } else {

@@ -24,13 +24,13 @@
 //! about 4.4 times the scalar loop for `Isotropic` and `AxisAligned`, 2.5 times for
 //! `RoughnessMatrix`; `f64` about 2.2 times.
 
-use super::beckmann::Beckmann;
 use super::filter;
+use super::filter::rect;
 use super::footprint::Footprint;
-use super::ggx::Ggx;
-use super::ggx_rect;
 use super::ndf::Ndf;
-use super::roughness::{AxisAligned, Roughness, RoughnessMatrix};
+use super::ndf::beckmann::Beckmann;
+use super::ndf::ggx::Ggx;
+use super::ndf::roughness::{AxisAligned, Roughness, RoughnessMatrix};
 use super::{F, Vec2, Vec3};
 
 /// Footprints in structure-of-arrays form: element `i` is the [`Footprint`] with
@@ -110,7 +110,7 @@ pub fn beckmann_d<R: Roughness>(r: &R, mx: &[F], my: &[F], mz: &[F], out: &mut [
 
 /// Filtered Beckmann (exact Gaussian filtering, KHPL16 eq. 15) for each half vector and
 /// footprint: `out[i] = Beckmann::new(filter::gaussian(*r, fp_i.covariance(sigma))).d(h_i)`
-/// (`sigma` in pixels, e.g. [`super::footprint::SIGMA_PIXEL`]). Returns the number of
+/// (`sigma` in pixels, e.g. [`super::kernel::SIGMA_PIXEL`]). Returns the number of
 /// elements written. Scalar loop.
 #[inline]
 pub fn beckmann_d_filtered<R: Roughness>(
@@ -166,7 +166,7 @@ fn d_filtered<R: Roughness, N: Ndf>(
     n
 }
 
-/// The exact box-filtered GGX [`ggx_rect::d_rect`] (KHPL16 eq. 16) for each half vector
+/// The exact box-filtered GGX [`rect::d_rect`] (KHPL16 eq. 16) for each half vector
 /// `h_i` and slope-domain half extent `(half_x[i], half_y[i])`:
 /// `out[i] = d_rect(*r, h_i, (half_x[i], half_y[i]))`. Returns the number of elements
 /// written. Scalar loop.
@@ -190,7 +190,7 @@ pub fn d_rect(
     let (hx, hy, hz) = (&hx[..n], &hy[..n], &hz[..n]);
     let (half_x, half_y, out) = (&half_x[..n], &half_y[..n], &mut out[..n]);
     for i in 0..n {
-        out[i] = ggx_rect::d_rect(
+        out[i] = rect::d_rect(
             *r,
             Vec3::new(hx[i], hy[i], hz[i]),
             Vec2::new(half_x[i], half_y[i]),

@@ -23,7 +23,7 @@
 //! Filtering one shading point, three ways (TK19 matrix, KHPL16 exact box, deferred):
 //!
 //! ```
-//! use filtered_ndf::f32::{ClampRules, Footprint, Ggx, Isotropic, Ndf, ggx_rect, presets};
+//! use filtered_ndf::f32::{ClampRules, Footprint, Ggx, Isotropic, Ndf, filter::rect, filter::presets};
 //! use glam::{Vec2, Vec3};
 //!
 //! let alpha = Isotropic::new(0.01).unwrap();
@@ -31,7 +31,7 @@
 //! // ddx/ddy of the half vector's slope (KHPL16 section 5.1).
 //! let fp = Footprint::from_slope_derivatives(Vec2::new(0.03, 0.0), Vec2::new(0.0, 0.02));
 //! let d_matrix = Ggx::new(ClampRules::default().filter_gaussian(alpha, fp, 0.5)).d(h);
-//! let d_box = ggx_rect::d_rect(alpha.into(), h, fp.bounding_rect().half_extent);
+//! let d_box = rect::d_rect(alpha.into(), h, fp.bounding_rect().half_extent);
 //! // Deferred: one isotropic roughness from G-buffer normal differences (TK19 eq. 4).
 //! let a = presets::TK19_TRACE.apply(0.01, Vec3::new(0.03, 0.0, 0.0), Vec3::new(0.0, 0.02, 0.0));
 //! let d_iso = Ggx::isotropic(a).unwrap().d(h);
@@ -65,62 +65,38 @@ pub use error::RoughnessError;
 /// once against the aliases `F`, `Vec2`, `Vec3`, `Mat2` of its parent module.
 macro_rules! precision_modules {
     () => {
-        // Each file is deliberately loaded once per precision.
+        // Each stage is deliberately loaded once per precision. The folders read as the
+        // pipeline: roughness and NDFs -> footprints and Jacobians -> kernels and clamps ->
+        // filters -> sampling, with the temporal extension and batch evaluation beside.
         #[path = "batch.rs"]
         pub mod batch;
-        #[path = "beckmann.rs"]
-        pub mod beckmann;
-        #[path = "clamp.rs"]
-        pub mod clamp;
-        #[path = "filter.rs"]
+        #[path = "filter/mod.rs"]
         pub mod filter;
-        #[path = "footprint.rs"]
+        #[path = "footprint/mod.rs"]
         pub mod footprint;
-        #[path = "geometry.rs"]
-        pub mod geometry;
-        #[path = "ggx.rs"]
-        pub mod ggx;
-        #[path = "ggx_proxy.rs"]
-        pub mod ggx_proxy;
-        #[path = "ggx_rect.rs"]
-        pub mod ggx_rect;
-        #[path = "implicit.rs"]
-        pub mod implicit;
-        #[path = "isotropic.rs"]
-        pub mod isotropic;
-        #[path = "jacobian.rs"]
-        pub mod jacobian;
-        #[path = "ndf.rs"]
+        #[path = "kernel/mod.rs"]
+        pub mod kernel;
+        #[path = "ndf/mod.rs"]
         pub mod ndf;
-        #[path = "presets.rs"]
-        pub mod presets;
-        #[path = "quadric.rs"]
-        pub mod quadric;
-        #[path = "roughness.rs"]
-        pub mod roughness;
-        #[path = "sample_beckmann.rs"]
-        pub mod sample_beckmann;
-        #[path = "sampling.rs"]
+        #[path = "sampling/mod.rs"]
         pub mod sampling;
-        #[path = "slope.rs"]
-        pub mod slope;
-        #[path = "temporal.rs"]
+        #[path = "temporal/mod.rs"]
         pub mod temporal;
 
-        pub use beckmann::Beckmann;
-        pub use clamp::{ClampRules, ExtentFloor};
         pub use filter::LeanMoments;
-        pub use footprint::{BoundingRect, Covariance, Footprint};
-        pub use geometry::{Endpoint, PinholeRay, ShadingFrame};
-        pub use ggx::Ggx;
-        pub use implicit::{HitRates, LevelSetSample, MovingRay, Sym3};
-        pub use isotropic::{Bandwidth, KernelConvention};
+        pub use filter::deferred::{Bandwidth, KernelConvention};
+        pub use footprint::Footprint;
+        pub use footprint::geometry::{Endpoint, PinholeRay, ShadingFrame};
+        pub use kernel::{BoundingRect, ClampRules, Covariance, ExtentFloor};
         pub use ndf::Ndf;
-        pub use quadric::{LocalQuadric, RigidMotion};
-        pub use roughness::{
+        pub use ndf::beckmann::Beckmann;
+        pub use ndf::ggx::Ggx;
+        pub use ndf::roughness::{
             ALPHA_MAX, ALPHA_MIN, AxisAligned, Isotropic, Roughness, RoughnessMatrix,
         };
         pub use sampling::NdfSampling;
+        pub use temporal::implicit::{HitRates, LevelSetSample, MovingRay, Sym3};
+        pub use temporal::quadric::{LocalQuadric, RigidMotion};
         pub use temporal::{TemporalLobe, TemporalRoughness};
     };
 }

@@ -49,7 +49,7 @@ macro_rules! suite {
             use super::*;
             use filtered_ndf::$prec::{
                 AxisAligned, Beckmann, Footprint, Ggx, Isotropic, Ndf, RoughnessMatrix, Vec2, Vec3,
-                batch, filter, ggx_rect,
+                batch, filter, filter::rect,
             };
 
             const N: usize = 2000;
@@ -195,7 +195,7 @@ macro_rules! suite {
                     assert_eq!(n, N);
                     same(
                         &out,
-                        |i| ggx_rect::d_rect(aa, h(&c, i), Vec2::new(c.hx[i], c.hy[i])),
+                        |i| rect::d_rect(aa, h(&c, i), Vec2::new(c.hx[i], c.hy[i])),
                         "d_rect",
                     );
                 }

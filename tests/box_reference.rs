@@ -2,7 +2,7 @@
 //! crate's exact rectangle integral against it.
 
 use approx::assert_relative_eq;
-use filtered_ndf::f64::{AxisAligned, Ggx, Ndf, ggx_rect};
+use filtered_ndf::f64::{AxisAligned, Ggx, Ndf, filter::rect};
 use filtered_ndf::testing::box_reference::ggx_box;
 use filtered_ndf::testing::quadrature::Tolerance;
 use glam::DVec2;
@@ -39,6 +39,6 @@ fn zero_extent_is_the_density_and_rect_integral_agrees() {
     // (both f64; the closed form is good to ~1e-12 there, the reference to 1e-11).
     let h = DVec2::new(0.07, 0.4);
     let e = ggx_box(r, DVec2::new(0.02, 0.1), h, Tolerance::relative(1e-11));
-    let v = ggx_rect::p22_rect(r, DVec2::new(0.02, 0.1), h);
+    let v = rect::p22_rect(r, DVec2::new(0.02, 0.1), h);
     assert_relative_eq!(v, e.value, max_relative = 1e-9);
 }

@@ -6,6 +6,9 @@ macro_rules! contract {
     ($m:ident, $p:ident) => {
         mod $m {
             use filtered_ndf::RoughnessError as E;
+            use filtered_ndf::$p::filter::{presets, proxy, rect};
+            use filtered_ndf::$p::footprint::{jacobian, slope};
+            use filtered_ndf::$p::ndf::roughness;
             use filtered_ndf::$p::*;
 
             const NAN: F = F::NAN;
@@ -266,7 +269,7 @@ macro_rules! contract {
                     assert!(a > 0.0 && (a - b).abs() <= 1e-4 * a);
                     assert_eq!(reflect(wo, Vec3::Z).length(), wo.length());
                 }
-                use filtered_ndf::$p::sample_beckmann::visible_slope_quantile;
+                use filtered_ndf::$p::sampling::beckmann::visible_slope_quantile;
                 for (c, s, u) in [
                     (NAN, 0.0, 0.5),
                     (-1.0, 0.5, 0.5),
@@ -307,7 +310,7 @@ macro_rules! contract {
                 let nanfp = Footprint::from_slope_derivatives(Vec2::new(NAN, 0.0), Vec2::ZERO);
                 assert!(nanfp.covariance(0.5).s11.is_nan() && nanfp.max_extent().is_nan());
                 // sanitized: NaN -> ZERO, inf -> KERNEL_MAX I, indefinite -> PSD.
-                let kmax = footprint::KERNEL_MAX;
+                let kmax = kernel::KERNEL_MAX;
                 assert_eq!(Covariance::new(NAN, 0.0, 1.0).sanitized(), Covariance::ZERO);
                 assert_eq!(
                     Covariance::new(INF, 0.0, 1.0).sanitized(),
@@ -423,27 +426,27 @@ macro_rules! contract {
                 let r = AxisAligned::new(0.1, 0.2).unwrap();
                 let c = Vec2::new(0.05, -0.1);
                 assert_eq!(
-                    ggx_rect::p22_rect(r, Vec2::new(NAN, 0.0), Vec2::splat(0.1)),
+                    rect::p22_rect(r, Vec2::new(NAN, 0.0), Vec2::splat(0.1)),
                     0.0
                 );
                 let (a, b) = (
-                    ggx_rect::p22_rect(r, c, Vec2::new(NAN, NAN)),
+                    rect::p22_rect(r, c, Vec2::new(NAN, NAN)),
                     Ggx::new(r).p22(c),
                 );
                 assert!((a - b).abs() <= 1e-6 * b);
                 assert_eq!(
-                    ggx_rect::p22_rect(r, c, Vec2::new(-0.1, 0.2)),
-                    ggx_rect::p22_rect(r, c, Vec2::new(0.1, 0.2))
+                    rect::p22_rect(r, c, Vec2::new(-0.1, 0.2)),
+                    rect::p22_rect(r, c, Vec2::new(0.1, 0.2))
                 );
                 for h in [
                     Vec2::splat(INF),
                     Vec2::splat(F::MAX),
                     Vec2::new(1e-30, 1e30),
                 ] {
-                    let v = ggx_rect::p22_rect(r, c, h);
+                    let v = rect::p22_rect(r, c, h);
                     assert!(v.is_finite() && v >= 0.0);
                 }
-                let v = ggx_rect::p22_rect(r, Vec2::splat(F::MAX), Vec2::splat(1.0));
+                let v = rect::p22_rect(r, Vec2::splat(F::MAX), Vec2::splat(1.0));
                 assert!(v.is_finite() && v >= 0.0);
                 for h in [
                     Vec3::new(0.1, 0.0, -1.0),
@@ -452,43 +455,43 @@ macro_rules! contract {
                     Vec3::new(NAN, 0.0, 1.0),
                     Vec3::new(0.0, 0.0, INF),
                 ] {
-                    assert_eq!(ggx_rect::d_rect(r, h, Vec2::splat(0.1)), 0.0, "{h:?}");
+                    assert_eq!(rect::d_rect(r, h, Vec2::splat(0.1)), 0.0, "{h:?}");
                 }
                 let h = Vec3::new(0.1, 0.2, 1.0).normalize();
-                assert_eq!(ggx_rect::d_rect(r, h, Vec2::ZERO), Ggx::new(r).d(h));
-                let v = ggx_rect::d_rect(r, Vec3::new(1.0, 0.0, 1e-30), Vec2::splat(0.1));
+                assert_eq!(rect::d_rect(r, h, Vec2::ZERO), Ggx::new(r).d(h));
+                let v = rect::d_rect(r, Vec3::new(1.0, 0.0, 1e-30), Vec2::splat(0.1));
                 assert!(v.is_finite() && v >= 0.0);
                 assert_eq!(
-                    ggx_rect::d_rect_printed(r, Vec2::ZERO, Vec3::Z, Vec2::ZERO),
+                    rect::d_rect_printed(r, Vec2::ZERO, Vec3::Z, Vec2::ZERO),
                     0.0
                 );
                 assert_eq!(
-                    ggx_rect::d_rect_printed(r, Vec2::new(NAN, 0.0), Vec3::Z, Vec2::splat(0.1)),
+                    rect::d_rect_printed(r, Vec2::new(NAN, 0.0), Vec3::Z, Vec2::splat(0.1)),
                     0.0
                 );
                 // Proxy: NaN half extent as 0, negative by magnitude; proxy() is always valid.
-                assert_eq!(ggx_proxy::effective_alpha(0.1, NAN), 0.1);
+                assert_eq!(proxy::effective_alpha(0.1, NAN), 0.1);
                 assert_eq!(
-                    ggx_proxy::effective_alpha(0.1, -0.2),
-                    ggx_proxy::effective_alpha(0.1, 0.2)
+                    proxy::effective_alpha(0.1, -0.2),
+                    proxy::effective_alpha(0.1, 0.2)
                 );
-                assert_eq!(ggx_proxy::effective_alpha_simple(0.1, NAN), 0.1);
-                assert_eq!(ggx_proxy::effective_alpha(0.1, INF), INF);
+                assert_eq!(proxy::effective_alpha_simple(0.1, NAN), 0.1);
+                assert_eq!(proxy::effective_alpha(0.1, INF), INF);
                 assert_eq!(
-                    ggx_proxy::proxy(r, Vec2::splat(INF)).alpha(),
+                    proxy::proxy(r, Vec2::splat(INF)).alpha(),
                     Vec2::splat(ALPHA_MAX)
                 );
                 for h in [Vec2::splat(NAN), Vec2::splat(INF), Vec2::splat(-1.0)] {
-                    let p = ggx_proxy::proxy(r, h);
+                    let p = proxy::proxy(r, h);
                     assert!(p.alpha().x >= ALPHA_MIN && p.alpha().y <= ALPHA_MAX);
-                    let p = ggx_proxy::proxy_simple(r, h);
+                    let p = proxy::proxy_simple(r, h);
                     assert!(p.alpha().x >= ALPHA_MIN && p.alpha().y <= ALPHA_MAX);
                 }
             }
 
             #[test]
             fn isotropic_filters() {
-                use filtered_ndf::$p::isotropic::{
+                use filtered_ndf::$p::filter::deferred::{
                     Domain, KAPPA, filtered_alpha, normal_difference_covariance,
                 };
                 let sig = Covariance::new(0.01, 0.0, 0.02);
@@ -584,7 +587,9 @@ macro_rules! contract {
 
             #[test]
             fn geometry() {
-                use filtered_ndf::$p::geometry::{self as g, Endpoint, PinholeRay, ShadingFrame};
+                use filtered_ndf::$p::footprint::geometry::{
+                    self as g, Endpoint, PinholeRay, ShadingFrame,
+                };
                 let frame = ShadingFrame::flat(Vec3::X, Vec3::Y, Vec3::Z);
                 let x = Vec3::ZERO;
                 // Eye on the shading point, opposite directions, NaN: degenerate -> zero / +z.
@@ -644,7 +649,7 @@ macro_rules! contract {
 
             #[test]
             fn implicit_quadric_temporal() {
-                use filtered_ndf::$p::implicit::{self, d_normalized, project};
+                use filtered_ndf::$p::temporal::implicit::{self, d_normalized, project};
                 let zero = LevelSetSample::default();
                 let ray = MovingRay::fixed(Vec3::ZERO, Vec3::Z);
                 assert_eq!(implicit::hit_rates(&zero, &ray, 1.0), HitRates::ZERO);

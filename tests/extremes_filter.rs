@@ -1,7 +1,7 @@
 //! The extremes sweep, part 2: the filtering kernels over the edges of their domains, in `f32`
 //! and `f64`: `filter::gaussian` and `filter::projected` (evaluated through the densities they
-//! feed), `ggx_rect::p22_rect` / `d_rect`, `ggx_proxy`, and the isotropic filters
-//! (`isotropic::filtered_alpha` and every preset).
+//! feed), `rect::p22_rect` / `d_rect`, `ggx_proxy`, and the isotropic filters
+//! (`deferred::filtered_alpha` and every preset).
 //!
 //! Grid: base roughness `alpha` in {1e-7, 1e-4, 1, 10} (isotropic, a matrix of condition
 //! number `1e6`, and an exactly singular matrix with the TK19 clamp `tau` where the domain
@@ -100,10 +100,10 @@ macro_rules! sweep {
     ($name:ident, $p:ident, $prec:expr) => {
         mod $name {
             use super::*;
-            use filtered_ndf::$p::isotropic::{self, Bandwidth, Combine, Domain, Norm};
+            use filtered_ndf::$p::filter::deferred::{self, Bandwidth, Combine, Domain, Norm};
             use filtered_ndf::$p::{
                 AxisAligned, Beckmann, Covariance, F, Ggx, Ndf, RoughnessMatrix, Vec2, Vec3,
-                filter, ggx_proxy, ggx_rect, presets,
+                filter, filter::proxy, filter::rect, filter::presets,
             };
 
             const PREC: usize = $prec;
@@ -358,7 +358,7 @@ macro_rules! sweep {
                                     let h = [r32(h[0] / hn), r32(h[1] / hn), r32(h[2] / hn)];
                                     let hv = Vec3::new(f(h[0]), f(h[1]), f(h[2]));
                                     let regions = [label, form, flabel, shape, dir];
-                                    let got = ggx_rect::d_rect(rough, hv, half).to_f64();
+                                    let got = rect::d_rect(rough, hv, half).to_f64();
                                     map.require(got.is_finite() && got >= 0.0, || {
                                         format!("d_rect {label} {form} {flabel} {dir}: {got}")
                                     });
@@ -395,7 +395,7 @@ macro_rules! sweep {
                                         v
                                     };
                                     idx += 1;
-                                    let got = ggx_rect::p22_rect(rough, Vec2::new(f(px), f(py)), half).to_f64();
+                                    let got = rect::p22_rect(rough, Vec2::new(f(px), f(py)), half).to_f64();
                                     map.record_density("p22_rect", &regions, PREC, (got, pmean, floor), tol, || {
                                         format!("{label} {form} {flabel} {shape} {dir}: {got:e} vs {pmean:e}")
                                     });
@@ -416,17 +416,17 @@ macro_rules! sweep {
                         // box-filtered over [-H, H]^2: 1 / (pi alpha'^2) = mean (quadrature).
                         let mean = rect_mean_ref(a, a, 0.0, 0.0, h, h);
                         let reference = 1.0 / (PI * mean).sqrt();
-                        let got = ggx_proxy::effective_alpha(f(a), f(h)).to_f64();
+                        let got = proxy::effective_alpha(f(a), f(h)).to_f64();
                         // Tolerance: a hypot, an atan, a square root: 16 eps; quadrature 1e-12.
                         map.record("effective_alpha", &[label, flabel], PREC, rel_err(got, reference, 0.0), 16.0 * eps + 1e-11, || {
                             format!("{label} H {h:e}: {got:e} vs {reference:e}")
                         });
-                        let px = ggx_proxy::proxy(AxisAligned::new(f(a), f(a)).unwrap(), Vec2::new(f(h), f(h)));
+                        let px = proxy::proxy(AxisAligned::new(f(a), f(a)).unwrap(), Vec2::new(f(h), f(h)));
                         let got = px.alpha().x.to_f64();
                         map.record("proxy", &[label, flabel], PREC, rel_err(got, reference, 0.0), 16.0 * eps + 1e-11, || {
                             format!("proxy {label} H {h:e}: {got:e} vs {reference:e}")
                         });
-                        let got = ggx_proxy::effective_alpha_simple(f(a), f(h)).to_f64();
+                        let got = proxy::effective_alpha_simple(f(a), f(h)).to_f64();
                         let reference = Dd::prod(a, a).add(Dd::prod(h, h)).sqrt().f();
                         map.record("effective_alpha_simple", &[label, flabel], PREC, rel_err(got, reference, 0.0), 4.0 * eps, || {
                             format!("simple {label} H {h:e}: {got:e} vs {reference:e}")
@@ -467,7 +467,7 @@ macro_rules! sweep {
 
             pub fn isotropic(map: &mut ErrorMap) {
                 let eps = unit_eps(PREC);
-                let kappa = isotropic::KAPPA.to_f64();
+                let kappa = deferred::KAPPA.to_f64();
                 for &(alpha, label) in &ALPHAS {
                     let a = r(alpha);
                     for &(fp, flabel) in &FOOTPRINTS {
@@ -479,7 +479,7 @@ macro_rules! sweep {
                                 (Bandwidth::Trace, 2.0 * (s11 + s22)),
                                 (Bandwidth::Average, s11 + s22),
                             ] {
-                                let got = isotropic::filtered_alpha(f(a), &sigma, bw, isotropic::KAPPA).to_f64();
+                                let got = deferred::filtered_alpha(f(a), &sigma, bw, deferred::KAPPA).to_f64();
                                 let reference = (a * a + kernel.min(kappa)).min(1.0).sqrt();
                                 // Tolerance: a sum, a min and a square root: 8 eps.
                                 map.record("filtered_alpha", &[label, flabel, shape], PREC, rel_err(got, reference, 0.0), 8.0 * eps, || {

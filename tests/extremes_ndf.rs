@@ -129,7 +129,7 @@ macro_rules! sweep {
             use super::*;
             use filtered_ndf::$p::{
                 AxisAligned, Beckmann, F, Ggx, Isotropic, NdfSampling, RoughnessMatrix, Vec2, Vec3,
-                jacobian,
+                footprint::jacobian,
             };
 
             const PREC: usize = $prec;

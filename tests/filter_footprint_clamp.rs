@@ -24,12 +24,12 @@ proptest! {
         // O(h^2 |s'''|) ~ 1e-12 and rounding ~ 1e-16 / 1e-6 = 1e-10, relative to |J du|; the
         // bound 1e-7 (relative to the largest |J|) leaves ample room.
         let p = DVec2::new(px, py);
-        let h = d::slope::sphere_from_projected(p);
+        let h = d::footprint::slope::sphere_from_projected(p);
         let (du, dv) = (DVec2::from(u), DVec2::from(v));
         let fp = d::Footprint::from_projected_derivatives_in_slope(h, du, dv);
         let eps = 1e-6;
         let fd = |dir: DVec2| {
-            (d::slope::slope_from_projected(p + dir * eps) - d::slope::slope_from_projected(p - dir * eps)) / (2.0 * eps)
+            (d::footprint::slope::slope_from_projected(p + dir * eps) - d::footprint::slope::slope_from_projected(p - dir * eps)) / (2.0 * eps)
         };
         let scale = 1.0 / h.z.powi(3);
         prop_assert!((fp.dh_u - fd(du)).length() <= 1e-7 * scale * (1.0 + du.length()));

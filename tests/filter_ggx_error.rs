@@ -125,13 +125,13 @@ fn projected_space_error_against_exact_projected_gaussian_filtered_ggx() {
         let g = d::Ggx::new(c.a);
         let density = |p: DVec2| {
             if p.length_squared() < 1.0 {
-                g.d(d::slope::sphere_from_projected(p))
+                g.d(d::footprint::slope::sphere_from_projected(p))
             } else {
                 0.0
             }
         };
         // The density's spread on the disk is P = A (I - A)^-1 ~ A for these alphas.
-        let p = d::slope::projected_from_slope(c.s);
+        let p = d::footprint::slope::projected_from_slope(c.s);
         let e = gref::gaussian_convolution(
             density,
             DVec2::ZERO,
@@ -141,8 +141,8 @@ fn projected_space_error_against_exact_projected_gaussian_filtered_ggx() {
             Tolerance::relative(1e-7),
         );
         assert!(e.error <= 1e-5 * e.value, "{e:?}");
-        let approx =
-            d::Ggx::new(d::filter::projected(c.a, c.k)).d(d::slope::sphere_from_projected(p));
+        let approx = d::Ggx::new(d::filter::projected(c.a, c.k))
+            .d(d::footprint::slope::sphere_from_projected(p));
         rel.push((approx - e.value).abs() / e.value);
     }
     let (med, p90, max) = stats(rel);

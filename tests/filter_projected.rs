@@ -43,7 +43,7 @@ fn ggx_on_the_projected_disk_is_ggx_with_matrix_p() {
         let jac = (DMat2::IDENTITY - am).determinant().sqrt();
         for &(x, y) in &[(0.0, 0.0), (0.05, -0.02), (0.3, 0.4), (-0.7, 0.1)] {
             let pp = DVec2::new(x, y) * a1.sqrt().max(0.01);
-            let h = d::slope::sphere_from_projected(pp);
+            let h = d::footprint::slope::sphere_from_projected(pp);
             let lhs = d::Ggx::new(a).d(h);
             let rhs = d::Ggx::new(p).p22(pp) / jac;
             // 1e-9: f64 rounding amplified by the 1/alpha^2-scaled quadratic forms.

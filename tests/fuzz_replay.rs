@@ -257,7 +257,7 @@ mod findings {
         let fp = f64::Footprint::from_slope_derivatives(DVec2::NAN, DVec2::NAN);
         let h = DVec3::new(-0.0, 0.0, -1e-30);
         assert_eq!(
-            f64::geometry::footprint_projected(fp, h),
+            f64::footprint::geometry::footprint_projected(fp, h),
             f64::Footprint::ZERO
         );
     }
@@ -274,7 +274,7 @@ mod findings {
         let eye = f64::Endpoint::Direction(DVec3::Z);
         let light = f64::Endpoint::Direction(DVec3::new(0.3, 0.0, 1.0));
         assert_eq!(
-            f64::geometry::half_vector(DVec3::ZERO, eye, light, &frame),
+            f64::footprint::geometry::half_vector(DVec3::ZERO, eye, light, &frame),
             DVec3::Z
         );
     }
@@ -282,18 +282,19 @@ mod findings {
     #[test]
     fn jacobian_azimuth_of_subnormal_components() {
         // f64: h_x / hypot(h_x, h_y) was not a unit pair for subnormal components.
-        let h = f64::jacobian::sanitize(DVec3::new(5e-324, 5e-324, -1.1367));
+        let h = f64::footprint::jacobian::sanitize(DVec3::new(5e-324, 5e-324, -1.1367));
         assert!((h.length() - 1.0).abs() < 1e-15, "{h}");
     }
 
     #[test]
     fn p22_rect_nan_centre_and_far_tail() {
         let r = f32::AxisAligned::new(1.0, 1e-8).unwrap();
-        let p = f32::ggx_rect::p22_rect(r, Vec2::new(f32::NAN, f32::MAX), Vec2::ZERO);
+        let p = f32::filter::rect::p22_rect(r, Vec2::new(f32::NAN, f32::MAX), Vec2::ZERO);
         assert_eq!(p, 0.0);
         // f32, alpha = 1e-8, |center| / alpha ~ 1.7e8: the closed form cancelled below zero.
         let r = f32::AxisAligned::new(1e-8, 1e-8).unwrap();
-        let p = f32::ggx_rect::p22_rect(r, Vec2::new(-1.7321126, -0.0), Vec2::new(0.97044325, 1.0));
+        let p =
+            f32::filter::rect::p22_rect(r, Vec2::new(-1.7321126, -0.0), Vec2::new(0.97044325, 1.0));
         assert!(p >= 0.0, "{p}");
     }
 

@@ -9,8 +9,8 @@
 //! the code under test) are computed here analytically from `f`'s second derivatives. The
 //! reference is a central difference of the test's own `sigma(x)`.
 
-use filtered_ndf::f32::geometry as g32;
-use filtered_ndf::f64::geometry::{
+use filtered_ndf::f32::footprint::geometry as g32;
+use filtered_ndf::f64::footprint::geometry::{
     self as g, Endpoint, PinholeRay, ShadingFrame, footprint, footprint_projected, half_vector,
     half_vector_jacobian, half_vector_jacobian_deferred, half_vector_jacobian_far_field,
     tangent_plane_differentials,

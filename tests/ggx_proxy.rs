@@ -38,7 +38,7 @@ fn eq19_peak_matching_holds_against_quadrature() {
     for &a in &ALPHAS {
         for &h in &HALVES {
             let want = filtered_peak(a, h);
-            let a64 = d::ggx_proxy::effective_alpha(a, h);
+            let a64 = d::filter::proxy::effective_alpha(a, h);
             let got64 = 1.0 / (PI * a64 * a64);
             // f64: the closed form has no cancellation (t / atan t, t in [0, 1)); 1e-10 covers
             // the quadrature goal and a few ulps.
@@ -46,7 +46,7 @@ fn eq19_peak_matching_holds_against_quadrature() {
                 (got64 / want - 1.0).abs() < 1e-10,
                 "a={a} h={h}: {got64} vs {want}"
             );
-            let a32 = s::ggx_proxy::effective_alpha(a as f32, h as f32) as f64;
+            let a32 = s::filter::proxy::effective_alpha(a as f32, h as f32) as f64;
             let got32 = 1.0 / (PI * a32 * a32);
             // f32: a few ulps on alpha' (doubled by the square), plus input rounding of a and
             // h (relative 6e-8 each, entering alpha' with weight <= 1): 1e-6.
@@ -63,8 +63,8 @@ fn eq19_peak_matching_holds_against_the_box_filter() {
     for &a in &ALPHAS {
         for &h in &HALVES {
             let r = d::AxisAligned::new(a, a).unwrap();
-            let peak = d::ggx_rect::p22_rect(r, glam::DVec2::ZERO, glam::DVec2::splat(h));
-            let p = d::ggx_proxy::proxy(r, glam::DVec2::splat(h)).alpha();
+            let peak = d::filter::rect::p22_rect(r, glam::DVec2::ZERO, glam::DVec2::splat(h));
+            let p = d::filter::proxy::proxy(r, glam::DVec2::splat(h)).alpha();
             let got = 1.0 / (PI * p.x * p.y);
             // Both sides exact to < 3e-7 (the box filter's f64 bound near the peak).
             assert!(
@@ -79,7 +79,7 @@ fn eq19_peak_matching_holds_against_the_box_filter() {
 fn corrected_eq20_is_the_solution_and_printed_eq20_is_not() {
     for &a in &ALPHAS {
         for &h in &HALVES {
-            let ours = d::ggx_proxy::effective_alpha(a, h);
+            let ours = d::filter::proxy::effective_alpha(a, h);
             let corr = eq20_corrected(a, h);
             // Same quantity by two algebraically equal routes: 1e-12.
             assert!(
@@ -103,11 +103,11 @@ fn corrected_eq20_is_the_solution_and_printed_eq20_is_not() {
 fn limits_of_the_exact_proxy() {
     for &a in &ALPHAS {
         // No footprint: alpha itself, exactly.
-        assert_eq!(d::ggx_proxy::effective_alpha(a, 0.0), a);
-        assert_eq!(s::ggx_proxy::effective_alpha(a as f32, 0.0), a as f32);
+        assert_eq!(d::filter::proxy::effective_alpha(a, 0.0), a);
+        assert_eq!(s::filter::proxy::effective_alpha(a as f32, 0.0), a as f32);
         // Footprint >> alpha: 2 h / sqrt(pi) (relative correction O((alpha / h)^2)).
         let h = 1e4 * a;
-        let v = d::ggx_proxy::effective_alpha(a, h);
+        let v = d::filter::proxy::effective_alpha(a, h);
         assert!((v / (2.0 * h / PI.sqrt()) - 1.0).abs() < 1e-7, "{v}");
     }
 }
@@ -126,8 +126,8 @@ fn simple_form_deviation_over_a_grid() {
             } else {
                 10f64.powf(-6.0 + 6.0 * j as f64 / 60.0)
             };
-            let ratio =
-                d::ggx_proxy::effective_alpha_simple(a, h) / d::ggx_proxy::effective_alpha(a, h);
+            let ratio = d::filter::proxy::effective_alpha_simple(a, h)
+                / d::filter::proxy::effective_alpha(a, h);
             if ratio < lo {
                 lo = ratio;
                 at_lo = (a, h);
@@ -152,10 +152,10 @@ fn simple_form_deviation_over_a_grid() {
 #[test]
 fn proxy_per_axis_and_bad_input() {
     let r = s::AxisAligned::new(0.1, 0.4).unwrap();
-    let p = s::ggx_proxy::proxy(r, glam::Vec2::new(0.05, -0.2)).alpha();
-    assert_eq!(p.x, s::ggx_proxy::effective_alpha(0.1, 0.05));
-    assert_eq!(p.y, s::ggx_proxy::effective_alpha(0.4, 0.2));
-    let q = s::ggx_proxy::proxy_simple(r, glam::Vec2::new(0.05, -0.2)).alpha();
+    let p = s::filter::proxy::proxy(r, glam::Vec2::new(0.05, -0.2)).alpha();
+    assert_eq!(p.x, s::filter::proxy::effective_alpha(0.1, 0.05));
+    assert_eq!(p.y, s::filter::proxy::effective_alpha(0.4, 0.2));
+    let q = s::filter::proxy::proxy_simple(r, glam::Vec2::new(0.05, -0.2)).alpha();
     assert_eq!(q.x, 0.1f32.hypot(0.05));
     // NaN counts as no footprint; +/-inf saturates at ALPHA_MAX; huge stays finite.
     for hh in [
@@ -165,15 +165,15 @@ fn proxy_per_axis_and_bad_input() {
         glam::Vec2::new(1e-45, 0.0),
     ] {
         for a in [
-            s::ggx_proxy::proxy(r, hh),
-            s::ggx_proxy::proxy_simple(r, hh),
+            s::filter::proxy::proxy(r, hh),
+            s::filter::proxy::proxy_simple(r, hh),
         ] {
             let al = a.alpha();
             assert!(al.is_finite() && al.x > 0.0 && al.y > 0.0, "{hh:?}: {al:?}");
         }
     }
-    let nan = s::ggx_proxy::proxy(r, glam::Vec2::new(f32::NAN, f32::NAN)).alpha();
+    let nan = s::filter::proxy::proxy(r, glam::Vec2::new(f32::NAN, f32::NAN)).alpha();
     assert_eq!(nan, r.alpha());
-    let inf = s::ggx_proxy::proxy(r, glam::Vec2::splat(f32::INFINITY)).alpha();
+    let inf = s::filter::proxy::proxy(r, glam::Vec2::splat(f32::INFINITY)).alpha();
     assert_eq!(inf, glam::Vec2::splat(s::ALPHA_MAX));
 }

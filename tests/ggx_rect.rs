@@ -64,8 +64,8 @@ fn errors(a: f32, b: f32, c: (f32, f32), h: (f32, f32)) -> (f64, f64, f64) {
     );
     let r32 = s::AxisAligned::new(a, b).unwrap();
     let r64 = d::AxisAligned::new(a as f64, b as f64).unwrap();
-    let v32 = s::ggx_rect::p22_rect(r32, glam::Vec2::new(c.0, c.1), glam::Vec2::new(h.0, h.1));
-    let v64 = d::ggx_rect::p22_rect(
+    let v32 = s::filter::rect::p22_rect(r32, glam::Vec2::new(c.0, c.1), glam::Vec2::new(h.0, h.1));
+    let v64 = d::filter::rect::p22_rect(
         r64,
         glam::DVec2::new(c.0 as f64, c.1 as f64),
         glam::DVec2::new(h.0 as f64, h.1 as f64),
@@ -122,7 +122,7 @@ proptest! {
         prop_assert!(e64 <= tol, "f64 rel err {e64:e} (ref {r:e})");
         // Box filtering never raises the density above its peak 1 / (pi a b).
         let r32 = s::AxisAligned::new(a, b).unwrap();
-        let v = s::ggx_rect::p22_rect(r32, glam::Vec2::new(cx, cy), glam::Vec2::new(hx, hy));
+        let v = s::filter::rect::p22_rect(r32, glam::Vec2::new(cx, cy), glam::Vec2::new(hx, hy));
         prop_assert!(v <= 1.0 / (core::f32::consts::PI * a * b) * (1.0 + 1e-6));
     }
 }
@@ -175,11 +175,14 @@ fn zero_footprint_is_the_unfiltered_density_exactly() {
         let r = s::AxisAligned::new(a, b).unwrap();
         let c = glam::Vec2::new(cx, cy);
         let ggx = s::Ggx::new(r);
-        assert_eq!(s::ggx_rect::p22_rect(r, c, glam::Vec2::ZERO), ggx.p22(c));
-        let h = s::slope::sphere_from_slope(c);
-        assert_eq!(s::ggx_rect::d_rect(r, h, glam::Vec2::ZERO), ggx.d(h));
+        assert_eq!(
+            s::filter::rect::p22_rect(r, c, glam::Vec2::ZERO),
+            ggx.p22(c)
+        );
+        let h = s::footprint::slope::sphere_from_slope(c);
+        assert_eq!(s::filter::rect::d_rect(r, h, glam::Vec2::ZERO), ggx.d(h));
         // And continuously so: a 1e-30 footprint goes through the quadrature branch.
-        let tiny = s::ggx_rect::p22_rect(r, c, glam::Vec2::splat(1e-30));
+        let tiny = s::filter::rect::p22_rect(r, c, glam::Vec2::splat(1e-30));
         let exact = p22(a as f64, b as f64, cx as f64, cy as f64);
         assert!(
             (tiny as f64 - exact).abs() <= 1e-6 * exact,
@@ -198,7 +201,7 @@ fn solid_angle_form_divides_by_cos4() {
         let c = (-h.x / h.z, -h.y / h.z);
         let half = glam::DVec2::new(0.02, 0.07);
         let want = reference(a, b, c.0, c.1, half.x, half.y) / h.z.powi(4);
-        let got = d::ggx_rect::d_rect(r, h, half);
+        let got = d::filter::rect::d_rect(r, h, half);
         // f64 path near the peak: TOL64_NEAR.
         assert!((got - want).abs() <= TOL64_NEAR * want, "{got} vs {want}");
     }
@@ -212,7 +215,7 @@ fn filtered_density_stays_normalised() {
         let r = d::AxisAligned::new(a, b).unwrap();
         let half = glam::DVec2::new(hx, hy);
         let e = integrate_plane(
-            |x, y| d::ggx_rect::p22_rect(r, glam::DVec2::new(x, y), half),
+            |x, y| d::filter::rect::p22_rect(r, glam::DVec2::new(x, y), half),
             (0.0, 0.0),
             (a + hx, b + hy),
             Tolerance::relative(1e-9),
@@ -248,7 +251,7 @@ fn appendix_a_as_printed_is_four_times_the_average() {
         assert!((printed / avg - 4.0).abs() < 1e-9, "{printed} vs 4 x {avg}");
         // The GDC listing (with f = 1) is the average itself, as is eq. 16.
         let r = d::AxisAligned::new(a, b).unwrap();
-        let gdc = d::ggx_rect::d_rect_printed(
+        let gdc = d::filter::rect::d_rect_printed(
             r,
             glam::DVec2::new(hs, ht),
             glam::DVec3::Z,
@@ -287,7 +290,7 @@ fn exact_vs_printed_on_a_seeded_sample() {
         );
         let (e32, e64, r) = errors(a, b, (cx, cy), (hx, hy));
         e6.push(e64);
-        let p = s::ggx_rect::d_rect_printed(
+        let p = s::filter::rect::d_rect_printed(
             s::AxisAligned::new(a, b).unwrap(),
             glam::Vec2::new(cx, cy),
             glam::Vec3::Z,
@@ -317,17 +320,17 @@ fn bad_input_never_nan() {
     let c = v2(0.1, -0.2);
     // Negative half extents are their absolute value.
     assert_eq!(
-        s::ggx_rect::p22_rect(r, c, v2(-0.05, 0.3)),
-        s::ggx_rect::p22_rect(r, c, v2(0.05, -0.3))
+        s::filter::rect::p22_rect(r, c, v2(-0.05, 0.3)),
+        s::filter::rect::p22_rect(r, c, v2(0.05, -0.3))
     );
     assert_eq!(
-        s::ggx_rect::p22_rect(r, c, v2(-0.05, 0.3)),
-        s::ggx_rect::p22_rect(r, c, v2(0.05, 0.3))
+        s::filter::rect::p22_rect(r, c, v2(-0.05, 0.3)),
+        s::filter::rect::p22_rect(r, c, v2(0.05, 0.3))
     );
     // NaN half extent counts as zero (here: the 1D average over the other axis).
     assert_eq!(
-        s::ggx_rect::p22_rect(r, c, v2(nan, 0.3)),
-        s::ggx_rect::p22_rect(r, c, v2(0.0, 0.3))
+        s::filter::rect::p22_rect(r, c, v2(nan, 0.3)),
+        s::filter::rect::p22_rect(r, c, v2(0.0, 0.3))
     );
     for (cc, hh) in [
         (v2(nan, 0.0), v2(0.1, 0.1)),
@@ -337,7 +340,7 @@ fn bad_input_never_nan() {
         (v2(0.0, 0.0), v2(1e-45, 1e-45)),
         (v2(1e-45, 0.0), v2(0.0, 1e-45)),
     ] {
-        let v = s::ggx_rect::p22_rect(r, cc, hh);
+        let v = s::filter::rect::p22_rect(r, cc, hh);
         assert!(v.is_finite() && v >= 0.0, "{cc:?} {hh:?}: {v}");
     }
     let v3 = glam::Vec3::new;
@@ -350,22 +353,22 @@ fn bad_input_never_nan() {
         (v3(0.0, 0.0, 1.0), v2(inf, nan)),
         (v3(0.6, 0.0, 0.8), v2(-1e30, 1e30)),
     ] {
-        let v = s::ggx_rect::d_rect(r, h, hh);
+        let v = s::filter::rect::d_rect(r, h, hh);
         assert!(v.is_finite() && v >= 0.0, "{h:?} {hh:?}: {v}");
-        let p = s::ggx_rect::d_rect_printed(r, v2(h.x, h.y), h, hh);
+        let p = s::filter::rect::d_rect_printed(r, v2(h.x, h.y), h, hh);
         assert!(!p.is_nan(), "printed {h:?} {hh:?}: {p}");
     }
     assert_eq!(
-        s::ggx_rect::d_rect(r, v3(0.0, 0.0, -1.0), v2(0.1, 0.1)),
+        s::filter::rect::d_rect(r, v3(0.0, 0.0, -1.0), v2(0.1, 0.1)),
         0.0
     );
     assert_eq!(
-        s::ggx_rect::d_rect_printed(r, v2(0.0, 0.0), glam::Vec3::Z, v2(0.0, 0.0)),
+        s::filter::rect::d_rect_printed(r, v2(0.0, 0.0), glam::Vec3::Z, v2(0.0, 0.0)),
         0.0
     );
     // f64: a half vector grazing the horizon stays finite (unfiltered limit).
     let r64 = d::AxisAligned::new(0.1, 0.2).unwrap();
     let h = glam::DVec3::new(1.0, 0.0, 1e-200);
-    let v = d::ggx_rect::d_rect(r64, h, glam::DVec2::splat(0.1));
+    let v = d::filter::rect::d_rect(r64, h, glam::DVec2::splat(0.1));
     assert!(v.is_finite() && v > 0.0, "{v}");
 }

@@ -7,11 +7,11 @@ mod common;
 use common::{
     Body, Ellipsoid, Rng, RngExt, Scene, ellipsoid_scene, quadric_scene, sphere_scene, sym3,
 };
-use filtered_ndf::f64::implicit::{
+use filtered_ndf::f64::temporal::implicit::{
     HitRates, LevelSetSample, MovingRay, Sym3, d_normalized, hit_distance_rate, hit_normal_rate,
     hit_rates, project,
 };
-use filtered_ndf::f64::quadric::{LocalQuadric, RigidMotion};
+use filtered_ndf::f64::temporal::quadric::{LocalQuadric, RigidMotion};
 use glam::{DMat3, DVec3, Vec3};
 use proptest::prelude::*;
 
@@ -369,7 +369,7 @@ proptest! {
     /// coordinates of size ~5 with intermediate cancellation in eq. 20).
     #[test]
     fn f32_agrees_with_f64(seed in any::<u64>()) {
-        use filtered_ndf::f32::implicit as i32;
+        use filtered_ndf::f32::temporal::implicit as i32;
         let mut rng = Rng(seed);
         let s = quadric_scene(&mut rng, true);
         let x = s.hit(0.0).unwrap().x;
@@ -399,7 +399,7 @@ proptest! {
         hs in prop::array::uniform6(-1e30f32..1e30),
         pt in -1e30f32..1e30, s in -1e30f32..1e30,
     ) {
-        use filtered_ndf::f32::implicit as i32;
+        use filtered_ndf::f32::temporal::implicit as i32;
         let smp = i32::LevelSetSample {
             grad: Vec3::from(g),
             hess: i32::Sym3::new(hs[0], hs[1], hs[2], hs[3], hs[4], hs[5]),

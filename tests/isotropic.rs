@@ -3,11 +3,11 @@
 //! 4.4 (eq. 3) checked geometrically, and bad input.
 
 use filtered_ndf::f32 as p32;
-use filtered_ndf::f64::footprint::{Covariance, Footprint};
-use filtered_ndf::f64::isotropic::{
+use filtered_ndf::f64::filter::deferred::{
     Bandwidth, Combine, Domain, KAPPA, KernelConvention, Norm, SIGMA2, filtered_alpha,
     normal_difference_covariance,
 };
+use filtered_ndf::f64::{Covariance, Footprint};
 use glam::{DVec2, DVec3, Vec3};
 use proptest::prelude::*;
 
@@ -232,7 +232,7 @@ fn bad_input_is_documented_behaviour() {
         }
     }
     // f32: huge differences and alpha never overflow to NaN.
-    let c32 = p32::isotropic::Bandwidth::Max.convention();
+    let c32 = p32::filter::deferred::Bandwidth::Max.convention();
     let h = Vec3::splat(f32::MAX);
     let got = c32.apply(f32::MAX, h, h);
     assert!(got.is_finite() && got <= 1.0, "{got}");

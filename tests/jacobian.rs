@@ -6,9 +6,9 @@
 //! of `(psi_x, psi_y)` coordinates to `h`), written with the test's own trigonometry; the code
 //! under test computes the same frame from `h` alone.
 
-use filtered_ndf::f32::jacobian as j32;
-use filtered_ndf::f64::jacobian as j64;
-use filtered_ndf::f64::slope;
+use filtered_ndf::f32::footprint::jacobian as j32;
+use filtered_ndf::f64::footprint::jacobian as j64;
+use filtered_ndf::f64::footprint::slope;
 use glam::{DMat2, DVec2, DVec3, Vec3};
 use proptest::prelude::*;
 

@@ -2,8 +2,8 @@
 //! that detects a preset ported into the wrong roughness domain, and the measured peak error of
 //! every preset against the exact Gaussian-filtered GGX (f64 quadrature).
 
-use filtered_ndf::f64::isotropic::{Domain, KernelConvention};
-use filtered_ndf::f64::presets::{self, ALL};
+use filtered_ndf::f64::filter::deferred::{Domain, KernelConvention};
+use filtered_ndf::f64::filter::presets::{self, ALL};
 use filtered_ndf::testing::quadrature::{Tolerance, integrate_line, integrate_plane};
 use filtered_ndf::testing::rng::SplitMix64 as Rng;
 use glam::DVec3;
@@ -391,7 +391,7 @@ fn measured_peak_error_of_each_preset_against_exact_gaussian_filtering() {
 
 #[test]
 fn every_preset_handles_bad_input_and_agrees_across_precisions() {
-    use filtered_ndf::f32::presets::ALL as ALL32;
+    use filtered_ndf::f32::filter::presets::ALL as ALL32;
     let d = DVec3::new(0.02, -0.01, 0.005);
     let bad = [
         DVec3::NAN,

@@ -375,7 +375,7 @@ fn full_matrix_slope_statistics_match_closed_forms() {
 
 #[test]
 fn beckmann_visible_slope_quantile_matches_the_quadrature_cdf() {
-    use filtered_ndf::f64::sample_beckmann::visible_slope_quantile;
+    use filtered_ndf::f64::sampling::beckmann::visible_slope_quantile;
     let tol = Tolerance {
         abs: 1e-300,
         rel: 1e-14,

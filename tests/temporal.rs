@@ -6,8 +6,8 @@
 mod common;
 
 use common::{Body, Ellipsoid, Quadric, Rng, Scene, slope_in_frame, sym3};
-use filtered_ndf::f64::implicit::hit_rates;
-use filtered_ndf::f64::quadric::RigidMotion;
+use filtered_ndf::f64::temporal::implicit::hit_rates;
+use filtered_ndf::f64::temporal::quadric::RigidMotion;
 use filtered_ndf::f64::temporal::{TemporalLobe, TemporalRoughness, box_shutter_dt, widen};
 use filtered_ndf::f64::{
     ALPHA_MAX, ALPHA_MIN, AxisAligned, Beckmann, Covariance, Ggx, Isotropic, Ndf, Roughness,
@@ -678,7 +678,7 @@ proptest! {
 #[test]
 fn readme_example() {
     // The pipeline as shown in the README: a translating sphere seen by a fixed camera.
-    use filtered_ndf::f32::implicit::{LevelSetSample, MovingRay, Sym3, hit_rates};
+    use filtered_ndf::f32::temporal::implicit::{LevelSetSample, MovingRay, Sym3, hit_rates};
     use filtered_ndf::f32::temporal::{TemporalLobe, TemporalRoughness, box_shutter_dt};
     use filtered_ndf::f32::{Isotropic, Ndf};
     use glam::Vec3;

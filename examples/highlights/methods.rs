@@ -9,7 +9,7 @@
 
 use filtered_ndf::f32::{
     AxisAligned, Beckmann, ClampRules, Endpoint, ExtentFloor, Footprint, Ggx, Isotropic, Ndf,
-    ShadingFrame, filter, geometry, ggx_proxy, ggx_rect, presets,
+    ShadingFrame, filter, filter::presets, filter::proxy, filter::rect, footprint::geometry,
 };
 use glam::Vec3;
 
@@ -182,7 +182,7 @@ pub struct ShadingPoint {
 }
 
 /// The standard deviation of the Gaussian pixel filter in pixels (KHPL16, TK19).
-pub const SIGMA_PIXEL: f32 = filtered_ndf::f32::footprint::SIGMA_PIXEL;
+pub const SIGMA_PIXEL: f32 = filtered_ndf::f32::kernel::SIGMA_PIXEL;
 
 /// The (filtered) `D(h)` per steradian of `method` at `sp`.
 pub fn filtered_d(method: Method, sp: &ShadingPoint) -> f32 {
@@ -231,14 +231,14 @@ fn rect_half_extent(sp: &ShadingPoint) -> glam::Vec2 {
 /// per steradian (`/ h_z^4`).
 fn ggx_rect_exact(sp: &ShadingPoint) -> f32 {
     let r = AxisAligned::from(Isotropic::new_clamped(sp.alpha));
-    ggx_rect::d_rect(r, sp.h, rect_half_extent(sp))
+    rect::d_rect(r, sp.h, rect_half_extent(sp))
 }
 
 /// KHPL16 eq. 19-20: the GGX proxy, the effective roughness whose peak matches the
 /// rectangle-filtered peak (per axis), then unfiltered GGX `D(h)` with it.
 fn ggx_proxy(sp: &ShadingPoint) -> f32 {
     let r = AxisAligned::from(Isotropic::new_clamped(sp.alpha));
-    Ggx::new(ggx_proxy::proxy(r, rect_half_extent(sp))).d(sp.h)
+    Ggx::new(proxy::proxy(r, rect_half_extent(sp))).d(sp.h)
 }
 
 /// TK19 section 3.2: the kernel built from the derivatives of the projected half vector
@@ -266,7 +266,7 @@ fn tk21_projected(sp: &ShadingPoint) -> f32 {
 /// TK19 eq. 1 / 2,4 / 5: isotropic deferred roughness from `sp.dn_dx`, `sp.dn_dy`
 /// (`sigma^2 = 0.25`, `kappa = 0.18`, saturate), then isotropic GGX `D(h)` with it.
 fn tk19_isotropic(sp: &ShadingPoint, variant: IsoVariant) -> f32 {
-    use filtered_ndf::f32::isotropic::Bandwidth;
+    use filtered_ndf::f32::filter::deferred::Bandwidth;
     let bw = match variant {
         IsoVariant::Max => Bandwidth::Max,
         IsoVariant::Trace => Bandwidth::Trace,

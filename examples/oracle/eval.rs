@@ -281,9 +281,9 @@ fn eval(v: &Value) -> Result<Value, String> {
                 let c = |x: f64| <p::F as Real>::from_f64(x);
                 let h = p::Vec3::new(c(hv[0]), c(hv[1]), c(hv[2]));
                 let j = match kind {
-                    "sphere_to_slope" => p::jacobian::sphere_to_slope(h),
-                    "sphere_to_projected" => p::jacobian::sphere_to_projected(h),
-                    "projected_to_slope" => p::jacobian::projected_to_slope(h),
+                    "sphere_to_slope" => p::footprint::jacobian::sphere_to_slope(h),
+                    "sphere_to_projected" => p::footprint::jacobian::sphere_to_projected(h),
+                    "projected_to_slope" => p::footprint::jacobian::projected_to_slope(h),
                     _ => return Err(format!("unknown jacobian kind \"{kind}\"; see --list")),
                 };
                 // glam is column-major: x_axis holds d out / d in_1.
@@ -305,7 +305,7 @@ fn eval(v: &Value) -> Result<Value, String> {
                 return Err("alpha must be >= 0".into());
             }
             in_precision!(prec, p, {
-                use p::isotropic::{
+                use p::filter::deferred::{
                     Bandwidth, SIGMA2, filtered_alpha, normal_difference_covariance,
                 };
                 let c = |x: f64| <p::F as Real>::from_f64(x);
@@ -370,7 +370,7 @@ fn eval(v: &Value) -> Result<Value, String> {
             in_precision!(prec, p, {
                 let c = |x: f64| <p::F as Real>::from_f64(x);
                 let r = p::AxisAligned::new(c(ax), c(ay)).map_err(|e| e.to_string())?;
-                out(p::ggx_rect::p22_rect(
+                out(p::filter::rect::p22_rect(
                     r,
                     p::Vec2::new(c(cv[0]), c(cv[1])),
                     p::Vec2::new(c(hv[0]), c(hv[1])),
@@ -386,8 +386,8 @@ fn eval(v: &Value) -> Result<Value, String> {
                     .map_err(|e| e.to_string())?
                     .alpha();
                 match variant {
-                    "exact" => out(p::ggx_proxy::effective_alpha(a, c(h))),
-                    "simple" => out(p::ggx_proxy::effective_alpha_simple(a, c(h))),
+                    "exact" => out(p::filter::proxy::effective_alpha(a, c(h))),
+                    "simple" => out(p::filter::proxy::effective_alpha_simple(a, c(h))),
                     _ => Err(format!(
                         "variant must be \"exact\" or \"simple\", got \"{variant}\""
                     )),

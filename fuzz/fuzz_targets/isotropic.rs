@@ -1,4 +1,4 @@
-//! Fuzz target over isotropic filtering (`isotropic::*`: bandwidths, domains, norms,
+//! Fuzz target over isotropic filtering (`deferred::*`: bandwidths, domains, norms,
 //! `KernelConvention` with arbitrary fields) and every preset in `presets::ALL`,
 //! in both precisions. The decoder and the contract live in
 //! `filtered_ndf::testing::fuzz::check_isotropic` so that `tests/fuzz_replay.rs` checks the same

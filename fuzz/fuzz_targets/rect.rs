@@ -1,5 +1,5 @@
-//! Fuzz target over the exact GGX rectangle integral (`ggx_rect::p22_rect`, `d_rect`), the printed GDC
-//! baseline (`d_rect_printed`) and the GGX proxy (`ggx_proxy::*`),
+//! Fuzz target over the exact GGX rectangle integral (`rect::p22_rect`, `d_rect`), the printed GDC
+//! baseline (`d_rect_printed`) and the GGX proxy (`proxy::*`),
 //! in both precisions. The decoder and the contract live in
 //! `filtered_ndf::testing::fuzz::check_rect` so that `tests/fuzz_replay.rs` checks the same
 //! contract in CI.

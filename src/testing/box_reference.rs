@@ -1,6 +1,6 @@
 //! f64 quadrature reference of the box-filtered GGX (KHPL16 eq. 16): the average of the GGX
 //! slope density over the rectangle `center +/- half_extent`, the quantity
-//! [`crate::f64::ggx_rect::p22_rect`] computes in closed form.
+//! [`crate::f64::filter::rect::p22_rect`] computes in closed form.
 
 use super::quadrature::{Estimate, Tolerance, integrate, integrate_2d};
 use crate::f64::{AxisAligned, Ggx, Ndf, Vec2};

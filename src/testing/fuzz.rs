@@ -133,7 +133,7 @@ macro_rules! check_precision {
     ($prec:ident, $t:ty, $inp:expr) => {{
         use crate::$prec::{
             AxisAligned, Beckmann, Ggx, Isotropic, Ndf, Roughness, RoughnessMatrix, Vec2, Vec3,
-            slope,
+            footprint::slope,
         };
         let inp: &NdfInput = $inp;
         #[allow(clippy::cast_possible_truncation)]

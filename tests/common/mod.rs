@@ -10,7 +10,7 @@
 //! except to build its inputs (`MovingRay`, `LevelSetSample`).
 #![allow(dead_code)]
 
-use filtered_ndf::f64::implicit::{LevelSetSample, MovingRay, Sym3};
+use filtered_ndf::f64::temporal::implicit::{LevelSetSample, MovingRay, Sym3};
 use glam::{DMat3, DQuat, DVec3};
 
 pub mod whitening;

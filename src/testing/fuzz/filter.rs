@@ -5,7 +5,7 @@ use super::dec::{d32, d64, with_rough};
 
 macro_rules! filter_prec {
     ($d:ident, $prec:ident, $b:expr) => {{
-        use crate::$prec::footprint::KERNEL_MAX;
+        use crate::$prec::kernel::KERNEL_MAX;
         use crate::$prec::{
             Beckmann, BoundingRect, ClampRules, Covariance, ExtentFloor, F, Footprint, Ggx,
             LeanMoments, Roughness, Vec2, filter,

@@ -5,11 +5,11 @@ use super::dec::{d32, d64};
 
 macro_rules! isotropic_prec {
     ($d:ident, $prec:ident, $b:expr) => {{
-        use crate::$prec::isotropic::{
+        use crate::$prec::filter::deferred::{
             Bandwidth, Combine, Domain, KAPPA, KernelConvention, Norm, filtered_alpha,
             normal_difference_covariance,
         };
-        use crate::$prec::{ALPHA_MAX, Covariance, presets};
+        use crate::$prec::{ALPHA_MAX, Covariance, filter::presets};
         use $d::{TOL, f, v3};
         let b: &mut Bytes<'_> = $b;
         let head = b.byte();

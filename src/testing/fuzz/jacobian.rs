@@ -5,13 +5,13 @@ use super::dec::{d32, d64};
 
 macro_rules! jacobian_prec {
     ($d:ident, $prec:ident, $b:expr) => {{
-        use crate::$prec::geometry::{
+        use crate::$prec::footprint::geometry::{
             self, Endpoint, PinholeRay, ShadingFrame, footprint, footprint_projected, half_vector,
             half_vector_jacobian, half_vector_jacobian_deferred, half_vector_jacobian_far_field,
             tangent_plane_differentials,
         };
-        use crate::$prec::jacobian::{self as jac, HZ_MIN};
-        use crate::$prec::{F, Footprint, Mat2, slope};
+        use crate::$prec::footprint::jacobian::{self as jac, HZ_MIN};
+        use crate::$prec::{F, Footprint, Mat2, footprint::slope};
         use $d::{TOL, m2, v2, v3};
         let b: &mut Bytes<'_> = $b;
         let head = b.byte();

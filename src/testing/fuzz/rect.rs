@@ -5,7 +5,7 @@ use super::dec::{d32, d64};
 
 macro_rules! rect_prec {
     ($d:ident, $prec:ident, $b:expr) => {{
-        use crate::$prec::{AxisAligned, F, Ggx, Ndf, ggx_proxy, ggx_rect};
+        use crate::$prec::{AxisAligned, F, Ggx, Ndf, filter::proxy, filter::rect};
         use $d::{TOL, f, v2, v3};
         let b: &mut Bytes<'_> = $b;
         let head = b.byte();
@@ -20,7 +20,7 @@ macro_rules! rect_prec {
         let peak = ggx.p22(crate::$prec::Vec2::ZERO);
 
         // p22_rect: never NaN, never negative, at most the peak (an average of P22).
-        let p = ggx_rect::p22_rect(r, center, half);
+        let p = rect::p22_rect(r, center, half);
         assert!(
             p.is_finite() && p >= 0.0,
             "p22_rect({r:?}, {center:?}, {half:?}) = {p:?}"
@@ -33,7 +33,7 @@ macro_rules! rect_prec {
             assert_eq!(p, 0.0, "p22_rect: NaN centre");
         }
         // d_rect: 0 below the horizon or for non-finite h; else finite (saturating), >= 0.
-        let d = ggx_rect::d_rect(r, h, half);
+        let d = rect::d_rect(r, h, half);
         assert!(
             d.is_finite() && d >= 0.0,
             "d_rect({r:?}, {h:?}, {half:?}) = {d:?}"
@@ -42,7 +42,7 @@ macro_rules! rect_prec {
             assert_eq!(d, 0.0, "d_rect below the horizon / non-finite: {h:?}");
         }
         // The printed baseline: never NaN or infinite (a non-finite value is returned as 0).
-        let dp = ggx_rect::d_rect_printed(r, hpp, h, half);
+        let dp = rect::d_rect_printed(r, hpp, h, half);
         assert!(
             dp.is_finite(),
             "d_rect_printed({r:?}, {hpp:?}, {h:?}, {half:?}) = {dp:?}"
@@ -50,9 +50,9 @@ macro_rules! rect_prec {
 
         // Proxy: alpha' >= alpha for an in-domain alpha, NaN-free, finite unless |H| overflows.
         for (e, what) in [
-            (ggx_proxy::effective_alpha(alpha, he), "effective_alpha"),
+            (proxy::effective_alpha(alpha, he), "effective_alpha"),
             (
-                ggx_proxy::effective_alpha_simple(alpha, he),
+                proxy::effective_alpha_simple(alpha, he),
                 "effective_alpha_simple",
             ),
         ] {
@@ -68,8 +68,8 @@ macro_rules! rect_prec {
         }
         let a = r.alpha();
         for (pr, what) in [
-            (ggx_proxy::proxy(r, half), "proxy"),
-            (ggx_proxy::proxy_simple(r, half), "proxy_simple"),
+            (proxy::proxy(r, half), "proxy"),
+            (proxy::proxy_simple(r, half), "proxy_simple"),
         ] {
             let q = pr.alpha();
             assert!(
@@ -91,11 +91,11 @@ macro_rules! rect_prec {
 
 /// The rectangle-integral and proxy contract on fuzzer bytes, in both precisions (roughness
 /// from `AxisAligned::new_clamped`, all other arguments arbitrary). Panics on a violation of:
-/// `ggx_rect::p22_rect` finite, `>= 0`, at most the unfiltered peak `1 / (pi a b)`, `0` for a
-/// NaN centre; `ggx_rect::d_rect` finite, `>= 0`, `0` for non-finite `h` or `h_z <= 0`;
-/// `ggx_rect::d_rect_printed` finite (no panic; its sign is not checked: it cancels);
-/// `ggx_proxy::effective_alpha{,_simple}(alpha, H)` NaN-free and `>= alpha` for finite
-/// `alpha > 0`, finite unless `|H|` is near overflow; `ggx_proxy::proxy{,_simple}` in the
+/// `rect::p22_rect` finite, `>= 0`, at most the unfiltered peak `1 / (pi a b)`, `0` for a
+/// NaN centre; `rect::d_rect` finite, `>= 0`, `0` for non-finite `h` or `h_z <= 0`;
+/// `rect::d_rect_printed` finite (no panic; its sign is not checked: it cancels);
+/// `proxy::effective_alpha{,_simple}(alpha, H)` NaN-free and `>= alpha` for finite
+/// `alpha > 0`, finite unless `|H|` is near overflow; `proxy::proxy{,_simple}` in the
 /// checked roughness range, never below the input roughness, and evaluable.
 pub fn check_rect(data: &[u8]) {
     rect_prec!(d64, f64, &mut Bytes::new(data));

@@ -5,7 +5,7 @@ use super::dec::{d32, d64, with_rough};
 
 macro_rules! sampling_prec {
     ($d:ident, $prec:ident, $b:expr) => {{
-        use crate::$prec::sample_beckmann::visible_slope_quantile;
+        use crate::$prec::sampling::beckmann::visible_slope_quantile;
         use crate::$prec::sampling::reflect;
         use crate::$prec::{Beckmann, F, Ggx, NdfSampling, Vec3};
         use $d::{TOL, f, v2};

@@ -5,8 +5,8 @@ use super::dec::{d32, d64, with_rough};
 
 macro_rules! temporal_prec {
     ($d:ident, $prec:ident, $b:expr) => {{
-        use crate::$prec::implicit::{self, HitRates, LevelSetSample, MovingRay, Sym3};
-        use crate::$prec::quadric::{LocalQuadric, RigidMotion};
+        use crate::$prec::temporal::implicit::{self, HitRates, LevelSetSample, MovingRay, Sym3};
+        use crate::$prec::temporal::quadric::{LocalQuadric, RigidMotion};
         use crate::$prec::temporal::{self, TemporalLobe, TemporalRoughness};
         use crate::$prec::{ALPHA_MAX, Covariance, F, Vec3};
         use $d::{TOL, f, v2, v3};

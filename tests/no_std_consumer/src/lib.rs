@@ -4,7 +4,8 @@
 use core::panic::PanicInfo;
 use filtered_ndf::f32::{
     Beckmann, ClampRules, Footprint, Ggx, Isotropic, Ndf, NdfSampling, RoughnessMatrix,
-    TemporalLobe, TemporalRoughness, ggx_proxy, ggx_rect, jacobian, presets,
+    TemporalLobe, TemporalRoughness, filter::presets, filter::proxy, filter::rect,
+    footprint::jacobian,
 };
 use glam::{Vec2, Vec3};
 
@@ -22,8 +23,8 @@ pub extern "C" fn ndf_consumer(alpha: f32, x: f32, y: f32) -> f32 {
         RoughnessMatrix::new(alpha * alpha, 0.0, alpha * alpha).unwrap_or_else(|_| iso.into());
     let fp = Footprint::from_slope_derivatives(Vec2::new(x, 0.0), Vec2::new(0.0, y));
     let filtered = ClampRules::default().filter_gaussian(iso, fp, 0.5);
-    let rect = ggx_rect::d_rect(iso.into(), m, fp.bounding_rect().half_extent);
-    let proxy = Ggx::new(ggx_proxy::proxy(iso.into(), Vec2::new(x, y))).d(m);
+    let rect = rect::d_rect(iso.into(), m, fp.bounding_rect().half_extent);
+    let proxy = Ggx::new(proxy::proxy(iso.into(), Vec2::new(x, y))).d(m);
     let jac = jacobian::sphere_to_slope(m).determinant();
     let deferred = presets::TK19_TRACE.apply(alpha, Vec3::new(x, 0.0, 0.0), Vec3::ZERO);
     let sampled = Ggx::new(mat)

@@ -2,7 +2,7 @@
 //! shading normal across a pixel (TK19 section 4; KHPL16 section 5.4).
 //!
 //! The exact filtered NDF needs the anisotropic slope-domain covariance `Sigma` of the pixel
-//! footprint (see [`footprint`](super::footprint)). A G-buffer with one roughness channel can
+//! footprint (see [`footprint`](super::super::footprint)). A G-buffer with one roughness channel can
 //! only hold an isotropic kernel, so TK19 replaces `Sigma` by a multiple of the identity whose
 //! variance bounds (or averages) its eigenvalues, and adds it to the squared roughness:
 //!
@@ -24,8 +24,8 @@
 //! once.
 //!
 //! ```
-//! use filtered_ndf::f32::isotropic::{Bandwidth, KAPPA, filtered_alpha, normal_difference_covariance};
-//! use filtered_ndf::f32::presets;
+//! use filtered_ndf::f32::filter::deferred::{Bandwidth, KAPPA, filtered_alpha, normal_difference_covariance};
+//! use filtered_ndf::f32::filter::presets;
 //! use glam::Vec3;
 //!
 //! // ddx(normal), ddy(normal) of the G-buffer normal, and the material roughness.
@@ -50,8 +50,8 @@
 //! has the same trace as `Sigma` exactly and the same eigenvalues to first order in `|dn|`
 //! (exactly when both average normals share one tangent frame).
 
-use super::footprint::{Covariance, SIGMA_PIXEL};
-use super::roughness::ALPHA_MAX;
+use super::super::kernel::{Covariance, SIGMA_PIXEL};
+use super::super::ndf::roughness::ALPHA_MAX;
 use super::{F, Vec3};
 use crate::math as m;
 

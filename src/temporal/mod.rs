@@ -3,8 +3,8 @@
 //! anisotropic roughness along the motion, which widens the NDF `D` but not the masking `G`.
 //!
 //! Pipeline per shading point:
-//! 1. `dN/dt` at the hit from [`super::implicit::hit_rates`] (eq. 20-21), or from a local
-//!    quadric with a rigid motion ([`super::quadric`], eq. 22-24);
+//! 1. `dN/dt` at the hit from [`implicit::hit_rates`] (eq. 20-21), or from a local
+//!    quadric with a rigid motion ([`quadric`], eq. 22-24);
 //! 2. [`TemporalRoughness::from_world_rate`]: `alpha_t = |dt dN/dt|` along the direction of
 //!    `dN/dt` in the tangent frame, zero across it (section 3.2, "Approximating D^t"),
 //!    optionally [`TemporalRoughness::cosine_weighted`] (Fig. 8);
@@ -34,12 +34,15 @@
 //! convention); for `N(t)` near `N(t0)`, `ds/dt = -(dN/dt)_xy`, and every lobe here is even in
 //! `s`, so the sign does not matter.
 
-use super::beckmann::Beckmann;
-use super::footprint::Covariance;
-use super::ggx::Ggx;
+use super::kernel::Covariance;
 use super::ndf::Ndf;
-use super::roughness::{ALPHA_MAX, Roughness, RoughnessMatrix, clamp_alpha};
+use super::ndf::beckmann::Beckmann;
+use super::ndf::ggx::Ggx;
+use super::ndf::roughness::{ALPHA_MAX, Roughness, RoughnessMatrix, clamp_alpha};
 use super::{F, Vec2, Vec3};
+
+pub mod implicit;
+pub mod quadric;
 use crate::math as m;
 
 /// `dt = T / sqrt(6)`: the paper's `Delta t` whose Beckmann lobe has the slope variance of a
@@ -107,7 +110,7 @@ impl TemporalRoughness {
     }
 
     /// As [`Self::from_normal_rate`] from the world-space `dN/dt` (e.g.
-    /// [`super::implicit::HitRates::dn_dt`]) and the tangent frame `(t, b)` at the reference
+    /// [`implicit::HitRates::dn_dt`]) and the tangent frame `(t, b)` at the reference
     /// time (unit, orthogonal to the reference normal; not checked). The component of `dN/dt`
     /// along the normal is dropped (it is zero to first order).
     #[inline]
@@ -207,7 +210,7 @@ impl TemporalRoughness {
 /// matrix is the usual "roughness-matrix route" approximation (KHPL16, TK19). `p` is any slope
 /// covariance: temporal ([`TemporalRoughness::covariance`]), spatial
 /// ([`super::footprint::Footprint::covariance`]) or their sum. An invalid `p` is made usable
-/// by [`Covariance::sanitized`](super::footprint::Covariance::sanitized) (NaN: no widening;
+/// by [`Covariance::sanitized`](super::kernel::Covariance::sanitized) (NaN: no widening;
 /// infinite: the largest kernel; indefinite: projected to positive semi-definite).
 pub fn widen<R: Roughness>(base: R, p: Covariance) -> RoughnessMatrix {
     // One source of truth for A + 2 Sigma with tau = det A: the spatial Gaussian filter.

@@ -20,7 +20,7 @@
 //! negated.
 //!
 //! ```
-//! use filtered_ndf::f32::geometry::{
+//! use filtered_ndf::f32::footprint::geometry::{
 //!     Endpoint, ShadingFrame, footprint, half_vector_jacobian, tangent_plane_differentials,
 //!     PinholeRay,
 //! };
@@ -42,7 +42,7 @@
 //! matrix / zero footprint (no filtering). A half vector at or below the shading horizon is
 //! clamped to `H . n >= jacobian::HZ_MIN |H|` as in [`super::jacobian`].
 
-use super::footprint::Footprint;
+use super::Footprint;
 use super::jacobian::{self, HZ_MIN};
 use super::{F, Mat2, Vec2, Vec3};
 use crate::math as m;

@@ -1,9 +1,9 @@
 //! Beckmann in any roughness form (Beckmann and Spizzichino 1963; Heitz 2014 section 5.4;
 //! KHPL16 eq. 14: `A = 2 B` with `B` the slope covariance).
 
-use super::ndf::{Ndf, rescale_direction};
 use super::roughness::{AxisAligned, Isotropic, Roughness, RoughnessMatrix};
 use super::{F, Vec2, Vec3};
+use super::{Ndf, rescale_direction};
 use crate::error::RoughnessError;
 use crate::math::{self as m, Real};
 

@@ -73,9 +73,9 @@
 //! `min(alpha, 0.1)` and the upper bound `lambda = 1` are bias controls applied by the caller
 //! (the footprint clamping rules); this integral is exact without them.
 
-use super::ggx::Ggx;
-use super::ndf::Ndf;
-use super::roughness::AxisAligned;
+use super::super::ndf::Ndf;
+use super::super::ndf::ggx::Ggx;
+use super::super::ndf::roughness::AxisAligned;
 use super::{F, Vec2, Vec3};
 use crate::math::{self as m, Real};
 

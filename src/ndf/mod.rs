@@ -3,12 +3,16 @@
 //! Conventions (all NDFs, all roughness forms):
 //! - Tangent frame with `z` the shading normal; directions are unit vectors in that frame.
 //! - Slope of a micronormal `m` (`m_z > 0`): `s = (-m_x / m_z, -m_y / m_z)` (TK19 supplement
-//!   eq. 5, Heitz 2014); see [`super::slope`].
+//!   eq. 5, Heitz 2014); see [`super::footprint::slope`].
 //! - `p22(s)`: slope-domain density, per unit slope area, integrating to 1 over the plane.
 //! - `d(m) = p22(s(m)) / m_z^4`: solid-angle density, normalised so that the projected area
 //!   is one, `integral of d(m) m_z dm = 1` over the upper hemisphere (KHPL16 eq. 2).
 
-use super::{F, Vec3};
+use super::{F, Mat2, Vec2, Vec3};
+
+pub mod beckmann;
+pub mod ggx;
+pub mod roughness;
 
 /// A microfacet normal distribution with Smith masking-shadowing.
 pub trait Ndf {

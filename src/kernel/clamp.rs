@@ -13,9 +13,10 @@
 //! | kernel roughness | `kappa` | `kappa = 0.18` (TK19 eq. 1) | derivative estimation errors at edges and grazing angles (TK19 3.1) that blow the kernel up | kernel roughness^2 is capped at `kappa` per eigen-direction: under-filtering (residual aliasing) where `2 lambda > kappa`, i.e. where the footprint is wider than `sqrt(0.18) = 0.42` in roughness units |
 //! | determinant clamp | `det_clamp` | on, `tau = det(A)` (TK19 supplement) | an elongated filtered matrix whose determinant lost its digits to cancellation (the inverse explodes) | none in exact arithmetic (`det(A + 2 Sigma) >= det(A)`); in floats it caps the filtered peak at the unfiltered one |
 
-use super::filter;
-use super::footprint::{BoundingRect, Covariance, Footprint};
-use super::roughness::{Roughness, RoughnessMatrix};
+use super::super::filter;
+use super::super::footprint::Footprint;
+use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
+use super::{BoundingRect, Covariance};
 use super::{F, Vec2};
 use crate::math::Real;
 

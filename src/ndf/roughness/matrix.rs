@@ -1,275 +1,10 @@
-//! The three roughness forms and the one trait every NDF accepts them through.
-//!
-//! A roughness is the matrix `A` of TK19 supplement section 1 (Heitz 2014 section 5.4): the
-//! slope-domain density of both Beckmann and GGX depends on the slope `s` only through the
-//! quadratic form `s^T A^-1 s` and on `sqrt(det A)`, and Smith's `Lambda(w)` only through
-//! `w_xy^T A w_xy`. The three forms compute those three numbers at three costs:
-//!
-//! | form | `A` | `s^T A^-1 s` costs |
-//! |---|---|---|
-//! | [`Isotropic`] `alpha` | `alpha^2 I` | 1 dot, 1 mul |
-//! | [`AxisAligned`] `(alpha_x, alpha_y)` | `diag(alpha_x^2, alpha_y^2)` | 2 mul-adds |
-//! | [`RoughnessMatrix`] `A` | any symmetric positive definite | 1 rotation, 2 mul-adds |
-//!
-//! Conversions go one way, for free: `Isotropic -> AxisAligned -> RoughnessMatrix`.
-//! Roughness is dimensionless (a slope-domain length: `alpha` is the slope at which the GGX
-//! density falls to a quarter of its peak).
-//!
-//! Domain: every `alpha` (every eigenvalue of `A`, square-rooted) in `[ALPHA_MIN, ALPHA_MAX]`,
-//! where all densities and their squares stay inside the `f32` range. Checked constructors
-//! return [`RoughnessError`] outside it; `*_clamped` constructors clamp into it (NaN maps to
-//! `ALPHA_MIN`).
+//! The full-matrix roughness form: any symmetric positive-definite `A`.
 
-use super::{F, Mat2, Vec2};
-use crate::error::RoughnessError;
+use super::{
+    ALPHA_MAX, ALPHA_MIN, AxisAligned, F, Isotropic, Mat2, Roughness, RoughnessError, Vec2,
+    over_z2, sealed,
+};
 use crate::math::{self as m, Real};
-
-/// Smallest supported roughness `alpha` (`A`'s smallest eigenvalue is `ALPHA_MIN^2`).
-pub const ALPHA_MIN: F = 1e-8;
-/// Largest supported roughness `alpha` (`A`'s largest eigenvalue is `ALPHA_MAX^2`).
-pub const ALPHA_MAX: F = 1e4;
-
-pub(crate) mod sealed {
-    use super::{F, Vec2};
-
-    /// Crate-internal evaluation helpers of the roughness forms (unnameable outside the
-    /// crate, which also seals [`super::Roughness`]).
-    pub trait Sealed {
-        /// `(x, n)` with `x = m^T A^-1 m / z2` and `n = 1 / (sqrt(det A) z2^2)` for a
-        /// tangent-plane `m` and `z2 > 0`: the exponent and the normalisation of Beckmann's
-        /// `D` (KHPL16 eq. 2 with eq. 14) from one division, shared by both (the matrix form
-        /// merges its `1 / max(det A, tau)` into it, so building a matrix per pixel, as
-        /// filtering does, needs no division). `x` is `+inf` / NaN as
-        /// [`super::Roughness::inv_quadratic`]; `n` overflows to `+inf` for tiny `z2`.
-        fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F);
-        /// `max(det A, tau)` in `f64` (`det A` for the forms without a clamp), with `det A`
-        /// computed from the entries of [`super::Roughness::to_matrix`] exactly as the matrix
-        /// constructor computes it (`a11 a22 - a12^2` in `f64`, exact for `f32` entries; a
-        /// matrix in the eigenbasis representation keeps only its square root, in `F`): the
-        /// filtering clamp `tau`, which a kernel too small to change the entries then meets
-        /// with equality.
-        fn det_clamped(&self) -> f64;
-    }
-}
-
-/// A roughness form: what the NDFs need of a roughness matrix `A`.
-///
-/// Sealed; implemented by [`Isotropic`], [`AxisAligned`] and [`RoughnessMatrix`]. Each method
-/// is exact for its form (no conversion to the matrix form happens at evaluation time).
-pub trait Roughness: Copy + sealed::Sealed {
-    /// `s^T A^-1 s` for a slope `s` (dimensionless, `>= 0`). For the matrix form `A^-1` is
-    /// `adj(A) / max(det A, tau)` (TK19 supplement, "Practical Implementation") and the result
-    /// is clamped to `>= 0`. Every form returns `+inf` when the form overflows (also against
-    /// the null direction of a clamped singular matrix) or `s` has an infinite component, and
-    /// NaN for a NaN component.
-    fn inv_quadratic(&self, s: Vec2) -> F;
-    /// `w^T A w` for a tangent-plane vector `w` (the projected roughness of Smith's
-    /// `Lambda`, TK19 supplement section 1), `>= 0`. Overflow and non-finite input as
-    /// [`Roughness::inv_quadratic`].
-    fn quadratic(&self, w: Vec2) -> F;
-    /// `sqrt(det A)` (for the matrix form `sqrt(max(det A, tau))`): `alpha^2` isotropic,
-    /// `alpha_x alpha_y` axis-aligned. Strictly positive.
-    fn sqrt_det(&self) -> F;
-    /// This roughness as a full [`RoughnessMatrix`] (no determinant clamp).
-    fn to_matrix(&self) -> RoughnessMatrix;
-}
-
-#[inline]
-fn check_alpha(alpha: F) -> Result<F, RoughnessError> {
-    if !alpha.is_finite() {
-        Err(RoughnessError::NotFinite)
-    } else if alpha <= 0.0 {
-        Err(RoughnessError::NotPositive)
-    } else if !(ALPHA_MIN..=ALPHA_MAX).contains(&alpha) {
-        Err(RoughnessError::OutOfRange)
-    } else {
-        Ok(alpha)
-    }
-}
-
-/// `(q / z2, inv_sqrt_det / z2^2)` from one division: [`sealed::Sealed::exponent_and_norm`]
-/// for the forms that store `A^-1` and `1 / sqrt(det A)`.
-#[inline(always)]
-fn over_z2(q: F, inv_sqrt_det: F, z2: F) -> (F, F) {
-    let inv_z2 = 1.0 / z2;
-    (q * inv_z2, inv_z2 * inv_z2 * inv_sqrt_det)
-}
-
-/// Clamps `alpha` into `[ALPHA_MIN, ALPHA_MAX]`; NaN and non-positive values map to
-/// `ALPHA_MIN`, `+inf` to `ALPHA_MAX`.
-#[inline]
-pub fn clamp_alpha(alpha: F) -> F {
-    if alpha >= ALPHA_MIN {
-        if alpha <= ALPHA_MAX { alpha } else { ALPHA_MAX }
-    } else {
-        ALPHA_MIN
-    }
-}
-
-/// Isotropic roughness `alpha`: `A = alpha^2 I`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Isotropic {
-    alpha: F,
-    inv_alpha2: F,
-}
-
-impl Isotropic {
-    /// Checked constructor: `alpha` finite and in `[ALPHA_MIN, ALPHA_MAX]`; else
-    /// `NotFinite` (NaN, inf), `NotPositive` (`<= 0`, including `-0`) or `OutOfRange`.
-    #[inline]
-    pub fn new(alpha: F) -> Result<Self, RoughnessError> {
-        check_alpha(alpha).map(Self::from_valid)
-    }
-
-    /// Never fails: `alpha` is first passed through [`clamp_alpha`].
-    #[inline]
-    pub fn new_clamped(alpha: F) -> Self {
-        Self::from_valid(clamp_alpha(alpha))
-    }
-
-    #[inline]
-    fn from_valid(alpha: F) -> Self {
-        Self {
-            alpha,
-            inv_alpha2: 1.0 / (alpha * alpha),
-        }
-    }
-
-    /// The roughness `alpha`.
-    #[inline]
-    pub fn alpha(&self) -> F {
-        self.alpha
-    }
-}
-
-impl sealed::Sealed for Isotropic {
-    #[inline(always)]
-    fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F) {
-        // sqrt(det A) = alpha^2.
-        over_z2(self.inv_quadratic(m), self.inv_alpha2, z2)
-    }
-    #[inline(always)]
-    fn det_clamped(&self) -> f64 {
-        let a = (self.alpha * self.alpha).to_f64();
-        a * a
-    }
-}
-impl Roughness for Isotropic {
-    #[inline]
-    fn inv_quadratic(&self, s: Vec2) -> F {
-        s.length_squared() * self.inv_alpha2
-    }
-    #[inline]
-    fn quadratic(&self, w: Vec2) -> F {
-        w.length_squared() * (self.alpha * self.alpha)
-    }
-    #[inline]
-    fn sqrt_det(&self) -> F {
-        self.alpha * self.alpha
-    }
-    #[inline]
-    fn to_matrix(&self) -> RoughnessMatrix {
-        AxisAligned::from(*self).to_matrix()
-    }
-}
-
-/// Axis-aligned anisotropic roughness `(alpha_x, alpha_y)` along the tangent and bitangent:
-/// `A = diag(alpha_x^2, alpha_y^2)`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AxisAligned {
-    alpha: Vec2,
-    /// `(alpha_x^2, alpha_y^2)`, the diagonal of `A` (a filtered lobe starts from it).
-    alpha2: Vec2,
-    inv_alpha2: Vec2,
-    /// `1 / (alpha_x alpha_y)`.
-    inv_sqrt_det: F,
-}
-
-impl AxisAligned {
-    /// Checked constructor: both values finite and in `[ALPHA_MIN, ALPHA_MAX]`. When both
-    /// are invalid, the error describes `alpha_x`.
-    #[inline]
-    pub fn new(alpha_x: F, alpha_y: F) -> Result<Self, RoughnessError> {
-        Ok(Self::from_valid(Vec2::new(
-            check_alpha(alpha_x)?,
-            check_alpha(alpha_y)?,
-        )))
-    }
-
-    /// Never fails: each value is first passed through [`clamp_alpha`].
-    #[inline]
-    pub fn new_clamped(alpha_x: F, alpha_y: F) -> Self {
-        Self::from_valid(Vec2::new(clamp_alpha(alpha_x), clamp_alpha(alpha_y)))
-    }
-
-    #[inline]
-    fn from_valid(alpha: Vec2) -> Self {
-        Self {
-            alpha,
-            alpha2: alpha * alpha,
-            inv_alpha2: Vec2::ONE / (alpha * alpha),
-            inv_sqrt_det: 1.0 / (alpha.x * alpha.y),
-        }
-    }
-
-    /// `(alpha_x, alpha_y)`.
-    #[inline]
-    pub fn alpha(&self) -> Vec2 {
-        self.alpha
-    }
-}
-
-impl From<Isotropic> for AxisAligned {
-    #[inline]
-    fn from(r: Isotropic) -> Self {
-        Self::from_valid(Vec2::splat(r.alpha))
-    }
-}
-
-impl sealed::Sealed for AxisAligned {
-    #[inline(always)]
-    fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F) {
-        over_z2(self.inv_quadratic(m), self.inv_sqrt_det, z2)
-    }
-    #[inline(always)]
-    fn det_clamped(&self) -> f64 {
-        let a = self.alpha2;
-        a.x.to_f64() * a.y.to_f64()
-    }
-}
-impl Roughness for AxisAligned {
-    #[inline]
-    fn inv_quadratic(&self, s: Vec2) -> F {
-        (s * s).dot(self.inv_alpha2)
-    }
-    #[inline]
-    fn quadratic(&self, w: Vec2) -> F {
-        (w * w).dot(self.alpha2)
-    }
-    #[inline]
-    fn sqrt_det(&self) -> F {
-        self.alpha.x * self.alpha.y
-    }
-    #[inline]
-    fn to_matrix(&self) -> RoughnessMatrix {
-        let a = self.alpha2;
-        RoughnessMatrix {
-            a11: a.x,
-            a12: 0.0,
-            a22: a.y,
-            axis: Vec2::X,
-            eig: a,
-            inv_eig: self.inv_alpha2,
-            sqrt_det: self.alpha.x * self.alpha.y,
-            inv_sqrt_det: self.inv_sqrt_det,
-            ldl_det: 0.0,
-            ldl_inv: 0.0,
-            ldl_c: 0.0,
-            ldl_c32: 0.0,
-            ldl: false,
-        }
-    }
-}
 
 /// Full symmetric positive-definite roughness matrix `A = [[a11, a12], [a12, a22]]` (TK19
 /// supplement section 1; Heitz 2014 section 5.4). For a Beckmann lobe `A` is twice the slope
@@ -304,32 +39,32 @@ impl Roughness for AxisAligned {
 ///   divisions, in `f64`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RoughnessMatrix {
-    a11: F,
-    a12: F,
-    a22: F,
+    pub(super) a11: F,
+    pub(super) a12: F,
+    pub(super) a22: F,
     /// Unit eigenvector `(c, s)` of `l1`; `(-s, c)` is the eigenvector of `l2`.
-    axis: Vec2,
+    pub(super) axis: Vec2,
     /// Eigenvalues `(l1, l2)` of `A` (`l2` may be `<= 0` by rounding when `tau > 0`).
-    eig: Vec2,
+    pub(super) eig: Vec2,
     /// Eigenvalues of the clamped inverse `adj(A) / max(det A, tau)`: `(l2, l1) / max(det, tau)`.
-    inv_eig: Vec2,
-    sqrt_det: F,
+    pub(super) inv_eig: Vec2,
+    pub(super) sqrt_det: F,
     /// `1 / sqrt(max(det A, tau))` (eigenbasis path; `0` on the LDL path).
-    inv_sqrt_det: F,
+    pub(super) inv_sqrt_det: F,
     /// `det A` in `f64` (LDL path; `0` on the eigenbasis path).
-    ldl_det: f64,
+    pub(super) ldl_det: f64,
     /// `1 / (a11 c)` in `f64`, `c = max(det A, tau)` (LDL path; `0` on the eigenbasis path).
     /// Only [`Roughness::inv_quadratic`] reads it: Beckmann's `D` divides once by
     /// `a11 c m_z^2` instead, so a filtered lobe whose matrix is built and evaluated inline
     /// never forms it (the compiler drops the division).
-    ldl_inv: f64,
+    pub(super) ldl_inv: f64,
     /// `c = max(det A, tau)` in `f64` (LDL path; `0` on the eigenbasis path).
-    ldl_c: f64,
+    pub(super) ldl_c: f64,
     /// `c^(3/2)` in `f64` (LDL path; `0` on the eigenbasis path): Beckmann's normalisation
     /// is `(a11 t)^2 c^(3/2)` with `t = 1 / (a11 c m_z^2)`.
-    ldl_c32: f64,
+    pub(super) ldl_c32: f64,
     /// Whether the LDL representation is used (see the type docs).
-    ldl: bool,
+    pub(super) ldl: bool,
 }
 
 /// `F = f32` (whose products are exact in `f64`).

@@ -4,7 +4,7 @@
 //!
 //! # Eq. 19 solved, and eq. 20 corrected
 //! The box-filtered density at the peak (eq. 18) over the square `[-H, H]^2` of an isotropic
-//! lobe is, from the four-edge closed form of [`super::ggx_rect`] with `U = H / alpha`,
+//! lobe is, from the four-edge closed form of [`super::rect`] with `U = H / alpha`,
 //! `C = atan(U / sqrt(1 + U^2)) / (pi alpha^2 U sqrt(1 + U^2))`. Equating it with the peak
 //! `1 / (pi alpha'^2)` of a GGX of roughness `alpha'` (eq. 19) gives
 //!
@@ -32,7 +32,7 @@
 //! for its anisotropic G-buffer roughness. Eq. 19 then holds exactly for isotropic lobes and
 //! square footprints (the case the paper solves); otherwise it is the paper's approximation.
 
-use super::roughness::AxisAligned;
+use super::super::ndf::roughness::AxisAligned;
 use super::{F, Vec2};
 use crate::math as m;
 
@@ -69,7 +69,7 @@ pub fn effective_alpha_simple(alpha: F, half_extent: F) -> F {
 
 /// The exact GGX proxy roughness per axis ([`effective_alpha`] on each axis), clamped into the
 /// supported range by [`AxisAligned::new_clamped`]. `half_extent` is the slope-domain half
-/// extent of the filtering rectangle (the footprint of [`super::ggx_rect::d_rect`]).
+/// extent of the filtering rectangle (the footprint of [`super::rect::d_rect`]).
 #[inline]
 pub fn proxy(r: AxisAligned, half_extent: Vec2) -> AxisAligned {
     let a = r.alpha();

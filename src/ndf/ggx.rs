@@ -1,8 +1,8 @@
 //! GGX (Trowbridge-Reitz) in any roughness form (TK19 supplement section 1; Heitz 2014).
 
-use super::ndf::{Ndf, rescale_direction};
 use super::roughness::{AxisAligned, Isotropic, Roughness, RoughnessMatrix};
 use super::{F, Vec2, Vec3};
+use super::{Ndf, rescale_direction};
 use crate::error::RoughnessError;
 use crate::math as m;
 

@@ -21,13 +21,13 @@
 //! the image of the unit-roughness visible normals seen from the stretched direction
 //! `normalize(L^T wo_xy, wo_z)` (Heitz and d'Eon 2014 section 4 for the axis-aligned case;
 //! the same algebra holds for any `L`). With the determinant clamp `tau` of
-//! [`RoughnessMatrix`](super::roughness::RoughnessMatrix), `L` uses the clamped
+//! [`RoughnessMatrix`](super::RoughnessMatrix), `L` uses the clamped
 //! `sqrt(max(det A, tau))`, i.e. the sampled lobe is the one the density evaluates.
 //!
 //! The unit-roughness samplers are exact: GGX through the spherical caps of Dupuy and
 //! Benyoub 2023 ("Sound and Robust Sampling of the Distribution of Visible Normals", listing
 //! 3), Beckmann by inverting the visible-slope CDF with a bracketed Newton solve of stated
-//! accuracy ([`super::sample_beckmann`]).
+//! accuracy ([`beckmann`]).
 //!
 //! ## Out-of-domain input
 //! - `wo` at or below the horizon (`wo_z <= 0`), zero or non-finite: no visible normal exists;
@@ -47,11 +47,13 @@
 //! which needs `u` within rounding of a boundary of the unit square, the centre of the lobe
 //! `m ~ (A wo_xy, wo_z)` is returned instead, which always satisfies both).
 
-use super::beckmann::Beckmann;
-use super::ggx::Ggx;
 use super::ndf::Ndf;
-use super::roughness::Roughness;
+use super::ndf::beckmann::Beckmann;
+use super::ndf::ggx::Ggx;
+use super::ndf::roughness::Roughness;
 use super::{F, Vec2, Vec3};
+
+pub mod beckmann;
 use crate::math::{self as m, Real};
 
 const PI: F = core::f64::consts::PI as F;
@@ -301,10 +303,10 @@ impl<R: Roughness> NdfSampling for Beckmann<R> {
 
     /// Beckmann visible normals: in the unit-roughness space with the view azimuth rotated to
     /// `x`, the slope `x` is the quantile of the visible-slope CDF and `y` an independent
-    /// Gaussian quantile ([`super::sample_beckmann`]), rotated back and warped by `L`.
+    /// Gaussian quantile ([`beckmann`]), rotated back and warped by `L`.
     #[inline]
     fn sample_visible_normal(&self, wo: Vec3, u: Vec2) -> Option<Vec3> {
-        use super::sample_beckmann::invert_visible_slope_cdf;
+        use beckmann::invert_visible_slope_cdf;
         let warp = Warp::new(&self.roughness);
         let wi = standard_view(&warp, wo)?;
         let (wx, wy, c) = (wi.x.to_f64(), wi.y.to_f64(), wi.z.to_f64());

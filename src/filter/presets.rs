@@ -23,7 +23,7 @@
 //! | [`THREE_JS`] | `p` | `max abs component of dn_u, dn_v` | none | add, yes |
 
 use super::F;
-use super::isotropic::{Combine, Domain, KernelConvention, Norm};
+use super::deferred::{Combine, Domain, KernelConvention, Norm};
 
 const PI: F = core::f64::consts::PI as F;
 
@@ -34,10 +34,10 @@ const PI: F = core::f64::consts::PI as F;
 pub const TK19_TRACE: KernelConvention = KernelConvention {
     domain: Domain::Alpha2,
     norm: Norm::SumSquared,
-    scale: 2.0 * super::isotropic::SIGMA2,
+    scale: 2.0 * super::deferred::SIGMA2,
     exponent: 1.0,
     bias: 0.0,
-    clamp: super::isotropic::KAPPA,
+    clamp: super::deferred::KAPPA,
     combine: Combine::Add,
     saturate: true,
     perceptual_floor: 0.0,
@@ -46,14 +46,14 @@ pub const TK19_TRACE: KernelConvention = KernelConvention {
 /// TK19 eq. 5 (less conservative, average of the eigenvalues): as [`TK19_TRACE`] with
 /// kernel `sigma^2 (|dn_u|^2 + |dn_v|^2)` (Listing 2 without the factor 2). TK19 sect. 4.6.
 pub const TK19_AVERAGE: KernelConvention = KernelConvention {
-    scale: super::isotropic::SIGMA2,
+    scale: super::deferred::SIGMA2,
     ..TK19_TRACE
 };
 
 /// TK19 eq. 1 (tightest conservative isotropic kernel): kernel `2 lambda_max`, with
 /// `lambda_max` the largest eigenvalue of `sigma^2` times the Gram matrix of `dn_u, dn_v`
 /// (equal to the footprint covariance's to first order; see
-/// [`normal_difference_covariance`](super::isotropic::normal_difference_covariance)).
+/// [`normal_difference_covariance`](super::deferred::normal_difference_covariance)).
 /// TK19 sect. 4.2.
 pub const TK19_MAX: KernelConvention = KernelConvention {
     norm: Norm::MaxEigenvalue,

@@ -1,0 +1,42 @@
+//! Gaussian NDF filtering in roughness-matrix form: the Beckmann convolution (KHPL16 eq.
+//! 13-15, TK19 section 2.2), the LEAN nested convolution (KHPL16 section 5.5, eq. 21), the
+//! TK19 matrix approximation for GGX, and the projected-space filtering of Tokuyoshi and
+//! Kaplanyan 2021 (JCGT 10(2)).
+//!
+//! Every function returns a [`RoughnessMatrix`](super::RoughnessMatrix), which [`super::Beckmann::new`] and
+//! [`super::Ggx::new`] evaluate directly. Kernels are slope-domain covariances `Sigma`
+//! (slope^2), e.g. [`super::Footprint::covariance`]; each function first applies
+//! [`Covariance::sanitized`](super::Covariance::sanitized), so any kernel (NaN, infinite, indefinite) gives a finite,
+//! positive-definite result. Clamps (extent, `kappa`) are applied by the caller or by
+//! [`super::ClampRules::filter_gaussian`].
+//!
+//! ```
+//! use filtered_ndf::f32::{filter, Beckmann, ClampRules, Footprint, Ggx, Isotropic, Ndf};
+//! use glam::{Vec2, Vec3};
+//!
+//! let a = Isotropic::new(0.01).unwrap();
+//! // ddx / ddy of the half vector's slope (KHPL16) or of h_xy on the disk (TK19).
+//! let fp = Footprint::from_slope_derivatives(Vec2::new(0.02, 0.0), Vec2::new(0.0, 0.005));
+//! let sigma = fp.covariance(0.5); // SIGMA_PIXEL
+//! let beckmann = Beckmann::new(filter::gaussian(a, sigma)); // exact (KHPL16 eq. 15)
+//! let ggx = Ggx::new(filter::projected(a, sigma)); // TK21 projected space
+//! let clamped = ClampRules::default().filter_gaussian(a, fp, 0.5); // lambda, kappa, tau
+//! let h = Vec3::new(0.005, 0.0, 1.0).normalize();
+//! assert!(beckmann.d(h) < Beckmann::new(a).d(Vec3::Z));
+//! assert!(ggx.d(h).is_finite() && Ggx::new(clamped).d(h).is_finite());
+//! ```
+
+use super::{F, Vec2, Vec3};
+
+pub mod deferred;
+mod gaussian;
+mod lean;
+pub mod presets;
+mod projected;
+pub mod proxy;
+pub mod rect;
+
+pub use gaussian::{gaussian, gaussian_with_tau};
+pub(crate) use gaussian::{gaussian_sanitized, gaussian_with_tau_sanitized};
+pub use lean::{LeanMoments, lean};
+pub use projected::{PROJECTED_EIGEN_MAX, projected};

@@ -1,0 +1,105 @@
+//! The axis-aligned roughness form `A = diag(alpha_x^2, alpha_y^2)`.
+
+use super::{
+    F, Isotropic, Roughness, RoughnessError, RoughnessMatrix, Vec2, check_alpha, clamp_alpha,
+    over_z2, sealed,
+};
+use crate::math::Real;
+
+/// Axis-aligned anisotropic roughness `(alpha_x, alpha_y)` along the tangent and bitangent:
+/// `A = diag(alpha_x^2, alpha_y^2)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AxisAligned {
+    alpha: Vec2,
+    /// `(alpha_x^2, alpha_y^2)`, the diagonal of `A` (a filtered lobe starts from it).
+    alpha2: Vec2,
+    inv_alpha2: Vec2,
+    /// `1 / (alpha_x alpha_y)`.
+    inv_sqrt_det: F,
+}
+
+impl AxisAligned {
+    /// Checked constructor: both values finite and in `[ALPHA_MIN, ALPHA_MAX]`. When both
+    /// are invalid, the error describes `alpha_x`.
+    #[inline]
+    pub fn new(alpha_x: F, alpha_y: F) -> Result<Self, RoughnessError> {
+        Ok(Self::from_valid(Vec2::new(
+            check_alpha(alpha_x)?,
+            check_alpha(alpha_y)?,
+        )))
+    }
+
+    /// Never fails: each value is first passed through [`clamp_alpha`].
+    #[inline]
+    pub fn new_clamped(alpha_x: F, alpha_y: F) -> Self {
+        Self::from_valid(Vec2::new(clamp_alpha(alpha_x), clamp_alpha(alpha_y)))
+    }
+
+    #[inline]
+    fn from_valid(alpha: Vec2) -> Self {
+        Self {
+            alpha,
+            alpha2: alpha * alpha,
+            inv_alpha2: Vec2::ONE / (alpha * alpha),
+            inv_sqrt_det: 1.0 / (alpha.x * alpha.y),
+        }
+    }
+
+    /// `(alpha_x, alpha_y)`.
+    #[inline]
+    pub fn alpha(&self) -> Vec2 {
+        self.alpha
+    }
+}
+
+impl From<Isotropic> for AxisAligned {
+    #[inline]
+    fn from(r: Isotropic) -> Self {
+        Self::from_valid(Vec2::splat(r.alpha()))
+    }
+}
+
+impl sealed::Sealed for AxisAligned {
+    #[inline(always)]
+    fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F) {
+        over_z2(self.inv_quadratic(m), self.inv_sqrt_det, z2)
+    }
+    #[inline(always)]
+    fn det_clamped(&self) -> f64 {
+        let a = self.alpha2;
+        a.x.to_f64() * a.y.to_f64()
+    }
+}
+impl Roughness for AxisAligned {
+    #[inline]
+    fn inv_quadratic(&self, s: Vec2) -> F {
+        (s * s).dot(self.inv_alpha2)
+    }
+    #[inline]
+    fn quadratic(&self, w: Vec2) -> F {
+        (w * w).dot(self.alpha2)
+    }
+    #[inline]
+    fn sqrt_det(&self) -> F {
+        self.alpha.x * self.alpha.y
+    }
+    #[inline]
+    fn to_matrix(&self) -> RoughnessMatrix {
+        let a = self.alpha2;
+        RoughnessMatrix {
+            a11: a.x,
+            a12: 0.0,
+            a22: a.y,
+            axis: Vec2::X,
+            eig: a,
+            inv_eig: self.inv_alpha2,
+            sqrt_det: self.alpha.x * self.alpha.y,
+            inv_sqrt_det: self.inv_sqrt_det,
+            ldl_det: 0.0,
+            ldl_inv: 0.0,
+            ldl_c: 0.0,
+            ldl_c32: 0.0,
+            ldl: false,
+        }
+    }
+}

@@ -1,0 +1,74 @@
+//! The isotropic roughness form `A = alpha^2 I`.
+
+use super::{
+    AxisAligned, F, Roughness, RoughnessError, RoughnessMatrix, Vec2, check_alpha, clamp_alpha,
+    over_z2, sealed,
+};
+use crate::math::Real;
+
+/// Isotropic roughness `alpha`: `A = alpha^2 I`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Isotropic {
+    alpha: F,
+    inv_alpha2: F,
+}
+
+impl Isotropic {
+    /// Checked constructor: `alpha` finite and in `[ALPHA_MIN, ALPHA_MAX]`; else
+    /// `NotFinite` (NaN, inf), `NotPositive` (`<= 0`, including `-0`) or `OutOfRange`.
+    #[inline]
+    pub fn new(alpha: F) -> Result<Self, RoughnessError> {
+        check_alpha(alpha).map(Self::from_valid)
+    }
+
+    /// Never fails: `alpha` is first passed through [`clamp_alpha`].
+    #[inline]
+    pub fn new_clamped(alpha: F) -> Self {
+        Self::from_valid(clamp_alpha(alpha))
+    }
+
+    #[inline]
+    fn from_valid(alpha: F) -> Self {
+        Self {
+            alpha,
+            inv_alpha2: 1.0 / (alpha * alpha),
+        }
+    }
+
+    /// The roughness `alpha`.
+    #[inline]
+    pub fn alpha(&self) -> F {
+        self.alpha
+    }
+}
+
+impl sealed::Sealed for Isotropic {
+    #[inline(always)]
+    fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F) {
+        // sqrt(det A) = alpha^2.
+        over_z2(self.inv_quadratic(m), self.inv_alpha2, z2)
+    }
+    #[inline(always)]
+    fn det_clamped(&self) -> f64 {
+        let a = (self.alpha * self.alpha).to_f64();
+        a * a
+    }
+}
+impl Roughness for Isotropic {
+    #[inline]
+    fn inv_quadratic(&self, s: Vec2) -> F {
+        s.length_squared() * self.inv_alpha2
+    }
+    #[inline]
+    fn quadratic(&self, w: Vec2) -> F {
+        w.length_squared() * (self.alpha * self.alpha)
+    }
+    #[inline]
+    fn sqrt_det(&self) -> F {
+        self.alpha * self.alpha
+    }
+    #[inline]
+    fn to_matrix(&self) -> RoughnessMatrix {
+        AxisAligned::from(*self).to_matrix()
+    }
+}
