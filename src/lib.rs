@@ -6,40 +6,46 @@
 //! NDF is filtered over it (Kaplanyan, Hill, Patney, Lefohn 2016, "KHPL16"; Tokuyoshi and
 //! Kaplanyan 2019, "TK19"; Tessari et al. 2020 for motion blur).
 //!
+//! ## The front door: a filtered lobe in three lines
+//!
+//! ```
+//! use filtered_ndf::f32::prelude::*;
+//! use glam::{Vec2, Vec3};
+//! # let (ddx_slope, ddy_slope) = (Vec2::new(0.03, 0.0), Vec2::new(0.0, 0.02));
+//! # let h = Vec3::new(0.001, 0.0, 1.0).normalize();
+//!
+//! let material = Ggx::isotropic(0.01).unwrap();             // any NDF, any roughness form
+//! let footprint = Footprint::from_slope_derivatives(ddx_slope, ddy_slope); // what you have
+//! let lobe = material.filtered(footprint, Gaussian::TK19);   // TK19: Ggx<RoughnessMatrix>
+//! # assert!(lobe.d(h) < material.d(h));
+//! ```
+//!
+//! `lobe` is an ordinary NDF: `d`, `p22`, `lambda`, `g1`, `g2`, and (for this method)
+//! `sample_visible_normal` and the pdfs, all of one distribution. The method is a value whose
+//! type says what it returns ([`f32::filter::Method`]): [`Gaussian`](f32::filter::Gaussian)
+//! (`A + 2 Sigma`: exact for Beckmann, TK19's approximation for GGX),
+//! [`Projected`](f32::filter::Projected) (TK21), [`Rect`](f32::filter::Rect) (the exact box
+//! filter of KHPL16) and [`Proxy`](f32::filter::Proxy) (KHPL16's GGX proxy). Footprints come
+//! from whatever derivatives the renderer has ([`f32::Footprint`]'s constructors).
+//!
+//! Deferred shading, from G-buffer normal differences and an engine's convention, in one line:
+//!
+//! ```
+//! use filtered_ndf::f32::prelude::*;
+//! use glam::Vec3;
+//! # let (alpha, ddx_normal, ddy_normal) = (0.01, Vec3::new(0.03, 0.0, 0.0), Vec3::ZERO);
+//!
+//! let lobe = Ggx::new(presets::TK19_TRACE.filter(alpha, ddx_normal, ddy_normal));
+//! # assert!(lobe.d(Vec3::Z).is_finite());
+//! ```
+//!
 //! ## Layout
-//! Every formula exists once and is compiled twice: [`f32`](mod@f32) (shading) and [`f64`](mod@f64) (reference
-//! and offline) hold the same modules over glam's `Vec2/Vec3/Mat2` and `DVec2/DVec3/DMat2`.
-//!
-//! ```
-//! use filtered_ndf::f32::{Ggx, Ndf};
-//! use glam::{Vec2, Vec3};
-//!
-//! let ggx = Ggx::isotropic(0.1).unwrap();
-//! let peak = ggx.d(Vec3::Z); // 1 / (pi alpha^2)
-//! assert!((peak - 1.0 / (core::f32::consts::PI * 0.01)).abs() < 1e-3 * peak);
-//! assert_eq!(ggx.p22(Vec2::ZERO), peak);
-//! ```
-//!
-//! Filtering one shading point, three ways (TK19 matrix, KHPL16 exact box, deferred):
-//!
-//! ```
-//! use filtered_ndf::f32::{ClampRules, Footprint, Ggx, Isotropic, Ndf, filter::rect, filter::presets};
-//! use glam::{Vec2, Vec3};
-//!
-//! let alpha = Isotropic::new(0.01).unwrap();
-//! let h = Vec3::new(0.001, 0.0, 1.0).normalize(); // near the peak of the lobe
-//! // ddx/ddy of the half vector's slope (KHPL16 section 5.1).
-//! let fp = Footprint::from_slope_derivatives(Vec2::new(0.03, 0.0), Vec2::new(0.0, 0.02));
-//! let d_matrix = Ggx::new(ClampRules::default().filter_gaussian(alpha, fp, 0.5)).d(h);
-//! let d_box = rect::d_rect(alpha.into(), h, fp.bounding_rect().half_extent);
-//! // Deferred: one isotropic roughness from G-buffer normal differences (TK19 eq. 4).
-//! let a = presets::TK19_TRACE.apply(0.01, Vec3::new(0.03, 0.0, 0.0), Vec3::new(0.0, 0.02, 0.0));
-//! let d_iso = Ggx::isotropic(a).unwrap().d(h);
-//! let unfiltered = Ggx::new(alpha).d(h);
-//! for d in [d_matrix, d_box, d_iso] {
-//!     assert!(d.is_finite() && d < unfiltered); // the sub-pixel peak is spread out
-//! }
-//! ```
+//! Every formula exists once and is compiled twice: [`f32`](mod@f32) (shading) and
+//! [`f64`](mod@f64) (reference and offline) hold the same modules over glam's
+//! `Vec2/Vec3/Mat2` and `DVec2/DVec3/DMat2`. The modules follow the pipeline: `ndf`
+//! (roughness forms, GGX, Beckmann) -> `footprint` (slope maps, Jacobians, footprints) ->
+//! `kernel` (covariance, rectangle, clamp rules) -> `filter` (the methods, the front door,
+//! deferred presets) -> `sampling`, with `temporal` (Tessari et al.) and `batch` beside.
 //!
 //! ## Conventions
 //! Tangent frame with `z` along the shading normal; slope `s = -h_xy / h_z`; `p22` is a
@@ -78,6 +84,8 @@ macro_rules! precision_modules {
         pub mod kernel;
         #[path = "ndf/mod.rs"]
         pub mod ndf;
+        #[path = "prelude.rs"]
+        pub mod prelude;
         #[path = "sampling/mod.rs"]
         pub mod sampling;
         #[path = "temporal/mod.rs"]

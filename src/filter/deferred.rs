@@ -51,7 +51,7 @@
 //! (exactly when both average normals share one tangent frame).
 
 use super::super::kernel::{Covariance, SIGMA_PIXEL};
-use super::super::ndf::roughness::ALPHA_MAX;
+use super::super::ndf::roughness::{ALPHA_MAX, Isotropic};
 use super::{F, Vec3};
 use crate::math as m;
 
@@ -341,5 +341,24 @@ impl KernelConvention {
     #[inline]
     pub fn apply(&self, alpha: F, dn_u: Vec3, dn_v: Vec3) -> F {
         self.apply_kernel(alpha, self.kernel(dn_u, dn_v))
+    }
+
+    /// The deferred front door: the filtered roughness of [`apply`](Self::apply) as an
+    /// [`Isotropic`] that every NDF constructor accepts, for any input. `apply` reproduces the
+    /// engine's formula and may return `0` (a zero material roughness with zero normal
+    /// differences), which is outside the NDFs' domain; here the result is clamped into
+    /// `[ALPHA_MIN, ALPHA_MAX]` ([`Isotropic::new_clamped`]).
+    ///
+    /// ```
+    /// use filtered_ndf::f32::{Ggx, Ndf, filter::presets};
+    /// use glam::Vec3;
+    ///
+    /// // alpha 0 and a flat G-buffer: a valid (ALPHA_MIN) roughness, not a panic.
+    /// let alpha = presets::TK19_TRACE.filter(0.0, Vec3::ZERO, Vec3::ZERO);
+    /// assert!(Ggx::new(alpha).d(Vec3::Z).is_finite());
+    /// ```
+    #[inline]
+    pub fn filter(&self, alpha: F, dn_u: Vec3, dn_v: Vec3) -> Isotropic {
+        Isotropic::new_clamped(self.apply(alpha, dn_u, dn_v))
     }
 }

@@ -477,3 +477,9 @@ pub fn d_rect_printed(r: AxisAligned, hpp: Vec2, h: Vec3, footprint: Vec2) -> F 
     let v = val / hz4.max(1e-3);
     if v.is_finite() { v } else { 0.0 }
 }
+
+/// TEMPORARY (replaced by the exact one from branch box-lobe).
+#[inline]
+pub fn lambda_rect(r: AxisAligned, _half_extent: Vec2, w: Vec3) -> F {
+    Ggx::new(r).lambda(w)
+}

@@ -51,18 +51,31 @@ pub struct ClampRules {
 }
 
 impl Default for ClampRules {
-    /// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
+    /// [`ClampRules::DEFAULT`].
     fn default() -> Self {
-        Self {
-            max_extent: 1.0,
-            floor: ExtentFloor::Constant(1e-3),
-            kappa: 0.18,
-            det_clamp: true,
-        }
+        Self::DEFAULT
     }
 }
 
 impl ClampRules {
+    /// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
+    pub const DEFAULT: Self = Self {
+        max_extent: 1.0,
+        floor: ExtentFloor::Constant(1e-3),
+        kappa: 0.18,
+        det_clamp: true,
+    };
+
+    /// KHPL16's rules for its exact kernels: the maximum extent `lambda = 1` (section 5.2) and
+    /// the determinant clamp; no rectangle floor (the crate's rectangle integral is exact
+    /// without one) and no `kappa` (a TK19 addition).
+    pub const KHPL16: Self = Self {
+        max_extent: 1.0,
+        floor: ExtentFloor::None,
+        kappa: F::INFINITY,
+        det_clamp: true,
+    };
+
     /// No clamping at all (unbiased; for references and for an exact rectangle integral).
     pub const NONE: Self = Self {
         max_extent: F::INFINITY,
