@@ -1,401 +1,309 @@
 //! The oracle's evaluator: one JSON object in, one JSON object out. Shared by
 //! `examples/oracle/main.rs` and the end-to-end test `tests/oracle.rs` (one source).
+//!
+//! Layout: [`OPS`] is the dispatcher and the documentation at once (every op is one entry with
+//! its arguments, equation and handlers, so an op cannot exist without its `--list` text);
+//! `args.rs` parses and checks arguments in `f64`; `typed.rs` and `ops_*.rs` evaluate them,
+//! compiled once per precision into [`p32`] and [`p64`] as the library compiles its own
+//! modules.
 
-use filtered_ndf::math::Real;
+#[path = "args.rs"]
+mod args;
+
+use args::Precision;
 use serde_json::{Value, json};
+use std::io::{BufRead, Write};
 
-/// One op of the evaluator: its name, arguments and the equation it implements.
+/// An op's evaluation in one precision.
+pub type Handler = fn(&Value) -> Result<Value, String>;
+
+/// One op of the evaluator: its name, arguments, the equation it implements and its
+/// handlers.
 pub struct OpInfo {
     /// The op name (`"op"` field).
     pub name: &'static str,
     /// Its arguments, `name: description`.
     pub args: &'static str,
-    /// What it returns and the paper equation it implements.
+    /// The equation it implements, with the paper equation it follows.
+    pub equation: &'static str,
+    /// What it returns (units, the values of the edge cases).
     pub returns: &'static str,
+    /// The evaluation in `f32`.
+    pub f32: Handler,
+    /// The evaluation in `f64`.
+    pub f64: Handler,
 }
 
-/// Every op, for `--list`.
+/// One [`OpInfo`] whose handlers are the function `$name` of [`p32`] and [`p64`].
+macro_rules! op {
+    ($name:ident, args: $a:expr, equation: $e:expr, returns: $r:expr $(,)?) => {
+        OpInfo {
+            name: stringify!($name),
+            args: $a,
+            equation: $e,
+            returns: $r,
+            f32: p32::$name,
+            f64: p64::$name,
+        }
+    };
+}
+
+/// What every op shares, printed before the ops by `--list`.
+pub const CONVENTIONS: &str = "\
+Input: one JSON object per line, {\"op\": NAME, ...}; output: one line per input line, in order,
+{\"ok\": VALUE} or {\"error\": MESSAGE}. A bad line answers an error and the stream goes on.
+Every op takes \"precision\": \"f32\" | \"f64\" (default f64): the arguments are rounded to it
+and the library's code for that precision runs. Arguments must be finite JSON numbers.
+Infinite results are written as the strings \"inf\" / \"-inf\" (JSON has no infinity).
+Tangent frame with z the shading normal; slope s = -m_xy / m_z.
+roughness:  alpha | [ax, ay] | [[a11, a12], [a12, a22]] (A = alpha^2 I, diag(ax^2, ay^2), A).
+footprint:  [[dhu_x, dhu_y], [dhv_x, dhv_y]] (slope change per pixel in x and y), or an object
+            with one key naming the constructor of Footprint:
+              {\"slope\": [dh_u, dh_v]}                        from_slope_derivatives
+              {\"projected\": [dp_u, dp_v]}                    from_projected_derivatives (TK19 3.2)
+              {\"projected_in_slope\": {\"h\": [x,y,z], \"dp\": [dp_u, dp_v]}}
+                                                          from_projected_derivatives_in_slope
+              {\"normal_differences\": [dn_u, dn_v]}  (3-vectors, tangent frame; TK19 eq. 3)
+              {\"half_vector\": {\"h\", \"dh_dx\", \"dh_dy\"}}     (3-vectors; not in the library yet)
+            Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T), sigma in pixels (TK19 sec. 2.2).
+clamps:     \"default\" | \"none\" | \"gdc2016\" | \"khpl16\" (ClampRules::DEFAULT, ...), or an object
+            {\"preset\"?, \"max_extent\"?, \"floor\"?, \"kappa\"?, \"det_clamp\"?} overriding the
+            op's own rules; max_extent, kappa: number >= 0 or \"inf\"; floor: \"none\" |
+            {\"constant\": e} | {\"alpha_capped\": cap}; det_clamp: bool. The rules (KHPL16 5.2,
+            TK19 eq. 1): footprint scaled to max_extent lambda = max(|dh_u + dh_v|,
+            |dh_u - dh_v|) / 2 <= max_extent; kernel eigenvalues min(2 lambda_i, kappa);
+            rectangle half extents in [floor, max_extent]; tau = det(A) for the filtered matrix.
+point:      at most one of \"m\" (unit micronormal: D), \"slope\" (P22), \"w\" (direction: Lambda);
+            without one the ops that build a lobe return the lobe (its roughness).";
+
+/// Every op: the dispatcher and `--list` (see [`list`]).
 pub const OPS: &[OpInfo] = &[
-    OpInfo {
-        name: "ndf",
-        args: "dist (\"ggx\"|\"beckmann\"), roughness, m (unit micronormal, tangent frame)",
-        returns: "D(m) per steradian; GGX: TK19 supp. sec. 1, Beckmann: KHPL16 eq. 14 / Heitz 2014",
-    },
-    OpInfo {
-        name: "slope_pdf",
-        args: "dist, roughness, slope ([sx, sy], s = -m_xy/m_z)",
-        returns: "P22(slope) per unit slope area (TK19 supp. sec. 1)",
-    },
-    OpInfo {
-        name: "lambda",
-        args: "dist, roughness, w (unit direction)",
-        returns: "Smith Lambda(w) (TK19 supp. sec. 1; Heitz 2014 eq. 72, 80)",
-    },
-    OpInfo {
-        name: "jacobian",
-        args: "kind (\"sphere_to_slope\"|\"sphere_to_projected\"|\"projected_to_slope\"), h (unit half vector)",
-        returns: "2x2 matrix [[j11, j12], [j21, j22]], j_ik = d out_i / d in_k; TK19 supp. eq. 7, 4, 6",
-    },
-    OpInfo {
-        name: "isotropic_roughness",
-        args: "alpha, dn_u, dn_v (world-space normal differences, [x, y, z]), variant (\"max\"|\"trace\"|\"average\"), optional kappa (default 0.18)",
-        returns: "filtered alpha = sqrt(saturate(alpha^2 + min(kernel, kappa))); TK19 eq. 1, 4, 5 with eq. 3, sigma^2 = 0.25",
-    },
-    OpInfo {
-        name: "filter_roughness",
-        args: "roughness, footprint ([[dhu_x, dhu_y], [dhv_x, dhv_y]], slope change per pixel), optional sigma (pixels, default 0.5)",
-        returns: "filtered roughness matrix [[a11, a12], [a12, a22]] = A + 2 Sigma, Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T); KHPL16 eq. 13-15, TK19 sec. 2.2 (exact for Beckmann)",
-    },
-    OpInfo {
-        name: "ggx_rect",
-        args: "roughness (number or [ax, ay]; axis-aligned), center ([sx, sy], slope), half_extent ([hx, hy], slope)",
-        returns: "average of the GGX slope density over center +/- half_extent, per unit slope area; KHPL16 eq. 16 (Appendix A corrected), exact",
-    },
-    OpInfo {
-        name: "ggx_proxy",
+    op!(ndf,
+        args: "dist (\"ggx\"|\"beckmann\"), roughness, m (unit micronormal)",
+        equation: "GGX D(m) = 1 / (pi sqrt(det A) (m_xy^T A^-1 m_xy + m_z^2)^2); Beckmann \
+                   D(m) = exp(-s^T A^-1 s) / (pi sqrt(det A) m_z^4); 0 for m_z <= 0 (TK19 supp. \
+                   sec. 1; KHPL16 eq. 2, 14; Heitz 2014)",
+        returns: "D(m) per steradian, integral D(m) m_z dm = 1",
+    ),
+    op!(slope_pdf,
+        args: "dist, roughness, slope ([sx, sy])",
+        equation: "GGX P22(s) = 1 / (pi sqrt(det A) (1 + s^T A^-1 s)^2); Beckmann P22(s) = \
+                   exp(-s^T A^-1 s) / (pi sqrt(det A)) (TK19 supp. sec. 1)",
+        returns: "P22(slope) per unit slope area",
+    ),
+    op!(lambda,
+        args: "dist, roughness, w (direction; need not be unit)",
+        equation: "q = w_xy^T A w_xy, a = |w_z| / sqrt(q); GGX Lambda = (sqrt(1 + q / w_z^2) - 1) \
+                   / 2; Beckmann Lambda = (erf(a) - 1) / 2 + exp(-a^2) / (2 a sqrt(pi)) (TK19 \
+                   supp. sec. 1; Heitz 2014 eq. 72, 80)",
+        returns: "Smith Lambda(w); \"inf\" at w_z = 0, 0 for w = 0",
+    ),
+    op!(g1,
+        args: "dist, roughness, w (direction), m (unit micronormal)",
+        equation: "G1(w, m) = chi+(w.m) / (1 + Lambda(w)) (TK19 supp. sec. 1; Heitz 2014 sec. 5)",
+        returns: "Smith masking in [0, 1]; 0 for w.m <= 0 and for grazing w",
+    ),
+    op!(g2,
+        args: "dist, roughness, i, o (directions), m (unit micronormal)",
+        equation: "G2(i, o, m) = chi+(i.m) chi+(o.m) / (1 + Lambda(i) + Lambda(o)) (height-\
+                   correlated; Heitz 2014 eq. 99)",
+        returns: "masking-shadowing in [0, 1]",
+    ),
+    op!(pdf,
+        args: "dist, roughness, o (view direction), m (unit micronormal)",
+        equation: "D_o(m) = G1(o) max(0, o.m) D(m) / o_z, G1(o) = 1 / (1 + Lambda(o)) (the \
+                   distribution of visible normals: Heitz 2014 eq. 16; Heitz and d'Eon 2014 eq. 2)",
+        returns: "the visible-normal density of m per steradian (integrates to 1 over m for \
+                  every o above the surface); 0 for o_z <= 0, o.m <= 0, m_z <= 0",
+    ),
+    op!(sample,
+        args: "dist, roughness, o (view direction), u ([u1, u2], each clamped into [0, 1), \
+               NaN as 0)",
+        equation: "m(u) = the visible micronormal NdfSampling::sample_visible_normal returns: \
+                   with A = L L^T, o' = normalize(L^T o_xy, o_z) and n sampled for unit roughness, \
+                   m = normalize(L n_xy, n_z); GGX: n = c + o', c on the spherical cap phi = 2 pi \
+                   u1, c_z = (1 - u2)(1 + o'_z) - o'_z (Dupuy and Benyoub 2023, listing 3); \
+                   Beckmann: slope of n by inverting the visible-slope CDF at u1 along o' and the \
+                   Gaussian quantile at u2 across it (Heitz and d'Eon 2014 sec. 4). At o = z: GGX \
+                   tan^2 theta_m = alpha^2 u2 / (1 - u2), phi_m = 2 pi u1",
+        returns: "[mx, my, mz], a unit vector with m_z > 0 and o.m > 0, distributed with the \
+                  density of the op pdf; null where the sampler returns None (o_z <= 0)",
+    ),
+    op!(jacobian,
+        args: "kind (\"sphere_to_slope\"|\"sphere_to_projected\"|\"projected_to_slope\"), h \
+               (unit half vector)",
+        equation: "J_ik = d out_i / d in_k of the maps between the sphere, the projected disk \
+                   p = h_xy and the slope plane s = -h_xy / h_z (TK19 supp. eq. 7, 4, 6)",
+        returns: "2x2 matrix [[j11, j12], [j21, j22]]",
+    ),
+    op!(isotropic_roughness,
+        args: "alpha (>= 0), dn_u, dn_v (world-space normal differences [x, y, z]), variant \
+               (\"max\"|\"trace\"|\"average\"), optional kappa (default 0.18)",
+        equation: "alpha' = sqrt(saturate(alpha^2 + min(k, kappa))), k = 2 lambda_max(Sigma) \
+                   (max), 2 tr(Sigma) (trace), tr(Sigma) (average), Sigma = 0.25 Gram(dn_u, dn_v) \
+                   (TK19 eq. 1, 4, 5 with eq. 3)",
+        returns: "the filtered isotropic alpha",
+    ),
+    op!(preset,
+        args: "name (a name of filter::presets::ALL: \"TK19 max (eq. 1)\", \"TK19 trace (eq. \
+               4)\", \"TK19 average (eq. 5)\", \"TK21 listing 5\", \"Filament\", \"Unity HDRP\", \
+               \"Unity HDRP projected\", \"Godot 4\", \"O3DE\", \"Unreal\", \"Babylon.js \
+               (Vlachos 2015)\", \"three.js\"), alpha (GGX roughness; <= 0 counts as 0), dn_u, \
+               dn_v (world-space normal differences), optional raw (bool, default false)",
+        equation: "the engine's KernelConvention: v = domain(max(alpha, floor^2)), k = min(max( \
+                   scale norm(dn_u, dn_v)^exponent + bias, 0), clamp), v' = v + k (or max(v, k)), \
+                   saturate: min(v', 1), alpha' = domain^-1(v'); domain alpha^2, alpha^2 / (1 - \
+                   alpha^2), alpha or sqrt(alpha) (constants per preset: src/filter/presets.rs)",
+        returns: "alpha' clamped into [1e-8, 1e4] (KernelConvention::filter, always a valid \
+                  roughness); with raw: true the engine formula's own value \
+                  (KernelConvention::apply, may be 0)",
+    ),
+    op!(filter_roughness,
+        args: "roughness, footprint, optional sigma (pixels, default 0.5)",
+        equation: "A' = A + 2 Sigma, no clamps (KHPL16 eq. 13-15; TK19 sec. 2.2: exact for \
+                   Beckmann, the TK19 approximation for GGX), evaluated with tau = det A",
+        returns: "the filtered roughness matrix [[a11, a12], [a12, a22]]",
+    ),
+    op!(projected_roughness,
+        args: "roughness, footprint (TK21 means projected-disk derivatives), optional sigma \
+               (pixels, default 0.5)",
+        equation: "P = A (I - A)^-1, P' = P + 2 Sigma, A' = P' (I + P')^-1, no clamps (TK21 \
+                   listing 1; eigenvalues of A above 0.99 pass unfiltered), tau = det A",
+        returns: "the filtered GGX roughness matrix [[a11, a12], [a12, a22]]",
+    ),
+    op!(ggx_rect,
+        args: "roughness (number or [ax, ay]), center ([sx, sy], slope), half_extent ([hx, hy])",
+        equation: "mean of the GGX P22 over center +/- half_extent = (1 / (4 H_x H_y)) integral \
+                   P22 (KHPL16 eq. 16; App. A divides by a quarter of the area), exact",
+        returns: "per unit slope area",
+    ),
+    op!(ggx_rect_footprint,
+        args: "roughness (number or [ax, ay]), footprint, optional clamps (default \"default\": \
+               lambda = 1, floor 1e-3), optional point",
+        equation: "H = clamp((|dh_u| + |dh_v|) / 2, floor, max_extent) per axis (the bounding \
+                   rectangle of the one-pixel parallelogram, KHPL16 sec. 5.2-5.3); P22'(s) = mean \
+                   of P22 over s +/- H (eq. 16); D'(m) = P22'(s(m)) / m_z^4; Lambda' = Smith \
+                   Lambda of P22'",
+        returns: "D', P22' or Lambda' at the point; without one the clamped half extents [Hx, Hy]",
+    ),
+    op!(ggx_proxy,
         args: "alpha, half_extent (slope, one axis), variant (\"exact\"|\"simple\")",
-        returns: "effective GGX alpha whose peak 1/(pi alpha'^2) matches the rectangle-filtered peak (KHPL16 eq. 19-20, eq. 20 corrected: exact), or sqrt(alpha^2 + H^2) (simple)",
-    },
+        equation: "exact: alpha'^2 = (alpha^2 + H^2) t / atan(t), t = H / sqrt(alpha^2 + H^2) \
+                   (KHPL16 eq. 19 solved; eq. 20 as printed is inconsistent with it); simple: \
+                   alpha' = sqrt(alpha^2 + H^2)",
+        returns: "the effective GGX alpha whose peak 1 / (pi alpha'^2) is the box-filtered peak",
+    ),
+    op!(filtered,
+        args: "dist, roughness, footprint, method (\"gaussian_tk19\" | \"gaussian_khpl16\" | \
+               \"projected_tk21\" | \"rect_khpl16\" | \"rect_gdc2016\" | \"proxy_khpl16\"), \
+               optional clamps (overrides the method's), optional sigma (pixels; gaussian and \
+               projected only), optional point",
+        equation: "the front door material.filtered(footprint, method). gaussian: A' = A + 2 \
+                   Sigma_c, Sigma_c the clamped kernel (KHPL16 eq. 13-15, TK19 sec. 2.2; exact \
+                   for Beckmann); projected: TK21 as projected_roughness with Sigma_c; rect: the \
+                   exact box filter over the clamped bounding rectangle (ggx_rect_footprint); \
+                   proxy: per axis the exact ggx_proxy of the clamped half extent. Defaults: \
+                   gaussian_tk19 and projected_tk21 clamps \"default\" (lambda 1, kappa 0.18, tau), \
+                   sigma 0.5; gaussian_khpl16 \"khpl16\" (lambda 1, tau), sigma 0.5; rect_khpl16 \
+                   and proxy_khpl16 \"khpl16\" (lambda 1, no floor); rect_gdc2016 \"gdc2016\" \
+                   (floor min(alpha, 0.1))",
+        returns: "D, P22 or Lambda of the filtered lobe at the point; without one the lobe: \
+                  gaussian and projected [[a11, a12], [a12, a22]] (evaluated with tau = det A of \
+                  the material), proxy [ax, ay], rect {\"roughness\": [ax, ay], \"half_extent\": \
+                  [Hx, Hy]}. Beckmann with projected, rect or proxy, and rect or proxy with a \
+                  matrix roughness, answer an error",
+    ),
+    op!(temporal,
+        args: "dist, roughness (base), dn_dt ([x, y]: the normal's rate in the tangent frame, \
+               1/T), dt (T) or shutter (a box shutter's length T: dt = T / sqrt 6), optional \
+               cos_theta, optional fraction (path share), optional point",
+        equation: "alpha_t = min(|dt dn_dt| |cos_theta| sqrt(fraction), 1e4), a = dn_dt / \
+                   |dn_dt|; D and P22 from A_conv = A + alpha_t^2 a a^T (Tessari et al. 2020 \
+                   eq. 16 with A = 2 Sigma, tau = det A), Lambda from A (eq. 17: G_conv = G_mu); \
+                   cos_theta and fraction clamped into [0, 1]",
+        returns: "D, P22 or Lambda at the point; without one {\"alpha_t\", \"axis\": [ax, ay], \
+                  \"roughness\": A_conv}",
+    ),
 ];
 
-/// `{"ok": ...}` or `{"error": ...}` for one input line. Never panics.
+/// The `--list` text: [`CONVENTIONS`], then every op with its arguments, equation and result.
+pub fn list() -> String {
+    let mut s = format!("{CONVENTIONS}\n\n");
+    for op in OPS {
+        s += &format!(
+            "{}\n  args:     {}\n  equation: {}\n  returns:  {}\n\n",
+            op.name, op.args, op.equation, op.returns
+        );
+    }
+    s
+}
+
+/// `{"ok": ...}` or `{"error": ...}` for one input line. Never panics: a panic inside the
+/// library (a bug) answers `{"error": "internal error: panic ..."}`.
 pub fn eval_line(line: &str) -> String {
     let out = match serde_json::from_str::<Value>(line) {
-        Ok(v) => match eval(&v) {
-            Ok(ok) => json!({ "ok": ok }),
-            Err(e) => json!({ "error": e }),
+        Ok(v) => match std::panic::catch_unwind(|| eval(&v)) {
+            Ok(Ok(ok)) => json!({ "ok": ok }),
+            Ok(Err(e)) => json!({ "error": e }),
+            Err(_) => json!({ "error": "internal error: panic (a bug; please report the line)" }),
         },
         Err(e) => json!({ "error": format!("malformed JSON: {e}") }),
     };
     out.to_string()
 }
 
-/// The precision an op evaluates in.
-#[derive(Clone, Copy)]
-enum Precision {
-    F32,
-    F64,
-}
-
-fn precision(v: &Value) -> Result<Precision, String> {
-    match v.get("precision") {
-        None => Ok(Precision::F64),
-        Some(Value::String(s)) if s == "f64" => Ok(Precision::F64),
-        Some(Value::String(s)) if s == "f32" => Ok(Precision::F32),
-        Some(other) => Err(format!("precision must be \"f32\" or \"f64\", got {other}")),
-    }
-}
-
-fn number(v: &Value, key: &str) -> Result<f64, String> {
-    let x = v
-        .get(key)
-        .ok_or_else(|| format!("missing argument `{key}`"))?;
-    finite(x, key)
-}
-
-fn finite(x: &Value, key: &str) -> Result<f64, String> {
-    let f = x
-        .as_f64()
-        .ok_or_else(|| format!("argument `{key}` must be a number, got {x}"))?;
-    if f.is_finite() {
-        Ok(f)
-    } else {
-        Err(format!("argument `{key}` is not finite"))
-    }
-}
-
-fn array<const N: usize>(v: &Value, key: &str) -> Result<[f64; N], String> {
-    let a = v
-        .get(key)
-        .ok_or_else(|| format!("missing argument `{key}`"))?
-        .as_array()
-        .ok_or_else(|| format!("argument `{key}` must be an array of {N} numbers"))?;
-    if a.len() != N {
-        return Err(format!(
-            "argument `{key}` must have {N} elements, has {}",
-            a.len()
-        ));
-    }
-    let mut out = [0.0; N];
-    for (o, x) in out.iter_mut().zip(a) {
-        *o = finite(x, key)?;
-    }
-    Ok(out)
-}
-
-/// Roughness as given: a number, `[ax, ay]`, or `[[a11, a12], [a21, a22]]`.
-enum RoughnessArg {
-    Iso(f64),
-    Aniso(f64, f64),
-    Matrix([[f64; 2]; 2]),
-}
-
-fn roughness_arg(v: &Value) -> Result<RoughnessArg, String> {
-    let r = v.get("roughness").ok_or("missing argument `roughness`")?;
-    if r.is_number() {
-        return Ok(RoughnessArg::Iso(finite(r, "roughness")?));
-    }
-    let a = r
-        .as_array()
-        .ok_or("roughness must be a number, [ax, ay] or [[a11, a12], [a12, a22]]")?;
-    match a.as_slice() {
-        [x, y] if x.is_number() && y.is_number() => Ok(RoughnessArg::Aniso(
-            finite(x, "roughness")?,
-            finite(y, "roughness")?,
-        )),
-        [r1, r2] if r1.is_array() && r2.is_array() => {
-            let row = |r: &Value| -> Result<[f64; 2], String> {
-                match r.as_array().map(|a| a.as_slice()) {
-                    Some([a, b]) => Ok([finite(a, "roughness")?, finite(b, "roughness")?]),
-                    _ => Err("roughness matrix rows must have 2 numbers".into()),
-                }
-            };
-            Ok(RoughnessArg::Matrix([row(r1)?, row(r2)?]))
+/// Answers every non-blank line of `input` on `output`, flushing after each reply (so that a
+/// client may wait for each answer). A line that is not UTF-8 answers an error; only I/O
+/// errors stop it.
+pub fn serve<R: BufRead, W: Write>(mut input: R, mut output: W) -> std::io::Result<()> {
+    let mut buf = Vec::new();
+    loop {
+        buf.clear();
+        if input.read_until(b'\n', &mut buf)? == 0 {
+            return Ok(());
         }
-        _ => Err("roughness must be a number, [ax, ay] or [[a11, a12], [a12, a22]]".into()),
+        let reply = match std::str::from_utf8(&buf) {
+            Ok(l) if l.trim().is_empty() => continue,
+            Ok(l) => eval_line(l),
+            Err(e) => json!({ "error": format!("line is not UTF-8: {e}") }).to_string(),
+        };
+        writeln!(output, "{reply}")?;
+        output.flush()?;
     }
-}
-
-fn dist(v: &Value) -> Result<&str, String> {
-    match v.get("dist").and_then(Value::as_str) {
-        Some(d @ ("ggx" | "beckmann")) => Ok(d),
-        Some(other) => Err(format!(
-            "dist must be \"ggx\" or \"beckmann\", got \"{other}\""
-        )),
-        None => Err("missing argument `dist` (\"ggx\" or \"beckmann\")".into()),
-    }
-}
-
-/// Widens a result to f64 and refuses NaN (a NaN here is a crate bug, reported as such).
-fn out<T: Real>(x: T) -> Result<Value, String> {
-    let x = x.to_f64();
-    if x.is_nan() {
-        return Err("internal error: NaN result".into());
-    }
-    // JSON has no infinity: report it as the string "inf" (documented in --list).
-    Ok(if x.is_infinite() {
-        json!(if x > 0.0 { "inf" } else { "-inf" })
-    } else {
-        json!(x)
-    })
-}
-
-/// Runs `$body` with `$p` bound to the precision module (`filtered_ndf::f32` or `f64`).
-macro_rules! in_precision {
-    ($prec:expr, $p:ident, $body:block) => {
-        match $prec {
-            Precision::F32 => {
-                use filtered_ndf::f32 as $p;
-                $body
-            }
-            Precision::F64 => {
-                use filtered_ndf::f64 as $p;
-                $body
-            }
-        }
-    };
-}
-
-/// Runs `$body` with `$r` bound to the checked roughness (one of three forms) of `$arg`.
-macro_rules! with_roughness {
-    ($p:ident, $arg:expr, $r:ident, $body:expr) => {{
-        let c = |x: f64| <$p::F as Real>::from_f64(x);
-        match $arg {
-            RoughnessArg::Iso(a) => {
-                let $r = $p::Isotropic::new(c(a)).map_err(|e| e.to_string())?;
-                $body
-            }
-            RoughnessArg::Aniso(ax, ay) => {
-                let $r = $p::AxisAligned::new(c(ax), c(ay)).map_err(|e| e.to_string())?;
-                $body
-            }
-            RoughnessArg::Matrix(m) => {
-                let $r = $p::RoughnessMatrix::from_mat2($p::Mat2::from_cols(
-                    $p::Vec2::new(c(m[0][0]), c(m[1][0])),
-                    $p::Vec2::new(c(m[0][1]), c(m[1][1])),
-                ))
-                .map_err(|e| e.to_string())?;
-                $body
-            }
-        }
-    }};
-}
-
-/// Runs `$body` with `$ndf` bound to the NDF `$dist` of roughness `$arg` (three forms).
-macro_rules! with_ndf {
-    ($p:ident, $dist:expr, $arg:expr, $ndf:ident, $body:expr) => {
-        with_roughness!($p, $arg, r, {
-            if $dist == "ggx" {
-                let $ndf = $p::Ggx::new(r);
-                $body
-            } else {
-                let $ndf = $p::Beckmann::new(r);
-                $body
-            }
-        })
-    };
-}
-
-fn matrix_json<T: Real>(a11: T, a12: T, a22: T) -> Result<Value, String> {
-    Ok(json!([[out(a11)?, out(a12)?], [out(a12)?, out(a22)?]]))
 }
 
 fn eval(v: &Value) -> Result<Value, String> {
     if !v.is_object() {
         return Err("each line must be a JSON object with an `op` field".into());
     }
-    let op = v
+    let name = v
         .get("op")
         .and_then(Value::as_str)
         .ok_or("missing `op` (string); run with --list for the ops")?;
-    let prec = precision(v)?;
-    match op {
-        "ndf" => {
-            let (d, r, mv) = (dist(v)?, roughness_arg(v)?, array::<3>(v, "m")?);
-            in_precision!(prec, p, {
-                let c = |x: f64| <p::F as Real>::from_f64(x);
-                let m = p::Vec3::new(c(mv[0]), c(mv[1]), c(mv[2]));
-                with_ndf!(p, d, r, ndf, out(p::Ndf::d(&ndf, m)))
-            })
-        }
-        "slope_pdf" => {
-            let (d, r, sv) = (dist(v)?, roughness_arg(v)?, array::<2>(v, "slope")?);
-            in_precision!(prec, p, {
-                let c = |x: f64| <p::F as Real>::from_f64(x);
-                let s = p::Vec2::new(c(sv[0]), c(sv[1]));
-                with_ndf!(p, d, r, ndf, out(p::Ndf::p22(&ndf, s)))
-            })
-        }
-        "lambda" => {
-            let (d, r, wv) = (dist(v)?, roughness_arg(v)?, array::<3>(v, "w")?);
-            in_precision!(prec, p, {
-                let c = |x: f64| <p::F as Real>::from_f64(x);
-                let w = p::Vec3::new(c(wv[0]), c(wv[1]), c(wv[2]));
-                with_ndf!(p, d, r, ndf, out(p::Ndf::lambda(&ndf, w)))
-            })
-        }
-        "jacobian" => {
-            let hv = array::<3>(v, "h")?;
-            let kind = v.get("kind").and_then(Value::as_str).unwrap_or("");
-            in_precision!(prec, p, {
-                let c = |x: f64| <p::F as Real>::from_f64(x);
-                let h = p::Vec3::new(c(hv[0]), c(hv[1]), c(hv[2]));
-                let j = match kind {
-                    "sphere_to_slope" => p::footprint::jacobian::sphere_to_slope(h),
-                    "sphere_to_projected" => p::footprint::jacobian::sphere_to_projected(h),
-                    "projected_to_slope" => p::footprint::jacobian::projected_to_slope(h),
-                    _ => return Err(format!("unknown jacobian kind \"{kind}\"; see --list")),
-                };
-                // glam is column-major: x_axis holds d out / d in_1.
-                Ok(json!([
-                    [out(j.x_axis.x)?, out(j.y_axis.x)?],
-                    [out(j.x_axis.y)?, out(j.y_axis.y)?]
-                ]))
-            })
-        }
-        "isotropic_roughness" => {
-            let alpha = number(v, "alpha")?;
-            let (du, dv) = (array::<3>(v, "dn_u")?, array::<3>(v, "dn_v")?);
-            let kappa = match v.get("kappa") {
-                None => 0.18,
-                Some(k) => finite(k, "kappa")?,
-            };
-            let variant = v.get("variant").and_then(Value::as_str).unwrap_or("");
-            if alpha < 0.0 {
-                return Err("alpha must be >= 0".into());
-            }
-            in_precision!(prec, p, {
-                use p::filter::deferred::{
-                    Bandwidth, SIGMA2, filtered_alpha, normal_difference_covariance,
-                };
-                let c = |x: f64| <p::F as Real>::from_f64(x);
-                let bw = match variant {
-                    "max" => Bandwidth::Max,
-                    "trace" => Bandwidth::Trace,
-                    "average" => Bandwidth::Average,
-                    _ => {
-                        return Err(format!(
-                            "variant must be \"max\", \"trace\" or \"average\", got \"{variant}\""
-                        ));
-                    }
-                };
-                let dn_u = p::Vec3::new(c(du[0]), c(du[1]), c(du[2]));
-                let dn_v = p::Vec3::new(c(dv[0]), c(dv[1]), c(dv[2]));
-                let sigma = normal_difference_covariance(dn_u, dn_v, SIGMA2);
-                out(filtered_alpha(c(alpha), &sigma, bw, c(kappa)))
-            })
-        }
-        "filter_roughness" => {
-            let r = roughness_arg(v)?;
-            let fp = v.get("footprint").ok_or("missing argument `footprint`")?;
-            let rows = fp
-                .as_array()
-                .filter(|a| a.len() == 2)
-                .ok_or("footprint must be [[dhu_x, dhu_y], [dhv_x, dhv_y]]")?;
-            let wrap = |x: &Value| json!({ "footprint": x });
-            let du = array::<2>(&wrap(&rows[0]), "footprint")?;
-            let dv = array::<2>(&wrap(&rows[1]), "footprint")?;
-            let sigma = match v.get("sigma") {
-                None => 0.5,
-                Some(x) => finite(x, "sigma")?,
-            };
-            if sigma < 0.0 {
-                return Err("sigma must be >= 0".into());
-            }
-            in_precision!(prec, p, {
-                let c = |x: f64| <p::F as Real>::from_f64(x);
-                let fp = p::Footprint::from_slope_derivatives(
-                    p::Vec2::new(c(du[0]), c(du[1])),
-                    p::Vec2::new(c(dv[0]), c(dv[1])),
-                );
-                with_roughness!(p, r, rr, {
-                    let (a11, a12, a22) =
-                        p::filter::gaussian(rr, fp.covariance(c(sigma))).entries();
-                    matrix_json(a11, a12, a22)
-                })
-            })
-        }
-        "ggx_rect" => {
-            let r = roughness_arg(v)?;
-            let (cv, hv) = (array::<2>(v, "center")?, array::<2>(v, "half_extent")?);
-            let (ax, ay) = match r {
-                RoughnessArg::Iso(a) => (a, a),
-                RoughnessArg::Aniso(ax, ay) => (ax, ay),
-                RoughnessArg::Matrix(_) => {
-                    return Err(
-                        "ggx_rect needs an axis-aligned roughness (number or [ax, ay])".into(),
-                    );
-                }
-            };
-            in_precision!(prec, p, {
-                let c = |x: f64| <p::F as Real>::from_f64(x);
-                let r = p::AxisAligned::new(c(ax), c(ay)).map_err(|e| e.to_string())?;
-                out(p::filter::rect::p22_rect(
-                    r,
-                    p::Vec2::new(c(cv[0]), c(cv[1])),
-                    p::Vec2::new(c(hv[0]), c(hv[1])),
-                ))
-            })
-        }
-        "ggx_proxy" => {
-            let (alpha, h) = (number(v, "alpha")?, number(v, "half_extent")?);
-            let variant = v.get("variant").and_then(Value::as_str).unwrap_or("");
-            in_precision!(prec, p, {
-                let c = |x: f64| <p::F as Real>::from_f64(x);
-                let a = p::Isotropic::new(c(alpha))
-                    .map_err(|e| e.to_string())?
-                    .alpha();
-                match variant {
-                    "exact" => out(p::filter::proxy::effective_alpha(a, c(h))),
-                    "simple" => out(p::filter::proxy::effective_alpha_simple(a, c(h))),
-                    _ => Err(format!(
-                        "variant must be \"exact\" or \"simple\", got \"{variant}\""
-                    )),
-                }
-            })
-        }
-        other => Err(format!(
-            "unknown op \"{other}\"; run with --list for the ops"
-        )),
+    let op = OPS
+        .iter()
+        .find(|op| op.name == name)
+        .ok_or_else(|| format!("unknown op \"{name}\"; run with --list for the ops"))?;
+    match args::precision(v)? {
+        Precision::F32 => (op.f32)(v),
+        Precision::F64 => (op.f64)(v),
     }
 }
+
+/// The ops evaluated in one precision: `$module` with `p = filtered_ndf::$precision`.
+macro_rules! typed_ops {
+    ($module:ident, $precision:ident) => {
+        #[doc = concat!("The ops evaluated in `filtered_ndf::", stringify!($precision), "`.")]
+        pub mod $module {
+            use super::args::*;
+            use filtered_ndf::$precision as p;
+            include!("typed.rs");
+            include!("ops_ndf.rs");
+            include!("ops_filter.rs");
+            include!("ops_temporal.rs");
+        }
+    };
+}
+
+typed_ops!(p32, f32);
+typed_ops!(p64, f64);

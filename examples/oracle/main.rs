@@ -9,32 +9,19 @@
 
 mod eval;
 
-use std::io::{BufRead, BufWriter, Write};
-
 fn main() {
     if std::env::args().any(|a| a == "--list") {
-        println!("Every op takes optional \"precision\": \"f32\" | \"f64\" (default f64).");
-        println!("Roughness: number (isotropic alpha), [ax, ay], or [[a11, a12], [a12, a22]].");
-        println!("Infinite results are written as the strings \"inf\" / \"-inf\".\n");
-        for op in eval::OPS {
-            println!(
-                "{}\n  args:    {}\n  returns: {}\n",
-                op.name, op.args, op.returns
-            );
-        }
+        print!("{}", eval::list());
         return;
     }
     let stdin = std::io::stdin();
-    let mut stdout = BufWriter::new(std::io::stdout().lock());
-    for line in stdin.lock().lines() {
-        let reply = match line {
-            Ok(l) if l.trim().is_empty() => continue,
-            Ok(l) => eval::eval_line(&l),
-            Err(e) => format!("{{\"error\":\"unreadable line: {e}\"}}"),
-        };
-        if writeln!(stdout, "{reply}").is_err() {
-            return;
+    match eval::serve(stdin.lock(), std::io::stdout().lock()) {
+        Ok(()) => {}
+        // The reader went away: nothing left to answer.
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
+        Err(e) => {
+            eprintln!("oracle: {e}");
+            std::process::exit(1);
         }
     }
-    let _ = stdout.flush();
 }
