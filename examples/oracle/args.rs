@@ -26,7 +26,8 @@ pub fn precision(v: &Value) -> Result<Precision, String> {
 
 /// The argument `key`, which must be present.
 pub fn get<'a>(v: &'a Value, key: &str) -> Result<&'a Value, String> {
-    v.get(key).ok_or_else(|| format!("missing argument `{key}`"))
+    v.get(key)
+        .ok_or_else(|| format!("missing argument `{key}`"))
 }
 
 /// A finite number.
@@ -271,7 +272,9 @@ pub fn footprint_arg(v: &Value) -> Result<FootprintArg, String> {
                 dh_dy: array(x, "dh_dy").map_err(ctx)?,
             })
         }
-        other => Err(format!("unknown footprint form \"{other}\"; {FOOTPRINT_FORMS}")),
+        other => Err(format!(
+            "unknown footprint form \"{other}\"; {FOOTPRINT_FORMS}"
+        )),
     }
 }
 

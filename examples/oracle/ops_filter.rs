@@ -200,7 +200,9 @@ pub fn filtered(v: &Value) -> Result<Value, String> {
             };
             let describe = |l: &p::filter::RectFilteredGgx| {
                 let (a, h) = (l.roughness.alpha(), l.half_extent);
-                Ok(json!({ "roughness": vec_out(&[a.x, a.y])?, "half_extent": vec_out(&[h.x, h.y])? }))
+                Ok(
+                    json!({ "roughness": vec_out(&[a.x, a.y])?, "half_extent": vec_out(&[h.x, h.y])? }),
+                )
             };
             match r {
                 RoughnessArg::Iso(a) => {

@@ -100,9 +100,11 @@ fn footprint(arg: FootprintArg) -> Result<p::Footprint, String> {
             //     p::Footprint::from_half_vector_derivatives(v3(h), v3(dh_dx), v3(dh_dy))
             // and move the op's test line in tests/data/oracle_session.jsonl to a value test.
             let _ = (h, dh_dx, dh_dy);
-            return Err("footprint form \"half_vector\" is not available yet: the library has \
+            return Err(
+                "footprint form \"half_vector\" is not available yet: the library has \
                         no Footprint::from_half_vector_derivatives"
-                .into());
+                    .into(),
+            );
         }
     })
 }
