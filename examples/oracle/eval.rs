@@ -125,7 +125,8 @@ pub const OPS: &[OpInfo] = &[
                    u1, c_z = (1 - u2)(1 + o'_z) - o'_z (Dupuy and Benyoub 2023, listing 3); \
                    Beckmann: slope of n by inverting the visible-slope CDF at u1 along o' and the \
                    Gaussian quantile at u2 across it (Heitz and d'Eon 2014 sec. 4). At o = z: GGX \
-                   tan^2 theta_m = alpha^2 u2 / (1 - u2), phi_m = 2 pi u1",
+                   n = (sin t cos phi, sin t sin phi, cos t), tan^2 t = u2 / (1 - u2), phi = 2 pi \
+                   u1; Beckmann n has the slopes -n_xy / n_z = (Phi^-1(u1), Phi^-1(u2)) / sqrt 2",
         returns: "[mx, my, mz], a unit vector with m_z > 0 and o.m > 0, distributed with the \
                   density of the op pdf; null where the sampler returns None (o_z <= 0)",
     ),
@@ -150,8 +151,9 @@ pub const OPS: &[OpInfo] = &[
                \"Unity HDRP projected\", \"Godot 4\", \"O3DE\", \"Unreal\", \"Babylon.js \
                (Vlachos 2015)\", \"three.js\"), alpha (GGX roughness; <= 0 counts as 0), dn_u, \
                dn_v (world-space normal differences), optional raw (bool, default false)",
-        equation: "the engine's KernelConvention: v = domain(max(alpha, floor^2)), k = min(max( \
-                   scale norm(dn_u, dn_v)^exponent + bias, 0), clamp), v' = v + k (or max(v, k)), \
+        equation: "the engine's KernelConvention: v = domain(max(alpha, floor^2)), \
+                   k = min(max(scale norm(dn_u, dn_v)^exponent + bias, 0), clamp), v' = v + k (or \
+                   max(v, k)), \
                    saturate: min(v', 1), alpha' = domain^-1(v'); domain alpha^2, alpha^2 / (1 - \
                    alpha^2), alpha or sqrt(alpha) (constants per preset: src/filter/presets.rs)",
         returns: "alpha' clamped into [1e-8, 1e4] (KernelConvention::filter, always a valid \
@@ -184,7 +186,8 @@ pub const OPS: &[OpInfo] = &[
                    rectangle of the one-pixel parallelogram, KHPL16 sec. 5.2-5.3); P22'(s) = mean \
                    of P22 over s +/- H (eq. 16); D'(m) = P22'(s(m)) / m_z^4; Lambda' = Smith \
                    Lambda of P22'",
-        returns: "D', P22' or Lambda' at the point; without one the clamped half extents [Hx, Hy]",
+        returns: "D', P22' or Lambda' at the point (Lambda': rect::lambda_rect, for now the \
+                  unfiltered GGX Lambda); without one the clamped half extents [Hx, Hy]",
     ),
     op!(ggx_proxy,
         args: "alpha, half_extent (slope, one axis), variant (\"exact\"|\"simple\")",
@@ -211,8 +214,11 @@ pub const OPS: &[OpInfo] = &[
                   gaussian and projected [[a11, a12], [a12, a22]] (evaluated with tau = det A of \
                   the material), proxy [ax, ay], rect {\"roughness\": [ax, ay], \"half_extent\": \
                   [Hx, Hy]}. Beckmann with projected, rect or proxy, and rect or proxy with a \
-                  matrix roughness, answer an error",
+                  matrix roughness, answer an error. Lambda of a rect lobe is the library's \
+                  rect::lambda_rect, for now a stand-in: the unfiltered GGX Lambda",
     ),
+    // `gaussian_filtered` (the exact Gaussian-filtered GGX) will be added here with the
+    // library's GaussianFilter.
     op!(temporal,
         args: "dist, roughness (base), dn_dt ([x, y]: the normal's rate in the tangent frame, \
                1/T), dt (T) or shutter (a box shutter's length T: dt = T / sqrt 6), optional \
@@ -226,16 +232,44 @@ pub const OPS: &[OpInfo] = &[
     ),
 ];
 
-/// The `--list` text: [`CONVENTIONS`], then every op with its arguments, equation and result.
+/// The `--list` text: [`CONVENTIONS`], then every op with its arguments, equation and result
+/// (wrapped at 100 columns).
 pub fn list() -> String {
     let mut s = format!("{CONVENTIONS}\n\n");
     for op in OPS {
-        s += &format!(
-            "{}\n  args:     {}\n  equation: {}\n  returns:  {}\n\n",
-            op.name, op.args, op.equation, op.returns
-        );
+        s += op.name;
+        s += "\n";
+        for (label, text) in [
+            ("args:", op.args),
+            ("equation:", op.equation),
+            ("returns:", op.returns),
+        ] {
+            s += &wrap(&format!("  {label:<10}"), text, 100);
+        }
+        s += "\n";
     }
     s
+}
+
+/// `text` after `head`, word-wrapped at `width` columns, continuation lines indented like
+/// the first.
+fn wrap(head: &str, text: &str, width: usize) -> String {
+    let indent = " ".repeat(head.len());
+    let mut out = String::new();
+    let mut line = head.to_string();
+    for word in text.split_whitespace() {
+        if line.len() > indent.len() && line.len() + 1 + word.len() > width {
+            out += line.trim_end();
+            out += "\n";
+            line.clone_from(&indent);
+        } else if line.len() > indent.len() {
+            line.push(' ');
+        }
+        line += word;
+    }
+    out += &line;
+    out += "\n";
+    out
 }
 
 /// `{"ok": ...}` or `{"error": ...}` for one input line. Never panics: a panic inside the
