@@ -76,6 +76,8 @@ macro_rules! precision_modules {
         pub mod filter;
         #[path = "footprint.rs"]
         pub mod footprint;
+        #[path = "gaussian_ggx.rs"]
+        pub mod gaussian_ggx;
         #[path = "geometry.rs"]
         pub mod geometry;
         #[path = "ggx.rs"]
@@ -111,6 +113,7 @@ macro_rules! precision_modules {
         pub use clamp::{ClampRules, ExtentFloor};
         pub use filter::LeanMoments;
         pub use footprint::{BoundingRect, Covariance, Footprint};
+        pub use gaussian_ggx::GaussianFilteredGgx;
         pub use geometry::{Endpoint, PinholeRay, ShadingFrame};
         pub use ggx::Ggx;
         pub use implicit::{HitRates, LevelSetSample, MovingRay, Sym3};
