@@ -16,8 +16,8 @@
 use filtered_ndf::f32 as s;
 use filtered_ndf::f64 as d;
 use filtered_ndf::f64::Ndf as _;
-use filtered_ndf::testing::gaussian_reference as gref;
 use filtered_ndf::f64::Roughness as _;
+use filtered_ndf::testing::gaussian_reference as gref;
 use filtered_ndf::testing::quadrature::Tolerance;
 use filtered_ndf::testing::rng::SplitMix64 as Rng;
 use glam::{DVec2, DVec3, Vec2, Vec3};
@@ -33,7 +33,11 @@ struct Case {
 
 fn rotated(l1: f64, l2: f64, phi: f64) -> (f64, f64, f64) {
     let (c, sn) = (phi.cos(), phi.sin());
-    (c * c * l1 + sn * sn * l2, c * sn * (l1 - l2), sn * sn * l1 + c * c * l2)
+    (
+        c * c * l1 + sn * sn * l2,
+        c * sn * (l1 - l2),
+        sn * sn * l1 + c * c * l2,
+    )
 }
 
 fn cases(n: usize, seed: u64) -> Vec<Case> {
@@ -94,10 +98,16 @@ fn check_against_reference(cs: &[Case]) -> (f64, f64) {
         let (a, k, sl) = lobe64(c);
         let e = gref::ggx(a, k, sl, Tolerance::relative(1e-12));
         let rel_ref = e.error / e.value;
-        assert!(e.value > 0.0 && rel_ref < 1e-11, "reference not converged: {c:?} {e:?}");
+        assert!(
+            e.value > 0.0 && rel_ref < 1e-11,
+            "reference not converged: {c:?} {e:?}"
+        );
         let v64 = d::GaussianFilteredGgx::new(a, k).p22(sl);
         let r64 = (v64 - e.value).abs() / e.value;
-        assert!(r64 <= 1e-10 + rel_ref, "f64 {c:?}: {v64} vs {e:?} ({r64:.3e})");
+        assert!(
+            r64 <= 1e-10 + rel_ref,
+            "f64 {c:?}: {v64} vs {e:?} ({r64:.3e})"
+        );
         let a32 = s::RoughnessMatrix::new(c.a.0, c.a.1, c.a.2).unwrap();
         let k32 = s::Covariance::new(c.k.0, c.k.1, c.k.2);
         let v32 = s::Ndf::p22(
@@ -105,7 +115,10 @@ fn check_against_reference(cs: &[Case]) -> (f64, f64) {
             Vec2::new(c.s.0, c.s.1),
         ) as f64;
         let r32 = (v32 - e.value).abs() / e.value;
-        assert!(r32 <= 1e-5 + rel_ref, "f32 {c:?}: {v32} vs {e:?} ({r32:.3e})");
+        assert!(
+            r32 <= 1e-5 + rel_ref,
+            "f32 {c:?}: {v32} vs {e:?} ({r32:.3e})"
+        );
         w64 = w64.max(r64);
         w32 = w32.max(r32);
     }
@@ -136,8 +149,12 @@ fn d_is_p22_over_mz4_and_finite_to_the_horizon() {
         } else {
             r.range(0.0, 1.5)
         };
-        let phi = r.range(0.0, 6.28);
-        let mm = DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
+        let phi = r.range(0.0, std::f64::consts::TAU);
+        let mm = DVec3::new(
+            theta.sin() * phi.cos(),
+            theta.sin() * phi.sin(),
+            theta.cos(),
+        );
         let lobe = d::GaussianFilteredGgx::new(a, k);
         let sl = DVec2::new(-mm.x / mm.z, -mm.y / mm.z);
         let e = gref::ggx(a, k, sl, Tolerance::relative(1e-12));
@@ -171,20 +188,31 @@ fn zero_kernel_is_ggx_at_the_range_edges() {
     for &alpha in &[1e-8, 1e-4, 0.1, 1.0, 1e2, 1e4] {
         let ratio = if alpha < 1.0 { 2.0 } else { 0.5 };
         {
-            let r = d::AxisAligned::new(alpha, alpha * ratio).unwrap().to_matrix();
+            let r = d::AxisAligned::new(alpha, alpha * ratio)
+                .unwrap()
+                .to_matrix();
             let lobe = d::GaussianFilteredGgx::new(r, d::Covariance::ZERO);
             let g = d::Ggx::new(r);
             for &x in &[0.0, 1e-9, 1e-3, 0.5, 3.0, 1e3, 1e8] {
                 let sl = DVec2::new(x * alpha, 0.7 * x * alpha);
                 let (a, b) = (lobe.p22(sl), g.p22(sl));
-                assert!((a - b).abs() <= 64.0 * f64::EPSILON * b, "{alpha} {x}: {a} vs {b}");
+                assert!(
+                    (a - b).abs() <= 64.0 * f64::EPSILON * b,
+                    "{alpha} {x}: {a} vs {b}"
+                );
                 let mm = d::slope::sphere_from_slope(sl);
                 let (a, b) = (lobe.d(mm), g.d(mm));
-                assert!((a - b).abs() <= 64.0 * f64::EPSILON * b, "d {alpha} {x}: {a} vs {b}");
+                assert!(
+                    (a - b).abs() <= 64.0 * f64::EPSILON * b,
+                    "d {alpha} {x}: {a} vs {b}"
+                );
             }
             let w = DVec3::new(0.6, 0.0, 0.8);
             let (a, b) = (lobe.lambda(w), g.lambda(w));
-            assert!((a - b).abs() <= 64.0 * f64::EPSILON * b, "lambda {alpha}: {a} vs {b}");
+            assert!(
+                (a - b).abs() <= 64.0 * f64::EPSILON * b,
+                "lambda {alpha}: {a} vs {b}"
+            );
         }
         let r32 = s::Isotropic::new(alpha as f32).unwrap();
         let lobe = s::GaussianFilteredGgx::new(r32, s::Covariance::ZERO);
@@ -192,7 +220,10 @@ fn zero_kernel_is_ggx_at_the_range_edges() {
         for &x in &[0.0f32, 1e-3, 0.5, 3.0, 1e3] {
             let sl = Vec2::new(x * alpha as f32, 0.0);
             let (a, b) = (s::Ndf::p22(&lobe, sl), s::Ndf::p22(&g, sl));
-            assert!((a - b).abs() <= 8.0 * f32::EPSILON * b, "f32 {alpha} {x}: {a} vs {b}");
+            assert!(
+                (a - b).abs() <= 8.0 * f32::EPSILON * b,
+                "f32 {alpha} {x}: {a} vs {b}"
+            );
         }
     }
 }
@@ -244,7 +275,11 @@ fn bad_kernels_give_the_sanitised_lobe_and_never_nan() {
             let v = lobe.p22(sl);
             assert!(v.is_finite() && v >= 0.0, "{k:?} {sl}: {v}");
         }
-        for sl in [DVec2::new(nan, 0.0), DVec2::new(inf, 1.0), DVec2::splat(f64::MAX)] {
+        for sl in [
+            DVec2::new(nan, 0.0),
+            DVec2::new(inf, 1.0),
+            DVec2::splat(f64::MAX),
+        ] {
             assert_eq!(lobe.p22(sl), 0.0, "{k:?} {sl}");
         }
         let l = lobe.lambda(DVec3::new(0.3, 0.2, 0.5));
@@ -257,11 +292,20 @@ fn bad_kernels_give_the_sanitised_lobe_and_never_nan() {
                 s::Isotropic::new(alpha).unwrap(),
                 s::Covariance::new(kk, 0.0, 0.5 * kk),
             );
-            for sl in [Vec2::ZERO, Vec2::new(1e-8, 0.0), Vec2::new(1.0, 1.0), Vec2::splat(3e38)] {
+            for sl in [
+                Vec2::ZERO,
+                Vec2::new(1e-8, 0.0),
+                Vec2::new(1.0, 1.0),
+                Vec2::splat(3e38),
+            ] {
                 let v = s::Ndf::p22(&lobe, sl);
                 assert!(v.is_finite() && v >= 0.0, "{alpha} {kk} {sl}: {v}");
             }
-            for mm in [Vec3::Z, Vec3::new(0.6, 0.0, 0.8), Vec3::new(1.0, 0.0, 1e-20)] {
+            for mm in [
+                Vec3::Z,
+                Vec3::new(0.6, 0.0, 0.8),
+                Vec3::new(1.0, 0.0, 1e-20),
+            ] {
                 let v = s::Ndf::d(&lobe, mm);
                 assert!(v.is_finite() && v >= 0.0, "{alpha} {kk} d({mm}): {v}");
                 let l = s::Ndf::lambda(&lobe, mm);
@@ -328,7 +372,10 @@ fn beckmann_through_the_same_entry_is_its_exact_filter() {
     assert_eq!(b, d::Beckmann::new(d::filter::gaussian(r, k)));
     for sl in [DVec2::ZERO, DVec2::new(0.1, 0.05), DVec2::new(-0.2, 0.3)] {
         let e = gref::beckmann(r, k, sl, Tolerance::relative(1e-12));
-        assert!((b.p22(sl) - e.value).abs() <= 1e-10 * e.value + e.error, "{sl}");
+        assert!(
+            (b.p22(sl) - e.value).abs() <= 1e-10 * e.value + e.error,
+            "{sl}"
+        );
     }
     let g = d::Ggx::new(r).gaussian_filtered(k);
     assert_eq!(g, d::GaussianFilteredGgx::new(r, k));

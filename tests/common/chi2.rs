@@ -93,7 +93,6 @@ pub fn chi2_sf(chi2: f64, dof: usize) -> f64 {
     gamma_q(0.5 * dof as f64, 0.5 * chi2)
 }
 
-
 pub const N_SAMPLES: usize = 40_000;
 const N_R: usize = 40;
 const N_PHI: usize = 40;
@@ -230,4 +229,3 @@ pub fn chi2_test(
         expected_total,
     }
 }
-
