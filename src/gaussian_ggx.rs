@@ -380,7 +380,8 @@ fn lambda_trapezoid(qa: f64, qs: f64, oz: f64) -> f64 {
     };
     let l = 0.0125 * w1;
     // Remainder of the two-term bottom correction: <= c3 w_lo^1.5 / 1.5 <= eps_t L.
-    let w_lo = m::powf(1.5 * EPS_T * l / c3, 2.0 / 3.0).min(1.0);
+    // (Floored at the smallest normal: for views within ~1e-290 of grazing `c3` overflows.)
+    let w_lo = m::powf(1.5 * EPS_T * l / c3, 2.0 / 3.0).clamp(f64::MIN_POSITIVE, 1.0);
     let tail = H
         * (kappa * m::sqrt(w_lo) / (m::sqrt(EXP_H) - 1.0) - 0.5 * w_lo / (EXP_H - 1.0));
     let mut w = w_lo;
@@ -398,7 +399,7 @@ fn lambda_trapezoid(qa: f64, qs: f64, oz: f64) -> f64 {
         }
         w *= EXP_H;
     }
-    H * sum + tail
+    (H * sum + tail).max(0.0)
 }
 
 impl Ndf for GaussianFilteredGgx {
@@ -445,22 +446,29 @@ impl Ndf for GaussianFilteredGgx {
             return F::NAN;
         }
         let (ox, oy, oz) = (w.x.to_f64(), w.y.to_f64(), w.z.to_f64().abs());
+        // Lambda is homogeneous of degree 0: normalise first (`w` is finite and rescaled).
+        let n = m::sqrt(ox * ox + oy * oy + oz * oz);
+        if n.is_nan() || n <= 0.0 || n.is_infinite() {
+            return 0.0;
+        }
+        let (ox, oy, oz) = (ox / n, oy / n, oz / n);
         let (qa, qs) = self.projected(ox, oy);
         if qs <= 0.0 {
-            // This direction does not see the kernel: GGX's Lambda (same for every w... the
-            // mixture of Beckmann Lambdas of A / w is GGX's).
+            // This direction does not see the kernel: every component has the projected
+            // roughness of A / w, and their mixture is GGX's Lambda.
             return ggx_lambda(F::from_f64(qa), F::from_f64(oz));
         }
         if oz <= 0.0 {
             return F::INFINITY;
         }
-        if !(qa + qs).is_finite() || !oz.is_finite() {
-            return ggx_lambda(F::from_f64(qa + qs), F::from_f64(oz));
+        if qa <= 0.0 {
+            // `o^T A o` underflowed beside `o^T Sigma o` (a nearly normal view of a lobe far
+            // narrower than the kernel): the limit, Beckmann of `2 Sigma`.
+            return F::from_f64(crate::f64::beckmann::beckmann_lambda(2.0 * qs, oz));
         }
-        // Lambda is homogeneous of degree 0: normalise.
-        let n2 = ox * ox + oy * oy + oz * oz;
-        let (qa, qs, oz) = (qa / n2, qs / n2, oz / m::sqrt(n2));
-        F::from_f64(lambda_trapezoid(qa, qs, oz))
+        let v = lambda_trapezoid(qa, qs, oz);
+        // Only overflow (a view within ~1e-290 of grazing) makes the sum NaN: its limit is +inf.
+        if v.is_nan() { F::INFINITY } else { F::from_f64(v) }
     }
 }
 
