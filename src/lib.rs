@@ -91,8 +91,8 @@ macro_rules! precision_modules {
         #[path = "temporal/mod.rs"]
         pub mod temporal;
 
-        pub use filter::LeanMoments;
         pub use filter::deferred::{Bandwidth, KernelConvention};
+        pub use filter::{GaussianFilteredGgx, LeanMoments};
         pub use footprint::Footprint;
         pub use footprint::geometry::{Endpoint, PinholeRay, ShadingFrame};
         pub use kernel::{BoundingRect, ClampRules, Covariance, ExtentFloor};

@@ -2,13 +2,14 @@
 //! `use filtered_ndf::f32::prelude::*;` (or `f64`).
 //!
 //! The material NDFs and their roughness forms, the footprint, the front door
-//! ([`Filterable::filtered`] with a [`Method`]: [`Gaussian`], [`Projected`], [`Rect`],
+//! ([`Filterable::filtered`] with a [`Method`]: [`Gaussian`], [`ExactGaussian`], [`Projected`], [`Rect`],
 //! [`Proxy`]), the clamp rules, the deferred presets, and the traits whose methods every lobe
 //! has ([`Ndf`], [`NdfSampling`]).
 
 pub use super::filter::presets;
 pub use super::filter::{
-    Filterable, Gaussian, Method, Projected, Proxy, Rect, RectFilteredGgx,
+    ExactGaussian, Filterable, Gaussian, GaussianFilteredGgx, Method, Projected, Proxy, Rect,
+    RectFilteredGgx,
 };
 pub use super::{
     AxisAligned, Beckmann, ClampRules, Footprint, Ggx, Isotropic, KernelConvention, Ndf,

@@ -19,6 +19,7 @@
 //! | method | paper | GGX gives | Beckmann gives | exact? |
 //! |---|---|---|---|---|
 //! | [`Gaussian`] | KHPL16 eq. 13-15; TK19 sec. 2.2 | [`Ggx`]`<RoughnessMatrix>` (`A + 2 Sigma`) | [`Beckmann`]`<RoughnessMatrix>` (`A + 2 Sigma`) | Beckmann: the exact Gaussian filter; GGX: an approximation of it |
+//! | [`ExactGaussian`] | this crate (the mixture identity, [`GaussianFilteredGgx`]) | [`GaussianFilteredGgx`] | [`Beckmann`]`<RoughnessMatrix>` (`A + 2 Sigma`) | exact for both |
 //! | [`Projected`] | TK21 | [`Ggx`]`<RoughnessMatrix>` (`A + 2 Sigma` in projected space) | - | an approximation of the Gaussian filter |
 //! | [`Rect`] | KHPL16 eq. 16, App. A | [`RectFilteredGgx`] | - | the exact box filter over the footprint's bounding rectangle |
 //! | [`Proxy`] | KHPL16 eq. 18-19 | [`Ggx`]`<AxisAligned>` | - | the GGX whose peak equals the box-filtered peak |
@@ -43,13 +44,13 @@
 //! channel: see [`KernelConvention::filter`](super::deferred::KernelConvention::filter) and
 //! the engine [`presets`](super::presets).
 
+use super::super::footprint::Footprint;
 use super::super::kernel::{ClampRules, SIGMA_PIXEL};
+use super::super::ndf::Ndf;
 use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{AxisAligned, Isotropic, Roughness, RoughnessMatrix};
-use super::super::ndf::Ndf;
-use super::super::footprint::Footprint;
-use super::{F, Vec2, Vec3, proxy, rect};
+use super::{F, GaussianFilteredGgx, Vec2, Vec3, proxy, rect};
 
 /// A filtering method: turns a material NDF `N` and a pixel footprint into a filtered lobe
 /// (see the [module docs](self) for the methods and what each returns).
@@ -133,6 +134,65 @@ impl<R: Roughness> Method<Beckmann<R>> for Gaussian {
             self.clamps
                 .filter_gaussian(material.roughness, footprint, self.sigma),
         )
+    }
+}
+
+/// The exact Gaussian filter: the material's slope density convolved with the pixel kernel
+/// `N(0, Sigma)`, `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` after the clamp rules
+/// ([`ClampRules::footprint`], [`ClampRules::kernel`]). For GGX the lobe is
+/// [`GaussianFilteredGgx`] (what [`Gaussian`] approximates by `A + 2 Sigma`); for Beckmann the
+/// exact filter is `A + 2 Sigma` itself, so this gives the same lobe as [`Gaussian`] with the
+/// same rules: a renderer switches NDF without switching method.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ExactGaussian {
+    /// The clamp rules applied to the footprint and the kernel (for Beckmann also the
+    /// determinant clamp of the filtered matrix).
+    pub clamps: ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    pub sigma: F,
+}
+
+impl ExactGaussian {
+    /// The unbiased filter of the footprint: the maximum extent `lambda = 1` of KHPL16
+    /// section 5.2 (a first-order footprint wider than that is not trustworthy), no `kappa`;
+    /// `sigma = 0.5` pixels.
+    pub const KHPL16: Self = Self {
+        clamps: ClampRules::KHPL16,
+        sigma: SIGMA_PIXEL,
+    };
+
+    /// The clamped pixel kernel of `footprint`.
+    #[inline]
+    fn kernel(&self, footprint: Footprint) -> super::super::kernel::Covariance {
+        let rules = self.clamps;
+        rules.kernel(rules.footprint(footprint).covariance(self.sigma))
+    }
+}
+
+impl Default for ExactGaussian {
+    /// [`ExactGaussian::KHPL16`].
+    fn default() -> Self {
+        Self::KHPL16
+    }
+}
+
+impl<R: Roughness> Method<Ggx<R>> for ExactGaussian {
+    type Lobe = GaussianFilteredGgx;
+    #[inline]
+    fn lobe(&self, material: &Ggx<R>, footprint: Footprint) -> Self::Lobe {
+        GaussianFilteredGgx::new(material.roughness, self.kernel(footprint))
+    }
+}
+
+impl<R: Roughness> Method<Beckmann<R>> for ExactGaussian {
+    type Lobe = Beckmann<RoughnessMatrix>;
+    #[inline]
+    fn lobe(&self, material: &Beckmann<R>, footprint: Footprint) -> Self::Lobe {
+        Gaussian {
+            clamps: self.clamps,
+            sigma: self.sigma,
+        }
+        .lobe(material, footprint)
     }
 }
 

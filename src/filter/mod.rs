@@ -30,6 +30,7 @@ use super::{F, Vec2, Vec3};
 
 pub mod deferred;
 mod gaussian;
+mod gaussian_ggx;
 mod lean;
 pub mod method;
 pub mod presets;
@@ -39,6 +40,9 @@ pub mod rect;
 
 pub use gaussian::{gaussian, gaussian_with_tau};
 pub(crate) use gaussian::{gaussian_sanitized, gaussian_with_tau_sanitized};
+pub use gaussian_ggx::GaussianFilteredGgx;
 pub use lean::{LeanMoments, lean};
-pub use method::{Filterable, Gaussian, Method, Projected, Proxy, Rect, RectFilteredGgx};
+pub use method::{
+    ExactGaussian, Filterable, Gaussian, Method, Projected, Proxy, Rect, RectFilteredGgx,
+};
 pub use projected::{PROJECTED_EIGEN_MAX, projected};

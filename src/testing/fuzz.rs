@@ -13,6 +13,7 @@ use crate::RoughnessError;
 
 mod dec;
 mod filter;
+mod gaussian_ggx;
 mod isotropic;
 mod jacobian;
 mod rect;
@@ -20,6 +21,7 @@ mod sampling;
 mod temporal;
 
 pub use filter::check_filter;
+pub use gaussian_ggx::check_gaussian_ggx;
 pub use isotropic::check_isotropic;
 pub use jacobian::check_jacobian;
 pub use rect::check_rect;

@@ -1,0 +1,79 @@
+//! The exact Gaussian-filtered GGX against the filters a renderer would otherwise use, in one
+//! run, f32 and f64, on the seeded realistic cases of `benches/common` (the trade table's
+//! cases): unfiltered GGX, the TK19 matrix approximation `Ggx::new(filter::gaussian(A, Sigma))`
+//! (building the lobe included), the exact box filter `rect::d_rect` over the footprint's
+//! bounding rectangle (the speed bar of issue 17), and the exact Gaussian filter, once with the
+//! lobe built per evaluation and once with prebuilt lobes (`d` alone).
+//!
+//! `cargo bench --bench gaussian_ggx -- --quick`. Figures are per evaluation
+//! (`Throughput::Elements`); compare ratios within one run.
+
+mod common;
+
+use criterion::{BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main};
+use std::hint::black_box;
+
+const N: usize = 1024;
+
+macro_rules! group {
+    ($c:expr, $prec:ident, $t:ty) => {{
+        use filtered_ndf::math::Real;
+        use filtered_ndf::$prec::{
+            AxisAligned, Footprint, GaussianFilteredGgx, Ggx, Ndf, Vec2, Vec3, filter, filter::rect,
+        };
+        type Wall<'a> = BenchmarkGroup<'a, criterion::measurement::WallTime>;
+        let c = |x: f64| <$t as Real>::from_f64(x);
+        let cases = common::realistic_cases(N, 0x5EED);
+        let r: Vec<AxisAligned> = cases
+            .iter()
+            .map(|k| AxisAligned::new_clamped(c(k.alpha[0]), c(k.alpha[1])))
+            .collect();
+        let h: Vec<Vec3> = cases
+            .iter()
+            .map(|k| Vec3::new(c(k.h[0]), c(k.h[1]), c(k.h[2])))
+            .collect();
+        let fp: Vec<Footprint> = cases
+            .iter()
+            .map(|k| {
+                Footprint::from_slope_derivatives(
+                    Vec2::new(c(k.dh_u[0]), c(k.dh_u[1])),
+                    Vec2::new(c(k.dh_v[0]), c(k.dh_v[1])),
+                )
+            })
+            .collect();
+        let lobes: Vec<GaussianFilteredGgx> = (0..N)
+            .map(|i| GaussianFilteredGgx::new(r[i], fp[i].covariance(0.5)))
+            .collect();
+        fn run<T>(g: &mut Wall<'_>, name: &str, mut f: impl FnMut(usize) -> T) {
+            g.bench_function(name, |b| {
+                b.iter(|| {
+                    for i in 0..N {
+                        black_box(f(black_box(i)));
+                    }
+                })
+            });
+        }
+        let mut g = $c.benchmark_group(format!("gaussian_ggx/{}", stringify!($prec)));
+        g.throughput(Throughput::Elements(N as u64));
+        run(&mut g, "unfiltered_d", |i| Ggx::new(r[i]).d(h[i]));
+        run(&mut g, "tk19_matrix_build_and_d", |i| {
+            Ggx::new(filter::gaussian(r[i], fp[i].covariance(0.5))).d(h[i])
+        });
+        run(&mut g, "exact_box_d_rect", |i| {
+            rect::d_rect(r[i], h[i], fp[i].bounding_rect().half_extent)
+        });
+        run(&mut g, "exact_gaussian_build_and_d", |i| {
+            GaussianFilteredGgx::new(r[i], fp[i].covariance(0.5)).d(h[i])
+        });
+        run(&mut g, "exact_gaussian_d", |i| lobes[i].d(h[i]));
+        g.finish();
+    }};
+}
+
+fn benches(c: &mut Criterion) {
+    group!(c, f32, f32);
+    group!(c, f64, f64);
+}
+
+criterion_group!(gaussian_ggx, benches);
+criterion_main!(gaussian_ggx);
