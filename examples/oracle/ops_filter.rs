@@ -128,6 +128,8 @@ fn method_name(v: &Value) -> Result<(MethodName, &str), String> {
         "rect_khpl16" => MethodName::RectKhpl16,
         "rect_gdc2016" => MethodName::RectGdc2016,
         "proxy_khpl16" => MethodName::ProxyKhpl16,
+        // The library's `ExactGaussian` (the exact Gaussian-filtered GGX) joins here, as
+        // "gaussian_exact_khpl16", with the `gaussian_filtered` op.
         _ => {
             return Err(format!(
                 "unknown method \"{name}\"; the methods are \"gaussian_tk19\", \
