@@ -36,7 +36,7 @@ fn err(v: &Value) -> &str {
 #[test]
 fn session_replies_line_by_line_with_closed_form_values() {
     let r = run_session();
-    assert_eq!(r.len(), 61, "one reply per input line");
+    assert_eq!(r.len(), 63, "one reply per input line");
     // GGX peak 1 / (pi alpha^2); f64 to 1e-15 relative, f32 to one f32 rounding (6e-8).
     let peak = 1.0 / (PI * 0.01);
     assert!((ok(&r[0]) - peak).abs() < 1e-15 * peak);
@@ -1191,4 +1191,70 @@ fn never_panics_on_mutated_queries() {
         }
     }
     assert!(count > 3000, "mutated {count} queries");
+}
+
+#[test]
+fn gaussian_filtered_is_the_convolution_with_the_kernel() {
+    // GGX written out (not the library's) convolved with N(0, K) by 2-D quadrature around the
+    // kernel's centre; the op evaluates the mixture identity (issue 17), bounded at 1.1e-11
+    // relative in f64 and 1.8e-6 in f32 (module docs of gaussian_ggx).
+    let a = [0.01, 0.002, 0.004];
+    let r = [[0.01, 0.002], [0.002, 0.004]];
+    let k = [0.004, 0.001, 0.002];
+    let gauss = |x: f64, y: f64| {
+        let dk = det(k);
+        (-(k[2] * x * x - 2.0 * k[1] * x * y + k[0] * y * y) / (2.0 * dk)).exp()
+            / (2.0 * PI * dk.sqrt())
+    };
+    for s in [[0.0, 0.0], [0.05, -0.02], [-0.2, 0.3]] {
+        let conv = integrate_plane(
+            |x, y| ggx_p22(a, s[0] - x, s[1] - y) * gauss(x, y),
+            (0.5 * s[0], 0.5 * s[1]),
+            (0.06, 0.06),
+            Tolerance::relative(1e-12),
+        );
+        for (precision, rel) in [("f64", 2e-11), ("f32", 2e-6 + 4.0 * f32::EPSILON as f64)] {
+            let q = json!({"op": "gaussian_filtered", "dist": "ggx", "roughness": r,
+                           "kernel": [[k[0], k[1]], [k[1], k[2]]], "slope": s,
+                           "precision": precision});
+            let got = num(q);
+            // The rule's bound (f32: plus the rounding of the inputs and the result), plus the
+            // quadrature's own estimate.
+            assert!(
+                (got - conv.value).abs() <= conv.error + rel * conv.value,
+                "{precision} s = {s:?}: {got} vs {} +- {}",
+                conv.value,
+                conv.error
+            );
+        }
+    }
+    // Beckmann through the same op: its closed form with A + 2 K (KHPL16 eq. 15), written out.
+    let b = [a[0] + 2.0 * k[0], a[1] + 2.0 * k[1], a[2] + 2.0 * k[2]];
+    let q = json!({"op": "gaussian_filtered", "dist": "beckmann", "roughness": r,
+                   "kernel": [[k[0], k[1]], [k[1], k[2]]], "slope": [0.1, 0.05]});
+    let want = beckmann_p22(b, 0.1, 0.05);
+    assert!((num(q) - want).abs() <= 1e-14 * want);
+    // The front door's exact method with an unclamped footprint gives the same density.
+    let (u, v) = ([0.1, 0.02], [-0.03, 0.08]);
+    let kk = kernel(u, v, 0.5);
+    let q = json!({"op": "gaussian_filtered", "dist": "ggx", "roughness": r,
+                   "kernel": [[kk[0], kk[1]], [kk[1], kk[2]]], "slope": [0.05, 0.0]});
+    let p = json!({"op": "filtered", "dist": "ggx", "roughness": r, "footprint": [u, v],
+                   "method": "gaussian_exact", "slope": [0.05, 0.0]});
+    // The same kernel up to the rounding of its entries (an ulp each, which moves the density
+    // by a few ulps): 1e-13 relative.
+    let (x, y) = (num(q), num(p));
+    assert!((x - y).abs() <= 1e-13 * x, "{x} vs {y}");
+    // Kernels that are not covariances answer errors.
+    for bad in [
+        json!([[-1e-3, 0.0], [0.0, 1e-3]]),
+        json!([[1e-3, 2e-3], [2e-3, 1e-3]]),
+        json!([[1e-3, 1e-4], [2e-4, 1e-3]]),
+        json!([[1e-3, 0.0], [0.0, "inf"]]),
+    ] {
+        let q = json!({"op": "gaussian_filtered", "dist": "ggx", "roughness": 0.1,
+                       "kernel": bad, "slope": [0.0, 0.0]});
+        let reply: Value = serde_json::from_str(&eval::eval_line(&q.to_string())).unwrap();
+        assert!(reply.get("error").is_some(), "{q} -> {reply}");
+    }
 }

@@ -424,3 +424,22 @@ pub fn vec_out<T: Real>(xs: &[T]) -> Result<Value, String> {
 pub fn matrix_out<T: Real>(a11: T, a12: T, a22: T) -> Result<Value, String> {
     Ok(json!([[out(a11)?, out(a12)?], [out(a12)?, out(a22)?]]))
 }
+
+/// `"kernel"`: a slope-domain covariance `[[s11, s12], [s12, s22]]` (slope^2), checked to be
+/// finite, symmetric (to 8 ulps of its largest entry) and positive semi-definite; returns
+/// `[s11, s12, s22]`.
+pub fn kernel_arg(v: &Value) -> Result<[f64; 3], String> {
+    let k = pair::<2>(get(v, "kernel")?, "kernel")?;
+    let (s11, s12, s21, s22) = (k[0][0], k[0][1], k[1][0], k[1][1]);
+    let scale = s11.abs().max(s22.abs()).max(s12.abs());
+    if (s12 - s21).abs() > 8.0 * f64::EPSILON * scale {
+        return Err("kernel is not symmetric".into());
+    }
+    if s11 < 0.0 || s22 < 0.0 {
+        return Err("kernel has a negative variance (diagonal entry)".into());
+    }
+    if s12 * s12 > s11 * s22 {
+        return Err("kernel is indefinite (s12^2 > s11 s22)".into());
+    }
+    Ok([s11, s12, s22])
+}

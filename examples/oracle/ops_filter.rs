@@ -117,6 +117,7 @@ enum MethodName {
     RectKhpl16,
     RectGdc2016,
     ProxyKhpl16,
+    GaussianExact,
 }
 
 fn method_name(v: &Value) -> Result<(MethodName, &str), String> {
@@ -128,13 +129,12 @@ fn method_name(v: &Value) -> Result<(MethodName, &str), String> {
         "rect_khpl16" => MethodName::RectKhpl16,
         "rect_gdc2016" => MethodName::RectGdc2016,
         "proxy_khpl16" => MethodName::ProxyKhpl16,
-        // The library's `ExactGaussian` (the exact Gaussian-filtered GGX) joins here, as
-        // "gaussian_exact_khpl16", with the `gaussian_filtered` op.
+        "gaussian_exact" => MethodName::GaussianExact,
         _ => {
             return Err(format!(
                 "unknown method \"{name}\"; the methods are \"gaussian_tk19\", \
-                 \"gaussian_khpl16\", \"projected_tk21\", \"rect_khpl16\", \"rect_gdc2016\", \
-                 \"proxy_khpl16\""
+                 \"gaussian_khpl16\", \"gaussian_exact\", \"projected_tk21\", \"rect_khpl16\", \
+                 \"rect_gdc2016\", \"proxy_khpl16\""
             ));
         }
     };
@@ -145,17 +145,21 @@ fn method_name(v: &Value) -> Result<(MethodName, &str), String> {
 /// lobe itself.
 pub fn filtered(v: &Value) -> Result<Value, String> {
     use MethodName as M;
-    use p::filter::{Gaussian, Projected, Proxy, Rect};
+    use p::filter::{ExactGaussian, Gaussian, Projected, Proxy, Rect};
     let (d, r) = (dist(v)?, roughness_arg(v)?);
     let (method, name) = method_name(v)?;
     let fp = footprint_arg(v)?;
     let (clamps, sigma, point) = (clamps_arg(v)?, opt_non_negative(v, "sigma")?, point(v)?);
-    let gaussian = matches!(method, M::GaussianTk19 | M::GaussianKhpl16);
+    let gaussian = matches!(
+        method,
+        M::GaussianTk19 | M::GaussianKhpl16 | M::GaussianExact
+    );
     if d == Dist::Beckmann && !gaussian {
         return Err(format!(
             "method \"{name}\" is not defined for Beckmann: the projected space (TK21), the box \
              filter and its proxy (KHPL16 sec. 5.3-5.4) are GGX constructions; use \
-             \"gaussian_tk19\" or \"gaussian_khpl16\" (exact for Beckmann)"
+             \"gaussian_tk19\", \"gaussian_khpl16\" or \"gaussian_exact\" (all exact for \
+             Beckmann)"
         ));
     }
     let boxed = matches!(method, M::RectKhpl16 | M::RectGdc2016 | M::ProxyKhpl16);
@@ -180,6 +184,23 @@ pub fn filtered(v: &Value) -> Result<Value, String> {
                 sigma: sigma.map_or(base.sigma, f),
             };
             with_ndf!(d, r, n => lobe_out(&n.filtered(fp, g), point, |l| matrix_of(&l.roughness)))
+        }
+        M::GaussianExact => {
+            let base = ExactGaussian::KHPL16;
+            let g = ExactGaussian {
+                clamps: clamp_rules(base.clamps, clamps),
+                sigma: sigma.map_or(base.sigma, f),
+            };
+            with_roughness!(r, rr => match d {
+                Dist::Ggx => lobe_out(&p::Ggx::new(rr).filtered(fp, g), point, |_| {
+                    Err("the exact Gaussian-filtered GGX is not a roughness: give a point \
+                         (m, slope or w)"
+                        .into())
+                }),
+                Dist::Beckmann => lobe_out(&p::Beckmann::new(rr).filtered(fp, g), point, |l| {
+                    matrix_of(&l.roughness)
+                }),
+            })
         }
         M::ProjectedTk21 => {
             let base = Projected::TK21;
@@ -239,4 +260,17 @@ pub fn filtered(v: &Value) -> Result<Value, String> {
             }
         }
     }
+}
+
+/// The exact Gaussian filter of a slope density with a given kernel (issue 17): GGX by the
+/// mixture identity (`GaussianFilteredGgx`), Beckmann by `A + 2 Sigma` (KHPL16 eq. 15).
+pub fn gaussian_filtered(v: &Value) -> Result<Value, String> {
+    let (d, r) = (dist(v)?, roughness_arg(v)?);
+    let k = kernel_arg(v)?;
+    let s = v2(array::<2>(v, "slope")?);
+    let kernel = p::Covariance::new(f(k[0]), f(k[1]), f(k[2]));
+    with_roughness!(r, rr => match d {
+        Dist::Ggx => out(p::GaussianFilteredGgx::new(rr, kernel).p22(s)),
+        Dist::Beckmann => out(p::Beckmann::new(p::filter::gaussian(rr, kernel)).p22(s)),
+    })
 }
