@@ -83,12 +83,24 @@ const PI64: f64 = core::f64::consts::PI;
 
 /// Largest normalised half extent or centre coordinate used (see the module docs).
 const BIG: f64 = 1e60;
-/// Below this ratio `H / L` per axis: 2-point Gauss-Legendre.
-const TAU_GL2: f64 = 0.01;
-/// Below this ratio `H / L` per axis: 4-point Gauss-Legendre.
-const TAU_GL4: f64 = 0.1;
-/// Below this ratio `H / L` per axis: 6-point Gauss-Legendre.
-const TAU_GL6: f64 = 0.25;
+
+/// Whether `F` is `f64`: the tiers then aim at `1e-13` instead of `1e-9` (module docs).
+pub(crate) const WIDE: bool = F::MANTISSA_DIGITS > 24;
+/// Upper ratios `H / L` of the Gauss-Legendre tiers 2, 4, 6, 8 and 10 points, per precision
+/// (module docs, "Tiers"); the closed form above the last.
+const TAU: [f64; 5] = if WIDE {
+    [3e-4, 0.02, 0.08, 0.18, 0.25]
+} else {
+    [0.01, 0.1, 0.25, 0.25, 0.25]
+};
+/// The four-edge closed form is used while its relative error, about
+/// `1e-16 (1 + u_c^2 + v_c^2)^(3/2) / H_short`, stays below `1e-16 EDGES_GAIN`: `1e-10` in
+/// `f32`, `1e-13` in `f64` (see [`edges_ok`]).
+const EDGES_GAIN: f64 = if WIDE { 1e3 } else { 1e6 };
+/// Squared distance `D^2` (normalised) of a rectangle from the peak beyond which two long
+/// sides use the polar form [`far_field`] instead of the four-edge form, whose cancellation
+/// grows like `1e-15 D^2` (measured; module docs): `D > 10` in `f64`, `D > 316` in `f32`.
+const FAR2: f64 = if WIDE { 1e2 } else { 1e5 };
 
 /// 2-point Gauss-Legendre node on `[-1, 1]` (`1 / sqrt 3`); weights `1/2` each for a mean.
 const GL2_X: f64 = 0.577_350_269_189_625_8;
@@ -107,6 +119,36 @@ const GL6_W: [f64; 3] = [
     0.233_956_967_286_345_5,
     0.180_380_786_524_069_3,
     0.085_662_246_189_585_2,
+];
+/// 8-point Gauss-Legendre nodes on `[-1, 1]` (positive halves; `f64` tiers only).
+const GL8_X: [f64; 4] = [
+    0.183_434_642_495_649_8,
+    0.525_532_409_916_329,
+    0.796_666_477_413_626_7,
+    0.960_289_856_497_536_2,
+];
+/// 8-point Gauss-Legendre weights, halved.
+const GL8_W: [f64; 4] = [
+    0.181_341_891_689_181,
+    0.156_853_322_938_943_64,
+    0.111_190_517_226_687_24,
+    0.050_614_268_145_188_13,
+];
+/// 10-point Gauss-Legendre nodes on `[-1, 1]` (positive halves; `f64` tiers only).
+const GL10_X: [f64; 5] = [
+    0.148_874_338_981_631_2,
+    0.433_395_394_129_247_2,
+    0.679_409_568_299_024_4,
+    0.865_063_366_688_984_5,
+    0.973_906_528_517_171_7,
+];
+/// 10-point Gauss-Legendre weights, halved.
+const GL10_W: [f64; 5] = [
+    0.147_762_112_357_376_44,
+    0.134_633_359_654_998_18,
+    0.109_543_181_257_991_02,
+    0.074_725_674_575_290_3,
+    0.033_335_672_154_344_07,
 ];
 
 /// The mean over `v` in `[c - h, c + h]` of `f(u, v) = (1 + u^2 + v^2)^-2` by the
@@ -142,6 +184,16 @@ fn gl_f(t: Tier, u: f64, c: f64, h: f64) -> f64 {
                 GL4_W[0] * n0 / p0 + GL4_W[1] * n1 / p1
             }
         }
+        Tier::Gl8 | Tier::Gl10 => {
+            // `f64` only: one division per pair.
+            let (xs, ws) = rule(t);
+            let mut acc = 0.0;
+            for (&x, &w) in xs.iter().zip(ws) {
+                let (n, p) = pair(h * x);
+                acc += w * n / p;
+            }
+            acc
+        }
         _ => {
             let (n0, p0) = pair(h * GL6_X[0]);
             let (n1, p1) = pair(h * GL6_X[1]);
@@ -162,9 +214,19 @@ fn gl_f(t: Tier, u: f64, c: f64, h: f64) -> f64 {
 fn delta_minus_sin(d: f64, sin_d: f64) -> f64 {
     if d < 1.0 {
         let d2 = d * d;
-        // d^3/6 (1 - d^2/20 (1 - d^2/42 (1 - d^2/72 (1 - d^2/110 (1 - d^2/156))))): the next
-        // term is below 1e-17 relative at d = 1.
-        let s = 1.0 - d2 * (1.0 / 110.0) * (1.0 - d2 * (1.0 / 156.0));
+        // d^3/6 (1 - d^2/20 (1 - d^2/42 (1 - d^2/72 (1 - d^2/110 (1 - d^2/156 ...))))), the
+        // Taylor series through d^13 / 13!: the first term left out, d^15 / 15!, is 4.6e-12
+        // relative at d = 1, far below f32 rounding; in f64 three more factors (through
+        // d^19 / 19!) leave 1.2e-19 (issue 17: the truncation showed as 6.6e-13 in `mean_1d`).
+        let s = if WIDE {
+            1.0 - d2
+                * (1.0 / 156.0)
+                * (1.0
+                    - d2 * (1.0 / 210.0) * (1.0 - d2 * (1.0 / 272.0) * (1.0 - d2 * (1.0 / 342.0))))
+        } else {
+            1.0 - d2 * (1.0 / 156.0)
+        };
+        let s = 1.0 - d2 * (1.0 / 110.0) * s;
         let s = 1.0 - d2 * (1.0 / 72.0) * s;
         let s = 1.0 - d2 * (1.0 / 42.0) * s;
         let s = 1.0 - d2 * (1.0 / 20.0) * s;
@@ -227,7 +289,13 @@ fn mean_f(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
     let (hu2, hv2) = (hu * hu, hv * hv);
     let (tu, tv) = (tier(hu2, lu2), tier(hv2, lv2));
     match (tu, tv) {
-        (Tier::Closed, Tier::Closed) => edges(uc, vc, hu, hv),
+        (Tier::Closed, Tier::Closed) => {
+            if du * du + dv * dv > FAR2 {
+                far_field(uc, vc, hu, hv)
+            } else {
+                edges(uc, vc, hu, hv)
+            }
+        }
         (Tier::Closed, t) => {
             if edges_ok(uc, vc, hv) {
                 edges(uc, vc, hu, hv)
@@ -293,56 +361,120 @@ fn edges(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
     i / (du * dv)
 }
 
+/// The mean of `f` over a rectangle far from the peak (`D^2 > FAR2`, both sides long), by the
+/// polar form of the module docs: with `g(r) = 1 / (1 + r^2)`, Green's theorem on
+/// `f dA = d(-g / 2) ^ d theta` gives `I = -1/2` times the contour integral of `g d theta`, one
+/// positive integral per edge ([`edge_polar`]); the edges' cancellation is that of the near and
+/// far sides seen from the peak, bounded for long sides.
+#[inline(never)]
+fn far_field(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
+    let (u0, u1, v0, v1) = (uc - hu, uc + hu, vc - hv, vc + hv);
+    let i = -0.5
+        * ((edge_polar(u1, v0, v1) - edge_polar(u0, v0, v1))
+            + (edge_polar(v1, u0, u1) - edge_polar(v0, u0, u1)));
+    i / (4.0 * hu * hv)
+}
+
+/// `sign(x)` times the integral of `g(|x| / cos phi) = c^2 / (c^2 + x^2)`, `c = cos phi`, over
+/// `phi` from `atan(a / |x|)` to `atan(b / |x|)`: the integral of `g d theta` along the edge
+/// `{x} x [a, b]` of the rectangle (either orientation of the axes; the sign of `x` orients it).
+/// Every point of the edge is at least `sqrt(FAR2)` from the peak, so the integrand's poles
+/// (`cos phi = +/- i x`, at `phi = +/- pi/2 +/- i asinh|x|`) are at least `0.19` half-lengths
+/// away once the range is split at `phi = 0` (module docs): 8-point Gauss-Legendre in `f64`,
+/// 6-point in `f32`, both far below their targets.
+#[inline]
+fn edge_polar(x: f64, a: f64, b: f64) -> f64 {
+    if x == 0.0 {
+        return 0.0;
+    }
+    let ax = x.abs();
+    let x2 = ax * ax;
+    let (p0, p1) = (m::atan(a / ax), m::atan(b / ax));
+    let piece = |lo: f64, hi: f64| {
+        let g = |phi: f64| {
+            let c = m::cos(phi);
+            let c2 = c * c;
+            c2 / (c2 + x2)
+        };
+        gl_of(
+            if WIDE { Tier::Gl10 } else { Tier::Gl6 },
+            0.5 * (lo + hi),
+            0.5 * (hi - lo),
+            g,
+        ) * (hi - lo)
+    };
+    let v = if p0 < 0.0 && p1 > 0.0 {
+        piece(p0, 0.0) + piece(0.0, p1)
+    } else {
+        piece(p0, p1)
+    };
+    if x > 0.0 { v } else { -v }
+}
+
 /// Whether the four-edge form is accurate for a rectangle whose short half side is `h_short`:
 /// its relative error is about `1e-16 (1 + u_c^2 + v_c^2)^(3/2) / h_short` (measured), so it is
-/// used while that stays below `1e-10` (and is cheaper than the 1D closed form at 2 to 6 nodes).
+/// used while that stays below `1e-16 EDGES_GAIN` (and is cheaper than the 1D closed form at 2
+/// to 6 nodes).
 #[inline(always)]
 fn edges_ok(uc: f64, vc: f64, h_short: f64) -> bool {
     let l2 = 1.0 + uc * uc + vc * vc;
-    l2 * l2 * l2 < 1e12 * h_short * h_short
+    l2 * l2 * l2 < EDGES_GAIN * EDGES_GAIN * h_short * h_short
 }
 
 /// How an axis of the rectangle is integrated, from `H^2` and `L^2` (module docs).
-#[derive(Clone, Copy)]
-enum Tier {
-    /// 2-point Gauss-Legendre (`H < 0.01 L`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Tier {
+    /// 2-point Gauss-Legendre (`H < TAU[0] L`).
     Gl2,
-    /// 4-point Gauss-Legendre (`H < 0.1 L`).
+    /// 4-point Gauss-Legendre (`H < TAU[1] L`).
     Gl4,
-    /// 6-point Gauss-Legendre (`H < 0.25 L`).
+    /// 6-point Gauss-Legendre (`H < TAU[2] L`).
     Gl6,
+    /// 8-point Gauss-Legendre (`H < TAU[3] L`, `f64` only).
+    Gl8,
+    /// 10-point Gauss-Legendre (`H < TAU[4] L`, `f64` only).
+    Gl10,
     /// Closed form.
     Closed,
 }
 
+/// The tier of an axis of half length `H` at distance `L` from the nearest complex
+/// singularity of the integrand, from `H^2` and `L^2`. The thresholds [`TAU`] bound the
+/// truncation error of each rule (module docs).
 #[inline(always)]
-fn tier(h2: f64, l2: f64) -> Tier {
-    if h2 < TAU_GL2 * TAU_GL2 * l2 {
+pub(crate) fn tier(h2: f64, l2: f64) -> Tier {
+    if h2 < TAU[0] * TAU[0] * l2 {
         Tier::Gl2
-    } else if h2 < TAU_GL4 * TAU_GL4 * l2 {
+    } else if h2 < TAU[1] * TAU[1] * l2 {
         Tier::Gl4
-    } else if h2 < TAU_GL6 * TAU_GL6 * l2 {
+    } else if h2 < TAU[2] * TAU[2] * l2 {
         Tier::Gl6
+    } else if WIDE && h2 < TAU[3] * TAU[3] * l2 {
+        Tier::Gl8
+    } else if WIDE && h2 < TAU[4] * TAU[4] * l2 {
+        Tier::Gl10
     } else {
         Tier::Closed
     }
 }
 
-/// The positive nodes and halved weights of the Gauss-Legendre rule of tier `t` (`Gl2`, `Gl4`
-/// or `Gl6`; `Closed` has no rule and is never passed).
+/// The positive nodes and halved weights of the Gauss-Legendre rule of tier `t` (`Closed` has
+/// no rule and is never passed; it gets the largest).
 #[inline(always)]
-fn rule(t: Tier) -> (&'static [f64], &'static [f64]) {
+pub(crate) fn rule(t: Tier) -> (&'static [f64], &'static [f64]) {
     match t {
         Tier::Gl2 => (&[GL2_X], &[0.5]),
         Tier::Gl4 => (&GL4_X, &GL4_W),
-        _ => (&GL6_X, &GL6_W),
+        Tier::Gl6 => (&GL6_X, &GL6_W),
+        Tier::Gl8 => (&GL8_X, &GL8_W),
+        _ => (&GL10_X, &GL10_W),
     }
 }
 
 /// The mean of `g` over `[c - h, c + h]` by the Gauss-Legendre rule of tier `t` (one loop, so
 /// that `g` is inlined once).
 #[inline(always)]
-fn gl_of(t: Tier, c: f64, h: f64, mut g: impl FnMut(f64) -> f64) -> f64 {
+pub(crate) fn gl_of(t: Tier, c: f64, h: f64, mut g: impl FnMut(f64) -> f64) -> f64 {
     let (xs, ws) = rule(t);
     let mut acc = 0.0;
     for (&x, &w) in xs.iter().zip(ws) {
