@@ -79,10 +79,13 @@ use super::super::ndf::roughness::AxisAligned;
 use super::{F, Vec2, Vec3};
 use crate::math::{self as m, Real};
 
+mod lambda;
+pub use lambda::lambda_rect;
+
 const PI64: f64 = core::f64::consts::PI;
 
 /// Largest normalised half extent or centre coordinate used (see the module docs).
-const BIG: f64 = 1e60;
+pub(crate) const BIG: f64 = 1e60;
 
 /// Whether `F` is `f64`: the tiers then aim at `1e-13` instead of `1e-9` (module docs).
 pub(crate) const WIDE: bool = F::MANTISSA_DIGITS > 24;
@@ -486,7 +489,7 @@ pub(crate) fn gl_of(t: Tier, c: f64, h: f64, mut g: impl FnMut(f64) -> f64) -> f
 
 /// Sanitised `f64` half extent: `|h|`, NaN as `0`, at most `BIG`.
 #[inline(always)]
-fn half64(h: F, inv_alpha: f64) -> f64 {
+pub(crate) fn half64(h: F, inv_alpha: f64) -> f64 {
     let v = (h.to_f64() * inv_alpha).abs();
     if v.is_nan() { 0.0 } else { v.min(BIG) }
 }
