@@ -80,7 +80,11 @@ use super::{F, Vec2, Vec3};
 use crate::math::{self as m, Real};
 
 mod lambda;
+mod sample;
 pub use lambda::lambda_rect;
+pub use sample::{
+    normal_pdf_rect, sample_normal_rect, sample_visible_normal_rect, visible_normal_pdf_rect,
+};
 
 const PI64: f64 = core::f64::consts::PI;
 

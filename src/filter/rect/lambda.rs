@@ -98,7 +98,7 @@ fn asinh(t: f64, r: f64) -> f64 {
 
 /// `psi(t) = E[(X - t)^+]` of the unit GGX marginal, `(sqrt(1 + t^2) - t) / 2`.
 #[inline(always)]
-fn psi(t: f64) -> f64 {
+pub(super) fn psi(t: f64) -> f64 {
     0.5 * e_neg(t).0
 }
 
@@ -116,20 +116,27 @@ fn psi2(t: f64) -> f64 {
     0.25 * (t * asinh(t, r) - r + 0.25 * e + e * e * e * (1.0 / 12.0))
 }
 
-/// The mean of `psi` over `[t0, t1]`, `w = t1 - t0 > 0` given exactly (module docs, case 2):
-/// `(ln(1 + d / E_1) + d (E_0 + E_1) / 2) / (4 w)`, `d = E_0 - E_1 = w (E_0 + E_1) / (rho_0 + rho_1)`.
+/// `Psi_1(t1) - Psi_1(t0)`, the integral of `psi` over `[t0, t1]`, `w = t1 - t0 >= 0` given
+/// exactly (module docs, case 2): `(ln(1 + d / E_1) + d (E_0 + E_1) / 2) / 4`,
+/// `d = E_0 - E_1 = w (E_0 + E_1) / (rho_0 + rho_1)`; all terms `>= 0`.
 #[inline]
-fn mean_psi(t0: f64, t1: f64, w: f64) -> f64 {
+pub(super) fn psi1_diff(t0: f64, t1: f64, w: f64) -> f64 {
     let (e0, r0) = e_neg(t0);
     let (e1, r1) = e_neg(t1);
     let s = e0 + e1;
     let d = w * s / (r0 + r1);
-    0.25 * (ln_1p(d / e1) + 0.5 * d * s) / w
+    0.25 * (ln_1p(d / e1) + 0.5 * d * s)
+}
+
+/// The mean of `psi` over `[t0, t1]`, `w = t1 - t0 > 0` given exactly.
+#[inline]
+pub(super) fn mean_psi(t0: f64, t1: f64, w: f64) -> f64 {
+    psi1_diff(t0, t1, w) / w
 }
 
 /// `A(t)`: the mean of `Psi_1` over `[t - k, t + k]` (module docs, case 3).
 #[inline]
-fn mean_psi1(t: f64, k: f64) -> f64 {
+pub(super) fn mean_psi1(t: f64, k: f64) -> f64 {
     if k == 0.0 {
         return psi1(t);
     }
