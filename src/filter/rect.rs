@@ -29,41 +29,75 @@
 //! both precisions; rectangle normalised as above, `L_u^2 = 1 + u_c^2 + d_v^2`,
 //! `L_v^2 = 1 + v_c^2 + d_u^2` with `d_u`, `d_v` the distances of the rectangle from the
 //! peak along each axis, i.e. the distances to the density's complex poles).
-//! Each axis gets a tier from its ratio `H / L`: 2-point Gauss-Legendre below `0.01`,
-//! 4-point below `0.1`, 6-point below `0.25`, the closed form above. The rule's error decays
-//! like `(H / 2L)^(2n)`; the switch points were chosen by measured error (below `1e-8` in `f64`
-//! at each switch, so both sides of a switch agree to that level and the switch is invisible in
-//! `f32`).
-//! 1. **Both axes short**: the tensor Gauss-Legendre rule of the two tiers (4 to 36 nodes, one
-//!    division per row of nodes).
+//! Each axis gets a tier from its ratio `H / L`, with thresholds per precision (`TAU`):
+//!
+//! | rule | `f32` (target `1e-9`) | `f64` (target `1e-13`) |
+//! |---|---|---|
+//! | 2-point Gauss-Legendre | `H / L < 0.01` | `< 3e-4` |
+//! | 4-point | `< 0.1` | `< 0.02` |
+//! | 6-point | `< 0.25` | `< 0.08` |
+//! | 8-point | - | `< 0.18` |
+//! | 10-point | - | `< 0.25` |
+//! | closed form | above | above |
+//!
+//! The rule's relative error for `(c^2 + x^2)^-2` over `[x_c - H, x_c + H]`, worst over the
+//! centre, is `3.1 (H / L)^4` for 2 points and about `(H / 2L)^(2n)` beyond (measured in
+//! 40-digit arithmetic: 2 points `3.1e-8` at `0.01` and `2.5e-14` at `3e-4`; 4 points
+//! `9.6e-9` at `0.1`, `2.5e-14` at `0.02`; 6 points `1.1e-8` at `0.25`, `1.2e-14` at `0.08`;
+//! 8 points `3e-14` at `0.18`; 10 points `2.9e-15` at `0.25`). The `f32` tiers stay below
+//! `3.1e-8` (both sides of a switch agree to that, a quarter of an `f32` ulp at worst); the
+//! `f64` ones below `5e-14` per axis. Until issue 17 the `f64` build used the `f32` tiers, and
+//! its "loss of digits far in the tail" (`1.6e-9` at `3e4` lobe widths with a 1000:1 box) was
+//! this truncation (the 2-point rule near its switch), not cancellation; two real losses are
+//! fixed with it (below: the series of `delta - sin delta` and the four-edge form far out).
+//! 1. **Both axes short**: the tensor Gauss-Legendre rule of the two tiers (4 to 36 nodes in
+//!    `f32`, one division per row of nodes; up to 100 in `f64`).
 //! 2. **One long side** (say `u`): the closed form of case 3 while its cancellation allows
-//!    (`(1 + u_c^2 + v_c^2)^(3/2) / H_v < 1e6`, error below `1e-10`), else the Gauss-Legendre
-//!    rule in `v` of the exact 1D average in `u`, written without cancellation (`mean_1d`): with
+//!    (`(1 + u_c^2 + v_c^2)^(3/2) / H_v < 1e6` in `f32`, `< 1e3` in `f64`: error below `1e-10`,
+//!    `1e-13`), else the Gauss-Legendre rule in `v` of the exact 1D average in `u`, written
+//!    without cancellation (`mean_1d`): with
 //!    `c^2 = 1 + v^2`, `delta = atan2(c Delta u, c^2 + u_0 u_1)` (the atan-difference
 //!    identity) and `r_i^2 = c^2 + u_i^2`,
 //!    `int f du = delta / (2 c^3) + Delta u (c^2 - u_0 u_1) / (2 c^2 r_0^2 r_1^2)` when the
 //!    interval straddles `0`, and otherwise
 //!    `(delta - sin delta) / (2 c^3) + Delta u / (2 r_0^2 r_1^2) [1 + (u_0^2 + u_1^2 + c^2) /
-//!    (r_0 r_1 + u_0 u_1)]`, all terms positive (`delta - sin delta` by its series below 1).
+//!    (r_0 r_1 + u_0 u_1)]`, all terms positive (`delta - sin delta` by its Taylor series below
+//!    1: through `delta^13 / 13!` in `f32`, `4.6e-12` relative at `delta = 1`; through
+//!    `delta^19 / 19!` in `f64`, where the shorter series showed as `6.6e-13`).
 //!    A zero half extent on one axis is the exact 1D average (both nodes coincide).
 //! 3. **Both sides long**: the closed form as four edge terms (Lambert's contour form of the
 //!    projected solid angle), each edge's two arctangents merged into one by
 //!    `atan p - atan q = atan2(p - q, 1 + p q)` with the difference `p - q` taken from the side
 //!    length directly: `2 I = sum over edges of +/- u_e / S_e atan2(Delta v S_e, S_e^2 + v_0 v_1)`,
-//!    `S_e = sqrt(1 + u_e^2)`. Four `atan2` (each one `atan`) instead of eight `atan`. Its
-//!    relative error is about `1e-16 (1 + u_c^2 + v_c^2)^(3/2) / H_short` (measured): below
-//!    `1e-10` near the peak, up to `2e-6` for rectangles of `0.25 L` to `L` at normalised
-//!    distances `L ~ 5e4` (`|slope| / alpha ~ 5e4`, the corner of the domain).
+//!    `S_e = sqrt(1 + u_e^2)`. Four `atan2` (each one `atan`) instead of eight `atan`. The edge
+//!    terms are angles of order one while the integral of a rectangle at distance `D` from the
+//!    peak is of order `1 / D^2`: the form cancels like `1e-15 D^2` (measured; up to `1.5e-8`
+//!    at `D ~ 2e4` before issue 17). Beyond `D = 316` (`f32`) or `D = 10` (`f64`) the polar
+//!    form is used instead (`far_field`): with `g(r) = 1 / (1 + r^2)`, `f dA` is the exterior
+//!    derivative of `-g / 2 d theta` (polar angle about the peak), so the integral is
+//!    `-1/2` times the contour integral of `g d theta`, one positive integral per edge in the
+//!    polar angle, by 10-point (`f64`) or 6-point (`f32`) Gauss-Legendre split at the foot of
+//!    the edge's perpendicular. With every point at least `D` from the peak, the integrand's
+//!    poles are at least `asinh(D)` away in the angle, and the rule converges far below the
+//!    targets; the near and far sides of a rectangle with two long sides differ by a bounded
+//!    factor, so the four terms do not cancel.
 //!
-//! Measured (tests, 2000 seeded samples over alpha `1e-4..1`, anisotropy up to `100`,
-//! `|center|` components up to 4, half sides `1e-8..1`, against `f64` adaptive quadrature): `f32`
-//! relative error median `2.1e-8`, max `6.4e-8` (about one ulp); `f64` median `5e-15`, max
-//! `2.4e-8`. The printed formula in `f32` on the same sample: median `3.1e-3`, max `4e14`.
-//! Beyond that sample, far in the tail of a very sharp lobe (normalised distance
-//! `|center| / alpha ~ 1e8`, e.g. `alpha = 1e-8` at slope 1, with both sides long), the
-//! four-edge closed form loses its relative accuracy (its error model above gives `> 1`) and
-//! can cancel below zero; the result is clamped to `>= 0` there (found by fuzzing). The
-//! absolute error stays far below `1e-16` of the peak.
+//! Measured (`tests/ggx_rect.rs`, 2000 seeded samples over alpha `1e-4..1`, anisotropy up to
+//! `100`, `|center|` components up to 4, half sides `1e-8..1`, against `f64` adaptive
+//! quadrature over the offsets from the centre): `f32` relative error median `2.1e-8`, max
+//! `6.4e-8` (about one ulp); `f64` median `2e-16`, max `4.2e-14` (before issue 17: max
+//! `2.4e-8`). A scan of 20000 cases per tier combination (slopes to `1e5` lobe widths, boxes to
+//! 10000:1) against 80-digit arithmetic: `f64` at most `8e-14` in every case of the case
+//! analysis. The printed formula in `f32` on the same sample: median `3.1e-3`, max `4e14`.
+//! Far in the tail of a very sharp lobe (normalised distance `|center| / alpha ~ 1e8`, e.g.
+//! `alpha = 1e-8` at slope 1) the result is still clamped to `>= 0` (the four-edge form had
+//! cancelled below zero there before the polar form took over; found by fuzzing).
+//!
+//! # The box lobe
+//! [`lambda_rect`] is the exact Smith `Lambda` of this distribution (module `lambda`), so
+//! that `d_rect`, `G1 = 1 / (1 + lambda_rect)` and `G2` describe one lobe; [`sample_normal_rect`]
+//! and [`sample_visible_normal_rect`] sample it exactly, with the pdfs [`normal_pdf_rect`] and
+//! [`visible_normal_pdf_rect`] (module `sample`).
 //!
 //! # Inputs outside the domain
 //! Negative half extents are used by their absolute value (the rectangle is the same); NaN half
@@ -79,8 +113,10 @@ use super::super::ndf::roughness::AxisAligned;
 use super::{F, Vec2, Vec3};
 use crate::math::{self as m, Real};
 
+mod gauss;
 mod lambda;
 mod sample;
+pub(crate) use gauss::{GL2_X, GL4_W, GL4_X, GL6_W, GL6_X, Tier, WIDE, gl_of, rule, tier};
 pub use lambda::lambda_rect;
 pub use sample::{
     normal_pdf_rect, sample_normal_rect, sample_visible_normal_rect, visible_normal_pdf_rect,
@@ -91,15 +127,6 @@ const PI64: f64 = core::f64::consts::PI;
 /// Largest normalised half extent or centre coordinate used (see the module docs).
 pub(crate) const BIG: f64 = 1e60;
 
-/// Whether `F` is `f64`: the tiers then aim at `1e-13` instead of `1e-9` (module docs).
-pub(crate) const WIDE: bool = F::MANTISSA_DIGITS > 24;
-/// Upper ratios `H / L` of the Gauss-Legendre tiers 2, 4, 6, 8 and 10 points, per precision
-/// (module docs, "Tiers"); the closed form above the last.
-const TAU: [f64; 5] = if WIDE {
-    [3e-4, 0.02, 0.08, 0.18, 0.25]
-} else {
-    [0.01, 0.1, 0.25, 0.25, 0.25]
-};
 /// The four-edge closed form is used while its relative error, about
 /// `1e-16 (1 + u_c^2 + v_c^2)^(3/2) / H_short`, stays below `1e-16 EDGES_GAIN`: `1e-10` in
 /// `f32`, `1e-13` in `f64` (see [`edges_ok`]).
@@ -108,55 +135,6 @@ const EDGES_GAIN: f64 = if WIDE { 1e3 } else { 1e6 };
 /// sides use the polar form [`far_field`] instead of the four-edge form, whose cancellation
 /// grows like `1e-15 D^2` (measured; module docs): `D > 10` in `f64`, `D > 316` in `f32`.
 const FAR2: f64 = if WIDE { 1e2 } else { 1e5 };
-
-/// 2-point Gauss-Legendre node on `[-1, 1]` (`1 / sqrt 3`); weights `1/2` each for a mean.
-const GL2_X: f64 = 0.577_350_269_189_625_8;
-/// 4-point Gauss-Legendre nodes on `[-1, 1]` (positive halves).
-const GL4_X: [f64; 2] = [0.339_981_043_584_856_3, 0.861_136_311_594_052_6];
-/// 4-point Gauss-Legendre weights, halved so that the rule averages over `[-1, 1]`.
-const GL4_W: [f64; 2] = [0.326_072_577_431_273_07, 0.173_927_422_568_726_93];
-/// 6-point Gauss-Legendre nodes on `[-1, 1]` (positive halves).
-const GL6_X: [f64; 3] = [
-    0.238_619_186_083_196_9,
-    0.661_209_386_466_264_5,
-    0.932_469_514_203_152,
-];
-/// 6-point Gauss-Legendre weights, halved.
-const GL6_W: [f64; 3] = [
-    0.233_956_967_286_345_5,
-    0.180_380_786_524_069_3,
-    0.085_662_246_189_585_2,
-];
-/// 8-point Gauss-Legendre nodes on `[-1, 1]` (positive halves; `f64` tiers only).
-const GL8_X: [f64; 4] = [
-    0.183_434_642_495_649_8,
-    0.525_532_409_916_329,
-    0.796_666_477_413_626_7,
-    0.960_289_856_497_536_2,
-];
-/// 8-point Gauss-Legendre weights, halved.
-const GL8_W: [f64; 4] = [
-    0.181_341_891_689_181,
-    0.156_853_322_938_943_64,
-    0.111_190_517_226_687_24,
-    0.050_614_268_145_188_13,
-];
-/// 10-point Gauss-Legendre nodes on `[-1, 1]` (positive halves; `f64` tiers only).
-const GL10_X: [f64; 5] = [
-    0.148_874_338_981_631_2,
-    0.433_395_394_129_247_2,
-    0.679_409_568_299_024_4,
-    0.865_063_366_688_984_5,
-    0.973_906_528_517_171_7,
-];
-/// 10-point Gauss-Legendre weights, halved.
-const GL10_W: [f64; 5] = [
-    0.147_762_112_357_376_44,
-    0.134_633_359_654_998_18,
-    0.109_543_181_257_991_02,
-    0.074_725_674_575_290_3,
-    0.033_335_672_154_344_07,
-];
 
 /// The mean over `v` in `[c - h, c + h]` of `f(u, v) = (1 + u^2 + v^2)^-2` by the
 /// Gauss-Legendre rule of tier `t`. A symmetric pair of nodes is
@@ -191,8 +169,9 @@ fn gl_f(t: Tier, u: f64, c: f64, h: f64) -> f64 {
                 GL4_W[0] * n0 / p0 + GL4_W[1] * n1 / p1
             }
         }
-        Tier::Gl8 | Tier::Gl10 => {
-            // `f64` only: one division per pair.
+        Tier::Gl8 | Tier::Gl10 if WIDE => {
+            // `f64` only (the guard removes the arm from the `f32` build): one division per
+            // pair.
             let (xs, ws) = rule(t);
             let mut acc = 0.0;
             for (&x, &w) in xs.iter().zip(ws) {
@@ -387,7 +366,7 @@ fn far_field(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
 /// `{x} x [a, b]` of the rectangle (either orientation of the axes; the sign of `x` orients it).
 /// Every point of the edge is at least `sqrt(FAR2)` from the peak, so the integrand's poles
 /// (`cos phi = +/- i x`, at `phi = +/- pi/2 +/- i asinh|x|`) are at least `0.19` half-lengths
-/// away once the range is split at `phi = 0` (module docs): 8-point Gauss-Legendre in `f64`,
+/// away once the range is split at `phi = 0` (module docs): 10-point Gauss-Legendre in `f64`,
 /// 6-point in `f32`, both far below their targets.
 #[inline]
 fn edge_polar(x: f64, a: f64, b: f64) -> f64 {
@@ -426,69 +405,6 @@ fn edge_polar(x: f64, a: f64, b: f64) -> f64 {
 fn edges_ok(uc: f64, vc: f64, h_short: f64) -> bool {
     let l2 = 1.0 + uc * uc + vc * vc;
     l2 * l2 * l2 < EDGES_GAIN * EDGES_GAIN * h_short * h_short
-}
-
-/// How an axis of the rectangle is integrated, from `H^2` and `L^2` (module docs).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum Tier {
-    /// 2-point Gauss-Legendre (`H < TAU[0] L`).
-    Gl2,
-    /// 4-point Gauss-Legendre (`H < TAU[1] L`).
-    Gl4,
-    /// 6-point Gauss-Legendre (`H < TAU[2] L`).
-    Gl6,
-    /// 8-point Gauss-Legendre (`H < TAU[3] L`, `f64` only).
-    Gl8,
-    /// 10-point Gauss-Legendre (`H < TAU[4] L`, `f64` only).
-    Gl10,
-    /// Closed form.
-    Closed,
-}
-
-/// The tier of an axis of half length `H` at distance `L` from the nearest complex
-/// singularity of the integrand, from `H^2` and `L^2`. The thresholds [`TAU`] bound the
-/// truncation error of each rule (module docs).
-#[inline(always)]
-pub(crate) fn tier(h2: f64, l2: f64) -> Tier {
-    if h2 < TAU[0] * TAU[0] * l2 {
-        Tier::Gl2
-    } else if h2 < TAU[1] * TAU[1] * l2 {
-        Tier::Gl4
-    } else if h2 < TAU[2] * TAU[2] * l2 {
-        Tier::Gl6
-    } else if WIDE && h2 < TAU[3] * TAU[3] * l2 {
-        Tier::Gl8
-    } else if WIDE && h2 < TAU[4] * TAU[4] * l2 {
-        Tier::Gl10
-    } else {
-        Tier::Closed
-    }
-}
-
-/// The positive nodes and halved weights of the Gauss-Legendre rule of tier `t` (`Closed` has
-/// no rule and is never passed; it gets the largest).
-#[inline(always)]
-pub(crate) fn rule(t: Tier) -> (&'static [f64], &'static [f64]) {
-    match t {
-        Tier::Gl2 => (&[GL2_X], &[0.5]),
-        Tier::Gl4 => (&GL4_X, &GL4_W),
-        Tier::Gl6 => (&GL6_X, &GL6_W),
-        Tier::Gl8 => (&GL8_X, &GL8_W),
-        _ => (&GL10_X, &GL10_W),
-    }
-}
-
-/// The mean of `g` over `[c - h, c + h]` by the Gauss-Legendre rule of tier `t` (one loop, so
-/// that `g` is inlined once).
-#[inline(always)]
-pub(crate) fn gl_of(t: Tier, c: f64, h: f64, mut g: impl FnMut(f64) -> f64) -> f64 {
-    let (xs, ws) = rule(t);
-    let mut acc = 0.0;
-    for (&x, &w) in xs.iter().zip(ws) {
-        let a = h * x;
-        acc += w * (g(c - a) + g(c + a));
-    }
-    acc
 }
 
 /// Sanitised `f64` half extent: `|h|`, NaN as `0`, at most `BIG`.
