@@ -88,11 +88,12 @@ fn issue_17_far_tail_with_a_1000_to_1_box() {
     // at a slope of about 3e4 lobe widths with a 1000:1 box)". The grid: alpha = 1e-4
     // (isotropic and 1:3), the centre at 3e4 lobe widths in five directions, the long half side
     // from 10 to 3e4 lobe widths (the box reaching back past the peak at the top end), the short
-    // one 1000 times smaller, both orientations. Before the fix the worst cell was 3.1e-8 (the
-    // 2-point Gauss-Legendre tier at its switch, H / L = 0.01: truncation, not cancellation) and
-    // 1.5e-8 for two long sides far out (the four-edge closed form, which cancels like
-    // 1e-16 D^2); `p22_rect` in f64 now aims at 1e-13 per tier (rect.rs module docs), so 1e-12
-    // holds with a 10x margin over the reference's own goal of 1e-14.
+    // one 1000 times smaller, both orientations. Before the fix the worst cell of this grid was
+    // 3.8e-9 (the 2-point Gauss-Legendre tier near its switch, H / L ~ 0.006: truncation, not
+    // cancellation; over the whole domain up to 3.1e-8 at the switch itself, and 1.5e-8 for two
+    // long sides far out, where the four-edge closed form cancels like 1e-15 D^2). `p22_rect`
+    // in f64 now aims at 1e-13 per tier (rect.rs module docs): measured 1.5e-14 here, so 1e-12
+    // holds with a wide margin over the reference's own goal of 1e-14.
     let mut worst: (f64, String) = (0.0, String::new());
     for (a, b) in [(1e-4, 1e-4), (1e-4, 3e-4)] {
         let r = AxisAligned::new(a, b).unwrap();
