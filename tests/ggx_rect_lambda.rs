@@ -189,9 +189,8 @@ fn stats(mut v: Vec<f64>) -> (f64, f64, f64) {
 fn lambda_matches_box_quadrature() {
     // f64: 1e-12 relative (the brief's target). The code's own error is below 1e-13 for exact
     // (m, k_1, k_2) (rect/lambda.rs); mu, a_u and c_i are rounded here and there independently
-    // (a few ulps), which the conditioning of Lambda in mu (at most about 2e3 on this domain,
-    // where the box's far edge meets mu at alpha = 1e-4, H = 1) turns into at most ~5e-13; the
-    // reference's goal is 1e-14.
+    // (a few ulps each, amplified at most a few times: the one ill-conditioned difference,
+    // m - k_l, is rounded once on both sides); the reference's goal is 1e-14.
     // f32 (inputs rounded to f32 first, so both sides see the same numbers): the f64 value
     // rounded once, half an ulp (<= 2^-24) plus the f64 error, bounded by 2^-23.
     let mut rng = SplitMix64(0x1a3bda);

@@ -41,12 +41,18 @@
 //!    `ln(2 m) / (2 * 0.25)` (the long side's ratio is at least 0.25), the inner closed
 //!    difference a factor below 4.
 //!
+//! **Conditioning.** `Lambda` is sensitive to where the box's far edge lies relative to `mu`:
+//! at `|m - k_l| ~ 1` its relative derivative in `m - k_l` is about `m / 5` (`2e3` at
+//! `alpha = 1e-4`, `H = 1`), so forming `m - k_l` from a rounded `m` and `k_l` would cost up
+//! to `1e-12`. It is formed instead as `(|w_z| - |w_l| H_l) / (|w_xy| a)` with the difference
+//! rounded once (a fused multiply-add), and the other arguments (`m + k_l`, the nodes) carry no
+//! such amplification.
+//!
 //! Accuracy (prototype against 110-digit arithmetic over `m` in `1e-12..1e8`, `k` up to `1e6`,
-//! ratios to `1e8`, and in `tests/ggx_rect_lambda.rs` against independent quadrature): below
-//! `1e-13` relative in `f64` for exact inputs; the `f32` result is the `f64` one rounded once.
-//! The rounding of `mu`, `a` and `c_i` from `w` (a few `f64` ulps) is amplified by the
-//! conditioning of `Lambda` in `mu`, largest (about `m / 5`) where the box's far edge meets `mu`
-//! (`|m - k_l| ~ 1`): about `2e3` at `alpha = 1e-4`, `H = 1`.
+//! ratios to `1e8`; `tests/ggx_rect_lambda.rs` against independent quadrature): `f64` below
+//! `1e-13` relative (2000 seeded cases over the domain: median `1.4e-16`, max `2.2e-15`; a grid
+//! where the box's edge meets `mu` at `alpha = 1e-4`: `2.2e-14`); `f32` is the `f64` value
+//! rounded once (max `5.9e-8`, half an ulp).
 //!
 //! # Special inputs
 //! Zero half extents (after the sanitising of [`super::p22_rect`]: magnitude, NaN as `0`,
@@ -225,7 +231,7 @@ pub fn lambda_rect(r: AxisAligned, half_extent: Vec2, w: Vec3) -> F {
     }
     // m - k_l = (|w_z| - |w_i| H_i) / (|w_xy| a) for the long axis i, the difference rounded
     // once (a fused multiply-add) instead of after m and k_l: where the box's far edge meets
-    // mu, Lambda's conditioning in that difference reaches m / 5 (module docs).
+    // mu, Lambda's sensitivity to that difference reaches m / 5 (module docs).
     // The half extent in slope units as given (exact), clamped as `half64` clamps it.
     let (wi, h, ai) = if k1 >= k2 {
         (wx, half_extent.x, ax)
