@@ -264,6 +264,15 @@ fn pdfs_are_the_lobe() {
             .is_none()
     );
     assert!(rect::sample_visible_normal_rect(r, h, DVec3::NAN, DVec2::ZERO, DVec2::ZERO).is_none());
+    // A view within 1e-300 of the normal (f64): a sample, no overflow.
+    for wo in [
+        DVec3::new(1e-300, 0.0, 1.0),
+        DVec3::new(1e-300, -1e-300, 1e-10),
+    ] {
+        let m = rect::sample_visible_normal_rect(r, h, wo, DVec2::splat(0.3), DVec2::splat(0.7));
+        let m = m.expect("a sample");
+        assert!(m.is_finite() && m.z > 0.0 && wo.dot(m) > 0.0, "{m}");
+    }
     // The GGX of zero extent: the same pdfs as GGX's.
     let ggx = d::Ggx::new(r);
     let m = DVec3::new(0.1, 0.2, 1.0).normalize();
@@ -311,5 +320,36 @@ mod contract {
             let m = m.unwrap();
             prop_assert!(m.is_finite() && m.z > 0.0 && wo64.dot(m) > 0.0, "{m}");
         }
+
+        #[test]
+        fn f64_extremes(
+            hx in any_f64(), hy in any_f64(), wx in any_f64(), wy in any_f64(),
+            wz in (-300.0f64..300.0).prop_map(|e| 10f64.powf(e)),
+            u0 in 0.0f64..1.0, u1 in 0.0f64..1.0, u2 in 0.0f64..1.0, u3 in 0.0f64..1.0,
+        ) {
+            let r = d::AxisAligned::new(0.05, 2e-3).unwrap();
+            let (h, wo) = (DVec2::new(hx, hy), DVec3::new(wx, wy, wz));
+            let (u, ub) = (DVec2::new(u0, u1), DVec2::new(u2, u3));
+            let m = rect::sample_normal_rect(r, h, u, ub);
+            prop_assert!(m.is_finite() && m.z > 0.0 && (m.length() - 1.0).abs() < 1e-12, "{m}");
+            // As GGX's sampler (`NdfSampling`'s contract): `None` only where the view is within
+            // the float range of the horizon, `wo_z / |wo|` below about 1e-300.
+            let wn = wo / wo.abs().max_element();
+            match rect::sample_visible_normal_rect(r, h, wo, u, ub) {
+                Some(m) => prop_assert!(m.is_finite() && m.z > 0.0 && wn.dot(m) > 0.0, "{wo} {m}"),
+                None => prop_assert!(wn.z < 1e-290, "no sample for {wo}"),
+            }
+            let l = rect::lambda_rect(r, h, wo);
+            prop_assert!(!l.is_nan() && l >= 0.0, "{l}");
+        }
+    }
+
+    fn any_f64() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            3 => -2.0f64..2.0,
+            2 => (-300.0f64..300.0, any::<bool>())
+                .prop_map(|(e, neg)| if neg { -10f64.powf(e) } else { 10f64.powf(e) }),
+            1 => Just(0.0f64),
+        ]
     }
 }

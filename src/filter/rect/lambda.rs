@@ -69,6 +69,25 @@ use super::super::super::ndf::roughness::AxisAligned;
 use super::{BIG, F, Tier, Vec2, Vec3, gl_of, half64, tier};
 use crate::math::{self as m, Real};
 
+/// `w` in `f64`, scaled by a power of two (exactly) when its largest component is outside
+/// `[2^-400, 2^400]`, so that `|w_i| H_i` (`H_i <= 1e60 alpha_i`) neither overflows nor
+/// underflows; `Lambda` is homogeneous of degree 0. Unit vectors pass unchanged; a non-finite
+/// `w` too.
+#[inline]
+pub(super) fn scaled(w: Vec3) -> (f64, f64, f64) {
+    let (x, y, z) = (w.x.to_f64(), w.y.to_f64(), w.z.to_f64());
+    let mx = x.abs().max(y.abs()).max(z.abs());
+    const HI: f64 = 2.58e120; // 2^400
+    const LO: f64 = 3.87e-121; // 2^-400
+    if (LO..=HI).contains(&mx) || !mx.is_finite() || mx == 0.0 {
+        return (x, y, z);
+    }
+    // 2^-e for the binary exponent e of mx (subnormal mx: e = -1023, 2^1023).
+    let e = ((mx.to_bits() >> 52) & 0x7ff) as i64 - 1023;
+    let s = f64::from_bits(((1023 - e) as u64) << 52);
+    (x * s, y * s, z * s)
+}
+
 /// `ln(1 + x)` for `x >= 0` to a few ulps (Kahan's trick: the rounding of `1 + x` is undone by
 /// the same rounding in the denominator).
 #[inline]
@@ -202,9 +221,9 @@ pub fn lambda_rect(r: AxisAligned, half_extent: Vec2, w: Vec3) -> F {
         half64(half_extent.x, 1.0 / ax),
         half64(half_extent.y, 1.0 / ay),
     );
-    let (wx, wy) = (w.x.to_f64(), w.y.to_f64());
+    let (wx, wy, wz) = scaled(w);
     let l = m::hypot(wx, wy);
-    let mu = w.z.to_f64().abs() / l;
+    let mu = wz.abs() / l;
     if mu.is_nan() {
         // 0 / 0 (the zero vector: 0) or inf / inf (an infinite direction: grazing or not,
         // undetermined; masked like NaN).
@@ -239,7 +258,7 @@ pub fn lambda_rect(r: AxisAligned, half_extent: Vec2, w: Vec3) -> F {
         (wy, half_extent.y, ay)
     };
     let h = h.to_f64().abs().min(BIG * ai);
-    let lo = m::mul_add(-wi.abs(), h, w.z.to_f64().abs()) / l / a;
+    let lo = m::mul_add(-wi.abs(), h, wz.abs()) / l / a;
     let lambda = expected_psi(mm, k1, k2, lo) / mm;
     F::from_f64(lambda)
 }

@@ -52,7 +52,7 @@
 use super::super::super::ndf::ggx::Ggx;
 use super::super::super::ndf::roughness::AxisAligned;
 use super::super::super::sampling::NdfSampling;
-use super::lambda::{mean_psi, mean_psi1, psi, psi1_diff};
+use super::lambda::{mean_psi, mean_psi1, psi, psi1_diff, scaled};
 use super::{BIG, F, Tier, Vec2, Vec3, d_rect, gl_of, lambda_rect, tier};
 use crate::math::{self as m, Real};
 
@@ -218,13 +218,8 @@ pub fn sample_visible_normal_rect(
     if hx == 0.0 && hy == 0.0 {
         return Ggx::new(r).sample_visible_normal(wo, u);
     }
-    // wo scaled by its largest component (homogeneous; no overflow of products below).
-    let big = wo.abs().max_element().to_f64();
-    let (wx, wy, wz) = (
-        wo.x.to_f64() / big,
-        wo.y.to_f64() / big,
-        wo.z.to_f64() / big,
-    );
+    // wo scaled by a power of two into [2^-400, 2^400] (homogeneous; no overflow below).
+    let (wx, wy, wz) = scaled(wo);
     let l = m::hypot(wx, wy);
     let (bx, by) = (unit(u_box.x), unit(u_box.y));
     let uniform = ((2.0 * bx - 1.0) * hx, (2.0 * by - 1.0) * hy);
@@ -236,9 +231,11 @@ pub fn sample_visible_normal_rect(
         let a = m::hypot(ux * ax, uy * ay);
         let mu = wz / l / a;
         let (kx, ky) = ((ux * hx).abs() / a, (uy * hy).abs() / a);
-        if kx == 0.0 && ky == 0.0 {
-            // The box projects to a point on u: the weight is constant.
-            return visible_with_offset(wo, (wx, wy, wz), (ax, ay), uniform, u);
+        if (kx == 0.0 && ky == 0.0) || mu > 1e100 {
+            // The box projects to a point on u: the weight is constant. Or the view is so
+            // close to the normal that the weight m - v + psi(m - v) varies by less than
+            // k / m <= 1e-40 over the box (k <= 1e60): uniform (and no square of m overflows).
+            return visible_with_offset((wx, wy, wz), (ax, ay), uniform, u);
         }
         // An axis with u_i = 0 (or H_i = 0) does not enter the weight: uniform offset.
         let free = |k: f64, ui: f64, h: f64, b: f64, v: f64| {
@@ -256,14 +253,13 @@ pub fn sample_visible_normal_rect(
             (free(kx, ux, hx, bx, vx), free(ky, uy, hy, by, vy))
         }
     };
-    visible_with_offset(wo, (wx, wy, wz), (ax, ay), (dx, dy), u)
+    visible_with_offset((wx, wy, wz), (ax, ay), (dx, dy), u)
 }
 
 /// Step 2 and 3 of the visible sampler (module docs) for the offset `(dx, dy)`: a GGX visible
-/// normal seen from the sheared view, shifted by the offset. `w` is `wo` scaled (any positive
-/// factor).
+/// normal seen from the sheared view, shifted by the offset. `(wx, wy, wz)` is `wo` scaled by
+/// a power of two.
 fn visible_with_offset(
-    wo: Vec3,
     (wx, wy, wz): (f64, f64, f64),
     (ax, ay): (f64, f64),
     (dx, dy): (f64, f64),
@@ -294,7 +290,13 @@ fn visible_with_offset(
     // Back to roughness alpha: the GGX slope -(alpha_x n_x, alpha_y n_y) / n_z, then + delta.
     let sample =
         |nx: f64, ny: f64, nz: f64| normal_of_slope(-ax * nx / nz + dx, -ay * ny / nz + dy);
-    let visible = |m: Vec3| m.is_finite() && m.z > 0.0 && wo.dot(m) > 0.0;
+    // wo.m > 0, in f64 with the scaled wo: the product with a huge or tiny wo must not
+    // underflow (as GGX's sampler checks with a normalised wo).
+    let visible = |m: Vec3| {
+        m.is_finite()
+            && m.z > 0.0
+            && wx * m.x.to_f64() + wy * m.y.to_f64() + wz * m.z.to_f64() > 0.0
+    };
     let mm = sample(nx, ny, nz);
     if visible(mm) {
         return Some(mm);
