@@ -1,12 +1,13 @@
 //! The exact GGX box filter against its baselines, f32, on seeded realistic inputs: the
 //! printed GDC eight-term formula, filtered Beckmann with a full roughness matrix, and
-//! unfiltered GGX. Each iteration evaluates all `N` inputs; time per evaluation is the
-//! reported time divided by `N` (criterion prints it as throughput).
+//! unfiltered GGX; and the box lobe's `Lambda` and samplers against GGX's. Each iteration
+//! evaluates all `N` inputs; time per evaluation is the reported time divided by `N`
+//! (criterion prints it as throughput).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use filtered_ndf::f32::{
-    AxisAligned, Beckmann, Covariance, Ggx, Ndf, RoughnessMatrix, filter, filter::rect,
-    footprint::slope,
+    AxisAligned, Beckmann, Covariance, Ggx, Ndf, NdfSampling, RoughnessMatrix, filter,
+    filter::rect, footprint::slope,
 };
 use filtered_ndf::testing::rng::SplitMix64;
 use glam::{Vec2, Vec3};
@@ -25,12 +26,18 @@ struct Input {
     entries: (f32, f32, f32, f32),
     /// The same kernel `Sigma`, for the filtering path `filter::gaussian`.
     cov: Covariance,
+    /// A view direction (0 to 85 degrees) and four uniform numbers, for `Lambda` and the
+    /// samplers (drawn from a second stream, so the inputs above are those of earlier runs).
+    wo: Vec3,
+    u: Vec2,
+    u_box: Vec2,
 }
 
 /// Realistic inputs: roughness 0.02..0.6 (log), anisotropy up to 4, half vectors within a few
 /// roughness widths of the normal (and some far), footprints 1e-3..0.1 per axis (log).
 fn inputs() -> Vec<Input> {
     let mut st = SplitMix64(0x5eed);
+    let mut st2 = SplitMix64(0x5eed ^ 0xb0c5);
     let next = |st: &mut SplitMix64| st.uniform() as f32;
     let log = |lo: f32, hi: f32, st: &mut SplitMix64| st.log_uniform(lo as f64, hi as f64) as f32;
     (0..N)
@@ -58,6 +65,15 @@ fn inputs() -> Vec<Input> {
             );
             let m = RoughnessMatrix::new_with_det_clamp(entries.0, entries.1, entries.2, entries.3)
                 .unwrap();
+            let theta = (st2.uniform() * 85f64.to_radians()) as f32;
+            let phi = (st2.uniform() * std::f64::consts::TAU) as f32;
+            let wo = Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.sin() * phi.sin(),
+                theta.cos(),
+            );
+            let mut uni = || st2.uniform() as f32;
+            let (u, u_box) = (Vec2::new(uni(), uni()), Vec2::new(uni(), uni()));
             Input {
                 r,
                 m,
@@ -66,6 +82,9 @@ fn inputs() -> Vec<Input> {
                 half,
                 entries,
                 cov: Covariance::new(s11, s12, s22),
+                wo,
+                u,
+                u_box,
             }
         })
         .collect()
@@ -128,6 +147,63 @@ fn bench(c: &mut Criterion) {
             let mut acc = 0.0f32;
             for x in black_box(&xs) {
                 acc += Ggx::new(x.r).d(x.h);
+            }
+            acc
+        })
+    });
+    g.bench_function("exact_rect_lambda", |bch| {
+        bch.iter(|| {
+            let mut acc = 0.0f32;
+            for x in black_box(&xs) {
+                acc += rect::lambda_rect(x.r, x.half, x.wo);
+            }
+            acc
+        })
+    });
+    g.bench_function("ggx_unfiltered_lambda", |bch| {
+        bch.iter(|| {
+            let mut acc = 0.0f32;
+            for x in black_box(&xs) {
+                acc += Ggx::new(x.r).lambda(x.wo);
+            }
+            acc
+        })
+    });
+    g.bench_function("exact_rect_sample_normal", |bch| {
+        bch.iter(|| {
+            let mut acc = Vec3::ZERO;
+            for x in black_box(&xs) {
+                acc += rect::sample_normal_rect(x.r, x.half, x.u, x.u_box);
+            }
+            acc
+        })
+    });
+    g.bench_function("ggx_sample_normal", |bch| {
+        bch.iter(|| {
+            let mut acc = Vec3::ZERO;
+            for x in black_box(&xs) {
+                acc += Ggx::new(x.r).sample_normal(x.u);
+            }
+            acc
+        })
+    });
+    g.bench_function("exact_rect_sample_visible", |bch| {
+        bch.iter(|| {
+            let mut acc = Vec3::ZERO;
+            for x in black_box(&xs) {
+                acc += rect::sample_visible_normal_rect(x.r, x.half, x.wo, x.u, x.u_box)
+                    .unwrap_or(Vec3::ZERO);
+            }
+            acc
+        })
+    });
+    g.bench_function("ggx_sample_visible", |bch| {
+        bch.iter(|| {
+            let mut acc = Vec3::ZERO;
+            for x in black_box(&xs) {
+                acc += Ggx::new(x.r)
+                    .sample_visible_normal(x.wo, x.u)
+                    .unwrap_or(Vec3::ZERO);
             }
             acc
         })

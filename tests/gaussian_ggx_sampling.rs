@@ -17,8 +17,7 @@
 
 #[path = "common/chi2.rs"]
 mod chi2;
-#[path = "common/whitening.rs"]
-mod whitening;
+mod common;
 
 use chi2::{Radial, chi2_test};
 use filtered_ndf::f64 as d;

@@ -186,8 +186,8 @@ pub const OPS: &[OpInfo] = &[
                    rectangle of the one-pixel parallelogram, KHPL16 sec. 5.2-5.3); P22'(s) = mean \
                    of P22 over s +/- H (eq. 16); D'(m) = P22'(s(m)) / m_z^4; Lambda' = Smith \
                    Lambda of P22'",
-        returns: "D', P22' or Lambda' at the point (Lambda': rect::lambda_rect, for now the \
-                  unfiltered GGX Lambda); without one the clamped half extents [Hx, Hy]",
+        returns: "D', P22' or Lambda' at the point (Lambda': rect::lambda_rect, the box-filtered \
+                  distribution's own); without one the clamped half extents [Hx, Hy]",
     ),
     op!(ggx_proxy,
         args: "alpha, half_extent (slope, one axis), variant (\"exact\"|\"simple\")",
@@ -216,8 +216,8 @@ pub const OPS: &[OpInfo] = &[
                   gaussian and projected [[a11, a12], [a12, a22]] (evaluated with tau = det A of \
                   the material), proxy [ax, ay], rect {\"roughness\": [ax, ay], \"half_extent\": \
                   [Hx, Hy]}. Beckmann with projected, rect or proxy, and rect or proxy with a \
-                  matrix roughness, answer an error. Lambda of a rect lobe is the library's \
-                  rect::lambda_rect, for now a stand-in: the unfiltered GGX Lambda",
+                  matrix roughness, answer an error. Lambda of a rect lobe is the box-filtered \
+                  distribution's own (rect::lambda_rect)",
     ),
     op!(gaussian_filtered,
         args: "dist, roughness, kernel ([[s11, s12], [s12, s22]], slope-domain covariance, \

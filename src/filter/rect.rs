@@ -29,41 +29,75 @@
 //! both precisions; rectangle normalised as above, `L_u^2 = 1 + u_c^2 + d_v^2`,
 //! `L_v^2 = 1 + v_c^2 + d_u^2` with `d_u`, `d_v` the distances of the rectangle from the
 //! peak along each axis, i.e. the distances to the density's complex poles).
-//! Each axis gets a tier from its ratio `H / L`: 2-point Gauss-Legendre below `0.01`,
-//! 4-point below `0.1`, 6-point below `0.25`, the closed form above. The rule's error decays
-//! like `(H / 2L)^(2n)`; the switch points were chosen by measured error (below `1e-8` in `f64`
-//! at each switch, so both sides of a switch agree to that level and the switch is invisible in
-//! `f32`).
-//! 1. **Both axes short**: the tensor Gauss-Legendre rule of the two tiers (4 to 36 nodes, one
-//!    division per row of nodes).
+//! Each axis gets a tier from its ratio `H / L`, with thresholds per precision (`TAU`):
+//!
+//! | rule | `f32` (target `1e-9`) | `f64` (target `1e-13`) |
+//! |---|---|---|
+//! | 2-point Gauss-Legendre | `H / L < 0.01` | `< 3e-4` |
+//! | 4-point | `< 0.1` | `< 0.02` |
+//! | 6-point | `< 0.25` | `< 0.08` |
+//! | 8-point | - | `< 0.18` |
+//! | 10-point | - | `< 0.25` |
+//! | closed form | above | above |
+//!
+//! The rule's relative error for `(c^2 + x^2)^-2` over `[x_c - H, x_c + H]`, worst over the
+//! centre, is `3.1 (H / L)^4` for 2 points and about `(H / 2L)^(2n)` beyond (measured in
+//! 40-digit arithmetic: 2 points `3.1e-8` at `0.01` and `2.5e-14` at `3e-4`; 4 points
+//! `9.6e-9` at `0.1`, `2.5e-14` at `0.02`; 6 points `1.1e-8` at `0.25`, `1.2e-14` at `0.08`;
+//! 8 points `3e-14` at `0.18`; 10 points `2.9e-15` at `0.25`). The `f32` tiers stay below
+//! `3.1e-8` (both sides of a switch agree to that, a quarter of an `f32` ulp at worst); the
+//! `f64` ones below `5e-14` per axis. Until issue 17 the `f64` build used the `f32` tiers, and
+//! its "loss of digits far in the tail" (`1.6e-9` at `3e4` lobe widths with a 1000:1 box) was
+//! this truncation (the 2-point rule near its switch), not cancellation; two real losses are
+//! fixed with it (below: the series of `delta - sin delta` and the four-edge form far out).
+//! 1. **Both axes short**: the tensor Gauss-Legendre rule of the two tiers (4 to 36 nodes in
+//!    `f32`, one division per row of nodes; up to 100 in `f64`).
 //! 2. **One long side** (say `u`): the closed form of case 3 while its cancellation allows
-//!    (`(1 + u_c^2 + v_c^2)^(3/2) / H_v < 1e6`, error below `1e-10`), else the Gauss-Legendre
-//!    rule in `v` of the exact 1D average in `u`, written without cancellation (`mean_1d`): with
+//!    (`(1 + u_c^2 + v_c^2)^(3/2) / H_v < 1e6` in `f32`, `< 1e3` in `f64`: error below `1e-10`,
+//!    `1e-13`), else the Gauss-Legendre rule in `v` of the exact 1D average in `u`, written
+//!    without cancellation (`mean_1d`): with
 //!    `c^2 = 1 + v^2`, `delta = atan2(c Delta u, c^2 + u_0 u_1)` (the atan-difference
 //!    identity) and `r_i^2 = c^2 + u_i^2`,
 //!    `int f du = delta / (2 c^3) + Delta u (c^2 - u_0 u_1) / (2 c^2 r_0^2 r_1^2)` when the
 //!    interval straddles `0`, and otherwise
 //!    `(delta - sin delta) / (2 c^3) + Delta u / (2 r_0^2 r_1^2) [1 + (u_0^2 + u_1^2 + c^2) /
-//!    (r_0 r_1 + u_0 u_1)]`, all terms positive (`delta - sin delta` by its series below 1).
+//!    (r_0 r_1 + u_0 u_1)]`, all terms positive (`delta - sin delta` by its Taylor series below
+//!    1: through `delta^13 / 13!` in `f32`, `4.6e-12` relative at `delta = 1`; through
+//!    `delta^19 / 19!` in `f64`, where the shorter series showed as `6.6e-13`).
 //!    A zero half extent on one axis is the exact 1D average (both nodes coincide).
 //! 3. **Both sides long**: the closed form as four edge terms (Lambert's contour form of the
 //!    projected solid angle), each edge's two arctangents merged into one by
 //!    `atan p - atan q = atan2(p - q, 1 + p q)` with the difference `p - q` taken from the side
 //!    length directly: `2 I = sum over edges of +/- u_e / S_e atan2(Delta v S_e, S_e^2 + v_0 v_1)`,
-//!    `S_e = sqrt(1 + u_e^2)`. Four `atan2` (each one `atan`) instead of eight `atan`. Its
-//!    relative error is about `1e-16 (1 + u_c^2 + v_c^2)^(3/2) / H_short` (measured): below
-//!    `1e-10` near the peak, up to `2e-6` for rectangles of `0.25 L` to `L` at normalised
-//!    distances `L ~ 5e4` (`|slope| / alpha ~ 5e4`, the corner of the domain).
+//!    `S_e = sqrt(1 + u_e^2)`. Four `atan2` (each one `atan`) instead of eight `atan`. The edge
+//!    terms are angles of order one while the integral of a rectangle at distance `D` from the
+//!    peak is of order `1 / D^2`: the form cancels like `1e-15 D^2` (measured; up to `1.5e-8`
+//!    at `D ~ 2e4` before issue 17). Beyond `D = 316` (`f32`) or `D = 10` (`f64`) the polar
+//!    form is used instead (`far_field`): with `g(r) = 1 / (1 + r^2)`, `f dA` is the exterior
+//!    derivative of `-g / 2 d theta` (polar angle about the peak), so the integral is
+//!    `-1/2` times the contour integral of `g d theta`, one positive integral per edge in the
+//!    polar angle, by 10-point (`f64`) or 6-point (`f32`) Gauss-Legendre split at the foot of
+//!    the edge's perpendicular. With every point at least `D` from the peak, the integrand's
+//!    poles are at least `asinh(D)` away in the angle, and the rule converges far below the
+//!    targets; the near and far sides of a rectangle with two long sides differ by a bounded
+//!    factor, so the four terms do not cancel.
 //!
-//! Measured (tests, 2000 seeded samples over alpha `1e-4..1`, anisotropy up to `100`,
-//! `|center|` components up to 4, half sides `1e-8..1`, against `f64` adaptive quadrature): `f32`
-//! relative error median `2.1e-8`, max `6.4e-8` (about one ulp); `f64` median `5e-15`, max
-//! `2.4e-8`. The printed formula in `f32` on the same sample: median `3.1e-3`, max `4e14`.
-//! Beyond that sample, far in the tail of a very sharp lobe (normalised distance
-//! `|center| / alpha ~ 1e8`, e.g. `alpha = 1e-8` at slope 1, with both sides long), the
-//! four-edge closed form loses its relative accuracy (its error model above gives `> 1`) and
-//! can cancel below zero; the result is clamped to `>= 0` there (found by fuzzing). The
-//! absolute error stays far below `1e-16` of the peak.
+//! Measured (`tests/ggx_rect.rs`, 2000 seeded samples over alpha `1e-4..1`, anisotropy up to
+//! `100`, `|center|` components up to 4, half sides `1e-8..1`, against `f64` adaptive
+//! quadrature over the offsets from the centre): `f32` relative error median `2.1e-8`, max
+//! `6.4e-8` (about one ulp); `f64` median `2e-16`, max `4.2e-14` (before issue 17: max
+//! `2.4e-8`). A scan of 20000 cases per tier combination (slopes to `1e5` lobe widths, boxes to
+//! 10000:1) against 80-digit arithmetic: `f64` at most `8e-14` in every case of the case
+//! analysis. The printed formula in `f32` on the same sample: median `3.1e-3`, max `4e14`.
+//! Far in the tail of a very sharp lobe (normalised distance `|center| / alpha ~ 1e8`, e.g.
+//! `alpha = 1e-8` at slope 1) the result is still clamped to `>= 0` (the four-edge form had
+//! cancelled below zero there before the polar form took over; found by fuzzing).
+//!
+//! # The box lobe
+//! [`lambda_rect`] is the exact Smith `Lambda` of this distribution (module `lambda`), so
+//! that `d_rect`, `G1 = 1 / (1 + lambda_rect)` and `G2` describe one lobe; [`sample_normal_rect`]
+//! and [`sample_visible_normal_rect`] sample it exactly, with the pdfs [`normal_pdf_rect`] and
+//! [`visible_normal_pdf_rect`] (module `sample`).
 //!
 //! # Inputs outside the domain
 //! Negative half extents are used by their absolute value (the rectangle is the same); NaN half
@@ -79,35 +113,28 @@ use super::super::ndf::roughness::AxisAligned;
 use super::{F, Vec2, Vec3};
 use crate::math::{self as m, Real};
 
+mod gauss;
+mod lambda;
+mod sample;
+pub(crate) use gauss::{GL2_X, GL4_W, GL4_X, GL6_W, GL6_X, Tier, WIDE, gl_of, rule, tier};
+pub use lambda::lambda_rect;
+pub use sample::{
+    normal_pdf_rect, sample_normal_rect, sample_visible_normal_rect, visible_normal_pdf_rect,
+};
+
 const PI64: f64 = core::f64::consts::PI;
 
 /// Largest normalised half extent or centre coordinate used (see the module docs).
-const BIG: f64 = 1e60;
-/// Below this ratio `H / L` per axis: 2-point Gauss-Legendre.
-const TAU_GL2: f64 = 0.01;
-/// Below this ratio `H / L` per axis: 4-point Gauss-Legendre.
-const TAU_GL4: f64 = 0.1;
-/// Below this ratio `H / L` per axis: 6-point Gauss-Legendre.
-const TAU_GL6: f64 = 0.25;
+pub(crate) const BIG: f64 = 1e60;
 
-/// 2-point Gauss-Legendre node on `[-1, 1]` (`1 / sqrt 3`); weights `1/2` each for a mean.
-const GL2_X: f64 = 0.577_350_269_189_625_8;
-/// 4-point Gauss-Legendre nodes on `[-1, 1]` (positive halves).
-const GL4_X: [f64; 2] = [0.339_981_043_584_856_3, 0.861_136_311_594_052_6];
-/// 4-point Gauss-Legendre weights, halved so that the rule averages over `[-1, 1]`.
-const GL4_W: [f64; 2] = [0.326_072_577_431_273_07, 0.173_927_422_568_726_93];
-/// 6-point Gauss-Legendre nodes on `[-1, 1]` (positive halves).
-const GL6_X: [f64; 3] = [
-    0.238_619_186_083_196_9,
-    0.661_209_386_466_264_5,
-    0.932_469_514_203_152,
-];
-/// 6-point Gauss-Legendre weights, halved.
-const GL6_W: [f64; 3] = [
-    0.233_956_967_286_345_5,
-    0.180_380_786_524_069_3,
-    0.085_662_246_189_585_2,
-];
+/// The four-edge closed form is used while its relative error, about
+/// `1e-16 (1 + u_c^2 + v_c^2)^(3/2) / H_short`, stays below `1e-16 EDGES_GAIN`: `1e-10` in
+/// `f32`, `1e-13` in `f64` (see [`edges_ok`]).
+const EDGES_GAIN: f64 = if WIDE { 1e3 } else { 1e6 };
+/// Squared distance `D^2` (normalised) of a rectangle from the peak beyond which two long
+/// sides use the polar form [`far_field`] instead of the four-edge form, whose cancellation
+/// grows like `1e-15 D^2` (measured; module docs): `D > 10` in `f64`, `D > 316` in `f32`.
+const FAR2: f64 = if WIDE { 1e2 } else { 1e5 };
 
 /// The mean over `v` in `[c - h, c + h]` of `f(u, v) = (1 + u^2 + v^2)^-2` by the
 /// Gauss-Legendre rule of tier `t`. A symmetric pair of nodes is
@@ -142,6 +169,17 @@ fn gl_f(t: Tier, u: f64, c: f64, h: f64) -> f64 {
                 GL4_W[0] * n0 / p0 + GL4_W[1] * n1 / p1
             }
         }
+        Tier::Gl8 | Tier::Gl10 if WIDE => {
+            // `f64` only (the guard removes the arm from the `f32` build): one division per
+            // pair.
+            let (xs, ws) = rule(t);
+            let mut acc = 0.0;
+            for (&x, &w) in xs.iter().zip(ws) {
+                let (n, p) = pair(h * x);
+                acc += w * n / p;
+            }
+            acc
+        }
         _ => {
             let (n0, p0) = pair(h * GL6_X[0]);
             let (n1, p1) = pair(h * GL6_X[1]);
@@ -162,9 +200,19 @@ fn gl_f(t: Tier, u: f64, c: f64, h: f64) -> f64 {
 fn delta_minus_sin(d: f64, sin_d: f64) -> f64 {
     if d < 1.0 {
         let d2 = d * d;
-        // d^3/6 (1 - d^2/20 (1 - d^2/42 (1 - d^2/72 (1 - d^2/110 (1 - d^2/156))))): the next
-        // term is below 1e-17 relative at d = 1.
-        let s = 1.0 - d2 * (1.0 / 110.0) * (1.0 - d2 * (1.0 / 156.0));
+        // d^3/6 (1 - d^2/20 (1 - d^2/42 (1 - d^2/72 (1 - d^2/110 (1 - d^2/156 ...))))), the
+        // Taylor series through d^13 / 13!: the first term left out, d^15 / 15!, is 4.6e-12
+        // relative at d = 1, far below f32 rounding; in f64 three more factors (through
+        // d^19 / 19!) leave 1.2e-19 (issue 17: the truncation showed as 6.6e-13 in `mean_1d`).
+        let s = if WIDE {
+            1.0 - d2
+                * (1.0 / 156.0)
+                * (1.0
+                    - d2 * (1.0 / 210.0) * (1.0 - d2 * (1.0 / 272.0) * (1.0 - d2 * (1.0 / 342.0))))
+        } else {
+            1.0 - d2 * (1.0 / 156.0)
+        };
+        let s = 1.0 - d2 * (1.0 / 110.0) * s;
         let s = 1.0 - d2 * (1.0 / 72.0) * s;
         let s = 1.0 - d2 * (1.0 / 42.0) * s;
         let s = 1.0 - d2 * (1.0 / 20.0) * s;
@@ -227,7 +275,13 @@ fn mean_f(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
     let (hu2, hv2) = (hu * hu, hv * hv);
     let (tu, tv) = (tier(hu2, lu2), tier(hv2, lv2));
     match (tu, tv) {
-        (Tier::Closed, Tier::Closed) => edges(uc, vc, hu, hv),
+        (Tier::Closed, Tier::Closed) => {
+            if du * du + dv * dv > FAR2 {
+                far_field(uc, vc, hu, hv)
+            } else {
+                edges(uc, vc, hu, hv)
+            }
+        }
         (Tier::Closed, t) => {
             if edges_ok(uc, vc, hv) {
                 edges(uc, vc, hu, hv)
@@ -293,68 +347,69 @@ fn edges(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
     i / (du * dv)
 }
 
+/// The mean of `f` over a rectangle far from the peak (`D^2 > FAR2`, both sides long), by the
+/// polar form of the module docs: with `g(r) = 1 / (1 + r^2)`, Green's theorem on
+/// `f dA = d(-g / 2) ^ d theta` gives `I = -1/2` times the contour integral of `g d theta`, one
+/// positive integral per edge ([`edge_polar`]); the edges' cancellation is that of the near and
+/// far sides seen from the peak, bounded for long sides.
+#[inline(never)]
+fn far_field(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
+    let (u0, u1, v0, v1) = (uc - hu, uc + hu, vc - hv, vc + hv);
+    let i = -0.5
+        * ((edge_polar(u1, v0, v1) - edge_polar(u0, v0, v1))
+            + (edge_polar(v1, u0, u1) - edge_polar(v0, u0, u1)));
+    i / (4.0 * hu * hv)
+}
+
+/// `sign(x)` times the integral of `g(|x| / cos phi) = c^2 / (c^2 + x^2)`, `c = cos phi`, over
+/// `phi` from `atan(a / |x|)` to `atan(b / |x|)`: the integral of `g d theta` along the edge
+/// `{x} x [a, b]` of the rectangle (either orientation of the axes; the sign of `x` orients it).
+/// Every point of the edge is at least `sqrt(FAR2)` from the peak, so the integrand's poles
+/// (`cos phi = +/- i x`, at `phi = +/- pi/2 +/- i asinh|x|`) are at least `0.19` half-lengths
+/// away once the range is split at `phi = 0` (module docs): 10-point Gauss-Legendre in `f64`,
+/// 6-point in `f32`, both far below their targets.
+#[inline]
+fn edge_polar(x: f64, a: f64, b: f64) -> f64 {
+    if x == 0.0 {
+        return 0.0;
+    }
+    let ax = x.abs();
+    let x2 = ax * ax;
+    let (p0, p1) = (m::atan(a / ax), m::atan(b / ax));
+    let piece = |lo: f64, hi: f64| {
+        let g = |phi: f64| {
+            let c = m::cos(phi);
+            let c2 = c * c;
+            c2 / (c2 + x2)
+        };
+        gl_of(
+            if WIDE { Tier::Gl10 } else { Tier::Gl6 },
+            0.5 * (lo + hi),
+            0.5 * (hi - lo),
+            g,
+        ) * (hi - lo)
+    };
+    let v = if p0 < 0.0 && p1 > 0.0 {
+        piece(p0, 0.0) + piece(0.0, p1)
+    } else {
+        piece(p0, p1)
+    };
+    if x > 0.0 { v } else { -v }
+}
+
 /// Whether the four-edge form is accurate for a rectangle whose short half side is `h_short`:
 /// its relative error is about `1e-16 (1 + u_c^2 + v_c^2)^(3/2) / h_short` (measured), so it is
-/// used while that stays below `1e-10` (and is cheaper than the 1D closed form at 2 to 6 nodes).
+/// used while that stays below `1e-16 EDGES_GAIN` (and is cheaper than the 1D closed form at 2
+/// to 6 nodes).
 #[inline(always)]
 fn edges_ok(uc: f64, vc: f64, h_short: f64) -> bool {
     let l2 = 1.0 + uc * uc + vc * vc;
-    l2 * l2 * l2 < 1e12 * h_short * h_short
-}
-
-/// How an axis of the rectangle is integrated, from `H^2` and `L^2` (module docs).
-#[derive(Clone, Copy)]
-enum Tier {
-    /// 2-point Gauss-Legendre (`H < 0.01 L`).
-    Gl2,
-    /// 4-point Gauss-Legendre (`H < 0.1 L`).
-    Gl4,
-    /// 6-point Gauss-Legendre (`H < 0.25 L`).
-    Gl6,
-    /// Closed form.
-    Closed,
-}
-
-#[inline(always)]
-fn tier(h2: f64, l2: f64) -> Tier {
-    if h2 < TAU_GL2 * TAU_GL2 * l2 {
-        Tier::Gl2
-    } else if h2 < TAU_GL4 * TAU_GL4 * l2 {
-        Tier::Gl4
-    } else if h2 < TAU_GL6 * TAU_GL6 * l2 {
-        Tier::Gl6
-    } else {
-        Tier::Closed
-    }
-}
-
-/// The positive nodes and halved weights of the Gauss-Legendre rule of tier `t` (`Gl2`, `Gl4`
-/// or `Gl6`; `Closed` has no rule and is never passed).
-#[inline(always)]
-fn rule(t: Tier) -> (&'static [f64], &'static [f64]) {
-    match t {
-        Tier::Gl2 => (&[GL2_X], &[0.5]),
-        Tier::Gl4 => (&GL4_X, &GL4_W),
-        _ => (&GL6_X, &GL6_W),
-    }
-}
-
-/// The mean of `g` over `[c - h, c + h]` by the Gauss-Legendre rule of tier `t` (one loop, so
-/// that `g` is inlined once).
-#[inline(always)]
-fn gl_of(t: Tier, c: f64, h: f64, mut g: impl FnMut(f64) -> f64) -> f64 {
-    let (xs, ws) = rule(t);
-    let mut acc = 0.0;
-    for (&x, &w) in xs.iter().zip(ws) {
-        let a = h * x;
-        acc += w * (g(c - a) + g(c + a));
-    }
-    acc
+    l2 * l2 * l2 < EDGES_GAIN * EDGES_GAIN * h_short * h_short
 }
 
 /// Sanitised `f64` half extent: `|h|`, NaN as `0`, at most `BIG`.
 #[inline(always)]
-fn half64(h: F, inv_alpha: f64) -> f64 {
+pub(crate) fn half64(h: F, inv_alpha: f64) -> f64 {
     let v = (h.to_f64() * inv_alpha).abs();
     if v.is_nan() { 0.0 } else { v.min(BIG) }
 }
@@ -476,10 +531,4 @@ pub fn d_rect_printed(r: AxisAligned, hpp: Vec2, h: Vec3, footprint: Vec2) -> F 
     let hz4 = h.z * h.z * h.z * h.z;
     let v = val / hz4.max(1e-3);
     if v.is_finite() { v } else { 0.0 }
-}
-
-/// TEMPORARY (replaced by the exact one from branch box-lobe).
-#[inline]
-pub fn lambda_rect(r: AxisAligned, _half_extent: Vec2, w: Vec3) -> F {
-    Ggx::new(r).lambda(w)
 }

@@ -1,27 +1,34 @@
 //! f64 quadrature reference of the box-filtered GGX (KHPL16 eq. 16): the average of the GGX
 //! slope density over the rectangle `center +/- half_extent`, the quantity
 //! [`crate::f64::filter::rect::p22_rect`] computes in closed form.
+//!
+//! The integration variable is the offset `delta` from the centre, over `[-H, H]` exactly,
+//! with the density evaluated at `center + delta`. Integrating over `[c - H, c + H]` instead
+//! (as this reference did before issue 17) divides an integral over the *rounded* interval by
+//! the exact width `2 H`: for a rectangle of half side `H` at distance `|c|` that is a relative
+//! error up to `1.1e-16 |c| / H` (`6e-7` for a `1e-8` rectangle at slope 100), which had been
+//! read as an error of the code under test. Rounding `c + delta` only moves a node by
+//! `1.1e-16 |c|`, a relative change of the integrand of a few `1e-16`.
 
 use super::quadrature::{Estimate, Tolerance, integrate, integrate_2d};
 use crate::f64::{AxisAligned, Ggx, Ndf, Vec2};
 
 /// `1 / (4 H_x H_y) integral over the rectangle of P22_GGX`, per unit slope area, by nested
-/// adaptive Gauss-Kronrod with breakpoints at the lobe centre when the rectangle straddles it.
-/// A zero half extent on one axis gives the 1D average along the other; on both axes the
-/// density itself. Half extents are used by absolute value.
+/// adaptive Gauss-Kronrod over the offsets from the centre, with breakpoints at the lobe
+/// centre when the rectangle straddles it. A zero half extent on one axis gives the 1D average
+/// along the other; on both axes the density itself. Half extents are used by absolute value.
 pub fn ggx_box(r: AxisAligned, center: Vec2, half_extent: Vec2, tol: Tolerance) -> Estimate {
     let ggx = Ggx::new(r);
     let h = half_extent.abs();
-    let (x0, x1) = (center.x - h.x, center.x + h.x);
-    let (y0, y1) = (center.y - h.y, center.y + h.y);
-    // Split each axis at 0 (the peak) when the interval contains it.
-    let split = |a: f64, b: f64| -> Vec<(f64, f64)> {
-        if a < 0.0 && b > 0.0 {
-            vec![(a, 0.0), (0.0, b)]
+    // The offsets [-h, h], split at the offset -c of the peak when the interval contains it.
+    let split = |c: f64, h: f64| -> Vec<(f64, f64)> {
+        if -h < -c && -c < h {
+            vec![(-h, -c), (-c, h)]
         } else {
-            vec![(a, b)]
+            vec![(-h, h)]
         }
     };
+    let p = |dx: f64, dy: f64| ggx.p22(Vec2::new(center.x + dx, center.y + dy));
     let mut value = 0.0;
     let mut error = 0.0;
     match (h.x > 0.0, h.y > 0.0) {
@@ -32,8 +39,8 @@ pub fn ggx_box(r: AxisAligned, center: Vec2, half_extent: Vec2, tol: Tolerance) 
             };
         }
         (true, false) => {
-            for (a, b) in split(x0, x1) {
-                let e = integrate(|x| ggx.p22(Vec2::new(x, center.y)), a, b, tol);
+            for (a, b) in split(center.x, h.x) {
+                let e = integrate(|dx| p(dx, 0.0), a, b, tol);
                 value += e.value;
                 error += e.error;
             }
@@ -43,8 +50,8 @@ pub fn ggx_box(r: AxisAligned, center: Vec2, half_extent: Vec2, tol: Tolerance) 
             };
         }
         (false, true) => {
-            for (a, b) in split(y0, y1) {
-                let e = integrate(|y| ggx.p22(Vec2::new(center.x, y)), a, b, tol);
+            for (a, b) in split(center.y, h.y) {
+                let e = integrate(|dy| p(0.0, dy), a, b, tol);
                 value += e.value;
                 error += e.error;
             }
@@ -55,9 +62,9 @@ pub fn ggx_box(r: AxisAligned, center: Vec2, half_extent: Vec2, tol: Tolerance) 
         }
         (true, true) => {}
     }
-    for xs in split(x0, x1) {
-        for ys in split(y0, y1) {
-            let e = integrate_2d(|x, y| ggx.p22(Vec2::new(x, y)), xs, ys, tol);
+    for xs in split(center.x, h.x) {
+        for ys in split(center.y, h.y) {
+            let e = integrate_2d(p, xs, ys, tol);
             value += e.value;
             error += e.error;
         }

@@ -1,20 +1,23 @@
-//! The chi-square goodness-of-fit harness of `tests/sampling_chi2.rs` (whitened
-//! `(r, phi)` grid, 40 x 40 cells, 40 000 samples, pooling below 5 expected, the regularised
-//! incomplete gamma function for the p-value), as a module that other sampling tests include
-//! with `#[path = "common/chi2.rs"] mod chi2;` (`tests/gaussian_ggx_sampling.rs`). See that
-//! file's docs for the grid and the statistic.
+//! The chi-square goodness-of-fit harness of `tests/sampling_chi2.rs` (its regularised
+//! incomplete gamma function, whitened `(r, phi)` grid, pooling and statistic), as a module that
+//! other sampling tests include with `#[path = "common/chi2.rs"] mod chi2;` next to `mod common;`.
+//! The statistics are documented (and the gamma function tested) in `tests/sampling_chi2.rs`,
+//! whose private copy this is: it can switch to this module.
 #![allow(dead_code)]
 
-use super::whitening::Whitening;
+use crate::common::whitening::Whitening;
 use filtered_ndf::f64::Roughness;
 use filtered_ndf::testing::quadrature::{Tolerance, integrate_2d};
 use filtered_ndf::testing::rng::SplitMix64;
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
 
+// Regularised incomplete gamma function (series + Lentz continued fraction, after Numerical
+// Recipes 6.2; written for this test).
+
 /// `ln Gamma(x)` for `x > 0` by the Lanczos approximation (g = 7, 9 terms; relative error
 /// about 1e-15).
-fn ln_gamma(x: f64) -> f64 {
+pub fn ln_gamma(x: f64) -> f64 {
     const C: [f64; 9] = [
         0.999_999_999_999_809_9,
         676.520_368_121_885_1,
@@ -40,7 +43,7 @@ fn ln_gamma(x: f64) -> f64 {
 }
 
 /// Upper regularised incomplete gamma `Q(a, x) = Gamma(a, x) / Gamma(a)`, `a > 0`, `x >= 0`.
-fn gamma_q(a: f64, x: f64) -> f64 {
+pub fn gamma_q(a: f64, x: f64) -> f64 {
     assert!(a > 0.0 && x >= 0.0, "gamma_q({a}, {x})");
     if x == 0.0 {
         return 1.0;
@@ -93,26 +96,32 @@ pub fn chi2_sf(chi2: f64, dof: usize) -> f64 {
     gamma_q(0.5 * dof as f64, 0.5 * chi2)
 }
 
+// ---------------------------------------------------------------------------------------
+// The harness.
+
 pub const N_SAMPLES: usize = 40_000;
-const N_R: usize = 40;
-const N_PHI: usize = 40;
-const MIN_EXPECTED: f64 = 5.0;
+pub const N_R: usize = 40;
+pub const N_PHI: usize = 40;
+pub const MIN_EXPECTED: f64 = 5.0;
+pub const ALPHA_SUITE: f64 = 0.01;
 
 #[derive(Clone, Copy, PartialEq)]
 pub enum Radial {
+    /// GGX: `F(q) = q / (1 + q)`.
     Ggx,
+    /// Beckmann: `F(q) = 1 - exp(-q)`.
     Beckmann,
 }
 
 impl Radial {
     /// `r = F(q)` and `dq/dr` at `r`.
-    fn r_of_q(self, q: f64) -> f64 {
+    pub fn r_of_q(self, q: f64) -> f64 {
         match self {
             Radial::Ggx => q / (1.0 + q),
             Radial::Beckmann => -(-q).exp_m1(),
         }
     }
-    fn q_of_r(self, r: f64) -> (f64, f64) {
+    pub fn q_of_r(self, r: f64) -> (f64, f64) {
         match self {
             Radial::Ggx => (r / (1.0 - r), 1.0 / ((1.0 - r) * (1.0 - r))),
             Radial::Beckmann => (-(-r).ln_1p(), 1.0 / (1.0 - r)),
