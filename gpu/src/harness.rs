@@ -92,7 +92,10 @@ impl Gpu {
     /// A short label: backend, adapter name, driver.
     pub fn label(&self) -> String {
         let i = &self.info;
-        format!("{:?}: {} ({} {})", i.backend, i.name, i.driver, i.driver_info)
+        format!(
+            "{:?}: {} ({} {})",
+            i.backend, i.name, i.driver, i.driver_info
+        )
     }
 
     /// The backend's short name (`vulkan`, `gl`, ...).
@@ -218,6 +221,17 @@ pub fn run(kernel: &Kernel, inputs: &[f32]) -> Result<Vec<f32>, String> {
         return Ok(Vec::new());
     }
     let module = crate::modules::compose(&kernel.shader(), "harness.wgsl")?;
+    run_module(module, n, inputs, kernel.n_out)
+}
+
+/// [`run`] with the shader built on the concatenated file (`shaders/generated/filtered_ndf.wgsl`
+/// as generated now) instead of the naga_oil composition: the snippet's `alias::item`
+/// references are rewritten to the concatenated names ([`crate::concat`]).
+pub fn run_concatenated(kernel: &Kernel, inputs: &[f32]) -> Result<Vec<f32>, String> {
+    let n = inputs.len() / kernel.n_in;
+    let user = crate::concat::rewrite_user_shader(&kernel.shader())?;
+    let source = format!("{}\n{user}", crate::generate::concatenated()?);
+    let (module, _) = crate::generate::parse_and_validate(&source, "concatenated harness")?;
     run_module(module, n, inputs, kernel.n_out)
 }
 

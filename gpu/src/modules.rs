@@ -167,9 +167,7 @@ pub fn load_all() -> Result<Vec<Module>, String> {
             Some(1) => return Err(format!("import cycle through {p}")),
             _ => {}
         }
-        let m = all
-            .get(p)
-            .ok_or_else(|| format!("unknown module {p}"))?;
+        let m = all.get(p).ok_or_else(|| format!("unknown module {p}"))?;
         state.insert(p.to_string(), 1);
         for i in &m.imports {
             visit(&i.path, all, state, order)

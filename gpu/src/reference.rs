@@ -12,28 +12,28 @@ pub use filtered_ndf::f64::{
 pub use filtered_ndf::testing::{rng::SplitMix64, strategies};
 pub use glam::{DVec2, DVec3};
 
-/// `filtered_ndf::math`: the float backend switch (atan, ...).
-pub use filtered_ndf::math;
-/// `f64::slope`: the maps between the half-vector domains.
-pub use filtered_ndf::f64::slope;
-/// `f64::jacobian`: their Jacobians.
-pub use filtered_ndf::f64::jacobian;
+/// `f64::clamp::ExtentFloor`.
+pub use filtered_ndf::f64::clamp::ExtentFloor;
 /// `f64::filter`: Gaussian, LEAN and projected (TK21) filtering.
 pub use filtered_ndf::f64::filter;
 /// `f64::footprint::BoundingRect`.
 pub use filtered_ndf::f64::footprint::BoundingRect;
-/// `f64::clamp::ExtentFloor`.
-pub use filtered_ndf::f64::clamp::ExtentFloor;
 /// `f64::ggx_proxy`: the GGX proxy roughness (KHPL16 eq. 19, 20).
 pub use filtered_ndf::f64::ggx_proxy;
 /// `f64::ggx_rect`: the exact GGX box filter.
 pub use filtered_ndf::f64::ggx_rect;
-/// `f64::presets`: the 12 deferred conventions.
-pub use filtered_ndf::f64::presets;
 /// `f64::isotropic`: `KernelConvention` and its parts.
 pub use filtered_ndf::f64::isotropic;
+/// `f64::jacobian`: their Jacobians.
+pub use filtered_ndf::f64::jacobian;
+/// `f64::presets`: the 12 deferred conventions.
+pub use filtered_ndf::f64::presets;
 /// `f64::sampling::reflect`.
 pub use filtered_ndf::f64::sampling;
+/// `f64::slope`: the maps between the half-vector domains.
+pub use filtered_ndf::f64::slope;
+/// `filtered_ndf::math`: the float backend switch (atan, ...).
+pub use filtered_ndf::math;
 
 /// A vector of f32 values widened to f64.
 pub fn v2(v: [f32; 2]) -> DVec2 {

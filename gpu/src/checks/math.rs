@@ -11,7 +11,9 @@ pub fn all() -> Vec<Check> {
     // atan: stated bound 8 ulp relative (math.wgsl); reference `filtered_ndf::math::atan`.
     let mut atan = Check::new("math::atan", imports, "y(0u, math::atan(x(0u)));", 1, 1)
         .tolerance("8 ulp relative: reduction 4 ulp mapped to 2, polynomial 3e-9, Horner and final additions 3 ulp (math.wgsl)");
-    let mut xs: Vec<f64> = vec![0.0, 1.0, -1.0, 0.41421356, 0.4142136, 2.414, 1e-30, 1e30, 3e38];
+    let mut xs: Vec<f64> = vec![
+        0.0, 1.0, -1.0, 0.41421356, 0.4142136, 2.414, 1e-30, 1e30, 3e38,
+    ];
     for _ in 0..4000 {
         let x = rng.log_uniform(1e-6, 1e6);
         xs.push(if rng.uniform() < 0.5 { -x } else { x });

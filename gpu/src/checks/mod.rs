@@ -126,6 +126,8 @@ pub struct Outcome {
     pub worst_of_tol: f64,
     /// The stated tolerance.
     pub tolerance: String,
+    /// The case closest to (or furthest past) its tolerance, described.
+    pub worst_case: String,
     /// The first failing cases, described.
     pub failures: Vec<String>,
     /// The number of failing outputs.
@@ -160,6 +162,7 @@ pub fn run(check: &Check) -> Result<Outcome, String> {
         worst_abs: 0.0,
         worst_of_tol: 0.0,
         tolerance: check.tolerance.clone(),
+        worst_case: String::new(),
         failures: Vec::new(),
         n_failed: 0,
     };
@@ -183,10 +186,13 @@ pub fn run(check: &Check) -> Result<Outcome, String> {
             } else {
                 f64::INFINITY
             };
-            if frac.is_nan() {
-                o.worst_of_tol = f64::INFINITY;
-            } else {
+            let frac = if frac.is_nan() { f64::INFINITY } else { frac };
+            if frac > o.worst_of_tol || o.worst_case.is_empty() {
                 o.worst_of_tol = o.worst_of_tol.max(frac);
+                o.worst_case = format!(
+                    "case {i} output {j}: input {:?}, gpu {g:e}, reference {r:e}",
+                    c.input
+                );
             }
             if !ok {
                 o.n_failed += 1;
@@ -229,6 +235,9 @@ pub fn run_group(group: &str, checks: &[Check]) -> Result<(Vec<Outcome>, String)
             o.worst_of_tol,
             o.tolerance
         ));
+        if std::env::var_os("FILTERED_NDF_GPU_VERBOSE").is_some() {
+            table.push_str(&format!("      worst: {}\n", o.worst_case));
+        }
         for f in &o.failures {
             table.push_str(&format!("      {f}\n"));
         }

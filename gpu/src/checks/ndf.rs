@@ -110,7 +110,11 @@ fn f32x3(d: DVec3) -> [f32; 3] {
 }
 
 fn cases(kind: &str, n: usize) -> Vec<NdfCase> {
-    let dirs = draw(strategies::upper_hemisphere(89.9), 3 * n, &format!("{kind} dirs"));
+    let dirs = draw(
+        strategies::upper_hemisphere(89.9),
+        3 * n,
+        &format!("{kind} dirs"),
+    );
     let forms: Vec<Form> = match kind {
         "isotropic" => draw(strategies::isotropic(), n, kind)
             .into_iter()
@@ -137,10 +141,7 @@ fn cases(kind: &str, n: usize) -> Vec<NdfCase> {
     let mut out = Vec::new();
     for (k, form) in forms.into_iter().enumerate() {
         let (rough, err_q) = match form {
-            Form::Iso(a) => (
-                Rough::Iso(Isotropic::new(a.into()).expect("in range")),
-                6.0,
-            ),
+            Form::Iso(a) => (Rough::Iso(Isotropic::new(a.into()).expect("in range")), 6.0),
             Form::Aa(a) => (
                 Rough::Aa(AxisAligned::new(a[0].into(), a[1].into()).expect("in range")),
                 7.0,
@@ -246,14 +247,18 @@ fn form_checks(kind: &str, n: usize) -> Vec<Check> {
             &|k| {
                 let m = v3(k.m);
                 let x = k.rough.inv_quadratic(DVec2::new(m.x, m.y)) / (m.z * m.z);
-                let ln_k =
-                    -((core::f64::consts::PI * k.rough.sqrt_det()).ln() + 4.0 * m.z.ln());
+                let ln_k = -((core::f64::consts::PI * k.rough.sqrt_det()).ln() + 4.0 * m.z.ln());
                 let t = tol_density(ggx, k.err_q, x, ln_k);
                 (k.rough.ndf(ggx).d(m), Tol::ulps(t))
             },
         );
         let lambda_tol = |k: &NdfCase, w: DVec3| {
-            tol_lambda(ggx, k.err_q, k.rough.quadratic(DVec2::new(w.x, w.y)), w.z.abs())
+            tol_lambda(
+                ggx,
+                k.err_q,
+                k.rough.quadratic(DVec2::new(w.x, w.y)),
+                w.z.abs(),
+            )
         };
         add(
             format!("{model}::lambda_{kind}"),
