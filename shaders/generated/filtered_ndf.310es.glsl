@@ -8,19 +8,62 @@
 precision highp float;
 precision highp int;
 
-struct ndf_roughness_isotropic_Isotropic {
-    float alpha;
-    float inv_alpha_sq;
+struct kernel_covariance_Covariance {
+    float s_xx;
+    float s_xy;
+    float s_yy;
+    float det;
 };
-struct ndf_roughness_axis_aligned_AxisAligned {
-    vec2 alpha;
-    vec2 inv_alpha_sq;
+struct filter_deferred_KernelConvention {
+    uint domain;
+    uint norm;
+    float scale;
+    float exponent;
+    float bias;
+    float clamp_;
+    uint combine;
+    bool saturate;
+    float perceptual_floor;
 };
 struct ndf_roughness_matrix_RoughnessMatrix {
     vec2 axis;
     vec2 eig;
     vec2 inv_eig;
     float sqrt_det;
+};
+struct filter_lean_LeanMoments {
+    vec2 mean;
+    vec3 second;
+};
+struct ndf_roughness_axis_aligned_AxisAligned {
+    vec2 alpha;
+    vec2 inv_alpha_sq;
+};
+struct kernel_rect_BoundingRect {
+    vec2 half_extent;
+};
+struct footprint_Footprint {
+    vec2 dh_u;
+    vec2 dh_v;
+};
+struct footprint_jacobian_Polar {
+    vec3 h;
+    vec2 cs;
+};
+struct footprint_jacobian_SphericalBasis {
+    vec3 e_x;
+    vec3 e_y;
+};
+struct kernel_clamp_ClampRules {
+    float max_extent;
+    uint floor_kind;
+    float floor_;
+    float kappa;
+    bool det_clamp;
+};
+struct ndf_roughness_isotropic_Isotropic {
+    float alpha;
+    float inv_alpha_sq;
 };
 const float math_PI = 3.1415927;
 const float math_HALF_PI = 1.5707964;
@@ -31,6 +74,43 @@ const float math_F32_MIN_POSITIVE = 1.1754944e-38;
 const float math_TAN_EIGHTH_PI = 0.41421357;
 const float ndf_roughness_ALPHA_MIN = 1e-8;
 const float ndf_roughness_ALPHA_MAX = 10000.0;
+const float kernel_covariance_KERNEL_MAX = 100000000.0;
+const float filter_deferred_KAPPA = 0.18;
+const float filter_deferred_SIGMA_SQ = 0.25;
+const uint filter_deferred_DOMAIN_ALPHA_SQ = 0u;
+const uint filter_deferred_DOMAIN_ALPHA = 1u;
+const uint filter_deferred_DOMAIN_PERCEPTUAL = 2u;
+const uint filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ = 3u;
+const uint filter_deferred_NORM_SUM_SQUARED = 0u;
+const uint filter_deferred_NORM_MAX_SQUARED = 1u;
+const uint filter_deferred_NORM_MAX_EIGENVALUE = 2u;
+const uint filter_deferred_NORM_MAX_ABS_COMPONENT = 3u;
+const uint filter_deferred_COMBINE_ADD = 0u;
+const uint filter_deferred_COMBINE_MAX = 1u;
+const uint filter_deferred_BANDWIDTH_MAX = 0u;
+const uint filter_deferred_BANDWIDTH_TRACE = 1u;
+const uint filter_deferred_BANDWIDTH_AVERAGE = 2u;
+const filter_deferred_KernelConvention filter_presets_TK19_TRACE = filter_deferred_KernelConvention(0u, 0u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
+const filter_deferred_KernelConvention filter_presets_TK19_AVERAGE = filter_deferred_KernelConvention(0u, 0u, 0.25, 1.0, 0.0, 0.18, 0u, true, 0.0);
+const filter_deferred_KernelConvention filter_presets_TK19_MAX = filter_deferred_KernelConvention(0u, 2u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
+const filter_deferred_KernelConvention filter_presets_TK21_LISTING = filter_deferred_KernelConvention(0u, 0u, 0.15915494, 1.0, 0.0, 0.18, 0u, true, 0.0);
+const filter_deferred_KernelConvention filter_presets_FILAMENT = filter_deferred_KernelConvention(0u, 0u, 0.3, 1.0, 0.0, 0.04, 0u, true, 0.045);
+const filter_deferred_KernelConvention filter_presets_UNITY_HDRP = filter_deferred_KernelConvention(0u, 0u, 0.2, 1.0, 0.0, 0.04, 0u, true, 0.0);
+const filter_deferred_KernelConvention filter_presets_UNITY_HDRP_PROJECTED = filter_deferred_KernelConvention(3u, 0u, 0.2, 1.0, 0.0, 0.04, 0u, true, 0.0);
+const filter_deferred_KernelConvention filter_presets_GODOT = filter_deferred_KernelConvention(1u, 0u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
+const filter_deferred_KernelConvention filter_presets_O3DE = filter_deferred_KernelConvention(0u, 0u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
+const filter_deferred_KernelConvention filter_presets_UNREAL = filter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
+const filter_deferred_KernelConvention filter_presets_BABYLON = filter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
+const filter_deferred_KernelConvention filter_presets_THREE_JS = filter_deferred_KernelConvention(2u, 3u, 1.0, 1.0, 0.0, 3.4028235e38, 0u, true, 0.0525);
+const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
+const float footprint_SIGMA_PIXEL = 0.5;
+const float footprint_jacobian_HZ_MIN = 1e-6;
+const uint kernel_clamp_FLOOR_NONE = 0u;
+const uint kernel_clamp_FLOOR_CONSTANT = 1u;
+const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
+const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
+const kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
+const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
 const float ndf_beckmann_EXP_SPLIT = 80.0;
 const float ndf_beckmann_SQRT_PI = 1.7724539;
 
@@ -39,9 +119,9 @@ layout(location = 0) out vec4 _fs2p_location0;
 float math_atan(float x) {
     float t = 0.0;
     float r = 0.0;
-    float a = abs(x);
-    bool inv = (a > 1.0);
-    t = (inv ? (1.0 / a) : a);
+    float a_11 = abs(x);
+    bool inv = (a_11 > 1.0);
+    t = (inv ? (1.0 / a_11) : a_11);
     float _e8 = t;
     bool shift = (_e8 > math_TAN_EIGHTH_PI);
     float _e11 = t;
@@ -51,10 +131,10 @@ float math_atan(float x) {
     float _e20 = t;
     float _e21 = t;
     float z = (_e20 * _e21);
-    float p_1 = ((((((((-0.06451928 * z) + 0.10743731) * z) - 0.14263956) * z) + 0.1999954) * z) - 0.3333333);
+    float p_3 = ((((((((-0.06451928 * z) + 0.10743731) * z) - 0.14263956) * z) + 0.1999954) * z) - 0.3333333);
     float _e36 = t;
     float _e37 = t;
-    r = (_e36 + ((_e37 * z) * p_1));
+    r = (_e36 + ((_e37 * z) * p_3));
     float _e42 = r;
     float _e44 = r;
     r = (shift ? (math_QUARTER_PI + _e44) : _e42);
@@ -69,20 +149,20 @@ float math_atan(float x) {
 vec2 math_sincos_turns(float u) {
     vec2 cs = vec2(0.0);
     float q_4 = roundEven((4.0 * u));
-    float r_43 = (u - (0.25 * q_4));
-    float z_1 = (r_43 * r_43);
-    float s_9 = (r_43 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
-    float c = ((((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0);
-    int k_1 = (int(q_4) & 3);
-    cs = vec2(c, s_9);
-    if ((k_1 == 1)) {
-        cs = vec2(-(s_9), c);
+    float r_49 = (u - (0.25 * q_4));
+    float z_1 = (r_49 * r_49);
+    float s_11 = (r_49 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
+    float c_6 = ((((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0);
+    int k_8 = (int(q_4) & 3);
+    cs = vec2(c_6, s_11);
+    if ((k_8 == 1)) {
+        cs = vec2(-(s_11), c_6);
     } else {
-        if ((k_1 == 2)) {
-            cs = vec2(-(c), -(s_9));
+        if ((k_8 == 2)) {
+            cs = vec2(-(c_6), -(s_11));
         } else {
-            if ((k_1 == 3)) {
-                cs = vec2(s_9, -(c));
+            if ((k_8 == 3)) {
+                cs = vec2(s_11, -(c_6));
             }
         }
     }
@@ -91,91 +171,247 @@ vec2 math_sincos_turns(float u) {
 }
 
 float math_hypot(float x_1, float y) {
-    float m_18 = max(abs(x_1), abs(y));
-    if ((m_18 <= 0.0)) {
+    float m_19 = max(abs(x_1), abs(y));
+    if ((m_19 <= 0.0)) {
         return 0.0;
     }
-    float a_1 = (x_1 / m_18);
-    float b = (y / m_18);
-    return (m_18 * sqrt(((a_1 * a_1) + (b * b))));
-}
-
-float ndf_g1_of(float lambda_w, float w_dot_m) {
-    return ((w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0);
-}
-
-float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m) {
-    bool local = false;
-    if ((i_dot_m > 0.0)) {
-        local = (o_dot_m > 0.0);
-    } else {
-        local = false;
-    }
-    bool _e16 = local;
-    return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
+    float a_12 = (x_1 / m_19);
+    float b_2 = (y / m_19);
+    return (m_19 * sqrt(((a_12 * a_12) + (b_2 * b_2))));
 }
 
 float ndf_roughness_clamp_alpha(float alpha) {
     return ((alpha >= ndf_roughness_ALPHA_MIN) ? min(alpha, ndf_roughness_ALPHA_MAX) : ndf_roughness_ALPHA_MIN);
 }
 
-ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_1) {
-    float _e1 = ndf_roughness_clamp_alpha(alpha_1);
-    return ndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
+kernel_covariance_Covariance kernel_covariance_zero() {
+    return kernel_covariance_Covariance(0.0, 0.0, 0.0, 0.0);
 }
 
-float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_1, vec2 s) {
-    return (dot(s, s) * r_1.inv_alpha_sq);
+kernel_covariance_Covariance kernel_covariance_from_entries(float s_xx, float s_xy, float s_yy) {
+    return kernel_covariance_Covariance(s_xx, s_xy, s_yy, ((s_xx * s_yy) - (s_xy * s_xy)));
 }
 
-float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_2, vec2 w) {
-    return (dot(w, w) * (r_2.alpha * r_2.alpha));
+float kernel_covariance_trace(kernel_covariance_Covariance c) {
+    return (c.s_xx + c.s_yy);
 }
 
-float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_3) {
-    return (r_3.alpha * r_3.alpha);
+kernel_covariance_Covariance kernel_covariance_scaled(kernel_covariance_Covariance c_1, float k) {
+    return kernel_covariance_Covariance((c_1.s_xx * k), (c_1.s_xy * k), (c_1.s_yy * k), ((c_1.det * k) * k));
 }
 
-ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(vec2 alpha_2) {
-    float _e2 = ndf_roughness_clamp_alpha(alpha_2.x);
-    float _e4 = ndf_roughness_clamp_alpha(alpha_2.y);
-    vec2 a_2 = vec2(_e2, _e4);
-    return ndf_roughness_axis_aligned_AxisAligned(a_2, (vec2(1.0) / (a_2 * a_2)));
+kernel_covariance_Covariance kernel_covariance_add(kernel_covariance_Covariance a, kernel_covariance_Covariance b) {
+    float cross_ = (((a.s_xx * b.s_yy) + (a.s_yy * b.s_xx)) - ((2.0 * a.s_xy) * b.s_xy));
+    return kernel_covariance_Covariance((a.s_xx + b.s_xx), (a.s_xy + b.s_xy), (a.s_yy + b.s_yy), ((a.det + b.det) + cross_));
 }
 
-float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_4, vec2 s_1) {
-    return dot((s_1 * s_1), r_4.inv_alpha_sq);
+vec2 kernel_covariance_eigenvalues(kernel_covariance_Covariance c_2) {
+    float mean = (0.5 * (c_2.s_xx + c_2.s_yy));
+    float _e12 = math_hypot((0.5 * (c_2.s_xx - c_2.s_yy)), c_2.s_xy);
+    float lmax = max((mean + _e12), 0.0);
+    float lmin = ((lmax > 0.0) ? max((c_2.det / lmax), 0.0) : 0.0);
+    return vec2(lmin, lmax);
 }
 
-float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_5, vec2 w_1) {
-    return dot((w_1 * w_1), (r_5.alpha * r_5.alpha));
+kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance c_3, float max_eig) {
+    bool local = false;
+    if (!((max_eig >= 0.0))) {
+        kernel_covariance_Covariance _e5 = kernel_covariance_zero();
+        return _e5;
+    }
+    float scale = max(max(abs(c_3.s_xx), abs(c_3.s_yy)), abs(c_3.s_xy));
+    if ((scale <= 0.0)) {
+        return c_3;
+    }
+    float a_13 = (c_3.s_xx / scale);
+    float b_3 = (c_3.s_xy / scale);
+    float e_2 = (c_3.s_yy / scale);
+    float d = (0.5 * (a_13 - e_2));
+    float r_50 = sqrt(((d * d) + (b_3 * b_3)));
+    float lmax_1 = (((0.5 * (a_13 + e_2)) + r_50) * scale);
+    if ((lmax_1 <= max_eig)) {
+        return c_3;
+    }
+    float lmin_1 = max((c_3.det / lmax_1), 0.0);
+    if (!((lmin_1 >= max_eig))) {
+        local = (r_50 < 1e-18);
+    } else {
+        local = true;
+    }
+    bool _e46 = local;
+    if (_e46) {
+        return kernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
+    }
+    float p_4 = (r_50 + abs(d));
+    float q_5 = ((p_4 > 0.0) ? ((b_3 * b_3) / p_4) : 0.0);
+    vec2 ee = ((d >= 0.0) ? vec2(p_4, q_5) : vec2(q_5, p_4));
+    float inv_1 = (1.0 / (2.0 * r_50));
+    float p11_ = (ee.x * inv_1);
+    float p12_ = (b_3 * inv_1);
+    float p22_ = (ee.y * inv_1);
+    return kernel_covariance_Covariance(((max_eig * p11_) + (lmin_1 * p22_)), ((max_eig - lmin_1) * p12_), ((max_eig * p22_) + (lmin_1 * p11_)), (max_eig * lmin_1));
 }
 
-float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_6) {
-    return (r_6.alpha.x * r_6.alpha.y);
+kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covariance c_4) {
+    bool local_1 = false;
+    bool local_2 = false;
+    float big = max(max(abs(c_4.s_xx), abs(c_4.s_yy)), abs(c_4.s_xy));
+    if ((big > math_F32_MAX)) {
+        return kernel_covariance_Covariance(100000000.0, 0.0, 100000000.0, 1e16);
+    }
+    float s_xx_1 = max(c_4.s_xx, 0.0);
+    float s_yy_1 = max(c_4.s_yy, 0.0);
+    float bound = (sqrt(s_xx_1) * sqrt(s_yy_1));
+    float s_xy_1 = clamp(c_4.s_xy, -(bound), bound);
+    if (!((s_xx_1 != c_4.s_xx))) {
+        local_1 = (s_yy_1 != c_4.s_yy);
+    } else {
+        local_1 = true;
+    }
+    bool _e36 = local_1;
+    if (!(_e36)) {
+        local_2 = (s_xy_1 != c_4.s_xy);
+    } else {
+        local_2 = true;
+    }
+    bool changed = local_2;
+    float det_2 = max((changed ? ((s_xx_1 * s_yy_1) - (s_xy_1 * s_xy_1)) : c_4.det), 0.0);
+    kernel_covariance_Covariance _e53 = kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance(s_xx_1, s_xy_1, s_yy_1, det_2), kernel_covariance_KERNEL_MAX);
+    return _e53;
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(vec2 axis, vec2 alpha_3) {
-    vec2 l = (alpha_3 * alpha_3);
-    return ndf_roughness_matrix_RoughnessMatrix(axis, l, (vec2(1.0) / l), (alpha_3.x * alpha_3.y));
+float filter_deferred_from_alpha(uint domain, float alpha_1) {
+    if ((domain == filter_deferred_DOMAIN_ALPHA)) {
+        return alpha_1;
+    }
+    if ((domain == filter_deferred_DOMAIN_PERCEPTUAL)) {
+        return sqrt(alpha_1);
+    }
+    float a2_ = (alpha_1 * alpha_1);
+    if ((domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
+        return ((a2_ < 1.0) ? (a2_ / (1.0 - a2_)) : math_F32_MAX);
+    }
+    return a2_;
+}
+
+float filter_deferred_to_alpha(uint domain_1, float v) {
+    if ((domain_1 == filter_deferred_DOMAIN_ALPHA)) {
+        return v;
+    }
+    if ((domain_1 == filter_deferred_DOMAIN_PERCEPTUAL)) {
+        return (v * v);
+    }
+    if ((domain_1 == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
+        return ((v < math_F32_MAX) ? sqrt((v / (1.0 + v))) : 1.0);
+    }
+    return sqrt(v);
+}
+
+float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5) {
+    float _e9 = math_hypot((0.5 * (a_1 - c_5)), b_1);
+    return max(((0.5 * (a_1 + c_5)) + _e9), 0.0);
+}
+
+float filter_deferred_norm_eval(uint norm, vec3 dn_u, vec3 dn_v) {
+    float a_14 = dot(dn_u, dn_u);
+    float c_7 = dot(dn_v, dn_v);
+    if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
+        return max(a_14, c_7);
+    }
+    if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
+        float _e11 = filter_deferred_max_eigenvalue(a_14, dot(dn_u, dn_v), c_7);
+        return _e11;
+    }
+    if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
+        vec3 m_20 = max(abs(dn_u), abs(dn_v));
+        return max(max(m_20.x, m_20.y), m_20.z);
+    }
+    return (a_14 + c_7);
+}
+
+float filter_deferred_clamp_kernel(filter_deferred_KernelConvention conv, float k_1) {
+    return min(max(k_1, 0.0), conv.clamp_);
+}
+
+float filter_deferred_kernel(filter_deferred_KernelConvention conv_1, vec3 dn_u_1, vec3 dn_v_1) {
+    float raw = 0.0;
+    float _e4 = filter_deferred_norm_eval(conv_1.norm, dn_u_1, dn_v_1);
+    raw = _e4;
+    if ((conv_1.exponent != 1.0)) {
+        raw = ((_e4 > 0.0) ? pow(_e4, conv_1.exponent) : 0.0);
+    }
+    float _e16 = raw;
+    float _e20 = filter_deferred_clamp_kernel(conv_1, ((conv_1.scale * _e16) + conv_1.bias));
+    return _e20;
+}
+
+float filter_deferred_apply_kernel(filter_deferred_KernelConvention conv_2, float alpha_in, float k_2) {
+    float alpha_2 = 0.0;
+    float out_ = 0.0;
+    alpha_2 = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
+    float _e7 = alpha_2;
+    alpha_2 = max(_e7, (conv_2.perceptual_floor * conv_2.perceptual_floor));
+    float _e13 = alpha_2;
+    float _e14 = filter_deferred_from_alpha(conv_2.domain, _e13);
+    float _e15 = filter_deferred_clamp_kernel(conv_2, k_2);
+    out_ = ((conv_2.combine == filter_deferred_COMBINE_MAX) ? max(_e14, _e15) : (_e14 + _e15));
+    if (conv_2.saturate) {
+        float _e24 = out_;
+        out_ = min(_e24, 1.0);
+    }
+    float _e28 = out_;
+    float _e29 = filter_deferred_to_alpha(conv_2.domain, _e28);
+    return clamp(_e29, 0.0, ndf_roughness_ALPHA_MAX);
+}
+
+float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_3, vec3 dn_u_2, vec3 dn_v_2) {
+    float _e4 = filter_deferred_kernel(conv_3, dn_u_2, dn_v_2);
+    float _e5 = filter_deferred_apply_kernel(conv_3, alpha_3, _e4);
+    return _e5;
+}
+
+kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_3, vec3 dn_v_3, float sigma_sq) {
+    vec3 x_3 = (cross(dn_u_3, dn_v_3) * sigma_sq);
+    return kernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_3, x_3));
+}
+
+float filter_deferred_bandwidth_kernel(uint bandwidth, kernel_covariance_Covariance sigma) {
+    if ((bandwidth == filter_deferred_BANDWIDTH_MAX)) {
+        float _e7 = filter_deferred_max_eigenvalue(sigma.s_xx, sigma.s_xy, sigma.s_yy);
+        return (2.0 * _e7);
+    }
+    float t_1 = (sigma.s_xx + sigma.s_yy);
+    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_1) : t_1);
+}
+
+float filter_deferred_filtered_alpha(float alpha_4, kernel_covariance_Covariance sigma_1, uint bandwidth_1, float kappa) {
+    filter_deferred_KernelConvention conv_4 = filter_deferred_KernelConvention(filter_deferred_DOMAIN_ALPHA_SQ, filter_deferred_NORM_SUM_SQUARED, 0.5, 1.0, 0.0, kappa, filter_deferred_COMBINE_ADD, true, 0.0);
+    float _e13 = filter_deferred_bandwidth_kernel(bandwidth_1, sigma_1);
+    float _e14 = filter_deferred_apply_kernel(conv_4, alpha_4, _e13);
+    return _e14;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(vec2 axis, vec2 alpha_5) {
+    vec2 l = (alpha_5 * alpha_5);
+    return ndf_roughness_matrix_RoughnessMatrix(axis, l, (vec2(1.0) / l), (alpha_5.x * alpha_5.y));
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det, float tau) {
-    vec2 v = vec2(0.0);
+    vec2 v_1 = vec2(0.0);
     float half_diff = (0.5 * (a11_ - a22_));
     float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
     float l1_ = ((0.5 * (a11_ + a22_)) + rad);
     float l2_ = (det / l1_);
-    float big = (rad + abs(half_diff));
-    v = ((half_diff < 0.0) ? vec2(a12_, big) : vec2(big, a12_));
-    if ((big <= 0.0)) {
-        v = vec2(1.0, 0.0);
+    float big_1 = (rad + abs(half_diff));
+    v_1 = ((half_diff < 0.0) ? vec2(a12_, big_1) : vec2(big_1, a12_));
+    if ((big_1 <= 0.0)) {
+        v_1 = vec2(1.0, 0.0);
     }
-    vec2 _e30 = v;
-    vec2 _e31 = v;
+    vec2 _e30 = v_1;
+    vec2 _e31 = v_1;
     vec2 axis_1 = (_e30 / vec2(length(_e31)));
-    float c_1 = max(det, tau);
-    return ndf_roughness_matrix_RoughnessMatrix(axis_1, vec2(l1_, l2_), (vec2(l2_, l1_) / vec2(c_1)), sqrt(c_1));
+    float c_8 = max(det, tau);
+    return ndf_roughness_matrix_RoughnessMatrix(axis_1, vec2(l1_, l2_), (vec2(l2_, l1_) / vec2(c_8)), sqrt(c_8));
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(float a11_1, float a12_1, float a22_1) {
@@ -183,222 +419,680 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(float a11
     return _e7;
 }
 
-vec2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_7, vec2 v_1) {
-    return vec2(((r_7.axis.x * v_1.x) + (r_7.axis.y * v_1.y)), ((r_7.axis.x * v_1.y) - (r_7.axis.y * v_1.x)));
+vec2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_1, vec2 v_2) {
+    return vec2(((r_1.axis.x * v_2.x) + (r_1.axis.y * v_2.y)), ((r_1.axis.x * v_2.y) - (r_1.axis.y * v_2.x)));
 }
 
-float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_8, vec2 s_2) {
-    vec2 _e2 = ndf_roughness_matrix_rotate(r_8, s_2);
-    return dot((_e2 * _e2), r_8.inv_eig);
+float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_2, vec2 s) {
+    vec2 _e2 = ndf_roughness_matrix_rotate(r_2, s);
+    return dot((_e2 * _e2), r_2.inv_eig);
 }
 
-float ndf_roughness_matrix_quadratic(ndf_roughness_matrix_RoughnessMatrix r_9, vec2 w_2) {
-    vec2 _e2 = ndf_roughness_matrix_rotate(r_9, w_2);
-    return dot((_e2 * _e2), r_9.eig);
+float ndf_roughness_matrix_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, vec2 w) {
+    vec2 _e2 = ndf_roughness_matrix_rotate(r_3, w);
+    return dot((_e2 * _e2), r_3.eig);
 }
 
-float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_10) {
-    return r_10.sqrt_det;
+float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_4) {
+    return r_4.sqrt_det;
 }
 
-vec3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_11) {
-    float c_2 = r_11.axis.x;
-    float s_10 = r_11.axis.y;
-    vec2 l_1 = r_11.eig;
-    return vec3((((l_1.x * c_2) * c_2) + ((l_1.y * s_10) * s_10)), (((l_1.x - l_1.y) * c_2) * s_10), (((l_1.x * s_10) * s_10) + ((l_1.y * c_2) * c_2)));
+vec3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_5) {
+    float c_9 = r_5.axis.x;
+    float s_12 = r_5.axis.y;
+    vec2 l_1 = r_5.eig;
+    return vec3((((l_1.x * c_9) * c_9) + ((l_1.y * s_12) * s_12)), (((l_1.x - l_1.y) * c_9) * s_12), (((l_1.x * s_12) * s_12) + ((l_1.y * c_9) * c_9)));
 }
 
-float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_12) {
-    return (r_12.eig.x * r_12.eig.y);
+float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_6) {
+    return (r_6.eig.x * r_6.eig.y);
 }
 
-float ndf_beckmann_exp_neg_times(float x_2, float k, float ln_k) {
-    return ((x_2 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_2)) : (exp(-(x_2)) * k));
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_plus_kernel(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_1) {
+    vec3 _e3 = ndf_roughness_matrix_entries(a_2);
+    float c_10 = a_2.axis.x;
+    float s_13 = a_2.axis.y;
+    float k1_ = max(((((c_10 * c_10) * k_3.s_xx) + (((2.0 * c_10) * s_13) * k_3.s_xy)) + ((s_13 * s_13) * k_3.s_yy)), 0.0);
+    float k2_ = max(((((s_13 * s_13) * k_3.s_xx) - (((2.0 * c_10) * s_13) * k_3.s_xy)) + ((c_10 * c_10) * k_3.s_yy)), 0.0);
+    float _e38 = ndf_roughness_matrix_determinant(a_2);
+    float det_3 = ((_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * max(k_3.det, 0.0)));
+    ndf_roughness_matrix_RoughnessMatrix _e70 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_3, tau_1);
+    return _e70;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance k_4) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_plus_kernel(a_3, k_4, (a_3.sqrt_det * a_3.sqrt_det));
+    return _e5;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel);
+    ndf_roughness_matrix_RoughnessMatrix _e3 = filter_gaussian_gaussian_sanitized(a_4, _e2);
+    return _e3;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_tau_sanitized(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance k_5, float tau_2) {
+    float _e3 = ndf_roughness_matrix_determinant(a_5);
+    ndf_roughness_matrix_RoughnessMatrix _e7 = filter_gaussian_plus_kernel(a_5, k_5, ((tau_2 > 0.0) ? tau_2 : _e3));
+    return _e7;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_tau(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance kernel_1, float tau_3) {
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_1);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_with_tau_sanitized(a_6, _e3, tau_3);
+    return _e4;
+}
+
+kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m) {
+    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m.second.x - (m.mean.x * m.mean.x)), (m.second.y - (m.mean.x * m.mean.y)), (m.second.z - (m.mean.y * m.mean.y)));
+    kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
+    return _e26;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments) {
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
+    kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
+    kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_7, _e5);
+    return _e6;
+}
+
+filter_deferred_KernelConvention filter_presets_preset(uint i) {
+    switch(i) {
+        case 0u: {
+            return filter_presets_TK19_MAX;
+        }
+        case 1u: {
+            return filter_presets_TK19_TRACE;
+        }
+        case 2u: {
+            return filter_presets_TK19_AVERAGE;
+        }
+        case 3u: {
+            return filter_presets_TK21_LISTING;
+        }
+        case 4u: {
+            return filter_presets_FILAMENT;
+        }
+        case 5u: {
+            return filter_presets_UNITY_HDRP;
+        }
+        case 6u: {
+            return filter_presets_UNITY_HDRP_PROJECTED;
+        }
+        case 7u: {
+            return filter_presets_GODOT;
+        }
+        case 8u: {
+            return filter_presets_O3DE;
+        }
+        case 9u: {
+            return filter_presets_UNREAL;
+        }
+        case 10u: {
+            return filter_presets_BABYLON;
+        }
+        default: {
+            return filter_presets_THREE_JS;
+        }
+    }
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_2) {
+    float b11_ = 0.0;
+    float b12_ = 0.0;
+    float b22_ = 0.0;
+    float det_1 = 0.0;
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
+    vec2 lc = min(a_8.eig, vec2(0.99));
+    vec2 excess = (a_8.eig - lc);
+    vec2 p_5 = (lc / (vec2(1.0) - lc));
+    float c_11 = a_8.axis.x;
+    float s_14 = a_8.axis.y;
+    float p11_1 = (((p_5.x * c_11) * c_11) + ((p_5.y * s_14) * s_14));
+    float p12_1 = (((p_5.x - p_5.y) * c_11) * s_14);
+    float p22_1 = (((p_5.x * s_14) * s_14) + ((p_5.y * c_11) * c_11));
+    float k1_1 = max(((((c_11 * c_11) * _e2.s_xx) + (((2.0 * c_11) * s_14) * _e2.s_xy)) + ((s_14 * s_14) * _e2.s_yy)), 0.0);
+    float k2_1 = max(((((s_14 * s_14) * _e2.s_xx) - (((2.0 * c_11) * s_14) * _e2.s_xy)) + ((c_11 * c_11) * _e2.s_yy)), 0.0);
+    float d_1 = (((p_5.x * p_5.y) + (2.0 * ((p_5.y * k1_1) + (p_5.x * k2_1)))) + (4.0 * max(_e2.det, 0.0)));
+    float q11_ = (p11_1 + (2.0 * _e2.s_xx));
+    float q12_ = (p12_1 + (2.0 * _e2.s_xy));
+    float q22_ = (p22_1 + (2.0 * _e2.s_yy));
+    float den = (((1.0 + q11_) + q22_) + d_1);
+    b11_ = ((q11_ + d_1) / den);
+    b12_ = (q12_ / den);
+    b22_ = ((q22_ + d_1) / den);
+    det_1 = (d_1 / den);
+    if ((max(excess.x, excess.y) > 0.0)) {
+        float _e114 = b11_;
+        b11_ = (_e114 + (((excess.x * c_11) * c_11) + ((excess.y * s_14) * s_14)));
+        float _e123 = b12_;
+        b12_ = (_e123 + (((excess.x - excess.y) * c_11) * s_14));
+        float _e130 = b22_;
+        b22_ = (_e130 + (((excess.x * s_14) * s_14) + ((excess.y * c_11) * c_11)));
+        float _e139 = b11_;
+        float _e140 = b22_;
+        float _e142 = b12_;
+        float _e143 = b12_;
+        det_1 = ((_e139 * _e140) - (_e142 * _e143));
+    }
+    vec3 _e146 = ndf_roughness_matrix_entries(a_8);
+    float tau_4 = (a_8.sqrt_det * a_8.sqrt_det);
+    float _e150 = b11_;
+    float _e153 = b12_;
+    float _e154 = b22_;
+    float _e157 = det_1;
+    ndf_roughness_matrix_RoughnessMatrix _e159 = ndf_roughness_matrix_from_entries_det(max(_e150, _e146.x), _e153, max(_e154, _e146.z), max(_e157, tau_4), tau_4);
+    return _e159;
+}
+
+ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(vec2 alpha_6) {
+    float _e2 = ndf_roughness_clamp_alpha(alpha_6.x);
+    float _e4 = ndf_roughness_clamp_alpha(alpha_6.y);
+    vec2 a_15 = vec2(_e2, _e4);
+    return ndf_roughness_axis_aligned_AxisAligned(a_15, (vec2(1.0) / (a_15 * a_15)));
+}
+
+float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_7, vec2 s_1) {
+    return dot((s_1 * s_1), r_7.inv_alpha_sq);
+}
+
+float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_8, vec2 w_1) {
+    return dot((w_1 * w_1), (r_8.alpha * r_8.alpha));
+}
+
+float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_9) {
+    return (r_9.alpha.x * r_9.alpha.y);
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_10) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), r_10.alpha);
+    return _e5;
+}
+
+float filter_proxy_effective_alpha(float alpha_7, float half_extent) {
+    float h_12 = abs(half_extent);
+    float _e3 = math_hypot(alpha_7, h_12);
+    float t_2 = ((_e3 > 0.0) ? (h_12 / _e3) : 0.0);
+    float _e9 = math_atan(t_2);
+    float ratio = ((t_2 > 0.0) ? (t_2 / _e9) : 1.0);
+    return (_e3 * sqrt(ratio));
+}
+
+float filter_proxy_effective_alpha_simple(float alpha_8, float half_extent_1) {
+    float _e3 = math_hypot(alpha_8, abs(half_extent_1));
+    return _e3;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_11, vec2 half_extent_2) {
+    float _e5 = filter_proxy_effective_alpha(r_11.alpha.x, half_extent_2.x);
+    float _e9 = filter_proxy_effective_alpha(r_11.alpha.y, half_extent_2.y);
+    ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
+    return _e11;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_12, vec2 half_extent_3) {
+    float _e5 = filter_proxy_effective_alpha_simple(r_12.alpha.x, half_extent_3.x);
+    float _e9 = filter_proxy_effective_alpha_simple(r_12.alpha.y, half_extent_3.y);
+    ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
+    return _e11;
+}
+
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_13, float sigma_2) {
+    vec2 w_15 = (r_13.half_extent * (2.0 * sigma_2));
+    vec2 v_3 = (w_15 * w_15);
+    return kernel_covariance_Covariance(v_3.x, 0.0, v_3.y, (v_3.x * v_3.y));
+}
+
+footprint_Footprint footprint_from_slope_derivatives(vec2 dh_u, vec2 dh_v) {
+    return footprint_Footprint(dh_u, dh_v);
+}
+
+footprint_Footprint footprint_from_projected_derivatives(vec2 dp_u, vec2 dp_v) {
+    return footprint_Footprint(dp_u, dp_v);
+}
+
+footprint_Footprint footprint_from_projected_derivatives_in_slope(vec3 h_in, vec2 dp_u_1, vec2 dp_v_1) {
+    float big_2 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if ((big_2 <= 0.0)) {
+        return footprint_Footprint(vec2(0.0), vec2(0.0));
+    }
+    vec3 h0_ = (h_in / vec3(big_2));
+    vec3 h_13 = (h0_ / vec3(length(h0_)));
+    float hz = max(h_13.z, 1e-6);
+    float k_9 = (-1.0 / ((hz * hz) * hz));
+    mat2x2 j = mat2x2(vec2(((h_13.x * h_13.x) + (h_13.z * h_13.z)), (h_13.x * h_13.y)), vec2((h_13.x * h_13.y), ((h_13.y * h_13.y) + (h_13.z * h_13.z))));
+    return footprint_Footprint(((j * dp_u_1) * k_9), ((j * dp_v_1) * k_9));
+}
+
+footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) {
+    float lu = max(length((vec3(0.0, 0.0, 2.0) + dn_u_4)), 1e-6);
+    float lv = max(length((vec3(0.0, 0.0, 2.0) + dn_v_4)), 1e-6);
+    return footprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
+}
+
+kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3) {
+    vec2 u_1 = fp.dh_u;
+    vec2 v_4 = fp.dh_v;
+    float s2_ = (sigma_3 * sigma_3);
+    float cross_1 = (((u_1.x * v_4.y) - (u_1.y * v_4.x)) * s2_);
+    return kernel_covariance_Covariance((((u_1.x * u_1.x) + (v_4.x * v_4.x)) * s2_), (((u_1.x * u_1.y) + (v_4.x * v_4.y)) * s2_), (((u_1.y * u_1.y) + (v_4.y * v_4.y)) * s2_), (cross_1 * cross_1));
+}
+
+kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1) {
+    return kernel_rect_BoundingRect(((abs(fp_1.dh_u) + abs(fp_1.dh_v)) * 0.5));
+}
+
+float footprint_max_extent(footprint_Footprint fp_2) {
+    return (0.5 * max(length((fp_2.dh_u + fp_2.dh_v)), length((fp_2.dh_u - fp_2.dh_v))));
+}
+
+footprint_jacobian_Polar footprint_jacobian_polar(vec3 h_in_1) {
+    vec2 cs_1 = vec2(1.0, 0.0);
+    float big_3 = max(max(abs(h_in_1.x), abs(h_in_1.y)), abs(h_in_1.z));
+    if ((big_3 <= 0.0)) {
+        return footprint_jacobian_Polar(vec3(0.0, 0.0, 1.0), vec2(1.0, 0.0));
+    }
+    vec3 h0_1 = (h_in_1 / vec3(big_3));
+    vec3 h_14 = (h0_1 / vec3(length(h0_1)));
+    float qs = max(abs(h_14.x), abs(h_14.y));
+    if ((qs > 0.0)) {
+        vec2 q_6 = (h_14.xy / vec2(qs));
+        cs_1 = (q_6 / vec2(length(q_6)));
+    }
+    if ((h_14.z >= footprint_jacobian_HZ_MIN)) {
+        vec2 _e44 = cs_1;
+        return footprint_jacobian_Polar(h_14, _e44);
+    }
+    vec2 _e47 = cs_1;
+    vec2 _e51 = cs_1;
+    return footprint_jacobian_Polar(vec3((1.0 * _e47), footprint_jacobian_HZ_MIN), _e51);
+}
+
+vec3 footprint_jacobian_sanitize(vec3 h) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h);
+    return _e1.h;
+}
+
+footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(vec3 h_1) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
+    float st = length(_e1.h.xy);
+    return footprint_jacobian_SphericalBasis(vec3((_e1.h.z * _e1.cs), -(st)), vec3(-(_e1.cs.y), _e1.cs.x, 0.0));
+}
+
+vec2 footprint_jacobian_spherical_components(vec3 h_2, vec3 dh) {
+    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_2);
+    return vec2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
+}
+
+mat2x2 footprint_jacobian_sphere_to_projected(vec3 h_3) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_3);
+    return mat2x2((_e1.h.z * _e1.cs), vec2(-(_e1.cs.y), _e1.cs.x));
+}
+
+mat2x2 footprint_jacobian_projected_to_slope(vec3 h_in_2) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
+    vec3 h_15 = _e1.h;
+    float k_10 = (-1.0 / ((h_15.z * h_15.z) * h_15.z));
+    float xy = (h_15.x * h_15.y);
+    return mat2x2((vec2(((h_15.x * h_15.x) + (h_15.z * h_15.z)), xy) * k_10), (vec2(xy, ((h_15.y * h_15.y) + (h_15.z * h_15.z))) * k_10));
+}
+
+mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_3) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_3);
+    vec3 h_16 = _e1.h;
+    float xy_1 = (h_16.x * h_16.y);
+    return mat2x2((vec2(((h_16.y * h_16.y) + (h_16.z * h_16.z)), -(xy_1)) * -(h_16.z)), (vec2(-(xy_1), ((h_16.x * h_16.x) + (h_16.z * h_16.z))) * -(h_16.z)));
+}
+
+mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_4) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
+    float k_11 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return mat2x2((_e1.cs * k_11), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_11));
+}
+
+float footprint_jacobian_det_sphere_to_projected(vec3 h_5) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
+    return _e1.h.z;
+}
+
+float footprint_jacobian_det_projected_to_slope(vec3 h_6) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
+    float z_2 = _e1.h.z;
+    float z2_ = (z_2 * z_2);
+    return (1.0 / (z2_ * z2_));
+}
+
+float footprint_jacobian_det_sphere_to_slope(vec3 h_7) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
+    float z_3 = _e1.h.z;
+    return (1.0 / ((z_3 * z_3) * z_3));
+}
+
+vec2 footprint_jacobian_spherical_to_slope(vec3 h_8, vec2 e) {
+    mat2x2 _e2 = footprint_jacobian_sphere_to_slope(h_8);
+    return (_e2 * e);
+}
+
+vec2 footprint_jacobian_spherical_to_projected(vec3 h_9, vec2 e_1) {
+    mat2x2 _e2 = footprint_jacobian_sphere_to_projected(h_9);
+    return (_e2 * e_1);
+}
+
+vec2 footprint_slope_slope_from_sphere(vec3 h_10) {
+    float z_4 = max(h_10.z, math_F32_MIN_POSITIVE);
+    return clamp((-(h_10.xy) / vec2(z_4)), vec2(-3.4028235e38), vec2(3.4028235e38));
+}
+
+vec3 footprint_slope_sphere_from_slope(vec2 s_2) {
+    float k_12 = max(max(abs(s_2.x), abs(s_2.y)), 1.0);
+    vec3 v_5 = vec3((-(s_2) / vec2(k_12)), (1.0 / k_12));
+    return (v_5 / vec3(length(v_5)));
+}
+
+vec2 footprint_slope_projected_from_sphere(vec3 h_11) {
+    return h_11.xy;
+}
+
+vec3 footprint_slope_sphere_from_projected(vec2 p) {
+    float r2_ = dot(p, p);
+    if ((r2_ < 1.0)) {
+        return vec3(p, sqrt((1.0 - r2_)));
+    }
+    vec2 q_7 = (p / vec2(max(max(abs(p.x), abs(p.y)), math_F32_MIN_POSITIVE)));
+    return vec3((q_7 / vec2(length(q_7))), 0.0);
+}
+
+vec2 footprint_slope_slope_from_projected(vec2 p_1) {
+    vec3 _e1 = footprint_slope_sphere_from_projected(p_1);
+    vec2 _e2 = footprint_slope_slope_from_sphere(_e1);
+    return _e2;
+}
+
+vec2 footprint_slope_projected_from_slope(vec2 s_3) {
+    vec3 _e1 = footprint_slope_sphere_from_slope(s_3);
+    vec2 _e2 = footprint_slope_projected_from_sphere(_e1);
+    return _e2;
+}
+
+footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3) {
+    float l_2 = max(rules.max_extent, 0.0);
+    float scale_1 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
+    if ((scale_1 <= 0.0)) {
+        return fp_3;
+    }
+    footprint_Footprint unit = footprint_Footprint((fp_3.dh_u / vec2(scale_1)), (fp_3.dh_v / vec2(scale_1)));
+    float _e29 = footprint_max_extent(unit);
+    if (((_e29 * scale_1) <= l_2)) {
+        return fp_3;
+    }
+    return footprint_Footprint(((unit.dh_u / vec2(_e29)) * l_2), ((unit.dh_v / vec2(_e29)) * l_2));
+}
+
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_14, vec2 alpha_9) {
+    vec2 f = vec2(0.0);
+    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
+        f = vec2(rules_1.floor_);
+    } else {
+        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
+            f = min(abs(alpha_9), vec2(rules_1.floor_));
+        }
+    }
+    float lambda = max(rules_1.max_extent, 0.0);
+    vec2 h_17 = min(abs(r_14.half_extent), vec2(lambda));
+    vec2 _e25 = f;
+    return kernel_rect_BoundingRect(max(h_17, max(_e25, vec2(0.0))));
+}
+
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_6) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_6);
+    if ((rules_2.kappa >= math_F32_MAX)) {
+        return _e2;
+    }
+    kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
+    return _e11;
+}
+
+float kernel_clamp_tau(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_9) {
+    return (rules_3.det_clamp ? (a_9.sqrt_det * a_9.sqrt_det) : 0.0);
+}
+
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_4, ndf_roughness_matrix_RoughnessMatrix a_10, footprint_Footprint fp_4, float sigma_4) {
+    footprint_Footprint _e4 = kernel_clamp_footprint(rules_4, fp_4);
+    kernel_covariance_Covariance _e5 = footprint_covariance(_e4, sigma_4);
+    kernel_covariance_Covariance _e6 = kernel_clamp_kernel(rules_4, _e5);
+    if (rules_4.det_clamp) {
+        ndf_roughness_matrix_RoughnessMatrix _e8 = filter_gaussian_gaussian_sanitized(a_10, _e6);
+        return _e8;
+    }
+    ndf_roughness_matrix_RoughnessMatrix _e10 = filter_gaussian_gaussian_with_tau_sanitized(a_10, _e6, 0.0);
+    return _e10;
+}
+
+float ndf_g1_of(float lambda_w, float w_dot_m) {
+    return ((w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0);
+}
+
+float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m) {
+    bool local_3 = false;
+    if ((i_dot_m > 0.0)) {
+        local_3 = (o_dot_m > 0.0);
+    } else {
+        local_3 = false;
+    }
+    bool _e16 = local_3;
+    return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
+}
+
+ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_10) {
+    float _e1 = ndf_roughness_clamp_alpha(alpha_10);
+    return ndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
+}
+
+float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_15, vec2 s_4) {
+    return (dot(s_4, s_4) * r_15.inv_alpha_sq);
+}
+
+float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_16, vec2 w_2) {
+    return (dot(w_2, w_2) * (r_16.alpha * r_16.alpha));
+}
+
+float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_17) {
+    return (r_17.alpha * r_17.alpha);
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_18) {
+    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), vec2(r_18.alpha));
+    return _e6;
+}
+
+float ndf_beckmann_exp_neg_times(float x_2, float k_7, float ln_k) {
+    return ((x_2 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_2)) : (exp(-(x_2)) * k_7));
 }
 
 float ndf_beckmann_p22_of(float q, float sqrt_det) {
-    float den = (math_PI * sqrt_det);
-    float _e8 = ndf_beckmann_exp_neg_times(q, (1.0 / den), -(log(den)));
+    float den_1 = (math_PI * sqrt_det);
+    float _e8 = ndf_beckmann_exp_neg_times(q, (1.0 / den_1), -(log(den_1)));
     return _e8;
 }
 
 float ndf_beckmann_d_of(float q_xy, float m_z, float sqrt_det_1) {
-    bool local_1 = false;
-    float z2_ = (m_z * m_z);
-    float x_3 = (q_xy / z2_);
-    float k_2 = (1.0 / (((math_PI * sqrt_det_1) * z2_) * z2_));
+    bool local_4 = false;
+    float z2_1 = (m_z * m_z);
+    float x_4 = (q_xy / z2_1);
+    float k_13 = (1.0 / (((math_PI * sqrt_det_1) * z2_1) * z2_1));
     float ln_k_1 = -((log((math_PI * sqrt_det_1)) + (4.0 * log(max(m_z, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_3, k_2, ln_k_1);
+    float _e21 = ndf_beckmann_exp_neg_times(x_4, k_13, ln_k_1);
     if ((m_z > 0.0)) {
-        local_1 = (_e21 <= math_F32_MAX);
+        local_4 = (_e21 <= math_F32_MAX);
     } else {
-        local_1 = false;
+        local_4 = false;
     }
-    bool _e29 = local_1;
+    bool _e29 = local_4;
     return (_e29 ? _e21 : 0.0);
 }
 
 float ndf_beckmann_lambda_of(float q_1, float abs_wz) {
-    float p = -3.849172e-5;
+    float p_2 = -3.849172e-5;
     if ((q_1 <= 0.0)) {
         return 0.0;
     }
     if ((abs_wz <= 0.0)) {
         return math_F32_MAX;
     }
-    float a_3 = (abs_wz / sqrt(q_1));
-    if ((a_3 > 9.5)) {
+    float a_16 = (abs_wz / sqrt(q_1));
+    if ((a_16 > 9.5)) {
         return 0.0;
     }
-    float t_1 = ((a_3 - 3.0) / (a_3 + 3.0));
-    float _e20 = p;
-    p = ((_e20 * t_1) + 0.00028491428);
-    float _e24 = p;
-    p = ((_e24 * t_1) + 1.8268152e-5);
-    float _e28 = p;
-    p = ((_e28 * t_1) - 0.0018242653);
-    float _e32 = p;
-    p = ((_e32 * t_1) + 0.0013654069);
-    float _e36 = p;
-    p = ((_e36 * t_1) + 0.0055811945);
-    float _e40 = p;
-    p = ((_e40 * t_1) - 0.009357543);
-    float _e44 = p;
-    p = ((_e44 * t_1) - 0.0076571554);
-    float _e48 = p;
-    p = ((_e48 * t_1) + 0.036274612);
-    float _e52 = p;
-    p = ((_e52 * t_1) - 0.023293633);
-    float _e56 = p;
-    p = ((_e56 * t_1) - 0.07646358);
-    float _e60 = p;
-    p = ((_e60 * t_1) + 0.2117349);
-    float _e64 = p;
-    p = ((_e64 * t_1) - 0.23284179);
-    float _e68 = p;
-    p = ((_e68 * t_1) + 0.03307925);
-    float _e72 = p;
-    p = ((_e72 * t_1) + 1.0631379);
-    float _e76 = p;
-    float k_3 = (_e76 / ((2.0 * a_3) + 1.0));
-    return min(((exp((-(a_3) * a_3)) * k_3) / ((3.5449078 * a_3) * (a_3 + k_3))), math_F32_MAX);
+    float t_3 = ((a_16 - 3.0) / (a_16 + 3.0));
+    float _e20 = p_2;
+    p_2 = ((_e20 * t_3) + 0.00028491428);
+    float _e24 = p_2;
+    p_2 = ((_e24 * t_3) + 1.8268152e-5);
+    float _e28 = p_2;
+    p_2 = ((_e28 * t_3) - 0.0018242653);
+    float _e32 = p_2;
+    p_2 = ((_e32 * t_3) + 0.0013654069);
+    float _e36 = p_2;
+    p_2 = ((_e36 * t_3) + 0.0055811945);
+    float _e40 = p_2;
+    p_2 = ((_e40 * t_3) - 0.009357543);
+    float _e44 = p_2;
+    p_2 = ((_e44 * t_3) - 0.0076571554);
+    float _e48 = p_2;
+    p_2 = ((_e48 * t_3) + 0.036274612);
+    float _e52 = p_2;
+    p_2 = ((_e52 * t_3) - 0.023293633);
+    float _e56 = p_2;
+    p_2 = ((_e56 * t_3) - 0.07646358);
+    float _e60 = p_2;
+    p_2 = ((_e60 * t_3) + 0.2117349);
+    float _e64 = p_2;
+    p_2 = ((_e64 * t_3) - 0.23284179);
+    float _e68 = p_2;
+    p_2 = ((_e68 * t_3) + 0.03307925);
+    float _e72 = p_2;
+    p_2 = ((_e72 * t_3) + 1.0631379);
+    float _e76 = p_2;
+    float k_14 = (_e76 / ((2.0 * a_16) + 1.0));
+    return min(((exp((-(a_16) * a_16)) * k_14) / ((3.5449078 * a_16) * (a_16 + k_14))), math_F32_MAX);
 }
 
-float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_13, vec2 s_3) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_13, s_3);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_13);
+float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_19, vec2 s_5) {
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_19, s_5);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_19);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_14, vec3 m) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_14, m.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_14);
-    float _e6 = ndf_beckmann_d_of(_e3, m.z, _e5);
+float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_20, vec3 m_1) {
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_20, m_1.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_20);
+    float _e6 = ndf_beckmann_d_of(_e3, m_1.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_15, vec3 w_3) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_15, w_3.xy);
+float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_21, vec3 w_3) {
+    float _e3 = ndf_roughness_isotropic_quadratic(r_21, w_3.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_3.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_16, vec3 w_4, vec3 m_1) {
-    float _e3 = ndf_beckmann_lambda_isotropic(r_16, w_4);
-    float _e5 = ndf_g1_of(_e3, dot(w_4, m_1));
+float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_22, vec3 w_4, vec3 m_2) {
+    float _e3 = ndf_beckmann_lambda_isotropic(r_22, w_4);
+    float _e5 = ndf_g1_of(_e3, dot(w_4, m_2));
     return _e5;
 }
 
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_17, vec3 i, vec3 o, vec3 m_2) {
-    float _e4 = ndf_beckmann_lambda_isotropic(r_17, i);
-    float _e5 = ndf_beckmann_lambda_isotropic(r_17, o);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_2), dot(o, m_2));
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_23, vec3 i_1, vec3 o, vec3 m_3) {
+    float _e4 = ndf_beckmann_lambda_isotropic(r_23, i_1);
+    float _e5 = ndf_beckmann_lambda_isotropic(r_23, o);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_3), dot(o, m_3));
     return _e8;
 }
 
-float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_18, vec2 s_4) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_18, s_4);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_18);
+float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_24, vec2 s_6) {
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_24, s_6);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_24);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_19, vec3 m_3) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_19, m_3.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_19);
-    float _e6 = ndf_beckmann_d_of(_e3, m_3.z, _e5);
+float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, vec3 m_4) {
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_25, m_4.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_25);
+    float _e6 = ndf_beckmann_d_of(_e3, m_4.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_20, vec3 w_5) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_20, w_5.xy);
+float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, vec3 w_5) {
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_26, w_5.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_5.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_21, vec3 w_6, vec3 m_4) {
-    float _e3 = ndf_beckmann_lambda_axis_aligned(r_21, w_6);
-    float _e5 = ndf_g1_of(_e3, dot(w_6, m_4));
+float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, vec3 w_6, vec3 m_5) {
+    float _e3 = ndf_beckmann_lambda_axis_aligned(r_27, w_6);
+    float _e5 = ndf_g1_of(_e3, dot(w_6, m_5));
     return _e5;
 }
 
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_22, vec3 i_1, vec3 o_1, vec3 m_5) {
-    float _e4 = ndf_beckmann_lambda_axis_aligned(r_22, i_1);
-    float _e5 = ndf_beckmann_lambda_axis_aligned(r_22, o_1);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_5), dot(o_1, m_5));
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, vec3 i_2, vec3 o_1, vec3 m_6) {
+    float _e4 = ndf_beckmann_lambda_axis_aligned(r_28, i_2);
+    float _e5 = ndf_beckmann_lambda_axis_aligned(r_28, o_1);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_6), dot(o_1, m_6));
     return _e8;
 }
 
-float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_23, vec2 s_5) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_23, s_5);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_23);
+float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_29, vec2 s_7) {
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_29, s_7);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_29);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_24, vec3 m_6) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_24, m_6.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_24);
-    float _e6 = ndf_beckmann_d_of(_e3, m_6.z, _e5);
+float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, vec3 m_7) {
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_30, m_7.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_30);
+    float _e6 = ndf_beckmann_d_of(_e3, m_7.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_25, vec3 w_7) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_25, w_7.xy);
+float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, vec3 w_7) {
+    float _e3 = ndf_roughness_matrix_quadratic(r_31, w_7.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_7.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_26, vec3 w_8, vec3 m_7) {
-    float _e3 = ndf_beckmann_lambda_matrix(r_26, w_8);
-    float _e5 = ndf_g1_of(_e3, dot(w_8, m_7));
+float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, vec3 w_8, vec3 m_8) {
+    float _e3 = ndf_beckmann_lambda_matrix(r_32, w_8);
+    float _e5 = ndf_g1_of(_e3, dot(w_8, m_8));
     return _e5;
 }
 
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_27, vec3 i_2, vec3 o_2, vec3 m_8) {
-    float _e4 = ndf_beckmann_lambda_matrix(r_27, i_2);
-    float _e5 = ndf_beckmann_lambda_matrix(r_27, o_2);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_8), dot(o_2, m_8));
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, vec3 i_3, vec3 o_2, vec3 m_9) {
+    float _e4 = ndf_beckmann_lambda_matrix(r_33, i_3);
+    float _e5 = ndf_beckmann_lambda_matrix(r_33, o_2);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_9), dot(o_2, m_9));
     return _e8;
 }
 
 float ndf_ggx_p22_of(float q_2, float sqrt_det_2) {
-    float t_2 = (1.0 + q_2);
-    return (1.0 / (((math_PI * sqrt_det_2) * t_2) * t_2));
+    float t_4 = (1.0 + q_2);
+    return (1.0 / (((math_PI * sqrt_det_2) * t_4) * t_4));
 }
 
 float ndf_ggx_d_of(float q_xy_1, float m_z_1, float sqrt_det_3) {
-    bool local_2 = false;
-    float t_3 = (q_xy_1 + (m_z_1 * m_z_1));
-    float v_2 = (1.0 / (((math_PI * sqrt_det_3) * t_3) * t_3));
+    bool local_5 = false;
+    float t_5 = (q_xy_1 + (m_z_1 * m_z_1));
+    float v_6 = (1.0 / (((math_PI * sqrt_det_3) * t_5) * t_5));
     if ((m_z_1 > 0.0)) {
-        local_2 = (v_2 <= math_F32_MAX);
+        local_5 = (v_6 <= math_F32_MAX);
     } else {
-        local_2 = false;
+        local_5 = false;
     }
-    bool _e18 = local_2;
-    return (_e18 ? v_2 : 0.0);
+    bool _e18 = local_5;
+    return (_e18 ? v_6 : 0.0);
 }
 
 float ndf_ggx_lambda_of(float q_3, float abs_wz_1) {
@@ -408,106 +1102,106 @@ float ndf_ggx_lambda_of(float q_3, float abs_wz_1) {
     if ((abs_wz_1 <= 0.0)) {
         return math_F32_MAX;
     }
-    float r_44 = sqrt(((abs_wz_1 * abs_wz_1) + q_3));
-    return (q_3 / ((2.0 * abs_wz_1) * (r_44 + abs_wz_1)));
+    float r_51 = sqrt(((abs_wz_1 * abs_wz_1) + q_3));
+    return (q_3 / ((2.0 * abs_wz_1) * (r_51 + abs_wz_1)));
 }
 
-float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_28, vec2 s_6) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_28, s_6);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_28);
+float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_34, vec2 s_8) {
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_34, s_8);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_34);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_29, vec3 m_9) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_29, m_9.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_29);
-    float _e6 = ndf_ggx_d_of(_e3, m_9.z, _e5);
+float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_35, vec3 m_10) {
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_35, m_10.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_35);
+    float _e6 = ndf_ggx_d_of(_e3, m_10.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_30, vec3 w_9) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_30, w_9.xy);
+float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_36, vec3 w_9) {
+    float _e3 = ndf_roughness_isotropic_quadratic(r_36, w_9.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, abs(w_9.z));
     return _e6;
 }
 
-float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_31, vec3 w_10, vec3 m_10) {
-    float _e3 = ndf_ggx_lambda_isotropic(r_31, w_10);
-    float _e5 = ndf_g1_of(_e3, dot(w_10, m_10));
+float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_37, vec3 w_10, vec3 m_11) {
+    float _e3 = ndf_ggx_lambda_isotropic(r_37, w_10);
+    float _e5 = ndf_g1_of(_e3, dot(w_10, m_11));
     return _e5;
 }
 
-float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_32, vec3 i_3, vec3 o_3, vec3 m_11) {
-    float _e4 = ndf_ggx_lambda_isotropic(r_32, i_3);
-    float _e5 = ndf_ggx_lambda_isotropic(r_32, o_3);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_11), dot(o_3, m_11));
+float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_38, vec3 i_4, vec3 o_3, vec3 m_12) {
+    float _e4 = ndf_ggx_lambda_isotropic(r_38, i_4);
+    float _e5 = ndf_ggx_lambda_isotropic(r_38, o_3);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_12), dot(o_3, m_12));
     return _e8;
 }
 
-float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_33, vec2 s_7) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_33, s_7);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_33);
+float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_39, vec2 s_9) {
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_39, s_9);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_39);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_34, vec3 m_12) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_34, m_12.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_34);
-    float _e6 = ndf_ggx_d_of(_e3, m_12.z, _e5);
+float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_40, vec3 m_13) {
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_40, m_13.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_40);
+    float _e6 = ndf_ggx_d_of(_e3, m_13.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_35, vec3 w_11) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_35, w_11.xy);
+float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_41, vec3 w_11) {
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_41, w_11.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, abs(w_11.z));
     return _e6;
 }
 
-float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_36, vec3 w_12, vec3 m_13) {
-    float _e3 = ndf_ggx_lambda_axis_aligned(r_36, w_12);
-    float _e5 = ndf_g1_of(_e3, dot(w_12, m_13));
+float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, vec3 w_12, vec3 m_14) {
+    float _e3 = ndf_ggx_lambda_axis_aligned(r_42, w_12);
+    float _e5 = ndf_g1_of(_e3, dot(w_12, m_14));
     return _e5;
 }
 
-float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_37, vec3 i_4, vec3 o_4, vec3 m_14) {
-    float _e4 = ndf_ggx_lambda_axis_aligned(r_37, i_4);
-    float _e5 = ndf_ggx_lambda_axis_aligned(r_37, o_4);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_14), dot(o_4, m_14));
+float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, vec3 i_5, vec3 o_4, vec3 m_15) {
+    float _e4 = ndf_ggx_lambda_axis_aligned(r_43, i_5);
+    float _e5 = ndf_ggx_lambda_axis_aligned(r_43, o_4);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_15), dot(o_4, m_15));
     return _e8;
 }
 
-float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_38, vec2 s_8) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_38, s_8);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_38);
+float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_44, vec2 s_10) {
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_44, s_10);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_44);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_39, vec3 m_15) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_39, m_15.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_39);
-    float _e6 = ndf_ggx_d_of(_e3, m_15.z, _e5);
+float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_45, vec3 m_16) {
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_45, m_16.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_45);
+    float _e6 = ndf_ggx_d_of(_e3, m_16.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_40, vec3 w_13) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_40, w_13.xy);
+float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_46, vec3 w_13) {
+    float _e3 = ndf_roughness_matrix_quadratic(r_46, w_13.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, abs(w_13.z));
     return _e6;
 }
 
-float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_41, vec3 w_14, vec3 m_16) {
-    float _e3 = ndf_ggx_lambda_matrix(r_41, w_14);
-    float _e5 = ndf_g1_of(_e3, dot(w_14, m_16));
+float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, vec3 w_14, vec3 m_17) {
+    float _e3 = ndf_ggx_lambda_matrix(r_47, w_14);
+    float _e5 = ndf_g1_of(_e3, dot(w_14, m_17));
     return _e5;
 }
 
-float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_42, vec3 i_5, vec3 o_5, vec3 m_17) {
-    float _e4 = ndf_ggx_lambda_matrix(r_42, i_5);
-    float _e5 = ndf_ggx_lambda_matrix(r_42, o_5);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_17), dot(o_5, m_17));
+float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, vec3 i_6, vec3 o_5, vec3 m_18) {
+    float _e4 = ndf_ggx_lambda_matrix(r_48, i_6);
+    float _e5 = ndf_ggx_lambda_matrix(r_48, o_5);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_18), dot(o_5, m_18));
     return _e8;
 }
 

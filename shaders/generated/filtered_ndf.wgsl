@@ -101,35 +101,6 @@ fn math_hypot(x: f32, y: f32) -> f32 {
     return m * sqrt(a * a + b * b);
 }
 
-// ---- filtered_ndf::ndf (shaders/ndf/mod.wgsl) ----
-// What every NDF shares (`src/.../ndf/mod.rs`, the `Ndf` trait): the Smith terms derived
-// from `Lambda` once. Conventions (all NDFs, all roughness forms): tangent frame with `z` the
-// shading normal; slope of a micronormal `s = -m_xy / m_z` (TK19 supplement eq. 5);
-// `p22(s)` per unit slope area, integrating to 1 over the plane; `d(m) = p22(s(m)) / m_z^4`
-// per steradian with `integral d(m) m_z dm = 1` (KHPL16 eq. 2).
-//
-// WGSL has no generics: the NDF modules (`ggx`, `beckmann`) take the numbers a roughness
-// form reduces to (`inv_quadratic`, `quadratic`, `sqrt_det` of the `roughness` modules) and
-// add one entry point per form (`d_isotropic`, `d_axis_aligned`, `d_matrix`, ...). The
-// form-independent cores carry the suffix `_of` (`p22_of`, `d_of`, `lambda_of`, `g1_of`,
-// `g2_of`): naga renames any identifier that ends in a digit when it writes a module back
-// out, which naga_oil refuses for composable modules, so `p22`, `g1`, `g2` cannot be names
-// of their own.
-
-/// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` from `Lambda(w)` and `w.m` (TK19
-/// supplement section 1). In `[0, 1]`; `0` for `w.m <= 0`. (A grazing `w` has
-/// `Lambda = F32_MAX` in the shaders, so `G1` is `0` up to rounding.)
-fn ndf_g1_of(lambda_w: f32, w_dot_m: f32) -> f32 {
-    return select(0.0, 1.0 / (1.0 + lambda_w), w_dot_m > 0.0);
-}
-
-/// Height-correlated masking-shadowing
-/// `G2(i, o, m) = chi+(i.m) chi+(o.m) / (1 + Lambda(i) + Lambda(o))` (TK19 supplement
-/// section 1; Heitz 2014 eq. 99) from both `Lambda`s and both dot products. In `[0, 1]`.
-fn ndf_g2_of(lambda_i: f32, lambda_o: f32, i_dot_m: f32, o_dot_m: f32) -> f32 {
-    return select(0.0, 1.0 / (1.0 + lambda_i + lambda_o), i_dot_m > 0.0 && o_dot_m > 0.0);
-}
-
 // ---- filtered_ndf::ndf::roughness (shaders/ndf/roughness/mod.wgsl) ----
 // The roughness forms (`src/.../roughness/`): a roughness is the matrix `A` of TK19
 // supplement section 1 (Heitz 2014 section 5.4). Both NDFs depend on a slope `s` only through
@@ -149,69 +120,327 @@ fn ndf_roughness_clamp_alpha(alpha: f32) -> f32 {
     return select(ndf_roughness_ALPHA_MIN, min(alpha, ndf_roughness_ALPHA_MAX), alpha >= ndf_roughness_ALPHA_MIN);
 }
 
-// ---- filtered_ndf::ndf::roughness::isotropic (shaders/ndf/roughness/isotropic.wgsl) ----
-/// Isotropic roughness `alpha`: `A = alpha^2 I`.
-struct ndf_roughness_isotropic_Isotropic {
-    /// The roughness `alpha`.
-    alpha: f32,
-    /// `1 / alpha^2`.
-    inv_alpha_sq: f32,
+// ---- filtered_ndf::kernel::covariance (shaders/kernel/covariance.wgsl) ----
+// A symmetric positive semi-definite slope-domain covariance (KHPL16 section 4.3, TK19
+// section 2.2), mirroring `Covariance` of `src/.../kernel/covariance.rs`.
+
+/// The largest kernel eigenvalue kept by [`sanitized`]: `ALPHA_MAX^2` (slope^2).
+const kernel_covariance_KERNEL_MAX: f32 = 1e8;
+
+/// `[[s_xx, s_xy], [s_xy, s_yy]]` (slope^2) and its determinant.
+///
+/// **`det`, a field the Rust type does not have.** In f32, `s_xx s_yy - s_xy^2` cancels for
+/// the elongated kernels of grazing footprints (the Rust crate forms it in f64), and the
+/// filters need it: `det(A + 2 Sigma)` decides the filtered lobe's minor axis. So the
+/// determinant is computed once, where it is accurate, and carried: from footprint vectors
+/// as `sigma^4 (dh_u x dh_v)^2`, from a clamp as the product of the new eigenvalues, from a
+/// sum as `det a + det b + (a_xx b_yy + a_yy b_xx - 2 a_xy b_xy)`. Build covariances with the
+/// functions of this module (or `footprint::covariance`), not the struct constructor.
+struct kernel_covariance_Covariance {
+    /// Variance along the tangent `x`.
+    s_xx: f32,
+    /// Covariance of `x` and `y`.
+    s_xy: f32,
+    /// Variance along the bitangent `y`.
+    s_yy: f32,
+    /// `s_xx s_yy - s_xy^2`, computed accurately where the covariance was made.
+    det: f32,
 }
 
-/// The isotropic roughness `alpha`, clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust
-/// `Isotropic::new_clamped`).
-fn ndf_roughness_isotropic_from_alpha(alpha: f32) -> ndf_roughness_isotropic_Isotropic {
-    let a = ndf_roughness_clamp_alpha(alpha);
-    return ndf_roughness_isotropic_Isotropic(a, 1.0 / (a * a));
+/// The zero kernel (no filtering).
+fn kernel_covariance_zero() -> kernel_covariance_Covariance {
+    return kernel_covariance_Covariance(0.0, 0.0, 0.0, 0.0);
 }
 
-/// `s^T A^-1 s = |s|^2 / alpha^2` (dimensionless). Within 4 ulp.
-fn ndf_roughness_isotropic_inv_quadratic(r: ndf_roughness_isotropic_Isotropic, s: vec2<f32>) -> f32 {
-    return dot(s, s) * r.inv_alpha_sq;
+/// From the three entries, with `det = s_xx s_yy - s_xy^2` formed in f32 (within
+/// `eps (s_xx s_yy + s_xy^2)` absolute).
+fn kernel_covariance_from_entries(s_xx: f32, s_xy: f32, s_yy: f32) -> kernel_covariance_Covariance {
+    return kernel_covariance_Covariance(s_xx, s_xy, s_yy, s_xx * s_yy - s_xy * s_xy);
 }
 
-/// `w^T A w = alpha^2 |w|^2` for a tangent-plane `w` (Smith's projected roughness). Within
-/// 3 ulp.
-fn ndf_roughness_isotropic_quadratic(r: ndf_roughness_isotropic_Isotropic, w: vec2<f32>) -> f32 {
-    return dot(w, w) * (r.alpha * r.alpha);
+/// `tr(Sigma) = lambda_min + lambda_max` (TK19 eq. 2).
+fn kernel_covariance_trace(c: kernel_covariance_Covariance) -> f32 {
+    return c.s_xx + c.s_yy;
 }
 
-/// `sqrt(det A) = alpha^2`. Within 1 ulp.
-fn ndf_roughness_isotropic_sqrt_det(r: ndf_roughness_isotropic_Isotropic) -> f32 {
-    return r.alpha * r.alpha;
+/// `Sigma k` (determinant `det k^2`).
+fn kernel_covariance_scaled(c: kernel_covariance_Covariance, k: f32) -> kernel_covariance_Covariance {
+    return kernel_covariance_Covariance(c.s_xx * k, c.s_xy * k, c.s_yy * k, c.det * k * k);
 }
 
-// ---- filtered_ndf::ndf::roughness::axis_aligned (shaders/ndf/roughness/axis_aligned.wgsl) ----
-/// Axis-aligned anisotropic roughness `(alpha_x, alpha_y)` along the tangent and bitangent:
-/// `A = diag(alpha_x^2, alpha_y^2)`.
-struct ndf_roughness_axis_aligned_AxisAligned {
-    /// `(alpha_x, alpha_y)`.
-    alpha: vec2<f32>,
-    /// `(1 / alpha_x^2, 1 / alpha_y^2)`.
-    inv_alpha_sq: vec2<f32>,
+/// `a + b`: independent kernels add (KHPL16 eq. 15, 21);
+/// `det(a + b) = det a + det b + (a_xx b_yy + a_yy b_xx - 2 a_xy b_xy)`.
+fn kernel_covariance_add(a: kernel_covariance_Covariance, b: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
+    let cross = a.s_xx * b.s_yy + a.s_yy * b.s_xx - 2.0 * a.s_xy * b.s_xy;
+    return kernel_covariance_Covariance(a.s_xx + b.s_xx, a.s_xy + b.s_xy, a.s_yy + b.s_yy, a.det + b.det + cross);
 }
 
-/// `(alpha_x, alpha_y)`, each clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust
-/// `AxisAligned::new_clamped`).
-fn ndf_roughness_axis_aligned_from_alpha(alpha: vec2<f32>) -> ndf_roughness_axis_aligned_AxisAligned {
-    let a = vec2<f32>(ndf_roughness_clamp_alpha(alpha.x), ndf_roughness_clamp_alpha(alpha.y));
-    return ndf_roughness_axis_aligned_AxisAligned(a, 1.0 / (a * a));
+/// Eigenvalues `(lambda_min, lambda_max)`: `lambda_max = mean + hypot(half difference,
+/// s_xy)` (no cancellation), `lambda_min = det / lambda_max` (as accurate as `det`); both
+/// `>= 0`.
+fn kernel_covariance_eigenvalues(c: kernel_covariance_Covariance) -> vec2<f32> {
+    let mean = 0.5 * (c.s_xx + c.s_yy);
+    let lmax = max(mean + math_hypot(0.5 * (c.s_xx - c.s_yy), c.s_xy), 0.0);
+    let lmin = select(0.0, max(c.det / lmax, 0.0), lmax > 0.0);
+    return vec2<f32>(lmin, lmax);
 }
 
-/// `s^T A^-1 s = s_x^2 / alpha_x^2 + s_y^2 / alpha_y^2`. Within 5 ulp (a sum of two
-/// non-negative terms).
-fn ndf_roughness_axis_aligned_inv_quadratic(r: ndf_roughness_axis_aligned_AxisAligned, s: vec2<f32>) -> f32 {
-    return dot(s * s, r.inv_alpha_sq);
+/// Both eigenvalues clamped to `<= max_eig` without rotating the eigenvectors,
+/// `Sigma' = V min(Lambda, max) V^T`: the matrix form of TK19 eq. 1's `min(2 lambda, kappa)`.
+/// As in Rust: `max P_max + lambda_min P_min` with the spectral projectors (no eigenvector
+/// formed, every term non-negative) when only `lambda_max` exceeds the bound, `max I` when
+/// both do; the matrix is scaled to unit size first. A negative `max_eig` gives [`zero`].
+fn kernel_covariance_clamp_eigenvalues(c: kernel_covariance_Covariance, max_eig: f32) -> kernel_covariance_Covariance {
+    if !(max_eig >= 0.0) {
+        return kernel_covariance_zero();
+    }
+    let scale = max(max(abs(c.s_xx), abs(c.s_yy)), abs(c.s_xy));
+    if scale <= 0.0 {
+        return c;
+    }
+    let a = c.s_xx / scale;
+    let b = c.s_xy / scale;
+    let e = c.s_yy / scale;
+    let d = 0.5 * (a - e);
+    let r = sqrt(d * d + b * b);
+    let lmax = (0.5 * (a + e) + r) * scale;
+    if lmax <= max_eig {
+        return c;
+    }
+    let lmin = max(c.det / lmax, 0.0);
+    if lmin >= max_eig || r < 1e-18 {
+        return kernel_covariance_Covariance(max_eig, 0.0, max_eig, max_eig * max_eig);
+    }
+    let p = r + abs(d);
+    let q = select(0.0, b * b / p, p > 0.0);
+    let ee = select(vec2<f32>(q, p), vec2<f32>(p, q), d >= 0.0);
+    let inv = 1.0 / (2.0 * r);
+    let p11 = ee.x * inv;
+    let p12 = b * inv;
+    let p22 = ee.y * inv;
+    return kernel_covariance_Covariance(
+        max_eig * p11 + lmin * p22,
+        (max_eig - lmin) * p12,
+        max_eig * p22 + lmin * p11,
+        max_eig * lmin,
+    );
 }
 
-/// `w^T A w = alpha_x^2 w_x^2 + alpha_y^2 w_y^2`. Within 4 ulp.
-fn ndf_roughness_axis_aligned_quadratic(r: ndf_roughness_axis_aligned_AxisAligned, w: vec2<f32>) -> f32 {
-    return dot(w * w, r.alpha * r.alpha);
+/// A finite, positive semi-definite covariance with eigenvalues at most `KERNEL_MAX`:
+/// negative variances raised to 0, `|s_xy|` lowered to `sqrt(s_xx s_yy)` (the nearest PSD
+/// matrix with the same diagonal; the determinant is then recomputed), a negative
+/// determinant raised to 0, an infinite entry (where the driver keeps infinities) the widest
+/// kernel `KERNEL_MAX I`, then [`clamp_eigenvalues`] with `KERNEL_MAX`. (The Rust version
+/// also maps NaN to [`zero`]; WGSL lets a driver assume NaN never occurs.)
+fn kernel_covariance_sanitized(c: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
+    let big = max(max(abs(c.s_xx), abs(c.s_yy)), abs(c.s_xy));
+    if big > math_F32_MAX {
+        return kernel_covariance_Covariance(kernel_covariance_KERNEL_MAX, 0.0, kernel_covariance_KERNEL_MAX, kernel_covariance_KERNEL_MAX * kernel_covariance_KERNEL_MAX);
+    }
+    let s_xx = max(c.s_xx, 0.0);
+    let s_yy = max(c.s_yy, 0.0);
+    let bound = sqrt(s_xx) * sqrt(s_yy);
+    let s_xy = clamp(c.s_xy, -bound, bound);
+    let changed = s_xx != c.s_xx || s_yy != c.s_yy || s_xy != c.s_xy;
+    let det = max(select(c.det, s_xx * s_yy - s_xy * s_xy, changed), 0.0);
+    return kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance(s_xx, s_xy, s_yy, det), kernel_covariance_KERNEL_MAX);
 }
 
-/// `sqrt(det A) = alpha_x alpha_y`. Within 1 ulp.
-fn ndf_roughness_axis_aligned_sqrt_det(r: ndf_roughness_axis_aligned_AxisAligned) -> f32 {
-    return r.alpha.x * r.alpha.y;
+// ---- filtered_ndf::filter::deferred (shaders/filter/deferred.wgsl) ----
+// Isotropic "deferred" roughness filtering: one scalar roughness widened by the spread of
+// the shading normal across a pixel (TK19 section 4; KHPL16 section 5.4), mirroring
+// `src/.../filter/deferred.rs`. The published engine conventions are values of
+// [`KernelConvention`] in `filter::presets`.
+
+/// TK19's clamp `kappa` on the kernel's squared roughness (TK19 eq. 1), slope^2.
+const filter_deferred_KAPPA: f32 = 0.18;
+/// TK19's pixel-filter variance `sigma^2 = 0.25` (pixels^2).
+const filter_deferred_SIGMA_SQ: f32 = 0.25;
+
+/// `v = alpha^2` (TK19, Filament, Unity HDRP, O3DE).
+const filter_deferred_DOMAIN_ALPHA_SQ: u32 = 0u;
+/// `v = alpha` (Godot 4, whose "roughness squared" is `alpha`).
+const filter_deferred_DOMAIN_ALPHA: u32 = 1u;
+/// `v = sqrt(alpha)`, the perceptual roughness (Unreal, three.js, Babylon.js).
+const filter_deferred_DOMAIN_PERCEPTUAL: u32 = 2u;
+/// `v = alpha^2 / (1 - alpha^2)`, TK21's projected-space squared roughness (Unity HDRP
+/// `ProjectedSpaceNormalFiltering`); `alpha >= 1` maps to `F32_MAX`.
+const filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ: u32 = 3u;
+
+/// `|dn_u|^2 + |dn_v|^2` (TK19 eq. 4).
+const filter_deferred_NORM_SUM_SQUARED: u32 = 0u;
+/// `max(|dn_u|^2, |dn_v|^2)` (Vlachos 2015; Unreal, Babylon.js).
+const filter_deferred_NORM_MAX_SQUARED: u32 = 1u;
+/// The largest eigenvalue of the Gram matrix of `dn_u, dn_v` (TK19 eq. 1, `sigma^2 = 1`).
+const filter_deferred_NORM_MAX_EIGENVALUE: u32 = 2u;
+/// The largest absolute component of either difference, not squared (three.js).
+const filter_deferred_NORM_MAX_ABS_COMPONENT: u32 = 3u;
+
+/// `v' = v + k` (variances add).
+const filter_deferred_COMBINE_ADD: u32 = 0u;
+/// `v' = max(v, k)` (a roughness floor: Vlachos 2015, Unreal).
+const filter_deferred_COMBINE_MAX: u32 = 1u;
+
+/// TK19 eq. 1: `2 lambda_max(Sigma)`.
+const filter_deferred_BANDWIDTH_MAX: u32 = 0u;
+/// TK19 eq. 2, 4: `2 tr(Sigma)`.
+const filter_deferred_BANDWIDTH_TRACE: u32 = 1u;
+/// TK19 eq. 5: `tr(Sigma)`.
+const filter_deferred_BANDWIDTH_AVERAGE: u32 = 2u;
+
+/// How one engine turns normal differences into a widened roughness (the Rust
+/// `KernelConvention`). [`apply`] computes: (1) `alpha = max(alpha, perceptual_floor^2)`,
+/// `v = domain(alpha)`; (2) `k = min(max(scale norm^exponent + bias, 0), clamp)`;
+/// (3) `v' = v + k` or `max(v, k)`, then `min(v', 1)` if `saturate`; (4) `alpha_bar` from
+/// `v'`, clamped to `[0, ALPHA_MAX]`.
+struct filter_deferred_KernelConvention {
+    /// `DOMAIN_*`.
+    domain: u32,
+    /// `NORM_*`.
+    norm: u32,
+    /// Factor on `norm^exponent` (TK19's `2 sigma^2` is 0.5).
+    scale: f32,
+    /// Exponent on the norm (1 for the variance forms, Unreal's 0.333).
+    exponent: f32,
+    /// Added after scaling.
+    bias: f32,
+    /// Upper bound of the kernel in domain units (`F32_MAX`: none).
+    clamp: f32,
+    /// `COMBINE_*`.
+    combine: u32,
+    /// Final `min(v', 1)` (HLSL `saturate`).
+    saturate: bool,
+    /// Minimum perceptual roughness `sqrt(alpha)` enforced first (0: none).
+    perceptual_floor: f32,
+}
+
+/// `alpha -> v` in `domain` (`alpha >= 0`).
+fn filter_deferred_from_alpha(domain: u32, alpha: f32) -> f32 {
+    if domain == filter_deferred_DOMAIN_ALPHA {
+        return alpha;
+    }
+    if domain == filter_deferred_DOMAIN_PERCEPTUAL {
+        return sqrt(alpha);
+    }
+    let a2 = alpha * alpha;
+    if domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ {
+        return select(math_F32_MAX, a2 / (1.0 - a2), a2 < 1.0);
+    }
+    return a2;
+}
+
+/// `v -> alpha`, the inverse of [`from_alpha`] for `v >= 0`.
+fn filter_deferred_to_alpha(domain: u32, v: f32) -> f32 {
+    if domain == filter_deferred_DOMAIN_ALPHA {
+        return v;
+    }
+    if domain == filter_deferred_DOMAIN_PERCEPTUAL {
+        return v * v;
+    }
+    if domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ {
+        return select(1.0, sqrt(v / (1.0 + v)), v < math_F32_MAX);
+    }
+    return sqrt(v);
+}
+
+/// The largest eigenvalue of `[[a, b], [b, c]]` (no cancellation: mean plus radius), `>= 0`.
+fn filter_deferred_max_eigenvalue(a: f32, b: f32, c: f32) -> f32 {
+    return max(0.5 * (a + c) + math_hypot(0.5 * (a - c), b), 0.0);
+}
+
+/// The measure `norm` of `(dn_u, dn_v)`, `>= 0`.
+fn filter_deferred_norm_eval(norm: u32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+    let a = dot(dn_u, dn_u);
+    let c = dot(dn_v, dn_v);
+    if norm == filter_deferred_NORM_MAX_SQUARED {
+        return max(a, c);
+    }
+    if norm == filter_deferred_NORM_MAX_EIGENVALUE {
+        return filter_deferred_max_eigenvalue(a, dot(dn_u, dn_v), c);
+    }
+    if norm == filter_deferred_NORM_MAX_ABS_COMPONENT {
+        let m = max(abs(dn_u), abs(dn_v));
+        return max(max(m.x, m.y), m.z);
+    }
+    return a + c;
+}
+
+/// `min(max(k, 0), clamp)`.
+fn filter_deferred_clamp_kernel(conv: filter_deferred_KernelConvention, k: f32) -> f32 {
+    return min(max(k, 0.0), conv.clamp);
+}
+
+/// The kernel `min(max(scale norm^exponent + bias, 0), clamp)` in domain units. `pow` is the
+/// driver's (`exp2(e log2 n)`: within `3 + 2 |e log2 n|` ulp plus `log2`'s error); a zero
+/// norm gives `max(bias, 0)`.
+fn filter_deferred_kernel(conv: filter_deferred_KernelConvention, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+    let n = filter_deferred_norm_eval(conv.norm, dn_u, dn_v);
+    var raw = n;
+    if conv.exponent != 1.0 {
+        raw = select(0.0, pow(n, conv.exponent), n > 0.0);
+    }
+    return filter_deferred_clamp_kernel(conv, conv.scale * raw + conv.bias);
+}
+
+/// Steps 1, 3, 4 of [`apply`] for a kernel `k` already in domain units (clamped here).
+/// A negative `alpha` counts as 0; the result is in `[0, ALPHA_MAX]`.
+fn filter_deferred_apply_kernel(conv: filter_deferred_KernelConvention, alpha_in: f32, k: f32) -> f32 {
+    var alpha = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
+    alpha = max(alpha, conv.perceptual_floor * conv.perceptual_floor);
+    let v = filter_deferred_from_alpha(conv.domain, alpha);
+    let kc = filter_deferred_clamp_kernel(conv, k);
+    var out = select(v + kc, max(v, kc), conv.combine == filter_deferred_COMBINE_MAX);
+    if conv.saturate {
+        out = min(out, 1.0);
+    }
+    return clamp(filter_deferred_to_alpha(conv.domain, out), 0.0, ndf_roughness_ALPHA_MAX);
+}
+
+/// The filtered roughness `alpha_bar` for material roughness `alpha` and world-space normal
+/// differences `dn_u`, `dn_v` (`ddx(normal)`, `ddy(normal)`; TK19 Listing 2).
+fn filter_deferred_apply(conv: filter_deferred_KernelConvention, alpha: f32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+    return filter_deferred_apply_kernel(conv, alpha, filter_deferred_kernel(conv, dn_u, dn_v));
+}
+
+/// The Gram covariance `sigma_sq [[dn_u.dn_u, dn_u.dn_v], [dn_u.dn_v, dn_v.dn_v]]` of two
+/// normal differences (its trace is TK19's `sigma^2 (|dn_u|^2 + |dn_v|^2)`; use only its
+/// invariants). Determinant `sigma_sq^2 |dn_u x dn_v|^2` (Lagrange's identity, no
+/// cancellation).
+fn filter_deferred_normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>, sigma_sq: f32) -> kernel_covariance_Covariance {
+    let x = cross(dn_u, dn_v) * sigma_sq;
+    return kernel_covariance_Covariance(
+        dot(dn_u, dn_u) * sigma_sq,
+        dot(dn_u, dn_v) * sigma_sq,
+        dot(dn_v, dn_v) * sigma_sq,
+        dot(x, x),
+    );
+}
+
+/// The kernel's squared roughness of a bandwidth (`BANDWIDTH_*`) before the clamp:
+/// `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`.
+fn filter_deferred_bandwidth_kernel(bandwidth: u32, sigma: kernel_covariance_Covariance) -> f32 {
+    if bandwidth == filter_deferred_BANDWIDTH_MAX {
+        return 2.0 * filter_deferred_max_eigenvalue(sigma.s_xx, sigma.s_xy, sigma.s_yy);
+    }
+    let t = sigma.s_xx + sigma.s_yy;
+    return select(t, 2.0 * t, bandwidth == filter_deferred_BANDWIDTH_TRACE);
+}
+
+/// TK19 eq. 1, 4 or 5 from a slope-domain covariance:
+/// `alpha_bar = sqrt(saturate(alpha^2 + min(kernel, kappa)))`.
+fn filter_deferred_filtered_alpha(alpha: f32, sigma: kernel_covariance_Covariance, bandwidth: u32, kappa: f32) -> f32 {
+    let conv = filter_deferred_KernelConvention(
+        filter_deferred_DOMAIN_ALPHA_SQ,
+        filter_deferred_NORM_SUM_SQUARED,
+        0.5,
+        1.0,
+        0.0,
+        kappa,
+        filter_deferred_COMBINE_ADD,
+        true,
+        0.0,
+    );
+    return filter_deferred_apply_kernel(conv, alpha, filter_deferred_bandwidth_kernel(bandwidth, sigma));
 }
 
 // ---- filtered_ndf::ndf::roughness::matrix (shaders/ndf/roughness/matrix.wgsl) ----
@@ -323,6 +552,900 @@ fn ndf_roughness_matrix_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3
 /// `det A = l1 l2` (without the clamp).
 fn ndf_roughness_matrix_determinant(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
     return r.eig.x * r.eig.y;
+}
+
+// ---- filtered_ndf::filter::gaussian (shaders/filter/gaussian.wgsl) ----
+// Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
+// mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
+
+/// The entries of `A + 2 K` and `det(A + 2 K) = det A + 2 tr(adj(A) K) + 4 det K`, every term
+/// non-negative for `A` positive definite and `K` PSD, so that the filtered minor axis keeps
+/// its relative accuracy (f32 would cancel in `b11 b22 - b12^2`): with `A = R diag(l) R^T`,
+/// `tr(adj(A) K) = l2 e1^T K e1 + l1 e2^T K e2`, and `det K` as the kernel carries it.
+/// Evaluated with the determinant clamp `tau`.
+fn filter_gaussian_plus_kernel(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    let e = ndf_roughness_matrix_entries(a);
+    let c = a.axis.x;
+    let s = a.axis.y;
+    let k1 = max(c * c * k.s_xx + 2.0 * c * s * k.s_xy + s * s * k.s_yy, 0.0);
+    let k2 = max(s * s * k.s_xx - 2.0 * c * s * k.s_xy + c * c * k.s_yy, 0.0);
+    let det = ndf_roughness_matrix_determinant(a) + 2.0 * (a.eig.y * k1 + a.eig.x * k2) + 4.0 * max(k.det, 0.0);
+    return ndf_roughness_matrix_from_entries_det(
+        e.x + 2.0 * k.s_xx,
+        e.y + 2.0 * k.s_xy,
+        e.z + 2.0 * k.s_yy,
+        det,
+        tau,
+    );
+}
+
+/// `A' = A + 2 Sigma` with the determinant clamp `tau = det A` (TK19 supplement), for a
+/// kernel that `covariance::sanitized` (or a clamp after it) has made PSD and bounded.
+fn filter_gaussian_gaussian_sanitized(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_plus_kernel(a, k, a.sqrt_det * a.sqrt_det);
+}
+
+/// `A' = A + 2 Sigma`, evaluated with `tau = det(A)` (TK19 supplement; no bias in exact
+/// arithmetic since `det(A + 2 Sigma) >= det A`). Beckmann: exact (KHPL16 eq. 15, covariances
+/// of Gaussians add with `A = 2 B`). GGX: the TK19 section 2.2 / KHPL16 approximation. The
+/// kernel is `covariance::sanitized` first. Accuracy: the filtered matrix is evaluated in its
+/// eigenbasis with `det` from non-negative terms (`matrix.wgsl`: `s^T A'^-1 s` within
+/// `eps (10 + 16 sqrt(cond A'))`, the extra `8 sqrt(cond)` for the rounding of the kernel's
+/// entries).
+fn filter_gaussian_gaussian(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel));
+}
+
+/// [`gaussian`] with an explicit determinant clamp `tau` (`<= 0`: none; a filtered
+/// determinant that rounds to `<= det A` then gets `det A`, its exact lower bound).
+fn filter_gaussian_gaussian_with_tau(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    kernel: kernel_covariance_Covariance,
+    tau: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian_with_tau_sanitized(a, kernel_covariance_sanitized(kernel), tau);
+}
+
+/// [`gaussian_with_tau`] for a sanitised kernel.
+fn filter_gaussian_gaussian_with_tau_sanitized(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    k: kernel_covariance_Covariance,
+    tau: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    let floor = ndf_roughness_matrix_determinant(a);
+    return filter_gaussian_plus_kernel(a, k, select(floor, tau, tau > 0.0));
+}
+
+// ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
+// LEAN mapping's moments and the nested convolution of KHPL16 section 5.5, eq. 21,
+// mirroring `src/.../filter/lean.rs`.
+
+/// First and second moments of normal-map slopes (Olano and Baker 2010), linearly
+/// filterable: `mean = E[s]`, `second = (E[s_x^2], E[s_x s_y], E[s_y^2])`.
+struct filter_lean_LeanMoments {
+    /// `(E[s_x], E[s_y])`.
+    mean: vec2<f32>,
+    /// `(E[s_x^2], E[s_x s_y], E[s_y^2])`.
+    second: vec3<f32>,
+}
+
+/// The covariance of the normal-map slopes, `E[s s^T] - E[s] E[s]^T` (LEAN eq. 5; KHPL16's
+/// `K_L`), `cov::sanitized` (mip filtering can make it slightly indefinite). Its
+/// determinant is formed from the differences (cancelling for elongated moments).
+fn filter_lean_covariance(m: filter_lean_LeanMoments) -> kernel_covariance_Covariance {
+    let c = kernel_covariance_from_entries(
+        m.second.x - m.mean.x * m.mean.x,
+        m.second.y - m.mean.x * m.mean.y,
+        m.second.z - m.mean.y * m.mean.y,
+    );
+    return kernel_covariance_sanitized(c);
+}
+
+/// `K_L * K_P * D = (K_L * K_P) * D` (KHPL16 eq. 21): the covariances add and the sum is
+/// filtered by `gaussian::gaussian` (`A' = A + 2 (Sigma_L + Sigma_P)`, `tau = det A`).
+fn filter_lean_lean(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    pixel: kernel_covariance_Covariance,
+    moments: filter_lean_LeanMoments,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian(a, kernel_covariance_add(kernel_covariance_sanitized(pixel), filter_lean_covariance(moments)));
+}
+
+// ---- filtered_ndf::filter::presets (shaders/filter/presets.wgsl) ----
+// The published isotropic specular-antialiasing conventions as `deferred::KernelConvention`
+// values, mirroring `src/.../filter/presets.rs` (whose docs give each source, formula and
+// engine default). `alpha` is the GGX roughness, `p = sqrt(alpha)` the perceptual one.
+// Names that would end in a digit carry a suffix (naga renames such identifiers).
+//
+// | preset | domain | kernel | clamp | combine, saturate |
+// |---|---|---|---|---|
+// | TK19_TRACE, O3DE | alpha^2 | 0.5 (|dn_u|^2 + |dn_v|^2) | 0.18 | add, yes |
+// | TK19_AVERAGE | alpha^2 | 0.25 (...) | 0.18 | add, yes |
+// | TK19_MAX | alpha^2 | 0.5 lambda_max(Gram) | 0.18 | add, yes |
+// | TK21_LISTING | alpha^2 | (...) / (2 pi) | 0.18 | add, yes |
+// | FILAMENT | alpha^2 | 0.3 (...), perceptual floor 0.045 | 0.04 | add, yes |
+// | UNITY_HDRP | alpha^2 | 0.2 (...) | 0.04 | add, yes |
+// | UNITY_HDRP_PROJECTED | alpha^2 / (1 - alpha^2) | 0.2 (...) | 0.04 | add, yes |
+// | GODOT | alpha | 0.5 (...) | 0.18 | add, yes |
+// | UNREAL, BABYLON | p | max(|dn_u|^2, |dn_v|^2)^0.333 | 1 | max, no |
+// | THREE_JS | p | max abs component, floor 0.0525 | none | add, yes |
+
+/// TK19 eq. 4 and Listing 2 (trace bandwidth): `saturate(alpha^2 + min(0.5 (|dn_u|^2 +
+/// |dn_v|^2), 0.18))`.
+const filter_presets_TK19_TRACE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// TK19 eq. 5 (average of the eigenvalues): kernel `0.25 (|dn_u|^2 + |dn_v|^2)`.
+const filter_presets_TK19_AVERAGE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.25,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// TK19 eq. 1 (tightest conservative isotropic kernel): `0.5 lambda_max` of the Gram matrix.
+const filter_presets_TK19_MAX: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_MAX_EIGENVALUE,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Tokuyoshi and Kaplanyan 2021, Listing 5: `saturate(alpha^2 + min((|dn_u|^2 +
+/// |dn_v|^2) / (2 pi), 0.18))`.
+const filter_presets_TK21_LISTING: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.159154943091895,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Filament `normalFiltering`: variance 0.15 (kernel `0.3 (...)`), threshold `0.2^2`,
+/// perceptual roughness floor 0.045.
+const filter_presets_FILAMENT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.3,
+    1.0,
+    0.0,
+    0.04,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.045,
+);
+/// Unity HDRP `NormalFiltering`: screen-space variance 0.1 (kernel `0.2 (...)`),
+/// threshold `0.2^2`.
+const filter_presets_UNITY_HDRP: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.2,
+    1.0,
+    0.0,
+    0.04,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Unity HDRP `ProjectedSpaceNormalFiltering` (after TK21): [`UNITY_HDRP`] in the domain
+/// `alpha^2 / (1 - alpha^2)`.
+const filter_presets_UNITY_HDRP_PROJECTED: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.2,
+    1.0,
+    0.0,
+    0.04,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Godot 4 screen-space roughness limiter: TK19's formula on `alpha` (amount 0.25, limit
+/// 0.18).
+const filter_presets_GODOT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// O3DE `CalculateSpecularAA`: TK19 Listing 2 verbatim, identical to [`TK19_TRACE`].
+const filter_presets_O3DE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Unreal `NormalCurvatureToRoughness`: `max(p, max(|dn_x|^2, |dn_y|^2)^0.333)`.
+const filter_presets_UNREAL: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PERCEPTUAL,
+    filter_deferred_NORM_MAX_SQUARED,
+    1.0,
+    0.333,
+    0.0,
+    1.0,
+    filter_deferred_COMBINE_MAX,
+    false,
+    0.0,
+);
+/// Babylon.js (Vlachos 2015), the analytic-light path: as [`UNREAL`].
+const filter_presets_BABYLON: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PERCEPTUAL,
+    filter_deferred_NORM_MAX_SQUARED,
+    1.0,
+    0.333,
+    0.0,
+    1.0,
+    filter_deferred_COMBINE_MAX,
+    false,
+    0.0,
+);
+/// three.js: `min(max(p, 0.0525) + max abs component of dn, 1)` on the perceptual roughness.
+const filter_presets_THREE_JS: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PERCEPTUAL,
+    filter_deferred_NORM_MAX_ABS_COMPONENT,
+    1.0,
+    1.0,
+    0.0,
+    math_F32_MAX,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0525,
+);
+
+/// Every preset, in the order of the Rust `presets::ALL`: TK19 max, trace, average, TK21,
+/// Filament, Unity HDRP, Unity HDRP projected, Godot, O3DE, Unreal, Babylon.js, three.js.
+fn filter_presets_preset(i: u32) -> filter_deferred_KernelConvention {
+    switch i {
+        case 0u: { return filter_presets_TK19_MAX; }
+        case 1u: { return filter_presets_TK19_TRACE; }
+        case 2u: { return filter_presets_TK19_AVERAGE; }
+        case 3u: { return filter_presets_TK21_LISTING; }
+        case 4u: { return filter_presets_FILAMENT; }
+        case 5u: { return filter_presets_UNITY_HDRP; }
+        case 6u: { return filter_presets_UNITY_HDRP_PROJECTED; }
+        case 7u: { return filter_presets_GODOT; }
+        case 8u: { return filter_presets_O3DE; }
+        case 9u: { return filter_presets_UNREAL; }
+        case 10u: { return filter_presets_BABYLON; }
+        default: { return filter_presets_THREE_JS; }
+    }
+}
+
+// ---- filtered_ndf::filter::projected (shaders/filter/projected.wgsl) ----
+// Projected-space filtering (Tokuyoshi and Kaplanyan 2021, JCGT 10(2), Listing 1),
+// mirroring `src/.../filter/projected.rs`.
+
+/// The largest eigenvalue of `A` mapped to projected space, `0.99` (`alpha <= 0.995`).
+const filter_projected_PROJECTED_EIGEN_MAX: f32 = 0.99;
+
+/// `P = A (I - A)^-1`, `P' = P + 2 Sigma`, `A' = P' (I + P')^-1` (TK21 Listing 1): on the
+/// projected disk the GGX density is itself a GGX-shaped density of roughness `P`, and TK19's
+/// disk-derivative kernel lives in that space. Eigenvalues of `A` above `PROJECTED_EIGEN_MAX`
+/// are clamped for the projected step and the excess is added back unfiltered (as in Rust:
+/// exact below the limit, continuous, never sharpening). Evaluated with `tau = det A`.
+///
+/// f32 form: in `A`'s eigenbasis `P = R diag(l / (1 - l)) R^T` exactly (no cancellation);
+/// `d = det P' = det P + 2 tr(adj(P) K) + 4 det K` as non-negative terms (TK21's `detMin`);
+/// `A' = (P' + d I) / (1 + tr P' + d)`, every term positive, with `det A' = d / (1 + tr P' + d)`
+/// exactly (so the filtered minor axis keeps its relative accuracy). The kernel is
+/// `covariance::sanitized` first.
+fn filter_projected_projected(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
+    let k = kernel_covariance_sanitized(kernel);
+    let lc = min(a.eig, vec2<f32>(filter_projected_PROJECTED_EIGEN_MAX));
+    let excess = a.eig - lc;
+    let p = lc / (1.0 - lc);
+    let c = a.axis.x;
+    let s = a.axis.y;
+    // P in the tangent frame, and e_i^T K e_i.
+    let p11 = p.x * c * c + p.y * s * s;
+    let p12 = (p.x - p.y) * c * s;
+    let p22 = p.x * s * s + p.y * c * c;
+    let k1 = max(c * c * k.s_xx + 2.0 * c * s * k.s_xy + s * s * k.s_yy, 0.0);
+    let k2 = max(s * s * k.s_xx - 2.0 * c * s * k.s_xy + c * c * k.s_yy, 0.0);
+    let d = p.x * p.y + 2.0 * (p.y * k1 + p.x * k2) + 4.0 * max(k.det, 0.0);
+    let q11 = p11 + 2.0 * k.s_xx;
+    let q12 = p12 + 2.0 * k.s_xy;
+    let q22 = p22 + 2.0 * k.s_yy;
+    let den = 1.0 + q11 + q22 + d;
+    var b11 = (q11 + d) / den;
+    var b12 = q12 / den;
+    var b22 = (q22 + d) / den;
+    var det = d / den;
+    if max(excess.x, excess.y) > 0.0 {
+        // A rough lobe (alpha > 0.995): add the excess back; its determinant from the entries
+        // (well conditioned there).
+        b11 += excess.x * c * c + excess.y * s * s;
+        b12 += (excess.x - excess.y) * c * s;
+        b22 += excess.x * s * s + excess.y * c * c;
+        det = b11 * b22 - b12 * b12;
+    }
+    let e = ndf_roughness_matrix_entries(a);
+    let tau = a.sqrt_det * a.sqrt_det;
+    return ndf_roughness_matrix_from_entries_det(max(b11, e.x), b12, max(b22, e.z), max(det, tau), tau);
+}
+
+// ---- filtered_ndf::ndf::roughness::axis_aligned (shaders/ndf/roughness/axis_aligned.wgsl) ----
+/// Axis-aligned anisotropic roughness `(alpha_x, alpha_y)` along the tangent and bitangent:
+/// `A = diag(alpha_x^2, alpha_y^2)`.
+struct ndf_roughness_axis_aligned_AxisAligned {
+    /// `(alpha_x, alpha_y)`.
+    alpha: vec2<f32>,
+    /// `(1 / alpha_x^2, 1 / alpha_y^2)`.
+    inv_alpha_sq: vec2<f32>,
+}
+
+/// `(alpha_x, alpha_y)`, each clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust
+/// `AxisAligned::new_clamped`).
+fn ndf_roughness_axis_aligned_from_alpha(alpha: vec2<f32>) -> ndf_roughness_axis_aligned_AxisAligned {
+    let a = vec2<f32>(ndf_roughness_clamp_alpha(alpha.x), ndf_roughness_clamp_alpha(alpha.y));
+    return ndf_roughness_axis_aligned_AxisAligned(a, 1.0 / (a * a));
+}
+
+/// `s^T A^-1 s = s_x^2 / alpha_x^2 + s_y^2 / alpha_y^2`. Within 5 ulp (a sum of two
+/// non-negative terms).
+fn ndf_roughness_axis_aligned_inv_quadratic(r: ndf_roughness_axis_aligned_AxisAligned, s: vec2<f32>) -> f32 {
+    return dot(s * s, r.inv_alpha_sq);
+}
+
+/// `w^T A w = alpha_x^2 w_x^2 + alpha_y^2 w_y^2`. Within 4 ulp.
+fn ndf_roughness_axis_aligned_quadratic(r: ndf_roughness_axis_aligned_AxisAligned, w: vec2<f32>) -> f32 {
+    return dot(w * w, r.alpha * r.alpha);
+}
+
+/// `sqrt(det A) = alpha_x alpha_y`. Within 1 ulp.
+fn ndf_roughness_axis_aligned_sqrt_det(r: ndf_roughness_axis_aligned_AxisAligned) -> f32 {
+    return r.alpha.x * r.alpha.y;
+}
+
+/// This roughness as a [`matrix::RoughnessMatrix`], `diag(alpha_x^2, alpha_y^2)` (no
+/// determinant clamp).
+fn ndf_roughness_axis_aligned_to_matrix(r: ndf_roughness_axis_aligned_AxisAligned) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_eigen(vec2<f32>(1.0, 0.0), r.alpha);
+}
+
+// ---- filtered_ndf::filter::proxy (shaders/filter/proxy.wgsl) ----
+// The GGX proxy of KHPL16 section 5.4 (eq. 18-20), mirroring `src/.../filter/proxy.rs`: an
+// effective roughness whose unfiltered GGX has the peak of the box-filtered GGX. Eq. 19
+// solved: `alpha'^2 = (alpha^2 + H^2) t / atan(t)`, `t = H / sqrt(alpha^2 + H^2)`, with `H`
+// the half extent (eq. 20 as printed is inconsistent with eq. 19; see the Rust docs).
+
+/// The exact effective roughness of one axis (KHPL16 eq. 19 solved):
+/// `alpha' = sqrt(alpha^2 + H^2) sqrt(t / atan t)`, `t = H / sqrt(alpha^2 + H^2)`, with the
+/// driver-independent `math::atan` (8 ulp): within 12 ulp. `alpha' = alpha` at `H = 0`;
+/// `H` is used by magnitude. Domain: `alpha > 0`.
+fn filter_proxy_effective_alpha(alpha: f32, half_extent: f32) -> f32 {
+    let h = abs(half_extent);
+    let s = math_hypot(alpha, h);
+    let t = select(0.0, h / s, s > 0.0);
+    let ratio = select(1.0, t / math_atan(t), t > 0.0);
+    return s * sqrt(ratio);
+}
+
+/// The simple form of KHPL16 eq. 20 for one axis, `sqrt(alpha^2 + H^2)` with `H` the half
+/// extent (within 11.4 % below [`effective_alpha`]). Within 8 ulp.
+fn filter_proxy_effective_alpha_simple(alpha: f32, half_extent: f32) -> f32 {
+    return math_hypot(alpha, abs(half_extent));
+}
+
+/// The exact GGX proxy roughness per axis, clamped into the supported range
+/// (`axis_aligned::from_alpha`). `half_extent` is the filtering rectangle's.
+fn filter_proxy_proxy(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>) -> ndf_roughness_axis_aligned_AxisAligned {
+    return ndf_roughness_axis_aligned_from_alpha(vec2<f32>(
+        filter_proxy_effective_alpha(r.alpha.x, half_extent.x),
+        filter_proxy_effective_alpha(r.alpha.y, half_extent.y),
+    ));
+}
+
+/// The simple GGX proxy roughness per axis, clamped.
+fn filter_proxy_proxy_simple(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>) -> ndf_roughness_axis_aligned_AxisAligned {
+    return ndf_roughness_axis_aligned_from_alpha(vec2<f32>(
+        filter_proxy_effective_alpha_simple(r.alpha.x, half_extent.x),
+        filter_proxy_effective_alpha_simple(r.alpha.y, half_extent.y),
+    ));
+}
+
+// ---- filtered_ndf::kernel::rect (shaders/kernel/rect.wgsl) ----
+// The axis-aligned slope-domain rectangle of KHPL16 section 5.3 (the `footprint` of the
+// GDC 2016 `GGXRectIntegral`), mirroring `BoundingRect` of `src/.../kernel/rect.rs`.
+
+/// A rectangle centred on the half vector's slope, by its half-extents (slope units, `>= 0`).
+/// It bounds the one-pixel parallelogram: `half_extent = (|dh_u| + |dh_v|) / 2`.
+struct kernel_rect_BoundingRect {
+    /// Half-extents along the tangent `x` and bitangent `y`.
+    half_extent: vec2<f32>,
+}
+
+/// The Gaussian-equivalent diagonal covariance `diag((2 sigma h_x)^2, (2 sigma h_y)^2)`
+/// (`sigma` in pixels; GDC 2016 Beckmann listing `rghns_sq += fp * fp * 2`, TK19 Listing 3).
+fn kernel_rect_covariance(r: kernel_rect_BoundingRect, sigma: f32) -> kernel_covariance_Covariance {
+    let w = r.half_extent * (2.0 * sigma);
+    let v = w * w;
+    return kernel_covariance_Covariance(v.x, 0.0, v.y, v.x * v.y);
+}
+
+// ---- filtered_ndf::footprint (shaders/footprint/mod.wgsl) ----
+// Pixel footprints in the slope domain (KHPL16 sections 4.2, 4.3; TK19 section 2.2),
+// mirroring `Footprint` of `src/.../footprint/mod.rs`: the slope change of the half vector
+// across one pixel step in `x` (`dh_u`) and in `y` (`dh_v`). A Gaussian pixel filter of
+// standard deviation `sigma` pixels carried into the slope domain has covariance
+// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`.
+
+/// The standard deviation of the pixel filter of KHPL16 and TK19, in pixels.
+const footprint_SIGMA_PIXEL: f32 = 0.5;
+
+/// A slope-domain pixel footprint.
+struct footprint_Footprint {
+    /// Slope change per pixel step along the image `x` axis.
+    dh_u: vec2<f32>,
+    /// Slope change per pixel step along the image `y` axis.
+    dh_v: vec2<f32>,
+}
+
+/// From slope-domain derivatives, e.g. `dpdx`/`dpdy` of the slope of `h` (KHPL16 section
+/// 5.1).
+fn footprint_from_slope_derivatives(dh_u: vec2<f32>, dh_v: vec2<f32>) -> footprint_Footprint {
+    return footprint_Footprint(dh_u, dh_v);
+}
+
+/// From derivatives of the projected half vector `p = h_xy` (TK19 section 3.2, Listing 1:
+/// `ddx(halfvectorTS.xy)`), used as slope changes directly, as TK19 does (no Jacobian: the
+/// bandwidth shrinks by `h_z` at grazing half vectors relative to the sphere).
+fn footprint_from_projected_derivatives(dp_u: vec2<f32>, dp_v: vec2<f32>) -> footprint_Footprint {
+    return footprint_Footprint(dp_u, dp_v);
+}
+
+/// The slope-domain footprint of disk derivatives at the half vector `h`:
+/// `dh = J(perp->par) dp` (TK19 supplement eq. 6) with `h` normalised and `h_z >= 1e-6`
+/// (written with `h_x^2 + h_z^2` for `1 - h_y^2`). A zero `h` gives a zero footprint.
+fn footprint_from_projected_derivatives_in_slope(
+    h_in: vec3<f32>,
+    dp_u: vec2<f32>,
+    dp_v: vec2<f32>,
+) -> footprint_Footprint {
+    let big = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if big <= 0.0 {
+        return footprint_Footprint(vec2<f32>(0.0), vec2<f32>(0.0));
+    }
+    let h0 = h_in / big;
+    let h = h0 / length(h0);
+    let hz = max(h.z, 1e-6);
+    let k = -1.0 / (hz * hz * hz);
+    let j = mat2x2<f32>(
+        vec2<f32>(h.x * h.x + h.z * h.z, h.x * h.y),
+        vec2<f32>(h.x * h.y, h.y * h.y + h.z * h.z),
+    );
+    return footprint_Footprint(j * dp_u * k, j * dp_v * k);
+}
+
+/// The deferred footprint from normal differences to the neighbouring pixels (TK19 section
+/// 4.4, eq. 3) in the tangent frame of the current normal: `2 (dn)_xy / |2 e_z + dn|` per
+/// difference (the derivative of the half-way normal on the disk, whose length is `|dn|`
+/// for unit normals), the denominator clamped to `>= 1e-6`.
+fn footprint_from_normal_differences(dn_u: vec3<f32>, dn_v: vec3<f32>) -> footprint_Footprint {
+    let lu = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_u), 1e-6);
+    let lv = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_v), 1e-6);
+    return footprint_Footprint(dn_u.xy * (2.0 / lu), dn_v.xy * (2.0 / lv));
+}
+
+/// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels, with
+/// `det Sigma = sigma^4 (dh_u x dh_v)^2` from the vectors (accurate for elongated kernels).
+fn footprint_covariance(fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
+    let u = fp.dh_u;
+    let v = fp.dh_v;
+    let s2 = sigma * sigma;
+    let cross = (u.x * v.y - u.y * v.x) * s2;
+    return kernel_covariance_Covariance(
+        (u.x * u.x + v.x * v.x) * s2,
+        (u.x * u.y + v.x * v.y) * s2,
+        (u.y * u.y + v.y * v.y) * s2,
+        cross * cross,
+    );
+}
+
+/// The axis-aligned bounding rectangle of the one-pixel parallelogram (KHPL16 section 5.3;
+/// GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
+/// `(|dh_u| + |dh_v|) / 2` per axis.
+fn footprint_bounding_rect(fp: footprint_Footprint) -> kernel_rect_BoundingRect {
+    return kernel_rect_BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
+}
+
+/// The largest centre-to-vertex distance of the one-pixel parallelogram,
+/// `max(|dh_u + dh_v|, |dh_u - dh_v|) / 2`: the extent clamped by KHPL16 section 5.2.
+fn footprint_max_extent(fp: footprint_Footprint) -> f32 {
+    return 0.5 * max(length(fp.dh_u + fp.dh_v), length(fp.dh_u - fp.dh_v));
+}
+
+// ---- filtered_ndf::footprint::jacobian (shaders/footprint/jacobian.wgsl) ----
+// Jacobians between the three half-vector domains (TK19 supplement section 2, eq. 1-7) and
+// the error propagation of TK19 section 3.1, mirroring `src/.../footprint/jacobian.rs`.
+// Matrices are the paper's `J[i][j] = d out_i / d in_j` stored column-major (WGSL
+// `mat2x2<f32>` like glam's `Mat2`): column `j` is the derivative with respect to input `j`,
+// and `J * v` is the paper's product. Spherical changes are the arc lengths `(psi_x, psi_y)`
+// along `e_x = (cos theta cos phi, cos theta sin phi, -sin theta)` and
+// `e_y = (-sin phi, cos phi, 0)`. Input: `h` is normalised here; a zero `h` is the pole;
+// `h_z` is clamped to `HZ_MIN` at constant azimuth; at the pole `phi = 0`.
+// (Non-finite input: WGSL lets a driver assume it never occurs.)
+
+/// Smallest `h_z` the Jacobians use (`1 / HZ_MIN^4 = 1e24` stays finite in f32).
+const footprint_jacobian_HZ_MIN: f32 = 1e-6;
+
+/// A half vector reduced to what the Jacobians need: the sanitised unit `h` and
+/// `(cos phi, sin phi)`.
+struct footprint_jacobian_Polar {
+    /// The sanitised unit half vector.
+    h: vec3<f32>,
+    /// `(cos phi, sin phi)` of its azimuth (`(1, 0)` at the pole).
+    cs: vec2<f32>,
+}
+
+/// Normalise (after scaling by the largest component), take the azimuth from `h_xy` scaled
+/// to unit size, clamp `h_z >= HZ_MIN` keeping the azimuth.
+fn footprint_jacobian_polar(h_in: vec3<f32>) -> footprint_jacobian_Polar {
+    let big = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if big <= 0.0 {
+        return footprint_jacobian_Polar(vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(1.0, 0.0));
+    }
+    let h0 = h_in / big;
+    let h = h0 / length(h0);
+    let qs = max(abs(h.x), abs(h.y));
+    var cs = vec2<f32>(1.0, 0.0);
+    if qs > 0.0 {
+        let q = h.xy / qs;
+        cs = q / length(q);
+    }
+    if h.z >= footprint_jacobian_HZ_MIN {
+        return footprint_jacobian_Polar(h, cs);
+    }
+    let st = sqrt(1.0 - footprint_jacobian_HZ_MIN * footprint_jacobian_HZ_MIN);
+    return footprint_jacobian_Polar(vec3<f32>(st * cs, footprint_jacobian_HZ_MIN), cs);
+}
+
+/// The unit half vector the Jacobians use for input `h` (normalised, zero -> the pole,
+/// `h_z >= HZ_MIN` at constant azimuth).
+fn footprint_jacobian_sanitize(h: vec3<f32>) -> vec3<f32> {
+    return footprint_jacobian_polar(h).h;
+}
+
+/// The spherical basis `(e_x, e_y)` at `h` (TK19 supplement eq. 3, columns 1 and 2).
+struct footprint_jacobian_SphericalBasis {
+    /// `e_x`, along the great circle through `h` and `n`, away from `n`.
+    e_x: vec3<f32>,
+    /// `e_y = n x h / |n x h|`.
+    e_y: vec3<f32>,
+}
+
+/// `(e_x, e_y)` at `h`: `e_x = (cos theta cos phi, cos theta sin phi, -sin theta)`,
+/// `e_y = (-sin phi, cos phi, 0)`; `(+x, +y)` at the pole.
+fn footprint_jacobian_spherical_basis(h: vec3<f32>) -> footprint_jacobian_SphericalBasis {
+    let p = footprint_jacobian_polar(h);
+    let st = length(p.h.xy);
+    return footprint_jacobian_SphericalBasis(
+        vec3<f32>(p.h.z * p.cs, -st),
+        vec3<f32>(-p.cs.y, p.cs.x, 0.0),
+    );
+}
+
+/// `(dh . e_x, dh . e_y)` (radians) of a tangent change `dh` of the unit half vector (TK19
+/// section 3.1).
+fn footprint_jacobian_spherical_components(h: vec3<f32>, dh: vec3<f32>) -> vec2<f32> {
+    let b = footprint_jacobian_spherical_basis(h);
+    return vec2<f32>(dot(dh, b.e_x), dot(dh, b.e_y));
+}
+
+/// `J(o->perp) = [[h_z cos phi, -sin phi], [h_z sin phi, cos phi]]` (TK19 supplement eq. 4),
+/// determinant `h_z`; `I` at the pole.
+fn footprint_jacobian_sphere_to_projected(h: vec3<f32>) -> mat2x2<f32> {
+    let p = footprint_jacobian_polar(h);
+    return mat2x2<f32>(p.h.z * p.cs, vec2<f32>(-p.cs.y, p.cs.x));
+}
+
+/// `J(perp->par) = -1 / h_z^3 [[h_x^2 + h_z^2, h_x h_y], [h_x h_y, h_y^2 + h_z^2]]` (TK19
+/// supplement eq. 6, with `1 - h_y^2` written as `h_x^2 + h_z^2` for accuracy at the
+/// horizon); determinant `1 / h_z^4`; `-I` at the pole.
+fn footprint_jacobian_projected_to_slope(h_in: vec3<f32>) -> mat2x2<f32> {
+    let h = footprint_jacobian_polar(h_in).h;
+    let k = -1.0 / (h.z * h.z * h.z);
+    let xy = h.x * h.y;
+    return mat2x2<f32>(
+        vec2<f32>(h.x * h.x + h.z * h.z, xy) * k,
+        vec2<f32>(xy, h.y * h.y + h.z * h.z) * k,
+    );
+}
+
+/// `J(par->perp) = -h_z [[h_y^2 + h_z^2, -h_x h_y], [-h_x h_y, h_x^2 + h_z^2]]`, the inverse
+/// of [`projected_to_slope`]; determinant `h_z^4`; `-I` at the pole.
+fn footprint_jacobian_slope_to_projected(h_in: vec3<f32>) -> mat2x2<f32> {
+    let h = footprint_jacobian_polar(h_in).h;
+    let xy = h.x * h.y;
+    return mat2x2<f32>(
+        vec2<f32>(h.y * h.y + h.z * h.z, -xy) * -h.z,
+        vec2<f32>(-xy, h.x * h.x + h.z * h.z) * -h.z,
+    );
+}
+
+/// `J(o->par) = -1 / h_z^2 [[cos phi, -h_z sin phi], [sin phi, h_z cos phi]]` (TK19
+/// supplement eq. 7; section 3.1); determinant `1 / h_z^3`; `-I` at the pole.
+fn footprint_jacobian_sphere_to_slope(h: vec3<f32>) -> mat2x2<f32> {
+    let p = footprint_jacobian_polar(h);
+    let k = -1.0 / (p.h.z * p.h.z);
+    return mat2x2<f32>(p.cs * k, vec2<f32>(-p.h.z * p.cs.y, p.h.z * p.cs.x) * k);
+}
+
+/// `det J(o->perp) = h_z` (TK19 section 3.2), in `[HZ_MIN, 1]`.
+fn footprint_jacobian_det_sphere_to_projected(h: vec3<f32>) -> f32 {
+    return footprint_jacobian_polar(h).h.z;
+}
+
+/// `det J(perp->par) = 1 / h_z^4`, in `[1, 1e24]`.
+fn footprint_jacobian_det_projected_to_slope(h: vec3<f32>) -> f32 {
+    let z = footprint_jacobian_polar(h).h.z;
+    let z2 = z * z;
+    return 1.0 / (z2 * z2);
+}
+
+/// `det J(o->par) = 1 / h_z^3` (TK19 section 3.1), in `[1, 1e18]`.
+fn footprint_jacobian_det_sphere_to_slope(h: vec3<f32>) -> f32 {
+    let z = footprint_jacobian_polar(h).h.z;
+    return 1.0 / (z * z * z);
+}
+
+/// A spherical error `(eps_x, eps_y)` mapped to the slope domain, `J(o->par) eps` (TK19
+/// section 3.1).
+fn footprint_jacobian_spherical_to_slope(h: vec3<f32>, e: vec2<f32>) -> vec2<f32> {
+    return footprint_jacobian_sphere_to_slope(h) * e;
+}
+
+/// The same error mapped to the projected disk, `J(o->perp) eps` (TK19 section 3.2).
+fn footprint_jacobian_spherical_to_projected(h: vec3<f32>, e: vec2<f32>) -> vec2<f32> {
+    return footprint_jacobian_sphere_to_projected(h) * e;
+}
+
+// ---- filtered_ndf::footprint::slope (shaders/footprint/slope.wgsl) ----
+// The three half-vector domains and the maps between them (TK19 supplement eq. 1-5),
+// mirroring `src/.../footprint/slope.rs`: the sphere (unit `h`, tangent frame, `z` = shading
+// normal), the projected disk `p = h_xy` (TK19 section 3.2) and the slope plane
+// `s = -h_xy / h_z` (TK19 supplement eq. 5; KHPL16 writes `h_xy / h_z`, which flips only
+// signs of derivatives). Every map is defined on the upper hemisphere; outside it the
+// functions return a finite answer, as in Rust.
+
+/// Slope of a unit vector, `s = -h_xy / h_z` (TK19 supplement eq. 5). For `h_z <= 0` the
+/// slope of `h` with `h_z` raised to the smallest normal f32 (far in every NDF's tail),
+/// clamped to `+-F32_MAX`. Within 2.5 ulp per component.
+fn footprint_slope_slope_from_sphere(h: vec3<f32>) -> vec2<f32> {
+    let z = max(h.z, math_F32_MIN_POSITIVE);
+    return clamp(-h.xy / z, vec2<f32>(-math_F32_MAX), vec2<f32>(math_F32_MAX));
+}
+
+/// Unit vector of a slope, `h = (-s_x, -s_y, 1) / sqrt(1 + |s|^2)` (the inverse of
+/// [`slope_from_sphere`]). The vector is first scaled by `1 / max(1, |s_x|, |s_y|)`, so a
+/// huge slope tends to the horizon direction `-s / |s|` without overflow. Within 6 ulp per
+/// component (of the largest component).
+fn footprint_slope_sphere_from_slope(s: vec2<f32>) -> vec3<f32> {
+    let k = max(max(abs(s.x), abs(s.y)), 1.0);
+    let v = vec3<f32>(-s / k, 1.0 / k);
+    return v / length(v);
+}
+
+/// Projection on the unit disk, `p = (h_x, h_y)` (TK19 section 3.2). Exact.
+fn footprint_slope_projected_from_sphere(h: vec3<f32>) -> vec2<f32> {
+    return h.xy;
+}
+
+/// The upper-hemisphere unit vector over a disk point, `(p_x, p_y, sqrt(1 - |p|^2))`;
+/// points on or outside the unit circle map to the horizon (`p` rescaled to unit length).
+/// `h_z` carries the cancellation of `1 - |p|^2` near the rim (a property of the map).
+fn footprint_slope_sphere_from_projected(p: vec2<f32>) -> vec3<f32> {
+    let r2 = dot(p, p);
+    if r2 < 1.0 {
+        return vec3<f32>(p, sqrt(1.0 - r2));
+    }
+    let q = p / max(max(abs(p.x), abs(p.y)), math_F32_MIN_POSITIVE);
+    return vec3<f32>(q / length(q), 0.0);
+}
+
+/// Slope of a disk point, `s = -p / sqrt(1 - |p|^2)` (TK19 supplement eq. 5); points on or
+/// outside the unit circle as in [`slope_from_sphere`].
+fn footprint_slope_slope_from_projected(p: vec2<f32>) -> vec2<f32> {
+    return footprint_slope_slope_from_sphere(footprint_slope_sphere_from_projected(p));
+}
+
+/// Disk point of a slope, `p = -s / sqrt(1 + |s|^2)`.
+fn footprint_slope_projected_from_slope(s: vec2<f32>) -> vec2<f32> {
+    return footprint_slope_projected_from_sphere(footprint_slope_sphere_from_slope(s));
+}
+
+// ---- filtered_ndf::kernel::clamp (shaders/kernel/clamp.wgsl) ----
+// The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, GDC 2016,
+// TK19 eq. 1 and supplement), mirroring `ClampRules` of `src/.../kernel/clamp.rs`. A rule is
+// off when its bound is `F32_MAX` (`max_extent`, `kappa`; the Rust `F::INFINITY`),
+// `FLOOR_NONE`, or `det_clamp = false`.
+
+/// No rectangle floor.
+const kernel_clamp_FLOOR_NONE: u32 = 0u;
+/// Half-extents `>= floor` on both axes (KHPL16 section 5.2, `epsilon = 1e-3`).
+const kernel_clamp_FLOOR_CONSTANT: u32 = 1u;
+/// Half-extents `>= min(alpha_axis, floor)` per axis (GDC 2016 `min(roughness, 0.1)`).
+const kernel_clamp_FLOOR_ALPHA_CAPPED: u32 = 2u;
+
+/// The clamping rules.
+struct kernel_clamp_ClampRules {
+    /// `lambda`: the largest centre-to-vertex extent of the parallelogram and the largest
+    /// rectangle half-extent (slope units).
+    max_extent: f32,
+    /// `FLOOR_NONE`, `FLOOR_CONSTANT` or `FLOOR_ALPHA_CAPPED`.
+    floor_kind: u32,
+    /// The floor's constant (`epsilon`, or the cap of `FLOOR_ALPHA_CAPPED`).
+    floor: f32,
+    /// `kappa`: the largest kernel roughness^2 `2 lambda_i(Sigma)` per eigen-direction.
+    kappa: f32,
+    /// Evaluate filtered matrices with `tau = det(A_unfiltered)`.
+    det_clamp: bool,
+}
+
+/// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
+const kernel_clamp_DEFAULT_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_CONSTANT, 1e-3, 0.18, true);
+/// No clamping (unbiased; for references and the exact rectangle integral).
+const kernel_clamp_NO_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(math_F32_MAX, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, false);
+/// The GDC 2016 listing: `fp = clamp(fp, min(roughness, 0.1), 1)`, no `kappa`, with `tau`.
+const kernel_clamp_GDC2016_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_ALPHA_CAPPED, 0.1, math_F32_MAX, true);
+
+/// The maximum-extent rule on a parallelogram (KHPL16 section 5.2): both vectors scaled by
+/// `min(1, lambda / max_extent)`, keeping the shape. The extent is measured on the
+/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0.
+fn kernel_clamp_footprint(rules: kernel_clamp_ClampRules, fp: footprint_Footprint) -> footprint_Footprint {
+    let l = max(rules.max_extent, 0.0);
+    let scale = max(max(abs(fp.dh_u.x), abs(fp.dh_u.y)), max(abs(fp.dh_v.x), abs(fp.dh_v.y)));
+    if scale <= 0.0 {
+        return fp;
+    }
+    let unit = footprint_Footprint(fp.dh_u / scale, fp.dh_v / scale);
+    let e = footprint_max_extent(unit);
+    if e * scale <= l {
+        return fp;
+    }
+    return footprint_Footprint(unit.dh_u / e * l, unit.dh_v / e * l);
+}
+
+/// The rectangle rules: half-extents taken by magnitude, clamped to `[floor, lambda]` per
+/// axis (KHPL16 section 5.2; GDC 2016 `clamp(fp, fp_min, fp_max)`), `alpha` the lobe's
+/// per-axis roughness for `FLOOR_ALPHA_CAPPED`; if the floor exceeds `lambda` the floor wins.
+fn kernel_clamp_rect(rules: kernel_clamp_ClampRules, r: kernel_rect_BoundingRect, alpha: vec2<f32>) -> kernel_rect_BoundingRect {
+    var f = vec2<f32>(0.0);
+    if rules.floor_kind == kernel_clamp_FLOOR_CONSTANT {
+        f = vec2<f32>(rules.floor);
+    } else if rules.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED {
+        f = min(abs(alpha), vec2<f32>(rules.floor));
+    }
+    let lambda = max(rules.max_extent, 0.0);
+    let h = min(abs(r.half_extent), vec2<f32>(lambda));
+    return kernel_rect_BoundingRect(max(h, max(f, vec2<f32>(0.0))));
+}
+
+/// The kernel-roughness rule of TK19 eq. 1 in matrix form: `2 Sigma'` has the eigenvalues
+/// `min(2 lambda_i, kappa)` and `Sigma`'s eigenvectors, after `covariance::sanitized`. A
+/// negative `kappa` counts as 0.
+fn kernel_clamp_kernel(rules: kernel_clamp_ClampRules, k: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
+    let s = kernel_covariance_sanitized(k);
+    if rules.kappa >= math_F32_MAX {
+        return s;
+    }
+    return kernel_covariance_clamp_eigenvalues(s, 0.5 * max(rules.kappa, 0.0));
+}
+
+/// The determinant clamp for filtering `a`: `max(det A, tau_a)` if `det_clamp`, else 0.
+fn kernel_clamp_tau(rules: kernel_clamp_ClampRules, a: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return select(0.0, a.sqrt_det * a.sqrt_det, rules.det_clamp);
+}
+
+/// The whole Gaussian pipeline: [`footprint`] -> `pixel::covariance` (`sigma` pixels)
+/// -> [`kernel`] -> `A' = A + 2 Sigma` with `tau = det A` if `det_clamp` (the TK19 matrix
+/// filter; exact for Beckmann).
+fn kernel_clamp_filter_gaussian(
+    rules: kernel_clamp_ClampRules,
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    fp: footprint_Footprint,
+    sigma: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    let k = kernel_clamp_kernel(rules, footprint_covariance(kernel_clamp_footprint(rules, fp), sigma));
+    if rules.det_clamp {
+        return filter_gaussian_gaussian_sanitized(a, k);
+    }
+    return filter_gaussian_gaussian_with_tau_sanitized(a, k, 0.0);
+}
+
+// ---- filtered_ndf::ndf (shaders/ndf/mod.wgsl) ----
+// What every NDF shares (`src/.../ndf/mod.rs`, the `Ndf` trait): the Smith terms derived
+// from `Lambda` once. Conventions (all NDFs, all roughness forms): tangent frame with `z` the
+// shading normal; slope of a micronormal `s = -m_xy / m_z` (TK19 supplement eq. 5);
+// `p22(s)` per unit slope area, integrating to 1 over the plane; `d(m) = p22(s(m)) / m_z^4`
+// per steradian with `integral d(m) m_z dm = 1` (KHPL16 eq. 2).
+//
+// WGSL has no generics: the NDF modules (`ggx`, `beckmann`) take the numbers a roughness
+// form reduces to (`inv_quadratic`, `quadratic`, `sqrt_det` of the `roughness` modules) and
+// add one entry point per form (`d_isotropic`, `d_axis_aligned`, `d_matrix`, ...). The
+// form-independent cores carry the suffix `_of` (`p22_of`, `d_of`, `lambda_of`, `g1_of`,
+// `g2_of`): naga renames any identifier that ends in a digit when it writes a module back
+// out, which naga_oil refuses for composable modules, so `p22`, `g1`, `g2` cannot be names
+// of their own.
+
+/// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` from `Lambda(w)` and `w.m` (TK19
+/// supplement section 1). In `[0, 1]`; `0` for `w.m <= 0`. (A grazing `w` has
+/// `Lambda = F32_MAX` in the shaders, so `G1` is `0` up to rounding.)
+fn ndf_g1_of(lambda_w: f32, w_dot_m: f32) -> f32 {
+    return select(0.0, 1.0 / (1.0 + lambda_w), w_dot_m > 0.0);
+}
+
+/// Height-correlated masking-shadowing
+/// `G2(i, o, m) = chi+(i.m) chi+(o.m) / (1 + Lambda(i) + Lambda(o))` (TK19 supplement
+/// section 1; Heitz 2014 eq. 99) from both `Lambda`s and both dot products. In `[0, 1]`.
+fn ndf_g2_of(lambda_i: f32, lambda_o: f32, i_dot_m: f32, o_dot_m: f32) -> f32 {
+    return select(0.0, 1.0 / (1.0 + lambda_i + lambda_o), i_dot_m > 0.0 && o_dot_m > 0.0);
+}
+
+// ---- filtered_ndf::ndf::roughness::isotropic (shaders/ndf/roughness/isotropic.wgsl) ----
+/// Isotropic roughness `alpha`: `A = alpha^2 I`.
+struct ndf_roughness_isotropic_Isotropic {
+    /// The roughness `alpha`.
+    alpha: f32,
+    /// `1 / alpha^2`.
+    inv_alpha_sq: f32,
+}
+
+/// The isotropic roughness `alpha`, clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust
+/// `Isotropic::new_clamped`).
+fn ndf_roughness_isotropic_from_alpha(alpha: f32) -> ndf_roughness_isotropic_Isotropic {
+    let a = ndf_roughness_clamp_alpha(alpha);
+    return ndf_roughness_isotropic_Isotropic(a, 1.0 / (a * a));
+}
+
+/// `s^T A^-1 s = |s|^2 / alpha^2` (dimensionless). Within 4 ulp.
+fn ndf_roughness_isotropic_inv_quadratic(r: ndf_roughness_isotropic_Isotropic, s: vec2<f32>) -> f32 {
+    return dot(s, s) * r.inv_alpha_sq;
+}
+
+/// `w^T A w = alpha^2 |w|^2` for a tangent-plane `w` (Smith's projected roughness). Within
+/// 3 ulp.
+fn ndf_roughness_isotropic_quadratic(r: ndf_roughness_isotropic_Isotropic, w: vec2<f32>) -> f32 {
+    return dot(w, w) * (r.alpha * r.alpha);
+}
+
+/// `sqrt(det A) = alpha^2`. Within 1 ulp.
+fn ndf_roughness_isotropic_sqrt_det(r: ndf_roughness_isotropic_Isotropic) -> f32 {
+    return r.alpha * r.alpha;
+}
+
+/// This roughness as a [`matrix::RoughnessMatrix`], `alpha^2 I` (no determinant clamp).
+fn ndf_roughness_isotropic_to_matrix(r: ndf_roughness_isotropic_Isotropic) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_eigen(vec2<f32>(1.0, 0.0), vec2<f32>(r.alpha));
 }
 
 // ---- filtered_ndf::ndf::beckmann (shaders/ndf/beckmann.wgsl) ----

@@ -1,6 +1,7 @@
 #define_import_path filtered_ndf::ndf::roughness::axis_aligned
 
 #import filtered_ndf::ndf::roughness
+#import filtered_ndf::ndf::roughness::matrix
 
 /// Axis-aligned anisotropic roughness `(alpha_x, alpha_y)` along the tangent and bitangent:
 /// `A = diag(alpha_x^2, alpha_y^2)`.
@@ -32,4 +33,10 @@ fn quadratic(r: AxisAligned, w: vec2<f32>) -> f32 {
 /// `sqrt(det A) = alpha_x alpha_y`. Within 1 ulp.
 fn sqrt_det(r: AxisAligned) -> f32 {
     return r.alpha.x * r.alpha.y;
+}
+
+/// This roughness as a [`matrix::RoughnessMatrix`], `diag(alpha_x^2, alpha_y^2)` (no
+/// determinant clamp).
+fn to_matrix(r: AxisAligned) -> matrix::RoughnessMatrix {
+    return matrix::from_eigen(vec2<f32>(1.0, 0.0), r.alpha);
 }

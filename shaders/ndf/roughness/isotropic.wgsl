@@ -1,6 +1,7 @@
 #define_import_path filtered_ndf::ndf::roughness::isotropic
 
 #import filtered_ndf::ndf::roughness
+#import filtered_ndf::ndf::roughness::matrix
 
 /// Isotropic roughness `alpha`: `A = alpha^2 I`.
 struct Isotropic {
@@ -31,4 +32,9 @@ fn quadratic(r: Isotropic, w: vec2<f32>) -> f32 {
 /// `sqrt(det A) = alpha^2`. Within 1 ulp.
 fn sqrt_det(r: Isotropic) -> f32 {
     return r.alpha * r.alpha;
+}
+
+/// This roughness as a [`matrix::RoughnessMatrix`], `alpha^2 I` (no determinant clamp).
+fn to_matrix(r: Isotropic) -> matrix::RoughnessMatrix {
+    return matrix::from_eigen(vec2<f32>(1.0, 0.0), vec2<f32>(r.alpha));
 }
