@@ -259,25 +259,28 @@ kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covar
     if ((big > math_F32_MAX)) {
         return kernel_covariance_Covariance(100000000.0, 0.0, 100000000.0, 1e16);
     }
+    if ((c_4.s_xx >= 0.0)) {
+        local_1 = (c_4.s_yy >= 0.0);
+    } else {
+        local_1 = false;
+    }
+    bool _e25 = local_1;
+    if (_e25) {
+        local_2 = (c_4.det >= 0.0);
+    } else {
+        local_2 = false;
+    }
+    bool _e32 = local_2;
+    if (_e32) {
+        kernel_covariance_Covariance _e34 = kernel_covariance_clamp_eigenvalues(c_4, kernel_covariance_KERNEL_MAX);
+        return _e34;
+    }
     float s_xx_1 = max(c_4.s_xx, 0.0);
     float s_yy_1 = max(c_4.s_yy, 0.0);
     float bound = (sqrt(s_xx_1) * sqrt(s_yy_1));
     float s_xy_1 = clamp(c_4.s_xy, -(bound), bound);
-    if (!((s_xx_1 != c_4.s_xx))) {
-        local_1 = (s_yy_1 != c_4.s_yy);
-    } else {
-        local_1 = true;
-    }
-    bool _e36 = local_1;
-    if (!(_e36)) {
-        local_2 = (s_xy_1 != c_4.s_xy);
-    } else {
-        local_2 = true;
-    }
-    bool changed = local_2;
-    float det_2 = max((changed ? ((s_xx_1 * s_yy_1) - (s_xy_1 * s_xy_1)) : c_4.det), 0.0);
-    kernel_covariance_Covariance _e53 = kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance(s_xx_1, s_xy_1, s_yy_1, det_2), kernel_covariance_KERNEL_MAX);
-    return _e53;
+    kernel_covariance_Covariance _e50 = kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance(s_xx_1, s_xy_1, s_yy_1, 0.0), kernel_covariance_KERNEL_MAX);
+    return _e50;
 }
 
 float filter_deferred_from_alpha(uint domain, float alpha_1) {
@@ -455,8 +458,8 @@ ndf_roughness_matrix_RoughnessMatrix filter_gaussian_plus_kernel(ndf_roughness_m
     float k1_ = max(((((c_10 * c_10) * k_3.s_xx) + (((2.0 * c_10) * s_13) * k_3.s_xy)) + ((s_13 * s_13) * k_3.s_yy)), 0.0);
     float k2_ = max(((((s_13 * s_13) * k_3.s_xx) - (((2.0 * c_10) * s_13) * k_3.s_xy)) + ((c_10 * c_10) * k_3.s_yy)), 0.0);
     float _e38 = ndf_roughness_matrix_determinant(a_2);
-    float det_3 = ((_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * max(k_3.det, 0.0)));
-    ndf_roughness_matrix_RoughnessMatrix _e70 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_3, tau_1);
+    float det_2 = ((_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * max(k_3.det, 0.0)));
+    ndf_roughness_matrix_RoughnessMatrix _e70 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_2, tau_1);
     return _e70;
 }
 

@@ -335,26 +335,30 @@ kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covar
         const kernel_covariance_Covariance kernel_covariance_covariance_9 = Constructkernel_covariance_Covariance(100000000.0, 0.0, 100000000.0, 1e16);
         return kernel_covariance_covariance_9;
     }
+    if ((c_4.s_xx >= 0.0)) {
+        local_1 = (c_4.s_yy >= 0.0);
+    } else {
+        local_1 = false;
+    }
+    bool _e25 = local_1;
+    if (_e25) {
+        local_2 = (c_4.det >= 0.0);
+    } else {
+        local_2 = false;
+    }
+    bool _e32 = local_2;
+    if (_e32) {
+        const kernel_covariance_Covariance _e34 = kernel_covariance_clamp_eigenvalues(c_4, kernel_covariance_KERNEL_MAX);
+        const kernel_covariance_Covariance kernel_covariance_covariance_10 = _e34;
+        return kernel_covariance_covariance_10;
+    }
     float s_xx_1 = max(c_4.s_xx, 0.0);
     float s_yy_1 = max(c_4.s_yy, 0.0);
     float bound = (sqrt(s_xx_1) * sqrt(s_yy_1));
     float s_xy_1 = clamp(c_4.s_xy, -(bound), bound);
-    if (!((s_xx_1 != c_4.s_xx))) {
-        local_1 = (s_yy_1 != c_4.s_yy);
-    } else {
-        local_1 = true;
-    }
-    bool _e36 = local_1;
-    if (!(_e36)) {
-        local_2 = (s_xy_1 != c_4.s_xy);
-    } else {
-        local_2 = true;
-    }
-    bool changed = local_2;
-    float det_2 = max((changed ? ((s_xx_1 * s_yy_1) - (s_xy_1 * s_xy_1)) : c_4.det), 0.0);
-    const kernel_covariance_Covariance _e53 = kernel_covariance_clamp_eigenvalues(Constructkernel_covariance_Covariance(s_xx_1, s_xy_1, s_yy_1, det_2), kernel_covariance_KERNEL_MAX);
-    const kernel_covariance_Covariance kernel_covariance_covariance_10 = _e53;
-    return kernel_covariance_covariance_10;
+    const kernel_covariance_Covariance _e50 = kernel_covariance_clamp_eigenvalues(Constructkernel_covariance_Covariance(s_xx_1, s_xy_1, s_yy_1, 0.0), kernel_covariance_KERNEL_MAX);
+    const kernel_covariance_Covariance kernel_covariance_covariance_11 = _e50;
+    return kernel_covariance_covariance_11;
 }
 
 float filter_deferred_from_alpha(uint domain, float alpha_1)
@@ -460,8 +464,8 @@ float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha
 kernel_covariance_Covariance filter_deferred_normal_difference_covariance(float3 dn_u_3, float3 dn_v_3, float sigma_sq)
 {
     float3 x_3 = (cross(dn_u_3, dn_v_3) * sigma_sq);
-    const kernel_covariance_Covariance kernel_covariance_covariance_11 = Constructkernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_3, x_3));
-    return kernel_covariance_covariance_11;
+    const kernel_covariance_Covariance kernel_covariance_covariance_12 = Constructkernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_3, x_3));
+    return kernel_covariance_covariance_12;
 }
 
 float filter_deferred_bandwidth_kernel(uint bandwidth, kernel_covariance_Covariance sigma)
@@ -569,8 +573,8 @@ ndf_roughness_matrix_RoughnessMatrix filter_gaussian_plus_kernel(ndf_roughness_m
     float k1_ = max(((((c_10 * c_10) * k_3.s_xx) + (((2.0 * c_10) * s_13) * k_3.s_xy)) + ((s_13 * s_13) * k_3.s_yy)), 0.0);
     float k2_ = max(((((s_13 * s_13) * k_3.s_xx) - (((2.0 * c_10) * s_13) * k_3.s_xy)) + ((c_10 * c_10) * k_3.s_yy)), 0.0);
     const float _e38 = ndf_roughness_matrix_determinant(a_2);
-    float det_3 = ((_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * max(k_3.det, 0.0)));
-    const ndf_roughness_matrix_RoughnessMatrix _e70 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_3, tau_1);
+    float det_2 = ((_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * max(k_3.det, 0.0)));
+    const ndf_roughness_matrix_RoughnessMatrix _e70 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_2, tau_1);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_3 = _e70;
     return ndf_roughness_matrix_roughnessmatrix_3;
 }
@@ -610,8 +614,8 @@ kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m)
 {
     const kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m.second.x - (m.mean.x * m.mean.x)), (m.second.y - (m.mean.x * m.mean.y)), (m.second.z - (m.mean.y * m.mean.y)));
     const kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
-    const kernel_covariance_Covariance kernel_covariance_covariance_12 = _e26;
-    return kernel_covariance_covariance_12;
+    const kernel_covariance_Covariance kernel_covariance_covariance_13 = _e26;
+    return kernel_covariance_covariance_13;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments)
@@ -805,8 +809,8 @@ kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_1
 {
     float2 w_15 = (r_13.half_extent * (2.0 * sigma_2));
     float2 v_3 = (w_15 * w_15);
-    const kernel_covariance_Covariance kernel_covariance_covariance_13 = Constructkernel_covariance_Covariance(v_3.x, 0.0, v_3.y, (v_3.x * v_3.y));
-    return kernel_covariance_covariance_13;
+    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_3.x, 0.0, v_3.y, (v_3.x * v_3.y));
+    return kernel_covariance_covariance_14;
 }
 
 footprint_Footprint Constructfootprint_Footprint(float2 arg0, float2 arg1) {
@@ -858,8 +862,8 @@ kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float 
     float2 v_4 = fp.dh_v;
     float s2_ = (sigma_3 * sigma_3);
     float cross_1 = (((u_1.x * v_4.y) - (u_1.y * v_4.x)) * s2_);
-    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance((((u_1.x * u_1.x) + (v_4.x * v_4.x)) * s2_), (((u_1.x * u_1.y) + (v_4.x * v_4.y)) * s2_), (((u_1.y * u_1.y) + (v_4.y * v_4.y)) * s2_), (cross_1 * cross_1));
-    return kernel_covariance_covariance_14;
+    const kernel_covariance_Covariance kernel_covariance_covariance_15 = Constructkernel_covariance_Covariance((((u_1.x * u_1.x) + (v_4.x * v_4.x)) * s2_), (((u_1.x * u_1.y) + (v_4.x * v_4.y)) * s2_), (((u_1.y * u_1.y) + (v_4.y * v_4.y)) * s2_), (cross_1 * cross_1));
+    return kernel_covariance_covariance_15;
 }
 
 kernel_rect_BoundingRect Constructkernel_rect_BoundingRect(float2 arg0) {
@@ -1085,12 +1089,12 @@ kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2
 {
     const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_6);
     if ((rules_2.kappa >= math_F32_MAX)) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_15 = _e2;
-        return kernel_covariance_covariance_15;
+        const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e2;
+        return kernel_covariance_covariance_16;
     }
     const kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
-    const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e11;
-    return kernel_covariance_covariance_16;
+    const kernel_covariance_Covariance kernel_covariance_covariance_17 = _e11;
+    return kernel_covariance_covariance_17;
 }
 
 float kernel_clamp_tau(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_9)

@@ -50,7 +50,9 @@ fn scaled(c: Covariance, k: f32) -> Covariance {
 }
 
 /// `a + b`: independent kernels add (KHPL16 eq. 15, 21);
-/// `det(a + b) = det a + det b + (a_xx b_yy + a_yy b_xx - 2 a_xy b_xy)`.
+/// `det(a + b) = det a + det b + (a_xx b_yy + a_yy b_xx - 2 a_xy b_xy)`. The cross term is
+/// non-negative but cancels, to within `4 eps (|a_xx b_yy| + |a_yy b_xx| + 2 |a_xy b_xy|)`,
+/// when both kernels are elongated along one direction.
 fn add(a: Covariance, b: Covariance) -> Covariance {
     let cross = a.s_xx * b.s_yy + a.s_yy * b.s_xx - 2.0 * a.s_xy * b.s_xy;
     return Covariance(a.s_xx + b.s_xx, a.s_xy + b.s_xy, a.s_yy + b.s_yy, a.det + b.det + cross);
@@ -107,22 +109,26 @@ fn clamp_eigenvalues(c: Covariance, max_eig: f32) -> Covariance {
     );
 }
 
-/// A finite, positive semi-definite covariance with eigenvalues at most `KERNEL_MAX`:
-/// negative variances raised to 0, `|s_xy|` lowered to `sqrt(s_xx s_yy)` (the nearest PSD
-/// matrix with the same diagonal; the determinant is then recomputed), a negative
-/// determinant raised to 0, an infinite entry (where the driver keeps infinities) the widest
-/// kernel `KERNEL_MAX I`, then [`clamp_eigenvalues`] with `KERNEL_MAX`. (The Rust version
-/// also maps NaN to [`zero`]; WGSL lets a driver assume NaN never occurs.)
+/// A finite, positive semi-definite covariance with eigenvalues at most `KERNEL_MAX`. A
+/// covariance with non-negative variances and a non-negative (carried) determinant is PSD
+/// and kept as it is: testing `s_xy^2 <= s_xx s_yy` in f32 instead would misjudge the
+/// nearly singular kernels of elongated footprints by rounding, and recomputing their
+/// determinant would cancel. Otherwise negative variances are raised to 0 and `|s_xy|`
+/// lowered to `sqrt(s_xx s_yy)` (the nearest PSD matrix with the same diagonal, determinant
+/// 0). An infinite entry (where the driver keeps infinities) gives the widest kernel
+/// `KERNEL_MAX I`. Then [`clamp_eigenvalues`] with `KERNEL_MAX`. (The Rust version also maps
+/// NaN to [`zero`]; WGSL lets a driver assume NaN never occurs.)
 fn sanitized(c: Covariance) -> Covariance {
     let big = max(max(abs(c.s_xx), abs(c.s_yy)), abs(c.s_xy));
     if big > math::F32_MAX {
         return Covariance(KERNEL_MAX, 0.0, KERNEL_MAX, KERNEL_MAX * KERNEL_MAX);
     }
+    if c.s_xx >= 0.0 && c.s_yy >= 0.0 && c.det >= 0.0 {
+        return clamp_eigenvalues(c, KERNEL_MAX);
+    }
     let s_xx = max(c.s_xx, 0.0);
     let s_yy = max(c.s_yy, 0.0);
     let bound = sqrt(s_xx) * sqrt(s_yy);
     let s_xy = clamp(c.s_xy, -bound, bound);
-    let changed = s_xx != c.s_xx || s_yy != c.s_yy || s_xy != c.s_xy;
-    let det = max(select(c.det, s_xx * s_yy - s_xy * s_xy, changed), 0.0);
-    return clamp_eigenvalues(Covariance(s_xx, s_xy, s_yy, det), KERNEL_MAX);
+    return clamp_eigenvalues(Covariance(s_xx, s_xy, s_yy, 0.0), KERNEL_MAX);
 }
