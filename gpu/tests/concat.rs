@@ -11,6 +11,7 @@ fn concatenated_file_matches_composition() {
     all.extend(checks::ndf::all());
     all.extend(checks::footprint::all());
     all.extend(checks::filters::all());
+    all.extend(checks::sampling::all());
     for c in &all {
         let k = Kernel {
             imports: &c.imports,

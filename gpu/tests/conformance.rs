@@ -24,3 +24,8 @@ fn footprint_and_kernel() {
 fn filters() {
     assert_group("filters", &checks::filters::all());
 }
+
+#[test]
+fn sampling() {
+    assert_group("sampling", &checks::sampling::all());
+}

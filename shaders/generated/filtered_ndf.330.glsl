@@ -61,6 +61,11 @@ struct ndf_roughness_isotropic_Isotropic {
     float alpha;
     float inv_alpha_sq;
 };
+struct sampling_Warp {
+    float l_xx;
+    float l_yx;
+    float l_yy;
+};
 const float math_PI = 3.1415927;
 const float math_HALF_PI = 1.5707964;
 const float math_QUARTER_PI = 0.7853982;
@@ -109,6 +114,7 @@ const kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules(3.
 const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
 const float ndf_beckmann_EXP_SPLIT = 80.0;
 const float ndf_beckmann_SQRT_PI = 1.7724539;
+const float sampling_ONE_MINUS_EPS = 0.99999994;
 
 layout(location = 0) out vec4 _fs2p_location0;
 
@@ -145,9 +151,9 @@ float math_atan(float x) {
 vec2 math_sincos_turns(float u) {
     vec2 cs = vec2(0.0);
     float q_4 = roundEven((4.0 * u));
-    float r_49 = (u - (0.25 * q_4));
-    float z_1 = (r_49 * r_49);
-    float s_11 = (r_49 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
+    float r_56 = (u - (0.25 * q_4));
+    float z_1 = (r_56 * r_56);
+    float s_11 = (r_56 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
     float c_6 = ((((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0);
     int k_8 = (int(q_4) & 3);
     cs = vec2(c_6, s_11);
@@ -167,13 +173,13 @@ vec2 math_sincos_turns(float u) {
 }
 
 float math_hypot(float x_1, float y) {
-    float m_19 = max(abs(x_1), abs(y));
-    if ((m_19 <= 0.0)) {
+    float m_23 = max(abs(x_1), abs(y));
+    if ((m_23 <= 0.0)) {
         return 0.0;
     }
-    float a_12 = (x_1 / m_19);
-    float b_2 = (y / m_19);
-    return (m_19 * sqrt(((a_12 * a_12) + (b_2 * b_2))));
+    float a_12 = (x_1 / m_23);
+    float b_2 = (y / m_23);
+    return (m_23 * sqrt(((a_12 * a_12) + (b_2 * b_2))));
 }
 
 float ndf_roughness_clamp_alpha(float alpha) {
@@ -223,14 +229,14 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     float b_3 = (c_3.s_xy / scale);
     float e_2 = (c_3.s_yy / scale);
     float d = (0.5 * (a_13 - e_2));
-    float r_50 = sqrt(((d * d) + (b_3 * b_3)));
-    float lmax_1 = (((0.5 * (a_13 + e_2)) + r_50) * scale);
+    float r_57 = sqrt(((d * d) + (b_3 * b_3)));
+    float lmax_1 = (((0.5 * (a_13 + e_2)) + r_57) * scale);
     if ((lmax_1 <= max_eig)) {
         return c_3;
     }
     float lmin_1 = max((c_3.det / lmax_1), 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = (r_50 < 1e-18);
+        local = (r_57 < 1e-18);
     } else {
         local = true;
     }
@@ -238,10 +244,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     if (_e46) {
         return kernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
     }
-    float p_4 = (r_50 + abs(d));
+    float p_4 = (r_57 + abs(d));
     float q_5 = ((p_4 > 0.0) ? ((b_3 * b_3) / p_4) : 0.0);
     vec2 ee = ((d >= 0.0) ? vec2(p_4, q_5) : vec2(q_5, p_4));
-    float inv_1 = (1.0 / (2.0 * r_50));
+    float inv_1 = (1.0 / (2.0 * r_57));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_3 * inv_1);
     float p22_ = (ee.y * inv_1);
@@ -322,8 +328,8 @@ float filter_deferred_norm_eval(uint norm, vec3 dn_u, vec3 dn_v) {
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        vec3 m_20 = max(abs(dn_u), abs(dn_v));
-        return max(max(m_20.x, m_20.y), m_20.z);
+        vec3 m_24 = max(abs(dn_u), abs(dn_v));
+        return max(max(m_24.x, m_24.y), m_24.z);
     }
     return (a_14 + c_7);
 }
@@ -391,8 +397,8 @@ float filter_deferred_filtered_alpha(float alpha_4, kernel_covariance_Covariance
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(vec2 axis, vec2 alpha_5) {
-    vec2 l = (alpha_5 * alpha_5);
-    return ndf_roughness_matrix_RoughnessMatrix(axis, l, (vec2(1.0) / l), (alpha_5.x * alpha_5.y));
+    vec2 l_2 = (alpha_5 * alpha_5);
+    return ndf_roughness_matrix_RoughnessMatrix(axis, l_2, (vec2(1.0) / l_2), (alpha_5.x * alpha_5.y));
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det, float tau) {
@@ -439,8 +445,8 @@ float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_4) {
 vec3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_5) {
     float c_9 = r_5.axis.x;
     float s_12 = r_5.axis.y;
-    vec2 l_1 = r_5.eig;
-    return vec3((((l_1.x * c_9) * c_9) + ((l_1.y * s_12) * s_12)), (((l_1.x - l_1.y) * c_9) * s_12), (((l_1.x * s_12) * s_12) + ((l_1.y * c_9) * c_9)));
+    vec2 l_3 = r_5.eig;
+    return vec3((((l_3.x * c_9) * c_9) + ((l_3.y * s_12) * s_12)), (((l_3.x - l_3.y) * c_9) * s_12), (((l_3.x * s_12) * s_12) + ((l_3.y * c_9) * c_9)));
 }
 
 float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_6) {
@@ -638,9 +644,9 @@ ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_a
 }
 
 kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_13, float sigma_2) {
-    vec2 w_15 = (r_13.half_extent * (2.0 * sigma_2));
-    vec2 v_3 = (w_15 * w_15);
-    return kernel_covariance_Covariance(v_3.x, 0.0, v_3.y, (v_3.x * v_3.y));
+    vec2 w_16 = (r_13.half_extent * (2.0 * sigma_2));
+    vec2 v_4 = (w_16 * w_16);
+    return kernel_covariance_Covariance(v_4.x, 0.0, v_4.y, (v_4.x * v_4.y));
 }
 
 footprint_Footprint footprint_from_slope_derivatives(vec2 dh_u, vec2 dh_v) {
@@ -671,11 +677,11 @@ footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) 
 }
 
 kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3) {
-    vec2 u_1 = fp.dh_u;
-    vec2 v_4 = fp.dh_v;
+    vec2 u_5 = fp.dh_u;
+    vec2 v_5 = fp.dh_v;
     float s2_ = (sigma_3 * sigma_3);
-    float cross_1 = (((u_1.x * v_4.y) - (u_1.y * v_4.x)) * s2_);
-    return kernel_covariance_Covariance((((u_1.x * u_1.x) + (v_4.x * v_4.x)) * s2_), (((u_1.x * u_1.y) + (v_4.x * v_4.y)) * s2_), (((u_1.y * u_1.y) + (v_4.y * v_4.y)) * s2_), (cross_1 * cross_1));
+    float cross_1 = (((u_5.x * v_5.y) - (u_5.y * v_5.x)) * s2_);
+    return kernel_covariance_Covariance((((u_5.x * u_5.x) + (v_5.x * v_5.x)) * s2_), (((u_5.x * u_5.y) + (v_5.x * v_5.y)) * s2_), (((u_5.y * u_5.y) + (v_5.y * v_5.y)) * s2_), (cross_1 * cross_1));
 }
 
 kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1) {
@@ -785,8 +791,8 @@ vec2 footprint_slope_slope_from_sphere(vec3 h_10) {
 
 vec3 footprint_slope_sphere_from_slope(vec2 s_2) {
     float k_12 = max(max(abs(s_2.x), abs(s_2.y)), 1.0);
-    vec3 v_5 = vec3((-(s_2) / vec2(k_12)), (1.0 / k_12));
-    return (v_5 / vec3(length(v_5)));
+    vec3 v_6 = vec3((-(s_2) / vec2(k_12)), (1.0 / k_12));
+    return (v_6 / vec3(length(v_6)));
 }
 
 vec2 footprint_slope_projected_from_sphere(vec3 h_11) {
@@ -815,17 +821,17 @@ vec2 footprint_slope_projected_from_slope(vec2 s_3) {
 }
 
 footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3) {
-    float l_2 = max(rules.max_extent, 0.0);
+    float l_4 = max(rules.max_extent, 0.0);
     float scale_1 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
     if ((scale_1 <= 0.0)) {
         return fp_3;
     }
     footprint_Footprint unit = footprint_Footprint((fp_3.dh_u / vec2(scale_1)), (fp_3.dh_v / vec2(scale_1)));
     float _e29 = footprint_max_extent(unit);
-    if (((_e29 * scale_1) <= l_2)) {
+    if (((_e29 * scale_1) <= l_4)) {
         return fp_3;
     }
-    return footprint_Footprint(((unit.dh_u / vec2(_e29)) * l_2), ((unit.dh_v / vec2(_e29)) * l_2));
+    return footprint_Footprint(((unit.dh_u / vec2(_e29)) * l_4), ((unit.dh_v / vec2(_e29)) * l_4));
 }
 
 kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_14, vec2 alpha_9) {
@@ -1084,14 +1090,14 @@ float ndf_ggx_p22_of(float q_2, float sqrt_det_2) {
 float ndf_ggx_d_of(float q_xy_1, float m_z_1, float sqrt_det_3) {
     bool local_5 = false;
     float t_5 = (q_xy_1 + (m_z_1 * m_z_1));
-    float v_6 = (1.0 / (((math_PI * sqrt_det_3) * t_5) * t_5));
+    float v_7 = (1.0 / (((math_PI * sqrt_det_3) * t_5) * t_5));
     if ((m_z_1 > 0.0)) {
-        local_5 = (v_6 <= math_F32_MAX);
+        local_5 = (v_7 <= math_F32_MAX);
     } else {
         local_5 = false;
     }
     bool _e18 = local_5;
-    return (_e18 ? v_6 : 0.0);
+    return (_e18 ? v_7 : 0.0);
 }
 
 float ndf_ggx_lambda_of(float q_3, float abs_wz_1) {
@@ -1101,8 +1107,8 @@ float ndf_ggx_lambda_of(float q_3, float abs_wz_1) {
     if ((abs_wz_1 <= 0.0)) {
         return math_F32_MAX;
     }
-    float r_51 = sqrt(((abs_wz_1 * abs_wz_1) + q_3));
-    return (q_3 / ((2.0 * abs_wz_1) * (r_51 + abs_wz_1)));
+    float r_58 = sqrt(((abs_wz_1 * abs_wz_1) + q_3));
+    return (q_3 / ((2.0 * abs_wz_1) * (r_58 + abs_wz_1)));
 }
 
 float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_34, vec2 s_8) {
@@ -1202,6 +1208,132 @@ float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, vec3 i_6, vec
     float _e5 = ndf_ggx_lambda_matrix(r_48, o_5);
     float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_18), dot(o_5, m_18));
     return _e8;
+}
+
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_49) {
+    vec3 _e1 = ndf_roughness_matrix_entries(r_49);
+    float l_xx = sqrt(_e1.x);
+    return sampling_Warp(l_xx, (_e1.y / l_xx), (r_49.sqrt_det / l_xx));
+}
+
+vec3 sampling_normalize_scaled(vec3 v_3) {
+    vec3 w_17 = (v_3 / vec3(max(max(abs(v_3.x), abs(v_3.y)), abs(v_3.z))));
+    return (w_17 / vec3(length(w_17)));
+}
+
+vec3 sampling_stretch(sampling_Warp l, vec3 w_15) {
+    return vec3(((l.l_xx * w_15.x) + (l.l_yx * w_15.y)), (l.l_yy * w_15.y), w_15.z);
+}
+
+vec3 sampling_unstretch(sampling_Warp l_1, vec3 n) {
+    vec3 _e14 = sampling_normalize_scaled(vec3((l_1.l_xx * n.x), ((l_1.l_yx * n.x) + (l_1.l_yy * n.y)), n.z));
+    return _e14;
+}
+
+float sampling_clamp_unit(float u_1) {
+    return ((u_1 >= 0.0) ? min(u_1, sampling_ONE_MINUS_EPS) : 0.0);
+}
+
+vec3 sampling_reflect(vec3 wo, vec3 m_19) {
+    return (((2.0 * dot(wo, m_19)) * m_19) - wo);
+}
+
+vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_2) {
+    vec2 _e3 = math_sincos_turns(u_2.x);
+    float z_5 = (((1.0 - u_2.y) * (1.0 + wi.z)) - wi.z);
+    float sin_theta = sqrt(clamp((1.0 - (z_5 * z_5)), 0.0, 1.0));
+    return (vec3((sin_theta * _e3), z_5) + wi);
+}
+
+vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_50, vec3 wo_1, vec2 u_3) {
+    bool local_6 = false;
+    if (!((wo_1.z > 0.0))) {
+        return vec3(0.0);
+    }
+    sampling_Warp _e9 = sampling_warp(r_50);
+    vec3 _e10 = sampling_normalize_scaled(wo_1);
+    vec3 _e11 = sampling_stretch(_e9, _e10);
+    vec3 _e12 = sampling_normalize_scaled(_e11);
+    if (!((_e12.z > 0.0))) {
+        return vec3(0.0);
+    }
+    float _e20 = sampling_clamp_unit(u_3.x);
+    float _e22 = sampling_clamp_unit(u_3.y);
+    vec3 _e24 = sampling_ggx_standard_visible(_e12, vec2(_e20, _e22));
+    vec3 _e25 = sampling_unstretch(_e9, _e24);
+    if ((_e25.z > 0.0)) {
+        local_6 = (dot(wo_1, _e25) > 0.0);
+    } else {
+        local_6 = false;
+    }
+    bool _e35 = local_6;
+    if (_e35) {
+        return _e25;
+    }
+    vec3 _e36 = sampling_unstretch(_e9, _e12);
+    return ((_e36.z > 0.0) ? _e36 : vec3(0.0));
+}
+
+vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_51, vec2 u_4) {
+    float _e3 = sampling_clamp_unit(u_4.x);
+    float _e5 = sampling_clamp_unit(u_4.y);
+    vec2 _e6 = math_sincos_turns(_e5);
+    vec3 n_1 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
+    sampling_Warp _e13 = sampling_warp(r_51);
+    vec3 _e14 = sampling_unstretch(_e13, n_1);
+    return _e14;
+}
+
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_52, vec3 m_20) {
+    float _e2 = ndf_ggx_d_matrix(r_52, m_20);
+    return ((m_20.z > 0.0) ? (_e2 * m_20.z) : 0.0);
+}
+
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_53, vec3 wo_2, vec3 m_21) {
+    bool local_7 = false;
+    float wom = dot(wo_2, m_21);
+    if (!(!((wo_2.z > 0.0)))) {
+        local_7 = !((wom > 0.0));
+    } else {
+        local_7 = true;
+    }
+    bool _e15 = local_7;
+    if (_e15) {
+        return 0.0;
+    }
+    float _e17 = ndf_ggx_d_matrix(r_53, m_21);
+    float _e20 = ndf_ggx_lambda_matrix(r_53, wo_2);
+    float v_8 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
+    return ((v_8 <= math_F32_MAX) ? v_8 : 0.0);
+}
+
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_54, vec3 wo_3, vec3 m_22) {
+    if (!((wo_3.z > 0.0))) {
+        return 0.0;
+    }
+    vec3 _e8 = sampling_normalize_scaled(wo_3);
+    if (!((dot(_e8, m_22) > 0.0))) {
+        return 0.0;
+    }
+    float _e14 = ndf_ggx_d_matrix(r_54, m_22);
+    float _e18 = ndf_ggx_lambda_matrix(r_54, _e8);
+    float v_9 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
+    return ((v_9 <= math_F32_MAX) ? v_9 : 0.0);
+}
+
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_55, vec3 wo_4, vec3 wi_1) {
+    if (!((wo_4.z > 0.0))) {
+        return 0.0;
+    }
+    vec3 _e8 = sampling_normalize_scaled(wo_4);
+    vec3 _e9 = sampling_normalize_scaled(wi_1);
+    vec3 h_18 = (_e8 + _e9);
+    float len = length(h_18);
+    if (!((len > 0.0))) {
+        return 0.0;
+    }
+    float _e18 = sampling_reflection_pdf_from_normal(r_55, wo_4, (h_18 / vec3(len)));
+    return _e18;
 }
 
 void main() {

@@ -80,6 +80,12 @@ struct ndf_roughness_isotropic_Isotropic {
     float inv_alpha_sq;
 };
 
+struct sampling_Warp {
+    float l_xx;
+    float l_yx;
+    float l_yy;
+};
+
 filter_deferred_KernelConvention Constructfilter_deferred_KernelConvention(uint arg0, uint arg1, float arg2, float arg3, float arg4, float arg5, uint arg6, bool arg7, float arg8) {
     filter_deferred_KernelConvention ret = (filter_deferred_KernelConvention)0;
     ret.domain = arg0;
@@ -152,6 +158,7 @@ static const kernel_clamp_ClampRules kernel_clamp_NO_RULES = Constructkernel_cla
 static const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
 static const float ndf_beckmann_EXP_SPLIT = 80.0;
 static const float ndf_beckmann_SQRT_PI = 1.7724539;
+static const float sampling_ONE_MINUS_EPS = 0.99999994;
 
 float math_atan(float x)
 {
@@ -194,9 +201,9 @@ float2 math_sincos_turns(float u)
     float2 cs = (float2)0;
 
     float q_4 = round((4.0 * u));
-    float r_49 = (u - (0.25 * q_4));
-    float z_1 = (r_49 * r_49);
-    float s_11 = (r_49 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
+    float r_56 = (u - (0.25 * q_4));
+    float z_1 = (r_56 * r_56);
+    float s_11 = (r_56 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
     float c_6 = ((((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0);
     int k_8 = (naga_f2i32(q_4) & int(3));
     cs = float2(c_6, s_11);
@@ -217,13 +224,13 @@ float2 math_sincos_turns(float u)
 
 float math_hypot(float x_1, float y)
 {
-    float m_19 = max(abs(x_1), abs(y));
-    if ((m_19 <= 0.0)) {
+    float m_23 = max(abs(x_1), abs(y));
+    if ((m_23 <= 0.0)) {
         return 0.0;
     }
-    float a_12 = (x_1 / m_19);
-    float b_2 = (y / m_19);
-    return (m_19 * sqrt(((a_12 * a_12) + (b_2 * b_2))));
+    float a_12 = (x_1 / m_23);
+    float b_2 = (y / m_23);
+    return (m_23 * sqrt(((a_12 * a_12) + (b_2 * b_2))));
 }
 
 float ndf_roughness_clamp_alpha(float alpha)
@@ -297,15 +304,15 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     float b_3 = (c_3.s_xy / scale);
     float e_2 = (c_3.s_yy / scale);
     float d = (0.5 * (a_13 - e_2));
-    float r_50 = sqrt(((d * d) + (b_3 * b_3)));
-    float lmax_1 = (((0.5 * (a_13 + e_2)) + r_50) * scale);
+    float r_57 = sqrt(((d * d) + (b_3 * b_3)));
+    float lmax_1 = (((0.5 * (a_13 + e_2)) + r_57) * scale);
     if ((lmax_1 <= max_eig)) {
         const kernel_covariance_Covariance kernel_covariance_covariance_6 = c_3;
         return kernel_covariance_covariance_6;
     }
     float lmin_1 = max((c_3.det / lmax_1), 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = (r_50 < 1e-18);
+        local = (r_57 < 1e-18);
     } else {
         local = true;
     }
@@ -314,10 +321,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         const kernel_covariance_Covariance kernel_covariance_covariance_7 = Constructkernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
         return kernel_covariance_covariance_7;
     }
-    float p_4 = (r_50 + abs(d));
+    float p_4 = (r_57 + abs(d));
     float q_5 = ((p_4 > 0.0) ? ((b_3 * b_3) / p_4) : 0.0);
     float2 ee = ((d >= 0.0) ? float2(p_4, q_5) : float2(q_5, p_4));
-    float inv_1 = (1.0 / (2.0 * r_50));
+    float inv_1 = (1.0 / (2.0 * r_57));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_3 * inv_1);
     float p22_ = (ee.y * inv_1);
@@ -408,8 +415,8 @@ float filter_deferred_norm_eval(uint norm, float3 dn_u, float3 dn_v)
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        float3 m_20 = max(abs(dn_u), abs(dn_v));
-        return max(max(m_20.x, m_20.y), m_20.z);
+        float3 m_24 = max(abs(dn_u), abs(dn_v));
+        return max(max(m_24.x, m_24.y), m_24.z);
     }
     return (a_14 + c_7);
 }
@@ -497,8 +504,8 @@ ndf_roughness_matrix_RoughnessMatrix Constructndf_roughness_matrix_RoughnessMatr
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(float2 axis, float2 alpha_5)
 {
-    float2 l = (alpha_5 * alpha_5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix = Constructndf_roughness_matrix_RoughnessMatrix(axis, l, ((1.0).xx / l), (alpha_5.x * alpha_5.y));
+    float2 l_2 = (alpha_5 * alpha_5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix = Constructndf_roughness_matrix_RoughnessMatrix(axis, l_2, ((1.0).xx / l_2), (alpha_5.x * alpha_5.y));
     return ndf_roughness_matrix_roughnessmatrix;
 }
 
@@ -556,8 +563,8 @@ float3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_5)
 {
     float c_9 = r_5.axis.x;
     float s_12 = r_5.axis.y;
-    float2 l_1 = r_5.eig;
-    return float3((((l_1.x * c_9) * c_9) + ((l_1.y * s_12) * s_12)), (((l_1.x - l_1.y) * c_9) * s_12), (((l_1.x * s_12) * s_12) + ((l_1.y * c_9) * c_9)));
+    float2 l_3 = r_5.eig;
+    return float3((((l_3.x * c_9) * c_9) + ((l_3.y * s_12) * s_12)), (((l_3.x - l_3.y) * c_9) * s_12), (((l_3.x * s_12) * s_12) + ((l_3.y * c_9) * c_9)));
 }
 
 float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_6)
@@ -807,9 +814,9 @@ ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_a
 
 kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_13, float sigma_2)
 {
-    float2 w_15 = (r_13.half_extent * (2.0 * sigma_2));
-    float2 v_3 = (w_15 * w_15);
-    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_3.x, 0.0, v_3.y, (v_3.x * v_3.y));
+    float2 w_16 = (r_13.half_extent * (2.0 * sigma_2));
+    float2 v_4 = (w_16 * w_16);
+    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_4.x, 0.0, v_4.y, (v_4.x * v_4.y));
     return kernel_covariance_covariance_14;
 }
 
@@ -858,11 +865,11 @@ footprint_Footprint footprint_from_normal_differences(float3 dn_u_4, float3 dn_v
 
 kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3)
 {
-    float2 u_1 = fp.dh_u;
-    float2 v_4 = fp.dh_v;
+    float2 u_5 = fp.dh_u;
+    float2 v_5 = fp.dh_v;
     float s2_ = (sigma_3 * sigma_3);
-    float cross_1 = (((u_1.x * v_4.y) - (u_1.y * v_4.x)) * s2_);
-    const kernel_covariance_Covariance kernel_covariance_covariance_15 = Constructkernel_covariance_Covariance((((u_1.x * u_1.x) + (v_4.x * v_4.x)) * s2_), (((u_1.x * u_1.y) + (v_4.x * v_4.y)) * s2_), (((u_1.y * u_1.y) + (v_4.y * v_4.y)) * s2_), (cross_1 * cross_1));
+    float cross_1 = (((u_5.x * v_5.y) - (u_5.y * v_5.x)) * s2_);
+    const kernel_covariance_Covariance kernel_covariance_covariance_15 = Constructkernel_covariance_Covariance((((u_5.x * u_5.x) + (v_5.x * v_5.x)) * s2_), (((u_5.x * u_5.y) + (v_5.x * v_5.y)) * s2_), (((u_5.y * u_5.y) + (v_5.y * v_5.y)) * s2_), (cross_1 * cross_1));
     return kernel_covariance_covariance_15;
 }
 
@@ -1016,8 +1023,8 @@ float2 footprint_slope_slope_from_sphere(float3 h_10)
 float3 footprint_slope_sphere_from_slope(float2 s_2)
 {
     float k_12 = max(max(abs(s_2.x), abs(s_2.y)), 1.0);
-    float3 v_5 = float3((-(s_2) / (k_12).xx), (1.0 / k_12));
-    return (v_5 / (length(v_5)).xxx);
+    float3 v_6 = float3((-(s_2) / (k_12).xx), (1.0 / k_12));
+    return (v_6 / (length(v_6)).xxx);
 }
 
 float2 footprint_slope_projected_from_sphere(float3 h_11)
@@ -1051,7 +1058,7 @@ float2 footprint_slope_projected_from_slope(float2 s_3)
 
 footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3)
 {
-    float l_2 = max(rules.max_extent, 0.0);
+    float l_4 = max(rules.max_extent, 0.0);
     float scale_1 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
     if ((scale_1 <= 0.0)) {
         const footprint_Footprint footprint_footprint_5 = fp_3;
@@ -1059,11 +1066,11 @@ footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footpr
     }
     footprint_Footprint unit = Constructfootprint_Footprint((fp_3.dh_u / (scale_1).xx), (fp_3.dh_v / (scale_1).xx));
     const float _e29 = footprint_max_extent(unit);
-    if (((_e29 * scale_1) <= l_2)) {
+    if (((_e29 * scale_1) <= l_4)) {
         const footprint_Footprint footprint_footprint_6 = fp_3;
         return footprint_footprint_6;
     }
-    const footprint_Footprint footprint_footprint_7 = Constructfootprint_Footprint(((unit.dh_u / (_e29).xx) * l_2), ((unit.dh_v / (_e29).xx) * l_2));
+    const footprint_Footprint footprint_footprint_7 = Constructfootprint_Footprint(((unit.dh_u / (_e29).xx) * l_4), ((unit.dh_v / (_e29).xx) * l_4));
     return footprint_footprint_7;
 }
 
@@ -1374,14 +1381,14 @@ float ndf_ggx_d_of(float q_xy_1, float m_z_1, float sqrt_det_3)
     bool local_5 = (bool)0;
 
     float t_5 = (q_xy_1 + (m_z_1 * m_z_1));
-    float v_6 = (1.0 / (((math_PI * sqrt_det_3) * t_5) * t_5));
+    float v_7 = (1.0 / (((math_PI * sqrt_det_3) * t_5) * t_5));
     if ((m_z_1 > 0.0)) {
-        local_5 = (v_6 <= math_F32_MAX);
+        local_5 = (v_7 <= math_F32_MAX);
     } else {
         local_5 = false;
     }
     bool _e18 = local_5;
-    return (_e18 ? v_6 : 0.0);
+    return (_e18 ? v_7 : 0.0);
 }
 
 float ndf_ggx_lambda_of(float q_3, float abs_wz_1)
@@ -1392,8 +1399,8 @@ float ndf_ggx_lambda_of(float q_3, float abs_wz_1)
     if ((abs_wz_1 <= 0.0)) {
         return math_F32_MAX;
     }
-    float r_51 = sqrt(((abs_wz_1 * abs_wz_1) + q_3));
-    return (q_3 / ((2.0 * abs_wz_1) * (r_51 + abs_wz_1)));
+    float r_58 = sqrt(((abs_wz_1 * abs_wz_1) + q_3));
+    return (q_3 / ((2.0 * abs_wz_1) * (r_58 + abs_wz_1)));
 }
 
 float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_34, float2 s_8)
@@ -1508,6 +1515,156 @@ float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 i_6, f
     const float _e5 = ndf_ggx_lambda_matrix(r_48, o_5);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_18), dot(o_5, m_18));
     return _e8;
+}
+
+sampling_Warp Constructsampling_Warp(float arg0, float arg1, float arg2) {
+    sampling_Warp ret = (sampling_Warp)0;
+    ret.l_xx = arg0;
+    ret.l_yx = arg1;
+    ret.l_yy = arg2;
+    return ret;
+}
+
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_49)
+{
+    const float3 _e1 = ndf_roughness_matrix_entries(r_49);
+    float l_xx = sqrt(_e1.x);
+    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_49.sqrt_det / l_xx));
+    return sampling_warp_1;
+}
+
+float3 sampling_normalize_scaled(float3 v_3)
+{
+    float3 w_17 = (v_3 / (max(max(abs(v_3.x), abs(v_3.y)), abs(v_3.z))).xxx);
+    return (w_17 / (length(w_17)).xxx);
+}
+
+float3 sampling_stretch(sampling_Warp l, float3 w_15)
+{
+    return float3(((l.l_xx * w_15.x) + (l.l_yx * w_15.y)), (l.l_yy * w_15.y), w_15.z);
+}
+
+float3 sampling_unstretch(sampling_Warp l_1, float3 n)
+{
+    const float3 _e14 = sampling_normalize_scaled(float3((l_1.l_xx * n.x), ((l_1.l_yx * n.x) + (l_1.l_yy * n.y)), n.z));
+    return _e14;
+}
+
+float sampling_clamp_unit(float u_1)
+{
+    return ((u_1 >= 0.0) ? min(u_1, sampling_ONE_MINUS_EPS) : 0.0);
+}
+
+float3 sampling_reflect(float3 wo, float3 m_19)
+{
+    return (((2.0 * dot(wo, m_19)) * m_19) - wo);
+}
+
+float3 sampling_ggx_standard_visible(float3 wi, float2 u_2)
+{
+    const float2 _e3 = math_sincos_turns(u_2.x);
+    float z_5 = (((1.0 - u_2.y) * (1.0 + wi.z)) - wi.z);
+    float sin_theta = sqrt(clamp((1.0 - (z_5 * z_5)), 0.0, 1.0));
+    return (float3((sin_theta * _e3), z_5) + wi);
+}
+
+float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_50, float3 wo_1, float2 u_3)
+{
+    bool local_6 = (bool)0;
+
+    if (!((wo_1.z > 0.0))) {
+        return (0.0).xxx;
+    }
+    const sampling_Warp _e9 = sampling_warp(r_50);
+    const float3 _e10 = sampling_normalize_scaled(wo_1);
+    const float3 _e11 = sampling_stretch(_e9, _e10);
+    const float3 _e12 = sampling_normalize_scaled(_e11);
+    if (!((_e12.z > 0.0))) {
+        return (0.0).xxx;
+    }
+    const float _e20 = sampling_clamp_unit(u_3.x);
+    const float _e22 = sampling_clamp_unit(u_3.y);
+    const float3 _e24 = sampling_ggx_standard_visible(_e12, float2(_e20, _e22));
+    const float3 _e25 = sampling_unstretch(_e9, _e24);
+    if ((_e25.z > 0.0)) {
+        local_6 = (dot(wo_1, _e25) > 0.0);
+    } else {
+        local_6 = false;
+    }
+    bool _e35 = local_6;
+    if (_e35) {
+        return _e25;
+    }
+    const float3 _e36 = sampling_unstretch(_e9, _e12);
+    return ((_e36.z > 0.0) ? _e36 : (0.0).xxx);
+}
+
+float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_51, float2 u_4)
+{
+    const float _e3 = sampling_clamp_unit(u_4.x);
+    const float _e5 = sampling_clamp_unit(u_4.y);
+    const float2 _e6 = math_sincos_turns(_e5);
+    float3 n_1 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
+    const sampling_Warp _e13 = sampling_warp(r_51);
+    const float3 _e14 = sampling_unstretch(_e13, n_1);
+    return _e14;
+}
+
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_52, float3 m_20)
+{
+    const float _e2 = ndf_ggx_d_matrix(r_52, m_20);
+    return ((m_20.z > 0.0) ? (_e2 * m_20.z) : 0.0);
+}
+
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_53, float3 wo_2, float3 m_21)
+{
+    bool local_7 = (bool)0;
+
+    float wom = dot(wo_2, m_21);
+    if (!(!((wo_2.z > 0.0)))) {
+        local_7 = !((wom > 0.0));
+    } else {
+        local_7 = true;
+    }
+    bool _e15 = local_7;
+    if (_e15) {
+        return 0.0;
+    }
+    const float _e17 = ndf_ggx_d_matrix(r_53, m_21);
+    const float _e20 = ndf_ggx_lambda_matrix(r_53, wo_2);
+    float v_8 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
+    return ((v_8 <= math_F32_MAX) ? v_8 : 0.0);
+}
+
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_54, float3 wo_3, float3 m_22)
+{
+    if (!((wo_3.z > 0.0))) {
+        return 0.0;
+    }
+    const float3 _e8 = sampling_normalize_scaled(wo_3);
+    if (!((dot(_e8, m_22) > 0.0))) {
+        return 0.0;
+    }
+    const float _e14 = ndf_ggx_d_matrix(r_54, m_22);
+    const float _e18 = ndf_ggx_lambda_matrix(r_54, _e8);
+    float v_9 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
+    return ((v_9 <= math_F32_MAX) ? v_9 : 0.0);
+}
+
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_55, float3 wo_4, float3 wi_1)
+{
+    if (!((wo_4.z > 0.0))) {
+        return 0.0;
+    }
+    const float3 _e8 = sampling_normalize_scaled(wo_4);
+    const float3 _e9 = sampling_normalize_scaled(wi_1);
+    float3 h_18 = (_e8 + _e9);
+    float len = length(h_18);
+    if (!((len > 0.0))) {
+        return 0.0;
+    }
+    const float _e18 = sampling_reflection_pdf_from_normal(r_55, wo_4, (h_18 / (len).xxx));
+    return _e18;
 }
 
 float4 filtered_ndf_entry() : SV_Target0

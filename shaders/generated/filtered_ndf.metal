@@ -71,6 +71,11 @@ struct ndf_roughness_isotropic_Isotropic {
     float alpha;
     float inv_alpha_sq;
 };
+struct sampling_Warp {
+    float l_xx;
+    float l_yx;
+    float l_yy;
+};
 constant float math_PI = 3.1415927;
 constant float math_HALF_PI = 1.5707964;
 constant float math_QUARTER_PI = 0.7853982;
@@ -119,6 +124,7 @@ constant kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules
 constant kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true};
 constant float ndf_beckmann_EXP_SPLIT = 80.0;
 constant float ndf_beckmann_SQRT_PI = 1.7724539;
+constant float sampling_ONE_MINUS_EPS = 0.99999994;
 
 float math_atan(
     float x
@@ -161,9 +167,9 @@ metal::float2 math_sincos_turns(
 ) {
     metal::float2 cs = {};
     float q_4 = metal::rint(4.0 * u);
-    float r_49 = u - (0.25 * q_4);
-    float z_1 = r_49 * r_49;
-    float s_11 = r_49 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855);
+    float r_56 = u - (0.25 * q_4);
+    float z_1 = r_56 * r_56;
+    float s_11 = r_56 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855);
     float c_6 = (((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0;
     int k_8 = naga_f2i32(q_4) & 3;
     cs = metal::float2(c_6, s_11);
@@ -186,13 +192,13 @@ float math_hypot(
     float x_1,
     float y
 ) {
-    float m_19 = metal::max(metal::abs(x_1), metal::abs(y));
-    if (m_19 <= 0.0) {
+    float m_23 = metal::max(metal::abs(x_1), metal::abs(y));
+    if (m_23 <= 0.0) {
         return 0.0;
     }
-    float a_12 = x_1 / m_19;
-    float b_2 = y / m_19;
-    return m_19 * metal::sqrt((a_12 * a_12) + (b_2 * b_2));
+    float a_12 = x_1 / m_23;
+    float b_2 = y / m_23;
+    return m_23 * metal::sqrt((a_12 * a_12) + (b_2 * b_2));
 }
 
 float ndf_roughness_clamp_alpha(
@@ -262,14 +268,14 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
     float b_3 = c_3.s_xy / scale;
     float e_2 = c_3.s_yy / scale;
     float d = 0.5 * (a_13 - e_2);
-    float r_50 = metal::sqrt((d * d) + (b_3 * b_3));
-    float lmax_1 = ((0.5 * (a_13 + e_2)) + r_50) * scale;
+    float r_57 = metal::sqrt((d * d) + (b_3 * b_3));
+    float lmax_1 = ((0.5 * (a_13 + e_2)) + r_57) * scale;
     if (lmax_1 <= max_eig) {
         return c_3;
     }
     float lmin_1 = metal::max(c_3.det / lmax_1, 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = r_50 < 0.000000000000000001;
+        local = r_57 < 0.000000000000000001;
     } else {
         local = true;
     }
@@ -277,10 +283,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
     if (_e46) {
         return kernel_covariance_Covariance {max_eig, 0.0, max_eig, max_eig * max_eig};
     }
-    float p_4 = r_50 + metal::abs(d);
+    float p_4 = r_57 + metal::abs(d);
     float q_5 = (p_4 > 0.0) ? ((b_3 * b_3) / p_4) : 0.0;
     metal::float2 ee = (d >= 0.0) ? metal::float2(p_4, q_5) : metal::float2(q_5, p_4);
-    float inv_1 = 1.0 / (2.0 * r_50);
+    float inv_1 = 1.0 / (2.0 * r_57);
     float p11_ = ee.x * inv_1;
     float p12_ = b_3 * inv_1;
     float p22_ = ee.y * inv_1;
@@ -377,8 +383,8 @@ float filter_deferred_norm_eval(
         return _e11;
     }
     if (norm == filter_deferred_NORM_MAX_ABS_COMPONENT) {
-        metal::float3 m_20 = metal::max(metal::abs(dn_u), metal::abs(dn_v));
-        return metal::max(metal::max(m_20.x, m_20.y), m_20.z);
+        metal::float3 m_24 = metal::max(metal::abs(dn_u), metal::abs(dn_v));
+        return metal::max(metal::max(m_24.x, m_24.y), m_24.z);
     }
     return a_14 + c_7;
 }
@@ -477,8 +483,8 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(
     metal::float2 axis,
     metal::float2 alpha_5
 ) {
-    metal::float2 l = alpha_5 * alpha_5;
-    return ndf_roughness_matrix_RoughnessMatrix {axis, l, metal::float2(1.0) / l, alpha_5.x * alpha_5.y};
+    metal::float2 l_2 = alpha_5 * alpha_5;
+    return ndf_roughness_matrix_RoughnessMatrix {axis, l_2, metal::float2(1.0) / l_2, alpha_5.x * alpha_5.y};
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(
@@ -548,7 +554,7 @@ metal::float3 ndf_roughness_matrix_entries(
 ) {
     float c_9 = r_5.axis.x;
     float s_12 = r_5.axis.y;
-    metal::float2 l_1 = r_5.eig;
+    metal::float2 l_3 = r_5.eig;
     return metal::float3(((r_5.eig.x * c_9) * c_9) + ((r_5.eig.y * s_12) * s_12), ((r_5.eig.x - r_5.eig.y) * c_9) * s_12, ((r_5.eig.x * s_12) * s_12) + ((r_5.eig.y * c_9) * c_9));
 }
 
@@ -805,9 +811,9 @@ kernel_covariance_Covariance kernel_rect_covariance(
     kernel_rect_BoundingRect r_13,
     float sigma_2
 ) {
-    metal::float2 w_15 = r_13.half_extent * (2.0 * sigma_2);
-    metal::float2 v_3 = w_15 * w_15;
-    return kernel_covariance_Covariance {v_3.x, 0.0, v_3.y, v_3.x * v_3.y};
+    metal::float2 w_16 = r_13.half_extent * (2.0 * sigma_2);
+    metal::float2 v_4 = w_16 * w_16;
+    return kernel_covariance_Covariance {v_4.x, 0.0, v_4.y, v_4.x * v_4.y};
 }
 
 footprint_Footprint footprint_from_slope_derivatives(
@@ -854,8 +860,8 @@ kernel_covariance_Covariance footprint_covariance(
     footprint_Footprint fp,
     float sigma_3
 ) {
-    metal::float2 u_1 = fp.dh_u;
-    metal::float2 v_4 = fp.dh_v;
+    metal::float2 u_5 = fp.dh_u;
+    metal::float2 v_5 = fp.dh_v;
     float s2_ = sigma_3 * sigma_3;
     float cross_1 = ((fp.dh_u.x * fp.dh_v.y) - (fp.dh_u.y * fp.dh_v.x)) * s2_;
     return kernel_covariance_Covariance {((fp.dh_u.x * fp.dh_u.x) + (fp.dh_v.x * fp.dh_v.x)) * s2_, ((fp.dh_u.x * fp.dh_u.y) + (fp.dh_v.x * fp.dh_v.y)) * s2_, ((fp.dh_u.y * fp.dh_u.y) + (fp.dh_v.y * fp.dh_v.y)) * s2_, cross_1 * cross_1};
@@ -1005,8 +1011,8 @@ metal::float3 footprint_slope_sphere_from_slope(
     metal::float2 s_2
 ) {
     float k_12 = metal::max(metal::max(metal::abs(s_2.x), metal::abs(s_2.y)), 1.0);
-    metal::float3 v_5 = metal::float3(-(s_2) / metal::float2(k_12), 1.0 / k_12);
-    return v_5 / metal::float3(metal::length(v_5));
+    metal::float3 v_6 = metal::float3(-(s_2) / metal::float2(k_12), 1.0 / k_12);
+    return v_6 / metal::float3(metal::length(v_6));
 }
 
 metal::float2 footprint_slope_projected_from_sphere(
@@ -1046,17 +1052,17 @@ footprint_Footprint kernel_clamp_footprint(
     kernel_clamp_ClampRules rules,
     footprint_Footprint fp_3
 ) {
-    float l_2 = metal::max(rules.max_extent, 0.0);
+    float l_4 = metal::max(rules.max_extent, 0.0);
     float scale_1 = metal::max(metal::max(metal::abs(fp_3.dh_u.x), metal::abs(fp_3.dh_u.y)), metal::max(metal::abs(fp_3.dh_v.x), metal::abs(fp_3.dh_v.y)));
     if (scale_1 <= 0.0) {
         return fp_3;
     }
     footprint_Footprint unit = footprint_Footprint {fp_3.dh_u / metal::float2(scale_1), fp_3.dh_v / metal::float2(scale_1)};
     float _e29 = footprint_max_extent(unit);
-    if ((_e29 * scale_1) <= l_2) {
+    if ((_e29 * scale_1) <= l_4) {
         return fp_3;
     }
-    return footprint_Footprint {(unit.dh_u / metal::float2(_e29)) * l_2, (unit.dh_v / metal::float2(_e29)) * l_2};
+    return footprint_Footprint {(unit.dh_u / metal::float2(_e29)) * l_4, (unit.dh_v / metal::float2(_e29)) * l_4};
 }
 
 kernel_rect_BoundingRect kernel_clamp_rect(
@@ -1425,14 +1431,14 @@ float ndf_ggx_d_of(
 ) {
     bool local_5 = {};
     float t_5 = q_xy_1 + (m_z_1 * m_z_1);
-    float v_6 = 1.0 / (((math_PI * sqrt_det_3) * t_5) * t_5);
+    float v_7 = 1.0 / (((math_PI * sqrt_det_3) * t_5) * t_5);
     if (m_z_1 > 0.0) {
-        local_5 = v_6 <= math_F32_MAX;
+        local_5 = v_7 <= math_F32_MAX;
     } else {
         local_5 = false;
     }
     bool _e18 = local_5;
-    return _e18 ? v_6 : 0.0;
+    return _e18 ? v_7 : 0.0;
 }
 
 float ndf_ggx_lambda_of(
@@ -1445,8 +1451,8 @@ float ndf_ggx_lambda_of(
     if (abs_wz_1 <= 0.0) {
         return math_F32_MAX;
     }
-    float r_51 = metal::sqrt((abs_wz_1 * abs_wz_1) + q_3);
-    return q_3 / ((2.0 * abs_wz_1) * (r_51 + abs_wz_1));
+    float r_58 = metal::sqrt((abs_wz_1 * abs_wz_1) + q_3);
+    return q_3 / ((2.0 * abs_wz_1) * (r_58 + abs_wz_1));
 }
 
 float ndf_ggx_p22_isotropic(
@@ -1600,6 +1606,172 @@ float ndf_ggx_g2_matrix(
     float _e5 = ndf_ggx_lambda_matrix(r_48, o_5);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_6, m_18), metal::dot(o_5, m_18));
     return _e8;
+}
+
+sampling_Warp sampling_warp(
+    ndf_roughness_matrix_RoughnessMatrix r_49
+) {
+    metal::float3 _e1 = ndf_roughness_matrix_entries(r_49);
+    float l_xx = metal::sqrt(_e1.x);
+    return sampling_Warp {l_xx, _e1.y / l_xx, r_49.sqrt_det / l_xx};
+}
+
+metal::float3 sampling_normalize_scaled(
+    metal::float3 v_3
+) {
+    metal::float3 w_17 = v_3 / metal::float3(metal::max(metal::max(metal::abs(v_3.x), metal::abs(v_3.y)), metal::abs(v_3.z)));
+    return w_17 / metal::float3(metal::length(w_17));
+}
+
+metal::float3 sampling_stretch(
+    sampling_Warp l,
+    metal::float3 w_15
+) {
+    return metal::float3((l.l_xx * w_15.x) + (l.l_yx * w_15.y), l.l_yy * w_15.y, w_15.z);
+}
+
+metal::float3 sampling_unstretch(
+    sampling_Warp l_1,
+    metal::float3 n
+) {
+    metal::float3 _e14 = sampling_normalize_scaled(metal::float3(l_1.l_xx * n.x, (l_1.l_yx * n.x) + (l_1.l_yy * n.y), n.z));
+    return _e14;
+}
+
+float sampling_clamp_unit(
+    float u_1
+) {
+    return (u_1 >= 0.0) ? metal::min(u_1, sampling_ONE_MINUS_EPS) : 0.0;
+}
+
+metal::float3 sampling_reflect(
+    metal::float3 wo,
+    metal::float3 m_19
+) {
+    return ((2.0 * metal::dot(wo, m_19)) * m_19) - wo;
+}
+
+metal::float3 sampling_ggx_standard_visible(
+    metal::float3 wi,
+    metal::float2 u_2
+) {
+    metal::float2 _e3 = math_sincos_turns(u_2.x);
+    float z_5 = ((1.0 - u_2.y) * (1.0 + wi.z)) - wi.z;
+    float sin_theta = metal::sqrt(metal::clamp(1.0 - (z_5 * z_5), 0.0, 1.0));
+    return metal::float3(sin_theta * _e3, z_5) + wi;
+}
+
+metal::float3 sampling_sample_visible_normal(
+    ndf_roughness_matrix_RoughnessMatrix r_50,
+    metal::float3 wo_1,
+    metal::float2 u_3
+) {
+    bool local_6 = {};
+    if (!((wo_1.z > 0.0))) {
+        return metal::float3(0.0);
+    }
+    sampling_Warp _e9 = sampling_warp(r_50);
+    metal::float3 _e10 = sampling_normalize_scaled(wo_1);
+    metal::float3 _e11 = sampling_stretch(_e9, _e10);
+    metal::float3 _e12 = sampling_normalize_scaled(_e11);
+    if (!((_e12.z > 0.0))) {
+        return metal::float3(0.0);
+    }
+    float _e20 = sampling_clamp_unit(u_3.x);
+    float _e22 = sampling_clamp_unit(u_3.y);
+    metal::float3 _e24 = sampling_ggx_standard_visible(_e12, metal::float2(_e20, _e22));
+    metal::float3 _e25 = sampling_unstretch(_e9, _e24);
+    if (_e25.z > 0.0) {
+        local_6 = metal::dot(wo_1, _e25) > 0.0;
+    } else {
+        local_6 = false;
+    }
+    bool _e35 = local_6;
+    if (_e35) {
+        return _e25;
+    }
+    metal::float3 _e36 = sampling_unstretch(_e9, _e12);
+    return (_e36.z > 0.0) ? _e36 : metal::float3(0.0);
+}
+
+metal::float3 sampling_sample_normal(
+    ndf_roughness_matrix_RoughnessMatrix r_51,
+    metal::float2 u_4
+) {
+    float _e3 = sampling_clamp_unit(u_4.x);
+    float _e5 = sampling_clamp_unit(u_4.y);
+    metal::float2 _e6 = math_sincos_turns(_e5);
+    metal::float3 n_1 = metal::float3(metal::sqrt(_e3) * _e6, metal::sqrt(1.0 - _e3));
+    sampling_Warp _e13 = sampling_warp(r_51);
+    metal::float3 _e14 = sampling_unstretch(_e13, n_1);
+    return _e14;
+}
+
+float sampling_normal_pdf(
+    ndf_roughness_matrix_RoughnessMatrix r_52,
+    metal::float3 m_20
+) {
+    float _e2 = ndf_ggx_d_matrix(r_52, m_20);
+    return (m_20.z > 0.0) ? (_e2 * m_20.z) : 0.0;
+}
+
+float sampling_visible_normal_pdf(
+    ndf_roughness_matrix_RoughnessMatrix r_53,
+    metal::float3 wo_2,
+    metal::float3 m_21
+) {
+    bool local_7 = {};
+    float wom = metal::dot(wo_2, m_21);
+    if (!(!((wo_2.z > 0.0)))) {
+        local_7 = !((wom > 0.0));
+    } else {
+        local_7 = true;
+    }
+    bool _e15 = local_7;
+    if (_e15) {
+        return 0.0;
+    }
+    float _e17 = ndf_ggx_d_matrix(r_53, m_21);
+    float _e20 = ndf_ggx_lambda_matrix(r_53, wo_2);
+    float v_8 = (wom * _e17) / (wo_2.z * (1.0 + _e20));
+    return (v_8 <= math_F32_MAX) ? v_8 : 0.0;
+}
+
+float sampling_reflection_pdf_from_normal(
+    ndf_roughness_matrix_RoughnessMatrix r_54,
+    metal::float3 wo_3,
+    metal::float3 m_22
+) {
+    if (!((wo_3.z > 0.0))) {
+        return 0.0;
+    }
+    metal::float3 _e8 = sampling_normalize_scaled(wo_3);
+    if (!((metal::dot(_e8, m_22) > 0.0))) {
+        return 0.0;
+    }
+    float _e14 = ndf_ggx_d_matrix(r_54, m_22);
+    float _e18 = ndf_ggx_lambda_matrix(r_54, _e8);
+    float v_9 = _e14 / ((4.0 * _e8.z) * (1.0 + _e18));
+    return (v_9 <= math_F32_MAX) ? v_9 : 0.0;
+}
+
+float sampling_reflection_pdf(
+    ndf_roughness_matrix_RoughnessMatrix r_55,
+    metal::float3 wo_4,
+    metal::float3 wi_1
+) {
+    if (!((wo_4.z > 0.0))) {
+        return 0.0;
+    }
+    metal::float3 _e8 = sampling_normalize_scaled(wo_4);
+    metal::float3 _e9 = sampling_normalize_scaled(wi_1);
+    metal::float3 h_18 = _e8 + _e9;
+    float len = metal::length(h_18);
+    if (!((len > 0.0))) {
+        return 0.0;
+    }
+    float _e18 = sampling_reflection_pdf_from_normal(r_55, wo_4, h_18 / metal::float3(len));
+    return _e18;
 }
 
 struct filtered_ndf_entryOutput {
