@@ -12,6 +12,7 @@ fn concatenated_file_matches_composition() {
     all.extend(checks::footprint::all());
     all.extend(checks::filters::all());
     all.extend(checks::sampling::all());
+    all.extend(checks::rect::all());
     for c in &all {
         let k = Kernel {
             imports: &c.imports,

@@ -29,3 +29,8 @@ fn filters() {
 fn sampling() {
     assert_group("sampling", &checks::sampling::all());
 }
+
+#[test]
+fn rect() {
+    assert_group("rect", &checks::rect::all());
+}

@@ -43,6 +43,11 @@ struct ndf_roughness_axis_aligned_AxisAligned {
     float2 inv_alpha_sq;
 };
 
+struct ndf_roughness_isotropic_Isotropic {
+    float alpha;
+    float inv_alpha_sq;
+};
+
 struct kernel_rect_BoundingRect {
     float2 half_extent;
 };
@@ -73,11 +78,6 @@ struct kernel_clamp_ClampRules {
     float floor_;
     float kappa;
     bool det_clamp;
-};
-
-struct ndf_roughness_isotropic_Isotropic {
-    float alpha;
-    float inv_alpha_sq;
 };
 
 struct sampling_Warp {
@@ -148,6 +148,8 @@ static const filter_deferred_KernelConvention filter_presets_UNREAL = Constructf
 static const filter_deferred_KernelConvention filter_presets_BABYLON = Constructfilter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 static const filter_deferred_KernelConvention filter_presets_THREE_JS = Constructfilter_deferred_KernelConvention(2u, 3u, 1.0, 1.0, 0.0, 3.4028235e38, 0u, true, 0.0525);
 static const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
+static const float filter_rect_BIG = 1e18;
+static const uint filter_rect_TIER_CLOSED = 0u;
 static const float footprint_SIGMA_PIXEL = 0.5;
 static const float footprint_jacobian_HZ_MIN = 1e-6;
 static const uint kernel_clamp_FLOOR_NONE = 0u;
@@ -201,20 +203,20 @@ float2 math_sincos_turns(float u)
     float2 cs = (float2)0;
 
     float q_4 = round((4.0 * u));
-    float r_56 = (u - (0.25 * q_4));
-    float z_1 = (r_56 * r_56);
-    float s_11 = (r_56 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
-    float c_6 = ((((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0);
-    int k_8 = (naga_f2i32(q_4) & int(3));
-    cs = float2(c_6, s_11);
-    if ((k_8 == int(1))) {
-        cs = float2(-(s_11), c_6);
+    float r_59 = (u - (0.25 * q_4));
+    float z_1 = (r_59 * r_59);
+    float s_12 = (r_59 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
+    float c_8 = ((((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0);
+    int k_13 = (naga_f2i32(q_4) & int(3));
+    cs = float2(c_8, s_12);
+    if ((k_13 == int(1))) {
+        cs = float2(-(s_12), c_8);
     } else {
-        if ((k_8 == int(2))) {
-            cs = float2(-(c_6), -(s_11));
+        if ((k_13 == int(2))) {
+            cs = float2(-(c_8), -(s_12));
         } else {
-            if ((k_8 == int(3))) {
-                cs = float2(s_11, -(c_6));
+            if ((k_13 == int(3))) {
+                cs = float2(s_12, -(c_8));
             }
         }
     }
@@ -303,16 +305,16 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     float a_13 = (c_3.s_xx / scale);
     float b_3 = (c_3.s_xy / scale);
     float e_2 = (c_3.s_yy / scale);
-    float d = (0.5 * (a_13 - e_2));
-    float r_57 = sqrt(((d * d) + (b_3 * b_3)));
-    float lmax_1 = (((0.5 * (a_13 + e_2)) + r_57) * scale);
+    float d_1 = (0.5 * (a_13 - e_2));
+    float r_60 = sqrt(((d_1 * d_1) + (b_3 * b_3)));
+    float lmax_1 = (((0.5 * (a_13 + e_2)) + r_60) * scale);
     if ((lmax_1 <= max_eig)) {
         const kernel_covariance_Covariance kernel_covariance_covariance_6 = c_3;
         return kernel_covariance_covariance_6;
     }
     float lmin_1 = max((c_3.det / lmax_1), 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = (r_57 < 1e-18);
+        local = (r_60 < 1e-18);
     } else {
         local = true;
     }
@@ -321,10 +323,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         const kernel_covariance_Covariance kernel_covariance_covariance_7 = Constructkernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
         return kernel_covariance_covariance_7;
     }
-    float p_4 = (r_57 + abs(d));
+    float p_4 = (r_60 + abs(d_1));
     float q_5 = ((p_4 > 0.0) ? ((b_3 * b_3) / p_4) : 0.0);
-    float2 ee = ((d >= 0.0) ? float2(p_4, q_5) : float2(q_5, p_4));
-    float inv_1 = (1.0 / (2.0 * r_57));
+    float2 ee = ((d_1 >= 0.0) ? float2(p_4, q_5) : float2(q_5, p_4));
+    float inv_1 = (1.0 / (2.0 * r_60));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_3 * inv_1);
     float p22_ = (ee.y * inv_1);
@@ -406,19 +408,19 @@ float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5)
 float filter_deferred_norm_eval(uint norm, float3 dn_u, float3 dn_v)
 {
     float a_14 = dot(dn_u, dn_u);
-    float c_7 = dot(dn_v, dn_v);
+    float c_9 = dot(dn_v, dn_v);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
-        return max(a_14, c_7);
+        return max(a_14, c_9);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        const float _e11 = filter_deferred_max_eigenvalue(a_14, dot(dn_u, dn_v), c_7);
+        const float _e11 = filter_deferred_max_eigenvalue(a_14, dot(dn_u, dn_v), c_9);
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
         float3 m_24 = max(abs(dn_u), abs(dn_v));
         return max(max(m_24.x, m_24.y), m_24.z);
     }
-    return (a_14 + c_7);
+    return (a_14 + c_9);
 }
 
 float filter_deferred_clamp_kernel(filter_deferred_KernelConvention conv, float k_1)
@@ -470,8 +472,8 @@ float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha
 
 kernel_covariance_Covariance filter_deferred_normal_difference_covariance(float3 dn_u_3, float3 dn_v_3, float sigma_sq)
 {
-    float3 x_3 = (cross(dn_u_3, dn_v_3) * sigma_sq);
-    const kernel_covariance_Covariance kernel_covariance_covariance_12 = Constructkernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_3, x_3));
+    float3 x_4 = (cross(dn_u_3, dn_v_3) * sigma_sq);
+    const kernel_covariance_Covariance kernel_covariance_covariance_12 = Constructkernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_4, x_4));
     return kernel_covariance_covariance_12;
 }
 
@@ -516,7 +518,7 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float
     float half_diff = (0.5 * (a11_ - a22_));
     float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
     float l1_ = ((0.5 * (a11_ + a22_)) + rad);
-    float l2_ = (det / l1_);
+    float l2_1 = (det / l1_);
     float big_1 = (rad + abs(half_diff));
     v_1 = ((half_diff < 0.0) ? float2(a12_, big_1) : float2(big_1, a12_));
     if ((big_1 <= 0.0)) {
@@ -525,8 +527,8 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float
     float2 _e30 = v_1;
     float2 _e31 = v_1;
     float2 axis_1 = (_e30 / (length(_e31)).xx);
-    float c_8 = max(det, tau);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_1 = Constructndf_roughness_matrix_RoughnessMatrix(axis_1, float2(l1_, l2_), (float2(l2_, l1_) / (c_8).xx), sqrt(c_8));
+    float c_10 = max(det, tau);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_1 = Constructndf_roughness_matrix_RoughnessMatrix(axis_1, float2(l1_, l2_1), (float2(l2_1, l1_) / (c_10).xx), sqrt(c_10));
     return ndf_roughness_matrix_roughnessmatrix_1;
 }
 
@@ -561,10 +563,10 @@ float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_4)
 
 float3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_5)
 {
-    float c_9 = r_5.axis.x;
-    float s_12 = r_5.axis.y;
+    float c_11 = r_5.axis.x;
+    float s_13 = r_5.axis.y;
     float2 l_3 = r_5.eig;
-    return float3((((l_3.x * c_9) * c_9) + ((l_3.y * s_12) * s_12)), (((l_3.x - l_3.y) * c_9) * s_12), (((l_3.x * s_12) * s_12) + ((l_3.y * c_9) * c_9)));
+    return float3((((l_3.x * c_11) * c_11) + ((l_3.y * s_13) * s_13)), (((l_3.x - l_3.y) * c_11) * s_13), (((l_3.x * s_13) * s_13) + ((l_3.y * c_11) * c_11)));
 }
 
 float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_6)
@@ -575,10 +577,10 @@ float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_6)
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_plus_kernel(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_1)
 {
     const float3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_10 = a_2.axis.x;
-    float s_13 = a_2.axis.y;
-    float k1_ = max(((((c_10 * c_10) * k_3.s_xx) + (((2.0 * c_10) * s_13) * k_3.s_xy)) + ((s_13 * s_13) * k_3.s_yy)), 0.0);
-    float k2_ = max(((((s_13 * s_13) * k_3.s_xx) - (((2.0 * c_10) * s_13) * k_3.s_xy)) + ((c_10 * c_10) * k_3.s_yy)), 0.0);
+    float c_12 = a_2.axis.x;
+    float s_14 = a_2.axis.y;
+    float k1_ = max(((((c_12 * c_12) * k_3.s_xx) + (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((s_14 * s_14) * k_3.s_yy)), 0.0);
+    float k2_ = max(((((s_14 * s_14) * k_3.s_xx) - (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((c_12 * c_12) * k_3.s_yy)), 0.0);
     const float _e38 = ndf_roughness_matrix_determinant(a_2);
     float det_2 = ((_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * max(k_3.det, 0.0)));
     const ndf_roughness_matrix_RoughnessMatrix _e70 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_2, tau_1);
@@ -700,29 +702,29 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_ma
     float2 lc = min(a_8.eig, (0.99).xx);
     float2 excess = (a_8.eig - lc);
     float2 p_5 = (lc / ((1.0).xx - lc));
-    float c_11 = a_8.axis.x;
-    float s_14 = a_8.axis.y;
-    float p11_1 = (((p_5.x * c_11) * c_11) + ((p_5.y * s_14) * s_14));
-    float p12_1 = (((p_5.x - p_5.y) * c_11) * s_14);
-    float p22_1 = (((p_5.x * s_14) * s_14) + ((p_5.y * c_11) * c_11));
-    float k1_1 = max(((((c_11 * c_11) * _e2.s_xx) + (((2.0 * c_11) * s_14) * _e2.s_xy)) + ((s_14 * s_14) * _e2.s_yy)), 0.0);
-    float k2_1 = max(((((s_14 * s_14) * _e2.s_xx) - (((2.0 * c_11) * s_14) * _e2.s_xy)) + ((c_11 * c_11) * _e2.s_yy)), 0.0);
-    float d_1 = (((p_5.x * p_5.y) + (2.0 * ((p_5.y * k1_1) + (p_5.x * k2_1)))) + (4.0 * max(_e2.det, 0.0)));
+    float c_13 = a_8.axis.x;
+    float s_15 = a_8.axis.y;
+    float p11_1 = (((p_5.x * c_13) * c_13) + ((p_5.y * s_15) * s_15));
+    float p12_1 = (((p_5.x - p_5.y) * c_13) * s_15);
+    float p22_1 = (((p_5.x * s_15) * s_15) + ((p_5.y * c_13) * c_13));
+    float k1_1 = max(((((c_13 * c_13) * _e2.s_xx) + (((2.0 * c_13) * s_15) * _e2.s_xy)) + ((s_15 * s_15) * _e2.s_yy)), 0.0);
+    float k2_1 = max(((((s_15 * s_15) * _e2.s_xx) - (((2.0 * c_13) * s_15) * _e2.s_xy)) + ((c_13 * c_13) * _e2.s_yy)), 0.0);
+    float d_2 = (((p_5.x * p_5.y) + (2.0 * ((p_5.y * k1_1) + (p_5.x * k2_1)))) + (4.0 * max(_e2.det, 0.0)));
     float q11_ = (p11_1 + (2.0 * _e2.s_xx));
     float q12_ = (p12_1 + (2.0 * _e2.s_xy));
     float q22_ = (p22_1 + (2.0 * _e2.s_yy));
-    float den = (((1.0 + q11_) + q22_) + d_1);
-    b11_ = ((q11_ + d_1) / den);
+    float den = (((1.0 + q11_) + q22_) + d_2);
+    b11_ = ((q11_ + d_2) / den);
     b12_ = (q12_ / den);
-    b22_ = ((q22_ + d_1) / den);
-    det_1 = (d_1 / den);
+    b22_ = ((q22_ + d_2) / den);
+    det_1 = (d_2 / den);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_11) * c_11) + ((excess.y * s_14) * s_14)));
+        b11_ = (_e114 + (((excess.x * c_13) * c_13) + ((excess.y * s_15) * s_15)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_11) * s_14));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_13) * s_15));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_14) * s_14) + ((excess.y * c_11) * c_11)));
+        b22_ = (_e130 + (((excess.x * s_15) * s_15) + ((excess.y * c_13) * c_13)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -780,9 +782,9 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_ro
 
 float filter_proxy_effective_alpha(float alpha_7, float half_extent)
 {
-    float h_12 = abs(half_extent);
-    const float _e3 = math_hypot(alpha_7, h_12);
-    float t_2 = ((_e3 > 0.0) ? (h_12 / _e3) : 0.0);
+    float h_16 = abs(half_extent);
+    const float _e3 = math_hypot(alpha_7, h_16);
+    float t_2 = ((_e3 > 0.0) ? (h_16 / _e3) : 0.0);
     const float _e9 = math_atan(t_2);
     float ratio = ((t_2 > 0.0) ? (t_2 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
@@ -812,11 +814,548 @@ ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_a
     return ndf_roughness_axis_aligned_axisaligned_2;
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_13, float sigma_2)
+float ndf_g1_of(float lambda_w, float w_dot_m)
 {
-    float2 w_16 = (r_13.half_extent * (2.0 * sigma_2));
-    float2 v_4 = (w_16 * w_16);
-    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_4.x, 0.0, v_4.y, (v_4.x * v_4.y));
+    return ((w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0);
+}
+
+float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m)
+{
+    bool local_3 = (bool)0;
+
+    if ((i_dot_m > 0.0)) {
+        local_3 = (o_dot_m > 0.0);
+    } else {
+        local_3 = false;
+    }
+    bool _e16 = local_3;
+    return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
+}
+
+ndf_roughness_isotropic_Isotropic Constructndf_roughness_isotropic_Isotropic(float arg0, float arg1) {
+    ndf_roughness_isotropic_Isotropic ret = (ndf_roughness_isotropic_Isotropic)0;
+    ret.alpha = arg0;
+    ret.inv_alpha_sq = arg1;
+    return ret;
+}
+
+ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_9)
+{
+    const float _e1 = ndf_roughness_clamp_alpha(alpha_9);
+    const ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_isotropic = Constructndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
+    return ndf_roughness_isotropic_isotropic;
+}
+
+float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_13, float2 s_2)
+{
+    return (dot(s_2, s_2) * r_13.inv_alpha_sq);
+}
+
+float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_14, float2 w_2)
+{
+    return (dot(w_2, w_2) * (r_14.alpha * r_14.alpha));
+}
+
+float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_15)
+{
+    return (r_15.alpha * r_15.alpha);
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_16)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), (r_16.alpha).xx);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_11 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_11;
+}
+
+float ndf_ggx_p22_of(float q, float sqrt_det)
+{
+    float t_3 = (1.0 + q);
+    return (1.0 / (((math_PI * sqrt_det) * t_3) * t_3));
+}
+
+float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1)
+{
+    bool local_4 = (bool)0;
+
+    float t_4 = (q_xy + (m_z * m_z));
+    float v_5 = (1.0 / (((math_PI * sqrt_det_1) * t_4) * t_4));
+    if ((m_z > 0.0)) {
+        local_4 = (v_5 <= math_F32_MAX);
+    } else {
+        local_4 = false;
+    }
+    bool _e18 = local_4;
+    return (_e18 ? v_5 : 0.0);
+}
+
+float ndf_ggx_lambda_of(float q_1, float abs_wz)
+{
+    if ((q_1 <= 0.0)) {
+        return 0.0;
+    }
+    if ((abs_wz <= 0.0)) {
+        return math_F32_MAX;
+    }
+    float r_61 = sqrt(((abs_wz * abs_wz) + q_1));
+    return (q_1 / ((2.0 * abs_wz) * (r_61 + abs_wz)));
+}
+
+float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_17, float2 s_3)
+{
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_17, s_3);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_17);
+    const float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_18, float3 m_1)
+{
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_18, m_1.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_18);
+    const float _e6 = ndf_ggx_d_of(_e3, m_1.z, _e5);
+    return _e6;
+}
+
+float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_19, float3 w_3)
+{
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_19, w_3.xy);
+    const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_3.z));
+    return _e6;
+}
+
+float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_20, float3 w_4, float3 m_2)
+{
+    const float _e3 = ndf_ggx_lambda_isotropic(r_20, w_4);
+    const float _e5 = ndf_g1_of(_e3, dot(w_4, m_2));
+    return _e5;
+}
+
+float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_21, float3 i_1, float3 o, float3 m_3)
+{
+    const float _e4 = ndf_ggx_lambda_isotropic(r_21, i_1);
+    const float _e5 = ndf_ggx_lambda_isotropic(r_21, o);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_3), dot(o, m_3));
+    return _e8;
+}
+
+float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_22, float2 s_4)
+{
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_22, s_4);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_22);
+    const float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_23, float3 m_4)
+{
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_23, m_4.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_23);
+    const float _e6 = ndf_ggx_d_of(_e3, m_4.z, _e5);
+    return _e6;
+}
+
+float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_24, float3 w_5)
+{
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_24, w_5.xy);
+    const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_5.z));
+    return _e6;
+}
+
+float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, float3 w_6, float3 m_5)
+{
+    const float _e3 = ndf_ggx_lambda_axis_aligned(r_25, w_6);
+    const float _e5 = ndf_g1_of(_e3, dot(w_6, m_5));
+    return _e5;
+}
+
+float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, float3 i_2, float3 o_1, float3 m_6)
+{
+    const float _e4 = ndf_ggx_lambda_axis_aligned(r_26, i_2);
+    const float _e5 = ndf_ggx_lambda_axis_aligned(r_26, o_1);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_6), dot(o_1, m_6));
+    return _e8;
+}
+
+float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_27, float2 s_5)
+{
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_27, s_5);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_27);
+    const float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_28, float3 m_7)
+{
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_28, m_7.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_28);
+    const float _e6 = ndf_ggx_d_of(_e3, m_7.z, _e5);
+    return _e6;
+}
+
+float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_29, float3 w_7)
+{
+    const float _e3 = ndf_roughness_matrix_quadratic(r_29, w_7.xy);
+    const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_7.z));
+    return _e6;
+}
+
+float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, float3 w_8, float3 m_8)
+{
+    const float _e3 = ndf_ggx_lambda_matrix(r_30, w_8);
+    const float _e5 = ndf_g1_of(_e3, dot(w_8, m_8));
+    return _e5;
+}
+
+float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, float3 i_3, float3 o_2, float3 m_9)
+{
+    const float _e4 = ndf_ggx_lambda_matrix(r_31, i_3);
+    const float _e5 = ndf_ggx_lambda_matrix(r_31, o_2);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_9), dot(o_2, m_9));
+    return _e8;
+}
+
+uint filter_rect_tier(float h2_, float l2_)
+{
+    if ((h2_ < (0.0001 * l2_))) {
+        return 2u;
+    }
+    if ((h2_ < (0.01 * l2_))) {
+        return 4u;
+    }
+    if ((h2_ < (0.0625 * l2_))) {
+        return 6u;
+    }
+    return filter_rect_TIER_CLOSED;
+}
+
+float filter_rect_gl_node(uint n, uint k_6)
+{
+    if ((n == 2u)) {
+        return 0.57735026;
+    }
+    if ((n == 4u)) {
+        return ((k_6 == 0u) ? 0.33998105 : 0.8611363);
+    }
+    if ((k_6 == 0u)) {
+        return 0.2386192;
+    }
+    return ((k_6 == 1u) ? 0.6612094 : 0.9324695);
+}
+
+float filter_rect_gl_weight(uint n_1, uint k_7)
+{
+    if ((n_1 == 2u)) {
+        return 0.5;
+    }
+    if ((n_1 == 4u)) {
+        return ((k_7 == 0u) ? 0.32607257 : 0.17392743);
+    }
+    if ((k_7 == 0u)) {
+        return 0.23395696;
+    }
+    return ((k_7 == 1u) ? 0.18038079 : 0.085662246);
+}
+
+float filter_rect_f(float u_1, float v_3)
+{
+    float t_5 = ((1.0 + (u_1 * u_1)) + (v_3 * v_3));
+    return (1.0 / (t_5 * t_5));
+}
+
+uint naga_div(uint lhs, uint rhs) {
+    return lhs / (rhs == 0u ? 1u : rhs);
+}
+
+float filter_rect_gl_mean(uint n_2, float u_2, float c_6, float h)
+{
+    float acc = 0.0;
+    uint k_8 = 0u;
+
+    uint2 loop_bound = uint2(4294967295u, 4294967295u);
+    bool loop_init = true;
+    while(true) {
+        if (all(loop_bound == uint2(0u, 0u))) { break; }
+        loop_bound -= uint2(loop_bound.y == 0u, 1u);
+        if (!loop_init) {
+            uint _e26 = k_8;
+            k_8 = (_e26 + 1u);
+        }
+        loop_init = false;
+        uint _e8 = k_8;
+        if ((_e8 < naga_div(n_2, 2u))) {
+        } else {
+            break;
+        }
+        {
+            uint _e12 = k_8;
+            const float _e13 = filter_rect_gl_node(n_2, _e12);
+            float a_16 = (h * _e13);
+            float _e15 = acc;
+            uint _e16 = k_8;
+            const float _e17 = filter_rect_gl_weight(n_2, _e16);
+            const float _e19 = filter_rect_f(u_2, (c_6 - a_16));
+            const float _e21 = filter_rect_f(u_2, (c_6 + a_16));
+            acc = (_e15 + (_e17 * (_e19 + _e21)));
+        }
+    }
+    float _e28 = acc;
+    return _e28;
+}
+
+float filter_rect_atan2_upper(float y_1, float x_2)
+{
+    if ((x_2 > 0.0)) {
+        const float _e5 = math_atan((y_1 / x_2));
+        return _e5;
+    }
+    const float _e9 = math_atan((-(x_2) / y_1));
+    return (math_HALF_PI + _e9);
+}
+
+float filter_rect_delta_minus_sin(float d, float sin_d)
+{
+    float s_6 = (float)0;
+
+    if ((d < 1.0)) {
+        float d2_ = (d * d);
+        s_6 = (1.0 - ((d2_ * 0.013888889) * (1.0 - (d2_ * 0.009090909))));
+        float _e17 = s_6;
+        s_6 = (1.0 - ((d2_ * 0.023809524) * _e17));
+        float _e23 = s_6;
+        s_6 = (1.0 - ((d2_ * 0.05) * _e23));
+        float _e30 = s_6;
+        return (((d * d2_) * 0.16666667) * _e30);
+    }
+    return (d - sin_d);
+}
+
+float filter_rect_mean_1d(float xc, float hx, float c2_)
+{
+    float x0_ = (abs(xc) - hx);
+    float x1_ = (abs(xc) + hx);
+    float dx = (2.0 * hx);
+    float c_14 = sqrt(c2_);
+    float r02_ = (c2_ + (x0_ * x0_));
+    float r12_ = (c2_ + (x1_ * x1_));
+    float x01_ = (x0_ * x1_);
+    const float _e17 = filter_rect_atan2_upper((c_14 * dx), (c2_ + x01_));
+    float inv_2 = (1.0 / (((2.0 * c_14) * c2_) * dx));
+    float p2_ = ((2.0 * r02_) * r12_);
+    if ((x0_ <= 0.0)) {
+        return ((_e17 * inv_2) + ((c2_ - x01_) / (c2_ * p2_)));
+    }
+    float rr = (sqrt(r02_) * sqrt(r12_));
+    const float _e39 = filter_rect_delta_minus_sin(_e17, ((c_14 * dx) / rr));
+    return ((_e39 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_ * x1_)) + c2_) / (rr + x01_))) / p2_));
+}
+
+float filter_rect_gl_mean_1d(uint n_3, float c_7, float h_1, float other_c, float other_h)
+{
+    float acc_1 = 0.0;
+    uint k_9 = 0u;
+
+    uint2 loop_bound_1 = uint2(4294967295u, 4294967295u);
+    bool loop_init_1 = true;
+    while(true) {
+        if (all(loop_bound_1 == uint2(0u, 0u))) { break; }
+        loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
+        if (!loop_init_1) {
+            uint _e33 = k_9;
+            k_9 = (_e33 + 1u);
+        }
+        loop_init_1 = false;
+        uint _e9 = k_9;
+        if ((_e9 < naga_div(n_3, 2u))) {
+        } else {
+            break;
+        }
+        {
+            uint _e13 = k_9;
+            const float _e14 = filter_rect_gl_node(n_3, _e13);
+            float a_17 = (h_1 * _e14);
+            float x0_1 = (c_7 - a_17);
+            float x1_1 = (c_7 + a_17);
+            float _e18 = acc_1;
+            uint _e19 = k_9;
+            const float _e20 = filter_rect_gl_weight(n_3, _e19);
+            const float _e24 = filter_rect_mean_1d(other_c, other_h, (1.0 + (x0_1 * x0_1)));
+            const float _e28 = filter_rect_mean_1d(other_c, other_h, (1.0 + (x1_1 * x1_1)));
+            acc_1 = (_e18 + (_e20 * (_e24 + _e28)));
+        }
+    }
+    float _e35 = acc_1;
+    return _e35;
+}
+
+float filter_rect_edge(float u_3, float dv, float v01_)
+{
+    float s2_ = (1.0 + (u_3 * u_3));
+    float s_16 = sqrt(s2_);
+    const float _e10 = filter_rect_atan2_upper((dv * s_16), (s2_ + v01_));
+    return ((u_3 / s_16) * _e10);
+}
+
+float filter_rect_edges(float uc, float vc, float hu, float hv)
+{
+    float u0_ = (uc - hu);
+    float u1_ = (uc + hu);
+    float v0_ = (vc - hv);
+    float v1_ = (vc + hv);
+    float du = (2.0 * hu);
+    float dv_1 = (2.0 * hv);
+    const float _e13 = filter_rect_edge(u1_, dv_1, (v0_ * v1_));
+    const float _e15 = filter_rect_edge(u0_, dv_1, (v0_ * v1_));
+    const float _e18 = filter_rect_edge(v1_, du, (u0_ * u1_));
+    const float _e20 = filter_rect_edge(v0_, du, (u0_ * u1_));
+    float i_7 = (0.5 * ((_e13 - _e15) + (_e18 - _e20)));
+    return (i_7 / (du * dv_1));
+}
+
+float filter_rect_mean_f(float uc_1, float vc_1, float hu_1, float hv_1)
+{
+    bool local_5 = (bool)0;
+    float acc_2 = 0.0;
+    uint k_10 = 0u;
+
+    float du_1 = max((abs(uc_1) - hu_1), 0.0);
+    float dv_2 = max((abs(vc_1) - hv_1), 0.0);
+    const uint _e18 = filter_rect_tier((hu_1 * hu_1), ((1.0 + (uc_1 * uc_1)) + (dv_2 * dv_2)));
+    const uint _e25 = filter_rect_tier((hv_1 * hv_1), ((1.0 + (vc_1 * vc_1)) + (du_1 * du_1)));
+    if ((_e18 == filter_rect_TIER_CLOSED)) {
+        local_5 = (_e25 == filter_rect_TIER_CLOSED);
+    } else {
+        local_5 = false;
+    }
+    bool _e33 = local_5;
+    if (_e33) {
+        const float _e34 = filter_rect_edges(uc_1, vc_1, hu_1, hv_1);
+        return _e34;
+    }
+    if ((_e18 == filter_rect_TIER_CLOSED)) {
+        const float _e37 = filter_rect_gl_mean_1d(_e25, vc_1, hv_1, uc_1, hu_1);
+        return _e37;
+    }
+    if ((_e25 == filter_rect_TIER_CLOSED)) {
+        const float _e40 = filter_rect_gl_mean_1d(_e18, uc_1, hu_1, vc_1, hv_1);
+        return _e40;
+    }
+    uint2 loop_bound_2 = uint2(4294967295u, 4294967295u);
+    bool loop_init_2 = true;
+    while(true) {
+        if (all(loop_bound_2 == uint2(0u, 0u))) { break; }
+        loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
+        if (!loop_init_2) {
+            uint _e63 = k_10;
+            k_10 = (_e63 + 1u);
+        }
+        loop_init_2 = false;
+        uint _e45 = k_10;
+        if ((_e45 < naga_div(_e18, 2u))) {
+        } else {
+            break;
+        }
+        {
+            uint _e49 = k_10;
+            const float _e50 = filter_rect_gl_node(_e18, _e49);
+            float a_18 = (hu_1 * _e50);
+            float _e52 = acc_2;
+            uint _e53 = k_10;
+            const float _e54 = filter_rect_gl_weight(_e18, _e53);
+            const float _e56 = filter_rect_gl_mean(_e25, (uc_1 - a_18), vc_1, hv_1);
+            const float _e58 = filter_rect_gl_mean(_e25, (uc_1 + a_18), vc_1, hv_1);
+            acc_2 = (_e52 + (_e54 * (_e56 + _e58)));
+        }
+    }
+    float _e65 = acc_2;
+    return _e65;
+}
+
+float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_32, float2 center_, float2 half_extent_4)
+{
+    bool local_6 = (bool)0;
+
+    if ((half_extent_4.x == 0.0)) {
+        local_6 = (half_extent_4.y == 0.0);
+    } else {
+        local_6 = false;
+    }
+    bool _e12 = local_6;
+    if (_e12) {
+        const float _e13 = ndf_ggx_p22_axis_aligned(r_32, center_);
+        return _e13;
+    }
+    float2 a_19 = r_32.alpha;
+    float2 c_15 = clamp((center_ / a_19), (-1e18).xx, (1e18).xx);
+    float2 h_17 = min((abs(half_extent_4) / a_19), (1e18).xx);
+    const float _e30 = filter_rect_mean_f(c_15.x, c_15.y, h_17.x, h_17.y);
+    return max((_e30 * (math_INV_PI / (a_19.x * a_19.y))), 0.0);
+}
+
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_33, float3 h_2, float2 half_extent_5)
+{
+    bool local_7 = (bool)0;
+
+    if (!((h_2.z > 0.0))) {
+        return 0.0;
+    }
+    if ((half_extent_5.x == 0.0)) {
+        local_7 = (half_extent_5.y == 0.0);
+    } else {
+        local_7 = false;
+    }
+    bool _e17 = local_7;
+    if (_e17) {
+        const float _e18 = ndf_ggx_d_axis_aligned(r_33, h_2);
+        return _e18;
+    }
+    const float _e24 = filter_rect_p22_rect(r_33, (-(h_2.xy) / (h_2.z).xx), half_extent_5);
+    float z2_ = (h_2.z * h_2.z);
+    return min((_e24 / (z2_ * z2_)), math_F32_MAX);
+}
+
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_34, float2 hpp, float3 h_3, float2 footprint)
+{
+    bool local_8 = (bool)0;
+
+    float a_20 = r_34.alpha.x;
+    float b_4 = r_34.alpha.y;
+    float a_2_ = (a_20 * a_20);
+    float b_2_ = (b_4 * b_4);
+    float x1_2 = (hpp.x - footprint.x);
+    float x2_ = (hpp.x + footprint.x);
+    float y1_ = (hpp.y - footprint.y);
+    float y2_ = (hpp.y + footprint.y);
+    float sx1_ = sqrt(((x1_2 * x1_2) + a_2_));
+    float sx2_ = sqrt(((x2_ * x2_) + a_2_));
+    float sy1_ = sqrt(((y1_ * y1_) + b_2_));
+    float sy2_ = sqrt(((y2_ * y2_) + b_2_));
+    const float _e37 = math_atan(((y1_ * a_20) / (sx1_ * b_4)));
+    const float _e41 = math_atan(((y2_ * a_20) / (sx1_ * b_4)));
+    const float _e48 = math_atan(((y1_ * a_20) / (sx2_ * b_4)));
+    const float _e53 = math_atan(((y2_ * a_20) / (sx2_ * b_4)));
+    const float _e62 = math_atan(((x1_2 * b_4) / (a_20 * sy1_)));
+    const float _e66 = math_atan(((x2_ * b_4) / (a_20 * sy1_)));
+    const float _e73 = math_atan(((x1_2 * b_4) / (a_20 * sy2_)));
+    const float _e78 = math_atan(((x2_ * b_4) / (a_20 * sy2_)));
+    float val = ((((x1_2 * (_e37 - _e41)) / sx1_) + ((x2_ * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
+    float den_1 = ((6.2831855 * (x1_2 - x2_)) * (y1_ - y2_));
+    float hz4_ = (((h_3.z * h_3.z) * h_3.z) * h_3.z);
+    float v_6 = ((val / den_1) / max(hz4_, 0.001));
+    if ((abs(v_6) <= math_F32_MAX)) {
+        local_8 = (den_1 != 0.0);
+    } else {
+        local_8 = false;
+    }
+    bool _e109 = local_8;
+    return (_e109 ? v_6 : 0.0);
+}
+
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_35, float sigma_2)
+{
+    float2 w_16 = (r_35.half_extent * (2.0 * sigma_2));
+    float2 v_7 = (w_16 * w_16);
+    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_7.x, 0.0, v_7.y, (v_7.x * v_7.y));
     return kernel_covariance_covariance_14;
 }
 
@@ -847,11 +1386,11 @@ footprint_Footprint footprint_from_projected_derivatives_in_slope(float3 h_in, f
         return footprint_footprint_2;
     }
     float3 h0_ = (h_in / (big_2).xxx);
-    float3 h_13 = (h0_ / (length(h0_)).xxx);
-    float hz = max(h_13.z, 1e-6);
-    float k_9 = (-1.0 / ((hz * hz) * hz));
-    float2x2 j = float2x2(float2(((h_13.x * h_13.x) + (h_13.z * h_13.z)), (h_13.x * h_13.y)), float2((h_13.x * h_13.y), ((h_13.y * h_13.y) + (h_13.z * h_13.z))));
-    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint((mul(dp_u_1, j) * k_9), (mul(dp_v_1, j) * k_9));
+    float3 h_18 = (h0_ / (length(h0_)).xxx);
+    float hz = max(h_18.z, 1e-6);
+    float k_14 = (-1.0 / ((hz * hz) * hz));
+    float2x2 j = float2x2(float2(((h_18.x * h_18.x) + (h_18.z * h_18.z)), (h_18.x * h_18.y)), float2((h_18.x * h_18.y), ((h_18.y * h_18.y) + (h_18.z * h_18.z))));
+    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint((mul(dp_u_1, j) * k_14), (mul(dp_v_1, j) * k_14));
     return footprint_footprint_3;
 }
 
@@ -865,11 +1404,11 @@ footprint_Footprint footprint_from_normal_differences(float3 dn_u_4, float3 dn_v
 
 kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3)
 {
-    float2 u_5 = fp.dh_u;
-    float2 v_5 = fp.dh_v;
-    float s2_ = (sigma_3 * sigma_3);
-    float cross_1 = (((u_5.x * v_5.y) - (u_5.y * v_5.x)) * s2_);
-    const kernel_covariance_Covariance kernel_covariance_covariance_15 = Constructkernel_covariance_Covariance((((u_5.x * u_5.x) + (v_5.x * v_5.x)) * s2_), (((u_5.x * u_5.y) + (v_5.x * v_5.y)) * s2_), (((u_5.y * u_5.y) + (v_5.y * v_5.y)) * s2_), (cross_1 * cross_1));
+    float2 u_8 = fp.dh_u;
+    float2 v_8 = fp.dh_v;
+    float s2_1 = (sigma_3 * sigma_3);
+    float cross_1 = (((u_8.x * v_8.y) - (u_8.y * v_8.x)) * s2_1);
+    const kernel_covariance_Covariance kernel_covariance_covariance_15 = Constructkernel_covariance_Covariance((((u_8.x * u_8.x) + (v_8.x * v_8.x)) * s2_1), (((u_8.x * u_8.y) + (v_8.x * v_8.y)) * s2_1), (((u_8.y * u_8.y) + (v_8.y * v_8.y)) * s2_1), (cross_1 * cross_1));
     return kernel_covariance_covariance_15;
 }
 
@@ -907,15 +1446,15 @@ footprint_jacobian_Polar footprint_jacobian_polar(float3 h_in_1)
         return footprint_jacobian_polar_1;
     }
     float3 h0_1 = (h_in_1 / (big_3).xxx);
-    float3 h_14 = (h0_1 / (length(h0_1)).xxx);
-    float qs = max(abs(h_14.x), abs(h_14.y));
+    float3 h_19 = (h0_1 / (length(h0_1)).xxx);
+    float qs = max(abs(h_19.x), abs(h_19.y));
     if ((qs > 0.0)) {
-        float2 q_6 = (h_14.xy / (qs).xx);
+        float2 q_6 = (h_19.xy / (qs).xx);
         cs_1 = (q_6 / (length(q_6)).xx);
     }
-    if ((h_14.z >= footprint_jacobian_HZ_MIN)) {
+    if ((h_19.z >= footprint_jacobian_HZ_MIN)) {
         float2 _e44 = cs_1;
-        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_14, _e44);
+        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_19, _e44);
         return footprint_jacobian_polar_2;
     }
     float2 _e47 = cs_1;
@@ -924,9 +1463,9 @@ footprint_jacobian_Polar footprint_jacobian_polar(float3 h_in_1)
     return footprint_jacobian_polar_3;
 }
 
-float3 footprint_jacobian_sanitize(float3 h)
+float3 footprint_jacobian_sanitize(float3 h_4)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h);
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
     return _e1.h;
 }
 
@@ -937,99 +1476,99 @@ footprint_jacobian_SphericalBasis Constructfootprint_jacobian_SphericalBasis(flo
     return ret;
 }
 
-footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(float3 h_1)
+footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(float3 h_5)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
     float st = length(_e1.h.xy);
     const footprint_jacobian_SphericalBasis footprint_jacobian_sphericalbasis = Constructfootprint_jacobian_SphericalBasis(float3((_e1.h.z * _e1.cs), -(st)), float3(-(_e1.cs.y), _e1.cs.x, 0.0));
     return footprint_jacobian_sphericalbasis;
 }
 
-float2 footprint_jacobian_spherical_components(float3 h_2, float3 dh)
+float2 footprint_jacobian_spherical_components(float3 h_6, float3 dh)
 {
-    const footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_2);
+    const footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_6);
     return float2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
 }
 
-float2x2 footprint_jacobian_sphere_to_projected(float3 h_3)
+float2x2 footprint_jacobian_sphere_to_projected(float3 h_7)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_3);
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
     return float2x2((_e1.h.z * _e1.cs), float2(-(_e1.cs.y), _e1.cs.x));
 }
 
 float2x2 footprint_jacobian_projected_to_slope(float3 h_in_2)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    float3 h_15 = _e1.h;
-    float k_10 = (-1.0 / ((h_15.z * h_15.z) * h_15.z));
-    float xy = (h_15.x * h_15.y);
-    return float2x2((float2(((h_15.x * h_15.x) + (h_15.z * h_15.z)), xy) * k_10), (float2(xy, ((h_15.y * h_15.y) + (h_15.z * h_15.z))) * k_10));
+    float3 h_20 = _e1.h;
+    float k_15 = (-1.0 / ((h_20.z * h_20.z) * h_20.z));
+    float xy = (h_20.x * h_20.y);
+    return float2x2((float2(((h_20.x * h_20.x) + (h_20.z * h_20.z)), xy) * k_15), (float2(xy, ((h_20.y * h_20.y) + (h_20.z * h_20.z))) * k_15));
 }
 
 float2x2 footprint_jacobian_slope_to_projected(float3 h_in_3)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_3);
-    float3 h_16 = _e1.h;
-    float xy_1 = (h_16.x * h_16.y);
-    return float2x2((float2(((h_16.y * h_16.y) + (h_16.z * h_16.z)), -(xy_1)) * -(h_16.z)), (float2(-(xy_1), ((h_16.x * h_16.x) + (h_16.z * h_16.z))) * -(h_16.z)));
+    float3 h_21 = _e1.h;
+    float xy_1 = (h_21.x * h_21.y);
+    return float2x2((float2(((h_21.y * h_21.y) + (h_21.z * h_21.z)), -(xy_1)) * -(h_21.z)), (float2(-(xy_1), ((h_21.x * h_21.x) + (h_21.z * h_21.z))) * -(h_21.z)));
 }
 
-float2x2 footprint_jacobian_sphere_to_slope(float3 h_4)
+float2x2 footprint_jacobian_sphere_to_slope(float3 h_8)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
-    float k_11 = (-1.0 / (_e1.h.z * _e1.h.z));
-    return float2x2((_e1.cs * k_11), (float2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_11));
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
+    float k_16 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return float2x2((_e1.cs * k_16), (float2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_16));
 }
 
-float footprint_jacobian_det_sphere_to_projected(float3 h_5)
+float footprint_jacobian_det_sphere_to_projected(float3 h_9)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_9);
     return _e1.h.z;
 }
 
-float footprint_jacobian_det_projected_to_slope(float3 h_6)
+float footprint_jacobian_det_projected_to_slope(float3 h_10)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_10);
     float z_2 = _e1.h.z;
-    float z2_ = (z_2 * z_2);
-    return (1.0 / (z2_ * z2_));
+    float z2_1 = (z_2 * z_2);
+    return (1.0 / (z2_1 * z2_1));
 }
 
-float footprint_jacobian_det_sphere_to_slope(float3 h_7)
+float footprint_jacobian_det_sphere_to_slope(float3 h_11)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_11);
     float z_3 = _e1.h.z;
     return (1.0 / ((z_3 * z_3) * z_3));
 }
 
-float2 footprint_jacobian_spherical_to_slope(float3 h_8, float2 e)
+float2 footprint_jacobian_spherical_to_slope(float3 h_12, float2 e)
 {
-    const float2x2 _e2 = footprint_jacobian_sphere_to_slope(h_8);
+    const float2x2 _e2 = footprint_jacobian_sphere_to_slope(h_12);
     return mul(e, _e2);
 }
 
-float2 footprint_jacobian_spherical_to_projected(float3 h_9, float2 e_1)
+float2 footprint_jacobian_spherical_to_projected(float3 h_13, float2 e_1)
 {
-    const float2x2 _e2 = footprint_jacobian_sphere_to_projected(h_9);
+    const float2x2 _e2 = footprint_jacobian_sphere_to_projected(h_13);
     return mul(e_1, _e2);
 }
 
-float2 footprint_slope_slope_from_sphere(float3 h_10)
+float2 footprint_slope_slope_from_sphere(float3 h_14)
 {
-    float z_4 = max(h_10.z, math_F32_MIN_POSITIVE);
-    return clamp((-(h_10.xy) / (z_4).xx), (-3.4028235e38).xx, (3.4028235e38).xx);
+    float z_4 = max(h_14.z, math_F32_MIN_POSITIVE);
+    return clamp((-(h_14.xy) / (z_4).xx), (-3.4028235e38).xx, (3.4028235e38).xx);
 }
 
-float3 footprint_slope_sphere_from_slope(float2 s_2)
+float3 footprint_slope_sphere_from_slope(float2 s_7)
 {
-    float k_12 = max(max(abs(s_2.x), abs(s_2.y)), 1.0);
-    float3 v_6 = float3((-(s_2) / (k_12).xx), (1.0 / k_12));
-    return (v_6 / (length(v_6)).xxx);
+    float k_17 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
+    float3 v_9 = float3((-(s_7) / (k_17).xx), (1.0 / k_17));
+    return (v_9 / (length(v_9)).xxx);
 }
 
-float2 footprint_slope_projected_from_sphere(float3 h_11)
+float2 footprint_slope_projected_from_sphere(float3 h_15)
 {
-    return h_11.xy;
+    return h_15.xy;
 }
 
 float3 footprint_slope_sphere_from_projected(float2 p)
@@ -1049,9 +1588,9 @@ float2 footprint_slope_slope_from_projected(float2 p_1)
     return _e2;
 }
 
-float2 footprint_slope_projected_from_slope(float2 s_3)
+float2 footprint_slope_projected_from_slope(float2 s_8)
 {
-    const float3 _e1 = footprint_slope_sphere_from_slope(s_3);
+    const float3 _e1 = footprint_slope_sphere_from_slope(s_8);
     const float2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
 }
@@ -1074,7 +1613,7 @@ footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footpr
     return footprint_footprint_7;
 }
 
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_14, float2 alpha_9)
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_36, float2 alpha_10)
 {
     float2 f = (0.0).xx;
 
@@ -1082,19 +1621,19 @@ kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kern
         f = (rules_1.floor_).xx;
     } else {
         if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
-            f = min(abs(alpha_9), (rules_1.floor_).xx);
+            f = min(abs(alpha_10), (rules_1.floor_).xx);
         }
     }
     float lambda = max(rules_1.max_extent, 0.0);
-    float2 h_17 = min(abs(r_14.half_extent), (lambda).xx);
+    float2 h_22 = min(abs(r_36.half_extent), (lambda).xx);
     float2 _e25 = f;
-    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_17, max(_e25, (0.0).xx)));
+    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_22, max(_e25, (0.0).xx)));
     return kernel_rect_boundingrect_1;
 }
 
-kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_6)
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_11)
 {
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_6);
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_11);
     if ((rules_2.kappa >= math_F32_MAX)) {
         const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e2;
         return kernel_covariance_covariance_16;
@@ -1116,403 +1655,202 @@ ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_C
     const kernel_covariance_Covariance _e6 = kernel_clamp_kernel(rules_4, _e5);
     if (rules_4.det_clamp) {
         const ndf_roughness_matrix_RoughnessMatrix _e8 = filter_gaussian_gaussian_sanitized(a_10, _e6);
-        const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_11 = _e8;
-        return ndf_roughness_matrix_roughnessmatrix_11;
+        const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e8;
+        return ndf_roughness_matrix_roughnessmatrix_12;
     }
     const ndf_roughness_matrix_RoughnessMatrix _e10 = filter_gaussian_gaussian_with_tau_sanitized(a_10, _e6, 0.0);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e10;
-    return ndf_roughness_matrix_roughnessmatrix_12;
-}
-
-float ndf_g1_of(float lambda_w, float w_dot_m)
-{
-    return ((w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0);
-}
-
-float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m)
-{
-    bool local_3 = (bool)0;
-
-    if ((i_dot_m > 0.0)) {
-        local_3 = (o_dot_m > 0.0);
-    } else {
-        local_3 = false;
-    }
-    bool _e16 = local_3;
-    return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
-}
-
-ndf_roughness_isotropic_Isotropic Constructndf_roughness_isotropic_Isotropic(float arg0, float arg1) {
-    ndf_roughness_isotropic_Isotropic ret = (ndf_roughness_isotropic_Isotropic)0;
-    ret.alpha = arg0;
-    ret.inv_alpha_sq = arg1;
-    return ret;
-}
-
-ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_10)
-{
-    const float _e1 = ndf_roughness_clamp_alpha(alpha_10);
-    const ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_isotropic = Constructndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
-    return ndf_roughness_isotropic_isotropic;
-}
-
-float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_15, float2 s_4)
-{
-    return (dot(s_4, s_4) * r_15.inv_alpha_sq);
-}
-
-float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_16, float2 w_2)
-{
-    return (dot(w_2, w_2) * (r_16.alpha * r_16.alpha));
-}
-
-float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_17)
-{
-    return (r_17.alpha * r_17.alpha);
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_18)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), (r_18.alpha).xx);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e6;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e10;
     return ndf_roughness_matrix_roughnessmatrix_13;
 }
 
-float ndf_beckmann_exp_neg_times(float x_2, float k_7, float ln_k)
+float ndf_beckmann_exp_neg_times(float x_3, float k_12, float ln_k)
 {
-    return ((x_2 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_2)) : (exp(-(x_2)) * k_7));
+    return ((x_3 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_3)) : (exp(-(x_3)) * k_12));
 }
 
-float ndf_beckmann_p22_of(float q, float sqrt_det)
+float ndf_beckmann_p22_of(float q_2, float sqrt_det_2)
 {
-    float den_1 = (math_PI * sqrt_det);
-    const float _e8 = ndf_beckmann_exp_neg_times(q, (1.0 / den_1), -(log(den_1)));
+    float den_2 = (math_PI * sqrt_det_2);
+    const float _e8 = ndf_beckmann_exp_neg_times(q_2, (1.0 / den_2), -(log(den_2)));
     return _e8;
 }
 
-float ndf_beckmann_d_of(float q_xy, float m_z, float sqrt_det_1)
+float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3)
 {
-    bool local_4 = (bool)0;
+    bool local_9 = (bool)0;
 
-    float z2_1 = (m_z * m_z);
-    float x_4 = (q_xy / z2_1);
-    float k_13 = (1.0 / (((math_PI * sqrt_det_1) * z2_1) * z2_1));
-    float ln_k_1 = -((log((math_PI * sqrt_det_1)) + (4.0 * log(max(m_z, math_F32_MIN_POSITIVE)))));
-    const float _e21 = ndf_beckmann_exp_neg_times(x_4, k_13, ln_k_1);
-    if ((m_z > 0.0)) {
-        local_4 = (_e21 <= math_F32_MAX);
+    float z2_2 = (m_z_1 * m_z_1);
+    float x_5 = (q_xy_1 / z2_2);
+    float k_18 = (1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2));
+    float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
+    const float _e21 = ndf_beckmann_exp_neg_times(x_5, k_18, ln_k_1);
+    if ((m_z_1 > 0.0)) {
+        local_9 = (_e21 <= math_F32_MAX);
     } else {
-        local_4 = false;
+        local_9 = false;
     }
-    bool _e29 = local_4;
+    bool _e29 = local_9;
     return (_e29 ? _e21 : 0.0);
 }
 
-float ndf_beckmann_lambda_of(float q_1, float abs_wz)
+float ndf_beckmann_lambda_of(float q_3, float abs_wz_1)
 {
     float p_2 = -3.849172e-5;
 
-    if ((q_1 <= 0.0)) {
-        return 0.0;
-    }
-    if ((abs_wz <= 0.0)) {
-        return math_F32_MAX;
-    }
-    float a_16 = (abs_wz / sqrt(q_1));
-    if ((a_16 > 9.5)) {
-        return 0.0;
-    }
-    float t_3 = ((a_16 - 3.0) / (a_16 + 3.0));
-    float _e20 = p_2;
-    p_2 = ((_e20 * t_3) + 0.00028491428);
-    float _e24 = p_2;
-    p_2 = ((_e24 * t_3) + 1.8268152e-5);
-    float _e28 = p_2;
-    p_2 = ((_e28 * t_3) - 0.0018242653);
-    float _e32 = p_2;
-    p_2 = ((_e32 * t_3) + 0.0013654069);
-    float _e36 = p_2;
-    p_2 = ((_e36 * t_3) + 0.0055811945);
-    float _e40 = p_2;
-    p_2 = ((_e40 * t_3) - 0.009357543);
-    float _e44 = p_2;
-    p_2 = ((_e44 * t_3) - 0.0076571554);
-    float _e48 = p_2;
-    p_2 = ((_e48 * t_3) + 0.036274612);
-    float _e52 = p_2;
-    p_2 = ((_e52 * t_3) - 0.023293633);
-    float _e56 = p_2;
-    p_2 = ((_e56 * t_3) - 0.07646358);
-    float _e60 = p_2;
-    p_2 = ((_e60 * t_3) + 0.2117349);
-    float _e64 = p_2;
-    p_2 = ((_e64 * t_3) - 0.23284179);
-    float _e68 = p_2;
-    p_2 = ((_e68 * t_3) + 0.03307925);
-    float _e72 = p_2;
-    p_2 = ((_e72 * t_3) + 1.0631379);
-    float _e76 = p_2;
-    float k_14 = (_e76 / ((2.0 * a_16) + 1.0));
-    return min(((exp((-(a_16) * a_16)) * k_14) / ((3.5449078 * a_16) * (a_16 + k_14))), math_F32_MAX);
-}
-
-float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_19, float2 s_5)
-{
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_19, s_5);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_19);
-    const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_20, float3 m_1)
-{
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_20, m_1.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_20);
-    const float _e6 = ndf_beckmann_d_of(_e3, m_1.z, _e5);
-    return _e6;
-}
-
-float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_21, float3 w_3)
-{
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_21, w_3.xy);
-    const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_3.z));
-    return _e6;
-}
-
-float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_22, float3 w_4, float3 m_2)
-{
-    const float _e3 = ndf_beckmann_lambda_isotropic(r_22, w_4);
-    const float _e5 = ndf_g1_of(_e3, dot(w_4, m_2));
-    return _e5;
-}
-
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_23, float3 i_1, float3 o, float3 m_3)
-{
-    const float _e4 = ndf_beckmann_lambda_isotropic(r_23, i_1);
-    const float _e5 = ndf_beckmann_lambda_isotropic(r_23, o);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_3), dot(o, m_3));
-    return _e8;
-}
-
-float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_24, float2 s_6)
-{
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_24, s_6);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_24);
-    const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, float3 m_4)
-{
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_25, m_4.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_25);
-    const float _e6 = ndf_beckmann_d_of(_e3, m_4.z, _e5);
-    return _e6;
-}
-
-float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, float3 w_5)
-{
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_26, w_5.xy);
-    const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_5.z));
-    return _e6;
-}
-
-float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, float3 w_6, float3 m_5)
-{
-    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_27, w_6);
-    const float _e5 = ndf_g1_of(_e3, dot(w_6, m_5));
-    return _e5;
-}
-
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, float3 i_2, float3 o_1, float3 m_6)
-{
-    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_28, i_2);
-    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_28, o_1);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_6), dot(o_1, m_6));
-    return _e8;
-}
-
-float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_29, float2 s_7)
-{
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_29, s_7);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_29);
-    const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, float3 m_7)
-{
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_30, m_7.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_30);
-    const float _e6 = ndf_beckmann_d_of(_e3, m_7.z, _e5);
-    return _e6;
-}
-
-float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, float3 w_7)
-{
-    const float _e3 = ndf_roughness_matrix_quadratic(r_31, w_7.xy);
-    const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_7.z));
-    return _e6;
-}
-
-float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, float3 w_8, float3 m_8)
-{
-    const float _e3 = ndf_beckmann_lambda_matrix(r_32, w_8);
-    const float _e5 = ndf_g1_of(_e3, dot(w_8, m_8));
-    return _e5;
-}
-
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, float3 i_3, float3 o_2, float3 m_9)
-{
-    const float _e4 = ndf_beckmann_lambda_matrix(r_33, i_3);
-    const float _e5 = ndf_beckmann_lambda_matrix(r_33, o_2);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_9), dot(o_2, m_9));
-    return _e8;
-}
-
-float ndf_ggx_p22_of(float q_2, float sqrt_det_2)
-{
-    float t_4 = (1.0 + q_2);
-    return (1.0 / (((math_PI * sqrt_det_2) * t_4) * t_4));
-}
-
-float ndf_ggx_d_of(float q_xy_1, float m_z_1, float sqrt_det_3)
-{
-    bool local_5 = (bool)0;
-
-    float t_5 = (q_xy_1 + (m_z_1 * m_z_1));
-    float v_7 = (1.0 / (((math_PI * sqrt_det_3) * t_5) * t_5));
-    if ((m_z_1 > 0.0)) {
-        local_5 = (v_7 <= math_F32_MAX);
-    } else {
-        local_5 = false;
-    }
-    bool _e18 = local_5;
-    return (_e18 ? v_7 : 0.0);
-}
-
-float ndf_ggx_lambda_of(float q_3, float abs_wz_1)
-{
     if ((q_3 <= 0.0)) {
         return 0.0;
     }
     if ((abs_wz_1 <= 0.0)) {
         return math_F32_MAX;
     }
-    float r_58 = sqrt(((abs_wz_1 * abs_wz_1) + q_3));
-    return (q_3 / ((2.0 * abs_wz_1) * (r_58 + abs_wz_1)));
+    float a_21 = (abs_wz_1 / sqrt(q_3));
+    if ((a_21 > 9.5)) {
+        return 0.0;
+    }
+    float t_6 = ((a_21 - 3.0) / (a_21 + 3.0));
+    float _e20 = p_2;
+    p_2 = ((_e20 * t_6) + 0.00028491428);
+    float _e24 = p_2;
+    p_2 = ((_e24 * t_6) + 1.8268152e-5);
+    float _e28 = p_2;
+    p_2 = ((_e28 * t_6) - 0.0018242653);
+    float _e32 = p_2;
+    p_2 = ((_e32 * t_6) + 0.0013654069);
+    float _e36 = p_2;
+    p_2 = ((_e36 * t_6) + 0.0055811945);
+    float _e40 = p_2;
+    p_2 = ((_e40 * t_6) - 0.009357543);
+    float _e44 = p_2;
+    p_2 = ((_e44 * t_6) - 0.0076571554);
+    float _e48 = p_2;
+    p_2 = ((_e48 * t_6) + 0.036274612);
+    float _e52 = p_2;
+    p_2 = ((_e52 * t_6) - 0.023293633);
+    float _e56 = p_2;
+    p_2 = ((_e56 * t_6) - 0.07646358);
+    float _e60 = p_2;
+    p_2 = ((_e60 * t_6) + 0.2117349);
+    float _e64 = p_2;
+    p_2 = ((_e64 * t_6) - 0.23284179);
+    float _e68 = p_2;
+    p_2 = ((_e68 * t_6) + 0.03307925);
+    float _e72 = p_2;
+    p_2 = ((_e72 * t_6) + 1.0631379);
+    float _e76 = p_2;
+    float k_19 = (_e76 / ((2.0 * a_21) + 1.0));
+    return min(((exp((-(a_21) * a_21)) * k_19) / ((3.5449078 * a_21) * (a_21 + k_19))), math_F32_MAX);
 }
 
-float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_34, float2 s_8)
+float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_37, float2 s_9)
 {
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_34, s_8);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_34);
-    const float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_9);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
+    const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_35, float3 m_10)
+float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_38, float3 m_10)
 {
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_35, m_10.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_35);
-    const float _e6 = ndf_ggx_d_of(_e3, m_10.z, _e5);
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_10.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
+    const float _e6 = ndf_beckmann_d_of(_e3, m_10.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_36, float3 w_9)
+float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_39, float3 w_9)
 {
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_36, w_9.xy);
-    const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_9.z));
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
+    const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
     return _e6;
 }
 
-float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_37, float3 w_10, float3 m_11)
+float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_40, float3 w_10, float3 m_11)
 {
-    const float _e3 = ndf_ggx_lambda_isotropic(r_37, w_10);
+    const float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
     const float _e5 = ndf_g1_of(_e3, dot(w_10, m_11));
     return _e5;
 }
 
-float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_38, float3 i_4, float3 o_3, float3 m_12)
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_41, float3 i_4, float3 o_3, float3 m_12)
 {
-    const float _e4 = ndf_ggx_lambda_isotropic(r_38, i_4);
-    const float _e5 = ndf_ggx_lambda_isotropic(r_38, o_3);
+    const float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_4);
+    const float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_12), dot(o_3, m_12));
     return _e8;
 }
 
-float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_39, float2 s_9)
+float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, float2 s_10)
 {
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_39, s_9);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_39);
-    const float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_10);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
+    const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_40, float3 m_13)
+float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, float3 m_13)
 {
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_40, m_13.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_40);
-    const float _e6 = ndf_ggx_d_of(_e3, m_13.z, _e5);
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_13.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
+    const float _e6 = ndf_beckmann_d_of(_e3, m_13.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_41, float3 w_11)
+float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, float3 w_11)
 {
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_41, w_11.xy);
-    const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_11.z));
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
+    const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
     return _e6;
 }
 
-float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, float3 w_12, float3 m_14)
+float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_45, float3 w_12, float3 m_14)
 {
-    const float _e3 = ndf_ggx_lambda_axis_aligned(r_42, w_12);
+    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
     const float _e5 = ndf_g1_of(_e3, dot(w_12, m_14));
     return _e5;
 }
 
-float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, float3 i_5, float3 o_4, float3 m_15)
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_46, float3 i_5, float3 o_4, float3 m_15)
 {
-    const float _e4 = ndf_ggx_lambda_axis_aligned(r_43, i_5);
-    const float _e5 = ndf_ggx_lambda_axis_aligned(r_43, o_4);
+    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_5);
+    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_15), dot(o_4, m_15));
     return _e8;
 }
 
-float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_44, float2 s_10)
+float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, float2 s_11)
 {
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_44, s_10);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_44);
-    const float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_11);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
+    const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_45, float3 m_16)
+float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 m_16)
 {
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_45, m_16.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_45);
-    const float _e6 = ndf_ggx_d_of(_e3, m_16.z, _e5);
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_16.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
+    const float _e6 = ndf_beckmann_d_of(_e3, m_16.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_46, float3 w_13)
+float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, float3 w_13)
 {
-    const float _e3 = ndf_roughness_matrix_quadratic(r_46, w_13.xy);
-    const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_13.z));
+    const float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
+    const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
     return _e6;
 }
 
-float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, float3 w_14, float3 m_17)
+float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_50, float3 w_14, float3 m_17)
 {
-    const float _e3 = ndf_ggx_lambda_matrix(r_47, w_14);
+    const float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
     const float _e5 = ndf_g1_of(_e3, dot(w_14, m_17));
     return _e5;
 }
 
-float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 i_6, float3 o_5, float3 m_18)
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_51, float3 i_6, float3 o_5, float3 m_18)
 {
-    const float _e4 = ndf_ggx_lambda_matrix(r_48, i_6);
-    const float _e5 = ndf_ggx_lambda_matrix(r_48, o_5);
+    const float _e4 = ndf_beckmann_lambda_matrix(r_51, i_6);
+    const float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_18), dot(o_5, m_18));
     return _e8;
 }
@@ -1525,17 +1863,17 @@ sampling_Warp Constructsampling_Warp(float arg0, float arg1, float arg2) {
     return ret;
 }
 
-sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_49)
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_52)
 {
-    const float3 _e1 = ndf_roughness_matrix_entries(r_49);
+    const float3 _e1 = ndf_roughness_matrix_entries(r_52);
     float l_xx = sqrt(_e1.x);
-    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_49.sqrt_det / l_xx));
+    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_52.sqrt_det / l_xx));
     return sampling_warp_1;
 }
 
-float3 sampling_normalize_scaled(float3 v_3)
+float3 sampling_normalize_scaled(float3 v_4)
 {
-    float3 w_17 = (v_3 / (max(max(abs(v_3.x), abs(v_3.y)), abs(v_3.z))).xxx);
+    float3 w_17 = (v_4 / (max(max(abs(v_4.x), abs(v_4.y)), abs(v_4.z))).xxx);
     return (w_17 / (length(w_17)).xxx);
 }
 
@@ -1544,15 +1882,15 @@ float3 sampling_stretch(sampling_Warp l, float3 w_15)
     return float3(((l.l_xx * w_15.x) + (l.l_yx * w_15.y)), (l.l_yy * w_15.y), w_15.z);
 }
 
-float3 sampling_unstretch(sampling_Warp l_1, float3 n)
+float3 sampling_unstretch(sampling_Warp l_1, float3 n_4)
 {
-    const float3 _e14 = sampling_normalize_scaled(float3((l_1.l_xx * n.x), ((l_1.l_yx * n.x) + (l_1.l_yy * n.y)), n.z));
+    const float3 _e14 = sampling_normalize_scaled(float3((l_1.l_xx * n_4.x), ((l_1.l_yx * n_4.x) + (l_1.l_yy * n_4.y)), n_4.z));
     return _e14;
 }
 
-float sampling_clamp_unit(float u_1)
+float sampling_clamp_unit(float u_4)
 {
-    return ((u_1 >= 0.0) ? min(u_1, sampling_ONE_MINUS_EPS) : 0.0);
+    return ((u_4 >= 0.0) ? min(u_4, sampling_ONE_MINUS_EPS) : 0.0);
 }
 
 float3 sampling_reflect(float3 wo, float3 m_19)
@@ -1560,38 +1898,38 @@ float3 sampling_reflect(float3 wo, float3 m_19)
     return (((2.0 * dot(wo, m_19)) * m_19) - wo);
 }
 
-float3 sampling_ggx_standard_visible(float3 wi, float2 u_2)
+float3 sampling_ggx_standard_visible(float3 wi, float2 u_5)
 {
-    const float2 _e3 = math_sincos_turns(u_2.x);
-    float z_5 = (((1.0 - u_2.y) * (1.0 + wi.z)) - wi.z);
+    const float2 _e3 = math_sincos_turns(u_5.x);
+    float z_5 = (((1.0 - u_5.y) * (1.0 + wi.z)) - wi.z);
     float sin_theta = sqrt(clamp((1.0 - (z_5 * z_5)), 0.0, 1.0));
     return (float3((sin_theta * _e3), z_5) + wi);
 }
 
-float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_50, float3 wo_1, float2 u_3)
+float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_53, float3 wo_1, float2 u_6)
 {
-    bool local_6 = (bool)0;
+    bool local_10 = (bool)0;
 
     if (!((wo_1.z > 0.0))) {
         return (0.0).xxx;
     }
-    const sampling_Warp _e9 = sampling_warp(r_50);
+    const sampling_Warp _e9 = sampling_warp(r_53);
     const float3 _e10 = sampling_normalize_scaled(wo_1);
     const float3 _e11 = sampling_stretch(_e9, _e10);
     const float3 _e12 = sampling_normalize_scaled(_e11);
     if (!((_e12.z > 0.0))) {
         return (0.0).xxx;
     }
-    const float _e20 = sampling_clamp_unit(u_3.x);
-    const float _e22 = sampling_clamp_unit(u_3.y);
+    const float _e20 = sampling_clamp_unit(u_6.x);
+    const float _e22 = sampling_clamp_unit(u_6.y);
     const float3 _e24 = sampling_ggx_standard_visible(_e12, float2(_e20, _e22));
     const float3 _e25 = sampling_unstretch(_e9, _e24);
     if ((_e25.z > 0.0)) {
-        local_6 = (dot(wo_1, _e25) > 0.0);
+        local_10 = (dot(wo_1, _e25) > 0.0);
     } else {
-        local_6 = false;
+        local_10 = false;
     }
-    bool _e35 = local_6;
+    bool _e35 = local_10;
     if (_e35) {
         return _e25;
     }
@@ -1599,44 +1937,44 @@ float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_50,
     return ((_e36.z > 0.0) ? _e36 : (0.0).xxx);
 }
 
-float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_51, float2 u_4)
+float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_54, float2 u_7)
 {
-    const float _e3 = sampling_clamp_unit(u_4.x);
-    const float _e5 = sampling_clamp_unit(u_4.y);
+    const float _e3 = sampling_clamp_unit(u_7.x);
+    const float _e5 = sampling_clamp_unit(u_7.y);
     const float2 _e6 = math_sincos_turns(_e5);
-    float3 n_1 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
-    const sampling_Warp _e13 = sampling_warp(r_51);
-    const float3 _e14 = sampling_unstretch(_e13, n_1);
+    float3 n_5 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
+    const sampling_Warp _e13 = sampling_warp(r_54);
+    const float3 _e14 = sampling_unstretch(_e13, n_5);
     return _e14;
 }
 
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_52, float3 m_20)
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_55, float3 m_20)
 {
-    const float _e2 = ndf_ggx_d_matrix(r_52, m_20);
+    const float _e2 = ndf_ggx_d_matrix(r_55, m_20);
     return ((m_20.z > 0.0) ? (_e2 * m_20.z) : 0.0);
 }
 
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_53, float3 wo_2, float3 m_21)
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_56, float3 wo_2, float3 m_21)
 {
-    bool local_7 = (bool)0;
+    bool local_11 = (bool)0;
 
     float wom = dot(wo_2, m_21);
     if (!(!((wo_2.z > 0.0)))) {
-        local_7 = !((wom > 0.0));
+        local_11 = !((wom > 0.0));
     } else {
-        local_7 = true;
+        local_11 = true;
     }
-    bool _e15 = local_7;
+    bool _e15 = local_11;
     if (_e15) {
         return 0.0;
     }
-    const float _e17 = ndf_ggx_d_matrix(r_53, m_21);
-    const float _e20 = ndf_ggx_lambda_matrix(r_53, wo_2);
-    float v_8 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
-    return ((v_8 <= math_F32_MAX) ? v_8 : 0.0);
+    const float _e17 = ndf_ggx_d_matrix(r_56, m_21);
+    const float _e20 = ndf_ggx_lambda_matrix(r_56, wo_2);
+    float v_10 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
+    return ((v_10 <= math_F32_MAX) ? v_10 : 0.0);
 }
 
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_54, float3 wo_3, float3 m_22)
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_57, float3 wo_3, float3 m_22)
 {
     if (!((wo_3.z > 0.0))) {
         return 0.0;
@@ -1645,25 +1983,25 @@ float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r
     if (!((dot(_e8, m_22) > 0.0))) {
         return 0.0;
     }
-    const float _e14 = ndf_ggx_d_matrix(r_54, m_22);
-    const float _e18 = ndf_ggx_lambda_matrix(r_54, _e8);
-    float v_9 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
-    return ((v_9 <= math_F32_MAX) ? v_9 : 0.0);
+    const float _e14 = ndf_ggx_d_matrix(r_57, m_22);
+    const float _e18 = ndf_ggx_lambda_matrix(r_57, _e8);
+    float v_11 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
+    return ((v_11 <= math_F32_MAX) ? v_11 : 0.0);
 }
 
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_55, float3 wo_4, float3 wi_1)
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_58, float3 wo_4, float3 wi_1)
 {
     if (!((wo_4.z > 0.0))) {
         return 0.0;
     }
     const float3 _e8 = sampling_normalize_scaled(wo_4);
     const float3 _e9 = sampling_normalize_scaled(wi_1);
-    float3 h_18 = (_e8 + _e9);
-    float len = length(h_18);
+    float3 h_23 = (_e8 + _e9);
+    float len = length(h_23);
     if (!((len > 0.0))) {
         return 0.0;
     }
-    const float _e18 = sampling_reflection_pdf_from_normal(r_55, wo_4, (h_18 / (len).xxx));
+    const float _e18 = sampling_reflection_pdf_from_normal(r_58, wo_4, (h_23 / (len).xxx));
     return _e18;
 }
 

@@ -43,6 +43,10 @@ struct ndf_roughness_axis_aligned_AxisAligned {
     metal::float2 alpha;
     metal::float2 inv_alpha_sq;
 };
+struct ndf_roughness_isotropic_Isotropic {
+    float alpha;
+    float inv_alpha_sq;
+};
 struct kernel_rect_BoundingRect {
     metal::float2 half_extent;
 };
@@ -66,10 +70,6 @@ struct kernel_clamp_ClampRules {
     float kappa;
     bool det_clamp;
     char _pad5[3];
-};
-struct ndf_roughness_isotropic_Isotropic {
-    float alpha;
-    float inv_alpha_sq;
 };
 struct sampling_Warp {
     float l_xx;
@@ -114,6 +114,8 @@ constant filter_deferred_KernelConvention filter_presets_UNREAL = filter_deferre
 constant filter_deferred_KernelConvention filter_presets_BABYLON = filter_deferred_KernelConvention {2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_THREE_JS = filter_deferred_KernelConvention {2u, 3u, 1.0, 1.0, 0.0, 340282350000000000000000000000000000000.0, 0u, true, {}, 0.0525};
 constant float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
+constant float filter_rect_BIG = 1000000000000000000.0;
+constant uint filter_rect_TIER_CLOSED = 0u;
 constant float footprint_SIGMA_PIXEL = 0.5;
 constant float footprint_jacobian_HZ_MIN = 0.000001;
 constant uint kernel_clamp_FLOOR_NONE = 0u;
@@ -167,20 +169,20 @@ metal::float2 math_sincos_turns(
 ) {
     metal::float2 cs = {};
     float q_4 = metal::rint(4.0 * u);
-    float r_56 = u - (0.25 * q_4);
-    float z_1 = r_56 * r_56;
-    float s_11 = r_56 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855);
-    float c_6 = (((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0;
-    int k_8 = naga_f2i32(q_4) & 3;
-    cs = metal::float2(c_6, s_11);
-    if (k_8 == 1) {
-        cs = metal::float2(-(s_11), c_6);
+    float r_59 = u - (0.25 * q_4);
+    float z_1 = r_59 * r_59;
+    float s_12 = r_59 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855);
+    float c_8 = (((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0;
+    int k_13 = naga_f2i32(q_4) & 3;
+    cs = metal::float2(c_8, s_12);
+    if (k_13 == 1) {
+        cs = metal::float2(-(s_12), c_8);
     } else {
-        if (k_8 == 2) {
-            cs = metal::float2(-(c_6), -(s_11));
+        if (k_13 == 2) {
+            cs = metal::float2(-(c_8), -(s_12));
         } else {
-            if (k_8 == 3) {
-                cs = metal::float2(s_11, -(c_6));
+            if (k_13 == 3) {
+                cs = metal::float2(s_12, -(c_8));
             }
         }
     }
@@ -267,15 +269,15 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
     float a_13 = c_3.s_xx / scale;
     float b_3 = c_3.s_xy / scale;
     float e_2 = c_3.s_yy / scale;
-    float d = 0.5 * (a_13 - e_2);
-    float r_57 = metal::sqrt((d * d) + (b_3 * b_3));
-    float lmax_1 = ((0.5 * (a_13 + e_2)) + r_57) * scale;
+    float d_1 = 0.5 * (a_13 - e_2);
+    float r_60 = metal::sqrt((d_1 * d_1) + (b_3 * b_3));
+    float lmax_1 = ((0.5 * (a_13 + e_2)) + r_60) * scale;
     if (lmax_1 <= max_eig) {
         return c_3;
     }
     float lmin_1 = metal::max(c_3.det / lmax_1, 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = r_57 < 0.000000000000000001;
+        local = r_60 < 0.000000000000000001;
     } else {
         local = true;
     }
@@ -283,10 +285,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
     if (_e46) {
         return kernel_covariance_Covariance {max_eig, 0.0, max_eig, max_eig * max_eig};
     }
-    float p_4 = r_57 + metal::abs(d);
+    float p_4 = r_60 + metal::abs(d_1);
     float q_5 = (p_4 > 0.0) ? ((b_3 * b_3) / p_4) : 0.0;
-    metal::float2 ee = (d >= 0.0) ? metal::float2(p_4, q_5) : metal::float2(q_5, p_4);
-    float inv_1 = 1.0 / (2.0 * r_57);
+    metal::float2 ee = (d_1 >= 0.0) ? metal::float2(p_4, q_5) : metal::float2(q_5, p_4);
+    float inv_1 = 1.0 / (2.0 * r_60);
     float p11_ = ee.x * inv_1;
     float p12_ = b_3 * inv_1;
     float p22_ = ee.y * inv_1;
@@ -374,19 +376,19 @@ float filter_deferred_norm_eval(
     metal::float3 dn_v
 ) {
     float a_14 = metal::dot(dn_u, dn_u);
-    float c_7 = metal::dot(dn_v, dn_v);
+    float c_9 = metal::dot(dn_v, dn_v);
     if (norm == filter_deferred_NORM_MAX_SQUARED) {
-        return metal::max(a_14, c_7);
+        return metal::max(a_14, c_9);
     }
     if (norm == filter_deferred_NORM_MAX_EIGENVALUE) {
-        float _e11 = filter_deferred_max_eigenvalue(a_14, metal::dot(dn_u, dn_v), c_7);
+        float _e11 = filter_deferred_max_eigenvalue(a_14, metal::dot(dn_u, dn_v), c_9);
         return _e11;
     }
     if (norm == filter_deferred_NORM_MAX_ABS_COMPONENT) {
         metal::float3 m_24 = metal::max(metal::abs(dn_u), metal::abs(dn_v));
         return metal::max(metal::max(m_24.x, m_24.y), m_24.z);
     }
-    return a_14 + c_7;
+    return a_14 + c_9;
 }
 
 float filter_deferred_clamp_kernel(
@@ -451,8 +453,8 @@ kernel_covariance_Covariance filter_deferred_normal_difference_covariance(
     metal::float3 dn_v_3,
     float sigma_sq
 ) {
-    metal::float3 x_3 = metal::cross(dn_u_3, dn_v_3) * sigma_sq;
-    return kernel_covariance_Covariance {metal::dot(dn_u_3, dn_u_3) * sigma_sq, metal::dot(dn_u_3, dn_v_3) * sigma_sq, metal::dot(dn_v_3, dn_v_3) * sigma_sq, metal::dot(x_3, x_3)};
+    metal::float3 x_4 = metal::cross(dn_u_3, dn_v_3) * sigma_sq;
+    return kernel_covariance_Covariance {metal::dot(dn_u_3, dn_u_3) * sigma_sq, metal::dot(dn_u_3, dn_v_3) * sigma_sq, metal::dot(dn_v_3, dn_v_3) * sigma_sq, metal::dot(x_4, x_4)};
 }
 
 float filter_deferred_bandwidth_kernel(
@@ -498,7 +500,7 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(
     float half_diff = 0.5 * (a11_ - a22_);
     float rad = metal::sqrt((half_diff * half_diff) + (a12_ * a12_));
     float l1_ = (0.5 * (a11_ + a22_)) + rad;
-    float l2_ = det / l1_;
+    float l2_1 = det / l1_;
     float big_1 = rad + metal::abs(half_diff);
     v_1 = (half_diff < 0.0) ? metal::float2(a12_, big_1) : metal::float2(big_1, a12_);
     if (big_1 <= 0.0) {
@@ -507,8 +509,8 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(
     metal::float2 _e30 = v_1;
     metal::float2 _e31 = v_1;
     metal::float2 axis_1 = _e30 / metal::float2(metal::length(_e31));
-    float c_8 = metal::max(det, tau);
-    return ndf_roughness_matrix_RoughnessMatrix {axis_1, metal::float2(l1_, l2_), metal::float2(l2_, l1_) / metal::float2(c_8), metal::sqrt(c_8)};
+    float c_10 = metal::max(det, tau);
+    return ndf_roughness_matrix_RoughnessMatrix {axis_1, metal::float2(l1_, l2_1), metal::float2(l2_1, l1_) / metal::float2(c_10), metal::sqrt(c_10)};
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(
@@ -552,10 +554,10 @@ float ndf_roughness_matrix_sqrt_det(
 metal::float3 ndf_roughness_matrix_entries(
     ndf_roughness_matrix_RoughnessMatrix r_5
 ) {
-    float c_9 = r_5.axis.x;
-    float s_12 = r_5.axis.y;
+    float c_11 = r_5.axis.x;
+    float s_13 = r_5.axis.y;
     metal::float2 l_3 = r_5.eig;
-    return metal::float3(((r_5.eig.x * c_9) * c_9) + ((r_5.eig.y * s_12) * s_12), ((r_5.eig.x - r_5.eig.y) * c_9) * s_12, ((r_5.eig.x * s_12) * s_12) + ((r_5.eig.y * c_9) * c_9));
+    return metal::float3(((r_5.eig.x * c_11) * c_11) + ((r_5.eig.y * s_13) * s_13), ((r_5.eig.x - r_5.eig.y) * c_11) * s_13, ((r_5.eig.x * s_13) * s_13) + ((r_5.eig.y * c_11) * c_11));
 }
 
 float ndf_roughness_matrix_determinant(
@@ -570,10 +572,10 @@ ndf_roughness_matrix_RoughnessMatrix filter_gaussian_plus_kernel(
     float tau_1
 ) {
     metal::float3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_10 = a_2.axis.x;
-    float s_13 = a_2.axis.y;
-    float k1_ = metal::max((((c_10 * c_10) * k_3.s_xx) + (((2.0 * c_10) * s_13) * k_3.s_xy)) + ((s_13 * s_13) * k_3.s_yy), 0.0);
-    float k2_ = metal::max((((s_13 * s_13) * k_3.s_xx) - (((2.0 * c_10) * s_13) * k_3.s_xy)) + ((c_10 * c_10) * k_3.s_yy), 0.0);
+    float c_12 = a_2.axis.x;
+    float s_14 = a_2.axis.y;
+    float k1_ = metal::max((((c_12 * c_12) * k_3.s_xx) + (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((s_14 * s_14) * k_3.s_yy), 0.0);
+    float k2_ = metal::max((((s_14 * s_14) * k_3.s_xx) - (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((c_12 * c_12) * k_3.s_yy), 0.0);
     float _e38 = ndf_roughness_matrix_determinant(a_2);
     float det_2 = (_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * metal::max(k_3.det, 0.0));
     ndf_roughness_matrix_RoughnessMatrix _e70 = ndf_roughness_matrix_from_entries_det(_e3.x + (2.0 * k_3.s_xx), _e3.y + (2.0 * k_3.s_xy), _e3.z + (2.0 * k_3.s_yy), det_2, tau_1);
@@ -692,29 +694,29 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(
     metal::float2 lc = metal::min(a_8.eig, metal::float2(0.99));
     metal::float2 excess = a_8.eig - lc;
     metal::float2 p_5 = lc / (metal::float2(1.0) - lc);
-    float c_11 = a_8.axis.x;
-    float s_14 = a_8.axis.y;
-    float p11_1 = ((p_5.x * c_11) * c_11) + ((p_5.y * s_14) * s_14);
-    float p12_1 = ((p_5.x - p_5.y) * c_11) * s_14;
-    float p22_1 = ((p_5.x * s_14) * s_14) + ((p_5.y * c_11) * c_11);
-    float k1_1 = metal::max((((c_11 * c_11) * _e2.s_xx) + (((2.0 * c_11) * s_14) * _e2.s_xy)) + ((s_14 * s_14) * _e2.s_yy), 0.0);
-    float k2_1 = metal::max((((s_14 * s_14) * _e2.s_xx) - (((2.0 * c_11) * s_14) * _e2.s_xy)) + ((c_11 * c_11) * _e2.s_yy), 0.0);
-    float d_1 = ((p_5.x * p_5.y) + (2.0 * ((p_5.y * k1_1) + (p_5.x * k2_1)))) + (4.0 * metal::max(_e2.det, 0.0));
+    float c_13 = a_8.axis.x;
+    float s_15 = a_8.axis.y;
+    float p11_1 = ((p_5.x * c_13) * c_13) + ((p_5.y * s_15) * s_15);
+    float p12_1 = ((p_5.x - p_5.y) * c_13) * s_15;
+    float p22_1 = ((p_5.x * s_15) * s_15) + ((p_5.y * c_13) * c_13);
+    float k1_1 = metal::max((((c_13 * c_13) * _e2.s_xx) + (((2.0 * c_13) * s_15) * _e2.s_xy)) + ((s_15 * s_15) * _e2.s_yy), 0.0);
+    float k2_1 = metal::max((((s_15 * s_15) * _e2.s_xx) - (((2.0 * c_13) * s_15) * _e2.s_xy)) + ((c_13 * c_13) * _e2.s_yy), 0.0);
+    float d_2 = ((p_5.x * p_5.y) + (2.0 * ((p_5.y * k1_1) + (p_5.x * k2_1)))) + (4.0 * metal::max(_e2.det, 0.0));
     float q11_ = p11_1 + (2.0 * _e2.s_xx);
     float q12_ = p12_1 + (2.0 * _e2.s_xy);
     float q22_ = p22_1 + (2.0 * _e2.s_yy);
-    float den = ((1.0 + q11_) + q22_) + d_1;
-    b11_ = (q11_ + d_1) / den;
+    float den = ((1.0 + q11_) + q22_) + d_2;
+    b11_ = (q11_ + d_2) / den;
     b12_ = q12_ / den;
-    b22_ = (q22_ + d_1) / den;
-    det_1 = d_1 / den;
+    b22_ = (q22_ + d_2) / den;
+    det_1 = d_2 / den;
     if (metal::max(excess.x, excess.y) > 0.0) {
         float _e114 = b11_;
-        b11_ = _e114 + (((excess.x * c_11) * c_11) + ((excess.y * s_14) * s_14));
+        b11_ = _e114 + (((excess.x * c_13) * c_13) + ((excess.y * s_15) * s_15));
         float _e123 = b12_;
-        b12_ = _e123 + (((excess.x - excess.y) * c_11) * s_14);
+        b12_ = _e123 + (((excess.x - excess.y) * c_13) * s_15);
         float _e130 = b22_;
-        b22_ = _e130 + (((excess.x * s_14) * s_14) + ((excess.y * c_11) * c_11));
+        b22_ = _e130 + (((excess.x * s_15) * s_15) + ((excess.y * c_13) * c_13));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -771,9 +773,9 @@ float filter_proxy_effective_alpha(
     float alpha_7,
     float half_extent
 ) {
-    float h_12 = metal::abs(half_extent);
-    float _e3 = math_hypot(alpha_7, h_12);
-    float t_2 = (_e3 > 0.0) ? (h_12 / _e3) : 0.0;
+    float h_16 = metal::abs(half_extent);
+    float _e3 = math_hypot(alpha_7, h_16);
+    float t_2 = (_e3 > 0.0) ? (h_16 / _e3) : 0.0;
     float _e9 = math_atan(t_2);
     float ratio = (t_2 > 0.0) ? (t_2 / _e9) : 1.0;
     return _e3 * metal::sqrt(ratio);
@@ -807,13 +809,636 @@ ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(
     return _e11;
 }
 
+float ndf_g1_of(
+    float lambda_w,
+    float w_dot_m
+) {
+    return (w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0;
+}
+
+float ndf_g2_of(
+    float lambda_i,
+    float lambda_o,
+    float i_dot_m,
+    float o_dot_m
+) {
+    bool local_3 = {};
+    if (i_dot_m > 0.0) {
+        local_3 = o_dot_m > 0.0;
+    } else {
+        local_3 = false;
+    }
+    bool _e16 = local_3;
+    return _e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0;
+}
+
+ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(
+    float alpha_9
+) {
+    float _e1 = ndf_roughness_clamp_alpha(alpha_9);
+    return ndf_roughness_isotropic_Isotropic {_e1, 1.0 / (_e1 * _e1)};
+}
+
+float ndf_roughness_isotropic_inv_quadratic(
+    ndf_roughness_isotropic_Isotropic r_13,
+    metal::float2 s_2
+) {
+    return metal::dot(s_2, s_2) * r_13.inv_alpha_sq;
+}
+
+float ndf_roughness_isotropic_quadratic(
+    ndf_roughness_isotropic_Isotropic r_14,
+    metal::float2 w_2
+) {
+    return metal::dot(w_2, w_2) * (r_14.alpha * r_14.alpha);
+}
+
+float ndf_roughness_isotropic_sqrt_det(
+    ndf_roughness_isotropic_Isotropic r_15
+) {
+    return r_15.alpha * r_15.alpha;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(
+    ndf_roughness_isotropic_Isotropic r_16
+) {
+    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), metal::float2(r_16.alpha));
+    return _e6;
+}
+
+float ndf_ggx_p22_of(
+    float q,
+    float sqrt_det
+) {
+    float t_3 = 1.0 + q;
+    return 1.0 / (((math_PI * sqrt_det) * t_3) * t_3);
+}
+
+float ndf_ggx_d_of(
+    float q_xy,
+    float m_z,
+    float sqrt_det_1
+) {
+    bool local_4 = {};
+    float t_4 = q_xy + (m_z * m_z);
+    float v_5 = 1.0 / (((math_PI * sqrt_det_1) * t_4) * t_4);
+    if (m_z > 0.0) {
+        local_4 = v_5 <= math_F32_MAX;
+    } else {
+        local_4 = false;
+    }
+    bool _e18 = local_4;
+    return _e18 ? v_5 : 0.0;
+}
+
+float ndf_ggx_lambda_of(
+    float q_1,
+    float abs_wz
+) {
+    if (q_1 <= 0.0) {
+        return 0.0;
+    }
+    if (abs_wz <= 0.0) {
+        return math_F32_MAX;
+    }
+    float r_61 = metal::sqrt((abs_wz * abs_wz) + q_1);
+    return q_1 / ((2.0 * abs_wz) * (r_61 + abs_wz));
+}
+
+float ndf_ggx_p22_isotropic(
+    ndf_roughness_isotropic_Isotropic r_17,
+    metal::float2 s_3
+) {
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_17, s_3);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_17);
+    float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_ggx_d_isotropic(
+    ndf_roughness_isotropic_Isotropic r_18,
+    metal::float3 m_1
+) {
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_18, m_1.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_18);
+    float _e6 = ndf_ggx_d_of(_e3, m_1.z, _e5);
+    return _e6;
+}
+
+float ndf_ggx_lambda_isotropic(
+    ndf_roughness_isotropic_Isotropic r_19,
+    metal::float3 w_3
+) {
+    float _e3 = ndf_roughness_isotropic_quadratic(r_19, w_3.xy);
+    float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_3.z));
+    return _e6;
+}
+
+float ndf_ggx_g1_isotropic(
+    ndf_roughness_isotropic_Isotropic r_20,
+    metal::float3 w_4,
+    metal::float3 m_2
+) {
+    float _e3 = ndf_ggx_lambda_isotropic(r_20, w_4);
+    float _e5 = ndf_g1_of(_e3, metal::dot(w_4, m_2));
+    return _e5;
+}
+
+float ndf_ggx_g2_isotropic(
+    ndf_roughness_isotropic_Isotropic r_21,
+    metal::float3 i_1,
+    metal::float3 o,
+    metal::float3 m_3
+) {
+    float _e4 = ndf_ggx_lambda_isotropic(r_21, i_1);
+    float _e5 = ndf_ggx_lambda_isotropic(r_21, o);
+    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_1, m_3), metal::dot(o, m_3));
+    return _e8;
+}
+
+float ndf_ggx_p22_axis_aligned(
+    ndf_roughness_axis_aligned_AxisAligned r_22,
+    metal::float2 s_4
+) {
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_22, s_4);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_22);
+    float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_ggx_d_axis_aligned(
+    ndf_roughness_axis_aligned_AxisAligned r_23,
+    metal::float3 m_4
+) {
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_23, m_4.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_23);
+    float _e6 = ndf_ggx_d_of(_e3, m_4.z, _e5);
+    return _e6;
+}
+
+float ndf_ggx_lambda_axis_aligned(
+    ndf_roughness_axis_aligned_AxisAligned r_24,
+    metal::float3 w_5
+) {
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_24, w_5.xy);
+    float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_5.z));
+    return _e6;
+}
+
+float ndf_ggx_g1_axis_aligned(
+    ndf_roughness_axis_aligned_AxisAligned r_25,
+    metal::float3 w_6,
+    metal::float3 m_5
+) {
+    float _e3 = ndf_ggx_lambda_axis_aligned(r_25, w_6);
+    float _e5 = ndf_g1_of(_e3, metal::dot(w_6, m_5));
+    return _e5;
+}
+
+float ndf_ggx_g2_axis_aligned(
+    ndf_roughness_axis_aligned_AxisAligned r_26,
+    metal::float3 i_2,
+    metal::float3 o_1,
+    metal::float3 m_6
+) {
+    float _e4 = ndf_ggx_lambda_axis_aligned(r_26, i_2);
+    float _e5 = ndf_ggx_lambda_axis_aligned(r_26, o_1);
+    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_2, m_6), metal::dot(o_1, m_6));
+    return _e8;
+}
+
+float ndf_ggx_p22_matrix(
+    ndf_roughness_matrix_RoughnessMatrix r_27,
+    metal::float2 s_5
+) {
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_27, s_5);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_27);
+    float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_ggx_d_matrix(
+    ndf_roughness_matrix_RoughnessMatrix r_28,
+    metal::float3 m_7
+) {
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_28, m_7.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_28);
+    float _e6 = ndf_ggx_d_of(_e3, m_7.z, _e5);
+    return _e6;
+}
+
+float ndf_ggx_lambda_matrix(
+    ndf_roughness_matrix_RoughnessMatrix r_29,
+    metal::float3 w_7
+) {
+    float _e3 = ndf_roughness_matrix_quadratic(r_29, w_7.xy);
+    float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_7.z));
+    return _e6;
+}
+
+float ndf_ggx_g1_matrix(
+    ndf_roughness_matrix_RoughnessMatrix r_30,
+    metal::float3 w_8,
+    metal::float3 m_8
+) {
+    float _e3 = ndf_ggx_lambda_matrix(r_30, w_8);
+    float _e5 = ndf_g1_of(_e3, metal::dot(w_8, m_8));
+    return _e5;
+}
+
+float ndf_ggx_g2_matrix(
+    ndf_roughness_matrix_RoughnessMatrix r_31,
+    metal::float3 i_3,
+    metal::float3 o_2,
+    metal::float3 m_9
+) {
+    float _e4 = ndf_ggx_lambda_matrix(r_31, i_3);
+    float _e5 = ndf_ggx_lambda_matrix(r_31, o_2);
+    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_3, m_9), metal::dot(o_2, m_9));
+    return _e8;
+}
+
+uint filter_rect_tier(
+    float h2_,
+    float l2_
+) {
+    if (h2_ < (0.0001 * l2_)) {
+        return 2u;
+    }
+    if (h2_ < (0.01 * l2_)) {
+        return 4u;
+    }
+    if (h2_ < (0.0625 * l2_)) {
+        return 6u;
+    }
+    return filter_rect_TIER_CLOSED;
+}
+
+float filter_rect_gl_node(
+    uint n,
+    uint k_6
+) {
+    if (n == 2u) {
+        return 0.57735026;
+    }
+    if (n == 4u) {
+        return (k_6 == 0u) ? 0.33998105 : 0.8611363;
+    }
+    if (k_6 == 0u) {
+        return 0.2386192;
+    }
+    return (k_6 == 1u) ? 0.6612094 : 0.9324695;
+}
+
+float filter_rect_gl_weight(
+    uint n_1,
+    uint k_7
+) {
+    if (n_1 == 2u) {
+        return 0.5;
+    }
+    if (n_1 == 4u) {
+        return (k_7 == 0u) ? 0.32607257 : 0.17392743;
+    }
+    if (k_7 == 0u) {
+        return 0.23395696;
+    }
+    return (k_7 == 1u) ? 0.18038079 : 0.085662246;
+}
+
+float filter_rect_f(
+    float u_1,
+    float v_3
+) {
+    float t_5 = (1.0 + (u_1 * u_1)) + (v_3 * v_3);
+    return 1.0 / (t_5 * t_5);
+}
+
+uint naga_div(uint lhs, uint rhs) {
+    return lhs / metal::select(rhs, 1u, rhs == 0u);
+}
+
+float filter_rect_gl_mean(
+    uint n_2,
+    float u_2,
+    float c_6,
+    float h
+) {
+    float acc = 0.0;
+    uint k_8 = 0u;
+    uint2 loop_bound = uint2(4294967295u);
+    bool loop_init = true;
+    while(true) {
+        if (metal::all(loop_bound == uint2(0u))) { break; }
+        loop_bound -= uint2(loop_bound.y == 0u, 1u);
+        if (!loop_init) {
+            uint _e26 = k_8;
+            k_8 = _e26 + 1u;
+        }
+        loop_init = false;
+        uint _e8 = k_8;
+        if (_e8 < naga_div(n_2, 2u)) {
+        } else {
+            break;
+        }
+        {
+            uint _e12 = k_8;
+            float _e13 = filter_rect_gl_node(n_2, _e12);
+            float a_16 = h * _e13;
+            float _e15 = acc;
+            uint _e16 = k_8;
+            float _e17 = filter_rect_gl_weight(n_2, _e16);
+            float _e19 = filter_rect_f(u_2, c_6 - a_16);
+            float _e21 = filter_rect_f(u_2, c_6 + a_16);
+            acc = _e15 + (_e17 * (_e19 + _e21));
+        }
+    }
+    float _e28 = acc;
+    return _e28;
+}
+
+float filter_rect_atan2_upper(
+    float y_1,
+    float x_2
+) {
+    if (x_2 > 0.0) {
+        float _e5 = math_atan(y_1 / x_2);
+        return _e5;
+    }
+    float _e9 = math_atan(-(x_2) / y_1);
+    return math_HALF_PI + _e9;
+}
+
+float filter_rect_delta_minus_sin(
+    float d,
+    float sin_d
+) {
+    float s_6 = {};
+    if (d < 1.0) {
+        float d2_ = d * d;
+        s_6 = 1.0 - ((d2_ * 0.013888889) * (1.0 - (d2_ * 0.009090909)));
+        float _e17 = s_6;
+        s_6 = 1.0 - ((d2_ * 0.023809524) * _e17);
+        float _e23 = s_6;
+        s_6 = 1.0 - ((d2_ * 0.05) * _e23);
+        float _e30 = s_6;
+        return ((d * d2_) * 0.16666667) * _e30;
+    }
+    return d - sin_d;
+}
+
+float filter_rect_mean_1d(
+    float xc,
+    float hx,
+    float c2_
+) {
+    float x0_ = metal::abs(xc) - hx;
+    float x1_ = metal::abs(xc) + hx;
+    float dx = 2.0 * hx;
+    float c_14 = metal::sqrt(c2_);
+    float r02_ = c2_ + (x0_ * x0_);
+    float r12_ = c2_ + (x1_ * x1_);
+    float x01_ = x0_ * x1_;
+    float _e17 = filter_rect_atan2_upper(c_14 * dx, c2_ + x01_);
+    float inv_2 = 1.0 / (((2.0 * c_14) * c2_) * dx);
+    float p2_ = (2.0 * r02_) * r12_;
+    if (x0_ <= 0.0) {
+        return (_e17 * inv_2) + ((c2_ - x01_) / (c2_ * p2_));
+    }
+    float rr = metal::sqrt(r02_) * metal::sqrt(r12_);
+    float _e39 = filter_rect_delta_minus_sin(_e17, (c_14 * dx) / rr);
+    return (_e39 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_ * x1_)) + c2_) / (rr + x01_))) / p2_);
+}
+
+float filter_rect_gl_mean_1d(
+    uint n_3,
+    float c_7,
+    float h_1,
+    float other_c,
+    float other_h
+) {
+    float acc_1 = 0.0;
+    uint k_9 = 0u;
+    uint2 loop_bound_1 = uint2(4294967295u);
+    bool loop_init_1 = true;
+    while(true) {
+        if (metal::all(loop_bound_1 == uint2(0u))) { break; }
+        loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
+        if (!loop_init_1) {
+            uint _e33 = k_9;
+            k_9 = _e33 + 1u;
+        }
+        loop_init_1 = false;
+        uint _e9 = k_9;
+        if (_e9 < naga_div(n_3, 2u)) {
+        } else {
+            break;
+        }
+        {
+            uint _e13 = k_9;
+            float _e14 = filter_rect_gl_node(n_3, _e13);
+            float a_17 = h_1 * _e14;
+            float x0_1 = c_7 - a_17;
+            float x1_1 = c_7 + a_17;
+            float _e18 = acc_1;
+            uint _e19 = k_9;
+            float _e20 = filter_rect_gl_weight(n_3, _e19);
+            float _e24 = filter_rect_mean_1d(other_c, other_h, 1.0 + (x0_1 * x0_1));
+            float _e28 = filter_rect_mean_1d(other_c, other_h, 1.0 + (x1_1 * x1_1));
+            acc_1 = _e18 + (_e20 * (_e24 + _e28));
+        }
+    }
+    float _e35 = acc_1;
+    return _e35;
+}
+
+float filter_rect_edge(
+    float u_3,
+    float dv,
+    float v01_
+) {
+    float s2_ = 1.0 + (u_3 * u_3);
+    float s_16 = metal::sqrt(s2_);
+    float _e10 = filter_rect_atan2_upper(dv * s_16, s2_ + v01_);
+    return (u_3 / s_16) * _e10;
+}
+
+float filter_rect_edges(
+    float uc,
+    float vc,
+    float hu,
+    float hv
+) {
+    float u0_ = uc - hu;
+    float u1_ = uc + hu;
+    float v0_ = vc - hv;
+    float v1_ = vc + hv;
+    float du = 2.0 * hu;
+    float dv_1 = 2.0 * hv;
+    float _e13 = filter_rect_edge(u1_, dv_1, v0_ * v1_);
+    float _e15 = filter_rect_edge(u0_, dv_1, v0_ * v1_);
+    float _e18 = filter_rect_edge(v1_, du, u0_ * u1_);
+    float _e20 = filter_rect_edge(v0_, du, u0_ * u1_);
+    float i_7 = 0.5 * ((_e13 - _e15) + (_e18 - _e20));
+    return i_7 / (du * dv_1);
+}
+
+float filter_rect_mean_f(
+    float uc_1,
+    float vc_1,
+    float hu_1,
+    float hv_1
+) {
+    bool local_5 = {};
+    float acc_2 = 0.0;
+    uint k_10 = 0u;
+    float du_1 = metal::max(metal::abs(uc_1) - hu_1, 0.0);
+    float dv_2 = metal::max(metal::abs(vc_1) - hv_1, 0.0);
+    uint _e18 = filter_rect_tier(hu_1 * hu_1, (1.0 + (uc_1 * uc_1)) + (dv_2 * dv_2));
+    uint _e25 = filter_rect_tier(hv_1 * hv_1, (1.0 + (vc_1 * vc_1)) + (du_1 * du_1));
+    if (_e18 == filter_rect_TIER_CLOSED) {
+        local_5 = _e25 == filter_rect_TIER_CLOSED;
+    } else {
+        local_5 = false;
+    }
+    bool _e33 = local_5;
+    if (_e33) {
+        float _e34 = filter_rect_edges(uc_1, vc_1, hu_1, hv_1);
+        return _e34;
+    }
+    if (_e18 == filter_rect_TIER_CLOSED) {
+        float _e37 = filter_rect_gl_mean_1d(_e25, vc_1, hv_1, uc_1, hu_1);
+        return _e37;
+    }
+    if (_e25 == filter_rect_TIER_CLOSED) {
+        float _e40 = filter_rect_gl_mean_1d(_e18, uc_1, hu_1, vc_1, hv_1);
+        return _e40;
+    }
+    uint2 loop_bound_2 = uint2(4294967295u);
+    bool loop_init_2 = true;
+    while(true) {
+        if (metal::all(loop_bound_2 == uint2(0u))) { break; }
+        loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
+        if (!loop_init_2) {
+            uint _e63 = k_10;
+            k_10 = _e63 + 1u;
+        }
+        loop_init_2 = false;
+        uint _e45 = k_10;
+        if (_e45 < naga_div(_e18, 2u)) {
+        } else {
+            break;
+        }
+        {
+            uint _e49 = k_10;
+            float _e50 = filter_rect_gl_node(_e18, _e49);
+            float a_18 = hu_1 * _e50;
+            float _e52 = acc_2;
+            uint _e53 = k_10;
+            float _e54 = filter_rect_gl_weight(_e18, _e53);
+            float _e56 = filter_rect_gl_mean(_e25, uc_1 - a_18, vc_1, hv_1);
+            float _e58 = filter_rect_gl_mean(_e25, uc_1 + a_18, vc_1, hv_1);
+            acc_2 = _e52 + (_e54 * (_e56 + _e58));
+        }
+    }
+    float _e65 = acc_2;
+    return _e65;
+}
+
+float filter_rect_p22_rect(
+    ndf_roughness_axis_aligned_AxisAligned r_32,
+    metal::float2 center,
+    metal::float2 half_extent_4
+) {
+    bool local_6 = {};
+    if (half_extent_4.x == 0.0) {
+        local_6 = half_extent_4.y == 0.0;
+    } else {
+        local_6 = false;
+    }
+    bool _e12 = local_6;
+    if (_e12) {
+        float _e13 = ndf_ggx_p22_axis_aligned(r_32, center);
+        return _e13;
+    }
+    metal::float2 a_19 = r_32.alpha;
+    metal::float2 c_15 = metal::clamp(center / a_19, metal::float2(-1000000000000000000.0), metal::float2(1000000000000000000.0));
+    metal::float2 h_17 = metal::min(metal::abs(half_extent_4) / a_19, metal::float2(1000000000000000000.0));
+    float _e30 = filter_rect_mean_f(c_15.x, c_15.y, h_17.x, h_17.y);
+    return metal::max(_e30 * (math_INV_PI / (r_32.alpha.x * r_32.alpha.y)), 0.0);
+}
+
+float filter_rect_d_rect(
+    ndf_roughness_axis_aligned_AxisAligned r_33,
+    metal::float3 h_2,
+    metal::float2 half_extent_5
+) {
+    bool local_7 = {};
+    if (!((h_2.z > 0.0))) {
+        return 0.0;
+    }
+    if (half_extent_5.x == 0.0) {
+        local_7 = half_extent_5.y == 0.0;
+    } else {
+        local_7 = false;
+    }
+    bool _e17 = local_7;
+    if (_e17) {
+        float _e18 = ndf_ggx_d_axis_aligned(r_33, h_2);
+        return _e18;
+    }
+    float _e24 = filter_rect_p22_rect(r_33, -(h_2.xy) / metal::float2(h_2.z), half_extent_5);
+    float z2_ = h_2.z * h_2.z;
+    return metal::min(_e24 / (z2_ * z2_), math_F32_MAX);
+}
+
+float filter_rect_d_rect_printed(
+    ndf_roughness_axis_aligned_AxisAligned r_34,
+    metal::float2 hpp,
+    metal::float3 h_3,
+    metal::float2 footprint
+) {
+    bool local_8 = {};
+    float a_20 = r_34.alpha.x;
+    float b_4 = r_34.alpha.y;
+    float a_2_ = a_20 * a_20;
+    float b_2_ = b_4 * b_4;
+    float x1_2 = hpp.x - footprint.x;
+    float x2_ = hpp.x + footprint.x;
+    float y1_ = hpp.y - footprint.y;
+    float y2_ = hpp.y + footprint.y;
+    float sx1_ = metal::sqrt((x1_2 * x1_2) + a_2_);
+    float sx2_ = metal::sqrt((x2_ * x2_) + a_2_);
+    float sy1_ = metal::sqrt((y1_ * y1_) + b_2_);
+    float sy2_ = metal::sqrt((y2_ * y2_) + b_2_);
+    float _e37 = math_atan((y1_ * a_20) / (sx1_ * b_4));
+    float _e41 = math_atan((y2_ * a_20) / (sx1_ * b_4));
+    float _e48 = math_atan((y1_ * a_20) / (sx2_ * b_4));
+    float _e53 = math_atan((y2_ * a_20) / (sx2_ * b_4));
+    float _e62 = math_atan((x1_2 * b_4) / (a_20 * sy1_));
+    float _e66 = math_atan((x2_ * b_4) / (a_20 * sy1_));
+    float _e73 = math_atan((x1_2 * b_4) / (a_20 * sy2_));
+    float _e78 = math_atan((x2_ * b_4) / (a_20 * sy2_));
+    float val = (((x1_2 * (_e37 - _e41)) / sx1_) + ((x2_ * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_));
+    float den_1 = (6.2831855 * (x1_2 - x2_)) * (y1_ - y2_);
+    float hz4_ = ((h_3.z * h_3.z) * h_3.z) * h_3.z;
+    float v_6 = (val / den_1) / metal::max(hz4_, 0.001);
+    if (metal::abs(v_6) <= math_F32_MAX) {
+        local_8 = den_1 != 0.0;
+    } else {
+        local_8 = false;
+    }
+    bool _e109 = local_8;
+    return _e109 ? v_6 : 0.0;
+}
+
 kernel_covariance_Covariance kernel_rect_covariance(
-    kernel_rect_BoundingRect r_13,
+    kernel_rect_BoundingRect r_35,
     float sigma_2
 ) {
-    metal::float2 w_16 = r_13.half_extent * (2.0 * sigma_2);
-    metal::float2 v_4 = w_16 * w_16;
-    return kernel_covariance_Covariance {v_4.x, 0.0, v_4.y, v_4.x * v_4.y};
+    metal::float2 w_16 = r_35.half_extent * (2.0 * sigma_2);
+    metal::float2 v_7 = w_16 * w_16;
+    return kernel_covariance_Covariance {v_7.x, 0.0, v_7.y, v_7.x * v_7.y};
 }
 
 footprint_Footprint footprint_from_slope_derivatives(
@@ -840,11 +1465,11 @@ footprint_Footprint footprint_from_projected_derivatives_in_slope(
         return footprint_Footprint {metal::float2(0.0), metal::float2(0.0)};
     }
     metal::float3 h0_ = h_in / metal::float3(big_2);
-    metal::float3 h_13 = h0_ / metal::float3(metal::length(h0_));
-    float hz = metal::max(h_13.z, 0.000001);
-    float k_9 = -1.0 / ((hz * hz) * hz);
-    metal::float2x2 j = metal::float2x2(metal::float2((h_13.x * h_13.x) + (h_13.z * h_13.z), h_13.x * h_13.y), metal::float2(h_13.x * h_13.y, (h_13.y * h_13.y) + (h_13.z * h_13.z)));
-    return footprint_Footprint {(j * dp_u_1) * k_9, (j * dp_v_1) * k_9};
+    metal::float3 h_18 = h0_ / metal::float3(metal::length(h0_));
+    float hz = metal::max(h_18.z, 0.000001);
+    float k_14 = -1.0 / ((hz * hz) * hz);
+    metal::float2x2 j = metal::float2x2(metal::float2((h_18.x * h_18.x) + (h_18.z * h_18.z), h_18.x * h_18.y), metal::float2(h_18.x * h_18.y, (h_18.y * h_18.y) + (h_18.z * h_18.z)));
+    return footprint_Footprint {(j * dp_u_1) * k_14, (j * dp_v_1) * k_14};
 }
 
 footprint_Footprint footprint_from_normal_differences(
@@ -860,11 +1485,11 @@ kernel_covariance_Covariance footprint_covariance(
     footprint_Footprint fp,
     float sigma_3
 ) {
-    metal::float2 u_5 = fp.dh_u;
-    metal::float2 v_5 = fp.dh_v;
-    float s2_ = sigma_3 * sigma_3;
-    float cross_1 = ((fp.dh_u.x * fp.dh_v.y) - (fp.dh_u.y * fp.dh_v.x)) * s2_;
-    return kernel_covariance_Covariance {((fp.dh_u.x * fp.dh_u.x) + (fp.dh_v.x * fp.dh_v.x)) * s2_, ((fp.dh_u.x * fp.dh_u.y) + (fp.dh_v.x * fp.dh_v.y)) * s2_, ((fp.dh_u.y * fp.dh_u.y) + (fp.dh_v.y * fp.dh_v.y)) * s2_, cross_1 * cross_1};
+    metal::float2 u_8 = fp.dh_u;
+    metal::float2 v_8 = fp.dh_v;
+    float s2_1 = sigma_3 * sigma_3;
+    float cross_1 = ((fp.dh_u.x * fp.dh_v.y) - (fp.dh_u.y * fp.dh_v.x)) * s2_1;
+    return kernel_covariance_Covariance {((fp.dh_u.x * fp.dh_u.x) + (fp.dh_v.x * fp.dh_v.x)) * s2_1, ((fp.dh_u.x * fp.dh_u.y) + (fp.dh_v.x * fp.dh_v.y)) * s2_1, ((fp.dh_u.y * fp.dh_u.y) + (fp.dh_v.y * fp.dh_v.y)) * s2_1, cross_1 * cross_1};
 }
 
 kernel_rect_BoundingRect footprint_bounding_rect(
@@ -888,15 +1513,15 @@ footprint_jacobian_Polar footprint_jacobian_polar(
         return footprint_jacobian_Polar {metal::float3(0.0, 0.0, 1.0), metal::float2(1.0, 0.0)};
     }
     metal::float3 h0_1 = h_in_1 / metal::float3(big_3);
-    metal::float3 h_14 = h0_1 / metal::float3(metal::length(h0_1));
-    float qs = metal::max(metal::abs(h_14.x), metal::abs(h_14.y));
+    metal::float3 h_19 = h0_1 / metal::float3(metal::length(h0_1));
+    float qs = metal::max(metal::abs(h_19.x), metal::abs(h_19.y));
     if (qs > 0.0) {
-        metal::float2 q_6 = h_14.xy / metal::float2(qs);
+        metal::float2 q_6 = h_19.xy / metal::float2(qs);
         cs_1 = q_6 / metal::float2(metal::length(q_6));
     }
-    if (h_14.z >= footprint_jacobian_HZ_MIN) {
+    if (h_19.z >= footprint_jacobian_HZ_MIN) {
         metal::float2 _e44 = cs_1;
-        return footprint_jacobian_Polar {h_14, _e44};
+        return footprint_jacobian_Polar {h_19, _e44};
     }
     metal::float2 _e47 = cs_1;
     metal::float2 _e51 = cs_1;
@@ -904,32 +1529,32 @@ footprint_jacobian_Polar footprint_jacobian_polar(
 }
 
 metal::float3 footprint_jacobian_sanitize(
-    metal::float3 h
+    metal::float3 h_4
 ) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h);
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
     return _e1.h;
 }
 
 footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(
-    metal::float3 h_1
+    metal::float3 h_5
 ) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
     float st = metal::length(_e1.h.xy);
     return footprint_jacobian_SphericalBasis {metal::float3(_e1.h.z * _e1.cs, -(st)), metal::float3(-(_e1.cs.y), _e1.cs.x, 0.0)};
 }
 
 metal::float2 footprint_jacobian_spherical_components(
-    metal::float3 h_2,
+    metal::float3 h_6,
     metal::float3 dh
 ) {
-    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_2);
+    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_6);
     return metal::float2(metal::dot(dh, _e2.e_x), metal::dot(dh, _e2.e_y));
 }
 
 metal::float2x2 footprint_jacobian_sphere_to_projected(
-    metal::float3 h_3
+    metal::float3 h_7
 ) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_3);
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
     return metal::float2x2(_e1.h.z * _e1.cs, metal::float2(-(_e1.cs.y), _e1.cs.x));
 }
 
@@ -937,88 +1562,88 @@ metal::float2x2 footprint_jacobian_projected_to_slope(
     metal::float3 h_in_2
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    metal::float3 h_15 = _e1.h;
-    float k_10 = -1.0 / ((_e1.h.z * _e1.h.z) * _e1.h.z);
+    metal::float3 h_20 = _e1.h;
+    float k_15 = -1.0 / ((_e1.h.z * _e1.h.z) * _e1.h.z);
     float xy = _e1.h.x * _e1.h.y;
-    return metal::float2x2(metal::float2((_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z), xy) * k_10, metal::float2(xy, (_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z)) * k_10);
+    return metal::float2x2(metal::float2((_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z), xy) * k_15, metal::float2(xy, (_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z)) * k_15);
 }
 
 metal::float2x2 footprint_jacobian_slope_to_projected(
     metal::float3 h_in_3
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_3);
-    metal::float3 h_16 = _e1.h;
+    metal::float3 h_21 = _e1.h;
     float xy_1 = _e1.h.x * _e1.h.y;
     return metal::float2x2(metal::float2((_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z), -(xy_1)) * -(_e1.h.z), metal::float2(-(xy_1), (_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z)) * -(_e1.h.z));
 }
 
 metal::float2x2 footprint_jacobian_sphere_to_slope(
-    metal::float3 h_4
+    metal::float3 h_8
 ) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
-    float k_11 = -1.0 / (_e1.h.z * _e1.h.z);
-    return metal::float2x2(_e1.cs * k_11, metal::float2(-(_e1.h.z) * _e1.cs.y, _e1.h.z * _e1.cs.x) * k_11);
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
+    float k_16 = -1.0 / (_e1.h.z * _e1.h.z);
+    return metal::float2x2(_e1.cs * k_16, metal::float2(-(_e1.h.z) * _e1.cs.y, _e1.h.z * _e1.cs.x) * k_16);
 }
 
 float footprint_jacobian_det_sphere_to_projected(
-    metal::float3 h_5
+    metal::float3 h_9
 ) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_9);
     return _e1.h.z;
 }
 
 float footprint_jacobian_det_projected_to_slope(
-    metal::float3 h_6
+    metal::float3 h_10
 ) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_10);
     float z_2 = _e1.h.z;
-    float z2_ = z_2 * z_2;
-    return 1.0 / (z2_ * z2_);
+    float z2_1 = z_2 * z_2;
+    return 1.0 / (z2_1 * z2_1);
 }
 
 float footprint_jacobian_det_sphere_to_slope(
-    metal::float3 h_7
+    metal::float3 h_11
 ) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_11);
     float z_3 = _e1.h.z;
     return 1.0 / ((z_3 * z_3) * z_3);
 }
 
 metal::float2 footprint_jacobian_spherical_to_slope(
-    metal::float3 h_8,
+    metal::float3 h_12,
     metal::float2 e
 ) {
-    metal::float2x2 _e2 = footprint_jacobian_sphere_to_slope(h_8);
+    metal::float2x2 _e2 = footprint_jacobian_sphere_to_slope(h_12);
     return _e2 * e;
 }
 
 metal::float2 footprint_jacobian_spherical_to_projected(
-    metal::float3 h_9,
+    metal::float3 h_13,
     metal::float2 e_1
 ) {
-    metal::float2x2 _e2 = footprint_jacobian_sphere_to_projected(h_9);
+    metal::float2x2 _e2 = footprint_jacobian_sphere_to_projected(h_13);
     return _e2 * e_1;
 }
 
 metal::float2 footprint_slope_slope_from_sphere(
-    metal::float3 h_10
+    metal::float3 h_14
 ) {
-    float z_4 = metal::max(h_10.z, math_F32_MIN_POSITIVE);
-    return metal::clamp(-(h_10.xy) / metal::float2(z_4), metal::float2(-340282350000000000000000000000000000000.0), metal::float2(340282350000000000000000000000000000000.0));
+    float z_4 = metal::max(h_14.z, math_F32_MIN_POSITIVE);
+    return metal::clamp(-(h_14.xy) / metal::float2(z_4), metal::float2(-340282350000000000000000000000000000000.0), metal::float2(340282350000000000000000000000000000000.0));
 }
 
 metal::float3 footprint_slope_sphere_from_slope(
-    metal::float2 s_2
+    metal::float2 s_7
 ) {
-    float k_12 = metal::max(metal::max(metal::abs(s_2.x), metal::abs(s_2.y)), 1.0);
-    metal::float3 v_6 = metal::float3(-(s_2) / metal::float2(k_12), 1.0 / k_12);
-    return v_6 / metal::float3(metal::length(v_6));
+    float k_17 = metal::max(metal::max(metal::abs(s_7.x), metal::abs(s_7.y)), 1.0);
+    metal::float3 v_9 = metal::float3(-(s_7) / metal::float2(k_17), 1.0 / k_17);
+    return v_9 / metal::float3(metal::length(v_9));
 }
 
 metal::float2 footprint_slope_projected_from_sphere(
-    metal::float3 h_11
+    metal::float3 h_15
 ) {
-    return h_11.xy;
+    return h_15.xy;
 }
 
 metal::float3 footprint_slope_sphere_from_projected(
@@ -1041,9 +1666,9 @@ metal::float2 footprint_slope_slope_from_projected(
 }
 
 metal::float2 footprint_slope_projected_from_slope(
-    metal::float2 s_3
+    metal::float2 s_8
 ) {
-    metal::float3 _e1 = footprint_slope_sphere_from_slope(s_3);
+    metal::float3 _e1 = footprint_slope_sphere_from_slope(s_8);
     metal::float2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
 }
@@ -1067,28 +1692,28 @@ footprint_Footprint kernel_clamp_footprint(
 
 kernel_rect_BoundingRect kernel_clamp_rect(
     kernel_clamp_ClampRules rules_1,
-    kernel_rect_BoundingRect r_14,
-    metal::float2 alpha_9
+    kernel_rect_BoundingRect r_36,
+    metal::float2 alpha_10
 ) {
     metal::float2 f = metal::float2(0.0);
     if (rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT) {
         f = metal::float2(rules_1.floor);
     } else {
         if (rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED) {
-            f = metal::min(metal::abs(alpha_9), metal::float2(rules_1.floor));
+            f = metal::min(metal::abs(alpha_10), metal::float2(rules_1.floor));
         }
     }
     float lambda = metal::max(rules_1.max_extent, 0.0);
-    metal::float2 h_17 = metal::min(metal::abs(r_14.half_extent), metal::float2(lambda));
+    metal::float2 h_22 = metal::min(metal::abs(r_36.half_extent), metal::float2(lambda));
     metal::float2 _e25 = f;
-    return kernel_rect_BoundingRect {metal::max(h_17, metal::max(_e25, metal::float2(0.0)))};
+    return kernel_rect_BoundingRect {metal::max(h_22, metal::max(_e25, metal::float2(0.0)))};
 }
 
 kernel_covariance_Covariance kernel_clamp_kernel(
     kernel_clamp_ClampRules rules_2,
-    kernel_covariance_Covariance k_6
+    kernel_covariance_Covariance k_11
 ) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_6);
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_11);
     if (rules_2.kappa >= math_F32_MAX) {
         return _e2;
     }
@@ -1120,506 +1745,257 @@ ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(
     return _e10;
 }
 
-float ndf_g1_of(
-    float lambda_w,
-    float w_dot_m
-) {
-    return (w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0;
-}
-
-float ndf_g2_of(
-    float lambda_i,
-    float lambda_o,
-    float i_dot_m,
-    float o_dot_m
-) {
-    bool local_3 = {};
-    if (i_dot_m > 0.0) {
-        local_3 = o_dot_m > 0.0;
-    } else {
-        local_3 = false;
-    }
-    bool _e16 = local_3;
-    return _e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0;
-}
-
-ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(
-    float alpha_10
-) {
-    float _e1 = ndf_roughness_clamp_alpha(alpha_10);
-    return ndf_roughness_isotropic_Isotropic {_e1, 1.0 / (_e1 * _e1)};
-}
-
-float ndf_roughness_isotropic_inv_quadratic(
-    ndf_roughness_isotropic_Isotropic r_15,
-    metal::float2 s_4
-) {
-    return metal::dot(s_4, s_4) * r_15.inv_alpha_sq;
-}
-
-float ndf_roughness_isotropic_quadratic(
-    ndf_roughness_isotropic_Isotropic r_16,
-    metal::float2 w_2
-) {
-    return metal::dot(w_2, w_2) * (r_16.alpha * r_16.alpha);
-}
-
-float ndf_roughness_isotropic_sqrt_det(
-    ndf_roughness_isotropic_Isotropic r_17
-) {
-    return r_17.alpha * r_17.alpha;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(
-    ndf_roughness_isotropic_Isotropic r_18
-) {
-    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), metal::float2(r_18.alpha));
-    return _e6;
-}
-
 float ndf_beckmann_exp_neg_times(
-    float x_2,
-    float k_7,
+    float x_3,
+    float k_12,
     float ln_k
 ) {
-    return (x_2 > ndf_beckmann_EXP_SPLIT) ? metal::exp(ln_k - x_2) : (metal::exp(-(x_2)) * k_7);
+    return (x_3 > ndf_beckmann_EXP_SPLIT) ? metal::exp(ln_k - x_3) : (metal::exp(-(x_3)) * k_12);
 }
 
 float ndf_beckmann_p22_of(
-    float q,
-    float sqrt_det
+    float q_2,
+    float sqrt_det_2
 ) {
-    float den_1 = math_PI * sqrt_det;
-    float _e8 = ndf_beckmann_exp_neg_times(q, 1.0 / den_1, -(metal::log(den_1)));
+    float den_2 = math_PI * sqrt_det_2;
+    float _e8 = ndf_beckmann_exp_neg_times(q_2, 1.0 / den_2, -(metal::log(den_2)));
     return _e8;
 }
 
 float ndf_beckmann_d_of(
-    float q_xy,
-    float m_z,
-    float sqrt_det_1
-) {
-    bool local_4 = {};
-    float z2_1 = m_z * m_z;
-    float x_4 = q_xy / z2_1;
-    float k_13 = 1.0 / (((math_PI * sqrt_det_1) * z2_1) * z2_1);
-    float ln_k_1 = -((metal::log(math_PI * sqrt_det_1) + (4.0 * metal::log(metal::max(m_z, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_4, k_13, ln_k_1);
-    if (m_z > 0.0) {
-        local_4 = _e21 <= math_F32_MAX;
-    } else {
-        local_4 = false;
-    }
-    bool _e29 = local_4;
-    return _e29 ? _e21 : 0.0;
-}
-
-float ndf_beckmann_lambda_of(
-    float q_1,
-    float abs_wz
-) {
-    float p_2 = -0.00003849172;
-    if (q_1 <= 0.0) {
-        return 0.0;
-    }
-    if (abs_wz <= 0.0) {
-        return math_F32_MAX;
-    }
-    float a_16 = abs_wz / metal::sqrt(q_1);
-    if (a_16 > 9.5) {
-        return 0.0;
-    }
-    float t_3 = (a_16 - 3.0) / (a_16 + 3.0);
-    float _e20 = p_2;
-    p_2 = (_e20 * t_3) + 0.00028491428;
-    float _e24 = p_2;
-    p_2 = (_e24 * t_3) + 0.000018268152;
-    float _e28 = p_2;
-    p_2 = (_e28 * t_3) - 0.0018242653;
-    float _e32 = p_2;
-    p_2 = (_e32 * t_3) + 0.0013654069;
-    float _e36 = p_2;
-    p_2 = (_e36 * t_3) + 0.0055811945;
-    float _e40 = p_2;
-    p_2 = (_e40 * t_3) - 0.009357543;
-    float _e44 = p_2;
-    p_2 = (_e44 * t_3) - 0.0076571554;
-    float _e48 = p_2;
-    p_2 = (_e48 * t_3) + 0.036274612;
-    float _e52 = p_2;
-    p_2 = (_e52 * t_3) - 0.023293633;
-    float _e56 = p_2;
-    p_2 = (_e56 * t_3) - 0.07646358;
-    float _e60 = p_2;
-    p_2 = (_e60 * t_3) + 0.2117349;
-    float _e64 = p_2;
-    p_2 = (_e64 * t_3) - 0.23284179;
-    float _e68 = p_2;
-    p_2 = (_e68 * t_3) + 0.03307925;
-    float _e72 = p_2;
-    p_2 = (_e72 * t_3) + 1.0631379;
-    float _e76 = p_2;
-    float k_14 = _e76 / ((2.0 * a_16) + 1.0);
-    return metal::min((metal::exp(-(a_16) * a_16) * k_14) / ((3.5449078 * a_16) * (a_16 + k_14)), math_F32_MAX);
-}
-
-float ndf_beckmann_p22_isotropic(
-    ndf_roughness_isotropic_Isotropic r_19,
-    metal::float2 s_5
-) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_19, s_5);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_19);
-    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_beckmann_d_isotropic(
-    ndf_roughness_isotropic_Isotropic r_20,
-    metal::float3 m_1
-) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_20, m_1.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_20);
-    float _e6 = ndf_beckmann_d_of(_e3, m_1.z, _e5);
-    return _e6;
-}
-
-float ndf_beckmann_lambda_isotropic(
-    ndf_roughness_isotropic_Isotropic r_21,
-    metal::float3 w_3
-) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_21, w_3.xy);
-    float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_3.z));
-    return _e6;
-}
-
-float ndf_beckmann_g1_isotropic(
-    ndf_roughness_isotropic_Isotropic r_22,
-    metal::float3 w_4,
-    metal::float3 m_2
-) {
-    float _e3 = ndf_beckmann_lambda_isotropic(r_22, w_4);
-    float _e5 = ndf_g1_of(_e3, metal::dot(w_4, m_2));
-    return _e5;
-}
-
-float ndf_beckmann_g2_isotropic(
-    ndf_roughness_isotropic_Isotropic r_23,
-    metal::float3 i_1,
-    metal::float3 o,
-    metal::float3 m_3
-) {
-    float _e4 = ndf_beckmann_lambda_isotropic(r_23, i_1);
-    float _e5 = ndf_beckmann_lambda_isotropic(r_23, o);
-    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_1, m_3), metal::dot(o, m_3));
-    return _e8;
-}
-
-float ndf_beckmann_p22_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_24,
-    metal::float2 s_6
-) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_24, s_6);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_24);
-    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_beckmann_d_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_25,
-    metal::float3 m_4
-) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_25, m_4.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_25);
-    float _e6 = ndf_beckmann_d_of(_e3, m_4.z, _e5);
-    return _e6;
-}
-
-float ndf_beckmann_lambda_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_26,
-    metal::float3 w_5
-) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_26, w_5.xy);
-    float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_5.z));
-    return _e6;
-}
-
-float ndf_beckmann_g1_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_27,
-    metal::float3 w_6,
-    metal::float3 m_5
-) {
-    float _e3 = ndf_beckmann_lambda_axis_aligned(r_27, w_6);
-    float _e5 = ndf_g1_of(_e3, metal::dot(w_6, m_5));
-    return _e5;
-}
-
-float ndf_beckmann_g2_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_28,
-    metal::float3 i_2,
-    metal::float3 o_1,
-    metal::float3 m_6
-) {
-    float _e4 = ndf_beckmann_lambda_axis_aligned(r_28, i_2);
-    float _e5 = ndf_beckmann_lambda_axis_aligned(r_28, o_1);
-    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_2, m_6), metal::dot(o_1, m_6));
-    return _e8;
-}
-
-float ndf_beckmann_p22_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_29,
-    metal::float2 s_7
-) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_29, s_7);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_29);
-    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_beckmann_d_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_30,
-    metal::float3 m_7
-) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_30, m_7.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_30);
-    float _e6 = ndf_beckmann_d_of(_e3, m_7.z, _e5);
-    return _e6;
-}
-
-float ndf_beckmann_lambda_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_31,
-    metal::float3 w_7
-) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_31, w_7.xy);
-    float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_7.z));
-    return _e6;
-}
-
-float ndf_beckmann_g1_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_32,
-    metal::float3 w_8,
-    metal::float3 m_8
-) {
-    float _e3 = ndf_beckmann_lambda_matrix(r_32, w_8);
-    float _e5 = ndf_g1_of(_e3, metal::dot(w_8, m_8));
-    return _e5;
-}
-
-float ndf_beckmann_g2_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_33,
-    metal::float3 i_3,
-    metal::float3 o_2,
-    metal::float3 m_9
-) {
-    float _e4 = ndf_beckmann_lambda_matrix(r_33, i_3);
-    float _e5 = ndf_beckmann_lambda_matrix(r_33, o_2);
-    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_3, m_9), metal::dot(o_2, m_9));
-    return _e8;
-}
-
-float ndf_ggx_p22_of(
-    float q_2,
-    float sqrt_det_2
-) {
-    float t_4 = 1.0 + q_2;
-    return 1.0 / (((math_PI * sqrt_det_2) * t_4) * t_4);
-}
-
-float ndf_ggx_d_of(
     float q_xy_1,
     float m_z_1,
     float sqrt_det_3
 ) {
-    bool local_5 = {};
-    float t_5 = q_xy_1 + (m_z_1 * m_z_1);
-    float v_7 = 1.0 / (((math_PI * sqrt_det_3) * t_5) * t_5);
+    bool local_9 = {};
+    float z2_2 = m_z_1 * m_z_1;
+    float x_5 = q_xy_1 / z2_2;
+    float k_18 = 1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2);
+    float ln_k_1 = -((metal::log(math_PI * sqrt_det_3) + (4.0 * metal::log(metal::max(m_z_1, math_F32_MIN_POSITIVE)))));
+    float _e21 = ndf_beckmann_exp_neg_times(x_5, k_18, ln_k_1);
     if (m_z_1 > 0.0) {
-        local_5 = v_7 <= math_F32_MAX;
+        local_9 = _e21 <= math_F32_MAX;
     } else {
-        local_5 = false;
+        local_9 = false;
     }
-    bool _e18 = local_5;
-    return _e18 ? v_7 : 0.0;
+    bool _e29 = local_9;
+    return _e29 ? _e21 : 0.0;
 }
 
-float ndf_ggx_lambda_of(
+float ndf_beckmann_lambda_of(
     float q_3,
     float abs_wz_1
 ) {
+    float p_2 = -0.00003849172;
     if (q_3 <= 0.0) {
         return 0.0;
     }
     if (abs_wz_1 <= 0.0) {
         return math_F32_MAX;
     }
-    float r_58 = metal::sqrt((abs_wz_1 * abs_wz_1) + q_3);
-    return q_3 / ((2.0 * abs_wz_1) * (r_58 + abs_wz_1));
+    float a_21 = abs_wz_1 / metal::sqrt(q_3);
+    if (a_21 > 9.5) {
+        return 0.0;
+    }
+    float t_6 = (a_21 - 3.0) / (a_21 + 3.0);
+    float _e20 = p_2;
+    p_2 = (_e20 * t_6) + 0.00028491428;
+    float _e24 = p_2;
+    p_2 = (_e24 * t_6) + 0.000018268152;
+    float _e28 = p_2;
+    p_2 = (_e28 * t_6) - 0.0018242653;
+    float _e32 = p_2;
+    p_2 = (_e32 * t_6) + 0.0013654069;
+    float _e36 = p_2;
+    p_2 = (_e36 * t_6) + 0.0055811945;
+    float _e40 = p_2;
+    p_2 = (_e40 * t_6) - 0.009357543;
+    float _e44 = p_2;
+    p_2 = (_e44 * t_6) - 0.0076571554;
+    float _e48 = p_2;
+    p_2 = (_e48 * t_6) + 0.036274612;
+    float _e52 = p_2;
+    p_2 = (_e52 * t_6) - 0.023293633;
+    float _e56 = p_2;
+    p_2 = (_e56 * t_6) - 0.07646358;
+    float _e60 = p_2;
+    p_2 = (_e60 * t_6) + 0.2117349;
+    float _e64 = p_2;
+    p_2 = (_e64 * t_6) - 0.23284179;
+    float _e68 = p_2;
+    p_2 = (_e68 * t_6) + 0.03307925;
+    float _e72 = p_2;
+    p_2 = (_e72 * t_6) + 1.0631379;
+    float _e76 = p_2;
+    float k_19 = _e76 / ((2.0 * a_21) + 1.0);
+    return metal::min((metal::exp(-(a_21) * a_21) * k_19) / ((3.5449078 * a_21) * (a_21 + k_19)), math_F32_MAX);
 }
 
-float ndf_ggx_p22_isotropic(
-    ndf_roughness_isotropic_Isotropic r_34,
-    metal::float2 s_8
+float ndf_beckmann_p22_isotropic(
+    ndf_roughness_isotropic_Isotropic r_37,
+    metal::float2 s_9
 ) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_34, s_8);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_34);
-    float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_9);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
+    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_isotropic(
-    ndf_roughness_isotropic_Isotropic r_35,
+float ndf_beckmann_d_isotropic(
+    ndf_roughness_isotropic_Isotropic r_38,
     metal::float3 m_10
 ) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_35, m_10.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_35);
-    float _e6 = ndf_ggx_d_of(_e3, m_10.z, _e5);
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_10.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
+    float _e6 = ndf_beckmann_d_of(_e3, m_10.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_isotropic(
-    ndf_roughness_isotropic_Isotropic r_36,
+float ndf_beckmann_lambda_isotropic(
+    ndf_roughness_isotropic_Isotropic r_39,
     metal::float3 w_9
 ) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_36, w_9.xy);
-    float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_9.z));
+    float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
+    float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_9.z));
     return _e6;
 }
 
-float ndf_ggx_g1_isotropic(
-    ndf_roughness_isotropic_Isotropic r_37,
+float ndf_beckmann_g1_isotropic(
+    ndf_roughness_isotropic_Isotropic r_40,
     metal::float3 w_10,
     metal::float3 m_11
 ) {
-    float _e3 = ndf_ggx_lambda_isotropic(r_37, w_10);
+    float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_10, m_11));
     return _e5;
 }
 
-float ndf_ggx_g2_isotropic(
-    ndf_roughness_isotropic_Isotropic r_38,
+float ndf_beckmann_g2_isotropic(
+    ndf_roughness_isotropic_Isotropic r_41,
     metal::float3 i_4,
     metal::float3 o_3,
     metal::float3 m_12
 ) {
-    float _e4 = ndf_ggx_lambda_isotropic(r_38, i_4);
-    float _e5 = ndf_ggx_lambda_isotropic(r_38, o_3);
+    float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_4);
+    float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_4, m_12), metal::dot(o_3, m_12));
     return _e8;
 }
 
-float ndf_ggx_p22_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_39,
-    metal::float2 s_9
+float ndf_beckmann_p22_axis_aligned(
+    ndf_roughness_axis_aligned_AxisAligned r_42,
+    metal::float2 s_10
 ) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_39, s_9);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_39);
-    float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_10);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
+    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_40,
+float ndf_beckmann_d_axis_aligned(
+    ndf_roughness_axis_aligned_AxisAligned r_43,
     metal::float3 m_13
 ) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_40, m_13.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_40);
-    float _e6 = ndf_ggx_d_of(_e3, m_13.z, _e5);
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_13.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
+    float _e6 = ndf_beckmann_d_of(_e3, m_13.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_41,
+float ndf_beckmann_lambda_axis_aligned(
+    ndf_roughness_axis_aligned_AxisAligned r_44,
     metal::float3 w_11
 ) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_41, w_11.xy);
-    float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_11.z));
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
+    float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_11.z));
     return _e6;
 }
 
-float ndf_ggx_g1_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_42,
+float ndf_beckmann_g1_axis_aligned(
+    ndf_roughness_axis_aligned_AxisAligned r_45,
     metal::float3 w_12,
     metal::float3 m_14
 ) {
-    float _e3 = ndf_ggx_lambda_axis_aligned(r_42, w_12);
+    float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_12, m_14));
     return _e5;
 }
 
-float ndf_ggx_g2_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_43,
+float ndf_beckmann_g2_axis_aligned(
+    ndf_roughness_axis_aligned_AxisAligned r_46,
     metal::float3 i_5,
     metal::float3 o_4,
     metal::float3 m_15
 ) {
-    float _e4 = ndf_ggx_lambda_axis_aligned(r_43, i_5);
-    float _e5 = ndf_ggx_lambda_axis_aligned(r_43, o_4);
+    float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_5);
+    float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_5, m_15), metal::dot(o_4, m_15));
     return _e8;
 }
 
-float ndf_ggx_p22_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_44,
-    metal::float2 s_10
+float ndf_beckmann_p22_matrix(
+    ndf_roughness_matrix_RoughnessMatrix r_47,
+    metal::float2 s_11
 ) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_44, s_10);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_44);
-    float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_11);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
+    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_45,
+float ndf_beckmann_d_matrix(
+    ndf_roughness_matrix_RoughnessMatrix r_48,
     metal::float3 m_16
 ) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_45, m_16.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_45);
-    float _e6 = ndf_ggx_d_of(_e3, m_16.z, _e5);
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_16.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
+    float _e6 = ndf_beckmann_d_of(_e3, m_16.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_46,
+float ndf_beckmann_lambda_matrix(
+    ndf_roughness_matrix_RoughnessMatrix r_49,
     metal::float3 w_13
 ) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_46, w_13.xy);
-    float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_13.z));
+    float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
+    float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_13.z));
     return _e6;
 }
 
-float ndf_ggx_g1_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_47,
+float ndf_beckmann_g1_matrix(
+    ndf_roughness_matrix_RoughnessMatrix r_50,
     metal::float3 w_14,
     metal::float3 m_17
 ) {
-    float _e3 = ndf_ggx_lambda_matrix(r_47, w_14);
+    float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_14, m_17));
     return _e5;
 }
 
-float ndf_ggx_g2_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_48,
+float ndf_beckmann_g2_matrix(
+    ndf_roughness_matrix_RoughnessMatrix r_51,
     metal::float3 i_6,
     metal::float3 o_5,
     metal::float3 m_18
 ) {
-    float _e4 = ndf_ggx_lambda_matrix(r_48, i_6);
-    float _e5 = ndf_ggx_lambda_matrix(r_48, o_5);
+    float _e4 = ndf_beckmann_lambda_matrix(r_51, i_6);
+    float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_6, m_18), metal::dot(o_5, m_18));
     return _e8;
 }
 
 sampling_Warp sampling_warp(
-    ndf_roughness_matrix_RoughnessMatrix r_49
+    ndf_roughness_matrix_RoughnessMatrix r_52
 ) {
-    metal::float3 _e1 = ndf_roughness_matrix_entries(r_49);
+    metal::float3 _e1 = ndf_roughness_matrix_entries(r_52);
     float l_xx = metal::sqrt(_e1.x);
-    return sampling_Warp {l_xx, _e1.y / l_xx, r_49.sqrt_det / l_xx};
+    return sampling_Warp {l_xx, _e1.y / l_xx, r_52.sqrt_det / l_xx};
 }
 
 metal::float3 sampling_normalize_scaled(
-    metal::float3 v_3
+    metal::float3 v_4
 ) {
-    metal::float3 w_17 = v_3 / metal::float3(metal::max(metal::max(metal::abs(v_3.x), metal::abs(v_3.y)), metal::abs(v_3.z)));
+    metal::float3 w_17 = v_4 / metal::float3(metal::max(metal::max(metal::abs(v_4.x), metal::abs(v_4.y)), metal::abs(v_4.z)));
     return w_17 / metal::float3(metal::length(w_17));
 }
 
@@ -1632,16 +2008,16 @@ metal::float3 sampling_stretch(
 
 metal::float3 sampling_unstretch(
     sampling_Warp l_1,
-    metal::float3 n
+    metal::float3 n_4
 ) {
-    metal::float3 _e14 = sampling_normalize_scaled(metal::float3(l_1.l_xx * n.x, (l_1.l_yx * n.x) + (l_1.l_yy * n.y), n.z));
+    metal::float3 _e14 = sampling_normalize_scaled(metal::float3(l_1.l_xx * n_4.x, (l_1.l_yx * n_4.x) + (l_1.l_yy * n_4.y), n_4.z));
     return _e14;
 }
 
 float sampling_clamp_unit(
-    float u_1
+    float u_4
 ) {
-    return (u_1 >= 0.0) ? metal::min(u_1, sampling_ONE_MINUS_EPS) : 0.0;
+    return (u_4 >= 0.0) ? metal::min(u_4, sampling_ONE_MINUS_EPS) : 0.0;
 }
 
 metal::float3 sampling_reflect(
@@ -1653,40 +2029,40 @@ metal::float3 sampling_reflect(
 
 metal::float3 sampling_ggx_standard_visible(
     metal::float3 wi,
-    metal::float2 u_2
+    metal::float2 u_5
 ) {
-    metal::float2 _e3 = math_sincos_turns(u_2.x);
-    float z_5 = ((1.0 - u_2.y) * (1.0 + wi.z)) - wi.z;
+    metal::float2 _e3 = math_sincos_turns(u_5.x);
+    float z_5 = ((1.0 - u_5.y) * (1.0 + wi.z)) - wi.z;
     float sin_theta = metal::sqrt(metal::clamp(1.0 - (z_5 * z_5), 0.0, 1.0));
     return metal::float3(sin_theta * _e3, z_5) + wi;
 }
 
 metal::float3 sampling_sample_visible_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_50,
+    ndf_roughness_matrix_RoughnessMatrix r_53,
     metal::float3 wo_1,
-    metal::float2 u_3
+    metal::float2 u_6
 ) {
-    bool local_6 = {};
+    bool local_10 = {};
     if (!((wo_1.z > 0.0))) {
         return metal::float3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_50);
+    sampling_Warp _e9 = sampling_warp(r_53);
     metal::float3 _e10 = sampling_normalize_scaled(wo_1);
     metal::float3 _e11 = sampling_stretch(_e9, _e10);
     metal::float3 _e12 = sampling_normalize_scaled(_e11);
     if (!((_e12.z > 0.0))) {
         return metal::float3(0.0);
     }
-    float _e20 = sampling_clamp_unit(u_3.x);
-    float _e22 = sampling_clamp_unit(u_3.y);
+    float _e20 = sampling_clamp_unit(u_6.x);
+    float _e22 = sampling_clamp_unit(u_6.y);
     metal::float3 _e24 = sampling_ggx_standard_visible(_e12, metal::float2(_e20, _e22));
     metal::float3 _e25 = sampling_unstretch(_e9, _e24);
     if (_e25.z > 0.0) {
-        local_6 = metal::dot(wo_1, _e25) > 0.0;
+        local_10 = metal::dot(wo_1, _e25) > 0.0;
     } else {
-        local_6 = false;
+        local_10 = false;
     }
-    bool _e35 = local_6;
+    bool _e35 = local_10;
     if (_e35) {
         return _e25;
     }
@@ -1695,50 +2071,50 @@ metal::float3 sampling_sample_visible_normal(
 }
 
 metal::float3 sampling_sample_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_51,
-    metal::float2 u_4
+    ndf_roughness_matrix_RoughnessMatrix r_54,
+    metal::float2 u_7
 ) {
-    float _e3 = sampling_clamp_unit(u_4.x);
-    float _e5 = sampling_clamp_unit(u_4.y);
+    float _e3 = sampling_clamp_unit(u_7.x);
+    float _e5 = sampling_clamp_unit(u_7.y);
     metal::float2 _e6 = math_sincos_turns(_e5);
-    metal::float3 n_1 = metal::float3(metal::sqrt(_e3) * _e6, metal::sqrt(1.0 - _e3));
-    sampling_Warp _e13 = sampling_warp(r_51);
-    metal::float3 _e14 = sampling_unstretch(_e13, n_1);
+    metal::float3 n_5 = metal::float3(metal::sqrt(_e3) * _e6, metal::sqrt(1.0 - _e3));
+    sampling_Warp _e13 = sampling_warp(r_54);
+    metal::float3 _e14 = sampling_unstretch(_e13, n_5);
     return _e14;
 }
 
 float sampling_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_52,
+    ndf_roughness_matrix_RoughnessMatrix r_55,
     metal::float3 m_20
 ) {
-    float _e2 = ndf_ggx_d_matrix(r_52, m_20);
+    float _e2 = ndf_ggx_d_matrix(r_55, m_20);
     return (m_20.z > 0.0) ? (_e2 * m_20.z) : 0.0;
 }
 
 float sampling_visible_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_53,
+    ndf_roughness_matrix_RoughnessMatrix r_56,
     metal::float3 wo_2,
     metal::float3 m_21
 ) {
-    bool local_7 = {};
+    bool local_11 = {};
     float wom = metal::dot(wo_2, m_21);
     if (!(!((wo_2.z > 0.0)))) {
-        local_7 = !((wom > 0.0));
+        local_11 = !((wom > 0.0));
     } else {
-        local_7 = true;
+        local_11 = true;
     }
-    bool _e15 = local_7;
+    bool _e15 = local_11;
     if (_e15) {
         return 0.0;
     }
-    float _e17 = ndf_ggx_d_matrix(r_53, m_21);
-    float _e20 = ndf_ggx_lambda_matrix(r_53, wo_2);
-    float v_8 = (wom * _e17) / (wo_2.z * (1.0 + _e20));
-    return (v_8 <= math_F32_MAX) ? v_8 : 0.0;
+    float _e17 = ndf_ggx_d_matrix(r_56, m_21);
+    float _e20 = ndf_ggx_lambda_matrix(r_56, wo_2);
+    float v_10 = (wom * _e17) / (wo_2.z * (1.0 + _e20));
+    return (v_10 <= math_F32_MAX) ? v_10 : 0.0;
 }
 
 float sampling_reflection_pdf_from_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_54,
+    ndf_roughness_matrix_RoughnessMatrix r_57,
     metal::float3 wo_3,
     metal::float3 m_22
 ) {
@@ -1749,14 +2125,14 @@ float sampling_reflection_pdf_from_normal(
     if (!((metal::dot(_e8, m_22) > 0.0))) {
         return 0.0;
     }
-    float _e14 = ndf_ggx_d_matrix(r_54, m_22);
-    float _e18 = ndf_ggx_lambda_matrix(r_54, _e8);
-    float v_9 = _e14 / ((4.0 * _e8.z) * (1.0 + _e18));
-    return (v_9 <= math_F32_MAX) ? v_9 : 0.0;
+    float _e14 = ndf_ggx_d_matrix(r_57, m_22);
+    float _e18 = ndf_ggx_lambda_matrix(r_57, _e8);
+    float v_11 = _e14 / ((4.0 * _e8.z) * (1.0 + _e18));
+    return (v_11 <= math_F32_MAX) ? v_11 : 0.0;
 }
 
 float sampling_reflection_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_55,
+    ndf_roughness_matrix_RoughnessMatrix r_58,
     metal::float3 wo_4,
     metal::float3 wi_1
 ) {
@@ -1765,12 +2141,12 @@ float sampling_reflection_pdf(
     }
     metal::float3 _e8 = sampling_normalize_scaled(wo_4);
     metal::float3 _e9 = sampling_normalize_scaled(wi_1);
-    metal::float3 h_18 = _e8 + _e9;
-    float len = metal::length(h_18);
+    metal::float3 h_23 = _e8 + _e9;
+    float len = metal::length(h_23);
     if (!((len > 0.0))) {
         return 0.0;
     }
-    float _e18 = sampling_reflection_pdf_from_normal(r_55, wo_4, h_18 / metal::float3(len));
+    float _e18 = sampling_reflection_pdf_from_normal(r_58, wo_4, h_23 / metal::float3(len));
     return _e18;
 }
 

@@ -18,6 +18,7 @@ pub mod filters;
 pub mod footprint;
 pub mod math;
 pub mod ndf;
+pub mod rect;
 pub mod sampling;
 
 use crate::harness::{self, Kernel};
