@@ -235,16 +235,23 @@ pub fn run_concatenated(kernel: &Kernel, inputs: &[f32]) -> Result<Vec<f32>, Str
     run_module(module, n, inputs, kernel.n_out)
 }
 
-/// Runs the entry point `main` of a composed module (the layout of [`Kernel::shader`]) over
-/// `n` cases.
-pub fn run_module(
+/// A compiled harness shader with its buffers, ready to dispatch.
+struct Prepared {
+    pipeline: wgpu::ComputePipeline,
+    bind: wgpu::BindGroup,
+    output: wgpu::Buffer,
+    staging: wgpu::Buffer,
+    size: u64,
+    n: usize,
+}
+
+fn prepare(
+    gpu: &Gpu,
     module: naga::Module,
     n: usize,
     inputs: &[f32],
     n_out: usize,
-) -> Result<Vec<f32>, String> {
-    let gpu = gpu()?;
-    let _guard = gpu.lock.lock().unwrap_or_else(|e| e.into_inner());
+) -> Result<Prepared, String> {
     let device = &gpu.device;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
     let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -291,26 +298,83 @@ pub fn run_module(
             },
         ],
     });
-    let groups = (n as u32).div_ceil(WORKGROUP);
+    if let Some(e) = pollster::block_on(scope.pop()) {
+        return Err(format!("{}: {e}", gpu.label()));
+    }
+    Ok(Prepared {
+        pipeline,
+        bind,
+        output,
+        staging,
+        size,
+        n,
+    })
+}
+
+/// Dispatches a prepared shader once and waits for it (optionally copying the output to the
+/// staging buffer).
+fn dispatch(gpu: &Gpu, p: &Prepared, copy: bool) -> Result<(), String> {
+    let device = &gpu.device;
+    let groups = (p.n as u32).div_ceil(WORKGROUP);
     let (gx, gy) = (groups.min(ROW), groups.div_ceil(ROW));
     let mut enc = device.create_command_encoder(&Default::default());
     {
         let mut pass = enc.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &bind, &[]);
+        pass.set_pipeline(&p.pipeline);
+        pass.set_bind_group(0, &p.bind, &[]);
         pass.dispatch_workgroups(gx, gy, 1);
     }
-    enc.copy_buffer_to_buffer(&output, 0, &staging, 0, size);
-    gpu.queue.submit([enc.finish()]);
-    if let Some(e) = pollster::block_on(scope.pop()) {
-        return Err(format!("{}: {e}", gpu.label()));
+    if copy {
+        enc.copy_buffer_to_buffer(&p.output, 0, &p.staging, 0, p.size);
     }
-    let slice = staging.slice(..);
+    gpu.queue.submit([enc.finish()]);
+    device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| format!("poll: {e}"))?;
+    Ok(())
+}
+
+/// Wall-clock seconds of `runs` dispatches of a composed module (after one warm-up), each
+/// submitted and waited for on its own: for throughput ratios between shaders run the same
+/// way on the same adapter.
+pub fn time_module(
+    module: naga::Module,
+    n: usize,
+    inputs: &[f32],
+    n_out: usize,
+    runs: usize,
+) -> Result<Vec<f64>, String> {
+    let gpu = gpu()?;
+    let _guard = gpu.lock.lock().unwrap_or_else(|e| e.into_inner());
+    let p = prepare(gpu, module, n, inputs, n_out)?;
+    dispatch(gpu, &p, false)?;
+    let mut t = Vec::new();
+    for _ in 0..runs {
+        let start = std::time::Instant::now();
+        dispatch(gpu, &p, false)?;
+        t.push(start.elapsed().as_secs_f64());
+    }
+    Ok(t)
+}
+
+/// Runs the entry point `main` of a composed module (the layout of [`Kernel::shader`]) over
+/// `n` cases.
+pub fn run_module(
+    module: naga::Module,
+    n: usize,
+    inputs: &[f32],
+    n_out: usize,
+) -> Result<Vec<f32>, String> {
+    let gpu = gpu()?;
+    let _guard = gpu.lock.lock().unwrap_or_else(|e| e.into_inner());
+    let p = prepare(gpu, module, n, inputs, n_out)?;
+    dispatch(gpu, &p, true)?;
+    let slice = p.staging.slice(..);
     let (tx, rx) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {
         let _ = tx.send(r);
     });
-    device
+    gpu.device
         .poll(wgpu::PollType::wait_indefinitely())
         .map_err(|e| format!("poll: {e}"))?;
     rx.recv()
@@ -322,6 +386,6 @@ pub fn run_module(
             .map_err(|e| format!("mapped range: {e}"))?;
         bytemuck::cast_slice::<u8, f32>(&view).to_vec()
     };
-    staging.unmap();
+    p.staging.unmap();
     Ok(out)
 }

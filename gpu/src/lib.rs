@@ -16,5 +16,6 @@ pub mod checks;
 pub mod concat;
 pub mod generate;
 pub mod harness;
+pub mod kernels;
 pub mod modules;
 pub mod reference;
