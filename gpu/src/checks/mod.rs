@@ -37,6 +37,21 @@ pub struct Tol {
     pub rel: f64,
     /// Absolute part.
     pub abs: f64,
+    /// For an absolute tolerance, the magnitude it is measured against (the largest entry
+    /// of a matrix, the length of a vector): the report divides the error by it. 0: none.
+    pub scale: f64,
+}
+
+impl Tol {
+    /// An absolute tolerance of `k` EPS times `scale` (the magnitude the error is measured
+    /// against), plus the flush-to-zero floor; reported relative to `scale`.
+    pub fn of_scale(k: f64, scale: f64) -> Self {
+        Self {
+            rel: 0.0,
+            abs: k * EPS * scale + TINY,
+            scale,
+        }
+    }
 }
 
 impl Tol {
@@ -45,12 +60,26 @@ impl Tol {
         Self {
             rel: ulps * EPS,
             abs: TINY,
+            scale: 0.0,
         }
     }
 
     /// An absolute tolerance only.
     pub fn abs(abs: f64) -> Self {
-        Self { rel: 0.0, abs }
+        Self {
+            rel: 0.0,
+            abs,
+            scale: 0.0,
+        }
+    }
+
+    /// A relative and an absolute part.
+    pub fn rel_abs(rel: f64, abs: f64) -> Self {
+        Self {
+            rel,
+            abs,
+            scale: 0.0,
+        }
     }
 }
 
@@ -122,7 +151,8 @@ pub struct Outcome {
     /// The worst relative error `|gpu - ref| / |ref|` over outputs with a relative
     /// tolerance and `|ref| > 2^-126`.
     pub worst_rel: f64,
-    /// The worst absolute error over outputs with an absolute tolerance only.
+    /// The worst absolute error over outputs with an absolute tolerance only (divided by the
+    /// tolerance's scale where it has one).
     pub worst_abs: f64,
     /// The worst error as a fraction of its tolerance (`<= 1` passes).
     pub worst_of_tol: f64,
@@ -176,9 +206,13 @@ pub fn run(check: &Check) -> Result<Outcome, String> {
             let err = (g - r).abs();
             let allowed = t.rel * r.abs() + t.abs;
             let ok = err <= allowed;
+            // Reported errors: relative where the relative part of the tolerance dominates
+            // (`|ref|` well above the absolute part, which is the flush-to-zero floor or a
+            // cancellation allowance), absolute for absolute tolerances.
             if t.rel == 0.0 {
-                o.worst_abs = o.worst_abs.max(err);
-            } else if r.abs() > TINY && err.is_finite() {
+                let e = if t.scale > 0.0 { err / t.scale } else { err };
+                o.worst_abs = o.worst_abs.max(e);
+            } else if r.abs() > TINY && t.rel * r.abs() > 1e3 * t.abs && err.is_finite() {
                 o.worst_rel = o.worst_rel.max(err / r.abs());
             }
             let frac = if allowed > 0.0 {

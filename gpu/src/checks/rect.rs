@@ -121,10 +121,10 @@ pub fn all() -> Vec<Check> {
         pr.case(
             input,
             vec![reference],
-            vec![Tol {
-                rel: 8.0 * EPS,
-                abs: 16.0 * EPS * printed_scale(r, hpp, hd.z, he_p) + super::TINY,
-            }],
+            vec![Tol::rel_abs(
+                8.0 * EPS,
+                16.0 * EPS * printed_scale(r, hpp, hd.z, he_p) + super::TINY,
+            )],
         );
     }
 

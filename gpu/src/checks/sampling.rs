@@ -236,7 +236,11 @@ pub fn all() -> Vec<Check> {
         // as right as the reference.
         let reference = ggx.reflection_pdf(wo, wi);
         let tol = if h.z <= 16.0 * EPS / woh.max(1e-30) {
-            Tol::abs(reference + super::TINY)
+            Tol {
+                rel: 0.0,
+                abs: reference + super::TINY,
+                scale: reference.max(super::TINY),
+            }
         } else {
             Tol::ulps(t)
         };
