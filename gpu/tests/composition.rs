@@ -17,22 +17,20 @@ fn every_module_composes_alone() {
     }
 }
 
-/// The README's minimal fragment shader: an isotropic GGX lobe widened by the screen-space
-/// footprint of the half vector (TK19 `A + 2 Sigma` with the default clamps).
-pub const README_FRAGMENT: &str = r#"#import filtered_ndf::ndf::roughness::isotropic
-#import filtered_ndf::ndf::roughness::matrix
-#import filtered_ndf::ndf::ggx
-
-@fragment
-fn main(@location(0) h: vec3<f32>, @location(1) alpha: f32) -> @location(0) vec4<f32> {
-    let m = normalize(h);
-    let d = ggx::d_isotropic(isotropic::from_alpha(alpha), m);
-    return vec4<f32>(d, 0.0, 0.0, 1.0);
+/// The fenced block of `language` in `shaders/README.md` (its first).
+fn readme_block(language: &str) -> String {
+    let readme =
+        std::fs::read_to_string(filtered_ndf_gpu::modules::shaders_dir().join("README.md"))
+            .expect("shaders/README.md");
+    let fence = format!("```{language}\n");
+    let start = readme.find(&fence).expect("a fenced block") + fence.len();
+    let len = readme[start..].find("```").expect("closed");
+    readme[start..start + len].to_string()
 }
-"#;
 
 #[test]
 fn readme_fragment_shader_composes() {
-    let module = compose(README_FRAGMENT, "readme.wgsl").expect("composes");
+    let src = readme_block("wgsl");
+    let module = compose(&src, "shaders/README.md").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(module.entry_points.len(), 1);
 }

@@ -34,3 +34,52 @@ fn spirv_translation_passes_spirv_val() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+fn glslang(path: &std::path::Path) -> std::process::Output {
+    std::process::Command::new("glslangValidator")
+        .arg(path)
+        .output()
+        .unwrap_or_else(|e| {
+            panic!(
+                "glslangValidator not found ({e}): install it with `apt-get install glslang-tools`"
+            )
+        })
+}
+
+/// The GLSL translations compile with the Khronos reference compiler, and so does the
+/// README's GLSL example pasted into the 330 file (before the translation's entry point).
+#[test]
+fn glsl_translations_pass_glslang() {
+    let dir = generate::generated_dir();
+    let tmp = std::env::temp_dir().join(format!("filtered_ndf_glsl_{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).expect("temp dir");
+    let readme =
+        std::fs::read_to_string(filtered_ndf_gpu::modules::shaders_dir().join("README.md"))
+            .expect("shaders/README.md");
+    let start = readme.find("```glsl\n").expect("a GLSL block") + "```glsl\n".len();
+    let example = &readme[start..start + readme[start..].find("```").expect("closed")];
+    for name in ["filtered_ndf.330.glsl", "filtered_ndf.310es.glsl"] {
+        let src = std::fs::read_to_string(dir.join(name)).expect("generated file");
+        let path = tmp.join(name.replace(".glsl", ".frag"));
+        std::fs::write(&path, &src).expect("write");
+        let out = glslang(&path);
+        assert!(
+            out.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stdout)
+        );
+        if name.contains("330") {
+            let at = src.rfind("void main()").expect("the entry point");
+            let with_example = format!("{}{example}\n{}", &src[..at], &src[at..]);
+            let path = tmp.join("readme_example.frag");
+            std::fs::write(&path, with_example).expect("write");
+            let out = glslang(&path);
+            assert!(
+                out.status.success(),
+                "README GLSL example: {}",
+                String::from_utf8_lossy(&out.stdout)
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(&tmp);
+}
