@@ -12,6 +12,11 @@
 
 /// Slope-domain density `P22(s) = 1 / (pi sqrt(det A) (1 + q)^2)` from
 /// `q = s^T A^-1 s` and `sqrt(det A)`. Relative error: `2 (error of 1 + q)` plus 5 ulp.
+///
+/// Far tail: WGSL drivers may reassociate the product (Mesa's lavapipe squares `1 + q`
+/// first), so once `1 + q` exceeds `1e18` (the density is then below `1e-36` of its peak)
+/// the square may overflow and the result be 0; below that every association stays in
+/// range.
 fn p22_of(q: f32, sqrt_det: f32) -> f32 {
     let t = 1.0 + q;
     return 1.0 / (math::PI * sqrt_det * t * t);
@@ -22,6 +27,8 @@ fn p22_of(q: f32, sqrt_det: f32) -> f32 {
 /// non-axis-aligned GGX, in the homogeneous form that stays finite up to the horizon;
 /// KHPL16 eq. 2). `0` for `m_z <= 0` (the `chi+` factor) and where the density exceeds the
 /// f32 range (as the Rust `d`). Relative error: `2 (error of q_xy + m_z^2)` plus 6 ulp.
+/// Far tail as [`p22_of`]: possibly 0 once `q_xy + m_z^2 > 1e18` (below `1e-36` of the
+/// peak).
 fn d_of(q_xy: f32, m_z: f32, sqrt_det: f32) -> f32 {
     let t = q_xy + m_z * m_z;
     let v = 1.0 / (math::PI * sqrt_det * t * t);

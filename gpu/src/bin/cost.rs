@@ -73,7 +73,7 @@ fn main() {
     // footprints log-uniform in [1e-4, 0.1].
     let n = 1 << 16;
     let reps = 64;
-    let mut rng = filtered_ndf::testing::rng::SplitMix64(0x636f_7374);
+    let mut rng = filtered_ndf_gpu::reference::SplitMix64(0x636f_7374);
     let mut input = Vec::with_capacity(n * kernels::N_IN);
     for _ in 0..n {
         let (ax, ay) = (rng.log_uniform(1e-3, 1.0), rng.log_uniform(1e-3, 1.0));

@@ -3,10 +3,11 @@
 //!
 //! Cases: roughness from the crate's strategies (`strategies::isotropic`, `axis_aligned`,
 //! and the rotated matrices of `strategies::matrix`: alpha log-uniform in `[1e-4, 2]`,
-//! anisotropy up to `1e3`), directions from `strategies::upper_hemisphere(89.9)` (pole and
+//! anisotropy up to `1e3`) and the ends of the supported range (`1e-8`, `1e4`), directions from `strategies::upper_hemisphere(89.9)` (pole and
 //! near-horizon weighted in), slopes those of the micronormals.
 //!
-//! Tolerances (ulp of f32): `err_q`, the error of the quadratic forms, is 6 (isotropic: a
+//! Tolerances (ulp of f32; GGX's far tail beyond `1e-36` of the peak as in `ggx_tail`):
+//! `err_q`, the error of the quadratic forms, is 6 (isotropic: a
 //! dot product, `1 / alpha^2` with its division), 7 (axis-aligned) and
 //! `8 + 8 sqrt(cond A)` for the matrix form (`matrix.wgsl`: the rotation error weighted by
 //! `sqrt(cond)`). GGX `P22`, `D`: `2 (err_q + 1) + 6` (the square of `1 + q`, five products
@@ -138,6 +139,25 @@ fn cases(kind: &str, n: usize) -> Vec<NdfCase> {
         })
         .collect(),
     };
+    // The ends of the supported range, [ALPHA_MIN, ALPHA_MAX] = [1e-8, 1e4], beside the
+    // strategies' working range, 16 directions each.
+    let ends: Vec<Form> = match kind {
+        "isotropic" => vec![Form::Iso(1.0001e-8), Form::Iso(1e4)],
+        "axis_aligned" => vec![
+            Form::Aa([1.0001e-8, 1.0001e-8]),
+            Form::Aa([1.0001e-8, 1e4]),
+            Form::Aa([1e4, 1.0001e-8]),
+        ],
+        _ => vec![
+            Form::Mat([0.6, 0.8], [1.0001e-8, 1.0001e-8]),
+            Form::Mat([0.6, 0.8], [1.0001e-8, 1e-4]),
+            Form::Mat([0.6, 0.8], [1e3, 1e4]),
+        ],
+    };
+    let forms: Vec<Form> = forms
+        .into_iter()
+        .chain(ends.iter().flat_map(|f| std::iter::repeat_n(*f, 16)))
+        .collect();
     let mut out = Vec::new();
     for (k, form) in forms.into_iter().enumerate() {
         let (rough, err_q) = match form {
@@ -155,7 +175,8 @@ fn cases(kind: &str, n: usize) -> Vec<NdfCase> {
                 (Rough::Mat(r), 8.0 + 8.0 * cond.sqrt())
             }
         };
-        let m = f32x3(dirs[3 * k]);
+        let j = k % n;
+        let m = f32x3(dirs[3 * j]);
         let md = v3(m);
         let s = [(-md.x / md.z) as f32, (-md.y / md.z) as f32];
         out.push(NdfCase {
@@ -164,11 +185,22 @@ fn cases(kind: &str, n: usize) -> Vec<NdfCase> {
             err_q,
             s,
             m,
-            w: f32x3(dirs[3 * k + 1]),
-            o: f32x3(dirs[3 * k + 2]),
+            w: f32x3(dirs[3 * j + 1]),
+            o: f32x3(dirs[3 * j + 2]),
         });
     }
     out
+}
+
+/// GGX's far tail (`ggx.wgsl`): where `t = 1 + q` (or `q_xy + m_z^2`) exceeds `1e18` a
+/// driver that reassociates the product may overflow `t^2` and return 0: the tolerance
+/// there is the density at `t = 1e18`, `1e-36` of the peak `1 / (pi sqrt(det A))`.
+fn ggx_tail(t: f64, sqrt_det: f64, ulps: f64) -> Tol {
+    if t >= 1e18 {
+        Tol::rel_abs(ulps * EPS, 1e-36 / (core::f64::consts::PI * sqrt_det))
+    } else {
+        Tol::ulps(ulps)
+    }
 }
 
 /// GGX / Beckmann tolerances of the module docs, in ulp.
@@ -238,7 +270,12 @@ fn form_checks(kind: &str, n: usize) -> Vec<Check> {
                 let q = k.rough.inv_quadratic(v2(k.s));
                 let ln_k = -(core::f64::consts::PI * k.rough.sqrt_det()).ln();
                 let t = tol_density(ggx, k.err_q, q, ln_k);
-                (k.rough.ndf(ggx).p22(v2(k.s)), Tol::ulps(t))
+                let tol = if ggx {
+                    ggx_tail(1.0 + q, k.rough.sqrt_det(), t)
+                } else {
+                    Tol::ulps(t)
+                };
+                (k.rough.ndf(ggx).p22(v2(k.s)), tol)
             },
         );
         add(
@@ -249,7 +286,13 @@ fn form_checks(kind: &str, n: usize) -> Vec<Check> {
                 let x = k.rough.inv_quadratic(DVec2::new(m.x, m.y)) / (m.z * m.z);
                 let ln_k = -((core::f64::consts::PI * k.rough.sqrt_det()).ln() + 4.0 * m.z.ln());
                 let t = tol_density(ggx, k.err_q, x, ln_k);
-                (k.rough.ndf(ggx).d(m), Tol::ulps(t))
+                let tol = if ggx {
+                    let tt = k.rough.inv_quadratic(DVec2::new(m.x, m.y)) + m.z * m.z;
+                    ggx_tail(tt, k.rough.sqrt_det(), t)
+                } else {
+                    Tol::ulps(t)
+                };
+                (k.rough.ndf(ggx).d(m), tol)
             },
         );
         let lambda_tol = |k: &NdfCase, w: DVec3| {
