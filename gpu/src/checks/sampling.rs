@@ -1,0 +1,253 @@
+//! `shaders/sampling/`: GGX visible-normal sampling and the pdfs, roughness matrix.
+//!
+//! Cases: rotated matrices `from_eigen(axis, alpha)` drawn as `strategies::matrix` draws
+//! them (alpha log-uniform in `[1e-4, 2]`, anisotropy up to `1e3`), views from
+//! `strategies::upper_hemisphere(89)`, `u` uniform (SplitMix64), plus `u` at the corners.
+//!
+//! Tolerances. A sample is a unit vector compared componentwise with an absolute tolerance
+//! `K delta_n + 8 EPS`: `delta_n` bounds the error of the unit-roughness sample
+//! `n = c + wi` (the driver-independent `sincos_turns`, 3 `EPS`; `z` 6 `EPS`; the cap's
+//! `sin theta = sqrt(1 - z^2)`, whose error `|z| delta_z / sin theta` is the map's own
+//! conditioning near the cap's poles; the stretched view `wi`, 8 `EPS` times the stretch's
+//! conditioning) and `K = |(I - m m^T) M| / |M n|` (Frobenius norm) is the conditioning of
+//! the final warp `m = M n / |M n|`, both computed per case in f64 from the reference
+//! matrix. The pdfs follow the NDF rules (`err_q = 8 + 8 sqrt(cond A)` for `D` and
+//! `Lambda`, see `checks::ndf`) plus `2 EPS / (wo.m)` for the dot product `wo.m`, and for
+//! `reflection_pdf` the half vector's recomputation: the relative change of the reference
+//! `D` when its half vector moves by `4 EPS / (wo.h)` along either tangent; where that half vector
+//! is within its error of the horizon (`h_z <= 16 EPS / (wo.h)`, e.g. `wi` near `-wo`, or a
+//! sample at the rim of the cap), the `chi+(h_z)` factor is decided by rounding and any
+//! value in `[0, reference]` is accepted.
+
+use super::{Check, EPS, Tol, draw};
+use crate::reference::{
+    DVec3, Ggx, Ndf, NdfSampling, Roughness, RoughnessMatrix, SplitMix64, matrix_from_eigen,
+    sampling, strategies, v2, v3,
+};
+use glam::DMat3;
+
+struct Case {
+    axis: [f32; 2],
+    alpha: [f32; 2],
+    m: RoughnessMatrix,
+    wo: [f32; 3],
+    u: [f32; 2],
+}
+
+impl Case {
+    fn input(&self) -> Vec<f32> {
+        let mut v = self.axis.to_vec();
+        v.extend(self.alpha);
+        v.extend(self.wo);
+        v.extend(self.u);
+        v
+    }
+    /// `M = [[l_xx, 0, 0], [l_yx, l_yy, 0], [0, 0, 1]]` of the reference matrix (f64).
+    fn warp(&self) -> DMat3 {
+        let (a11, a12, _) = self.m.entries();
+        let l11 = a11.sqrt();
+        DMat3::from_cols(
+            DVec3::new(l11, a12 / l11, 0.0),
+            DVec3::new(0.0, self.m.sqrt_det() / l11, 0.0),
+            DVec3::Z,
+        )
+    }
+}
+
+fn cases(n: usize) -> Vec<Case> {
+    let forms = draw(
+        (strategies::axis_aligned(), 0.0..core::f64::consts::PI),
+        n,
+        "sampling forms",
+    );
+    let wos = draw(strategies::upper_hemisphere(89.0), n, "sampling wo");
+    let mut rng = SplitMix64(0x7361_6d70);
+    let mut out = Vec::new();
+    for (k, ((r, phi), wo)) in forms.into_iter().zip(wos).enumerate() {
+        let axis = [phi.cos() as f32, phi.sin() as f32];
+        let alpha = [r.alpha().x as f32, r.alpha().y as f32];
+        let Some(m) = matrix_from_eigen(axis, alpha) else {
+            continue;
+        };
+        let u = match k % 50 {
+            0 => [0.0, 0.0],
+            1 => [0.99999994, 0.99999994],
+            2 => [0.5, 0.99999994],
+            _ => [rng.uniform() as f32, rng.uniform() as f32],
+        };
+        out.push(Case {
+            axis,
+            alpha,
+            m,
+            wo: [wo.x as f32, wo.y as f32, wo.z as f32],
+            u,
+        });
+    }
+    out
+}
+
+/// `|(I - m m^T) M| / |M n|` (Frobenius): how a change of `n` moves `m = M n / |M n|`.
+fn warp_conditioning(mm: DMat3, n: DVec3) -> f64 {
+    let v = mm * n;
+    let m = v / v.length();
+    let p = DMat3::IDENTITY - DMat3::from_cols(m * m.x, m * m.y, m * m.z);
+    let k = p * mm;
+    let f =
+        (k.x_axis.length_squared() + k.y_axis.length_squared() + k.z_axis.length_squared()).sqrt();
+    f / v.length()
+}
+
+/// The module docs' bound on the sampled `m` (absolute, per component).
+fn sample_tol(c: &Case) -> f64 {
+    let mm = c.warp();
+    let wo = v3(c.wo).normalize();
+    let st = mm.transpose() * wo;
+    let wi = st / st.length();
+    // Conditioning of wi = normalize(M^T wo) in wo.
+    let k_in = warp_conditioning(mm.transpose(), wo);
+    let (u1, u2) = (f64::from(c.u[0]), f64::from(c.u[1]));
+    let z = (1.0 - u2) * (1.0 + wi.z) - wi.z;
+    let sin_t = (1.0 - z * z).max(0.0).sqrt();
+    let dz = 6.0 * EPS + 8.0 * EPS * k_in;
+    let d_sin =
+        (z.abs() * dz / sin_t.max(1e-30) + 5.0 * EPS).min((2.0 * z.abs() * dz).sqrt() + 5.0 * EPS);
+    let phi = 2.0 * core::f64::consts::PI * u1;
+    let n = DVec3::new(sin_t * phi.cos(), sin_t * phi.sin(), z) + wi;
+    let dn = 3.0 * EPS + d_sin + dz + 8.0 * EPS * k_in + 2.0 * EPS;
+    warp_conditioning(mm, n) * dn + 8.0 * EPS
+}
+
+fn err_q(c: &Case) -> f64 {
+    let (l1, l2) = (f64::from(c.alpha[0]).powi(2), f64::from(c.alpha[1]).powi(2));
+    8.0 + 8.0 * (l1.max(l2) / l1.min(l2)).sqrt()
+}
+
+/// The checks of `shaders/sampling/`.
+pub fn all() -> Vec<Check> {
+    let cs = cases(2000);
+    let imports = "#import filtered_ndf::ndf::roughness::matrix\n#import filtered_ndf::sampling";
+    let pre = "let r = matrix::from_eigen(x2(0u), x2(2u));\nlet wo = x3(4u);\nlet u = x2(7u);\n";
+    let mut checks = Vec::new();
+
+    let mut sv = Check::new(
+        "sampling::sample_visible_normal",
+        imports,
+        &format!("{pre}y3(0u, sampling::sample_visible_normal(r, wo, u));"),
+        9,
+        3,
+    )
+    .tolerance("K delta_n + 8 EPS absolute per component (module docs: the caps sampler's and the warps' conditioning, per case)");
+    let mut sn = Check::new(
+        "sampling::sample_normal",
+        imports,
+        &format!("{pre}y3(0u, sampling::sample_normal(r, u));"),
+        9,
+        3,
+    )
+    .tolerance("K 12 EPS + 8 EPS absolute per component (sincos 3, square roots 4.5, the warp's conditioning K)");
+    let mut pv = Check::new(
+        "sampling::visible_normal_pdf",
+        imports,
+        &format!(
+            "{pre}let m = x3(9u);\ny(0u, sampling::visible_normal_pdf(r, wo, m));\ny(1u, sampling::normal_pdf(r, m));\ny(2u, sampling::reflection_pdf_from_normal(r, wo, m));"
+        ),
+        12,
+        3,
+    )
+    .tolerance("D's 2 (err_q + 1) + 6 plus Lambda's 1.5 err_q + 10, 2 EPS / (wo.m), 8 for the normalisation of wo, 4 ulp");
+    let mut pr = Check::new(
+        "sampling::reflection_pdf",
+        imports,
+        &format!("{pre}let wi = x3(9u);\ny(0u, sampling::reflection_pdf(r, wo, wi));"),
+        12,
+        1,
+    )
+    .tolerance("reflection_pdf_from_normal's, plus the reference D's relative change under a 4 EPS / (wo.h) move of the half vector; [0, reference] where h_z <= 16 EPS / (wo.h) (chi+ decided by rounding)");
+
+    for c in &cs {
+        let ggx = Ggx::new(c.m);
+        let wo = v3(c.wo);
+        let s = ggx
+            .sample_visible_normal(wo, v2(c.u))
+            .unwrap_or(DVec3::ZERO);
+        sv.case(
+            c.input(),
+            vec![s.x, s.y, s.z],
+            vec![Tol::abs(sample_tol(c)); 3],
+        );
+
+        let n = ggx.sample_normal(v2(c.u));
+        let (u1, _) = (f64::from(c.u[0]), 0.0);
+        let phi = 2.0 * core::f64::consts::PI * f64::from(c.u[1]);
+        let nstd = DVec3::new(
+            u1.sqrt() * phi.cos(),
+            u1.sqrt() * phi.sin(),
+            (1.0 - u1).sqrt(),
+        );
+        let k = warp_conditioning(c.warp(), nstd);
+        sn.case(
+            c.input(),
+            vec![n.x, n.y, n.z],
+            vec![Tol::abs(k * 12.0 * EPS + 8.0 * EPS); 3],
+        );
+
+        if s == DVec3::ZERO {
+            continue;
+        }
+        let m32 = [s.x as f32, s.y as f32, s.z as f32];
+        let m = v3(m32);
+        let eq = err_q(c);
+        let wom = wo.normalize().dot(m);
+        let base = 2.0 * (eq + 1.0) + 6.0 + 1.5 * eq + 10.0 + 2.0 / wom.max(1e-30) + 8.0 + 4.0;
+        let mut input = c.input();
+        input.extend(m32);
+        pv.case(
+            input,
+            vec![
+                ggx.visible_normal_pdf(wo, m),
+                ggx.normal_pdf(m),
+                ggx.reflection_pdf_from_normal(wo, m),
+            ],
+            vec![
+                Tol::ulps(base),
+                Tol::ulps(2.0 * (eq + 1.0) + 8.0),
+                Tol::ulps(base),
+            ],
+        );
+        let wi = sampling::reflect(wo.normalize(), m);
+        let wi32 = [wi.x as f32, wi.y as f32, wi.z as f32];
+        let wi = v3(wi32);
+        let h = (wo.normalize() + wi.normalize()).normalize();
+        // The reference's own change when its half vector moves by the recomputation error
+        // `delta = 4 EPS / (wo.h)` along either tangent (at the scale of the error, so that
+        // the curvature at the peak of a sharp lobe counts too).
+        let t1 = h.any_orthonormal_vector();
+        let t2 = h.cross(t1);
+        let woh = wo.normalize().dot(h);
+        let delta = 4.0 * EPS / woh.max(1e-30);
+        let d0 = ggx.d(h);
+        let spread = [t1, -t1, t2, -t2]
+            .iter()
+            .map(|t| ((ggx.d((h + *t * delta).normalize()) - d0) / d0).abs())
+            .fold(0.0, f64::max);
+        let t = base + spread / EPS;
+        // The recomputed half vector's components carry about 4 EPS / (wo.h): where its `h_z`
+        // is within that of the horizon, rounding decides the `chi+(h_z)` factor, and 0 is
+        // as right as the reference.
+        let reference = ggx.reflection_pdf(wo, wi);
+        let tol = if h.z <= 16.0 * EPS / woh.max(1e-30) {
+            Tol {
+                rel: 0.0,
+                abs: reference + super::TINY,
+                scale: reference.max(super::TINY),
+            }
+        } else {
+            Tol::ulps(t)
+        };
+        let mut input = c.input();
+        input.extend(wi32);
+        pr.case(input, vec![reference], vec![tol]);
+    }
+    checks.extend([sv, sn, pv, pr]);
+    checks
+}

@@ -1,0 +1,56 @@
+#define_import_path filtered_ndf::filter::projected
+
+#import filtered_ndf::ndf::roughness::matrix
+#import filtered_ndf::kernel::covariance
+
+// Projected-space filtering (Tokuyoshi and Kaplanyan 2021, JCGT 10(2), Listing 1),
+// mirroring `src/.../filter/projected.rs`.
+
+/// The largest eigenvalue of `A` mapped to projected space, `0.99` (`alpha <= 0.995`).
+const PROJECTED_EIGEN_MAX: f32 = 0.99;
+
+/// `P = A (I - A)^-1`, `P' = P + 2 Sigma`, `A' = P' (I + P')^-1` (TK21 Listing 1): on the
+/// projected disk the GGX density is itself a GGX-shaped density of roughness `P`, and TK19's
+/// disk-derivative kernel lives in that space. Eigenvalues of `A` above `PROJECTED_EIGEN_MAX`
+/// are clamped for the projected step and the excess is added back unfiltered (as in Rust:
+/// exact below the limit, continuous, never sharpening). Evaluated with `tau = det A`.
+///
+/// f32 form: in `A`'s eigenbasis `P = R diag(l / (1 - l)) R^T` exactly (no cancellation);
+/// `d = det P' = det P + 2 tr(adj(P) K) + 4 det K` as non-negative terms (TK21's `detMin`);
+/// `A' = (P' + d I) / (1 + tr P' + d)`, every term positive, with `det A' = d / (1 + tr P' + d)`
+/// exactly (so the filtered minor axis keeps its relative accuracy). The kernel is
+/// `covariance::sanitized` first.
+fn projected(a: matrix::RoughnessMatrix, kernel: covariance::Covariance) -> matrix::RoughnessMatrix {
+    let k = covariance::sanitized(kernel);
+    let lc = min(a.eig, vec2<f32>(PROJECTED_EIGEN_MAX));
+    let excess = a.eig - lc;
+    let p = lc / (1.0 - lc);
+    let c = a.axis.x;
+    let s = a.axis.y;
+    // P in the tangent frame, and e_i^T K e_i.
+    let p11 = p.x * c * c + p.y * s * s;
+    let p12 = (p.x - p.y) * c * s;
+    let p22 = p.x * s * s + p.y * c * c;
+    let k1 = max(c * c * k.s_xx + 2.0 * c * s * k.s_xy + s * s * k.s_yy, 0.0);
+    let k2 = max(s * s * k.s_xx - 2.0 * c * s * k.s_xy + c * c * k.s_yy, 0.0);
+    let d = p.x * p.y + 2.0 * (p.y * k1 + p.x * k2) + 4.0 * max(k.det, 0.0);
+    let q11 = p11 + 2.0 * k.s_xx;
+    let q12 = p12 + 2.0 * k.s_xy;
+    let q22 = p22 + 2.0 * k.s_yy;
+    let den = 1.0 + q11 + q22 + d;
+    var b11 = (q11 + d) / den;
+    var b12 = q12 / den;
+    var b22 = (q22 + d) / den;
+    var det = d / den;
+    if max(excess.x, excess.y) > 0.0 {
+        // A rough lobe (alpha > 0.995): add the excess back; its determinant from the entries
+        // (well conditioned there).
+        b11 += excess.x * c * c + excess.y * s * s;
+        b12 += (excess.x - excess.y) * c * s;
+        b22 += excess.x * s * s + excess.y * c * c;
+        det = b11 * b22 - b12 * b12;
+    }
+    let e = matrix::entries(a);
+    let tau = a.sqrt_det * a.sqrt_det;
+    return matrix::from_entries_det(max(b11, e.x), b12, max(b22, e.z), max(det, tau), tau);
+}

@@ -1,0 +1,257 @@
+#define_import_path filtered_ndf::filter::rect
+
+#import filtered_ndf::math
+#import filtered_ndf::ndf::ggx
+#import filtered_ndf::ndf::roughness::axis_aligned
+
+// The exact box filter of GGX (KHPL16 eq. 16 and Appendix A; GDC 2016 `GGXRectIntegral`),
+// mirroring `src/.../filter/rect.rs`: the average of the axis-aligned GGX slope density over
+// an axis-aligned slope-domain rectangle, and its solid-angle form.
+//
+// With `u = x / alpha_x`, `v = y / alpha_y` the density is `f(u, v) / (pi alpha_x alpha_y)`,
+// `f = (1 + u^2 + v^2)^-2`, and the filter is the mean of `f` over
+// `[u_c +- H_u] x [v_c +- H_v]`. The printed eight-term formula cancels catastrophically (in
+// f32 already for moderate rectangles). The f32 algorithm here follows the Rust tiers, with
+// every path a sum of positive terms except the last:
+// - per axis, from its ratio `H / L` (`L^2 = 1 + (centre)^2 + (distance of the rectangle from
+//   the peak along the other axis)^2`, the distance to the density's complex poles):
+//   Gauss-Legendre with 2 nodes below `0.01`, 4 below `0.1`, 6 below `0.25` (error
+//   `~(H / 2L)^(2n)`, below `1e-8` at each switch: invisible in f32), the closed form above;
+// - both axes short: the tensor Gauss-Legendre rule;
+// - one axis long: the rule in the short axis of the exact 1D mean in the long one
+//   ([`mean_1d`], written without cancellation; its `atan` is `math::atan`);
+// - both long: the four-edge closed form ([`edges`]), whose terms cancel: relative error
+//   about `8 eps (1 + u_c^2 + v_c^2)^(3/2) / min(H_u, H_v)` (the Rust crate measured
+//   `0.45 eps_f64` for the same factor; `math::atan`'s 8 ulp multiply it). Near the peak
+//   that is a few ulp; far in the tail of a sharp lobe with a footprint wider than the
+//   distance to the peak it grows, where the density is a small fraction of its peak.
+// Bound of the other paths: about 60 ulp (the centre and half extents enter normalised,
+// 5 ulp each, and `f` amplifies a relative change of `u` by at most 4; the nodes' `f` 9 ulp;
+// `mean_1d` 20 ulp).
+
+/// Normalised coordinates are clamped to this (`f` is below `1e-72` there, 0 in f32).
+const BIG: f32 = 1e18;
+
+/// The tier of an axis: 2, 4 or 6 Gauss-Legendre nodes, or the closed form (`TIER_CLOSED`).
+const TIER_CLOSED: u32 = 0u;
+
+/// The tier of an axis from `H^2` and `L^2` (module docs): the number of nodes, or
+/// `TIER_CLOSED`.
+fn tier(h2: f32, l2: f32) -> u32 {
+    if h2 < 1e-4 * l2 {
+        return 2u;
+    }
+    if h2 < 1e-2 * l2 {
+        return 4u;
+    }
+    if h2 < 0.0625 * l2 {
+        return 6u;
+    }
+    return TIER_CLOSED;
+}
+
+/// The `k`-th positive Gauss-Legendre node on `[-1, 1]` of the `n`-node rule.
+fn gl_node(n: u32, k: u32) -> f32 {
+    if n == 2u {
+        return 0.5773502691896258;
+    }
+    if n == 4u {
+        return select(0.8611363115940526, 0.3399810435848563, k == 0u);
+    }
+    if k == 0u {
+        return 0.2386191860831969;
+    }
+    return select(0.932469514203152, 0.6612093864662645, k == 1u);
+}
+
+/// The `k`-th weight of the `n`-node rule, halved (the rule then averages over `[-1, 1]`).
+fn gl_weight(n: u32, k: u32) -> f32 {
+    if n == 2u {
+        return 0.5;
+    }
+    if n == 4u {
+        return select(0.17392742256872693, 0.32607257743127307, k == 0u);
+    }
+    if k == 0u {
+        return 0.2339569672863455;
+    }
+    return select(0.0856622461895852, 0.1803807865240693, k == 1u);
+}
+
+/// `f(u, v) = (1 + u^2 + v^2)^-2` (0 where the square overflows).
+fn f(u: f32, v: f32) -> f32 {
+    let t = 1.0 + u * u + v * v;
+    return 1.0 / (t * t);
+}
+
+/// The mean of `f(u, .)` over `[c - h, c + h]` by the `n`-node rule (sum of positive terms).
+fn gl_mean(n: u32, u: f32, c: f32, h: f32) -> f32 {
+    var acc = 0.0;
+    for (var k = 0u; k < n / 2u; k++) {
+        let a = h * gl_node(n, k);
+        acc += gl_weight(n, k) * (f(u, c - a) + f(u, c + a));
+    }
+    return acc;
+}
+
+/// `atan2(y, x)` for `y > 0`, in `(0, pi)`, with one `math::atan`.
+fn atan2_upper(y: f32, x: f32) -> f32 {
+    if x > 0.0 {
+        return math::atan(y / x);
+    }
+    return math::HALF_PI + math::atan(-x / y);
+}
+
+/// `delta - sin(delta)` for `delta` in `[0, pi]` given `sin(delta)` (a series below 1, where
+/// the difference cancels; its next term is below `1e-9` relative at 1).
+fn delta_minus_sin(d: f32, sin_d: f32) -> f32 {
+    if d < 1.0 {
+        let d2 = d * d;
+        var s = 1.0 - d2 * (1.0 / 72.0) * (1.0 - d2 * (1.0 / 110.0));
+        s = 1.0 - d2 * (1.0 / 42.0) * s;
+        s = 1.0 - d2 * (1.0 / 20.0) * s;
+        return d * d2 * (1.0 / 6.0) * s;
+    }
+    return d - sin_d;
+}
+
+/// The exact mean of `(c2 + x^2)^-2` over `[xc - hx, xc + hx]` (`hx > 0`, `c2 >= 1`) without
+/// cancellation (the Rust `mean_1d`): with `c^2 = c2`,
+/// `delta = atan(x1 / c) - atan(x0 / c) = atan2(c dx, c2 + x0 x1)` and `r_i^2 = c2 + x_i^2`,
+/// `int = delta / (2 c^3) + dx (c2 - x0 x1) / (2 c2 r0^2 r1^2)` when the interval straddles
+/// 0, else `(delta - sin delta) / (2 c^3) + dx / (2 r0^2 r1^2) [1 + (x0^2 + x1^2 + c2) /
+/// (r0 r1 + x0 x1)]`, all terms positive.
+fn mean_1d(xc: f32, hx: f32, c2: f32) -> f32 {
+    let x0 = abs(xc) - hx;
+    let x1 = abs(xc) + hx;
+    let dx = 2.0 * hx;
+    let c = sqrt(c2);
+    let r02 = c2 + x0 * x0;
+    let r12 = c2 + x1 * x1;
+    let x01 = x0 * x1;
+    let d = atan2_upper(c * dx, c2 + x01);
+    let inv = 1.0 / (2.0 * c * c2 * dx);
+    let p2 = 2.0 * r02 * r12;
+    if x0 <= 0.0 {
+        return d * inv + (c2 - x01) / (c2 * p2);
+    }
+    let rr = sqrt(r02) * sqrt(r12);
+    return delta_minus_sin(d, c * dx / rr) * inv + (1.0 + (x0 * x0 + x1 * x1 + c2) / (rr + x01)) / p2;
+}
+
+/// The mean of `g(x) = mean_1d(other_c, other_h, 1 + x^2)` over `[c - h, c + h]` by the
+/// `n`-node rule.
+fn gl_mean_1d(n: u32, c: f32, h: f32, other_c: f32, other_h: f32) -> f32 {
+    var acc = 0.0;
+    for (var k = 0u; k < n / 2u; k++) {
+        let a = h * gl_node(n, k);
+        let x0 = c - a;
+        let x1 = c + a;
+        acc += gl_weight(n, k) * (mean_1d(other_c, other_h, 1.0 + x0 * x0) + mean_1d(other_c, other_h, 1.0 + x1 * x1));
+    }
+    return acc;
+}
+
+/// One edge of the contour form: `u / S atan2(dv S, S^2 + v0 v1)`, `S = sqrt(1 + u^2)`.
+fn edge(u: f32, dv: f32, v01: f32) -> f32 {
+    let s2 = 1.0 + u * u;
+    let s = sqrt(s2);
+    return u / s * atan2_upper(dv * s, s2 + v01);
+}
+
+/// The four-edge closed form (Lambert's contour form; KHPL16 Appendix A with each edge's two
+/// arctangents merged): the mean of `f` over the rectangle. Cancels in the tail (module docs).
+fn edges(uc: f32, vc: f32, hu: f32, hv: f32) -> f32 {
+    let u0 = uc - hu;
+    let u1 = uc + hu;
+    let v0 = vc - hv;
+    let v1 = vc + hv;
+    let du = 2.0 * hu;
+    let dv = 2.0 * hv;
+    let i = 0.5 * ((edge(u1, dv, v0 * v1) - edge(u0, dv, v0 * v1)) + (edge(v1, du, u0 * u1) - edge(v0, du, u0 * u1)));
+    return i / (du * dv);
+}
+
+/// The mean of `f` over `[uc +- hu] x [vc +- hv]` by the tiers of the module docs.
+fn mean_f(uc: f32, vc: f32, hu: f32, hv: f32) -> f32 {
+    let du = max(abs(uc) - hu, 0.0);
+    let dv = max(abs(vc) - hv, 0.0);
+    let tu = tier(hu * hu, 1.0 + uc * uc + dv * dv);
+    let tv = tier(hv * hv, 1.0 + vc * vc + du * du);
+    if tu == TIER_CLOSED && tv == TIER_CLOSED {
+        return edges(uc, vc, hu, hv);
+    }
+    if tu == TIER_CLOSED {
+        return gl_mean_1d(tv, vc, hv, uc, hu);
+    }
+    if tv == TIER_CLOSED {
+        return gl_mean_1d(tu, uc, hu, vc, hv);
+    }
+    var acc = 0.0;
+    for (var k = 0u; k < tu / 2u; k++) {
+        let a = hu * gl_node(tu, k);
+        acc += gl_weight(tu, k) * (gl_mean(tv, uc - a, vc, hv) + gl_mean(tv, uc + a, vc, hv));
+    }
+    return acc;
+}
+
+/// Exact box-filtered GGX slope density: the average of the axis-aligned GGX `P22` over the
+/// slope-domain rectangle `center +- half_extent` (KHPL16 eq. 16, normalised by the area as
+/// eq. 16 does; Appendix A's normalisation is four times too large). Half extents count by
+/// magnitude; both zero gives the unfiltered `P22`. Accuracy in the module docs. Never
+/// negative.
+fn p22_rect(r: axis_aligned::AxisAligned, center: vec2<f32>, half_extent: vec2<f32>) -> f32 {
+    if half_extent.x == 0.0 && half_extent.y == 0.0 {
+        return ggx::p22_axis_aligned(r, center);
+    }
+    let a = r.alpha;
+    let c = clamp(center / a, vec2<f32>(-BIG), vec2<f32>(BIG));
+    let h = min(abs(half_extent) / a, vec2<f32>(BIG));
+    return max(mean_f(c.x, c.y, h.x, h.y) * (math::INV_PI / (a.x * a.y)), 0.0);
+}
+
+/// Exact box-filtered GGX per steradian: [`p22_rect`] at the slope `-h_xy / h_z` of the unit
+/// half vector, divided by `h_z^4` (TK19 supplement; the GDC listing without its
+/// `max(1e-3, h_z^4)` clamp). `0` for `h_z <= 0`; a zero footprint gives the unfiltered `D`;
+/// a value beyond the f32 range saturates at `F32_MAX`.
+fn d_rect(r: axis_aligned::AxisAligned, h: vec3<f32>, half_extent: vec2<f32>) -> f32 {
+    if !(h.z > 0.0) {
+        return 0.0;
+    }
+    if half_extent.x == 0.0 && half_extent.y == 0.0 {
+        return ggx::d_axis_aligned(r, h);
+    }
+    let p = p22_rect(r, -h.xy / h.z, half_extent);
+    let z2 = h.z * h.z;
+    return min(p / (z2 * z2), math::F32_MAX);
+}
+
+/// The GDC 2016 listing `GGXRectIntegral` as printed (the eight-term difference of KHPL16
+/// Appendix A over `[hpp - footprint, hpp + footprint]`, divided by `2 pi (x1 - x2)(y1 - y2)`
+/// and by `max(1e-3, h_z^4)`), with `math::atan`: the baseline engines ship. It cancels
+/// catastrophically for small footprints and far from the peak (use [`d_rect`]): its error
+/// is about `16 eps` times the sum of the magnitudes of its eight terms, over the result. A
+/// zero footprint gives 0 (the listing's `0 / 0`).
+fn d_rect_printed(r: axis_aligned::AxisAligned, hpp: vec2<f32>, h: vec3<f32>, footprint: vec2<f32>) -> f32 {
+    let a = r.alpha.x;
+    let b = r.alpha.y;
+    let a_2 = a * a;
+    let b_2 = b * b;
+    let x1 = hpp.x - footprint.x;
+    let x2 = hpp.x + footprint.x;
+    let y1 = hpp.y - footprint.y;
+    let y2 = hpp.y + footprint.y;
+    let sx1 = sqrt(x1 * x1 + a_2);
+    let sx2 = sqrt(x2 * x2 + a_2);
+    let sy1 = sqrt(y1 * y1 + b_2);
+    let sy2 = sqrt(y2 * y2 + b_2);
+    let val = (x1 * (math::atan((y1 * a) / (sx1 * b)) - math::atan((y2 * a) / (sx1 * b)))) / sx1
+        + (x2 * (-math::atan((y1 * a) / (sx2 * b)) + math::atan((y2 * a) / (sx2 * b)))) / sx2
+        + (y1 * sy2 * (math::atan((x1 * b) / (a * sy1)) - math::atan((x2 * b) / (a * sy1)))
+            + y2 * sy1 * (-math::atan((x1 * b) / (a * sy2)) + math::atan((x2 * b) / (a * sy2))))
+            / (sy1 * sy2);
+    let den = (2.0 * math::PI) * (x1 - x2) * (y1 - y2);
+    let hz4 = h.z * h.z * h.z * h.z;
+    let v = val / den / max(hz4, 1e-3);
+    return select(0.0, v, abs(v) <= math::F32_MAX && den != 0.0);
+}

@@ -1,0 +1,95 @@
+#define_import_path filtered_ndf::footprint
+
+#import filtered_ndf::kernel::covariance as cov
+#import filtered_ndf::kernel::rect as bounding
+
+// Pixel footprints in the slope domain (KHPL16 sections 4.2, 4.3; TK19 section 2.2),
+// mirroring `Footprint` of `src/.../footprint/mod.rs`: the slope change of the half vector
+// across one pixel step in `x` (`dh_u`) and in `y` (`dh_v`). A Gaussian pixel filter of
+// standard deviation `sigma` pixels carried into the slope domain has covariance
+// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`.
+
+/// The standard deviation of the pixel filter of KHPL16 and TK19, in pixels.
+const SIGMA_PIXEL: f32 = 0.5;
+
+/// A slope-domain pixel footprint.
+struct Footprint {
+    /// Slope change per pixel step along the image `x` axis.
+    dh_u: vec2<f32>,
+    /// Slope change per pixel step along the image `y` axis.
+    dh_v: vec2<f32>,
+}
+
+/// From slope-domain derivatives, e.g. `dpdx`/`dpdy` of the slope of `h` (KHPL16 section
+/// 5.1).
+fn from_slope_derivatives(dh_u: vec2<f32>, dh_v: vec2<f32>) -> Footprint {
+    return Footprint(dh_u, dh_v);
+}
+
+/// From derivatives of the projected half vector `p = h_xy` (TK19 section 3.2, Listing 1:
+/// `ddx(halfvectorTS.xy)`), used as slope changes directly, as TK19 does (no Jacobian: the
+/// bandwidth shrinks by `h_z` at grazing half vectors relative to the sphere).
+fn from_projected_derivatives(dp_u: vec2<f32>, dp_v: vec2<f32>) -> Footprint {
+    return Footprint(dp_u, dp_v);
+}
+
+/// The slope-domain footprint of disk derivatives at the half vector `h`:
+/// `dh = J(perp->par) dp` (TK19 supplement eq. 6) with `h` normalised and `h_z >= 1e-6`
+/// (written with `h_x^2 + h_z^2` for `1 - h_y^2`). A zero `h` gives a zero footprint.
+fn from_projected_derivatives_in_slope(
+    h_in: vec3<f32>,
+    dp_u: vec2<f32>,
+    dp_v: vec2<f32>,
+) -> Footprint {
+    let big = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if big <= 0.0 {
+        return Footprint(vec2<f32>(0.0), vec2<f32>(0.0));
+    }
+    let h0 = h_in / big;
+    let h = h0 / length(h0);
+    let hz = max(h.z, 1e-6);
+    let k = -1.0 / (hz * hz * hz);
+    let j = mat2x2<f32>(
+        vec2<f32>(h.x * h.x + h.z * h.z, h.x * h.y),
+        vec2<f32>(h.x * h.y, h.y * h.y + h.z * h.z),
+    );
+    return Footprint(j * dp_u * k, j * dp_v * k);
+}
+
+/// The deferred footprint from normal differences to the neighbouring pixels (TK19 section
+/// 4.4, eq. 3) in the tangent frame of the current normal: `2 (dn)_xy / |2 e_z + dn|` per
+/// difference (the derivative of the half-way normal on the disk, whose length is `|dn|`
+/// for unit normals), the denominator clamped to `>= 1e-6`.
+fn from_normal_differences(dn_u: vec3<f32>, dn_v: vec3<f32>) -> Footprint {
+    let lu = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_u), 1e-6);
+    let lv = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_v), 1e-6);
+    return Footprint(dn_u.xy * (2.0 / lu), dn_v.xy * (2.0 / lv));
+}
+
+/// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels, with
+/// `det Sigma = sigma^4 (dh_u x dh_v)^2` from the vectors (accurate for elongated kernels).
+fn covariance(fp: Footprint, sigma: f32) -> cov::Covariance {
+    let u = fp.dh_u;
+    let v = fp.dh_v;
+    let s2 = sigma * sigma;
+    let cross = (u.x * v.y - u.y * v.x) * s2;
+    return cov::Covariance(
+        (u.x * u.x + v.x * v.x) * s2,
+        (u.x * u.y + v.x * v.y) * s2,
+        (u.y * u.y + v.y * v.y) * s2,
+        cross * cross,
+    );
+}
+
+/// The axis-aligned bounding rectangle of the one-pixel parallelogram (KHPL16 section 5.3;
+/// GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
+/// `(|dh_u| + |dh_v|) / 2` per axis.
+fn bounding_rect(fp: Footprint) -> bounding::BoundingRect {
+    return bounding::BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
+}
+
+/// The largest centre-to-vertex distance of the one-pixel parallelogram,
+/// `max(|dh_u + dh_v|, |dh_u - dh_v|) / 2`: the extent clamped by KHPL16 section 5.2.
+fn max_extent(fp: Footprint) -> f32 {
+    return 0.5 * max(length(fp.dh_u + fp.dh_v), length(fp.dh_u - fp.dh_v));
+}

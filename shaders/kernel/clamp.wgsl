@@ -1,0 +1,106 @@
+#define_import_path filtered_ndf::kernel::clamp
+
+#import filtered_ndf::math
+#import filtered_ndf::footprint as pixel
+#import filtered_ndf::kernel::covariance
+#import filtered_ndf::kernel::rect as bounding
+#import filtered_ndf::ndf::roughness::matrix
+#import filtered_ndf::filter::gaussian
+
+// The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, GDC 2016,
+// TK19 eq. 1 and supplement), mirroring `ClampRules` of `src/.../kernel/clamp.rs`. A rule is
+// off when its bound is `F32_MAX` (`max_extent`, `kappa`; the Rust `F::INFINITY`),
+// `FLOOR_NONE`, or `det_clamp = false`.
+
+/// No rectangle floor.
+const FLOOR_NONE: u32 = 0u;
+/// Half-extents `>= floor` on both axes (KHPL16 section 5.2, `epsilon = 1e-3`).
+const FLOOR_CONSTANT: u32 = 1u;
+/// Half-extents `>= min(alpha_axis, floor)` per axis (GDC 2016 `min(roughness, 0.1)`).
+const FLOOR_ALPHA_CAPPED: u32 = 2u;
+
+/// The clamping rules.
+struct ClampRules {
+    /// `lambda`: the largest centre-to-vertex extent of the parallelogram and the largest
+    /// rectangle half-extent (slope units).
+    max_extent: f32,
+    /// `FLOOR_NONE`, `FLOOR_CONSTANT` or `FLOOR_ALPHA_CAPPED`.
+    floor_kind: u32,
+    /// The floor's constant (`epsilon`, or the cap of `FLOOR_ALPHA_CAPPED`).
+    floor: f32,
+    /// `kappa`: the largest kernel roughness^2 `2 lambda_i(Sigma)` per eigen-direction.
+    kappa: f32,
+    /// Evaluate filtered matrices with `tau = det(A_unfiltered)`.
+    det_clamp: bool,
+}
+
+/// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
+const DEFAULT_RULES: ClampRules = ClampRules(1.0, FLOOR_CONSTANT, 1e-3, 0.18, true);
+/// No clamping (unbiased; for references and the exact rectangle integral).
+const NO_RULES: ClampRules = ClampRules(math::F32_MAX, FLOOR_NONE, 0.0, math::F32_MAX, false);
+/// The GDC 2016 listing: `fp = clamp(fp, min(roughness, 0.1), 1)`, no `kappa`, with `tau`.
+const GDC2016_RULES: ClampRules = ClampRules(1.0, FLOOR_ALPHA_CAPPED, 0.1, math::F32_MAX, true);
+
+/// The maximum-extent rule on a parallelogram (KHPL16 section 5.2): both vectors scaled by
+/// `min(1, lambda / max_extent)`, keeping the shape. The extent is measured on the
+/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0.
+fn footprint(rules: ClampRules, fp: pixel::Footprint) -> pixel::Footprint {
+    let l = max(rules.max_extent, 0.0);
+    let scale = max(max(abs(fp.dh_u.x), abs(fp.dh_u.y)), max(abs(fp.dh_v.x), abs(fp.dh_v.y)));
+    if scale <= 0.0 {
+        return fp;
+    }
+    let unit = pixel::Footprint(fp.dh_u / scale, fp.dh_v / scale);
+    let e = pixel::max_extent(unit);
+    if e * scale <= l {
+        return fp;
+    }
+    return pixel::Footprint(unit.dh_u / e * l, unit.dh_v / e * l);
+}
+
+/// The rectangle rules: half-extents taken by magnitude, clamped to `[floor, lambda]` per
+/// axis (KHPL16 section 5.2; GDC 2016 `clamp(fp, fp_min, fp_max)`), `alpha` the lobe's
+/// per-axis roughness for `FLOOR_ALPHA_CAPPED`; if the floor exceeds `lambda` the floor wins.
+fn rect(rules: ClampRules, r: bounding::BoundingRect, alpha: vec2<f32>) -> bounding::BoundingRect {
+    var f = vec2<f32>(0.0);
+    if rules.floor_kind == FLOOR_CONSTANT {
+        f = vec2<f32>(rules.floor);
+    } else if rules.floor_kind == FLOOR_ALPHA_CAPPED {
+        f = min(abs(alpha), vec2<f32>(rules.floor));
+    }
+    let lambda = max(rules.max_extent, 0.0);
+    let h = min(abs(r.half_extent), vec2<f32>(lambda));
+    return bounding::BoundingRect(max(h, max(f, vec2<f32>(0.0))));
+}
+
+/// The kernel-roughness rule of TK19 eq. 1 in matrix form: `2 Sigma'` has the eigenvalues
+/// `min(2 lambda_i, kappa)` and `Sigma`'s eigenvectors, after `covariance::sanitized`. A
+/// negative `kappa` counts as 0.
+fn kernel(rules: ClampRules, k: covariance::Covariance) -> covariance::Covariance {
+    let s = covariance::sanitized(k);
+    if rules.kappa >= math::F32_MAX {
+        return s;
+    }
+    return covariance::clamp_eigenvalues(s, 0.5 * max(rules.kappa, 0.0));
+}
+
+/// The determinant clamp for filtering `a`: `max(det A, tau_a)` if `det_clamp`, else 0.
+fn tau(rules: ClampRules, a: matrix::RoughnessMatrix) -> f32 {
+    return select(0.0, a.sqrt_det * a.sqrt_det, rules.det_clamp);
+}
+
+/// The whole Gaussian pipeline: [`footprint`] -> `pixel::covariance` (`sigma` pixels)
+/// -> [`kernel`] -> `A' = A + 2 Sigma` with `tau = det A` if `det_clamp` (the TK19 matrix
+/// filter; exact for Beckmann).
+fn filter_gaussian(
+    rules: ClampRules,
+    a: matrix::RoughnessMatrix,
+    fp: pixel::Footprint,
+    sigma: f32,
+) -> matrix::RoughnessMatrix {
+    let k = kernel(rules, pixel::covariance(footprint(rules, fp), sigma));
+    if rules.det_clamp {
+        return gaussian::gaussian_sanitized(a, k);
+    }
+    return gaussian::gaussian_with_tau_sanitized(a, k, 0.0);
+}

@@ -1,0 +1,97 @@
+#define_import_path filtered_ndf::math
+
+// The constants and the driver-independent elementary functions of the shader modules
+// (`src/math.rs` is the Rust counterpart: the one switch for the float backend).
+//
+// WGSL lets a driver evaluate `atan` to 4096 ulp and `sin`/`cos` to an absolute 2^-11
+// (WGSL spec, "Floating Point Accuracy"); Mesa's llvmpipe `atan` errs by 2e-5 relative. Where
+// a kernel needs better, it calls the functions below, which use only `+`, `-`, `*` (correctly
+// rounded in WGSL), `/` (2.5 ulp) and selects. Their bounds are stated in ulp of f32
+// (`eps = 2^-23 = 1.19e-7`) and checked on the GPU by the conformance harness
+// (`gpu/src/checks/math.rs`).
+//
+// Infinities and NaN: WGSL allows a driver to assume they never occur at run time, so no
+// function here returns them on purpose. Where the Rust crate returns `+inf`, the shader
+// returns `F32_MAX` (documented at each function).
+
+/// pi.
+const PI: f32 = 3.14159265358979;
+/// pi / 2.
+const HALF_PI: f32 = 1.57079632679490;
+/// pi / 4.
+const QUARTER_PI: f32 = 0.785398163397448;
+/// 1 / pi.
+const INV_PI: f32 = 0.318309886183791;
+/// The largest finite f32: the shader's stand-in for the Rust crate's `+inf`.
+const F32_MAX: f32 = 3.40282347e38;
+/// The smallest positive normal f32, `2^-126` (GPUs may flush smaller results to 0).
+const F32_MIN_POSITIVE: f32 = 1.17549435e-38;
+
+/// `tan(pi / 8)`: the reduced argument of [`atan`] stays within `[-TAN_EIGHTH_PI, TAN_EIGHTH_PI]`.
+const TAN_EIGHTH_PI: f32 = 0.414213562373095;
+
+/// Arc tangent (radians) with relative error below 8 ulp (`1e-6`) for every finite `x`,
+/// whatever the driver's `atan`.
+///
+/// Reduction: `atan(x) = pi/2 - atan(1/x)` for `|x| > 1`, then
+/// `atan(t) = pi/4 + atan((t - 1) / (t + 1))` for `t > tan(pi/8)`, leaving `|u| <= tan(pi/8)`,
+/// where `atan(u) = u + u^3 P(u^2)` with a degree-4 polynomial `P` fitted at Chebyshev nodes
+/// of `u^2` in `[0, tan^2(pi/8)]` (approximation error `3e-9` relative with the coefficients
+/// rounded to f32). Rounding: the reduced argument carries at most 4 ulp, which the
+/// reduction maps to at most 2 ulp of the result (`atan u <= 0.39` is added to `pi/4`), the
+/// polynomial and the final additions at most 3 ulp more. Odd in `x`; `atan(0) = 0`.
+fn atan(x: f32) -> f32 {
+    let a = abs(x);
+    let inv = a > 1.0;
+    var t = select(a, 1.0 / a, inv);
+    let shift = t > TAN_EIGHTH_PI;
+    t = select(t, (t - 1.0) / (t + 1.0), shift);
+    let z = t * t;
+    let p = ((((-0.06451927870512009 * z + 0.10743731260299683) * z - 0.14263956248760223) * z
+        + 0.19999539852142334) * z - 0.3333333134651184);
+    var r = t + t * z * p;
+    r = select(r, QUARTER_PI + r, shift);
+    r = select(r, HALF_PI - r, inv);
+    return select(r, -r, x < 0.0);
+}
+
+/// `(cos(2 pi u), sin(2 pi u))` for a turn fraction `u` (an angle of `u` full turns), with
+/// absolute error below 3 ulp of 1 (`4e-7`) for `|u| < 2^20`, whatever the driver's
+/// `sin`/`cos`. Sampling needs this: WGSL allows `sin`/`cos` an absolute error of `2^-11`.
+///
+/// Reduction by quarter turns, exact in f32: `q = round(4 u)`, `r = u - q / 4` in
+/// `[-1/8, 1/8]`; then `sin(2 pi r) = r S(r^2)`, `cos(2 pi r) = C(r^2)` with degree-4
+/// polynomials fitted at Chebyshev nodes of `r^2` in `[0, 1/64]` (approximation error
+/// `4e-8` with f32 coefficients, dominated by `2 pi` rounded to f32), and the quadrant
+/// applied by exact sign changes and swaps.
+fn sincos_turns(u: f32) -> vec2<f32> {
+    let q = round(4.0 * u);
+    let r = u - 0.25 * q;
+    let z = r * r;
+    let s = r * ((((41.47283172607422 * z - 76.69786834716797) * z + 81.6052017211914) * z
+        - 41.34170150756836) * z + 6.2831854820251465);
+    let c = (((59.22016906738281 * z - 85.4428482055664) * z + 64.93931579589844) * z
+        - 19.739208221435547) * z + 1.0;
+    let k = i32(q) & 3;
+    var cs = vec2<f32>(c, s);
+    if k == 1 {
+        cs = vec2<f32>(-s, c);
+    } else if k == 2 {
+        cs = vec2<f32>(-c, -s);
+    } else if k == 3 {
+        cs = vec2<f32>(s, -c);
+    }
+    return cs;
+}
+
+/// `sqrt(x^2 + y^2)` without overflow or underflow of the squares (both scaled by the larger
+/// magnitude first): within 5 ulp. `0` for `x = y = 0`.
+fn hypot(x: f32, y: f32) -> f32 {
+    let m = max(abs(x), abs(y));
+    if m <= 0.0 {
+        return 0.0;
+    }
+    let a = x / m;
+    let b = y / m;
+    return m * sqrt(a * a + b * b);
+}
