@@ -12,26 +12,26 @@ pub use filtered_ndf::f64::{
 pub use filtered_ndf::testing::{rng::SplitMix64, strategies};
 pub use glam::{DVec2, DVec3};
 
+/// `f64::footprint::BoundingRect`.
+pub use filtered_ndf::f64::BoundingRect;
 /// `f64::ExtentFloor`.
 pub use filtered_ndf::f64::ExtentFloor;
 /// `f64::filter`: Gaussian, LEAN and projected (TK21) filtering.
 pub use filtered_ndf::f64::filter;
-/// `f64::footprint::BoundingRect`.
-pub use filtered_ndf::f64::BoundingRect;
+/// `f64::isotropic`: `KernelConvention` and its parts.
+pub use filtered_ndf::f64::filter::deferred;
+/// `f64::presets`: the 12 deferred conventions.
+pub use filtered_ndf::f64::filter::presets;
 /// `f64::ggx_proxy`: the GGX proxy roughness (KHPL16 eq. 19, 20).
 pub use filtered_ndf::f64::filter::proxy;
 /// `f64::ggx_rect`: the exact GGX box filter.
 pub use filtered_ndf::f64::filter::rect;
-/// `f64::isotropic`: `KernelConvention` and its parts.
-pub use filtered_ndf::f64::filter::deferred;
 /// `f64::jacobian`: their Jacobians.
 pub use filtered_ndf::f64::footprint::jacobian;
-/// `f64::presets`: the 12 deferred conventions.
-pub use filtered_ndf::f64::filter::presets;
-/// `f64::sampling::reflect`.
-pub use filtered_ndf::f64::sampling;
 /// `f64::slope`: the maps between the half-vector domains.
 pub use filtered_ndf::f64::footprint::slope;
+/// `f64::sampling::reflect`.
+pub use filtered_ndf::f64::sampling;
 /// `filtered_ndf::math`: the float backend switch (atan, ...).
 pub use filtered_ndf::math;
 
