@@ -238,13 +238,13 @@ mod findings {
     }
 
     #[test]
-    fn gaussian_with_tau_zero_and_an_underflowing_det() {
+    fn gaussian_with_det_clamp_zero_and_an_underflowing_det() {
         // f32: the filtered det underflowed to 0 without tau: sqrt_det 0, inverse inf.
         use f32::Roughness;
         let r = f32::RoughnessMatrix::new_with_det_clamp(2.2525264e-23, 0.0, 2.2525264e-23, 1e-16)
             .unwrap();
         let k = f32::Covariance::new(1.1262632e-23, 1.1262632e-23, 0.0);
-        let g = f32::filter::gaussian_with_tau(r, k, 0.0);
+        let g = f32::filter::gaussian_with_det_clamp(r, k, 0.0);
         assert!(
             g.sqrt_det() > 0.0 && g.sqrt_det().is_finite(),
             "{:?}",
