@@ -149,7 +149,11 @@ macro_rules! contract {
                     assert_eq!(n.p22(Vec2::new(INF, 0.0)), 0.0);
                     assert_eq!(n.p22(Vec2::new(-INF, INF)), 0.0);
                     // NaN policy (src/ndf/mod.rs): a NaN argument contributes nothing.
-                    for s in [Vec2::new(NAN, 0.0), Vec2::new(0.0, NAN), Vec2::new(NAN, INF)] {
+                    for s in [
+                        Vec2::new(NAN, 0.0),
+                        Vec2::new(0.0, NAN),
+                        Vec2::new(NAN, INF),
+                    ] {
                         assert_eq!(n.p22(s), 0.0, "{s:?}");
                     }
                 }

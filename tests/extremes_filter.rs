@@ -143,11 +143,14 @@ macro_rules! sweep {
                     });
                     let (n11, n12, n22) = (a2, r(2.0 * alpha * alpha), r(4.0 * alpha * alpha));
                     let tau = r((0.1 * alpha * alpha).powi(2));
-                    if RoughnessMatrix::new_with_det_clamp(f(n11), f(n12), f(n22), f(tau)).is_ok() {
+                    if let Ok(m) = RoughnessMatrix::new_with_det_clamp(f(n11), f(n12), f(n22), f(tau)) {
+                        // The lobe is A_c = A + t I (det tau) with its pivot rounded to F
+                        // (RoughnessMatrix docs): the reference filters that matrix.
+                        let p = m.clamped_entries().0.to_f64();
                         out.push(Base {
                             alpha: label,
                             form: "singular + tau",
-                            a: DdSym::new(n11, n12, n22),
+                            a: DdSym::ldl(p, n12, tau),
                             tau,
                             entries: (n11, n12, n22),
                         });

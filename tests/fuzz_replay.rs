@@ -320,10 +320,13 @@ mod findings {
     #[test]
     fn det_clamp_above_the_range_is_refused() {
         // tau = F::MAX was accepted: sqrt_det 1.3e154 against entries 1e-16, and the samplers
-        // of that lobe returned NaN (GGX sample_normal) or normals on the horizon.
+        // of that lobe returned NaN (GGX sample_normal) or normals on the horizon. The clamped
+        // matrix A_c = A + t I (det tau) must have its eigenvalues in range: tau = 1e17 gives
+        // t ~ 3e8 > ALPHA_MAX^2 (tau = 1e9 is A_c ~ 3e4 I, a valid lobe since the clamp became
+        // one matrix).
         let r = f64::RoughnessMatrix::new_with_det_clamp(1e-16, 0.0, 1.0, f64::MAX);
         assert_eq!(r.err(), Some(filtered_ndf::RoughnessError::OutOfRange));
-        let r = f32::RoughnessMatrix::new_with_det_clamp(1e-8, 0.0, 1e-8, 1e9);
+        let r = f32::RoughnessMatrix::new_with_det_clamp(1e-8, 0.0, 1e-8, 1e17);
         assert_eq!(r.err(), Some(filtered_ndf::RoughnessError::OutOfRange));
     }
 

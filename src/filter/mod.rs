@@ -36,8 +36,8 @@ mod projected;
 pub mod proxy;
 pub mod rect;
 
-pub use gaussian::{gaussian, gaussian_with_det_clamp};
 pub(crate) use gaussian::gaussian_sanitized;
+pub use gaussian::{gaussian, gaussian_with_det_clamp};
 pub use lean::{LeanMoments, lean};
 pub(crate) use projected::projected_sanitized;
 pub use projected::{PROJECTED_EIGEN_MAX, projected, projected_with_det_clamp};

@@ -144,7 +144,10 @@ impl RoughnessMatrix {
         if a11 <= 0.0 || a22 <= 0.0 || det_clamp < 0.0 {
             return Err(RoughnessError::NotPositive);
         }
-        let (lo, hi) = ((ALPHA_MIN * ALPHA_MIN).to_f64(), (ALPHA_MAX * ALPHA_MAX).to_f64());
+        let (lo, hi) = (
+            (ALPHA_MIN * ALPHA_MIN).to_f64(),
+            (ALPHA_MAX * ALPHA_MAX).to_f64(),
+        );
         // Entries beyond the eigenvalue range would overflow the determinant below.
         if a11.to_f64() > hi || a22.to_f64() > hi || a12.abs().to_f64() > hi {
             return Err(RoughnessError::OutOfRange);
