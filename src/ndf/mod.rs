@@ -43,10 +43,12 @@ pub trait Ndf {
     /// In `[0, 1]`; `0` for `w.m <= 0`, for grazing `w` and for a NaN component.
     #[inline]
     fn g1(&self, w: Vec3, m: Vec3) -> F {
-        if !(w.dot(m) > 0.0) {
-            return 0.0;
+        // `>` is false for NaN: a NaN direction masks completely (the NaN policy).
+        if w.dot(m) > 0.0 {
+            1.0 / (1.0 + self.lambda(w))
+        } else {
+            0.0
         }
-        1.0 / (1.0 + self.lambda(w))
     }
 
     /// Height-correlated masking-shadowing
@@ -54,10 +56,11 @@ pub trait Ndf {
     /// section 1; Heitz 2014 eq. 99). In `[0, 1]`; `0` for a NaN component.
     #[inline]
     fn g2(&self, i: Vec3, o: Vec3, m: Vec3) -> F {
-        if !(i.dot(m) > 0.0 && o.dot(m) > 0.0) {
-            return 0.0;
+        if i.dot(m) > 0.0 && o.dot(m) > 0.0 {
+            1.0 / (1.0 + self.lambda(i) + self.lambda(o))
+        } else {
+            0.0
         }
-        1.0 / (1.0 + self.lambda(i) + self.lambda(o))
     }
 }
 
