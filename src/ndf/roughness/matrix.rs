@@ -37,7 +37,9 @@ use crate::math::{self as m, Real};
 /// `L D L^T` factors: the pivot `p = (A_c)_11` (`a11 + t` rounded to `F`; `a11` when the
 /// clamp is inactive) and `c = det A_c` in `f64`. Then
 /// `A_c = [[p, a12], [a12, (a12^2 + c) / p]]`, symmetric positive definite with determinant
-/// exactly `c` whatever the rounding of `p`, and
+/// exactly `c` whatever the rounding of `p` (which moves `A_c` off the exact `A + t I` by
+/// `eps / 2` of its (1, 1) entry, and its quadratic forms by at most `kappa eps / 2`: the
+/// clamped lobe is stored to the precision, as any filtered lobe's entries are), and
 ///
 /// - `s^T A_c^-1 s = ((p s_y - a12 s_x)^2 + c s_x^2) / (p c)`,
 /// - `w^T A_c w = ((p w_x + a12 w_y)^2 + c w_y^2) / p`,
@@ -50,11 +52,12 @@ use crate::math::{self as m, Real};
 ///   determinant of the `f32` entries rounded once: each form is within a few `eps_f64` before
 ///   its one rounding to `f32`, i.e. within `eps_f32 / 2 + 8 eps_f64`.
 /// - **`f64`**: `c` within `16 eps` (`roughness::det_wide`); `u`'s cancellation costs at most
-///   `2 sqrt(2 kappa) eps` (`|u| <= sqrt(p c q)` and its rounding error is at most
-///   `eps |s| sqrt(2 p lambda_max)`), so each form is within `(2 sqrt(2 kappa) + 24) eps`.
-///   (An eigenbasis representation has the same `sqrt(kappa) eps` loss in the rotation of `s`;
-///   removing it needs an error-free product per evaluation, a library `fma` call without the
-///   `fma` target feature.)
+///   `sqrt(kappa) eps` of the form `q` (`|u| <= sqrt(p c q)`, its rounding error is at most
+///   `eps |s| sqrt(p lambda_max) / 2`, and `q >= |s|^2 / lambda_max`), so each form is within
+///   `(sqrt(kappa) + 24) eps` (`tests/matrix_representations.rs`, condition numbers to
+///   `1e12`). An eigenbasis representation has the same `sqrt(kappa) eps` loss in the
+///   rotation of `s`; removing it needs an error-free product per evaluation, a library `fma`
+///   call without the `fma` target feature, which would make every `f64` evaluation slower.
 ///
 /// Building a matrix costs one square root and one division (a lobe built per pixel, as
 /// filtering does, stays cheap); the clamp adds a square root where it is active.
