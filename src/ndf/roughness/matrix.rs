@@ -304,7 +304,8 @@ impl From<Isotropic> for RoughnessMatrix {
     }
 }
 
-/// A quadratic form `q = form(v)` evaluated in `f64`, clamped to `>= 0` and rounded to `F`.
+/// A quadratic form `q = form(v)` evaluated in `f64` (a sum of non-negative terms times a
+/// positive factor, so `>= 0` without a clamp) and rounded to `F`.
 /// A NaN `q` for a finite `v` can only come from overflow (`inf - inf`, for `f64` input;
 /// never for `f32`, whose squares fit in `f64`): the form is then evaluated on `v / k`,
 /// `k = max |v_i|`, and scaled back by `k^2` (`+inf` if that overflows). A non-finite `v`
@@ -312,7 +313,7 @@ impl From<Isotropic> for RoughnessMatrix {
 #[inline]
 fn wide_form(q: f64, v: Vec2, form: impl Fn(f64, f64) -> f64) -> F {
     if !q.is_nan() {
-        return F::from_f64(q.max(0.0));
+        return F::from_f64(q);
     }
     // `f32` input cannot overflow in `f64`: a NaN means a non-finite input (decided without
     // the rescaling branch, which keeps `batch` loops vectorised).
@@ -320,7 +321,7 @@ fn wide_form(q: f64, v: Vec2, form: impl Fn(f64, f64) -> f64) -> F {
         return if v.is_nan() { F::NAN } else { F::INFINITY };
     }
     let k = v.abs().max_element().to_f64();
-    F::from_f64((form(v.x.to_f64() / k, v.y.to_f64() / k) * k * k).max(0.0))
+    F::from_f64(form(v.x.to_f64() / k, v.y.to_f64() / k) * k * k)
 }
 
 impl sealed::Sealed for RoughnessMatrix {
