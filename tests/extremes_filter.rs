@@ -143,14 +143,11 @@ macro_rules! sweep {
                     });
                     let (n11, n12, n22) = (a2, r(2.0 * alpha * alpha), r(4.0 * alpha * alpha));
                     let tau = r((0.1 * alpha * alpha).powi(2));
-                    if let Ok(m) = RoughnessMatrix::new_with_det_clamp(f(n11), f(n12), f(n22), f(tau)) {
-                        // The lobe is A_c = A + t I (det tau) with its pivot rounded to F
-                        // (RoughnessMatrix docs): the reference filters that matrix.
-                        let p = m.clamped_entries().0.to_f64();
+                    if RoughnessMatrix::new_with_det_clamp(f(n11), f(n12), f(n22), f(tau)).is_ok() {
                         out.push(Base {
                             alpha: label,
                             form: "singular + tau",
-                            a: DdSym::ldl(p, n12, tau),
+                            a: DdSym::new(n11, n12, n22),
                             tau,
                             entries: (n11, n12, n22),
                         });
@@ -182,6 +179,18 @@ macro_rules! sweep {
                     });
                 }
                 out
+            }
+
+            /// The reference lobe of a filtered matrix `m` under the clamp `tau`: `a` itself
+            /// where its determinant reaches `tau`, else the clamped matrix `A_c` of
+            /// determinant `tau` with the result's pivot (`RoughnessMatrix` docs: `A + t I`
+            /// with the pivot rounded to F, checked in `tests/matrix_representations.rs`).
+            fn clamp_ref(a: DdSym, tau: f64, m: &RoughnessMatrix) -> DdSym {
+                if a.det().f() >= tau {
+                    a
+                } else {
+                    DdSym::ldl(m.clamped_entries().0.to_f64(), a.a12.f(), tau)
+                }
             }
 
             fn matrix(b: &Base) -> RoughnessMatrix {
@@ -233,6 +242,7 @@ macro_rules! sweep {
                         let aref = b.a.add(&sig.scale(2.0));
                         let tau = max_dd(b.a.det(), b.tau).f();
                         let m = filter::gaussian(matrix(&b), Covariance::new(f(k.s.0), f(k.s.1), f(k.s.2)));
+                        let aref = clamp_ref(aref, tau, &m);
                         // Tolerance: the filtered entries A + 2 Sigma are rounded to F before
                         // the determinant, so a density of a matrix of condition kappa can be
                         // off by ~kappa eps (the clamp tau = det A bounds the loss from
@@ -276,6 +286,7 @@ macro_rules! sweep {
                         let tau = max_dd(b.a.det(), b.tau).f();
                         match projected_ref(&b, &sig) {
                             Some((aref, cond_q)) => {
+                                let aref = clamp_ref(aref, tau, &m);
                                 // Tolerance: as gaussian (entries rounded to F, 64 (1 + kappa)
                                 // eps), times 1 / (1 - lambda_max) for the map P = A (I - A)^-1,
                                 // whose condition grows towards the clamp at 0.99, plus the

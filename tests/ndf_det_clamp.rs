@@ -269,3 +269,23 @@ fn clamped_lambda_satisfies_the_smith_identity() {
         }
     }
 }
+
+#[test]
+fn filtering_a_clamped_lobe_with_a_zero_kernel_returns_it() {
+    // Filters add the kernel to A as given and clamp the result with det(A_c): a zero kernel
+    // is the lobe unchanged, by value (the entries and the clamped determinant).
+    use filtered_ndf::f64::{ClampRules, Covariance, Footprint, filter};
+    for c in cases() {
+        let r = c.matrix();
+        assert_eq!(filter::gaussian(r, Covariance::ZERO), r, "{}", c.name);
+        assert_eq!(
+            ClampRules::default().filter_gaussian(r, Footprint::ZERO, 0.5),
+            r
+        );
+        // A kernel never sharpens the clamped lobe: det(A') >= det(A_c) = tau.
+        let k = Covariance::new(1e-4, 2e-5, 3e-5);
+        for f in [filter::gaussian(r, k), filter::projected(r, k)] {
+            assert!(f.clamped_det() >= c.tau, "{}: {f:?}", c.name);
+        }
+    }
+}

@@ -17,8 +17,10 @@ use crate::math::Real;
 ///
 /// `tau = det(A)` has no bias in exact arithmetic since `det(A + 2 Sigma) >= det(A)` for
 /// `Sigma >= 0`; it is the determinant of the entries as stored, in `f64`
-/// (`roughness::det_wide`; for a clamped [`RoughnessMatrix`] its `A_c`, to which the kernel is
-/// added). Units: `A` dimensionless (slope^2), `Sigma` slope^2.
+/// (`roughness::det_wide`). A clamped [`RoughnessMatrix`] is filtered as `A + 2 Sigma` (its
+/// entries as given) with its own `tau = det A_c`: a zero kernel returns the lobe unchanged,
+/// and the filtered lobe is never sharper than the clamped one. Units: `A` dimensionless
+/// (slope^2), `Sigma` slope^2.
 #[inline(always)]
 pub fn gaussian<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatrix {
     gaussian_sanitized(roughness, kernel.sanitized(), roughness.lobe_det())
@@ -51,7 +53,7 @@ pub(crate) fn gaussian_sanitized<R: Roughness>(
     k: Covariance,
     tau: f64,
 ) -> RoughnessMatrix {
-    let (a11, a12, a22) = roughness.lobe_entries();
+    let (a11, a12, a22) = roughness.entries_f();
     let (b11, b12, b22) = (a11 + 2.0 * k.s11, a12 + 2.0 * k.s12, a22 + 2.0 * k.s22);
     RoughnessMatrix::from_entries(b11, b12, b22, valid_clamp(roughness, (b11, b12, b22), tau))
 }

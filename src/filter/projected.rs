@@ -72,7 +72,7 @@ pub(crate) fn projected_sanitized<R: Roughness>(
     k: Covariance,
     tau: f64,
 ) -> RoughnessMatrix {
-    let (a11, a12, a22) = roughness.lobe_entries();
+    let (a11, a12, a22) = roughness.entries_f();
     let w = |x: F| x.to_f64();
     let (r11, r12, r22) = projected_wide((w(a11), w(a12), w(a22)), (w(k.s11), w(k.s12), w(k.s22)));
     // Never below A on the diagonal (exact, by monotonicity): rounding in the excess split

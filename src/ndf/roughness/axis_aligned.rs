@@ -68,7 +68,7 @@ impl sealed::Sealed for AxisAligned {
         det_wide(self.alpha2.x, 0.0, self.alpha2.y)
     }
     #[inline(always)]
-    fn lobe_entries(&self) -> (F, F, F) {
+    fn entries_f(&self) -> (F, F, F) {
         (self.alpha2.x, 0.0, self.alpha2.y)
     }
     #[inline(always)]

@@ -53,7 +53,7 @@ impl sealed::Sealed for Isotropic {
         det_wide(a2, 0.0, a2)
     }
     #[inline(always)]
-    fn lobe_entries(&self) -> (F, F, F) {
+    fn entries_f(&self) -> (F, F, F) {
         let a2 = self.alpha * self.alpha;
         (a2, 0.0, a2)
     }

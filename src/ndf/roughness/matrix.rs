@@ -342,8 +342,8 @@ impl sealed::Sealed for RoughnessMatrix {
         self.det
     }
     #[inline(always)]
-    fn lobe_entries(&self) -> (F, F, F) {
-        self.clamped_entries()
+    fn entries_f(&self) -> (F, F, F) {
+        self.entries()
     }
     #[inline(always)]
     fn cholesky(&self) -> (F, F, F) {

@@ -56,9 +56,10 @@ pub(crate) mod sealed {
         /// use as their clamp `tau`, so that a kernel too small to change the entries meets
         /// the clamp with equality.
         fn lobe_det(&self) -> f64;
-        /// The entries `(a11, a12, a22)` of the evaluated matrix in `F` (what a filter adds
-        /// its kernel to).
-        fn lobe_entries(&self) -> (F, F, F);
+        /// The entries `(a11, a12, a22)` of `A` in `F`, as given (for a clamped matrix `A`,
+        /// not `A_c`): what a filter adds its kernel to, before clamping the result with
+        /// [`Sealed::lobe_det`], so that a zero kernel returns the lobe unchanged.
+        fn entries_f(&self) -> (F, F, F);
         /// The lower Cholesky factor `(l11, l21, l22)` of the evaluated matrix,
         /// `A = [[l11, 0], [l21, l22]] [[l11, l21], [0, l22]]` (the samplers' warp).
         fn cholesky(&self) -> (F, F, F);
