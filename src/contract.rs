@@ -63,58 +63,58 @@
 //! eps` (plus `4 eps / wo.m` where `wo.m` cancels); Jacobians `16 eps` (determinants) and `64 eps`
 //! of the largest entry; `filter::gaussian` `64 (1 + kappa) eps` with `kappa` the condition number
 //! of the filtered matrix (its entries are rounded to `F` before the determinant);
-//! `filter::projected` additionally `/ (1 - lambda_max)` and `+ kappa(P + 2 Sigma)` (the
-//! projected-space sum is formed in `F`); the rectangle integral `64 eps` (`+ 1e-7` in `f64`,
-//! the module's documented worst case); proxy `16 eps`; isotropic filters `8 eps`, presets `64
-//! eps`; normalisation (f64 only) ten times the quadrature goal.
+//! `filter::projected` additionally `/ (1 - lambda_max)` and `+ kappa(P + 2 Sigma)` (allowing
+//! for a projected-space sum formed in `F`; it is formed in `f64`); the rectangle integral
+//! `64 eps` (`+ 1e-7` in `f64`, the module's documented worst case); proxy `16 eps`; isotropic
+//! filters `8 eps`, presets `64 eps`; normalisation (f64 only) ten times the quadrature goal.
 //!
-//! Known limits visible in the map: `filter::projected` and `filter::gaussian` in `f32` lose
-//! `~kappa eps` for elongated kernels at footprint 1e3 (`1.3e-3` and `3e-4`): the
-//! filtered (projected-space) matrix is formed in `F` and its determinant cancels; the footprint
-//! clamp `lambda = 1` of [`ClampRules`](crate::f32::ClampRules) keeps shading inputs away from
-//! this region. The Beckmann densities carry the conditioning of `exp` (`7.5e-6` in `f32` at a
-//! few lobe widths).
+//! Known limits visible in the map: `filter::gaussian` and `filter::projected` in `f32` lose
+//! `~kappa eps` for elongated kernels at footprint 1e3 (`3e-4` and `1.5e-4`): the filtered
+//! matrix's entries are rounded to `F` (`projected` computes in `f64` and rounds them once)
+//! and its determinant cancels; the footprint clamp `lambda = 1` of
+//! [`ClampRules`](crate::f32::ClampRules) keeps shading inputs away from this region. The
+//! Beckmann densities carry the conditioning of `exp` (`3.4e-6` in `f32` at a few lobe widths).
 //!
 //! ### NDFs: worst relative error, f32 / f64
 //!
 //! | region | GGX p22 | GGX D | GGX 1+Lambda | Beckmann p22 | Beckmann D | Beckmann 1+Lambda |
 //! |---|---|---|---|---|---|---|
-//! | alpha 1e-7 | 2.2e-7 / 9.0e-16 | 2.2e-7 / 6.3e-16 | 6.6e-9 / 0 | 1.8e-6 / 5.8e-15 | 1.8e-6 / 2.6e-14 | 1.0e-10 / 0 |
+//! | alpha 1e-7 | 2.2e-7 / 9.7e-16 | 2.2e-7 / 4.7e-16 | 6.6e-9 / 0 | 1.8e-6 / 5.8e-15 | 1.8e-6 / 2.6e-14 | 1.0e-10 / 0 |
 //! | isotropic | 2.2e-7 / 6.0e-16 | 2.2e-7 / 6.6e-16 | 7.6e-8 / 2.8e-16 | 1.8e-6 / 4.6e-15 | 1.8e-6 / 3.3e-15 | 3.3e-8 / 2.3e-16 |
-//! | pole | 1.0e-7 / 0 | 1.0e-7 / 0 | 0 / 0 | 1.0e-7 / 1.5e-15 | 1.3e-7 / 1.3e-15 | 0 / 0 |
-//! | lobe | 3.4e-7 / 1.6e-15 | 3.4e-7 / 1.1e-15 | 1.1e-7 / 4.0e-16 | 5.4e-6 / 5.2e-14 | 7.5e-6 / 7.9e-14 | 9.8e-8 / 4.0e-16 |
-//! | 89.99 deg | 3.6e-7 / 1.1e-15 | 2.2e-7 / 1.1e-15 | 1.3e-7 / 3.3e-16 | 0 / 0 | 0 / 0 | 7.1e-8 / 4.5e-16 |
-//! | 90 deg | 1.7e-80 / 1.1e-15 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 |
+//! | pole | 1.0e-7 / 0 | 1.0e-7 / 0 | 0 / 0 | 1.0e-7 / 1.5e-15 | 1.3e-7 / 1.7e-15 | 0 / 0 |
+//! | lobe | 2.4e-7 / 6.1e-16 | 2.8e-7 / 9.1e-16 | 1.1e-7 / 5.8e-16 | 3.4e-6 / 8.2e-14 | 3.2e-6 / 8.5e-14 | 7.2e-8 / 4.0e-16 |
+//! | 89.99 deg | 1.9e-7 / 8.7e-16 | 2.2e-7 / 7.8e-16 | 1.3e-7 / 3.1e-16 | 0 / 0 | 0 / 0 | 5.8e-8 / 4.5e-16 |
+//! | 90 deg | 1.7e-80 / 9.7e-16 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 |
 //! | axis-aligned | 1.9e-7 / 7.2e-16 | 1.9e-7 / 5.3e-16 | 1.1e-7 / 1.5e-16 | 1.8e-6 / 7.2e-15 | 3.2e-6 / 6.4e-15 | 6.0e-8 / 2.7e-16 |
 //! | matrix | 1.3e-7 / 6.9e-16 | 1.8e-7 / 9.1e-16 | 1.3e-7 / 2.8e-16 | 1.5e-6 / 1.9e-14 | 2.8e-6 / 2.6e-14 | 4.3e-8 / 4.3e-16 |
-//! | cond 1e6 | 1.8e-7 / 1.1e-15 | 2.2e-7 / 1.1e-15 | 1.0e-7 / 3.3e-16 | 1.2e-7 / 2.4e-15 | 1.4e-7 / 2.5e-15 | 7.2e-8 / 4.0e-16 |
-//! | alpha 1e-4 | 3.4e-7 / 1.6e-15 | 3.4e-7 / 1.1e-15 | 8.3e-8 / 3.3e-16 | 5.4e-6 / 4.4e-14 | 5.4e-6 / 5.6e-14 | 5.3e-8 / 2.9e-16 |
-//! | near-singular | 1.8e-7 / 1.1e-15 | 2.8e-7 / 7.4e-16 | 1.1e-7 / 4.0e-16 | 4.2e-8 / 6.2e-16 | 7.0e-8 / 4.9e-16 | 4.4e-8 / 4.5e-16 |
-//! | singular + tau | 3.6e-7 / 1.6e-15 | 3.4e-7 / 1.1e-15 | 7.6e-8 / 2.5e-16 | 5.4e-6 / 5.2e-14 | 7.5e-6 / 7.9e-14 | 9.8e-8 / 4.5e-16 |
-//! | alpha 1 | 3.6e-7 / 1.1e-15 | 2.6e-7 / 7.4e-16 | 1.1e-7 / 3.2e-16 | 1.9e-6 / 3.2e-14 | 3.2e-6 / 3.6e-14 | 7.2e-8 / 4.3e-16 |
-//! | alpha 10 | 2.6e-7 / 1.1e-15 | 3.3e-7 / 1.1e-15 | 1.3e-7 / 4.0e-16 | 4.8e-6 / 5.2e-14 | 7.5e-6 / 7.9e-14 | 9.8e-8 / 4.5e-16 |
+//! | cond 1e6 | 1.8e-7 / 9.7e-16 | 2.2e-7 / 6.6e-16 | 1.0e-7 / 5.8e-16 | 1.2e-7 / 2.4e-15 | 1.4e-7 / 2.5e-15 | 7.2e-8 / 4.0e-16 |
+//! | alpha 1e-4 | 2.4e-7 / 8.7e-16 | 2.8e-7 / 7.8e-16 | 8.3e-8 / 1.7e-16 | 2.4e-6 / 7.0e-14 | 2.4e-6 / 8.5e-14 | 5.3e-8 / 2.1e-16 |
+//! | near-singular | 1.8e-7 / 8.7e-16 | 2.8e-7 / 7.3e-16 | 1.1e-7 / 1.8e-16 | 4.2e-8 / 6.2e-16 | 7.0e-8 / 4.4e-16 | 4.4e-8 / 4.5e-16 |
+//! | singular + tau | 2.4e-7 / 6.3e-16 | 1.9e-7 / 7.8e-16 | 1.0e-7 / 3.1e-16 | 3.4e-6 / 8.2e-14 | 2.4e-6 / 8.5e-14 | 5.8e-8 / 3.2e-16 |
+//! | alpha 1 | 1.9e-7 / 9.0e-16 | 2.2e-7 / 7.3e-16 | 1.1e-7 / 3.1e-16 | 3.4e-6 / 8.2e-14 | 3.2e-6 / 7.8e-14 | 7.2e-8 / 4.3e-16 |
+//! | alpha 10 | 1.9e-7 / 8.3e-16 | 2.1e-7 / 9.1e-16 | 1.3e-7 / 5.8e-16 | 2.2e-6 / 5.1e-14 | 2.7e-6 / 6.3e-14 | 6.0e-8 / 4.5e-16 |
 //!
 //! ### Sampling pdfs: worst relative error, f32 / f64
 //!
 //! | region | GGX normal pdf | GGX visible pdf | GGX reflection pdf | Beckmann normal pdf | Beckmann visible pdf | Beckmann reflection pdf |
 //! |---|---|---|---|---|---|---|
-//! | alpha 1e-7 | 2.3e-7 / 6.6e-16 | 2.4e-7 / 7.0e-16 | 2.4e-7 / 6.3e-16 | 1.8e-6 / 2.6e-14 | 1.8e-6 / 2.6e-14 | 1.8e-6 / 2.6e-14 |
+//! | alpha 1e-7 | 2.3e-7 / 5.0e-16 | 2.4e-7 / 5.9e-16 | 2.4e-7 / 5.3e-16 | 1.8e-6 / 2.6e-14 | 1.8e-6 / 2.6e-14 | 1.8e-6 / 2.6e-14 |
 //! | isotropic | 2.2e-7 / 6.6e-16 | 2.6e-7 / 8.0e-16 | 2.4e-7 / 6.6e-16 | 1.8e-6 / 3.3e-15 | 1.8e-6 / 3.5e-15 | 1.8e-6 / 3.4e-15 |
-//! | pole | 1.0e-7 / 0 | 1.8e-7 / 3.6e-16 | 1.6e-7 / 3.3e-16 | 1.3e-7 / 1.3e-15 | 1.3e-7 / 1.4e-15 | 1.3e-7 / 1.3e-15 |
-//! | wo pole |  | 3.4e-7 / 1.1e-15 | 3.4e-7 / 1.1e-15 |  | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 |
-//! | lobe | 3.4e-7 / 1.1e-15 | 3.4e-7 / 1.3e-15 | 3.4e-7 / 1.4e-15 | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 |
-//! | 89.99 deg | 2.4e-7 / 1.1e-15 | 2.6e-7 / 1.6e-15 | 3.0e-7 / 1.3e-15 | 0 / 0 | 0 / 0 | 0 / 0 |
+//! | pole | 1.0e-7 / 0 | 1.8e-7 / 3.8e-16 | 1.6e-7 / 3.3e-16 | 1.3e-7 / 1.7e-15 | 1.3e-7 / 1.7e-15 | 1.3e-7 / 1.8e-15 |
+//! | wo pole |  | 2.8e-7 / 8.6e-16 | 2.8e-7 / 9.1e-16 |  | 3.1e-6 / 8.5e-14 | 3.2e-6 / 8.5e-14 |
+//! | lobe | 2.8e-7 / 8.6e-16 | 3.1e-7 / 8.6e-16 | 2.9e-7 / 9.3e-16 | 3.1e-6 / 8.5e-14 | 3.2e-6 / 8.5e-14 | 3.2e-6 / 8.5e-14 |
+//! | 89.99 deg | 2.4e-7 / 7.1e-16 | 2.6e-7 / 7.1e-16 | 3.0e-7 / 8.8e-16 | 0 / 0 | 0 / 0 | 0 / 0 |
 //! | 90 deg | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 |
-//! | wo 89.99 deg |  | 3.2e-7 / 1.6e-15 | 3.2e-7 / 1.4e-15 |  | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 |
+//! | wo 89.99 deg |  | 3.1e-7 / 8.4e-16 | 3.0e-7 / 9.3e-16 |  | 3.2e-6 / 8.5e-14 | 3.1e-6 / 8.5e-14 |
 //! | wo 90 deg |  | 0 / 0 | 0 / 0 |  | 0 / 0 | 0 / 0 |
 //! | axis-aligned | 2.4e-7 / 5.3e-16 | 2.4e-7 / 5.3e-16 | 2.6e-7 / 5.3e-16 | 3.1e-6 / 6.4e-15 | 3.2e-6 / 6.5e-15 | 3.2e-6 / 6.4e-15 |
 //! | matrix | 2.4e-7 / 8.6e-16 | 2.9e-7 / 8.6e-16 | 2.0e-7 / 9.3e-16 | 2.8e-6 / 2.6e-14 | 2.9e-6 / 2.6e-14 | 2.9e-6 / 2.6e-14 |
-//! | cond 1e6 | 2.4e-7 / 1.1e-15 | 3.1e-7 / 1.6e-15 | 3.0e-7 / 1.3e-15 | 1.5e-7 / 2.5e-15 | 1.7e-7 / 2.6e-15 | 1.7e-7 / 2.6e-15 |
-//! | alpha 1e-4 | 3.4e-7 / 1.1e-15 | 3.4e-7 / 1.3e-15 | 3.4e-7 / 1.4e-15 | 5.4e-6 / 5.6e-14 | 5.4e-6 / 5.6e-14 | 5.4e-6 / 5.6e-14 |
-//! | near-singular | 2.8e-7 / 7.7e-16 | 3.1e-7 / 1.0e-15 | 2.8e-7 / 9.5e-16 | 7.0e-8 / 4.9e-16 | 7.9e-8 / 4.9e-16 | 7.0e-8 / 4.9e-16 |
-//! | singular + tau | 3.4e-7 / 1.1e-15 | 3.4e-7 / 1.3e-15 | 3.4e-7 / 1.4e-15 | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 |
-//! | alpha 1 | 2.5e-7 / 7.7e-16 | 3.2e-7 / 1.0e-15 | 2.6e-7 / 9.5e-16 | 3.1e-6 / 3.6e-14 | 3.2e-6 / 3.6e-14 | 3.2e-6 / 3.6e-14 |
-//! | alpha 10 | 3.2e-7 / 1.1e-15 | 3.2e-7 / 1.6e-15 | 3.3e-7 / 1.3e-15 | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 |
+//! | cond 1e6 | 2.4e-7 / 6.4e-16 | 3.1e-7 / 7.1e-16 | 3.0e-7 / 8.1e-16 | 1.5e-7 / 2.5e-15 | 1.7e-7 / 2.6e-15 | 1.7e-7 / 2.6e-15 |
+//! | alpha 1e-4 | 2.8e-7 / 7.1e-16 | 3.1e-7 / 8.0e-16 | 3.0e-7 / 8.8e-16 | 2.4e-6 / 8.5e-14 | 2.4e-6 / 8.5e-14 | 2.4e-6 / 8.5e-14 |
+//! | near-singular | 2.8e-7 / 8.1e-16 | 3.1e-7 / 8.2e-16 | 2.8e-7 / 8.0e-16 | 7.0e-8 / 4.4e-16 | 7.9e-8 / 4.7e-16 | 7.0e-8 / 6.8e-16 |
+//! | singular + tau | 2.1e-7 / 7.1e-16 | 2.3e-7 / 7.2e-16 | 2.0e-7 / 8.8e-16 | 2.4e-6 / 8.5e-14 | 2.4e-6 / 8.5e-14 | 2.4e-6 / 8.5e-14 |
+//! | alpha 1 | 1.9e-7 / 8.1e-16 | 2.9e-7 / 8.2e-16 | 2.4e-7 / 8.1e-16 | 3.1e-6 / 7.8e-14 | 3.2e-6 / 7.8e-14 | 3.2e-6 / 7.8e-14 |
+//! | alpha 10 | 2.4e-7 / 8.6e-16 | 3.1e-7 / 8.6e-16 | 2.9e-7 / 9.3e-16 | 2.7e-6 / 6.3e-14 | 2.7e-6 / 6.3e-14 | 2.7e-6 / 6.3e-14 |
 //! | normalisation (quadrature) |  | - / 3.3e-16 |  |  | - / 4.4e-16 |  |
 //!
 //! ### Jacobians: worst relative error, f32 / f64
@@ -130,17 +130,17 @@
 //!
 //! | region | gaussian | projected |
 //! |---|---|---|
-//! | alpha 1e-7 | 1.6e-7 / 1.3e-11 | 1.3e-3 / 3.9e-11 |
-//! | isotropic | 1.2e-7 / 1.9e-12 | 1.3e-3 / 1.5e-13 |
-//! | footprint 0 | 3.3e-7 / 1.6e-13 | 5.8e-7 / 8.4e-13 |
+//! | alpha 1e-7 | 1.6e-7 / 1.3e-11 | 1.7e-7 / 3.9e-11 |
+//! | isotropic | 1.2e-7 / 1.9e-12 | 1.7e-7 / 1.5e-13 |
+//! | footprint 0 | 2.0e-7 / 8.1e-14 | 1.9e-7 / 8.4e-13 |
 //! | kernel isotropic | 5.7e-7 / 4.2e-12 | 1.5e-4 / 3.9e-11 |
-//! | kernel 1000:1 | 3.0e-4 / 2.6e-11 | 1.3e-3 / 5.1e-12 |
-//! | footprint 1e-12 | 3.3e-7 / 1.3e-11 | 5.8e-7 / 3.9e-11 |
-//! | footprint 1e3 | 3.0e-4 / 2.6e-11 | 1.3e-3 / 1.0e-11 |
-//! | cond 1e6 | 3.0e-4 / 1.3e-11 | 1.3e-3 / 3.9e-11 |
-//! | alpha 1e-4 | 3.0e-4 / 2.6e-11 | 1.3e-3 / 8.4e-13 |
-//! | singular + tau | 3.3e-7 / 2.6e-11 | 1.3e-3 / 1.5e-13 |
-//! | alpha 1 | 9.2e-5 / 2.5e-14 | 1.9e-7 / 1.0e-11 |
+//! | kernel 1000:1 | 3.0e-4 / 2.6e-11 | 2.4e-6 / 5.1e-12 |
+//! | footprint 1e-12 | 2.0e-7 / 1.3e-11 | 1.9e-7 / 3.9e-11 |
+//! | footprint 1e3 | 3.0e-4 / 2.6e-11 | 1.5e-4 / 1.0e-11 |
+//! | cond 1e6 | 3.0e-4 / 1.3e-11 | 1.5e-4 / 3.9e-11 |
+//! | alpha 1e-4 | 3.0e-4 / 2.6e-11 | 1.6e-7 / 8.4e-13 |
+//! | singular + tau | 1.2e-7 / 2.6e-11 | 1.5e-7 / 1.5e-13 |
+//! | alpha 1 | 9.2e-5 / 8.1e-14 | 9.9e-8 / 1.0e-11 |
 //! | alpha 10 | 1.9e-4 / 5.1e-13 | 1.5e-4 / 5.1e-12 |
 //! | quadrature (gaussian_reference) | 4.2e-8 / 0 |  |
 //!
