@@ -67,24 +67,31 @@ use crate::math::{self as m, Real};
 /// `c = max(det A, tau)` are (then `A_c` and every method agree). A clamp at or below `det A`
 /// is no clamp: `new_with_det_clamp(a11, a12, a22, tau)` equals `new(a11, a12, a22)` then.
 #[derive(Clone, Copy, Debug)]
+// Fields in 16-byte groups of what is read together, the groups 16-byte aligned: a copy of
+// the matrix through memory (passed by value, or spilled) is written in 16-byte pieces, and a
+// vector load of two fields across two pieces cannot be forwarded from those stores. What it
+// buys, measured (1024 GGX `D`, the matrix passed by value through `black_box`): 2.4 instead
+// of 16.9 us in `f32`, 2.2 instead of 16.4 us in `f64` (the default field order stalls).
+#[repr(C, align(16))]
 pub struct RoughnessMatrix {
-    /// `A`'s entries as given.
-    a11: F,
-    a12: F,
-    a22: F,
-    /// `p = (A_c)_11`: `a11`, or `a11 + t` rounded to `F` when the clamp is active.
-    pivot: F,
     /// `c = det A_c = max(det A, tau)`, in `f64`.
     det: f64,
     /// `1 / (p c)` in `f64` (`A_c^-1 = adj(A_c) / c`). Only [`Roughness::inv_quadratic`] reads
     /// it: Beckmann's `D` divides once by `c p m_z^2` instead, so a matrix built and
     /// evaluated inline never forms it (the compiler drops the division).
     inv_pivot_det: f64,
+    /// `p = (A_c)_11`: `a11`, or `a11 + t` rounded to `F` when the clamp is active.
+    pivot: F,
+    /// `A`'s off-diagonal entry (also `A_c`'s).
+    a12: F,
     /// `c^(3/2)` in `f64`: Beckmann's normalisation `1 / (sqrt(c) z^4)` is `(p t)^2 c^(3/2)`
     /// with `t = 1 / (c p z^2)`, from that one division.
     det_3_2: f64,
     /// `sqrt(c)`, rounded to `F`.
     sqrt_det: F,
+    /// `A`'s diagonal entries as given.
+    a11: F,
+    a22: F,
 }
 
 impl PartialEq for RoughnessMatrix {
@@ -166,10 +173,12 @@ impl RoughnessMatrix {
             return Err(RoughnessError::NotPositiveDefinite);
         }
         let r = Self::from_entries(a11, a12, a22, tau);
-        // The eigenvalues of A_c: lambda_max = mean + radius, lambda_min = c / lambda_max.
-        let (p, q, b) = r.clamped_entries_wide();
-        let half_diff = 0.5 * (p - q);
-        let l_max = 0.5 * (p + q) + m::sqrt(half_diff * half_diff + b * b);
+        // The eigenvalues of A_c = A + t I (t as applied to the pivot, 0 without the clamp):
+        // lambda_max = mean + radius + t, lambda_min = c / lambda_max.
+        let (b11, b12, b22) = (a11.to_f64(), a12.to_f64(), a22.to_f64());
+        let t = r.pivot.to_f64() - b11;
+        let half_diff = 0.5 * (b11 - b22);
+        let l_max = 0.5 * (b11 + b22) + m::sqrt(half_diff * half_diff + b12 * b12) + t;
         let l_min = r.det / l_max;
         // `lo (1 - 16 eps)`: an isotropic ALPHA_MIN rounds its square by up to an ulp.
         let lo = lo * (1.0 - 16.0 * F::EPSILON.to_f64());
@@ -258,13 +267,6 @@ impl RoughnessMatrix {
     #[inline]
     pub fn clamped_det(&self) -> f64 {
         self.det
-    }
-
-    /// `(p, (A_c)_22, a12)` in `f64`, with `(A_c)_22 = (a12^2 + c) / p` exactly as evaluated.
-    #[inline]
-    fn clamped_entries_wide(&self) -> (f64, f64, f64) {
-        let (p, b) = (self.pivot.to_f64(), self.a12.to_f64());
-        (p, (b * b + self.det) / p, b)
     }
 
     /// `A_c^-1 = adj(A_c) / c`, the inverse the density uses, rounded to `F`.
