@@ -18,13 +18,13 @@
 //! | functions | NaN | infinities | zero vector | non-unit vector | back-facing | roughness `<= 0` | non-symmetric / indefinite matrix | test |
 //! |---|---|---|---|---|---|---|---|---|
 //! | `Isotropic::new`, `AxisAligned::new`, `RoughnessMatrix::new`, `Ggx::{isotropic, axis_aligned, matrix}`, `Beckmann::{..}` | `Err(NotFinite)` | `Err(NotFinite)` | - | - | - | `Err(NotPositive)` (also `-0`); outside `[ALPHA_MIN, ALPHA_MAX]`: `Err(OutOfRange)` | `det <= 0`: `Err(NotPositiveDefinite)` | `roughness_constructors` |
-//! | `RoughnessMatrix::from_mat2`, `new_with_det_clamp`, `with_det_clamp` | `Err(NotFinite)`; a NaN `tau` in `with_det_clamp` means no clamp | as NaN | - | - | - | as above; negative `tau`: `Err(NotPositive)` (`with_det_clamp`: no clamp) | `from_mat2`: asymmetry above 8 ulps `Err(NotSymmetric)`; with `tau > 0`, a determinant `>= -8 eps a11 a22` is accepted (rounding), below it `Err(NotPositiveDefinite)` | `roughness_constructors` |
+//! | `RoughnessMatrix::from_mat2`, `new_with_det_clamp`, `with_det_clamp` | `Err(NotFinite)`; a NaN `det_clamp` in `with_det_clamp` means no clamp | as NaN | - | - | - | as above; negative `det_clamp`: `Err(NotPositive)` (`with_det_clamp`: no clamp) | `from_mat2`: asymmetry above 8 ulps `Err(NotSymmetric)`; with `tau > 0`, a determinant `>= -8 eps a11 a22` is accepted (rounding), below it `Err(NotPositiveDefinite)` | `roughness_constructors` |
 //! | `*::new_clamped`, `roughness::clamp_alpha` | `ALPHA_MIN` | `+inf`: `ALPHA_MAX`, `-inf`: `ALPHA_MIN` | - | - | - | `ALPHA_MIN` | - | `roughness_constructors` |
-//! | `Roughness::inv_quadratic`, `quadratic` (all forms) | NaN | `+inf` | `0` | any length (a quadratic form) | - | - | overflow against the null direction of a clamped singular matrix: `+inf` (fixed here, it returned `0`) | `roughness_forms` |
-//! | `Ndf::p22` (GGX, Beckmann, all forms, `TemporalLobe`) | GGX: NaN; Beckmann: `0` | `0` | the peak `1 / (pi sqrt(det A))` | any slope | - | - | - | `ndf_p22` |
+//! | `Roughness::inv_quadratic`, `quadratic` (all forms) | NaN | `+inf` | `0` | any length (a quadratic form) | - | - | a clamped singular matrix evaluates its positive-definite `A_c` | `roughness_forms` |
+//! | `Ndf::p22` (GGX, Beckmann, all forms, `TemporalLobe`) | `0` (the NaN policy of `Ndf`: a NaN argument contributes nothing) | `0` | the peak `1 / (pi sqrt(det A))` | any slope | - | - | - | `ndf_p22` |
 //! | `Ndf::d` | `0` | `0` | `0` | homogeneous: `D(k m) = D(m) / k^4` | `0` (`m_z <= 0`, the `chi+`) | - | - | `ndf_d` |
-//! | `Ndf::lambda` | GGX: `+inf`; Beckmann: `0` | the limit direction: `w_z = +/-inf` gives `0`, an infinite `w_xy` `+inf` | `0` | homogeneous of degree 0, huge and tiny vectors rescaled | uses `abs(w_z)`; `w_z = 0`: `+inf` | - | - | `ndf_lambda_g` |
-//! | `Ndf::g1`, `g2` | through `lambda`: GGX `0`, Beckmann `1` | as `lambda` | `0` | as `lambda` | `w.m <= 0`: `0`; grazing `w`: `0` | - | - | `ndf_lambda_g` |
+//! | `Ndf::lambda` | `+inf` (NaN policy: fully masked) | the limit direction: `w_z = +/-inf` gives `0`, an infinite `w_xy` `+inf` | `0` | homogeneous of degree 0, huge and tiny vectors rescaled | uses `abs(w_z)`; `w_z = 0`: `+inf` | - | - | `ndf_lambda_g` |
+//! | `Ndf::g1`, `g2` | `0` (NaN policy; a NaN in `m` too) | as `lambda` | `0` | as `lambda` | `w.m <= 0`: `0`; grazing `w`: `0` | - | - | `ndf_lambda_g` |
 //! | `NdfSampling::sample_normal` | `u` NaN counts as `0` | `u` clamped to `[0, 1 - eps/2]` | - | - | - | - | - | `sampling` |
 //! | `NdfSampling::sample_visible_normal` | `wo`: `None`; `u` as above | `wo`: `None` | `None` | scale-invariant | `wo_z <= 0`: `None` | - | - | `sampling` |
 //! | `normal_pdf`, `visible_normal_pdf`, `reflection_pdf`, `reflection_pdf_from_normal` | `0` | `0` | `0` (also `wi = -wo`) | `wo`, `wi` scale-invariant; `m` must be unit | `wo_z <= 0`, `wo.m <= 0` or `m_z <= 0`: `0` | - | - | `sampling` |
@@ -32,8 +32,8 @@
 //! | `Footprint::from_projected_derivatives_in_slope`, `from_normal_differences`, `from_world_normal_differences` | `Footprint::ZERO` | `Footprint::ZERO` | - | - | `h_z` clamped to `1e-6` (huge, finite); opposite normals: denominator clamped to `1e-6` | - | - | `footprints_and_covariances` |
 //! | `Footprint::{covariance, max_extent, bounding_rect}`, `BoundingRect::covariance`, `Covariance::{trace, det, +, *}` | plain arithmetic: NaN propagates (the filters sanitise) | propagate | - | - | - | - | - | `footprints_and_covariances` |
 //! | `Covariance::sanitized`, `eigenvalues`, `clamp_eigenvalues`, `LeanMoments::covariance` | `sanitized`: `ZERO`; `clamp_eigenvalues` with NaN bound or entry: `ZERO` | `sanitized`: `KERNEL_MAX I`; `clamp_eigenvalues`: `ZERO` | - | - | - | - | indefinite: projected to PSD (negative variances to `0`, `abs(s12) <= sqrt(s11 s22)`); eigenvalues clamped to `>= 0` | `footprints_and_covariances` |
-//! | `filter::{gaussian, gaussian_with_tau, lean, projected}`, `temporal::widen`, `ClampRules::filter_gaussian` | kernel sanitised: a valid SPD matrix, finite positive densities; NaN `tau`: no clamp | as NaN (widest kernel) | zero kernel: the lobe unchanged | - | - | - | indefinite kernel: projected to PSD first | `filters` |
-//! | `ClampRules::{footprint, rect, kernel, tau}` | footprint: `ZERO`; rect: half extent `0` (then the floor); NaN `lambda`/`kappa`: `0` | footprint rescaled to `lambda` (unchanged under `NONE`); rect: `lambda` | - | - | - | negative half extents by magnitude; negative `lambda`/`kappa`: `0` | - | `clamp_rules` |
+//! | `filter::{gaussian, gaussian_with_det_clamp, lean, projected, projected_with_det_clamp}`, `temporal::widen`, `ClampRules::{filter_gaussian, filter_projected}` | kernel sanitised: a valid SPD matrix, finite positive densities; NaN `det_clamp`: no clamp | as NaN (widest kernel) | zero kernel: the lobe unchanged | - | - | - | indefinite kernel: projected to PSD first | `filters` |
+//! | `ClampRules::{footprint, rect, kernel, det_clamp_for}` | footprint: `ZERO`; rect: half extent `0` (then the floor); NaN `lambda`/`kappa`: `0` | footprint rescaled to `lambda` (unchanged under `NONE`); rect: `lambda` | - | - | - | negative half extents by magnitude; negative `lambda`/`kappa`: `0` | - | `clamp_rules` |
 //! | `rect::p22_rect` | centre: `0`; half extents: `0` | clamped to `1e60` normalised (finite result) | zero half extents: `Ndf::p22` bit for bit | - | - | negative half extents by magnitude | - | `rect_and_proxy` |
 //! | `rect::d_rect`, `d_rect_printed` | `0` | `0` | `0`; zero footprint: `Ndf::d` bit for bit | `0 < h_z < 1e-70`: unfiltered `D`; overflow saturates at `F::MAX` | `h_z <= 0`: `0` | - | - | `rect_and_proxy` |
 //! | `proxy::{effective_alpha, effective_alpha_simple, proxy, proxy_simple}` | half extent as `0` | half extent taken as `F::MAX`: `effective_alpha` returns `+inf`, `proxy` clamps it to `ALPHA_MAX` | - | - | - | negative half extent by magnitude; `alpha <= 0` only through `proxy` (clamped) | - | `rect_and_proxy` |
@@ -63,58 +63,58 @@
 //! eps` (plus `4 eps / wo.m` where `wo.m` cancels); Jacobians `16 eps` (determinants) and `64 eps`
 //! of the largest entry; `filter::gaussian` `64 (1 + kappa) eps` with `kappa` the condition number
 //! of the filtered matrix (its entries are rounded to `F` before the determinant);
-//! `filter::projected` additionally `/ (1 - lambda_max)` and `+ kappa(P + 2 Sigma)` (the
-//! projected-space sum is formed in `F`); the rectangle integral `64 eps` (`+ 1e-7` in `f64`,
-//! the module's documented worst case); proxy `16 eps`; isotropic filters `8 eps`, presets `64
-//! eps`; normalisation (f64 only) ten times the quadrature goal.
+//! `filter::projected` additionally `/ (1 - lambda_max)` and `+ kappa(P + 2 Sigma)` (allowing
+//! for a projected-space sum formed in `F`; it is formed in `f64`); the rectangle integral
+//! `64 eps` (`+ 1e-7` in `f64`, the module's documented worst case); proxy `16 eps`; isotropic
+//! filters `8 eps`, presets `64 eps`; normalisation (f64 only) ten times the quadrature goal.
 //!
-//! Known limits visible in the map: `filter::projected` and `filter::gaussian` in `f32` lose
-//! `~kappa eps` for elongated kernels at footprint 1e3 (`1.3e-3` and `3e-4`): the
-//! filtered (projected-space) matrix is formed in `F` and its determinant cancels; the footprint
-//! clamp `lambda = 1` of [`ClampRules`](crate::f32::ClampRules) keeps shading inputs away from
-//! this region. The Beckmann densities carry the conditioning of `exp` (`7.5e-6` in `f32` at a
-//! few lobe widths).
+//! Known limits visible in the map: `filter::gaussian` and `filter::projected` in `f32` lose
+//! `~kappa eps` for elongated kernels at footprint 1e3 (`3e-4` and `1.5e-4`): the filtered
+//! matrix's entries are rounded to `F` (`projected` computes in `f64` and rounds them once)
+//! and its determinant cancels; the footprint clamp `lambda = 1` of
+//! [`ClampRules`](crate::f32::ClampRules) keeps shading inputs away from this region. The
+//! Beckmann densities carry the conditioning of `exp` (`3.4e-6` in `f32` at a few lobe widths).
 //!
 //! ### NDFs: worst relative error, f32 / f64
 //!
 //! | region | GGX p22 | GGX D | GGX 1+Lambda | Beckmann p22 | Beckmann D | Beckmann 1+Lambda |
 //! |---|---|---|---|---|---|---|
-//! | alpha 1e-7 | 2.2e-7 / 9.0e-16 | 2.2e-7 / 6.3e-16 | 6.6e-9 / 0 | 1.8e-6 / 5.8e-15 | 1.8e-6 / 2.6e-14 | 1.0e-10 / 0 |
+//! | alpha 1e-7 | 2.2e-7 / 9.7e-16 | 2.2e-7 / 4.7e-16 | 6.6e-9 / 0 | 1.8e-6 / 5.8e-15 | 1.8e-6 / 2.6e-14 | 1.0e-10 / 0 |
 //! | isotropic | 2.2e-7 / 6.0e-16 | 2.2e-7 / 6.6e-16 | 7.6e-8 / 2.8e-16 | 1.8e-6 / 4.6e-15 | 1.8e-6 / 3.3e-15 | 3.3e-8 / 2.3e-16 |
-//! | pole | 1.0e-7 / 0 | 1.0e-7 / 0 | 0 / 0 | 1.0e-7 / 1.5e-15 | 1.3e-7 / 1.3e-15 | 0 / 0 |
-//! | lobe | 3.4e-7 / 1.6e-15 | 3.4e-7 / 1.1e-15 | 1.1e-7 / 4.0e-16 | 5.4e-6 / 5.2e-14 | 7.5e-6 / 7.9e-14 | 9.8e-8 / 4.0e-16 |
-//! | 89.99 deg | 3.6e-7 / 1.1e-15 | 2.2e-7 / 1.1e-15 | 1.3e-7 / 3.3e-16 | 0 / 0 | 0 / 0 | 7.1e-8 / 4.5e-16 |
-//! | 90 deg | 1.7e-80 / 1.1e-15 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 |
+//! | pole | 1.0e-7 / 0 | 1.0e-7 / 0 | 0 / 0 | 1.0e-7 / 1.5e-15 | 1.3e-7 / 1.7e-15 | 0 / 0 |
+//! | lobe | 2.4e-7 / 6.1e-16 | 2.8e-7 / 9.1e-16 | 1.1e-7 / 5.8e-16 | 3.4e-6 / 8.2e-14 | 3.2e-6 / 8.5e-14 | 7.2e-8 / 4.0e-16 |
+//! | 89.99 deg | 1.9e-7 / 8.7e-16 | 2.2e-7 / 7.8e-16 | 1.3e-7 / 3.1e-16 | 0 / 0 | 0 / 0 | 5.8e-8 / 4.5e-16 |
+//! | 90 deg | 1.7e-80 / 9.7e-16 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 |
 //! | axis-aligned | 1.9e-7 / 7.2e-16 | 1.9e-7 / 5.3e-16 | 1.1e-7 / 1.5e-16 | 1.8e-6 / 7.2e-15 | 3.2e-6 / 6.4e-15 | 6.0e-8 / 2.7e-16 |
 //! | matrix | 1.3e-7 / 6.9e-16 | 1.8e-7 / 9.1e-16 | 1.3e-7 / 2.8e-16 | 1.5e-6 / 1.9e-14 | 2.8e-6 / 2.6e-14 | 4.3e-8 / 4.3e-16 |
-//! | cond 1e6 | 1.8e-7 / 1.1e-15 | 2.2e-7 / 1.1e-15 | 1.0e-7 / 3.3e-16 | 1.2e-7 / 2.4e-15 | 1.4e-7 / 2.5e-15 | 7.2e-8 / 4.0e-16 |
-//! | alpha 1e-4 | 3.4e-7 / 1.6e-15 | 3.4e-7 / 1.1e-15 | 8.3e-8 / 3.3e-16 | 5.4e-6 / 4.4e-14 | 5.4e-6 / 5.6e-14 | 5.3e-8 / 2.9e-16 |
-//! | near-singular | 1.8e-7 / 1.1e-15 | 2.8e-7 / 7.4e-16 | 1.1e-7 / 4.0e-16 | 4.2e-8 / 6.2e-16 | 7.0e-8 / 4.9e-16 | 4.4e-8 / 4.5e-16 |
-//! | singular + tau | 3.6e-7 / 1.6e-15 | 3.4e-7 / 1.1e-15 | 7.6e-8 / 2.5e-16 | 5.4e-6 / 5.2e-14 | 7.5e-6 / 7.9e-14 | 9.8e-8 / 4.5e-16 |
-//! | alpha 1 | 3.6e-7 / 1.1e-15 | 2.6e-7 / 7.4e-16 | 1.1e-7 / 3.2e-16 | 1.9e-6 / 3.2e-14 | 3.2e-6 / 3.6e-14 | 7.2e-8 / 4.3e-16 |
-//! | alpha 10 | 2.6e-7 / 1.1e-15 | 3.3e-7 / 1.1e-15 | 1.3e-7 / 4.0e-16 | 4.8e-6 / 5.2e-14 | 7.5e-6 / 7.9e-14 | 9.8e-8 / 4.5e-16 |
+//! | cond 1e6 | 1.8e-7 / 9.7e-16 | 2.2e-7 / 6.6e-16 | 1.0e-7 / 5.8e-16 | 1.2e-7 / 2.4e-15 | 1.4e-7 / 2.5e-15 | 7.2e-8 / 4.0e-16 |
+//! | alpha 1e-4 | 2.4e-7 / 8.7e-16 | 2.8e-7 / 7.8e-16 | 8.3e-8 / 1.7e-16 | 2.4e-6 / 7.0e-14 | 2.4e-6 / 8.5e-14 | 5.3e-8 / 2.1e-16 |
+//! | near-singular | 1.8e-7 / 8.7e-16 | 2.8e-7 / 7.3e-16 | 1.1e-7 / 1.8e-16 | 4.2e-8 / 6.2e-16 | 7.0e-8 / 4.4e-16 | 4.4e-8 / 4.5e-16 |
+//! | singular + tau | 2.4e-7 / 6.3e-16 | 1.9e-7 / 7.8e-16 | 1.0e-7 / 3.1e-16 | 3.4e-6 / 8.2e-14 | 2.4e-6 / 8.5e-14 | 5.8e-8 / 3.2e-16 |
+//! | alpha 1 | 1.9e-7 / 9.0e-16 | 2.2e-7 / 7.3e-16 | 1.1e-7 / 3.1e-16 | 3.4e-6 / 8.2e-14 | 3.2e-6 / 7.8e-14 | 7.2e-8 / 4.3e-16 |
+//! | alpha 10 | 1.9e-7 / 8.3e-16 | 2.1e-7 / 9.1e-16 | 1.3e-7 / 5.8e-16 | 2.2e-6 / 5.1e-14 | 2.7e-6 / 6.3e-14 | 6.0e-8 / 4.5e-16 |
 //!
 //! ### Sampling pdfs: worst relative error, f32 / f64
 //!
 //! | region | GGX normal pdf | GGX visible pdf | GGX reflection pdf | Beckmann normal pdf | Beckmann visible pdf | Beckmann reflection pdf |
 //! |---|---|---|---|---|---|---|
-//! | alpha 1e-7 | 2.3e-7 / 6.6e-16 | 2.4e-7 / 7.0e-16 | 2.4e-7 / 6.3e-16 | 1.8e-6 / 2.6e-14 | 1.8e-6 / 2.6e-14 | 1.8e-6 / 2.6e-14 |
+//! | alpha 1e-7 | 2.3e-7 / 5.0e-16 | 2.4e-7 / 5.9e-16 | 2.4e-7 / 5.3e-16 | 1.8e-6 / 2.6e-14 | 1.8e-6 / 2.6e-14 | 1.8e-6 / 2.6e-14 |
 //! | isotropic | 2.2e-7 / 6.6e-16 | 2.6e-7 / 8.0e-16 | 2.4e-7 / 6.6e-16 | 1.8e-6 / 3.3e-15 | 1.8e-6 / 3.5e-15 | 1.8e-6 / 3.4e-15 |
-//! | pole | 1.0e-7 / 0 | 1.8e-7 / 3.6e-16 | 1.6e-7 / 3.3e-16 | 1.3e-7 / 1.3e-15 | 1.3e-7 / 1.4e-15 | 1.3e-7 / 1.3e-15 |
-//! | wo pole |  | 3.4e-7 / 1.1e-15 | 3.4e-7 / 1.1e-15 |  | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 |
-//! | lobe | 3.4e-7 / 1.1e-15 | 3.4e-7 / 1.3e-15 | 3.4e-7 / 1.4e-15 | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 |
-//! | 89.99 deg | 2.4e-7 / 1.1e-15 | 2.6e-7 / 1.6e-15 | 3.0e-7 / 1.3e-15 | 0 / 0 | 0 / 0 | 0 / 0 |
+//! | pole | 1.0e-7 / 0 | 1.8e-7 / 3.8e-16 | 1.6e-7 / 3.3e-16 | 1.3e-7 / 1.7e-15 | 1.3e-7 / 1.7e-15 | 1.3e-7 / 1.8e-15 |
+//! | wo pole |  | 2.8e-7 / 8.6e-16 | 2.8e-7 / 9.1e-16 |  | 3.1e-6 / 8.5e-14 | 3.2e-6 / 8.5e-14 |
+//! | lobe | 2.8e-7 / 8.6e-16 | 3.1e-7 / 8.6e-16 | 2.9e-7 / 9.3e-16 | 3.1e-6 / 8.5e-14 | 3.2e-6 / 8.5e-14 | 3.2e-6 / 8.5e-14 |
+//! | 89.99 deg | 2.4e-7 / 7.1e-16 | 2.6e-7 / 7.1e-16 | 3.0e-7 / 8.8e-16 | 0 / 0 | 0 / 0 | 0 / 0 |
 //! | 90 deg | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 | 0 / 0 |
-//! | wo 89.99 deg |  | 3.2e-7 / 1.6e-15 | 3.2e-7 / 1.4e-15 |  | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 |
+//! | wo 89.99 deg |  | 3.1e-7 / 8.4e-16 | 3.0e-7 / 9.3e-16 |  | 3.2e-6 / 8.5e-14 | 3.1e-6 / 8.5e-14 |
 //! | wo 90 deg |  | 0 / 0 | 0 / 0 |  | 0 / 0 | 0 / 0 |
 //! | axis-aligned | 2.4e-7 / 5.3e-16 | 2.4e-7 / 5.3e-16 | 2.6e-7 / 5.3e-16 | 3.1e-6 / 6.4e-15 | 3.2e-6 / 6.5e-15 | 3.2e-6 / 6.4e-15 |
 //! | matrix | 2.4e-7 / 8.6e-16 | 2.9e-7 / 8.6e-16 | 2.0e-7 / 9.3e-16 | 2.8e-6 / 2.6e-14 | 2.9e-6 / 2.6e-14 | 2.9e-6 / 2.6e-14 |
-//! | cond 1e6 | 2.4e-7 / 1.1e-15 | 3.1e-7 / 1.6e-15 | 3.0e-7 / 1.3e-15 | 1.5e-7 / 2.5e-15 | 1.7e-7 / 2.6e-15 | 1.7e-7 / 2.6e-15 |
-//! | alpha 1e-4 | 3.4e-7 / 1.1e-15 | 3.4e-7 / 1.3e-15 | 3.4e-7 / 1.4e-15 | 5.4e-6 / 5.6e-14 | 5.4e-6 / 5.6e-14 | 5.4e-6 / 5.6e-14 |
-//! | near-singular | 2.8e-7 / 7.7e-16 | 3.1e-7 / 1.0e-15 | 2.8e-7 / 9.5e-16 | 7.0e-8 / 4.9e-16 | 7.9e-8 / 4.9e-16 | 7.0e-8 / 4.9e-16 |
-//! | singular + tau | 3.4e-7 / 1.1e-15 | 3.4e-7 / 1.3e-15 | 3.4e-7 / 1.4e-15 | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 |
-//! | alpha 1 | 2.5e-7 / 7.7e-16 | 3.2e-7 / 1.0e-15 | 2.6e-7 / 9.5e-16 | 3.1e-6 / 3.6e-14 | 3.2e-6 / 3.6e-14 | 3.2e-6 / 3.6e-14 |
-//! | alpha 10 | 3.2e-7 / 1.1e-15 | 3.2e-7 / 1.6e-15 | 3.3e-7 / 1.3e-15 | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 | 7.5e-6 / 7.9e-14 |
+//! | cond 1e6 | 2.4e-7 / 6.4e-16 | 3.1e-7 / 7.1e-16 | 3.0e-7 / 8.1e-16 | 1.5e-7 / 2.5e-15 | 1.7e-7 / 2.6e-15 | 1.7e-7 / 2.6e-15 |
+//! | alpha 1e-4 | 2.8e-7 / 7.1e-16 | 3.1e-7 / 8.0e-16 | 3.0e-7 / 8.8e-16 | 2.4e-6 / 8.5e-14 | 2.4e-6 / 8.5e-14 | 2.4e-6 / 8.5e-14 |
+//! | near-singular | 2.8e-7 / 8.1e-16 | 3.1e-7 / 8.2e-16 | 2.8e-7 / 8.0e-16 | 7.0e-8 / 4.4e-16 | 7.9e-8 / 4.7e-16 | 7.0e-8 / 6.8e-16 |
+//! | singular + tau | 2.1e-7 / 7.1e-16 | 2.3e-7 / 7.2e-16 | 2.0e-7 / 8.8e-16 | 2.4e-6 / 8.5e-14 | 2.4e-6 / 8.5e-14 | 2.4e-6 / 8.5e-14 |
+//! | alpha 1 | 1.9e-7 / 8.1e-16 | 2.9e-7 / 8.2e-16 | 2.4e-7 / 8.1e-16 | 3.1e-6 / 7.8e-14 | 3.2e-6 / 7.8e-14 | 3.2e-6 / 7.8e-14 |
+//! | alpha 10 | 2.4e-7 / 8.6e-16 | 3.1e-7 / 8.6e-16 | 2.9e-7 / 9.3e-16 | 2.7e-6 / 6.3e-14 | 2.7e-6 / 6.3e-14 | 2.7e-6 / 6.3e-14 |
 //! | normalisation (quadrature) |  | - / 3.3e-16 |  |  | - / 4.4e-16 |  |
 //!
 //! ### Jacobians: worst relative error, f32 / f64
@@ -130,17 +130,17 @@
 //!
 //! | region | gaussian | projected |
 //! |---|---|---|
-//! | alpha 1e-7 | 1.6e-7 / 1.3e-11 | 1.3e-3 / 3.9e-11 |
-//! | isotropic | 1.2e-7 / 1.9e-12 | 1.3e-3 / 1.5e-13 |
-//! | footprint 0 | 3.3e-7 / 1.6e-13 | 5.8e-7 / 8.4e-13 |
+//! | alpha 1e-7 | 1.6e-7 / 1.3e-11 | 1.7e-7 / 3.9e-11 |
+//! | isotropic | 1.2e-7 / 1.9e-12 | 1.7e-7 / 1.5e-13 |
+//! | footprint 0 | 2.0e-7 / 8.1e-14 | 1.9e-7 / 8.4e-13 |
 //! | kernel isotropic | 5.7e-7 / 4.2e-12 | 1.5e-4 / 3.9e-11 |
-//! | kernel 1000:1 | 3.0e-4 / 2.6e-11 | 1.3e-3 / 5.1e-12 |
-//! | footprint 1e-12 | 3.3e-7 / 1.3e-11 | 5.8e-7 / 3.9e-11 |
-//! | footprint 1e3 | 3.0e-4 / 2.6e-11 | 1.3e-3 / 1.0e-11 |
-//! | cond 1e6 | 3.0e-4 / 1.3e-11 | 1.3e-3 / 3.9e-11 |
-//! | alpha 1e-4 | 3.0e-4 / 2.6e-11 | 1.3e-3 / 8.4e-13 |
-//! | singular + tau | 3.3e-7 / 2.6e-11 | 1.3e-3 / 1.5e-13 |
-//! | alpha 1 | 9.2e-5 / 2.5e-14 | 1.9e-7 / 1.0e-11 |
+//! | kernel 1000:1 | 3.0e-4 / 2.6e-11 | 2.4e-6 / 5.1e-12 |
+//! | footprint 1e-12 | 2.0e-7 / 1.3e-11 | 1.9e-7 / 3.9e-11 |
+//! | footprint 1e3 | 3.0e-4 / 2.6e-11 | 1.5e-4 / 1.0e-11 |
+//! | cond 1e6 | 3.0e-4 / 1.3e-11 | 1.5e-4 / 3.9e-11 |
+//! | alpha 1e-4 | 3.0e-4 / 2.6e-11 | 1.6e-7 / 8.4e-13 |
+//! | singular + tau | 1.2e-7 / 2.6e-11 | 1.5e-7 / 1.5e-13 |
+//! | alpha 1 | 9.2e-5 / 8.1e-14 | 9.9e-8 / 1.0e-11 |
 //! | alpha 10 | 1.9e-4 / 5.1e-13 | 1.5e-4 / 5.1e-12 |
 //! | quadrature (gaussian_reference) | 4.2e-8 / 0 |  |
 //!

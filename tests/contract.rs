@@ -136,7 +136,7 @@ macro_rules! contract {
 
             #[test]
             fn ndf_p22() {
-                for (ggx, n) in ndfs() {
+                for (_, n) in ndfs() {
                     for s in [
                         Vec2::ZERO,
                         Vec2::new(0.1, -3.0),
@@ -148,11 +148,13 @@ macro_rules! contract {
                     }
                     assert_eq!(n.p22(Vec2::new(INF, 0.0)), 0.0);
                     assert_eq!(n.p22(Vec2::new(-INF, INF)), 0.0);
-                    let v = n.p22(Vec2::new(NAN, 0.0));
-                    if ggx {
-                        assert!(v.is_nan());
-                    } else {
-                        assert_eq!(v, 0.0);
+                    // NaN policy (src/ndf/mod.rs): a NaN argument contributes nothing.
+                    for s in [
+                        Vec2::new(NAN, 0.0),
+                        Vec2::new(0.0, NAN),
+                        Vec2::new(NAN, INF),
+                    ] {
+                        assert_eq!(n.p22(s), 0.0, "{s:?}");
                     }
                 }
             }
@@ -186,7 +188,7 @@ macro_rules! contract {
 
             #[test]
             fn ndf_lambda_g() {
-                for (ggx, n) in ndfs() {
+                for (_, n) in ndfs() {
                     let w = Vec3::new(0.6, 0.4, 0.3);
                     let l = n.lambda(w);
                     assert!(l.is_finite() && l >= 0.0);
@@ -203,8 +205,15 @@ macro_rules! contract {
                     // Infinite components: the limit direction.
                     assert_eq!(n.lambda(Vec3::new(0.1, 0.0, INF)), 0.0);
                     assert_eq!(n.lambda(Vec3::new(INF, 0.0, 1.0)), INF);
-                    let ln = n.lambda(Vec3::new(NAN, 0.0, 1.0));
-                    assert_eq!(ln, if ggx { INF } else { 0.0 });
+                    // NaN policy: fully masked, in every component (w_z alone too).
+                    for bad in [
+                        Vec3::new(NAN, 0.0, 1.0),
+                        Vec3::new(0.0, NAN, 1.0),
+                        Vec3::new(0.0, 0.0, NAN),
+                        Vec3::new(NAN, INF, 1.0),
+                    ] {
+                        assert_eq!(n.lambda(bad), INF, "{bad:?}");
+                    }
                     // G1, G2 in [0, 1]; 0 for w.m <= 0 and grazing w.
                     let m = Vec3::Z;
                     let g = n.g1(w, m);
@@ -214,10 +223,12 @@ macro_rules! contract {
                     assert_eq!(n.g2(w, -w, m), 0.0);
                     let g2 = n.g2(w, Vec3::new(-0.2, 0.1, 0.9), m);
                     assert!(g2 > 0.0 && g2 <= 1.0);
-                    assert_eq!(
-                        n.g1(Vec3::new(NAN, 0.0, 1.0), m),
-                        if ggx { 0.0 } else { 1.0 }
-                    );
+                    let nan = Vec3::new(NAN, 0.0, 1.0);
+                    assert_eq!(n.g1(nan, m), 0.0);
+                    assert_eq!(n.g1(w, Vec3::new(0.0, 0.0, NAN)), 0.0);
+                    assert_eq!(n.g2(nan, w, m), 0.0);
+                    assert_eq!(n.g2(w, nan, m), 0.0);
+                    assert_eq!(n.g2(w, w, Vec3::new(NAN, 0.0, 1.0)), 0.0);
                 }
             }
 
@@ -368,7 +379,7 @@ macro_rules! contract {
                     ] {
                         assert!(valid(filter::gaussian(r, k)), "{k:?}");
                         for tau in [NAN, -1.0, INF, 0.0] {
-                            assert!(valid(filter::gaussian_with_tau(r, k, tau)));
+                            assert!(valid(filter::gaussian_with_det_clamp(r, k, tau)));
                         }
                         assert!(valid(filter::projected(r, k)), "{k:?}");
                         assert!(valid(filter::lean(
@@ -418,7 +429,7 @@ macro_rules! contract {
                     bad_kappa.kernel(Covariance::new(1.0, 0.0, 1.0)),
                     Covariance::ZERO
                 );
-                assert_eq!(r.tau(iso()), 0.3 * 0.3 * (0.3 * 0.3));
+                assert_eq!(r.det_clamp_for(iso()), 0.3 * 0.3 * (0.3 * 0.3));
             }
 
             #[test]

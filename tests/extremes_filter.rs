@@ -181,6 +181,18 @@ macro_rules! sweep {
                 out
             }
 
+            /// The reference lobe of a filtered matrix `m` under the clamp `tau`: `a` itself
+            /// where its determinant reaches `tau`, else the clamped matrix `A_c` of
+            /// determinant `tau` with the result's pivot (`RoughnessMatrix` docs: `A + t I`
+            /// with the pivot rounded to F, checked in `tests/matrix_representations.rs`).
+            fn clamp_ref(a: DdSym, tau: f64, m: &RoughnessMatrix) -> DdSym {
+                if a.det().f() >= tau {
+                    a
+                } else {
+                    DdSym::ldl(m.clamped_entries().0.to_f64(), a.a12.f(), tau)
+                }
+            }
+
             fn matrix(b: &Base) -> RoughnessMatrix {
                 let (a11, a12, a22) = b.entries;
                 RoughnessMatrix::new_with_det_clamp(f(a11), f(a12), f(a22), f(b.tau)).unwrap()
@@ -230,6 +242,7 @@ macro_rules! sweep {
                         let aref = b.a.add(&sig.scale(2.0));
                         let tau = max_dd(b.a.det(), b.tau).f();
                         let m = filter::gaussian(matrix(&b), Covariance::new(f(k.s.0), f(k.s.1), f(k.s.2)));
+                        let aref = clamp_ref(aref, tau, &m);
                         // Tolerance: the filtered entries A + 2 Sigma are rounded to F before
                         // the determinant, so a density of a matrix of condition kappa can be
                         // off by ~kappa eps (the clamp tau = det A bounds the loss from
@@ -273,6 +286,7 @@ macro_rules! sweep {
                         let tau = max_dd(b.a.det(), b.tau).f();
                         match projected_ref(&b, &sig) {
                             Some((aref, cond_q)) => {
+                                let aref = clamp_ref(aref, tau, &m);
                                 // Tolerance: as gaussian (entries rounded to F, 64 (1 + kappa)
                                 // eps), times 1 / (1 - lambda_max) for the map P = A (I - A)^-1,
                                 // whose condition grows towards the clamp at 0.99, plus the

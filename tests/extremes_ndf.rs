@@ -222,11 +222,20 @@ macro_rules! sweep {
                     let s12 = r(2.0 * alpha * alpha);
                     let tau = r((0.1 * alpha * alpha).powi(2));
                     if valid(n11, s12, n22, tau) {
+                        // The clamp evaluates A_c = A + t I (det tau) with its pivot rounded to
+                        // F (RoughnessMatrix docs; the pivot is checked against A + t I in
+                        // tests/matrix_representations.rs): the reference is that matrix.
+                        let f = F::from_f64;
+                        let p = RoughnessMatrix::new_with_det_clamp(f(n11), f(s12), f(n22), f(tau))
+                            .unwrap()
+                            .clamped_entries()
+                            .0
+                            .to_f64();
                         out.push(Case {
                             alpha: label,
                             form: "singular + tau",
                             spec: Form::Mat(n11, s12, n22, tau),
-                            a: DdSym::new(n11, s12, n22),
+                            a: DdSym::ldl(p, s12, tau),
                             tau,
                             widths: (alpha, 2.0 * alpha),
                         });

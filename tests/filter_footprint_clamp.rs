@@ -188,8 +188,8 @@ fn kappa_caps_the_kernel_roughness_per_direction() {
         assert!(a11.is_finite() && a12.is_finite() && a22.is_finite());
     }
     // Tau: det(A) or 0.
-    assert!((rules.tau(s::AxisAligned::new(0.1, 0.2).unwrap()) - 4e-4).abs() < 1e-10);
-    assert_eq!(s::ClampRules::NONE.tau(a), 0.0);
+    assert!((rules.det_clamp_for(s::AxisAligned::new(0.1, 0.2).unwrap()) - 4e-4).abs() < 1e-10);
+    assert_eq!(s::ClampRules::NONE.det_clamp_for(a), 0.0);
 }
 
 #[test]

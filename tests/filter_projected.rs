@@ -176,56 +176,182 @@ fn bad_kernels_give_finite_spd_results() {
     }
 }
 
-use filtered_ndf::f32::Ndf as _;
+use filtered_ndf::f32::{Ndf as _, Roughness as _};
+
+/// Whether an `f32` kernel is positive semi-definite exactly (products of `f32` numbers are
+/// exact in `f64`): then `Covariance::sanitized` keeps it unchanged in both precisions.
+fn psd32(k: (f32, f32, f32)) -> bool {
+    let (a, b, c) = (f64::from(k.0), f64::from(k.1), f64::from(k.2));
+    a >= 0.0 && c >= 0.0 && b * b <= a * c
+}
 
 #[test]
-fn f32_agrees_with_f64() {
-    // Both filters in f32 against the same code in f64, over a seeded log-uniform sample of
-    // alpha in [1e-4, 0.9], anisotropy up to 100 and kernels from 1e-2 to 1e2 alpha wide.
-    // Error measure: max entry difference over the largest eigenvalue of the f64 result.
+fn f32_entries_are_the_f64_entries_rounded_once() {
+    // Both filters in f32 against the same filters in f64 on identical inputs (entries and
+    // kernels rounded to f32 first), over a seeded log-uniform sample of alpha in
+    // [1e-4, 0.99], anisotropy up to 100 and kernels from 1e-2 to 1e2 alpha wide.
+    //
+    // Tolerance, per entry and relative to the entry itself: gaussian's `a + 2 k` is one f32
+    // rounding of a sum that f64 forms exactly or within one f64 rounding; projected computes
+    // in f64 in both precisions and rounds each entry once: `eps_f32 / 2 + eps_f64` for both
+    // (the clamps `max(a11)` commute with the rounding). Computing the projected map in f32
+    // instead (`(I - A)^-1` amplifies rounding by up to `1 / (1 - lambda_max) = 100`) misses
+    // this by orders of magnitude.
     let mut rng = filtered_ndf::testing::rng::SplitMix64(0x1234_5678);
     let mut next = || rng.uniform();
-    let (mut worst_g, mut worst_p) = (0.0f64, 0.0f64);
-    for _ in 0..2000 {
-        let alpha = 10f64.powf(-4.0 + 3.95 * next());
+    let tol = 0.5 * f64::from(f32::EPSILON) + f64::EPSILON;
+    let (mut worst_g, mut worst_p, mut n) = (0.0f64, 0.0f64, 0);
+    for _ in 0..4000 {
+        let alpha = 10f64.powf(-4.0 + 3.998 * next());
         let aniso = 10f64.powf(2.0 * next());
         let phi = 3.2 * next();
         let (a11, a12, a22) = rotated(alpha * alpha, (alpha / aniso).powi(2), phi);
         let kk = (alpha * 10f64.powf(-2.0 + 4.0 * next())).powi(2);
         let (k11, k12, k22) = rotated(kk, kk * next(), 3.2 * next());
+        let (a11, a12, a22) = (a11 as f32, a12 as f32, a22 as f32);
+        let kf = (k11 as f32, k12 as f32, k22 as f32);
         let (Ok(ad), Ok(af)) = (
-            d::RoughnessMatrix::new(a11, a12, a22),
-            s::RoughnessMatrix::new(a11 as f32, a12 as f32, a22 as f32),
+            d::RoughnessMatrix::new(a11.into(), a12.into(), a22.into()),
+            s::RoughnessMatrix::new(a11, a12, a22),
         ) else {
             continue;
         };
-        let kd = d::Covariance::new(k11, k12, k22);
-        let kf = s::Covariance::new(k11 as f32, k12 as f32, k22 as f32);
+        if !psd32(kf) {
+            continue;
+        }
+        n += 1;
+        let kd = d::Covariance::new(kf.0.into(), kf.1.into(), kf.2.into());
+        let ks = s::Covariance::new(kf.0, kf.1, kf.2);
+        for (fd, ff, worst, what) in [
+            (
+                d::filter::gaussian(ad, kd),
+                s::filter::gaussian(af, ks),
+                &mut worst_g,
+                "gaussian",
+            ),
+            (
+                d::filter::projected(ad, kd),
+                s::filter::projected(af, ks),
+                &mut worst_p,
+                "projected",
+            ),
+        ] {
+            let (x, y) = (fd.entries(), ff.entries());
+            for (u, v) in [(x.0, y.0), (x.1, y.1), (x.2, y.2)] {
+                let e = (u - f64::from(v)).abs() / u.abs().max(f64::from(f32::MIN_POSITIVE));
+                assert!(e <= tol, "{what}: {x:?} vs {y:?} ({e:.2e} > {tol:.2e})");
+                *worst = worst.max(e / tol);
+            }
+        }
+    }
+    assert!(n > 3000, "{n}");
+    println!(
+        "f32 entries vs f64 (fraction of eps / 2 + eps_f64): gaussian {worst_g:.3}, \
+         projected {worst_p:.3} ({n} cases)"
+    );
+}
+
+#[test]
+fn f32_densities_are_as_accurate_as_gaussian() {
+    // GGX D of the filtered lobe, f32 against f64 on identical inputs, with one tolerance for
+    // both filters, derived from their entries' one rounding (previous test):
+    // a relative perturbation `e = eps / 2` of each entry of `A'` moves `q = s^T A'^-1 s` by at
+    // most `e |v|^T |A'| |v|` (`v = A'^-1 s`, first order) and `det A'` by at most
+    // `e (a11 a22 + a12^2)`; `D = 1 / (pi sqrt(det) (q + z^2)^2)` follows with the factors 2
+    // (times `q / (q + z^2)`) and 1/2; plus `8 eps` for the f32 evaluation of `D` itself
+    // (`tests/ndf_precision.rs`).
+    let mut rng = filtered_ndf::testing::rng::SplitMix64(0xD15C);
+    let mut next = || rng.uniform();
+    let eps = f64::from(f32::EPSILON);
+    let (mut worst_g, mut worst_p) = (0.0f64, 0.0f64);
+    for _ in 0..2000 {
+        let alpha = 10f64.powf(-4.0 + 3.998 * next());
+        let aniso = 10f64.powf(2.0 * next());
+        let (a11, a12, a22) = rotated(alpha * alpha, (alpha / aniso).powi(2), 3.2 * next());
+        let kk = (alpha * 10f64.powf(-2.0 + 4.0 * next())).powi(2);
+        let (k11, k12, k22) = rotated(kk, kk * next(), 3.2 * next());
+        let (a11, a12, a22) = (a11 as f32, a12 as f32, a22 as f32);
+        let kf = (k11 as f32, k12 as f32, k22 as f32);
+        let (Ok(ad), Ok(af)) = (
+            d::RoughnessMatrix::new(a11.into(), a12.into(), a22.into()),
+            s::RoughnessMatrix::new(a11, a12, a22),
+        ) else {
+            continue;
+        };
+        if !psd32(kf) {
+            continue;
+        }
+        let kd = d::Covariance::new(kf.0.into(), kf.1.into(), kf.2.into());
+        let ks = s::Covariance::new(kf.0, kf.1, kf.2);
         for (fd, ff, worst) in [
             (
                 d::filter::gaussian(ad, kd),
-                s::filter::gaussian(af, kf),
+                s::filter::gaussian(af, ks),
                 &mut worst_g,
             ),
             (
                 d::filter::projected(ad, kd),
-                s::filter::projected(af, kf),
+                s::filter::projected(af, ks),
                 &mut worst_p,
             ),
         ] {
-            let (x, y) = (fd.entries(), ff.entries());
-            let lmax = d::Covariance::new(x.0, x.1, x.2).eigenvalues().1;
-            let e = (x.0 - y.0 as f64)
-                .abs()
-                .max((x.1 - y.1 as f64).abs())
-                .max((x.2 - y.2 as f64).abs())
-                / lmax;
-            *worst = worst.max(e);
+            let am = fd.to_mat2();
+            let det = am.determinant();
+            let (b11, b12, b22) = fd.entries();
+            let width = (b11 + b22).sqrt();
+            for _ in 0..4 {
+                let sl = DVec2::new(next() - 0.5, next() - 0.5) * 4.0 * width;
+                let h = glam::DVec3::new(-sl.x, -sl.y, 1.0).normalize().as_vec3();
+                let hd = h.as_dvec3();
+                let sx = DVec2::new(-hd.x / hd.z, -hd.y / hd.z);
+                let v = am.inverse() * sx;
+                let (va, q) = (v.abs(), sx.dot(am.inverse() * sx));
+                let gamma = (b11 * va.x * va.x + 2.0 * b12.abs() * va.x * va.y + b22 * va.y * va.y)
+                    / v.dot(am * v).max(f64::MIN_POSITIVE);
+                let det_rel = (b11 * b22 + b12 * b12) / det;
+                let tol = 0.5 * eps * (2.0 * gamma * q / (q + 1.0) + 0.5 * det_rel) + 8.0 * eps;
+                let (want, got) = (d::Ggx::new(fd).d(hd), f64::from(s::Ggx::new(ff).d(h)));
+                let e = (got - want).abs() / want.max(f64::from(f32::MIN_POSITIVE));
+                assert!(
+                    e <= tol,
+                    "{fd:?} at {h}: {got} vs {want} ({e:.2e} > {tol:.2e})"
+                );
+                *worst = worst.max(e / tol);
+            }
         }
     }
     println!(
-        "f32 vs f64 (relative to lambda_max): gaussian {worst_g:.2e}, projected {worst_p:.2e}"
+        "f32 GGX D vs f64 (fraction of tolerance): gaussian {worst_g:.3}, projected {worst_p:.3}"
     );
-    // A few f32 roundings (6e-8 each) on the inputs and in the formulas; 1e-6 is ~16 ulps.
-    assert!(worst_g < 1e-6 && worst_p < 1e-6, "{worst_g} {worst_p}");
+}
+
+#[test]
+fn clamp_rules_route_projected_like_gaussian() {
+    // ClampRules::filter_projected: footprint rule -> covariance -> kernel rule -> projected,
+    // with tau = det A under `det_clamp` and none without: bit for bit the public pieces.
+    let a = s::RoughnessMatrix::new(0.02, 0.004, 0.01).unwrap();
+    let fp = s::Footprint::from_slope_derivatives(Vec2::new(0.3, 0.05), Vec2::new(-0.02, 0.2));
+    for rules in [
+        s::ClampRules::default(),
+        s::ClampRules::GDC2016,
+        s::ClampRules::NONE,
+    ] {
+        let k = rules.kernel(rules.footprint(fp).covariance(0.5));
+        let want = if rules.det_clamp {
+            s::filter::projected(a, k)
+        } else {
+            s::filter::projected_with_det_clamp(a, k, 0.0)
+        };
+        assert_eq!(rules.filter_projected(a, fp, 0.5), want);
+        // The one determinant, in f64 from the f32 entries (exact products), rounded once.
+        let (a11, a12, a22) = a.entries();
+        let det = (f64::from(a11) * f64::from(a22) - f64::from(a12) * f64::from(a12)) as f32;
+        let tau = rules.det_clamp_for(a);
+        assert_eq!(tau, if rules.det_clamp { det } else { 0.0 });
+    }
+    // The maximum-extent rule shrinks this footprint, kappa caps the kernel: both visible.
+    let big = s::Footprint::from_slope_derivatives(Vec2::new(3.0, 0.5), Vec2::new(-0.2, 2.0));
+    let wide = s::ClampRules::default().filter_projected(a, big, 0.5);
+    let free = s::ClampRules::NONE.filter_projected(a, big, 0.5);
+    assert!(wide.sqrt_det() < free.sqrt_det());
 }

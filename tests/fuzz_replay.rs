@@ -238,13 +238,13 @@ mod findings {
     }
 
     #[test]
-    fn gaussian_with_tau_zero_and_an_underflowing_det() {
+    fn gaussian_with_det_clamp_zero_and_an_underflowing_det() {
         // f32: the filtered det underflowed to 0 without tau: sqrt_det 0, inverse inf.
         use f32::Roughness;
         let r = f32::RoughnessMatrix::new_with_det_clamp(2.2525264e-23, 0.0, 2.2525264e-23, 1e-16)
             .unwrap();
         let k = f32::Covariance::new(1.1262632e-23, 1.1262632e-23, 0.0);
-        let g = f32::filter::gaussian_with_tau(r, k, 0.0);
+        let g = f32::filter::gaussian_with_det_clamp(r, k, 0.0);
         assert!(
             g.sqrt_det() > 0.0 && g.sqrt_det().is_finite(),
             "{:?}",
@@ -320,10 +320,13 @@ mod findings {
     #[test]
     fn det_clamp_above_the_range_is_refused() {
         // tau = F::MAX was accepted: sqrt_det 1.3e154 against entries 1e-16, and the samplers
-        // of that lobe returned NaN (GGX sample_normal) or normals on the horizon.
+        // of that lobe returned NaN (GGX sample_normal) or normals on the horizon. The clamped
+        // matrix A_c = A + t I (det tau) must have its eigenvalues in range: tau = 1e17 gives
+        // t ~ 3e8 > ALPHA_MAX^2 (tau = 1e9 is A_c ~ 3e4 I, a valid lobe since the clamp became
+        // one matrix).
         let r = f64::RoughnessMatrix::new_with_det_clamp(1e-16, 0.0, 1.0, f64::MAX);
         assert_eq!(r.err(), Some(filtered_ndf::RoughnessError::OutOfRange));
-        let r = f32::RoughnessMatrix::new_with_det_clamp(1e-8, 0.0, 1e-8, 1e9);
+        let r = f32::RoughnessMatrix::new_with_det_clamp(1e-8, 0.0, 1e-8, 1e17);
         assert_eq!(r.err(), Some(filtered_ndf::RoughnessError::OutOfRange));
     }
 

@@ -1,5 +1,6 @@
 //! The three roughness forms agree where they describe the same lobe, rotating `A` rotates
-//! the lobe, and the TK19 determinant clamp does what its documentation says.
+//! the lobe, and the TK19 determinant clamp does what its documentation says (one matrix
+//! `A_c = A + t I` of determinant `max(det A, tau)` for the density and `Lambda`).
 //!
 //! Tolerances (in units of the precision's `eps`):
 //! - Same lobe, different form: the forms compute `sqrt(det A)` and the quadratic forms with
@@ -139,7 +140,7 @@ proptest! {
     }
 
     #[test]
-    fn det_clamp_is_inverse_adj_over_max_det_tau(
+    fn det_clamp_evaluates_a_plus_t_identity(
         ax in cases::alpha(1e-3, 1.0),
         ay in cases::alpha(1e-3, 1.0),
         phi in 0.0..std::f64::consts::PI,
@@ -152,32 +153,43 @@ proptest! {
         let det = a11 * a22 - a12 * a12;
         let tau = det * tau_scale;
         let mx = RoughnessMatrix::new_with_det_clamp(a11, a12, a22, tau).unwrap();
-        // The documented rule, from the entries: A^-1 = adj(A) / max(det, tau).
+        // The documented rule, written out: A_c = A + t I with det(A_c) = max(det, tau),
+        // t the positive root of t^2 + tr(A) t + det - tau = 0 (0 for tau <= det).
         let dd = det.max(tau);
-        let adj = DMat2::from_cols(DVec2::new(a22, -a12), DVec2::new(-a12, a11));
+        let h = 0.5 * (a11 + a22);
+        let t = if tau > det { (tau - det) / (h + (h * h + tau - det).sqrt()) } else { 0.0 };
+        let ac = DMat2::from_cols(DVec2::new(a11 + t, a12), DVec2::new(a12, a22 + t));
         let inv = mx.inverse();
-        // The reference's own det(A) cancels to a relative cond(A) eps, and so do the entries
-        // of the inverse relative to the largest one: 64 cond(A) eps of the largest entry.
+        // The reference's own det(A) cancels to a relative cond(A) eps, which moves t, the
+        // entries of A_c and those of its inverse by cond(A) eps relative to the largest
+        // entry (cond(A_c) <= cond(A)); so does the pivot's rounding in the code:
+        // 64 cond(A) eps of the largest entry of A_c^-1, about lambda_max / c.
         let cond = (ax / ay).max(ay / ax).powi(2);
         let big = ax.max(ay).powi(2) / dd;
-        for (x, y) in inv.to_cols_array().iter().zip((adj * (1.0 / dd)).to_cols_array()) {
-            prop_assert!((x - y).abs() <= 64.0 * cond * EPS * big, "inverse {inv} vs {adj}/{dd}");
+        for (x, y) in inv.to_cols_array().iter().zip(ac.inverse().to_cols_array()) {
+            prop_assert!((x - y).abs() <= 64.0 * cond * EPS * big, "inverse {inv} vs {ac}^-1");
         }
-        prop_assert!(close(mx.sqrt_det(), dd.sqrt(), 64.0 * (ax / ay).max(ay / ax).powi(2)));
-        // GGX's density through the clamped inverse, written out.
+        prop_assert!(close(mx.sqrt_det(), dd.sqrt(), 64.0 * cond));
+        prop_assert!(close(mx.clamped_det(), dd, 64.0 * cond));
+        // GGX's density and Lambda of A_c, written out: the one clamped matrix everywhere.
         let s = DVec2::new(sl.0 * ax, sl.1 * ay);
-        let q = s.dot(adj * s) / dd;
+        let q = s.dot(ac.inverse() * s);
         let want = 1.0 / (std::f64::consts::PI * dd.sqrt() * (1.0 + q) * (1.0 + q));
         let got = Ggx::new(mx).p22(s);
         prop_assert!(close(got, want, 64.0 * cond), "{got} vs {want}");
-        // tau <= det: identical to the unclamped matrix; Lambda never sees the clamp.
+        let w = DVec3::new(0.3, -0.5, 0.5).normalize();
+        let qw = w.truncate().dot(ac * w.truncate());
+        let want = qw / (2.0 * w.z * ((w.z * w.z + qw).sqrt() + w.z));
+        let got = Ggx::new(mx).lambda(w);
+        prop_assert!(close(got, want, 64.0 * cond), "Lambda {got} vs {want}");
+        // tau <= det: identical to the unclamped matrix, and equal by value.
         let plain = RoughnessMatrix::new(a11, a12, a22).unwrap();
         if tau <= det {
             prop_assert_eq!(Ggx::new(mx).p22(s), Ggx::new(plain).p22(s));
+            prop_assert_eq!(mx, plain);
         }
-        let w = DVec3::new(0.3, -0.5, 0.5).normalize();
-        prop_assert_eq!(Ggx::new(mx).lambda(w), Ggx::new(plain).lambda(w));
         prop_assert_eq!(plain.with_det_clamp(tau), mx);
+        prop_assert_eq!(mx.with_det_clamp(0.0), plain);
     }
 }
 

@@ -129,6 +129,47 @@ macro_rules! per_precision {
             }
 
             #[test]
+            fn matrix_equality_is_by_value() {
+                // From<AxisAligned> / From<Isotropic> equal the checked constructor with the
+                // squares rounded to F, over the whole range (in f32 they once differed by the
+                // representation of the determinant).
+                for i in 0..=24 {
+                    let ax = ALPHA_MIN * (ALPHA_MAX / ALPHA_MIN).powf(i as F / 24.0);
+                    for j in 0..=24 {
+                        let ay = ALPHA_MIN * (ALPHA_MAX / ALPHA_MIN).powf(j as F / 24.0);
+                        let (Ok(aa), Ok(m)) = (
+                            AxisAligned::new(ax, ay),
+                            RoughnessMatrix::new(ax * ax, 0.0, ay * ay),
+                        ) else {
+                            continue;
+                        };
+                        assert_eq!(RoughnessMatrix::from(aa), m, "{ax} {ay}");
+                        assert_eq!(aa.to_matrix(), m);
+                    }
+                    let iso = Isotropic::new(ax).unwrap();
+                    let m = RoughnessMatrix::new(ax * ax, 0.0, ax * ax).unwrap();
+                    assert_eq!(RoughnessMatrix::from(iso), m, "{ax}");
+                }
+                // The value, not the construction: a clamp at or below det A is no clamp,
+                // -0 = +0, and removing a clamp gives the matrix back.
+                let m = RoughnessMatrix::new(0.5, 0.2, 0.3).unwrap();
+                let det = 0.5 * 0.3 - 0.2 * 0.2;
+                assert_eq!(
+                    RoughnessMatrix::new_with_det_clamp(0.5, 0.2, 0.3, 0.5 * det).unwrap(),
+                    m
+                );
+                assert_eq!(m.with_det_clamp(0.0), m);
+                let c = m.with_det_clamp(10.0 * det);
+                assert_ne!(c, m);
+                assert_eq!(c.entries(), m.entries());
+                assert_eq!(c.with_det_clamp(0.0), m);
+                assert_eq!(
+                    RoughnessMatrix::new(0.5, -0.0, 0.3).unwrap(),
+                    RoughnessMatrix::new(0.5, 0.0, 0.3).unwrap()
+                );
+            }
+
+            #[test]
             fn from_mat2_symmetry() {
                 let m = |a11: F, a21: F, a12: F, a22: F| {
                     Mat2::from_cols(Vec2::new(a11, a21), Vec2::new(a12, a22))
@@ -178,7 +219,13 @@ macro_rules! per_precision {
                 let aa = AxisAligned::new(0.1, 0.7).unwrap();
                 let m = RoughnessMatrix::from(aa);
                 assert_eq!(m.entries(), (0.1 * 0.1, 0.0, 0.7 * 0.7));
-                assert_eq!(m.sqrt_det(), aa.sqrt_det());
+                // Equal by value to the checked constructor with the squares rounded to F.
+                assert_eq!(m, RoughnessMatrix::new(0.1 * 0.1, 0.0, 0.7 * 0.7).unwrap());
+                // sqrt_det: the axis-aligned form rounds alpha_x alpha_y once (eps / 2); the
+                // matrix rounds each square (eps / 2, halved by the root) and the root
+                // (eps / 2), its f64 product exact: within 1.5 eps of each other, 2 eps asserted.
+                let (u, v) = (m.sqrt_det(), aa.sqrt_det());
+                assert!((u - v).abs() <= 2.0 * EPS * v, "{u} vs {v}");
                 let inv = m.inverse();
                 assert!((inv.x_axis.x * 0.01 - 1.0).abs() <= 4.0 * EPS);
                 assert!((inv.y_axis.y * 0.49 - 1.0).abs() <= 4.0 * EPS);

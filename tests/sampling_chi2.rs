@@ -2,7 +2,9 @@
 //! adaptive quadrature (the Mitsuba / pbrt test), for GGX and Beckmann in the three roughness
 //! forms, roughness 1e-3, 0.1 and 0.8, `D(m) m_z` sampling and visible normals at view
 //! angles 0, 15, 30, 80 and 89.9 degrees: 2 x 3 x 3 x 6 = 108 tests; plus 8 tests of the
-//! `f32` samplers (full matrix, roughness 0.1) against the `f64` pdf: 116 in all.
+//! `f32` samplers (full matrix, roughness 0.1) against the `f64` pdf, and 16 with the
+//! determinant clamp active (two matrices, both families, `D m_z` and visible normals at 0,
+//! 30 and 80 degrees): 132 in all.
 //!
 //! ## The grid
 //! A `(cos theta, phi)` grid on the hemisphere of `m` cannot resolve a lobe of roughness
@@ -22,7 +24,7 @@
 //! that cell into the smallest other if still below 5). A sample in a cell of zero expected
 //! count fails outright. The p-value `Q(dof/2, chi2/2)` uses the regularised incomplete
 //! gamma function implemented (and tested) below. The significance level is Sidak-corrected
-//! for the 116 tests: `1 - (1 - 0.01)^(1/116)`, so the whole suite has a 1% false-alarm rate.
+//! for the 132 tests: `1 - (1 - 0.01)^(1/132)`, so the whole suite has a 1% false-alarm rate.
 
 mod common;
 
@@ -189,7 +191,7 @@ const N_SAMPLES: usize = 40_000;
 const N_R: usize = 40;
 const N_PHI: usize = 40;
 const MIN_EXPECTED: f64 = 5.0;
-const N_TESTS: usize = 116;
+const N_TESTS: usize = 132;
 const ALPHA_SUITE: f64 = 0.01;
 
 #[derive(Clone, Copy, PartialEq)]
@@ -538,6 +540,88 @@ fn chi2_f32_samplers_against_the_f64_pdf() {
             );
             if o.p.is_nan() || o.p <= alpha_test {
                 failures.push(format!("{name} {label}: p = {}", o.p));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+#[test]
+fn chi2_det_clamp_active() {
+    // tau far above det A: D and Lambda evaluate A_c = A + t I with det(A_c) = tau
+    // (RoughnessMatrix docs; tests/ndf_det_clamp.rs checks D's normalisation and the Smith
+    // identity), and the samplers must warp by the Cholesky factor of that same matrix. The
+    // cells are whitened by this test's own A_c (any partition is valid; this one makes the
+    // cells equiprobable at normal incidence). A rotated lobe with tau = 100 det A, and an
+    // exactly singular one (rank one) with tau = (alpha^2 / 10)^2.
+    let alpha_test = 1.0 - (1.0 - ALPHA_SUITE).powf(1.0 / N_TESTS as f64);
+    let rotated = |l1: f64, l2: f64, phi: f64| {
+        let (c, s) = (phi.cos(), phi.sin());
+        (
+            c * c * l1 + s * s * l2,
+            c * s * (l1 - l2),
+            s * s * l1 + c * c * l2,
+        )
+    };
+    let (a11, a12, a22) = rotated(0.04, 4e-4, 0.7);
+    let det = a11 * a22 - a12 * a12;
+    let cases = [
+        ("rotated", (a11, a12, a22), 100.0 * det),
+        ("singular", (0.0324, 0.0432, 0.0576), 0.0009f64.powi(2)),
+    ];
+    let mut failures = Vec::new();
+    for (k, (name, (a11, a12, a22), tau)) in cases.into_iter().enumerate() {
+        let r = RoughnessMatrix::new_with_det_clamp(a11, a12, a22, tau).unwrap();
+        let h = 0.5 * (a11 + a22);
+        let d = a11 * a22 - a12 * a12;
+        let t = (tau - d) / (h + (h * h + tau - d).sqrt());
+        let whiten = RoughnessMatrix::new(a11 + t, a12, a22 + t).unwrap();
+        let ndfs: [(&str, Radial, Box<dyn NdfSampling>); 2] = [
+            ("ggx", Radial::Ggx, Box::new(Ggx::new(r))),
+            ("beck", Radial::Beckmann, Box::new(Beckmann::new(r))),
+        ];
+        for (j, (family, radial, ndf)) in ndfs.iter().enumerate() {
+            for (i, v) in [None, Some(0.0), Some(30.0), Some(80.0)]
+                .into_iter()
+                .enumerate()
+            {
+                let seed = 7000 + 100 * k as u64 + 10 * j as u64 + i as u64;
+                let out = match v {
+                    None => chi2_test(
+                        &whiten,
+                        *radial,
+                        seed,
+                        |u| ndf.sample_normal(u),
+                        |m| ndf.normal_pdf(m),
+                    ),
+                    Some(deg) => {
+                        let wo = view(deg);
+                        chi2_test(
+                            &whiten,
+                            *radial,
+                            seed,
+                            |u| ndf.sample_visible_normal(wo, u).expect("wo above surface"),
+                            |m| ndf.visible_normal_pdf(wo, m),
+                        )
+                    }
+                };
+                let label = v.map_or("D cos".to_string(), |d| format!("vis {d:>4}"));
+                println!(
+                    "| {family} clamped | {name} | {label} | {:>8.1} | {:>4} | {:>8.4} | sum {:.2e} |",
+                    out.chi2,
+                    out.dof,
+                    out.p,
+                    out.expected_total - 1.0
+                );
+                if (out.expected_total - 1.0).abs() > 1e-5 {
+                    failures.push(format!(
+                        "{family} {name} {label}: mass {}",
+                        out.expected_total
+                    ));
+                }
+                if out.p.is_nan() || out.p <= alpha_test {
+                    failures.push(format!("{family} {name} {label}: p = {}", out.p));
+                }
             }
         }
     }

@@ -2,8 +2,9 @@
 //! matrix approximation for GGX.
 
 use super::super::kernel::Covariance;
-use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
+use super::super::ndf::roughness::{Roughness, RoughnessMatrix, det_wide};
 use super::F;
+use crate::math::Real;
 
 /// `A' = A + 2 Sigma`, evaluated with the determinant clamp `tau = det(A)` (TK19 supplement).
 ///
@@ -15,65 +16,56 @@ use super::F;
 ///   `tests/filter_ggx_error.rs`.
 ///
 /// `tau = det(A)` has no bias in exact arithmetic since `det(A + 2 Sigma) >= det(A)` for
-/// `Sigma >= 0`; it is `det(A)` of the entries as stored (for a clamped [`RoughnessMatrix`],
-/// its own `max(det A, tau)`). Units: `A` dimensionless (slope^2), `Sigma` slope^2.
+/// `Sigma >= 0`; it is the determinant of the entries as stored, in `f64`
+/// (`roughness::det_wide`). A clamped [`RoughnessMatrix`] is filtered as `A + 2 Sigma` (its
+/// entries as given) with its own `tau = det A_c`: a zero kernel returns the lobe unchanged,
+/// and the filtered lobe is never sharper than the clamped one. Units: `A` dimensionless
+/// (slope^2), `Sigma` slope^2.
 #[inline(always)]
 pub fn gaussian<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatrix {
-    gaussian_sanitized(roughness, kernel.sanitized())
+    gaussian_sanitized(roughness, kernel.sanitized(), roughness.lobe_det())
 }
 
-/// [`gaussian`] for a kernel that [`Covariance::sanitized`] (or a clamp applied after it)
-/// has already made finite, non-negative on the diagonal and bounded.
+/// [`gaussian`] with an explicit determinant clamp `tau = det_clamp` (`0` disables it;
+/// NaN, infinite or negative is treated as `0`). The kernel is [`Covariance::sanitized`]
+/// first. Without a clamp, a filtered determinant that rounds to `<= 0` (an extremely
+/// elongated kernel, or underflow) is clamped with `det(A)`, its exact lower bound, so the
+/// result is always valid.
+#[inline]
+pub fn gaussian_with_det_clamp<R: Roughness>(
+    roughness: R,
+    kernel: Covariance,
+    det_clamp: F,
+) -> RoughnessMatrix {
+    let tau = if det_clamp.is_finite() && det_clamp > 0.0 {
+        det_clamp.to_f64()
+    } else {
+        0.0
+    };
+    gaussian_sanitized(roughness, kernel.sanitized(), tau)
+}
+
+/// `A + 2 K` with the clamp `tau` (`<= 0`: none) for a kernel that [`Covariance::sanitized`]
+/// (or a clamp applied after it) has already made finite, positive semi-definite and bounded.
 #[inline(always)]
-pub(crate) fn gaussian_sanitized<R: Roughness>(roughness: R, k: Covariance) -> RoughnessMatrix {
-    // tau = det(A) > 0 is valid by construction: no check, no floor (the hot path).
-    let (b11, b12, b22) = plus_kernel(roughness, k);
-    RoughnessMatrix::from_entries_det_clamped(b11, b12, b22, roughness.det_clamped())
+pub(crate) fn gaussian_sanitized<R: Roughness>(
+    roughness: R,
+    k: Covariance,
+    tau: f64,
+) -> RoughnessMatrix {
+    let (a11, a12, a22) = roughness.entries_f();
+    let (b11, b12, b22) = (a11 + 2.0 * k.s11, a12 + 2.0 * k.s12, a22 + 2.0 * k.s22);
+    RoughnessMatrix::from_entries(b11, b12, b22, valid_clamp(roughness, (b11, b12, b22), tau))
 }
 
-/// [`gaussian`] with an explicit determinant clamp `tau` (`0` disables it; NaN, infinite or
-/// negative `tau` is treated as `0`). The kernel is [`Covariance::sanitized`] first. Even
-/// with `tau = 0`, a filtered determinant that rounds to `<= det(A)` (an extremely elongated
-/// kernel, or underflow) is replaced by `det(A)`, its exact lower bound, so the result is
-/// always valid.
-#[inline]
-pub fn gaussian_with_tau<R: Roughness>(
-    roughness: R,
-    kernel: Covariance,
-    tau: F,
-) -> RoughnessMatrix {
-    gaussian_with_tau_sanitized(roughness, kernel.sanitized(), tau)
-}
-
-/// [`gaussian_with_tau`] for a kernel already sanitised (see [`gaussian_sanitized`]).
-#[inline]
-pub(crate) fn gaussian_with_tau_sanitized<R: Roughness>(
-    roughness: R,
-    kernel: Covariance,
-    tau: F,
-) -> RoughnessMatrix {
-    let (b11, b12, b22) = plus_kernel(roughness, kernel);
-    let tau = if tau.is_finite() && tau > 0.0 {
+/// `tau`, or where `tau <= 0` (no clamp) and the result's determinant rounded to `<= 0`,
+/// `det(A)` of the unfiltered lobe: the exact lower bound of a filtered determinant, which
+/// keeps the result positive definite. Shared by every filter that adds a kernel.
+#[inline(always)]
+pub(crate) fn valid_clamp<R: Roughness>(roughness: R, (b11, b12, b22): (F, F, F), tau: f64) -> f64 {
+    if tau > 0.0 || det_wide(b11, b12, b22) > 0.0 {
         tau
     } else {
-        // a11, a22 > 0 and det(A + 2K) >= det(A) > 0 for K PSD: without a clamp the result
-        // is valid unless the determinant rounded below det(A) (a12 ~ sqrt(a11 a22), an
-        // extremely elongated kernel, or underflow; fuzzing): then det(A), its exact lower
-        // bound, is the clamp.
-        let s = roughness.sqrt_det();
-        let floor = s * s;
-        if b11 * b22 - b12 * b12 > floor {
-            0.0
-        } else {
-            floor
-        }
-    };
-    RoughnessMatrix::from_entries_clamped(b11, b12, b22, tau)
-}
-
-/// The entries of `A + 2 K` for a sanitised kernel `K` (KHPL16 eq. 15 in roughness form).
-#[inline(always)]
-fn plus_kernel<R: Roughness>(roughness: R, k: Covariance) -> (F, F, F) {
-    let (a11, a12, a22) = roughness.to_matrix().entries();
-    (a11 + 2.0 * k.s11, a12 + 2.0 * k.s12, a22 + 2.0 * k.s22)
+        roughness.lobe_det()
+    }
 }

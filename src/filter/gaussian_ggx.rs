@@ -164,13 +164,13 @@ pub struct GaussianFilteredGgx {
 impl GaussianFilteredGgx {
     /// The lobe of GGX roughness `roughness` filtered by the kernel `kernel` (slope^2, e.g.
     /// [`Footprint::covariance`](super::super::Footprint::covariance)), which is
-    /// [`Covariance::sanitized`] first. `A` is taken as the entries of
-    /// [`Roughness::to_matrix`] with `det A = sqrt_det()^2` (for a matrix with a determinant
-    /// clamp, the clamped determinant, as GGX evaluates it).
+    /// [`Covariance::sanitized`] first. `A` is the matrix GGX evaluates: for a matrix with an
+    /// active determinant clamp the clamped `A_c` ([`RoughnessMatrix::clamped_entries`]), with
+    /// `det A = sqrt_det()^2`.
     #[inline]
     pub fn new<R: Roughness>(roughness: R, kernel: Covariance) -> Self {
         let a = roughness.to_matrix();
-        let (a11, a12, _) = a.entries();
+        let (a11, a12, _) = a.clamped_entries();
         let (a11, a12) = (a11.to_f64(), a12.to_f64());
         let sd = roughness.sqrt_det().to_f64();
         let k = kernel.sanitized();
@@ -586,11 +586,11 @@ impl super::super::sampling::NdfSampling for GaussianFilteredGgx {
             0.5
         };
         let wk = m::exp(SAMPLE_T0 + H_S * k as f64);
-        let (a11, a12, a22) = self.a.entries();
+        let (a11, a12, a22) = self.a.clamped_entries();
         let [s11, s12, s22] = self.k;
         let iw = 1.0 / wk;
         let sd = self.a.sqrt_det().to_f64() * iw;
-        let comp = RoughnessMatrix::from_entries_det_clamped(
+        let comp = RoughnessMatrix::from_entries(
             F::from_f64(a11.to_f64() * iw + 2.0 * s11),
             F::from_f64(a12.to_f64() * iw + 2.0 * s12),
             F::from_f64(a22.to_f64() * iw + 2.0 * s22),

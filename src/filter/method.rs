@@ -198,8 +198,8 @@ impl<R: Roughness> Method<Beckmann<R>> for ExactGaussian {
 
 /// Projected-space filtering of GGX (Tokuyoshi and Kaplanyan 2021, JCGT 10(2)): `P = A (I -
 /// A)^-1`, `P' = P + 2 Sigma`, `A' = P' (I + P')^-1` ([`super::projected`]), with the kernel
-/// `Sigma` of the footprint after the clamp rules (maximum extent, `kappa`) and the
-/// determinant clamp. The footprint should hold projected-disk derivatives (see the
+/// `Sigma` of the footprint after the clamp rules ([`ClampRules::filter_projected`]: maximum
+/// extent, `kappa`, determinant clamp). The footprint should hold projected-disk derivatives (see the
 /// [module docs](self)).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Projected {
@@ -230,9 +230,10 @@ impl<R: Roughness> Method<Ggx<R>> for Projected {
     type Lobe = Ggx<RoughnessMatrix>;
     #[inline]
     fn lobe(&self, material: &Ggx<R>, footprint: Footprint) -> Self::Lobe {
-        let rules = self.clamps;
-        let kernel = rules.kernel(rules.footprint(footprint).covariance(self.sigma));
-        Ggx::new(super::projected(material.roughness, kernel))
+        Ggx::new(
+            self.clamps
+                .filter_projected(material.roughness, footprint, self.sigma),
+        )
     }
 }
 

@@ -8,7 +8,7 @@
 //! (slope^2), e.g. [`super::Footprint::covariance`]; each function first applies
 //! [`Covariance::sanitized`](super::Covariance::sanitized), so any kernel (NaN, infinite, indefinite) gives a finite,
 //! positive-definite result. Clamps (extent, `kappa`) are applied by the caller or by
-//! [`super::ClampRules::filter_gaussian`].
+//! [`super::ClampRules::filter_gaussian`] / [`super::ClampRules::filter_projected`].
 //!
 //! ```
 //! use filtered_ndf::f32::{filter, Beckmann, ClampRules, Footprint, Ggx, Isotropic, Ndf};
@@ -38,11 +38,12 @@ mod projected;
 pub mod proxy;
 pub mod rect;
 
-pub use gaussian::{gaussian, gaussian_with_tau};
-pub(crate) use gaussian::{gaussian_sanitized, gaussian_with_tau_sanitized};
+pub(crate) use gaussian::gaussian_sanitized;
+pub use gaussian::{gaussian, gaussian_with_det_clamp};
 pub use gaussian_ggx::GaussianFilteredGgx;
 pub use lean::{LeanMoments, lean};
 pub use method::{
     ExactGaussian, Filterable, Gaussian, Method, Projected, Proxy, Rect, RectFilteredGgx,
 };
-pub use projected::{PROJECTED_EIGEN_MAX, projected};
+pub(crate) use projected::projected_sanitized;
+pub use projected::{PROJECTED_EIGEN_MAX, projected, projected_with_det_clamp};

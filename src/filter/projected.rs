@@ -3,13 +3,20 @@
 use super::super::kernel::Covariance;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
 use super::F;
+use super::gaussian::valid_clamp;
+use crate::math::Real;
 
 /// The largest eigenvalue of `A` that [`projected`] maps to projected space: `0.99`
 /// (`alpha <= 0.995`). The map `P = A (I - A)^-1` needs every eigenvalue of `A` below 1.
-pub const PROJECTED_EIGEN_MAX: F = 0.99;
+pub const PROJECTED_EIGEN_MAX: F = EIGEN_MAX as F;
+
+/// [`PROJECTED_EIGEN_MAX`] in `f64`, the value both precisions compute with.
+const EIGEN_MAX: f64 = 0.99;
 
 /// Projected-space filtering (Tokuyoshi and Kaplanyan 2021, JCGT 10(2), Listing 1):
-/// `P = A (I - A)^-1`, `P' = P + 2 Sigma`, `A' = P' (I + P')^-1`.
+/// `P = A (I - A)^-1`, `P' = P + 2 Sigma`, `A' = P' (I + P')^-1`, evaluated with the
+/// determinant clamp `tau = det(A)` (filtering only grows the determinant), as
+/// [`super::gaussian`].
 ///
 /// **Why.** On the projected disk `p = h_xy` the GGX density is itself a GGX-shaped slope
 /// density: with `P^-1 = A^-1 - I`,
@@ -24,8 +31,11 @@ pub const PROJECTED_EIGEN_MAX: F = 0.99;
 /// **Computation.** For 2x2 matrices, by Cayley-Hamilton,
 /// `P = (A - det(A) I) / det(I - A)` with `a11 - det A = a11 (1 - a22) + a12^2` (a sum of
 /// positive terms) and `A' = (P' + d I) / (1 + tr(P') + d)`, `d = max(det P', det P)` (TK21's
-/// `detMin`), every term positive: `A'` is symmetric positive definite by construction. The
-/// result is evaluated with `tau = det(A)` (filtering only grows the determinant).
+/// `detMin`), every term positive: `A'` is symmetric positive definite by construction. Both
+/// precisions compute in `f64` from the entries and the sanitised kernel and round the
+/// entries of `A'` once, so the `f32` result is the `f64` one correctly rounded (as
+/// [`super::gaussian`]'s `a + 2 k` is): `(I - A)^-1` amplifies rounding by up to
+/// `1 / (1 - lambda_max) = 100`, which `f32` arithmetic could not absorb.
 ///
 /// **Roughness limit.** `I - A` is invertible with `P` positive definite iff both
 /// eigenvalues of `A` are `< 1` (`alpha < 1`). Eigenvalues above [`PROJECTED_EIGEN_MAX`]
@@ -35,19 +45,58 @@ pub const PROJECTED_EIGEN_MAX: F = 0.99;
 /// need no filtering (TK19 section 3.2).
 #[inline]
 pub fn projected<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatrix {
-    let k = kernel.sanitized();
-    let (a11, a12, a22) = roughness.to_matrix().entries();
-    let tau = {
-        let s = roughness.sqrt_det();
-        s * s
+    projected_sanitized(roughness, kernel.sanitized(), roughness.lobe_det())
+}
+
+/// [`projected`] with an explicit determinant clamp `tau = det_clamp`, as
+/// [`super::gaussian_with_det_clamp`] (`0`, NaN, infinite or negative: no clamp beyond what
+/// keeps the result positive definite).
+#[inline]
+pub fn projected_with_det_clamp<R: Roughness>(
+    roughness: R,
+    kernel: Covariance,
+    det_clamp: F,
+) -> RoughnessMatrix {
+    let tau = if det_clamp.is_finite() && det_clamp > 0.0 {
+        det_clamp.to_f64()
+    } else {
+        0.0
     };
-    let a = Covariance::new(a11, a12, a22);
-    let ac = a.clamp_eigenvalues(PROJECTED_EIGEN_MAX);
-    let excess = Covariance::new(a11 - ac.s11, a12 - ac.s12, a22 - ac.s22);
+    projected_sanitized(roughness, kernel.sanitized(), tau)
+}
+
+/// [`projected`] for a sanitised kernel, with the clamp `tau` (`<= 0`: none).
+#[inline]
+pub(crate) fn projected_sanitized<R: Roughness>(
+    roughness: R,
+    k: Covariance,
+    tau: f64,
+) -> RoughnessMatrix {
+    let (a11, a12, a22) = roughness.entries_f();
+    let w = |x: F| x.to_f64();
+    let (r11, r12, r22) = projected_wide((w(a11), w(a12), w(a22)), (w(k.s11), w(k.s12), w(k.s22)));
+    // Never below A on the diagonal (exact, by monotonicity): rounding in the excess split
+    // otherwise takes a tiny (e.g. subnormal, accepted with a large `tau`) `a11` to `<= 0`.
+    let b = (
+        F::from_f64(r11).max(a11),
+        F::from_f64(r12),
+        F::from_f64(r22).max(a22),
+    );
+    RoughnessMatrix::from_entries(b.0, b.1, b.2, valid_clamp(roughness, b, tau))
+}
+
+/// The entries of `A'` in `f64` (see [`projected`]).
+#[inline]
+fn projected_wide(a: (f64, f64, f64), k: (f64, f64, f64)) -> (f64, f64, f64) {
+    use crate::f64::kernel::Covariance as Wide;
+    let (a11, a12, a22) = a;
+    let k = Wide::new(k.0, k.1, k.2);
+    let ac = Wide::new(a11, a12, a22).clamp_eigenvalues(EIGEN_MAX);
+    let excess = Wide::new(a11 - ac.s11, a12 - ac.s12, a22 - ac.s22);
     let (c11, c12, c22) = (ac.s11, ac.s12, ac.s22);
     // P = (A - det(A) I) / det(I - A).
-    let det_ima = ((1.0 - c11) * (1.0 - c22) - c12 * c12).max(F::MIN_POSITIVE);
-    let p = Covariance::new(
+    let det_ima = ((1.0 - c11) * (1.0 - c22) - c12 * c12).max(f64::MIN_POSITIVE);
+    let p = Wide::new(
         (c11 * (1.0 - c22) + c12 * c12) / det_ima,
         c12 / det_ima,
         (c22 * (1.0 - c11) + c12 * c12) / det_ima,
@@ -63,20 +112,9 @@ pub fn projected<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMat
     let den = 1.0 + q.s11 + q.s22 + d;
     // Each part is finite: q's entries are bounded by P (<= 1 / (1 - 0.99)^2 scale) plus the
     // sanitized kernel (<= ALPHA_MAX^2).
-    let b11 = (q.s11 + d) / den;
-    let b12 = q.s12 / den;
-    let b22 = (q.s22 + d) / den;
-    // Never below A on the diagonal (exact, by monotonicity): rounding in the excess split
-    // otherwise takes a tiny (e.g. subnormal, accepted with a large `tau`) `a11` to `<= 0`.
-    let (r11, r12, r22) = (
-        (b11 + excess.s11).max(a11),
-        b12 + excess.s12,
-        (b22 + excess.s22).max(a22),
-    );
-    let floor = if r11 * r22 - r12 * r12 > 0.0 {
-        tau
-    } else {
-        tau.max(F::MIN_POSITIVE)
-    };
-    RoughnessMatrix::from_entries_clamped(r11, r12, r22, floor)
+    (
+        (q.s11 + d) / den + excess.s11,
+        q.s12 / den + excess.s12,
+        (q.s22 + d) / den + excess.s22,
+    )
 }

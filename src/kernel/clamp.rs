@@ -11,7 +11,7 @@
 //! | rectangle floor | `floor` | `epsilon = 1e-3` (KHPL16 5.2) | the printed eight-term GGX rectangle formula dividing a cancelled difference by a tiny area | every rectangle is at least `2 epsilon` wide: the peak of a lobe with `alpha << epsilon` is capped near `1 / (4 epsilon_x epsilon_y)` (`2.5e5` for `1e-3`) instead of `1 / (pi alpha^2)` |
 //! | GDC floor | `floor` | `min(alpha, 0.1)` ([`ClampRules::GDC2016`]) | the same, scaled to the lobe; flicker of sub-pixel footprints | always blurs, even at zero footprint: the peak of an isotropic lobe with `alpha <= 0.1` drops to the average over `[-alpha, alpha]^2` (measured in `tests/filter_clamp.rs`) |
 //! | kernel roughness | `kappa` | `kappa = 0.18` (TK19 eq. 1) | derivative estimation errors at edges and grazing angles (TK19 3.1) that blow the kernel up | kernel roughness^2 is capped at `kappa` per eigen-direction: under-filtering (residual aliasing) where `2 lambda > kappa`, i.e. where the footprint is wider than `sqrt(0.18) = 0.42` in roughness units |
-//! | determinant clamp | `det_clamp` | on, `tau = det(A)` (TK19 supplement) | an elongated filtered matrix whose determinant lost its digits to cancellation (the inverse explodes) | none in exact arithmetic (`det(A + 2 Sigma) >= det(A)`); in floats it caps the filtered peak at the unfiltered one |
+//! | determinant clamp | `det_clamp` | on, `tau = det(A)` (TK19 supplement) | an elongated filtered matrix whose determinant lost its digits when its entries were rounded (the inverse explodes) | none in exact arithmetic (`det(A + 2 Sigma) >= det(A)`); in floats, where it is active, it adds `t I` to the filtered matrix (`det = tau`, see `RoughnessMatrix`): the filtered peak never exceeds the unfiltered one |
 
 use super::super::filter;
 use super::super::footprint::Footprint;
@@ -46,7 +46,8 @@ pub struct ClampRules {
     /// `kappa`: the largest kernel roughness^2 `2 lambda_i(Sigma)` per eigen-direction
     /// (TK19 eq. 1, `min(2 lambda, kappa)`).
     pub kappa: F,
-    /// Evaluate filtered matrices with `tau = det(A_unfiltered)` (TK19 supplement).
+    /// Evaluate filtered matrices with the determinant clamp `tau = det(A_unfiltered)`
+    /// (TK19 supplement; [`ClampRules::det_clamp_for`]).
     pub det_clamp: bool,
 }
 
@@ -195,23 +196,31 @@ impl ClampRules {
         k.clamp_eigenvalues(0.5 * kappa)
     }
 
-    /// The determinant clamp for filtering `roughness`: `tau = det(A)` (`alpha_x^2 alpha_y^2`
-    /// for an axis-aligned lobe, TK19 supplement) if `det_clamp`, else `0`. The value
-    /// [`filter::gaussian`] uses, rounded to `F`.
+    /// The determinant clamp `tau` for filtering `roughness`: `det(A)` of the unfiltered
+    /// lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a clamped
+    /// [`RoughnessMatrix`] its `det A_c`) if `det_clamp`, else `0`. The determinant is the one
+    /// every filter clamps with (computed in `f64` from the entries by
+    /// `det_wide`), rounded to `F`.
     #[inline]
-    pub fn tau<R: Roughness>(&self, roughness: R) -> F {
+    pub fn det_clamp_for<R: Roughness>(&self, roughness: R) -> F {
+        F::from_f64(self.det_clamp_wide(roughness))
+    }
+
+    /// [`ClampRules::det_clamp_for`] in `f64`, as the filters use it.
+    #[inline(always)]
+    fn det_clamp_wide<R: Roughness>(&self, roughness: R) -> f64 {
         if self.det_clamp {
-            F::from_f64(roughness.det_clamped())
+            roughness.lobe_det()
         } else {
             0.0
         }
     }
 
     /// The whole Gaussian pipeline: [`ClampRules::footprint`] -> [`Footprint::covariance`]
-    /// (`sigma` pixels) -> [`ClampRules::kernel`] -> `A' = A + 2 Sigma`, with the
-    /// determinant clamp `tau = det(A)` of [`filter::gaussian`] if `det_clamp`, else as
-    /// [`filter::gaussian_with_tau`] with `0`. The kernel is sanitised once (by
-    /// [`ClampRules::kernel`]). Exact for Beckmann, the TK19 approximation for GGX.
+    /// (`sigma` pixels) -> [`ClampRules::kernel`] -> `A' = A + 2 Sigma`
+    /// ([`filter::gaussian`]), with the determinant clamp `tau = det(A)` if `det_clamp`
+    /// (else as [`filter::gaussian_with_det_clamp`] with `0`). The kernel is sanitised once
+    /// (by [`ClampRules::kernel`]). Exact for Beckmann, the TK19 approximation for GGX.
     #[inline]
     pub fn filter_gaussian<R: Roughness>(
         &self,
@@ -220,11 +229,23 @@ impl ClampRules {
         sigma: F,
     ) -> RoughnessMatrix {
         let k = self.kernel(self.footprint(fp).covariance(sigma));
-        if self.det_clamp {
-            filter::gaussian_sanitized(roughness, k)
-        } else {
-            filter::gaussian_with_tau_sanitized(roughness, k, 0.0)
-        }
+        filter::gaussian_sanitized(roughness, k, self.det_clamp_wide(roughness))
+    }
+
+    /// The projected-space pipeline (TK21), the rules as in [`ClampRules::filter_gaussian`]:
+    /// [`ClampRules::footprint`] -> [`Footprint::covariance`] (`sigma` pixels; the footprint
+    /// of the half vector's projected-disk derivatives, TK19 section 3.2) ->
+    /// [`ClampRules::kernel`] -> [`filter::projected`], with the determinant clamp
+    /// `tau = det(A)` if `det_clamp` (else as [`filter::projected_with_det_clamp`] with `0`).
+    #[inline]
+    pub fn filter_projected<R: Roughness>(
+        &self,
+        roughness: R,
+        fp: Footprint,
+        sigma: F,
+    ) -> RoughnessMatrix {
+        let k = self.kernel(self.footprint(fp).covariance(sigma));
+        filter::projected_sanitized(roughness, k, self.det_clamp_wide(roughness))
     }
 }
 

@@ -94,9 +94,13 @@ impl Beckmann<RoughnessMatrix> {
 }
 
 /// Beckmann Smith `Lambda` from `q = w_xy^T A w_xy` and `|w_z|` (shared with sampling and
-/// the temporal module; one source of truth).
+/// the temporal module; one source of truth). NaN in either: `+inf` (the NaN policy of
+/// [`Ndf`]).
 #[inline]
 pub(crate) fn beckmann_lambda(q: F, abs_wz: F) -> F {
+    if q.is_nan() || abs_wz.is_nan() {
+        return F::INFINITY;
+    }
     if q <= 0.0 {
         return 0.0;
     }
@@ -123,6 +127,7 @@ impl<R: Roughness> Ndf for Beckmann<R> {
     fn p22(&self, s: Vec2) -> F {
         let den = PI * self.roughness.sqrt_det();
         let v = exp_neg_times(self.roughness.inv_quadratic(s), 1.0 / den, || -m::ln(den));
+        // A NaN slope gives NaN here: 0 (the NaN policy of `Ndf`).
         if v.is_finite() { v } else { 0.0 }
     }
 

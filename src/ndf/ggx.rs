@@ -66,9 +66,13 @@ impl<R: Roughness> Ggx<R> {
 }
 
 /// GGX Smith `Lambda` from `q = w_xy^T A w_xy` and `|w_z|` (shared with the sampling and
-/// temporal modules; one source of truth).
+/// temporal modules; one source of truth). NaN in either: `+inf` (the NaN policy of
+/// [`Ndf`]).
 #[inline]
 pub(crate) fn ggx_lambda(q: F, abs_wz: F) -> F {
+    if q.is_nan() || abs_wz.is_nan() {
+        return F::INFINITY;
+    }
     if q <= 0.0 {
         return 0.0;
     }
@@ -91,7 +95,9 @@ impl<R: Roughness> Ndf for Ggx<R> {
     #[inline]
     fn p22(&self, s: Vec2) -> F {
         let t = 1.0 + self.roughness.inv_quadratic(s);
-        1.0 / (PI * self.roughness.sqrt_det() * t * t)
+        let v = 1.0 / (PI * self.roughness.sqrt_det() * t * t);
+        // NaN slope: 0 (the NaN policy of `Ndf`); an infinite one already gives 0.
+        if v.is_nan() { 0.0 } else { v }
     }
 
     #[inline]

@@ -7,6 +7,12 @@
 //! - `p22(s)`: slope-domain density, per unit slope area, integrating to 1 over the plane.
 //! - `d(m) = p22(s(m)) / m_z^4`: solid-angle density, normalised so that the projected area
 //!   is one, `integral of d(m) m_z dm = 1` over the upper hemisphere (KHPL16 eq. 2).
+//!
+//! NaN policy (every NDF, every roughness form): **a NaN argument contributes nothing.** An
+//! argument with a NaN component gives `p22 = d = 0` and `lambda = +inf`, hence
+//! `g1 = g2 = 0` (a NaN in `m` as well). A renderer that meets a NaN direction thus adds no
+//! light and no pdf, whatever the family; it is the same answer as for a direction beyond
+//! the horizon. Decided once, here, and tested for both families (`tests/contract.rs`).
 
 use super::{F, Mat2, Vec2, Vec3};
 
@@ -17,38 +23,44 @@ pub mod roughness;
 /// A microfacet normal distribution with Smith masking-shadowing.
 pub trait Ndf {
     /// Slope-domain density `P22(s)` (per unit slope area). Finite and `>= 0` for finite `s`;
-    /// `0` where `s` is so far in the tail that the density underflows.
+    /// `0` where `s` is so far in the tail that the density underflows, for an infinite and
+    /// for a NaN component (module docs).
     fn p22(&self, s: super::Vec2) -> F;
 
     /// Solid-angle density `D(m) = P22(s(m)) / m_z^4` (per steradian, KHPL16 eq. 2) for a
-    /// unit micronormal `m`. `0` for `m_z <= 0` (the `chi+` factor); finite for finite input.
+    /// unit micronormal `m`. `0` for `m_z <= 0` (the `chi+` factor) and for a non-finite
+    /// component (NaN: module docs); finite for finite input.
     fn d(&self, m: Vec3) -> F;
 
     /// Smith `Lambda(w)` for a direction `w`, using `|w_z|` (TK19 supplement section 1).
     /// `Lambda` is homogeneous of degree 0, so `w` need not be unit: a vector far from unit
     /// length (huge or tiny but finite) is rescaled first. `+inf` at `w_z = 0` (the correct
-    /// limit: a grazing direction is fully masked), `0` for a zero vector.
+    /// limit: a grazing direction is fully masked) and for a NaN component (module docs), `0`
+    /// for a zero vector.
     fn lambda(&self, w: Vec3) -> F;
 
     /// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` (TK19 supplement section 1).
-    /// In `[0, 1]`; `0` for `w.m <= 0` and for grazing `w`.
+    /// In `[0, 1]`; `0` for `w.m <= 0`, for grazing `w` and for a NaN component.
     #[inline]
     fn g1(&self, w: Vec3, m: Vec3) -> F {
-        if w.dot(m) <= 0.0 {
-            return 0.0;
+        // `>` is false for NaN: a NaN direction masks completely (the NaN policy).
+        if w.dot(m) > 0.0 {
+            1.0 / (1.0 + self.lambda(w))
+        } else {
+            0.0
         }
-        1.0 / (1.0 + self.lambda(w))
     }
 
     /// Height-correlated masking-shadowing
     /// `G2(i, o, m) = chi+(i.m) chi+(o.m) / (1 + Lambda(i) + Lambda(o))` (TK19 supplement
-    /// section 1; Heitz 2014 eq. 99). In `[0, 1]`.
+    /// section 1; Heitz 2014 eq. 99). In `[0, 1]`; `0` for a NaN component.
     #[inline]
     fn g2(&self, i: Vec3, o: Vec3, m: Vec3) -> F {
-        if i.dot(m) <= 0.0 || o.dot(m) <= 0.0 {
-            return 0.0;
+        if i.dot(m) > 0.0 && o.dot(m) > 0.0 {
+            1.0 / (1.0 + self.lambda(i) + self.lambda(o))
+        } else {
+            0.0
         }
-        1.0 / (1.0 + self.lambda(i) + self.lambda(o))
     }
 }
 

@@ -21,8 +21,8 @@
 //! the image of the unit-roughness visible normals seen from the stretched direction
 //! `normalize(L^T wo_xy, wo_z)` (Heitz and d'Eon 2014 section 4 for the axis-aligned case;
 //! the same algebra holds for any `L`). With the determinant clamp `tau` of
-//! [`RoughnessMatrix`](super::RoughnessMatrix), `L` uses the clamped
-//! `sqrt(max(det A, tau))`, i.e. the sampled lobe is the one the density evaluates.
+//! [`RoughnessMatrix`](super::RoughnessMatrix), `L` is the Cholesky factor of the clamped
+//! matrix `A_c` that the density and `Lambda` evaluate, so the sampled lobe is that one.
 //!
 //! The unit-roughness samplers are exact: GGX through the spherical caps of Dupuy and
 //! Benyoub 2023 ("Sound and Robust Sampling of the Distribution of Visible Normals", listing
@@ -35,9 +35,8 @@
 //!   rounding leaves no certifiable sample: the `m_z` of every candidate (and of the lobe
 //!   centre) underflows to `0`. That needs a view within the float range of the stretched
 //!   lobe's horizon: `wo_z / |wo|` below about `1e-300` (`f64`) / `1e-37` (`f32`) for
-//!   roughness in the checked range, or a matrix whose determinant clamp `tau` far exceeds
-//!   `a11 a22` (its sampling stretch is then far beyond the lobe's entries). A two-sided material flips `wo` (and the
-//!   sampled `m`) itself.
+//!   roughness in the checked range. A two-sided material flips `wo` (and the sampled `m`)
+//!   itself.
 //! - `u` outside `[0, 1)`: each component is clamped to `[0, 1 - eps/2]`, NaN to `0`.
 //! - `wo` need not be normalised (every formula is scale-invariant in `wo`); `m` must be a
 //!   unit vector for the pdfs.
@@ -197,15 +196,13 @@ struct Warp {
 }
 
 impl Warp {
+    /// The Cholesky factor of the matrix the roughness evaluates (for a clamped
+    /// [`RoughnessMatrix`](super::RoughnessMatrix), of its `A_c`): the warp samples the lobe
+    /// that `D` and `Lambda` describe.
     #[inline]
     fn new<R: Roughness>(r: &R) -> Self {
-        let (a11, a12, _) = r.to_matrix().entries();
-        let l11 = m::sqrt(a11);
-        Self {
-            l11,
-            l21: a12 / l11,
-            l22: r.sqrt_det() / l11,
-        }
+        let (l11, l21, l22) = r.cholesky();
+        Self { l11, l21, l22 }
     }
 
     /// `(L^T w_xy, w_z)`: a view direction into the unit-roughness space (unnormalised).

@@ -83,6 +83,15 @@ impl DdSym {
             a22: Dd::from(a22),
         }
     }
+    /// `[[p, a12], [a12, (a12^2 + c) / p]]`, the matrix of determinant `c` with pivot `p`: a
+    /// clamped `RoughnessMatrix`'s `A_c` from its pivot and `c = max(det A, tau)`.
+    pub fn ldl(p: f64, a12: f64, c: f64) -> Self {
+        Self {
+            a11: Dd::from(p),
+            a12: Dd::from(a12),
+            a22: Dd::prod(a12, a12).add(Dd::from(c)).div(Dd::from(p)),
+        }
+    }
     pub fn det(&self) -> Dd {
         self.a11.mul(self.a22).sub(self.a12.mul(self.a12))
     }

@@ -2,9 +2,8 @@
 
 use super::{
     F, Isotropic, Roughness, RoughnessError, RoughnessMatrix, Vec2, check_alpha, clamp_alpha,
-    over_z2, sealed,
+    det_wide, over_z2, sealed,
 };
-use crate::math::Real;
 
 /// Axis-aligned anisotropic roughness `(alpha_x, alpha_y)` along the tangent and bitangent:
 /// `A = diag(alpha_x^2, alpha_y^2)`.
@@ -65,9 +64,16 @@ impl sealed::Sealed for AxisAligned {
         over_z2(self.inv_quadratic(m), self.inv_sqrt_det, z2)
     }
     #[inline(always)]
-    fn det_clamped(&self) -> f64 {
-        let a = self.alpha2;
-        a.x.to_f64() * a.y.to_f64()
+    fn lobe_det(&self) -> f64 {
+        det_wide(self.alpha2.x, 0.0, self.alpha2.y)
+    }
+    #[inline(always)]
+    fn entries_f(&self) -> (F, F, F) {
+        (self.alpha2.x, 0.0, self.alpha2.y)
+    }
+    #[inline(always)]
+    fn cholesky(&self) -> (F, F, F) {
+        (self.alpha.x, 0.0, self.alpha.y)
     }
 }
 impl Roughness for AxisAligned {
@@ -85,21 +91,7 @@ impl Roughness for AxisAligned {
     }
     #[inline]
     fn to_matrix(&self) -> RoughnessMatrix {
-        let a = self.alpha2;
-        RoughnessMatrix {
-            a11: a.x,
-            a12: 0.0,
-            a22: a.y,
-            axis: Vec2::X,
-            eig: a,
-            inv_eig: self.inv_alpha2,
-            sqrt_det: self.alpha.x * self.alpha.y,
-            inv_sqrt_det: self.inv_sqrt_det,
-            ldl_det: 0.0,
-            ldl_inv: 0.0,
-            ldl_c: 0.0,
-            ldl_c32: 0.0,
-            ldl: false,
-        }
+        // What `RoughnessMatrix::new(alpha_x^2, 0, alpha_y^2)` builds (no checks needed).
+        RoughnessMatrix::from_entries(self.alpha2.x, 0.0, self.alpha2.y, 0.0)
     }
 }

@@ -2,9 +2,8 @@
 
 use super::{
     AxisAligned, F, Roughness, RoughnessError, RoughnessMatrix, Vec2, check_alpha, clamp_alpha,
-    over_z2, sealed,
+    det_wide, over_z2, sealed,
 };
-use crate::math::Real;
 
 /// Isotropic roughness `alpha`: `A = alpha^2 I`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,9 +48,18 @@ impl sealed::Sealed for Isotropic {
         over_z2(self.inv_quadratic(m), self.inv_alpha2, z2)
     }
     #[inline(always)]
-    fn det_clamped(&self) -> f64 {
-        let a = (self.alpha * self.alpha).to_f64();
-        a * a
+    fn lobe_det(&self) -> f64 {
+        let a2 = self.alpha * self.alpha;
+        det_wide(a2, 0.0, a2)
+    }
+    #[inline(always)]
+    fn entries_f(&self) -> (F, F, F) {
+        let a2 = self.alpha * self.alpha;
+        (a2, 0.0, a2)
+    }
+    #[inline(always)]
+    fn cholesky(&self) -> (F, F, F) {
+        (self.alpha, 0.0, self.alpha)
     }
 }
 impl Roughness for Isotropic {

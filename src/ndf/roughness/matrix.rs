@@ -1,8 +1,9 @@
-//! The full-matrix roughness form: any symmetric positive-definite `A`.
+//! The full-matrix roughness form: any symmetric positive-definite `A`, with the TK19
+//! determinant clamp.
 
 use super::{
     ALPHA_MAX, ALPHA_MIN, AxisAligned, F, Isotropic, Mat2, Roughness, RoughnessError, Vec2,
-    over_z2, sealed,
+    det_wide, sealed,
 };
 use crate::math::{self as m, Real};
 
@@ -10,101 +11,104 @@ use crate::math::{self as m, Real};
 /// supplement section 1; Heitz 2014 section 5.4). For a Beckmann lobe `A` is twice the slope
 /// covariance (KHPL16 eq. 14); rotating the lobe by `R` maps `A` to `R A R^T`.
 ///
-/// With a determinant clamp `tau >= 0` (TK19 supplement, "Practical Implementation") the
-/// density uses `sqrt(max(det A, tau))` and `A^-1 = adj(A) / max(det A, tau)`. The clamp
-/// protects the inverse of an elongated, filtered matrix whose determinant has lost its
-/// precision to cancellation; when filtering, `tau = det(A_unfiltered)` (`alpha_x^2 alpha_y^2`)
-/// is exact, since filtering can only grow the determinant. Its bias is zero whenever
-/// `det A >= tau` holds in exact arithmetic.
+/// # The determinant clamp
+/// A matrix carries a determinant clamp `tau >= 0` (TK19 supplement, "Practical
+/// Implementation"; `det_clamp` in the API), which protects a filtered, elongated matrix whose
+/// determinant lost its digits when its entries were rounded. Every method (`D`, `P22`,
+/// `Lambda`, the samplers' warp, [`RoughnessMatrix::inverse`]) evaluates one matrix:
 ///
-/// **Representations.** Two, chosen by the constructor, evaluated in `f64` for both
-/// precisions; they give the same values to within the stated accuracy (`PartialEq`
-/// compares representations, not only the matrix):
-/// - **LDL** (`det A > 0`, and in `f64` also `cond(A) < 16`: every filtered lobe of a
-///   realistic material): the entries, `det A`, `c = max(det A, tau)`, `1 / (a11 c)` and
-///   `c^(3/2)`, with
-///   `s^T adj(A) s = ((a11 s_y - a12 s_x)^2 + det(A) s_x^2) / a11` (completing the square, the
-///   2x2 `L D L^T`): a sum of two non-negative terms in which only `a11 s_y - a12 s_x` can
-///   cancel. For `f32` entries and slopes both products are exact in `f64`, so that term is
-///   exactly rounded and the whole form is within a few `eps_f64` at any condition number;
-///   for `f64` the cancellation costs about `2 sqrt(cond A) eps_f64`, plus the determinant's
-///   10 ulps, hence the `cond < 16` limit. Built with one division and one square root: a
-///   lobe built per pixel (a filtered one, or a rotated anisotropic material) stays cheap.
-/// - **Eigenbasis** (otherwise: a determinant that is not positive, only possible under the
-///   clamp, or an `f64` matrix with `cond(A) >= 16`):
-///   `A = R diag(l1, l2) R^T` with `det A` computed without cancellation error, so both
-///   quadratic forms are sums of two non-negative squares: a few ulps at any condition number
-///   (evaluating from the entries of `A^-1` instead cancels to a relative `cond(A) eps`,
-///   6 % in `f32` at an anisotropy ratio of `1e3`). Built with two square roots and two
-///   divisions, in `f64`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// - `A_c = A` when `det A >= tau`;
+/// - `A_c = A + t I` otherwise, `t > 0` the root of `det(A + t I) = tau`:
+///   `t = (tau - det A) / (tr(A) / 2 + sqrt(tr(A)^2 / 4 + tau - det A))`.
+///
+/// So `det A_c = c = max(det A, tau)`, and `D` is normalised for `A_c`. **Bias:** none when
+/// `det A >= tau` (in exact arithmetic filtering never lowers the determinant, so the clamp
+/// `tau = det(A_unfiltered)` of the filters is active only where rounding broke that). When
+/// active, `A_c - A = t I` is positive semi-definite: for Beckmann exactly the convolution
+/// with an isotropic slope kernel of variance `t / 2` (KHPL16 eq. 15), a blur, never a
+/// sharpening; for an elongated lobe `t ~ (tau - det A) / lambda_max`, which raises the minor
+/// roughness^2 to about `tau / lambda_max` and leaves the major one unchanged to a relative
+/// `(tau - det A) / lambda_max^2`. (TK19's literal formula, `sqrt(max(det A, tau))` with
+/// `A^-1 = adj(A) / max(det A, tau)`, is not normalised when the clamp is active: its
+/// integral is `sqrt(tau / det A)`, unbounded for a singular `A`.)
+///
+/// # Representation
+/// The entries of `A` as given (returned by [`RoughnessMatrix::entries`]), and `A_c` by its
+/// `L D L^T` factors: the pivot `p = (A_c)_11` (`a11 + t` rounded to `F`; `a11` when the
+/// clamp is inactive) and `c = det A_c` in `f64`. Then
+/// `A_c = [[p, a12], [a12, (a12^2 + c) / p]]`, symmetric positive definite with determinant
+/// exactly `c` whatever the rounding of `p` (which moves `A_c` off the exact `A + t I` by
+/// `eps / 2` of its (1, 1) entry, and its quadratic forms by at most `kappa eps / 2`: the
+/// clamped lobe is stored to the precision, as any filtered lobe's entries are), and
+///
+/// - `s^T A_c^-1 s = ((p s_y - a12 s_x)^2 + c s_x^2) / (p c)`,
+/// - `w^T A_c w = ((p w_x + a12 w_y)^2 + c w_y^2) / p`,
+///
+/// sums of two non-negative terms, evaluated in `f64` for both precisions, in which only
+/// `u = p s_y - a12 s_x` can cancel. Accuracy, relative, against the exact forms of the stored
+/// matrix at the given (rounded) argument, for any condition number `kappa` of `A_c`:
+///
+/// - **`f32`**: `p s_y` and `a12 s_x` are exact in `f64` (24 + 24 bits), and `c` is the
+///   determinant of the `f32` entries rounded once: each form is within a few `eps_f64` before
+///   its one rounding to `f32`, i.e. within `eps_f32 / 2 + 8 eps_f64`.
+/// - **`f64`**: `c` within `16 eps` (`roughness::det_wide`); `u`'s cancellation costs at most
+///   `sqrt(kappa) eps` of the form `q` (`|u| <= sqrt(p c q)`, its rounding error is at most
+///   `eps |s| sqrt(p lambda_max) / 2`, and `q >= |s|^2 / lambda_max`), so each form is within
+///   `(sqrt(kappa) + 24) eps` (`tests/matrix_representations.rs`, condition numbers to
+///   `1e12`). An eigenbasis representation has the same `sqrt(kappa) eps` loss in the
+///   rotation of `s`; removing it needs an error-free product per evaluation, a library `fma`
+///   call without the `fma` target feature, which would make every `f64` evaluation slower.
+///
+/// Building a matrix costs one square root and one division (a lobe built per pixel, as
+/// filtering does, stays cheap); the clamp adds a square root where it is active.
+///
+/// # Equality
+/// By value: two matrices are equal when their entries and their clamped determinant
+/// `c = max(det A, tau)` are (then `A_c` and every method agree). A clamp at or below `det A`
+/// is no clamp: `new_with_det_clamp(a11, a12, a22, tau)` equals `new(a11, a12, a22)` then.
+#[derive(Clone, Copy, Debug)]
+// Fields in 16-byte groups of what is read together, the groups 16-byte aligned: a copy of
+// the matrix through memory (passed by value, or spilled) is written in 16-byte pieces, and a
+// vector load of two fields across two pieces cannot be forwarded from those stores. What it
+// buys, measured (1024 GGX `D`, the matrix passed by value through `black_box`): 2.4 instead
+// of 16.9 us in `f32`, 2.2 instead of 16.4 us in `f64` (the default field order stalls).
+#[repr(C, align(16))]
 pub struct RoughnessMatrix {
-    pub(super) a11: F,
-    pub(super) a12: F,
-    pub(super) a22: F,
-    /// Unit eigenvector `(c, s)` of `l1`; `(-s, c)` is the eigenvector of `l2`.
-    pub(super) axis: Vec2,
-    /// Eigenvalues `(l1, l2)` of `A` (`l2` may be `<= 0` by rounding when `tau > 0`).
-    pub(super) eig: Vec2,
-    /// Eigenvalues of the clamped inverse `adj(A) / max(det A, tau)`: `(l2, l1) / max(det, tau)`.
-    pub(super) inv_eig: Vec2,
-    pub(super) sqrt_det: F,
-    /// `1 / sqrt(max(det A, tau))` (eigenbasis path; `0` on the LDL path).
-    pub(super) inv_sqrt_det: F,
-    /// `det A` in `f64` (LDL path; `0` on the eigenbasis path).
-    pub(super) ldl_det: f64,
-    /// `1 / (a11 c)` in `f64`, `c = max(det A, tau)` (LDL path; `0` on the eigenbasis path).
-    /// Only [`Roughness::inv_quadratic`] reads it: Beckmann's `D` divides once by
-    /// `a11 c m_z^2` instead, so a filtered lobe whose matrix is built and evaluated inline
-    /// never forms it (the compiler drops the division).
-    pub(super) ldl_inv: f64,
-    /// `c = max(det A, tau)` in `f64` (LDL path; `0` on the eigenbasis path).
-    pub(super) ldl_c: f64,
-    /// `c^(3/2)` in `f64` (LDL path; `0` on the eigenbasis path): Beckmann's normalisation
-    /// is `(a11 t)^2 c^(3/2)` with `t = 1 / (a11 c m_z^2)`.
-    pub(super) ldl_c32: f64,
-    /// Whether the LDL representation is used (see the type docs).
-    pub(super) ldl: bool,
+    /// `c = det A_c = max(det A, tau)`, in `f64`.
+    det: f64,
+    /// `1 / (p c)` in `f64` (`A_c^-1 = adj(A_c) / c`). Only [`Roughness::inv_quadratic`] reads
+    /// it: Beckmann's `D` divides once by `c p m_z^2` instead, so a matrix built and
+    /// evaluated inline never forms it (the compiler drops the division).
+    inv_pivot_det: f64,
+    /// `p = (A_c)_11`: `a11`, or `a11 + t` rounded to `F` when the clamp is active.
+    pivot: F,
+    /// `A`'s off-diagonal entry (also `A_c`'s).
+    a12: F,
+    /// `c^(3/2)` in `f64`: Beckmann's normalisation `1 / (sqrt(c) z^4)` is `(p t)^2 c^(3/2)`
+    /// with `t = 1 / (c p z^2)`, from that one division.
+    det_3_2: f64,
+    /// `sqrt(c)`, rounded to `F`.
+    sqrt_det: F,
+    /// `A`'s diagonal entries as given.
+    a11: F,
+    a22: F,
 }
 
-/// `F = f32` (whose products are exact in `f64`).
-const WIDE: bool = core::mem::size_of::<F>() == 4;
-/// In `f64` the LDL representation is taken while `tr(A)^2 < COND_LDL det(A)`, i.e.
-/// `cond(A) < 16` (`(cond + 1)^2 / cond < 18`), where the plain determinant is within 10 ulps
-/// and the cancelling term costs at most `8 eps`. `f32` matrices need no limit (type docs).
-const COND_LDL: f64 = 18.0;
-
-/// `det A = a11 a22 - a12^2` in `f64` to within about one ulp of `F`'s precision, whatever
-/// the cancellation: for `f32` entries the products are exact in `f64` (one rounding); for
-/// `f64` entries the plain expression when `a12^2 <= a11 a22 / 2` (at most one bit cancels:
-/// within 3 ulps), else Kahan's algorithm with two fused multiply-adds (calls to `fma`
-/// without the target feature, so kept off the common path).
-#[inline]
-fn det_of(a11: F, a12: F, a22: F) -> f64 {
-    let (a, b, c) = (a11.to_f64(), a12.to_f64(), a22.to_f64());
-    let (ac, bb) = (a * c, b * b);
-    if WIDE || bb <= 0.5 * ac {
-        return ac - bb;
+impl PartialEq for RoughnessMatrix {
+    /// By value: the entries and `c = max(det A, tau)` (see the type docs).
+    #[inline]
+    fn eq(&self, o: &Self) -> bool {
+        self.a11 == o.a11 && self.a12 == o.a12 && self.a22 == o.a22 && self.det == o.det
     }
-    let err = m::mul_add(-b, b, bb);
-    m::mul_add(a, c, -bb) + err
 }
 
-/// `tau`, returned from out of line (see [`RoughnessMatrix::from_entries_det_clamped`]): the
-/// opaque `black_box` keeps the compiler from seeing through the call and merging the branch
-/// into a select.
-#[cold]
-#[inline(never)]
-fn clamped(tau: f64) -> f64 {
-    core::hint::black_box(tau)
-}
-
-/// `2^-e` for a positive `x = f 2^e`, `f` in `[1, 2)`: multiplying by it is exact and brings
-/// `x` into `[1, 2)`. Subnormal `x` (and `0`) get `2^1022`.
+/// `t` with `det(A + t I) = tau` for `det < tau` and `tr > 0`:
+/// `t^2 + tr t + det - tau = 0`, the positive root in the form without cancellation (and
+/// without overflow for `tau` up to `f64::MAX`).
 #[inline]
-fn inv_binade(x: f64) -> f64 {
-    let e = (x.to_bits() >> 52).clamp(1, 2045);
-    f64::from_bits((2046 - e) << 52)
+fn clamp_shift(a11: f64, a22: f64, det: f64, tau: f64) -> f64 {
+    let (h, gap) = (0.5 * (a11 + a22), tau - det);
+    gap / (h + m::sqrt(h * h + gap))
 }
 
 impl RoughnessMatrix {
@@ -130,212 +134,164 @@ impl RoughnessMatrix {
         Self::new(a11, 0.5 * a12 + 0.5 * a21, a22)
     }
 
-    /// Checked constructor with the TK19 determinant clamp `tau`.
+    /// Checked constructor with the TK19 determinant clamp `tau = det_clamp` (see the type
+    /// docs for the matrix `A_c` it evaluates).
     ///
-    /// With `tau > 0` a matrix whose computed determinant is non-positive only by rounding
-    /// (`det A >= -8 eps a11 a22`) is accepted and evaluated with `max(det A, tau)`; a clearly
-    /// indefinite one is still refused. `tau` itself must be finite and `>= 0` (else
-    /// `NotFinite` / `NotPositive`). The range check `[ALPHA_MIN^2, ALPHA_MAX^2]` applies to the
-    /// largest eigenvalue and to `max(det A, tau) / l_max` (so `tau <= ALPHA_MAX^2 l_max`).
+    /// With `det_clamp > 0` a matrix whose determinant is non-positive only by rounding
+    /// (`det A >= -8 eps a11 a22`) is accepted; a clearly indefinite one is refused.
+    /// `det_clamp` must be finite and `>= 0` (else `NotFinite` / `NotPositive`). The range
+    /// check `[ALPHA_MIN^2, ALPHA_MAX^2]` applies to the eigenvalues of `A_c`.
     #[inline]
-    pub fn new_with_det_clamp(a11: F, a12: F, a22: F, tau: F) -> Result<Self, RoughnessError> {
-        if !(a11.is_finite() && a12.is_finite() && a22.is_finite() && tau.is_finite()) {
+    pub fn new_with_det_clamp(
+        a11: F,
+        a12: F,
+        a22: F,
+        det_clamp: F,
+    ) -> Result<Self, RoughnessError> {
+        if !(a11.is_finite() && a12.is_finite() && a22.is_finite() && det_clamp.is_finite()) {
             return Err(RoughnessError::NotFinite);
         }
-        if a11 <= 0.0 || a22 <= 0.0 || tau < 0.0 {
+        if a11 <= 0.0 || a22 <= 0.0 || det_clamp < 0.0 {
             return Err(RoughnessError::NotPositive);
         }
-        let (lo, hi) = (ALPHA_MIN * ALPHA_MIN, ALPHA_MAX * ALPHA_MAX);
+        let (lo, hi) = (
+            (ALPHA_MIN * ALPHA_MIN).to_f64(),
+            (ALPHA_MAX * ALPHA_MAX).to_f64(),
+        );
         // Entries beyond the eigenvalue range would overflow the determinant below.
-        if a11 > hi || a22 > hi || a12.abs() > hi {
+        if a11.to_f64() > hi || a22.to_f64() > hi || a12.abs().to_f64() > hi {
             return Err(RoughnessError::OutOfRange);
         }
-        let det = F::from_f64(det_of(a11, a12, a22));
+        let det = det_wide(a11, a12, a22);
+        let tau = det_clamp.to_f64();
         let indefinite = if tau > 0.0 {
-            det < -8.0 * F::EPSILON * a11 * a22
+            det < -8.0 * F::EPSILON.to_f64() * a11.to_f64() * a22.to_f64()
         } else {
             det <= 0.0
         };
         if indefinite {
             return Err(RoughnessError::NotPositiveDefinite);
         }
-        // |entries| <= ALPHA_MAX^2 = 1e8 (checked above): the squares cannot overflow, so a
-        // plain square root replaces `hypot` (a libm call).
-        let half_diff = 0.5 * (a11 - a22);
-        let lambda_max = 0.5 * (a11 + a22) + m::sqrt(half_diff * half_diff + a12 * a12);
-        let lambda_min = det.max(tau) / lambda_max;
-        // Both bounds on `max(det A, tau) / l_max`: a huge `tau` (up to `F::MAX`) was accepted
-        // and made `sqrt_det` ~ 1e154 against entries ~ 1e-16 (found by fuzzing).
-        if lambda_max > hi || !(lo * (1.0 - 16.0 * F::EPSILON)..=hi).contains(&lambda_min) {
+        let r = Self::from_entries(a11, a12, a22, tau);
+        // The eigenvalues of A_c = A + t I (t as applied to the pivot, 0 without the clamp):
+        // lambda_max = mean + radius + t, lambda_min = c / lambda_max.
+        let (b11, b12, b22) = (a11.to_f64(), a12.to_f64(), a22.to_f64());
+        let t = r.pivot.to_f64() - b11;
+        let half_diff = 0.5 * (b11 - b22);
+        let l_max = 0.5 * (b11 + b22) + m::sqrt(half_diff * half_diff + b12 * b12) + t;
+        let l_min = r.det / l_max;
+        // `lo (1 - 16 eps)`: an isotropic ALPHA_MIN rounds its square by up to an ulp.
+        let lo = lo * (1.0 - 16.0 * F::EPSILON.to_f64());
+        if !(l_max <= hi && l_min >= lo) {
             return Err(RoughnessError::OutOfRange);
         }
-        Ok(Self::from_entries_clamped(a11, a12, a22, tau))
+        Ok(r)
     }
 
-    /// Builds the matrix without checks, with determinant clamp `tau`. The caller guarantees
-    /// `a11 > 0`, `a22 > 0` and `max(det A, tau) > 0` (the filtering kernels, which add a
-    /// positive semi-definite kernel to a valid roughness, do).
-    ///
-    /// Picks the representation (see the type docs): LDL when `det A > 0` (and in `f64`
-    /// `cond A < 16`; one division, one square root), else the eigenbasis (two of each).
+    /// Builds the matrix without checks, with the determinant clamp `tau` (`<= 0`: none).
+    /// The caller guarantees `a11 > 0`, `a22 > 0` and `max(det A, tau) > 0` (the filters,
+    /// which add a positive semi-definite kernel to a valid roughness and clamp with its
+    /// determinant, do).
+    #[inline(always)]
+    pub(crate) fn from_entries(a11: F, a12: F, a22: F, tau: f64) -> Self {
+        let det = det_wide(a11, a12, a22);
+        // Inactive clamp (every lobe but those whose determinant rounding broke): A_c = A.
+        let (pivot, c) = if det >= tau {
+            (a11, det)
+        } else {
+            let t = clamp_shift(a11.to_f64(), a22.to_f64(), det, tau);
+            (F::from_f64(a11.to_f64() + t), tau)
+        };
+        let p = pivot.to_f64();
+        let sqrt_c = m::sqrt(c);
+        Self {
+            a11,
+            a12,
+            a22,
+            pivot,
+            det: c,
+            inv_pivot_det: 1.0 / (p * c),
+            det_3_2: c * sqrt_c,
+            sqrt_det: F::from_f64(sqrt_c),
+        }
+    }
+
+    /// [`RoughnessMatrix::from_entries`] with the clamp in `F` (the temporal lobe's).
     #[inline(always)]
     pub(crate) fn from_entries_clamped(a11: F, a12: F, a22: F, tau: F) -> Self {
-        Self::from_entries_det_clamped(a11, a12, a22, tau.to_f64())
+        Self::from_entries(a11, a12, a22, tau.to_f64())
     }
 
-    /// [`RoughnessMatrix::from_entries_clamped`] with `tau` in `f64`: the filtering kernels
-    /// pass `det` of the unfiltered matrix exactly as this function computes `det A`, so a
-    /// kernel too small to change the entries meets the clamp with equality.
-    #[inline(always)]
-    pub(crate) fn from_entries_det_clamped(a11: F, a12: F, a22: F, t: f64) -> Self {
-        let (b11, b12, b22) = (a11.to_f64(), a12.to_f64(), a22.to_f64());
-        // Exact products for f32 entries (one rounding); in f64 the test admits only
-        // `cond < 16`, where this plain determinant is within 10 ulps.
-        let det = b11 * b22 - b12 * b12;
-        let ldl = det > 0.0
-            && (WIDE || {
-                let tr = b11 + b22;
-                tr * tr < COND_LDL * det
-            });
-        if ldl {
-            // `max(det, tau)` as a branch to an out-of-line function, not a select: a filtered
-            // lobe's determinant then reaches its one division directly (the clamp is active
-            // only by rounding when filtering).
-            let c = if det >= t { det } else { clamped(t) };
-            return Self::ldl(a11, a12, a22, det, c);
-        }
-        // Eigenbasis path, in f64 for both precisions.
-        let det = det_of(a11, a12, a22);
-        let c = det.max(t);
-        // l1 = mean + rad (no cancellation); l2 = det / l1 is never formed (see below).
-        let half_diff = 0.5 * (b11 - b22);
-        let rad = m::sqrt(half_diff * half_diff + b12 * b12);
-        let rad = if rad.is_finite() {
-            rad
-        } else {
-            m::hypot(half_diff, b12)
-        };
-        let l1 = 0.5 * (b11 + b22) + rad;
-        // Eigenvector of l1 from whichever row avoids cancellation (`big >= |b12|`), written
-        // as selects (the sign of `half_diff` would mispredict in a filtering loop). It is not
-        // normalised (a square root and a division): it is scaled by a power of two to
-        // `big` in `[1, 2)` (exact), and its squared length `nv` is folded into the
-        // eigenvalues below. `big = 0` (isotropic): any axis.
-        let big = rad + half_diff.abs();
-        let neg = half_diff < 0.0;
-        let k = inv_binade(big);
-        let v = if big > 0.0 {
-            let (p, q) = (big * k, b12 * k);
-            Vec2::new(
-                F::from_f64(if neg { q } else { p }),
-                F::from_f64(if neg { p } else { q }),
-            )
-        } else {
-            Vec2::X
-        };
-        let (vx, vy) = (v.x.to_f64(), v.y.to_f64());
-        let nv = vx * vx + vy * vy;
-        // With the unnormalised rotation r = (v.s, v_perp.s): eig = (l1, l2) / nv and
-        // inv_eig = (l2, l1) / (max(det, tau) nv), l2 = det / l1, from two reciprocals that
-        // run in parallel (`1 / max(det, tau)` does not wait for the square root). `eig` does
-        // not depend on `tau` at all (Smith's Lambda never sees the clamp).
-        let (j, ci) = (1.0 / (nv * l1), 1.0 / c);
-        let sqrt_c = m::sqrt(c);
-        let eig = (l1 * l1 * j, det * j);
-        Self {
-            a11,
-            a12,
-            a22,
-            axis: v,
-            eig: Vec2::new(F::from_f64(eig.0), F::from_f64(eig.1)),
-            inv_eig: Vec2::new(F::from_f64(eig.1 * ci), F::from_f64(eig.0 * ci)),
-            sqrt_det: F::from_f64(sqrt_c),
-            inv_sqrt_det: F::from_f64(sqrt_c * ci),
-            ldl_det: 0.0,
-            ldl_inv: 0.0,
-            ldl_c: 0.0,
-            ldl_c32: 0.0,
-            ldl: false,
-        }
-    }
-
-    /// The LDL representation (see the type docs) with `c = max(det A, tau)`.
-    #[inline(always)]
-    fn ldl(a11: F, a12: F, a22: F, det: f64, c: f64) -> Self {
-        // In f64: no conversions on the way to Beckmann's normalisation.
-        let sqrt_c = m::sqrt(c);
-        Self {
-            a11,
-            a12,
-            a22,
-            axis: Vec2::X,
-            eig: Vec2::ZERO,
-            inv_eig: Vec2::ZERO,
-            sqrt_det: F::from_f64(sqrt_c),
-            inv_sqrt_det: 0.0,
-            ldl_det: det,
-            ldl_inv: 1.0 / (a11.to_f64() * c),
-            ldl_c: c,
-            ldl_c32: c * sqrt_c,
-            ldl: true,
-        }
-    }
-
-    /// The same matrix evaluated with the determinant clamp `tau` (see the type docs). A
-    /// non-finite or negative `tau` is treated as `0` (no clamp).
+    /// The same matrix `A` evaluated with the determinant clamp `tau = det_clamp` (see the type
+    /// docs). A non-finite or negative `det_clamp` is treated as `0` (no clamp). A clamp that
+    /// would leave no positive determinant (only a matrix accepted with `det A <= 0` under a
+    /// clamp can meet one) keeps the current clamp.
     #[inline]
-    pub fn with_det_clamp(self, tau: F) -> Self {
-        let tau = if tau.is_finite() && tau > 0.0 {
-            tau
+    pub fn with_det_clamp(self, det_clamp: F) -> Self {
+        let tau = if det_clamp.is_finite() && det_clamp > 0.0 {
+            det_clamp.to_f64()
         } else {
             0.0
         };
-        Self::from_entries_clamped(self.a11, self.a12, self.a22, tau)
+        let tau = if tau > 0.0 || det_wide(self.a11, self.a12, self.a22) > 0.0 {
+            tau
+        } else {
+            self.det
+        };
+        Self::from_entries(self.a11, self.a12, self.a22, tau)
     }
 
-    /// `A` as a [`Mat2`] (columns `(a11, a12)`, `(a12, a22)`).
+    /// `A` as a [`Mat2`] (columns `(a11, a12)`, `(a12, a22)`), as given.
     #[inline]
     pub fn to_mat2(&self) -> Mat2 {
         Mat2::from_cols(Vec2::new(self.a11, self.a12), Vec2::new(self.a12, self.a22))
     }
 
-    /// The entries `(a11, a12, a22)`.
+    /// The entries `(a11, a12, a22)` of `A`, as given.
     #[inline]
     pub fn entries(&self) -> (F, F, F) {
         (self.a11, self.a12, self.a22)
     }
 
-    /// `A^-1` as used by the density, i.e. `adj(A) / max(det A, tau)`.
+    /// The entries `(a11, a12, a22)` of `A_c`, the matrix every method evaluates (type docs),
+    /// rounded to `F`: `A`'s own when the clamp is inactive, else `A + t I` with `t` as
+    /// applied to the pivot.
+    #[inline]
+    pub fn clamped_entries(&self) -> (F, F, F) {
+        let t = self.pivot - self.a11;
+        (self.pivot, self.a12, self.a22 + t)
+    }
+
+    /// `det A_c = max(det A, tau)` in `f64`, with `det A` from `roughness::det_wide` (the determinant
+    /// the filters clamp with).
+    #[inline]
+    pub fn clamped_det(&self) -> f64 {
+        self.det
+    }
+
+    /// `A_c^-1 = adj(A_c) / c`, the inverse the density uses, rounded to `F`.
     #[inline]
     pub fn inverse(&self) -> Mat2 {
-        if self.ldl {
-            // adj(A) / max(det, tau) = adj(A) a11 ldl_inv.
-            let (a11, a12, a22) = (self.a11.to_f64(), self.a12.to_f64(), self.a22.to_f64());
-            let k = a11 * self.ldl_inv;
-            let (i11, i12, i22) = (
-                F::from_f64(a22 * k),
-                F::from_f64(-a12 * k),
-                F::from_f64(a11 * k),
-            );
-            return Mat2::from_cols(Vec2::new(i11, i12), Vec2::new(i12, i22));
-        }
-        let (c, s) = (self.axis.x, self.axis.y);
-        let (w1, w2) = (self.inv_eig.x, self.inv_eig.y);
-        let i11 = w1 * c * c + w2 * s * s;
-        let i12 = (w1 - w2) * c * s;
-        let i22 = w1 * s * s + w2 * c * c;
+        let (p, b) = (self.pivot.to_f64(), self.a12.to_f64());
+        let k = self.inv_pivot_det;
+        let (i11, i12, i22) = (
+            F::from_f64((b * b + self.det) * k),
+            F::from_f64(-b * p * k),
+            F::from_f64(p * p * k),
+        );
         Mat2::from_cols(Vec2::new(i11, i12), Vec2::new(i12, i22))
     }
 
-    /// `v` in the eigenbasis of `A`: `(v . e1, v . e2)`.
-    #[inline]
-    fn rotate(&self, v: Vec2) -> Vec2 {
-        let (c, s) = (self.axis.x, self.axis.y);
-        Vec2::new(c * v.x + s * v.y, c * v.y - s * v.x)
+    /// `(p s_y - a12 s_x)^2 + c s_x^2 = p c s^T A_c^-1 s`, in `f64`.
+    #[inline(always)]
+    fn adj_form(&self, x: f64, y: f64) -> f64 {
+        let u = self.pivot.to_f64() * y - self.a12.to_f64() * x;
+        u * u + self.det * (x * x)
     }
 }
 
 impl From<AxisAligned> for RoughnessMatrix {
+    /// Equal to `RoughnessMatrix::new(alpha_x^2, 0, alpha_y^2)` (squares rounded to `F`).
     #[inline]
     fn from(r: AxisAligned) -> Self {
         r.to_matrix()
@@ -343,122 +299,80 @@ impl From<AxisAligned> for RoughnessMatrix {
 }
 
 impl From<Isotropic> for RoughnessMatrix {
+    /// Equal to `RoughnessMatrix::new(alpha^2, 0, alpha^2)` (the square rounded to `F`).
     #[inline]
     fn from(r: Isotropic) -> Self {
         r.to_matrix()
     }
 }
 
-/// A quadratic form `q = form(v)` clamped to `>= 0`. A NaN `q` for a finite `v` means that `r * r`
-/// overflowed against a zero eigenvalue (`0 * inf`, possible only under the determinant clamp,
-/// where the clamped inverse has a null direction): the form is then evaluated on `v / k`,
-/// `k = max |v_i|`, and scaled back by `k^2` (`+inf` if that overflows, `0` along the null
-/// direction). A NaN component of `v` gives NaN and an infinite one `+inf`, as in the
-/// isotropic and axis-aligned forms.
-#[inline]
-fn scaled_form(q: F, v: Vec2, form: impl Fn(Vec2) -> F) -> F {
-    if !q.is_nan() {
-        return q.max(0.0);
-    }
-    if !v.is_finite() {
-        return non_finite_form(v);
-    }
-    let k = v.abs().max_element();
-    (form(v / k) * k * k).max(0.0)
-}
-
-/// A quadratic form of a vector with a non-finite component, as in the isotropic and
-/// axis-aligned forms: NaN for a NaN component, else `+inf`.
-#[inline]
-fn non_finite_form(v: Vec2) -> F {
-    if v.is_nan() { F::NAN } else { F::INFINITY }
-}
-
-/// An LDL quadratic form `q = form(v)` evaluated in `f64`, clamped to `>= 0` and rounded to
-/// `F`. A NaN `q` for a finite `v` can only come from overflow (`inf - inf`, for `f64` input;
-/// never for `f32`, whose squares fit in `f64`): the form is then evaluated on `v / k`, `k = max |v_i|`, and scaled back
-/// by `k^2` (`+inf` if that overflows). Non-finite `v` as [`non_finite_form`].
+/// A quadratic form `q = form(v)` evaluated in `f64` (a sum of non-negative terms times a
+/// positive factor, so `>= 0` without a clamp) and rounded to `F`.
+/// A NaN `q` for a finite `v` can only come from overflow (`inf - inf`, for `f64` input;
+/// never for `f32`, whose squares fit in `f64`): the form is then evaluated on `v / k`,
+/// `k = max |v_i|`, and scaled back by `k^2` (`+inf` if that overflows). A non-finite `v`
+/// gives NaN for a NaN component, else `+inf` (as the isotropic and axis-aligned forms).
 #[inline]
 fn wide_form(q: f64, v: Vec2, form: impl Fn(f64, f64) -> f64) -> F {
     if !q.is_nan() {
-        return F::from_f64(q.max(0.0));
+        return F::from_f64(q);
     }
-    // f32 input cannot overflow in f64: a NaN means a non-finite input (a select, which
-    // keeps `batch` loops vectorised).
-    if WIDE || !v.is_finite() {
-        return non_finite_form(v);
+    // `f32` input cannot overflow in `f64`: a NaN means a non-finite input (decided without
+    // the rescaling branch, which keeps `batch` loops vectorised).
+    if core::mem::size_of::<F>() == 4 || !v.is_finite() {
+        return if v.is_nan() { F::NAN } else { F::INFINITY };
     }
     let k = v.abs().max_element().to_f64();
-    F::from_f64((form(v.x.to_f64() / k, v.y.to_f64() / k) * k * k).max(0.0))
+    F::from_f64(form(v.x.to_f64() / k, v.y.to_f64() / k) * k * k)
 }
 
 impl sealed::Sealed for RoughnessMatrix {
     #[inline(always)]
-    fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F) {
-        if self.ldl {
-            // t = 1 / (a11 c z2), c = max(det, tau), the one division; then
-            // x = ((a11 m_y - a12 m_x)^2 + det m_x^2) t and
-            // n = 1 / (sqrt(c) z2^2) = (a11 t)^2 c^(3/2), all in f64. `c (a11 z2)`: a matrix
-            // built inline (filtering) reaches the division one product after `c`.
-            let (a11, a12) = (self.a11.to_f64(), self.a12.to_f64());
-            let (det, c) = (self.ldl_det, self.ldl_c);
-            let t = 1.0 / (c * (a11 * z2.to_f64()));
-            let form = |x: f64, y: f64| {
-                let u = a11 * y - a12 * x;
-                (u * u + det * (x * x)) * t
-            };
-            let x = wide_form(form(m.x.to_f64(), m.y.to_f64()), m, form);
-            let at = a11 * t;
-            return (x, F::from_f64(at * at * self.ldl_c32));
-        }
-        over_z2(self.inv_quadratic(m), self.inv_sqrt_det, z2)
+    fn exponent_and_norm(&self, mxy: Vec2, z2: F) -> (F, F) {
+        // t = 1 / (c p z2), the one division; x = adj_form t and n = 1 / (sqrt(c) z2^2) =
+        // (p t)^2 c^(3/2), all in f64. `c (p z2)`: a matrix built inline (filtering) reaches
+        // the division one product after `c`.
+        let p = self.pivot.to_f64();
+        let t = 1.0 / (self.det * (p * z2.to_f64()));
+        let form = |x: f64, y: f64| self.adj_form(x, y) * t;
+        let x = wide_form(form(mxy.x.to_f64(), mxy.y.to_f64()), mxy, form);
+        let pt = p * t;
+        (x, F::from_f64(pt * pt * self.det_3_2))
     }
     #[inline(always)]
-    fn det_clamped(&self) -> f64 {
-        if self.ldl {
-            return self.ldl_c;
-        }
-        // max(det, tau) is not kept in f64 on this path: its square root, rounded to F.
-        let s = self.sqrt_det.to_f64();
-        s * s
+    fn lobe_det(&self) -> f64 {
+        self.det
+    }
+    #[inline(always)]
+    fn entries_f(&self) -> (F, F, F) {
+        self.entries()
+    }
+    #[inline(always)]
+    fn cholesky(&self) -> (F, F, F) {
+        // A_c = L L^T: l11 = sqrt(p), l21 = a12 / l11, l22 = sqrt(c / p) = sqrt(c) / l11.
+        let l11 = m::sqrt(self.pivot.to_f64());
+        (
+            F::from_f64(l11),
+            F::from_f64(self.a12.to_f64() / l11),
+            F::from_f64(m::sqrt(self.det) / l11),
+        )
     }
 }
+
 impl Roughness for RoughnessMatrix {
     #[inline]
     fn inv_quadratic(&self, s: Vec2) -> F {
-        if self.ldl {
-            // ((a11 s_y - a12 s_x)^2 + det s_x^2) / (a11 max(det, tau)), see the type docs.
-            let (a11, a12) = (self.a11.to_f64(), self.a12.to_f64());
-            let (det, inv) = (self.ldl_det, self.ldl_inv);
-            let form = |x: f64, y: f64| {
-                let u = a11 * y - a12 * x;
-                (u * u + det * (x * x)) * inv
-            };
-            return wide_form(form(s.x.to_f64(), s.y.to_f64()), s, form);
-        }
-        let r = self.rotate(s);
-        scaled_form((r * r).dot(self.inv_eig), s, |u| {
-            let r = self.rotate(u);
-            (r * r).dot(self.inv_eig)
-        })
+        let form = |x: f64, y: f64| self.adj_form(x, y) * self.inv_pivot_det;
+        wide_form(form(s.x.to_f64(), s.y.to_f64()), s, form)
     }
     #[inline]
     fn quadratic(&self, w: Vec2) -> F {
-        if self.ldl {
-            // ((a11 w_x + a12 w_y)^2 + det w_y^2) / a11: no tau (Lambda never sees the clamp).
-            let (a11, a12) = (self.a11.to_f64(), self.a12.to_f64());
-            let det = self.ldl_det;
-            let form = |x: f64, y: f64| {
-                let u = a11 * x + a12 * y;
-                (u * u + det * (y * y)) / a11
-            };
-            return wide_form(form(w.x.to_f64(), w.y.to_f64()), w, form);
-        }
-        let r = self.rotate(w);
-        scaled_form((r * r).dot(self.eig), w, |u| {
-            let r = self.rotate(u);
-            (r * r).dot(self.eig)
-        })
+        let (p, b) = (self.pivot.to_f64(), self.a12.to_f64());
+        let form = |x: f64, y: f64| {
+            let u = p * x + b * y;
+            (u * u + self.det * (y * y)) / p
+        };
+        wide_form(form(w.x.to_f64(), w.y.to_f64()), w, form)
     }
     #[inline]
     fn sqrt_det(&self) -> F {

@@ -9,9 +9,10 @@
 //! |---|---|---|
 //! | [`Isotropic`] `alpha` | `alpha^2 I` | 1 dot, 1 mul |
 //! | [`AxisAligned`] `(alpha_x, alpha_y)` | `diag(alpha_x^2, alpha_y^2)` | 2 mul-adds |
-//! | [`RoughnessMatrix`] `A` | any symmetric positive definite | 1 rotation, 2 mul-adds |
+//! | [`RoughnessMatrix`] `A` | any symmetric positive definite | 3 mul, 2 mul-adds, in `f64` |
 //!
-//! Conversions go one way, for free: `Isotropic -> AxisAligned -> RoughnessMatrix`.
+//! Conversions go one way: `Isotropic -> AxisAligned -> RoughnessMatrix`, each equal to the
+//! checked constructor of the wider form with the squared roughness rounded to `F`.
 //! Roughness is dimensionless (a slope-domain length: `alpha` is the slope at which the GGX
 //! density falls to a quarter of its peak).
 //!
@@ -21,6 +22,7 @@
 //! `ALPHA_MIN`).
 
 use super::{F, Mat2, Vec2};
+use crate::math::{self as m, Real};
 
 mod axis_aligned;
 mod isotropic;
@@ -40,23 +42,52 @@ pub(crate) mod sealed {
     use super::{F, Vec2};
 
     /// Crate-internal evaluation helpers of the roughness forms (unnameable outside the
-    /// crate, which also seals [`super::Roughness`]).
+    /// crate, which also seals [`super::Roughness`]). Each describes the matrix the form
+    /// evaluates: `A`, or for a clamped [`super::RoughnessMatrix`] its `A_c`.
     pub trait Sealed {
         /// `(x, n)` with `x = m^T A^-1 m / z2` and `n = 1 / (sqrt(det A) z2^2)` for a
         /// tangent-plane `m` and `z2 > 0`: the exponent and the normalisation of Beckmann's
-        /// `D` (KHPL16 eq. 2 with eq. 14) from one division, shared by both (the matrix form
-        /// merges its `1 / max(det A, tau)` into it, so building a matrix per pixel, as
-        /// filtering does, needs no division). `x` is `+inf` / NaN as
+        /// `D` (KHPL16 eq. 2 with eq. 14) from one division, shared by both (building a matrix
+        /// per pixel, as filtering does, then needs no other division). `x` is `+inf` / NaN as
         /// [`super::Roughness::inv_quadratic`]; `n` overflows to `+inf` for tiny `z2`.
         fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F);
-        /// `max(det A, tau)` in `f64` (`det A` for the forms without a clamp), with `det A`
-        /// computed from the entries of [`super::Roughness::to_matrix`] exactly as the matrix
-        /// constructor computes it (`a11 a22 - a12^2` in `f64`, exact for `f32` entries; a
-        /// matrix in the eigenbasis representation keeps only its square root, in `F`): the
-        /// filtering clamp `tau`, which a kernel too small to change the entries then meets
-        /// with equality.
-        fn det_clamped(&self) -> f64;
+        /// `det A` in `f64` from the entries by [`super::det_wide`] (for a clamped matrix
+        /// `det A_c = max(det A, tau)`): the one determinant of the crate, which the filters
+        /// use as their clamp `tau`, so that a kernel too small to change the entries meets
+        /// the clamp with equality.
+        fn lobe_det(&self) -> f64;
+        /// The entries `(a11, a12, a22)` of `A` in `F`, as given (for a clamped matrix `A`,
+        /// not `A_c`): what a filter adds its kernel to, before clamping the result with
+        /// [`Sealed::lobe_det`], so that a zero kernel returns the lobe unchanged.
+        fn entries_f(&self) -> (F, F, F);
+        /// The lower Cholesky factor `(l11, l21, l22)` of the evaluated matrix,
+        /// `A = [[l11, 0], [l21, l22]] [[l11, l21], [0, l22]]` (the samplers' warp).
+        fn cholesky(&self) -> (F, F, F);
     }
+}
+
+/// `det A = a11 a22 - a12^2` in `f64`: the one determinant of every roughness form (their
+/// densities, the range checks, the filters' clamp `tau`).
+///
+/// - `f32` entries: both products are exact in `f64`; the difference is rounded once
+///   (relative error `<= eps_f64 / 2`, whatever the cancellation).
+/// - `f64` entries: the plain formula while `a12^2 <= (15/16) a11 a22` (then
+///   `det >= a11 a22 / 16` and the error is at most `(31 + 1) eps / 2 = 16 eps` relative);
+///   beyond, Kahan's algorithm with two fused multiply-adds (within `2 eps`, Jeannerod, Louvet
+///   and Muller 2013). The threshold keeps the fused multiply-adds, library calls without the
+///   `fma` target feature, off every lobe of condition number below about 60; what that buys
+///   against the threshold `a12^2 <= a11 a22 / 2` (3 ulps), measured on the realistic cases of
+///   `benches/filtered.rs` (`f64`, best of 6 runs, us per 1024): filtered Beckmann 14.7 against
+///   19.8, TK21 projected GGX 24.3 against 28.2.
+#[inline]
+pub(crate) fn det_wide(a11: F, a12: F, a22: F) -> f64 {
+    let (a, b, c) = (a11.to_f64(), a12.to_f64(), a22.to_f64());
+    let (ac, bb) = (a * c, b * b);
+    if core::mem::size_of::<F>() == 4 || bb <= 0.9375 * ac {
+        return ac - bb;
+    }
+    let err = m::mul_add(-b, b, bb);
+    m::mul_add(a, c, -bb) + err
 }
 
 /// A roughness form: what the NDFs need of a roughness matrix `A`.
@@ -64,20 +95,21 @@ pub(crate) mod sealed {
 /// Sealed; implemented by [`Isotropic`], [`AxisAligned`] and [`RoughnessMatrix`]. Each method
 /// is exact for its form (no conversion to the matrix form happens at evaluation time).
 pub trait Roughness: Copy + sealed::Sealed {
-    /// `s^T A^-1 s` for a slope `s` (dimensionless, `>= 0`). For the matrix form `A^-1` is
-    /// `adj(A) / max(det A, tau)` (TK19 supplement, "Practical Implementation") and the result
-    /// is clamped to `>= 0`. Every form returns `+inf` when the form overflows (also against
-    /// the null direction of a clamped singular matrix) or `s` has an infinite component, and
-    /// NaN for a NaN component.
+    /// `s^T A^-1 s` for a slope `s` (dimensionless, `>= 0`; for a clamped matrix `A_c^-1`,
+    /// see [`RoughnessMatrix`]). Every form returns `+inf` when the form overflows or `s` has
+    /// an infinite component, and NaN for a NaN component (the NDFs turn that into their NaN
+    /// policy, [`super::Ndf`]).
     fn inv_quadratic(&self, s: Vec2) -> F;
     /// `w^T A w` for a tangent-plane vector `w` (the projected roughness of Smith's
-    /// `Lambda`, TK19 supplement section 1), `>= 0`. Overflow and non-finite input as
-    /// [`Roughness::inv_quadratic`].
+    /// `Lambda`, TK19 supplement section 1; `A_c` for a clamped matrix), `>= 0`. Overflow
+    /// and non-finite input as [`Roughness::inv_quadratic`].
     fn quadratic(&self, w: Vec2) -> F;
-    /// `sqrt(det A)` (for the matrix form `sqrt(max(det A, tau))`): `alpha^2` isotropic,
-    /// `alpha_x alpha_y` axis-aligned. Strictly positive.
+    /// `sqrt(det A)` (for a clamped matrix `sqrt(det A_c) = sqrt(max(det A, tau))`):
+    /// `alpha^2` isotropic, `alpha_x alpha_y` axis-aligned. Strictly positive.
     fn sqrt_det(&self) -> F;
-    /// This roughness as a full [`RoughnessMatrix`] (no determinant clamp).
+    /// This roughness as a full [`RoughnessMatrix`]: for the isotropic and axis-aligned forms
+    /// equal to `RoughnessMatrix::new(alpha_x^2, 0, alpha_y^2)` (squares rounded to `F`); a
+    /// matrix returns itself (with its clamp).
     fn to_matrix(&self) -> RoughnessMatrix;
 }
 

@@ -200,8 +200,8 @@ macro_rules! filter_prec {
         kernel_ok(&lean_cov, KERNEL_MAX, "LeanMoments::covariance");
         with_rough!($d, rough, r => {
             let sd = r.sqrt_det();
-            let tr = rules.tau(r);
-            assert!(tr.is_finite() && tr >= 0.0, "rules.tau {tr:?}");
+            let tr = rules.det_clamp_for(r);
+            assert!(tr.is_finite() && tr >= 0.0, "rules.det_clamp_for {tr:?}");
             let g = rules.filter_gaussian(r, fp, sigma);
             eval(&g, "rules.filter_gaussian");
             if rules.det_clamp {
@@ -210,7 +210,12 @@ macro_rules! filter_prec {
             let g = filter::gaussian(r, cov);
             eval(&g, "filter::gaussian");
             assert!(g.sqrt_det() >= sd * (1.0 - TOL), "gaussian sharpened: {g:?} < {r:?}");
-            eval(&filter::gaussian_with_tau(r, cov, tau), "filter::gaussian_with_tau");
+            eval(&filter::gaussian_with_det_clamp(r, cov, tau), "filter::gaussian_with_det_clamp");
+            let pr = rules.filter_projected(r, fp, sigma);
+            eval(&pr, "rules.filter_projected");
+            if rules.det_clamp {
+                assert!(pr.sqrt_det() >= sd * (1.0 - TOL), "filter_projected sharpened");
+            }
             let p = filter::projected(r, cov);
             eval(&p, &format!("filter::projected of {:?} by {cov:?}", r.to_matrix().entries()));
             assert!(p.sqrt_det() >= sd * (1.0 - TOL), "projected sharpened: {p:?} < {r:?}");
@@ -246,9 +251,10 @@ macro_rules! filter_prec {
 /// - `ClampRules` (default, `NONE`, `GDC2016` and arbitrary fields): `footprint` is `ZERO`
 ///   for NaN input, NaN-free, finite with extent `<= lambda` for a finite `lambda`; `rect`
 ///   is NaN-free, `>= 0`, finite for finite `lambda`, `<= lambda` without floor, `>= epsilon`
-///   with a constant floor; `kernel` is finite PSD with eigenvalues `<= kappa / 2`; `tau`
-///   finite `>= 0`.
-/// - `filter::{gaussian, gaussian_with_tau, projected, lean}`, `ClampRules::filter_gaussian`,
+///   with a constant floor; `kernel` is finite PSD with eigenvalues `<= kappa / 2`;
+///   `det_clamp_for` finite `>= 0`.
+/// - `filter::{gaussian, gaussian_with_det_clamp, projected, lean}`,
+///   `ClampRules::{filter_gaussian, filter_projected}`,
 ///   `LeanMoments::covariance` for any kernel: a valid matrix (finite entries, positive
 ///   diagonal, finite positive `sqrt_det`) that never sharpens the lobe where `tau = det A`,
 ///   and whose GGX and Beckmann evaluations satisfy the NDF contract of [`super::check_ndf`].
