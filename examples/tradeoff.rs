@@ -1,13 +1,15 @@
-//! The speed/accuracy trade table: for every kernel, its error against the f64 quadrature
-//! reference of the exact filtered NDF and its cost per evaluation, as a markdown table and
+//! The speed/accuracy trade table: for every kernel, its error against the f64 exact
+//! filtered NDF and its cost per evaluation, as a markdown table and
 //! an SVG scatter plot (error vs. cost, log-log).
 //!
 //! `cargo run --release --example tradeoff [-- --cases N] [--out DIR]`
 //!
 //! - The exact filtered NDF is the GGX (or Beckmann) slope density convolved with the
 //!   Gaussian pixel footprint `Sigma = 0.25 (dh_u dh_u^T + dh_v dh_v^T)` (KHPL16 eq. 12-13,
-//!   TK19 section 2.2), per steradian (`/ h_z^4`), by f64 adaptive quadrature
-//!   (`testing::gaussian_reference`).
+//!   TK19 section 2.2), per steradian (`/ h_z^4`), in f64: for GGX the crate's exact
+//!   Gaussian-filtered GGX (`GaussianFilteredGgx`, the mixture identity with a proven bound of
+//!   1.1e-11 relative, tested against 2-D quadrature of the convolution in
+//!   `tests/gaussian_ggx.rs`), for Beckmann its closed form `A + 2 Sigma` (KHPL16 eq. 15).
 //! - Inputs: the seeded realistic cases of `benches/common` (the benchmarks use the same),
 //!   plus extremes (roughness 1e-3 and 1e-4 with tiny footprints, grazing half vectors,
 //!   footprints of slope 1).
@@ -22,8 +24,8 @@ mod common;
 
 use filtered_ndf::f32 as p;
 use filtered_ndf::f64 as q;
-use filtered_ndf::testing::{gaussian_reference, quadrature::Tolerance};
 use p::Ndf as _;
+use p::filter::{ExactGaussian, Filterable, Gaussian, Projected, Proxy, Rect};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -62,15 +64,15 @@ fn cases(n: usize) -> Vec<common::Case> {
 }
 
 fn reference(k: &common::Case) -> (f64, f64, f64) {
+    use q::Ndf as _;
     let r = q::AxisAligned::new(k.alpha[0], k.alpha[1]).expect("valid");
     let fp = q::Footprint::from_slope_derivatives(k.dh_u.into(), k.dh_v.into());
     let sigma = fp.covariance(0.5);
-    let s: q::Vec2 = k.slope().into();
-    let j = 1.0 / k.h[2].powi(4);
-    let tol = Tolerance::relative(1e-7);
-    let g = gaussian_reference::ggx(r, sigma, s, tol).value * j;
-    let b = gaussian_reference::beckmann(r, sigma, s, tol).value * j;
-    let peak = gaussian_reference::ggx(r, sigma, q::Vec2::ZERO, tol).value * j;
+    let h: q::Vec3 = k.h.into();
+    let exact = q::GaussianFilteredGgx::new(r, sigma);
+    let g = exact.d(h);
+    let b = q::Beckmann::new(q::filter::gaussian(r, sigma)).d(h);
+    let peak = exact.p22(q::Vec2::ZERO) / k.h[2].powi(4);
     (g, b, peak)
 }
 
@@ -132,36 +134,34 @@ fn ggx_kernels() -> Vec<(String, Kernel)> {
             Box::new(|c: &Case| p::Ggx::new(c.alpha).d(c.h)),
         ),
         (
-            "GGX TK19 A+2Sigma (matrix)".into(),
+            "GGX exact Gaussian (this crate)".into(),
             Box::new(|c: &Case| {
-                let a = p::ClampRules::default().filter_gaussian(c.alpha, c.fp, sigma());
-                p::Ggx::new(a).d(c.h)
+                p::Ggx::new(c.alpha)
+                    .filtered(c.fp, ExactGaussian::KHPL16)
+                    .d(c.h)
             }),
+        ),
+        (
+            "GGX TK19 A+2Sigma (matrix)".into(),
+            Box::new(|c: &Case| p::Ggx::new(c.alpha).filtered(c.fp, Gaussian::TK19).d(c.h)),
         ),
         (
             "GGX TK19 A+2Sigma, no clamps".into(),
             Box::new(|c: &Case| {
-                let a = p::filter::gaussian(c.alpha, c.fp.covariance(sigma()));
-                p::Ggx::new(a).d(c.h)
+                let none = Gaussian {
+                    clamps: p::ClampRules::NONE,
+                    ..Gaussian::TK19
+                };
+                p::Ggx::new(c.alpha).filtered(c.fp, none).d(c.h)
             }),
         ),
         (
             "GGX TK21 projected".into(),
-            Box::new(|c: &Case| {
-                let rules = p::ClampRules::default();
-                let k = rules.kernel(rules.footprint(c.fp).covariance(sigma()));
-                p::Ggx::new(p::filter::projected(c.alpha, k)).d(c.h)
-            }),
+            Box::new(|c: &Case| p::Ggx::new(c.alpha).filtered(c.fp, Projected::TK21).d(c.h)),
         ),
         (
             "GGX exact rect (bounding box)".into(),
-            Box::new(|c: &Case| {
-                let rules = p::ClampRules {
-                    floor: p::ExtentFloor::None,
-                    ..p::ClampRules::default()
-                };
-                p::filter::rect::d_rect(c.alpha, c.h, rect_half_extent(c, rules))
-            }),
+            Box::new(|c: &Case| p::Ggx::new(c.alpha).filtered(c.fp, Rect::KHPL16).d(c.h)),
         ),
         (
             "GGX printed 8-term rect (GDC, eps floor)".into(),
@@ -173,10 +173,7 @@ fn ggx_kernels() -> Vec<(String, Kernel)> {
         ),
         (
             "GGX proxy exact (eq. 19)".into(),
-            Box::new(|c: &Case| {
-                let he = rect_half_extent(c, p::ClampRules::default());
-                p::Ggx::new(p::filter::proxy::proxy(c.alpha, he)).d(c.h)
-            }),
+            Box::new(|c: &Case| p::Ggx::new(c.alpha).filtered(c.fp, Proxy::KHPL16).d(c.h)),
         ),
         (
             "GGX proxy simple (eq. 20)".into(),
@@ -211,8 +208,9 @@ fn beckmann_kernels() -> Vec<(String, Kernel)> {
         (
             "Beckmann A+2Sigma, default clamps".into(),
             Box::new(|c: &Case| {
-                let a = p::ClampRules::default().filter_gaussian(c.alpha, c.fp, sigma());
-                p::Beckmann::new(a).d(c.h)
+                p::Beckmann::new(c.alpha)
+                    .filtered(c.fp, Gaussian::TK19)
+                    .d(c.h)
             }),
         ),
     ]
@@ -453,7 +451,7 @@ fn main() -> std::io::Result<()> {
     let t0 = Instant::now();
     let cases = build(n);
     eprintln!(
-        "{} cases, references by quadrature in {:.1} s",
+        "{} cases, f64 references in {:.1} s",
         cases.len(),
         t0.elapsed().as_secs_f64()
     );
@@ -496,8 +494,9 @@ fn main() -> std::io::Result<()> {
         .unwrap_or(1.0);
     let mut md = String::new();
     md += &format!(
-        "Measured on {} cases ({} realistic + extremes), f32 kernels vs f64 quadrature of the \
-         exact Gaussian-filtered NDF; machine: {}, {} cores. Costs are single-threaded wall \
+        "Measured on {} cases ({} realistic + extremes), f32 kernels vs the f64 exact \
+         Gaussian-filtered NDF (GGX: `GaussianFilteredGgx`, within 1.1e-11 of the convolution; \
+         Beckmann: `A + 2 Sigma`); machine: {}, {} cores. Costs are single-threaded wall \
          time in one run: compare ratios.\n\n",
         cases.len(),
         n,
