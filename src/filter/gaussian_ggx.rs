@@ -100,10 +100,9 @@ use super::super::ndf::ggx::{Ggx, ggx_lambda};
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
 use super::super::ndf::{Ndf, rescale_direction};
 use super::{F, Vec2, Vec3};
+use super::gaussian_ggx_quad::{self as quad, WIDE};
 use crate::math::{self as m, Real};
 
-/// `f64` build: the rule's tighter constants.
-const WIDE: bool = F::MANTISSA_DIGITS > 24;
 /// Trapezoid step in `t = ln w` (module docs, item 1).
 const H: f64 = if WIDE { 0.3 } else { 0.5 };
 /// `e^H`, the ratio of consecutive nodes.
@@ -114,8 +113,6 @@ const EXP_H: f64 = if WIDE {
 };
 /// Relative truncation tolerance at each end (module docs, items 2 and 3).
 const EPS_T: f64 = if WIDE { 1e-12 } else { 1e-7 };
-/// Far-tail switch: the series replaces the quadrature where `1 + q >= FAR 2 l1`.
-const FAR: f64 = if WIDE { 3.2e7 } else { 3.2e5 };
 /// Upper bound on the number of nodes (never reached: the upper truncation test stops the
 /// rule before `w ~ 40`, at most `ln(40 / w_lo) / h` nodes; a safety net against a NaN sum).
 const MAX_NODES: usize = 2048;
@@ -144,8 +141,11 @@ const SQRT_PI: f64 = 1.772_453_850_905_516;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GaussianFilteredGgx {
-    /// `T = U^T B^-1` by rows: `c = T s`.
+    /// `T = V^T B^-1` by rows, `V` the eigenvectors of `B^-1 Sigma B^-T` with the common
+    /// squared length `1 / n2`: `c_i^2 = (T s)_i^2 n2`.
     t: [f64; 4],
+    /// See `t`.
+    n2: f64,
     /// `(2 l1, 2 l2)`, `l1 >= l2 >= 0`.
     tl: [f64; 2],
     /// `1 / (pi sqrt(det A))`.
@@ -154,9 +154,6 @@ pub struct GaussianFilteredGgx {
     b: [f64; 3],
     /// The sanitised kernel `(s11, s12, s22)`.
     k: [f64; 3],
-    /// The kernel's principal standard deviations and the unit axis of the first:
-    /// `(sd1, sd2, cos, sin)` (sampling).
-    k_axes: [f64; 4],
     /// The unfiltered roughness as a matrix (the `Beckmann` components of the sampler).
     a: RoughnessMatrix,
 }
@@ -175,67 +172,56 @@ impl GaussianFilteredGgx {
         let sd = roughness.sqrt_det().to_f64();
         let k = kernel.sanitized();
         let (s11, s12, s22) = (k.s11.to_f64(), k.s12.to_f64(), k.s22.to_f64());
-        // B = chol(A) with b22 from sqrt(det A) (exact for the isotropic and axis-aligned
-        // forms, accurate at any condition for the matrix form).
+        // C = B^-1 Sigma B^-T for the Cholesky factor B of A (b22 from sqrt(det A): exact for
+        // the isotropic and axis-aligned forms, accurate at any condition for the matrix
+        // form), written without B: c11 = s11 / a11, c12 = (a11 s12 - a12 s11) / (a11 sd),
+        // c22 = u^T Sigma u / (a11 sd^2), u = (-a12, a11). The build is latency-bound: its
+        // critical path is one division, one square root and one division.
+        let r = 1.0 / (a11 * sd);
+        let c11 = s11 * sd * r;
+        let c12 = (a11 * s12 - a12 * s11) * r;
+        let c22 = ((a12 * a12 * s11 - 2.0 * a12 * a11 * s12 + a11 * a11 * s22) * r * (a11 * r))
+            .max(0.0);
+        // B^-1 = [[i11, 0], [i21, i22]] (off the critical path).
         let b11 = m::sqrt(a11);
-        let b21 = a12 / b11;
-        let b22 = sd / b11;
-        // B^-1 = [[i11, 0], [i21, i22]].
-        let (i11, i22) = (1.0 / b11, 1.0 / b22);
-        let i21 = -b21 * i11 * i22;
-        // C = B^-1 Sigma B^-T (symmetric PSD).
-        let c11 = i11 * i11 * s11;
-        let c12 = i11 * (i21 * s11 + i22 * s12);
-        let c22 = (i21 * i21 * s11 + 2.0 * i21 * i22 * s12 + i22 * i22 * s22).max(0.0);
+        let (i11, i21, i22) = (b11 * sd * r, -a12 * b11 * r, b11 * a11 * r);
         let half = 0.5 * (c11 - c22);
-        let rad = m::hypot(half, c12);
+        // |half|, |c12| < 1e50 (kernel <= KERNEL_MAX, lobe >= ALPHA_MIN): no overflow.
+        let rad = m::sqrt(half * half + c12 * c12);
         let l1 = 0.5 * (c11 + c22) + rad;
         // l2 = det C / l1 without cancellation: det C = det Sigma / det A.
         let det_s = (s11 * s22 - s12 * s12).max(0.0);
-        let l2 = if l1 > 0.0 {
-            (det_s * (i11 * i22) * (i11 * i22) / l1).min(l1)
-        } else {
-            0.0
-        };
-        // Unit eigenvector of l1 from the row without cancellation.
-        let (ux, uy) = if rad > 0.0 {
-            let (vx, vy) = if half >= 0.0 {
+        // The eigenvector v of l1 from the row without cancellation, unnormalised:
+        // |v|^2 = 2 rad (rad + |half|); `T` holds its rows for v and v_perp, and `n2` is
+        // 1 / |v|^2 (c_i^2 = (T s)_i^2 n2). One division for 1 / |v|^2 and 1 / l1.
+        let (mut l2, mut vx, mut vy, mut n2) = (0.0, 1.0, 0.0, 1.0);
+        if rad > 0.0 {
+            (vx, vy) = if half >= 0.0 {
                 (rad + half, c12)
             } else {
                 (c12, rad - half)
             };
-            let n = m::hypot(vx, vy);
-            (vx / n, vy / n)
-        } else {
-            (1.0, 0.0)
-        };
+            let nv2 = 2.0 * rad * (rad + half.abs());
+            let r2 = 1.0 / (nv2 * l1);
+            n2 = l1 * r2;
+            l2 = (det_s * (a11 * r) * (a11 * r) * (nv2 * r2)).min(l1);
+        } else if l1 > 0.0 {
+            // An isotropic C: l2 = l1.
+            l2 = l1;
+        }
         let t = [
-            ux * i11 + uy * i21,
-            uy * i22,
-            -uy * i11 + ux * i21,
-            ux * i22,
+            vx * i11 + vy * i21,
+            vy * i22,
+            -vy * i11 + vx * i21,
+            vx * i22,
         ];
-        let (ksd2, ksd1) = k.eigenvalues();
-        let khalf = 0.5 * (s11 - s22);
-        let krad = m::hypot(khalf, s12);
-        let (kx, ky) = if krad > 0.0 {
-            let (vx, vy) = if khalf >= 0.0 {
-                (krad + khalf, s12)
-            } else {
-                (s12, krad - khalf)
-            };
-            let n = m::hypot(vx, vy);
-            (vx / n, vy / n)
-        } else {
-            (1.0, 0.0)
-        };
         Self {
             t,
+            n2,
             tl: [2.0 * l1, 2.0 * l2],
-            norm: INV_PI / sd,
-            b: [b11, b21, b22],
+            norm: INV_PI * a11 * r,
+            b: [b11, a12 * b11 * sd * r, sd * b11 * sd * r],
             k: [s11, s12, s22],
-            k_axes: [m::sqrt(ksd1.to_f64()), m::sqrt(ksd2.to_f64()), kx, ky],
             a,
         }
     }
@@ -254,35 +240,23 @@ impl GaussianFilteredGgx {
         (F::from_f64(0.5 * self.tl[0]), F::from_f64(0.5 * self.tl[1]))
     }
 
-    /// `c = T s` (module docs) in `f64`.
+    /// `(c1^2, c2^2)` of `c = U^T B^-1 s` (module docs) in `f64`.
     #[inline(always)]
     fn whiten(&self, x: f64, y: f64) -> (f64, f64) {
         let t = &self.t;
-        (t[0] * x + t[1] * y, t[2] * x + t[3] * y)
-    }
-
-    /// `J(c)` of the module docs from `(c1^2, c2^2)`, finite and `> 0` for finite input.
-    #[inline]
-    fn j(&self, c1s: f64, c2s: f64) -> f64 {
-        let q = c1s + c2s;
-        let beta = 1.0 + q;
-        let [tl1, tl2] = self.tl;
-        if beta >= FAR * tl1 {
-            return far_tail(beta, c1s, c2s, tl1, tl2, 1.0);
-        }
-        j_trapezoid(c1s, c2s, tl1, tl2)
+        let (u, v) = (t[0] * x + t[1] * y, t[2] * x + t[3] * y);
+        (u * u * self.n2, v * v * self.n2)
     }
 
     /// `P22_Sigma` at a slope given in `f64`.
     #[inline]
     fn p22_f64(&self, x: f64, y: f64) -> f64 {
-        let (c1, c2) = self.whiten(x, y);
-        let (c1s, c2s) = (c1 * c1, c2 * c2);
+        let (c1s, c2s) = self.whiten(x, y);
         if !(c1s + c2s).is_finite() {
             // |s| beyond ~1e150: the density is below every representable positive value.
             return 0.0;
         }
-        self.norm * self.j(c1s, c2s)
+        self.norm * quad::j(c1s, c2s, 1.0, self.tl[0], self.tl[1])
     }
 
     /// The quadrature-free Smith `Lambda` of one mixture component (Beckmann of roughness
@@ -290,6 +264,28 @@ impl GaussianFilteredGgx {
     #[inline]
     fn lambda_component(qa: f64, qs: f64, oz: f64, w: f64) -> f64 {
         crate::f64::ndf::beckmann::beckmann_lambda(qa / w + 2.0 * qs, oz)
+    }
+
+    /// The kernel's principal standard deviations and the unit axis of the first:
+    /// `(sd1, sd2, cos, sin)` (sampling).
+    fn kernel_axes(&self) -> [f64; 4] {
+        let [s11, s12, s22] = self.k;
+        let k = Covariance::new(F::from_f64(s11), F::from_f64(s12), F::from_f64(s22));
+        let (ksd2, ksd1) = k.eigenvalues();
+        let khalf = 0.5 * (s11 - s22);
+        let krad = m::hypot(khalf, s12);
+        let (kx, ky) = if krad > 0.0 {
+            let (vx, vy) = if khalf >= 0.0 {
+                (krad + khalf, s12)
+            } else {
+                (s12, krad - khalf)
+            };
+            let n = m::hypot(vx, vy);
+            (vx / n, vy / n)
+        } else {
+            (1.0, 0.0)
+        };
+        [m::sqrt(ksd1.to_f64()), m::sqrt(ksd2.to_f64()), kx, ky]
     }
 
     /// `(o^T A o, o^T Sigma o)` for a tangent-plane vector `o`, in `f64`.
@@ -303,64 +299,6 @@ impl GaussianFilteredGgx {
         let qs = (s11 * ox * ox + 2.0 * s12 * ox * oy + s22 * oy * oy).max(0.0);
         (u * u + v * v, qs)
     }
-}
-
-/// The far-tail series of `J` (module docs) in homogeneous form: for a slope argument
-/// (`z2 = 1`, `beta = 1 + q`, `c_i^2`) it is `J`; for a normal `m` (`z2 = m_z^2`,
-/// `beta = m_z^2 + |T m_xy|^2`, `c_i^2 = (T m_xy)_i^2`) it is `J / m_z^4`, without forming the
-/// slope.
-#[inline]
-fn far_tail(beta: f64, c1s: f64, c2s: f64, tl1: f64, tl2: f64, z2: f64) -> f64 {
-    // J = beta^-2 (1 + 12 P z2 / beta^2 - 2 (l1 + l2) z2 / beta), P = l1 c1^2 + l2 c2^2.
-    let p = 0.5 * (tl1 * c1s + tl2 * c2s);
-    let ls = 0.5 * (tl1 + tl2);
-    let ib = 1.0 / beta;
-    ib * ib * (1.0 + z2 * ib * (12.0 * p * ib - 2.0 * ls))
-}
-
-/// The trapezoid rule of the module docs for `J`.
-#[inline]
-fn j_trapezoid(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> f64 {
-    let q = c1s + c2s;
-    let beta = 1.0 + q;
-    // Lower bound L of J (Jensen, module docs item 2).
-    let wb = 2.0 / beta;
-    let l_tail = 1.0 / (beta * beta * m::sqrt((1.0 + tl1 * wb) * (1.0 + tl2 * wb)));
-    let (p1, p2) = (1.0 + 2.0 * tl1, 1.0 + 2.0 * tl2);
-    let l_kernel = m::exp(-2.0 * (c1s / p1 + c2s / p2)) / m::sqrt(p1 * p2);
-    let l = l_tail.max(l_kernel);
-    // First node: the neglected nodes sum to <= min(w^2 / 2, w / (2 sqrt(l1 l2))) <= eps_t L.
-    let w_lo = m::sqrt(2.0 * EPS_T * l).max(EPS_T * l * m::sqrt(tl1 * tl2));
-    let mut w = w_lo;
-    let mut sum = 0.0;
-    let mut n = 0;
-    loop {
-        let mut chunk = 0.0;
-        let mut last = 0.0;
-        let mut w_last = w;
-        for _ in 0..4 {
-            let (p1, p2) = (1.0 + tl1 * w, 1.0 + tl2 * w);
-            let inv = 1.0 / (p1 * p2);
-            let e = w * (c1s * p2 + c2s * p1) * inv;
-            last = w * w * m::exp(-w - e) * m::sqrt(inv);
-            chunk += last;
-            w_last = w;
-            w *= EXP_H;
-        }
-        sum += chunk;
-        n += 4;
-        // Upper truncation bound of the nodes beyond w_last (module docs item 3), with
-        // h(w) = last e^w / w^2 and e^w <= e^2 below w = 2.
-        let rest = if w_last >= 2.0 {
-            last * (1.0 + w_last)
-        } else {
-            7.47 * last
-        } / (w_last * w_last);
-        if rest <= EPS_T * sum || n >= MAX_NODES || rest.is_nan() {
-            break;
-        }
-    }
-    H * sum
 }
 
 /// The trapezoid rule for `Lambda(o) = integral e^-w Lambda_B(a(w)) dw` (module docs), for
@@ -419,17 +357,9 @@ impl Ndf for GaussianFilteredGgx {
         }
         let z = mn.z.to_f64();
         let z2 = z * z;
-        let (v1, v2) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
-        let (v1s, v2s) = (v1 * v1, v2 * v2);
-        let beta = z2 + v1s + v2s;
+        let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
         let [tl1, tl2] = self.tl;
-        let v = if beta >= FAR * tl1 * z2 {
-            far_tail(beta, v1s, v2s, tl1, tl2, z2)
-        } else {
-            // 1 + q < FAR 2 l1: the slope is finite and moderate.
-            let iz2 = 1.0 / z2;
-            j_trapezoid(v1s * iz2, v2s * iz2, tl1, tl2) * iz2 * iz2
-        };
+        let v = quad::j(v1s, v2s, z2, tl1, tl2);
         let d = F::from_f64(self.norm * v);
         if d.is_finite() { d } else { 0.0 }
     }
@@ -522,7 +452,7 @@ impl super::super::sampling::NdfSampling for GaussianFilteredGgx {
         let g = (b11 * tx, b21 * tx + b22 * ty);
         let rk = m::sqrt(-2.0 * m::ln(1.0 - u3));
         let (y1, y2) = (rk * m::cos(tau * u4), rk * m::sin(tau * u4));
-        let [sd1, sd2, kx, ky] = self.k_axes;
+        let [sd1, sd2, kx, ky] = self.kernel_axes();
         let (k1, k2) = (sd1 * y1, sd2 * y2);
         let s = (g.0 + kx * k1 - ky * k2, g.1 + ky * k1 + kx * k2);
         let mm = crate::f64::footprint::slope::sphere_from_slope(glam::DVec2::new(s.0, s.1));
