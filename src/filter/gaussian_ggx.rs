@@ -103,21 +103,7 @@ use super::{F, Vec2, Vec3};
 use super::gaussian_ggx_quad::{self as quad, WIDE};
 use crate::math::{self as m, Real};
 
-/// Trapezoid step in `t = ln w` (module docs, item 1).
-const H: f64 = if WIDE { 0.3 } else { 0.5 };
-/// `e^H`, the ratio of consecutive nodes.
-const EXP_H: f64 = if WIDE {
-    1.349_858_807_576_003_1
-} else {
-    1.648_721_270_700_128_2
-};
-/// Relative truncation tolerance at each end (module docs, items 2 and 3).
-const EPS_T: f64 = if WIDE { 1e-12 } else { 1e-7 };
-/// Upper bound on the number of nodes (never reached: the upper truncation test stops the
-/// rule before `w ~ 40`, at most `ln(40 / w_lo) / h` nodes; a safety net against a NaN sum).
-const MAX_NODES: usize = 2048;
 const INV_PI: f64 = core::f64::consts::FRAC_1_PI;
-const SQRT_PI: f64 = 1.772_453_850_905_516;
 
 /// The exact Gaussian-filtered GGX lobe (module docs): GGX of roughness `A` convolved in the
 /// slope domain with the Gaussian kernel `N(0, Sigma)`.
@@ -259,13 +245,6 @@ impl GaussianFilteredGgx {
         self.norm * quad::j(c1s, c2s, 1.0, self.tl[0], self.tl[1])
     }
 
-    /// The quadrature-free Smith `Lambda` of one mixture component (Beckmann of roughness
-    /// `A / w + 2 Sigma`) for the projected quantities `qa = o^T A o`, `qs = o^T Sigma o`.
-    #[inline]
-    fn lambda_component(qa: f64, qs: f64, oz: f64, w: f64) -> f64 {
-        crate::f64::ndf::beckmann::beckmann_lambda(qa / w + 2.0 * qs, oz)
-    }
-
     /// The kernel's principal standard deviations and the unit axis of the first:
     /// `(sd1, sd2, cos, sin)` (sampling).
     fn kernel_axes(&self) -> [f64; 4] {
@@ -299,43 +278,6 @@ impl GaussianFilteredGgx {
         let qs = (s11 * ox * ox + 2.0 * s12 * ox * oy + s22 * oy * oy).max(0.0);
         (u * u + v * v, qs)
     }
-}
-
-/// The trapezoid rule for `Lambda(o) = integral e^-w Lambda_B(a(w)) dw` (module docs), for
-/// `qa = o^T A o > 0`, `qs = o^T Sigma o >= 0`, `oz = |o_z| > 0` (unit `o`).
-fn lambda_trapezoid(qa: f64, qs: f64, oz: f64) -> f64 {
-    let rq = m::sqrt(qa);
-    // g(t) = w e^-w Lambda_B ~ kappa sqrt(w) - w / 2 + O(w^1.5) at the bottom.
-    let kappa = rq / (2.0 * SQRT_PI * oz);
-    let c3 = oz / (SQRT_PI * rq) + kappa * (1.0 + 2.0 * qs / qa) + 0.5;
-    // Lower bound: Lambda >= Lambda_B(1) (1 - e^-w1) >= 0.0125 w1, w1 = min(1, w(a = 1)).
-    let oz2 = oz * oz;
-    let w1 = if oz2 > qa + 2.0 * qs {
-        (qa / (oz2 - 2.0 * qs)).min(1.0)
-    } else {
-        1.0
-    };
-    let l = 0.0125 * w1;
-    // Remainder of the two-term bottom correction: <= c3 w_lo^1.5 / 1.5 <= eps_t L.
-    // (Floored at the smallest normal: for views within ~1e-290 of grazing `c3` overflows.)
-    let w_lo = m::powf(1.5 * EPS_T * l / c3, 2.0 / 3.0).clamp(f64::MIN_POSITIVE, 1.0);
-    let tail = H * (kappa * m::sqrt(w_lo) / (m::sqrt(EXP_H) - 1.0) - 0.5 * w_lo / (EXP_H - 1.0));
-    let mut w = w_lo;
-    let mut sum = 0.0;
-    let mut n = 0;
-    loop {
-        let g = w * m::exp(-w) * GaussianFilteredGgx::lambda_component(qa, qs, oz, w);
-        sum += g;
-        n += 1;
-        // Nodes beyond w: <= Lambda_B(a(w)) e^-w (w >= 1, w e^-w decreasing in t) or
-        // 1.01 Lambda_B(a(w)) (below), Lambda_B(a(w)) = g e^w / w.
-        let rest = if w >= 1.0 { g } else { 2.75 * g } / w;
-        if rest <= EPS_T * H * sum || n >= MAX_NODES || rest.is_nan() {
-            break;
-        }
-        w *= EXP_H;
-    }
-    (H * sum + tail).max(0.0)
 }
 
 impl Ndf for GaussianFilteredGgx {
@@ -394,7 +336,7 @@ impl Ndf for GaussianFilteredGgx {
             // narrower than the kernel): the limit, Beckmann of `2 Sigma`.
             return F::from_f64(crate::f64::ndf::beckmann::beckmann_lambda(2.0 * qs, oz));
         }
-        let v = lambda_trapezoid(qa, qs, oz);
+        let v = quad::lambda(qa, qs, oz);
         // Only overflow (a view within ~1e-290 of grazing) makes the sum NaN: its limit is +inf.
         if v.is_nan() {
             F::INFINITY
@@ -403,15 +345,6 @@ impl Ndf for GaussianFilteredGgx {
         }
     }
 }
-
-/// The fixed component grid of the visible-normal sampler: `w_k = exp(SAMPLE_T0 + k H_S)`,
-/// `k < SAMPLE_NODES`, from `w = 8.3e-7` to `w = 39` (see [`NdfSampling`] below).
-const SAMPLE_T0: f64 = -14.0;
-/// Step of the sampler's grid in `ln w` (its discretisation error, `6e-7` relative to the
-/// density, is that of the `f32` evaluation rule, module docs item 1).
-const H_S: f64 = 0.5;
-/// Number of mixture components of the sampler.
-const SAMPLE_NODES: usize = 36;
 
 /// A uniform number from `[0, 1)` (NaN and out-of-range values clamped, as the other samplers).
 #[inline]
@@ -490,32 +423,25 @@ impl super::super::sampling::NdfSampling for GaussianFilteredGgx {
         let n = m::sqrt(ox * ox + oy * oy + oz * oz);
         let (ox, oy, oz) = (ox / n, oy / n, oz / n);
         let (qa, qs) = self.projected(ox, oy);
-        let mut weights = [0.0; SAMPLE_NODES];
-        let mut total = 0.0;
-        let mut w = m::exp(SAMPLE_T0);
-        for p in weights.iter_mut() {
-            let lambda = Self::lambda_component(qa, qs, oz, w);
-            *p = w * m::exp(-w) * (1.0 + lambda);
-            total += *p;
-            w *= 1.648_721_270_700_128_2; // e^H_S
-        }
+        let weights = quad::sample_weights(qa, qs, oz);
+        let total: f64 = weights.iter().map(|w| w.to_f64()).sum();
         let target = unit(u.x) * total;
         let mut acc = 0.0;
-        let mut k = SAMPLE_NODES - 1;
-        for (i, &p) in weights.iter().enumerate() {
-            if target < acc + p || i == SAMPLE_NODES - 1 {
+        let mut k = quad::SAMPLE_N - 1;
+        for (i, p) in weights.iter().map(|w| w.to_f64()).enumerate() {
+            if target < acc + p || i == quad::SAMPLE_N - 1 {
                 k = i;
                 break;
             }
             acc += p;
         }
-        let p = weights[k];
+        let p = weights[k].to_f64();
         let ux = if p > 0.0 {
             ((target - acc) / p).clamp(0.0, 1.0)
         } else {
             0.5
         };
-        let wk = m::exp(SAMPLE_T0 + H_S * k as f64);
+        let wk = m::exp(quad::SAMPLE_T0 + 0.5 * k as f64);
         let (a11, a12, a22) = self.a.entries();
         let [s11, s12, s22] = self.k;
         let iw = 1.0 / wk;
