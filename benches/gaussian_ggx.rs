@@ -88,7 +88,9 @@ macro_rules! group {
         });
         run(&mut g, "exact_gaussian_d", |i| lobes[i].d(h[i]));
         run(&mut g, "tk19_lambda", |i| tk19[i].lambda(views[i]));
-        run(&mut g, "exact_gaussian_lambda", |i| lobes[i].lambda(views[i]));
+        run(&mut g, "exact_gaussian_lambda", |i| {
+            lobes[i].lambda(views[i])
+        });
         run(&mut g, "tk19_sample_visible_normal", |i| {
             tk19[i].sample_visible_normal(views[i], us[i])
         });

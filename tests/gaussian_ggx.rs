@@ -11,7 +11,9 @@
 //!
 //! Tolerances: `1e-10` relative in `f64` and `1e-5` in `f32` (the targets), plus the
 //! reference's own error estimate (required below `1e-11` relative, so it never carries a
-//! comparison). The rule's own bound is `1.1e-11` (`f64`) and `1.8e-6` (`f32`, module docs).
+//! comparison). The rules' own bounds and measured errors are `~1e-11` (`f64`) and `~2e-6`
+//! (`f32`, module docs). The switches between the rules (far tail, Gauss-Laguerre, trapezoid;
+//! Gauss-Hermite and the sinh rule for `Lambda`) are tested on both sides of each edge.
 
 use filtered_ndf::f32 as s;
 use filtered_ndf::f64 as d;
@@ -486,11 +488,85 @@ fn lambda_against_the_mixture_reference() {
                     continue;
                 }
                 let r = (v - e.value).abs() / e.value;
-                let (tol, worst) = if wide { (1e-10, &mut w64) } else { (1e-5, &mut w32) };
-                assert!(r <= tol + rel_ref, "{wide} {c:?} {o}: {v} vs {e:?} ({r:.3e})");
+                let (tol, worst) = if wide {
+                    (1e-10, &mut w64)
+                } else {
+                    (1e-5, &mut w32)
+                };
+                assert!(
+                    r <= tol + rel_ref,
+                    "{wide} {c:?} {o}: {v} vs {e:?} ({r:.3e})"
+                );
                 *worst = worst.max(r);
             }
         }
     }
     println!("lambda: worst relative error f64 {w64:.3e}, f32 {w32:.3e}");
+}
+
+#[test]
+fn p22_on_both_sides_of_the_rule_switches() {
+    // Isotropic lobe, kernel along x (rank one or isotropic), slope along x: 2 l1 = 2 k / a2 and
+    // q = s_x^2 / a2, placed at 0.9, 1 and 1.1 times the Gauss-Laguerre edge of each precision
+    // (2 l1 = r (1 + q), r = 0.0177 in f32, 0.01 in f64) and of the far tail (1 + q = K 2 l1), q
+    // from 0 to 3e7 (where the plateau condition moves the edge).
+    let alpha = 0.01f64;
+    let a2 = alpha * alpha;
+    let mut cs = Vec::new();
+    for edge in [0.0177, 0.01, 1.0 / 3.2e5, 1.0 / 3.2e7] {
+        for f in [0.9, 1.0, 1.1] {
+            for q in [0.0, 30.0, 3e3, 3e5, 3e7] {
+                for iso in [false, true] {
+                    let tl1 = edge * f * (1.0 + q);
+                    let k = 0.5 * tl1 * a2;
+                    cs.push(Case {
+                        a: (a2 as f32, 0.0, a2 as f32),
+                        k: (k as f32, 0.0, if iso { k as f32 } else { 0.0 }),
+                        s: ((alpha * q.sqrt()) as f32, 0.0),
+                    });
+                }
+            }
+        }
+    }
+    let (w64, w32) = check_against_reference(&cs);
+    println!("rule switches: worst f64 {w64:.3e}, f32 {w32:.3e}");
+}
+
+#[test]
+fn lambda_on_both_sides_of_the_rule_switch() {
+    // delta_s^2 = qs / (qa + o_z^2) at 0.9, 1 and 1.1 times the Gauss-Hermite edge (0.01), for
+    // lobe-dominated, balanced and kernel-dominated views.
+    let a = d::Isotropic::new(0.1).unwrap();
+    let (mut w64, mut w32) = (0.0_f64, 0.0_f64);
+    for deg in [30.0f64, 70.0, 85.0] {
+        let t = deg.to_radians();
+        let o = DVec3::new(t.sin(), 0.0, t.cos());
+        let qa = 0.01 * t.sin() * t.sin();
+        for f in [0.9, 1.0, 1.1] {
+            let qs = 0.01 * f * (qa + o.z * o.z);
+            // Sigma = diag(k, 0): o^T Sigma o = k sin^2 t.
+            let k = qs / (t.sin() * t.sin());
+            let kf = k as f32;
+            let lobe = d::GaussianFilteredGgx::new(a, d::Covariance::new(kf as f64, 0.0, 0.0));
+            let lobe32 = s::GaussianFilteredGgx::new(
+                s::Isotropic::new(0.1).unwrap(),
+                s::Covariance::new(kf, 0.0, 0.0),
+            );
+            let o32 = Vec3::new(o.x as f32, 0.0, o.z as f32);
+            let o64 = DVec3::new(o32.x as f64, 0.0, o32.z as f64).normalize();
+            let qa = a.quadratic(DVec2::new(o64.x, o64.y));
+            let e = lambda_ref(qa, kf as f64 * o64.x * o64.x, o64.z);
+            let rel_ref = e.error / e.value;
+            let (v64, v32) = (lobe.lambda(o64), s::Ndf::lambda(&lobe32, o32) as f64);
+            let (r64, r32) = (
+                (v64 - e.value).abs() / e.value,
+                (v32 - e.value).abs() / e.value,
+            );
+            assert!(r64 <= 1e-10 + rel_ref, "f64 {deg} {f}: {v64} vs {e:?}");
+            assert!(r32 <= 1e-5 + rel_ref, "f32 {deg} {f}: {v32} vs {e:?}");
+            w64 = w64.max(r64);
+            w32 = w32.max(r32);
+        }
+    }
+    println!("lambda switch: worst f64 {w64:.3e}, f32 {w32:.3e}");
 }

@@ -31,24 +31,24 @@ fn exp_f32(x: f32) -> f32 {
     const LN2_LO: f32 = 1.428_606_8e-6;
     const C: [f32; 7] = [
         1.0,
-        1.000_000_036_323_176_5,
-        0.499_999_920_798_280_2,
-        0.166_664_201_699_463_67,
-        0.041_668_225_566_922_84,
-        0.008_374_815_798_301_793,
-        0.001_383_684_613_457_705_7,
+        1.0,
+        0.499_999_9,
+        0.166_664_2,
+        0.041_668_225,
+        0.008_374_816,
+        0.001_383_684_6,
     ];
     let xc = x.clamp(-87.0, 88.0);
     let k = xc * core::f32::consts::LOG2_E + MAGIC;
     let n = k - MAGIC;
     let r = (xc - n * LN2_HI) - n * LN2_LO;
     let r2 = r * r;
-    let p = (C[0] + C[1] * r + (C[2] + C[3] * r) * r2)
-        + (C[4] + C[5] * r + C[6] * r2) * (r2 * r2);
+    let p = (C[0] + C[1] * r + (C[2] + C[3] * r) * r2) + (C[4] + C[5] * r + C[6] * r2) * (r2 * r2);
     // The low bits of k hold n + 0x400000: (n + 127) << 23 is the bit pattern of 2^n.
     let s = f32::from_bits(k.to_bits().wrapping_add(127) << 23);
-    // 0 below the range, as a product (a branch or select here stops the vectoriser).
-    p * s * ((x >= -87.0) as u32 as f32)
+    // 0 below the range, by a bit mask (a branch or select here stops the vectoriser).
+    let keep = 0u32.wrapping_sub((x >= -87.0) as u32);
+    p * s * f32::from_bits(1f32.to_bits() & keep)
 }
 
 /// `e^x` in `f64` for `x <= 709` (`0` below `-708`), as [`exp_f32`] with the relative minimax
@@ -81,7 +81,8 @@ fn exp_f64(x: f64) -> f64 {
     let q47 = (C[4] + C[5] * r) + (C[6] + C[7] * r) * r2;
     let p = (q03 + q47 * r4) + (C[8] + C[9] * r) * (r4 * r4);
     let s = f64::from_bits(k.to_bits().wrapping_add(1023) << 52);
-    p * s * ((x >= -708.0) as u64 as f64)
+    let keep = 0u64.wrapping_sub((x >= -708.0) as u64);
+    p * s * f64::from_bits(1f64.to_bits() & keep)
 }
 
 /// `e^x` in the lobe's precision (the polynomial of [`exp_f32`] or [`exp_f64`]).
@@ -355,16 +356,7 @@ fn j_trapezoid(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> f64 {
         RATIO[k..].first_chunk::<CH>(),
         LOG2RATIO[k..].first_chunk::<CH>(),
     ) {
-        let mut acc = [0.0; CH];
-        for j in 0..CH {
-            let v = v0 * rk[j];
-            let p1 = 1.0 + t1 * v;
-            let p2 = 1.0 + t2 * v;
-            let inv = 1.0 / (p1 * p2);
-            let a = fw + (fk1 * p2 + fk2 * p1) * inv;
-            let x = (l0 + lk[j]) - (v - 1.0) * a;
-            acc[j] = exp_poly(x) * m::sqrt(inv);
-        }
+        let acc = trapezoid_chunk([v0, t1, t2, fw, fk1, fk2, l0], rk, lk);
         for (t, a) in tot.iter_mut().zip(acc.iter()) {
             *t += *a;
         }
@@ -381,6 +373,24 @@ fn j_trapezoid(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> f64 {
         }
     }
     H * (sum.to_f64() * scale + series_below(c1s, c2s, tl1, tl2, w_first))
+}
+
+/// One chunk of [`j_trapezoid`]'s nodes: `g(t) / scale` at `v = v0 r_k` (see there), from the
+/// constants `[v0, 2 l1 w_r, 2 l2 w_r, w_r, k1, k2, l0]`.
+#[inline(always)]
+fn trapezoid_chunk(c: [F; 7], rk: &[F; CH], lk: &[F; CH]) -> [F; CH] {
+    let [v0, t1, t2, fw, fk1, fk2, l0] = c;
+    let mut acc = [0.0; CH];
+    for j in 0..CH {
+        let v = v0 * rk[j];
+        let p1 = 1.0 + t1 * v;
+        let p2 = 1.0 + t2 * v;
+        let inv = 1.0 / (p1 * p2);
+        let a = fw + (fk1 * p2 + fk2 * p1) * inv;
+        let x = (l0 + lk[j]) - (v - 1.0) * a;
+        acc[j] = exp_poly(x) * m::sqrt(inv);
+    }
+    acc
 }
 
 /// `ceil` for the small positive values of the node offset (no `ceil` in `core`).
@@ -572,47 +582,58 @@ fn lambda_sinh(qa: f64, qs: f64, oz: f64, ds2: f64) -> f64 {
     let c_up = core::f64::consts::LN_2 * qs / (rq * h);
     let c_down = (2.0 * h + core::f64::consts::LN_2) * qs / (rq * h);
     let e2 = ie0 * ie0;
-    // One direction: nodes T = e^(d/2) = t0 step^k.
-    let run = |t0: f64, step: f64, up: bool, sum: f64| -> f64 {
-        const C: usize = 4;
-        let mut pw = [1.0; C];
+    // One direction: nodes T = e^(d/2) = t0 step^k, with 1 / T by the reciprocal recurrence.
+    let run = |t0: f64, it0: f64, step: f64, istep: f64, up: bool, sum: f64| -> f64 {
+        const C: usize = SINH_CH;
+        let (mut pw, mut ipw) = ([1.0; C], [1.0; C]);
         for i in 1..C {
             pw[i] = pw[i - 1] * step;
+            ipw[i] = ipw[i - 1] * istep;
         }
-        let step_c = pw[C - 1] * step;
-        let mut t = t0;
+        let (step_c, istep_c) = (pw[C - 1] * step, ipw[C - 1] * istep);
+        let (mut t, mut it) = (t0, it0);
         let mut total = sum;
         let mut n = 0;
         loop {
-            let mut f = [0.0; C];
-            let mut xs = [0.0; C];
-            for i in 0..C {
-                let tt = t * pw[i];
-                let it = 1.0 / tt;
-                let x = -0.5 * rq * (e0 * tt + ie0 * it) * (tt - it);
-                let it2 = it * it;
-                f[i] = exp_f64(-x * x * i2s2) * (1.0 + e2 * it2 * it2);
-                xs[i] = x;
-            }
-            let s: f64 = f.iter().sum();
-            total += s;
+            let (f, xs) = sinh_chunk([t, it, rq, e0, ie0, i2s2, e2], &pw, &ipw);
+            total += (f[0] + f[1]) + (f[2] + f[3]);
             t *= step_c;
+            it *= istep_c;
             n += C;
             let (x, fl) = (xs[C - 1], f[C - 1]);
-            let done = if up {
-                -x >= c_up
-            } else {
-                x >= c_down
-            };
+            let done = if up { -x >= c_up } else { x >= c_down };
             if (done && fl <= S_EPS * total) || n >= S_MAX_NODES || total.is_nan() {
                 return total;
             }
         }
     };
-    let up = run(1.0, t1, true, 0.0);
-    let all = run(it1, it1, false, up);
+    let up = run(1.0, 1.0, t1, it1, true, 0.0);
+    let all = run(it1, t1, it1, t1, false, up);
     let norm = h * qa / (4.0 * oz * m::sqrt(qs * core::f64::consts::TAU));
     all * norm
+}
+
+/// Nodes per chunk of the sinh rule.
+const SINH_CH: usize = 4;
+
+/// One chunk of [`lambda_sinh`]'s nodes: `(f, x)` at `T = t p_i`, `1 / T = it ip_i`, from the
+/// constants `[t, it, sqrt(qa), e^s0, e^-s0, 1 / (2 qs), e^-2s0]`.
+#[inline(always)]
+fn sinh_chunk(
+    c: [f64; 7],
+    pw: &[f64; SINH_CH],
+    ipw: &[f64; SINH_CH],
+) -> ([f64; SINH_CH], [f64; SINH_CH]) {
+    let [t, it, rq, e0, ie0, i2s2, e2] = c;
+    let (mut f, mut xs) = ([0.0; SINH_CH], [0.0; SINH_CH]);
+    for i in 0..SINH_CH {
+        let (tt, itt) = (t * pw[i], it * ipw[i]);
+        let x = -0.5 * rq * (e0 * tt + ie0 * itt) * (tt - itt);
+        let it2 = itt * itt;
+        f[i] = exp_f64(-x * x * i2s2) * (1.0 + e2 * it2 * it2);
+        xs[i] = x;
+    }
+    (f, xs)
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -658,33 +679,65 @@ static SAMPLE_GRID: ([F; SAMPLE_N], [F; SAMPLE_N]) = {
 #[inline(always)]
 fn beckmann_lambda_fast(a: F) -> F {
     let t = 1.0 / (1.0 + 0.5 * a);
-    let p = -1.265_512_23
-        + t * (1.000_023_68
-            + t * (0.374_091_96
-                + t * (0.096_784_18
-                    + t * (-0.186_288_06
-                        + t * (0.278_868_07
-                            + t * (-1.135_203_98
-                                + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
+    // P(t) by Estrin's scheme (depth 8 against 18 for Horner).
+    const P: [f64; 10] = [
+        -1.265_512_23,
+        1.000_023_68,
+        0.374_091_96,
+        0.096_784_18,
+        -0.186_288_06,
+        0.278_868_07,
+        -1.135_203_98,
+        1.488_515_87,
+        -0.822_152_23,
+        0.170_872_77,
+    ];
+    let c = |i: usize| P[i] as F;
+    let (t2, t4) = (t * t, (t * t) * (t * t));
+    let p01 = c(0) + t * c(1);
+    let p23 = c(2) + t * c(3);
+    let p45 = c(4) + t * c(5);
+    let p67 = c(6) + t * c(7);
+    let p89 = c(8) + t * c(9);
+    let p = (p01 + p23 * t2) + (p45 + p67 * t2) * t4 + p89 * (t4 * t4);
     let e = exp_poly(-a * a);
-    const INV_SQRT_PI: F = 0.564_189_583_547_756_3;
+    const INV_SQRT_PI: F = 0.564_189_583_547_756_3_f64 as F;
     (0.5 * e * (INV_SQRT_PI / a - t * exp_poly(p))).max(0.0)
 }
 
-/// The sampler's component weights `W_k (1 + Lambda_k(o))` (module docs, sampling), `Lambda_k`
-/// the Beckmann `Lambda` of roughness `A / w_k + 2 Sigma` for `qa = o^T A o`, `qs = o^T Sigma
-/// o`, `oz = o_z` of a unit `o` with `oz > 0`.
-pub(super) fn sample_weights(qa: f64, qs: f64, oz: f64) -> [F; SAMPLE_N] {
+/// Draws the sampler's component (module docs, sampling) from the weights
+/// `W_k (1 + Lambda_k(o))`, `Lambda_k` the Beckmann `Lambda` of roughness `A / w_k + 2 Sigma`,
+/// for `qa = o^T A o`, `qs = o^T Sigma o`, `oz = o_z` of a unit `o` with `oz > 0`, by inverting
+/// the cumulative weights at `u` in `[0, 1)`: the index and the remainder rescaled to
+/// `[0, 1]`.
+pub(super) fn sample_component(qa: f64, qs: f64, oz: f64, u: f64) -> (usize, f64) {
     // a_k = oz / sqrt(qa / w_k + 2 qs), bounded below (oz ~ 0: Lambda ~ 1 / a; the largest
     // weight then dominates and stays finite).
     let (fqa, fqs, foz) = (F::from_f64(qa), F::from_f64(2.0 * qs), F::from_f64(oz));
     let floor: F = if WIDE { 1e-250 } else { 1e-30 };
-    let mut out = [0.0; SAMPLE_N];
-    for (o, (&w, &wt)) in out.iter_mut().zip(SAMPLE_GRID.0.iter().zip(SAMPLE_GRID.1.iter())) {
+    let mut wts = [0.0; SAMPLE_N];
+    for (o, (&w, &wt)) in wts
+        .iter_mut()
+        .zip(SAMPLE_GRID.0.iter().zip(SAMPLE_GRID.1.iter()))
+    {
         let a = (foz * m::sqrt(w / (fqa + fqs * w))).max(floor);
         *o = wt * (1.0 + beckmann_lambda_fast(a));
     }
-    out
+    let target = u * sum_tree(wts).to_f64();
+    let mut acc = 0.0;
+    for (i, &p) in wts.iter().enumerate() {
+        let p = p.to_f64();
+        if target < acc + p || i == SAMPLE_N - 1 {
+            let ux = if p > 0.0 {
+                ((target - acc) / p).clamp(0.0, 1.0)
+            } else {
+                0.5
+            };
+            return (i, ux);
+        }
+        acc += p;
+    }
+    (SAMPLE_N - 1, 0.5)
 }
 
 #[cfg(test)]
@@ -741,7 +794,10 @@ mod tests {
         for i in 0..100_000 {
             let x = 1.0 + (i as f64) * 1.37e-3 * (1.0 + i as f64);
             let (u, l) = (ln_upper(x), x.ln());
-            assert!(u >= l && u - l <= 1.0 - core::f64::consts::LN_2 + 1e-12, "{x}");
+            assert!(
+                u >= l && u - l <= 1.0 - core::f64::consts::LN_2 + 1e-12,
+                "{x}"
+            );
         }
     }
 }
