@@ -227,7 +227,7 @@ impl GaussianFilteredGgx {
     /// [`Covariance::sanitized`] first. `A` is taken as the entries of
     /// [`Roughness::to_matrix`] with `det A = sqrt_det()^2` (for a matrix with a determinant
     /// clamp, the clamped determinant, as GGX evaluates it).
-    #[inline]
+    #[inline(always)]
     pub fn new<R: Roughness>(roughness: R, kernel: Covariance) -> Self {
         let a = roughness.to_matrix();
         let (a11, a12, _) = a.entries();
