@@ -140,29 +140,33 @@
 //!    branch points at `y = +-i sqrt(qa)`, and `delta_s = sqrt(qs / (qa + o_z^2))` (the
 //!    Gaussian's width against their distance from its centre) picks the rule:
 //!    - `delta_s <= 0.1`: **Gauss-Hermite**, 8 nodes (`f32`) / 10 (`f64`), `h(y)` evaluated as
-//!      `qa / (sqrt(qa + y^2) + y)` for `y >= 0`. Measured (a `61 x 61` grid of
-//!      `sqrt(qa / qs)` in `[10^-3.5, 10^2.5]` and `o_z / sqrt(qa)` in `[1e-3, 1e3]`, against the
-//!      rule below with a step 20 times finer): worst `9e-12` (8 nodes) / `2e-13` (10 nodes);
-//!      the error grows to `1e-5` for `delta_s` in `[0.1, 0.18]` whatever the node count.
+//!      `qa / (sqrt(qa + y^2) + y)` for `y >= 0`. Measured over 3065 points of the grid
+//!      `sqrt(qa / qs)` in `[1e-4, 1e3]` (steps of `0.1` decade) by `o_z / sqrt(qa)` in
+//!      `[1e-3, 1e8]` (steps of `1/6` decade) with `delta_s <= 0.1`, against the mixture
+//!      itself (adaptive quadrature of `integral e^-w Lambda_B dw` with libm's `erfc`): worst
+//!      `8.3e-12` (8 nodes) / `1.2e-13` (10 nodes); the error grows to `1e-5` for `delta_s` in
+//!      `[0.1, 0.18]` whatever the node count (the branch points enter the Gaussian's bulk).
 //!    - otherwise the **trapezoid rule in `s`**, `y = sqrt(qa) sinh s`:
 //!      `Lambda = qa / (4 o_z) integral phi_sigma(o_z - sqrt(qa) sinh s) (1 + e^-2s) ds`, an
 //!      entire integrand decaying double-exponentially at both ends, nodes `s0 + k h` with
 //!      `sinh s0 = o_z / sqrt(qa)` and `o_z - sqrt(qa) sinh(s0 + d) = -2 sqrt(qa) cosh(s0 + d/2)
 //!      sinh(d/2)` (no cancellation). The step is measured: the largest `h` meeting `1e-7`
-//!      (resp. `2e-12`) over the same grid, per `1/8` decade of `delta_s`, is `0.095` at
-//!      `delta_s = 0.1`, `0.19` at `0.32`, `0.26` beyond `0.75` (resp. `0.07`, `0.125`,
-//!      `0.165`); the rule takes `min(0.25, 0.25 sqrt(delta_s))` (resp.
-//!      `min(0.16, 0.175 sqrt(delta_s))`), below all of them. Each end stops (every 4 nodes)
+//!      (resp. `2e-12`) at every point of the grid, per `1/8` decade of `delta_s`, is `0.095`
+//!      at `delta_s = 0.1`, `0.19` at `0.32`, `0.26` beyond `0.75` (resp. `0.065`, `0.13`,
+//!      `0.16`); the rule takes `min(0.25, 0.25 sqrt(delta_s))` (resp.
+//!      `min(0.16, 0.17 sqrt(delta_s))`), below all of them. Each end stops (every 8 nodes)
 //!      when the last term `f_k` is `<= eps` times the sum (`1e-8`, resp. `1e-13`) and the
 //!      terms beyond fall by half per node: going up, `|x(s)| >= |x_k| + sqrt(qa) (s - s_k)`
 //!      (`sinh' >= 1`) and `1 + e^-2s` decreases, so the ratio is `<= 1/2` once
 //!      `|x_k| sqrt(qa) h / qs >= ln 2`; going down `1 + e^-2s` grows by at most `e^2h` per
-//!      node, so `>= 2h + ln 2`; the neglected terms then sum to at most `f_k`. In `f64` for
-//!      both lobes.
+//!      node, so `>= 2h + ln 2`; the neglected terms then sum to at most `f_k`. The grid and the
+//!      Gaussian's argument are in `f64` (the grid ratio `e^(h/2)` from the library `exp`: its
+//!      error compounds over the nodes), the exponential in the lobe's lanes. Over the 1692 grid
+//!      points with `delta_s > 0.1`: worst `2.9e-7` (`f32` rule), `9.0e-13` (`f64` rule); 20 to
+//!      60 nodes on the benches' grazing views, up to 240 / 410 for kernels `1e4` lobe widths.
 //!
-//!    Measured against the mixture itself (adaptive quadrature of
-//!    `integral e^-w Lambda_B dw` with libm's `erfc`, `tests/gaussian_ggx.rs`): worst `9.5e-13`
-//!    (`f64`), `1.8e-7` (`f32`).
+//!    Measured through [`Ndf::lambda`] against the mixture (`tests/gaussian_ggx.rs`, 480
+//!    seeded views of the tests' lobes): worst `8.8e-13` (`f64`), `1.8e-7` (`f32`).
 //!
 //! # Bad input
 //! The kernel is [`Covariance::sanitized`] (NaN: no filtering; infinite: the widest kernel;
