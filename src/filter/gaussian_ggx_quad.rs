@@ -563,9 +563,15 @@ fn lambda_sinh(qa: f64, qs: f64, oz: f64, ds2: f64) -> f64 {
     let root = oz + m::sqrt(qa + oz * oz);
     let (e0, ie0) = (root / rq, rq / root);
     let h = S_MAX.min(S_COEF * m::sqrt(m::sqrt(ds2)));
-    // The grid ratio to the last bit (the library exp): its error compounds over the nodes,
-    // `(1 + e^-2s) ~ e^-2s` at the k-th node carries it `4k` times.
-    let (t1, it1) = (m::exp(0.5 * h), m::exp(-0.5 * h));
+    // The grid ratio: its error compounds over the nodes (`(1 + e^-2s) ~ e^-2s` at the k-th
+    // node carries it `4k` times), so to the last bit in `f64` (the library exp); the
+    // polynomial's `1.4e-14` is ample for the `f32` rule.
+    let t1 = if WIDE {
+        m::exp(0.5 * h)
+    } else {
+        exp_f64(0.5 * h)
+    };
+    let it1 = 1.0 / t1;
     let i2s2 = 0.5 / qs;
     // |x| sqrt(qa) h / qs beyond which the terms fall by half per node (module docs).
     let c_up = core::f64::consts::LN_2 * qs / (rq * h);
@@ -603,7 +609,7 @@ fn lambda_sinh(qa: f64, qs: f64, oz: f64, ds2: f64) -> f64 {
 }
 
 /// Nodes per chunk of the sinh rule.
-const SINH_CH: usize = 4;
+const SINH_CH: usize = 8;
 
 /// One chunk of [`lambda_sinh`]'s nodes: `(f, x)` at `T = t p_i`, `1 / T = it ip_i`, from the
 /// constants `[t, it, sqrt(qa), e^s0, e^-s0, 1 / (2 qs), e^-2s0]`: the grid and the Gaussian's
