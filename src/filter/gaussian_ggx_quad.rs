@@ -675,9 +675,10 @@ static SAMPLE_GRID: ([F; SAMPLE_N], [F; SAMPLE_N]) = {
 
 /// Beckmann's `Lambda(a) = (e^-a^2 / (a sqrt(pi)) - erfc(a)) / 2` with the Chebyshev fit of
 /// `erfc` of Numerical Recipes (section 6.2, `erfcc`: `erfc(a) = t exp(-a^2 + P(t))`,
-/// `t = 1 / (1 + a / 2)`, relative error below `1.2e-7` for every `a >= 0`), in `F`: absolute
-/// error below `1e-7 e^-a^2 erfcx(a)`, at most `~1.2e-7 (1 + Lambda)` relative to the sampler's
-/// weights `1 + Lambda`. For `a > 0`; `a` far below `1 / F::MAX` overflows.
+/// `t = 1 / (1 + a / 2)`, relative error below `1.2e-7` for every `a >= 0`), in `F`: error
+/// below `2.1e-7 (1 + Lambda)` in `f32`, `1.9e-8 (1 + Lambda)` in `f64` (unit test below), the
+/// relative error of the sampler's weights `1 + Lambda`. For `a > 0`; `a` far below
+/// `1 / F::MAX` overflows.
 #[inline(always)]
 fn beckmann_lambda_fast(a: F) -> F {
     let t = 1.0 / (1.0 + 0.5 * a);
@@ -788,7 +789,8 @@ mod tests {
             let got = beckmann_lambda_fast(a as F) as f64;
             worst = worst.max((got - exact.max(0.0)).abs() / (1.0 + exact));
         }
-        assert!(worst < if WIDE { 2e-7 } else { 5e-7 }, "{worst:e}");
+        println!("fast beckmann lambda worst {worst:e}");
+        assert!(worst < if WIDE { 2.5e-8 } else { 2.5e-7 }, "{worst:e}");
     }
 
     #[test]
