@@ -116,8 +116,8 @@
 //! logarithm): worst **`1.4e-12` in `f64`** (bound `8.4e-12 + 2e-12` for the trapezoid rule;
 //! the worst case sits at the Gauss-Laguerre edge) and **`1.6e-6` in `f32`** (bound
 //! `1.6e-6 + 2e-7` plus the `f32` arithmetic). Nodes per evaluation on the benches' realistic
-//! cases: 8 (`f32`) / 12 (`f64`) for the Gauss-Laguerre half, a median of 16 / 26 for the
-//! trapezoid half, up to ~60 / 120 over the tested domain.
+//! cases: 8 (`f32`) / 12 (`f64`) for the Gauss-Laguerre half, a median of 16 / 28 (90th
+//! percentile 24 / 40) for the trapezoid half; up to 64 / 104 over the tested domain.
 //!
 //! # Smith `Lambda`: the filtered distribution's own
 //! `Lambda` is a linear functional of the slope density (Heitz 2014 eq. 72), so the filtered
