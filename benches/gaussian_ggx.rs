@@ -3,7 +3,9 @@
 //! cases): unfiltered GGX, the TK19 matrix approximation `Ggx::new(filter::gaussian(A, Sigma))`
 //! (building the lobe included), the exact box filter `rect::d_rect` over the footprint's
 //! bounding rectangle (the speed bar of issue 17), and the exact Gaussian filter, once with the
-//! lobe built per evaluation and once with prebuilt lobes (`d` alone).
+//! lobe built per evaluation and once with prebuilt lobes (`d` alone); then Smith `Lambda` and
+//! visible-normal sampling of the exact lobe beside the TK19 lobe's (prebuilt lobes, seeded
+//! views: three in four up to 80 degrees, one in four from 80 to 89.9).
 //!
 //! `cargo bench --bench gaussian_ggx -- --quick`. Figures are per evaluation
 //! (`Throughput::Elements`); compare ratios within one run.
@@ -19,7 +21,8 @@ macro_rules! group {
     ($c:expr, $prec:ident, $t:ty) => {{
         use filtered_ndf::math::Real;
         use filtered_ndf::$prec::{
-            AxisAligned, Footprint, GaussianFilteredGgx, Ggx, Ndf, Vec2, Vec3, filter, filter::rect,
+            AxisAligned, Footprint, GaussianFilteredGgx, Ggx, Ndf, NdfSampling, Vec2, Vec3, filter,
+            filter::rect,
         };
         type Wall<'a> = BenchmarkGroup<'a, criterion::measurement::WallTime>;
         let c = |x: f64| <$t as Real>::from_f64(x);
@@ -44,6 +47,24 @@ macro_rules! group {
         let lobes: Vec<GaussianFilteredGgx> = (0..N)
             .map(|i| GaussianFilteredGgx::new(r[i], fp[i].covariance(0.5)))
             .collect();
+        let tk19: Vec<_> = (0..N)
+            .map(|i| Ggx::new(filter::gaussian(r[i], fp[i].covariance(0.5))))
+            .collect();
+        let mut rng = common::Rng(0x5EED_0017);
+        let views: Vec<Vec3> = (0..N)
+            .map(|i| {
+                let deg = if i % 4 == 3 {
+                    rng.range(80.0, 89.9)
+                } else {
+                    rng.range(0.0, 80.0)
+                };
+                let (t, p) = (deg.to_radians(), rng.range(0.0, std::f64::consts::TAU));
+                Vec3::new(c(t.sin() * p.cos()), c(t.sin() * p.sin()), c(t.cos()))
+            })
+            .collect();
+        let us: Vec<Vec2> = (0..N)
+            .map(|_| Vec2::new(c(rng.uniform()), c(rng.uniform())))
+            .collect();
         fn run<T>(g: &mut Wall<'_>, name: &str, mut f: impl FnMut(usize) -> T) {
             g.bench_function(name, |b| {
                 b.iter(|| {
@@ -66,6 +87,16 @@ macro_rules! group {
             GaussianFilteredGgx::new(r[i], fp[i].covariance(0.5)).d(h[i])
         });
         run(&mut g, "exact_gaussian_d", |i| lobes[i].d(h[i]));
+        run(&mut g, "tk19_lambda", |i| tk19[i].lambda(views[i]));
+        run(&mut g, "exact_gaussian_lambda", |i| {
+            lobes[i].lambda(views[i])
+        });
+        run(&mut g, "tk19_sample_visible_normal", |i| {
+            tk19[i].sample_visible_normal(views[i], us[i])
+        });
+        run(&mut g, "exact_gaussian_sample_visible_normal", |i| {
+            lobes[i].sample_visible_normal(views[i], us[i])
+        });
         g.finish();
     }};
 }

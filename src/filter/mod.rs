@@ -31,6 +31,7 @@ use super::{F, Vec2, Vec3};
 pub mod deferred;
 mod gaussian;
 mod gaussian_ggx;
+mod gaussian_ggx_quad;
 mod lean;
 pub mod method;
 pub mod presets;
