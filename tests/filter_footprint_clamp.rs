@@ -4,6 +4,7 @@
 use filtered_ndf::f32 as s;
 use filtered_ndf::f64 as d;
 use filtered_ndf::f64::Ndf as _;
+use filtered_ndf::testing::linalg::Sym2;
 use filtered_ndf::testing::quadrature::{Tolerance, integrate_2d};
 use glam::{DVec2, DVec3, Vec2, Vec3};
 use proptest::prelude::*;
@@ -94,20 +95,51 @@ proptest! {
     }
 
     #[test]
-    fn clamp_eigenvalues_keeps_eigenvectors_and_caps(
-        l1 in 0.0f64..2.0, l2 in 0.0f64..2.0, phi in 0.0f64..3.2, c in 0.0f64..2.0,
+    fn clamp_eigenvalues_keeps_eigenvectors_and_clamps_to_zero_and_max(
+        l1 in -2.0f64..2.0, l2 in -2.0f64..2.0, phi in 0.0f64..3.2, c in 0.0f64..2.0,
     ) {
-        let (co, si) = (phi.cos(), phi.sin());
-        let k = d::Covariance::new(co*co*l1 + si*si*l2, co*si*(l1-l2), si*si*l1 + co*co*l2);
+        // Any symmetric input, definite or not: the eigenvalues clamped to [0, c] with the
+        // eigenvectors kept, against the test side's own decomposition (`testing::linalg`).
+        let m = Sym2::from_eigen(l1, l2, phi);
+        let k = d::Covariance::new(m.a11, m.a12, m.a22);
         let kc = k.clamp_eigenvalues(c);
+        let want = m.eigen().map(|l| l.clamp(0.0, c));
+        // 1e-12: rounding of the unit-scale eigen computations (a few ulps of entries <= 2)
+        // divided by the eigenvalue gap, which the clamp caps (the result is
+        // `c_min I + (c_max - c_min) P_max` and `c_max - c_min <= lambda_max - lambda_min`).
+        let err = (kc.s11 - want.a11).abs().max((kc.s12 - want.a12).abs()).max((kc.s22 - want.a22).abs());
+        prop_assert!(err <= 1e-12, "{kc:?} vs {want:?}");
         let (a, b) = kc.eigenvalues();
-        let (e1, e2) = (l1.min(l2).min(c), l1.max(l2).min(c));
-        // 1e-12: rounding of the unit-scale eigen computation.
-        prop_assert!((a - e1).abs() <= 1e-12 && (b - e2).abs() <= 1e-12, "{kc:?} vs {e1} {e2}");
+        prop_assert!(a >= 0.0 && b <= c + 1e-12, "{kc:?}");
         // Commutes with the input (same eigenvectors): K Kc - Kc K = 0.
         let comm = k.s11 * kc.s12 + k.s12 * kc.s22 - (kc.s11 * k.s12 + kc.s12 * k.s22);
         prop_assert!(comm.abs() <= 1e-12);
     }
+}
+
+#[test]
+fn clamp_eigenvalues_of_an_indefinite_input_drops_its_negative_part() {
+    // [[0, 1], [1, 0]] has eigenvalues +1 (along (1, 1)) and -1: clamped to [0, 0.5] it is
+    // 0.5 (1, 1)(1, 1)^T / 2 = [[0.25, 0.25], [0.25, 0.25]] (the fast path once returned it
+    // unchanged, since its trace 0 is within the bound). Both precisions; 4 ulps of 0.25.
+    let c = d::Covariance::new(0.0, 1.0, 0.0).clamp_eigenvalues(0.5);
+    for x in [c.s11, c.s12, c.s22] {
+        assert!((x - 0.25).abs() <= 4.0 * f64::EPSILON * 0.25, "{c:?}");
+    }
+    let c = s::Covariance::new(0.0, 1.0, 0.0).clamp_eigenvalues(0.5);
+    for x in [c.s11, c.s12, c.s22] {
+        assert!((x - 0.25).abs() <= 4.0 * f32::EPSILON * 0.25, "{c:?}");
+    }
+    // Negative semi-definite: nothing left. A negative variance alone: dropped.
+    assert_eq!(
+        d::Covariance::new(-1.0, 0.5, -2.0).clamp_eigenvalues(1.0),
+        d::Covariance::ZERO
+    );
+    let c = d::Covariance::new(-1.0, 0.0, 0.3).clamp_eigenvalues(1.0);
+    assert!(c.s11 == 0.0 && c.s12 == 0.0 && (c.s22 - 0.3).abs() <= 4.0 * f64::EPSILON * 0.3);
+    // A PSD input within the bound is returned bit for bit.
+    let k = s::Covariance::new(0.01, 0.003, 0.02);
+    assert_eq!(k.clamp_eigenvalues(0.09), k);
 }
 
 #[test]

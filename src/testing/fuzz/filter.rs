@@ -11,6 +11,8 @@ macro_rules! filter_prec {
             LeanMoments, Roughness, Vec2, filter,
         };
         use $d::{TOL, f, v2, v3};
+        use crate::math::Real;
+        use crate::testing::linalg::Sym2;
         let b: &mut Bytes<'_> = $b;
         let head = b.byte();
         let rough = $d::rough(b);
@@ -60,12 +62,6 @@ macro_rules! filter_prec {
             c.s11 >= 0.0
                 && c.s22 >= 0.0
                 && c.s12 * c.s12 <= c.s11 * c.s22 + TOL * tr * tr + F::MIN_POSITIVE
-        };
-        // Strictly PSD input (no underflow in the test).
-        let psd_in = |c: &Covariance| {
-            c.s11 >= 0.0
-                && c.s22 >= 0.0
-                && c.s12.abs() <= crate::math::sqrt(c.s11) * crate::math::sqrt(c.s22)
         };
         // The kernel contract of `sanitized` and everything built on it, with eigenvalue bound.
         let kernel_ok = |c: &Covariance, bound: F, what: &str| {
@@ -134,9 +130,36 @@ macro_rules! filter_prec {
         if maxv.is_nan() || maxv < 0.0 || !cov_fin(&cov) {
             assert_eq!(ce, Covariance::ZERO, "clamp_eigenvalues({maxv:?}) of {cov:?}");
         } else {
+            // Every finite input, definite or not: PSD with eigenvalues <= max, and equal to
+            // `V clamp(Lambda, 0, min(max, F::MAX)) V^T` of the test side's own f64
+            // decomposition (documented: the bound is at most `F::MAX`). Tolerance: the
+            // result is `c_min I + (c_max - c_min) P_max` with `c_max - c_min` at most the
+            // eigenvalue gap, so the projector's rounding (relative to the gap) costs a few
+            // ulps of `c_max`; the eigenvalue of smaller magnitude is `det / lambda_big` and
+            // inherits the rounding of `det`, `eps (|s11 s22| + s12^2) / |lambda_big|` (the
+            // conditioning of a small eigenvalue; the clamp does not enlarge it). Hence
+            // `TOL (c_max + (|s11 s22| + s12^2) / |lambda_big|)`, plus 4 `MIN_POSITIVE` for
+            // subnormal entries.
             assert!(cov_fin(&ce), "clamp_eigenvalues({maxv:?}) of {cov:?} = {ce:?}");
-            if psd_in(&cov) {
-                kernel_ok(&ce, maxv, "clamp_eigenvalues");
+            kernel_ok(&ce, maxv, "clamp_eigenvalues");
+            let mv = maxv.min(F::MAX).to_f64();
+            let e = Sym2::new(cov.s11.to_f64(), cov.s12.to_f64(), cov.s22.to_f64()).eigen();
+            let want = e.map(|l| l.clamp(0.0, mv));
+            let (a, b, c) = (cov.s11.to_f64(), cov.s12.to_f64(), cov.s22.to_f64());
+            let big = e.l1.abs().max(e.l2.abs());
+            // |lambda_big| bounds every entry: the quotients are at most 1 (no overflow).
+            let det_err = if big > 0.0 {
+                a.abs() * (c.abs() / big) + b.abs() * (b.abs() / big)
+            } else {
+                0.0
+            };
+            let tol = TOL.to_f64() * (e.l1.clamp(0.0, mv) + det_err)
+                + 4.0 * F::MIN_POSITIVE.to_f64();
+            for (got, want) in [(ce.s11, want.a11), (ce.s12, want.a12), (ce.s22, want.a22)] {
+                assert!(
+                    (got.to_f64() - want).abs() <= tol,
+                    "clamp_eigenvalues({maxv:?}) of {cov:?} = {ce:?}, reference {want:?}"
+                );
             }
         }
         let sa = cov.sanitized();
@@ -240,7 +263,9 @@ macro_rules! filter_prec {
 ///   `>= 0` and `max_extent` bounds both half-extents; `covariance` is PSD when finite.
 /// - `Covariance`: `eigenvalues` `>= 0`, `min <= max`; `clamp_eigenvalues(max)` is
 ///   [`Covariance::ZERO`](crate::f64::Covariance::ZERO) for a NaN / negative `max` or a
-///   non-finite input, else finite and (for a PSD input) PSD with eigenvalues `<= max`;
+///   non-finite input, else finite, PSD with eigenvalues `<= max` for every input (also
+///   indefinite), and within `TOL c_max` of `V clamp(Lambda, 0, max) V^T` computed by
+///   [`crate::testing::linalg`];
 ///   `sanitized` is finite, PSD, eigenvalues `<= KERNEL_MAX`, `ZERO` for NaN,
 ///   `KERNEL_MAX I` for infinite entries.
 /// - `ClampRules` (default, `NONE`, `GDC2016` and arbitrary fields): `footprint` is `ZERO`
