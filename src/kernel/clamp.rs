@@ -179,7 +179,7 @@ impl ClampRules {
             return k;
         }
         let kappa = if self.kappa >= 0.0 { self.kappa } else { 0.0 };
-        k.clamp_eigenvalues(0.5 * kappa)
+        k.clamp_eigenvalues_sanitized(0.5 * kappa)
     }
 
     /// The determinant clamp for filtering `roughness`: `tau = det(A)` (`alpha_x^2 alpha_y^2`

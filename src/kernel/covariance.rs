@@ -52,51 +52,60 @@ impl Covariance {
     /// dominant negative one). NaN entries give `(0, 0)`.
     #[inline]
     pub fn eigenvalues(self) -> (F, F) {
-        let (min, max, _) = self.eigen_parts();
-        (min, max)
+        let mean = 0.5 * (self.s11 + self.s22);
+        let max = mean + radius(0.5 * (self.s11 - self.s22), self.s12);
+        // `mean >= 0` (every PSD matrix) without overflow: `lambda_max = mean + rad` has no
+        // cancellation. Otherwise (negative mean, overflow, NaN) the general case.
+        if !(mean >= 0.0 && max <= F::MAX) {
+            return self.eigenvalues_general();
+        }
+        let min = if max > 0.0 { self.det_over(max) } else { 0.0 };
+        (min.max(0.0), max)
     }
 
-    /// [`Covariance::eigenvalues`] and the radius `hypot(half difference, s12)`.
+    /// `det / big` for `|big| >= ` every entry (an eigenvalue of the largest magnitude):
+    /// `det` overflows (to inf, or inf - inf = NaN) for huge finite entries and loses its bits
+    /// for tiny (subnormal) products; then the entries are divided first,
+    /// `(s_hi / big) s_lo - (s12 / big) s12` with `s_hi` the larger diagonal entry (each
+    /// quotient in `[-1, 1]`; the smaller entry's quotient could underflow).
     #[inline]
-    fn eigen_parts(self) -> (F, F, F) {
-        let (sum, diff) = (self.s11 + self.s22, self.s11 - self.s22);
-        if !(sum.abs() <= F::MAX && diff.abs() <= F::MAX) && self.is_finite() {
-            // Finite entries whose sum or difference overflows (beyond `F::MAX / 2`).
-            return self.eigen_parts_scaled();
+    fn det_over(self, big: F) -> F {
+        let det = self.det();
+        if det.is_finite() && det.abs() >= F::MIN_POSITIVE {
+            det / big
+        } else {
+            let (lo, hi) = if self.s11.abs() <= self.s22.abs() {
+                (self.s11, self.s22)
+            } else {
+                (self.s22, self.s11)
+            };
+            (hi / big) * lo - (self.s12 / big) * self.s12
         }
-        let mean = 0.5 * sum;
-        let rad = radius(0.5 * diff, self.s12);
+    }
+
+    /// [`Covariance::eigenvalues`] of a matrix with a negative mean, of finite entries whose
+    /// eigenvalue (or sum, or difference) overflows, or with NaN entries (`(0, 0)`).
+    fn eigenvalues_general(self) -> (F, F) {
+        let finite = self.s11.is_finite() && self.s12.is_finite() && self.s22.is_finite();
+        let mean = 0.5 * (self.s11 + self.s22);
+        let rad = radius(0.5 * (self.s11 - self.s22), self.s12);
+        // The eigenvalue of larger magnitude: no cancellation.
         let up = mean >= 0.0;
         let big = if up { mean + rad } else { mean - rad };
-        let other = if big != 0.0 {
-            let det = self.det();
-            // `det` overflows (to inf or inf - inf = NaN) for huge finite entries and loses its
-            // bits for tiny (subnormal) products: divide first then.
-            if det.is_finite() && det.abs() >= F::MIN_POSITIVE {
-                det / big
-            } else {
-                (self.s11 / big) * self.s22 - (self.s12 / big) * self.s12
-            }
+        if finite && !(big.abs() <= F::MAX) {
+            // Beyond `F::MAX`: on `Sigma / scale` (largest entry 1), scaled back.
+            let k = self.s11.abs().max(self.s22.abs()).max(self.s12.abs());
+            let (min, max) = (self * (1.0 / k)).eigenvalues();
+            return (min * k, max * k);
+        }
+        let other = if big != 0.0 && !big.is_nan() {
+            self.det_over(big)
         } else {
             0.0
         };
         let (min, max) = if up { (other, big) } else { (big, other) };
-        (min.max(0.0), max.max(0.0), rad)
-    }
-
-    /// [`Covariance::eigen_parts`] of `Sigma / scale` (largest entry 1), scaled back.
-    #[cold]
-    #[inline(never)]
-    fn eigen_parts_scaled(self) -> (F, F, F) {
-        let k = self.s11.abs().max(self.s22.abs()).max(self.s12.abs());
-        let (min, max, rad) = (self * (1.0 / k)).eigen_parts();
-        (min * k, max * k, rad * k)
-    }
-
-    /// Whether all three entries are finite.
-    #[inline]
-    fn is_finite(self) -> bool {
-        self.s11.is_finite() && self.s12.is_finite() && self.s22.is_finite()
+        // NaN (from NaN entries) becomes 0.
+        (min.max(0.0), max.max(0.0))
     }
 
     /// Clamps both eigenvalues to `[0, max]` without rotating the eigenvectors:
@@ -118,30 +127,41 @@ impl Covariance {
     #[inline]
     pub fn clamp_eigenvalues(self, max: F) -> Self {
         let (a, b, c) = (self.s11, self.s12, self.s22);
-        // Fast paths for a PSD input (every sanitised kernel): unchanged when its largest
-        // eigenvalue is within the bound. The first tests the trace (lambda_min + lambda_max;
-        // `max` is then not NaN and >= 0); the second the largest eigenvalue
-        // `mean + sqrt(d^2 + b^2)` without the square root, `d^2 + b^2 <= (max - mean)^2`. The
-        // bounds on `h = max - mean` keep `h^2` finite and normal (a square that underflows
-        // beside it is negligible; fuzzing found `h = 0` against underflowing squares); NaN
-        // fails the comparisons.
-        if psd(a, b, c) {
-            let tr = a + c;
-            if tr <= max && tr.is_finite() {
-                return self;
-            }
-            let (mean, d) = (0.5 * tr, 0.5 * (a - c));
-            let h = max - mean;
-            let h_ok = (1.0 / FAST_EIGEN_MAX..=FAST_EIGEN_MAX).contains(&h);
-            if h_ok && d * d + b * b <= h * h {
-                return self;
-            }
+        // PSD with a bounded trace (so that `a c` in `psd` cannot overflow): the fast paths
+        // of a sanitised kernel apply.
+        if psd(a, b, c) && a + c <= FAST_EIGEN_MAX {
+            self.clamp_eigenvalues_sanitized(max)
+        } else {
+            Self::clamp_eigenvalues_general(a, b, c, max).detached()
+        }
+    }
+
+    /// [`Covariance::clamp_eigenvalues`] of a kernel that [`Covariance::sanitized`] returned
+    /// (finite and positive semi-definite, so the fast paths need no test of definiteness).
+    #[inline]
+    pub(crate) fn clamp_eigenvalues_sanitized(self, max: F) -> Self {
+        let (a, b, c) = (self.s11, self.s12, self.s22);
+        // Unchanged when the largest eigenvalue is within the bound. First the trace
+        // (lambda_min + lambda_max; `max` is then not NaN and >= 0); then the largest
+        // eigenvalue `mean + sqrt(d^2 + b^2)` without the square root,
+        // `d^2 + b^2 <= (max - mean)^2`. The bounds on `h = max - mean` keep `h^2` finite and
+        // normal (a square that underflows beside it is negligible; fuzzing found `h = 0`
+        // against underflowing squares); NaN fails the comparisons.
+        let tr = a + c;
+        if tr <= max {
+            return self;
+        }
+        let (mean, d) = (0.5 * tr, 0.5 * (a - c));
+        let h = max - mean;
+        let h_ok = (1.0 / FAST_EIGEN_MAX..=FAST_EIGEN_MAX).contains(&h);
+        if h_ok && d * d + b * b <= h * h {
+            return self;
         }
         Self::clamp_eigenvalues_general(a, b, c, max).detached()
     }
 
-    /// The general case of [`Covariance::clamp_eigenvalues`] (out of line: see
-    /// [`Covariance::detached`]).
+    /// The general case of [`Covariance::clamp_eigenvalues`] (out of line, with
+    /// [`Covariance::detached`] at its call sites).
     #[cold]
     #[inline(never)]
     fn clamp_eigenvalues_general(s11: F, s12: F, s22: F, max: F) -> Self {
@@ -258,8 +278,8 @@ impl Covariance {
         Self::sanitized_general(a, b, c).detached()
     }
 
-    /// The general case of [`Covariance::sanitized`] (out of line: see
-    /// [`Covariance::detached`]).
+    /// The general case of [`Covariance::sanitized`] (out of line, with
+    /// [`Covariance::detached`] at its call site).
     #[cold]
     #[inline(never)]
     fn sanitized_general(a: F, b: F, c: F) -> Self {
@@ -279,11 +299,14 @@ impl Covariance {
 }
 
 impl Covariance {
-    /// The same covariance as fresh values (`x + 0`, which only turns `-0` into `+0`), for
-    /// the result of an out-of-line slow path. An aggregate comes back from a call through
-    /// memory; returned as is, the compiler wrote the inlined fast path's value into that
-    /// memory too (it saw a plain copy) and read it back with loads straddling the stores: a
-    /// store-forwarding stall that made every filtered evaluation three times slower.
+    /// The result of an out-of-line general path as fresh values (`x + 0`, which only turns
+    /// `-0` into `+0`). A speed measure, not part of any formula: an aggregate comes back from
+    /// a call through memory, and returned as is the compiler also wrote the inlined fast
+    /// path's value into that memory and read it back with loads straddling the stores (a
+    /// store-forwarding stall). Measured (`benches/filtered.rs`, `--quick`, fastest of five
+    /// runs per build): `ggx_matrix/f64/tk21_projected` takes 2.2 to 2.3 times as long without
+    /// it (93.6 vs 41.6 us per 1024 evaluations on a loaded machine); the other kernels are
+    /// unaffected within noise.
     #[inline(always)]
     fn detached(self) -> Self {
         Self::new(self.s11 + 0.0, self.s12 + 0.0, self.s22 + 0.0)
@@ -293,20 +316,21 @@ impl Covariance {
 /// Bounds `[1 / FAST_EIGEN_MAX, FAST_EIGEN_MAX]` on `max - mean` in
 /// [`Covariance::clamp_eigenvalues`]'s second fast path: its square is a finite normal number
 /// (`sqrt(F::MAX) / 2`, rounded down to a power of ten; its reciprocal is above
-/// `sqrt(F::MIN_POSITIVE)`).
+/// `sqrt(F::MIN_POSITIVE)`). Also the bound on the trace below which `psd` cannot overflow.
 const FAST_EIGEN_MAX: F = (if core::mem::size_of::<F>() == 4 {
     1e18
 } else {
     1e153
 }) as F;
 
-/// Whether `[[a, b], [b, c]]` is positive semi-definite: `a, c >= 0` and `b^2 <= a c`
-/// (false for NaN). In `f32` the products are formed in `f64`, where they are exact: decided
-/// exactly. In `f64` decided on the rounded products where `a c` is a finite normal number
+/// Whether `[[a, b], [b, c]]` is positive semi-definite, `a, c >= 0` and `b^2 <= a c`
+/// (false for NaN), for a caller that bounds the trace (below [`FAST_EIGEN_MAX`]: `a c`
+/// cannot overflow). In `f32` the products are formed in `f64`, where they are exact:
+/// decided exactly. In `f64` decided on the rounded products where `a c` is a normal number
 /// (or `b = 0`), else `false` (the callers' general paths decide then): `a c` may underflow to
-/// `0` or a subnormal, or overflow, where `b^2 <= a c` says nothing (fuzzing found
-/// `a = -1e-231, c = 2e-197, b = 0` and `[[0, 1e-30], [1e-30, 0]]` passing otherwise). The
-/// signs are tested explicitly: `a c >= 0` for two negative variances.
+/// `0` or a subnormal, where `b^2 <= a c` says nothing (fuzzing found
+/// `a = -1e-231, c = 2e-197, b = 0` passing otherwise). The signs are tested explicitly:
+/// `a c >= 0` for two negative variances.
 #[inline(always)]
 fn psd(a: F, b: F, c: F) -> bool {
     let products = if core::mem::size_of::<F>() == 4 {
@@ -314,7 +338,7 @@ fn psd(a: F, b: F, c: F) -> bool {
         b * b <= a * c
     } else {
         let (bb, ac) = (b * b, a * c);
-        (bb <= ac && (F::MIN_POSITIVE..=F::MAX).contains(&ac)) || b == 0.0
+        bb <= ac && (ac >= F::MIN_POSITIVE || b == 0.0)
     };
     products && a >= 0.0 && c >= 0.0
 }
