@@ -92,7 +92,7 @@ impl Covariance {
         // The eigenvalue of larger magnitude: no cancellation.
         let up = mean >= 0.0;
         let big = if up { mean + rad } else { mean - rad };
-        if finite && !(big.abs() <= F::MAX) {
+        if finite && !big.is_finite() {
             // Beyond `F::MAX`: on `Sigma / scale` (largest entry 1), scaled back.
             let k = self.s11.abs().max(self.s22.abs()).max(self.s12.abs());
             let (min, max) = (self * (1.0 / k)).eigenvalues();
