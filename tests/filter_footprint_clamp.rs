@@ -41,6 +41,48 @@ proptest! {
     }
 
     #[test]
+    fn half_vector_derivatives_match_finite_differences_of_the_slope_map(
+        theta in 0.0f64..1.4, phi in 0.0f64..6.3,
+        a in prop::array::uniform3(-1.0f64..1.0), b in prop::array::uniform3(-1.0f64..1.0),
+        scale in prop_oneof![Just(1.0), 1e-3f64..1e3],
+    ) {
+        // Central differences of s(h) = slope_from_sphere(h) along the tangent derivatives
+        // (the unit half vector moved to `(h + t dh) / |h + t dh|`) with step 1e-6:
+        // truncation O(t^2 |s'''|) ~ 1e-12 and rounding ~ 1e-16 / 1e-6 = 1e-10, relative to
+        // |J| ~ 1 / h_z^2; the bound 1e-7 of the largest |J| leaves ample room.
+        let h = DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
+        let tangent = |w: [f64; 3]| {
+            let w = DVec3::from(w);
+            w - h * h.dot(w)
+        };
+        let (dx, dy) = (tangent(a), tangent(b));
+        // Only the direction of `h` counts (scaled here by `scale`).
+        let fp = d::Footprint::from_half_vector_derivatives(h * scale, dx, dy);
+        let t = 1e-6;
+        let fd = |d: DVec3| {
+            let s = |k: f64| d::footprint::slope::slope_from_sphere((h + d * k).normalize());
+            (s(t) - s(-t)) / (2.0 * t)
+        };
+        let jmax = 1.0 / (h.z * h.z);
+        prop_assert!((fp.dh_u - fd(dx)).length() <= 1e-7 * jmax * (1.0 + dx.length()), "{fp:?}");
+        prop_assert!((fp.dh_v - fd(dy)).length() <= 1e-7 * jmax * (1.0 + dy.length()), "{fp:?}");
+        // The radial part of a derivative is dropped: adding a multiple of h changes nothing
+        // (to rounding: 1e-14 of the largest |J|).
+        let fr = d::Footprint::from_half_vector_derivatives(h, dx + h * 0.7, dy - h * 0.3);
+        let fu = d::Footprint::from_half_vector_derivatives(h, dx, dy);
+        prop_assert!((fr.dh_u - fu.dh_u).length() <= 1e-14 * jmax * (1.0 + dx.length()));
+        prop_assert!((fr.dh_v - fu.dh_v).length() <= 1e-14 * jmax * (1.0 + dy.length()));
+        // The same slope change as the projected-disk derivatives dp = dh_xy through
+        // J(perp->par) (a second formula path; 1e-13 of the largest |J| for the rounding of
+        // both).
+        let fpr = d::Footprint::from_projected_derivatives_in_slope(
+            h, DVec2::new(dx.x, dx.y), DVec2::new(dy.x, dy.y),
+        );
+        prop_assert!((fpr.dh_u - fu.dh_u).length() <= 1e-13 * jmax * (1.0 + dx.length()));
+        prop_assert!((fpr.dh_v - fu.dh_v).length() <= 1e-13 * jmax * (1.0 + dy.length()));
+    }
+
+    #[test]
     fn normal_differences_have_the_norm_of_tk19_eq3(
         a in prop::array::uniform3(-1.0f64..1.0), b in prop::array::uniform3(-1.0f64..1.0),
         t in 0.0f64..0.8,
@@ -140,6 +182,55 @@ fn clamp_eigenvalues_of_an_indefinite_input_drops_its_negative_part() {
     // A PSD input within the bound is returned bit for bit.
     let k = s::Covariance::new(0.01, 0.003, 0.02);
     assert_eq!(k.clamp_eigenvalues(0.09), k);
+}
+
+#[test]
+fn half_vector_derivatives_bad_input() {
+    // At the pole J(o->par) = -I: the slope moves against the tangential derivative.
+    let fp = d::Footprint::from_half_vector_derivatives(DVec3::Z, DVec3::X * 0.1, DVec3::Y);
+    assert_eq!(fp.dh_u, DVec2::new(-0.1, 0.0));
+    assert_eq!(fp.dh_v, DVec2::new(0.0, -1.0));
+    // Zero or non-finite h, non-finite derivatives: no information, the zero footprint.
+    let (x, y) = (Vec3::X * 0.01, Vec3::Y * 0.02);
+    for h in [
+        Vec3::ZERO,
+        Vec3::new(f32::NAN, 0.0, 1.0),
+        Vec3::new(0.0, f32::INFINITY, 1.0),
+    ] {
+        assert_eq!(
+            s::Footprint::from_half_vector_derivatives(h, x, y),
+            s::Footprint::ZERO
+        );
+    }
+    for bad in [f32::NAN, f32::INFINITY] {
+        let fp = s::Footprint::from_half_vector_derivatives(Vec3::Z, Vec3::new(bad, 0.0, 0.0), y);
+        assert_eq!(fp, s::Footprint::ZERO);
+    }
+    // Zero derivatives: the zero footprint.
+    let fp = s::Footprint::from_half_vector_derivatives(
+        Vec3::new(0.3, 0.1, 0.9),
+        Vec3::ZERO,
+        Vec3::ZERO,
+    );
+    assert_eq!(fp, s::Footprint::ZERO);
+    // Grazing and back-facing h: clamped to h_z = 1e-6 at constant azimuth, huge and finite
+    // (|J(o->par) e_y| = 1 / h_z there).
+    for h in [
+        Vec3::new(0.6, 0.8, 0.0),
+        Vec3::new(0.6, 0.8, -0.5),
+        -Vec3::Z,
+    ] {
+        let fp = s::Footprint::from_half_vector_derivatives(h, x, y);
+        assert!(fp.dh_u.is_finite() && fp.dh_v.is_finite(), "{h}: {fp:?}");
+        assert!(fp.dh_u.length().max(fp.dh_v.length()) > 1e3, "{h}: {fp:?}");
+    }
+    // Huge finite derivatives: finite or zero, never NaN (products beyond F::MAX give ZERO).
+    let fp = s::Footprint::from_half_vector_derivatives(
+        Vec3::new(0.6, 0.8, 1e-3),
+        Vec3::splat(1e30),
+        Vec3::new(-1e38, 1e38, 0.0),
+    );
+    assert!(fp.dh_u.is_finite() && fp.dh_v.is_finite(), "{fp:?}");
 }
 
 #[test]
@@ -285,6 +376,8 @@ fn constructors_and_filters_never_produce_nan() {
             s::Footprint::from_projected_derivatives_in_slope(Vec3::new(x, 0.0, 0.0), v2, v2),
             s::Footprint::from_normal_differences(v3, v3),
             s::Footprint::from_normal_differences(Vec3::new(0.0, 0.0, -2.0), v3),
+            s::Footprint::from_half_vector_derivatives(Vec3::new(0.0, 0.6, 0.8), v3, v3),
+            s::Footprint::from_half_vector_derivatives(Vec3::new(x, 0.0, 0.0), v3, v3),
         ];
         for fp in fps {
             for rm in [

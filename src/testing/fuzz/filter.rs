@@ -90,6 +90,12 @@ macro_rules! filter_prec {
                 }
             }
         }
+        // Always finite (a non-finite result is `ZERO`); `ZERO` for a non-finite `h`.
+        let fh = Footprint::from_half_vector_derivatives(h, n_u, n_v);
+        assert!(fp_fin(&fh), "half_vector_derivatives({h:?}, {n_u:?}, {n_v:?}) = {fh:?}");
+        if !h.is_finite() || !(n_u.is_finite() && n_v.is_finite()) {
+            assert_eq!(fh, Footprint::ZERO, "half_vector_derivatives: non-finite input");
+        }
         let fnd = Footprint::from_normal_differences(n_u, n_v);
         if !(n_u.is_finite() && n_v.is_finite()) {
             assert_eq!(fnd, Footprint::ZERO, "normal differences: non-finite");
@@ -266,7 +272,8 @@ macro_rules! filter_prec {
 ///
 /// - `Footprint` constructors: `from_projected_derivatives_in_slope` is [`ZERO`] for a
 ///   non-finite `h`, NaN-free for finite input and finite for a unit `h` and disk
-///   derivatives `|dp| <= 2`; `from_normal_differences` / `from_world_normal_differences` are
+///   derivatives `|dp| <= 2`; `from_half_vector_derivatives` is always finite, [`ZERO`] for
+///   non-finite input; `from_normal_differences` / `from_world_normal_differences` are
 ///   always finite ([`ZERO`] for non-finite input); `bounding_rect` and `max_extent` are
 ///   `>= 0` and `max_extent` bounds both half-extents; `covariance` is PSD when finite.
 /// - `Covariance`: `eigenvalues` `>= 0`, `min <= max`, and for finite input within
