@@ -118,7 +118,11 @@ fn preset_reference(name: &str, a: f64, du: [f64; 3], dv: [f64; 3], alpha_max: f
         // Unity HDRP ProjectedSpaceNormalFiltering: the same kernel added to
         // P = alpha^2 / (1 - alpha^2), saturated there, alpha_bar^2 = P' / (1 + P').
         "Unity HDRP projected" => {
-            let p = if a2 < 1.0 { a2 / (1.0 - a2) } else { f64::INFINITY };
+            let p = if a2 < 1.0 {
+                a2 / (1.0 - a2)
+            } else {
+                f64::INFINITY
+            };
             let p = (p + (0.2 * sum).min(0.04)).min(1.0);
             (p / (1.0 + p)).sqrt()
         }
@@ -132,7 +136,10 @@ fn preset_reference(name: &str, a: f64, du: [f64; 3], dv: [f64; 3], alpha_max: f
         }
         // three.js: r' = min(max(r, 0.0525) + max abs component of dn_u, dn_v, 1).
         "three.js" => {
-            let g = du.iter().chain(dv.iter()).fold(0.0_f64, |m, x| m.max(x.abs()));
+            let g = du
+                .iter()
+                .chain(dv.iter())
+                .fold(0.0_f64, |m, x| m.max(x.abs()));
             (a.sqrt().max(0.0525) + g).min(1.0).powi(2)
         }
         _ => panic!("no reference formula for preset {name}"),
