@@ -64,7 +64,7 @@ pub fn unit(v: Vec3) -> Option<Vec3> {
     unit_and_length(v).map(|(u, _)| u)
 }
 
-/// `v / |v|` for a 2-vector, as [`unit`]. `None` for a zero or non-finite `v`.
+/// `v / |v|` for a 2-vector, as [`unit()`]. `None` for a zero or non-finite `v`.
 #[inline]
 pub fn unit2(v: Vec2) -> Option<Vec2> {
     let l2 = v.length_squared();
