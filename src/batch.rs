@@ -65,14 +65,6 @@ impl Footprints<'_> {
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
-
-    #[inline(always)]
-    fn get(&self, i: usize) -> Footprint {
-        Footprint::from_slope_derivatives(
-            Vec2::new(self.dh_u_x[i], self.dh_u_y[i]),
-            Vec2::new(self.dh_v_x[i], self.dh_v_y[i]),
-        )
-    }
 }
 
 /// [`Ndf::d`] of GGX (per steradian, TK19 supplement) for each micronormal
@@ -170,8 +162,10 @@ fn d_filtered<R: Roughness, N: Ndf>(
         .min(hz.len())
         .min(fp.len());
     let (hx, hy, hz, out) = (&hx[..n], &hy[..n], &hz[..n], &mut out[..n]);
+    let (ux, uy, vx, vy) = (&fp.dh_u_x[..n], &fp.dh_u_y[..n], &fp.dh_v_x[..n], &fp.dh_v_y[..n]);
     for i in 0..n {
-        let a = rules.filter_gaussian(*r, fp.get(i), sigma);
+        let f = Footprint::from_slope_derivatives(Vec2::new(ux[i], uy[i]), Vec2::new(vx[i], vy[i]));
+        let a = rules.filter_gaussian(*r, f, sigma);
         out[i] = ndf(a).d(Vec3::new(hx[i], hy[i], hz[i]));
     }
     n
