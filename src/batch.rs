@@ -162,7 +162,12 @@ fn d_filtered<R: Roughness, N: Ndf>(
         .min(hz.len())
         .min(fp.len());
     let (hx, hy, hz, out) = (&hx[..n], &hy[..n], &hz[..n], &mut out[..n]);
-    let (ux, uy, vx, vy) = (&fp.dh_u_x[..n], &fp.dh_u_y[..n], &fp.dh_v_x[..n], &fp.dh_v_y[..n]);
+    let (ux, uy, vx, vy) = (
+        &fp.dh_u_x[..n],
+        &fp.dh_u_y[..n],
+        &fp.dh_v_x[..n],
+        &fp.dh_v_y[..n],
+    );
     for i in 0..n {
         let f = Footprint::from_slope_derivatives(Vec2::new(ux[i], uy[i]), Vec2::new(vx[i], vy[i]));
         let a = rules.filter_gaussian(*r, f, sigma);

@@ -108,8 +108,7 @@ mod tests {
             assert!(is_unit(u), "{k}: {u}");
             // The length against f64 (exact enough for both precisions' inputs), where it is
             // representable and normal (a subnormal length has only a few bits): 4 eps.
-            let want = (v.x.to_f64().powi(2) + v.y.to_f64().powi(2) + v.z.to_f64().powi(2))
-                .sqrt();
+            let want = (v.x.to_f64().powi(2) + v.y.to_f64().powi(2) + v.z.to_f64().powi(2)).sqrt();
             if want.is_finite() && want >= F::MIN_POSITIVE.to_f64() {
                 let rel = (len.to_f64() - want).abs() / want;
                 assert!(rel <= 4.0 * F::EPSILON.to_f64(), "{k}: {len} vs {want}");
@@ -121,7 +120,11 @@ mod tests {
         // A unit vector comes back bit for bit (the direct path).
         assert_eq!(unit(Vec3::Z), Some(Vec3::Z));
         // No direction: zero, NaN, infinite.
-        for v in [Vec3::ZERO, Vec3::new(F::NAN, 0.0, 1.0), Vec3::new(F::INFINITY, 0.0, 0.0)] {
+        for v in [
+            Vec3::ZERO,
+            Vec3::new(F::NAN, 0.0, 1.0),
+            Vec3::new(F::INFINITY, 0.0, 0.0),
+        ] {
             assert_eq!(unit(v), None);
             assert_eq!(unit2(Vec2::new(v.x, v.y)), None);
         }
