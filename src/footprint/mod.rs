@@ -7,8 +7,14 @@
 //! `Sigma = sigma^2 U^T U` with `U` the matrix whose rows are `dh_u` and `dh_v` (TK19
 //! section 2.2; KHPL16 eq. 13 with `sigma` folded into the vectors).
 //!
-//! - Constructors: from slope derivatives (KHPL16 4.2, 5.1), from projected-disk derivatives
-//!   (TK19 3.2, used directly or mapped to slope space), from normal differences (TK19 eq. 3).
+//! - Constructors, one per form a renderer has: slope derivatives
+//!   ([`Footprint::from_slope_derivatives`], KHPL16 4.2, 5.1); derivatives of the
+//!   tangent-space half vector as 3-D vectors ([`Footprint::from_half_vector_derivatives`],
+//!   TK19 supplement eq. 1-7); projected-disk derivatives `ddx(h_xy)`
+//!   ([`Footprint::from_projected_derivatives`] as TK19 3.2 uses them,
+//!   [`Footprint::from_projected_derivatives_in_slope`] mapped to slope space); normal
+//!   differences ([`Footprint::from_normal_differences`], TK19 eq. 3); ray differentials
+//!   through the geometry's `M` ([`Footprint::from_ray_differentials`], KHPL16 4.2).
 //! - Kernel shapes (the next stage, [`super::kernel`]): [`Covariance`] (the Gaussian,
 //!   [`Footprint::covariance`]) and [`BoundingRect`] (the conservative rectangle of KHPL16
 //!   5.3, [`Footprint::bounding_rect`]).
