@@ -2,8 +2,10 @@
 //!
 //! Each function evaluates one scalar function of the crate element by element and writes
 //! `out[i]`; the result is **bit for bit** the scalar function's (the loop body calls it,
-//! inlined, so there is one source of truth per formula). Inputs are separate slices per
-//! component (`mx`, `my`, `mz`, ...), so that a loop over them can be vectorised.
+//! inlined, so there is one source of truth per formula). The filtered functions take the
+//! same [`ClampRules`] and pixel `sigma` as the scalar route [`ClampRules::filter_gaussian`]
+//! and answer exactly what it answers. Inputs are separate slices per component (`mx`, `my`,
+//! `mz`, ...), so that a loop over them can be vectorised. Nothing allocates.
 //!
 //! **Lengths.** Every function processes the common prefix `n = min` of all slice lengths
 //! (including `out`), leaves `out[n..]` untouched and returns `n`. It never panics.
@@ -24,9 +26,9 @@
 //! about 4.4 times the scalar loop for `Isotropic` and `AxisAligned`, 2.5 times for
 //! `RoughnessMatrix`; `f64` about 2.2 times.
 
-use super::filter;
 use super::filter::rect;
 use super::footprint::Footprint;
+use super::kernel::ClampRules;
 use super::ndf::Ndf;
 use super::ndf::beckmann::Beckmann;
 use super::ndf::ggx::Ggx;
@@ -62,14 +64,6 @@ impl Footprints<'_> {
     #[inline]
     pub fn is_empty(&self) -> bool {
         self.len() == 0
-    }
-
-    #[inline(always)]
-    fn get(&self, i: usize) -> Footprint {
-        Footprint::from_slope_derivatives(
-            Vec2::new(self.dh_u_x[i], self.dh_u_y[i]),
-            Vec2::new(self.dh_v_x[i], self.dh_v_y[i]),
-        )
     }
 }
 
@@ -108,48 +102,57 @@ pub fn beckmann_d<R: Roughness>(r: &R, mx: &[F], my: &[F], mz: &[F], out: &mut [
     n
 }
 
-/// Filtered Beckmann (exact Gaussian filtering, KHPL16 eq. 15) for each half vector and
-/// footprint: `out[i] = Beckmann::new(filter::gaussian(*r, fp_i.covariance(sigma))).d(h_i)`
-/// (`sigma` in pixels, e.g. [`super::kernel::SIGMA_PIXEL`]). Returns the number of
-/// elements written. Scalar loop.
+/// Filtered Beckmann (exact Gaussian filtering, KHPL16 eq. 15) through the clamped pipeline
+/// for each half vector and footprint: `out[i] = Beckmann::new(rules.filter_gaussian(*r,
+/// fp_i, sigma)).d(h_i)` ([`ClampRules::filter_gaussian`]: footprint extent, kernel
+/// roughness `kappa`, determinant clamp; [`ClampRules::NONE`] for none), `sigma` the pixel
+/// filter's standard deviation in pixels (e.g. [`super::kernel::SIGMA_PIXEL`]). Bit for bit
+/// the scalar route's value. Returns the number of elements written. Scalar loop.
 #[inline]
+#[allow(clippy::too_many_arguments)]
 pub fn beckmann_d_filtered<R: Roughness>(
     r: &R,
+    rules: &ClampRules,
+    sigma: F,
     hx: &[F],
     hy: &[F],
     hz: &[F],
     fp: Footprints<'_>,
-    sigma: F,
     out: &mut [F],
 ) -> usize {
-    d_filtered(Beckmann::new, r, [hx, hy, hz], fp, sigma, out)
+    d_filtered(Beckmann::new, r, rules, sigma, [hx, hy, hz], fp, out)
 }
 
-/// Filtered GGX with the TK19 (section 2.2) matrix approximation `A' = A + 2 Sigma` for each
-/// half vector and footprint: `out[i] = Ggx::new(filter::gaussian(*r,
-/// fp_i.covariance(sigma))).d(h_i)`. Returns the number of elements written. Scalar loop.
+/// Filtered GGX with the TK19 (section 2.2) matrix approximation `A' = A + 2 Sigma` through
+/// the clamped pipeline for each half vector and footprint: `out[i] =
+/// Ggx::new(rules.filter_gaussian(*r, fp_i, sigma)).d(h_i)` (see [`beckmann_d_filtered`]).
+/// Bit for bit the scalar route's value. Returns the number of elements written. Scalar loop.
 #[inline]
+#[allow(clippy::too_many_arguments)]
 pub fn ggx_d_filtered<R: Roughness>(
     r: &R,
+    rules: &ClampRules,
+    sigma: F,
     hx: &[F],
     hy: &[F],
     hz: &[F],
     fp: Footprints<'_>,
-    sigma: F,
     out: &mut [F],
 ) -> usize {
-    d_filtered(Ggx::new, r, [hx, hy, hz], fp, sigma, out)
+    d_filtered(Ggx::new, r, rules, sigma, [hx, hy, hz], fp, out)
 }
 
-/// The loop shared by the Gaussian-filtered batch functions: `A' = A + 2 Sigma_i`
-/// ([`filter::gaussian`]) evaluated by the NDF `ndf(A')` at `h_i`.
+/// The loop shared by the Gaussian-filtered batch functions: the clamped pipeline
+/// [`ClampRules::filter_gaussian`] (the one scalar route, inlined) evaluated by the NDF
+/// `ndf(A')` at `h_i`.
 #[inline]
 fn d_filtered<R: Roughness, N: Ndf>(
     ndf: impl Fn(RoughnessMatrix) -> N,
     r: &R,
+    rules: &ClampRules,
+    sigma: F,
     [hx, hy, hz]: [&[F]; 3],
     fp: Footprints<'_>,
-    sigma: F,
     out: &mut [F],
 ) -> usize {
     let n = out
@@ -159,8 +162,15 @@ fn d_filtered<R: Roughness, N: Ndf>(
         .min(hz.len())
         .min(fp.len());
     let (hx, hy, hz, out) = (&hx[..n], &hy[..n], &hz[..n], &mut out[..n]);
+    let (ux, uy, vx, vy) = (
+        &fp.dh_u_x[..n],
+        &fp.dh_u_y[..n],
+        &fp.dh_v_x[..n],
+        &fp.dh_v_y[..n],
+    );
     for i in 0..n {
-        let a = filter::gaussian(*r, fp.get(i).covariance(sigma));
+        let f = Footprint::from_slope_derivatives(Vec2::new(ux[i], uy[i]), Vec2::new(vx[i], vy[i]));
+        let a = rules.filter_gaussian(*r, f, sigma);
         out[i] = ndf(a).d(Vec3::new(hx[i], hy[i], hz[i]));
     }
     n
@@ -168,8 +178,9 @@ fn d_filtered<R: Roughness, N: Ndf>(
 
 /// The exact box-filtered GGX [`rect::d_rect`] (KHPL16 eq. 16) for each half vector
 /// `h_i` and slope-domain half extent `(half_x[i], half_y[i])`:
-/// `out[i] = d_rect(*r, h_i, (half_x[i], half_y[i]))`. Returns the number of elements
-/// written. Scalar loop.
+/// `out[i] = d_rect(*r, h_i, (half_x[i], half_y[i]))`. The half extents are the kernel as
+/// given (no clamps: pass rectangles already through [`ClampRules::rect`] for the clamped
+/// route). Returns the number of elements written. Scalar loop.
 #[inline]
 pub fn d_rect(
     r: &AxisAligned,

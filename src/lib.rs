@@ -90,6 +90,12 @@ macro_rules! precision_modules {
         pub mod sampling;
         #[path = "temporal/mod.rs"]
         pub mod temporal;
+        #[path = "vector.rs"]
+        pub mod vector;
+
+        /// `pi` in this precision (`core::f64::consts::PI` rounded to `F`): the one copy every
+        /// formula uses.
+        pub const PI: F = core::f64::consts::PI as F;
 
         pub use filter::deferred::{Bandwidth, KernelConvention};
         pub use filter::{GaussianFilteredGgx, LeanMoments};

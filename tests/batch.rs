@@ -1,17 +1,11 @@
 //! The slice API (`batch`) against the scalar functions it wraps: bit-for-bit equality on
 //! seeded random and adversarial inputs (NaN, infinities, zeros, huge and tiny values,
-//! back-facing directions), the common-prefix rule for mismatched lengths, and NaN-free
-//! output. Equality is exact (`to_bits`), not a tolerance: the batch loop body calls the
+//! back-facing directions), the filtered functions against the scalar clamped route
+//! `ClampRules::filter_gaussian` under several rule sets with footprints that trigger each
+//! clamp, the common-prefix rule for mismatched lengths, and NaN-free output. Equality is exact (`to_bits`), not a tolerance: the batch loop body calls the
 //! scalar function, so any difference (e.g. a vectorised path that reassociates) is a bug.
 
-/// SplitMix64 in [0, 1).
-fn uniform(state: &mut u64) -> f64 {
-    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    let mut z = *state;
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-}
+use filtered_ndf::testing::rng::SplitMix64 as Rng;
 
 /// Adversarial scalars mixed into every input column.
 const SPECIAL: [f64; 12] = [
@@ -31,13 +25,30 @@ const SPECIAL: [f64; 12] = [
 
 /// `n` values: mostly realistic (unit-ish directions, small slopes), one in five special.
 fn column(n: usize, seed: u64, lo: f64, hi: f64) -> Vec<f64> {
-    let mut st = seed;
+    let mut rng = Rng(seed);
     (0..n)
         .map(|_| {
-            if uniform(&mut st) < 0.2 {
-                SPECIAL[(uniform(&mut st) * SPECIAL.len() as f64) as usize]
+            if rng.uniform() < 0.2 {
+                SPECIAL[(rng.uniform() * SPECIAL.len() as f64) as usize]
             } else {
-                lo + (hi - lo) * uniform(&mut st)
+                rng.range(lo, hi)
+            }
+        })
+        .collect()
+}
+
+/// `n` footprint components over six decades, `+/-[1e-4, 10]` log-uniform (so that the
+/// footprint extent clamp `lambda = 1` and the kernel clamp `kappa` both act on a good share
+/// of the elements), one in five special.
+fn wide_column(n: usize, seed: u64) -> Vec<f64> {
+    let mut rng = Rng(seed);
+    (0..n)
+        .map(|_| {
+            if rng.uniform() < 0.2 {
+                SPECIAL[(rng.uniform() * SPECIAL.len() as f64) as usize]
+            } else {
+                let sign = if rng.uniform() < 0.5 { -1.0 } else { 1.0 };
+                sign * rng.log_uniform(1e-4, 10.0)
             }
         })
         .collect()
@@ -48,8 +59,8 @@ macro_rules! suite {
         mod $modname {
             use super::*;
             use filtered_ndf::$prec::{
-                AxisAligned, Beckmann, Footprint, Ggx, Isotropic, Ndf, RoughnessMatrix, Vec2, Vec3,
-                batch, filter, filter::rect,
+                AxisAligned, Beckmann, ClampRules, ExtentFloor, Footprint, Ggx, Isotropic, Ndf,
+                RoughnessMatrix, Vec2, Vec3, batch, filter::rect,
             };
 
             const N: usize = 2000;
@@ -73,15 +84,21 @@ macro_rules! suite {
                         .map(|v| v as $t)
                         .collect()
                 };
+                let w = |s: u64| -> Vec<$t> {
+                    wide_column(N, seed ^ s)
+                        .into_iter()
+                        .map(|v| v as $t)
+                        .collect()
+                };
                 Cols {
                     x: c(1, -0.7, 0.7),
                     y: c(2, -0.7, 0.7),
                     // Some back-facing z on purpose.
                     z: c(3, -0.2, 1.0),
-                    ux: c(4, -0.1, 0.1),
-                    uy: c(5, -0.1, 0.1),
-                    vx: c(6, -0.1, 0.1),
-                    vy: c(7, -0.1, 0.1),
+                    ux: w(4),
+                    uy: w(5),
+                    vx: w(6),
+                    vy: w(7),
                     hx: c(8, 0.0, 0.1),
                     hy: c(9, -0.1, 0.1),
                 }
@@ -156,41 +173,99 @@ macro_rules! suite {
                 }
             }
 
+            /// The clamp sets of the test: the papers' defaults, none, the GDC 2016 listing,
+            /// and a custom set with a tight extent and `kappa` and no determinant clamp.
+            fn rule_sets() -> [(&'static str, ClampRules); 4] {
+                [
+                    ("default", ClampRules::default()),
+                    ("none", ClampRules::NONE),
+                    ("gdc2016", ClampRules::GDC2016),
+                    (
+                        "custom",
+                        ClampRules {
+                            max_extent: 0.05,
+                            floor: ExtentFloor::None,
+                            kappa: 1e-4,
+                            det_clamp: false,
+                        },
+                    ),
+                ]
+            }
+
             #[test]
-            fn filtered_and_rect_bit_for_bit() {
+            fn filtered_equal_the_scalar_clamped_route_bit_for_bit() {
+                // The batch filtered functions answer what `ClampRules::filter_gaussian`
+                // answers, element by element, for every rule set and sigma, on footprints
+                // that trigger each clamp (counted below, so the coverage cannot silently
+                // vanish) and on adversarial values.
                 let c = cols(0xF117);
+                let mut out = vec![0.0 as $t; N];
+                for (name, rules) in rule_sets() {
+                    let (mut extent, mut kappa) = (0, 0);
+                    for i in 0..N {
+                        let f = fp(&c, i);
+                        let clamped = rules.footprint(f);
+                        extent += usize::from(clamped != f);
+                        let k = clamped.covariance(0.5);
+                        kappa += usize::from(rules.kernel(k) != k.sanitized());
+                    }
+                    if rules.max_extent.is_finite() {
+                        assert!(extent > N / 10, "{name}: extent clamp on {extent} of {N}");
+                    }
+                    if rules.kappa.is_finite() {
+                        assert!(kappa > N / 10, "{name}: kappa clamp on {kappa} of {N}");
+                    }
+                    for alpha in [1e-3 as $t, 0.1, 0.8] {
+                        let aa = AxisAligned::new(alpha, alpha * 2.0).unwrap();
+                        for sigma in [0.5 as $t, 0.0, 3.0, <$t>::NAN] {
+                            let n = batch::beckmann_d_filtered(
+                                &aa,
+                                &rules,
+                                sigma,
+                                &c.x,
+                                &c.y,
+                                &c.z,
+                                soa(&c),
+                                &mut out,
+                            );
+                            assert_eq!(n, N);
+                            same(
+                                &out,
+                                |i| {
+                                    Beckmann::new(rules.filter_gaussian(aa, fp(&c, i), sigma))
+                                        .d(h(&c, i))
+                                },
+                                &format!("filtered beckmann, {name}"),
+                            );
+                            batch::ggx_d_filtered(
+                                &aa,
+                                &rules,
+                                sigma,
+                                &c.x,
+                                &c.y,
+                                &c.z,
+                                soa(&c),
+                                &mut out,
+                            );
+                            same(
+                                &out,
+                                |i| {
+                                    Ggx::new(rules.filter_gaussian(aa, fp(&c, i), sigma))
+                                        .d(h(&c, i))
+                                },
+                                &format!("filtered ggx, {name}"),
+                            );
+                        }
+                    }
+                }
+            }
+
+            #[test]
+            fn rect_bit_for_bit() {
+                let c = cols(0x2EC7);
                 let mut out = vec![0.0 as $t; N];
                 for alpha in [1e-3 as $t, 0.1, 0.8] {
                     let aa = AxisAligned::new(alpha, alpha * 2.0).unwrap();
-                    for sigma in [0.5 as $t, 0.0, <$t>::NAN] {
-                        let n = batch::beckmann_d_filtered(
-                            &aa,
-                            &c.x,
-                            &c.y,
-                            &c.z,
-                            soa(&c),
-                            sigma,
-                            &mut out,
-                        );
-                        assert_eq!(n, N);
-                        same(
-                            &out,
-                            |i| {
-                                Beckmann::new(filter::gaussian(aa, fp(&c, i).covariance(sigma)))
-                                    .d(h(&c, i))
-                            },
-                            "filtered beckmann",
-                        );
-                        batch::ggx_d_filtered(&aa, &c.x, &c.y, &c.z, soa(&c), sigma, &mut out);
-                        same(
-                            &out,
-                            |i| {
-                                Ggx::new(filter::gaussian(aa, fp(&c, i).covariance(sigma)))
-                                    .d(h(&c, i))
-                            },
-                            "filtered ggx",
-                        );
-                    }
                     let n = batch::d_rect(&aa, &c.x, &c.y, &c.z, &c.hx, &c.hy, &mut out);
                     assert_eq!(n, N);
                     same(
@@ -226,8 +301,9 @@ macro_rules! suite {
                 fps.dh_v_y = &c.vy[..5];
                 assert_eq!(fps.len(), 5);
                 let mut out = vec![sentinel; N];
+                let rules = ClampRules::default();
                 assert_eq!(
-                    batch::ggx_d_filtered(&aa, &c.x, &c.y, &c.z, fps, 0.5, &mut out),
+                    batch::ggx_d_filtered(&aa, &rules, 0.5, &c.x, &c.y, &c.z, fps, &mut out),
                     5
                 );
                 assert!(out[5..].iter().all(|&v| v == sentinel));
@@ -267,7 +343,8 @@ macro_rules! suite {
                 };
                 let (zx, zy, zz) = ([0.0 as $t; 5], [0.0 as $t; 5], [1.0 as $t; 5]);
                 let mut out = [0.0 as $t; 5];
-                batch::beckmann_d_filtered(&aa, &zx, &zy, &zz, fps, 0.5, &mut out);
+                let rules = ClampRules::default();
+                batch::beckmann_d_filtered(&aa, &rules, 0.5, &zx, &zy, &zz, fps, &mut out);
                 let peak = Beckmann::new(aa).d(Vec3::Z);
                 // 4 ulps: the filtered matrix's sqrt(det) is computed from the entries, the
                 // axis-aligned one as alpha_x alpha_y (a rounding or two apart).

@@ -27,9 +27,9 @@ use extremes_support::{
     max_dd, min_positive, rel_err, unit_eps,
 };
 use filtered_ndf::math::Real;
+use filtered_ndf::testing::linalg::Sym2;
 use filtered_ndf::testing::quadrature::Tolerance;
-
-const PI: f64 = std::f64::consts::PI;
+use std::f64::consts::PI;
 const FOOTPRINTS: [(f64, &str); 3] = [
     (0.0, "footprint 0"),
     (1e-12, "footprint 1e-12"),
@@ -41,10 +41,14 @@ fn r32(x: f64) -> f64 {
     x as f32 as f64
 }
 
+/// The largest eigenvalue of a symmetric matrix (the test side's decomposition).
+fn l_max(a11: f64, a12: f64, a22: f64) -> f64 {
+    Sym2::new(a11, a12, a22).eigen().l1
+}
+
 /// Condition number of a symmetric positive semi-definite matrix (double-double entries).
 fn cond(a: &DdSym, tau: f64) -> f64 {
-    let (a11, a12, a22) = (a.a11.f(), a.a12.f(), a.a22.f());
-    let l1 = 0.5 * (a11 + a22) + (0.5 * (a11 - a22)).hypot(a12);
+    let l1 = l_max(a.a11.f(), a.a12.f(), a.a22.f());
     let det = max_dd(a.det(), tau).f();
     l1 * l1 / det
 }
@@ -80,6 +84,69 @@ fn rect_mean_ref(a: f64, b: f64, cx: f64, cy: f64, hx: f64, hy: f64) -> f64 {
     }
 }
 
+/// Each engine preset's published formula (the sources quoted in `filter::presets`), written
+/// out per preset in `f64`, independently of `KernelConvention::apply`: `a` the material's
+/// GGX `alpha`, `du`, `dv` the world-space normal differences. The crate's input and output
+/// contract is applied around it (`alpha` taken in `[0, ALPHA_MAX]`, the result clamped to
+/// `[0, ALPHA_MAX]`). A preset without a formula here fails the test.
+fn preset_reference(name: &str, a: f64, du: [f64; 3], dv: [f64; 3], alpha_max: f64) -> f64 {
+    let dot = |x: [f64; 3], y: [f64; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+    let (uu, uv, vv) = (dot(du, du), dot(du, dv), dot(dv, dv));
+    let sum = uu + vv;
+    let a = a.clamp(0.0, alpha_max);
+    let a2 = a * a;
+    // TK19 Listing 2 and its variants: alpha_bar^2 = saturate(alpha^2 + min(k, clamp)).
+    let tk = |k: f64, clamp: f64| (a2 + k.min(clamp)).min(1.0).sqrt();
+    let out = match name {
+        // eq. 4 (Listing 2; O3DE's SpecularAA.azsli verbatim): 2 sigma^2 (|dn_u|^2 + |dn_v|^2),
+        // sigma^2 = 0.25, kappa = 0.18.
+        "TK19 trace (eq. 4)" | "O3DE" => tk(0.5 * sum, 0.18),
+        // eq. 5: sigma^2 (|dn_u|^2 + |dn_v|^2).
+        "TK19 average (eq. 5)" => tk(0.25 * sum, 0.18),
+        // eq. 1: 2 sigma^2 lambda_max of the Gram matrix of dn_u, dn_v.
+        "TK19 max (eq. 1)" => tk(0.5 * l_max(uu, uv, vv), 0.18),
+        // TK21 Listing 5: (|dn_u|^2 + |dn_v|^2) / (2 pi).
+        "TK21 listing 5" => tk(sum / (2.0 * PI), 0.18),
+        // Filament: perceptual roughness floored at 0.045, then 2 * 0.15 * sum clamped at
+        // 0.2^2.
+        "Filament" => {
+            let p = a.sqrt().max(0.045);
+            (p.powi(4) + (0.3 * sum).min(0.04)).min(1.0).sqrt()
+        }
+        // Unity HDRP NormalFiltering: 2 * 0.1 * sum clamped at 0.2^2.
+        "Unity HDRP" => tk(0.2 * sum, 0.04),
+        // Unity HDRP ProjectedSpaceNormalFiltering: the same kernel added to
+        // P = alpha^2 / (1 - alpha^2), saturated there, alpha_bar^2 = P' / (1 + P').
+        "Unity HDRP projected" => {
+            let p = if a2 < 1.0 {
+                a2 / (1.0 - a2)
+            } else {
+                f64::INFINITY
+            };
+            let p = (p + (0.2 * sum).min(0.04)).min(1.0);
+            (p / (1.0 + p)).sqrt()
+        }
+        // Godot 4: r^2 = alpha; r'^2 = min(1, r^2 + min(2 * 0.25 * sum, 0.18)); alpha = r'^2.
+        "Godot 4" => (a + (0.5 * sum).min(0.18)).min(1.0),
+        // Unreal / Babylon (Vlachos 2015): r' = max(r, saturate(max(|dn_u|^2, |dn_v|^2))^0.333)
+        // on the perceptual roughness r = sqrt(alpha).
+        "Unreal" | "Babylon.js (Vlachos 2015)" => {
+            let k = uu.max(vv).min(1.0).powf(0.333);
+            a.sqrt().max(k).powi(2)
+        }
+        // three.js: r' = min(max(r, 0.0525) + max abs component of dn_u, dn_v, 1).
+        "three.js" => {
+            let g = du
+                .iter()
+                .chain(dv.iter())
+                .fold(0.0_f64, |m, x| m.max(x.abs()));
+            (a.sqrt().max(0.0525) + g).min(1.0).powi(2)
+        }
+        _ => panic!("no reference formula for preset {name}"),
+    };
+    out.clamp(0.0, alpha_max)
+}
+
 /// A base roughness of the filter sweep (entries rounded to the precision).
 struct Base {
     alpha: &'static str,
@@ -100,10 +167,10 @@ macro_rules! sweep {
     ($name:ident, $p:ident, $prec:expr) => {
         mod $name {
             use super::*;
-            use filtered_ndf::$p::filter::deferred::{self, Bandwidth, Combine, Domain, Norm};
+            use filtered_ndf::$p::filter::deferred::{self, Bandwidth};
             use filtered_ndf::$p::{
-                AxisAligned, Beckmann, Covariance, F, Ggx, Ndf, RoughnessMatrix, Vec2, Vec3,
-                filter, filter::proxy, filter::rect, filter::presets,
+                ALPHA_MAX, AxisAligned, Beckmann, Covariance, F, Ggx, Ndf, RoughnessMatrix, Vec2,
+                Vec3, filter, filter::proxy, filter::rect, filter::presets,
             };
 
             const PREC: usize = $prec;
@@ -257,8 +324,7 @@ macro_rules! sweep {
             /// 0.99 of `filter::projected` when both eigenvalues exceed it (the mixed case has
             /// no exact reference here and is checked for monotonicity only).
             fn projected_ref(b: &Base, sig: &DdSym) -> Option<(DdSym, f64)> {
-                let (a11, a12, a22) = (b.a.a11.f(), b.a.a12.f(), b.a.a22.f());
-                let l1 = 0.5 * (a11 + a22) + (0.5 * (a11 - a22)).hypot(a12);
+                let l1 = l_max(b.a.a11.f(), b.a.a12.f(), b.a.a22.f());
                 let l2 = max_dd(b.a.det(), 0.0).f() / l1;
                 let cap = filter::PROJECTED_EIGEN_MAX.to_f64();
                 let (ac, e) = if l1 < cap {
@@ -293,8 +359,7 @@ macro_rules! sweep {
                                 // condition of the projected-space sum P' = P + 2 Sigma: it is
                                 // formed in F and its determinant enters A' (an elongated 1e3
                                 // kernel makes it ~1e6, the f32 result then carries ~1e-3).
-                                let (a11, a12, a22) = (b.a.a11.f(), b.a.a12.f(), b.a.a22.f());
-                                let l1 = 0.5 * (a11 + a22) + (0.5 * (a11 - a22)).hypot(a12);
+                                let l1 = l_max(b.a.a11.f(), b.a.a12.f(), b.a.a22.f());
                                 let amp = 1.0 / (1.0 - l1.min(0.99));
                                 let tol = 64.0 * (1.0 + cond(&aref, tau) + cond_q) * amp * eps;
                                 compare(map, "projected", false, &regions, m, &aref, tau, tol);
@@ -449,36 +514,6 @@ macro_rules! sweep {
                 }
             }
 
-            fn domain_from(d: Domain, a: f64) -> f64 {
-                match d {
-                    Domain::Alpha2 => a * a,
-                    Domain::Alpha => a,
-                    Domain::Perceptual => a.sqrt(),
-                    Domain::ProjectedAlpha2 => {
-                        if a * a < 1.0 {
-                            a * a / (1.0 - a * a)
-                        } else {
-                            f64::INFINITY
-                        }
-                    }
-                }
-            }
-
-            fn domain_to(d: Domain, v: f64) -> f64 {
-                match d {
-                    Domain::Alpha2 => v.sqrt(),
-                    Domain::Alpha => v,
-                    Domain::Perceptual => v * v,
-                    Domain::ProjectedAlpha2 => {
-                        if v.is_finite() {
-                            (v / (1.0 + v)).sqrt()
-                        } else {
-                            1.0
-                        }
-                    }
-                }
-            }
-
             pub fn isotropic(map: &mut ErrorMap) {
                 let eps = unit_eps(PREC);
                 let kappa = deferred::KAPPA.to_f64();
@@ -503,7 +538,10 @@ macro_rules! sweep {
                         }
                     }
                 }
-                // Every preset on world-space normal differences of size fp.
+                // Every preset on world-space normal differences of size fp, against its
+                // published formula written out per preset (`preset_reference`), not through
+                // `KernelConvention`'s generic steps.
+                let alpha_max = ALPHA_MAX.to_f64();
                 for (name, conv) in presets::ALL {
                     for &(alpha, label) in &ALPHAS {
                         let a = r(alpha);
@@ -513,30 +551,11 @@ macro_rules! sweep {
                             let got = conv
                                 .apply(f(a), Vec3::new(f(du[0]), f(du[1]), f(du[2])), Vec3::new(f(dv[0]), f(dv[1]), f(dv[2])))
                                 .to_f64();
-                            let dot = |x: [f64; 3], y: [f64; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
-                            let (uu, uv, vv) = (dot(du, du), dot(du, dv), dot(dv, dv));
-                            let n = match conv.norm {
-                                Norm::SumSquared => uu + vv,
-                                Norm::MaxSquared => uu.max(vv),
-                                Norm::MaxEigenvalue => 0.5 * (uu + vv) + (0.5 * (uu - vv)).hypot(uv),
-                                Norm::MaxAbsComponent => du.iter().chain(dv.iter()).fold(0.0_f64, |m, x| m.max(x.abs())),
-                            };
-                            let (scale, expo, bias, clamp) = (conv.scale.to_f64(), conv.exponent.to_f64(), conv.bias.to_f64(), conv.clamp.to_f64());
-                            let k = (scale * n.powf(expo) + bias).max(0.0).min(clamp);
-                            let floor = conv.perceptual_floor.to_f64();
-                            let am = a.min(1e4).max(floor * floor);
-                            let v = domain_from(conv.domain, am);
-                            let mut out = match conv.combine {
-                                Combine::Add => v + k,
-                                Combine::Max => v.max(k),
-                            };
-                            if conv.saturate {
-                                out = out.min(1.0);
-                            }
-                            let reference = domain_to(conv.domain, out).clamp(0.0, 1e4);
-                            // Tolerance: each convention is a handful of operations; the
+                            let reference = preset_reference(name, a, du, dv, alpha_max);
+                            // Tolerance: each formula is a handful of operations; the
                             // exponent 0.333 of Unreal/Babylon adds the conditioning of
-                            // powf, |0.333 ln n| eps (n = 1e-24: 18 eps). 64 eps.
+                            // powf, |0.333 ln n| eps (n = 1e-24: 18 eps), and the presets'
+                            // constants rounded to F (half an ulp each). 64 eps.
                             map.record("presets", &[label, flabel, name], PREC, rel_err(got, reference, 0.0), 64.0 * eps, || {
                                 format!("{name} {label} {flabel}: {got:e} vs {reference:e}")
                             });

@@ -4,6 +4,7 @@
 use filtered_ndf::f32 as s;
 use filtered_ndf::f64 as d;
 use filtered_ndf::f64::Ndf as _;
+use filtered_ndf::testing::linalg::Sym2;
 use filtered_ndf::testing::quadrature::{Tolerance, integrate_2d};
 use glam::{DVec2, DVec3, Vec2, Vec3};
 use proptest::prelude::*;
@@ -37,6 +38,48 @@ proptest! {
         // TK19 keeps the disk derivatives themselves.
         let t = d::Footprint::from_projected_derivatives(du, dv);
         prop_assert_eq!((t.dh_u, t.dh_v), (du, dv));
+    }
+
+    #[test]
+    fn half_vector_derivatives_match_finite_differences_of_the_slope_map(
+        theta in 0.0f64..1.4, phi in 0.0f64..6.3,
+        a in prop::array::uniform3(-1.0f64..1.0), b in prop::array::uniform3(-1.0f64..1.0),
+        scale in prop_oneof![Just(1.0), 1e-3f64..1e3],
+    ) {
+        // Central differences of s(h) = slope_from_sphere(h) along the tangent derivatives
+        // (the unit half vector moved to `(h + t dh) / |h + t dh|`) with step 1e-6:
+        // truncation O(t^2 |s'''|) ~ 1e-12 and rounding ~ 1e-16 / 1e-6 = 1e-10, relative to
+        // |J| ~ 1 / h_z^2; the bound 1e-7 of the largest |J| leaves ample room.
+        let h = DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
+        let tangent = |w: [f64; 3]| {
+            let w = DVec3::from(w);
+            w - h * h.dot(w)
+        };
+        let (dx, dy) = (tangent(a), tangent(b));
+        // Only the direction of `h` counts (scaled here by `scale`).
+        let fp = d::Footprint::from_half_vector_derivatives(h * scale, dx, dy);
+        let t = 1e-6;
+        let fd = |d: DVec3| {
+            let s = |k: f64| d::footprint::slope::slope_from_sphere((h + d * k).normalize());
+            (s(t) - s(-t)) / (2.0 * t)
+        };
+        let jmax = 1.0 / (h.z * h.z);
+        prop_assert!((fp.dh_u - fd(dx)).length() <= 1e-7 * jmax * (1.0 + dx.length()), "{fp:?}");
+        prop_assert!((fp.dh_v - fd(dy)).length() <= 1e-7 * jmax * (1.0 + dy.length()), "{fp:?}");
+        // The radial part of a derivative is dropped: adding a multiple of h changes nothing
+        // (to rounding: 1e-14 of the largest |J|).
+        let fr = d::Footprint::from_half_vector_derivatives(h, dx + h * 0.7, dy - h * 0.3);
+        let fu = d::Footprint::from_half_vector_derivatives(h, dx, dy);
+        prop_assert!((fr.dh_u - fu.dh_u).length() <= 1e-14 * jmax * (1.0 + dx.length()));
+        prop_assert!((fr.dh_v - fu.dh_v).length() <= 1e-14 * jmax * (1.0 + dy.length()));
+        // The same slope change as the projected-disk derivatives dp = dh_xy through
+        // J(perp->par) (a second formula path; 1e-13 of the largest |J| for the rounding of
+        // both).
+        let fpr = d::Footprint::from_projected_derivatives_in_slope(
+            h, DVec2::new(dx.x, dx.y), DVec2::new(dy.x, dy.y),
+        );
+        prop_assert!((fpr.dh_u - fu.dh_u).length() <= 1e-13 * jmax * (1.0 + dx.length()));
+        prop_assert!((fpr.dh_v - fu.dh_v).length() <= 1e-13 * jmax * (1.0 + dy.length()));
     }
 
     #[test]
@@ -94,20 +137,100 @@ proptest! {
     }
 
     #[test]
-    fn clamp_eigenvalues_keeps_eigenvectors_and_caps(
-        l1 in 0.0f64..2.0, l2 in 0.0f64..2.0, phi in 0.0f64..3.2, c in 0.0f64..2.0,
+    fn clamp_eigenvalues_keeps_eigenvectors_and_clamps_to_zero_and_max(
+        l1 in -2.0f64..2.0, l2 in -2.0f64..2.0, phi in 0.0f64..3.2, c in 0.0f64..2.0,
     ) {
-        let (co, si) = (phi.cos(), phi.sin());
-        let k = d::Covariance::new(co*co*l1 + si*si*l2, co*si*(l1-l2), si*si*l1 + co*co*l2);
+        // Any symmetric input, definite or not: the eigenvalues clamped to [0, c] with the
+        // eigenvectors kept, against the test side's own decomposition (`testing::linalg`).
+        let m = Sym2::from_eigen(l1, l2, phi);
+        let k = d::Covariance::new(m.a11, m.a12, m.a22);
         let kc = k.clamp_eigenvalues(c);
+        let want = m.eigen().map(|l| l.clamp(0.0, c));
+        // 1e-12: rounding of the unit-scale eigen computations (a few ulps of entries <= 2)
+        // divided by the eigenvalue gap, which the clamp caps (the result is
+        // `c_min I + (c_max - c_min) P_max` and `c_max - c_min <= lambda_max - lambda_min`).
+        let err = (kc.s11 - want.a11).abs().max((kc.s12 - want.a12).abs()).max((kc.s22 - want.a22).abs());
+        prop_assert!(err <= 1e-12, "{kc:?} vs {want:?}");
         let (a, b) = kc.eigenvalues();
-        let (e1, e2) = (l1.min(l2).min(c), l1.max(l2).min(c));
-        // 1e-12: rounding of the unit-scale eigen computation.
-        prop_assert!((a - e1).abs() <= 1e-12 && (b - e2).abs() <= 1e-12, "{kc:?} vs {e1} {e2}");
+        prop_assert!(a >= 0.0 && b <= c + 1e-12, "{kc:?}");
         // Commutes with the input (same eigenvectors): K Kc - Kc K = 0.
         let comm = k.s11 * kc.s12 + k.s12 * kc.s22 - (kc.s11 * k.s12 + kc.s12 * k.s22);
         prop_assert!(comm.abs() <= 1e-12);
     }
+}
+
+#[test]
+fn clamp_eigenvalues_of_an_indefinite_input_drops_its_negative_part() {
+    // [[0, 1], [1, 0]] has eigenvalues +1 (along (1, 1)) and -1: clamped to [0, 0.5] it is
+    // 0.5 (1, 1)(1, 1)^T / 2 = [[0.25, 0.25], [0.25, 0.25]] (the fast path once returned it
+    // unchanged, since its trace 0 is within the bound). Both precisions; 4 ulps of 0.25.
+    let c = d::Covariance::new(0.0, 1.0, 0.0).clamp_eigenvalues(0.5);
+    for x in [c.s11, c.s12, c.s22] {
+        assert!((x - 0.25).abs() <= 4.0 * f64::EPSILON * 0.25, "{c:?}");
+    }
+    let c = s::Covariance::new(0.0, 1.0, 0.0).clamp_eigenvalues(0.5);
+    for x in [c.s11, c.s12, c.s22] {
+        assert!((x - 0.25).abs() <= 4.0 * f32::EPSILON * 0.25, "{c:?}");
+    }
+    // Negative semi-definite: nothing left. A negative variance alone: dropped.
+    assert_eq!(
+        d::Covariance::new(-1.0, 0.5, -2.0).clamp_eigenvalues(1.0),
+        d::Covariance::ZERO
+    );
+    let c = d::Covariance::new(-1.0, 0.0, 0.3).clamp_eigenvalues(1.0);
+    assert!(c.s11 == 0.0 && c.s12 == 0.0 && (c.s22 - 0.3).abs() <= 4.0 * f64::EPSILON * 0.3);
+    // A PSD input within the bound is returned bit for bit.
+    let k = s::Covariance::new(0.01, 0.003, 0.02);
+    assert_eq!(k.clamp_eigenvalues(0.09), k);
+}
+
+#[test]
+fn half_vector_derivatives_bad_input() {
+    // At the pole J(o->par) = -I: the slope moves against the tangential derivative.
+    let fp = d::Footprint::from_half_vector_derivatives(DVec3::Z, DVec3::X * 0.1, DVec3::Y);
+    assert_eq!(fp.dh_u, DVec2::new(-0.1, 0.0));
+    assert_eq!(fp.dh_v, DVec2::new(0.0, -1.0));
+    // Zero or non-finite h, non-finite derivatives: no information, the zero footprint.
+    let (x, y) = (Vec3::X * 0.01, Vec3::Y * 0.02);
+    for h in [
+        Vec3::ZERO,
+        Vec3::new(f32::NAN, 0.0, 1.0),
+        Vec3::new(0.0, f32::INFINITY, 1.0),
+    ] {
+        assert_eq!(
+            s::Footprint::from_half_vector_derivatives(h, x, y),
+            s::Footprint::ZERO
+        );
+    }
+    for bad in [f32::NAN, f32::INFINITY] {
+        let fp = s::Footprint::from_half_vector_derivatives(Vec3::Z, Vec3::new(bad, 0.0, 0.0), y);
+        assert_eq!(fp, s::Footprint::ZERO);
+    }
+    // Zero derivatives: the zero footprint.
+    let fp = s::Footprint::from_half_vector_derivatives(
+        Vec3::new(0.3, 0.1, 0.9),
+        Vec3::ZERO,
+        Vec3::ZERO,
+    );
+    assert_eq!(fp, s::Footprint::ZERO);
+    // Grazing and back-facing h: clamped to h_z = 1e-6 at constant azimuth, huge and finite
+    // (|J(o->par) e_y| = 1 / h_z there).
+    for h in [
+        Vec3::new(0.6, 0.8, 0.0),
+        Vec3::new(0.6, 0.8, -0.5),
+        -Vec3::Z,
+    ] {
+        let fp = s::Footprint::from_half_vector_derivatives(h, x, y);
+        assert!(fp.dh_u.is_finite() && fp.dh_v.is_finite(), "{h}: {fp:?}");
+        assert!(fp.dh_u.length().max(fp.dh_v.length()) > 1e3, "{h}: {fp:?}");
+    }
+    // Huge finite derivatives: finite or zero, never NaN (products beyond F::MAX give ZERO).
+    let fp = s::Footprint::from_half_vector_derivatives(
+        Vec3::new(0.6, 0.8, 1e-3),
+        Vec3::splat(1e30),
+        Vec3::new(-1e38, 1e38, 0.0),
+    );
+    assert!(fp.dh_u.is_finite() && fp.dh_v.is_finite(), "{fp:?}");
 }
 
 #[test]
@@ -253,6 +376,8 @@ fn constructors_and_filters_never_produce_nan() {
             s::Footprint::from_projected_derivatives_in_slope(Vec3::new(x, 0.0, 0.0), v2, v2),
             s::Footprint::from_normal_differences(v3, v3),
             s::Footprint::from_normal_differences(Vec3::new(0.0, 0.0, -2.0), v3),
+            s::Footprint::from_half_vector_derivatives(Vec3::new(0.0, 0.6, 0.8), v3, v3),
+            s::Footprint::from_half_vector_derivatives(Vec3::new(x, 0.0, 0.0), v3, v3),
         ];
         for fp in fps {
             for rm in [

@@ -8,23 +8,14 @@ use filtered_ndf::testing::fuzz::{
     check_temporal,
 };
 
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-}
+use filtered_ndf::testing::rng::SplitMix64 as Rng;
 
 /// `n` seeded random byte strings of length `0..max_len` through `check`.
 fn replay(seed: u64, n: usize, max_len: u64, check: fn(&[u8])) {
     let mut rng = Rng(seed);
     for _ in 0..n {
-        let len = (rng.next() % max_len) as usize;
-        let bytes: Vec<u8> = (0..len).map(|_| rng.next() as u8).collect();
+        let len = (rng.next_u64() % max_len) as usize;
+        let bytes: Vec<u8> = (0..len).map(|_| rng.next_u64() as u8).collect();
         check(&bytes);
     }
 }
@@ -163,6 +154,41 @@ mod findings {
     }
 
     #[test]
+    fn clamp_eigenvalues_of_indefinite_inputs() {
+        // Found while making the clamp total over indefinite input (issue 16, item 2).
+        // A negative diagonal entry that underflows to -0 when scaled: still dropped.
+        let c = f32::Covariance::new(f32::MAX, 1.98, -1e-30).clamp_eigenvalues(f32::MAX);
+        assert!(c.s11 > 0.0 && c.s22 >= 0.0, "{c:?}");
+        // A dominant negative eigenvalue: lambda_max = det / lambda_min = 1.364 (no
+        // cancellation in mean + rad), kept along x.
+        let c = f64::Covariance::new(1.364, -1e-30, -1.145e16).clamp_eigenvalues(10.0);
+        assert!((c.s11 - 1.364).abs() <= 1e-15 && c.s12.abs() <= 1e-45 && c.s22 >= 0.0);
+        // lambda_max = det / lambda_min = (1e30 * 1e-30 + 0.9966^2) / 1e30 = 1.993e-30 where
+        // the unit-size matrix underflows (f32): along y.
+        let c = f32::Covariance::new(-1e30, -0.9966, 1e-30).clamp_eigenvalues(1.0);
+        let want = (1.0 + 0.9966f64 * 0.9966) / 1e30;
+        assert!(
+            ((c.s22 as f64) - want).abs() <= 1e-6 * want && c.s11 == 0.0,
+            "{c:?}"
+        );
+        // Negative definite (det = 1 - 0.749^2 > 0, trace < 0): nothing left.
+        let c = f32::Covariance::new(-1e-30, -0.749, -1e30).clamp_eigenvalues(f32::INFINITY);
+        assert_eq!(c, f32::Covariance::ZERO);
+        // lambda_max = 1.618 f32::MAX is not representable: clamped to F::MAX, finite.
+        let c = f32::Covariance::new(f32::MAX, f32::MAX, 1.0).clamp_eigenvalues(f32::INFINITY);
+        assert!(
+            c.s11.is_finite() && c.s12.is_finite() && c.s22.is_finite(),
+            "{c:?}"
+        );
+        // mean - rad overflows although lambda_max = 3.4028e38 is finite: computed scaled.
+        let (lo, hi) = f32::Covariance::new(-2.2539338e33, f32::MAX, -1.0).eigenvalues();
+        assert!(
+            lo == 0.0 && (hi as f64 - 3.4028122e38).abs() <= 1e-6 * 3.4e38,
+            "{hi}"
+        );
+    }
+
+    #[test]
     fn eigenvalues_of_huge_and_tiny_entries() {
         // f32: det overflowed to inf and lambda_min came out as inf (> lambda_max).
         let (lo, hi) = f32::Covariance::new(1e30, 0.0, 1e30).eigenvalues();
@@ -191,8 +217,10 @@ mod findings {
         let f =
             f32::Footprint::from_projected_derivatives_in_slope(h, Vec2::new(-1.0, 0.0), Vec2::Y);
         assert!(f.dh_u.is_finite() && f.dh_v.is_finite(), "{f:?}");
+        // Only the direction counts: the same as (1, 1, 1), bit for bit (both normalise to
+        // (1, 1, 1) / sqrt(3) in `vector::unit`).
         let unit = f32::Footprint::from_projected_derivatives_in_slope(
-            Vec3::ONE.normalize(),
+            Vec3::ONE,
             Vec2::new(-1.0, 0.0),
             Vec2::Y,
         );

@@ -42,10 +42,10 @@
 //! matrix / zero footprint (no filtering). A half vector at or below the shading horizon is
 //! clamped to `H . n >= jacobian::HZ_MIN |H|` as in [`super::jacobian`].
 
+use super::super::vector;
 use super::Footprint;
 use super::jacobian::{self, HZ_MIN};
 use super::{F, Mat2, Vec2, Vec3};
-use crate::math as m;
 
 /// The orthonormal shading frame at `x` and its first derivative along the surface, per unit
 /// length along the frame's own tangents (KHPL16 eq. 6, `T(x)` and `T'(x)`).
@@ -137,15 +137,10 @@ impl Endpoint {
             Endpoint::Point(p) => (p - x, true),
             Endpoint::Direction(d) => (d, false),
         };
-        // Scale first so huge (but finite) vectors normalise without overflow.
-        let big = d.abs().max_element();
-        if !d.is_finite() || big <= 0.0 {
-            return None;
-        }
-        let d = d / big;
-        let len = m::sqrt(d.length_squared());
-        let inv_dist = if is_point { 1.0 / (len * big) } else { 0.0 };
-        Some((d / len, inv_dist))
+        // Scaled first so huge (but finite) vectors normalise without overflow.
+        let (d, len) = vector::unit_and_length(d)?;
+        let inv_dist = if is_point { 1.0 / len } else { 0.0 };
+        Some((d, inv_dist))
     }
 }
 
@@ -156,14 +151,12 @@ impl Endpoint {
 pub fn half_vector(x: Vec3, eye: Endpoint, light: Endpoint, frame: &ShadingFrame) -> Vec3 {
     match (eye.direction_from(x), light.direction_from(x)) {
         (Some((o, _)), Some((i, _))) => {
-            let h = (i + o).normalize_or_zero();
+            let Some(h) = vector::unit(i + o) else {
+                return Vec3::Z;
+            };
             let local = frame.to_local(h);
             // A non-finite frame is degenerate input too (module docs): `+z`, not NaN.
-            if h == Vec3::ZERO || !local.is_finite() {
-                Vec3::Z
-            } else {
-                local
-            }
+            if local.is_finite() { local } else { Vec3::Z }
         }
         _ => Vec3::Z,
     }
@@ -199,12 +192,9 @@ pub fn half_vector_jacobian(x: Vec3, eye: Endpoint, light: Endpoint, frame: &Sha
     let (Some((o, ko)), Some((i, ki))) = (eye.direction_from(x), light.direction_from(x)) else {
         return Mat2::ZERO;
     };
-    let hw = i + o;
-    let len = m::sqrt(hw.length_squared());
-    if len.is_nan() || len <= 0.0 {
+    let Some((h, len)) = vector::unit_and_length(i + o) else {
         return Mat2::ZERO;
-    }
-    let h = hw / len;
+    };
     let col = |k: usize| {
         let u = if k == 0 { frame.s } else { frame.t };
         let di: Vec3 = (u - i * i.dot(u)) * -ki;
@@ -222,11 +212,9 @@ pub fn half_vector_jacobian(x: Vec3, eye: Endpoint, light: Endpoint, frame: &Sha
 /// `1 / distance` (measured in `tests/geometry.rs`). Degenerate input gives `Mat2::ZERO`.
 #[inline]
 pub fn half_vector_jacobian_far_field(h_w: Vec3, frame: &ShadingFrame) -> Mat2 {
-    let len = m::sqrt(h_w.length_squared());
-    if len.is_nan() || len <= 0.0 || !len.is_finite() {
+    let Some(h) = vector::unit(h_w) else {
         return Mat2::ZERO;
-    }
-    let h = h_w / len;
+    };
     finite_or_zero(Mat2::from_cols(
         slope_derivative(frame, h, Vec3::ZERO, 0),
         slope_derivative(frame, h, Vec3::ZERO, 1),

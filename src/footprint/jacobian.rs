@@ -55,6 +55,7 @@
 //! a NaN vector and, like any matrix product, may overflow (to `inf`, or NaN as `inf - inf`)
 //! for finite vectors beyond about `1e26` (`f32`, at the horizon clamp).
 
+use super::super::vector;
 use super::{F, Mat2, Vec2, Vec3};
 use crate::math as m;
 
@@ -75,27 +76,18 @@ struct Polar {
 /// Normalise, apply the pole choice and the horizon clamp (module docs).
 #[inline]
 fn polar(h: Vec3) -> Polar {
-    // `max_element` skips NaN, so test finiteness of the vector itself.
-    let big = h.abs().max_element();
-    if !h.is_finite() || big <= 0.0 {
+    let Some(h) = vector::unit(h) else {
         return Polar {
             h: Vec3::Z,
             cos_phi: 1.0,
             sin_phi: 0.0,
         };
-    }
-    let h = h / big;
-    let h = h * (1.0 / m::sqrt(h.length_squared()));
+    };
     // The azimuth from `h_xy` scaled to unit size: `h_x / hypot(h_x, h_y)` is not a unit
     // pair for subnormal components (fuzzing).
-    let q = Vec2::new(h.x, h.y);
-    let qs = q.abs().max_element();
-    let (cos_phi, sin_phi) = if qs > 0.0 {
-        let q = q / qs;
-        let r = m::hypot(q.x, q.y);
-        (q.x / r, q.y / r)
-    } else {
-        (1.0, 0.0)
+    let (cos_phi, sin_phi) = match vector::unit2(Vec2::new(h.x, h.y)) {
+        Some(q) => (q.x, q.y),
+        None => (1.0, 0.0),
     };
     if h.z >= HZ_MIN {
         Polar {
@@ -128,7 +120,12 @@ pub fn sanitize(h: Vec3) -> Vec3 {
 /// module docs.
 #[inline]
 pub fn spherical_basis(h: Vec3) -> (Vec3, Vec3) {
-    let p = polar(h);
+    basis(&polar(h))
+}
+
+/// [`spherical_basis`] of a sanitised half vector.
+#[inline]
+fn basis(p: &Polar) -> (Vec3, Vec3) {
     let st = m::hypot(p.h.x, p.h.y);
     (
         Vec3::new(p.h.z * p.cos_phi, p.h.z * p.sin_phi, -st),
@@ -200,12 +197,35 @@ pub fn slope_to_projected(h: Vec3) -> Mat2 {
 /// Horizon clamp as in the module docs. Units: slope per radian.
 #[inline]
 pub fn sphere_to_slope(h: Vec3) -> Mat2 {
-    let p = polar(h);
+    sphere_to_slope_of(&polar(h))
+}
+
+/// [`sphere_to_slope`] of a sanitised half vector.
+#[inline]
+fn sphere_to_slope_of(p: &Polar) -> Mat2 {
     let k = -1.0 / (p.h.z * p.h.z);
     Mat2::from_cols(
         Vec2::new(p.cos_phi, p.sin_phi) * k,
         Vec2::new(-p.h.z * p.sin_phi, p.h.z * p.cos_phi) * k,
     )
+}
+
+/// `J(o->par)` in Cartesian form: the rows `(ds_x/dh, ds_y/dh)` of the derivative of the slope
+/// with respect to the unit half vector, restricted to its tangent plane:
+/// `[ds_x/dh; ds_y/dh] = J(o->par) [e_x; e_y]` ([`sphere_to_slope`] composed with the basis of
+/// [`spherical_basis`]; TK19 supplement eq. 1-3 and 7). A change `dh` of the unit half vector
+/// moves the slope by `(ds_x/dh . dh, ds_y/dh . dh)`; the radial part of `dh` (along `h`) has
+/// no effect. Equals `(-e_x + h_x/h_z e_z, -e_y + h_y/h_z e_z) / h_z` (the gradient of
+/// `s = -h_xy / h_z`) on the tangent plane. Input as in the module docs.
+#[inline]
+pub fn unit_vector_to_slope(h: Vec3) -> [Vec3; 2] {
+    let p = polar(h);
+    let j = sphere_to_slope_of(&p);
+    let (e_x, e_y) = basis(&p);
+    [
+        e_x * j.x_axis.x + e_y * j.y_axis.x,
+        e_x * j.x_axis.y + e_y * j.y_axis.y,
+    ]
 }
 
 /// `det J(o->perp) = h_z` (TK19 section 3.2; `<= 1`: the projected disk shrinks errors).

@@ -7,8 +7,14 @@
 //! `Sigma = sigma^2 U^T U` with `U` the matrix whose rows are `dh_u` and `dh_v` (TK19
 //! section 2.2; KHPL16 eq. 13 with `sigma` folded into the vectors).
 //!
-//! - Constructors: from slope derivatives (KHPL16 4.2, 5.1), from projected-disk derivatives
-//!   (TK19 3.2, used directly or mapped to slope space), from normal differences (TK19 eq. 3).
+//! - Constructors, one per form a renderer has: slope derivatives
+//!   ([`Footprint::from_slope_derivatives`], KHPL16 4.2, 5.1); derivatives of the
+//!   tangent-space half vector as 3-D vectors ([`Footprint::from_half_vector_derivatives`],
+//!   TK19 supplement eq. 1-7); projected-disk derivatives `ddx(h_xy)`
+//!   ([`Footprint::from_projected_derivatives`] as TK19 3.2 uses them,
+//!   [`Footprint::from_projected_derivatives_in_slope`] mapped to slope space); normal
+//!   differences ([`Footprint::from_normal_differences`], TK19 eq. 3); ray differentials
+//!   through the geometry's `M` ([`Footprint::from_ray_differentials`], KHPL16 4.2).
 //! - Kernel shapes (the next stage, [`super::kernel`]): [`Covariance`] (the Gaussian,
 //!   [`Footprint::covariance`]) and [`BoundingRect`] (the conservative rectangle of KHPL16
 //!   5.3, [`Footprint::bounding_rect`]).
@@ -17,8 +23,8 @@
 //!   `M` and ray-differential footprints (KHPL16 section 4).
 
 use super::kernel::{BoundingRect, Covariance};
+use super::vector;
 use super::{F, Mat2, Vec2, Vec3};
-use crate::math as m;
 
 pub mod geometry;
 pub mod jacobian;
@@ -66,31 +72,69 @@ impl Footprint {
         }
     }
 
-    /// The slope-domain footprint of disk derivatives at the unit half vector `h`:
-    /// `dh = J_perp->par dp` with `J_perp->par = -1/h_z^3 [[1 - h_y^2, h_x h_y],
-    /// [h_x h_y, 1 - h_x^2]]` (TK19 supplement eq. 6), i.e. the first-order change of the slope
-    /// `s = -p / sqrt(1 - |p|^2)`. `h_z` is clamped to `>= 1e-6` (the footprint of a grazing
-    /// half vector is then huge and finite; clamp it with
-    /// [`super::ClampRules::footprint`]). `h` is normalised first (a huge non-unit `h`
-    /// would overflow `1 - h_y^2` to NaN); a zero or non-finite `h` gives [`Footprint::ZERO`].
+    /// The slope-domain footprint of disk derivatives at the half vector `h`:
+    /// `dh = J_perp->par dp` with `J_perp->par` of TK19 supplement eq. 6
+    /// ([`jacobian::projected_to_slope`]), i.e. the first-order change of the slope
+    /// `s = -p / sqrt(1 - |p|^2)`. `h` is normalised and clamped to `h_z >= 1e-6`
+    /// ([`jacobian::HZ_MIN`], at constant azimuth) as in [`jacobian`]: the footprint of a grazing
+    /// or back-facing half vector is then huge and finite (clamp it with
+    /// [`super::ClampRules::footprint`]). A zero or non-finite `h`, and a non-finite result
+    /// (NaN derivatives, or products beyond `F::MAX`), give [`Footprint::ZERO`].
     pub fn from_projected_derivatives_in_slope(h: Vec3, dp_u: Vec2, dp_v: Vec2) -> Self {
-        let big = h.abs().max_element();
-        if !h.is_finite() || big <= 0.0 {
+        if vector::unit(h).is_none() {
             return Self::ZERO;
         }
-        let h = h / big;
-        let h = h / m::sqrt(h.length_squared());
-        let hz = h.z.max(1e-6);
-        let k = -1.0 / (hz * hz * hz);
-        let j = |d: Vec2| {
-            Vec2::new(
-                (1.0 - h.y * h.y) * d.x + h.x * h.y * d.y,
-                h.x * h.y * d.x + (1.0 - h.x * h.x) * d.y,
-            ) * k
-        };
-        Self {
-            dh_u: j(dp_u),
-            dh_v: j(dp_v),
+        let j = jacobian::projected_to_slope(h);
+        Self::finite_or_zero(j * dp_u, j * dp_v)
+    }
+
+    /// The slope-domain footprint of the screen-space derivatives of the tangent-space half
+    /// vector as 3-D vectors (`ddx(h)`, `ddy(h)` of the unit half vector, `z` = shading normal):
+    /// `dh_u = J(o->par) (dh_dx . e_x, dh_dx . e_y)`, likewise for `dh_v` (TK19 supplement
+    /// eq. 1-3 and 7, in the Cartesian form of [`jacobian::unit_vector_to_slope`]): the
+    /// first-order change of the slope `s = -h_xy / h_z` along the derivative.
+    ///
+    /// - `h` need not be unit: only its direction is used. The derivatives are those of the
+    ///   *unit* half vector; their radial part (along `h`) is dropped. With an unnormalised
+    ///   `H = L + V` and its derivatives `dH`, pass `dH / |H|`.
+    /// - Grazing and back-facing `h` (`h_z < 1e-6`, [`jacobian::HZ_MIN`]): clamped to the
+    ///   horizon at constant azimuth; the footprint is huge and finite (clamp it with
+    ///   [`super::ClampRules::footprint`]).
+    /// - A zero or non-finite `h`, zero derivatives, and a non-finite result (NaN
+    ///   derivatives, or products beyond `F::MAX`) give [`Footprint::ZERO`]. Never NaN, never
+    ///   panics.
+    ///
+    /// Units: `dh` per pixel (unit-vector change, i.e. radians); the result in slope per pixel.
+    pub fn from_half_vector_derivatives(h: Vec3, dh_dx: Vec3, dh_dy: Vec3) -> Self {
+        if vector::unit(h).is_none() {
+            return Self::ZERO;
+        }
+        let [ds_x, ds_y] = jacobian::unit_vector_to_slope(h);
+        let ds = |d: Vec3| Vec2::new(ds_x.dot(d), ds_y.dot(d));
+        Self::finite_or_zero(ds(dh_dx), ds(dh_dy))
+    }
+
+    /// The footprint of ray differentials through the half-vector Jacobian `M` of the
+    /// geometry: [`geometry::footprint`] (KHPL16 section 4.2, eq. 5). `m` from
+    /// [`geometry::half_vector_jacobian`] (or its far-field / deferred forms), `dx_u`, `dx_v`
+    /// the tangent-plane ray differentials ([`geometry::tangent_plane_differentials`]).
+    #[inline]
+    pub fn from_ray_differentials(
+        m: Mat2,
+        frame: &geometry::ShadingFrame,
+        dx_u: Vec3,
+        dx_v: Vec3,
+    ) -> Self {
+        geometry::footprint(m, frame, dx_u, dx_v)
+    }
+
+    /// `(dh_u, dh_v)` if both are finite, else [`Footprint::ZERO`].
+    #[inline]
+    fn finite_or_zero(dh_u: Vec2, dh_v: Vec2) -> Self {
+        if dh_u.is_finite() && dh_v.is_finite() {
+            Self { dh_u, dh_v }
+        } else {
+            Self::ZERO
         }
     }
 

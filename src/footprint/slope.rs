@@ -9,6 +9,7 @@
 //! Every map is defined on the upper hemisphere `h_z > 0` (open disk `|p| < 1`, whole slope
 //! plane). Outside it the functions document a finite answer instead of a NaN.
 
+use super::super::vector;
 use super::{F, Vec2, Vec3};
 use crate::math as m;
 
@@ -37,22 +38,19 @@ pub fn sphere_from_slope(s: Vec2) -> Vec3 {
     let v = Vec3::new(-s.x, -s.y, 1.0);
     let len = m::sqrt(v.length_squared());
     if len.is_finite() {
-        v / len
+        return v / len;
+    }
+    // `1 + |s|^2` overflowed (huge or infinite `s`) or is NaN: the horizon direction of `s`,
+    // or of the signs of its infinite components.
+    let inf = |x: F| if x.is_infinite() { x.signum() } else { 0.0 };
+    let d = if s.is_finite() {
+        s
     } else {
-        let l = s.length();
-        if l.is_finite() && l > 0.0 {
-            Vec3::new(-s.x / l, -s.y / l, 0.0)
-        } else {
-            // Huge: rescale first; infinite components give the direction of their signs.
-            let d = if s.is_finite() {
-                s / s.abs().max_element()
-            } else {
-                let inf = |x: F| if x.is_infinite() { x.signum() } else { 0.0 };
-                Vec2::new(inf(s.x), inf(s.y))
-            };
-            let d = d / d.length();
-            Vec3::new(-d.x, -d.y, 0.0)
-        }
+        Vec2::new(inf(s.x), inf(s.y))
+    };
+    match vector::unit2(d) {
+        Some(d) if !s.is_nan() => Vec3::new(-d.x, -d.y, 0.0),
+        _ => Vec3::new(F::NAN, F::NAN, 0.0),
     }
 }
 
@@ -70,8 +68,9 @@ pub fn sphere_from_projected(p: Vec2) -> Vec3 {
     if r2 < 1.0 {
         Vec3::new(p.x, p.y, m::sqrt(1.0 - r2))
     } else {
-        // Rescale first so that a huge `p` does not overflow the length.
-        let q = (p / p.abs().max_element()).normalize_or_zero();
+        // Rescaled first so that a huge `p` does not overflow the length; NaN or infinite
+        // `p`: the zero direction at the horizon.
+        let q = vector::unit2(p).unwrap_or(Vec2::ZERO);
         Vec3::new(q.x, q.y, 0.0)
     }
 }

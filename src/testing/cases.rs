@@ -3,6 +3,7 @@
 //! the same numbers, so that a test can compare `f32` with `f64` on identical inputs and
 //! integrate the `f64` build against quadrature.
 
+use super::linalg::Sym2;
 use crate::RoughnessError;
 use alloc::boxed::Box;
 use proptest::prelude::*;
@@ -40,13 +41,7 @@ impl Form {
     /// The entries `(a11, a12, a22)` of `A` (computed in `f64`).
     pub fn entries(&self) -> (f64, f64, f64) {
         let (ax, ay, phi) = self.axes();
-        let (s, c) = phi.sin_cos();
-        let (l1, l2) = (ax * ax, ay * ay);
-        (
-            l1 * c * c + l2 * s * s,
-            (l1 - l2) * c * s,
-            l1 * s * s + l2 * c * c,
-        )
+        Sym2::from_eigen(ax * ax, ay * ay, phi).entries()
     }
 
     /// The eigen-frame widths and angle `(sqrt(l1), sqrt(l2), phi)` of `A`.
@@ -120,15 +115,11 @@ impl NdfCase {
             Form::AxisAligned(x, y) => Form::AxisAligned(r(x), r(y)),
             f @ Form::Rotated { .. } => {
                 let (a11, a12, a22) = f.entries();
-                let (a11, a12, a22) = (r(a11), r(a12), r(a22));
-                let half = 0.5 * (a11 - a22);
-                let rad = half.hypot(a12);
-                let l1 = 0.5 * (a11 + a22) + rad;
-                let l2 = (a11 * a22 - a12 * a12) / l1;
+                let e = Sym2::new(r(a11), r(a12), r(a22)).eigen();
                 Form::Rotated {
-                    alpha_x: l1.sqrt(),
-                    alpha_y: l2.max(0.0).sqrt(),
-                    phi: 0.5 * (2.0 * a12).atan2(a11 - a22),
+                    alpha_x: e.l1.sqrt(),
+                    alpha_y: e.l2.max(0.0).sqrt(),
+                    phi: e.theta,
                 }
             }
         };

@@ -53,6 +53,7 @@ pub mod box_reference;
 pub mod cases;
 pub mod fuzz;
 pub mod gaussian_reference;
+pub mod linalg;
 pub mod quadrature;
 pub mod rng;
 pub mod strategies;

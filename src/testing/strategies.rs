@@ -5,6 +5,7 @@
 //! the pole and the horizon weighted in, and slope-domain footprints from zero to large. All
 //! values are `f64` (the reference precision); cast for an `f32` port.
 
+use super::linalg::Sym2;
 use crate::f64::{AxisAligned, Footprint, Isotropic, RoughnessMatrix};
 use glam::{DVec2, DVec3};
 use proptest::prelude::*;
@@ -35,11 +36,7 @@ pub fn matrix() -> impl Strategy<Value = RoughnessMatrix> {
 /// `R(phi) diag(alpha_x^2, alpha_y^2) R(phi)^T` as a checked [`RoughnessMatrix`] (clamped
 /// into the supported range if rounding pushes an eigenvalue out of it).
 pub fn rotated(alpha: DVec2, phi: f64) -> RoughnessMatrix {
-    let (s, c) = phi.sin_cos();
-    let (l1, l2) = (alpha.x * alpha.x, alpha.y * alpha.y);
-    let a11 = c * c * l1 + s * s * l2;
-    let a22 = s * s * l1 + c * c * l2;
-    let a12 = c * s * (l1 - l2);
+    let (a11, a12, a22) = Sym2::from_eigen(alpha.x * alpha.x, alpha.y * alpha.y, phi).entries();
     RoughnessMatrix::new(a11, a12, a22)
         .unwrap_or_else(|_| AxisAligned::new_clamped(alpha.x, alpha.y).into())
 }

@@ -1,7 +1,9 @@
-//! The symmetric square root of a roughness matrix and its inverse, by a test-side
-//! eigen-decomposition (independent of the library's own), shared by the sampling tests.
+//! The symmetric square root of a roughness matrix and its inverse, by the test side's own
+//! eigen-decomposition (`filtered_ndf::testing::linalg`, independent of the library's),
+//! shared by the sampling tests.
 
 use filtered_ndf::f64::Roughness;
+use filtered_ndf::testing::linalg::Sym2;
 use glam::DVec2;
 
 /// `B = A^(1/2)`, `B^-1` (both symmetric) and `sqrt(det A)` of a roughness matrix `A`.
@@ -14,21 +16,12 @@ pub struct Whitening {
 impl Whitening {
     pub fn new<R: Roughness>(r: &R) -> Self {
         let (a11, a12, a22) = r.to_matrix().entries();
-        let mean = 0.5 * (a11 + a22);
-        let rad = (0.5 * (a11 - a22)).hypot(a12);
-        let (l1, l2) = (mean + rad, (a11 * a22 - a12 * a12) / (mean + rad));
-        let theta = 0.5 * (2.0 * a12).atan2(a11 - a22);
-        let (c, s) = (theta.cos(), theta.sin());
-        let sq = |f1: f64, f2: f64| {
-            [
-                [c * c * f1 + s * s * f2, c * s * (f1 - f2)],
-                [c * s * (f1 - f2), s * s * f1 + c * c * f2],
-            ]
-        };
+        let e = Sym2::new(a11, a12, a22).eigen();
+        let rows = |m: Sym2| [[m.a11, m.a12], [m.a12, m.a22]];
         Self {
-            b: sq(l1.sqrt(), l2.sqrt()),
-            b_inv: sq(1.0 / l1.sqrt(), 1.0 / l2.sqrt()),
-            sqrt_det: (l1 * l2).sqrt(),
+            b: rows(e.map(f64::sqrt)),
+            b_inv: rows(e.map(|l| 1.0 / l.sqrt())),
+            sqrt_det: (e.l1 * e.l2).sqrt(),
         }
     }
 

@@ -37,14 +37,10 @@ macro_rules! decoders {
                 Mat2::from_cols(x, v2(b))
             }
 
-            /// `v` scaled by its largest component and normalised, when finite and non-zero.
+            /// `v` normalised without overflow or underflow, when finite and non-zero
+            /// (the crate's one helper, `vector::unit`).
             pub(crate) fn unit(v: Vec3) -> Option<Vec3> {
-                let big = v.abs().max_element();
-                if !v.is_finite() || big <= 0.0 {
-                    return None;
-                }
-                let u = v / big;
-                Some(u / m_sqrt(u.length_squared()))
+                crate::$prec::vector::unit(v)
             }
 
             /// A vector decoded raw, normalised when the header bit says so (and possible).

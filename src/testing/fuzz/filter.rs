@@ -11,6 +11,8 @@ macro_rules! filter_prec {
             LeanMoments, Roughness, Vec2, filter,
         };
         use $d::{TOL, f, v2, v3};
+        use crate::math::Real;
+        use crate::testing::linalg::Sym2;
         let b: &mut Bytes<'_> = $b;
         let head = b.byte();
         let rough = $d::rough(b);
@@ -61,12 +63,6 @@ macro_rules! filter_prec {
                 && c.s22 >= 0.0
                 && c.s12 * c.s12 <= c.s11 * c.s22 + TOL * tr * tr + F::MIN_POSITIVE
         };
-        // Strictly PSD input (no underflow in the test).
-        let psd_in = |c: &Covariance| {
-            c.s11 >= 0.0
-                && c.s22 >= 0.0
-                && c.s12.abs() <= crate::math::sqrt(c.s11) * crate::math::sqrt(c.s22)
-        };
         // The kernel contract of `sanitized` and everything built on it, with eigenvalue bound.
         let kernel_ok = |c: &Covariance, bound: F, what: &str| {
             assert!(cov_fin(c) && psd(c), "{what}: {c:?} not finite PSD");
@@ -93,6 +89,12 @@ macro_rules! filter_prec {
                     assert!(fp_fin(&fu), "in_slope({hu:?}, {du:?}, {dv:?}) = {fu:?}");
                 }
             }
+        }
+        // Always finite (a non-finite result is `ZERO`); `ZERO` for a non-finite `h`.
+        let fh = Footprint::from_half_vector_derivatives(h, n_u, n_v);
+        assert!(fp_fin(&fh), "half_vector_derivatives({h:?}, {n_u:?}, {n_v:?}) = {fh:?}");
+        if !h.is_finite() || !(n_u.is_finite() && n_v.is_finite()) {
+            assert_eq!(fh, Footprint::ZERO, "half_vector_derivatives: non-finite input");
         }
         let fnd = Footprint::from_normal_differences(n_u, n_v);
         if !(n_u.is_finite() && n_v.is_finite()) {
@@ -125,18 +127,53 @@ macro_rules! filter_prec {
 
         // --- Covariance.
         let _ = (cov.trace(), cov.det());
+        // The test side's own f64 decomposition of the input, and the rounding a small
+        // eigenvalue inherits from `det` when computed as `det / lambda_big`:
+        // `eps (|s11 s22| + s12^2) / |lambda_big|` (its conditioning; `|lambda_big|` bounds
+        // every entry, so the quotients are at most 1).
+        let (ra, rb, rc) = (cov.s11.to_f64(), cov.s12.to_f64(), cov.s22.to_f64());
+        let e = Sym2::new(ra, rb, rc).eigen();
+        let big = e.l1.abs().max(e.l2.abs());
+        let det_err =
+            if big > 0.0 { ra.abs() * (rc.abs() / big) + rb.abs() * (rb.abs() / big) } else { 0.0 };
         let (lo, hi) = cov.eigenvalues();
         assert!(lo >= 0.0 && hi >= 0.0, "eigenvalues {lo:?} {hi:?} of {cov:?}");
         if cov_fin(&cov) && hi.is_finite() {
             assert!(lo <= hi * (1.0 + TOL) + F::MIN_POSITIVE, "eigenvalues {lo:?} > {hi:?}");
         }
+        if cov_fin(&cov) && e.l1 <= F::MAX.to_f64() {
+            // Both clamped to >= 0, each within a few ulps of the larger plus the small
+            // eigenvalue's conditioning.
+            let tol = TOL.to_f64() * (e.l1.max(0.0) + det_err) + 4.0 * F::MIN_POSITIVE.to_f64();
+            for (got, want) in [(lo, e.l2.max(0.0)), (hi, e.l1.max(0.0))] {
+                assert!(
+                    (got.to_f64() - want).abs() <= tol,
+                    "eigenvalues of {cov:?} = {lo:?} {hi:?}, reference {e:?}"
+                );
+            }
+        }
         let ce = cov.clamp_eigenvalues(maxv);
         if maxv.is_nan() || maxv < 0.0 || !cov_fin(&cov) {
             assert_eq!(ce, Covariance::ZERO, "clamp_eigenvalues({maxv:?}) of {cov:?}");
         } else {
+            // Every finite input, definite or not: PSD with eigenvalues <= max, and equal to
+            // `V clamp(Lambda, 0, min(max, F::MAX)) V^T` of the reference decomposition
+            // (documented: the bound is at most `F::MAX`). Tolerance: the result is
+            // `c_min I + (c_max - c_min) P_max` with `c_max - c_min` at most the eigenvalue
+            // gap, so the projector's rounding (relative to the gap) costs a few ulps of
+            // `c_max`; the clamp does not enlarge the small eigenvalue's conditioning. Hence
+            // `TOL (c_max + det_err)`, plus 4 `MIN_POSITIVE` for subnormal entries.
             assert!(cov_fin(&ce), "clamp_eigenvalues({maxv:?}) of {cov:?} = {ce:?}");
-            if psd_in(&cov) {
-                kernel_ok(&ce, maxv, "clamp_eigenvalues");
+            kernel_ok(&ce, maxv, "clamp_eigenvalues");
+            let mv = maxv.min(F::MAX).to_f64();
+            let want = e.map(|l| l.clamp(0.0, mv));
+            let tol = TOL.to_f64() * (e.l1.clamp(0.0, mv) + det_err)
+                + 4.0 * F::MIN_POSITIVE.to_f64();
+            for (got, want) in [(ce.s11, want.a11), (ce.s12, want.a12), (ce.s22, want.a22)] {
+                assert!(
+                    (got.to_f64() - want).abs() <= tol,
+                    "clamp_eigenvalues({maxv:?}) of {cov:?} = {ce:?}, reference {want:?}"
+                );
             }
         }
         let sa = cov.sanitized();
@@ -240,12 +277,17 @@ macro_rules! filter_prec {
 ///
 /// - `Footprint` constructors: `from_projected_derivatives_in_slope` is [`ZERO`] for a
 ///   non-finite `h`, NaN-free for finite input and finite for a unit `h` and disk
-///   derivatives `|dp| <= 2`; `from_normal_differences` / `from_world_normal_differences` are
+///   derivatives `|dp| <= 2`; `from_half_vector_derivatives` is always finite, [`ZERO`] for
+///   non-finite input; `from_normal_differences` / `from_world_normal_differences` are
 ///   always finite ([`ZERO`] for non-finite input); `bounding_rect` and `max_extent` are
 ///   `>= 0` and `max_extent` bounds both half-extents; `covariance` is PSD when finite.
-/// - `Covariance`: `eigenvalues` `>= 0`, `min <= max`; `clamp_eigenvalues(max)` is
+/// - `Covariance`: `eigenvalues` `>= 0`, `min <= max`, and for finite input within
+///   `TOL (lambda_max + det_err)` of the reference's (clamped to `>= 0`; `det_err` the
+///   conditioning of the small eigenvalue, see the code); `clamp_eigenvalues(max)` is
 ///   [`Covariance::ZERO`](crate::f64::Covariance::ZERO) for a NaN / negative `max` or a
-///   non-finite input, else finite and (for a PSD input) PSD with eigenvalues `<= max`;
+///   non-finite input, else finite, PSD with eigenvalues `<= max` for every input (also
+///   indefinite), and within `TOL c_max` of `V clamp(Lambda, 0, max) V^T` computed by
+///   [`crate::testing::linalg`];
 ///   `sanitized` is finite, PSD, eigenvalues `<= KERNEL_MAX`, `ZERO` for NaN,
 ///   `KERNEL_MAX I` for infinite entries.
 /// - `ClampRules` (default, `NONE`, `GDC2016` and arbitrary fields): `footprint` is `ZERO`
