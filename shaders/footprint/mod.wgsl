@@ -1,5 +1,6 @@
 #define_import_path filtered_ndf::footprint
 
+#import filtered_ndf::footprint::jacobian
 #import filtered_ndf::kernel::covariance as cov
 #import filtered_ndf::kernel::rect as bounding
 
@@ -34,26 +35,20 @@ fn from_projected_derivatives(dp_u: vec2<f32>, dp_v: vec2<f32>) -> Footprint {
 }
 
 /// The slope-domain footprint of disk derivatives at the half vector `h`:
-/// `dh = J(perp->par) dp` (TK19 supplement eq. 6) with `h` normalised and `h_z >= 1e-6`
-/// (written with `h_x^2 + h_z^2` for `1 - h_y^2`). A zero `h` gives a zero footprint.
+/// `dh = J(perp->par) dp` (TK19 supplement eq. 6, [`jacobian::projected_to_slope`]: `h`
+/// normalised, clamped to the horizon `h_z >= 1e-6` at constant azimuth). A zero `h` gives a
+/// zero footprint.
 fn from_projected_derivatives_in_slope(
-    h_in: vec3<f32>,
+    h: vec3<f32>,
     dp_u: vec2<f32>,
     dp_v: vec2<f32>,
 ) -> Footprint {
-    let big = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    let big = max(max(abs(h.x), abs(h.y)), abs(h.z));
     if big <= 0.0 {
         return Footprint(vec2<f32>(0.0), vec2<f32>(0.0));
     }
-    let h0 = h_in / big;
-    let h = h0 / length(h0);
-    let hz = max(h.z, 1e-6);
-    let k = -1.0 / (hz * hz * hz);
-    let j = mat2x2<f32>(
-        vec2<f32>(h.x * h.x + h.z * h.z, h.x * h.y),
-        vec2<f32>(h.x * h.y, h.y * h.y + h.z * h.z),
-    );
-    return Footprint(j * dp_u * k, j * dp_v * k);
+    let j = jacobian::projected_to_slope(h);
+    return Footprint(j * dp_u, j * dp_v);
 }
 
 /// The deferred footprint from normal differences to the neighbouring pixels (TK19 section

@@ -43,13 +43,6 @@ struct ndf_roughness_isotropic_Isotropic {
     float alpha;
     float inv_alpha_sq;
 };
-struct kernel_rect_BoundingRect {
-    vec2 half_extent;
-};
-struct footprint_Footprint {
-    vec2 dh_u;
-    vec2 dh_v;
-};
 struct footprint_jacobian_Polar {
     vec3 h;
     vec2 cs;
@@ -57,6 +50,13 @@ struct footprint_jacobian_Polar {
 struct footprint_jacobian_SphericalBasis {
     vec3 e_x;
     vec3 e_y;
+};
+struct kernel_rect_BoundingRect {
+    vec2 half_extent;
+};
+struct footprint_Footprint {
+    vec2 dh_u;
+    vec2 dh_v;
 };
 struct kernel_clamp_ClampRules {
     float max_extent;
@@ -110,8 +110,8 @@ const filter_deferred_KernelConvention filter_presets_THREE_JS = filter_deferred
 const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
 const float filter_rect_BIG = 1e18;
 const uint filter_rect_TIER_CLOSED = 0u;
-const float footprint_SIGMA_PIXEL = 0.5;
 const float footprint_jacobian_HZ_MIN = 1e-6;
+const float footprint_SIGMA_PIXEL = 0.5;
 const uint kernel_clamp_FLOOR_NONE = 0u;
 const uint kernel_clamp_FLOOR_CONSTANT = 1u;
 const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
@@ -622,9 +622,9 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_ro
 }
 
 float filter_proxy_effective_alpha(float alpha_7, float half_extent) {
-    float h_16 = abs(half_extent);
-    float _e3 = math_hypot(alpha_7, h_16);
-    float t_2 = ((_e3 > 0.0) ? (h_16 / _e3) : 0.0);
+    float h_17 = abs(half_extent);
+    float _e3 = math_hypot(alpha_7, h_17);
+    float t_2 = ((_e3 > 0.0) ? (h_17 / _e3) : 0.0);
     float _e9 = math_atan(t_2);
     float ratio = ((t_2 > 0.0) ? (t_2 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
@@ -1055,8 +1055,8 @@ float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_32, vec2 cen
     }
     vec2 a_19 = r_32.alpha;
     vec2 c_15 = clamp((center / a_19), vec2(-1e18), vec2(1e18));
-    vec2 h_17 = min((abs(half_extent_4) / a_19), vec2(1e18));
-    float _e30 = filter_rect_mean_f(c_15.x, c_15.y, h_17.x, h_17.y);
+    vec2 h_18 = min((abs(half_extent_4) / a_19), vec2(1e18));
+    float _e30 = filter_rect_mean_f(c_15.x, c_15.y, h_18.x, h_18.y);
     return max((_e30 * (math_INV_PI / (a_19.x * a_19.y))), 0.0);
 }
 
@@ -1115,63 +1115,14 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_34, ve
     return (_e109 ? v_6 : 0.0);
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_35, float sigma_2) {
-    vec2 w_16 = (r_35.half_extent * (2.0 * sigma_2));
-    vec2 v_7 = (w_16 * w_16);
-    return kernel_covariance_Covariance(v_7.x, 0.0, v_7.y, (v_7.x * v_7.y));
-}
-
-footprint_Footprint footprint_from_slope_derivatives(vec2 dh_u, vec2 dh_v) {
-    return footprint_Footprint(dh_u, dh_v);
-}
-
-footprint_Footprint footprint_from_projected_derivatives(vec2 dp_u, vec2 dp_v) {
-    return footprint_Footprint(dp_u, dp_v);
-}
-
-footprint_Footprint footprint_from_projected_derivatives_in_slope(vec3 h_in, vec2 dp_u_1, vec2 dp_v_1) {
+footprint_jacobian_Polar footprint_jacobian_polar(vec3 h_in) {
+    vec2 cs_1 = vec2(1.0, 0.0);
     float big_2 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
     if ((big_2 <= 0.0)) {
-        return footprint_Footprint(vec2(0.0), vec2(0.0));
-    }
-    vec3 h0_ = (h_in / vec3(big_2));
-    vec3 h_18 = (h0_ / vec3(length(h0_)));
-    float hz = max(h_18.z, 1e-6);
-    float k_14 = (-1.0 / ((hz * hz) * hz));
-    mat2x2 j = mat2x2(vec2(((h_18.x * h_18.x) + (h_18.z * h_18.z)), (h_18.x * h_18.y)), vec2((h_18.x * h_18.y), ((h_18.y * h_18.y) + (h_18.z * h_18.z))));
-    return footprint_Footprint(((j * dp_u_1) * k_14), ((j * dp_v_1) * k_14));
-}
-
-footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) {
-    float lu = max(length((vec3(0.0, 0.0, 2.0) + dn_u_4)), 1e-6);
-    float lv = max(length((vec3(0.0, 0.0, 2.0) + dn_v_4)), 1e-6);
-    return footprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
-}
-
-kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3) {
-    vec2 u_8 = fp.dh_u;
-    vec2 v_8 = fp.dh_v;
-    float s2_1 = (sigma_3 * sigma_3);
-    float cross_1 = (((u_8.x * v_8.y) - (u_8.y * v_8.x)) * s2_1);
-    return kernel_covariance_Covariance((((u_8.x * u_8.x) + (v_8.x * v_8.x)) * s2_1), (((u_8.x * u_8.y) + (v_8.x * v_8.y)) * s2_1), (((u_8.y * u_8.y) + (v_8.y * v_8.y)) * s2_1), (cross_1 * cross_1));
-}
-
-kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1) {
-    return kernel_rect_BoundingRect(((abs(fp_1.dh_u) + abs(fp_1.dh_v)) * 0.5));
-}
-
-float footprint_max_extent(footprint_Footprint fp_2) {
-    return (0.5 * max(length((fp_2.dh_u + fp_2.dh_v)), length((fp_2.dh_u - fp_2.dh_v))));
-}
-
-footprint_jacobian_Polar footprint_jacobian_polar(vec3 h_in_1) {
-    vec2 cs_1 = vec2(1.0, 0.0);
-    float big_3 = max(max(abs(h_in_1.x), abs(h_in_1.y)), abs(h_in_1.z));
-    if ((big_3 <= 0.0)) {
         return footprint_jacobian_Polar(vec3(0.0, 0.0, 1.0), vec2(1.0, 0.0));
     }
-    vec3 h0_1 = (h_in_1 / vec3(big_3));
-    vec3 h_19 = (h0_1 / vec3(length(h0_1)));
+    vec3 h0_ = (h_in / vec3(big_2));
+    vec3 h_19 = (h0_ / vec3(length(h0_)));
     float qs = max(abs(h_19.x), abs(h_19.y));
     if ((qs > 0.0)) {
         vec2 q_6 = (h_19.xy / vec2(qs));
@@ -1207,16 +1158,16 @@ mat2x2 footprint_jacobian_sphere_to_projected(vec3 h_7) {
     return mat2x2((_e1.h.z * _e1.cs), vec2(-(_e1.cs.y), _e1.cs.x));
 }
 
-mat2x2 footprint_jacobian_projected_to_slope(vec3 h_in_2) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
+mat2x2 footprint_jacobian_projected_to_slope(vec3 h_in_1) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
     vec3 h_20 = _e1.h;
-    float k_15 = (-1.0 / ((h_20.z * h_20.z) * h_20.z));
+    float k_14 = (-1.0 / ((h_20.z * h_20.z) * h_20.z));
     float xy = (h_20.x * h_20.y);
-    return mat2x2((vec2(((h_20.x * h_20.x) + (h_20.z * h_20.z)), xy) * k_15), (vec2(xy, ((h_20.y * h_20.y) + (h_20.z * h_20.z))) * k_15));
+    return mat2x2((vec2(((h_20.x * h_20.x) + (h_20.z * h_20.z)), xy) * k_14), (vec2(xy, ((h_20.y * h_20.y) + (h_20.z * h_20.z))) * k_14));
 }
 
-mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_3) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_3);
+mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_2) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
     vec3 h_21 = _e1.h;
     float xy_1 = (h_21.x * h_21.y);
     return mat2x2((vec2(((h_21.y * h_21.y) + (h_21.z * h_21.z)), -(xy_1)) * -(h_21.z)), (vec2(-(xy_1), ((h_21.x * h_21.x) + (h_21.z * h_21.z))) * -(h_21.z)));
@@ -1224,8 +1175,8 @@ mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_3) {
 
 mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_8) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float k_16 = (-1.0 / (_e1.h.z * _e1.h.z));
-    return mat2x2((_e1.cs * k_16), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_16));
+    float k_15 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return mat2x2((_e1.cs * k_15), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_15));
 }
 
 float footprint_jacobian_det_sphere_to_projected(vec3 h_9) {
@@ -1256,19 +1207,64 @@ vec2 footprint_jacobian_spherical_to_projected(vec3 h_13, vec2 e_1) {
     return (_e2 * e_1);
 }
 
-vec2 footprint_slope_slope_from_sphere(vec3 h_14) {
-    float z_4 = max(h_14.z, math_F32_MIN_POSITIVE);
-    return clamp((-(h_14.xy) / vec2(z_4)), vec2(-3.4028235e38), vec2(3.4028235e38));
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_35, float sigma_2) {
+    vec2 w_16 = (r_35.half_extent * (2.0 * sigma_2));
+    vec2 v_7 = (w_16 * w_16);
+    return kernel_covariance_Covariance(v_7.x, 0.0, v_7.y, (v_7.x * v_7.y));
+}
+
+footprint_Footprint footprint_from_slope_derivatives(vec2 dh_u, vec2 dh_v) {
+    return footprint_Footprint(dh_u, dh_v);
+}
+
+footprint_Footprint footprint_from_projected_derivatives(vec2 dp_u, vec2 dp_v) {
+    return footprint_Footprint(dp_u, dp_v);
+}
+
+footprint_Footprint footprint_from_projected_derivatives_in_slope(vec3 h_14, vec2 dp_u_1, vec2 dp_v_1) {
+    float big_3 = max(max(abs(h_14.x), abs(h_14.y)), abs(h_14.z));
+    if ((big_3 <= 0.0)) {
+        return footprint_Footprint(vec2(0.0), vec2(0.0));
+    }
+    mat2x2 _e18 = footprint_jacobian_projected_to_slope(h_14);
+    return footprint_Footprint((_e18 * dp_u_1), (_e18 * dp_v_1));
+}
+
+footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) {
+    float lu = max(length((vec3(0.0, 0.0, 2.0) + dn_u_4)), 1e-6);
+    float lv = max(length((vec3(0.0, 0.0, 2.0) + dn_v_4)), 1e-6);
+    return footprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
+}
+
+kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3) {
+    vec2 u_8 = fp.dh_u;
+    vec2 v_8 = fp.dh_v;
+    float s2_1 = (sigma_3 * sigma_3);
+    float cross_1 = (((u_8.x * v_8.y) - (u_8.y * v_8.x)) * s2_1);
+    return kernel_covariance_Covariance((((u_8.x * u_8.x) + (v_8.x * v_8.x)) * s2_1), (((u_8.x * u_8.y) + (v_8.x * v_8.y)) * s2_1), (((u_8.y * u_8.y) + (v_8.y * v_8.y)) * s2_1), (cross_1 * cross_1));
+}
+
+kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1) {
+    return kernel_rect_BoundingRect(((abs(fp_1.dh_u) + abs(fp_1.dh_v)) * 0.5));
+}
+
+float footprint_max_extent(footprint_Footprint fp_2) {
+    return (0.5 * max(length((fp_2.dh_u + fp_2.dh_v)), length((fp_2.dh_u - fp_2.dh_v))));
+}
+
+vec2 footprint_slope_slope_from_sphere(vec3 h_15) {
+    float z_4 = max(h_15.z, math_F32_MIN_POSITIVE);
+    return clamp((-(h_15.xy) / vec2(z_4)), vec2(-3.4028235e38), vec2(3.4028235e38));
 }
 
 vec3 footprint_slope_sphere_from_slope(vec2 s_7) {
-    float k_17 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
-    vec3 v_9 = vec3((-(s_7) / vec2(k_17)), (1.0 / k_17));
+    float k_16 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
+    vec3 v_9 = vec3((-(s_7) / vec2(k_16)), (1.0 / k_16));
     return (v_9 / vec3(length(v_9)));
 }
 
-vec2 footprint_slope_projected_from_sphere(vec3 h_15) {
-    return h_15.xy;
+vec2 footprint_slope_projected_from_sphere(vec3 h_16) {
+    return h_16.xy;
 }
 
 vec3 footprint_slope_sphere_from_projected(vec2 p) {
@@ -1360,9 +1356,9 @@ float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3) {
     bool local_9 = false;
     float z2_2 = (m_z_1 * m_z_1);
     float x_5 = (q_xy_1 / z2_2);
-    float k_18 = (1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2));
+    float k_17 = (1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_5, k_18, ln_k_1);
+    float _e21 = ndf_beckmann_exp_neg_times(x_5, k_17, ln_k_1);
     if ((m_z_1 > 0.0)) {
         local_9 = (_e21 <= math_F32_MAX);
     } else {
@@ -1414,8 +1410,8 @@ float ndf_beckmann_lambda_of(float q_3, float abs_wz_1) {
     float _e72 = p_2;
     p_2 = ((_e72 * t_6) + 1.0631379);
     float _e76 = p_2;
-    float k_19 = (_e76 / ((2.0 * a_21) + 1.0));
-    return min(((exp((-(a_21) * a_21)) * k_19) / ((3.5449078 * a_21) * (a_21 + k_19))), math_F32_MAX);
+    float k_18 = (_e76 / ((2.0 * a_21) + 1.0));
+    return min(((exp((-(a_21) * a_21)) * k_18) / ((3.5449078 * a_21) * (a_21 + k_18))), math_F32_MAX);
 }
 
 float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_37, vec2 s_9) {

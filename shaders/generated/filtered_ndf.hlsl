@@ -48,15 +48,6 @@ struct ndf_roughness_isotropic_Isotropic {
     float inv_alpha_sq;
 };
 
-struct kernel_rect_BoundingRect {
-    float2 half_extent;
-};
-
-struct footprint_Footprint {
-    float2 dh_u;
-    float2 dh_v;
-};
-
 struct footprint_jacobian_Polar {
     float3 h;
     int _pad1_0;
@@ -70,6 +61,15 @@ struct footprint_jacobian_SphericalBasis {
     int _pad1_0;
     float3 e_y;
     int _end_pad_0;
+};
+
+struct kernel_rect_BoundingRect {
+    float2 half_extent;
+};
+
+struct footprint_Footprint {
+    float2 dh_u;
+    float2 dh_v;
 };
 
 struct kernel_clamp_ClampRules {
@@ -150,8 +150,8 @@ static const filter_deferred_KernelConvention filter_presets_THREE_JS = Construc
 static const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
 static const float filter_rect_BIG = 1e18;
 static const uint filter_rect_TIER_CLOSED = 0u;
-static const float footprint_SIGMA_PIXEL = 0.5;
 static const float footprint_jacobian_HZ_MIN = 1e-6;
+static const float footprint_SIGMA_PIXEL = 0.5;
 static const uint kernel_clamp_FLOOR_NONE = 0u;
 static const uint kernel_clamp_FLOOR_CONSTANT = 1u;
 static const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
@@ -782,9 +782,9 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_ro
 
 float filter_proxy_effective_alpha(float alpha_7, float half_extent)
 {
-    float h_16 = abs(half_extent);
-    const float _e3 = math_hypot(alpha_7, h_16);
-    float t_2 = ((_e3 > 0.0) ? (h_16 / _e3) : 0.0);
+    float h_17 = abs(half_extent);
+    const float _e3 = math_hypot(alpha_7, h_17);
+    float t_2 = ((_e3 > 0.0) ? (h_17 / _e3) : 0.0);
     const float _e9 = math_atan(t_2);
     float ratio = ((t_2 > 0.0) ? (t_2 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
@@ -1287,8 +1287,8 @@ float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_32, float2 c
     }
     float2 a_19 = r_32.alpha;
     float2 c_15 = clamp((center_ / a_19), (-1e18).xx, (1e18).xx);
-    float2 h_17 = min((abs(half_extent_4) / a_19), (1e18).xx);
-    const float _e30 = filter_rect_mean_f(c_15.x, c_15.y, h_17.x, h_17.y);
+    float2 h_18 = min((abs(half_extent_4) / a_19), (1e18).xx);
+    const float _e30 = filter_rect_mean_f(c_15.x, c_15.y, h_18.x, h_18.y);
     return max((_e30 * (math_INV_PI / (a_19.x * a_19.y))), 0.0);
 }
 
@@ -1351,84 +1351,6 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_34, fl
     return (_e109 ? v_6 : 0.0);
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_35, float sigma_2)
-{
-    float2 w_16 = (r_35.half_extent * (2.0 * sigma_2));
-    float2 v_7 = (w_16 * w_16);
-    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_7.x, 0.0, v_7.y, (v_7.x * v_7.y));
-    return kernel_covariance_covariance_14;
-}
-
-footprint_Footprint Constructfootprint_Footprint(float2 arg0, float2 arg1) {
-    footprint_Footprint ret = (footprint_Footprint)0;
-    ret.dh_u = arg0;
-    ret.dh_v = arg1;
-    return ret;
-}
-
-footprint_Footprint footprint_from_slope_derivatives(float2 dh_u, float2 dh_v)
-{
-    const footprint_Footprint footprint_footprint = Constructfootprint_Footprint(dh_u, dh_v);
-    return footprint_footprint;
-}
-
-footprint_Footprint footprint_from_projected_derivatives(float2 dp_u, float2 dp_v)
-{
-    const footprint_Footprint footprint_footprint_1 = Constructfootprint_Footprint(dp_u, dp_v);
-    return footprint_footprint_1;
-}
-
-footprint_Footprint footprint_from_projected_derivatives_in_slope(float3 h_in, float2 dp_u_1, float2 dp_v_1)
-{
-    float big_2 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
-    if ((big_2 <= 0.0)) {
-        const footprint_Footprint footprint_footprint_2 = Constructfootprint_Footprint((0.0).xx, (0.0).xx);
-        return footprint_footprint_2;
-    }
-    float3 h0_ = (h_in / (big_2).xxx);
-    float3 h_18 = (h0_ / (length(h0_)).xxx);
-    float hz = max(h_18.z, 1e-6);
-    float k_14 = (-1.0 / ((hz * hz) * hz));
-    float2x2 j = float2x2(float2(((h_18.x * h_18.x) + (h_18.z * h_18.z)), (h_18.x * h_18.y)), float2((h_18.x * h_18.y), ((h_18.y * h_18.y) + (h_18.z * h_18.z))));
-    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint((mul(dp_u_1, j) * k_14), (mul(dp_v_1, j) * k_14));
-    return footprint_footprint_3;
-}
-
-footprint_Footprint footprint_from_normal_differences(float3 dn_u_4, float3 dn_v_4)
-{
-    float lu = max(length((float3(0.0, 0.0, 2.0) + dn_u_4)), 1e-6);
-    float lv = max(length((float3(0.0, 0.0, 2.0) + dn_v_4)), 1e-6);
-    const footprint_Footprint footprint_footprint_4 = Constructfootprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
-    return footprint_footprint_4;
-}
-
-kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3)
-{
-    float2 u_8 = fp.dh_u;
-    float2 v_8 = fp.dh_v;
-    float s2_1 = (sigma_3 * sigma_3);
-    float cross_1 = (((u_8.x * v_8.y) - (u_8.y * v_8.x)) * s2_1);
-    const kernel_covariance_Covariance kernel_covariance_covariance_15 = Constructkernel_covariance_Covariance((((u_8.x * u_8.x) + (v_8.x * v_8.x)) * s2_1), (((u_8.x * u_8.y) + (v_8.x * v_8.y)) * s2_1), (((u_8.y * u_8.y) + (v_8.y * v_8.y)) * s2_1), (cross_1 * cross_1));
-    return kernel_covariance_covariance_15;
-}
-
-kernel_rect_BoundingRect Constructkernel_rect_BoundingRect(float2 arg0) {
-    kernel_rect_BoundingRect ret = (kernel_rect_BoundingRect)0;
-    ret.half_extent = arg0;
-    return ret;
-}
-
-kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1)
-{
-    const kernel_rect_BoundingRect kernel_rect_boundingrect = Constructkernel_rect_BoundingRect(((abs(fp_1.dh_u) + abs(fp_1.dh_v)) * 0.5));
-    return kernel_rect_boundingrect;
-}
-
-float footprint_max_extent(footprint_Footprint fp_2)
-{
-    return (0.5 * max(length((fp_2.dh_u + fp_2.dh_v)), length((fp_2.dh_u - fp_2.dh_v))));
-}
-
 footprint_jacobian_Polar Constructfootprint_jacobian_Polar(float3 arg0, float2 arg1) {
     footprint_jacobian_Polar ret = (footprint_jacobian_Polar)0;
     ret.h = arg0;
@@ -1436,17 +1358,17 @@ footprint_jacobian_Polar Constructfootprint_jacobian_Polar(float3 arg0, float2 a
     return ret;
 }
 
-footprint_jacobian_Polar footprint_jacobian_polar(float3 h_in_1)
+footprint_jacobian_Polar footprint_jacobian_polar(float3 h_in)
 {
     float2 cs_1 = float2(1.0, 0.0);
 
-    float big_3 = max(max(abs(h_in_1.x), abs(h_in_1.y)), abs(h_in_1.z));
-    if ((big_3 <= 0.0)) {
+    float big_2 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if ((big_2 <= 0.0)) {
         const footprint_jacobian_Polar footprint_jacobian_polar_1 = Constructfootprint_jacobian_Polar(float3(0.0, 0.0, 1.0), float2(1.0, 0.0));
         return footprint_jacobian_polar_1;
     }
-    float3 h0_1 = (h_in_1 / (big_3).xxx);
-    float3 h_19 = (h0_1 / (length(h0_1)).xxx);
+    float3 h0_ = (h_in / (big_2).xxx);
+    float3 h_19 = (h0_ / (length(h0_)).xxx);
     float qs = max(abs(h_19.x), abs(h_19.y));
     if ((qs > 0.0)) {
         float2 q_6 = (h_19.xy / (qs).xx);
@@ -1496,18 +1418,18 @@ float2x2 footprint_jacobian_sphere_to_projected(float3 h_7)
     return float2x2((_e1.h.z * _e1.cs), float2(-(_e1.cs.y), _e1.cs.x));
 }
 
-float2x2 footprint_jacobian_projected_to_slope(float3 h_in_2)
+float2x2 footprint_jacobian_projected_to_slope(float3 h_in_1)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
     float3 h_20 = _e1.h;
-    float k_15 = (-1.0 / ((h_20.z * h_20.z) * h_20.z));
+    float k_14 = (-1.0 / ((h_20.z * h_20.z) * h_20.z));
     float xy = (h_20.x * h_20.y);
-    return float2x2((float2(((h_20.x * h_20.x) + (h_20.z * h_20.z)), xy) * k_15), (float2(xy, ((h_20.y * h_20.y) + (h_20.z * h_20.z))) * k_15));
+    return float2x2((float2(((h_20.x * h_20.x) + (h_20.z * h_20.z)), xy) * k_14), (float2(xy, ((h_20.y * h_20.y) + (h_20.z * h_20.z))) * k_14));
 }
 
-float2x2 footprint_jacobian_slope_to_projected(float3 h_in_3)
+float2x2 footprint_jacobian_slope_to_projected(float3 h_in_2)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_3);
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
     float3 h_21 = _e1.h;
     float xy_1 = (h_21.x * h_21.y);
     return float2x2((float2(((h_21.y * h_21.y) + (h_21.z * h_21.z)), -(xy_1)) * -(h_21.z)), (float2(-(xy_1), ((h_21.x * h_21.x) + (h_21.z * h_21.z))) * -(h_21.z)));
@@ -1516,8 +1438,8 @@ float2x2 footprint_jacobian_slope_to_projected(float3 h_in_3)
 float2x2 footprint_jacobian_sphere_to_slope(float3 h_8)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float k_16 = (-1.0 / (_e1.h.z * _e1.h.z));
-    return float2x2((_e1.cs * k_16), (float2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_16));
+    float k_15 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return float2x2((_e1.cs * k_15), (float2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_15));
 }
 
 float footprint_jacobian_det_sphere_to_projected(float3 h_9)
@@ -1553,22 +1475,96 @@ float2 footprint_jacobian_spherical_to_projected(float3 h_13, float2 e_1)
     return mul(e_1, _e2);
 }
 
-float2 footprint_slope_slope_from_sphere(float3 h_14)
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_35, float sigma_2)
 {
-    float z_4 = max(h_14.z, math_F32_MIN_POSITIVE);
-    return clamp((-(h_14.xy) / (z_4).xx), (-3.4028235e38).xx, (3.4028235e38).xx);
+    float2 w_16 = (r_35.half_extent * (2.0 * sigma_2));
+    float2 v_7 = (w_16 * w_16);
+    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_7.x, 0.0, v_7.y, (v_7.x * v_7.y));
+    return kernel_covariance_covariance_14;
+}
+
+footprint_Footprint Constructfootprint_Footprint(float2 arg0, float2 arg1) {
+    footprint_Footprint ret = (footprint_Footprint)0;
+    ret.dh_u = arg0;
+    ret.dh_v = arg1;
+    return ret;
+}
+
+footprint_Footprint footprint_from_slope_derivatives(float2 dh_u, float2 dh_v)
+{
+    const footprint_Footprint footprint_footprint = Constructfootprint_Footprint(dh_u, dh_v);
+    return footprint_footprint;
+}
+
+footprint_Footprint footprint_from_projected_derivatives(float2 dp_u, float2 dp_v)
+{
+    const footprint_Footprint footprint_footprint_1 = Constructfootprint_Footprint(dp_u, dp_v);
+    return footprint_footprint_1;
+}
+
+footprint_Footprint footprint_from_projected_derivatives_in_slope(float3 h_14, float2 dp_u_1, float2 dp_v_1)
+{
+    float big_3 = max(max(abs(h_14.x), abs(h_14.y)), abs(h_14.z));
+    if ((big_3 <= 0.0)) {
+        const footprint_Footprint footprint_footprint_2 = Constructfootprint_Footprint((0.0).xx, (0.0).xx);
+        return footprint_footprint_2;
+    }
+    const float2x2 _e18 = footprint_jacobian_projected_to_slope(h_14);
+    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint(mul(dp_u_1, _e18), mul(dp_v_1, _e18));
+    return footprint_footprint_3;
+}
+
+footprint_Footprint footprint_from_normal_differences(float3 dn_u_4, float3 dn_v_4)
+{
+    float lu = max(length((float3(0.0, 0.0, 2.0) + dn_u_4)), 1e-6);
+    float lv = max(length((float3(0.0, 0.0, 2.0) + dn_v_4)), 1e-6);
+    const footprint_Footprint footprint_footprint_4 = Constructfootprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
+    return footprint_footprint_4;
+}
+
+kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3)
+{
+    float2 u_8 = fp.dh_u;
+    float2 v_8 = fp.dh_v;
+    float s2_1 = (sigma_3 * sigma_3);
+    float cross_1 = (((u_8.x * v_8.y) - (u_8.y * v_8.x)) * s2_1);
+    const kernel_covariance_Covariance kernel_covariance_covariance_15 = Constructkernel_covariance_Covariance((((u_8.x * u_8.x) + (v_8.x * v_8.x)) * s2_1), (((u_8.x * u_8.y) + (v_8.x * v_8.y)) * s2_1), (((u_8.y * u_8.y) + (v_8.y * v_8.y)) * s2_1), (cross_1 * cross_1));
+    return kernel_covariance_covariance_15;
+}
+
+kernel_rect_BoundingRect Constructkernel_rect_BoundingRect(float2 arg0) {
+    kernel_rect_BoundingRect ret = (kernel_rect_BoundingRect)0;
+    ret.half_extent = arg0;
+    return ret;
+}
+
+kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1)
+{
+    const kernel_rect_BoundingRect kernel_rect_boundingrect = Constructkernel_rect_BoundingRect(((abs(fp_1.dh_u) + abs(fp_1.dh_v)) * 0.5));
+    return kernel_rect_boundingrect;
+}
+
+float footprint_max_extent(footprint_Footprint fp_2)
+{
+    return (0.5 * max(length((fp_2.dh_u + fp_2.dh_v)), length((fp_2.dh_u - fp_2.dh_v))));
+}
+
+float2 footprint_slope_slope_from_sphere(float3 h_15)
+{
+    float z_4 = max(h_15.z, math_F32_MIN_POSITIVE);
+    return clamp((-(h_15.xy) / (z_4).xx), (-3.4028235e38).xx, (3.4028235e38).xx);
 }
 
 float3 footprint_slope_sphere_from_slope(float2 s_7)
 {
-    float k_17 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
-    float3 v_9 = float3((-(s_7) / (k_17).xx), (1.0 / k_17));
+    float k_16 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
+    float3 v_9 = float3((-(s_7) / (k_16).xx), (1.0 / k_16));
     return (v_9 / (length(v_9)).xxx);
 }
 
-float2 footprint_slope_projected_from_sphere(float3 h_15)
+float2 footprint_slope_projected_from_sphere(float3 h_16)
 {
-    return h_15.xy;
+    return h_16.xy;
 }
 
 float3 footprint_slope_sphere_from_projected(float2 p)
@@ -1681,9 +1677,9 @@ float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3)
 
     float z2_2 = (m_z_1 * m_z_1);
     float x_5 = (q_xy_1 / z2_2);
-    float k_18 = (1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2));
+    float k_17 = (1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    const float _e21 = ndf_beckmann_exp_neg_times(x_5, k_18, ln_k_1);
+    const float _e21 = ndf_beckmann_exp_neg_times(x_5, k_17, ln_k_1);
     if ((m_z_1 > 0.0)) {
         local_9 = (_e21 <= math_F32_MAX);
     } else {
@@ -1737,8 +1733,8 @@ float ndf_beckmann_lambda_of(float q_3, float abs_wz_1)
     float _e72 = p_2;
     p_2 = ((_e72 * t_6) + 1.0631379);
     float _e76 = p_2;
-    float k_19 = (_e76 / ((2.0 * a_21) + 1.0));
-    return min(((exp((-(a_21) * a_21)) * k_19) / ((3.5449078 * a_21) * (a_21 + k_19))), math_F32_MAX);
+    float k_18 = (_e76 / ((2.0 * a_21) + 1.0));
+    return min(((exp((-(a_21) * a_21)) * k_18) / ((3.5449078 * a_21) * (a_21 + k_18))), math_F32_MAX);
 }
 
 float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_37, float2 s_9)

@@ -47,13 +47,6 @@ struct ndf_roughness_isotropic_Isotropic {
     float alpha;
     float inv_alpha_sq;
 };
-struct kernel_rect_BoundingRect {
-    metal::float2 half_extent;
-};
-struct footprint_Footprint {
-    metal::float2 dh_u;
-    metal::float2 dh_v;
-};
 struct footprint_jacobian_Polar {
     metal::float3 h;
     metal::float2 cs;
@@ -62,6 +55,13 @@ struct footprint_jacobian_Polar {
 struct footprint_jacobian_SphericalBasis {
     metal::float3 e_x;
     metal::float3 e_y;
+};
+struct kernel_rect_BoundingRect {
+    metal::float2 half_extent;
+};
+struct footprint_Footprint {
+    metal::float2 dh_u;
+    metal::float2 dh_v;
 };
 struct kernel_clamp_ClampRules {
     float max_extent;
@@ -116,8 +116,8 @@ constant filter_deferred_KernelConvention filter_presets_THREE_JS = filter_defer
 constant float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
 constant float filter_rect_BIG = 1000000000000000000.0;
 constant uint filter_rect_TIER_CLOSED = 0u;
-constant float footprint_SIGMA_PIXEL = 0.5;
 constant float footprint_jacobian_HZ_MIN = 0.000001;
+constant float footprint_SIGMA_PIXEL = 0.5;
 constant uint kernel_clamp_FLOOR_NONE = 0u;
 constant uint kernel_clamp_FLOOR_CONSTANT = 1u;
 constant uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
@@ -773,9 +773,9 @@ float filter_proxy_effective_alpha(
     float alpha_7,
     float half_extent
 ) {
-    float h_16 = metal::abs(half_extent);
-    float _e3 = math_hypot(alpha_7, h_16);
-    float t_2 = (_e3 > 0.0) ? (h_16 / _e3) : 0.0;
+    float h_17 = metal::abs(half_extent);
+    float _e3 = math_hypot(alpha_7, h_17);
+    float t_2 = (_e3 > 0.0) ? (h_17 / _e3) : 0.0;
     float _e9 = math_atan(t_2);
     float ratio = (t_2 > 0.0) ? (t_2 / _e9) : 1.0;
     return _e3 * metal::sqrt(ratio);
@@ -1363,8 +1363,8 @@ float filter_rect_p22_rect(
     }
     metal::float2 a_19 = r_32.alpha;
     metal::float2 c_15 = metal::clamp(center / a_19, metal::float2(-1000000000000000000.0), metal::float2(1000000000000000000.0));
-    metal::float2 h_17 = metal::min(metal::abs(half_extent_4) / a_19, metal::float2(1000000000000000000.0));
-    float _e30 = filter_rect_mean_f(c_15.x, c_15.y, h_17.x, h_17.y);
+    metal::float2 h_18 = metal::min(metal::abs(half_extent_4) / a_19, metal::float2(1000000000000000000.0));
+    float _e30 = filter_rect_mean_f(c_15.x, c_15.y, h_18.x, h_18.y);
     return metal::max(_e30 * (math_INV_PI / (r_32.alpha.x * r_32.alpha.y)), 0.0);
 }
 
@@ -1432,88 +1432,16 @@ float filter_rect_d_rect_printed(
     return _e109 ? v_6 : 0.0;
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(
-    kernel_rect_BoundingRect r_35,
-    float sigma_2
-) {
-    metal::float2 w_16 = r_35.half_extent * (2.0 * sigma_2);
-    metal::float2 v_7 = w_16 * w_16;
-    return kernel_covariance_Covariance {v_7.x, 0.0, v_7.y, v_7.x * v_7.y};
-}
-
-footprint_Footprint footprint_from_slope_derivatives(
-    metal::float2 dh_u,
-    metal::float2 dh_v
-) {
-    return footprint_Footprint {dh_u, dh_v};
-}
-
-footprint_Footprint footprint_from_projected_derivatives(
-    metal::float2 dp_u,
-    metal::float2 dp_v
-) {
-    return footprint_Footprint {dp_u, dp_v};
-}
-
-footprint_Footprint footprint_from_projected_derivatives_in_slope(
-    metal::float3 h_in,
-    metal::float2 dp_u_1,
-    metal::float2 dp_v_1
-) {
-    float big_2 = metal::max(metal::max(metal::abs(h_in.x), metal::abs(h_in.y)), metal::abs(h_in.z));
-    if (big_2 <= 0.0) {
-        return footprint_Footprint {metal::float2(0.0), metal::float2(0.0)};
-    }
-    metal::float3 h0_ = h_in / metal::float3(big_2);
-    metal::float3 h_18 = h0_ / metal::float3(metal::length(h0_));
-    float hz = metal::max(h_18.z, 0.000001);
-    float k_14 = -1.0 / ((hz * hz) * hz);
-    metal::float2x2 j = metal::float2x2(metal::float2((h_18.x * h_18.x) + (h_18.z * h_18.z), h_18.x * h_18.y), metal::float2(h_18.x * h_18.y, (h_18.y * h_18.y) + (h_18.z * h_18.z)));
-    return footprint_Footprint {(j * dp_u_1) * k_14, (j * dp_v_1) * k_14};
-}
-
-footprint_Footprint footprint_from_normal_differences(
-    metal::float3 dn_u_4,
-    metal::float3 dn_v_4
-) {
-    float lu = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_u_4), 0.000001);
-    float lv = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_v_4), 0.000001);
-    return footprint_Footprint {dn_u_4.xy * (2.0 / lu), dn_v_4.xy * (2.0 / lv)};
-}
-
-kernel_covariance_Covariance footprint_covariance(
-    footprint_Footprint fp,
-    float sigma_3
-) {
-    metal::float2 u_8 = fp.dh_u;
-    metal::float2 v_8 = fp.dh_v;
-    float s2_1 = sigma_3 * sigma_3;
-    float cross_1 = ((fp.dh_u.x * fp.dh_v.y) - (fp.dh_u.y * fp.dh_v.x)) * s2_1;
-    return kernel_covariance_Covariance {((fp.dh_u.x * fp.dh_u.x) + (fp.dh_v.x * fp.dh_v.x)) * s2_1, ((fp.dh_u.x * fp.dh_u.y) + (fp.dh_v.x * fp.dh_v.y)) * s2_1, ((fp.dh_u.y * fp.dh_u.y) + (fp.dh_v.y * fp.dh_v.y)) * s2_1, cross_1 * cross_1};
-}
-
-kernel_rect_BoundingRect footprint_bounding_rect(
-    footprint_Footprint fp_1
-) {
-    return kernel_rect_BoundingRect {(metal::abs(fp_1.dh_u) + metal::abs(fp_1.dh_v)) * 0.5};
-}
-
-float footprint_max_extent(
-    footprint_Footprint fp_2
-) {
-    return 0.5 * metal::max(metal::length(fp_2.dh_u + fp_2.dh_v), metal::length(fp_2.dh_u - fp_2.dh_v));
-}
-
 footprint_jacobian_Polar footprint_jacobian_polar(
-    metal::float3 h_in_1
+    metal::float3 h_in
 ) {
     metal::float2 cs_1 = metal::float2(1.0, 0.0);
-    float big_3 = metal::max(metal::max(metal::abs(h_in_1.x), metal::abs(h_in_1.y)), metal::abs(h_in_1.z));
-    if (big_3 <= 0.0) {
+    float big_2 = metal::max(metal::max(metal::abs(h_in.x), metal::abs(h_in.y)), metal::abs(h_in.z));
+    if (big_2 <= 0.0) {
         return footprint_jacobian_Polar {metal::float3(0.0, 0.0, 1.0), metal::float2(1.0, 0.0)};
     }
-    metal::float3 h0_1 = h_in_1 / metal::float3(big_3);
-    metal::float3 h_19 = h0_1 / metal::float3(metal::length(h0_1));
+    metal::float3 h0_ = h_in / metal::float3(big_2);
+    metal::float3 h_19 = h0_ / metal::float3(metal::length(h0_));
     float qs = metal::max(metal::abs(h_19.x), metal::abs(h_19.y));
     if (qs > 0.0) {
         metal::float2 q_6 = h_19.xy / metal::float2(qs);
@@ -1559,19 +1487,19 @@ metal::float2x2 footprint_jacobian_sphere_to_projected(
 }
 
 metal::float2x2 footprint_jacobian_projected_to_slope(
-    metal::float3 h_in_2
+    metal::float3 h_in_1
 ) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
     metal::float3 h_20 = _e1.h;
-    float k_15 = -1.0 / ((_e1.h.z * _e1.h.z) * _e1.h.z);
+    float k_14 = -1.0 / ((_e1.h.z * _e1.h.z) * _e1.h.z);
     float xy = _e1.h.x * _e1.h.y;
-    return metal::float2x2(metal::float2((_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z), xy) * k_15, metal::float2(xy, (_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z)) * k_15);
+    return metal::float2x2(metal::float2((_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z), xy) * k_14, metal::float2(xy, (_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z)) * k_14);
 }
 
 metal::float2x2 footprint_jacobian_slope_to_projected(
-    metal::float3 h_in_3
+    metal::float3 h_in_2
 ) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_3);
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
     metal::float3 h_21 = _e1.h;
     float xy_1 = _e1.h.x * _e1.h.y;
     return metal::float2x2(metal::float2((_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z), -(xy_1)) * -(_e1.h.z), metal::float2(-(xy_1), (_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z)) * -(_e1.h.z));
@@ -1581,8 +1509,8 @@ metal::float2x2 footprint_jacobian_sphere_to_slope(
     metal::float3 h_8
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float k_16 = -1.0 / (_e1.h.z * _e1.h.z);
-    return metal::float2x2(_e1.cs * k_16, metal::float2(-(_e1.h.z) * _e1.cs.y, _e1.h.z * _e1.cs.x) * k_16);
+    float k_15 = -1.0 / (_e1.h.z * _e1.h.z);
+    return metal::float2x2(_e1.cs * k_15, metal::float2(-(_e1.h.z) * _e1.cs.y, _e1.h.z * _e1.cs.x) * k_15);
 }
 
 float footprint_jacobian_det_sphere_to_projected(
@@ -1625,25 +1553,93 @@ metal::float2 footprint_jacobian_spherical_to_projected(
     return _e2 * e_1;
 }
 
-metal::float2 footprint_slope_slope_from_sphere(
-    metal::float3 h_14
+kernel_covariance_Covariance kernel_rect_covariance(
+    kernel_rect_BoundingRect r_35,
+    float sigma_2
 ) {
-    float z_4 = metal::max(h_14.z, math_F32_MIN_POSITIVE);
-    return metal::clamp(-(h_14.xy) / metal::float2(z_4), metal::float2(-340282350000000000000000000000000000000.0), metal::float2(340282350000000000000000000000000000000.0));
+    metal::float2 w_16 = r_35.half_extent * (2.0 * sigma_2);
+    metal::float2 v_7 = w_16 * w_16;
+    return kernel_covariance_Covariance {v_7.x, 0.0, v_7.y, v_7.x * v_7.y};
+}
+
+footprint_Footprint footprint_from_slope_derivatives(
+    metal::float2 dh_u,
+    metal::float2 dh_v
+) {
+    return footprint_Footprint {dh_u, dh_v};
+}
+
+footprint_Footprint footprint_from_projected_derivatives(
+    metal::float2 dp_u,
+    metal::float2 dp_v
+) {
+    return footprint_Footprint {dp_u, dp_v};
+}
+
+footprint_Footprint footprint_from_projected_derivatives_in_slope(
+    metal::float3 h_14,
+    metal::float2 dp_u_1,
+    metal::float2 dp_v_1
+) {
+    float big_3 = metal::max(metal::max(metal::abs(h_14.x), metal::abs(h_14.y)), metal::abs(h_14.z));
+    if (big_3 <= 0.0) {
+        return footprint_Footprint {metal::float2(0.0), metal::float2(0.0)};
+    }
+    metal::float2x2 _e18 = footprint_jacobian_projected_to_slope(h_14);
+    return footprint_Footprint {_e18 * dp_u_1, _e18 * dp_v_1};
+}
+
+footprint_Footprint footprint_from_normal_differences(
+    metal::float3 dn_u_4,
+    metal::float3 dn_v_4
+) {
+    float lu = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_u_4), 0.000001);
+    float lv = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_v_4), 0.000001);
+    return footprint_Footprint {dn_u_4.xy * (2.0 / lu), dn_v_4.xy * (2.0 / lv)};
+}
+
+kernel_covariance_Covariance footprint_covariance(
+    footprint_Footprint fp,
+    float sigma_3
+) {
+    metal::float2 u_8 = fp.dh_u;
+    metal::float2 v_8 = fp.dh_v;
+    float s2_1 = sigma_3 * sigma_3;
+    float cross_1 = ((fp.dh_u.x * fp.dh_v.y) - (fp.dh_u.y * fp.dh_v.x)) * s2_1;
+    return kernel_covariance_Covariance {((fp.dh_u.x * fp.dh_u.x) + (fp.dh_v.x * fp.dh_v.x)) * s2_1, ((fp.dh_u.x * fp.dh_u.y) + (fp.dh_v.x * fp.dh_v.y)) * s2_1, ((fp.dh_u.y * fp.dh_u.y) + (fp.dh_v.y * fp.dh_v.y)) * s2_1, cross_1 * cross_1};
+}
+
+kernel_rect_BoundingRect footprint_bounding_rect(
+    footprint_Footprint fp_1
+) {
+    return kernel_rect_BoundingRect {(metal::abs(fp_1.dh_u) + metal::abs(fp_1.dh_v)) * 0.5};
+}
+
+float footprint_max_extent(
+    footprint_Footprint fp_2
+) {
+    return 0.5 * metal::max(metal::length(fp_2.dh_u + fp_2.dh_v), metal::length(fp_2.dh_u - fp_2.dh_v));
+}
+
+metal::float2 footprint_slope_slope_from_sphere(
+    metal::float3 h_15
+) {
+    float z_4 = metal::max(h_15.z, math_F32_MIN_POSITIVE);
+    return metal::clamp(-(h_15.xy) / metal::float2(z_4), metal::float2(-340282350000000000000000000000000000000.0), metal::float2(340282350000000000000000000000000000000.0));
 }
 
 metal::float3 footprint_slope_sphere_from_slope(
     metal::float2 s_7
 ) {
-    float k_17 = metal::max(metal::max(metal::abs(s_7.x), metal::abs(s_7.y)), 1.0);
-    metal::float3 v_9 = metal::float3(-(s_7) / metal::float2(k_17), 1.0 / k_17);
+    float k_16 = metal::max(metal::max(metal::abs(s_7.x), metal::abs(s_7.y)), 1.0);
+    metal::float3 v_9 = metal::float3(-(s_7) / metal::float2(k_16), 1.0 / k_16);
     return v_9 / metal::float3(metal::length(v_9));
 }
 
 metal::float2 footprint_slope_projected_from_sphere(
-    metal::float3 h_15
+    metal::float3 h_16
 ) {
-    return h_15.xy;
+    return h_16.xy;
 }
 
 metal::float3 footprint_slope_sphere_from_projected(
@@ -1770,9 +1766,9 @@ float ndf_beckmann_d_of(
     bool local_9 = {};
     float z2_2 = m_z_1 * m_z_1;
     float x_5 = q_xy_1 / z2_2;
-    float k_18 = 1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2);
+    float k_17 = 1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2);
     float ln_k_1 = -((metal::log(math_PI * sqrt_det_3) + (4.0 * metal::log(metal::max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_5, k_18, ln_k_1);
+    float _e21 = ndf_beckmann_exp_neg_times(x_5, k_17, ln_k_1);
     if (m_z_1 > 0.0) {
         local_9 = _e21 <= math_F32_MAX;
     } else {
@@ -1827,8 +1823,8 @@ float ndf_beckmann_lambda_of(
     float _e72 = p_2;
     p_2 = (_e72 * t_6) + 1.0631379;
     float _e76 = p_2;
-    float k_19 = _e76 / ((2.0 * a_21) + 1.0);
-    return metal::min((metal::exp(-(a_21) * a_21) * k_19) / ((3.5449078 * a_21) * (a_21 + k_19)), math_F32_MAX);
+    float k_18 = _e76 / ((2.0 * a_21) + 1.0);
+    return metal::min((metal::exp(-(a_21) * a_21) * k_18) / ((3.5449078 * a_21) * (a_21 + k_18)), math_F32_MAX);
 }
 
 float ndf_beckmann_p22_isotropic(

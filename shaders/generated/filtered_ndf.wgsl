@@ -1425,117 +1425,6 @@ fn filter_rect_d_rect_printed(r: ndf_roughness_axis_aligned_AxisAligned, hpp: ve
     return select(0.0, v, abs(v) <= math_F32_MAX && den != 0.0);
 }
 
-// ---- filtered_ndf::kernel::rect (shaders/kernel/rect.wgsl) ----
-// The axis-aligned slope-domain rectangle of KHPL16 section 5.3 (the `footprint` of the
-// GDC 2016 `GGXRectIntegral`), mirroring `BoundingRect` of `src/.../kernel/rect.rs`.
-
-/// A rectangle centred on the half vector's slope, by its half-extents (slope units, `>= 0`).
-/// It bounds the one-pixel parallelogram: `half_extent = (|dh_u| + |dh_v|) / 2`.
-struct kernel_rect_BoundingRect {
-    /// Half-extents along the tangent `x` and bitangent `y`.
-    half_extent: vec2<f32>,
-}
-
-/// The Gaussian-equivalent diagonal covariance `diag((2 sigma h_x)^2, (2 sigma h_y)^2)`
-/// (`sigma` in pixels; GDC 2016 Beckmann listing `rghns_sq += fp * fp * 2`, TK19 Listing 3).
-fn kernel_rect_covariance(r: kernel_rect_BoundingRect, sigma: f32) -> kernel_covariance_Covariance {
-    let w = r.half_extent * (2.0 * sigma);
-    let v = w * w;
-    return kernel_covariance_Covariance(v.x, 0.0, v.y, v.x * v.y);
-}
-
-// ---- filtered_ndf::footprint (shaders/footprint/mod.wgsl) ----
-// Pixel footprints in the slope domain (KHPL16 sections 4.2, 4.3; TK19 section 2.2),
-// mirroring `Footprint` of `src/.../footprint/mod.rs`: the slope change of the half vector
-// across one pixel step in `x` (`dh_u`) and in `y` (`dh_v`). A Gaussian pixel filter of
-// standard deviation `sigma` pixels carried into the slope domain has covariance
-// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`.
-
-/// The standard deviation of the pixel filter of KHPL16 and TK19, in pixels.
-const footprint_SIGMA_PIXEL: f32 = 0.5;
-
-/// A slope-domain pixel footprint.
-struct footprint_Footprint {
-    /// Slope change per pixel step along the image `x` axis.
-    dh_u: vec2<f32>,
-    /// Slope change per pixel step along the image `y` axis.
-    dh_v: vec2<f32>,
-}
-
-/// From slope-domain derivatives, e.g. `dpdx`/`dpdy` of the slope of `h` (KHPL16 section
-/// 5.1).
-fn footprint_from_slope_derivatives(dh_u: vec2<f32>, dh_v: vec2<f32>) -> footprint_Footprint {
-    return footprint_Footprint(dh_u, dh_v);
-}
-
-/// From derivatives of the projected half vector `p = h_xy` (TK19 section 3.2, Listing 1:
-/// `ddx(halfvectorTS.xy)`), used as slope changes directly, as TK19 does (no Jacobian: the
-/// bandwidth shrinks by `h_z` at grazing half vectors relative to the sphere).
-fn footprint_from_projected_derivatives(dp_u: vec2<f32>, dp_v: vec2<f32>) -> footprint_Footprint {
-    return footprint_Footprint(dp_u, dp_v);
-}
-
-/// The slope-domain footprint of disk derivatives at the half vector `h`:
-/// `dh = J(perp->par) dp` (TK19 supplement eq. 6) with `h` normalised and `h_z >= 1e-6`
-/// (written with `h_x^2 + h_z^2` for `1 - h_y^2`). A zero `h` gives a zero footprint.
-fn footprint_from_projected_derivatives_in_slope(
-    h_in: vec3<f32>,
-    dp_u: vec2<f32>,
-    dp_v: vec2<f32>,
-) -> footprint_Footprint {
-    let big = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
-    if big <= 0.0 {
-        return footprint_Footprint(vec2<f32>(0.0), vec2<f32>(0.0));
-    }
-    let h0 = h_in / big;
-    let h = h0 / length(h0);
-    let hz = max(h.z, 1e-6);
-    let k = -1.0 / (hz * hz * hz);
-    let j = mat2x2<f32>(
-        vec2<f32>(h.x * h.x + h.z * h.z, h.x * h.y),
-        vec2<f32>(h.x * h.y, h.y * h.y + h.z * h.z),
-    );
-    return footprint_Footprint(j * dp_u * k, j * dp_v * k);
-}
-
-/// The deferred footprint from normal differences to the neighbouring pixels (TK19 section
-/// 4.4, eq. 3) in the tangent frame of the current normal: `2 (dn)_xy / |2 e_z + dn|` per
-/// difference (the derivative of the half-way normal on the disk, whose length is `|dn|`
-/// for unit normals), the denominator clamped to `>= 1e-6`.
-fn footprint_from_normal_differences(dn_u: vec3<f32>, dn_v: vec3<f32>) -> footprint_Footprint {
-    let lu = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_u), 1e-6);
-    let lv = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_v), 1e-6);
-    return footprint_Footprint(dn_u.xy * (2.0 / lu), dn_v.xy * (2.0 / lv));
-}
-
-/// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels, with
-/// `det Sigma = sigma^4 (dh_u x dh_v)^2` from the vectors (accurate for elongated kernels).
-fn footprint_covariance(fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
-    let u = fp.dh_u;
-    let v = fp.dh_v;
-    let s2 = sigma * sigma;
-    let cross = (u.x * v.y - u.y * v.x) * s2;
-    return kernel_covariance_Covariance(
-        (u.x * u.x + v.x * v.x) * s2,
-        (u.x * u.y + v.x * v.y) * s2,
-        (u.y * u.y + v.y * v.y) * s2,
-        cross * cross,
-    );
-}
-
-/// The axis-aligned bounding rectangle of the one-pixel parallelogram (KHPL16 section 5.3;
-/// GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
-/// `(|dh_u| + |dh_v|) / 2` per axis.
-fn footprint_bounding_rect(fp: footprint_Footprint) -> kernel_rect_BoundingRect {
-    return kernel_rect_BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
-}
-
-/// The largest centre-to-vertex distance of the one-pixel parallelogram,
-/// `max(|dh_u + dh_v|, |dh_u - dh_v|) / 2`: the extent clamped by KHPL16 section 5.2.
-fn footprint_max_extent(fp: footprint_Footprint) -> f32 {
-    return 0.5 * max(length(fp.dh_u + fp.dh_v), length(fp.dh_u - fp.dh_v));
-}
-
 // ---- filtered_ndf::footprint::jacobian (shaders/footprint/jacobian.wgsl) ----
 // Jacobians between the three half-vector domains (TK19 supplement section 2, eq. 1-7) and
 // the error propagation of TK19 section 3.1, mirroring `src/.../footprint/jacobian.rs`.
@@ -1679,6 +1568,111 @@ fn footprint_jacobian_spherical_to_slope(h: vec3<f32>, e: vec2<f32>) -> vec2<f32
 /// The same error mapped to the projected disk, `J(o->perp) eps` (TK19 section 3.2).
 fn footprint_jacobian_spherical_to_projected(h: vec3<f32>, e: vec2<f32>) -> vec2<f32> {
     return footprint_jacobian_sphere_to_projected(h) * e;
+}
+
+// ---- filtered_ndf::kernel::rect (shaders/kernel/rect.wgsl) ----
+// The axis-aligned slope-domain rectangle of KHPL16 section 5.3 (the `footprint` of the
+// GDC 2016 `GGXRectIntegral`), mirroring `BoundingRect` of `src/.../kernel/rect.rs`.
+
+/// A rectangle centred on the half vector's slope, by its half-extents (slope units, `>= 0`).
+/// It bounds the one-pixel parallelogram: `half_extent = (|dh_u| + |dh_v|) / 2`.
+struct kernel_rect_BoundingRect {
+    /// Half-extents along the tangent `x` and bitangent `y`.
+    half_extent: vec2<f32>,
+}
+
+/// The Gaussian-equivalent diagonal covariance `diag((2 sigma h_x)^2, (2 sigma h_y)^2)`
+/// (`sigma` in pixels; GDC 2016 Beckmann listing `rghns_sq += fp * fp * 2`, TK19 Listing 3).
+fn kernel_rect_covariance(r: kernel_rect_BoundingRect, sigma: f32) -> kernel_covariance_Covariance {
+    let w = r.half_extent * (2.0 * sigma);
+    let v = w * w;
+    return kernel_covariance_Covariance(v.x, 0.0, v.y, v.x * v.y);
+}
+
+// ---- filtered_ndf::footprint (shaders/footprint/mod.wgsl) ----
+// Pixel footprints in the slope domain (KHPL16 sections 4.2, 4.3; TK19 section 2.2),
+// mirroring `Footprint` of `src/.../footprint/mod.rs`: the slope change of the half vector
+// across one pixel step in `x` (`dh_u`) and in `y` (`dh_v`). A Gaussian pixel filter of
+// standard deviation `sigma` pixels carried into the slope domain has covariance
+// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`.
+
+/// The standard deviation of the pixel filter of KHPL16 and TK19, in pixels.
+const footprint_SIGMA_PIXEL: f32 = 0.5;
+
+/// A slope-domain pixel footprint.
+struct footprint_Footprint {
+    /// Slope change per pixel step along the image `x` axis.
+    dh_u: vec2<f32>,
+    /// Slope change per pixel step along the image `y` axis.
+    dh_v: vec2<f32>,
+}
+
+/// From slope-domain derivatives, e.g. `dpdx`/`dpdy` of the slope of `h` (KHPL16 section
+/// 5.1).
+fn footprint_from_slope_derivatives(dh_u: vec2<f32>, dh_v: vec2<f32>) -> footprint_Footprint {
+    return footprint_Footprint(dh_u, dh_v);
+}
+
+/// From derivatives of the projected half vector `p = h_xy` (TK19 section 3.2, Listing 1:
+/// `ddx(halfvectorTS.xy)`), used as slope changes directly, as TK19 does (no Jacobian: the
+/// bandwidth shrinks by `h_z` at grazing half vectors relative to the sphere).
+fn footprint_from_projected_derivatives(dp_u: vec2<f32>, dp_v: vec2<f32>) -> footprint_Footprint {
+    return footprint_Footprint(dp_u, dp_v);
+}
+
+/// The slope-domain footprint of disk derivatives at the half vector `h`:
+/// `dh = J(perp->par) dp` (TK19 supplement eq. 6, [`jacobian::projected_to_slope`]: `h`
+/// normalised, clamped to the horizon `h_z >= 1e-6` at constant azimuth). A zero `h` gives a
+/// zero footprint.
+fn footprint_from_projected_derivatives_in_slope(
+    h: vec3<f32>,
+    dp_u: vec2<f32>,
+    dp_v: vec2<f32>,
+) -> footprint_Footprint {
+    let big = max(max(abs(h.x), abs(h.y)), abs(h.z));
+    if big <= 0.0 {
+        return footprint_Footprint(vec2<f32>(0.0), vec2<f32>(0.0));
+    }
+    let j = footprint_jacobian_projected_to_slope(h);
+    return footprint_Footprint(j * dp_u, j * dp_v);
+}
+
+/// The deferred footprint from normal differences to the neighbouring pixels (TK19 section
+/// 4.4, eq. 3) in the tangent frame of the current normal: `2 (dn)_xy / |2 e_z + dn|` per
+/// difference (the derivative of the half-way normal on the disk, whose length is `|dn|`
+/// for unit normals), the denominator clamped to `>= 1e-6`.
+fn footprint_from_normal_differences(dn_u: vec3<f32>, dn_v: vec3<f32>) -> footprint_Footprint {
+    let lu = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_u), 1e-6);
+    let lv = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_v), 1e-6);
+    return footprint_Footprint(dn_u.xy * (2.0 / lu), dn_v.xy * (2.0 / lv));
+}
+
+/// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels, with
+/// `det Sigma = sigma^4 (dh_u x dh_v)^2` from the vectors (accurate for elongated kernels).
+fn footprint_covariance(fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
+    let u = fp.dh_u;
+    let v = fp.dh_v;
+    let s2 = sigma * sigma;
+    let cross = (u.x * v.y - u.y * v.x) * s2;
+    return kernel_covariance_Covariance(
+        (u.x * u.x + v.x * v.x) * s2,
+        (u.x * u.y + v.x * v.y) * s2,
+        (u.y * u.y + v.y * v.y) * s2,
+        cross * cross,
+    );
+}
+
+/// The axis-aligned bounding rectangle of the one-pixel parallelogram (KHPL16 section 5.3;
+/// GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
+/// `(|dh_u| + |dh_v|) / 2` per axis.
+fn footprint_bounding_rect(fp: footprint_Footprint) -> kernel_rect_BoundingRect {
+    return kernel_rect_BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
+}
+
+/// The largest centre-to-vertex distance of the one-pixel parallelogram,
+/// `max(|dh_u + dh_v|, |dh_u - dh_v|) / 2`: the extent clamped by KHPL16 section 5.2.
+fn footprint_max_extent(fp: footprint_Footprint) -> f32 {
+    return 0.5 * max(length(fp.dh_u + fp.dh_v), length(fp.dh_u - fp.dh_v));
 }
 
 // ---- filtered_ndf::footprint::slope (shaders/footprint/slope.wgsl) ----
