@@ -245,3 +245,52 @@ fn zero_footprint_gives_the_unfiltered_lobe() {
     let ub = b.d(h);
     assert!((b.filtered(fp, Gaussian::TK19).d(h) - ub).abs() <= 1e-14 * ub);
 }
+
+#[test]
+fn front_door_never_returns_nan_for_bad_footprints() {
+    // The contract (src/contract.rs): whatever the footprint (NaN, infinite, huge, zero,
+    // degenerate), every method gives a lobe whose evaluations at finite arguments are finite
+    // and non-negative, and whose Lambda is non-negative (possibly +inf at grazing).
+    const NAN: f64 = f64::NAN;
+    const INF: f64 = f64::INFINITY;
+    let footprints = [
+        Footprint::ZERO,
+        Footprint::from_slope_derivatives(Vec2::new(NAN, 0.0), Vec2::ZERO),
+        Footprint::from_slope_derivatives(Vec2::new(INF, 0.0), Vec2::new(0.0, -INF)),
+        Footprint::from_slope_derivatives(Vec2::new(1e300, 1e300), Vec2::new(-1e300, 1e300)),
+        Footprint::from_slope_derivatives(Vec2::new(1e-300, 0.0), Vec2::new(1e-300, 0.0)),
+        Footprint::from_slope_derivatives(Vec2::new(3.0, 1.0), Vec2::new(6.0, 2.0)),
+    ];
+    let dirs = [
+        Vec3::Z,
+        unit(0.3, -0.2),
+        unit(1e3, 1.0),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.0, -1.0),
+    ];
+    let check = |what: &str, d: f64, l: f64| {
+        assert!(d.is_finite() && d >= 0.0, "{what}: d = {d}");
+        assert!(!l.is_nan() && l >= 0.0, "{what}: lambda = {l}");
+    };
+    for fp in footprints {
+        for alpha in [1e-4, 0.3] {
+            let iso = Isotropic::new(alpha).unwrap();
+            let ggx = Ggx::new(iso);
+            let beck = Beckmann::new(iso);
+            for h in dirs {
+                let l = ggx.filtered(fp, Gaussian::TK19);
+                check("gaussian ggx", l.d(h), l.lambda(h));
+                let l = beck.filtered(fp, Gaussian::TK19);
+                check("gaussian beckmann", l.d(h), l.lambda(h));
+                let l = ggx.filtered(fp, ExactGaussian::KHPL16);
+                check("exact ggx", l.d(h), l.lambda(h));
+                let l = ggx.filtered(fp, Projected::TK21);
+                check("projected", l.d(h), l.lambda(h));
+                let l = ggx.filtered(fp, Rect::KHPL16);
+                check("rect", l.d(h), l.lambda(h));
+                let l = ggx.filtered(fp, Proxy::KHPL16);
+                check("proxy", l.d(h), l.lambda(h));
+            }
+        }
+    }
+}

@@ -12,8 +12,9 @@ use crate::math::Real;
 ///   `B = A / 2` (KHPL16 eq. 14); convolving with the kernel `N(0, Sigma)` adds covariances
 ///   (eq. 15, `B' = B + Sigma`), and the filtered lobe is Beckmann with `A' = 2 B'`.
 /// - **GGX: the TK19 (section 2.2) / KHPL16 approximation.** The GGX lobe is treated as if it
-///   were Gaussian; its error against the exact Gaussian-filtered GGX is measured in
-///   `tests/filter_ggx_error.rs`.
+///   were Gaussian. Against the exact Gaussian-filtered GGX ([`super::GaussianFilteredGgx`])
+///   its peak is bounded by `1 <= peak / exact peak <= e / (e - 1)` (Jensen on the mixture
+///   identity; `tests/filter_ggx_error.rs`); its errors are measured in the trade table.
 ///
 /// `tau = det(A)` has no bias in exact arithmetic since `det(A + 2 Sigma) >= det(A)` for
 /// `Sigma >= 0`; it is the determinant of the entries as stored, in `f64`

@@ -22,10 +22,9 @@
 //! | [`BABYLON`] (Vlachos 2015) | `p` | `max(|dn_u|^2, |dn_v|^2)^0.333` | 1 | max, no |
 //! | [`THREE_JS`] | `p` | `max abs component of dn_u, dn_v` | none | add, yes |
 
+use super::super::PI;
 use super::F;
 use super::deferred::{Combine, Domain, KernelConvention, Norm};
-
-const PI: F = core::f64::consts::PI as F;
 
 /// TK19 eq. 4 and Listing 2 (conservative, trace bandwidth):
 /// `alpha_bar^2 = saturate(alpha^2 + min(2 sigma^2 (|dn_u|^2 + |dn_v|^2), kappa))` with

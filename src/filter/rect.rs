@@ -503,7 +503,7 @@ pub fn d_rect(r: AxisAligned, h: Vec3, half_extent: Vec2) -> F {
 /// returned as `0`, so the crate's no-NaN contract holds.
 #[inline]
 pub fn d_rect_printed(r: AxisAligned, hpp: Vec2, h: Vec3, footprint: Vec2) -> F {
-    const PI: F = core::f64::consts::PI as F;
+    use super::super::PI;
     let alpha = r.alpha();
     let (a, b) = (alpha.x, alpha.y);
     let (a_2, b_2) = (a * a, b * b);

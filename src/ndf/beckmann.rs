@@ -1,13 +1,13 @@
 //! Beckmann in any roughness form (Beckmann and Spizzichino 1963; Heitz 2014 section 5.4;
 //! KHPL16 eq. 14: `A = 2 B` with `B` the slope covariance).
 
+use super::super::PI;
 use super::roughness::{AxisAligned, Isotropic, Roughness, RoughnessMatrix};
 use super::{F, Vec2, Vec3};
 use super::{Ndf, rescale_direction};
 use crate::error::RoughnessError;
 use crate::math::{self as m, Real};
 
-const PI: F = core::f64::consts::PI as F;
 /// `exp(-x)` is a normal float for `x` below this (`-ln(F::MIN_POSITIVE)` less one binade).
 const EXP_NORMAL_LIMIT: F = -(F::MIN_EXP as F) * core::f64::consts::LN_2 as F;
 

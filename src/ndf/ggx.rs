@@ -1,12 +1,11 @@
 //! GGX (Trowbridge-Reitz) in any roughness form (TK19 supplement section 1; Heitz 2014).
 
+use super::super::PI;
 use super::roughness::{AxisAligned, Isotropic, Roughness, RoughnessMatrix};
 use super::{F, Vec2, Vec3};
 use super::{Ndf, rescale_direction};
 use crate::error::RoughnessError;
 use crate::math as m;
-
-const PI: F = core::f64::consts::PI as F;
 
 /// The GGX / Trowbridge-Reitz distribution with roughness form `R`.
 ///

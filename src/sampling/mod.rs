@@ -50,12 +50,10 @@ use super::ndf::Ndf;
 use super::ndf::beckmann::Beckmann;
 use super::ndf::ggx::Ggx;
 use super::ndf::roughness::Roughness;
-use super::{F, Vec2, Vec3};
+use super::{F, PI, Vec2, Vec3};
 
 pub mod beckmann;
 use crate::math::{self as m, Real};
-
-const PI: F = core::f64::consts::PI as F;
 
 /// Largest float below 1: the upper clamp of the uniform numbers.
 const ONE_MINUS_EPS: F = 1.0 - 0.5 * F::EPSILON;
@@ -178,13 +176,11 @@ fn clamp_unit(u: F) -> F {
     if u >= 0.0 { u.min(ONE_MINUS_EPS) } else { 0.0 }
 }
 
-/// `v / |v|` computed after scaling by the largest component, so that neither the square of
-/// a huge nor of a tiny component leaves the float range. The caller guarantees a non-zero,
-/// finite `v`.
+/// `v / |v|` for a non-zero, finite `v` (the caller guarantees it) without over- or underflow
+/// ([`vector::unit`](super::vector::unit)).
 #[inline]
 fn normalize_scaled(v: Vec3) -> Vec3 {
-    let v = v / v.abs().max_element();
-    v / m::sqrt(v.length_squared())
+    super::vector::unit(v).unwrap_or(Vec3::Z)
 }
 
 /// The lower Cholesky factor `L = [[l11, 0], [l21, l22]]` of a roughness, `A = L L^T`.

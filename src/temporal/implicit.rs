@@ -13,8 +13,8 @@
 //! answer (zero rates, meaning "no temporal change") for degenerate input (zero gradient, ray
 //! tangent to the surface, NaN or infinite input).
 
+use super::super::vector;
 use super::{F, Vec3};
-use crate::math as m;
 
 /// A symmetric 3x3 matrix, e.g. a Hessian `D^2 phi` (units: `[phi] / L^2`) or a shape
 /// operator (units `1 / L`). Stored as its six distinct entries.
@@ -128,18 +128,6 @@ impl core::ops::Add for Sym3 {
     }
 }
 
-/// `|v|` computed with the largest component factored out, so that it neither overflows nor
-/// underflows for any finite `v`. `0` for a zero vector; non-finite for non-finite input.
-#[inline]
-fn norm(v: Vec3) -> F {
-    let scale = v.abs().max_element();
-    if scale == 0.0 || !scale.is_finite() {
-        return scale;
-    }
-    let u = v / scale;
-    m::sqrt(u.length_squared()) * scale
-}
-
 /// `v` if all its components are finite, else zero.
 #[inline]
 fn finite_or_zero(v: Vec3) -> Vec3 {
@@ -153,7 +141,7 @@ fn finite_or_zero(v: Vec3) -> Vec3 {
 /// `w`: returns zero.
 #[inline]
 pub fn project(v: Vec3, w: Vec3) -> Vec3 {
-    let n = norm(v);
+    let n = vector::length(v);
     if !(n > 0.0 && n.is_finite()) {
         return finite_or_zero(w);
     }
@@ -168,7 +156,7 @@ pub fn project(v: Vec3, w: Vec3) -> Vec3 {
 /// `v = 0` (no direction to differentiate) or non-finite input: returns zero.
 #[inline]
 pub fn d_normalized(v: Vec3, dv: Vec3) -> Vec3 {
-    let n = norm(v);
+    let n = vector::length(v);
     if !(n > 0.0 && n.is_finite()) {
         return Vec3::ZERO;
     }
@@ -195,14 +183,12 @@ impl LevelSetSample {
     /// non-finite gradient.
     #[inline]
     pub fn normal(&self) -> Vec3 {
-        let n = norm(self.grad);
-        if !(n > 0.0 && n.is_finite()) {
-            return Vec3::ZERO;
+        // `grad / |grad|` is not unit for a subnormal gradient (`|grad|` rounds to a few
+        // significant bits there; found by fuzzing): `vector::unit` scales first.
+        match vector::unit_and_length(self.grad) {
+            Some((u, n)) if n.is_finite() => finite_or_zero(u),
+            _ => Vec3::ZERO,
         }
-        // From the gradient scaled to unit size: `grad / n` is not unit for a subnormal
-        // gradient (`n` rounds to a few significant bits there; found by fuzzing).
-        let u = self.grad / self.grad.abs().max_element();
-        finite_or_zero(u / m::sqrt(u.length_squared()))
     }
 
     /// The partial time derivative of the normal at fixed `x` (Appendix A, eq. 27):
@@ -229,7 +215,7 @@ impl LevelSetSample {
     ///
     /// Zero for a zero gradient or non-finite input.
     pub fn shape_operator(&self) -> Sym3 {
-        let g = norm(self.grad);
+        let g = vector::length(self.grad);
         if !(g > 0.0 && g.is_finite() && self.hess.is_finite()) {
             return Sym3::ZERO;
         }
@@ -336,8 +322,8 @@ pub fn hit_normal_rate(sample: &LevelSetSample, ray: &MovingRay, s: F) -> Vec3 {
 /// |d|` with `eps` the precision's machine epsilon (a grazing hit, where `d_t s` diverges).
 pub fn hit_rates(sample: &LevelSetSample, ray: &MovingRay, s: F) -> HitRates {
     let g = sample.grad;
-    let gn = norm(g);
-    let dn = norm(ray.dir);
+    let gn = vector::length(g);
+    let dn = vector::length(ray.dir);
     let finite_input = s.is_finite()
         && sample.dphi_dt.is_finite()
         && sample.dgrad_dt.is_finite()
