@@ -1,16 +1,18 @@
 //! Batch (structure-of-arrays) evaluation against the scalar loop a caller would write, per
 //! core, on the seeded realistic inputs of `common`. Each iteration evaluates `N` elements;
-//! criterion reports the throughput in elements per second.
+//! criterion reports the throughput in elements per second. Every kernel is one group
+//! `batch_<kernel>/<precision>` with the pair `scalar_loop` and `batch`.
 //!
 //! Vectorisation check (see `filtered_ndf::f32::batch`): disassemble this binary
 //! (`objdump -d --no-show-raw-insn target/release/deps/batch-*`) and look for packed
-//! single-precision ops (`mulps`, `divps`, `addps`) in the `ggx_d` loops.
+//! single-precision ops (`mulps`, `divps`, `sqrtps`, `addps`) in the kernels' loops.
 
 #[path = "common/mod.rs"]
 mod common;
 
 use criterion::{BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
+use std::time::Duration;
 
 const N: usize = 4096;
 
@@ -44,6 +46,40 @@ macro_rules! family {
             dh_v_x: &vx,
             dh_v_y: &vy,
         };
+        // Views for Lambda and G2: the light direction of each case (its half vector
+        // reflected about a view direction seeded per case), in the upper hemisphere.
+        let mut rng = common::Rng(0x5EED);
+        let views: Vec<[f64; 3]> = (0..N)
+            .map(|_| {
+                let t = (89.0 * rng.uniform()).to_radians();
+                let p = std::f64::consts::TAU * rng.uniform();
+                [t.sin() * p.cos(), t.sin() * p.sin(), t.cos()]
+            })
+            .collect();
+        let (ox, oy, oz) = (
+            views.iter().map(|v| v[0] as $t).collect::<Vec<_>>(),
+            views.iter().map(|v| v[1] as $t).collect::<Vec<_>>(),
+            views.iter().map(|v| v[2] as $t).collect::<Vec<_>>(),
+        );
+        // i = reflect(o, h), flipped into the upper hemisphere.
+        let refl: Vec<[$t; 3]> = (0..N)
+            .map(|k| {
+                let (o, h) = (Vec3::new(ox[k], oy[k], oz[k]), Vec3::new(hx[k], hy[k], hz[k]));
+                let i = 2.0 * o.dot(h) * h - o;
+                let i = Vec3::new(i.x, i.y, i.z.abs()).normalize();
+                [i.x, i.y, i.z]
+            })
+            .collect();
+        let (ix, iy, iz) = (
+            refl.iter().map(|v| v[0]).collect::<Vec<_>>(),
+            refl.iter().map(|v| v[1]).collect::<Vec<_>>(),
+            refl.iter().map(|v| v[2]).collect::<Vec<_>>(),
+        );
+        let (vi, vo, vh) = (
+            batch::Vec3s::new(&ix, &iy, &iz),
+            batch::Vec3s::new(&ox, &oy, &oz),
+            batch::Vec3s::new(&hx, &hy, &hz),
+        );
         // One material for the whole batch (a baking pass over one texture or lobe).
         let iso = Isotropic::new(0.1 as $t).unwrap();
         let aa = AxisAligned::new(0.1 as $t, 0.3 as $t).unwrap();
@@ -54,9 +90,13 @@ macro_rules! family {
         fn group<'a>(c: &'a mut Criterion, name: &str) -> Wall<'a> {
             let mut g = c.benchmark_group(format!("batch_{}/{}", name, stringify!($prec)));
             g.throughput(Throughput::Elements(N as u64));
+            g.warm_up_time(Duration::from_millis(500));
+            g.measurement_time(Duration::from_secs(2));
             g
         }
         let h = |i: usize| Vec3::new(hx[i], hy[i], hz[i]);
+        let o = |i: usize| Vec3::new(ox[i], oy[i], oz[i]);
+        let li = |i: usize| Vec3::new(ix[i], iy[i], iz[i]);
 
         macro_rules! pair {
             ($name:expr, $scalar:expr, $batch:expr) => {{
@@ -78,26 +118,42 @@ macro_rules! family {
                 g.finish();
             }};
         }
-        pair!(
-            "ggx_d_isotropic",
-            |i| Ggx::new(iso).d(h(i)),
-            |o: &mut [$t]| batch::ggx_d(&iso, &hx, &hy, &hz, o)
-        );
-        pair!(
-            "ggx_d_axis_aligned",
-            |i| Ggx::new(aa).d(h(i)),
-            |o: &mut [$t]| batch::ggx_d(&aa, &hx, &hy, &hz, o)
-        );
-        pair!(
-            "ggx_d_matrix",
-            |i| Ggx::new(mat).d(h(i)),
-            |o: &mut [$t]| batch::ggx_d(&mat, &hx, &hy, &hz, o)
-        );
-        pair!(
-            "beckmann_d_axis_aligned",
-            |i| Beckmann::new(aa).d(h(i)),
-            |o: &mut [$t]| batch::beckmann_d(&aa, &hx, &hy, &hz, o)
-        );
+        macro_rules! forms {
+            ($ndf:ident, $form:expr, $r:expr) => {{
+                let r = $r;
+                let lobe = $ndf::new(r);
+                let name = stringify!($ndf).to_lowercase();
+                pair!(
+                    &format!("{name}_d_{}", $form),
+                    |i| lobe.d(h(i)),
+                    |o: &mut [$t]| batch_fn!($ndf, d)(&r, &hx, &hy, &hz, o)
+                );
+                pair!(
+                    &format!("{name}_lambda_{}", $form),
+                    |i| lobe.lambda(o(i)),
+                    |out: &mut [$t]| batch_fn!($ndf, lambda)(&r, &ox, &oy, &oz, out)
+                );
+                pair!(
+                    &format!("{name}_g2_{}", $form),
+                    |i| lobe.g2(li(i), o(i), h(i)),
+                    |out: &mut [$t]| batch_fn!($ndf, g2)(&r, vi, vo, vh, out)
+                );
+            }};
+        }
+        macro_rules! batch_fn {
+            (Ggx, d) => { batch::ggx_d };
+            (Ggx, lambda) => { batch::ggx_lambda };
+            (Ggx, g2) => { batch::ggx_g2 };
+            (Beckmann, d) => { batch::beckmann_d };
+            (Beckmann, lambda) => { batch::beckmann_lambda };
+            (Beckmann, g2) => { batch::beckmann_g2 };
+        }
+        forms!(Ggx, "isotropic", iso);
+        forms!(Ggx, "axis_aligned", aa);
+        forms!(Ggx, "matrix", mat);
+        forms!(Beckmann, "isotropic", iso);
+        forms!(Beckmann, "axis_aligned", aa);
+        forms!(Beckmann, "matrix", mat);
         pair!(
             "beckmann_d_filtered",
             |i: usize| Beckmann::new(rules.filter_gaussian(aa, fps[i], 0.5)).d(h(i)),

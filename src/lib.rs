@@ -74,7 +74,7 @@ macro_rules! precision_modules {
         // Each stage is deliberately loaded once per precision. The folders read as the
         // pipeline: roughness and NDFs -> footprints and Jacobians -> kernels and clamps ->
         // filters -> sampling, with the temporal extension and batch evaluation beside.
-        #[path = "batch.rs"]
+        #[path = "batch/mod.rs"]
         pub mod batch;
         #[path = "filter/mod.rs"]
         pub mod filter;

@@ -26,8 +26,27 @@ pub(super) const WIDE: bool = F::MANTISSA_DIGITS > 24;
 /// casts: LLVM vectorises it.
 #[inline(always)]
 fn exp_f32(x: f32) -> f32 {
-    const MAGIC: f32 = 12_582_912.0; // 1.5 * 2^23: adding it rounds to an integer.
-    const LN2_HI: f32 = 0.693_145_75; // 0x3f317200: n * LN2_HI is exact for |n| <= 256.
+    let (p, k) = exp_f32_reduced(x.clamp(-87.0, 88.0));
+    // The low bits of k hold n + 0x400000: (n + 127) << 23 is the bit pattern of 2^n.
+    let s = f32::from_bits(k.to_bits().wrapping_add(127) << 23);
+    // 0 below the range, by a bit mask (a branch or select here stops the vectoriser).
+    let keep = 0u32.wrapping_sub((x >= -87.0) as u32);
+    p * s * f32::from_bits(1f32.to_bits() & keep)
+}
+
+/// `1.5 * 2^23`: adding it to a float of magnitude below `2^22` rounds it to an integer, held
+/// in the low bits of the sum ([`exp_f32_reduced`]).
+pub(crate) const MAGIC_F32: f32 = 12_582_912.0;
+
+/// The range reduction and polynomial of [`exp_f32`], without its clamp: `(p, k)` with
+/// `e^x = p 2^n`, `n = round(x / ln 2)` held in `k = x log2(e) + MAGIC_F32` (its bits are
+/// `MAGIC_F32`'s plus `n`) and `p = e^r` by the polynomial, `r = x - n ln 2`. For
+/// `|x| <= 350` (`n ln2_hi` is exact for `|n| < 512`); the caller scales by `2^n` (also
+/// `batch`'s `exp(-x) k`, whose exponent leaves the normal range).
+#[inline(always)]
+pub(crate) fn exp_f32_reduced(xc: f32) -> (f32, f32) {
+    const MAGIC: f32 = MAGIC_F32;
+    const LN2_HI: f32 = 0.693_145_75; // 0x3f317200: n * LN2_HI is exact for |n| < 512.
     const LN2_LO: f32 = 1.428_606_8e-6;
     const C: [f32; 7] = [
         1.0,
@@ -38,17 +57,12 @@ fn exp_f32(x: f32) -> f32 {
         0.008_374_816,
         0.001_383_684_6,
     ];
-    let xc = x.clamp(-87.0, 88.0);
     let k = xc * core::f32::consts::LOG2_E + MAGIC;
     let n = k - MAGIC;
     let r = (xc - n * LN2_HI) - n * LN2_LO;
     let r2 = r * r;
     let p = (C[0] + C[1] * r + (C[2] + C[3] * r) * r2) + (C[4] + C[5] * r + C[6] * r2) * (r2 * r2);
-    // The low bits of k hold n + 0x400000: (n + 127) << 23 is the bit pattern of 2^n.
-    let s = f32::from_bits(k.to_bits().wrapping_add(127) << 23);
-    // 0 below the range, by a bit mask (a branch or select here stops the vectoriser).
-    let keep = 0u32.wrapping_sub((x >= -87.0) as u32);
-    p * s * f32::from_bits(1f32.to_bits() & keep)
+    (p, k)
 }
 
 /// `e^x` in `f64` for `x <= 709` (`0` below `-708`), as [`exp_f32`] with the relative minimax
@@ -56,7 +70,20 @@ fn exp_f32(x: f32) -> f32 {
 /// (unit test below), far inside the `f64` rules' budget.
 #[inline(always)]
 fn exp_f64(x: f64) -> f64 {
-    const MAGIC: f64 = 6_755_399_441_055_744.0; // 1.5 * 2^52.
+    let (p, k) = exp_f64_reduced(x.clamp(-708.0, 709.0));
+    let s = f64::from_bits(k.to_bits().wrapping_add(1023) << 52);
+    let keep = 0u64.wrapping_sub((x >= -708.0) as u64);
+    p * s * f64::from_bits(1f64.to_bits() & keep)
+}
+
+/// `1.5 * 2^52` ([`exp_f64_reduced`]).
+pub(crate) const MAGIC_F64: f64 = 6_755_399_441_055_744.0;
+
+/// [`exp_f32_reduced`] for [`exp_f64`]: `e^x = p 2^n`, `n` held in `k`, for `|x| <= 1e6`
+/// (`n ln2_hi` is exact for `|n| < 2^21`).
+#[inline(always)]
+pub(crate) fn exp_f64_reduced(xc: f64) -> (f64, f64) {
+    const MAGIC: f64 = MAGIC_F64;
     const LN2_HI: f64 = 0.693_147_180_369_123_8; // 0x3fe62e42fee00000.
     const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
     const C: [f64; 10] = [
@@ -71,7 +98,6 @@ fn exp_f64(x: f64) -> f64 {
         2.488_401_001_538_876_4e-5,
         2.748_218_700_193_312e-6,
     ];
-    let xc = x.clamp(-708.0, 709.0);
     let k = xc * core::f64::consts::LOG2_E + MAGIC;
     let n = k - MAGIC;
     let r = (xc - n * LN2_HI) - n * LN2_LO;
@@ -80,14 +106,12 @@ fn exp_f64(x: f64) -> f64 {
     let q03 = (C[0] + C[1] * r) + (C[2] + C[3] * r) * r2;
     let q47 = (C[4] + C[5] * r) + (C[6] + C[7] * r) * r2;
     let p = (q03 + q47 * r4) + (C[8] + C[9] * r) * (r4 * r4);
-    let s = f64::from_bits(k.to_bits().wrapping_add(1023) << 52);
-    let keep = 0u64.wrapping_sub((x >= -708.0) as u64);
-    p * s * f64::from_bits(1f64.to_bits() & keep)
+    (p, k)
 }
 
 /// `e^x` in the lobe's precision (the polynomial of [`exp_f32`] or [`exp_f64`]).
 #[inline(always)]
-pub(super) fn exp_poly(x: F) -> F {
+pub(crate) fn exp_poly(x: F) -> F {
     if WIDE {
         F::from_f64(exp_f64(x.to_f64()))
     } else {
@@ -680,7 +704,7 @@ static SAMPLE_GRID: ([F; SAMPLE_N], [F; SAMPLE_N]) = {
 /// relative error of the sampler's weights `1 + Lambda`. For `a > 0`; `a` far below
 /// `1 / F::MAX` overflows.
 #[inline(always)]
-fn beckmann_lambda_fast(a: F) -> F {
+pub(crate) fn beckmann_lambda_fast(a: F) -> F {
     let t = 1.0 / (1.0 + 0.5 * a);
     // P(t) by Estrin's scheme (depth 8 against 18 for Horner).
     const P: [f64; 10] = [

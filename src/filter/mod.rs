@@ -40,6 +40,9 @@ pub mod proxy;
 pub mod rect;
 
 pub(crate) use gaussian::gaussian_sanitized;
+pub(crate) use gaussian_ggx_quad::{
+    MAGIC_F32, MAGIC_F64, beckmann_lambda_fast, exp_f32_reduced, exp_f64_reduced, exp_poly,
+};
 pub use gaussian::{gaussian, gaussian_with_det_clamp};
 pub use gaussian_ggx::GaussianFilteredGgx;
 pub use lean::{LeanMoments, lean};

@@ -87,6 +87,15 @@ pub(crate) fn ggx_lambda(q: F, abs_wz: F) -> F {
             F::INFINITY
         };
     }
+    ggx_lambda_core(q, abs_wz)
+}
+
+/// The formula of [`ggx_lambda`] without its checks, `q / (2 |w_z| (sqrt(w_z^2 + q) + |w_z|))`
+/// (no cancellation), for `q >= 0`, `|w_z| > 0` and a finite `w_z^2 + q`: the one source of
+/// GGX's `Lambda` for the scalar path and for `batch` (whose lanes take it where those hold).
+#[inline(always)]
+pub(crate) fn ggx_lambda_core(q: F, abs_wz: F) -> F {
+    let r = m::sqrt(abs_wz * abs_wz + q);
     q / (2.0 * abs_wz * (r + abs_wz))
 }
 

@@ -64,15 +64,22 @@ pub trait Ndf {
     }
 }
 
+/// Whether [`rescale_direction`] returns `w` itself: `|w|^2` in `(2^-40, 2^40)` (false for
+/// NaN).
+#[inline(always)]
+pub(crate) fn needs_no_rescale(w: Vec3) -> bool {
+    let l2 = w.length_squared();
+    const LO: F = 1.0 / (1u64 << 40) as F;
+    const HI: F = (1u64 << 40) as F;
+    l2 > LO && l2 < HI
+}
+
 /// `w` rescaled by its largest component when `|w|^2` is outside `[2^-40, 2^40]`, so that the
 /// quadratic forms of `Lambda` neither overflow nor underflow for huge or tiny finite input.
 /// Unit vectors pass through untouched (one compare).
 #[inline]
 pub(crate) fn rescale_direction(w: Vec3) -> Vec3 {
-    let l2 = w.length_squared();
-    const LO: F = 1.0 / (1u64 << 40) as F;
-    const HI: F = (1u64 << 40) as F;
-    if l2 > LO && l2 < HI {
+    if needs_no_rescale(w) {
         return w;
     }
     let mx = w.abs().max_element();

@@ -1,0 +1,201 @@
+//! The unfiltered NDF terms over slices: `D`, Smith `Lambda` and height-correlated `G2` of GGX
+//! and Beckmann in every roughness form.
+//!
+//! Each lane evaluates the scalar path's own formula core (`Ggx::d_unchecked`,
+//! `Roughness::inv_quadratic` / `quadratic` / `exponent_and_norm`, `ggx_lambda_core`); the
+//! scalar function's checks become selects, and the rare inputs they send elsewhere
+//! (a rescaled direction, a grazing `w`) are flagged and evaluated by the scalar function.
+//! GGX's `D`, `Lambda` and `G2` are therefore the scalar values bit for bit; Beckmann's
+//! replace libm's `exp` and `erfc` by the lane functions of [`super::lanes`] (bounds in the
+//! module docs of [`super`]).
+
+use super::super::filter::beckmann_lambda_fast;
+use super::super::ndf::beckmann::Beckmann;
+use super::super::ndf::ggx::{Ggx, ggx_lambda_core};
+use super::super::ndf::roughness::Roughness;
+use super::super::ndf::{Ndf, needs_no_rescale};
+use super::lanes::{Kernel, exp_neg_times, run};
+use super::{F, PI, Vec2, Vec3, Vec3s};
+
+/// [`Ndf::d`] of GGX (per steradian, TK19 supplement) for each micronormal
+/// `m_i = (mx[i], my[i], mz[i])`: `out[i] = Ggx::new(*r).d(m_i)`, **bit for bit**. Returns the
+/// number of elements written (the shortest slice length). Allocates nothing.
+#[inline]
+pub fn ggx_d<R: Roughness>(r: &R, mx: &[F], my: &[F], mz: &[F], out: &mut [F]) -> usize {
+    run(&D(Ggx::new(*r)), [mx, my, mz], [out])
+}
+
+/// [`Ndf::d`] of Beckmann (per steradian) for each micronormal:
+/// `out[i] = Beckmann::new(*r).d(m_i)` within the bound of the module docs of [`super`] (the
+/// exponential in lanes). Returns the number of elements written. Allocates nothing.
+#[inline]
+pub fn beckmann_d<R: Roughness>(r: &R, mx: &[F], my: &[F], mz: &[F], out: &mut [F]) -> usize {
+    run(&D(Beckmann::new(*r)), [mx, my, mz], [out])
+}
+
+/// [`Ndf::lambda`] of GGX for each direction `w_i = (wx[i], wy[i], wz[i])`:
+/// `out[i] = Ggx::new(*r).lambda(w_i)`, **bit for bit**. Allocates nothing.
+#[inline]
+pub fn ggx_lambda<R: Roughness>(r: &R, wx: &[F], wy: &[F], wz: &[F], out: &mut [F]) -> usize {
+    run(&Lambda(Ggx::new(*r)), [wx, wy, wz], [out])
+}
+
+/// [`Ndf::lambda`] of Beckmann for each direction: `out[i] = Beckmann::new(*r).lambda(w_i)`
+/// within the bound of the module docs of [`super`] (`Lambda` in lanes by the fast `erfc`
+/// fit shared with the exact Gaussian filter's sampler). Allocates nothing.
+#[inline]
+pub fn beckmann_lambda<R: Roughness>(
+    r: &R,
+    wx: &[F],
+    wy: &[F],
+    wz: &[F],
+    out: &mut [F],
+) -> usize {
+    run(&Lambda(Beckmann::new(*r)), [wx, wy, wz], [out])
+}
+
+/// Height-correlated Smith `G2(i, o, m)` of GGX ([`Ndf::g2`]) for each triple of directions:
+/// `out[k] = Ggx::new(*r).g2(i_k, o_k, m_k)`, **bit for bit**. Allocates nothing.
+#[inline]
+pub fn ggx_g2<R: Roughness>(
+    r: &R,
+    i: Vec3s<'_>,
+    o: Vec3s<'_>,
+    m: Vec3s<'_>,
+    out: &mut [F],
+) -> usize {
+    run(&G2(Ggx::new(*r)), nine([i, o, m]), [out])
+}
+
+/// Height-correlated Smith `G2(i, o, m)` of Beckmann for each triple of directions:
+/// `out[k] = Beckmann::new(*r).g2(i_k, o_k, m_k)` within the bound of the module docs of
+/// [`super`]. Allocates nothing.
+#[inline]
+pub fn beckmann_g2<R: Roughness>(
+    r: &R,
+    i: Vec3s<'_>,
+    o: Vec3s<'_>,
+    m: Vec3s<'_>,
+    out: &mut [F],
+) -> usize {
+    run(&G2(Beckmann::new(*r)), nine([i, o, m]), [out])
+}
+
+/// The nine columns of three vectors.
+#[inline(always)]
+fn nine<'a>([i, o, m]: [Vec3s<'a>; 3]) -> [&'a [F]; 9] {
+    [i.x, i.y, i.z, o.x, o.y, o.z, m.x, m.y, m.z]
+}
+
+/// The lane forms of an NDF's `D` and `Lambda` (`(value, slow)`, see [`Kernel::lane`]).
+pub(crate) trait LaneNdf: Ndf {
+    /// `D(m)`.
+    fn d_lane(&self, m: Vec3) -> (F, bool);
+    /// `Lambda(w)`.
+    fn lambda_lane(&self, w: Vec3) -> (F, bool);
+}
+
+impl<R: Roughness> LaneNdf for Ggx<R> {
+    /// [`Ndf::d`]'s checks as one select (`&`, and `abs() < inf` rather than `is_finite`, which
+    /// compiles to integer bit tests): the same value, bit for bit, without a branch.
+    #[inline(always)]
+    fn d_lane(&self, m: Vec3) -> (F, bool) {
+        let v = self.d_unchecked(m);
+        let keep = (m.z > 0.0) & (v.abs() < F::INFINITY);
+        (if keep { v } else { 0.0 }, false)
+    }
+
+    /// `ggx_lambda_core` where the scalar path reaches it (no rescaling, `q >= 0`,
+    /// `|w_z| > 0`, `w_z^2 + q` finite), flagged elsewhere.
+    #[inline(always)]
+    fn lambda_lane(&self, w: Vec3) -> (F, bool) {
+        let q = self.roughness.quadratic(Vec2::new(w.x, w.y));
+        let az = w.z.abs();
+        let fast = needs_no_rescale(w) & (q >= 0.0) & (az > 0.0) & (az * az + q < F::INFINITY);
+        (ggx_lambda_core(q, az), !fast)
+    }
+}
+
+impl<R: Roughness> LaneNdf for Beckmann<R> {
+    /// The formula of Beckmann's `d` (`exponent_and_norm`, then `e^-x n / pi`) with the
+    /// exponential of [`exp_neg_times`]. `0` below the horizon and for a NaN exponent, as the
+    /// scalar path.
+    #[inline(always)]
+    fn d_lane(&self, m: Vec3) -> (F, bool) {
+        let (x, n) = self
+            .roughness
+            .exponent_and_norm(Vec2::new(m.x, m.y), m.z * m.z);
+        let (v, ok) = exp_neg_times(x, n * (1.0 / PI));
+        let live = (m.z > 0.0) & !x.is_nan();
+        (if live { v } else { 0.0 }, live & !ok)
+    }
+
+    /// `Lambda(a)`, `a = |w_z| / sqrt(w_xy^T A w_xy)`, by `beckmann_lambda_fast` (`0` at
+    /// normal incidence, `q = 0`), flagged where the scalar path rescales `w`, at grazing `w`
+    /// and for `a < 1e-20` (where `Lambda` leaves the range of `F`).
+    #[inline(always)]
+    fn lambda_lane(&self, w: Vec3) -> (F, bool) {
+        let q = self.roughness.quadratic(Vec2::new(w.x, w.y));
+        let a = w.z.abs() / crate::math::sqrt(q);
+        let v = beckmann_lambda_fast(a);
+        let fast = needs_no_rescale(w) & (q >= 0.0) & (q < F::INFINITY) & (a >= 1e-20);
+        (if q > 0.0 { v } else { 0.0 }, !fast)
+    }
+}
+
+/// `D` of an NDF.
+struct D<N>(N);
+
+impl<N: LaneNdf> Kernel<3, 1> for D<N> {
+    #[inline(always)]
+    fn lane(&self, [x, y, z]: [F; 3]) -> ([F; 1], bool) {
+        let (v, slow) = self.0.d_lane(Vec3::new(x, y, z));
+        ([v], slow)
+    }
+    #[inline]
+    fn scalar(&self, [x, y, z]: [F; 3]) -> [F; 1] {
+        [self.0.d(Vec3::new(x, y, z))]
+    }
+}
+
+/// `Lambda` of an NDF.
+struct Lambda<N>(N);
+
+impl<N: LaneNdf> Kernel<3, 1> for Lambda<N> {
+    #[inline(always)]
+    fn lane(&self, [x, y, z]: [F; 3]) -> ([F; 1], bool) {
+        let (v, slow) = self.0.lambda_lane(Vec3::new(x, y, z));
+        ([v], slow)
+    }
+    #[inline]
+    fn scalar(&self, [x, y, z]: [F; 3]) -> [F; 1] {
+        [self.0.lambda(Vec3::new(x, y, z))]
+    }
+}
+
+/// `G2` of an NDF: [`Ndf::g2`]'s formula, `chi+(i.m) chi+(o.m) / (1 + Lambda(i) +
+/// Lambda(o))`, its check as a select.
+struct G2<N>(N);
+
+impl<N: LaneNdf> Kernel<9, 1> for G2<N> {
+    #[inline(always)]
+    fn lane(&self, [ix, iy, iz, ox, oy, oz, mx, my, mz]: [F; 9]) -> ([F; 1], bool) {
+        let (wi, wo, m) = (
+            Vec3::new(ix, iy, iz),
+            Vec3::new(ox, oy, oz),
+            Vec3::new(mx, my, mz),
+        );
+        let ((li, si), (lo, so)) = (self.0.lambda_lane(wi), self.0.lambda_lane(wo));
+        let front = (wi.dot(m) > 0.0) & (wo.dot(m) > 0.0);
+        let v = 1.0 / (1.0 + li + lo);
+        ([if front { v } else { 0.0 }], front & (si | so))
+    }
+    #[inline]
+    fn scalar(&self, [ix, iy, iz, ox, oy, oz, mx, my, mz]: [F; 9]) -> [F; 1] {
+        [self.0.g2(
+            Vec3::new(ix, iy, iz),
+            Vec3::new(ox, oy, oz),
+            Vec3::new(mx, my, mz),
+        )]
+    }
+}

@@ -1,0 +1,82 @@
+//! Runtime dispatch to the widest vector instruction set of the CPU (feature `dispatch`).
+//!
+//! Without the feature every kernel is compiled once, for the target's baseline (SSE2 on
+//! x86-64: 4 `f32` lanes). With it, [`dispatch`] runs the same plain-Rust loop compiled also for
+//! x86-64-v3 (AVX2, 8 lanes) and x86-64-v4 (AVX-512, 16 lanes) and picks the widest the CPU
+//! supports, through `pulp`'s safe target-feature contexts: the crate stays
+//! `forbid(unsafe_code)`. `FILTERED_NDF_SIMD=sse2|avx2|avx512` caps the choice (read once; for
+//! measurements).
+
+use super::lanes::{Kernel, Loop};
+
+#[cfg(not(all(feature = "dispatch", target_arch = "x86_64")))]
+#[inline(always)]
+pub(crate) fn dispatch<K: Kernel<I, O>, const I: usize, const O: usize>(l: Loop<'_, K, I, O>) {
+    l.go()
+}
+
+#[cfg(all(feature = "dispatch", target_arch = "x86_64"))]
+pub(crate) use wide::{dispatch, level_name};
+
+#[cfg(all(feature = "dispatch", target_arch = "x86_64"))]
+mod wide {
+    use super::{Kernel, Loop};
+    use std::sync::OnceLock;
+
+    impl<K: Kernel<I, O>, const I: usize, const O: usize> pulp::WithSimd for Loop<'_, K, I, O> {
+        type Output = ();
+        #[inline(always)]
+        fn with_simd<S: pulp::Simd>(self, _: S) {
+            self.go()
+        }
+    }
+
+    /// The instruction set this process uses, with its token.
+    #[derive(Clone, Copy)]
+    enum Level {
+        Base,
+        V3(pulp::x86::V3),
+        V4(pulp::x86::V4),
+    }
+
+    /// The CPU's widest instruction set, capped by `FILTERED_NDF_SIMD` (detected once).
+    fn level() -> Level {
+        static LEVEL: OnceLock<Level> = OnceLock::new();
+        *LEVEL.get_or_init(|| {
+            let cap = std::env::var("FILTERED_NDF_SIMD").unwrap_or_default();
+            let (v3, v4) = match cap.as_str() {
+                "sse2" => (false, false),
+                "avx2" => (true, false),
+                _ => (true, true),
+            };
+            if let Some(s) = pulp::x86::V4::try_new().filter(|_| v4) {
+                Level::V4(s)
+            } else if let Some(s) = pulp::x86::V3::try_new().filter(|_| v3) {
+                Level::V3(s)
+            } else {
+                Level::Base
+            }
+        })
+    }
+
+    /// The instruction set [`dispatch`] uses: `"avx512"`, `"avx2"` or `"sse2"`.
+    pub(crate) fn level_name() -> &'static str {
+        match level() {
+            Level::V4(_) => "avx512",
+            Level::V3(_) => "avx2",
+            Level::Base => "sse2",
+        }
+    }
+
+    #[inline(always)]
+    pub(crate) fn dispatch<K: Kernel<I, O>, const I: usize, const O: usize>(
+        l: Loop<'_, K, I, O>,
+    ) {
+        use pulp::Simd;
+        match level() {
+            Level::V4(s) => Simd::vectorize(s, l),
+            Level::V3(s) => Simd::vectorize(s, l),
+            Level::Base => l.go(),
+        }
+    }
+}
