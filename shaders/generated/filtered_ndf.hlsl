@@ -25,8 +25,11 @@ struct filter_deferred_KernelConvention {
 struct ndf_roughness_matrix_RoughnessMatrix {
     float2 axis;
     float2 eig;
+    float2 eig_c;
     float2 inv_eig;
     float sqrt_det;
+    float det;
+    float tau;
     int _end_pad_0;
 };
 
@@ -156,6 +159,7 @@ static const uint kernel_clamp_FLOOR_NONE = 0u;
 static const uint kernel_clamp_FLOOR_CONSTANT = 1u;
 static const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
 static const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
+static const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
 static const kernel_clamp_ClampRules kernel_clamp_NO_RULES = Constructkernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
 static const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
 static const float ndf_beckmann_EXP_SPLIT = 80.0;
@@ -167,9 +171,9 @@ float math_atan(float x)
     float t = (float)0;
     float r = (float)0;
 
-    float a_11 = abs(x);
-    bool inv = (a_11 > 1.0);
-    t = (inv ? (1.0 / a_11) : a_11);
+    float a_12 = abs(x);
+    bool inv = (a_12 > 1.0);
+    t = (inv ? (1.0 / a_12) : a_12);
     float _e8 = t;
     bool shift = (_e8 > math_TAN_EIGHTH_PI);
     float _e11 = t;
@@ -203,19 +207,19 @@ float2 math_sincos_turns(float u)
     float2 cs = (float2)0;
 
     float q_4 = round((4.0 * u));
-    float r_59 = (u - (0.25 * q_4));
-    float z_1 = (r_59 * r_59);
-    float s_12 = (r_59 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
+    float r_63 = (u - (0.25 * q_4));
+    float z_1 = (r_63 * r_63);
+    float s_12 = (r_63 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
     float c_8 = ((((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0);
-    int k_13 = (naga_f2i32(q_4) & int(3));
+    int k_12 = (naga_f2i32(q_4) & int(3));
     cs = float2(c_8, s_12);
-    if ((k_13 == int(1))) {
+    if ((k_12 == int(1))) {
         cs = float2(-(s_12), c_8);
     } else {
-        if ((k_13 == int(2))) {
+        if ((k_12 == int(2))) {
             cs = float2(-(c_8), -(s_12));
         } else {
-            if ((k_13 == int(3))) {
+            if ((k_12 == int(3))) {
                 cs = float2(s_12, -(c_8));
             }
         }
@@ -230,9 +234,9 @@ float math_hypot(float x_1, float y)
     if ((m_23 <= 0.0)) {
         return 0.0;
     }
-    float a_12 = (x_1 / m_23);
+    float a_13 = (x_1 / m_23);
     float b_2 = (y / m_23);
-    return (m_23 * sqrt(((a_12 * a_12) + (b_2 * b_2))));
+    return (m_23 * sqrt(((a_13 * a_13) + (b_2 * b_2))));
 }
 
 float ndf_roughness_clamp_alpha(float alpha)
@@ -302,19 +306,19 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         const kernel_covariance_Covariance kernel_covariance_covariance_5 = c_3;
         return kernel_covariance_covariance_5;
     }
-    float a_13 = (c_3.s_xx / scale);
+    float a_14 = (c_3.s_xx / scale);
     float b_3 = (c_3.s_xy / scale);
     float e_2 = (c_3.s_yy / scale);
-    float d_1 = (0.5 * (a_13 - e_2));
-    float r_60 = sqrt(((d_1 * d_1) + (b_3 * b_3)));
-    float lmax_1 = (((0.5 * (a_13 + e_2)) + r_60) * scale);
+    float d_1 = (0.5 * (a_14 - e_2));
+    float r_64 = sqrt(((d_1 * d_1) + (b_3 * b_3)));
+    float lmax_1 = (((0.5 * (a_14 + e_2)) + r_64) * scale);
     if ((lmax_1 <= max_eig)) {
         const kernel_covariance_Covariance kernel_covariance_covariance_6 = c_3;
         return kernel_covariance_covariance_6;
     }
     float lmin_1 = max((c_3.det / lmax_1), 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = (r_60 < 1e-18);
+        local = (r_64 < 1e-18);
     } else {
         local = true;
     }
@@ -323,10 +327,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         const kernel_covariance_Covariance kernel_covariance_covariance_7 = Constructkernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
         return kernel_covariance_covariance_7;
     }
-    float p_4 = (r_60 + abs(d_1));
+    float p_4 = (r_64 + abs(d_1));
     float q_5 = ((p_4 > 0.0) ? ((b_3 * b_3) / p_4) : 0.0);
     float2 ee = ((d_1 >= 0.0) ? float2(p_4, q_5) : float2(q_5, p_4));
-    float inv_1 = (1.0 / (2.0 * r_60));
+    float inv_1 = (1.0 / (2.0 * r_64));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_3 * inv_1);
     float p22_ = (ee.y * inv_1);
@@ -407,20 +411,20 @@ float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5)
 
 float filter_deferred_norm_eval(uint norm, float3 dn_u, float3 dn_v)
 {
-    float a_14 = dot(dn_u, dn_u);
+    float a_15 = dot(dn_u, dn_u);
     float c_9 = dot(dn_v, dn_v);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
-        return max(a_14, c_9);
+        return max(a_15, c_9);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        const float _e11 = filter_deferred_max_eigenvalue(a_14, dot(dn_u, dn_v), c_9);
+        const float _e11 = filter_deferred_max_eigenvalue(a_15, dot(dn_u, dn_v), c_9);
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
         float3 m_24 = max(abs(dn_u), abs(dn_v));
         return max(max(m_24.x, m_24.y), m_24.z);
     }
-    return (a_14 + c_9);
+    return (a_15 + c_9);
 }
 
 float filter_deferred_clamp_kernel(filter_deferred_KernelConvention conv, float k_1)
@@ -495,126 +499,157 @@ float filter_deferred_filtered_alpha(float alpha_4, kernel_covariance_Covariance
     return _e14;
 }
 
-ndf_roughness_matrix_RoughnessMatrix Constructndf_roughness_matrix_RoughnessMatrix(float2 arg0, float2 arg1, float2 arg2, float arg3) {
+ndf_roughness_matrix_RoughnessMatrix Constructndf_roughness_matrix_RoughnessMatrix(float2 arg0, float2 arg1, float2 arg2, float2 arg3, float arg4, float arg5, float arg6) {
     ndf_roughness_matrix_RoughnessMatrix ret = (ndf_roughness_matrix_RoughnessMatrix)0;
     ret.axis = arg0;
     ret.eig = arg1;
-    ret.inv_eig = arg2;
-    ret.sqrt_det = arg3;
+    ret.eig_c = arg2;
+    ret.inv_eig = arg3;
+    ret.sqrt_det = arg4;
+    ret.det = arg5;
+    ret.tau = arg6;
     return ret;
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(float2 axis, float2 alpha_5)
 {
-    float2 l_2 = (alpha_5 * alpha_5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix = Constructndf_roughness_matrix_RoughnessMatrix(axis, l_2, ((1.0).xx / l_2), (alpha_5.x * alpha_5.y));
+    float2 l_5 = (alpha_5 * alpha_5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix = Constructndf_roughness_matrix_RoughnessMatrix(axis, l_5, l_5, ((1.0).xx / l_5), (alpha_5.x * alpha_5.y), (l_5.x * l_5.y), 0.0);
     return ndf_roughness_matrix_roughnessmatrix;
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det, float tau)
+float2 ndf_roughness_matrix_clamped_eigenvalues(float2 l, float det, float tau)
+{
+    if ((det >= tau)) {
+        return l;
+    }
+    float h_16 = (0.5 * (l.x + l.y));
+    float gap = (tau - det);
+    float t_2 = (gap / (h_16 + sqrt(((h_16 * h_16) + gap))));
+    float l1_ = (l.x + t_2);
+    return float2(l1_, (tau / l1_));
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(float2 axis_1, float2 l_1, float det_1, float tau_1)
+{
+    const float2 _e4 = ndf_roughness_matrix_clamped_eigenvalues(l_1, det_1, tau_1);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_1 = Constructndf_roughness_matrix_RoughnessMatrix(axis_1, l_1, _e4, ((1.0).xx / _e4), sqrt(max(det_1, tau_1)), det_1, tau_1);
+    return ndf_roughness_matrix_roughnessmatrix_1;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det_2, float tau_2)
 {
     float2 v_1 = (float2)0;
 
     float half_diff = (0.5 * (a11_ - a22_));
     float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
-    float l1_ = ((0.5 * (a11_ + a22_)) + rad);
-    float l2_1 = (det / l1_);
+    float l1_1 = ((0.5 * (a11_ + a22_)) + rad);
+    float l2_1 = (max(det_2, 0.0) / l1_1);
     float big_1 = (rad + abs(half_diff));
     v_1 = ((half_diff < 0.0) ? float2(a12_, big_1) : float2(big_1, a12_));
     if ((big_1 <= 0.0)) {
         v_1 = float2(1.0, 0.0);
     }
-    float2 _e30 = v_1;
-    float2 _e31 = v_1;
-    float2 axis_1 = (_e30 / (length(_e31)).xx);
-    float c_10 = max(det, tau);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_1 = Constructndf_roughness_matrix_RoughnessMatrix(axis_1, float2(l1_, l2_1), (float2(l2_1, l1_) / (c_10).xx), sqrt(c_10));
-    return ndf_roughness_matrix_roughnessmatrix_1;
+    float2 _e32 = v_1;
+    float2 _e33 = v_1;
+    float2 axis_2 = (_e32 / (length(_e33)).xx);
+    const ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, float2(l1_1, l2_1), det_2, tau_2);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_2 = _e38;
+    return ndf_roughness_matrix_roughnessmatrix_2;
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(float a11_1, float a12_1, float a22_1)
 {
     const ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_entries_det(a11_1, a12_1, a22_1, ((a11_1 * a22_1) - (a12_1 * a12_1)), 0.0);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_2 = _e7;
-    return ndf_roughness_matrix_roughnessmatrix_2;
-}
-
-float2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_1, float2 v_2)
-{
-    return float2(((r_1.axis.x * v_2.x) + (r_1.axis.y * v_2.y)), ((r_1.axis.x * v_2.y) - (r_1.axis.y * v_2.x)));
-}
-
-float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_2, float2 s)
-{
-    const float2 _e2 = ndf_roughness_matrix_rotate(r_2, s);
-    return dot((_e2 * _e2), r_2.inv_eig);
-}
-
-float ndf_roughness_matrix_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, float2 w)
-{
-    const float2 _e2 = ndf_roughness_matrix_rotate(r_3, w);
-    return dot((_e2 * _e2), r_3.eig);
-}
-
-float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_4)
-{
-    return r_4.sqrt_det;
-}
-
-float3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_5)
-{
-    float c_11 = r_5.axis.x;
-    float s_13 = r_5.axis.y;
-    float2 l_3 = r_5.eig;
-    return float3((((l_3.x * c_11) * c_11) + ((l_3.y * s_13) * s_13)), (((l_3.x - l_3.y) * c_11) * s_13), (((l_3.x * s_13) * s_13) + ((l_3.y * c_11) * c_11)));
-}
-
-float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_6)
-{
-    return (r_6.eig.x * r_6.eig.y);
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_plus_kernel(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_1)
-{
-    const float3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_12 = a_2.axis.x;
-    float s_14 = a_2.axis.y;
-    float k1_ = max(((((c_12 * c_12) * k_3.s_xx) + (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((s_14 * s_14) * k_3.s_yy)), 0.0);
-    float k2_ = max(((((s_14 * s_14) * k_3.s_xx) - (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((c_12 * c_12) * k_3.s_yy)), 0.0);
-    const float _e38 = ndf_roughness_matrix_determinant(a_2);
-    float det_2 = ((_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * max(k_3.det, 0.0)));
-    const ndf_roughness_matrix_RoughnessMatrix _e70 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_2, tau_1);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_3 = _e70;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_3 = _e7;
     return ndf_roughness_matrix_roughnessmatrix_3;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance k_4)
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_1, float det_clamp)
 {
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_plus_kernel(a_3, k_4, (a_3.sqrt_det * a_3.sqrt_det));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_4 = _e5;
+    const ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_eigenbasis(r_1.axis, r_1.eig, r_1.det, max(det_clamp, 0.0));
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_4 = _e7;
     return ndf_roughness_matrix_roughnessmatrix_4;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel)
+float2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, float2 v_2)
 {
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel);
-    const ndf_roughness_matrix_RoughnessMatrix _e3 = filter_gaussian_gaussian_sanitized(a_4, _e2);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_5 = _e3;
+    return float2(((r_2.axis.x * v_2.x) + (r_2.axis.y * v_2.y)), ((r_2.axis.x * v_2.y) - (r_2.axis.y * v_2.x)));
+}
+
+float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, float2 s)
+{
+    const float2 _e2 = ndf_roughness_matrix_rotate(r_3, s);
+    return dot((_e2 * _e2), r_3.inv_eig);
+}
+
+float ndf_roughness_matrix_quadratic(ndf_roughness_matrix_RoughnessMatrix r_4, float2 w)
+{
+    const float2 _e2 = ndf_roughness_matrix_rotate(r_4, w);
+    return dot((_e2 * _e2), r_4.eig_c);
+}
+
+float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5)
+{
+    return r_5.sqrt_det;
+}
+
+float3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, float2 l_2)
+{
+    float c_10 = r_6.axis.x;
+    float s_13 = r_6.axis.y;
+    return float3((((l_2.x * c_10) * c_10) + ((l_2.y * s_13) * s_13)), (((l_2.x - l_2.y) * c_10) * s_13), (((l_2.x * s_13) * s_13) + ((l_2.y * c_10) * c_10)));
+}
+
+float3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7)
+{
+    const float3 _e2 = ndf_roughness_matrix_entries_of(r_7, r_7.eig);
+    return _e2;
+}
+
+float3 ndf_roughness_matrix_clamped_entries(ndf_roughness_matrix_RoughnessMatrix r_8)
+{
+    const float3 _e2 = ndf_roughness_matrix_entries_of(r_8, r_8.eig_c);
+    return _e2;
+}
+
+float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_9)
+{
+    return r_9.det;
+}
+
+float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10)
+{
+    return max(r_10.det, r_10.tau);
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3)
+{
+    const float3 _e3 = ndf_roughness_matrix_entries(a_2);
+    float c_11 = a_2.axis.x;
+    float s_14 = a_2.axis.y;
+    float k1_ = max(((((c_11 * c_11) * k_3.s_xx) + (((2.0 * c_11) * s_14) * k_3.s_xy)) + ((s_14 * s_14) * k_3.s_yy)), 0.0);
+    float k2_ = max(((((s_14 * s_14) * k_3.s_xx) - (((2.0 * c_11) * s_14) * k_3.s_xy)) + ((c_11 * c_11) * k_3.s_yy)), 0.0);
+    const float _e38 = ndf_roughness_matrix_determinant(a_2);
+    float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * max(k_3.det, 0.0)));
+    const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_5 = _e72;
     return ndf_roughness_matrix_roughnessmatrix_5;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_tau_sanitized(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance k_5, float tau_2)
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel)
 {
-    const float _e3 = ndf_roughness_matrix_determinant(a_5);
-    const ndf_roughness_matrix_RoughnessMatrix _e7 = filter_gaussian_plus_kernel(a_5, k_5, ((tau_2 > 0.0) ? tau_2 : _e3));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_6 = _e7;
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel);
+    const float _e3 = ndf_roughness_matrix_clamped_det(a_3);
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_3, _e2, _e3);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_6 = _e4;
     return ndf_roughness_matrix_roughnessmatrix_6;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_tau(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance kernel_1, float tau_3)
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_1, float det_clamp_1)
 {
     const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_1);
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_with_tau_sanitized(a_6, _e3, tau_3);
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e3, det_clamp_1);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_7 = _e4;
     return ndf_roughness_matrix_roughnessmatrix_7;
 }
@@ -627,12 +662,12 @@ kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m)
     return kernel_covariance_covariance_13;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments)
+ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments)
 {
     const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
     const kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
     const kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_7, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_5, _e5);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_8 = _e6;
     return ndf_roughness_matrix_roughnessmatrix_8;
 }
@@ -691,55 +726,70 @@ filter_deferred_KernelConvention filter_presets_preset(uint i)
     }
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_2)
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance k_4, float tau_4)
 {
     float b11_ = (float)0;
     float b12_ = (float)0;
     float b22_ = (float)0;
-    float det_1 = (float)0;
+    float det_3 = (float)0;
 
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
-    float2 lc = min(a_8.eig, (0.99).xx);
-    float2 excess = (a_8.eig - lc);
+    float2 lc = min(a_6.eig, (0.99).xx);
+    float2 excess = (a_6.eig - lc);
     float2 p_5 = (lc / ((1.0).xx - lc));
-    float c_13 = a_8.axis.x;
-    float s_15 = a_8.axis.y;
-    float p11_1 = (((p_5.x * c_13) * c_13) + ((p_5.y * s_15) * s_15));
-    float p12_1 = (((p_5.x - p_5.y) * c_13) * s_15);
-    float p22_1 = (((p_5.x * s_15) * s_15) + ((p_5.y * c_13) * c_13));
-    float k1_1 = max(((((c_13 * c_13) * _e2.s_xx) + (((2.0 * c_13) * s_15) * _e2.s_xy)) + ((s_15 * s_15) * _e2.s_yy)), 0.0);
-    float k2_1 = max(((((s_15 * s_15) * _e2.s_xx) - (((2.0 * c_13) * s_15) * _e2.s_xy)) + ((c_13 * c_13) * _e2.s_yy)), 0.0);
-    float d_2 = (((p_5.x * p_5.y) + (2.0 * ((p_5.y * k1_1) + (p_5.x * k2_1)))) + (4.0 * max(_e2.det, 0.0)));
-    float q11_ = (p11_1 + (2.0 * _e2.s_xx));
-    float q12_ = (p12_1 + (2.0 * _e2.s_xy));
-    float q22_ = (p22_1 + (2.0 * _e2.s_yy));
+    float c_12 = a_6.axis.x;
+    float s_15 = a_6.axis.y;
+    float p11_1 = (((p_5.x * c_12) * c_12) + ((p_5.y * s_15) * s_15));
+    float p12_1 = (((p_5.x - p_5.y) * c_12) * s_15);
+    float p22_1 = (((p_5.x * s_15) * s_15) + ((p_5.y * c_12) * c_12));
+    float k1_1 = max(((((c_12 * c_12) * k_4.s_xx) + (((2.0 * c_12) * s_15) * k_4.s_xy)) + ((s_15 * s_15) * k_4.s_yy)), 0.0);
+    float k2_1 = max(((((s_15 * s_15) * k_4.s_xx) - (((2.0 * c_12) * s_15) * k_4.s_xy)) + ((c_12 * c_12) * k_4.s_yy)), 0.0);
+    float d_2 = (((p_5.x * p_5.y) + (2.0 * ((p_5.y * k1_1) + (p_5.x * k2_1)))) + (4.0 * max(k_4.det, 0.0)));
+    float q11_ = (p11_1 + (2.0 * k_4.s_xx));
+    float q12_ = (p12_1 + (2.0 * k_4.s_xy));
+    float q22_ = (p22_1 + (2.0 * k_4.s_yy));
     float den = (((1.0 + q11_) + q22_) + d_2);
     b11_ = ((q11_ + d_2) / den);
     b12_ = (q12_ / den);
     b22_ = ((q22_ + d_2) / den);
-    det_1 = (d_2 / den);
+    det_3 = (d_2 / den);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_13) * c_13) + ((excess.y * s_15) * s_15)));
+        b11_ = (_e114 + (((excess.x * c_12) * c_12) + ((excess.y * s_15) * s_15)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_13) * s_15));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_12) * s_15));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_15) * s_15) + ((excess.y * c_13) * c_13)));
+        b22_ = (_e130 + (((excess.x * s_15) * s_15) + ((excess.y * c_12) * c_12)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
         float _e143 = b12_;
-        det_1 = ((_e139 * _e140) - (_e142 * _e143));
+        det_3 = ((_e139 * _e140) - (_e142 * _e143));
     }
-    const float3 _e146 = ndf_roughness_matrix_entries(a_8);
-    float tau_4 = (a_8.sqrt_det * a_8.sqrt_det);
-    float _e150 = b11_;
-    float _e153 = b12_;
-    float _e154 = b22_;
-    float _e157 = det_1;
-    const ndf_roughness_matrix_RoughnessMatrix _e159 = ndf_roughness_matrix_from_entries_det(max(_e150, _e146.x), _e153, max(_e154, _e146.z), max(_e157, tau_4), tau_4);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_9 = _e159;
+    const float3 _e146 = ndf_roughness_matrix_entries(a_6);
+    float _e147 = b11_;
+    float _e150 = b12_;
+    float _e151 = b22_;
+    float _e154 = det_3;
+    const ndf_roughness_matrix_RoughnessMatrix _e157 = ndf_roughness_matrix_from_entries_det(max(_e147, _e146.x), _e150, max(_e151, _e146.z), _e154, max(tau_4, 0.0));
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_9 = _e157;
     return ndf_roughness_matrix_roughnessmatrix_9;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance kernel_2)
+{
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
+    const float _e3 = ndf_roughness_matrix_clamped_det(a_7);
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_7, _e2, _e3);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_10 = _e4;
+    return ndf_roughness_matrix_roughnessmatrix_10;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_3, float det_clamp_2)
+{
+    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_8, _e3, det_clamp_2);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_11 = _e4;
+    return ndf_roughness_matrix_roughnessmatrix_11;
 }
 
 ndf_roughness_axis_aligned_AxisAligned Constructndf_roughness_axis_aligned_AxisAligned(float2 arg0, float2 arg1) {
@@ -753,40 +803,40 @@ ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(flo
 {
     const float _e2 = ndf_roughness_clamp_alpha(alpha_6.x);
     const float _e4 = ndf_roughness_clamp_alpha(alpha_6.y);
-    float2 a_15 = float2(_e2, _e4);
-    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned = Constructndf_roughness_axis_aligned_AxisAligned(a_15, ((1.0).xx / (a_15 * a_15)));
+    float2 a_16 = float2(_e2, _e4);
+    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned = Constructndf_roughness_axis_aligned_AxisAligned(a_16, ((1.0).xx / (a_16 * a_16)));
     return ndf_roughness_axis_aligned_axisaligned;
 }
 
-float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_7, float2 s_1)
+float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_11, float2 s_1)
 {
-    return dot((s_1 * s_1), r_7.inv_alpha_sq);
+    return dot((s_1 * s_1), r_11.inv_alpha_sq);
 }
 
-float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_8, float2 w_1)
+float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_12, float2 w_1)
 {
-    return dot((w_1 * w_1), (r_8.alpha * r_8.alpha));
+    return dot((w_1 * w_1), (r_12.alpha * r_12.alpha));
 }
 
-float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_9)
+float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_13)
 {
-    return (r_9.alpha.x * r_9.alpha.y);
+    return (r_13.alpha.x * r_13.alpha.y);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_10)
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_14)
 {
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), r_10.alpha);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_10 = _e5;
-    return ndf_roughness_matrix_roughnessmatrix_10;
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), r_14.alpha);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_12;
 }
 
 float filter_proxy_effective_alpha(float alpha_7, float half_extent)
 {
-    float h_16 = abs(half_extent);
-    const float _e3 = math_hypot(alpha_7, h_16);
-    float t_2 = ((_e3 > 0.0) ? (h_16 / _e3) : 0.0);
-    const float _e9 = math_atan(t_2);
-    float ratio = ((t_2 > 0.0) ? (t_2 / _e9) : 1.0);
+    float h_17 = abs(half_extent);
+    const float _e3 = math_hypot(alpha_7, h_17);
+    float t_3 = ((_e3 > 0.0) ? (h_17 / _e3) : 0.0);
+    const float _e9 = math_atan(t_3);
+    float ratio = ((t_3 > 0.0) ? (t_3 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
 }
 
@@ -796,19 +846,19 @@ float filter_proxy_effective_alpha_simple(float alpha_8, float half_extent_1)
     return _e3;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_11, float2 half_extent_2)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_15, float2 half_extent_2)
 {
-    const float _e5 = filter_proxy_effective_alpha(r_11.alpha.x, half_extent_2.x);
-    const float _e9 = filter_proxy_effective_alpha(r_11.alpha.y, half_extent_2.y);
+    const float _e5 = filter_proxy_effective_alpha(r_15.alpha.x, half_extent_2.x);
+    const float _e9 = filter_proxy_effective_alpha(r_15.alpha.y, half_extent_2.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_1 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_1;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_12, float2 half_extent_3)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_16, float2 half_extent_3)
 {
-    const float _e5 = filter_proxy_effective_alpha_simple(r_12.alpha.x, half_extent_3.x);
-    const float _e9 = filter_proxy_effective_alpha_simple(r_12.alpha.y, half_extent_3.y);
+    const float _e5 = filter_proxy_effective_alpha_simple(r_16.alpha.x, half_extent_3.x);
+    const float _e9 = filter_proxy_effective_alpha_simple(r_16.alpha.y, half_extent_3.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_2 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_2;
@@ -846,40 +896,40 @@ ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha
     return ndf_roughness_isotropic_isotropic;
 }
 
-float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_13, float2 s_2)
+float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_17, float2 s_2)
 {
-    return (dot(s_2, s_2) * r_13.inv_alpha_sq);
+    return (dot(s_2, s_2) * r_17.inv_alpha_sq);
 }
 
-float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_14, float2 w_2)
+float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_18, float2 w_2)
 {
-    return (dot(w_2, w_2) * (r_14.alpha * r_14.alpha));
+    return (dot(w_2, w_2) * (r_18.alpha * r_18.alpha));
 }
 
-float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_15)
+float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_19)
 {
-    return (r_15.alpha * r_15.alpha);
+    return (r_19.alpha * r_19.alpha);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_16)
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_20)
 {
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), (r_16.alpha).xx);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_11 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_11;
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), (r_20.alpha).xx);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_13;
 }
 
 float ndf_ggx_p22_of(float q, float sqrt_det)
 {
-    float t_3 = (1.0 + q);
-    return (1.0 / (((math_PI * sqrt_det) * t_3) * t_3));
+    float t_4 = (1.0 + q);
+    return ((q >= 0.0) ? (1.0 / (((math_PI * sqrt_det) * t_4) * t_4)) : 0.0);
 }
 
 float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1)
 {
     bool local_4 = (bool)0;
 
-    float t_4 = (q_xy + (m_z * m_z));
-    float v_5 = (1.0 / (((math_PI * sqrt_det_1) * t_4) * t_4));
+    float t_5 = (q_xy + (m_z * m_z));
+    float v_5 = (1.0 / (((math_PI * sqrt_det_1) * t_5) * t_5));
     if ((m_z > 0.0)) {
         local_4 = (v_5 <= math_F32_MAX);
     } else {
@@ -891,126 +941,141 @@ float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1)
 
 float ndf_ggx_lambda_of(float q_1, float abs_wz)
 {
+    bool local_5 = (bool)0;
+    bool local_6 = (bool)0;
+
     if ((q_1 <= 0.0)) {
+        local_5 = (abs_wz >= 0.0);
+    } else {
+        local_5 = false;
+    }
+    bool _e9 = local_5;
+    if (_e9) {
         return 0.0;
     }
-    if ((abs_wz <= 0.0)) {
+    if (!(!((abs_wz > 0.0)))) {
+        local_6 = !((q_1 > 0.0));
+    } else {
+        local_6 = true;
+    }
+    bool _e21 = local_6;
+    if (_e21) {
         return math_F32_MAX;
     }
-    float r_61 = sqrt(((abs_wz * abs_wz) + q_1));
-    return (q_1 / ((2.0 * abs_wz) * (r_61 + abs_wz)));
+    float r_65 = sqrt(((abs_wz * abs_wz) + q_1));
+    return (q_1 / ((2.0 * abs_wz) * (r_65 + abs_wz)));
 }
 
-float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_17, float2 s_3)
+float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_21, float2 s_3)
 {
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_17, s_3);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_17);
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_21, s_3);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_21);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_18, float3 m_1)
+float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_22, float3 m_1)
 {
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_18, m_1.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_18);
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_22, m_1.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_22);
     const float _e6 = ndf_ggx_d_of(_e3, m_1.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_19, float3 w_3)
+float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_23, float3 w_3)
 {
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_19, w_3.xy);
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_23, w_3.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_3.z));
     return _e6;
 }
 
-float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_20, float3 w_4, float3 m_2)
+float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_24, float3 w_4, float3 m_2)
 {
-    const float _e3 = ndf_ggx_lambda_isotropic(r_20, w_4);
+    const float _e3 = ndf_ggx_lambda_isotropic(r_24, w_4);
     const float _e5 = ndf_g1_of(_e3, dot(w_4, m_2));
     return _e5;
 }
 
-float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_21, float3 i_1, float3 o, float3 m_3)
+float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_25, float3 i_1, float3 o, float3 m_3)
 {
-    const float _e4 = ndf_ggx_lambda_isotropic(r_21, i_1);
-    const float _e5 = ndf_ggx_lambda_isotropic(r_21, o);
+    const float _e4 = ndf_ggx_lambda_isotropic(r_25, i_1);
+    const float _e5 = ndf_ggx_lambda_isotropic(r_25, o);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_3), dot(o, m_3));
     return _e8;
 }
 
-float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_22, float2 s_4)
+float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, float2 s_4)
 {
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_22, s_4);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_22);
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_26, s_4);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_26);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_23, float3 m_4)
+float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, float3 m_4)
 {
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_23, m_4.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_23);
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_27, m_4.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_27);
     const float _e6 = ndf_ggx_d_of(_e3, m_4.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_24, float3 w_5)
+float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, float3 w_5)
 {
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_24, w_5.xy);
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_28, w_5.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_5.z));
     return _e6;
 }
 
-float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, float3 w_6, float3 m_5)
+float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, float3 w_6, float3 m_5)
 {
-    const float _e3 = ndf_ggx_lambda_axis_aligned(r_25, w_6);
+    const float _e3 = ndf_ggx_lambda_axis_aligned(r_29, w_6);
     const float _e5 = ndf_g1_of(_e3, dot(w_6, m_5));
     return _e5;
 }
 
-float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, float3 i_2, float3 o_1, float3 m_6)
+float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_30, float3 i_2, float3 o_1, float3 m_6)
 {
-    const float _e4 = ndf_ggx_lambda_axis_aligned(r_26, i_2);
-    const float _e5 = ndf_ggx_lambda_axis_aligned(r_26, o_1);
+    const float _e4 = ndf_ggx_lambda_axis_aligned(r_30, i_2);
+    const float _e5 = ndf_ggx_lambda_axis_aligned(r_30, o_1);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_6), dot(o_1, m_6));
     return _e8;
 }
 
-float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_27, float2 s_5)
+float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, float2 s_5)
 {
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_27, s_5);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_27);
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_31, s_5);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_31);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_28, float3 m_7)
+float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, float3 m_7)
 {
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_28, m_7.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_28);
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_32, m_7.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_32);
     const float _e6 = ndf_ggx_d_of(_e3, m_7.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_29, float3 w_7)
+float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, float3 w_7)
 {
-    const float _e3 = ndf_roughness_matrix_quadratic(r_29, w_7.xy);
+    const float _e3 = ndf_roughness_matrix_quadratic(r_33, w_7.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_7.z));
     return _e6;
 }
 
-float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, float3 w_8, float3 m_8)
+float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, float3 w_8, float3 m_8)
 {
-    const float _e3 = ndf_ggx_lambda_matrix(r_30, w_8);
+    const float _e3 = ndf_ggx_lambda_matrix(r_34, w_8);
     const float _e5 = ndf_g1_of(_e3, dot(w_8, m_8));
     return _e5;
 }
 
-float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, float3 i_3, float3 o_2, float3 m_9)
+float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_35, float3 i_3, float3 o_2, float3 m_9)
 {
-    const float _e4 = ndf_ggx_lambda_matrix(r_31, i_3);
-    const float _e5 = ndf_ggx_lambda_matrix(r_31, o_2);
+    const float _e4 = ndf_ggx_lambda_matrix(r_35, i_3);
+    const float _e5 = ndf_ggx_lambda_matrix(r_35, o_2);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_9), dot(o_2, m_9));
     return _e8;
 }
@@ -1029,38 +1094,38 @@ uint filter_rect_tier(float h2_, float l2_)
     return filter_rect_TIER_CLOSED;
 }
 
-float filter_rect_gl_node(uint n, uint k_6)
+float filter_rect_gl_node(uint n, uint k_5)
 {
     if ((n == 2u)) {
         return 0.57735026;
     }
     if ((n == 4u)) {
-        return ((k_6 == 0u) ? 0.33998105 : 0.8611363);
+        return ((k_5 == 0u) ? 0.33998105 : 0.8611363);
     }
-    if ((k_6 == 0u)) {
+    if ((k_5 == 0u)) {
         return 0.2386192;
     }
-    return ((k_6 == 1u) ? 0.6612094 : 0.9324695);
+    return ((k_5 == 1u) ? 0.6612094 : 0.9324695);
 }
 
-float filter_rect_gl_weight(uint n_1, uint k_7)
+float filter_rect_gl_weight(uint n_1, uint k_6)
 {
     if ((n_1 == 2u)) {
         return 0.5;
     }
     if ((n_1 == 4u)) {
-        return ((k_7 == 0u) ? 0.32607257 : 0.17392743);
+        return ((k_6 == 0u) ? 0.32607257 : 0.17392743);
     }
-    if ((k_7 == 0u)) {
+    if ((k_6 == 0u)) {
         return 0.23395696;
     }
-    return ((k_7 == 1u) ? 0.18038079 : 0.085662246);
+    return ((k_6 == 1u) ? 0.18038079 : 0.085662246);
 }
 
 float filter_rect_f(float u_1, float v_3)
 {
-    float t_5 = ((1.0 + (u_1 * u_1)) + (v_3 * v_3));
-    return (1.0 / (t_5 * t_5));
+    float t_6 = ((1.0 + (u_1 * u_1)) + (v_3 * v_3));
+    return (1.0 / (t_6 * t_6));
 }
 
 uint naga_div(uint lhs, uint rhs) {
@@ -1070,7 +1135,7 @@ uint naga_div(uint lhs, uint rhs) {
 float filter_rect_gl_mean(uint n_2, float u_2, float c_6, float h)
 {
     float acc = 0.0;
-    uint k_8 = 0u;
+    uint k_7 = 0u;
 
     uint2 loop_bound = uint2(4294967295u, 4294967295u);
     bool loop_init = true;
@@ -1078,24 +1143,24 @@ float filter_rect_gl_mean(uint n_2, float u_2, float c_6, float h)
         if (all(loop_bound == uint2(0u, 0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e26 = k_8;
-            k_8 = (_e26 + 1u);
+            uint _e26 = k_7;
+            k_7 = (_e26 + 1u);
         }
         loop_init = false;
-        uint _e8 = k_8;
+        uint _e8 = k_7;
         if ((_e8 < naga_div(n_2, 2u))) {
         } else {
             break;
         }
         {
-            uint _e12 = k_8;
+            uint _e12 = k_7;
             const float _e13 = filter_rect_gl_node(n_2, _e12);
-            float a_16 = (h * _e13);
+            float a_17 = (h * _e13);
             float _e15 = acc;
-            uint _e16 = k_8;
+            uint _e16 = k_7;
             const float _e17 = filter_rect_gl_weight(n_2, _e16);
-            const float _e19 = filter_rect_f(u_2, (c_6 - a_16));
-            const float _e21 = filter_rect_f(u_2, (c_6 + a_16));
+            const float _e19 = filter_rect_f(u_2, (c_6 - a_17));
+            const float _e21 = filter_rect_f(u_2, (c_6 + a_17));
             acc = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -1135,25 +1200,25 @@ float filter_rect_mean_1d(float xc, float hx, float c2_)
     float x0_ = (abs(xc) - hx);
     float x1_ = (abs(xc) + hx);
     float dx = (2.0 * hx);
-    float c_14 = sqrt(c2_);
+    float c_13 = sqrt(c2_);
     float r02_ = (c2_ + (x0_ * x0_));
     float r12_ = (c2_ + (x1_ * x1_));
     float x01_ = (x0_ * x1_);
-    const float _e17 = filter_rect_atan2_upper((c_14 * dx), (c2_ + x01_));
-    float inv_2 = (1.0 / (((2.0 * c_14) * c2_) * dx));
+    const float _e17 = filter_rect_atan2_upper((c_13 * dx), (c2_ + x01_));
+    float inv_2 = (1.0 / (((2.0 * c_13) * c2_) * dx));
     float p2_ = ((2.0 * r02_) * r12_);
     if ((x0_ <= 0.0)) {
         return ((_e17 * inv_2) + ((c2_ - x01_) / (c2_ * p2_)));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
-    const float _e39 = filter_rect_delta_minus_sin(_e17, ((c_14 * dx) / rr));
+    const float _e39 = filter_rect_delta_minus_sin(_e17, ((c_13 * dx) / rr));
     return ((_e39 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_ * x1_)) + c2_) / (rr + x01_))) / p2_));
 }
 
 float filter_rect_gl_mean_1d(uint n_3, float c_7, float h_1, float other_c, float other_h)
 {
     float acc_1 = 0.0;
-    uint k_9 = 0u;
+    uint k_8 = 0u;
 
     uint2 loop_bound_1 = uint2(4294967295u, 4294967295u);
     bool loop_init_1 = true;
@@ -1161,23 +1226,23 @@ float filter_rect_gl_mean_1d(uint n_3, float c_7, float h_1, float other_c, floa
         if (all(loop_bound_1 == uint2(0u, 0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e33 = k_9;
-            k_9 = (_e33 + 1u);
+            uint _e33 = k_8;
+            k_8 = (_e33 + 1u);
         }
         loop_init_1 = false;
-        uint _e9 = k_9;
+        uint _e9 = k_8;
         if ((_e9 < naga_div(n_3, 2u))) {
         } else {
             break;
         }
         {
-            uint _e13 = k_9;
+            uint _e13 = k_8;
             const float _e14 = filter_rect_gl_node(n_3, _e13);
-            float a_17 = (h_1 * _e14);
-            float x0_1 = (c_7 - a_17);
-            float x1_1 = (c_7 + a_17);
+            float a_18 = (h_1 * _e14);
+            float x0_1 = (c_7 - a_18);
+            float x1_1 = (c_7 + a_18);
             float _e18 = acc_1;
-            uint _e19 = k_9;
+            uint _e19 = k_8;
             const float _e20 = filter_rect_gl_weight(n_3, _e19);
             const float _e24 = filter_rect_mean_1d(other_c, other_h, (1.0 + (x0_1 * x0_1)));
             const float _e28 = filter_rect_mean_1d(other_c, other_h, (1.0 + (x1_1 * x1_1)));
@@ -1214,20 +1279,20 @@ float filter_rect_edges(float uc, float vc, float hu, float hv)
 
 float filter_rect_mean_f(float uc_1, float vc_1, float hu_1, float hv_1)
 {
-    bool local_5 = (bool)0;
+    bool local_7 = (bool)0;
     float acc_2 = 0.0;
-    uint k_10 = 0u;
+    uint k_9 = 0u;
 
     float du_1 = max((abs(uc_1) - hu_1), 0.0);
     float dv_2 = max((abs(vc_1) - hv_1), 0.0);
     const uint _e18 = filter_rect_tier((hu_1 * hu_1), ((1.0 + (uc_1 * uc_1)) + (dv_2 * dv_2)));
     const uint _e25 = filter_rect_tier((hv_1 * hv_1), ((1.0 + (vc_1 * vc_1)) + (du_1 * du_1)));
     if ((_e18 == filter_rect_TIER_CLOSED)) {
-        local_5 = (_e25 == filter_rect_TIER_CLOSED);
+        local_7 = (_e25 == filter_rect_TIER_CLOSED);
     } else {
-        local_5 = false;
+        local_7 = false;
     }
-    bool _e33 = local_5;
+    bool _e33 = local_7;
     if (_e33) {
         const float _e34 = filter_rect_edges(uc_1, vc_1, hu_1, hv_1);
         return _e34;
@@ -1246,24 +1311,24 @@ float filter_rect_mean_f(float uc_1, float vc_1, float hu_1, float hv_1)
         if (all(loop_bound_2 == uint2(0u, 0u))) { break; }
         loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
         if (!loop_init_2) {
-            uint _e63 = k_10;
-            k_10 = (_e63 + 1u);
+            uint _e63 = k_9;
+            k_9 = (_e63 + 1u);
         }
         loop_init_2 = false;
-        uint _e45 = k_10;
+        uint _e45 = k_9;
         if ((_e45 < naga_div(_e18, 2u))) {
         } else {
             break;
         }
         {
-            uint _e49 = k_10;
+            uint _e49 = k_9;
             const float _e50 = filter_rect_gl_node(_e18, _e49);
-            float a_18 = (hu_1 * _e50);
+            float a_19 = (hu_1 * _e50);
             float _e52 = acc_2;
-            uint _e53 = k_10;
+            uint _e53 = k_9;
             const float _e54 = filter_rect_gl_weight(_e18, _e53);
-            const float _e56 = filter_rect_gl_mean(_e25, (uc_1 - a_18), vc_1, hv_1);
-            const float _e58 = filter_rect_gl_mean(_e25, (uc_1 + a_18), vc_1, hv_1);
+            const float _e56 = filter_rect_gl_mean(_e25, (uc_1 - a_19), vc_1, hv_1);
+            const float _e58 = filter_rect_gl_mean(_e25, (uc_1 + a_19), vc_1, hv_1);
             acc_2 = (_e52 + (_e54 * (_e56 + _e58)));
         }
     }
@@ -1271,56 +1336,56 @@ float filter_rect_mean_f(float uc_1, float vc_1, float hu_1, float hv_1)
     return _e65;
 }
 
-float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_32, float2 center_, float2 half_extent_4)
+float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_36, float2 center_, float2 half_extent_4)
 {
-    bool local_6 = (bool)0;
+    bool local_8 = (bool)0;
 
     if ((half_extent_4.x == 0.0)) {
-        local_6 = (half_extent_4.y == 0.0);
+        local_8 = (half_extent_4.y == 0.0);
     } else {
-        local_6 = false;
+        local_8 = false;
     }
-    bool _e12 = local_6;
+    bool _e12 = local_8;
     if (_e12) {
-        const float _e13 = ndf_ggx_p22_axis_aligned(r_32, center_);
+        const float _e13 = ndf_ggx_p22_axis_aligned(r_36, center_);
         return _e13;
     }
-    float2 a_19 = r_32.alpha;
-    float2 c_15 = clamp((center_ / a_19), (-1e18).xx, (1e18).xx);
-    float2 h_17 = min((abs(half_extent_4) / a_19), (1e18).xx);
-    const float _e30 = filter_rect_mean_f(c_15.x, c_15.y, h_17.x, h_17.y);
-    return max((_e30 * (math_INV_PI / (a_19.x * a_19.y))), 0.0);
+    float2 a_20 = r_36.alpha;
+    float2 c_14 = clamp((center_ / a_20), (-1e18).xx, (1e18).xx);
+    float2 h_18 = min((abs(half_extent_4) / a_20), (1e18).xx);
+    const float _e30 = filter_rect_mean_f(c_14.x, c_14.y, h_18.x, h_18.y);
+    return max((_e30 * (math_INV_PI / (a_20.x * a_20.y))), 0.0);
 }
 
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_33, float3 h_2, float2 half_extent_5)
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_37, float3 h_2, float2 half_extent_5)
 {
-    bool local_7 = (bool)0;
+    bool local_9 = (bool)0;
 
     if (!((h_2.z > 0.0))) {
         return 0.0;
     }
     if ((half_extent_5.x == 0.0)) {
-        local_7 = (half_extent_5.y == 0.0);
+        local_9 = (half_extent_5.y == 0.0);
     } else {
-        local_7 = false;
+        local_9 = false;
     }
-    bool _e17 = local_7;
+    bool _e17 = local_9;
     if (_e17) {
-        const float _e18 = ndf_ggx_d_axis_aligned(r_33, h_2);
+        const float _e18 = ndf_ggx_d_axis_aligned(r_37, h_2);
         return _e18;
     }
-    const float _e24 = filter_rect_p22_rect(r_33, (-(h_2.xy) / (h_2.z).xx), half_extent_5);
+    const float _e24 = filter_rect_p22_rect(r_37, (-(h_2.xy) / (h_2.z).xx), half_extent_5);
     float z2_ = (h_2.z * h_2.z);
     return min((_e24 / (z2_ * z2_)), math_F32_MAX);
 }
 
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_34, float2 hpp, float3 h_3, float2 footprint)
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_38, float2 hpp, float3 h_3, float2 footprint)
 {
-    bool local_8 = (bool)0;
+    bool local_10 = (bool)0;
 
-    float a_20 = r_34.alpha.x;
-    float b_4 = r_34.alpha.y;
-    float a_2_ = (a_20 * a_20);
+    float a_21 = r_38.alpha.x;
+    float b_4 = r_38.alpha.y;
+    float a_2_ = (a_21 * a_21);
     float b_2_ = (b_4 * b_4);
     float x1_2 = (hpp.x - footprint.x);
     float x2_ = (hpp.x + footprint.x);
@@ -1330,30 +1395,30 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_34, fl
     float sx2_ = sqrt(((x2_ * x2_) + a_2_));
     float sy1_ = sqrt(((y1_ * y1_) + b_2_));
     float sy2_ = sqrt(((y2_ * y2_) + b_2_));
-    const float _e37 = math_atan(((y1_ * a_20) / (sx1_ * b_4)));
-    const float _e41 = math_atan(((y2_ * a_20) / (sx1_ * b_4)));
-    const float _e48 = math_atan(((y1_ * a_20) / (sx2_ * b_4)));
-    const float _e53 = math_atan(((y2_ * a_20) / (sx2_ * b_4)));
-    const float _e62 = math_atan(((x1_2 * b_4) / (a_20 * sy1_)));
-    const float _e66 = math_atan(((x2_ * b_4) / (a_20 * sy1_)));
-    const float _e73 = math_atan(((x1_2 * b_4) / (a_20 * sy2_)));
-    const float _e78 = math_atan(((x2_ * b_4) / (a_20 * sy2_)));
+    const float _e37 = math_atan(((y1_ * a_21) / (sx1_ * b_4)));
+    const float _e41 = math_atan(((y2_ * a_21) / (sx1_ * b_4)));
+    const float _e48 = math_atan(((y1_ * a_21) / (sx2_ * b_4)));
+    const float _e53 = math_atan(((y2_ * a_21) / (sx2_ * b_4)));
+    const float _e62 = math_atan(((x1_2 * b_4) / (a_21 * sy1_)));
+    const float _e66 = math_atan(((x2_ * b_4) / (a_21 * sy1_)));
+    const float _e73 = math_atan(((x1_2 * b_4) / (a_21 * sy2_)));
+    const float _e78 = math_atan(((x2_ * b_4) / (a_21 * sy2_)));
     float val = ((((x1_2 * (_e37 - _e41)) / sx1_) + ((x2_ * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
     float den_1 = ((6.2831855 * (x1_2 - x2_)) * (y1_ - y2_));
     float hz4_ = (((h_3.z * h_3.z) * h_3.z) * h_3.z);
     float v_6 = ((val / den_1) / max(hz4_, 0.001));
     if ((abs(v_6) <= math_F32_MAX)) {
-        local_8 = (den_1 != 0.0);
+        local_10 = (den_1 != 0.0);
     } else {
-        local_8 = false;
+        local_10 = false;
     }
-    bool _e109 = local_8;
+    bool _e109 = local_10;
     return (_e109 ? v_6 : 0.0);
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_35, float sigma_2)
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_39, float sigma_2)
 {
-    float2 w_16 = (r_35.half_extent * (2.0 * sigma_2));
+    float2 w_16 = (r_39.half_extent * (2.0 * sigma_2));
     float2 v_7 = (w_16 * w_16);
     const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_7.x, 0.0, v_7.y, (v_7.x * v_7.y));
     return kernel_covariance_covariance_14;
@@ -1386,11 +1451,11 @@ footprint_Footprint footprint_from_projected_derivatives_in_slope(float3 h_in, f
         return footprint_footprint_2;
     }
     float3 h0_ = (h_in / (big_2).xxx);
-    float3 h_18 = (h0_ / (length(h0_)).xxx);
-    float hz = max(h_18.z, 1e-6);
-    float k_14 = (-1.0 / ((hz * hz) * hz));
-    float2x2 j = float2x2(float2(((h_18.x * h_18.x) + (h_18.z * h_18.z)), (h_18.x * h_18.y)), float2((h_18.x * h_18.y), ((h_18.y * h_18.y) + (h_18.z * h_18.z))));
-    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint((mul(dp_u_1, j) * k_14), (mul(dp_v_1, j) * k_14));
+    float3 h_19 = (h0_ / (length(h0_)).xxx);
+    float hz = max(h_19.z, 1e-6);
+    float k_13 = (-1.0 / ((hz * hz) * hz));
+    float2x2 j = float2x2(float2(((h_19.x * h_19.x) + (h_19.z * h_19.z)), (h_19.x * h_19.y)), float2((h_19.x * h_19.y), ((h_19.y * h_19.y) + (h_19.z * h_19.z))));
+    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint((mul(dp_u_1, j) * k_13), (mul(dp_v_1, j) * k_13));
     return footprint_footprint_3;
 }
 
@@ -1446,15 +1511,15 @@ footprint_jacobian_Polar footprint_jacobian_polar(float3 h_in_1)
         return footprint_jacobian_polar_1;
     }
     float3 h0_1 = (h_in_1 / (big_3).xxx);
-    float3 h_19 = (h0_1 / (length(h0_1)).xxx);
-    float qs = max(abs(h_19.x), abs(h_19.y));
+    float3 h_20 = (h0_1 / (length(h0_1)).xxx);
+    float qs = max(abs(h_20.x), abs(h_20.y));
     if ((qs > 0.0)) {
-        float2 q_6 = (h_19.xy / (qs).xx);
+        float2 q_6 = (h_20.xy / (qs).xx);
         cs_1 = (q_6 / (length(q_6)).xx);
     }
-    if ((h_19.z >= footprint_jacobian_HZ_MIN)) {
+    if ((h_20.z >= footprint_jacobian_HZ_MIN)) {
         float2 _e44 = cs_1;
-        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_19, _e44);
+        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_20, _e44);
         return footprint_jacobian_polar_2;
     }
     float2 _e47 = cs_1;
@@ -1499,25 +1564,25 @@ float2x2 footprint_jacobian_sphere_to_projected(float3 h_7)
 float2x2 footprint_jacobian_projected_to_slope(float3 h_in_2)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    float3 h_20 = _e1.h;
-    float k_15 = (-1.0 / ((h_20.z * h_20.z) * h_20.z));
-    float xy = (h_20.x * h_20.y);
-    return float2x2((float2(((h_20.x * h_20.x) + (h_20.z * h_20.z)), xy) * k_15), (float2(xy, ((h_20.y * h_20.y) + (h_20.z * h_20.z))) * k_15));
+    float3 h_21 = _e1.h;
+    float k_14 = (-1.0 / ((h_21.z * h_21.z) * h_21.z));
+    float xy = (h_21.x * h_21.y);
+    return float2x2((float2(((h_21.x * h_21.x) + (h_21.z * h_21.z)), xy) * k_14), (float2(xy, ((h_21.y * h_21.y) + (h_21.z * h_21.z))) * k_14));
 }
 
 float2x2 footprint_jacobian_slope_to_projected(float3 h_in_3)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_3);
-    float3 h_21 = _e1.h;
-    float xy_1 = (h_21.x * h_21.y);
-    return float2x2((float2(((h_21.y * h_21.y) + (h_21.z * h_21.z)), -(xy_1)) * -(h_21.z)), (float2(-(xy_1), ((h_21.x * h_21.x) + (h_21.z * h_21.z))) * -(h_21.z)));
+    float3 h_22 = _e1.h;
+    float xy_1 = (h_22.x * h_22.y);
+    return float2x2((float2(((h_22.y * h_22.y) + (h_22.z * h_22.z)), -(xy_1)) * -(h_22.z)), (float2(-(xy_1), ((h_22.x * h_22.x) + (h_22.z * h_22.z))) * -(h_22.z)));
 }
 
 float2x2 footprint_jacobian_sphere_to_slope(float3 h_8)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float k_16 = (-1.0 / (_e1.h.z * _e1.h.z));
-    return float2x2((_e1.cs * k_16), (float2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_16));
+    float k_15 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return float2x2((_e1.cs * k_15), (float2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_15));
 }
 
 float footprint_jacobian_det_sphere_to_projected(float3 h_9)
@@ -1561,8 +1626,8 @@ float2 footprint_slope_slope_from_sphere(float3 h_14)
 
 float3 footprint_slope_sphere_from_slope(float2 s_7)
 {
-    float k_17 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
-    float3 v_9 = float3((-(s_7) / (k_17).xx), (1.0 / k_17));
+    float k_16 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
+    float3 v_9 = float3((-(s_7) / (k_16).xx), (1.0 / k_16));
     return (v_9 / (length(v_9)).xxx);
 }
 
@@ -1597,7 +1662,7 @@ float2 footprint_slope_projected_from_slope(float2 s_8)
 
 footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3)
 {
-    float l_4 = max(rules.max_extent, 0.0);
+    float l_6 = max(rules.max_extent, 0.0);
     float scale_1 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
     if ((scale_1 <= 0.0)) {
         const footprint_Footprint footprint_footprint_5 = fp_3;
@@ -1605,15 +1670,15 @@ footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footpr
     }
     footprint_Footprint unit = Constructfootprint_Footprint((fp_3.dh_u / (scale_1).xx), (fp_3.dh_v / (scale_1).xx));
     const float _e29 = footprint_max_extent(unit);
-    if (((_e29 * scale_1) <= l_4)) {
+    if (((_e29 * scale_1) <= l_6)) {
         const footprint_Footprint footprint_footprint_6 = fp_3;
         return footprint_footprint_6;
     }
-    const footprint_Footprint footprint_footprint_7 = Constructfootprint_Footprint(((unit.dh_u / (_e29).xx) * l_4), ((unit.dh_v / (_e29).xx) * l_4));
+    const footprint_Footprint footprint_footprint_7 = Constructfootprint_Footprint(((unit.dh_u / (_e29).xx) * l_6), ((unit.dh_v / (_e29).xx) * l_6));
     return footprint_footprint_7;
 }
 
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_36, float2 alpha_10)
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_40, float2 alpha_10)
 {
     float2 f = (0.0).xx;
 
@@ -1625,15 +1690,15 @@ kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kern
         }
     }
     float lambda = max(rules_1.max_extent, 0.0);
-    float2 h_22 = min(abs(r_36.half_extent), (lambda).xx);
+    float2 h_23 = min(abs(r_40.half_extent), (lambda).xx);
     float2 _e25 = f;
-    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_22, max(_e25, (0.0).xx)));
+    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_23, max(_e25, (0.0).xx)));
     return kernel_rect_boundingrect_1;
 }
 
-kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_11)
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_10)
 {
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_11);
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_10);
     if ((rules_2.kappa >= math_F32_MAX)) {
         const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e2;
         return kernel_covariance_covariance_16;
@@ -1643,214 +1708,241 @@ kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2
     return kernel_covariance_covariance_17;
 }
 
-float kernel_clamp_tau(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_9)
+float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_9)
 {
-    return (rules_3.det_clamp ? (a_9.sqrt_det * a_9.sqrt_det) : 0.0);
+    const float _e2 = ndf_roughness_matrix_clamped_det(a_9);
+    return (rules_3.det_clamp ? _e2 : 0.0);
 }
 
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_4, ndf_roughness_matrix_RoughnessMatrix a_10, footprint_Footprint fp_4, float sigma_4)
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_4)
 {
-    const footprint_Footprint _e4 = kernel_clamp_footprint(rules_4, fp_4);
-    const kernel_covariance_Covariance _e5 = footprint_covariance(_e4, sigma_4);
-    const kernel_covariance_Covariance _e6 = kernel_clamp_kernel(rules_4, _e5);
-    if (rules_4.det_clamp) {
-        const ndf_roughness_matrix_RoughnessMatrix _e8 = filter_gaussian_gaussian_sanitized(a_10, _e6);
-        const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e8;
-        return ndf_roughness_matrix_roughnessmatrix_12;
-    }
-    const ndf_roughness_matrix_RoughnessMatrix _e10 = filter_gaussian_gaussian_with_tau_sanitized(a_10, _e6, 0.0);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e10;
-    return ndf_roughness_matrix_roughnessmatrix_13;
+    const footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
+    const kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_4);
+    const kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
+    const kernel_covariance_Covariance kernel_covariance_covariance_18 = _e5;
+    return kernel_covariance_covariance_18;
 }
 
-float ndf_beckmann_exp_neg_times(float x_3, float k_12, float ln_k)
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_10, footprint_Footprint fp_5, float sigma_5)
 {
-    return ((x_3 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_3)) : (exp(-(x_3)) * k_12));
+    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_5);
+    const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_10);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_10, _e4, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_14 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_14;
+}
+
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_11, footprint_Footprint fp_6, float sigma_6)
+{
+    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_6);
+    const float _e5 = kernel_clamp_det_clamp_for(rules_6, a_11);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_11, _e4, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_15 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_15;
+}
+
+float ndf_beckmann_exp_neg_times(float x_3, float k_11, float ln_k)
+{
+    return ((x_3 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_3)) : (exp(-(x_3)) * k_11));
 }
 
 float ndf_beckmann_p22_of(float q_2, float sqrt_det_2)
 {
     float den_2 = (math_PI * sqrt_det_2);
     const float _e8 = ndf_beckmann_exp_neg_times(q_2, (1.0 / den_2), -(log(den_2)));
-    return _e8;
+    return ((q_2 >= 0.0) ? _e8 : 0.0);
 }
 
 float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3)
 {
-    bool local_9 = (bool)0;
+    bool local_11 = (bool)0;
 
     float z2_2 = (m_z_1 * m_z_1);
     float x_5 = (q_xy_1 / z2_2);
-    float k_18 = (1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2));
+    float k_17 = (1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    const float _e21 = ndf_beckmann_exp_neg_times(x_5, k_18, ln_k_1);
+    const float _e21 = ndf_beckmann_exp_neg_times(x_5, k_17, ln_k_1);
     if ((m_z_1 > 0.0)) {
-        local_9 = (_e21 <= math_F32_MAX);
+        local_11 = (_e21 <= math_F32_MAX);
     } else {
-        local_9 = false;
+        local_11 = false;
     }
-    bool _e29 = local_9;
+    bool _e29 = local_11;
     return (_e29 ? _e21 : 0.0);
 }
 
 float ndf_beckmann_lambda_of(float q_3, float abs_wz_1)
 {
+    bool local_12 = (bool)0;
+    bool local_13 = (bool)0;
     float p_2 = -3.849172e-5;
 
     if ((q_3 <= 0.0)) {
+        local_12 = (abs_wz_1 >= 0.0);
+    } else {
+        local_12 = false;
+    }
+    bool _e9 = local_12;
+    if (_e9) {
         return 0.0;
     }
-    if ((abs_wz_1 <= 0.0)) {
+    if (!(!((abs_wz_1 > 0.0)))) {
+        local_13 = !((q_3 > 0.0));
+    } else {
+        local_13 = true;
+    }
+    bool _e21 = local_13;
+    if (_e21) {
         return math_F32_MAX;
     }
-    float a_21 = (abs_wz_1 / sqrt(q_3));
-    if ((a_21 > 9.5)) {
+    float a_22 = (abs_wz_1 / sqrt(q_3));
+    if ((a_22 > 9.5)) {
         return 0.0;
     }
-    float t_6 = ((a_21 - 3.0) / (a_21 + 3.0));
-    float _e20 = p_2;
-    p_2 = ((_e20 * t_6) + 0.00028491428);
-    float _e24 = p_2;
-    p_2 = ((_e24 * t_6) + 1.8268152e-5);
-    float _e28 = p_2;
-    p_2 = ((_e28 * t_6) - 0.0018242653);
-    float _e32 = p_2;
-    p_2 = ((_e32 * t_6) + 0.0013654069);
-    float _e36 = p_2;
-    p_2 = ((_e36 * t_6) + 0.0055811945);
-    float _e40 = p_2;
-    p_2 = ((_e40 * t_6) - 0.009357543);
-    float _e44 = p_2;
-    p_2 = ((_e44 * t_6) - 0.0076571554);
-    float _e48 = p_2;
-    p_2 = ((_e48 * t_6) + 0.036274612);
-    float _e52 = p_2;
-    p_2 = ((_e52 * t_6) - 0.023293633);
-    float _e56 = p_2;
-    p_2 = ((_e56 * t_6) - 0.07646358);
-    float _e60 = p_2;
-    p_2 = ((_e60 * t_6) + 0.2117349);
-    float _e64 = p_2;
-    p_2 = ((_e64 * t_6) - 0.23284179);
-    float _e68 = p_2;
-    p_2 = ((_e68 * t_6) + 0.03307925);
-    float _e72 = p_2;
-    p_2 = ((_e72 * t_6) + 1.0631379);
-    float _e76 = p_2;
-    float k_19 = (_e76 / ((2.0 * a_21) + 1.0));
-    return min(((exp((-(a_21) * a_21)) * k_19) / ((3.5449078 * a_21) * (a_21 + k_19))), math_F32_MAX);
+    float t_7 = ((a_22 - 3.0) / (a_22 + 3.0));
+    float _e35 = p_2;
+    p_2 = ((_e35 * t_7) + 0.00028491428);
+    float _e39 = p_2;
+    p_2 = ((_e39 * t_7) + 1.8268152e-5);
+    float _e43 = p_2;
+    p_2 = ((_e43 * t_7) - 0.0018242653);
+    float _e47 = p_2;
+    p_2 = ((_e47 * t_7) + 0.0013654069);
+    float _e51 = p_2;
+    p_2 = ((_e51 * t_7) + 0.0055811945);
+    float _e55 = p_2;
+    p_2 = ((_e55 * t_7) - 0.009357543);
+    float _e59 = p_2;
+    p_2 = ((_e59 * t_7) - 0.0076571554);
+    float _e63 = p_2;
+    p_2 = ((_e63 * t_7) + 0.036274612);
+    float _e67 = p_2;
+    p_2 = ((_e67 * t_7) - 0.023293633);
+    float _e71 = p_2;
+    p_2 = ((_e71 * t_7) - 0.07646358);
+    float _e75 = p_2;
+    p_2 = ((_e75 * t_7) + 0.2117349);
+    float _e79 = p_2;
+    p_2 = ((_e79 * t_7) - 0.23284179);
+    float _e83 = p_2;
+    p_2 = ((_e83 * t_7) + 0.03307925);
+    float _e87 = p_2;
+    p_2 = ((_e87 * t_7) + 1.0631379);
+    float _e91 = p_2;
+    float k_18 = (_e91 / ((2.0 * a_22) + 1.0));
+    return min(((exp((-(a_22) * a_22)) * k_18) / ((3.5449078 * a_22) * (a_22 + k_18))), math_F32_MAX);
 }
 
-float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_37, float2 s_9)
+float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_41, float2 s_9)
 {
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_9);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_41, s_9);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_41);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_38, float3 m_10)
+float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_42, float3 m_10)
 {
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_10.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_42, m_10.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_42);
     const float _e6 = ndf_beckmann_d_of(_e3, m_10.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_39, float3 w_9)
+float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_43, float3 w_9)
 {
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_43, w_9.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_40, float3 w_10, float3 m_11)
+float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_44, float3 w_10, float3 m_11)
 {
-    const float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
+    const float _e3 = ndf_beckmann_lambda_isotropic(r_44, w_10);
     const float _e5 = ndf_g1_of(_e3, dot(w_10, m_11));
     return _e5;
 }
 
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_41, float3 i_4, float3 o_3, float3 m_12)
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_45, float3 i_4, float3 o_3, float3 m_12)
 {
-    const float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_4);
-    const float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
+    const float _e4 = ndf_beckmann_lambda_isotropic(r_45, i_4);
+    const float _e5 = ndf_beckmann_lambda_isotropic(r_45, o_3);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_12), dot(o_3, m_12));
     return _e8;
 }
 
-float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, float2 s_10)
+float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_46, float2 s_10)
 {
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_10);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_46, s_10);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_46);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, float3 m_13)
+float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_47, float3 m_13)
 {
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_13.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_47, m_13.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_47);
     const float _e6 = ndf_beckmann_d_of(_e3, m_13.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, float3 w_11)
+float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_48, float3 w_11)
 {
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_48, w_11.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_45, float3 w_12, float3 m_14)
+float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_49, float3 w_12, float3 m_14)
 {
-    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
+    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_49, w_12);
     const float _e5 = ndf_g1_of(_e3, dot(w_12, m_14));
     return _e5;
 }
 
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_46, float3 i_5, float3 o_4, float3 m_15)
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_50, float3 i_5, float3 o_4, float3 m_15)
 {
-    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_5);
-    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
+    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_50, i_5);
+    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_50, o_4);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_15), dot(o_4, m_15));
     return _e8;
 }
 
-float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, float2 s_11)
+float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_51, float2 s_11)
 {
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_11);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_51, s_11);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_51);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 m_16)
+float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_52, float3 m_16)
 {
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_16.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_52, m_16.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_52);
     const float _e6 = ndf_beckmann_d_of(_e3, m_16.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, float3 w_13)
+float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_53, float3 w_13)
 {
-    const float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
+    const float _e3 = ndf_roughness_matrix_quadratic(r_53, w_13.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_50, float3 w_14, float3 m_17)
+float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_54, float3 w_14, float3 m_17)
 {
-    const float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
+    const float _e3 = ndf_beckmann_lambda_matrix(r_54, w_14);
     const float _e5 = ndf_g1_of(_e3, dot(w_14, m_17));
     return _e5;
 }
 
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_51, float3 i_6, float3 o_5, float3 m_18)
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_55, float3 i_6, float3 o_5, float3 m_18)
 {
-    const float _e4 = ndf_beckmann_lambda_matrix(r_51, i_6);
-    const float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
+    const float _e4 = ndf_beckmann_lambda_matrix(r_55, i_6);
+    const float _e5 = ndf_beckmann_lambda_matrix(r_55, o_5);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_18), dot(o_5, m_18));
     return _e8;
 }
@@ -1863,11 +1955,11 @@ sampling_Warp Constructsampling_Warp(float arg0, float arg1, float arg2) {
     return ret;
 }
 
-sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_52)
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_56)
 {
-    const float3 _e1 = ndf_roughness_matrix_entries(r_52);
+    const float3 _e1 = ndf_roughness_matrix_clamped_entries(r_56);
     float l_xx = sqrt(_e1.x);
-    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_52.sqrt_det / l_xx));
+    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_56.sqrt_det / l_xx));
     return sampling_warp_1;
 }
 
@@ -1877,14 +1969,14 @@ float3 sampling_normalize_scaled(float3 v_4)
     return (w_17 / (length(w_17)).xxx);
 }
 
-float3 sampling_stretch(sampling_Warp l, float3 w_15)
+float3 sampling_stretch(sampling_Warp l_3, float3 w_15)
 {
-    return float3(((l.l_xx * w_15.x) + (l.l_yx * w_15.y)), (l.l_yy * w_15.y), w_15.z);
+    return float3(((l_3.l_xx * w_15.x) + (l_3.l_yx * w_15.y)), (l_3.l_yy * w_15.y), w_15.z);
 }
 
-float3 sampling_unstretch(sampling_Warp l_1, float3 n_4)
+float3 sampling_unstretch(sampling_Warp l_4, float3 n_4)
 {
-    const float3 _e14 = sampling_normalize_scaled(float3((l_1.l_xx * n_4.x), ((l_1.l_yx * n_4.x) + (l_1.l_yy * n_4.y)), n_4.z));
+    const float3 _e14 = sampling_normalize_scaled(float3((l_4.l_xx * n_4.x), ((l_4.l_yx * n_4.x) + (l_4.l_yy * n_4.y)), n_4.z));
     return _e14;
 }
 
@@ -1906,14 +1998,14 @@ float3 sampling_ggx_standard_visible(float3 wi, float2 u_5)
     return (float3((sin_theta * _e3), z_5) + wi);
 }
 
-float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_53, float3 wo_1, float2 u_6)
+float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_57, float3 wo_1, float2 u_6)
 {
-    bool local_10 = (bool)0;
+    bool local_14 = (bool)0;
 
     if (!((wo_1.z > 0.0))) {
         return (0.0).xxx;
     }
-    const sampling_Warp _e9 = sampling_warp(r_53);
+    const sampling_Warp _e9 = sampling_warp(r_57);
     const float3 _e10 = sampling_normalize_scaled(wo_1);
     const float3 _e11 = sampling_stretch(_e9, _e10);
     const float3 _e12 = sampling_normalize_scaled(_e11);
@@ -1925,11 +2017,11 @@ float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_53,
     const float3 _e24 = sampling_ggx_standard_visible(_e12, float2(_e20, _e22));
     const float3 _e25 = sampling_unstretch(_e9, _e24);
     if ((_e25.z > 0.0)) {
-        local_10 = (dot(wo_1, _e25) > 0.0);
+        local_14 = (dot(wo_1, _e25) > 0.0);
     } else {
-        local_10 = false;
+        local_14 = false;
     }
-    bool _e35 = local_10;
+    bool _e35 = local_14;
     if (_e35) {
         return _e25;
     }
@@ -1937,44 +2029,44 @@ float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_53,
     return ((_e36.z > 0.0) ? _e36 : (0.0).xxx);
 }
 
-float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_54, float2 u_7)
+float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_58, float2 u_7)
 {
     const float _e3 = sampling_clamp_unit(u_7.x);
     const float _e5 = sampling_clamp_unit(u_7.y);
     const float2 _e6 = math_sincos_turns(_e5);
     float3 n_5 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
-    const sampling_Warp _e13 = sampling_warp(r_54);
+    const sampling_Warp _e13 = sampling_warp(r_58);
     const float3 _e14 = sampling_unstretch(_e13, n_5);
     return _e14;
 }
 
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_55, float3 m_20)
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_59, float3 m_20)
 {
-    const float _e2 = ndf_ggx_d_matrix(r_55, m_20);
+    const float _e2 = ndf_ggx_d_matrix(r_59, m_20);
     return ((m_20.z > 0.0) ? (_e2 * m_20.z) : 0.0);
 }
 
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_56, float3 wo_2, float3 m_21)
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_60, float3 wo_2, float3 m_21)
 {
-    bool local_11 = (bool)0;
+    bool local_15 = (bool)0;
 
     float wom = dot(wo_2, m_21);
     if (!(!((wo_2.z > 0.0)))) {
-        local_11 = !((wom > 0.0));
+        local_15 = !((wom > 0.0));
     } else {
-        local_11 = true;
+        local_15 = true;
     }
-    bool _e15 = local_11;
+    bool _e15 = local_15;
     if (_e15) {
         return 0.0;
     }
-    const float _e17 = ndf_ggx_d_matrix(r_56, m_21);
-    const float _e20 = ndf_ggx_lambda_matrix(r_56, wo_2);
+    const float _e17 = ndf_ggx_d_matrix(r_60, m_21);
+    const float _e20 = ndf_ggx_lambda_matrix(r_60, wo_2);
     float v_10 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
     return ((v_10 <= math_F32_MAX) ? v_10 : 0.0);
 }
 
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_57, float3 wo_3, float3 m_22)
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_61, float3 wo_3, float3 m_22)
 {
     if (!((wo_3.z > 0.0))) {
         return 0.0;
@@ -1983,25 +2075,25 @@ float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r
     if (!((dot(_e8, m_22) > 0.0))) {
         return 0.0;
     }
-    const float _e14 = ndf_ggx_d_matrix(r_57, m_22);
-    const float _e18 = ndf_ggx_lambda_matrix(r_57, _e8);
+    const float _e14 = ndf_ggx_d_matrix(r_61, m_22);
+    const float _e18 = ndf_ggx_lambda_matrix(r_61, _e8);
     float v_11 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
     return ((v_11 <= math_F32_MAX) ? v_11 : 0.0);
 }
 
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_58, float3 wo_4, float3 wi_1)
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_62, float3 wo_4, float3 wi_1)
 {
     if (!((wo_4.z > 0.0))) {
         return 0.0;
     }
     const float3 _e8 = sampling_normalize_scaled(wo_4);
     const float3 _e9 = sampling_normalize_scaled(wi_1);
-    float3 h_23 = (_e8 + _e9);
-    float len = length(h_23);
+    float3 h_24 = (_e8 + _e9);
+    float len = length(h_24);
     if (!((len > 0.0))) {
         return 0.0;
     }
-    const float _e18 = sampling_reflection_pdf_from_normal(r_58, wo_4, (h_23 / (len).xxx));
+    const float _e18 = sampling_reflection_pdf_from_normal(r_62, wo_4, (h_24 / (len).xxx));
     return _e18;
 }
 

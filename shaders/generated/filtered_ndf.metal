@@ -30,9 +30,12 @@ struct filter_deferred_KernelConvention {
 struct ndf_roughness_matrix_RoughnessMatrix {
     metal::float2 axis;
     metal::float2 eig;
+    metal::float2 eig_c;
     metal::float2 inv_eig;
     float sqrt_det;
-    char _pad4[4];
+    float det;
+    float tau;
+    char _pad7[4];
 };
 struct filter_lean_LeanMoments {
     metal::float2 mean;
@@ -122,6 +125,7 @@ constant uint kernel_clamp_FLOOR_NONE = 0u;
 constant uint kernel_clamp_FLOOR_CONSTANT = 1u;
 constant uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
 constant kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true};
+constant kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true};
 constant kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules {340282350000000000000000000000000000000.0, 0u, 0.0, 340282350000000000000000000000000000000.0, false};
 constant kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true};
 constant float ndf_beckmann_EXP_SPLIT = 80.0;
@@ -133,9 +137,9 @@ float math_atan(
 ) {
     float t = {};
     float r = {};
-    float a_11 = metal::abs(x);
-    bool inv = a_11 > 1.0;
-    t = inv ? (1.0 / a_11) : a_11;
+    float a_12 = metal::abs(x);
+    bool inv = a_12 > 1.0;
+    t = inv ? (1.0 / a_12) : a_12;
     float _e8 = t;
     bool shift = _e8 > math_TAN_EIGHTH_PI;
     float _e11 = t;
@@ -169,19 +173,19 @@ metal::float2 math_sincos_turns(
 ) {
     metal::float2 cs = {};
     float q_4 = metal::rint(4.0 * u);
-    float r_59 = u - (0.25 * q_4);
-    float z_1 = r_59 * r_59;
-    float s_12 = r_59 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855);
+    float r_63 = u - (0.25 * q_4);
+    float z_1 = r_63 * r_63;
+    float s_12 = r_63 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855);
     float c_8 = (((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0;
-    int k_13 = naga_f2i32(q_4) & 3;
+    int k_12 = naga_f2i32(q_4) & 3;
     cs = metal::float2(c_8, s_12);
-    if (k_13 == 1) {
+    if (k_12 == 1) {
         cs = metal::float2(-(s_12), c_8);
     } else {
-        if (k_13 == 2) {
+        if (k_12 == 2) {
             cs = metal::float2(-(c_8), -(s_12));
         } else {
-            if (k_13 == 3) {
+            if (k_12 == 3) {
                 cs = metal::float2(s_12, -(c_8));
             }
         }
@@ -198,9 +202,9 @@ float math_hypot(
     if (m_23 <= 0.0) {
         return 0.0;
     }
-    float a_12 = x_1 / m_23;
+    float a_13 = x_1 / m_23;
     float b_2 = y / m_23;
-    return m_23 * metal::sqrt((a_12 * a_12) + (b_2 * b_2));
+    return m_23 * metal::sqrt((a_13 * a_13) + (b_2 * b_2));
 }
 
 float ndf_roughness_clamp_alpha(
@@ -266,18 +270,18 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
     if (scale <= 0.0) {
         return c_3;
     }
-    float a_13 = c_3.s_xx / scale;
+    float a_14 = c_3.s_xx / scale;
     float b_3 = c_3.s_xy / scale;
     float e_2 = c_3.s_yy / scale;
-    float d_1 = 0.5 * (a_13 - e_2);
-    float r_60 = metal::sqrt((d_1 * d_1) + (b_3 * b_3));
-    float lmax_1 = ((0.5 * (a_13 + e_2)) + r_60) * scale;
+    float d_1 = 0.5 * (a_14 - e_2);
+    float r_64 = metal::sqrt((d_1 * d_1) + (b_3 * b_3));
+    float lmax_1 = ((0.5 * (a_14 + e_2)) + r_64) * scale;
     if (lmax_1 <= max_eig) {
         return c_3;
     }
     float lmin_1 = metal::max(c_3.det / lmax_1, 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = r_60 < 0.000000000000000001;
+        local = r_64 < 0.000000000000000001;
     } else {
         local = true;
     }
@@ -285,10 +289,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
     if (_e46) {
         return kernel_covariance_Covariance {max_eig, 0.0, max_eig, max_eig * max_eig};
     }
-    float p_4 = r_60 + metal::abs(d_1);
+    float p_4 = r_64 + metal::abs(d_1);
     float q_5 = (p_4 > 0.0) ? ((b_3 * b_3) / p_4) : 0.0;
     metal::float2 ee = (d_1 >= 0.0) ? metal::float2(p_4, q_5) : metal::float2(q_5, p_4);
-    float inv_1 = 1.0 / (2.0 * r_60);
+    float inv_1 = 1.0 / (2.0 * r_64);
     float p11_ = ee.x * inv_1;
     float p12_ = b_3 * inv_1;
     float p22_ = ee.y * inv_1;
@@ -375,20 +379,20 @@ float filter_deferred_norm_eval(
     metal::float3 dn_u,
     metal::float3 dn_v
 ) {
-    float a_14 = metal::dot(dn_u, dn_u);
+    float a_15 = metal::dot(dn_u, dn_u);
     float c_9 = metal::dot(dn_v, dn_v);
     if (norm == filter_deferred_NORM_MAX_SQUARED) {
-        return metal::max(a_14, c_9);
+        return metal::max(a_15, c_9);
     }
     if (norm == filter_deferred_NORM_MAX_EIGENVALUE) {
-        float _e11 = filter_deferred_max_eigenvalue(a_14, metal::dot(dn_u, dn_v), c_9);
+        float _e11 = filter_deferred_max_eigenvalue(a_15, metal::dot(dn_u, dn_v), c_9);
         return _e11;
     }
     if (norm == filter_deferred_NORM_MAX_ABS_COMPONENT) {
         metal::float3 m_24 = metal::max(metal::abs(dn_u), metal::abs(dn_v));
         return metal::max(metal::max(m_24.x, m_24.y), m_24.z);
     }
-    return a_14 + c_9;
+    return a_15 + c_9;
 }
 
 float filter_deferred_clamp_kernel(
@@ -485,32 +489,57 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(
     metal::float2 axis,
     metal::float2 alpha_5
 ) {
-    metal::float2 l_2 = alpha_5 * alpha_5;
-    return ndf_roughness_matrix_RoughnessMatrix {axis, l_2, metal::float2(1.0) / l_2, alpha_5.x * alpha_5.y};
+    metal::float2 l_5 = alpha_5 * alpha_5;
+    return ndf_roughness_matrix_RoughnessMatrix {axis, l_5, l_5, metal::float2(1.0) / l_5, alpha_5.x * alpha_5.y, l_5.x * l_5.y, 0.0};
+}
+
+metal::float2 ndf_roughness_matrix_clamped_eigenvalues(
+    metal::float2 l,
+    float det,
+    float tau
+) {
+    if (det >= tau) {
+        return l;
+    }
+    float h_16 = 0.5 * (l.x + l.y);
+    float gap = tau - det;
+    float t_2 = gap / (h_16 + metal::sqrt((h_16 * h_16) + gap));
+    float l1_ = l.x + t_2;
+    return metal::float2(l1_, tau / l1_);
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(
+    metal::float2 axis_1,
+    metal::float2 l_1,
+    float det_1,
+    float tau_1
+) {
+    metal::float2 _e4 = ndf_roughness_matrix_clamped_eigenvalues(l_1, det_1, tau_1);
+    return ndf_roughness_matrix_RoughnessMatrix {axis_1, l_1, _e4, metal::float2(1.0) / _e4, metal::sqrt(metal::max(det_1, tau_1)), det_1, tau_1};
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(
     float a11_,
     float a12_,
     float a22_,
-    float det,
-    float tau
+    float det_2,
+    float tau_2
 ) {
     metal::float2 v_1 = {};
     float half_diff = 0.5 * (a11_ - a22_);
     float rad = metal::sqrt((half_diff * half_diff) + (a12_ * a12_));
-    float l1_ = (0.5 * (a11_ + a22_)) + rad;
-    float l2_1 = det / l1_;
+    float l1_1 = (0.5 * (a11_ + a22_)) + rad;
+    float l2_1 = metal::max(det_2, 0.0) / l1_1;
     float big_1 = rad + metal::abs(half_diff);
     v_1 = (half_diff < 0.0) ? metal::float2(a12_, big_1) : metal::float2(big_1, a12_);
     if (big_1 <= 0.0) {
         v_1 = metal::float2(1.0, 0.0);
     }
-    metal::float2 _e30 = v_1;
-    metal::float2 _e31 = v_1;
-    metal::float2 axis_1 = _e30 / metal::float2(metal::length(_e31));
-    float c_10 = metal::max(det, tau);
-    return ndf_roughness_matrix_RoughnessMatrix {axis_1, metal::float2(l1_, l2_1), metal::float2(l2_1, l1_) / metal::float2(c_10), metal::sqrt(c_10)};
+    metal::float2 _e32 = v_1;
+    metal::float2 _e33 = v_1;
+    metal::float2 axis_2 = _e32 / metal::float2(metal::length(_e33));
+    ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, metal::float2(l1_1, l2_1), det_2, tau_2);
+    return _e38;
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(
@@ -522,100 +551,111 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(
     return _e7;
 }
 
-metal::float2 ndf_roughness_matrix_rotate(
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(
     ndf_roughness_matrix_RoughnessMatrix r_1,
-    metal::float2 v_2
+    float det_clamp
 ) {
-    return metal::float2((r_1.axis.x * v_2.x) + (r_1.axis.y * v_2.y), (r_1.axis.x * v_2.y) - (r_1.axis.y * v_2.x));
-}
-
-float ndf_roughness_matrix_inv_quadratic(
-    ndf_roughness_matrix_RoughnessMatrix r_2,
-    metal::float2 s
-) {
-    metal::float2 _e2 = ndf_roughness_matrix_rotate(r_2, s);
-    return metal::dot(_e2 * _e2, r_2.inv_eig);
-}
-
-float ndf_roughness_matrix_quadratic(
-    ndf_roughness_matrix_RoughnessMatrix r_3,
-    metal::float2 w
-) {
-    metal::float2 _e2 = ndf_roughness_matrix_rotate(r_3, w);
-    return metal::dot(_e2 * _e2, r_3.eig);
-}
-
-float ndf_roughness_matrix_sqrt_det(
-    ndf_roughness_matrix_RoughnessMatrix r_4
-) {
-    return r_4.sqrt_det;
-}
-
-metal::float3 ndf_roughness_matrix_entries(
-    ndf_roughness_matrix_RoughnessMatrix r_5
-) {
-    float c_11 = r_5.axis.x;
-    float s_13 = r_5.axis.y;
-    metal::float2 l_3 = r_5.eig;
-    return metal::float3(((r_5.eig.x * c_11) * c_11) + ((r_5.eig.y * s_13) * s_13), ((r_5.eig.x - r_5.eig.y) * c_11) * s_13, ((r_5.eig.x * s_13) * s_13) + ((r_5.eig.y * c_11) * c_11));
-}
-
-float ndf_roughness_matrix_determinant(
-    ndf_roughness_matrix_RoughnessMatrix r_6
-) {
-    return r_6.eig.x * r_6.eig.y;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_plus_kernel(
-    ndf_roughness_matrix_RoughnessMatrix a_2,
-    kernel_covariance_Covariance k_3,
-    float tau_1
-) {
-    metal::float3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_12 = a_2.axis.x;
-    float s_14 = a_2.axis.y;
-    float k1_ = metal::max((((c_12 * c_12) * k_3.s_xx) + (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((s_14 * s_14) * k_3.s_yy), 0.0);
-    float k2_ = metal::max((((s_14 * s_14) * k_3.s_xx) - (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((c_12 * c_12) * k_3.s_yy), 0.0);
-    float _e38 = ndf_roughness_matrix_determinant(a_2);
-    float det_2 = (_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * metal::max(k_3.det, 0.0));
-    ndf_roughness_matrix_RoughnessMatrix _e70 = ndf_roughness_matrix_from_entries_det(_e3.x + (2.0 * k_3.s_xx), _e3.y + (2.0 * k_3.s_xy), _e3.z + (2.0 * k_3.s_yy), det_2, tau_1);
-    return _e70;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(
-    ndf_roughness_matrix_RoughnessMatrix a_3,
-    kernel_covariance_Covariance k_4
-) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_plus_kernel(a_3, k_4, a_3.sqrt_det * a_3.sqrt_det);
-    return _e5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(
-    ndf_roughness_matrix_RoughnessMatrix a_4,
-    kernel_covariance_Covariance kernel_
-) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_);
-    ndf_roughness_matrix_RoughnessMatrix _e3 = filter_gaussian_gaussian_sanitized(a_4, _e2);
-    return _e3;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_tau_sanitized(
-    ndf_roughness_matrix_RoughnessMatrix a_5,
-    kernel_covariance_Covariance k_5,
-    float tau_2
-) {
-    float _e3 = ndf_roughness_matrix_determinant(a_5);
-    ndf_roughness_matrix_RoughnessMatrix _e7 = filter_gaussian_plus_kernel(a_5, k_5, (tau_2 > 0.0) ? tau_2 : _e3);
+    ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_eigenbasis(r_1.axis, r_1.eig, r_1.det, metal::max(det_clamp, 0.0));
     return _e7;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_tau(
-    ndf_roughness_matrix_RoughnessMatrix a_6,
-    kernel_covariance_Covariance kernel_1,
+metal::float2 ndf_roughness_matrix_rotate(
+    ndf_roughness_matrix_RoughnessMatrix r_2,
+    metal::float2 v_2
+) {
+    return metal::float2((r_2.axis.x * v_2.x) + (r_2.axis.y * v_2.y), (r_2.axis.x * v_2.y) - (r_2.axis.y * v_2.x));
+}
+
+float ndf_roughness_matrix_inv_quadratic(
+    ndf_roughness_matrix_RoughnessMatrix r_3,
+    metal::float2 s
+) {
+    metal::float2 _e2 = ndf_roughness_matrix_rotate(r_3, s);
+    return metal::dot(_e2 * _e2, r_3.inv_eig);
+}
+
+float ndf_roughness_matrix_quadratic(
+    ndf_roughness_matrix_RoughnessMatrix r_4,
+    metal::float2 w
+) {
+    metal::float2 _e2 = ndf_roughness_matrix_rotate(r_4, w);
+    return metal::dot(_e2 * _e2, r_4.eig_c);
+}
+
+float ndf_roughness_matrix_sqrt_det(
+    ndf_roughness_matrix_RoughnessMatrix r_5
+) {
+    return r_5.sqrt_det;
+}
+
+metal::float3 ndf_roughness_matrix_entries_of(
+    ndf_roughness_matrix_RoughnessMatrix r_6,
+    metal::float2 l_2
+) {
+    float c_10 = r_6.axis.x;
+    float s_13 = r_6.axis.y;
+    return metal::float3(((l_2.x * c_10) * c_10) + ((l_2.y * s_13) * s_13), ((l_2.x - l_2.y) * c_10) * s_13, ((l_2.x * s_13) * s_13) + ((l_2.y * c_10) * c_10));
+}
+
+metal::float3 ndf_roughness_matrix_entries(
+    ndf_roughness_matrix_RoughnessMatrix r_7
+) {
+    metal::float3 _e2 = ndf_roughness_matrix_entries_of(r_7, r_7.eig);
+    return _e2;
+}
+
+metal::float3 ndf_roughness_matrix_clamped_entries(
+    ndf_roughness_matrix_RoughnessMatrix r_8
+) {
+    metal::float3 _e2 = ndf_roughness_matrix_entries_of(r_8, r_8.eig_c);
+    return _e2;
+}
+
+float ndf_roughness_matrix_determinant(
+    ndf_roughness_matrix_RoughnessMatrix r_9
+) {
+    return r_9.det;
+}
+
+float ndf_roughness_matrix_clamped_det(
+    ndf_roughness_matrix_RoughnessMatrix r_10
+) {
+    return metal::max(r_10.det, r_10.tau);
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(
+    ndf_roughness_matrix_RoughnessMatrix a_2,
+    kernel_covariance_Covariance k_3,
     float tau_3
 ) {
+    metal::float3 _e3 = ndf_roughness_matrix_entries(a_2);
+    float c_11 = a_2.axis.x;
+    float s_14 = a_2.axis.y;
+    float k1_ = metal::max((((c_11 * c_11) * k_3.s_xx) + (((2.0 * c_11) * s_14) * k_3.s_xy)) + ((s_14 * s_14) * k_3.s_yy), 0.0);
+    float k2_ = metal::max((((s_14 * s_14) * k_3.s_xx) - (((2.0 * c_11) * s_14) * k_3.s_xy)) + ((c_11 * c_11) * k_3.s_yy), 0.0);
+    float _e38 = ndf_roughness_matrix_determinant(a_2);
+    float det_4 = (_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * metal::max(k_3.det, 0.0));
+    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det(_e3.x + (2.0 * k_3.s_xx), _e3.y + (2.0 * k_3.s_xy), _e3.z + (2.0 * k_3.s_yy), det_4, metal::max(tau_3, 0.0));
+    return _e72;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(
+    ndf_roughness_matrix_RoughnessMatrix a_3,
+    kernel_covariance_Covariance kernel_
+) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_3);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_3, _e2, _e3);
+    return _e4;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(
+    ndf_roughness_matrix_RoughnessMatrix a_4,
+    kernel_covariance_Covariance kernel_1,
+    float det_clamp_1
+) {
     kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_1);
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_with_tau_sanitized(a_6, _e3, tau_3);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e3, det_clamp_1);
     return _e4;
 }
 
@@ -628,14 +668,14 @@ kernel_covariance_Covariance filter_lean_covariance(
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(
-    ndf_roughness_matrix_RoughnessMatrix a_7,
+    ndf_roughness_matrix_RoughnessMatrix a_5,
     kernel_covariance_Covariance pixel,
     filter_lean_LeanMoments moments
 ) {
     kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
     kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
     kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_7, _e5);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_5, _e5);
     return _e6;
 }
 
@@ -682,55 +722,74 @@ filter_deferred_KernelConvention filter_presets_preset(
     }
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(
-    ndf_roughness_matrix_RoughnessMatrix a_8,
-    kernel_covariance_Covariance kernel_2
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(
+    ndf_roughness_matrix_RoughnessMatrix a_6,
+    kernel_covariance_Covariance k_4,
+    float tau_4
 ) {
     float b11_ = {};
     float b12_ = {};
     float b22_ = {};
-    float det_1 = {};
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
-    metal::float2 lc = metal::min(a_8.eig, metal::float2(0.99));
-    metal::float2 excess = a_8.eig - lc;
+    float det_3 = {};
+    metal::float2 lc = metal::min(a_6.eig, metal::float2(0.99));
+    metal::float2 excess = a_6.eig - lc;
     metal::float2 p_5 = lc / (metal::float2(1.0) - lc);
-    float c_13 = a_8.axis.x;
-    float s_15 = a_8.axis.y;
-    float p11_1 = ((p_5.x * c_13) * c_13) + ((p_5.y * s_15) * s_15);
-    float p12_1 = ((p_5.x - p_5.y) * c_13) * s_15;
-    float p22_1 = ((p_5.x * s_15) * s_15) + ((p_5.y * c_13) * c_13);
-    float k1_1 = metal::max((((c_13 * c_13) * _e2.s_xx) + (((2.0 * c_13) * s_15) * _e2.s_xy)) + ((s_15 * s_15) * _e2.s_yy), 0.0);
-    float k2_1 = metal::max((((s_15 * s_15) * _e2.s_xx) - (((2.0 * c_13) * s_15) * _e2.s_xy)) + ((c_13 * c_13) * _e2.s_yy), 0.0);
-    float d_2 = ((p_5.x * p_5.y) + (2.0 * ((p_5.y * k1_1) + (p_5.x * k2_1)))) + (4.0 * metal::max(_e2.det, 0.0));
-    float q11_ = p11_1 + (2.0 * _e2.s_xx);
-    float q12_ = p12_1 + (2.0 * _e2.s_xy);
-    float q22_ = p22_1 + (2.0 * _e2.s_yy);
+    float c_12 = a_6.axis.x;
+    float s_15 = a_6.axis.y;
+    float p11_1 = ((p_5.x * c_12) * c_12) + ((p_5.y * s_15) * s_15);
+    float p12_1 = ((p_5.x - p_5.y) * c_12) * s_15;
+    float p22_1 = ((p_5.x * s_15) * s_15) + ((p_5.y * c_12) * c_12);
+    float k1_1 = metal::max((((c_12 * c_12) * k_4.s_xx) + (((2.0 * c_12) * s_15) * k_4.s_xy)) + ((s_15 * s_15) * k_4.s_yy), 0.0);
+    float k2_1 = metal::max((((s_15 * s_15) * k_4.s_xx) - (((2.0 * c_12) * s_15) * k_4.s_xy)) + ((c_12 * c_12) * k_4.s_yy), 0.0);
+    float d_2 = ((p_5.x * p_5.y) + (2.0 * ((p_5.y * k1_1) + (p_5.x * k2_1)))) + (4.0 * metal::max(k_4.det, 0.0));
+    float q11_ = p11_1 + (2.0 * k_4.s_xx);
+    float q12_ = p12_1 + (2.0 * k_4.s_xy);
+    float q22_ = p22_1 + (2.0 * k_4.s_yy);
     float den = ((1.0 + q11_) + q22_) + d_2;
     b11_ = (q11_ + d_2) / den;
     b12_ = q12_ / den;
     b22_ = (q22_ + d_2) / den;
-    det_1 = d_2 / den;
+    det_3 = d_2 / den;
     if (metal::max(excess.x, excess.y) > 0.0) {
         float _e114 = b11_;
-        b11_ = _e114 + (((excess.x * c_13) * c_13) + ((excess.y * s_15) * s_15));
+        b11_ = _e114 + (((excess.x * c_12) * c_12) + ((excess.y * s_15) * s_15));
         float _e123 = b12_;
-        b12_ = _e123 + (((excess.x - excess.y) * c_13) * s_15);
+        b12_ = _e123 + (((excess.x - excess.y) * c_12) * s_15);
         float _e130 = b22_;
-        b22_ = _e130 + (((excess.x * s_15) * s_15) + ((excess.y * c_13) * c_13));
+        b22_ = _e130 + (((excess.x * s_15) * s_15) + ((excess.y * c_12) * c_12));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
         float _e143 = b12_;
-        det_1 = (_e139 * _e140) - (_e142 * _e143);
+        det_3 = (_e139 * _e140) - (_e142 * _e143);
     }
-    metal::float3 _e146 = ndf_roughness_matrix_entries(a_8);
-    float tau_4 = a_8.sqrt_det * a_8.sqrt_det;
-    float _e150 = b11_;
-    float _e153 = b12_;
-    float _e154 = b22_;
-    float _e157 = det_1;
-    ndf_roughness_matrix_RoughnessMatrix _e159 = ndf_roughness_matrix_from_entries_det(metal::max(_e150, _e146.x), _e153, metal::max(_e154, _e146.z), metal::max(_e157, tau_4), tau_4);
-    return _e159;
+    metal::float3 _e146 = ndf_roughness_matrix_entries(a_6);
+    float _e147 = b11_;
+    float _e150 = b12_;
+    float _e151 = b22_;
+    float _e154 = det_3;
+    ndf_roughness_matrix_RoughnessMatrix _e157 = ndf_roughness_matrix_from_entries_det(metal::max(_e147, _e146.x), _e150, metal::max(_e151, _e146.z), _e154, metal::max(tau_4, 0.0));
+    return _e157;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(
+    ndf_roughness_matrix_RoughnessMatrix a_7,
+    kernel_covariance_Covariance kernel_2
+) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_7);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_7, _e2, _e3);
+    return _e4;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(
+    ndf_roughness_matrix_RoughnessMatrix a_8,
+    kernel_covariance_Covariance kernel_3,
+    float det_clamp_2
+) {
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_8, _e3, det_clamp_2);
+    return _e4;
 }
 
 ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(
@@ -738,34 +797,34 @@ ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(
 ) {
     float _e2 = ndf_roughness_clamp_alpha(alpha_6.x);
     float _e4 = ndf_roughness_clamp_alpha(alpha_6.y);
-    metal::float2 a_15 = metal::float2(_e2, _e4);
-    return ndf_roughness_axis_aligned_AxisAligned {a_15, metal::float2(1.0) / (a_15 * a_15)};
+    metal::float2 a_16 = metal::float2(_e2, _e4);
+    return ndf_roughness_axis_aligned_AxisAligned {a_16, metal::float2(1.0) / (a_16 * a_16)};
 }
 
 float ndf_roughness_axis_aligned_inv_quadratic(
-    ndf_roughness_axis_aligned_AxisAligned r_7,
+    ndf_roughness_axis_aligned_AxisAligned r_11,
     metal::float2 s_1
 ) {
-    return metal::dot(s_1 * s_1, r_7.inv_alpha_sq);
+    return metal::dot(s_1 * s_1, r_11.inv_alpha_sq);
 }
 
 float ndf_roughness_axis_aligned_quadratic(
-    ndf_roughness_axis_aligned_AxisAligned r_8,
+    ndf_roughness_axis_aligned_AxisAligned r_12,
     metal::float2 w_1
 ) {
-    return metal::dot(w_1 * w_1, r_8.alpha * r_8.alpha);
+    return metal::dot(w_1 * w_1, r_12.alpha * r_12.alpha);
 }
 
 float ndf_roughness_axis_aligned_sqrt_det(
-    ndf_roughness_axis_aligned_AxisAligned r_9
+    ndf_roughness_axis_aligned_AxisAligned r_13
 ) {
-    return r_9.alpha.x * r_9.alpha.y;
+    return r_13.alpha.x * r_13.alpha.y;
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(
-    ndf_roughness_axis_aligned_AxisAligned r_10
+    ndf_roughness_axis_aligned_AxisAligned r_14
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), r_10.alpha);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), r_14.alpha);
     return _e5;
 }
 
@@ -773,11 +832,11 @@ float filter_proxy_effective_alpha(
     float alpha_7,
     float half_extent
 ) {
-    float h_16 = metal::abs(half_extent);
-    float _e3 = math_hypot(alpha_7, h_16);
-    float t_2 = (_e3 > 0.0) ? (h_16 / _e3) : 0.0;
-    float _e9 = math_atan(t_2);
-    float ratio = (t_2 > 0.0) ? (t_2 / _e9) : 1.0;
+    float h_17 = metal::abs(half_extent);
+    float _e3 = math_hypot(alpha_7, h_17);
+    float t_3 = (_e3 > 0.0) ? (h_17 / _e3) : 0.0;
+    float _e9 = math_atan(t_3);
+    float ratio = (t_3 > 0.0) ? (t_3 / _e9) : 1.0;
     return _e3 * metal::sqrt(ratio);
 }
 
@@ -790,21 +849,21 @@ float filter_proxy_effective_alpha_simple(
 }
 
 ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(
-    ndf_roughness_axis_aligned_AxisAligned r_11,
+    ndf_roughness_axis_aligned_AxisAligned r_15,
     metal::float2 half_extent_2
 ) {
-    float _e5 = filter_proxy_effective_alpha(r_11.alpha.x, half_extent_2.x);
-    float _e9 = filter_proxy_effective_alpha(r_11.alpha.y, half_extent_2.y);
+    float _e5 = filter_proxy_effective_alpha(r_15.alpha.x, half_extent_2.x);
+    float _e9 = filter_proxy_effective_alpha(r_15.alpha.y, half_extent_2.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(metal::float2(_e5, _e9));
     return _e11;
 }
 
 ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(
-    ndf_roughness_axis_aligned_AxisAligned r_12,
+    ndf_roughness_axis_aligned_AxisAligned r_16,
     metal::float2 half_extent_3
 ) {
-    float _e5 = filter_proxy_effective_alpha_simple(r_12.alpha.x, half_extent_3.x);
-    float _e9 = filter_proxy_effective_alpha_simple(r_12.alpha.y, half_extent_3.y);
+    float _e5 = filter_proxy_effective_alpha_simple(r_16.alpha.x, half_extent_3.x);
+    float _e9 = filter_proxy_effective_alpha_simple(r_16.alpha.y, half_extent_3.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(metal::float2(_e5, _e9));
     return _e11;
 }
@@ -840,29 +899,29 @@ ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(
 }
 
 float ndf_roughness_isotropic_inv_quadratic(
-    ndf_roughness_isotropic_Isotropic r_13,
+    ndf_roughness_isotropic_Isotropic r_17,
     metal::float2 s_2
 ) {
-    return metal::dot(s_2, s_2) * r_13.inv_alpha_sq;
+    return metal::dot(s_2, s_2) * r_17.inv_alpha_sq;
 }
 
 float ndf_roughness_isotropic_quadratic(
-    ndf_roughness_isotropic_Isotropic r_14,
+    ndf_roughness_isotropic_Isotropic r_18,
     metal::float2 w_2
 ) {
-    return metal::dot(w_2, w_2) * (r_14.alpha * r_14.alpha);
+    return metal::dot(w_2, w_2) * (r_18.alpha * r_18.alpha);
 }
 
 float ndf_roughness_isotropic_sqrt_det(
-    ndf_roughness_isotropic_Isotropic r_15
+    ndf_roughness_isotropic_Isotropic r_19
 ) {
-    return r_15.alpha * r_15.alpha;
+    return r_19.alpha * r_19.alpha;
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(
-    ndf_roughness_isotropic_Isotropic r_16
+    ndf_roughness_isotropic_Isotropic r_20
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), metal::float2(r_16.alpha));
+    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), metal::float2(r_20.alpha));
     return _e6;
 }
 
@@ -870,8 +929,8 @@ float ndf_ggx_p22_of(
     float q,
     float sqrt_det
 ) {
-    float t_3 = 1.0 + q;
-    return 1.0 / (((math_PI * sqrt_det) * t_3) * t_3);
+    float t_4 = 1.0 + q;
+    return (q >= 0.0) ? (1.0 / (((math_PI * sqrt_det) * t_4) * t_4)) : 0.0;
 }
 
 float ndf_ggx_d_of(
@@ -880,8 +939,8 @@ float ndf_ggx_d_of(
     float sqrt_det_1
 ) {
     bool local_4 = {};
-    float t_4 = q_xy + (m_z * m_z);
-    float v_5 = 1.0 / (((math_PI * sqrt_det_1) * t_4) * t_4);
+    float t_5 = q_xy + (m_z * m_z);
+    float v_5 = 1.0 / (((math_PI * sqrt_det_1) * t_5) * t_5);
     if (m_z > 0.0) {
         local_4 = v_5 <= math_F32_MAX;
     } else {
@@ -895,165 +954,179 @@ float ndf_ggx_lambda_of(
     float q_1,
     float abs_wz
 ) {
+    bool local_5 = {};
+    bool local_6 = {};
     if (q_1 <= 0.0) {
+        local_5 = abs_wz >= 0.0;
+    } else {
+        local_5 = false;
+    }
+    bool _e9 = local_5;
+    if (_e9) {
         return 0.0;
     }
-    if (abs_wz <= 0.0) {
+    if (!(!((abs_wz > 0.0)))) {
+        local_6 = !((q_1 > 0.0));
+    } else {
+        local_6 = true;
+    }
+    bool _e21 = local_6;
+    if (_e21) {
         return math_F32_MAX;
     }
-    float r_61 = metal::sqrt((abs_wz * abs_wz) + q_1);
-    return q_1 / ((2.0 * abs_wz) * (r_61 + abs_wz));
+    float r_65 = metal::sqrt((abs_wz * abs_wz) + q_1);
+    return q_1 / ((2.0 * abs_wz) * (r_65 + abs_wz));
 }
 
 float ndf_ggx_p22_isotropic(
-    ndf_roughness_isotropic_Isotropic r_17,
+    ndf_roughness_isotropic_Isotropic r_21,
     metal::float2 s_3
 ) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_17, s_3);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_17);
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_21, s_3);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_21);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_ggx_d_isotropic(
-    ndf_roughness_isotropic_Isotropic r_18,
+    ndf_roughness_isotropic_Isotropic r_22,
     metal::float3 m_1
 ) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_18, m_1.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_18);
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_22, m_1.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_22);
     float _e6 = ndf_ggx_d_of(_e3, m_1.z, _e5);
     return _e6;
 }
 
 float ndf_ggx_lambda_isotropic(
-    ndf_roughness_isotropic_Isotropic r_19,
+    ndf_roughness_isotropic_Isotropic r_23,
     metal::float3 w_3
 ) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_19, w_3.xy);
+    float _e3 = ndf_roughness_isotropic_quadratic(r_23, w_3.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_3.z));
     return _e6;
 }
 
 float ndf_ggx_g1_isotropic(
-    ndf_roughness_isotropic_Isotropic r_20,
+    ndf_roughness_isotropic_Isotropic r_24,
     metal::float3 w_4,
     metal::float3 m_2
 ) {
-    float _e3 = ndf_ggx_lambda_isotropic(r_20, w_4);
+    float _e3 = ndf_ggx_lambda_isotropic(r_24, w_4);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_4, m_2));
     return _e5;
 }
 
 float ndf_ggx_g2_isotropic(
-    ndf_roughness_isotropic_Isotropic r_21,
+    ndf_roughness_isotropic_Isotropic r_25,
     metal::float3 i_1,
     metal::float3 o,
     metal::float3 m_3
 ) {
-    float _e4 = ndf_ggx_lambda_isotropic(r_21, i_1);
-    float _e5 = ndf_ggx_lambda_isotropic(r_21, o);
+    float _e4 = ndf_ggx_lambda_isotropic(r_25, i_1);
+    float _e5 = ndf_ggx_lambda_isotropic(r_25, o);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_1, m_3), metal::dot(o, m_3));
     return _e8;
 }
 
 float ndf_ggx_p22_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_22,
+    ndf_roughness_axis_aligned_AxisAligned r_26,
     metal::float2 s_4
 ) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_22, s_4);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_22);
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_26, s_4);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_26);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_ggx_d_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_23,
+    ndf_roughness_axis_aligned_AxisAligned r_27,
     metal::float3 m_4
 ) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_23, m_4.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_23);
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_27, m_4.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_27);
     float _e6 = ndf_ggx_d_of(_e3, m_4.z, _e5);
     return _e6;
 }
 
 float ndf_ggx_lambda_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_24,
+    ndf_roughness_axis_aligned_AxisAligned r_28,
     metal::float3 w_5
 ) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_24, w_5.xy);
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_28, w_5.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_5.z));
     return _e6;
 }
 
 float ndf_ggx_g1_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_25,
+    ndf_roughness_axis_aligned_AxisAligned r_29,
     metal::float3 w_6,
     metal::float3 m_5
 ) {
-    float _e3 = ndf_ggx_lambda_axis_aligned(r_25, w_6);
+    float _e3 = ndf_ggx_lambda_axis_aligned(r_29, w_6);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_6, m_5));
     return _e5;
 }
 
 float ndf_ggx_g2_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_26,
+    ndf_roughness_axis_aligned_AxisAligned r_30,
     metal::float3 i_2,
     metal::float3 o_1,
     metal::float3 m_6
 ) {
-    float _e4 = ndf_ggx_lambda_axis_aligned(r_26, i_2);
-    float _e5 = ndf_ggx_lambda_axis_aligned(r_26, o_1);
+    float _e4 = ndf_ggx_lambda_axis_aligned(r_30, i_2);
+    float _e5 = ndf_ggx_lambda_axis_aligned(r_30, o_1);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_2, m_6), metal::dot(o_1, m_6));
     return _e8;
 }
 
 float ndf_ggx_p22_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_27,
+    ndf_roughness_matrix_RoughnessMatrix r_31,
     metal::float2 s_5
 ) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_27, s_5);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_27);
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_31, s_5);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_31);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_ggx_d_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_28,
+    ndf_roughness_matrix_RoughnessMatrix r_32,
     metal::float3 m_7
 ) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_28, m_7.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_28);
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_32, m_7.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_32);
     float _e6 = ndf_ggx_d_of(_e3, m_7.z, _e5);
     return _e6;
 }
 
 float ndf_ggx_lambda_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_29,
+    ndf_roughness_matrix_RoughnessMatrix r_33,
     metal::float3 w_7
 ) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_29, w_7.xy);
+    float _e3 = ndf_roughness_matrix_quadratic(r_33, w_7.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_7.z));
     return _e6;
 }
 
 float ndf_ggx_g1_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_30,
+    ndf_roughness_matrix_RoughnessMatrix r_34,
     metal::float3 w_8,
     metal::float3 m_8
 ) {
-    float _e3 = ndf_ggx_lambda_matrix(r_30, w_8);
+    float _e3 = ndf_ggx_lambda_matrix(r_34, w_8);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_8, m_8));
     return _e5;
 }
 
 float ndf_ggx_g2_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_31,
+    ndf_roughness_matrix_RoughnessMatrix r_35,
     metal::float3 i_3,
     metal::float3 o_2,
     metal::float3 m_9
 ) {
-    float _e4 = ndf_ggx_lambda_matrix(r_31, i_3);
-    float _e5 = ndf_ggx_lambda_matrix(r_31, o_2);
+    float _e4 = ndf_ggx_lambda_matrix(r_35, i_3);
+    float _e5 = ndf_ggx_lambda_matrix(r_35, o_2);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_3, m_9), metal::dot(o_2, m_9));
     return _e8;
 }
@@ -1076,42 +1149,42 @@ uint filter_rect_tier(
 
 float filter_rect_gl_node(
     uint n,
-    uint k_6
+    uint k_5
 ) {
     if (n == 2u) {
         return 0.57735026;
     }
     if (n == 4u) {
-        return (k_6 == 0u) ? 0.33998105 : 0.8611363;
+        return (k_5 == 0u) ? 0.33998105 : 0.8611363;
     }
-    if (k_6 == 0u) {
+    if (k_5 == 0u) {
         return 0.2386192;
     }
-    return (k_6 == 1u) ? 0.6612094 : 0.9324695;
+    return (k_5 == 1u) ? 0.6612094 : 0.9324695;
 }
 
 float filter_rect_gl_weight(
     uint n_1,
-    uint k_7
+    uint k_6
 ) {
     if (n_1 == 2u) {
         return 0.5;
     }
     if (n_1 == 4u) {
-        return (k_7 == 0u) ? 0.32607257 : 0.17392743;
+        return (k_6 == 0u) ? 0.32607257 : 0.17392743;
     }
-    if (k_7 == 0u) {
+    if (k_6 == 0u) {
         return 0.23395696;
     }
-    return (k_7 == 1u) ? 0.18038079 : 0.085662246;
+    return (k_6 == 1u) ? 0.18038079 : 0.085662246;
 }
 
 float filter_rect_f(
     float u_1,
     float v_3
 ) {
-    float t_5 = (1.0 + (u_1 * u_1)) + (v_3 * v_3);
-    return 1.0 / (t_5 * t_5);
+    float t_6 = (1.0 + (u_1 * u_1)) + (v_3 * v_3);
+    return 1.0 / (t_6 * t_6);
 }
 
 uint naga_div(uint lhs, uint rhs) {
@@ -1125,31 +1198,31 @@ float filter_rect_gl_mean(
     float h
 ) {
     float acc = 0.0;
-    uint k_8 = 0u;
+    uint k_7 = 0u;
     uint2 loop_bound = uint2(4294967295u);
     bool loop_init = true;
     while(true) {
         if (metal::all(loop_bound == uint2(0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e26 = k_8;
-            k_8 = _e26 + 1u;
+            uint _e26 = k_7;
+            k_7 = _e26 + 1u;
         }
         loop_init = false;
-        uint _e8 = k_8;
+        uint _e8 = k_7;
         if (_e8 < naga_div(n_2, 2u)) {
         } else {
             break;
         }
         {
-            uint _e12 = k_8;
+            uint _e12 = k_7;
             float _e13 = filter_rect_gl_node(n_2, _e12);
-            float a_16 = h * _e13;
+            float a_17 = h * _e13;
             float _e15 = acc;
-            uint _e16 = k_8;
+            uint _e16 = k_7;
             float _e17 = filter_rect_gl_weight(n_2, _e16);
-            float _e19 = filter_rect_f(u_2, c_6 - a_16);
-            float _e21 = filter_rect_f(u_2, c_6 + a_16);
+            float _e19 = filter_rect_f(u_2, c_6 - a_17);
+            float _e21 = filter_rect_f(u_2, c_6 + a_17);
             acc = _e15 + (_e17 * (_e19 + _e21));
         }
     }
@@ -1195,18 +1268,18 @@ float filter_rect_mean_1d(
     float x0_ = metal::abs(xc) - hx;
     float x1_ = metal::abs(xc) + hx;
     float dx = 2.0 * hx;
-    float c_14 = metal::sqrt(c2_);
+    float c_13 = metal::sqrt(c2_);
     float r02_ = c2_ + (x0_ * x0_);
     float r12_ = c2_ + (x1_ * x1_);
     float x01_ = x0_ * x1_;
-    float _e17 = filter_rect_atan2_upper(c_14 * dx, c2_ + x01_);
-    float inv_2 = 1.0 / (((2.0 * c_14) * c2_) * dx);
+    float _e17 = filter_rect_atan2_upper(c_13 * dx, c2_ + x01_);
+    float inv_2 = 1.0 / (((2.0 * c_13) * c2_) * dx);
     float p2_ = (2.0 * r02_) * r12_;
     if (x0_ <= 0.0) {
         return (_e17 * inv_2) + ((c2_ - x01_) / (c2_ * p2_));
     }
     float rr = metal::sqrt(r02_) * metal::sqrt(r12_);
-    float _e39 = filter_rect_delta_minus_sin(_e17, (c_14 * dx) / rr);
+    float _e39 = filter_rect_delta_minus_sin(_e17, (c_13 * dx) / rr);
     return (_e39 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_ * x1_)) + c2_) / (rr + x01_))) / p2_);
 }
 
@@ -1218,30 +1291,30 @@ float filter_rect_gl_mean_1d(
     float other_h
 ) {
     float acc_1 = 0.0;
-    uint k_9 = 0u;
+    uint k_8 = 0u;
     uint2 loop_bound_1 = uint2(4294967295u);
     bool loop_init_1 = true;
     while(true) {
         if (metal::all(loop_bound_1 == uint2(0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e33 = k_9;
-            k_9 = _e33 + 1u;
+            uint _e33 = k_8;
+            k_8 = _e33 + 1u;
         }
         loop_init_1 = false;
-        uint _e9 = k_9;
+        uint _e9 = k_8;
         if (_e9 < naga_div(n_3, 2u)) {
         } else {
             break;
         }
         {
-            uint _e13 = k_9;
+            uint _e13 = k_8;
             float _e14 = filter_rect_gl_node(n_3, _e13);
-            float a_17 = h_1 * _e14;
-            float x0_1 = c_7 - a_17;
-            float x1_1 = c_7 + a_17;
+            float a_18 = h_1 * _e14;
+            float x0_1 = c_7 - a_18;
+            float x1_1 = c_7 + a_18;
             float _e18 = acc_1;
-            uint _e19 = k_9;
+            uint _e19 = k_8;
             float _e20 = filter_rect_gl_weight(n_3, _e19);
             float _e24 = filter_rect_mean_1d(other_c, other_h, 1.0 + (x0_1 * x0_1));
             float _e28 = filter_rect_mean_1d(other_c, other_h, 1.0 + (x1_1 * x1_1));
@@ -1289,19 +1362,19 @@ float filter_rect_mean_f(
     float hu_1,
     float hv_1
 ) {
-    bool local_5 = {};
+    bool local_7 = {};
     float acc_2 = 0.0;
-    uint k_10 = 0u;
+    uint k_9 = 0u;
     float du_1 = metal::max(metal::abs(uc_1) - hu_1, 0.0);
     float dv_2 = metal::max(metal::abs(vc_1) - hv_1, 0.0);
     uint _e18 = filter_rect_tier(hu_1 * hu_1, (1.0 + (uc_1 * uc_1)) + (dv_2 * dv_2));
     uint _e25 = filter_rect_tier(hv_1 * hv_1, (1.0 + (vc_1 * vc_1)) + (du_1 * du_1));
     if (_e18 == filter_rect_TIER_CLOSED) {
-        local_5 = _e25 == filter_rect_TIER_CLOSED;
+        local_7 = _e25 == filter_rect_TIER_CLOSED;
     } else {
-        local_5 = false;
+        local_7 = false;
     }
-    bool _e33 = local_5;
+    bool _e33 = local_7;
     if (_e33) {
         float _e34 = filter_rect_edges(uc_1, vc_1, hu_1, hv_1);
         return _e34;
@@ -1320,24 +1393,24 @@ float filter_rect_mean_f(
         if (metal::all(loop_bound_2 == uint2(0u))) { break; }
         loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
         if (!loop_init_2) {
-            uint _e63 = k_10;
-            k_10 = _e63 + 1u;
+            uint _e63 = k_9;
+            k_9 = _e63 + 1u;
         }
         loop_init_2 = false;
-        uint _e45 = k_10;
+        uint _e45 = k_9;
         if (_e45 < naga_div(_e18, 2u)) {
         } else {
             break;
         }
         {
-            uint _e49 = k_10;
+            uint _e49 = k_9;
             float _e50 = filter_rect_gl_node(_e18, _e49);
-            float a_18 = hu_1 * _e50;
+            float a_19 = hu_1 * _e50;
             float _e52 = acc_2;
-            uint _e53 = k_10;
+            uint _e53 = k_9;
             float _e54 = filter_rect_gl_weight(_e18, _e53);
-            float _e56 = filter_rect_gl_mean(_e25, uc_1 - a_18, vc_1, hv_1);
-            float _e58 = filter_rect_gl_mean(_e25, uc_1 + a_18, vc_1, hv_1);
+            float _e56 = filter_rect_gl_mean(_e25, uc_1 - a_19, vc_1, hv_1);
+            float _e58 = filter_rect_gl_mean(_e25, uc_1 + a_19, vc_1, hv_1);
             acc_2 = _e52 + (_e54 * (_e56 + _e58));
         }
     }
@@ -1346,62 +1419,62 @@ float filter_rect_mean_f(
 }
 
 float filter_rect_p22_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_32,
+    ndf_roughness_axis_aligned_AxisAligned r_36,
     metal::float2 center,
     metal::float2 half_extent_4
 ) {
-    bool local_6 = {};
+    bool local_8 = {};
     if (half_extent_4.x == 0.0) {
-        local_6 = half_extent_4.y == 0.0;
+        local_8 = half_extent_4.y == 0.0;
     } else {
-        local_6 = false;
+        local_8 = false;
     }
-    bool _e12 = local_6;
+    bool _e12 = local_8;
     if (_e12) {
-        float _e13 = ndf_ggx_p22_axis_aligned(r_32, center);
+        float _e13 = ndf_ggx_p22_axis_aligned(r_36, center);
         return _e13;
     }
-    metal::float2 a_19 = r_32.alpha;
-    metal::float2 c_15 = metal::clamp(center / a_19, metal::float2(-1000000000000000000.0), metal::float2(1000000000000000000.0));
-    metal::float2 h_17 = metal::min(metal::abs(half_extent_4) / a_19, metal::float2(1000000000000000000.0));
-    float _e30 = filter_rect_mean_f(c_15.x, c_15.y, h_17.x, h_17.y);
-    return metal::max(_e30 * (math_INV_PI / (r_32.alpha.x * r_32.alpha.y)), 0.0);
+    metal::float2 a_20 = r_36.alpha;
+    metal::float2 c_14 = metal::clamp(center / a_20, metal::float2(-1000000000000000000.0), metal::float2(1000000000000000000.0));
+    metal::float2 h_18 = metal::min(metal::abs(half_extent_4) / a_20, metal::float2(1000000000000000000.0));
+    float _e30 = filter_rect_mean_f(c_14.x, c_14.y, h_18.x, h_18.y);
+    return metal::max(_e30 * (math_INV_PI / (r_36.alpha.x * r_36.alpha.y)), 0.0);
 }
 
 float filter_rect_d_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_33,
+    ndf_roughness_axis_aligned_AxisAligned r_37,
     metal::float3 h_2,
     metal::float2 half_extent_5
 ) {
-    bool local_7 = {};
+    bool local_9 = {};
     if (!((h_2.z > 0.0))) {
         return 0.0;
     }
     if (half_extent_5.x == 0.0) {
-        local_7 = half_extent_5.y == 0.0;
+        local_9 = half_extent_5.y == 0.0;
     } else {
-        local_7 = false;
+        local_9 = false;
     }
-    bool _e17 = local_7;
+    bool _e17 = local_9;
     if (_e17) {
-        float _e18 = ndf_ggx_d_axis_aligned(r_33, h_2);
+        float _e18 = ndf_ggx_d_axis_aligned(r_37, h_2);
         return _e18;
     }
-    float _e24 = filter_rect_p22_rect(r_33, -(h_2.xy) / metal::float2(h_2.z), half_extent_5);
+    float _e24 = filter_rect_p22_rect(r_37, -(h_2.xy) / metal::float2(h_2.z), half_extent_5);
     float z2_ = h_2.z * h_2.z;
     return metal::min(_e24 / (z2_ * z2_), math_F32_MAX);
 }
 
 float filter_rect_d_rect_printed(
-    ndf_roughness_axis_aligned_AxisAligned r_34,
+    ndf_roughness_axis_aligned_AxisAligned r_38,
     metal::float2 hpp,
     metal::float3 h_3,
     metal::float2 footprint
 ) {
-    bool local_8 = {};
-    float a_20 = r_34.alpha.x;
-    float b_4 = r_34.alpha.y;
-    float a_2_ = a_20 * a_20;
+    bool local_10 = {};
+    float a_21 = r_38.alpha.x;
+    float b_4 = r_38.alpha.y;
+    float a_2_ = a_21 * a_21;
     float b_2_ = b_4 * b_4;
     float x1_2 = hpp.x - footprint.x;
     float x2_ = hpp.x + footprint.x;
@@ -1411,32 +1484,32 @@ float filter_rect_d_rect_printed(
     float sx2_ = metal::sqrt((x2_ * x2_) + a_2_);
     float sy1_ = metal::sqrt((y1_ * y1_) + b_2_);
     float sy2_ = metal::sqrt((y2_ * y2_) + b_2_);
-    float _e37 = math_atan((y1_ * a_20) / (sx1_ * b_4));
-    float _e41 = math_atan((y2_ * a_20) / (sx1_ * b_4));
-    float _e48 = math_atan((y1_ * a_20) / (sx2_ * b_4));
-    float _e53 = math_atan((y2_ * a_20) / (sx2_ * b_4));
-    float _e62 = math_atan((x1_2 * b_4) / (a_20 * sy1_));
-    float _e66 = math_atan((x2_ * b_4) / (a_20 * sy1_));
-    float _e73 = math_atan((x1_2 * b_4) / (a_20 * sy2_));
-    float _e78 = math_atan((x2_ * b_4) / (a_20 * sy2_));
+    float _e37 = math_atan((y1_ * a_21) / (sx1_ * b_4));
+    float _e41 = math_atan((y2_ * a_21) / (sx1_ * b_4));
+    float _e48 = math_atan((y1_ * a_21) / (sx2_ * b_4));
+    float _e53 = math_atan((y2_ * a_21) / (sx2_ * b_4));
+    float _e62 = math_atan((x1_2 * b_4) / (a_21 * sy1_));
+    float _e66 = math_atan((x2_ * b_4) / (a_21 * sy1_));
+    float _e73 = math_atan((x1_2 * b_4) / (a_21 * sy2_));
+    float _e78 = math_atan((x2_ * b_4) / (a_21 * sy2_));
     float val = (((x1_2 * (_e37 - _e41)) / sx1_) + ((x2_ * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_));
     float den_1 = (6.2831855 * (x1_2 - x2_)) * (y1_ - y2_);
     float hz4_ = ((h_3.z * h_3.z) * h_3.z) * h_3.z;
     float v_6 = (val / den_1) / metal::max(hz4_, 0.001);
     if (metal::abs(v_6) <= math_F32_MAX) {
-        local_8 = den_1 != 0.0;
+        local_10 = den_1 != 0.0;
     } else {
-        local_8 = false;
+        local_10 = false;
     }
-    bool _e109 = local_8;
+    bool _e109 = local_10;
     return _e109 ? v_6 : 0.0;
 }
 
 kernel_covariance_Covariance kernel_rect_covariance(
-    kernel_rect_BoundingRect r_35,
+    kernel_rect_BoundingRect r_39,
     float sigma_2
 ) {
-    metal::float2 w_16 = r_35.half_extent * (2.0 * sigma_2);
+    metal::float2 w_16 = r_39.half_extent * (2.0 * sigma_2);
     metal::float2 v_7 = w_16 * w_16;
     return kernel_covariance_Covariance {v_7.x, 0.0, v_7.y, v_7.x * v_7.y};
 }
@@ -1465,11 +1538,11 @@ footprint_Footprint footprint_from_projected_derivatives_in_slope(
         return footprint_Footprint {metal::float2(0.0), metal::float2(0.0)};
     }
     metal::float3 h0_ = h_in / metal::float3(big_2);
-    metal::float3 h_18 = h0_ / metal::float3(metal::length(h0_));
-    float hz = metal::max(h_18.z, 0.000001);
-    float k_14 = -1.0 / ((hz * hz) * hz);
-    metal::float2x2 j = metal::float2x2(metal::float2((h_18.x * h_18.x) + (h_18.z * h_18.z), h_18.x * h_18.y), metal::float2(h_18.x * h_18.y, (h_18.y * h_18.y) + (h_18.z * h_18.z)));
-    return footprint_Footprint {(j * dp_u_1) * k_14, (j * dp_v_1) * k_14};
+    metal::float3 h_19 = h0_ / metal::float3(metal::length(h0_));
+    float hz = metal::max(h_19.z, 0.000001);
+    float k_13 = -1.0 / ((hz * hz) * hz);
+    metal::float2x2 j = metal::float2x2(metal::float2((h_19.x * h_19.x) + (h_19.z * h_19.z), h_19.x * h_19.y), metal::float2(h_19.x * h_19.y, (h_19.y * h_19.y) + (h_19.z * h_19.z)));
+    return footprint_Footprint {(j * dp_u_1) * k_13, (j * dp_v_1) * k_13};
 }
 
 footprint_Footprint footprint_from_normal_differences(
@@ -1513,15 +1586,15 @@ footprint_jacobian_Polar footprint_jacobian_polar(
         return footprint_jacobian_Polar {metal::float3(0.0, 0.0, 1.0), metal::float2(1.0, 0.0)};
     }
     metal::float3 h0_1 = h_in_1 / metal::float3(big_3);
-    metal::float3 h_19 = h0_1 / metal::float3(metal::length(h0_1));
-    float qs = metal::max(metal::abs(h_19.x), metal::abs(h_19.y));
+    metal::float3 h_20 = h0_1 / metal::float3(metal::length(h0_1));
+    float qs = metal::max(metal::abs(h_20.x), metal::abs(h_20.y));
     if (qs > 0.0) {
-        metal::float2 q_6 = h_19.xy / metal::float2(qs);
+        metal::float2 q_6 = h_20.xy / metal::float2(qs);
         cs_1 = q_6 / metal::float2(metal::length(q_6));
     }
-    if (h_19.z >= footprint_jacobian_HZ_MIN) {
+    if (h_20.z >= footprint_jacobian_HZ_MIN) {
         metal::float2 _e44 = cs_1;
-        return footprint_jacobian_Polar {h_19, _e44};
+        return footprint_jacobian_Polar {h_20, _e44};
     }
     metal::float2 _e47 = cs_1;
     metal::float2 _e51 = cs_1;
@@ -1562,17 +1635,17 @@ metal::float2x2 footprint_jacobian_projected_to_slope(
     metal::float3 h_in_2
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    metal::float3 h_20 = _e1.h;
-    float k_15 = -1.0 / ((_e1.h.z * _e1.h.z) * _e1.h.z);
+    metal::float3 h_21 = _e1.h;
+    float k_14 = -1.0 / ((_e1.h.z * _e1.h.z) * _e1.h.z);
     float xy = _e1.h.x * _e1.h.y;
-    return metal::float2x2(metal::float2((_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z), xy) * k_15, metal::float2(xy, (_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z)) * k_15);
+    return metal::float2x2(metal::float2((_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z), xy) * k_14, metal::float2(xy, (_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z)) * k_14);
 }
 
 metal::float2x2 footprint_jacobian_slope_to_projected(
     metal::float3 h_in_3
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_3);
-    metal::float3 h_21 = _e1.h;
+    metal::float3 h_22 = _e1.h;
     float xy_1 = _e1.h.x * _e1.h.y;
     return metal::float2x2(metal::float2((_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z), -(xy_1)) * -(_e1.h.z), metal::float2(-(xy_1), (_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z)) * -(_e1.h.z));
 }
@@ -1581,8 +1654,8 @@ metal::float2x2 footprint_jacobian_sphere_to_slope(
     metal::float3 h_8
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float k_16 = -1.0 / (_e1.h.z * _e1.h.z);
-    return metal::float2x2(_e1.cs * k_16, metal::float2(-(_e1.h.z) * _e1.cs.y, _e1.h.z * _e1.cs.x) * k_16);
+    float k_15 = -1.0 / (_e1.h.z * _e1.h.z);
+    return metal::float2x2(_e1.cs * k_15, metal::float2(-(_e1.h.z) * _e1.cs.y, _e1.h.z * _e1.cs.x) * k_15);
 }
 
 float footprint_jacobian_det_sphere_to_projected(
@@ -1635,8 +1708,8 @@ metal::float2 footprint_slope_slope_from_sphere(
 metal::float3 footprint_slope_sphere_from_slope(
     metal::float2 s_7
 ) {
-    float k_17 = metal::max(metal::max(metal::abs(s_7.x), metal::abs(s_7.y)), 1.0);
-    metal::float3 v_9 = metal::float3(-(s_7) / metal::float2(k_17), 1.0 / k_17);
+    float k_16 = metal::max(metal::max(metal::abs(s_7.x), metal::abs(s_7.y)), 1.0);
+    metal::float3 v_9 = metal::float3(-(s_7) / metal::float2(k_16), 1.0 / k_16);
     return v_9 / metal::float3(metal::length(v_9));
 }
 
@@ -1677,22 +1750,22 @@ footprint_Footprint kernel_clamp_footprint(
     kernel_clamp_ClampRules rules,
     footprint_Footprint fp_3
 ) {
-    float l_4 = metal::max(rules.max_extent, 0.0);
+    float l_6 = metal::max(rules.max_extent, 0.0);
     float scale_1 = metal::max(metal::max(metal::abs(fp_3.dh_u.x), metal::abs(fp_3.dh_u.y)), metal::max(metal::abs(fp_3.dh_v.x), metal::abs(fp_3.dh_v.y)));
     if (scale_1 <= 0.0) {
         return fp_3;
     }
     footprint_Footprint unit = footprint_Footprint {fp_3.dh_u / metal::float2(scale_1), fp_3.dh_v / metal::float2(scale_1)};
     float _e29 = footprint_max_extent(unit);
-    if ((_e29 * scale_1) <= l_4) {
+    if ((_e29 * scale_1) <= l_6) {
         return fp_3;
     }
-    return footprint_Footprint {(unit.dh_u / metal::float2(_e29)) * l_4, (unit.dh_v / metal::float2(_e29)) * l_4};
+    return footprint_Footprint {(unit.dh_u / metal::float2(_e29)) * l_6, (unit.dh_v / metal::float2(_e29)) * l_6};
 }
 
 kernel_rect_BoundingRect kernel_clamp_rect(
     kernel_clamp_ClampRules rules_1,
-    kernel_rect_BoundingRect r_36,
+    kernel_rect_BoundingRect r_40,
     metal::float2 alpha_10
 ) {
     metal::float2 f = metal::float2(0.0);
@@ -1704,16 +1777,16 @@ kernel_rect_BoundingRect kernel_clamp_rect(
         }
     }
     float lambda = metal::max(rules_1.max_extent, 0.0);
-    metal::float2 h_22 = metal::min(metal::abs(r_36.half_extent), metal::float2(lambda));
+    metal::float2 h_23 = metal::min(metal::abs(r_40.half_extent), metal::float2(lambda));
     metal::float2 _e25 = f;
-    return kernel_rect_BoundingRect {metal::max(h_22, metal::max(_e25, metal::float2(0.0)))};
+    return kernel_rect_BoundingRect {metal::max(h_23, metal::max(_e25, metal::float2(0.0)))};
 }
 
 kernel_covariance_Covariance kernel_clamp_kernel(
     kernel_clamp_ClampRules rules_2,
-    kernel_covariance_Covariance k_11
+    kernel_covariance_Covariance k_10
 ) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_11);
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_10);
     if (rules_2.kappa >= math_F32_MAX) {
         return _e2;
     }
@@ -1721,36 +1794,55 @@ kernel_covariance_Covariance kernel_clamp_kernel(
     return _e11;
 }
 
-float kernel_clamp_tau(
+float kernel_clamp_det_clamp_for(
     kernel_clamp_ClampRules rules_3,
     ndf_roughness_matrix_RoughnessMatrix a_9
 ) {
-    return rules_3.det_clamp ? (a_9.sqrt_det * a_9.sqrt_det) : 0.0;
+    float _e2 = ndf_roughness_matrix_clamped_det(a_9);
+    return rules_3.det_clamp ? _e2 : 0.0;
 }
 
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(
     kernel_clamp_ClampRules rules_4,
-    ndf_roughness_matrix_RoughnessMatrix a_10,
     footprint_Footprint fp_4,
     float sigma_4
 ) {
-    footprint_Footprint _e4 = kernel_clamp_footprint(rules_4, fp_4);
-    kernel_covariance_Covariance _e5 = footprint_covariance(_e4, sigma_4);
-    kernel_covariance_Covariance _e6 = kernel_clamp_kernel(rules_4, _e5);
-    if (rules_4.det_clamp) {
-        ndf_roughness_matrix_RoughnessMatrix _e8 = filter_gaussian_gaussian_sanitized(a_10, _e6);
-        return _e8;
-    }
-    ndf_roughness_matrix_RoughnessMatrix _e10 = filter_gaussian_gaussian_with_tau_sanitized(a_10, _e6, 0.0);
-    return _e10;
+    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
+    kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_4);
+    kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
+    return _e5;
+}
+
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(
+    kernel_clamp_ClampRules rules_5,
+    ndf_roughness_matrix_RoughnessMatrix a_10,
+    footprint_Footprint fp_5,
+    float sigma_5
+) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_5);
+    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_10);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_10, _e4, _e5);
+    return _e6;
+}
+
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(
+    kernel_clamp_ClampRules rules_6,
+    ndf_roughness_matrix_RoughnessMatrix a_11,
+    footprint_Footprint fp_6,
+    float sigma_6
+) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_6);
+    float _e5 = kernel_clamp_det_clamp_for(rules_6, a_11);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_11, _e4, _e5);
+    return _e6;
 }
 
 float ndf_beckmann_exp_neg_times(
     float x_3,
-    float k_12,
+    float k_11,
     float ln_k
 ) {
-    return (x_3 > ndf_beckmann_EXP_SPLIT) ? metal::exp(ln_k - x_3) : (metal::exp(-(x_3)) * k_12);
+    return (x_3 > ndf_beckmann_EXP_SPLIT) ? metal::exp(ln_k - x_3) : (metal::exp(-(x_3)) * k_11);
 }
 
 float ndf_beckmann_p22_of(
@@ -1759,7 +1851,7 @@ float ndf_beckmann_p22_of(
 ) {
     float den_2 = math_PI * sqrt_det_2;
     float _e8 = ndf_beckmann_exp_neg_times(q_2, 1.0 / den_2, -(metal::log(den_2)));
-    return _e8;
+    return (q_2 >= 0.0) ? _e8 : 0.0;
 }
 
 float ndf_beckmann_d_of(
@@ -1767,18 +1859,18 @@ float ndf_beckmann_d_of(
     float m_z_1,
     float sqrt_det_3
 ) {
-    bool local_9 = {};
+    bool local_11 = {};
     float z2_2 = m_z_1 * m_z_1;
     float x_5 = q_xy_1 / z2_2;
-    float k_18 = 1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2);
+    float k_17 = 1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2);
     float ln_k_1 = -((metal::log(math_PI * sqrt_det_3) + (4.0 * metal::log(metal::max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_5, k_18, ln_k_1);
+    float _e21 = ndf_beckmann_exp_neg_times(x_5, k_17, ln_k_1);
     if (m_z_1 > 0.0) {
-        local_9 = _e21 <= math_F32_MAX;
+        local_11 = _e21 <= math_F32_MAX;
     } else {
-        local_9 = false;
+        local_11 = false;
     }
-    bool _e29 = local_9;
+    bool _e29 = local_11;
     return _e29 ? _e21 : 0.0;
 }
 
@@ -1786,210 +1878,224 @@ float ndf_beckmann_lambda_of(
     float q_3,
     float abs_wz_1
 ) {
+    bool local_12 = {};
+    bool local_13 = {};
     float p_2 = -0.00003849172;
     if (q_3 <= 0.0) {
+        local_12 = abs_wz_1 >= 0.0;
+    } else {
+        local_12 = false;
+    }
+    bool _e9 = local_12;
+    if (_e9) {
         return 0.0;
     }
-    if (abs_wz_1 <= 0.0) {
+    if (!(!((abs_wz_1 > 0.0)))) {
+        local_13 = !((q_3 > 0.0));
+    } else {
+        local_13 = true;
+    }
+    bool _e21 = local_13;
+    if (_e21) {
         return math_F32_MAX;
     }
-    float a_21 = abs_wz_1 / metal::sqrt(q_3);
-    if (a_21 > 9.5) {
+    float a_22 = abs_wz_1 / metal::sqrt(q_3);
+    if (a_22 > 9.5) {
         return 0.0;
     }
-    float t_6 = (a_21 - 3.0) / (a_21 + 3.0);
-    float _e20 = p_2;
-    p_2 = (_e20 * t_6) + 0.00028491428;
-    float _e24 = p_2;
-    p_2 = (_e24 * t_6) + 0.000018268152;
-    float _e28 = p_2;
-    p_2 = (_e28 * t_6) - 0.0018242653;
-    float _e32 = p_2;
-    p_2 = (_e32 * t_6) + 0.0013654069;
-    float _e36 = p_2;
-    p_2 = (_e36 * t_6) + 0.0055811945;
-    float _e40 = p_2;
-    p_2 = (_e40 * t_6) - 0.009357543;
-    float _e44 = p_2;
-    p_2 = (_e44 * t_6) - 0.0076571554;
-    float _e48 = p_2;
-    p_2 = (_e48 * t_6) + 0.036274612;
-    float _e52 = p_2;
-    p_2 = (_e52 * t_6) - 0.023293633;
-    float _e56 = p_2;
-    p_2 = (_e56 * t_6) - 0.07646358;
-    float _e60 = p_2;
-    p_2 = (_e60 * t_6) + 0.2117349;
-    float _e64 = p_2;
-    p_2 = (_e64 * t_6) - 0.23284179;
-    float _e68 = p_2;
-    p_2 = (_e68 * t_6) + 0.03307925;
-    float _e72 = p_2;
-    p_2 = (_e72 * t_6) + 1.0631379;
-    float _e76 = p_2;
-    float k_19 = _e76 / ((2.0 * a_21) + 1.0);
-    return metal::min((metal::exp(-(a_21) * a_21) * k_19) / ((3.5449078 * a_21) * (a_21 + k_19)), math_F32_MAX);
+    float t_7 = (a_22 - 3.0) / (a_22 + 3.0);
+    float _e35 = p_2;
+    p_2 = (_e35 * t_7) + 0.00028491428;
+    float _e39 = p_2;
+    p_2 = (_e39 * t_7) + 0.000018268152;
+    float _e43 = p_2;
+    p_2 = (_e43 * t_7) - 0.0018242653;
+    float _e47 = p_2;
+    p_2 = (_e47 * t_7) + 0.0013654069;
+    float _e51 = p_2;
+    p_2 = (_e51 * t_7) + 0.0055811945;
+    float _e55 = p_2;
+    p_2 = (_e55 * t_7) - 0.009357543;
+    float _e59 = p_2;
+    p_2 = (_e59 * t_7) - 0.0076571554;
+    float _e63 = p_2;
+    p_2 = (_e63 * t_7) + 0.036274612;
+    float _e67 = p_2;
+    p_2 = (_e67 * t_7) - 0.023293633;
+    float _e71 = p_2;
+    p_2 = (_e71 * t_7) - 0.07646358;
+    float _e75 = p_2;
+    p_2 = (_e75 * t_7) + 0.2117349;
+    float _e79 = p_2;
+    p_2 = (_e79 * t_7) - 0.23284179;
+    float _e83 = p_2;
+    p_2 = (_e83 * t_7) + 0.03307925;
+    float _e87 = p_2;
+    p_2 = (_e87 * t_7) + 1.0631379;
+    float _e91 = p_2;
+    float k_18 = _e91 / ((2.0 * a_22) + 1.0);
+    return metal::min((metal::exp(-(a_22) * a_22) * k_18) / ((3.5449078 * a_22) * (a_22 + k_18)), math_F32_MAX);
 }
 
 float ndf_beckmann_p22_isotropic(
-    ndf_roughness_isotropic_Isotropic r_37,
+    ndf_roughness_isotropic_Isotropic r_41,
     metal::float2 s_9
 ) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_9);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_41, s_9);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_41);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_beckmann_d_isotropic(
-    ndf_roughness_isotropic_Isotropic r_38,
+    ndf_roughness_isotropic_Isotropic r_42,
     metal::float3 m_10
 ) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_10.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_42, m_10.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_42);
     float _e6 = ndf_beckmann_d_of(_e3, m_10.z, _e5);
     return _e6;
 }
 
 float ndf_beckmann_lambda_isotropic(
-    ndf_roughness_isotropic_Isotropic r_39,
+    ndf_roughness_isotropic_Isotropic r_43,
     metal::float3 w_9
 ) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
+    float _e3 = ndf_roughness_isotropic_quadratic(r_43, w_9.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_9.z));
     return _e6;
 }
 
 float ndf_beckmann_g1_isotropic(
-    ndf_roughness_isotropic_Isotropic r_40,
+    ndf_roughness_isotropic_Isotropic r_44,
     metal::float3 w_10,
     metal::float3 m_11
 ) {
-    float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
+    float _e3 = ndf_beckmann_lambda_isotropic(r_44, w_10);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_10, m_11));
     return _e5;
 }
 
 float ndf_beckmann_g2_isotropic(
-    ndf_roughness_isotropic_Isotropic r_41,
+    ndf_roughness_isotropic_Isotropic r_45,
     metal::float3 i_4,
     metal::float3 o_3,
     metal::float3 m_12
 ) {
-    float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_4);
-    float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
+    float _e4 = ndf_beckmann_lambda_isotropic(r_45, i_4);
+    float _e5 = ndf_beckmann_lambda_isotropic(r_45, o_3);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_4, m_12), metal::dot(o_3, m_12));
     return _e8;
 }
 
 float ndf_beckmann_p22_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_42,
+    ndf_roughness_axis_aligned_AxisAligned r_46,
     metal::float2 s_10
 ) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_10);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_46, s_10);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_46);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_beckmann_d_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_43,
+    ndf_roughness_axis_aligned_AxisAligned r_47,
     metal::float3 m_13
 ) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_13.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_47, m_13.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_47);
     float _e6 = ndf_beckmann_d_of(_e3, m_13.z, _e5);
     return _e6;
 }
 
 float ndf_beckmann_lambda_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_44,
+    ndf_roughness_axis_aligned_AxisAligned r_48,
     metal::float3 w_11
 ) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_48, w_11.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_11.z));
     return _e6;
 }
 
 float ndf_beckmann_g1_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_45,
+    ndf_roughness_axis_aligned_AxisAligned r_49,
     metal::float3 w_12,
     metal::float3 m_14
 ) {
-    float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
+    float _e3 = ndf_beckmann_lambda_axis_aligned(r_49, w_12);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_12, m_14));
     return _e5;
 }
 
 float ndf_beckmann_g2_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_46,
+    ndf_roughness_axis_aligned_AxisAligned r_50,
     metal::float3 i_5,
     metal::float3 o_4,
     metal::float3 m_15
 ) {
-    float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_5);
-    float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
+    float _e4 = ndf_beckmann_lambda_axis_aligned(r_50, i_5);
+    float _e5 = ndf_beckmann_lambda_axis_aligned(r_50, o_4);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_5, m_15), metal::dot(o_4, m_15));
     return _e8;
 }
 
 float ndf_beckmann_p22_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_47,
+    ndf_roughness_matrix_RoughnessMatrix r_51,
     metal::float2 s_11
 ) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_11);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_51, s_11);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_51);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_beckmann_d_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_48,
+    ndf_roughness_matrix_RoughnessMatrix r_52,
     metal::float3 m_16
 ) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_16.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_52, m_16.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_52);
     float _e6 = ndf_beckmann_d_of(_e3, m_16.z, _e5);
     return _e6;
 }
 
 float ndf_beckmann_lambda_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_49,
+    ndf_roughness_matrix_RoughnessMatrix r_53,
     metal::float3 w_13
 ) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
+    float _e3 = ndf_roughness_matrix_quadratic(r_53, w_13.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_13.z));
     return _e6;
 }
 
 float ndf_beckmann_g1_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_50,
+    ndf_roughness_matrix_RoughnessMatrix r_54,
     metal::float3 w_14,
     metal::float3 m_17
 ) {
-    float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
+    float _e3 = ndf_beckmann_lambda_matrix(r_54, w_14);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_14, m_17));
     return _e5;
 }
 
 float ndf_beckmann_g2_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_51,
+    ndf_roughness_matrix_RoughnessMatrix r_55,
     metal::float3 i_6,
     metal::float3 o_5,
     metal::float3 m_18
 ) {
-    float _e4 = ndf_beckmann_lambda_matrix(r_51, i_6);
-    float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
+    float _e4 = ndf_beckmann_lambda_matrix(r_55, i_6);
+    float _e5 = ndf_beckmann_lambda_matrix(r_55, o_5);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_6, m_18), metal::dot(o_5, m_18));
     return _e8;
 }
 
 sampling_Warp sampling_warp(
-    ndf_roughness_matrix_RoughnessMatrix r_52
+    ndf_roughness_matrix_RoughnessMatrix r_56
 ) {
-    metal::float3 _e1 = ndf_roughness_matrix_entries(r_52);
+    metal::float3 _e1 = ndf_roughness_matrix_clamped_entries(r_56);
     float l_xx = metal::sqrt(_e1.x);
-    return sampling_Warp {l_xx, _e1.y / l_xx, r_52.sqrt_det / l_xx};
+    return sampling_Warp {l_xx, _e1.y / l_xx, r_56.sqrt_det / l_xx};
 }
 
 metal::float3 sampling_normalize_scaled(
@@ -2000,17 +2106,17 @@ metal::float3 sampling_normalize_scaled(
 }
 
 metal::float3 sampling_stretch(
-    sampling_Warp l,
+    sampling_Warp l_3,
     metal::float3 w_15
 ) {
-    return metal::float3((l.l_xx * w_15.x) + (l.l_yx * w_15.y), l.l_yy * w_15.y, w_15.z);
+    return metal::float3((l_3.l_xx * w_15.x) + (l_3.l_yx * w_15.y), l_3.l_yy * w_15.y, w_15.z);
 }
 
 metal::float3 sampling_unstretch(
-    sampling_Warp l_1,
+    sampling_Warp l_4,
     metal::float3 n_4
 ) {
-    metal::float3 _e14 = sampling_normalize_scaled(metal::float3(l_1.l_xx * n_4.x, (l_1.l_yx * n_4.x) + (l_1.l_yy * n_4.y), n_4.z));
+    metal::float3 _e14 = sampling_normalize_scaled(metal::float3(l_4.l_xx * n_4.x, (l_4.l_yx * n_4.x) + (l_4.l_yy * n_4.y), n_4.z));
     return _e14;
 }
 
@@ -2038,15 +2144,15 @@ metal::float3 sampling_ggx_standard_visible(
 }
 
 metal::float3 sampling_sample_visible_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_53,
+    ndf_roughness_matrix_RoughnessMatrix r_57,
     metal::float3 wo_1,
     metal::float2 u_6
 ) {
-    bool local_10 = {};
+    bool local_14 = {};
     if (!((wo_1.z > 0.0))) {
         return metal::float3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_53);
+    sampling_Warp _e9 = sampling_warp(r_57);
     metal::float3 _e10 = sampling_normalize_scaled(wo_1);
     metal::float3 _e11 = sampling_stretch(_e9, _e10);
     metal::float3 _e12 = sampling_normalize_scaled(_e11);
@@ -2058,11 +2164,11 @@ metal::float3 sampling_sample_visible_normal(
     metal::float3 _e24 = sampling_ggx_standard_visible(_e12, metal::float2(_e20, _e22));
     metal::float3 _e25 = sampling_unstretch(_e9, _e24);
     if (_e25.z > 0.0) {
-        local_10 = metal::dot(wo_1, _e25) > 0.0;
+        local_14 = metal::dot(wo_1, _e25) > 0.0;
     } else {
-        local_10 = false;
+        local_14 = false;
     }
-    bool _e35 = local_10;
+    bool _e35 = local_14;
     if (_e35) {
         return _e25;
     }
@@ -2071,50 +2177,50 @@ metal::float3 sampling_sample_visible_normal(
 }
 
 metal::float3 sampling_sample_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_54,
+    ndf_roughness_matrix_RoughnessMatrix r_58,
     metal::float2 u_7
 ) {
     float _e3 = sampling_clamp_unit(u_7.x);
     float _e5 = sampling_clamp_unit(u_7.y);
     metal::float2 _e6 = math_sincos_turns(_e5);
     metal::float3 n_5 = metal::float3(metal::sqrt(_e3) * _e6, metal::sqrt(1.0 - _e3));
-    sampling_Warp _e13 = sampling_warp(r_54);
+    sampling_Warp _e13 = sampling_warp(r_58);
     metal::float3 _e14 = sampling_unstretch(_e13, n_5);
     return _e14;
 }
 
 float sampling_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_55,
+    ndf_roughness_matrix_RoughnessMatrix r_59,
     metal::float3 m_20
 ) {
-    float _e2 = ndf_ggx_d_matrix(r_55, m_20);
+    float _e2 = ndf_ggx_d_matrix(r_59, m_20);
     return (m_20.z > 0.0) ? (_e2 * m_20.z) : 0.0;
 }
 
 float sampling_visible_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_56,
+    ndf_roughness_matrix_RoughnessMatrix r_60,
     metal::float3 wo_2,
     metal::float3 m_21
 ) {
-    bool local_11 = {};
+    bool local_15 = {};
     float wom = metal::dot(wo_2, m_21);
     if (!(!((wo_2.z > 0.0)))) {
-        local_11 = !((wom > 0.0));
+        local_15 = !((wom > 0.0));
     } else {
-        local_11 = true;
+        local_15 = true;
     }
-    bool _e15 = local_11;
+    bool _e15 = local_15;
     if (_e15) {
         return 0.0;
     }
-    float _e17 = ndf_ggx_d_matrix(r_56, m_21);
-    float _e20 = ndf_ggx_lambda_matrix(r_56, wo_2);
+    float _e17 = ndf_ggx_d_matrix(r_60, m_21);
+    float _e20 = ndf_ggx_lambda_matrix(r_60, wo_2);
     float v_10 = (wom * _e17) / (wo_2.z * (1.0 + _e20));
     return (v_10 <= math_F32_MAX) ? v_10 : 0.0;
 }
 
 float sampling_reflection_pdf_from_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_57,
+    ndf_roughness_matrix_RoughnessMatrix r_61,
     metal::float3 wo_3,
     metal::float3 m_22
 ) {
@@ -2125,14 +2231,14 @@ float sampling_reflection_pdf_from_normal(
     if (!((metal::dot(_e8, m_22) > 0.0))) {
         return 0.0;
     }
-    float _e14 = ndf_ggx_d_matrix(r_57, m_22);
-    float _e18 = ndf_ggx_lambda_matrix(r_57, _e8);
+    float _e14 = ndf_ggx_d_matrix(r_61, m_22);
+    float _e18 = ndf_ggx_lambda_matrix(r_61, _e8);
     float v_11 = _e14 / ((4.0 * _e8.z) * (1.0 + _e18));
     return (v_11 <= math_F32_MAX) ? v_11 : 0.0;
 }
 
 float sampling_reflection_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_58,
+    ndf_roughness_matrix_RoughnessMatrix r_62,
     metal::float3 wo_4,
     metal::float3 wi_1
 ) {
@@ -2141,12 +2247,12 @@ float sampling_reflection_pdf(
     }
     metal::float3 _e8 = sampling_normalize_scaled(wo_4);
     metal::float3 _e9 = sampling_normalize_scaled(wi_1);
-    metal::float3 h_23 = _e8 + _e9;
-    float len = metal::length(h_23);
+    metal::float3 h_24 = _e8 + _e9;
+    float len = metal::length(h_24);
     if (!((len > 0.0))) {
         return 0.0;
     }
-    float _e18 = sampling_reflection_pdf_from_normal(r_58, wo_4, h_23 / metal::float3(len));
+    float _e18 = sampling_reflection_pdf_from_normal(r_62, wo_4, h_24 / metal::float3(len));
     return _e18;
 }
 

@@ -451,9 +451,21 @@ fn filter_deferred_filtered_alpha(alpha: f32, sigma: kernel_covariance_Covarianc
 
 // ---- filtered_ndf::ndf::roughness::matrix (shaders/ndf/roughness/matrix.wgsl) ----
 /// A symmetric positive-definite roughness matrix `A = [[a11, a12], [a12, a22]]` (TK19
-/// supplement section 1; Heitz 2014 section 5.4), with the TK19 determinant clamp `tau`
-/// (supplement, "Practical Implementation"): the density uses `sqrt(max(det A, tau))` and
-/// `A^-1 = adj(A) / max(det A, tau)`; Smith's `Lambda` uses `A` itself.
+/// supplement section 1; Heitz 2014 section 5.4) with the TK19 determinant clamp `tau`
+/// (supplement, "Practical Implementation"; `det_clamp` in the Rust API), mirroring
+/// `RoughnessMatrix` of `src/.../ndf/roughness/matrix.rs`.
+///
+/// **The determinant clamp: one clamped matrix.** Every function (`D`, `P22`, `Lambda`, the
+/// sampler's warp) evaluates one matrix `A_c`: `A` itself when `det A >= tau`, else
+/// `A_c = A + t I` with `t > 0` the root of `det(A + t I) = tau`,
+/// `t = (tau - det A) / (tr(A) / 2 + sqrt(tr(A)^2 / 4 + tau - det A))` (no cancellation). So
+/// `det A_c = max(det A, tau)` and the density is normalised for `A_c` (TK19's literal
+/// `sqrt(max(det A, tau))` with `A^-1 = adj(A) / max(det A, tau)` is not: its integral is
+/// `sqrt(tau / det A)`). `A_c - A = t I` shares `A`'s eigenvectors, so in the eigenbasis
+/// `A_c = R diag(l1 + t, l2 + t) R^T`, and with `(l1 + t)(l2 + t) = tau` the clamped minor
+/// eigenvalue is `tau / (l1 + t)`, a quotient of positive numbers (no cancellation whatever
+/// `t`). Filters add their kernel to `A` as given ([`entries`], [`determinant`]) and clamp the
+/// result with `det A_c` ([`clamped_det`]), as the Rust filters do.
 ///
 /// **Representation: the eigenbasis.** `A = R diag(l1, l2) R^T` with `R = [e1, e2]`,
 /// `e1 = axis`, `e2 = (-axis.y, axis.x)`. Both quadratic forms are then sums of two
@@ -464,24 +476,33 @@ fn filter_deferred_filtered_alpha(alpha: f32, sigma: kernel_covariance_Covarianc
 /// `2 r1 r2 (1/l1 - 1/l2) d theta`, bounded with `|r_i| <= sqrt(l_i q)`), and the rotated
 /// components carry at most 4 ulp of `|s|`, so
 ///
-/// `|d q| / q <= eps (8 + 8 sqrt(cond A)) + (relative error of the eigenvalues)`,
+/// `|d q| / q <= eps (8 + 8 sqrt(cond A_c)) + (relative error of the eigenvalues)`,
 ///
-/// `eps = 2^-23`, `cond A = l1 / l2`. The eigenvalues come from the constructor:
+/// `eps = 2^-23`, `cond A_c = (l1 + t) / (l2 + t)`. The eigenvalues come from the constructor:
 /// [`from_eigen`] takes them exactly (the way to build a rotated anisotropic material);
 /// [`from_entries_det`] takes `det A` from the caller (the filters pass it as a sum of
 /// non-negative terms), `l1` is a sum of non-negative terms and `l2 = det / l1`, both within
 /// a few ulp; [`from_entries`] forms `det A = a11 a22 - a12^2` in f32, which cancels to a
-/// relative `cond(A) eps`: use it only for well-conditioned matrices.
+/// relative `cond(A) eps`: use it only for well-conditioned matrices. The clamp adds at most
+/// 5 ulp to the clamped eigenvalues (`t` within 4 ulp of its own value; `l1 + t` a sum of
+/// positive terms; `tau / (l1 + t)` one division).
+///
+/// NaN: none of these functions tests for NaN (WGSL lets a driver assume none occurs).
 struct ndf_roughness_matrix_RoughnessMatrix {
     /// Unit eigenvector `e1 = (c, s)` of `l1`; `e2 = (-s, c)`.
     axis: vec2<f32>,
-    /// Eigenvalues `(l1, l2)` of `A` along `(e1, e2)` (both `> 0`).
+    /// Eigenvalues `(l1, l2)` of `A` as given, along `(e1, e2)` (both `> 0`).
     eig: vec2<f32>,
-    /// Eigenvalues of the clamped inverse `adj(A) / max(det A, tau)` along `(e1, e2)`:
-    /// `(l2, l1) / max(det A, tau)`.
+    /// Eigenvalues of `A_c`: `(l1 + t, tau / (l1 + t))`, or `eig` when the clamp is inactive.
+    eig_c: vec2<f32>,
+    /// Eigenvalues of `A_c^-1` along `(e1, e2)`: `1 / eig_c`.
     inv_eig: vec2<f32>,
-    /// `sqrt(max(det A, tau))`.
+    /// `sqrt(det A_c) = sqrt(max(det A, tau))`.
     sqrt_det: f32,
+    /// `det A` as the constructor had it (`l1 l2`, or the caller's sum of non-negative terms).
+    det: f32,
+    /// The clamp `tau` (0: none).
+    tau: f32,
 }
 
 /// `A = R diag(alpha_x^2, alpha_y^2) R^T` with `R = [axis, perp(axis)]` for a unit `axis`
@@ -489,13 +510,35 @@ struct ndf_roughness_matrix_RoughnessMatrix {
 /// material. `alpha` is not clamped (the caller keeps it in `[ALPHA_MIN, ALPHA_MAX]`).
 fn ndf_roughness_matrix_from_eigen(axis: vec2<f32>, alpha: vec2<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
     let l = alpha * alpha;
-    return ndf_roughness_matrix_RoughnessMatrix(axis, l, 1.0 / l, alpha.x * alpha.y);
+    return ndf_roughness_matrix_RoughnessMatrix(axis, l, l, 1.0 / l, alpha.x * alpha.y, l.x * l.y, 0.0);
+}
+
+/// The clamped eigenvalues `(l1 + t, tau / (l1 + t))` of `A_c` for `A`'s eigenvalues `l`
+/// (`l1 >= l2`), `det = l1 l2` as the caller has it and the clamp `tau`; `l` itself when
+/// `det >= tau` (type docs).
+fn ndf_roughness_matrix_clamped_eigenvalues(l: vec2<f32>, det: f32, tau: f32) -> vec2<f32> {
+    if det >= tau {
+        return l;
+    }
+    let h = 0.5 * (l.x + l.y);
+    let gap = tau - det;
+    let t = gap / (h + sqrt(h * h + gap));
+    let l1 = l.x + t;
+    return vec2<f32>(l1, tau / l1);
+}
+
+/// A matrix from its eigenbasis, its eigenvalues `l` (`l1 >= l2`, `l2 >= 0`), the
+/// determinant `det` of `A` as the caller has it (`l1 l2`, or a sum of non-negative terms) and
+/// the clamp `tau >= 0` (0: none).
+fn ndf_roughness_matrix_from_eigenbasis(axis: vec2<f32>, l: vec2<f32>, det: f32, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    let lc = ndf_roughness_matrix_clamped_eigenvalues(l, det, tau);
+    return ndf_roughness_matrix_RoughnessMatrix(axis, l, lc, 1.0 / lc, sqrt(max(det, tau)), det, tau);
 }
 
 /// The eigen-decomposition of `A` from its entries and its determinant `det` (computed by
 /// the caller without cancellation, e.g. as a sum of non-negative terms), with the
-/// determinant clamp `tau >= 0` (0: none). The caller guarantees `a11 > 0`, `a22 > 0` and
-/// `max(det, tau) > 0` (the Rust `from_entries_det_clamped`; no checks).
+/// determinant clamp `tau >= 0` (0: none; the type docs for `A_c`). The caller guarantees
+/// `a11 > 0`, `a22 > 0` and `max(det, tau) > 0` (the Rust `from_entries`; no checks).
 ///
 /// `l1 = (a11 + a22) / 2 + hypot((a11 - a22) / 2, a12)` (no cancellation), `l2 = det / l1`;
 /// the eigenvector of `l1` from whichever row of `A - l2 I` avoids cancellation. Entries up
@@ -504,7 +547,7 @@ fn ndf_roughness_matrix_from_entries_det(a11: f32, a12: f32, a22: f32, det: f32,
     let half_diff = 0.5 * (a11 - a22);
     let rad = sqrt(half_diff * half_diff + a12 * a12);
     let l1 = 0.5 * (a11 + a22) + rad;
-    let l2 = det / l1;
+    let l2 = max(det, 0.0) / l1;
     // e1 from the row whose diagonal part does not cancel: (rad + |d|, a12) when a11 >= a22,
     // else (a12, rad + |d|); any axis when A is isotropic.
     let big = rad + abs(half_diff);
@@ -513,8 +556,7 @@ fn ndf_roughness_matrix_from_entries_det(a11: f32, a12: f32, a22: f32, det: f32,
         v = vec2<f32>(1.0, 0.0);
     }
     let axis = v / length(v);
-    let c = max(det, tau);
-    return ndf_roughness_matrix_RoughnessMatrix(axis, vec2<f32>(l1, l2), vec2<f32>(l2, l1) / c, sqrt(c));
+    return ndf_roughness_matrix_from_eigenbasis(axis, vec2<f32>(l1, l2), det, tau);
 }
 
 /// [`from_entries_det`] with `det = a11 a22 - a12^2` formed here in f32 (relative error up
@@ -523,53 +565,87 @@ fn ndf_roughness_matrix_from_entries(a11: f32, a12: f32, a22: f32) -> ndf_roughn
     return ndf_roughness_matrix_from_entries_det(a11, a12, a22, a11 * a22 - a12 * a12, 0.0);
 }
 
+/// The same matrix `A` evaluated with the determinant clamp `tau = det_clamp` (the Rust
+/// `with_det_clamp`; `<= 0`: none): `A_c` recomputed from `A`'s eigenvalues.
+fn ndf_roughness_matrix_with_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix, det_clamp: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_eigenbasis(r.axis, r.eig, r.det, max(det_clamp, 0.0));
+}
+
 /// `v` in the eigenbasis: `(v . e1, v . e2)`.
 fn ndf_roughness_matrix_rotate(r: ndf_roughness_matrix_RoughnessMatrix, v: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(r.axis.x * v.x + r.axis.y * v.y, r.axis.x * v.y - r.axis.y * v.x);
 }
 
-/// `s^T A^-1 s` with `A^-1 = adj(A) / max(det A, tau)`: `u1^2 w1 + u2^2 w2` for the rotated
-/// `u` and the clamped inverse eigenvalues `w` (error bound in the type docs).
+/// `s^T A_c^-1 s = u1^2 / (l1 + t) + u2^2 / (l2 + t)` for the rotated `u` (error bound in the
+/// type docs).
 fn ndf_roughness_matrix_inv_quadratic(r: ndf_roughness_matrix_RoughnessMatrix, s: vec2<f32>) -> f32 {
     let u = ndf_roughness_matrix_rotate(r, s);
     return dot(u * u, r.inv_eig);
 }
 
-/// `w^T A w = u1^2 l1 + u2^2 l2` (Smith's projected roughness; never sees the clamp).
+/// `w^T A_c w = u1^2 (l1 + t) + u2^2 (l2 + t)` (Smith's projected roughness of the matrix the
+/// density evaluates).
 fn ndf_roughness_matrix_quadratic(r: ndf_roughness_matrix_RoughnessMatrix, w: vec2<f32>) -> f32 {
     let u = ndf_roughness_matrix_rotate(r, w);
-    return dot(u * u, r.eig);
+    return dot(u * u, r.eig_c);
 }
 
-/// `sqrt(max(det A, tau))`.
+/// `sqrt(det A_c) = sqrt(max(det A, tau))`.
 fn ndf_roughness_matrix_sqrt_det(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
     return r.sqrt_det;
 }
 
-/// The entries `(a11, a12, a22)` of `A`: `l1 e1 e1^T + l2 e2 e2^T` (sums of non-negative
-/// terms on the diagonal; within a few ulp of `l1`).
-fn ndf_roughness_matrix_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
+/// The entries `(a11, a12, a22)` of the matrix with eigenvalues `l` in `r`'s eigenbasis: sums
+/// of non-negative terms on the diagonal (within a few ulp of `l1`).
+fn ndf_roughness_matrix_entries_of(r: ndf_roughness_matrix_RoughnessMatrix, l: vec2<f32>) -> vec3<f32> {
     let c = r.axis.x;
     let s = r.axis.y;
-    let l = r.eig;
     return vec3<f32>(l.x * c * c + l.y * s * s, (l.x - l.y) * c * s, l.x * s * s + l.y * c * c);
 }
 
-/// `det A = l1 l2` (without the clamp).
+/// The entries `(a11, a12, a22)` of `A` as given: what a filter adds its kernel to.
+fn ndf_roughness_matrix_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
+    return ndf_roughness_matrix_entries_of(r, r.eig);
+}
+
+/// The entries of `A_c`, the matrix every function evaluates (`A`'s own when the clamp is
+/// inactive).
+fn ndf_roughness_matrix_clamped_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
+    return ndf_roughness_matrix_entries_of(r, r.eig_c);
+}
+
+/// `det A` (without the clamp), as the constructor had it.
 fn ndf_roughness_matrix_determinant(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return r.eig.x * r.eig.y;
+    return r.det;
+}
+
+/// `det A_c = max(det A, tau)`: the clamp a filter of this lobe uses (the Rust
+/// `clamped_det`, `lobe_det`), so that a kernel too small to change the entries meets the
+/// clamp with equality (and returns the lobe unchanged).
+fn ndf_roughness_matrix_clamped_det(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return max(r.det, r.tau);
 }
 
 // ---- filtered_ndf::filter::gaussian (shaders/filter/gaussian.wgsl) ----
 // Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
 // mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
+//
+// The determinant clamp: the result is evaluated as the one clamped matrix `A'_c` of
+// `matrix.wgsl` (`A' + t I` where `det A' < tau`). In exact arithmetic
+// `det(A + 2 Sigma) >= det A`, and here the filtered determinant is a sum of non-negative
+// terms that contains `det A` itself, so with `tau = det A_c` of an unclamped material the
+// clamp is inactive (equality for a zero kernel); it acts for a material that is itself
+// clamped (`tau = det A_c > det A`) and for an explicit `tau` above the filtered determinant.
 
-/// The entries of `A + 2 K` and `det(A + 2 K) = det A + 2 tr(adj(A) K) + 4 det K`, every term
-/// non-negative for `A` positive definite and `K` PSD, so that the filtered minor axis keeps
-/// its relative accuracy (f32 would cancel in `b11 b22 - b12^2`): with `A = R diag(l) R^T`,
+/// `A + 2 K` for a sanitised kernel `K`, with its determinant
+/// `det(A + 2 K) = det A + 2 tr(adj(A) K) + 4 det K`, every term non-negative for `A` positive
+/// definite and `K` PSD, so that the filtered minor axis keeps its relative accuracy (f32
+/// would cancel in `b11 b22 - b12^2`): with `A = R diag(l) R^T`,
 /// `tr(adj(A) K) = l2 e1^T K e1 + l1 e2^T K e2`, and `det K` as the kernel carries it.
-/// Evaluated with the determinant clamp `tau`.
-fn filter_gaussian_plus_kernel(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+/// Evaluated with the determinant clamp `tau` (`<= 0`: none). `A` is the material's matrix as
+/// given ([`matrix::entries`]; a clamped material is filtered as `A + 2 K` with its own `tau`,
+/// as in Rust).
+fn filter_gaussian_gaussian_sanitized(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
     let e = ndf_roughness_matrix_entries(a);
     let c = a.axis.x;
     let s = a.axis.y;
@@ -581,45 +657,30 @@ fn filter_gaussian_plus_kernel(a: ndf_roughness_matrix_RoughnessMatrix, k: kerne
         e.y + 2.0 * k.s_xy,
         e.z + 2.0 * k.s_yy,
         det,
-        tau,
+        max(tau, 0.0),
     );
 }
 
-/// `A' = A + 2 Sigma` with the determinant clamp `tau = det A` (TK19 supplement), for a
-/// kernel that `covariance::sanitized` (or a clamp after it) has made PSD and bounded.
-fn filter_gaussian_gaussian_sanitized(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_plus_kernel(a, k, a.sqrt_det * a.sqrt_det);
-}
-
-/// `A' = A + 2 Sigma`, evaluated with `tau = det(A)` (TK19 supplement; no bias in exact
-/// arithmetic since `det(A + 2 Sigma) >= det A`). Beckmann: exact (KHPL16 eq. 15, covariances
-/// of Gaussians add with `A = 2 B`). GGX: the TK19 section 2.2 / KHPL16 approximation. The
-/// kernel is `covariance::sanitized` first. Accuracy: the filtered matrix is evaluated in its
-/// eigenbasis with `det` from non-negative terms (`matrix.wgsl`: `s^T A'^-1 s` within
-/// `eps (10 + 16 sqrt(cond A'))`, the extra `8 sqrt(cond)` for the rounding of the kernel's
-/// entries).
+/// `A' = A + 2 Sigma`, evaluated with the determinant clamp `tau = det A_c` of the material
+/// (TK19 supplement; no bias in exact arithmetic since `det(A + 2 Sigma) >= det A`). Beckmann:
+/// exact (KHPL16 eq. 15, covariances of Gaussians add with `A = 2 B`). GGX: the TK19 section
+/// 2.2 / KHPL16 approximation. The kernel is `covariance::sanitized` first. Accuracy: the
+/// filtered matrix is evaluated in its eigenbasis with `det` from non-negative terms
+/// (`matrix.wgsl`: `s^T A'^-1 s` within `eps (10 + 16 sqrt(cond A'))`, the extra
+/// `8 sqrt(cond)` for the rounding of the kernel's entries).
 fn filter_gaussian_gaussian(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel));
+    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), ndf_roughness_matrix_clamped_det(a));
 }
 
-/// [`gaussian`] with an explicit determinant clamp `tau` (`<= 0`: none; a filtered
-/// determinant that rounds to `<= det A` then gets `det A`, its exact lower bound).
-fn filter_gaussian_gaussian_with_tau(
+/// [`gaussian`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
+/// filtered determinant here is never below `det A`, so no fallback is needed: the Rust
+/// `gaussian_with_det_clamp`).
+fn filter_gaussian_gaussian_with_det_clamp(
     a: ndf_roughness_matrix_RoughnessMatrix,
     kernel: kernel_covariance_Covariance,
-    tau: f32,
+    det_clamp: f32,
 ) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_with_tau_sanitized(a, kernel_covariance_sanitized(kernel), tau);
-}
-
-/// [`gaussian_with_tau`] for a sanitised kernel.
-fn filter_gaussian_gaussian_with_tau_sanitized(
-    a: ndf_roughness_matrix_RoughnessMatrix,
-    k: kernel_covariance_Covariance,
-    tau: f32,
-) -> ndf_roughness_matrix_RoughnessMatrix {
-    let floor = ndf_roughness_matrix_determinant(a);
-    return filter_gaussian_plus_kernel(a, k, select(floor, tau, tau > 0.0));
+    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), det_clamp);
 }
 
 // ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
@@ -857,7 +918,8 @@ const filter_projected_PROJECTED_EIGEN_MAX: f32 = 0.99;
 /// projected disk the GGX density is itself a GGX-shaped density of roughness `P`, and TK19's
 /// disk-derivative kernel lives in that space. Eigenvalues of `A` above `PROJECTED_EIGEN_MAX`
 /// are clamped for the projected step and the excess is added back unfiltered (as in Rust:
-/// exact below the limit, continuous, never sharpening). Evaluated with `tau = det A`.
+/// exact below the limit, continuous, never sharpening). Evaluated with the determinant clamp
+/// `tau = det A_c` of the material (the result is the one clamped matrix of `matrix.wgsl`).
 ///
 /// f32 form: in `A`'s eigenbasis `P = R diag(l / (1 - l)) R^T` exactly (no cancellation);
 /// `d = det P' = det P + 2 tr(adj(P) K) + 4 det K` as non-negative terms (TK21's `detMin`);
@@ -865,7 +927,26 @@ const filter_projected_PROJECTED_EIGEN_MAX: f32 = 0.99;
 /// exactly (so the filtered minor axis keeps its relative accuracy). The kernel is
 /// `covariance::sanitized` first.
 fn filter_projected_projected(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
-    let k = kernel_covariance_sanitized(kernel);
+    return filter_projected_projected_sanitized(a, kernel_covariance_sanitized(kernel), ndf_roughness_matrix_clamped_det(a));
+}
+
+/// [`projected`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
+/// Rust `projected_with_det_clamp`).
+fn filter_projected_projected_with_det_clamp(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    kernel: kernel_covariance_Covariance,
+    det_clamp: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_projected_projected_sanitized(a, kernel_covariance_sanitized(kernel), det_clamp);
+}
+
+/// [`projected`] for a sanitised kernel `k`, with the clamp `tau` (`<= 0`: none). `A` is the
+/// material's matrix as given (a clamped material is filtered with its own `tau`, as in Rust).
+fn filter_projected_projected_sanitized(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    k: kernel_covariance_Covariance,
+    tau: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
     let lc = min(a.eig, vec2<f32>(filter_projected_PROJECTED_EIGEN_MAX));
     let excess = a.eig - lc;
     let p = lc / (1.0 - lc);
@@ -894,9 +975,9 @@ fn filter_projected_projected(a: ndf_roughness_matrix_RoughnessMatrix, kernel: k
         b22 += excess.x * s * s + excess.y * c * c;
         det = b11 * b22 - b12 * b12;
     }
+    // Never below A on the diagonal (exact, by monotonicity), as in Rust.
     let e = ndf_roughness_matrix_entries(a);
-    let tau = a.sqrt_det * a.sqrt_det;
-    return ndf_roughness_matrix_from_entries_det(max(b11, e.x), b12, max(b22, e.z), max(det, tau), tau);
+    return ndf_roughness_matrix_from_entries_det(max(b11, e.x), b12, max(b22, e.z), det, max(tau, 0.0));
 }
 
 // ---- filtered_ndf::ndf::roughness::axis_aligned (shaders/ndf/roughness/axis_aligned.wgsl) ----
@@ -993,6 +1074,15 @@ fn filter_proxy_proxy_simple(r: ndf_roughness_axis_aligned_AxisAligned, half_ext
 // `g2_of`): naga renames any identifier that ends in a digit when it writes a module back
 // out, which naga_oil refuses for composable modules, so `p22`, `g1`, `g2` cannot be names
 // of their own.
+//
+// NaN policy. The Rust crate decides it once (`src/.../ndf/mod.rs`): a NaN argument
+// contributes nothing, `p22 = d = 0` and `lambda = +inf` (so `g1 = g2 = 0`), both families,
+// every form. WGSL lets a driver assume that no NaN occurs at run time, so the shaders do not
+// test for one and promise nothing where a driver takes that licence. Where it costs nothing
+// (the comparisons every function makes anyway), they are written so that a NaN fails them
+// and the result is the Rust one: `d_of` and `p22_of` return 0 (`select` on `m_z > 0`,
+// `q >= 0`), `lambda_of` returns `F32_MAX` (the shaders' `+inf`), `g1_of` and `g2_of` return 0
+// (`w.m > 0`). Mesa's lavapipe and llvmpipe keep these comparisons.
 
 /// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` from `Lambda(w)` and `w.m` (TK19
 /// supplement section 1). In `[0, 1]`; `0` for `w.m <= 0`. (A grazing `w` has
@@ -1059,7 +1149,7 @@ fn ndf_roughness_isotropic_to_matrix(r: ndf_roughness_isotropic_Isotropic) -> nd
 /// range.
 fn ndf_ggx_p22_of(q: f32, sqrt_det: f32) -> f32 {
     let t = 1.0 + q;
-    return 1.0 / (math_PI * sqrt_det * t * t);
+    return select(0.0, 1.0 / (math_PI * sqrt_det * t * t), q >= 0.0);
 }
 
 /// Solid-angle density `D(m) = 1 / (pi sqrt(det A) (q_xy + m_z^2)^2)` for a unit micronormal
@@ -1082,10 +1172,11 @@ fn ndf_ggx_d_of(q_xy: f32, m_z: f32, sqrt_det: f32) -> f32 {
 /// `Lambda` is homogeneous of degree 0 in `w`: `w` need not be unit, but its squared
 /// components must stay inside the f32 range.
 fn ndf_ggx_lambda_of(q: f32, abs_wz: f32) -> f32 {
-    if q <= 0.0 {
+    if q <= 0.0 && abs_wz >= 0.0 {
         return 0.0;
     }
-    if abs_wz <= 0.0 {
+    // Grazing, or NaN in either (the NaN policy of `ndf`): fully masked.
+    if !(abs_wz > 0.0) || !(q > 0.0) {
         return math_F32_MAX;
     }
     let r = sqrt(abs_wz * abs_wz + q);
@@ -1739,7 +1830,8 @@ fn footprint_slope_projected_from_slope(s: vec2<f32>) -> vec2<f32> {
 // The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, GDC 2016,
 // TK19 eq. 1 and supplement), mirroring `ClampRules` of `src/.../kernel/clamp.rs`. A rule is
 // off when its bound is `F32_MAX` (`max_extent`, `kappa`; the Rust `F::INFINITY`),
-// `FLOOR_NONE`, or `det_clamp = false`.
+// `FLOOR_NONE`, or `det_clamp = false`. Constants mirror `ClampRules::DEFAULT`, `KHPL16`,
+// `NONE`, `GDC2016` (`*_RULES`: WGSL names may not end in a digit here, see shaders/README.md).
 
 /// No rectangle floor.
 const kernel_clamp_FLOOR_NONE: u32 = 0u;
@@ -1765,6 +1857,9 @@ struct kernel_clamp_ClampRules {
 
 /// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
 const kernel_clamp_DEFAULT_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_CONSTANT, 1e-3, 0.18, true);
+/// KHPL16's rules for its exact kernels: `lambda = 1` (section 5.2) and the determinant clamp;
+/// no rectangle floor (the exact rectangle integral needs none), no `kappa` (a TK19 addition).
+const kernel_clamp_KHPL16_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, true);
 /// No clamping (unbiased; for references and the exact rectangle integral).
 const kernel_clamp_NO_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(math_F32_MAX, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, false);
 /// The GDC 2016 listing: `fp = clamp(fp, min(roughness, 0.1), 1)`, no `kappa`, with `tau`.
@@ -1813,25 +1908,42 @@ fn kernel_clamp_kernel(rules: kernel_clamp_ClampRules, k: kernel_covariance_Cova
     return kernel_covariance_clamp_eigenvalues(s, 0.5 * max(rules.kappa, 0.0));
 }
 
-/// The determinant clamp for filtering `a`: `max(det A, tau_a)` if `det_clamp`, else 0.
-fn kernel_clamp_tau(rules: kernel_clamp_ClampRules, a: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return select(0.0, a.sqrt_det * a.sqrt_det, rules.det_clamp);
+/// The determinant clamp `tau` for filtering `a` (the Rust `det_clamp_for`): `det A_c` of the
+/// unfiltered lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a
+/// clamped matrix its `max(det A, tau)`) if `det_clamp`, else 0.
+fn kernel_clamp_det_clamp_for(rules: kernel_clamp_ClampRules, a: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return select(0.0, ndf_roughness_matrix_clamped_det(a), rules.det_clamp);
+}
+
+/// The clamped pixel kernel of a footprint: [`footprint`] -> `pixel::covariance` (`sigma`
+/// pixels) -> [`kernel`] (sanitised once).
+fn kernel_clamp_pixel_kernel(rules: kernel_clamp_ClampRules, fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
+    return kernel_clamp_kernel(rules, footprint_covariance(kernel_clamp_footprint(rules, fp), sigma));
 }
 
 /// The whole Gaussian pipeline: [`footprint`] -> `pixel::covariance` (`sigma` pixels)
-/// -> [`kernel`] -> `A' = A + 2 Sigma` with `tau = det A` if `det_clamp` (the TK19 matrix
-/// filter; exact for Beckmann).
+/// -> [`kernel`] -> `A' = A + 2 Sigma` with `tau = det A_c` if `det_clamp` (the TK19 matrix
+/// filter; exact for Beckmann). The result is the one clamped matrix of `matrix.wgsl`.
 fn kernel_clamp_filter_gaussian(
     rules: kernel_clamp_ClampRules,
     a: ndf_roughness_matrix_RoughnessMatrix,
     fp: footprint_Footprint,
     sigma: f32,
 ) -> ndf_roughness_matrix_RoughnessMatrix {
-    let k = kernel_clamp_kernel(rules, footprint_covariance(kernel_clamp_footprint(rules, fp), sigma));
-    if rules.det_clamp {
-        return filter_gaussian_gaussian_sanitized(a, k);
-    }
-    return filter_gaussian_gaussian_with_tau_sanitized(a, k, 0.0);
+    return filter_gaussian_gaussian_sanitized(a, kernel_clamp_pixel_kernel(rules, fp, sigma), kernel_clamp_det_clamp_for(rules, a));
+}
+
+/// The projected-space pipeline (TK21), the rules as in [`filter_gaussian`]: [`footprint`]
+/// -> `pixel::covariance` (`sigma` pixels; the footprint of the half vector's projected-disk
+/// derivatives, TK19 section 3.2) -> [`kernel`] -> `projected::projected_sanitized` with
+/// `tau = det A_c` if `det_clamp` (the Rust `ClampRules::filter_projected`).
+fn kernel_clamp_filter_projected(
+    rules: kernel_clamp_ClampRules,
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    fp: footprint_Footprint,
+    sigma: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_projected_projected_sanitized(a, kernel_clamp_pixel_kernel(rules, fp, sigma), kernel_clamp_det_clamp_for(rules, a));
 }
 
 // ---- filtered_ndf::ndf::beckmann (shaders/ndf/beckmann.wgsl) ----
@@ -1863,7 +1975,7 @@ fn ndf_beckmann_exp_neg_times(x: f32, k: f32, ln_k: f32) -> f32 {
 /// `sqrt(det A)`. `0` where the density underflows.
 fn ndf_beckmann_p22_of(q: f32, sqrt_det: f32) -> f32 {
     let den = math_PI * sqrt_det;
-    return ndf_beckmann_exp_neg_times(q, 1.0 / den, -log(den));
+    return select(0.0, ndf_beckmann_exp_neg_times(q, 1.0 / den, -log(den)), q >= 0.0);
 }
 
 /// Solid-angle density `D(m) = exp(-q_xy / m_z^2) / (pi sqrt(det A) m_z^4)` for a unit
@@ -1893,10 +2005,11 @@ fn ndf_beckmann_d_of(q_xy: f32, m_z: f32, sqrt_det: f32) -> f32 {
 /// adds its `3 + 2 a^2` ulp. `0` for `q <= 0` and for `a > 9.5` (below the f32 range);
 /// `F32_MAX` at `w_z = 0` (the Rust `+inf`).
 fn ndf_beckmann_lambda_of(q: f32, abs_wz: f32) -> f32 {
-    if q <= 0.0 {
+    if q <= 0.0 && abs_wz >= 0.0 {
         return 0.0;
     }
-    if abs_wz <= 0.0 {
+    // Grazing, or NaN in either (the NaN policy of `ndf`): fully masked.
+    if !(abs_wz > 0.0) || !(q > 0.0) {
         return math_F32_MAX;
     }
     let a = abs_wz / sqrt(q);
@@ -2031,14 +2144,15 @@ struct sampling_Warp {
     l_xx: f32,
     /// `a12 / sqrt(a11)`.
     l_yx: f32,
-    /// `sqrt(det A) / sqrt(a11)` (with the matrix's determinant clamp: the sampled lobe is the
-    /// one the density evaluates).
+    /// `sqrt(det A) / sqrt(a11)`.
     l_yy: f32,
 }
 
-/// The warp of a roughness matrix (entries from its eigenbasis, `sqrt(det A)` as stored).
+/// The warp of a roughness matrix: the Cholesky factor of the clamped matrix `A_c` that the
+/// density evaluates (`matrix.wgsl`; entries from its eigenbasis, `sqrt(det A_c)` as stored),
+/// so that the sampled lobe is the one `D` describes.
 fn sampling_warp(r: ndf_roughness_matrix_RoughnessMatrix) -> sampling_Warp {
-    let e = ndf_roughness_matrix_entries(r);
+    let e = ndf_roughness_matrix_clamped_entries(r);
     let l_xx = sqrt(e.x);
     return sampling_Warp(l_xx, e.y / l_xx, r.sqrt_det / l_xx);
 }
