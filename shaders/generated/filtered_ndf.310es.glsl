@@ -112,6 +112,7 @@ const filter_deferred_KernelConvention filter_presets_BABYLON = filter_deferred_
 const filter_deferred_KernelConvention filter_presets_THREE_JS = filter_deferred_KernelConvention(2u, 3u, 1.0, 1.0, 0.0, 3.4028235e38, 0u, true, 0.0525);
 const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
 const float filter_rect_BIG = 1e18;
+const float filter_rect_FAR2_ = 0.25;
 const uint filter_rect_TIER_CLOSED = 0u;
 const float footprint_SIGMA_PIXEL = 0.5;
 const float footprint_jacobian_HZ_MIN = 1e-6;
@@ -131,9 +132,9 @@ layout(location = 0) out vec4 _fs2p_location0;
 float math_atan(float x) {
     float t = 0.0;
     float r = 0.0;
-    float a_12 = abs(x);
-    bool inv = (a_12 > 1.0);
-    t = (inv ? (1.0 / a_12) : a_12);
+    float a_15 = abs(x);
+    bool inv = (a_15 > 1.0);
+    t = (inv ? (1.0 / a_15) : a_15);
     float _e8 = t;
     bool shift = (_e8 > math_TAN_EIGHTH_PI);
     float _e11 = t;
@@ -164,17 +165,17 @@ vec2 math_sincos_turns(float u) {
     float r_63 = (u - (0.25 * q_4));
     float z_1 = (r_63 * r_63);
     float s_12 = (r_63 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
-    float c_8 = ((((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0);
-    int k_12 = (int(q_4) & 3);
-    cs = vec2(c_8, s_12);
-    if ((k_12 == 1)) {
-        cs = vec2(-(s_12), c_8);
+    float c_9 = ((((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0);
+    int k_16 = (int(q_4) & 3);
+    cs = vec2(c_9, s_12);
+    if ((k_16 == 1)) {
+        cs = vec2(-(s_12), c_9);
     } else {
-        if ((k_12 == 2)) {
-            cs = vec2(-(c_8), -(s_12));
+        if ((k_16 == 2)) {
+            cs = vec2(-(c_9), -(s_12));
         } else {
-            if ((k_12 == 3)) {
-                cs = vec2(s_12, -(c_8));
+            if ((k_16 == 3)) {
+                cs = vec2(s_12, -(c_9));
             }
         }
     }
@@ -187,9 +188,9 @@ float math_hypot(float x_1, float y) {
     if ((m_23 <= 0.0)) {
         return 0.0;
     }
-    float a_13 = (x_1 / m_23);
-    float b_2 = (y / m_23);
-    return (m_23 * sqrt(((a_13 * a_13) + (b_2 * b_2))));
+    float a_16 = (x_1 / m_23);
+    float b_4 = (y / m_23);
+    return (m_23 * sqrt(((a_16 * a_16) + (b_4 * b_4))));
 }
 
 float ndf_roughness_clamp_alpha(float alpha) {
@@ -235,12 +236,12 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     if ((scale <= 0.0)) {
         return c_3;
     }
-    float a_14 = (c_3.s_xx / scale);
-    float b_3 = (c_3.s_xy / scale);
+    float a_17 = (c_3.s_xx / scale);
+    float b_5 = (c_3.s_xy / scale);
     float e_2 = (c_3.s_yy / scale);
-    float d_1 = (0.5 * (a_14 - e_2));
-    float r_64 = sqrt(((d_1 * d_1) + (b_3 * b_3)));
-    float lmax_1 = (((0.5 * (a_14 + e_2)) + r_64) * scale);
+    float d_1 = (0.5 * (a_17 - e_2));
+    float r_64 = sqrt(((d_1 * d_1) + (b_5 * b_5)));
+    float lmax_1 = (((0.5 * (a_17 + e_2)) + r_64) * scale);
     if ((lmax_1 <= max_eig)) {
         return c_3;
     }
@@ -255,11 +256,11 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         return kernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
     }
     float p_4 = (r_64 + abs(d_1));
-    float q_5 = ((p_4 > 0.0) ? ((b_3 * b_3) / p_4) : 0.0);
+    float q_5 = ((p_4 > 0.0) ? ((b_5 * b_5) / p_4) : 0.0);
     vec2 ee = ((d_1 >= 0.0) ? vec2(p_4, q_5) : vec2(q_5, p_4));
     float inv_1 = (1.0 / (2.0 * r_64));
     float p11_ = (ee.x * inv_1);
-    float p12_ = (b_3 * inv_1);
+    float p12_ = (b_5 * inv_1);
     float p22_ = (ee.y * inv_1);
     return kernel_covariance_Covariance(((max_eig * p11_) + (lmin_1 * p22_)), ((max_eig - lmin_1) * p12_), ((max_eig * p22_) + (lmin_1 * p11_)), (max_eig * lmin_1));
 }
@@ -328,20 +329,20 @@ float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5) {
 }
 
 float filter_deferred_norm_eval(uint norm, vec3 dn_u, vec3 dn_v) {
-    float a_15 = dot(dn_u, dn_u);
-    float c_9 = dot(dn_v, dn_v);
+    float a_18 = dot(dn_u, dn_u);
+    float c_10 = dot(dn_v, dn_v);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
-        return max(a_15, c_9);
+        return max(a_18, c_10);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        float _e11 = filter_deferred_max_eigenvalue(a_15, dot(dn_u, dn_v), c_9);
+        float _e11 = filter_deferred_max_eigenvalue(a_18, dot(dn_u, dn_v), c_10);
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
         vec3 m_24 = max(abs(dn_u), abs(dn_v));
         return max(max(m_24.x, m_24.y), m_24.z);
     }
-    return (a_15 + c_9);
+    return (a_18 + c_10);
 }
 
 float filter_deferred_clamp_kernel(filter_deferred_KernelConvention conv, float k_1) {
@@ -386,8 +387,8 @@ float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha
 }
 
 kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_3, vec3 dn_v_3, float sigma_sq) {
-    vec3 x_4 = (cross(dn_u_3, dn_v_3) * sigma_sq);
-    return kernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_4, x_4));
+    vec3 x_5 = (cross(dn_u_3, dn_v_3) * sigma_sq);
+    return kernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_5, x_5));
 }
 
 float filter_deferred_bandwidth_kernel(uint bandwidth, kernel_covariance_Covariance sigma) {
@@ -415,9 +416,9 @@ vec2 ndf_roughness_matrix_clamped_eigenvalues(vec2 l, float det, float tau) {
     if ((det >= tau)) {
         return l;
     }
-    float h_16 = (0.5 * (l.x + l.y));
+    float h_17 = (0.5 * (l.x + l.y));
     float gap = (tau - det);
-    float t_2 = (gap / (h_16 + sqrt(((h_16 * h_16) + gap))));
+    float t_2 = (gap / (h_17 + sqrt(((h_17 * h_17) + gap))));
     float l1_ = (l.x + t_2);
     return vec2(l1_, (tau / l1_));
 }
@@ -474,9 +475,9 @@ float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5) {
 }
 
 vec3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, vec2 l_2) {
-    float c_10 = r_6.axis.x;
+    float c_11 = r_6.axis.x;
     float s_13 = r_6.axis.y;
-    return vec3((((l_2.x * c_10) * c_10) + ((l_2.y * s_13) * s_13)), (((l_2.x - l_2.y) * c_10) * s_13), (((l_2.x * s_13) * s_13) + ((l_2.y * c_10) * c_10)));
+    return vec3((((l_2.x * c_11) * c_11) + ((l_2.y * s_13) * s_13)), (((l_2.x - l_2.y) * c_11) * s_13), (((l_2.x * s_13) * s_13) + ((l_2.y * c_11) * c_11)));
 }
 
 vec3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7) {
@@ -499,10 +500,10 @@ float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10
 
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3) {
     vec3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_11 = a_2.axis.x;
+    float c_12 = a_2.axis.x;
     float s_14 = a_2.axis.y;
-    float k1_ = max(((((c_11 * c_11) * k_3.s_xx) + (((2.0 * c_11) * s_14) * k_3.s_xy)) + ((s_14 * s_14) * k_3.s_yy)), 0.0);
-    float k2_ = max(((((s_14 * s_14) * k_3.s_xx) - (((2.0 * c_11) * s_14) * k_3.s_xy)) + ((c_11 * c_11) * k_3.s_yy)), 0.0);
+    float k1_ = max(((((c_12 * c_12) * k_3.s_xx) + (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((s_14 * s_14) * k_3.s_yy)), 0.0);
+    float k2_ = max(((((s_14 * s_14) * k_3.s_xx) - (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((c_12 * c_12) * k_3.s_yy)), 0.0);
     float _e38 = ndf_roughness_matrix_determinant(a_2);
     float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * max(k_3.det, 0.0)));
     ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
@@ -585,13 +586,13 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     vec2 lc = min(a_6.eig, vec2(0.99));
     vec2 excess = (a_6.eig - lc);
     vec2 p_5 = (lc / (vec2(1.0) - lc));
-    float c_12 = a_6.axis.x;
+    float c_13 = a_6.axis.x;
     float s_15 = a_6.axis.y;
-    float p11_1 = (((p_5.x * c_12) * c_12) + ((p_5.y * s_15) * s_15));
-    float p12_1 = (((p_5.x - p_5.y) * c_12) * s_15);
-    float p22_1 = (((p_5.x * s_15) * s_15) + ((p_5.y * c_12) * c_12));
-    float k1_1 = max(((((c_12 * c_12) * k_4.s_xx) + (((2.0 * c_12) * s_15) * k_4.s_xy)) + ((s_15 * s_15) * k_4.s_yy)), 0.0);
-    float k2_1 = max(((((s_15 * s_15) * k_4.s_xx) - (((2.0 * c_12) * s_15) * k_4.s_xy)) + ((c_12 * c_12) * k_4.s_yy)), 0.0);
+    float p11_1 = (((p_5.x * c_13) * c_13) + ((p_5.y * s_15) * s_15));
+    float p12_1 = (((p_5.x - p_5.y) * c_13) * s_15);
+    float p22_1 = (((p_5.x * s_15) * s_15) + ((p_5.y * c_13) * c_13));
+    float k1_1 = max(((((c_13 * c_13) * k_4.s_xx) + (((2.0 * c_13) * s_15) * k_4.s_xy)) + ((s_15 * s_15) * k_4.s_yy)), 0.0);
+    float k2_1 = max(((((s_15 * s_15) * k_4.s_xx) - (((2.0 * c_13) * s_15) * k_4.s_xy)) + ((c_13 * c_13) * k_4.s_yy)), 0.0);
     float d_2 = (((p_5.x * p_5.y) + (2.0 * ((p_5.y * k1_1) + (p_5.x * k2_1)))) + (4.0 * max(k_4.det, 0.0)));
     float q11_ = (p11_1 + (2.0 * k_4.s_xx));
     float q12_ = (p12_1 + (2.0 * k_4.s_xy));
@@ -603,11 +604,11 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     det_3 = (d_2 / den);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_12) * c_12) + ((excess.y * s_15) * s_15)));
+        b11_ = (_e114 + (((excess.x * c_13) * c_13) + ((excess.y * s_15) * s_15)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_12) * s_15));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_13) * s_15));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_15) * s_15) + ((excess.y * c_12) * c_12)));
+        b22_ = (_e130 + (((excess.x * s_15) * s_15) + ((excess.y * c_13) * c_13)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -639,8 +640,8 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(n
 ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(vec2 alpha_6) {
     float _e2 = ndf_roughness_clamp_alpha(alpha_6.x);
     float _e4 = ndf_roughness_clamp_alpha(alpha_6.y);
-    vec2 a_16 = vec2(_e2, _e4);
-    return ndf_roughness_axis_aligned_AxisAligned(a_16, (vec2(1.0) / (a_16 * a_16)));
+    vec2 a_19 = vec2(_e2, _e4);
+    return ndf_roughness_axis_aligned_AxisAligned(a_19, (vec2(1.0) / (a_19 * a_19)));
 }
 
 float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_11, vec2 s_1) {
@@ -661,9 +662,9 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_ro
 }
 
 float filter_proxy_effective_alpha(float alpha_7, float half_extent) {
-    float h_17 = abs(half_extent);
-    float _e3 = math_hypot(alpha_7, h_17);
-    float t_3 = ((_e3 > 0.0) ? (h_17 / _e3) : 0.0);
+    float h_18 = abs(half_extent);
+    float _e3 = math_hypot(alpha_7, h_18);
+    float t_3 = ((_e3 > 0.0) ? (h_18 / _e3) : 0.0);
     float _e9 = math_atan(t_3);
     float ratio = ((t_3 > 0.0) ? (t_3 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
@@ -733,14 +734,14 @@ float ndf_ggx_p22_of(float q, float sqrt_det) {
 float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1) {
     bool local_4 = false;
     float t_5 = (q_xy + (m_z * m_z));
-    float v_5 = (1.0 / (((math_PI * sqrt_det_1) * t_5) * t_5));
+    float v_10 = (1.0 / (((math_PI * sqrt_det_1) * t_5) * t_5));
     if ((m_z > 0.0)) {
-        local_4 = (v_5 <= math_F32_MAX);
+        local_4 = (v_10 <= math_F32_MAX);
     } else {
         local_4 = false;
     }
     bool _e18 = local_4;
-    return (_e18 ? v_5 : 0.0);
+    return (_e18 ? v_10 : 0.0);
 }
 
 float ndf_ggx_lambda_of(float q_1, float abs_wz) {
@@ -929,12 +930,12 @@ float filter_rect_gl_mean(uint n_2, float u_2, float c_6, float h) {
         {
             uint _e12 = k_7;
             float _e13 = filter_rect_gl_node(n_2, _e12);
-            float a_17 = (h * _e13);
+            float a_20 = (h * _e13);
             float _e15 = acc;
             uint _e16 = k_7;
             float _e17 = filter_rect_gl_weight(n_2, _e16);
-            float _e19 = filter_rect_f(u_2, (c_6 - a_17));
-            float _e21 = filter_rect_f(u_2, (c_6 + a_17));
+            float _e19 = filter_rect_f(u_2, (c_6 - a_20));
+            float _e21 = filter_rect_f(u_2, (c_6 + a_20));
             acc = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -966,56 +967,56 @@ float filter_rect_delta_minus_sin(float d, float sin_d) {
     return (d - sin_d);
 }
 
-float filter_rect_mean_1d(float xc, float hx, float c2_) {
-    float x0_ = (abs(xc) - hx);
-    float x1_ = (abs(xc) + hx);
-    float dx = (2.0 * hx);
-    float c_13 = sqrt(c2_);
+float filter_rect_mean_1d(vec4 i_4, float c2_) {
+    float x0_ = ((i_4.z >= 0.0) ? i_4.x : -(i_4.y));
+    float x1_ = ((i_4.z >= 0.0) ? i_4.y : -(i_4.x));
+    float dx = (2.0 * i_4.w);
+    float c_14 = sqrt(c2_);
     float r02_ = (c2_ + (x0_ * x0_));
     float r12_ = (c2_ + (x1_ * x1_));
     float x01_ = (x0_ * x1_);
-    float _e17 = filter_rect_atan2_upper((c_13 * dx), (c2_ + x01_));
-    float inv_2 = (1.0 / (((2.0 * c_13) * c2_) * dx));
+    float _e27 = filter_rect_atan2_upper((c_14 * dx), (c2_ + x01_));
+    float inv_2 = (1.0 / (((2.0 * c_14) * c2_) * dx));
     float p2_ = ((2.0 * r02_) * r12_);
     if ((x0_ <= 0.0)) {
-        return ((_e17 * inv_2) + ((c2_ - x01_) / (c2_ * p2_)));
+        return ((_e27 * inv_2) + (((c2_ - x01_) / p2_) / c2_));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
-    float _e39 = filter_rect_delta_minus_sin(_e17, ((c_13 * dx) / rr));
-    return ((_e39 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_ * x1_)) + c2_) / (rr + x01_))) / p2_));
+    float _e49 = filter_rect_delta_minus_sin(_e27, ((c_14 * dx) / rr));
+    return ((_e49 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_ * x1_)) + c2_) / (rr + x01_))) / p2_));
 }
 
-float filter_rect_gl_mean_1d(uint n_3, float c_7, float h_1, float other_c, float other_h) {
+float filter_rect_gl_mean_1d(uint n_3, float c_7, float h_1, vec4 other) {
     float acc_1 = 0.0;
     uint k_8 = 0u;
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e33 = k_8;
-            k_8 = (_e33 + 1u);
+            uint _e32 = k_8;
+            k_8 = (_e32 + 1u);
         }
         loop_init_1 = false;
-        uint _e9 = k_8;
-        if ((_e9 < (n_3 / 2u))) {
+        uint _e8 = k_8;
+        if ((_e8 < (n_3 / 2u))) {
         } else {
             break;
         }
         {
-            uint _e13 = k_8;
-            float _e14 = filter_rect_gl_node(n_3, _e13);
-            float a_18 = (h_1 * _e14);
-            float x0_1 = (c_7 - a_18);
-            float x1_1 = (c_7 + a_18);
-            float _e18 = acc_1;
-            uint _e19 = k_8;
-            float _e20 = filter_rect_gl_weight(n_3, _e19);
-            float _e24 = filter_rect_mean_1d(other_c, other_h, (1.0 + (x0_1 * x0_1)));
-            float _e28 = filter_rect_mean_1d(other_c, other_h, (1.0 + (x1_1 * x1_1)));
-            acc_1 = (_e18 + (_e20 * (_e24 + _e28)));
+            uint _e12 = k_8;
+            float _e13 = filter_rect_gl_node(n_3, _e12);
+            float a_21 = (h_1 * _e13);
+            float x0_1 = (c_7 - a_21);
+            float x1_1 = (c_7 + a_21);
+            float _e17 = acc_1;
+            uint _e18 = k_8;
+            float _e19 = filter_rect_gl_weight(n_3, _e18);
+            float _e23 = filter_rect_mean_1d(other, (1.0 + (x0_1 * x0_1)));
+            float _e27 = filter_rect_mean_1d(other, (1.0 + (x1_1 * x1_1)));
+            acc_1 = (_e17 + (_e19 * (_e23 + _e27)));
         }
     }
-    float _e35 = acc_1;
-    return _e35;
+    float _e34 = acc_1;
+    return _e34;
 }
 
 float filter_rect_edge(float u_3, float dv, float v01_) {
@@ -1025,73 +1026,222 @@ float filter_rect_edge(float u_3, float dv, float v01_) {
     return ((u_3 / s_16) * _e10);
 }
 
-float filter_rect_edges(float uc, float vc, float hu, float hv) {
-    float u0_ = (uc - hu);
-    float u1_ = (uc + hu);
-    float v0_ = (vc - hv);
-    float v1_ = (vc + hv);
-    float du = (2.0 * hu);
-    float dv_1 = (2.0 * hv);
-    float _e13 = filter_rect_edge(u1_, dv_1, (v0_ * v1_));
-    float _e15 = filter_rect_edge(u0_, dv_1, (v0_ * v1_));
-    float _e18 = filter_rect_edge(v1_, du, (u0_ * u1_));
-    float _e20 = filter_rect_edge(v0_, du, (u0_ * u1_));
-    float i_7 = (0.5 * ((_e13 - _e15) + (_e18 - _e20)));
-    return (i_7 / (du * dv_1));
+float filter_rect_edges(vec4 u_4, vec4 v_4) {
+    float du = (2.0 * u_4.w);
+    float dv_1 = (2.0 * v_4.w);
+    float v01_1 = (v_4.x * v_4.y);
+    float u01_ = (u_4.x * u_4.y);
+    float _e15 = filter_rect_edge(u_4.y, dv_1, v01_1);
+    float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
+    float _e20 = filter_rect_edge(v_4.y, du, u01_);
+    float _e22 = filter_rect_edge(v_4.x, du, u01_);
+    float i_9 = (0.5 * ((_e15 - _e17) + (_e20 - _e22)));
+    return (i_9 / (du * dv_1));
 }
 
-float filter_rect_mean_f(float uc_1, float vc_1, float hu_1, float hv_1) {
-    bool local_7 = false;
+float filter_rect_gl8_node(uint k_9) {
+    if ((k_9 == 0u)) {
+        return 0.18343464;
+    }
+    if ((k_9 == 1u)) {
+        return 0.5255324;
+    }
+    return ((k_9 == 2u) ? 0.7966665 : 0.96028984);
+}
+
+float filter_rect_gl8_weight(uint k_10) {
+    if ((k_10 == 0u)) {
+        return 0.18134189;
+    }
+    if ((k_10 == 1u)) {
+        return 0.15685332;
+    }
+    return ((k_10 == 2u) ? 0.11119052 : 0.050614268);
+}
+
+float filter_rect_polar_near(float x2_, float lo, float hi) {
     float acc_2 = 0.0;
-    uint k_9 = 0u;
-    float du_1 = max((abs(uc_1) - hu_1), 0.0);
-    float dv_2 = max((abs(vc_1) - hv_1), 0.0);
-    uint _e18 = filter_rect_tier((hu_1 * hu_1), ((1.0 + (uc_1 * uc_1)) + (dv_2 * dv_2)));
-    uint _e25 = filter_rect_tier((hv_1 * hv_1), ((1.0 + (vc_1 * vc_1)) + (du_1 * du_1)));
-    if ((_e18 == filter_rect_TIER_CLOSED)) {
+    uint k_11 = 0u;
+    float c_15 = (0.5 * (lo + hi));
+    float h_19 = (0.5 * (hi - lo));
+    bool loop_init_2 = true;
+    while(true) {
+        if (!loop_init_2) {
+            uint _e48 = k_11;
+            k_11 = (_e48 + 1u);
+        }
+        loop_init_2 = false;
+        uint _e13 = k_11;
+        if ((_e13 < 4u)) {
+        } else {
+            break;
+        }
+        {
+            uint _e16 = k_11;
+            float _e17 = filter_rect_gl8_node(_e16);
+            float d_3 = (h_19 * _e17);
+            float q0_ = (1.0 + ((c_15 - d_3) * (c_15 - d_3)));
+            float q1_ = (1.0 + ((c_15 + d_3) * (c_15 + d_3)));
+            float _e29 = acc_2;
+            uint _e30 = k_11;
+            float _e31 = filter_rect_gl8_weight(_e30);
+            acc_2 = (_e29 + (_e31 * ((1.0 / (q0_ * (1.0 + (x2_ * q0_)))) + (1.0 / (q1_ * (1.0 + (x2_ * q1_)))))));
+        }
+    }
+    float _e50 = acc_2;
+    return (_e50 * (hi - lo));
+}
+
+float filter_rect_polar_far(float x2_1, float lo_1, float hi_1) {
+    float acc_3 = 0.0;
+    uint k_12 = 0u;
+    float c_16 = (0.5 * (lo_1 + hi_1));
+    float h_20 = (0.5 * (hi_1 - lo_1));
+    bool loop_init_3 = true;
+    while(true) {
+        if (!loop_init_3) {
+            uint _e48 = k_12;
+            k_12 = (_e48 + 1u);
+        }
+        loop_init_3 = false;
+        uint _e13 = k_12;
+        if ((_e13 < 4u)) {
+        } else {
+            break;
+        }
+        {
+            uint _e16 = k_12;
+            float _e17 = filter_rect_gl8_node(_e16);
+            float d_4 = (h_20 * _e17);
+            float t0_ = ((c_16 - d_4) * (c_16 - d_4));
+            float t1_ = ((c_16 + d_4) * (c_16 + d_4));
+            float _e25 = acc_3;
+            uint _e26 = k_12;
+            float _e27 = filter_rect_gl8_weight(_e26);
+            acc_3 = (_e25 + (_e27 * ((t0_ / ((1.0 + t0_) * (t0_ + (x2_1 * (1.0 + t0_))))) + (t1_ / ((1.0 + t1_) * (t1_ + (x2_1 * (1.0 + t1_))))))));
+        }
+    }
+    float _e50 = acc_3;
+    return (_e50 * (hi_1 - lo_1));
+}
+
+float filter_rect_edge_range(float ax, float a_9, float b_2) {
+    float v_5 = 0.0;
+    float x2_2 = (ax * ax);
+    if ((a_9 < ax)) {
+        float _e7 = v_5;
+        float _e11 = filter_rect_polar_near(x2_2, (a_9 / ax), (min(b_2, ax) / ax));
+        v_5 = (_e7 + _e11);
+    }
+    if ((b_2 > ax)) {
+        float _e14 = v_5;
+        float _e18 = filter_rect_polar_far(x2_2, (ax / b_2), (ax / max(a_9, ax)));
+        v_5 = (_e14 + _e18);
+    }
+    float _e20 = v_5;
+    return _e20;
+}
+
+float filter_rect_edge_polar(float x_3, float a_10, float b_3) {
+    float v_6 = 0.0;
+    float ax_1 = abs(x_3);
+    if ((ax_1 < 1e-12)) {
+        return 0.0;
+    }
+    if ((a_10 >= 0.0)) {
+        float _e10 = filter_rect_edge_range(ax_1, a_10, b_3);
+        v_6 = _e10;
+    } else {
+        if ((b_3 <= 0.0)) {
+            float _e15 = filter_rect_edge_range(ax_1, -(b_3), -(a_10));
+            v_6 = _e15;
+        } else {
+            float _e18 = filter_rect_edge_range(ax_1, 0.0, -(a_10));
+            float _e20 = filter_rect_edge_range(ax_1, 0.0, b_3);
+            v_6 = (_e18 + _e20);
+        }
+    }
+    float _e22 = v_6;
+    float _e24 = v_6;
+    return ((x_3 > 0.0) ? _e24 : -(_e22));
+}
+
+float filter_rect_far_field(vec4 u_5, vec4 v_7) {
+    float _e5 = filter_rect_edge_polar(u_5.y, v_7.x, v_7.y);
+    float _e9 = filter_rect_edge_polar(u_5.x, v_7.x, v_7.y);
+    float _e14 = filter_rect_edge_polar(v_7.y, u_5.x, u_5.y);
+    float _e18 = filter_rect_edge_polar(v_7.x, u_5.x, u_5.y);
+    float i_10 = (-0.5 * ((_e5 - _e9) + (_e14 - _e18)));
+    return (i_10 / ((4.0 * u_5.w) * v_7.w));
+}
+
+float filter_rect_gap(vec4 i_5) {
+    return max(max(i_5.x, -(i_5.y)), 0.0);
+}
+
+float filter_rect_mean_f(vec4 u_6, vec4 v_8) {
+    bool local_7 = false;
+    float acc_4 = 0.0;
+    uint k_13 = 0u;
+    float _e2 = filter_rect_gap(u_6);
+    float _e3 = filter_rect_gap(v_8);
+    uint _e14 = filter_rect_tier((u_6.w * u_6.w), ((1.0 + (u_6.z * u_6.z)) + (_e3 * _e3)));
+    uint _e25 = filter_rect_tier((v_8.w * v_8.w), ((1.0 + (v_8.z * v_8.z)) + (_e2 * _e2)));
+    if ((_e14 == filter_rect_TIER_CLOSED)) {
         local_7 = (_e25 == filter_rect_TIER_CLOSED);
     } else {
         local_7 = false;
     }
     bool _e33 = local_7;
     if (_e33) {
-        float _e34 = filter_rect_edges(uc_1, vc_1, hu_1, hv_1);
-        return _e34;
-    }
-    if ((_e18 == filter_rect_TIER_CLOSED)) {
-        float _e37 = filter_rect_gl_mean_1d(_e25, vc_1, hv_1, uc_1, hu_1);
-        return _e37;
-    }
-    if ((_e25 == filter_rect_TIER_CLOSED)) {
-        float _e40 = filter_rect_gl_mean_1d(_e18, uc_1, hu_1, vc_1, hv_1);
+        if ((((_e2 * _e2) + (_e3 * _e3)) > filter_rect_FAR2_)) {
+            float _e39 = filter_rect_far_field(u_6, v_8);
+            return _e39;
+        }
+        float _e40 = filter_rect_edges(u_6, v_8);
         return _e40;
     }
-    bool loop_init_2 = true;
+    if ((_e14 == filter_rect_TIER_CLOSED)) {
+        float _e45 = filter_rect_gl_mean_1d(_e25, v_8.z, v_8.w, u_6);
+        return _e45;
+    }
+    if ((_e25 == filter_rect_TIER_CLOSED)) {
+        float _e50 = filter_rect_gl_mean_1d(_e14, u_6.z, u_6.w, v_8);
+        return _e50;
+    }
+    bool loop_init_4 = true;
     while(true) {
-        if (!loop_init_2) {
-            uint _e63 = k_9;
-            k_9 = (_e63 + 1u);
+        if (!loop_init_4) {
+            uint _e80 = k_13;
+            k_13 = (_e80 + 1u);
         }
-        loop_init_2 = false;
-        uint _e45 = k_9;
-        if ((_e45 < (_e18 / 2u))) {
+        loop_init_4 = false;
+        uint _e55 = k_13;
+        if ((_e55 < (_e14 / 2u))) {
         } else {
             break;
         }
         {
-            uint _e49 = k_9;
-            float _e50 = filter_rect_gl_node(_e18, _e49);
-            float a_19 = (hu_1 * _e50);
-            float _e52 = acc_2;
-            uint _e53 = k_9;
-            float _e54 = filter_rect_gl_weight(_e18, _e53);
-            float _e56 = filter_rect_gl_mean(_e25, (uc_1 - a_19), vc_1, hv_1);
-            float _e58 = filter_rect_gl_mean(_e25, (uc_1 + a_19), vc_1, hv_1);
-            acc_2 = (_e52 + (_e54 * (_e56 + _e58)));
+            uint _e60 = k_13;
+            float _e61 = filter_rect_gl_node(_e14, _e60);
+            float a_22 = (u_6.w * _e61);
+            float _e63 = acc_4;
+            uint _e64 = k_13;
+            float _e65 = filter_rect_gl_weight(_e14, _e64);
+            float _e70 = filter_rect_gl_mean(_e25, (u_6.z - a_22), v_8.z, v_8.w);
+            float _e75 = filter_rect_gl_mean(_e25, (u_6.z + a_22), v_8.z, v_8.w);
+            acc_4 = (_e63 + (_e65 * (_e70 + _e75)));
         }
     }
-    float _e65 = acc_2;
-    return _e65;
+    float _e82 = acc_4;
+    return _e82;
+}
+
+vec4 filter_rect_interval(float c_8, float h_2, float a_11) {
+    float ah = abs(h_2);
+    float lo_2 = clamp(((c_8 - ah) / a_11), -1e18, filter_rect_BIG);
+    float hi_2 = clamp(((c_8 + ah) / a_11), -1e18, filter_rect_BIG);
+    return vec4(lo_2, hi_2, clamp((c_8 / a_11), -1e18, filter_rect_BIG), min((ah / a_11), filter_rect_BIG));
 }
 
 float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_36, vec2 center, vec2 half_extent_4) {
@@ -1106,16 +1256,16 @@ float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_36, vec2 cen
         float _e13 = ndf_ggx_p22_axis_aligned(r_36, center);
         return _e13;
     }
-    vec2 a_20 = r_36.alpha;
-    vec2 c_14 = clamp((center / a_20), vec2(-1e18), vec2(1e18));
-    vec2 h_18 = min((abs(half_extent_4) / a_20), vec2(1e18));
-    float _e30 = filter_rect_mean_f(c_14.x, c_14.y, h_18.x, h_18.y);
-    return max((_e30 * (math_INV_PI / (a_20.x * a_20.y))), 0.0);
+    vec2 a_23 = r_36.alpha;
+    vec4 _e18 = filter_rect_interval(center.x, half_extent_4.x, a_23.x);
+    vec4 _e22 = filter_rect_interval(center.y, half_extent_4.y, a_23.y);
+    float _e23 = filter_rect_mean_f(_e18, _e22);
+    return max((_e23 * (math_INV_PI / (a_23.x * a_23.y))), 0.0);
 }
 
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_37, vec3 h_2, vec2 half_extent_5) {
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_37, vec3 h_3, vec2 half_extent_5) {
     bool local_9 = false;
-    if (!((h_2.z > 0.0))) {
+    if (!((h_3.z > 0.0))) {
         return 0.0;
     }
     if ((half_extent_5.x == 0.0)) {
@@ -1125,53 +1275,53 @@ float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_37, vec3 h_2, 
     }
     bool _e17 = local_9;
     if (_e17) {
-        float _e18 = ndf_ggx_d_axis_aligned(r_37, h_2);
+        float _e18 = ndf_ggx_d_axis_aligned(r_37, h_3);
         return _e18;
     }
-    float _e24 = filter_rect_p22_rect(r_37, (-(h_2.xy) / vec2(h_2.z)), half_extent_5);
-    float z2_ = (h_2.z * h_2.z);
+    float _e24 = filter_rect_p22_rect(r_37, (-(h_3.xy) / vec2(h_3.z)), half_extent_5);
+    float z2_ = (h_3.z * h_3.z);
     return min((_e24 / (z2_ * z2_)), math_F32_MAX);
 }
 
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_38, vec2 hpp, vec3 h_3, vec2 footprint) {
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_38, vec2 hpp, vec3 h_4, vec2 footprint) {
     bool local_10 = false;
-    float a_21 = r_38.alpha.x;
-    float b_4 = r_38.alpha.y;
-    float a_2_ = (a_21 * a_21);
-    float b_2_ = (b_4 * b_4);
+    float a_24 = r_38.alpha.x;
+    float b_6 = r_38.alpha.y;
+    float a_2_ = (a_24 * a_24);
+    float b_2_ = (b_6 * b_6);
     float x1_2 = (hpp.x - footprint.x);
-    float x2_ = (hpp.x + footprint.x);
+    float x2_3 = (hpp.x + footprint.x);
     float y1_ = (hpp.y - footprint.y);
     float y2_ = (hpp.y + footprint.y);
     float sx1_ = sqrt(((x1_2 * x1_2) + a_2_));
-    float sx2_ = sqrt(((x2_ * x2_) + a_2_));
+    float sx2_ = sqrt(((x2_3 * x2_3) + a_2_));
     float sy1_ = sqrt(((y1_ * y1_) + b_2_));
     float sy2_ = sqrt(((y2_ * y2_) + b_2_));
-    float _e37 = math_atan(((y1_ * a_21) / (sx1_ * b_4)));
-    float _e41 = math_atan(((y2_ * a_21) / (sx1_ * b_4)));
-    float _e48 = math_atan(((y1_ * a_21) / (sx2_ * b_4)));
-    float _e53 = math_atan(((y2_ * a_21) / (sx2_ * b_4)));
-    float _e62 = math_atan(((x1_2 * b_4) / (a_21 * sy1_)));
-    float _e66 = math_atan(((x2_ * b_4) / (a_21 * sy1_)));
-    float _e73 = math_atan(((x1_2 * b_4) / (a_21 * sy2_)));
-    float _e78 = math_atan(((x2_ * b_4) / (a_21 * sy2_)));
-    float val = ((((x1_2 * (_e37 - _e41)) / sx1_) + ((x2_ * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
-    float den_1 = ((6.2831855 * (x1_2 - x2_)) * (y1_ - y2_));
-    float hz4_ = (((h_3.z * h_3.z) * h_3.z) * h_3.z);
-    float v_6 = ((val / den_1) / max(hz4_, 0.001));
-    if ((abs(v_6) <= math_F32_MAX)) {
+    float _e37 = math_atan(((y1_ * a_24) / (sx1_ * b_6)));
+    float _e41 = math_atan(((y2_ * a_24) / (sx1_ * b_6)));
+    float _e48 = math_atan(((y1_ * a_24) / (sx2_ * b_6)));
+    float _e53 = math_atan(((y2_ * a_24) / (sx2_ * b_6)));
+    float _e62 = math_atan(((x1_2 * b_6) / (a_24 * sy1_)));
+    float _e66 = math_atan(((x2_3 * b_6) / (a_24 * sy1_)));
+    float _e73 = math_atan(((x1_2 * b_6) / (a_24 * sy2_)));
+    float _e78 = math_atan(((x2_3 * b_6) / (a_24 * sy2_)));
+    float val = ((((x1_2 * (_e37 - _e41)) / sx1_) + ((x2_3 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
+    float den_1 = ((6.2831855 * (x1_2 - x2_3)) * (y1_ - y2_));
+    float hz4_ = (((h_4.z * h_4.z) * h_4.z) * h_4.z);
+    float v_11 = ((val / den_1) / max(hz4_, 0.001));
+    if ((abs(v_11) <= math_F32_MAX)) {
         local_10 = (den_1 != 0.0);
     } else {
         local_10 = false;
     }
     bool _e109 = local_10;
-    return (_e109 ? v_6 : 0.0);
+    return (_e109 ? v_11 : 0.0);
 }
 
 kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_39, float sigma_2) {
     vec2 w_16 = (r_39.half_extent * (2.0 * sigma_2));
-    vec2 v_7 = (w_16 * w_16);
-    return kernel_covariance_Covariance(v_7.x, 0.0, v_7.y, (v_7.x * v_7.y));
+    vec2 v_12 = (w_16 * w_16);
+    return kernel_covariance_Covariance(v_12.x, 0.0, v_12.y, (v_12.x * v_12.y));
 }
 
 footprint_Footprint footprint_from_slope_derivatives(vec2 dh_u, vec2 dh_v) {
@@ -1188,11 +1338,11 @@ footprint_Footprint footprint_from_projected_derivatives_in_slope(vec3 h_in, vec
         return footprint_Footprint(vec2(0.0), vec2(0.0));
     }
     vec3 h0_ = (h_in / vec3(big_2));
-    vec3 h_19 = (h0_ / vec3(length(h0_)));
-    float hz = max(h_19.z, 1e-6);
-    float k_13 = (-1.0 / ((hz * hz) * hz));
-    mat2x2 j = mat2x2(vec2(((h_19.x * h_19.x) + (h_19.z * h_19.z)), (h_19.x * h_19.y)), vec2((h_19.x * h_19.y), ((h_19.y * h_19.y) + (h_19.z * h_19.z))));
-    return footprint_Footprint(((j * dp_u_1) * k_13), ((j * dp_v_1) * k_13));
+    vec3 h_21 = (h0_ / vec3(length(h0_)));
+    float hz = max(h_21.z, 1e-6);
+    float k_17 = (-1.0 / ((hz * hz) * hz));
+    mat2x2 j = mat2x2(vec2(((h_21.x * h_21.x) + (h_21.z * h_21.z)), (h_21.x * h_21.y)), vec2((h_21.x * h_21.y), ((h_21.y * h_21.y) + (h_21.z * h_21.z))));
+    return footprint_Footprint(((j * dp_u_1) * k_17), ((j * dp_v_1) * k_17));
 }
 
 footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) {
@@ -1202,11 +1352,11 @@ footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) 
 }
 
 kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3) {
-    vec2 u_8 = fp.dh_u;
-    vec2 v_8 = fp.dh_v;
+    vec2 u_11 = fp.dh_u;
+    vec2 v_13 = fp.dh_v;
     float s2_1 = (sigma_3 * sigma_3);
-    float cross_1 = (((u_8.x * v_8.y) - (u_8.y * v_8.x)) * s2_1);
-    return kernel_covariance_Covariance((((u_8.x * u_8.x) + (v_8.x * v_8.x)) * s2_1), (((u_8.x * u_8.y) + (v_8.x * v_8.y)) * s2_1), (((u_8.y * u_8.y) + (v_8.y * v_8.y)) * s2_1), (cross_1 * cross_1));
+    float cross_1 = (((u_11.x * v_13.y) - (u_11.y * v_13.x)) * s2_1);
+    return kernel_covariance_Covariance((((u_11.x * u_11.x) + (v_13.x * v_13.x)) * s2_1), (((u_11.x * u_11.y) + (v_13.x * v_13.y)) * s2_1), (((u_11.y * u_11.y) + (v_13.y * v_13.y)) * s2_1), (cross_1 * cross_1));
 }
 
 kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1) {
@@ -1224,104 +1374,104 @@ footprint_jacobian_Polar footprint_jacobian_polar(vec3 h_in_1) {
         return footprint_jacobian_Polar(vec3(0.0, 0.0, 1.0), vec2(1.0, 0.0));
     }
     vec3 h0_1 = (h_in_1 / vec3(big_3));
-    vec3 h_20 = (h0_1 / vec3(length(h0_1)));
-    float qs = max(abs(h_20.x), abs(h_20.y));
+    vec3 h_22 = (h0_1 / vec3(length(h0_1)));
+    float qs = max(abs(h_22.x), abs(h_22.y));
     if ((qs > 0.0)) {
-        vec2 q_6 = (h_20.xy / vec2(qs));
+        vec2 q_6 = (h_22.xy / vec2(qs));
         cs_1 = (q_6 / vec2(length(q_6)));
     }
-    if ((h_20.z >= footprint_jacobian_HZ_MIN)) {
+    if ((h_22.z >= footprint_jacobian_HZ_MIN)) {
         vec2 _e44 = cs_1;
-        return footprint_jacobian_Polar(h_20, _e44);
+        return footprint_jacobian_Polar(h_22, _e44);
     }
     vec2 _e47 = cs_1;
     vec2 _e51 = cs_1;
     return footprint_jacobian_Polar(vec3((1.0 * _e47), footprint_jacobian_HZ_MIN), _e51);
 }
 
-vec3 footprint_jacobian_sanitize(vec3 h_4) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
+vec3 footprint_jacobian_sanitize(vec3 h_5) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
     return _e1.h;
 }
 
-footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(vec3 h_5) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
+footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(vec3 h_6) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
     float st = length(_e1.h.xy);
     return footprint_jacobian_SphericalBasis(vec3((_e1.h.z * _e1.cs), -(st)), vec3(-(_e1.cs.y), _e1.cs.x, 0.0));
 }
 
-vec2 footprint_jacobian_spherical_components(vec3 h_6, vec3 dh) {
-    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_6);
+vec2 footprint_jacobian_spherical_components(vec3 h_7, vec3 dh) {
+    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_7);
     return vec2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
 }
 
-mat2x2 footprint_jacobian_sphere_to_projected(vec3 h_7) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
+mat2x2 footprint_jacobian_sphere_to_projected(vec3 h_8) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
     return mat2x2((_e1.h.z * _e1.cs), vec2(-(_e1.cs.y), _e1.cs.x));
 }
 
 mat2x2 footprint_jacobian_projected_to_slope(vec3 h_in_2) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    vec3 h_21 = _e1.h;
-    float k_14 = (-1.0 / ((h_21.z * h_21.z) * h_21.z));
-    float xy = (h_21.x * h_21.y);
-    return mat2x2((vec2(((h_21.x * h_21.x) + (h_21.z * h_21.z)), xy) * k_14), (vec2(xy, ((h_21.y * h_21.y) + (h_21.z * h_21.z))) * k_14));
+    vec3 h_23 = _e1.h;
+    float k_18 = (-1.0 / ((h_23.z * h_23.z) * h_23.z));
+    float xy = (h_23.x * h_23.y);
+    return mat2x2((vec2(((h_23.x * h_23.x) + (h_23.z * h_23.z)), xy) * k_18), (vec2(xy, ((h_23.y * h_23.y) + (h_23.z * h_23.z))) * k_18));
 }
 
 mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_3) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_3);
-    vec3 h_22 = _e1.h;
-    float xy_1 = (h_22.x * h_22.y);
-    return mat2x2((vec2(((h_22.y * h_22.y) + (h_22.z * h_22.z)), -(xy_1)) * -(h_22.z)), (vec2(-(xy_1), ((h_22.x * h_22.x) + (h_22.z * h_22.z))) * -(h_22.z)));
+    vec3 h_24 = _e1.h;
+    float xy_1 = (h_24.x * h_24.y);
+    return mat2x2((vec2(((h_24.y * h_24.y) + (h_24.z * h_24.z)), -(xy_1)) * -(h_24.z)), (vec2(-(xy_1), ((h_24.x * h_24.x) + (h_24.z * h_24.z))) * -(h_24.z)));
 }
 
-mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_8) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float k_15 = (-1.0 / (_e1.h.z * _e1.h.z));
-    return mat2x2((_e1.cs * k_15), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_15));
-}
-
-float footprint_jacobian_det_sphere_to_projected(vec3 h_9) {
+mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_9) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_9);
+    float k_19 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return mat2x2((_e1.cs * k_19), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_19));
+}
+
+float footprint_jacobian_det_sphere_to_projected(vec3 h_10) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_10);
     return _e1.h.z;
 }
 
-float footprint_jacobian_det_projected_to_slope(vec3 h_10) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_10);
+float footprint_jacobian_det_projected_to_slope(vec3 h_11) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_11);
     float z_2 = _e1.h.z;
     float z2_1 = (z_2 * z_2);
     return (1.0 / (z2_1 * z2_1));
 }
 
-float footprint_jacobian_det_sphere_to_slope(vec3 h_11) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_11);
+float footprint_jacobian_det_sphere_to_slope(vec3 h_12) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_12);
     float z_3 = _e1.h.z;
     return (1.0 / ((z_3 * z_3) * z_3));
 }
 
-vec2 footprint_jacobian_spherical_to_slope(vec3 h_12, vec2 e) {
-    mat2x2 _e2 = footprint_jacobian_sphere_to_slope(h_12);
+vec2 footprint_jacobian_spherical_to_slope(vec3 h_13, vec2 e) {
+    mat2x2 _e2 = footprint_jacobian_sphere_to_slope(h_13);
     return (_e2 * e);
 }
 
-vec2 footprint_jacobian_spherical_to_projected(vec3 h_13, vec2 e_1) {
-    mat2x2 _e2 = footprint_jacobian_sphere_to_projected(h_13);
+vec2 footprint_jacobian_spherical_to_projected(vec3 h_14, vec2 e_1) {
+    mat2x2 _e2 = footprint_jacobian_sphere_to_projected(h_14);
     return (_e2 * e_1);
 }
 
-vec2 footprint_slope_slope_from_sphere(vec3 h_14) {
-    float z_4 = max(h_14.z, math_F32_MIN_POSITIVE);
-    return clamp((-(h_14.xy) / vec2(z_4)), vec2(-3.4028235e38), vec2(3.4028235e38));
+vec2 footprint_slope_slope_from_sphere(vec3 h_15) {
+    float z_4 = max(h_15.z, math_F32_MIN_POSITIVE);
+    return clamp((-(h_15.xy) / vec2(z_4)), vec2(-3.4028235e38), vec2(3.4028235e38));
 }
 
 vec3 footprint_slope_sphere_from_slope(vec2 s_7) {
-    float k_16 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
-    vec3 v_9 = vec3((-(s_7) / vec2(k_16)), (1.0 / k_16));
-    return (v_9 / vec3(length(v_9)));
+    float k_20 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
+    vec3 v_14 = vec3((-(s_7) / vec2(k_20)), (1.0 / k_20));
+    return (v_14 / vec3(length(v_14)));
 }
 
-vec2 footprint_slope_projected_from_sphere(vec3 h_15) {
-    return h_15.xy;
+vec2 footprint_slope_projected_from_sphere(vec3 h_16) {
+    return h_16.xy;
 }
 
 vec3 footprint_slope_sphere_from_projected(vec2 p) {
@@ -1369,13 +1519,13 @@ kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kern
         }
     }
     float lambda = max(rules_1.max_extent, 0.0);
-    vec2 h_23 = min(abs(r_40.half_extent), vec2(lambda));
+    vec2 h_25 = min(abs(r_40.half_extent), vec2(lambda));
     vec2 _e25 = f;
-    return kernel_rect_BoundingRect(max(h_23, max(_e25, vec2(0.0))));
+    return kernel_rect_BoundingRect(max(h_25, max(_e25, vec2(0.0))));
 }
 
-kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_10) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_10);
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_14) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_14);
     if ((rules_2.kappa >= math_F32_MAX)) {
         return _e2;
     }
@@ -1383,8 +1533,8 @@ kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2
     return _e11;
 }
 
-float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_9) {
-    float _e2 = ndf_roughness_matrix_clamped_det(a_9);
+float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_12) {
+    float _e2 = ndf_roughness_matrix_clamped_det(a_12);
     return (rules_3.det_clamp ? _e2 : 0.0);
 }
 
@@ -1395,22 +1545,22 @@ kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules r
     return _e5;
 }
 
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_10, footprint_Footprint fp_5, float sigma_5) {
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_13, footprint_Footprint fp_5, float sigma_5) {
     kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_5);
-    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_10);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_10, _e4, _e5);
+    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_13);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_13, _e4, _e5);
     return _e6;
 }
 
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_11, footprint_Footprint fp_6, float sigma_6) {
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_14, footprint_Footprint fp_6, float sigma_6) {
     kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_6);
-    float _e5 = kernel_clamp_det_clamp_for(rules_6, a_11);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_11, _e4, _e5);
+    float _e5 = kernel_clamp_det_clamp_for(rules_6, a_14);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_14, _e4, _e5);
     return _e6;
 }
 
-float ndf_beckmann_exp_neg_times(float x_3, float k_11, float ln_k) {
-    return ((x_3 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_3)) : (exp(-(x_3)) * k_11));
+float ndf_beckmann_exp_neg_times(float x_4, float k_15, float ln_k) {
+    return ((x_4 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_4)) : (exp(-(x_4)) * k_15));
 }
 
 float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
@@ -1422,10 +1572,10 @@ float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
 float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3) {
     bool local_11 = false;
     float z2_2 = (m_z_1 * m_z_1);
-    float x_5 = (q_xy_1 / z2_2);
-    float k_17 = (1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2));
+    float x_6 = (q_xy_1 / z2_2);
+    float k_21 = (1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_5, k_17, ln_k_1);
+    float _e21 = ndf_beckmann_exp_neg_times(x_6, k_21, ln_k_1);
     if ((m_z_1 > 0.0)) {
         local_11 = (_e21 <= math_F32_MAX);
     } else {
@@ -1457,11 +1607,11 @@ float ndf_beckmann_lambda_of(float q_3, float abs_wz_1) {
     if (_e21) {
         return math_F32_MAX;
     }
-    float a_22 = (abs_wz_1 / sqrt(q_3));
-    if ((a_22 > 9.5)) {
+    float a_25 = (abs_wz_1 / sqrt(q_3));
+    if ((a_25 > 9.5)) {
         return 0.0;
     }
-    float t_7 = ((a_22 - 3.0) / (a_22 + 3.0));
+    float t_7 = ((a_25 - 3.0) / (a_25 + 3.0));
     float _e35 = p_2;
     p_2 = ((_e35 * t_7) + 0.00028491428);
     float _e39 = p_2;
@@ -1491,8 +1641,8 @@ float ndf_beckmann_lambda_of(float q_3, float abs_wz_1) {
     float _e87 = p_2;
     p_2 = ((_e87 * t_7) + 1.0631379);
     float _e91 = p_2;
-    float k_18 = (_e91 / ((2.0 * a_22) + 1.0));
-    return min(((exp((-(a_22) * a_22)) * k_18) / ((3.5449078 * a_22) * (a_22 + k_18))), math_F32_MAX);
+    float k_22 = (_e91 / ((2.0 * a_25) + 1.0));
+    return min(((exp((-(a_25) * a_25)) * k_22) / ((3.5449078 * a_25) * (a_25 + k_22))), math_F32_MAX);
 }
 
 float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_41, vec2 s_9) {
@@ -1521,10 +1671,10 @@ float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_44, vec3 w_1
     return _e5;
 }
 
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_45, vec3 i_4, vec3 o_3, vec3 m_12) {
-    float _e4 = ndf_beckmann_lambda_isotropic(r_45, i_4);
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_45, vec3 i_6, vec3 o_3, vec3 m_12) {
+    float _e4 = ndf_beckmann_lambda_isotropic(r_45, i_6);
     float _e5 = ndf_beckmann_lambda_isotropic(r_45, o_3);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_12), dot(o_3, m_12));
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_12), dot(o_3, m_12));
     return _e8;
 }
 
@@ -1554,10 +1704,10 @@ float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_49, 
     return _e5;
 }
 
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_50, vec3 i_5, vec3 o_4, vec3 m_15) {
-    float _e4 = ndf_beckmann_lambda_axis_aligned(r_50, i_5);
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_50, vec3 i_7, vec3 o_4, vec3 m_15) {
+    float _e4 = ndf_beckmann_lambda_axis_aligned(r_50, i_7);
     float _e5 = ndf_beckmann_lambda_axis_aligned(r_50, o_4);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_15), dot(o_4, m_15));
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_7, m_15), dot(o_4, m_15));
     return _e8;
 }
 
@@ -1587,10 +1737,10 @@ float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_54, vec3 w_1
     return _e5;
 }
 
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_55, vec3 i_6, vec3 o_5, vec3 m_18) {
-    float _e4 = ndf_beckmann_lambda_matrix(r_55, i_6);
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_55, vec3 i_8, vec3 o_5, vec3 m_18) {
+    float _e4 = ndf_beckmann_lambda_matrix(r_55, i_8);
     float _e5 = ndf_beckmann_lambda_matrix(r_55, o_5);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_18), dot(o_5, m_18));
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_8, m_18), dot(o_5, m_18));
     return _e8;
 }
 
@@ -1600,8 +1750,8 @@ sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_56) {
     return sampling_Warp(l_xx, (_e1.y / l_xx), (r_56.sqrt_det / l_xx));
 }
 
-vec3 sampling_normalize_scaled(vec3 v_4) {
-    vec3 w_17 = (v_4 / vec3(max(max(abs(v_4.x), abs(v_4.y)), abs(v_4.z))));
+vec3 sampling_normalize_scaled(vec3 v_9) {
+    vec3 w_17 = (v_9 / vec3(max(max(abs(v_9.x), abs(v_9.y)), abs(v_9.z))));
     return (w_17 / vec3(length(w_17)));
 }
 
@@ -1614,22 +1764,22 @@ vec3 sampling_unstretch(sampling_Warp l_4, vec3 n_4) {
     return _e14;
 }
 
-float sampling_clamp_unit(float u_4) {
-    return ((u_4 >= 0.0) ? min(u_4, sampling_ONE_MINUS_EPS) : 0.0);
+float sampling_clamp_unit(float u_7) {
+    return ((u_7 >= 0.0) ? min(u_7, sampling_ONE_MINUS_EPS) : 0.0);
 }
 
 vec3 sampling_reflect(vec3 wo, vec3 m_19) {
     return (((2.0 * dot(wo, m_19)) * m_19) - wo);
 }
 
-vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_5) {
-    vec2 _e3 = math_sincos_turns(u_5.x);
-    float z_5 = (((1.0 - u_5.y) * (1.0 + wi.z)) - wi.z);
+vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_8) {
+    vec2 _e3 = math_sincos_turns(u_8.x);
+    float z_5 = (((1.0 - u_8.y) * (1.0 + wi.z)) - wi.z);
     float sin_theta = sqrt(clamp((1.0 - (z_5 * z_5)), 0.0, 1.0));
     return (vec3((sin_theta * _e3), z_5) + wi);
 }
 
-vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_57, vec3 wo_1, vec2 u_6) {
+vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_57, vec3 wo_1, vec2 u_9) {
     bool local_14 = false;
     if (!((wo_1.z > 0.0))) {
         return vec3(0.0);
@@ -1641,8 +1791,8 @@ vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_57, v
     if (!((_e12.z > 0.0))) {
         return vec3(0.0);
     }
-    float _e20 = sampling_clamp_unit(u_6.x);
-    float _e22 = sampling_clamp_unit(u_6.y);
+    float _e20 = sampling_clamp_unit(u_9.x);
+    float _e22 = sampling_clamp_unit(u_9.y);
     vec3 _e24 = sampling_ggx_standard_visible(_e12, vec2(_e20, _e22));
     vec3 _e25 = sampling_unstretch(_e9, _e24);
     if ((_e25.z > 0.0)) {
@@ -1658,9 +1808,9 @@ vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_57, v
     return ((_e36.z > 0.0) ? _e36 : vec3(0.0));
 }
 
-vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_58, vec2 u_7) {
-    float _e3 = sampling_clamp_unit(u_7.x);
-    float _e5 = sampling_clamp_unit(u_7.y);
+vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_58, vec2 u_10) {
+    float _e3 = sampling_clamp_unit(u_10.x);
+    float _e5 = sampling_clamp_unit(u_10.y);
     vec2 _e6 = math_sincos_turns(_e5);
     vec3 n_5 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
     sampling_Warp _e13 = sampling_warp(r_58);
@@ -1687,8 +1837,8 @@ float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_60, vec
     }
     float _e17 = ndf_ggx_d_matrix(r_60, m_21);
     float _e20 = ndf_ggx_lambda_matrix(r_60, wo_2);
-    float v_10 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
-    return ((v_10 <= math_F32_MAX) ? v_10 : 0.0);
+    float v_15 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
+    return ((v_15 <= math_F32_MAX) ? v_15 : 0.0);
 }
 
 float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_61, vec3 wo_3, vec3 m_22) {
@@ -1701,8 +1851,8 @@ float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r
     }
     float _e14 = ndf_ggx_d_matrix(r_61, m_22);
     float _e18 = ndf_ggx_lambda_matrix(r_61, _e8);
-    float v_11 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
-    return ((v_11 <= math_F32_MAX) ? v_11 : 0.0);
+    float v_16 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
+    return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
 }
 
 float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_62, vec3 wo_4, vec3 wi_1) {
@@ -1711,12 +1861,12 @@ float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_62, vec3 wo
     }
     vec3 _e8 = sampling_normalize_scaled(wo_4);
     vec3 _e9 = sampling_normalize_scaled(wi_1);
-    vec3 h_24 = (_e8 + _e9);
-    float len = length(h_24);
+    vec3 h_26 = (_e8 + _e9);
+    float len = length(h_26);
     if (!((len > 0.0))) {
         return 0.0;
     }
-    float _e18 = sampling_reflection_pdf_from_normal(r_62, wo_4, (h_24 / vec3(len)));
+    float _e18 = sampling_reflection_pdf_from_normal(r_62, wo_4, (h_26 / vec3(len)));
     return _e18;
 }
 

@@ -152,6 +152,7 @@ static const filter_deferred_KernelConvention filter_presets_BABYLON = Construct
 static const filter_deferred_KernelConvention filter_presets_THREE_JS = Constructfilter_deferred_KernelConvention(2u, 3u, 1.0, 1.0, 0.0, 3.4028235e38, 0u, true, 0.0525);
 static const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
 static const float filter_rect_BIG = 1e18;
+static const float filter_rect_FAR2_ = 0.25;
 static const uint filter_rect_TIER_CLOSED = 0u;
 static const float footprint_SIGMA_PIXEL = 0.5;
 static const float footprint_jacobian_HZ_MIN = 1e-6;
@@ -171,9 +172,9 @@ float math_atan(float x)
     float t = (float)0;
     float r = (float)0;
 
-    float a_12 = abs(x);
-    bool inv = (a_12 > 1.0);
-    t = (inv ? (1.0 / a_12) : a_12);
+    float a_15 = abs(x);
+    bool inv = (a_15 > 1.0);
+    t = (inv ? (1.0 / a_15) : a_15);
     float _e8 = t;
     bool shift = (_e8 > math_TAN_EIGHTH_PI);
     float _e11 = t;
@@ -210,17 +211,17 @@ float2 math_sincos_turns(float u)
     float r_63 = (u - (0.25 * q_4));
     float z_1 = (r_63 * r_63);
     float s_12 = (r_63 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
-    float c_8 = ((((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0);
-    int k_12 = (naga_f2i32(q_4) & int(3));
-    cs = float2(c_8, s_12);
-    if ((k_12 == int(1))) {
-        cs = float2(-(s_12), c_8);
+    float c_9 = ((((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0);
+    int k_16 = (naga_f2i32(q_4) & int(3));
+    cs = float2(c_9, s_12);
+    if ((k_16 == int(1))) {
+        cs = float2(-(s_12), c_9);
     } else {
-        if ((k_12 == int(2))) {
-            cs = float2(-(c_8), -(s_12));
+        if ((k_16 == int(2))) {
+            cs = float2(-(c_9), -(s_12));
         } else {
-            if ((k_12 == int(3))) {
-                cs = float2(s_12, -(c_8));
+            if ((k_16 == int(3))) {
+                cs = float2(s_12, -(c_9));
             }
         }
     }
@@ -234,9 +235,9 @@ float math_hypot(float x_1, float y)
     if ((m_23 <= 0.0)) {
         return 0.0;
     }
-    float a_13 = (x_1 / m_23);
-    float b_2 = (y / m_23);
-    return (m_23 * sqrt(((a_13 * a_13) + (b_2 * b_2))));
+    float a_16 = (x_1 / m_23);
+    float b_4 = (y / m_23);
+    return (m_23 * sqrt(((a_16 * a_16) + (b_4 * b_4))));
 }
 
 float ndf_roughness_clamp_alpha(float alpha)
@@ -306,12 +307,12 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         const kernel_covariance_Covariance kernel_covariance_covariance_5 = c_3;
         return kernel_covariance_covariance_5;
     }
-    float a_14 = (c_3.s_xx / scale);
-    float b_3 = (c_3.s_xy / scale);
+    float a_17 = (c_3.s_xx / scale);
+    float b_5 = (c_3.s_xy / scale);
     float e_2 = (c_3.s_yy / scale);
-    float d_1 = (0.5 * (a_14 - e_2));
-    float r_64 = sqrt(((d_1 * d_1) + (b_3 * b_3)));
-    float lmax_1 = (((0.5 * (a_14 + e_2)) + r_64) * scale);
+    float d_1 = (0.5 * (a_17 - e_2));
+    float r_64 = sqrt(((d_1 * d_1) + (b_5 * b_5)));
+    float lmax_1 = (((0.5 * (a_17 + e_2)) + r_64) * scale);
     if ((lmax_1 <= max_eig)) {
         const kernel_covariance_Covariance kernel_covariance_covariance_6 = c_3;
         return kernel_covariance_covariance_6;
@@ -328,11 +329,11 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         return kernel_covariance_covariance_7;
     }
     float p_4 = (r_64 + abs(d_1));
-    float q_5 = ((p_4 > 0.0) ? ((b_3 * b_3) / p_4) : 0.0);
+    float q_5 = ((p_4 > 0.0) ? ((b_5 * b_5) / p_4) : 0.0);
     float2 ee = ((d_1 >= 0.0) ? float2(p_4, q_5) : float2(q_5, p_4));
     float inv_1 = (1.0 / (2.0 * r_64));
     float p11_ = (ee.x * inv_1);
-    float p12_ = (b_3 * inv_1);
+    float p12_ = (b_5 * inv_1);
     float p22_ = (ee.y * inv_1);
     const kernel_covariance_Covariance kernel_covariance_covariance_8 = Constructkernel_covariance_Covariance(((max_eig * p11_) + (lmin_1 * p22_)), ((max_eig - lmin_1) * p12_), ((max_eig * p22_) + (lmin_1 * p11_)), (max_eig * lmin_1));
     return kernel_covariance_covariance_8;
@@ -411,20 +412,20 @@ float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5)
 
 float filter_deferred_norm_eval(uint norm, float3 dn_u, float3 dn_v)
 {
-    float a_15 = dot(dn_u, dn_u);
-    float c_9 = dot(dn_v, dn_v);
+    float a_18 = dot(dn_u, dn_u);
+    float c_10 = dot(dn_v, dn_v);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
-        return max(a_15, c_9);
+        return max(a_18, c_10);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        const float _e11 = filter_deferred_max_eigenvalue(a_15, dot(dn_u, dn_v), c_9);
+        const float _e11 = filter_deferred_max_eigenvalue(a_18, dot(dn_u, dn_v), c_10);
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
         float3 m_24 = max(abs(dn_u), abs(dn_v));
         return max(max(m_24.x, m_24.y), m_24.z);
     }
-    return (a_15 + c_9);
+    return (a_18 + c_10);
 }
 
 float filter_deferred_clamp_kernel(filter_deferred_KernelConvention conv, float k_1)
@@ -476,8 +477,8 @@ float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha
 
 kernel_covariance_Covariance filter_deferred_normal_difference_covariance(float3 dn_u_3, float3 dn_v_3, float sigma_sq)
 {
-    float3 x_4 = (cross(dn_u_3, dn_v_3) * sigma_sq);
-    const kernel_covariance_Covariance kernel_covariance_covariance_12 = Constructkernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_4, x_4));
+    float3 x_5 = (cross(dn_u_3, dn_v_3) * sigma_sq);
+    const kernel_covariance_Covariance kernel_covariance_covariance_12 = Constructkernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_5, x_5));
     return kernel_covariance_covariance_12;
 }
 
@@ -523,9 +524,9 @@ float2 ndf_roughness_matrix_clamped_eigenvalues(float2 l, float det, float tau)
     if ((det >= tau)) {
         return l;
     }
-    float h_16 = (0.5 * (l.x + l.y));
+    float h_17 = (0.5 * (l.x + l.y));
     float gap = (tau - det);
-    float t_2 = (gap / (h_16 + sqrt(((h_16 * h_16) + gap))));
+    float t_2 = (gap / (h_17 + sqrt(((h_17 * h_17) + gap))));
     float l1_ = (l.x + t_2);
     return float2(l1_, (tau / l1_));
 }
@@ -596,9 +597,9 @@ float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5)
 
 float3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, float2 l_2)
 {
-    float c_10 = r_6.axis.x;
+    float c_11 = r_6.axis.x;
     float s_13 = r_6.axis.y;
-    return float3((((l_2.x * c_10) * c_10) + ((l_2.y * s_13) * s_13)), (((l_2.x - l_2.y) * c_10) * s_13), (((l_2.x * s_13) * s_13) + ((l_2.y * c_10) * c_10)));
+    return float3((((l_2.x * c_11) * c_11) + ((l_2.y * s_13) * s_13)), (((l_2.x - l_2.y) * c_11) * s_13), (((l_2.x * s_13) * s_13) + ((l_2.y * c_11) * c_11)));
 }
 
 float3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7)
@@ -626,10 +627,10 @@ float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3)
 {
     const float3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_11 = a_2.axis.x;
+    float c_12 = a_2.axis.x;
     float s_14 = a_2.axis.y;
-    float k1_ = max(((((c_11 * c_11) * k_3.s_xx) + (((2.0 * c_11) * s_14) * k_3.s_xy)) + ((s_14 * s_14) * k_3.s_yy)), 0.0);
-    float k2_ = max(((((s_14 * s_14) * k_3.s_xx) - (((2.0 * c_11) * s_14) * k_3.s_xy)) + ((c_11 * c_11) * k_3.s_yy)), 0.0);
+    float k1_ = max(((((c_12 * c_12) * k_3.s_xx) + (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((s_14 * s_14) * k_3.s_yy)), 0.0);
+    float k2_ = max(((((s_14 * s_14) * k_3.s_xx) - (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((c_12 * c_12) * k_3.s_yy)), 0.0);
     const float _e38 = ndf_roughness_matrix_determinant(a_2);
     float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * max(k_3.det, 0.0)));
     const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
@@ -736,13 +737,13 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     float2 lc = min(a_6.eig, (0.99).xx);
     float2 excess = (a_6.eig - lc);
     float2 p_5 = (lc / ((1.0).xx - lc));
-    float c_12 = a_6.axis.x;
+    float c_13 = a_6.axis.x;
     float s_15 = a_6.axis.y;
-    float p11_1 = (((p_5.x * c_12) * c_12) + ((p_5.y * s_15) * s_15));
-    float p12_1 = (((p_5.x - p_5.y) * c_12) * s_15);
-    float p22_1 = (((p_5.x * s_15) * s_15) + ((p_5.y * c_12) * c_12));
-    float k1_1 = max(((((c_12 * c_12) * k_4.s_xx) + (((2.0 * c_12) * s_15) * k_4.s_xy)) + ((s_15 * s_15) * k_4.s_yy)), 0.0);
-    float k2_1 = max(((((s_15 * s_15) * k_4.s_xx) - (((2.0 * c_12) * s_15) * k_4.s_xy)) + ((c_12 * c_12) * k_4.s_yy)), 0.0);
+    float p11_1 = (((p_5.x * c_13) * c_13) + ((p_5.y * s_15) * s_15));
+    float p12_1 = (((p_5.x - p_5.y) * c_13) * s_15);
+    float p22_1 = (((p_5.x * s_15) * s_15) + ((p_5.y * c_13) * c_13));
+    float k1_1 = max(((((c_13 * c_13) * k_4.s_xx) + (((2.0 * c_13) * s_15) * k_4.s_xy)) + ((s_15 * s_15) * k_4.s_yy)), 0.0);
+    float k2_1 = max(((((s_15 * s_15) * k_4.s_xx) - (((2.0 * c_13) * s_15) * k_4.s_xy)) + ((c_13 * c_13) * k_4.s_yy)), 0.0);
     float d_2 = (((p_5.x * p_5.y) + (2.0 * ((p_5.y * k1_1) + (p_5.x * k2_1)))) + (4.0 * max(k_4.det, 0.0)));
     float q11_ = (p11_1 + (2.0 * k_4.s_xx));
     float q12_ = (p12_1 + (2.0 * k_4.s_xy));
@@ -754,11 +755,11 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     det_3 = (d_2 / den);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_12) * c_12) + ((excess.y * s_15) * s_15)));
+        b11_ = (_e114 + (((excess.x * c_13) * c_13) + ((excess.y * s_15) * s_15)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_12) * s_15));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_13) * s_15));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_15) * s_15) + ((excess.y * c_12) * c_12)));
+        b22_ = (_e130 + (((excess.x * s_15) * s_15) + ((excess.y * c_13) * c_13)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -803,8 +804,8 @@ ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(flo
 {
     const float _e2 = ndf_roughness_clamp_alpha(alpha_6.x);
     const float _e4 = ndf_roughness_clamp_alpha(alpha_6.y);
-    float2 a_16 = float2(_e2, _e4);
-    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned = Constructndf_roughness_axis_aligned_AxisAligned(a_16, ((1.0).xx / (a_16 * a_16)));
+    float2 a_19 = float2(_e2, _e4);
+    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned = Constructndf_roughness_axis_aligned_AxisAligned(a_19, ((1.0).xx / (a_19 * a_19)));
     return ndf_roughness_axis_aligned_axisaligned;
 }
 
@@ -832,9 +833,9 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_ro
 
 float filter_proxy_effective_alpha(float alpha_7, float half_extent)
 {
-    float h_17 = abs(half_extent);
-    const float _e3 = math_hypot(alpha_7, h_17);
-    float t_3 = ((_e3 > 0.0) ? (h_17 / _e3) : 0.0);
+    float h_18 = abs(half_extent);
+    const float _e3 = math_hypot(alpha_7, h_18);
+    float t_3 = ((_e3 > 0.0) ? (h_18 / _e3) : 0.0);
     const float _e9 = math_atan(t_3);
     float ratio = ((t_3 > 0.0) ? (t_3 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
@@ -929,14 +930,14 @@ float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1)
     bool local_4 = (bool)0;
 
     float t_5 = (q_xy + (m_z * m_z));
-    float v_5 = (1.0 / (((math_PI * sqrt_det_1) * t_5) * t_5));
+    float v_10 = (1.0 / (((math_PI * sqrt_det_1) * t_5) * t_5));
     if ((m_z > 0.0)) {
-        local_4 = (v_5 <= math_F32_MAX);
+        local_4 = (v_10 <= math_F32_MAX);
     } else {
         local_4 = false;
     }
     bool _e18 = local_4;
-    return (_e18 ? v_5 : 0.0);
+    return (_e18 ? v_10 : 0.0);
 }
 
 float ndf_ggx_lambda_of(float q_1, float abs_wz)
@@ -1155,12 +1156,12 @@ float filter_rect_gl_mean(uint n_2, float u_2, float c_6, float h)
         {
             uint _e12 = k_7;
             const float _e13 = filter_rect_gl_node(n_2, _e12);
-            float a_17 = (h * _e13);
+            float a_20 = (h * _e13);
             float _e15 = acc;
             uint _e16 = k_7;
             const float _e17 = filter_rect_gl_weight(n_2, _e16);
-            const float _e19 = filter_rect_f(u_2, (c_6 - a_17));
-            const float _e21 = filter_rect_f(u_2, (c_6 + a_17));
+            const float _e19 = filter_rect_f(u_2, (c_6 - a_20));
+            const float _e21 = filter_rect_f(u_2, (c_6 + a_20));
             acc = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -1195,27 +1196,27 @@ float filter_rect_delta_minus_sin(float d, float sin_d)
     return (d - sin_d);
 }
 
-float filter_rect_mean_1d(float xc, float hx, float c2_)
+float filter_rect_mean_1d(float4 i_4, float c2_)
 {
-    float x0_ = (abs(xc) - hx);
-    float x1_ = (abs(xc) + hx);
-    float dx = (2.0 * hx);
-    float c_13 = sqrt(c2_);
+    float x0_ = ((i_4.z >= 0.0) ? i_4.x : -(i_4.y));
+    float x1_ = ((i_4.z >= 0.0) ? i_4.y : -(i_4.x));
+    float dx = (2.0 * i_4.w);
+    float c_14 = sqrt(c2_);
     float r02_ = (c2_ + (x0_ * x0_));
     float r12_ = (c2_ + (x1_ * x1_));
     float x01_ = (x0_ * x1_);
-    const float _e17 = filter_rect_atan2_upper((c_13 * dx), (c2_ + x01_));
-    float inv_2 = (1.0 / (((2.0 * c_13) * c2_) * dx));
+    const float _e27 = filter_rect_atan2_upper((c_14 * dx), (c2_ + x01_));
+    float inv_2 = (1.0 / (((2.0 * c_14) * c2_) * dx));
     float p2_ = ((2.0 * r02_) * r12_);
     if ((x0_ <= 0.0)) {
-        return ((_e17 * inv_2) + ((c2_ - x01_) / (c2_ * p2_)));
+        return ((_e27 * inv_2) + (((c2_ - x01_) / p2_) / c2_));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
-    const float _e39 = filter_rect_delta_minus_sin(_e17, ((c_13 * dx) / rr));
-    return ((_e39 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_ * x1_)) + c2_) / (rr + x01_))) / p2_));
+    const float _e49 = filter_rect_delta_minus_sin(_e27, ((c_14 * dx) / rr));
+    return ((_e49 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_ * x1_)) + c2_) / (rr + x01_))) / p2_));
 }
 
-float filter_rect_gl_mean_1d(uint n_3, float c_7, float h_1, float other_c, float other_h)
+float filter_rect_gl_mean_1d(uint n_3, float c_7, float h_1, float4 other)
 {
     float acc_1 = 0.0;
     uint k_8 = 0u;
@@ -1226,31 +1227,31 @@ float filter_rect_gl_mean_1d(uint n_3, float c_7, float h_1, float other_c, floa
         if (all(loop_bound_1 == uint2(0u, 0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e33 = k_8;
-            k_8 = (_e33 + 1u);
+            uint _e32 = k_8;
+            k_8 = (_e32 + 1u);
         }
         loop_init_1 = false;
-        uint _e9 = k_8;
-        if ((_e9 < naga_div(n_3, 2u))) {
+        uint _e8 = k_8;
+        if ((_e8 < naga_div(n_3, 2u))) {
         } else {
             break;
         }
         {
-            uint _e13 = k_8;
-            const float _e14 = filter_rect_gl_node(n_3, _e13);
-            float a_18 = (h_1 * _e14);
-            float x0_1 = (c_7 - a_18);
-            float x1_1 = (c_7 + a_18);
-            float _e18 = acc_1;
-            uint _e19 = k_8;
-            const float _e20 = filter_rect_gl_weight(n_3, _e19);
-            const float _e24 = filter_rect_mean_1d(other_c, other_h, (1.0 + (x0_1 * x0_1)));
-            const float _e28 = filter_rect_mean_1d(other_c, other_h, (1.0 + (x1_1 * x1_1)));
-            acc_1 = (_e18 + (_e20 * (_e24 + _e28)));
+            uint _e12 = k_8;
+            const float _e13 = filter_rect_gl_node(n_3, _e12);
+            float a_21 = (h_1 * _e13);
+            float x0_1 = (c_7 - a_21);
+            float x1_1 = (c_7 + a_21);
+            float _e17 = acc_1;
+            uint _e18 = k_8;
+            const float _e19 = filter_rect_gl_weight(n_3, _e18);
+            const float _e23 = filter_rect_mean_1d(other, (1.0 + (x0_1 * x0_1)));
+            const float _e27 = filter_rect_mean_1d(other, (1.0 + (x1_1 * x1_1)));
+            acc_1 = (_e17 + (_e19 * (_e23 + _e27)));
         }
     }
-    float _e35 = acc_1;
-    return _e35;
+    float _e34 = acc_1;
+    return _e34;
 }
 
 float filter_rect_edge(float u_3, float dv, float v01_)
@@ -1261,79 +1262,247 @@ float filter_rect_edge(float u_3, float dv, float v01_)
     return ((u_3 / s_16) * _e10);
 }
 
-float filter_rect_edges(float uc, float vc, float hu, float hv)
+float filter_rect_edges(float4 u_4, float4 v_4)
 {
-    float u0_ = (uc - hu);
-    float u1_ = (uc + hu);
-    float v0_ = (vc - hv);
-    float v1_ = (vc + hv);
-    float du = (2.0 * hu);
-    float dv_1 = (2.0 * hv);
-    const float _e13 = filter_rect_edge(u1_, dv_1, (v0_ * v1_));
-    const float _e15 = filter_rect_edge(u0_, dv_1, (v0_ * v1_));
-    const float _e18 = filter_rect_edge(v1_, du, (u0_ * u1_));
-    const float _e20 = filter_rect_edge(v0_, du, (u0_ * u1_));
-    float i_7 = (0.5 * ((_e13 - _e15) + (_e18 - _e20)));
-    return (i_7 / (du * dv_1));
+    float du = (2.0 * u_4.w);
+    float dv_1 = (2.0 * v_4.w);
+    float v01_1 = (v_4.x * v_4.y);
+    float u01_ = (u_4.x * u_4.y);
+    const float _e15 = filter_rect_edge(u_4.y, dv_1, v01_1);
+    const float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
+    const float _e20 = filter_rect_edge(v_4.y, du, u01_);
+    const float _e22 = filter_rect_edge(v_4.x, du, u01_);
+    float i_9 = (0.5 * ((_e15 - _e17) + (_e20 - _e22)));
+    return (i_9 / (du * dv_1));
 }
 
-float filter_rect_mean_f(float uc_1, float vc_1, float hu_1, float hv_1)
+float filter_rect_gl8_node(uint k_9)
 {
-    bool local_7 = (bool)0;
-    float acc_2 = 0.0;
-    uint k_9 = 0u;
+    if ((k_9 == 0u)) {
+        return 0.18343464;
+    }
+    if ((k_9 == 1u)) {
+        return 0.5255324;
+    }
+    return ((k_9 == 2u) ? 0.7966665 : 0.96028984);
+}
 
-    float du_1 = max((abs(uc_1) - hu_1), 0.0);
-    float dv_2 = max((abs(vc_1) - hv_1), 0.0);
-    const uint _e18 = filter_rect_tier((hu_1 * hu_1), ((1.0 + (uc_1 * uc_1)) + (dv_2 * dv_2)));
-    const uint _e25 = filter_rect_tier((hv_1 * hv_1), ((1.0 + (vc_1 * vc_1)) + (du_1 * du_1)));
-    if ((_e18 == filter_rect_TIER_CLOSED)) {
-        local_7 = (_e25 == filter_rect_TIER_CLOSED);
-    } else {
-        local_7 = false;
+float filter_rect_gl8_weight(uint k_10)
+{
+    if ((k_10 == 0u)) {
+        return 0.18134189;
     }
-    bool _e33 = local_7;
-    if (_e33) {
-        const float _e34 = filter_rect_edges(uc_1, vc_1, hu_1, hv_1);
-        return _e34;
+    if ((k_10 == 1u)) {
+        return 0.15685332;
     }
-    if ((_e18 == filter_rect_TIER_CLOSED)) {
-        const float _e37 = filter_rect_gl_mean_1d(_e25, vc_1, hv_1, uc_1, hu_1);
-        return _e37;
-    }
-    if ((_e25 == filter_rect_TIER_CLOSED)) {
-        const float _e40 = filter_rect_gl_mean_1d(_e18, uc_1, hu_1, vc_1, hv_1);
-        return _e40;
-    }
+    return ((k_10 == 2u) ? 0.11119052 : 0.050614268);
+}
+
+float filter_rect_polar_near(float x2_, float lo, float hi)
+{
+    float acc_2 = 0.0;
+    uint k_11 = 0u;
+
+    float c_15 = (0.5 * (lo + hi));
+    float h_19 = (0.5 * (hi - lo));
     uint2 loop_bound_2 = uint2(4294967295u, 4294967295u);
     bool loop_init_2 = true;
     while(true) {
         if (all(loop_bound_2 == uint2(0u, 0u))) { break; }
         loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
         if (!loop_init_2) {
-            uint _e63 = k_9;
-            k_9 = (_e63 + 1u);
+            uint _e48 = k_11;
+            k_11 = (_e48 + 1u);
         }
         loop_init_2 = false;
-        uint _e45 = k_9;
-        if ((_e45 < naga_div(_e18, 2u))) {
+        uint _e13 = k_11;
+        if ((_e13 < 4u)) {
         } else {
             break;
         }
         {
-            uint _e49 = k_9;
-            const float _e50 = filter_rect_gl_node(_e18, _e49);
-            float a_19 = (hu_1 * _e50);
-            float _e52 = acc_2;
-            uint _e53 = k_9;
-            const float _e54 = filter_rect_gl_weight(_e18, _e53);
-            const float _e56 = filter_rect_gl_mean(_e25, (uc_1 - a_19), vc_1, hv_1);
-            const float _e58 = filter_rect_gl_mean(_e25, (uc_1 + a_19), vc_1, hv_1);
-            acc_2 = (_e52 + (_e54 * (_e56 + _e58)));
+            uint _e16 = k_11;
+            const float _e17 = filter_rect_gl8_node(_e16);
+            float d_3 = (h_19 * _e17);
+            float q0_ = (1.0 + ((c_15 - d_3) * (c_15 - d_3)));
+            float q1_ = (1.0 + ((c_15 + d_3) * (c_15 + d_3)));
+            float _e29 = acc_2;
+            uint _e30 = k_11;
+            const float _e31 = filter_rect_gl8_weight(_e30);
+            acc_2 = (_e29 + (_e31 * ((1.0 / (q0_ * (1.0 + (x2_ * q0_)))) + (1.0 / (q1_ * (1.0 + (x2_ * q1_)))))));
         }
     }
-    float _e65 = acc_2;
-    return _e65;
+    float _e50 = acc_2;
+    return (_e50 * (hi - lo));
+}
+
+float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
+{
+    float acc_3 = 0.0;
+    uint k_12 = 0u;
+
+    float c_16 = (0.5 * (lo_1 + hi_1));
+    float h_20 = (0.5 * (hi_1 - lo_1));
+    uint2 loop_bound_3 = uint2(4294967295u, 4294967295u);
+    bool loop_init_3 = true;
+    while(true) {
+        if (all(loop_bound_3 == uint2(0u, 0u))) { break; }
+        loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
+        if (!loop_init_3) {
+            uint _e48 = k_12;
+            k_12 = (_e48 + 1u);
+        }
+        loop_init_3 = false;
+        uint _e13 = k_12;
+        if ((_e13 < 4u)) {
+        } else {
+            break;
+        }
+        {
+            uint _e16 = k_12;
+            const float _e17 = filter_rect_gl8_node(_e16);
+            float d_4 = (h_20 * _e17);
+            float t0_ = ((c_16 - d_4) * (c_16 - d_4));
+            float t1_ = ((c_16 + d_4) * (c_16 + d_4));
+            float _e25 = acc_3;
+            uint _e26 = k_12;
+            const float _e27 = filter_rect_gl8_weight(_e26);
+            acc_3 = (_e25 + (_e27 * ((t0_ / ((1.0 + t0_) * (t0_ + (x2_1 * (1.0 + t0_))))) + (t1_ / ((1.0 + t1_) * (t1_ + (x2_1 * (1.0 + t1_))))))));
+        }
+    }
+    float _e50 = acc_3;
+    return (_e50 * (hi_1 - lo_1));
+}
+
+float filter_rect_edge_range(float ax, float a_9, float b_2)
+{
+    float v_5 = 0.0;
+
+    float x2_2 = (ax * ax);
+    if ((a_9 < ax)) {
+        float _e7 = v_5;
+        const float _e11 = filter_rect_polar_near(x2_2, (a_9 / ax), (min(b_2, ax) / ax));
+        v_5 = (_e7 + _e11);
+    }
+    if ((b_2 > ax)) {
+        float _e14 = v_5;
+        const float _e18 = filter_rect_polar_far(x2_2, (ax / b_2), (ax / max(a_9, ax)));
+        v_5 = (_e14 + _e18);
+    }
+    float _e20 = v_5;
+    return _e20;
+}
+
+float filter_rect_edge_polar(float x_3, float a_10, float b_3)
+{
+    float v_6 = (float)0;
+
+    float ax_1 = abs(x_3);
+    if ((ax_1 < 1e-12)) {
+        return 0.0;
+    }
+    if ((a_10 >= 0.0)) {
+        const float _e10 = filter_rect_edge_range(ax_1, a_10, b_3);
+        v_6 = _e10;
+    } else {
+        if ((b_3 <= 0.0)) {
+            const float _e15 = filter_rect_edge_range(ax_1, -(b_3), -(a_10));
+            v_6 = _e15;
+        } else {
+            const float _e18 = filter_rect_edge_range(ax_1, 0.0, -(a_10));
+            const float _e20 = filter_rect_edge_range(ax_1, 0.0, b_3);
+            v_6 = (_e18 + _e20);
+        }
+    }
+    float _e22 = v_6;
+    float _e24 = v_6;
+    return ((x_3 > 0.0) ? _e24 : -(_e22));
+}
+
+float filter_rect_far_field(float4 u_5, float4 v_7)
+{
+    const float _e5 = filter_rect_edge_polar(u_5.y, v_7.x, v_7.y);
+    const float _e9 = filter_rect_edge_polar(u_5.x, v_7.x, v_7.y);
+    const float _e14 = filter_rect_edge_polar(v_7.y, u_5.x, u_5.y);
+    const float _e18 = filter_rect_edge_polar(v_7.x, u_5.x, u_5.y);
+    float i_10 = (-0.5 * ((_e5 - _e9) + (_e14 - _e18)));
+    return (i_10 / ((4.0 * u_5.w) * v_7.w));
+}
+
+float filter_rect_gap(float4 i_5)
+{
+    return max(max(i_5.x, -(i_5.y)), 0.0);
+}
+
+float filter_rect_mean_f(float4 u_6, float4 v_8)
+{
+    bool local_7 = (bool)0;
+    float acc_4 = 0.0;
+    uint k_13 = 0u;
+
+    const float _e2 = filter_rect_gap(u_6);
+    const float _e3 = filter_rect_gap(v_8);
+    const uint _e14 = filter_rect_tier((u_6.w * u_6.w), ((1.0 + (u_6.z * u_6.z)) + (_e3 * _e3)));
+    const uint _e25 = filter_rect_tier((v_8.w * v_8.w), ((1.0 + (v_8.z * v_8.z)) + (_e2 * _e2)));
+    if ((_e14 == filter_rect_TIER_CLOSED)) {
+        local_7 = (_e25 == filter_rect_TIER_CLOSED);
+    } else {
+        local_7 = false;
+    }
+    bool _e33 = local_7;
+    if (_e33) {
+        if ((((_e2 * _e2) + (_e3 * _e3)) > filter_rect_FAR2_)) {
+            const float _e39 = filter_rect_far_field(u_6, v_8);
+            return _e39;
+        }
+        const float _e40 = filter_rect_edges(u_6, v_8);
+        return _e40;
+    }
+    if ((_e14 == filter_rect_TIER_CLOSED)) {
+        const float _e45 = filter_rect_gl_mean_1d(_e25, v_8.z, v_8.w, u_6);
+        return _e45;
+    }
+    if ((_e25 == filter_rect_TIER_CLOSED)) {
+        const float _e50 = filter_rect_gl_mean_1d(_e14, u_6.z, u_6.w, v_8);
+        return _e50;
+    }
+    uint2 loop_bound_4 = uint2(4294967295u, 4294967295u);
+    bool loop_init_4 = true;
+    while(true) {
+        if (all(loop_bound_4 == uint2(0u, 0u))) { break; }
+        loop_bound_4 -= uint2(loop_bound_4.y == 0u, 1u);
+        if (!loop_init_4) {
+            uint _e80 = k_13;
+            k_13 = (_e80 + 1u);
+        }
+        loop_init_4 = false;
+        uint _e55 = k_13;
+        if ((_e55 < naga_div(_e14, 2u))) {
+        } else {
+            break;
+        }
+        {
+            uint _e60 = k_13;
+            const float _e61 = filter_rect_gl_node(_e14, _e60);
+            float a_22 = (u_6.w * _e61);
+            float _e63 = acc_4;
+            uint _e64 = k_13;
+            const float _e65 = filter_rect_gl_weight(_e14, _e64);
+            const float _e70 = filter_rect_gl_mean(_e25, (u_6.z - a_22), v_8.z, v_8.w);
+            const float _e75 = filter_rect_gl_mean(_e25, (u_6.z + a_22), v_8.z, v_8.w);
+            acc_4 = (_e63 + (_e65 * (_e70 + _e75)));
+        }
+    }
+    float _e82 = acc_4;
+    return _e82;
+}
+
+float4 filter_rect_interval(float c_8, float h_2, float a_11)
+{
+    float ah = abs(h_2);
+    float lo_2 = clamp(((c_8 - ah) / a_11), -1e18, filter_rect_BIG);
+    float hi_2 = clamp(((c_8 + ah) / a_11), -1e18, filter_rect_BIG);
+    return float4(lo_2, hi_2, clamp((c_8 / a_11), -1e18, filter_rect_BIG), min((ah / a_11), filter_rect_BIG));
 }
 
 float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_36, float2 center_, float2 half_extent_4)
@@ -1350,18 +1519,18 @@ float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_36, float2 c
         const float _e13 = ndf_ggx_p22_axis_aligned(r_36, center_);
         return _e13;
     }
-    float2 a_20 = r_36.alpha;
-    float2 c_14 = clamp((center_ / a_20), (-1e18).xx, (1e18).xx);
-    float2 h_18 = min((abs(half_extent_4) / a_20), (1e18).xx);
-    const float _e30 = filter_rect_mean_f(c_14.x, c_14.y, h_18.x, h_18.y);
-    return max((_e30 * (math_INV_PI / (a_20.x * a_20.y))), 0.0);
+    float2 a_23 = r_36.alpha;
+    const float4 _e18 = filter_rect_interval(center_.x, half_extent_4.x, a_23.x);
+    const float4 _e22 = filter_rect_interval(center_.y, half_extent_4.y, a_23.y);
+    const float _e23 = filter_rect_mean_f(_e18, _e22);
+    return max((_e23 * (math_INV_PI / (a_23.x * a_23.y))), 0.0);
 }
 
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_37, float3 h_2, float2 half_extent_5)
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_37, float3 h_3, float2 half_extent_5)
 {
     bool local_9 = (bool)0;
 
-    if (!((h_2.z > 0.0))) {
+    if (!((h_3.z > 0.0))) {
         return 0.0;
     }
     if ((half_extent_5.x == 0.0)) {
@@ -1371,56 +1540,56 @@ float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_37, float3 h_2
     }
     bool _e17 = local_9;
     if (_e17) {
-        const float _e18 = ndf_ggx_d_axis_aligned(r_37, h_2);
+        const float _e18 = ndf_ggx_d_axis_aligned(r_37, h_3);
         return _e18;
     }
-    const float _e24 = filter_rect_p22_rect(r_37, (-(h_2.xy) / (h_2.z).xx), half_extent_5);
-    float z2_ = (h_2.z * h_2.z);
+    const float _e24 = filter_rect_p22_rect(r_37, (-(h_3.xy) / (h_3.z).xx), half_extent_5);
+    float z2_ = (h_3.z * h_3.z);
     return min((_e24 / (z2_ * z2_)), math_F32_MAX);
 }
 
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_38, float2 hpp, float3 h_3, float2 footprint)
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_38, float2 hpp, float3 h_4, float2 footprint)
 {
     bool local_10 = (bool)0;
 
-    float a_21 = r_38.alpha.x;
-    float b_4 = r_38.alpha.y;
-    float a_2_ = (a_21 * a_21);
-    float b_2_ = (b_4 * b_4);
+    float a_24 = r_38.alpha.x;
+    float b_6 = r_38.alpha.y;
+    float a_2_ = (a_24 * a_24);
+    float b_2_ = (b_6 * b_6);
     float x1_2 = (hpp.x - footprint.x);
-    float x2_ = (hpp.x + footprint.x);
+    float x2_3 = (hpp.x + footprint.x);
     float y1_ = (hpp.y - footprint.y);
     float y2_ = (hpp.y + footprint.y);
     float sx1_ = sqrt(((x1_2 * x1_2) + a_2_));
-    float sx2_ = sqrt(((x2_ * x2_) + a_2_));
+    float sx2_ = sqrt(((x2_3 * x2_3) + a_2_));
     float sy1_ = sqrt(((y1_ * y1_) + b_2_));
     float sy2_ = sqrt(((y2_ * y2_) + b_2_));
-    const float _e37 = math_atan(((y1_ * a_21) / (sx1_ * b_4)));
-    const float _e41 = math_atan(((y2_ * a_21) / (sx1_ * b_4)));
-    const float _e48 = math_atan(((y1_ * a_21) / (sx2_ * b_4)));
-    const float _e53 = math_atan(((y2_ * a_21) / (sx2_ * b_4)));
-    const float _e62 = math_atan(((x1_2 * b_4) / (a_21 * sy1_)));
-    const float _e66 = math_atan(((x2_ * b_4) / (a_21 * sy1_)));
-    const float _e73 = math_atan(((x1_2 * b_4) / (a_21 * sy2_)));
-    const float _e78 = math_atan(((x2_ * b_4) / (a_21 * sy2_)));
-    float val = ((((x1_2 * (_e37 - _e41)) / sx1_) + ((x2_ * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
-    float den_1 = ((6.2831855 * (x1_2 - x2_)) * (y1_ - y2_));
-    float hz4_ = (((h_3.z * h_3.z) * h_3.z) * h_3.z);
-    float v_6 = ((val / den_1) / max(hz4_, 0.001));
-    if ((abs(v_6) <= math_F32_MAX)) {
+    const float _e37 = math_atan(((y1_ * a_24) / (sx1_ * b_6)));
+    const float _e41 = math_atan(((y2_ * a_24) / (sx1_ * b_6)));
+    const float _e48 = math_atan(((y1_ * a_24) / (sx2_ * b_6)));
+    const float _e53 = math_atan(((y2_ * a_24) / (sx2_ * b_6)));
+    const float _e62 = math_atan(((x1_2 * b_6) / (a_24 * sy1_)));
+    const float _e66 = math_atan(((x2_3 * b_6) / (a_24 * sy1_)));
+    const float _e73 = math_atan(((x1_2 * b_6) / (a_24 * sy2_)));
+    const float _e78 = math_atan(((x2_3 * b_6) / (a_24 * sy2_)));
+    float val = ((((x1_2 * (_e37 - _e41)) / sx1_) + ((x2_3 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
+    float den_1 = ((6.2831855 * (x1_2 - x2_3)) * (y1_ - y2_));
+    float hz4_ = (((h_4.z * h_4.z) * h_4.z) * h_4.z);
+    float v_11 = ((val / den_1) / max(hz4_, 0.001));
+    if ((abs(v_11) <= math_F32_MAX)) {
         local_10 = (den_1 != 0.0);
     } else {
         local_10 = false;
     }
     bool _e109 = local_10;
-    return (_e109 ? v_6 : 0.0);
+    return (_e109 ? v_11 : 0.0);
 }
 
 kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_39, float sigma_2)
 {
     float2 w_16 = (r_39.half_extent * (2.0 * sigma_2));
-    float2 v_7 = (w_16 * w_16);
-    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_7.x, 0.0, v_7.y, (v_7.x * v_7.y));
+    float2 v_12 = (w_16 * w_16);
+    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_12.x, 0.0, v_12.y, (v_12.x * v_12.y));
     return kernel_covariance_covariance_14;
 }
 
@@ -1451,11 +1620,11 @@ footprint_Footprint footprint_from_projected_derivatives_in_slope(float3 h_in, f
         return footprint_footprint_2;
     }
     float3 h0_ = (h_in / (big_2).xxx);
-    float3 h_19 = (h0_ / (length(h0_)).xxx);
-    float hz = max(h_19.z, 1e-6);
-    float k_13 = (-1.0 / ((hz * hz) * hz));
-    float2x2 j = float2x2(float2(((h_19.x * h_19.x) + (h_19.z * h_19.z)), (h_19.x * h_19.y)), float2((h_19.x * h_19.y), ((h_19.y * h_19.y) + (h_19.z * h_19.z))));
-    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint((mul(dp_u_1, j) * k_13), (mul(dp_v_1, j) * k_13));
+    float3 h_21 = (h0_ / (length(h0_)).xxx);
+    float hz = max(h_21.z, 1e-6);
+    float k_17 = (-1.0 / ((hz * hz) * hz));
+    float2x2 j = float2x2(float2(((h_21.x * h_21.x) + (h_21.z * h_21.z)), (h_21.x * h_21.y)), float2((h_21.x * h_21.y), ((h_21.y * h_21.y) + (h_21.z * h_21.z))));
+    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint((mul(dp_u_1, j) * k_17), (mul(dp_v_1, j) * k_17));
     return footprint_footprint_3;
 }
 
@@ -1469,11 +1638,11 @@ footprint_Footprint footprint_from_normal_differences(float3 dn_u_4, float3 dn_v
 
 kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3)
 {
-    float2 u_8 = fp.dh_u;
-    float2 v_8 = fp.dh_v;
+    float2 u_11 = fp.dh_u;
+    float2 v_13 = fp.dh_v;
     float s2_1 = (sigma_3 * sigma_3);
-    float cross_1 = (((u_8.x * v_8.y) - (u_8.y * v_8.x)) * s2_1);
-    const kernel_covariance_Covariance kernel_covariance_covariance_15 = Constructkernel_covariance_Covariance((((u_8.x * u_8.x) + (v_8.x * v_8.x)) * s2_1), (((u_8.x * u_8.y) + (v_8.x * v_8.y)) * s2_1), (((u_8.y * u_8.y) + (v_8.y * v_8.y)) * s2_1), (cross_1 * cross_1));
+    float cross_1 = (((u_11.x * v_13.y) - (u_11.y * v_13.x)) * s2_1);
+    const kernel_covariance_Covariance kernel_covariance_covariance_15 = Constructkernel_covariance_Covariance((((u_11.x * u_11.x) + (v_13.x * v_13.x)) * s2_1), (((u_11.x * u_11.y) + (v_13.x * v_13.y)) * s2_1), (((u_11.y * u_11.y) + (v_13.y * v_13.y)) * s2_1), (cross_1 * cross_1));
     return kernel_covariance_covariance_15;
 }
 
@@ -1511,15 +1680,15 @@ footprint_jacobian_Polar footprint_jacobian_polar(float3 h_in_1)
         return footprint_jacobian_polar_1;
     }
     float3 h0_1 = (h_in_1 / (big_3).xxx);
-    float3 h_20 = (h0_1 / (length(h0_1)).xxx);
-    float qs = max(abs(h_20.x), abs(h_20.y));
+    float3 h_22 = (h0_1 / (length(h0_1)).xxx);
+    float qs = max(abs(h_22.x), abs(h_22.y));
     if ((qs > 0.0)) {
-        float2 q_6 = (h_20.xy / (qs).xx);
+        float2 q_6 = (h_22.xy / (qs).xx);
         cs_1 = (q_6 / (length(q_6)).xx);
     }
-    if ((h_20.z >= footprint_jacobian_HZ_MIN)) {
+    if ((h_22.z >= footprint_jacobian_HZ_MIN)) {
         float2 _e44 = cs_1;
-        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_20, _e44);
+        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_22, _e44);
         return footprint_jacobian_polar_2;
     }
     float2 _e47 = cs_1;
@@ -1528,9 +1697,9 @@ footprint_jacobian_Polar footprint_jacobian_polar(float3 h_in_1)
     return footprint_jacobian_polar_3;
 }
 
-float3 footprint_jacobian_sanitize(float3 h_4)
+float3 footprint_jacobian_sanitize(float3 h_5)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
     return _e1.h;
 }
 
@@ -1541,99 +1710,99 @@ footprint_jacobian_SphericalBasis Constructfootprint_jacobian_SphericalBasis(flo
     return ret;
 }
 
-footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(float3 h_5)
+footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(float3 h_6)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
     float st = length(_e1.h.xy);
     const footprint_jacobian_SphericalBasis footprint_jacobian_sphericalbasis = Constructfootprint_jacobian_SphericalBasis(float3((_e1.h.z * _e1.cs), -(st)), float3(-(_e1.cs.y), _e1.cs.x, 0.0));
     return footprint_jacobian_sphericalbasis;
 }
 
-float2 footprint_jacobian_spherical_components(float3 h_6, float3 dh)
+float2 footprint_jacobian_spherical_components(float3 h_7, float3 dh)
 {
-    const footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_6);
+    const footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_7);
     return float2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
 }
 
-float2x2 footprint_jacobian_sphere_to_projected(float3 h_7)
+float2x2 footprint_jacobian_sphere_to_projected(float3 h_8)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
     return float2x2((_e1.h.z * _e1.cs), float2(-(_e1.cs.y), _e1.cs.x));
 }
 
 float2x2 footprint_jacobian_projected_to_slope(float3 h_in_2)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    float3 h_21 = _e1.h;
-    float k_14 = (-1.0 / ((h_21.z * h_21.z) * h_21.z));
-    float xy = (h_21.x * h_21.y);
-    return float2x2((float2(((h_21.x * h_21.x) + (h_21.z * h_21.z)), xy) * k_14), (float2(xy, ((h_21.y * h_21.y) + (h_21.z * h_21.z))) * k_14));
+    float3 h_23 = _e1.h;
+    float k_18 = (-1.0 / ((h_23.z * h_23.z) * h_23.z));
+    float xy = (h_23.x * h_23.y);
+    return float2x2((float2(((h_23.x * h_23.x) + (h_23.z * h_23.z)), xy) * k_18), (float2(xy, ((h_23.y * h_23.y) + (h_23.z * h_23.z))) * k_18));
 }
 
 float2x2 footprint_jacobian_slope_to_projected(float3 h_in_3)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_3);
-    float3 h_22 = _e1.h;
-    float xy_1 = (h_22.x * h_22.y);
-    return float2x2((float2(((h_22.y * h_22.y) + (h_22.z * h_22.z)), -(xy_1)) * -(h_22.z)), (float2(-(xy_1), ((h_22.x * h_22.x) + (h_22.z * h_22.z))) * -(h_22.z)));
+    float3 h_24 = _e1.h;
+    float xy_1 = (h_24.x * h_24.y);
+    return float2x2((float2(((h_24.y * h_24.y) + (h_24.z * h_24.z)), -(xy_1)) * -(h_24.z)), (float2(-(xy_1), ((h_24.x * h_24.x) + (h_24.z * h_24.z))) * -(h_24.z)));
 }
 
-float2x2 footprint_jacobian_sphere_to_slope(float3 h_8)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float k_15 = (-1.0 / (_e1.h.z * _e1.h.z));
-    return float2x2((_e1.cs * k_15), (float2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_15));
-}
-
-float footprint_jacobian_det_sphere_to_projected(float3 h_9)
+float2x2 footprint_jacobian_sphere_to_slope(float3 h_9)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_9);
+    float k_19 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return float2x2((_e1.cs * k_19), (float2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_19));
+}
+
+float footprint_jacobian_det_sphere_to_projected(float3 h_10)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_10);
     return _e1.h.z;
 }
 
-float footprint_jacobian_det_projected_to_slope(float3 h_10)
+float footprint_jacobian_det_projected_to_slope(float3 h_11)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_10);
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_11);
     float z_2 = _e1.h.z;
     float z2_1 = (z_2 * z_2);
     return (1.0 / (z2_1 * z2_1));
 }
 
-float footprint_jacobian_det_sphere_to_slope(float3 h_11)
+float footprint_jacobian_det_sphere_to_slope(float3 h_12)
 {
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_11);
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_12);
     float z_3 = _e1.h.z;
     return (1.0 / ((z_3 * z_3) * z_3));
 }
 
-float2 footprint_jacobian_spherical_to_slope(float3 h_12, float2 e)
+float2 footprint_jacobian_spherical_to_slope(float3 h_13, float2 e)
 {
-    const float2x2 _e2 = footprint_jacobian_sphere_to_slope(h_12);
+    const float2x2 _e2 = footprint_jacobian_sphere_to_slope(h_13);
     return mul(e, _e2);
 }
 
-float2 footprint_jacobian_spherical_to_projected(float3 h_13, float2 e_1)
+float2 footprint_jacobian_spherical_to_projected(float3 h_14, float2 e_1)
 {
-    const float2x2 _e2 = footprint_jacobian_sphere_to_projected(h_13);
+    const float2x2 _e2 = footprint_jacobian_sphere_to_projected(h_14);
     return mul(e_1, _e2);
 }
 
-float2 footprint_slope_slope_from_sphere(float3 h_14)
+float2 footprint_slope_slope_from_sphere(float3 h_15)
 {
-    float z_4 = max(h_14.z, math_F32_MIN_POSITIVE);
-    return clamp((-(h_14.xy) / (z_4).xx), (-3.4028235e38).xx, (3.4028235e38).xx);
+    float z_4 = max(h_15.z, math_F32_MIN_POSITIVE);
+    return clamp((-(h_15.xy) / (z_4).xx), (-3.4028235e38).xx, (3.4028235e38).xx);
 }
 
 float3 footprint_slope_sphere_from_slope(float2 s_7)
 {
-    float k_16 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
-    float3 v_9 = float3((-(s_7) / (k_16).xx), (1.0 / k_16));
-    return (v_9 / (length(v_9)).xxx);
+    float k_20 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
+    float3 v_14 = float3((-(s_7) / (k_20).xx), (1.0 / k_20));
+    return (v_14 / (length(v_14)).xxx);
 }
 
-float2 footprint_slope_projected_from_sphere(float3 h_15)
+float2 footprint_slope_projected_from_sphere(float3 h_16)
 {
-    return h_15.xy;
+    return h_16.xy;
 }
 
 float3 footprint_slope_sphere_from_projected(float2 p)
@@ -1690,15 +1859,15 @@ kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kern
         }
     }
     float lambda = max(rules_1.max_extent, 0.0);
-    float2 h_23 = min(abs(r_40.half_extent), (lambda).xx);
+    float2 h_25 = min(abs(r_40.half_extent), (lambda).xx);
     float2 _e25 = f;
-    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_23, max(_e25, (0.0).xx)));
+    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_25, max(_e25, (0.0).xx)));
     return kernel_rect_boundingrect_1;
 }
 
-kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_10)
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_14)
 {
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_10);
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_14);
     if ((rules_2.kappa >= math_F32_MAX)) {
         const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e2;
         return kernel_covariance_covariance_16;
@@ -1708,9 +1877,9 @@ kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2
     return kernel_covariance_covariance_17;
 }
 
-float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_9)
+float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_12)
 {
-    const float _e2 = ndf_roughness_matrix_clamped_det(a_9);
+    const float _e2 = ndf_roughness_matrix_clamped_det(a_12);
     return (rules_3.det_clamp ? _e2 : 0.0);
 }
 
@@ -1723,27 +1892,27 @@ kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules r
     return kernel_covariance_covariance_18;
 }
 
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_10, footprint_Footprint fp_5, float sigma_5)
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_13, footprint_Footprint fp_5, float sigma_5)
 {
     const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_5);
-    const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_10);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_10, _e4, _e5);
+    const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_13);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_13, _e4, _e5);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_14 = _e6;
     return ndf_roughness_matrix_roughnessmatrix_14;
 }
 
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_11, footprint_Footprint fp_6, float sigma_6)
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_14, footprint_Footprint fp_6, float sigma_6)
 {
     const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_6);
-    const float _e5 = kernel_clamp_det_clamp_for(rules_6, a_11);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_11, _e4, _e5);
+    const float _e5 = kernel_clamp_det_clamp_for(rules_6, a_14);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_14, _e4, _e5);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_15 = _e6;
     return ndf_roughness_matrix_roughnessmatrix_15;
 }
 
-float ndf_beckmann_exp_neg_times(float x_3, float k_11, float ln_k)
+float ndf_beckmann_exp_neg_times(float x_4, float k_15, float ln_k)
 {
-    return ((x_3 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_3)) : (exp(-(x_3)) * k_11));
+    return ((x_4 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_4)) : (exp(-(x_4)) * k_15));
 }
 
 float ndf_beckmann_p22_of(float q_2, float sqrt_det_2)
@@ -1758,10 +1927,10 @@ float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3)
     bool local_11 = (bool)0;
 
     float z2_2 = (m_z_1 * m_z_1);
-    float x_5 = (q_xy_1 / z2_2);
-    float k_17 = (1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2));
+    float x_6 = (q_xy_1 / z2_2);
+    float k_21 = (1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    const float _e21 = ndf_beckmann_exp_neg_times(x_5, k_17, ln_k_1);
+    const float _e21 = ndf_beckmann_exp_neg_times(x_6, k_21, ln_k_1);
     if ((m_z_1 > 0.0)) {
         local_11 = (_e21 <= math_F32_MAX);
     } else {
@@ -1795,11 +1964,11 @@ float ndf_beckmann_lambda_of(float q_3, float abs_wz_1)
     if (_e21) {
         return math_F32_MAX;
     }
-    float a_22 = (abs_wz_1 / sqrt(q_3));
-    if ((a_22 > 9.5)) {
+    float a_25 = (abs_wz_1 / sqrt(q_3));
+    if ((a_25 > 9.5)) {
         return 0.0;
     }
-    float t_7 = ((a_22 - 3.0) / (a_22 + 3.0));
+    float t_7 = ((a_25 - 3.0) / (a_25 + 3.0));
     float _e35 = p_2;
     p_2 = ((_e35 * t_7) + 0.00028491428);
     float _e39 = p_2;
@@ -1829,8 +1998,8 @@ float ndf_beckmann_lambda_of(float q_3, float abs_wz_1)
     float _e87 = p_2;
     p_2 = ((_e87 * t_7) + 1.0631379);
     float _e91 = p_2;
-    float k_18 = (_e91 / ((2.0 * a_22) + 1.0));
-    return min(((exp((-(a_22) * a_22)) * k_18) / ((3.5449078 * a_22) * (a_22 + k_18))), math_F32_MAX);
+    float k_22 = (_e91 / ((2.0 * a_25) + 1.0));
+    return min(((exp((-(a_25) * a_25)) * k_22) / ((3.5449078 * a_25) * (a_25 + k_22))), math_F32_MAX);
 }
 
 float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_41, float2 s_9)
@@ -1863,11 +2032,11 @@ float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_44, float3 w
     return _e5;
 }
 
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_45, float3 i_4, float3 o_3, float3 m_12)
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_45, float3 i_6, float3 o_3, float3 m_12)
 {
-    const float _e4 = ndf_beckmann_lambda_isotropic(r_45, i_4);
+    const float _e4 = ndf_beckmann_lambda_isotropic(r_45, i_6);
     const float _e5 = ndf_beckmann_lambda_isotropic(r_45, o_3);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_12), dot(o_3, m_12));
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_12), dot(o_3, m_12));
     return _e8;
 }
 
@@ -1901,11 +2070,11 @@ float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_49, 
     return _e5;
 }
 
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_50, float3 i_5, float3 o_4, float3 m_15)
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_50, float3 i_7, float3 o_4, float3 m_15)
 {
-    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_50, i_5);
+    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_50, i_7);
     const float _e5 = ndf_beckmann_lambda_axis_aligned(r_50, o_4);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_15), dot(o_4, m_15));
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_7, m_15), dot(o_4, m_15));
     return _e8;
 }
 
@@ -1939,11 +2108,11 @@ float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_54, float3 w
     return _e5;
 }
 
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_55, float3 i_6, float3 o_5, float3 m_18)
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_55, float3 i_8, float3 o_5, float3 m_18)
 {
-    const float _e4 = ndf_beckmann_lambda_matrix(r_55, i_6);
+    const float _e4 = ndf_beckmann_lambda_matrix(r_55, i_8);
     const float _e5 = ndf_beckmann_lambda_matrix(r_55, o_5);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_18), dot(o_5, m_18));
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_8, m_18), dot(o_5, m_18));
     return _e8;
 }
 
@@ -1963,9 +2132,9 @@ sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_56)
     return sampling_warp_1;
 }
 
-float3 sampling_normalize_scaled(float3 v_4)
+float3 sampling_normalize_scaled(float3 v_9)
 {
-    float3 w_17 = (v_4 / (max(max(abs(v_4.x), abs(v_4.y)), abs(v_4.z))).xxx);
+    float3 w_17 = (v_9 / (max(max(abs(v_9.x), abs(v_9.y)), abs(v_9.z))).xxx);
     return (w_17 / (length(w_17)).xxx);
 }
 
@@ -1980,9 +2149,9 @@ float3 sampling_unstretch(sampling_Warp l_4, float3 n_4)
     return _e14;
 }
 
-float sampling_clamp_unit(float u_4)
+float sampling_clamp_unit(float u_7)
 {
-    return ((u_4 >= 0.0) ? min(u_4, sampling_ONE_MINUS_EPS) : 0.0);
+    return ((u_7 >= 0.0) ? min(u_7, sampling_ONE_MINUS_EPS) : 0.0);
 }
 
 float3 sampling_reflect(float3 wo, float3 m_19)
@@ -1990,15 +2159,15 @@ float3 sampling_reflect(float3 wo, float3 m_19)
     return (((2.0 * dot(wo, m_19)) * m_19) - wo);
 }
 
-float3 sampling_ggx_standard_visible(float3 wi, float2 u_5)
+float3 sampling_ggx_standard_visible(float3 wi, float2 u_8)
 {
-    const float2 _e3 = math_sincos_turns(u_5.x);
-    float z_5 = (((1.0 - u_5.y) * (1.0 + wi.z)) - wi.z);
+    const float2 _e3 = math_sincos_turns(u_8.x);
+    float z_5 = (((1.0 - u_8.y) * (1.0 + wi.z)) - wi.z);
     float sin_theta = sqrt(clamp((1.0 - (z_5 * z_5)), 0.0, 1.0));
     return (float3((sin_theta * _e3), z_5) + wi);
 }
 
-float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_57, float3 wo_1, float2 u_6)
+float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_57, float3 wo_1, float2 u_9)
 {
     bool local_14 = (bool)0;
 
@@ -2012,8 +2181,8 @@ float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_57,
     if (!((_e12.z > 0.0))) {
         return (0.0).xxx;
     }
-    const float _e20 = sampling_clamp_unit(u_6.x);
-    const float _e22 = sampling_clamp_unit(u_6.y);
+    const float _e20 = sampling_clamp_unit(u_9.x);
+    const float _e22 = sampling_clamp_unit(u_9.y);
     const float3 _e24 = sampling_ggx_standard_visible(_e12, float2(_e20, _e22));
     const float3 _e25 = sampling_unstretch(_e9, _e24);
     if ((_e25.z > 0.0)) {
@@ -2029,10 +2198,10 @@ float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_57,
     return ((_e36.z > 0.0) ? _e36 : (0.0).xxx);
 }
 
-float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_58, float2 u_7)
+float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_58, float2 u_10)
 {
-    const float _e3 = sampling_clamp_unit(u_7.x);
-    const float _e5 = sampling_clamp_unit(u_7.y);
+    const float _e3 = sampling_clamp_unit(u_10.x);
+    const float _e5 = sampling_clamp_unit(u_10.y);
     const float2 _e6 = math_sincos_turns(_e5);
     float3 n_5 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
     const sampling_Warp _e13 = sampling_warp(r_58);
@@ -2062,8 +2231,8 @@ float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_60, flo
     }
     const float _e17 = ndf_ggx_d_matrix(r_60, m_21);
     const float _e20 = ndf_ggx_lambda_matrix(r_60, wo_2);
-    float v_10 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
-    return ((v_10 <= math_F32_MAX) ? v_10 : 0.0);
+    float v_15 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
+    return ((v_15 <= math_F32_MAX) ? v_15 : 0.0);
 }
 
 float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_61, float3 wo_3, float3 m_22)
@@ -2077,8 +2246,8 @@ float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r
     }
     const float _e14 = ndf_ggx_d_matrix(r_61, m_22);
     const float _e18 = ndf_ggx_lambda_matrix(r_61, _e8);
-    float v_11 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
-    return ((v_11 <= math_F32_MAX) ? v_11 : 0.0);
+    float v_16 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
+    return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
 }
 
 float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_62, float3 wo_4, float3 wi_1)
@@ -2088,12 +2257,12 @@ float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_62, float3 
     }
     const float3 _e8 = sampling_normalize_scaled(wo_4);
     const float3 _e9 = sampling_normalize_scaled(wi_1);
-    float3 h_24 = (_e8 + _e9);
-    float len = length(h_24);
+    float3 h_26 = (_e8 + _e9);
+    float len = length(h_26);
     if (!((len > 0.0))) {
         return 0.0;
     }
-    const float _e18 = sampling_reflection_pdf_from_normal(r_62, wo_4, (h_24 / (len).xxx));
+    const float _e18 = sampling_reflection_pdf_from_normal(r_62, wo_4, (h_26 / (len).xxx));
     return _e18;
 }
 
