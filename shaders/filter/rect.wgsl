@@ -11,8 +11,11 @@
 // With `u = x / alpha_x`, `v = y / alpha_y` the density is `f(u, v) / (pi alpha_x alpha_y)`,
 // `f = (1 + u^2 + v^2)^-2`, and the filter is the mean of `f` over
 // `[u_c +- H_u] x [v_c +- H_v]`. The printed eight-term formula cancels catastrophically (in
-// f32 already for moderate rectangles). The f32 algorithm here follows the Rust tiers, with
-// every path a sum of positive terms except the last:
+// f32 already for moderate rectangles). The f32 algorithm here follows the Rust tiers, every
+// path a sum of positive terms or a signed sum of four terms that do not cancel much:
+// - each axis is carried as its normalised interval, the ends formed as `(c -+ |h|) / alpha`
+//   before normalising ([`interval`]), so that a rectangle ending close to the peak keeps its
+//   distance to the accuracy of its ends;
 // - per axis, from its ratio `H / L` (`L^2 = 1 + (centre)^2 + (distance of the rectangle from
 //   the peak along the other axis)^2`, the distance to the density's complex poles):
 //   Gauss-Legendre with 2 nodes below `0.01`, 4 below `0.1`, 6 below `0.25` (error
@@ -20,14 +23,25 @@
 // - both axes short: the tensor Gauss-Legendre rule;
 // - one axis long: the rule in the short axis of the exact 1D mean in the long one
 //   ([`mean_1d`], written without cancellation; its `atan` is `math::atan`);
-// - both long: the four-edge closed form ([`edges`]), whose terms cancel: relative error
-//   about `8 eps (1 + u_c^2 + v_c^2)^(3/2) / min(H_u, H_v)` (the Rust crate measured
-//   `0.45 eps_f64` for the same factor; `math::atan`'s 8 ulp multiply it). Near the peak
-//   that is a few ulp; far in the tail of a sharp lobe with a footprint wider than the
-//   distance to the peak it grows, where the density is a small fraction of its peak.
-// Bound of the other paths: about 60 ulp (the centre and half extents enter normalised,
-// 5 ulp each, and `f` amplifies a relative change of `u` by at most 4; the nodes' `f` 9 ulp;
-// `mean_1d` 20 ulp).
+// - both long, within `sqrt(FAR2) = 0.5` (normalised) of the peak: the four-edge closed form
+//   ([`edges`]), whose four terms are angles of order one;
+// - both long and farther: the polar form of the Rust `far_field` ([`far_field`]): the
+//   integral is `-1/2` times the contour integral of `g d theta`, `g = 1 / (1 + r^2)`, one
+//   positive integral per edge, each split where `|y| = |x|` and taken by the 8-point
+//   Gauss-Legendre rule in `y / |x|` or `|x| / y` (rational in both: no `sin`/`cos`, whose
+//   WGSL accuracy is absolute). The four-edge form there cancelled like `1e-6 D^2` in f32
+//   (up to `0.25` relative far in the tail of sharp lobes); measured on lavapipe over
+//   rectangles with both sides long at distances `D` from `1e-2` to `1e6` lobe widths: the
+//   four-edge form within `4e-7` below `D = 0.3` and `3e-5` at `D ~ 3`, the polar form within
+//   `5e-7` beyond `D = 0.5` (`2e-4` at `D = 0.1`, where its poles come close): the switch at
+//   `0.5`.
+// Bound: about 60 ulp for the Gauss-Legendre and 1D paths (the ends and half extents enter
+// normalised, 5 ulp each, and `f` amplifies a relative change of `u` by at most 4; the nodes'
+// `f` 9 ulp; `mean_1d` 20 ulp), and for the two four-term forms 60 ulp plus 16 ulp times
+// their cancellation factor `sum |t_i| / |sum t_i|`, of order one (`gpu/src/checks/rect.rs`
+// computes it per case; measured worst over its far-tail cases `4e-7`). [`d_rect`] forms the
+// slope `-h_xy / h_z` in f32 (3 ulp), which a rectangle ending close to the peak amplifies
+// by `|u_c| / gap`.
 
 /// Normalised coordinates are clamped to this (`f` is below `1e-72` there, 0 in f32).
 const BIG: f32 = 1e18;
