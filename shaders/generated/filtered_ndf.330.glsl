@@ -76,6 +76,10 @@ const float math_INV_PI = 0.31830987;
 const float math_F32_MAX = 3.4028235e38;
 const float math_F32_MIN_POSITIVE = 1.1754944e-38;
 const float math_TAN_EIGHTH_PI = 0.41421357;
+const float math_LN2_HI = 0.69314575;
+const float math_LN2_LO = 1.4286068e-6;
+const float math_LOG2_E = 1.442695;
+const float math_SQRT_2_ = 1.4142135;
 const float ndf_roughness_ALPHA_MIN = 1e-8;
 const float ndf_roughness_ALPHA_MAX = 10000.0;
 const float kernel_covariance_KERNEL_MAX = 100000000.0;
@@ -110,6 +114,7 @@ const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
 const float filter_rect_BIG = 1e18;
 const float filter_rect_FAR2_ = 0.25;
 const uint filter_rect_TIER_CLOSED = 0u;
+const float filter_rect_lambda_BIG_K = 1000000000000.0;
 const float footprint_SIGMA_PIXEL = 0.5;
 const float footprint_jacobian_HZ_MIN = 1e-6;
 const uint kernel_clamp_FLOOR_NONE = 0u;
@@ -139,11 +144,11 @@ float math_atan(float x) {
     t = (shift ? ((_e12 - 1.0) / (_e15 + 1.0)) : _e11);
     float _e20 = t;
     float _e21 = t;
-    float z = (_e20 * _e21);
-    float p_3 = ((((((((-0.06451928 * z) + 0.10743731) * z) - 0.14263956) * z) + 0.1999954) * z) - 0.3333333);
+    float z_1 = (_e20 * _e21);
+    float p_3 = ((((((((-0.06451928 * z_1) + 0.10743731) * z_1) - 0.14263956) * z_1) + 0.1999954) * z_1) - 0.3333333);
     float _e36 = t;
     float _e37 = t;
-    r = (_e36 + ((_e37 * z) * p_3));
+    r = (_e36 + ((_e37 * z_1) * p_3));
     float _e42 = r;
     float _e44 = r;
     r = (shift ? (math_QUARTER_PI + _e44) : _e42);
@@ -158,20 +163,20 @@ float math_atan(float x) {
 vec2 math_sincos_turns(float u) {
     vec2 cs = vec2(0.0);
     float q_4 = roundEven((4.0 * u));
-    float r_63 = (u - (0.25 * q_4));
-    float z_1 = (r_63 * r_63);
-    float s_12 = (r_63 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
-    float c_9 = ((((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0);
-    int k_16 = (int(q_4) & 3);
-    cs = vec2(c_9, s_12);
-    if ((k_16 == 1)) {
-        cs = vec2(-(s_12), c_9);
+    float r_66 = (u - (0.25 * q_4));
+    float z_2 = (r_66 * r_66);
+    float s_12 = (r_66 * ((((((((41.47283 * z_2) - 76.69787) * z_2) + 81.6052) * z_2) - 41.3417) * z_2) + 6.2831855));
+    float c_10 = ((((((((59.22017 * z_2) - 85.44285) * z_2) + 64.939316) * z_2) - 19.739208) * z_2) + 1.0);
+    int k_17 = (int(q_4) & 3);
+    cs = vec2(c_10, s_12);
+    if ((k_17 == 1)) {
+        cs = vec2(-(s_12), c_10);
     } else {
-        if ((k_16 == 2)) {
-            cs = vec2(-(c_9), -(s_12));
+        if ((k_17 == 2)) {
+            cs = vec2(-(c_10), -(s_12));
         } else {
-            if ((k_16 == 3)) {
-                cs = vec2(s_12, -(c_9));
+            if ((k_17 == 3)) {
+                cs = vec2(s_12, -(c_10));
             }
         }
     }
@@ -180,13 +185,59 @@ vec2 math_sincos_turns(float u) {
 }
 
 float math_hypot(float x_1, float y) {
-    float m_23 = max(abs(x_1), abs(y));
-    if ((m_23 <= 0.0)) {
+    float m_24 = max(abs(x_1), abs(y));
+    if ((m_24 <= 0.0)) {
         return 0.0;
     }
-    float a_16 = (x_1 / m_23);
-    float b_4 = (y / m_23);
-    return (m_23 * sqrt(((a_16 * a_16) + (b_4 * b_4))));
+    float a_16 = (x_1 / m_24);
+    float b_4 = (y / m_24);
+    return (m_24 * sqrt(((a_16 * a_16) + (b_4 * b_4))));
+}
+
+float math_exp(float x_2) {
+    float xc = clamp(x_2, -87.0, 88.0);
+    float n_5 = roundEven((xc * math_LOG2_E));
+    float r_67 = ((xc - (n_5 * math_LN2_HI)) - (n_5 * math_LN2_LO));
+    float r2_ = (r_67 * r_67);
+    float p_4 = (((1.0 + r_67) + ((0.4999999 + (0.1666642 * r_67)) * r2_)) + (((0.041668225 + (0.008374816 * r_67)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
+    float s_13 = uintBitsToFloat((uint((int(n_5) + 127)) << 23u));
+    return ((x_2 >= -87.0) ? (p_4 * s_13) : 0.0);
+}
+
+float math_atanh2_(float z) {
+    float z2_ = (z * z);
+    float s_14 = (((((((((z2_ * 0.09090909) + 0.11111111) * z2_) + 0.14285715) * z2_) + 0.2) * z2_) + 0.33333334) * z2_);
+    return ((2.0 * z) + ((2.0 * z) * s_14));
+}
+
+float math_ln(float x_3) {
+    float e = 0.0;
+    float f = 0.0;
+    uint b_5 = floatBitsToUint(x_3);
+    e = float((int(((b_5 >> 23u) & 255u)) - 127));
+    f = uintBitsToFloat(((b_5 & 8388607u) | 1065353216u));
+    float _e17 = f;
+    if ((_e17 > math_SQRT_2_)) {
+        float _e20 = f;
+        f = (0.5 * _e20);
+        float _e23 = e;
+        e = (_e23 + 1.0);
+    }
+    float _e26 = f;
+    float _e29 = f;
+    float _e33 = math_atanh2_(((_e26 - 1.0) / (_e29 + 1.0)));
+    float _e34 = e;
+    float _e37 = e;
+    return ((_e34 * math_LN2_HI) + ((_e37 * math_LN2_LO) + _e33));
+}
+
+float math_ln_1p(float x_4) {
+    if ((x_4 < 0.5)) {
+        float _e6 = math_atanh2_((x_4 / (2.0 + x_4)));
+        return _e6;
+    }
+    float _e9 = math_ln((1.0 + x_4));
+    return _e9;
 }
 
 float ndf_roughness_clamp_alpha(float alpha) {
@@ -233,17 +284,17 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         return c_3;
     }
     float a_17 = (c_3.s_xx / scale);
-    float b_5 = (c_3.s_xy / scale);
-    float e_2 = (c_3.s_yy / scale);
-    float d_1 = (0.5 * (a_17 - e_2));
-    float r_64 = sqrt(((d_1 * d_1) + (b_5 * b_5)));
-    float lmax_1 = (((0.5 * (a_17 + e_2)) + r_64) * scale);
+    float b_6 = (c_3.s_xy / scale);
+    float e_3 = (c_3.s_yy / scale);
+    float d_1 = (0.5 * (a_17 - e_3));
+    float r_68 = sqrt(((d_1 * d_1) + (b_6 * b_6)));
+    float lmax_1 = (((0.5 * (a_17 + e_3)) + r_68) * scale);
     if ((lmax_1 <= max_eig)) {
         return c_3;
     }
     float lmin_1 = max((c_3.det / lmax_1), 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = (r_64 < 1e-18);
+        local = (r_68 < 1e-18);
     } else {
         local = true;
     }
@@ -251,12 +302,12 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     if (_e46) {
         return kernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
     }
-    float p_4 = (r_64 + abs(d_1));
-    float q_5 = ((p_4 > 0.0) ? ((b_5 * b_5) / p_4) : 0.0);
-    vec2 ee = ((d_1 >= 0.0) ? vec2(p_4, q_5) : vec2(q_5, p_4));
-    float inv_1 = (1.0 / (2.0 * r_64));
+    float p_5 = (r_68 + abs(d_1));
+    float q_5 = ((p_5 > 0.0) ? ((b_6 * b_6) / p_5) : 0.0);
+    vec2 ee = ((d_1 >= 0.0) ? vec2(p_5, q_5) : vec2(q_5, p_5));
+    float inv_1 = (1.0 / (2.0 * r_68));
     float p11_ = (ee.x * inv_1);
-    float p12_ = (b_5 * inv_1);
+    float p12_ = (b_6 * inv_1);
     float p22_ = (ee.y * inv_1);
     return kernel_covariance_Covariance(((max_eig * p11_) + (lmin_1 * p22_)), ((max_eig - lmin_1) * p12_), ((max_eig * p22_) + (lmin_1 * p11_)), (max_eig * lmin_1));
 }
@@ -326,19 +377,19 @@ float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5) {
 
 float filter_deferred_norm_eval(uint norm, vec3 dn_u, vec3 dn_v) {
     float a_18 = dot(dn_u, dn_u);
-    float c_10 = dot(dn_v, dn_v);
+    float c_11 = dot(dn_v, dn_v);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
-        return max(a_18, c_10);
+        return max(a_18, c_11);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        float _e11 = filter_deferred_max_eigenvalue(a_18, dot(dn_u, dn_v), c_10);
+        float _e11 = filter_deferred_max_eigenvalue(a_18, dot(dn_u, dn_v), c_11);
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        vec3 m_24 = max(abs(dn_u), abs(dn_v));
-        return max(max(m_24.x, m_24.y), m_24.z);
+        vec3 m_25 = max(abs(dn_u), abs(dn_v));
+        return max(max(m_25.x, m_25.y), m_25.z);
     }
-    return (a_18 + c_10);
+    return (a_18 + c_11);
 }
 
 float filter_deferred_clamp_kernel(filter_deferred_KernelConvention conv, float k_1) {
@@ -383,8 +434,8 @@ float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha
 }
 
 kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_3, vec3 dn_v_3, float sigma_sq) {
-    vec3 x_5 = (cross(dn_u_3, dn_v_3) * sigma_sq);
-    return kernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_5, x_5));
+    vec3 x_8 = (cross(dn_u_3, dn_v_3) * sigma_sq);
+    return kernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_8, x_8));
 }
 
 float filter_deferred_bandwidth_kernel(uint bandwidth, kernel_covariance_Covariance sigma) {
@@ -392,8 +443,8 @@ float filter_deferred_bandwidth_kernel(uint bandwidth, kernel_covariance_Covaria
         float _e7 = filter_deferred_max_eigenvalue(sigma.s_xx, sigma.s_xy, sigma.s_yy);
         return (2.0 * _e7);
     }
-    float t_1 = (sigma.s_xx + sigma.s_yy);
-    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_1) : t_1);
+    float t_10 = (sigma.s_xx + sigma.s_yy);
+    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_10) : t_10);
 }
 
 float filter_deferred_filtered_alpha(float alpha_4, kernel_covariance_Covariance sigma_1, uint bandwidth_1, float kappa) {
@@ -412,10 +463,10 @@ vec2 ndf_roughness_matrix_clamped_eigenvalues(vec2 l, float det, float tau) {
     if ((det >= tau)) {
         return l;
     }
-    float h_17 = (0.5 * (l.x + l.y));
+    float h_18 = (0.5 * (l.x + l.y));
     float gap = (tau - det);
-    float t_2 = (gap / (h_17 + sqrt(((h_17 * h_17) + gap))));
-    float l1_ = (l.x + t_2);
+    float t_11 = (gap / (h_18 + sqrt(((h_18 * h_18) + gap))));
+    float l1_ = (l.x + t_11);
     return vec2(l1_, (tau / l1_));
 }
 
@@ -471,9 +522,9 @@ float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5) {
 }
 
 vec3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, vec2 l_2) {
-    float c_11 = r_6.axis.x;
-    float s_13 = r_6.axis.y;
-    return vec3((((l_2.x * c_11) * c_11) + ((l_2.y * s_13) * s_13)), (((l_2.x - l_2.y) * c_11) * s_13), (((l_2.x * s_13) * s_13) + ((l_2.y * c_11) * c_11)));
+    float c_12 = r_6.axis.x;
+    float s_15 = r_6.axis.y;
+    return vec3((((l_2.x * c_12) * c_12) + ((l_2.y * s_15) * s_15)), (((l_2.x - l_2.y) * c_12) * s_15), (((l_2.x * s_15) * s_15) + ((l_2.y * c_12) * c_12)));
 }
 
 vec3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7) {
@@ -496,12 +547,12 @@ float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10
 
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3) {
     vec3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_12 = a_2.axis.x;
-    float s_14 = a_2.axis.y;
-    float k1_ = max(((((c_12 * c_12) * k_3.s_xx) + (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((s_14 * s_14) * k_3.s_yy)), 0.0);
-    float k2_ = max(((((s_14 * s_14) * k_3.s_xx) - (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((c_12 * c_12) * k_3.s_yy)), 0.0);
+    float c_13 = a_2.axis.x;
+    float s_16 = a_2.axis.y;
+    float k1_1 = max(((((c_13 * c_13) * k_3.s_xx) + (((2.0 * c_13) * s_16) * k_3.s_xy)) + ((s_16 * s_16) * k_3.s_yy)), 0.0);
+    float k2_1 = max(((((s_16 * s_16) * k_3.s_xx) - (((2.0 * c_13) * s_16) * k_3.s_xy)) + ((c_13 * c_13) * k_3.s_yy)), 0.0);
     float _e38 = ndf_roughness_matrix_determinant(a_2);
-    float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * max(k_3.det, 0.0)));
+    float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * max(k_3.det, 0.0)));
     ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
     return _e72;
 }
@@ -581,15 +632,15 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     float det_3 = 0.0;
     vec2 lc = min(a_6.eig, vec2(0.99));
     vec2 excess = (a_6.eig - lc);
-    vec2 p_5 = (lc / (vec2(1.0) - lc));
-    float c_13 = a_6.axis.x;
-    float s_15 = a_6.axis.y;
-    float p11_1 = (((p_5.x * c_13) * c_13) + ((p_5.y * s_15) * s_15));
-    float p12_1 = (((p_5.x - p_5.y) * c_13) * s_15);
-    float p22_1 = (((p_5.x * s_15) * s_15) + ((p_5.y * c_13) * c_13));
-    float k1_1 = max(((((c_13 * c_13) * k_4.s_xx) + (((2.0 * c_13) * s_15) * k_4.s_xy)) + ((s_15 * s_15) * k_4.s_yy)), 0.0);
-    float k2_1 = max(((((s_15 * s_15) * k_4.s_xx) - (((2.0 * c_13) * s_15) * k_4.s_xy)) + ((c_13 * c_13) * k_4.s_yy)), 0.0);
-    float d_2 = (((p_5.x * p_5.y) + (2.0 * ((p_5.y * k1_1) + (p_5.x * k2_1)))) + (4.0 * max(k_4.det, 0.0)));
+    vec2 p_6 = (lc / (vec2(1.0) - lc));
+    float c_14 = a_6.axis.x;
+    float s_17 = a_6.axis.y;
+    float p11_1 = (((p_6.x * c_14) * c_14) + ((p_6.y * s_17) * s_17));
+    float p12_1 = (((p_6.x - p_6.y) * c_14) * s_17);
+    float p22_1 = (((p_6.x * s_17) * s_17) + ((p_6.y * c_14) * c_14));
+    float k1_2 = max(((((c_14 * c_14) * k_4.s_xx) + (((2.0 * c_14) * s_17) * k_4.s_xy)) + ((s_17 * s_17) * k_4.s_yy)), 0.0);
+    float k2_2 = max(((((s_17 * s_17) * k_4.s_xx) - (((2.0 * c_14) * s_17) * k_4.s_xy)) + ((c_14 * c_14) * k_4.s_yy)), 0.0);
+    float d_2 = (((p_6.x * p_6.y) + (2.0 * ((p_6.y * k1_2) + (p_6.x * k2_2)))) + (4.0 * max(k_4.det, 0.0)));
     float q11_ = (p11_1 + (2.0 * k_4.s_xx));
     float q12_ = (p12_1 + (2.0 * k_4.s_xy));
     float q22_ = (p22_1 + (2.0 * k_4.s_yy));
@@ -600,11 +651,11 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     det_3 = (d_2 / den);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_13) * c_13) + ((excess.y * s_15) * s_15)));
+        b11_ = (_e114 + (((excess.x * c_14) * c_14) + ((excess.y * s_17) * s_17)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_13) * s_15));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_14) * s_17));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_15) * s_15) + ((excess.y * c_13) * c_13)));
+        b22_ = (_e130 + (((excess.x * s_17) * s_17) + ((excess.y * c_14) * c_14)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -658,11 +709,11 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_ro
 }
 
 float filter_proxy_effective_alpha(float alpha_7, float half_extent) {
-    float h_18 = abs(half_extent);
-    float _e3 = math_hypot(alpha_7, h_18);
-    float t_3 = ((_e3 > 0.0) ? (h_18 / _e3) : 0.0);
-    float _e9 = math_atan(t_3);
-    float ratio = ((t_3 > 0.0) ? (t_3 / _e9) : 1.0);
+    float h_19 = abs(half_extent);
+    float _e3 = math_hypot(alpha_7, h_19);
+    float t_12 = ((_e3 > 0.0) ? (h_19 / _e3) : 0.0);
+    float _e9 = math_atan(t_12);
+    float ratio = ((t_12 > 0.0) ? (t_12 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
 }
 
@@ -723,21 +774,21 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_rough
 }
 
 float ndf_ggx_p22_of(float q, float sqrt_det) {
-    float t_4 = (1.0 + q);
-    return ((q >= 0.0) ? (1.0 / (((math_PI * sqrt_det) * t_4) * t_4)) : 0.0);
+    float t_13 = (1.0 + q);
+    return ((q >= 0.0) ? (1.0 / (((math_PI * sqrt_det) * t_13) * t_13)) : 0.0);
 }
 
 float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1) {
     bool local_4 = false;
-    float t_5 = (q_xy + (m_z * m_z));
-    float v_10 = (1.0 / (((math_PI * sqrt_det_1) * t_5) * t_5));
+    float t_14 = (q_xy + (m_z * m_z));
+    float v_11 = (1.0 / (((math_PI * sqrt_det_1) * t_14) * t_14));
     if ((m_z > 0.0)) {
-        local_4 = (v_10 <= math_F32_MAX);
+        local_4 = (v_11 <= math_F32_MAX);
     } else {
         local_4 = false;
     }
     bool _e18 = local_4;
-    return (_e18 ? v_10 : 0.0);
+    return (_e18 ? v_11 : 0.0);
 }
 
 float ndf_ggx_lambda_of(float q_1, float abs_wz) {
@@ -761,8 +812,8 @@ float ndf_ggx_lambda_of(float q_1, float abs_wz) {
     if (_e21) {
         return math_F32_MAX;
     }
-    float r_65 = sqrt(((abs_wz * abs_wz) + q_1));
-    return (q_1 / ((2.0 * abs_wz) * (r_65 + abs_wz)));
+    float r_69 = sqrt(((abs_wz * abs_wz) + q_1));
+    return (q_1 / ((2.0 * abs_wz) * (r_69 + abs_wz)));
 }
 
 float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_21, vec2 s_3) {
@@ -904,8 +955,8 @@ float filter_rect_gl_weight(uint n_1, uint k_6) {
 }
 
 float filter_rect_f(float u_1, float v_3) {
-    float t_6 = ((1.0 + (u_1 * u_1)) + (v_3 * v_3));
-    return (1.0 / (t_6 * t_6));
+    float t_15 = ((1.0 + (u_1 * u_1)) + (v_3 * v_3));
+    return (1.0 / (t_15 * t_15));
 }
 
 float filter_rect_gl_mean(uint n_2, float u_2, float c_6, float h) {
@@ -939,12 +990,12 @@ float filter_rect_gl_mean(uint n_2, float u_2, float c_6, float h) {
     return _e28;
 }
 
-float filter_rect_atan2_upper(float y_1, float x_2) {
-    if ((x_2 > 0.0)) {
-        float _e5 = math_atan((y_1 / x_2));
+float filter_rect_atan2_upper(float y_1, float x_5) {
+    if ((x_5 > 0.0)) {
+        float _e5 = math_atan((y_1 / x_5));
         return _e5;
     }
-    float _e9 = math_atan((-(x_2) / y_1));
+    float _e9 = math_atan((-(x_5) / y_1));
     return (math_HALF_PI + _e9);
 }
 
@@ -967,18 +1018,18 @@ float filter_rect_mean_1d(vec4 i_4, float c2_) {
     float x0_ = ((i_4.z >= 0.0) ? i_4.x : -(i_4.y));
     float x1_ = ((i_4.z >= 0.0) ? i_4.y : -(i_4.x));
     float dx = (2.0 * i_4.w);
-    float c_14 = sqrt(c2_);
+    float c_15 = sqrt(c2_);
     float r02_ = (c2_ + (x0_ * x0_));
     float r12_ = (c2_ + (x1_ * x1_));
     float x01_ = (x0_ * x1_);
-    float _e27 = filter_rect_atan2_upper((c_14 * dx), (c2_ + x01_));
-    float inv_2 = (1.0 / (((2.0 * c_14) * c2_) * dx));
+    float _e27 = filter_rect_atan2_upper((c_15 * dx), (c2_ + x01_));
+    float inv_2 = (1.0 / (((2.0 * c_15) * c2_) * dx));
     float p2_ = ((2.0 * r02_) * r12_);
     if ((x0_ <= 0.0)) {
         return ((_e27 * inv_2) + (((c2_ - x01_) / p2_) / c2_));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
-    float _e49 = filter_rect_delta_minus_sin(_e27, ((c_14 * dx) / rr));
+    float _e49 = filter_rect_delta_minus_sin(_e27, ((c_15 * dx) / rr));
     return ((_e49 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_ * x1_)) + c2_) / (rr + x01_))) / p2_));
 }
 
@@ -1017,9 +1068,9 @@ float filter_rect_gl_mean_1d(uint n_3, float c_7, float h_1, vec4 other) {
 
 float filter_rect_edge(float u_3, float dv, float v01_) {
     float s2_ = (1.0 + (u_3 * u_3));
-    float s_16 = sqrt(s2_);
-    float _e10 = filter_rect_atan2_upper((dv * s_16), (s2_ + v01_));
-    return ((u_3 / s_16) * _e10);
+    float s_18 = sqrt(s2_);
+    float _e10 = filter_rect_atan2_upper((dv * s_18), (s2_ + v01_));
+    return ((u_3 / s_18) * _e10);
 }
 
 float filter_rect_edges(vec4 u_4, vec4 v_4) {
@@ -1058,8 +1109,8 @@ float filter_rect_gl8_weight(uint k_10) {
 float filter_rect_polar_near(float x2_, float lo, float hi) {
     float acc_2 = 0.0;
     uint k_11 = 0u;
-    float c_15 = (0.5 * (lo + hi));
-    float h_19 = (0.5 * (hi - lo));
+    float c_16 = (0.5 * (lo + hi));
+    float h_20 = (0.5 * (hi - lo));
     bool loop_init_2 = true;
     while(true) {
         if (!loop_init_2) {
@@ -1075,9 +1126,9 @@ float filter_rect_polar_near(float x2_, float lo, float hi) {
         {
             uint _e16 = k_11;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_3 = (h_19 * _e17);
-            float q0_ = (1.0 + ((c_15 - d_3) * (c_15 - d_3)));
-            float q1_ = (1.0 + ((c_15 + d_3) * (c_15 + d_3)));
+            float d_3 = (h_20 * _e17);
+            float q0_ = (1.0 + ((c_16 - d_3) * (c_16 - d_3)));
+            float q1_ = (1.0 + ((c_16 + d_3) * (c_16 + d_3)));
             float _e29 = acc_2;
             uint _e30 = k_11;
             float _e31 = filter_rect_gl8_weight(_e30);
@@ -1091,8 +1142,8 @@ float filter_rect_polar_near(float x2_, float lo, float hi) {
 float filter_rect_polar_far(float x2_1, float lo_1, float hi_1) {
     float acc_3 = 0.0;
     uint k_12 = 0u;
-    float c_16 = (0.5 * (lo_1 + hi_1));
-    float h_20 = (0.5 * (hi_1 - lo_1));
+    float c_17 = (0.5 * (lo_1 + hi_1));
+    float h_21 = (0.5 * (hi_1 - lo_1));
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
@@ -1108,13 +1159,13 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1) {
         {
             uint _e16 = k_12;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_4 = (h_20 * _e17);
-            float t0_ = ((c_16 - d_4) * (c_16 - d_4));
-            float t1_ = ((c_16 + d_4) * (c_16 + d_4));
+            float d_4 = (h_21 * _e17);
+            float t0_2 = ((c_17 - d_4) * (c_17 - d_4));
+            float t1_2 = ((c_17 + d_4) * (c_17 + d_4));
             float _e25 = acc_3;
             uint _e26 = k_12;
             float _e27 = filter_rect_gl8_weight(_e26);
-            acc_3 = (_e25 + (_e27 * ((t0_ / ((1.0 + t0_) * (t0_ + (x2_1 * (1.0 + t0_))))) + (t1_ / ((1.0 + t1_) * (t1_ + (x2_1 * (1.0 + t1_))))))));
+            acc_3 = (_e25 + (_e27 * ((t0_2 / ((1.0 + t0_2) * (t0_2 + (x2_1 * (1.0 + t0_2))))) + (t1_2 / ((1.0 + t1_2) * (t1_2 + (x2_1 * (1.0 + t1_2))))))));
         }
     }
     float _e50 = acc_3;
@@ -1138,9 +1189,9 @@ float filter_rect_edge_range(float ax, float a_9, float b_2) {
     return _e20;
 }
 
-float filter_rect_edge_polar(float x_3, float a_10, float b_3) {
+float filter_rect_edge_polar(float x_6, float a_10, float b_3) {
     float v_6 = 0.0;
-    float ax_1 = abs(x_3);
+    float ax_1 = abs(x_6);
     if ((ax_1 < 1e-12)) {
         return 0.0;
     }
@@ -1159,7 +1210,7 @@ float filter_rect_edge_polar(float x_3, float a_10, float b_3) {
     }
     float _e22 = v_6;
     float _e24 = v_6;
-    return ((x_3 > 0.0) ? _e24 : -(_e22));
+    return ((x_6 > 0.0) ? _e24 : -(_e22));
 }
 
 float filter_rect_far_field(vec4 u_5, vec4 v_7) {
@@ -1235,9 +1286,9 @@ float filter_rect_mean_f(vec4 u_6, vec4 v_8) {
 
 vec4 filter_rect_interval(float c_8, float h_2, float a_11) {
     float ah = abs(h_2);
-    float lo_2 = clamp(((c_8 - ah) / a_11), -1e18, filter_rect_BIG);
+    float lo_3 = clamp(((c_8 - ah) / a_11), -1e18, filter_rect_BIG);
     float hi_2 = clamp(((c_8 + ah) / a_11), -1e18, filter_rect_BIG);
-    return vec4(lo_2, hi_2, clamp((c_8 / a_11), -1e18, filter_rect_BIG), min((ah / a_11), filter_rect_BIG));
+    return vec4(lo_3, hi_2, clamp((c_8 / a_11), -1e18, filter_rect_BIG), min((ah / a_11), filter_rect_BIG));
 }
 
 float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_36, vec2 center, vec2 half_extent_4) {
@@ -1275,16 +1326,16 @@ float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_37, vec3 h_3, 
         return _e18;
     }
     float _e24 = filter_rect_p22_rect(r_37, (-(h_3.xy) / vec2(h_3.z)), half_extent_5);
-    float z2_ = (h_3.z * h_3.z);
-    return min((_e24 / (z2_ * z2_)), math_F32_MAX);
+    float z2_1 = (h_3.z * h_3.z);
+    return min((_e24 / (z2_1 * z2_1)), math_F32_MAX);
 }
 
 float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_38, vec2 hpp, vec3 h_4, vec2 footprint) {
     bool local_10 = false;
     float a_24 = r_38.alpha.x;
-    float b_6 = r_38.alpha.y;
+    float b_7 = r_38.alpha.y;
     float a_2_ = (a_24 * a_24);
-    float b_2_ = (b_6 * b_6);
+    float b_2_ = (b_7 * b_7);
     float x1_2 = (hpp.x - footprint.x);
     float x2_3 = (hpp.x + footprint.x);
     float y1_ = (hpp.y - footprint.y);
@@ -1293,31 +1344,321 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_38, ve
     float sx2_ = sqrt(((x2_3 * x2_3) + a_2_));
     float sy1_ = sqrt(((y1_ * y1_) + b_2_));
     float sy2_ = sqrt(((y2_ * y2_) + b_2_));
-    float _e37 = math_atan(((y1_ * a_24) / (sx1_ * b_6)));
-    float _e41 = math_atan(((y2_ * a_24) / (sx1_ * b_6)));
-    float _e48 = math_atan(((y1_ * a_24) / (sx2_ * b_6)));
-    float _e53 = math_atan(((y2_ * a_24) / (sx2_ * b_6)));
-    float _e62 = math_atan(((x1_2 * b_6) / (a_24 * sy1_)));
-    float _e66 = math_atan(((x2_3 * b_6) / (a_24 * sy1_)));
-    float _e73 = math_atan(((x1_2 * b_6) / (a_24 * sy2_)));
-    float _e78 = math_atan(((x2_3 * b_6) / (a_24 * sy2_)));
+    float _e37 = math_atan(((y1_ * a_24) / (sx1_ * b_7)));
+    float _e41 = math_atan(((y2_ * a_24) / (sx1_ * b_7)));
+    float _e48 = math_atan(((y1_ * a_24) / (sx2_ * b_7)));
+    float _e53 = math_atan(((y2_ * a_24) / (sx2_ * b_7)));
+    float _e62 = math_atan(((x1_2 * b_7) / (a_24 * sy1_)));
+    float _e66 = math_atan(((x2_3 * b_7) / (a_24 * sy1_)));
+    float _e73 = math_atan(((x1_2 * b_7) / (a_24 * sy2_)));
+    float _e78 = math_atan(((x2_3 * b_7) / (a_24 * sy2_)));
     float val = ((((x1_2 * (_e37 - _e41)) / sx1_) + ((x2_3 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
     float den_1 = ((6.2831855 * (x1_2 - x2_3)) * (y1_ - y2_));
     float hz4_ = (((h_4.z * h_4.z) * h_4.z) * h_4.z);
-    float v_11 = ((val / den_1) / max(hz4_, 0.001));
-    if ((abs(v_11) <= math_F32_MAX)) {
+    float v_12 = ((val / den_1) / max(hz4_, 0.001));
+    if ((abs(v_12) <= math_F32_MAX)) {
         local_10 = (den_1 != 0.0);
     } else {
         local_10 = false;
     }
     bool _e109 = local_10;
-    return (_e109 ? v_11 : 0.0);
+    return (_e109 ? v_12 : 0.0);
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_39, float sigma_2) {
-    vec2 w_16 = (r_39.half_extent * (2.0 * sigma_2));
-    vec2 v_12 = (w_16 * w_16);
-    return kernel_covariance_Covariance(v_12.x, 0.0, v_12.y, (v_12.x * v_12.y));
+float filter_rect_lambda_rho(float t_1) {
+    float a_25 = abs(t_1);
+    if ((a_25 > 1.0)) {
+        float i_11 = (1.0 / a_25);
+        return (a_25 * sqrt((1.0 + (i_11 * i_11))));
+    }
+    return sqrt((1.0 + (t_1 * t_1)));
+}
+
+float filter_rect_lambda_e_neg(float t_2, float r_39) {
+    return ((t_2 >= 0.0) ? (1.0 / (r_39 + t_2)) : (r_39 - t_2));
+}
+
+float filter_rect_lambda_asinh_of(float t_3, float r_40) {
+    float v_9 = 0.0;
+    float a_26 = abs(t_3);
+    if ((a_26 > 1.0)) {
+        float _e7 = math_ln((a_26 + r_40));
+        v_9 = _e7;
+    } else {
+        float _e13 = math_ln_1p((a_26 + ((a_26 * a_26) / (1.0 + r_40))));
+        v_9 = _e13;
+    }
+    float _e14 = v_9;
+    float _e15 = v_9;
+    return ((t_3 < 0.0) ? -(_e15) : _e14);
+}
+
+float filter_rect_lambda_psi(float t_4) {
+    float _e1 = filter_rect_lambda_rho(t_4);
+    float _e2 = filter_rect_lambda_e_neg(t_4, _e1);
+    return (0.5 * _e2);
+}
+
+float filter_rect_lambda_psi1_(float t_5) {
+    float _e1 = filter_rect_lambda_rho(t_5);
+    float _e2 = filter_rect_lambda_e_neg(t_5, _e1);
+    float _e3 = filter_rect_lambda_asinh_of(t_5, _e1);
+    return (0.25 * (_e3 - ((0.5 * _e2) * _e2)));
+}
+
+float filter_rect_lambda_psi2_(float t_6) {
+    float _e1 = filter_rect_lambda_rho(t_6);
+    float _e2 = filter_rect_lambda_e_neg(t_6, _e1);
+    float _e3 = filter_rect_lambda_asinh_of(t_6, _e1);
+    return (0.25 * ((((t_6 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336)));
+}
+
+float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_9) {
+    float _e3 = filter_rect_lambda_rho(t0_);
+    float _e4 = filter_rect_lambda_rho(t1_);
+    float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
+    float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
+    float s_19 = (_e5 + _e6);
+    float d_5 = ((w_9 * s_19) / (_e3 + _e4));
+    float _e12 = math_ln_1p((d_5 / _e6));
+    return (0.25 * (_e12 + ((0.5 * d_5) * s_19)));
+}
+
+float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_10) {
+    float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_10);
+    return (_e3 / w_10);
+}
+
+uint filter_rect_lambda_rule(uint t_7) {
+    return ((t_7 == filter_rect_TIER_CLOSED) ? 6u : t_7);
+}
+
+float filter_rect_lambda_mean_psi1_(float t_8, float k_14) {
+    float acc_5 = 0.0;
+    uint j = 0u;
+    if ((k_14 == 0.0)) {
+        float _e4 = filter_rect_lambda_psi1_(t_8);
+        return _e4;
+    }
+    uint _e9 = filter_rect_tier((k_14 * k_14), (1.0 + (t_8 * t_8)));
+    if ((_e9 == filter_rect_TIER_CLOSED)) {
+        float _e13 = filter_rect_lambda_psi2_((t_8 + k_14));
+        float _e15 = filter_rect_lambda_psi2_((t_8 - k_14));
+        return ((_e13 - _e15) / (2.0 * k_14));
+    }
+    bool loop_init_5 = true;
+    while(true) {
+        if (!loop_init_5) {
+            uint _e42 = j;
+            j = (_e42 + 1u);
+        }
+        loop_init_5 = false;
+        uint _e24 = j;
+        if ((_e24 < (_e9 / 2u))) {
+        } else {
+            break;
+        }
+        {
+            uint _e28 = j;
+            float _e29 = filter_rect_gl_node(_e9, _e28);
+            float a_27 = (k_14 * _e29);
+            float _e31 = acc_5;
+            uint _e32 = j;
+            float _e33 = filter_rect_gl_weight(_e9, _e32);
+            float _e35 = filter_rect_lambda_psi1_((t_8 - a_27));
+            float _e37 = filter_rect_lambda_psi1_((t_8 + a_27));
+            acc_5 = (_e31 + (_e33 * (_e35 + _e37)));
+        }
+    }
+    float _e44 = acc_5;
+    return _e44;
+}
+
+float filter_rect_lambda_gl_psi(uint t_9, float c_9, float h_5) {
+    float acc_6 = 0.0;
+    uint j_1 = 0u;
+    uint _e3 = filter_rect_lambda_rule(t_9);
+    bool loop_init_6 = true;
+    while(true) {
+        if (!loop_init_6) {
+            uint _e26 = j_1;
+            j_1 = (_e26 + 1u);
+        }
+        loop_init_6 = false;
+        uint _e8 = j_1;
+        if ((_e8 < (_e3 / 2u))) {
+        } else {
+            break;
+        }
+        {
+            uint _e12 = j_1;
+            float _e13 = filter_rect_gl_node(_e3, _e12);
+            float a_28 = (h_5 * _e13);
+            float _e15 = acc_6;
+            uint _e16 = j_1;
+            float _e17 = filter_rect_gl_weight(_e3, _e16);
+            float _e19 = filter_rect_lambda_psi((c_9 - a_28));
+            float _e21 = filter_rect_lambda_psi((c_9 + a_28));
+            acc_6 = (_e15 + (_e17 * (_e19 + _e21)));
+        }
+    }
+    float _e28 = acc_6;
+    return _e28;
+}
+
+float filter_rect_lambda_expected_psi(float m_10, float k1_, float k2_, float lo_2) {
+    float acc_7 = 0.0;
+    uint j_2 = 0u;
+    float acc_8 = 0.0;
+    uint j_3 = 0u;
+    float ks = min(k1_, k2_);
+    float kl = max(k1_, k2_);
+    float near_l = max((m_10 - ks), 0.0);
+    uint _e13 = filter_rect_tier((kl * kl), (1.0 + (near_l * near_l)));
+    if ((_e13 != filter_rect_TIER_CLOSED)) {
+        float near_s = max((m_10 - kl), 0.0);
+        uint _e23 = filter_rect_tier((ks * ks), (1.0 + (near_s * near_s)));
+        bool loop_init_7 = true;
+        while(true) {
+            if (!loop_init_7) {
+                uint _e46 = j_2;
+                j_2 = (_e46 + 1u);
+            }
+            loop_init_7 = false;
+            uint _e28 = j_2;
+            if ((_e28 < (_e13 / 2u))) {
+            } else {
+                break;
+            }
+            {
+                uint _e32 = j_2;
+                float _e33 = filter_rect_gl_node(_e13, _e32);
+                float a_29 = (kl * _e33);
+                float _e35 = acc_7;
+                uint _e36 = j_2;
+                float _e37 = filter_rect_gl_weight(_e13, _e36);
+                float _e39 = filter_rect_lambda_gl_psi(_e23, (m_10 - a_29), ks);
+                float _e41 = filter_rect_lambda_gl_psi(_e23, (m_10 + a_29), ks);
+                acc_7 = (_e35 + (_e37 * (_e39 + _e41)));
+            }
+        }
+        float _e48 = acc_7;
+        return _e48;
+    }
+    float hi_3 = (m_10 + kl);
+    float w_19 = (2.0 * kl);
+    if ((ks == 0.0)) {
+        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_3, w_19);
+        return _e54;
+    }
+    uint _e59 = filter_rect_tier((ks * ks), (1.0 + (lo_2 * lo_2)));
+    if ((_e59 != filter_rect_TIER_CLOSED)) {
+        bool loop_init_8 = true;
+        while(true) {
+            if (!loop_init_8) {
+                uint _e86 = j_3;
+                j_3 = (_e86 + 1u);
+            }
+            loop_init_8 = false;
+            uint _e66 = j_3;
+            if ((_e66 < (_e59 / 2u))) {
+            } else {
+                break;
+            }
+            {
+                uint _e70 = j_3;
+                float _e71 = filter_rect_gl_node(_e59, _e70);
+                float x_9 = (ks * _e71);
+                float _e73 = acc_8;
+                uint _e74 = j_3;
+                float _e75 = filter_rect_gl_weight(_e59, _e74);
+                float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_9), (hi_3 + x_9), w_19);
+                float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_9), (hi_3 - x_9), w_19);
+                acc_8 = (_e73 + (_e75 * (_e78 + _e81)));
+            }
+        }
+        float _e88 = acc_8;
+        return _e88;
+    }
+    float _e89 = filter_rect_lambda_mean_psi1_(hi_3, ks);
+    float _e90 = filter_rect_lambda_mean_psi1_(lo_2, ks);
+    return ((_e89 - _e90) / w_19);
+}
+
+float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_41, vec2 half_extent_6, vec3 w_in) {
+    vec3 w_11 = vec3(0.0);
+    bool local_11 = false;
+    bool local_12 = false;
+    bool local_13 = false;
+    float big_2 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
+    w_11 = w_in;
+    if (!((big_2 > 1.1529215e18))) {
+        if ((big_2 < 8.6736174e-19)) {
+            local_12 = (big_2 > 0.0);
+        } else {
+            local_12 = false;
+        }
+        bool _e24 = local_12;
+        local_11 = _e24;
+    } else {
+        local_11 = true;
+    }
+    bool _e26 = local_11;
+    if (_e26) {
+        int e_4 = (int(((floatBitsToUint(big_2) >> 23u) & 255u)) - 127);
+        w_11 = (w_in * uintBitsToFloat((uint((127 - e_4)) << 23u)));
+    }
+    float _e43 = w_11.x;
+    float _e45 = w_11.y;
+    float _e46 = math_hypot(_e43, _e45);
+    if ((_e46 <= 0.0)) {
+        return 0.0;
+    }
+    float _e51 = w_11.z;
+    float wz = abs(_e51);
+    if (!((wz > 0.0))) {
+        return math_F32_MAX;
+    }
+    vec2 alpha_11 = r_41.alpha;
+    vec2 ha = min(abs(half_extent_6), (alpha_11 * filter_rect_lambda_BIG_K));
+    float _e63 = w_11.x;
+    float ux = (abs(_e63) / _e46);
+    float _e67 = w_11.y;
+    float uy = (abs(_e67) / _e46);
+    float px = (ux * alpha_11.x);
+    float py = (uy * alpha_11.y);
+    float _e74 = math_hypot(px, py);
+    float k1_3 = ((px / _e74) * (ha.x / alpha_11.x));
+    float k2_3 = ((py / _e74) * (ha.y / alpha_11.y));
+    if ((k1_3 == 0.0)) {
+        local_13 = (k2_3 == 0.0);
+    } else {
+        local_13 = false;
+    }
+    bool _e92 = local_13;
+    if (_e92) {
+        vec3 _e93 = w_11;
+        float _e94 = ndf_ggx_lambda_axis_aligned(r_41, _e93);
+        return _e94;
+    }
+    float mm = ((wz / _e46) / _e74);
+    if ((mm > 1e18)) {
+        return ((0.25 / mm) / mm);
+    }
+    bool long_x = (k1_3 >= k2_3);
+    float _e104 = w_11.y;
+    float _e107 = w_11.x;
+    float wl = (long_x ? abs(_e107) : abs(_e104));
+    float hl = (long_x ? ha.x : ha.y);
+    float lo_4 = (((wz - (wl * hl)) / _e46) / _e74);
+    float _e117 = filter_rect_lambda_expected_psi(mm, k1_3, k2_3, lo_4);
+    return (_e117 / mm);
+}
+
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_42, float sigma_2) {
+    vec2 w_20 = (r_42.half_extent * (2.0 * sigma_2));
+    vec2 v_13 = (w_20 * w_20);
+    return kernel_covariance_Covariance(v_13.x, 0.0, v_13.y, (v_13.x * v_13.y));
 }
 
 footprint_Footprint footprint_from_slope_derivatives(vec2 dh_u, vec2 dh_v) {
@@ -1329,16 +1670,16 @@ footprint_Footprint footprint_from_projected_derivatives(vec2 dp_u, vec2 dp_v) {
 }
 
 footprint_Footprint footprint_from_projected_derivatives_in_slope(vec3 h_in, vec2 dp_u_1, vec2 dp_v_1) {
-    float big_2 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
-    if ((big_2 <= 0.0)) {
+    float big_3 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if ((big_3 <= 0.0)) {
         return footprint_Footprint(vec2(0.0), vec2(0.0));
     }
-    vec3 h0_ = (h_in / vec3(big_2));
-    vec3 h_21 = (h0_ / vec3(length(h0_)));
-    float hz = max(h_21.z, 1e-6);
-    float k_17 = (-1.0 / ((hz * hz) * hz));
-    mat2x2 j = mat2x2(vec2(((h_21.x * h_21.x) + (h_21.z * h_21.z)), (h_21.x * h_21.y)), vec2((h_21.x * h_21.y), ((h_21.y * h_21.y) + (h_21.z * h_21.z))));
-    return footprint_Footprint(((j * dp_u_1) * k_17), ((j * dp_v_1) * k_17));
+    vec3 h0_ = (h_in / vec3(big_3));
+    vec3 h_22 = (h0_ / vec3(length(h0_)));
+    float hz = max(h_22.z, 1e-6);
+    float k_18 = (-1.0 / ((hz * hz) * hz));
+    mat2x2 j_4 = mat2x2(vec2(((h_22.x * h_22.x) + (h_22.z * h_22.z)), (h_22.x * h_22.y)), vec2((h_22.x * h_22.y), ((h_22.y * h_22.y) + (h_22.z * h_22.z))));
+    return footprint_Footprint(((j_4 * dp_u_1) * k_18), ((j_4 * dp_v_1) * k_18));
 }
 
 footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) {
@@ -1349,10 +1690,10 @@ footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) 
 
 kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3) {
     vec2 u_11 = fp.dh_u;
-    vec2 v_13 = fp.dh_v;
+    vec2 v_14 = fp.dh_v;
     float s2_1 = (sigma_3 * sigma_3);
-    float cross_1 = (((u_11.x * v_13.y) - (u_11.y * v_13.x)) * s2_1);
-    return kernel_covariance_Covariance((((u_11.x * u_11.x) + (v_13.x * v_13.x)) * s2_1), (((u_11.x * u_11.y) + (v_13.x * v_13.y)) * s2_1), (((u_11.y * u_11.y) + (v_13.y * v_13.y)) * s2_1), (cross_1 * cross_1));
+    float cross_1 = (((u_11.x * v_14.y) - (u_11.y * v_14.x)) * s2_1);
+    return kernel_covariance_Covariance((((u_11.x * u_11.x) + (v_14.x * v_14.x)) * s2_1), (((u_11.x * u_11.y) + (v_14.x * v_14.y)) * s2_1), (((u_11.y * u_11.y) + (v_14.y * v_14.y)) * s2_1), (cross_1 * cross_1));
 }
 
 kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1) {
@@ -1365,115 +1706,115 @@ float footprint_max_extent(footprint_Footprint fp_2) {
 
 footprint_jacobian_Polar footprint_jacobian_polar(vec3 h_in_1) {
     vec2 cs_1 = vec2(1.0, 0.0);
-    float big_3 = max(max(abs(h_in_1.x), abs(h_in_1.y)), abs(h_in_1.z));
-    if ((big_3 <= 0.0)) {
+    float big_4 = max(max(abs(h_in_1.x), abs(h_in_1.y)), abs(h_in_1.z));
+    if ((big_4 <= 0.0)) {
         return footprint_jacobian_Polar(vec3(0.0, 0.0, 1.0), vec2(1.0, 0.0));
     }
-    vec3 h0_1 = (h_in_1 / vec3(big_3));
-    vec3 h_22 = (h0_1 / vec3(length(h0_1)));
-    float qs = max(abs(h_22.x), abs(h_22.y));
+    vec3 h0_1 = (h_in_1 / vec3(big_4));
+    vec3 h_23 = (h0_1 / vec3(length(h0_1)));
+    float qs = max(abs(h_23.x), abs(h_23.y));
     if ((qs > 0.0)) {
-        vec2 q_6 = (h_22.xy / vec2(qs));
+        vec2 q_6 = (h_23.xy / vec2(qs));
         cs_1 = (q_6 / vec2(length(q_6)));
     }
-    if ((h_22.z >= footprint_jacobian_HZ_MIN)) {
+    if ((h_23.z >= footprint_jacobian_HZ_MIN)) {
         vec2 _e44 = cs_1;
-        return footprint_jacobian_Polar(h_22, _e44);
+        return footprint_jacobian_Polar(h_23, _e44);
     }
     vec2 _e47 = cs_1;
     vec2 _e51 = cs_1;
     return footprint_jacobian_Polar(vec3((1.0 * _e47), footprint_jacobian_HZ_MIN), _e51);
 }
 
-vec3 footprint_jacobian_sanitize(vec3 h_5) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
+vec3 footprint_jacobian_sanitize(vec3 h_6) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
     return _e1.h;
 }
 
-footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(vec3 h_6) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
+footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(vec3 h_7) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
     float st = length(_e1.h.xy);
     return footprint_jacobian_SphericalBasis(vec3((_e1.h.z * _e1.cs), -(st)), vec3(-(_e1.cs.y), _e1.cs.x, 0.0));
 }
 
-vec2 footprint_jacobian_spherical_components(vec3 h_7, vec3 dh) {
-    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_7);
+vec2 footprint_jacobian_spherical_components(vec3 h_8, vec3 dh) {
+    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_8);
     return vec2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
 }
 
-mat2x2 footprint_jacobian_sphere_to_projected(vec3 h_8) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
+mat2x2 footprint_jacobian_sphere_to_projected(vec3 h_9) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_9);
     return mat2x2((_e1.h.z * _e1.cs), vec2(-(_e1.cs.y), _e1.cs.x));
 }
 
 mat2x2 footprint_jacobian_projected_to_slope(vec3 h_in_2) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    vec3 h_23 = _e1.h;
-    float k_18 = (-1.0 / ((h_23.z * h_23.z) * h_23.z));
-    float xy = (h_23.x * h_23.y);
-    return mat2x2((vec2(((h_23.x * h_23.x) + (h_23.z * h_23.z)), xy) * k_18), (vec2(xy, ((h_23.y * h_23.y) + (h_23.z * h_23.z))) * k_18));
+    vec3 h_24 = _e1.h;
+    float k_19 = (-1.0 / ((h_24.z * h_24.z) * h_24.z));
+    float xy = (h_24.x * h_24.y);
+    return mat2x2((vec2(((h_24.x * h_24.x) + (h_24.z * h_24.z)), xy) * k_19), (vec2(xy, ((h_24.y * h_24.y) + (h_24.z * h_24.z))) * k_19));
 }
 
 mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_3) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_3);
-    vec3 h_24 = _e1.h;
-    float xy_1 = (h_24.x * h_24.y);
-    return mat2x2((vec2(((h_24.y * h_24.y) + (h_24.z * h_24.z)), -(xy_1)) * -(h_24.z)), (vec2(-(xy_1), ((h_24.x * h_24.x) + (h_24.z * h_24.z))) * -(h_24.z)));
+    vec3 h_25 = _e1.h;
+    float xy_1 = (h_25.x * h_25.y);
+    return mat2x2((vec2(((h_25.y * h_25.y) + (h_25.z * h_25.z)), -(xy_1)) * -(h_25.z)), (vec2(-(xy_1), ((h_25.x * h_25.x) + (h_25.z * h_25.z))) * -(h_25.z)));
 }
 
-mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_9) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_9);
-    float k_19 = (-1.0 / (_e1.h.z * _e1.h.z));
-    return mat2x2((_e1.cs * k_19), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_19));
-}
-
-float footprint_jacobian_det_sphere_to_projected(vec3 h_10) {
+mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_10) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_10);
+    float k_20 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return mat2x2((_e1.cs * k_20), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_20));
+}
+
+float footprint_jacobian_det_sphere_to_projected(vec3 h_11) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_11);
     return _e1.h.z;
 }
 
-float footprint_jacobian_det_projected_to_slope(vec3 h_11) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_11);
-    float z_2 = _e1.h.z;
-    float z2_1 = (z_2 * z_2);
-    return (1.0 / (z2_1 * z2_1));
-}
-
-float footprint_jacobian_det_sphere_to_slope(vec3 h_12) {
+float footprint_jacobian_det_projected_to_slope(vec3 h_12) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_12);
     float z_3 = _e1.h.z;
-    return (1.0 / ((z_3 * z_3) * z_3));
+    float z2_2 = (z_3 * z_3);
+    return (1.0 / (z2_2 * z2_2));
 }
 
-vec2 footprint_jacobian_spherical_to_slope(vec3 h_13, vec2 e) {
-    mat2x2 _e2 = footprint_jacobian_sphere_to_slope(h_13);
-    return (_e2 * e);
+float footprint_jacobian_det_sphere_to_slope(vec3 h_13) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_13);
+    float z_4 = _e1.h.z;
+    return (1.0 / ((z_4 * z_4) * z_4));
 }
 
-vec2 footprint_jacobian_spherical_to_projected(vec3 h_14, vec2 e_1) {
-    mat2x2 _e2 = footprint_jacobian_sphere_to_projected(h_14);
+vec2 footprint_jacobian_spherical_to_slope(vec3 h_14, vec2 e_1) {
+    mat2x2 _e2 = footprint_jacobian_sphere_to_slope(h_14);
     return (_e2 * e_1);
 }
 
-vec2 footprint_slope_slope_from_sphere(vec3 h_15) {
-    float z_4 = max(h_15.z, math_F32_MIN_POSITIVE);
-    return clamp((-(h_15.xy) / vec2(z_4)), vec2(-3.4028235e38), vec2(3.4028235e38));
+vec2 footprint_jacobian_spherical_to_projected(vec3 h_15, vec2 e_2) {
+    mat2x2 _e2 = footprint_jacobian_sphere_to_projected(h_15);
+    return (_e2 * e_2);
+}
+
+vec2 footprint_slope_slope_from_sphere(vec3 h_16) {
+    float z_5 = max(h_16.z, math_F32_MIN_POSITIVE);
+    return clamp((-(h_16.xy) / vec2(z_5)), vec2(-3.4028235e38), vec2(3.4028235e38));
 }
 
 vec3 footprint_slope_sphere_from_slope(vec2 s_7) {
-    float k_20 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
-    vec3 v_14 = vec3((-(s_7) / vec2(k_20)), (1.0 / k_20));
-    return (v_14 / vec3(length(v_14)));
+    float k_21 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
+    vec3 v_15 = vec3((-(s_7) / vec2(k_21)), (1.0 / k_21));
+    return (v_15 / vec3(length(v_15)));
 }
 
-vec2 footprint_slope_projected_from_sphere(vec3 h_16) {
-    return h_16.xy;
+vec2 footprint_slope_projected_from_sphere(vec3 h_17) {
+    return h_17.xy;
 }
 
 vec3 footprint_slope_sphere_from_projected(vec2 p) {
-    float r2_ = dot(p, p);
-    if ((r2_ < 1.0)) {
-        return vec3(p, sqrt((1.0 - r2_)));
+    float r2_1 = dot(p, p);
+    if ((r2_1 < 1.0)) {
+        return vec3(p, sqrt((1.0 - r2_1)));
     }
     vec2 q_7 = (p / vec2(max(max(abs(p.x), abs(p.y)), math_F32_MIN_POSITIVE)));
     return vec3((q_7 / vec2(length(q_7))), 0.0);
@@ -1505,23 +1846,23 @@ footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footpr
     return footprint_Footprint(((unit.dh_u / vec2(_e29)) * l_6), ((unit.dh_v / vec2(_e29)) * l_6));
 }
 
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_40, vec2 alpha_10) {
-    vec2 f = vec2(0.0);
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_43, vec2 alpha_10) {
+    vec2 f_1 = vec2(0.0);
     if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
-        f = vec2(rules_1.floor_);
+        f_1 = vec2(rules_1.floor_);
     } else {
         if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
-            f = min(abs(alpha_10), vec2(rules_1.floor_));
+            f_1 = min(abs(alpha_10), vec2(rules_1.floor_));
         }
     }
     float lambda = max(rules_1.max_extent, 0.0);
-    vec2 h_25 = min(abs(r_40.half_extent), vec2(lambda));
-    vec2 _e25 = f;
-    return kernel_rect_BoundingRect(max(h_25, max(_e25, vec2(0.0))));
+    vec2 h_26 = min(abs(r_43.half_extent), vec2(lambda));
+    vec2 _e25 = f_1;
+    return kernel_rect_BoundingRect(max(h_26, max(_e25, vec2(0.0))));
 }
 
-kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_14) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_14);
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_15) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_15);
     if ((rules_2.kappa >= math_F32_MAX)) {
         return _e2;
     }
@@ -1555,8 +1896,8 @@ ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_
     return _e6;
 }
 
-float ndf_beckmann_exp_neg_times(float x_4, float k_15, float ln_k) {
-    return ((x_4 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_4)) : (exp(-(x_4)) * k_15));
+float ndf_beckmann_exp_neg_times(float x_7, float k_16, float ln_k) {
+    return ((x_7 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_7)) : (exp(-(x_7)) * k_16));
 }
 
 float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
@@ -1566,193 +1907,193 @@ float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
 }
 
 float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3) {
-    bool local_11 = false;
-    float z2_2 = (m_z_1 * m_z_1);
-    float x_6 = (q_xy_1 / z2_2);
-    float k_21 = (1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2));
+    bool local_14 = false;
+    float z2_3 = (m_z_1 * m_z_1);
+    float x_10 = (q_xy_1 / z2_3);
+    float k_22 = (1.0 / (((math_PI * sqrt_det_3) * z2_3) * z2_3));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_6, k_21, ln_k_1);
+    float _e21 = ndf_beckmann_exp_neg_times(x_10, k_22, ln_k_1);
     if ((m_z_1 > 0.0)) {
-        local_11 = (_e21 <= math_F32_MAX);
+        local_14 = (_e21 <= math_F32_MAX);
     } else {
-        local_11 = false;
+        local_14 = false;
     }
-    bool _e29 = local_11;
+    bool _e29 = local_14;
     return (_e29 ? _e21 : 0.0);
 }
 
 float ndf_beckmann_lambda_of(float q_3, float abs_wz_1) {
-    bool local_12 = false;
-    bool local_13 = false;
+    bool local_15 = false;
+    bool local_16 = false;
     float p_2 = -3.849172e-5;
     if ((q_3 <= 0.0)) {
-        local_12 = (abs_wz_1 >= 0.0);
+        local_15 = (abs_wz_1 >= 0.0);
     } else {
-        local_12 = false;
+        local_15 = false;
     }
-    bool _e9 = local_12;
+    bool _e9 = local_15;
     if (_e9) {
         return 0.0;
     }
     if (!(!((abs_wz_1 > 0.0)))) {
-        local_13 = !((q_3 > 0.0));
+        local_16 = !((q_3 > 0.0));
     } else {
-        local_13 = true;
+        local_16 = true;
     }
-    bool _e21 = local_13;
+    bool _e21 = local_16;
     if (_e21) {
         return math_F32_MAX;
     }
-    float a_25 = (abs_wz_1 / sqrt(q_3));
-    if ((a_25 > 9.5)) {
+    float a_30 = (abs_wz_1 / sqrt(q_3));
+    if ((a_30 > 9.5)) {
         return 0.0;
     }
-    float t_7 = ((a_25 - 3.0) / (a_25 + 3.0));
+    float t_16 = ((a_30 - 3.0) / (a_30 + 3.0));
     float _e35 = p_2;
-    p_2 = ((_e35 * t_7) + 0.00028491428);
+    p_2 = ((_e35 * t_16) + 0.00028491428);
     float _e39 = p_2;
-    p_2 = ((_e39 * t_7) + 1.8268152e-5);
+    p_2 = ((_e39 * t_16) + 1.8268152e-5);
     float _e43 = p_2;
-    p_2 = ((_e43 * t_7) - 0.0018242653);
+    p_2 = ((_e43 * t_16) - 0.0018242653);
     float _e47 = p_2;
-    p_2 = ((_e47 * t_7) + 0.0013654069);
+    p_2 = ((_e47 * t_16) + 0.0013654069);
     float _e51 = p_2;
-    p_2 = ((_e51 * t_7) + 0.0055811945);
+    p_2 = ((_e51 * t_16) + 0.0055811945);
     float _e55 = p_2;
-    p_2 = ((_e55 * t_7) - 0.009357543);
+    p_2 = ((_e55 * t_16) - 0.009357543);
     float _e59 = p_2;
-    p_2 = ((_e59 * t_7) - 0.0076571554);
+    p_2 = ((_e59 * t_16) - 0.0076571554);
     float _e63 = p_2;
-    p_2 = ((_e63 * t_7) + 0.036274612);
+    p_2 = ((_e63 * t_16) + 0.036274612);
     float _e67 = p_2;
-    p_2 = ((_e67 * t_7) - 0.023293633);
+    p_2 = ((_e67 * t_16) - 0.023293633);
     float _e71 = p_2;
-    p_2 = ((_e71 * t_7) - 0.07646358);
+    p_2 = ((_e71 * t_16) - 0.07646358);
     float _e75 = p_2;
-    p_2 = ((_e75 * t_7) + 0.2117349);
+    p_2 = ((_e75 * t_16) + 0.2117349);
     float _e79 = p_2;
-    p_2 = ((_e79 * t_7) - 0.23284179);
+    p_2 = ((_e79 * t_16) - 0.23284179);
     float _e83 = p_2;
-    p_2 = ((_e83 * t_7) + 0.03307925);
+    p_2 = ((_e83 * t_16) + 0.03307925);
     float _e87 = p_2;
-    p_2 = ((_e87 * t_7) + 1.0631379);
+    p_2 = ((_e87 * t_16) + 1.0631379);
     float _e91 = p_2;
-    float k_22 = (_e91 / ((2.0 * a_25) + 1.0));
-    return min(((exp((-(a_25) * a_25)) * k_22) / ((3.5449078 * a_25) * (a_25 + k_22))), math_F32_MAX);
+    float k_23 = (_e91 / ((2.0 * a_30) + 1.0));
+    return min(((exp((-(a_30) * a_30)) * k_23) / ((3.5449078 * a_30) * (a_30 + k_23))), math_F32_MAX);
 }
 
-float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_41, vec2 s_9) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_41, s_9);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_41);
+float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_44, vec2 s_9) {
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_44, s_9);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_44);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_42, vec3 m_10) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_42, m_10.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_42);
-    float _e6 = ndf_beckmann_d_of(_e3, m_10.z, _e5);
+float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_45, vec3 m_11) {
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_45, m_11.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_45);
+    float _e6 = ndf_beckmann_d_of(_e3, m_11.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_43, vec3 w_9) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_43, w_9.xy);
-    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
+float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_46, vec3 w_12) {
+    float _e3 = ndf_roughness_isotropic_quadratic(r_46, w_12.xy);
+    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_12.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_44, vec3 w_10, vec3 m_11) {
-    float _e3 = ndf_beckmann_lambda_isotropic(r_44, w_10);
-    float _e5 = ndf_g1_of(_e3, dot(w_10, m_11));
+float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_47, vec3 w_13, vec3 m_12) {
+    float _e3 = ndf_beckmann_lambda_isotropic(r_47, w_13);
+    float _e5 = ndf_g1_of(_e3, dot(w_13, m_12));
     return _e5;
 }
 
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_45, vec3 i_6, vec3 o_3, vec3 m_12) {
-    float _e4 = ndf_beckmann_lambda_isotropic(r_45, i_6);
-    float _e5 = ndf_beckmann_lambda_isotropic(r_45, o_3);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_12), dot(o_3, m_12));
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_48, vec3 i_6, vec3 o_3, vec3 m_13) {
+    float _e4 = ndf_beckmann_lambda_isotropic(r_48, i_6);
+    float _e5 = ndf_beckmann_lambda_isotropic(r_48, o_3);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_13), dot(o_3, m_13));
     return _e8;
 }
 
-float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_46, vec2 s_10) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_46, s_10);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_46);
+float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_49, vec2 s_10) {
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_49, s_10);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_49);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_47, vec3 m_13) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_47, m_13.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_47);
-    float _e6 = ndf_beckmann_d_of(_e3, m_13.z, _e5);
+float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_50, vec3 m_14) {
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_50, m_14.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_50);
+    float _e6 = ndf_beckmann_d_of(_e3, m_14.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_48, vec3 w_11) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_48, w_11.xy);
-    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
+float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_51, vec3 w_14) {
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_51, w_14.xy);
+    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_14.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_49, vec3 w_12, vec3 m_14) {
-    float _e3 = ndf_beckmann_lambda_axis_aligned(r_49, w_12);
-    float _e5 = ndf_g1_of(_e3, dot(w_12, m_14));
+float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_52, vec3 w_15, vec3 m_15) {
+    float _e3 = ndf_beckmann_lambda_axis_aligned(r_52, w_15);
+    float _e5 = ndf_g1_of(_e3, dot(w_15, m_15));
     return _e5;
 }
 
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_50, vec3 i_7, vec3 o_4, vec3 m_15) {
-    float _e4 = ndf_beckmann_lambda_axis_aligned(r_50, i_7);
-    float _e5 = ndf_beckmann_lambda_axis_aligned(r_50, o_4);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_7, m_15), dot(o_4, m_15));
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_53, vec3 i_7, vec3 o_4, vec3 m_16) {
+    float _e4 = ndf_beckmann_lambda_axis_aligned(r_53, i_7);
+    float _e5 = ndf_beckmann_lambda_axis_aligned(r_53, o_4);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_7, m_16), dot(o_4, m_16));
     return _e8;
 }
 
-float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_51, vec2 s_11) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_51, s_11);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_51);
+float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_54, vec2 s_11) {
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_54, s_11);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_54);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_52, vec3 m_16) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_52, m_16.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_52);
-    float _e6 = ndf_beckmann_d_of(_e3, m_16.z, _e5);
+float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_55, vec3 m_17) {
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_55, m_17.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_55);
+    float _e6 = ndf_beckmann_d_of(_e3, m_17.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_53, vec3 w_13) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_53, w_13.xy);
-    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
+float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_56, vec3 w_16) {
+    float _e3 = ndf_roughness_matrix_quadratic(r_56, w_16.xy);
+    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_16.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_54, vec3 w_14, vec3 m_17) {
-    float _e3 = ndf_beckmann_lambda_matrix(r_54, w_14);
-    float _e5 = ndf_g1_of(_e3, dot(w_14, m_17));
+float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_57, vec3 w_17, vec3 m_18) {
+    float _e3 = ndf_beckmann_lambda_matrix(r_57, w_17);
+    float _e5 = ndf_g1_of(_e3, dot(w_17, m_18));
     return _e5;
 }
 
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_55, vec3 i_8, vec3 o_5, vec3 m_18) {
-    float _e4 = ndf_beckmann_lambda_matrix(r_55, i_8);
-    float _e5 = ndf_beckmann_lambda_matrix(r_55, o_5);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_8, m_18), dot(o_5, m_18));
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_58, vec3 i_8, vec3 o_5, vec3 m_19) {
+    float _e4 = ndf_beckmann_lambda_matrix(r_58, i_8);
+    float _e5 = ndf_beckmann_lambda_matrix(r_58, o_5);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_8, m_19), dot(o_5, m_19));
     return _e8;
 }
 
-sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_56) {
-    vec3 _e1 = ndf_roughness_matrix_clamped_entries(r_56);
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_59) {
+    vec3 _e1 = ndf_roughness_matrix_clamped_entries(r_59);
     float l_xx = sqrt(_e1.x);
-    return sampling_Warp(l_xx, (_e1.y / l_xx), (r_56.sqrt_det / l_xx));
+    return sampling_Warp(l_xx, (_e1.y / l_xx), (r_59.sqrt_det / l_xx));
 }
 
-vec3 sampling_normalize_scaled(vec3 v_9) {
-    vec3 w_17 = (v_9 / vec3(max(max(abs(v_9.x), abs(v_9.y)), abs(v_9.z))));
-    return (w_17 / vec3(length(w_17)));
+vec3 sampling_normalize_scaled(vec3 v_10) {
+    vec3 w_21 = (v_10 / vec3(max(max(abs(v_10.x), abs(v_10.y)), abs(v_10.z))));
+    return (w_21 / vec3(length(w_21)));
 }
 
-vec3 sampling_stretch(sampling_Warp l_3, vec3 w_15) {
-    return vec3(((l_3.l_xx * w_15.x) + (l_3.l_yx * w_15.y)), (l_3.l_yy * w_15.y), w_15.z);
+vec3 sampling_stretch(sampling_Warp l_3, vec3 w_18) {
+    return vec3(((l_3.l_xx * w_18.x) + (l_3.l_yx * w_18.y)), (l_3.l_yy * w_18.y), w_18.z);
 }
 
 vec3 sampling_unstretch(sampling_Warp l_4, vec3 n_4) {
@@ -1764,23 +2105,23 @@ float sampling_clamp_unit(float u_7) {
     return ((u_7 >= 0.0) ? min(u_7, sampling_ONE_MINUS_EPS) : 0.0);
 }
 
-vec3 sampling_reflect(vec3 wo, vec3 m_19) {
-    return (((2.0 * dot(wo, m_19)) * m_19) - wo);
+vec3 sampling_reflect(vec3 wo, vec3 m_20) {
+    return (((2.0 * dot(wo, m_20)) * m_20) - wo);
 }
 
 vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_8) {
     vec2 _e3 = math_sincos_turns(u_8.x);
-    float z_5 = (((1.0 - u_8.y) * (1.0 + wi.z)) - wi.z);
-    float sin_theta = sqrt(clamp((1.0 - (z_5 * z_5)), 0.0, 1.0));
-    return (vec3((sin_theta * _e3), z_5) + wi);
+    float z_6 = (((1.0 - u_8.y) * (1.0 + wi.z)) - wi.z);
+    float sin_theta = sqrt(clamp((1.0 - (z_6 * z_6)), 0.0, 1.0));
+    return (vec3((sin_theta * _e3), z_6) + wi);
 }
 
-vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_57, vec3 wo_1, vec2 u_9) {
-    bool local_14 = false;
+vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_60, vec3 wo_1, vec2 u_9) {
+    bool local_17 = false;
     if (!((wo_1.z > 0.0))) {
         return vec3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_57);
+    sampling_Warp _e9 = sampling_warp(r_60);
     vec3 _e10 = sampling_normalize_scaled(wo_1);
     vec3 _e11 = sampling_stretch(_e9, _e10);
     vec3 _e12 = sampling_normalize_scaled(_e11);
@@ -1792,11 +2133,11 @@ vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_57, v
     vec3 _e24 = sampling_ggx_standard_visible(_e12, vec2(_e20, _e22));
     vec3 _e25 = sampling_unstretch(_e9, _e24);
     if ((_e25.z > 0.0)) {
-        local_14 = (dot(wo_1, _e25) > 0.0);
+        local_17 = (dot(wo_1, _e25) > 0.0);
     } else {
-        local_14 = false;
+        local_17 = false;
     }
-    bool _e35 = local_14;
+    bool _e35 = local_17;
     if (_e35) {
         return _e25;
     }
@@ -1804,65 +2145,65 @@ vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_57, v
     return ((_e36.z > 0.0) ? _e36 : vec3(0.0));
 }
 
-vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_58, vec2 u_10) {
+vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_61, vec2 u_10) {
     float _e3 = sampling_clamp_unit(u_10.x);
     float _e5 = sampling_clamp_unit(u_10.y);
     vec2 _e6 = math_sincos_turns(_e5);
-    vec3 n_5 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
-    sampling_Warp _e13 = sampling_warp(r_58);
-    vec3 _e14 = sampling_unstretch(_e13, n_5);
+    vec3 n_6 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
+    sampling_Warp _e13 = sampling_warp(r_61);
+    vec3 _e14 = sampling_unstretch(_e13, n_6);
     return _e14;
 }
 
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_59, vec3 m_20) {
-    float _e2 = ndf_ggx_d_matrix(r_59, m_20);
-    return ((m_20.z > 0.0) ? (_e2 * m_20.z) : 0.0);
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_62, vec3 m_21) {
+    float _e2 = ndf_ggx_d_matrix(r_62, m_21);
+    return ((m_21.z > 0.0) ? (_e2 * m_21.z) : 0.0);
 }
 
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_60, vec3 wo_2, vec3 m_21) {
-    bool local_15 = false;
-    float wom = dot(wo_2, m_21);
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_63, vec3 wo_2, vec3 m_22) {
+    bool local_18 = false;
+    float wom = dot(wo_2, m_22);
     if (!(!((wo_2.z > 0.0)))) {
-        local_15 = !((wom > 0.0));
+        local_18 = !((wom > 0.0));
     } else {
-        local_15 = true;
+        local_18 = true;
     }
-    bool _e15 = local_15;
+    bool _e15 = local_18;
     if (_e15) {
         return 0.0;
     }
-    float _e17 = ndf_ggx_d_matrix(r_60, m_21);
-    float _e20 = ndf_ggx_lambda_matrix(r_60, wo_2);
-    float v_15 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
-    return ((v_15 <= math_F32_MAX) ? v_15 : 0.0);
+    float _e17 = ndf_ggx_d_matrix(r_63, m_22);
+    float _e20 = ndf_ggx_lambda_matrix(r_63, wo_2);
+    float v_16 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
+    return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
 }
 
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_61, vec3 wo_3, vec3 m_22) {
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_64, vec3 wo_3, vec3 m_23) {
     if (!((wo_3.z > 0.0))) {
         return 0.0;
     }
     vec3 _e8 = sampling_normalize_scaled(wo_3);
-    if (!((dot(_e8, m_22) > 0.0))) {
+    if (!((dot(_e8, m_23) > 0.0))) {
         return 0.0;
     }
-    float _e14 = ndf_ggx_d_matrix(r_61, m_22);
-    float _e18 = ndf_ggx_lambda_matrix(r_61, _e8);
-    float v_16 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
-    return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
+    float _e14 = ndf_ggx_d_matrix(r_64, m_23);
+    float _e18 = ndf_ggx_lambda_matrix(r_64, _e8);
+    float v_17 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
+    return ((v_17 <= math_F32_MAX) ? v_17 : 0.0);
 }
 
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_62, vec3 wo_4, vec3 wi_1) {
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_65, vec3 wo_4, vec3 wi_1) {
     if (!((wo_4.z > 0.0))) {
         return 0.0;
     }
     vec3 _e8 = sampling_normalize_scaled(wo_4);
     vec3 _e9 = sampling_normalize_scaled(wi_1);
-    vec3 h_26 = (_e8 + _e9);
-    float len = length(h_26);
+    vec3 h_27 = (_e8 + _e9);
+    float len = length(h_27);
     if (!((len > 0.0))) {
         return 0.0;
     }
-    float _e18 = sampling_reflection_pdf_from_normal(r_62, wo_4, (h_26 / vec3(len)));
+    float _e18 = sampling_reflection_pdf_from_normal(r_65, wo_4, (h_27 / vec3(len)));
     return _e18;
 }
 

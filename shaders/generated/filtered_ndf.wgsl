@@ -101,6 +101,69 @@ fn math_hypot(x: f32, y: f32) -> f32 {
     return m * sqrt(a * a + b * b);
 }
 
+/// `ln 2` split for an exact `n ln 2` (`n` integer, `|n| <= 256`): `LN2_HI` has 16 significant
+/// bits, `LN2_LO` the rest.
+const math_LN2_HI: f32 = 0.693145751953125;
+const math_LN2_LO: f32 = 1.428606765330187e-6;
+/// `log2(e)`.
+const math_LOG2_E: f32 = 1.44269504088896;
+
+/// `e^x` within 3 ulp (`2.5e-7` measured, `gpu/src/checks/math.rs`) for `x <= 88`, `0` below
+/// `-87`, whatever the driver's `exp` (WGSL allows `3 + 2|x|` ulp): the Rust crate's `f32`
+/// polynomial exponential (`gaussian_ggx_quad.rs`). `2^n e^r` with `n = round(x / ln 2)`,
+/// `r = (x - n LN2_HI) - n LN2_LO` exact to the rounding of the last step, `|r| <= ln(2) / 2`,
+/// `e^r` by the relative minimax polynomial of degree 6 (error `1.9e-9`) in Estrin's form,
+/// `2^n` by its bit pattern (GLSL 330 has no `ldexp`).
+fn math_exp(x: f32) -> f32 {
+    let xc = clamp(x, -87.0, 88.0);
+    let n = round(xc * math_LOG2_E);
+    let r = (xc - n * math_LN2_HI) - n * math_LN2_LO;
+    let r2 = r * r;
+    let p = (1.0 + r + (0.4999999 + 0.1666642 * r) * r2)
+        + (0.041668225 + 0.008374816 * r + 0.0013836846 * r2) * (r2 * r2);
+    let s = bitcast<f32>(u32(i32(n) + 127) << 23u);
+    return select(0.0, p * s, x >= -87.0);
+}
+
+/// `sqrt(2)`.
+const math_SQRT_2: f32 = 1.41421356237310;
+
+/// `2 atanh(z) = ln((1 + z) / (1 - z))` for `|z| <= 0.2`: its odd series through `z^11 / 11`
+/// (next term below `1e-9` relative).
+fn math_atanh2(z: f32) -> f32 {
+    let z2 = z * z;
+    let s = ((((z2 * (1.0 / 11.0) + 1.0 / 9.0) * z2 + 1.0 / 7.0) * z2 + 0.2) * z2 + 1.0 / 3.0) * z2;
+    return 2.0 * z + 2.0 * z * s;
+}
+
+/// Natural logarithm of a positive normal `x` within 4 ulp relative, also near `x = 1` (WGSL
+/// allows the driver's `log` an absolute `2^-21` on `[0.5, 2]`, no relative accuracy near its
+/// zero). `x = f 2^e` with `f` in `[sqrt(1/2), sqrt 2)` from the bit pattern, then
+/// `ln f = 2 atanh(z)`, `z = (f - 1) / (f + 1)` (`f - 1` exact, `|z| <= 0.1716`, [`atanh2`]),
+/// and `e ln 2` with the split constant.
+fn math_ln(x: f32) -> f32 {
+    let b = bitcast<u32>(x);
+    var e = f32(i32((b >> 23u) & 0xffu) - 127);
+    var f = bitcast<f32>((b & 0x007fffffu) | 0x3f800000u);
+    if f > math_SQRT_2 {
+        f = 0.5 * f;
+        e = e + 1.0;
+    }
+    let p = math_atanh2((f - 1.0) / (f + 1.0));
+    return e * math_LN2_HI + (e * math_LN2_LO + p);
+}
+
+/// `ln(1 + x)` for `x >= 0` within 6 ulp relative, also for tiny `x`: `2 atanh(x / (2 + x))`
+/// below `x = 0.5` ([`atanh2`]; no `1 + x` is formed, whose rounding would cost `eps / x`),
+/// [`ln`] of `1 + x` above (its rounding then costs under 2 ulp of the result). Kahan's
+/// `ln(u) x / (u - 1)` is not used: a driver may simplify `(1 + x) - 1` to `x` (Mesa does).
+fn math_ln_1p(x: f32) -> f32 {
+    if x < 0.5 {
+        return math_atanh2(x / (2.0 + x));
+    }
+    return math_ln(1.0 + x);
+}
+
 // ---- filtered_ndf::ndf::roughness (shaders/ndf/roughness/mod.wgsl) ----
 // The roughness forms (`src/.../roughness/`): a roughness is the matrix `A` of TK19
 // supplement section 1 (Heitz 2014 section 5.4). Both NDFs depend on a slope `s` only through
@@ -1659,6 +1722,228 @@ fn filter_rect_d_rect_printed(r: ndf_roughness_axis_aligned_AxisAligned, hpp: ve
     let hz4 = h.z * h.z * h.z * h.z;
     let v = val / den / max(hz4, 1e-3);
     return select(0.0, v, abs(v) <= math_F32_MAX && den != 0.0);
+}
+
+// ---- filtered_ndf::filter::rect::lambda (shaders/filter/rect/lambda.wgsl) ----
+// Smith `Lambda` of the box-filtered GGX (`src/.../filter/rect/lambda.rs`): the masking
+// function of the slope distribution that `rect::p22_rect` and `rect::d_rect` describe, so
+// that `d`, `g1 = 1 / (1 + Lambda)` and `g2` of the box lobe are one distribution.
+//
+// With `u` the unit azimuth of `w_xy`, `mu = |w_z| / |w_xy|` and everything in units of the
+// projected roughness `a = sqrt(u^T A u)`: `Lambda = E[psi(m - V_1 - V_2)] / m`, `m = mu / a`,
+// `V_i` uniform on `[-k_i, k_i]` (`k_i = |u_i| H_i / a`, the box projected on `u`), and
+// `psi(t) = (sqrt(1 + t^2) - t) / 2` (GGX's 1D marginal: `E[(X - t)+]`). The expectation is
+// taken by the Rust tiers (the Gauss-Legendre tiers of `rect`, with `psi`'s branch points at
+// `+-i`): both sides short, the tensor rule of `psi`; a long side, the rule in the short side
+// of the exact mean of `psi` over the long one (`Psi_1` differences without cancellation,
+// [`psi1_diff`]); otherwise differences of the antiderivatives `Psi_1`, `Psi_2`, which lose
+// at most about `ln(2 m) / 0.5` (the outer difference) times 4 (the inner one), i.e. up to
+// `~80` ulp at `m = 1e4`.
+//
+// f32 form: `sqrt(1 + t^2)` scaled for `|t| > 1` (no overflow), `asinh` by the
+// driver-independent `math::ln` / `math::ln_1p`, normalised half extents clamped to `1e12`
+// (the Rust crate clamps at `1e60`; `Psi_2`'s cube stays finite below `4e12`: only boxes
+// wider than `1e12` lobe widths, beyond every clamp rule, differ), and `m > 1e18` answers the
+// box-free `1 / (4 m^2)` (the box's correction `(k / m)^2 <= 1e-12`).
+//
+// Conditioning (as in Rust): where the box's far edge meets `mu` (`|m - k_l| ~ 1`), `Lambda`'s
+// relative sensitivity to `m - k_l` is about `m / 5`. The Rust crate forms `m - k_l` with a
+// fused multiply-add; WGSL's `fma` may be evaluated unfused, so here `|w_z| - |w_l| H_l` is
+// formed in f32 (its product rounded once): the result carries `Lambda`'s condition number
+// with respect to its inputs times a few ulp (`gpu/src/checks/rect.rs` computes it per case).
+
+/// Normalised half extents are clamped to this (module docs).
+const filter_rect_lambda_BIG_K: f32 = 1e12;
+
+/// `sqrt(1 + t^2)` without overflow.
+fn filter_rect_lambda_rho(t: f32) -> f32 {
+    let a = abs(t);
+    if a > 1.0 {
+        let i = 1.0 / a;
+        return a * sqrt(1.0 + i * i);
+    }
+    return sqrt(1.0 + t * t);
+}
+
+/// `e^(-asinh t) = sqrt(1 + t^2) - t` without cancellation, given `r = sqrt(1 + t^2)`.
+fn filter_rect_lambda_e_neg(t: f32, r: f32) -> f32 {
+    return select(r - t, 1.0 / (r + t), t >= 0.0);
+}
+
+/// `asinh(t)` given `r = sqrt(1 + t^2)`: `ln(|t| + r)` above 1, `ln_1p(|t| + t^2 / (1 + r))`
+/// below (no cancellation), odd.
+fn filter_rect_lambda_asinh_of(t: f32, r: f32) -> f32 {
+    let a = abs(t);
+    var v: f32;
+    if a > 1.0 {
+        v = math_ln(a + r);
+    } else {
+        v = math_ln_1p(a + a * a / (1.0 + r));
+    }
+    return select(v, -v, t < 0.0);
+}
+
+/// `psi(t) = (sqrt(1 + t^2) - t) / 2`.
+fn filter_rect_lambda_psi(t: f32) -> f32 {
+    return 0.5 * filter_rect_lambda_e_neg(t, filter_rect_lambda_rho(t));
+}
+
+/// `Psi_1(t) = (asinh t - E^2 / 2) / 4`, an antiderivative of `psi` (`E = e^(-asinh t)`).
+fn filter_rect_lambda_psi1(t: f32) -> f32 {
+    let r = filter_rect_lambda_rho(t);
+    let e = filter_rect_lambda_e_neg(t, r);
+    return 0.25 * (filter_rect_lambda_asinh_of(t, r) - 0.5 * e * e);
+}
+
+/// `Psi_2(t) = (t asinh t - rho + E / 4 + E^3 / 12) / 4`, an antiderivative of `Psi_1`.
+fn filter_rect_lambda_psi2(t: f32) -> f32 {
+    let r = filter_rect_lambda_rho(t);
+    let e = filter_rect_lambda_e_neg(t, r);
+    return 0.25 * (t * filter_rect_lambda_asinh_of(t, r) - r + 0.25 * e + e * e * e * (1.0 / 12.0));
+}
+
+/// `Psi_1(t1) - Psi_1(t0)` for `w = t1 - t0 >= 0` given exactly:
+/// `(ln_1p(d / E_1) + d (E_0 + E_1) / 2) / 4`, `d = E_0 - E_1 = w (E_0 + E_1) / (rho_0 + rho_1)`;
+/// all terms `>= 0`.
+fn filter_rect_lambda_psi1_diff(t0: f32, t1: f32, w: f32) -> f32 {
+    let r0 = filter_rect_lambda_rho(t0);
+    let r1 = filter_rect_lambda_rho(t1);
+    let e0 = filter_rect_lambda_e_neg(t0, r0);
+    let e1 = filter_rect_lambda_e_neg(t1, r1);
+    let s = e0 + e1;
+    let d = w * s / (r0 + r1);
+    return 0.25 * (math_ln_1p(d / e1) + 0.5 * d * s);
+}
+
+/// The mean of `psi` over `[t0, t1]`, `w = t1 - t0 > 0` given exactly.
+fn filter_rect_lambda_mean_psi(t0: f32, t1: f32, w: f32) -> f32 {
+    return filter_rect_lambda_psi1_diff(t0, t1, w) / w;
+}
+
+/// The Gauss-Legendre rule of a tier (`rect`'s `tier`; the closed tier takes the 6-point
+/// rule, as the Rust `rule`).
+fn filter_rect_lambda_rule(t: u32) -> u32 {
+    return select(t, 6u, t == filter_rect_TIER_CLOSED);
+}
+
+/// `A(t)`: the mean of `Psi_1` over `[t - k, t + k]`, by Gauss-Legendre while `k` is short
+/// next to `sqrt(1 + t^2)`, else the closed difference of `Psi_2`.
+fn filter_rect_lambda_mean_psi1(t: f32, k: f32) -> f32 {
+    if k == 0.0 {
+        return filter_rect_lambda_psi1(t);
+    }
+    let tt = filter_rect_tier(k * k, 1.0 + t * t);
+    if tt == filter_rect_TIER_CLOSED {
+        return (filter_rect_lambda_psi2(t + k) - filter_rect_lambda_psi2(t - k)) / (2.0 * k);
+    }
+    var acc = 0.0;
+    for (var j = 0u; j < tt / 2u; j++) {
+        let a = k * filter_rect_gl_node(tt, j);
+        acc += filter_rect_gl_weight(tt, j) * (filter_rect_lambda_psi1(t - a) + filter_rect_lambda_psi1(t + a));
+    }
+    return acc;
+}
+
+/// The mean of `psi` over `[c - h, c + h]` by the rule of tier `t`.
+fn filter_rect_lambda_gl_psi(t: u32, c: f32, h: f32) -> f32 {
+    let n = filter_rect_lambda_rule(t);
+    var acc = 0.0;
+    for (var j = 0u; j < n / 2u; j++) {
+        let a = h * filter_rect_gl_node(n, j);
+        acc += filter_rect_gl_weight(n, j) * (filter_rect_lambda_psi(c - a) + filter_rect_lambda_psi(c + a));
+    }
+    return acc;
+}
+
+/// `E[psi(m - V_1 - V_2)]` for `m >= 0`, `V_i` uniform on `[-k_i, k_i]`, `k_i >= 0` finite and
+/// not both zero (the Rust `expected_psi`, its three cases). `lo` is `m - max(k_1, k_2)`, formed
+/// by the caller from the inputs (module docs, conditioning).
+fn filter_rect_lambda_expected_psi(m: f32, k1: f32, k2: f32, lo: f32) -> f32 {
+    let ks = min(k1, k2);
+    let kl = max(k1, k2);
+    let near_l = max(m - ks, 0.0);
+    let tl = filter_rect_tier(kl * kl, 1.0 + near_l * near_l);
+    if tl != filter_rect_TIER_CLOSED {
+        // Case 1: both short, the tensor rule.
+        let near_s = max(m - kl, 0.0);
+        let ts = filter_rect_tier(ks * ks, 1.0 + near_s * near_s);
+        var acc = 0.0;
+        for (var j = 0u; j < tl / 2u; j++) {
+            let a = kl * filter_rect_gl_node(tl, j);
+            acc += filter_rect_gl_weight(tl, j) * (filter_rect_lambda_gl_psi(ts, m - a, ks) + filter_rect_lambda_gl_psi(ts, m + a, ks));
+        }
+        return acc;
+    }
+    let hi = m + kl;
+    let w = 2.0 * kl;
+    if ks == 0.0 {
+        return filter_rect_lambda_mean_psi(lo, hi, w);
+    }
+    let ts = filter_rect_tier(ks * ks, 1.0 + lo * lo);
+    if ts != filter_rect_TIER_CLOSED {
+        // Case 2: the rule in the short side of the exact mean over the long one.
+        var acc = 0.0;
+        for (var j = 0u; j < ts / 2u; j++) {
+            let x = ks * filter_rect_gl_node(ts, j);
+            acc += filter_rect_gl_weight(ts, j) * (filter_rect_lambda_mean_psi(lo + x, hi + x, w) + filter_rect_lambda_mean_psi(lo - x, hi - x, w));
+        }
+        return acc;
+    }
+    // Case 3.
+    return (filter_rect_lambda_mean_psi1(hi, ks) - filter_rect_lambda_mean_psi1(lo, ks)) / w;
+}
+
+/// Exact Smith `Lambda` of the box-filtered GGX (the Rust `lambda_rect`): the masking function
+/// of the slope distribution `rect::p22_rect` averages (`Lambda(w) = (1 / mu) E[(q - mu)+]`
+/// over `s = g + delta`, `g` GGX of roughness `r`, `delta` uniform on
+/// `[-half_extent, half_extent]`), so that `g1 = 1 / (1 + Lambda)` and `rect::d_rect` satisfy
+/// the Smith normalisation `integral of G1(w, m) max(0, w.m) D(m) dm = w_z`.
+///
+/// Uses `|w_z|`; homogeneous of degree 0 in `w` (scaled by a power of two when its largest
+/// component leaves `[2^-60, 2^60]`). Half extents by magnitude; zero half extents (or a box
+/// that projects to a point on `u`): GGX's `lambda_axis_aligned`. `F32_MAX` (the Rust `+inf`)
+/// for a grazing `w` (`w_z = 0`) and, where the driver keeps NaN, for NaN input; `0` at normal
+/// incidence and for the zero vector.
+fn filter_rect_lambda_lambda_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, w_in: vec3<f32>) -> f32 {
+    // Exact power-of-two scaling: |w_i| H_i neither overflows nor underflows.
+    let big = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
+    var w = w_in;
+    if big > 1.152921504606847e18 || (big < 8.673617379884035e-19 && big > 0.0) {
+        let e = i32((bitcast<u32>(big) >> 23u) & 0xffu) - 127;
+        w = w_in * bitcast<f32>(u32(127 - e) << 23u);
+    }
+    let l = math_hypot(w.x, w.y);
+    if l <= 0.0 {
+        // Normal incidence or the zero vector (NaN fails and goes on).
+        return 0.0;
+    }
+    let wz = abs(w.z);
+    if !(wz > 0.0) {
+        // Grazing, or NaN.
+        return math_F32_MAX;
+    }
+    let alpha = r.alpha;
+    let ha = min(abs(half_extent), alpha * filter_rect_lambda_BIG_K);
+    let ux = abs(w.x) / l;
+    let uy = abs(w.y) / l;
+    let px = ux * alpha.x;
+    let py = uy * alpha.y;
+    let a = math_hypot(px, py);
+    let k1 = px / a * (ha.x / alpha.x);
+    let k2 = py / a * (ha.y / alpha.y);
+    if k1 == 0.0 && k2 == 0.0 {
+        return ndf_ggx_lambda_axis_aligned(r, w);
+    }
+    let mm = wz / l / a;
+    if mm > 1e18 {
+        return 0.25 / mm / mm;
+    }
+    // m - k_l = (|w_z| - |w_l| H_l) / (|w_xy| a) for the long axis l (module docs).
+    let long_x = k1 >= k2;
+    let wl = select(abs(w.y), abs(w.x), long_x);
+    let hl = select(ha.y, ha.x, long_x);
+    let lo = (wz - wl * hl) / l / a;
+    return filter_rect_lambda_expected_psi(mm, k1, k2, lo) / mm;
 }
 
 // ---- filtered_ndf::kernel::rect (shaders/kernel/rect.wgsl) ----

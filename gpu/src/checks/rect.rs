@@ -19,7 +19,7 @@
 
 use super::{Check, EPS, Tol, draw};
 use crate::reference::{
-    AxisAligned, ClampRules, DVec2, ExtentFloor, SplitMix64, rect, strategies, v2, v3,
+    AxisAligned, ClampRules, DVec2, DVec3, ExtentFloor, SplitMix64, rect, strategies, v2, v3,
 };
 
 /// The 8-point Gauss-Legendre rule (positive nodes, halved weights), as `rect.wgsl`.
@@ -299,5 +299,122 @@ pub fn all() -> Vec<Check> {
             vec![Tol::ulps(rect_ulps(r, v2(c), v2(he)))],
         );
     }
-    vec![d, pr, p, far]
+    let mut v = vec![d, pr, p, far];
+    v.extend(lambda_checks());
+    v
+}
+
+/// `|d ln F / d ln x|` of a positive function at `x` by central differences with the relative
+/// step `1e-5` (the f64 references are accurate to `~1e-13`, so the quotient is good to
+/// `1e-8` absolute: ample for a condition factor). `0` where `F` is 0 or not finite.
+pub fn log_sensitivity(x: f64, f: impl Fn(f64) -> f64) -> f64 {
+    let h = 1e-5;
+    let (a, b) = (f(x * (1.0 + h)), f(x * (1.0 - h)));
+    let s = (a.ln() - b.ln()) / (2.0 * h);
+    if s.is_finite() { s.abs() } else { 0.0 }
+}
+
+/// The f32 Gauss-Legendre tier of `rect.wgsl` (`true`: the closed form).
+fn closed_tier(h2: f64, l2: f64) -> bool {
+    h2 >= 0.0625 * l2
+}
+
+/// The stated bound (ulp) of `lambda::lambda_rect` (`rect/lambda.wgsl`): the expectation's
+/// own error, 30 ulp on the Gauss-Legendre and `Psi_1`-difference paths, and where both
+/// closed differences are taken (case 3) `30 + 64 ln(2 + 2m)` (the outer difference loses
+/// `2 ln(2m)`, the inner closed difference a factor 4, of `Psi_2` values within 8 ulp); plus
+/// the input conditioning: the shader forms `m`, `k_1`, `k_2` and `m - k_l` with up to 16 ulp
+/// (hypot, quotients, the product `|w_l| H_l` rounded before the difference), which `Lambda`
+/// amplifies by its condition numbers with respect to `w_z` (moves `m` and `m - k_l`), `H_x`
+/// and `H_y` (move `k_1`, `k_2`), computed here from the f64 reference.
+fn lambda_rect_ulps(r: AxisAligned, he: DVec2, w: DVec3) -> f64 {
+    let al = r.alpha();
+    let l = w.x.hypot(w.y);
+    let (ux, uy) = (w.x.abs() / l, w.y.abs() / l);
+    let a = (ux * al.x).hypot(uy * al.y);
+    let m = w.z.abs() / l / a;
+    let k1 = ux * he.x.abs() / a;
+    let k2 = uy * he.y.abs() / a;
+    let (ks, kl) = (k1.min(k2), k1.max(k2));
+    let near_l = (m - ks).max(0.0);
+    let lo = m - kl;
+    let case3 = closed_tier(kl * kl, 1.0 + near_l * near_l)
+        && ks > 0.0
+        && closed_tier(ks * ks, 1.0 + lo * lo);
+    let base = if case3 {
+        30.0 + 64.0 * (2.0 + 2.0 * m).ln()
+    } else {
+        30.0
+    };
+    let lam = |w: DVec3, he: DVec2| rect::lambda_rect(r, he, w);
+    let kz = log_sensitivity(w.z, |z| lam(DVec3::new(w.x, w.y, z), he));
+    let kx = log_sensitivity(he.x, |h| lam(w, DVec2::new(h, he.y)));
+    let ky = log_sensitivity(he.y, |h| lam(w, DVec2::new(he.x, h)));
+    base + 16.0 * (kz + kx + ky)
+}
+
+/// The checks of `rect/lambda.wgsl`: the box lobe's `Lambda` at the trade table's shading
+/// points (rectangle: the footprint's bounding box under KHPL16's rules, `lambda = 1`, no
+/// floor) seen from `strategies::upper_hemisphere(89.9)` directions, and over boxes as
+/// `tests/ggx_rect_lambda.rs` draws them (alpha `1e-4..1`, anisotropy to 100, half sides
+/// `1e-6..1`).
+pub fn lambda_checks() -> Vec<Check> {
+    let imports = "#import filtered_ndf::ndf::roughness::axis_aligned\n#import filtered_ndf::filter::rect::lambda";
+    let body = "y(0u, lambda::lambda_rect(axis_aligned::from_alpha(x2(0u)), x2(2u), x3(4u)));";
+    let tol = "base 30 ulp (case 3: 30 + 64 ln(2 + 2m)) plus 16 ulp times Lambda's condition numbers in w_z, H_x, H_y (lambda_rect_ulps)";
+    let mut c = Check::new("lambda::lambda_rect (trade table)", imports, body, 7, 1).tolerance(tol);
+    let n = 2000;
+    let a = draw(strategies::axis_aligned(), n, "lambda alpha");
+    let ws = draw(strategies::upper_hemisphere(89.9), n, "lambda w");
+    let fps = draw(strategies::footprint(), n, "lambda fp");
+    for k in 0..n {
+        let alpha = [a[k].alpha().x as f32, a[k].alpha().y as f32];
+        let r = AxisAligned::new(alpha[0].into(), alpha[1].into()).expect("in range");
+        let fp = crate::reference::Footprint::from_slope_derivatives(
+            v2([fps[k].dh_u.x as f32, fps[k].dh_u.y as f32]),
+            v2([fps[k].dh_v.x as f32, fps[k].dh_v.y as f32]),
+        );
+        let he = ClampRules::KHPL16.rect(fp.bounding_rect(), r.alpha()).half_extent;
+        let he32 = [he.x as f32, he.y as f32];
+        let w = [ws[k].x as f32, ws[k].y as f32, ws[k].z as f32];
+        let (hd, wd) = (v2(he32), v3(w));
+        let mut input = alpha.to_vec();
+        input.extend(he32);
+        input.extend(w);
+        c.case(
+            input,
+            vec![rect::lambda_rect(r, hd, wd)],
+            vec![Tol::ulps(lambda_rect_ulps(r, hd, wd))],
+        );
+    }
+    let mut b = Check::new("lambda::lambda_rect (boxes of tests/ggx_rect_lambda.rs)", imports, body, 7, 1)
+        .tolerance(tol);
+    let mut rng = SplitMix64(0x6c61_6d62);
+    for _ in 0..3000 {
+        let ax = rng.log_uniform(1e-4, 1.0);
+        let ay = (ax * rng.log_uniform(0.01, 100.0)).clamp(1e-4, 1.0);
+        let alpha = [ax as f32, ay as f32];
+        let r = AxisAligned::new(alpha[0].into(), alpha[1].into()).expect("in range");
+        let he32 = [
+            rng.log_uniform(1e-6, 1.0) as f32,
+            rng.log_uniform(1e-6, 1.0) as f32,
+        ];
+        let th = rng.range(0.0, 1.5707);
+        let phi = rng.range(0.0, core::f64::consts::TAU);
+        let w = [
+            (th.sin() * phi.cos()) as f32,
+            (th.sin() * phi.sin()) as f32,
+            th.cos() as f32,
+        ];
+        let (hd, wd) = (v2(he32), v3(w));
+        let mut input = alpha.to_vec();
+        input.extend(he32);
+        input.extend(w);
+        b.case(
+            input,
+            vec![rect::lambda_rect(r, hd, wd)],
+            vec![Tol::ulps(lambda_rect_ulps(r, hd, wd))],
+        );
+    }
+    vec![c, b]
 }
