@@ -100,6 +100,10 @@ fn hypot(x: f32, y: f32) -> f32 {
 /// bits, `LN2_LO` the rest.
 const LN2_HI: f32 = 0.693145751953125;
 const LN2_LO: f32 = 1.428606765330187e-6;
+/// `ln 2`.
+const LN_2: f32 = 0.693147180559945;
+/// `sqrt(2 pi)`.
+const SQRT_TAU: f32 = 2.50662827463100;
 /// `log2(e)`.
 const LOG2_E: f32 = 1.44269504088896;
 

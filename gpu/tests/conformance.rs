@@ -34,3 +34,8 @@ fn sampling() {
 fn rect() {
     assert_group("rect", &checks::rect::all());
 }
+
+#[test]
+fn gaussian_ggx() {
+    assert_group("gaussian_ggx", &checks::gaussian_ggx::all());
+}

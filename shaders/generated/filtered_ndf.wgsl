@@ -105,6 +105,10 @@ fn math_hypot(x: f32, y: f32) -> f32 {
 /// bits, `LN2_LO` the rest.
 const math_LN2_HI: f32 = 0.693145751953125;
 const math_LN2_LO: f32 = 1.428606765330187e-6;
+/// `ln 2`.
+const math_LN_2: f32 = 0.693147180559945;
+/// `sqrt(2 pi)`.
+const math_SQRT_TAU: f32 = 2.50662827463100;
 /// `log2(e)`.
 const math_LOG2_E: f32 = 1.44269504088896;
 
@@ -746,6 +750,880 @@ fn filter_gaussian_gaussian_with_det_clamp(
     return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), det_clamp);
 }
 
+// ---- filtered_ndf::ndf (shaders/ndf/mod.wgsl) ----
+// What every NDF shares (`src/.../ndf/mod.rs`, the `Ndf` trait): the Smith terms derived
+// from `Lambda` once. Conventions (all NDFs, all roughness forms): tangent frame with `z` the
+// shading normal; slope of a micronormal `s = -m_xy / m_z` (TK19 supplement eq. 5);
+// `p22(s)` per unit slope area, integrating to 1 over the plane; `d(m) = p22(s(m)) / m_z^4`
+// per steradian with `integral d(m) m_z dm = 1` (KHPL16 eq. 2).
+//
+// WGSL has no generics: the NDF modules (`ggx`, `beckmann`) take the numbers a roughness
+// form reduces to (`inv_quadratic`, `quadratic`, `sqrt_det` of the `roughness` modules) and
+// add one entry point per form (`d_isotropic`, `d_axis_aligned`, `d_matrix`, ...). The
+// form-independent cores carry the suffix `_of` (`p22_of`, `d_of`, `lambda_of`, `g1_of`,
+// `g2_of`): naga renames any identifier that ends in a digit when it writes a module back
+// out, which naga_oil refuses for composable modules, so `p22`, `g1`, `g2` cannot be names
+// of their own.
+//
+// NaN policy. The Rust crate decides it once (`src/.../ndf/mod.rs`): a NaN argument
+// contributes nothing, `p22 = d = 0` and `lambda = +inf` (so `g1 = g2 = 0`), both families,
+// every form. WGSL lets a driver assume that no NaN occurs at run time, so the shaders do not
+// test for one and promise nothing where a driver takes that licence. Where it costs nothing
+// (the comparisons every function makes anyway), they are written so that a NaN fails them
+// and the result is the Rust one: `d_of` and `p22_of` return 0 (`select` on `m_z > 0`,
+// `q >= 0`), `lambda_of` returns `F32_MAX` (the shaders' `+inf`), `g1_of` and `g2_of` return 0
+// (`w.m > 0`). Mesa's lavapipe and llvmpipe keep these comparisons.
+
+/// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` from `Lambda(w)` and `w.m` (TK19
+/// supplement section 1). In `[0, 1]`; `0` for `w.m <= 0`. (A grazing `w` has
+/// `Lambda = F32_MAX` in the shaders, so `G1` is `0` up to rounding.)
+fn ndf_g1_of(lambda_w: f32, w_dot_m: f32) -> f32 {
+    return select(0.0, 1.0 / (1.0 + lambda_w), w_dot_m > 0.0);
+}
+
+/// Height-correlated masking-shadowing
+/// `G2(i, o, m) = chi+(i.m) chi+(o.m) / (1 + Lambda(i) + Lambda(o))` (TK19 supplement
+/// section 1; Heitz 2014 eq. 99) from both `Lambda`s and both dot products. In `[0, 1]`.
+fn ndf_g2_of(lambda_i: f32, lambda_o: f32, i_dot_m: f32, o_dot_m: f32) -> f32 {
+    return select(0.0, 1.0 / (1.0 + lambda_i + lambda_o), i_dot_m > 0.0 && o_dot_m > 0.0);
+}
+
+// ---- filtered_ndf::ndf::roughness::isotropic (shaders/ndf/roughness/isotropic.wgsl) ----
+/// Isotropic roughness `alpha`: `A = alpha^2 I`.
+struct ndf_roughness_isotropic_Isotropic {
+    /// The roughness `alpha`.
+    alpha: f32,
+    /// `1 / alpha^2`.
+    inv_alpha_sq: f32,
+}
+
+/// The isotropic roughness `alpha`, clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust
+/// `Isotropic::new_clamped`).
+fn ndf_roughness_isotropic_from_alpha(alpha: f32) -> ndf_roughness_isotropic_Isotropic {
+    let a = ndf_roughness_clamp_alpha(alpha);
+    return ndf_roughness_isotropic_Isotropic(a, 1.0 / (a * a));
+}
+
+/// `s^T A^-1 s = |s|^2 / alpha^2` (dimensionless). Within 4 ulp.
+fn ndf_roughness_isotropic_inv_quadratic(r: ndf_roughness_isotropic_Isotropic, s: vec2<f32>) -> f32 {
+    return dot(s, s) * r.inv_alpha_sq;
+}
+
+/// `w^T A w = alpha^2 |w|^2` for a tangent-plane `w` (Smith's projected roughness). Within
+/// 3 ulp.
+fn ndf_roughness_isotropic_quadratic(r: ndf_roughness_isotropic_Isotropic, w: vec2<f32>) -> f32 {
+    return dot(w, w) * (r.alpha * r.alpha);
+}
+
+/// `sqrt(det A) = alpha^2`. Within 1 ulp.
+fn ndf_roughness_isotropic_sqrt_det(r: ndf_roughness_isotropic_Isotropic) -> f32 {
+    return r.alpha * r.alpha;
+}
+
+/// This roughness as a [`matrix::RoughnessMatrix`], `alpha^2 I` (no determinant clamp).
+fn ndf_roughness_isotropic_to_matrix(r: ndf_roughness_isotropic_Isotropic) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_eigen(vec2<f32>(1.0, 0.0), vec2<f32>(r.alpha));
+}
+
+// ---- filtered_ndf::ndf::roughness::axis_aligned (shaders/ndf/roughness/axis_aligned.wgsl) ----
+/// Axis-aligned anisotropic roughness `(alpha_x, alpha_y)` along the tangent and bitangent:
+/// `A = diag(alpha_x^2, alpha_y^2)`.
+struct ndf_roughness_axis_aligned_AxisAligned {
+    /// `(alpha_x, alpha_y)`.
+    alpha: vec2<f32>,
+    /// `(1 / alpha_x^2, 1 / alpha_y^2)`.
+    inv_alpha_sq: vec2<f32>,
+}
+
+/// `(alpha_x, alpha_y)`, each clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust
+/// `AxisAligned::new_clamped`).
+fn ndf_roughness_axis_aligned_from_alpha(alpha: vec2<f32>) -> ndf_roughness_axis_aligned_AxisAligned {
+    let a = vec2<f32>(ndf_roughness_clamp_alpha(alpha.x), ndf_roughness_clamp_alpha(alpha.y));
+    return ndf_roughness_axis_aligned_AxisAligned(a, 1.0 / (a * a));
+}
+
+/// `s^T A^-1 s = s_x^2 / alpha_x^2 + s_y^2 / alpha_y^2`. Within 5 ulp (a sum of two
+/// non-negative terms).
+fn ndf_roughness_axis_aligned_inv_quadratic(r: ndf_roughness_axis_aligned_AxisAligned, s: vec2<f32>) -> f32 {
+    return dot(s * s, r.inv_alpha_sq);
+}
+
+/// `w^T A w = alpha_x^2 w_x^2 + alpha_y^2 w_y^2`. Within 4 ulp.
+fn ndf_roughness_axis_aligned_quadratic(r: ndf_roughness_axis_aligned_AxisAligned, w: vec2<f32>) -> f32 {
+    return dot(w * w, r.alpha * r.alpha);
+}
+
+/// `sqrt(det A) = alpha_x alpha_y`. Within 1 ulp.
+fn ndf_roughness_axis_aligned_sqrt_det(r: ndf_roughness_axis_aligned_AxisAligned) -> f32 {
+    return r.alpha.x * r.alpha.y;
+}
+
+/// This roughness as a [`matrix::RoughnessMatrix`], `diag(alpha_x^2, alpha_y^2)` (no
+/// determinant clamp).
+fn ndf_roughness_axis_aligned_to_matrix(r: ndf_roughness_axis_aligned_AxisAligned) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_eigen(vec2<f32>(1.0, 0.0), r.alpha);
+}
+
+// ---- filtered_ndf::ndf::ggx (shaders/ndf/ggx.wgsl) ----
+// GGX (Trowbridge-Reitz) in any roughness form (TK19 supplement section 1; Heitz 2014),
+// mirroring `src/.../ndf/ggx.rs`. The first three functions take what a roughness form
+// reduces to; the rest are the entry points per form.
+
+/// Slope-domain density `P22(s) = 1 / (pi sqrt(det A) (1 + q)^2)` from
+/// `q = s^T A^-1 s` and `sqrt(det A)`. Relative error: `2 (error of 1 + q)` plus 5 ulp.
+///
+/// Far tail: WGSL drivers may reassociate the product (Mesa's lavapipe squares `1 + q`
+/// first), so once `1 + q` exceeds `1e18` (the density is then below `1e-36` of its peak)
+/// the square may overflow and the result be 0; below that every association stays in
+/// range.
+fn ndf_ggx_p22_of(q: f32, sqrt_det: f32) -> f32 {
+    let t = 1.0 + q;
+    return select(0.0, 1.0 / (math_PI * sqrt_det * t * t), q >= 0.0);
+}
+
+/// Solid-angle density `D(m) = 1 / (pi sqrt(det A) (q_xy + m_z^2)^2)` for a unit micronormal
+/// `m`, from `q_xy = m_xy^T A^-1 m_xy`, `m_z` and `sqrt(det A)` (TK19 supplement,
+/// non-axis-aligned GGX, in the homogeneous form that stays finite up to the horizon;
+/// KHPL16 eq. 2). `0` for `m_z <= 0` (the `chi+` factor) and where the density exceeds the
+/// f32 range (as the Rust `d`). Relative error: `2 (error of q_xy + m_z^2)` plus 6 ulp.
+/// Far tail as [`p22_of`]: possibly 0 once `q_xy + m_z^2 > 1e18` (below `1e-36` of the
+/// peak).
+fn ndf_ggx_d_of(q_xy: f32, m_z: f32, sqrt_det: f32) -> f32 {
+    let t = q_xy + m_z * m_z;
+    let v = 1.0 / (math_PI * sqrt_det * t * t);
+    return select(0.0, v, m_z > 0.0 && v <= math_F32_MAX);
+}
+
+/// Smith `Lambda(w) = (sqrt(1 + q / w_z^2) - 1) / 2` from `q = w_xy^T A w_xy` and `|w_z|`
+/// (TK19 supplement section 1), evaluated as `q / (2 |w_z| (sqrt(w_z^2 + q) + |w_z|))`
+/// without cancellation: relative error within 4 ulp plus that of `q`. `0` for `q <= 0`;
+/// `F32_MAX` at `w_z = 0` (the Rust crate returns `+inf`, the correct grazing limit).
+/// `Lambda` is homogeneous of degree 0 in `w`: `w` need not be unit, but its squared
+/// components must stay inside the f32 range.
+fn ndf_ggx_lambda_of(q: f32, abs_wz: f32) -> f32 {
+    if q <= 0.0 && abs_wz >= 0.0 {
+        return 0.0;
+    }
+    // Grazing, or NaN in either (the NaN policy of `ndf`): fully masked.
+    if !(abs_wz > 0.0) || !(q > 0.0) {
+        return math_F32_MAX;
+    }
+    let r = sqrt(abs_wz * abs_wz + q);
+    return q / (2.0 * abs_wz * (r + abs_wz));
+}
+
+/// `P22(s)` of isotropic GGX.
+fn ndf_ggx_p22_isotropic(r: ndf_roughness_isotropic_Isotropic, s: vec2<f32>) -> f32 {
+    return ndf_ggx_p22_of(ndf_roughness_isotropic_inv_quadratic(r, s), ndf_roughness_isotropic_sqrt_det(r));
+}
+
+/// `D(m)` of isotropic GGX, `alpha^2 / (pi ((m_x^2 + m_y^2) + alpha^2 m_z^2)^2)` in effect.
+fn ndf_ggx_d_isotropic(r: ndf_roughness_isotropic_Isotropic, m: vec3<f32>) -> f32 {
+    return ndf_ggx_d_of(ndf_roughness_isotropic_inv_quadratic(r, m.xy), m.z, ndf_roughness_isotropic_sqrt_det(r));
+}
+
+/// `Lambda(w)` of isotropic GGX.
+fn ndf_ggx_lambda_isotropic(r: ndf_roughness_isotropic_Isotropic, w: vec3<f32>) -> f32 {
+    return ndf_ggx_lambda_of(ndf_roughness_isotropic_quadratic(r, w.xy), abs(w.z));
+}
+
+/// `G1(w, m)` of isotropic GGX.
+fn ndf_ggx_g1_isotropic(r: ndf_roughness_isotropic_Isotropic, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(ndf_ggx_lambda_isotropic(r, w), dot(w, m));
+}
+
+/// `G2(i, o, m)` of isotropic GGX (height-correlated).
+fn ndf_ggx_g2_isotropic(r: ndf_roughness_isotropic_Isotropic, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g2_of(ndf_ggx_lambda_isotropic(r, i), ndf_ggx_lambda_isotropic(r, o), dot(i, m), dot(o, m));
+}
+
+/// `P22(s)` of axis-aligned GGX.
+fn ndf_ggx_p22_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, s: vec2<f32>) -> f32 {
+    return ndf_ggx_p22_of(ndf_roughness_axis_aligned_inv_quadratic(r, s), ndf_roughness_axis_aligned_sqrt_det(r));
+}
+
+/// `D(m)` of axis-aligned GGX.
+fn ndf_ggx_d_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, m: vec3<f32>) -> f32 {
+    return ndf_ggx_d_of(ndf_roughness_axis_aligned_inv_quadratic(r, m.xy), m.z, ndf_roughness_axis_aligned_sqrt_det(r));
+}
+
+/// `Lambda(w)` of axis-aligned GGX.
+fn ndf_ggx_lambda_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, w: vec3<f32>) -> f32 {
+    return ndf_ggx_lambda_of(ndf_roughness_axis_aligned_quadratic(r, w.xy), abs(w.z));
+}
+
+/// `G1(w, m)` of axis-aligned GGX.
+fn ndf_ggx_g1_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(ndf_ggx_lambda_axis_aligned(r, w), dot(w, m));
+}
+
+/// `G2(i, o, m)` of axis-aligned GGX (height-correlated).
+fn ndf_ggx_g2_axis_aligned(
+    r: ndf_roughness_axis_aligned_AxisAligned,
+    i: vec3<f32>,
+    o: vec3<f32>,
+    m: vec3<f32>,
+) -> f32 {
+    return ndf_g2_of(ndf_ggx_lambda_axis_aligned(r, i), ndf_ggx_lambda_axis_aligned(r, o), dot(i, m), dot(o, m));
+}
+
+/// `P22(s)` of GGX with a roughness matrix.
+fn ndf_ggx_p22_matrix(r: ndf_roughness_matrix_RoughnessMatrix, s: vec2<f32>) -> f32 {
+    return ndf_ggx_p22_of(ndf_roughness_matrix_inv_quadratic(r, s), ndf_roughness_matrix_sqrt_det(r));
+}
+
+/// `D(m)` of GGX with a roughness matrix (a filtered or rotated lobe).
+fn ndf_ggx_d_matrix(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
+    return ndf_ggx_d_of(ndf_roughness_matrix_inv_quadratic(r, m.xy), m.z, ndf_roughness_matrix_sqrt_det(r));
+}
+
+/// `Lambda(w)` of GGX with a roughness matrix.
+fn ndf_ggx_lambda_matrix(r: ndf_roughness_matrix_RoughnessMatrix, w: vec3<f32>) -> f32 {
+    return ndf_ggx_lambda_of(ndf_roughness_matrix_quadratic(r, w.xy), abs(w.z));
+}
+
+/// `G1(w, m)` of GGX with a roughness matrix.
+fn ndf_ggx_g1_matrix(r: ndf_roughness_matrix_RoughnessMatrix, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(ndf_ggx_lambda_matrix(r, w), dot(w, m));
+}
+
+/// `G2(i, o, m)` of GGX with a roughness matrix (height-correlated).
+fn ndf_ggx_g2_matrix(r: ndf_roughness_matrix_RoughnessMatrix, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g2_of(ndf_ggx_lambda_matrix(r, i), ndf_ggx_lambda_matrix(r, o), dot(i, m), dot(o, m));
+}
+
+// ---- filtered_ndf::ndf::beckmann (shaders/ndf/beckmann.wgsl) ----
+// Beckmann in any roughness form (Beckmann and Spizzichino 1963; Heitz 2014 section 5.4;
+// KHPL16 eq. 14: `A = 2 B` with `B` the slope covariance), mirroring
+// `src/.../ndf/beckmann.rs`. The first three functions take what a roughness form reduces
+// to; the rest are the entry points per form.
+//
+// Accuracy: `exp(-x)` amplifies the relative error of its argument `x` by `x` (a property
+// of the function, not of the evaluation), and WGSL allows the driver's `exp` `3 + 2|x|`
+// ulp, the same order: the densities are within `eps (8 + 4 x)` plus the error of `x`
+// itself (`x` ulp more per ulp of `q`), and results below `2^-126` may flush to 0.
+
+/// `exp(x < EXP_SPLIT)` keeps `exp(-x)` a normal f32; beyond it the normalisation moves
+/// into the exponent.
+const ndf_beckmann_EXP_SPLIT: f32 = 80.0;
+
+/// `sqrt(pi)`.
+const ndf_beckmann_SQRT_PI: f32 = 1.77245385090552;
+
+/// `exp(-x) k` for `x >= 0`, `k = exp(ln_k)`: past `EXP_SPLIT` as `exp(ln_k - x)`, so that a
+/// density that is a normal f32 is not lost to an intermediate `exp(-x)` that is not (the
+/// Rust `exp_neg_times`).
+fn ndf_beckmann_exp_neg_times(x: f32, k: f32, ln_k: f32) -> f32 {
+    return select(exp(-x) * k, exp(ln_k - x), x > ndf_beckmann_EXP_SPLIT);
+}
+
+/// Slope-domain density `P22(s) = exp(-q) / (pi sqrt(det A))` from `q = s^T A^-1 s` and
+/// `sqrt(det A)`. `0` where the density underflows.
+fn ndf_beckmann_p22_of(q: f32, sqrt_det: f32) -> f32 {
+    let den = math_PI * sqrt_det;
+    return select(0.0, ndf_beckmann_exp_neg_times(q, 1.0 / den, -log(den)), q >= 0.0);
+}
+
+/// Solid-angle density `D(m) = exp(-q_xy / m_z^2) / (pi sqrt(det A) m_z^4)` for a unit
+/// micronormal `m` from `q_xy = m_xy^T A^-1 m_xy`, `m_z` and `sqrt(det A)` (KHPL16 eq. 2
+/// with eq. 14). `0` for `m_z <= 0`, where the density underflows, and where it exceeds the
+/// f32 range.
+fn ndf_beckmann_d_of(q_xy: f32, m_z: f32, sqrt_det: f32) -> f32 {
+    let z2 = m_z * m_z;
+    let x = q_xy / z2;
+    let k = 1.0 / (math_PI * sqrt_det * z2 * z2);
+    let ln_k = -(log(math_PI * sqrt_det) + 4.0 * log(max(m_z, math_F32_MIN_POSITIVE)));
+    let v = ndf_beckmann_exp_neg_times(x, k, ln_k);
+    return select(0.0, v, m_z > 0.0 && v <= math_F32_MAX);
+}
+
+/// Smith `Lambda(w) = (exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2` with
+/// `a = |w_z| / sqrt(q)`, `q = w_xy^T A w_xy` (Heitz 2014 eq. 80 with the projected
+/// roughness of a matrix lobe).
+///
+/// The two terms cancel (to a relative `1 / (2 a^2)` for large `a`); the Rust crate takes
+/// them in f64. Here, with `sqrt(pi) erfcx(a) = 1 / (a + K(a))`,
+/// `Lambda = exp(-a^2) K / (2 sqrt(pi) a (a + K))`, a product of positive factors for every
+/// `a > 0`, and `K(a) (2a + 1)` is a degree-14 polynomial in `t = (a - 3) / (a + 3)` (all of
+/// `a >= 0` maps to `t` in `[-1, 1)`; fitted at Chebyshev nodes, approximation error
+/// `4.4e-8` relative with the coefficients rounded to f32). The result is within
+/// `eps (32 + 16 a^2)`: `Lambda` amplifies the error of `a` (6 ulp) by `2 a^2 + 3`, and `exp`
+/// adds its `3 + 2 a^2` ulp. `0` for `q <= 0` and for `a > 9.5` (below the f32 range);
+/// `F32_MAX` at `w_z = 0` (the Rust `+inf`).
+fn ndf_beckmann_lambda_of(q: f32, abs_wz: f32) -> f32 {
+    if q <= 0.0 && abs_wz >= 0.0 {
+        return 0.0;
+    }
+    // Grazing, or NaN in either (the NaN policy of `ndf`): fully masked.
+    if !(abs_wz > 0.0) || !(q > 0.0) {
+        return math_F32_MAX;
+    }
+    let a = abs_wz / sqrt(q);
+    if a > 9.5 {
+        return 0.0;
+    }
+    let t = (a - 3.0) / (a + 3.0);
+    var p = -3.849171844194643e-05;
+    p = p * t + 0.00028491427656263113;
+    p = p * t + 1.8268152416567318e-05;
+    p = p * t - 0.0018242653459310532;
+    p = p * t + 0.0013654069043695927;
+    p = p * t + 0.005581194534897804;
+    p = p * t - 0.009357542730867863;
+    p = p * t - 0.007657155394554138;
+    p = p * t + 0.036274611949920654;
+    p = p * t - 0.0232936330139637;
+    p = p * t - 0.07646358013153076;
+    p = p * t + 0.21173490583896637;
+    p = p * t - 0.23284178972244263;
+    p = p * t + 0.033079251646995544;
+    p = p * t + 1.0631378889083862;
+    let k = p / (2.0 * a + 1.0);
+    return min(exp(-a * a) * k / (2.0 * ndf_beckmann_SQRT_PI * a * (a + k)), math_F32_MAX);
+}
+
+/// `P22(s)` of isotropic Beckmann.
+fn ndf_beckmann_p22_isotropic(r: ndf_roughness_isotropic_Isotropic, s: vec2<f32>) -> f32 {
+    return ndf_beckmann_p22_of(ndf_roughness_isotropic_inv_quadratic(r, s), ndf_roughness_isotropic_sqrt_det(r));
+}
+
+/// `D(m)` of isotropic Beckmann.
+fn ndf_beckmann_d_isotropic(r: ndf_roughness_isotropic_Isotropic, m: vec3<f32>) -> f32 {
+    return ndf_beckmann_d_of(ndf_roughness_isotropic_inv_quadratic(r, m.xy), m.z, ndf_roughness_isotropic_sqrt_det(r));
+}
+
+/// `Lambda(w)` of isotropic Beckmann.
+fn ndf_beckmann_lambda_isotropic(r: ndf_roughness_isotropic_Isotropic, w: vec3<f32>) -> f32 {
+    return ndf_beckmann_lambda_of(ndf_roughness_isotropic_quadratic(r, w.xy), abs(w.z));
+}
+
+/// `G1(w, m)` of isotropic Beckmann.
+fn ndf_beckmann_g1_isotropic(r: ndf_roughness_isotropic_Isotropic, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(ndf_beckmann_lambda_isotropic(r, w), dot(w, m));
+}
+
+/// `G2(i, o, m)` of isotropic Beckmann (height-correlated).
+fn ndf_beckmann_g2_isotropic(r: ndf_roughness_isotropic_Isotropic, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g2_of(ndf_beckmann_lambda_isotropic(r, i), ndf_beckmann_lambda_isotropic(r, o), dot(i, m), dot(o, m));
+}
+
+/// `P22(s)` of axis-aligned Beckmann.
+fn ndf_beckmann_p22_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, s: vec2<f32>) -> f32 {
+    return ndf_beckmann_p22_of(ndf_roughness_axis_aligned_inv_quadratic(r, s), ndf_roughness_axis_aligned_sqrt_det(r));
+}
+
+/// `D(m)` of axis-aligned Beckmann.
+fn ndf_beckmann_d_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, m: vec3<f32>) -> f32 {
+    return ndf_beckmann_d_of(ndf_roughness_axis_aligned_inv_quadratic(r, m.xy), m.z, ndf_roughness_axis_aligned_sqrt_det(r));
+}
+
+/// `Lambda(w)` of axis-aligned Beckmann.
+fn ndf_beckmann_lambda_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, w: vec3<f32>) -> f32 {
+    return ndf_beckmann_lambda_of(ndf_roughness_axis_aligned_quadratic(r, w.xy), abs(w.z));
+}
+
+/// `G1(w, m)` of axis-aligned Beckmann.
+fn ndf_beckmann_g1_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(ndf_beckmann_lambda_axis_aligned(r, w), dot(w, m));
+}
+
+/// `G2(i, o, m)` of axis-aligned Beckmann (height-correlated).
+fn ndf_beckmann_g2_axis_aligned(
+    r: ndf_roughness_axis_aligned_AxisAligned,
+    i: vec3<f32>,
+    o: vec3<f32>,
+    m: vec3<f32>,
+) -> f32 {
+    return ndf_g2_of(ndf_beckmann_lambda_axis_aligned(r, i), ndf_beckmann_lambda_axis_aligned(r, o), dot(i, m), dot(o, m));
+}
+
+/// `P22(s)` of Beckmann with a roughness matrix.
+fn ndf_beckmann_p22_matrix(r: ndf_roughness_matrix_RoughnessMatrix, s: vec2<f32>) -> f32 {
+    return ndf_beckmann_p22_of(ndf_roughness_matrix_inv_quadratic(r, s), ndf_roughness_matrix_sqrt_det(r));
+}
+
+/// `D(m)` of Beckmann with a roughness matrix (a filtered or rotated lobe).
+fn ndf_beckmann_d_matrix(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
+    return ndf_beckmann_d_of(ndf_roughness_matrix_inv_quadratic(r, m.xy), m.z, ndf_roughness_matrix_sqrt_det(r));
+}
+
+/// `Lambda(w)` of Beckmann with a roughness matrix.
+fn ndf_beckmann_lambda_matrix(r: ndf_roughness_matrix_RoughnessMatrix, w: vec3<f32>) -> f32 {
+    return ndf_beckmann_lambda_of(ndf_roughness_matrix_quadratic(r, w.xy), abs(w.z));
+}
+
+/// `G1(w, m)` of Beckmann with a roughness matrix.
+fn ndf_beckmann_g1_matrix(r: ndf_roughness_matrix_RoughnessMatrix, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(ndf_beckmann_lambda_matrix(r, w), dot(w, m));
+}
+
+/// `G2(i, o, m)` of Beckmann with a roughness matrix (height-correlated).
+fn ndf_beckmann_g2_matrix(r: ndf_roughness_matrix_RoughnessMatrix, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g2_of(ndf_beckmann_lambda_matrix(r, i), ndf_beckmann_lambda_matrix(r, o), dot(i, m), dot(o, m));
+}
+
+// ---- filtered_ndf::filter::gaussian_ggx_quad (shaders/filter/gaussian_ggx_quad.wgsl) ----
+// The quadrature rules of the exact Gaussian-filtered GGX (`gaussian_ggx.wgsl`), the f32
+// rules of the Rust crate's `src/.../filter/gaussian_ggx_quad.rs` (derivations and bounds in
+// the module docs of `gaussian_ggx.rs`, items cited as "item N"): the far-tail series, 8-node
+// Gauss-Laguerre, the trapezoid rule in `ln w` with step 0.5 and the series-corrected lower
+// end (4 terms); for `Lambda` 8-node Gauss-Hermite or the sinh-substituted trapezoid rule.
+// Their own errors (proven or measured in Rust): `J` within `1.6e-6 + 2e-7` relative,
+// `Lambda` within `3e-7`. Differences from the Rust f32 path, which sets each rule up in f64:
+// everything here is f32, with `math::exp` (the Rust polynomial, 3 ulp) and `math::ln`; each
+// node's exponent is still formed against the reference node (no `eps |E|` loss from the
+// exponent's size), the nodes `w_k` from one `math::exp` per chunk of 8 (4 ulp); the series
+// below the first node is scaled by powers of that node (every term bounded: no overflow);
+// `1 / (p1 p2)` as two quotients (no overflow for kernels up to `KERNEL_MAX`). What remains of
+// f32 is the rounding of the set-up (a few ulp of each `c_i^2`, `2 l_i`), which `J` amplifies by
+// its condition numbers (`gaussian_ggx.wgsl`).
+
+/// Far-tail switch: the series replaces the quadrature where `1 + q >= FAR 2 l1`.
+const filter_gaussian_ggx_quad_FAR: f32 = 3.2e5;
+/// Trapezoid step in `t = ln w`.
+const filter_gaussian_ggx_quad_H: f32 = 0.5;
+/// `e^H`.
+const filter_gaussian_ggx_quad_EXP_H: f32 = 1.6487212707001282;
+/// Relative truncation tolerance at the top of the trapezoid rule.
+const filter_gaussian_ggx_quad_EPS_T: f32 = 1e-7;
+/// The first node lies at or below `w = Y_LO / (1 + q + 2 l1)` (the series' bound).
+const filter_gaussian_ggx_quad_Y_LO: f32 = 0.054;
+/// Chunks of 8 nodes at most (the Rust table has 176 nodes).
+const filter_gaussian_ggx_quad_CHUNKS: u32 = 22u;
+/// Gauss-Laguerre applies where `2 l1 <= GL_RATIO (1 + q)` ...
+const filter_gaussian_ggx_quad_GL_RATIO: f32 = 0.0177;
+/// ... and `2 l1 (GL_PLATEAU + 1.5 ln(1 + q)) <= 1 + q` (item 4) ...
+const filter_gaussian_ggx_quad_GL_PLATEAU: f32 = 20.0;
+/// ... which the first implies below `1 + q = GL_WIDE`.
+const filter_gaussian_ggx_quad_GL_WIDE: f32 = 2.8e10;
+
+/// The 8-node generalised Gauss-Laguerre rule for the weight `v e^-v`: node `k`.
+fn filter_gaussian_ggx_quad_laguerre_node(k: u32) -> f32 {
+    switch k {
+        case 0u: { return 0.40938357320318514; }
+        case 1u: { return 1.3849631848031398; }
+        case 2u: { return 2.956254556168862; }
+        case 3u: { return 5.181943101040071; }
+        case 4u: { return 8.161709688145818; }
+        case 5u: { return 12.070055126837154; }
+        case 6u: { return 17.24973552614899; }
+        default: { return 24.585955243652784; }
+    }
+}
+
+/// The 8-node Gauss-Laguerre rule: weight `k`.
+fn filter_gaussian_ggx_quad_laguerre_weight(k: u32) -> f32 {
+    switch k {
+        case 0u: { return 0.18763254140572366; }
+        case 1u: { return 0.43898536073114236; }
+        case 2u: { return 0.28999607078131334; }
+        case 3u: { return 0.07514138461669734; }
+        case 4u: { return 0.007932646648707345; }
+        case 5u: { return 0.0003086421368133042; }
+        case 6u: { return 3.348958209797096e-6; }
+        default: { return 4.721392823193221e-9; }
+    }
+}
+
+/// `J / z2^2` for `c_i^2 = v_i^2 / z2` from `(v1^2, v2^2)`, `z2 > 0` and `(2 l1, 2 l2)`,
+/// `2 l1 >= 2 l2 >= 0` (the Rust `j`): `J(c)` itself for `z2 = 1` (a slope), `J / m_z^4` for a
+/// normal (`z2 = m_z^2`, `v = T m_xy`) without forming the slope. The rule by `q = |c|^2` and
+/// the kernel ratio (module docs).
+fn filter_gaussian_ggx_quad_j(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
+    let beta_m = z2 + v1s + v2s;
+    if beta_m >= filter_gaussian_ggx_quad_FAR * tl1 * z2 {
+        return filter_gaussian_ggx_quad_far_tail(beta_m, v1s, v2s, tl1, tl2, z2);
+    }
+    if tl1 * z2 <= filter_gaussian_ggx_quad_GL_RATIO * beta_m
+        && (beta_m <= filter_gaussian_ggx_quad_GL_WIDE * z2 || tl1 * (filter_gaussian_ggx_quad_GL_PLATEAU + 1.5 * math_ln(beta_m / z2)) * z2 <= beta_m) {
+        return filter_gaussian_ggx_quad_laguerre(beta_m, v1s, v2s, z2, tl1, tl2);
+    }
+    let iz2 = 1.0 / z2;
+    return filter_gaussian_ggx_quad_trapezoid(v1s * iz2, v2s * iz2, tl1, tl2) * iz2 * iz2;
+}
+
+/// The far-tail series of `J` (item 5), homogeneous as [`j`]:
+/// `J = beta^-2 (1 + 12 P z2 / beta^2 - 2 (l1 + l2) z2 / beta)`, `P = l1 c1^2 + l2 c2^2`
+/// (`P / beta` formed first: no overflow).
+fn filter_gaussian_ggx_quad_far_tail(beta: f32, c1s: f32, c2s: f32, tl1: f32, tl2: f32, z2: f32) -> f32 {
+    let ib = 1.0 / beta;
+    let p_ib = 0.5 * (tl1 * (c1s * ib) + tl2 * (c2s * ib));
+    let ls = 0.5 * (tl1 + tl2);
+    return ib * ib * (1.0 + z2 * ib * (12.0 * p_ib - 2.0 * ls));
+}
+
+/// Gauss-Laguerre in `v = (1 + q) w` (item 4): `J = beta^-2 sum W_k F(v_k / beta)`,
+/// `F(w) = exp(sum c_i^2 2 l_i w^2 / p_i) / sqrt(p1 p2)`; homogeneous as [`j`].
+fn filter_gaussian_ggx_quad_laguerre(beta_m: f32, v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
+    let ib = 1.0 / beta_m;
+    let t1 = tl1 * z2 * ib;
+    let t2 = tl2 * z2 * ib;
+    let g1 = (v1s * ib) * t1;
+    let g2 = (v2s * ib) * t2;
+    var acc = 0.0;
+    for (var k = 0u; k < 8u; k++) {
+        let v = filter_gaussian_ggx_quad_laguerre_node(k);
+        let p1 = 1.0 + t1 * v;
+        let p2 = 1.0 + t2 * v;
+        let ip1 = 1.0 / p1;
+        let ip2 = 1.0 / p2;
+        let e = v * v * (g1 * ip1 + g2 * ip2);
+        acc += filter_gaussian_ggx_quad_laguerre_weight(k) * math_exp(e) * sqrt(ip1) * sqrt(ip2);
+    }
+    return acc * ib * ib;
+}
+
+/// The geometric sums `1 / (e^((n + 2) H) - 1)` of the series below the first node.
+fn filter_gaussian_ggx_quad_geom(n: u32) -> f32 {
+    switch n {
+        case 0u: { return 0.5819767068693265; }
+        case 1u: { return 0.2872169167888683; }
+        case 2u: { return 0.15651764274966565; }
+        default: { return 0.08942548983385201; }
+    }
+}
+
+/// The nodes below `w_first` (item 2): `sum_k w_k^2 phi(w_k)` over `w_k = w_first e^(-k H)`,
+/// `k >= 1`, with `phi = exp(-w - E(w)) / sqrt(p1 p2) = sum a_n w^n` truncated after 4 terms.
+/// Scaled by `y = w_first`: with `x_i = 2 l_i y`, `d_i = c_i^2 y` (both `<= Y_LO`), the
+/// coefficients `b~_n = b_n y^n` of `ln phi` and `a~_n = a_n y^n` are bounded, and the sum is
+/// `y^2 sum_n a~_n / (e^((n + 2) H) - 1)`.
+fn filter_gaussian_ggx_quad_series_below(c1s: f32, c2s: f32, tl1: f32, tl2: f32, y: f32) -> f32 {
+    let x1 = tl1 * y;
+    let x2 = tl2 * y;
+    let d1 = c1s * y;
+    let d2 = c2s * y;
+    // b~_n for n = 1..3 (coefficient of w^n times y^n): -(d1 (-x1)^(n-1) + d2 (-x2)^(n-1))
+    // from -E, + ((-x1)^n + (-x2)^n) / (2 n) from -ln(p1 p2) / 2, and -y for n = 1.
+    let b1 = -(d1 + d2) - 0.5 * (x1 + x2) - y;
+    let b2 = (d1 * x1 + d2 * x2) + 0.25 * (x1 * x1 + x2 * x2);
+    let b3 = -(d1 * x1 * x1 + d2 * x2 * x2) - (1.0 / 6.0) * (x1 * x1 * x1 + x2 * x2 * x2);
+    // n a_n = sum_j j b_j a_(n-j).
+    let a1 = b1;
+    let a2 = 0.5 * (b1 * a1 + 2.0 * b2);
+    let a3 = (1.0 / 3.0) * (b1 * a2 + 2.0 * b2 * a1 + 3.0 * b3);
+    let tail = filter_gaussian_ggx_quad_geom(0u) + a1 * filter_gaussian_ggx_quad_geom(1u) + a2 * filter_gaussian_ggx_quad_geom(2u) + a3 * filter_gaussian_ggx_quad_geom(3u);
+    return tail * y * y;
+}
+
+/// The trapezoid rule in `t = ln w` (items 1 to 3): nodes `w_k = w_r e^((k - k0) H)` from the
+/// first node at or below `Y_LO / (1 + q + 2 l1)`, the nodes below it summed by
+/// [`series_below`], each exponent against the reference `w_r = 2 / (1 + q)`, the top truncated
+/// by the monotone bound, in chunks of 8 nodes.
+fn filter_gaussian_ggx_quad_trapezoid(c1s: f32, c2s: f32, tl1: f32, tl2: f32) -> f32 {
+    let beta = 1.0 + c1s + c2s;
+    let ib = 1.0 / beta;
+    let w_r = 2.0 * ib;
+    // k0 H >= ln(w_r / w_lo), w_lo = Y_LO / (beta + 2 l1).
+    let k0 = min(ceil(math_ln(2.0 / filter_gaussian_ggx_quad_Y_LO * (beta + tl1) * ib) / filter_gaussian_ggx_quad_H), f32(filter_gaussian_ggx_quad_CHUNKS * 8u - 1u));
+    let w_first = w_r * math_exp(-k0 * filter_gaussian_ggx_quad_H);
+    // The reference exponent x_r = -w_r - E(w_r); E(w) - E(w_r) = sum c_i^2 (w - w_r) /
+    // (p_i(w) p_i(w_r)) without cancellation.
+    let pr1 = 1.0 + tl1 * w_r;
+    let pr2 = 1.0 + tl2 * w_r;
+    let k1 = c1s * (w_r / pr1);
+    let k2 = c2s * (w_r / pr2);
+    let x_r = -w_r - k1 - k2;
+    let scale = w_r * w_r * math_exp(x_r);
+    // Per node, v = w / w_r = e^((k - k0) H), p_i = 1 + (2 l_i w_r) v:
+    // g / scale = exp(2 ln v - (v - 1)(w_r + k1 / p1 + k2 / p2)) / sqrt(p1 p2).
+    let t1 = tl1 * w_r;
+    let t2 = tl2 * w_r;
+    let stop = filter_gaussian_ggx_quad_EPS_T * filter_gaussian_ggx_quad_H * w_r * w_r;
+    var sum = 0.0;
+    for (var ch = 0u; ch < filter_gaussian_ggx_quad_CHUNKS; ch++) {
+        let kb = f32(ch * 8u) - k0;
+        var v = math_exp(kb * filter_gaussian_ggx_quad_H);
+        var part = 0.0;
+        var last = 0.0;
+        var vl = v;
+        for (var jj = 0u; jj < 8u; jj++) {
+            let ip1 = 1.0 / (1.0 + t1 * v);
+            let ip2 = 1.0 / (1.0 + t2 * v);
+            let a = w_r + k1 * ip1 + k2 * ip2;
+            let x = 2.0 * filter_gaussian_ggx_quad_H * (kb + f32(jj)) - (v - 1.0) * a;
+            last = math_exp(x) * sqrt(ip1) * sqrt(ip2);
+            part += last;
+            vl = v;
+            v = v * filter_gaussian_ggx_quad_EXP_H;
+        }
+        sum += part;
+        // Item 3: the nodes above the last sum to at most g_last b / w_last^2.
+        let wl = vl * w_r;
+        let b = select(7.47, 1.0 + wl, wl >= 2.0);
+        if last * b <= stop * sum * vl * vl {
+            break;
+        }
+    }
+    return filter_gaussian_ggx_quad_H * (sum * scale + filter_gaussian_ggx_quad_series_below(c1s, c2s, tl1, tl2, w_first));
+}
+
+/// The 8-node Gauss-Hermite rule for the standard normal density: positive node `k`
+/// (the rule is symmetric).
+fn filter_gaussian_ggx_quad_hermite_node(k: u32) -> f32 {
+    switch k {
+        case 0u: { return 0.5390798113513751; }
+        case 1u: { return 1.636519042435108; }
+        case 2u: { return 2.8024858612875416; }
+        default: { return 4.1445471861258945; }
+    }
+}
+
+/// The 8-node Gauss-Hermite rule: weight of node `k` (and of its mirror).
+fn filter_gaussian_ggx_quad_hermite_weight(k: u32) -> f32 {
+    switch k {
+        case 0u: { return 0.37301225767907736; }
+        case 1u: { return 0.11723990766175901; }
+        case 2u: { return 0.009635220120788266; }
+        default: { return 0.00011261453837536777; }
+    }
+}
+
+/// `h(y) = sqrt(1 + y^2) - y` without cancellation or overflow: `1 / (sqrt(1 + y^2) + y)` for
+/// `y >= 0`.
+fn filter_gaussian_ggx_quad_h_of(y: f32) -> f32 {
+    let a = abs(y);
+    var r: f32;
+    if a > 1.0 {
+        let i = 1.0 / a;
+        r = a * sqrt(1.0 + i * i);
+    } else {
+        r = sqrt(1.0 + y * y);
+    }
+    return select(r - y, 1.0 / (r + y), y >= 0.0);
+}
+
+/// Gauss-Hermite `Lambda` (item 6) in units of `sqrt(qa)`: `sum W_k h(z0 - sigma x_k) / (2 z0)`,
+/// `z0 = oz / sqrt(qa)`, `sigma = sqrt(qs / qa)`.
+fn filter_gaussian_ggx_quad_lambda_hermite(qa: f32, qs: f32, oz: f32) -> f32 {
+    let iq = 1.0 / qa;
+    let z0 = oz * sqrt(iq);
+    let fs = sqrt(qs * iq);
+    var acc = 0.0;
+    for (var k = 0u; k < 4u; k++) {
+        let x = fs * filter_gaussian_ggx_quad_hermite_node(k);
+        acc += filter_gaussian_ggx_quad_hermite_weight(k) * (filter_gaussian_ggx_quad_h_of(z0 - x) + filter_gaussian_ggx_quad_h_of(z0 + x));
+    }
+    return acc / (2.0 * z0);
+}
+
+/// Gauss-Hermite applies where `delta_s^2 = qs / (qa + oz^2) <= GH_MAX` (item 6).
+const filter_gaussian_ggx_quad_GH_MAX: f32 = 0.01;
+/// The sinh rule's step `min(S_MAX, S_COEF sqrt(delta_s))`, truncation `S_EPS`, and its
+/// safety net on the nodes per direction (never reached).
+const filter_gaussian_ggx_quad_S_MAX: f32 = 0.25;
+const filter_gaussian_ggx_quad_S_COEF: f32 = 0.25;
+const filter_gaussian_ggx_quad_S_EPS: f32 = 1e-8;
+const filter_gaussian_ggx_quad_S_MAX_CHUNKS: u32 = 512u;
+
+/// One direction of the sinh rule (see [`lambda_sinh`]): nodes `T = e^(d/2)`, `d = +-k h`
+/// (`k >= 0` up, `k >= 1` down), each `T` by one `math::exp`; stops (every 8 nodes) once the
+/// terms fall by half per node and the last is `<= S_EPS` of the running total.
+fn filter_gaussian_ggx_quad_sinh_run(up: bool, h: f32, rq: f32, e0: f32, ie0: f32, i2s2: f32, e2: f32, c_stop: f32, total_in: f32) -> f32 {
+    var total = total_in;
+    let sgn = select(-1.0, 1.0, up);
+    let first = select(1u, 0u, up);
+    for (var ch = 0u; ch < filter_gaussian_ggx_quad_S_MAX_CHUNKS; ch++) {
+        var fl = 0.0;
+        var xl = 0.0;
+        var part = 0.0;
+        for (var jj = 0u; jj < 8u; jj++) {
+            let k = f32(first + ch * 8u + jj);
+            let t = math_exp(sgn * 0.5 * h * k);
+            let it = 1.0 / t;
+            // oz - sqrt(qa) sinh(s0 + d) = -sqrt(qa) 2 cosh(s0 + d/2) sinh(d/2).
+            let x = -0.5 * rq * (e0 * t + ie0 * it) * (t - it);
+            let arg = -x * x * i2s2;
+            let it2 = it * it;
+            fl = select(0.0, math_exp(arg) * (1.0 + e2 * it2 * it2), arg > -87.0);
+            xl = x;
+            part += fl;
+        }
+        total += part;
+        let done = select(xl >= c_stop, -xl >= c_stop, up);
+        if done && fl <= filter_gaussian_ggx_quad_S_EPS * total {
+            break;
+        }
+    }
+    return total;
+}
+
+/// The trapezoid rule in `s`, `y = sqrt(qa) sinh s` (item 6):
+/// `Lambda = qa / (4 oz) integral phi_sigma(oz - sqrt(qa) sinh s) (1 + e^-2s) ds`, nodes
+/// `s0 + k h` with `sinh s0 = oz / sqrt(qa)`, outward from `s0` in both directions.
+fn filter_gaussian_ggx_quad_lambda_sinh(qa: f32, qs: f32, oz: f32, ds2: f32) -> f32 {
+    let rq = sqrt(qa);
+    let root = oz + sqrt(qa + oz * oz);
+    let e0 = root / rq;
+    let ie0 = rq / root;
+    let h = min(filter_gaussian_ggx_quad_S_MAX, filter_gaussian_ggx_quad_S_COEF * sqrt(sqrt(ds2)));
+    let i2s2 = 0.5 / qs;
+    // |x| sqrt(qa) h / qs beyond which the terms fall by half per node (Rust module docs).
+    let c_up = math_LN_2 * qs / (rq * h);
+    let c_down = (2.0 * h + math_LN_2) * qs / (rq * h);
+    let e2 = ie0 * ie0;
+    let up = filter_gaussian_ggx_quad_sinh_run(true, h, rq, e0, ie0, i2s2, e2, c_up, 0.0);
+    let all = filter_gaussian_ggx_quad_sinh_run(false, h, rq, e0, ie0, i2s2, e2, c_down, up);
+    return all * (h * qa / (4.0 * oz * sqrt(qs) * math_SQRT_TAU));
+}
+
+/// Smith `Lambda` of the filtered lobe (item 6) for `qa = o^T A o > 0`, `qs = o^T Sigma o > 0`
+/// and `oz = |o_z| > 0` (unit `o`): `Lambda = E[h(oz - Z)] / (2 oz)`, `Z ~ N(0, qs)`.
+fn filter_gaussian_ggx_quad_lambda(qa: f32, qs: f32, oz: f32) -> f32 {
+    let ds2 = qs / (qa + oz * oz);
+    if ds2 <= filter_gaussian_ggx_quad_GH_MAX {
+        return filter_gaussian_ggx_quad_lambda_hermite(qa, qs, oz);
+    }
+    return filter_gaussian_ggx_quad_lambda_sinh(qa, qs, oz, ds2);
+}
+
+// ---- filtered_ndf::filter::gaussian_ggx (shaders/filter/gaussian_ggx.wgsl) ----
+// The exact Gaussian-filtered GGX (`src/.../filter/gaussian_ggx.rs`, `GaussianFilteredGgx`):
+// the convolution of a GGX slope density of roughness `A` with a Gaussian kernel
+// `N(0, Sigma)`, with its own Smith `Lambda`, in f32. What TK19 section 2.2 and TK21
+// approximate by a GGX of roughness `A + 2 Sigma`, and KHPL16 (section 5.2) replaces by a box.
+//
+// The mixture identity (Rust module docs): GGX is a scale mixture of Gaussians,
+// `P22(s) = integral e^-w N(s; 0, A / (2w)) dw`, and convolving each component adds the
+// kernel, so `P22_Sigma(s) = J / (pi sqrt(det A))` with
+// `J = integral w e^-w exp(-E(w)) / sqrt(p1 p2) dw`, `p_i = 1 + 2 l_i w`,
+// `E(w) = w (c1^2 / p1 + c2^2 / p2)`, where `(l1, l2)` are the eigenvalues of the kernel in
+// units of the lobe, `B^-1 Sigma B^-T` (`A = B B^T`), and `c` the slope whitened by `B` and
+// rotated into that eigenbasis. `J` by the rules of `gaussian_ggx_quad.wgsl`. `Lambda` is the
+// filtered distribution's own: a Gaussian average of GGX's `Lambda` (Rust item 6).
+//
+// The build in f32 (the Rust crate builds in f64): in the eigenbasis of `A_c` (the matrix the
+// material's density evaluates, `matrix.wgsl`), `B = R diag(sqrt l)`, so `B^-1 Sigma B^-T` has
+// the entries `k_ij / sqrt(l_i l_j)` of the kernel rotated into that basis (`k_ij = e_i^T
+// Sigma e_j`), its determinant is `det Sigma / det A_c` (the kernel's carried determinant: the
+// minor eigenvalue `l2 = det / l1` keeps its relative accuracy), `l1` is a sum of non-negative
+// terms, and its eigenvector comes from the row without cancellation. Whitening a slope is then
+// `matrix::rotate`, a scaling, and one more rotation.
+//
+// Accuracy (stated bound; `gpu/src/checks/gaussian_ggx.rs` derives the per-case tolerance):
+// the rules' own `1.8e-6` (`J`) and `3e-7` (`Lambda`), plus the f32 rounding of the set-up
+// (a few ulp of each `c_i^2` and `2 l_i`, and of the kernel's eigenvector, an angle of a few
+// ulp), which `P22_Sigma` amplifies by its condition numbers: `d ln J / d ln c_i^2 = -<E_i>`
+// (the mean exponent over the integrand, `<= 2` for the unfiltered lobe, `~ln(2 l1)` where
+// the kernel dominates), `|d ln J / d ln l_i| <= <E_i> + 1/2`, and the sensitivity to the
+// kernel's orientation. NaN: not tested for (WGSL); `d` and `p22` return 0 where the density
+// leaves the f32 range.
+
+/// The exact Gaussian-filtered GGX lobe, built once per shading point by [`from_kernel`] (the Rust `new`; `new` is a reserved word in WGSL).
+struct filter_gaussian_ggx_GaussianFilteredGgx {
+    /// The material's roughness (its `A_c` is the lobe `A`): its eigenbasis whitens slopes.
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    /// `1 / sqrt(l)` of `A_c`'s eigenvalues `l`.
+    inv_sqrt_l: vec2<f32>,
+    /// The unit eigenvector `v` of the kernel in units of the lobe (of `l1`), in `A_c`'s
+    /// eigenbasis: `c = (v . u, v_perp . u)`, `u` the whitened slope.
+    v: vec2<f32>,
+    /// `(2 l1, 2 l2)`, `l1 >= l2 >= 0`.
+    tl: vec2<f32>,
+    /// `1 / (pi sqrt(det A_c))`.
+    norm: f32,
+    /// The sanitised kernel (for `Lambda`'s `o^T Sigma o`).
+    k: kernel_covariance_Covariance,
+}
+
+/// The lobe of GGX roughness `a` (evaluated as its `A_c`) filtered by the kernel `kernel`
+/// (slope^2; `covariance::sanitized` first), the Rust `GaussianFilteredGgx::new`.
+fn filter_gaussian_ggx_from_kernel(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> filter_gaussian_ggx_GaussianFilteredGgx {
+    let k = kernel_covariance_sanitized(kernel);
+    let c = a.axis.x;
+    let s = a.axis.y;
+    // The kernel in A_c's eigenbasis.
+    let k11 = max(c * c * k.s_xx + 2.0 * c * s * k.s_xy + s * s * k.s_yy, 0.0);
+    let k22 = max(s * s * k.s_xx - 2.0 * c * s * k.s_xy + c * c * k.s_yy, 0.0);
+    let k12 = (c * c - s * s) * k.s_xy + c * s * (k.s_yy - k.s_xx);
+    let l = a.eig_c;
+    let isl = 1.0 / sqrt(l);
+    // C = diag(l)^-1/2 K diag(l)^-1/2, det C = det Sigma / det A_c.
+    let c11 = k11 * isl.x * isl.x;
+    let c22 = k22 * isl.y * isl.y;
+    let c12 = k12 * isl.x * isl.y;
+    let det_c = max(k.det, 0.0) / (l.x * l.y);
+    let half = 0.5 * (c11 - c22);
+    let rad = math_hypot(half, c12);
+    let l1 = 0.5 * (c11 + c22) + rad;
+    var l2 = 0.0;
+    var v = vec2<f32>(1.0, 0.0);
+    if rad > 0.0 {
+        let big = rad + abs(half);
+        let w = select(vec2<f32>(c12, big), vec2<f32>(big, c12), half >= 0.0);
+        v = w / length(w);
+        l2 = min(det_c / l1, l1);
+    } else if l1 > 0.0 {
+        l2 = l1;
+    }
+    return filter_gaussian_ggx_GaussianFilteredGgx(a, isl, v, vec2<f32>(2.0 * l1, 2.0 * l2), math_INV_PI / ndf_roughness_matrix_sqrt_det(a), k);
+}
+
+/// `(c1^2, c2^2)` of a tangent-plane vector `s` (a slope, or `m_xy` of a normal).
+fn filter_gaussian_ggx_whiten(g: filter_gaussian_ggx_GaussianFilteredGgx, s: vec2<f32>) -> vec2<f32> {
+    let u = ndf_roughness_matrix_rotate(g.a, s) * g.inv_sqrt_l;
+    let c = vec2<f32>(g.v.x * u.x + g.v.y * u.y, g.v.x * u.y - g.v.y * u.x);
+    return c * c;
+}
+
+/// `P22_Sigma(s) = J / (pi sqrt(det A))` per unit slope area (the Rust `p22`); 0 where it
+/// underflows.
+fn filter_gaussian_ggx_p22(g: filter_gaussian_ggx_GaussianFilteredGgx, s: vec2<f32>) -> f32 {
+    let c = filter_gaussian_ggx_whiten(g, s);
+    return g.norm * filter_gaussian_ggx_quad_j(c.x, c.y, 1.0, g.tl.x, g.tl.y);
+}
+
+/// `D(m) = P22_Sigma(s(m)) / m_z^4` per steradian for a unit micronormal (the Rust `d`): `0`
+/// for `m_z <= 0` and where the density leaves the f32 range; every rule homogeneous in `m`
+/// (finite up to the horizon).
+fn filter_gaussian_ggx_d(g: filter_gaussian_ggx_GaussianFilteredGgx, m: vec3<f32>) -> f32 {
+    if !(m.z > 0.0) {
+        return 0.0;
+    }
+    let c = filter_gaussian_ggx_whiten(g, m.xy);
+    let v = g.norm * filter_gaussian_ggx_quad_j(c.x, c.y, m.z * m.z, g.tl.x, g.tl.y);
+    return select(0.0, v, v <= math_F32_MAX);
+}
+
+/// The filtered lobe's own Smith `Lambda(w)` (the Rust `lambda`): the mixture of the Beckmann
+/// `Lambda`s of roughness `A / w + 2 Sigma` over `e^-w dw`, as `E[h(o_z - Z)] / (2 o_z)`,
+/// `Z ~ N(0, o^T Sigma o)`, `h(y) = sqrt(o^T A o + y^2) - y` (`quad::lambda`); GGX's own where
+/// the view does not see the kernel. Uses `|w_z|`, homogeneous in `w` (normalised here after
+/// scaling by the largest component). `F32_MAX` at grazing, `0` at normal incidence.
+fn filter_gaussian_ggx_lambda(g: filter_gaussian_ggx_GaussianFilteredGgx, w: vec3<f32>) -> f32 {
+    let big = max(max(abs(w.x), abs(w.y)), abs(w.z));
+    if !(big > 0.0) {
+        return select(math_F32_MAX, 0.0, big == 0.0);
+    }
+    let ws = w / big;
+    let o = ws / length(ws);
+    let oz = abs(o.z);
+    let qa = ndf_roughness_matrix_quadratic(g.a, o.xy);
+    let kk = g.k;
+    let qs = max(kk.s_xx * o.x * o.x + 2.0 * kk.s_xy * o.x * o.y + kk.s_yy * o.y * o.y, 0.0);
+    if qs <= 0.0 {
+        return ndf_ggx_lambda_of(qa, oz);
+    }
+    if oz <= 0.0 {
+        return math_F32_MAX;
+    }
+    if qa <= 0.0 {
+        return ndf_beckmann_lambda_of(2.0 * qs, oz);
+    }
+    return filter_gaussian_ggx_quad_lambda(qa, qs, oz);
+}
+
+/// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` of the filtered lobe.
+fn filter_gaussian_ggx_g1(g: filter_gaussian_ggx_GaussianFilteredGgx, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(filter_gaussian_ggx_lambda(g, w), dot(w, m));
+}
+
+/// Height-correlated `G2(i, o, m) = chi+(i.m) chi+(o.m) / (1 + Lambda(i) + Lambda(o))` of the
+/// filtered lobe.
+fn filter_gaussian_ggx_g2(g: filter_gaussian_ggx_GaussianFilteredGgx, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g2_of(filter_gaussian_ggx_lambda(g, i), filter_gaussian_ggx_lambda(g, o), dot(i, m), dot(o, m));
+}
+
 // ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
 // LEAN mapping's moments and the nested convolution of KHPL16 section 5.5, eq. 21,
 // mirroring `src/.../filter/lean.rs`.
@@ -1043,45 +1921,6 @@ fn filter_projected_projected_sanitized(
     return ndf_roughness_matrix_from_entries_det(max(b11, e.x), b12, max(b22, e.z), det, max(tau, 0.0));
 }
 
-// ---- filtered_ndf::ndf::roughness::axis_aligned (shaders/ndf/roughness/axis_aligned.wgsl) ----
-/// Axis-aligned anisotropic roughness `(alpha_x, alpha_y)` along the tangent and bitangent:
-/// `A = diag(alpha_x^2, alpha_y^2)`.
-struct ndf_roughness_axis_aligned_AxisAligned {
-    /// `(alpha_x, alpha_y)`.
-    alpha: vec2<f32>,
-    /// `(1 / alpha_x^2, 1 / alpha_y^2)`.
-    inv_alpha_sq: vec2<f32>,
-}
-
-/// `(alpha_x, alpha_y)`, each clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust
-/// `AxisAligned::new_clamped`).
-fn ndf_roughness_axis_aligned_from_alpha(alpha: vec2<f32>) -> ndf_roughness_axis_aligned_AxisAligned {
-    let a = vec2<f32>(ndf_roughness_clamp_alpha(alpha.x), ndf_roughness_clamp_alpha(alpha.y));
-    return ndf_roughness_axis_aligned_AxisAligned(a, 1.0 / (a * a));
-}
-
-/// `s^T A^-1 s = s_x^2 / alpha_x^2 + s_y^2 / alpha_y^2`. Within 5 ulp (a sum of two
-/// non-negative terms).
-fn ndf_roughness_axis_aligned_inv_quadratic(r: ndf_roughness_axis_aligned_AxisAligned, s: vec2<f32>) -> f32 {
-    return dot(s * s, r.inv_alpha_sq);
-}
-
-/// `w^T A w = alpha_x^2 w_x^2 + alpha_y^2 w_y^2`. Within 4 ulp.
-fn ndf_roughness_axis_aligned_quadratic(r: ndf_roughness_axis_aligned_AxisAligned, w: vec2<f32>) -> f32 {
-    return dot(w * w, r.alpha * r.alpha);
-}
-
-/// `sqrt(det A) = alpha_x alpha_y`. Within 1 ulp.
-fn ndf_roughness_axis_aligned_sqrt_det(r: ndf_roughness_axis_aligned_AxisAligned) -> f32 {
-    return r.alpha.x * r.alpha.y;
-}
-
-/// This roughness as a [`matrix::RoughnessMatrix`], `diag(alpha_x^2, alpha_y^2)` (no
-/// determinant clamp).
-fn ndf_roughness_axis_aligned_to_matrix(r: ndf_roughness_axis_aligned_AxisAligned) -> ndf_roughness_matrix_RoughnessMatrix {
-    return ndf_roughness_matrix_from_eigen(vec2<f32>(1.0, 0.0), r.alpha);
-}
-
 // ---- filtered_ndf::filter::proxy (shaders/filter/proxy.wgsl) ----
 // The GGX proxy of KHPL16 section 5.4 (eq. 18-20), mirroring `src/.../filter/proxy.rs`: an
 // effective roughness whose unfiltered GGX has the peak of the box-filtered GGX. Eq. 19
@@ -1121,209 +1960,6 @@ fn filter_proxy_proxy_simple(r: ndf_roughness_axis_aligned_AxisAligned, half_ext
         filter_proxy_effective_alpha_simple(r.alpha.x, half_extent.x),
         filter_proxy_effective_alpha_simple(r.alpha.y, half_extent.y),
     ));
-}
-
-// ---- filtered_ndf::ndf (shaders/ndf/mod.wgsl) ----
-// What every NDF shares (`src/.../ndf/mod.rs`, the `Ndf` trait): the Smith terms derived
-// from `Lambda` once. Conventions (all NDFs, all roughness forms): tangent frame with `z` the
-// shading normal; slope of a micronormal `s = -m_xy / m_z` (TK19 supplement eq. 5);
-// `p22(s)` per unit slope area, integrating to 1 over the plane; `d(m) = p22(s(m)) / m_z^4`
-// per steradian with `integral d(m) m_z dm = 1` (KHPL16 eq. 2).
-//
-// WGSL has no generics: the NDF modules (`ggx`, `beckmann`) take the numbers a roughness
-// form reduces to (`inv_quadratic`, `quadratic`, `sqrt_det` of the `roughness` modules) and
-// add one entry point per form (`d_isotropic`, `d_axis_aligned`, `d_matrix`, ...). The
-// form-independent cores carry the suffix `_of` (`p22_of`, `d_of`, `lambda_of`, `g1_of`,
-// `g2_of`): naga renames any identifier that ends in a digit when it writes a module back
-// out, which naga_oil refuses for composable modules, so `p22`, `g1`, `g2` cannot be names
-// of their own.
-//
-// NaN policy. The Rust crate decides it once (`src/.../ndf/mod.rs`): a NaN argument
-// contributes nothing, `p22 = d = 0` and `lambda = +inf` (so `g1 = g2 = 0`), both families,
-// every form. WGSL lets a driver assume that no NaN occurs at run time, so the shaders do not
-// test for one and promise nothing where a driver takes that licence. Where it costs nothing
-// (the comparisons every function makes anyway), they are written so that a NaN fails them
-// and the result is the Rust one: `d_of` and `p22_of` return 0 (`select` on `m_z > 0`,
-// `q >= 0`), `lambda_of` returns `F32_MAX` (the shaders' `+inf`), `g1_of` and `g2_of` return 0
-// (`w.m > 0`). Mesa's lavapipe and llvmpipe keep these comparisons.
-
-/// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` from `Lambda(w)` and `w.m` (TK19
-/// supplement section 1). In `[0, 1]`; `0` for `w.m <= 0`. (A grazing `w` has
-/// `Lambda = F32_MAX` in the shaders, so `G1` is `0` up to rounding.)
-fn ndf_g1_of(lambda_w: f32, w_dot_m: f32) -> f32 {
-    return select(0.0, 1.0 / (1.0 + lambda_w), w_dot_m > 0.0);
-}
-
-/// Height-correlated masking-shadowing
-/// `G2(i, o, m) = chi+(i.m) chi+(o.m) / (1 + Lambda(i) + Lambda(o))` (TK19 supplement
-/// section 1; Heitz 2014 eq. 99) from both `Lambda`s and both dot products. In `[0, 1]`.
-fn ndf_g2_of(lambda_i: f32, lambda_o: f32, i_dot_m: f32, o_dot_m: f32) -> f32 {
-    return select(0.0, 1.0 / (1.0 + lambda_i + lambda_o), i_dot_m > 0.0 && o_dot_m > 0.0);
-}
-
-// ---- filtered_ndf::ndf::roughness::isotropic (shaders/ndf/roughness/isotropic.wgsl) ----
-/// Isotropic roughness `alpha`: `A = alpha^2 I`.
-struct ndf_roughness_isotropic_Isotropic {
-    /// The roughness `alpha`.
-    alpha: f32,
-    /// `1 / alpha^2`.
-    inv_alpha_sq: f32,
-}
-
-/// The isotropic roughness `alpha`, clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust
-/// `Isotropic::new_clamped`).
-fn ndf_roughness_isotropic_from_alpha(alpha: f32) -> ndf_roughness_isotropic_Isotropic {
-    let a = ndf_roughness_clamp_alpha(alpha);
-    return ndf_roughness_isotropic_Isotropic(a, 1.0 / (a * a));
-}
-
-/// `s^T A^-1 s = |s|^2 / alpha^2` (dimensionless). Within 4 ulp.
-fn ndf_roughness_isotropic_inv_quadratic(r: ndf_roughness_isotropic_Isotropic, s: vec2<f32>) -> f32 {
-    return dot(s, s) * r.inv_alpha_sq;
-}
-
-/// `w^T A w = alpha^2 |w|^2` for a tangent-plane `w` (Smith's projected roughness). Within
-/// 3 ulp.
-fn ndf_roughness_isotropic_quadratic(r: ndf_roughness_isotropic_Isotropic, w: vec2<f32>) -> f32 {
-    return dot(w, w) * (r.alpha * r.alpha);
-}
-
-/// `sqrt(det A) = alpha^2`. Within 1 ulp.
-fn ndf_roughness_isotropic_sqrt_det(r: ndf_roughness_isotropic_Isotropic) -> f32 {
-    return r.alpha * r.alpha;
-}
-
-/// This roughness as a [`matrix::RoughnessMatrix`], `alpha^2 I` (no determinant clamp).
-fn ndf_roughness_isotropic_to_matrix(r: ndf_roughness_isotropic_Isotropic) -> ndf_roughness_matrix_RoughnessMatrix {
-    return ndf_roughness_matrix_from_eigen(vec2<f32>(1.0, 0.0), vec2<f32>(r.alpha));
-}
-
-// ---- filtered_ndf::ndf::ggx (shaders/ndf/ggx.wgsl) ----
-// GGX (Trowbridge-Reitz) in any roughness form (TK19 supplement section 1; Heitz 2014),
-// mirroring `src/.../ndf/ggx.rs`. The first three functions take what a roughness form
-// reduces to; the rest are the entry points per form.
-
-/// Slope-domain density `P22(s) = 1 / (pi sqrt(det A) (1 + q)^2)` from
-/// `q = s^T A^-1 s` and `sqrt(det A)`. Relative error: `2 (error of 1 + q)` plus 5 ulp.
-///
-/// Far tail: WGSL drivers may reassociate the product (Mesa's lavapipe squares `1 + q`
-/// first), so once `1 + q` exceeds `1e18` (the density is then below `1e-36` of its peak)
-/// the square may overflow and the result be 0; below that every association stays in
-/// range.
-fn ndf_ggx_p22_of(q: f32, sqrt_det: f32) -> f32 {
-    let t = 1.0 + q;
-    return select(0.0, 1.0 / (math_PI * sqrt_det * t * t), q >= 0.0);
-}
-
-/// Solid-angle density `D(m) = 1 / (pi sqrt(det A) (q_xy + m_z^2)^2)` for a unit micronormal
-/// `m`, from `q_xy = m_xy^T A^-1 m_xy`, `m_z` and `sqrt(det A)` (TK19 supplement,
-/// non-axis-aligned GGX, in the homogeneous form that stays finite up to the horizon;
-/// KHPL16 eq. 2). `0` for `m_z <= 0` (the `chi+` factor) and where the density exceeds the
-/// f32 range (as the Rust `d`). Relative error: `2 (error of q_xy + m_z^2)` plus 6 ulp.
-/// Far tail as [`p22_of`]: possibly 0 once `q_xy + m_z^2 > 1e18` (below `1e-36` of the
-/// peak).
-fn ndf_ggx_d_of(q_xy: f32, m_z: f32, sqrt_det: f32) -> f32 {
-    let t = q_xy + m_z * m_z;
-    let v = 1.0 / (math_PI * sqrt_det * t * t);
-    return select(0.0, v, m_z > 0.0 && v <= math_F32_MAX);
-}
-
-/// Smith `Lambda(w) = (sqrt(1 + q / w_z^2) - 1) / 2` from `q = w_xy^T A w_xy` and `|w_z|`
-/// (TK19 supplement section 1), evaluated as `q / (2 |w_z| (sqrt(w_z^2 + q) + |w_z|))`
-/// without cancellation: relative error within 4 ulp plus that of `q`. `0` for `q <= 0`;
-/// `F32_MAX` at `w_z = 0` (the Rust crate returns `+inf`, the correct grazing limit).
-/// `Lambda` is homogeneous of degree 0 in `w`: `w` need not be unit, but its squared
-/// components must stay inside the f32 range.
-fn ndf_ggx_lambda_of(q: f32, abs_wz: f32) -> f32 {
-    if q <= 0.0 && abs_wz >= 0.0 {
-        return 0.0;
-    }
-    // Grazing, or NaN in either (the NaN policy of `ndf`): fully masked.
-    if !(abs_wz > 0.0) || !(q > 0.0) {
-        return math_F32_MAX;
-    }
-    let r = sqrt(abs_wz * abs_wz + q);
-    return q / (2.0 * abs_wz * (r + abs_wz));
-}
-
-/// `P22(s)` of isotropic GGX.
-fn ndf_ggx_p22_isotropic(r: ndf_roughness_isotropic_Isotropic, s: vec2<f32>) -> f32 {
-    return ndf_ggx_p22_of(ndf_roughness_isotropic_inv_quadratic(r, s), ndf_roughness_isotropic_sqrt_det(r));
-}
-
-/// `D(m)` of isotropic GGX, `alpha^2 / (pi ((m_x^2 + m_y^2) + alpha^2 m_z^2)^2)` in effect.
-fn ndf_ggx_d_isotropic(r: ndf_roughness_isotropic_Isotropic, m: vec3<f32>) -> f32 {
-    return ndf_ggx_d_of(ndf_roughness_isotropic_inv_quadratic(r, m.xy), m.z, ndf_roughness_isotropic_sqrt_det(r));
-}
-
-/// `Lambda(w)` of isotropic GGX.
-fn ndf_ggx_lambda_isotropic(r: ndf_roughness_isotropic_Isotropic, w: vec3<f32>) -> f32 {
-    return ndf_ggx_lambda_of(ndf_roughness_isotropic_quadratic(r, w.xy), abs(w.z));
-}
-
-/// `G1(w, m)` of isotropic GGX.
-fn ndf_ggx_g1_isotropic(r: ndf_roughness_isotropic_Isotropic, w: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g1_of(ndf_ggx_lambda_isotropic(r, w), dot(w, m));
-}
-
-/// `G2(i, o, m)` of isotropic GGX (height-correlated).
-fn ndf_ggx_g2_isotropic(r: ndf_roughness_isotropic_Isotropic, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g2_of(ndf_ggx_lambda_isotropic(r, i), ndf_ggx_lambda_isotropic(r, o), dot(i, m), dot(o, m));
-}
-
-/// `P22(s)` of axis-aligned GGX.
-fn ndf_ggx_p22_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, s: vec2<f32>) -> f32 {
-    return ndf_ggx_p22_of(ndf_roughness_axis_aligned_inv_quadratic(r, s), ndf_roughness_axis_aligned_sqrt_det(r));
-}
-
-/// `D(m)` of axis-aligned GGX.
-fn ndf_ggx_d_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, m: vec3<f32>) -> f32 {
-    return ndf_ggx_d_of(ndf_roughness_axis_aligned_inv_quadratic(r, m.xy), m.z, ndf_roughness_axis_aligned_sqrt_det(r));
-}
-
-/// `Lambda(w)` of axis-aligned GGX.
-fn ndf_ggx_lambda_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, w: vec3<f32>) -> f32 {
-    return ndf_ggx_lambda_of(ndf_roughness_axis_aligned_quadratic(r, w.xy), abs(w.z));
-}
-
-/// `G1(w, m)` of axis-aligned GGX.
-fn ndf_ggx_g1_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, w: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g1_of(ndf_ggx_lambda_axis_aligned(r, w), dot(w, m));
-}
-
-/// `G2(i, o, m)` of axis-aligned GGX (height-correlated).
-fn ndf_ggx_g2_axis_aligned(
-    r: ndf_roughness_axis_aligned_AxisAligned,
-    i: vec3<f32>,
-    o: vec3<f32>,
-    m: vec3<f32>,
-) -> f32 {
-    return ndf_g2_of(ndf_ggx_lambda_axis_aligned(r, i), ndf_ggx_lambda_axis_aligned(r, o), dot(i, m), dot(o, m));
-}
-
-/// `P22(s)` of GGX with a roughness matrix.
-fn ndf_ggx_p22_matrix(r: ndf_roughness_matrix_RoughnessMatrix, s: vec2<f32>) -> f32 {
-    return ndf_ggx_p22_of(ndf_roughness_matrix_inv_quadratic(r, s), ndf_roughness_matrix_sqrt_det(r));
-}
-
-/// `D(m)` of GGX with a roughness matrix (a filtered or rotated lobe).
-fn ndf_ggx_d_matrix(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
-    return ndf_ggx_d_of(ndf_roughness_matrix_inv_quadratic(r, m.xy), m.z, ndf_roughness_matrix_sqrt_det(r));
-}
-
-/// `Lambda(w)` of GGX with a roughness matrix.
-fn ndf_ggx_lambda_matrix(r: ndf_roughness_matrix_RoughnessMatrix, w: vec3<f32>) -> f32 {
-    return ndf_ggx_lambda_of(ndf_roughness_matrix_quadratic(r, w.xy), abs(w.z));
-}
-
-/// `G1(w, m)` of GGX with a roughness matrix.
-fn ndf_ggx_g1_matrix(r: ndf_roughness_matrix_RoughnessMatrix, w: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g1_of(ndf_ggx_lambda_matrix(r, w), dot(w, m));
-}
-
-/// `G2(i, o, m)` of GGX with a roughness matrix (height-correlated).
-fn ndf_ggx_g2_matrix(r: ndf_roughness_matrix_RoughnessMatrix, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g2_of(ndf_ggx_lambda_matrix(r, i), ndf_ggx_lambda_matrix(r, o), dot(i, m), dot(o, m));
 }
 
 // ---- filtered_ndf::filter::rect (shaders/filter/rect.wgsl) ----
@@ -2374,176 +3010,6 @@ fn kernel_clamp_filter_projected(
     sigma: f32,
 ) -> ndf_roughness_matrix_RoughnessMatrix {
     return filter_projected_projected_sanitized(a, kernel_clamp_pixel_kernel(rules, fp, sigma), kernel_clamp_det_clamp_for(rules, a));
-}
-
-// ---- filtered_ndf::ndf::beckmann (shaders/ndf/beckmann.wgsl) ----
-// Beckmann in any roughness form (Beckmann and Spizzichino 1963; Heitz 2014 section 5.4;
-// KHPL16 eq. 14: `A = 2 B` with `B` the slope covariance), mirroring
-// `src/.../ndf/beckmann.rs`. The first three functions take what a roughness form reduces
-// to; the rest are the entry points per form.
-//
-// Accuracy: `exp(-x)` amplifies the relative error of its argument `x` by `x` (a property
-// of the function, not of the evaluation), and WGSL allows the driver's `exp` `3 + 2|x|`
-// ulp, the same order: the densities are within `eps (8 + 4 x)` plus the error of `x`
-// itself (`x` ulp more per ulp of `q`), and results below `2^-126` may flush to 0.
-
-/// `exp(x < EXP_SPLIT)` keeps `exp(-x)` a normal f32; beyond it the normalisation moves
-/// into the exponent.
-const ndf_beckmann_EXP_SPLIT: f32 = 80.0;
-
-/// `sqrt(pi)`.
-const ndf_beckmann_SQRT_PI: f32 = 1.77245385090552;
-
-/// `exp(-x) k` for `x >= 0`, `k = exp(ln_k)`: past `EXP_SPLIT` as `exp(ln_k - x)`, so that a
-/// density that is a normal f32 is not lost to an intermediate `exp(-x)` that is not (the
-/// Rust `exp_neg_times`).
-fn ndf_beckmann_exp_neg_times(x: f32, k: f32, ln_k: f32) -> f32 {
-    return select(exp(-x) * k, exp(ln_k - x), x > ndf_beckmann_EXP_SPLIT);
-}
-
-/// Slope-domain density `P22(s) = exp(-q) / (pi sqrt(det A))` from `q = s^T A^-1 s` and
-/// `sqrt(det A)`. `0` where the density underflows.
-fn ndf_beckmann_p22_of(q: f32, sqrt_det: f32) -> f32 {
-    let den = math_PI * sqrt_det;
-    return select(0.0, ndf_beckmann_exp_neg_times(q, 1.0 / den, -log(den)), q >= 0.0);
-}
-
-/// Solid-angle density `D(m) = exp(-q_xy / m_z^2) / (pi sqrt(det A) m_z^4)` for a unit
-/// micronormal `m` from `q_xy = m_xy^T A^-1 m_xy`, `m_z` and `sqrt(det A)` (KHPL16 eq. 2
-/// with eq. 14). `0` for `m_z <= 0`, where the density underflows, and where it exceeds the
-/// f32 range.
-fn ndf_beckmann_d_of(q_xy: f32, m_z: f32, sqrt_det: f32) -> f32 {
-    let z2 = m_z * m_z;
-    let x = q_xy / z2;
-    let k = 1.0 / (math_PI * sqrt_det * z2 * z2);
-    let ln_k = -(log(math_PI * sqrt_det) + 4.0 * log(max(m_z, math_F32_MIN_POSITIVE)));
-    let v = ndf_beckmann_exp_neg_times(x, k, ln_k);
-    return select(0.0, v, m_z > 0.0 && v <= math_F32_MAX);
-}
-
-/// Smith `Lambda(w) = (exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2` with
-/// `a = |w_z| / sqrt(q)`, `q = w_xy^T A w_xy` (Heitz 2014 eq. 80 with the projected
-/// roughness of a matrix lobe).
-///
-/// The two terms cancel (to a relative `1 / (2 a^2)` for large `a`); the Rust crate takes
-/// them in f64. Here, with `sqrt(pi) erfcx(a) = 1 / (a + K(a))`,
-/// `Lambda = exp(-a^2) K / (2 sqrt(pi) a (a + K))`, a product of positive factors for every
-/// `a > 0`, and `K(a) (2a + 1)` is a degree-14 polynomial in `t = (a - 3) / (a + 3)` (all of
-/// `a >= 0` maps to `t` in `[-1, 1)`; fitted at Chebyshev nodes, approximation error
-/// `4.4e-8` relative with the coefficients rounded to f32). The result is within
-/// `eps (32 + 16 a^2)`: `Lambda` amplifies the error of `a` (6 ulp) by `2 a^2 + 3`, and `exp`
-/// adds its `3 + 2 a^2` ulp. `0` for `q <= 0` and for `a > 9.5` (below the f32 range);
-/// `F32_MAX` at `w_z = 0` (the Rust `+inf`).
-fn ndf_beckmann_lambda_of(q: f32, abs_wz: f32) -> f32 {
-    if q <= 0.0 && abs_wz >= 0.0 {
-        return 0.0;
-    }
-    // Grazing, or NaN in either (the NaN policy of `ndf`): fully masked.
-    if !(abs_wz > 0.0) || !(q > 0.0) {
-        return math_F32_MAX;
-    }
-    let a = abs_wz / sqrt(q);
-    if a > 9.5 {
-        return 0.0;
-    }
-    let t = (a - 3.0) / (a + 3.0);
-    var p = -3.849171844194643e-05;
-    p = p * t + 0.00028491427656263113;
-    p = p * t + 1.8268152416567318e-05;
-    p = p * t - 0.0018242653459310532;
-    p = p * t + 0.0013654069043695927;
-    p = p * t + 0.005581194534897804;
-    p = p * t - 0.009357542730867863;
-    p = p * t - 0.007657155394554138;
-    p = p * t + 0.036274611949920654;
-    p = p * t - 0.0232936330139637;
-    p = p * t - 0.07646358013153076;
-    p = p * t + 0.21173490583896637;
-    p = p * t - 0.23284178972244263;
-    p = p * t + 0.033079251646995544;
-    p = p * t + 1.0631378889083862;
-    let k = p / (2.0 * a + 1.0);
-    return min(exp(-a * a) * k / (2.0 * ndf_beckmann_SQRT_PI * a * (a + k)), math_F32_MAX);
-}
-
-/// `P22(s)` of isotropic Beckmann.
-fn ndf_beckmann_p22_isotropic(r: ndf_roughness_isotropic_Isotropic, s: vec2<f32>) -> f32 {
-    return ndf_beckmann_p22_of(ndf_roughness_isotropic_inv_quadratic(r, s), ndf_roughness_isotropic_sqrt_det(r));
-}
-
-/// `D(m)` of isotropic Beckmann.
-fn ndf_beckmann_d_isotropic(r: ndf_roughness_isotropic_Isotropic, m: vec3<f32>) -> f32 {
-    return ndf_beckmann_d_of(ndf_roughness_isotropic_inv_quadratic(r, m.xy), m.z, ndf_roughness_isotropic_sqrt_det(r));
-}
-
-/// `Lambda(w)` of isotropic Beckmann.
-fn ndf_beckmann_lambda_isotropic(r: ndf_roughness_isotropic_Isotropic, w: vec3<f32>) -> f32 {
-    return ndf_beckmann_lambda_of(ndf_roughness_isotropic_quadratic(r, w.xy), abs(w.z));
-}
-
-/// `G1(w, m)` of isotropic Beckmann.
-fn ndf_beckmann_g1_isotropic(r: ndf_roughness_isotropic_Isotropic, w: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g1_of(ndf_beckmann_lambda_isotropic(r, w), dot(w, m));
-}
-
-/// `G2(i, o, m)` of isotropic Beckmann (height-correlated).
-fn ndf_beckmann_g2_isotropic(r: ndf_roughness_isotropic_Isotropic, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g2_of(ndf_beckmann_lambda_isotropic(r, i), ndf_beckmann_lambda_isotropic(r, o), dot(i, m), dot(o, m));
-}
-
-/// `P22(s)` of axis-aligned Beckmann.
-fn ndf_beckmann_p22_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, s: vec2<f32>) -> f32 {
-    return ndf_beckmann_p22_of(ndf_roughness_axis_aligned_inv_quadratic(r, s), ndf_roughness_axis_aligned_sqrt_det(r));
-}
-
-/// `D(m)` of axis-aligned Beckmann.
-fn ndf_beckmann_d_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, m: vec3<f32>) -> f32 {
-    return ndf_beckmann_d_of(ndf_roughness_axis_aligned_inv_quadratic(r, m.xy), m.z, ndf_roughness_axis_aligned_sqrt_det(r));
-}
-
-/// `Lambda(w)` of axis-aligned Beckmann.
-fn ndf_beckmann_lambda_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, w: vec3<f32>) -> f32 {
-    return ndf_beckmann_lambda_of(ndf_roughness_axis_aligned_quadratic(r, w.xy), abs(w.z));
-}
-
-/// `G1(w, m)` of axis-aligned Beckmann.
-fn ndf_beckmann_g1_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, w: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g1_of(ndf_beckmann_lambda_axis_aligned(r, w), dot(w, m));
-}
-
-/// `G2(i, o, m)` of axis-aligned Beckmann (height-correlated).
-fn ndf_beckmann_g2_axis_aligned(
-    r: ndf_roughness_axis_aligned_AxisAligned,
-    i: vec3<f32>,
-    o: vec3<f32>,
-    m: vec3<f32>,
-) -> f32 {
-    return ndf_g2_of(ndf_beckmann_lambda_axis_aligned(r, i), ndf_beckmann_lambda_axis_aligned(r, o), dot(i, m), dot(o, m));
-}
-
-/// `P22(s)` of Beckmann with a roughness matrix.
-fn ndf_beckmann_p22_matrix(r: ndf_roughness_matrix_RoughnessMatrix, s: vec2<f32>) -> f32 {
-    return ndf_beckmann_p22_of(ndf_roughness_matrix_inv_quadratic(r, s), ndf_roughness_matrix_sqrt_det(r));
-}
-
-/// `D(m)` of Beckmann with a roughness matrix (a filtered or rotated lobe).
-fn ndf_beckmann_d_matrix(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
-    return ndf_beckmann_d_of(ndf_roughness_matrix_inv_quadratic(r, m.xy), m.z, ndf_roughness_matrix_sqrt_det(r));
-}
-
-/// `Lambda(w)` of Beckmann with a roughness matrix.
-fn ndf_beckmann_lambda_matrix(r: ndf_roughness_matrix_RoughnessMatrix, w: vec3<f32>) -> f32 {
-    return ndf_beckmann_lambda_of(ndf_roughness_matrix_quadratic(r, w.xy), abs(w.z));
-}
-
-/// `G1(w, m)` of Beckmann with a roughness matrix.
-fn ndf_beckmann_g1_matrix(r: ndf_roughness_matrix_RoughnessMatrix, w: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g1_of(ndf_beckmann_lambda_matrix(r, w), dot(w, m));
-}
-
-/// `G2(i, o, m)` of Beckmann with a roughness matrix (height-correlated).
-fn ndf_beckmann_g2_matrix(r: ndf_roughness_matrix_RoughnessMatrix, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g2_of(ndf_beckmann_lambda_matrix(r, i), ndf_beckmann_lambda_matrix(r, o), dot(i, m), dot(o, m));
 }
 
 // ---- filtered_ndf::sampling (shaders/sampling/mod.wgsl) ----

@@ -16,6 +16,7 @@
 
 pub mod filters;
 pub mod footprint;
+pub mod gaussian_ggx;
 pub mod math;
 pub mod ndf;
 pub mod rect;
