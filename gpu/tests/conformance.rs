@@ -39,3 +39,8 @@ fn rect() {
 fn gaussian_ggx() {
     assert_group("gaussian_ggx", &checks::gaussian_ggx::all());
 }
+
+#[test]
+fn method() {
+    assert_group("method", &checks::method::all());
+}

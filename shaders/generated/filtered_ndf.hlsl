@@ -70,6 +70,42 @@ struct footprint_Footprint {
     float2 dh_v;
 };
 
+struct kernel_clamp_ClampRules {
+    float max_extent;
+    uint floor_kind;
+    float floor_;
+    float kappa;
+    bool det_clamp;
+};
+
+struct filter_method_Gaussian {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
+};
+
+struct filter_method_ExactGaussian {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
+};
+
+struct filter_method_Projected {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
+};
+
+struct filter_method_Rect {
+    kernel_clamp_ClampRules clamps;
+};
+
+struct filter_method_RectFilteredGgx {
+    ndf_roughness_axis_aligned_AxisAligned roughness;
+    float2 half_extent;
+};
+
+struct filter_method_Proxy {
+    kernel_clamp_ClampRules clamps;
+};
+
 struct footprint_jacobian_Polar {
     float3 h;
     int _pad1_0;
@@ -85,19 +121,54 @@ struct footprint_jacobian_SphericalBasis {
     int _end_pad_0;
 };
 
-struct kernel_clamp_ClampRules {
-    float max_extent;
-    uint floor_kind;
-    float floor_;
-    float kappa;
-    bool det_clamp;
-};
-
 struct sampling_Warp {
     float l_xx;
     float l_yx;
     float l_yy;
 };
+
+kernel_clamp_ClampRules Constructkernel_clamp_ClampRules(float arg0, uint arg1, float arg2, float arg3, bool arg4) {
+    kernel_clamp_ClampRules ret = (kernel_clamp_ClampRules)0;
+    ret.max_extent = arg0;
+    ret.floor_kind = arg1;
+    ret.floor_ = arg2;
+    ret.kappa = arg3;
+    ret.det_clamp = arg4;
+    return ret;
+}
+
+filter_method_Gaussian Constructfilter_method_Gaussian(kernel_clamp_ClampRules arg0, float arg1) {
+    filter_method_Gaussian ret = (filter_method_Gaussian)0;
+    ret.clamps = arg0;
+    ret.sigma = arg1;
+    return ret;
+}
+
+filter_method_ExactGaussian Constructfilter_method_ExactGaussian(kernel_clamp_ClampRules arg0, float arg1) {
+    filter_method_ExactGaussian ret = (filter_method_ExactGaussian)0;
+    ret.clamps = arg0;
+    ret.sigma = arg1;
+    return ret;
+}
+
+filter_method_Projected Constructfilter_method_Projected(kernel_clamp_ClampRules arg0, float arg1) {
+    filter_method_Projected ret = (filter_method_Projected)0;
+    ret.clamps = arg0;
+    ret.sigma = arg1;
+    return ret;
+}
+
+filter_method_Rect Constructfilter_method_Rect(kernel_clamp_ClampRules arg0) {
+    filter_method_Rect ret = (filter_method_Rect)0;
+    ret.clamps = arg0;
+    return ret;
+}
+
+filter_method_Proxy Constructfilter_method_Proxy(kernel_clamp_ClampRules arg0) {
+    filter_method_Proxy ret = (filter_method_Proxy)0;
+    ret.clamps = arg0;
+    return ret;
+}
 
 filter_deferred_KernelConvention Constructfilter_deferred_KernelConvention(uint arg0, uint arg1, float arg2, float arg3, float arg4, float arg5, uint arg6, bool arg7, float arg8) {
     filter_deferred_KernelConvention ret = (filter_deferred_KernelConvention)0;
@@ -110,16 +181,6 @@ filter_deferred_KernelConvention Constructfilter_deferred_KernelConvention(uint 
     ret.combine = arg6;
     ret.saturate_ = arg7;
     ret.perceptual_floor = arg8;
-    return ret;
-}
-
-kernel_clamp_ClampRules Constructkernel_clamp_ClampRules(float arg0, uint arg1, float arg2, float arg3, bool arg4) {
-    kernel_clamp_ClampRules ret = (kernel_clamp_ClampRules)0;
-    ret.max_extent = arg0;
-    ret.floor_kind = arg1;
-    ret.floor_ = arg2;
-    ret.kappa = arg3;
-    ret.det_clamp = arg4;
     return ret;
 }
 
@@ -170,6 +231,26 @@ static const float filter_gaussian_ggx_quad_S_MAX = 0.25;
 static const float filter_gaussian_ggx_quad_S_COEF = 0.25;
 static const float filter_gaussian_ggx_quad_S_EPS = 1e-8;
 static const uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
+static const float footprint_SIGMA_PIXEL = 0.5;
+static const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
+static const uint kernel_clamp_FLOOR_NONE = 0u;
+static const uint kernel_clamp_FLOOR_CONSTANT = 1u;
+static const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
+static const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
+static const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
+static const kernel_clamp_ClampRules kernel_clamp_NO_RULES = Constructkernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
+static const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
+static const float filter_rect_BIG = 1e18;
+static const float filter_rect_FAR2_ = 0.25;
+static const uint filter_rect_TIER_CLOSED = 0u;
+static const float filter_rect_lambda_BIG_K = 1000000000000.0;
+static const filter_method_Gaussian filter_method_TK19_GAUSSIAN = Constructfilter_method_Gaussian(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
+static const filter_method_Gaussian filter_method_KHPL16_GAUSSIAN = Constructfilter_method_Gaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
+static const filter_method_ExactGaussian filter_method_KHPL16_EXACT_GAUSSIAN = Constructfilter_method_ExactGaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
+static const filter_method_Projected filter_method_TK21_PROJECTED = Constructfilter_method_Projected(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
+static const filter_method_Rect filter_method_KHPL16_RECT = Constructfilter_method_Rect(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
+static const filter_method_Rect filter_method_GDC2016_RECT = Constructfilter_method_Rect(Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true));
+static const filter_method_Proxy filter_method_KHPL16_PROXY = Constructfilter_method_Proxy(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
 static const filter_deferred_KernelConvention filter_presets_TK19_TRACE = Constructfilter_deferred_KernelConvention(0u, 0u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
 static const filter_deferred_KernelConvention filter_presets_TK19_AVERAGE = Constructfilter_deferred_KernelConvention(0u, 0u, 0.25, 1.0, 0.0, 0.18, 0u, true, 0.0);
 static const filter_deferred_KernelConvention filter_presets_TK19_MAX = Constructfilter_deferred_KernelConvention(0u, 2u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
@@ -182,20 +263,7 @@ static const filter_deferred_KernelConvention filter_presets_O3DE = Constructfil
 static const filter_deferred_KernelConvention filter_presets_UNREAL = Constructfilter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 static const filter_deferred_KernelConvention filter_presets_BABYLON = Constructfilter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 static const filter_deferred_KernelConvention filter_presets_THREE_JS = Constructfilter_deferred_KernelConvention(2u, 3u, 1.0, 1.0, 0.0, 3.4028235e38, 0u, true, 0.0525);
-static const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
-static const float filter_rect_BIG = 1e18;
-static const float filter_rect_FAR2_ = 0.25;
-static const uint filter_rect_TIER_CLOSED = 0u;
-static const float filter_rect_lambda_BIG_K = 1000000000000.0;
-static const float footprint_SIGMA_PIXEL = 0.5;
 static const float footprint_jacobian_HZ_MIN = 1e-6;
-static const uint kernel_clamp_FLOOR_NONE = 0u;
-static const uint kernel_clamp_FLOOR_CONSTANT = 1u;
-static const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
-static const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
-static const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
-static const kernel_clamp_ClampRules kernel_clamp_NO_RULES = Constructkernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
-static const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
 static const float sampling_ONE_MINUS_EPS = 0.99999994;
 
 float math_atan(float x)
@@ -241,18 +309,18 @@ float2 math_sincos_turns(float u)
     float q_4 = round((4.0 * u));
     float r_67 = (u - (0.25 * q_4));
     float z_2 = (r_67 * r_67);
-    float s_14 = (r_67 * ((((((((41.47283 * z_2) - 76.69787) * z_2) + 81.6052) * z_2) - 41.3417) * z_2) + 6.2831855));
+    float s_15 = (r_67 * ((((((((41.47283 * z_2) - 76.69787) * z_2) + 81.6052) * z_2) - 41.3417) * z_2) + 6.2831855));
     float c_10 = ((((((((59.22017 * z_2) - 85.44285) * z_2) + 64.939316) * z_2) - 19.739208) * z_2) + 1.0);
     int k_23 = (naga_f2i32(q_4) & int(3));
-    cs = float2(c_10, s_14);
+    cs = float2(c_10, s_15);
     if ((k_23 == int(1))) {
-        cs = float2(-(s_14), c_10);
+        cs = float2(-(s_15), c_10);
     } else {
         if ((k_23 == int(2))) {
-            cs = float2(-(c_10), -(s_14));
+            cs = float2(-(c_10), -(s_15));
         } else {
             if ((k_23 == int(3))) {
-                cs = float2(s_14, -(c_10));
+                cs = float2(s_15, -(c_10));
             }
         }
     }
@@ -262,13 +330,13 @@ float2 math_sincos_turns(float u)
 
 float math_hypot(float x_1, float y)
 {
-    float m_27 = max(abs(x_1), abs(y));
-    if ((m_27 <= 0.0)) {
+    float m_36 = max(abs(x_1), abs(y));
+    if ((m_36 <= 0.0)) {
         return 0.0;
     }
-    float a_17 = (x_1 / m_27);
-    float b_4 = (y / m_27);
-    return (m_27 * sqrt(((a_17 * a_17) + (b_4 * b_4))));
+    float a_17 = (x_1 / m_36);
+    float b_4 = (y / m_36);
+    return (m_36 * sqrt(((a_17 * a_17) + (b_4 * b_4))));
 }
 
 float math_exp(float x_2)
@@ -278,15 +346,15 @@ float math_exp(float x_2)
     float r_68 = ((xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO));
     float r2_ = (r_68 * r_68);
     float p_4 = (((1.0 + r_68) + ((0.4999999 + (0.1666642 * r_68)) * r2_)) + (((0.041668225 + (0.008374816 * r_68)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
-    float s_15 = asfloat((uint(asint(asuint(naga_f2i32(n_6)) + asuint(int(127)))) << 23u));
-    return ((x_2 >= -87.0) ? (p_4 * s_15) : 0.0);
+    float s_16 = asfloat((uint(asint(asuint(naga_f2i32(n_6)) + asuint(int(127)))) << 23u));
+    return ((x_2 >= -87.0) ? (p_4 * s_16) : 0.0);
 }
 
 float math_atanh2_(float z)
 {
     float z2_3 = (z * z);
-    float s_16 = (((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3);
-    return ((2.0 * z) + ((2.0 * z) * s_16));
+    float s_17 = (((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3);
+    return ((2.0 * z) + ((2.0 * z) * s_17));
 }
 
 float math_ln(float x_3)
@@ -504,8 +572,8 @@ float filter_deferred_norm_eval(uint norm, float3 dn_u, float3 dn_v)
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        float3 m_28 = max(abs(dn_u), abs(dn_v));
-        return max(max(m_28.x, m_28.y), m_28.z);
+        float3 m_37 = max(abs(dn_u), abs(dn_v));
+        return max(max(m_37.x, m_37.y), m_37.z);
     }
     return (a_19 + c_11);
 }
@@ -680,8 +748,8 @@ float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5)
 float3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, float2 l_2)
 {
     float c_12 = r_6.axis.x;
-    float s_17 = r_6.axis.y;
-    return float3((((l_2.x * c_12) * c_12) + ((l_2.y * s_17) * s_17)), (((l_2.x - l_2.y) * c_12) * s_17), (((l_2.x * s_17) * s_17) + ((l_2.y * c_12) * c_12)));
+    float s_18 = r_6.axis.y;
+    return float3((((l_2.x * c_12) * c_12) + ((l_2.y * s_18) * s_18)), (((l_2.x - l_2.y) * c_12) * s_18), (((l_2.x * s_18) * s_18) + ((l_2.y * c_12) * c_12)));
 }
 
 float3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7)
@@ -710,9 +778,9 @@ ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roug
 {
     const float3 _e3 = ndf_roughness_matrix_entries(a_2);
     float c_13 = a_2.axis.x;
-    float s_18 = a_2.axis.y;
-    float k1_1 = max(((((c_13 * c_13) * k_3.s_xx) + (((2.0 * c_13) * s_18) * k_3.s_xy)) + ((s_18 * s_18) * k_3.s_yy)), 0.0);
-    float k2_1 = max(((((s_18 * s_18) * k_3.s_xx) - (((2.0 * c_13) * s_18) * k_3.s_xy)) + ((c_13 * c_13) * k_3.s_yy)), 0.0);
+    float s_19 = a_2.axis.y;
+    float k1_1 = max(((((c_13 * c_13) * k_3.s_xx) + (((2.0 * c_13) * s_19) * k_3.s_xy)) + ((s_19 * s_19) * k_3.s_yy)), 0.0);
+    float k2_1 = max(((((s_19 * s_19) * k_3.s_xx) - (((2.0 * c_13) * s_19) * k_3.s_xy)) + ((c_13 * c_13) * k_3.s_yy)), 0.0);
     const float _e38 = ndf_roughness_matrix_determinant(a_2);
     float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * max(k_3.det, 0.0)));
     const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
@@ -1527,8 +1595,8 @@ float filter_gaussian_ggx_quad_h_of(float y_2)
 
     float a_23 = abs(y_2);
     if ((a_23 > 1.0)) {
-        float i_10 = (1.0 / a_23);
-        r_49 = (a_23 * sqrt((1.0 + (i_10 * i_10))));
+        float i_11 = (1.0 / a_23);
+        r_49 = (a_23 * sqrt((1.0 + (i_11 * i_11))));
     } else {
         r_49 = sqrt((1.0 + (y_2 * y_2)));
     }
@@ -1709,10 +1777,10 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roug
 
     const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
     float c_14 = a_5.axis.x;
-    float s_19 = a_5.axis.y;
-    float k11_ = max(((((c_14 * c_14) * _e2.s_xx) + (((2.0 * c_14) * s_19) * _e2.s_xy)) + ((s_19 * s_19) * _e2.s_yy)), 0.0);
-    float k22_ = max(((((s_19 * s_19) * _e2.s_xx) - (((2.0 * c_14) * s_19) * _e2.s_xy)) + ((c_14 * c_14) * _e2.s_yy)), 0.0);
-    float k12_ = ((((c_14 * c_14) - (s_19 * s_19)) * _e2.s_xy) + ((c_14 * s_19) * (_e2.s_yy - _e2.s_xx)));
+    float s_20 = a_5.axis.y;
+    float k11_ = max(((((c_14 * c_14) * _e2.s_xx) + (((2.0 * c_14) * s_20) * _e2.s_xy)) + ((s_20 * s_20) * _e2.s_yy)), 0.0);
+    float k22_ = max(((((s_20 * s_20) * _e2.s_xx) - (((2.0 * c_14) * s_20) * _e2.s_xy)) + ((c_14 * c_14) * _e2.s_yy)), 0.0);
+    float k12_ = ((((c_14 * c_14) - (s_20 * s_20)) * _e2.s_xy) + ((c_14 * s_20) * (_e2.s_yy - _e2.s_xx)));
     float2 l_6 = a_5.eig_c;
     float2 isl = ((1.0).xx / sqrt(l_6));
     float c11_ = ((k11_ * isl.x) * isl.x);
@@ -1724,8 +1792,8 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roug
     float l1_2 = ((0.5 * (c11_ + c22_)) + _e75);
     if ((_e75 > 0.0)) {
         float big_2 = (_e75 + abs(half_));
-        float2 w_21 = ((half_ >= 0.0) ? float2(big_2, c12_) : float2(c12_, big_2));
-        v_4 = (w_21 / (length(w_21)).xx);
+        float2 w_23 = ((half_ >= 0.0) ? float2(big_2, c12_) : float2(c12_, big_2));
+        v_4 = (w_23 / (length(w_23)).xx);
         l2_ = min((det_c / l1_2), l1_2);
     } else {
         if ((l1_2 > 0.0)) {
@@ -1772,11 +1840,11 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, fl
         return ((big_3 == 0.0) ? 0.0 : math_F32_MAX);
     }
     float3 ws = (w_15 / (big_3).xxx);
-    float3 o_7 = (ws / (length(ws)).xxx);
-    float oz_3 = abs(o_7.z);
-    const float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_7.xy);
+    float3 o_8 = (ws / (length(ws)).xxx);
+    float oz_3 = abs(o_8.z);
+    const float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_8.xy);
     kernel_covariance_Covariance kk = g_3.k;
-    float qs_3 = max(((((kk.s_xx * o_7.x) * o_7.x) + (((2.0 * kk.s_xy) * o_7.x) * o_7.y)) + ((kk.s_yy * o_7.y) * o_7.y)), 0.0);
+    float qs_3 = max(((((kk.s_xx * o_8.x) * o_8.x) + (((2.0 * kk.s_xy) * o_8.x) * o_8.y)) + ((kk.s_yy * o_8.y) * o_8.y)), 0.0);
     if ((qs_3 <= 0.0)) {
         const float _e52 = ndf_ggx_lambda_of(_e27, oz_3);
         return _e52;
@@ -1825,58 +1893,82 @@ ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_Rough
     return ndf_roughness_matrix_roughnessmatrix_10;
 }
 
-filter_deferred_KernelConvention filter_presets_preset(uint i_7)
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_50, float sigma_2)
 {
-    switch(i_7) {
-        case 0u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention = filter_presets_TK19_MAX;
-            return filter_deferred_kernelconvention;
-        }
-        case 1u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_1 = filter_presets_TK19_TRACE;
-            return filter_deferred_kernelconvention_1;
-        }
-        case 2u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_2 = filter_presets_TK19_AVERAGE;
-            return filter_deferred_kernelconvention_2;
-        }
-        case 3u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_3 = filter_presets_TK21_LISTING;
-            return filter_deferred_kernelconvention_3;
-        }
-        case 4u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_4 = filter_presets_FILAMENT;
-            return filter_deferred_kernelconvention_4;
-        }
-        case 5u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_5 = filter_presets_UNITY_HDRP;
-            return filter_deferred_kernelconvention_5;
-        }
-        case 6u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_6 = filter_presets_UNITY_HDRP_PROJECTED;
-            return filter_deferred_kernelconvention_6;
-        }
-        case 7u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_7 = filter_presets_GODOT;
-            return filter_deferred_kernelconvention_7;
-        }
-        case 8u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_8 = filter_presets_O3DE;
-            return filter_deferred_kernelconvention_8;
-        }
-        case 9u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_9 = filter_presets_UNREAL;
-            return filter_deferred_kernelconvention_9;
-        }
-        case 10u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_10 = filter_presets_BABYLON;
-            return filter_deferred_kernelconvention_10;
-        }
-        default: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_11 = filter_presets_THREE_JS;
-            return filter_deferred_kernelconvention_11;
-        }
+    float2 w_24 = (r_50.half_extent * (2.0 * sigma_2));
+    float2 v_15 = (w_24 * w_24);
+    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_15.x, 0.0, v_15.y, (v_15.x * v_15.y));
+    return kernel_covariance_covariance_14;
+}
+
+footprint_Footprint Constructfootprint_Footprint(float2 arg0, float2 arg1) {
+    footprint_Footprint ret = (footprint_Footprint)0;
+    ret.dh_u = arg0;
+    ret.dh_v = arg1;
+    return ret;
+}
+
+footprint_Footprint footprint_from_slope_derivatives(float2 dh_u, float2 dh_v)
+{
+    const footprint_Footprint footprint_footprint = Constructfootprint_Footprint(dh_u, dh_v);
+    return footprint_footprint;
+}
+
+footprint_Footprint footprint_from_projected_derivatives(float2 dp_u, float2 dp_v)
+{
+    const footprint_Footprint footprint_footprint_1 = Constructfootprint_Footprint(dp_u, dp_v);
+    return footprint_footprint_1;
+}
+
+footprint_Footprint footprint_from_projected_derivatives_in_slope(float3 h_in, float2 dp_u_1, float2 dp_v_1)
+{
+    float big_4 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if ((big_4 <= 0.0)) {
+        const footprint_Footprint footprint_footprint_2 = Constructfootprint_Footprint((0.0).xx, (0.0).xx);
+        return footprint_footprint_2;
     }
+    float3 h0_ = (h_in / (big_4).xxx);
+    float3 h_21 = (h0_ / (length(h0_)).xxx);
+    float hz = max(h_21.z, 1e-6);
+    float k_27 = (-1.0 / ((hz * hz) * hz));
+    float2x2 j_4 = float2x2(float2(((h_21.x * h_21.x) + (h_21.z * h_21.z)), (h_21.x * h_21.y)), float2((h_21.x * h_21.y), ((h_21.y * h_21.y) + (h_21.z * h_21.z))));
+    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint((mul(dp_u_1, j_4) * k_27), (mul(dp_v_1, j_4) * k_27));
+    return footprint_footprint_3;
+}
+
+footprint_Footprint footprint_from_normal_differences(float3 dn_u_4, float3 dn_v_4)
+{
+    float lu = max(length((float3(0.0, 0.0, 2.0) + dn_u_4)), 1e-6);
+    float lv = max(length((float3(0.0, 0.0, 2.0) + dn_v_4)), 1e-6);
+    const footprint_Footprint footprint_footprint_4 = Constructfootprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
+    return footprint_footprint_4;
+}
+
+kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3)
+{
+    float2 u_12 = fp.dh_u;
+    float2 v_16 = fp.dh_v;
+    float s2_ = (sigma_3 * sigma_3);
+    float cross_1 = (((u_12.x * v_16.y) - (u_12.y * v_16.x)) * s2_);
+    const kernel_covariance_Covariance kernel_covariance_covariance_15 = Constructkernel_covariance_Covariance((((u_12.x * u_12.x) + (v_16.x * v_16.x)) * s2_), (((u_12.x * u_12.y) + (v_16.x * v_16.y)) * s2_), (((u_12.y * u_12.y) + (v_16.y * v_16.y)) * s2_), (cross_1 * cross_1));
+    return kernel_covariance_covariance_15;
+}
+
+kernel_rect_BoundingRect Constructkernel_rect_BoundingRect(float2 arg0) {
+    kernel_rect_BoundingRect ret = (kernel_rect_BoundingRect)0;
+    ret.half_extent = arg0;
+    return ret;
+}
+
+kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1)
+{
+    const kernel_rect_BoundingRect kernel_rect_boundingrect = Constructkernel_rect_BoundingRect(((abs(fp_1.dh_u) + abs(fp_1.dh_v)) * 0.5));
+    return kernel_rect_boundingrect;
+}
+
+float footprint_max_extent(footprint_Footprint fp_2)
+{
+    return (0.5 * max(length((fp_2.dh_u + fp_2.dh_v)), length((fp_2.dh_u - fp_2.dh_v))));
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance k_11, float tau_4)
@@ -1890,12 +1982,12 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     float2 excess = (a_7.eig - lc);
     float2 p_6 = (lc / ((1.0).xx - lc));
     float c_16 = a_7.axis.x;
-    float s_20 = a_7.axis.y;
-    float p11_1 = (((p_6.x * c_16) * c_16) + ((p_6.y * s_20) * s_20));
-    float p12_1 = (((p_6.x - p_6.y) * c_16) * s_20);
-    float p22_1 = (((p_6.x * s_20) * s_20) + ((p_6.y * c_16) * c_16));
-    float k1_3 = max(((((c_16 * c_16) * k_11.s_xx) + (((2.0 * c_16) * s_20) * k_11.s_xy)) + ((s_20 * s_20) * k_11.s_yy)), 0.0);
-    float k2_3 = max(((((s_20 * s_20) * k_11.s_xx) - (((2.0 * c_16) * s_20) * k_11.s_xy)) + ((c_16 * c_16) * k_11.s_yy)), 0.0);
+    float s_21 = a_7.axis.y;
+    float p11_1 = (((p_6.x * c_16) * c_16) + ((p_6.y * s_21) * s_21));
+    float p12_1 = (((p_6.x - p_6.y) * c_16) * s_21);
+    float p22_1 = (((p_6.x * s_21) * s_21) + ((p_6.y * c_16) * c_16));
+    float k1_3 = max(((((c_16 * c_16) * k_11.s_xx) + (((2.0 * c_16) * s_21) * k_11.s_xy)) + ((s_21 * s_21) * k_11.s_yy)), 0.0);
+    float k2_3 = max(((((s_21 * s_21) * k_11.s_xx) - (((2.0 * c_16) * s_21) * k_11.s_xy)) + ((c_16 * c_16) * k_11.s_yy)), 0.0);
     float d_2 = (((p_6.x * p_6.y) + (2.0 * ((p_6.y * k1_3) + (p_6.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
     float q11_ = (p11_1 + (2.0 * k_11.s_xx));
     float q12_ = (p12_1 + (2.0 * k_11.s_xy));
@@ -1907,11 +1999,11 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     det_3 = (d_2 / den_1);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_16) * c_16) + ((excess.y * s_20) * s_20)));
+        b11_ = (_e114 + (((excess.x * c_16) * c_16) + ((excess.y * s_21) * s_21)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_16) * s_20));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_16) * s_21));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_20) * s_20) + ((excess.y * c_16) * c_16)));
+        b22_ = (_e130 + (((excess.x * s_21) * s_21) + ((excess.y * c_16) * c_16)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -1945,35 +2037,116 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(n
     return ndf_roughness_matrix_roughnessmatrix_13;
 }
 
-float filter_proxy_effective_alpha(float alpha_8, float half_extent)
+footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3)
 {
-    float h_21 = abs(half_extent);
-    const float _e3 = math_hypot(alpha_8, h_21);
-    float t_15 = ((_e3 > 0.0) ? (h_21 / _e3) : 0.0);
+    float l_7 = max(rules.max_extent, 0.0);
+    float scale_2 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
+    if ((scale_2 <= 0.0)) {
+        const footprint_Footprint footprint_footprint_5 = fp_3;
+        return footprint_footprint_5;
+    }
+    footprint_Footprint unit = Constructfootprint_Footprint((fp_3.dh_u / (scale_2).xx), (fp_3.dh_v / (scale_2).xx));
+    const float _e29 = footprint_max_extent(unit);
+    if (((_e29 * scale_2) <= l_7)) {
+        const footprint_Footprint footprint_footprint_6 = fp_3;
+        return footprint_footprint_6;
+    }
+    const footprint_Footprint footprint_footprint_7 = Constructfootprint_Footprint(((unit.dh_u / (_e29).xx) * l_7), ((unit.dh_v / (_e29).xx) * l_7));
+    return footprint_footprint_7;
+}
+
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_51, float2 alpha_8)
+{
+    float2 f_1 = (0.0).xx;
+
+    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
+        f_1 = (rules_1.floor_).xx;
+    } else {
+        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
+            f_1 = min(abs(alpha_8), (rules_1.floor_).xx);
+        }
+    }
+    float lambda = max(rules_1.max_extent, 0.0);
+    float2 h_22 = min(abs(r_51.half_extent), (lambda).xx);
+    float2 _e25 = f_1;
+    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_22, max(_e25, (0.0).xx)));
+    return kernel_rect_boundingrect_1;
+}
+
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_12)
+{
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_12);
+    if ((rules_2.kappa >= math_F32_MAX)) {
+        const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e2;
+        return kernel_covariance_covariance_16;
+    }
+    const kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
+    const kernel_covariance_Covariance kernel_covariance_covariance_17 = _e11;
+    return kernel_covariance_covariance_17;
+}
+
+float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_10)
+{
+    const float _e2 = ndf_roughness_matrix_clamped_det(a_10);
+    return (rules_3.det_clamp ? _e2 : 0.0);
+}
+
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_4)
+{
+    const footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
+    const kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_4);
+    const kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
+    const kernel_covariance_Covariance kernel_covariance_covariance_18 = _e5;
+    return kernel_covariance_covariance_18;
+}
+
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_11, footprint_Footprint fp_5, float sigma_5)
+{
+    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_5);
+    const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_11);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_11, _e4, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_14 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_14;
+}
+
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_6, float sigma_6)
+{
+    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_6);
+    const float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_15 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_15;
+}
+
+float filter_proxy_effective_alpha(float alpha_9, float half_extent)
+{
+    float h_23 = abs(half_extent);
+    const float _e3 = math_hypot(alpha_9, h_23);
+    float t_15 = ((_e3 > 0.0) ? (h_23 / _e3) : 0.0);
     const float _e9 = math_atan(t_15);
     float ratio = ((t_15 > 0.0) ? (t_15 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
 }
 
-float filter_proxy_effective_alpha_simple(float alpha_9, float half_extent_1)
+float filter_proxy_effective_alpha_simple(float alpha_10, float half_extent_1)
 {
-    const float _e3 = math_hypot(alpha_9, abs(half_extent_1));
+    const float _e3 = math_hypot(alpha_10, abs(half_extent_1));
     return _e3;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_50, float2 half_extent_2)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_52, float2 half_extent_2)
 {
-    const float _e5 = filter_proxy_effective_alpha(r_50.alpha.x, half_extent_2.x);
-    const float _e9 = filter_proxy_effective_alpha(r_50.alpha.y, half_extent_2.y);
+    const float _e5 = filter_proxy_effective_alpha(r_52.alpha.x, half_extent_2.x);
+    const float _e9 = filter_proxy_effective_alpha(r_52.alpha.y, half_extent_2.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_1 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_1;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_51, float2 half_extent_3)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_53, float2 half_extent_3)
 {
-    const float _e5 = filter_proxy_effective_alpha_simple(r_51.alpha.x, half_extent_3.x);
-    const float _e9 = filter_proxy_effective_alpha_simple(r_51.alpha.y, half_extent_3.y);
+    const float _e5 = filter_proxy_effective_alpha_simple(r_53.alpha.x, half_extent_3.x);
+    const float _e9 = filter_proxy_effective_alpha_simple(r_53.alpha.y, half_extent_3.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_2 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_2;
@@ -1993,32 +2166,32 @@ uint filter_rect_tier(float h2_, float l2_1)
     return filter_rect_TIER_CLOSED;
 }
 
-float filter_rect_gl_node(uint n_1, uint k_12)
+float filter_rect_gl_node(uint n_1, uint k_13)
 {
     if ((n_1 == 2u)) {
         return 0.57735026;
     }
     if ((n_1 == 4u)) {
-        return ((k_12 == 0u) ? 0.33998105 : 0.8611363);
+        return ((k_13 == 0u) ? 0.33998105 : 0.8611363);
     }
-    if ((k_12 == 0u)) {
+    if ((k_13 == 0u)) {
         return 0.2386192;
     }
-    return ((k_12 == 1u) ? 0.6612094 : 0.9324695);
+    return ((k_13 == 1u) ? 0.6612094 : 0.9324695);
 }
 
-float filter_rect_gl_weight(uint n_2, uint k_13)
+float filter_rect_gl_weight(uint n_2, uint k_14)
 {
     if ((n_2 == 2u)) {
         return 0.5;
     }
     if ((n_2 == 4u)) {
-        return ((k_13 == 0u) ? 0.32607257 : 0.17392743);
+        return ((k_14 == 0u) ? 0.32607257 : 0.17392743);
     }
-    if ((k_13 == 0u)) {
+    if ((k_14 == 0u)) {
         return 0.23395696;
     }
-    return ((k_13 == 1u) ? 0.18038079 : 0.085662246);
+    return ((k_14 == 1u) ? 0.18038079 : 0.085662246);
 }
 
 float filter_rect_f(float u_1, float v_5)
@@ -2034,7 +2207,7 @@ uint naga_div(uint lhs, uint rhs) {
 float filter_rect_gl_mean(uint n_3, float u_2, float c_6, float h_1)
 {
     float acc_2 = 0.0;
-    uint k_14 = 0u;
+    uint k_15 = 0u;
 
     uint2 loop_bound_6 = uint2(4294967295u, 4294967295u);
     bool loop_init_6 = true;
@@ -2042,21 +2215,21 @@ float filter_rect_gl_mean(uint n_3, float u_2, float c_6, float h_1)
         if (all(loop_bound_6 == uint2(0u, 0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e26 = k_14;
-            k_14 = (_e26 + 1u);
+            uint _e26 = k_15;
+            k_15 = (_e26 + 1u);
         }
         loop_init_6 = false;
-        uint _e8 = k_14;
+        uint _e8 = k_15;
         if ((_e8 < naga_div(n_3, 2u))) {
         } else {
             break;
         }
         {
-            uint _e12 = k_14;
+            uint _e12 = k_15;
             const float _e13 = filter_rect_gl_node(n_3, _e12);
             float a_24 = (h_1 * _e13);
             float _e15 = acc_2;
-            uint _e16 = k_14;
+            uint _e16 = k_15;
             const float _e17 = filter_rect_gl_weight(n_3, _e16);
             const float _e19 = filter_rect_f(u_2, (c_6 - a_24));
             const float _e21 = filter_rect_f(u_2, (c_6 + a_24));
@@ -2094,11 +2267,11 @@ float filter_rect_delta_minus_sin(float d, float sin_d)
     return (d - sin_d);
 }
 
-float filter_rect_mean_1d(float4 i_8, float c2_)
+float filter_rect_mean_1d(float4 i_7, float c2_)
 {
-    float x0_ = ((i_8.z >= 0.0) ? i_8.x : -(i_8.y));
-    float x1_1 = ((i_8.z >= 0.0) ? i_8.y : -(i_8.x));
-    float dx = (2.0 * i_8.w);
+    float x0_ = ((i_7.z >= 0.0) ? i_7.x : -(i_7.y));
+    float x1_1 = ((i_7.z >= 0.0) ? i_7.y : -(i_7.x));
+    float dx = (2.0 * i_7.w);
     float c_17 = sqrt(c2_);
     float r02_ = (c2_ + (x0_ * x0_));
     float r12_ = (c2_ + (x1_1 * x1_1));
@@ -2117,7 +2290,7 @@ float filter_rect_mean_1d(float4 i_8, float c2_)
 float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_2, float4 other)
 {
     float acc_3 = 0.0;
-    uint k_15 = 0u;
+    uint k_16 = 0u;
 
     uint2 loop_bound_7 = uint2(4294967295u, 4294967295u);
     bool loop_init_7 = true;
@@ -2125,23 +2298,23 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_2, float4 other)
         if (all(loop_bound_7 == uint2(0u, 0u))) { break; }
         loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
         if (!loop_init_7) {
-            uint _e32 = k_15;
-            k_15 = (_e32 + 1u);
+            uint _e32 = k_16;
+            k_16 = (_e32 + 1u);
         }
         loop_init_7 = false;
-        uint _e8 = k_15;
+        uint _e8 = k_16;
         if ((_e8 < naga_div(n_4, 2u))) {
         } else {
             break;
         }
         {
-            uint _e12 = k_15;
+            uint _e12 = k_16;
             const float _e13 = filter_rect_gl_node(n_4, _e12);
             float a_25 = (h_2 * _e13);
             float x0_1 = (c_7 - a_25);
             float x1_2 = (c_7 + a_25);
             float _e17 = acc_3;
-            uint _e18 = k_15;
+            uint _e18 = k_16;
             const float _e19 = filter_rect_gl_weight(n_4, _e18);
             const float _e23 = filter_rect_mean_1d(other, (1.0 + (x0_1 * x0_1)));
             const float _e27 = filter_rect_mean_1d(other, (1.0 + (x1_2 * x1_2)));
@@ -2154,10 +2327,10 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_2, float4 other)
 
 float filter_rect_edge(float u_3, float dv, float v01_)
 {
-    float s2_ = (1.0 + (u_3 * u_3));
-    float s_21 = sqrt(s2_);
-    const float _e10 = filter_rect_atan2_upper((dv * s_21), (s2_ + v01_));
-    return ((u_3 / s_21) * _e10);
+    float s2_1 = (1.0 + (u_3 * u_3));
+    float s_22 = sqrt(s2_1);
+    const float _e10 = filter_rect_atan2_upper((dv * s_22), (s2_1 + v01_));
+    return ((u_3 / s_22) * _e10);
 }
 
 float filter_rect_edges(float4 u_4, float4 v_6)
@@ -2170,62 +2343,62 @@ float filter_rect_edges(float4 u_4, float4 v_6)
     const float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
     const float _e20 = filter_rect_edge(v_6.y, du, u01_);
     const float _e22 = filter_rect_edge(v_6.x, du, u01_);
-    float i_11 = (0.5 * ((_e15 - _e17) + (_e20 - _e22)));
-    return (i_11 / (du * dv_1));
+    float i_12 = (0.5 * ((_e15 - _e17) + (_e20 - _e22)));
+    return (i_12 / (du * dv_1));
 }
 
-float filter_rect_gl8_node(uint k_16)
-{
-    if ((k_16 == 0u)) {
-        return 0.18343464;
-    }
-    if ((k_16 == 1u)) {
-        return 0.5255324;
-    }
-    return ((k_16 == 2u) ? 0.7966665 : 0.96028984);
-}
-
-float filter_rect_gl8_weight(uint k_17)
+float filter_rect_gl8_node(uint k_17)
 {
     if ((k_17 == 0u)) {
-        return 0.18134189;
+        return 0.18343464;
     }
     if ((k_17 == 1u)) {
+        return 0.5255324;
+    }
+    return ((k_17 == 2u) ? 0.7966665 : 0.96028984);
+}
+
+float filter_rect_gl8_weight(uint k_18)
+{
+    if ((k_18 == 0u)) {
+        return 0.18134189;
+    }
+    if ((k_18 == 1u)) {
         return 0.15685332;
     }
-    return ((k_17 == 2u) ? 0.11119052 : 0.050614268);
+    return ((k_18 == 2u) ? 0.11119052 : 0.050614268);
 }
 
 float filter_rect_polar_near(float x2_, float lo, float hi)
 {
     float acc_4 = 0.0;
-    uint k_18 = 0u;
+    uint k_19 = 0u;
 
     float c_18 = (0.5 * (lo + hi));
-    float h_22 = (0.5 * (hi - lo));
+    float h_24 = (0.5 * (hi - lo));
     uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
     bool loop_init_8 = true;
     while(true) {
         if (all(loop_bound_8 == uint2(0u, 0u))) { break; }
         loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
         if (!loop_init_8) {
-            uint _e48 = k_18;
-            k_18 = (_e48 + 1u);
+            uint _e48 = k_19;
+            k_19 = (_e48 + 1u);
         }
         loop_init_8 = false;
-        uint _e13 = k_18;
+        uint _e13 = k_19;
         if ((_e13 < 4u)) {
         } else {
             break;
         }
         {
-            uint _e16 = k_18;
+            uint _e16 = k_19;
             const float _e17 = filter_rect_gl8_node(_e16);
-            float d_3 = (h_22 * _e17);
+            float d_3 = (h_24 * _e17);
             float q0_ = (1.0 + ((c_18 - d_3) * (c_18 - d_3)));
             float q1_ = (1.0 + ((c_18 + d_3) * (c_18 + d_3)));
             float _e29 = acc_4;
-            uint _e30 = k_18;
+            uint _e30 = k_19;
             const float _e31 = filter_rect_gl8_weight(_e30);
             acc_4 = (_e29 + (_e31 * ((1.0 / (q0_ * (1.0 + (x2_ * q0_)))) + (1.0 / (q1_ * (1.0 + (x2_ * q1_)))))));
         }
@@ -2237,33 +2410,33 @@ float filter_rect_polar_near(float x2_, float lo, float hi)
 float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
 {
     float acc_5 = 0.0;
-    uint k_19 = 0u;
+    uint k_20 = 0u;
 
     float c_19 = (0.5 * (lo_1 + hi_1));
-    float h_23 = (0.5 * (hi_1 - lo_1));
+    float h_25 = (0.5 * (hi_1 - lo_1));
     uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
     bool loop_init_9 = true;
     while(true) {
         if (all(loop_bound_9 == uint2(0u, 0u))) { break; }
         loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
         if (!loop_init_9) {
-            uint _e48 = k_19;
-            k_19 = (_e48 + 1u);
+            uint _e48 = k_20;
+            k_20 = (_e48 + 1u);
         }
         loop_init_9 = false;
-        uint _e13 = k_19;
+        uint _e13 = k_20;
         if ((_e13 < 4u)) {
         } else {
             break;
         }
         {
-            uint _e16 = k_19;
+            uint _e16 = k_20;
             const float _e17 = filter_rect_gl8_node(_e16);
-            float d_4 = (h_23 * _e17);
+            float d_4 = (h_25 * _e17);
             float t0_2 = ((c_19 - d_4) * (c_19 - d_4));
             float t1_4 = ((c_19 + d_4) * (c_19 + d_4));
             float _e25 = acc_5;
-            uint _e26 = k_19;
+            uint _e26 = k_20;
             const float _e27 = filter_rect_gl8_weight(_e26);
             acc_5 = (_e25 + (_e27 * ((t0_2 / ((1.0 + t0_2) * (t0_2 + (x2_1 * (1.0 + t0_2))))) + (t1_4 / ((1.0 + t1_4) * (t1_4 + (x2_1 * (1.0 + t1_4))))))));
         }
@@ -2272,26 +2445,26 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
     return (_e50 * (hi_1 - lo_1));
 }
 
-float filter_rect_edge_range(float ax, float a_10, float b_2)
+float filter_rect_edge_range(float ax, float a_13, float b_2)
 {
     float v_7 = 0.0;
 
     float x2_3 = (ax * ax);
-    if ((a_10 < ax)) {
+    if ((a_13 < ax)) {
         float _e7 = v_7;
-        const float _e11 = filter_rect_polar_near(x2_3, (a_10 / ax), (min(b_2, ax) / ax));
+        const float _e11 = filter_rect_polar_near(x2_3, (a_13 / ax), (min(b_2, ax) / ax));
         v_7 = (_e7 + _e11);
     }
     if ((b_2 > ax)) {
         float _e14 = v_7;
-        const float _e18 = filter_rect_polar_far(x2_3, (ax / b_2), (ax / max(a_10, ax)));
+        const float _e18 = filter_rect_polar_far(x2_3, (ax / b_2), (ax / max(a_13, ax)));
         v_7 = (_e14 + _e18);
     }
     float _e20 = v_7;
     return _e20;
 }
 
-float filter_rect_edge_polar(float x_7, float a_11, float b_3)
+float filter_rect_edge_polar(float x_7, float a_14, float b_3)
 {
     float v_8 = (float)0;
 
@@ -2299,15 +2472,15 @@ float filter_rect_edge_polar(float x_7, float a_11, float b_3)
     if ((ax_1 < 1e-12)) {
         return 0.0;
     }
-    if ((a_11 >= 0.0)) {
-        const float _e10 = filter_rect_edge_range(ax_1, a_11, b_3);
+    if ((a_14 >= 0.0)) {
+        const float _e10 = filter_rect_edge_range(ax_1, a_14, b_3);
         v_8 = _e10;
     } else {
         if ((b_3 <= 0.0)) {
-            const float _e15 = filter_rect_edge_range(ax_1, -(b_3), -(a_11));
+            const float _e15 = filter_rect_edge_range(ax_1, -(b_3), -(a_14));
             v_8 = _e15;
         } else {
-            const float _e18 = filter_rect_edge_range(ax_1, 0.0, -(a_11));
+            const float _e18 = filter_rect_edge_range(ax_1, 0.0, -(a_14));
             const float _e20 = filter_rect_edge_range(ax_1, 0.0, b_3);
             v_8 = (_e18 + _e20);
         }
@@ -2323,20 +2496,20 @@ float filter_rect_far_field(float4 u_5, float4 v_9)
     const float _e9 = filter_rect_edge_polar(u_5.x, v_9.x, v_9.y);
     const float _e14 = filter_rect_edge_polar(v_9.y, u_5.x, u_5.y);
     const float _e18 = filter_rect_edge_polar(v_9.x, u_5.x, u_5.y);
-    float i_12 = (-0.5 * ((_e5 - _e9) + (_e14 - _e18)));
-    return (i_12 / ((4.0 * u_5.w) * v_9.w));
+    float i_13 = (-0.5 * ((_e5 - _e9) + (_e14 - _e18)));
+    return (i_13 / ((4.0 * u_5.w) * v_9.w));
 }
 
-float filter_rect_gap(float4 i_9)
+float filter_rect_gap(float4 i_8)
 {
-    return max(max(i_9.x, -(i_9.y)), 0.0);
+    return max(max(i_8.x, -(i_8.y)), 0.0);
 }
 
 float filter_rect_mean_f(float4 u_6, float4 v_10)
 {
     bool local_13 = (bool)0;
     float acc_6 = 0.0;
-    uint k_20 = 0u;
+    uint k_21 = 0u;
 
     const float _e2 = filter_rect_gap(u_6);
     const float _e3 = filter_rect_gap(v_10);
@@ -2370,21 +2543,21 @@ float filter_rect_mean_f(float4 u_6, float4 v_10)
         if (all(loop_bound_10 == uint2(0u, 0u))) { break; }
         loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
         if (!loop_init_10) {
-            uint _e80 = k_20;
-            k_20 = (_e80 + 1u);
+            uint _e80 = k_21;
+            k_21 = (_e80 + 1u);
         }
         loop_init_10 = false;
-        uint _e55 = k_20;
+        uint _e55 = k_21;
         if ((_e55 < naga_div(_e14, 2u))) {
         } else {
             break;
         }
         {
-            uint _e60 = k_20;
+            uint _e60 = k_21;
             const float _e61 = filter_rect_gl_node(_e14, _e60);
             float a_26 = (u_6.w * _e61);
             float _e63 = acc_6;
-            uint _e64 = k_20;
+            uint _e64 = k_21;
             const float _e65 = filter_rect_gl_weight(_e14, _e64);
             const float _e70 = filter_rect_gl_mean(_e25, (u_6.z - a_26), v_10.z, v_10.w);
             const float _e75 = filter_rect_gl_mean(_e25, (u_6.z + a_26), v_10.z, v_10.w);
@@ -2395,15 +2568,15 @@ float filter_rect_mean_f(float4 u_6, float4 v_10)
     return _e82;
 }
 
-float4 filter_rect_interval(float c_8, float h_3, float a_12)
+float4 filter_rect_interval(float c_8, float h_3, float a_15)
 {
     float ah = abs(h_3);
-    float lo_3 = clamp(((c_8 - ah) / a_12), -1e18, filter_rect_BIG);
-    float hi_2 = clamp(((c_8 + ah) / a_12), -1e18, filter_rect_BIG);
-    return float4(lo_3, hi_2, clamp((c_8 / a_12), -1e18, filter_rect_BIG), min((ah / a_12), filter_rect_BIG));
+    float lo_3 = clamp(((c_8 - ah) / a_15), -1e18, filter_rect_BIG);
+    float hi_2 = clamp(((c_8 + ah) / a_15), -1e18, filter_rect_BIG);
+    return float4(lo_3, hi_2, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
 }
 
-float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_52, float2 center_, float2 half_extent_4)
+float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_54, float2 center_, float2 half_extent_4)
 {
     bool local_14 = (bool)0;
 
@@ -2414,17 +2587,17 @@ float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_52, float2 c
     }
     bool _e12 = local_14;
     if (_e12) {
-        const float _e13 = ndf_ggx_p22_axis_aligned(r_52, center_);
+        const float _e13 = ndf_ggx_p22_axis_aligned(r_54, center_);
         return _e13;
     }
-    float2 a_27 = r_52.alpha;
+    float2 a_27 = r_54.alpha;
     const float4 _e18 = filter_rect_interval(center_.x, half_extent_4.x, a_27.x);
     const float4 _e22 = filter_rect_interval(center_.y, half_extent_4.y, a_27.y);
     const float _e23 = filter_rect_mean_f(_e18, _e22);
     return max((_e23 * (math_INV_PI / (a_27.x * a_27.y))), 0.0);
 }
 
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_53, float3 h_4, float2 half_extent_5)
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_55, float3 h_4, float2 half_extent_5)
 {
     bool local_15 = (bool)0;
 
@@ -2438,20 +2611,20 @@ float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_53, float3 h_4
     }
     bool _e17 = local_15;
     if (_e17) {
-        const float _e18 = ndf_ggx_d_axis_aligned(r_53, h_4);
+        const float _e18 = ndf_ggx_d_axis_aligned(r_55, h_4);
         return _e18;
     }
-    const float _e24 = filter_rect_p22_rect(r_53, (-(h_4.xy) / (h_4.z).xx), half_extent_5);
+    const float _e24 = filter_rect_p22_rect(r_55, (-(h_4.xy) / (h_4.z).xx), half_extent_5);
     float z2_5 = (h_4.z * h_4.z);
     return min((_e24 / (z2_5 * z2_5)), math_F32_MAX);
 }
 
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_54, float2 hpp, float3 h_5, float2 footprint)
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_56, float2 hpp, float3 h_5, float2 footprint)
 {
     bool local_16 = (bool)0;
 
-    float a_28 = r_54.alpha.x;
-    float b_8 = r_54.alpha.y;
+    float a_28 = r_56.alpha.x;
+    float b_8 = r_56.alpha.y;
     float a_2_ = (a_28 * a_28);
     float b_2_ = (b_8 * b_8);
     float x1_3 = (hpp.x - footprint.x);
@@ -2473,41 +2646,41 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_54, fl
     float val = ((((x1_3 * (_e37 - _e41)) / sx1_) + ((x2_4 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
     float den_2 = ((6.2831855 * (x1_3 - x2_4)) * (y1_ - y2_));
     float hz4_ = (((h_5.z * h_5.z) * h_5.z) * h_5.z);
-    float v_15 = ((val / den_2) / max(hz4_, 0.001));
-    if ((abs(v_15) <= math_F32_MAX)) {
+    float v_17 = ((val / den_2) / max(hz4_, 0.001));
+    if ((abs(v_17) <= math_F32_MAX)) {
         local_16 = (den_2 != 0.0);
     } else {
         local_16 = false;
     }
     bool _e109 = local_16;
-    return (_e109 ? v_15 : 0.0);
+    return (_e109 ? v_17 : 0.0);
 }
 
 float filter_rect_lambda_rho(float t_1)
 {
     float a_29 = abs(t_1);
     if ((a_29 > 1.0)) {
-        float i_13 = (1.0 / a_29);
-        return (a_29 * sqrt((1.0 + (i_13 * i_13))));
+        float i_14 = (1.0 / a_29);
+        return (a_29 * sqrt((1.0 + (i_14 * i_14))));
     }
     return sqrt((1.0 + (t_1 * t_1)));
 }
 
-float filter_rect_lambda_e_neg(float t_2, float r_55)
+float filter_rect_lambda_e_neg(float t_2, float r_57)
 {
-    return ((t_2 >= 0.0) ? (1.0 / (r_55 + t_2)) : (r_55 - t_2));
+    return ((t_2 >= 0.0) ? (1.0 / (r_57 + t_2)) : (r_57 - t_2));
 }
 
-float filter_rect_lambda_asinh_of(float t_3, float r_56)
+float filter_rect_lambda_asinh_of(float t_3, float r_58)
 {
     float v_11 = (float)0;
 
     float a_30 = abs(t_3);
     if ((a_30 > 1.0)) {
-        const float _e7 = math_ln((a_30 + r_56));
+        const float _e7 = math_ln((a_30 + r_58));
         v_11 = _e7;
     } else {
-        const float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_56))));
+        const float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_58))));
         v_11 = _e13;
     }
     float _e14 = v_11;
@@ -2544,10 +2717,10 @@ float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_17)
     const float _e4 = filter_rect_lambda_rho(t1_);
     const float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     const float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_22 = (_e5 + _e6);
-    float d_5 = ((w_17 * s_22) / (_e3 + _e4));
+    float s_23 = (_e5 + _e6);
+    float d_5 = ((w_17 * s_23) / (_e3 + _e4));
     const float _e12 = math_ln_1p((d_5 / _e6));
-    return (0.25 * (_e12 + ((0.5 * d_5) * s_22)));
+    return (0.25 * (_e12 + ((0.5 * d_5) * s_23)));
 }
 
 float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_18)
@@ -2561,20 +2734,20 @@ uint filter_rect_lambda_rule(uint t_7)
     return ((t_7 == filter_rect_TIER_CLOSED) ? 6u : t_7);
 }
 
-float filter_rect_lambda_mean_psi1_(float t_8, float k_21)
+float filter_rect_lambda_mean_psi1_(float t_8, float k_22)
 {
     float acc_7 = 0.0;
     uint j = 0u;
 
-    if ((k_21 == 0.0)) {
+    if ((k_22 == 0.0)) {
         const float _e4 = filter_rect_lambda_psi1_(t_8);
         return _e4;
     }
-    const uint _e9 = filter_rect_tier((k_21 * k_21), (1.0 + (t_8 * t_8)));
+    const uint _e9 = filter_rect_tier((k_22 * k_22), (1.0 + (t_8 * t_8)));
     if ((_e9 == filter_rect_TIER_CLOSED)) {
-        const float _e13 = filter_rect_lambda_psi2_((t_8 + k_21));
-        const float _e15 = filter_rect_lambda_psi2_((t_8 - k_21));
-        return ((_e13 - _e15) / (2.0 * k_21));
+        const float _e13 = filter_rect_lambda_psi2_((t_8 + k_22));
+        const float _e15 = filter_rect_lambda_psi2_((t_8 - k_22));
+        return ((_e13 - _e15) / (2.0 * k_22));
     }
     uint2 loop_bound_11 = uint2(4294967295u, 4294967295u);
     bool loop_init_11 = true;
@@ -2594,7 +2767,7 @@ float filter_rect_lambda_mean_psi1_(float t_8, float k_21)
         {
             uint _e28 = j;
             const float _e29 = filter_rect_gl_node(_e9, _e28);
-            float a_31 = (k_21 * _e29);
+            float a_31 = (k_22 * _e29);
             float _e31 = acc_7;
             uint _e32 = j;
             const float _e33 = filter_rect_gl_weight(_e9, _e32);
@@ -2689,9 +2862,9 @@ float filter_rect_lambda_expected_psi(float m_22, float k1_, float k2_, float lo
         return _e48;
     }
     float hi_3 = (m_22 + kl);
-    float w_22 = (2.0 * kl);
+    float w_25 = (2.0 * kl);
     if ((ks == 0.0)) {
-        const float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_3, w_22);
+        const float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_3, w_25);
         return _e54;
     }
     const uint _e59 = filter_rect_tier((ks * ks), (1.0 + (lo_2 * lo_2)));
@@ -2718,8 +2891,8 @@ float filter_rect_lambda_expected_psi(float m_22, float k1_, float k2_, float lo
                 float _e73 = acc_10;
                 uint _e74 = j_3;
                 const float _e75 = filter_rect_gl_weight(_e59, _e74);
-                const float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_13), (hi_3 + x_13), w_22);
-                const float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_13), (hi_3 - x_13), w_22);
+                const float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_13), (hi_3 + x_13), w_25);
+                const float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_13), (hi_3 - x_13), w_25);
                 acc_10 = (_e73 + (_e75 * (_e78 + _e81)));
             }
         }
@@ -2728,21 +2901,21 @@ float filter_rect_lambda_expected_psi(float m_22, float k1_, float k2_, float lo
     }
     const float _e89 = filter_rect_lambda_mean_psi1_(hi_3, ks);
     const float _e90 = filter_rect_lambda_mean_psi1_(lo_2, ks);
-    return ((_e89 - _e90) / w_22);
+    return ((_e89 - _e90) / w_25);
 }
 
-float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_57, float2 half_extent_6, float3 w_in)
+float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_59, float2 half_extent_6, float3 w_in)
 {
     float3 w_19 = (float3)0;
     bool local_17 = (bool)0;
     bool local_18 = (bool)0;
     bool local_19 = (bool)0;
 
-    float big_4 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
+    float big_5 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
     w_19 = w_in;
-    if (!((big_4 > 1.1529215e18))) {
-        if ((big_4 < 8.6736174e-19)) {
-            local_18 = (big_4 > 0.0);
+    if (!((big_5 > 1.1529215e18))) {
+        if ((big_5 < 8.6736174e-19)) {
+            local_18 = (big_5 > 0.0);
         } else {
             local_18 = false;
         }
@@ -2753,7 +2926,7 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_57
     }
     bool _e26 = local_17;
     if (_e26) {
-        int e_5 = asint(asuint(int(((asuint(big_4) >> 23u) & 255u))) - asuint(int(127)));
+        int e_5 = asint(asuint(int(((asuint(big_5) >> 23u) & 255u))) - asuint(int(127)));
         w_19 = (w_in * asfloat((uint(asint(asuint(int(127)) - asuint(e_5))) << 23u)));
     }
     float _e43 = w_19.x;
@@ -2767,7 +2940,7 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_57
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    float2 alpha_11 = r_57.alpha;
+    float2 alpha_11 = r_59.alpha;
     float2 ha = min(abs(half_extent_6), (alpha_11 * filter_rect_lambda_BIG_K));
     float _e63 = w_19.x;
     float ux = (abs(_e63) / _e46);
@@ -2786,7 +2959,7 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_57
     bool _e92 = local_19;
     if (_e92) {
         float3 _e93 = w_19;
-        const float _e94 = ndf_ggx_lambda_axis_aligned(r_57, _e93);
+        const float _e94 = ndf_ggx_lambda_axis_aligned(r_59, _e93);
         return _e94;
     }
     float mm = ((wz / _e46) / _e74);
@@ -2803,82 +2976,181 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_57
     return (_e117 / mm);
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_58, float sigma_2)
+ndf_roughness_matrix_RoughnessMatrix filter_method_gaussian_lobe(filter_method_Gaussian method, ndf_roughness_matrix_RoughnessMatrix material, footprint_Footprint fp_7)
 {
-    float2 w_23 = (r_58.half_extent * (2.0 * sigma_2));
-    float2 v_16 = (w_23 * w_23);
-    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_16.x, 0.0, v_16.y, (v_16.x * v_16.y));
-    return kernel_covariance_covariance_14;
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_gaussian(method.clamps, material, fp_7, method.sigma);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_16 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_16;
 }
 
-footprint_Footprint Constructfootprint_Footprint(float2 arg0, float2 arg1) {
-    footprint_Footprint ret = (footprint_Footprint)0;
-    ret.dh_u = arg0;
-    ret.dh_v = arg1;
+float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, float3 m_23)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_1, material_1, fp_8);
+    const float _e5 = ndf_ggx_d_matrix(_e4, m_23);
+    return _e5;
+}
+
+float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_9, float3 m_24)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_2, material_2, fp_9);
+    const float _e5 = ndf_beckmann_d_matrix(_e4, m_24);
+    return _e5;
+}
+
+filter_gaussian_ggx_GaussianFilteredGgx filter_method_exact_gaussian_lobe(filter_method_ExactGaussian method_3, ndf_roughness_matrix_RoughnessMatrix material_3, footprint_Footprint fp_10)
+{
+    const kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_10, method_3.sigma);
+    const filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_1 = _e6;
+    return filter_gaussian_ggx_gaussianfilteredggx_1;
+}
+
+float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, float3 m_25)
+{
+    const filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_method_exact_gaussian_lobe(method_4, material_4, fp_11);
+    const float _e5 = filter_gaussian_ggx_d(_e4, m_25);
+    return _e5;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_method_projected_lobe(filter_method_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_12)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_17 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_17;
+}
+
+float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, float3 m_26)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_projected_lobe(method_6, material_6, fp_13);
+    const float _e5 = ndf_ggx_d_matrix(_e4, m_26);
+    return _e5;
+}
+
+filter_method_RectFilteredGgx Constructfilter_method_RectFilteredGgx(ndf_roughness_axis_aligned_AxisAligned arg0, float2 arg1) {
+    filter_method_RectFilteredGgx ret = (filter_method_RectFilteredGgx)0;
+    ret.roughness = arg0;
+    ret.half_extent = arg1;
     return ret;
 }
 
-footprint_Footprint footprint_from_slope_derivatives(float2 dh_u, float2 dh_v)
+filter_method_RectFilteredGgx filter_method_rect_lobe(filter_method_Rect method_7, ndf_roughness_axis_aligned_AxisAligned material_7, footprint_Footprint fp_14)
 {
-    const footprint_Footprint footprint_footprint = Constructfootprint_Footprint(dh_u, dh_v);
-    return footprint_footprint;
+    const kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_14);
+    const kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
+    float2 h_26 = _e6.half_extent;
+    const filter_method_RectFilteredGgx filter_method_rectfilteredggx = Constructfilter_method_RectFilteredGgx(material_7, h_26);
+    return filter_method_rectfilteredggx;
 }
 
-footprint_Footprint footprint_from_projected_derivatives(float2 dp_u, float2 dp_v)
+float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe, float2 s_12)
 {
-    const footprint_Footprint footprint_footprint_1 = Constructfootprint_Footprint(dp_u, dp_v);
-    return footprint_footprint_1;
+    const float _e4 = filter_rect_p22_rect(lobe.roughness, s_12, lobe.half_extent);
+    return _e4;
 }
 
-footprint_Footprint footprint_from_projected_derivatives_in_slope(float3 h_in, float2 dp_u_1, float2 dp_v_1)
+float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_1, float3 m_27)
 {
-    float big_5 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
-    if ((big_5 <= 0.0)) {
-        const footprint_Footprint footprint_footprint_2 = Constructfootprint_Footprint((0.0).xx, (0.0).xx);
-        return footprint_footprint_2;
+    const float _e4 = filter_rect_d_rect(lobe_1.roughness, m_27, lobe_1.half_extent);
+    return _e4;
+}
+
+float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_2, float3 w_20)
+{
+    const float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_20);
+    return _e4;
+}
+
+float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_3, float3 w_21, float3 m_28)
+{
+    const float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_21);
+    const float _e5 = ndf_g1_of(_e3, dot(w_21, m_28));
+    return _e5;
+}
+
+float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_4, float3 i_9, float3 o_7, float3 m_29)
+{
+    const float _e4 = filter_method_lambda_rect_filtered(lobe_4, i_9);
+    const float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_7);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_29), dot(o_7, m_29));
+    return _e8;
+}
+
+float filter_method_d_ggx_rect(filter_method_Rect method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, float3 m_30)
+{
+    const filter_method_RectFilteredGgx _e4 = filter_method_rect_lobe(method_8, material_8, fp_15);
+    const float _e5 = filter_method_d_rect_filtered(_e4, m_30);
+    return _e5;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(filter_method_Proxy method_9, ndf_roughness_axis_aligned_AxisAligned material_9, footprint_Footprint fp_16)
+{
+    const kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_16);
+    const kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
+    float2 h_27 = _e6.half_extent;
+    const ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_27);
+    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_3 = _e8;
+    return ndf_roughness_axis_aligned_axisaligned_3;
+}
+
+float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, float3 m_31)
+{
+    const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
+    const float _e5 = ndf_ggx_d_axis_aligned(_e4, m_31);
+    return _e5;
+}
+
+filter_deferred_KernelConvention filter_presets_preset(uint i_10)
+{
+    switch(i_10) {
+        case 0u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention = filter_presets_TK19_MAX;
+            return filter_deferred_kernelconvention;
+        }
+        case 1u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_1 = filter_presets_TK19_TRACE;
+            return filter_deferred_kernelconvention_1;
+        }
+        case 2u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_2 = filter_presets_TK19_AVERAGE;
+            return filter_deferred_kernelconvention_2;
+        }
+        case 3u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_3 = filter_presets_TK21_LISTING;
+            return filter_deferred_kernelconvention_3;
+        }
+        case 4u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_4 = filter_presets_FILAMENT;
+            return filter_deferred_kernelconvention_4;
+        }
+        case 5u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_5 = filter_presets_UNITY_HDRP;
+            return filter_deferred_kernelconvention_5;
+        }
+        case 6u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_6 = filter_presets_UNITY_HDRP_PROJECTED;
+            return filter_deferred_kernelconvention_6;
+        }
+        case 7u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_7 = filter_presets_GODOT;
+            return filter_deferred_kernelconvention_7;
+        }
+        case 8u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_8 = filter_presets_O3DE;
+            return filter_deferred_kernelconvention_8;
+        }
+        case 9u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_9 = filter_presets_UNREAL;
+            return filter_deferred_kernelconvention_9;
+        }
+        case 10u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_10 = filter_presets_BABYLON;
+            return filter_deferred_kernelconvention_10;
+        }
+        default: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_11 = filter_presets_THREE_JS;
+            return filter_deferred_kernelconvention_11;
+        }
     }
-    float3 h0_ = (h_in / (big_5).xxx);
-    float3 h_24 = (h0_ / (length(h0_)).xxx);
-    float hz = max(h_24.z, 1e-6);
-    float k_27 = (-1.0 / ((hz * hz) * hz));
-    float2x2 j_4 = float2x2(float2(((h_24.x * h_24.x) + (h_24.z * h_24.z)), (h_24.x * h_24.y)), float2((h_24.x * h_24.y), ((h_24.y * h_24.y) + (h_24.z * h_24.z))));
-    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint((mul(dp_u_1, j_4) * k_27), (mul(dp_v_1, j_4) * k_27));
-    return footprint_footprint_3;
-}
-
-footprint_Footprint footprint_from_normal_differences(float3 dn_u_4, float3 dn_v_4)
-{
-    float lu = max(length((float3(0.0, 0.0, 2.0) + dn_u_4)), 1e-6);
-    float lv = max(length((float3(0.0, 0.0, 2.0) + dn_v_4)), 1e-6);
-    const footprint_Footprint footprint_footprint_4 = Constructfootprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
-    return footprint_footprint_4;
-}
-
-kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3)
-{
-    float2 u_12 = fp.dh_u;
-    float2 v_17 = fp.dh_v;
-    float s2_1 = (sigma_3 * sigma_3);
-    float cross_1 = (((u_12.x * v_17.y) - (u_12.y * v_17.x)) * s2_1);
-    const kernel_covariance_Covariance kernel_covariance_covariance_15 = Constructkernel_covariance_Covariance((((u_12.x * u_12.x) + (v_17.x * v_17.x)) * s2_1), (((u_12.x * u_12.y) + (v_17.x * v_17.y)) * s2_1), (((u_12.y * u_12.y) + (v_17.y * v_17.y)) * s2_1), (cross_1 * cross_1));
-    return kernel_covariance_covariance_15;
-}
-
-kernel_rect_BoundingRect Constructkernel_rect_BoundingRect(float2 arg0) {
-    kernel_rect_BoundingRect ret = (kernel_rect_BoundingRect)0;
-    ret.half_extent = arg0;
-    return ret;
-}
-
-kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1)
-{
-    const kernel_rect_BoundingRect kernel_rect_boundingrect = Constructkernel_rect_BoundingRect(((abs(fp_1.dh_u) + abs(fp_1.dh_v)) * 0.5));
-    return kernel_rect_boundingrect;
-}
-
-float footprint_max_extent(footprint_Footprint fp_2)
-{
-    return (0.5 * max(length((fp_2.dh_u + fp_2.dh_v)), length((fp_2.dh_u - fp_2.dh_v))));
 }
 
 footprint_jacobian_Polar Constructfootprint_jacobian_Polar(float3 arg0, float2 arg1) {
@@ -2898,15 +3170,15 @@ footprint_jacobian_Polar footprint_jacobian_polar(float3 h_in_1)
         return footprint_jacobian_polar_1;
     }
     float3 h0_1 = (h_in_1 / (big_6).xxx);
-    float3 h_25 = (h0_1 / (length(h0_1)).xxx);
-    float qs_4 = max(abs(h_25.x), abs(h_25.y));
+    float3 h_28 = (h0_1 / (length(h0_1)).xxx);
+    float qs_4 = max(abs(h_28.x), abs(h_28.y));
     if ((qs_4 > 0.0)) {
-        float2 q_6 = (h_25.xy / (qs_4).xx);
+        float2 q_6 = (h_28.xy / (qs_4).xx);
         cs_1 = (q_6 / (length(q_6)).xx);
     }
-    if ((h_25.z >= footprint_jacobian_HZ_MIN)) {
+    if ((h_28.z >= footprint_jacobian_HZ_MIN)) {
         float2 _e44 = cs_1;
-        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_25, _e44);
+        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_28, _e44);
         return footprint_jacobian_polar_2;
     }
     float2 _e47 = cs_1;
@@ -2951,18 +3223,18 @@ float2x2 footprint_jacobian_sphere_to_projected(float3 h_10)
 float2x2 footprint_jacobian_projected_to_slope(float3 h_in_2)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    float3 h_26 = _e1.h;
-    float k_28 = (-1.0 / ((h_26.z * h_26.z) * h_26.z));
-    float xy = (h_26.x * h_26.y);
-    return float2x2((float2(((h_26.x * h_26.x) + (h_26.z * h_26.z)), xy) * k_28), (float2(xy, ((h_26.y * h_26.y) + (h_26.z * h_26.z))) * k_28));
+    float3 h_29 = _e1.h;
+    float k_28 = (-1.0 / ((h_29.z * h_29.z) * h_29.z));
+    float xy = (h_29.x * h_29.y);
+    return float2x2((float2(((h_29.x * h_29.x) + (h_29.z * h_29.z)), xy) * k_28), (float2(xy, ((h_29.y * h_29.y) + (h_29.z * h_29.z))) * k_28));
 }
 
 float2x2 footprint_jacobian_slope_to_projected(float3 h_in_3)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_3);
-    float3 h_27 = _e1.h;
-    float xy_1 = (h_27.x * h_27.y);
-    return float2x2((float2(((h_27.y * h_27.y) + (h_27.z * h_27.z)), -(xy_1)) * -(h_27.z)), (float2(-(xy_1), ((h_27.x * h_27.x) + (h_27.z * h_27.z))) * -(h_27.z)));
+    float3 h_30 = _e1.h;
+    float xy_1 = (h_30.x * h_30.y);
+    return float2x2((float2(((h_30.y * h_30.y) + (h_30.z * h_30.z)), -(xy_1)) * -(h_30.z)), (float2(-(xy_1), ((h_30.x * h_30.x) + (h_30.z * h_30.z))) * -(h_30.z)));
 }
 
 float2x2 footprint_jacobian_sphere_to_slope(float3 h_11)
@@ -3011,10 +3283,10 @@ float2 footprint_slope_slope_from_sphere(float3 h_17)
     return clamp((-(h_17.xy) / (z_5).xx), (-3.4028235e38).xx, (3.4028235e38).xx);
 }
 
-float3 footprint_slope_sphere_from_slope(float2 s_12)
+float3 footprint_slope_sphere_from_slope(float2 s_13)
 {
-    float k_30 = max(max(abs(s_12.x), abs(s_12.y)), 1.0);
-    float3 v_18 = float3((-(s_12) / (k_30).xx), (1.0 / k_30));
+    float k_30 = max(max(abs(s_13.x), abs(s_13.y)), 1.0);
+    float3 v_18 = float3((-(s_13) / (k_30).xx), (1.0 / k_30));
     return (v_18 / (length(v_18)).xxx);
 }
 
@@ -3040,92 +3312,11 @@ float2 footprint_slope_slope_from_projected(float2 p_2)
     return _e2;
 }
 
-float2 footprint_slope_projected_from_slope(float2 s_13)
+float2 footprint_slope_projected_from_slope(float2 s_14)
 {
-    const float3 _e1 = footprint_slope_sphere_from_slope(s_13);
+    const float3 _e1 = footprint_slope_sphere_from_slope(s_14);
     const float2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
-}
-
-footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3)
-{
-    float l_7 = max(rules.max_extent, 0.0);
-    float scale_2 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
-    if ((scale_2 <= 0.0)) {
-        const footprint_Footprint footprint_footprint_5 = fp_3;
-        return footprint_footprint_5;
-    }
-    footprint_Footprint unit = Constructfootprint_Footprint((fp_3.dh_u / (scale_2).xx), (fp_3.dh_v / (scale_2).xx));
-    const float _e29 = footprint_max_extent(unit);
-    if (((_e29 * scale_2) <= l_7)) {
-        const footprint_Footprint footprint_footprint_6 = fp_3;
-        return footprint_footprint_6;
-    }
-    const footprint_Footprint footprint_footprint_7 = Constructfootprint_Footprint(((unit.dh_u / (_e29).xx) * l_7), ((unit.dh_v / (_e29).xx) * l_7));
-    return footprint_footprint_7;
-}
-
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_59, float2 alpha_10)
-{
-    float2 f_1 = (0.0).xx;
-
-    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
-        f_1 = (rules_1.floor_).xx;
-    } else {
-        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
-            f_1 = min(abs(alpha_10), (rules_1.floor_).xx);
-        }
-    }
-    float lambda = max(rules_1.max_extent, 0.0);
-    float2 h_28 = min(abs(r_59.half_extent), (lambda).xx);
-    float2 _e25 = f_1;
-    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_28, max(_e25, (0.0).xx)));
-    return kernel_rect_boundingrect_1;
-}
-
-kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_22)
-{
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_22);
-    if ((rules_2.kappa >= math_F32_MAX)) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e2;
-        return kernel_covariance_covariance_16;
-    }
-    const kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
-    const kernel_covariance_Covariance kernel_covariance_covariance_17 = _e11;
-    return kernel_covariance_covariance_17;
-}
-
-float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_13)
-{
-    const float _e2 = ndf_roughness_matrix_clamped_det(a_13);
-    return (rules_3.det_clamp ? _e2 : 0.0);
-}
-
-kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_4)
-{
-    const footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
-    const kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_4);
-    const kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
-    const kernel_covariance_Covariance kernel_covariance_covariance_18 = _e5;
-    return kernel_covariance_covariance_18;
-}
-
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_14, footprint_Footprint fp_5, float sigma_5)
-{
-    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_5);
-    const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_14);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_14, _e4, _e5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_14 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_14;
-}
-
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_15, footprint_Footprint fp_6, float sigma_6)
-{
-    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_6);
-    const float _e5 = kernel_clamp_det_clamp_for(rules_6, a_15);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_15, _e4, _e5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_15 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_15;
 }
 
 sampling_Warp Constructsampling_Warp(float arg0, float arg1, float arg2) {
@@ -3146,13 +3337,13 @@ sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_60)
 
 float3 sampling_normalize_scaled(float3 v_12)
 {
-    float3 w_24 = (v_12 / (max(max(abs(v_12.x), abs(v_12.y)), abs(v_12.z))).xxx);
-    return (w_24 / (length(w_24)).xxx);
+    float3 w_26 = (v_12 / (max(max(abs(v_12.x), abs(v_12.y)), abs(v_12.z))).xxx);
+    return (w_26 / (length(w_26)).xxx);
 }
 
-float3 sampling_stretch(sampling_Warp l_3, float3 w_20)
+float3 sampling_stretch(sampling_Warp l_3, float3 w_22)
 {
-    return float3(((l_3.l_xx * w_20.x) + (l_3.l_yx * w_20.y)), (l_3.l_yy * w_20.y), w_20.z);
+    return float3(((l_3.l_xx * w_22.x) + (l_3.l_yx * w_22.y)), (l_3.l_yy * w_22.y), w_22.z);
 }
 
 float3 sampling_unstretch(sampling_Warp l_4, float3 n_5)
@@ -3166,9 +3357,9 @@ float sampling_clamp_unit(float u_7)
     return ((u_7 >= 0.0) ? min(u_7, sampling_ONE_MINUS_EPS) : 0.0);
 }
 
-float3 sampling_reflect(float3 wo, float3 m_23)
+float3 sampling_reflect(float3 wo, float3 m_32)
 {
-    return (((2.0 * dot(wo, m_23)) * m_23) - wo);
+    return (((2.0 * dot(wo, m_32)) * m_32) - wo);
 }
 
 float3 sampling_ggx_standard_visible(float3 wi, float2 u_8)
@@ -3221,17 +3412,17 @@ float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_62, float2 
     return _e14;
 }
 
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_63, float3 m_24)
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_63, float3 m_33)
 {
-    const float _e2 = ndf_ggx_d_matrix(r_63, m_24);
-    return ((m_24.z > 0.0) ? (_e2 * m_24.z) : 0.0);
+    const float _e2 = ndf_ggx_d_matrix(r_63, m_33);
+    return ((m_33.z > 0.0) ? (_e2 * m_33.z) : 0.0);
 }
 
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_64, float3 wo_2, float3 m_25)
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_64, float3 wo_2, float3 m_34)
 {
     bool local_21 = (bool)0;
 
-    float wom = dot(wo_2, m_25);
+    float wom = dot(wo_2, m_34);
     if (!(!((wo_2.z > 0.0)))) {
         local_21 = !((wom > 0.0));
     } else {
@@ -3241,22 +3432,22 @@ float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_64, flo
     if (_e15) {
         return 0.0;
     }
-    const float _e17 = ndf_ggx_d_matrix(r_64, m_25);
+    const float _e17 = ndf_ggx_d_matrix(r_64, m_34);
     const float _e20 = ndf_ggx_lambda_matrix(r_64, wo_2);
     float v_19 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
     return ((v_19 <= math_F32_MAX) ? v_19 : 0.0);
 }
 
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_65, float3 wo_3, float3 m_26)
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_65, float3 wo_3, float3 m_35)
 {
     if (!((wo_3.z > 0.0))) {
         return 0.0;
     }
     const float3 _e8 = sampling_normalize_scaled(wo_3);
-    if (!((dot(_e8, m_26) > 0.0))) {
+    if (!((dot(_e8, m_35) > 0.0))) {
         return 0.0;
     }
-    const float _e14 = ndf_ggx_d_matrix(r_65, m_26);
+    const float _e14 = ndf_ggx_d_matrix(r_65, m_35);
     const float _e18 = ndf_ggx_lambda_matrix(r_65, _e8);
     float v_20 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
     return ((v_20 <= math_F32_MAX) ? v_20 : 0.0);
@@ -3269,12 +3460,12 @@ float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_66, float3 
     }
     const float3 _e8 = sampling_normalize_scaled(wo_4);
     const float3 _e9 = sampling_normalize_scaled(wi_1);
-    float3 h_29 = (_e8 + _e9);
-    float len = length(h_29);
+    float3 h_31 = (_e8 + _e9);
+    float len = length(h_31);
     if (!((len > 0.0))) {
         return 0.0;
     }
-    const float _e18 = sampling_reflection_pdf_from_normal(r_66, wo_4, (h_29 / (len).xxx));
+    const float _e18 = sampling_reflection_pdf_from_normal(r_66, wo_4, (h_31 / (len).xxx));
     return _e18;
 }
 

@@ -66,6 +66,36 @@ struct footprint_Footprint {
     metal::float2 dh_u;
     metal::float2 dh_v;
 };
+struct kernel_clamp_ClampRules {
+    float max_extent;
+    uint floor_kind;
+    float floor;
+    float kappa;
+    bool det_clamp;
+    char _pad5[3];
+};
+struct filter_method_Gaussian {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
+};
+struct filter_method_ExactGaussian {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
+};
+struct filter_method_Projected {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
+};
+struct filter_method_Rect {
+    kernel_clamp_ClampRules clamps;
+};
+struct filter_method_RectFilteredGgx {
+    ndf_roughness_axis_aligned_AxisAligned roughness;
+    metal::float2 half_extent;
+};
+struct filter_method_Proxy {
+    kernel_clamp_ClampRules clamps;
+};
 struct footprint_jacobian_Polar {
     metal::float3 h;
     metal::float2 cs;
@@ -74,14 +104,6 @@ struct footprint_jacobian_Polar {
 struct footprint_jacobian_SphericalBasis {
     metal::float3 e_x;
     metal::float3 e_y;
-};
-struct kernel_clamp_ClampRules {
-    float max_extent;
-    uint floor_kind;
-    float floor;
-    float kappa;
-    bool det_clamp;
-    char _pad5[3];
 };
 struct sampling_Warp {
     float l_xx;
@@ -135,6 +157,26 @@ constant float filter_gaussian_ggx_quad_S_MAX = 0.25;
 constant float filter_gaussian_ggx_quad_S_COEF = 0.25;
 constant float filter_gaussian_ggx_quad_S_EPS = 0.00000001;
 constant uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
+constant float footprint_SIGMA_PIXEL = 0.5;
+constant float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
+constant uint kernel_clamp_FLOOR_NONE = 0u;
+constant uint kernel_clamp_FLOOR_CONSTANT = 1u;
+constant uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
+constant kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true};
+constant kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true};
+constant kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules {340282350000000000000000000000000000000.0, 0u, 0.0, 340282350000000000000000000000000000000.0, false};
+constant kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true};
+constant float filter_rect_BIG = 1000000000000000000.0;
+constant float filter_rect_FAR2_ = 0.25;
+constant uint filter_rect_TIER_CLOSED = 0u;
+constant float filter_rect_lambda_BIG_K = 1000000000000.0;
+constant filter_method_Gaussian filter_method_TK19_GAUSSIAN = filter_method_Gaussian {kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true}, 0.5};
+constant filter_method_Gaussian filter_method_KHPL16_GAUSSIAN = filter_method_Gaussian {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}, 0.5};
+constant filter_method_ExactGaussian filter_method_KHPL16_EXACT_GAUSSIAN = filter_method_ExactGaussian {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}, 0.5};
+constant filter_method_Projected filter_method_TK21_PROJECTED = filter_method_Projected {kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true}, 0.5};
+constant filter_method_Rect filter_method_KHPL16_RECT = filter_method_Rect {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}};
+constant filter_method_Rect filter_method_GDC2016_RECT = filter_method_Rect {kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true}};
+constant filter_method_Proxy filter_method_KHPL16_PROXY = filter_method_Proxy {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}};
 constant filter_deferred_KernelConvention filter_presets_TK19_TRACE = filter_deferred_KernelConvention {0u, 0u, 0.5, 1.0, 0.0, 0.18, 0u, true, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_TK19_AVERAGE = filter_deferred_KernelConvention {0u, 0u, 0.25, 1.0, 0.0, 0.18, 0u, true, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_TK19_MAX = filter_deferred_KernelConvention {0u, 2u, 0.5, 1.0, 0.0, 0.18, 0u, true, {}, 0.0};
@@ -147,20 +189,7 @@ constant filter_deferred_KernelConvention filter_presets_O3DE = filter_deferred_
 constant filter_deferred_KernelConvention filter_presets_UNREAL = filter_deferred_KernelConvention {2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_BABYLON = filter_deferred_KernelConvention {2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_THREE_JS = filter_deferred_KernelConvention {2u, 3u, 1.0, 1.0, 0.0, 340282350000000000000000000000000000000.0, 0u, true, {}, 0.0525};
-constant float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
-constant float filter_rect_BIG = 1000000000000000000.0;
-constant float filter_rect_FAR2_ = 0.25;
-constant uint filter_rect_TIER_CLOSED = 0u;
-constant float filter_rect_lambda_BIG_K = 1000000000000.0;
-constant float footprint_SIGMA_PIXEL = 0.5;
 constant float footprint_jacobian_HZ_MIN = 0.000001;
-constant uint kernel_clamp_FLOOR_NONE = 0u;
-constant uint kernel_clamp_FLOOR_CONSTANT = 1u;
-constant uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
-constant kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true};
-constant kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true};
-constant kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules {340282350000000000000000000000000000000.0, 0u, 0.0, 340282350000000000000000000000000000000.0, false};
-constant kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true};
 constant float sampling_ONE_MINUS_EPS = 0.99999994;
 
 float math_atan(
@@ -206,18 +235,18 @@ metal::float2 math_sincos_turns(
     float q_4 = metal::rint(4.0 * u);
     float r_67 = u - (0.25 * q_4);
     float z_2 = r_67 * r_67;
-    float s_14 = r_67 * ((((((((41.47283 * z_2) - 76.69787) * z_2) + 81.6052) * z_2) - 41.3417) * z_2) + 6.2831855);
+    float s_15 = r_67 * ((((((((41.47283 * z_2) - 76.69787) * z_2) + 81.6052) * z_2) - 41.3417) * z_2) + 6.2831855);
     float c_10 = (((((((59.22017 * z_2) - 85.44285) * z_2) + 64.939316) * z_2) - 19.739208) * z_2) + 1.0;
     int k_23 = naga_f2i32(q_4) & 3;
-    cs = metal::float2(c_10, s_14);
+    cs = metal::float2(c_10, s_15);
     if (k_23 == 1) {
-        cs = metal::float2(-(s_14), c_10);
+        cs = metal::float2(-(s_15), c_10);
     } else {
         if (k_23 == 2) {
-            cs = metal::float2(-(c_10), -(s_14));
+            cs = metal::float2(-(c_10), -(s_15));
         } else {
             if (k_23 == 3) {
-                cs = metal::float2(s_14, -(c_10));
+                cs = metal::float2(s_15, -(c_10));
             }
         }
     }
@@ -229,13 +258,13 @@ float math_hypot(
     float x_1,
     float y
 ) {
-    float m_27 = metal::max(metal::abs(x_1), metal::abs(y));
-    if (m_27 <= 0.0) {
+    float m_36 = metal::max(metal::abs(x_1), metal::abs(y));
+    if (m_36 <= 0.0) {
         return 0.0;
     }
-    float a_17 = x_1 / m_27;
-    float b_4 = y / m_27;
-    return m_27 * metal::sqrt((a_17 * a_17) + (b_4 * b_4));
+    float a_17 = x_1 / m_36;
+    float b_4 = y / m_36;
+    return m_36 * metal::sqrt((a_17 * a_17) + (b_4 * b_4));
 }
 
 float math_exp(
@@ -246,16 +275,16 @@ float math_exp(
     float r_68 = (xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO);
     float r2_ = r_68 * r_68;
     float p_4 = ((1.0 + r_68) + ((0.4999999 + (0.1666642 * r_68)) * r2_)) + (((0.041668225 + (0.008374816 * r_68)) + (0.0013836846 * r2_)) * (r2_ * r2_));
-    float s_15 = as_type<float>(static_cast<uint>(as_type<int>(as_type<uint>(naga_f2i32(n_6)) + as_type<uint>(127))) << 23u);
-    return (x_2 >= -87.0) ? (p_4 * s_15) : 0.0;
+    float s_16 = as_type<float>(static_cast<uint>(as_type<int>(as_type<uint>(naga_f2i32(n_6)) + as_type<uint>(127))) << 23u);
+    return (x_2 >= -87.0) ? (p_4 * s_16) : 0.0;
 }
 
 float math_atanh2_(
     float z
 ) {
     float z2_3 = z * z;
-    float s_16 = ((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3;
-    return (2.0 * z) + ((2.0 * z) * s_16);
+    float s_17 = ((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3;
+    return (2.0 * z) + ((2.0 * z) * s_17);
 }
 
 float math_ln(
@@ -474,8 +503,8 @@ float filter_deferred_norm_eval(
         return _e11;
     }
     if (norm == filter_deferred_NORM_MAX_ABS_COMPONENT) {
-        metal::float3 m_28 = metal::max(metal::abs(dn_u), metal::abs(dn_v));
-        return metal::max(metal::max(m_28.x, m_28.y), m_28.z);
+        metal::float3 m_37 = metal::max(metal::abs(dn_u), metal::abs(dn_v));
+        return metal::max(metal::max(m_37.x, m_37.y), m_37.z);
     }
     return a_19 + c_11;
 }
@@ -678,8 +707,8 @@ metal::float3 ndf_roughness_matrix_entries_of(
     metal::float2 l_2
 ) {
     float c_12 = r_6.axis.x;
-    float s_17 = r_6.axis.y;
-    return metal::float3(((l_2.x * c_12) * c_12) + ((l_2.y * s_17) * s_17), ((l_2.x - l_2.y) * c_12) * s_17, ((l_2.x * s_17) * s_17) + ((l_2.y * c_12) * c_12));
+    float s_18 = r_6.axis.y;
+    return metal::float3(((l_2.x * c_12) * c_12) + ((l_2.y * s_18) * s_18), ((l_2.x - l_2.y) * c_12) * s_18, ((l_2.x * s_18) * s_18) + ((l_2.y * c_12) * c_12));
 }
 
 metal::float3 ndf_roughness_matrix_entries(
@@ -715,9 +744,9 @@ ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(
 ) {
     metal::float3 _e3 = ndf_roughness_matrix_entries(a_2);
     float c_13 = a_2.axis.x;
-    float s_18 = a_2.axis.y;
-    float k1_1 = metal::max((((c_13 * c_13) * k_3.s_xx) + (((2.0 * c_13) * s_18) * k_3.s_xy)) + ((s_18 * s_18) * k_3.s_yy), 0.0);
-    float k2_1 = metal::max((((s_18 * s_18) * k_3.s_xx) - (((2.0 * c_13) * s_18) * k_3.s_xy)) + ((c_13 * c_13) * k_3.s_yy), 0.0);
+    float s_19 = a_2.axis.y;
+    float k1_1 = metal::max((((c_13 * c_13) * k_3.s_xx) + (((2.0 * c_13) * s_19) * k_3.s_xy)) + ((s_19 * s_19) * k_3.s_yy), 0.0);
+    float k2_1 = metal::max((((s_19 * s_19) * k_3.s_xx) - (((2.0 * c_13) * s_19) * k_3.s_xy)) + ((c_13 * c_13) * k_3.s_yy), 0.0);
     float _e38 = ndf_roughness_matrix_determinant(a_2);
     float det_4 = (_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * metal::max(k_3.det, 0.0));
     ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det(_e3.x + (2.0 * k_3.s_xx), _e3.y + (2.0 * k_3.s_xy), _e3.z + (2.0 * k_3.s_yy), det_4, metal::max(tau_3, 0.0));
@@ -1654,8 +1683,8 @@ float filter_gaussian_ggx_quad_h_of(
     float r_49 = {};
     float a_23 = metal::abs(y_2);
     if (a_23 > 1.0) {
-        float i_10 = 1.0 / a_23;
-        r_49 = a_23 * metal::sqrt(1.0 + (i_10 * i_10));
+        float i_11 = 1.0 / a_23;
+        r_49 = a_23 * metal::sqrt(1.0 + (i_11 * i_11));
     } else {
         r_49 = metal::sqrt(1.0 + (y_2 * y_2));
     }
@@ -1843,10 +1872,10 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(
     metal::float2 v_4 = metal::float2(1.0, 0.0);
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
     float c_14 = a_5.axis.x;
-    float s_19 = a_5.axis.y;
-    float k11_ = metal::max((((c_14 * c_14) * _e2.s_xx) + (((2.0 * c_14) * s_19) * _e2.s_xy)) + ((s_19 * s_19) * _e2.s_yy), 0.0);
-    float k22_ = metal::max((((s_19 * s_19) * _e2.s_xx) - (((2.0 * c_14) * s_19) * _e2.s_xy)) + ((c_14 * c_14) * _e2.s_yy), 0.0);
-    float k12_ = (((c_14 * c_14) - (s_19 * s_19)) * _e2.s_xy) + ((c_14 * s_19) * (_e2.s_yy - _e2.s_xx));
+    float s_20 = a_5.axis.y;
+    float k11_ = metal::max((((c_14 * c_14) * _e2.s_xx) + (((2.0 * c_14) * s_20) * _e2.s_xy)) + ((s_20 * s_20) * _e2.s_yy), 0.0);
+    float k22_ = metal::max((((s_20 * s_20) * _e2.s_xx) - (((2.0 * c_14) * s_20) * _e2.s_xy)) + ((c_14 * c_14) * _e2.s_yy), 0.0);
+    float k12_ = (((c_14 * c_14) - (s_20 * s_20)) * _e2.s_xy) + ((c_14 * s_20) * (_e2.s_yy - _e2.s_xx));
     metal::float2 l_6 = a_5.eig_c;
     metal::float2 isl = metal::float2(1.0) / metal::sqrt(l_6);
     float c11_ = (k11_ * isl.x) * isl.x;
@@ -1858,8 +1887,8 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(
     float l1_2 = (0.5 * (c11_ + c22_)) + _e75;
     if (_e75 > 0.0) {
         float big_2 = _e75 + metal::abs(half_);
-        metal::float2 w_21 = (half_ >= 0.0) ? metal::float2(big_2, c12_) : metal::float2(c12_, big_2);
-        v_4 = w_21 / metal::float2(metal::length(w_21));
+        metal::float2 w_23 = (half_ >= 0.0) ? metal::float2(big_2, c12_) : metal::float2(c12_, big_2);
+        v_4 = w_23 / metal::float2(metal::length(w_23));
         l2_ = metal::min(det_c / l1_2, l1_2);
     } else {
         if (l1_2 > 0.0) {
@@ -1913,11 +1942,11 @@ float filter_gaussian_ggx_lambda(
         return (big_3 == 0.0) ? 0.0 : math_F32_MAX;
     }
     metal::float3 ws = w_15 / metal::float3(big_3);
-    metal::float3 o_7 = ws / metal::float3(metal::length(ws));
-    float oz_3 = metal::abs(o_7.z);
-    float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_7.xy);
+    metal::float3 o_8 = ws / metal::float3(metal::length(ws));
+    float oz_3 = metal::abs(o_8.z);
+    float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_8.xy);
     kernel_covariance_Covariance kk = g_3.k;
-    float qs_3 = metal::max((((g_3.k.s_xx * o_7.x) * o_7.x) + (((2.0 * g_3.k.s_xy) * o_7.x) * o_7.y)) + ((g_3.k.s_yy * o_7.y) * o_7.y), 0.0);
+    float qs_3 = metal::max((((g_3.k.s_xx * o_8.x) * o_8.x) + (((2.0 * g_3.k.s_xy) * o_8.x) * o_8.y)) + ((g_3.k.s_yy * o_8.y) * o_8.y), 0.0);
     if (qs_3 <= 0.0) {
         float _e52 = ndf_ggx_lambda_of(_e27, oz_3);
         return _e52;
@@ -1975,47 +2004,76 @@ ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(
     return _e6;
 }
 
-filter_deferred_KernelConvention filter_presets_preset(
-    uint i_7
+kernel_covariance_Covariance kernel_rect_covariance(
+    kernel_rect_BoundingRect r_50,
+    float sigma_2
 ) {
-    switch(i_7) {
-        case 0u: {
-            return filter_presets_TK19_MAX;
-        }
-        case 1u: {
-            return filter_presets_TK19_TRACE;
-        }
-        case 2u: {
-            return filter_presets_TK19_AVERAGE;
-        }
-        case 3u: {
-            return filter_presets_TK21_LISTING;
-        }
-        case 4u: {
-            return filter_presets_FILAMENT;
-        }
-        case 5u: {
-            return filter_presets_UNITY_HDRP;
-        }
-        case 6u: {
-            return filter_presets_UNITY_HDRP_PROJECTED;
-        }
-        case 7u: {
-            return filter_presets_GODOT;
-        }
-        case 8u: {
-            return filter_presets_O3DE;
-        }
-        case 9u: {
-            return filter_presets_UNREAL;
-        }
-        case 10u: {
-            return filter_presets_BABYLON;
-        }
-        default: {
-            return filter_presets_THREE_JS;
-        }
+    metal::float2 w_24 = r_50.half_extent * (2.0 * sigma_2);
+    metal::float2 v_15 = w_24 * w_24;
+    return kernel_covariance_Covariance {v_15.x, 0.0, v_15.y, v_15.x * v_15.y};
+}
+
+footprint_Footprint footprint_from_slope_derivatives(
+    metal::float2 dh_u,
+    metal::float2 dh_v
+) {
+    return footprint_Footprint {dh_u, dh_v};
+}
+
+footprint_Footprint footprint_from_projected_derivatives(
+    metal::float2 dp_u,
+    metal::float2 dp_v
+) {
+    return footprint_Footprint {dp_u, dp_v};
+}
+
+footprint_Footprint footprint_from_projected_derivatives_in_slope(
+    metal::float3 h_in,
+    metal::float2 dp_u_1,
+    metal::float2 dp_v_1
+) {
+    float big_4 = metal::max(metal::max(metal::abs(h_in.x), metal::abs(h_in.y)), metal::abs(h_in.z));
+    if (big_4 <= 0.0) {
+        return footprint_Footprint {metal::float2(0.0), metal::float2(0.0)};
     }
+    metal::float3 h0_ = h_in / metal::float3(big_4);
+    metal::float3 h_21 = h0_ / metal::float3(metal::length(h0_));
+    float hz = metal::max(h_21.z, 0.000001);
+    float k_27 = -1.0 / ((hz * hz) * hz);
+    metal::float2x2 j_4 = metal::float2x2(metal::float2((h_21.x * h_21.x) + (h_21.z * h_21.z), h_21.x * h_21.y), metal::float2(h_21.x * h_21.y, (h_21.y * h_21.y) + (h_21.z * h_21.z)));
+    return footprint_Footprint {(j_4 * dp_u_1) * k_27, (j_4 * dp_v_1) * k_27};
+}
+
+footprint_Footprint footprint_from_normal_differences(
+    metal::float3 dn_u_4,
+    metal::float3 dn_v_4
+) {
+    float lu = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_u_4), 0.000001);
+    float lv = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_v_4), 0.000001);
+    return footprint_Footprint {dn_u_4.xy * (2.0 / lu), dn_v_4.xy * (2.0 / lv)};
+}
+
+kernel_covariance_Covariance footprint_covariance(
+    footprint_Footprint fp,
+    float sigma_3
+) {
+    metal::float2 u_12 = fp.dh_u;
+    metal::float2 v_16 = fp.dh_v;
+    float s2_ = sigma_3 * sigma_3;
+    float cross_1 = ((fp.dh_u.x * fp.dh_v.y) - (fp.dh_u.y * fp.dh_v.x)) * s2_;
+    return kernel_covariance_Covariance {((fp.dh_u.x * fp.dh_u.x) + (fp.dh_v.x * fp.dh_v.x)) * s2_, ((fp.dh_u.x * fp.dh_u.y) + (fp.dh_v.x * fp.dh_v.y)) * s2_, ((fp.dh_u.y * fp.dh_u.y) + (fp.dh_v.y * fp.dh_v.y)) * s2_, cross_1 * cross_1};
+}
+
+kernel_rect_BoundingRect footprint_bounding_rect(
+    footprint_Footprint fp_1
+) {
+    return kernel_rect_BoundingRect {(metal::abs(fp_1.dh_u) + metal::abs(fp_1.dh_v)) * 0.5};
+}
+
+float footprint_max_extent(
+    footprint_Footprint fp_2
+) {
+    return 0.5 * metal::max(metal::length(fp_2.dh_u + fp_2.dh_v), metal::length(fp_2.dh_u - fp_2.dh_v));
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(
@@ -2031,12 +2089,12 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(
     metal::float2 excess = a_7.eig - lc;
     metal::float2 p_6 = lc / (metal::float2(1.0) - lc);
     float c_16 = a_7.axis.x;
-    float s_20 = a_7.axis.y;
-    float p11_1 = ((p_6.x * c_16) * c_16) + ((p_6.y * s_20) * s_20);
-    float p12_1 = ((p_6.x - p_6.y) * c_16) * s_20;
-    float p22_1 = ((p_6.x * s_20) * s_20) + ((p_6.y * c_16) * c_16);
-    float k1_3 = metal::max((((c_16 * c_16) * k_11.s_xx) + (((2.0 * c_16) * s_20) * k_11.s_xy)) + ((s_20 * s_20) * k_11.s_yy), 0.0);
-    float k2_3 = metal::max((((s_20 * s_20) * k_11.s_xx) - (((2.0 * c_16) * s_20) * k_11.s_xy)) + ((c_16 * c_16) * k_11.s_yy), 0.0);
+    float s_21 = a_7.axis.y;
+    float p11_1 = ((p_6.x * c_16) * c_16) + ((p_6.y * s_21) * s_21);
+    float p12_1 = ((p_6.x - p_6.y) * c_16) * s_21;
+    float p22_1 = ((p_6.x * s_21) * s_21) + ((p_6.y * c_16) * c_16);
+    float k1_3 = metal::max((((c_16 * c_16) * k_11.s_xx) + (((2.0 * c_16) * s_21) * k_11.s_xy)) + ((s_21 * s_21) * k_11.s_yy), 0.0);
+    float k2_3 = metal::max((((s_21 * s_21) * k_11.s_xx) - (((2.0 * c_16) * s_21) * k_11.s_xy)) + ((c_16 * c_16) * k_11.s_yy), 0.0);
     float d_2 = ((p_6.x * p_6.y) + (2.0 * ((p_6.y * k1_3) + (p_6.x * k2_3)))) + (4.0 * metal::max(k_11.det, 0.0));
     float q11_ = p11_1 + (2.0 * k_11.s_xx);
     float q12_ = p12_1 + (2.0 * k_11.s_xy);
@@ -2048,11 +2106,11 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(
     det_3 = d_2 / den_1;
     if (metal::max(excess.x, excess.y) > 0.0) {
         float _e114 = b11_;
-        b11_ = _e114 + (((excess.x * c_16) * c_16) + ((excess.y * s_20) * s_20));
+        b11_ = _e114 + (((excess.x * c_16) * c_16) + ((excess.y * s_21) * s_21));
         float _e123 = b12_;
-        b12_ = _e123 + (((excess.x - excess.y) * c_16) * s_20);
+        b12_ = _e123 + (((excess.x - excess.y) * c_16) * s_21);
         float _e130 = b22_;
-        b22_ = _e130 + (((excess.x * s_20) * s_20) + ((excess.y * c_16) * c_16));
+        b22_ = _e130 + (((excess.x * s_21) * s_21) + ((excess.y * c_16) * c_16));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -2088,42 +2146,133 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(
     return _e4;
 }
 
+footprint_Footprint kernel_clamp_footprint(
+    kernel_clamp_ClampRules rules,
+    footprint_Footprint fp_3
+) {
+    float l_7 = metal::max(rules.max_extent, 0.0);
+    float scale_2 = metal::max(metal::max(metal::abs(fp_3.dh_u.x), metal::abs(fp_3.dh_u.y)), metal::max(metal::abs(fp_3.dh_v.x), metal::abs(fp_3.dh_v.y)));
+    if (scale_2 <= 0.0) {
+        return fp_3;
+    }
+    footprint_Footprint unit = footprint_Footprint {fp_3.dh_u / metal::float2(scale_2), fp_3.dh_v / metal::float2(scale_2)};
+    float _e29 = footprint_max_extent(unit);
+    if ((_e29 * scale_2) <= l_7) {
+        return fp_3;
+    }
+    return footprint_Footprint {(unit.dh_u / metal::float2(_e29)) * l_7, (unit.dh_v / metal::float2(_e29)) * l_7};
+}
+
+kernel_rect_BoundingRect kernel_clamp_rect(
+    kernel_clamp_ClampRules rules_1,
+    kernel_rect_BoundingRect r_51,
+    metal::float2 alpha_8
+) {
+    metal::float2 f_1 = metal::float2(0.0);
+    if (rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT) {
+        f_1 = metal::float2(rules_1.floor);
+    } else {
+        if (rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED) {
+            f_1 = metal::min(metal::abs(alpha_8), metal::float2(rules_1.floor));
+        }
+    }
+    float lambda = metal::max(rules_1.max_extent, 0.0);
+    metal::float2 h_22 = metal::min(metal::abs(r_51.half_extent), metal::float2(lambda));
+    metal::float2 _e25 = f_1;
+    return kernel_rect_BoundingRect {metal::max(h_22, metal::max(_e25, metal::float2(0.0)))};
+}
+
+kernel_covariance_Covariance kernel_clamp_kernel(
+    kernel_clamp_ClampRules rules_2,
+    kernel_covariance_Covariance k_12
+) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_12);
+    if (rules_2.kappa >= math_F32_MAX) {
+        return _e2;
+    }
+    kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, 0.5 * metal::max(rules_2.kappa, 0.0));
+    return _e11;
+}
+
+float kernel_clamp_det_clamp_for(
+    kernel_clamp_ClampRules rules_3,
+    ndf_roughness_matrix_RoughnessMatrix a_10
+) {
+    float _e2 = ndf_roughness_matrix_clamped_det(a_10);
+    return rules_3.det_clamp ? _e2 : 0.0;
+}
+
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(
+    kernel_clamp_ClampRules rules_4,
+    footprint_Footprint fp_4,
+    float sigma_4
+) {
+    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
+    kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_4);
+    kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
+    return _e5;
+}
+
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(
+    kernel_clamp_ClampRules rules_5,
+    ndf_roughness_matrix_RoughnessMatrix a_11,
+    footprint_Footprint fp_5,
+    float sigma_5
+) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_5);
+    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_11);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_11, _e4, _e5);
+    return _e6;
+}
+
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(
+    kernel_clamp_ClampRules rules_6,
+    ndf_roughness_matrix_RoughnessMatrix a_12,
+    footprint_Footprint fp_6,
+    float sigma_6
+) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_6);
+    float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
+    return _e6;
+}
+
 float filter_proxy_effective_alpha(
-    float alpha_8,
+    float alpha_9,
     float half_extent
 ) {
-    float h_21 = metal::abs(half_extent);
-    float _e3 = math_hypot(alpha_8, h_21);
-    float t_15 = (_e3 > 0.0) ? (h_21 / _e3) : 0.0;
+    float h_23 = metal::abs(half_extent);
+    float _e3 = math_hypot(alpha_9, h_23);
+    float t_15 = (_e3 > 0.0) ? (h_23 / _e3) : 0.0;
     float _e9 = math_atan(t_15);
     float ratio = (t_15 > 0.0) ? (t_15 / _e9) : 1.0;
     return _e3 * metal::sqrt(ratio);
 }
 
 float filter_proxy_effective_alpha_simple(
-    float alpha_9,
+    float alpha_10,
     float half_extent_1
 ) {
-    float _e3 = math_hypot(alpha_9, metal::abs(half_extent_1));
+    float _e3 = math_hypot(alpha_10, metal::abs(half_extent_1));
     return _e3;
 }
 
 ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(
-    ndf_roughness_axis_aligned_AxisAligned r_50,
+    ndf_roughness_axis_aligned_AxisAligned r_52,
     metal::float2 half_extent_2
 ) {
-    float _e5 = filter_proxy_effective_alpha(r_50.alpha.x, half_extent_2.x);
-    float _e9 = filter_proxy_effective_alpha(r_50.alpha.y, half_extent_2.y);
+    float _e5 = filter_proxy_effective_alpha(r_52.alpha.x, half_extent_2.x);
+    float _e9 = filter_proxy_effective_alpha(r_52.alpha.y, half_extent_2.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(metal::float2(_e5, _e9));
     return _e11;
 }
 
 ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(
-    ndf_roughness_axis_aligned_AxisAligned r_51,
+    ndf_roughness_axis_aligned_AxisAligned r_53,
     metal::float2 half_extent_3
 ) {
-    float _e5 = filter_proxy_effective_alpha_simple(r_51.alpha.x, half_extent_3.x);
-    float _e9 = filter_proxy_effective_alpha_simple(r_51.alpha.y, half_extent_3.y);
+    float _e5 = filter_proxy_effective_alpha_simple(r_53.alpha.x, half_extent_3.x);
+    float _e9 = filter_proxy_effective_alpha_simple(r_53.alpha.y, half_extent_3.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(metal::float2(_e5, _e9));
     return _e11;
 }
@@ -2146,34 +2295,34 @@ uint filter_rect_tier(
 
 float filter_rect_gl_node(
     uint n_1,
-    uint k_12
+    uint k_13
 ) {
     if (n_1 == 2u) {
         return 0.57735026;
     }
     if (n_1 == 4u) {
-        return (k_12 == 0u) ? 0.33998105 : 0.8611363;
+        return (k_13 == 0u) ? 0.33998105 : 0.8611363;
     }
-    if (k_12 == 0u) {
+    if (k_13 == 0u) {
         return 0.2386192;
     }
-    return (k_12 == 1u) ? 0.6612094 : 0.9324695;
+    return (k_13 == 1u) ? 0.6612094 : 0.9324695;
 }
 
 float filter_rect_gl_weight(
     uint n_2,
-    uint k_13
+    uint k_14
 ) {
     if (n_2 == 2u) {
         return 0.5;
     }
     if (n_2 == 4u) {
-        return (k_13 == 0u) ? 0.32607257 : 0.17392743;
+        return (k_14 == 0u) ? 0.32607257 : 0.17392743;
     }
-    if (k_13 == 0u) {
+    if (k_14 == 0u) {
         return 0.23395696;
     }
-    return (k_13 == 1u) ? 0.18038079 : 0.085662246;
+    return (k_14 == 1u) ? 0.18038079 : 0.085662246;
 }
 
 float filter_rect_f(
@@ -2195,28 +2344,28 @@ float filter_rect_gl_mean(
     float h_1
 ) {
     float acc_2 = 0.0;
-    uint k_14 = 0u;
+    uint k_15 = 0u;
     uint2 loop_bound_6 = uint2(4294967295u);
     bool loop_init_6 = true;
     while(true) {
         if (metal::all(loop_bound_6 == uint2(0u))) { break; }
         loop_bound_6 -= uint2(loop_bound_6.y == 0u, 1u);
         if (!loop_init_6) {
-            uint _e26 = k_14;
-            k_14 = _e26 + 1u;
+            uint _e26 = k_15;
+            k_15 = _e26 + 1u;
         }
         loop_init_6 = false;
-        uint _e8 = k_14;
+        uint _e8 = k_15;
         if (_e8 < naga_div(n_3, 2u)) {
         } else {
             break;
         }
         {
-            uint _e12 = k_14;
+            uint _e12 = k_15;
             float _e13 = filter_rect_gl_node(n_3, _e12);
             float a_24 = h_1 * _e13;
             float _e15 = acc_2;
-            uint _e16 = k_14;
+            uint _e16 = k_15;
             float _e17 = filter_rect_gl_weight(n_3, _e16);
             float _e19 = filter_rect_f(u_2, c_6 - a_24);
             float _e21 = filter_rect_f(u_2, c_6 + a_24);
@@ -2258,12 +2407,12 @@ float filter_rect_delta_minus_sin(
 }
 
 float filter_rect_mean_1d(
-    metal::float4 i_8,
+    metal::float4 i_7,
     float c2_
 ) {
-    float x0_ = (i_8.z >= 0.0) ? i_8.x : -(i_8.y);
-    float x1_1 = (i_8.z >= 0.0) ? i_8.y : -(i_8.x);
-    float dx = 2.0 * i_8.w;
+    float x0_ = (i_7.z >= 0.0) ? i_7.x : -(i_7.y);
+    float x1_1 = (i_7.z >= 0.0) ? i_7.y : -(i_7.x);
+    float dx = 2.0 * i_7.w;
     float c_17 = metal::sqrt(c2_);
     float r02_ = c2_ + (x0_ * x0_);
     float r12_ = c2_ + (x1_1 * x1_1);
@@ -2286,30 +2435,30 @@ float filter_rect_gl_mean_1d(
     metal::float4 other
 ) {
     float acc_3 = 0.0;
-    uint k_15 = 0u;
+    uint k_16 = 0u;
     uint2 loop_bound_7 = uint2(4294967295u);
     bool loop_init_7 = true;
     while(true) {
         if (metal::all(loop_bound_7 == uint2(0u))) { break; }
         loop_bound_7 -= uint2(loop_bound_7.y == 0u, 1u);
         if (!loop_init_7) {
-            uint _e32 = k_15;
-            k_15 = _e32 + 1u;
+            uint _e32 = k_16;
+            k_16 = _e32 + 1u;
         }
         loop_init_7 = false;
-        uint _e8 = k_15;
+        uint _e8 = k_16;
         if (_e8 < naga_div(n_4, 2u)) {
         } else {
             break;
         }
         {
-            uint _e12 = k_15;
+            uint _e12 = k_16;
             float _e13 = filter_rect_gl_node(n_4, _e12);
             float a_25 = h_2 * _e13;
             float x0_1 = c_7 - a_25;
             float x1_2 = c_7 + a_25;
             float _e17 = acc_3;
-            uint _e18 = k_15;
+            uint _e18 = k_16;
             float _e19 = filter_rect_gl_weight(n_4, _e18);
             float _e23 = filter_rect_mean_1d(other, 1.0 + (x0_1 * x0_1));
             float _e27 = filter_rect_mean_1d(other, 1.0 + (x1_2 * x1_2));
@@ -2325,10 +2474,10 @@ float filter_rect_edge(
     float dv,
     float v01_
 ) {
-    float s2_ = 1.0 + (u_3 * u_3);
-    float s_21 = metal::sqrt(s2_);
-    float _e10 = filter_rect_atan2_upper(dv * s_21, s2_ + v01_);
-    return (u_3 / s_21) * _e10;
+    float s2_1 = 1.0 + (u_3 * u_3);
+    float s_22 = metal::sqrt(s2_1);
+    float _e10 = filter_rect_atan2_upper(dv * s_22, s2_1 + v01_);
+    return (u_3 / s_22) * _e10;
 }
 
 float filter_rect_edges(
@@ -2343,32 +2492,32 @@ float filter_rect_edges(
     float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
     float _e20 = filter_rect_edge(v_6.y, du, u01_);
     float _e22 = filter_rect_edge(v_6.x, du, u01_);
-    float i_11 = 0.5 * ((_e15 - _e17) + (_e20 - _e22));
-    return i_11 / (du * dv_1);
+    float i_12 = 0.5 * ((_e15 - _e17) + (_e20 - _e22));
+    return i_12 / (du * dv_1);
 }
 
 float filter_rect_gl8_node(
-    uint k_16
-) {
-    if (k_16 == 0u) {
-        return 0.18343464;
-    }
-    if (k_16 == 1u) {
-        return 0.5255324;
-    }
-    return (k_16 == 2u) ? 0.7966665 : 0.96028984;
-}
-
-float filter_rect_gl8_weight(
     uint k_17
 ) {
     if (k_17 == 0u) {
-        return 0.18134189;
+        return 0.18343464;
     }
     if (k_17 == 1u) {
+        return 0.5255324;
+    }
+    return (k_17 == 2u) ? 0.7966665 : 0.96028984;
+}
+
+float filter_rect_gl8_weight(
+    uint k_18
+) {
+    if (k_18 == 0u) {
+        return 0.18134189;
+    }
+    if (k_18 == 1u) {
         return 0.15685332;
     }
-    return (k_17 == 2u) ? 0.11119052 : 0.050614268;
+    return (k_18 == 2u) ? 0.11119052 : 0.050614268;
 }
 
 float filter_rect_polar_near(
@@ -2377,32 +2526,32 @@ float filter_rect_polar_near(
     float hi
 ) {
     float acc_4 = 0.0;
-    uint k_18 = 0u;
+    uint k_19 = 0u;
     float c_18 = 0.5 * (lo + hi);
-    float h_22 = 0.5 * (hi - lo);
+    float h_24 = 0.5 * (hi - lo);
     uint2 loop_bound_8 = uint2(4294967295u);
     bool loop_init_8 = true;
     while(true) {
         if (metal::all(loop_bound_8 == uint2(0u))) { break; }
         loop_bound_8 -= uint2(loop_bound_8.y == 0u, 1u);
         if (!loop_init_8) {
-            uint _e48 = k_18;
-            k_18 = _e48 + 1u;
+            uint _e48 = k_19;
+            k_19 = _e48 + 1u;
         }
         loop_init_8 = false;
-        uint _e13 = k_18;
+        uint _e13 = k_19;
         if (_e13 < 4u) {
         } else {
             break;
         }
         {
-            uint _e16 = k_18;
+            uint _e16 = k_19;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_3 = h_22 * _e17;
+            float d_3 = h_24 * _e17;
             float q0_ = 1.0 + ((c_18 - d_3) * (c_18 - d_3));
             float q1_ = 1.0 + ((c_18 + d_3) * (c_18 + d_3));
             float _e29 = acc_4;
-            uint _e30 = k_18;
+            uint _e30 = k_19;
             float _e31 = filter_rect_gl8_weight(_e30);
             acc_4 = _e29 + (_e31 * ((1.0 / (q0_ * (1.0 + (x2_ * q0_)))) + (1.0 / (q1_ * (1.0 + (x2_ * q1_))))));
         }
@@ -2417,32 +2566,32 @@ float filter_rect_polar_far(
     float hi_1
 ) {
     float acc_5 = 0.0;
-    uint k_19 = 0u;
+    uint k_20 = 0u;
     float c_19 = 0.5 * (lo_1 + hi_1);
-    float h_23 = 0.5 * (hi_1 - lo_1);
+    float h_25 = 0.5 * (hi_1 - lo_1);
     uint2 loop_bound_9 = uint2(4294967295u);
     bool loop_init_9 = true;
     while(true) {
         if (metal::all(loop_bound_9 == uint2(0u))) { break; }
         loop_bound_9 -= uint2(loop_bound_9.y == 0u, 1u);
         if (!loop_init_9) {
-            uint _e48 = k_19;
-            k_19 = _e48 + 1u;
+            uint _e48 = k_20;
+            k_20 = _e48 + 1u;
         }
         loop_init_9 = false;
-        uint _e13 = k_19;
+        uint _e13 = k_20;
         if (_e13 < 4u) {
         } else {
             break;
         }
         {
-            uint _e16 = k_19;
+            uint _e16 = k_20;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_4 = h_23 * _e17;
+            float d_4 = h_25 * _e17;
             float t0_2 = (c_19 - d_4) * (c_19 - d_4);
             float t1_4 = (c_19 + d_4) * (c_19 + d_4);
             float _e25 = acc_5;
-            uint _e26 = k_19;
+            uint _e26 = k_20;
             float _e27 = filter_rect_gl8_weight(_e26);
             acc_5 = _e25 + (_e27 * ((t0_2 / ((1.0 + t0_2) * (t0_2 + (x2_1 * (1.0 + t0_2))))) + (t1_4 / ((1.0 + t1_4) * (t1_4 + (x2_1 * (1.0 + t1_4)))))));
         }
@@ -2453,19 +2602,19 @@ float filter_rect_polar_far(
 
 float filter_rect_edge_range(
     float ax,
-    float a_10,
+    float a_13,
     float b_2
 ) {
     float v_7 = 0.0;
     float x2_3 = ax * ax;
-    if (a_10 < ax) {
+    if (a_13 < ax) {
         float _e7 = v_7;
-        float _e11 = filter_rect_polar_near(x2_3, a_10 / ax, metal::min(b_2, ax) / ax);
+        float _e11 = filter_rect_polar_near(x2_3, a_13 / ax, metal::min(b_2, ax) / ax);
         v_7 = _e7 + _e11;
     }
     if (b_2 > ax) {
         float _e14 = v_7;
-        float _e18 = filter_rect_polar_far(x2_3, ax / b_2, ax / metal::max(a_10, ax));
+        float _e18 = filter_rect_polar_far(x2_3, ax / b_2, ax / metal::max(a_13, ax));
         v_7 = _e14 + _e18;
     }
     float _e20 = v_7;
@@ -2474,7 +2623,7 @@ float filter_rect_edge_range(
 
 float filter_rect_edge_polar(
     float x_7,
-    float a_11,
+    float a_14,
     float b_3
 ) {
     float v_8 = {};
@@ -2482,15 +2631,15 @@ float filter_rect_edge_polar(
     if (ax_1 < 0.000000000001) {
         return 0.0;
     }
-    if (a_11 >= 0.0) {
-        float _e10 = filter_rect_edge_range(ax_1, a_11, b_3);
+    if (a_14 >= 0.0) {
+        float _e10 = filter_rect_edge_range(ax_1, a_14, b_3);
         v_8 = _e10;
     } else {
         if (b_3 <= 0.0) {
-            float _e15 = filter_rect_edge_range(ax_1, -(b_3), -(a_11));
+            float _e15 = filter_rect_edge_range(ax_1, -(b_3), -(a_14));
             v_8 = _e15;
         } else {
-            float _e18 = filter_rect_edge_range(ax_1, 0.0, -(a_11));
+            float _e18 = filter_rect_edge_range(ax_1, 0.0, -(a_14));
             float _e20 = filter_rect_edge_range(ax_1, 0.0, b_3);
             v_8 = _e18 + _e20;
         }
@@ -2508,14 +2657,14 @@ float filter_rect_far_field(
     float _e9 = filter_rect_edge_polar(u_5.x, v_9.x, v_9.y);
     float _e14 = filter_rect_edge_polar(v_9.y, u_5.x, u_5.y);
     float _e18 = filter_rect_edge_polar(v_9.x, u_5.x, u_5.y);
-    float i_12 = -0.5 * ((_e5 - _e9) + (_e14 - _e18));
-    return i_12 / ((4.0 * u_5.w) * v_9.w);
+    float i_13 = -0.5 * ((_e5 - _e9) + (_e14 - _e18));
+    return i_13 / ((4.0 * u_5.w) * v_9.w);
 }
 
 float filter_rect_gap(
-    metal::float4 i_9
+    metal::float4 i_8
 ) {
-    return metal::max(metal::max(i_9.x, -(i_9.y)), 0.0);
+    return metal::max(metal::max(i_8.x, -(i_8.y)), 0.0);
 }
 
 float filter_rect_mean_f(
@@ -2524,7 +2673,7 @@ float filter_rect_mean_f(
 ) {
     bool local_13 = {};
     float acc_6 = 0.0;
-    uint k_20 = 0u;
+    uint k_21 = 0u;
     float _e2 = filter_rect_gap(u_6);
     float _e3 = filter_rect_gap(v_10);
     uint _e14 = filter_rect_tier(u_6.w * u_6.w, (1.0 + (u_6.z * u_6.z)) + (_e3 * _e3));
@@ -2557,21 +2706,21 @@ float filter_rect_mean_f(
         if (metal::all(loop_bound_10 == uint2(0u))) { break; }
         loop_bound_10 -= uint2(loop_bound_10.y == 0u, 1u);
         if (!loop_init_10) {
-            uint _e80 = k_20;
-            k_20 = _e80 + 1u;
+            uint _e80 = k_21;
+            k_21 = _e80 + 1u;
         }
         loop_init_10 = false;
-        uint _e55 = k_20;
+        uint _e55 = k_21;
         if (_e55 < naga_div(_e14, 2u)) {
         } else {
             break;
         }
         {
-            uint _e60 = k_20;
+            uint _e60 = k_21;
             float _e61 = filter_rect_gl_node(_e14, _e60);
             float a_26 = u_6.w * _e61;
             float _e63 = acc_6;
-            uint _e64 = k_20;
+            uint _e64 = k_21;
             float _e65 = filter_rect_gl_weight(_e14, _e64);
             float _e70 = filter_rect_gl_mean(_e25, u_6.z - a_26, v_10.z, v_10.w);
             float _e75 = filter_rect_gl_mean(_e25, u_6.z + a_26, v_10.z, v_10.w);
@@ -2585,16 +2734,16 @@ float filter_rect_mean_f(
 metal::float4 filter_rect_interval(
     float c_8,
     float h_3,
-    float a_12
+    float a_15
 ) {
     float ah = metal::abs(h_3);
-    float lo_3 = metal::clamp((c_8 - ah) / a_12, -1000000000000000000.0, filter_rect_BIG);
-    float hi_2 = metal::clamp((c_8 + ah) / a_12, -1000000000000000000.0, filter_rect_BIG);
-    return metal::float4(lo_3, hi_2, metal::clamp(c_8 / a_12, -1000000000000000000.0, filter_rect_BIG), metal::min(ah / a_12, filter_rect_BIG));
+    float lo_3 = metal::clamp((c_8 - ah) / a_15, -1000000000000000000.0, filter_rect_BIG);
+    float hi_2 = metal::clamp((c_8 + ah) / a_15, -1000000000000000000.0, filter_rect_BIG);
+    return metal::float4(lo_3, hi_2, metal::clamp(c_8 / a_15, -1000000000000000000.0, filter_rect_BIG), metal::min(ah / a_15, filter_rect_BIG));
 }
 
 float filter_rect_p22_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_52,
+    ndf_roughness_axis_aligned_AxisAligned r_54,
     metal::float2 center,
     metal::float2 half_extent_4
 ) {
@@ -2606,18 +2755,18 @@ float filter_rect_p22_rect(
     }
     bool _e12 = local_14;
     if (_e12) {
-        float _e13 = ndf_ggx_p22_axis_aligned(r_52, center);
+        float _e13 = ndf_ggx_p22_axis_aligned(r_54, center);
         return _e13;
     }
-    metal::float2 a_27 = r_52.alpha;
-    metal::float4 _e18 = filter_rect_interval(center.x, half_extent_4.x, r_52.alpha.x);
-    metal::float4 _e22 = filter_rect_interval(center.y, half_extent_4.y, r_52.alpha.y);
+    metal::float2 a_27 = r_54.alpha;
+    metal::float4 _e18 = filter_rect_interval(center.x, half_extent_4.x, r_54.alpha.x);
+    metal::float4 _e22 = filter_rect_interval(center.y, half_extent_4.y, r_54.alpha.y);
     float _e23 = filter_rect_mean_f(_e18, _e22);
-    return metal::max(_e23 * (math_INV_PI / (r_52.alpha.x * r_52.alpha.y)), 0.0);
+    return metal::max(_e23 * (math_INV_PI / (r_54.alpha.x * r_54.alpha.y)), 0.0);
 }
 
 float filter_rect_d_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_53,
+    ndf_roughness_axis_aligned_AxisAligned r_55,
     metal::float3 h_4,
     metal::float2 half_extent_5
 ) {
@@ -2632,23 +2781,23 @@ float filter_rect_d_rect(
     }
     bool _e17 = local_15;
     if (_e17) {
-        float _e18 = ndf_ggx_d_axis_aligned(r_53, h_4);
+        float _e18 = ndf_ggx_d_axis_aligned(r_55, h_4);
         return _e18;
     }
-    float _e24 = filter_rect_p22_rect(r_53, -(h_4.xy) / metal::float2(h_4.z), half_extent_5);
+    float _e24 = filter_rect_p22_rect(r_55, -(h_4.xy) / metal::float2(h_4.z), half_extent_5);
     float z2_5 = h_4.z * h_4.z;
     return metal::min(_e24 / (z2_5 * z2_5), math_F32_MAX);
 }
 
 float filter_rect_d_rect_printed(
-    ndf_roughness_axis_aligned_AxisAligned r_54,
+    ndf_roughness_axis_aligned_AxisAligned r_56,
     metal::float2 hpp,
     metal::float3 h_5,
     metal::float2 footprint
 ) {
     bool local_16 = {};
-    float a_28 = r_54.alpha.x;
-    float b_8 = r_54.alpha.y;
+    float a_28 = r_56.alpha.x;
+    float b_8 = r_56.alpha.y;
     float a_2_ = a_28 * a_28;
     float b_2_ = b_8 * b_8;
     float x1_3 = hpp.x - footprint.x;
@@ -2670,14 +2819,14 @@ float filter_rect_d_rect_printed(
     float val = (((x1_3 * (_e37 - _e41)) / sx1_) + ((x2_4 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_));
     float den_2 = (6.2831855 * (x1_3 - x2_4)) * (y1_ - y2_);
     float hz4_ = ((h_5.z * h_5.z) * h_5.z) * h_5.z;
-    float v_15 = (val / den_2) / metal::max(hz4_, 0.001);
-    if (metal::abs(v_15) <= math_F32_MAX) {
+    float v_17 = (val / den_2) / metal::max(hz4_, 0.001);
+    if (metal::abs(v_17) <= math_F32_MAX) {
         local_16 = den_2 != 0.0;
     } else {
         local_16 = false;
     }
     bool _e109 = local_16;
-    return _e109 ? v_15 : 0.0;
+    return _e109 ? v_17 : 0.0;
 }
 
 float filter_rect_lambda_rho(
@@ -2685,30 +2834,30 @@ float filter_rect_lambda_rho(
 ) {
     float a_29 = metal::abs(t_1);
     if (a_29 > 1.0) {
-        float i_13 = 1.0 / a_29;
-        return a_29 * metal::sqrt(1.0 + (i_13 * i_13));
+        float i_14 = 1.0 / a_29;
+        return a_29 * metal::sqrt(1.0 + (i_14 * i_14));
     }
     return metal::sqrt(1.0 + (t_1 * t_1));
 }
 
 float filter_rect_lambda_e_neg(
     float t_2,
-    float r_55
+    float r_57
 ) {
-    return (t_2 >= 0.0) ? (1.0 / (r_55 + t_2)) : (r_55 - t_2);
+    return (t_2 >= 0.0) ? (1.0 / (r_57 + t_2)) : (r_57 - t_2);
 }
 
 float filter_rect_lambda_asinh_of(
     float t_3,
-    float r_56
+    float r_58
 ) {
     float v_11 = {};
     float a_30 = metal::abs(t_3);
     if (a_30 > 1.0) {
-        float _e7 = math_ln(a_30 + r_56);
+        float _e7 = math_ln(a_30 + r_58);
         v_11 = _e7;
     } else {
-        float _e13 = math_ln_1p(a_30 + ((a_30 * a_30) / (1.0 + r_56)));
+        float _e13 = math_ln_1p(a_30 + ((a_30 * a_30) / (1.0 + r_58)));
         v_11 = _e13;
     }
     float _e14 = v_11;
@@ -2751,10 +2900,10 @@ float filter_rect_lambda_psi1_diff(
     float _e4 = filter_rect_lambda_rho(t1_);
     float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_22 = _e5 + _e6;
-    float d_5 = (w_17 * s_22) / (_e3 + _e4);
+    float s_23 = _e5 + _e6;
+    float d_5 = (w_17 * s_23) / (_e3 + _e4);
     float _e12 = math_ln_1p(d_5 / _e6);
-    return 0.25 * (_e12 + ((0.5 * d_5) * s_22));
+    return 0.25 * (_e12 + ((0.5 * d_5) * s_23));
 }
 
 float filter_rect_lambda_mean_psi(
@@ -2774,19 +2923,19 @@ uint filter_rect_lambda_rule(
 
 float filter_rect_lambda_mean_psi1_(
     float t_8,
-    float k_21
+    float k_22
 ) {
     float acc_7 = 0.0;
     uint j = 0u;
-    if (k_21 == 0.0) {
+    if (k_22 == 0.0) {
         float _e4 = filter_rect_lambda_psi1_(t_8);
         return _e4;
     }
-    uint _e9 = filter_rect_tier(k_21 * k_21, 1.0 + (t_8 * t_8));
+    uint _e9 = filter_rect_tier(k_22 * k_22, 1.0 + (t_8 * t_8));
     if (_e9 == filter_rect_TIER_CLOSED) {
-        float _e13 = filter_rect_lambda_psi2_(t_8 + k_21);
-        float _e15 = filter_rect_lambda_psi2_(t_8 - k_21);
-        return (_e13 - _e15) / (2.0 * k_21);
+        float _e13 = filter_rect_lambda_psi2_(t_8 + k_22);
+        float _e15 = filter_rect_lambda_psi2_(t_8 - k_22);
+        return (_e13 - _e15) / (2.0 * k_22);
     }
     uint2 loop_bound_11 = uint2(4294967295u);
     bool loop_init_11 = true;
@@ -2806,7 +2955,7 @@ float filter_rect_lambda_mean_psi1_(
         {
             uint _e28 = j;
             float _e29 = filter_rect_gl_node(_e9, _e28);
-            float a_31 = k_21 * _e29;
+            float a_31 = k_22 * _e29;
             float _e31 = acc_7;
             uint _e32 = j;
             float _e33 = filter_rect_gl_weight(_e9, _e32);
@@ -2906,9 +3055,9 @@ float filter_rect_lambda_expected_psi(
         return _e48;
     }
     float hi_3 = m_22 + kl;
-    float w_22 = 2.0 * kl;
+    float w_25 = 2.0 * kl;
     if (ks == 0.0) {
-        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_3, w_22);
+        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_3, w_25);
         return _e54;
     }
     uint _e59 = filter_rect_tier(ks * ks, 1.0 + (lo_2 * lo_2));
@@ -2935,8 +3084,8 @@ float filter_rect_lambda_expected_psi(
                 float _e73 = acc_10;
                 uint _e74 = j_3;
                 float _e75 = filter_rect_gl_weight(_e59, _e74);
-                float _e78 = filter_rect_lambda_mean_psi(lo_2 + x_13, hi_3 + x_13, w_22);
-                float _e81 = filter_rect_lambda_mean_psi(lo_2 - x_13, hi_3 - x_13, w_22);
+                float _e78 = filter_rect_lambda_mean_psi(lo_2 + x_13, hi_3 + x_13, w_25);
+                float _e81 = filter_rect_lambda_mean_psi(lo_2 - x_13, hi_3 - x_13, w_25);
                 acc_10 = _e73 + (_e75 * (_e78 + _e81));
             }
         }
@@ -2945,11 +3094,11 @@ float filter_rect_lambda_expected_psi(
     }
     float _e89 = filter_rect_lambda_mean_psi1_(hi_3, ks);
     float _e90 = filter_rect_lambda_mean_psi1_(lo_2, ks);
-    return (_e89 - _e90) / w_22;
+    return (_e89 - _e90) / w_25;
 }
 
 float filter_rect_lambda_lambda_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_57,
+    ndf_roughness_axis_aligned_AxisAligned r_59,
     metal::float2 half_extent_6,
     metal::float3 w_in
 ) {
@@ -2957,11 +3106,11 @@ float filter_rect_lambda_lambda_rect(
     bool local_17 = {};
     bool local_18 = {};
     bool local_19 = {};
-    float big_4 = metal::max(metal::max(metal::abs(w_in.x), metal::abs(w_in.y)), metal::abs(w_in.z));
+    float big_5 = metal::max(metal::max(metal::abs(w_in.x), metal::abs(w_in.y)), metal::abs(w_in.z));
     w_19 = w_in;
-    if (!((big_4 > 1152921500000000000.0))) {
-        if (big_4 < 0.00000000000000000086736174) {
-            local_18 = big_4 > 0.0;
+    if (!((big_5 > 1152921500000000000.0))) {
+        if (big_5 < 0.00000000000000000086736174) {
+            local_18 = big_5 > 0.0;
         } else {
             local_18 = false;
         }
@@ -2972,7 +3121,7 @@ float filter_rect_lambda_lambda_rect(
     }
     bool _e26 = local_17;
     if (_e26) {
-        int e_5 = as_type<int>(as_type<uint>(static_cast<int>((as_type<uint>(big_4) >> 23u) & 255u)) - as_type<uint>(127));
+        int e_5 = as_type<int>(as_type<uint>(static_cast<int>((as_type<uint>(big_5) >> 23u) & 255u)) - as_type<uint>(127));
         w_19 = w_in * as_type<float>(static_cast<uint>(as_type<int>(as_type<uint>(127) - as_type<uint>(e_5))) << 23u);
     }
     float _e43 = w_19.x;
@@ -2986,17 +3135,17 @@ float filter_rect_lambda_lambda_rect(
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    metal::float2 alpha_11 = r_57.alpha;
+    metal::float2 alpha_11 = r_59.alpha;
     metal::float2 ha = metal::min(metal::abs(half_extent_6), alpha_11 * filter_rect_lambda_BIG_K);
     float _e63 = w_19.x;
     float ux = metal::abs(_e63) / _e46;
     float _e67 = w_19.y;
     float uy = metal::abs(_e67) / _e46;
-    float px = ux * r_57.alpha.x;
-    float py = uy * r_57.alpha.y;
+    float px = ux * r_59.alpha.x;
+    float py = uy * r_59.alpha.y;
     float _e74 = math_hypot(px, py);
-    float k1_4 = (px / _e74) * (ha.x / r_57.alpha.x);
-    float k2_4 = (py / _e74) * (ha.y / r_57.alpha.y);
+    float k1_4 = (px / _e74) * (ha.x / r_59.alpha.x);
+    float k2_4 = (py / _e74) * (ha.y / r_59.alpha.y);
     if (k1_4 == 0.0) {
         local_19 = k2_4 == 0.0;
     } else {
@@ -3005,7 +3154,7 @@ float filter_rect_lambda_lambda_rect(
     bool _e92 = local_19;
     if (_e92) {
         metal::float3 _e93 = w_19;
-        float _e94 = ndf_ggx_lambda_axis_aligned(r_57, _e93);
+        float _e94 = ndf_ggx_lambda_axis_aligned(r_59, _e93);
         return _e94;
     }
     float mm = (wz / _e46) / _e74;
@@ -3022,76 +3171,210 @@ float filter_rect_lambda_lambda_rect(
     return _e117 / mm;
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(
-    kernel_rect_BoundingRect r_58,
-    float sigma_2
+ndf_roughness_matrix_RoughnessMatrix filter_method_gaussian_lobe(
+    filter_method_Gaussian method,
+    ndf_roughness_matrix_RoughnessMatrix material,
+    footprint_Footprint fp_7
 ) {
-    metal::float2 w_23 = r_58.half_extent * (2.0 * sigma_2);
-    metal::float2 v_16 = w_23 * w_23;
-    return kernel_covariance_Covariance {v_16.x, 0.0, v_16.y, v_16.x * v_16.y};
+    ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_gaussian(method.clamps, material, fp_7, method.sigma);
+    return _e5;
 }
 
-footprint_Footprint footprint_from_slope_derivatives(
-    metal::float2 dh_u,
-    metal::float2 dh_v
+float filter_method_d_ggx_gaussian(
+    filter_method_Gaussian method_1,
+    ndf_roughness_matrix_RoughnessMatrix material_1,
+    footprint_Footprint fp_8,
+    metal::float3 m_23
 ) {
-    return footprint_Footprint {dh_u, dh_v};
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_1, material_1, fp_8);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_23);
+    return _e5;
 }
 
-footprint_Footprint footprint_from_projected_derivatives(
-    metal::float2 dp_u,
-    metal::float2 dp_v
+float filter_method_d_beckmann_gaussian(
+    filter_method_Gaussian method_2,
+    ndf_roughness_matrix_RoughnessMatrix material_2,
+    footprint_Footprint fp_9,
+    metal::float3 m_24
 ) {
-    return footprint_Footprint {dp_u, dp_v};
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_2, material_2, fp_9);
+    float _e5 = ndf_beckmann_d_matrix(_e4, m_24);
+    return _e5;
 }
 
-footprint_Footprint footprint_from_projected_derivatives_in_slope(
-    metal::float3 h_in,
-    metal::float2 dp_u_1,
-    metal::float2 dp_v_1
+filter_gaussian_ggx_GaussianFilteredGgx filter_method_exact_gaussian_lobe(
+    filter_method_ExactGaussian method_3,
+    ndf_roughness_matrix_RoughnessMatrix material_3,
+    footprint_Footprint fp_10
 ) {
-    float big_5 = metal::max(metal::max(metal::abs(h_in.x), metal::abs(h_in.y)), metal::abs(h_in.z));
-    if (big_5 <= 0.0) {
-        return footprint_Footprint {metal::float2(0.0), metal::float2(0.0)};
+    kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_10, method_3.sigma);
+    filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
+    return _e6;
+}
+
+float filter_method_d_ggx_exact_gaussian(
+    filter_method_ExactGaussian method_4,
+    ndf_roughness_matrix_RoughnessMatrix material_4,
+    footprint_Footprint fp_11,
+    metal::float3 m_25
+) {
+    filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_method_exact_gaussian_lobe(method_4, material_4, fp_11);
+    float _e5 = filter_gaussian_ggx_d(_e4, m_25);
+    return _e5;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_method_projected_lobe(
+    filter_method_Projected method_5,
+    ndf_roughness_matrix_RoughnessMatrix material_5,
+    footprint_Footprint fp_12
+) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
+    return _e5;
+}
+
+float filter_method_d_ggx_projected(
+    filter_method_Projected method_6,
+    ndf_roughness_matrix_RoughnessMatrix material_6,
+    footprint_Footprint fp_13,
+    metal::float3 m_26
+) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_projected_lobe(method_6, material_6, fp_13);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_26);
+    return _e5;
+}
+
+filter_method_RectFilteredGgx filter_method_rect_lobe(
+    filter_method_Rect method_7,
+    ndf_roughness_axis_aligned_AxisAligned material_7,
+    footprint_Footprint fp_14
+) {
+    kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_14);
+    kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
+    metal::float2 h_26 = _e6.half_extent;
+    return filter_method_RectFilteredGgx {material_7, h_26};
+}
+
+float filter_method_p22_rect_filtered(
+    filter_method_RectFilteredGgx lobe,
+    metal::float2 s_12
+) {
+    float _e4 = filter_rect_p22_rect(lobe.roughness, s_12, lobe.half_extent);
+    return _e4;
+}
+
+float filter_method_d_rect_filtered(
+    filter_method_RectFilteredGgx lobe_1,
+    metal::float3 m_27
+) {
+    float _e4 = filter_rect_d_rect(lobe_1.roughness, m_27, lobe_1.half_extent);
+    return _e4;
+}
+
+float filter_method_lambda_rect_filtered(
+    filter_method_RectFilteredGgx lobe_2,
+    metal::float3 w_20
+) {
+    float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_20);
+    return _e4;
+}
+
+float filter_method_g1_rect_filtered(
+    filter_method_RectFilteredGgx lobe_3,
+    metal::float3 w_21,
+    metal::float3 m_28
+) {
+    float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_21);
+    float _e5 = ndf_g1_of(_e3, metal::dot(w_21, m_28));
+    return _e5;
+}
+
+float filter_method_g2_rect_filtered(
+    filter_method_RectFilteredGgx lobe_4,
+    metal::float3 i_9,
+    metal::float3 o_7,
+    metal::float3 m_29
+) {
+    float _e4 = filter_method_lambda_rect_filtered(lobe_4, i_9);
+    float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_7);
+    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_9, m_29), metal::dot(o_7, m_29));
+    return _e8;
+}
+
+float filter_method_d_ggx_rect(
+    filter_method_Rect method_8,
+    ndf_roughness_axis_aligned_AxisAligned material_8,
+    footprint_Footprint fp_15,
+    metal::float3 m_30
+) {
+    filter_method_RectFilteredGgx _e4 = filter_method_rect_lobe(method_8, material_8, fp_15);
+    float _e5 = filter_method_d_rect_filtered(_e4, m_30);
+    return _e5;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(
+    filter_method_Proxy method_9,
+    ndf_roughness_axis_aligned_AxisAligned material_9,
+    footprint_Footprint fp_16
+) {
+    kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_16);
+    kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
+    metal::float2 h_27 = _e6.half_extent;
+    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_27);
+    return _e8;
+}
+
+float filter_method_d_ggx_proxy(
+    filter_method_Proxy method_10,
+    ndf_roughness_axis_aligned_AxisAligned material_10,
+    footprint_Footprint fp_17,
+    metal::float3 m_31
+) {
+    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
+    float _e5 = ndf_ggx_d_axis_aligned(_e4, m_31);
+    return _e5;
+}
+
+filter_deferred_KernelConvention filter_presets_preset(
+    uint i_10
+) {
+    switch(i_10) {
+        case 0u: {
+            return filter_presets_TK19_MAX;
+        }
+        case 1u: {
+            return filter_presets_TK19_TRACE;
+        }
+        case 2u: {
+            return filter_presets_TK19_AVERAGE;
+        }
+        case 3u: {
+            return filter_presets_TK21_LISTING;
+        }
+        case 4u: {
+            return filter_presets_FILAMENT;
+        }
+        case 5u: {
+            return filter_presets_UNITY_HDRP;
+        }
+        case 6u: {
+            return filter_presets_UNITY_HDRP_PROJECTED;
+        }
+        case 7u: {
+            return filter_presets_GODOT;
+        }
+        case 8u: {
+            return filter_presets_O3DE;
+        }
+        case 9u: {
+            return filter_presets_UNREAL;
+        }
+        case 10u: {
+            return filter_presets_BABYLON;
+        }
+        default: {
+            return filter_presets_THREE_JS;
+        }
     }
-    metal::float3 h0_ = h_in / metal::float3(big_5);
-    metal::float3 h_24 = h0_ / metal::float3(metal::length(h0_));
-    float hz = metal::max(h_24.z, 0.000001);
-    float k_27 = -1.0 / ((hz * hz) * hz);
-    metal::float2x2 j_4 = metal::float2x2(metal::float2((h_24.x * h_24.x) + (h_24.z * h_24.z), h_24.x * h_24.y), metal::float2(h_24.x * h_24.y, (h_24.y * h_24.y) + (h_24.z * h_24.z)));
-    return footprint_Footprint {(j_4 * dp_u_1) * k_27, (j_4 * dp_v_1) * k_27};
-}
-
-footprint_Footprint footprint_from_normal_differences(
-    metal::float3 dn_u_4,
-    metal::float3 dn_v_4
-) {
-    float lu = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_u_4), 0.000001);
-    float lv = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_v_4), 0.000001);
-    return footprint_Footprint {dn_u_4.xy * (2.0 / lu), dn_v_4.xy * (2.0 / lv)};
-}
-
-kernel_covariance_Covariance footprint_covariance(
-    footprint_Footprint fp,
-    float sigma_3
-) {
-    metal::float2 u_12 = fp.dh_u;
-    metal::float2 v_17 = fp.dh_v;
-    float s2_1 = sigma_3 * sigma_3;
-    float cross_1 = ((fp.dh_u.x * fp.dh_v.y) - (fp.dh_u.y * fp.dh_v.x)) * s2_1;
-    return kernel_covariance_Covariance {((fp.dh_u.x * fp.dh_u.x) + (fp.dh_v.x * fp.dh_v.x)) * s2_1, ((fp.dh_u.x * fp.dh_u.y) + (fp.dh_v.x * fp.dh_v.y)) * s2_1, ((fp.dh_u.y * fp.dh_u.y) + (fp.dh_v.y * fp.dh_v.y)) * s2_1, cross_1 * cross_1};
-}
-
-kernel_rect_BoundingRect footprint_bounding_rect(
-    footprint_Footprint fp_1
-) {
-    return kernel_rect_BoundingRect {(metal::abs(fp_1.dh_u) + metal::abs(fp_1.dh_v)) * 0.5};
-}
-
-float footprint_max_extent(
-    footprint_Footprint fp_2
-) {
-    return 0.5 * metal::max(metal::length(fp_2.dh_u + fp_2.dh_v), metal::length(fp_2.dh_u - fp_2.dh_v));
 }
 
 footprint_jacobian_Polar footprint_jacobian_polar(
@@ -3103,15 +3386,15 @@ footprint_jacobian_Polar footprint_jacobian_polar(
         return footprint_jacobian_Polar {metal::float3(0.0, 0.0, 1.0), metal::float2(1.0, 0.0)};
     }
     metal::float3 h0_1 = h_in_1 / metal::float3(big_6);
-    metal::float3 h_25 = h0_1 / metal::float3(metal::length(h0_1));
-    float qs_4 = metal::max(metal::abs(h_25.x), metal::abs(h_25.y));
+    metal::float3 h_28 = h0_1 / metal::float3(metal::length(h0_1));
+    float qs_4 = metal::max(metal::abs(h_28.x), metal::abs(h_28.y));
     if (qs_4 > 0.0) {
-        metal::float2 q_6 = h_25.xy / metal::float2(qs_4);
+        metal::float2 q_6 = h_28.xy / metal::float2(qs_4);
         cs_1 = q_6 / metal::float2(metal::length(q_6));
     }
-    if (h_25.z >= footprint_jacobian_HZ_MIN) {
+    if (h_28.z >= footprint_jacobian_HZ_MIN) {
         metal::float2 _e44 = cs_1;
-        return footprint_jacobian_Polar {h_25, _e44};
+        return footprint_jacobian_Polar {h_28, _e44};
     }
     metal::float2 _e47 = cs_1;
     metal::float2 _e51 = cs_1;
@@ -3152,7 +3435,7 @@ metal::float2x2 footprint_jacobian_projected_to_slope(
     metal::float3 h_in_2
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    metal::float3 h_26 = _e1.h;
+    metal::float3 h_29 = _e1.h;
     float k_28 = -1.0 / ((_e1.h.z * _e1.h.z) * _e1.h.z);
     float xy = _e1.h.x * _e1.h.y;
     return metal::float2x2(metal::float2((_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z), xy) * k_28, metal::float2(xy, (_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z)) * k_28);
@@ -3162,7 +3445,7 @@ metal::float2x2 footprint_jacobian_slope_to_projected(
     metal::float3 h_in_3
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_3);
-    metal::float3 h_27 = _e1.h;
+    metal::float3 h_30 = _e1.h;
     float xy_1 = _e1.h.x * _e1.h.y;
     return metal::float2x2(metal::float2((_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z), -(xy_1)) * -(_e1.h.z), metal::float2(-(xy_1), (_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z)) * -(_e1.h.z));
 }
@@ -3223,10 +3506,10 @@ metal::float2 footprint_slope_slope_from_sphere(
 }
 
 metal::float3 footprint_slope_sphere_from_slope(
-    metal::float2 s_12
+    metal::float2 s_13
 ) {
-    float k_30 = metal::max(metal::max(metal::abs(s_12.x), metal::abs(s_12.y)), 1.0);
-    metal::float3 v_18 = metal::float3(-(s_12) / metal::float2(k_30), 1.0 / k_30);
+    float k_30 = metal::max(metal::max(metal::abs(s_13.x), metal::abs(s_13.y)), 1.0);
+    metal::float3 v_18 = metal::float3(-(s_13) / metal::float2(k_30), 1.0 / k_30);
     return v_18 / metal::float3(metal::length(v_18));
 }
 
@@ -3256,102 +3539,11 @@ metal::float2 footprint_slope_slope_from_projected(
 }
 
 metal::float2 footprint_slope_projected_from_slope(
-    metal::float2 s_13
+    metal::float2 s_14
 ) {
-    metal::float3 _e1 = footprint_slope_sphere_from_slope(s_13);
+    metal::float3 _e1 = footprint_slope_sphere_from_slope(s_14);
     metal::float2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
-}
-
-footprint_Footprint kernel_clamp_footprint(
-    kernel_clamp_ClampRules rules,
-    footprint_Footprint fp_3
-) {
-    float l_7 = metal::max(rules.max_extent, 0.0);
-    float scale_2 = metal::max(metal::max(metal::abs(fp_3.dh_u.x), metal::abs(fp_3.dh_u.y)), metal::max(metal::abs(fp_3.dh_v.x), metal::abs(fp_3.dh_v.y)));
-    if (scale_2 <= 0.0) {
-        return fp_3;
-    }
-    footprint_Footprint unit = footprint_Footprint {fp_3.dh_u / metal::float2(scale_2), fp_3.dh_v / metal::float2(scale_2)};
-    float _e29 = footprint_max_extent(unit);
-    if ((_e29 * scale_2) <= l_7) {
-        return fp_3;
-    }
-    return footprint_Footprint {(unit.dh_u / metal::float2(_e29)) * l_7, (unit.dh_v / metal::float2(_e29)) * l_7};
-}
-
-kernel_rect_BoundingRect kernel_clamp_rect(
-    kernel_clamp_ClampRules rules_1,
-    kernel_rect_BoundingRect r_59,
-    metal::float2 alpha_10
-) {
-    metal::float2 f_1 = metal::float2(0.0);
-    if (rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT) {
-        f_1 = metal::float2(rules_1.floor);
-    } else {
-        if (rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED) {
-            f_1 = metal::min(metal::abs(alpha_10), metal::float2(rules_1.floor));
-        }
-    }
-    float lambda = metal::max(rules_1.max_extent, 0.0);
-    metal::float2 h_28 = metal::min(metal::abs(r_59.half_extent), metal::float2(lambda));
-    metal::float2 _e25 = f_1;
-    return kernel_rect_BoundingRect {metal::max(h_28, metal::max(_e25, metal::float2(0.0)))};
-}
-
-kernel_covariance_Covariance kernel_clamp_kernel(
-    kernel_clamp_ClampRules rules_2,
-    kernel_covariance_Covariance k_22
-) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_22);
-    if (rules_2.kappa >= math_F32_MAX) {
-        return _e2;
-    }
-    kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, 0.5 * metal::max(rules_2.kappa, 0.0));
-    return _e11;
-}
-
-float kernel_clamp_det_clamp_for(
-    kernel_clamp_ClampRules rules_3,
-    ndf_roughness_matrix_RoughnessMatrix a_13
-) {
-    float _e2 = ndf_roughness_matrix_clamped_det(a_13);
-    return rules_3.det_clamp ? _e2 : 0.0;
-}
-
-kernel_covariance_Covariance kernel_clamp_pixel_kernel(
-    kernel_clamp_ClampRules rules_4,
-    footprint_Footprint fp_4,
-    float sigma_4
-) {
-    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
-    kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_4);
-    kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
-    return _e5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(
-    kernel_clamp_ClampRules rules_5,
-    ndf_roughness_matrix_RoughnessMatrix a_14,
-    footprint_Footprint fp_5,
-    float sigma_5
-) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_5);
-    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_14);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_14, _e4, _e5);
-    return _e6;
-}
-
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(
-    kernel_clamp_ClampRules rules_6,
-    ndf_roughness_matrix_RoughnessMatrix a_15,
-    footprint_Footprint fp_6,
-    float sigma_6
-) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_6);
-    float _e5 = kernel_clamp_det_clamp_for(rules_6, a_15);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_15, _e4, _e5);
-    return _e6;
 }
 
 sampling_Warp sampling_warp(
@@ -3365,15 +3557,15 @@ sampling_Warp sampling_warp(
 metal::float3 sampling_normalize_scaled(
     metal::float3 v_12
 ) {
-    metal::float3 w_24 = v_12 / metal::float3(metal::max(metal::max(metal::abs(v_12.x), metal::abs(v_12.y)), metal::abs(v_12.z)));
-    return w_24 / metal::float3(metal::length(w_24));
+    metal::float3 w_26 = v_12 / metal::float3(metal::max(metal::max(metal::abs(v_12.x), metal::abs(v_12.y)), metal::abs(v_12.z)));
+    return w_26 / metal::float3(metal::length(w_26));
 }
 
 metal::float3 sampling_stretch(
     sampling_Warp l_3,
-    metal::float3 w_20
+    metal::float3 w_22
 ) {
-    return metal::float3((l_3.l_xx * w_20.x) + (l_3.l_yx * w_20.y), l_3.l_yy * w_20.y, w_20.z);
+    return metal::float3((l_3.l_xx * w_22.x) + (l_3.l_yx * w_22.y), l_3.l_yy * w_22.y, w_22.z);
 }
 
 metal::float3 sampling_unstretch(
@@ -3392,9 +3584,9 @@ float sampling_clamp_unit(
 
 metal::float3 sampling_reflect(
     metal::float3 wo,
-    metal::float3 m_23
+    metal::float3 m_32
 ) {
-    return ((2.0 * metal::dot(wo, m_23)) * m_23) - wo;
+    return ((2.0 * metal::dot(wo, m_32)) * m_32) - wo;
 }
 
 metal::float3 sampling_ggx_standard_visible(
@@ -3455,19 +3647,19 @@ metal::float3 sampling_sample_normal(
 
 float sampling_normal_pdf(
     ndf_roughness_matrix_RoughnessMatrix r_63,
-    metal::float3 m_24
+    metal::float3 m_33
 ) {
-    float _e2 = ndf_ggx_d_matrix(r_63, m_24);
-    return (m_24.z > 0.0) ? (_e2 * m_24.z) : 0.0;
+    float _e2 = ndf_ggx_d_matrix(r_63, m_33);
+    return (m_33.z > 0.0) ? (_e2 * m_33.z) : 0.0;
 }
 
 float sampling_visible_normal_pdf(
     ndf_roughness_matrix_RoughnessMatrix r_64,
     metal::float3 wo_2,
-    metal::float3 m_25
+    metal::float3 m_34
 ) {
     bool local_21 = {};
-    float wom = metal::dot(wo_2, m_25);
+    float wom = metal::dot(wo_2, m_34);
     if (!(!((wo_2.z > 0.0)))) {
         local_21 = !((wom > 0.0));
     } else {
@@ -3477,7 +3669,7 @@ float sampling_visible_normal_pdf(
     if (_e15) {
         return 0.0;
     }
-    float _e17 = ndf_ggx_d_matrix(r_64, m_25);
+    float _e17 = ndf_ggx_d_matrix(r_64, m_34);
     float _e20 = ndf_ggx_lambda_matrix(r_64, wo_2);
     float v_19 = (wom * _e17) / (wo_2.z * (1.0 + _e20));
     return (v_19 <= math_F32_MAX) ? v_19 : 0.0;
@@ -3486,16 +3678,16 @@ float sampling_visible_normal_pdf(
 float sampling_reflection_pdf_from_normal(
     ndf_roughness_matrix_RoughnessMatrix r_65,
     metal::float3 wo_3,
-    metal::float3 m_26
+    metal::float3 m_35
 ) {
     if (!((wo_3.z > 0.0))) {
         return 0.0;
     }
     metal::float3 _e8 = sampling_normalize_scaled(wo_3);
-    if (!((metal::dot(_e8, m_26) > 0.0))) {
+    if (!((metal::dot(_e8, m_35) > 0.0))) {
         return 0.0;
     }
-    float _e14 = ndf_ggx_d_matrix(r_65, m_26);
+    float _e14 = ndf_ggx_d_matrix(r_65, m_35);
     float _e18 = ndf_ggx_lambda_matrix(r_65, _e8);
     float v_20 = _e14 / ((4.0 * _e8.z) * (1.0 + _e18));
     return (v_20 <= math_F32_MAX) ? v_20 : 0.0;
@@ -3511,12 +3703,12 @@ float sampling_reflection_pdf(
     }
     metal::float3 _e8 = sampling_normalize_scaled(wo_4);
     metal::float3 _e9 = sampling_normalize_scaled(wi_1);
-    metal::float3 h_29 = _e8 + _e9;
-    float len = metal::length(h_29);
+    metal::float3 h_31 = _e8 + _e9;
+    float len = metal::length(h_31);
     if (!((len > 0.0))) {
         return 0.0;
     }
-    float _e18 = sampling_reflection_pdf_from_normal(r_66, wo_4, h_29 / metal::float3(len));
+    float _e18 = sampling_reflection_pdf_from_normal(r_66, wo_4, h_31 / metal::float3(len));
     return _e18;
 }
 

@@ -88,7 +88,7 @@ const IMPORTS: &str = "#import filtered_ndf::ndf::roughness::axis_aligned
 /// The module docs' `D` tolerance (ulp) of a filtered matrix at `h`: `cond A'_c` of the matrix
 /// the density evaluates (`A'` itself unless the determinant clamp is active, which adds
 /// 5 ulp to the clamped eigenvalues, `matrix.wgsl`).
-fn filtered_d_tol(m: &RoughnessMatrix, h: DVec3, ggx: bool) -> f64 {
+pub(crate) fn filtered_d_tol(m: &RoughnessMatrix, h: DVec3, ggx: bool) -> f64 {
     use crate::reference::Roughness;
     let (a, b, c) = m.entries();
     let active = m.clamped_det() > a * c - b * b;
