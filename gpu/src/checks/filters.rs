@@ -88,7 +88,7 @@ const IMPORTS: &str = "#import filtered_ndf::ndf::roughness::axis_aligned
 /// The module docs' `D` tolerance (ulp) of a filtered matrix at `h`: `cond A'_c` of the matrix
 /// the density evaluates (`A'` itself unless the determinant clamp is active, which adds
 /// 5 ulp to the clamped eigenvalues, `matrix.wgsl`).
-pub(crate) fn filtered_d_tol(m: &RoughnessMatrix, h: DVec3, ggx: bool) -> f64 {
+pub fn filtered_d_tol(m: &RoughnessMatrix, h: DVec3, ggx: bool) -> f64 {
     use crate::reference::Roughness;
     let (a, b, c) = m.entries();
     let active = m.clamped_det() > a * c - b * b;
@@ -254,8 +254,39 @@ fn clamp_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
     checks
 }
 
+/// The entries of a filtered matrix as the oracle's GPU backend returns them
+/// (`matrix::entries` of `gaussian::gaussian` and `projected::projected`): reconstructed from
+/// the eigenbasis, `l1 c^2 + l2 s^2` etc., so within `32 EPS` of the largest entry: the
+/// eigenvalue `l1` 5 ulp, the reconstruction 3 ulp of `l1`, the eigenvector's angle (from the
+/// row without cancellation, 4 `EPS`) moving the entries by `2 (l1 - l2) 4 EPS`, i.e.
+/// `16 EPS l1`, and `l1 <= 2 max |a_ij|`.
+fn entries_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
+    let mut checks = Vec::new();
+    for (name, call) in [
+        ("matrix::entries(gaussian::gaussian)", "gaussian::gaussian(a, footprint::covariance(fp, 0.5))"),
+        ("matrix::entries(projected::projected)", "projected::projected(a, footprint::covariance(fp, 0.5))"),
+    ] {
+        let body = format!("{PROLOGUE}\ny3(0u, matrix::entries({call}));");
+        let mut c = Check::new(name, IMPORTS, &body, 9, 3)
+            .tolerance("32 EPS of the largest entry (eigenvalue 5 ulp, reconstruction 3, eigenvector angle 4 EPS times 2 (l1 - l2); l1 <= 2 max |a_ij|)");
+        for p in pts {
+            let k = p.fp().covariance(sigma);
+            let m = if name.contains("gaussian") {
+                filter::gaussian(p.alpha(), k)
+            } else {
+                filter::projected(p.alpha(), k)
+            };
+            let (a11, a12, a22) = m.entries();
+            let scale = a11.abs().max(a22.abs()).max(a12.abs());
+            c.case(p.input(), vec![a11, a12, a22], vec![Tol::of_scale(32.0, scale); 3]);
+        }
+        checks.push(c);
+    }
+    checks
+}
+
 /// The per-case tolerance (ulp) of `KernelConvention::apply` (see [`all`]'s comment).
-fn deferred_tol(conv: &deferred::KernelConvention, alpha: f64, dn_u: DVec3, dn_v: DVec3) -> f64 {
+pub fn deferred_tol(conv: &deferred::KernelConvention, alpha: f64, dn_u: DVec3, dn_v: DVec3) -> f64 {
     use deferred::{Domain, Norm};
     let n = conv.norm.eval(dn_u, dn_v);
     // The kernel: the norm (sums of squares 2 ulp, the Gram eigenvalue 10), the scale and
@@ -336,6 +367,7 @@ pub fn all() -> Vec<Check> {
         &|p| ClampRules::default().filter_projected(p.alpha(), p.fp(), sigma),
     ));
     checks.extend(clamp_rows(&pts, sigma));
+    checks.extend(entries_rows(&pts, sigma));
     checks.push(lean_row(&pts));
 
     // The GGX proxy rows: rectangle from the footprint under the default rules.

@@ -59,7 +59,7 @@ fn angle_sensitivity(f: impl Fn(f64) -> f64) -> f64 {
 }
 
 /// The density tolerance (module docs) at slope `s`, in ulp.
-pub(crate) fn density_ulps(a: &RoughnessMatrix, k: &Covariance, s: DVec2) -> f64 {
+pub fn density_ulps(a: &RoughnessMatrix, k: &Covariance, s: DVec2) -> f64 {
     let p = |a: &RoughnessMatrix, k: &Covariance, s: DVec2| GaussianFilteredGgx::new(*a, *k).p22(s);
     let kappa_s = log_sensitivity(1.0, |l| p(a, k, s * l));
     let kappa_t = angle_sensitivity(|t| p(a, &rotated(k, t), s));
@@ -68,7 +68,7 @@ pub(crate) fn density_ulps(a: &RoughnessMatrix, k: &Covariance, s: DVec2) -> f64
 }
 
 /// The `Lambda` tolerance (module docs) at `w`, in ulp.
-pub(crate) fn lambda_ulps(a: &RoughnessMatrix, k: &Covariance, w: DVec3) -> f64 {
+pub fn lambda_ulps(a: &RoughnessMatrix, k: &Covariance, w: DVec3) -> f64 {
     let l = |a: &RoughnessMatrix, k: &Covariance, w: DVec3| GaussianFilteredGgx::new(*a, *k).lambda(w);
     let (a11, a12, a22) = a.entries();
     let scaled_a = |f: f64| {

@@ -258,7 +258,7 @@ fn ggx_tail(t: f64, sqrt_det: f64, ulps: f64) -> Tol {
 }
 
 /// GGX / Beckmann tolerances of the module docs, in ulp.
-fn tol_density(ggx: bool, err_q: f64, x: f64, ln_k: f64) -> f64 {
+pub fn tol_density(ggx: bool, err_q: f64, x: f64, ln_k: f64) -> f64 {
     if ggx {
         2.0 * (err_q + 1.0) + 6.0
     } else {
@@ -267,7 +267,8 @@ fn tol_density(ggx: bool, err_q: f64, x: f64, ln_k: f64) -> f64 {
     }
 }
 
-fn tol_lambda(ggx: bool, err_q: f64, q: f64, abs_wz: f64) -> f64 {
+/// The `Lambda` tolerance of the module docs, in ulp, from `q = w_xy^T A w_xy` and `|w_z|`.
+pub fn tol_lambda(ggx: bool, err_q: f64, q: f64, abs_wz: f64) -> f64 {
     if ggx {
         1.5 * err_q + 10.0
     } else {

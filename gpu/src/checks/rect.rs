@@ -93,7 +93,7 @@ fn cancellation(t: [f64; 4]) -> f64 {
 /// the peak, the polar form beyond), each within 16 ulp of its magnitude (the edges: `math::atan`
 /// 8, its argument 5, the factor 3; the polar pieces: 8 nodes of a few ulp each and their
 /// end points), so 60 plus `16 sum |t_i| / |sum t_i|` ulp, that factor computed here in f64.
-fn rect_ulps(r: AxisAligned, center: DVec2, he: DVec2) -> f64 {
+pub fn rect_ulps(r: AxisAligned, center: DVec2, he: DVec2) -> f64 {
     let a = r.alpha();
     let (uc, vc) = (center.x / a.x, center.y / a.y);
     let (hu, hv) = (he.x.abs() / a.x, he.y.abs() / a.y);
@@ -130,7 +130,7 @@ fn rect_ulps(r: AxisAligned, center: DVec2, he: DVec2) -> f64 {
 /// mean by at most 4 times that over the distance of the ends from the peak (at least 1 in
 /// normalised units, the width of `f`): `12 (|u_c| / max(gap_u, 1) + |v_c| / max(gap_v, 1))`
 /// ulp more.
-pub(crate) fn d_rect_ulps(r: AxisAligned, center: DVec2, he: DVec2) -> f64 {
+pub fn d_rect_ulps(r: AxisAligned, center: DVec2, he: DVec2) -> f64 {
     let a = r.alpha();
     let (uc, vc) = (center.x / a.x, center.y / a.y);
     let (hu, hv) = (he.x.abs() / a.x, he.y.abs() / a.y);
@@ -327,7 +327,7 @@ fn closed_tier(h2: f64, l2: f64) -> bool {
 /// (hypot, quotients, the product `|w_l| H_l` rounded before the difference), which `Lambda`
 /// amplifies by its condition numbers with respect to `w_z` (moves `m` and `m - k_l`), `H_x`
 /// and `H_y` (move `k_1`, `k_2`), computed here from the f64 reference.
-pub(crate) fn lambda_rect_ulps(r: AxisAligned, he: DVec2, w: DVec3) -> f64 {
+pub fn lambda_rect_ulps(r: AxisAligned, he: DVec2, w: DVec3) -> f64 {
     let al = r.alpha();
     let l = w.x.hypot(w.y);
     let (ux, uy) = (w.x.abs() / l, w.y.abs() / l);
