@@ -8,7 +8,7 @@
 //! modules.
 
 #[path = "args.rs"]
-mod args;
+pub(crate) mod args;
 
 use args::Precision;
 use serde_json::{Value, json};

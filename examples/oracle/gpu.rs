@@ -15,11 +15,9 @@
 //! `"f32"` evaluate in f32. The shaders' `F32_MAX` (their stand-in for `+inf`, e.g. `Lambda` at
 //! grazing) is written as `"inf"`, as the CPU backend writes infinities.
 
-#[path = "args.rs"]
-#[allow(dead_code)]
-mod args;
-
-use args::{
+// The CPU evaluator's argument parsing (`eval.rs` is a sibling module wherever this file is
+// included: the binary `oracle` of `filtered-ndf-gpu` and its test `oracle_gpu`).
+use crate::eval::args::{
     ClampArg, ClampPreset, Dist, FloorArg, FootprintArg, Point, RoughnessArg, array, clamps_arg,
     dist, footprint_arg, kernel_arg, number, opt_non_negative, opt_number, point, roughness_arg,
     string,
@@ -861,10 +859,7 @@ fn parse(reply: &str) -> Value {
 /// evaluator's `eval_line` (the argument checks). A failed dispatch (no adapter, a shader
 /// error) answers every line of its kernel with that error.
 pub fn answer_session(lines: &[&str], cpu_eval_line: &dyn Fn(&str) -> String) -> Vec<String> {
-    let prepared: Vec<Prepared> = lines
-        .iter()
-        .map(|l| prepare(l, cpu_eval_line))
-        .collect();
+    let prepared: Vec<Prepared> = lines.iter().map(|l| prepare(l, cpu_eval_line)).collect();
     let mut answers: Vec<Option<Value>> = prepared
         .iter()
         .map(|p| match p {

@@ -182,7 +182,10 @@ fn tolerances(v: &Value, reference: &[f64]) -> Vec<Tol> {
                 "slope_pdf" => density_tol(ggx, eq, &a, normal_of(a2(v, "slope"))),
                 "lambda" => lambda_tol(ggx, eq, &a, a3(v, "w")),
                 "g1" => lambda_tol(ggx, eq, &a, a3(v, "w")) + 3.0,
-                _ => lambda_tol(ggx, eq, &a, a3(v, "i")).max(lambda_tol(ggx, eq, &a, a3(v, "o"))) + 4.0,
+                _ => {
+                    lambda_tol(ggx, eq, &a, a3(v, "i")).max(lambda_tol(ggx, eq, &a, a3(v, "o")))
+                        + 4.0
+                }
             };
             all(Tol::ulps(t))
         }
@@ -257,7 +260,11 @@ fn tolerances(v: &Value, reference: &[f64]) -> Vec<Tol> {
             let t = if ggx {
                 checks::gaussian_ggx::density_ulps(&a, &kernel, s)
             } else {
-                checks::filters::filtered_d_tol(&r::filter::gaussian(a, kernel), normal_of(s), false)
+                checks::filters::filtered_d_tol(
+                    &r::filter::gaussian(a, kernel),
+                    normal_of(s),
+                    false,
+                )
             };
             all(Tol::ulps(t))
         }
@@ -391,7 +398,9 @@ fn session_through_the_shaders() {
     for (line, g) in lines.iter().zip(&gpu) {
         let g: Value = serde_json::from_str(g).expect("JSON");
         let c = cpu_reference(line);
-        let v: Value = serde_json::from_str(line).map(|x| rounded(&x)).unwrap_or(Value::Null);
+        let v: Value = serde_json::from_str(line)
+            .map(|x| rounded(&x))
+            .unwrap_or(Value::Null);
         let op = v.get("op").and_then(Value::as_str).unwrap_or("");
         match (c.get("ok"), g.get("ok")) {
             (Some(cv), Some(gv)) => {
@@ -402,7 +411,10 @@ fn session_through_the_shaders() {
                     let err = (x - y).abs();
                     let ok = (x == y) || err <= t.rel * x.abs() + t.abs;
                     let rel = if *x != 0.0 { err / x.abs() } else { err };
-                    report += &format!("  {op:<20} {rel:9.2e} of {:9.2e}\n", t.rel + t.abs / x.abs().max(1e-300));
+                    report += &format!(
+                        "  {op:<20} {rel:9.2e} of {:9.2e}\n",
+                        t.rel + t.abs / x.abs().max(1e-300)
+                    );
                     if !ok {
                         failures.push(format!("{line}\n    cpu {x:e} gpu {y:e} tol {t:?}"));
                     }
@@ -438,7 +450,15 @@ fn ops_without_a_shader_answer_an_error_naming_the_op() {
         let v: Value = serde_json::from_str(&a[i]).unwrap();
         v["error"].as_str().unwrap_or_default().to_string()
     };
-    assert!(e(0).contains("\"temporal\"") && e(0).contains("no shader"), "{}", a[0]);
-    assert!(e(1).contains("\"sample\"") && e(1).contains("no shader"), "{}", a[1]);
+    assert!(
+        e(0).contains("\"temporal\"") && e(0).contains("no shader"),
+        "{}",
+        a[0]
+    );
+    assert!(
+        e(1).contains("\"sample\"") && e(1).contains("no shader"),
+        "{}",
+        a[1]
+    );
     assert!(e(2).contains("f32"), "{}", a[2]);
 }

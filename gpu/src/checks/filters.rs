@@ -177,7 +177,11 @@ fn active_taus(points: &[Point], label: &str, det: &dyn Fn(&Point) -> f64) -> Ve
         .iter()
         .zip(e)
         .map(|(p, e)| {
-            let ratio = if e < 0.0 { 1.0 + 10f64.powf(e) } else { 10f64.powf(e) };
+            let ratio = if e < 0.0 {
+                1.0 + 10f64.powf(e)
+            } else {
+                10f64.powf(e)
+            };
             (det(p) * ratio) as f32
         })
         .collect()
@@ -231,7 +235,11 @@ fn clamp_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
         RoughnessMatrix::new_with_det_clamp(a.x * a.x, 0.0, a.y * a.y, tau.into())
             .expect("in range")
     };
-    for (ggx, f) in [(true, "filter_gaussian"), (false, "filter_gaussian"), (true, "filter_projected")] {
+    for (ggx, f) in [
+        (true, "filter_gaussian"),
+        (false, "filter_gaussian"),
+        (true, "filter_projected"),
+    ] {
         checks.push(filtered_row_tau(
             &format!(
                 "clamp::{f} ({}, default rules, clamped material)",
@@ -263,8 +271,14 @@ fn clamp_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
 fn entries_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
     let mut checks = Vec::new();
     for (name, call) in [
-        ("matrix::entries(gaussian::gaussian)", "gaussian::gaussian(a, footprint::covariance(fp, 0.5))"),
-        ("matrix::entries(projected::projected)", "projected::projected(a, footprint::covariance(fp, 0.5))"),
+        (
+            "matrix::entries(gaussian::gaussian)",
+            "gaussian::gaussian(a, footprint::covariance(fp, 0.5))",
+        ),
+        (
+            "matrix::entries(projected::projected)",
+            "projected::projected(a, footprint::covariance(fp, 0.5))",
+        ),
     ] {
         let body = format!("{PROLOGUE}\ny3(0u, matrix::entries({call}));");
         let mut c = Check::new(name, IMPORTS, &body, 9, 3)
@@ -278,7 +292,11 @@ fn entries_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
             };
             let (a11, a12, a22) = m.entries();
             let scale = a11.abs().max(a22.abs()).max(a12.abs());
-            c.case(p.input(), vec![a11, a12, a22], vec![Tol::of_scale(32.0, scale); 3]);
+            c.case(
+                p.input(),
+                vec![a11, a12, a22],
+                vec![Tol::of_scale(32.0, scale); 3],
+            );
         }
         checks.push(c);
     }
@@ -286,7 +304,12 @@ fn entries_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
 }
 
 /// The per-case tolerance (ulp) of `KernelConvention::apply` (see [`all`]'s comment).
-pub fn deferred_tol(conv: &deferred::KernelConvention, alpha: f64, dn_u: DVec3, dn_v: DVec3) -> f64 {
+pub fn deferred_tol(
+    conv: &deferred::KernelConvention,
+    alpha: f64,
+    dn_u: DVec3,
+    dn_v: DVec3,
+) -> f64 {
     use deferred::{Domain, Norm};
     let n = conv.norm.eval(dn_u, dn_v);
     // The kernel: the norm (sums of squares 2 ulp, the Gram eigenvalue 10), the scale and

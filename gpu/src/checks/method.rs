@@ -91,14 +91,21 @@ pub fn all() -> Vec<Check> {
         checks.push(c);
     };
     for (name, tk19) in [("TK19_GAUSSIAN", true), ("KHPL16_GAUSSIAN", false)] {
-        let m = if tk19 { Gaussian::TK19 } else { Gaussian::KHPL16 };
+        let m = if tk19 {
+            Gaussian::TK19
+        } else {
+            Gaussian::KHPL16
+        };
         one(
             &format!("method::d_ggx_gaussian (method::{name})"),
             &format!("method::d_ggx_gaussian(method::{name}, a, fp, h)"),
             &move |p| {
                 let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
                 let h = v3(p.h);
-                (lobe.d(h), super::filters::filtered_d_tol(&lobe.roughness, h, true))
+                (
+                    lobe.d(h),
+                    super::filters::filtered_d_tol(&lobe.roughness, h, true),
+                )
             },
         );
         one(
@@ -107,7 +114,10 @@ pub fn all() -> Vec<Check> {
             &move |p| {
                 let lobe = Beckmann::new(p.material()).filtered(p.fp(), m);
                 let h = v3(p.h);
-                (lobe.d(h), super::filters::filtered_d_tol(&lobe.roughness, h, false))
+                (
+                    lobe.d(h),
+                    super::filters::filtered_d_tol(&lobe.roughness, h, false),
+                )
             },
         );
     }
@@ -117,7 +127,10 @@ pub fn all() -> Vec<Check> {
         &|p| {
             let lobe = Ggx::new(p.material()).filtered(p.fp(), Projected::TK21);
             let h = v3(p.h);
-            (lobe.d(h), super::filters::filtered_d_tol(&lobe.roughness, h, true))
+            (
+                lobe.d(h),
+                super::filters::filtered_d_tol(&lobe.roughness, h, true),
+            )
         },
     );
     let exact_kernel = |p: &Point| {
@@ -131,7 +144,8 @@ pub fn all() -> Vec<Check> {
             let lobe = Ggx::new(p.material()).filtered(p.fp(), ExactGaussian::KHPL16);
             let h = v3(p.h);
             let s = DVec2::new(-h.x / h.z, -h.y / h.z);
-            let t = super::gaussian_ggx::density_ulps(&p.material().to_matrix(), &exact_kernel(p), s);
+            let t =
+                super::gaussian_ggx::density_ulps(&p.material().to_matrix(), &exact_kernel(p), s);
             (lobe.d(h), t)
         },
     );
@@ -141,7 +155,8 @@ pub fn all() -> Vec<Check> {
         &|p| {
             let lobe = Ggx::new(p.material()).filtered(p.fp(), ExactGaussian::KHPL16);
             let w = v3(p.w);
-            let t = super::gaussian_ggx::lambda_ulps(&p.material().to_matrix(), &exact_kernel(p), w);
+            let t =
+                super::gaussian_ggx::lambda_ulps(&p.material().to_matrix(), &exact_kernel(p), w);
             (lobe.lambda(w), t)
         },
     );
@@ -174,8 +189,9 @@ pub fn all() -> Vec<Check> {
             &move |p| {
                 let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
                 let (w, o, h) = (v3(p.w), v3(p.o), v3(p.h));
-                let lt = super::rect::lambda_rect_ulps(lobe.roughness, lobe.half_extent, w)
-                    .max(super::rect::lambda_rect_ulps(lobe.roughness, lobe.half_extent, o));
+                let lt = super::rect::lambda_rect_ulps(lobe.roughness, lobe.half_extent, w).max(
+                    super::rect::lambda_rect_ulps(lobe.roughness, lobe.half_extent, o),
+                );
                 let l = lobe.lambda(w) + lobe.lambda(o);
                 let f = if l.is_finite() { l / (1.0 + l) } else { 1.0 };
                 (lobe.g2(w, o, h), lt * f + 4.0)
@@ -187,7 +203,10 @@ pub fn all() -> Vec<Check> {
         "method::d_ggx_proxy(method::KHPL16_PROXY, r, fp, h)",
         &|p| {
             let lobe = Ggx::new(p.material()).filtered(p.fp(), Proxy::KHPL16);
-            (lobe.d(v3(p.h)), 2.0 * (7.0 + 4.0 * 12.0 + 1.0) + 6.0 + 2.0 * 12.0)
+            (
+                lobe.d(v3(p.h)),
+                2.0 * (7.0 + 4.0 * 12.0 + 1.0) + 6.0 + 2.0 * 12.0,
+            )
         },
     );
     checks

@@ -145,7 +145,11 @@ fn cases(kind: &str, n: usize) -> Vec<NdfCase> {
         .map(|(r, phi, e)| {
             let a = [r.alpha().x as f32, r.alpha().y as f32];
             let det = (f64::from(a[0]) * f64::from(a[1])).powi(2);
-            let ratio = if e < 0.0 { 1.0 + 10f64.powf(e) } else { 10f64.powf(e) };
+            let ratio = if e < 0.0 {
+                1.0 + 10f64.powf(e)
+            } else {
+                10f64.powf(e)
+            };
             Form::Mat(
                 [phi.cos() as f32, phi.sin() as f32],
                 a,
