@@ -2,10 +2,11 @@
 //! peak HDR intensity of each frame, its frame-to-frame variation and its distance to the
 //! reference's peak.
 
+use crate::camera::camera_at;
 use crate::methods::Method;
-use crate::plot::{Series, line_plot};
+use crate::plot::{PALETTE, Series, line_plot};
 use crate::scene::Scene;
-use crate::{Options, camera_at, render};
+use crate::{Options, render};
 use std::fmt::Write as _;
 
 /// Resolution divisor and reference sample divisor of the temporal frames (keeps the default
@@ -13,41 +14,27 @@ use std::fmt::Write as _;
 const DOWNSCALE: usize = 2;
 const SPP_DIVISOR: usize = 8;
 
-/// One distinct colour per method of `Method::ALL` (ten).
-const COLORS: [[u8; 3]; 10] = [
-    [220, 40, 40],
-    [240, 140, 20],
-    [30, 120, 220],
-    [40, 170, 60],
-    [150, 60, 200],
-    [20, 170, 170],
-    [200, 60, 140],
-    [120, 120, 40],
-    [90, 90, 90],
-    [110, 70, 20],
-];
-
 pub fn run(o: &Options) -> std::io::Result<String> {
     let (w, h) = ((o.width / DOWNSCALE).max(2), (o.height / DOWNSCALE).max(2));
     let spp = (o.spp / SPP_DIVISOR).max(2);
     let mut peaks = vec![Vec::new(); o.methods.len()];
     let mut ref_peaks = [Vec::new(), Vec::new()];
-    let bar = crate::parallel::Progress::new("temporal frames", o.frames);
+    let bar = crate::parallel::bar("temporal frames", o.frames);
     for f in 0..o.frames {
         let cam = camera_at(f, w, h);
         let scene = &Scene::new(cam.lod());
-        let reference = render::reference(scene, &cam, w, h, spp, o.seed, o.threads, None);
+        let reference = render::reference(scene, &cam, w, h, spp, o.seed, None);
         for (k, img) in reference.full.iter().enumerate() {
             ref_peaks[k].push(img.peak());
         }
-        let gb = render::gbuffer(scene, &cam, w, h, o.threads);
-        let derivs = gb.derivatives(o.route, o.threads);
+        let gb = render::gbuffer(scene, &cam, w, h);
+        let derivs = gb.derivatives(o.route);
         for (i, &m) in o.methods.iter().enumerate() {
-            peaks[i].push(render::shade(scene, &gb, &derivs, m, o.threads).peak());
+            peaks[i].push(render::shade(scene, &gb, &derivs, m).peak());
         }
-        bar.tick();
+        bar.inc(1);
     }
-    bar.finish();
+    bar.finish_and_clear();
 
     let mut md = String::new();
     writeln!(
@@ -77,6 +64,7 @@ pub fn run(o: &Options) -> std::io::Result<String> {
             label: name.to_string(),
             color: [[0, 0, 0], [110, 110, 110]][k],
             values: p.clone(),
+            dashed: true,
         });
     }
     for (i, &m) in o.methods.iter().enumerate() {
@@ -93,13 +81,20 @@ pub fn run(o: &Options) -> std::io::Result<String> {
         .unwrap();
         series.push(Series {
             label: m.label().to_string(),
-            color: COLORS[index_of(m) % COLORS.len()],
+            color: PALETTE[index_of(m) % PALETTE.len()],
             values: p.clone(),
+            dashed: false,
         });
     }
-    let plot = line_plot("Peak HDR luminance per frame", &series, 760, 360);
+    let plot = line_plot(
+        "Peak HDR luminance per frame",
+        "peak luminance",
+        &series,
+        820,
+        400,
+    );
     let path = o.out.join("temporal.png");
-    plot.save(&path)?;
+    crate::image_out::save(&plot, &path)?;
     writeln!(md, "\nPlot: {}", path.display()).unwrap();
     Ok(md)
 }

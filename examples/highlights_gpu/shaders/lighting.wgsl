@@ -1,0 +1,33 @@
+// The deferred route's lighting pass: per pixel and per light (one here), GGX with the
+// G-buffer's filtered roughness, the reflectance of `render::radiance`.
+
+#import highlights::scene
+#import highlights::shading
+#import filtered_ndf::ndf::roughness::isotropic
+#import filtered_ndf::ndf::ggx
+
+@group(0) @binding(1) var normal_alpha: texture_2d<f32>;
+@group(0) @binding(2) var position_alpha: texture_2d<f32>;
+@group(0) @binding(3) var albedo: texture_2d<f32>;
+
+@vertex
+fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+@fragment
+fn fs(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    let ix = vec2<i32>(floor(frag.xy));
+    let na = textureLoad(normal_alpha, ix, 0);
+    let pa = textureLoad(position_alpha, ix, 0);
+    let al = textureLoad(albedo, ix, 0);
+    if al.w == 0.0 {
+        return vec4<f32>(scene::sky(scene::ray_dir(frag.xy)), 1.0);
+    }
+    let s = scene::Surface(pa.xyz, na.xyz, al.xyz, pa.w);
+    let l = shading::light_at(s);
+    let h = scene::to_local(scene::tangent_frame(s.normal), l.h);
+    let dens = ggx::d_isotropic(isotropic::from_alpha(na.w), h);
+    return vec4<f32>(shading::radiance(s, l, shading::GGX, dens), 1.0);
+}
