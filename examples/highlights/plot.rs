@@ -84,6 +84,17 @@ fn draw(
         .build_cartesian_2d(0f32..(n - 1) as f32, (lo..hi).log_scale())?;
     chart
         .configure_mesh()
+        .x_labels(n.min(16))
+        .x_label_formatter(&|x| format!("{x:.0}"))
+        .y_labels(12)
+        .y_label_formatter(&|y| {
+            if *y >= 10.0 {
+                format!("{y:.0}")
+            } else {
+                format!("{y:.2}")
+            }
+        })
+        .light_line_style(RGBColor(235, 235, 235))
         .x_desc("frame")
         .y_desc(y_label)
         .label_style(("sans-serif", 13))

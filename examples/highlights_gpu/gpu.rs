@@ -79,7 +79,9 @@ impl Gpu {
             .map_err(|e| format!("poll: {e}"))
     }
 
-    /// A `width x height` RGBA f32 render target that can be sampled and copied out.
+    /// A `width x height` render target of four f32 values per pixel, held as their bits in
+    /// `Rgba32Uint` (renderable on every backend, GL included), that can be read by
+    /// `textureLoad` and copied out.
     pub fn target(&self, label: &str, width: u32, height: u32) -> wgpu::Texture {
         self.device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),
@@ -91,7 +93,7 @@ impl Gpu {
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Float,
+            format: wgpu::TextureFormat::Rgba32Uint,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_SRC,
@@ -99,7 +101,7 @@ impl Gpu {
         })
     }
 
-    /// The RGB of an RGBA f32 texture, row by row from the top.
+    /// The RGB of a target of [`Gpu::target`], row by row from the top.
     pub fn read_rgb(&self, texture: &wgpu::Texture) -> Result<Vec<glam::Vec3>, String> {
         let (w, h) = (texture.width(), texture.height());
         let row = (w * 16).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)

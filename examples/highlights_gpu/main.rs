@@ -8,7 +8,7 @@
 //! the CPU demo's own one-sample frames.
 //!
 //! Run: `cargo run --release --example highlights_gpu -- [--quick | --full]
-//! [--width 256] [--height 160] [--spp 512] [--frames 16] [--repeats 5] [--out DIR]
+//! [--check] [--width 256] [--height 160] [--spp 512] [--frames 16] [--repeats 11] [--out DIR]
 //! [--threads 2] [--seed 1]`; the adapter is chosen by `FILTERED_NDF_GPU_BACKEND=vulkan|gl|any`
 //! (as the conformance harness: a real GPU first; Mesa's lavapipe or llvmpipe without one).
 //!
@@ -63,16 +63,21 @@ pub struct Options {
     pub exposure: f32,
     /// The size preset chosen (`quick`, `default`, `full`, `custom`).
     pub preset: &'static str,
+    /// Fail unless every GPU frame matches the CPU demo's quad-difference frame of the same
+    /// method (see [`report::check`]).
+    pub check: bool,
 }
 
 fn usage() -> ! {
     eprintln!(
-        "usage: highlights_gpu [--quick | --full] [--width N] [--height N] [--spp N]\n\
+        "usage: highlights_gpu [--quick | --full] [--check] [--width N] [--height N] [--spp N]\n\
          \x20                     [--frames N] [--repeats N] [--out DIR] [--threads N] [--seed N]\n\
          \x20 --quick: 128x80, reference 64 spp, 8 temporal frames (CI, software drivers)\n\
          \x20 default: 256x160, reference 512 spp, 16 frames (the CPU demo's frame)\n\
          \x20 --full:  1280x800, reference 16 spp, 16 frames (for a real GPU; the CPU\n\
          \x20          reference is then the slow part)\n\
+         \x20 --check: fail unless each GPU frame's RMSE is within 5 % of the CPU demo's frame\n\
+         \x20          with quad differences (the same derivatives, computed on the CPU)\n\
          \x20 adapter: FILTERED_NDF_GPU_BACKEND=vulkan|gl|any"
     );
     std::process::exit(2)
@@ -84,24 +89,29 @@ fn parse_args() -> Options {
         height: 160,
         spp: 512,
         frames: 16,
-        repeats: 5,
+        repeats: 11,
         out: PathBuf::from("target/highlights_gpu"),
         threads: std::thread::available_parallelism().map_or(2, |n| n.get()),
         seed: 1,
         exposure: 1.0,
         preset: "default",
+        check: false,
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
         match flag.as_str() {
             "--quick" => {
-                (o.width, o.height, o.spp, o.frames, o.repeats) = (128, 80, 64, 8, 3);
+                (o.width, o.height, o.spp, o.frames, o.repeats) = (128, 80, 64, 8, 5);
                 o.preset = "quick";
                 continue;
             }
             "--full" => {
-                (o.width, o.height, o.spp, o.frames, o.repeats) = (1280, 800, 16, 16, 10);
+                (o.width, o.height, o.spp, o.frames, o.repeats) = (1280, 800, 16, 16, 21);
                 o.preset = "full";
+                continue;
+            }
+            "--check" => {
+                o.check = true;
                 continue;
             }
             "--help" | "-h" => usage(),
@@ -168,5 +178,16 @@ fn run() -> Result<(), String> {
         start.elapsed().as_secs_f64(),
         o.out.display()
     );
+    if o.check {
+        let failures = report::check(&still);
+        println!(
+            "highlights_gpu check: {} passed, {} failed",
+            still.rows.len() - failures.len(),
+            failures.len()
+        );
+        if !failures.is_empty() {
+            return Err(failures.join("; "));
+        }
+    }
     Ok(())
 }

@@ -118,7 +118,7 @@ fn texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::FRAGMENT,
         ty: wgpu::BindingType::Texture {
-            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            sample_type: wgpu::TextureSampleType::Uint,
             view_dimension: wgpu::TextureViewDimension::D2,
             multisampled: false,
         },
@@ -134,7 +134,8 @@ fn target(format: wgpu::TextureFormat) -> Option<wgpu::ColorTargetState> {
     })
 }
 
-const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// Every render target: f32 values as their bits (GL cannot render to `Rgba32Float`).
+const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 
 fn pipeline(
     gpu: &Gpu,

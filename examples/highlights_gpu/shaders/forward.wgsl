@@ -27,7 +27,7 @@ struct Object {
     index: u32,
 }
 
-@group(0) @binding(1) var visibility: texture_2d<f32>;
+@group(0) @binding(1) var visibility: texture_2d<u32>;
 @group(1) @binding(0) var<uniform> object: Object;
 
 /// KHPL16's clamps for the parallelogram kernels (`methods.rs`): `lambda = 1` and the
@@ -104,9 +104,9 @@ fn slope_of(f: mat3x3<f32>, n: vec3<f32>, h_other: vec3<f32>, n_other: vec3<f32>
 }
 
 @fragment
-fn fs(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+fn fs(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<u32> {
     let pixel = frag.xy;
-    let vis = textureLoad(visibility, vec2<i32>(floor(pixel)), 0);
+    let vis = bitcast<vec4<f32>>(textureLoad(visibility, vec2<i32>(floor(pixel)), 0));
     let d = scene::ray_dir(pixel);
     var s: scene::Surface;
     if object.index == 0u {
@@ -134,10 +134,10 @@ fn fs(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
 
     let seen = i32(vis.z);
     if object.index == 0u && seen < 0 {
-        return vec4<f32>(scene::sky(d), 1.0);
+        return bitcast<vec4<u32>>(vec4<f32>(scene::sky(d), 1.0));
     }
     if seen != i32(object.index) {
         discard;
     }
-    return vec4<f32>(color, 1.0);
+    return bitcast<vec4<u32>>(vec4<f32>(color, 1.0));
 }

@@ -11,16 +11,17 @@ struct Object {
     index: u32,
 }
 
-@group(0) @binding(1) var visibility: texture_2d<f32>;
+@group(0) @binding(1) var visibility: texture_2d<u32>;
 @group(1) @binding(0) var<uniform> object: Object;
 
+/// The G-buffer (f32 values as their bits, as every target here).
 struct GBuffer {
     /// World normal, filtered roughness `alpha_bar`.
-    @location(0) normal_alpha: vec4<f32>,
+    @location(0) normal_alpha: vec4<u32>,
     /// World position, base roughness (for `G2`).
-    @location(1) position_alpha: vec4<f32>,
+    @location(1) position_alpha: vec4<u32>,
     /// Albedo, coverage (0: sky).
-    @location(2) albedo: vec4<f32>,
+    @location(2) albedo: vec4<u32>,
 }
 
 @vertex
@@ -32,7 +33,7 @@ fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
 @fragment
 fn fs(@builtin(position) frag: vec4<f32>) -> GBuffer {
     let pixel = frag.xy;
-    let vis = textureLoad(visibility, vec2<i32>(floor(pixel)), 0);
+    let vis = bitcast<vec4<f32>>(textureLoad(visibility, vec2<i32>(floor(pixel)), 0));
     let d = scene::ray_dir(pixel);
     var s: scene::Surface;
     if object.index == 0u {
@@ -49,10 +50,14 @@ fn fs(@builtin(position) frag: vec4<f32>) -> GBuffer {
     }
     let seen = i32(vis.z);
     if object.index == 0u && seen < 0 {
-        return GBuffer(vec4<f32>(0.0), vec4<f32>(0.0), vec4<f32>(0.0));
+        return GBuffer(vec4<u32>(0u), vec4<u32>(0u), vec4<u32>(0u));
     }
     if seen != i32(object.index) {
         discard;
     }
-    return GBuffer(vec4<f32>(s.normal, alpha_bar), vec4<f32>(s.position, s.alpha), vec4<f32>(s.albedo, 1.0));
+    return GBuffer(
+        bitcast<vec4<u32>>(vec4<f32>(s.normal, alpha_bar)),
+        bitcast<vec4<u32>>(vec4<f32>(s.position, s.alpha)),
+        bitcast<vec4<u32>>(vec4<f32>(s.albedo, 1.0)),
+    );
 }
