@@ -124,8 +124,8 @@ pub fn draw_text(img: &mut RgbImage, text: &str, x0: f32, y0: f32, px: f32, colo
             }
             let p = img.get_pixel_mut(x as u32, y as u32);
             let a = coverage.clamp(0.0, 1.0);
-            for k in 0..3 {
-                p.0[k] = (p.0[k] as f32 * (1.0 - a) + color[k] as f32 * a).round() as u8;
+            for (channel, &c) in p.0.iter_mut().zip(&color) {
+                *channel = (*channel as f32 * (1.0 - a) + c as f32 * a).round() as u8;
             }
         });
     }

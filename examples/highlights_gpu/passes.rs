@@ -314,7 +314,7 @@ impl Renderer {
 
         let scene_vis = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("scene+visibility"),
-            layout: &bgl_scene_vis,
+            layout: bgl_scene_vis,
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,
@@ -328,7 +328,7 @@ impl Renderer {
         });
         let lighting_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("lighting"),
-            layout: &bgl_lighting,
+            layout: bgl_lighting,
             entries: &[
                 wgpu::BindGroupEntry {
                     binding: 0,
