@@ -8,7 +8,7 @@
 //! the CPU demo's own one-sample frames.
 //!
 //! Run: `cargo run --release --example highlights_gpu -- [--quick | --full]
-//! [--check] [--width 256] [--height 160] [--spp 512] [--frames 16] [--repeats 11] [--out DIR]
+//! [--check] [--width 256] [--height 160] [--spp 512] [--frames 16] [--repeats 31] [--out DIR]
 //! [--threads 2] [--seed 1]`; the adapter is chosen by `FILTERED_NDF_GPU_BACKEND=vulkan|gl|any`
 //! (as the conformance harness: a real GPU first; Mesa's lavapipe or llvmpipe without one).
 //!
@@ -89,7 +89,7 @@ fn parse_args() -> Options {
         height: 160,
         spp: 512,
         frames: 16,
-        repeats: 11,
+        repeats: 31,
         out: PathBuf::from("target/highlights_gpu"),
         threads: std::thread::available_parallelism().map_or(2, |n| n.get()),
         seed: 1,
@@ -101,12 +101,12 @@ fn parse_args() -> Options {
     while let Some(flag) = args.next() {
         match flag.as_str() {
             "--quick" => {
-                (o.width, o.height, o.spp, o.frames, o.repeats) = (128, 80, 64, 8, 5);
+                (o.width, o.height, o.spp, o.frames, o.repeats) = (128, 80, 64, 8, 11);
                 o.preset = "quick";
                 continue;
             }
             "--full" => {
-                (o.width, o.height, o.spp, o.frames, o.repeats) = (1280, 800, 16, 16, 21);
+                (o.width, o.height, o.spp, o.frames, o.repeats) = (1280, 800, 16, 16, 31);
                 o.preset = "full";
                 continue;
             }
