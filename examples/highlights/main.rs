@@ -11,6 +11,7 @@ mod camera;
 mod image_out;
 mod methods;
 mod parallel;
+mod peaks;
 mod plot;
 mod render;
 mod scene;

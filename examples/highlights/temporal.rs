@@ -4,6 +4,7 @@
 
 use crate::camera::camera_at;
 use crate::methods::Method;
+use crate::peaks::{distance, mean, variation};
 use crate::plot::{PALETTE, Series, line_plot};
 use crate::scene::Scene;
 use crate::{Options, render};
@@ -101,20 +102,4 @@ pub fn run(o: &Options) -> std::io::Result<String> {
 
 fn index_of(m: Method) -> usize {
     Method::ALL.iter().position(|&x| x == m).unwrap_or(0)
-}
-
-fn mean(p: &[f32]) -> f64 {
-    p.iter().map(|&v| v as f64).sum::<f64>() / p.len().max(1) as f64
-}
-
-/// Mean `|P(t) - P(t-1)|` relative to the mean peak.
-fn variation(p: &[f32]) -> f64 {
-    let steps: Vec<f32> = p.windows(2).map(|w| (w[1] - w[0]).abs()).collect();
-    mean(&steps) / mean(p).max(1e-30)
-}
-
-/// Mean `|P(t) - R(t)|` relative to the mean reference peak.
-fn distance(p: &[f32], r: &[f32]) -> f64 {
-    let d: Vec<f32> = p.iter().zip(r).map(|(a, b)| (a - b).abs()).collect();
-    mean(&d) / mean(r).max(1e-30)
 }

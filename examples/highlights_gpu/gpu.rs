@@ -14,6 +14,8 @@ pub struct Gpu {
 }
 
 impl Gpu {
+    /// (The selection repeats the harness's private `open`, which requests no features:
+    /// this device needs `TIMESTAMP_QUERY` where the adapter has it.)
     pub fn open(choice: Choice) -> Result<Self, String> {
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
         let backends = match choice {

@@ -33,6 +33,8 @@ mod image_out;
 mod methods;
 #[path = "../highlights/parallel.rs"]
 mod parallel;
+#[path = "../highlights/peaks.rs"]
+mod peaks;
 #[path = "../highlights/plot.rs"]
 mod plot;
 #[path = "../highlights/render.rs"]

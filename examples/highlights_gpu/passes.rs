@@ -252,22 +252,12 @@ impl Renderer {
             })
             .collect();
 
-        let vis_module = compose(&mut composer, VISIBILITY_WGSL, "visibility.wgsl")?;
-        let visibility = pipeline(
-            gpu,
-            &layout_scene,
-            &shader(gpu, vis_module, "visibility"),
-            1,
-            "visibility",
-        );
-        let light_module = compose(&mut composer, LIGHTING_WGSL, "lighting.wgsl")?;
-        let lighting = pipeline(
-            gpu,
-            &layout_lighting,
-            &shader(gpu, light_module, "lighting"),
-            1,
-            "lighting",
-        );
+        let mut build = |source: &str, name: &str, layout: &wgpu::PipelineLayout| {
+            let module = compose(&mut composer, source, name)?;
+            Ok::<_, String>(pipeline(gpu, layout, &shader(gpu, module, name), 1, name))
+        };
+        let visibility = build(VISIBILITY_WGSL, "visibility.wgsl", &layout_scene)?;
+        let lighting = build(LIGHTING_WGSL, "lighting.wgsl", &layout_lighting)?;
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(format!("{}: {e}", gpu.label()));
         }

@@ -6,6 +6,7 @@ use crate::gpu::{Gpu, Timer};
 use crate::image_out::{Image, Rgb8, contact_sheet, save};
 use crate::methods::{Family, Method};
 use crate::passes::{Renderer, Route};
+use crate::peaks::{distance, mean, variation};
 use crate::plot::{PALETTE, Series, line_plot};
 use crate::render::{self, FootprintRoute};
 use crate::scene::Scene;
@@ -283,22 +284,6 @@ pub fn temporal(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Tempo
         save(&plot, &o.out.join("temporal.png")).map_err(|e| e.to_string())?;
     }
     Ok(out)
-}
-
-fn mean(p: &[f32]) -> f64 {
-    p.iter().map(|&v| v as f64).sum::<f64>() / p.len().max(1) as f64
-}
-
-/// Mean `|P(t) - P(t-1)|` relative to the mean peak.
-fn variation(p: &[f32]) -> f64 {
-    let steps: Vec<f32> = p.windows(2).map(|w| (w[1] - w[0]).abs()).collect();
-    mean(&steps) / mean(p).max(1e-30)
-}
-
-/// Mean `|P(t) - R(t)|` relative to the mean reference peak.
-fn distance(p: &[f32], r: &[f32]) -> f64 {
-    let d: Vec<f32> = p.iter().zip(r).map(|(a, b)| (a - b).abs()).collect();
-    mean(&d) / mean(r).max(1e-30)
 }
 
 /// The largest relative difference allowed between a GPU frame's RMSE and the CPU demo's

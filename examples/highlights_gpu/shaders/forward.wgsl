@@ -36,8 +36,7 @@ const KHPL16_RULES: clamp::ClampRules = clamp::ClampRules(1.0, clamp::FLOOR_NONE
 
 @vertex
 fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+    return scene::fullscreen(i);
 }
 
 /// The NDF a method filters (its G2 and its reference).
@@ -108,12 +107,7 @@ fn fs(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<u32> {
     let pixel = frag.xy;
     let vis = bitcast<vec4<f32>>(textureLoad(visibility, vec2<i32>(floor(pixel)), 0));
     let d = scene::ray_dir(pixel);
-    var s: scene::Surface;
-    if object.index == 0u {
-        s = scene::water_at(d, vis.x);
-    } else {
-        s = scene::sphere_surface(object.index - 1u, d);
-    }
+    let s = scene::object_surface(object.index, d, vis.x);
     // Fine derivatives difference the two pixels of a row (column) of the quad: the
     // neighbour's value is this one plus (even pixel) or minus (odd pixel) the derivative.
     let side = vec2<f32>(select(1.0, -1.0, (u32(pixel.x) & 1u) == 1u), select(1.0, -1.0, (u32(pixel.y) & 1u) == 1u));

@@ -26,8 +26,7 @@ struct GBuffer {
 
 @vertex
 fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+    return scene::fullscreen(i);
 }
 
 @fragment
@@ -35,12 +34,7 @@ fn fs(@builtin(position) frag: vec4<f32>) -> GBuffer {
     let pixel = frag.xy;
     let vis = bitcast<vec4<f32>>(textureLoad(visibility, vec2<i32>(floor(pixel)), 0));
     let d = scene::ray_dir(pixel);
-    var s: scene::Surface;
-    if object.index == 0u {
-        s = scene::water_at(d, vis.x);
-    } else {
-        s = scene::sphere_surface(object.index - 1u, d);
-    }
+    let s = scene::object_surface(object.index, d, vis.x);
     // TK19 Listing 2: ddx / ddy of the world normal (fine: the quad's row / column pair).
     let dn_u = dpdxFine(s.normal);
     let dn_v = dpdyFine(s.normal);

@@ -54,6 +54,13 @@ struct Surface {
     alpha: f32,
 }
 
+/// The full-screen triangle's clip-space vertex `i` (0, 1, 2): every draw here covers the
+/// image (the spheres' draws are then cut by their scissor rectangles).
+fn fullscreen(i: u32) -> vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
 /// The unit direction of the primary ray through the image point `pixel` (pixel centres at
 /// `i + 0.5`): `Camera::ray`.
 fn ray_dir(pixel: vec2<f32>) -> vec3<f32> {
@@ -235,6 +242,15 @@ fn sphere_surface(i: u32, d: vec3<f32>) -> Surface {
     }
     let n = (p - s.xyz) / s.w;
     return Surface(p, n, scene.sphere_albedo[i].xyz, scene.light_intensity.w);
+}
+
+/// Object `index`'s shading point along `d` (0: the water, at the water layer's distance
+/// `layer_t` from the visibility pass; `1 + i`: sphere `i`).
+fn object_surface(index: u32, d: vec3<f32>, layer_t: f32) -> Surface {
+    if index == 0u {
+        return water_at(d, layer_t);
+    }
+    return sphere_surface(index - 1u, d);
 }
 
 /// What the pixel sees, as the CPU demo's `Scene::intersect` decides it:
