@@ -35,6 +35,21 @@ impl Route {
     /// The index the shaders specialise on: `forward.wgsl`'s `METHOD` (the index in
     /// `Method::ALL`, or 10 + a preset's) or `gbuffer.wgsl`'s `PRESET` (12: none).
     fn constant(self) -> u32 {
+        // forward.wgsl's `METHOD` switch is written for this order of `Method::ALL`.
+        use crate::methods::{Family, IsoVariant};
+        const ORDER: [Method; 10] = [
+            Method::Unfiltered(Family::Beckmann),
+            Method::Unfiltered(Family::Ggx),
+            Method::BeckmannParallelogram,
+            Method::GgxRectExact,
+            Method::GgxProxy,
+            Method::Tk19Projected,
+            Method::Tk21Projected,
+            Method::Tk19Isotropic(IsoVariant::Max),
+            Method::Tk19Isotropic(IsoVariant::Trace),
+            Method::Tk19Isotropic(IsoVariant::Average),
+        ];
+        assert_eq!(Method::ALL, ORDER, "forward.wgsl: update the METHOD switch");
         match self {
             Route::Forward(Method::Preset(i)) => 10 + i as u32,
             Route::Forward(m) => Method::ALL
