@@ -41,6 +41,18 @@ impl Image {
         rmse(self.data.iter().zip(&other.data).map(|(a, b)| (*a, *b)))
     }
 
+    /// RMSE over the pixels where `mask` is true (0 if none).
+    pub fn rmse_where(&self, other: &Image, mask: &[bool]) -> f64 {
+        rmse(
+            self.data
+                .iter()
+                .zip(&other.data)
+                .zip(mask)
+                .filter(|(_, m)| **m)
+                .map(|(pair, _)| (*pair.0, *pair.1)),
+        )
+    }
+
     /// RMSE of the tone-mapped display values (in `[0, 1]`) against `other`.
     pub fn rmse_display(&self, other: &Image, exposure: f32) -> f64 {
         let tm = |c: Vec3| tonemap(c, exposure);

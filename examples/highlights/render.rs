@@ -219,6 +219,23 @@ impl GBuffer {
         }
     }
 
+    /// Per pixel: whether the quad route differences it with its own 2x2-quad partner on
+    /// both axes (`coord ^ 1`: same object, no depth discontinuity), where a GPU's fine
+    /// derivatives difference the same two pixels; pixels that see the sky count too (no
+    /// derivatives). Elsewhere the quad route takes the opposite neighbour or none.
+    #[allow(dead_code)] // used by the GPU demonstration only
+    pub fn quad_interior(&self) -> Vec<bool> {
+        let own = |coord: usize| if coord & 1 == 0 { 1.0 } else { -1.0 };
+        (0..self.height)
+            .flat_map(|y| (0..self.width).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                self.at(x, y).is_none()
+                    || (self.partner(x, y, true).is_some_and(|(_, s)| s == own(x))
+                        && self.partner(x, y, false).is_some_and(|(_, s)| s == own(y)))
+            })
+            .collect()
+    }
+
     pub fn derivatives(&self, route: FootprintRoute) -> Vec<PixelDerivatives> {
         parallel::rows(self.height, None, |y| {
             (0..self.width)

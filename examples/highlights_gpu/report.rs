@@ -70,6 +70,11 @@ pub struct Row {
     pub cpu_rays_peak: f64,
     /// RMSE of the GPU frame against the CPU demo's quad-difference frame.
     pub gpu_vs_cpu_quad: f64,
+    /// The same over the pixels the two difference alike ([`GBuffer::quad_interior`]),
+    /// relative to the CPU quad frame's RMSE against the reference there.
+    ///
+    /// [`GBuffer::quad_interior`]: crate::render::GBuffer::quad_interior
+    pub same_quads: f64,
     /// Median GPU time of the route's passes (seconds).
     pub time: f64,
 }
@@ -77,6 +82,8 @@ pub struct Row {
 /// The still frame's results.
 pub struct Still {
     pub rows: Vec<Row>,
+    /// The fraction of pixels the CPU quad route differences with their own quad partners.
+    pub same_quads: f64,
     pub reference_s: f64,
     pub visibility_time: f64,
     pub timer: &'static str,
@@ -134,6 +141,8 @@ pub fn still(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Still, S
     let gb = render::gbuffer(&scene, &cam, w, h);
     let rays = gb.derivatives(FootprintRoute::RayDifferentials);
     let quad = gb.derivatives(FootprintRoute::Quad);
+    let interior = gb.quad_interior();
+    let same_quads = interior.iter().filter(|&&b| b).count() as f64 / interior.len() as f64;
 
     let mut rows = Vec::new();
     let mut tiles: Vec<(String, Rgb8)> = Vec::new();
@@ -162,6 +171,8 @@ pub fn still(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Still, S
             cpu_rays_mean: cpu_rays.mean_luminance() / full.mean_luminance(),
             cpu_rays_peak: cpu_rays.peak() as f64 / full.peak() as f64,
             gpu_vs_cpu_quad: img.rmse(&cpu_quad),
+            same_quads: img.rmse_where(&cpu_quad, &interior)
+                / cpu_quad.rmse_where(full, &interior).max(1e-30),
             time,
         });
         let rgb = img.to_rgb8(o.exposure);
@@ -195,6 +206,7 @@ pub fn still(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Still, S
     save(&figure, &o.out.join("gpu_vs_cpu.png")).map_err(|e| e.to_string())?;
     Ok(Still {
         rows,
+        same_quads,
         reference_s,
         visibility_time,
         timer: timer.method(),
@@ -286,27 +298,30 @@ pub fn temporal(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Tempo
     Ok(out)
 }
 
-/// The largest relative difference allowed between a GPU frame's RMSE and the CPU demo's
-/// quad-difference frame's (measured: 2.2 % at most on Mesa 22.3.6, both backends, quick and
-/// default sizes; the rest is where a quad straddles an edge, which the CPU resolves with the
-/// opposite neighbour and the GPU with the object's continuation).
-const CHECK_TOLERANCE: f64 = 0.05;
+/// The largest difference allowed between a GPU frame and the CPU demo's quad-difference
+/// frame on the pixels both difference alike (the RMSE between them there, relative to the
+/// CPU frame's RMSE against the reference there). Both evaluate the same formulas on the same
+/// pairs of pixels: what remains is f32 rounding on two instruction sets, which a glint at
+/// roughness 0.01 amplifies (measured: see the table's "same quads" column).
+const CHECK_TOLERANCE: f64 = 0.005;
 
 /// The routes whose GPU frame is not a faithful fragment-shader version of the CPU demo's
-/// quad-difference frame: a non-finite value, or an RMSE against the reference more than
-/// [`CHECK_TOLERANCE`] away from the CPU frame's.
+/// quad-difference frame: a non-finite value, or a difference on the pixels both difference
+/// alike above [`CHECK_TOLERANCE`]. (Where a quad straddles an edge the two differ by design:
+/// the CPU takes the opposite neighbour, the GPU the object's continuation.)
 pub fn check(s: &Still) -> Vec<String> {
     s.rows
         .iter()
         .filter_map(|r| {
-            let rel = (r.gpu_rmse - r.cpu_quad_rmse).abs() / r.cpu_quad_rmse.max(1e-30);
-            (!r.gpu_rmse.is_finite() || rel > CHECK_TOLERANCE).then(|| {
+            let bad = !r.gpu_rmse.is_finite() || !(r.same_quads <= CHECK_TOLERANCE);
+            bad.then(|| {
                 format!(
-                    "{} ({}): RMSE {:.4} on the GPU, {:.4} on the CPU with quad differences",
+                    "{} ({}): on the pixels both difference alike the GPU frame differs from \
+                     the CPU quad frame by {:.3} % of the latter's RMSE (allowed {:.1} %)",
                     cpu_method(r.route).label(),
                     route_name(r.route),
-                    r.gpu_rmse,
-                    r.cpu_quad_rmse
+                    100.0 * r.same_quads,
+                    100.0 * CHECK_TOLERANCE
                 )
             })
         })
@@ -329,27 +344,31 @@ pub fn markdown(o: &Options, gpu: &Gpu, compile_s: f64, s: &Still, t: &Temporal)
          RMSE in linear HDR radiance; luminance and peak ratios against the reference; \
          \"CPU rays\" is the CPU demo's frame (ray differentials + M, its default), \"CPU quad\" \
          the CPU demo's own 2x2-quad differences; \"GPU vs CPU quad\" is the RMSE between the GPU \
-         frame and that CPU quad frame.\n",
+         frame and that CPU quad frame; \"same quads\" is that RMSE over the {:.1} % of pixels \
+         that the CPU quad route differences with their own quad partners, as the GPU does \
+         (elsewhere a quad straddles an edge: the CPU takes the opposite neighbour, the GPU the \
+         object's continuation), relative to the CPU quad frame's RMSE there.\n",
         gpu.label(),
         o.spp,
-        s.reference_s
+        s.reference_s,
+        100.0 * s.same_quads
     )
     .unwrap();
     writeln!(
         md,
-        "| method | route | RMSE GPU | RMSE CPU rays | GPU / CPU rays | within 10 % | RMSE CPU quad | GPU / CPU quad | GPU vs CPU quad | mean lum. GPU | mean lum. CPU rays | peak GPU | peak CPU rays |"
+        "| method | route | RMSE GPU | RMSE CPU rays | GPU / CPU rays | within 10 % | RMSE CPU quad | GPU / CPU quad | GPU vs CPU quad | same quads | mean lum. GPU | mean lum. CPU rays | peak GPU | peak CPU rays |"
     )
     .unwrap();
     writeln!(
         md,
-        "|---|---|---:|---:|---:|:-:|---:|---:|---:|---:|---:|---:|---:|"
+        "|---|---|---:|---:|---:|:-:|---:|---:|---:|---:|---:|---:|---:|---:|"
     )
     .unwrap();
     for r in &s.rows {
         let ratio = r.gpu_rmse / r.cpu_rays_rmse;
         writeln!(
             md,
-            "| {} | {} | {:.4} | {:.4} | {:.3} | {} | {:.4} | {:.3} | {:.4} | {:.3} | {:.3} | {:.3} | {:.3} |",
+            "| {} | {} | {:.4} | {:.4} | {:.3} | {} | {:.4} | {:.3} | {:.4} | {:.3}% | {:.3} | {:.3} | {:.3} | {:.3} |",
             cpu_method(r.route).label(),
             route_name(r.route),
             r.gpu_rmse,
@@ -359,6 +378,7 @@ pub fn markdown(o: &Options, gpu: &Gpu, compile_s: f64, s: &Still, t: &Temporal)
             r.cpu_quad_rmse,
             r.gpu_rmse / r.cpu_quad_rmse,
             r.gpu_vs_cpu_quad,
+            100.0 * r.same_quads,
             r.gpu_mean,
             r.cpu_rays_mean,
             r.gpu_peak,
