@@ -42,6 +42,7 @@ impl Image {
     }
 
     /// RMSE over the pixels where `mask` is true (0 if none).
+    #[allow(dead_code)] // used by the GPU demonstration only
     pub fn rmse_where(&self, other: &Image, mask: &[bool]) -> f64 {
         rmse(
             self.data

@@ -313,7 +313,8 @@ pub fn check(s: &Still) -> Vec<String> {
     s.rows
         .iter()
         .filter_map(|r| {
-            let bad = !r.gpu_rmse.is_finite() || !(r.same_quads <= CHECK_TOLERANCE);
+            let bad =
+                !r.gpu_rmse.is_finite() || r.same_quads.is_nan() || r.same_quads > CHECK_TOLERANCE;
             bad.then(|| {
                 format!(
                     "{} ({}): on the pixels both difference alike the GPU frame differs from \
