@@ -95,3 +95,70 @@ fn hypot(x: f32, y: f32) -> f32 {
     let b = y / m;
     return m * sqrt(a * a + b * b);
 }
+
+/// `ln 2` split for an exact `n ln 2` (`n` integer, `|n| <= 256`): `LN2_HI` has 16 significant
+/// bits, `LN2_LO` the rest.
+const LN2_HI: f32 = 0.693145751953125;
+const LN2_LO: f32 = 1.428606765330187e-6;
+/// `ln 2`.
+const LN_2: f32 = 0.693147180559945;
+/// `sqrt(2 pi)`.
+const SQRT_TAU: f32 = 2.50662827463100;
+/// `log2(e)`.
+const LOG2_E: f32 = 1.44269504088896;
+
+/// `e^x` within 3 ulp (`2.5e-7` measured, `gpu/src/checks/math.rs`) for `x <= 88`, `0` below
+/// `-87`, whatever the driver's `exp` (WGSL allows `3 + 2|x|` ulp): the Rust crate's `f32`
+/// polynomial exponential (`gaussian_ggx_quad.rs`). `2^n e^r` with `n = round(x / ln 2)`,
+/// `r = (x - n LN2_HI) - n LN2_LO` exact to the rounding of the last step, `|r| <= ln(2) / 2`,
+/// `e^r` by the relative minimax polynomial of degree 6 (error `1.9e-9`) in Estrin's form,
+/// `2^n` by its bit pattern (GLSL 330 has no `ldexp`).
+fn exp(x: f32) -> f32 {
+    let xc = clamp(x, -87.0, 88.0);
+    let n = round(xc * LOG2_E);
+    let r = (xc - n * LN2_HI) - n * LN2_LO;
+    let r2 = r * r;
+    let p = (1.0 + r + (0.4999999 + 0.1666642 * r) * r2)
+        + (0.041668225 + 0.008374816 * r + 0.0013836846 * r2) * (r2 * r2);
+    let s = bitcast<f32>(u32(i32(n) + 127) << 23u);
+    return select(0.0, p * s, x >= -87.0);
+}
+
+/// `sqrt(2)`.
+const SQRT_2: f32 = 1.41421356237310;
+
+/// `2 atanh(z) = ln((1 + z) / (1 - z))` for `|z| <= 0.2`: its odd series through `z^11 / 11`
+/// (next term below `1e-9` relative).
+fn atanh2(z: f32) -> f32 {
+    let z2 = z * z;
+    let s = ((((z2 * (1.0 / 11.0) + 1.0 / 9.0) * z2 + 1.0 / 7.0) * z2 + 0.2) * z2 + 1.0 / 3.0) * z2;
+    return 2.0 * z + 2.0 * z * s;
+}
+
+/// Natural logarithm of a positive normal `x` within 4 ulp relative, also near `x = 1` (WGSL
+/// allows the driver's `log` an absolute `2^-21` on `[0.5, 2]`, no relative accuracy near its
+/// zero). `x = f 2^e` with `f` in `[sqrt(1/2), sqrt 2)` from the bit pattern, then
+/// `ln f = 2 atanh(z)`, `z = (f - 1) / (f + 1)` (`f - 1` exact, `|z| <= 0.1716`, [`atanh2`]),
+/// and `e ln 2` with the split constant.
+fn ln(x: f32) -> f32 {
+    let b = bitcast<u32>(x);
+    var e = f32(i32((b >> 23u) & 0xffu) - 127);
+    var f = bitcast<f32>((b & 0x007fffffu) | 0x3f800000u);
+    if f > SQRT_2 {
+        f = 0.5 * f;
+        e = e + 1.0;
+    }
+    let p = atanh2((f - 1.0) / (f + 1.0));
+    return e * LN2_HI + (e * LN2_LO + p);
+}
+
+/// `ln(1 + x)` for `x >= 0` within 6 ulp relative, also for tiny `x`: `2 atanh(x / (2 + x))`
+/// below `x = 0.5` ([`atanh2`]; no `1 + x` is formed, whose rounding would cost `eps / x`),
+/// [`ln`] of `1 + x` above (its rounding then costs under 2 ulp of the result). Kahan's
+/// `ln(u) x / (u - 1)` is not used: a driver may simplify `(1 + x) - 1` to `x` (Mesa does).
+fn ln_1p(x: f32) -> f32 {
+    if x < 0.5 {
+        return atanh2(x / (2.0 + x));
+    }
+    return ln(1.0 + x);
+}

@@ -272,11 +272,29 @@ fn front_door_never_returns_nan_for_bad_footprints() {
         assert!(d.is_finite() && d >= 0.0, "{what}: d = {d}");
         assert!(!l.is_nan() && l >= 0.0, "{what}: lambda = {l}");
     };
+    // A NaN argument contributes nothing (the NaN policy of `Ndf`): d = 0, lambda = +inf.
+    let nan_dir = Vec3::new(NAN, 0.0, 1.0);
+    let nan_policy = |what: &str, d: f64, l: f64| {
+        assert_eq!(d, 0.0, "{what}: d(NaN)");
+        assert_eq!(l, f64::INFINITY, "{what}: lambda(NaN)");
+    };
     for fp in footprints {
         for alpha in [1e-4, 0.3] {
             let iso = Isotropic::new(alpha).unwrap();
             let ggx = Ggx::new(iso);
             let beck = Beckmann::new(iso);
+            let l = ggx.filtered(fp, Gaussian::TK19);
+            nan_policy("gaussian ggx", l.d(nan_dir), l.lambda(nan_dir));
+            let l = beck.filtered(fp, Gaussian::TK19);
+            nan_policy("gaussian beckmann", l.d(nan_dir), l.lambda(nan_dir));
+            let l = ggx.filtered(fp, ExactGaussian::KHPL16);
+            nan_policy("exact ggx", l.d(nan_dir), l.lambda(nan_dir));
+            let l = ggx.filtered(fp, Projected::TK21);
+            nan_policy("projected", l.d(nan_dir), l.lambda(nan_dir));
+            let l = ggx.filtered(fp, Rect::KHPL16);
+            nan_policy("rect", l.d(nan_dir), l.lambda(nan_dir));
+            let l = ggx.filtered(fp, Proxy::KHPL16);
+            nan_policy("proxy", l.d(nan_dir), l.lambda(nan_dir));
             for h in dirs {
                 let l = ggx.filtered(fp, Gaussian::TK19);
                 check("gaussian ggx", l.d(h), l.lambda(h));

@@ -71,6 +71,51 @@ impl Camera {
     }
 }
 
+/// What the GPU demonstration (`examples/highlights_gpu`) needs of the camera: its rays as
+/// a linear function of the pixel, and the projection of world points (for scissor rects).
+#[allow(dead_code)] // the CPU demonstration traces `Camera::ray` instead
+impl Camera {
+    /// The unnormalised direction through the image corner `(0, 0)` and its change per pixel
+    /// step in x and y: the ray through `(x, y)` is `corner + x step_x + y step_y`.
+    pub fn basis(&self) -> [Vec3; 3] {
+        [self.corner, self.step_x, self.step_y]
+    }
+
+    /// The continuous image point of the world point `p`, if it lies at least `near` in
+    /// front of the eye (along the view axis).
+    pub fn project(&self, p: Vec3, near: f32) -> Option<(f32, f32)> {
+        // The view axis `forward` is the direction through the image centre; `corner` and
+        // the steps differ from it by vectors orthogonal to it, so `corner . forward = 1`.
+        let forward = self.forward();
+        let v = p - self.eye;
+        let depth = v.dot(forward);
+        if depth < near {
+            return None;
+        }
+        let d = v / depth - self.corner;
+        Some((
+            d.dot(self.step_x) / self.step_x.length_squared(),
+            d.dot(self.step_y) / self.step_y.length_squared(),
+        ))
+    }
+
+    /// The unit view axis.
+    fn forward(&self) -> Vec3 {
+        let right = self.step_x.normalize();
+        let down = self.step_y.normalize();
+        (self.corner - right * self.corner.dot(right) - down * self.corner.dot(down)).normalize()
+    }
+}
+
+/// The camera of frame `k` of the temporal test (frame 0 is the still image), shared by the
+/// CPU and GPU demonstrations: a slow sideways and forward dolly, a fraction of a pixel's
+/// footprint on the far water per frame.
+pub fn camera_at(frame: usize, width: usize, height: usize) -> Camera {
+    let k = frame as f32;
+    let eye = Vec3::new(0.004 * k, 1.6, 4.0 - 0.01 * k);
+    Camera::new(eye, eye + Vec3::new(0.0, -0.14, -1.0), 38.0, width, height)
+}
+
 impl DiffRay {
     /// Igehy's transfer to the hit's tangent plane: `dP = t dD + dt D` with
     /// `dt = -(t dD . n) / (D . n)` (the origin differential is zero for a pinhole).

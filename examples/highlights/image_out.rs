@@ -1,8 +1,12 @@
-//! HDR images, tone mapping, error metrics, PNG output and the labelled contact sheet.
+//! HDR images, tone mapping, error metrics, and the labelled contact sheet (8-bit images
+//! from the `image` crate, labels drawn with `ab_glyph` in the embedded DejaVu Sans).
 
-use crate::font;
+use ab_glyph::{Font, FontRef, PxScale, ScaleFont};
 use glam::Vec3;
-use std::path::Path;
+use image::{Rgb, RgbImage};
+
+/// An 8-bit sRGB image.
+pub type Rgb8 = RgbImage;
 
 /// A linear HDR RGB image.
 #[derive(Clone, Debug)]
@@ -37,6 +41,19 @@ impl Image {
         rmse(self.data.iter().zip(&other.data).map(|(a, b)| (*a, *b)))
     }
 
+    /// RMSE over the pixels where `mask` is true (0 if none).
+    #[allow(dead_code)] // used by the GPU demonstration only
+    pub fn rmse_where(&self, other: &Image, mask: &[bool]) -> f64 {
+        rmse(
+            self.data
+                .iter()
+                .zip(&other.data)
+                .zip(mask)
+                .filter(|(_, m)| **m)
+                .map(|(pair, _)| (*pair.0, *pair.1)),
+        )
+    }
+
     /// RMSE of the tone-mapped display values (in `[0, 1]`) against `other`.
     pub fn rmse_display(&self, other: &Image, exposure: f32) -> f64 {
         let tm = |c: Vec3| tonemap(c, exposure);
@@ -48,14 +65,17 @@ impl Image {
         )
     }
 
+    /// The mean pixel luminance.
+    pub fn mean_luminance(&self) -> f64 {
+        self.data.iter().map(|&c| luminance(c) as f64).sum::<f64>() / self.data.len() as f64
+    }
+
     /// 8-bit sRGB after tone mapping with `exposure`.
     pub fn to_rgb8(&self, exposure: f32) -> Rgb8 {
-        let mut out = Rgb8::new(self.width, self.height, [0, 0, 0]);
-        for (i, &c) in self.data.iter().enumerate() {
-            let t = tonemap(c, exposure);
-            out.data[i] = [encode(t.x), encode(t.y), encode(t.z)];
-        }
-        out
+        RgbImage::from_fn(self.width as u32, self.height as u32, |x, y| {
+            let t = tonemap(self.data[y as usize * self.width + x as usize], exposure);
+            Rgb([encode(t.x), encode(t.y), encode(t.z)])
+        })
     }
 }
 
@@ -86,89 +106,74 @@ fn encode(v: f32) -> u8 {
     (s * 255.0 + 0.5) as u8
 }
 
-/// An 8-bit RGB canvas.
-#[derive(Clone, Debug)]
-pub struct Rgb8 {
-    pub width: usize,
-    pub height: usize,
-    pub data: Vec<[u8; 3]>,
+/// The labels' font: DejaVu Sans, embedded by the `dejavu` crate (no system font needed).
+pub fn font() -> FontRef<'static> {
+    FontRef::try_from_slice(dejavu::sans::regular()).expect("DejaVu Sans parses")
 }
 
-impl Rgb8 {
-    pub fn new(width: usize, height: usize, fill: [u8; 3]) -> Self {
-        Self {
-            width,
-            height,
-            data: vec![fill; width * height],
+/// Draws `text` with its top-left corner at `(x0, y0)`, `px` pixels high, blending the glyph
+/// coverage over the image.
+pub fn draw_text(img: &mut RgbImage, text: &str, x0: f32, y0: f32, px: f32, color: [u8; 3]) {
+    let font = font();
+    let scaled = font.as_scaled(PxScale::from(px));
+    let mut caret = x0;
+    let mut previous = None;
+    for ch in text.chars() {
+        let id = scaled.glyph_id(ch);
+        if let Some(p) = previous {
+            caret += scaled.kern(p, id);
         }
-    }
-
-    pub fn set(&mut self, x: i64, y: i64, c: [u8; 3]) {
-        if x >= 0 && y >= 0 && (x as usize) < self.width && (y as usize) < self.height {
-            self.data[y as usize * self.width + x as usize] = c;
-        }
-    }
-
-    /// Copies `src` scaled up by the integer factor `zoom` with its top-left at `(x0, y0)`.
-    pub fn blit(&mut self, src: &Rgb8, x0: usize, y0: usize, zoom: usize) {
-        for y in 0..src.height * zoom {
-            for x in 0..src.width * zoom {
-                let c = src.data[(y / zoom) * src.width + x / zoom];
-                self.set((x0 + x) as i64, (y0 + y) as i64, c);
+        let glyph = id.with_scale_and_position(px, ab_glyph::point(caret, y0 + scaled.ascent()));
+        caret += scaled.h_advance(id);
+        previous = Some(id);
+        let Some(outline) = font.outline_glyph(glyph) else {
+            continue;
+        };
+        let b = outline.px_bounds();
+        outline.draw(|gx, gy, coverage| {
+            let (x, y) = (b.min.x as i64 + gx as i64, b.min.y as i64 + gy as i64);
+            if x < 0 || y < 0 || x >= img.width() as i64 || y >= img.height() as i64 {
+                return;
             }
-        }
-    }
-
-    /// Draws `text` with the built-in 5x7 font, each font pixel `scale` pixels wide.
-    pub fn text(&mut self, text: &str, x0: usize, y0: usize, scale: usize, c: [u8; 3]) {
-        for (k, ch) in text.chars().enumerate() {
-            let glyph = font::glyph(ch);
-            for (row, bits) in glyph.iter().enumerate() {
-                for col in 0..5 {
-                    if bits & (0x10 >> col) != 0 {
-                        for dy in 0..scale {
-                            for dx in 0..scale {
-                                let x = x0 + (k * 6 + col) * scale + dx;
-                                let y = y0 + row * scale + dy;
-                                self.set(x as i64, y as i64, c);
-                            }
-                        }
-                    }
-                }
+            let p = img.get_pixel_mut(x as u32, y as u32);
+            let a = coverage.clamp(0.0, 1.0);
+            for (channel, &c) in p.0.iter_mut().zip(&color) {
+                *channel = (*channel as f32 * (1.0 - a) + c as f32 * a).round() as u8;
             }
-        }
-    }
-
-    pub fn save(&self, path: &Path) -> std::io::Result<()> {
-        let file = std::io::BufWriter::new(std::fs::File::create(path)?);
-        let mut enc = png::Encoder::new(file, self.width as u32, self.height as u32);
-        enc.set_color(png::ColorType::Rgb);
-        enc.set_depth(png::BitDepth::Eight);
-        let mut w = enc.write_header().map_err(std::io::Error::other)?;
-        let bytes: Vec<u8> = self.data.iter().flatten().copied().collect();
-        w.write_image_data(&bytes).map_err(std::io::Error::other)?;
-        w.finish().map_err(std::io::Error::other)
+        });
     }
 }
 
-/// A grid of labelled tiles, `columns` wide, each image zoomed by `zoom`.
-pub fn contact_sheet(tiles: &[(String, Rgb8)], columns: usize, zoom: usize) -> Rgb8 {
-    let (tw, th) = (tiles[0].1.width * zoom, tiles[0].1.height * zoom);
-    let (pad, label_h, scale) = (6, 7 * 2 + 8, 2);
+/// A grid of labelled tiles, `columns` wide, each image zoomed by `zoom` (nearest pixel).
+pub fn contact_sheet(tiles: &[(String, Rgb8)], columns: usize, zoom: u32) -> Rgb8 {
+    let (tw, th) = (tiles[0].1.width() * zoom, tiles[0].1.height() * zoom);
+    let (pad, label_h) = (6, 24);
     let columns = columns.min(tiles.len()).max(1);
-    let rows = tiles.len().div_ceil(columns);
+    let rows = tiles.len().div_ceil(columns) as u32;
     let (cw, ch) = (tw + pad, th + label_h + pad);
-    let mut sheet = Rgb8::new(pad + columns * cw, pad + rows * ch, [24, 24, 28]);
+    let mut sheet = RgbImage::from_pixel(
+        pad + columns as u32 * cw,
+        pad + rows * ch,
+        Rgb([24, 24, 28]),
+    );
     for (i, (label, img)) in tiles.iter().enumerate() {
-        let (x0, y0) = (pad + (i % columns) * cw, pad + (i / columns) * ch);
-        sheet.blit(img, x0, y0, zoom);
-        sheet.text(
-            &label.to_uppercase(),
-            x0,
-            y0 + th + 4,
-            scale,
+        let (col, row) = ((i % columns) as u32, (i / columns) as u32);
+        let (x0, y0) = (pad + col * cw, pad + row * ch);
+        let tile = image::imageops::resize(img, tw, th, image::imageops::FilterType::Nearest);
+        image::imageops::replace(&mut sheet, &tile, x0 as i64, y0 as i64);
+        draw_text(
+            &mut sheet,
+            label,
+            x0 as f32,
+            (y0 + th + 3) as f32,
+            16.0,
             [235, 235, 235],
         );
     }
     sheet
+}
+
+/// Writes `img` as a PNG.
+pub fn save(img: &Rgb8, path: &std::path::Path) -> std::io::Result<()> {
+    img.save(path).map_err(std::io::Error::other)
 }

@@ -8,17 +8,17 @@
 //! [--footprint quad|rays] [--threads 2] [--seed 1]`.
 
 mod camera;
-mod font;
 mod image_out;
 mod methods;
 mod parallel;
+mod peaks;
 mod plot;
 mod render;
 mod scene;
 mod temporal;
 
-use camera::Camera;
-use image_out::{Image, Rgb8, contact_sheet, luminance};
+use camera::camera_at;
+use image_out::{Image, Rgb8, contact_sheet};
 use methods::{Family, Method};
 use render::FootprintRoute;
 use scene::Scene;
@@ -103,22 +103,9 @@ fn parse_args() -> Options {
     o
 }
 
-/// The camera of frame `k` of the temporal test (frame 0 is the still image): a slow
-/// sideways and forward dolly, a fraction of a pixel's footprint on the far water per frame.
-pub fn camera_at(frame: usize, width: usize, height: usize) -> Camera {
-    let k = frame as f32;
-    let eye = glam::Vec3::new(0.004 * k, 1.6, 4.0 - 0.01 * k);
-    Camera::new(
-        eye,
-        eye + glam::Vec3::new(0.0, -0.14, -1.0),
-        38.0,
-        width,
-        height,
-    )
-}
-
 fn main() -> std::io::Result<()> {
     let o = parse_args();
+    parallel::init_threads(o.threads);
     std::fs::create_dir_all(&o.out)?;
     let start = Instant::now();
     let cam = camera_at(0, o.width, o.height);
@@ -136,14 +123,13 @@ fn main() -> std::io::Result<()> {
         o.height,
         o.spp,
         o.seed,
-        o.threads,
         Some("reference"),
     );
     let ref_time = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let gb = render::gbuffer(&scene, &cam, o.width, o.height, o.threads);
-    let derivs = gb.derivatives(o.route, o.threads);
+    let gb = render::gbuffer(&scene, &cam, o.width, o.height);
+    let derivs = gb.derivatives(o.route);
     let base_ms = t.elapsed().as_secs_f64() * 1e3;
 
     let mut tiles: Vec<(String, Rgb8)> = Vec::new();
@@ -162,7 +148,7 @@ fn main() -> std::io::Result<()> {
     let mut worst_change: f64 = 0.0;
     for &method in &o.methods {
         let t = Instant::now();
-        let img = render::shade(&scene, &gb, &derivs, method, o.threads);
+        let img = render::shade(&scene, &gb, &derivs, method);
         let ms = base_ms + t.elapsed().as_secs_f64() * 1e3;
         let (full, half) = (
             reference.full(method.family()),
@@ -179,7 +165,7 @@ fn main() -> std::io::Result<()> {
             rmse,
             img.rmse_display(full, o.exposure),
             100.0 * change,
-            mean_luminance(&img) / mean_luminance(full),
+            img.mean_luminance() / full.mean_luminance(),
             ms
         )
         .unwrap();
@@ -193,7 +179,7 @@ fn main() -> std::io::Result<()> {
     writeln!(preset_table, "|---|---:|---:|---:|---:|").unwrap();
     if o.presets {
         for method in Method::presets() {
-            let img = render::shade(&scene, &gb, &derivs, method, o.threads);
+            let img = render::shade(&scene, &gb, &derivs, method);
             let full = reference.full(method.family());
             writeln!(
                 preset_table,
@@ -201,8 +187,8 @@ fn main() -> std::io::Result<()> {
                 method.label(),
                 img.rmse(full),
                 img.rmse_display(full, o.exposure),
-                mean_luminance(&img) / mean_luminance(full),
-                peak_luminance(&img) / peak_luminance(full),
+                img.mean_luminance() / full.mean_luminance(),
+                img.peak() as f64 / full.peak() as f64,
             )
             .unwrap();
         }
@@ -213,7 +199,7 @@ fn main() -> std::io::Result<()> {
         FootprintRoute::Quad => FootprintRoute::RayDifferentials,
         FootprintRoute::RayDifferentials => FootprintRoute::Quad,
     };
-    let other_derivs = gb.derivatives(other, o.threads);
+    let other_derivs = gb.derivatives(other);
     let mut route_table = String::new();
     writeln!(
         route_table,
@@ -225,13 +211,13 @@ fn main() -> std::io::Result<()> {
     writeln!(route_table, "|---|---:|---:|").unwrap();
     for &method in &o.methods {
         let full = reference.full(method.family());
-        let a = render::shade(&scene, &gb, &derivs, method, o.threads).rmse(full);
-        let b = render::shade(&scene, &gb, &other_derivs, method, o.threads).rmse(full);
+        let a = render::shade(&scene, &gb, &derivs, method).rmse(full);
+        let b = render::shade(&scene, &gb, &other_derivs, method).rmse(full);
         writeln!(route_table, "| {} | {a:.4} | {b:.4} |", method.label()).unwrap();
     }
     let zoom = if o.width <= 320 { 2 } else { 1 };
     let sheet_path = o.out.join("contact_sheet.png");
-    contact_sheet(&tiles, 3, zoom).save(&sheet_path)?;
+    image_out::save(&contact_sheet(&tiles, 3, zoom), &sheet_path)?;
 
     println!(
         "## Still frame ({}x{}, 1 shading sample per pixel, footprints: {})\n",
@@ -294,8 +280,7 @@ fn main() -> std::io::Result<()> {
 }
 
 fn save(o: &Options, name: &str, img: &Image) -> std::io::Result<()> {
-    img.to_rgb8(o.exposure)
-        .save(&o.out.join(format!("{name}.png")))
+    image_out::save(&img.to_rgb8(o.exposure), &o.out.join(format!("{name}.png")))
 }
 
 fn route_name(r: FootprintRoute) -> &'static str {
@@ -303,15 +288,4 @@ fn route_name(r: FootprintRoute) -> &'static str {
         FootprintRoute::Quad => "2x2-quad differences (GPU)",
         FootprintRoute::RayDifferentials => "ray differentials + M (offline)",
     }
-}
-
-fn peak_luminance(img: &Image) -> f64 {
-    img.data
-        .iter()
-        .map(|&c| luminance(c) as f64)
-        .fold(0.0, f64::max)
-}
-
-fn mean_luminance(img: &Image) -> f64 {
-    img.data.iter().map(|&c| luminance(c) as f64).sum::<f64>() / img.data.len() as f64
 }

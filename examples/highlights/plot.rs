@@ -1,19 +1,65 @@
-//! A minimal line plot (log-scale y) drawn into an RGB buffer.
+//! Line plots with plotters (bitmap backend, text in the embedded DejaVu Sans).
 
 use crate::image_out::Rgb8;
+use plotters::prelude::*;
+use plotters::style::FontStyle;
 
-/// One polyline with its legend label and colour.
+/// One distinct colour per method of `Method::ALL` (ten).
+pub const PALETTE: [[u8; 3]; 10] = [
+    [220, 40, 40],
+    [240, 140, 20],
+    [30, 120, 220],
+    [40, 170, 60],
+    [150, 60, 200],
+    [20, 170, 170],
+    [200, 60, 140],
+    [120, 120, 40],
+    [90, 90, 90],
+    [110, 70, 20],
+];
+
+/// One polyline with its legend label, colour and dash (a dashed line for references).
 pub struct Series {
     pub label: String,
     pub color: [u8; 3],
     pub values: Vec<f32>,
+    pub dashed: bool,
 }
 
-/// Plots every series against its index, y on a log10 axis spanning all positive values.
-pub fn line_plot(title: &str, series: &[Series], width: usize, height: usize) -> Rgb8 {
-    let mut img = Rgb8::new(width, height, [250, 250, 250]);
-    let (left, right, top, bottom) = (60i64, 200i64, 30i64, 30i64);
-    let (pw, ph) = (width as i64 - left - right, height as i64 - top - bottom);
+/// Registers DejaVu Sans as plotters' `sans-serif` (its `ab_glyph` backend reads no system
+/// font).
+fn register_font() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        if plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular())
+            .is_err()
+        {
+            panic!("DejaVu Sans does not parse");
+        }
+    });
+}
+
+/// Plots every series against its index (frame), y on a log axis spanning all positive
+/// values, with the legend to the right.
+pub fn line_plot(title: &str, y_label: &str, series: &[Series], width: u32, height: u32) -> Rgb8 {
+    register_font();
+    let mut buf = vec![0u8; (width * height * 3) as usize];
+    draw(&mut buf, title, y_label, series, width, height).expect("plotters draws into memory");
+    Rgb8::from_raw(width, height, buf).expect("buffer of the plot's size")
+}
+
+fn draw(
+    buf: &mut [u8],
+    title: &str,
+    y_label: &str,
+    series: &[Series],
+    width: u32,
+    height: u32,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let root = BitMapBackend::with_buffer(buf, (width, height)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let legend_w = 230.min(width / 3);
+    let (left, right) = root.split_horizontally(width - legend_w);
     let positive = series
         .iter()
         .flat_map(|s| s.values.iter().copied())
@@ -22,10 +68,7 @@ pub fn line_plot(title: &str, series: &[Series], width: usize, height: usize) ->
     let (lo, hi) = if lo > hi {
         (1.0, 10.0)
     } else {
-        (
-            lo.log10().floor(),
-            hi.log10().ceil().max(lo.log10().floor() + 1.0),
-        )
+        (lo * 0.8, hi * 1.25)
     };
     let n = series
         .iter()
@@ -33,69 +76,56 @@ pub fn line_plot(title: &str, series: &[Series], width: usize, height: usize) ->
         .max()
         .unwrap_or(1)
         .max(2);
-    let to_px = |i: usize, v: f32| {
-        let x = left + (i as i64 * pw) / (n as i64 - 1);
-        let t = (v.max(1e-30).log10().clamp(lo, hi) - lo) / (hi - lo);
-        (x, top + ph - (t * ph as f32).round() as i64)
-    };
-    // Axes, decade grid lines and labels.
-    let grey = [200, 200, 200];
-    for d in lo as i64..=hi as i64 {
-        let (_, y) = to_px(0, 10f32.powi(d as i32));
-        line(&mut img, (left, y), (left + pw, y), grey);
-        img.text(
-            &format!("1E{d}"),
-            8,
-            (y - 3).max(0) as usize,
-            1,
-            [60, 60, 60],
-        );
+    let mut chart = ChartBuilder::on(&left)
+        .caption(title, ("sans-serif", 18))
+        .margin(10)
+        .x_label_area_size(32)
+        .y_label_area_size(56)
+        // The y axis is linear in log10(value), labelled with the values (two significant
+        // digits at evenly spaced ratios: plotters' own log axis labels only whole decades).
+        .build_cartesian_2d(0f32..(n - 1) as f32, lo.log10()..hi.log10())?;
+    chart
+        .configure_mesh()
+        .x_labels(n.min(16))
+        .x_label_formatter(&|x| format!("{x:.0}"))
+        .y_labels(10)
+        .y_label_formatter(&|y| {
+            let v = 10f32.powf(*y);
+            let digits = (1 - v.log10().floor() as i32).max(0) as usize;
+            format!("{v:.digits$}")
+        })
+        .light_line_style(RGBColor(235, 235, 235))
+        .x_desc("frame")
+        .y_desc(y_label)
+        .label_style(("sans-serif", 13))
+        .draw()?;
+    for s in series {
+        let color = RGBColor(s.color[0], s.color[1], s.color[2]);
+        let points = s
+            .values
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| (i as f32, v.max(lo)));
+        if s.dashed {
+            chart.draw_series(DashedLineSeries::new(points, 6, 4, color.stroke_width(2)))?;
+        } else {
+            chart.draw_series(LineSeries::new(points, color.stroke_width(2)))?;
+        }
     }
-    line(&mut img, (left, top), (left, top + ph), [0, 0, 0]);
-    line(&mut img, (left, top + ph), (left + pw, top + ph), [0, 0, 0]);
-    img.text(&title.to_uppercase(), left as usize, 10, 1, [0, 0, 0]);
-    img.text(
-        "FRAME",
-        (left + pw / 2) as usize,
-        (top + ph + 12) as usize,
-        1,
-        [0, 0, 0],
-    );
+    // The legend: a swatch and the label per series.
     for (k, s) in series.iter().enumerate() {
-        for (i, w) in s.values.windows(2).enumerate() {
-            let (a, b) = (to_px(i, w[0]), to_px(i + 1, w[1]));
-            line(&mut img, a, b, s.color);
-            line(&mut img, (a.0, a.1 + 1), (b.0, b.1 + 1), s.color);
-        }
-        let (lx, ly) = ((left + pw + 12) as usize, (top + 12 * k as i64) as usize);
-        for dx in 0..10 {
-            for dy in 2..5 {
-                img.set((lx + dx) as i64, (ly + dy) as i64, s.color);
-            }
-        }
-        img.text(&s.label.to_uppercase(), lx + 14, ly, 1, [0, 0, 0]);
+        let y = 30 + 18 * k as i32;
+        let color = RGBColor(s.color[0], s.color[1], s.color[2]);
+        right.draw(&PathElement::new(
+            vec![(4, y), (24, y)],
+            color.stroke_width(3),
+        ))?;
+        right.draw(&Text::new(
+            s.label.clone(),
+            (30, y - 7),
+            ("sans-serif", 13).into_font().color(&BLACK),
+        ))?;
     }
-    img
-}
-
-/// Bresenham line.
-fn line(img: &mut Rgb8, (mut x0, mut y0): (i64, i64), (x1, y1): (i64, i64), c: [u8; 3]) {
-    let (dx, dy) = ((x1 - x0).abs(), -(y1 - y0).abs());
-    let (sx, sy) = (if x0 < x1 { 1 } else { -1 }, if y0 < y1 { 1 } else { -1 });
-    let mut err = dx + dy;
-    loop {
-        img.set(x0, y0, c);
-        if x0 == x1 && y0 == y1 {
-            break;
-        }
-        let e2 = 2 * err;
-        if e2 >= dy {
-            err += dy;
-            x0 += sx;
-        }
-        if e2 <= dx {
-            err += dx;
-            y0 += sy;
-        }
-    }
+    root.present()?;
+    Ok(())
 }

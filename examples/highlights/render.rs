@@ -101,14 +101,8 @@ pub struct GBuffer {
     pub sky: Vec<Vec3>,
 }
 
-pub fn gbuffer(
-    scene: &Scene,
-    cam: &Camera,
-    width: usize,
-    height: usize,
-    threads: usize,
-) -> GBuffer {
-    let px = parallel::rows(height, threads, None, |y| {
+pub fn gbuffer(scene: &Scene, cam: &Camera, width: usize, height: usize) -> GBuffer {
+    let px = parallel::rows(height, None, |y| {
         (0..width)
             .map(|x| {
                 let r = cam.ray(x as f32 + 0.5, y as f32 + 0.5);
@@ -225,8 +219,25 @@ impl GBuffer {
         }
     }
 
-    pub fn derivatives(&self, route: FootprintRoute, threads: usize) -> Vec<PixelDerivatives> {
-        parallel::rows(self.height, threads, None, |y| {
+    /// Per pixel: whether the quad route differences it with its own 2x2-quad partner on
+    /// both axes (`coord ^ 1`: same object, no depth discontinuity), where a GPU's fine
+    /// derivatives difference the same two pixels; pixels that see the sky count too (no
+    /// derivatives). Elsewhere the quad route takes the opposite neighbour or none.
+    #[allow(dead_code)] // used by the GPU demonstration only
+    pub fn quad_interior(&self) -> Vec<bool> {
+        let own = |coord: usize| if coord & 1 == 0 { 1.0 } else { -1.0 };
+        (0..self.height)
+            .flat_map(|y| (0..self.width).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                self.at(x, y).is_none()
+                    || (self.partner(x, y, true).is_some_and(|(_, s)| s == own(x))
+                        && self.partner(x, y, false).is_some_and(|(_, s)| s == own(y)))
+            })
+            .collect()
+    }
+
+    pub fn derivatives(&self, route: FootprintRoute) -> Vec<PixelDerivatives> {
+        parallel::rows(self.height, None, |y| {
             (0..self.width)
                 .map(|x| match route {
                     FootprintRoute::Quad => self.quad_derivatives(x, y),
@@ -238,14 +249,8 @@ impl GBuffer {
 }
 
 /// One shading sample per pixel with `method`.
-pub fn shade(
-    scene: &Scene,
-    gb: &GBuffer,
-    derivs: &[PixelDerivatives],
-    method: Method,
-    threads: usize,
-) -> Image {
-    let data = parallel::rows(gb.height, threads, None, |y| {
+pub fn shade(scene: &Scene, gb: &GBuffer, derivs: &[PixelDerivatives], method: Method) -> Image {
+    let data = parallel::rows(gb.height, None, |y| {
         (0..gb.width)
             .map(|x| {
                 let i = y * gb.width + x;
@@ -291,7 +296,6 @@ impl Reference {
 /// filter (sigma = 0.5 pixel) the footprint kernels assume, unfiltered NDFs. Each half of the
 /// samples is a randomly shifted rank-1 lattice (stratified for any count, unbiased thanks to
 /// the per-pixel random shift) mapped to the Gaussian by Box-Muller.
-#[allow(clippy::too_many_arguments)]
 pub fn reference(
     scene: &Scene,
     cam: &Camera,
@@ -299,13 +303,12 @@ pub fn reference(
     height: usize,
     spp: usize,
     seed: u64,
-    threads: usize,
     progress: Option<&str>,
 ) -> Reference {
     let n = (spp / 2).max(1);
     let lattice = Lattice::new(n);
     let families = [Family::Beckmann, Family::Ggx];
-    let px: Vec<[Vec3; 4]> = parallel::rows(height, threads, progress, |y| {
+    let px: Vec<[Vec3; 4]> = parallel::rows(height, progress, |y| {
         (0..width)
             .map(|x| {
                 let mut rng = pixel_rng(seed, (y * width + x) as u64);

@@ -52,7 +52,11 @@ pub struct Lod {
 }
 
 /// Wavelength, in pixels of footprint, under which a wave starts to fade (gone at half).
+/// (The GPU demo's `scene.wgsl` has the same constant.)
 const LOD_PIXELS: f32 = 2.0;
+
+/// The water's albedo.
+const WATER_ALBEDO: Vec3 = Vec3::new(0.02, 0.06, 0.08);
 
 /// The height field `y = h(x, z)` on `|x| <= half_width`, `z_far <= z <= z_near`.
 pub struct Water {
@@ -211,7 +215,7 @@ impl Water {
             normal: n,
             dn_dp: proj * dg,
             object: 0,
-            albedo: Vec3::new(0.02, 0.06, 0.08),
+            albedo: WATER_ALBEDO,
             alpha: (alpha * alpha + lost).sqrt(),
         })
     }
@@ -275,6 +279,21 @@ impl Sphere {
     }
 }
 
+/// The scene's parameters as plain numbers: what the GPU demonstration uploads to its shaders
+/// (`examples/highlights_gpu/shaders/scene.wgsl` evaluates the same surfaces from them).
+#[derive(Clone, Debug)]
+#[allow(dead_code)] // read by the GPU demonstration only
+pub struct Params {
+    /// Per wave: `k_x`, `k_z`, amplitude, phase, wavelength.
+    pub waves: Vec<[f32; 5]>,
+    /// The water's slab half-height and slope bound (the march's), half width, `z_near`,
+    /// `z_far`.
+    pub water: [f32; 5],
+    pub water_albedo: Vec3,
+    /// Per sphere: centre, radius, albedo.
+    pub spheres: Vec<(Vec3, f32, Vec3)>,
+}
+
 /// The whole scene.
 pub struct Scene {
     water: Water,
@@ -333,5 +352,27 @@ impl Scene {
     pub fn sky(&self, dir: Vec3) -> Vec3 {
         let k = dir.y.clamp(0.0, 1.0);
         Vec3::new(0.25, 0.3, 0.42).lerp(Vec3::new(0.05, 0.09, 0.2), k.sqrt())
+    }
+}
+
+#[allow(dead_code)] // used by the GPU demonstration only
+impl Scene {
+    /// The parameters of the surfaces (see [`Params`]).
+    pub fn params(&self) -> Params {
+        let w = &self.water;
+        Params {
+            waves: w
+                .waves
+                .iter()
+                .map(|v| [v.kx, v.kz, v.amplitude, v.phase, v.wavelength])
+                .collect(),
+            water: [w.bound, w.slope_bound, w.half_width, w.z_near, w.z_far],
+            water_albedo: WATER_ALBEDO,
+            spheres: self
+                .spheres
+                .iter()
+                .map(|s| (s.center, s.radius, s.albedo))
+                .collect(),
+        }
     }
 }

@@ -2,10 +2,12 @@
 //! peak HDR intensity of each frame, its frame-to-frame variation and its distance to the
 //! reference's peak.
 
+use crate::camera::camera_at;
 use crate::methods::Method;
-use crate::plot::{Series, line_plot};
+use crate::peaks::{distance, mean, variation};
+use crate::plot::{PALETTE, Series, line_plot};
 use crate::scene::Scene;
-use crate::{Options, camera_at, render};
+use crate::{Options, render};
 use std::fmt::Write as _;
 
 /// Resolution divisor and reference sample divisor of the temporal frames (keeps the default
@@ -13,41 +15,27 @@ use std::fmt::Write as _;
 const DOWNSCALE: usize = 2;
 const SPP_DIVISOR: usize = 8;
 
-/// One distinct colour per method of `Method::ALL` (ten).
-const COLORS: [[u8; 3]; 10] = [
-    [220, 40, 40],
-    [240, 140, 20],
-    [30, 120, 220],
-    [40, 170, 60],
-    [150, 60, 200],
-    [20, 170, 170],
-    [200, 60, 140],
-    [120, 120, 40],
-    [90, 90, 90],
-    [110, 70, 20],
-];
-
 pub fn run(o: &Options) -> std::io::Result<String> {
     let (w, h) = ((o.width / DOWNSCALE).max(2), (o.height / DOWNSCALE).max(2));
     let spp = (o.spp / SPP_DIVISOR).max(2);
     let mut peaks = vec![Vec::new(); o.methods.len()];
     let mut ref_peaks = [Vec::new(), Vec::new()];
-    let bar = crate::parallel::Progress::new("temporal frames", o.frames);
+    let bar = crate::parallel::bar("temporal frames", o.frames);
     for f in 0..o.frames {
         let cam = camera_at(f, w, h);
         let scene = &Scene::new(cam.lod());
-        let reference = render::reference(scene, &cam, w, h, spp, o.seed, o.threads, None);
+        let reference = render::reference(scene, &cam, w, h, spp, o.seed, None);
         for (k, img) in reference.full.iter().enumerate() {
             ref_peaks[k].push(img.peak());
         }
-        let gb = render::gbuffer(scene, &cam, w, h, o.threads);
-        let derivs = gb.derivatives(o.route, o.threads);
+        let gb = render::gbuffer(scene, &cam, w, h);
+        let derivs = gb.derivatives(o.route);
         for (i, &m) in o.methods.iter().enumerate() {
-            peaks[i].push(render::shade(scene, &gb, &derivs, m, o.threads).peak());
+            peaks[i].push(render::shade(scene, &gb, &derivs, m).peak());
         }
-        bar.tick();
+        bar.inc(1);
     }
-    bar.finish();
+    bar.finish_and_clear();
 
     let mut md = String::new();
     writeln!(
@@ -77,6 +65,7 @@ pub fn run(o: &Options) -> std::io::Result<String> {
             label: name.to_string(),
             color: [[0, 0, 0], [110, 110, 110]][k],
             values: p.clone(),
+            dashed: true,
         });
     }
     for (i, &m) in o.methods.iter().enumerate() {
@@ -93,33 +82,24 @@ pub fn run(o: &Options) -> std::io::Result<String> {
         .unwrap();
         series.push(Series {
             label: m.label().to_string(),
-            color: COLORS[index_of(m) % COLORS.len()],
+            color: PALETTE[index_of(m) % PALETTE.len()],
             values: p.clone(),
+            dashed: false,
         });
     }
-    let plot = line_plot("Peak HDR luminance per frame", &series, 760, 360);
+    let plot = line_plot(
+        "Peak HDR luminance per frame",
+        "peak luminance",
+        &series,
+        820,
+        400,
+    );
     let path = o.out.join("temporal.png");
-    plot.save(&path)?;
+    crate::image_out::save(&plot, &path)?;
     writeln!(md, "\nPlot: {}", path.display()).unwrap();
     Ok(md)
 }
 
 fn index_of(m: Method) -> usize {
     Method::ALL.iter().position(|&x| x == m).unwrap_or(0)
-}
-
-fn mean(p: &[f32]) -> f64 {
-    p.iter().map(|&v| v as f64).sum::<f64>() / p.len().max(1) as f64
-}
-
-/// Mean `|P(t) - P(t-1)|` relative to the mean peak.
-fn variation(p: &[f32]) -> f64 {
-    let steps: Vec<f32> = p.windows(2).map(|w| (w[1] - w[0]).abs()).collect();
-    mean(&steps) / mean(p).max(1e-30)
-}
-
-/// Mean `|P(t) - R(t)|` relative to the mean reference peak.
-fn distance(p: &[f32], r: &[f32]) -> f64 {
-    let d: Vec<f32> = p.iter().zip(r).map(|(a, b)| (a - b).abs()).collect();
-    mean(&d) / mean(r).max(1e-30)
 }

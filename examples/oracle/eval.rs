@@ -8,7 +8,7 @@
 //! modules.
 
 #[path = "args.rs"]
-mod args;
+pub(crate) mod args;
 
 use args::Precision;
 use serde_json::{Value, json};
@@ -74,7 +74,11 @@ clamps:     \"default\" | \"none\" | \"gdc2016\" | \"khpl16\" (ClampRules::DEFAU
             |dh_u - dh_v|) / 2 <= max_extent; kernel eigenvalues min(2 lambda_i, kappa);
             rectangle half extents in [floor, max_extent]; tau = det(A) for the filtered matrix.
 point:      at most one of \"m\" (unit micronormal: D), \"slope\" (P22), \"w\" (direction: Lambda);
-            without one the ops that build a lobe return the lobe (its roughness).";
+            without one the ops that build a lobe return the lobe (its roughness).
+backends:   --backend cpu (the default) evaluates with the library; --backend gpu answers every
+            op that has a shader through the WGSL modules of shaders/ in f32, batched, after
+            the end of input (ops without one answer an error naming the op):
+            cargo run --release -p filtered-ndf-gpu --bin oracle -- --backend gpu";
 
 /// Every op: the dispatcher and `--list` (see [`list`]).
 pub const OPS: &[OpInfo] = &[

@@ -6,13 +6,36 @@
 //! echo '{"op":"ndf","dist":"ggx","roughness":0.1,"m":[0,0,1]}' | cargo run --release --example oracle
 //! cargo run --release --example oracle -- --list
 //! ```
+//!
+//! `--backend cpu` (the default) evaluates with the library. `--backend gpu` (every op that has
+//! a shader, through the WGSL modules of `shaders/` in f32) is the binary `oracle` of the
+//! workspace member `filtered-ndf-gpu`, which depends on wgpu:
+//! `cargo run --release -p filtered-ndf-gpu --bin oracle -- --backend gpu`.
 
 mod eval;
 
 fn main() {
-    if std::env::args().any(|a| a == "--list") {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.iter().any(|a| a == "--list") {
         print!("{}", eval::list());
         return;
+    }
+    if let Some(i) = args.iter().position(|a| a == "--backend") {
+        match args.get(i + 1).map(String::as_str) {
+            Some("cpu") => {}
+            Some("gpu") => {
+                eprintln!(
+                    "oracle: --backend gpu lives in the workspace member filtered-ndf-gpu (it \
+                     depends on wgpu): cargo run --release -p filtered-ndf-gpu --bin oracle -- \
+                     --backend gpu"
+                );
+                std::process::exit(2);
+            }
+            other => {
+                eprintln!("oracle: --backend must be `cpu` or `gpu`, got {other:?}");
+                std::process::exit(2);
+            }
+        }
     }
     let stdin = std::io::stdin();
     match eval::serve(stdin.lock(), std::io::stdout().lock()) {

@@ -21,7 +21,9 @@ pub const IMPORTS: &str = "#import filtered_ndf::ndf::roughness::axis_aligned
 #import filtered_ndf::filter::proxy
 #import filtered_ndf::filter::rect
 #import filtered_ndf::filter::deferred
-#import filtered_ndf::filter::presets";
+#import filtered_ndf::filter::presets
+#import filtered_ndf::filter::gaussian_ggx
+#import filtered_ndf::filter::rect::lambda as box_lambda";
 
 /// The prologue every row starts with: material `r` (and as a matrix `a`), half vector `h`,
 /// footprint `fp`.
@@ -34,6 +36,10 @@ let fp = footprint::from_slope_derivatives(x2(5u), x2(7u));";
 pub fn rows() -> Vec<(String, String)> {
     let mut v: Vec<(String, String)> = [
         ("GGX unfiltered", "ggx::d_axis_aligned(r, h)"),
+        (
+            "GGX exact Gaussian (this crate)",
+            "gaussian_ggx::d(gaussian_ggx::from_kernel(a, clamp::pixel_kernel(clamp::KHPL16_RULES, fp, 0.5)), h)",
+        ),
         (
             "GGX TK19 A+2Sigma (matrix)",
             "ggx::d_matrix(clamp::filter_gaussian(clamp::DEFAULT_RULES, a, fp, 0.5), h)",
@@ -61,6 +67,17 @@ pub fn rows() -> Vec<(String, String)> {
         (
             "GGX proxy simple (eq. 20)",
             "ggx::d_axis_aligned(proxy::proxy_simple(r, clamp::rect(clamp::DEFAULT_RULES, footprint::bounding_rect(fp), r.alpha).half_extent), h)",
+        ),
+        // Smith Lambda of the lobes whose Lambda is their own (not a trade-table column: the
+        // cost of g1 / g2 beside D), `h` as the view.
+        ("GGX unfiltered Lambda", "ggx::lambda_axis_aligned(r, h)"),
+        (
+            "GGX exact Gaussian Lambda",
+            "gaussian_ggx::lambda(gaussian_ggx::from_kernel(a, clamp::pixel_kernel(clamp::KHPL16_RULES, fp, 0.5)), h)",
+        ),
+        (
+            "GGX exact rect Lambda (box lobe)",
+            "box_lambda::lambda_rect(r, clamp::rect(clamp::KHPL16_RULES, footprint::bounding_rect(fp), r.alpha).half_extent, h)",
         ),
     ]
     .iter()

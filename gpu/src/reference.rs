@@ -5,9 +5,13 @@
 //! library's module paths (below the root re-exports), so a restructuring of `src/` touches
 //! it alone.
 
+/// `f64::filter::method`: the front door's methods.
+pub use filtered_ndf::f64::filter::{
+    ExactGaussian, Filterable, Gaussian, Projected, Proxy, Rect, RectFilteredGgx,
+};
 pub use filtered_ndf::f64::{
-    AxisAligned, Beckmann, ClampRules, Covariance, Footprint, Ggx, Isotropic, Ndf, NdfSampling,
-    Roughness, RoughnessMatrix,
+    AxisAligned, Beckmann, ClampRules, Covariance, Footprint, GaussianFilteredGgx, Ggx, Isotropic,
+    Ndf, NdfSampling, Roughness, RoughnessMatrix,
 };
 pub use filtered_ndf::testing::{rng::SplitMix64, strategies};
 pub use glam::{DVec2, DVec3};

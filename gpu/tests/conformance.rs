@@ -34,3 +34,13 @@ fn sampling() {
 fn rect() {
     assert_group("rect", &checks::rect::all());
 }
+
+#[test]
+fn gaussian_ggx() {
+    assert_group("gaussian_ggx", &checks::gaussian_ggx::all());
+}
+
+#[test]
+fn method() {
+    assert_group("method", &checks::method::all());
+}

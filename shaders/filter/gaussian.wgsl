@@ -5,13 +5,23 @@
 
 // Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
 // mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
+//
+// The determinant clamp: the result is evaluated as the one clamped matrix `A'_c` of
+// `matrix.wgsl` (`A' + t I` where `det A' < tau`). In exact arithmetic
+// `det(A + 2 Sigma) >= det A`, and here the filtered determinant is a sum of non-negative
+// terms that contains `det A` itself, so with `tau = det A_c` of an unclamped material the
+// clamp is inactive (equality for a zero kernel); it acts for a material that is itself
+// clamped (`tau = det A_c > det A`) and for an explicit `tau` above the filtered determinant.
 
-/// The entries of `A + 2 K` and `det(A + 2 K) = det A + 2 tr(adj(A) K) + 4 det K`, every term
-/// non-negative for `A` positive definite and `K` PSD, so that the filtered minor axis keeps
-/// its relative accuracy (f32 would cancel in `b11 b22 - b12^2`): with `A = R diag(l) R^T`,
+/// `A + 2 K` for a sanitised kernel `K`, with its determinant
+/// `det(A + 2 K) = det A + 2 tr(adj(A) K) + 4 det K`, every term non-negative for `A` positive
+/// definite and `K` PSD, so that the filtered minor axis keeps its relative accuracy (f32
+/// would cancel in `b11 b22 - b12^2`): with `A = R diag(l) R^T`,
 /// `tr(adj(A) K) = l2 e1^T K e1 + l1 e2^T K e2`, and `det K` as the kernel carries it.
-/// Evaluated with the determinant clamp `tau`.
-fn plus_kernel(a: matrix::RoughnessMatrix, k: covariance::Covariance, tau: f32) -> matrix::RoughnessMatrix {
+/// Evaluated with the determinant clamp `tau` (`<= 0`: none). `A` is the material's matrix as
+/// given ([`matrix::entries`]; a clamped material is filtered as `A + 2 K` with its own `tau`,
+/// as in Rust).
+fn gaussian_sanitized(a: matrix::RoughnessMatrix, k: covariance::Covariance, tau: f32) -> matrix::RoughnessMatrix {
     let e = matrix::entries(a);
     let c = a.axis.x;
     let s = a.axis.y;
@@ -23,43 +33,28 @@ fn plus_kernel(a: matrix::RoughnessMatrix, k: covariance::Covariance, tau: f32) 
         e.y + 2.0 * k.s_xy,
         e.z + 2.0 * k.s_yy,
         det,
-        tau,
+        max(tau, 0.0),
     );
 }
 
-/// `A' = A + 2 Sigma` with the determinant clamp `tau = det A` (TK19 supplement), for a
-/// kernel that `covariance::sanitized` (or a clamp after it) has made PSD and bounded.
-fn gaussian_sanitized(a: matrix::RoughnessMatrix, k: covariance::Covariance) -> matrix::RoughnessMatrix {
-    return plus_kernel(a, k, a.sqrt_det * a.sqrt_det);
-}
-
-/// `A' = A + 2 Sigma`, evaluated with `tau = det(A)` (TK19 supplement; no bias in exact
-/// arithmetic since `det(A + 2 Sigma) >= det A`). Beckmann: exact (KHPL16 eq. 15, covariances
-/// of Gaussians add with `A = 2 B`). GGX: the TK19 section 2.2 / KHPL16 approximation. The
-/// kernel is `covariance::sanitized` first. Accuracy: the filtered matrix is evaluated in its
-/// eigenbasis with `det` from non-negative terms (`matrix.wgsl`: `s^T A'^-1 s` within
-/// `eps (10 + 16 sqrt(cond A'))`, the extra `8 sqrt(cond)` for the rounding of the kernel's
-/// entries).
+/// `A' = A + 2 Sigma`, evaluated with the determinant clamp `tau = det A_c` of the material
+/// (TK19 supplement; no bias in exact arithmetic since `det(A + 2 Sigma) >= det A`). Beckmann:
+/// exact (KHPL16 eq. 15, covariances of Gaussians add with `A = 2 B`). GGX: the TK19 section
+/// 2.2 / KHPL16 approximation. The kernel is `covariance::sanitized` first. Accuracy: the
+/// filtered matrix is evaluated in its eigenbasis with `det` from non-negative terms
+/// (`matrix.wgsl`: `s^T A'^-1 s` within `eps (10 + 16 sqrt(cond A'))`, the extra
+/// `8 sqrt(cond)` for the rounding of the kernel's entries).
 fn gaussian(a: matrix::RoughnessMatrix, kernel: covariance::Covariance) -> matrix::RoughnessMatrix {
-    return gaussian_sanitized(a, covariance::sanitized(kernel));
+    return gaussian_sanitized(a, covariance::sanitized(kernel), matrix::clamped_det(a));
 }
 
-/// [`gaussian`] with an explicit determinant clamp `tau` (`<= 0`: none; a filtered
-/// determinant that rounds to `<= det A` then gets `det A`, its exact lower bound).
-fn gaussian_with_tau(
+/// [`gaussian`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
+/// filtered determinant here is never below `det A`, so no fallback is needed: the Rust
+/// `gaussian_with_det_clamp`).
+fn gaussian_with_det_clamp(
     a: matrix::RoughnessMatrix,
     kernel: covariance::Covariance,
-    tau: f32,
+    det_clamp: f32,
 ) -> matrix::RoughnessMatrix {
-    return gaussian_with_tau_sanitized(a, covariance::sanitized(kernel), tau);
-}
-
-/// [`gaussian_with_tau`] for a sanitised kernel.
-fn gaussian_with_tau_sanitized(
-    a: matrix::RoughnessMatrix,
-    k: covariance::Covariance,
-    tau: f32,
-) -> matrix::RoughnessMatrix {
-    let floor = matrix::determinant(a);
-    return plus_kernel(a, k, select(floor, tau, tau > 0.0));
+    return gaussian_sanitized(a, covariance::sanitized(kernel), det_clamp);
 }

@@ -13,7 +13,8 @@ const PROJECTED_EIGEN_MAX: f32 = 0.99;
 /// projected disk the GGX density is itself a GGX-shaped density of roughness `P`, and TK19's
 /// disk-derivative kernel lives in that space. Eigenvalues of `A` above `PROJECTED_EIGEN_MAX`
 /// are clamped for the projected step and the excess is added back unfiltered (as in Rust:
-/// exact below the limit, continuous, never sharpening). Evaluated with `tau = det A`.
+/// exact below the limit, continuous, never sharpening). Evaluated with the determinant clamp
+/// `tau = det A_c` of the material (the result is the one clamped matrix of `matrix.wgsl`).
 ///
 /// f32 form: in `A`'s eigenbasis `P = R diag(l / (1 - l)) R^T` exactly (no cancellation);
 /// `d = det P' = det P + 2 tr(adj(P) K) + 4 det K` as non-negative terms (TK21's `detMin`);
@@ -21,7 +22,26 @@ const PROJECTED_EIGEN_MAX: f32 = 0.99;
 /// exactly (so the filtered minor axis keeps its relative accuracy). The kernel is
 /// `covariance::sanitized` first.
 fn projected(a: matrix::RoughnessMatrix, kernel: covariance::Covariance) -> matrix::RoughnessMatrix {
-    let k = covariance::sanitized(kernel);
+    return projected_sanitized(a, covariance::sanitized(kernel), matrix::clamped_det(a));
+}
+
+/// [`projected`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
+/// Rust `projected_with_det_clamp`).
+fn projected_with_det_clamp(
+    a: matrix::RoughnessMatrix,
+    kernel: covariance::Covariance,
+    det_clamp: f32,
+) -> matrix::RoughnessMatrix {
+    return projected_sanitized(a, covariance::sanitized(kernel), det_clamp);
+}
+
+/// [`projected`] for a sanitised kernel `k`, with the clamp `tau` (`<= 0`: none). `A` is the
+/// material's matrix as given (a clamped material is filtered with its own `tau`, as in Rust).
+fn projected_sanitized(
+    a: matrix::RoughnessMatrix,
+    k: covariance::Covariance,
+    tau: f32,
+) -> matrix::RoughnessMatrix {
     let lc = min(a.eig, vec2<f32>(PROJECTED_EIGEN_MAX));
     let excess = a.eig - lc;
     let p = lc / (1.0 - lc);
@@ -50,7 +70,7 @@ fn projected(a: matrix::RoughnessMatrix, kernel: covariance::Covariance) -> matr
         b22 += excess.x * s * s + excess.y * c * c;
         det = b11 * b22 - b12 * b12;
     }
+    // Never below A on the diagonal (exact, by monotonicity), as in Rust.
     let e = matrix::entries(a);
-    let tau = a.sqrt_det * a.sqrt_det;
-    return matrix::from_entries_det(max(b11, e.x), b12, max(b22, e.z), max(det, tau), tau);
+    return matrix::from_entries_det(max(b11, e.x), b12, max(b22, e.z), det, max(tau, 0.0));
 }

@@ -24,20 +24,31 @@ struct filter_deferred_KernelConvention {
 struct ndf_roughness_matrix_RoughnessMatrix {
     vec2 axis;
     vec2 eig;
+    vec2 eig_c;
     vec2 inv_eig;
     float sqrt_det;
+    float det;
+    float tau;
 };
-struct filter_lean_LeanMoments {
-    vec2 mean;
-    vec3 second;
+struct ndf_roughness_isotropic_Isotropic {
+    float alpha;
+    float inv_alpha_sq;
 };
 struct ndf_roughness_axis_aligned_AxisAligned {
     vec2 alpha;
     vec2 inv_alpha_sq;
 };
-struct ndf_roughness_isotropic_Isotropic {
-    float alpha;
-    float inv_alpha_sq;
+struct filter_gaussian_ggx_GaussianFilteredGgx {
+    ndf_roughness_matrix_RoughnessMatrix a;
+    vec2 inv_sqrt_l;
+    vec2 v;
+    vec2 tl;
+    float norm;
+    kernel_covariance_Covariance k;
+};
+struct filter_lean_LeanMoments {
+    vec2 mean;
+    vec3 second;
 };
 struct footprint_jacobian_Polar {
     vec3 h;
@@ -61,6 +72,28 @@ struct kernel_clamp_ClampRules {
     float kappa;
     bool det_clamp;
 };
+struct filter_method_Gaussian {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
+};
+struct filter_method_ExactGaussian {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
+};
+struct filter_method_Projected {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
+};
+struct filter_method_Rect {
+    kernel_clamp_ClampRules clamps;
+};
+struct filter_method_RectFilteredGgx {
+    ndf_roughness_axis_aligned_AxisAligned roughness;
+    vec2 half_extent;
+};
+struct filter_method_Proxy {
+    kernel_clamp_ClampRules clamps;
+};
 struct sampling_Warp {
     float l_xx;
     float l_yx;
@@ -73,11 +106,16 @@ const float math_INV_PI = 0.31830987;
 const float math_F32_MAX = 3.4028235e38;
 const float math_F32_MIN_POSITIVE = 1.1754944e-38;
 const float math_TAN_EIGHTH_PI = 0.41421357;
+const float math_LN2_HI = 0.69314575;
+const float math_LN2_LO = 1.4286068e-6;
+const float math_LN_2_ = 0.6931472;
+const float math_SQRT_TAU = 2.5066283;
+const float math_LOG2_E = 1.442695;
+const float math_SQRT_2_ = 1.4142135;
 const float ndf_roughness_ALPHA_MIN = 1e-8;
 const float ndf_roughness_ALPHA_MAX = 10000.0;
 const float kernel_covariance_KERNEL_MAX = 100000000.0;
 const float filter_deferred_KAPPA = 0.18;
-const float filter_deferred_SIGMA_SQ = 0.25;
 const uint filter_deferred_DOMAIN_ALPHA_SQ = 0u;
 const uint filter_deferred_DOMAIN_ALPHA = 1u;
 const uint filter_deferred_DOMAIN_PERCEPTUAL = 2u;
@@ -91,6 +129,43 @@ const uint filter_deferred_COMBINE_MAX = 1u;
 const uint filter_deferred_BANDWIDTH_MAX = 0u;
 const uint filter_deferred_BANDWIDTH_TRACE = 1u;
 const uint filter_deferred_BANDWIDTH_AVERAGE = 2u;
+const float ndf_beckmann_EXP_SPLIT = 80.0;
+const float ndf_beckmann_SQRT_PI = 1.7724539;
+const float filter_gaussian_ggx_quad_FAR = 320000.0;
+const float filter_gaussian_ggx_quad_H = 0.5;
+const float filter_gaussian_ggx_quad_EXP_H = 1.6487212;
+const float filter_gaussian_ggx_quad_EPS_T = 1e-7;
+const float filter_gaussian_ggx_quad_Y_LO = 0.054;
+const uint filter_gaussian_ggx_quad_CHUNKS = 22u;
+const float filter_gaussian_ggx_quad_GL_RATIO = 0.0177;
+const float filter_gaussian_ggx_quad_GL_PLATEAU = 20.0;
+const float filter_gaussian_ggx_quad_GL_WIDE = 28000000000.0;
+const float filter_gaussian_ggx_quad_GH_MAX = 0.01;
+const float filter_gaussian_ggx_quad_S_MAX = 0.25;
+const float filter_gaussian_ggx_quad_S_COEF = 0.25;
+const float filter_gaussian_ggx_quad_S_EPS = 1e-8;
+const uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
+const float footprint_jacobian_HZ_MIN = 1e-6;
+const float footprint_SIGMA_PIXEL = 0.5;
+const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
+const uint kernel_clamp_FLOOR_NONE = 0u;
+const uint kernel_clamp_FLOOR_CONSTANT = 1u;
+const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
+const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
+const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
+const kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
+const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
+const float filter_rect_BIG = 1e18;
+const float filter_rect_FAR2_ = 0.25;
+const uint filter_rect_TIER_CLOSED = 0u;
+const float filter_rect_lambda_BIG_K = 1000000000000.0;
+const filter_method_Gaussian filter_method_TK19_GAUSSIAN = filter_method_Gaussian(kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
+const filter_method_Gaussian filter_method_KHPL16_GAUSSIAN = filter_method_Gaussian(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
+const filter_method_ExactGaussian filter_method_KHPL16_EXACT_GAUSSIAN = filter_method_ExactGaussian(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
+const filter_method_Projected filter_method_TK21_PROJECTED = filter_method_Projected(kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
+const filter_method_Rect filter_method_KHPL16_RECT = filter_method_Rect(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
+const filter_method_Rect filter_method_GDC2016_RECT = filter_method_Rect(kernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true));
+const filter_method_Proxy filter_method_KHPL16_PROXY = filter_method_Proxy(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
 const filter_deferred_KernelConvention filter_presets_TK19_TRACE = filter_deferred_KernelConvention(0u, 0u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
 const filter_deferred_KernelConvention filter_presets_TK19_AVERAGE = filter_deferred_KernelConvention(0u, 0u, 0.25, 1.0, 0.0, 0.18, 0u, true, 0.0);
 const filter_deferred_KernelConvention filter_presets_TK19_MAX = filter_deferred_KernelConvention(0u, 2u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
@@ -103,19 +178,6 @@ const filter_deferred_KernelConvention filter_presets_O3DE = filter_deferred_Ker
 const filter_deferred_KernelConvention filter_presets_UNREAL = filter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 const filter_deferred_KernelConvention filter_presets_BABYLON = filter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 const filter_deferred_KernelConvention filter_presets_THREE_JS = filter_deferred_KernelConvention(2u, 3u, 1.0, 1.0, 0.0, 3.4028235e38, 0u, true, 0.0525);
-const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
-const float filter_rect_BIG = 1e18;
-const uint filter_rect_TIER_CLOSED = 0u;
-const float footprint_jacobian_HZ_MIN = 1e-6;
-const float footprint_SIGMA_PIXEL = 0.5;
-const uint kernel_clamp_FLOOR_NONE = 0u;
-const uint kernel_clamp_FLOOR_CONSTANT = 1u;
-const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
-const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
-const kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
-const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
-const float ndf_beckmann_EXP_SPLIT = 80.0;
-const float ndf_beckmann_SQRT_PI = 1.7724539;
 const float sampling_ONE_MINUS_EPS = 0.99999994;
 
 layout(location = 0) out vec4 _fs2p_location0;
@@ -123,9 +185,9 @@ layout(location = 0) out vec4 _fs2p_location0;
 float math_atan(float x) {
     float t = 0.0;
     float r = 0.0;
-    float a_11 = abs(x);
-    bool inv = (a_11 > 1.0);
-    t = (inv ? (1.0 / a_11) : a_11);
+    float a_16 = abs(x);
+    bool inv = (a_16 > 1.0);
+    t = (inv ? (1.0 / a_16) : a_16);
     float _e8 = t;
     bool shift = (_e8 > math_TAN_EIGHTH_PI);
     float _e11 = t;
@@ -134,11 +196,11 @@ float math_atan(float x) {
     t = (shift ? ((_e12 - 1.0) / (_e15 + 1.0)) : _e11);
     float _e20 = t;
     float _e21 = t;
-    float z = (_e20 * _e21);
-    float p_3 = ((((((((-0.06451928 * z) + 0.10743731) * z) - 0.14263956) * z) + 0.1999954) * z) - 0.3333333);
+    float z_1 = (_e20 * _e21);
+    float p_3 = ((((((((-0.06451928 * z_1) + 0.10743731) * z_1) - 0.14263956) * z_1) + 0.1999954) * z_1) - 0.3333333);
     float _e36 = t;
     float _e37 = t;
-    r = (_e36 + ((_e37 * z) * p_3));
+    r = (_e36 + ((_e37 * z_1) * p_3));
     float _e42 = r;
     float _e44 = r;
     r = (shift ? (math_QUARTER_PI + _e44) : _e42);
@@ -153,20 +215,20 @@ float math_atan(float x) {
 vec2 math_sincos_turns(float u) {
     vec2 cs = vec2(0.0);
     float q_4 = roundEven((4.0 * u));
-    float r_59 = (u - (0.25 * q_4));
-    float z_1 = (r_59 * r_59);
-    float s_12 = (r_59 * ((((((((41.47283 * z_1) - 76.69787) * z_1) + 81.6052) * z_1) - 41.3417) * z_1) + 6.2831855));
-    float c_8 = ((((((((59.22017 * z_1) - 85.44285) * z_1) + 64.939316) * z_1) - 19.739208) * z_1) + 1.0);
-    int k_13 = (int(q_4) & 3);
-    cs = vec2(c_8, s_12);
-    if ((k_13 == 1)) {
-        cs = vec2(-(s_12), c_8);
+    float r_67 = (u - (0.25 * q_4));
+    float z_2 = (r_67 * r_67);
+    float s_15 = (r_67 * ((((((((41.47283 * z_2) - 76.69787) * z_2) + 81.6052) * z_2) - 41.3417) * z_2) + 6.2831855));
+    float c_10 = ((((((((59.22017 * z_2) - 85.44285) * z_2) + 64.939316) * z_2) - 19.739208) * z_2) + 1.0);
+    int k_23 = (int(q_4) & 3);
+    cs = vec2(c_10, s_15);
+    if ((k_23 == 1)) {
+        cs = vec2(-(s_15), c_10);
     } else {
-        if ((k_13 == 2)) {
-            cs = vec2(-(c_8), -(s_12));
+        if ((k_23 == 2)) {
+            cs = vec2(-(c_10), -(s_15));
         } else {
-            if ((k_13 == 3)) {
-                cs = vec2(s_12, -(c_8));
+            if ((k_23 == 3)) {
+                cs = vec2(s_15, -(c_10));
             }
         }
     }
@@ -175,13 +237,59 @@ vec2 math_sincos_turns(float u) {
 }
 
 float math_hypot(float x_1, float y) {
-    float m_23 = max(abs(x_1), abs(y));
-    if ((m_23 <= 0.0)) {
+    float m_36 = max(abs(x_1), abs(y));
+    if ((m_36 <= 0.0)) {
         return 0.0;
     }
-    float a_12 = (x_1 / m_23);
-    float b_2 = (y / m_23);
-    return (m_23 * sqrt(((a_12 * a_12) + (b_2 * b_2))));
+    float a_17 = (x_1 / m_36);
+    float b_4 = (y / m_36);
+    return (m_36 * sqrt(((a_17 * a_17) + (b_4 * b_4))));
+}
+
+float math_exp(float x_2) {
+    float xc = clamp(x_2, -87.0, 88.0);
+    float n_6 = roundEven((xc * math_LOG2_E));
+    float r_68 = ((xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO));
+    float r2_ = (r_68 * r_68);
+    float p_4 = (((1.0 + r_68) + ((0.4999999 + (0.1666642 * r_68)) * r2_)) + (((0.041668225 + (0.008374816 * r_68)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
+    float s_16 = uintBitsToFloat((uint((int(n_6) + 127)) << 23u));
+    return ((x_2 >= -87.0) ? (p_4 * s_16) : 0.0);
+}
+
+float math_atanh2_(float z) {
+    float z2_3 = (z * z);
+    float s_17 = (((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3);
+    return ((2.0 * z) + ((2.0 * z) * s_17));
+}
+
+float math_ln(float x_3) {
+    float e = 0.0;
+    float f = 0.0;
+    uint b_5 = floatBitsToUint(x_3);
+    e = float((int(((b_5 >> 23u) & 255u)) - 127));
+    f = uintBitsToFloat(((b_5 & 8388607u) | 1065353216u));
+    float _e17 = f;
+    if ((_e17 > math_SQRT_2_)) {
+        float _e20 = f;
+        f = (0.5 * _e20);
+        float _e23 = e;
+        e = (_e23 + 1.0);
+    }
+    float _e26 = f;
+    float _e29 = f;
+    float _e33 = math_atanh2_(((_e26 - 1.0) / (_e29 + 1.0)));
+    float _e34 = e;
+    float _e37 = e;
+    return ((_e34 * math_LN2_HI) + ((_e37 * math_LN2_LO) + _e33));
+}
+
+float math_ln_1p(float x_4) {
+    if ((x_4 < 0.5)) {
+        float _e6 = math_atanh2_((x_4 / (2.0 + x_4)));
+        return _e6;
+    }
+    float _e9 = math_ln((1.0 + x_4));
+    return _e9;
 }
 
 float ndf_roughness_clamp_alpha(float alpha) {
@@ -227,18 +335,18 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     if ((scale <= 0.0)) {
         return c_3;
     }
-    float a_13 = (c_3.s_xx / scale);
-    float b_3 = (c_3.s_xy / scale);
-    float e_2 = (c_3.s_yy / scale);
-    float d_1 = (0.5 * (a_13 - e_2));
-    float r_60 = sqrt(((d_1 * d_1) + (b_3 * b_3)));
-    float lmax_1 = (((0.5 * (a_13 + e_2)) + r_60) * scale);
+    float a_18 = (c_3.s_xx / scale);
+    float b_6 = (c_3.s_xy / scale);
+    float e_3 = (c_3.s_yy / scale);
+    float d_1 = (0.5 * (a_18 - e_3));
+    float r_69 = sqrt(((d_1 * d_1) + (b_6 * b_6)));
+    float lmax_1 = (((0.5 * (a_18 + e_3)) + r_69) * scale);
     if ((lmax_1 <= max_eig)) {
         return c_3;
     }
     float lmin_1 = max((c_3.det / lmax_1), 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = (r_60 < 1e-18);
+        local = (r_69 < 1e-18);
     } else {
         local = true;
     }
@@ -246,12 +354,12 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     if (_e46) {
         return kernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
     }
-    float p_4 = (r_60 + abs(d_1));
-    float q_5 = ((p_4 > 0.0) ? ((b_3 * b_3) / p_4) : 0.0);
-    vec2 ee = ((d_1 >= 0.0) ? vec2(p_4, q_5) : vec2(q_5, p_4));
-    float inv_1 = (1.0 / (2.0 * r_60));
+    float p_5 = (r_69 + abs(d_1));
+    float q_5 = ((p_5 > 0.0) ? ((b_6 * b_6) / p_5) : 0.0);
+    vec2 ee = ((d_1 >= 0.0) ? vec2(p_5, q_5) : vec2(q_5, p_5));
+    float inv_1 = (1.0 / (2.0 * r_69));
     float p11_ = (ee.x * inv_1);
-    float p12_ = (b_3 * inv_1);
+    float p12_ = (b_6 * inv_1);
     float p22_ = (ee.y * inv_1);
     return kernel_covariance_Covariance(((max_eig * p11_) + (lmin_1 * p22_)), ((max_eig - lmin_1) * p12_), ((max_eig * p22_) + (lmin_1 * p11_)), (max_eig * lmin_1));
 }
@@ -320,27 +428,27 @@ float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5) {
 }
 
 float filter_deferred_norm_eval(uint norm, vec3 dn_u, vec3 dn_v) {
-    float a_14 = dot(dn_u, dn_u);
-    float c_9 = dot(dn_v, dn_v);
+    float a_19 = dot(dn_u, dn_u);
+    float c_11 = dot(dn_v, dn_v);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
-        return max(a_14, c_9);
+        return max(a_19, c_11);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        float _e11 = filter_deferred_max_eigenvalue(a_14, dot(dn_u, dn_v), c_9);
+        float _e11 = filter_deferred_max_eigenvalue(a_19, dot(dn_u, dn_v), c_11);
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        vec3 m_24 = max(abs(dn_u), abs(dn_v));
-        return max(max(m_24.x, m_24.y), m_24.z);
+        vec3 m_37 = max(abs(dn_u), abs(dn_v));
+        return max(max(m_37.x, m_37.y), m_37.z);
     }
-    return (a_14 + c_9);
+    return (a_19 + c_11);
 }
 
-float filter_deferred_clamp_kernel(filter_deferred_KernelConvention conv, float k_1) {
+float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_1) {
     return min(max(k_1, 0.0), conv.clamp_);
 }
 
-float filter_deferred_kernel(filter_deferred_KernelConvention conv_1, vec3 dn_u_1, vec3 dn_v_1) {
+float filter_deferred_widening(filter_deferred_KernelConvention conv_1, vec3 dn_u_1, vec3 dn_v_1) {
     float raw = 0.0;
     float _e4 = filter_deferred_norm_eval(conv_1.norm, dn_u_1, dn_v_1);
     raw = _e4;
@@ -348,11 +456,11 @@ float filter_deferred_kernel(filter_deferred_KernelConvention conv_1, vec3 dn_u_
         raw = ((_e4 > 0.0) ? pow(_e4, conv_1.exponent) : 0.0);
     }
     float _e16 = raw;
-    float _e20 = filter_deferred_clamp_kernel(conv_1, ((conv_1.scale * _e16) + conv_1.bias));
+    float _e20 = filter_deferred_clamp_widening(conv_1, ((conv_1.scale * _e16) + conv_1.bias));
     return _e20;
 }
 
-float filter_deferred_apply_kernel(filter_deferred_KernelConvention conv_2, float alpha_in, float k_2) {
+float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, float alpha_in, float k_2) {
     float alpha_2 = 0.0;
     float out_ = 0.0;
     alpha_2 = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
@@ -360,7 +468,7 @@ float filter_deferred_apply_kernel(filter_deferred_KernelConvention conv_2, floa
     alpha_2 = max(_e7, (conv_2.perceptual_floor * conv_2.perceptual_floor));
     float _e13 = alpha_2;
     float _e14 = filter_deferred_from_alpha(conv_2.domain, _e13);
-    float _e15 = filter_deferred_clamp_kernel(conv_2, k_2);
+    float _e15 = filter_deferred_clamp_widening(conv_2, k_2);
     out_ = ((conv_2.combine == filter_deferred_COMBINE_MAX) ? max(_e14, _e15) : (_e14 + _e15));
     if (conv_2.saturate) {
         float _e24 = out_;
@@ -372,53 +480,70 @@ float filter_deferred_apply_kernel(filter_deferred_KernelConvention conv_2, floa
 }
 
 float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_3, vec3 dn_u_2, vec3 dn_v_2) {
-    float _e4 = filter_deferred_kernel(conv_3, dn_u_2, dn_v_2);
-    float _e5 = filter_deferred_apply_kernel(conv_3, alpha_3, _e4);
+    float _e4 = filter_deferred_widening(conv_3, dn_u_2, dn_v_2);
+    float _e5 = filter_deferred_apply_widening(conv_3, alpha_3, _e4);
     return _e5;
 }
 
-kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_3, vec3 dn_v_3, float sigma_sq) {
-    vec3 x_4 = (cross(dn_u_3, dn_v_3) * sigma_sq);
-    return kernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_4, x_4));
+kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_3, vec3 dn_v_3, float sigma) {
+    float sigma_sq = (sigma * sigma);
+    vec3 x_8 = (cross(dn_u_3, dn_v_3) * sigma_sq);
+    return kernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_8, x_8));
 }
 
-float filter_deferred_bandwidth_kernel(uint bandwidth, kernel_covariance_Covariance sigma) {
+float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel) {
     if ((bandwidth == filter_deferred_BANDWIDTH_MAX)) {
-        float _e7 = filter_deferred_max_eigenvalue(sigma.s_xx, sigma.s_xy, sigma.s_yy);
+        float _e7 = filter_deferred_max_eigenvalue(kernel.s_xx, kernel.s_xy, kernel.s_yy);
         return (2.0 * _e7);
     }
-    float t_1 = (sigma.s_xx + sigma.s_yy);
-    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_1) : t_1);
+    float t_10 = (kernel.s_xx + kernel.s_yy);
+    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_10) : t_10);
 }
 
-float filter_deferred_filtered_alpha(float alpha_4, kernel_covariance_Covariance sigma_1, uint bandwidth_1, float kappa) {
+float filter_deferred_filtered_alpha(float alpha_4, kernel_covariance_Covariance kernel_1, uint bandwidth_1, float kappa) {
     filter_deferred_KernelConvention conv_4 = filter_deferred_KernelConvention(filter_deferred_DOMAIN_ALPHA_SQ, filter_deferred_NORM_SUM_SQUARED, 0.5, 1.0, 0.0, kappa, filter_deferred_COMBINE_ADD, true, 0.0);
-    float _e13 = filter_deferred_bandwidth_kernel(bandwidth_1, sigma_1);
-    float _e14 = filter_deferred_apply_kernel(conv_4, alpha_4, _e13);
+    float _e13 = filter_deferred_bandwidth_alpha2_(bandwidth_1, kernel_1);
+    float _e14 = filter_deferred_apply_widening(conv_4, alpha_4, _e13);
     return _e14;
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(vec2 axis, vec2 alpha_5) {
-    vec2 l_2 = (alpha_5 * alpha_5);
-    return ndf_roughness_matrix_RoughnessMatrix(axis, l_2, (vec2(1.0) / l_2), (alpha_5.x * alpha_5.y));
+    vec2 l_5 = (alpha_5 * alpha_5);
+    return ndf_roughness_matrix_RoughnessMatrix(axis, l_5, l_5, (vec2(1.0) / l_5), (alpha_5.x * alpha_5.y), (l_5.x * l_5.y), 0.0);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det, float tau) {
+vec2 ndf_roughness_matrix_clamped_eigenvalues(vec2 l, float det, float tau) {
+    if ((det >= tau)) {
+        return l;
+    }
+    float h_20 = (0.5 * (l.x + l.y));
+    float gap = (tau - det);
+    float t_11 = (gap / (h_20 + sqrt(((h_20 * h_20) + gap))));
+    float l1_ = (l.x + t_11);
+    return vec2(l1_, (tau / l1_));
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(vec2 axis_1, vec2 l_1, float det_1, float tau_1) {
+    vec2 _e4 = ndf_roughness_matrix_clamped_eigenvalues(l_1, det_1, tau_1);
+    return ndf_roughness_matrix_RoughnessMatrix(axis_1, l_1, _e4, (vec2(1.0) / _e4), sqrt(max(det_1, tau_1)), det_1, tau_1);
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det_2, float tau_2) {
     vec2 v_1 = vec2(0.0);
     float half_diff = (0.5 * (a11_ - a22_));
     float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
-    float l1_ = ((0.5 * (a11_ + a22_)) + rad);
-    float l2_1 = (det / l1_);
+    float l1_1 = ((0.5 * (a11_ + a22_)) + rad);
+    float l2_2 = (max(det_2, 0.0) / l1_1);
     float big_1 = (rad + abs(half_diff));
     v_1 = ((half_diff < 0.0) ? vec2(a12_, big_1) : vec2(big_1, a12_));
     if ((big_1 <= 0.0)) {
         v_1 = vec2(1.0, 0.0);
     }
-    vec2 _e30 = v_1;
-    vec2 _e31 = v_1;
-    vec2 axis_1 = (_e30 / vec2(length(_e31)));
-    float c_10 = max(det, tau);
-    return ndf_roughness_matrix_RoughnessMatrix(axis_1, vec2(l1_, l2_1), (vec2(l2_1, l1_) / vec2(c_10)), sqrt(c_10));
+    vec2 _e32 = v_1;
+    vec2 _e33 = v_1;
+    vec2 axis_2 = (_e32 / vec2(length(_e33)));
+    ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, vec2(l1_1, l2_2), det_2, tau_2);
+    return _e38;
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(float a11_1, float a12_1, float a22_1) {
@@ -426,86 +551,2156 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(float a11
     return _e7;
 }
 
-vec2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_1, vec2 v_2) {
-    return vec2(((r_1.axis.x * v_2.x) + (r_1.axis.y * v_2.y)), ((r_1.axis.x * v_2.y) - (r_1.axis.y * v_2.x)));
-}
-
-float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_2, vec2 s) {
-    vec2 _e2 = ndf_roughness_matrix_rotate(r_2, s);
-    return dot((_e2 * _e2), r_2.inv_eig);
-}
-
-float ndf_roughness_matrix_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, vec2 w) {
-    vec2 _e2 = ndf_roughness_matrix_rotate(r_3, w);
-    return dot((_e2 * _e2), r_3.eig);
-}
-
-float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_4) {
-    return r_4.sqrt_det;
-}
-
-vec3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_5) {
-    float c_11 = r_5.axis.x;
-    float s_13 = r_5.axis.y;
-    vec2 l_3 = r_5.eig;
-    return vec3((((l_3.x * c_11) * c_11) + ((l_3.y * s_13) * s_13)), (((l_3.x - l_3.y) * c_11) * s_13), (((l_3.x * s_13) * s_13) + ((l_3.y * c_11) * c_11)));
-}
-
-float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_6) {
-    return (r_6.eig.x * r_6.eig.y);
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_plus_kernel(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_1) {
-    vec3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_12 = a_2.axis.x;
-    float s_14 = a_2.axis.y;
-    float k1_ = max(((((c_12 * c_12) * k_3.s_xx) + (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((s_14 * s_14) * k_3.s_yy)), 0.0);
-    float k2_ = max(((((s_14 * s_14) * k_3.s_xx) - (((2.0 * c_12) * s_14) * k_3.s_xy)) + ((c_12 * c_12) * k_3.s_yy)), 0.0);
-    float _e38 = ndf_roughness_matrix_determinant(a_2);
-    float det_2 = ((_e38 + (2.0 * ((a_2.eig.y * k1_) + (a_2.eig.x * k2_)))) + (4.0 * max(k_3.det, 0.0)));
-    ndf_roughness_matrix_RoughnessMatrix _e70 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_2, tau_1);
-    return _e70;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance k_4) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_plus_kernel(a_3, k_4, (a_3.sqrt_det * a_3.sqrt_det));
-    return _e5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel);
-    ndf_roughness_matrix_RoughnessMatrix _e3 = filter_gaussian_gaussian_sanitized(a_4, _e2);
-    return _e3;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_tau_sanitized(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance k_5, float tau_2) {
-    float _e3 = ndf_roughness_matrix_determinant(a_5);
-    ndf_roughness_matrix_RoughnessMatrix _e7 = filter_gaussian_plus_kernel(a_5, k_5, ((tau_2 > 0.0) ? tau_2 : _e3));
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_1, float det_clamp) {
+    ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_eigenbasis(r_1.axis, r_1.eig, r_1.det, max(det_clamp, 0.0));
     return _e7;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_tau(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance kernel_1, float tau_3) {
-    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_1);
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_with_tau_sanitized(a_6, _e3, tau_3);
+vec2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, vec2 v_2) {
+    return vec2(((r_2.axis.x * v_2.x) + (r_2.axis.y * v_2.y)), ((r_2.axis.x * v_2.y) - (r_2.axis.y * v_2.x)));
+}
+
+float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, vec2 s) {
+    vec2 _e2 = ndf_roughness_matrix_rotate(r_3, s);
+    return dot((_e2 * _e2), r_3.inv_eig);
+}
+
+float ndf_roughness_matrix_quadratic(ndf_roughness_matrix_RoughnessMatrix r_4, vec2 w) {
+    vec2 _e2 = ndf_roughness_matrix_rotate(r_4, w);
+    return dot((_e2 * _e2), r_4.eig_c);
+}
+
+float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5) {
+    return r_5.sqrt_det;
+}
+
+vec3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, vec2 l_2) {
+    float c_12 = r_6.axis.x;
+    float s_18 = r_6.axis.y;
+    return vec3((((l_2.x * c_12) * c_12) + ((l_2.y * s_18) * s_18)), (((l_2.x - l_2.y) * c_12) * s_18), (((l_2.x * s_18) * s_18) + ((l_2.y * c_12) * c_12)));
+}
+
+vec3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7) {
+    vec3 _e2 = ndf_roughness_matrix_entries_of(r_7, r_7.eig);
+    return _e2;
+}
+
+vec3 ndf_roughness_matrix_clamped_entries(ndf_roughness_matrix_RoughnessMatrix r_8) {
+    vec3 _e2 = ndf_roughness_matrix_entries_of(r_8, r_8.eig_c);
+    return _e2;
+}
+
+float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_9) {
+    return r_9.det;
+}
+
+float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10) {
+    return max(r_10.det, r_10.tau);
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3) {
+    vec3 _e3 = ndf_roughness_matrix_entries(a_2);
+    float c_13 = a_2.axis.x;
+    float s_19 = a_2.axis.y;
+    float k1_1 = max(((((c_13 * c_13) * k_3.s_xx) + (((2.0 * c_13) * s_19) * k_3.s_xy)) + ((s_19 * s_19) * k_3.s_yy)), 0.0);
+    float k2_1 = max(((((s_19 * s_19) * k_3.s_xx) - (((2.0 * c_13) * s_19) * k_3.s_xy)) + ((c_13 * c_13) * k_3.s_yy)), 0.0);
+    float _e38 = ndf_roughness_matrix_determinant(a_2);
+    float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * max(k_3.det, 0.0)));
+    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
+    return _e72;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel_2) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_3);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_3, _e2, _e3);
     return _e4;
 }
 
-kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m) {
-    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m.second.x - (m.mean.x * m.mean.x)), (m.second.y - (m.mean.x * m.mean.y)), (m.second.z - (m.mean.y * m.mean.y)));
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_3, float det_clamp_1) {
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e3, det_clamp_1);
+    return _e4;
+}
+
+float ndf_g1_of(float lambda_w, float w_dot_m) {
+    return ((w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0);
+}
+
+float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m) {
+    bool local_3 = false;
+    if ((i_dot_m > 0.0)) {
+        local_3 = (o_dot_m > 0.0);
+    } else {
+        local_3 = false;
+    }
+    bool _e16 = local_3;
+    return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
+}
+
+ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_6) {
+    float _e1 = ndf_roughness_clamp_alpha(alpha_6);
+    return ndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
+}
+
+float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_11, vec2 s_1) {
+    return (dot(s_1, s_1) * r_11.inv_alpha_sq);
+}
+
+float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_12, vec2 w_1) {
+    return (dot(w_1, w_1) * (r_12.alpha * r_12.alpha));
+}
+
+float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_13) {
+    return (r_13.alpha * r_13.alpha);
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_14) {
+    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), vec2(r_14.alpha));
+    return _e6;
+}
+
+ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(vec2 alpha_7) {
+    float _e2 = ndf_roughness_clamp_alpha(alpha_7.x);
+    float _e4 = ndf_roughness_clamp_alpha(alpha_7.y);
+    vec2 a_20 = vec2(_e2, _e4);
+    return ndf_roughness_axis_aligned_AxisAligned(a_20, (vec2(1.0) / (a_20 * a_20)));
+}
+
+float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_15, vec2 s_2) {
+    return dot((s_2 * s_2), r_15.inv_alpha_sq);
+}
+
+float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_16, vec2 w_2) {
+    return dot((w_2 * w_2), (r_16.alpha * r_16.alpha));
+}
+
+float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_17) {
+    return (r_17.alpha.x * r_17.alpha.y);
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_18) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), r_18.alpha);
+    return _e5;
+}
+
+float ndf_ggx_p22_of(float q, float sqrt_det) {
+    float t_12 = (1.0 + q);
+    return ((q >= 0.0) ? (1.0 / (((math_PI * sqrt_det) * t_12) * t_12)) : 0.0);
+}
+
+float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1) {
+    bool local_4 = false;
+    float t_13 = (q_xy + (m_z * m_z));
+    float v_13 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
+    if ((m_z > 0.0)) {
+        local_4 = (v_13 <= math_F32_MAX);
+    } else {
+        local_4 = false;
+    }
+    bool _e18 = local_4;
+    return (_e18 ? v_13 : 0.0);
+}
+
+float ndf_ggx_lambda_of(float q_1, float abs_wz) {
+    bool local_5 = false;
+    bool local_6 = false;
+    if ((q_1 <= 0.0)) {
+        local_5 = (abs_wz >= 0.0);
+    } else {
+        local_5 = false;
+    }
+    bool _e9 = local_5;
+    if (_e9) {
+        return 0.0;
+    }
+    if (!(!((abs_wz > 0.0)))) {
+        local_6 = !((q_1 > 0.0));
+    } else {
+        local_6 = true;
+    }
+    bool _e21 = local_6;
+    if (_e21) {
+        return math_F32_MAX;
+    }
+    float r_70 = sqrt(((abs_wz * abs_wz) + q_1));
+    return (q_1 / ((2.0 * abs_wz) * (r_70 + abs_wz)));
+}
+
+float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_19, vec2 s_3) {
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_19, s_3);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_19);
+    float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_20, vec3 m) {
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_20, m.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_20);
+    float _e6 = ndf_ggx_d_of(_e3, m.z, _e5);
+    return _e6;
+}
+
+float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_21, vec3 w_3) {
+    float _e3 = ndf_roughness_isotropic_quadratic(r_21, w_3.xy);
+    float _e6 = ndf_ggx_lambda_of(_e3, abs(w_3.z));
+    return _e6;
+}
+
+float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_22, vec3 w_4, vec3 m_1) {
+    float _e3 = ndf_ggx_lambda_isotropic(r_22, w_4);
+    float _e5 = ndf_g1_of(_e3, dot(w_4, m_1));
+    return _e5;
+}
+
+float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_23, vec3 i, vec3 o, vec3 m_2) {
+    float _e4 = ndf_ggx_lambda_isotropic(r_23, i);
+    float _e5 = ndf_ggx_lambda_isotropic(r_23, o);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_2), dot(o, m_2));
+    return _e8;
+}
+
+float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_24, vec2 s_4) {
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_24, s_4);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_24);
+    float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, vec3 m_3) {
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_25, m_3.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_25);
+    float _e6 = ndf_ggx_d_of(_e3, m_3.z, _e5);
+    return _e6;
+}
+
+float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, vec3 w_5) {
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_26, w_5.xy);
+    float _e6 = ndf_ggx_lambda_of(_e3, abs(w_5.z));
+    return _e6;
+}
+
+float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, vec3 w_6, vec3 m_4) {
+    float _e3 = ndf_ggx_lambda_axis_aligned(r_27, w_6);
+    float _e5 = ndf_g1_of(_e3, dot(w_6, m_4));
+    return _e5;
+}
+
+float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, vec3 i_1, vec3 o_1, vec3 m_5) {
+    float _e4 = ndf_ggx_lambda_axis_aligned(r_28, i_1);
+    float _e5 = ndf_ggx_lambda_axis_aligned(r_28, o_1);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_5), dot(o_1, m_5));
+    return _e8;
+}
+
+float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_29, vec2 s_5) {
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_29, s_5);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_29);
+    float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, vec3 m_6) {
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_30, m_6.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_30);
+    float _e6 = ndf_ggx_d_of(_e3, m_6.z, _e5);
+    return _e6;
+}
+
+float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, vec3 w_7) {
+    float _e3 = ndf_roughness_matrix_quadratic(r_31, w_7.xy);
+    float _e6 = ndf_ggx_lambda_of(_e3, abs(w_7.z));
+    return _e6;
+}
+
+float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, vec3 w_8, vec3 m_7) {
+    float _e3 = ndf_ggx_lambda_matrix(r_32, w_8);
+    float _e5 = ndf_g1_of(_e3, dot(w_8, m_7));
+    return _e5;
+}
+
+float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, vec3 i_2, vec3 o_2, vec3 m_8) {
+    float _e4 = ndf_ggx_lambda_matrix(r_33, i_2);
+    float _e5 = ndf_ggx_lambda_matrix(r_33, o_2);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_8), dot(o_2, m_8));
+    return _e8;
+}
+
+float ndf_beckmann_exp_neg_times(float x_5, float k_4, float ln_k) {
+    return ((x_5 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_5)) : (exp(-(x_5)) * k_4));
+}
+
+float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
+    float den = (math_PI * sqrt_det_2);
+    float _e8 = ndf_beckmann_exp_neg_times(q_2, (1.0 / den), -(log(den)));
+    return ((q_2 >= 0.0) ? _e8 : 0.0);
+}
+
+float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3) {
+    bool local_7 = false;
+    float z2_4 = (m_z_1 * m_z_1);
+    float x_9 = (q_xy_1 / z2_4);
+    float k_24 = (1.0 / (((math_PI * sqrt_det_3) * z2_4) * z2_4));
+    float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
+    float _e21 = ndf_beckmann_exp_neg_times(x_9, k_24, ln_k_1);
+    if ((m_z_1 > 0.0)) {
+        local_7 = (_e21 <= math_F32_MAX);
+    } else {
+        local_7 = false;
+    }
+    bool _e29 = local_7;
+    return (_e29 ? _e21 : 0.0);
+}
+
+float ndf_beckmann_lambda_of(float q_3, float abs_wz_1) {
+    bool local_8 = false;
+    bool local_9 = false;
+    float p = -3.849172e-5;
+    if ((q_3 <= 0.0)) {
+        local_8 = (abs_wz_1 >= 0.0);
+    } else {
+        local_8 = false;
+    }
+    bool _e9 = local_8;
+    if (_e9) {
+        return 0.0;
+    }
+    if (!(!((abs_wz_1 > 0.0)))) {
+        local_9 = !((q_3 > 0.0));
+    } else {
+        local_9 = true;
+    }
+    bool _e21 = local_9;
+    if (_e21) {
+        return math_F32_MAX;
+    }
+    float a_21 = (abs_wz_1 / sqrt(q_3));
+    if ((a_21 > 9.5)) {
+        return 0.0;
+    }
+    float t_14 = ((a_21 - 3.0) / (a_21 + 3.0));
+    float _e35 = p;
+    p = ((_e35 * t_14) + 0.00028491428);
+    float _e39 = p;
+    p = ((_e39 * t_14) + 1.8268152e-5);
+    float _e43 = p;
+    p = ((_e43 * t_14) - 0.0018242653);
+    float _e47 = p;
+    p = ((_e47 * t_14) + 0.0013654069);
+    float _e51 = p;
+    p = ((_e51 * t_14) + 0.0055811945);
+    float _e55 = p;
+    p = ((_e55 * t_14) - 0.009357543);
+    float _e59 = p;
+    p = ((_e59 * t_14) - 0.0076571554);
+    float _e63 = p;
+    p = ((_e63 * t_14) + 0.036274612);
+    float _e67 = p;
+    p = ((_e67 * t_14) - 0.023293633);
+    float _e71 = p;
+    p = ((_e71 * t_14) - 0.07646358);
+    float _e75 = p;
+    p = ((_e75 * t_14) + 0.2117349);
+    float _e79 = p;
+    p = ((_e79 * t_14) - 0.23284179);
+    float _e83 = p;
+    p = ((_e83 * t_14) + 0.03307925);
+    float _e87 = p;
+    p = ((_e87 * t_14) + 1.0631379);
+    float _e91 = p;
+    float k_25 = (_e91 / ((2.0 * a_21) + 1.0));
+    return min(((exp((-(a_21) * a_21)) * k_25) / ((3.5449078 * a_21) * (a_21 + k_25))), math_F32_MAX);
+}
+
+float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_34, vec2 s_6) {
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_34, s_6);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_34);
+    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_35, vec3 m_9) {
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_35, m_9.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_35);
+    float _e6 = ndf_beckmann_d_of(_e3, m_9.z, _e5);
+    return _e6;
+}
+
+float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_36, vec3 w_9) {
+    float _e3 = ndf_roughness_isotropic_quadratic(r_36, w_9.xy);
+    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
+    return _e6;
+}
+
+float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_37, vec3 w_10, vec3 m_10) {
+    float _e3 = ndf_beckmann_lambda_isotropic(r_37, w_10);
+    float _e5 = ndf_g1_of(_e3, dot(w_10, m_10));
+    return _e5;
+}
+
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_38, vec3 i_3, vec3 o_3, vec3 m_11) {
+    float _e4 = ndf_beckmann_lambda_isotropic(r_38, i_3);
+    float _e5 = ndf_beckmann_lambda_isotropic(r_38, o_3);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_11), dot(o_3, m_11));
+    return _e8;
+}
+
+float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_39, vec2 s_7) {
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_39, s_7);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_39);
+    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_40, vec3 m_12) {
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_40, m_12.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_40);
+    float _e6 = ndf_beckmann_d_of(_e3, m_12.z, _e5);
+    return _e6;
+}
+
+float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_41, vec3 w_11) {
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_41, w_11.xy);
+    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
+    return _e6;
+}
+
+float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, vec3 w_12, vec3 m_13) {
+    float _e3 = ndf_beckmann_lambda_axis_aligned(r_42, w_12);
+    float _e5 = ndf_g1_of(_e3, dot(w_12, m_13));
+    return _e5;
+}
+
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, vec3 i_4, vec3 o_4, vec3 m_14) {
+    float _e4 = ndf_beckmann_lambda_axis_aligned(r_43, i_4);
+    float _e5 = ndf_beckmann_lambda_axis_aligned(r_43, o_4);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_14), dot(o_4, m_14));
+    return _e8;
+}
+
+float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_44, vec2 s_8) {
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_44, s_8);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_44);
+    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_45, vec3 m_15) {
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_45, m_15.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_45);
+    float _e6 = ndf_beckmann_d_of(_e3, m_15.z, _e5);
+    return _e6;
+}
+
+float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_46, vec3 w_13) {
+    float _e3 = ndf_roughness_matrix_quadratic(r_46, w_13.xy);
+    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
+    return _e6;
+}
+
+float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, vec3 w_14, vec3 m_16) {
+    float _e3 = ndf_beckmann_lambda_matrix(r_47, w_14);
+    float _e5 = ndf_g1_of(_e3, dot(w_14, m_16));
+    return _e5;
+}
+
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, vec3 i_5, vec3 o_5, vec3 m_17) {
+    float _e4 = ndf_beckmann_lambda_matrix(r_48, i_5);
+    float _e5 = ndf_beckmann_lambda_matrix(r_48, o_5);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_17), dot(o_5, m_17));
+    return _e8;
+}
+
+float filter_gaussian_ggx_quad_laguerre_node(uint k_5) {
+    switch(k_5) {
+        case 0u: {
+            return 0.40938357;
+        }
+        case 1u: {
+            return 1.3849632;
+        }
+        case 2u: {
+            return 2.9562545;
+        }
+        case 3u: {
+            return 5.181943;
+        }
+        case 4u: {
+            return 8.16171;
+        }
+        case 5u: {
+            return 12.070055;
+        }
+        case 6u: {
+            return 17.249735;
+        }
+        default: {
+            return 24.585955;
+        }
+    }
+}
+
+float filter_gaussian_ggx_quad_laguerre_weight(uint k_6) {
+    switch(k_6) {
+        case 0u: {
+            return 0.18763255;
+        }
+        case 1u: {
+            return 0.43898535;
+        }
+        case 2u: {
+            return 0.28999606;
+        }
+        case 3u: {
+            return 0.075141385;
+        }
+        case 4u: {
+            return 0.007932646;
+        }
+        case 5u: {
+            return 0.00030864213;
+        }
+        case 6u: {
+            return 3.3489582e-6;
+        }
+        default: {
+            return 4.7213926e-9;
+        }
+    }
+}
+
+float filter_gaussian_ggx_quad_far_tail(float beta, float c1s, float c2s, float tl1_, float tl2_, float z2_) {
+    float ib = (1.0 / beta);
+    float p_ib = (0.5 * ((tl1_ * (c1s * ib)) + (tl2_ * (c2s * ib))));
+    float ls = (0.5 * (tl1_ + tl2_));
+    return ((ib * ib) * (1.0 + ((z2_ * ib) * ((12.0 * p_ib) - (2.0 * ls)))));
+}
+
+float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, float z2_1, float tl1_1, float tl2_1) {
+    float acc = 0.0;
+    uint k_7 = 0u;
+    float ib_1 = (1.0 / beta_m);
+    float t1_2 = ((tl1_1 * z2_1) * ib_1);
+    float t2_ = ((tl2_1 * z2_1) * ib_1);
+    float g1_ = ((v1s * ib_1) * t1_2);
+    float g2_ = ((v2s * ib_1) * t2_);
+    bool loop_init = true;
+    while(true) {
+        if (!loop_init) {
+            uint _e51 = k_7;
+            k_7 = (_e51 + 1u);
+        }
+        loop_init = false;
+        uint _e20 = k_7;
+        if ((_e20 < 8u)) {
+        } else {
+            break;
+        }
+        {
+            uint _e23 = k_7;
+            float _e24 = filter_gaussian_ggx_quad_laguerre_node(_e23);
+            float p1_ = (1.0 + (t1_2 * _e24));
+            float p2_ = (1.0 + (t2_ * _e24));
+            float ip1_ = (1.0 / p1_);
+            float ip2_ = (1.0 / p2_);
+            float e_4 = ((_e24 * _e24) * ((g1_ * ip1_) + (g2_ * ip2_)));
+            float _e40 = acc;
+            uint _e41 = k_7;
+            float _e42 = filter_gaussian_ggx_quad_laguerre_weight(_e41);
+            float _e43 = math_exp(e_4);
+            acc = (_e40 + (((_e42 * _e43) * sqrt(ip1_)) * sqrt(ip2_)));
+        }
+    }
+    float _e53 = acc;
+    return ((_e53 * ib_1) * ib_1);
+}
+
+float filter_gaussian_ggx_quad_geom(uint n) {
+    switch(n) {
+        case 0u: {
+            return 0.5819767;
+        }
+        case 1u: {
+            return 0.28721693;
+        }
+        case 2u: {
+            return 0.15651764;
+        }
+        default: {
+            return 0.08942549;
+        }
+    }
+}
+
+float filter_gaussian_ggx_quad_series_below(float c1s_1, float c2s_1, float tl1_2, float tl2_2, float y_1) {
+    float x1_ = (tl1_2 * y_1);
+    float x2_2 = (tl2_2 * y_1);
+    float d1_ = (c1s_1 * y_1);
+    float d2_ = (c2s_1 * y_1);
+    float a1_ = ((-((d1_ + d2_)) - (0.5 * (x1_ + x2_2))) - y_1);
+    float b2_ = (((d1_ * x1_) + (d2_ * x2_2)) + (0.25 * ((x1_ * x1_) + (x2_2 * x2_2))));
+    float b3_ = (-((((d1_ * x1_) * x1_) + ((d2_ * x2_2) * x2_2))) - (0.16666667 * (((x1_ * x1_) * x1_) + ((x2_2 * x2_2) * x2_2))));
+    float a2_1 = (0.5 * ((a1_ * a1_) + (2.0 * b2_)));
+    float a3_ = (0.33333334 * (((a1_ * a2_1) + ((2.0 * b2_) * a1_)) + (3.0 * b3_)));
+    float _e56 = filter_gaussian_ggx_quad_geom(0u);
+    float _e58 = filter_gaussian_ggx_quad_geom(1u);
+    float _e62 = filter_gaussian_ggx_quad_geom(2u);
+    float _e66 = filter_gaussian_ggx_quad_geom(3u);
+    float tail = (((_e56 + (a1_ * _e58)) + (a2_1 * _e62)) + (a3_ * _e66));
+    return ((tail * y_1) * y_1);
+}
+
+float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, float tl2_3) {
+    float sum = 0.0;
+    uint ch = 0u;
+    float v_3 = 0.0;
+    float part = 0.0;
+    float last = 0.0;
+    float vl = 0.0;
+    uint jj = 0u;
+    float beta_1 = ((1.0 + c1s_2) + c2s_2);
+    float ib_2 = (1.0 / beta_1);
+    float w_r = (2.0 * ib_2);
+    float _e15 = math_ln(((37.037037 * (beta_1 + tl1_3)) * ib_2));
+    float k0_ = min(ceil((_e15 / filter_gaussian_ggx_quad_H)), 175.0);
+    float _e24 = math_exp((-(k0_) * filter_gaussian_ggx_quad_H));
+    float w_first = (w_r * _e24);
+    float pr1_ = (1.0 + (tl1_3 * w_r));
+    float pr2_ = (1.0 + (tl2_3 * w_r));
+    float k1_2 = (c1s_2 * (w_r / pr1_));
+    float k2_2 = (c2s_2 * (w_r / pr2_));
+    float x_r = ((-(w_r) - k1_2) - k2_2);
+    float _e40 = math_exp(x_r);
+    float scale_1 = ((w_r * w_r) * _e40);
+    float t1_3 = (tl1_3 * w_r);
+    float t2_1 = (tl2_3 * w_r);
+    float stop = ((5e-8 * w_r) * w_r);
+    bool loop_init_1 = true;
+    while(true) {
+        if (!loop_init_1) {
+            uint _e136 = ch;
+            ch = (_e136 + 1u);
+        }
+        loop_init_1 = false;
+        uint _e51 = ch;
+        if ((_e51 < filter_gaussian_ggx_quad_CHUNKS)) {
+        } else {
+            break;
+        }
+        {
+            uint _e54 = ch;
+            float kb = (float((_e54 * 8u)) - k0_);
+            float _e61 = math_exp((kb * filter_gaussian_ggx_quad_H));
+            v_3 = _e61;
+            part = 0.0;
+            last = 0.0;
+            float _e67 = v_3;
+            vl = _e67;
+            jj = 0u;
+            bool loop_init_2 = true;
+            while(true) {
+                if (!loop_init_2) {
+                    uint _e113 = jj;
+                    jj = (_e113 + 1u);
+                }
+                loop_init_2 = false;
+                uint _e71 = jj;
+                if ((_e71 < 8u)) {
+                } else {
+                    break;
+                }
+                {
+                    float _e74 = v_3;
+                    float ip1_1 = (1.0 / (1.0 + (t1_3 * _e74)));
+                    float _e80 = v_3;
+                    float ip2_1 = (1.0 / (1.0 + (t2_1 * _e80)));
+                    float a_22 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
+                    uint _e91 = jj;
+                    float _e95 = v_3;
+                    float x_10 = ((1.0 * (kb + float(_e91))) - ((_e95 - 1.0) * a_22));
+                    float _e100 = math_exp(x_10);
+                    last = ((_e100 * sqrt(ip1_1)) * sqrt(ip2_1));
+                    float _e105 = part;
+                    float _e106 = last;
+                    part = (_e105 + _e106);
+                    float _e108 = v_3;
+                    vl = _e108;
+                    float _e109 = v_3;
+                    v_3 = (_e109 * filter_gaussian_ggx_quad_EXP_H);
+                }
+            }
+            float _e115 = sum;
+            float _e116 = part;
+            sum = (_e115 + _e116);
+            float _e118 = vl;
+            float wl = (_e118 * w_r);
+            float b_7 = ((wl >= 2.0) ? (1.0 + wl) : 7.47);
+            float _e126 = last;
+            float _e128 = sum;
+            float _e130 = vl;
+            float _e132 = vl;
+            if (((_e126 * b_7) <= (((stop * _e128) * _e130) * _e132))) {
+                break;
+            }
+        }
+    }
+    float _e139 = sum;
+    float _e141 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first);
+    return (filter_gaussian_ggx_quad_H * ((_e139 * scale_1) + _e141));
+}
+
+float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1_4, float tl2_4) {
+    bool local_10 = false;
+    bool local_11 = false;
+    float beta_m_1 = ((z2_2 + v1s_1) + v2s_1);
+    if ((beta_m_1 >= ((filter_gaussian_ggx_quad_FAR * tl1_4) * z2_2))) {
+        float _e11 = filter_gaussian_ggx_quad_far_tail(beta_m_1, v1s_1, v2s_1, tl1_4, tl2_4, z2_2);
+        return _e11;
+    }
+    if (((tl1_4 * z2_2) <= (filter_gaussian_ggx_quad_GL_RATIO * beta_m_1))) {
+        if (!((beta_m_1 <= (filter_gaussian_ggx_quad_GL_WIDE * z2_2)))) {
+            float _e26 = math_ln((beta_m_1 / z2_2));
+            local_11 = (((tl1_4 * (filter_gaussian_ggx_quad_GL_PLATEAU + (1.5 * _e26))) * z2_2) <= beta_m_1);
+        } else {
+            local_11 = true;
+        }
+        bool _e34 = local_11;
+        local_10 = _e34;
+    } else {
+        local_10 = false;
+    }
+    bool _e36 = local_10;
+    if (_e36) {
+        float _e37 = filter_gaussian_ggx_quad_laguerre(beta_m_1, v1s_1, v2s_1, z2_2, tl1_4, tl2_4);
+        return _e37;
+    }
+    float iz2_ = (1.0 / z2_2);
+    float _e42 = filter_gaussian_ggx_quad_trapezoid((v1s_1 * iz2_), (v2s_1 * iz2_), tl1_4, tl2_4);
+    return ((_e42 * iz2_) * iz2_);
+}
+
+float filter_gaussian_ggx_quad_hermite_node(uint k_8) {
+    switch(k_8) {
+        case 0u: {
+            return 0.5390798;
+        }
+        case 1u: {
+            return 1.6365191;
+        }
+        case 2u: {
+            return 2.802486;
+        }
+        default: {
+            return 4.144547;
+        }
+    }
+}
+
+float filter_gaussian_ggx_quad_hermite_weight(uint k_9) {
+    switch(k_9) {
+        case 0u: {
+            return 0.37301224;
+        }
+        case 1u: {
+            return 0.11723991;
+        }
+        case 2u: {
+            return 0.00963522;
+        }
+        default: {
+            return 0.000112614536;
+        }
+    }
+}
+
+float filter_gaussian_ggx_quad_h_of(float y_2) {
+    float r_49 = 0.0;
+    float a_23 = abs(y_2);
+    if ((a_23 > 1.0)) {
+        float i_11 = (1.0 / a_23);
+        r_49 = (a_23 * sqrt((1.0 + (i_11 * i_11))));
+    } else {
+        r_49 = sqrt((1.0 + (y_2 * y_2)));
+    }
+    float _e16 = r_49;
+    float _e18 = r_49;
+    return ((y_2 >= 0.0) ? (1.0 / (_e18 + y_2)) : (_e16 - y_2));
+}
+
+float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz) {
+    float acc_1 = 0.0;
+    uint k_10 = 0u;
+    float iq = (1.0 / qa);
+    float z0_ = (oz * sqrt(iq));
+    float fs = sqrt((qs * iq));
+    bool loop_init_3 = true;
+    while(true) {
+        if (!loop_init_3) {
+            uint _e30 = k_10;
+            k_10 = (_e30 + 1u);
+        }
+        loop_init_3 = false;
+        uint _e13 = k_10;
+        if ((_e13 < 4u)) {
+        } else {
+            break;
+        }
+        {
+            uint _e16 = k_10;
+            float _e17 = filter_gaussian_ggx_quad_hermite_node(_e16);
+            float x_11 = (fs * _e17);
+            float _e19 = acc_1;
+            uint _e20 = k_10;
+            float _e21 = filter_gaussian_ggx_quad_hermite_weight(_e20);
+            float _e23 = filter_gaussian_ggx_quad_h_of((z0_ - x_11));
+            float _e25 = filter_gaussian_ggx_quad_h_of((z0_ + x_11));
+            acc_1 = (_e19 + (_e21 * (_e23 + _e25)));
+        }
+    }
+    float _e32 = acc_1;
+    return (_e32 / (2.0 * z0_));
+}
+
+float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, float ie0_, float i2s2_, float e2_, float c_stop, float total_in) {
+    float total = 0.0;
+    uint ch_1 = 0u;
+    float fl = 0.0;
+    float xl = 0.0;
+    float part_1 = 0.0;
+    uint jj_1 = 0u;
+    bool local_12 = false;
+    total = total_in;
+    float sgn = (up ? 1.0 : -1.0);
+    uint first = (up ? 0u : 1u);
+    bool loop_init_4 = true;
+    while(true) {
+        if (!loop_init_4) {
+            uint _e93 = ch_1;
+            ch_1 = (_e93 + 1u);
+        }
+        loop_init_4 = false;
+        uint _e18 = ch_1;
+        if ((_e18 < filter_gaussian_ggx_quad_S_MAX_CHUNKS)) {
+        } else {
+            break;
+        }
+        {
+            fl = 0.0;
+            xl = 0.0;
+            part_1 = 0.0;
+            jj_1 = 0u;
+            bool loop_init_5 = true;
+            while(true) {
+                if (!loop_init_5) {
+                    uint _e72 = jj_1;
+                    jj_1 = (_e72 + 1u);
+                }
+                loop_init_5 = false;
+                uint _e29 = jj_1;
+                if ((_e29 < 8u)) {
+                } else {
+                    break;
+                }
+                {
+                    uint _e32 = ch_1;
+                    uint _e36 = jj_1;
+                    float k_26 = float(((first + (_e32 * 8u)) + _e36));
+                    float _e43 = math_exp((((sgn * 0.5) * h) * k_26));
+                    float it = (1.0 / _e43);
+                    float x_12 = (((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it));
+                    float arg = ((-(x_12) * x_12) * i2s2_);
+                    float it2_ = (it * it);
+                    float _e58 = math_exp(arg);
+                    fl = ((arg > -87.0) ? (_e58 * (1.0 + ((e2_ * it2_) * it2_))) : 0.0);
+                    xl = x_12;
+                    float _e68 = part_1;
+                    float _e69 = fl;
+                    part_1 = (_e68 + _e69);
+                }
+            }
+            float _e74 = total;
+            float _e75 = part_1;
+            total = (_e74 + _e75);
+            float _e77 = xl;
+            float _e79 = xl;
+            bool done = (up ? (-(_e79) >= c_stop) : (_e77 >= c_stop));
+            if (done) {
+                float _e85 = fl;
+                float _e87 = total;
+                local_12 = (_e85 <= (filter_gaussian_ggx_quad_S_EPS * _e87));
+            } else {
+                local_12 = false;
+            }
+            bool _e91 = local_12;
+            if (_e91) {
+                break;
+            }
+        }
+    }
+    float _e95 = total;
+    return _e95;
+}
+
+float filter_gaussian_ggx_quad_lambda_sinh(float qa_1, float qs_1, float oz_1, float ds2_) {
+    float rq_1 = sqrt(qa_1);
+    float root = (oz_1 + sqrt((qa_1 + (oz_1 * oz_1))));
+    float e0_1 = (root / rq_1);
+    float ie0_1 = (rq_1 / root);
+    float h_21 = min(filter_gaussian_ggx_quad_S_MAX, (filter_gaussian_ggx_quad_S_COEF * sqrt(sqrt(ds2_))));
+    float i2s2_1 = (0.5 / qs_1);
+    float c_up = ((math_LN_2_ * qs_1) / (rq_1 * h_21));
+    float c_down = ((((2.0 * h_21) + math_LN_2_) * qs_1) / (rq_1 * h_21));
+    float e2_1 = (ie0_1 * ie0_1);
+    float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_21, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
+    float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_21, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
+    return (_e35 * ((h_21 * qa_1) / (((4.0 * oz_1) * sqrt(qs_1)) * math_SQRT_TAU)));
+}
+
+float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2) {
+    float ds2_1 = (qs_2 / (qa_2 + (oz_2 * oz_2)));
+    if ((ds2_1 <= filter_gaussian_ggx_quad_GH_MAX)) {
+        float _e8 = filter_gaussian_ggx_quad_lambda_hermite(qa_2, qs_2, oz_2);
+        return _e8;
+    }
+    float _e9 = filter_gaussian_ggx_quad_lambda_sinh(qa_2, qs_2, oz_2, ds2_1);
+    return _e9;
+}
+
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_4) {
+    float l2_ = 0.0;
+    vec2 v_4 = vec2(1.0, 0.0);
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
+    float c_14 = a_5.axis.x;
+    float s_20 = a_5.axis.y;
+    float k11_ = max(((((c_14 * c_14) * _e2.s_xx) + (((2.0 * c_14) * s_20) * _e2.s_xy)) + ((s_20 * s_20) * _e2.s_yy)), 0.0);
+    float k22_ = max(((((s_20 * s_20) * _e2.s_xx) - (((2.0 * c_14) * s_20) * _e2.s_xy)) + ((c_14 * c_14) * _e2.s_yy)), 0.0);
+    float k12_ = ((((c_14 * c_14) - (s_20 * s_20)) * _e2.s_xy) + ((c_14 * s_20) * (_e2.s_yy - _e2.s_xx)));
+    vec2 l_6 = a_5.eig_c;
+    vec2 isl = (vec2(1.0) / sqrt(l_6));
+    float c11_ = ((k11_ * isl.x) * isl.x);
+    float c22_ = ((k22_ * isl.y) * isl.y);
+    float c12_ = ((k12_ * isl.x) * isl.y);
+    float det_c = (max(_e2.det, 0.0) / (l_6.x * l_6.y));
+    float half_ = (0.5 * (c11_ - c22_));
+    float _e75 = math_hypot(half_, c12_);
+    float l1_2 = ((0.5 * (c11_ + c22_)) + _e75);
+    if ((_e75 > 0.0)) {
+        float big_2 = (_e75 + abs(half_));
+        vec2 w_23 = ((half_ >= 0.0) ? vec2(big_2, c12_) : vec2(c12_, big_2));
+        v_4 = (w_23 / vec2(length(w_23)));
+        l2_ = min((det_c / l1_2), l1_2);
+    } else {
+        if ((l1_2 > 0.0)) {
+            l2_ = l1_2;
+        }
+    }
+    vec2 _e102 = v_4;
+    float _e105 = l2_;
+    float _e110 = ndf_roughness_matrix_sqrt_det(a_5);
+    return filter_gaussian_ggx_GaussianFilteredGgx(a_5, isl, _e102, vec2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2);
+}
+
+vec2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g, vec2 s_9) {
+    vec2 _e3 = ndf_roughness_matrix_rotate(g.a, s_9);
+    vec2 u_11 = (_e3 * g.inv_sqrt_l);
+    vec2 c_15 = vec2(((g.v.x * u_11.x) + (g.v.y * u_11.y)), ((g.v.x * u_11.y) - (g.v.y * u_11.x)));
+    return (c_15 * c_15);
+}
+
+float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_1, vec2 s_10) {
+    vec2 _e2 = filter_gaussian_ggx_whiten(g_1, s_10);
+    float _e11 = filter_gaussian_ggx_quad_j(_e2.x, _e2.y, 1.0, g_1.tl.x, g_1.tl.y);
+    return (g_1.norm * _e11);
+}
+
+float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, vec3 m_18) {
+    if (!((m_18.z > 0.0))) {
+        return 0.0;
+    }
+    vec2 _e8 = filter_gaussian_ggx_whiten(g_2, m_18.xy);
+    float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_18.z * m_18.z), g_2.tl.x, g_2.tl.y);
+    float v_14 = (g_2.norm * _e19);
+    return ((v_14 <= math_F32_MAX) ? v_14 : 0.0);
+}
+
+float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, vec3 w_15) {
+    float big_3 = max(max(abs(w_15.x), abs(w_15.y)), abs(w_15.z));
+    if (!((big_3 > 0.0))) {
+        return ((big_3 == 0.0) ? 0.0 : math_F32_MAX);
+    }
+    vec3 ws = (w_15 / vec3(big_3));
+    vec3 o_8 = (ws / vec3(length(ws)));
+    float oz_3 = abs(o_8.z);
+    float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_8.xy);
+    kernel_covariance_Covariance kk = g_3.k;
+    float qs_3 = max(((((kk.s_xx * o_8.x) * o_8.x) + (((2.0 * kk.s_xy) * o_8.x) * o_8.y)) + ((kk.s_yy * o_8.y) * o_8.y)), 0.0);
+    if ((qs_3 <= 0.0)) {
+        float _e52 = ndf_ggx_lambda_of(_e27, oz_3);
+        return _e52;
+    }
+    if ((oz_3 <= 0.0)) {
+        return math_F32_MAX;
+    }
+    if ((_e27 <= 0.0)) {
+        float _e60 = ndf_beckmann_lambda_of((2.0 * qs_3), oz_3);
+        return _e60;
+    }
+    float _e61 = filter_gaussian_ggx_quad_lambda(_e27, qs_3, oz_3);
+    return _e61;
+}
+
+float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, vec3 w_16, vec3 m_19) {
+    float _e3 = filter_gaussian_ggx_lambda(g_4, w_16);
+    float _e5 = ndf_g1_of(_e3, dot(w_16, m_19));
+    return _e5;
+}
+
+float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, vec3 i_6, vec3 o_6, vec3 m_20) {
+    float _e4 = filter_gaussian_ggx_lambda(g_5, i_6);
+    float _e5 = filter_gaussian_ggx_lambda(g_5, o_6);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_20), dot(o_6, m_20));
+    return _e8;
+}
+
+kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_21) {
+    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_21.second.x - (m_21.mean.x * m_21.mean.x)), (m_21.second.y - (m_21.mean.x * m_21.mean.y)), (m_21.second.z - (m_21.mean.y * m_21.mean.y)));
     kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
     return _e26;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments) {
+ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments) {
     kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
     kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
     kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_7, _e5);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_6, _e5);
     return _e6;
 }
 
-filter_deferred_KernelConvention filter_presets_preset(uint i) {
-    switch(i) {
+footprint_jacobian_Polar footprint_jacobian_polar(vec3 h_in) {
+    vec2 cs_1 = vec2(1.0, 0.0);
+    float big_4 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if ((big_4 <= 0.0)) {
+        return footprint_jacobian_Polar(vec3(0.0, 0.0, 1.0), vec2(1.0, 0.0));
+    }
+    vec3 h0_ = (h_in / vec3(big_4));
+    vec3 h_22 = (h0_ / vec3(length(h0_)));
+    float qs_4 = max(abs(h_22.x), abs(h_22.y));
+    if ((qs_4 > 0.0)) {
+        vec2 q_6 = (h_22.xy / vec2(qs_4));
+        cs_1 = (q_6 / vec2(length(q_6)));
+    }
+    if ((h_22.z >= footprint_jacobian_HZ_MIN)) {
+        vec2 _e44 = cs_1;
+        return footprint_jacobian_Polar(h_22, _e44);
+    }
+    vec2 _e47 = cs_1;
+    vec2 _e51 = cs_1;
+    return footprint_jacobian_Polar(vec3((1.0 * _e47), footprint_jacobian_HZ_MIN), _e51);
+}
+
+vec3 footprint_jacobian_sanitize(vec3 h_1) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
+    return _e1.h;
+}
+
+footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(vec3 h_2) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_2);
+    float st = length(_e1.h.xy);
+    return footprint_jacobian_SphericalBasis(vec3((_e1.h.z * _e1.cs), -(st)), vec3(-(_e1.cs.y), _e1.cs.x, 0.0));
+}
+
+vec2 footprint_jacobian_spherical_components(vec3 h_3, vec3 dh) {
+    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_3);
+    return vec2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
+}
+
+mat2x2 footprint_jacobian_sphere_to_projected(vec3 h_4) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
+    return mat2x2((_e1.h.z * _e1.cs), vec2(-(_e1.cs.y), _e1.cs.x));
+}
+
+mat2x2 footprint_jacobian_projected_to_slope(vec3 h_in_1) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
+    vec3 h_23 = _e1.h;
+    float k_27 = (-1.0 / ((h_23.z * h_23.z) * h_23.z));
+    float xy = (h_23.x * h_23.y);
+    return mat2x2((vec2(((h_23.x * h_23.x) + (h_23.z * h_23.z)), xy) * k_27), (vec2(xy, ((h_23.y * h_23.y) + (h_23.z * h_23.z))) * k_27));
+}
+
+mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_2) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
+    vec3 h_24 = _e1.h;
+    float xy_1 = (h_24.x * h_24.y);
+    return mat2x2((vec2(((h_24.y * h_24.y) + (h_24.z * h_24.z)), -(xy_1)) * -(h_24.z)), (vec2(-(xy_1), ((h_24.x * h_24.x) + (h_24.z * h_24.z))) * -(h_24.z)));
+}
+
+mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_5) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
+    float k_28 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return mat2x2((_e1.cs * k_28), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_28));
+}
+
+float footprint_jacobian_det_sphere_to_projected(vec3 h_6) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
+    return _e1.h.z;
+}
+
+float footprint_jacobian_det_projected_to_slope(vec3 h_7) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
+    float z_3 = _e1.h.z;
+    float z2_5 = (z_3 * z_3);
+    return (1.0 / (z2_5 * z2_5));
+}
+
+float footprint_jacobian_det_sphere_to_slope(vec3 h_8) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
+    float z_4 = _e1.h.z;
+    return (1.0 / ((z_4 * z_4) * z_4));
+}
+
+vec2 footprint_jacobian_spherical_to_slope(vec3 h_9, vec2 e_1) {
+    mat2x2 _e2 = footprint_jacobian_sphere_to_slope(h_9);
+    return (_e2 * e_1);
+}
+
+vec2 footprint_jacobian_spherical_to_projected(vec3 h_10, vec2 e_2) {
+    mat2x2 _e2 = footprint_jacobian_sphere_to_projected(h_10);
+    return (_e2 * e_2);
+}
+
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_50, float sigma_1) {
+    vec2 w_24 = (r_50.half_extent * (2.0 * sigma_1));
+    vec2 v_15 = (w_24 * w_24);
+    return kernel_covariance_Covariance(v_15.x, 0.0, v_15.y, (v_15.x * v_15.y));
+}
+
+footprint_Footprint footprint_from_slope_derivatives(vec2 dh_u, vec2 dh_v) {
+    return footprint_Footprint(dh_u, dh_v);
+}
+
+footprint_Footprint footprint_from_projected_derivatives(vec2 dp_u, vec2 dp_v) {
+    return footprint_Footprint(dp_u, dp_v);
+}
+
+footprint_Footprint footprint_from_projected_derivatives_in_slope(vec3 h_11, vec2 dp_u_1, vec2 dp_v_1) {
+    float big_5 = max(max(abs(h_11.x), abs(h_11.y)), abs(h_11.z));
+    if ((big_5 <= 0.0)) {
+        return footprint_Footprint(vec2(0.0), vec2(0.0));
+    }
+    mat2x2 _e18 = footprint_jacobian_projected_to_slope(h_11);
+    return footprint_Footprint((_e18 * dp_u_1), (_e18 * dp_v_1));
+}
+
+footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) {
+    float lu = max(length((vec3(0.0, 0.0, 2.0) + dn_u_4)), 1e-6);
+    float lv = max(length((vec3(0.0, 0.0, 2.0) + dn_v_4)), 1e-6);
+    return footprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
+}
+
+kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_2) {
+    vec2 u_12 = fp.dh_u;
+    vec2 v_16 = fp.dh_v;
+    float s2_ = (sigma_2 * sigma_2);
+    float cross_1 = (((u_12.x * v_16.y) - (u_12.y * v_16.x)) * s2_);
+    return kernel_covariance_Covariance((((u_12.x * u_12.x) + (v_16.x * v_16.x)) * s2_), (((u_12.x * u_12.y) + (v_16.x * v_16.y)) * s2_), (((u_12.y * u_12.y) + (v_16.y * v_16.y)) * s2_), (cross_1 * cross_1));
+}
+
+kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1) {
+    return kernel_rect_BoundingRect(((abs(fp_1.dh_u) + abs(fp_1.dh_v)) * 0.5));
+}
+
+float footprint_max_extent(footprint_Footprint fp_2) {
+    return (0.5 * max(length((fp_2.dh_u + fp_2.dh_v)), length((fp_2.dh_u - fp_2.dh_v))));
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance k_11, float tau_4) {
+    float b11_ = 0.0;
+    float b12_ = 0.0;
+    float b22_ = 0.0;
+    float det_3 = 0.0;
+    vec2 lc = min(a_7.eig, vec2(0.99));
+    vec2 excess = (a_7.eig - lc);
+    vec2 p_6 = (lc / (vec2(1.0) - lc));
+    float c_16 = a_7.axis.x;
+    float s_21 = a_7.axis.y;
+    float p11_1 = (((p_6.x * c_16) * c_16) + ((p_6.y * s_21) * s_21));
+    float p12_1 = (((p_6.x - p_6.y) * c_16) * s_21);
+    float p22_1 = (((p_6.x * s_21) * s_21) + ((p_6.y * c_16) * c_16));
+    float k1_3 = max(((((c_16 * c_16) * k_11.s_xx) + (((2.0 * c_16) * s_21) * k_11.s_xy)) + ((s_21 * s_21) * k_11.s_yy)), 0.0);
+    float k2_3 = max(((((s_21 * s_21) * k_11.s_xx) - (((2.0 * c_16) * s_21) * k_11.s_xy)) + ((c_16 * c_16) * k_11.s_yy)), 0.0);
+    float d_2 = (((p_6.x * p_6.y) + (2.0 * ((p_6.y * k1_3) + (p_6.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
+    float q11_ = (p11_1 + (2.0 * k_11.s_xx));
+    float q12_ = (p12_1 + (2.0 * k_11.s_xy));
+    float q22_ = (p22_1 + (2.0 * k_11.s_yy));
+    float den_1 = (((1.0 + q11_) + q22_) + d_2);
+    b11_ = ((q11_ + d_2) / den_1);
+    b12_ = (q12_ / den_1);
+    b22_ = ((q22_ + d_2) / den_1);
+    det_3 = (d_2 / den_1);
+    if ((max(excess.x, excess.y) > 0.0)) {
+        float _e114 = b11_;
+        b11_ = (_e114 + (((excess.x * c_16) * c_16) + ((excess.y * s_21) * s_21)));
+        float _e123 = b12_;
+        b12_ = (_e123 + (((excess.x - excess.y) * c_16) * s_21));
+        float _e130 = b22_;
+        b22_ = (_e130 + (((excess.x * s_21) * s_21) + ((excess.y * c_16) * c_16)));
+        float _e139 = b11_;
+        float _e140 = b22_;
+        float _e142 = b12_;
+        float _e143 = b12_;
+        det_3 = ((_e139 * _e140) - (_e142 * _e143));
+    }
+    vec3 _e146 = ndf_roughness_matrix_entries(a_7);
+    float _e147 = b11_;
+    float _e150 = b12_;
+    float _e151 = b22_;
+    float _e154 = det_3;
+    ndf_roughness_matrix_RoughnessMatrix _e157 = ndf_roughness_matrix_from_entries_det(max(_e147, _e146.x), _e150, max(_e151, _e146.z), _e154, max(tau_4, 0.0));
+    return _e157;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_5) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_5);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_8);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_8, _e2, _e3);
+    return _e4;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance kernel_6, float det_clamp_2) {
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_9, _e3, det_clamp_2);
+    return _e4;
+}
+
+footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3) {
+    float l_7 = max(rules.max_extent, 0.0);
+    float scale_2 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
+    if ((scale_2 <= 0.0)) {
+        return fp_3;
+    }
+    footprint_Footprint unit = footprint_Footprint((fp_3.dh_u / vec2(scale_2)), (fp_3.dh_v / vec2(scale_2)));
+    float _e29 = footprint_max_extent(unit);
+    if (((_e29 * scale_2) <= l_7)) {
+        return fp_3;
+    }
+    return footprint_Footprint(((unit.dh_u / vec2(_e29)) * l_7), ((unit.dh_v / vec2(_e29)) * l_7));
+}
+
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_51, vec2 alpha_8) {
+    vec2 f_1 = vec2(0.0);
+    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
+        f_1 = vec2(rules_1.floor_);
+    } else {
+        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
+            f_1 = min(abs(alpha_8), vec2(rules_1.floor_));
+        }
+    }
+    float lambda = max(rules_1.max_extent, 0.0);
+    vec2 h_25 = min(abs(r_51.half_extent), vec2(lambda));
+    vec2 _e25 = f_1;
+    return kernel_rect_BoundingRect(max(h_25, max(_e25, vec2(0.0))));
+}
+
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_12) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_12);
+    if ((rules_2.kappa >= math_F32_MAX)) {
+        return _e2;
+    }
+    kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
+    return _e11;
+}
+
+float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_10) {
+    float _e2 = ndf_roughness_matrix_clamped_det(a_10);
+    return (rules_3.det_clamp ? _e2 : 0.0);
+}
+
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_3) {
+    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
+    kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_3);
+    kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
+    return _e5;
+}
+
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_11, footprint_Footprint fp_5, float sigma_4) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
+    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_11);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_11, _e4, _e5);
+    return _e6;
+}
+
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_6, float sigma_5) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_5);
+    float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
+    return _e6;
+}
+
+float filter_proxy_effective_alpha(float alpha_9, float half_extent) {
+    float h_26 = abs(half_extent);
+    float _e3 = math_hypot(alpha_9, h_26);
+    float t_15 = ((_e3 > 0.0) ? (h_26 / _e3) : 0.0);
+    float _e9 = math_atan(t_15);
+    float ratio = ((t_15 > 0.0) ? (t_15 / _e9) : 1.0);
+    return (_e3 * sqrt(ratio));
+}
+
+float filter_proxy_effective_alpha_simple(float alpha_10, float half_extent_1) {
+    float _e3 = math_hypot(alpha_10, abs(half_extent_1));
+    return _e3;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_52, vec2 half_extent_2) {
+    float _e5 = filter_proxy_effective_alpha(r_52.alpha.x, half_extent_2.x);
+    float _e9 = filter_proxy_effective_alpha(r_52.alpha.y, half_extent_2.y);
+    ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
+    return _e11;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_53, vec2 half_extent_3) {
+    float _e5 = filter_proxy_effective_alpha_simple(r_53.alpha.x, half_extent_3.x);
+    float _e9 = filter_proxy_effective_alpha_simple(r_53.alpha.y, half_extent_3.y);
+    ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
+    return _e11;
+}
+
+uint filter_rect_tier(float h2_, float l2_1) {
+    if ((h2_ < (0.0001 * l2_1))) {
+        return 2u;
+    }
+    if ((h2_ < (0.01 * l2_1))) {
+        return 4u;
+    }
+    if ((h2_ < (0.0625 * l2_1))) {
+        return 6u;
+    }
+    return filter_rect_TIER_CLOSED;
+}
+
+float filter_rect_gl_node(uint n_1, uint k_13) {
+    if ((n_1 == 2u)) {
+        return 0.57735026;
+    }
+    if ((n_1 == 4u)) {
+        return ((k_13 == 0u) ? 0.33998105 : 0.8611363);
+    }
+    if ((k_13 == 0u)) {
+        return 0.2386192;
+    }
+    return ((k_13 == 1u) ? 0.6612094 : 0.9324695);
+}
+
+float filter_rect_gl_weight(uint n_2, uint k_14) {
+    if ((n_2 == 2u)) {
+        return 0.5;
+    }
+    if ((n_2 == 4u)) {
+        return ((k_14 == 0u) ? 0.32607257 : 0.17392743);
+    }
+    if ((k_14 == 0u)) {
+        return 0.23395696;
+    }
+    return ((k_14 == 1u) ? 0.18038079 : 0.085662246);
+}
+
+float filter_rect_f(float u_1, float v_5) {
+    float t_16 = ((1.0 + (u_1 * u_1)) + (v_5 * v_5));
+    return (1.0 / (t_16 * t_16));
+}
+
+float filter_rect_gl_mean(uint n_3, float u_2, float c_6, float h_12) {
+    float acc_2 = 0.0;
+    uint k_15 = 0u;
+    bool loop_init_6 = true;
+    while(true) {
+        if (!loop_init_6) {
+            uint _e26 = k_15;
+            k_15 = (_e26 + 1u);
+        }
+        loop_init_6 = false;
+        uint _e8 = k_15;
+        if ((_e8 < (n_3 / 2u))) {
+        } else {
+            break;
+        }
+        {
+            uint _e12 = k_15;
+            float _e13 = filter_rect_gl_node(n_3, _e12);
+            float a_24 = (h_12 * _e13);
+            float _e15 = acc_2;
+            uint _e16 = k_15;
+            float _e17 = filter_rect_gl_weight(n_3, _e16);
+            float _e19 = filter_rect_f(u_2, (c_6 - a_24));
+            float _e21 = filter_rect_f(u_2, (c_6 + a_24));
+            acc_2 = (_e15 + (_e17 * (_e19 + _e21)));
+        }
+    }
+    float _e28 = acc_2;
+    return _e28;
+}
+
+float filter_rect_atan2_upper(float y_3, float x_6) {
+    if ((x_6 > 0.0)) {
+        float _e5 = math_atan((y_3 / x_6));
+        return _e5;
+    }
+    float _e9 = math_atan((-(x_6) / y_3));
+    return (math_HALF_PI + _e9);
+}
+
+float filter_rect_delta_minus_sin(float d, float sin_d) {
+    float s_11 = 0.0;
+    if ((d < 1.0)) {
+        float d2_1 = (d * d);
+        s_11 = (1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909))));
+        float _e17 = s_11;
+        s_11 = (1.0 - ((d2_1 * 0.023809524) * _e17));
+        float _e23 = s_11;
+        s_11 = (1.0 - ((d2_1 * 0.05) * _e23));
+        float _e30 = s_11;
+        return (((d * d2_1) * 0.16666667) * _e30);
+    }
+    return (d - sin_d);
+}
+
+float filter_rect_mean_1d(vec4 i_7, float c2_) {
+    float x0_ = ((i_7.z >= 0.0) ? i_7.x : -(i_7.y));
+    float x1_1 = ((i_7.z >= 0.0) ? i_7.y : -(i_7.x));
+    float dx = (2.0 * i_7.w);
+    float c_17 = sqrt(c2_);
+    float r02_ = (c2_ + (x0_ * x0_));
+    float r12_ = (c2_ + (x1_1 * x1_1));
+    float x01_ = (x0_ * x1_1);
+    float _e27 = filter_rect_atan2_upper((c_17 * dx), (c2_ + x01_));
+    float inv_2 = (1.0 / (((2.0 * c_17) * c2_) * dx));
+    float p2_1 = ((2.0 * r02_) * r12_);
+    if ((x0_ <= 0.0)) {
+        return ((_e27 * inv_2) + (((c2_ - x01_) / p2_1) / c2_));
+    }
+    float rr = (sqrt(r02_) * sqrt(r12_));
+    float _e49 = filter_rect_delta_minus_sin(_e27, ((c_17 * dx) / rr));
+    return ((_e49 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1));
+}
+
+float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, vec4 other) {
+    float acc_3 = 0.0;
+    uint k_16 = 0u;
+    bool loop_init_7 = true;
+    while(true) {
+        if (!loop_init_7) {
+            uint _e32 = k_16;
+            k_16 = (_e32 + 1u);
+        }
+        loop_init_7 = false;
+        uint _e8 = k_16;
+        if ((_e8 < (n_4 / 2u))) {
+        } else {
+            break;
+        }
+        {
+            uint _e12 = k_16;
+            float _e13 = filter_rect_gl_node(n_4, _e12);
+            float a_25 = (h_13 * _e13);
+            float x0_1 = (c_7 - a_25);
+            float x1_2 = (c_7 + a_25);
+            float _e17 = acc_3;
+            uint _e18 = k_16;
+            float _e19 = filter_rect_gl_weight(n_4, _e18);
+            float _e23 = filter_rect_mean_1d(other, (1.0 + (x0_1 * x0_1)));
+            float _e27 = filter_rect_mean_1d(other, (1.0 + (x1_2 * x1_2)));
+            acc_3 = (_e17 + (_e19 * (_e23 + _e27)));
+        }
+    }
+    float _e34 = acc_3;
+    return _e34;
+}
+
+float filter_rect_edge(float u_3, float dv, float v01_) {
+    float s2_1 = (1.0 + (u_3 * u_3));
+    float s_22 = sqrt(s2_1);
+    float _e10 = filter_rect_atan2_upper((dv * s_22), (s2_1 + v01_));
+    return ((u_3 / s_22) * _e10);
+}
+
+float filter_rect_edges(vec4 u_4, vec4 v_6) {
+    float du = (2.0 * u_4.w);
+    float dv_1 = (2.0 * v_6.w);
+    float v01_1 = (v_6.x * v_6.y);
+    float u01_ = (u_4.x * u_4.y);
+    float _e15 = filter_rect_edge(u_4.y, dv_1, v01_1);
+    float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
+    float _e20 = filter_rect_edge(v_6.y, du, u01_);
+    float _e22 = filter_rect_edge(v_6.x, du, u01_);
+    float i_12 = (0.5 * ((_e15 - _e17) + (_e20 - _e22)));
+    return (i_12 / (du * dv_1));
+}
+
+float filter_rect_gl8_node(uint k_17) {
+    if ((k_17 == 0u)) {
+        return 0.18343464;
+    }
+    if ((k_17 == 1u)) {
+        return 0.5255324;
+    }
+    return ((k_17 == 2u) ? 0.7966665 : 0.96028984);
+}
+
+float filter_rect_gl8_weight(uint k_18) {
+    if ((k_18 == 0u)) {
+        return 0.18134189;
+    }
+    if ((k_18 == 1u)) {
+        return 0.15685332;
+    }
+    return ((k_18 == 2u) ? 0.11119052 : 0.050614268);
+}
+
+float filter_rect_polar_near(float x2_, float lo, float hi) {
+    float acc_4 = 0.0;
+    uint k_19 = 0u;
+    float c_18 = (0.5 * (lo + hi));
+    float h_27 = (0.5 * (hi - lo));
+    bool loop_init_8 = true;
+    while(true) {
+        if (!loop_init_8) {
+            uint _e48 = k_19;
+            k_19 = (_e48 + 1u);
+        }
+        loop_init_8 = false;
+        uint _e13 = k_19;
+        if ((_e13 < 4u)) {
+        } else {
+            break;
+        }
+        {
+            uint _e16 = k_19;
+            float _e17 = filter_rect_gl8_node(_e16);
+            float d_3 = (h_27 * _e17);
+            float q0_ = (1.0 + ((c_18 - d_3) * (c_18 - d_3)));
+            float q1_ = (1.0 + ((c_18 + d_3) * (c_18 + d_3)));
+            float _e29 = acc_4;
+            uint _e30 = k_19;
+            float _e31 = filter_rect_gl8_weight(_e30);
+            acc_4 = (_e29 + (_e31 * ((1.0 / (q0_ * (1.0 + (x2_ * q0_)))) + (1.0 / (q1_ * (1.0 + (x2_ * q1_)))))));
+        }
+    }
+    float _e50 = acc_4;
+    return (_e50 * (hi - lo));
+}
+
+float filter_rect_polar_far(float x2_1, float lo_1, float hi_1) {
+    float acc_5 = 0.0;
+    uint k_20 = 0u;
+    float c_19 = (0.5 * (lo_1 + hi_1));
+    float h_28 = (0.5 * (hi_1 - lo_1));
+    bool loop_init_9 = true;
+    while(true) {
+        if (!loop_init_9) {
+            uint _e48 = k_20;
+            k_20 = (_e48 + 1u);
+        }
+        loop_init_9 = false;
+        uint _e13 = k_20;
+        if ((_e13 < 4u)) {
+        } else {
+            break;
+        }
+        {
+            uint _e16 = k_20;
+            float _e17 = filter_rect_gl8_node(_e16);
+            float d_4 = (h_28 * _e17);
+            float t0_2 = ((c_19 - d_4) * (c_19 - d_4));
+            float t1_4 = ((c_19 + d_4) * (c_19 + d_4));
+            float _e25 = acc_5;
+            uint _e26 = k_20;
+            float _e27 = filter_rect_gl8_weight(_e26);
+            acc_5 = (_e25 + (_e27 * ((t0_2 / ((1.0 + t0_2) * (t0_2 + (x2_1 * (1.0 + t0_2))))) + (t1_4 / ((1.0 + t1_4) * (t1_4 + (x2_1 * (1.0 + t1_4))))))));
+        }
+    }
+    float _e50 = acc_5;
+    return (_e50 * (hi_1 - lo_1));
+}
+
+float filter_rect_edge_range(float ax, float a_13, float b_2) {
+    float v_7 = 0.0;
+    float x2_3 = (ax * ax);
+    if ((a_13 < ax)) {
+        float _e7 = v_7;
+        float _e11 = filter_rect_polar_near(x2_3, (a_13 / ax), (min(b_2, ax) / ax));
+        v_7 = (_e7 + _e11);
+    }
+    if ((b_2 > ax)) {
+        float _e14 = v_7;
+        float _e18 = filter_rect_polar_far(x2_3, (ax / b_2), (ax / max(a_13, ax)));
+        v_7 = (_e14 + _e18);
+    }
+    float _e20 = v_7;
+    return _e20;
+}
+
+float filter_rect_edge_polar(float x_7, float a_14, float b_3) {
+    float v_8 = 0.0;
+    float ax_1 = abs(x_7);
+    if ((ax_1 < 1e-12)) {
+        return 0.0;
+    }
+    if ((a_14 >= 0.0)) {
+        float _e10 = filter_rect_edge_range(ax_1, a_14, b_3);
+        v_8 = _e10;
+    } else {
+        if ((b_3 <= 0.0)) {
+            float _e15 = filter_rect_edge_range(ax_1, -(b_3), -(a_14));
+            v_8 = _e15;
+        } else {
+            float _e18 = filter_rect_edge_range(ax_1, 0.0, -(a_14));
+            float _e20 = filter_rect_edge_range(ax_1, 0.0, b_3);
+            v_8 = (_e18 + _e20);
+        }
+    }
+    float _e22 = v_8;
+    float _e24 = v_8;
+    return ((x_7 > 0.0) ? _e24 : -(_e22));
+}
+
+float filter_rect_far_field(vec4 u_5, vec4 v_9) {
+    float _e5 = filter_rect_edge_polar(u_5.y, v_9.x, v_9.y);
+    float _e9 = filter_rect_edge_polar(u_5.x, v_9.x, v_9.y);
+    float _e14 = filter_rect_edge_polar(v_9.y, u_5.x, u_5.y);
+    float _e18 = filter_rect_edge_polar(v_9.x, u_5.x, u_5.y);
+    float i_13 = (-0.5 * ((_e5 - _e9) + (_e14 - _e18)));
+    return (i_13 / ((4.0 * u_5.w) * v_9.w));
+}
+
+float filter_rect_gap(vec4 i_8) {
+    return max(max(i_8.x, -(i_8.y)), 0.0);
+}
+
+float filter_rect_mean_f(vec4 u_6, vec4 v_10) {
+    bool local_13 = false;
+    float acc_6 = 0.0;
+    uint k_21 = 0u;
+    float _e2 = filter_rect_gap(u_6);
+    float _e3 = filter_rect_gap(v_10);
+    uint _e14 = filter_rect_tier((u_6.w * u_6.w), ((1.0 + (u_6.z * u_6.z)) + (_e3 * _e3)));
+    uint _e25 = filter_rect_tier((v_10.w * v_10.w), ((1.0 + (v_10.z * v_10.z)) + (_e2 * _e2)));
+    if ((_e14 == filter_rect_TIER_CLOSED)) {
+        local_13 = (_e25 == filter_rect_TIER_CLOSED);
+    } else {
+        local_13 = false;
+    }
+    bool _e33 = local_13;
+    if (_e33) {
+        if ((((_e2 * _e2) + (_e3 * _e3)) > filter_rect_FAR2_)) {
+            float _e39 = filter_rect_far_field(u_6, v_10);
+            return _e39;
+        }
+        float _e40 = filter_rect_edges(u_6, v_10);
+        return _e40;
+    }
+    if ((_e14 == filter_rect_TIER_CLOSED)) {
+        float _e45 = filter_rect_gl_mean_1d(_e25, v_10.z, v_10.w, u_6);
+        return _e45;
+    }
+    if ((_e25 == filter_rect_TIER_CLOSED)) {
+        float _e50 = filter_rect_gl_mean_1d(_e14, u_6.z, u_6.w, v_10);
+        return _e50;
+    }
+    bool loop_init_10 = true;
+    while(true) {
+        if (!loop_init_10) {
+            uint _e80 = k_21;
+            k_21 = (_e80 + 1u);
+        }
+        loop_init_10 = false;
+        uint _e55 = k_21;
+        if ((_e55 < (_e14 / 2u))) {
+        } else {
+            break;
+        }
+        {
+            uint _e60 = k_21;
+            float _e61 = filter_rect_gl_node(_e14, _e60);
+            float a_26 = (u_6.w * _e61);
+            float _e63 = acc_6;
+            uint _e64 = k_21;
+            float _e65 = filter_rect_gl_weight(_e14, _e64);
+            float _e70 = filter_rect_gl_mean(_e25, (u_6.z - a_26), v_10.z, v_10.w);
+            float _e75 = filter_rect_gl_mean(_e25, (u_6.z + a_26), v_10.z, v_10.w);
+            acc_6 = (_e63 + (_e65 * (_e70 + _e75)));
+        }
+    }
+    float _e82 = acc_6;
+    return _e82;
+}
+
+vec4 filter_rect_interval(float c_8, float h_14, float a_15) {
+    float ah = abs(h_14);
+    float lo_3 = clamp(((c_8 - ah) / a_15), -1e18, filter_rect_BIG);
+    float hi_2 = clamp(((c_8 + ah) / a_15), -1e18, filter_rect_BIG);
+    return vec4(lo_3, hi_2, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
+}
+
+float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_54, vec2 center, vec2 half_extent_4) {
+    bool local_14 = false;
+    if ((half_extent_4.x == 0.0)) {
+        local_14 = (half_extent_4.y == 0.0);
+    } else {
+        local_14 = false;
+    }
+    bool _e12 = local_14;
+    if (_e12) {
+        float _e13 = ndf_ggx_p22_axis_aligned(r_54, center);
+        return _e13;
+    }
+    vec2 a_27 = r_54.alpha;
+    vec4 _e18 = filter_rect_interval(center.x, half_extent_4.x, a_27.x);
+    vec4 _e22 = filter_rect_interval(center.y, half_extent_4.y, a_27.y);
+    float _e23 = filter_rect_mean_f(_e18, _e22);
+    return max((_e23 * (math_INV_PI / (a_27.x * a_27.y))), 0.0);
+}
+
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_55, vec3 h_15, vec2 half_extent_5) {
+    bool local_15 = false;
+    if (!((h_15.z > 0.0))) {
+        return 0.0;
+    }
+    if ((half_extent_5.x == 0.0)) {
+        local_15 = (half_extent_5.y == 0.0);
+    } else {
+        local_15 = false;
+    }
+    bool _e17 = local_15;
+    if (_e17) {
+        float _e18 = ndf_ggx_d_axis_aligned(r_55, h_15);
+        return _e18;
+    }
+    float _e24 = filter_rect_p22_rect(r_55, (-(h_15.xy) / vec2(h_15.z)), half_extent_5);
+    float z2_6 = (h_15.z * h_15.z);
+    return min((_e24 / (z2_6 * z2_6)), math_F32_MAX);
+}
+
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_56, vec2 hpp, vec3 h_16, vec2 footprint) {
+    bool local_16 = false;
+    float a_28 = r_56.alpha.x;
+    float b_8 = r_56.alpha.y;
+    float a_2_ = (a_28 * a_28);
+    float b_2_ = (b_8 * b_8);
+    float x1_3 = (hpp.x - footprint.x);
+    float x2_4 = (hpp.x + footprint.x);
+    float y1_ = (hpp.y - footprint.y);
+    float y2_ = (hpp.y + footprint.y);
+    float sx1_ = sqrt(((x1_3 * x1_3) + a_2_));
+    float sx2_ = sqrt(((x2_4 * x2_4) + a_2_));
+    float sy1_ = sqrt(((y1_ * y1_) + b_2_));
+    float sy2_ = sqrt(((y2_ * y2_) + b_2_));
+    float _e37 = math_atan(((y1_ * a_28) / (sx1_ * b_8)));
+    float _e41 = math_atan(((y2_ * a_28) / (sx1_ * b_8)));
+    float _e48 = math_atan(((y1_ * a_28) / (sx2_ * b_8)));
+    float _e53 = math_atan(((y2_ * a_28) / (sx2_ * b_8)));
+    float _e62 = math_atan(((x1_3 * b_8) / (a_28 * sy1_)));
+    float _e66 = math_atan(((x2_4 * b_8) / (a_28 * sy1_)));
+    float _e73 = math_atan(((x1_3 * b_8) / (a_28 * sy2_)));
+    float _e78 = math_atan(((x2_4 * b_8) / (a_28 * sy2_)));
+    float val = ((((x1_3 * (_e37 - _e41)) / sx1_) + ((x2_4 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
+    float den_2 = ((6.2831855 * (x1_3 - x2_4)) * (y1_ - y2_));
+    float hz4_ = (((h_16.z * h_16.z) * h_16.z) * h_16.z);
+    float v_17 = ((val / den_2) / max(hz4_, 0.001));
+    if ((abs(v_17) <= math_F32_MAX)) {
+        local_16 = (den_2 != 0.0);
+    } else {
+        local_16 = false;
+    }
+    bool _e109 = local_16;
+    return (_e109 ? v_17 : 0.0);
+}
+
+float filter_rect_lambda_rho(float t_1) {
+    float a_29 = abs(t_1);
+    if ((a_29 > 1.0)) {
+        float i_14 = (1.0 / a_29);
+        return (a_29 * sqrt((1.0 + (i_14 * i_14))));
+    }
+    return sqrt((1.0 + (t_1 * t_1)));
+}
+
+float filter_rect_lambda_e_neg(float t_2, float r_57) {
+    return ((t_2 >= 0.0) ? (1.0 / (r_57 + t_2)) : (r_57 - t_2));
+}
+
+float filter_rect_lambda_asinh_of(float t_3, float r_58) {
+    float v_11 = 0.0;
+    float a_30 = abs(t_3);
+    if ((a_30 > 1.0)) {
+        float _e7 = math_ln((a_30 + r_58));
+        v_11 = _e7;
+    } else {
+        float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_58))));
+        v_11 = _e13;
+    }
+    float _e14 = v_11;
+    float _e15 = v_11;
+    return ((t_3 < 0.0) ? -(_e15) : _e14);
+}
+
+float filter_rect_lambda_psi(float t_4) {
+    float _e1 = filter_rect_lambda_rho(t_4);
+    float _e2 = filter_rect_lambda_e_neg(t_4, _e1);
+    return (0.5 * _e2);
+}
+
+float filter_rect_lambda_psi1_(float t_5) {
+    float _e1 = filter_rect_lambda_rho(t_5);
+    float _e2 = filter_rect_lambda_e_neg(t_5, _e1);
+    float _e3 = filter_rect_lambda_asinh_of(t_5, _e1);
+    return (0.25 * (_e3 - ((0.5 * _e2) * _e2)));
+}
+
+float filter_rect_lambda_psi2_(float t_6) {
+    float _e1 = filter_rect_lambda_rho(t_6);
+    float _e2 = filter_rect_lambda_e_neg(t_6, _e1);
+    float _e3 = filter_rect_lambda_asinh_of(t_6, _e1);
+    return (0.25 * ((((t_6 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336)));
+}
+
+float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_17) {
+    float _e3 = filter_rect_lambda_rho(t0_);
+    float _e4 = filter_rect_lambda_rho(t1_);
+    float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
+    float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
+    float s_23 = (_e5 + _e6);
+    float d_5 = ((w_17 * s_23) / (_e3 + _e4));
+    float _e12 = math_ln_1p((d_5 / _e6));
+    return (0.25 * (_e12 + ((0.5 * d_5) * s_23)));
+}
+
+float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_18) {
+    float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_18);
+    return (_e3 / w_18);
+}
+
+uint filter_rect_lambda_rule(uint t_7) {
+    return ((t_7 == filter_rect_TIER_CLOSED) ? 6u : t_7);
+}
+
+float filter_rect_lambda_mean_psi1_(float t_8, float k_22) {
+    float acc_7 = 0.0;
+    uint j = 0u;
+    if ((k_22 == 0.0)) {
+        float _e4 = filter_rect_lambda_psi1_(t_8);
+        return _e4;
+    }
+    uint _e9 = filter_rect_tier((k_22 * k_22), (1.0 + (t_8 * t_8)));
+    if ((_e9 == filter_rect_TIER_CLOSED)) {
+        float _e13 = filter_rect_lambda_psi2_((t_8 + k_22));
+        float _e15 = filter_rect_lambda_psi2_((t_8 - k_22));
+        return ((_e13 - _e15) / (2.0 * k_22));
+    }
+    bool loop_init_11 = true;
+    while(true) {
+        if (!loop_init_11) {
+            uint _e42 = j;
+            j = (_e42 + 1u);
+        }
+        loop_init_11 = false;
+        uint _e24 = j;
+        if ((_e24 < (_e9 / 2u))) {
+        } else {
+            break;
+        }
+        {
+            uint _e28 = j;
+            float _e29 = filter_rect_gl_node(_e9, _e28);
+            float a_31 = (k_22 * _e29);
+            float _e31 = acc_7;
+            uint _e32 = j;
+            float _e33 = filter_rect_gl_weight(_e9, _e32);
+            float _e35 = filter_rect_lambda_psi1_((t_8 - a_31));
+            float _e37 = filter_rect_lambda_psi1_((t_8 + a_31));
+            acc_7 = (_e31 + (_e33 * (_e35 + _e37)));
+        }
+    }
+    float _e44 = acc_7;
+    return _e44;
+}
+
+float filter_rect_lambda_gl_psi(uint t_9, float c_9, float h_17) {
+    float acc_8 = 0.0;
+    uint j_1 = 0u;
+    uint _e3 = filter_rect_lambda_rule(t_9);
+    bool loop_init_12 = true;
+    while(true) {
+        if (!loop_init_12) {
+            uint _e26 = j_1;
+            j_1 = (_e26 + 1u);
+        }
+        loop_init_12 = false;
+        uint _e8 = j_1;
+        if ((_e8 < (_e3 / 2u))) {
+        } else {
+            break;
+        }
+        {
+            uint _e12 = j_1;
+            float _e13 = filter_rect_gl_node(_e3, _e12);
+            float a_32 = (h_17 * _e13);
+            float _e15 = acc_8;
+            uint _e16 = j_1;
+            float _e17 = filter_rect_gl_weight(_e3, _e16);
+            float _e19 = filter_rect_lambda_psi((c_9 - a_32));
+            float _e21 = filter_rect_lambda_psi((c_9 + a_32));
+            acc_8 = (_e15 + (_e17 * (_e19 + _e21)));
+        }
+    }
+    float _e28 = acc_8;
+    return _e28;
+}
+
+float filter_rect_lambda_expected_psi(float m_22, float k1_, float k2_, float lo_2) {
+    float acc_9 = 0.0;
+    uint j_2 = 0u;
+    float acc_10 = 0.0;
+    uint j_3 = 0u;
+    float ks = min(k1_, k2_);
+    float kl = max(k1_, k2_);
+    float near_l = max((m_22 - ks), 0.0);
+    uint _e13 = filter_rect_tier((kl * kl), (1.0 + (near_l * near_l)));
+    if ((_e13 != filter_rect_TIER_CLOSED)) {
+        float near_s = max((m_22 - kl), 0.0);
+        uint _e23 = filter_rect_tier((ks * ks), (1.0 + (near_s * near_s)));
+        bool loop_init_13 = true;
+        while(true) {
+            if (!loop_init_13) {
+                uint _e46 = j_2;
+                j_2 = (_e46 + 1u);
+            }
+            loop_init_13 = false;
+            uint _e28 = j_2;
+            if ((_e28 < (_e13 / 2u))) {
+            } else {
+                break;
+            }
+            {
+                uint _e32 = j_2;
+                float _e33 = filter_rect_gl_node(_e13, _e32);
+                float a_33 = (kl * _e33);
+                float _e35 = acc_9;
+                uint _e36 = j_2;
+                float _e37 = filter_rect_gl_weight(_e13, _e36);
+                float _e39 = filter_rect_lambda_gl_psi(_e23, (m_22 - a_33), ks);
+                float _e41 = filter_rect_lambda_gl_psi(_e23, (m_22 + a_33), ks);
+                acc_9 = (_e35 + (_e37 * (_e39 + _e41)));
+            }
+        }
+        float _e48 = acc_9;
+        return _e48;
+    }
+    float hi_3 = (m_22 + kl);
+    float w_25 = (2.0 * kl);
+    if ((ks == 0.0)) {
+        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_3, w_25);
+        return _e54;
+    }
+    uint _e59 = filter_rect_tier((ks * ks), (1.0 + (lo_2 * lo_2)));
+    if ((_e59 != filter_rect_TIER_CLOSED)) {
+        bool loop_init_14 = true;
+        while(true) {
+            if (!loop_init_14) {
+                uint _e86 = j_3;
+                j_3 = (_e86 + 1u);
+            }
+            loop_init_14 = false;
+            uint _e66 = j_3;
+            if ((_e66 < (_e59 / 2u))) {
+            } else {
+                break;
+            }
+            {
+                uint _e70 = j_3;
+                float _e71 = filter_rect_gl_node(_e59, _e70);
+                float x_13 = (ks * _e71);
+                float _e73 = acc_10;
+                uint _e74 = j_3;
+                float _e75 = filter_rect_gl_weight(_e59, _e74);
+                float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_13), (hi_3 + x_13), w_25);
+                float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_13), (hi_3 - x_13), w_25);
+                acc_10 = (_e73 + (_e75 * (_e78 + _e81)));
+            }
+        }
+        float _e88 = acc_10;
+        return _e88;
+    }
+    float _e89 = filter_rect_lambda_mean_psi1_(hi_3, ks);
+    float _e90 = filter_rect_lambda_mean_psi1_(lo_2, ks);
+    return ((_e89 - _e90) / w_25);
+}
+
+float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_59, vec2 half_extent_6, vec3 w_in) {
+    vec3 w_19 = vec3(0.0);
+    bool local_17 = false;
+    bool local_18 = false;
+    bool local_19 = false;
+    float big_6 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
+    w_19 = w_in;
+    if (!((big_6 > 1.1529215e18))) {
+        if ((big_6 < 8.6736174e-19)) {
+            local_18 = (big_6 > 0.0);
+        } else {
+            local_18 = false;
+        }
+        bool _e24 = local_18;
+        local_17 = _e24;
+    } else {
+        local_17 = true;
+    }
+    bool _e26 = local_17;
+    if (_e26) {
+        int e_5 = (int(((floatBitsToUint(big_6) >> 23u) & 255u)) - 127);
+        w_19 = (w_in * uintBitsToFloat((uint((127 - e_5)) << 23u)));
+    }
+    float _e43 = w_19.x;
+    float _e45 = w_19.y;
+    float _e46 = math_hypot(_e43, _e45);
+    if ((_e46 <= 0.0)) {
+        return 0.0;
+    }
+    float _e51 = w_19.z;
+    float wz = abs(_e51);
+    if (!((wz > 0.0))) {
+        return math_F32_MAX;
+    }
+    vec2 alpha_11 = r_59.alpha;
+    vec2 ha = min(abs(half_extent_6), (alpha_11 * filter_rect_lambda_BIG_K));
+    float _e63 = w_19.x;
+    float ux = (abs(_e63) / _e46);
+    float _e67 = w_19.y;
+    float uy = (abs(_e67) / _e46);
+    float px = (ux * alpha_11.x);
+    float py = (uy * alpha_11.y);
+    float _e74 = math_hypot(px, py);
+    float k1_4 = ((px / _e74) * (ha.x / alpha_11.x));
+    float k2_4 = ((py / _e74) * (ha.y / alpha_11.y));
+    if ((k1_4 == 0.0)) {
+        local_19 = (k2_4 == 0.0);
+    } else {
+        local_19 = false;
+    }
+    bool _e92 = local_19;
+    if (_e92) {
+        vec3 _e93 = w_19;
+        float _e94 = ndf_ggx_lambda_axis_aligned(r_59, _e93);
+        return _e94;
+    }
+    float mm = ((wz / _e46) / _e74);
+    if ((mm > 1e18)) {
+        return ((0.25 / mm) / mm);
+    }
+    bool long_x = (k1_4 >= k2_4);
+    float _e104 = w_19.y;
+    float _e107 = w_19.x;
+    float wl_1 = (long_x ? abs(_e107) : abs(_e104));
+    float hl = (long_x ? ha.x : ha.y);
+    float lo_4 = (((wz - (wl_1 * hl)) / _e46) / _e74);
+    float _e117 = filter_rect_lambda_expected_psi(mm, k1_4, k2_4, lo_4);
+    return (_e117 / mm);
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_method_gaussian_lobe(filter_method_Gaussian method, ndf_roughness_matrix_RoughnessMatrix material, footprint_Footprint fp_7) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_gaussian(method.clamps, material, fp_7, method.sigma);
+    return _e5;
+}
+
+float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, vec3 m_23) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_1, material_1, fp_8);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_23);
+    return _e5;
+}
+
+float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_9, vec3 m_24) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_2, material_2, fp_9);
+    float _e5 = ndf_beckmann_d_matrix(_e4, m_24);
+    return _e5;
+}
+
+filter_gaussian_ggx_GaussianFilteredGgx filter_method_exact_gaussian_lobe(filter_method_ExactGaussian method_3, ndf_roughness_matrix_RoughnessMatrix material_3, footprint_Footprint fp_10) {
+    kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_10, method_3.sigma);
+    filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
+    return _e6;
+}
+
+float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, vec3 m_25) {
+    filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_method_exact_gaussian_lobe(method_4, material_4, fp_11);
+    float _e5 = filter_gaussian_ggx_d(_e4, m_25);
+    return _e5;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_method_projected_lobe(filter_method_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_12) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
+    return _e5;
+}
+
+float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, vec3 m_26) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_projected_lobe(method_6, material_6, fp_13);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_26);
+    return _e5;
+}
+
+filter_method_RectFilteredGgx filter_method_rect_lobe(filter_method_Rect method_7, ndf_roughness_axis_aligned_AxisAligned material_7, footprint_Footprint fp_14) {
+    kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_14);
+    kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
+    vec2 h_29 = _e6.half_extent;
+    return filter_method_RectFilteredGgx(material_7, h_29);
+}
+
+float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe, vec2 s_12) {
+    float _e4 = filter_rect_p22_rect(lobe.roughness, s_12, lobe.half_extent);
+    return _e4;
+}
+
+float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_1, vec3 m_27) {
+    float _e4 = filter_rect_d_rect(lobe_1.roughness, m_27, lobe_1.half_extent);
+    return _e4;
+}
+
+float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_2, vec3 w_20) {
+    float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_20);
+    return _e4;
+}
+
+float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_3, vec3 w_21, vec3 m_28) {
+    float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_21);
+    float _e5 = ndf_g1_of(_e3, dot(w_21, m_28));
+    return _e5;
+}
+
+float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_4, vec3 i_9, vec3 o_7, vec3 m_29) {
+    float _e4 = filter_method_lambda_rect_filtered(lobe_4, i_9);
+    float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_7);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_29), dot(o_7, m_29));
+    return _e8;
+}
+
+float filter_method_d_ggx_rect(filter_method_Rect method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, vec3 m_30) {
+    filter_method_RectFilteredGgx _e4 = filter_method_rect_lobe(method_8, material_8, fp_15);
+    float _e5 = filter_method_d_rect_filtered(_e4, m_30);
+    return _e5;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(filter_method_Proxy method_9, ndf_roughness_axis_aligned_AxisAligned material_9, footprint_Footprint fp_16) {
+    kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_16);
+    kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
+    vec2 h_30 = _e6.half_extent;
+    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_30);
+    return _e8;
+}
+
+float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, vec3 m_31) {
+    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
+    float _e5 = ndf_ggx_d_axis_aligned(_e4, m_31);
+    return _e5;
+}
+
+filter_deferred_KernelConvention filter_presets_preset(uint i_10) {
+    switch(i_10) {
         case 0u: {
             return filter_presets_TK19_MAX;
         }
@@ -545,1027 +2740,99 @@ filter_deferred_KernelConvention filter_presets_preset(uint i) {
     }
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_2) {
-    float b11_ = 0.0;
-    float b12_ = 0.0;
-    float b22_ = 0.0;
-    float det_1 = 0.0;
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
-    vec2 lc = min(a_8.eig, vec2(0.99));
-    vec2 excess = (a_8.eig - lc);
-    vec2 p_5 = (lc / (vec2(1.0) - lc));
-    float c_13 = a_8.axis.x;
-    float s_15 = a_8.axis.y;
-    float p11_1 = (((p_5.x * c_13) * c_13) + ((p_5.y * s_15) * s_15));
-    float p12_1 = (((p_5.x - p_5.y) * c_13) * s_15);
-    float p22_1 = (((p_5.x * s_15) * s_15) + ((p_5.y * c_13) * c_13));
-    float k1_1 = max(((((c_13 * c_13) * _e2.s_xx) + (((2.0 * c_13) * s_15) * _e2.s_xy)) + ((s_15 * s_15) * _e2.s_yy)), 0.0);
-    float k2_1 = max(((((s_15 * s_15) * _e2.s_xx) - (((2.0 * c_13) * s_15) * _e2.s_xy)) + ((c_13 * c_13) * _e2.s_yy)), 0.0);
-    float d_2 = (((p_5.x * p_5.y) + (2.0 * ((p_5.y * k1_1) + (p_5.x * k2_1)))) + (4.0 * max(_e2.det, 0.0)));
-    float q11_ = (p11_1 + (2.0 * _e2.s_xx));
-    float q12_ = (p12_1 + (2.0 * _e2.s_xy));
-    float q22_ = (p22_1 + (2.0 * _e2.s_yy));
-    float den = (((1.0 + q11_) + q22_) + d_2);
-    b11_ = ((q11_ + d_2) / den);
-    b12_ = (q12_ / den);
-    b22_ = ((q22_ + d_2) / den);
-    det_1 = (d_2 / den);
-    if ((max(excess.x, excess.y) > 0.0)) {
-        float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_13) * c_13) + ((excess.y * s_15) * s_15)));
-        float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_13) * s_15));
-        float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_15) * s_15) + ((excess.y * c_13) * c_13)));
-        float _e139 = b11_;
-        float _e140 = b22_;
-        float _e142 = b12_;
-        float _e143 = b12_;
-        det_1 = ((_e139 * _e140) - (_e142 * _e143));
+vec2 footprint_slope_slope_from_sphere(vec3 h_18) {
+    float z_5 = max(h_18.z, math_F32_MIN_POSITIVE);
+    return clamp((-(h_18.xy) / vec2(z_5)), vec2(-3.4028235e38), vec2(3.4028235e38));
+}
+
+vec3 footprint_slope_sphere_from_slope(vec2 s_13) {
+    float k_29 = max(max(abs(s_13.x), abs(s_13.y)), 1.0);
+    vec3 v_18 = vec3((-(s_13) / vec2(k_29)), (1.0 / k_29));
+    return (v_18 / vec3(length(v_18)));
+}
+
+vec2 footprint_slope_projected_from_sphere(vec3 h_19) {
+    return h_19.xy;
+}
+
+vec3 footprint_slope_sphere_from_projected(vec2 p_1) {
+    float r2_1 = dot(p_1, p_1);
+    if ((r2_1 < 1.0)) {
+        return vec3(p_1, sqrt((1.0 - r2_1)));
     }
-    vec3 _e146 = ndf_roughness_matrix_entries(a_8);
-    float tau_4 = (a_8.sqrt_det * a_8.sqrt_det);
-    float _e150 = b11_;
-    float _e153 = b12_;
-    float _e154 = b22_;
-    float _e157 = det_1;
-    ndf_roughness_matrix_RoughnessMatrix _e159 = ndf_roughness_matrix_from_entries_det(max(_e150, _e146.x), _e153, max(_e154, _e146.z), max(_e157, tau_4), tau_4);
-    return _e159;
-}
-
-ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(vec2 alpha_6) {
-    float _e2 = ndf_roughness_clamp_alpha(alpha_6.x);
-    float _e4 = ndf_roughness_clamp_alpha(alpha_6.y);
-    vec2 a_15 = vec2(_e2, _e4);
-    return ndf_roughness_axis_aligned_AxisAligned(a_15, (vec2(1.0) / (a_15 * a_15)));
-}
-
-float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_7, vec2 s_1) {
-    return dot((s_1 * s_1), r_7.inv_alpha_sq);
-}
-
-float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_8, vec2 w_1) {
-    return dot((w_1 * w_1), (r_8.alpha * r_8.alpha));
-}
-
-float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_9) {
-    return (r_9.alpha.x * r_9.alpha.y);
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_10) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), r_10.alpha);
-    return _e5;
-}
-
-float filter_proxy_effective_alpha(float alpha_7, float half_extent) {
-    float h_17 = abs(half_extent);
-    float _e3 = math_hypot(alpha_7, h_17);
-    float t_2 = ((_e3 > 0.0) ? (h_17 / _e3) : 0.0);
-    float _e9 = math_atan(t_2);
-    float ratio = ((t_2 > 0.0) ? (t_2 / _e9) : 1.0);
-    return (_e3 * sqrt(ratio));
-}
-
-float filter_proxy_effective_alpha_simple(float alpha_8, float half_extent_1) {
-    float _e3 = math_hypot(alpha_8, abs(half_extent_1));
-    return _e3;
-}
-
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_11, vec2 half_extent_2) {
-    float _e5 = filter_proxy_effective_alpha(r_11.alpha.x, half_extent_2.x);
-    float _e9 = filter_proxy_effective_alpha(r_11.alpha.y, half_extent_2.y);
-    ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
-    return _e11;
-}
-
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_12, vec2 half_extent_3) {
-    float _e5 = filter_proxy_effective_alpha_simple(r_12.alpha.x, half_extent_3.x);
-    float _e9 = filter_proxy_effective_alpha_simple(r_12.alpha.y, half_extent_3.y);
-    ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
-    return _e11;
-}
-
-float ndf_g1_of(float lambda_w, float w_dot_m) {
-    return ((w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0);
-}
-
-float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m) {
-    bool local_3 = false;
-    if ((i_dot_m > 0.0)) {
-        local_3 = (o_dot_m > 0.0);
-    } else {
-        local_3 = false;
-    }
-    bool _e16 = local_3;
-    return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
-}
-
-ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_9) {
-    float _e1 = ndf_roughness_clamp_alpha(alpha_9);
-    return ndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
-}
-
-float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_13, vec2 s_2) {
-    return (dot(s_2, s_2) * r_13.inv_alpha_sq);
-}
-
-float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_14, vec2 w_2) {
-    return (dot(w_2, w_2) * (r_14.alpha * r_14.alpha));
-}
-
-float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_15) {
-    return (r_15.alpha * r_15.alpha);
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_16) {
-    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), vec2(r_16.alpha));
-    return _e6;
-}
-
-float ndf_ggx_p22_of(float q, float sqrt_det) {
-    float t_3 = (1.0 + q);
-    return (1.0 / (((math_PI * sqrt_det) * t_3) * t_3));
-}
-
-float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1) {
-    bool local_4 = false;
-    float t_4 = (q_xy + (m_z * m_z));
-    float v_5 = (1.0 / (((math_PI * sqrt_det_1) * t_4) * t_4));
-    if ((m_z > 0.0)) {
-        local_4 = (v_5 <= math_F32_MAX);
-    } else {
-        local_4 = false;
-    }
-    bool _e18 = local_4;
-    return (_e18 ? v_5 : 0.0);
-}
-
-float ndf_ggx_lambda_of(float q_1, float abs_wz) {
-    if ((q_1 <= 0.0)) {
-        return 0.0;
-    }
-    if ((abs_wz <= 0.0)) {
-        return math_F32_MAX;
-    }
-    float r_61 = sqrt(((abs_wz * abs_wz) + q_1));
-    return (q_1 / ((2.0 * abs_wz) * (r_61 + abs_wz)));
-}
-
-float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_17, vec2 s_3) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_17, s_3);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_17);
-    float _e4 = ndf_ggx_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_18, vec3 m_1) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_18, m_1.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_18);
-    float _e6 = ndf_ggx_d_of(_e3, m_1.z, _e5);
-    return _e6;
-}
-
-float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_19, vec3 w_3) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_19, w_3.xy);
-    float _e6 = ndf_ggx_lambda_of(_e3, abs(w_3.z));
-    return _e6;
-}
-
-float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_20, vec3 w_4, vec3 m_2) {
-    float _e3 = ndf_ggx_lambda_isotropic(r_20, w_4);
-    float _e5 = ndf_g1_of(_e3, dot(w_4, m_2));
-    return _e5;
-}
-
-float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_21, vec3 i_1, vec3 o, vec3 m_3) {
-    float _e4 = ndf_ggx_lambda_isotropic(r_21, i_1);
-    float _e5 = ndf_ggx_lambda_isotropic(r_21, o);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_3), dot(o, m_3));
-    return _e8;
-}
-
-float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_22, vec2 s_4) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_22, s_4);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_22);
-    float _e4 = ndf_ggx_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_23, vec3 m_4) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_23, m_4.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_23);
-    float _e6 = ndf_ggx_d_of(_e3, m_4.z, _e5);
-    return _e6;
-}
-
-float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_24, vec3 w_5) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_24, w_5.xy);
-    float _e6 = ndf_ggx_lambda_of(_e3, abs(w_5.z));
-    return _e6;
-}
-
-float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, vec3 w_6, vec3 m_5) {
-    float _e3 = ndf_ggx_lambda_axis_aligned(r_25, w_6);
-    float _e5 = ndf_g1_of(_e3, dot(w_6, m_5));
-    return _e5;
-}
-
-float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, vec3 i_2, vec3 o_1, vec3 m_6) {
-    float _e4 = ndf_ggx_lambda_axis_aligned(r_26, i_2);
-    float _e5 = ndf_ggx_lambda_axis_aligned(r_26, o_1);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_6), dot(o_1, m_6));
-    return _e8;
-}
-
-float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_27, vec2 s_5) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_27, s_5);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_27);
-    float _e4 = ndf_ggx_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_28, vec3 m_7) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_28, m_7.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_28);
-    float _e6 = ndf_ggx_d_of(_e3, m_7.z, _e5);
-    return _e6;
-}
-
-float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_29, vec3 w_7) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_29, w_7.xy);
-    float _e6 = ndf_ggx_lambda_of(_e3, abs(w_7.z));
-    return _e6;
-}
-
-float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, vec3 w_8, vec3 m_8) {
-    float _e3 = ndf_ggx_lambda_matrix(r_30, w_8);
-    float _e5 = ndf_g1_of(_e3, dot(w_8, m_8));
-    return _e5;
-}
-
-float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, vec3 i_3, vec3 o_2, vec3 m_9) {
-    float _e4 = ndf_ggx_lambda_matrix(r_31, i_3);
-    float _e5 = ndf_ggx_lambda_matrix(r_31, o_2);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_9), dot(o_2, m_9));
-    return _e8;
-}
-
-uint filter_rect_tier(float h2_, float l2_) {
-    if ((h2_ < (0.0001 * l2_))) {
-        return 2u;
-    }
-    if ((h2_ < (0.01 * l2_))) {
-        return 4u;
-    }
-    if ((h2_ < (0.0625 * l2_))) {
-        return 6u;
-    }
-    return filter_rect_TIER_CLOSED;
-}
-
-float filter_rect_gl_node(uint n, uint k_6) {
-    if ((n == 2u)) {
-        return 0.57735026;
-    }
-    if ((n == 4u)) {
-        return ((k_6 == 0u) ? 0.33998105 : 0.8611363);
-    }
-    if ((k_6 == 0u)) {
-        return 0.2386192;
-    }
-    return ((k_6 == 1u) ? 0.6612094 : 0.9324695);
-}
-
-float filter_rect_gl_weight(uint n_1, uint k_7) {
-    if ((n_1 == 2u)) {
-        return 0.5;
-    }
-    if ((n_1 == 4u)) {
-        return ((k_7 == 0u) ? 0.32607257 : 0.17392743);
-    }
-    if ((k_7 == 0u)) {
-        return 0.23395696;
-    }
-    return ((k_7 == 1u) ? 0.18038079 : 0.085662246);
-}
-
-float filter_rect_f(float u_1, float v_3) {
-    float t_5 = ((1.0 + (u_1 * u_1)) + (v_3 * v_3));
-    return (1.0 / (t_5 * t_5));
-}
-
-float filter_rect_gl_mean(uint n_2, float u_2, float c_6, float h) {
-    float acc = 0.0;
-    uint k_8 = 0u;
-    bool loop_init = true;
-    while(true) {
-        if (!loop_init) {
-            uint _e26 = k_8;
-            k_8 = (_e26 + 1u);
-        }
-        loop_init = false;
-        uint _e8 = k_8;
-        if ((_e8 < (n_2 / 2u))) {
-        } else {
-            break;
-        }
-        {
-            uint _e12 = k_8;
-            float _e13 = filter_rect_gl_node(n_2, _e12);
-            float a_16 = (h * _e13);
-            float _e15 = acc;
-            uint _e16 = k_8;
-            float _e17 = filter_rect_gl_weight(n_2, _e16);
-            float _e19 = filter_rect_f(u_2, (c_6 - a_16));
-            float _e21 = filter_rect_f(u_2, (c_6 + a_16));
-            acc = (_e15 + (_e17 * (_e19 + _e21)));
-        }
-    }
-    float _e28 = acc;
-    return _e28;
-}
-
-float filter_rect_atan2_upper(float y_1, float x_2) {
-    if ((x_2 > 0.0)) {
-        float _e5 = math_atan((y_1 / x_2));
-        return _e5;
-    }
-    float _e9 = math_atan((-(x_2) / y_1));
-    return (math_HALF_PI + _e9);
-}
-
-float filter_rect_delta_minus_sin(float d, float sin_d) {
-    float s_6 = 0.0;
-    if ((d < 1.0)) {
-        float d2_ = (d * d);
-        s_6 = (1.0 - ((d2_ * 0.013888889) * (1.0 - (d2_ * 0.009090909))));
-        float _e17 = s_6;
-        s_6 = (1.0 - ((d2_ * 0.023809524) * _e17));
-        float _e23 = s_6;
-        s_6 = (1.0 - ((d2_ * 0.05) * _e23));
-        float _e30 = s_6;
-        return (((d * d2_) * 0.16666667) * _e30);
-    }
-    return (d - sin_d);
-}
-
-float filter_rect_mean_1d(float xc, float hx, float c2_) {
-    float x0_ = (abs(xc) - hx);
-    float x1_ = (abs(xc) + hx);
-    float dx = (2.0 * hx);
-    float c_14 = sqrt(c2_);
-    float r02_ = (c2_ + (x0_ * x0_));
-    float r12_ = (c2_ + (x1_ * x1_));
-    float x01_ = (x0_ * x1_);
-    float _e17 = filter_rect_atan2_upper((c_14 * dx), (c2_ + x01_));
-    float inv_2 = (1.0 / (((2.0 * c_14) * c2_) * dx));
-    float p2_ = ((2.0 * r02_) * r12_);
-    if ((x0_ <= 0.0)) {
-        return ((_e17 * inv_2) + ((c2_ - x01_) / (c2_ * p2_)));
-    }
-    float rr = (sqrt(r02_) * sqrt(r12_));
-    float _e39 = filter_rect_delta_minus_sin(_e17, ((c_14 * dx) / rr));
-    return ((_e39 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_ * x1_)) + c2_) / (rr + x01_))) / p2_));
-}
-
-float filter_rect_gl_mean_1d(uint n_3, float c_7, float h_1, float other_c, float other_h) {
-    float acc_1 = 0.0;
-    uint k_9 = 0u;
-    bool loop_init_1 = true;
-    while(true) {
-        if (!loop_init_1) {
-            uint _e33 = k_9;
-            k_9 = (_e33 + 1u);
-        }
-        loop_init_1 = false;
-        uint _e9 = k_9;
-        if ((_e9 < (n_3 / 2u))) {
-        } else {
-            break;
-        }
-        {
-            uint _e13 = k_9;
-            float _e14 = filter_rect_gl_node(n_3, _e13);
-            float a_17 = (h_1 * _e14);
-            float x0_1 = (c_7 - a_17);
-            float x1_1 = (c_7 + a_17);
-            float _e18 = acc_1;
-            uint _e19 = k_9;
-            float _e20 = filter_rect_gl_weight(n_3, _e19);
-            float _e24 = filter_rect_mean_1d(other_c, other_h, (1.0 + (x0_1 * x0_1)));
-            float _e28 = filter_rect_mean_1d(other_c, other_h, (1.0 + (x1_1 * x1_1)));
-            acc_1 = (_e18 + (_e20 * (_e24 + _e28)));
-        }
-    }
-    float _e35 = acc_1;
-    return _e35;
-}
-
-float filter_rect_edge(float u_3, float dv, float v01_) {
-    float s2_ = (1.0 + (u_3 * u_3));
-    float s_16 = sqrt(s2_);
-    float _e10 = filter_rect_atan2_upper((dv * s_16), (s2_ + v01_));
-    return ((u_3 / s_16) * _e10);
-}
-
-float filter_rect_edges(float uc, float vc, float hu, float hv) {
-    float u0_ = (uc - hu);
-    float u1_ = (uc + hu);
-    float v0_ = (vc - hv);
-    float v1_ = (vc + hv);
-    float du = (2.0 * hu);
-    float dv_1 = (2.0 * hv);
-    float _e13 = filter_rect_edge(u1_, dv_1, (v0_ * v1_));
-    float _e15 = filter_rect_edge(u0_, dv_1, (v0_ * v1_));
-    float _e18 = filter_rect_edge(v1_, du, (u0_ * u1_));
-    float _e20 = filter_rect_edge(v0_, du, (u0_ * u1_));
-    float i_7 = (0.5 * ((_e13 - _e15) + (_e18 - _e20)));
-    return (i_7 / (du * dv_1));
-}
-
-float filter_rect_mean_f(float uc_1, float vc_1, float hu_1, float hv_1) {
-    bool local_5 = false;
-    float acc_2 = 0.0;
-    uint k_10 = 0u;
-    float du_1 = max((abs(uc_1) - hu_1), 0.0);
-    float dv_2 = max((abs(vc_1) - hv_1), 0.0);
-    uint _e18 = filter_rect_tier((hu_1 * hu_1), ((1.0 + (uc_1 * uc_1)) + (dv_2 * dv_2)));
-    uint _e25 = filter_rect_tier((hv_1 * hv_1), ((1.0 + (vc_1 * vc_1)) + (du_1 * du_1)));
-    if ((_e18 == filter_rect_TIER_CLOSED)) {
-        local_5 = (_e25 == filter_rect_TIER_CLOSED);
-    } else {
-        local_5 = false;
-    }
-    bool _e33 = local_5;
-    if (_e33) {
-        float _e34 = filter_rect_edges(uc_1, vc_1, hu_1, hv_1);
-        return _e34;
-    }
-    if ((_e18 == filter_rect_TIER_CLOSED)) {
-        float _e37 = filter_rect_gl_mean_1d(_e25, vc_1, hv_1, uc_1, hu_1);
-        return _e37;
-    }
-    if ((_e25 == filter_rect_TIER_CLOSED)) {
-        float _e40 = filter_rect_gl_mean_1d(_e18, uc_1, hu_1, vc_1, hv_1);
-        return _e40;
-    }
-    bool loop_init_2 = true;
-    while(true) {
-        if (!loop_init_2) {
-            uint _e63 = k_10;
-            k_10 = (_e63 + 1u);
-        }
-        loop_init_2 = false;
-        uint _e45 = k_10;
-        if ((_e45 < (_e18 / 2u))) {
-        } else {
-            break;
-        }
-        {
-            uint _e49 = k_10;
-            float _e50 = filter_rect_gl_node(_e18, _e49);
-            float a_18 = (hu_1 * _e50);
-            float _e52 = acc_2;
-            uint _e53 = k_10;
-            float _e54 = filter_rect_gl_weight(_e18, _e53);
-            float _e56 = filter_rect_gl_mean(_e25, (uc_1 - a_18), vc_1, hv_1);
-            float _e58 = filter_rect_gl_mean(_e25, (uc_1 + a_18), vc_1, hv_1);
-            acc_2 = (_e52 + (_e54 * (_e56 + _e58)));
-        }
-    }
-    float _e65 = acc_2;
-    return _e65;
-}
-
-float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_32, vec2 center, vec2 half_extent_4) {
-    bool local_6 = false;
-    if ((half_extent_4.x == 0.0)) {
-        local_6 = (half_extent_4.y == 0.0);
-    } else {
-        local_6 = false;
-    }
-    bool _e12 = local_6;
-    if (_e12) {
-        float _e13 = ndf_ggx_p22_axis_aligned(r_32, center);
-        return _e13;
-    }
-    vec2 a_19 = r_32.alpha;
-    vec2 c_15 = clamp((center / a_19), vec2(-1e18), vec2(1e18));
-    vec2 h_18 = min((abs(half_extent_4) / a_19), vec2(1e18));
-    float _e30 = filter_rect_mean_f(c_15.x, c_15.y, h_18.x, h_18.y);
-    return max((_e30 * (math_INV_PI / (a_19.x * a_19.y))), 0.0);
-}
-
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_33, vec3 h_2, vec2 half_extent_5) {
-    bool local_7 = false;
-    if (!((h_2.z > 0.0))) {
-        return 0.0;
-    }
-    if ((half_extent_5.x == 0.0)) {
-        local_7 = (half_extent_5.y == 0.0);
-    } else {
-        local_7 = false;
-    }
-    bool _e17 = local_7;
-    if (_e17) {
-        float _e18 = ndf_ggx_d_axis_aligned(r_33, h_2);
-        return _e18;
-    }
-    float _e24 = filter_rect_p22_rect(r_33, (-(h_2.xy) / vec2(h_2.z)), half_extent_5);
-    float z2_ = (h_2.z * h_2.z);
-    return min((_e24 / (z2_ * z2_)), math_F32_MAX);
-}
-
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_34, vec2 hpp, vec3 h_3, vec2 footprint) {
-    bool local_8 = false;
-    float a_20 = r_34.alpha.x;
-    float b_4 = r_34.alpha.y;
-    float a_2_ = (a_20 * a_20);
-    float b_2_ = (b_4 * b_4);
-    float x1_2 = (hpp.x - footprint.x);
-    float x2_ = (hpp.x + footprint.x);
-    float y1_ = (hpp.y - footprint.y);
-    float y2_ = (hpp.y + footprint.y);
-    float sx1_ = sqrt(((x1_2 * x1_2) + a_2_));
-    float sx2_ = sqrt(((x2_ * x2_) + a_2_));
-    float sy1_ = sqrt(((y1_ * y1_) + b_2_));
-    float sy2_ = sqrt(((y2_ * y2_) + b_2_));
-    float _e37 = math_atan(((y1_ * a_20) / (sx1_ * b_4)));
-    float _e41 = math_atan(((y2_ * a_20) / (sx1_ * b_4)));
-    float _e48 = math_atan(((y1_ * a_20) / (sx2_ * b_4)));
-    float _e53 = math_atan(((y2_ * a_20) / (sx2_ * b_4)));
-    float _e62 = math_atan(((x1_2 * b_4) / (a_20 * sy1_)));
-    float _e66 = math_atan(((x2_ * b_4) / (a_20 * sy1_)));
-    float _e73 = math_atan(((x1_2 * b_4) / (a_20 * sy2_)));
-    float _e78 = math_atan(((x2_ * b_4) / (a_20 * sy2_)));
-    float val = ((((x1_2 * (_e37 - _e41)) / sx1_) + ((x2_ * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
-    float den_1 = ((6.2831855 * (x1_2 - x2_)) * (y1_ - y2_));
-    float hz4_ = (((h_3.z * h_3.z) * h_3.z) * h_3.z);
-    float v_6 = ((val / den_1) / max(hz4_, 0.001));
-    if ((abs(v_6) <= math_F32_MAX)) {
-        local_8 = (den_1 != 0.0);
-    } else {
-        local_8 = false;
-    }
-    bool _e109 = local_8;
-    return (_e109 ? v_6 : 0.0);
-}
-
-footprint_jacobian_Polar footprint_jacobian_polar(vec3 h_in) {
-    vec2 cs_1 = vec2(1.0, 0.0);
-    float big_2 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
-    if ((big_2 <= 0.0)) {
-        return footprint_jacobian_Polar(vec3(0.0, 0.0, 1.0), vec2(1.0, 0.0));
-    }
-    vec3 h0_ = (h_in / vec3(big_2));
-    vec3 h_19 = (h0_ / vec3(length(h0_)));
-    float qs = max(abs(h_19.x), abs(h_19.y));
-    if ((qs > 0.0)) {
-        vec2 q_6 = (h_19.xy / vec2(qs));
-        cs_1 = (q_6 / vec2(length(q_6)));
-    }
-    if ((h_19.z >= footprint_jacobian_HZ_MIN)) {
-        vec2 _e44 = cs_1;
-        return footprint_jacobian_Polar(h_19, _e44);
-    }
-    vec2 _e47 = cs_1;
-    vec2 _e51 = cs_1;
-    return footprint_jacobian_Polar(vec3((1.0 * _e47), footprint_jacobian_HZ_MIN), _e51);
-}
-
-vec3 footprint_jacobian_sanitize(vec3 h_4) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
-    return _e1.h;
-}
-
-footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(vec3 h_5) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
-    float st = length(_e1.h.xy);
-    return footprint_jacobian_SphericalBasis(vec3((_e1.h.z * _e1.cs), -(st)), vec3(-(_e1.cs.y), _e1.cs.x, 0.0));
-}
-
-vec2 footprint_jacobian_spherical_components(vec3 h_6, vec3 dh) {
-    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_6);
-    return vec2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
-}
-
-mat2x2 footprint_jacobian_sphere_to_projected(vec3 h_7) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
-    return mat2x2((_e1.h.z * _e1.cs), vec2(-(_e1.cs.y), _e1.cs.x));
-}
-
-mat2x2 footprint_jacobian_projected_to_slope(vec3 h_in_1) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
-    vec3 h_20 = _e1.h;
-    float k_14 = (-1.0 / ((h_20.z * h_20.z) * h_20.z));
-    float xy = (h_20.x * h_20.y);
-    return mat2x2((vec2(((h_20.x * h_20.x) + (h_20.z * h_20.z)), xy) * k_14), (vec2(xy, ((h_20.y * h_20.y) + (h_20.z * h_20.z))) * k_14));
-}
-
-mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_2) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    vec3 h_21 = _e1.h;
-    float xy_1 = (h_21.x * h_21.y);
-    return mat2x2((vec2(((h_21.y * h_21.y) + (h_21.z * h_21.z)), -(xy_1)) * -(h_21.z)), (vec2(-(xy_1), ((h_21.x * h_21.x) + (h_21.z * h_21.z))) * -(h_21.z)));
-}
-
-mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_8) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float k_15 = (-1.0 / (_e1.h.z * _e1.h.z));
-    return mat2x2((_e1.cs * k_15), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_15));
-}
-
-float footprint_jacobian_det_sphere_to_projected(vec3 h_9) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_9);
-    return _e1.h.z;
-}
-
-float footprint_jacobian_det_projected_to_slope(vec3 h_10) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_10);
-    float z_2 = _e1.h.z;
-    float z2_1 = (z_2 * z_2);
-    return (1.0 / (z2_1 * z2_1));
-}
-
-float footprint_jacobian_det_sphere_to_slope(vec3 h_11) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_11);
-    float z_3 = _e1.h.z;
-    return (1.0 / ((z_3 * z_3) * z_3));
-}
-
-vec2 footprint_jacobian_spherical_to_slope(vec3 h_12, vec2 e) {
-    mat2x2 _e2 = footprint_jacobian_sphere_to_slope(h_12);
-    return (_e2 * e);
-}
-
-vec2 footprint_jacobian_spherical_to_projected(vec3 h_13, vec2 e_1) {
-    mat2x2 _e2 = footprint_jacobian_sphere_to_projected(h_13);
-    return (_e2 * e_1);
-}
-
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_35, float sigma_2) {
-    vec2 w_16 = (r_35.half_extent * (2.0 * sigma_2));
-    vec2 v_7 = (w_16 * w_16);
-    return kernel_covariance_Covariance(v_7.x, 0.0, v_7.y, (v_7.x * v_7.y));
-}
-
-footprint_Footprint footprint_from_slope_derivatives(vec2 dh_u, vec2 dh_v) {
-    return footprint_Footprint(dh_u, dh_v);
-}
-
-footprint_Footprint footprint_from_projected_derivatives(vec2 dp_u, vec2 dp_v) {
-    return footprint_Footprint(dp_u, dp_v);
-}
-
-footprint_Footprint footprint_from_projected_derivatives_in_slope(vec3 h_14, vec2 dp_u_1, vec2 dp_v_1) {
-    float big_3 = max(max(abs(h_14.x), abs(h_14.y)), abs(h_14.z));
-    if ((big_3 <= 0.0)) {
-        return footprint_Footprint(vec2(0.0), vec2(0.0));
-    }
-    mat2x2 _e18 = footprint_jacobian_projected_to_slope(h_14);
-    return footprint_Footprint((_e18 * dp_u_1), (_e18 * dp_v_1));
-}
-
-footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) {
-    float lu = max(length((vec3(0.0, 0.0, 2.0) + dn_u_4)), 1e-6);
-    float lv = max(length((vec3(0.0, 0.0, 2.0) + dn_v_4)), 1e-6);
-    return footprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
-}
-
-kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3) {
-    vec2 u_8 = fp.dh_u;
-    vec2 v_8 = fp.dh_v;
-    float s2_1 = (sigma_3 * sigma_3);
-    float cross_1 = (((u_8.x * v_8.y) - (u_8.y * v_8.x)) * s2_1);
-    return kernel_covariance_Covariance((((u_8.x * u_8.x) + (v_8.x * v_8.x)) * s2_1), (((u_8.x * u_8.y) + (v_8.x * v_8.y)) * s2_1), (((u_8.y * u_8.y) + (v_8.y * v_8.y)) * s2_1), (cross_1 * cross_1));
-}
-
-kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1) {
-    return kernel_rect_BoundingRect(((abs(fp_1.dh_u) + abs(fp_1.dh_v)) * 0.5));
-}
-
-float footprint_max_extent(footprint_Footprint fp_2) {
-    return (0.5 * max(length((fp_2.dh_u + fp_2.dh_v)), length((fp_2.dh_u - fp_2.dh_v))));
-}
-
-vec2 footprint_slope_slope_from_sphere(vec3 h_15) {
-    float z_4 = max(h_15.z, math_F32_MIN_POSITIVE);
-    return clamp((-(h_15.xy) / vec2(z_4)), vec2(-3.4028235e38), vec2(3.4028235e38));
-}
-
-vec3 footprint_slope_sphere_from_slope(vec2 s_7) {
-    float k_16 = max(max(abs(s_7.x), abs(s_7.y)), 1.0);
-    vec3 v_9 = vec3((-(s_7) / vec2(k_16)), (1.0 / k_16));
-    return (v_9 / vec3(length(v_9)));
-}
-
-vec2 footprint_slope_projected_from_sphere(vec3 h_16) {
-    return h_16.xy;
-}
-
-vec3 footprint_slope_sphere_from_projected(vec2 p) {
-    float r2_ = dot(p, p);
-    if ((r2_ < 1.0)) {
-        return vec3(p, sqrt((1.0 - r2_)));
-    }
-    vec2 q_7 = (p / vec2(max(max(abs(p.x), abs(p.y)), math_F32_MIN_POSITIVE)));
+    vec2 q_7 = (p_1 / vec2(max(max(abs(p_1.x), abs(p_1.y)), math_F32_MIN_POSITIVE)));
     return vec3((q_7 / vec2(length(q_7))), 0.0);
 }
 
-vec2 footprint_slope_slope_from_projected(vec2 p_1) {
-    vec3 _e1 = footprint_slope_sphere_from_projected(p_1);
+vec2 footprint_slope_slope_from_projected(vec2 p_2) {
+    vec3 _e1 = footprint_slope_sphere_from_projected(p_2);
     vec2 _e2 = footprint_slope_slope_from_sphere(_e1);
     return _e2;
 }
 
-vec2 footprint_slope_projected_from_slope(vec2 s_8) {
-    vec3 _e1 = footprint_slope_sphere_from_slope(s_8);
+vec2 footprint_slope_projected_from_slope(vec2 s_14) {
+    vec3 _e1 = footprint_slope_sphere_from_slope(s_14);
     vec2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
 }
 
-footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3) {
-    float l_4 = max(rules.max_extent, 0.0);
-    float scale_1 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
-    if ((scale_1 <= 0.0)) {
-        return fp_3;
-    }
-    footprint_Footprint unit = footprint_Footprint((fp_3.dh_u / vec2(scale_1)), (fp_3.dh_v / vec2(scale_1)));
-    float _e29 = footprint_max_extent(unit);
-    if (((_e29 * scale_1) <= l_4)) {
-        return fp_3;
-    }
-    return footprint_Footprint(((unit.dh_u / vec2(_e29)) * l_4), ((unit.dh_v / vec2(_e29)) * l_4));
-}
-
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_36, vec2 alpha_10) {
-    vec2 f = vec2(0.0);
-    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
-        f = vec2(rules_1.floor_);
-    } else {
-        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
-            f = min(abs(alpha_10), vec2(rules_1.floor_));
-        }
-    }
-    float lambda = max(rules_1.max_extent, 0.0);
-    vec2 h_22 = min(abs(r_36.half_extent), vec2(lambda));
-    vec2 _e25 = f;
-    return kernel_rect_BoundingRect(max(h_22, max(_e25, vec2(0.0))));
-}
-
-kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_11) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_11);
-    if ((rules_2.kappa >= math_F32_MAX)) {
-        return _e2;
-    }
-    kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
-    return _e11;
-}
-
-float kernel_clamp_tau(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_9) {
-    return (rules_3.det_clamp ? (a_9.sqrt_det * a_9.sqrt_det) : 0.0);
-}
-
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_4, ndf_roughness_matrix_RoughnessMatrix a_10, footprint_Footprint fp_4, float sigma_4) {
-    footprint_Footprint _e4 = kernel_clamp_footprint(rules_4, fp_4);
-    kernel_covariance_Covariance _e5 = footprint_covariance(_e4, sigma_4);
-    kernel_covariance_Covariance _e6 = kernel_clamp_kernel(rules_4, _e5);
-    if (rules_4.det_clamp) {
-        ndf_roughness_matrix_RoughnessMatrix _e8 = filter_gaussian_gaussian_sanitized(a_10, _e6);
-        return _e8;
-    }
-    ndf_roughness_matrix_RoughnessMatrix _e10 = filter_gaussian_gaussian_with_tau_sanitized(a_10, _e6, 0.0);
-    return _e10;
-}
-
-float ndf_beckmann_exp_neg_times(float x_3, float k_12, float ln_k) {
-    return ((x_3 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_3)) : (exp(-(x_3)) * k_12));
-}
-
-float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
-    float den_2 = (math_PI * sqrt_det_2);
-    float _e8 = ndf_beckmann_exp_neg_times(q_2, (1.0 / den_2), -(log(den_2)));
-    return _e8;
-}
-
-float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3) {
-    bool local_9 = false;
-    float z2_2 = (m_z_1 * m_z_1);
-    float x_5 = (q_xy_1 / z2_2);
-    float k_17 = (1.0 / (((math_PI * sqrt_det_3) * z2_2) * z2_2));
-    float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_5, k_17, ln_k_1);
-    if ((m_z_1 > 0.0)) {
-        local_9 = (_e21 <= math_F32_MAX);
-    } else {
-        local_9 = false;
-    }
-    bool _e29 = local_9;
-    return (_e29 ? _e21 : 0.0);
-}
-
-float ndf_beckmann_lambda_of(float q_3, float abs_wz_1) {
-    float p_2 = -3.849172e-5;
-    if ((q_3 <= 0.0)) {
-        return 0.0;
-    }
-    if ((abs_wz_1 <= 0.0)) {
-        return math_F32_MAX;
-    }
-    float a_21 = (abs_wz_1 / sqrt(q_3));
-    if ((a_21 > 9.5)) {
-        return 0.0;
-    }
-    float t_6 = ((a_21 - 3.0) / (a_21 + 3.0));
-    float _e20 = p_2;
-    p_2 = ((_e20 * t_6) + 0.00028491428);
-    float _e24 = p_2;
-    p_2 = ((_e24 * t_6) + 1.8268152e-5);
-    float _e28 = p_2;
-    p_2 = ((_e28 * t_6) - 0.0018242653);
-    float _e32 = p_2;
-    p_2 = ((_e32 * t_6) + 0.0013654069);
-    float _e36 = p_2;
-    p_2 = ((_e36 * t_6) + 0.0055811945);
-    float _e40 = p_2;
-    p_2 = ((_e40 * t_6) - 0.009357543);
-    float _e44 = p_2;
-    p_2 = ((_e44 * t_6) - 0.0076571554);
-    float _e48 = p_2;
-    p_2 = ((_e48 * t_6) + 0.036274612);
-    float _e52 = p_2;
-    p_2 = ((_e52 * t_6) - 0.023293633);
-    float _e56 = p_2;
-    p_2 = ((_e56 * t_6) - 0.07646358);
-    float _e60 = p_2;
-    p_2 = ((_e60 * t_6) + 0.2117349);
-    float _e64 = p_2;
-    p_2 = ((_e64 * t_6) - 0.23284179);
-    float _e68 = p_2;
-    p_2 = ((_e68 * t_6) + 0.03307925);
-    float _e72 = p_2;
-    p_2 = ((_e72 * t_6) + 1.0631379);
-    float _e76 = p_2;
-    float k_18 = (_e76 / ((2.0 * a_21) + 1.0));
-    return min(((exp((-(a_21) * a_21)) * k_18) / ((3.5449078 * a_21) * (a_21 + k_18))), math_F32_MAX);
-}
-
-float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_37, vec2 s_9) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_9);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
-    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_38, vec3 m_10) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_10.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
-    float _e6 = ndf_beckmann_d_of(_e3, m_10.z, _e5);
-    return _e6;
-}
-
-float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_39, vec3 w_9) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
-    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
-    return _e6;
-}
-
-float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_40, vec3 w_10, vec3 m_11) {
-    float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
-    float _e5 = ndf_g1_of(_e3, dot(w_10, m_11));
-    return _e5;
-}
-
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_41, vec3 i_4, vec3 o_3, vec3 m_12) {
-    float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_4);
-    float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_12), dot(o_3, m_12));
-    return _e8;
-}
-
-float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, vec2 s_10) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_10);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
-    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, vec3 m_13) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_13.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
-    float _e6 = ndf_beckmann_d_of(_e3, m_13.z, _e5);
-    return _e6;
-}
-
-float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, vec3 w_11) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
-    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
-    return _e6;
-}
-
-float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_45, vec3 w_12, vec3 m_14) {
-    float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
-    float _e5 = ndf_g1_of(_e3, dot(w_12, m_14));
-    return _e5;
-}
-
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_46, vec3 i_5, vec3 o_4, vec3 m_15) {
-    float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_5);
-    float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_15), dot(o_4, m_15));
-    return _e8;
-}
-
-float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, vec2 s_11) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_11);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
-    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, vec3 m_16) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_16.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
-    float _e6 = ndf_beckmann_d_of(_e3, m_16.z, _e5);
-    return _e6;
-}
-
-float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, vec3 w_13) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
-    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
-    return _e6;
-}
-
-float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_50, vec3 w_14, vec3 m_17) {
-    float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
-    float _e5 = ndf_g1_of(_e3, dot(w_14, m_17));
-    return _e5;
-}
-
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_51, vec3 i_6, vec3 o_5, vec3 m_18) {
-    float _e4 = ndf_beckmann_lambda_matrix(r_51, i_6);
-    float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_18), dot(o_5, m_18));
-    return _e8;
-}
-
-sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_52) {
-    vec3 _e1 = ndf_roughness_matrix_entries(r_52);
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_60) {
+    vec3 _e1 = ndf_roughness_matrix_clamped_entries(r_60);
     float l_xx = sqrt(_e1.x);
-    return sampling_Warp(l_xx, (_e1.y / l_xx), (r_52.sqrt_det / l_xx));
+    return sampling_Warp(l_xx, (_e1.y / l_xx), (r_60.sqrt_det / l_xx));
 }
 
-vec3 sampling_normalize_scaled(vec3 v_4) {
-    vec3 w_17 = (v_4 / vec3(max(max(abs(v_4.x), abs(v_4.y)), abs(v_4.z))));
-    return (w_17 / vec3(length(w_17)));
+vec3 sampling_normalize_scaled(vec3 v_12) {
+    vec3 w_26 = (v_12 / vec3(max(max(abs(v_12.x), abs(v_12.y)), abs(v_12.z))));
+    return (w_26 / vec3(length(w_26)));
 }
 
-vec3 sampling_stretch(sampling_Warp l, vec3 w_15) {
-    return vec3(((l.l_xx * w_15.x) + (l.l_yx * w_15.y)), (l.l_yy * w_15.y), w_15.z);
+vec3 sampling_stretch(sampling_Warp l_3, vec3 w_22) {
+    return vec3(((l_3.l_xx * w_22.x) + (l_3.l_yx * w_22.y)), (l_3.l_yy * w_22.y), w_22.z);
 }
 
-vec3 sampling_unstretch(sampling_Warp l_1, vec3 n_4) {
-    vec3 _e14 = sampling_normalize_scaled(vec3((l_1.l_xx * n_4.x), ((l_1.l_yx * n_4.x) + (l_1.l_yy * n_4.y)), n_4.z));
+vec3 sampling_unstretch(sampling_Warp l_4, vec3 n_5) {
+    vec3 _e14 = sampling_normalize_scaled(vec3((l_4.l_xx * n_5.x), ((l_4.l_yx * n_5.x) + (l_4.l_yy * n_5.y)), n_5.z));
     return _e14;
 }
 
-float sampling_clamp_unit(float u_4) {
-    return ((u_4 >= 0.0) ? min(u_4, sampling_ONE_MINUS_EPS) : 0.0);
+float sampling_clamp_unit(float u_7) {
+    return ((u_7 >= 0.0) ? min(u_7, sampling_ONE_MINUS_EPS) : 0.0);
 }
 
-vec3 sampling_reflect(vec3 wo, vec3 m_19) {
-    return (((2.0 * dot(wo, m_19)) * m_19) - wo);
+vec3 sampling_reflect(vec3 wo, vec3 m_32) {
+    return (((2.0 * dot(wo, m_32)) * m_32) - wo);
 }
 
-vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_5) {
-    vec2 _e3 = math_sincos_turns(u_5.x);
-    float z_5 = (((1.0 - u_5.y) * (1.0 + wi.z)) - wi.z);
-    float sin_theta = sqrt(clamp((1.0 - (z_5 * z_5)), 0.0, 1.0));
-    return (vec3((sin_theta * _e3), z_5) + wi);
+vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_8) {
+    vec2 _e3 = math_sincos_turns(u_8.x);
+    float z_6 = (((1.0 - u_8.y) * (1.0 + wi.z)) - wi.z);
+    float sin_theta = sqrt(clamp((1.0 - (z_6 * z_6)), 0.0, 1.0));
+    return (vec3((sin_theta * _e3), z_6) + wi);
 }
 
-vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_53, vec3 wo_1, vec2 u_6) {
-    bool local_10 = false;
+vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_61, vec3 wo_1, vec2 u_9) {
+    bool local_20 = false;
     if (!((wo_1.z > 0.0))) {
         return vec3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_53);
+    sampling_Warp _e9 = sampling_warp(r_61);
     vec3 _e10 = sampling_normalize_scaled(wo_1);
     vec3 _e11 = sampling_stretch(_e9, _e10);
     vec3 _e12 = sampling_normalize_scaled(_e11);
     if (!((_e12.z > 0.0))) {
         return vec3(0.0);
     }
-    float _e20 = sampling_clamp_unit(u_6.x);
-    float _e22 = sampling_clamp_unit(u_6.y);
+    float _e20 = sampling_clamp_unit(u_9.x);
+    float _e22 = sampling_clamp_unit(u_9.y);
     vec3 _e24 = sampling_ggx_standard_visible(_e12, vec2(_e20, _e22));
     vec3 _e25 = sampling_unstretch(_e9, _e24);
     if ((_e25.z > 0.0)) {
-        local_10 = (dot(wo_1, _e25) > 0.0);
+        local_20 = (dot(wo_1, _e25) > 0.0);
     } else {
-        local_10 = false;
+        local_20 = false;
     }
-    bool _e35 = local_10;
+    bool _e35 = local_20;
     if (_e35) {
         return _e25;
     }
@@ -1573,65 +2840,65 @@ vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_53, v
     return ((_e36.z > 0.0) ? _e36 : vec3(0.0));
 }
 
-vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_54, vec2 u_7) {
-    float _e3 = sampling_clamp_unit(u_7.x);
-    float _e5 = sampling_clamp_unit(u_7.y);
+vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_62, vec2 u_10) {
+    float _e3 = sampling_clamp_unit(u_10.x);
+    float _e5 = sampling_clamp_unit(u_10.y);
     vec2 _e6 = math_sincos_turns(_e5);
-    vec3 n_5 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
-    sampling_Warp _e13 = sampling_warp(r_54);
-    vec3 _e14 = sampling_unstretch(_e13, n_5);
+    vec3 n_7 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
+    sampling_Warp _e13 = sampling_warp(r_62);
+    vec3 _e14 = sampling_unstretch(_e13, n_7);
     return _e14;
 }
 
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_55, vec3 m_20) {
-    float _e2 = ndf_ggx_d_matrix(r_55, m_20);
-    return ((m_20.z > 0.0) ? (_e2 * m_20.z) : 0.0);
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_63, vec3 m_33) {
+    float _e2 = ndf_ggx_d_matrix(r_63, m_33);
+    return ((m_33.z > 0.0) ? (_e2 * m_33.z) : 0.0);
 }
 
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_56, vec3 wo_2, vec3 m_21) {
-    bool local_11 = false;
-    float wom = dot(wo_2, m_21);
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_64, vec3 wo_2, vec3 m_34) {
+    bool local_21 = false;
+    float wom = dot(wo_2, m_34);
     if (!(!((wo_2.z > 0.0)))) {
-        local_11 = !((wom > 0.0));
+        local_21 = !((wom > 0.0));
     } else {
-        local_11 = true;
+        local_21 = true;
     }
-    bool _e15 = local_11;
+    bool _e15 = local_21;
     if (_e15) {
         return 0.0;
     }
-    float _e17 = ndf_ggx_d_matrix(r_56, m_21);
-    float _e20 = ndf_ggx_lambda_matrix(r_56, wo_2);
-    float v_10 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
-    return ((v_10 <= math_F32_MAX) ? v_10 : 0.0);
+    float _e17 = ndf_ggx_d_matrix(r_64, m_34);
+    float _e20 = ndf_ggx_lambda_matrix(r_64, wo_2);
+    float v_19 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
+    return ((v_19 <= math_F32_MAX) ? v_19 : 0.0);
 }
 
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_57, vec3 wo_3, vec3 m_22) {
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_65, vec3 wo_3, vec3 m_35) {
     if (!((wo_3.z > 0.0))) {
         return 0.0;
     }
     vec3 _e8 = sampling_normalize_scaled(wo_3);
-    if (!((dot(_e8, m_22) > 0.0))) {
+    if (!((dot(_e8, m_35) > 0.0))) {
         return 0.0;
     }
-    float _e14 = ndf_ggx_d_matrix(r_57, m_22);
-    float _e18 = ndf_ggx_lambda_matrix(r_57, _e8);
-    float v_11 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
-    return ((v_11 <= math_F32_MAX) ? v_11 : 0.0);
+    float _e14 = ndf_ggx_d_matrix(r_65, m_35);
+    float _e18 = ndf_ggx_lambda_matrix(r_65, _e8);
+    float v_20 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
+    return ((v_20 <= math_F32_MAX) ? v_20 : 0.0);
 }
 
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_58, vec3 wo_4, vec3 wi_1) {
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_66, vec3 wo_4, vec3 wi_1) {
     if (!((wo_4.z > 0.0))) {
         return 0.0;
     }
     vec3 _e8 = sampling_normalize_scaled(wo_4);
     vec3 _e9 = sampling_normalize_scaled(wi_1);
-    vec3 h_23 = (_e8 + _e9);
-    float len = length(h_23);
+    vec3 h_31 = (_e8 + _e9);
+    float len = length(h_31);
     if (!((len > 0.0))) {
         return 0.0;
     }
-    float _e18 = sampling_reflection_pdf_from_normal(r_58, wo_4, (h_23 / vec3(len)));
+    float _e18 = sampling_reflection_pdf_from_normal(r_66, wo_4, (h_31 / vec3(len)));
     return _e18;
 }
 

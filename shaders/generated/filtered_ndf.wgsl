@@ -101,6 +101,73 @@ fn math_hypot(x: f32, y: f32) -> f32 {
     return m * sqrt(a * a + b * b);
 }
 
+/// `ln 2` split for an exact `n ln 2` (`n` integer, `|n| <= 256`): `LN2_HI` has 16 significant
+/// bits, `LN2_LO` the rest.
+const math_LN2_HI: f32 = 0.693145751953125;
+const math_LN2_LO: f32 = 1.428606765330187e-6;
+/// `ln 2`.
+const math_LN_2: f32 = 0.693147180559945;
+/// `sqrt(2 pi)`.
+const math_SQRT_TAU: f32 = 2.50662827463100;
+/// `log2(e)`.
+const math_LOG2_E: f32 = 1.44269504088896;
+
+/// `e^x` within 3 ulp (`2.5e-7` measured, `gpu/src/checks/math.rs`) for `x <= 88`, `0` below
+/// `-87`, whatever the driver's `exp` (WGSL allows `3 + 2|x|` ulp): the Rust crate's `f32`
+/// polynomial exponential (`gaussian_ggx_quad.rs`). `2^n e^r` with `n = round(x / ln 2)`,
+/// `r = (x - n LN2_HI) - n LN2_LO` exact to the rounding of the last step, `|r| <= ln(2) / 2`,
+/// `e^r` by the relative minimax polynomial of degree 6 (error `1.9e-9`) in Estrin's form,
+/// `2^n` by its bit pattern (GLSL 330 has no `ldexp`).
+fn math_exp(x: f32) -> f32 {
+    let xc = clamp(x, -87.0, 88.0);
+    let n = round(xc * math_LOG2_E);
+    let r = (xc - n * math_LN2_HI) - n * math_LN2_LO;
+    let r2 = r * r;
+    let p = (1.0 + r + (0.4999999 + 0.1666642 * r) * r2)
+        + (0.041668225 + 0.008374816 * r + 0.0013836846 * r2) * (r2 * r2);
+    let s = bitcast<f32>(u32(i32(n) + 127) << 23u);
+    return select(0.0, p * s, x >= -87.0);
+}
+
+/// `sqrt(2)`.
+const math_SQRT_2: f32 = 1.41421356237310;
+
+/// `2 atanh(z) = ln((1 + z) / (1 - z))` for `|z| <= 0.2`: its odd series through `z^11 / 11`
+/// (next term below `1e-9` relative).
+fn math_atanh2(z: f32) -> f32 {
+    let z2 = z * z;
+    let s = ((((z2 * (1.0 / 11.0) + 1.0 / 9.0) * z2 + 1.0 / 7.0) * z2 + 0.2) * z2 + 1.0 / 3.0) * z2;
+    return 2.0 * z + 2.0 * z * s;
+}
+
+/// Natural logarithm of a positive normal `x` within 4 ulp relative, also near `x = 1` (WGSL
+/// allows the driver's `log` an absolute `2^-21` on `[0.5, 2]`, no relative accuracy near its
+/// zero). `x = f 2^e` with `f` in `[sqrt(1/2), sqrt 2)` from the bit pattern, then
+/// `ln f = 2 atanh(z)`, `z = (f - 1) / (f + 1)` (`f - 1` exact, `|z| <= 0.1716`, [`atanh2`]),
+/// and `e ln 2` with the split constant.
+fn math_ln(x: f32) -> f32 {
+    let b = bitcast<u32>(x);
+    var e = f32(i32((b >> 23u) & 0xffu) - 127);
+    var f = bitcast<f32>((b & 0x007fffffu) | 0x3f800000u);
+    if f > math_SQRT_2 {
+        f = 0.5 * f;
+        e = e + 1.0;
+    }
+    let p = math_atanh2((f - 1.0) / (f + 1.0));
+    return e * math_LN2_HI + (e * math_LN2_LO + p);
+}
+
+/// `ln(1 + x)` for `x >= 0` within 6 ulp relative, also for tiny `x`: `2 atanh(x / (2 + x))`
+/// below `x = 0.5` ([`atanh2`]; no `1 + x` is formed, whose rounding would cost `eps / x`),
+/// [`ln`] of `1 + x` above (its rounding then costs under 2 ulp of the result). Kahan's
+/// `ln(u) x / (u - 1)` is not used: a driver may simplify `(1 + x) - 1` to `x` (Mesa does).
+fn math_ln_1p(x: f32) -> f32 {
+    if x < 0.5 {
+        return math_atanh2(x / (2.0 + x));
+    }
+    return math_ln(1.0 + x);
+}
+
 // ---- filtered_ndf::ndf::roughness (shaders/ndf/roughness/mod.wgsl) ----
 // The roughness forms (`src/.../roughness/`): a roughness is the matrix `A` of TK19
 // supplement section 1 (Heitz 2014 section 5.4). Both NDFs depend on a slope `s` only through
@@ -260,8 +327,6 @@ fn kernel_covariance_sanitized(c: kernel_covariance_Covariance) -> kernel_covari
 
 /// TK19's clamp `kappa` on the kernel's squared roughness (TK19 eq. 1), slope^2.
 const filter_deferred_KAPPA: f32 = 0.18;
-/// TK19's pixel-filter variance `sigma^2 = 0.25` (pixels^2).
-const filter_deferred_SIGMA_SQ: f32 = 0.25;
 
 /// `v = alpha^2` (TK19, Filament, Unity HDRP, O3DE).
 const filter_deferred_DOMAIN_ALPHA_SQ: u32 = 0u;
@@ -372,29 +437,30 @@ fn filter_deferred_norm_eval(norm: u32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32
 }
 
 /// `min(max(k, 0), clamp)`.
-fn filter_deferred_clamp_kernel(conv: filter_deferred_KernelConvention, k: f32) -> f32 {
+fn filter_deferred_clamp_widening(conv: filter_deferred_KernelConvention, k: f32) -> f32 {
     return min(max(k, 0.0), conv.clamp);
 }
 
-/// The kernel `min(max(scale norm^exponent + bias, 0), clamp)` in domain units. `pow` is the
+/// The widening `min(max(scale norm^exponent + bias, 0), clamp)` in domain units (the kernel's
+/// contribution to the roughness value). `pow` is the
 /// driver's (`exp2(e log2 n)`: within `3 + 2 |e log2 n|` ulp plus `log2`'s error); a zero
 /// norm gives `max(bias, 0)`.
-fn filter_deferred_kernel(conv: filter_deferred_KernelConvention, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+fn filter_deferred_widening(conv: filter_deferred_KernelConvention, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
     let n = filter_deferred_norm_eval(conv.norm, dn_u, dn_v);
     var raw = n;
     if conv.exponent != 1.0 {
         raw = select(0.0, pow(n, conv.exponent), n > 0.0);
     }
-    return filter_deferred_clamp_kernel(conv, conv.scale * raw + conv.bias);
+    return filter_deferred_clamp_widening(conv, conv.scale * raw + conv.bias);
 }
 
-/// Steps 1, 3, 4 of [`apply`] for a kernel `k` already in domain units (clamped here).
+/// Steps 1, 3, 4 of [`apply`] for a widening `k` already in domain units (clamped here).
 /// A negative `alpha` counts as 0; the result is in `[0, ALPHA_MAX]`.
-fn filter_deferred_apply_kernel(conv: filter_deferred_KernelConvention, alpha_in: f32, k: f32) -> f32 {
+fn filter_deferred_apply_widening(conv: filter_deferred_KernelConvention, alpha_in: f32, k: f32) -> f32 {
     var alpha = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
     alpha = max(alpha, conv.perceptual_floor * conv.perceptual_floor);
     let v = filter_deferred_from_alpha(conv.domain, alpha);
-    let kc = filter_deferred_clamp_kernel(conv, k);
+    let kc = filter_deferred_clamp_widening(conv, k);
     var out = select(v + kc, max(v, kc), conv.combine == filter_deferred_COMBINE_MAX);
     if conv.saturate {
         out = min(out, 1.0);
@@ -405,14 +471,15 @@ fn filter_deferred_apply_kernel(conv: filter_deferred_KernelConvention, alpha_in
 /// The filtered roughness `alpha_bar` for material roughness `alpha` and world-space normal
 /// differences `dn_u`, `dn_v` (`ddx(normal)`, `ddy(normal)`; TK19 Listing 2).
 fn filter_deferred_apply(conv: filter_deferred_KernelConvention, alpha: f32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
-    return filter_deferred_apply_kernel(conv, alpha, filter_deferred_kernel(conv, dn_u, dn_v));
+    return filter_deferred_apply_widening(conv, alpha, filter_deferred_widening(conv, dn_u, dn_v));
 }
 
-/// The Gram covariance `sigma_sq [[dn_u.dn_u, dn_u.dn_v], [dn_u.dn_v, dn_v.dn_v]]` of two
-/// normal differences (its trace is TK19's `sigma^2 (|dn_u|^2 + |dn_v|^2)`; use only its
-/// invariants). Determinant `sigma_sq^2 |dn_u x dn_v|^2` (Lagrange's identity, no
-/// cancellation).
-fn filter_deferred_normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>, sigma_sq: f32) -> kernel_covariance_Covariance {
+/// The Gram covariance `sigma^2 [[dn_u.dn_u, dn_u.dn_v], [dn_u.dn_v, dn_v.dn_v]]` of two
+/// normal differences, `sigma` the pixel filter's standard deviation in pixels (its trace is
+/// TK19's `sigma^2 (|dn_u|^2 + |dn_v|^2)`; use only its invariants). Determinant
+/// `sigma^4 |dn_u x dn_v|^2` (Lagrange's identity, no cancellation).
+fn filter_deferred_normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>, sigma: f32) -> kernel_covariance_Covariance {
+    let sigma_sq = sigma * sigma;
     let x = cross(dn_u, dn_v) * sigma_sq;
     return kernel_covariance_Covariance(
         dot(dn_u, dn_u) * sigma_sq,
@@ -424,17 +491,17 @@ fn filter_deferred_normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>
 
 /// The kernel's squared roughness of a bandwidth (`BANDWIDTH_*`) before the clamp:
 /// `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`.
-fn filter_deferred_bandwidth_kernel(bandwidth: u32, sigma: kernel_covariance_Covariance) -> f32 {
+fn filter_deferred_bandwidth_alpha2(bandwidth: u32, kernel: kernel_covariance_Covariance) -> f32 {
     if bandwidth == filter_deferred_BANDWIDTH_MAX {
-        return 2.0 * filter_deferred_max_eigenvalue(sigma.s_xx, sigma.s_xy, sigma.s_yy);
+        return 2.0 * filter_deferred_max_eigenvalue(kernel.s_xx, kernel.s_xy, kernel.s_yy);
     }
-    let t = sigma.s_xx + sigma.s_yy;
+    let t = kernel.s_xx + kernel.s_yy;
     return select(t, 2.0 * t, bandwidth == filter_deferred_BANDWIDTH_TRACE);
 }
 
 /// TK19 eq. 1, 4 or 5 from a slope-domain covariance:
 /// `alpha_bar = sqrt(saturate(alpha^2 + min(kernel, kappa)))`.
-fn filter_deferred_filtered_alpha(alpha: f32, sigma: kernel_covariance_Covariance, bandwidth: u32, kappa: f32) -> f32 {
+fn filter_deferred_filtered_alpha(alpha: f32, kernel: kernel_covariance_Covariance, bandwidth: u32, kappa: f32) -> f32 {
     let conv = filter_deferred_KernelConvention(
         filter_deferred_DOMAIN_ALPHA_SQ,
         filter_deferred_NORM_SUM_SQUARED,
@@ -446,14 +513,26 @@ fn filter_deferred_filtered_alpha(alpha: f32, sigma: kernel_covariance_Covarianc
         true,
         0.0,
     );
-    return filter_deferred_apply_kernel(conv, alpha, filter_deferred_bandwidth_kernel(bandwidth, sigma));
+    return filter_deferred_apply_widening(conv, alpha, filter_deferred_bandwidth_alpha2(bandwidth, kernel));
 }
 
 // ---- filtered_ndf::ndf::roughness::matrix (shaders/ndf/roughness/matrix.wgsl) ----
 /// A symmetric positive-definite roughness matrix `A = [[a11, a12], [a12, a22]]` (TK19
-/// supplement section 1; Heitz 2014 section 5.4), with the TK19 determinant clamp `tau`
-/// (supplement, "Practical Implementation"): the density uses `sqrt(max(det A, tau))` and
-/// `A^-1 = adj(A) / max(det A, tau)`; Smith's `Lambda` uses `A` itself.
+/// supplement section 1; Heitz 2014 section 5.4) with the TK19 determinant clamp `tau`
+/// (supplement, "Practical Implementation"; `det_clamp` in the Rust API), mirroring
+/// `RoughnessMatrix` of `src/.../ndf/roughness/matrix.rs`.
+///
+/// **The determinant clamp: one clamped matrix.** Every function (`D`, `P22`, `Lambda`, the
+/// sampler's warp) evaluates one matrix `A_c`: `A` itself when `det A >= tau`, else
+/// `A_c = A + t I` with `t > 0` the root of `det(A + t I) = tau`,
+/// `t = (tau - det A) / (tr(A) / 2 + sqrt(tr(A)^2 / 4 + tau - det A))` (no cancellation). So
+/// `det A_c = max(det A, tau)` and the density is normalised for `A_c` (TK19's literal
+/// `sqrt(max(det A, tau))` with `A^-1 = adj(A) / max(det A, tau)` is not: its integral is
+/// `sqrt(tau / det A)`). `A_c - A = t I` shares `A`'s eigenvectors, so in the eigenbasis
+/// `A_c = R diag(l1 + t, l2 + t) R^T`, and with `(l1 + t)(l2 + t) = tau` the clamped minor
+/// eigenvalue is `tau / (l1 + t)`, a quotient of positive numbers (no cancellation whatever
+/// `t`). Filters add their kernel to `A` as given ([`entries`], [`determinant`]) and clamp the
+/// result with `det A_c` ([`clamped_det`]), as the Rust filters do.
 ///
 /// **Representation: the eigenbasis.** `A = R diag(l1, l2) R^T` with `R = [e1, e2]`,
 /// `e1 = axis`, `e2 = (-axis.y, axis.x)`. Both quadratic forms are then sums of two
@@ -464,24 +543,33 @@ fn filter_deferred_filtered_alpha(alpha: f32, sigma: kernel_covariance_Covarianc
 /// `2 r1 r2 (1/l1 - 1/l2) d theta`, bounded with `|r_i| <= sqrt(l_i q)`), and the rotated
 /// components carry at most 4 ulp of `|s|`, so
 ///
-/// `|d q| / q <= eps (8 + 8 sqrt(cond A)) + (relative error of the eigenvalues)`,
+/// `|d q| / q <= eps (8 + 8 sqrt(cond A_c)) + (relative error of the eigenvalues)`,
 ///
-/// `eps = 2^-23`, `cond A = l1 / l2`. The eigenvalues come from the constructor:
+/// `eps = 2^-23`, `cond A_c = (l1 + t) / (l2 + t)`. The eigenvalues come from the constructor:
 /// [`from_eigen`] takes them exactly (the way to build a rotated anisotropic material);
 /// [`from_entries_det`] takes `det A` from the caller (the filters pass it as a sum of
 /// non-negative terms), `l1` is a sum of non-negative terms and `l2 = det / l1`, both within
 /// a few ulp; [`from_entries`] forms `det A = a11 a22 - a12^2` in f32, which cancels to a
-/// relative `cond(A) eps`: use it only for well-conditioned matrices.
+/// relative `cond(A) eps`: use it only for well-conditioned matrices. The clamp adds at most
+/// 5 ulp to the clamped eigenvalues (`t` within 4 ulp of its own value; `l1 + t` a sum of
+/// positive terms; `tau / (l1 + t)` one division).
+///
+/// NaN: none of these functions tests for NaN (WGSL lets a driver assume none occurs).
 struct ndf_roughness_matrix_RoughnessMatrix {
     /// Unit eigenvector `e1 = (c, s)` of `l1`; `e2 = (-s, c)`.
     axis: vec2<f32>,
-    /// Eigenvalues `(l1, l2)` of `A` along `(e1, e2)` (both `> 0`).
+    /// Eigenvalues `(l1, l2)` of `A` as given, along `(e1, e2)` (both `> 0`).
     eig: vec2<f32>,
-    /// Eigenvalues of the clamped inverse `adj(A) / max(det A, tau)` along `(e1, e2)`:
-    /// `(l2, l1) / max(det A, tau)`.
+    /// Eigenvalues of `A_c`: `(l1 + t, tau / (l1 + t))`, or `eig` when the clamp is inactive.
+    eig_c: vec2<f32>,
+    /// Eigenvalues of `A_c^-1` along `(e1, e2)`: `1 / eig_c`.
     inv_eig: vec2<f32>,
-    /// `sqrt(max(det A, tau))`.
+    /// `sqrt(det A_c) = sqrt(max(det A, tau))`.
     sqrt_det: f32,
+    /// `det A` as the constructor had it (`l1 l2`, or the caller's sum of non-negative terms).
+    det: f32,
+    /// The clamp `tau` (0: none).
+    tau: f32,
 }
 
 /// `A = R diag(alpha_x^2, alpha_y^2) R^T` with `R = [axis, perp(axis)]` for a unit `axis`
@@ -489,13 +577,35 @@ struct ndf_roughness_matrix_RoughnessMatrix {
 /// material. `alpha` is not clamped (the caller keeps it in `[ALPHA_MIN, ALPHA_MAX]`).
 fn ndf_roughness_matrix_from_eigen(axis: vec2<f32>, alpha: vec2<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
     let l = alpha * alpha;
-    return ndf_roughness_matrix_RoughnessMatrix(axis, l, 1.0 / l, alpha.x * alpha.y);
+    return ndf_roughness_matrix_RoughnessMatrix(axis, l, l, 1.0 / l, alpha.x * alpha.y, l.x * l.y, 0.0);
+}
+
+/// The clamped eigenvalues `(l1 + t, tau / (l1 + t))` of `A_c` for `A`'s eigenvalues `l`
+/// (`l1 >= l2`), `det = l1 l2` as the caller has it and the clamp `tau`; `l` itself when
+/// `det >= tau` (type docs).
+fn ndf_roughness_matrix_clamped_eigenvalues(l: vec2<f32>, det: f32, tau: f32) -> vec2<f32> {
+    if det >= tau {
+        return l;
+    }
+    let h = 0.5 * (l.x + l.y);
+    let gap = tau - det;
+    let t = gap / (h + sqrt(h * h + gap));
+    let l1 = l.x + t;
+    return vec2<f32>(l1, tau / l1);
+}
+
+/// A matrix from its eigenbasis, its eigenvalues `l` (`l1 >= l2`, `l2 >= 0`), the
+/// determinant `det` of `A` as the caller has it (`l1 l2`, or a sum of non-negative terms) and
+/// the clamp `tau >= 0` (0: none).
+fn ndf_roughness_matrix_from_eigenbasis(axis: vec2<f32>, l: vec2<f32>, det: f32, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    let lc = ndf_roughness_matrix_clamped_eigenvalues(l, det, tau);
+    return ndf_roughness_matrix_RoughnessMatrix(axis, l, lc, 1.0 / lc, sqrt(max(det, tau)), det, tau);
 }
 
 /// The eigen-decomposition of `A` from its entries and its determinant `det` (computed by
 /// the caller without cancellation, e.g. as a sum of non-negative terms), with the
-/// determinant clamp `tau >= 0` (0: none). The caller guarantees `a11 > 0`, `a22 > 0` and
-/// `max(det, tau) > 0` (the Rust `from_entries_det_clamped`; no checks).
+/// determinant clamp `tau >= 0` (0: none; the type docs for `A_c`). The caller guarantees
+/// `a11 > 0`, `a22 > 0` and `max(det, tau) > 0` (the Rust `from_entries`; no checks).
 ///
 /// `l1 = (a11 + a22) / 2 + hypot((a11 - a22) / 2, a12)` (no cancellation), `l2 = det / l1`;
 /// the eigenvector of `l1` from whichever row of `A - l2 I` avoids cancellation. Entries up
@@ -504,7 +614,7 @@ fn ndf_roughness_matrix_from_entries_det(a11: f32, a12: f32, a22: f32, det: f32,
     let half_diff = 0.5 * (a11 - a22);
     let rad = sqrt(half_diff * half_diff + a12 * a12);
     let l1 = 0.5 * (a11 + a22) + rad;
-    let l2 = det / l1;
+    let l2 = max(det, 0.0) / l1;
     // e1 from the row whose diagonal part does not cancel: (rad + |d|, a12) when a11 >= a22,
     // else (a12, rad + |d|); any axis when A is isotropic.
     let big = rad + abs(half_diff);
@@ -513,8 +623,7 @@ fn ndf_roughness_matrix_from_entries_det(a11: f32, a12: f32, a22: f32, det: f32,
         v = vec2<f32>(1.0, 0.0);
     }
     let axis = v / length(v);
-    let c = max(det, tau);
-    return ndf_roughness_matrix_RoughnessMatrix(axis, vec2<f32>(l1, l2), vec2<f32>(l2, l1) / c, sqrt(c));
+    return ndf_roughness_matrix_from_eigenbasis(axis, vec2<f32>(l1, l2), det, tau);
 }
 
 /// [`from_entries_det`] with `det = a11 a22 - a12^2` formed here in f32 (relative error up
@@ -523,53 +632,87 @@ fn ndf_roughness_matrix_from_entries(a11: f32, a12: f32, a22: f32) -> ndf_roughn
     return ndf_roughness_matrix_from_entries_det(a11, a12, a22, a11 * a22 - a12 * a12, 0.0);
 }
 
+/// The same matrix `A` evaluated with the determinant clamp `tau = det_clamp` (the Rust
+/// `with_det_clamp`; `<= 0`: none): `A_c` recomputed from `A`'s eigenvalues.
+fn ndf_roughness_matrix_with_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix, det_clamp: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_eigenbasis(r.axis, r.eig, r.det, max(det_clamp, 0.0));
+}
+
 /// `v` in the eigenbasis: `(v . e1, v . e2)`.
 fn ndf_roughness_matrix_rotate(r: ndf_roughness_matrix_RoughnessMatrix, v: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(r.axis.x * v.x + r.axis.y * v.y, r.axis.x * v.y - r.axis.y * v.x);
 }
 
-/// `s^T A^-1 s` with `A^-1 = adj(A) / max(det A, tau)`: `u1^2 w1 + u2^2 w2` for the rotated
-/// `u` and the clamped inverse eigenvalues `w` (error bound in the type docs).
+/// `s^T A_c^-1 s = u1^2 / (l1 + t) + u2^2 / (l2 + t)` for the rotated `u` (error bound in the
+/// type docs).
 fn ndf_roughness_matrix_inv_quadratic(r: ndf_roughness_matrix_RoughnessMatrix, s: vec2<f32>) -> f32 {
     let u = ndf_roughness_matrix_rotate(r, s);
     return dot(u * u, r.inv_eig);
 }
 
-/// `w^T A w = u1^2 l1 + u2^2 l2` (Smith's projected roughness; never sees the clamp).
+/// `w^T A_c w = u1^2 (l1 + t) + u2^2 (l2 + t)` (Smith's projected roughness of the matrix the
+/// density evaluates).
 fn ndf_roughness_matrix_quadratic(r: ndf_roughness_matrix_RoughnessMatrix, w: vec2<f32>) -> f32 {
     let u = ndf_roughness_matrix_rotate(r, w);
-    return dot(u * u, r.eig);
+    return dot(u * u, r.eig_c);
 }
 
-/// `sqrt(max(det A, tau))`.
+/// `sqrt(det A_c) = sqrt(max(det A, tau))`.
 fn ndf_roughness_matrix_sqrt_det(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
     return r.sqrt_det;
 }
 
-/// The entries `(a11, a12, a22)` of `A`: `l1 e1 e1^T + l2 e2 e2^T` (sums of non-negative
-/// terms on the diagonal; within a few ulp of `l1`).
-fn ndf_roughness_matrix_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
+/// The entries `(a11, a12, a22)` of the matrix with eigenvalues `l` in `r`'s eigenbasis: sums
+/// of non-negative terms on the diagonal (within a few ulp of `l1`).
+fn ndf_roughness_matrix_entries_of(r: ndf_roughness_matrix_RoughnessMatrix, l: vec2<f32>) -> vec3<f32> {
     let c = r.axis.x;
     let s = r.axis.y;
-    let l = r.eig;
     return vec3<f32>(l.x * c * c + l.y * s * s, (l.x - l.y) * c * s, l.x * s * s + l.y * c * c);
 }
 
-/// `det A = l1 l2` (without the clamp).
+/// The entries `(a11, a12, a22)` of `A` as given: what a filter adds its kernel to.
+fn ndf_roughness_matrix_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
+    return ndf_roughness_matrix_entries_of(r, r.eig);
+}
+
+/// The entries of `A_c`, the matrix every function evaluates (`A`'s own when the clamp is
+/// inactive).
+fn ndf_roughness_matrix_clamped_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
+    return ndf_roughness_matrix_entries_of(r, r.eig_c);
+}
+
+/// `det A` (without the clamp), as the constructor had it.
 fn ndf_roughness_matrix_determinant(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return r.eig.x * r.eig.y;
+    return r.det;
+}
+
+/// `det A_c = max(det A, tau)`: the clamp a filter of this lobe uses (the Rust
+/// `clamped_det`, `lobe_det`), so that a kernel too small to change the entries meets the
+/// clamp with equality (and returns the lobe unchanged).
+fn ndf_roughness_matrix_clamped_det(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return max(r.det, r.tau);
 }
 
 // ---- filtered_ndf::filter::gaussian (shaders/filter/gaussian.wgsl) ----
 // Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
 // mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
+//
+// The determinant clamp: the result is evaluated as the one clamped matrix `A'_c` of
+// `matrix.wgsl` (`A' + t I` where `det A' < tau`). In exact arithmetic
+// `det(A + 2 Sigma) >= det A`, and here the filtered determinant is a sum of non-negative
+// terms that contains `det A` itself, so with `tau = det A_c` of an unclamped material the
+// clamp is inactive (equality for a zero kernel); it acts for a material that is itself
+// clamped (`tau = det A_c > det A`) and for an explicit `tau` above the filtered determinant.
 
-/// The entries of `A + 2 K` and `det(A + 2 K) = det A + 2 tr(adj(A) K) + 4 det K`, every term
-/// non-negative for `A` positive definite and `K` PSD, so that the filtered minor axis keeps
-/// its relative accuracy (f32 would cancel in `b11 b22 - b12^2`): with `A = R diag(l) R^T`,
+/// `A + 2 K` for a sanitised kernel `K`, with its determinant
+/// `det(A + 2 K) = det A + 2 tr(adj(A) K) + 4 det K`, every term non-negative for `A` positive
+/// definite and `K` PSD, so that the filtered minor axis keeps its relative accuracy (f32
+/// would cancel in `b11 b22 - b12^2`): with `A = R diag(l) R^T`,
 /// `tr(adj(A) K) = l2 e1^T K e1 + l1 e2^T K e2`, and `det K` as the kernel carries it.
-/// Evaluated with the determinant clamp `tau`.
-fn filter_gaussian_plus_kernel(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+/// Evaluated with the determinant clamp `tau` (`<= 0`: none). `A` is the material's matrix as
+/// given ([`matrix::entries`]; a clamped material is filtered as `A + 2 K` with its own `tau`,
+/// as in Rust).
+fn filter_gaussian_gaussian_sanitized(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
     let e = ndf_roughness_matrix_entries(a);
     let c = a.axis.x;
     let s = a.axis.y;
@@ -581,402 +724,30 @@ fn filter_gaussian_plus_kernel(a: ndf_roughness_matrix_RoughnessMatrix, k: kerne
         e.y + 2.0 * k.s_xy,
         e.z + 2.0 * k.s_yy,
         det,
-        tau,
+        max(tau, 0.0),
     );
 }
 
-/// `A' = A + 2 Sigma` with the determinant clamp `tau = det A` (TK19 supplement), for a
-/// kernel that `covariance::sanitized` (or a clamp after it) has made PSD and bounded.
-fn filter_gaussian_gaussian_sanitized(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_plus_kernel(a, k, a.sqrt_det * a.sqrt_det);
-}
-
-/// `A' = A + 2 Sigma`, evaluated with `tau = det(A)` (TK19 supplement; no bias in exact
-/// arithmetic since `det(A + 2 Sigma) >= det A`). Beckmann: exact (KHPL16 eq. 15, covariances
-/// of Gaussians add with `A = 2 B`). GGX: the TK19 section 2.2 / KHPL16 approximation. The
-/// kernel is `covariance::sanitized` first. Accuracy: the filtered matrix is evaluated in its
-/// eigenbasis with `det` from non-negative terms (`matrix.wgsl`: `s^T A'^-1 s` within
-/// `eps (10 + 16 sqrt(cond A'))`, the extra `8 sqrt(cond)` for the rounding of the kernel's
-/// entries).
+/// `A' = A + 2 Sigma`, evaluated with the determinant clamp `tau = det A_c` of the material
+/// (TK19 supplement; no bias in exact arithmetic since `det(A + 2 Sigma) >= det A`). Beckmann:
+/// exact (KHPL16 eq. 15, covariances of Gaussians add with `A = 2 B`). GGX: the TK19 section
+/// 2.2 / KHPL16 approximation. The kernel is `covariance::sanitized` first. Accuracy: the
+/// filtered matrix is evaluated in its eigenbasis with `det` from non-negative terms
+/// (`matrix.wgsl`: `s^T A'^-1 s` within `eps (10 + 16 sqrt(cond A'))`, the extra
+/// `8 sqrt(cond)` for the rounding of the kernel's entries).
 fn filter_gaussian_gaussian(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel));
+    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), ndf_roughness_matrix_clamped_det(a));
 }
 
-/// [`gaussian`] with an explicit determinant clamp `tau` (`<= 0`: none; a filtered
-/// determinant that rounds to `<= det A` then gets `det A`, its exact lower bound).
-fn filter_gaussian_gaussian_with_tau(
+/// [`gaussian`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
+/// filtered determinant here is never below `det A`, so no fallback is needed: the Rust
+/// `gaussian_with_det_clamp`).
+fn filter_gaussian_gaussian_with_det_clamp(
     a: ndf_roughness_matrix_RoughnessMatrix,
     kernel: kernel_covariance_Covariance,
-    tau: f32,
+    det_clamp: f32,
 ) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_with_tau_sanitized(a, kernel_covariance_sanitized(kernel), tau);
-}
-
-/// [`gaussian_with_tau`] for a sanitised kernel.
-fn filter_gaussian_gaussian_with_tau_sanitized(
-    a: ndf_roughness_matrix_RoughnessMatrix,
-    k: kernel_covariance_Covariance,
-    tau: f32,
-) -> ndf_roughness_matrix_RoughnessMatrix {
-    let floor = ndf_roughness_matrix_determinant(a);
-    return filter_gaussian_plus_kernel(a, k, select(floor, tau, tau > 0.0));
-}
-
-// ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
-// LEAN mapping's moments and the nested convolution of KHPL16 section 5.5, eq. 21,
-// mirroring `src/.../filter/lean.rs`.
-
-/// First and second moments of normal-map slopes (Olano and Baker 2010), linearly
-/// filterable: `mean = E[s]`, `second = (E[s_x^2], E[s_x s_y], E[s_y^2])`.
-struct filter_lean_LeanMoments {
-    /// `(E[s_x], E[s_y])`.
-    mean: vec2<f32>,
-    /// `(E[s_x^2], E[s_x s_y], E[s_y^2])`.
-    second: vec3<f32>,
-}
-
-/// The covariance of the normal-map slopes, `E[s s^T] - E[s] E[s]^T` (LEAN eq. 5; KHPL16's
-/// `K_L`), `cov::sanitized` (mip filtering can make it slightly indefinite). Its
-/// determinant is formed from the differences (cancelling for elongated moments).
-fn filter_lean_covariance(m: filter_lean_LeanMoments) -> kernel_covariance_Covariance {
-    let c = kernel_covariance_from_entries(
-        m.second.x - m.mean.x * m.mean.x,
-        m.second.y - m.mean.x * m.mean.y,
-        m.second.z - m.mean.y * m.mean.y,
-    );
-    return kernel_covariance_sanitized(c);
-}
-
-/// `K_L * K_P * D = (K_L * K_P) * D` (KHPL16 eq. 21): the covariances add and the sum is
-/// filtered by `gaussian::gaussian` (`A' = A + 2 (Sigma_L + Sigma_P)`, `tau = det A`).
-fn filter_lean_lean(
-    a: ndf_roughness_matrix_RoughnessMatrix,
-    pixel: kernel_covariance_Covariance,
-    moments: filter_lean_LeanMoments,
-) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian(a, kernel_covariance_add(kernel_covariance_sanitized(pixel), filter_lean_covariance(moments)));
-}
-
-// ---- filtered_ndf::filter::presets (shaders/filter/presets.wgsl) ----
-// The published isotropic specular-antialiasing conventions as `deferred::KernelConvention`
-// values, mirroring `src/.../filter/presets.rs` (whose docs give each source, formula and
-// engine default). `alpha` is the GGX roughness, `p = sqrt(alpha)` the perceptual one.
-// Names that would end in a digit carry a suffix (naga renames such identifiers).
-//
-// | preset | domain | kernel | clamp | combine, saturate |
-// |---|---|---|---|---|
-// | TK19_TRACE, O3DE | alpha^2 | 0.5 (|dn_u|^2 + |dn_v|^2) | 0.18 | add, yes |
-// | TK19_AVERAGE | alpha^2 | 0.25 (...) | 0.18 | add, yes |
-// | TK19_MAX | alpha^2 | 0.5 lambda_max(Gram) | 0.18 | add, yes |
-// | TK21_LISTING | alpha^2 | (...) / (2 pi) | 0.18 | add, yes |
-// | FILAMENT | alpha^2 | 0.3 (...), perceptual floor 0.045 | 0.04 | add, yes |
-// | UNITY_HDRP | alpha^2 | 0.2 (...) | 0.04 | add, yes |
-// | UNITY_HDRP_PROJECTED | alpha^2 / (1 - alpha^2) | 0.2 (...) | 0.04 | add, yes |
-// | GODOT | alpha | 0.5 (...) | 0.18 | add, yes |
-// | UNREAL, BABYLON | p | max(|dn_u|^2, |dn_v|^2)^0.333 | 1 | max, no |
-// | THREE_JS | p | max abs component, floor 0.0525 | none | add, yes |
-
-/// TK19 eq. 4 and Listing 2 (trace bandwidth): `saturate(alpha^2 + min(0.5 (|dn_u|^2 +
-/// |dn_v|^2), 0.18))`.
-const filter_presets_TK19_TRACE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.5,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// TK19 eq. 5 (average of the eigenvalues): kernel `0.25 (|dn_u|^2 + |dn_v|^2)`.
-const filter_presets_TK19_AVERAGE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.25,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// TK19 eq. 1 (tightest conservative isotropic kernel): `0.5 lambda_max` of the Gram matrix.
-const filter_presets_TK19_MAX: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_MAX_EIGENVALUE,
-    0.5,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Tokuyoshi and Kaplanyan 2021, Listing 5: `saturate(alpha^2 + min((|dn_u|^2 +
-/// |dn_v|^2) / (2 pi), 0.18))`.
-const filter_presets_TK21_LISTING: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.159154943091895,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Filament `normalFiltering`: variance 0.15 (kernel `0.3 (...)`), threshold `0.2^2`,
-/// perceptual roughness floor 0.045.
-const filter_presets_FILAMENT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.3,
-    1.0,
-    0.0,
-    0.04,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.045,
-);
-/// Unity HDRP `NormalFiltering`: screen-space variance 0.1 (kernel `0.2 (...)`),
-/// threshold `0.2^2`.
-const filter_presets_UNITY_HDRP: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.2,
-    1.0,
-    0.0,
-    0.04,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Unity HDRP `ProjectedSpaceNormalFiltering` (after TK21): [`UNITY_HDRP`] in the domain
-/// `alpha^2 / (1 - alpha^2)`.
-const filter_presets_UNITY_HDRP_PROJECTED: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.2,
-    1.0,
-    0.0,
-    0.04,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Godot 4 screen-space roughness limiter: TK19's formula on `alpha` (amount 0.25, limit
-/// 0.18).
-const filter_presets_GODOT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.5,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// O3DE `CalculateSpecularAA`: TK19 Listing 2 verbatim, identical to [`TK19_TRACE`].
-const filter_presets_O3DE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.5,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Unreal `NormalCurvatureToRoughness`: `max(p, max(|dn_x|^2, |dn_y|^2)^0.333)`.
-const filter_presets_UNREAL: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_PERCEPTUAL,
-    filter_deferred_NORM_MAX_SQUARED,
-    1.0,
-    0.333,
-    0.0,
-    1.0,
-    filter_deferred_COMBINE_MAX,
-    false,
-    0.0,
-);
-/// Babylon.js (Vlachos 2015), the analytic-light path: as [`UNREAL`].
-const filter_presets_BABYLON: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_PERCEPTUAL,
-    filter_deferred_NORM_MAX_SQUARED,
-    1.0,
-    0.333,
-    0.0,
-    1.0,
-    filter_deferred_COMBINE_MAX,
-    false,
-    0.0,
-);
-/// three.js: `min(max(p, 0.0525) + max abs component of dn, 1)` on the perceptual roughness.
-const filter_presets_THREE_JS: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_PERCEPTUAL,
-    filter_deferred_NORM_MAX_ABS_COMPONENT,
-    1.0,
-    1.0,
-    0.0,
-    math_F32_MAX,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0525,
-);
-
-/// Every preset, in the order of the Rust `presets::ALL`: TK19 max, trace, average, TK21,
-/// Filament, Unity HDRP, Unity HDRP projected, Godot, O3DE, Unreal, Babylon.js, three.js.
-fn filter_presets_preset(i: u32) -> filter_deferred_KernelConvention {
-    switch i {
-        case 0u: { return filter_presets_TK19_MAX; }
-        case 1u: { return filter_presets_TK19_TRACE; }
-        case 2u: { return filter_presets_TK19_AVERAGE; }
-        case 3u: { return filter_presets_TK21_LISTING; }
-        case 4u: { return filter_presets_FILAMENT; }
-        case 5u: { return filter_presets_UNITY_HDRP; }
-        case 6u: { return filter_presets_UNITY_HDRP_PROJECTED; }
-        case 7u: { return filter_presets_GODOT; }
-        case 8u: { return filter_presets_O3DE; }
-        case 9u: { return filter_presets_UNREAL; }
-        case 10u: { return filter_presets_BABYLON; }
-        default: { return filter_presets_THREE_JS; }
-    }
-}
-
-// ---- filtered_ndf::filter::projected (shaders/filter/projected.wgsl) ----
-// Projected-space filtering (Tokuyoshi and Kaplanyan 2021, JCGT 10(2), Listing 1),
-// mirroring `src/.../filter/projected.rs`.
-
-/// The largest eigenvalue of `A` mapped to projected space, `0.99` (`alpha <= 0.995`).
-const filter_projected_PROJECTED_EIGEN_MAX: f32 = 0.99;
-
-/// `P = A (I - A)^-1`, `P' = P + 2 Sigma`, `A' = P' (I + P')^-1` (TK21 Listing 1): on the
-/// projected disk the GGX density is itself a GGX-shaped density of roughness `P`, and TK19's
-/// disk-derivative kernel lives in that space. Eigenvalues of `A` above `PROJECTED_EIGEN_MAX`
-/// are clamped for the projected step and the excess is added back unfiltered (as in Rust:
-/// exact below the limit, continuous, never sharpening). Evaluated with `tau = det A`.
-///
-/// f32 form: in `A`'s eigenbasis `P = R diag(l / (1 - l)) R^T` exactly (no cancellation);
-/// `d = det P' = det P + 2 tr(adj(P) K) + 4 det K` as non-negative terms (TK21's `detMin`);
-/// `A' = (P' + d I) / (1 + tr P' + d)`, every term positive, with `det A' = d / (1 + tr P' + d)`
-/// exactly (so the filtered minor axis keeps its relative accuracy). The kernel is
-/// `covariance::sanitized` first.
-fn filter_projected_projected(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
-    let k = kernel_covariance_sanitized(kernel);
-    let lc = min(a.eig, vec2<f32>(filter_projected_PROJECTED_EIGEN_MAX));
-    let excess = a.eig - lc;
-    let p = lc / (1.0 - lc);
-    let c = a.axis.x;
-    let s = a.axis.y;
-    // P in the tangent frame, and e_i^T K e_i.
-    let p11 = p.x * c * c + p.y * s * s;
-    let p12 = (p.x - p.y) * c * s;
-    let p22 = p.x * s * s + p.y * c * c;
-    let k1 = max(c * c * k.s_xx + 2.0 * c * s * k.s_xy + s * s * k.s_yy, 0.0);
-    let k2 = max(s * s * k.s_xx - 2.0 * c * s * k.s_xy + c * c * k.s_yy, 0.0);
-    let d = p.x * p.y + 2.0 * (p.y * k1 + p.x * k2) + 4.0 * max(k.det, 0.0);
-    let q11 = p11 + 2.0 * k.s_xx;
-    let q12 = p12 + 2.0 * k.s_xy;
-    let q22 = p22 + 2.0 * k.s_yy;
-    let den = 1.0 + q11 + q22 + d;
-    var b11 = (q11 + d) / den;
-    var b12 = q12 / den;
-    var b22 = (q22 + d) / den;
-    var det = d / den;
-    if max(excess.x, excess.y) > 0.0 {
-        // A rough lobe (alpha > 0.995): add the excess back; its determinant from the entries
-        // (well conditioned there).
-        b11 += excess.x * c * c + excess.y * s * s;
-        b12 += (excess.x - excess.y) * c * s;
-        b22 += excess.x * s * s + excess.y * c * c;
-        det = b11 * b22 - b12 * b12;
-    }
-    let e = ndf_roughness_matrix_entries(a);
-    let tau = a.sqrt_det * a.sqrt_det;
-    return ndf_roughness_matrix_from_entries_det(max(b11, e.x), b12, max(b22, e.z), max(det, tau), tau);
-}
-
-// ---- filtered_ndf::ndf::roughness::axis_aligned (shaders/ndf/roughness/axis_aligned.wgsl) ----
-/// Axis-aligned anisotropic roughness `(alpha_x, alpha_y)` along the tangent and bitangent:
-/// `A = diag(alpha_x^2, alpha_y^2)`.
-struct ndf_roughness_axis_aligned_AxisAligned {
-    /// `(alpha_x, alpha_y)`.
-    alpha: vec2<f32>,
-    /// `(1 / alpha_x^2, 1 / alpha_y^2)`.
-    inv_alpha_sq: vec2<f32>,
-}
-
-/// `(alpha_x, alpha_y)`, each clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust
-/// `AxisAligned::new_clamped`).
-fn ndf_roughness_axis_aligned_from_alpha(alpha: vec2<f32>) -> ndf_roughness_axis_aligned_AxisAligned {
-    let a = vec2<f32>(ndf_roughness_clamp_alpha(alpha.x), ndf_roughness_clamp_alpha(alpha.y));
-    return ndf_roughness_axis_aligned_AxisAligned(a, 1.0 / (a * a));
-}
-
-/// `s^T A^-1 s = s_x^2 / alpha_x^2 + s_y^2 / alpha_y^2`. Within 5 ulp (a sum of two
-/// non-negative terms).
-fn ndf_roughness_axis_aligned_inv_quadratic(r: ndf_roughness_axis_aligned_AxisAligned, s: vec2<f32>) -> f32 {
-    return dot(s * s, r.inv_alpha_sq);
-}
-
-/// `w^T A w = alpha_x^2 w_x^2 + alpha_y^2 w_y^2`. Within 4 ulp.
-fn ndf_roughness_axis_aligned_quadratic(r: ndf_roughness_axis_aligned_AxisAligned, w: vec2<f32>) -> f32 {
-    return dot(w * w, r.alpha * r.alpha);
-}
-
-/// `sqrt(det A) = alpha_x alpha_y`. Within 1 ulp.
-fn ndf_roughness_axis_aligned_sqrt_det(r: ndf_roughness_axis_aligned_AxisAligned) -> f32 {
-    return r.alpha.x * r.alpha.y;
-}
-
-/// This roughness as a [`matrix::RoughnessMatrix`], `diag(alpha_x^2, alpha_y^2)` (no
-/// determinant clamp).
-fn ndf_roughness_axis_aligned_to_matrix(r: ndf_roughness_axis_aligned_AxisAligned) -> ndf_roughness_matrix_RoughnessMatrix {
-    return ndf_roughness_matrix_from_eigen(vec2<f32>(1.0, 0.0), r.alpha);
-}
-
-// ---- filtered_ndf::filter::proxy (shaders/filter/proxy.wgsl) ----
-// The GGX proxy of KHPL16 section 5.4 (eq. 18-20), mirroring `src/.../filter/proxy.rs`: an
-// effective roughness whose unfiltered GGX has the peak of the box-filtered GGX. Eq. 19
-// solved: `alpha'^2 = (alpha^2 + H^2) t / atan(t)`, `t = H / sqrt(alpha^2 + H^2)`, with `H`
-// the half extent (eq. 20 as printed is inconsistent with eq. 19; see the Rust docs).
-
-/// The exact effective roughness of one axis (KHPL16 eq. 19 solved):
-/// `alpha' = sqrt(alpha^2 + H^2) sqrt(t / atan t)`, `t = H / sqrt(alpha^2 + H^2)`, with the
-/// driver-independent `math::atan` (8 ulp): within 12 ulp. `alpha' = alpha` at `H = 0`;
-/// `H` is used by magnitude. Domain: `alpha > 0`.
-fn filter_proxy_effective_alpha(alpha: f32, half_extent: f32) -> f32 {
-    let h = abs(half_extent);
-    let s = math_hypot(alpha, h);
-    let t = select(0.0, h / s, s > 0.0);
-    let ratio = select(1.0, t / math_atan(t), t > 0.0);
-    return s * sqrt(ratio);
-}
-
-/// The simple form of KHPL16 eq. 20 for one axis, `sqrt(alpha^2 + H^2)` with `H` the half
-/// extent (within 11.4 % below [`effective_alpha`]). Within 8 ulp.
-fn filter_proxy_effective_alpha_simple(alpha: f32, half_extent: f32) -> f32 {
-    return math_hypot(alpha, abs(half_extent));
-}
-
-/// The exact GGX proxy roughness per axis, clamped into the supported range
-/// (`axis_aligned::from_alpha`). `half_extent` is the filtering rectangle's.
-fn filter_proxy_proxy(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>) -> ndf_roughness_axis_aligned_AxisAligned {
-    return ndf_roughness_axis_aligned_from_alpha(vec2<f32>(
-        filter_proxy_effective_alpha(r.alpha.x, half_extent.x),
-        filter_proxy_effective_alpha(r.alpha.y, half_extent.y),
-    ));
-}
-
-/// The simple GGX proxy roughness per axis, clamped.
-fn filter_proxy_proxy_simple(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>) -> ndf_roughness_axis_aligned_AxisAligned {
-    return ndf_roughness_axis_aligned_from_alpha(vec2<f32>(
-        filter_proxy_effective_alpha_simple(r.alpha.x, half_extent.x),
-        filter_proxy_effective_alpha_simple(r.alpha.y, half_extent.y),
-    ));
+    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), det_clamp);
 }
 
 // ---- filtered_ndf::ndf (shaders/ndf/mod.wgsl) ----
@@ -993,6 +764,15 @@ fn filter_proxy_proxy_simple(r: ndf_roughness_axis_aligned_AxisAligned, half_ext
 // `g2_of`): naga renames any identifier that ends in a digit when it writes a module back
 // out, which naga_oil refuses for composable modules, so `p22`, `g1`, `g2` cannot be names
 // of their own.
+//
+// NaN policy. The Rust crate decides it once (`src/.../ndf/mod.rs`): a NaN argument
+// contributes nothing, `p22 = d = 0` and `lambda = +inf` (so `g1 = g2 = 0`), both families,
+// every form. WGSL lets a driver assume that no NaN occurs at run time, so the shaders do not
+// test for one and promise nothing where a driver takes that licence. Where it costs nothing
+// (the comparisons every function makes anyway), they are written so that a NaN fails them
+// and the result is the Rust one: `d_of` and `p22_of` return 0 (`select` on `m_z > 0`,
+// `q >= 0`), `lambda_of` returns `F32_MAX` (the shaders' `+inf`), `g1_of` and `g2_of` return 0
+// (`w.m > 0`). Mesa's lavapipe and llvmpipe keep these comparisons.
 
 /// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` from `Lambda(w)` and `w.m` (TK19
 /// supplement section 1). In `[0, 1]`; `0` for `w.m <= 0`. (A grazing `w` has
@@ -1045,6 +825,45 @@ fn ndf_roughness_isotropic_to_matrix(r: ndf_roughness_isotropic_Isotropic) -> nd
     return ndf_roughness_matrix_from_eigen(vec2<f32>(1.0, 0.0), vec2<f32>(r.alpha));
 }
 
+// ---- filtered_ndf::ndf::roughness::axis_aligned (shaders/ndf/roughness/axis_aligned.wgsl) ----
+/// Axis-aligned anisotropic roughness `(alpha_x, alpha_y)` along the tangent and bitangent:
+/// `A = diag(alpha_x^2, alpha_y^2)`.
+struct ndf_roughness_axis_aligned_AxisAligned {
+    /// `(alpha_x, alpha_y)`.
+    alpha: vec2<f32>,
+    /// `(1 / alpha_x^2, 1 / alpha_y^2)`.
+    inv_alpha_sq: vec2<f32>,
+}
+
+/// `(alpha_x, alpha_y)`, each clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust
+/// `AxisAligned::new_clamped`).
+fn ndf_roughness_axis_aligned_from_alpha(alpha: vec2<f32>) -> ndf_roughness_axis_aligned_AxisAligned {
+    let a = vec2<f32>(ndf_roughness_clamp_alpha(alpha.x), ndf_roughness_clamp_alpha(alpha.y));
+    return ndf_roughness_axis_aligned_AxisAligned(a, 1.0 / (a * a));
+}
+
+/// `s^T A^-1 s = s_x^2 / alpha_x^2 + s_y^2 / alpha_y^2`. Within 5 ulp (a sum of two
+/// non-negative terms).
+fn ndf_roughness_axis_aligned_inv_quadratic(r: ndf_roughness_axis_aligned_AxisAligned, s: vec2<f32>) -> f32 {
+    return dot(s * s, r.inv_alpha_sq);
+}
+
+/// `w^T A w = alpha_x^2 w_x^2 + alpha_y^2 w_y^2`. Within 4 ulp.
+fn ndf_roughness_axis_aligned_quadratic(r: ndf_roughness_axis_aligned_AxisAligned, w: vec2<f32>) -> f32 {
+    return dot(w * w, r.alpha * r.alpha);
+}
+
+/// `sqrt(det A) = alpha_x alpha_y`. Within 1 ulp.
+fn ndf_roughness_axis_aligned_sqrt_det(r: ndf_roughness_axis_aligned_AxisAligned) -> f32 {
+    return r.alpha.x * r.alpha.y;
+}
+
+/// This roughness as a [`matrix::RoughnessMatrix`], `diag(alpha_x^2, alpha_y^2)` (no
+/// determinant clamp).
+fn ndf_roughness_axis_aligned_to_matrix(r: ndf_roughness_axis_aligned_AxisAligned) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_eigen(vec2<f32>(1.0, 0.0), r.alpha);
+}
+
 // ---- filtered_ndf::ndf::ggx (shaders/ndf/ggx.wgsl) ----
 // GGX (Trowbridge-Reitz) in any roughness form (TK19 supplement section 1; Heitz 2014),
 // mirroring `src/.../ndf/ggx.rs`. The first three functions take what a roughness form
@@ -1059,7 +878,7 @@ fn ndf_roughness_isotropic_to_matrix(r: ndf_roughness_isotropic_Isotropic) -> nd
 /// range.
 fn ndf_ggx_p22_of(q: f32, sqrt_det: f32) -> f32 {
     let t = 1.0 + q;
-    return 1.0 / (math_PI * sqrt_det * t * t);
+    return select(0.0, 1.0 / (math_PI * sqrt_det * t * t), q >= 0.0);
 }
 
 /// Solid-angle density `D(m) = 1 / (pi sqrt(det A) (q_xy + m_z^2)^2)` for a unit micronormal
@@ -1082,10 +901,11 @@ fn ndf_ggx_d_of(q_xy: f32, m_z: f32, sqrt_det: f32) -> f32 {
 /// `Lambda` is homogeneous of degree 0 in `w`: `w` need not be unit, but its squared
 /// components must stay inside the f32 range.
 fn ndf_ggx_lambda_of(q: f32, abs_wz: f32) -> f32 {
-    if q <= 0.0 {
+    if q <= 0.0 && abs_wz >= 0.0 {
         return 0.0;
     }
-    if abs_wz <= 0.0 {
+    // Grazing, or NaN in either (the NaN policy of `ndf`): fully masked.
+    if !(abs_wz > 0.0) || !(q > 0.0) {
         return math_F32_MAX;
     }
     let r = sqrt(abs_wz * abs_wz + q);
@@ -1172,257 +992,671 @@ fn ndf_ggx_g2_matrix(r: ndf_roughness_matrix_RoughnessMatrix, i: vec3<f32>, o: v
     return ndf_g2_of(ndf_ggx_lambda_matrix(r, i), ndf_ggx_lambda_matrix(r, o), dot(i, m), dot(o, m));
 }
 
-// ---- filtered_ndf::filter::rect (shaders/filter/rect.wgsl) ----
-// The exact box filter of GGX (KHPL16 eq. 16 and Appendix A; GDC 2016 `GGXRectIntegral`),
-// mirroring `src/.../filter/rect.rs`: the average of the axis-aligned GGX slope density over
-// an axis-aligned slope-domain rectangle, and its solid-angle form.
+// ---- filtered_ndf::ndf::beckmann (shaders/ndf/beckmann.wgsl) ----
+// Beckmann in any roughness form (Beckmann and Spizzichino 1963; Heitz 2014 section 5.4;
+// KHPL16 eq. 14: `A = 2 B` with `B` the slope covariance), mirroring
+// `src/.../ndf/beckmann.rs`. The first three functions take what a roughness form reduces
+// to; the rest are the entry points per form.
 //
-// With `u = x / alpha_x`, `v = y / alpha_y` the density is `f(u, v) / (pi alpha_x alpha_y)`,
-// `f = (1 + u^2 + v^2)^-2`, and the filter is the mean of `f` over
-// `[u_c +- H_u] x [v_c +- H_v]`. The printed eight-term formula cancels catastrophically (in
-// f32 already for moderate rectangles). The f32 algorithm here follows the Rust tiers, with
-// every path a sum of positive terms except the last:
-// - per axis, from its ratio `H / L` (`L^2 = 1 + (centre)^2 + (distance of the rectangle from
-//   the peak along the other axis)^2`, the distance to the density's complex poles):
-//   Gauss-Legendre with 2 nodes below `0.01`, 4 below `0.1`, 6 below `0.25` (error
-//   `~(H / 2L)^(2n)`, below `1e-8` at each switch: invisible in f32), the closed form above;
-// - both axes short: the tensor Gauss-Legendre rule;
-// - one axis long: the rule in the short axis of the exact 1D mean in the long one
-//   ([`mean_1d`], written without cancellation; its `atan` is `math::atan`);
-// - both long: the four-edge closed form ([`edges`]), whose terms cancel: relative error
-//   about `8 eps (1 + u_c^2 + v_c^2)^(3/2) / min(H_u, H_v)` (the Rust crate measured
-//   `0.45 eps_f64` for the same factor; `math::atan`'s 8 ulp multiply it). Near the peak
-//   that is a few ulp; far in the tail of a sharp lobe with a footprint wider than the
-//   distance to the peak it grows, where the density is a small fraction of its peak.
-// Bound of the other paths: about 60 ulp (the centre and half extents enter normalised,
-// 5 ulp each, and `f` amplifies a relative change of `u` by at most 4; the nodes' `f` 9 ulp;
-// `mean_1d` 20 ulp).
+// Accuracy: `exp(-x)` amplifies the relative error of its argument `x` by `x` (a property
+// of the function, not of the evaluation), and WGSL allows the driver's `exp` `3 + 2|x|`
+// ulp, the same order: the densities are within `eps (8 + 4 x)` plus the error of `x`
+// itself (`x` ulp more per ulp of `q`), and results below `2^-126` may flush to 0.
 
-/// Normalised coordinates are clamped to this (`f` is below `1e-72` there, 0 in f32).
-const filter_rect_BIG: f32 = 1e18;
+/// `exp(x < EXP_SPLIT)` keeps `exp(-x)` a normal f32; beyond it the normalisation moves
+/// into the exponent.
+const ndf_beckmann_EXP_SPLIT: f32 = 80.0;
 
-/// The tier of an axis: 2, 4 or 6 Gauss-Legendre nodes, or the closed form (`TIER_CLOSED`).
-const filter_rect_TIER_CLOSED: u32 = 0u;
+/// `sqrt(pi)`.
+const ndf_beckmann_SQRT_PI: f32 = 1.77245385090552;
 
-/// The tier of an axis from `H^2` and `L^2` (module docs): the number of nodes, or
-/// `TIER_CLOSED`.
-fn filter_rect_tier(h2: f32, l2: f32) -> u32 {
-    if h2 < 1e-4 * l2 {
-        return 2u;
-    }
-    if h2 < 1e-2 * l2 {
-        return 4u;
-    }
-    if h2 < 0.0625 * l2 {
-        return 6u;
-    }
-    return filter_rect_TIER_CLOSED;
+/// `exp(-x) k` for `x >= 0`, `k = exp(ln_k)`: past `EXP_SPLIT` as `exp(ln_k - x)`, so that a
+/// density that is a normal f32 is not lost to an intermediate `exp(-x)` that is not (the
+/// Rust `exp_neg_times`).
+fn ndf_beckmann_exp_neg_times(x: f32, k: f32, ln_k: f32) -> f32 {
+    return select(exp(-x) * k, exp(ln_k - x), x > ndf_beckmann_EXP_SPLIT);
 }
 
-/// The `k`-th positive Gauss-Legendre node on `[-1, 1]` of the `n`-node rule.
-fn filter_rect_gl_node(n: u32, k: u32) -> f32 {
-    if n == 2u {
-        return 0.5773502691896258;
-    }
-    if n == 4u {
-        return select(0.8611363115940526, 0.3399810435848563, k == 0u);
-    }
-    if k == 0u {
-        return 0.2386191860831969;
-    }
-    return select(0.932469514203152, 0.6612093864662645, k == 1u);
+/// Slope-domain density `P22(s) = exp(-q) / (pi sqrt(det A))` from `q = s^T A^-1 s` and
+/// `sqrt(det A)`. `0` where the density underflows.
+fn ndf_beckmann_p22_of(q: f32, sqrt_det: f32) -> f32 {
+    let den = math_PI * sqrt_det;
+    return select(0.0, ndf_beckmann_exp_neg_times(q, 1.0 / den, -log(den)), q >= 0.0);
 }
 
-/// The `k`-th weight of the `n`-node rule, halved (the rule then averages over `[-1, 1]`).
-fn filter_rect_gl_weight(n: u32, k: u32) -> f32 {
-    if n == 2u {
-        return 0.5;
-    }
-    if n == 4u {
-        return select(0.17392742256872693, 0.32607257743127307, k == 0u);
-    }
-    if k == 0u {
-        return 0.2339569672863455;
-    }
-    return select(0.0856622461895852, 0.1803807865240693, k == 1u);
+/// Solid-angle density `D(m) = exp(-q_xy / m_z^2) / (pi sqrt(det A) m_z^4)` for a unit
+/// micronormal `m` from `q_xy = m_xy^T A^-1 m_xy`, `m_z` and `sqrt(det A)` (KHPL16 eq. 2
+/// with eq. 14). `0` for `m_z <= 0`, where the density underflows, and where it exceeds the
+/// f32 range.
+fn ndf_beckmann_d_of(q_xy: f32, m_z: f32, sqrt_det: f32) -> f32 {
+    let z2 = m_z * m_z;
+    let x = q_xy / z2;
+    let k = 1.0 / (math_PI * sqrt_det * z2 * z2);
+    let ln_k = -(log(math_PI * sqrt_det) + 4.0 * log(max(m_z, math_F32_MIN_POSITIVE)));
+    let v = ndf_beckmann_exp_neg_times(x, k, ln_k);
+    return select(0.0, v, m_z > 0.0 && v <= math_F32_MAX);
 }
 
-/// `f(u, v) = (1 + u^2 + v^2)^-2` (0 where the square overflows).
-fn filter_rect_f(u: f32, v: f32) -> f32 {
-    let t = 1.0 + u * u + v * v;
-    return 1.0 / (t * t);
-}
-
-/// The mean of `f(u, .)` over `[c - h, c + h]` by the `n`-node rule (sum of positive terms).
-fn filter_rect_gl_mean(n: u32, u: f32, c: f32, h: f32) -> f32 {
-    var acc = 0.0;
-    for (var k = 0u; k < n / 2u; k++) {
-        let a = h * filter_rect_gl_node(n, k);
-        acc += filter_rect_gl_weight(n, k) * (filter_rect_f(u, c - a) + filter_rect_f(u, c + a));
-    }
-    return acc;
-}
-
-/// `atan2(y, x)` for `y > 0`, in `(0, pi)`, with one `math::atan`.
-fn filter_rect_atan2_upper(y: f32, x: f32) -> f32 {
-    if x > 0.0 {
-        return math_atan(y / x);
-    }
-    return math_HALF_PI + math_atan(-x / y);
-}
-
-/// `delta - sin(delta)` for `delta` in `[0, pi]` given `sin(delta)` (a series below 1, where
-/// the difference cancels; its next term is below `1e-9` relative at 1).
-fn filter_rect_delta_minus_sin(d: f32, sin_d: f32) -> f32 {
-    if d < 1.0 {
-        let d2 = d * d;
-        var s = 1.0 - d2 * (1.0 / 72.0) * (1.0 - d2 * (1.0 / 110.0));
-        s = 1.0 - d2 * (1.0 / 42.0) * s;
-        s = 1.0 - d2 * (1.0 / 20.0) * s;
-        return d * d2 * (1.0 / 6.0) * s;
-    }
-    return d - sin_d;
-}
-
-/// The exact mean of `(c2 + x^2)^-2` over `[xc - hx, xc + hx]` (`hx > 0`, `c2 >= 1`) without
-/// cancellation (the Rust `mean_1d`): with `c^2 = c2`,
-/// `delta = atan(x1 / c) - atan(x0 / c) = atan2(c dx, c2 + x0 x1)` and `r_i^2 = c2 + x_i^2`,
-/// `int = delta / (2 c^3) + dx (c2 - x0 x1) / (2 c2 r0^2 r1^2)` when the interval straddles
-/// 0, else `(delta - sin delta) / (2 c^3) + dx / (2 r0^2 r1^2) [1 + (x0^2 + x1^2 + c2) /
-/// (r0 r1 + x0 x1)]`, all terms positive.
-fn filter_rect_mean_1d(xc: f32, hx: f32, c2: f32) -> f32 {
-    let x0 = abs(xc) - hx;
-    let x1 = abs(xc) + hx;
-    let dx = 2.0 * hx;
-    let c = sqrt(c2);
-    let r02 = c2 + x0 * x0;
-    let r12 = c2 + x1 * x1;
-    let x01 = x0 * x1;
-    let d = filter_rect_atan2_upper(c * dx, c2 + x01);
-    let inv = 1.0 / (2.0 * c * c2 * dx);
-    let p2 = 2.0 * r02 * r12;
-    if x0 <= 0.0 {
-        return d * inv + (c2 - x01) / (c2 * p2);
-    }
-    let rr = sqrt(r02) * sqrt(r12);
-    return filter_rect_delta_minus_sin(d, c * dx / rr) * inv + (1.0 + (x0 * x0 + x1 * x1 + c2) / (rr + x01)) / p2;
-}
-
-/// The mean of `g(x) = mean_1d(other_c, other_h, 1 + x^2)` over `[c - h, c + h]` by the
-/// `n`-node rule.
-fn filter_rect_gl_mean_1d(n: u32, c: f32, h: f32, other_c: f32, other_h: f32) -> f32 {
-    var acc = 0.0;
-    for (var k = 0u; k < n / 2u; k++) {
-        let a = h * filter_rect_gl_node(n, k);
-        let x0 = c - a;
-        let x1 = c + a;
-        acc += filter_rect_gl_weight(n, k) * (filter_rect_mean_1d(other_c, other_h, 1.0 + x0 * x0) + filter_rect_mean_1d(other_c, other_h, 1.0 + x1 * x1));
-    }
-    return acc;
-}
-
-/// One edge of the contour form: `u / S atan2(dv S, S^2 + v0 v1)`, `S = sqrt(1 + u^2)`.
-fn filter_rect_edge(u: f32, dv: f32, v01: f32) -> f32 {
-    let s2 = 1.0 + u * u;
-    let s = sqrt(s2);
-    return u / s * filter_rect_atan2_upper(dv * s, s2 + v01);
-}
-
-/// The four-edge closed form (Lambert's contour form; KHPL16 Appendix A with each edge's two
-/// arctangents merged): the mean of `f` over the rectangle. Cancels in the tail (module docs).
-fn filter_rect_edges(uc: f32, vc: f32, hu: f32, hv: f32) -> f32 {
-    let u0 = uc - hu;
-    let u1 = uc + hu;
-    let v0 = vc - hv;
-    let v1 = vc + hv;
-    let du = 2.0 * hu;
-    let dv = 2.0 * hv;
-    let i = 0.5 * ((filter_rect_edge(u1, dv, v0 * v1) - filter_rect_edge(u0, dv, v0 * v1)) + (filter_rect_edge(v1, du, u0 * u1) - filter_rect_edge(v0, du, u0 * u1)));
-    return i / (du * dv);
-}
-
-/// The mean of `f` over `[uc +- hu] x [vc +- hv]` by the tiers of the module docs.
-fn filter_rect_mean_f(uc: f32, vc: f32, hu: f32, hv: f32) -> f32 {
-    let du = max(abs(uc) - hu, 0.0);
-    let dv = max(abs(vc) - hv, 0.0);
-    let tu = filter_rect_tier(hu * hu, 1.0 + uc * uc + dv * dv);
-    let tv = filter_rect_tier(hv * hv, 1.0 + vc * vc + du * du);
-    if tu == filter_rect_TIER_CLOSED && tv == filter_rect_TIER_CLOSED {
-        return filter_rect_edges(uc, vc, hu, hv);
-    }
-    if tu == filter_rect_TIER_CLOSED {
-        return filter_rect_gl_mean_1d(tv, vc, hv, uc, hu);
-    }
-    if tv == filter_rect_TIER_CLOSED {
-        return filter_rect_gl_mean_1d(tu, uc, hu, vc, hv);
-    }
-    var acc = 0.0;
-    for (var k = 0u; k < tu / 2u; k++) {
-        let a = hu * filter_rect_gl_node(tu, k);
-        acc += filter_rect_gl_weight(tu, k) * (filter_rect_gl_mean(tv, uc - a, vc, hv) + filter_rect_gl_mean(tv, uc + a, vc, hv));
-    }
-    return acc;
-}
-
-/// Exact box-filtered GGX slope density: the average of the axis-aligned GGX `P22` over the
-/// slope-domain rectangle `center +- half_extent` (KHPL16 eq. 16, normalised by the area as
-/// eq. 16 does; Appendix A's normalisation is four times too large). Half extents count by
-/// magnitude; both zero gives the unfiltered `P22`. Accuracy in the module docs. Never
-/// negative.
-fn filter_rect_p22_rect(r: ndf_roughness_axis_aligned_AxisAligned, center: vec2<f32>, half_extent: vec2<f32>) -> f32 {
-    if half_extent.x == 0.0 && half_extent.y == 0.0 {
-        return ndf_ggx_p22_axis_aligned(r, center);
-    }
-    let a = r.alpha;
-    let c = clamp(center / a, vec2<f32>(-filter_rect_BIG), vec2<f32>(filter_rect_BIG));
-    let h = min(abs(half_extent) / a, vec2<f32>(filter_rect_BIG));
-    return max(filter_rect_mean_f(c.x, c.y, h.x, h.y) * (math_INV_PI / (a.x * a.y)), 0.0);
-}
-
-/// Exact box-filtered GGX per steradian: [`p22_rect`] at the slope `-h_xy / h_z` of the unit
-/// half vector, divided by `h_z^4` (TK19 supplement; the GDC listing without its
-/// `max(1e-3, h_z^4)` clamp). `0` for `h_z <= 0`; a zero footprint gives the unfiltered `D`;
-/// a value beyond the f32 range saturates at `F32_MAX`.
-fn filter_rect_d_rect(r: ndf_roughness_axis_aligned_AxisAligned, h: vec3<f32>, half_extent: vec2<f32>) -> f32 {
-    if !(h.z > 0.0) {
+/// Smith `Lambda(w) = (exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2` with
+/// `a = |w_z| / sqrt(q)`, `q = w_xy^T A w_xy` (Heitz 2014 eq. 80 with the projected
+/// roughness of a matrix lobe).
+///
+/// The two terms cancel (to a relative `1 / (2 a^2)` for large `a`); the Rust crate takes
+/// them in f64. Here, with `sqrt(pi) erfcx(a) = 1 / (a + K(a))`,
+/// `Lambda = exp(-a^2) K / (2 sqrt(pi) a (a + K))`, a product of positive factors for every
+/// `a > 0`, and `K(a) (2a + 1)` is a degree-14 polynomial in `t = (a - 3) / (a + 3)` (all of
+/// `a >= 0` maps to `t` in `[-1, 1)`; fitted at Chebyshev nodes, approximation error
+/// `4.4e-8` relative with the coefficients rounded to f32). The result is within
+/// `eps (32 + 16 a^2)`: `Lambda` amplifies the error of `a` (6 ulp) by `2 a^2 + 3`, and `exp`
+/// adds its `3 + 2 a^2` ulp. `0` for `q <= 0` and for `a > 9.5` (below the f32 range);
+/// `F32_MAX` at `w_z = 0` (the Rust `+inf`).
+fn ndf_beckmann_lambda_of(q: f32, abs_wz: f32) -> f32 {
+    if q <= 0.0 && abs_wz >= 0.0 {
         return 0.0;
     }
-    if half_extent.x == 0.0 && half_extent.y == 0.0 {
-        return ndf_ggx_d_axis_aligned(r, h);
+    // Grazing, or NaN in either (the NaN policy of `ndf`): fully masked.
+    if !(abs_wz > 0.0) || !(q > 0.0) {
+        return math_F32_MAX;
     }
-    let p = filter_rect_p22_rect(r, -h.xy / h.z, half_extent);
-    let z2 = h.z * h.z;
-    return min(p / (z2 * z2), math_F32_MAX);
+    let a = abs_wz / sqrt(q);
+    if a > 9.5 {
+        return 0.0;
+    }
+    let t = (a - 3.0) / (a + 3.0);
+    var p = -3.849171844194643e-05;
+    p = p * t + 0.00028491427656263113;
+    p = p * t + 1.8268152416567318e-05;
+    p = p * t - 0.0018242653459310532;
+    p = p * t + 0.0013654069043695927;
+    p = p * t + 0.005581194534897804;
+    p = p * t - 0.009357542730867863;
+    p = p * t - 0.007657155394554138;
+    p = p * t + 0.036274611949920654;
+    p = p * t - 0.0232936330139637;
+    p = p * t - 0.07646358013153076;
+    p = p * t + 0.21173490583896637;
+    p = p * t - 0.23284178972244263;
+    p = p * t + 0.033079251646995544;
+    p = p * t + 1.0631378889083862;
+    let k = p / (2.0 * a + 1.0);
+    return min(exp(-a * a) * k / (2.0 * ndf_beckmann_SQRT_PI * a * (a + k)), math_F32_MAX);
 }
 
-/// The GDC 2016 listing `GGXRectIntegral` as printed (the eight-term difference of KHPL16
-/// Appendix A over `[hpp - footprint, hpp + footprint]`, divided by `2 pi (x1 - x2)(y1 - y2)`
-/// and by `max(1e-3, h_z^4)`), with `math::atan`: the baseline engines ship. It cancels
-/// catastrophically for small footprints and far from the peak (use [`d_rect`]): its error
-/// is about `16 eps` times the sum of the magnitudes of its eight terms, over the result. A
-/// zero footprint gives 0 (the listing's `0 / 0`).
-fn filter_rect_d_rect_printed(r: ndf_roughness_axis_aligned_AxisAligned, hpp: vec2<f32>, h: vec3<f32>, footprint: vec2<f32>) -> f32 {
-    let a = r.alpha.x;
-    let b = r.alpha.y;
-    let a_2 = a * a;
-    let b_2 = b * b;
-    let x1 = hpp.x - footprint.x;
-    let x2 = hpp.x + footprint.x;
-    let y1 = hpp.y - footprint.y;
-    let y2 = hpp.y + footprint.y;
-    let sx1 = sqrt(x1 * x1 + a_2);
-    let sx2 = sqrt(x2 * x2 + a_2);
-    let sy1 = sqrt(y1 * y1 + b_2);
-    let sy2 = sqrt(y2 * y2 + b_2);
-    let val = (x1 * (math_atan((y1 * a) / (sx1 * b)) - math_atan((y2 * a) / (sx1 * b)))) / sx1
-        + (x2 * (-math_atan((y1 * a) / (sx2 * b)) + math_atan((y2 * a) / (sx2 * b)))) / sx2
-        + (y1 * sy2 * (math_atan((x1 * b) / (a * sy1)) - math_atan((x2 * b) / (a * sy1)))
-            + y2 * sy1 * (-math_atan((x1 * b) / (a * sy2)) + math_atan((x2 * b) / (a * sy2))))
-            / (sy1 * sy2);
-    let den = (2.0 * math_PI) * (x1 - x2) * (y1 - y2);
-    let hz4 = h.z * h.z * h.z * h.z;
-    let v = val / den / max(hz4, 1e-3);
-    return select(0.0, v, abs(v) <= math_F32_MAX && den != 0.0);
+/// `P22(s)` of isotropic Beckmann.
+fn ndf_beckmann_p22_isotropic(r: ndf_roughness_isotropic_Isotropic, s: vec2<f32>) -> f32 {
+    return ndf_beckmann_p22_of(ndf_roughness_isotropic_inv_quadratic(r, s), ndf_roughness_isotropic_sqrt_det(r));
+}
+
+/// `D(m)` of isotropic Beckmann.
+fn ndf_beckmann_d_isotropic(r: ndf_roughness_isotropic_Isotropic, m: vec3<f32>) -> f32 {
+    return ndf_beckmann_d_of(ndf_roughness_isotropic_inv_quadratic(r, m.xy), m.z, ndf_roughness_isotropic_sqrt_det(r));
+}
+
+/// `Lambda(w)` of isotropic Beckmann.
+fn ndf_beckmann_lambda_isotropic(r: ndf_roughness_isotropic_Isotropic, w: vec3<f32>) -> f32 {
+    return ndf_beckmann_lambda_of(ndf_roughness_isotropic_quadratic(r, w.xy), abs(w.z));
+}
+
+/// `G1(w, m)` of isotropic Beckmann.
+fn ndf_beckmann_g1_isotropic(r: ndf_roughness_isotropic_Isotropic, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(ndf_beckmann_lambda_isotropic(r, w), dot(w, m));
+}
+
+/// `G2(i, o, m)` of isotropic Beckmann (height-correlated).
+fn ndf_beckmann_g2_isotropic(r: ndf_roughness_isotropic_Isotropic, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g2_of(ndf_beckmann_lambda_isotropic(r, i), ndf_beckmann_lambda_isotropic(r, o), dot(i, m), dot(o, m));
+}
+
+/// `P22(s)` of axis-aligned Beckmann.
+fn ndf_beckmann_p22_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, s: vec2<f32>) -> f32 {
+    return ndf_beckmann_p22_of(ndf_roughness_axis_aligned_inv_quadratic(r, s), ndf_roughness_axis_aligned_sqrt_det(r));
+}
+
+/// `D(m)` of axis-aligned Beckmann.
+fn ndf_beckmann_d_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, m: vec3<f32>) -> f32 {
+    return ndf_beckmann_d_of(ndf_roughness_axis_aligned_inv_quadratic(r, m.xy), m.z, ndf_roughness_axis_aligned_sqrt_det(r));
+}
+
+/// `Lambda(w)` of axis-aligned Beckmann.
+fn ndf_beckmann_lambda_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, w: vec3<f32>) -> f32 {
+    return ndf_beckmann_lambda_of(ndf_roughness_axis_aligned_quadratic(r, w.xy), abs(w.z));
+}
+
+/// `G1(w, m)` of axis-aligned Beckmann.
+fn ndf_beckmann_g1_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(ndf_beckmann_lambda_axis_aligned(r, w), dot(w, m));
+}
+
+/// `G2(i, o, m)` of axis-aligned Beckmann (height-correlated).
+fn ndf_beckmann_g2_axis_aligned(
+    r: ndf_roughness_axis_aligned_AxisAligned,
+    i: vec3<f32>,
+    o: vec3<f32>,
+    m: vec3<f32>,
+) -> f32 {
+    return ndf_g2_of(ndf_beckmann_lambda_axis_aligned(r, i), ndf_beckmann_lambda_axis_aligned(r, o), dot(i, m), dot(o, m));
+}
+
+/// `P22(s)` of Beckmann with a roughness matrix.
+fn ndf_beckmann_p22_matrix(r: ndf_roughness_matrix_RoughnessMatrix, s: vec2<f32>) -> f32 {
+    return ndf_beckmann_p22_of(ndf_roughness_matrix_inv_quadratic(r, s), ndf_roughness_matrix_sqrt_det(r));
+}
+
+/// `D(m)` of Beckmann with a roughness matrix (a filtered or rotated lobe).
+fn ndf_beckmann_d_matrix(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
+    return ndf_beckmann_d_of(ndf_roughness_matrix_inv_quadratic(r, m.xy), m.z, ndf_roughness_matrix_sqrt_det(r));
+}
+
+/// `Lambda(w)` of Beckmann with a roughness matrix.
+fn ndf_beckmann_lambda_matrix(r: ndf_roughness_matrix_RoughnessMatrix, w: vec3<f32>) -> f32 {
+    return ndf_beckmann_lambda_of(ndf_roughness_matrix_quadratic(r, w.xy), abs(w.z));
+}
+
+/// `G1(w, m)` of Beckmann with a roughness matrix.
+fn ndf_beckmann_g1_matrix(r: ndf_roughness_matrix_RoughnessMatrix, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(ndf_beckmann_lambda_matrix(r, w), dot(w, m));
+}
+
+/// `G2(i, o, m)` of Beckmann with a roughness matrix (height-correlated).
+fn ndf_beckmann_g2_matrix(r: ndf_roughness_matrix_RoughnessMatrix, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g2_of(ndf_beckmann_lambda_matrix(r, i), ndf_beckmann_lambda_matrix(r, o), dot(i, m), dot(o, m));
+}
+
+// ---- filtered_ndf::filter::gaussian_ggx_quad (shaders/filter/gaussian_ggx_quad.wgsl) ----
+// The quadrature rules of the exact Gaussian-filtered GGX (`gaussian_ggx.wgsl`), the f32
+// rules of the Rust crate's `src/.../filter/gaussian_ggx_quad.rs` (derivations and bounds in
+// the module docs of `gaussian_ggx.rs`, items cited as "item N"): the far-tail series, 8-node
+// Gauss-Laguerre, the trapezoid rule in `ln w` with step 0.5 and the series-corrected lower
+// end (4 terms); for `Lambda` 8-node Gauss-Hermite or the sinh-substituted trapezoid rule.
+// Their own errors (proven or measured in Rust): `J` within `1.6e-6 + 2e-7` relative,
+// `Lambda` within `3e-7`. Differences from the Rust f32 path, which sets each rule up in f64:
+// everything here is f32, with `math::exp` (the Rust polynomial, 3 ulp) and `math::ln`; each
+// node's exponent is still formed against the reference node (no `eps |E|` loss from the
+// exponent's size), the nodes `w_k` from one `math::exp` per chunk of 8 (4 ulp); the series
+// below the first node is scaled by powers of that node (every term bounded: no overflow);
+// `1 / (p1 p2)` as two quotients (no overflow for kernels up to `KERNEL_MAX`). What remains of
+// f32 is the rounding of the set-up (a few ulp of each `c_i^2`, `2 l_i`), which `J` amplifies by
+// its condition numbers (`gaussian_ggx.wgsl`).
+
+/// Far-tail switch: the series replaces the quadrature where `1 + q >= FAR 2 l1`.
+const filter_gaussian_ggx_quad_FAR: f32 = 3.2e5;
+/// Trapezoid step in `t = ln w`.
+const filter_gaussian_ggx_quad_H: f32 = 0.5;
+/// `e^H`.
+const filter_gaussian_ggx_quad_EXP_H: f32 = 1.6487212707001282;
+/// Relative truncation tolerance at the top of the trapezoid rule.
+const filter_gaussian_ggx_quad_EPS_T: f32 = 1e-7;
+/// The first node lies at or below `w = Y_LO / (1 + q + 2 l1)` (the series' bound).
+const filter_gaussian_ggx_quad_Y_LO: f32 = 0.054;
+/// Chunks of 8 nodes at most (the Rust table has 176 nodes).
+const filter_gaussian_ggx_quad_CHUNKS: u32 = 22u;
+/// Gauss-Laguerre applies where `2 l1 <= GL_RATIO (1 + q)` ...
+const filter_gaussian_ggx_quad_GL_RATIO: f32 = 0.0177;
+/// ... and `2 l1 (GL_PLATEAU + 1.5 ln(1 + q)) <= 1 + q` (item 4) ...
+const filter_gaussian_ggx_quad_GL_PLATEAU: f32 = 20.0;
+/// ... which the first implies below `1 + q = GL_WIDE`.
+const filter_gaussian_ggx_quad_GL_WIDE: f32 = 2.8e10;
+
+/// The 8-node generalised Gauss-Laguerre rule for the weight `v e^-v`: node `k`.
+fn filter_gaussian_ggx_quad_laguerre_node(k: u32) -> f32 {
+    switch k {
+        case 0u: { return 0.40938357320318514; }
+        case 1u: { return 1.3849631848031398; }
+        case 2u: { return 2.956254556168862; }
+        case 3u: { return 5.181943101040071; }
+        case 4u: { return 8.161709688145818; }
+        case 5u: { return 12.070055126837154; }
+        case 6u: { return 17.24973552614899; }
+        default: { return 24.585955243652784; }
+    }
+}
+
+/// The 8-node Gauss-Laguerre rule: weight `k`.
+fn filter_gaussian_ggx_quad_laguerre_weight(k: u32) -> f32 {
+    switch k {
+        case 0u: { return 0.18763254140572366; }
+        case 1u: { return 0.43898536073114236; }
+        case 2u: { return 0.28999607078131334; }
+        case 3u: { return 0.07514138461669734; }
+        case 4u: { return 0.007932646648707345; }
+        case 5u: { return 0.0003086421368133042; }
+        case 6u: { return 3.348958209797096e-6; }
+        default: { return 4.721392823193221e-9; }
+    }
+}
+
+/// `J / z2^2` for `c_i^2 = v_i^2 / z2` from `(v1^2, v2^2)`, `z2 > 0` and `(2 l1, 2 l2)`,
+/// `2 l1 >= 2 l2 >= 0` (the Rust `j`): `J(c)` itself for `z2 = 1` (a slope), `J / m_z^4` for a
+/// normal (`z2 = m_z^2`, `v = T m_xy`) without forming the slope. The rule by `q = |c|^2` and
+/// the kernel ratio (module docs).
+fn filter_gaussian_ggx_quad_j(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
+    let beta_m = z2 + v1s + v2s;
+    if beta_m >= filter_gaussian_ggx_quad_FAR * tl1 * z2 {
+        return filter_gaussian_ggx_quad_far_tail(beta_m, v1s, v2s, tl1, tl2, z2);
+    }
+    if tl1 * z2 <= filter_gaussian_ggx_quad_GL_RATIO * beta_m
+        && (beta_m <= filter_gaussian_ggx_quad_GL_WIDE * z2 || tl1 * (filter_gaussian_ggx_quad_GL_PLATEAU + 1.5 * math_ln(beta_m / z2)) * z2 <= beta_m) {
+        return filter_gaussian_ggx_quad_laguerre(beta_m, v1s, v2s, z2, tl1, tl2);
+    }
+    let iz2 = 1.0 / z2;
+    return filter_gaussian_ggx_quad_trapezoid(v1s * iz2, v2s * iz2, tl1, tl2) * iz2 * iz2;
+}
+
+/// The far-tail series of `J` (item 5), homogeneous as [`j`]:
+/// `J = beta^-2 (1 + 12 P z2 / beta^2 - 2 (l1 + l2) z2 / beta)`, `P = l1 c1^2 + l2 c2^2`
+/// (`P / beta` formed first: no overflow).
+fn filter_gaussian_ggx_quad_far_tail(beta: f32, c1s: f32, c2s: f32, tl1: f32, tl2: f32, z2: f32) -> f32 {
+    let ib = 1.0 / beta;
+    let p_ib = 0.5 * (tl1 * (c1s * ib) + tl2 * (c2s * ib));
+    let ls = 0.5 * (tl1 + tl2);
+    return ib * ib * (1.0 + z2 * ib * (12.0 * p_ib - 2.0 * ls));
+}
+
+/// Gauss-Laguerre in `v = (1 + q) w` (item 4): `J = beta^-2 sum W_k F(v_k / beta)`,
+/// `F(w) = exp(sum c_i^2 2 l_i w^2 / p_i) / sqrt(p1 p2)`; homogeneous as [`j`].
+fn filter_gaussian_ggx_quad_laguerre(beta_m: f32, v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
+    let ib = 1.0 / beta_m;
+    let t1 = tl1 * z2 * ib;
+    let t2 = tl2 * z2 * ib;
+    let g1 = (v1s * ib) * t1;
+    let g2 = (v2s * ib) * t2;
+    var acc = 0.0;
+    for (var k = 0u; k < 8u; k++) {
+        let v = filter_gaussian_ggx_quad_laguerre_node(k);
+        let p1 = 1.0 + t1 * v;
+        let p2 = 1.0 + t2 * v;
+        let ip1 = 1.0 / p1;
+        let ip2 = 1.0 / p2;
+        let e = v * v * (g1 * ip1 + g2 * ip2);
+        acc += filter_gaussian_ggx_quad_laguerre_weight(k) * math_exp(e) * sqrt(ip1) * sqrt(ip2);
+    }
+    return acc * ib * ib;
+}
+
+/// The geometric sums `1 / (e^((n + 2) H) - 1)` of the series below the first node.
+fn filter_gaussian_ggx_quad_geom(n: u32) -> f32 {
+    switch n {
+        case 0u: { return 0.5819767068693265; }
+        case 1u: { return 0.2872169167888683; }
+        case 2u: { return 0.15651764274966565; }
+        default: { return 0.08942548983385201; }
+    }
+}
+
+/// The nodes below `w_first` (item 2): `sum_k w_k^2 phi(w_k)` over `w_k = w_first e^(-k H)`,
+/// `k >= 1`, with `phi = exp(-w - E(w)) / sqrt(p1 p2) = sum a_n w^n` truncated after 4 terms.
+/// Scaled by `y = w_first`: with `x_i = 2 l_i y`, `d_i = c_i^2 y` (both `<= Y_LO`), the
+/// coefficients `b~_n = b_n y^n` of `ln phi` and `a~_n = a_n y^n` are bounded, and the sum is
+/// `y^2 sum_n a~_n / (e^((n + 2) H) - 1)`.
+fn filter_gaussian_ggx_quad_series_below(c1s: f32, c2s: f32, tl1: f32, tl2: f32, y: f32) -> f32 {
+    let x1 = tl1 * y;
+    let x2 = tl2 * y;
+    let d1 = c1s * y;
+    let d2 = c2s * y;
+    // b~_n for n = 1..3 (coefficient of w^n times y^n): -(d1 (-x1)^(n-1) + d2 (-x2)^(n-1))
+    // from -E, + ((-x1)^n + (-x2)^n) / (2 n) from -ln(p1 p2) / 2, and -y for n = 1.
+    let b1 = -(d1 + d2) - 0.5 * (x1 + x2) - y;
+    let b2 = (d1 * x1 + d2 * x2) + 0.25 * (x1 * x1 + x2 * x2);
+    let b3 = -(d1 * x1 * x1 + d2 * x2 * x2) - (1.0 / 6.0) * (x1 * x1 * x1 + x2 * x2 * x2);
+    // n a_n = sum_j j b_j a_(n-j).
+    let a1 = b1;
+    let a2 = 0.5 * (b1 * a1 + 2.0 * b2);
+    let a3 = (1.0 / 3.0) * (b1 * a2 + 2.0 * b2 * a1 + 3.0 * b3);
+    let tail = filter_gaussian_ggx_quad_geom(0u) + a1 * filter_gaussian_ggx_quad_geom(1u) + a2 * filter_gaussian_ggx_quad_geom(2u) + a3 * filter_gaussian_ggx_quad_geom(3u);
+    return tail * y * y;
+}
+
+/// The trapezoid rule in `t = ln w` (items 1 to 3): nodes `w_k = w_r e^((k - k0) H)` from the
+/// first node at or below `Y_LO / (1 + q + 2 l1)`, the nodes below it summed by
+/// [`series_below`], each exponent against the reference `w_r = 2 / (1 + q)`, the top truncated
+/// by the monotone bound, in chunks of 8 nodes.
+fn filter_gaussian_ggx_quad_trapezoid(c1s: f32, c2s: f32, tl1: f32, tl2: f32) -> f32 {
+    let beta = 1.0 + c1s + c2s;
+    let ib = 1.0 / beta;
+    let w_r = 2.0 * ib;
+    // k0 H >= ln(w_r / w_lo), w_lo = Y_LO / (beta + 2 l1).
+    let k0 = min(ceil(math_ln(2.0 / filter_gaussian_ggx_quad_Y_LO * (beta + tl1) * ib) / filter_gaussian_ggx_quad_H), f32(filter_gaussian_ggx_quad_CHUNKS * 8u - 1u));
+    let w_first = w_r * math_exp(-k0 * filter_gaussian_ggx_quad_H);
+    // The reference exponent x_r = -w_r - E(w_r); E(w) - E(w_r) = sum c_i^2 (w - w_r) /
+    // (p_i(w) p_i(w_r)) without cancellation.
+    let pr1 = 1.0 + tl1 * w_r;
+    let pr2 = 1.0 + tl2 * w_r;
+    let k1 = c1s * (w_r / pr1);
+    let k2 = c2s * (w_r / pr2);
+    let x_r = -w_r - k1 - k2;
+    let scale = w_r * w_r * math_exp(x_r);
+    // Per node, v = w / w_r = e^((k - k0) H), p_i = 1 + (2 l_i w_r) v:
+    // g / scale = exp(2 ln v - (v - 1)(w_r + k1 / p1 + k2 / p2)) / sqrt(p1 p2).
+    let t1 = tl1 * w_r;
+    let t2 = tl2 * w_r;
+    let stop = filter_gaussian_ggx_quad_EPS_T * filter_gaussian_ggx_quad_H * w_r * w_r;
+    var sum = 0.0;
+    for (var ch = 0u; ch < filter_gaussian_ggx_quad_CHUNKS; ch++) {
+        let kb = f32(ch * 8u) - k0;
+        var v = math_exp(kb * filter_gaussian_ggx_quad_H);
+        var part = 0.0;
+        var last = 0.0;
+        var vl = v;
+        for (var jj = 0u; jj < 8u; jj++) {
+            let ip1 = 1.0 / (1.0 + t1 * v);
+            let ip2 = 1.0 / (1.0 + t2 * v);
+            let a = w_r + k1 * ip1 + k2 * ip2;
+            let x = 2.0 * filter_gaussian_ggx_quad_H * (kb + f32(jj)) - (v - 1.0) * a;
+            last = math_exp(x) * sqrt(ip1) * sqrt(ip2);
+            part += last;
+            vl = v;
+            v = v * filter_gaussian_ggx_quad_EXP_H;
+        }
+        sum += part;
+        // Item 3: the nodes above the last sum to at most g_last b / w_last^2.
+        let wl = vl * w_r;
+        let b = select(7.47, 1.0 + wl, wl >= 2.0);
+        if last * b <= stop * sum * vl * vl {
+            break;
+        }
+    }
+    return filter_gaussian_ggx_quad_H * (sum * scale + filter_gaussian_ggx_quad_series_below(c1s, c2s, tl1, tl2, w_first));
+}
+
+/// The 8-node Gauss-Hermite rule for the standard normal density: positive node `k`
+/// (the rule is symmetric).
+fn filter_gaussian_ggx_quad_hermite_node(k: u32) -> f32 {
+    switch k {
+        case 0u: { return 0.5390798113513751; }
+        case 1u: { return 1.636519042435108; }
+        case 2u: { return 2.8024858612875416; }
+        default: { return 4.1445471861258945; }
+    }
+}
+
+/// The 8-node Gauss-Hermite rule: weight of node `k` (and of its mirror).
+fn filter_gaussian_ggx_quad_hermite_weight(k: u32) -> f32 {
+    switch k {
+        case 0u: { return 0.37301225767907736; }
+        case 1u: { return 0.11723990766175901; }
+        case 2u: { return 0.009635220120788266; }
+        default: { return 0.00011261453837536777; }
+    }
+}
+
+/// `h(y) = sqrt(1 + y^2) - y` without cancellation or overflow: `1 / (sqrt(1 + y^2) + y)` for
+/// `y >= 0`.
+fn filter_gaussian_ggx_quad_h_of(y: f32) -> f32 {
+    let a = abs(y);
+    var r: f32;
+    if a > 1.0 {
+        let i = 1.0 / a;
+        r = a * sqrt(1.0 + i * i);
+    } else {
+        r = sqrt(1.0 + y * y);
+    }
+    return select(r - y, 1.0 / (r + y), y >= 0.0);
+}
+
+/// Gauss-Hermite `Lambda` (item 6) in units of `sqrt(qa)`: `sum W_k h(z0 - sigma x_k) / (2 z0)`,
+/// `z0 = oz / sqrt(qa)`, `sigma = sqrt(qs / qa)`.
+fn filter_gaussian_ggx_quad_lambda_hermite(qa: f32, qs: f32, oz: f32) -> f32 {
+    let iq = 1.0 / qa;
+    let z0 = oz * sqrt(iq);
+    let fs = sqrt(qs * iq);
+    var acc = 0.0;
+    for (var k = 0u; k < 4u; k++) {
+        let x = fs * filter_gaussian_ggx_quad_hermite_node(k);
+        acc += filter_gaussian_ggx_quad_hermite_weight(k) * (filter_gaussian_ggx_quad_h_of(z0 - x) + filter_gaussian_ggx_quad_h_of(z0 + x));
+    }
+    return acc / (2.0 * z0);
+}
+
+/// Gauss-Hermite applies where `delta_s^2 = qs / (qa + oz^2) <= GH_MAX` (item 6).
+const filter_gaussian_ggx_quad_GH_MAX: f32 = 0.01;
+/// The sinh rule's step `min(S_MAX, S_COEF sqrt(delta_s))`, truncation `S_EPS`, and its
+/// safety net on the nodes per direction (never reached).
+const filter_gaussian_ggx_quad_S_MAX: f32 = 0.25;
+const filter_gaussian_ggx_quad_S_COEF: f32 = 0.25;
+const filter_gaussian_ggx_quad_S_EPS: f32 = 1e-8;
+const filter_gaussian_ggx_quad_S_MAX_CHUNKS: u32 = 512u;
+
+/// One direction of the sinh rule (see [`lambda_sinh`]): nodes `T = e^(d/2)`, `d = +-k h`
+/// (`k >= 0` up, `k >= 1` down), each `T` by one `math::exp`; stops (every 8 nodes) once the
+/// terms fall by half per node and the last is `<= S_EPS` of the running total.
+fn filter_gaussian_ggx_quad_sinh_run(up: bool, h: f32, rq: f32, e0: f32, ie0: f32, i2s2: f32, e2: f32, c_stop: f32, total_in: f32) -> f32 {
+    var total = total_in;
+    let sgn = select(-1.0, 1.0, up);
+    let first = select(1u, 0u, up);
+    for (var ch = 0u; ch < filter_gaussian_ggx_quad_S_MAX_CHUNKS; ch++) {
+        var fl = 0.0;
+        var xl = 0.0;
+        var part = 0.0;
+        for (var jj = 0u; jj < 8u; jj++) {
+            let k = f32(first + ch * 8u + jj);
+            let t = math_exp(sgn * 0.5 * h * k);
+            let it = 1.0 / t;
+            // oz - sqrt(qa) sinh(s0 + d) = -sqrt(qa) 2 cosh(s0 + d/2) sinh(d/2).
+            let x = -0.5 * rq * (e0 * t + ie0 * it) * (t - it);
+            let arg = -x * x * i2s2;
+            let it2 = it * it;
+            fl = select(0.0, math_exp(arg) * (1.0 + e2 * it2 * it2), arg > -87.0);
+            xl = x;
+            part += fl;
+        }
+        total += part;
+        let done = select(xl >= c_stop, -xl >= c_stop, up);
+        if done && fl <= filter_gaussian_ggx_quad_S_EPS * total {
+            break;
+        }
+    }
+    return total;
+}
+
+/// The trapezoid rule in `s`, `y = sqrt(qa) sinh s` (item 6):
+/// `Lambda = qa / (4 oz) integral phi_sigma(oz - sqrt(qa) sinh s) (1 + e^-2s) ds`, nodes
+/// `s0 + k h` with `sinh s0 = oz / sqrt(qa)`, outward from `s0` in both directions.
+fn filter_gaussian_ggx_quad_lambda_sinh(qa: f32, qs: f32, oz: f32, ds2: f32) -> f32 {
+    let rq = sqrt(qa);
+    let root = oz + sqrt(qa + oz * oz);
+    let e0 = root / rq;
+    let ie0 = rq / root;
+    let h = min(filter_gaussian_ggx_quad_S_MAX, filter_gaussian_ggx_quad_S_COEF * sqrt(sqrt(ds2)));
+    let i2s2 = 0.5 / qs;
+    // |x| sqrt(qa) h / qs beyond which the terms fall by half per node (Rust module docs).
+    let c_up = math_LN_2 * qs / (rq * h);
+    let c_down = (2.0 * h + math_LN_2) * qs / (rq * h);
+    let e2 = ie0 * ie0;
+    let up = filter_gaussian_ggx_quad_sinh_run(true, h, rq, e0, ie0, i2s2, e2, c_up, 0.0);
+    let all = filter_gaussian_ggx_quad_sinh_run(false, h, rq, e0, ie0, i2s2, e2, c_down, up);
+    return all * (h * qa / (4.0 * oz * sqrt(qs) * math_SQRT_TAU));
+}
+
+/// Smith `Lambda` of the filtered lobe (item 6) for `qa = o^T A o > 0`, `qs = o^T Sigma o > 0`
+/// and `oz = |o_z| > 0` (unit `o`): `Lambda = E[h(oz - Z)] / (2 oz)`, `Z ~ N(0, qs)`.
+fn filter_gaussian_ggx_quad_lambda(qa: f32, qs: f32, oz: f32) -> f32 {
+    let ds2 = qs / (qa + oz * oz);
+    if ds2 <= filter_gaussian_ggx_quad_GH_MAX {
+        return filter_gaussian_ggx_quad_lambda_hermite(qa, qs, oz);
+    }
+    return filter_gaussian_ggx_quad_lambda_sinh(qa, qs, oz, ds2);
+}
+
+// ---- filtered_ndf::filter::gaussian_ggx (shaders/filter/gaussian_ggx.wgsl) ----
+// The exact Gaussian-filtered GGX (`src/.../filter/gaussian_ggx.rs`, `GaussianFilteredGgx`):
+// the convolution of a GGX slope density of roughness `A` with a Gaussian kernel
+// `N(0, Sigma)`, with its own Smith `Lambda`, in f32. What TK19 section 2.2 and TK21
+// approximate by a GGX of roughness `A + 2 Sigma`, and KHPL16 (section 5.2) replaces by a box.
+//
+// The mixture identity (Rust module docs): GGX is a scale mixture of Gaussians,
+// `P22(s) = integral e^-w N(s; 0, A / (2w)) dw`, and convolving each component adds the
+// kernel, so `P22_Sigma(s) = J / (pi sqrt(det A))` with
+// `J = integral w e^-w exp(-E(w)) / sqrt(p1 p2) dw`, `p_i = 1 + 2 l_i w`,
+// `E(w) = w (c1^2 / p1 + c2^2 / p2)`, where `(l1, l2)` are the eigenvalues of the kernel in
+// units of the lobe, `B^-1 Sigma B^-T` (`A = B B^T`), and `c` the slope whitened by `B` and
+// rotated into that eigenbasis. `J` by the rules of `gaussian_ggx_quad.wgsl`. `Lambda` is the
+// filtered distribution's own: a Gaussian average of GGX's `Lambda` (Rust item 6).
+//
+// The build in f32 (the Rust crate builds in f64): in the eigenbasis of `A_c` (the matrix the
+// material's density evaluates, `matrix.wgsl`), `B = R diag(sqrt l)`, so `B^-1 Sigma B^-T` has
+// the entries `k_ij / sqrt(l_i l_j)` of the kernel rotated into that basis (`k_ij = e_i^T
+// Sigma e_j`), its determinant is `det Sigma / det A_c` (the kernel's carried determinant: the
+// minor eigenvalue `l2 = det / l1` keeps its relative accuracy), `l1` is a sum of non-negative
+// terms, and its eigenvector comes from the row without cancellation. Whitening a slope is then
+// `matrix::rotate`, a scaling, and one more rotation.
+//
+// Accuracy (stated bound; `gpu/src/checks/gaussian_ggx.rs` derives the per-case tolerance):
+// the rules' own `1.8e-6` (`J`) and `3e-7` (`Lambda`), plus the f32 rounding of the set-up
+// (a few ulp of each `c_i^2` and `2 l_i`, and of the kernel's eigenvector, an angle of a few
+// ulp), which `P22_Sigma` amplifies by its condition numbers: `d ln J / d ln c_i^2 = -<E_i>`
+// (the mean exponent over the integrand, `<= 2` for the unfiltered lobe, `~ln(2 l1)` where
+// the kernel dominates), `|d ln J / d ln l_i| <= <E_i> + 1/2`, and the sensitivity to the
+// kernel's orientation. NaN: not tested for (WGSL); `d` and `p22` return 0 where the density
+// leaves the f32 range.
+
+/// The exact Gaussian-filtered GGX lobe, built once per shading point by [`from_kernel`] (the Rust `new`; `new` is a reserved word in WGSL).
+struct filter_gaussian_ggx_GaussianFilteredGgx {
+    /// The material's roughness (its `A_c` is the lobe `A`): its eigenbasis whitens slopes.
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    /// `1 / sqrt(l)` of `A_c`'s eigenvalues `l`.
+    inv_sqrt_l: vec2<f32>,
+    /// The unit eigenvector `v` of the kernel in units of the lobe (of `l1`), in `A_c`'s
+    /// eigenbasis: `c = (v . u, v_perp . u)`, `u` the whitened slope.
+    v: vec2<f32>,
+    /// `(2 l1, 2 l2)`, `l1 >= l2 >= 0`.
+    tl: vec2<f32>,
+    /// `1 / (pi sqrt(det A_c))`.
+    norm: f32,
+    /// The sanitised kernel (for `Lambda`'s `o^T Sigma o`).
+    k: kernel_covariance_Covariance,
+}
+
+/// The lobe of GGX roughness `a` (evaluated as its `A_c`) filtered by the kernel `kernel`
+/// (slope^2; `covariance::sanitized` first), the Rust `GaussianFilteredGgx::new`.
+fn filter_gaussian_ggx_from_kernel(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> filter_gaussian_ggx_GaussianFilteredGgx {
+    let k = kernel_covariance_sanitized(kernel);
+    let c = a.axis.x;
+    let s = a.axis.y;
+    // The kernel in A_c's eigenbasis.
+    let k11 = max(c * c * k.s_xx + 2.0 * c * s * k.s_xy + s * s * k.s_yy, 0.0);
+    let k22 = max(s * s * k.s_xx - 2.0 * c * s * k.s_xy + c * c * k.s_yy, 0.0);
+    let k12 = (c * c - s * s) * k.s_xy + c * s * (k.s_yy - k.s_xx);
+    let l = a.eig_c;
+    let isl = 1.0 / sqrt(l);
+    // C = diag(l)^-1/2 K diag(l)^-1/2, det C = det Sigma / det A_c.
+    let c11 = k11 * isl.x * isl.x;
+    let c22 = k22 * isl.y * isl.y;
+    let c12 = k12 * isl.x * isl.y;
+    let det_c = max(k.det, 0.0) / (l.x * l.y);
+    let half = 0.5 * (c11 - c22);
+    let rad = math_hypot(half, c12);
+    let l1 = 0.5 * (c11 + c22) + rad;
+    var l2 = 0.0;
+    var v = vec2<f32>(1.0, 0.0);
+    if rad > 0.0 {
+        let big = rad + abs(half);
+        let w = select(vec2<f32>(c12, big), vec2<f32>(big, c12), half >= 0.0);
+        v = w / length(w);
+        l2 = min(det_c / l1, l1);
+    } else if l1 > 0.0 {
+        l2 = l1;
+    }
+    return filter_gaussian_ggx_GaussianFilteredGgx(a, isl, v, vec2<f32>(2.0 * l1, 2.0 * l2), math_INV_PI / ndf_roughness_matrix_sqrt_det(a), k);
+}
+
+/// `(c1^2, c2^2)` of a tangent-plane vector `s` (a slope, or `m_xy` of a normal).
+fn filter_gaussian_ggx_whiten(g: filter_gaussian_ggx_GaussianFilteredGgx, s: vec2<f32>) -> vec2<f32> {
+    let u = ndf_roughness_matrix_rotate(g.a, s) * g.inv_sqrt_l;
+    let c = vec2<f32>(g.v.x * u.x + g.v.y * u.y, g.v.x * u.y - g.v.y * u.x);
+    return c * c;
+}
+
+/// `P22_Sigma(s) = J / (pi sqrt(det A))` per unit slope area (the Rust `p22`); 0 where it
+/// underflows.
+fn filter_gaussian_ggx_p22(g: filter_gaussian_ggx_GaussianFilteredGgx, s: vec2<f32>) -> f32 {
+    let c = filter_gaussian_ggx_whiten(g, s);
+    return g.norm * filter_gaussian_ggx_quad_j(c.x, c.y, 1.0, g.tl.x, g.tl.y);
+}
+
+/// `D(m) = P22_Sigma(s(m)) / m_z^4` per steradian for a unit micronormal (the Rust `d`): `0`
+/// for `m_z <= 0` and where the density leaves the f32 range; every rule homogeneous in `m`
+/// (finite up to the horizon).
+fn filter_gaussian_ggx_d(g: filter_gaussian_ggx_GaussianFilteredGgx, m: vec3<f32>) -> f32 {
+    if !(m.z > 0.0) {
+        return 0.0;
+    }
+    let c = filter_gaussian_ggx_whiten(g, m.xy);
+    let v = g.norm * filter_gaussian_ggx_quad_j(c.x, c.y, m.z * m.z, g.tl.x, g.tl.y);
+    return select(0.0, v, v <= math_F32_MAX);
+}
+
+/// The filtered lobe's own Smith `Lambda(w)` (the Rust `lambda`): the mixture of the Beckmann
+/// `Lambda`s of roughness `A / w + 2 Sigma` over `e^-w dw`, as `E[h(o_z - Z)] / (2 o_z)`,
+/// `Z ~ N(0, o^T Sigma o)`, `h(y) = sqrt(o^T A o + y^2) - y` (`quad::lambda`); GGX's own where
+/// the view does not see the kernel. Uses `|w_z|`, homogeneous in `w` (normalised here after
+/// scaling by the largest component). `F32_MAX` at grazing, `0` at normal incidence.
+fn filter_gaussian_ggx_lambda(g: filter_gaussian_ggx_GaussianFilteredGgx, w: vec3<f32>) -> f32 {
+    let big = max(max(abs(w.x), abs(w.y)), abs(w.z));
+    if !(big > 0.0) {
+        return select(math_F32_MAX, 0.0, big == 0.0);
+    }
+    let ws = w / big;
+    let o = ws / length(ws);
+    let oz = abs(o.z);
+    let qa = ndf_roughness_matrix_quadratic(g.a, o.xy);
+    let kk = g.k;
+    let qs = max(kk.s_xx * o.x * o.x + 2.0 * kk.s_xy * o.x * o.y + kk.s_yy * o.y * o.y, 0.0);
+    if qs <= 0.0 {
+        return ndf_ggx_lambda_of(qa, oz);
+    }
+    if oz <= 0.0 {
+        return math_F32_MAX;
+    }
+    if qa <= 0.0 {
+        return ndf_beckmann_lambda_of(2.0 * qs, oz);
+    }
+    return filter_gaussian_ggx_quad_lambda(qa, qs, oz);
+}
+
+/// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` of the filtered lobe.
+fn filter_gaussian_ggx_g1(g: filter_gaussian_ggx_GaussianFilteredGgx, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(filter_gaussian_ggx_lambda(g, w), dot(w, m));
+}
+
+/// Height-correlated `G2(i, o, m) = chi+(i.m) chi+(o.m) / (1 + Lambda(i) + Lambda(o))` of the
+/// filtered lobe.
+fn filter_gaussian_ggx_g2(g: filter_gaussian_ggx_GaussianFilteredGgx, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g2_of(filter_gaussian_ggx_lambda(g, i), filter_gaussian_ggx_lambda(g, o), dot(i, m), dot(o, m));
+}
+
+// ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
+// LEAN mapping's moments and the nested convolution of KHPL16 section 5.5, eq. 21,
+// mirroring `src/.../filter/lean.rs`.
+
+/// First and second moments of normal-map slopes (Olano and Baker 2010), linearly
+/// filterable: `mean = E[s]`, `second = (E[s_x^2], E[s_x s_y], E[s_y^2])`.
+struct filter_lean_LeanMoments {
+    /// `(E[s_x], E[s_y])`.
+    mean: vec2<f32>,
+    /// `(E[s_x^2], E[s_x s_y], E[s_y^2])`.
+    second: vec3<f32>,
+}
+
+/// The covariance of the normal-map slopes, `E[s s^T] - E[s] E[s]^T` (LEAN eq. 5; KHPL16's
+/// `K_L`), `cov::sanitized` (mip filtering can make it slightly indefinite). Its
+/// determinant is formed from the differences (cancelling for elongated moments).
+fn filter_lean_covariance(m: filter_lean_LeanMoments) -> kernel_covariance_Covariance {
+    let c = kernel_covariance_from_entries(
+        m.second.x - m.mean.x * m.mean.x,
+        m.second.y - m.mean.x * m.mean.y,
+        m.second.z - m.mean.y * m.mean.y,
+    );
+    return kernel_covariance_sanitized(c);
+}
+
+/// `K_L * K_P * D = (K_L * K_P) * D` (KHPL16 eq. 21): the covariances add and the sum is
+/// filtered by `gaussian::gaussian` (`A' = A + 2 (Sigma_L + Sigma_P)`, `tau = det A`).
+fn filter_lean_lean(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    pixel: kernel_covariance_Covariance,
+    moments: filter_lean_LeanMoments,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian(a, kernel_covariance_add(kernel_covariance_sanitized(pixel), filter_lean_covariance(moments)));
 }
 
 // ---- filtered_ndf::footprint::jacobian (shaders/footprint/jacobian.wgsl) ----
@@ -1675,6 +1909,1228 @@ fn footprint_max_extent(fp: footprint_Footprint) -> f32 {
     return 0.5 * max(length(fp.dh_u + fp.dh_v), length(fp.dh_u - fp.dh_v));
 }
 
+// ---- filtered_ndf::filter::projected (shaders/filter/projected.wgsl) ----
+// Projected-space filtering (Tokuyoshi and Kaplanyan 2021, JCGT 10(2), Listing 1),
+// mirroring `src/.../filter/projected.rs`.
+
+/// The largest eigenvalue of `A` mapped to projected space, `0.99` (`alpha <= 0.995`).
+const filter_projected_PROJECTED_EIGEN_MAX: f32 = 0.99;
+
+/// `P = A (I - A)^-1`, `P' = P + 2 Sigma`, `A' = P' (I + P')^-1` (TK21 Listing 1): on the
+/// projected disk the GGX density is itself a GGX-shaped density of roughness `P`, and TK19's
+/// disk-derivative kernel lives in that space. Eigenvalues of `A` above `PROJECTED_EIGEN_MAX`
+/// are clamped for the projected step and the excess is added back unfiltered (as in Rust:
+/// exact below the limit, continuous, never sharpening). Evaluated with the determinant clamp
+/// `tau = det A_c` of the material (the result is the one clamped matrix of `matrix.wgsl`).
+///
+/// f32 form: in `A`'s eigenbasis `P = R diag(l / (1 - l)) R^T` exactly (no cancellation);
+/// `d = det P' = det P + 2 tr(adj(P) K) + 4 det K` as non-negative terms (TK21's `detMin`);
+/// `A' = (P' + d I) / (1 + tr P' + d)`, every term positive, with `det A' = d / (1 + tr P' + d)`
+/// exactly (so the filtered minor axis keeps its relative accuracy). The kernel is
+/// `covariance::sanitized` first.
+fn filter_projected_projected(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_projected_projected_sanitized(a, kernel_covariance_sanitized(kernel), ndf_roughness_matrix_clamped_det(a));
+}
+
+/// [`projected`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
+/// Rust `projected_with_det_clamp`).
+fn filter_projected_projected_with_det_clamp(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    kernel: kernel_covariance_Covariance,
+    det_clamp: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_projected_projected_sanitized(a, kernel_covariance_sanitized(kernel), det_clamp);
+}
+
+/// [`projected`] for a sanitised kernel `k`, with the clamp `tau` (`<= 0`: none). `A` is the
+/// material's matrix as given (a clamped material is filtered with its own `tau`, as in Rust).
+fn filter_projected_projected_sanitized(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    k: kernel_covariance_Covariance,
+    tau: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    let lc = min(a.eig, vec2<f32>(filter_projected_PROJECTED_EIGEN_MAX));
+    let excess = a.eig - lc;
+    let p = lc / (1.0 - lc);
+    let c = a.axis.x;
+    let s = a.axis.y;
+    // P in the tangent frame, and e_i^T K e_i.
+    let p11 = p.x * c * c + p.y * s * s;
+    let p12 = (p.x - p.y) * c * s;
+    let p22 = p.x * s * s + p.y * c * c;
+    let k1 = max(c * c * k.s_xx + 2.0 * c * s * k.s_xy + s * s * k.s_yy, 0.0);
+    let k2 = max(s * s * k.s_xx - 2.0 * c * s * k.s_xy + c * c * k.s_yy, 0.0);
+    let d = p.x * p.y + 2.0 * (p.y * k1 + p.x * k2) + 4.0 * max(k.det, 0.0);
+    let q11 = p11 + 2.0 * k.s_xx;
+    let q12 = p12 + 2.0 * k.s_xy;
+    let q22 = p22 + 2.0 * k.s_yy;
+    let den = 1.0 + q11 + q22 + d;
+    var b11 = (q11 + d) / den;
+    var b12 = q12 / den;
+    var b22 = (q22 + d) / den;
+    var det = d / den;
+    if max(excess.x, excess.y) > 0.0 {
+        // A rough lobe (alpha > 0.995): add the excess back; its determinant from the entries
+        // (well conditioned there).
+        b11 += excess.x * c * c + excess.y * s * s;
+        b12 += (excess.x - excess.y) * c * s;
+        b22 += excess.x * s * s + excess.y * c * c;
+        det = b11 * b22 - b12 * b12;
+    }
+    // Never below A on the diagonal (exact, by monotonicity), as in Rust.
+    let e = ndf_roughness_matrix_entries(a);
+    return ndf_roughness_matrix_from_entries_det(max(b11, e.x), b12, max(b22, e.z), det, max(tau, 0.0));
+}
+
+// ---- filtered_ndf::kernel::clamp (shaders/kernel/clamp.wgsl) ----
+// The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, GDC 2016,
+// TK19 eq. 1 and supplement), mirroring `ClampRules` of `src/.../kernel/clamp.rs`. A rule is
+// off when its bound is `F32_MAX` (`max_extent`, `kappa`; the Rust `F::INFINITY`),
+// `FLOOR_NONE`, or `det_clamp = false`. Constants mirror `ClampRules::DEFAULT`, `KHPL16`,
+// `NONE`, `GDC2016` (`*_RULES`: WGSL names may not end in a digit here, see shaders/README.md).
+
+/// No rectangle floor.
+const kernel_clamp_FLOOR_NONE: u32 = 0u;
+/// Half-extents `>= floor` on both axes (KHPL16 section 5.2, `epsilon = 1e-3`).
+const kernel_clamp_FLOOR_CONSTANT: u32 = 1u;
+/// Half-extents `>= min(alpha_axis, floor)` per axis (GDC 2016 `min(roughness, 0.1)`).
+const kernel_clamp_FLOOR_ALPHA_CAPPED: u32 = 2u;
+
+/// The clamping rules.
+struct kernel_clamp_ClampRules {
+    /// `lambda`: the largest centre-to-vertex extent of the parallelogram and the largest
+    /// rectangle half-extent (slope units).
+    max_extent: f32,
+    /// `FLOOR_NONE`, `FLOOR_CONSTANT` or `FLOOR_ALPHA_CAPPED`.
+    floor_kind: u32,
+    /// The floor's constant (`epsilon`, or the cap of `FLOOR_ALPHA_CAPPED`).
+    floor: f32,
+    /// `kappa`: the largest kernel roughness^2 `2 lambda_i(Sigma)` per eigen-direction.
+    kappa: f32,
+    /// Evaluate filtered matrices with `tau = det(A_unfiltered)`.
+    det_clamp: bool,
+}
+
+/// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
+const kernel_clamp_DEFAULT_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_CONSTANT, 1e-3, 0.18, true);
+/// KHPL16's rules for its exact kernels: `lambda = 1` (section 5.2) and the determinant clamp;
+/// no rectangle floor (the exact rectangle integral needs none), no `kappa` (a TK19 addition).
+const kernel_clamp_KHPL16_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, true);
+/// No clamping (unbiased; for references and the exact rectangle integral).
+const kernel_clamp_NO_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(math_F32_MAX, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, false);
+/// The GDC 2016 listing: `fp = clamp(fp, min(roughness, 0.1), 1)`, no `kappa`, with `tau`.
+const kernel_clamp_GDC2016_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_ALPHA_CAPPED, 0.1, math_F32_MAX, true);
+
+/// The maximum-extent rule on a parallelogram (KHPL16 section 5.2): both vectors scaled by
+/// `min(1, lambda / max_extent)`, keeping the shape. The extent is measured on the
+/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0.
+fn kernel_clamp_footprint(rules: kernel_clamp_ClampRules, fp: footprint_Footprint) -> footprint_Footprint {
+    let l = max(rules.max_extent, 0.0);
+    let scale = max(max(abs(fp.dh_u.x), abs(fp.dh_u.y)), max(abs(fp.dh_v.x), abs(fp.dh_v.y)));
+    if scale <= 0.0 {
+        return fp;
+    }
+    let unit = footprint_Footprint(fp.dh_u / scale, fp.dh_v / scale);
+    let e = footprint_max_extent(unit);
+    if e * scale <= l {
+        return fp;
+    }
+    return footprint_Footprint(unit.dh_u / e * l, unit.dh_v / e * l);
+}
+
+/// The rectangle rules: half-extents taken by magnitude, clamped to `[floor, lambda]` per
+/// axis (KHPL16 section 5.2; GDC 2016 `clamp(fp, fp_min, fp_max)`), `alpha` the lobe's
+/// per-axis roughness for `FLOOR_ALPHA_CAPPED`; if the floor exceeds `lambda` the floor wins.
+fn kernel_clamp_rect(rules: kernel_clamp_ClampRules, r: kernel_rect_BoundingRect, alpha: vec2<f32>) -> kernel_rect_BoundingRect {
+    var f = vec2<f32>(0.0);
+    if rules.floor_kind == kernel_clamp_FLOOR_CONSTANT {
+        f = vec2<f32>(rules.floor);
+    } else if rules.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED {
+        f = min(abs(alpha), vec2<f32>(rules.floor));
+    }
+    let lambda = max(rules.max_extent, 0.0);
+    let h = min(abs(r.half_extent), vec2<f32>(lambda));
+    return kernel_rect_BoundingRect(max(h, max(f, vec2<f32>(0.0))));
+}
+
+/// The kernel-roughness rule of TK19 eq. 1 in matrix form: `2 Sigma'` has the eigenvalues
+/// `min(2 lambda_i, kappa)` and `Sigma`'s eigenvectors, after `covariance::sanitized`. A
+/// negative `kappa` counts as 0.
+fn kernel_clamp_kernel(rules: kernel_clamp_ClampRules, k: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
+    let s = kernel_covariance_sanitized(k);
+    if rules.kappa >= math_F32_MAX {
+        return s;
+    }
+    return kernel_covariance_clamp_eigenvalues(s, 0.5 * max(rules.kappa, 0.0));
+}
+
+/// The determinant clamp `tau` for filtering `a` (the Rust `det_clamp_for`): `det A_c` of the
+/// unfiltered lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a
+/// clamped matrix its `max(det A, tau)`) if `det_clamp`, else 0.
+fn kernel_clamp_det_clamp_for(rules: kernel_clamp_ClampRules, a: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return select(0.0, ndf_roughness_matrix_clamped_det(a), rules.det_clamp);
+}
+
+/// The clamped pixel kernel of a footprint: [`footprint`] -> `pixel::covariance` (`sigma`
+/// pixels) -> [`kernel`] (sanitised once).
+fn kernel_clamp_pixel_kernel(rules: kernel_clamp_ClampRules, fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
+    return kernel_clamp_kernel(rules, footprint_covariance(kernel_clamp_footprint(rules, fp), sigma));
+}
+
+/// The whole Gaussian pipeline: [`footprint`] -> `pixel::covariance` (`sigma` pixels)
+/// -> [`kernel`] -> `A' = A + 2 Sigma` with `tau = det A_c` if `det_clamp` (the TK19 matrix
+/// filter; exact for Beckmann). The result is the one clamped matrix of `matrix.wgsl`.
+fn kernel_clamp_filter_gaussian(
+    rules: kernel_clamp_ClampRules,
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    fp: footprint_Footprint,
+    sigma: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian_sanitized(a, kernel_clamp_pixel_kernel(rules, fp, sigma), kernel_clamp_det_clamp_for(rules, a));
+}
+
+/// The projected-space pipeline (TK21), the rules as in [`filter_gaussian`]: [`footprint`]
+/// -> `pixel::covariance` (`sigma` pixels; the footprint of the half vector's projected-disk
+/// derivatives, TK19 section 3.2) -> [`kernel`] -> `projected::projected_sanitized` with
+/// `tau = det A_c` if `det_clamp` (the Rust `ClampRules::filter_projected`).
+fn kernel_clamp_filter_projected(
+    rules: kernel_clamp_ClampRules,
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    fp: footprint_Footprint,
+    sigma: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_projected_projected_sanitized(a, kernel_clamp_pixel_kernel(rules, fp, sigma), kernel_clamp_det_clamp_for(rules, a));
+}
+
+// ---- filtered_ndf::filter::proxy (shaders/filter/proxy.wgsl) ----
+// The GGX proxy of KHPL16 section 5.4 (eq. 18-20), mirroring `src/.../filter/proxy.rs`: an
+// effective roughness whose unfiltered GGX has the peak of the box-filtered GGX. Eq. 19
+// solved: `alpha'^2 = (alpha^2 + H^2) t / atan(t)`, `t = H / sqrt(alpha^2 + H^2)`, with `H`
+// the half extent (eq. 20 as printed is inconsistent with eq. 19; see the Rust docs).
+
+/// The exact effective roughness of one axis (KHPL16 eq. 19 solved):
+/// `alpha' = sqrt(alpha^2 + H^2) sqrt(t / atan t)`, `t = H / sqrt(alpha^2 + H^2)`, with the
+/// driver-independent `math::atan` (8 ulp): within 12 ulp. `alpha' = alpha` at `H = 0`;
+/// `H` is used by magnitude. Domain: `alpha > 0`.
+fn filter_proxy_effective_alpha(alpha: f32, half_extent: f32) -> f32 {
+    let h = abs(half_extent);
+    let s = math_hypot(alpha, h);
+    let t = select(0.0, h / s, s > 0.0);
+    let ratio = select(1.0, t / math_atan(t), t > 0.0);
+    return s * sqrt(ratio);
+}
+
+/// The simple form of KHPL16 eq. 20 for one axis, `sqrt(alpha^2 + H^2)` with `H` the half
+/// extent (within 11.4 % below [`effective_alpha`]). Within 8 ulp.
+fn filter_proxy_effective_alpha_simple(alpha: f32, half_extent: f32) -> f32 {
+    return math_hypot(alpha, abs(half_extent));
+}
+
+/// The exact GGX proxy roughness per axis, clamped into the supported range
+/// (`axis_aligned::from_alpha`). `half_extent` is the filtering rectangle's.
+fn filter_proxy_proxy(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>) -> ndf_roughness_axis_aligned_AxisAligned {
+    return ndf_roughness_axis_aligned_from_alpha(vec2<f32>(
+        filter_proxy_effective_alpha(r.alpha.x, half_extent.x),
+        filter_proxy_effective_alpha(r.alpha.y, half_extent.y),
+    ));
+}
+
+/// The simple GGX proxy roughness per axis, clamped.
+fn filter_proxy_proxy_simple(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>) -> ndf_roughness_axis_aligned_AxisAligned {
+    return ndf_roughness_axis_aligned_from_alpha(vec2<f32>(
+        filter_proxy_effective_alpha_simple(r.alpha.x, half_extent.x),
+        filter_proxy_effective_alpha_simple(r.alpha.y, half_extent.y),
+    ));
+}
+
+// ---- filtered_ndf::filter::rect (shaders/filter/rect.wgsl) ----
+// The exact box filter of GGX (KHPL16 eq. 16 and Appendix A; GDC 2016 `GGXRectIntegral`),
+// mirroring `src/.../filter/rect.rs`: the average of the axis-aligned GGX slope density over
+// an axis-aligned slope-domain rectangle, and its solid-angle form.
+//
+// With `u = x / alpha_x`, `v = y / alpha_y` the density is `f(u, v) / (pi alpha_x alpha_y)`,
+// `f = (1 + u^2 + v^2)^-2`, and the filter is the mean of `f` over
+// `[u_c +- H_u] x [v_c +- H_v]`. The printed eight-term formula cancels catastrophically (in
+// f32 already for moderate rectangles). The f32 algorithm here follows the Rust tiers, every
+// path a sum of positive terms or a signed sum of four terms that do not cancel much:
+// - each axis is carried as its normalised interval, the ends formed as `(c -+ |h|) / alpha`
+//   before normalising ([`interval`]), so that a rectangle ending close to the peak keeps its
+//   distance to the accuracy of its ends;
+// - per axis, from its ratio `H / L` (`L^2 = 1 + (centre)^2 + (distance of the rectangle from
+//   the peak along the other axis)^2`, the distance to the density's complex poles):
+//   Gauss-Legendre with 2 nodes below `0.01`, 4 below `0.1`, 6 below `0.25` (error
+//   `~(H / 2L)^(2n)`, below `1e-8` at each switch: invisible in f32), the closed form above;
+// - both axes short: the tensor Gauss-Legendre rule;
+// - one axis long: the rule in the short axis of the exact 1D mean in the long one
+//   ([`mean_1d`], written without cancellation; its `atan` is `math::atan`);
+// - both long, within `sqrt(FAR2) = 0.5` (normalised) of the peak: the four-edge closed form
+//   ([`edges`]), whose four terms are angles of order one;
+// - both long and farther: the polar form of the Rust `far_field` ([`far_field`]): the
+//   integral is `-1/2` times the contour integral of `g d theta`, `g = 1 / (1 + r^2)`, one
+//   positive integral per edge, each split where `|y| = |x|` and taken by the 8-point
+//   Gauss-Legendre rule in `y / |x|` or `|x| / y` (rational in both: no `sin`/`cos`, whose
+//   WGSL accuracy is absolute). The four-edge form there cancelled like `1e-6 D^2` in f32
+//   (up to `0.25` relative far in the tail of sharp lobes); measured on lavapipe over
+//   rectangles with both sides long at distances `D` from `1e-2` to `1e6` lobe widths: the
+//   four-edge form within `4e-7` below `D = 0.3` and `3e-5` at `D ~ 3`, the polar form within
+//   `5e-7` beyond `D = 0.5` (`2e-4` at `D = 0.1`, where its poles come close): the switch at
+//   `0.5`.
+// Bound: about 60 ulp for the Gauss-Legendre and 1D paths (the ends and half extents enter
+// normalised, 5 ulp each, and `f` amplifies a relative change of `u` by at most 4; the nodes'
+// `f` 9 ulp; `mean_1d` 20 ulp), and for the two four-term forms 60 ulp plus 16 ulp times
+// their cancellation factor `sum |t_i| / |sum t_i|`, of order one (`gpu/src/checks/rect.rs`
+// computes it per case; measured worst over its far-tail cases `4e-7`). [`d_rect`] forms the
+// slope `-h_xy / h_z` in f32 (3 ulp), which a rectangle ending close to the peak amplifies
+// by `|u_c| / gap`.
+
+/// Normalised coordinates are clamped to this (`f` is below `1e-72` there, 0 in f32).
+const filter_rect_BIG: f32 = 1e18;
+
+/// Squared distance (normalised) of a rectangle with two long sides from the peak beyond
+/// which [`far_field`] replaces the four-edge closed form [`edges`] (module docs).
+const filter_rect_FAR2: f32 = 0.25;
+
+/// The tier of an axis: 2, 4 or 6 Gauss-Legendre nodes, or the closed form (`TIER_CLOSED`).
+const filter_rect_TIER_CLOSED: u32 = 0u;
+
+/// The tier of an axis from `H^2` and `L^2` (module docs): the number of nodes, or
+/// `TIER_CLOSED`.
+fn filter_rect_tier(h2: f32, l2: f32) -> u32 {
+    if h2 < 1e-4 * l2 {
+        return 2u;
+    }
+    if h2 < 1e-2 * l2 {
+        return 4u;
+    }
+    if h2 < 0.0625 * l2 {
+        return 6u;
+    }
+    return filter_rect_TIER_CLOSED;
+}
+
+/// The `k`-th positive Gauss-Legendre node on `[-1, 1]` of the `n`-node rule.
+fn filter_rect_gl_node(n: u32, k: u32) -> f32 {
+    if n == 2u {
+        return 0.5773502691896258;
+    }
+    if n == 4u {
+        return select(0.8611363115940526, 0.3399810435848563, k == 0u);
+    }
+    if k == 0u {
+        return 0.2386191860831969;
+    }
+    return select(0.932469514203152, 0.6612093864662645, k == 1u);
+}
+
+/// The `k`-th weight of the `n`-node rule, halved (the rule then averages over `[-1, 1]`).
+fn filter_rect_gl_weight(n: u32, k: u32) -> f32 {
+    if n == 2u {
+        return 0.5;
+    }
+    if n == 4u {
+        return select(0.17392742256872693, 0.32607257743127307, k == 0u);
+    }
+    if k == 0u {
+        return 0.2339569672863455;
+    }
+    return select(0.0856622461895852, 0.1803807865240693, k == 1u);
+}
+
+/// `f(u, v) = (1 + u^2 + v^2)^-2` (0 where the square overflows).
+fn filter_rect_f(u: f32, v: f32) -> f32 {
+    let t = 1.0 + u * u + v * v;
+    return 1.0 / (t * t);
+}
+
+/// The mean of `f(u, .)` over `[c - h, c + h]` by the `n`-node rule (sum of positive terms).
+fn filter_rect_gl_mean(n: u32, u: f32, c: f32, h: f32) -> f32 {
+    var acc = 0.0;
+    for (var k = 0u; k < n / 2u; k++) {
+        let a = h * filter_rect_gl_node(n, k);
+        acc += filter_rect_gl_weight(n, k) * (filter_rect_f(u, c - a) + filter_rect_f(u, c + a));
+    }
+    return acc;
+}
+
+/// `atan2(y, x)` for `y > 0`, in `(0, pi)`, with one `math::atan`.
+fn filter_rect_atan2_upper(y: f32, x: f32) -> f32 {
+    if x > 0.0 {
+        return math_atan(y / x);
+    }
+    return math_HALF_PI + math_atan(-x / y);
+}
+
+/// `delta - sin(delta)` for `delta` in `[0, pi]` given `sin(delta)` (a series below 1, where
+/// the difference cancels; its next term is below `1e-9` relative at 1).
+fn filter_rect_delta_minus_sin(d: f32, sin_d: f32) -> f32 {
+    if d < 1.0 {
+        let d2 = d * d;
+        var s = 1.0 - d2 * (1.0 / 72.0) * (1.0 - d2 * (1.0 / 110.0));
+        s = 1.0 - d2 * (1.0 / 42.0) * s;
+        s = 1.0 - d2 * (1.0 / 20.0) * s;
+        return d * d2 * (1.0 / 6.0) * s;
+    }
+    return d - sin_d;
+}
+
+/// The exact mean of `(c2 + x^2)^-2` over the interval `i` of an axis (`hx > 0`, `c2 >= 1`)
+/// without cancellation (the Rust `mean_1d`): reflected so that `x0 = |x_c| - hx`,
+/// `x1 = |x_c| + hx` (the ends as given, not recomputed from the centre), with `c^2 = c2`,
+/// `delta = atan(x1 / c) - atan(x0 / c) = atan2(c dx, c2 + x0 x1)` and `r_i^2 = c2 + x_i^2`,
+/// `int = delta / (2 c^3) + dx (c2 - x0 x1) / (2 c2 r0^2 r1^2)` when the interval straddles
+/// 0, else `(delta - sin delta) / (2 c^3) + dx / (2 r0^2 r1^2) [1 + (x0^2 + x1^2 + c2) /
+/// (r0 r1 + x0 x1)]`, all terms positive.
+fn filter_rect_mean_1d(i: vec4<f32>, c2: f32) -> f32 {
+    let x0 = select(-i.y, i.x, i.z >= 0.0);
+    let x1 = select(-i.x, i.y, i.z >= 0.0);
+    let dx = 2.0 * i.w;
+    let c = sqrt(c2);
+    let r02 = c2 + x0 * x0;
+    let r12 = c2 + x1 * x1;
+    let x01 = x0 * x1;
+    let d = filter_rect_atan2_upper(c * dx, c2 + x01);
+    let inv = 1.0 / (2.0 * c * c2 * dx);
+    let p2 = 2.0 * r02 * r12;
+    if x0 <= 0.0 {
+        // Divided in two steps: `c2 p2` overflows f32 for coordinates beyond ~1e6.
+        return d * inv + (c2 - x01) / p2 / c2;
+    }
+    let rr = sqrt(r02) * sqrt(r12);
+    return filter_rect_delta_minus_sin(d, c * dx / rr) * inv + (1.0 + (x0 * x0 + x1 * x1 + c2) / (rr + x01)) / p2;
+}
+
+/// The mean of `g(x) = mean_1d(other, 1 + x^2)` over `[c - h, c + h]` by the `n`-node rule.
+fn filter_rect_gl_mean_1d(n: u32, c: f32, h: f32, other: vec4<f32>) -> f32 {
+    var acc = 0.0;
+    for (var k = 0u; k < n / 2u; k++) {
+        let a = h * filter_rect_gl_node(n, k);
+        let x0 = c - a;
+        let x1 = c + a;
+        acc += filter_rect_gl_weight(n, k) * (filter_rect_mean_1d(other, 1.0 + x0 * x0) + filter_rect_mean_1d(other, 1.0 + x1 * x1));
+    }
+    return acc;
+}
+
+/// One edge of the contour form: `u / S atan2(dv S, S^2 + v0 v1)`, `S = sqrt(1 + u^2)`.
+fn filter_rect_edge(u: f32, dv: f32, v01: f32) -> f32 {
+    let s2 = 1.0 + u * u;
+    let s = sqrt(s2);
+    return u / s * filter_rect_atan2_upper(dv * s, s2 + v01);
+}
+
+/// The four-edge closed form (Lambert's contour form; KHPL16 Appendix A with each edge's two
+/// arctangents merged): the mean of `f` over the rectangle of the axis intervals `u`, `v`.
+/// Cancels away from the peak (module docs): used within `sqrt(FAR2)` of it.
+fn filter_rect_edges(u: vec4<f32>, v: vec4<f32>) -> f32 {
+    let du = 2.0 * u.w;
+    let dv = 2.0 * v.w;
+    let v01 = v.x * v.y;
+    let u01 = u.x * u.y;
+    let i = 0.5 * ((filter_rect_edge(u.y, dv, v01) - filter_rect_edge(u.x, dv, v01)) + (filter_rect_edge(v.y, du, u01) - filter_rect_edge(v.x, du, u01)));
+    return i / (du * dv);
+}
+
+/// The positive nodes of the 8-point Gauss-Legendre rule on `[-1, 1]`.
+fn filter_rect_gl8_node(k: u32) -> f32 {
+    if k == 0u {
+        return 0.1834346424956498;
+    }
+    if k == 1u {
+        return 0.525532409916329;
+    }
+    return select(0.9602898564975363, 0.7966664774136267, k == 2u);
+}
+
+/// The weights of the 8-point rule, halved (the rule then averages over `[-1, 1]`).
+fn filter_rect_gl8_weight(k: u32) -> f32 {
+    if k == 0u {
+        return 0.181341891689181;
+    }
+    if k == 1u {
+        return 0.15685332293894364;
+    }
+    return select(0.05061426814518813, 0.11119051722668724, k == 2u);
+}
+
+/// `integral over tau in [lo, hi] of 1 / ((1 + tau^2)(1 + x2 (1 + tau^2)))` (`[lo, hi]` in
+/// `[0, 1]`), by the 8-point rule: the part `|y| <= |x|` of an edge of [`far_field`], in
+/// `tau = y / |x|`. Poles at `tau = +-i` and `+-i sqrt(1 + 1 / x2)`: at least `1` from the
+/// segment, whose length is at most 1 (error below `2.4e-11` relative, from the Bernstein
+/// ellipse through `i` of `[0, 1]`, `rho = 4.6`).
+fn filter_rect_polar_near(x2: f32, lo: f32, hi: f32) -> f32 {
+    let c = 0.5 * (lo + hi);
+    let h = 0.5 * (hi - lo);
+    var acc = 0.0;
+    for (var k = 0u; k < 4u; k++) {
+        let d = h * filter_rect_gl8_node(k);
+        let q0 = 1.0 + (c - d) * (c - d);
+        let q1 = 1.0 + (c + d) * (c + d);
+        acc += filter_rect_gl8_weight(k) * (1.0 / (q0 * (1.0 + x2 * q0)) + 1.0 / (q1 * (1.0 + x2 * q1)));
+    }
+    return acc * (hi - lo);
+}
+
+/// `integral over t in [lo, hi] of t^2 / ((1 + t^2)(t^2 + x2 (1 + t^2)))` (`[lo, hi]` in
+/// `[0, 1]`), by the 8-point rule: the part `|y| >= |x|` of an edge of [`far_field`], in
+/// `t = |x| / |y|`. Poles at `t = +-i` and `+-i |x| / sqrt(1 + x2)`; with every point of the
+/// rectangle at least `sqrt(FAR2)` from the peak the segment ends at `|x| / |y| <= |x| /
+/// sqrt(FAR2 - x2)` (module docs), at least `2.4` half-lengths from the nearer pole
+/// (`rho >= 4.6`: error below `2.4e-11` relative).
+fn filter_rect_polar_far(x2: f32, lo: f32, hi: f32) -> f32 {
+    let c = 0.5 * (lo + hi);
+    let h = 0.5 * (hi - lo);
+    var acc = 0.0;
+    for (var k = 0u; k < 4u; k++) {
+        let d = h * filter_rect_gl8_node(k);
+        let t0 = (c - d) * (c - d);
+        let t1 = (c + d) * (c + d);
+        acc += filter_rect_gl8_weight(k) * (t0 / ((1.0 + t0) * (t0 + x2 * (1.0 + t0))) + t1 / ((1.0 + t1) * (t1 + x2 * (1.0 + t1))));
+    }
+    return acc * (hi - lo);
+}
+
+/// `integral over y in [a, b] of |x| / ((x^2 + y^2)(1 + x^2 + y^2))` for `0 <= a <= b` and
+/// `ax = |x| > 0`: the integral of `g d theta` along the edge `{x} x [a, b]` (`g = 1 / (1 + r^2)`,
+/// `theta` the polar angle about the peak), split at `y = |x|` into [`polar_near`] and
+/// [`polar_far`], both sums of positive terms.
+fn filter_rect_edge_range(ax: f32, a: f32, b: f32) -> f32 {
+    let x2 = ax * ax;
+    var v = 0.0;
+    if a < ax {
+        v += filter_rect_polar_near(x2, a / ax, min(b, ax) / ax);
+    }
+    if b > ax {
+        v += filter_rect_polar_far(x2, ax / b, ax / max(a, ax));
+    }
+    return v;
+}
+
+/// `sign(x)` times the integral of `g d theta` along the edge `{x} x [a, b]`, `a < b` (either
+/// orientation of the axes). An edge within `1e-12` of the axis through the peak contributes at
+/// most `1e-12` of the rectangle's integral (its angle integral is below `|x| (1/a - 1/b)`): 0.
+fn filter_rect_edge_polar(x: f32, a: f32, b: f32) -> f32 {
+    let ax = abs(x);
+    if ax < 1e-12 {
+        return 0.0;
+    }
+    var v: f32;
+    if a >= 0.0 {
+        v = filter_rect_edge_range(ax, a, b);
+    } else if b <= 0.0 {
+        v = filter_rect_edge_range(ax, -b, -a);
+    } else {
+        v = filter_rect_edge_range(ax, 0.0, -a) + filter_rect_edge_range(ax, 0.0, b);
+    }
+    return select(-v, v, x > 0.0);
+}
+
+/// The mean of `f` over a rectangle whose every point is at least `sqrt(FAR2)` from the peak
+/// (both sides long), by the polar form of the Rust `far_field` (module docs): with
+/// `g(r) = 1 / (1 + r^2)`, `f dA` is the exterior derivative of `-g / 2 d theta`, so the
+/// integral is `-1/2` times the contour integral of `g d theta`, one positive integral per
+/// edge ([`edge_polar`]); the four terms are those of the near and far sides seen from the
+/// peak and do not cancel like the four-edge closed form's angles.
+fn filter_rect_far_field(u: vec4<f32>, v: vec4<f32>) -> f32 {
+    let i = -0.5 * ((filter_rect_edge_polar(u.y, v.x, v.y) - filter_rect_edge_polar(u.x, v.x, v.y)) + (filter_rect_edge_polar(v.y, u.x, u.y) - filter_rect_edge_polar(v.x, u.x, u.y)));
+    return i / (4.0 * u.w * v.w);
+}
+
+/// The distance of an axis interval from 0 (0 if it contains 0), from its ends.
+fn filter_rect_gap(i: vec4<f32>) -> f32 {
+    return max(max(i.x, -i.y), 0.0);
+}
+
+/// The mean of `f` over the rectangle of the axis intervals `u`, `v` by the tiers of the
+/// module docs. An interval is `(lo, hi, centre, half)` in normalised coordinates, its ends
+/// formed from the slope-domain centre and half extent before normalising
+/// ([`interval`]): where a rectangle ends close to the peak, its distance is then as accurate
+/// as the ends (recomputing it as `centre - half` after normalising would cancel).
+fn filter_rect_mean_f(u: vec4<f32>, v: vec4<f32>) -> f32 {
+    let du = filter_rect_gap(u);
+    let dv = filter_rect_gap(v);
+    let tu = filter_rect_tier(u.w * u.w, 1.0 + u.z * u.z + dv * dv);
+    let tv = filter_rect_tier(v.w * v.w, 1.0 + v.z * v.z + du * du);
+    if tu == filter_rect_TIER_CLOSED && tv == filter_rect_TIER_CLOSED {
+        if du * du + dv * dv > filter_rect_FAR2 {
+            return filter_rect_far_field(u, v);
+        }
+        return filter_rect_edges(u, v);
+    }
+    if tu == filter_rect_TIER_CLOSED {
+        return filter_rect_gl_mean_1d(tv, v.z, v.w, u);
+    }
+    if tv == filter_rect_TIER_CLOSED {
+        return filter_rect_gl_mean_1d(tu, u.z, u.w, v);
+    }
+    var acc = 0.0;
+    for (var k = 0u; k < tu / 2u; k++) {
+        let a = u.w * filter_rect_gl_node(tu, k);
+        acc += filter_rect_gl_weight(tu, k) * (filter_rect_gl_mean(tv, u.z - a, v.z, v.w) + filter_rect_gl_mean(tv, u.z + a, v.z, v.w));
+    }
+    return acc;
+}
+
+/// The normalised interval `(lo, hi, centre, half)` of one axis of the rectangle
+/// `c +- h` for roughness `a` (`h` by magnitude), each clamped to `+-BIG`: the ends as
+/// `(c -+ |h|) / a`, one rounding before the division.
+fn filter_rect_interval(c: f32, h: f32, a: f32) -> vec4<f32> {
+    let ah = abs(h);
+    let lo = clamp((c - ah) / a, -filter_rect_BIG, filter_rect_BIG);
+    let hi = clamp((c + ah) / a, -filter_rect_BIG, filter_rect_BIG);
+    return vec4<f32>(lo, hi, clamp(c / a, -filter_rect_BIG, filter_rect_BIG), min(ah / a, filter_rect_BIG));
+}
+
+/// Exact box-filtered GGX slope density: the average of the axis-aligned GGX `P22` over the
+/// slope-domain rectangle `center +- half_extent` (KHPL16 eq. 16, normalised by the area as
+/// eq. 16 does; Appendix A's normalisation is four times too large). Half extents count by
+/// magnitude; both zero gives the unfiltered `P22`. Accuracy in the module docs. Never
+/// negative.
+fn filter_rect_p22_rect(r: ndf_roughness_axis_aligned_AxisAligned, center: vec2<f32>, half_extent: vec2<f32>) -> f32 {
+    if half_extent.x == 0.0 && half_extent.y == 0.0 {
+        return ndf_ggx_p22_axis_aligned(r, center);
+    }
+    let a = r.alpha;
+    let u = filter_rect_interval(center.x, half_extent.x, a.x);
+    let v = filter_rect_interval(center.y, half_extent.y, a.y);
+    return max(filter_rect_mean_f(u, v) * (math_INV_PI / (a.x * a.y)), 0.0);
+}
+
+/// Exact box-filtered GGX per steradian: [`p22_rect`] at the slope `-h_xy / h_z` of the unit
+/// half vector, divided by `h_z^4` (TK19 supplement; the GDC listing without its
+/// `max(1e-3, h_z^4)` clamp). `0` for `h_z <= 0`; a zero footprint gives the unfiltered `D`;
+/// a value beyond the f32 range saturates at `F32_MAX`.
+fn filter_rect_d_rect(r: ndf_roughness_axis_aligned_AxisAligned, h: vec3<f32>, half_extent: vec2<f32>) -> f32 {
+    if !(h.z > 0.0) {
+        return 0.0;
+    }
+    if half_extent.x == 0.0 && half_extent.y == 0.0 {
+        return ndf_ggx_d_axis_aligned(r, h);
+    }
+    let p = filter_rect_p22_rect(r, -h.xy / h.z, half_extent);
+    let z2 = h.z * h.z;
+    return min(p / (z2 * z2), math_F32_MAX);
+}
+
+/// The GDC 2016 listing `GGXRectIntegral` as printed (the eight-term difference of KHPL16
+/// Appendix A over `[hpp - footprint, hpp + footprint]`, divided by `2 pi (x1 - x2)(y1 - y2)`
+/// and by `max(1e-3, h_z^4)`), with `math::atan`: the baseline engines ship. It cancels
+/// catastrophically for small footprints and far from the peak (use [`d_rect`]): its error
+/// is about `16 eps` times the sum of the magnitudes of its eight terms, over the result. A
+/// zero footprint gives 0 (the listing's `0 / 0`).
+fn filter_rect_d_rect_printed(r: ndf_roughness_axis_aligned_AxisAligned, hpp: vec2<f32>, h: vec3<f32>, footprint: vec2<f32>) -> f32 {
+    let a = r.alpha.x;
+    let b = r.alpha.y;
+    let a_2 = a * a;
+    let b_2 = b * b;
+    let x1 = hpp.x - footprint.x;
+    let x2 = hpp.x + footprint.x;
+    let y1 = hpp.y - footprint.y;
+    let y2 = hpp.y + footprint.y;
+    let sx1 = sqrt(x1 * x1 + a_2);
+    let sx2 = sqrt(x2 * x2 + a_2);
+    let sy1 = sqrt(y1 * y1 + b_2);
+    let sy2 = sqrt(y2 * y2 + b_2);
+    let val = (x1 * (math_atan((y1 * a) / (sx1 * b)) - math_atan((y2 * a) / (sx1 * b)))) / sx1
+        + (x2 * (-math_atan((y1 * a) / (sx2 * b)) + math_atan((y2 * a) / (sx2 * b)))) / sx2
+        + (y1 * sy2 * (math_atan((x1 * b) / (a * sy1)) - math_atan((x2 * b) / (a * sy1)))
+            + y2 * sy1 * (-math_atan((x1 * b) / (a * sy2)) + math_atan((x2 * b) / (a * sy2))))
+            / (sy1 * sy2);
+    let den = (2.0 * math_PI) * (x1 - x2) * (y1 - y2);
+    let hz4 = h.z * h.z * h.z * h.z;
+    let v = val / den / max(hz4, 1e-3);
+    return select(0.0, v, abs(v) <= math_F32_MAX && den != 0.0);
+}
+
+// ---- filtered_ndf::filter::rect::lambda (shaders/filter/rect/lambda.wgsl) ----
+// Smith `Lambda` of the box-filtered GGX (`src/.../filter/rect/lambda.rs`): the masking
+// function of the slope distribution that `rect::p22_rect` and `rect::d_rect` describe, so
+// that `d`, `g1 = 1 / (1 + Lambda)` and `g2` of the box lobe are one distribution.
+//
+// With `u` the unit azimuth of `w_xy`, `mu = |w_z| / |w_xy|` and everything in units of the
+// projected roughness `a = sqrt(u^T A u)`: `Lambda = E[psi(m - V_1 - V_2)] / m`, `m = mu / a`,
+// `V_i` uniform on `[-k_i, k_i]` (`k_i = |u_i| H_i / a`, the box projected on `u`), and
+// `psi(t) = (sqrt(1 + t^2) - t) / 2` (GGX's 1D marginal: `E[(X - t)+]`). The expectation is
+// taken by the Rust tiers (the Gauss-Legendre tiers of `rect`, with `psi`'s branch points at
+// `+-i`): both sides short, the tensor rule of `psi`; a long side, the rule in the short side
+// of the exact mean of `psi` over the long one (`Psi_1` differences without cancellation,
+// [`psi1_diff`]); otherwise differences of the antiderivatives `Psi_1`, `Psi_2`, which lose
+// at most about `ln(2 m) / 0.5` (the outer difference) times 4 (the inner one), i.e. up to
+// `~80` ulp at `m = 1e4`.
+//
+// f32 form: `sqrt(1 + t^2)` scaled for `|t| > 1` (no overflow), `asinh` by the
+// driver-independent `math::ln` / `math::ln_1p`, normalised half extents clamped to `1e12`
+// (the Rust crate clamps at `1e60`; `Psi_2`'s cube stays finite below `4e12`: only boxes
+// wider than `1e12` lobe widths, beyond every clamp rule, differ), and `m > 1e18` answers the
+// box-free `1 / (4 m^2)` (the box's correction `(k / m)^2 <= 1e-12`).
+//
+// Conditioning (as in Rust): where the box's far edge meets `mu` (`|m - k_l| ~ 1`), `Lambda`'s
+// relative sensitivity to `m - k_l` is about `m / 5`. The Rust crate forms `m - k_l` with a
+// fused multiply-add; WGSL's `fma` may be evaluated unfused, so here `|w_z| - |w_l| H_l` is
+// formed in f32 (its product rounded once): the result carries `Lambda`'s condition number
+// with respect to its inputs times a few ulp (`gpu/src/checks/rect.rs` computes it per case).
+
+/// Normalised half extents are clamped to this (module docs).
+const filter_rect_lambda_BIG_K: f32 = 1e12;
+
+/// `sqrt(1 + t^2)` without overflow.
+fn filter_rect_lambda_rho(t: f32) -> f32 {
+    let a = abs(t);
+    if a > 1.0 {
+        let i = 1.0 / a;
+        return a * sqrt(1.0 + i * i);
+    }
+    return sqrt(1.0 + t * t);
+}
+
+/// `e^(-asinh t) = sqrt(1 + t^2) - t` without cancellation, given `r = sqrt(1 + t^2)`.
+fn filter_rect_lambda_e_neg(t: f32, r: f32) -> f32 {
+    return select(r - t, 1.0 / (r + t), t >= 0.0);
+}
+
+/// `asinh(t)` given `r = sqrt(1 + t^2)`: `ln(|t| + r)` above 1, `ln_1p(|t| + t^2 / (1 + r))`
+/// below (no cancellation), odd.
+fn filter_rect_lambda_asinh_of(t: f32, r: f32) -> f32 {
+    let a = abs(t);
+    var v: f32;
+    if a > 1.0 {
+        v = math_ln(a + r);
+    } else {
+        v = math_ln_1p(a + a * a / (1.0 + r));
+    }
+    return select(v, -v, t < 0.0);
+}
+
+/// `psi(t) = (sqrt(1 + t^2) - t) / 2`.
+fn filter_rect_lambda_psi(t: f32) -> f32 {
+    return 0.5 * filter_rect_lambda_e_neg(t, filter_rect_lambda_rho(t));
+}
+
+/// `Psi_1(t) = (asinh t - E^2 / 2) / 4`, an antiderivative of `psi` (`E = e^(-asinh t)`).
+fn filter_rect_lambda_psi1(t: f32) -> f32 {
+    let r = filter_rect_lambda_rho(t);
+    let e = filter_rect_lambda_e_neg(t, r);
+    return 0.25 * (filter_rect_lambda_asinh_of(t, r) - 0.5 * e * e);
+}
+
+/// `Psi_2(t) = (t asinh t - rho + E / 4 + E^3 / 12) / 4`, an antiderivative of `Psi_1`.
+fn filter_rect_lambda_psi2(t: f32) -> f32 {
+    let r = filter_rect_lambda_rho(t);
+    let e = filter_rect_lambda_e_neg(t, r);
+    return 0.25 * (t * filter_rect_lambda_asinh_of(t, r) - r + 0.25 * e + e * e * e * (1.0 / 12.0));
+}
+
+/// `Psi_1(t1) - Psi_1(t0)` for `w = t1 - t0 >= 0` given exactly:
+/// `(ln_1p(d / E_1) + d (E_0 + E_1) / 2) / 4`, `d = E_0 - E_1 = w (E_0 + E_1) / (rho_0 + rho_1)`;
+/// all terms `>= 0`.
+fn filter_rect_lambda_psi1_diff(t0: f32, t1: f32, w: f32) -> f32 {
+    let r0 = filter_rect_lambda_rho(t0);
+    let r1 = filter_rect_lambda_rho(t1);
+    let e0 = filter_rect_lambda_e_neg(t0, r0);
+    let e1 = filter_rect_lambda_e_neg(t1, r1);
+    let s = e0 + e1;
+    let d = w * s / (r0 + r1);
+    return 0.25 * (math_ln_1p(d / e1) + 0.5 * d * s);
+}
+
+/// The mean of `psi` over `[t0, t1]`, `w = t1 - t0 > 0` given exactly.
+fn filter_rect_lambda_mean_psi(t0: f32, t1: f32, w: f32) -> f32 {
+    return filter_rect_lambda_psi1_diff(t0, t1, w) / w;
+}
+
+/// The Gauss-Legendre rule of a tier (`rect`'s `tier`; the closed tier takes the 6-point
+/// rule, as the Rust `rule`).
+fn filter_rect_lambda_rule(t: u32) -> u32 {
+    return select(t, 6u, t == filter_rect_TIER_CLOSED);
+}
+
+/// `A(t)`: the mean of `Psi_1` over `[t - k, t + k]`, by Gauss-Legendre while `k` is short
+/// next to `sqrt(1 + t^2)`, else the closed difference of `Psi_2`.
+fn filter_rect_lambda_mean_psi1(t: f32, k: f32) -> f32 {
+    if k == 0.0 {
+        return filter_rect_lambda_psi1(t);
+    }
+    let tt = filter_rect_tier(k * k, 1.0 + t * t);
+    if tt == filter_rect_TIER_CLOSED {
+        return (filter_rect_lambda_psi2(t + k) - filter_rect_lambda_psi2(t - k)) / (2.0 * k);
+    }
+    var acc = 0.0;
+    for (var j = 0u; j < tt / 2u; j++) {
+        let a = k * filter_rect_gl_node(tt, j);
+        acc += filter_rect_gl_weight(tt, j) * (filter_rect_lambda_psi1(t - a) + filter_rect_lambda_psi1(t + a));
+    }
+    return acc;
+}
+
+/// The mean of `psi` over `[c - h, c + h]` by the rule of tier `t`.
+fn filter_rect_lambda_gl_psi(t: u32, c: f32, h: f32) -> f32 {
+    let n = filter_rect_lambda_rule(t);
+    var acc = 0.0;
+    for (var j = 0u; j < n / 2u; j++) {
+        let a = h * filter_rect_gl_node(n, j);
+        acc += filter_rect_gl_weight(n, j) * (filter_rect_lambda_psi(c - a) + filter_rect_lambda_psi(c + a));
+    }
+    return acc;
+}
+
+/// `E[psi(m - V_1 - V_2)]` for `m >= 0`, `V_i` uniform on `[-k_i, k_i]`, `k_i >= 0` finite and
+/// not both zero (the Rust `expected_psi`, its three cases). `lo` is `m - max(k_1, k_2)`, formed
+/// by the caller from the inputs (module docs, conditioning).
+fn filter_rect_lambda_expected_psi(m: f32, k1: f32, k2: f32, lo: f32) -> f32 {
+    let ks = min(k1, k2);
+    let kl = max(k1, k2);
+    let near_l = max(m - ks, 0.0);
+    let tl = filter_rect_tier(kl * kl, 1.0 + near_l * near_l);
+    if tl != filter_rect_TIER_CLOSED {
+        // Case 1: both short, the tensor rule.
+        let near_s = max(m - kl, 0.0);
+        let ts = filter_rect_tier(ks * ks, 1.0 + near_s * near_s);
+        var acc = 0.0;
+        for (var j = 0u; j < tl / 2u; j++) {
+            let a = kl * filter_rect_gl_node(tl, j);
+            acc += filter_rect_gl_weight(tl, j) * (filter_rect_lambda_gl_psi(ts, m - a, ks) + filter_rect_lambda_gl_psi(ts, m + a, ks));
+        }
+        return acc;
+    }
+    let hi = m + kl;
+    let w = 2.0 * kl;
+    if ks == 0.0 {
+        return filter_rect_lambda_mean_psi(lo, hi, w);
+    }
+    let ts = filter_rect_tier(ks * ks, 1.0 + lo * lo);
+    if ts != filter_rect_TIER_CLOSED {
+        // Case 2: the rule in the short side of the exact mean over the long one.
+        var acc = 0.0;
+        for (var j = 0u; j < ts / 2u; j++) {
+            let x = ks * filter_rect_gl_node(ts, j);
+            acc += filter_rect_gl_weight(ts, j) * (filter_rect_lambda_mean_psi(lo + x, hi + x, w) + filter_rect_lambda_mean_psi(lo - x, hi - x, w));
+        }
+        return acc;
+    }
+    // Case 3.
+    return (filter_rect_lambda_mean_psi1(hi, ks) - filter_rect_lambda_mean_psi1(lo, ks)) / w;
+}
+
+/// Exact Smith `Lambda` of the box-filtered GGX (the Rust `lambda_rect`): the masking function
+/// of the slope distribution `rect::p22_rect` averages (`Lambda(w) = (1 / mu) E[(q - mu)+]`
+/// over `s = g + delta`, `g` GGX of roughness `r`, `delta` uniform on
+/// `[-half_extent, half_extent]`), so that `g1 = 1 / (1 + Lambda)` and `rect::d_rect` satisfy
+/// the Smith normalisation `integral of G1(w, m) max(0, w.m) D(m) dm = w_z`.
+///
+/// Uses `|w_z|`; homogeneous of degree 0 in `w` (scaled by a power of two when its largest
+/// component leaves `[2^-60, 2^60]`). Half extents by magnitude; zero half extents (or a box
+/// that projects to a point on `u`): GGX's `lambda_axis_aligned`. `F32_MAX` (the Rust `+inf`)
+/// for a grazing `w` (`w_z = 0`) and, where the driver keeps NaN, for NaN input; `0` at normal
+/// incidence and for the zero vector.
+fn filter_rect_lambda_lambda_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, w_in: vec3<f32>) -> f32 {
+    // Exact power-of-two scaling: |w_i| H_i neither overflows nor underflows.
+    let big = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
+    var w = w_in;
+    if big > 1.152921504606847e18 || (big < 8.673617379884035e-19 && big > 0.0) {
+        let e = i32((bitcast<u32>(big) >> 23u) & 0xffu) - 127;
+        w = w_in * bitcast<f32>(u32(127 - e) << 23u);
+    }
+    let l = math_hypot(w.x, w.y);
+    if l <= 0.0 {
+        // Normal incidence or the zero vector (NaN fails and goes on).
+        return 0.0;
+    }
+    let wz = abs(w.z);
+    if !(wz > 0.0) {
+        // Grazing, or NaN.
+        return math_F32_MAX;
+    }
+    let alpha = r.alpha;
+    let ha = min(abs(half_extent), alpha * filter_rect_lambda_BIG_K);
+    let ux = abs(w.x) / l;
+    let uy = abs(w.y) / l;
+    let px = ux * alpha.x;
+    let py = uy * alpha.y;
+    let a = math_hypot(px, py);
+    let k1 = px / a * (ha.x / alpha.x);
+    let k2 = py / a * (ha.y / alpha.y);
+    if k1 == 0.0 && k2 == 0.0 {
+        return ndf_ggx_lambda_axis_aligned(r, w);
+    }
+    let mm = wz / l / a;
+    if mm > 1e18 {
+        return 0.25 / mm / mm;
+    }
+    // m - k_l = (|w_z| - |w_l| H_l) / (|w_xy| a) for the long axis l (module docs).
+    let long_x = k1 >= k2;
+    let wl = select(abs(w.y), abs(w.x), long_x);
+    let hl = select(ha.y, ha.x, long_x);
+    let lo = (wz - wl * hl) / l / a;
+    return filter_rect_lambda_expected_psi(mm, k1, k2, lo) / mm;
+}
+
+// ---- filtered_ndf::filter::method (shaders/filter/method.wgsl) ----
+// The front door (`src/.../filter/method.rs`): one call from what a shader has (a material
+// roughness and a pixel footprint) to a filtered lobe whose functions describe one
+// distribution. WGSL has no traits, so each method is a small struct (its clamp rules and
+// pixel filter width, with the Rust presets as constants) and a `*_lobe` function that returns
+// the lobe, plus a `d_*` function that returns the filtered `D(m)` in one call:
+//
+// | method (Rust) | constants | lobe function | the lobe, evaluated with |
+// |---|---|---|---|
+// | `Gaussian` | `TK19_GAUSSIAN`, `KHPL16_GAUSSIAN` | `gaussian_lobe` | `matrix::RoughnessMatrix`: `ggx::*_matrix` (TK19's `A + 2 Sigma`), `beckmann::*_matrix` (exact) |
+// | `ExactGaussian` | `KHPL16_EXACT_GAUSSIAN` | `exact_gaussian_lobe` | `gaussian_ggx::GaussianFilteredGgx`: `gaussian_ggx::{p22, d, lambda, g1, g2}`; for Beckmann the exact filter is `gaussian_lobe` with the same rules |
+// | `Projected` | `TK21_PROJECTED` | `projected_lobe` | `matrix::RoughnessMatrix`: `ggx::*_matrix` |
+// | `Rect` | `KHPL16_RECT`, `GDC2016_RECT` | `rect_lobe` | [`RectFilteredGgx`]: `p22_rect_filtered`, `d_rect_filtered`, `lambda_rect_filtered` (the box lobe's own), `g1_rect_filtered`, `g2_rect_filtered` |
+// | `Proxy` | `KHPL16_PROXY` | `proxy_lobe` | `axis_aligned::AxisAligned`: `ggx::*_axis_aligned` |
+//
+// The materials: a roughness matrix for the Gaussian methods (an isotropic or axis-aligned
+// material converts with its `to_matrix`), an axis-aligned roughness for the box methods (their
+// rectangle is axis-aligned; an isotropic `alpha` is `axis_aligned::from_alpha(vec2(alpha))`,
+// as the Rust `From<Isotropic>`). The footprint: `footprint::Footprint` from whichever
+// derivatives the shader has (`footprint.wgsl`); `Projected` wants the projected-disk
+// derivatives (TK19 section 3.2), a slope footprint is exact at `h = n`.
+// (Names: WGSL identifiers may not end in a digit here, see shaders/README.md, so the Rust
+// `Gaussian::TK19` is `TK19_GAUSSIAN`.)
+
+/// `A' = A + 2 Sigma` with the clamped Gaussian pixel kernel (KHPL16 eq. 13-15; TK19 section
+/// 2.2): exact for Beckmann, TK19's approximation for GGX.
+struct filter_method_Gaussian {
+    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
+    clamps: kernel_clamp_ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+}
+
+/// TK19: the default rules (`lambda = 1`, `kappa = 0.18`, the determinant clamp), `sigma = 0.5`.
+const filter_method_TK19_GAUSSIAN: filter_method_Gaussian = filter_method_Gaussian(kernel_clamp_DEFAULT_RULES, footprint_SIGMA_PIXEL);
+/// KHPL16's parallelogram kernel: `lambda = 1` and the determinant clamp, no `kappa`.
+const filter_method_KHPL16_GAUSSIAN: filter_method_Gaussian = filter_method_Gaussian(kernel_clamp_KHPL16_RULES, footprint_SIGMA_PIXEL);
+
+/// The lobe of `material` filtered by `method` over `fp` (the Rust `Gaussian::lobe`): the
+/// filtered roughness matrix, for `ggx::*_matrix` or `beckmann::*_matrix`.
+fn filter_method_gaussian_lobe(method: filter_method_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> ndf_roughness_matrix_RoughnessMatrix {
+    return kernel_clamp_filter_gaussian(method.clamps, material, fp, method.sigma);
+}
+
+/// `D(m)` of the GGX lobe of [`gaussian_lobe`].
+fn filter_method_d_ggx_gaussian(method: filter_method_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return ndf_ggx_d_matrix(filter_method_gaussian_lobe(method, material, fp), m);
+}
+
+/// `D(m)` of the Beckmann lobe of [`gaussian_lobe`] (the exact Gaussian filter of Beckmann).
+fn filter_method_d_beckmann_gaussian(method: filter_method_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return ndf_beckmann_d_matrix(filter_method_gaussian_lobe(method, material, fp), m);
+}
+
+/// The exact Gaussian filter: the material's slope density convolved with the clamped pixel
+/// kernel (GGX: `GaussianFilteredGgx`; Beckmann: `A + 2 Sigma`, [`gaussian_lobe`] with the
+/// same rules).
+struct filter_method_ExactGaussian {
+    /// The clamp rules applied to the footprint and the kernel.
+    clamps: kernel_clamp_ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+}
+
+/// The unbiased filter of the footprint: `lambda = 1` (KHPL16 section 5.2), no `kappa`,
+/// `sigma = 0.5`.
+const filter_method_KHPL16_EXACT_GAUSSIAN: filter_method_ExactGaussian = filter_method_ExactGaussian(kernel_clamp_KHPL16_RULES, footprint_SIGMA_PIXEL);
+
+/// The GGX lobe of the exact Gaussian filter (the Rust `ExactGaussian::lobe` for GGX).
+fn filter_method_exact_gaussian_lobe(method: filter_method_ExactGaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> filter_gaussian_ggx_GaussianFilteredGgx {
+    return filter_gaussian_ggx_from_kernel(material, kernel_clamp_pixel_kernel(method.clamps, fp, method.sigma));
+}
+
+/// `D(m)` of [`exact_gaussian_lobe`].
+fn filter_method_d_ggx_exact_gaussian(method: filter_method_ExactGaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return filter_gaussian_ggx_d(filter_method_exact_gaussian_lobe(method, material, fp), m);
+}
+
+/// Projected-space filtering of GGX (Tokuyoshi and Kaplanyan 2021), the kernel of the
+/// footprint after the clamp rules.
+struct filter_method_Projected {
+    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
+    clamps: kernel_clamp_ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+}
+
+/// TK21: the default rules, `sigma = 0.5`.
+const filter_method_TK21_PROJECTED: filter_method_Projected = filter_method_Projected(kernel_clamp_DEFAULT_RULES, footprint_SIGMA_PIXEL);
+
+/// The GGX lobe of projected-space filtering (the Rust `Projected::lobe`), for `ggx::*_matrix`.
+fn filter_method_projected_lobe(method: filter_method_Projected, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> ndf_roughness_matrix_RoughnessMatrix {
+    return kernel_clamp_filter_projected(method.clamps, material, fp, method.sigma);
+}
+
+/// `D(m)` of [`projected_lobe`].
+fn filter_method_d_ggx_projected(method: filter_method_Projected, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return ndf_ggx_d_matrix(filter_method_projected_lobe(method, material, fp), m);
+}
+
+/// The exact box filter of KHPL16 section 5.3 over the footprint's bounding rectangle, its half
+/// extents clamped by the rules (`clamp::rect`).
+struct filter_method_Rect {
+    /// The clamp rules applied to the rectangle's half extents.
+    clamps: kernel_clamp_ClampRules,
+}
+
+/// KHPL16 with the exact integral: half extents clamped to `lambda = 1`, no floor.
+const filter_method_KHPL16_RECT: filter_method_Rect = filter_method_Rect(kernel_clamp_KHPL16_RULES);
+/// The GDC 2016 listing's clamps: half extents in `[min(alpha, 0.1), 1]`.
+const filter_method_GDC2016_RECT: filter_method_Rect = filter_method_Rect(kernel_clamp_GDC2016_RULES);
+
+/// The exactly box-filtered GGX lobe (the Rust `RectFilteredGgx`): the material's slope density
+/// averaged over `[-half_extent, half_extent]` around each slope.
+struct filter_method_RectFilteredGgx {
+    /// The material's roughness.
+    roughness: ndf_roughness_axis_aligned_AxisAligned,
+    /// The rectangle's half extents (slope units, `>= 0`).
+    half_extent: vec2<f32>,
+}
+
+/// The box-filtered lobe of `material` over `fp` (the Rust `Rect::lobe`).
+fn filter_method_rect_lobe(method: filter_method_Rect, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint) -> filter_method_RectFilteredGgx {
+    let h = kernel_clamp_rect(method.clamps, footprint_bounding_rect(fp), material.alpha).half_extent;
+    return filter_method_RectFilteredGgx(material, h);
+}
+
+/// `P22(s)` of the box lobe (`rect::p22_rect`).
+fn filter_method_p22_rect_filtered(lobe: filter_method_RectFilteredGgx, s: vec2<f32>) -> f32 {
+    return filter_rect_p22_rect(lobe.roughness, s, lobe.half_extent);
+}
+
+/// `D(m)` of the box lobe (`rect::d_rect`).
+fn filter_method_d_rect_filtered(lobe: filter_method_RectFilteredGgx, m: vec3<f32>) -> f32 {
+    return filter_rect_d_rect(lobe.roughness, m, lobe.half_extent);
+}
+
+/// Smith `Lambda(w)` of the box lobe: the box-filtered distribution's own
+/// (`rect::lambda::lambda_rect`), so that `g1`, `g2` and `d` describe one distribution.
+fn filter_method_lambda_rect_filtered(lobe: filter_method_RectFilteredGgx, w: vec3<f32>) -> f32 {
+    return filter_rect_lambda_lambda_rect(lobe.roughness, lobe.half_extent, w);
+}
+
+/// `G1(w, m)` of the box lobe.
+fn filter_method_g1_rect_filtered(lobe: filter_method_RectFilteredGgx, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(filter_method_lambda_rect_filtered(lobe, w), dot(w, m));
+}
+
+/// `G2(i, o, m)` of the box lobe (height-correlated).
+fn filter_method_g2_rect_filtered(lobe: filter_method_RectFilteredGgx, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g2_of(filter_method_lambda_rect_filtered(lobe, i), filter_method_lambda_rect_filtered(lobe, o), dot(i, m), dot(o, m));
+}
+
+/// `D(m)` of [`rect_lobe`].
+fn filter_method_d_ggx_rect(method: filter_method_Rect, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return filter_method_d_rect_filtered(filter_method_rect_lobe(method, material, fp), m);
+}
+
+/// The GGX proxy of KHPL16 section 5.4 (eq. 18-19, solved exactly): the axis-aligned GGX whose
+/// peak is the box-filtered peak over the clamped bounding rectangle, per axis.
+struct filter_method_Proxy {
+    /// The clamp rules applied to the rectangle's half extents.
+    clamps: kernel_clamp_ClampRules,
+}
+
+/// KHPL16: half extents clamped to `lambda = 1`, no floor.
+const filter_method_KHPL16_PROXY: filter_method_Proxy = filter_method_Proxy(kernel_clamp_KHPL16_RULES);
+
+/// The proxy roughness (the Rust `Proxy::lobe`), for `ggx::*_axis_aligned`.
+fn filter_method_proxy_lobe(method: filter_method_Proxy, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint) -> ndf_roughness_axis_aligned_AxisAligned {
+    let h = kernel_clamp_rect(method.clamps, footprint_bounding_rect(fp), material.alpha).half_extent;
+    return filter_proxy_proxy(material, h);
+}
+
+/// `D(m)` of [`proxy_lobe`].
+fn filter_method_d_ggx_proxy(method: filter_method_Proxy, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return ndf_ggx_d_axis_aligned(filter_method_proxy_lobe(method, material, fp), m);
+}
+
+// ---- filtered_ndf::filter::presets (shaders/filter/presets.wgsl) ----
+// The published isotropic specular-antialiasing conventions as `deferred::KernelConvention`
+// values, mirroring `src/.../filter/presets.rs` (whose docs give each source, formula and
+// engine default). `alpha` is the GGX roughness, `p = sqrt(alpha)` the perceptual one.
+// Names that would end in a digit carry a suffix (naga renames such identifiers).
+//
+// | preset | domain | kernel | clamp | combine, saturate |
+// |---|---|---|---|---|
+// | TK19_TRACE, O3DE | alpha^2 | 0.5 (|dn_u|^2 + |dn_v|^2) | 0.18 | add, yes |
+// | TK19_AVERAGE | alpha^2 | 0.25 (...) | 0.18 | add, yes |
+// | TK19_MAX | alpha^2 | 0.5 lambda_max(Gram) | 0.18 | add, yes |
+// | TK21_LISTING | alpha^2 | (...) / (2 pi) | 0.18 | add, yes |
+// | FILAMENT | alpha^2 | 0.3 (...), perceptual floor 0.045 | 0.04 | add, yes |
+// | UNITY_HDRP | alpha^2 | 0.2 (...) | 0.04 | add, yes |
+// | UNITY_HDRP_PROJECTED | alpha^2 / (1 - alpha^2) | 0.2 (...) | 0.04 | add, yes |
+// | GODOT | alpha | 0.5 (...) | 0.18 | add, yes |
+// | UNREAL, BABYLON | p | max(|dn_u|^2, |dn_v|^2)^0.333 | 1 | max, no |
+// | THREE_JS | p | max abs component, floor 0.0525 | none | add, yes |
+
+/// TK19 eq. 4 and Listing 2 (trace bandwidth): `saturate(alpha^2 + min(0.5 (|dn_u|^2 +
+/// |dn_v|^2), 0.18))`.
+const filter_presets_TK19_TRACE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// TK19 eq. 5 (average of the eigenvalues): kernel `0.25 (|dn_u|^2 + |dn_v|^2)`.
+const filter_presets_TK19_AVERAGE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.25,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// TK19 eq. 1 (tightest conservative isotropic kernel): `0.5 lambda_max` of the Gram matrix.
+const filter_presets_TK19_MAX: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_MAX_EIGENVALUE,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Tokuyoshi and Kaplanyan 2021, Listing 5: `saturate(alpha^2 + min((|dn_u|^2 +
+/// |dn_v|^2) / (2 pi), 0.18))`.
+const filter_presets_TK21_LISTING: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.159154943091895,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Filament `normalFiltering`: variance 0.15 (kernel `0.3 (...)`), threshold `0.2^2`,
+/// perceptual roughness floor 0.045.
+const filter_presets_FILAMENT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.3,
+    1.0,
+    0.0,
+    0.04,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.045,
+);
+/// Unity HDRP `NormalFiltering`: screen-space variance 0.1 (kernel `0.2 (...)`),
+/// threshold `0.2^2`.
+const filter_presets_UNITY_HDRP: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.2,
+    1.0,
+    0.0,
+    0.04,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Unity HDRP `ProjectedSpaceNormalFiltering` (after TK21): [`UNITY_HDRP`] in the domain
+/// `alpha^2 / (1 - alpha^2)`.
+const filter_presets_UNITY_HDRP_PROJECTED: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.2,
+    1.0,
+    0.0,
+    0.04,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Godot 4 screen-space roughness limiter: TK19's formula on `alpha` (amount 0.25, limit
+/// 0.18).
+const filter_presets_GODOT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// O3DE `CalculateSpecularAA`: TK19 Listing 2 verbatim, identical to [`TK19_TRACE`].
+const filter_presets_O3DE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Unreal `NormalCurvatureToRoughness`: `max(p, max(|dn_x|^2, |dn_y|^2)^0.333)`.
+const filter_presets_UNREAL: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PERCEPTUAL,
+    filter_deferred_NORM_MAX_SQUARED,
+    1.0,
+    0.333,
+    0.0,
+    1.0,
+    filter_deferred_COMBINE_MAX,
+    false,
+    0.0,
+);
+/// Babylon.js (Vlachos 2015), the analytic-light path: as [`UNREAL`].
+const filter_presets_BABYLON: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PERCEPTUAL,
+    filter_deferred_NORM_MAX_SQUARED,
+    1.0,
+    0.333,
+    0.0,
+    1.0,
+    filter_deferred_COMBINE_MAX,
+    false,
+    0.0,
+);
+/// three.js: `min(max(p, 0.0525) + max abs component of dn, 1)` on the perceptual roughness.
+const filter_presets_THREE_JS: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PERCEPTUAL,
+    filter_deferred_NORM_MAX_ABS_COMPONENT,
+    1.0,
+    1.0,
+    0.0,
+    math_F32_MAX,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0525,
+);
+
+/// Every preset, in the order of the Rust `presets::ALL`: TK19 max, trace, average, TK21,
+/// Filament, Unity HDRP, Unity HDRP projected, Godot, O3DE, Unreal, Babylon.js, three.js.
+fn filter_presets_preset(i: u32) -> filter_deferred_KernelConvention {
+    switch i {
+        case 0u: { return filter_presets_TK19_MAX; }
+        case 1u: { return filter_presets_TK19_TRACE; }
+        case 2u: { return filter_presets_TK19_AVERAGE; }
+        case 3u: { return filter_presets_TK21_LISTING; }
+        case 4u: { return filter_presets_FILAMENT; }
+        case 5u: { return filter_presets_UNITY_HDRP; }
+        case 6u: { return filter_presets_UNITY_HDRP_PROJECTED; }
+        case 7u: { return filter_presets_GODOT; }
+        case 8u: { return filter_presets_O3DE; }
+        case 9u: { return filter_presets_UNREAL; }
+        case 10u: { return filter_presets_BABYLON; }
+        default: { return filter_presets_THREE_JS; }
+    }
+}
+
 // ---- filtered_ndf::footprint::slope (shaders/footprint/slope.wgsl) ----
 // The three half-vector domains and the maps between them (TK19 supplement eq. 1-5),
 // mirroring `src/.../footprint/slope.rs`: the sphere (unit `h`, tangent frame, `z` = shading
@@ -1729,274 +3185,6 @@ fn footprint_slope_projected_from_slope(s: vec2<f32>) -> vec2<f32> {
     return footprint_slope_projected_from_sphere(footprint_slope_sphere_from_slope(s));
 }
 
-// ---- filtered_ndf::kernel::clamp (shaders/kernel/clamp.wgsl) ----
-// The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, GDC 2016,
-// TK19 eq. 1 and supplement), mirroring `ClampRules` of `src/.../kernel/clamp.rs`. A rule is
-// off when its bound is `F32_MAX` (`max_extent`, `kappa`; the Rust `F::INFINITY`),
-// `FLOOR_NONE`, or `det_clamp = false`.
-
-/// No rectangle floor.
-const kernel_clamp_FLOOR_NONE: u32 = 0u;
-/// Half-extents `>= floor` on both axes (KHPL16 section 5.2, `epsilon = 1e-3`).
-const kernel_clamp_FLOOR_CONSTANT: u32 = 1u;
-/// Half-extents `>= min(alpha_axis, floor)` per axis (GDC 2016 `min(roughness, 0.1)`).
-const kernel_clamp_FLOOR_ALPHA_CAPPED: u32 = 2u;
-
-/// The clamping rules.
-struct kernel_clamp_ClampRules {
-    /// `lambda`: the largest centre-to-vertex extent of the parallelogram and the largest
-    /// rectangle half-extent (slope units).
-    max_extent: f32,
-    /// `FLOOR_NONE`, `FLOOR_CONSTANT` or `FLOOR_ALPHA_CAPPED`.
-    floor_kind: u32,
-    /// The floor's constant (`epsilon`, or the cap of `FLOOR_ALPHA_CAPPED`).
-    floor: f32,
-    /// `kappa`: the largest kernel roughness^2 `2 lambda_i(Sigma)` per eigen-direction.
-    kappa: f32,
-    /// Evaluate filtered matrices with `tau = det(A_unfiltered)`.
-    det_clamp: bool,
-}
-
-/// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
-const kernel_clamp_DEFAULT_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_CONSTANT, 1e-3, 0.18, true);
-/// No clamping (unbiased; for references and the exact rectangle integral).
-const kernel_clamp_NO_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(math_F32_MAX, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, false);
-/// The GDC 2016 listing: `fp = clamp(fp, min(roughness, 0.1), 1)`, no `kappa`, with `tau`.
-const kernel_clamp_GDC2016_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_ALPHA_CAPPED, 0.1, math_F32_MAX, true);
-
-/// The maximum-extent rule on a parallelogram (KHPL16 section 5.2): both vectors scaled by
-/// `min(1, lambda / max_extent)`, keeping the shape. The extent is measured on the
-/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0.
-fn kernel_clamp_footprint(rules: kernel_clamp_ClampRules, fp: footprint_Footprint) -> footprint_Footprint {
-    let l = max(rules.max_extent, 0.0);
-    let scale = max(max(abs(fp.dh_u.x), abs(fp.dh_u.y)), max(abs(fp.dh_v.x), abs(fp.dh_v.y)));
-    if scale <= 0.0 {
-        return fp;
-    }
-    let unit = footprint_Footprint(fp.dh_u / scale, fp.dh_v / scale);
-    let e = footprint_max_extent(unit);
-    if e * scale <= l {
-        return fp;
-    }
-    return footprint_Footprint(unit.dh_u / e * l, unit.dh_v / e * l);
-}
-
-/// The rectangle rules: half-extents taken by magnitude, clamped to `[floor, lambda]` per
-/// axis (KHPL16 section 5.2; GDC 2016 `clamp(fp, fp_min, fp_max)`), `alpha` the lobe's
-/// per-axis roughness for `FLOOR_ALPHA_CAPPED`; if the floor exceeds `lambda` the floor wins.
-fn kernel_clamp_rect(rules: kernel_clamp_ClampRules, r: kernel_rect_BoundingRect, alpha: vec2<f32>) -> kernel_rect_BoundingRect {
-    var f = vec2<f32>(0.0);
-    if rules.floor_kind == kernel_clamp_FLOOR_CONSTANT {
-        f = vec2<f32>(rules.floor);
-    } else if rules.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED {
-        f = min(abs(alpha), vec2<f32>(rules.floor));
-    }
-    let lambda = max(rules.max_extent, 0.0);
-    let h = min(abs(r.half_extent), vec2<f32>(lambda));
-    return kernel_rect_BoundingRect(max(h, max(f, vec2<f32>(0.0))));
-}
-
-/// The kernel-roughness rule of TK19 eq. 1 in matrix form: `2 Sigma'` has the eigenvalues
-/// `min(2 lambda_i, kappa)` and `Sigma`'s eigenvectors, after `covariance::sanitized`. A
-/// negative `kappa` counts as 0.
-fn kernel_clamp_kernel(rules: kernel_clamp_ClampRules, k: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
-    let s = kernel_covariance_sanitized(k);
-    if rules.kappa >= math_F32_MAX {
-        return s;
-    }
-    return kernel_covariance_clamp_eigenvalues(s, 0.5 * max(rules.kappa, 0.0));
-}
-
-/// The determinant clamp for filtering `a`: `max(det A, tau_a)` if `det_clamp`, else 0.
-fn kernel_clamp_tau(rules: kernel_clamp_ClampRules, a: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return select(0.0, a.sqrt_det * a.sqrt_det, rules.det_clamp);
-}
-
-/// The whole Gaussian pipeline: [`footprint`] -> `pixel::covariance` (`sigma` pixels)
-/// -> [`kernel`] -> `A' = A + 2 Sigma` with `tau = det A` if `det_clamp` (the TK19 matrix
-/// filter; exact for Beckmann).
-fn kernel_clamp_filter_gaussian(
-    rules: kernel_clamp_ClampRules,
-    a: ndf_roughness_matrix_RoughnessMatrix,
-    fp: footprint_Footprint,
-    sigma: f32,
-) -> ndf_roughness_matrix_RoughnessMatrix {
-    let k = kernel_clamp_kernel(rules, footprint_covariance(kernel_clamp_footprint(rules, fp), sigma));
-    if rules.det_clamp {
-        return filter_gaussian_gaussian_sanitized(a, k);
-    }
-    return filter_gaussian_gaussian_with_tau_sanitized(a, k, 0.0);
-}
-
-// ---- filtered_ndf::ndf::beckmann (shaders/ndf/beckmann.wgsl) ----
-// Beckmann in any roughness form (Beckmann and Spizzichino 1963; Heitz 2014 section 5.4;
-// KHPL16 eq. 14: `A = 2 B` with `B` the slope covariance), mirroring
-// `src/.../ndf/beckmann.rs`. The first three functions take what a roughness form reduces
-// to; the rest are the entry points per form.
-//
-// Accuracy: `exp(-x)` amplifies the relative error of its argument `x` by `x` (a property
-// of the function, not of the evaluation), and WGSL allows the driver's `exp` `3 + 2|x|`
-// ulp, the same order: the densities are within `eps (8 + 4 x)` plus the error of `x`
-// itself (`x` ulp more per ulp of `q`), and results below `2^-126` may flush to 0.
-
-/// `exp(x < EXP_SPLIT)` keeps `exp(-x)` a normal f32; beyond it the normalisation moves
-/// into the exponent.
-const ndf_beckmann_EXP_SPLIT: f32 = 80.0;
-
-/// `sqrt(pi)`.
-const ndf_beckmann_SQRT_PI: f32 = 1.77245385090552;
-
-/// `exp(-x) k` for `x >= 0`, `k = exp(ln_k)`: past `EXP_SPLIT` as `exp(ln_k - x)`, so that a
-/// density that is a normal f32 is not lost to an intermediate `exp(-x)` that is not (the
-/// Rust `exp_neg_times`).
-fn ndf_beckmann_exp_neg_times(x: f32, k: f32, ln_k: f32) -> f32 {
-    return select(exp(-x) * k, exp(ln_k - x), x > ndf_beckmann_EXP_SPLIT);
-}
-
-/// Slope-domain density `P22(s) = exp(-q) / (pi sqrt(det A))` from `q = s^T A^-1 s` and
-/// `sqrt(det A)`. `0` where the density underflows.
-fn ndf_beckmann_p22_of(q: f32, sqrt_det: f32) -> f32 {
-    let den = math_PI * sqrt_det;
-    return ndf_beckmann_exp_neg_times(q, 1.0 / den, -log(den));
-}
-
-/// Solid-angle density `D(m) = exp(-q_xy / m_z^2) / (pi sqrt(det A) m_z^4)` for a unit
-/// micronormal `m` from `q_xy = m_xy^T A^-1 m_xy`, `m_z` and `sqrt(det A)` (KHPL16 eq. 2
-/// with eq. 14). `0` for `m_z <= 0`, where the density underflows, and where it exceeds the
-/// f32 range.
-fn ndf_beckmann_d_of(q_xy: f32, m_z: f32, sqrt_det: f32) -> f32 {
-    let z2 = m_z * m_z;
-    let x = q_xy / z2;
-    let k = 1.0 / (math_PI * sqrt_det * z2 * z2);
-    let ln_k = -(log(math_PI * sqrt_det) + 4.0 * log(max(m_z, math_F32_MIN_POSITIVE)));
-    let v = ndf_beckmann_exp_neg_times(x, k, ln_k);
-    return select(0.0, v, m_z > 0.0 && v <= math_F32_MAX);
-}
-
-/// Smith `Lambda(w) = (exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2` with
-/// `a = |w_z| / sqrt(q)`, `q = w_xy^T A w_xy` (Heitz 2014 eq. 80 with the projected
-/// roughness of a matrix lobe).
-///
-/// The two terms cancel (to a relative `1 / (2 a^2)` for large `a`); the Rust crate takes
-/// them in f64. Here, with `sqrt(pi) erfcx(a) = 1 / (a + K(a))`,
-/// `Lambda = exp(-a^2) K / (2 sqrt(pi) a (a + K))`, a product of positive factors for every
-/// `a > 0`, and `K(a) (2a + 1)` is a degree-14 polynomial in `t = (a - 3) / (a + 3)` (all of
-/// `a >= 0` maps to `t` in `[-1, 1)`; fitted at Chebyshev nodes, approximation error
-/// `4.4e-8` relative with the coefficients rounded to f32). The result is within
-/// `eps (32 + 16 a^2)`: `Lambda` amplifies the error of `a` (6 ulp) by `2 a^2 + 3`, and `exp`
-/// adds its `3 + 2 a^2` ulp. `0` for `q <= 0` and for `a > 9.5` (below the f32 range);
-/// `F32_MAX` at `w_z = 0` (the Rust `+inf`).
-fn ndf_beckmann_lambda_of(q: f32, abs_wz: f32) -> f32 {
-    if q <= 0.0 {
-        return 0.0;
-    }
-    if abs_wz <= 0.0 {
-        return math_F32_MAX;
-    }
-    let a = abs_wz / sqrt(q);
-    if a > 9.5 {
-        return 0.0;
-    }
-    let t = (a - 3.0) / (a + 3.0);
-    var p = -3.849171844194643e-05;
-    p = p * t + 0.00028491427656263113;
-    p = p * t + 1.8268152416567318e-05;
-    p = p * t - 0.0018242653459310532;
-    p = p * t + 0.0013654069043695927;
-    p = p * t + 0.005581194534897804;
-    p = p * t - 0.009357542730867863;
-    p = p * t - 0.007657155394554138;
-    p = p * t + 0.036274611949920654;
-    p = p * t - 0.0232936330139637;
-    p = p * t - 0.07646358013153076;
-    p = p * t + 0.21173490583896637;
-    p = p * t - 0.23284178972244263;
-    p = p * t + 0.033079251646995544;
-    p = p * t + 1.0631378889083862;
-    let k = p / (2.0 * a + 1.0);
-    return min(exp(-a * a) * k / (2.0 * ndf_beckmann_SQRT_PI * a * (a + k)), math_F32_MAX);
-}
-
-/// `P22(s)` of isotropic Beckmann.
-fn ndf_beckmann_p22_isotropic(r: ndf_roughness_isotropic_Isotropic, s: vec2<f32>) -> f32 {
-    return ndf_beckmann_p22_of(ndf_roughness_isotropic_inv_quadratic(r, s), ndf_roughness_isotropic_sqrt_det(r));
-}
-
-/// `D(m)` of isotropic Beckmann.
-fn ndf_beckmann_d_isotropic(r: ndf_roughness_isotropic_Isotropic, m: vec3<f32>) -> f32 {
-    return ndf_beckmann_d_of(ndf_roughness_isotropic_inv_quadratic(r, m.xy), m.z, ndf_roughness_isotropic_sqrt_det(r));
-}
-
-/// `Lambda(w)` of isotropic Beckmann.
-fn ndf_beckmann_lambda_isotropic(r: ndf_roughness_isotropic_Isotropic, w: vec3<f32>) -> f32 {
-    return ndf_beckmann_lambda_of(ndf_roughness_isotropic_quadratic(r, w.xy), abs(w.z));
-}
-
-/// `G1(w, m)` of isotropic Beckmann.
-fn ndf_beckmann_g1_isotropic(r: ndf_roughness_isotropic_Isotropic, w: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g1_of(ndf_beckmann_lambda_isotropic(r, w), dot(w, m));
-}
-
-/// `G2(i, o, m)` of isotropic Beckmann (height-correlated).
-fn ndf_beckmann_g2_isotropic(r: ndf_roughness_isotropic_Isotropic, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g2_of(ndf_beckmann_lambda_isotropic(r, i), ndf_beckmann_lambda_isotropic(r, o), dot(i, m), dot(o, m));
-}
-
-/// `P22(s)` of axis-aligned Beckmann.
-fn ndf_beckmann_p22_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, s: vec2<f32>) -> f32 {
-    return ndf_beckmann_p22_of(ndf_roughness_axis_aligned_inv_quadratic(r, s), ndf_roughness_axis_aligned_sqrt_det(r));
-}
-
-/// `D(m)` of axis-aligned Beckmann.
-fn ndf_beckmann_d_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, m: vec3<f32>) -> f32 {
-    return ndf_beckmann_d_of(ndf_roughness_axis_aligned_inv_quadratic(r, m.xy), m.z, ndf_roughness_axis_aligned_sqrt_det(r));
-}
-
-/// `Lambda(w)` of axis-aligned Beckmann.
-fn ndf_beckmann_lambda_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, w: vec3<f32>) -> f32 {
-    return ndf_beckmann_lambda_of(ndf_roughness_axis_aligned_quadratic(r, w.xy), abs(w.z));
-}
-
-/// `G1(w, m)` of axis-aligned Beckmann.
-fn ndf_beckmann_g1_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, w: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g1_of(ndf_beckmann_lambda_axis_aligned(r, w), dot(w, m));
-}
-
-/// `G2(i, o, m)` of axis-aligned Beckmann (height-correlated).
-fn ndf_beckmann_g2_axis_aligned(
-    r: ndf_roughness_axis_aligned_AxisAligned,
-    i: vec3<f32>,
-    o: vec3<f32>,
-    m: vec3<f32>,
-) -> f32 {
-    return ndf_g2_of(ndf_beckmann_lambda_axis_aligned(r, i), ndf_beckmann_lambda_axis_aligned(r, o), dot(i, m), dot(o, m));
-}
-
-/// `P22(s)` of Beckmann with a roughness matrix.
-fn ndf_beckmann_p22_matrix(r: ndf_roughness_matrix_RoughnessMatrix, s: vec2<f32>) -> f32 {
-    return ndf_beckmann_p22_of(ndf_roughness_matrix_inv_quadratic(r, s), ndf_roughness_matrix_sqrt_det(r));
-}
-
-/// `D(m)` of Beckmann with a roughness matrix (a filtered or rotated lobe).
-fn ndf_beckmann_d_matrix(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
-    return ndf_beckmann_d_of(ndf_roughness_matrix_inv_quadratic(r, m.xy), m.z, ndf_roughness_matrix_sqrt_det(r));
-}
-
-/// `Lambda(w)` of Beckmann with a roughness matrix.
-fn ndf_beckmann_lambda_matrix(r: ndf_roughness_matrix_RoughnessMatrix, w: vec3<f32>) -> f32 {
-    return ndf_beckmann_lambda_of(ndf_roughness_matrix_quadratic(r, w.xy), abs(w.z));
-}
-
-/// `G1(w, m)` of Beckmann with a roughness matrix.
-fn ndf_beckmann_g1_matrix(r: ndf_roughness_matrix_RoughnessMatrix, w: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g1_of(ndf_beckmann_lambda_matrix(r, w), dot(w, m));
-}
-
-/// `G2(i, o, m)` of Beckmann with a roughness matrix (height-correlated).
-fn ndf_beckmann_g2_matrix(r: ndf_roughness_matrix_RoughnessMatrix, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g2_of(ndf_beckmann_lambda_matrix(r, i), ndf_beckmann_lambda_matrix(r, o), dot(i, m), dot(o, m));
-}
-
 // ---- filtered_ndf::sampling (shaders/sampling/mod.wgsl) ----
 // Importance sampling of GGX with a roughness matrix, and the pdfs for multiple importance
 // sampling, mirroring `src/.../sampling/mod.rs` (GGX, `NdfSampling`). Densities per
@@ -2025,14 +3213,15 @@ struct sampling_Warp {
     l_xx: f32,
     /// `a12 / sqrt(a11)`.
     l_yx: f32,
-    /// `sqrt(det A) / sqrt(a11)` (with the matrix's determinant clamp: the sampled lobe is the
-    /// one the density evaluates).
+    /// `sqrt(det A) / sqrt(a11)`.
     l_yy: f32,
 }
 
-/// The warp of a roughness matrix (entries from its eigenbasis, `sqrt(det A)` as stored).
+/// The warp of a roughness matrix: the Cholesky factor of the clamped matrix `A_c` that the
+/// density evaluates (`matrix.wgsl`; entries from its eigenbasis, `sqrt(det A_c)` as stored),
+/// so that the sampled lobe is the one `D` describes.
 fn sampling_warp(r: ndf_roughness_matrix_RoughnessMatrix) -> sampling_Warp {
-    let e = ndf_roughness_matrix_entries(r);
+    let e = ndf_roughness_matrix_clamped_entries(r);
     let l_xx = sqrt(e.x);
     return sampling_Warp(l_xx, e.y / l_xx, r.sqrt_det / l_xx);
 }

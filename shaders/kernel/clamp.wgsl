@@ -6,11 +6,13 @@
 #import filtered_ndf::kernel::rect as bounding
 #import filtered_ndf::ndf::roughness::matrix
 #import filtered_ndf::filter::gaussian
+#import filtered_ndf::filter::projected
 
 // The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, GDC 2016,
 // TK19 eq. 1 and supplement), mirroring `ClampRules` of `src/.../kernel/clamp.rs`. A rule is
 // off when its bound is `F32_MAX` (`max_extent`, `kappa`; the Rust `F::INFINITY`),
-// `FLOOR_NONE`, or `det_clamp = false`.
+// `FLOOR_NONE`, or `det_clamp = false`. Constants mirror `ClampRules::DEFAULT`, `KHPL16`,
+// `NONE`, `GDC2016` (`*_RULES`: WGSL names may not end in a digit here, see shaders/README.md).
 
 /// No rectangle floor.
 const FLOOR_NONE: u32 = 0u;
@@ -36,6 +38,9 @@ struct ClampRules {
 
 /// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
 const DEFAULT_RULES: ClampRules = ClampRules(1.0, FLOOR_CONSTANT, 1e-3, 0.18, true);
+/// KHPL16's rules for its exact kernels: `lambda = 1` (section 5.2) and the determinant clamp;
+/// no rectangle floor (the exact rectangle integral needs none), no `kappa` (a TK19 addition).
+const KHPL16_RULES: ClampRules = ClampRules(1.0, FLOOR_NONE, 0.0, math::F32_MAX, true);
 /// No clamping (unbiased; for references and the exact rectangle integral).
 const NO_RULES: ClampRules = ClampRules(math::F32_MAX, FLOOR_NONE, 0.0, math::F32_MAX, false);
 /// The GDC 2016 listing: `fp = clamp(fp, min(roughness, 0.1), 1)`, no `kappa`, with `tau`.
@@ -84,23 +89,40 @@ fn kernel(rules: ClampRules, k: covariance::Covariance) -> covariance::Covarianc
     return covariance::clamp_eigenvalues(s, 0.5 * max(rules.kappa, 0.0));
 }
 
-/// The determinant clamp for filtering `a`: `max(det A, tau_a)` if `det_clamp`, else 0.
-fn tau(rules: ClampRules, a: matrix::RoughnessMatrix) -> f32 {
-    return select(0.0, a.sqrt_det * a.sqrt_det, rules.det_clamp);
+/// The determinant clamp `tau` for filtering `a` (the Rust `det_clamp_for`): `det A_c` of the
+/// unfiltered lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a
+/// clamped matrix its `max(det A, tau)`) if `det_clamp`, else 0.
+fn det_clamp_for(rules: ClampRules, a: matrix::RoughnessMatrix) -> f32 {
+    return select(0.0, matrix::clamped_det(a), rules.det_clamp);
+}
+
+/// The clamped pixel kernel of a footprint: [`footprint`] -> `pixel::covariance` (`sigma`
+/// pixels) -> [`kernel`] (sanitised once).
+fn pixel_kernel(rules: ClampRules, fp: pixel::Footprint, sigma: f32) -> covariance::Covariance {
+    return kernel(rules, pixel::covariance(footprint(rules, fp), sigma));
 }
 
 /// The whole Gaussian pipeline: [`footprint`] -> `pixel::covariance` (`sigma` pixels)
-/// -> [`kernel`] -> `A' = A + 2 Sigma` with `tau = det A` if `det_clamp` (the TK19 matrix
-/// filter; exact for Beckmann).
+/// -> [`kernel`] -> `A' = A + 2 Sigma` with `tau = det A_c` if `det_clamp` (the TK19 matrix
+/// filter; exact for Beckmann). The result is the one clamped matrix of `matrix.wgsl`.
 fn filter_gaussian(
     rules: ClampRules,
     a: matrix::RoughnessMatrix,
     fp: pixel::Footprint,
     sigma: f32,
 ) -> matrix::RoughnessMatrix {
-    let k = kernel(rules, pixel::covariance(footprint(rules, fp), sigma));
-    if rules.det_clamp {
-        return gaussian::gaussian_sanitized(a, k);
-    }
-    return gaussian::gaussian_with_tau_sanitized(a, k, 0.0);
+    return gaussian::gaussian_sanitized(a, pixel_kernel(rules, fp, sigma), det_clamp_for(rules, a));
+}
+
+/// The projected-space pipeline (TK21), the rules as in [`filter_gaussian`]: [`footprint`]
+/// -> `pixel::covariance` (`sigma` pixels; the footprint of the half vector's projected-disk
+/// derivatives, TK19 section 3.2) -> [`kernel`] -> `projected::projected_sanitized` with
+/// `tau = det A_c` if `det_clamp` (the Rust `ClampRules::filter_projected`).
+fn filter_projected(
+    rules: ClampRules,
+    a: matrix::RoughnessMatrix,
+    fp: pixel::Footprint,
+    sigma: f32,
+) -> matrix::RoughnessMatrix {
+    return projected::projected_sanitized(a, pixel_kernel(rules, fp, sigma), det_clamp_for(rules, a));
 }

@@ -34,7 +34,7 @@ fn exp_neg_times(x: f32, k: f32, ln_k: f32) -> f32 {
 /// `sqrt(det A)`. `0` where the density underflows.
 fn p22_of(q: f32, sqrt_det: f32) -> f32 {
     let den = math::PI * sqrt_det;
-    return exp_neg_times(q, 1.0 / den, -log(den));
+    return select(0.0, exp_neg_times(q, 1.0 / den, -log(den)), q >= 0.0);
 }
 
 /// Solid-angle density `D(m) = exp(-q_xy / m_z^2) / (pi sqrt(det A) m_z^4)` for a unit
@@ -64,10 +64,11 @@ fn d_of(q_xy: f32, m_z: f32, sqrt_det: f32) -> f32 {
 /// adds its `3 + 2 a^2` ulp. `0` for `q <= 0` and for `a > 9.5` (below the f32 range);
 /// `F32_MAX` at `w_z = 0` (the Rust `+inf`).
 fn lambda_of(q: f32, abs_wz: f32) -> f32 {
-    if q <= 0.0 {
+    if q <= 0.0 && abs_wz >= 0.0 {
         return 0.0;
     }
-    if abs_wz <= 0.0 {
+    // Grazing, or NaN in either (the NaN policy of `ndf`): fully masked.
+    if !(abs_wz > 0.0) || !(q > 0.0) {
         return math::F32_MAX;
     }
     let a = abs_wz / sqrt(q);

@@ -19,7 +19,7 @@
 /// range.
 fn p22_of(q: f32, sqrt_det: f32) -> f32 {
     let t = 1.0 + q;
-    return 1.0 / (math::PI * sqrt_det * t * t);
+    return select(0.0, 1.0 / (math::PI * sqrt_det * t * t), q >= 0.0);
 }
 
 /// Solid-angle density `D(m) = 1 / (pi sqrt(det A) (q_xy + m_z^2)^2)` for a unit micronormal
@@ -42,10 +42,11 @@ fn d_of(q_xy: f32, m_z: f32, sqrt_det: f32) -> f32 {
 /// `Lambda` is homogeneous of degree 0 in `w`: `w` need not be unit, but its squared
 /// components must stay inside the f32 range.
 fn lambda_of(q: f32, abs_wz: f32) -> f32 {
-    if q <= 0.0 {
+    if q <= 0.0 && abs_wz >= 0.0 {
         return 0.0;
     }
-    if abs_wz <= 0.0 {
+    // Grazing, or NaN in either (the NaN policy of `ndf`): fully masked.
+    if !(abs_wz > 0.0) || !(q > 0.0) {
         return math::F32_MAX;
     }
     let r = sqrt(abs_wz * abs_wz + q);

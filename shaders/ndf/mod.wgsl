@@ -13,6 +13,15 @@
 // `g2_of`): naga renames any identifier that ends in a digit when it writes a module back
 // out, which naga_oil refuses for composable modules, so `p22`, `g1`, `g2` cannot be names
 // of their own.
+//
+// NaN policy. The Rust crate decides it once (`src/.../ndf/mod.rs`): a NaN argument
+// contributes nothing, `p22 = d = 0` and `lambda = +inf` (so `g1 = g2 = 0`), both families,
+// every form. WGSL lets a driver assume that no NaN occurs at run time, so the shaders do not
+// test for one and promise nothing where a driver takes that licence. Where it costs nothing
+// (the comparisons every function makes anyway), they are written so that a NaN fails them
+// and the result is the Rust one: `d_of` and `p22_of` return 0 (`select` on `m_z > 0`,
+// `q >= 0`), `lambda_of` returns `F32_MAX` (the shaders' `+inf`), `g1_of` and `g2_of` return 0
+// (`w.m > 0`). Mesa's lavapipe and llvmpipe keep these comparisons.
 
 /// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` from `Lambda(w)` and `w.m` (TK19
 /// supplement section 1). In `[0, 1]`; `0` for `w.m <= 0`. (A grazing `w` has

@@ -31,14 +31,15 @@ struct Warp {
     l_xx: f32,
     /// `a12 / sqrt(a11)`.
     l_yx: f32,
-    /// `sqrt(det A) / sqrt(a11)` (with the matrix's determinant clamp: the sampled lobe is the
-    /// one the density evaluates).
+    /// `sqrt(det A) / sqrt(a11)`.
     l_yy: f32,
 }
 
-/// The warp of a roughness matrix (entries from its eigenbasis, `sqrt(det A)` as stored).
+/// The warp of a roughness matrix: the Cholesky factor of the clamped matrix `A_c` that the
+/// density evaluates (`matrix.wgsl`; entries from its eigenbasis, `sqrt(det A_c)` as stored),
+/// so that the sampled lobe is the one `D` describes.
 fn warp(r: matrix::RoughnessMatrix) -> Warp {
-    let e = matrix::entries(r);
+    let e = matrix::clamped_entries(r);
     let l_xx = sqrt(e.x);
     return Warp(l_xx, e.y / l_xx, r.sqrt_det / l_xx);
 }

@@ -393,8 +393,9 @@ impl Ndf for GaussianFilteredGgx {
     #[inline]
     fn lambda(&self, w: Vec3) -> F {
         let w = rescale_direction(w);
+        // A NaN direction contributes nothing (the crate's NaN policy, `Ndf`).
         if w.is_nan() {
-            return F::NAN;
+            return F::INFINITY;
         }
         let (ox, oy, oz) = (w.x.to_f64(), w.y.to_f64(), w.z.to_f64().abs());
         // Lambda is homogeneous of degree 0: normalise first (`w` is finite and rescaled).

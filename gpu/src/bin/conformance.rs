@@ -25,6 +25,8 @@ fn main() {
         ("footprint", checks::footprint::all()),
         ("filters", checks::filters::all()),
         ("rect", checks::rect::all()),
+        ("gaussian_ggx", checks::gaussian_ggx::all()),
+        ("method", checks::method::all()),
         ("sampling", checks::sampling::all()),
     ];
     let mut failed = 0;

@@ -85,19 +85,14 @@ const IMPORTS: &str = "#import filtered_ndf::ndf::roughness::axis_aligned
 #import filtered_ndf::filter::deferred
 #import filtered_ndf::filter::presets";
 
-/// `cond A'` of a reference matrix (eigenvalues from the entries in f64).
-fn cond(m: &RoughnessMatrix) -> f64 {
-    let (a, b, c) = m.entries();
-    let half = 0.5 * (a - c);
-    let l1 = 0.5 * (a + c) + half.hypot(b);
-    let l2 = (a * c - b * b) / l1;
-    if l2 > 0.0 { l1 / l2 } else { f64::INFINITY }
-}
-
-/// The module docs' `D` tolerance (ulp) of a filtered matrix at `h`.
-fn filtered_d_tol(m: &RoughnessMatrix, h: DVec3, ggx: bool) -> f64 {
+/// The module docs' `D` tolerance (ulp) of a filtered matrix at `h`: `cond A'_c` of the matrix
+/// the density evaluates (`A'` itself unless the determinant clamp is active, which adds
+/// 5 ulp to the clamped eigenvalues, `matrix.wgsl`).
+pub fn filtered_d_tol(m: &RoughnessMatrix, h: DVec3, ggx: bool) -> f64 {
     use crate::reference::Roughness;
-    let err_q = 10.0 + 16.0 * cond(m).sqrt();
+    let (a, b, c) = m.entries();
+    let active = m.clamped_det() > a * c - b * b;
+    let err_q = 10.0 + 16.0 * super::ndf::clamped_cond(m).sqrt() + if active { 5.0 } else { 0.0 };
     if ggx {
         2.0 * (err_q + 1.0) + 6.0 + 10.0
     } else {
@@ -138,8 +133,183 @@ fn filtered_row(
     c
 }
 
+/// [`filtered_row`] with one more input per point, `tau` (slot 9): `wgsl_matrix` reads it as
+/// `x(9u)`, `reference` gets it.
+fn filtered_row_tau(
+    name: &str,
+    wgsl_matrix: &str,
+    ggx: bool,
+    points: &[Point],
+    taus: &[f32],
+    reference: &dyn Fn(&Point, f32) -> RoughnessMatrix,
+) -> Check {
+    let model = if ggx { "ggx" } else { "beckmann" };
+    let body = format!("{PROLOGUE}\nlet af = {wgsl_matrix};\ny(0u, {model}::d_matrix(af, h));");
+    let mut c = Check::new(name, IMPORTS, &body, 10, 1).tolerance(if ggx {
+        "GGX D of A'_c: 2 (err_q + 1) + 16 ulp, err_q = 10 + 16 sqrt(cond A'_c) (+ 5 with the clamp active)"
+    } else {
+        "Beckmann D of A'_c: (err_q + 3) x + 2x + 19 ulp, err_q = 10 + 16 sqrt(cond A'_c) (+ 5 with the clamp active)"
+    });
+    for (p, &tau) in points.iter().zip(taus) {
+        let m = reference(p, tau);
+        let d = if ggx {
+            Ggx::new(m).d(p.h())
+        } else {
+            Beckmann::new(m).d(p.h())
+        };
+        let mut input = p.input();
+        input.push(tau);
+        c.case(
+            input,
+            vec![d],
+            vec![Tol::ulps(filtered_d_tol(&m, p.h(), ggx))],
+        );
+    }
+    c
+}
+
+/// `tau` for each point: its determinant `det` (f64, of whatever the clamp is compared with)
+/// times a ratio log-uniform in `[1 + 1e-6, 1e6]`, rounded to f32 (the clamp active, by a
+/// hair to far beyond).
+fn active_taus(points: &[Point], label: &str, det: &dyn Fn(&Point) -> f64) -> Vec<f32> {
+    let e = draw(-6.0f64..6.0, points.len(), label);
+    points
+        .iter()
+        .zip(e)
+        .map(|(p, e)| {
+            let ratio = if e < 0.0 {
+                1.0 + 10f64.powf(e)
+            } else {
+                10f64.powf(e)
+            };
+            (det(p) * ratio) as f32
+        })
+        .collect()
+}
+
+/// The determinant-clamp rows: the filters with `tau` above the filtered determinant, and the
+/// pipelines of a material whose own clamp is active (`A_c` filtered as `A + 2 Sigma` with its
+/// own `tau = det A_c`, as in Rust).
+fn clamp_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
+    let mut checks = Vec::new();
+    let fdet = |m: RoughnessMatrix| {
+        let (a, b, c) = m.entries();
+        a * c - b * b
+    };
+    let taus = active_taus(pts, "gaussian tau", &|p| {
+        fdet(filter::gaussian(p.alpha(), p.fp().covariance(sigma)))
+    });
+    for ggx in [true, false] {
+        checks.push(filtered_row_tau(
+            &format!(
+                "gaussian::gaussian_with_det_clamp ({}, clamp active)",
+                if ggx { "GGX" } else { "Beckmann" }
+            ),
+            "gaussian::gaussian_with_det_clamp(a, footprint::covariance(fp, 0.5), x(9u))",
+            ggx,
+            pts,
+            &taus,
+            &|p, tau| {
+                filter::gaussian_with_det_clamp(p.alpha(), p.fp().covariance(sigma), tau.into())
+            },
+        ));
+    }
+    let taus = active_taus(pts, "projected tau", &|p| {
+        fdet(filter::projected(p.alpha(), p.fp().covariance(sigma)))
+    });
+    checks.push(filtered_row_tau(
+        "projected::projected_with_det_clamp (GGX, clamp active)",
+        "projected::projected_with_det_clamp(a, footprint::covariance(fp, 0.5), x(9u))",
+        true,
+        pts,
+        &taus,
+        &|p, tau| filter::projected_with_det_clamp(p.alpha(), p.fp().covariance(sigma), tau.into()),
+    ));
+    // A clamped material: tau_m = det A times the ratio.
+    let taus = active_taus(pts, "material tau", &|p| {
+        let a = p.alpha().alpha();
+        (a.x * a.y).powi(2)
+    });
+    let material = |p: &Point, tau: f32| {
+        let a = p.alpha().alpha();
+        RoughnessMatrix::new_with_det_clamp(a.x * a.x, 0.0, a.y * a.y, tau.into())
+            .expect("in range")
+    };
+    for (ggx, f) in [
+        (true, "filter_gaussian"),
+        (false, "filter_gaussian"),
+        (true, "filter_projected"),
+    ] {
+        checks.push(filtered_row_tau(
+            &format!(
+                "clamp::{f} ({}, default rules, clamped material)",
+                if ggx { "GGX" } else { "Beckmann" }
+            ),
+            &format!("clamp::{f}(clamp::DEFAULT_RULES, matrix::with_det_clamp(a, x(9u)), fp, 0.5)"),
+            ggx,
+            pts,
+            &taus,
+            &|p, tau| {
+                let rules = ClampRules::default();
+                if f == "filter_gaussian" {
+                    rules.filter_gaussian(material(p, tau), p.fp(), sigma)
+                } else {
+                    rules.filter_projected(material(p, tau), p.fp(), sigma)
+                }
+            },
+        ));
+    }
+    checks
+}
+
+/// The entries of a filtered matrix as the oracle's GPU backend returns them
+/// (`matrix::entries` of `gaussian::gaussian` and `projected::projected`): reconstructed from
+/// the eigenbasis, `l1 c^2 + l2 s^2` etc., so within `32 EPS` of the largest entry: the
+/// eigenvalue `l1` 5 ulp, the reconstruction 3 ulp of `l1`, the eigenvector's angle (from the
+/// row without cancellation, 4 `EPS`) moving the entries by `2 (l1 - l2) 4 EPS`, i.e.
+/// `16 EPS l1`, and `l1 <= 2 max |a_ij|`.
+fn entries_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
+    let mut checks = Vec::new();
+    for (name, call) in [
+        (
+            "matrix::entries(gaussian::gaussian)",
+            "gaussian::gaussian(a, footprint::covariance(fp, 0.5))",
+        ),
+        (
+            "matrix::entries(projected::projected)",
+            "projected::projected(a, footprint::covariance(fp, 0.5))",
+        ),
+    ] {
+        let body = format!("{PROLOGUE}\ny3(0u, matrix::entries({call}));");
+        let mut c = Check::new(name, IMPORTS, &body, 9, 3)
+            .tolerance("32 EPS of the largest entry (eigenvalue 5 ulp, reconstruction 3, eigenvector angle 4 EPS times 2 (l1 - l2); l1 <= 2 max |a_ij|)");
+        for p in pts {
+            let k = p.fp().covariance(sigma);
+            let m = if name.contains("gaussian") {
+                filter::gaussian(p.alpha(), k)
+            } else {
+                filter::projected(p.alpha(), k)
+            };
+            let (a11, a12, a22) = m.entries();
+            let scale = a11.abs().max(a22.abs()).max(a12.abs());
+            c.case(
+                p.input(),
+                vec![a11, a12, a22],
+                vec![Tol::of_scale(32.0, scale); 3],
+            );
+        }
+        checks.push(c);
+    }
+    checks
+}
+
 /// The per-case tolerance (ulp) of `KernelConvention::apply` (see [`all`]'s comment).
-fn deferred_tol(conv: &deferred::KernelConvention, alpha: f64, dn_u: DVec3, dn_v: DVec3) -> f64 {
+pub fn deferred_tol(
+    conv: &deferred::KernelConvention,
+    alpha: f64,
+    dn_u: DVec3,
+    dn_v: DVec3,
+) -> f64 {
     use deferred::{Domain, Norm};
     let n = conv.norm.eval(dn_u, dn_v);
     // The kernel: the norm (sums of squares 2 ulp, the Gram eigenvalue 10), the scale and
@@ -212,6 +382,15 @@ pub fn all() -> Vec<Check> {
         &pts,
         &|p| ClampRules::default().filter_gaussian(p.alpha(), p.fp(), sigma),
     ));
+    checks.push(filtered_row(
+        "clamp::filter_projected (GGX, TK21, default clamps)",
+        "clamp::filter_projected(clamp::DEFAULT_RULES, a, fp, 0.5)",
+        true,
+        &pts,
+        &|p| ClampRules::default().filter_projected(p.alpha(), p.fp(), sigma),
+    ));
+    checks.extend(clamp_rows(&pts, sigma));
+    checks.extend(entries_rows(&pts, sigma));
     checks.push(lean_row(&pts));
 
     // The GGX proxy rows: rectangle from the footprint under the default rules.
@@ -306,7 +485,7 @@ pub fn all() -> Vec<Check> {
     let mut cf = Check::new(
         "deferred::filtered_alpha",
         IMPORTS,
-        "let s = deferred::normal_difference_covariance(x3(1u), x3(4u), deferred::SIGMA_SQ);
+        "let s = deferred::normal_difference_covariance(x3(1u), x3(4u), footprint::SIGMA_PIXEL);
 y(0u, deferred::filtered_alpha(x(0u), s, deferred::BANDWIDTH_MAX, deferred::KAPPA));
 y(1u, deferred::filtered_alpha(x(0u), s, deferred::BANDWIDTH_TRACE, deferred::KAPPA));
 y(2u, deferred::filtered_alpha(x(0u), s, deferred::BANDWIDTH_AVERAGE, deferred::KAPPA));",
@@ -322,7 +501,11 @@ y(2u, deferred::filtered_alpha(x(0u), s, deferred::BANDWIDTH_AVERAGE, deferred::
             [d.x as f32, d.y as f32, d.z as f32]
         };
         let (u, v) = (dn(), dn());
-        let s = deferred::normal_difference_covariance(v3(u), v3(v), deferred::SIGMA2);
+        let s = deferred::normal_difference_covariance(
+            v3(u),
+            v3(v),
+            filtered_ndf::f64::kernel::SIGMA_PIXEL,
+        );
         let mut input = vec![alpha];
         input.extend(u);
         input.extend(v);

@@ -67,5 +67,43 @@ pub fn all() -> Vec<Check> {
             vec![Tol::ulps(8.0)],
         );
     }
-    vec![atan, sc, hy]
+    // exp, ln, ln_1p against f64.
+    let mut ex = Check::new("math::exp", imports, "y(0u, math::exp(x(0u)));", 1, 1).tolerance(
+        "3 ulp relative: polynomial 1.9e-9, reduction exact but for its last rounding (|r| <= 0.35: 0.5 ulp), Estrin 1.5 ulp, the product with 2^n 0.5",
+    );
+    let mut xs: Vec<f64> = vec![0.0, -0.0, 1.0, -1.0, 88.0, -86.99, 1e-30, -1e-30, 0.3465736];
+    for _ in 0..6000 {
+        xs.push(rng.range(-87.0, 88.0));
+    }
+    for _ in 0..2000 {
+        xs.push(rng.range(-1.0, 1.0) * rng.log_uniform(1e-8, 1.0));
+    }
+    for x in xs {
+        let x = r32(x);
+        ex.case(vec![x as f32], vec![x.exp()], vec![Tol::ulps(3.0)]);
+    }
+    let mut ln = Check::new(
+        "math::ln, math::ln_1p",
+        imports,
+        "y(0u, math::ln(x(0u))); y(1u, math::ln_1p(x(1u)));",
+        2,
+        2,
+    )
+    .tolerance("ln 4 ulp relative (z 3 ulp, series and Horner 1, e ln 2 split exact, the sums 1; near 1 relative through z); ln_1p 6 ulp (ln's 4, the quotient 2)");
+    for k in 0..8000 {
+        let x = r32(match k % 4 {
+            0 => rng.log_uniform(1.2e-38, 3e38),
+            1 => 1.0 + rng.range(-0.3, 0.5),
+            2 => 1.0 + rng.range(-1.0, 1.0) * rng.log_uniform(1e-7, 1e-2),
+            _ => rng.log_uniform(0.5, 2.0),
+        });
+        let y = r32(rng.log_uniform(1e-12, 1e12));
+        // ln at exactly 1 is 0: relative tolerance 0 with the flush floor.
+        ln.case(
+            vec![x as f32, y as f32],
+            vec![x.ln(), y.ln_1p()],
+            vec![Tol::ulps(4.0), Tol::ulps(6.0)],
+        );
+    }
+    vec![atan, sc, hy, ex, ln]
 }

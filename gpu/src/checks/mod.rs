@@ -16,7 +16,9 @@
 
 pub mod filters;
 pub mod footprint;
+pub mod gaussian_ggx;
 pub mod math;
+pub mod method;
 pub mod ndf;
 pub mod rect;
 pub mod sampling;

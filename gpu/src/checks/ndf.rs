@@ -3,14 +3,18 @@
 //!
 //! Cases: roughness from the crate's strategies (`strategies::isotropic`, `axis_aligned`,
 //! and the rotated matrices of `strategies::matrix`: alpha log-uniform in `[1e-4, 2]`,
-//! anisotropy up to `1e3`) and the ends of the supported range (`1e-8`, `1e4`), directions from `strategies::upper_hemisphere(89.9)` (pole and
-//! near-horizon weighted in), slopes those of the micronormals.
+//! anisotropy up to `1e3`) and the ends of the supported range (`1e-8`, `1e4`), directions
+//! from `strategies::upper_hemisphere(89.9)` (pole and near-horizon weighted in), slopes those
+//! of the micronormals. The matrix form is checked twice: as built (`from_eigen`) and with
+//! the determinant clamp active (`with_det_clamp(tau)`, `tau` from `det A (1 + 1e-6)` to
+//! `1e6 det A`), against `RoughnessMatrix::new_with_det_clamp`: the one clamped matrix
+//! `A_c = A + t I` of both.
 //!
 //! Tolerances (ulp of f32; GGX's far tail beyond `1e-36` of the peak as in `ggx_tail`):
 //! `err_q`, the error of the quadratic forms, is 6 (isotropic: a
 //! dot product, `1 / alpha^2` with its division), 7 (axis-aligned) and
 //! `8 + 8 sqrt(cond A)` for the matrix form (`matrix.wgsl`: the rotation error weighted by
-//! `sqrt(cond)`). GGX `P22`, `D`: `2 (err_q + 1) + 6` (the square of `1 + q`, five products
+//! `sqrt(cond)`), `13 + 8 sqrt(cond A_c)` with the clamp active (its eigenvalues 5 ulp more). GGX `P22`, `D`: `2 (err_q + 1) + 6` (the square of `1 + q`, five products
 //! and a division). GGX `Lambda`: `1.5 err_q + 10` (a square root halves `err_q`, then a
 //! division and three products). `G1 = 1 / (1 + Lambda)`: `err_Lambda + 3`; `G2`:
 //! `err_Lambda + 4`. Beckmann `P22`, `D`: the exponent `x` carries `err_x = err_q + 3` ulp,
@@ -31,8 +35,8 @@ use crate::reference::{
 enum Form {
     Iso(f32),
     Aa([f32; 2]),
-    /// `from_eigen(axis, alpha)`.
-    Mat([f32; 2], [f32; 2]),
+    /// `from_eigen(axis, alpha)`, then `with_det_clamp(tau)` for `tau > 0`.
+    Mat([f32; 2], [f32; 2], f32),
 }
 
 /// The f64 roughness of a case.
@@ -90,18 +94,19 @@ struct NdfCase {
 }
 
 impl NdfCase {
-    /// The 15 input slots: roughness parameters (0..4), `s` (4..6), `m` (6..9), `w` (9..12),
-    /// `o` (12..15).
+    /// The 16 input slots: roughness parameters (0..4), `s` (4..6), `m` (6..9), `w` (9..12),
+    /// `o` (12..15), the determinant clamp `tau` (15).
     fn input(&self) -> Vec<f32> {
-        let mut v = match self.form {
-            Form::Iso(a) => vec![a, 0.0, 0.0, 0.0],
-            Form::Aa(a) => vec![a[0], a[1], 0.0, 0.0],
-            Form::Mat(ax, a) => vec![ax[0], ax[1], a[0], a[1]],
+        let (mut v, tau) = match self.form {
+            Form::Iso(a) => (vec![a, 0.0, 0.0, 0.0], 0.0),
+            Form::Aa(a) => (vec![a[0], a[1], 0.0, 0.0], 0.0),
+            Form::Mat(ax, a, tau) => (vec![ax[0], ax[1], a[0], a[1]], tau),
         };
         v.extend(self.s);
         v.extend(self.m);
         v.extend(self.w);
         v.extend(self.o);
+        v.push(tau);
         v
     }
 }
@@ -125,6 +130,33 @@ fn cases(kind: &str, n: usize) -> Vec<NdfCase> {
             .into_iter()
             .map(|r| Form::Aa([r.alpha().x as f32, r.alpha().y as f32]))
             .collect(),
+        // The clamped matrices: tau = det A times a ratio log-uniform in [1 + 1e-6, 1e6]
+        // (the clamp active by a hair up to far beyond the lobe's own determinant).
+        "matrix_clamped" => draw(
+            (
+                strategies::axis_aligned(),
+                0.0..core::f64::consts::PI,
+                -6.0f64..6.0,
+            ),
+            n,
+            kind,
+        )
+        .into_iter()
+        .map(|(r, phi, e)| {
+            let a = [r.alpha().x as f32, r.alpha().y as f32];
+            let det = (f64::from(a[0]) * f64::from(a[1])).powi(2);
+            let ratio = if e < 0.0 {
+                1.0 + 10f64.powf(e)
+            } else {
+                10f64.powf(e)
+            };
+            Form::Mat(
+                [phi.cos() as f32, phi.sin() as f32],
+                a,
+                (det * ratio) as f32,
+            )
+        })
+        .collect(),
         _ => draw(
             (strategies::axis_aligned(), 0.0..core::f64::consts::PI),
             n,
@@ -135,6 +167,7 @@ fn cases(kind: &str, n: usize) -> Vec<NdfCase> {
             Form::Mat(
                 [phi.cos() as f32, phi.sin() as f32],
                 [r.alpha().x as f32, r.alpha().y as f32],
+                0.0,
             )
         })
         .collect(),
@@ -148,10 +181,14 @@ fn cases(kind: &str, n: usize) -> Vec<NdfCase> {
             Form::Aa([1.0001e-8, 1e4]),
             Form::Aa([1e4, 1.0001e-8]),
         ],
+        "matrix_clamped" => vec![
+            Form::Mat([0.6, 0.8], [1.0001e-8, 1e-4], 1e-20),
+            Form::Mat([0.6, 0.8], [1e-4, 1e-2], 1e-4),
+        ],
         _ => vec![
-            Form::Mat([0.6, 0.8], [1.0001e-8, 1.0001e-8]),
-            Form::Mat([0.6, 0.8], [1.0001e-8, 1e-4]),
-            Form::Mat([0.6, 0.8], [1e3, 1e4]),
+            Form::Mat([0.6, 0.8], [1.0001e-8, 1.0001e-8], 0.0),
+            Form::Mat([0.6, 0.8], [1.0001e-8, 1e-4], 0.0),
+            Form::Mat([0.6, 0.8], [1e3, 1e4], 0.0),
         ],
     };
     let forms: Vec<Form> = forms
@@ -166,13 +203,24 @@ fn cases(kind: &str, n: usize) -> Vec<NdfCase> {
                 Rough::Aa(AxisAligned::new(a[0].into(), a[1].into()).expect("in range")),
                 7.0,
             ),
-            Form::Mat(ax, a) => {
+            Form::Mat(ax, a, tau) => {
                 let Some(r) = matrix_from_eigen(ax, a) else {
                     continue;
                 };
-                let (l1, l2) = (f64::from(a[0]).powi(2), f64::from(a[1]).powi(2));
-                let cond = l1.max(l2) / l1.min(l2);
-                (Rough::Mat(r), 8.0 + 8.0 * cond.sqrt())
+                if tau > 0.0 {
+                    // A_c (`matrix.wgsl`): the clamp's eigenvalues add 5 ulp, and the
+                    // rotation error is weighted by sqrt(cond A_c).
+                    let (a11, a12, a22) = r.entries();
+                    let Ok(rc) = RoughnessMatrix::new_with_det_clamp(a11, a12, a22, tau.into())
+                    else {
+                        continue;
+                    };
+                    (Rough::Mat(rc), 13.0 + 8.0 * clamped_cond(&rc).sqrt())
+                } else {
+                    let (l1, l2) = (f64::from(a[0]).powi(2), f64::from(a[1]).powi(2));
+                    let cond = l1.max(l2) / l1.min(l2);
+                    (Rough::Mat(r), 8.0 + 8.0 * cond.sqrt())
+                }
             }
         };
         let j = k % n;
@@ -192,6 +240,16 @@ fn cases(kind: &str, n: usize) -> Vec<NdfCase> {
     out
 }
 
+/// `cond A_c` of a (possibly clamped) reference matrix: the eigenvalues of the matrix its
+/// functions evaluate, `lambda_max` from the clamped entries and `lambda_min = det A_c /
+/// lambda_max`.
+pub fn clamped_cond(m: &RoughnessMatrix) -> f64 {
+    let (a, b, c) = m.clamped_entries();
+    let l1 = 0.5 * (a + c) + (0.5 * (a - c)).hypot(b);
+    let l2 = m.clamped_det() / l1;
+    l1 / l2
+}
+
 /// GGX's far tail (`ggx.wgsl`): where `t = 1 + q` (or `q_xy + m_z^2`) exceeds `1e18` a
 /// driver that reassociates the product may overflow `t^2` and return 0: the tolerance
 /// there is the density at `t = 1e18`, `1e-36` of the peak `1 / (pi sqrt(det A))`.
@@ -204,7 +262,7 @@ fn ggx_tail(t: f64, sqrt_det: f64, ulps: f64) -> Tol {
 }
 
 /// GGX / Beckmann tolerances of the module docs, in ulp.
-fn tol_density(ggx: bool, err_q: f64, x: f64, ln_k: f64) -> f64 {
+pub fn tol_density(ggx: bool, err_q: f64, x: f64, ln_k: f64) -> f64 {
     if ggx {
         2.0 * (err_q + 1.0) + 6.0
     } else {
@@ -213,7 +271,8 @@ fn tol_density(ggx: bool, err_q: f64, x: f64, ln_k: f64) -> f64 {
     }
 }
 
-fn tol_lambda(ggx: bool, err_q: f64, q: f64, abs_wz: f64) -> f64 {
+/// The `Lambda` tolerance of the module docs, in ulp, from `q = w_xy^T A w_xy` and `|w_z|`.
+pub fn tol_lambda(ggx: bool, err_q: f64, q: f64, abs_wz: f64) -> f64 {
     if ggx {
         1.5 * err_q + 10.0
     } else {
@@ -227,7 +286,21 @@ fn form_checks(kind: &str, n: usize) -> Vec<Check> {
     let (ctor, module) = match kind {
         "isotropic" => ("isotropic::from_alpha(x(0u))", "isotropic"),
         "axis_aligned" => ("axis_aligned::from_alpha(x2(0u))", "axis_aligned"),
+        "matrix_clamped" => (
+            "matrix::with_det_clamp(matrix::from_eigen(x2(0u), x2(2u)), x(15u))",
+            "matrix",
+        ),
         _ => ("matrix::from_eigen(x2(0u), x2(2u))", "matrix"),
+    };
+    let fname = if kind == "matrix_clamped" {
+        "matrix"
+    } else {
+        kind
+    };
+    let suffix = if kind == "matrix_clamped" {
+        " (determinant clamp active)"
+    } else {
+        ""
     };
     let imports = format!(
         "#import filtered_ndf::ndf::roughness::{module}\n#import filtered_ndf::ndf::ggx\n#import filtered_ndf::ndf::beckmann"
@@ -236,7 +309,7 @@ fn form_checks(kind: &str, n: usize) -> Vec<Check> {
     let mut checks = Vec::new();
     let mut add = |name: String, call: &str, f: &dyn Fn(&NdfCase) -> (f64, Tol)| {
         let body = format!("{pre}\ny(0u, {call});");
-        let mut c = Check::new(&name, &imports, &body, 15, 1);
+        let mut c = Check::new(&format!("{name}{suffix}"), &imports, &body, 16, 1);
         for k in &cases {
             let (e, t) = f(k);
             c.case(k.input(), vec![e], vec![t]);
@@ -264,8 +337,8 @@ fn form_checks(kind: &str, n: usize) -> Vec<Check> {
     for ggx in [true, false] {
         let model = if ggx { "ggx" } else { "beckmann" };
         add(
-            format!("{model}::p22_{kind}"),
-            &format!("{model}::p22_{kind}(r, x2(4u))"),
+            format!("{model}::p22_{fname}"),
+            &format!("{model}::p22_{fname}(r, x2(4u))"),
             &|k| {
                 let q = k.rough.inv_quadratic(v2(k.s));
                 let ln_k = -(core::f64::consts::PI * k.rough.sqrt_det()).ln();
@@ -279,8 +352,8 @@ fn form_checks(kind: &str, n: usize) -> Vec<Check> {
             },
         );
         add(
-            format!("{model}::d_{kind}"),
-            &format!("{model}::d_{kind}(r, x3(6u))"),
+            format!("{model}::d_{fname}"),
+            &format!("{model}::d_{fname}(r, x3(6u))"),
             &|k| {
                 let m = v3(k.m);
                 let x = k.rough.inv_quadratic(DVec2::new(m.x, m.y)) / (m.z * m.z);
@@ -304,16 +377,16 @@ fn form_checks(kind: &str, n: usize) -> Vec<Check> {
             )
         };
         add(
-            format!("{model}::lambda_{kind}"),
-            &format!("{model}::lambda_{kind}(r, x3(9u))"),
+            format!("{model}::lambda_{fname}"),
+            &format!("{model}::lambda_{fname}(r, x3(9u))"),
             &|k| {
                 let w = v3(k.w);
                 (k.rough.ndf(ggx).lambda(w), Tol::ulps(lambda_tol(k, w)))
             },
         );
         add(
-            format!("{model}::g1_{kind}"),
-            &format!("{model}::g1_{kind}(r, x3(9u), x3(6u))"),
+            format!("{model}::g1_{fname}"),
+            &format!("{model}::g1_{fname}(r, x3(9u), x3(6u))"),
             &|k| {
                 let w = v3(k.w);
                 let t = lambda_tol(k, w) + 3.0;
@@ -321,8 +394,8 @@ fn form_checks(kind: &str, n: usize) -> Vec<Check> {
             },
         );
         add(
-            format!("{model}::g2_{kind}"),
-            &format!("{model}::g2_{kind}(r, x3(9u), x3(12u), x3(6u))"),
+            format!("{model}::g2_{fname}"),
+            &format!("{model}::g2_{fname}(r, x3(9u), x3(12u), x3(6u))"),
             &|k| {
                 let (i, o) = (v3(k.w), v3(k.o));
                 let t = lambda_tol(k, i).max(lambda_tol(k, o)) + 4.0;
@@ -337,7 +410,7 @@ fn form_checks(kind: &str, n: usize) -> Vec<Check> {
 pub fn all() -> Vec<Check> {
     let _ = EPS;
     let mut v = Vec::new();
-    for kind in ["isotropic", "axis_aligned", "matrix"] {
+    for kind in ["isotropic", "axis_aligned", "matrix", "matrix_clamped"] {
         v.extend(form_checks(kind, 2000));
     }
     v

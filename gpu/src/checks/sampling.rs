@@ -42,16 +42,6 @@ impl Case {
         v.extend(self.u);
         v
     }
-    /// `M = [[l_xx, 0, 0], [l_yx, l_yy, 0], [0, 0, 1]]` of the reference matrix (f64).
-    fn warp(&self) -> DMat3 {
-        let (a11, a12, _) = self.m.entries();
-        let l11 = a11.sqrt();
-        DMat3::from_cols(
-            DVec3::new(l11, a12 / l11, 0.0),
-            DVec3::new(0.0, self.m.sqrt_det() / l11, 0.0),
-            DVec3::Z,
-        )
-    }
 }
 
 fn cases(n: usize) -> Vec<Case> {
@@ -99,13 +89,19 @@ fn warp_conditioning(mm: DMat3, n: DVec3) -> f64 {
 
 /// The module docs' bound on the sampled `m` (absolute, per component).
 fn sample_tol(c: &Case) -> f64 {
-    let mm = c.warp();
-    let wo = v3(c.wo).normalize();
+    sample_tol_of(&c.m, v3(c.wo), c.u)
+}
+
+/// [`sample_tol`] for the (f64) roughness `m`, the view `wo` and the uniform numbers `u`
+/// (as the shader reads them).
+pub fn sample_tol_of(m: &RoughnessMatrix, wo: DVec3, u: [f32; 2]) -> f64 {
+    let mm = warp_of(m);
+    let wo = wo.normalize();
     let st = mm.transpose() * wo;
     let wi = st / st.length();
     // Conditioning of wi = normalize(M^T wo) in wo.
     let k_in = warp_conditioning(mm.transpose(), wo);
-    let (u1, u2) = (f64::from(c.u[0]), f64::from(c.u[1]));
+    let (u1, u2) = (f64::from(u[0]), f64::from(u[1]));
     let z = (1.0 - u2) * (1.0 + wi.z) - wi.z;
     let sin_t = (1.0 - z * z).max(0.0).sqrt();
     let dz = 6.0 * EPS + 8.0 * EPS * k_in;
@@ -115,6 +111,17 @@ fn sample_tol(c: &Case) -> f64 {
     let n = DVec3::new(sin_t * phi.cos(), sin_t * phi.sin(), z) + wi;
     let dn = 3.0 * EPS + d_sin + dz + 8.0 * EPS * k_in + 2.0 * EPS;
     warp_conditioning(mm, n) * dn + 8.0 * EPS
+}
+
+/// `M = [[l_xx, 0, 0], [l_yx, l_yy, 0], [0, 0, 1]]` of a reference matrix (f64), its `A_c`.
+fn warp_of(m: &RoughnessMatrix) -> DMat3 {
+    let (a11, a12, _) = m.clamped_entries();
+    let l11 = a11.sqrt();
+    DMat3::from_cols(
+        DVec3::new(l11, a12 / l11, 0.0),
+        DVec3::new(0.0, m.sqrt_det() / l11, 0.0),
+        DVec3::Z,
+    )
 }
 
 fn err_q(c: &Case) -> f64 {
@@ -184,7 +191,7 @@ pub fn all() -> Vec<Check> {
             u1.sqrt() * phi.sin(),
             (1.0 - u1).sqrt(),
         );
-        let k = warp_conditioning(c.warp(), nstd);
+        let k = warp_conditioning(warp_of(&c.m), nstd);
         sn.case(
             c.input(),
             vec![n.x, n.y, n.z],

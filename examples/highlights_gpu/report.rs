@@ -1,0 +1,477 @@
+//! The measurements: the still frame (GPU frames against the CPU reference and the CPU
+//! demo's frames, GPU times), the temporal test, and their tables and figures.
+
+use crate::camera::camera_at;
+use crate::gpu::{Gpu, Timer};
+use crate::image_out::{Image, Rgb8, contact_sheet, save};
+use crate::methods::{Family, Method};
+use crate::passes::{Renderer, Route};
+use crate::peaks::{distance, mean, variation};
+use crate::plot::{PALETTE, Series, line_plot};
+use crate::render::{self, FootprintRoute};
+use crate::scene::Scene;
+use crate::{Options, parallel};
+use std::fmt::Write as _;
+
+/// Resolution divisor and reference sample divisor of the temporal frames: the CPU demo's
+/// (`examples/highlights/temporal.rs`), so that both temporal tables describe the same frames.
+const DOWNSCALE: u32 = 2;
+const SPP_DIVISOR: usize = 8;
+
+/// Every route rendered: each method of the CPU demo in forward shading, then unfiltered
+/// GGX and each engine preset in deferred shading.
+pub fn routes() -> Vec<Route> {
+    let forward = Method::ALL.iter().map(|&m| Route::Forward(m));
+    let deferred = std::iter::once(None)
+        .chain((0..filtered_ndf::f32::filter::presets::ALL.len()).map(Some))
+        .map(Route::Deferred);
+    forward.chain(deferred).collect()
+}
+
+/// The CPU demo's method that a route renders.
+fn cpu_method(route: Route) -> Method {
+    match route {
+        Route::Forward(m) => m,
+        Route::Deferred(None) => Method::Unfiltered(Family::Ggx),
+        Route::Deferred(Some(i)) => Method::Preset(i),
+    }
+}
+
+fn route_name(route: Route) -> &'static str {
+    match route {
+        Route::Forward(_) => "forward",
+        Route::Deferred(_) => "deferred",
+    }
+}
+
+fn slug(route: Route) -> String {
+    format!("gpu-{}-{}", route_name(route), cpu_method(route).slug())
+}
+
+/// The baseline a route's time is divided by: unfiltered GGX on the same route.
+fn baseline(route: Route) -> Route {
+    match route {
+        Route::Forward(_) => Route::Forward(Method::Unfiltered(Family::Ggx)),
+        Route::Deferred(_) => Route::Deferred(None),
+    }
+}
+
+/// One route's row of the still-frame table.
+pub struct Row {
+    pub route: Route,
+    pub gpu_rmse: f64,
+    pub gpu_mean: f64,
+    pub gpu_peak: f64,
+    /// The CPU demo's frame of the same method: ray differentials (its default) and its
+    /// own 2x2-quad differences.
+    pub cpu_rays_rmse: f64,
+    pub cpu_quad_rmse: f64,
+    pub cpu_rays_mean: f64,
+    pub cpu_rays_peak: f64,
+    /// RMSE of the GPU frame against the CPU demo's quad-difference frame.
+    pub gpu_vs_cpu_quad: f64,
+    /// The same over the pixels the two difference alike ([`GBuffer::quad_interior`]),
+    /// relative to the CPU quad frame's RMSE against the reference there.
+    ///
+    /// [`GBuffer::quad_interior`]: crate::render::GBuffer::quad_interior
+    pub same_quads: f64,
+    /// Median GPU time of the route's passes (seconds).
+    pub time: f64,
+}
+
+/// The still frame's results.
+pub struct Still {
+    pub rows: Vec<Row>,
+    /// The fraction of pixels the CPU quad route differences with their own quad partners.
+    pub same_quads: f64,
+    pub reference_s: f64,
+    pub visibility_time: f64,
+    pub timer: &'static str,
+}
+
+fn image(o: &Options, data: Vec<glam::Vec3>) -> Image {
+    Image::new(o.width as usize, o.height as usize, data)
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Frame 0: every route on the GPU, the CPU reference and the CPU demo's frames, the times,
+/// the images, the contact sheet and the side-by-side figure.
+pub fn still(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Still, String> {
+    let (w, h) = (o.width as usize, o.height as usize);
+    let cam = camera_at(0, w, h);
+    let scene = Scene::new(cam.lod());
+    renderer.resize(gpu, o.width, o.height);
+    renderer.begin_frame(gpu, &scene, &cam)?;
+    let mut frames = Vec::new();
+    for route in routes() {
+        frames.push((route, image(o, renderer.render(gpu, route)?)));
+    }
+    // Every route once per round, rounds repeated (the first one warms up): a drift of the
+    // machine's speed touches every route alike.
+    let timer = Timer::new(gpu);
+    let all = routes();
+    let bar = parallel::bar("GPU timing", o.repeats + 1);
+    let mut samples = vec![Vec::new(); all.len()];
+    for round in 0..=o.repeats {
+        for (k, &route) in all.iter().enumerate() {
+            let s = timer.time(gpu, route.passes(), |enc| {
+                renderer.record(enc, route, Some(&timer))
+            })?;
+            if round > 0 {
+                samples[k].push(s);
+            }
+        }
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    let times: Vec<f64> = samples.into_iter().map(median).collect();
+    let visibility_time = median(
+        (0..o.repeats)
+            .map(|_| renderer.time_visibility(gpu, &timer))
+            .collect::<Result<_, _>>()?,
+    );
+
+    let t = std::time::Instant::now();
+    let reference = render::reference(&scene, &cam, w, h, o.spp, o.seed, Some("CPU reference"));
+    let reference_s = t.elapsed().as_secs_f64();
+    let gb = render::gbuffer(&scene, &cam, w, h);
+    let rays = gb.derivatives(FootprintRoute::RayDifferentials);
+    let quad = gb.derivatives(FootprintRoute::Quad);
+    let interior = gb.quad_interior();
+    let same_quads = interior.iter().filter(|&&b| b).count() as f64 / interior.len() as f64;
+
+    let mut rows = Vec::new();
+    let mut tiles: Vec<(String, Rgb8)> = Vec::new();
+    for family in [Family::Beckmann, Family::Ggx] {
+        let img = reference.full(family);
+        tiles.push((
+            format!("CPU reference, {} ({} spp)", family.name(), o.spp),
+            img.to_rgb8(o.exposure),
+        ));
+        let name = format!("reference-{}.png", family.name().to_lowercase());
+        save(&img.to_rgb8(o.exposure), &o.out.join(name)).map_err(|e| e.to_string())?;
+    }
+    let mut side_by_side = Vec::new();
+    for ((route, img), time) in frames.iter().zip(times) {
+        let m = cpu_method(*route);
+        let full = reference.full(m.family());
+        let cpu_rays = render::shade(&scene, &gb, &rays, m);
+        let cpu_quad = render::shade(&scene, &gb, &quad, m);
+        rows.push(Row {
+            route: *route,
+            gpu_rmse: img.rmse(full),
+            gpu_mean: img.mean_luminance() / full.mean_luminance(),
+            gpu_peak: img.peak() as f64 / full.peak() as f64,
+            cpu_rays_rmse: cpu_rays.rmse(full),
+            cpu_quad_rmse: cpu_quad.rmse(full),
+            cpu_rays_mean: cpu_rays.mean_luminance() / full.mean_luminance(),
+            cpu_rays_peak: cpu_rays.peak() as f64 / full.peak() as f64,
+            gpu_vs_cpu_quad: img.rmse(&cpu_quad),
+            same_quads: img.rmse_where(&cpu_quad, &interior)
+                / cpu_quad.rmse_where(full, &interior).max(1e-30),
+            time,
+        });
+        let rgb = img.to_rgb8(o.exposure);
+        save(&rgb, &o.out.join(format!("{}.png", slug(*route)))).map_err(|e| e.to_string())?;
+        let prefix = match route {
+            Route::Forward(_) => "GPU fwd",
+            Route::Deferred(_) => "GPU def",
+        };
+        tiles.push((format!("{prefix}: {}", m.label()), rgb.clone()));
+        let shown = [
+            Route::Forward(Method::Unfiltered(Family::Ggx)),
+            Route::Forward(Method::Tk19Projected),
+            Route::Deferred(Some(2)),
+        ];
+        if shown.contains(route) {
+            side_by_side.push((
+                format!("CPU reference, GGX ({} spp)", o.spp),
+                full.to_rgb8(o.exposure),
+            ));
+            side_by_side.push((
+                format!("CPU rays: {}", m.label()),
+                cpu_rays.to_rgb8(o.exposure),
+            ));
+            side_by_side.push((format!("{prefix}: {}", m.label()), rgb));
+        }
+    }
+    let zoom = if o.width <= 160 { 2 } else { 1 };
+    let sheet = contact_sheet(&tiles, 5, zoom);
+    save(&sheet, &o.out.join("contact_sheet.png")).map_err(|e| e.to_string())?;
+    let figure = contact_sheet(&side_by_side, 3, zoom);
+    save(&figure, &o.out.join("gpu_vs_cpu.png")).map_err(|e| e.to_string())?;
+    Ok(Still {
+        rows,
+        same_quads,
+        reference_s,
+        visibility_time,
+        timer: timer.method(),
+    })
+}
+
+/// Peak luminance per frame of the temporal test, per series.
+pub struct Temporal {
+    pub width: u32,
+    pub height: u32,
+    pub spp: usize,
+    pub reference: [Vec<f32>; 2],
+    /// Per route: peaks of the GPU frames, of the CPU demo's frames with ray differentials
+    /// and with its own quad differences.
+    pub routes: Vec<(Route, [Vec<f32>; 3])>,
+}
+
+/// The temporal test (KHPL16 Fig. 12) on GPU frames: the CPU demo's camera dolly, frames at
+/// half resolution, the peak luminance of each frame for every route, beside the CPU
+/// reference's and the CPU demo's.
+pub fn temporal(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Temporal, String> {
+    let (w, h) = (
+        (o.width / DOWNSCALE).max(2).div_ceil(2) * 2,
+        (o.height / DOWNSCALE).max(2).div_ceil(2) * 2,
+    );
+    let spp = (o.spp / SPP_DIVISOR).max(2);
+    renderer.resize(gpu, w, h);
+    let mut out = Temporal {
+        width: w,
+        height: h,
+        spp,
+        reference: [Vec::new(), Vec::new()],
+        routes: routes()
+            .into_iter()
+            .map(|r| (r, [Vec::new(), Vec::new(), Vec::new()]))
+            .collect(),
+    };
+    let bar = parallel::bar("temporal frames", o.frames);
+    for f in 0..o.frames {
+        let cam = camera_at(f, w as usize, h as usize);
+        let scene = Scene::new(cam.lod());
+        renderer.begin_frame(gpu, &scene, &cam)?;
+        let reference = render::reference(&scene, &cam, w as usize, h as usize, spp, o.seed, None);
+        for (k, img) in reference.full.iter().enumerate() {
+            out.reference[k].push(img.peak());
+        }
+        let gb = render::gbuffer(&scene, &cam, w as usize, h as usize);
+        let rays = gb.derivatives(FootprintRoute::RayDifferentials);
+        let quad = gb.derivatives(FootprintRoute::Quad);
+        for (route, [on_gpu, cpu_rays, cpu_quad]) in &mut out.routes {
+            let img = Image::new(w as usize, h as usize, renderer.render(gpu, *route)?);
+            on_gpu.push(img.peak());
+            let m = cpu_method(*route);
+            cpu_rays.push(render::shade(&scene, &gb, &rays, m).peak());
+            cpu_quad.push(render::shade(&scene, &gb, &quad, m).peak());
+        }
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    if o.frames >= 2 {
+        let mut series = Vec::new();
+        for (k, family) in [Family::Beckmann, Family::Ggx].iter().enumerate() {
+            series.push(Series {
+                label: format!("CPU reference, {}", family.name()),
+                color: [[0, 0, 0], [110, 110, 110]][k],
+                values: out.reference[k].clone(),
+                dashed: true,
+            });
+        }
+        for (i, (route, [peaks, _, _])) in out.routes.iter().enumerate() {
+            if let Route::Forward(m) = route {
+                series.push(Series {
+                    label: format!("GPU fwd: {}", m.label()),
+                    color: PALETTE[i % PALETTE.len()],
+                    values: peaks.clone(),
+                    dashed: false,
+                });
+            }
+        }
+        let plot = line_plot(
+            "Peak HDR luminance per frame (GPU forward frames)",
+            "peak luminance",
+            &series,
+            860,
+            400,
+        );
+        save(&plot, &o.out.join("temporal.png")).map_err(|e| e.to_string())?;
+    }
+    Ok(out)
+}
+
+/// The largest difference allowed between a GPU frame and the CPU demo's quad-difference
+/// frame on the pixels both difference alike (the RMSE between them there, relative to the
+/// CPU frame's RMSE against the reference there). Both evaluate the same formulas on the same
+/// pairs of pixels: what remains is f32 rounding on two instruction sets, which a glint at
+/// roughness 0.01 amplifies (measured: see the table's "same quads" column).
+const CHECK_TOLERANCE: f64 = 0.005;
+
+/// The routes whose GPU frame is not a faithful fragment-shader version of the CPU demo's
+/// quad-difference frame: a non-finite value, or a difference on the pixels both difference
+/// alike above [`CHECK_TOLERANCE`]. (Where a quad straddles an edge the two differ by design:
+/// the CPU takes the opposite neighbour, the GPU the object's continuation.)
+pub fn check(s: &Still) -> Vec<String> {
+    s.rows
+        .iter()
+        .filter_map(|r| {
+            let bad =
+                !r.gpu_rmse.is_finite() || r.same_quads.is_nan() || r.same_quads > CHECK_TOLERANCE;
+            bad.then(|| {
+                format!(
+                    "{} ({}): on the pixels both difference alike the GPU frame differs from \
+                     the CPU quad frame by {:.3} % of the latter's RMSE (allowed {:.1} %)",
+                    cpu_method(r.route).label(),
+                    route_name(r.route),
+                    100.0 * r.same_quads,
+                    100.0 * CHECK_TOLERANCE
+                )
+            })
+        })
+        .collect()
+}
+
+/// The results as markdown.
+pub fn markdown(o: &Options, gpu: &Gpu, compile_s: f64, s: &Still, t: &Temporal) -> String {
+    let mut md = String::new();
+    let software = gpu.is_software();
+    writeln!(
+        md,
+        "## GPU frames against the CPU reference ({}x{}, 1 shading sample per pixel, quad derivatives)\n",
+        o.width, o.height
+    )
+    .unwrap();
+    writeln!(
+        md,
+        "Adapter: {}. Reference: the CPU demo's, {} spp with its Gaussian pixel filter ({:.1} s). \
+         RMSE in linear HDR radiance; luminance and peak ratios against the reference; \
+         \"CPU rays\" is the CPU demo's frame (ray differentials + M, its default), \"CPU quad\" \
+         the CPU demo's own 2x2-quad differences; \"GPU vs CPU quad\" is the RMSE between the GPU \
+         frame and that CPU quad frame; \"same quads\" is that RMSE over the {:.1} % of pixels \
+         that the CPU quad route differences with their own quad partners, as the GPU does \
+         (elsewhere a quad straddles an edge: the CPU takes the opposite neighbour, the GPU the \
+         object's continuation), relative to the CPU quad frame's RMSE there.\n",
+        gpu.label(),
+        o.spp,
+        s.reference_s,
+        100.0 * s.same_quads
+    )
+    .unwrap();
+    writeln!(
+        md,
+        "| method | route | RMSE GPU | RMSE CPU rays | GPU / CPU rays | within 10 % | RMSE CPU quad | GPU / CPU quad | GPU vs CPU quad | same quads | mean lum. GPU | mean lum. CPU rays | peak GPU | peak CPU rays |"
+    )
+    .unwrap();
+    writeln!(
+        md,
+        "|---|---|---:|---:|---:|:-:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    )
+    .unwrap();
+    for r in &s.rows {
+        let ratio = r.gpu_rmse / r.cpu_rays_rmse;
+        writeln!(
+            md,
+            "| {} | {} | {:.4} | {:.4} | {:.3} | {} | {:.4} | {:.3} | {:.4} | {:.3}% | {:.3} | {:.3} | {:.3} | {:.3} |",
+            cpu_method(r.route).label(),
+            route_name(r.route),
+            r.gpu_rmse,
+            r.cpu_rays_rmse,
+            ratio,
+            if (ratio - 1.0).abs() <= 0.1 { "yes" } else { "no" },
+            r.cpu_quad_rmse,
+            r.gpu_rmse / r.cpu_quad_rmse,
+            r.gpu_vs_cpu_quad,
+            100.0 * r.same_quads,
+            r.gpu_mean,
+            r.cpu_rays_mean,
+            r.gpu_peak,
+            r.cpu_rays_peak,
+        )
+        .unwrap();
+    }
+
+    writeln!(md, "\n## GPU time per method\n").unwrap();
+    writeln!(
+        md,
+        "{}: {}. Each route's passes (forward: one pass of six draws; deferred: the G-buffer \
+         pass and the lighting pass), median of {} runs, relative to unfiltered GGX on the same \
+         route; the visibility pass that both routes read ({:.3} ms) is not included. Pipelines \
+         compiled in {:.1} s.{}\n",
+        gpu.label(),
+        s.timer,
+        o.repeats,
+        s.visibility_time * 1e3,
+        compile_s,
+        if software {
+            " **A software rasteriser: only the ratios count**, not the milliseconds (and \
+             its ratios weigh arithmetic as a CPU does, not as a GPU's wide ALUs and \
+             special-function units do)."
+        } else {
+            ""
+        }
+    )
+    .unwrap();
+    writeln!(md, "| method | route | ms | relative to unfiltered |").unwrap();
+    writeln!(md, "|---|---|---:|---:|").unwrap();
+    for r in &s.rows {
+        let base = s
+            .rows
+            .iter()
+            .find(|b| b.route == baseline(r.route))
+            .map_or(r.time, |b| b.time);
+        writeln!(
+            md,
+            "| {} | {} | {:.3} | {:.2} |",
+            cpu_method(r.route).label(),
+            route_name(r.route),
+            r.time * 1e3,
+            r.time / base
+        )
+        .unwrap();
+    }
+
+    if !t.reference[0].is_empty() {
+        writeln!(
+            md,
+            "\n## Temporal test on GPU frames ({} frames, {}x{}, reference {} spp)\n",
+            t.reference[0].len(),
+            t.width,
+            t.height,
+            t.spp
+        )
+        .unwrap();
+        writeln!(md, "The CPU demo's camera dolly. Peak HDR luminance per frame: mean, mean frame-to-frame change |P(t) - P(t-1)| / mean P (variation), and mean distance |P(t) - P_ref(t)| / mean P_ref, for the GPU frames and the CPU demo's, with its ray differentials and with its own quad differences.\n").unwrap();
+        writeln!(md, "| method | route | mean peak GPU | variation GPU | distance GPU | variation CPU quad | distance CPU quad | variation CPU rays | distance CPU rays |").unwrap();
+        writeln!(md, "|---|---|---:|---:|---:|---:|---:|---:|---:|").unwrap();
+        for (k, name) in ["CPU reference, Beckmann", "CPU reference, GGX"]
+            .iter()
+            .enumerate()
+        {
+            let p = &t.reference[k];
+            writeln!(
+                md,
+                "| {name} | - | {:.1} | {:.1}% | - | - | - | - | - |",
+                mean(p),
+                100.0 * variation(p)
+            )
+            .unwrap();
+        }
+        for (route, [g, rays, quad]) in &t.routes {
+            let m = cpu_method(*route);
+            let r = &t.reference[m.family() as usize];
+            writeln!(
+                md,
+                "| {} | {} | {:.1} | {:.1}% | {:.1}% | {:.1}% | {:.1}% | {:.1}% | {:.1}% |",
+                m.label(),
+                route_name(*route),
+                mean(g),
+                100.0 * variation(g),
+                100.0 * distance(g, r),
+                100.0 * variation(quad),
+                100.0 * distance(quad, r),
+                100.0 * variation(rays),
+                100.0 * distance(rays, r)
+            )
+            .unwrap();
+        }
+    }
+    md
+}

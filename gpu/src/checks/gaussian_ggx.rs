@@ -1,0 +1,289 @@
+//! `shaders/filter/gaussian_ggx.wgsl`: the exact Gaussian-filtered GGX in f32 against the
+//! crate's `f64` `GaussianFilteredGgx` (itself tested against 2D quadrature of the convolution,
+//! `tests/gaussian_ggx.rs`).
+//!
+//! Cases. (1) The front door: materials from `strategies::axis_aligned`, footprints from
+//! `strategies::footprint`, the KHPL16 pixel kernel of `ExactGaussian::KHPL16` (`lambda = 1`,
+//! `sigma = 0.5`), half vectors from `strategies::upper_hemisphere(89)`, views from
+//! `upper_hemisphere(89.9)`: `d`, `p22`, `lambda`, `g1`, `g2`. (2) The domain of
+//! `tests/gaussian_ggx.rs`: rotated materials (alpha `1e-4..1`, anisotropy to 100), kernels
+//! `sigma^2 (u u^T + v v^T)` from two vectors with standard deviations `1e-3` to `1e3` lobe
+//! widths, anisotropy to 100, one in eight rank one; slopes `rho L u` (`L L^T = A + 2 Sigma`)
+//! with `rho` to 50: `p22`, `d` of the slope's normal, `lambda`.
+//!
+//! Tolerances (ulp; `gaussian_ggx.wgsl`'s stated bound, per case): the rules' own error and
+//! the f32 node arithmetic, `R = 30` (`1.8e-6` of the rules, 15 more for the exponents, the
+//! sums and the polynomial `exp`), plus the set-up's rounding amplified by the density's
+//! condition numbers, computed here from the `f64` reference by central differences:
+//! `kappa_s = |d ln P22(lambda s) / d ln lambda| = 2 <E>` (the whitened slope's `c_i^2` carry
+//! `err_c = 12 + 8 sqrt(cond A_c)` ulp: the rotation into `A_c`'s eigenbasis as `matrix.wgsl`,
+//! the scaling by `1 / sqrt(l)`, the kernel's eigenvector), the kernel's eigenvalues `2 l_i`
+//! `err_l = 16` ulp, whose effect is at most `<E> + 1/2` each, and the kernel's orientation
+//! (its entries from the footprint vectors, `s_xy` absolute `2 eps sqrt(s_xx s_yy)`; the
+//! eigenvector of `B^-1 Sigma B^-T`): `kappa_theta = |d ln P22 / d theta|` for the kernel
+//! rotated by `theta`, times `err_theta = 16` ulp. Together
+//! `R + (kappa_s / 2) err_c + (kappa_s + 1) err_l + kappa_theta err_theta`.
+//! `Lambda`: `R = 30` (the rules `3e-7`, the nodes' `exp` and grid), plus its condition
+//! numbers with respect to the lobe (`o^T A o`, `err_q` as the matrix form), the kernel
+//! (`o^T Sigma o`, formed in f32 with cancellation factor
+//! `(|s_xx| o_x^2 + 2 |s_xy o_x o_y| + |s_yy| o_y^2) / o^T Sigma o`, times 4 ulp), and `|w_z|`
+//! (4 ulp from the normalisation). `g1`, `g2`: `Lambda`'s relative error times
+//! `Lambda / (1 + Lambda)`, plus 4 ulp.
+
+use super::rect::log_sensitivity;
+use super::{Check, EPS, Tol, draw};
+use crate::reference::{
+    AxisAligned, ClampRules, Covariance, DVec2, DVec3, Footprint, GaussianFilteredGgx, Ndf,
+    Roughness, RoughnessMatrix, SplitMix64, matrix_from_eigen, strategies, v2, v3,
+};
+
+/// The rules' own error and the f32 arithmetic (module docs), in ulp.
+const R: f64 = 30.0;
+
+/// The kernel rotated by `theta`: `R_theta Sigma R_theta^T`.
+fn rotated(k: &Covariance, theta: f64) -> Covariance {
+    let (c, s) = (theta.cos(), theta.sin());
+    let (a, b, d) = (k.s11, k.s12, k.s22);
+    Covariance::new(
+        c * c * a - 2.0 * c * s * b + s * s * d,
+        c * s * (a - d) + (c * c - s * s) * b,
+        s * s * a + 2.0 * c * s * b + c * c * d,
+    )
+}
+
+/// `|d ln F(theta) / d theta|` at 0 by central differences (step `1e-5`).
+fn angle_sensitivity(f: impl Fn(f64) -> f64) -> f64 {
+    let h = 1e-5;
+    let s = (f(h).ln() - f(-h).ln()) / (2.0 * h);
+    if s.is_finite() { s.abs() } else { 0.0 }
+}
+
+/// The density tolerance (module docs) at slope `s`, in ulp.
+pub fn density_ulps(a: &RoughnessMatrix, k: &Covariance, s: DVec2) -> f64 {
+    let p = |a: &RoughnessMatrix, k: &Covariance, s: DVec2| GaussianFilteredGgx::new(*a, *k).p22(s);
+    let kappa_s = log_sensitivity(1.0, |l| p(a, k, s * l));
+    let kappa_t = angle_sensitivity(|t| p(a, &rotated(k, t), s));
+    let err_c = 12.0 + 8.0 * super::ndf::clamped_cond(a).sqrt();
+    R + 0.5 * kappa_s * err_c + (kappa_s + 1.0) * 16.0 + kappa_t * 16.0
+}
+
+/// The `Lambda` tolerance (module docs) at `w`, in ulp.
+pub fn lambda_ulps(a: &RoughnessMatrix, k: &Covariance, w: DVec3) -> f64 {
+    let l =
+        |a: &RoughnessMatrix, k: &Covariance, w: DVec3| GaussianFilteredGgx::new(*a, *k).lambda(w);
+    let (a11, a12, a22) = a.entries();
+    let scaled_a = |f: f64| {
+        RoughnessMatrix::new_with_det_clamp(a11 * f, a12 * f, a22 * f, a.clamped_det() * f * f)
+            .map(|m| l(&m, k, w))
+            .unwrap_or(f64::NAN)
+    };
+    let kappa_a = log_sensitivity(1.0, scaled_a);
+    let kappa_k = log_sensitivity(1.0, |f| l(a, &(*k * f), w));
+    let kappa_z = log_sensitivity(w.z, |z| l(a, k, DVec3::new(w.x, w.y, z)));
+    let n = w.length();
+    let (ox, oy) = (w.x / n, w.y / n);
+    let qs = k.s11 * ox * ox + 2.0 * k.s12 * ox * oy + k.s22 * oy * oy;
+    let mag = k.s11.abs() * ox * ox + 2.0 * (k.s12 * ox * oy).abs() + k.s22.abs() * oy * oy;
+    let cancel = if qs > 0.0 { mag / qs } else { 1.0 };
+    let err_q = 8.0 + 8.0 * super::ndf::clamped_cond(a).sqrt();
+    R + kappa_a * err_q + kappa_k * 4.0 * cancel.min(1e12) + kappa_z * 4.0
+}
+
+/// `g1 = 1 / (1 + Lambda)`: `Lambda`'s error times `Lambda / (1 + Lambda)` plus 4 ulp.
+fn g_ulps(lambda: f64, lambda_ulps: f64) -> f64 {
+    let f = if lambda.is_finite() {
+        lambda / (1.0 + lambda)
+    } else {
+        1.0
+    };
+    lambda_ulps * f + 4.0
+}
+
+const IMPORTS: &str = "#import filtered_ndf::ndf::roughness::axis_aligned
+#import filtered_ndf::ndf::roughness::matrix
+#import filtered_ndf::footprint
+#import filtered_ndf::kernel::clamp
+#import filtered_ndf::filter::gaussian_ggx";
+
+/// The front-door cases: `ExactGaussian::KHPL16` of an axis-aligned material.
+fn front_door(n: usize) -> Check {
+    let body = "let r = axis_aligned::from_alpha(x2(0u));
+let fp = footprint::from_slope_derivatives(x2(5u), x2(7u));
+let g = gaussian_ggx::from_kernel(axis_aligned::to_matrix(r), clamp::pixel_kernel(clamp::KHPL16_RULES, fp, 0.5));
+let h = x3(2u);
+let w = x3(9u);
+let o = x3(12u);
+y(0u, gaussian_ggx::d(g, h));
+y(1u, gaussian_ggx::p22(g, x2(15u)));
+y(2u, gaussian_ggx::lambda(g, w));
+y(3u, gaussian_ggx::g1(g, w, h));
+y(4u, gaussian_ggx::g2(g, w, o, h));";
+    let mut c = Check::new(
+        "gaussian_ggx::{d, p22, lambda, g1, g2} (ExactGaussian::KHPL16 of the trade table's points)",
+        IMPORTS,
+        body,
+        17,
+        5,
+    )
+    .tolerance("D, P22: R + (kappa_s / 2) err_c + (kappa_s + 1) 16 + kappa_theta 16 ulp; Lambda: R + kappa_A err_q + kappa_Sigma 4 cancel + kappa_z 4; g1, g2 from Lambda's (checks/gaussian_ggx.rs)");
+    let a = draw(strategies::axis_aligned(), n, "exact alpha");
+    let hs = draw(strategies::upper_hemisphere(89.0), n, "exact h");
+    let ws = draw(strategies::upper_hemisphere(89.9), 2 * n, "exact w");
+    let fps = draw(strategies::footprint(), n, "exact fp");
+    let rules = ClampRules::KHPL16;
+    for k in 0..n {
+        let alpha = [a[k].alpha().x as f32, a[k].alpha().y as f32];
+        let r = AxisAligned::new(alpha[0].into(), alpha[1].into()).expect("in range");
+        let am = r.to_matrix();
+        let h = [hs[k].x as f32, hs[k].y as f32, hs[k].z as f32];
+        let w = [ws[2 * k].x as f32, ws[2 * k].y as f32, ws[2 * k].z as f32];
+        let o = [
+            ws[2 * k + 1].x as f32,
+            ws[2 * k + 1].y as f32,
+            ws[2 * k + 1].z as f32,
+        ];
+        let du = [fps[k].dh_u.x as f32, fps[k].dh_u.y as f32];
+        let dv = [fps[k].dh_v.x as f32, fps[k].dh_v.y as f32];
+        let fp = Footprint::from_slope_derivatives(v2(du), v2(dv));
+        let kernel = rules.kernel(rules.footprint(fp).covariance(0.5));
+        let lobe = GaussianFilteredGgx::new(am, kernel);
+        let (hd, wd, od) = (v3(h), v3(w), v3(o));
+        let s = [(-hd.x / hd.z) as f32, (-hd.y / hd.z) as f32];
+        let sd = v2(s);
+        let mut input = alpha.to_vec();
+        input.extend(h);
+        input.extend(du);
+        input.extend(dv);
+        input.extend(w);
+        input.extend(o);
+        input.extend(s);
+        let lam = lobe.lambda(wd);
+        let lt = lambda_ulps(&am, &kernel, wd);
+        let lo = lambda_ulps(&am, &kernel, od);
+        let expect = vec![
+            lobe.d(hd),
+            lobe.p22(sd),
+            lam,
+            lobe.g1(wd, hd),
+            lobe.g2(wd, od, hd),
+        ];
+        let sh = DVec2::new(-hd.x / hd.z, -hd.y / hd.z);
+        let tol = vec![
+            Tol::ulps(density_ulps(&am, &kernel, sh)),
+            Tol::ulps(density_ulps(&am, &kernel, sd)),
+            Tol::ulps(lt),
+            Tol::ulps(g_ulps(lam, lt)),
+            Tol::ulps(g_ulps(lam + lobe.lambda(od), lt.max(lo))),
+        ];
+        c.case(input, expect, tol);
+    }
+    c
+}
+
+/// The cases of `tests/gaussian_ggx.rs`'s domain (module docs): rotated materials, kernels from
+/// two vectors.
+fn domain(n: usize) -> Check {
+    let body = "let a = matrix::from_eigen(x2(0u), x2(2u));
+let k = footprint::covariance(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
+let g = gaussian_ggx::from_kernel(a, k);
+y(0u, gaussian_ggx::p22(g, x2(8u)));
+y(1u, gaussian_ggx::d(g, x3(10u)));
+y(2u, gaussian_ggx::lambda(g, x3(13u)));";
+    let mut c = Check::new(
+        "gaussian_ggx::{p22, d, lambda} (tests/gaussian_ggx.rs domain: rotated lobes, kernels 1e-3..1e3 widths)",
+        IMPORTS,
+        body,
+        16,
+        3,
+    )
+    .tolerance("as the front door (checks/gaussian_ggx.rs)");
+    let mut rng = SplitMix64(0x6578_6163);
+    let mut made = 0;
+    while made < n {
+        let alpha = 10f64.powf(rng.range(-4.0, 0.0));
+        let aniso = 10f64.powf(rng.range(0.0, 2.0));
+        let phi = rng.range(0.0, core::f64::consts::PI);
+        let axis = [phi.cos() as f32, phi.sin() as f32];
+        let al = [alpha as f32, (alpha / aniso) as f32];
+        let Some(am) = matrix_from_eigen(axis, al) else {
+            continue;
+        };
+        // Kernel sigma^2 (u u^T + v v^T), sigma = 1: standard deviations kw lobe widths.
+        let kw = 10f64.powf(rng.range(-3.0, 3.0)) * alpha;
+        let th = rng.range(0.0, core::f64::consts::PI);
+        let ratio = match made % 8 {
+            0 => 0.0,
+            _ => 10f64.powf(rng.range(-2.0, 0.0)),
+        };
+        let u = [(kw * th.cos()) as f32, (kw * th.sin()) as f32];
+        let v = [
+            (-kw * ratio * th.sin()) as f32,
+            (kw * ratio * th.cos()) as f32,
+        ];
+        let kernel = Footprint::from_slope_derivatives(v2(u), v2(v)).covariance(1.0);
+        let lobe = GaussianFilteredGgx::new(am, kernel);
+        // s = rho L e with L the Cholesky factor of A + 2 Sigma.
+        let (a11, a12, a22) = am.entries();
+        let (f11, f12, f22) = (
+            a11 + 2.0 * kernel.s11,
+            a12 + 2.0 * kernel.s12,
+            a22 + 2.0 * kernel.s22,
+        );
+        let l11 = f11.sqrt();
+        let l21 = f12 / l11;
+        let l22 = (f22 - l21 * l21).max(0.0).sqrt();
+        let rho = if made % 2 == 0 {
+            rng.range(0.0, 50.0)
+        } else {
+            10f64.powf(rng.range(-3.0, 1.7))
+        };
+        let t = rng.range(0.0, core::f64::consts::TAU);
+        let (ex, ey) = (t.cos(), t.sin());
+        let s = [
+            (rho * l11 * ex) as f32,
+            (rho * (l21 * ex + l22 * ey)) as f32,
+        ];
+        let sd = v2(s);
+        let m = DVec3::new(-sd.x, -sd.y, 1.0).normalize();
+        let m32 = [m.x as f32, m.y as f32, m.z as f32];
+        let md = v3(m32);
+        let wt = rng.range(0.0, 0.9999 * core::f64::consts::FRAC_PI_2);
+        let wp = rng.range(0.0, core::f64::consts::TAU);
+        let w32 = [
+            (wt.sin() * wp.cos()) as f32,
+            (wt.sin() * wp.sin()) as f32,
+            wt.cos() as f32,
+        ];
+        let wd = v3(w32);
+        let p = lobe.p22(sd);
+        let d = lobe.d(md);
+        if !(p > 1e-30 && d > 1e-30) {
+            continue;
+        }
+        let mut input = axis.to_vec();
+        input.extend(al);
+        input.extend(u);
+        input.extend(v);
+        input.extend(s);
+        input.extend(m32);
+        input.extend(w32);
+        let ms = DVec2::new(-md.x / md.z, -md.y / md.z);
+        c.case(
+            input,
+            vec![p, d, lobe.lambda(wd)],
+            vec![
+                Tol::ulps(density_ulps(&am, &kernel, sd)),
+                Tol::ulps(density_ulps(&am, &kernel, ms)),
+                Tol::ulps(lambda_ulps(&am, &kernel, wd)),
+            ],
+        );
+        made += 1;
+    }
+    c
+}
+
+/// The checks of `shaders/filter/gaussian_ggx.wgsl`.
+pub fn all() -> Vec<Check> {
+    let _ = EPS;
+    vec![front_door(2000), domain(2000)]
+}

@@ -1,0 +1,213 @@
+//! `shaders/filter/method.wgsl`: the front door's method set as WGSL entry functions, against
+//! the Rust front door `material.filtered(footprint, method)` in `f64`, at the trade table's
+//! shading points (axis-aligned materials from `strategies::axis_aligned`, footprints from
+//! `strategies::footprint`, half vectors from `upper_hemisphere(89)`, views from
+//! `upper_hemisphere(89.9)`).
+//!
+//! Tolerances: each entry function is the composition of functions checked on their own, and
+//! carries their stated bounds (reused from their checks): the filtered-matrix `D` rule of
+//! [`super::filters`] (`Gaussian`, `Projected`), the exact Gaussian's condition-number rule of
+//! [`super::gaussian_ggx`], `d_rect`'s and `lambda_rect`'s of [`super::rect`], the proxy's
+//! `2 (7 + 4 x 12 + 1) + 6 + 2 x 12` ulp; `g1`, `g2` of the box lobe from its `Lambda`.
+
+use super::{Check, Tol, draw};
+use crate::reference::{
+    AxisAligned, Beckmann, DVec2, DVec3, ExactGaussian, Filterable, Footprint, Gaussian, Ggx, Ndf,
+    Projected, Proxy, Rect, Roughness, strategies, v2, v3,
+};
+
+/// One shading point: material, footprint, half vector `h`, views `w`, `o`.
+struct Point {
+    alpha: [f32; 2],
+    du: [f32; 2],
+    dv: [f32; 2],
+    h: [f32; 3],
+    w: [f32; 3],
+    o: [f32; 3],
+}
+
+impl Point {
+    fn input(&self) -> Vec<f32> {
+        let mut v = self.alpha.to_vec();
+        v.extend(self.du);
+        v.extend(self.dv);
+        v.extend(self.h);
+        v.extend(self.w);
+        v.extend(self.o);
+        v
+    }
+    fn material(&self) -> AxisAligned {
+        AxisAligned::new(self.alpha[0].into(), self.alpha[1].into()).expect("in range")
+    }
+    fn fp(&self) -> Footprint {
+        Footprint::from_slope_derivatives(v2(self.du), v2(self.dv))
+    }
+}
+
+fn points(n: usize) -> Vec<Point> {
+    let a = draw(strategies::axis_aligned(), n, "method alpha");
+    let hs = draw(strategies::upper_hemisphere(89.0), n, "method h");
+    let ws = draw(strategies::upper_hemisphere(89.9), 2 * n, "method w");
+    let fps = draw(strategies::footprint(), n, "method fp");
+    let f3 = |d: DVec3| [d.x as f32, d.y as f32, d.z as f32];
+    (0..n)
+        .map(|k| Point {
+            alpha: [a[k].alpha().x as f32, a[k].alpha().y as f32],
+            du: [fps[k].dh_u.x as f32, fps[k].dh_u.y as f32],
+            dv: [fps[k].dh_v.x as f32, fps[k].dh_v.y as f32],
+            h: f3(hs[k]),
+            w: f3(ws[2 * k]),
+            o: f3(ws[2 * k + 1]),
+        })
+        .collect()
+}
+
+const IMPORTS: &str = "#import filtered_ndf::ndf::roughness::axis_aligned
+#import filtered_ndf::ndf::ggx
+#import filtered_ndf::ndf::beckmann
+#import filtered_ndf::footprint
+#import filtered_ndf::filter::gaussian_ggx
+#import filtered_ndf::filter::method";
+
+const PROLOGUE: &str = "let r = axis_aligned::from_alpha(x2(0u));
+let a = axis_aligned::to_matrix(r);
+let fp = footprint::from_slope_derivatives(x2(2u), x2(4u));
+let h = x3(6u);
+let w = x3(9u);
+let o = x3(12u);";
+
+/// The checks of `shaders/filter/method.wgsl`.
+pub fn all() -> Vec<Check> {
+    let pts = points(1500);
+    let mut checks = Vec::new();
+    let mut one = |name: &str, expr: &str, f: &dyn Fn(&Point) -> (f64, f64)| {
+        let body = format!("{PROLOGUE}\ny(0u, {expr});");
+        let mut c = Check::new(name, IMPORTS, &body, 15, 1)
+            .tolerance("the stated bound of the functions it composes (checks/method.rs)");
+        for p in &pts {
+            let (e, t) = f(p);
+            c.case(p.input(), vec![e], vec![Tol::ulps(t)]);
+        }
+        checks.push(c);
+    };
+    for (name, tk19) in [("TK19_GAUSSIAN", true), ("KHPL16_GAUSSIAN", false)] {
+        let m = if tk19 {
+            Gaussian::TK19
+        } else {
+            Gaussian::KHPL16
+        };
+        one(
+            &format!("method::d_ggx_gaussian (method::{name})"),
+            &format!("method::d_ggx_gaussian(method::{name}, a, fp, h)"),
+            &move |p| {
+                let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
+                let h = v3(p.h);
+                (
+                    lobe.d(h),
+                    super::filters::filtered_d_tol(&lobe.roughness, h, true),
+                )
+            },
+        );
+        one(
+            &format!("method::d_beckmann_gaussian (method::{name})"),
+            &format!("method::d_beckmann_gaussian(method::{name}, a, fp, h)"),
+            &move |p| {
+                let lobe = Beckmann::new(p.material()).filtered(p.fp(), m);
+                let h = v3(p.h);
+                (
+                    lobe.d(h),
+                    super::filters::filtered_d_tol(&lobe.roughness, h, false),
+                )
+            },
+        );
+    }
+    one(
+        "method::d_ggx_projected (method::TK21_PROJECTED)",
+        "method::d_ggx_projected(method::TK21_PROJECTED, a, fp, h)",
+        &|p| {
+            let lobe = Ggx::new(p.material()).filtered(p.fp(), Projected::TK21);
+            let h = v3(p.h);
+            (
+                lobe.d(h),
+                super::filters::filtered_d_tol(&lobe.roughness, h, true),
+            )
+        },
+    );
+    let exact_kernel = |p: &Point| {
+        let r = ExactGaussian::KHPL16.clamps;
+        r.kernel(r.footprint(p.fp()).covariance(0.5))
+    };
+    one(
+        "method::d_ggx_exact_gaussian (method::KHPL16_EXACT_GAUSSIAN)",
+        "method::d_ggx_exact_gaussian(method::KHPL16_EXACT_GAUSSIAN, a, fp, h)",
+        &|p| {
+            let lobe = Ggx::new(p.material()).filtered(p.fp(), ExactGaussian::KHPL16);
+            let h = v3(p.h);
+            let s = DVec2::new(-h.x / h.z, -h.y / h.z);
+            let t =
+                super::gaussian_ggx::density_ulps(&p.material().to_matrix(), &exact_kernel(p), s);
+            (lobe.d(h), t)
+        },
+    );
+    one(
+        "gaussian_ggx::lambda(method::exact_gaussian_lobe) (method::KHPL16_EXACT_GAUSSIAN)",
+        "gaussian_ggx::lambda(method::exact_gaussian_lobe(method::KHPL16_EXACT_GAUSSIAN, a, fp), w)",
+        &|p| {
+            let lobe = Ggx::new(p.material()).filtered(p.fp(), ExactGaussian::KHPL16);
+            let w = v3(p.w);
+            let t =
+                super::gaussian_ggx::lambda_ulps(&p.material().to_matrix(), &exact_kernel(p), w);
+            (lobe.lambda(w), t)
+        },
+    );
+    for (name, gdc) in [("KHPL16_RECT", false), ("GDC2016_RECT", true)] {
+        let m = if gdc { Rect::GDC2016 } else { Rect::KHPL16 };
+        one(
+            &format!("method::d_ggx_rect (method::{name})"),
+            &format!("method::d_ggx_rect(method::{name}, r, fp, h)"),
+            &move |p| {
+                let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
+                let h = v3(p.h);
+                let c = DVec2::new(-h.x / h.z, -h.y / h.z);
+                let t = super::rect::d_rect_ulps(lobe.roughness, c, lobe.half_extent);
+                (lobe.d(h), t)
+            },
+        );
+        one(
+            &format!("method::lambda_rect_filtered (method::{name})"),
+            &format!("method::lambda_rect_filtered(method::rect_lobe(method::{name}, r, fp), w)"),
+            &move |p| {
+                let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
+                let w = v3(p.w);
+                let t = super::rect::lambda_rect_ulps(lobe.roughness, lobe.half_extent, w);
+                (lobe.lambda(w), t)
+            },
+        );
+        one(
+            &format!("method::g2_rect_filtered (method::{name})"),
+            &format!("method::g2_rect_filtered(method::rect_lobe(method::{name}, r, fp), w, o, h)"),
+            &move |p| {
+                let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
+                let (w, o, h) = (v3(p.w), v3(p.o), v3(p.h));
+                let lt = super::rect::lambda_rect_ulps(lobe.roughness, lobe.half_extent, w).max(
+                    super::rect::lambda_rect_ulps(lobe.roughness, lobe.half_extent, o),
+                );
+                let l = lobe.lambda(w) + lobe.lambda(o);
+                let f = if l.is_finite() { l / (1.0 + l) } else { 1.0 };
+                (lobe.g2(w, o, h), lt * f + 4.0)
+            },
+        );
+    }
+    one(
+        "method::d_ggx_proxy (method::KHPL16_PROXY)",
+        "method::d_ggx_proxy(method::KHPL16_PROXY, r, fp, h)",
+        &|p| {
+            let lobe = Ggx::new(p.material()).filtered(p.fp(), Proxy::KHPL16);
+            (
+                lobe.d(v3(p.h)),
+                2.0 * (7.0 + 4.0 * 12.0 + 1.0) + 6.0 + 2.0 * 12.0,
+            )
+        },
+    );
+    checks
+}
