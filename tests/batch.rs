@@ -1,9 +1,28 @@
-//! The slice API (`batch`) against the scalar functions it wraps: bit-for-bit equality on
-//! seeded random and adversarial inputs (NaN, infinities, zeros, huge and tiny values,
-//! back-facing directions), the filtered functions against the scalar clamped route
-//! `ClampRules::filter_gaussian` under several rule sets with footprints that trigger each
-//! clamp, the common-prefix rule for mismatched lengths, and NaN-free output. Equality is exact (`to_bits`), not a tolerance: the batch loop body calls the
-//! scalar function, so any difference (e.g. a vectorised path that reassociates) is a bug.
+//! The slice API (`batch`) against the scalar functions it vectorises, on seeded random and
+//! adversarial inputs (NaN, infinities, zeros, huge and tiny values, back-facing directions):
+//! the filtered functions against the scalar clamped route `ClampRules::filter_gaussian` under
+//! several rule sets with footprints that trigger each clamp, the common-prefix rule for
+//! mismatched lengths, and NaN-free output.
+//!
+//! - GGX (`D`, `Lambda`, `G2`, TK19 filtered `D`) and the box filter: **bit for bit**
+//!   (`to_bits`). Their lanes evaluate the scalar path's own formula with its checks as
+//!   selects; a difference (e.g. a reassociation) is a bug.
+//! - Beckmann `D` (unfiltered and filtered): the lane evaluates the scalar path's exponent
+//!   `x` and factor `k = n / pi` bit for bit and replaces libm's `exp(-x) k` by the polynomial
+//!   exponential `exp_neg_times` (relative `E = 2.5e-7` in `f32`, `1.5e-14` in `f64`, plus one
+//!   rounding). Against the scalar path of the same precision: `E + 2 eps` relative (the
+//!   lane's rounding of `p k`, libm's `exp` within one ulp and the scalar's product), plus
+//!   `x eps` where the scalar path takes its far-tail branch (`x` past `-ln F::MIN_POSITIVE`:
+//!   `exp(-(x - ln k))`, whose rounded argument costs up to `(x + |ln k|) eps / 2 <= x eps`);
+//!   results below `F::MIN_POSITIVE` absolutely (the lane flushes them to `0`). In `f32`
+//!   also against the `f64` scalar path on the same rounded inputs: `(11 + 4 x) eps`, the
+//!   scalar `f32` bound of `tests/ndf_precision.rs` (`(8 + 4 x) eps`) plus the polynomial's
+//!   `2.5e-7 <= 2.1 eps` and its rounding.
+//! - Beckmann `Lambda`: the shared `erfc` fit (`beckmann_lambda_fast`), absolute
+//!   `L (1 + Lambda)`, `L = 2.1e-7` (`f32`) / `1.9e-8` (`f64`), plus the scalar path's own
+//!   error against `f64` (`(8 + 4 a^2) eps Lambda`, `tests/ndf_precision.rs`) and one rounding
+//!   of `a` amplified alike. `G2 = 1 / (1 + Lambda_i + Lambda_o)` then within
+//!   `2 L + 3 eps` relative plus the same amplified terms over `1 + Lambda_i + Lambda_o`.
 
 use filtered_ndf::testing::rng::SplitMix64 as Rng;
 
@@ -60,7 +79,7 @@ macro_rules! suite {
             use super::*;
             use filtered_ndf::$prec::{
                 AxisAligned, Beckmann, ClampRules, ExtentFloor, Footprint, Ggx, Isotropic, Ndf,
-                RoughnessMatrix, Vec2, Vec3, batch, filter::rect,
+                Roughness, RoughnessMatrix, Vec2, Vec3, batch, filter::rect,
             };
 
             const N: usize = 2000;
@@ -116,6 +135,35 @@ macro_rules! suite {
                 }
             }
 
+            const EPS: f64 = <$t>::EPSILON as f64;
+            const WIDE: bool = <$t>::MANTISSA_DIGITS > 24;
+            /// The polynomial exponential's relative bound (`filter::exp_poly`).
+            const EXP_POLY: f64 = if WIDE { 1.5e-14 } else { 2.5e-7 };
+            /// Where the scalar Beckmann `D` takes its far-tail branch (`-ln F::MIN_POSITIVE`
+            /// less one binade).
+            const TAIL: f64 = -(<$t>::MIN_EXP as f64) * std::f64::consts::LN_2;
+
+            /// Batch Beckmann `D` against the scalar path of the same precision: `x` is the
+            /// exponent both evaluate (bound in the file docs).
+            fn beckmann_close(got: &[$t], want: impl Fn(usize) -> ($t, f64), what: &str) {
+                let mut worst = 0.0f64;
+                for (i, &g) in got.iter().enumerate() {
+                    let (w, x) = want(i);
+                    assert!(!g.is_nan() && g >= 0.0, "{what} [{i}]: {g}");
+                    let (g, w) = (g as f64, w as f64);
+                    let err = (g - w).abs();
+                    if w < <$t>::MIN_POSITIVE as f64 {
+                        assert!(err <= <$t>::MIN_POSITIVE as f64, "{what} [{i}]: {g} vs {w}");
+                        continue;
+                    }
+                    let tail = if x >= TAIL { x } else { 0.0 };
+                    let tol = EXP_POLY + (2.0 + tail) * EPS;
+                    worst = worst.max(err / w / tol);
+                    assert!(err <= tol * w, "{what} [{i}]: batch {g} vs scalar {w} (x {x})");
+                }
+                println!("{what}: worst {worst:.3} of the bound");
+            }
+
             fn h(c: &Cols, i: usize) -> Vec3 {
                 Vec3::new(c.x[i], c.y[i], c.z[i])
             }
@@ -166,10 +214,30 @@ macro_rules! suite {
                         |i| Ggx::new(clamped).d(h(&c, i)),
                         "ggx clamped matrix",
                     );
+                    let x = |r: &dyn Fn(Vec2) -> $t, i: usize| {
+                        let z = c.z[i] as f64;
+                        r(Vec2::new(c.x[i], c.y[i])) as f64 / (z * z)
+                    };
+                    assert_eq!(batch::beckmann_d(&iso, &c.x, &c.y, &c.z, &mut out), N);
+                    beckmann_close(
+                        &out,
+                        |i| (Beckmann::new(iso).d(h(&c, i)), x(&|s| iso.inv_quadratic(s), i)),
+                        "beckmann iso",
+                    );
                     assert_eq!(batch::beckmann_d(&aa, &c.x, &c.y, &c.z, &mut out), N);
-                    same(&out, |i| Beckmann::new(aa).d(h(&c, i)), "beckmann aa");
-                    batch::beckmann_d(&mat, &c.x, &c.y, &c.z, &mut out);
-                    same(&out, |i| Beckmann::new(mat).d(h(&c, i)), "beckmann matrix");
+                    beckmann_close(
+                        &out,
+                        |i| (Beckmann::new(aa).d(h(&c, i)), x(&|s| aa.inv_quadratic(s), i)),
+                        "beckmann aa",
+                    );
+                    for (name, m) in [("matrix", mat), ("long", long), ("clamped", clamped)] {
+                        batch::beckmann_d(&m, &c.x, &c.y, &c.z, &mut out);
+                        beckmann_close(
+                            &out,
+                            |i| (Beckmann::new(m).d(h(&c, i)), x(&|s| m.inv_quadratic(s), i)),
+                            &format!("beckmann {name}"),
+                        );
+                    }
                 }
             }
 
@@ -229,11 +297,14 @@ macro_rules! suite {
                                 &mut out,
                             );
                             assert_eq!(n, N);
-                            same(
+                            beckmann_close(
                                 &out,
                                 |i| {
-                                    Beckmann::new(rules.filter_gaussian(aa, fp(&c, i), sigma))
-                                        .d(h(&c, i))
+                                    let a = rules.filter_gaussian(aa, fp(&c, i), sigma);
+                                    let z = c.z[i] as f64;
+                                    let x = a.inv_quadratic(Vec2::new(c.x[i], c.y[i])) as f64
+                                        / (z * z);
+                                    (Beckmann::new(a).d(h(&c, i)), x)
                                 },
                                 &format!("filtered beckmann, {name}"),
                             );

@@ -3,7 +3,8 @@
 
 use super::super::footprint::Footprint;
 use super::super::kernel::ClampRules;
-use super::super::ndf::Ndf;
+use super::lanes::{Kernel, run};
+use super::ndf::LaneNdf;
 use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
@@ -49,12 +50,13 @@ pub fn ggx_d_filtered<R: Roughness>(
     d_filtered(Ggx::new, r, rules, sigma, [hx, hy, hz], fp, out)
 }
 
-/// The loop shared by the Gaussian-filtered batch functions: the clamped pipeline
-/// [`ClampRules::filter_gaussian`] (the one scalar route, inlined) evaluated by the NDF
-/// `ndf(A')` at `h_i`.
+/// The kernel shared by the Gaussian-filtered batch functions: the clamped pipeline
+/// [`ClampRules::filter_gaussian`] evaluated by the NDF `ndf(A')` at `h_i`. The lane takes
+/// the pipeline's fast path ([`ClampRules::filter_gaussian_lane`]) and the NDF's lane `D`;
+/// an element where a rule leaves its fast path is flagged and evaluated by the scalar route.
 #[inline]
-fn d_filtered<R: Roughness, N: Ndf>(
-    ndf: impl Fn(RoughnessMatrix) -> N,
+fn d_filtered<R: Roughness, N: LaneNdf>(
+    ndf: fn(RoughnessMatrix) -> N,
     r: &R,
     rules: &ClampRules,
     sigma: F,
@@ -62,23 +64,39 @@ fn d_filtered<R: Roughness, N: Ndf>(
     fp: Footprints<'_>,
     out: &mut [F],
 ) -> usize {
-    let n = out
-        .len()
-        .min(hx.len())
-        .min(hy.len())
-        .min(hz.len())
-        .min(fp.len());
-    let (hx, hy, hz, out) = (&hx[..n], &hy[..n], &hz[..n], &mut out[..n]);
-    let (ux, uy, vx, vy) = (
-        &fp.dh_u_x[..n],
-        &fp.dh_u_y[..n],
-        &fp.dh_v_x[..n],
-        &fp.dh_v_y[..n],
-    );
-    for i in 0..n {
-        let f = Footprint::from_slope_derivatives(Vec2::new(ux[i], uy[i]), Vec2::new(vx[i], vy[i]));
-        let a = rules.filter_gaussian(*r, f, sigma);
-        out[i] = ndf(a).d(Vec3::new(hx[i], hy[i], hz[i]));
+    let k = Filtered {
+        ndf,
+        r: *r,
+        rules: *rules,
+        sigma,
+    };
+    run(
+        &k,
+        [hx, hy, hz, fp.dh_u_x, fp.dh_u_y, fp.dh_v_x, fp.dh_v_y],
+        [out],
+    )
+}
+
+/// `D` of `ndf(rules.filter_gaussian(r, fp, sigma))`.
+struct Filtered<R, N> {
+    ndf: fn(RoughnessMatrix) -> N,
+    r: R,
+    rules: ClampRules,
+    sigma: F,
+}
+
+impl<R: Roughness, N: LaneNdf> Kernel<7, 1> for Filtered<R, N> {
+    #[inline(always)]
+    fn lane(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> ([F; 1], bool) {
+        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
+        let (a, ok) = self.rules.filter_gaussian_lane(self.r, fp, self.sigma);
+        let (v, slow) = (self.ndf)(a).d_lane(Vec3::new(hx, hy, hz));
+        ([v], slow | !ok)
     }
-    n
+    #[inline]
+    fn scalar(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> [F; 1] {
+        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
+        let a = self.rules.filter_gaussian(self.r, fp, self.sigma);
+        [(self.ndf)(a).d(Vec3::new(hx, hy, hz))]
+    }
 }

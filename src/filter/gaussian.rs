@@ -54,9 +54,16 @@ pub(crate) fn gaussian_sanitized<R: Roughness>(
     k: Covariance,
     tau: f64,
 ) -> RoughnessMatrix {
-    let (a11, a12, a22) = roughness.entries_f();
-    let (b11, b12, b22) = (a11 + 2.0 * k.s11, a12 + 2.0 * k.s12, a22 + 2.0 * k.s22);
+    let (b11, b12, b22) = gaussian_entries(roughness, k);
     RoughnessMatrix::from_entries(b11, b12, b22, valid_clamp(roughness, (b11, b12, b22), tau))
+}
+
+/// The entries of `A + 2 K` (KHPL16 eq. 15, TK19 sec. 2.2), rounded to `F`: the one formula of
+/// [`gaussian_sanitized`] and `batch`'s lanes.
+#[inline(always)]
+pub(crate) fn gaussian_entries<R: Roughness>(roughness: R, k: Covariance) -> (F, F, F) {
+    let (a11, a12, a22) = roughness.entries_f();
+    (a11 + 2.0 * k.s11, a12 + 2.0 * k.s12, a22 + 2.0 * k.s22)
 }
 
 /// `tau`, or where `tau <= 0` (no clamp) and the result's determinant rounded to `<= 0`,

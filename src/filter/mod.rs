@@ -39,9 +39,9 @@ mod projected;
 pub mod proxy;
 pub mod rect;
 
-pub(crate) use gaussian::gaussian_sanitized;
+pub(crate) use gaussian::{gaussian_entries, gaussian_sanitized};
 pub(crate) use gaussian_ggx_quad::{
-    MAGIC_F32, MAGIC_F64, beckmann_lambda_fast, exp_f32_reduced, exp_f64_reduced, exp_poly,
+    MAGIC_F32, MAGIC_F64, beckmann_lambda_fast, exp_f32_reduced, exp_f64_reduced,
 };
 pub use gaussian::{gaussian, gaussian_with_det_clamp};
 pub use gaussian_ggx::GaussianFilteredGgx;

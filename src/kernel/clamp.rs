@@ -107,14 +107,21 @@ impl ClampRules {
         // lambda^2 (no square root, no division). A NaN component makes `e2` NaN and an
         // infinite or overflowing one `+inf`: both take the general path (`l * l` overflows
         // too for a huge lambda: fuzzing).
-        let l = self.max_extent;
-        let (p, q) = (fp.dh_u + fp.dh_v, fp.dh_u - fp.dh_v);
-        let e2 = 0.25 * p.length_squared().max(q.length_squared());
-        if l >= 0.0 && e2 <= l * l && e2 <= F::MAX {
+        if self.footprint_within(fp) {
             return fp;
         }
         let [ux, uy, vx, vy] = [fp.dh_u.x, fp.dh_u.y, fp.dh_v.x, fp.dh_v.y];
-        Self::footprint_general(l, ux, uy, vx, vy)
+        Self::footprint_general(self.max_extent, ux, uy, vx, vy)
+    }
+
+    /// Whether [`ClampRules::footprint`] returns `fp` by its fast path (finite, extent at most
+    /// `max_extent`); shared with `batch`'s lanes.
+    #[inline(always)]
+    fn footprint_within(&self, fp: Footprint) -> bool {
+        let l = self.max_extent;
+        let (p, q) = (fp.dh_u + fp.dh_v, fp.dh_u - fp.dh_v);
+        let e2 = 0.25 * p.length_squared().max(q.length_squared());
+        (l >= 0.0) & (e2 <= l * l) & (e2 <= F::MAX)
     }
 
     /// [`ClampRules::footprint`] beyond its fast path, for `max_extent = l`. Out of line and
@@ -195,11 +202,23 @@ impl ClampRules {
     #[inline]
     pub fn kernel(&self, k: Covariance) -> Covariance {
         let k = k.sanitized();
-        if self.kappa.is_infinite() && self.kappa > 0.0 {
+        if self.kappa_off() {
             return k;
         }
-        let kappa = if self.kappa >= 0.0 { self.kappa } else { 0.0 };
-        k.clamp_eigenvalues_sanitized(0.5 * kappa)
+        k.clamp_eigenvalues_sanitized(self.half_kappa())
+    }
+
+    /// Whether the `kappa` rule is off (`+inf`).
+    #[inline(always)]
+    fn kappa_off(&self) -> bool {
+        self.kappa.is_infinite() && self.kappa > 0.0
+    }
+
+    /// The eigenvalue bound of the `kappa` rule, `kappa / 2` (`0` for a NaN or negative
+    /// `kappa`).
+    #[inline(always)]
+    fn half_kappa(&self) -> F {
+        0.5 * if self.kappa >= 0.0 { self.kappa } else { 0.0 }
     }
 
     /// The determinant clamp `tau` for filtering `roughness`: `det(A)` of the unfiltered
@@ -242,6 +261,26 @@ impl ClampRules {
     ) -> RoughnessMatrix {
         let k = self.kernel(self.footprint(fp).covariance(sigma));
         filter::gaussian_sanitized(roughness, k, self.det_clamp_wide(roughness))
+    }
+
+    /// [`ClampRules::filter_gaussian`] in `batch`'s lane form (branch-free): `(A', ok)`, `A'`
+    /// equal to `filter_gaussian`'s bit for bit where `ok`, i.e. where every rule takes its
+    /// fast path (the footprint within `max_extent`, the kernel sane and within `kappa / 2`, the
+    /// determinant clamp inactive). The composition of the same fast paths, not a second
+    /// formula.
+    #[inline(always)]
+    pub(crate) fn filter_gaussian_lane<R: Roughness>(
+        &self,
+        roughness: R,
+        fp: Footprint,
+        sigma: F,
+    ) -> (RoughnessMatrix, bool) {
+        let k = fp.covariance(sigma);
+        let kernel_ok = k.is_sane() & (self.kappa_off() | k.psd_within(self.half_kappa()));
+        let (b11, b12, b22) = filter::gaussian_entries(roughness, k);
+        let (a, det_ok) =
+            RoughnessMatrix::from_entries_unclamped(b11, b12, b22, self.det_clamp_wide(roughness));
+        (a, self.footprint_within(fp) & kernel_ok & det_ok)
     }
 
     /// The projected-space pipeline (TK21), the rules as in [`ClampRules::filter_gaussian`]:

@@ -159,7 +159,7 @@ impl Covariance {
     /// `h = max - mean` keep `h^2` finite and normal (a square that underflows beside it is
     /// negligible; fuzzing found `h = 0` against underflowing squares).
     #[inline(always)]
-    fn psd_within(self, max: F) -> bool {
+    pub(crate) fn psd_within(self, max: F) -> bool {
         let (a, b, c) = (self.s11, self.s12, self.s22);
         let tr = a + c;
         if tr <= max {
@@ -282,10 +282,18 @@ impl Covariance {
         let (a, b, c) = (self.s11, self.s12, self.s22);
         // Fast path (every footprint covariance): finite, positive semi-definite and with
         // trace <= KERNEL_MAX, which bounds both eigenvalues (and excludes infinities).
-        if psd(a, b, c) && a + c <= KERNEL_MAX {
+        if self.is_sane() {
             return self;
         }
         Self::sanitized_general(a, b, c).detached()
+    }
+
+    /// Whether [`Covariance::sanitized`] returns `self` by its fast path: finite, positive
+    /// semi-definite, trace at most `KERNEL_MAX` (shared with `batch`'s lanes).
+    #[inline(always)]
+    pub(crate) fn is_sane(self) -> bool {
+        let (a, b, c) = (self.s11, self.s12, self.s22);
+        psd(a, b, c) & (a + c <= KERNEL_MAX)
     }
 
     /// The general case of [`Covariance::sanitized`] (out of line, with

@@ -202,6 +202,23 @@ impl RoughnessMatrix {
             let t = clamp_shift(a11.to_f64(), a22.to_f64(), det, tau);
             (F::from_f64(a11.to_f64() + t), tau)
         };
+        Self::from_pivot(a11, a12, a22, pivot, c)
+    }
+
+    /// [`RoughnessMatrix::from_entries`] where the clamp is inactive, without a branch (for
+    /// `batch`'s lanes): `(matrix, ok)`, the same matrix bit for bit where `ok`, i.e. where
+    /// [`det_wide`]'s direct branch applies and `det A >= tau`, `det A > 0` (so that the
+    /// filters' `valid_clamp` keeps `tau` too). Elsewhere the matrix is garbage, not used.
+    #[inline(always)]
+    pub(crate) fn from_entries_unclamped(a11: F, a12: F, a22: F, tau: f64) -> (Self, bool) {
+        let (det, direct) = super::det_wide_direct(a11, a12, a22);
+        let ok = direct & (det >= tau) & (det > 0.0);
+        (Self::from_pivot(a11, a12, a22, a11, det), ok)
+    }
+
+    /// The representation from its pivot `p` and determinant `c = det A_c`.
+    #[inline(always)]
+    fn from_pivot(a11: F, a12: F, a22: F, pivot: F, c: f64) -> Self {
         let p = pivot.to_f64();
         let sqrt_c = m::sqrt(c);
         Self {

@@ -81,13 +81,24 @@ pub(crate) mod sealed {
 ///   19.8, TK21 projected GGX 24.3 against 28.2.
 #[inline]
 pub(crate) fn det_wide(a11: F, a12: F, a22: F) -> f64 {
-    let (a, b, c) = (a11.to_f64(), a12.to_f64(), a22.to_f64());
-    let (ac, bb) = (a * c, b * b);
-    if core::mem::size_of::<F>() == 4 || bb <= 0.9375 * ac {
-        return ac - bb;
+    let (d, direct) = det_wide_direct(a11, a12, a22);
+    if direct {
+        return d;
     }
+    let (a, b, c) = (a11.to_f64(), a12.to_f64(), a22.to_f64());
+    let bb = b * b;
     let err = m::mul_add(-b, b, bb);
     m::mul_add(a, c, -bb) + err
+}
+
+/// The direct branch of [`det_wide`]: `(a11 a22 - a12^2, direct)` in `f64`, `direct` when
+/// [`det_wide`] returns that value (always in `f32`; in `f64` for `a12^2 <= 0.9375 a11 a22`).
+/// Branch-free, for `batch`'s lanes.
+#[inline(always)]
+pub(crate) fn det_wide_direct(a11: F, a12: F, a22: F) -> (f64, bool) {
+    let (a, b, c) = (a11.to_f64(), a12.to_f64(), a22.to_f64());
+    let (ac, bb) = (a * c, b * b);
+    (ac - bb, core::mem::size_of::<F>() == 4 || bb <= 0.9375 * ac)
 }
 
 /// A roughness form: what the NDFs need of a roughness matrix `A`.
