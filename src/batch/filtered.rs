@@ -55,8 +55,8 @@ pub fn ggx_d_filtered<R: Roughness>(
 /// the pipeline's fast path ([`ClampRules::filter_gaussian_lane`]) and the NDF's lane `D`;
 /// an element where a rule leaves its fast path is flagged and evaluated by the scalar route.
 #[inline]
-fn d_filtered<R: Roughness, N: LaneNdf>(
-    ndf: fn(RoughnessMatrix) -> N,
+fn d_filtered<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N>(
+    ndf: C,
     r: &R,
     rules: &ClampRules,
     sigma: F,
@@ -78,14 +78,15 @@ fn d_filtered<R: Roughness, N: LaneNdf>(
 }
 
 /// `D` of `ndf(rules.filter_gaussian(r, fp, sigma))`.
-struct Filtered<R, N> {
-    ndf: fn(RoughnessMatrix) -> N,
+/// `C` is the NDF's constructor as a function item (zero-sized, inlined into the lane).
+struct Filtered<R, C> {
+    ndf: C,
     r: R,
     rules: ClampRules,
     sigma: F,
 }
 
-impl<R: Roughness, N: LaneNdf> Kernel<7, 1> for Filtered<R, N> {
+impl<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N> Kernel<7, 1> for Filtered<R, C> {
     #[inline(always)]
     fn lane(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> ([F; 1], bool) {
         let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));

@@ -14,6 +14,16 @@ pub use filtered::{beckmann_d_filtered, ggx_d_filtered};
 pub use ndf::{beckmann_d, beckmann_g2, beckmann_lambda, ggx_d, ggx_g2, ggx_lambda};
 pub use rect::d_rect;
 
+/// The vector instruction set the batch kernels run on in this process: `"avx512"`,
+/// `"avx2"` or `"sse2"` (x86-64; `"baseline"` elsewhere). With the `dispatch` feature on
+/// x86-64, the widest the CPU supports (detected once, capped by the environment variable
+/// `FILTERED_NDF_SIMD=sse2|avx2|avx512`); without it, the target features the crate was
+/// compiled for (`-C target-cpu`). For reports and benchmarks; it changes no result
+/// (every lane computes the same operations at any width).
+pub fn simd_level() -> &'static str {
+    simd::level_name()
+}
+
 /// Footprints in structure-of-arrays form: element `i` is the
 /// [`Footprint`](super::Footprint) with `dh_u = (dh_u_x[i], dh_u_y[i])`,
 /// `dh_v = (dh_v_x[i], dh_v_y[i])` (slope change per pixel).

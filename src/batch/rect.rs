@@ -2,6 +2,7 @@
 
 use super::super::filter::rect;
 use super::super::ndf::roughness::AxisAligned;
+use super::lanes::{Kernel, run};
 use super::{F, Vec2, Vec3};
 
 /// The exact box-filtered GGX [`rect::d_rect`] (KHPL16 eq. 16) for each half vector
@@ -19,21 +20,20 @@ pub fn d_rect(
     half_y: &[F],
     out: &mut [F],
 ) -> usize {
-    let n = out
-        .len()
-        .min(hx.len())
-        .min(hy.len())
-        .min(hz.len())
-        .min(half_x.len())
-        .min(half_y.len());
-    let (hx, hy, hz) = (&hx[..n], &hy[..n], &hz[..n]);
-    let (half_x, half_y, out) = (&half_x[..n], &half_y[..n], &mut out[..n]);
-    for i in 0..n {
-        out[i] = rect::d_rect(
-            *r,
-            Vec3::new(hx[i], hy[i], hz[i]),
-            Vec2::new(half_x[i], half_y[i]),
-        );
+    run(&Rect(*r), [hx, hy, hz, half_x, half_y], [out])
+}
+
+/// [`rect::d_rect`] of one roughness.
+struct Rect(AxisAligned);
+
+impl Kernel<5, 1> for Rect {
+    #[inline(always)]
+    fn lane(&self, [hx, hy, hz, sx, sy]: [F; 5]) -> ([F; 1], bool) {
+        let (v, slow) = rect::d_rect_lane(self.0, Vec3::new(hx, hy, hz), Vec2::new(sx, sy));
+        ([v], slow)
     }
-    n
+    #[inline]
+    fn scalar(&self, [hx, hy, hz, sx, sy]: [F; 5]) -> [F; 1] {
+        [rect::d_rect(self.0, Vec3::new(hx, hy, hz), Vec2::new(sx, sy))]
+    }
 }

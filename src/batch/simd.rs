@@ -10,6 +10,19 @@
 use super::lanes::{Kernel, Loop};
 
 #[cfg(not(all(feature = "dispatch", target_arch = "x86_64")))]
+pub(crate) fn level_name() -> &'static str {
+    if cfg!(target_feature = "avx512f") {
+        "avx512"
+    } else if cfg!(target_feature = "avx2") {
+        "avx2"
+    } else if cfg!(target_feature = "sse2") {
+        "sse2"
+    } else {
+        "baseline"
+    }
+}
+
+#[cfg(not(all(feature = "dispatch", target_arch = "x86_64")))]
 #[inline(always)]
 pub(crate) fn dispatch<K: Kernel<I, O>, const I: usize, const O: usize>(l: Loop<'_, K, I, O>) {
     l.go()

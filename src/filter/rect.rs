@@ -270,12 +270,7 @@ fn edge(u: f64, dv: f64, v01: f64) -> f64 {
 /// Mean of `f` over the normalised rectangle `[uc +/- hu] x [vc +/- hv]` (`hu, hv >= 0`,
 /// finite), by the case analysis of the module docs.
 fn mean_f(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
-    let du = (uc.abs() - hu).max(0.0);
-    let dv = (vc.abs() - hv).max(0.0);
-    let lu2 = 1.0 + uc * uc + dv * dv;
-    let lv2 = 1.0 + vc * vc + du * du;
-    let (hu2, hv2) = (hu * hu, hv * hv);
-    let (tu, tv) = (tier(hu2, lu2), tier(hv2, lv2));
+    let (tu, tv, du, dv) = tiers(uc, vc, hu, hv);
     match (tu, tv) {
         (Tier::Closed, Tier::Closed) => {
             if du * du + dv * dv > FAR2 {
@@ -313,12 +308,36 @@ fn mean_f(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
     }
 }
 
+/// The tiers of the two axes (module docs) and the distances `(du, dv)` of the centre from
+/// the rectangle along each axis (`0` inside).
+#[inline(always)]
+fn tiers(uc: f64, vc: f64, hu: f64, hv: f64) -> (Tier, Tier, f64, f64) {
+    let du = (uc.abs() - hu).max(0.0);
+    let dv = (vc.abs() - hv).max(0.0);
+    let lu2 = 1.0 + uc * uc + dv * dv;
+    let lv2 = 1.0 + vc * vc + du * du;
+    let (hu2, hv2) = (hu * hu, hv * hv);
+    (tier(hu2, lu2), tier(hv2, lv2), du, dv)
+}
+
 /// The 2 x 2-point tensor Gauss-Legendre rule (both axes in tier `Gl2`, the most common case
 /// for pixel footprints): the mean of `f` at the four nodes, `(n0 / p0 + n1 / p1) / 4` per
 /// row pair as in [`gl_f`], with one division for both rows while `p0 p1` stays below
 /// `1e300` (a few `f64` ulps from two divisions; all terms positive).
 #[inline(always)]
 fn gl2x2(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
+    let (n0, p0, n1, p1) = gl2x2_rows(uc, vc, hu, hv);
+    let pp = p0 * p1;
+    if pp < 1e300 {
+        0.25 * (n0 * p1 + n1 * p0) / pp
+    } else {
+        0.25 * (n0 / p0 + n1 / p1)
+    }
+}
+
+/// [`gl2x2`]'s two row pairs `(n0, p0, n1, p1)`.
+#[inline(always)]
+fn gl2x2_rows(uc: f64, vc: f64, hu: f64, hv: f64) -> (f64, f64, f64, f64) {
     let (a, b) = (hu * GL2_X, hv * GL2_X);
     let (v0, v1) = (vc - b, vc + b);
     let (w0, w1) = (v0 * v0, v1 * v1);
@@ -330,12 +349,7 @@ fn gl2x2(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
     };
     let (n0, p0) = row(uc - a);
     let (n1, p1) = row(uc + a);
-    let pp = p0 * p1;
-    if pp < 1e300 {
-        0.25 * (n0 * p1 + n1 * p0) / pp
-    } else {
-        0.25 * (n0 / p0 + n1 / p1)
-    }
+    (n0, p0, n1, p1)
 }
 
 /// The four-edge closed form (module docs, case 3): the mean of `f` over the rectangle.
@@ -419,20 +433,26 @@ pub(crate) fn half64(h: F, inv_alpha: f64) -> f64 {
 /// The mean of `P22` over the rectangle, in `f64`; `None` for a NaN centre.
 #[inline]
 fn p22_rect64(r: AxisAligned, center: (f64, f64), half_extent: Vec2) -> Option<f64> {
-    let alpha = r.alpha();
-    let (a, b) = (alpha.x.to_f64(), alpha.y.to_f64());
-    let (ia, ib) = (1.0 / a, 1.0 / b);
-    let uc = center.0 * ia;
-    let vc = center.1 * ib;
+    let (uc, vc, hu, hv, k) = unit_coords(r, center, half_extent);
     if uc.is_nan() || vc.is_nan() {
         return None;
     }
     let (uc, vc) = (uc.clamp(-BIG, BIG), vc.clamp(-BIG, BIG));
-    let hu = half64(half_extent.x, ia);
-    let hv = half64(half_extent.y, ib);
     // Clamped: far in the tail (`|center| / alpha ~ 1e8`, both sides long) the closed form
     // cancels to a tiny negative value (found by fuzzing; module docs, accuracy).
-    Some((mean_f(uc, vc, hu, hv) * (ia * ib * (1.0 / PI64))).max(0.0))
+    Some((mean_f(uc, vc, hu, hv) * k).max(0.0))
+}
+
+/// The rectangle in units of the roughness: `(u_c, v_c, H_u, H_v, 1 / (pi a b))`, the centre
+/// not yet clamped to `BIG` (NaN stays NaN).
+#[inline(always)]
+fn unit_coords(r: AxisAligned, center: (f64, f64), half_extent: Vec2) -> (f64, f64, f64, f64, f64) {
+    let alpha = r.alpha();
+    let (a, b) = (alpha.x.to_f64(), alpha.y.to_f64());
+    let (ia, ib) = (1.0 / a, 1.0 / b);
+    let hu = half64(half_extent.x, ia);
+    let hv = half64(half_extent.y, ib);
+    (center.0 * ia, center.1 * ib, hu, hv, ia * ib * (1.0 / PI64))
 }
 
 /// Exact box-filtered GGX slope density: the average of the axis-aligned GGX `P22` over the
@@ -480,14 +500,49 @@ pub fn d_rect(r: AxisAligned, h: Vec3, half_extent: Vec2) -> F {
     if (half_extent.x == 0.0 && half_extent.y == 0.0) || h.z.to_f64() < 1e-70 {
         return Ggx::new(r).d(h);
     }
-    let ihz = 1.0 / h.z.to_f64();
-    let center = (-h.x.to_f64() * ihz, -h.y.to_f64() * ihz);
-    let ihz2 = ihz * ihz;
+    let (center, ihz4) = slope_of(h);
     match p22_rect64(r, center, half_extent) {
-        Some(v) => {
-            let d = F::from_f64(v * (ihz2 * ihz2));
-            if d.is_finite() { d } else { F::MAX }
-        }
+        Some(v) => to_solid_angle(v, ihz4),
         None => 0.0,
     }
+}
+
+/// The slope `-h_xy / h_z` of a half vector and `1 / h_z^4`, in `f64`.
+#[inline(always)]
+fn slope_of(h: Vec3) -> ((f64, f64), f64) {
+    let ihz = 1.0 / h.z.to_f64();
+    let ihz2 = ihz * ihz;
+    ((-h.x.to_f64() * ihz, -h.y.to_f64() * ihz), ihz2 * ihz2)
+}
+
+/// `P22 / h_z^4` rounded to `F`, saturated at `F::MAX`.
+#[inline(always)]
+fn to_solid_angle(p22: f64, ihz4: f64) -> F {
+    let d = F::from_f64(p22 * ihz4);
+    if d.is_finite() { d } else { F::MAX }
+}
+
+/// [`d_rect`] in `batch`'s lane form (branch-free): `(value, slow)`, the value equal to
+/// `d_rect`'s bit for bit unless `slow`, which flags every element that `d_rect` does not
+/// take through the 2 x 2-point tensor rule (the most common case for pixel footprints: both
+/// sides short against the distance to the integrand's poles) or its early zero (`h` not
+/// finite or below the horizon). The same pieces as `d_rect`, composed without branches.
+#[inline(always)]
+pub(crate) fn d_rect_lane(r: AxisAligned, h: Vec3, half_extent: Vec2) -> (F, bool) {
+    let live = (h.x.abs() < F::INFINITY)
+        & (h.y.abs() < F::INFINITY)
+        & (h.z < F::INFINITY)
+        & (h.z > 0.0);
+    let special = ((half_extent.x == 0.0) & (half_extent.y == 0.0)) | (h.z.to_f64() < 1e-70);
+    let (center, ihz4) = slope_of(h);
+    let (uc, vc, hu, hv, k) = unit_coords(r, center, half_extent);
+    let nan = uc.is_nan() | vc.is_nan();
+    let (uc, vc) = (uc.clamp(-BIG, BIG), vc.clamp(-BIG, BIG));
+    let (tu, tv, _, _) = tiers(uc, vc, hu, hv);
+    let (n0, p0, n1, p1) = gl2x2_rows(uc, vc, hu, hv);
+    let pp = p0 * p1;
+    let mean = 0.25 * (n0 * p1 + n1 * p0) / pp;
+    let fast = (tu == Tier::Gl2) & (tv == Tier::Gl2) & (pp < 1e300) & !nan & !special;
+    let v = to_solid_angle((mean * k).max(0.0), ihz4);
+    (if live { v } else { 0.0 }, live & !fast)
 }

@@ -265,9 +265,9 @@ impl ClampRules {
 
     /// [`ClampRules::filter_gaussian`] in `batch`'s lane form (branch-free): `(A', ok)`, `A'`
     /// equal to `filter_gaussian`'s bit for bit where `ok`, i.e. where every rule takes its
-    /// fast path (the footprint within `max_extent`, the kernel sane and within `kappa / 2`, the
-    /// determinant clamp inactive). The composition of the same fast paths, not a second
-    /// formula.
+    /// fast path or common case (the footprint within `max_extent`; the kernel sane, then within
+    /// `kappa / 2` or clamped by the eigenvalue clamp's common case; the determinant clamp
+    /// inactive). The composition of the same pieces, not a second formula.
     #[inline(always)]
     pub(crate) fn filter_gaussian_lane<R: Roughness>(
         &self,
@@ -275,8 +275,13 @@ impl ClampRules {
         fp: Footprint,
         sigma: F,
     ) -> (RoughnessMatrix, bool) {
+        // `kernel`: the sanitiser's fast path, then the eigenvalue clamp of the kappa rule.
         let k = fp.covariance(sigma);
-        let kernel_ok = k.is_sane() & (self.kappa_off() | k.psd_within(self.half_kappa()));
+        let sane = k.is_sane();
+        let (clamped, clamp_ok) = k.clamp_eigenvalues_lane(self.half_kappa());
+        let off = self.kappa_off();
+        let k = if off { k } else { clamped };
+        let kernel_ok = sane & (off | clamp_ok);
         let (b11, b12, b22) = filter::gaussian_entries(roughness, k);
         let (a, det_ok) =
             RoughnessMatrix::from_entries_unclamped(b11, b12, b22, self.det_clamp_wide(roughness));

@@ -210,26 +210,8 @@ impl Covariance {
         // [-1, 1e-30]]` has `lambda_max = 2e-30`). Negative eigenvalues contribute nothing:
         // they are clamped to 0, and an input with one (indefinite, or a negative diagonal
         // entry) is rebuilt even when its largest eigenvalue is within the bound.
-        let mean = 0.5 * (s.s11 + s.s22);
         let r = radius(0.5 * (s.s11 - s.s22), s.s12);
-        let up = mean >= 0.0;
-        let big_s = if up { mean + r } else { mean - r };
-        let big = big_s * k;
-        let other = if big.is_finite() && big != 0.0 {
-            // `|big| >= |s11|, |s22|, |s12|`: each quotient is in `[-1, 1]`; the larger
-            // diagonal entry is divided (the smaller one's quotient could underflow).
-            let (lo, hi) = if s11.abs() <= s22.abs() {
-                (s11, s22)
-            } else {
-                (s22, s11)
-            };
-            (hi / big) * lo - (s12 / big) * s12
-        } else if big_s != 0.0 {
-            s.det() / big_s * k
-        } else {
-            0.0
-        };
-        let (lmin, lmax) = if up { (other, big) } else { (big, other) };
+        let (lmin, lmax, _) = Self::eigen_pair(this, k, s, r);
         let indefinite = s11 < 0.0 || s22 < 0.0 || lmin < 0.0;
         // Compared and rebuilt in the caller's units (`lambda` against `max`): `max / k` is
         // subnormal when `max << scale` and carries only a few bits (fuzzing found 40 %
@@ -244,25 +226,112 @@ impl Covariance {
         if c_min >= c_max {
             return Self::new(c_max, 0.0, c_max);
         }
-        // c_min < c_max, so lambda_max - lambda_min = 2 r > 0.
-        let d = 0.5 * (s.s11 - s.s22);
+        let (v, finite) = s.rebuild(r, c_max, c_min);
+        if !finite {
+            // lambda_max - lambda_min = 2 r below the normal range: isotropic to rounding.
+            return Self::new(c_max, 0.0, c_max);
+        }
+        v
+    }
+
+    /// The eigenvalues `(lambda_min, lambda_max)` of `this` in the caller's units from the
+    /// unit-size matrix `s = this / k` and its radius `r` (see
+    /// [`Covariance::clamp_eigenvalues_general`]); the flag says whether the smaller one came
+    /// from the direct quotient form (`|big|` finite and nonzero), the others being rare.
+    #[inline(always)]
+    fn eigen_pair(this: Self, k: F, s: Self, r: F) -> (F, F, bool) {
+        let (s11, s12, s22) = (this.s11, this.s12, this.s22);
+        let mean = 0.5 * (s.s11 + s.s22);
+        let up = mean >= 0.0;
+        let big_s = if up { mean + r } else { mean - r };
+        let big = big_s * k;
+        let direct = big.is_finite() & (big != 0.0);
+        let other = if direct {
+            // `|big| >= |s11|, |s22|, |s12|`: each quotient is in `[-1, 1]`; the larger
+            // diagonal entry is divided (the smaller one's quotient could underflow).
+            let (lo, hi) = if s11.abs() <= s22.abs() {
+                (s11, s22)
+            } else {
+                (s22, s11)
+            };
+            (hi / big) * lo - (s12 / big) * s12
+        } else if big_s != 0.0 {
+            s.det() / big_s * k
+        } else {
+            0.0
+        };
+        let (lmin, lmax) = if up { (other, big) } else { (big, other) };
+        (lmin, lmax, direct)
+    }
+
+    /// `c_max P_max + c_min P_min` for the unit-size matrix `self` of radius `r`, with
+    /// `c_min < c_max` (so `lambda_max - lambda_min = 2 r > 0`); the flag is `false` where
+    /// `1 / 2r` overflows (the caller then answers the isotropic `c_max I`).
+    #[inline(always)]
+    fn rebuild(self, r: F, c_max: F, c_min: F) -> (Self, bool) {
+        let d = 0.5 * (self.s11 - self.s22);
         let p = r + d.abs();
-        let q = if p > 0.0 { s.s12 * s.s12 / p } else { 0.0 };
+        let q = if p > 0.0 { self.s12 * self.s12 / p } else { 0.0 };
         let (e11, e22) = if d >= 0.0 { (p, q) } else { (q, p) };
         // Sigma' = c_max P_max + c_min P_min with the (scale-free) spectral projectors
         // P_max = [[e11, s12], [s12, e22]] / 2r and P_min = [[e22, -s12], [-s12, e11]] / 2r:
         // sums of non-negative terms, no cancellation.
         let inv = 1.0 / (2.0 * r);
-        if !inv.is_finite() {
-            // lambda_max - lambda_min = 2 r below the normal range: isotropic to rounding.
-            return Self::new(c_max, 0.0, c_max);
-        }
-        let (p11, p12, p22) = (e11 * inv, s.s12 * inv, e22 * inv);
-        Self::new(
-            c_max * p11 + c_min * p22,
-            (c_max - c_min) * p12,
-            c_max * p22 + c_min * p11,
+        let (p11, p12, p22) = (e11 * inv, self.s12 * inv, e22 * inv);
+        (
+            Self::new(
+                c_max * p11 + c_min * p22,
+                (c_max - c_min) * p12,
+                c_max * p22 + c_min * p11,
+            ),
+            inv.abs() < F::INFINITY,
         )
+    }
+
+    /// [`Covariance::clamp_eigenvalues_sanitized`] for a kernel that
+    /// [`Covariance::is_sane`] accepts, in `batch`'s lane form (branch-free): `(result, ok)`,
+    /// equal to it bit for bit where `ok`. `ok` holds on its fast path and on the general
+    /// path's common case (entries in the fast range, the radius a normal square root, the
+    /// direct eigenvalue quotient, a finite `1 / 2r`); the same helpers as the general path.
+    #[inline(always)]
+    pub(crate) fn clamp_eigenvalues_lane(self, max: F) -> (Self, bool) {
+        let (s11, s12, s22) = (self.s11, self.s12, self.s22);
+        let scale = s11.abs().max(s22.abs()).max(s12.abs());
+        let d0 = 0.5 * (s11 - s22);
+        let (r, r_direct) = radius_direct(d0, s12);
+        let unscaled = (scale >= 1.0 / FAST_EIGEN_MAX)
+            & (scale <= FAST_EIGEN_MAX)
+            & (d0 * d0 + s12 * s12 >= F::MIN_POSITIVE / F::EPSILON);
+        let (lmin, lmax, direct) = Self::eigen_pair(self, 1.0, self, r);
+        let max_c = max.min(F::MAX);
+        let keep = !((s11 < 0.0) | (s22 < 0.0) | (lmin < 0.0)) & (lmax <= max_c);
+        // `F::clamp` without its assertion (a panic path stops the vectoriser); `max_c >= 0`
+        // wherever `ok`.
+        let clamp = |x: F| {
+            let x = if x < 0.0 { 0.0 } else { x };
+            if x > max_c { max_c } else { x }
+        };
+        let (c_max, c_min) = (clamp(lmax), clamp(lmin));
+        let iso = c_min >= c_max;
+        let (v, finite) = self.rebuild(r, c_max, c_min);
+        let general = if keep {
+            self
+        } else if iso {
+            Self::new(c_max, 0.0, c_max)
+        } else {
+            v
+        }
+        .detached();
+        let fast = self.psd_within(max);
+        let ok = fast
+            | ((max >= 0.0)
+                & (scale > 0.0)
+                & unscaled
+                & r_direct
+                & direct
+                & (keep | (c_max > 0.0))
+                & (keep | iso | finite));
+        (if fast { self } else { general }, ok)
     }
 
     /// A finite, symmetric positive semi-definite covariance whose eigenvalues are at most
@@ -366,12 +435,18 @@ fn psd(a: F, b: F, c: F) -> bool {
 /// library's `hypot` (a call) otherwise.
 #[inline]
 fn radius(d: F, b: F) -> F {
+    let (r, direct) = radius_direct(d, b);
+    if direct { r } else { m::hypot(d, b) }
+}
+
+/// [`radius`]'s square root branch: `(sqrt(d^2 + b^2), taken)`.
+#[inline(always)]
+fn radius_direct(d: F, b: F) -> (F, bool) {
     let r2 = d * d + b * b;
-    if (F::MIN_POSITIVE / F::EPSILON..=F::MAX).contains(&r2) {
-        m::sqrt(r2)
-    } else {
-        m::hypot(d, b)
-    }
+    (
+        m::sqrt(r2),
+        (r2 >= F::MIN_POSITIVE / F::EPSILON) & (r2 <= F::MAX),
+    )
 }
 
 /// The largest kernel eigenvalue kept by [`Covariance::sanitized`] (slope^2): `ALPHA_MAX^2`.

@@ -1,0 +1,273 @@
+//! The vectorised batch kernels against the `f64` scalar path, on identical inputs (every
+//! parameter and vector rounded to the batch precision first, as `tests/ndf_precision.rs`),
+//! within each kernel's stated bound (`batch` module docs):
+//!
+//! - GGX `D`, `Lambda`, `G2`: bit for bit with the scalar path of the batch precision
+//!   (`tests/batch.rs`); against `f64`: the scalar `f32` bound, `8 eps` (`D`, `Lambda`) and
+//!   `12 eps` for `G2` (two `Lambda`s, two sums and a reciprocal).
+//! - Beckmann `D`: `(11 + 4 x) eps` relative (`x` the exponent): the scalar `f32` bound
+//!   `(8 + 4 x) eps` plus the polynomial exponential's `2.5e-7 <= 2.1 eps` and the rounding of
+//!   `p k`. In `f64` (against itself): `1.5e-14 + (2 + x) eps` (file docs of
+//!   `tests/batch.rs`). Below `F::MIN_POSITIVE`: absolute `F::MIN_POSITIVE`.
+//! - Beckmann `Lambda`: absolute `L (1 + Lambda)` of the shared `erfc` fit (`L = 2.1e-7` in
+//!   `f32`, `1.9e-8` in `f64`), plus `(13 + 7 a^2) eps Lambda`: the scalar `f32` path's
+//!   `(8 + 4 a^2) eps` and the lane's `a = |w_z| / sqrt(q)` rounded twice in `F`, which
+//!   `Lambda ~ exp(-a^2) / a^3` amplifies by `2 a^2 + 3`.
+//! - Beckmann `G2 = 1 / (1 + Lambda_i + Lambda_o)`: relative `2 L + 3 eps` plus the amplified
+//!   terms of each `Lambda` over `1 + Lambda_i + Lambda_o`.
+
+use filtered_ndf::f64 as d;
+use filtered_ndf::testing::rng::SplitMix64 as Rng;
+
+/// Unit directions over the hemisphere and a little below, a share near grazing.
+fn directions(n: usize, seed: u64) -> Vec<[f64; 3]> {
+    let mut rng = Rng(seed);
+    (0..n)
+        .map(|_| {
+            let t = if rng.uniform() < 0.2 {
+                90.0 - rng.log_uniform(1e-4, 1.0)
+            } else {
+                95.0 * rng.uniform()
+            };
+            let t = t.to_radians();
+            let p = std::f64::consts::TAU * rng.uniform();
+            [t.sin() * p.cos(), t.sin() * p.sin(), t.cos()]
+        })
+        .collect()
+}
+
+/// Micronormals around a lobe of width `alpha`: slopes from `1e-3` to `30` widths.
+fn micronormals(n: usize, seed: u64, alpha: f64) -> Vec<[f64; 3]> {
+    let mut rng = Rng(seed);
+    (0..n)
+        .map(|_| {
+            let k = rng.log_uniform(1e-3, 30.0) * alpha;
+            let (sx, sy) = (rng.normal() * k, rng.normal() * k);
+            let l = (1.0 + sx * sx + sy * sy).sqrt();
+            [-sx / l, -sy / l, 1.0 / l]
+        })
+        .collect()
+}
+
+macro_rules! suite {
+    ($modname:ident, $prec:ident, $t:ty) => {
+        mod $modname {
+            use super::*;
+            use filtered_ndf::$prec::{AxisAligned, Isotropic, RoughnessMatrix, batch};
+            use filtered_ndf::f64::{Ndf as _, Roughness as _};
+
+            const N: usize = 3000;
+            const EPS: f64 = <$t>::EPSILON as f64;
+            const WIDE: bool = <$t>::MANTISSA_DIGITS > 24;
+            const MIN: f64 = <$t>::MIN_POSITIVE as f64;
+            const L: f64 = if WIDE { 1.9e-8 } else { 2.1e-7 };
+
+            struct Cols {
+                x: Vec<$t>,
+                y: Vec<$t>,
+                z: Vec<$t>,
+            }
+
+            impl Cols {
+                fn new(v: &[[f64; 3]]) -> Self {
+                    Self {
+                        x: v.iter().map(|v| v[0] as $t).collect(),
+                        y: v.iter().map(|v| v[1] as $t).collect(),
+                        z: v.iter().map(|v| v[2] as $t).collect(),
+                    }
+                }
+                fn at(&self, i: usize) -> glam::DVec3 {
+                    glam::DVec3::new(self.x[i] as f64, self.y[i] as f64, self.z[i] as f64)
+                }
+                fn soa(&self) -> batch::Vec3s<'_> {
+                    batch::Vec3s::new(&self.x, &self.y, &self.z)
+                }
+            }
+
+            /// The three forms in the batch precision, with their `f64` twins from the same
+            /// rounded parameters.
+            fn forms(alpha: f64) -> Vec<(&'static str, Forms)> {
+                let a = alpha as $t;
+                let b = (alpha * 0.3) as $t;
+                let (a2, b2) = (a * a, b * b);
+                let m12 = 0.4 * a * b;
+                vec![
+                    (
+                        "isotropic",
+                        Forms::Iso(
+                            Isotropic::new(a).unwrap(),
+                            d::Isotropic::new(a as f64).unwrap(),
+                        ),
+                    ),
+                    (
+                        "axis-aligned",
+                        Forms::Aa(
+                            AxisAligned::new(a, b).unwrap(),
+                            d::AxisAligned::new(a as f64, b as f64).unwrap(),
+                        ),
+                    ),
+                    (
+                        "matrix",
+                        Forms::Mat(
+                            RoughnessMatrix::new(a2, m12, b2).unwrap(),
+                            d::RoughnessMatrix::new(a2 as f64, m12 as f64, b2 as f64).unwrap(),
+                        ),
+                    ),
+                ]
+            }
+
+            enum Forms {
+                Iso(Isotropic, d::Isotropic),
+                Aa(AxisAligned, d::AxisAligned),
+                Mat(RoughnessMatrix, d::RoughnessMatrix),
+            }
+
+            /// Runs `f` with the form pair of `forms` as generic roughness values.
+            macro_rules! with_form {
+                ($f:expr, |$r:ident, $r64:ident| $body:expr) => {
+                    match $f {
+                        Forms::Iso($r, $r64) => $body,
+                        Forms::Aa($r, $r64) => $body,
+                        Forms::Mat($r, $r64) => $body,
+                    }
+                };
+            }
+
+            /// `a = |w_z| / sqrt(q)` of Beckmann's `Lambda` (in `f64`).
+            fn a_of<R: d::Roughness>(r: &R, w: glam::DVec3) -> f64 {
+                w.z.abs() / r.quadratic(glam::DVec2::new(w.x, w.y)).sqrt()
+            }
+
+            #[test]
+            fn d_against_f64() {
+                let mut worst = [0.0f64; 2];
+                for (k, alpha) in [1e-3, 0.05, 0.4, 1.5].into_iter().enumerate() {
+                    let m = Cols::new(&micronormals(N, 0xD0 + k as u64, alpha));
+                    let mut out = vec![0.0 as $t; N];
+                    for (name, f) in forms(alpha) {
+                        with_form!(f, |r, r64| {
+                            batch::ggx_d(&r, &m.x, &m.y, &m.z, &mut out);
+                            for i in 0..N {
+                                let want = d::Ggx::new(r64).d(m.at(i));
+                                let got = out[i] as f64;
+                                if want < MIN {
+                                    assert!((got - want).abs() <= MIN);
+                                    continue;
+                                }
+                                let e = (got - want).abs() / want / EPS;
+                                worst[0] = worst[0].max(e / 8.0);
+                                assert!(e <= 8.0, "ggx {name} {alpha} [{i}]: {got} vs {want}");
+                            }
+                            batch::beckmann_d(&r, &m.x, &m.y, &m.z, &mut out);
+                            for i in 0..N {
+                                let w = m.at(i);
+                                let want = d::Beckmann::new(r64).d(w);
+                                let x = r64.inv_quadratic(glam::DVec2::new(w.x, w.y)) / (w.z * w.z);
+                                let got = out[i] as f64;
+                                assert!(got >= 0.0 && !got.is_nan());
+                                if want < MIN {
+                                    assert!((got - want).abs() <= MIN, "{got} vs {want}");
+                                    continue;
+                                }
+                                let tol = if WIDE {
+                                    1.5e-14 + (2.0 + x) * EPS
+                                } else {
+                                    (11.0 + 4.0 * x) * EPS
+                                };
+                                let e = (got - want).abs() / want;
+                                worst[1] = worst[1].max(e / tol);
+                                assert!(
+                                    e <= tol,
+                                    "beckmann {name} {alpha} [{i}]: {got} vs {want} (x {x})"
+                                );
+                            }
+                        })
+                    }
+                }
+                println!("D: worst GGX {:.3}, Beckmann {:.3} of the bound", worst[0], worst[1]);
+            }
+
+            #[test]
+            fn lambda_and_g2_against_f64() {
+                let (o, i) = (
+                    Cols::new(&directions(N, 0x1A)),
+                    Cols::new(&directions(N, 0x1B)),
+                );
+                let mut worst = [0.0f64; 4];
+                for (k, alpha) in [1e-3, 0.05, 0.4, 1.5].into_iter().enumerate() {
+                    let m = Cols::new(&micronormals(N, 0x3C + k as u64, alpha));
+                    let mut out = vec![0.0 as $t; N];
+                    for (name, f) in forms(alpha) {
+                        with_form!(f, |r, r64| {
+                            batch::ggx_lambda(&r, &o.x, &o.y, &o.z, &mut out);
+                            for j in 0..N {
+                                let want = d::Ggx::new(r64).lambda(o.at(j));
+                                let got = out[j] as f64;
+                                let ok = if want.is_infinite() {
+                                    got == want
+                                } else {
+                                    let e = (got - want).abs() / want.max(MIN) / EPS;
+                                    worst[0] = worst[0].max(e / 8.0);
+                                    e <= 8.0
+                                };
+                                assert!(ok, "ggx lambda {name} {alpha} [{j}]: {got} vs {want}");
+                            }
+                            batch::ggx_g2(&r, i.soa(), o.soa(), m.soa(), &mut out);
+                            for j in 0..N {
+                                let want = d::Ggx::new(r64).g2(i.at(j), o.at(j), m.at(j));
+                                let got = out[j] as f64;
+                                let e = (got - want).abs() / want.max(MIN) / EPS;
+                                worst[1] = worst[1].max(e / 12.0);
+                                assert!(e <= 12.0, "ggx g2 {name} [{j}]: {got} vs {want}");
+                            }
+                            let lam = |w: glam::DVec3| {
+                                let l = d::Beckmann::new(r64).lambda(w);
+                                let a = a_of(&r64, w);
+                                (l, (13.0 + 7.0 * a * a) * EPS * l)
+                            };
+                            batch::beckmann_lambda(&r, &o.x, &o.y, &o.z, &mut out);
+                            for j in 0..N {
+                                let (want, amp) = lam(o.at(j));
+                                let got = out[j] as f64;
+                                let ok = if want.is_infinite() {
+                                    got == want
+                                } else {
+                                    let tol = L * (1.0 + want) + amp;
+                                    worst[2] = worst[2].max((got - want).abs() / tol);
+                                    (got - want).abs() <= tol
+                                };
+                                assert!(ok, "beckmann lambda {name} {alpha} [{j}]: {got} vs {want}");
+                            }
+                            batch::beckmann_g2(&r, i.soa(), o.soa(), m.soa(), &mut out);
+                            for j in 0..N {
+                                let want = d::Beckmann::new(r64).g2(i.at(j), o.at(j), m.at(j));
+                                let got = out[j] as f64;
+                                let ((li, ai), (lo, ao)) = (lam(i.at(j)), lam(o.at(j)));
+                                let s = 1.0 + li + lo;
+                                let tol = if s.is_finite() {
+                                    (2.0 * L + 3.0 * EPS + (ai + ao) / s) * want
+                                } else {
+                                    0.0
+                                };
+                                if tol > 0.0 {
+                                    worst[3] = worst[3].max((got - want).abs() / tol);
+                                }
+                                assert!(
+                                    (got - want).abs() <= tol,
+                                    "beckmann g2 {name} {alpha} [{j}]: {got} vs {want}"
+                                );
+                            }
+                        })
+                    }
+                }
+                println!(
+                    "worst of the bound: GGX Lambda {:.3}, G2 {:.3}; Beckmann Lambda {:.3}, G2 {:.3}",
+                    worst[0], worst[1], worst[2], worst[3]
+                );
+            }
+        }
+    };
+}
+
+suite!(single, f32, f32);
+suite!(double, f64, f64);
