@@ -66,7 +66,10 @@ pub(crate) struct Loop<'a, K, const I: usize, const O: usize> {
 }
 
 impl<K: Kernel<I, O>, const I: usize, const O: usize> Loop<'_, K, I, O> {
-    /// The blocks: the vector pass, then the scalar path for flagged elements.
+    /// The blocks: the vector pass, then the scalar path for flagged elements. Where the
+    /// vector pass flags more than half of a block (inputs outside a kernel's lane domain, e.g.
+    /// box filters wider than the two-node rule), the next [`SKIP`] blocks run the scalar path
+    /// alone, so that such input costs what a scalar loop costs, not both passes.
     #[inline(always)]
     pub(crate) fn go(self) {
         let Self { k, ins, outs } = self;
@@ -76,9 +79,20 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Loop<'_, K, I, O> {
         let ins = ins.map(|s| &s[..n]);
         let mut outs = outs.map(|s| &mut s[..n]);
         let mut b = 0;
+        let mut skip = 0;
         while b < n {
             let e = n.min(b + BLOCK);
-            let mut any = false;
+            if skip > 0 {
+                skip -= 1;
+                for i in b..e {
+                    for (col, v) in outs.iter_mut().zip(k.scalar(ins.map(|s| s[i]))) {
+                        col[i] = v;
+                    }
+                }
+                b = e;
+                continue;
+            }
+            let mut flagged = 0usize;
             for i in b..e {
                 let (v, slow) = k.lane(ins.map(|s| s[i]));
                 for (col, v) in outs.iter_mut().zip(v) {
@@ -87,9 +101,9 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Loop<'_, K, I, O> {
                 if slow {
                     outs[0][i] = F::NAN;
                 }
-                any |= slow;
+                flagged += usize::from(slow);
             }
-            if any {
+            if flagged > 0 {
                 for i in b..e {
                     if outs[0][i].is_nan() {
                         for (col, v) in outs.iter_mut().zip(k.scalar(ins.map(|s| s[i]))) {
@@ -98,10 +112,17 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Loop<'_, K, I, O> {
                     }
                 }
             }
+            if 2 * flagged > e - b {
+                skip = SKIP;
+            }
             b = e;
         }
     }
 }
+
+/// Blocks run by the scalar path alone after a block whose vector pass flagged more than half
+/// of its elements (then the vector pass probes again).
+const SKIP: usize = 7;
 
 /// `e^-x k` for `x >= 0` (also `+inf`) and `0 <= k <= 2^126` (`2^1022` in `f64`), without
 /// losing the result to an intermediate subnormal `e^-x`: `e^-x = p 2^-n` by the reduction of
