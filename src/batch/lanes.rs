@@ -20,7 +20,7 @@ use crate::math::Real;
 pub(crate) const WIDE: bool = F::MANTISSA_DIGITS > 24;
 
 /// Elements per block: the vector pass and the fix-up scan of a block run while it is in L1.
-const BLOCK: usize = 512;
+pub(crate) const BLOCK: usize = 512;
 
 /// A batch kernel of `I` input and `O` output columns: the vector path of one element and the
 /// scalar path it falls back to. `lane` must be branch-free (selects, no calls) so that the
@@ -65,13 +65,20 @@ pub(crate) struct Loop<'a, K, const I: usize, const O: usize> {
     outs: [&'a mut [F]; O],
 }
 
-impl<K: Kernel<I, O>, const I: usize, const O: usize> Loop<'_, K, I, O> {
+/// A loop that [`super::simd::dispatch`] compiles for each instruction set (inlined into
+/// its target-feature context).
+pub(crate) trait Body {
+    /// Runs the loop.
+    fn go(self);
+}
+
+impl<K: Kernel<I, O>, const I: usize, const O: usize> Body for Loop<'_, K, I, O> {
     /// The blocks: the vector pass, then the scalar path for flagged elements. Where the
     /// vector pass flags more than half of a block (inputs outside a kernel's lane domain, e.g.
     /// box filters wider than the two-node rule), the next [`SKIP`] blocks run the scalar path
     /// alone, so that such input costs what a scalar loop costs, not both passes.
     #[inline(always)]
-    pub(crate) fn go(self) {
+    fn go(self) {
         let Self { k, ins, outs } = self;
         let n = outs[0].len();
         // Every column re-sliced to `n` here, where the loop is: the bounds checks below then

@@ -1,15 +1,23 @@
 //! The exact box filter of GGX over slices (KHPL16 eq. 16, [`rect::d_rect`]).
 
 use super::super::filter::rect;
+use super::super::filter::rect::Tier;
 use super::super::ndf::roughness::AxisAligned;
-use super::lanes::{Kernel, run};
+use super::lanes::{BLOCK, Body};
 use super::{F, Vec2, Vec3};
 
-/// The exact box-filtered GGX [`rect::d_rect`] (KHPL16 eq. 16) for each half vector
-/// `h_i` and slope-domain half extent `(half_x[i], half_y[i])`:
-/// `out[i] = d_rect(*r, h_i, (half_x[i], half_y[i]))`. The half extents are the kernel as
-/// given (no clamps: pass rectangles already through `ClampRules::rect` for the clamped
-/// route). Returns the number of elements written. Allocates nothing.
+/// The exact box-filtered GGX [`rect::d_rect`] (KHPL16 eq. 16: the mean of the GGX slope
+/// density over the slope-domain rectangle `s(h_i) +/- (half_x[i], half_y[i])`, divided by
+/// `h_z^4`; per steradian) for each half vector `h_i` and half extent:
+/// `out[i] = d_rect(*r, h_i, (half_x[i], half_y[i]))`, **bit for bit**. The half extents are
+/// the kernel as given (no clamps: pass rectangles already through `ClampRules::rect` for the
+/// clamped route). Out of domain as [`rect::d_rect`] (`0` below the horizon and for NaN, never
+/// NaN). Returns the number of elements written. Allocates nothing.
+///
+/// Vectorised where the scalar case analysis integrates both axes by Gauss-Legendre rules of
+/// 2, 4 or 6 nodes (short sides against the distance to the integrand's poles: most pixel
+/// footprints): per block, the elements of each pair of rules are gathered and evaluated by
+/// one vector loop with that pair's rules; the closed form (long sides) runs the scalar path.
 #[inline]
 pub fn d_rect(
     r: &AxisAligned,
@@ -20,20 +28,151 @@ pub fn d_rect(
     half_y: &[F],
     out: &mut [F],
 ) -> usize {
-    run(&Rect(*r), [hx, hy, hz, half_x, half_y], [out])
+    let n = out
+        .len()
+        .min(hx.len())
+        .min(hy.len())
+        .min(hz.len())
+        .min(half_x.len())
+        .min(half_y.len());
+    super::simd::dispatch(RectLoop {
+        r: *r,
+        ins: [&hx[..n], &hy[..n], &hz[..n], &half_x[..n], &half_y[..n]],
+        out: &mut out[..n],
+    });
+    n
 }
 
-/// [`rect::d_rect`] of one roughness.
-struct Rect(AxisAligned);
+/// The tier pairs with a vector loop, in order: each its own loop with constant tiers.
+const PAIRS: [(Tier, Tier); 9] = [
+    (Tier::Gl2, Tier::Gl2),
+    (Tier::Gl2, Tier::Gl4),
+    (Tier::Gl2, Tier::Gl6),
+    (Tier::Gl4, Tier::Gl2),
+    (Tier::Gl4, Tier::Gl4),
+    (Tier::Gl4, Tier::Gl6),
+    (Tier::Gl6, Tier::Gl2),
+    (Tier::Gl6, Tier::Gl4),
+    (Tier::Gl6, Tier::Gl6),
+];
 
-impl Kernel<5, 1> for Rect {
+/// The index in [`PAIRS`] of an element's tiers, `PAIRS.len()` for the others (the closed
+/// form, the `f64` 8- and 10-point rules: the scalar path).
+#[inline(always)]
+fn pair_index((tu, tv): (Tier, Tier)) -> u8 {
+    let k = |t: Tier| match t {
+        Tier::Gl2 => 0u8,
+        Tier::Gl4 => 1,
+        Tier::Gl6 => 2,
+        _ => 9,
+    };
+    let (a, b) = (k(tu), k(tv));
+    if a < 3 && b < 3 {
+        3 * a + b
+    } else {
+        PAIRS.len() as u8
+    }
+}
+
+/// The box filter's loop: per block, each element's tier pair (the scalar case analysis'
+/// first step), then per pair the block's elements of that pair gathered into contiguous
+/// columns and evaluated by one vector loop whose tiers are constants; the rest (and every
+/// flagged element) by [`rect::d_rect`]. Buffers on the stack: allocates nothing.
+struct RectLoop<'a> {
+    r: AxisAligned,
+    ins: [&'a [F]; 5],
+    out: &'a mut [F],
+}
+
+impl Body for RectLoop<'_> {
     #[inline(always)]
-    fn lane(&self, [hx, hy, hz, sx, sy]: [F; 5]) -> ([F; 1], bool) {
-        let (v, slow) = rect::d_rect_lane(self.0, Vec3::new(hx, hy, hz), Vec2::new(sx, sy));
-        ([v], slow)
+    fn go(self) {
+        let Self { r, ins, out } = self;
+        let n = out.len();
+        let ins = ins.map(|s| &s[..n]);
+        let at = |i: usize| {
+            (
+                Vec3::new(ins[0][i], ins[1][i], ins[2][i]),
+                Vec2::new(ins[3][i], ins[4][i]),
+            )
+        };
+        let mut pair = [0u8; BLOCK];
+        let mut idx = [0u16; BLOCK];
+        let mut cols = [[0.0 as F; BLOCK]; 5];
+        let mut vals = [0.0 as F; BLOCK];
+        let mut slow = [false; BLOCK];
+        let mut b = 0;
+        while b < n {
+            let e = n.min(b + BLOCK);
+            let mut counts = [0usize; PAIRS.len() + 1];
+            for i in b..e {
+                let (h, s) = at(i);
+                let p = pair_index(rect::RectSetup::new(r, h, s).tiers);
+                pair[i - b] = p;
+                counts[p as usize] += 1;
+            }
+            // One vector loop per pair, its tiers constants (a macro, not a loop over
+            // `PAIRS`: a loop that is not unrolled would leave them variables, and the case
+            // analysis in the lane would stop the vectoriser).
+            macro_rules! pass {
+                ($($k:literal)*) => {$(
+                    if counts[$k] > 0 {
+                        let (tu, tv) = PAIRS[$k];
+                        let m = gather(&ins, b, e, &pair, $k, &mut idx, &mut cols);
+                        for j in 0..m {
+                            let h = Vec3::new(cols[0][j], cols[1][j], cols[2][j]);
+                            let s = Vec2::new(cols[3][j], cols[4][j]);
+                            let (v, sl) = rect::RectSetup::new(r, h, s).lane(tu, tv);
+                            vals[j] = v;
+                            slow[j] = sl;
+                        }
+                        for j in 0..m {
+                            let i = b + idx[j] as usize;
+                            out[i] = if slow[j] {
+                                let (h, s) = at(i);
+                                rect::d_rect(r, h, s)
+                            } else {
+                                vals[j]
+                            };
+                        }
+                    }
+                )*};
+            }
+            pass!(0 1 2 3 4 5 6 7 8);
+            if counts[PAIRS.len()] > 0 {
+                for i in b..e {
+                    if pair[i - b] as usize == PAIRS.len() {
+                        let (h, s) = at(i);
+                        out[i] = rect::d_rect(r, h, s);
+                    }
+                }
+            }
+            b = e;
+        }
     }
-    #[inline]
-    fn scalar(&self, [hx, hy, hz, sx, sy]: [F; 5]) -> [F; 1] {
-        [rect::d_rect(self.0, Vec3::new(hx, hy, hz), Vec2::new(sx, sy))]
+}
+
+/// Gathers the elements of block `b..e` whose pair is `k` into the first `m` entries of
+/// `cols` (and their offsets into `idx`); returns `m`.
+#[inline(always)]
+fn gather(
+    ins: &[&[F]; 5],
+    b: usize,
+    e: usize,
+    pair: &[u8; BLOCK],
+    k: u8,
+    idx: &mut [u16; BLOCK],
+    cols: &mut [[F; BLOCK]; 5],
+) -> usize {
+    let mut m = 0;
+    for i in b..e {
+        if pair[i - b] == k {
+            idx[m] = (i - b) as u16;
+            for (c, s) in cols.iter_mut().zip(ins) {
+                c[m] = s[i];
+            }
+            m += 1;
+        }
     }
+    m
 }

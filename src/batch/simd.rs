@@ -7,7 +7,7 @@
 //! `forbid(unsafe_code)`. `FILTERED_NDF_SIMD=sse2|avx2|avx512` caps the choice (read once; for
 //! measurements).
 
-use super::lanes::{Kernel, Loop};
+use super::lanes::Body;
 
 #[cfg(not(all(feature = "dispatch", target_arch = "x86_64")))]
 pub(crate) fn level_name() -> &'static str {
@@ -24,7 +24,7 @@ pub(crate) fn level_name() -> &'static str {
 
 #[cfg(not(all(feature = "dispatch", target_arch = "x86_64")))]
 #[inline(always)]
-pub(crate) fn dispatch<K: Kernel<I, O>, const I: usize, const O: usize>(l: Loop<'_, K, I, O>) {
+pub(crate) fn dispatch<B: Body>(l: B) {
     l.go()
 }
 
@@ -33,14 +33,17 @@ pub(crate) use wide::{dispatch, level_name};
 
 #[cfg(all(feature = "dispatch", target_arch = "x86_64"))]
 mod wide {
-    use super::{Kernel, Loop};
+    use super::Body;
     use std::sync::OnceLock;
 
-    impl<K: Kernel<I, O>, const I: usize, const O: usize> pulp::WithSimd for Loop<'_, K, I, O> {
+    /// A loop body as `pulp`'s unit of work.
+    struct Go<B>(B);
+
+    impl<B: Body> pulp::WithSimd for Go<B> {
         type Output = ();
         #[inline(always)]
         fn with_simd<S: pulp::Simd>(self, _: S) {
-            self.go()
+            self.0.go()
         }
     }
 
@@ -82,13 +85,11 @@ mod wide {
     }
 
     #[inline(always)]
-    pub(crate) fn dispatch<K: Kernel<I, O>, const I: usize, const O: usize>(
-        l: Loop<'_, K, I, O>,
-    ) {
+    pub(crate) fn dispatch<B: Body>(l: B) {
         use pulp::Simd;
         match level() {
-            Level::V4(s) => Simd::vectorize(s, l),
-            Level::V3(s) => Simd::vectorize(s, l),
+            Level::V4(s) => Simd::vectorize(s, Go(l)),
+            Level::V3(s) => Simd::vectorize(s, Go(l)),
             Level::Base => l.go(),
         }
     }

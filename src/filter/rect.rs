@@ -294,18 +294,22 @@ fn mean_f(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
             }
         }
         (Tier::Gl2, Tier::Gl2) => gl2x2(uc, vc, hu, hv),
-        (t, t2) => {
-            // The tensor rule, written out rather than through `gl_of`'s closure: the
-            // closure (two call sites) was not inlined, a call per row.
-            let (xs, ws) = rule(t);
-            let mut acc = 0.0;
-            for (&x, &w) in xs.iter().zip(ws) {
-                let a = hu * x;
-                acc += w * (gl_f(t2, uc - a, vc, hv) + gl_f(t2, uc + a, vc, hv));
-            }
-            acc
-        }
+        (t, t2) => tensor(t, t2, uc, vc, hu, hv),
     }
+}
+
+/// The tensor Gauss-Legendre rule of tiers `(t, t2)` (neither `Closed`): rows along `u` by
+/// `t`, each row's mean along `v` by [`gl_f`] of tier `t2`. Written out rather than through
+/// `gl_of`'s closure: the closure (two call sites) was not inlined, a call per row.
+#[inline(always)]
+fn tensor(t: Tier, t2: Tier, uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
+    let (xs, ws) = rule(t);
+    let mut acc = 0.0;
+    for (&x, &w) in xs.iter().zip(ws) {
+        let a = hu * x;
+        acc += w * (gl_f(t2, uc - a, vc, hv) + gl_f(t2, uc + a, vc, hv));
+    }
+    acc
 }
 
 /// The tiers of the two axes (module docs) and the distances `(du, dv)` of the centre from
@@ -522,27 +526,72 @@ fn to_solid_angle(p22: f64, ihz4: f64) -> F {
     if d.is_finite() { d } else { F::MAX }
 }
 
-/// [`d_rect`] in `batch`'s lane form (branch-free): `(value, slow)`, the value equal to
-/// `d_rect`'s bit for bit unless `slow`, which flags every element that `d_rect` does not
-/// take through the 2 x 2-point tensor rule (the most common case for pixel footprints: both
-/// sides short against the distance to the integrand's poles) or its early zero (`h` not
-/// finite or below the horizon). The same pieces as `d_rect`, composed without branches.
-#[inline(always)]
-pub(crate) fn d_rect_lane(r: AxisAligned, h: Vec3, half_extent: Vec2) -> (F, bool) {
-    let live = (h.x.abs() < F::INFINITY)
-        & (h.y.abs() < F::INFINITY)
-        & (h.z < F::INFINITY)
-        & (h.z > 0.0);
-    let special = ((half_extent.x == 0.0) & (half_extent.y == 0.0)) | (h.z.to_f64() < 1e-70);
-    let (center, ihz4) = slope_of(h);
-    let (uc, vc, hu, hv, k) = unit_coords(r, center, half_extent);
-    let nan = uc.is_nan() | vc.is_nan();
-    let (uc, vc) = (uc.clamp(-BIG, BIG), vc.clamp(-BIG, BIG));
-    let (tu, tv, _, _) = tiers(uc, vc, hu, hv);
-    let (n0, p0, n1, p1) = gl2x2_rows(uc, vc, hu, hv);
-    let pp = p0 * p1;
-    let mean = 0.25 * (n0 * p1 + n1 * p0) / pp;
-    let fast = (tu == Tier::Gl2) & (tv == Tier::Gl2) & (pp < 1e300) & !nan & !special;
-    let v = to_solid_angle((mean * k).max(0.0), ihz4);
-    (if live { v } else { 0.0 }, live & !fast)
+/// What [`d_rect`] computes before its case analysis, branch-free (for `batch`'s lanes).
+#[derive(Clone, Copy)]
+pub(crate) struct RectSetup {
+    /// `h` finite and above the horizon (else `d_rect` is `0`).
+    live: bool,
+    /// A case `d_rect` answers before the integral (zero footprint, `h_z < 1e-70`) or a NaN
+    /// centre.
+    special: bool,
+    ihz4: f64,
+    uc: f64,
+    vc: f64,
+    hu: f64,
+    hv: f64,
+    k: f64,
+    /// The tiers of the two axes.
+    pub(crate) tiers: (Tier, Tier),
+}
+
+impl RectSetup {
+    /// The unit-roughness rectangle of `h` and `half_extent` and its tiers.
+    #[inline(always)]
+    pub(crate) fn new(r: AxisAligned, h: Vec3, half_extent: Vec2) -> Self {
+        let live = (h.x.abs() < F::INFINITY)
+            & (h.y.abs() < F::INFINITY)
+            & (h.z < F::INFINITY)
+            & (h.z > 0.0);
+        let special =
+            ((half_extent.x == 0.0) & (half_extent.y == 0.0)) | (h.z.to_f64() < 1e-70);
+        let (center, ihz4) = slope_of(h);
+        let (uc, vc, hu, hv, k) = unit_coords(r, center, half_extent);
+        let nan = uc.is_nan() | vc.is_nan();
+        let (uc, vc) = (uc.clamp(-BIG, BIG), vc.clamp(-BIG, BIG));
+        let (tu, tv, _, _) = tiers(uc, vc, hu, hv);
+        Self {
+            live,
+            special: special | nan,
+            ihz4,
+            uc,
+            vc,
+            hu,
+            hv,
+            k,
+            tiers: (tu, tv),
+        }
+    }
+
+    /// [`d_rect`] in lane form for an element whose tiers are `(tu, tv)`, both among `Gl2`,
+    /// `Gl4`, `Gl6` (constants at the call site: one vector loop per pair): `(value, slow)`,
+    /// the value `d_rect`'s bit for bit unless `slow`. `slow` flags every element that
+    /// `d_rect` does not take through that pair's Gauss-Legendre rule (other tiers, the
+    /// special cases, the 2 x 2 rule's overflow branch) or its early zero. The same pieces
+    /// as `d_rect`, composed without branches.
+    #[inline(always)]
+    pub(crate) fn lane(self, tu: Tier, tv: Tier) -> (F, bool) {
+        let Self {
+            uc, vc, hu, hv, ..
+        } = self;
+        let (mean, ok) = if tu == Tier::Gl2 && tv == Tier::Gl2 {
+            let (n0, p0, n1, p1) = gl2x2_rows(uc, vc, hu, hv);
+            let pp = p0 * p1;
+            (0.25 * (n0 * p1 + n1 * p0) / pp, pp < 1e300)
+        } else {
+            (tensor(tu, tv, uc, vc, hu, hv), true)
+        };
+        let fast = (self.tiers.0 == tu) & (self.tiers.1 == tv) & ok & !self.special;
+        let v = to_solid_angle((mean * self.k).max(0.0), self.ihz4);
+        (if self.live { v } else { 0.0 }, self.live & !fast)
+    }
 }
