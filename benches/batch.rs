@@ -175,6 +175,54 @@ macro_rules! family {
 fn benches(c: &mut Criterion) {
     family!(c, f32, f32);
     family!(c, f64, f64);
+    #[cfg(feature = "rayon")]
+    parallel(c);
+}
+
+/// `batch::par_chunks` (feature `rayon`): filtered Beckmann over 65536 elements in chunks of
+/// 4096 on pools of 1 and 2 threads (`batch_par/f32/threads_1`, `threads_2`).
+#[cfg(feature = "rayon")]
+fn parallel(c: &mut Criterion) {
+    use filtered_ndf::f32::{AxisAligned, ClampRules, batch};
+    const M: usize = 65536;
+    let cases = common::realistic_cases(M, 0x9A7C);
+    let col = |f: &dyn Fn(&common::Case) -> f64| -> Vec<f32> {
+        cases.iter().map(|k| f(k) as f32).collect()
+    };
+    let (hx, hy, hz) = (col(&|k| k.h[0]), col(&|k| k.h[1]), col(&|k| k.h[2]));
+    let (ux, uy) = (col(&|k| k.dh_u[0]), col(&|k| k.dh_u[1]));
+    let (vx, vy) = (col(&|k| k.dh_v[0]), col(&|k| k.dh_v[1]));
+    let aa = AxisAligned::new(0.1, 0.3).unwrap();
+    let rules = ClampRules::default();
+    let mut g = c.benchmark_group("batch_par/f32");
+    g.throughput(Throughput::Elements(M as u64));
+    let mut out = vec![0.0f32; M];
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        g.bench_function(format!("threads_{threads}"), |b| {
+            b.iter(|| {
+                pool.install(|| {
+                    batch::par_chunks(&mut out, 4096, |s, o| {
+                        let e = s + o.len();
+                        let fp = batch::Footprints {
+                            dh_u_x: &ux[s..e],
+                            dh_u_y: &uy[s..e],
+                            dh_v_x: &vx[s..e],
+                            dh_v_y: &vy[s..e],
+                        };
+                        batch::beckmann_d_filtered(
+                            &aa, &rules, 0.5, &hx[s..e], &hy[s..e], &hz[s..e], fp, o,
+                        );
+                    })
+                });
+                black_box(&out);
+            })
+        });
+    }
+    g.finish();
 }
 
 criterion_group!(batch_benches, benches);

@@ -430,6 +430,13 @@ macro_rules! suite {
             }
 
             #[test]
+            fn simd_level_is_named() {
+                let level = batch::simd_level();
+                assert!(["sse2", "avx2", "avx512", "baseline"].contains(&level), "{level}");
+                println!("batch kernels on {level}");
+            }
+
+            #[test]
             fn ggx_peak_is_the_closed_form() {
                 // Independent check of the vectorised loop's values: D(n) = 1 / (pi alpha^2).
                 let alpha = 0.3 as $t;
@@ -453,3 +460,50 @@ macro_rules! suite {
 
 suite!(single, f32, f32);
 suite!(double, f64, f64);
+
+/// `batch::par_chunks` on 1 and 2 threads gives each element what the sequential call gives
+/// it, bit for bit, for chunk sizes that do and do not divide the length.
+#[cfg(feature = "rayon")]
+#[test]
+fn par_chunks_equal_the_sequential_call() {
+    use filtered_ndf::f32::{AxisAligned, ClampRules, batch};
+    const N: usize = 10_007;
+    let c = |s: u64, lo: f64, hi: f64| -> Vec<f32> {
+        column(N, s, lo, hi).into_iter().map(|v| v as f32).collect()
+    };
+    let (x, y, z) = (c(1, -0.7, 0.7), c(2, -0.7, 0.7), c(3, -0.2, 1.0));
+    let (ux, uy, vx, vy) = (c(4, -0.1, 0.1), c(5, -0.1, 0.1), c(6, -0.1, 0.1), c(7, -0.1, 0.1));
+    let fp = batch::Footprints {
+        dh_u_x: &ux,
+        dh_u_y: &uy,
+        dh_v_x: &vx,
+        dh_v_y: &vy,
+    };
+    let r = AxisAligned::new(0.1, 0.3).unwrap();
+    let rules = ClampRules::default();
+    let mut want = vec![0.0f32; N];
+    batch::beckmann_d_filtered(&r, &rules, 0.5, &x, &y, &z, fp, &mut want);
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        for chunk in [0, 1000, 4096, N] {
+            let mut got = vec![1.0f32; N];
+            pool.install(|| {
+                batch::par_chunks(&mut got, chunk, |s, o| {
+                    let e = s + o.len();
+                    let f = batch::Footprints {
+                        dh_u_x: &ux[s..e],
+                        dh_u_y: &uy[s..e],
+                        dh_v_x: &vx[s..e],
+                        dh_v_y: &vy[s..e],
+                    };
+                    batch::beckmann_d_filtered(&r, &rules, 0.5, &x[s..e], &y[s..e], &z[s..e], f, o);
+                })
+            });
+            let same = got.iter().zip(&want).all(|(a, b)| a.to_bits() == b.to_bits());
+            assert!(same, "{threads} threads, chunk {chunk}");
+        }
+    }
+}

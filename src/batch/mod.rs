@@ -68,6 +68,36 @@ pub use filtered::{beckmann_d_filtered, ggx_d_filtered};
 pub use ndf::{beckmann_d, beckmann_g2, beckmann_lambda, ggx_d, ggx_g2, ggx_lambda};
 pub use rect::d_rect;
 
+/// Multi-core batches (feature `rayon`, std only): calls `f(start, out_chunk)` for the
+/// consecutive chunks of `out` of `chunk` elements (the last one shorter; `chunk = 0` counts as
+/// `1`) on rayon's current thread pool, `start` being the chunk's offset in `out`, so that `f`
+/// runs any batch function on the matching sub-slices of its inputs:
+///
+/// ```
+/// # #[cfg(feature = "rayon")] {
+/// use filtered_ndf::f32::{Isotropic, batch};
+/// let (mx, my, mz) = (vec![0.1f32; 10_000], vec![0.0; 10_000], vec![0.99; 10_000]);
+/// let mut out = vec![0.0; 10_000];
+/// let r = Isotropic::new(0.2).unwrap();
+/// batch::par_chunks(&mut out, 4096, |s, o| {
+///     let e = s + o.len();
+///     batch::ggx_d(&r, &mx[s..e], &my[s..e], &mz[s..e], o);
+/// });
+/// # }
+/// ```
+///
+/// Each element gets what the sequential call gives it, bit for bit (no kernel depends on
+/// its neighbours). Chunks of a few thousand elements amortise the scheduling. Allocates
+/// nothing itself; rayon's pool allocates when it starts its threads.
+#[cfg(feature = "rayon")]
+pub fn par_chunks(out: &mut [F], chunk: usize, f: impl Fn(usize, &mut [F]) + Sync + Send) {
+    use rayon::prelude::*;
+    let chunk = chunk.max(1);
+    out.par_chunks_mut(chunk)
+        .enumerate()
+        .for_each(|(k, o)| f(k * chunk, o));
+}
+
 /// The vector instruction set the batch kernels run on in this process: `"avx512"`,
 /// `"avx2"` or `"sse2"` (x86-64; `"baseline"` elsewhere). With the `dispatch` feature on
 /// x86-64, the widest the CPU supports (detected once, capped by the environment variable
