@@ -87,6 +87,8 @@ struct Filtered<R, C> {
 }
 
 impl<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N> Kernel<7, 1> for Filtered<R, C> {
+    const WIDE_ONLY: bool = true;
+
     #[inline(always)]
     fn lane(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> ([F; 1], bool) {
         let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));

@@ -32,6 +32,11 @@ pub(crate) trait Kernel<const I: usize, const O: usize> {
     fn lane(&self, x: [F; I]) -> ([F; O], bool);
     /// The scalar path of one element.
     fn scalar(&self, x: [F; I]) -> [F; O];
+    /// Whether the lane pays only with 256-bit vectors or wider (AVX2, AVX-512): on the
+    /// baseline (SSE2: 4 `f32` and 2 `f64` lanes) the driver then runs [`Kernel::scalar`]
+    /// alone (measured: the filtered lanes, with their `f64` matrix and the clamps' both
+    /// branches, ran at 0.7 times the scalar loop on SSE2).
+    const WIDE_ONLY: bool = false;
 }
 
 /// Runs `k` over the elements of `ins` and writes its outputs to `outs`, for the common prefix
@@ -68,11 +73,29 @@ pub(crate) struct Loop<'a, K, const I: usize, const O: usize> {
 /// A loop that [`super::simd::dispatch`] compiles for each instruction set (inlined into
 /// its target-feature context).
 pub(crate) trait Body {
+    /// Whether [`Body::go`] pays only with 256-bit vectors or wider ([`Kernel::WIDE_ONLY`]).
+    const WIDE_ONLY: bool;
     /// Runs the loop.
     fn go(self);
+    /// Runs the loop by the scalar path alone.
+    fn go_scalar(self);
 }
 
 impl<K: Kernel<I, O>, const I: usize, const O: usize> Body for Loop<'_, K, I, O> {
+    const WIDE_ONLY: bool = K::WIDE_ONLY;
+
+    fn go_scalar(self) {
+        let Self { k, ins, outs } = self;
+        let n = outs[0].len();
+        let ins = ins.map(|s| &s[..n]);
+        let mut outs = outs.map(|s| &mut s[..n]);
+        for i in 0..n {
+            for (col, v) in outs.iter_mut().zip(k.scalar(ins.map(|s| s[i]))) {
+                col[i] = v;
+            }
+        }
+    }
+
     /// The blocks: the vector pass, then the scalar path for flagged elements. Where the
     /// vector pass flags more than half of a block (inputs outside a kernel's lane domain, e.g.
     /// box filters wider than the two-node rule), the next [`SKIP`] blocks run the scalar path

@@ -85,6 +85,20 @@ struct RectLoop<'a> {
 }
 
 impl Body for RectLoop<'_> {
+    // Measured at 0.7 times the scalar loop on SSE2 (two `f64` lanes, the gather).
+    const WIDE_ONLY: bool = true;
+
+    fn go_scalar(self) {
+        let Self { r, ins, out } = self;
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = rect::d_rect(
+                r,
+                Vec3::new(ins[0][i], ins[1][i], ins[2][i]),
+                Vec2::new(ins[3][i], ins[4][i]),
+            );
+        }
+    }
+
     #[inline(always)]
     fn go(self) {
         let Self { r, ins, out } = self;

@@ -25,8 +25,16 @@ pub(crate) fn level_name() -> &'static str {
 #[cfg(not(all(feature = "dispatch", target_arch = "x86_64")))]
 #[inline(always)]
 pub(crate) fn dispatch<B: Body>(l: B) {
-    l.go()
+    if B::WIDE_ONLY && !WIDE_BUILD {
+        l.go_scalar()
+    } else {
+        l.go()
+    }
 }
+
+/// Whether the crate is compiled for 256-bit vectors or wider (`-C target-cpu` with AVX2).
+#[cfg(not(all(feature = "dispatch", target_arch = "x86_64")))]
+const WIDE_BUILD: bool = cfg!(target_feature = "avx2");
 
 #[cfg(all(feature = "dispatch", target_arch = "x86_64"))]
 pub(crate) use wide::{dispatch, level_name};
@@ -90,6 +98,7 @@ mod wide {
         match level() {
             Level::V4(s) => Simd::vectorize(s, Go(l)),
             Level::V3(s) => Simd::vectorize(s, Go(l)),
+            Level::Base if B::WIDE_ONLY => l.go_scalar(),
             Level::Base => l.go(),
         }
     }
