@@ -84,6 +84,7 @@ pub(crate) trait Body {
 impl<K: Kernel<I, O>, const I: usize, const O: usize> Body for Loop<'_, K, I, O> {
     const WIDE_ONLY: bool = K::WIDE_ONLY;
 
+    #[inline(always)]
     fn go_scalar(self) {
         let Self { k, ins, outs } = self;
         let n = outs[0].len();
