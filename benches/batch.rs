@@ -64,7 +64,10 @@ macro_rules! family {
         // i = reflect(o, h), flipped into the upper hemisphere.
         let refl: Vec<[$t; 3]> = (0..N)
             .map(|k| {
-                let (o, h) = (Vec3::new(ox[k], oy[k], oz[k]), Vec3::new(hx[k], hy[k], hz[k]));
+                let (o, h) = (
+                    Vec3::new(ox[k], oy[k], oz[k]),
+                    Vec3::new(hx[k], hy[k], hz[k]),
+                );
                 let i = 2.0 * o.dot(h) * h - o;
                 let i = Vec3::new(i.x, i.y, i.z.abs()).normalize();
                 [i.x, i.y, i.z]
@@ -141,12 +144,24 @@ macro_rules! family {
             }};
         }
         macro_rules! batch_fn {
-            (Ggx, d) => { batch::ggx_d };
-            (Ggx, lambda) => { batch::ggx_lambda };
-            (Ggx, g2) => { batch::ggx_g2 };
-            (Beckmann, d) => { batch::beckmann_d };
-            (Beckmann, lambda) => { batch::beckmann_lambda };
-            (Beckmann, g2) => { batch::beckmann_g2 };
+            (Ggx, d) => {
+                batch::ggx_d
+            };
+            (Ggx, lambda) => {
+                batch::ggx_lambda
+            };
+            (Ggx, g2) => {
+                batch::ggx_g2
+            };
+            (Beckmann, d) => {
+                batch::beckmann_d
+            };
+            (Beckmann, lambda) => {
+                batch::beckmann_lambda
+            };
+            (Beckmann, g2) => {
+                batch::beckmann_g2
+            };
         }
         forms!(Ggx, "isotropic", iso);
         forms!(Ggx, "axis_aligned", aa);
@@ -214,7 +229,14 @@ fn parallel(c: &mut Criterion) {
                             dh_v_y: &vy[s..e],
                         };
                         batch::beckmann_d_filtered(
-                            &aa, &rules, 0.5, &hx[s..e], &hy[s..e], &hz[s..e], fp, o,
+                            &aa,
+                            &rules,
+                            0.5,
+                            &hx[s..e],
+                            &hy[s..e],
+                            &hz[s..e],
+                            fp,
+                            o,
                         );
                     })
                 });

@@ -159,7 +159,10 @@ macro_rules! suite {
                     let tail = if x >= TAIL { x } else { 0.0 };
                     let tol = EXP_POLY + (2.0 + tail) * EPS;
                     worst = worst.max(err / w / tol);
-                    assert!(err <= tol * w, "{what} [{i}]: batch {g} vs scalar {w} (x {x})");
+                    assert!(
+                        err <= tol * w,
+                        "{what} [{i}]: batch {g} vs scalar {w} (x {x})"
+                    );
                 }
                 println!("{what}: worst {worst:.3} of the bound");
             }
@@ -221,13 +224,23 @@ macro_rules! suite {
                     assert_eq!(batch::beckmann_d(&iso, &c.x, &c.y, &c.z, &mut out), N);
                     beckmann_close(
                         &out,
-                        |i| (Beckmann::new(iso).d(h(&c, i)), x(&|s| iso.inv_quadratic(s), i)),
+                        |i| {
+                            (
+                                Beckmann::new(iso).d(h(&c, i)),
+                                x(&|s| iso.inv_quadratic(s), i),
+                            )
+                        },
                         "beckmann iso",
                     );
                     assert_eq!(batch::beckmann_d(&aa, &c.x, &c.y, &c.z, &mut out), N);
                     beckmann_close(
                         &out,
-                        |i| (Beckmann::new(aa).d(h(&c, i)), x(&|s| aa.inv_quadratic(s), i)),
+                        |i| {
+                            (
+                                Beckmann::new(aa).d(h(&c, i)),
+                                x(&|s| aa.inv_quadratic(s), i),
+                            )
+                        },
                         "beckmann aa",
                     );
                     for (name, m) in [("matrix", mat), ("long", long), ("clamped", clamped)] {
@@ -302,8 +315,8 @@ macro_rules! suite {
                                 |i| {
                                     let a = rules.filter_gaussian(aa, fp(&c, i), sigma);
                                     let z = c.z[i] as f64;
-                                    let x = a.inv_quadratic(Vec2::new(c.x[i], c.y[i])) as f64
-                                        / (z * z);
+                                    let x =
+                                        a.inv_quadratic(Vec2::new(c.x[i], c.y[i])) as f64 / (z * z);
                                     (Beckmann::new(a).d(h(&c, i)), x)
                                 },
                                 &format!("filtered beckmann, {name}"),
@@ -432,7 +445,10 @@ macro_rules! suite {
             #[test]
             fn simd_level_is_named() {
                 let level = batch::simd_level();
-                assert!(["sse2", "avx2", "avx512", "baseline"].contains(&level), "{level}");
+                assert!(
+                    ["sse2", "avx2", "avx512", "baseline"].contains(&level),
+                    "{level}"
+                );
                 println!("batch kernels on {level}");
             }
 
@@ -472,7 +488,12 @@ fn par_chunks_equal_the_sequential_call() {
         column(N, s, lo, hi).into_iter().map(|v| v as f32).collect()
     };
     let (x, y, z) = (c(1, -0.7, 0.7), c(2, -0.7, 0.7), c(3, -0.2, 1.0));
-    let (ux, uy, vx, vy) = (c(4, -0.1, 0.1), c(5, -0.1, 0.1), c(6, -0.1, 0.1), c(7, -0.1, 0.1));
+    let (ux, uy, vx, vy) = (
+        c(4, -0.1, 0.1),
+        c(5, -0.1, 0.1),
+        c(6, -0.1, 0.1),
+        c(7, -0.1, 0.1),
+    );
     let fp = batch::Footprints {
         dh_u_x: &ux,
         dh_u_y: &uy,
@@ -502,7 +523,10 @@ fn par_chunks_equal_the_sequential_call() {
                     batch::beckmann_d_filtered(&r, &rules, 0.5, &x[s..e], &y[s..e], &z[s..e], f, o);
                 })
             });
-            let same = got.iter().zip(&want).all(|(a, b)| a.to_bits() == b.to_bits());
+            let same = got
+                .iter()
+                .zip(&want)
+                .all(|(a, b)| a.to_bits() == b.to_bits());
             assert!(same, "{threads} threads, chunk {chunk}");
         }
     }

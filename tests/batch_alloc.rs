@@ -94,7 +94,12 @@ macro_rules! check {
             }
             batch::d_rect(&aa, &x, &y, &z, &hx, &hy, &mut out);
         });
-        assert_eq!(n, 0, "{}: batch functions allocated {n} times", stringify!($prec));
+        assert_eq!(
+            n,
+            0,
+            "{}: batch functions allocated {n} times",
+            stringify!($prec)
+        );
     }};
 }
 

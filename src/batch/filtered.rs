@@ -3,11 +3,11 @@
 
 use super::super::footprint::Footprint;
 use super::super::kernel::ClampRules;
-use super::lanes::{Kernel, run};
-use super::ndf::LaneNdf;
 use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
+use super::lanes::{Kernel, run};
+use super::ndf::LaneNdf;
 use super::{F, Footprints, Vec2, Vec3};
 
 /// Filtered Beckmann (exact Gaussian filtering, KHPL16 eq. 15) through the clamped pipeline

@@ -195,7 +195,10 @@ fn exp_neg_times_f32(x: f32, k: f32) -> (f32, bool) {
     // The biased exponent of the result: a normal number for t >= 1.
     let t = (ub >> 23) as i32 + n;
     let v = f32::from_bits(ub.wrapping_add((n << 23) as u32));
-    (if t >= 1 { v } else { 0.0 }, (k <= K_MAX as f32) & (x >= 0.0))
+    (
+        if t >= 1 { v } else { 0.0 },
+        (k <= K_MAX as f32) & (x >= 0.0),
+    )
 }
 
 #[inline(always)]
@@ -206,7 +209,10 @@ fn exp_neg_times_f64(x: f64, k: f64) -> (f64, bool) {
     let ub = (p * k).to_bits();
     let t = (ub >> 52) as i64 + n;
     let v = f64::from_bits(ub.wrapping_add((n << 52) as u64));
-    (if t >= 1 { v } else { 0.0 }, (k <= K_MAX as f64) & (x >= 0.0))
+    (
+        if t >= 1 { v } else { 0.0 },
+        (k <= K_MAX as f64) & (x >= 0.0),
+    )
 }
 
 #[cfg(test)]
@@ -218,7 +224,11 @@ mod tests {
         // Against the exact value (formed in log space in f64, no underflow), over x in
         // [0, 200] (f32) / [0, 1500] (f64) and k over [F::MIN_POSITIVE, K_MAX]: the relative
         // bound for results of at least F::MIN_POSITIVE, an absolute F::MIN_POSITIVE below.
-        let (xmax, bound) = if WIDE { (1500.0, 1.6e-14) } else { (200.0, 2.7e-7) };
+        let (xmax, bound) = if WIDE {
+            (1500.0, 1.6e-14)
+        } else {
+            (200.0, 2.7e-7)
+        };
         let (lo, hi) = (F::MIN_POSITIVE.to_f64().ln(), K_MAX.to_f64().ln());
         let mut worst = 0.0f64;
         for i in 0..20_000 {
@@ -233,10 +243,16 @@ mod tests {
                 let ref_err = (a.abs() + 2.0) * f64::EPSILON;
                 let err = (v.to_f64() - exact).abs();
                 if exact >= F::MIN_POSITIVE.to_f64() * (1.0 + 2.0 * bound) {
-                    assert!(err <= (bound + ref_err) * exact, "x {x} k {k}: {v} vs {exact}");
+                    assert!(
+                        err <= (bound + ref_err) * exact,
+                        "x {x} k {k}: {v} vs {exact}"
+                    );
                     worst = worst.max(err / exact - ref_err);
                 } else {
-                    assert!(err < F::MIN_POSITIVE.to_f64(), "x {x} k {k}: {v} vs {exact}");
+                    assert!(
+                        err < F::MIN_POSITIVE.to_f64(),
+                        "x {x} k {k}: {v} vs {exact}"
+                    );
                 }
             }
         }

@@ -65,9 +65,9 @@ use super::{F, PI, Vec2, Vec3};
 
 mod filtered;
 pub mod lanes;
-mod simd;
 mod ndf;
 mod rect;
+mod simd;
 
 pub use filtered::{beckmann_d_filtered, ggx_d_filtered};
 pub use ndf::{beckmann_d, beckmann_g2, beckmann_lambda, ggx_d, ggx_g2, ggx_lambda};

@@ -55,13 +55,7 @@ pub fn ggx_lambda<R: Roughness>(r: &R, wx: &[F], wy: &[F], wz: &[F], out: &mut [
 /// with the exact Gaussian filter's sampler); out of domain as the scalar function. Returns
 /// the number of elements written. Allocates nothing.
 #[inline]
-pub fn beckmann_lambda<R: Roughness>(
-    r: &R,
-    wx: &[F],
-    wy: &[F],
-    wz: &[F],
-    out: &mut [F],
-) -> usize {
+pub fn beckmann_lambda<R: Roughness>(r: &R, wx: &[F], wy: &[F], wz: &[F], out: &mut [F]) -> usize {
     run(&Lambda(Beckmann::new(*r)), [wx, wy, wz], [out])
 }
 

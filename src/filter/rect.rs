@@ -552,8 +552,7 @@ impl RectSetup {
             & (h.y.abs() < F::INFINITY)
             & (h.z < F::INFINITY)
             & (h.z > 0.0);
-        let special =
-            ((half_extent.x == 0.0) & (half_extent.y == 0.0)) | (h.z.to_f64() < 1e-70);
+        let special = ((half_extent.x == 0.0) & (half_extent.y == 0.0)) | (h.z.to_f64() < 1e-70);
         let (center, ihz4) = slope_of(h);
         let (uc, vc, hu, hv, k) = unit_coords(r, center, half_extent);
         let nan = uc.is_nan() | vc.is_nan();
@@ -580,9 +579,7 @@ impl RectSetup {
     /// as `d_rect`, composed without branches.
     #[inline(always)]
     pub(crate) fn lane(self, tu: Tier, tv: Tier) -> (F, bool) {
-        let Self {
-            uc, vc, hu, hv, ..
-        } = self;
+        let Self { uc, vc, hu, hv, .. } = self;
         let (mean, ok) = if tu == Tier::Gl2 && tv == Tier::Gl2 {
             let (n0, p0, n1, p1) = gl2x2_rows(uc, vc, hu, hv);
             let pp = p0 * p1;

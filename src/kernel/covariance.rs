@@ -271,7 +271,11 @@ impl Covariance {
     fn rebuild(self, r: F, c_max: F, c_min: F) -> (Self, bool) {
         let d = 0.5 * (self.s11 - self.s22);
         let p = r + d.abs();
-        let q = if p > 0.0 { self.s12 * self.s12 / p } else { 0.0 };
+        let q = if p > 0.0 {
+            self.s12 * self.s12 / p
+        } else {
+            0.0
+        };
         let (e11, e22) = if d >= 0.0 { (p, q) } else { (q, p) };
         // Sigma' = c_max P_max + c_min P_min with the (scale-free) spectral projectors
         // P_max = [[e11, s12], [s12, e22]] / 2r and P_min = [[e22, -s12], [-s12, e11]] / 2r:
