@@ -186,6 +186,7 @@ pub(crate) const K_MAX: F = if WIDE {
 };
 
 #[inline(always)]
+#[allow(clippy::unnecessary_cast)] // `K_MAX` is `F`: `f64` in the `f64` build.
 fn exp_neg_times_f32(x: f32, k: f32) -> (f32, bool) {
     // e^-194 2^126 is below F::MIN_POSITIVE: clamping there changes no result.
     let (p, kk) = exp_f32_reduced(-x.min(194.0));
@@ -202,6 +203,7 @@ fn exp_neg_times_f32(x: f32, k: f32) -> (f32, bool) {
 }
 
 #[inline(always)]
+#[allow(clippy::unnecessary_cast)] // `K_MAX` is `F`: `f32` in the `f32` build.
 fn exp_neg_times_f64(x: f64, k: f64) -> (f64, bool) {
     // e^-1456 2^1022 is below F::MIN_POSITIVE.
     let (p, kk) = exp_f64_reduced(-x.min(1456.0));

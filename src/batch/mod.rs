@@ -64,7 +64,7 @@
 use super::{F, PI, Vec2, Vec3};
 
 mod filtered;
-pub mod lanes;
+mod lanes;
 mod ndf;
 mod rect;
 mod simd;

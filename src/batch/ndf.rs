@@ -143,6 +143,7 @@ impl<R: Roughness> LaneNdf for Beckmann<R> {
     /// normal incidence, `q = 0`), flagged where the scalar path rescales `w`, at grazing `w`
     /// and for `a < 1e-20` (where `Lambda` leaves the range of `F`).
     #[inline(always)]
+    #[allow(clippy::manual_range_contains)] // `&` of compares: no branch in the lane.
     fn lambda_lane(&self, w: Vec3) -> (F, bool) {
         let q = self.roughness.quadratic(Vec2::new(w.x, w.y));
         let a = w.z.abs() / crate::math::sqrt(q);

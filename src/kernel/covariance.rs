@@ -298,6 +298,7 @@ impl Covariance {
     /// path's common case (entries in the fast range, the radius a normal square root, the
     /// direct eigenvalue quotient, a finite `1 / 2r`); the same helpers as the general path.
     #[inline(always)]
+    #[allow(clippy::manual_range_contains)] // `&` of compares: no branch in the lane.
     pub(crate) fn clamp_eigenvalues_lane(self, max: F) -> (Self, bool) {
         let (s11, s12, s22) = (self.s11, self.s12, self.s22);
         let scale = s11.abs().max(s22.abs()).max(s12.abs());
@@ -445,6 +446,7 @@ fn radius(d: F, b: F) -> F {
 
 /// [`radius`]'s square root branch: `(sqrt(d^2 + b^2), taken)`.
 #[inline(always)]
+#[allow(clippy::manual_range_contains)] // `&` of compares: no branch in the lane.
 fn radius_direct(d: F, b: F) -> (F, bool) {
     let r2 = d * d + b * b;
     (
