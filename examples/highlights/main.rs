@@ -10,6 +10,7 @@
 mod camera;
 mod image_out;
 mod methods;
+mod metrics;
 mod parallel;
 mod peaks;
 mod plot;
@@ -146,10 +147,25 @@ fn main() -> std::io::Result<()> {
         ));
     }
     let mut worst_change: f64 = 0.0;
+    // Issue 21's metrics of every method and preset (the flicker comes from the temporal
+    // test below), and the LDR-FLIP maps.
+    let mut scores: Vec<(Method, metrics::Scores)> = Vec::new();
+    let mut flip_tiles: Vec<(String, Rgb8)> = Vec::new();
     for &method in &o.methods {
         let t = Instant::now();
-        let img = render::shade(&scene, &gb, &derivs, method);
+        let frame = render::shade_frame(&scene, &gb, &derivs, method);
         let ms = base_ms + t.elapsed().as_secs_f64() * 1e3;
+        let img = &frame.total;
+        let fam = method.family();
+        let (sc, map) = metrics::score(
+            (img, &frame.specular),
+            (reference.full(fam), reference.specular(fam)),
+            o.exposure,
+        );
+        scores.push((method, sc));
+        let map = map.to_rgb8();
+        image_out::save(&map, &o.out.join(format!("flip-{}.png", method.slug())))?;
+        flip_tiles.push((format!("{} {:.3}", method.label(), sc.flip_ldr), map));
         let (full, half) = (
             reference.full(method.family()),
             reference.half(method.family()),
@@ -169,7 +185,7 @@ fn main() -> std::io::Result<()> {
             ms
         )
         .unwrap();
-        save(&o, method.slug(), &img)?;
+        save(&o, method.slug(), img)?;
         tiles.push((method.label().to_string(), img.to_rgb8(o.exposure)));
     }
     // Engine conventions (issue: which one over- or under-filters on this scene): the same
@@ -179,8 +195,15 @@ fn main() -> std::io::Result<()> {
     writeln!(preset_table, "|---|---:|---:|---:|---:|").unwrap();
     if o.presets {
         for method in Method::presets() {
-            let img = render::shade(&scene, &gb, &derivs, method);
+            let frame = render::shade_frame(&scene, &gb, &derivs, method);
+            let img = &frame.total;
             let full = reference.full(method.family());
+            let (sc, _) = metrics::score(
+                (img, &frame.specular),
+                (full, reference.specular(method.family())),
+                o.exposure,
+            );
+            scores.push((method, sc));
             writeln!(
                 preset_table,
                 "| {} | {:.4} | {:.4} | {:.3} | {:.3} |",
@@ -218,6 +241,10 @@ fn main() -> std::io::Result<()> {
     let zoom = if o.width <= 320 { 2 } else { 1 };
     let sheet_path = o.out.join("contact_sheet.png");
     image_out::save(&contact_sheet(&tiles, 3, zoom), &sheet_path)?;
+    image_out::save(
+        &contact_sheet(&flip_tiles, 3, zoom),
+        &o.out.join("flip_sheet.png"),
+    )?;
 
     println!(
         "## Still frame ({}x{}, 1 shading sample per pixel, footprints: {})\n",
@@ -246,13 +273,22 @@ fn main() -> std::io::Result<()> {
         }
     );
 
-    let temporal_md = if o.frames >= 2 {
-        temporal::run(&o)?
+    let presets = if o.presets {
+        Method::presets()
     } else {
-        String::new()
+        Vec::new()
     };
+    let temporal = (o.frames >= 2)
+        .then(|| temporal::run(&o, &presets))
+        .transpose()?;
+    let temporal_md = temporal
+        .as_ref()
+        .map_or(String::new(), |t| t.markdown.clone());
     print!("{temporal_md}");
+    let lead = lead_table(&scores, temporal.as_ref());
+    println!("\n## What a viewer sees\n\n{lead}");
     let mut md = String::new();
+    writeln!(md, "## What a viewer sees (still frame and temporal test)\n\n{lead}").unwrap();
     writeln!(
         md,
         "## Still frame ({}x{}, 1 shading sample per pixel, footprints: {})\n\n{table}",
@@ -277,6 +313,49 @@ fn main() -> std::io::Result<()> {
         o.out.display()
     );
     Ok(())
+}
+
+/// Issue 21's table: per method and preset, FLIP, flicker, specular error, false glints and
+/// lost highlights, the HDR RMSE, and where it stands against unfiltered of its NDF.
+fn lead_table(scores: &[(Method, metrics::Scores)], temporal: Option<&temporal::Temporal>) -> String {
+    let mut t = String::new();
+    writeln!(t, "| method | NDF | FLIP LDR | FLIP HDR | flicker energy / ref. | peak flicker | specular error | false glints | lost highlights | RMSE (HDR) | against unfiltered |").unwrap();
+    writeln!(t, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|").unwrap();
+    let flicker = |m: Method| {
+        temporal.and_then(|tp| {
+            let i = tp.methods.iter().position(|&x| x == m)?;
+            Some((tp.flicker[i], tp.peak_variation[i]))
+        })
+    };
+    for &(m, s) in scores {
+        let base_method = Method::Unfiltered(m.family());
+        let base = scores.iter().find(|(b, _)| *b == base_method);
+        let (fl, pv) = flicker(m).unwrap_or((f64::NAN, f64::NAN));
+        let verdict = match (base, flicker(base_method)) {
+            (Some((_, b)), Some((bf, _))) if m != base_method => {
+                metrics::verdict((&s, fl), (b, bf))
+            }
+            _ if m == base_method => "(baseline)".to_string(),
+            _ => "-".to_string(),
+        };
+        writeln!(
+            t,
+            "| {} | {} | {:.4} | {:.4} | {:.2} | {:.1}% | {:.4} | {} | {} | {:.4} | {} |",
+            m.label(),
+            m.family().name(),
+            s.flip_ldr,
+            s.flip_hdr,
+            fl,
+            100.0 * pv,
+            s.specular,
+            s.false_glints,
+            s.lost_highlights,
+            s.rmse_hdr,
+            verdict
+        )
+        .unwrap();
+    }
+    t
 }
 
 fn save(o: &Options, name: &str, img: &Image) -> std::io::Result<()> {

@@ -76,19 +76,33 @@ fn tangent_frame(n: Vec3) -> Mat3 {
 /// Outgoing radiance at `s` with the microfacet density `d` (per steradian, evaluated at the
 /// local half vector by the caller) and the Smith term of `family` at the base roughness.
 pub fn radiance(scene: &Scene, s: &Surface, family: Family, d: impl FnOnce(Vec3) -> f32) -> Vec3 {
+    let (rest, specular) = radiance_parts(scene, s, family, d);
+    rest + specular
+}
+
+/// [`radiance`] in two parts: everything but the point light's specular reflection (ambient
+/// and diffuse), and that specular reflection alone (the only part the filters change).
+pub fn radiance_parts(
+    scene: &Scene,
+    s: &Surface,
+    family: Family,
+    d: impl FnOnce(Vec3) -> f32,
+) -> (Vec3, Vec3) {
     let (wi, wo, h) = (s.local(s.wi), s.local(s.wo), s.local(s.h));
     let albedo = s.hit.albedo;
-    let mut l = albedo * scene.ambient;
+    let ambient = albedo * scene.ambient;
     let cos_i = wi.z;
     if cos_i <= 0.0 {
-        return l;
+        return (ambient, Vec3::ZERO);
     }
     let irradiance = scene.light_intensity * (cos_i / s.dist2);
     let cos_o = wo.z.max(1e-4);
     let fresnel = scene.f0 + (1.0 - scene.f0) * (1.0 - wi.dot(h).clamp(0.0, 1.0)).powi(5);
     let spec = fresnel * d(h) * family.g2(s.hit.alpha, wi, wo, h) / (4.0 * cos_i * cos_o);
-    l += irradiance * (albedo * std::f32::consts::FRAC_1_PI + Vec3::splat(spec));
-    l
+    (
+        ambient + irradiance * albedo * std::f32::consts::FRAC_1_PI,
+        irradiance * spec,
+    )
 }
 
 /// The pixel-centre hits of one frame.
@@ -250,30 +264,65 @@ impl GBuffer {
 
 /// One shading sample per pixel with `method`.
 pub fn shade(scene: &Scene, gb: &GBuffer, derivs: &[PixelDerivatives], method: Method) -> Image {
-    let data = parallel::rows(gb.height, None, |y| {
+    shade_frame(scene, gb, derivs, method).total
+}
+
+/// A shaded frame and its specular term alone (the point light's specular reflection; the
+/// rest, ambient, diffuse and sky, is the same for every method).
+pub struct Frame {
+    pub total: Image,
+    pub specular: Image,
+}
+
+/// [`shade`], with the specular term kept apart.
+pub fn shade_frame(
+    scene: &Scene,
+    gb: &GBuffer,
+    derivs: &[PixelDerivatives],
+    method: Method,
+) -> Frame {
+    shade_with(scene, gb, method.family(), |i, h, alpha| {
+        let dv = derivs[i];
+        methods::filtered_d(
+            method,
+            &ShadingPoint {
+                h,
+                alpha,
+                footprint: dv.footprint,
+                dn_dx: dv.dn_dx,
+                dn_dy: dv.dn_dy,
+            },
+        )
+    })
+}
+
+/// One shading sample per pixel with the density `d(pixel index, local h, alpha)`.
+pub fn shade_with(
+    scene: &Scene,
+    gb: &GBuffer,
+    family: Family,
+    d: impl Fn(usize, Vec3, f32) -> f32 + Sync + Send,
+) -> Frame {
+    let data: Vec<(Vec3, Vec3)> = parallel::rows(gb.height, None, |y| {
         (0..gb.width)
             .map(|x| {
                 let i = y * gb.width + x;
                 match &gb.pixels[i] {
-                    None => gb.sky[i],
-                    Some((s, _)) => radiance(scene, s, method.family(), |h| {
-                        let dv = derivs[i];
-                        methods::filtered_d(
-                            method,
-                            &ShadingPoint {
-                                h,
-                                alpha: s.hit.alpha,
-                                footprint: dv.footprint,
-                                dn_dx: dv.dn_dx,
-                                dn_dy: dv.dn_dy,
-                            },
-                        )
-                    }),
+                    None => (gb.sky[i], Vec3::ZERO),
+                    Some((s, _)) => {
+                        let (rest, spec) =
+                            radiance_parts(scene, s, family, |h| d(i, h, s.hit.alpha));
+                        (rest + spec, spec)
+                    }
                 }
             })
             .collect()
     });
-    Image::new(gb.width, gb.height, data)
+    let (total, specular): (Vec<Vec3>, Vec<Vec3>) = data.into_iter().unzip();
+    Frame {
+        total: Image::new(gb.width, gb.height, total),
+        specular: Image::new(gb.width, gb.height, specular),
+    }
 }
 
 /// The supersampled references of one frame: for each family, the average over the first
@@ -281,6 +330,8 @@ pub fn shade(scene: &Scene, gb: &GBuffer, derivs: &[PixelDerivatives], method: M
 pub struct Reference {
     pub half: [Image; 2],
     pub full: [Image; 2],
+    /// The specular term alone, all samples.
+    pub specular: [Image; 2],
 }
 
 impl Reference {
@@ -289,6 +340,9 @@ impl Reference {
     }
     pub fn half(&self, family: Family) -> &Image {
         &self.half[family as usize]
+    }
+    pub fn specular(&self, family: Family) -> &Image {
+        &self.specular[family as usize]
     }
 }
 
@@ -305,18 +359,45 @@ pub fn reference(
     seed: u64,
     progress: Option<&str>,
 ) -> Reference {
+    reference_with(
+        scene,
+        cam,
+        (width, height),
+        spp,
+        seed,
+        progress,
+        methods::SIGMA_PIXEL,
+    )
+}
+
+/// [`reference`] with the pixel filter's standard deviation `sigma` (in pixels); `sigma <= 0`
+/// draws the samples uniformly over the pixel's square instead (a box pixel filter).
+pub fn reference_with(
+    scene: &Scene,
+    cam: &Camera,
+    (width, height): (usize, usize),
+    spp: usize,
+    seed: u64,
+    progress: Option<&str>,
+    sigma: f32,
+) -> Reference {
     let n = (spp / 2).max(1);
     let lattice = Lattice::new(n);
     let families = [Family::Beckmann, Family::Ggx];
-    let px: Vec<[Vec3; 4]> = parallel::rows(height, progress, |y| {
+    let px: Vec<[Vec3; 6]> = parallel::rows(height, progress, |y| {
         (0..width)
             .map(|x| {
                 let mut rng = pixel_rng(seed, (y * width + x) as u64);
                 let mut sums = [[Vec3::ZERO; 2]; 2];
+                let mut spec = [Vec3::ZERO; 2];
                 for sum in &mut sums {
                     let shift = (uniform_f32(&mut rng), uniform_f32(&mut rng));
                     for j in 0..n {
-                        let (ox, oy) = lattice.gaussian(j, shift, methods::SIGMA_PIXEL);
+                        let (ox, oy) = if sigma > 0.0 {
+                            lattice.gaussian(j, shift, sigma)
+                        } else {
+                            lattice.uniform(j, shift)
+                        };
                         let r = cam.ray(x as f32 + 0.5 + ox, y as f32 + 0.5 + oy);
                         let hit = scene
                             .intersect(&r.ray)
@@ -325,7 +406,11 @@ pub fn reference(
                             sum[f] += match &hit {
                                 None => scene.sky(r.ray.dir),
                                 Some(s) => {
-                                    radiance(scene, s, *family, |h| family.d(s.hit.alpha, h))
+                                    let (rest, sp) = radiance_parts(scene, s, *family, |h| {
+                                        family.d(s.hit.alpha, h)
+                                    });
+                                    spec[f] += sp;
+                                    rest + sp
                                 }
                             };
                         }
@@ -338,6 +423,8 @@ pub fn reference(
                     a[1] / n,
                     (a[0] + b[0]) / (2.0 * n),
                     (a[1] + b[1]) / (2.0 * n),
+                    spec[0] / (2.0 * n),
+                    spec[1] / (2.0 * n),
                 ]
             })
             .collect()
@@ -346,6 +433,7 @@ pub fn reference(
     Reference {
         half: [img(0), img(1)],
         full: [img(2), img(3)],
+        specular: [img(4), img(5)],
     }
 }
 
@@ -370,10 +458,22 @@ impl Lattice {
         Self { n, g }
     }
 
-    /// Point `j` shifted by `shift` (mod 1), mapped to a 2D normal deviate of std `sigma`.
-    fn gaussian(&self, j: usize, shift: (f32, f32), sigma: f32) -> (f32, f32) {
+    /// Point `j` shifted by `shift` (mod 1), in `[0, 1)^2`.
+    fn point(&self, j: usize, shift: (f32, f32)) -> (f32, f32) {
         let u = ((j as f32 / self.n as f32) + shift.0).fract();
         let v = (((j * self.g) % self.n) as f32 / self.n as f32 + shift.1).fract();
+        (u, v)
+    }
+
+    /// Point `j` as an offset from the pixel centre, uniform over the pixel (a box filter).
+    fn uniform(&self, j: usize, shift: (f32, f32)) -> (f32, f32) {
+        let (u, v) = self.point(j, shift);
+        (u - 0.5, v - 0.5)
+    }
+
+    /// Point `j` shifted by `shift` (mod 1), mapped to a 2D normal deviate of std `sigma`.
+    fn gaussian(&self, j: usize, shift: (f32, f32), sigma: f32) -> (f32, f32) {
+        let (u, v) = self.point(j, shift);
         let r = sigma * (-2.0 * (1.0 - u).max(1e-12).ln()).sqrt();
         let (s, c) = (std::f32::consts::TAU * v).sin_cos();
         (r * c, r * s)

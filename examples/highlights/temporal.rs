@@ -1,9 +1,11 @@
-//! The temporal test (KHPL16 Fig. 12): the camera dollies over N frames; per method, the
-//! peak HDR intensity of each frame, its frame-to-frame variation and its distance to the
-//! reference's peak.
+//! The temporal test: the camera dollies over N frames; per method, the flicker energy of
+//! the display luminance relative to the reference sequence's ([`metrics::flicker_energy`]),
+//! and (KHPL16 Fig. 12) the peak HDR intensity of each frame, its frame-to-frame variation and
+//! its distance to the reference's peak.
 
 use crate::camera::camera_at;
 use crate::methods::Method;
+use crate::metrics::{display_luminance, flicker_energy};
 use crate::peaks::{distance, mean, variation};
 use crate::plot::{PALETTE, Series, line_plot};
 use crate::scene::Scene;
@@ -13,13 +15,30 @@ use std::fmt::Write as _;
 /// Resolution divisor and reference sample divisor of the temporal frames (keeps the default
 /// run short; the peaks are compared at the same resolution for every method).
 const DOWNSCALE: usize = 2;
-const SPP_DIVISOR: usize = 8;
+pub const SPP_DIVISOR: usize = 4;
 
-pub fn run(o: &Options) -> std::io::Result<String> {
+/// What the temporal test measured, per method of `methods` (in order).
+pub struct Temporal {
+    pub methods: Vec<Method>,
+    /// Flicker energy divided by the reference's (same family).
+    pub flicker: Vec<f64>,
+    /// Frame-to-frame variation of the peak, and its distance to the reference's peak.
+    pub peak_variation: Vec<f64>,
+    pub peak_distance: Vec<f64>,
+    /// The references' flicker energies (Beckmann, GGX).
+    pub reference_flicker: [f64; 2],
+    pub markdown: String,
+}
+
+/// Runs the test on `o.methods`, then `extra` (the engine presets: their flicker only).
+pub fn run(o: &Options, extra: &[Method]) -> std::io::Result<Temporal> {
     let (w, h) = ((o.width / DOWNSCALE).max(2), (o.height / DOWNSCALE).max(2));
     let spp = (o.spp / SPP_DIVISOR).max(2);
-    let mut peaks = vec![Vec::new(); o.methods.len()];
+    let all: Vec<Method> = o.methods.iter().chain(extra).copied().collect();
+    let mut peaks = vec![Vec::new(); all.len()];
+    let mut lums = vec![Vec::new(); all.len()];
     let mut ref_peaks = [Vec::new(), Vec::new()];
+    let mut ref_lums = [Vec::new(), Vec::new()];
     let bar = crate::parallel::bar("temporal frames", o.frames);
     for f in 0..o.frames {
         let cam = camera_at(f, w, h);
@@ -27,11 +46,14 @@ pub fn run(o: &Options) -> std::io::Result<String> {
         let reference = render::reference(scene, &cam, w, h, spp, o.seed, None);
         for (k, img) in reference.full.iter().enumerate() {
             ref_peaks[k].push(img.peak());
+            ref_lums[k].push(display_luminance(img, o.exposure));
         }
         let gb = render::gbuffer(scene, &cam, w, h);
         let derivs = gb.derivatives(o.route);
-        for (i, &m) in o.methods.iter().enumerate() {
-            peaks[i].push(render::shade(scene, &gb, &derivs, m).peak());
+        for (i, &m) in all.iter().enumerate() {
+            let img = render::shade(scene, &gb, &derivs, m);
+            peaks[i].push(img.peak());
+            lums[i].push(display_luminance(&img, o.exposure));
         }
         bar.inc(1);
     }
@@ -44,19 +66,21 @@ pub fn run(o: &Options) -> std::io::Result<String> {
         o.frames, w, h, spp
     )
     .unwrap();
-    writeln!(md, "Peak HDR luminance per frame: mean, mean frame-to-frame change |P(t) - P(t-1)| / mean P, and mean distance |P(t) - P_ref(t)| / mean P_ref.\n").unwrap();
+    writeln!(md, "Flicker energy: the mean over pixels and frame pairs of the squared change of display luminance, (Y_t - Y_t-1)^2, divided by the reference sequence's (1 = as much change as the reference; the camera moves, so the reference changes too). Peak HDR luminance per frame (KHPL16 Fig. 12): mean, mean frame-to-frame change |P(t) - P(t-1)| / mean P, and mean distance |P(t) - P_ref(t)| / mean P_ref.\n").unwrap();
     writeln!(
         md,
-        "| method | mean peak | frame-to-frame variation | distance to reference |"
+        "| method | flicker energy / reference | mean peak | peak frame-to-frame variation | peak distance to reference |"
     )
     .unwrap();
-    writeln!(md, "|---|---:|---:|---:|").unwrap();
+    writeln!(md, "|---|---:|---:|---:|---:|").unwrap();
+    let reference_flicker = [flicker_energy(&ref_lums[0]), flicker_energy(&ref_lums[1])];
     let mut series = Vec::new();
     for (k, name) in ["Reference Beckmann", "Reference GGX"].iter().enumerate() {
         let p = &ref_peaks[k];
         writeln!(
             md,
-            "| {name} | {:.1} | {:.1}% | - |",
+            "| {name} | 1 ({:.2e}) | {:.1} | {:.1}% | - |",
+            reference_flicker[k],
             mean(p),
             100.0 * variation(p)
         )
@@ -68,18 +92,26 @@ pub fn run(o: &Options) -> std::io::Result<String> {
             dashed: true,
         });
     }
-    for (i, &m) in o.methods.iter().enumerate() {
+    let (mut flicker, mut peak_variation, mut peak_distance) = (vec![], vec![], vec![]);
+    for (i, &m) in all.iter().enumerate() {
         let p = &peaks[i];
         let r = &ref_peaks[m.family() as usize];
+        flicker.push(flicker_energy(&lums[i]) / reference_flicker[m.family() as usize]);
+        peak_variation.push(variation(p));
+        peak_distance.push(distance(p, r));
         writeln!(
             md,
-            "| {} | {:.1} | {:.1}% | {:.1}% |",
+            "| {} | {:.2} | {:.1} | {:.1}% | {:.1}% |",
             m.label(),
+            flicker[i],
             mean(p),
             100.0 * variation(p),
             100.0 * distance(p, r)
         )
         .unwrap();
+        if i >= o.methods.len() {
+            continue;
+        }
         series.push(Series {
             label: m.label().to_string(),
             color: PALETTE[index_of(m) % PALETTE.len()],
@@ -97,7 +129,14 @@ pub fn run(o: &Options) -> std::io::Result<String> {
     let path = o.out.join("temporal.png");
     crate::image_out::save(&plot, &path)?;
     writeln!(md, "\nPlot: {}", path.display()).unwrap();
-    Ok(md)
+    Ok(Temporal {
+        methods: all,
+        flicker,
+        peak_variation,
+        peak_distance,
+        reference_flicker,
+        markdown: md,
+    })
 }
 
 fn index_of(m: Method) -> usize {
