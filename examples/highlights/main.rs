@@ -5,7 +5,7 @@
 //! Run: `cargo run --release --example highlights -- [--width 256] [--height 160]
 //! [--spp 512] [--frames 16] [--out target/highlights] [--methods a,b,..|all]
 //! [--presets on|off]
-//! [--footprint quad|rays] [--threads 2] [--seed 1]`.
+//! [--footprint quad|rays|moments] [--threads 2] [--seed 1]`.
 
 mod camera;
 mod image_out;
@@ -47,7 +47,7 @@ fn usage() -> ! {
     let slugs: Vec<&str> = Method::ALL.iter().map(|m| m.slug()).collect();
     eprintln!(
         "usage: highlights [--width N] [--height N] [--spp N] [--frames N] [--out DIR]\n\
-         \x20                 [--methods all|{}] [--footprint quad|rays] [--threads N] [--seed N]\n\
+         \x20                 [--methods all|{}] [--footprint quad|rays|moments] [--threads N] [--seed N]\n\
          \x20                 [--presets on|off]",
         slugs.join(",")
     );
@@ -85,6 +85,7 @@ fn parse_args() -> Options {
                 o.route = match value.as_str() {
                     "quad" => FootprintRoute::Quad,
                     "rays" => FootprintRoute::RayDifferentials,
+                    "moments" => FootprintRoute::Moments,
                     _ => usage(),
                 }
             }
@@ -130,7 +131,7 @@ fn main() -> std::io::Result<()> {
 
     let t = Instant::now();
     let gb = render::gbuffer(&scene, &cam, o.width, o.height);
-    let derivs = gb.derivatives(o.route);
+    let derivs = gb.derivatives(&scene, o.route);
     let base_ms = t.elapsed().as_secs_f64() * 1e3;
 
     let mut tiles: Vec<(String, Rgb8)> = Vec::new();
@@ -220,9 +221,9 @@ fn main() -> std::io::Result<()> {
     // (offline) against 2x2-quad differences (what a GPU does).
     let other = match o.route {
         FootprintRoute::Quad => FootprintRoute::RayDifferentials,
-        FootprintRoute::RayDifferentials => FootprintRoute::Quad,
+        FootprintRoute::RayDifferentials | FootprintRoute::Moments => FootprintRoute::Quad,
     };
-    let other_derivs = gb.derivatives(other);
+    let other_derivs = gb.derivatives(&scene, other);
     let mut route_table = String::new();
     writeln!(
         route_table,
@@ -366,5 +367,6 @@ fn route_name(r: FootprintRoute) -> &'static str {
     match r {
         FootprintRoute::Quad => "2x2-quad differences (GPU)",
         FootprintRoute::RayDifferentials => "ray differentials + M (offline)",
+        FootprintRoute::Moments => "windowed slope moments (the false-glint fix)",
     }
 }

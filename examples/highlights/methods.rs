@@ -111,6 +111,15 @@ impl Method {
         }
     }
 
+    /// Whether the method filters over the half vector's footprint (the others read the
+    /// normal differences, or nothing).
+    pub fn uses_footprint(self) -> bool {
+        !matches!(
+            self,
+            Method::Unfiltered(_) | Method::Tk19Isotropic(_) | Method::Preset(_)
+        )
+    }
+
     /// Short command-line / file name.
     pub fn slug(self) -> &'static str {
         match self {

@@ -7,6 +7,7 @@ use crate::methods::{self, Family, Method, ShadingPoint};
 use crate::parallel;
 use crate::scene::{Hit, Scene};
 use filtered_ndf::f32::Footprint;
+use filtered_ndf::f32::kernel::Covariance;
 use filtered_ndf::f32::footprint::slope::slope_from_sphere;
 use filtered_ndf::testing::rng::SplitMix64;
 use glam::{Mat3, Quat, Vec2, Vec3};
@@ -19,6 +20,11 @@ pub enum FootprintRoute {
     /// Analytic ray differentials and the half-vector Jacobian `M` (the offline route,
     /// KHPL16 eq. 4-6 and section 4.2).
     RayDifferentials,
+    /// The false-glint fix: on the water, the kernel is the covariance of the normal's slope
+    /// over the pixel's Gaussian window (the waves' exact windowed moments,
+    /// [`Scene::gradient_moments`]) plus the first-order parallax of the view and light
+    /// directions, centred on the window's mean normal; elsewhere as `RayDifferentials`.
+    Moments,
 }
 
 /// Everything shading needs at one primary hit.
@@ -147,6 +153,10 @@ pub struct PixelDerivatives {
     pub footprint: Footprint,
     pub dn_dx: Vec3,
     pub dn_dy: Vec3,
+    /// The rotation (tangent frame) taking the kernel's mean normal to the shading normal:
+    /// the half-vector filters evaluate their lobe at `mean_shift * h` (identity but on the
+    /// `Moments` route).
+    pub mean_shift: Quat,
 }
 
 impl GBuffer {
@@ -207,6 +217,7 @@ impl GBuffer {
             footprint: Footprint::from_slope_derivatives(dh_u, dh_v),
             dn_dx,
             dn_dy,
+            mean_shift: Quat::IDENTITY,
         }
     }
 
@@ -233,6 +244,50 @@ impl GBuffer {
         }
     }
 
+    /// The `Moments` route (see [`FootprintRoute::Moments`]).
+    pub fn moment_derivatives(&self, scene: &Scene, x: usize, y: usize) -> PixelDerivatives {
+        let rays = self.analytic_derivatives(x, y);
+        let Some((s, ray)) = self.pixels[y * self.width + x].as_ref() else {
+            return rays;
+        };
+        let (dx_u, dx_v) = ray.footprint_on_plane(&s.hit);
+        let sig2 = methods::SIGMA_PIXEL * methods::SIGMA_PIXEL;
+        let window = [
+            sig2 * (dx_u.x * dx_u.x + dx_v.x * dx_v.x),
+            sig2 * (dx_u.x * dx_u.z + dx_v.x * dx_v.z),
+            sig2 * (dx_u.z * dx_u.z + dx_v.z * dx_v.z),
+        ];
+        let Some((mean, cov)) = scene.gradient_moments(&s.hit, window) else {
+            return rays;
+        };
+        // The parallax: the ray-differential footprint of a flat surface (zero shape operator).
+        let parallax = methods::footprint_from_ray_differentials(&methods::AnalyticInput {
+            position: s.hit.position,
+            eye: self.eye,
+            light: s.hit.position + s.wi * s.dist2.sqrt(),
+            frame: [s.frame.x_axis, s.frame.y_axis, s.frame.z_axis],
+            dn_dt: Vec3::ZERO,
+            dn_db: Vec3::ZERO,
+            dx_u,
+            dx_v,
+        });
+        // Height gradient (h_x, h_z) -> slope of the normal in this tangent frame: the normal
+        // is (-h_x, 1, -h_z) / L, so d(slope) = (t . e, b . e) / L per unit gradient change.
+        let (t, b) = (s.frame.x_axis, s.frame.y_axis);
+        let len = 1.0 / s.hit.normal.y.max(1e-3);
+        let j = glam::Mat2::from_cols(Vec2::new(t.x, b.x), Vec2::new(t.z, b.z)) / len;
+        let g = glam::Mat2::from_cols(Vec2::new(cov[0], cov[1]), Vec2::new(cov[1], cov[2]));
+        let k = j * g * j.transpose();
+        let total = parallax.covariance(methods::SIGMA_PIXEL)
+            + Covariance::new(k.x_axis.x, 0.5 * (k.y_axis.x + k.x_axis.y), k.y_axis.y);
+        let mean_normal = Vec3::new(-mean.x, 1.0, -mean.y).normalize();
+        PixelDerivatives {
+            footprint: footprint_of(total.sanitized(), methods::SIGMA_PIXEL),
+            mean_shift: Quat::from_rotation_arc(s.local(mean_normal), Vec3::Z),
+            ..rays
+        }
+    }
+
     /// Per pixel: whether the quad route differences it with its own 2x2-quad partner on
     /// both axes (`coord ^ 1`: same object, no depth discontinuity), where a GPU's fine
     /// derivatives difference the same two pixels; pixels that see the sky count too (no
@@ -250,16 +305,35 @@ impl GBuffer {
             .collect()
     }
 
-    pub fn derivatives(&self, route: FootprintRoute) -> Vec<PixelDerivatives> {
+    pub fn derivatives(&self, scene: &Scene, route: FootprintRoute) -> Vec<PixelDerivatives> {
         parallel::rows(self.height, None, |y| {
             (0..self.width)
                 .map(|x| match route {
                     FootprintRoute::Quad => self.quad_derivatives(x, y),
                     FootprintRoute::RayDifferentials => self.analytic_derivatives(x, y),
+                    FootprintRoute::Moments => self.moment_derivatives(scene, x, y),
                 })
                 .collect()
         })
     }
+}
+
+/// A footprint whose Gaussian kernel at `sigma` is `k`: its eigenvectors scaled by the square
+/// roots of its eigenvalues over `sigma`.
+pub fn footprint_of(k: Covariance, sigma: f32) -> Footprint {
+    let (l1, l2) = k.eigenvalues();
+    let (l1, l2) = (l1.max(l2), l1.min(l2));
+    let e1 = if k.s12.abs() > 1e-12 * (l1.abs() + 1e-30) {
+        Vec2::new(l1 - k.s22, k.s12).normalize_or(Vec2::X)
+    } else if k.s11 >= k.s22 {
+        Vec2::X
+    } else {
+        Vec2::Y
+    };
+    Footprint::from_slope_derivatives(
+        e1 * (l1.max(0.0).sqrt() / sigma),
+        e1.perp() * (l2.max(0.0).sqrt() / sigma),
+    )
 }
 
 /// One shading sample per pixel with `method`.
@@ -283,6 +357,11 @@ pub fn shade_frame(
 ) -> Frame {
     shade_with(scene, gb, method.family(), |i, h, alpha| {
         let dv = derivs[i];
+        let h = if method.uses_footprint() {
+            dv.mean_shift * h
+        } else {
+            h
+        };
         methods::filtered_d(
             method,
             &ShadingPoint {

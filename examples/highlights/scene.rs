@@ -2,7 +2,7 @@
 //! few small glossy spheres floating on it, lit by one small point light low over the horizon
 //! so that the water shows a glitter path. World space is `y`-up.
 
-use glam::{Mat3, Vec3};
+use glam::{Mat3, Vec2, Vec3};
 
 /// A ray `origin + t dir`, `dir` unit.
 #[derive(Clone, Copy, Debug)]
@@ -140,6 +140,42 @@ impl Water {
             lost += (1.0 - f * f) * slope * slope * 0.5;
         }
         (d, lost)
+    }
+
+    /// The moments of the height gradient `g = (h_x, h_z)` over a Gaussian window of world
+    /// covariance `c = (c_xx, c_xz, c_zz)` centred on `(x, z)` (the pixel filter carried onto
+    /// the water by the ray differentials), each wave's fade taken as constant over the
+    /// window: with the phase `theta_i = k_i . p + phase_i` Gaussian of variance `k_i^T c k_i`,
+    /// `E[cos theta_i] = cos(theta_i) exp(-v_i / 2)` and `E[cos theta_i cos theta_j] =
+    /// (cos(theta_i + theta_j) exp(-v_{i+j} / 2) + cos(theta_i - theta_j) exp(-v_{i-j} / 2)) / 2`
+    /// with `v_{i+-j} = (k_i +- k_j)^T c (k_i +- k_j)`. Returns `(E[g], Cov[g])`: unlike the
+    /// first-order footprint, the covariance of one wave saturates at its slope variance
+    /// `(a k)^2 / 2` when the window spans many of its crests.
+    pub fn gradient_moments(&self, x: f32, z: f32, c: [f32; 3]) -> (Vec2, [f32; 3]) {
+        let quad = |kx: f32, kz: f32| kx * kx * c[0] + 2.0 * kx * kz * c[1] + kz * kz * c[2];
+        let waves: Vec<(f32, f32, f32, f32)> = self
+            .fades(x, z)
+            .map(|(w, f)| (f * w.amplitude, w.kx, w.kz, w.kx * x + w.kz * z + w.phase))
+            .collect();
+        let mut mean = Vec2::ZERO;
+        let mut second = [0.0f32; 3];
+        for &(ai, kxi, kzi, ti) in &waves {
+            mean += Vec2::new(kxi, kzi) * (ai * ti.cos() * (-0.5 * quad(kxi, kzi)).exp());
+            for &(aj, kxj, kzj, tj) in &waves {
+                let plus = (ti + tj).cos() * (-0.5 * quad(kxi + kxj, kzi + kzj)).exp();
+                let minus = (ti - tj).cos() * (-0.5 * quad(kxi - kxj, kzi - kzj)).exp();
+                let e = 0.5 * ai * aj * (plus + minus);
+                second[0] += e * kxi * kxj;
+                second[1] += e * kxi * kzj;
+                second[2] += e * kzi * kzj;
+            }
+        }
+        let cov = [
+            second[0] - mean.x * mean.x,
+            second[1] - mean.x * mean.y,
+            second[2] - mean.y * mean.y,
+        ];
+        (mean, cov)
     }
 
     fn inside(&self, p: Vec3) -> bool {
@@ -346,6 +382,12 @@ impl Scene {
         }
         let t_max = best.map_or(f32::INFINITY, |b| b.t);
         self.water.intersect(ray, t_max, self.alpha).or(best)
+    }
+
+    /// The moments of the water's height gradient over a Gaussian window at `hit` (see
+    /// [`Water::gradient_moments`]); `None` on the spheres.
+    pub fn gradient_moments(&self, hit: &Hit, c: [f32; 3]) -> Option<(Vec2, [f32; 3])> {
+        (hit.object == 0).then(|| self.water.gradient_moments(hit.position.x, hit.position.z, c))
     }
 
     /// Background radiance for a ray that hits nothing: a dim sky gradient.

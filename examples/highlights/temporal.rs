@@ -49,7 +49,7 @@ pub fn run(o: &Options, extra: &[Method]) -> std::io::Result<Temporal> {
             ref_lums[k].push(display_luminance(img, o.exposure));
         }
         let gb = render::gbuffer(scene, &cam, w, h);
-        let derivs = gb.derivatives(o.route);
+        let derivs = gb.derivatives(scene, o.route);
         for (i, &m) in all.iter().enumerate() {
             let img = render::shade(scene, &gb, &derivs, m);
             peaks[i].push(img.peak());

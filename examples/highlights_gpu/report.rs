@@ -139,8 +139,8 @@ pub fn still(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Still, S
     let reference = render::reference(&scene, &cam, w, h, o.spp, o.seed, Some("CPU reference"));
     let reference_s = t.elapsed().as_secs_f64();
     let gb = render::gbuffer(&scene, &cam, w, h);
-    let rays = gb.derivatives(FootprintRoute::RayDifferentials);
-    let quad = gb.derivatives(FootprintRoute::Quad);
+    let rays = gb.derivatives(&scene, FootprintRoute::RayDifferentials);
+    let quad = gb.derivatives(&scene, FootprintRoute::Quad);
     let interior = gb.quad_interior();
     let same_quads = interior.iter().filter(|&&b| b).count() as f64 / interior.len() as f64;
 
@@ -254,8 +254,8 @@ pub fn temporal(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Tempo
             out.reference[k].push(img.peak());
         }
         let gb = render::gbuffer(&scene, &cam, w as usize, h as usize);
-        let rays = gb.derivatives(FootprintRoute::RayDifferentials);
-        let quad = gb.derivatives(FootprintRoute::Quad);
+        let rays = gb.derivatives(&scene, FootprintRoute::RayDifferentials);
+        let quad = gb.derivatives(&scene, FootprintRoute::Quad);
         for (route, [on_gpu, cpu_rays, cpu_quad]) in &mut out.routes {
             let img = Image::new(w as usize, h as usize, renderer.render(gpu, *route)?);
             on_gpu.push(img.peak());
