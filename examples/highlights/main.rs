@@ -8,6 +8,7 @@
 //! [--footprint quad|rays|moments] [--threads 2] [--seed 1]`.
 
 mod camera;
+mod glints;
 mod image_out;
 mod methods;
 mod metrics;
@@ -41,6 +42,8 @@ pub struct Options {
     pub exposure: f32,
     /// Also shade the engine presets (table only).
     pub presets: bool,
+    /// Run the false-glint investigation (`glints.rs`).
+    pub investigate: bool,
 }
 
 fn usage() -> ! {
@@ -67,6 +70,7 @@ fn parse_args() -> Options {
         seed: 1,
         exposure: 1.0,
         presets: true,
+        investigate: true,
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -80,6 +84,7 @@ fn parse_args() -> Options {
             "--threads" => o.threads = num(&value).max(1),
             "--seed" => o.seed = num(&value) as u64,
             "--presets" => o.presets = value != "off",
+            "--investigate" => o.investigate = value != "off",
             "--out" => o.out = PathBuf::from(value),
             "--footprint" => {
                 o.route = match value.as_str() {
@@ -274,6 +279,12 @@ fn main() -> std::io::Result<()> {
         }
     );
 
+    let glints_md = if o.investigate {
+        glints::investigate(&o, &scene, &cam, &gb, &reference)?
+    } else {
+        String::new()
+    };
+    print!("{glints_md}");
     let presets = if o.presets {
         Method::presets()
     } else {
@@ -290,6 +301,7 @@ fn main() -> std::io::Result<()> {
     println!("\n## What a viewer sees\n\n{lead}");
     let mut md = String::new();
     writeln!(md, "## What a viewer sees (still frame and temporal test)\n\n{lead}").unwrap();
+    md.push_str(&glints_md);
     writeln!(
         md,
         "## Still frame ({}x{}, 1 shading sample per pixel, footprints: {})\n\n{table}",

@@ -1,0 +1,391 @@
+//! Where the false glints come from (issue 21): on the still frame, each candidate cause is
+//! measured with a figure, for KHPL16's Beckmann kernel and the exact Gaussian filter of GGX
+//! on the ray-differential footprint route, then for the fix (the windowed-moments route).
+//!
+//! - **the first-order footprint across several wave crests**: the kernel of the first-order
+//!   footprint against the covariance of the normal's slope over the pixel's Gaussian window
+//!   (the waves' exact windowed moments);
+//! - **the Gaussian kernel's infinite tails**: how far out in the kernel (its Mahalanobis
+//!   distance) the slope that lights each false glint lies, and the frame with the kernel
+//!   truncated at 2 sigma;
+//! - **missing clamps**: the same kernel under smaller maximum extents `lambda` and TK19's
+//!   `kappa`;
+//! - **the reference's Gaussian pixel filter**: the counts against a box-filtered reference.
+
+use crate::camera::Camera;
+use crate::image_out::{Image, Rgb8, contact_sheet, draw_text, luminance, tonemap};
+use crate::methods::{Family, Method, SIGMA_PIXEL};
+use crate::metrics::{BRIGHT, DARK, display_luminance, glint_counts, glint_masks};
+use crate::render::{self, FootprintRoute, GBuffer, PixelDerivatives, Reference};
+use crate::scene::Scene;
+use crate::{Options, plot};
+use filtered_ndf::f32::footprint::slope::slope_from_sphere;
+use filtered_ndf::f32::kernel::Covariance;
+use filtered_ndf::f32::{Beckmann, ClampRules, ExtentFloor, Isotropic, Ndf};
+use glam::{Vec2, Vec3};
+use image::Rgb;
+use std::fmt::Write as _;
+
+/// The frame in grey with the false glints in red and the lost highlights in blue, labelled.
+pub fn glint_map(img: &Image, reference: &Image, exposure: f32) -> Rgb8 {
+    let (f, l) = glint_masks(
+        &display_luminance(img, exposure),
+        &display_luminance(reference, exposure),
+    );
+    Rgb8::from_fn(img.width as u32, img.height as u32, |x, y| {
+        let i = y as usize * img.width + x as usize;
+        if f[i] {
+            Rgb([255, 30, 30])
+        } else if l[i] {
+            Rgb([40, 120, 255])
+        } else {
+            let g = (luminance(tonemap(img.data[i], exposure)) * 140.0) as u8;
+            Rgb([g, g, g])
+        }
+    })
+}
+
+/// KHPL16's Beckmann kernel under `rules` at every pixel (`A + 2 Sigma`), its lobe evaluated
+/// at `mean_shift * h`; with `truncate`, the kernel is cut at that many standard deviations
+/// and renormalised (see [`truncated_fraction`]).
+fn beckmann_with(
+    scene: &Scene,
+    gb: &GBuffer,
+    derivs: &[PixelDerivatives],
+    rules: ClampRules,
+    truncate: Option<f32>,
+) -> Image {
+    render::shade_with(scene, gb, Family::Beckmann, |i, h, alpha| {
+        let dv = derivs[i];
+        let h = dv.mean_shift * h;
+        let r = Isotropic::new_clamped(alpha);
+        let d = Beckmann::new(rules.filter_gaussian(r, dv.footprint, SIGMA_PIXEL)).d(h);
+        match truncate {
+            None => d,
+            Some(radius) => {
+                let k = rules.kernel(rules.footprint(dv.footprint).covariance(SIGMA_PIXEL));
+                d * truncated_fraction(k, alpha, slope_from_sphere(h), radius)
+            }
+        }
+    })
+    .total
+}
+
+/// The kernel `N(0, k)` cut at `radius` standard deviations (`|L^-1 t| <= radius`, `k = L
+/// L^T`) and renormalised, convolved with the Beckmann lobe `N(0, alpha^2 / 2 I)` at slope
+/// `s`, over the untruncated convolution: the probability that `u ~ N(mu, S)`, the posterior
+/// of the whitened kernel offset given `s`, lies in the disk, over the disk's mass under
+/// `N(0, I)` (`1 - exp(-radius^2 / 2)`). The probability by an 8 x 8 Gauss-Hermite grid.
+pub fn truncated_fraction(k: Covariance, alpha: f32, s: Vec2, radius: f32) -> f32 {
+    let (l1, l2) = k.eigenvalues();
+    if l1.max(l2) <= 1e-12 {
+        return 1.0;
+    }
+    // Whiten in k's eigenbasis: t = E diag(sqrt(l)) u.
+    let fp = render::footprint_of(k, 1.0);
+    let (e1, e2) = (fp.dh_u, fp.dh_v); // columns of L (eigenvectors times sqrt(l))
+    let a2 = 0.5 * alpha * alpha;
+    // Posterior of u: precision P = I + L^T L / a2, mean P^-1 L^T s / a2.
+    let m = glam::Mat2::from_cols(e1, e2);
+    let p = glam::Mat2::IDENTITY + m.transpose() * m / a2;
+    let cov = p.inverse();
+    let mu = cov * (m.transpose() * s) / a2;
+    // Cholesky of cov.
+    let c11 = cov.x_axis.x.max(0.0).sqrt();
+    let c21 = if c11 > 0.0 { cov.x_axis.y / c11 } else { 0.0 };
+    let c22 = (cov.y_axis.y - c21 * c21).max(0.0).sqrt();
+    const X: [f32; 4] = [0.381_186_99, 1.157_193_7, 1.981_656_8, 2.930_637_4];
+    const W: [f32; 4] = [0.661_147_0, 0.207_802_3, 0.017_077_98, 0.000_199_604_1];
+    let (mut inside, mut total) = (0.0, 0.0);
+    for (i, &xi) in X.iter().chain(X.iter()).enumerate() {
+        let zi = if i < 4 { xi } else { -xi } * std::f32::consts::SQRT_2;
+        let wi = W[i % 4];
+        for (j, &xj) in X.iter().chain(X.iter()).enumerate() {
+            let zj = if j < 4 { xj } else { -xj } * std::f32::consts::SQRT_2;
+            let w = wi * W[j % 4];
+            let u = mu + Vec2::new(c11 * zi, c21 * zi + c22 * zj);
+            total += w;
+            if u.length() <= radius {
+                inside += w;
+            }
+        }
+    }
+    (inside / total) / (1.0 - (-0.5 * radius * radius).exp())
+}
+
+/// The kernel's Mahalanobis distance of the slope `s`: how many standard deviations of the
+/// kernel separate the pixel centre's lobe from the slope that lights the pixel.
+fn mahalanobis(k: Covariance, s: Vec2) -> f32 {
+    let det = k.det().max(1e-20);
+    let inv = Covariance::new(k.s22 / det, -k.s12 / det, k.s11 / det);
+    (s.x * s.x * inv.s11 + 2.0 * s.x * s.y * inv.s12 + s.y * s.y * inv.s22)
+        .max(0.0)
+        .sqrt()
+}
+
+/// Quantiles (0.1, 0.5, 0.9) of `v` (NaN if empty).
+fn quantiles(mut v: Vec<f32>) -> [f32; 3] {
+    if v.is_empty() {
+        return [f32::NAN; 3];
+    }
+    v.sort_by(f32::total_cmp);
+    [0.1, 0.5, 0.9].map(|q| v[((v.len() - 1) as f32 * q).round() as usize])
+}
+
+/// A labelled tile.
+fn tile(label: impl Into<String>, img: Rgb8) -> (String, Rgb8) {
+    (label.into(), img)
+}
+
+/// The investigation: figures in `o.out` (`glints-*.png`) and a markdown section.
+pub fn investigate(
+    o: &Options,
+    scene: &Scene,
+    cam: &Camera,
+    gb: &GBuffer,
+    reference: &Reference,
+) -> std::io::Result<String> {
+    let mut md = String::new();
+    let (w, h) = (gb.width, gb.height);
+    let rays = gb.derivatives(scene, FootprintRoute::RayDifferentials);
+    let moments = gb.derivatives(scene, FootprintRoute::Moments);
+    let ref_b = reference.full(Family::Beckmann);
+    let ref_y = display_luminance(ref_b, o.exposure);
+    let khpl = ClampRules::KHPL16;
+    let before = beckmann_with(scene, gb, &rays, khpl, None);
+    let after = beckmann_with(scene, gb, &moments, khpl, None);
+    let counts = |img: &Image| glint_counts(&display_luminance(img, o.exposure), &ref_y);
+    let (f_before, mask_before) = {
+        let y = display_luminance(&before, o.exposure);
+        (glint_counts(&y, &ref_y), glint_masks(&y, &ref_y).0)
+    };
+    writeln!(
+        md,
+        "\n## Where the false glints come from (KHPL16 Beckmann A+2S, still frame, {w}x{h})\n"
+    )
+    .unwrap();
+    writeln!(md, "A false glint: display luminance > {BRIGHT} in the frame where the reference's is < {DARK}; a lost highlight: the reverse. Counts as (false glints, lost highlights). Ray-differential footprints (KHPL16's first-order route) unless stated.\n").unwrap();
+    writeln!(md, "| candidate | experiment | false glints | lost highlights |").unwrap();
+    writeln!(md, "|---|---|---:|---:|").unwrap();
+    let mut row = |cand: &str, exp: &str, c: (usize, usize)| {
+        writeln!(md, "| {cand} | {exp} | {} | {} |", c.0, c.1).unwrap();
+    };
+    row("-", "unfiltered", counts(&render::shade(scene, gb, &rays, Method::Unfiltered(Family::Beckmann))));
+    row("-", "KHPL16 A+2S, first-order footprint (before)", f_before);
+
+    // Candidate 1: the first-order footprint against the windowed moments.
+    let ratio: Vec<Option<f32>> = (0..w * h)
+        .map(|i| {
+            let on_water = gb.pixels[i].as_ref().is_some_and(|(s, _)| s.hit.object == 0);
+            on_water.then(|| {
+                let a = rays[i].footprint.covariance(SIGMA_PIXEL).trace();
+                let b = moments[i].footprint.covariance(SIGMA_PIXEL).trace();
+                (a / b.max(1e-12)).max(1e-6)
+            })
+        })
+        .collect();
+    let at_glints: Vec<f32> = (0..w * h)
+        .filter(|&i| mask_before[i])
+        .filter_map(|i| ratio[i])
+        .collect();
+    let all_water: Vec<f32> = ratio.iter().flatten().copied().collect();
+    let (qg, qa) = (quantiles(at_glints.clone()), quantiles(all_water));
+    row(
+        "1. first-order footprint across crests",
+        "kernel = windowed slope moments (the fix's kernel), centred on the pixel centre",
+        counts(&beckmann_with(
+            scene,
+            gb,
+            &moments
+                .iter()
+                .map(|d| PixelDerivatives {
+                    mean_shift: glam::Quat::IDENTITY,
+                    ..*d
+                })
+                .collect::<Vec<_>>(),
+            khpl,
+            None,
+        )),
+    );
+    row(
+        "1. first-order footprint across crests",
+        "kernel and centre from the windowed moments (the fix)",
+        counts(&after),
+    );
+    let ratio_map = Rgb8::from_fn(w as u32, h as u32, |x, y| {
+        let i = y as usize * w + x as usize;
+        if mask_before[i] {
+            return Rgb([255, 30, 30]);
+        }
+        match ratio[i] {
+            None => Rgb([20, 20, 20]),
+            Some(r) => {
+                // log2 ratio in [-2, 6] -> blue..white..orange.
+                let t = ((r.log2() + 2.0) / 8.0).clamp(0.0, 1.0);
+                let c = |a: f32, b: f32| (a + (b - a) * t) as u8;
+                Rgb([c(30.0, 255.0), c(60.0, 190.0), c(200.0, 60.0)])
+            }
+        }
+    });
+
+    // Candidate 2: the Gaussian tails.
+    let kernels: Vec<Covariance> = rays
+        .iter()
+        .map(|d| khpl.kernel(khpl.footprint(d.footprint).covariance(SIGMA_PIXEL)))
+        .collect();
+    let dist: Vec<f32> = (0..w * h)
+        .filter(|&i| mask_before[i])
+        .filter_map(|i| {
+            let (s, _) = gb.pixels[i].as_ref()?;
+            let hl = s.frame.transpose() * s.h;
+            Some(mahalanobis(kernels[i], slope_from_sphere(hl)))
+        })
+        .collect();
+    let beyond2 = dist.iter().filter(|&&d| d > 2.0).count();
+    let qd = quantiles(dist.clone());
+    let truncated = beckmann_with(scene, gb, &rays, khpl, Some(2.0));
+    row(
+        "2. Gaussian tails",
+        "first-order kernel cut at 2 sigma",
+        counts(&truncated),
+    );
+
+    // Candidate 3: clamps.
+    let mut clamp_series = [Vec::new(), Vec::new()];
+    let lambdas = [1.0f32, 0.5, 0.25, 0.12, 0.06];
+    for &lambda in &lambdas {
+        let rules = ClampRules {
+            max_extent: lambda,
+            ..khpl
+        };
+        let c = counts(&beckmann_with(scene, gb, &rays, rules, None));
+        clamp_series[0].push(c.0 as f32);
+        clamp_series[1].push(c.1 as f32);
+        row(
+            "3. clamps",
+            &format!("maximum extent lambda = {lambda}"),
+            c,
+        );
+    }
+    let tk19 = ClampRules {
+        floor: ExtentFloor::None,
+        ..ClampRules::DEFAULT
+    };
+    row(
+        "3. clamps",
+        "TK19's kappa = 0.18 and lambda = 1",
+        counts(&beckmann_with(scene, gb, &rays, tk19, None)),
+    );
+
+    // Candidate 4: the reference's pixel filter (both references at a quarter of the
+    // samples, so that they differ by the filter only).
+    let spp = (o.spp / 4).max(2);
+    let gauss = render::reference(scene, cam, w, h, spp, o.seed, None);
+    let boxed = render::reference_with(scene, cam, (w, h), spp, o.seed, None, 0.0);
+    let vs = |r: &Image| {
+        glint_counts(
+            &display_luminance(&before, o.exposure),
+            &display_luminance(r, o.exposure),
+        )
+    };
+    let (c_gauss, c_box) = (
+        vs(gauss.full(Family::Beckmann)),
+        vs(boxed.full(Family::Beckmann)),
+    );
+    row(
+        "4. the reference's pixel filter",
+        &format!("against a Gaussian-filtered reference, {spp} spp"),
+        c_gauss,
+    );
+    row(
+        "4. the reference's pixel filter",
+        &format!("against a box-filtered reference, {spp} spp"),
+        c_box,
+    );
+
+    writeln!(md, "\n1. **First-order footprint.** On the water, the first-order kernel's trace over the windowed moments' (the covariance of the normal's slope over the pixel's Gaussian window, exact for the sum of sines): median {:.2} over all water pixels (10-90 %: {:.2}-{:.2}), median {:.2} at the false glints (10-90 %: {:.2}-{:.2}). Figure `glints-footprint.png`: log2 of that ratio from -2 (blue) to 6 (orange), false glints in red.", qa[1], qa[0], qa[2], qg[1], qg[0], qg[2]).unwrap();
+    writeln!(md, "2. **Gaussian tails.** The slope that lights each false glint lies at a Mahalanobis distance of the first-order kernel of median {:.2} (10-90 %: {:.2}-{:.2}); {} of {} false glints lie beyond 2 sigma. Figure `glints-tails.png`: the frame with the kernel cut at 2 sigma.", qd[1], qd[0], qd[2], beyond2, dist.len()).unwrap();
+    writeln!(md, "3. **Clamps.** Figure `glints-clamps.png`: false glints and lost highlights against the maximum extent lambda (index: lambda = {lambdas:?}).").unwrap();
+    writeln!(md, "4. **The reference's pixel filter.** Figure `glints-reference.png`: the Gaussian- and the box-filtered references and the false glints against each.").unwrap();
+
+    // Figures.
+    let ex = o.exposure;
+    let save = |name: &str, img: &Rgb8| crate::image_out::save(img, &o.out.join(name));
+    let zoom = if w <= 320 { 2 } else { 1 };
+    save(
+        "glints-before-after.png",
+        &contact_sheet(
+            &[
+                tile("Reference Beckmann", ref_b.to_rgb8(ex)),
+                tile("KHPL16 first-order (before)", before.to_rgb8(ex)),
+                tile("KHPL16 windowed moments (after)", after.to_rgb8(ex)),
+                tile("Unfiltered: false red, lost blue", glint_map(&render::shade(scene, gb, &rays, Method::Unfiltered(Family::Beckmann)), ref_b, ex)),
+                tile(format!("Before: {} false, {} lost", f_before.0, f_before.1), glint_map(&before, ref_b, ex)),
+                tile({ let c = counts(&after); format!("After: {} false, {} lost", c.0, c.1) }, glint_map(&after, ref_b, ex)),
+            ],
+            3,
+            zoom,
+        ),
+    )?;
+    save(
+        "glints-footprint.png",
+        &contact_sheet(
+            &[
+                tile("first-order / windowed kernel (log2)", ratio_map),
+                tile("false glints (before)", glint_map(&before, ref_b, ex)),
+            ],
+            2,
+            zoom,
+        ),
+    )?;
+    save(
+        "glints-tails.png",
+        &contact_sheet(
+            &[
+                tile("Gaussian kernel", glint_map(&before, ref_b, ex)),
+                tile("kernel cut at 2 sigma", glint_map(&truncated, ref_b, ex)),
+            ],
+            2,
+            zoom,
+        ),
+    )?;
+    let series = [
+        plot::Series {
+            label: "false glints".into(),
+            color: [220, 40, 40],
+            values: clamp_series[0].clone(),
+            dashed: false,
+        },
+        plot::Series {
+            label: "lost highlights".into(),
+            color: [40, 100, 220],
+            values: clamp_series[1].clone(),
+            dashed: false,
+        },
+    ];
+    let mut p = plot::line_plot(
+        "KHPL16 Beckmann: counts against the maximum extent lambda",
+        "pixels",
+        &series,
+        720,
+        360,
+    );
+    let label = format!("x: lambda index, lambda = {lambdas:?}");
+    draw_text(&mut p, &label, 80.0, 340.0, 13.0, [0, 0, 0]);
+    save("glints-clamps.png", &p)?;
+    save(
+        "glints-reference.png",
+        &contact_sheet(
+            &[
+                tile("Gaussian pixel filter reference", gauss.full(Family::Beckmann).to_rgb8(ex)),
+                tile("box pixel filter reference", boxed.full(Family::Beckmann).to_rgb8(ex)),
+                tile(format!("vs Gaussian: {} false, {} lost", c_gauss.0, c_gauss.1), glint_map(&before, gauss.full(Family::Beckmann), ex)),
+                tile(format!("vs box: {} false, {} lost", c_box.0, c_box.1), glint_map(&before, boxed.full(Family::Beckmann), ex)),
+            ],
+            2,
+            zoom,
+        ),
+    )?;
+    let _ = Vec3::ZERO;
+    Ok(md)
+}
