@@ -141,7 +141,7 @@ macro_rules! families {
                 let s = deferred::normal_difference_covariance(
                     ins[i].dn_u,
                     ins[i].dn_v,
-                    deferred::SIGMA2,
+                    filtered_ndf::$prec::kernel::SIGMA_PIXEL,
                 );
                 deferred::filtered_alpha(ins[i].r.alpha().x, &s, bw, deferred::KAPPA)
             });

@@ -67,11 +67,11 @@ fn reference(k: &common::Case) -> (f64, f64, f64) {
     use q::Ndf as _;
     let r = q::AxisAligned::new(k.alpha[0], k.alpha[1]).expect("valid");
     let fp = q::Footprint::from_slope_derivatives(k.dh_u.into(), k.dh_v.into());
-    let sigma = fp.covariance(0.5);
+    let kernel = fp.covariance(0.5);
     let h: q::Vec3 = k.h.into();
-    let exact = q::GaussianFilteredGgx::new(r, sigma);
+    let exact = q::GaussianFilteredGgx::new(r, kernel);
     let g = exact.d(h);
-    let b = q::Beckmann::new(q::filter::gaussian(r, sigma)).d(h);
+    let b = q::Beckmann::new(q::filter::gaussian(r, kernel)).d(h);
     let peak = exact.p22(q::Vec2::ZERO) / k.h[2].powi(4);
     (g, b, peak)
 }

@@ -4,9 +4,10 @@
 
 use filtered_ndf::f32 as p32;
 use filtered_ndf::f64::filter::deferred::{
-    Bandwidth, Combine, Domain, KAPPA, KernelConvention, Norm, SIGMA2, filtered_alpha,
+    Bandwidth, Combine, Domain, KAPPA, KernelConvention, Norm, filtered_alpha,
     normal_difference_covariance,
 };
+use filtered_ndf::f64::kernel::SIGMA_PIXEL;
 use filtered_ndf::f64::{Covariance, Footprint};
 use glam::{DVec2, DVec3, Vec3};
 use proptest::prelude::*;
@@ -43,10 +44,10 @@ proptest! {
         let (lo, hi) = s.eigenvalues();
         prop_assert!(hi <= s.trace() * (1.0 + 1e-14), "{hi} > {}", s.trace());
         prop_assert!(lo <= hi);
-        prop_assert!(Bandwidth::Max.kernel(&s) <= Bandwidth::Trace.kernel(&s) * (1.0 + 1e-14));
+        prop_assert!(Bandwidth::Max.alpha2(&s) <= Bandwidth::Trace.alpha2(&s) * (1.0 + 1e-14));
         // The average lies between half the max and the max bandwidth.
-        prop_assert!(Bandwidth::Average.kernel(&s) <= Bandwidth::Max.kernel(&s) * (1.0 + 1e-14));
-        prop_assert!(Bandwidth::Average.kernel(&s) >= 0.5 * Bandwidth::Max.kernel(&s) * (1.0 - 1e-14));
+        prop_assert!(Bandwidth::Average.alpha2(&s) <= Bandwidth::Max.alpha2(&s) * (1.0 + 1e-14));
+        prop_assert!(Bandwidth::Average.alpha2(&s) >= 0.5 * Bandwidth::Max.alpha2(&s) * (1.0 - 1e-14));
     }
 
     #[test]
@@ -81,12 +82,12 @@ proptest! {
             let got = b.convention().apply(alpha, u, v);
             prop_assert!((got - expect).abs() <= 1e-14 * expect.max(1e-300));
             // And through the covariance form with the Gram covariance (same trace).
-            let c = normal_difference_covariance(u, v, SIGMA2);
+            let c = normal_difference_covariance(u, v, SIGMA_PIXEL);
             let via = filtered_alpha(alpha, &c, b, KAPPA);
             prop_assert!((via - got).abs() <= 1e-14 * got.max(1e-300));
         }
         // Max: the normal-difference preset and the covariance form agree (same Gram matrix).
-        let c = normal_difference_covariance(u, v, SIGMA2);
+        let c = normal_difference_covariance(u, v, SIGMA_PIXEL);
         let got = Bandwidth::Max.convention().apply(alpha, u, v);
         let via = filtered_alpha(alpha, &c, Bandwidth::Max, KAPPA);
         prop_assert!((via - got).abs() <= 1e-13 * got.max(1e-300));
@@ -152,18 +153,18 @@ fn eq4_normal_difference_trace_equals_footprint_covariance_trace() {
             disk(nu, bu) - disk(n, bu),
             disk(nv, bv) - disk(n, bv),
         );
-        let sigma = fp.covariance(0.5);
+        let kernel = fp.covariance(0.5);
         let eq4 = 0.25 * ((n - nu).length_squared() + (n - nv).length_squared());
         assert!(
-            (sigma.trace() - eq4).abs() <= 1e-12 * eq4,
+            (kernel.trace() - eq4).abs() <= 1e-12 * eq4,
             "h={h}: {} vs {eq4}",
-            sigma.trace()
+            kernel.trace()
         );
 
         // Common frame at the centre normal (first-order footprint).
         let fc =
             Footprint::from_slope_derivatives(disk(nu, n) - disk(n, n), disk(nv, n) - disk(n, n));
-        let gram = normal_difference_covariance(n - nu, n - nv, 0.25);
+        let gram = normal_difference_covariance(n - nu, n - nv, 0.5);
         let gap = (fc.covariance(0.5).eigenvalues().1 - gram.eigenvalues().1).abs()
             / gram.eigenvalues().1;
         assert!(

@@ -409,7 +409,7 @@ fn every_preset_handles_bad_input_and_agrees_across_precisions() {
             for &b in &bad {
                 for (u, v) in [(b, d), (d, b)] {
                     let got = c.apply(a, u, v);
-                    let max = c.apply_kernel(a, f64::INFINITY);
+                    let max = c.apply_widening(a, f64::INFINITY);
                     assert!(good <= max && max <= 1.0, "{name} a={a}: {good} {max}");
                     assert_eq!(got, max, "{name} a={a} {u:?} {v:?}");
                 }

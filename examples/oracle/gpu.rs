@@ -241,7 +241,7 @@ y2(2u, m[1]);",
 
 const ISOTROPIC: GpuKernel = GpuKernel {
     name: "isotropic_roughness",
-    body: "let s = deferred::normal_difference_covariance(x3(1u), x3(4u), deferred::SIGMA_SQ);
+    body: "let s = deferred::normal_difference_covariance(x3(1u), x3(4u), footprint::SIGMA_PIXEL);
 y(0u, deferred::filtered_alpha(x(0u), s, u32(x(7u)), x(8u)));",
     n_in: 9,
     n_out: 1,

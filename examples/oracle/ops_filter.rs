@@ -4,7 +4,8 @@
 
 /// TK19 eq. 1, 4, 5: the isotropic deferred roughness.
 pub fn isotropic_roughness(v: &Value) -> Result<Value, String> {
-    use p::filter::deferred::{Bandwidth, SIGMA2, filtered_alpha, normal_difference_covariance};
+    use p::filter::deferred::{Bandwidth, filtered_alpha, normal_difference_covariance};
+    use p::kernel::SIGMA_PIXEL;
     let alpha = number(v, "alpha")?;
     let (du, dv) = (array::<3>(v, "dn_u")?, array::<3>(v, "dn_v")?);
     let kappa = opt_number(v, "kappa")?.unwrap_or(0.18);
@@ -17,8 +18,8 @@ pub fn isotropic_roughness(v: &Value) -> Result<Value, String> {
         Some("average") => Bandwidth::Average,
         _ => return Err("variant must be \"max\", \"trace\" or \"average\"".into()),
     };
-    let sigma = normal_difference_covariance(v3(du), v3(dv), SIGMA2);
-    out(filtered_alpha(f(alpha), &sigma, bw, f(kappa)))
+    let kernel = normal_difference_covariance(v3(du), v3(dv), SIGMA_PIXEL);
+    out(filtered_alpha(f(alpha), &kernel, bw, f(kappa)))
 }
 
 /// An engine preset by its name in `presets::ALL`.

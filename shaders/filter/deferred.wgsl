@@ -11,8 +11,6 @@
 
 /// TK19's clamp `kappa` on the kernel's squared roughness (TK19 eq. 1), slope^2.
 const KAPPA: f32 = 0.18;
-/// TK19's pixel-filter variance `sigma^2 = 0.25` (pixels^2).
-const SIGMA_SQ: f32 = 0.25;
 
 /// `v = alpha^2` (TK19, Filament, Unity HDRP, O3DE).
 const DOMAIN_ALPHA_SQ: u32 = 0u;
@@ -123,29 +121,30 @@ fn norm_eval(norm: u32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
 }
 
 /// `min(max(k, 0), clamp)`.
-fn clamp_kernel(conv: KernelConvention, k: f32) -> f32 {
+fn clamp_widening(conv: KernelConvention, k: f32) -> f32 {
     return min(max(k, 0.0), conv.clamp);
 }
 
-/// The kernel `min(max(scale norm^exponent + bias, 0), clamp)` in domain units. `pow` is the
+/// The widening `min(max(scale norm^exponent + bias, 0), clamp)` in domain units (the kernel's
+/// contribution to the roughness value). `pow` is the
 /// driver's (`exp2(e log2 n)`: within `3 + 2 |e log2 n|` ulp plus `log2`'s error); a zero
 /// norm gives `max(bias, 0)`.
-fn kernel(conv: KernelConvention, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+fn widening(conv: KernelConvention, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
     let n = norm_eval(conv.norm, dn_u, dn_v);
     var raw = n;
     if conv.exponent != 1.0 {
         raw = select(0.0, pow(n, conv.exponent), n > 0.0);
     }
-    return clamp_kernel(conv, conv.scale * raw + conv.bias);
+    return clamp_widening(conv, conv.scale * raw + conv.bias);
 }
 
-/// Steps 1, 3, 4 of [`apply`] for a kernel `k` already in domain units (clamped here).
+/// Steps 1, 3, 4 of [`apply`] for a widening `k` already in domain units (clamped here).
 /// A negative `alpha` counts as 0; the result is in `[0, ALPHA_MAX]`.
-fn apply_kernel(conv: KernelConvention, alpha_in: f32, k: f32) -> f32 {
+fn apply_widening(conv: KernelConvention, alpha_in: f32, k: f32) -> f32 {
     var alpha = clamp(alpha_in, 0.0, roughness::ALPHA_MAX);
     alpha = max(alpha, conv.perceptual_floor * conv.perceptual_floor);
     let v = from_alpha(conv.domain, alpha);
-    let kc = clamp_kernel(conv, k);
+    let kc = clamp_widening(conv, k);
     var out = select(v + kc, max(v, kc), conv.combine == COMBINE_MAX);
     if conv.saturate {
         out = min(out, 1.0);
@@ -156,14 +155,15 @@ fn apply_kernel(conv: KernelConvention, alpha_in: f32, k: f32) -> f32 {
 /// The filtered roughness `alpha_bar` for material roughness `alpha` and world-space normal
 /// differences `dn_u`, `dn_v` (`ddx(normal)`, `ddy(normal)`; TK19 Listing 2).
 fn apply(conv: KernelConvention, alpha: f32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
-    return apply_kernel(conv, alpha, kernel(conv, dn_u, dn_v));
+    return apply_widening(conv, alpha, widening(conv, dn_u, dn_v));
 }
 
-/// The Gram covariance `sigma_sq [[dn_u.dn_u, dn_u.dn_v], [dn_u.dn_v, dn_v.dn_v]]` of two
-/// normal differences (its trace is TK19's `sigma^2 (|dn_u|^2 + |dn_v|^2)`; use only its
-/// invariants). Determinant `sigma_sq^2 |dn_u x dn_v|^2` (Lagrange's identity, no
-/// cancellation).
-fn normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>, sigma_sq: f32) -> covariance::Covariance {
+/// The Gram covariance `sigma^2 [[dn_u.dn_u, dn_u.dn_v], [dn_u.dn_v, dn_v.dn_v]]` of two
+/// normal differences, `sigma` the pixel filter's standard deviation in pixels (its trace is
+/// TK19's `sigma^2 (|dn_u|^2 + |dn_v|^2)`; use only its invariants). Determinant
+/// `sigma^4 |dn_u x dn_v|^2` (Lagrange's identity, no cancellation).
+fn normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>, sigma: f32) -> covariance::Covariance {
+    let sigma_sq = sigma * sigma;
     let x = cross(dn_u, dn_v) * sigma_sq;
     return covariance::Covariance(
         dot(dn_u, dn_u) * sigma_sq,
@@ -175,17 +175,17 @@ fn normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>, sigma_sq: f32)
 
 /// The kernel's squared roughness of a bandwidth (`BANDWIDTH_*`) before the clamp:
 /// `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`.
-fn bandwidth_kernel(bandwidth: u32, sigma: covariance::Covariance) -> f32 {
+fn bandwidth_alpha2(bandwidth: u32, kernel: covariance::Covariance) -> f32 {
     if bandwidth == BANDWIDTH_MAX {
-        return 2.0 * max_eigenvalue(sigma.s_xx, sigma.s_xy, sigma.s_yy);
+        return 2.0 * max_eigenvalue(kernel.s_xx, kernel.s_xy, kernel.s_yy);
     }
-    let t = sigma.s_xx + sigma.s_yy;
+    let t = kernel.s_xx + kernel.s_yy;
     return select(t, 2.0 * t, bandwidth == BANDWIDTH_TRACE);
 }
 
 /// TK19 eq. 1, 4 or 5 from a slope-domain covariance:
 /// `alpha_bar = sqrt(saturate(alpha^2 + min(kernel, kappa)))`.
-fn filtered_alpha(alpha: f32, sigma: covariance::Covariance, bandwidth: u32, kappa: f32) -> f32 {
+fn filtered_alpha(alpha: f32, kernel: covariance::Covariance, bandwidth: u32, kappa: f32) -> f32 {
     let conv = KernelConvention(
         DOMAIN_ALPHA_SQ,
         NORM_SUM_SQUARED,
@@ -197,5 +197,5 @@ fn filtered_alpha(alpha: f32, sigma: covariance::Covariance, bandwidth: u32, kap
         true,
         0.0,
     );
-    return apply_kernel(conv, alpha, bandwidth_kernel(bandwidth, sigma));
+    return apply_widening(conv, alpha, bandwidth_alpha2(bandwidth, kernel));
 }

@@ -120,7 +120,6 @@ const float ndf_roughness_ALPHA_MIN = 1e-8;
 const float ndf_roughness_ALPHA_MAX = 10000.0;
 const float kernel_covariance_KERNEL_MAX = 100000000.0;
 const float filter_deferred_KAPPA = 0.18;
-const float filter_deferred_SIGMA_SQ = 0.25;
 const uint filter_deferred_DOMAIN_ALPHA_SQ = 0u;
 const uint filter_deferred_DOMAIN_ALPHA = 1u;
 const uint filter_deferred_DOMAIN_PERCEPTUAL = 2u;
@@ -449,11 +448,11 @@ float filter_deferred_norm_eval(uint norm, vec3 dn_u, vec3 dn_v) {
     return (a_19 + c_11);
 }
 
-float filter_deferred_clamp_kernel(filter_deferred_KernelConvention conv, float k_1) {
+float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_1) {
     return min(max(k_1, 0.0), conv.clamp_);
 }
 
-float filter_deferred_kernel(filter_deferred_KernelConvention conv_1, vec3 dn_u_1, vec3 dn_v_1) {
+float filter_deferred_widening(filter_deferred_KernelConvention conv_1, vec3 dn_u_1, vec3 dn_v_1) {
     float raw = 0.0;
     float _e4 = filter_deferred_norm_eval(conv_1.norm, dn_u_1, dn_v_1);
     raw = _e4;
@@ -461,11 +460,11 @@ float filter_deferred_kernel(filter_deferred_KernelConvention conv_1, vec3 dn_u_
         raw = ((_e4 > 0.0) ? pow(_e4, conv_1.exponent) : 0.0);
     }
     float _e16 = raw;
-    float _e20 = filter_deferred_clamp_kernel(conv_1, ((conv_1.scale * _e16) + conv_1.bias));
+    float _e20 = filter_deferred_clamp_widening(conv_1, ((conv_1.scale * _e16) + conv_1.bias));
     return _e20;
 }
 
-float filter_deferred_apply_kernel(filter_deferred_KernelConvention conv_2, float alpha_in, float k_2) {
+float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, float alpha_in, float k_2) {
     float alpha_2 = 0.0;
     float out_ = 0.0;
     alpha_2 = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
@@ -473,7 +472,7 @@ float filter_deferred_apply_kernel(filter_deferred_KernelConvention conv_2, floa
     alpha_2 = max(_e7, (conv_2.perceptual_floor * conv_2.perceptual_floor));
     float _e13 = alpha_2;
     float _e14 = filter_deferred_from_alpha(conv_2.domain, _e13);
-    float _e15 = filter_deferred_clamp_kernel(conv_2, k_2);
+    float _e15 = filter_deferred_clamp_widening(conv_2, k_2);
     out_ = ((conv_2.combine == filter_deferred_COMBINE_MAX) ? max(_e14, _e15) : (_e14 + _e15));
     if (conv_2.saturate) {
         float _e24 = out_;
@@ -485,29 +484,30 @@ float filter_deferred_apply_kernel(filter_deferred_KernelConvention conv_2, floa
 }
 
 float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_3, vec3 dn_u_2, vec3 dn_v_2) {
-    float _e4 = filter_deferred_kernel(conv_3, dn_u_2, dn_v_2);
-    float _e5 = filter_deferred_apply_kernel(conv_3, alpha_3, _e4);
+    float _e4 = filter_deferred_widening(conv_3, dn_u_2, dn_v_2);
+    float _e5 = filter_deferred_apply_widening(conv_3, alpha_3, _e4);
     return _e5;
 }
 
-kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_3, vec3 dn_v_3, float sigma_sq) {
+kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_3, vec3 dn_v_3, float sigma) {
+    float sigma_sq = (sigma * sigma);
     vec3 x_8 = (cross(dn_u_3, dn_v_3) * sigma_sq);
     return kernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_8, x_8));
 }
 
-float filter_deferred_bandwidth_kernel(uint bandwidth, kernel_covariance_Covariance sigma) {
+float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel) {
     if ((bandwidth == filter_deferred_BANDWIDTH_MAX)) {
-        float _e7 = filter_deferred_max_eigenvalue(sigma.s_xx, sigma.s_xy, sigma.s_yy);
+        float _e7 = filter_deferred_max_eigenvalue(kernel.s_xx, kernel.s_xy, kernel.s_yy);
         return (2.0 * _e7);
     }
-    float t_10 = (sigma.s_xx + sigma.s_yy);
+    float t_10 = (kernel.s_xx + kernel.s_yy);
     return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_10) : t_10);
 }
 
-float filter_deferred_filtered_alpha(float alpha_4, kernel_covariance_Covariance sigma_1, uint bandwidth_1, float kappa) {
+float filter_deferred_filtered_alpha(float alpha_4, kernel_covariance_Covariance kernel_1, uint bandwidth_1, float kappa) {
     filter_deferred_KernelConvention conv_4 = filter_deferred_KernelConvention(filter_deferred_DOMAIN_ALPHA_SQ, filter_deferred_NORM_SUM_SQUARED, 0.5, 1.0, 0.0, kappa, filter_deferred_COMBINE_ADD, true, 0.0);
-    float _e13 = filter_deferred_bandwidth_kernel(bandwidth_1, sigma_1);
-    float _e14 = filter_deferred_apply_kernel(conv_4, alpha_4, _e13);
+    float _e13 = filter_deferred_bandwidth_alpha2_(bandwidth_1, kernel_1);
+    float _e14 = filter_deferred_apply_widening(conv_4, alpha_4, _e13);
     return _e14;
 }
 
@@ -614,15 +614,15 @@ ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roug
     return _e72;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel);
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel_2) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
     float _e3 = ndf_roughness_matrix_clamped_det(a_3);
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_3, _e2, _e3);
     return _e4;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_1, float det_clamp_1) {
-    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_1);
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_3, float det_clamp_1) {
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e3, det_clamp_1);
     return _e4;
 }
@@ -1470,10 +1470,10 @@ float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2) {
     return _e9;
 }
 
-filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_2) {
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_4) {
     float l2_ = 0.0;
     vec2 v_4 = vec2(1.0, 0.0);
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
     float c_14 = a_5.axis.x;
     float s_20 = a_5.axis.y;
     float k11_ = max(((((c_14 * c_14) * _e2.s_xx) + (((2.0 * c_14) * s_20) * _e2.s_xy)) + ((s_20 * s_20) * _e2.s_yy)), 0.0);
@@ -1672,8 +1672,8 @@ vec2 footprint_jacobian_spherical_to_projected(vec3 h_10, vec2 e_2) {
     return (_e2 * e_2);
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_50, float sigma_2) {
-    vec2 w_24 = (r_50.half_extent * (2.0 * sigma_2));
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_50, float sigma_1) {
+    vec2 w_24 = (r_50.half_extent * (2.0 * sigma_1));
     vec2 v_15 = (w_24 * w_24);
     return kernel_covariance_Covariance(v_15.x, 0.0, v_15.y, (v_15.x * v_15.y));
 }
@@ -1701,10 +1701,10 @@ footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) 
     return footprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
 }
 
-kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_3) {
+kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_2) {
     vec2 u_12 = fp.dh_u;
     vec2 v_16 = fp.dh_v;
-    float s2_ = (sigma_3 * sigma_3);
+    float s2_ = (sigma_2 * sigma_2);
     float cross_1 = (((u_12.x * v_16.y) - (u_12.y * v_16.x)) * s2_);
     return kernel_covariance_Covariance((((u_12.x * u_12.x) + (v_16.x * v_16.x)) * s2_), (((u_12.x * u_12.y) + (v_16.x * v_16.y)) * s2_), (((u_12.y * u_12.y) + (v_16.y * v_16.y)) * s2_), (cross_1 * cross_1));
 }
@@ -1763,15 +1763,15 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     return _e157;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_3) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_3);
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_5) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_5);
     float _e3 = ndf_roughness_matrix_clamped_det(a_8);
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_8, _e2, _e3);
     return _e4;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance kernel_4, float det_clamp_2) {
-    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_4);
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance kernel_6, float det_clamp_2) {
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_9, _e3, det_clamp_2);
     return _e4;
 }
@@ -1819,22 +1819,22 @@ float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_
     return (rules_3.det_clamp ? _e2 : 0.0);
 }
 
-kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_4) {
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_3) {
     footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
-    kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_4);
+    kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_3);
     kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
     return _e5;
 }
 
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_11, footprint_Footprint fp_5, float sigma_5) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_5);
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_11, footprint_Footprint fp_5, float sigma_4) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
     float _e5 = kernel_clamp_det_clamp_for(rules_5, a_11);
     ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_11, _e4, _e5);
     return _e6;
 }
 
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_6, float sigma_6) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_6);
+ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_6, float sigma_5) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_5);
     float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
     ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
     return _e6;

@@ -327,8 +327,6 @@ fn kernel_covariance_sanitized(c: kernel_covariance_Covariance) -> kernel_covari
 
 /// TK19's clamp `kappa` on the kernel's squared roughness (TK19 eq. 1), slope^2.
 const filter_deferred_KAPPA: f32 = 0.18;
-/// TK19's pixel-filter variance `sigma^2 = 0.25` (pixels^2).
-const filter_deferred_SIGMA_SQ: f32 = 0.25;
 
 /// `v = alpha^2` (TK19, Filament, Unity HDRP, O3DE).
 const filter_deferred_DOMAIN_ALPHA_SQ: u32 = 0u;
@@ -439,29 +437,30 @@ fn filter_deferred_norm_eval(norm: u32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32
 }
 
 /// `min(max(k, 0), clamp)`.
-fn filter_deferred_clamp_kernel(conv: filter_deferred_KernelConvention, k: f32) -> f32 {
+fn filter_deferred_clamp_widening(conv: filter_deferred_KernelConvention, k: f32) -> f32 {
     return min(max(k, 0.0), conv.clamp);
 }
 
-/// The kernel `min(max(scale norm^exponent + bias, 0), clamp)` in domain units. `pow` is the
+/// The widening `min(max(scale norm^exponent + bias, 0), clamp)` in domain units (the kernel's
+/// contribution to the roughness value). `pow` is the
 /// driver's (`exp2(e log2 n)`: within `3 + 2 |e log2 n|` ulp plus `log2`'s error); a zero
 /// norm gives `max(bias, 0)`.
-fn filter_deferred_kernel(conv: filter_deferred_KernelConvention, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+fn filter_deferred_widening(conv: filter_deferred_KernelConvention, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
     let n = filter_deferred_norm_eval(conv.norm, dn_u, dn_v);
     var raw = n;
     if conv.exponent != 1.0 {
         raw = select(0.0, pow(n, conv.exponent), n > 0.0);
     }
-    return filter_deferred_clamp_kernel(conv, conv.scale * raw + conv.bias);
+    return filter_deferred_clamp_widening(conv, conv.scale * raw + conv.bias);
 }
 
-/// Steps 1, 3, 4 of [`apply`] for a kernel `k` already in domain units (clamped here).
+/// Steps 1, 3, 4 of [`apply`] for a widening `k` already in domain units (clamped here).
 /// A negative `alpha` counts as 0; the result is in `[0, ALPHA_MAX]`.
-fn filter_deferred_apply_kernel(conv: filter_deferred_KernelConvention, alpha_in: f32, k: f32) -> f32 {
+fn filter_deferred_apply_widening(conv: filter_deferred_KernelConvention, alpha_in: f32, k: f32) -> f32 {
     var alpha = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
     alpha = max(alpha, conv.perceptual_floor * conv.perceptual_floor);
     let v = filter_deferred_from_alpha(conv.domain, alpha);
-    let kc = filter_deferred_clamp_kernel(conv, k);
+    let kc = filter_deferred_clamp_widening(conv, k);
     var out = select(v + kc, max(v, kc), conv.combine == filter_deferred_COMBINE_MAX);
     if conv.saturate {
         out = min(out, 1.0);
@@ -472,14 +471,15 @@ fn filter_deferred_apply_kernel(conv: filter_deferred_KernelConvention, alpha_in
 /// The filtered roughness `alpha_bar` for material roughness `alpha` and world-space normal
 /// differences `dn_u`, `dn_v` (`ddx(normal)`, `ddy(normal)`; TK19 Listing 2).
 fn filter_deferred_apply(conv: filter_deferred_KernelConvention, alpha: f32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
-    return filter_deferred_apply_kernel(conv, alpha, filter_deferred_kernel(conv, dn_u, dn_v));
+    return filter_deferred_apply_widening(conv, alpha, filter_deferred_widening(conv, dn_u, dn_v));
 }
 
-/// The Gram covariance `sigma_sq [[dn_u.dn_u, dn_u.dn_v], [dn_u.dn_v, dn_v.dn_v]]` of two
-/// normal differences (its trace is TK19's `sigma^2 (|dn_u|^2 + |dn_v|^2)`; use only its
-/// invariants). Determinant `sigma_sq^2 |dn_u x dn_v|^2` (Lagrange's identity, no
-/// cancellation).
-fn filter_deferred_normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>, sigma_sq: f32) -> kernel_covariance_Covariance {
+/// The Gram covariance `sigma^2 [[dn_u.dn_u, dn_u.dn_v], [dn_u.dn_v, dn_v.dn_v]]` of two
+/// normal differences, `sigma` the pixel filter's standard deviation in pixels (its trace is
+/// TK19's `sigma^2 (|dn_u|^2 + |dn_v|^2)`; use only its invariants). Determinant
+/// `sigma^4 |dn_u x dn_v|^2` (Lagrange's identity, no cancellation).
+fn filter_deferred_normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>, sigma: f32) -> kernel_covariance_Covariance {
+    let sigma_sq = sigma * sigma;
     let x = cross(dn_u, dn_v) * sigma_sq;
     return kernel_covariance_Covariance(
         dot(dn_u, dn_u) * sigma_sq,
@@ -491,17 +491,17 @@ fn filter_deferred_normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>
 
 /// The kernel's squared roughness of a bandwidth (`BANDWIDTH_*`) before the clamp:
 /// `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`.
-fn filter_deferred_bandwidth_kernel(bandwidth: u32, sigma: kernel_covariance_Covariance) -> f32 {
+fn filter_deferred_bandwidth_alpha2(bandwidth: u32, kernel: kernel_covariance_Covariance) -> f32 {
     if bandwidth == filter_deferred_BANDWIDTH_MAX {
-        return 2.0 * filter_deferred_max_eigenvalue(sigma.s_xx, sigma.s_xy, sigma.s_yy);
+        return 2.0 * filter_deferred_max_eigenvalue(kernel.s_xx, kernel.s_xy, kernel.s_yy);
     }
-    let t = sigma.s_xx + sigma.s_yy;
+    let t = kernel.s_xx + kernel.s_yy;
     return select(t, 2.0 * t, bandwidth == filter_deferred_BANDWIDTH_TRACE);
 }
 
 /// TK19 eq. 1, 4 or 5 from a slope-domain covariance:
 /// `alpha_bar = sqrt(saturate(alpha^2 + min(kernel, kappa)))`.
-fn filter_deferred_filtered_alpha(alpha: f32, sigma: kernel_covariance_Covariance, bandwidth: u32, kappa: f32) -> f32 {
+fn filter_deferred_filtered_alpha(alpha: f32, kernel: kernel_covariance_Covariance, bandwidth: u32, kappa: f32) -> f32 {
     let conv = filter_deferred_KernelConvention(
         filter_deferred_DOMAIN_ALPHA_SQ,
         filter_deferred_NORM_SUM_SQUARED,
@@ -513,7 +513,7 @@ fn filter_deferred_filtered_alpha(alpha: f32, sigma: kernel_covariance_Covarianc
         true,
         0.0,
     );
-    return filter_deferred_apply_kernel(conv, alpha, filter_deferred_bandwidth_kernel(bandwidth, sigma));
+    return filter_deferred_apply_widening(conv, alpha, filter_deferred_bandwidth_alpha2(bandwidth, kernel));
 }
 
 // ---- filtered_ndf::ndf::roughness::matrix (shaders/ndf/roughness/matrix.wgsl) ----

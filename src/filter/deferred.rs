@@ -14,7 +14,7 @@
 //!   conservative: balances over- and under-filtering).
 //!
 //! Listing 2 of TK19 finishes with `saturate`, so `alpha_bar^2 <= 1`. Defaults: `sigma^2 =
-//! 0.25` ([`SIGMA2`], a Gaussian pixel filter of standard deviation half a pixel) and `kappa =
+//! 0.25` (`SIGMA_PIXEL^2`, a Gaussian pixel filter of standard deviation half a pixel) and `kappa =
 //! 0.18` ([`KAPPA`]).
 //!
 //! Shipping engines write the same shortcut with other constants and in other roughness
@@ -35,8 +35,8 @@
 //! let a = presets::TK19_TRACE.apply(alpha, dn_u, dn_v);
 //! assert!((a * a - (0.0016 + 0.03125)).abs() < 1e-6);
 //! // The same through the covariance form (TK19 eq. 2 with eq. 3).
-//! let sigma = normal_difference_covariance(dn_u, dn_v, 0.25);
-//! assert!((filtered_alpha(alpha, &sigma, Bandwidth::Trace, KAPPA) - a).abs() < 1e-6);
+//! let kernel = normal_difference_covariance(dn_u, dn_v, 0.5); // sigma = 0.5 pixels
+//! assert!((filtered_alpha(alpha, &kernel, Bandwidth::Trace, KAPPA) - a).abs() < 1e-6);
 //! ```
 //!
 //! ## Normal differences
@@ -50,7 +50,7 @@
 //! has the same trace as `Sigma` exactly and the same eigenvalues to first order in `|dn|`
 //! (exactly when both average normals share one tangent frame).
 
-use super::super::kernel::{Covariance, SIGMA_PIXEL};
+use super::super::kernel::Covariance;
 use super::super::ndf::roughness::{ALPHA_MAX, Isotropic};
 use super::{F, Vec3};
 use crate::math as m;
@@ -60,9 +60,6 @@ use crate::math as m;
 /// against the huge derivatives of silhouettes and grazing angles at the cost of
 /// under-filtering strongly curved regions (units: slope^2).
 pub const KAPPA: F = 0.18;
-
-/// TK19's pixel-filter variance `sigma^2 = 0.25` (pixels^2): [`SIGMA_PIXEL`] squared.
-pub const SIGMA2: F = SIGMA_PIXEL * SIGMA_PIXEL;
 
 /// Which isotropic bandwidth replaces the anisotropic covariance `Sigma` (TK19 sections
 /// 4.2-4.6).
@@ -84,11 +81,11 @@ impl Bandwidth {
     /// negative for negative variances). [`filtered_alpha`] treats NaN and `+inf` as the
     /// maximal, clamped kernel and a negative kernel as 0.
     #[inline]
-    pub fn kernel(self, sigma: &Covariance) -> F {
+    pub fn alpha2(self, kernel: &Covariance) -> F {
         match self {
-            Self::Max => 2.0 * lambda_max(sigma),
-            Self::Trace => 2.0 * sigma.trace(),
-            Self::Average => sigma.trace(),
+            Self::Max => 2.0 * lambda_max(kernel),
+            Self::Trace => 2.0 * kernel.trace(),
+            Self::Average => kernel.trace(),
         }
     }
 
@@ -110,36 +107,36 @@ impl Bandwidth {
 /// `lambda_max(Sigma)` (clamped to `>= 0`), or NaN if an entry is not finite (the
 /// eigenvalue routine would otherwise turn NaN into 0, an under-filtering kernel).
 #[inline]
-fn lambda_max(sigma: &Covariance) -> F {
-    if sigma.s11.is_finite() && sigma.s12.is_finite() && sigma.s22.is_finite() {
-        sigma.eigenvalues().1
+fn lambda_max(kernel: &Covariance) -> F {
+    if kernel.s11.is_finite() && kernel.s12.is_finite() && kernel.s22.is_finite() {
+        kernel.eigenvalues().1
     } else {
         F::NAN
     }
 }
 
-/// The Gram covariance `sigma2 [[dn_u.dn_u, dn_u.dn_v], [dn_u.dn_v, dn_v.dn_v]]` of two
+/// The Gram covariance `sigma^2 [[dn_u.dn_u, dn_u.dn_v], [dn_u.dn_v, dn_v.dn_v]]` of two
 /// world-space normal differences (slope^2 near the normal). Its trace is exactly TK19's
 /// `sigma^2 (|dn_u|^2 + |dn_v|^2)` (eq. 2 with eq. 3) and its eigenvalues are those of the
 /// footprint covariance when both average normals share a tangent frame (see the module
 /// docs). The entries are not in the tangent frame: use only its invariants (trace,
 /// eigenvalues, determinant). Non-finite input gives non-finite entries.
 #[inline]
-pub fn normal_difference_covariance(dn_u: Vec3, dn_v: Vec3, sigma2: F) -> Covariance {
-    Covariance::new(dn_u.dot(dn_u), dn_u.dot(dn_v), dn_v.dot(dn_v)) * sigma2
+pub fn normal_difference_covariance(dn_u: Vec3, dn_v: Vec3, sigma: F) -> Covariance {
+    Covariance::new(dn_u.dot(dn_u), dn_u.dot(dn_v), dn_v.dot(dn_v)) * (sigma * sigma)
 }
 
 /// TK19 eq. 1, 4 or 5 from a slope-domain covariance: `alpha_bar = sqrt(saturate(alpha^2 +
-/// min(kernel, kappa)))` with `kernel = bandwidth.kernel(sigma)`, `kappa` = [`KAPPA`] by
-/// default. Bad input: see [`KernelConvention::apply_kernel`] (negative or NaN `alpha` counts
+/// min(kernel, kappa)))` with `kernel = bandwidth.alpha2(kernel)`, `kappa` = [`KAPPA`] by
+/// default. Bad input: see [`KernelConvention::apply_widening`] (negative or NaN `alpha` counts
 /// as 0, a NaN kernel as `kappa`).
 #[inline]
-pub fn filtered_alpha(alpha: F, sigma: &Covariance, bandwidth: Bandwidth, kappa: F) -> F {
+pub fn filtered_alpha(alpha: F, kernel: &Covariance, bandwidth: Bandwidth, kappa: F) -> F {
     KernelConvention {
         clamp: kappa,
         ..bandwidth.convention()
     }
-    .apply_kernel(alpha, bandwidth.kernel(sigma))
+    .apply_widening(alpha, bandwidth.alpha2(kernel))
 }
 
 /// The roughness domain a kernel is added (or max-combined) in, and clamped and saturated in.
@@ -206,7 +203,7 @@ pub enum Norm {
     /// `max(|dn_u|^2, |dn_v|^2)` (Vlachos 2015; Unreal, Babylon.js).
     MaxSquared,
     /// The largest eigenvalue of the Gram matrix of `dn_u, dn_v` (TK19 eq. 1 with
-    /// `sigma^2 = 1`; see [`normal_difference_covariance`]).
+    /// `sigma = 1`; see [`normal_difference_covariance`]).
     MaxEigenvalue,
     /// `max_i max(|dn_u,i|, |dn_v,i|)`: the largest absolute component of either difference,
     /// not squared (three.js `geometryRoughness`). Frame-dependent.
@@ -285,23 +282,24 @@ pub struct KernelConvention {
 }
 
 impl KernelConvention {
-    /// The kernel value `min(max(scale * norm^exponent + bias, 0), clamp)` in `domain` units,
+    /// The widening `min(max(scale * norm^exponent + bias, 0), clamp)` in `domain` units (the
+    /// kernel's contribution to the roughness value),
     /// with NaN (from NaN normal differences) mapped to `clamp`. Zero differences give
     /// `max(bias, 0)` for `exponent > 0`.
     #[inline]
-    pub fn kernel(&self, dn_u: Vec3, dn_v: Vec3) -> F {
+    pub fn widening(&self, dn_u: Vec3, dn_v: Vec3) -> F {
         let n = self.norm.eval(dn_u, dn_v);
         let raw = if self.exponent == 1.0 {
             n
         } else {
             m::powf(n, self.exponent)
         };
-        self.clamp_kernel(self.scale * raw + self.bias)
+        self.clamp_widening(self.scale * raw + self.bias)
     }
 
     /// `min(max(k, 0), clamp)`, NaN -> `clamp`.
     #[inline]
-    fn clamp_kernel(&self, k: F) -> F {
+    fn clamp_widening(&self, k: F) -> F {
         if k.is_nan() {
             self.clamp
         } else {
@@ -313,7 +311,7 @@ impl KernelConvention {
     /// (clamped here like step 2). `alpha` NaN or negative counts as 0, `+inf` as
     /// [`ALPHA_MAX`]; the result is in `[0, ALPHA_MAX]` and never NaN.
     #[inline]
-    pub fn apply_kernel(&self, alpha: F, k: F) -> F {
+    pub fn apply_widening(&self, alpha: F, k: F) -> F {
         let alpha = if alpha > 0.0 {
             alpha.min(ALPHA_MAX)
         } else {
@@ -322,7 +320,7 @@ impl KernelConvention {
         // sqrt(alpha) >= floor  <=>  alpha >= floor^2 (no sqrt round trip).
         let alpha = alpha.max(self.perceptual_floor * self.perceptual_floor);
         let v = self.domain.from_alpha(alpha);
-        let k = self.clamp_kernel(k);
+        let k = self.clamp_widening(k);
         let mut out = match self.combine {
             Combine::Add => v + k,
             Combine::Max => v.max(k),
@@ -336,11 +334,11 @@ impl KernelConvention {
 
     /// The filtered roughness `alpha_bar` for material roughness `alpha` and world-space
     /// normal differences `dn_u`, `dn_v` (see the type docs for the steps and
-    /// [`apply_kernel`](Self::apply_kernel) for bad input; infinite or NaN differences give
+    /// [`apply_widening`](Self::apply_widening) for bad input; infinite or NaN differences give
     /// the clamped maximal kernel).
     #[inline]
     pub fn apply(&self, alpha: F, dn_u: Vec3, dn_v: Vec3) -> F {
-        self.apply_kernel(alpha, self.kernel(dn_u, dn_v))
+        self.apply_widening(alpha, self.widening(dn_u, dn_v))
     }
 
     /// The deferred front door: the filtered roughness of [`apply`](Self::apply) as an

@@ -17,9 +17,9 @@
 //! let a = Isotropic::new(0.01).unwrap();
 //! // ddx / ddy of the half vector's slope (KHPL16) or of h_xy on the disk (TK19).
 //! let fp = Footprint::from_slope_derivatives(Vec2::new(0.02, 0.0), Vec2::new(0.0, 0.005));
-//! let sigma = fp.covariance(0.5); // SIGMA_PIXEL
-//! let beckmann = Beckmann::new(filter::gaussian(a, sigma)); // exact (KHPL16 eq. 15)
-//! let ggx = Ggx::new(filter::projected(a, sigma)); // TK21 projected space
+//! let kernel = fp.covariance(0.5); // Sigma, from a pixel filter of sigma = 0.5 pixels
+//! let beckmann = Beckmann::new(filter::gaussian(a, kernel)); // exact (KHPL16 eq. 15)
+//! let ggx = Ggx::new(filter::projected(a, kernel)); // TK21 projected space
 //! let clamped = ClampRules::default().filter_gaussian(a, fp, 0.5); // lambda, kappa, tau
 //! let h = Vec3::new(0.005, 0.0, 1.0).normalize();
 //! assert!(beckmann.d(h) < Beckmann::new(a).d(Vec3::Z));

@@ -23,6 +23,7 @@
 //! | [`THREE_JS`] | `p` | `max abs component of dn_u, dn_v` | none | add, yes |
 
 use super::super::PI;
+use super::super::kernel::SIGMA_PIXEL;
 use super::F;
 use super::deferred::{Combine, Domain, KernelConvention, Norm};
 
@@ -33,7 +34,7 @@ use super::deferred::{Combine, Domain, KernelConvention, Norm};
 pub const TK19_TRACE: KernelConvention = KernelConvention {
     domain: Domain::Alpha2,
     norm: Norm::SumSquared,
-    scale: 2.0 * super::deferred::SIGMA2,
+    scale: 2.0 * SIGMA_PIXEL * SIGMA_PIXEL,
     exponent: 1.0,
     bias: 0.0,
     clamp: super::deferred::KAPPA,
@@ -45,7 +46,7 @@ pub const TK19_TRACE: KernelConvention = KernelConvention {
 /// TK19 eq. 5 (less conservative, average of the eigenvalues): as [`TK19_TRACE`] with
 /// kernel `sigma^2 (|dn_u|^2 + |dn_v|^2)` (Listing 2 without the factor 2). TK19 sect. 4.6.
 pub const TK19_AVERAGE: KernelConvention = KernelConvention {
-    scale: super::deferred::SIGMA2,
+    scale: SIGMA_PIXEL * SIGMA_PIXEL,
     ..TK19_TRACE
 };
 

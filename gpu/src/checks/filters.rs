@@ -485,7 +485,7 @@ pub fn all() -> Vec<Check> {
     let mut cf = Check::new(
         "deferred::filtered_alpha",
         IMPORTS,
-        "let s = deferred::normal_difference_covariance(x3(1u), x3(4u), deferred::SIGMA_SQ);
+        "let s = deferred::normal_difference_covariance(x3(1u), x3(4u), footprint::SIGMA_PIXEL);
 y(0u, deferred::filtered_alpha(x(0u), s, deferred::BANDWIDTH_MAX, deferred::KAPPA));
 y(1u, deferred::filtered_alpha(x(0u), s, deferred::BANDWIDTH_TRACE, deferred::KAPPA));
 y(2u, deferred::filtered_alpha(x(0u), s, deferred::BANDWIDTH_AVERAGE, deferred::KAPPA));",
@@ -501,7 +501,11 @@ y(2u, deferred::filtered_alpha(x(0u), s, deferred::BANDWIDTH_AVERAGE, deferred::
             [d.x as f32, d.y as f32, d.z as f32]
         };
         let (u, v) = (dn(), dn());
-        let s = deferred::normal_difference_covariance(v3(u), v3(v), deferred::SIGMA2);
+        let s = deferred::normal_difference_covariance(
+            v3(u),
+            v3(v),
+            filtered_ndf::f64::kernel::SIGMA_PIXEL,
+        );
         let mut input = vec![alpha];
         input.extend(u);
         input.extend(v);

@@ -16,7 +16,7 @@ macro_rules! isotropic_prec {
         let alpha = f(b);
         let (dn_u, dn_v) = (v3(b), v3(b));
         let cov = Covariance::new(f(b), f(b), f(b));
-        let (kappa, sigma2, k) = (f(b), f(b), f(b));
+        let (kappa, sigma, k) = (f(b), f(b), f(b));
         let pick = b.byte();
         let conv = KernelConvention {
             domain: [
@@ -54,7 +54,7 @@ macro_rules! isotropic_prec {
 
         // Bandwidth kernels: documented NaN for non-finite input (Max: any entry; Trace and
         // Average: the diagonal), `>= 0` for a finite PSD covariance.
-        let kv = bw.kernel(&cov);
+        let kv = bw.alpha2(&cov);
         let fin = cov.s11.is_finite() && cov.s12.is_finite() && cov.s22.is_finite();
         match bw {
             Bandwidth::Max => {
@@ -84,7 +84,7 @@ macro_rules! isotropic_prec {
                 "filtered_alpha({alpha:?}) = {fk:?} sharpened"
             );
         }
-        let _ = normal_difference_covariance(dn_u, dn_v, sigma2);
+        let _ = normal_difference_covariance(dn_u, dn_v, sigma);
 
         // Domains: non-negative, NaN-free maps of non-negative input; round trip.
         for dom in [
@@ -129,12 +129,12 @@ macro_rules! isotropic_prec {
         }
 
         // Arbitrary conventions: kernel in [0, clamp], result in [0, ALPHA_MAX], never NaN.
-        let kc = conv.kernel(dn_u, dn_v);
+        let kc = conv.widening(dn_u, dn_v);
         if conv.clamp >= 0.0 {
             assert!((0.0..=conv.clamp).contains(&kc), "{conv:?}.kernel = {kc:?}");
         }
         in_range(conv.apply(alpha, dn_u, dn_v), "apply");
-        in_range(conv.apply_kernel(alpha, k), "apply_kernel");
+        in_range(conv.apply_widening(alpha, k), "apply_widening");
 
         // Presets: in range, and (for alpha in [0, 1], finite differences) never sharper than
         // the material roughness, except where the saturate caps it.
@@ -167,7 +167,7 @@ macro_rules! isotropic_prec {
 /// `Domain::{from_alpha, to_alpha}` `>= 0` for `>= 0` input and inverse to each other;
 /// `Norm::eval` `>= 0`, NaN exactly for NaN input (and Gram overflow for `MaxEigenvalue`);
 /// `KernelConvention` with arbitrary fields: `kernel` in `[0, clamp]`, `apply` and
-/// `apply_kernel` in `[0, ALPHA_MAX]`; every preset of `presets::ALL` and
+/// `apply_widening` in `[0, ALPHA_MAX]`; every preset of `presets::ALL` and
 /// `Bandwidth::convention` in range and never below `min(alpha, saturation cap)`.
 pub fn check_isotropic(data: &[u8]) {
     isotropic_prec!(d64, f64, &mut Bytes::new(data));
