@@ -21,7 +21,7 @@ const SPP_DIVISOR: usize = 8;
 /// Every route rendered: each method of the CPU demo in forward shading, then unfiltered
 /// GGX and each engine preset in deferred shading.
 pub fn routes() -> Vec<Route> {
-    let forward = Method::ALL.iter().map(|&m| Route::Forward(m));
+    let forward = crate::passes::FORWARD.iter().map(|&m| Route::Forward(m));
     let deferred = std::iter::once(None)
         .chain((0..filtered_ndf::f32::filter::presets::ALL.len()).map(Some))
         .map(Route::Deferred);
