@@ -332,20 +332,20 @@ fn main() -> std::io::Result<()> {
 /// lost highlights, the HDR RMSE, and where it stands against unfiltered of its NDF.
 fn lead_table(scores: &[(Method, metrics::Scores)], temporal: Option<&temporal::Temporal>) -> String {
     let mut t = String::new();
-    writeln!(t, "| method | NDF | FLIP LDR | FLIP HDR | flicker energy / ref. | peak flicker | specular error | false glints | lost highlights | RMSE (HDR) | against unfiltered |").unwrap();
-    writeln!(t, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|").unwrap();
+    writeln!(t, "| method | NDF | FLIP LDR | FLIP HDR | flicker error / ref. | flicker energy / ref. | peak flicker | specular error | false glints | lost highlights | RMSE (HDR) | against unfiltered |").unwrap();
+    writeln!(t, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|").unwrap();
     let flicker = |m: Method| {
         temporal.and_then(|tp| {
             let i = tp.methods.iter().position(|&x| x == m)?;
-            Some((tp.flicker[i], tp.peak_variation[i]))
+            Some((tp.flicker_error[i], tp.flicker[i], tp.peak_variation[i]))
         })
     };
     for &(m, s) in scores {
         let base_method = Method::Unfiltered(m.family());
         let base = scores.iter().find(|(b, _)| *b == base_method);
-        let (fl, pv) = flicker(m).unwrap_or((f64::NAN, f64::NAN));
+        let (fl, fe, pv) = flicker(m).unwrap_or((f64::NAN, f64::NAN, f64::NAN));
         let verdict = match (base, flicker(base_method)) {
-            (Some((_, b)), Some((bf, _))) if m != base_method => {
+            (Some((_, b)), Some((bf, _, _))) if m != base_method => {
                 metrics::verdict((&s, fl), (b, bf))
             }
             _ if m == base_method => "(baseline)".to_string(),
@@ -353,12 +353,13 @@ fn lead_table(scores: &[(Method, metrics::Scores)], temporal: Option<&temporal::
         };
         writeln!(
             t,
-            "| {} | {} | {:.4} | {:.4} | {:.2} | {:.1}% | {:.4} | {} | {} | {:.4} | {} |",
+            "| {} | {} | {:.4} | {:.4} | {:.2} | {:.2} | {:.1}% | {:.4} | {} | {} | {:.4} | {} |",
             m.label(),
             m.family().name(),
             s.flip_ldr,
             s.flip_hdr,
             fl,
+            fe,
             100.0 * pv,
             s.specular,
             s.false_glints,

@@ -192,6 +192,21 @@ pub fn flicker_energy(frames: &[Vec<f32>]) -> f64 {
     sum / n.max(1) as f64
 }
 
+/// Flicker error of a sequence against the reference sequence: the mean over pixels and frame
+/// pairs of `((Y_t - Y_{t-1}) - (R_t - R_{t-1}))^2`, the energy of the frame-to-frame changes
+/// the reference does not make (0 for fewer than two frames). Unlike [`flicker_energy`], a
+/// sequence that changes as much as the reference but in other pixels scores badly.
+pub fn flicker_error(frames: &[Vec<f32>], reference: &[Vec<f32>]) -> f64 {
+    let (mut sum, mut n) = (0.0f64, 0usize);
+    for (pair, rpair) in frames.windows(2).zip(reference.windows(2)) {
+        for ((a, b), (ra, rb)) in pair[0].iter().zip(&pair[1]).zip(rpair[0].iter().zip(&rpair[1])) {
+            sum += ((b - a) as f64 - (rb - ra) as f64).powi(2);
+            n += 1;
+        }
+    }
+    sum / n.max(1) as f64
+}
+
 /// The still-frame scores of one method against the reference.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Scores {
@@ -228,7 +243,9 @@ pub fn score(
 
 /// The metrics a method must beat unfiltered on (issue 21): FLIP LDR and HDR, flicker,
 /// specular error, false glints, lost highlights. Lower is better for each; the flicker is
-/// compared as the distance of the energy ratio from the reference's, `|ln(E / E_ref)|`.
+/// compared as the flicker error over the reference's flicker energy ([`flicker_error`]):
+/// the energy ratio alone cannot tell a sequence that changes where the reference does from
+/// one that changes as much elsewhere.
 /// Returns the names of the metrics on which `m` does not beat `base` (strictly better, or
 /// both counts zero).
 pub fn not_better(m: (&Scores, f64), base: (&Scores, f64)) -> Vec<&'static str> {
@@ -242,7 +259,7 @@ pub fn not_better(m: (&Scores, f64), base: (&Scores, f64)) -> Vec<&'static str> 
     if !better(s.flip_hdr, b.flip_hdr) {
         out.push("FLIP HDR");
     }
-    if !better(fm.ln().abs(), fb.ln().abs()) {
+    if !better(fm, fb) {
         out.push("flicker");
     }
     if !better(s.specular, b.specular) {
@@ -321,10 +338,20 @@ mod tests {
 
     #[test]
     fn flicker_energy_is_the_mean_squared_change() {
-        assert_eq!(flicker_energy(&[vec![0.5; 4]; 3]), 0.0);
+        assert_eq!(flicker_energy(&vec![vec![0.5; 4]; 3]), 0.0);
         // Two pixels, one switching by 1 each frame: 2 pairs x 2 pixels, sum 2.
         let frames = vec![vec![0.0, 0.2], vec![1.0, 0.2], vec![0.0, 0.2]];
         assert!((flicker_energy(&frames) - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn flicker_error_counts_changes_the_reference_does_not_make() {
+        let reference = vec![vec![0.0, 0.2], vec![1.0, 0.2], vec![0.0, 0.2]];
+        assert_eq!(flicker_error(&reference, &reference), 0.0);
+        // The same energy, in the other pixel: each pair differs by (-1, +1).
+        let moved = vec![vec![0.2, 0.0], vec![0.2, 1.0], vec![0.2, 0.0]];
+        assert_eq!(flicker_energy(&moved), flicker_energy(&reference));
+        assert!((flicker_error(&moved, &reference) - 1.0).abs() < 1e-12);
     }
 
     #[test]
@@ -346,6 +373,7 @@ mod tests {
         };
         assert!(not_better((&good, 1.1), (&base, 4.0)).is_empty());
         assert_eq!(not_better((&good, 5.0), (&base, 4.0)), ["flicker"]);
+        assert_eq!(not_better((&good, 4.0), (&base, 4.0)), ["flicker"]);
         let glinty = Scores {
             false_glints: 9,
             ..good

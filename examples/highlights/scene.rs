@@ -418,3 +418,121 @@ impl Scene {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `E[g]` and `Cov[g]` of the height gradient over the Gaussian window `N((x, z), c)`, by
+    /// an independent computation: each wave's gradient summed in f64 from the wave table
+    /// (fades frozen at the centre, as [`Water::gradient_moments`] documents), integrated by
+    /// the trapezoid rule over +-7 standard deviations of the whitened window (`n x n`
+    /// points; spectrally accurate for this smooth, Gaussian-weighted integrand once the grid
+    /// resolves the shortest wave).
+    fn moments_by_quadrature(water: &Water, x: f64, z: f64, c: [f64; 3], n: usize) -> ([f64; 2], [f64; 3]) {
+        let waves: Vec<(f64, f64, f64, f64)> = water
+            .fades(x as f32, z as f32)
+            .map(|(w, f)| {
+                (
+                    f64::from(f) * f64::from(w.amplitude),
+                    f64::from(w.kx),
+                    f64::from(w.kz),
+                    f64::from(w.phase),
+                )
+            })
+            .collect();
+        // Cholesky c = L L^T.
+        let l11 = c[0].sqrt();
+        let l21 = c[1] / l11;
+        let l22 = (c[2] - l21 * l21).sqrt();
+        let (mut w_sum, mut m, mut s) = (0.0, [0.0f64; 2], [0.0f64; 3]);
+        let step = 14.0 / (n - 1) as f64;
+        for i in 0..n {
+            let u = -7.0 + i as f64 * step;
+            for j in 0..n {
+                let v = -7.0 + j as f64 * step;
+                let w = (-0.5 * (u * u + v * v)).exp();
+                let (px, pz) = (x + l11 * u, z + l21 * u + l22 * v);
+                let (mut gx, mut gz) = (0.0, 0.0);
+                for &(a, kx, kz, phase) in &waves {
+                    let c = a * (kx * px + kz * pz + phase).cos();
+                    gx += c * kx;
+                    gz += c * kz;
+                }
+                w_sum += w;
+                m[0] += w * gx;
+                m[1] += w * gz;
+                s[0] += w * gx * gx;
+                s[1] += w * gx * gz;
+                s[2] += w * gz * gz;
+            }
+        }
+        let m = [m[0] / w_sum, m[1] / w_sum];
+        let cov = [
+            s[0] / w_sum - m[0] * m[0],
+            s[1] / w_sum - m[0] * m[1],
+            s[2] / w_sum - m[1] * m[1],
+        ];
+        (m, cov)
+    }
+
+    fn water() -> Water {
+        // Eye high above the water: no wave is faded at the points tested.
+        Water::new(Lod {
+            eye: Vec3::new(0.0, 2.0, 14.0),
+            pixel_angle: 1e-4,
+        })
+    }
+
+    /// The closed-form windowed moments (the false-glint fix's kernel) against quadrature,
+    /// for a window far below the shortest wave (first-order regime), one about as wide as
+    /// the short waves, and one spanning many crests (anisotropic, sheared). Tolerance:
+    /// `1e-3` of the quadrature's total slope variance (trace), and `1e-3` absolute on the
+    /// mean gradient (the f32 closed form accumulates 64 wave pairs).
+    #[test]
+    fn gradient_moments_match_quadrature() {
+        let w = water();
+        for (p, c, n) in [
+            ((0.3, -4.0), [1e-4, 2e-5, 5e-5], 101),
+            ((1.7, -9.0), [4e-3, -1e-3, 9e-3], 301),
+            ((-2.1, -30.0), [2.0, 0.4, 0.3], 2001),
+        ] {
+            let (mean, cov) = w.gradient_moments(p.0 as f32, p.1 as f32, c.map(|v| v as f32));
+            let (qm, qc) = moments_by_quadrature(&w, p.0, p.1, c, n);
+            let scale = qc[0] + qc[2];
+            for k in 0..3 {
+                let e = (f64::from(cov[k]) - qc[k]).abs() / scale;
+                assert!(e < 1e-3, "window {c:?}: cov[{k}] {} vs {} (rel. {e:.2e})", cov[k], qc[k]);
+            }
+            assert!((f64::from(mean.x) - qm[0]).abs() < 1e-3, "{mean} vs {qm:?}");
+            assert!((f64::from(mean.y) - qm[1]).abs() < 1e-3, "{mean} vs {qm:?}");
+        }
+    }
+
+    /// Why the windowed moments remove the first-order footprint's false glints: over a
+    /// window spanning many crests, the slope covariance saturates at the waves' total slope
+    /// variance `sum (a k)^2 / 2` (within 5 %: the cross terms and the windowed mean decay as
+    /// `exp(-v / 2)`), while the first-order kernel, the gradient's Jacobian (the Hessian)
+    /// times the window, grows with the window without bound and reaches slopes the waves
+    /// never have.
+    #[test]
+    fn gradient_moments_saturate_where_the_first_order_kernel_grows() {
+        let w = water();
+        let (x, z) = (0.9f32, -12.0f32);
+        let total: f32 = w
+            .waves
+            .iter()
+            .map(|v| 0.5 * (v.amplitude * v.kx.hypot(v.kz)).powi(2))
+            .sum();
+        let (d, _) = w.derivatives(x, z);
+        let hessian = glam::Mat2::from_cols(Vec2::new(d[3], d[4]), Vec2::new(d[4], d[5]));
+        for s2 in [4.0f32, 16.0, 64.0] {
+            let (_, cov) = w.gradient_moments(x, z, [s2, 0.0, s2]);
+            let trace = cov[0] + cov[2];
+            assert!((trace / total - 1.0).abs() < 0.05, "window {s2}: {trace} vs {total}");
+            let first_order = (hessian * hessian.transpose() * s2).to_cols_array();
+            let fo_trace = first_order[0] + first_order[3];
+            assert!(fo_trace > 10.0 * total, "window {s2}: first order {fo_trace} vs {total}");
+        }
+    }
+}

@@ -5,7 +5,7 @@
 
 use crate::camera::camera_at;
 use crate::methods::Method;
-use crate::metrics::{display_luminance, flicker_energy};
+use crate::metrics::{display_luminance, flicker_energy, flicker_error};
 use crate::peaks::{distance, mean, variation};
 use crate::plot::{PALETTE, Series, line_plot};
 use crate::scene::Scene;
@@ -22,6 +22,8 @@ pub struct Temporal {
     pub methods: Vec<Method>,
     /// Flicker energy divided by the reference's (same family).
     pub flicker: Vec<f64>,
+    /// Flicker error ([`flicker_error`]) divided by the reference's flicker energy.
+    pub flicker_error: Vec<f64>,
     /// Frame-to-frame variation of the peak, and its distance to the reference's peak.
     pub peak_variation: Vec<f64>,
     pub peak_distance: Vec<f64>,
@@ -66,20 +68,20 @@ pub fn run(o: &Options, extra: &[Method]) -> std::io::Result<Temporal> {
         o.frames, w, h, spp
     )
     .unwrap();
-    writeln!(md, "Flicker energy: the mean over pixels and frame pairs of the squared change of display luminance, (Y_t - Y_t-1)^2, divided by the reference sequence's (1 = as much change as the reference; the camera moves, so the reference changes too). Peak HDR luminance per frame (KHPL16 Fig. 12): mean, mean frame-to-frame change |P(t) - P(t-1)| / mean P, and mean distance |P(t) - P_ref(t)| / mean P_ref.\n").unwrap();
+    writeln!(md, "Flicker energy: the mean over pixels and frame pairs of the squared change of display luminance, (Y_t - Y_t-1)^2, divided by the reference sequence's (1 = as much change as the reference; the camera moves, so the reference changes too). Flicker error: the mean of ((Y_t - Y_t-1) - (R_t - R_t-1))^2, the changes the reference R does not make, divided by the same reference energy (0 = changes exactly as the reference). Peak HDR luminance per frame (KHPL16 Fig. 12): mean, mean frame-to-frame change |P(t) - P(t-1)| / mean P, and mean distance |P(t) - P_ref(t)| / mean P_ref.\n").unwrap();
     writeln!(
         md,
-        "| method | flicker energy / reference | mean peak | peak frame-to-frame variation | peak distance to reference |"
+        "| method | flicker energy / reference | flicker error / reference | mean peak | peak frame-to-frame variation | peak distance to reference |"
     )
     .unwrap();
-    writeln!(md, "|---|---:|---:|---:|---:|").unwrap();
+    writeln!(md, "|---|---:|---:|---:|---:|---:|").unwrap();
     let reference_flicker = [flicker_energy(&ref_lums[0]), flicker_energy(&ref_lums[1])];
     let mut series = Vec::new();
     for (k, name) in ["Reference Beckmann", "Reference GGX"].iter().enumerate() {
         let p = &ref_peaks[k];
         writeln!(
             md,
-            "| {name} | 1 ({:.2e}) | {:.1} | {:.1}% | - |",
+            "| {name} | 1 ({:.2e}) | 0 | {:.1} | {:.1}% | - |",
             reference_flicker[k],
             mean(p),
             100.0 * variation(p)
@@ -93,17 +95,21 @@ pub fn run(o: &Options, extra: &[Method]) -> std::io::Result<Temporal> {
         });
     }
     let (mut flicker, mut peak_variation, mut peak_distance) = (vec![], vec![], vec![]);
+    let mut flicker_err = vec![];
     for (i, &m) in all.iter().enumerate() {
         let p = &peaks[i];
         let r = &ref_peaks[m.family() as usize];
-        flicker.push(flicker_energy(&lums[i]) / reference_flicker[m.family() as usize]);
+        let fam = m.family() as usize;
+        flicker.push(flicker_energy(&lums[i]) / reference_flicker[fam]);
+        flicker_err.push(flicker_error(&lums[i], &ref_lums[fam]) / reference_flicker[fam]);
         peak_variation.push(variation(p));
         peak_distance.push(distance(p, r));
         writeln!(
             md,
-            "| {} | {:.2} | {:.1} | {:.1}% | {:.1}% |",
+            "| {} | {:.2} | {:.2} | {:.1} | {:.1}% | {:.1}% |",
             m.label(),
             flicker[i],
+            flicker_err[i],
             mean(p),
             100.0 * variation(p),
             100.0 * distance(p, r)
@@ -132,6 +138,7 @@ pub fn run(o: &Options, extra: &[Method]) -> std::io::Result<Temporal> {
     Ok(Temporal {
         methods: all,
         flicker,
+        flicker_error: flicker_err,
         peak_variation,
         peak_distance,
         reference_flicker,
