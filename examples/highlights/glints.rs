@@ -22,7 +22,7 @@ use crate::{Options, plot};
 use filtered_ndf::f32::footprint::slope::slope_from_sphere;
 use filtered_ndf::f32::kernel::Covariance;
 use filtered_ndf::f32::{Beckmann, ClampRules, ExtentFloor, Isotropic, Ndf};
-use glam::{Vec2, Vec3};
+use glam::Vec2;
 use image::Rgb;
 use std::fmt::Write as _;
 
@@ -69,6 +69,50 @@ fn beckmann_with(
         }
     })
     .total
+}
+
+/// Of the false glints `mask`, those with a reference highlight (display luminance >
+/// [`BRIGHT`]) among their 8 neighbours: a highlight moved by one pixel, not one made up.
+fn displaced(mask: &[bool], ref_y: &[f32], w: usize, h: usize) -> Vec<bool> {
+    (0..w * h)
+        .map(|i| {
+            let (x, y) = ((i % w) as i64, (i / w) as i64);
+            mask[i]
+                && (-1..=1).any(|dy| {
+                    (-1..=1).any(|dx| {
+                        let (nx, ny) = (x + dx, y + dy);
+                        (dx, dy) != (0, 0)
+                            && (0..w as i64).contains(&nx)
+                            && (0..h as i64).contains(&ny)
+                            && ref_y[ny as usize * w + nx as usize] > BRIGHT
+                    })
+                })
+        })
+        .collect()
+}
+
+/// The glint map with the false glints next to a reference highlight in orange, the others
+/// in red.
+fn displacement_map(img: &Image, reference: &Image, exposure: f32) -> (Rgb8, usize, usize) {
+    let ref_y = display_luminance(reference, exposure);
+    let (f, l) = glint_masks(&display_luminance(img, exposure), &ref_y);
+    let d = displaced(&f, &ref_y, img.width, img.height);
+    let n_d = d.iter().filter(|&&b| b).count();
+    let n_f = f.iter().filter(|&&b| b).count();
+    let map = Rgb8::from_fn(img.width as u32, img.height as u32, |x, y| {
+        let i = y as usize * img.width + x as usize;
+        if d[i] {
+            Rgb([255, 170, 0])
+        } else if f[i] {
+            Rgb([255, 30, 30])
+        } else if l[i] {
+            Rgb([40, 120, 255])
+        } else {
+            let g = (luminance(tonemap(img.data[i], exposure)) * 140.0) as u8;
+            Rgb([g, g, g])
+        }
+    });
+    (map, n_f - n_d, n_d)
 }
 
 /// The kernel `N(0, k)` cut at `radius` standard deviations (`|L^-1 t| <= radius`, `k = L
@@ -303,10 +347,17 @@ pub fn investigate(
         c_box,
     );
 
+    // Candidate 5: a highlight moved by a pixel (false glint and lost highlight side by side).
+    let (disp_before, iso_b, adj_b) = displacement_map(&before, ref_b, o.exposure);
+    let (disp_after, iso_a, adj_a) = displacement_map(&after, ref_b, o.exposure);
+    writeln!(md, "| 5. a highlight moved by one pixel | first-order footprint: false glints next to a reference highlight / isolated | {adj_b} / {iso_b} | - |").unwrap();
+    writeln!(md, "| 5. a highlight moved by one pixel | windowed moments (the fix): false glints next to a reference highlight / isolated | {adj_a} / {iso_a} | - |").unwrap();
+
     writeln!(md, "\n1. **First-order footprint.** On the water, the first-order kernel's trace over the windowed moments' (the covariance of the normal's slope over the pixel's Gaussian window, exact for the sum of sines): median {:.2} over all water pixels (10-90 %: {:.2}-{:.2}), median {:.2} at the false glints (10-90 %: {:.2}-{:.2}). Figure `glints-footprint.png`: log2 of that ratio from -2 (blue) to 6 (orange), false glints in red.", qa[1], qa[0], qa[2], qg[1], qg[0], qg[2]).unwrap();
     writeln!(md, "2. **Gaussian tails.** The slope that lights each false glint lies at a Mahalanobis distance of the first-order kernel of median {:.2} (10-90 %: {:.2}-{:.2}); {} of {} false glints lie beyond 2 sigma. Figure `glints-tails.png`: the frame with the kernel cut at 2 sigma.", qd[1], qd[0], qd[2], beyond2, dist.len()).unwrap();
     writeln!(md, "3. **Clamps.** Figure `glints-clamps.png`: false glints and lost highlights against the maximum extent lambda (index: lambda = {lambdas:?}).").unwrap();
     writeln!(md, "4. **The reference's pixel filter.** Figure `glints-reference.png`: the Gaussian- and the box-filtered references and the false glints against each.").unwrap();
+    writeln!(md, "5. **A highlight moved by one pixel.** A false glint with a reference highlight (display > {BRIGHT}) among its 8 neighbours is the same highlight one pixel off (FLIP scores it; the counts score it twice, once false and once lost). Figure `glints-displaced.png`: those in orange, isolated false glints in red, lost highlights in blue, before and after the fix.").unwrap();
 
     // Figures.
     let ex = o.exposure;
@@ -386,6 +437,16 @@ pub fn investigate(
             zoom,
         ),
     )?;
-    let _ = Vec3::ZERO;
+    save(
+        "glints-displaced.png",
+        &contact_sheet(
+            &[
+                tile(format!("first-order: {adj_b} moved, {iso_b} isolated"), disp_before),
+                tile(format!("windowed moments: {adj_a} moved, {iso_a} isolated"), disp_after),
+            ],
+            2,
+            zoom,
+        ),
+    )?;
     Ok(md)
 }

@@ -4,7 +4,7 @@
 //!
 //! Run: `cargo run --release --example highlights -- [--width 256] [--height 160]
 //! [--spp 512] [--frames 16] [--out target/highlights] [--methods a,b,..|all]
-//! [--presets on|off]
+//! [--presets on|off] [--investigate on|off] [--fix on|off]
 //! [--footprint quad|rays|moments] [--threads 2] [--seed 1]`.
 
 mod camera;
@@ -44,6 +44,9 @@ pub struct Options {
     pub presets: bool,
     /// Run the false-glint investigation (`glints.rs`).
     pub investigate: bool,
+    /// Also score the footprint methods on the windowed-moments route (the false-glint
+    /// fix), still frame and temporal test.
+    pub fix: bool,
 }
 
 fn usage() -> ! {
@@ -71,6 +74,7 @@ fn parse_args() -> Options {
         exposure: 1.0,
         presets: true,
         investigate: true,
+        fix: true,
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -85,6 +89,7 @@ fn parse_args() -> Options {
             "--seed" => o.seed = num(&value) as u64,
             "--presets" => o.presets = value != "off",
             "--investigate" => o.investigate = value != "off",
+            "--fix" => o.fix = value != "off",
             "--out" => o.out = PathBuf::from(value),
             "--footprint" => {
                 o.route = match value.as_str() {
@@ -155,7 +160,7 @@ fn main() -> std::io::Result<()> {
     let mut worst_change: f64 = 0.0;
     // Issue 21's metrics of every method and preset (the flicker comes from the temporal
     // test below), and the LDR-FLIP maps.
-    let mut scores: Vec<(Method, metrics::Scores)> = Vec::new();
+    let mut scores: Vec<(Method, FootprintRoute, metrics::Scores)> = Vec::new();
     let mut flip_tiles: Vec<(String, Rgb8)> = Vec::new();
     for &method in &o.methods {
         let t = Instant::now();
@@ -168,7 +173,7 @@ fn main() -> std::io::Result<()> {
             (reference.full(fam), reference.specular(fam)),
             o.exposure,
         );
-        scores.push((method, sc));
+        scores.push((method, o.route, sc));
         let map = map.to_rgb8();
         image_out::save(&map, &o.out.join(format!("flip-{}.png", method.slug())))?;
         flip_tiles.push((format!("{} {:.3}", method.label(), sc.flip_ldr), map));
@@ -194,6 +199,51 @@ fn main() -> std::io::Result<()> {
         save(&o, method.slug(), img)?;
         tiles.push((method.label().to_string(), img.to_rgb8(o.exposure)));
     }
+    // The false-glint fix: the footprint methods again on the windowed-moments route.
+    let fixed: Vec<Method> = if o.fix && o.route != FootprintRoute::Moments {
+        o.methods
+            .iter()
+            .copied()
+            .filter(|m| m.uses_footprint())
+            .collect()
+    } else {
+        Vec::new()
+    };
+    if !fixed.is_empty() {
+        let moments = gb.derivatives(&scene, FootprintRoute::Moments);
+        let mut fixed_tiles = vec![
+            (
+                "Reference Beckmann".to_string(),
+                reference.full(Family::Beckmann).to_rgb8(o.exposure),
+            ),
+            (
+                "Reference GGX".to_string(),
+                reference.full(Family::Ggx).to_rgb8(o.exposure),
+            ),
+        ];
+        for &method in &fixed {
+            let frame = render::shade_frame(&scene, &gb, &moments, method);
+            let fam = method.family();
+            let (sc, map) = metrics::score(
+                (&frame.total, &frame.specular),
+                (reference.full(fam), reference.specular(fam)),
+                o.exposure,
+            );
+            scores.push((method, FootprintRoute::Moments, sc));
+            let slug = format!("{}-moments", method.slug());
+            image_out::save(&map.to_rgb8(), &o.out.join(format!("flip-{slug}.png")))?;
+            save(&o, &slug, &frame.total)?;
+            fixed_tiles.push((
+                temporal::variant_label(method, FootprintRoute::Moments),
+                frame.total.to_rgb8(o.exposure),
+            ));
+        }
+        let zoom = if o.width <= 320 { 2 } else { 1 };
+        image_out::save(
+            &contact_sheet(&fixed_tiles, 3, zoom),
+            &o.out.join("contact_sheet_moments.png"),
+        )?;
+    }
     // Engine conventions (issue: which one over- or under-filters on this scene): the same
     // still frame, table only; mean luminance / reference < 1 means over-filtering.
     let mut preset_table = String::new();
@@ -209,7 +259,7 @@ fn main() -> std::io::Result<()> {
                 (full, reference.specular(method.family())),
                 o.exposure,
             );
-            scores.push((method, sc));
+            scores.push((method, o.route, sc));
             writeln!(
                 preset_table,
                 "| {} | {:.4} | {:.4} | {:.3} | {:.3} |",
@@ -291,7 +341,7 @@ fn main() -> std::io::Result<()> {
         Vec::new()
     };
     let temporal = (o.frames >= 2)
-        .then(|| temporal::run(&o, &presets))
+        .then(|| temporal::run(&o, &presets, &fixed))
         .transpose()?;
     let temporal_md = temporal
         .as_ref()
@@ -328,48 +378,32 @@ fn main() -> std::io::Result<()> {
     Ok(())
 }
 
-/// Issue 21's table: per method and preset, FLIP, flicker, specular error, false glints and
-/// lost highlights, the HDR RMSE, and where it stands against unfiltered of its NDF.
-fn lead_table(scores: &[(Method, metrics::Scores)], temporal: Option<&temporal::Temporal>) -> String {
-    let mut t = String::new();
-    writeln!(t, "| method | NDF | FLIP LDR | FLIP HDR | flicker error / ref. | flicker energy / ref. | peak flicker | specular error | false glints | lost highlights | RMSE (HDR) | against unfiltered |").unwrap();
-    writeln!(t, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|").unwrap();
-    let flicker = |m: Method| {
+/// Issue 21's table for the CPU demo's methods, presets and variants ([`metrics::lead_table`]).
+fn lead_table(
+    scores: &[(Method, FootprintRoute, metrics::Scores)],
+    temporal: Option<&temporal::Temporal>,
+) -> String {
+    let flicker = |m: Method, r: FootprintRoute| {
         temporal.and_then(|tp| {
-            let i = tp.methods.iter().position(|&x| x == m)?;
-            Some((tp.flicker_error[i], tp.flicker[i], tp.peak_variation[i]))
+            let i = tp.methods.iter().position(|&x| x == (m, r))?;
+            Some(metrics::Flicker {
+                error: tp.flicker_error[i],
+                energy: tp.flicker[i],
+                peak_variation: tp.peak_variation[i],
+            })
         })
     };
-    for &(m, s) in scores {
-        let base_method = Method::Unfiltered(m.family());
-        let base = scores.iter().find(|(b, _)| *b == base_method);
-        let (fl, fe, pv) = flicker(m).unwrap_or((f64::NAN, f64::NAN, f64::NAN));
-        let verdict = match (base, flicker(base_method)) {
-            (Some((_, b)), Some((bf, _, _))) if m != base_method => {
-                metrics::verdict((&s, fl), (b, bf))
-            }
-            _ if m == base_method => "(baseline)".to_string(),
-            _ => "-".to_string(),
-        };
-        writeln!(
-            t,
-            "| {} | {} | {:.4} | {:.4} | {:.2} | {:.2} | {:.1}% | {:.4} | {} | {} | {:.4} | {} |",
-            m.label(),
-            m.family().name(),
-            s.flip_ldr,
-            s.flip_hdr,
-            fl,
-            fe,
-            100.0 * pv,
-            s.specular,
-            s.false_glints,
-            s.lost_highlights,
-            s.rmse_hdr,
-            verdict
-        )
-        .unwrap();
-    }
-    t
+    let rows: Vec<metrics::LeadRow> = scores
+        .iter()
+        .map(|&(m, route, s)| metrics::LeadRow {
+            label: temporal::variant_label(m, route),
+            ndf: m.family().name(),
+            baseline: m == Method::Unfiltered(m.family()),
+            scores: s,
+            flicker: flicker(m, route),
+        })
+        .collect();
+    metrics::lead_table(&rows)
 }
 
 fn save(o: &Options, name: &str, img: &Image) -> std::io::Result<()> {

@@ -284,6 +284,75 @@ pub fn verdict(m: (&Scores, f64), base: (&Scores, f64)) -> String {
     }
 }
 
+/// A method's temporal scores ([`flicker_error`] and [`flicker_energy`] over the reference's
+/// energy, and KHPL16 Fig. 12's frame-to-frame variation of the peak).
+#[derive(Clone, Copy, Debug)]
+pub struct Flicker {
+    pub error: f64,
+    pub energy: f64,
+    pub peak_variation: f64,
+}
+
+/// One row of the lead table.
+pub struct LeadRow {
+    pub label: String,
+    /// The NDF's name; the verdict compares each row with the baseline row of its NDF.
+    pub ndf: &'static str,
+    /// Unfiltered (the row the others are compared with).
+    pub baseline: bool,
+    pub scores: Scores,
+    pub flicker: Option<Flicker>,
+}
+
+/// Issue 21's table, shared by the CPU and GPU demonstrations: per row FLIP, flicker,
+/// specular error, false glints and lost highlights, the HDR RMSE, and where it stands
+/// against the unfiltered row of its NDF ([`verdict`]). A missing score prints as `-`.
+pub fn lead_table(rows: &[LeadRow]) -> String {
+    use std::fmt::Write as _;
+    let mut t = String::new();
+    writeln!(t, "| method | NDF | FLIP LDR | FLIP HDR | flicker error / ref. | flicker energy / ref. | peak flicker | specular error | false glints | lost highlights | RMSE (HDR) | against unfiltered |").unwrap();
+    writeln!(t, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|").unwrap();
+    let num = |v: f64, digits: usize| {
+        if v.is_finite() {
+            format!("{v:.digits$}")
+        } else {
+            "-".to_string()
+        }
+    };
+    for r in rows {
+        let base = rows.iter().find(|b| b.baseline && b.ndf == r.ndf);
+        let verdict = match (base, r.flicker, base.and_then(|b| b.flicker)) {
+            _ if r.baseline => "(baseline)".to_string(),
+            (Some(b), Some(f), Some(bf)) => verdict((&r.scores, f.error), (&b.scores, bf.error)),
+            _ => "-".to_string(),
+        };
+        let f = r.flicker.unwrap_or(Flicker {
+            error: f64::NAN,
+            energy: f64::NAN,
+            peak_variation: f64::NAN,
+        });
+        let s = &r.scores;
+        writeln!(
+            t,
+            "| {} | {} | {:.4} | {:.4} | {} | {} | {}% | {} | {} | {} | {:.4} | {} |",
+            r.label,
+            r.ndf,
+            s.flip_ldr,
+            s.flip_hdr,
+            num(f.error, 2),
+            num(f.energy, 2),
+            num(100.0 * f.peak_variation, 1),
+            num(s.specular, 4),
+            s.false_glints,
+            s.lost_highlights,
+            s.rmse_hdr,
+            verdict
+        )
+        .unwrap();
+    }
+    t
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

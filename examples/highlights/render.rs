@@ -81,6 +81,7 @@ fn tangent_frame(n: Vec3) -> Mat3 {
 
 /// Outgoing radiance at `s` with the microfacet density `d` (per steradian, evaluated at the
 /// local half vector by the caller) and the Smith term of `family` at the base roughness.
+#[allow(dead_code)] // the demos shade through `radiance_parts`; the GPU shaders mirror this
 pub fn radiance(scene: &Scene, s: &Surface, family: Family, d: impl FnOnce(Vec3) -> f32) -> Vec3 {
     let (rest, specular) = radiance_parts(scene, s, family, d);
     rest + specular

@@ -5,6 +5,7 @@
 
 use crate::camera::camera_at;
 use crate::methods::Method;
+use crate::render::FootprintRoute;
 use crate::metrics::{display_luminance, flicker_energy, flicker_error};
 use crate::peaks::{distance, mean, variation};
 use crate::plot::{PALETTE, Series, line_plot};
@@ -17,26 +18,30 @@ use std::fmt::Write as _;
 const DOWNSCALE: usize = 2;
 pub const SPP_DIVISOR: usize = 4;
 
-/// What the temporal test measured, per method of `methods` (in order).
+/// What the temporal test measured, per (method, footprint route) of `methods` (in order).
 pub struct Temporal {
-    pub methods: Vec<Method>,
+    pub methods: Vec<(Method, FootprintRoute)>,
     /// Flicker energy divided by the reference's (same family).
     pub flicker: Vec<f64>,
     /// Flicker error ([`flicker_error`]) divided by the reference's flicker energy.
     pub flicker_error: Vec<f64>,
-    /// Frame-to-frame variation of the peak, and its distance to the reference's peak.
+    /// Frame-to-frame variation of the peak.
     pub peak_variation: Vec<f64>,
-    pub peak_distance: Vec<f64>,
-    /// The references' flicker energies (Beckmann, GGX).
-    pub reference_flicker: [f64; 2],
     pub markdown: String,
 }
 
-/// Runs the test on `o.methods`, then `extra` (the engine presets: their flicker only).
-pub fn run(o: &Options, extra: &[Method]) -> std::io::Result<Temporal> {
+/// Runs the test on `o.methods`, then `extra` (the engine presets: their flicker only), on
+/// `o.route`, then `fixed` on the windowed-moments route (the false-glint fix).
+pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<Temporal> {
     let (w, h) = ((o.width / DOWNSCALE).max(2), (o.height / DOWNSCALE).max(2));
     let spp = (o.spp / SPP_DIVISOR).max(2);
-    let all: Vec<Method> = o.methods.iter().chain(extra).copied().collect();
+    let all: Vec<(Method, FootprintRoute)> = o
+        .methods
+        .iter()
+        .chain(extra)
+        .map(|&m| (m, o.route))
+        .chain(fixed.iter().map(|&m| (m, FootprintRoute::Moments)))
+        .collect();
     let mut peaks = vec![Vec::new(); all.len()];
     let mut lums = vec![Vec::new(); all.len()];
     let mut ref_peaks = [Vec::new(), Vec::new()];
@@ -52,8 +57,14 @@ pub fn run(o: &Options, extra: &[Method]) -> std::io::Result<Temporal> {
         }
         let gb = render::gbuffer(scene, &cam, w, h);
         let derivs = gb.derivatives(scene, o.route);
-        for (i, &m) in all.iter().enumerate() {
-            let img = render::shade(scene, &gb, &derivs, m);
+        let moments = (!fixed.is_empty() && o.route != FootprintRoute::Moments)
+            .then(|| gb.derivatives(scene, FootprintRoute::Moments));
+        for (i, &(m, route)) in all.iter().enumerate() {
+            let d = match (&moments, route) {
+                (Some(mo), FootprintRoute::Moments) => mo,
+                _ => &derivs,
+            };
+            let img = render::shade(scene, &gb, d, m);
             peaks[i].push(img.peak());
             lums[i].push(display_luminance(&img, o.exposure));
         }
@@ -94,20 +105,19 @@ pub fn run(o: &Options, extra: &[Method]) -> std::io::Result<Temporal> {
             dashed: true,
         });
     }
-    let (mut flicker, mut peak_variation, mut peak_distance) = (vec![], vec![], vec![]);
+    let (mut flicker, mut peak_variation) = (vec![], vec![]);
     let mut flicker_err = vec![];
-    for (i, &m) in all.iter().enumerate() {
+    for (i, &(m, route)) in all.iter().enumerate() {
         let p = &peaks[i];
         let r = &ref_peaks[m.family() as usize];
         let fam = m.family() as usize;
         flicker.push(flicker_energy(&lums[i]) / reference_flicker[fam]);
         flicker_err.push(flicker_error(&lums[i], &ref_lums[fam]) / reference_flicker[fam]);
         peak_variation.push(variation(p));
-        peak_distance.push(distance(p, r));
         writeln!(
             md,
             "| {} | {:.2} | {:.2} | {:.1} | {:.1}% | {:.1}% |",
-            m.label(),
+            variant_label(m, route),
             flicker[i],
             flicker_err[i],
             mean(p),
@@ -115,14 +125,14 @@ pub fn run(o: &Options, extra: &[Method]) -> std::io::Result<Temporal> {
             100.0 * distance(p, r)
         )
         .unwrap();
-        if i >= o.methods.len() {
+        if i >= o.methods.len() && route != FootprintRoute::Moments {
             continue;
         }
         series.push(Series {
-            label: m.label().to_string(),
+            label: variant_label(m, route),
             color: PALETTE[index_of(m) % PALETTE.len()],
             values: p.clone(),
-            dashed: false,
+            dashed: route == FootprintRoute::Moments && o.route != FootprintRoute::Moments,
         });
     }
     let plot = line_plot(
@@ -140,10 +150,16 @@ pub fn run(o: &Options, extra: &[Method]) -> std::io::Result<Temporal> {
         flicker,
         flicker_error: flicker_err,
         peak_variation,
-        peak_distance,
-        reference_flicker,
         markdown: md,
     })
+}
+
+/// A method's label, with the footprint route when it is the windowed-moments one.
+pub fn variant_label(m: Method, route: FootprintRoute) -> String {
+    match route {
+        FootprintRoute::Moments if m.uses_footprint() => format!("{} + moments", m.label()),
+        _ => m.label().to_string(),
+    }
 }
 
 fn index_of(m: Method) -> usize {
