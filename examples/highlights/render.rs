@@ -158,7 +158,21 @@ pub struct PixelDerivatives {
     /// the half-vector filters evaluate their lobe at `mean_shift * h` (identity but on the
     /// `Moments` route).
     pub mean_shift: Quat,
+    /// On the `Moments` route, a support clamp that the false-glint investigation measures
+    /// (`glints.rs`; the demo's methods do not use it): how far (in units of the roughness
+    /// `alpha`) the gradient whose normal reflects the light to the eye lies outside a bound
+    /// of the gradients the water has within [`SUPPORT_SIGMAS`] of the pixel's window
+    /// ([`Scene::gradient_gap`]), less the half vector's own change over the window
+    /// (parallax); 0 inside, and on the other routes.
+    pub support_gap: f32,
 }
+
+/// The window, in standard deviations of the pixel filter, that the support clamp covers.
+pub const SUPPORT_SIGMAS: f32 = 2.5;
+/// Beyond this support gap (in `alpha`) the support clamp answers 0: no normal of the window
+/// comes within 4 alpha of reflecting the light (a Beckmann lobe is down by `exp(-16)`
+/// there), which a Gaussian kernel, with its unbounded support, cannot know.
+pub const SUPPORT_GAP_ALPHAS: f32 = 4.0;
 
 impl GBuffer {
     fn at(&self, x: usize, y: usize) -> Option<&Surface> {
@@ -219,6 +233,7 @@ impl GBuffer {
             dn_dx,
             dn_dy,
             mean_shift: Quat::IDENTITY,
+            support_gap: 0.0,
         }
     }
 
@@ -282,9 +297,26 @@ impl GBuffer {
         let total = parallax.covariance(methods::SIGMA_PIXEL)
             + Covariance::new(k.x_axis.x, 0.5 * (k.y_axis.x + k.x_axis.y), k.y_axis.y);
         let mean_normal = Vec3::new(-mean.x, 1.0, -mean.y).normalize();
+        // The support test: the gradient g* whose normal is the half vector, at the pixel
+        // centre and at the window's 2.5-sigma points (the parallax margin).
+        let light = s.hit.position + s.wi * s.dist2.sqrt();
+        let g_star = |p: Vec3| {
+            let h = ((self.eye - p).normalize() + (light - p).normalize()).normalize();
+            Vec2::new(-h.x, -h.z) / h.y.max(1e-3)
+        };
+        let g0 = g_star(s.hit.position);
+        let k = SUPPORT_SIGMAS * methods::SIGMA_PIXEL;
+        let parallax = [dx_u, -dx_u, dx_v, -dx_v]
+            .iter()
+            .map(|&d| (g_star(s.hit.position + k * d) - g0).length())
+            .fold(0.0, f32::max);
+        let gap = scene
+            .gradient_gap(&s.hit, window, SUPPORT_SIGMAS, g0)
+            .unwrap_or(0.0);
         PixelDerivatives {
             footprint: footprint_of(total.sanitized(), methods::SIGMA_PIXEL),
             mean_shift: Quat::from_rotation_arc(s.local(mean_normal), Vec3::Z),
+            support_gap: ((gap - parallax) / s.hit.alpha).max(0.0),
             ..rays
         }
     }
