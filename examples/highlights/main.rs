@@ -4,7 +4,7 @@
 //!
 //! Run: `cargo run --release --example highlights -- [--width 256] [--height 160]
 //! [--spp 512] [--frames 16] [--out target/highlights] [--methods a,b,..|all]
-//! [--presets on|off] [--investigate on|off] [--fix on|off]
+//! [--presets on|off] [--investigate on|off] [--fix on|off] [--scene both|water|normal-map]
 //! [--footprint quad|rays|moments] [--threads 2] [--seed 1]`.
 
 mod camera;
@@ -12,6 +12,7 @@ mod glints;
 mod image_out;
 mod methods;
 mod metrics;
+mod normal_map;
 mod parallel;
 mod peaks;
 mod plot;
@@ -44,6 +45,8 @@ pub struct Options {
     pub presets: bool,
     /// Run the false-glint investigation (`glints.rs`).
     pub investigate: bool,
+    /// Which scenes: the water (`water`), the normal-mapped floor (`normal-map`), or both.
+    pub scene: &'static str,
     /// Also score the footprint methods on the windowed-moments route (the false-glint
     /// fix), still frame and temporal test.
     pub fix: bool,
@@ -75,6 +78,7 @@ fn parse_args() -> Options {
         presets: true,
         investigate: true,
         fix: true,
+        scene: "both",
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -90,6 +94,14 @@ fn parse_args() -> Options {
             "--presets" => o.presets = value != "off",
             "--investigate" => o.investigate = value != "off",
             "--fix" => o.fix = value != "off",
+            "--scene" => {
+                o.scene = match value.as_str() {
+                    "water" => "water",
+                    "normal-map" => "normal-map",
+                    "both" => "both",
+                    _ => usage(),
+                }
+            }
             "--out" => o.out = PathBuf::from(value),
             "--footprint" => {
                 o.route = match value.as_str() {
@@ -120,6 +132,13 @@ fn main() -> std::io::Result<()> {
     parallel::init_threads(o.threads);
     std::fs::create_dir_all(&o.out)?;
     let start = Instant::now();
+    if o.scene == "normal-map" {
+        let md = normal_map::run(&o)?;
+        print!("{md}");
+        std::fs::write(o.out.join("normal_map.md"), md)?;
+        println!("\nTotal {:.1} s.", start.elapsed().as_secs_f64());
+        return Ok(());
+    }
     let cam = camera_at(0, o.width, o.height);
     let scene = Scene::new(cam.lod());
     eprintln!(
@@ -369,6 +388,11 @@ fn main() -> std::io::Result<()> {
     )
     .unwrap();
     writeln!(md, "Reference: {} spp; doubling {} -> {} spp changes each RMSE by at most {:.2}%.\n{temporal_md}", o.spp, o.spp / 2, o.spp, 100.0 * worst_change).unwrap();
+    if o.scene == "both" {
+        let nm = normal_map::run(&o)?;
+        print!("{nm}");
+        md.push_str(&nm);
+    }
     std::fs::write(o.out.join("results.md"), md)?;
     println!(
         "\nTotal {:.1} s. Images, contact sheet, plot and results.md in {}",
