@@ -258,8 +258,10 @@ pub fn investigate(
     writeln!(md, "A false glint: display luminance > {BRIGHT} in the frame where the reference's is < {DARK}; a lost highlight: the reverse. Counts as (false glints, lost highlights). Ray-differential footprints (KHPL16's first-order route) unless stated.\n").unwrap();
     writeln!(md, "| candidate | experiment | false glints | lost highlights |").unwrap();
     writeln!(md, "|---|---|---:|---:|").unwrap();
+    // Rows, sorted by candidate before they are written (stable: experiments in order).
+    let mut rows: Vec<String> = Vec::new();
     let mut row = |cand: &str, exp: &str, c: (usize, usize)| {
-        writeln!(md, "| {cand} | {exp} | {} | {} |", c.0, c.1).unwrap();
+        rows.push(format!("| {cand} | {exp} | {} | {} |", c.0, c.1));
     };
     row("-", "unfiltered", counts(&render::shade(scene, gb, &rays, Method::Unfiltered(Family::Beckmann))));
     row("-", "KHPL16 A+2S, first-order footprint (before)", f_before);
@@ -398,7 +400,7 @@ pub fn investigate(
 
     // A missing clamp: the kernel's support.
     row(
-        "7. a support clamp",
+        "7. a support clamp (a missing clamp)",
         &format!("windowed moments, 0 where no gradient within {} sigma of the window comes within {} alpha of reflecting (the parallax subtracted)", render::SUPPORT_SIGMAS, render::SUPPORT_GAP_ALPHAS),
         counts(&clamped),
     );
@@ -459,8 +461,12 @@ pub fn investigate(
     // Candidate 5: a highlight moved by a pixel (false glint and lost highlight side by side).
     let (disp_before, iso_b, adj_b) = displacement_map(&before, ref_b, o.exposure);
     let (disp_after, iso_a, adj_a) = displacement_map(after_ns, ref_b, o.exposure);
-    writeln!(md, "| 5. a highlight moved by one pixel | first-order footprint: false glints next to a reference highlight / isolated | {adj_b} / {iso_b} | - |").unwrap();
-    writeln!(md, "| 5. a highlight moved by one pixel | windowed moments: false glints next to a reference highlight / isolated | {adj_a} / {iso_a} | - |").unwrap();
+    rows.push(format!("| 5. a highlight moved by one pixel | first-order footprint: false glints next to a reference highlight / isolated | {adj_b} / {iso_b} | - |"));
+    rows.push(format!("| 5. a highlight moved by one pixel | windowed moments: false glints next to a reference highlight / isolated | {adj_a} / {iso_a} | - |"));
+    rows.sort_by_key(|r| r.chars().nth(2).filter(|c| c.is_ascii_digit()).map_or(0, |c| c as u32));
+    for r in &rows {
+        writeln!(md, "{r}").unwrap();
+    }
 
     writeln!(md, "\n1. **First-order footprint.** On the water, the first-order kernel's trace over the windowed moments' (the covariance of the normal's slope over the pixel's Gaussian window, exact for the sum of sines): median {:.2} over all water pixels (10-90 %: {:.2}-{:.2}), median {:.2} at the false glints (10-90 %: {:.2}-{:.2}). Figure `glints-footprint.png`: log2 of that ratio from -2 (blue) to 6 (orange), false glints in red.", qa[1], qa[0], qa[2], qg[1], qg[0], qg[2]).unwrap();
     writeln!(md, "2. **Gaussian tails.** The slope that lights each false glint lies at a Mahalanobis distance of the first-order kernel of median {:.2} (10-90 %: {:.2}-{:.2}); {} of {} false glints lie beyond 2 sigma; on the windowed moments, median {:.2} (10-90 %: {:.2}-{:.2}), {} of {} beyond 2 sigma. Figure `glints-tails.png`: the frames with the kernel cut at 2 sigma, both routes.", qd[1], qd[0], qd[2], beyond2, dist.len(), qd_after[1], qd_after[0], qd_after[2], beyond2_after, dist_after.len()).unwrap();
