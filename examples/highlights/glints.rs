@@ -141,7 +141,10 @@ fn window_exact(scene: &Scene, gb: &GBuffer, derivs: &[PixelDerivatives]) -> Ima
             let a = (j as f32 + 0.5) / N as f32;
             let b = ((j * G) % N) as f32 / N as f32 + 0.5 / N as f32;
             let rad = (-2.0 * a.ln()).sqrt();
-            let (u, v) = (rad * (std::f32::consts::TAU * b).cos(), rad * (std::f32::consts::TAU * b).sin());
+            let (u, v) = (
+                rad * (std::f32::consts::TAU * b).cos(),
+                rad * (std::f32::consts::TAU * b).sin(),
+            );
             let p = s.hit.position + SIGMA_PIXEL * (u * dx_u + v * dx_v);
             let c = s.h.dot(scene.water_normal(p.x, p.z)).clamp(-1.0, 1.0);
             let hl = glam::Vec3::new((1.0 - c * c).max(0.0).sqrt(), 0.0, c);
@@ -175,15 +178,17 @@ pub fn truncated_fraction(k: Covariance, alpha: f32, s: Vec2, radius: f32) -> f3
     let c11 = cov.x_axis.x.max(0.0).sqrt();
     let c21 = if c11 > 0.0 { cov.x_axis.y / c11 } else { 0.0 };
     let c22 = (cov.y_axis.y - c21 * c21).max(0.0).sqrt();
-    const X: [f32; 4] = [0.381_186_99, 1.157_193_7, 1.981_656_8, 2.930_637_4];
-    const W: [f32; 4] = [0.661_147_0, 0.207_802_3, 0.017_077_98, 0.000_199_604_1];
+    // Gauss-Hermite nodes and weights (8 points; the positive half), printed to f64.
+    const X: [f64; 4] = [0.381_186_99, 1.157_193_7, 1.981_656_8, 2.930_637_4];
+    const W: [f64; 4] = [0.661_147_0, 0.207_802_3, 0.017_077_98, 0.000_199_604_1];
+    let (x, wt) = (X.map(|v| v as f32), W.map(|v| v as f32));
     let (mut inside, mut total) = (0.0, 0.0);
-    for (i, &xi) in X.iter().chain(X.iter()).enumerate() {
+    for (i, &xi) in x.iter().chain(x.iter()).enumerate() {
         let zi = if i < 4 { xi } else { -xi } * std::f32::consts::SQRT_2;
-        let wi = W[i % 4];
-        for (j, &xj) in X.iter().chain(X.iter()).enumerate() {
+        let wi = wt[i % 4];
+        for (j, &xj) in x.iter().chain(x.iter()).enumerate() {
             let zj = if j < 4 { xj } else { -xj } * std::f32::consts::SQRT_2;
-            let w = wi * W[j % 4];
+            let w = wi * wt[j % 4];
             let u = mu + Vec2::new(c11 * zi, c21 * zi + c22 * zj);
             total += w;
             if u.length() <= radius {
@@ -256,20 +261,35 @@ pub fn investigate(
     )
     .unwrap();
     writeln!(md, "A false glint: display luminance > {BRIGHT} in the frame where the reference's is < {DARK}; a lost highlight: the reverse. Counts as (false glints, lost highlights). Ray-differential footprints (KHPL16's first-order route) unless stated.\n").unwrap();
-    writeln!(md, "| candidate | experiment | false glints | lost highlights |").unwrap();
+    writeln!(
+        md,
+        "| candidate | experiment | false glints | lost highlights |"
+    )
+    .unwrap();
     writeln!(md, "|---|---|---:|---:|").unwrap();
     // Rows, sorted by candidate before they are written (stable: experiments in order).
     let mut rows: Vec<String> = Vec::new();
     let mut row = |cand: &str, exp: &str, c: (usize, usize)| {
         rows.push(format!("| {cand} | {exp} | {} | {} |", c.0, c.1));
     };
-    row("-", "unfiltered", counts(&render::shade(scene, gb, &rays, Method::Unfiltered(Family::Beckmann))));
+    row(
+        "-",
+        "unfiltered",
+        counts(&render::shade(
+            scene,
+            gb,
+            &rays,
+            Method::Unfiltered(Family::Beckmann),
+        )),
+    );
     row("-", "KHPL16 A+2S, first-order footprint (before)", f_before);
 
     // Candidate 1: the first-order footprint against the windowed moments.
     let ratio: Vec<Option<f32>> = (0..w * h)
         .map(|i| {
-            let on_water = gb.pixels[i].as_ref().is_some_and(|(s, _)| s.hit.object == 0);
+            let on_water = gb.pixels[i]
+                .as_ref()
+                .is_some_and(|(s, _)| s.hit.object == 0);
             on_water.then(|| {
                 let a = rays[i].footprint.covariance(SIGMA_PIXEL).trace();
                 let b = moments[i].footprint.covariance(SIGMA_PIXEL).trace();
@@ -362,7 +382,11 @@ pub fn investigate(
         .filter(|&i| mask_after[i] && moments[i].support_gap > render::SUPPORT_GAP_ALPHAS)
         .count();
     let water: Vec<usize> = (0..w * h)
-        .filter(|&i| gb.pixels[i].as_ref().is_some_and(|(s, _)| s.hit.object == 0))
+        .filter(|&i| {
+            gb.pixels[i]
+                .as_ref()
+                .is_some_and(|(s, _)| s.hit.object == 0)
+        })
         .collect();
     let clamped_water = water
         .iter()
@@ -401,7 +425,11 @@ pub fn investigate(
     // A missing clamp: the kernel's support.
     row(
         "7. a support clamp (a missing clamp)",
-        &format!("windowed moments, 0 where no gradient within {} sigma of the window comes within {} alpha of reflecting (the parallax subtracted)", render::SUPPORT_SIGMAS, render::SUPPORT_GAP_ALPHAS),
+        &format!(
+            "windowed moments, 0 where no gradient within {} sigma of the window comes within {} alpha of reflecting (the parallax subtracted)",
+            render::SUPPORT_SIGMAS,
+            render::SUPPORT_GAP_ALPHAS
+        ),
         counts(&clamped),
     );
 
@@ -416,11 +444,7 @@ pub fn investigate(
         let c = counts(&beckmann_with(scene, gb, &rays, rules, None));
         clamp_series[0].push(c.0 as f32);
         clamp_series[1].push(c.1 as f32);
-        row(
-            "3. clamps",
-            &format!("maximum extent lambda = {lambda}"),
-            c,
-        );
+        row("3. clamps", &format!("maximum extent lambda = {lambda}"), c);
     }
     let tk19 = ClampRules {
         floor: ExtentFloor::None,
@@ -463,7 +487,12 @@ pub fn investigate(
     let (disp_after, iso_a, adj_a) = displacement_map(after_ns, ref_b, o.exposure);
     rows.push(format!("| 5. a highlight moved by one pixel | first-order footprint: false glints next to a reference highlight / isolated | {adj_b} / {iso_b} | - |"));
     rows.push(format!("| 5. a highlight moved by one pixel | windowed moments: false glints next to a reference highlight / isolated | {adj_a} / {iso_a} | - |"));
-    rows.sort_by_key(|r| r.chars().nth(2).filter(|c| c.is_ascii_digit()).map_or(0, |c| c as u32));
+    rows.sort_by_key(|r| {
+        r.chars()
+            .nth(2)
+            .filter(|c| c.is_ascii_digit())
+            .map_or(0, |c| c as u32)
+    });
     for r in &rows {
         writeln!(md, "{r}").unwrap();
     }
@@ -487,9 +516,25 @@ pub fn investigate(
                 tile("Reference Beckmann", ref_b.to_rgb8(ex)),
                 tile("KHPL16 first-order (before)", before.to_rgb8(ex)),
                 tile("KHPL16 windowed moments (after)", after.to_rgb8(ex)),
-                tile("Unfiltered: false red, lost blue", glint_map(&render::shade(scene, gb, &rays, Method::Unfiltered(Family::Beckmann)), ref_b, ex)),
-                tile(format!("Before: {} false, {} lost", f_before.0, f_before.1), glint_map(&before, ref_b, ex)),
-                tile({ let c = counts(&after); format!("After: {} false, {} lost", c.0, c.1) }, glint_map(&after, ref_b, ex)),
+                tile(
+                    "Unfiltered: false red, lost blue",
+                    glint_map(
+                        &render::shade(scene, gb, &rays, Method::Unfiltered(Family::Beckmann)),
+                        ref_b,
+                        ex,
+                    ),
+                ),
+                tile(
+                    format!("Before: {} false, {} lost", f_before.0, f_before.1),
+                    glint_map(&before, ref_b, ex),
+                ),
+                tile(
+                    {
+                        let c = counts(&after);
+                        format!("After: {} false, {} lost", c.0, c.1)
+                    },
+                    glint_map(&after, ref_b, ex),
+                ),
             ],
             3,
             zoom,
@@ -511,9 +556,15 @@ pub fn investigate(
         &contact_sheet(
             &[
                 tile("first-order Gaussian kernel", glint_map(&before, ref_b, ex)),
-                tile("first-order, cut at 2 sigma", glint_map(&truncated, ref_b, ex)),
+                tile(
+                    "first-order, cut at 2 sigma",
+                    glint_map(&truncated, ref_b, ex),
+                ),
                 tile("windowed moments", glint_map(after_ns, ref_b, ex)),
-                tile("windowed moments, cut at 2 sigma", glint_map(&truncated_after, ref_b, ex)),
+                tile(
+                    "windowed moments, cut at 2 sigma",
+                    glint_map(&truncated_after, ref_b, ex),
+                ),
                 tile("the window's exact normals", glint_map(&window, ref_b, ex)),
             ],
             2,
@@ -548,10 +599,22 @@ pub fn investigate(
         "glints-reference.png",
         &contact_sheet(
             &[
-                tile("Gaussian pixel filter reference", gauss.full(Family::Beckmann).to_rgb8(ex)),
-                tile("box pixel filter reference", boxed.full(Family::Beckmann).to_rgb8(ex)),
-                tile(format!("vs Gaussian: {} false, {} lost", c_gauss.0, c_gauss.1), glint_map(&before, gauss.full(Family::Beckmann), ex)),
-                tile(format!("vs box: {} false, {} lost", c_box.0, c_box.1), glint_map(&before, boxed.full(Family::Beckmann), ex)),
+                tile(
+                    "Gaussian pixel filter reference",
+                    gauss.full(Family::Beckmann).to_rgb8(ex),
+                ),
+                tile(
+                    "box pixel filter reference",
+                    boxed.full(Family::Beckmann).to_rgb8(ex),
+                ),
+                tile(
+                    format!("vs Gaussian: {} false, {} lost", c_gauss.0, c_gauss.1),
+                    glint_map(&before, gauss.full(Family::Beckmann), ex),
+                ),
+                tile(
+                    format!("vs box: {} false, {} lost", c_box.0, c_box.1),
+                    glint_map(&before, boxed.full(Family::Beckmann), ex),
+                ),
             ],
             2,
             zoom,
@@ -561,8 +624,14 @@ pub fn investigate(
         "glints-displaced.png",
         &contact_sheet(
             &[
-                tile(format!("first-order: {adj_b} moved, {iso_b} isolated"), disp_before),
-                tile(format!("windowed moments: {adj_a} moved, {iso_a} isolated"), disp_after),
+                tile(
+                    format!("first-order: {adj_b} moved, {iso_b} isolated"),
+                    disp_before,
+                ),
+                tile(
+                    format!("windowed moments: {adj_a} moved, {iso_a} isolated"),
+                    disp_after,
+                ),
             ],
             2,
             zoom,
@@ -596,14 +665,24 @@ mod tests {
             let d = gb.derivatives(&scene, route);
             let f = render::shade_frame(&scene, &gb, &d, Method::BeckmannParallelogram);
             let c = glint_counts(&display_luminance(&f.total, 1.0), &ref_y);
-            let spec = f.specular.rmse_display(reference.specular(Family::Beckmann), 1.0);
+            let spec = f
+                .specular
+                .rmse_display(reference.specular(Family::Beckmann), 1.0);
             (c, spec)
         };
         let (rays, spec_rays) = run(FootprintRoute::RayDifferentials);
         let (moments, spec_moments) = run(FootprintRoute::Moments);
-        eprintln!("first order {rays:?} {spec_rays:.4}, windowed moments {moments:?} {spec_moments:.4}");
+        eprintln!(
+            "first order {rays:?} {spec_rays:.4}, windowed moments {moments:?} {spec_moments:.4}"
+        );
         assert!(moments.0 < rays.0, "false glints: {moments:?} vs {rays:?}");
-        assert!(moments.1 <= rays.1, "lost highlights: {moments:?} vs {rays:?}");
-        assert!(spec_moments < spec_rays, "specular: {spec_moments} vs {spec_rays}");
+        assert!(
+            moments.1 <= rays.1,
+            "lost highlights: {moments:?} vs {rays:?}"
+        );
+        assert!(
+            spec_moments < spec_rays,
+            "specular: {spec_moments} vs {spec_rays}"
+        );
     }
 }

@@ -369,7 +369,11 @@ fn main() -> std::io::Result<()> {
     let lead = lead_table(&scores, temporal.as_ref());
     println!("\n## What a viewer sees\n\n{lead}");
     let mut md = String::new();
-    writeln!(md, "## What a viewer sees (still frame and temporal test)\n\n{lead}").unwrap();
+    writeln!(
+        md,
+        "## What a viewer sees (still frame and temporal test)\n\n{lead}"
+    )
+    .unwrap();
     md.push_str(&glints_md);
     writeln!(
         md,

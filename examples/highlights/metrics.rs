@@ -40,11 +40,8 @@ impl FlipMap {
 
     /// The map through FLIP's magma colour map (8-bit sRGB).
     pub fn to_rgb8(&self) -> crate::image_out::Rgb8 {
-        let map = nv_flip::FlipImageFloat::with_data(
-            self.width as u32,
-            self.height as u32,
-            &self.values,
-        );
+        let map =
+            nv_flip::FlipImageFloat::with_data(self.width as u32, self.height as u32, &self.values);
         let rgb = map.apply_color_lut(&nv_flip::magma_lut());
         image::RgbImage::from_raw(rgb.width(), rgb.height(), rgb.to_vec())
             .expect("FLIP's colour map has the map's size")
@@ -87,7 +84,14 @@ pub fn flip_ldr(test: &Image, reference: &Image, exposure: f32) -> FlipMap {
 
 /// Narkowicz's fit of the ACES curve with FLIP's 0.6 pre-exposure folded in:
 /// `(k0 x^2 + k1 x + k2) / (k3 x^2 + k4 x + k5)`.
-const ACES: [f32; 6] = [0.6 * 0.6 * 2.51, 0.6 * 0.03, 0.0, 0.6 * 0.6 * 2.43, 0.6 * 0.59, 0.14];
+const ACES: [f32; 6] = [
+    0.6 * 0.6 * 2.51,
+    0.6 * 0.03,
+    0.0,
+    0.6 * 0.6 * 2.43,
+    0.6 * 0.59,
+    0.14,
+];
 
 /// The ACES curve of HDR-FLIP, clamped to `[0, 1]`.
 pub fn aces(x: f32) -> f32 {
@@ -135,7 +139,9 @@ pub fn flip_hdr(test: &Image, reference: &Image) -> FlipMap {
             srgb8(
                 w,
                 h,
-                img.data.iter().map(|&c| (c.max(Vec3::ZERO) * scale).map(aces)),
+                img.data
+                    .iter()
+                    .map(|&c| (c.max(Vec3::ZERO) * scale).map(aces)),
             )
         };
         let map = ldr_flip_bytes(w, h, &bytes(test), &bytes(reference));
@@ -199,7 +205,11 @@ pub fn flicker_energy(frames: &[Vec<f32>]) -> f64 {
 pub fn flicker_error(frames: &[Vec<f32>], reference: &[Vec<f32>]) -> f64 {
     let (mut sum, mut n) = (0.0f64, 0usize);
     for (pair, rpair) in frames.windows(2).zip(reference.windows(2)) {
-        for ((a, b), (ra, rb)) in pair[0].iter().zip(&pair[1]).zip(rpair[0].iter().zip(&rpair[1])) {
+        for ((a, b), (ra, rb)) in pair[0]
+            .iter()
+            .zip(&pair[1])
+            .zip(rpair[0].iter().zip(&rpair[1]))
+        {
             sum += ((b - a) as f64 - (rb - ra) as f64).powi(2);
             n += 1;
         }
@@ -311,7 +321,11 @@ pub fn lead_table(rows: &[LeadRow]) -> String {
     use std::fmt::Write as _;
     let mut t = String::new();
     writeln!(t, "| method | NDF | FLIP LDR | FLIP HDR | flicker error / ref. | flicker energy / ref. | peak flicker | specular error | false glints | lost highlights | RMSE (HDR) | against unfiltered |").unwrap();
-    writeln!(t, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|").unwrap();
+    writeln!(
+        t,
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+    )
+    .unwrap();
     let num = |v: f64, digits: usize| {
         if v.is_finite() {
             format!("{v:.digits$}")
@@ -379,7 +393,9 @@ mod tests {
     fn hdr_exposures_span_max_to_median() {
         // Luminances 1 (median) and 64 (max): 6 stops apart, so 6 exposures, the first
         // mapping 64 and the last mapping 1 to 0.85.
-        let img = image(4, 4, |x, y| Vec3::splat(if x + y == 0 { 64.0 } else { 1.0 }));
+        let img = image(4, 4, |x, y| {
+            Vec3::splat(if x + y == 0 { 64.0 } else { 1.0 })
+        });
         let e = hdr_exposures(&img);
         assert_eq!(e.len(), 6);
         let x = aces_inverse(0.85);
@@ -394,7 +410,10 @@ mod tests {
         assert_eq!(flip_hdr(&a, &a).mean(), 0.0);
         let small = image(32, 32, |x, y| a.data[y * 32 + x] * 1.1);
         let large = image(32, 32, |x, y| a.data[y * 32 + x] * 3.0);
-        let (s, l) = (flip_ldr(&small, &a, 1.0).mean(), flip_ldr(&large, &a, 1.0).mean());
+        let (s, l) = (
+            flip_ldr(&small, &a, 1.0).mean(),
+            flip_ldr(&large, &a, 1.0).mean(),
+        );
         assert!(0.0 < s && s < l && l <= 1.0, "{s} {l}");
     }
 

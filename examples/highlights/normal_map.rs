@@ -280,7 +280,10 @@ fn pixels(scene: &Scene, nm: &NormalMap, cam: &Camera, w: usize, h: usize) -> Ve
                     (Some(a), Some(b)) => (a - b).length(),
                     _ => 1e3,
                 };
-                let (a, b) = (axis(at(0.5, 0.0), at(-0.5, 0.0)), axis(at(0.0, 0.5), at(0.0, -0.5)));
+                let (a, b) = (
+                    axis(at(0.5, 0.0), at(-0.5, 0.0)),
+                    axis(at(0.0, 0.5), at(0.0, -0.5)),
+                );
                 let len = a.max(b);
                 let lod = (len * texels_per_m).max(1.0).log2();
                 Some(Pixel {
@@ -297,7 +300,8 @@ fn pixels(scene: &Scene, nm: &NormalMap, cam: &Camera, w: usize, h: usize) -> Ve
 fn pixel_kernel(px: &[Option<Pixel>], w: usize, h: usize, i: usize) -> Covariance {
     let (x, y) = (i % w, i / w);
     let v = |k: usize| px[k].as_ref().map(|q| q.geo.s_h - q.moments.mean);
-    let diff = |a: Option<usize>, b: Option<usize>, scale: f32| match (a.and_then(v), b.and_then(v)) {
+    let diff = |a: Option<usize>, b: Option<usize>, scale: f32| match (a.and_then(v), b.and_then(v))
+    {
         (Some(a), Some(b)) => (a - b) * scale,
         _ => Vec2::ZERO,
     };
@@ -306,14 +310,29 @@ fn pixel_kernel(px: &[Option<Pixel>], w: usize, h: usize, i: usize) -> Covarianc
     let up = (y > 0).then(|| i - w);
     let down = (y + 1 < h).then_some(i + w);
     let (du, dv) = (
-        diff(right.or(Some(i)), left.or(Some(i)), if x > 0 && x + 1 < w { 0.5 } else { 1.0 }),
-        diff(down.or(Some(i)), up.or(Some(i)), if y > 0 && y + 1 < h { 0.5 } else { 1.0 }),
+        diff(
+            right.or(Some(i)),
+            left.or(Some(i)),
+            if x > 0 && x + 1 < w { 0.5 } else { 1.0 },
+        ),
+        diff(
+            down.or(Some(i)),
+            up.or(Some(i)),
+            if y > 0 && y + 1 < h { 0.5 } else { 1.0 },
+        ),
     );
     Footprint::from_slope_derivatives(du, dv).covariance(SIGMA_PIXEL)
 }
 
 /// A method's frame.
-fn render_method(scene: &Scene, nm: &NormalMap, cam: &Camera, w: usize, h: usize, m: NmMethod) -> Frame {
+fn render_method(
+    scene: &Scene,
+    nm: &NormalMap,
+    cam: &Camera,
+    w: usize,
+    h: usize,
+    m: NmMethod,
+) -> Frame {
     let px = pixels(scene, nm, cam, w, h);
     let alpha = Isotropic::new_clamped(scene.alpha);
     let data: Vec<(Vec3, Vec3)> = (0..w * h)
@@ -331,9 +350,12 @@ fn render_method(scene: &Scene, nm: &NormalMap, cam: &Camera, w: usize, h: usize
                     SIGMA_PIXEL,
                 ))
                 .p22(s),
-                NmMethod::Lean => Beckmann::new(filter::lean(alpha, Covariance::ZERO, &q.moments)).p22(s),
+                NmMethod::Lean => {
+                    Beckmann::new(filter::lean(alpha, Covariance::ZERO, &q.moments)).p22(s)
+                }
                 NmMethod::LeanNested => {
-                    Beckmann::new(filter::lean(alpha, pixel_kernel(&px, w, h, i), &q.moments)).p22(s)
+                    Beckmann::new(filter::lean(alpha, pixel_kernel(&px, w, h, i), &q.moments))
+                        .p22(s)
                 }
             };
             let (rest, spec) = shade(scene, &q.geo, p22);
@@ -377,7 +399,12 @@ fn reference(scene: &Scene, nm: &NormalMap, cam: &Camera, w: usize, h: usize, sp
                     let b = ((j * g % spp) as f32 / spp as f32 + shift.1).fract();
                     let r = SIGMA_PIXEL * (-2.0 * a.ln()).sqrt();
                     let phi = std::f32::consts::TAU * b;
-                    let ray = cam.ray(x as f32 + 0.5 + r * phi.cos(), y as f32 + 0.5 + r * phi.sin()).ray;
+                    let ray = cam
+                        .ray(
+                            x as f32 + 0.5 + r * phi.cos(),
+                            y as f32 + 0.5 + r * phi.sin(),
+                        )
+                        .ray;
                     match hit(&ray) {
                         None => total += scene.sky(ray.dir),
                         Some(p) => {
@@ -414,18 +441,34 @@ pub fn run(o: &Options) -> std::io::Result<String> {
         format!("Reference ({spp} spp)"),
         refr.total.to_rgb8(o.exposure),
     )];
-    image_out::save(&refr.total.to_rgb8(o.exposure), &o.out.join("nm-reference.png"))?;
+    image_out::save(
+        &refr.total.to_rgb8(o.exposure),
+        &o.out.join("nm-reference.png"),
+    )?;
     let mut scores: Vec<(NmMethod, Scores)> = Vec::new();
     for m in NmMethod::ALL {
         let f = render_method(&scene, &nm, &cam, w, h, m);
-        let (sc, map) = metrics::score((&f.total, &f.specular), (&refr.total, &refr.specular), o.exposure);
-        image_out::save(&f.total.to_rgb8(o.exposure), &o.out.join(format!("{}.png", m.slug())))?;
-        image_out::save(&map.to_rgb8(), &o.out.join(format!("flip-{}.png", m.slug())))?;
+        let (sc, map) = metrics::score(
+            (&f.total, &f.specular),
+            (&refr.total, &refr.specular),
+            o.exposure,
+        );
+        image_out::save(
+            &f.total.to_rgb8(o.exposure),
+            &o.out.join(format!("{}.png", m.slug())),
+        )?;
+        image_out::save(
+            &map.to_rgb8(),
+            &o.out.join(format!("flip-{}.png", m.slug())),
+        )?;
         tiles.push((m.label().to_string(), f.total.to_rgb8(o.exposure)));
         scores.push((m, sc));
     }
     let zoom = if w <= 320 { 2 } else { 1 };
-    image_out::save(&contact_sheet(&tiles, 3, zoom), &o.out.join("nm_contact_sheet.png"))?;
+    image_out::save(
+        &contact_sheet(&tiles, 3, zoom),
+        &o.out.join("nm_contact_sheet.png"),
+    )?;
 
     // The temporal test: the water scene's dolly, half resolution, the still frame's samples.
     let (tw, th) = ((w / 2).max(2), (h / 2).max(2));
@@ -436,7 +479,10 @@ pub fn run(o: &Options) -> std::io::Result<String> {
     for f in 0..o.frames {
         let cam = camera_at(f, tw, th);
         let scene = Scene::new(cam.lod());
-        ref_lums.push(display_luminance(&reference(&scene, &nm, &cam, tw, th, tspp).total, o.exposure));
+        ref_lums.push(display_luminance(
+            &reference(&scene, &nm, &cam, tw, th, tspp).total,
+            o.exposure,
+        ));
         for (k, m) in NmMethod::ALL.into_iter().enumerate() {
             let img = render_method(&scene, &nm, &cam, tw, th, m).total;
             peaks[k].push(img.peak());

@@ -7,8 +7,8 @@ use crate::methods::{self, Family, Method, ShadingPoint};
 use crate::parallel;
 use crate::scene::{Hit, Scene};
 use filtered_ndf::f32::Footprint;
-use filtered_ndf::f32::kernel::Covariance;
 use filtered_ndf::f32::footprint::slope::slope_from_sphere;
+use filtered_ndf::f32::kernel::Covariance;
 use filtered_ndf::testing::rng::SplitMix64;
 use glam::{Mat3, Quat, Vec2, Vec3};
 

@@ -453,7 +453,9 @@ impl Scene {
     /// in gradient units; 0 inside; `None` on the spheres.
     pub fn gradient_gap(&self, hit: &Hit, c: [f32; 3], k: f32, g: Vec2) -> Option<f32> {
         (hit.object == 0).then(|| {
-            let (center, generators) = self.water.gradient_support(hit.position.x, hit.position.z, c, k);
+            let (center, generators) =
+                self.water
+                    .gradient_support(hit.position.x, hit.position.z, c, k);
             zonotope_gap(center, &generators, g)
         })
     }
@@ -461,7 +463,10 @@ impl Scene {
     /// The moments of the water's height gradient over a Gaussian window at `hit` (see
     /// [`Water::gradient_moments`]); `None` on the spheres.
     pub fn gradient_moments(&self, hit: &Hit, c: [f32; 3]) -> Option<(Vec2, [f32; 3])> {
-        (hit.object == 0).then(|| self.water.gradient_moments(hit.position.x, hit.position.z, c))
+        (hit.object == 0).then(|| {
+            self.water
+                .gradient_moments(hit.position.x, hit.position.z, c)
+        })
     }
 
     /// Background radiance for a ray that hits nothing: a dim sky gradient.
@@ -503,7 +508,13 @@ mod tests {
     /// the trapezoid rule over +-7 standard deviations of the whitened window (`n x n`
     /// points; spectrally accurate for this smooth, Gaussian-weighted integrand once the grid
     /// resolves the shortest wave).
-    fn moments_by_quadrature(water: &Water, x: f64, z: f64, c: [f64; 3], n: usize) -> ([f64; 2], [f64; 3]) {
+    fn moments_by_quadrature(
+        water: &Water,
+        x: f64,
+        z: f64,
+        c: [f64; 3],
+        n: usize,
+    ) -> ([f64; 2], [f64; 3]) {
         let waves: Vec<(f64, f64, f64, f64)> = water
             .fades(x as f32, z as f32)
             .map(|(w, f)| {
@@ -576,7 +587,12 @@ mod tests {
             let scale = qc[0] + qc[2];
             for k in 0..3 {
                 let e = (f64::from(cov[k]) - qc[k]).abs() / scale;
-                assert!(e < 1e-3, "window {c:?}: cov[{k}] {} vs {} (rel. {e:.2e})", cov[k], qc[k]);
+                assert!(
+                    e < 1e-3,
+                    "window {c:?}: cov[{k}] {} vs {} (rel. {e:.2e})",
+                    cov[k],
+                    qc[k]
+                );
             }
             assert!((f64::from(mean.x) - qm[0]).abs() < 1e-3, "{mean} vs {qm:?}");
             assert!((f64::from(mean.y) - qm[1]).abs() < 1e-3, "{mean} vs {qm:?}");
@@ -601,12 +617,16 @@ mod tests {
             let a = (j as f32 + 0.5) / n as f32;
             let b = ((j * 2473) % n) as f32 / n as f32;
             let r = (-2.0 * a.ln()).sqrt().min(2.5);
-            let (u, v) = (r * (std::f32::consts::TAU * b).cos(), r * (std::f32::consts::TAU * b).sin());
+            let (u, v) = (
+                r * (std::f32::consts::TAU * b).cos(),
+                r * (std::f32::consts::TAU * b).sin(),
+            );
             let (px, pz) = (x + l11 * u, z + l21 * u + l22 * v);
             let g: Vec2 = w
                 .fades(x, z)
                 .map(|(wv, f)| {
-                    Vec2::new(wv.kx, wv.kz) * (f * wv.amplitude * (wv.kx * px + wv.kz * pz + wv.phase).cos())
+                    Vec2::new(wv.kx, wv.kz)
+                        * (f * wv.amplitude * (wv.kx * px + wv.kz * pz + wv.phase).cos())
                 })
                 .sum();
             let gap = zonotope_gap(centre, &generators, g);
@@ -638,10 +658,16 @@ mod tests {
         for s2 in [4.0f32, 16.0, 64.0] {
             let (_, cov) = w.gradient_moments(x, z, [s2, 0.0, s2]);
             let trace = cov[0] + cov[2];
-            assert!((trace / total - 1.0).abs() < 0.05, "window {s2}: {trace} vs {total}");
+            assert!(
+                (trace / total - 1.0).abs() < 0.05,
+                "window {s2}: {trace} vs {total}"
+            );
             let first_order = (hessian * hessian.transpose() * s2).to_cols_array();
             let fo_trace = first_order[0] + first_order[3];
-            assert!(fo_trace > 10.0 * total, "window {s2}: first order {fo_trace} vs {total}");
+            assert!(
+                fo_trace > 10.0 * total,
+                "window {s2}: first order {fo_trace} vs {total}"
+            );
         }
     }
 }

@@ -5,10 +5,10 @@
 
 use crate::camera::camera_at;
 use crate::methods::Method;
-use crate::render::FootprintRoute;
 use crate::metrics::{display_luminance, flicker_energy, flicker_error};
 use crate::peaks::{distance, mean, variation};
 use crate::plot::{PALETTE, Series, line_plot};
+use crate::render::FootprintRoute;
 use crate::scene::Scene;
 use crate::{Options, render};
 use std::fmt::Write as _;

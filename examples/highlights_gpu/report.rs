@@ -5,7 +5,9 @@ use crate::camera::camera_at;
 use crate::gpu::{Gpu, Timer};
 use crate::image_out::{Image, Rgb8, contact_sheet, save};
 use crate::methods::{Family, Method};
-use crate::metrics::{self, Flicker, LeadRow, Scores, display_luminance, flicker_energy, flicker_error};
+use crate::metrics::{
+    self, Flicker, LeadRow, Scores, display_luminance, flicker_energy, flicker_error,
+};
 use crate::passes::{Renderer, Route};
 use crate::peaks::{distance, mean, variation};
 use crate::plot::{PALETTE, Series, line_plot};
@@ -403,7 +405,11 @@ pub fn markdown(o: &Options, gpu: &Gpu, compile_s: f64, s: &Still, t: &Temporal)
                 ndf: m.family().name(),
                 baseline: m == Method::Unfiltered(m.family()),
                 scores: r.scores,
-                flicker: t.flicker.get(i).copied().filter(|_| t.reference[0].len() >= 2),
+                flicker: t
+                    .flicker
+                    .get(i)
+                    .copied()
+                    .filter(|_| t.reference[0].len() >= 2),
             }
         })
         .collect();
