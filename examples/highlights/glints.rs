@@ -422,6 +422,31 @@ pub fn investigate(
         counts(&window),
     );
 
+    // Candidate 6, a method: the window's most varying wave integrated over its phase.
+    let mixtures: Vec<Vec<(f32, PixelDerivatives)>> = crate::parallel::rows(h, None, |y| {
+        (0..w)
+            .map(|x| gb.mixture_derivatives(scene, x, y))
+            .collect()
+    })
+    .into_iter()
+    .collect();
+    let mixture = render::shade_with(scene, gb, Family::Beckmann, |i, hl, alpha| {
+        let r = Isotropic::new_clamped(alpha);
+        let lobe = |dv: &PixelDerivatives| {
+            Beckmann::new(khpl.filter_gaussian(r, dv.footprint, SIGMA_PIXEL)).d(dv.mean_shift * hl)
+        };
+        if mixtures[i].is_empty() {
+            return lobe(&moments_ns[i]);
+        }
+        mixtures[i].iter().map(|(wt, dv)| wt * lobe(dv)).sum()
+    })
+    .total;
+    row(
+        "6. the Gaussian shape of the kernel",
+        "a mixture: the window's most varying wave over its phase (8-point Gauss-Hermite), the others by their windowed moments",
+        counts(&mixture),
+    );
+
     // A missing clamp: the kernel's support.
     row(
         "7. a support clamp (a missing clamp)",

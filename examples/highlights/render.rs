@@ -267,15 +267,78 @@ impl GBuffer {
             return rays;
         };
         let (dx_u, dx_v) = ray.footprint_on_plane(&s.hit);
-        let sig2 = methods::SIGMA_PIXEL * methods::SIGMA_PIXEL;
-        let window = [
-            sig2 * (dx_u.x * dx_u.x + dx_v.x * dx_v.x),
-            sig2 * (dx_u.x * dx_u.z + dx_v.x * dx_v.z),
-            sig2 * (dx_u.z * dx_u.z + dx_v.z * dx_v.z),
-        ];
+        let window = Self::window(dx_u, dx_v);
         let Some((mean, cov)) = scene.gradient_moments(&s.hit, window) else {
             return rays;
         };
+        let from = self.from_moments(s, (dx_u, dx_v), rays, mean, cov);
+        // The support test: the gradient g* whose normal is the half vector, at the pixel
+        // centre and at the window's 2.5-sigma points (the parallax margin).
+        let light = s.hit.position + s.wi * s.dist2.sqrt();
+        let g_star = |p: Vec3| {
+            let h = ((self.eye - p).normalize() + (light - p).normalize()).normalize();
+            Vec2::new(-h.x, -h.z) / h.y.max(1e-3)
+        };
+        let g0 = g_star(s.hit.position);
+        let k = SUPPORT_SIGMAS * methods::SIGMA_PIXEL;
+        let parallax = [dx_u, -dx_u, dx_v, -dx_v]
+            .iter()
+            .map(|&d| (g_star(s.hit.position + k * d) - g0).length())
+            .fold(0.0, f32::max);
+        let gap = scene
+            .gradient_gap(&s.hit, window, SUPPORT_SIGMAS, g0)
+            .unwrap_or(0.0);
+        PixelDerivatives {
+            support_gap: ((gap - parallax) / s.hit.alpha).max(0.0),
+            ..from
+        }
+    }
+
+    /// The pixel's Gaussian window on the water, `(dx_u, dx_v)` scaled by the pixel filter,
+    /// as a world covariance `(c_xx, c_xz, c_zz)`.
+    fn window(dx_u: Vec3, dx_v: Vec3) -> [f32; 3] {
+        let sig2 = methods::SIGMA_PIXEL * methods::SIGMA_PIXEL;
+        [
+            sig2 * (dx_u.x * dx_u.x + dx_v.x * dx_v.x),
+            sig2 * (dx_u.x * dx_u.z + dx_v.x * dx_v.z),
+            sig2 * (dx_u.z * dx_u.z + dx_v.z * dx_v.z),
+        ]
+    }
+
+    /// The windowed-mixture experiment of `glints.rs` ([`Scene::gradient_mixture`]): per
+    /// component its weight and its derivatives (as the `Moments` route's); empty off the
+    /// water.
+    #[allow(dead_code)] // the false-glint investigation only
+    pub fn mixture_derivatives(
+        &self,
+        scene: &Scene,
+        x: usize,
+        y: usize,
+    ) -> Vec<(f32, PixelDerivatives)> {
+        let rays = self.analytic_derivatives(x, y);
+        let Some((s, ray)) = self.pixels[y * self.width + x].as_ref() else {
+            return Vec::new();
+        };
+        let (dx_u, dx_v) = ray.footprint_on_plane(&s.hit);
+        scene
+            .gradient_mixture(&s.hit, Self::window(dx_u, dx_v))
+            .unwrap_or_default()
+            .into_iter()
+            .map(|(w, mean, cov)| (w, self.from_moments(s, (dx_u, dx_v), rays, mean, cov)))
+            .collect()
+    }
+
+    /// The derivatives of a Gaussian gradient distribution `N(mean, cov)` over the window:
+    /// its kernel in this pixel's slope domain plus the parallax, its mean as the lobe's
+    /// centre.
+    fn from_moments(
+        &self,
+        s: &Surface,
+        (dx_u, dx_v): (Vec3, Vec3),
+        rays: PixelDerivatives,
+        mean: Vec2,
+        cov: [f32; 3],
+    ) -> PixelDerivatives {
         // The parallax: the ray-differential footprint of a flat surface (zero shape operator).
         let parallax = methods::footprint_from_ray_differentials(&methods::AnalyticInput {
             position: s.hit.position,
@@ -297,26 +360,9 @@ impl GBuffer {
         let total = parallax.covariance(methods::SIGMA_PIXEL)
             + Covariance::new(k.x_axis.x, 0.5 * (k.y_axis.x + k.x_axis.y), k.y_axis.y);
         let mean_normal = Vec3::new(-mean.x, 1.0, -mean.y).normalize();
-        // The support test: the gradient g* whose normal is the half vector, at the pixel
-        // centre and at the window's 2.5-sigma points (the parallax margin).
-        let light = s.hit.position + s.wi * s.dist2.sqrt();
-        let g_star = |p: Vec3| {
-            let h = ((self.eye - p).normalize() + (light - p).normalize()).normalize();
-            Vec2::new(-h.x, -h.z) / h.y.max(1e-3)
-        };
-        let g0 = g_star(s.hit.position);
-        let k = SUPPORT_SIGMAS * methods::SIGMA_PIXEL;
-        let parallax = [dx_u, -dx_u, dx_v, -dx_v]
-            .iter()
-            .map(|&d| (g_star(s.hit.position + k * d) - g0).length())
-            .fold(0.0, f32::max);
-        let gap = scene
-            .gradient_gap(&s.hit, window, SUPPORT_SIGMAS, g0)
-            .unwrap_or(0.0);
         PixelDerivatives {
             footprint: footprint_of(total.sanitized(), methods::SIGMA_PIXEL),
             mean_shift: Quat::from_rotation_arc(s.local(mean_normal), Vec3::Z),
-            support_gap: ((gap - parallax) / s.hit.alpha).max(0.0),
             ..rays
         }
     }

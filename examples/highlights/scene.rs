@@ -142,6 +142,51 @@ impl Water {
         (d, lost)
     }
 
+    /// The window's gradient distribution as a mixture of Gaussians: the wave whose gradient
+    /// varies most over the window (its phase `theta ~ N(theta_0, v)` over the window, its
+    /// gradient's variance `(a k)^2 (1/2 (1 + cos 2 theta_0 e^{-2v}) - cos^2 theta_0 e^{-v})`)
+    /// is integrated over its phase by 8-point Gauss-Hermite quadrature, the other waves by
+    /// their windowed moments (the correlation between the two is neglected). Returns
+    /// `(weight, mean, covariance)` per component (weights sum to 1).
+    pub fn gradient_mixture(&self, x: f32, z: f32, c: [f32; 3]) -> Vec<(f32, Vec2, [f32; 3])> {
+        let quad = |kx: f32, kz: f32| kx * kx * c[0] + 2.0 * kx * kz * c[1] + kz * kz * c[2];
+        let var = |a: f32, kx: f32, kz: f32, theta: f32| {
+            let v = quad(kx, kz);
+            let ct = theta.cos();
+            (a * kx.hypot(kz)).powi(2)
+                * (0.5 * (1.0 + (2.0 * theta).cos() * (-2.0 * v).exp()) - ct * ct * (-v).exp())
+        };
+        let Some((i, a, kx, kz, theta)) = self
+            .fades(x, z)
+            .enumerate()
+            .map(|(i, (w, f))| {
+                (
+                    i,
+                    f * w.amplitude,
+                    w.kx,
+                    w.kz,
+                    w.kx * x + w.kz * z + w.phase,
+                )
+            })
+            .max_by(|p, q| var(p.1, p.2, p.3, p.4).total_cmp(&var(q.1, q.2, q.3, q.4)))
+        else {
+            return Vec::new();
+        };
+        let (mean, cov) = self.gradient_moments_except(x, z, c, Some(i));
+        const X: [f32; 4] = [0.381_187, 1.157_194, 1.981_657, 2.930_637];
+        const W: [f32; 4] = [0.661_147, 0.207_802, 0.017_078, 0.000_199_6];
+        let sd = (2.0 * quad(kx, kz)).sqrt();
+        let norm = std::f32::consts::PI.sqrt().recip();
+        X.iter()
+            .zip(W)
+            .flat_map(|(&xj, wj)| [(xj, wj), (-xj, wj)])
+            .map(|(xj, wj)| {
+                let g = Vec2::new(kx, kz) * (a * (theta + sd * xj).cos());
+                (wj * norm, mean + g, cov)
+            })
+            .collect()
+    }
+
     /// A zonotope holding every height gradient within `k` standard deviations of the
     /// Gaussian window `c` centred on `(x, z)` (fades frozen, as [`Self::gradient_moments`]):
     /// wave `i` contributes `a_i k_i cos(theta_i)` with the phase `theta_i` within `k sqrt(v_i)`
@@ -173,10 +218,23 @@ impl Water {
     /// first-order footprint, the covariance of one wave saturates at its slope variance
     /// `(a k)^2 / 2` when the window spans many of its crests.
     pub fn gradient_moments(&self, x: f32, z: f32, c: [f32; 3]) -> (Vec2, [f32; 3]) {
+        self.gradient_moments_except(x, z, c, None)
+    }
+
+    /// [`Self::gradient_moments`] of every wave but `skip`.
+    fn gradient_moments_except(
+        &self,
+        x: f32,
+        z: f32,
+        c: [f32; 3],
+        skip: Option<usize>,
+    ) -> (Vec2, [f32; 3]) {
         let quad = |kx: f32, kz: f32| kx * kx * c[0] + 2.0 * kx * kz * c[1] + kz * kz * c[2];
         let waves: Vec<(f32, f32, f32, f32)> = self
             .fades(x, z)
-            .map(|(w, f)| (f * w.amplitude, w.kx, w.kz, w.kx * x + w.kz * z + w.phase))
+            .enumerate()
+            .filter(|&(i, _)| Some(i) != skip)
+            .map(|(_, (w, f))| (f * w.amplitude, w.kx, w.kz, w.kx * x + w.kz * z + w.phase))
             .collect();
         let mut mean = Vec2::ZERO;
         let mut second = [0.0f32; 3];
@@ -457,6 +515,15 @@ impl Scene {
                 self.water
                     .gradient_support(hit.position.x, hit.position.z, c, k);
             zonotope_gap(center, &generators, g)
+        })
+    }
+
+    /// [`Water::gradient_mixture`] at `hit`; `None` on the spheres.
+    #[allow(dead_code)] // the false-glint investigation only
+    pub fn gradient_mixture(&self, hit: &Hit, c: [f32; 3]) -> Option<Vec<(f32, Vec2, [f32; 3])>> {
+        (hit.object == 0).then(|| {
+            self.water
+                .gradient_mixture(hit.position.x, hit.position.z, c)
         })
     }
 
