@@ -271,7 +271,7 @@ impl GBuffer {
         let Some((mean, cov)) = scene.gradient_moments(&s.hit, window) else {
             return rays;
         };
-        let from = self.from_moments(s, (dx_u, dx_v), rays, mean, cov);
+        let from = self.derivatives_of_moments(s, (dx_u, dx_v), rays, mean, cov);
         // The support test: the gradient g* whose normal is the half vector, at the pixel
         // centre and at the window's 2.5-sigma points (the parallax margin).
         let light = s.hit.position + s.wi * s.dist2.sqrt();
@@ -324,14 +324,19 @@ impl GBuffer {
             .gradient_mixture(&s.hit, Self::window(dx_u, dx_v))
             .unwrap_or_default()
             .into_iter()
-            .map(|(w, mean, cov)| (w, self.from_moments(s, (dx_u, dx_v), rays, mean, cov)))
+            .map(|(w, mean, cov)| {
+                (
+                    w,
+                    self.derivatives_of_moments(s, (dx_u, dx_v), rays, mean, cov),
+                )
+            })
             .collect()
     }
 
     /// The derivatives of a Gaussian gradient distribution `N(mean, cov)` over the window:
     /// its kernel in this pixel's slope domain plus the parallax, its mean as the lobe's
     /// centre.
-    fn from_moments(
+    fn derivatives_of_moments(
         &self,
         s: &Surface,
         (dx_u, dx_v): (Vec3, Vec3),
