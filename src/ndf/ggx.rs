@@ -29,29 +29,7 @@ impl<R: Roughness> Ggx<R> {
     }
 }
 
-impl Ggx<Isotropic> {
-    /// Isotropic GGX, checked (see [`Isotropic::new`]).
-    #[inline]
-    pub fn isotropic(alpha: F) -> Result<Self, RoughnessError> {
-        Isotropic::new(alpha).map(Self::new)
-    }
-}
-
-impl Ggx<AxisAligned> {
-    /// Axis-aligned GGX, checked (see [`AxisAligned::new`]).
-    #[inline]
-    pub fn axis_aligned(alpha_x: F, alpha_y: F) -> Result<Self, RoughnessError> {
-        AxisAligned::new(alpha_x, alpha_y).map(Self::new)
-    }
-}
-
-impl Ggx<RoughnessMatrix> {
-    /// Full-matrix GGX, checked (see [`RoughnessMatrix::new`]).
-    #[inline]
-    pub fn matrix(a11: F, a12: F, a22: F) -> Result<Self, RoughnessError> {
-        RoughnessMatrix::new(a11, a12, a22).map(Self::new)
-    }
-}
+checked_constructors!(Ggx, "GGX");
 
 impl<R: Roughness> Ggx<R> {
     /// The formula of [`Ndf::d`] without its two checks (`m_z > 0`, finite result): the one
