@@ -19,7 +19,7 @@ use std::fmt::Write as _;
 /// Resolution divisor and reference sample divisor of the temporal frames: the CPU demo's
 /// (`examples/highlights/temporal.rs`), so that both temporal tables describe the same frames.
 const DOWNSCALE: u32 = 2;
-const SPP_DIVISOR: usize = 8;
+const SPP_DIVISOR: usize = 4;
 
 /// Every route rendered: each method of the CPU demo in forward shading, then unfiltered
 /// GGX and each engine preset in deferred shading.
