@@ -16,9 +16,11 @@
 //!   cos^4 theta_h` in the floor's frame; Fresnel, Smith `G2` (base roughness) and the light
 //!   as the water's. Diffuse and ambient use the floor's normal, the same for every method:
 //!   only the specular term differs.
-//! - **Methods.** Plain normal mapping (the mip chain's mean slope, the unfiltered lobe);
-//!   NDF filtering (TK19's `A + 2 Sigma_P`, `Sigma_P` from the pixel's differences of `s_h -
-//!   mu`); LEAN alone (`A + 2 Sigma_L`, the mip texel's slope covariance); LEAN nested into the
+//! - **Methods.** Unfiltered normal mapping (the level-0 map at the pixel centre, the
+//!   baseline); NDF filtering of the level-0 map (KHPL16's first-order route: `A + 2
+//!   Sigma_P`, `Sigma_P` from the pixel's differences of `s_h - mu`); mip-mapped normal
+//!   mapping (the mip chain's mean slope, the unfiltered lobe); NDF filtering of the mip
+//!   mean; LEAN alone (`A + 2 Sigma_L`, the mip texel's slope covariance); LEAN nested into the
 //!   pixel kernel (`filter::lean`, KHPL16 eq. 21: `A + 2 (Sigma_L + Sigma_P)`). The reference
 //!   averages the level-0 surface's unfiltered lobe over the pixel's Gaussian filter.
 
@@ -57,6 +59,8 @@ const ALBEDO: Vec3 = Vec3::new(0.05, 0.05, 0.06);
 /// The floor's methods.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum NmMethod {
+    Unfiltered,
+    NdfFilteringLevel0,
     NormalMapping,
     NdfFiltering,
     Lean,
@@ -64,7 +68,9 @@ pub enum NmMethod {
 }
 
 impl NmMethod {
-    pub const ALL: [NmMethod; 4] = [
+    pub const ALL: [NmMethod; 6] = [
+        NmMethod::Unfiltered,
+        NmMethod::NdfFilteringLevel0,
         NmMethod::NormalMapping,
         NmMethod::NdfFiltering,
         NmMethod::Lean,
@@ -73,8 +79,10 @@ impl NmMethod {
 
     fn label(self) -> &'static str {
         match self {
-            NmMethod::NormalMapping => "Normal mapping (mip mean, unfiltered)",
-            NmMethod::NdfFiltering => "NDF filtering (TK19 A+2S_P)",
+            NmMethod::Unfiltered => "Unfiltered normal mapping (level 0)",
+            NmMethod::NdfFilteringLevel0 => "NDF filtering, level 0 (first-order, A+2S_P)",
+            NmMethod::NormalMapping => "Mip-mapped normal mapping (mean, unfiltered lobe)",
+            NmMethod::NdfFiltering => "NDF filtering, mip mean (A+2S_P)",
             NmMethod::Lean => "LEAN moments (A+2S_L)",
             NmMethod::LeanNested => "LEAN nested into the kernel (eq. 21)",
         }
@@ -82,6 +90,8 @@ impl NmMethod {
 
     fn slug(self) -> &'static str {
         match self {
+            NmMethod::Unfiltered => "nm-unfiltered",
+            NmMethod::NdfFilteringLevel0 => "nm-ndf-filtering-level0",
             NmMethod::NormalMapping => "nm-normal-mapping",
             NmMethod::NdfFiltering => "nm-ndf-filtering",
             NmMethod::Lean => "nm-lean",
@@ -267,7 +277,14 @@ struct Pixel {
     geo: Geometry,
 }
 
-fn pixels(scene: &Scene, nm: &NormalMap, cam: &Camera, w: usize, h: usize) -> Vec<Option<Pixel>> {
+/// With `level0`, the level-0 map at the pixel centre (no mip-mapping).
+fn pixels(
+    scene: &Scene,
+    nm: &NormalMap,
+    cam: &Camera,
+    (w, h): (usize, usize),
+    level0: bool,
+) -> Vec<Option<Pixel>> {
     let texels_per_m = TEXELS as f32 / TILE;
     parallel::rows(h, None, |y| {
         (0..w)
@@ -287,7 +304,7 @@ fn pixels(scene: &Scene, nm: &NormalMap, cam: &Camera, w: usize, h: usize) -> Ve
                 let len = a.max(b);
                 let lod = (len * texels_per_m).max(1.0).log2();
                 Some(Pixel {
-                    moments: nm.moments(lod, p.x, p.z),
+                    moments: nm.moments(if level0 { 0.0 } else { lod }, p.x, p.z),
                     geo: geometry(scene, cam.eye, p),
                 })
             })
@@ -333,7 +350,8 @@ fn render_method(
     h: usize,
     m: NmMethod,
 ) -> Frame {
-    let px = pixels(scene, nm, cam, w, h);
+    let level0 = matches!(m, NmMethod::Unfiltered | NmMethod::NdfFilteringLevel0);
+    let px = pixels(scene, nm, cam, (w, h), level0);
     let alpha = Isotropic::new_clamped(scene.alpha);
     let data: Vec<(Vec3, Vec3)> = (0..w * h)
         .map(|i| {
@@ -343,13 +361,15 @@ fn render_method(
             };
             let s = q.geo.s_h - q.moments.mean;
             let p22 = match m {
-                NmMethod::NormalMapping => Beckmann::new(alpha).p22(s),
-                NmMethod::NdfFiltering => Beckmann::new(ClampRules::default().filter_gaussian(
-                    alpha,
-                    footprint_of(pixel_kernel(&px, w, h, i)),
-                    SIGMA_PIXEL,
-                ))
-                .p22(s),
+                NmMethod::Unfiltered | NmMethod::NormalMapping => Beckmann::new(alpha).p22(s),
+                NmMethod::NdfFilteringLevel0 | NmMethod::NdfFiltering => {
+                    Beckmann::new(ClampRules::default().filter_gaussian(
+                        alpha,
+                        footprint_of(pixel_kernel(&px, w, h, i)),
+                        SIGMA_PIXEL,
+                    ))
+                    .p22(s)
+                }
                 NmMethod::Lean => {
                     Beckmann::new(filter::lean(alpha, Covariance::ZERO, &q.moments)).p22(s)
                 }
@@ -496,7 +516,7 @@ pub fn run(o: &Options) -> std::io::Result<String> {
         .map(|(k, &(m, s))| LeadRow {
             label: m.label().to_string(),
             ndf: "Beckmann",
-            baseline: m == NmMethod::NormalMapping,
+            baseline: m == NmMethod::Unfiltered,
             scores: s,
             flicker: (o.frames >= 2).then(|| Flicker {
                 error: metrics::flicker_error(&lums[k], &ref_lums) / ref_energy,
@@ -507,7 +527,7 @@ pub fn run(o: &Options) -> std::io::Result<String> {
         .collect();
     let mut md = String::new();
     writeln!(md, "\n## The normal-mapped floor (KHPL16 Fig. 11; {w}x{h}, Beckmann alpha 0.01, reference {spp} spp in {ref_s:.1} s; temporal test {} frames at {tw}x{th}, reference {tspp} spp)\n", o.frames).unwrap();
-    writeln!(md, "A glossy floor whose only detail is a procedural normal map (8 sines, wavelengths 0.8 m to 2 cm, 256x256 texels per 1 m tile) with a mip chain of LEAN moments, trilinear lookups; the water scene's camera, light and metrics. Baseline: plain normal mapping (the mip chain's mean normal, the unfiltered lobe). Images `nm-*.png`, FLIP maps `flip-nm-*.png`, contact sheet `nm_contact_sheet.png`.\n").unwrap();
+    writeln!(md, "A glossy floor whose only detail is a procedural normal map (8 sines, wavelengths 0.8 m to 2 cm, 256x256 texels per 1 m tile) with a mip chain of LEAN moments, trilinear lookups; the water scene's camera, light and metrics. Baseline: unfiltered normal mapping (the level-0 map at the pixel centre, the unfiltered lobe, as the water's unfiltered rows); mip-mapped normal mapping takes the mip chain's mean normal. Images `nm-*.png`, FLIP maps `flip-nm-*.png`, contact sheet `nm_contact_sheet.png`.\n").unwrap();
     md.push_str(&metrics::lead_table(&rows));
     Ok(md)
 }
