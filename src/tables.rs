@@ -14,6 +14,6 @@
 //!
 #![doc = include_str!("../docs/tradeoff.md")]
 //!
-//! # Demonstration: RMSE and flicker on the sparkling-water scene
+//! # Demonstration: what a viewer sees (FLIP, flicker, specular error, false glints) and the RMSE, on the water and on a normal-mapped floor
 //!
 #![doc = include_str!("../docs/highlights.md")]

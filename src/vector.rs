@@ -39,23 +39,32 @@ pub fn length(v: Vec3) -> F {
     m::sqrt(u.length_squared()) * big
 }
 
+/// `(v / |v|, |v|)` without overflow or underflow for a vector type (module docs): the one body
+/// of [`unit_and_length`] and [`unit2_and_length`].
+macro_rules! unit_and_length_of {
+    ($v:expr) => {{
+        let v = $v;
+        let l2 = v.length_squared();
+        if direct(l2) {
+            let len = m::sqrt(l2);
+            return Some((v / len, len));
+        }
+        let big = v.abs().max_element();
+        if !(v.is_finite() && big > 0.0) {
+            return None;
+        }
+        let u = v / big;
+        let len = m::sqrt(u.length_squared());
+        Some((u / len, len * big))
+    }};
+}
+
 /// `(v / |v|, |v|)` without overflow or underflow (module docs). `None` for a zero or
 /// non-finite `v`. The direction is a unit vector to rounding for every finite, non-zero `v`
 /// (also subnormal or near `F::MAX`); the length may be `+inf` when it exceeds `F::MAX`.
 #[inline]
 pub fn unit_and_length(v: Vec3) -> Option<(Vec3, F)> {
-    let l2 = v.length_squared();
-    if direct(l2) {
-        let len = m::sqrt(l2);
-        return Some((v / len, len));
-    }
-    let big = v.abs().max_element();
-    if !(v.is_finite() && big > 0.0) {
-        return None;
-    }
-    let u = v / big;
-    let len = m::sqrt(u.length_squared());
-    Some((u / len, len * big))
+    unit_and_length_of!(v)
 }
 
 /// `v / |v|` ([`unit_and_length`] without the length). `None` for a zero or non-finite `v`.
@@ -68,18 +77,7 @@ pub fn unit(v: Vec3) -> Option<Vec3> {
 /// `v`.
 #[inline]
 pub fn unit2_and_length(v: Vec2) -> Option<(Vec2, F)> {
-    let l2 = v.length_squared();
-    if direct(l2) {
-        let len = m::sqrt(l2);
-        return Some((v / len, len));
-    }
-    let big = v.abs().max_element();
-    if !(v.is_finite() && big > 0.0) {
-        return None;
-    }
-    let u = v / big;
-    let len = m::sqrt(u.length_squared());
-    Some((u / len, len * big))
+    unit_and_length_of!(v)
 }
 
 /// `v / |v|` for a 2-vector, as [`unit()`]. `None` for a zero or non-finite `v`.

@@ -133,6 +133,40 @@ mod findings {
     use glam::{DVec2, DVec3, Vec2, Vec3};
 
     #[test]
+    fn lambda_rect_of_a_direction_near_overflow() {
+        // The rescaling of a direction whose largest component has binary exponent 1023
+        // multiplied by 0 (2^-1023 has no exponent field) and answered the zero vector's 0:
+        // found by the box lobe's contract check. GGX's own Lambda here is 9.9e307; the box only
+        // adds masking, so the box lobe's Lambda is at least that (Jensen), +inf once the box is
+        // wide.
+        let r = f64::AxisAligned::new(1.0, 1.0).unwrap();
+        let w = DVec3::new(-1.0, f64::MAX, 0.9066);
+        use f64::Ndf;
+        let lg = f64::Ggx::new(r).lambda(w);
+        assert!(lg > 9.9e307, "{lg:e}");
+        // GGX's Lambda at a grazing direction whose |w_z| is near 1e-308 after rescaling:
+        // Lambda = q / (2 |w_z| (r + |w_z|)) -> sqrt(q) / (2 |w_z|) = (alpha_y w_y / w_z) / 2
+        // exactly here; the subnormal product kept 8 digits (6e-9 off), now 1e-15.
+        let ra = f64::AxisAligned::new(1e4, 1e-8).unwrap();
+        let wa = DVec3::new(-9.95e-307, f64::MAX, 1.0);
+        let expect = f64::MAX * 1e-8 / 2.0;
+        let la = f64::Ggx::new(ra).lambda(wa);
+        assert!((la / expect - 1.0).abs() < 1e-14, "{la:e} vs {expect:e}");
+        for hy in [1.0, 1e10, f64::INFINITY] {
+            let l = f64::filter::rect::lambda_rect(r, DVec2::new(1.57, hy), w);
+            assert!(l >= lg, "half_y {hy:e}: {l:e} < {lg:e}");
+        }
+        let m = f64::filter::rect::sample_visible_normal_rect(
+            r,
+            DVec2::new(1.57, 1.0),
+            w,
+            DVec2::new(0.3, 0.7),
+            DVec2::new(0.2, 0.9),
+        );
+        assert!(m.is_some_and(|m| m.is_finite() && m.z > 0.0), "{m:?}");
+    }
+
+    #[test]
     fn clamp_eigenvalues_nan_entry_is_zero() {
         // The fast path passed a NaN off-diagonal through.
         let c = f64::Covariance::new(0.1, f64::NAN, 0.1).clamp_eigenvalues(1.0);

@@ -18,9 +18,10 @@
 //!   code's (pivot rounded, `(A_c)_22 = (a12^2 + tau) / p`) differ by a few ulps of the
 //!   entries, which moves the quadratic forms by `kappa(A_c)` times that: `64 kappa eps`.
 
+#[path = "common/ndf_integrals.rs"]
+mod ndf_integrals;
+
 use filtered_ndf::f64::{Beckmann, Ggx, Ndf, RoughnessMatrix};
-use filtered_ndf::testing::quadrature::integrate_plane;
-use filtered_ndf::testing::quadrature::{Tolerance, integrate, integrate_2d, integrate_line};
 use glam::{DMat2, DVec2, DVec3};
 
 const EPS: f64 = f64::EPSILON;
@@ -158,42 +159,16 @@ fn the_clamp_is_a_plus_t_identity() {
 fn clamped_densities_integrate_to_one() {
     for c in cases() {
         let (ax, ay, phi0) = c.axes();
-        let rot = DVec2::from_angle(phi0);
         for (name, ndf) in ndfs(c.matrix()) {
-            // Slope plane, in the eigen frame of A_c (a rotation: unit Jacobian).
-            let e = integrate_plane(
-                |u, v| ndf.p22(rot.rotate(DVec2::new(u, v))),
-                (0.0, 0.0),
-                (ax, ay),
-                Tolerance::relative(1e-10),
-            );
+            // Slope plane, in the eigen frame of A_c (tests/common/ndf_integrals.rs).
+            let e = ndf_integrals::slope_plane_integral(ndf.as_ref(), ax, ay, phi0);
             assert!(
                 e.error < 1e-8 && (e.value - 1.0).abs() < 2e-8,
                 "{} {name} plane: {e:?}",
                 c.name
             );
-            // Hemisphere, `integral of D(m) cos(theta_m) dm`, with the elliptic substitution of
-            // tests/ndf_normalization.rs: tan(theta) = rho L(psi), rho = tau / (1 - tau).
-            let e = integrate_2d(
-                |tt, psi| {
-                    let (sp, cp) = psi.sin_cos();
-                    let l2 = ax * ax * cp * cp + ay * ay * sp * sp;
-                    let l = l2.sqrt();
-                    let rho = tt / (1.0 - tt);
-                    let drho = 1.0 / ((1.0 - tt) * (1.0 - tt));
-                    let t = rho * l;
-                    let ct = 1.0 / (1.0 + t * t).sqrt();
-                    let st = t * ct;
-                    let dtheta = l * drho / (1.0 + t * t);
-                    let dphi = ax * ay / l2;
-                    let phi = phi0 + (ay * sp).atan2(ax * cp);
-                    let m = DVec3::new(st * phi.cos(), st * phi.sin(), ct);
-                    ndf.d(m) * ct * st * dtheta * dphi
-                },
-                (0.0, 1.0),
-                (0.0, std::f64::consts::TAU),
-                Tolerance::relative(1e-10),
-            );
+            // Hemisphere, `integral of D(m) cos(theta_m) dm`, with the elliptic substitution.
+            let e = ndf_integrals::hemisphere_integral(ndf.as_ref(), ax, ay, phi0);
             assert!(
                 e.error < 1e-8 && (e.value - 1.0).abs() < 2e-8,
                 "{} {name} hemisphere: {e:?}",
@@ -201,51 +176,6 @@ fn clamped_densities_integrate_to_one() {
             );
         }
     }
-}
-
-/// `integral of max(0, o.m) D(m) dm` by quadrature in the slope plane (as
-/// `tests/ndf_smith.rs`, frames from this test's `A_c`).
-fn projected_area(ndf: &dyn Ndf, ac: DMat2, o: DVec3) -> f64 {
-    let oxy = o.truncate();
-    let r = oxy.length();
-    let inv = ac.inverse();
-    let ea = if r > 0.0 { oxy / r } else { DVec2::X };
-    let eb = ea.perp();
-    let (iab, ibb) = (ea.dot(inv * eb), eb.dot(inv * eb));
-    let wb = 1.0 / ibb.sqrt();
-    let wa = ea.dot(ac * ea).sqrt();
-    let inner_tol = Tolerance::relative(1e-12);
-    let inner = |x: f64| {
-        let c = -x * iab / ibb;
-        integrate_line(|y| ndf.p22(ea * x + eb * y), c, wb, inner_tol).value
-    };
-    let tol = Tolerance::relative(1e-11);
-    if r == 0.0 {
-        return o.z * integrate_line(inner, 0.0, wa, tol).value;
-    }
-    let a0 = o.z / r;
-    let weight = |x: f64| (o.z - r * x).max(0.0);
-    let left = integrate(
-        |u| {
-            let x = -wa * u / (1.0 - u);
-            let v = weight(x) * inner(x) * wa / ((1.0 - u) * (1.0 - u));
-            if v.is_finite() { v } else { 0.0 }
-        },
-        0.0,
-        1.0,
-        tol,
-    );
-    let u0 = a0 / (a0 + wa);
-    let right = integrate(
-        |u| {
-            let x = wa * u / (1.0 - u);
-            weight(x) * inner(x) * wa / ((1.0 - u) * (1.0 - u))
-        },
-        0.0,
-        u0,
-        tol,
-    );
-    left.value + right.value
 }
 
 #[test]
@@ -258,7 +188,7 @@ fn clamped_lambda_satisfies_the_smith_identity() {
                     let t = deg.to_radians();
                     let o = DVec3::new(t.sin() * az.cos(), t.sin() * az.sin(), t.cos());
                     let lhs = (1.0 + ndf.lambda(o)) * o.z;
-                    let rhs = projected_area(ndf.as_ref(), ac, o);
+                    let rhs = ndf_integrals::projected_area(ndf.as_ref(), ac, o);
                     assert!(
                         (lhs - rhs).abs() <= 1e-8 * rhs,
                         "{} {name} o = {o}: (1 + Lambda) cos = {lhs}, quadrature {rhs}",

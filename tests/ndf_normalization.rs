@@ -8,53 +8,25 @@
 //! normalisation constant (a missing `pi`, `alpha` instead of `alpha^2`, `sqrt det` of the
 //! wrong matrix) is off by a factor, a wrong slope/solid-angle Jacobian by far more than that.
 
+#[path = "common/ndf_integrals.rs"]
+mod ndf_integrals;
+
 use filtered_ndf::testing::cases::{self, NdfCase};
-use filtered_ndf::testing::quadrature::{Tolerance, integrate_2d, integrate_plane};
-use glam::{DVec2, DVec3};
 use proptest::prelude::*;
 
 const TOL: f64 = 2e-8;
 
+/// The slope-plane and hemisphere integrals of the case's lobe (`tests/common/ndf_integrals.rs`,
+/// in the case's own frame), as `(value, error estimate)`.
 fn slope_plane_integral(case: &NdfCase) -> (f64, f64) {
-    let ndf = case.build_f64().unwrap();
     let (ax, ay, phi) = case.form.axes();
-    let rot = DVec2::from_angle(phi);
-    // Integrate in the lobe's eigen frame (a rotation: unit Jacobian), widths = alphas.
-    let e = integrate_plane(
-        |u, v| ndf.p22(rot.rotate(DVec2::new(u, v))),
-        (0.0, 0.0),
-        (ax, ay),
-        Tolerance::relative(1e-10),
-    );
+    let e = ndf_integrals::slope_plane_integral(case.build_f64().unwrap().as_ref(), ax, ay, phi);
     (e.value, e.error)
 }
 
-/// `integral of D(m) cos(theta) sin(theta) dtheta dphi` in spherical coordinates. The peak is
-/// resolved by an elliptic substitution: `tan(theta) = rho L(psi)`, `rho = tau / (1 - tau)`,
-/// `phi = phi0 + atan2(a_y sin psi, a_x cos psi)`, `L(psi) = |(a_x cos psi, a_y sin psi)|`.
 fn hemisphere_integral(case: &NdfCase) -> (f64, f64) {
-    let ndf = case.build_f64().unwrap();
-    let (ax, ay, phi0) = case.form.axes();
-    let e = integrate_2d(
-        |tau, psi| {
-            let (sp, cp) = psi.sin_cos();
-            let l2 = ax * ax * cp * cp + ay * ay * sp * sp;
-            let l = l2.sqrt();
-            let rho = tau / (1.0 - tau);
-            let drho = 1.0 / ((1.0 - tau) * (1.0 - tau));
-            let t = rho * l; // tan(theta)
-            let ct = 1.0 / (1.0 + t * t).sqrt();
-            let st = t * ct;
-            let dtheta = l * drho / (1.0 + t * t);
-            let dphi = ax * ay / l2;
-            let phi = phi0 + (ay * sp).atan2(ax * cp);
-            let m = DVec3::new(st * phi.cos(), st * phi.sin(), ct);
-            ndf.d(m) * ct * st * dtheta * dphi
-        },
-        (0.0, 1.0),
-        (0.0, std::f64::consts::TAU),
-        Tolerance::relative(1e-10),
-    );
+    let (ax, ay, phi) = case.form.axes();
+    let e = ndf_integrals::hemisphere_integral(case.build_f64().unwrap().as_ref(), ax, ay, phi);
     (e.value, e.error)
 }
 

@@ -14,8 +14,10 @@
 //! still catches any error in `Lambda`'s formula (a wrong projected roughness, a missing
 //! factor 1/2, cancellation at grazing angles all exceed `1e-6`).
 
+#[path = "common/ndf_integrals.rs"]
+mod ndf_integrals;
+
 use filtered_ndf::testing::cases::{self, Form, Model, NdfCase};
-use filtered_ndf::testing::quadrature::{Tolerance, integrate, integrate_line};
 use glam::{DMat2, DVec2, DVec3};
 use proptest::prelude::*;
 
@@ -26,53 +28,10 @@ fn a_matrix(case: &NdfCase) -> DMat2 {
     DMat2::from_cols(DVec2::new(a11, a12), DVec2::new(a12, a22))
 }
 
-/// `integral of max(0, o.m) D(m) dm` by quadrature in the slope plane.
+/// `integral of max(0, o.m) D(m) dm` by quadrature in the slope plane
+/// (`tests/common/ndf_integrals.rs`), `A` from the case's own description.
 fn projected_area(case: &NdfCase, o: DVec3) -> f64 {
-    let ndf = case.build_f64().unwrap();
-    let oxy = o.truncate();
-    let r = oxy.length();
-    let a = a_matrix(case);
-    let inv = a.inverse();
-    let ea = if r > 0.0 { oxy / r } else { DVec2::X };
-    let eb = ea.perp();
-    let (iab, ibb) = (ea.dot(inv * eb), eb.dot(inv * eb));
-    let wb = 1.0 / ibb.sqrt();
-    let wa = ea.dot(a * ea).sqrt();
-    let inner_tol = Tolerance::relative(1e-12);
-    let inner = |x: f64| {
-        let c = -x * iab / ibb;
-        integrate_line(|y| ndf.p22(ea * x + eb * y), c, wb, inner_tol).value
-    };
-    let tol = Tolerance::relative(1e-11);
-    if r == 0.0 {
-        // Normal incidence: max(0, o_z) = o_z everywhere; integrate over the whole line.
-        return o.z * integrate_line(inner, 0.0, wa, tol).value;
-    }
-    let a0 = o.z / r;
-    let weight = |x: f64| (o.z - r * x).max(0.0);
-    // (-inf, 0]: x = -wa u / (1 - u).
-    let left = integrate(
-        |u| {
-            let x = -wa * u / (1.0 - u);
-            let v = weight(x) * inner(x) * wa / ((1.0 - u) * (1.0 - u));
-            if v.is_finite() { v } else { 0.0 }
-        },
-        0.0,
-        1.0,
-        tol,
-    );
-    // [0, a0]: x = wa u / (1 - u), u in [0, a0 / (a0 + wa)].
-    let u0 = a0 / (a0 + wa);
-    let right = integrate(
-        |u| {
-            let x = wa * u / (1.0 - u);
-            weight(x) * inner(x) * wa / ((1.0 - u) * (1.0 - u))
-        },
-        0.0,
-        u0,
-        tol,
-    );
-    left.value + right.value
+    ndf_integrals::projected_area(case.build_f64().unwrap().as_ref(), a_matrix(case), o)
 }
 
 fn check_identity(case: &NdfCase, o: DVec3) -> Result<(), TestCaseError> {

@@ -96,7 +96,7 @@ pub fn tonemap(c: Vec3, exposure: f32) -> Vec3 {
 }
 
 /// Linear `[0, 1]` to 8-bit sRGB.
-fn encode(v: f32) -> u8 {
+pub fn encode(v: f32) -> u8 {
     let v = v.clamp(0.0, 1.0);
     let s = if v <= 0.003_130_8 {
         12.92 * v

@@ -4,12 +4,15 @@
 //!
 //! Run: `cargo run --release --example highlights -- [--width 256] [--height 160]
 //! [--spp 512] [--frames 16] [--out target/highlights] [--methods a,b,..|all]
-//! [--presets on|off]
-//! [--footprint quad|rays] [--threads 2] [--seed 1]`.
+//! [--presets on|off] [--investigate on|off] [--fix on|off] [--scene both|water|normal-map]
+//! [--footprint quad|rays|moments] [--threads 2] [--seed 1]`.
 
 mod camera;
+mod glints;
 mod image_out;
 mod methods;
+mod metrics;
+mod normal_map;
 mod parallel;
 mod peaks;
 mod plot;
@@ -40,13 +43,20 @@ pub struct Options {
     pub exposure: f32,
     /// Also shade the engine presets (table only).
     pub presets: bool,
+    /// Run the false-glint investigation (`glints.rs`).
+    pub investigate: bool,
+    /// Which scenes: the water (`water`), the normal-mapped floor (`normal-map`), or both.
+    pub scene: &'static str,
+    /// Also score the footprint methods on the windowed-moments route (the false-glint
+    /// fix), still frame and temporal test.
+    pub fix: bool,
 }
 
 fn usage() -> ! {
     let slugs: Vec<&str> = Method::ALL.iter().map(|m| m.slug()).collect();
     eprintln!(
         "usage: highlights [--width N] [--height N] [--spp N] [--frames N] [--out DIR]\n\
-         \x20                 [--methods all|{}] [--footprint quad|rays] [--threads N] [--seed N]\n\
+         \x20                 [--methods all|{}] [--footprint quad|rays|moments] [--threads N] [--seed N]\n\
          \x20                 [--presets on|off]",
         slugs.join(",")
     );
@@ -66,6 +76,9 @@ fn parse_args() -> Options {
         seed: 1,
         exposure: 1.0,
         presets: true,
+        investigate: true,
+        fix: true,
+        scene: "both",
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -79,11 +92,22 @@ fn parse_args() -> Options {
             "--threads" => o.threads = num(&value).max(1),
             "--seed" => o.seed = num(&value) as u64,
             "--presets" => o.presets = value != "off",
+            "--investigate" => o.investigate = value != "off",
+            "--fix" => o.fix = value != "off",
+            "--scene" => {
+                o.scene = match value.as_str() {
+                    "water" => "water",
+                    "normal-map" => "normal-map",
+                    "both" => "both",
+                    _ => usage(),
+                }
+            }
             "--out" => o.out = PathBuf::from(value),
             "--footprint" => {
                 o.route = match value.as_str() {
                     "quad" => FootprintRoute::Quad,
                     "rays" => FootprintRoute::RayDifferentials,
+                    "moments" => FootprintRoute::Moments,
                     _ => usage(),
                 }
             }
@@ -108,6 +132,13 @@ fn main() -> std::io::Result<()> {
     parallel::init_threads(o.threads);
     std::fs::create_dir_all(&o.out)?;
     let start = Instant::now();
+    if o.scene == "normal-map" {
+        let md = normal_map::run(&o)?;
+        print!("{md}");
+        std::fs::write(o.out.join("normal_map.md"), md)?;
+        println!("\nTotal {:.1} s.", start.elapsed().as_secs_f64());
+        return Ok(());
+    }
     let cam = camera_at(0, o.width, o.height);
     let scene = Scene::new(cam.lod());
     eprintln!(
@@ -129,7 +160,7 @@ fn main() -> std::io::Result<()> {
 
     let t = Instant::now();
     let gb = render::gbuffer(&scene, &cam, o.width, o.height);
-    let derivs = gb.derivatives(o.route);
+    let derivs = gb.derivatives(&scene, o.route);
     let base_ms = t.elapsed().as_secs_f64() * 1e3;
 
     let mut tiles: Vec<(String, Rgb8)> = Vec::new();
@@ -146,10 +177,25 @@ fn main() -> std::io::Result<()> {
         ));
     }
     let mut worst_change: f64 = 0.0;
+    // Issue 21's metrics of every method and preset (the flicker comes from the temporal
+    // test below), and the LDR-FLIP maps.
+    let mut scores: Vec<(Method, FootprintRoute, metrics::Scores)> = Vec::new();
+    let mut flip_tiles: Vec<(String, Rgb8)> = Vec::new();
     for &method in &o.methods {
         let t = Instant::now();
-        let img = render::shade(&scene, &gb, &derivs, method);
+        let frame = render::shade_frame(&scene, &gb, &derivs, method);
         let ms = base_ms + t.elapsed().as_secs_f64() * 1e3;
+        let img = &frame.total;
+        let fam = method.family();
+        let (sc, map) = metrics::score(
+            (img, &frame.specular),
+            (reference.full(fam), reference.specular(fam)),
+            o.exposure,
+        );
+        scores.push((method, o.route, sc));
+        let map = map.to_rgb8();
+        image_out::save(&map, &o.out.join(format!("flip-{}.png", method.slug())))?;
+        flip_tiles.push((format!("{} {:.3}", method.label(), sc.flip_ldr), map));
         let (full, half) = (
             reference.full(method.family()),
             reference.half(method.family()),
@@ -169,8 +215,53 @@ fn main() -> std::io::Result<()> {
             ms
         )
         .unwrap();
-        save(&o, method.slug(), &img)?;
+        save(&o, method.slug(), img)?;
         tiles.push((method.label().to_string(), img.to_rgb8(o.exposure)));
+    }
+    // The false-glint fix: the footprint methods again on the windowed-moments route.
+    let fixed: Vec<Method> = if o.fix && o.route != FootprintRoute::Moments {
+        o.methods
+            .iter()
+            .copied()
+            .filter(|m| m.uses_footprint())
+            .collect()
+    } else {
+        Vec::new()
+    };
+    if !fixed.is_empty() {
+        let moments = gb.derivatives(&scene, FootprintRoute::Moments);
+        let mut fixed_tiles = vec![
+            (
+                "Reference Beckmann".to_string(),
+                reference.full(Family::Beckmann).to_rgb8(o.exposure),
+            ),
+            (
+                "Reference GGX".to_string(),
+                reference.full(Family::Ggx).to_rgb8(o.exposure),
+            ),
+        ];
+        for &method in &fixed {
+            let frame = render::shade_frame(&scene, &gb, &moments, method);
+            let fam = method.family();
+            let (sc, map) = metrics::score(
+                (&frame.total, &frame.specular),
+                (reference.full(fam), reference.specular(fam)),
+                o.exposure,
+            );
+            scores.push((method, FootprintRoute::Moments, sc));
+            let slug = format!("{}-moments", method.slug());
+            image_out::save(&map.to_rgb8(), &o.out.join(format!("flip-{slug}.png")))?;
+            save(&o, &slug, &frame.total)?;
+            fixed_tiles.push((
+                temporal::variant_label(method, FootprintRoute::Moments),
+                frame.total.to_rgb8(o.exposure),
+            ));
+        }
+        let zoom = if o.width <= 320 { 2 } else { 1 };
+        image_out::save(
+            &contact_sheet(&fixed_tiles, 3, zoom),
+            &o.out.join("contact_sheet_moments.png"),
+        )?;
     }
     // Engine conventions (issue: which one over- or under-filters on this scene): the same
     // still frame, table only; mean luminance / reference < 1 means over-filtering.
@@ -179,8 +270,15 @@ fn main() -> std::io::Result<()> {
     writeln!(preset_table, "|---|---:|---:|---:|---:|").unwrap();
     if o.presets {
         for method in Method::presets() {
-            let img = render::shade(&scene, &gb, &derivs, method);
+            let frame = render::shade_frame(&scene, &gb, &derivs, method);
+            let img = &frame.total;
             let full = reference.full(method.family());
+            let (sc, _) = metrics::score(
+                (img, &frame.specular),
+                (full, reference.specular(method.family())),
+                o.exposure,
+            );
+            scores.push((method, o.route, sc));
             writeln!(
                 preset_table,
                 "| {} | {:.4} | {:.4} | {:.3} | {:.3} |",
@@ -197,9 +295,9 @@ fn main() -> std::io::Result<()> {
     // (offline) against 2x2-quad differences (what a GPU does).
     let other = match o.route {
         FootprintRoute::Quad => FootprintRoute::RayDifferentials,
-        FootprintRoute::RayDifferentials => FootprintRoute::Quad,
+        FootprintRoute::RayDifferentials | FootprintRoute::Moments => FootprintRoute::Quad,
     };
-    let other_derivs = gb.derivatives(other);
+    let other_derivs = gb.derivatives(&scene, other);
     let mut route_table = String::new();
     writeln!(
         route_table,
@@ -218,6 +316,10 @@ fn main() -> std::io::Result<()> {
     let zoom = if o.width <= 320 { 2 } else { 1 };
     let sheet_path = o.out.join("contact_sheet.png");
     image_out::save(&contact_sheet(&tiles, 3, zoom), &sheet_path)?;
+    image_out::save(
+        &contact_sheet(&flip_tiles, 3, zoom),
+        &o.out.join("flip_sheet.png"),
+    )?;
 
     println!(
         "## Still frame ({}x{}, 1 shading sample per pixel, footprints: {})\n",
@@ -246,13 +348,33 @@ fn main() -> std::io::Result<()> {
         }
     );
 
-    let temporal_md = if o.frames >= 2 {
-        temporal::run(&o)?
+    let glints_md = if o.investigate {
+        glints::investigate(&o, &scene, &cam, &gb, &reference)?
     } else {
         String::new()
     };
+    print!("{glints_md}");
+    let presets = if o.presets {
+        Method::presets()
+    } else {
+        Vec::new()
+    };
+    let temporal = (o.frames >= 2)
+        .then(|| temporal::run(&o, &presets, &fixed))
+        .transpose()?;
+    let temporal_md = temporal
+        .as_ref()
+        .map_or(String::new(), |t| t.markdown.clone());
     print!("{temporal_md}");
+    let lead = lead_table(&scores, temporal.as_ref());
+    println!("\n## What a viewer sees\n\n{lead}");
     let mut md = String::new();
+    writeln!(
+        md,
+        "## What a viewer sees (still frame and temporal test)\n\n{lead}"
+    )
+    .unwrap();
+    md.push_str(&glints_md);
     writeln!(
         md,
         "## Still frame ({}x{}, 1 shading sample per pixel, footprints: {})\n\n{table}",
@@ -270,6 +392,11 @@ fn main() -> std::io::Result<()> {
     )
     .unwrap();
     writeln!(md, "Reference: {} spp; doubling {} -> {} spp changes each RMSE by at most {:.2}%.\n{temporal_md}", o.spp, o.spp / 2, o.spp, 100.0 * worst_change).unwrap();
+    if o.scene == "both" {
+        let nm = normal_map::run(&o)?;
+        print!("{nm}");
+        md.push_str(&nm);
+    }
     std::fs::write(o.out.join("results.md"), md)?;
     println!(
         "\nTotal {:.1} s. Images, contact sheet, plot and results.md in {}",
@@ -277,6 +404,34 @@ fn main() -> std::io::Result<()> {
         o.out.display()
     );
     Ok(())
+}
+
+/// Issue 21's table for the CPU demo's methods, presets and variants ([`metrics::lead_table`]).
+fn lead_table(
+    scores: &[(Method, FootprintRoute, metrics::Scores)],
+    temporal: Option<&temporal::Temporal>,
+) -> String {
+    let flicker = |m: Method, r: FootprintRoute| {
+        temporal.and_then(|tp| {
+            let i = tp.methods.iter().position(|&x| x == (m, r))?;
+            Some(metrics::Flicker {
+                error: tp.flicker_error[i],
+                energy: tp.flicker[i],
+                peak_variation: tp.peak_variation[i],
+            })
+        })
+    };
+    let rows: Vec<metrics::LeadRow> = scores
+        .iter()
+        .map(|&(m, route, s)| metrics::LeadRow {
+            label: temporal::variant_label(m, route),
+            ndf: m.family().name(),
+            baseline: m == Method::Unfiltered(m.family()),
+            scores: s,
+            flicker: flicker(m, route),
+        })
+        .collect();
+    metrics::lead_table(&rows)
 }
 
 fn save(o: &Options, name: &str, img: &Image) -> std::io::Result<()> {
@@ -287,5 +442,6 @@ fn route_name(r: FootprintRoute) -> &'static str {
     match r {
         FootprintRoute::Quad => "2x2-quad differences (GPU)",
         FootprintRoute::RayDifferentials => "ray differentials + M (offline)",
+        FootprintRoute::Moments => "windowed slope moments (the false-glint fix)",
     }
 }

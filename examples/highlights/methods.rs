@@ -7,6 +7,7 @@
 //!
 //! Every method calls the crate; nothing here re-implements a kernel.
 
+use filtered_ndf::f32::prelude::{ExactGaussian, Filterable};
 use filtered_ndf::f32::{
     AxisAligned, Beckmann, ClampRules, Endpoint, ExtentFloor, Footprint, Ggx, Isotropic, Ndf,
     ShadingFrame, filter, filter::presets, filter::proxy, filter::rect, footprint::geometry,
@@ -72,6 +73,9 @@ pub enum Method {
     Tk21Projected,
     /// TK19 isotropic deferred roughness from world-space normal differences.
     Tk19Isotropic(IsoVariant),
+    /// The exact Gaussian filter of GGX (`ExactGaussian::KHPL16`: the GGX slope density
+    /// convolved with the pixel kernel, `GaussianFilteredGgx`), the kernel TK19 approximates.
+    ExactGaussianGgx,
     /// An engine convention from `presets::ALL` (index), applied to the G-buffer normal
     /// differences, on GGX.
     Preset(usize),
@@ -79,7 +83,7 @@ pub enum Method {
 
 impl Method {
     /// Every method, in display order.
-    pub const ALL: [Method; 10] = [
+    pub const ALL: [Method; 11] = [
         Method::Unfiltered(Family::Beckmann),
         Method::Unfiltered(Family::Ggx),
         Method::BeckmannParallelogram,
@@ -90,6 +94,7 @@ impl Method {
         Method::Tk19Isotropic(IsoVariant::Max),
         Method::Tk19Isotropic(IsoVariant::Trace),
         Method::Tk19Isotropic(IsoVariant::Average),
+        Method::ExactGaussianGgx,
     ];
 
     /// Every engine preset of the crate (`presets::ALL`), as methods.
@@ -106,6 +111,15 @@ impl Method {
         }
     }
 
+    /// Whether the method filters over the half vector's footprint (the others read the
+    /// normal differences, or nothing).
+    pub fn uses_footprint(self) -> bool {
+        !matches!(
+            self,
+            Method::Unfiltered(_) | Method::Tk19Isotropic(_) | Method::Preset(_)
+        )
+    }
+
     /// Short command-line / file name.
     pub fn slug(self) -> &'static str {
         match self {
@@ -119,6 +133,7 @@ impl Method {
             Method::Tk19Isotropic(IsoVariant::Max) => "tk19-iso-max",
             Method::Tk19Isotropic(IsoVariant::Trace) => "tk19-iso-trace",
             Method::Tk19Isotropic(IsoVariant::Average) => "tk19-iso-average",
+            Method::ExactGaussianGgx => "exact-gaussian-ggx",
             Method::Preset(i) => PRESET_SLUGS[i.min(PRESET_SLUGS.len() - 1)],
         }
     }
@@ -136,6 +151,7 @@ impl Method {
             Method::Tk19Isotropic(IsoVariant::Max) => "TK19 iso max",
             Method::Tk19Isotropic(IsoVariant::Trace) => "TK19 iso trace",
             Method::Tk19Isotropic(IsoVariant::Average) => "TK19 iso average",
+            Method::ExactGaussianGgx => "Exact Gaussian GGX",
             Method::Preset(i) => presets::ALL[i.min(presets::ALL.len() - 1)].0,
         }
     }
@@ -194,6 +210,9 @@ pub fn filtered_d(method: Method, sp: &ShadingPoint) -> f32 {
         Method::Tk19Projected => tk19_projected(sp),
         Method::Tk21Projected => tk21_projected(sp),
         Method::Tk19Isotropic(variant) => tk19_isotropic(sp, variant),
+        Method::ExactGaussianGgx => Ggx::new(Isotropic::new_clamped(sp.alpha))
+            .filtered(sp.footprint, ExactGaussian::KHPL16)
+            .d(sp.h),
         Method::Preset(i) => {
             let conv = presets::ALL[i.min(presets::ALL.len() - 1)].1;
             let alpha = conv.apply(sp.alpha, sp.dn_dx, sp.dn_dy);

@@ -4,8 +4,8 @@ use crate::image_out::Rgb8;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
-/// One distinct colour per method of `Method::ALL` (ten).
-pub const PALETTE: [[u8; 3]; 10] = [
+/// One distinct colour per method of `Method::ALL` (eleven).
+pub const PALETTE: [[u8; 3]; 11] = [
     [220, 40, 40],
     [240, 140, 20],
     [30, 120, 220],
@@ -16,6 +16,7 @@ pub const PALETTE: [[u8; 3]; 10] = [
     [120, 120, 40],
     [90, 90, 90],
     [110, 70, 20],
+    [0, 0, 160],
 ];
 
 /// One polyline with its legend label, colour and dash (a dashed line for references).

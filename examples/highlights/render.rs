@@ -8,6 +8,7 @@ use crate::parallel;
 use crate::scene::{Hit, Scene};
 use filtered_ndf::f32::Footprint;
 use filtered_ndf::f32::footprint::slope::slope_from_sphere;
+use filtered_ndf::f32::kernel::Covariance;
 use filtered_ndf::testing::rng::SplitMix64;
 use glam::{Mat3, Quat, Vec2, Vec3};
 
@@ -19,6 +20,11 @@ pub enum FootprintRoute {
     /// Analytic ray differentials and the half-vector Jacobian `M` (the offline route,
     /// KHPL16 eq. 4-6 and section 4.2).
     RayDifferentials,
+    /// The false-glint fix: on the water, the kernel is the covariance of the normal's slope
+    /// over the pixel's Gaussian window (the waves' exact windowed moments,
+    /// [`Scene::gradient_moments`]) plus the first-order parallax of the view and light
+    /// directions, centred on the window's mean normal; elsewhere as `RayDifferentials`.
+    Moments,
 }
 
 /// Everything shading needs at one primary hit.
@@ -75,20 +81,35 @@ fn tangent_frame(n: Vec3) -> Mat3 {
 
 /// Outgoing radiance at `s` with the microfacet density `d` (per steradian, evaluated at the
 /// local half vector by the caller) and the Smith term of `family` at the base roughness.
+#[allow(dead_code)] // the demos shade through `radiance_parts`; the GPU shaders mirror this
 pub fn radiance(scene: &Scene, s: &Surface, family: Family, d: impl FnOnce(Vec3) -> f32) -> Vec3 {
+    let (rest, specular) = radiance_parts(scene, s, family, d);
+    rest + specular
+}
+
+/// [`radiance`] in two parts: everything but the point light's specular reflection (ambient
+/// and diffuse), and that specular reflection alone (the only part the filters change).
+pub fn radiance_parts(
+    scene: &Scene,
+    s: &Surface,
+    family: Family,
+    d: impl FnOnce(Vec3) -> f32,
+) -> (Vec3, Vec3) {
     let (wi, wo, h) = (s.local(s.wi), s.local(s.wo), s.local(s.h));
     let albedo = s.hit.albedo;
-    let mut l = albedo * scene.ambient;
+    let ambient = albedo * scene.ambient;
     let cos_i = wi.z;
     if cos_i <= 0.0 {
-        return l;
+        return (ambient, Vec3::ZERO);
     }
     let irradiance = scene.light_intensity * (cos_i / s.dist2);
     let cos_o = wo.z.max(1e-4);
     let fresnel = scene.f0 + (1.0 - scene.f0) * (1.0 - wi.dot(h).clamp(0.0, 1.0)).powi(5);
     let spec = fresnel * d(h) * family.g2(s.hit.alpha, wi, wo, h) / (4.0 * cos_i * cos_o);
-    l += irradiance * (albedo * std::f32::consts::FRAC_1_PI + Vec3::splat(spec));
-    l
+    (
+        ambient + irradiance * albedo * std::f32::consts::FRAC_1_PI,
+        irradiance * spec,
+    )
 }
 
 /// The pixel-centre hits of one frame.
@@ -133,7 +154,25 @@ pub struct PixelDerivatives {
     pub footprint: Footprint,
     pub dn_dx: Vec3,
     pub dn_dy: Vec3,
+    /// The rotation (tangent frame) taking the kernel's mean normal to the shading normal:
+    /// the half-vector filters evaluate their lobe at `mean_shift * h` (identity but on the
+    /// `Moments` route).
+    pub mean_shift: Quat,
+    /// On the `Moments` route, a support clamp that the false-glint investigation measures
+    /// (`glints.rs`; the demo's methods do not use it): how far (in units of the roughness
+    /// `alpha`) the gradient whose normal reflects the light to the eye lies outside a bound
+    /// of the gradients the water has within [`SUPPORT_SIGMAS`] of the pixel's window
+    /// ([`Scene::gradient_gap`]), less the half vector's own change over the window
+    /// (parallax); 0 inside, and on the other routes.
+    pub support_gap: f32,
 }
+
+/// The window, in standard deviations of the pixel filter, that the support clamp covers.
+pub const SUPPORT_SIGMAS: f32 = 2.5;
+/// Beyond this support gap (in `alpha`) the support clamp answers 0: no normal of the window
+/// comes within 4 alpha of reflecting the light (a Beckmann lobe is down by `exp(-16)`
+/// there), which a Gaussian kernel, with its unbounded support, cannot know.
+pub const SUPPORT_GAP_ALPHAS: f32 = 4.0;
 
 impl GBuffer {
     fn at(&self, x: usize, y: usize) -> Option<&Surface> {
@@ -193,6 +232,8 @@ impl GBuffer {
             footprint: Footprint::from_slope_derivatives(dh_u, dh_v),
             dn_dx,
             dn_dy,
+            mean_shift: Quat::IDENTITY,
+            support_gap: 0.0,
         }
     }
 
@@ -219,6 +260,118 @@ impl GBuffer {
         }
     }
 
+    /// The `Moments` route (see [`FootprintRoute::Moments`]).
+    pub fn moment_derivatives(&self, scene: &Scene, x: usize, y: usize) -> PixelDerivatives {
+        let rays = self.analytic_derivatives(x, y);
+        let Some((s, ray)) = self.pixels[y * self.width + x].as_ref() else {
+            return rays;
+        };
+        let (dx_u, dx_v) = ray.footprint_on_plane(&s.hit);
+        let window = Self::window(dx_u, dx_v);
+        let Some((mean, cov)) = scene.gradient_moments(&s.hit, window) else {
+            return rays;
+        };
+        let from = self.derivatives_of_moments(s, (dx_u, dx_v), rays, mean, cov);
+        // The support test: the gradient g* whose normal is the half vector, at the pixel
+        // centre and at the window's 2.5-sigma points (the parallax margin).
+        let light = s.hit.position + s.wi * s.dist2.sqrt();
+        let g_star = |p: Vec3| {
+            let h = ((self.eye - p).normalize() + (light - p).normalize()).normalize();
+            Vec2::new(-h.x, -h.z) / h.y.max(1e-3)
+        };
+        let g0 = g_star(s.hit.position);
+        let k = SUPPORT_SIGMAS * methods::SIGMA_PIXEL;
+        let parallax = [dx_u, -dx_u, dx_v, -dx_v]
+            .iter()
+            .map(|&d| (g_star(s.hit.position + k * d) - g0).length())
+            .fold(0.0, f32::max);
+        let gap = scene
+            .gradient_gap(&s.hit, window, SUPPORT_SIGMAS, g0)
+            .unwrap_or(0.0);
+        PixelDerivatives {
+            support_gap: ((gap - parallax) / s.hit.alpha).max(0.0),
+            ..from
+        }
+    }
+
+    /// The pixel's Gaussian window on the water, `(dx_u, dx_v)` scaled by the pixel filter,
+    /// as a world covariance `(c_xx, c_xz, c_zz)`.
+    fn window(dx_u: Vec3, dx_v: Vec3) -> [f32; 3] {
+        let sig2 = methods::SIGMA_PIXEL * methods::SIGMA_PIXEL;
+        [
+            sig2 * (dx_u.x * dx_u.x + dx_v.x * dx_v.x),
+            sig2 * (dx_u.x * dx_u.z + dx_v.x * dx_v.z),
+            sig2 * (dx_u.z * dx_u.z + dx_v.z * dx_v.z),
+        ]
+    }
+
+    /// The windowed-mixture experiment of `glints.rs` ([`Scene::gradient_mixture`]): per
+    /// component its weight and its derivatives (as the `Moments` route's); empty off the
+    /// water.
+    #[allow(dead_code)] // the false-glint investigation only
+    pub fn mixture_derivatives(
+        &self,
+        scene: &Scene,
+        x: usize,
+        y: usize,
+    ) -> Vec<(f32, PixelDerivatives)> {
+        let rays = self.analytic_derivatives(x, y);
+        let Some((s, ray)) = self.pixels[y * self.width + x].as_ref() else {
+            return Vec::new();
+        };
+        let (dx_u, dx_v) = ray.footprint_on_plane(&s.hit);
+        scene
+            .gradient_mixture(&s.hit, Self::window(dx_u, dx_v))
+            .unwrap_or_default()
+            .into_iter()
+            .map(|(w, mean, cov)| {
+                (
+                    w,
+                    self.derivatives_of_moments(s, (dx_u, dx_v), rays, mean, cov),
+                )
+            })
+            .collect()
+    }
+
+    /// The derivatives of a Gaussian gradient distribution `N(mean, cov)` over the window:
+    /// its kernel in this pixel's slope domain plus the parallax, its mean as the lobe's
+    /// centre.
+    fn derivatives_of_moments(
+        &self,
+        s: &Surface,
+        (dx_u, dx_v): (Vec3, Vec3),
+        rays: PixelDerivatives,
+        mean: Vec2,
+        cov: [f32; 3],
+    ) -> PixelDerivatives {
+        // The parallax: the ray-differential footprint of a flat surface (zero shape operator).
+        let parallax = methods::footprint_from_ray_differentials(&methods::AnalyticInput {
+            position: s.hit.position,
+            eye: self.eye,
+            light: s.hit.position + s.wi * s.dist2.sqrt(),
+            frame: [s.frame.x_axis, s.frame.y_axis, s.frame.z_axis],
+            dn_dt: Vec3::ZERO,
+            dn_db: Vec3::ZERO,
+            dx_u,
+            dx_v,
+        });
+        // Height gradient (h_x, h_z) -> slope of the normal in this tangent frame: the normal
+        // is (-h_x, 1, -h_z) / L, so d(slope) = (t . e, b . e) / L per unit gradient change.
+        let (t, b) = (s.frame.x_axis, s.frame.y_axis);
+        let len = 1.0 / s.hit.normal.y.max(1e-3);
+        let j = glam::Mat2::from_cols(Vec2::new(t.x, b.x), Vec2::new(t.z, b.z)) / len;
+        let g = glam::Mat2::from_cols(Vec2::new(cov[0], cov[1]), Vec2::new(cov[1], cov[2]));
+        let k = j * g * j.transpose();
+        let total = parallax.covariance(methods::SIGMA_PIXEL)
+            + Covariance::new(k.x_axis.x, 0.5 * (k.y_axis.x + k.x_axis.y), k.y_axis.y);
+        let mean_normal = Vec3::new(-mean.x, 1.0, -mean.y).normalize();
+        PixelDerivatives {
+            footprint: footprint_of(total.sanitized(), methods::SIGMA_PIXEL),
+            mean_shift: Quat::from_rotation_arc(s.local(mean_normal), Vec3::Z),
+            ..rays
+        }
+    }
+
     /// Per pixel: whether the quad route differences it with its own 2x2-quad partner on
     /// both axes (`coord ^ 1`: same object, no depth discontinuity), where a GPU's fine
     /// derivatives difference the same two pixels; pixels that see the sky count too (no
@@ -236,44 +389,103 @@ impl GBuffer {
             .collect()
     }
 
-    pub fn derivatives(&self, route: FootprintRoute) -> Vec<PixelDerivatives> {
+    pub fn derivatives(&self, scene: &Scene, route: FootprintRoute) -> Vec<PixelDerivatives> {
         parallel::rows(self.height, None, |y| {
             (0..self.width)
                 .map(|x| match route {
                     FootprintRoute::Quad => self.quad_derivatives(x, y),
                     FootprintRoute::RayDifferentials => self.analytic_derivatives(x, y),
+                    FootprintRoute::Moments => self.moment_derivatives(scene, x, y),
                 })
                 .collect()
         })
     }
 }
 
+/// A footprint whose Gaussian kernel at `sigma` is `k`: its eigenvectors scaled by the square
+/// roots of its eigenvalues over `sigma`.
+pub fn footprint_of(k: Covariance, sigma: f32) -> Footprint {
+    let (l1, l2) = k.eigenvalues();
+    let (l1, l2) = (l1.max(l2), l1.min(l2));
+    let e1 = if k.s12.abs() > 1e-12 * (l1.abs() + 1e-30) {
+        Vec2::new(l1 - k.s22, k.s12).normalize_or(Vec2::X)
+    } else if k.s11 >= k.s22 {
+        Vec2::X
+    } else {
+        Vec2::Y
+    };
+    Footprint::from_slope_derivatives(
+        e1 * (l1.max(0.0).sqrt() / sigma),
+        e1.perp() * (l2.max(0.0).sqrt() / sigma),
+    )
+}
+
 /// One shading sample per pixel with `method`.
 pub fn shade(scene: &Scene, gb: &GBuffer, derivs: &[PixelDerivatives], method: Method) -> Image {
-    let data = parallel::rows(gb.height, None, |y| {
+    shade_frame(scene, gb, derivs, method).total
+}
+
+/// A shaded frame and its specular term alone (the point light's specular reflection; the
+/// rest, ambient, diffuse and sky, is the same for every method).
+pub struct Frame {
+    pub total: Image,
+    pub specular: Image,
+}
+
+/// [`shade`], with the specular term kept apart.
+pub fn shade_frame(
+    scene: &Scene,
+    gb: &GBuffer,
+    derivs: &[PixelDerivatives],
+    method: Method,
+) -> Frame {
+    shade_with(scene, gb, method.family(), |i, h, alpha| {
+        let dv = derivs[i];
+        let h = if method.uses_footprint() {
+            dv.mean_shift * h
+        } else {
+            h
+        };
+        methods::filtered_d(
+            method,
+            &ShadingPoint {
+                h,
+                alpha,
+                footprint: dv.footprint,
+                dn_dx: dv.dn_dx,
+                dn_dy: dv.dn_dy,
+            },
+        )
+    })
+}
+
+/// One shading sample per pixel with the density `d(pixel index, local h, alpha)`.
+pub fn shade_with(
+    scene: &Scene,
+    gb: &GBuffer,
+    family: Family,
+    d: impl Fn(usize, Vec3, f32) -> f32 + Sync + Send,
+) -> Frame {
+    let data: Vec<(Vec3, Vec3)> = parallel::rows(gb.height, None, |y| {
         (0..gb.width)
             .map(|x| {
                 let i = y * gb.width + x;
                 match &gb.pixels[i] {
-                    None => gb.sky[i],
-                    Some((s, _)) => radiance(scene, s, method.family(), |h| {
-                        let dv = derivs[i];
-                        methods::filtered_d(
-                            method,
-                            &ShadingPoint {
-                                h,
-                                alpha: s.hit.alpha,
-                                footprint: dv.footprint,
-                                dn_dx: dv.dn_dx,
-                                dn_dy: dv.dn_dy,
-                            },
-                        )
-                    }),
+                    None => (gb.sky[i], Vec3::ZERO),
+                    Some((s, _)) => {
+                        let (rest, spec) =
+                            radiance_parts(scene, s, family, |h| d(i, h, s.hit.alpha));
+                        (rest + spec, spec)
+                    }
                 }
             })
             .collect()
     });
-    Image::new(gb.width, gb.height, data)
+    let (total, specular): (Vec<Vec3>, Vec<Vec3>) = data.into_iter().unzip();
+    Frame {
+        total: Image::new(gb.width, gb.height, total),
+        specular: Image::new(gb.width, gb.height, specular),
+    }
 }
 
 /// The supersampled references of one frame: for each family, the average over the first
@@ -281,6 +493,8 @@ pub fn shade(scene: &Scene, gb: &GBuffer, derivs: &[PixelDerivatives], method: M
 pub struct Reference {
     pub half: [Image; 2],
     pub full: [Image; 2],
+    /// The specular term alone, all samples.
+    pub specular: [Image; 2],
 }
 
 impl Reference {
@@ -289,6 +503,9 @@ impl Reference {
     }
     pub fn half(&self, family: Family) -> &Image {
         &self.half[family as usize]
+    }
+    pub fn specular(&self, family: Family) -> &Image {
+        &self.specular[family as usize]
     }
 }
 
@@ -305,18 +522,45 @@ pub fn reference(
     seed: u64,
     progress: Option<&str>,
 ) -> Reference {
+    reference_with(
+        scene,
+        cam,
+        (width, height),
+        spp,
+        seed,
+        progress,
+        methods::SIGMA_PIXEL,
+    )
+}
+
+/// [`reference`] with the pixel filter's standard deviation `sigma` (in pixels); `sigma <= 0`
+/// draws the samples uniformly over the pixel's square instead (a box pixel filter).
+pub fn reference_with(
+    scene: &Scene,
+    cam: &Camera,
+    (width, height): (usize, usize),
+    spp: usize,
+    seed: u64,
+    progress: Option<&str>,
+    sigma: f32,
+) -> Reference {
     let n = (spp / 2).max(1);
     let lattice = Lattice::new(n);
     let families = [Family::Beckmann, Family::Ggx];
-    let px: Vec<[Vec3; 4]> = parallel::rows(height, progress, |y| {
+    let px: Vec<[Vec3; 6]> = parallel::rows(height, progress, |y| {
         (0..width)
             .map(|x| {
                 let mut rng = pixel_rng(seed, (y * width + x) as u64);
                 let mut sums = [[Vec3::ZERO; 2]; 2];
+                let mut spec = [Vec3::ZERO; 2];
                 for sum in &mut sums {
                     let shift = (uniform_f32(&mut rng), uniform_f32(&mut rng));
                     for j in 0..n {
-                        let (ox, oy) = lattice.gaussian(j, shift, methods::SIGMA_PIXEL);
+                        let (ox, oy) = if sigma > 0.0 {
+                            lattice.gaussian(j, shift, sigma)
+                        } else {
+                            lattice.uniform(j, shift)
+                        };
                         let r = cam.ray(x as f32 + 0.5 + ox, y as f32 + 0.5 + oy);
                         let hit = scene
                             .intersect(&r.ray)
@@ -325,7 +569,11 @@ pub fn reference(
                             sum[f] += match &hit {
                                 None => scene.sky(r.ray.dir),
                                 Some(s) => {
-                                    radiance(scene, s, *family, |h| family.d(s.hit.alpha, h))
+                                    let (rest, sp) = radiance_parts(scene, s, *family, |h| {
+                                        family.d(s.hit.alpha, h)
+                                    });
+                                    spec[f] += sp;
+                                    rest + sp
                                 }
                             };
                         }
@@ -338,6 +586,8 @@ pub fn reference(
                     a[1] / n,
                     (a[0] + b[0]) / (2.0 * n),
                     (a[1] + b[1]) / (2.0 * n),
+                    spec[0] / (2.0 * n),
+                    spec[1] / (2.0 * n),
                 ]
             })
             .collect()
@@ -346,6 +596,7 @@ pub fn reference(
     Reference {
         half: [img(0), img(1)],
         full: [img(2), img(3)],
+        specular: [img(4), img(5)],
     }
 }
 
@@ -370,10 +621,22 @@ impl Lattice {
         Self { n, g }
     }
 
-    /// Point `j` shifted by `shift` (mod 1), mapped to a 2D normal deviate of std `sigma`.
-    fn gaussian(&self, j: usize, shift: (f32, f32), sigma: f32) -> (f32, f32) {
+    /// Point `j` shifted by `shift` (mod 1), in `[0, 1)^2`.
+    fn point(&self, j: usize, shift: (f32, f32)) -> (f32, f32) {
         let u = ((j as f32 / self.n as f32) + shift.0).fract();
         let v = (((j * self.g) % self.n) as f32 / self.n as f32 + shift.1).fract();
+        (u, v)
+    }
+
+    /// Point `j` as an offset from the pixel centre, uniform over the pixel (a box filter).
+    fn uniform(&self, j: usize, shift: (f32, f32)) -> (f32, f32) {
+        let (u, v) = self.point(j, shift);
+        (u - 0.5, v - 0.5)
+    }
+
+    /// Point `j` shifted by `shift` (mod 1), mapped to a 2D normal deviate of std `sigma`.
+    fn gaussian(&self, j: usize, shift: (f32, f32), sigma: f32) -> (f32, f32) {
+        let (u, v) = self.point(j, shift);
         let r = sigma * (-2.0 * (1.0 - u).max(1e-12).ln()).sqrt();
         let (s, c) = (std::f32::consts::TAU * v).sin_cos();
         (r * c, r * s)

@@ -2,7 +2,7 @@
 //! few small glossy spheres floating on it, lit by one small point light low over the horizon
 //! so that the water shows a glitter path. World space is `y`-up.
 
-use glam::{Mat3, Vec3};
+use glam::{Mat3, Vec2, Vec3};
 
 /// A ray `origin + t dir`, `dir` unit.
 #[derive(Clone, Copy, Debug)]
@@ -142,6 +142,121 @@ impl Water {
         (d, lost)
     }
 
+    /// The window's gradient distribution as a mixture of Gaussians: the wave whose gradient
+    /// varies most over the window (its phase `theta ~ N(theta_0, v)` over the window, its
+    /// gradient's variance `(a k)^2 (1/2 (1 + cos 2 theta_0 e^{-2v}) - cos^2 theta_0 e^{-v})`)
+    /// is integrated over its phase by 8-point Gauss-Hermite quadrature, the other waves by
+    /// their windowed moments (the correlation between the two is neglected). Returns
+    /// `(weight, mean, covariance)` per component (weights sum to 1).
+    pub fn gradient_mixture(&self, x: f32, z: f32, c: [f32; 3]) -> Vec<(f32, Vec2, [f32; 3])> {
+        let quad = |kx: f32, kz: f32| kx * kx * c[0] + 2.0 * kx * kz * c[1] + kz * kz * c[2];
+        let var = |a: f32, kx: f32, kz: f32, theta: f32| {
+            let v = quad(kx, kz);
+            let ct = theta.cos();
+            (a * kx.hypot(kz)).powi(2)
+                * (0.5 * (1.0 + (2.0 * theta).cos() * (-2.0 * v).exp()) - ct * ct * (-v).exp())
+        };
+        let Some((i, a, kx, kz, theta)) = self
+            .fades(x, z)
+            .enumerate()
+            .map(|(i, (w, f))| {
+                (
+                    i,
+                    f * w.amplitude,
+                    w.kx,
+                    w.kz,
+                    w.kx * x + w.kz * z + w.phase,
+                )
+            })
+            .max_by(|p, q| var(p.1, p.2, p.3, p.4).total_cmp(&var(q.1, q.2, q.3, q.4)))
+        else {
+            return Vec::new();
+        };
+        let (mean, cov) = self.gradient_moments_except(x, z, c, Some(i));
+        const X: [f32; 4] = [0.381_187, 1.157_194, 1.981_657, 2.930_637];
+        const W: [f32; 4] = [0.661_147, 0.207_802, 0.017_078, 0.000_199_6];
+        let sd = (2.0 * quad(kx, kz)).sqrt();
+        let norm = std::f32::consts::PI.sqrt().recip();
+        X.iter()
+            .zip(W)
+            .flat_map(|(&xj, wj)| [(xj, wj), (-xj, wj)])
+            .map(|(xj, wj)| {
+                let g = Vec2::new(kx, kz) * (a * (theta + sd * xj).cos());
+                (wj * norm, mean + g, cov)
+            })
+            .collect()
+    }
+
+    /// A zonotope holding every height gradient within `k` standard deviations of the
+    /// Gaussian window `c` centred on `(x, z)` (fades frozen, as [`Self::gradient_moments`]):
+    /// wave `i` contributes `a_i k_i cos(theta_i)` with the phase `theta_i` within `k sqrt(v_i)`
+    /// of its value at the centre (`v_i = k_i^T c k_i`), so its gradient lies on a segment
+    /// along `k_i` (the exact range of the cosine over that phase interval). Returns the
+    /// centre and the half-generators: the gradients are `centre + sum t_i g_i`, `|t_i| <= 1`.
+    pub fn gradient_support(&self, x: f32, z: f32, c: [f32; 3], k: f32) -> (Vec2, Vec<Vec2>) {
+        let mut centre = Vec2::ZERO;
+        let mut generators = Vec::new();
+        for (w, f) in self.fades(x, z) {
+            let v = w.kx * w.kx * c[0] + 2.0 * w.kx * w.kz * c[1] + w.kz * w.kz * c[2];
+            let half = k * v.max(0.0).sqrt();
+            let theta = w.kx * x + w.kz * z + w.phase;
+            let (lo, hi) = cos_range(theta - half, theta + half);
+            let dir = Vec2::new(w.kx, w.kz) * (f * w.amplitude);
+            centre += dir * (0.5 * (lo + hi));
+            generators.push(dir * (0.5 * (hi - lo)));
+        }
+        (centre, generators)
+    }
+
+    /// The moments of the height gradient `g = (h_x, h_z)` over a Gaussian window of world
+    /// covariance `c = (c_xx, c_xz, c_zz)` centred on `(x, z)` (the pixel filter carried onto
+    /// the water by the ray differentials), each wave's fade taken as constant over the
+    /// window: with the phase `theta_i = k_i . p + phase_i` Gaussian of variance `k_i^T c k_i`,
+    /// `E[cos theta_i] = cos(theta_i) exp(-v_i / 2)` and `E[cos theta_i cos theta_j] =
+    /// (cos(theta_i + theta_j) exp(-v_{i+j} / 2) + cos(theta_i - theta_j) exp(-v_{i-j} / 2)) / 2`
+    /// with `v_{i+-j} = (k_i +- k_j)^T c (k_i +- k_j)`. Returns `(E[g], Cov[g])`: unlike the
+    /// first-order footprint, the covariance of one wave saturates at its slope variance
+    /// `(a k)^2 / 2` when the window spans many of its crests.
+    pub fn gradient_moments(&self, x: f32, z: f32, c: [f32; 3]) -> (Vec2, [f32; 3]) {
+        self.gradient_moments_except(x, z, c, None)
+    }
+
+    /// [`Self::gradient_moments`] of every wave but `skip`.
+    fn gradient_moments_except(
+        &self,
+        x: f32,
+        z: f32,
+        c: [f32; 3],
+        skip: Option<usize>,
+    ) -> (Vec2, [f32; 3]) {
+        let quad = |kx: f32, kz: f32| kx * kx * c[0] + 2.0 * kx * kz * c[1] + kz * kz * c[2];
+        let waves: Vec<(f32, f32, f32, f32)> = self
+            .fades(x, z)
+            .enumerate()
+            .filter(|&(i, _)| Some(i) != skip)
+            .map(|(_, (w, f))| (f * w.amplitude, w.kx, w.kz, w.kx * x + w.kz * z + w.phase))
+            .collect();
+        let mut mean = Vec2::ZERO;
+        let mut second = [0.0f32; 3];
+        for &(ai, kxi, kzi, ti) in &waves {
+            mean += Vec2::new(kxi, kzi) * (ai * ti.cos() * (-0.5 * quad(kxi, kzi)).exp());
+            for &(aj, kxj, kzj, tj) in &waves {
+                let plus = (ti + tj).cos() * (-0.5 * quad(kxi + kxj, kzi + kzj)).exp();
+                let minus = (ti - tj).cos() * (-0.5 * quad(kxi - kxj, kzi - kzj)).exp();
+                let e = 0.5 * ai * aj * (plus + minus);
+                second[0] += e * kxi * kxj;
+                second[1] += e * kxi * kzj;
+                second[2] += e * kzi * kzj;
+            }
+        }
+        let cov = [
+            second[0] - mean.x * mean.x,
+            second[1] - mean.x * mean.y,
+            second[2] - mean.y * mean.y,
+        ];
+        (mean, cov)
+    }
+
     fn inside(&self, p: Vec3) -> bool {
         p.x.abs() <= self.half_width && p.z <= self.z_near && p.z >= self.z_far
     }
@@ -219,6 +334,42 @@ impl Water {
             alpha: (alpha * alpha + lost).sqrt(),
         })
     }
+}
+
+/// The range `(min, max)` of `cos` over `[a, b]` (`a <= b`).
+fn cos_range(a: f32, b: f32) -> (f32, f32) {
+    use std::f32::consts::{PI, TAU};
+    if b - a >= TAU {
+        return (-1.0, 1.0);
+    }
+    let (ca, cb) = (a.cos(), b.cos());
+    let (mut lo, mut hi) = (ca.min(cb), ca.max(cb));
+    // A maximum at 2 pi n, a minimum at pi + 2 pi n, inside [a, b].
+    if (a / TAU).ceil() * TAU <= b {
+        hi = 1.0;
+    }
+    if ((a - PI) / TAU).ceil() * TAU + PI <= b {
+        lo = -1.0;
+    }
+    (lo, hi)
+}
+
+/// How far `p` lies outside the zonotope `centre + sum t_i g_i` (`|t_i| <= 1`): the largest
+/// excess over the slabs normal to each generator and to the axes (each slab holds the
+/// zonotope; in 2D those normal to the generators intersect to it exactly), 0 inside.
+pub fn zonotope_gap(centre: Vec2, generators: &[Vec2], p: Vec2) -> f32 {
+    let d = p - centre;
+    let normals = generators
+        .iter()
+        .filter(|g| g.length_squared() > 1e-20)
+        .map(|g| g.perp().normalize())
+        .chain([Vec2::X, Vec2::Y]);
+    normals
+        .map(|n| {
+            let reach: f32 = generators.iter().map(|g| n.dot(*g).abs()).sum();
+            n.dot(d).abs() - reach
+        })
+        .fold(0.0, f32::max)
 }
 
 /// `sin(x)` to about 1e-7 absolute for moderate `|x|` (the march evaluates millions of
@@ -348,6 +499,43 @@ impl Scene {
         self.water.intersect(ray, t_max, self.alpha).or(best)
     }
 
+    /// The water's unit normal at `(x, z)` (the level of detail of this view).
+    #[allow(dead_code)] // the false-glint investigation only
+    pub fn water_normal(&self, x: f32, z: f32) -> Vec3 {
+        let ([_, hx, hz, ..], _) = self.water.derivatives(x, z);
+        Vec3::new(-hx, 1.0, -hz).normalize()
+    }
+
+    /// How far the gradient `g` lies outside the set of gradients the water has within `k`
+    /// standard deviations of the Gaussian window `c` at `hit` ([`Water::gradient_support`]),
+    /// in gradient units; 0 inside; `None` on the spheres.
+    pub fn gradient_gap(&self, hit: &Hit, c: [f32; 3], k: f32, g: Vec2) -> Option<f32> {
+        (hit.object == 0).then(|| {
+            let (center, generators) =
+                self.water
+                    .gradient_support(hit.position.x, hit.position.z, c, k);
+            zonotope_gap(center, &generators, g)
+        })
+    }
+
+    /// [`Water::gradient_mixture`] at `hit`; `None` on the spheres.
+    #[allow(dead_code)] // the false-glint investigation only
+    pub fn gradient_mixture(&self, hit: &Hit, c: [f32; 3]) -> Option<Vec<(f32, Vec2, [f32; 3])>> {
+        (hit.object == 0).then(|| {
+            self.water
+                .gradient_mixture(hit.position.x, hit.position.z, c)
+        })
+    }
+
+    /// The moments of the water's height gradient over a Gaussian window at `hit` (see
+    /// [`Water::gradient_moments`]); `None` on the spheres.
+    pub fn gradient_moments(&self, hit: &Hit, c: [f32; 3]) -> Option<(Vec2, [f32; 3])> {
+        (hit.object == 0).then(|| {
+            self.water
+                .gradient_moments(hit.position.x, hit.position.z, c)
+        })
+    }
+
     /// Background radiance for a ray that hits nothing: a dim sky gradient.
     pub fn sky(&self, dir: Vec3) -> Vec3 {
         let k = dir.y.clamp(0.0, 1.0);
@@ -373,6 +561,180 @@ impl Scene {
                 .iter()
                 .map(|s| (s.center, s.radius, s.albedo))
                 .collect(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `E[g]` and `Cov[g]` of the height gradient over the Gaussian window `N((x, z), c)`, by
+    /// an independent computation: each wave's gradient summed in f64 from the wave table
+    /// (fades frozen at the centre, as [`Water::gradient_moments`] documents), integrated by
+    /// the trapezoid rule over +-7 standard deviations of the whitened window (`n x n`
+    /// points; spectrally accurate for this smooth, Gaussian-weighted integrand once the grid
+    /// resolves the shortest wave).
+    fn moments_by_quadrature(
+        water: &Water,
+        x: f64,
+        z: f64,
+        c: [f64; 3],
+        n: usize,
+    ) -> ([f64; 2], [f64; 3]) {
+        let waves: Vec<(f64, f64, f64, f64)> = water
+            .fades(x as f32, z as f32)
+            .map(|(w, f)| {
+                (
+                    f64::from(f) * f64::from(w.amplitude),
+                    f64::from(w.kx),
+                    f64::from(w.kz),
+                    f64::from(w.phase),
+                )
+            })
+            .collect();
+        // Cholesky c = L L^T.
+        let l11 = c[0].sqrt();
+        let l21 = c[1] / l11;
+        let l22 = (c[2] - l21 * l21).sqrt();
+        let (mut w_sum, mut m, mut s) = (0.0, [0.0f64; 2], [0.0f64; 3]);
+        let step = 14.0 / (n - 1) as f64;
+        for i in 0..n {
+            let u = -7.0 + i as f64 * step;
+            for j in 0..n {
+                let v = -7.0 + j as f64 * step;
+                let w = (-0.5 * (u * u + v * v)).exp();
+                let (px, pz) = (x + l11 * u, z + l21 * u + l22 * v);
+                let (mut gx, mut gz) = (0.0, 0.0);
+                for &(a, kx, kz, phase) in &waves {
+                    let c = a * (kx * px + kz * pz + phase).cos();
+                    gx += c * kx;
+                    gz += c * kz;
+                }
+                w_sum += w;
+                m[0] += w * gx;
+                m[1] += w * gz;
+                s[0] += w * gx * gx;
+                s[1] += w * gx * gz;
+                s[2] += w * gz * gz;
+            }
+        }
+        let m = [m[0] / w_sum, m[1] / w_sum];
+        let cov = [
+            s[0] / w_sum - m[0] * m[0],
+            s[1] / w_sum - m[0] * m[1],
+            s[2] / w_sum - m[1] * m[1],
+        ];
+        (m, cov)
+    }
+
+    fn water() -> Water {
+        // Eye high above the water: no wave is faded at the points tested.
+        Water::new(Lod {
+            eye: Vec3::new(0.0, 2.0, 14.0),
+            pixel_angle: 1e-4,
+        })
+    }
+
+    /// The closed-form windowed moments (the false-glint fix's kernel) against quadrature,
+    /// for a window far below the shortest wave (first-order regime), one about as wide as
+    /// the short waves, and one spanning many crests (anisotropic, sheared). Tolerance:
+    /// `1e-3` of the quadrature's total slope variance (trace), and `1e-3` absolute on the
+    /// mean gradient (the f32 closed form accumulates 64 wave pairs).
+    #[test]
+    fn gradient_moments_match_quadrature() {
+        let w = water();
+        for (p, c, n) in [
+            ((0.3, -4.0), [1e-4, 2e-5, 5e-5], 101),
+            ((1.7, -9.0), [4e-3, -1e-3, 9e-3], 301),
+            ((-2.1, -30.0), [2.0, 0.4, 0.3], 2001),
+        ] {
+            let (mean, cov) = w.gradient_moments(p.0 as f32, p.1 as f32, c.map(|v| v as f32));
+            let (qm, qc) = moments_by_quadrature(&w, p.0, p.1, c, n);
+            let scale = qc[0] + qc[2];
+            for k in 0..3 {
+                let e = (f64::from(cov[k]) - qc[k]).abs() / scale;
+                assert!(
+                    e < 1e-3,
+                    "window {c:?}: cov[{k}] {} vs {} (rel. {e:.2e})",
+                    cov[k],
+                    qc[k]
+                );
+            }
+            assert!((f64::from(mean.x) - qm[0]).abs() < 1e-3, "{mean} vs {qm:?}");
+            assert!((f64::from(mean.y) - qm[1]).abs() < 1e-3, "{mean} vs {qm:?}");
+        }
+    }
+
+    /// The zonotope holds every gradient of the window within `k` standard deviations: 4000
+    /// points of a window spanning a few short crests, drawn within 2.5 sigma (a
+    /// deterministic lattice through Box-Muller, radius capped), each at gap 0 (tolerance
+    /// 1e-5 for f32 rounding); and a gradient beyond the waves' total slope lies outside.
+    #[test]
+    fn gradient_support_holds_the_window() {
+        let w = water();
+        let (x, z) = (0.4f32, -6.0f32);
+        let c = [4e-3f32, 1e-3, 2e-3];
+        let (centre, generators) = w.gradient_support(x, z, c, 2.5);
+        let l11 = c[0].sqrt();
+        let l21 = c[1] / l11;
+        let l22 = (c[2] - l21 * l21).sqrt();
+        let n = 4000;
+        for j in 0..n {
+            let a = (j as f32 + 0.5) / n as f32;
+            let b = ((j * 2473) % n) as f32 / n as f32;
+            let r = (-2.0 * a.ln()).sqrt().min(2.5);
+            let (u, v) = (
+                r * (std::f32::consts::TAU * b).cos(),
+                r * (std::f32::consts::TAU * b).sin(),
+            );
+            let (px, pz) = (x + l11 * u, z + l21 * u + l22 * v);
+            let g: Vec2 = w
+                .fades(x, z)
+                .map(|(wv, f)| {
+                    Vec2::new(wv.kx, wv.kz)
+                        * (f * wv.amplitude * (wv.kx * px + wv.kz * pz + wv.phase).cos())
+                })
+                .sum();
+            let gap = zonotope_gap(centre, &generators, g);
+            assert!(gap < 1e-5, "point {j}: gap {gap}");
+        }
+        let total: f32 = w.waves.iter().map(|v| v.amplitude * v.kx.hypot(v.kz)).sum();
+        assert!(zonotope_gap(centre, &generators, Vec2::new(1.5 * total, 0.0)) > 0.0);
+        assert_eq!(cos_range(-0.1, 0.1), ((0.1f32).cos(), 1.0));
+        assert_eq!(cos_range(3.0, 3.3).0, -1.0);
+    }
+
+    /// Why the windowed moments remove the first-order footprint's false glints: over a
+    /// window spanning many crests, the slope covariance saturates at the waves' total slope
+    /// variance `sum (a k)^2 / 2` (within 5 %: the cross terms and the windowed mean decay as
+    /// `exp(-v / 2)`), while the first-order kernel, the gradient's Jacobian (the Hessian)
+    /// times the window, grows with the window without bound and reaches slopes the waves
+    /// never have.
+    #[test]
+    fn gradient_moments_saturate_where_the_first_order_kernel_grows() {
+        let w = water();
+        let (x, z) = (0.9f32, -12.0f32);
+        let total: f32 = w
+            .waves
+            .iter()
+            .map(|v| 0.5 * (v.amplitude * v.kx.hypot(v.kz)).powi(2))
+            .sum();
+        let (d, _) = w.derivatives(x, z);
+        let hessian = glam::Mat2::from_cols(Vec2::new(d[3], d[4]), Vec2::new(d[4], d[5]));
+        for s2 in [4.0f32, 16.0, 64.0] {
+            let (_, cov) = w.gradient_moments(x, z, [s2, 0.0, s2]);
+            let trace = cov[0] + cov[2];
+            assert!(
+                (trace / total - 1.0).abs() < 0.05,
+                "window {s2}: {trace} vs {total}"
+            );
+            let first_order = (hessian * hessian.transpose() * s2).to_cols_array();
+            let fo_trace = first_order[0] + first_order[3];
+            assert!(
+                fo_trace > 10.0 * total,
+                "window {s2}: first order {fo_trace} vs {total}"
+            );
         }
     }
 }

@@ -1,11 +1,14 @@
-//! The temporal test (KHPL16 Fig. 12): the camera dollies over N frames; per method, the
-//! peak HDR intensity of each frame, its frame-to-frame variation and its distance to the
-//! reference's peak.
+//! The temporal test: the camera dollies over N frames; per method, the flicker energy of
+//! the display luminance relative to the reference sequence's ([`metrics::flicker_energy`]),
+//! and (KHPL16 Fig. 12) the peak HDR intensity of each frame, its frame-to-frame variation and
+//! its distance to the reference's peak.
 
 use crate::camera::camera_at;
 use crate::methods::Method;
+use crate::metrics::{display_luminance, flicker_energy, flicker_error};
 use crate::peaks::{distance, mean, variation};
 use crate::plot::{PALETTE, Series, line_plot};
+use crate::render::FootprintRoute;
 use crate::scene::Scene;
 use crate::{Options, render};
 use std::fmt::Write as _;
@@ -13,13 +16,36 @@ use std::fmt::Write as _;
 /// Resolution divisor and reference sample divisor of the temporal frames (keeps the default
 /// run short; the peaks are compared at the same resolution for every method).
 const DOWNSCALE: usize = 2;
-const SPP_DIVISOR: usize = 8;
+pub const SPP_DIVISOR: usize = 4;
 
-pub fn run(o: &Options) -> std::io::Result<String> {
+/// What the temporal test measured, per (method, footprint route) of `methods` (in order).
+pub struct Temporal {
+    pub methods: Vec<(Method, FootprintRoute)>,
+    /// Flicker energy divided by the reference's (same family).
+    pub flicker: Vec<f64>,
+    /// Flicker error ([`flicker_error`]) divided by the reference's flicker energy.
+    pub flicker_error: Vec<f64>,
+    /// Frame-to-frame variation of the peak.
+    pub peak_variation: Vec<f64>,
+    pub markdown: String,
+}
+
+/// Runs the test on `o.methods`, then `extra` (the engine presets: their flicker only), on
+/// `o.route`, then `fixed` on the windowed-moments route (the false-glint fix).
+pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<Temporal> {
     let (w, h) = ((o.width / DOWNSCALE).max(2), (o.height / DOWNSCALE).max(2));
     let spp = (o.spp / SPP_DIVISOR).max(2);
-    let mut peaks = vec![Vec::new(); o.methods.len()];
+    let all: Vec<(Method, FootprintRoute)> = o
+        .methods
+        .iter()
+        .chain(extra)
+        .map(|&m| (m, o.route))
+        .chain(fixed.iter().map(|&m| (m, FootprintRoute::Moments)))
+        .collect();
+    let mut peaks = vec![Vec::new(); all.len()];
+    let mut lums = vec![Vec::new(); all.len()];
     let mut ref_peaks = [Vec::new(), Vec::new()];
+    let mut ref_lums = [Vec::new(), Vec::new()];
     let bar = crate::parallel::bar("temporal frames", o.frames);
     for f in 0..o.frames {
         let cam = camera_at(f, w, h);
@@ -27,11 +53,20 @@ pub fn run(o: &Options) -> std::io::Result<String> {
         let reference = render::reference(scene, &cam, w, h, spp, o.seed, None);
         for (k, img) in reference.full.iter().enumerate() {
             ref_peaks[k].push(img.peak());
+            ref_lums[k].push(display_luminance(img, o.exposure));
         }
         let gb = render::gbuffer(scene, &cam, w, h);
-        let derivs = gb.derivatives(o.route);
-        for (i, &m) in o.methods.iter().enumerate() {
-            peaks[i].push(render::shade(scene, &gb, &derivs, m).peak());
+        let derivs = gb.derivatives(scene, o.route);
+        let moments = (!fixed.is_empty() && o.route != FootprintRoute::Moments)
+            .then(|| gb.derivatives(scene, FootprintRoute::Moments));
+        for (i, &(m, route)) in all.iter().enumerate() {
+            let d = match (&moments, route) {
+                (Some(mo), FootprintRoute::Moments) => mo,
+                _ => &derivs,
+            };
+            let img = render::shade(scene, &gb, d, m);
+            peaks[i].push(img.peak());
+            lums[i].push(display_luminance(&img, o.exposure));
         }
         bar.inc(1);
     }
@@ -44,19 +79,21 @@ pub fn run(o: &Options) -> std::io::Result<String> {
         o.frames, w, h, spp
     )
     .unwrap();
-    writeln!(md, "Peak HDR luminance per frame: mean, mean frame-to-frame change |P(t) - P(t-1)| / mean P, and mean distance |P(t) - P_ref(t)| / mean P_ref.\n").unwrap();
+    writeln!(md, "Flicker energy: the mean over pixels and frame pairs of the squared change of display luminance, (Y_t - Y_t-1)^2, divided by the reference sequence's (1 = as much change as the reference; the camera moves, so the reference changes too). Flicker error: the mean of ((Y_t - Y_t-1) - (R_t - R_t-1))^2, the changes the reference R does not make, divided by the same reference energy (0 = changes exactly as the reference). Peak HDR luminance per frame (KHPL16 Fig. 12): mean, mean frame-to-frame change |P(t) - P(t-1)| / mean P, and mean distance |P(t) - P_ref(t)| / mean P_ref.\n").unwrap();
     writeln!(
         md,
-        "| method | mean peak | frame-to-frame variation | distance to reference |"
+        "| method | flicker energy / reference | flicker error / reference | mean peak | peak frame-to-frame variation | peak distance to reference |"
     )
     .unwrap();
-    writeln!(md, "|---|---:|---:|---:|").unwrap();
+    writeln!(md, "|---|---:|---:|---:|---:|---:|").unwrap();
+    let reference_flicker = [flicker_energy(&ref_lums[0]), flicker_energy(&ref_lums[1])];
     let mut series = Vec::new();
     for (k, name) in ["Reference Beckmann", "Reference GGX"].iter().enumerate() {
         let p = &ref_peaks[k];
         writeln!(
             md,
-            "| {name} | {:.1} | {:.1}% | - |",
+            "| {name} | 1 ({:.2e}) | 0 | {:.1} | {:.1}% | - |",
+            reference_flicker[k],
             mean(p),
             100.0 * variation(p)
         )
@@ -68,23 +105,34 @@ pub fn run(o: &Options) -> std::io::Result<String> {
             dashed: true,
         });
     }
-    for (i, &m) in o.methods.iter().enumerate() {
+    let (mut flicker, mut peak_variation) = (vec![], vec![]);
+    let mut flicker_err = vec![];
+    for (i, &(m, route)) in all.iter().enumerate() {
         let p = &peaks[i];
         let r = &ref_peaks[m.family() as usize];
+        let fam = m.family() as usize;
+        flicker.push(flicker_energy(&lums[i]) / reference_flicker[fam]);
+        flicker_err.push(flicker_error(&lums[i], &ref_lums[fam]) / reference_flicker[fam]);
+        peak_variation.push(variation(p));
         writeln!(
             md,
-            "| {} | {:.1} | {:.1}% | {:.1}% |",
-            m.label(),
+            "| {} | {:.2} | {:.2} | {:.1} | {:.1}% | {:.1}% |",
+            variant_label(m, route),
+            flicker[i],
+            flicker_err[i],
             mean(p),
             100.0 * variation(p),
             100.0 * distance(p, r)
         )
         .unwrap();
+        if i >= o.methods.len() && route != FootprintRoute::Moments {
+            continue;
+        }
         series.push(Series {
-            label: m.label().to_string(),
+            label: variant_label(m, route),
             color: PALETTE[index_of(m) % PALETTE.len()],
             values: p.clone(),
-            dashed: false,
+            dashed: route == FootprintRoute::Moments && o.route != FootprintRoute::Moments,
         });
     }
     let plot = line_plot(
@@ -97,7 +145,21 @@ pub fn run(o: &Options) -> std::io::Result<String> {
     let path = o.out.join("temporal.png");
     crate::image_out::save(&plot, &path)?;
     writeln!(md, "\nPlot: {}", path.display()).unwrap();
-    Ok(md)
+    Ok(Temporal {
+        methods: all,
+        flicker,
+        flicker_error: flicker_err,
+        peak_variation,
+        markdown: md,
+    })
+}
+
+/// A method's label, with the footprint route when it is the windowed-moments one.
+pub fn variant_label(m: Method, route: FootprintRoute) -> String {
+    match route {
+        FootprintRoute::Moments if m.uses_footprint() => format!("{} + moments", m.label()),
+        _ => m.label().to_string(),
+    }
 }
 
 fn index_of(m: Method) -> usize {

@@ -31,6 +31,9 @@ mod image_out;
 #[path = "../highlights/methods.rs"]
 #[allow(dead_code)]
 mod methods;
+#[path = "../highlights/metrics.rs"]
+#[allow(dead_code)]
+mod metrics;
 #[path = "../highlights/parallel.rs"]
 mod parallel;
 #[path = "../highlights/peaks.rs"]

@@ -21,6 +21,24 @@ const LIGHTING_WGSL: &str = include_str!("shaders/lighting.wgsl");
 /// Objects drawn per frame: the water (and sky), then the spheres.
 const OBJECTS: usize = 6;
 
+/// The methods `forward.wgsl`'s `METHOD` switch shades, in its order: the first ten of
+/// `Method::ALL` (the CPU demo's exact Gaussian-filtered GGX is not shaded on the GPU here).
+pub const FORWARD: [Method; 10] = {
+    use crate::methods::{Family, IsoVariant};
+    [
+        Method::Unfiltered(Family::Beckmann),
+        Method::Unfiltered(Family::Ggx),
+        Method::BeckmannParallelogram,
+        Method::GgxRectExact,
+        Method::GgxProxy,
+        Method::Tk19Projected,
+        Method::Tk21Projected,
+        Method::Tk19Isotropic(IsoVariant::Max),
+        Method::Tk19Isotropic(IsoVariant::Trace),
+        Method::Tk19Isotropic(IsoVariant::Average),
+    ]
+};
+
 /// How a frame is shaded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Route {
@@ -33,29 +51,14 @@ pub enum Route {
 
 impl Route {
     /// The index the shaders specialise on: `forward.wgsl`'s `METHOD` (the index in
-    /// `Method::ALL`, or 10 + a preset's) or `gbuffer.wgsl`'s `PRESET` (12: none).
+    /// [`FORWARD`], or 10 + a preset's) or `gbuffer.wgsl`'s `PRESET` (12: none).
     fn constant(self) -> u32 {
-        // forward.wgsl's `METHOD` switch is written for this order of `Method::ALL`.
-        use crate::methods::{Family, IsoVariant};
-        const ORDER: [Method; 10] = [
-            Method::Unfiltered(Family::Beckmann),
-            Method::Unfiltered(Family::Ggx),
-            Method::BeckmannParallelogram,
-            Method::GgxRectExact,
-            Method::GgxProxy,
-            Method::Tk19Projected,
-            Method::Tk21Projected,
-            Method::Tk19Isotropic(IsoVariant::Max),
-            Method::Tk19Isotropic(IsoVariant::Trace),
-            Method::Tk19Isotropic(IsoVariant::Average),
-        ];
-        assert_eq!(Method::ALL, ORDER, "forward.wgsl: update the METHOD switch");
         match self {
             Route::Forward(Method::Preset(i)) => 10 + i as u32,
-            Route::Forward(m) => Method::ALL
+            Route::Forward(m) => FORWARD
                 .iter()
                 .position(|&x| x == m)
-                .expect("a method of Method::ALL") as u32,
+                .expect("a method of FORWARD") as u32,
             Route::Deferred(p) => p.map_or(12, |i| i as u32),
         }
     }

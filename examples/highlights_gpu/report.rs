@@ -5,6 +5,9 @@ use crate::camera::camera_at;
 use crate::gpu::{Gpu, Timer};
 use crate::image_out::{Image, Rgb8, contact_sheet, save};
 use crate::methods::{Family, Method};
+use crate::metrics::{
+    self, Flicker, LeadRow, Scores, display_luminance, flicker_energy, flicker_error,
+};
 use crate::passes::{Renderer, Route};
 use crate::peaks::{distance, mean, variation};
 use crate::plot::{PALETTE, Series, line_plot};
@@ -16,12 +19,12 @@ use std::fmt::Write as _;
 /// Resolution divisor and reference sample divisor of the temporal frames: the CPU demo's
 /// (`examples/highlights/temporal.rs`), so that both temporal tables describe the same frames.
 const DOWNSCALE: u32 = 2;
-const SPP_DIVISOR: usize = 8;
+const SPP_DIVISOR: usize = 4;
 
 /// Every route rendered: each method of the CPU demo in forward shading, then unfiltered
 /// GGX and each engine preset in deferred shading.
 pub fn routes() -> Vec<Route> {
-    let forward = Method::ALL.iter().map(|&m| Route::Forward(m));
+    let forward = crate::passes::FORWARD.iter().map(|&m| Route::Forward(m));
     let deferred = std::iter::once(None)
         .chain((0..filtered_ndf::f32::filter::presets::ALL.len()).map(Some))
         .map(Route::Deferred);
@@ -77,6 +80,10 @@ pub struct Row {
     pub same_quads: f64,
     /// Median GPU time of the route's passes (seconds).
     pub time: f64,
+    /// Issue 21's still-frame scores of the GPU frame against the reference; its specular
+    /// term is the GPU frame less the CPU quad frame's ambient, diffuse and sky (the same
+    /// formulas at the same pixel centres).
+    pub scores: Scores,
 }
 
 /// The still frame's results.
@@ -139,8 +146,8 @@ pub fn still(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Still, S
     let reference = render::reference(&scene, &cam, w, h, o.spp, o.seed, Some("CPU reference"));
     let reference_s = t.elapsed().as_secs_f64();
     let gb = render::gbuffer(&scene, &cam, w, h);
-    let rays = gb.derivatives(FootprintRoute::RayDifferentials);
-    let quad = gb.derivatives(FootprintRoute::Quad);
+    let rays = gb.derivatives(&scene, FootprintRoute::RayDifferentials);
+    let quad = gb.derivatives(&scene, FootprintRoute::Quad);
     let interior = gb.quad_interior();
     let same_quads = interior.iter().filter(|&&b| b).count() as f64 / interior.len() as f64;
 
@@ -160,7 +167,28 @@ pub fn still(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Still, S
         let m = cpu_method(*route);
         let full = reference.full(m.family());
         let cpu_rays = render::shade(&scene, &gb, &rays, m);
-        let cpu_quad = render::shade(&scene, &gb, &quad, m);
+        let cpu_quad_frame = render::shade_frame(&scene, &gb, &quad, m);
+        let cpu_quad = &cpu_quad_frame.total;
+        let specular = Image::new(
+            w,
+            h,
+            img.data
+                .iter()
+                .zip(&cpu_quad_frame.total.data)
+                .zip(&cpu_quad_frame.specular.data)
+                .map(|((&g, &t), &sp)| (g - (t - sp)).max(glam::Vec3::ZERO))
+                .collect(),
+        );
+        let (scores, flip_map) = metrics::score(
+            (img, &specular),
+            (full, reference.specular(m.family())),
+            o.exposure,
+        );
+        save(
+            &flip_map.to_rgb8(),
+            &o.out.join(format!("flip-{}.png", slug(*route))),
+        )
+        .map_err(|e| e.to_string())?;
         rows.push(Row {
             route: *route,
             gpu_rmse: img.rmse(full),
@@ -170,10 +198,11 @@ pub fn still(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Still, S
             cpu_quad_rmse: cpu_quad.rmse(full),
             cpu_rays_mean: cpu_rays.mean_luminance() / full.mean_luminance(),
             cpu_rays_peak: cpu_rays.peak() as f64 / full.peak() as f64,
-            gpu_vs_cpu_quad: img.rmse(&cpu_quad),
-            same_quads: img.rmse_where(&cpu_quad, &interior)
+            gpu_vs_cpu_quad: img.rmse(cpu_quad),
+            same_quads: img.rmse_where(cpu_quad, &interior)
                 / cpu_quad.rmse_where(full, &interior).max(1e-30),
             time,
+            scores,
         });
         let rgb = img.to_rgb8(o.exposure);
         save(&rgb, &o.out.join(format!("{}.png", slug(*route)))).map_err(|e| e.to_string())?;
@@ -222,6 +251,8 @@ pub struct Temporal {
     /// Per route: peaks of the GPU frames, of the CPU demo's frames with ray differentials
     /// and with its own quad differences.
     pub routes: Vec<(Route, [Vec<f32>; 3])>,
+    /// Per route (in `routes`' order): the GPU frames' flicker against the reference's.
+    pub flicker: Vec<Flicker>,
 }
 
 /// The temporal test (KHPL16 Fig. 12) on GPU frames: the CPU demo's camera dolly, frames at
@@ -243,7 +274,10 @@ pub fn temporal(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Tempo
             .into_iter()
             .map(|r| (r, [Vec::new(), Vec::new(), Vec::new()]))
             .collect(),
+        flicker: Vec::new(),
     };
+    let mut lums: Vec<Vec<Vec<f32>>> = vec![Vec::new(); out.routes.len()];
+    let mut ref_lums = [Vec::new(), Vec::new()];
     let bar = parallel::bar("temporal frames", o.frames);
     for f in 0..o.frames {
         let cam = camera_at(f, w as usize, h as usize);
@@ -252,13 +286,15 @@ pub fn temporal(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Tempo
         let reference = render::reference(&scene, &cam, w as usize, h as usize, spp, o.seed, None);
         for (k, img) in reference.full.iter().enumerate() {
             out.reference[k].push(img.peak());
+            ref_lums[k].push(display_luminance(img, o.exposure));
         }
         let gb = render::gbuffer(&scene, &cam, w as usize, h as usize);
-        let rays = gb.derivatives(FootprintRoute::RayDifferentials);
-        let quad = gb.derivatives(FootprintRoute::Quad);
-        for (route, [on_gpu, cpu_rays, cpu_quad]) in &mut out.routes {
+        let rays = gb.derivatives(&scene, FootprintRoute::RayDifferentials);
+        let quad = gb.derivatives(&scene, FootprintRoute::Quad);
+        for (i, (route, [on_gpu, cpu_rays, cpu_quad])) in out.routes.iter_mut().enumerate() {
             let img = Image::new(w as usize, h as usize, renderer.render(gpu, *route)?);
             on_gpu.push(img.peak());
+            lums[i].push(display_luminance(&img, o.exposure));
             let m = cpu_method(*route);
             cpu_rays.push(render::shade(&scene, &gb, &rays, m).peak());
             cpu_quad.push(render::shade(&scene, &gb, &quad, m).peak());
@@ -266,6 +302,20 @@ pub fn temporal(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Tempo
         bar.inc(1);
     }
     bar.finish_and_clear();
+    let ref_energy = ref_lums.each_ref().map(|l| flicker_energy(l));
+    out.flicker = out
+        .routes
+        .iter()
+        .zip(&lums)
+        .map(|((route, [peaks, _, _]), l)| {
+            let k = cpu_method(*route).family() as usize;
+            Flicker {
+                error: flicker_error(l, &ref_lums[k]) / ref_energy[k],
+                energy: flicker_energy(l) / ref_energy[k],
+                peak_variation: variation(peaks),
+            }
+        })
+        .collect();
     if o.frames >= 2 {
         let mut series = Vec::new();
         for (k, family) in [Family::Beckmann, Family::Ggx].iter().enumerate() {
@@ -333,6 +383,38 @@ pub fn check(s: &Still) -> Vec<String> {
 pub fn markdown(o: &Options, gpu: &Gpu, compile_s: f64, s: &Still, t: &Temporal) -> String {
     let mut md = String::new();
     let software = gpu.is_software();
+    writeln!(
+        md,
+        "## What a viewer sees: GPU frames ({}x{}, temporal test {} frames at {}x{})\n",
+        o.width,
+        o.height,
+        t.reference[0].len(),
+        t.width,
+        t.height
+    )
+    .unwrap();
+    writeln!(md, "The CPU demo's metrics (`examples/highlights/metrics.rs`) on the GPU frames, against the CPU reference ({} spp still, {} spp temporal): FLIP LDR / HDR means (maps `flip-gpu-*.png`), flicker error and energy over the reference sequence's energy, the peak's frame-to-frame variation, the specular term's error (the GPU frame less the CPU quad frame's ambient, diffuse and sky), false glints (display > {} where the reference < {}) and lost highlights (the reverse), HDR RMSE; the verdict against unfiltered of the same NDF (forward).\n", o.spp, t.spp, metrics::BRIGHT, metrics::DARK).unwrap();
+    let rows: Vec<LeadRow> = s
+        .rows
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let m = cpu_method(r.route);
+            LeadRow {
+                label: format!("{} ({})", m.label(), route_name(r.route)),
+                ndf: m.family().name(),
+                baseline: m == Method::Unfiltered(m.family()),
+                scores: r.scores,
+                flicker: t
+                    .flicker
+                    .get(i)
+                    .copied()
+                    .filter(|_| t.reference[0].len() >= 2),
+            }
+        })
+        .collect();
+    md.push_str(&metrics::lead_table(&rows));
+    writeln!(md).unwrap();
     writeln!(
         md,
         "## GPU frames against the CPU reference ({}x{}, 1 shading sample per pixel, quad derivatives)\n",

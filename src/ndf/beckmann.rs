@@ -69,29 +69,7 @@ impl<R: Roughness> Beckmann<R> {
     }
 }
 
-impl Beckmann<Isotropic> {
-    /// Isotropic Beckmann, checked (see [`Isotropic::new`]).
-    #[inline]
-    pub fn isotropic(alpha: F) -> Result<Self, RoughnessError> {
-        Isotropic::new(alpha).map(Self::new)
-    }
-}
-
-impl Beckmann<AxisAligned> {
-    /// Axis-aligned Beckmann, checked (see [`AxisAligned::new`]).
-    #[inline]
-    pub fn axis_aligned(alpha_x: F, alpha_y: F) -> Result<Self, RoughnessError> {
-        AxisAligned::new(alpha_x, alpha_y).map(Self::new)
-    }
-}
-
-impl Beckmann<RoughnessMatrix> {
-    /// Full-matrix Beckmann, checked (see [`RoughnessMatrix::new`]).
-    #[inline]
-    pub fn matrix(a11: F, a12: F, a22: F) -> Result<Self, RoughnessError> {
-        RoughnessMatrix::new(a11, a12, a22).map(Self::new)
-    }
-}
+checked_constructors!(Beckmann, "Beckmann");
 
 /// Beckmann Smith `Lambda` from `q = w_xy^T A w_xy` and `|w_z|` (shared with sampling and
 /// the temporal module; one source of truth). NaN in either: `+inf` (the NaN policy of

@@ -29,29 +29,7 @@ impl<R: Roughness> Ggx<R> {
     }
 }
 
-impl Ggx<Isotropic> {
-    /// Isotropic GGX, checked (see [`Isotropic::new`]).
-    #[inline]
-    pub fn isotropic(alpha: F) -> Result<Self, RoughnessError> {
-        Isotropic::new(alpha).map(Self::new)
-    }
-}
-
-impl Ggx<AxisAligned> {
-    /// Axis-aligned GGX, checked (see [`AxisAligned::new`]).
-    #[inline]
-    pub fn axis_aligned(alpha_x: F, alpha_y: F) -> Result<Self, RoughnessError> {
-        AxisAligned::new(alpha_x, alpha_y).map(Self::new)
-    }
-}
-
-impl Ggx<RoughnessMatrix> {
-    /// Full-matrix GGX, checked (see [`RoughnessMatrix::new`]).
-    #[inline]
-    pub fn matrix(a11: F, a12: F, a22: F) -> Result<Self, RoughnessError> {
-        RoughnessMatrix::new(a11, a12, a22).map(Self::new)
-    }
-}
+checked_constructors!(Ggx, "GGX");
 
 impl<R: Roughness> Ggx<R> {
     /// The formula of [`Ndf::d`] without its two checks (`m_z > 0`, finite result): the one
@@ -90,13 +68,17 @@ pub(crate) fn ggx_lambda(q: F, abs_wz: F) -> F {
     ggx_lambda_core(q, abs_wz)
 }
 
-/// The formula of [`ggx_lambda`] without its checks, `q / (2 |w_z| (sqrt(w_z^2 + q) + |w_z|))`
-/// (no cancellation), for `q >= 0`, `|w_z| > 0` and a finite `w_z^2 + q`: the one source of
-/// GGX's `Lambda` for the scalar path and for `batch` (whose lanes take it where those hold).
+/// The formula of [`ggx_lambda`] without its checks, `q / (sqrt(w_z^2 + q) + |w_z|) /
+/// (2 |w_z|)` (no cancellation), for `q >= 0`, `|w_z| > 0` and a finite `w_z^2 + q`: the one
+/// source of GGX's `Lambda` for the scalar path and for `batch` (whose lanes take it where
+/// those hold).
 #[inline(always)]
 pub(crate) fn ggx_lambda_core(q: F, abs_wz: F) -> F {
     let r = m::sqrt(abs_wz * abs_wz + q);
-    q / (2.0 * abs_wz * (r + abs_wz))
+    // q / (r + |w_z|) <= sqrt(q) first: the product 2 |w_z| (r + |w_z|) is subnormal for a
+    // grazing |w_z| near 1e-308 with r near 1e-8 and kept only 8 digits (found by the box
+    // lobe's fuzz contract, which compares its Lambda against this one).
+    q / (r + abs_wz) / (2.0 * abs_wz)
 }
 
 impl<R: Roughness> Ndf for Ggx<R> {

@@ -16,6 +16,36 @@
 
 use super::{F, Mat2, Vec2, Vec3};
 
+/// The three checked constructors of an NDF, one per roughness form (`isotropic`,
+/// `axis_aligned`, `matrix`), each the form's checked constructor wrapped in `new`.
+macro_rules! checked_constructors {
+    ($ndf:ident, $name:literal) => {
+        impl $ndf<Isotropic> {
+            #[doc = concat!("Isotropic ", $name, ", checked (see [`Isotropic::new`]).")]
+            #[inline]
+            pub fn isotropic(alpha: F) -> Result<Self, RoughnessError> {
+                Isotropic::new(alpha).map(Self::new)
+            }
+        }
+
+        impl $ndf<AxisAligned> {
+            #[doc = concat!("Axis-aligned ", $name, ", checked (see [`AxisAligned::new`]).")]
+            #[inline]
+            pub fn axis_aligned(alpha_x: F, alpha_y: F) -> Result<Self, RoughnessError> {
+                AxisAligned::new(alpha_x, alpha_y).map(Self::new)
+            }
+        }
+
+        impl $ndf<RoughnessMatrix> {
+            #[doc = concat!("Full-matrix ", $name, ", checked (see [`RoughnessMatrix::new`]).")]
+            #[inline]
+            pub fn matrix(a11: F, a12: F, a22: F) -> Result<Self, RoughnessError> {
+                RoughnessMatrix::new(a11, a12, a22).map(Self::new)
+            }
+        }
+    };
+}
+
 pub mod beckmann;
 pub mod ggx;
 pub mod roughness;

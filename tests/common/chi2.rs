@@ -2,7 +2,7 @@
 //! incomplete gamma function, whitened `(r, phi)` grid, pooling and statistic), as a module that
 //! other sampling tests include with `#[path = "common/chi2.rs"] mod chi2;` next to `mod common;`.
 //! The statistics are documented (and the gamma function tested) in `tests/sampling_chi2.rs`,
-//! whose private copy this is: it can switch to this module.
+//! which uses it too.
 #![allow(dead_code)]
 
 use crate::common::whitening::Whitening;

@@ -1,5 +1,5 @@
 // Forward shading of one object with one filtering method (the host prepends
-// `const METHOD: u32 = ...;`, the index of `methods.rs`'s `Method::ALL`, or 10 + a preset's
+// `const METHOD: u32 = ...;`, the index in `passes.rs`'s `FORWARD`, or 10 + a preset's
 // index): per light, the half vector and its quad derivatives, the method's filtered `D`, the
 // reflectance of `render::radiance`. One draw per object (the host sets `object.index` and a
 // scissor around each sphere); every pixel evaluates the object, visible or not, so that the

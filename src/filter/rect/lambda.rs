@@ -82,9 +82,11 @@ pub(super) fn scaled(w: Vec3) -> (f64, f64, f64) {
     if (LO..=HI).contains(&mx) || !mx.is_finite() || mx == 0.0 {
         return (x, y, z);
     }
-    // 2^-e for the binary exponent e of mx (subnormal mx: e = -1023, 2^1023).
+    // 2^-e for the binary exponent e of mx (subnormal mx: e = -1023, 2^1023), or 2^-1022
+    // for e = 1023, whose 2^-1023 is subnormal and has no exponent field (the field 0 would
+    // read as 0 and scale every vector to the zero vector): mx then lands in [2, 4).
     let e = ((mx.to_bits() >> 52) & 0x7ff) as i64 - 1023;
-    let s = f64::from_bits(((1023 - e) as u64) << 52);
+    let s = f64::from_bits(((1023 - e).max(1) as u64) << 52);
     (x * s, y * s, z * s)
 }
 

@@ -85,7 +85,52 @@ macro_rules! rect_prec {
                 assert!(v.is_finite() && v >= 0.0, "{what}: d({h:?}) = {v:?}");
             }
         }
-        let _ = v3;
+        // lambda_rect: never NaN, >= 0 (+inf at grazing); for a NaN direction +inf; at least
+        // GGX's own Lambda (box filtering only adds masking, Jensen) to rounding.
+        let w = v3(b);
+        let l = rect::lambda_rect(r, half, w);
+        assert!(
+            !l.is_nan() && l >= 0.0,
+            "lambda_rect({r:?}, {half:?}, {w:?}) = {l:?}"
+        );
+        if w.is_nan() {
+            assert_eq!(l, F::INFINITY, "lambda_rect: NaN direction");
+        }
+        let lg = ggx.lambda(w);
+        if lg.is_finite() && l.is_finite() {
+            assert!(
+                l >= lg * (1.0 - 64.0 * TOL) - F::MIN_POSITIVE,
+                "lambda_rect({r:?}, {half:?}, {w:?}) = {l:?} below GGX's {lg:?}"
+            );
+        }
+        // The box lobe's samplers: unit micronormals above the horizon; None only for a view
+        // at or below the horizon, or non-finite.
+        let (u, ub) = (v2(b), v2(b));
+        let m = rect::sample_normal_rect(r, half, u, ub);
+        assert!(
+            m.is_finite() && m.z > 0.0 && (m.length() - 1.0).abs() < 1e-3,
+            "sample_normal_rect({r:?}, {half:?}, {u:?}, {ub:?}) = {m:?}"
+        );
+        let pdf = rect::normal_pdf_rect(r, half, m);
+        assert!(pdf.is_finite() && pdf >= 0.0, "normal_pdf_rect = {pdf:?}");
+        let wo = $d::dir(b, head & 2 != 0);
+        match rect::sample_visible_normal_rect(r, half, wo, u, ub) {
+            Some(mv) => {
+                assert!(
+                    mv.is_finite() && mv.z > 0.0 && (mv.length() - 1.0).abs() < 1e-3,
+                    "sample_visible_normal_rect({r:?}, {half:?}, {wo:?}) = {mv:?}"
+                );
+                let vp = rect::visible_normal_pdf_rect(r, half, wo, mv);
+                assert!(
+                    vp.is_finite() && vp >= 0.0,
+                    "visible_normal_pdf_rect = {vp:?}"
+                );
+            }
+            None => assert!(
+                !(wo.is_finite() && wo.z > 0.0) || wo.z < 1e-30,
+                "sample_visible_normal_rect refused a view above the horizon: {wo:?}"
+            ),
+        }
     }};
 }
 
@@ -96,7 +141,9 @@ macro_rules! rect_prec {
 /// `rect::d_rect_printed` finite (no panic; its sign is not checked: it cancels);
 /// `proxy::effective_alpha{,_simple}(alpha, H)` NaN-free and `>= alpha` for finite
 /// `alpha > 0`, finite unless `|H|` is near overflow; `proxy::proxy{,_simple}` in the
-/// checked roughness range, never below the input roughness, and evaluable.
+/// checked roughness range, never below the input roughness, and evaluable; `lambda_rect`
+/// NaN-free, `>= 0`, `+inf` for a NaN direction and never below GGX's own `Lambda`; the box
+/// lobe's samplers return unit micronormals above the horizon with finite, non-negative pdfs.
 pub fn check_rect(data: &[u8]) {
     rect_prec!(d64, f64, &mut Bytes::new(data));
     rect_prec!(d32, f32, &mut Bytes::new(data));

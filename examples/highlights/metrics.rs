@@ -1,0 +1,471 @@
+//! What a viewer and a rendering researcher measure (issue 21), shared by the CPU and GPU
+//! demonstrations:
+//!
+//! - **FLIP** (Andersson et al. 2020), NVIDIA's reference C++ implementation through the
+//!   `nv-flip` crate: LDR-FLIP of the displayed images (this demo's display transform, then
+//!   8-bit sRGB), and HDR-FLIP (Andersson et al. 2021): the per-pixel maximum of LDR-FLIP over
+//!   the exposures the reference needs (ACES tone curve, start exposure from the reference's
+//!   brightest pixel, stop exposure from its median, one exposure per stop), built here on
+//!   the LDR routine, since the crate wraps only that one. 67 pixels per degree (a 0.7 m wide
+//!   4K monitor seen from 0.7 m), FLIP's default.
+//! - **Flicker energy**: the mean over pixels and frame pairs of the squared frame-to-frame
+//!   change of display luminance, divided by the reference sequence's.
+//! - **Specular error**: RMSE of the specular term alone, tone mapped (display units).
+//! - **False glints / lost highlights**: counts of pixels bright in the frame (display
+//!   luminance > 0.8) where the reference is dark (< 0.3), and the reverse.
+
+use crate::image_out::{Image, encode, luminance, tonemap};
+use glam::Vec3;
+
+/// FLIP's default pixels per degree: a 0.7 m wide 3840-pixel monitor at 0.7 m.
+pub const PIXELS_PER_DEGREE: f32 = 67.0;
+
+/// Display luminance above which a pixel counts as bright.
+pub const BRIGHT: f32 = 0.8;
+/// Display luminance below which a pixel counts as dark.
+pub const DARK: f32 = 0.3;
+
+/// A FLIP error map (per pixel, in `[0, 1]`) and its mean.
+pub struct FlipMap {
+    pub width: usize,
+    pub height: usize,
+    pub values: Vec<f32>,
+}
+
+impl FlipMap {
+    /// The mean error (FLIP's single number).
+    pub fn mean(&self) -> f64 {
+        self.values.iter().map(|&v| v as f64).sum::<f64>() / self.values.len().max(1) as f64
+    }
+
+    /// The map through FLIP's magma colour map (8-bit sRGB).
+    pub fn to_rgb8(&self) -> crate::image_out::Rgb8 {
+        let map =
+            nv_flip::FlipImageFloat::with_data(self.width as u32, self.height as u32, &self.values);
+        let rgb = map.apply_color_lut(&nv_flip::magma_lut());
+        image::RgbImage::from_raw(rgb.width(), rgb.height(), rgb.to_vec())
+            .expect("FLIP's colour map has the map's size")
+    }
+}
+
+/// 8-bit sRGB bytes of linear display values in `[0, 1]`.
+fn srgb8(width: usize, height: usize, display: impl Iterator<Item = Vec3>) -> Vec<u8> {
+    let bytes: Vec<u8> = display
+        .flat_map(|c| [encode(c.x), encode(c.y), encode(c.z)])
+        .collect();
+    assert_eq!(bytes.len(), 3 * width * height);
+    bytes
+}
+
+/// LDR-FLIP between two 8-bit sRGB images.
+fn ldr_flip_bytes(width: usize, height: usize, test: &[u8], reference: &[u8]) -> Vec<f32> {
+    let (w, h) = (width as u32, height as u32);
+    let r = nv_flip::FlipImageRgb8::with_data(w, h, reference);
+    let t = nv_flip::FlipImageRgb8::with_data(w, h, test);
+    nv_flip::flip(r, t, PIXELS_PER_DEGREE).to_vec()
+}
+
+/// LDR-FLIP of `test` against `reference` as this demonstration displays them (exposure,
+/// per-channel Reinhard, sRGB: [`tonemap`]).
+pub fn flip_ldr(test: &Image, reference: &Image, exposure: f32) -> FlipMap {
+    let bytes = |img: &Image| {
+        srgb8(
+            img.width,
+            img.height,
+            img.data.iter().map(|&c| tonemap(c, exposure)),
+        )
+    };
+    FlipMap {
+        width: test.width,
+        height: test.height,
+        values: ldr_flip_bytes(test.width, test.height, &bytes(test), &bytes(reference)),
+    }
+}
+
+/// Narkowicz's fit of the ACES curve with FLIP's 0.6 pre-exposure folded in:
+/// `(k0 x^2 + k1 x + k2) / (k3 x^2 + k4 x + k5)`.
+const ACES: [f32; 6] = [
+    0.6 * 0.6 * 2.51,
+    0.6 * 0.03,
+    0.0,
+    0.6 * 0.6 * 2.43,
+    0.6 * 0.59,
+    0.14,
+];
+
+/// The ACES curve of HDR-FLIP, clamped to `[0, 1]`.
+pub fn aces(x: f32) -> f32 {
+    let [k0, k1, k2, k3, k4, k5] = ACES;
+    ((x * (k0 * x + k1) + k2) / (x * (k3 * x + k4) + k5)).clamp(0.0, 1.0)
+}
+
+/// The input the ACES curve maps to `t` (the positive root of `(k0 - k3 t) x^2 + (k1 - k4
+/// t) x + (k2 - k5 t) = 0`).
+pub fn aces_inverse(t: f32) -> f32 {
+    let [k0, k1, k2, k3, k4, k5] = ACES.map(f64::from);
+    let t = t as f64;
+    let (a, b, c) = (k0 - k3 * t, k1 - k4 * t, k2 - k5 * t);
+    ((-b + (b * b - 4.0 * a * c).sqrt()) / (2.0 * a)).max(0.0) as f32
+}
+
+/// HDR-FLIP's exposures for `reference` (log2 scale factors): from the one that maps the
+/// brightest luminance to 0.85 through the ACES curve, to the one that maps the median
+/// luminance to 0.85, `max(2, ceil(stop - start))` of them, evenly spaced.
+pub fn hdr_exposures(reference: &Image) -> Vec<f32> {
+    let mut y: Vec<f32> = reference.data.iter().map(|&c| luminance(c)).collect();
+    y.sort_by(f32::total_cmp);
+    let (median, max) = (y[y.len() / 2], *y.last().unwrap_or(&0.0));
+    if max <= 0.0 || median <= 0.0 {
+        return vec![0.0];
+    }
+    let x = aces_inverse(0.85);
+    let (start, stop) = ((x / max).log2(), (x / median).log2());
+    let n = ((stop - start).ceil() as usize).max(2);
+    (0..n)
+        .map(|i| start + i as f32 * (stop - start) / (n - 1) as f32)
+        .collect()
+}
+
+/// HDR-FLIP of `test` against `reference` (linear HDR radiance): the per-pixel maximum of
+/// LDR-FLIP over [`hdr_exposures`], each exposure tone mapped by [`aces`] per channel and
+/// encoded as 8-bit sRGB (the reference implementation keeps floats there; the 8-bit step is
+/// the wrapper's input format).
+pub fn flip_hdr(test: &Image, reference: &Image) -> FlipMap {
+    let (w, h) = (test.width, test.height);
+    let mut values = vec![0.0f32; w * h];
+    for e in hdr_exposures(reference) {
+        let scale = e.exp2();
+        let bytes = |img: &Image| {
+            srgb8(
+                w,
+                h,
+                img.data
+                    .iter()
+                    .map(|&c| (c.max(Vec3::ZERO) * scale).map(aces)),
+            )
+        };
+        let map = ldr_flip_bytes(w, h, &bytes(test), &bytes(reference));
+        for (v, m) in values.iter_mut().zip(map) {
+            *v = v.max(m);
+        }
+    }
+    FlipMap {
+        width: w,
+        height: h,
+        values,
+    }
+}
+
+/// Display luminance per pixel: Rec. 709 luminance of the tone-mapped display values.
+pub fn display_luminance(img: &Image, exposure: f32) -> Vec<f32> {
+    img.data
+        .iter()
+        .map(|&c| luminance(tonemap(c, exposure)))
+        .collect()
+}
+
+/// Pixels bright in `test` and dark in `reference` ([`BRIGHT`], [`DARK`], display
+/// luminance), and the reverse: `(false glints, lost highlights)` as masks.
+pub fn glint_masks(test: &[f32], reference: &[f32]) -> (Vec<bool>, Vec<bool>) {
+    test.iter()
+        .zip(reference)
+        .map(|(&t, &r)| (t > BRIGHT && r < DARK, r > BRIGHT && t < DARK))
+        .unzip()
+}
+
+/// `(false glints, lost highlights)` as counts (see [`glint_masks`]).
+pub fn glint_counts(test: &[f32], reference: &[f32]) -> (usize, usize) {
+    let (f, l) = glint_masks(test, reference);
+    let count = |m: Vec<bool>| m.into_iter().filter(|&b| b).count();
+    (count(f), count(l))
+}
+
+/// RMSE of the tone-mapped specular terms (display units, over all pixels and channels).
+pub fn specular_error(test: &Image, reference: &Image, exposure: f32) -> f64 {
+    test.rmse_display(reference, exposure)
+}
+
+/// Flicker energy of a sequence of display-luminance frames: the mean over pixels and frame
+/// pairs of `(Y_t - Y_{t-1})^2` (0 for fewer than two frames).
+pub fn flicker_energy(frames: &[Vec<f32>]) -> f64 {
+    let (mut sum, mut n) = (0.0f64, 0usize);
+    for pair in frames.windows(2) {
+        for (a, b) in pair[0].iter().zip(&pair[1]) {
+            sum += ((b - a) as f64).powi(2);
+            n += 1;
+        }
+    }
+    sum / n.max(1) as f64
+}
+
+/// Flicker error of a sequence against the reference sequence: the mean over pixels and frame
+/// pairs of `((Y_t - Y_{t-1}) - (R_t - R_{t-1}))^2`, the energy of the frame-to-frame changes
+/// the reference does not make (0 for fewer than two frames). Unlike [`flicker_energy`], a
+/// sequence that changes as much as the reference but in other pixels scores badly.
+pub fn flicker_error(frames: &[Vec<f32>], reference: &[Vec<f32>]) -> f64 {
+    let (mut sum, mut n) = (0.0f64, 0usize);
+    for (pair, rpair) in frames.windows(2).zip(reference.windows(2)) {
+        for ((a, b), (ra, rb)) in pair[0]
+            .iter()
+            .zip(&pair[1])
+            .zip(rpair[0].iter().zip(&rpair[1]))
+        {
+            sum += ((b - a) as f64 - (rb - ra) as f64).powi(2);
+            n += 1;
+        }
+    }
+    sum / n.max(1) as f64
+}
+
+/// The still-frame scores of one method against the reference.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Scores {
+    pub flip_ldr: f64,
+    pub flip_hdr: f64,
+    pub specular: f64,
+    pub false_glints: usize,
+    pub lost_highlights: usize,
+    pub rmse_hdr: f64,
+}
+
+/// Every still-frame score of `test` (frame and specular term) against the reference, and the
+/// LDR-FLIP map.
+pub fn score(
+    test: (&Image, &Image),
+    reference: (&Image, &Image),
+    exposure: f32,
+) -> (Scores, FlipMap) {
+    let ldr = flip_ldr(test.0, reference.0, exposure);
+    let (false_glints, lost_highlights) = glint_counts(
+        &display_luminance(test.0, exposure),
+        &display_luminance(reference.0, exposure),
+    );
+    let s = Scores {
+        flip_ldr: ldr.mean(),
+        flip_hdr: flip_hdr(test.0, reference.0).mean(),
+        specular: specular_error(test.1, reference.1, exposure),
+        false_glints,
+        lost_highlights,
+        rmse_hdr: test.0.rmse(reference.0),
+    };
+    (s, ldr)
+}
+
+/// The metrics a method must beat unfiltered on (issue 21): FLIP LDR and HDR, flicker,
+/// specular error, false glints, lost highlights. Lower is better for each; the flicker is
+/// compared as the flicker error over the reference's flicker energy ([`flicker_error`]):
+/// the energy ratio alone cannot tell a sequence that changes where the reference does from
+/// one that changes as much elsewhere.
+/// Returns the names of the metrics on which `m` does not beat `base` (strictly better, or
+/// both counts zero).
+pub fn not_better(m: (&Scores, f64), base: (&Scores, f64)) -> Vec<&'static str> {
+    let ((s, fm), (b, fb)) = (m, base);
+    let mut out = Vec::new();
+    let better = |x: f64, y: f64| x < y;
+    let count = |x: usize, y: usize| x < y || (x == 0 && y == 0);
+    if !better(s.flip_ldr, b.flip_ldr) {
+        out.push("FLIP LDR");
+    }
+    if !better(s.flip_hdr, b.flip_hdr) {
+        out.push("FLIP HDR");
+    }
+    if !better(fm, fb) {
+        out.push("flicker");
+    }
+    if !better(s.specular, b.specular) {
+        out.push("specular");
+    }
+    if !count(s.false_glints, b.false_glints) {
+        out.push("false glints");
+    }
+    if !count(s.lost_highlights, b.lost_highlights) {
+        out.push("lost highlights");
+    }
+    out
+}
+
+/// The verdict column: "beats unfiltered on all" or the metrics it does not beat it on.
+pub fn verdict(m: (&Scores, f64), base: (&Scores, f64)) -> String {
+    let missing = not_better(m, base);
+    if missing.is_empty() {
+        "**beats unfiltered on all**".to_string()
+    } else {
+        format!("not: {}", missing.join(", "))
+    }
+}
+
+/// A method's temporal scores ([`flicker_error`] and [`flicker_energy`] over the reference's
+/// energy, and KHPL16 Fig. 12's frame-to-frame variation of the peak).
+#[derive(Clone, Copy, Debug)]
+pub struct Flicker {
+    pub error: f64,
+    pub energy: f64,
+    pub peak_variation: f64,
+}
+
+/// One row of the lead table.
+pub struct LeadRow {
+    pub label: String,
+    /// The NDF's name; the verdict compares each row with the baseline row of its NDF.
+    pub ndf: &'static str,
+    /// Unfiltered (the row the others are compared with).
+    pub baseline: bool,
+    pub scores: Scores,
+    pub flicker: Option<Flicker>,
+}
+
+/// Issue 21's table, shared by the CPU and GPU demonstrations: per row FLIP, flicker,
+/// specular error, false glints and lost highlights, the HDR RMSE, and where it stands
+/// against the unfiltered row of its NDF ([`verdict`]). A missing score prints as `-`.
+pub fn lead_table(rows: &[LeadRow]) -> String {
+    use std::fmt::Write as _;
+    let mut t = String::new();
+    writeln!(t, "| method | NDF | FLIP LDR | FLIP HDR | flicker error / ref. | flicker energy / ref. | peak flicker | specular error | false glints | lost highlights | RMSE (HDR) | against unfiltered |").unwrap();
+    writeln!(
+        t,
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+    )
+    .unwrap();
+    let num = |v: f64, digits: usize| {
+        if v.is_finite() {
+            format!("{v:.digits$}")
+        } else {
+            "-".to_string()
+        }
+    };
+    for r in rows {
+        let base = rows.iter().find(|b| b.baseline && b.ndf == r.ndf);
+        let verdict = match (base, r.flicker, base.and_then(|b| b.flicker)) {
+            _ if r.baseline => "(baseline)".to_string(),
+            (Some(b), Some(f), Some(bf)) => verdict((&r.scores, f.error), (&b.scores, bf.error)),
+            _ => "-".to_string(),
+        };
+        let f = r.flicker.unwrap_or(Flicker {
+            error: f64::NAN,
+            energy: f64::NAN,
+            peak_variation: f64::NAN,
+        });
+        let s = &r.scores;
+        writeln!(
+            t,
+            "| {} | {} | {:.4} | {:.4} | {} | {} | {}% | {} | {} | {} | {:.4} | {} |",
+            r.label,
+            r.ndf,
+            s.flip_ldr,
+            s.flip_hdr,
+            num(f.error, 2),
+            num(f.energy, 2),
+            num(100.0 * f.peak_variation, 1),
+            num(s.specular, 4),
+            s.false_glints,
+            s.lost_highlights,
+            s.rmse_hdr,
+            verdict
+        )
+        .unwrap();
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn image(w: usize, h: usize, f: impl Fn(usize, usize) -> Vec3) -> Image {
+        Image::new(
+            w,
+            h,
+            (0..h)
+                .flat_map(|y| (0..w).map(move |x| (x, y)))
+                .map(|(x, y)| f(x, y))
+                .collect(),
+        )
+    }
+
+    #[test]
+    fn aces_inverse_inverts_the_curve() {
+        for t in [0.1f32, 0.5, 0.85] {
+            assert!((aces(aces_inverse(t)) - t).abs() < 1e-5, "t = {t}");
+        }
+    }
+
+    #[test]
+    fn hdr_exposures_span_max_to_median() {
+        // Luminances 1 (median) and 64 (max): 6 stops apart, so 6 exposures, the first
+        // mapping 64 and the last mapping 1 to 0.85.
+        let img = image(4, 4, |x, y| {
+            Vec3::splat(if x + y == 0 { 64.0 } else { 1.0 })
+        });
+        let e = hdr_exposures(&img);
+        assert_eq!(e.len(), 6);
+        let x = aces_inverse(0.85);
+        assert!((e[0] - (x / 64.0).log2()).abs() < 1e-5);
+        assert!((e[5] - x.log2()).abs() < 1e-5);
+    }
+
+    #[test]
+    fn flip_is_zero_for_equal_images_and_grows_with_the_difference() {
+        let a = image(32, 32, |x, y| Vec3::splat(0.05 * ((x + y) % 7) as f32));
+        assert_eq!(flip_ldr(&a, &a, 1.0).mean(), 0.0);
+        assert_eq!(flip_hdr(&a, &a).mean(), 0.0);
+        let small = image(32, 32, |x, y| a.data[y * 32 + x] * 1.1);
+        let large = image(32, 32, |x, y| a.data[y * 32 + x] * 3.0);
+        let (s, l) = (
+            flip_ldr(&small, &a, 1.0).mean(),
+            flip_ldr(&large, &a, 1.0).mean(),
+        );
+        assert!(0.0 < s && s < l && l <= 1.0, "{s} {l}");
+    }
+
+    #[test]
+    fn glints_count_bright_over_dark_and_the_reverse() {
+        let reference = [0.1, 0.9, 0.5, 0.1];
+        let test = [0.9, 0.1, 0.9, 0.2];
+        assert_eq!(glint_counts(&test, &reference), (1, 1));
+    }
+
+    #[test]
+    fn flicker_energy_is_the_mean_squared_change() {
+        assert_eq!(flicker_energy(&vec![vec![0.5; 4]; 3]), 0.0);
+        // Two pixels, one switching by 1 each frame: 2 pairs x 2 pixels, sum 2.
+        let frames = vec![vec![0.0, 0.2], vec![1.0, 0.2], vec![0.0, 0.2]];
+        assert!((flicker_energy(&frames) - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn flicker_error_counts_changes_the_reference_does_not_make() {
+        let reference = vec![vec![0.0, 0.2], vec![1.0, 0.2], vec![0.0, 0.2]];
+        assert_eq!(flicker_error(&reference, &reference), 0.0);
+        // The same energy, in the other pixel: each pair differs by (-1, +1).
+        let moved = vec![vec![0.2, 0.0], vec![0.2, 1.0], vec![0.2, 0.0]];
+        assert_eq!(flicker_energy(&moved), flicker_energy(&reference));
+        assert!((flicker_error(&moved, &reference) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn verdict_needs_every_metric() {
+        let base = Scores {
+            flip_ldr: 0.2,
+            flip_hdr: 0.3,
+            specular: 0.1,
+            false_glints: 5,
+            lost_highlights: 0,
+            rmse_hdr: 1.0,
+        };
+        let good = Scores {
+            flip_ldr: 0.1,
+            flip_hdr: 0.2,
+            specular: 0.05,
+            false_glints: 1,
+            ..base
+        };
+        assert!(not_better((&good, 1.1), (&base, 4.0)).is_empty());
+        assert_eq!(not_better((&good, 5.0), (&base, 4.0)), ["flicker"]);
+        assert_eq!(not_better((&good, 4.0), (&base, 4.0)), ["flicker"]);
+        let glinty = Scores {
+            false_glints: 9,
+            ..good
+        };
+        assert_eq!(not_better((&glinty, 1.0), (&base, 4.0)), ["false glints"]);
+    }
+}
