@@ -106,9 +106,11 @@ pub fn par_chunks(out: &mut [F], chunk: usize, f: impl Fn(usize, &mut [F]) + Syn
 /// The vector instruction set the batch kernels run on in this process: `"avx512"`,
 /// `"avx2"` or `"sse2"` (x86-64; `"baseline"` elsewhere). With the `dispatch` feature on
 /// x86-64, the widest the CPU supports (detected once, capped by the environment variable
-/// `FILTERED_NDF_SIMD=sse2|avx2|avx512`); without it, the target features the crate was
-/// compiled for (`-C target-cpu`). For reports and benchmarks; it changes no result
-/// (every lane computes the same operations at any width).
+/// `FILTERED_NDF_SIMD=sse2|avx2|avx512`, or `sse2-lanes`: the baseline with every lane, for
+/// tests); without it, the target features the crate was compiled for (`-C target-cpu`). For
+/// reports and benchmarks. A lane computes the same operations at any width; what the level
+/// changes is only whether the filtered functions and the box filter run their lanes (AVX2,
+/// AVX-512) or their scalar path (baseline), see the module docs.
 pub fn simd_level() -> &'static str {
     simd::level_name()
 }

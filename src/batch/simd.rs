@@ -5,7 +5,8 @@
 //! x86-64-v3 (AVX2, 8 lanes) and x86-64-v4 (AVX-512, 16 lanes) and picks the widest the CPU
 //! supports, through `pulp`'s safe target-feature contexts: the crate stays
 //! `forbid(unsafe_code)`. `FILTERED_NDF_SIMD=sse2|avx2|avx512` caps the choice (read once; for
-//! measurements).
+//! measurements); `sse2-lanes` runs every kernel's lanes on the baseline, also those that pay
+//! only with wider vectors (for tests: every lane runs on any x86-64 CPU).
 
 use super::lanes::Body;
 
@@ -59,6 +60,9 @@ mod wide {
     #[derive(Clone, Copy)]
     enum Level {
         Base,
+        /// The baseline with every kernel's lanes, also those that pay only with wider vectors
+        /// (`FILTERED_NDF_SIMD=sse2-lanes`: for tests, so that every lane runs on any CPU).
+        BaseLanes,
         V3(pulp::x86::V3),
         V4(pulp::x86::V4),
     }
@@ -68,6 +72,9 @@ mod wide {
         static LEVEL: OnceLock<Level> = OnceLock::new();
         *LEVEL.get_or_init(|| {
             let cap = std::env::var("FILTERED_NDF_SIMD").unwrap_or_default();
+            if cap == "sse2-lanes" {
+                return Level::BaseLanes;
+            }
             let (v3, v4) = match cap.as_str() {
                 "sse2" => (false, false),
                 "avx2" => (true, false),
@@ -88,7 +95,7 @@ mod wide {
         match level() {
             Level::V4(_) => "avx512",
             Level::V3(_) => "avx2",
-            Level::Base => "sse2",
+            Level::Base | Level::BaseLanes => "sse2",
         }
     }
 
@@ -99,7 +106,7 @@ mod wide {
             Level::V4(s) => Simd::vectorize(s, Go(l)),
             Level::V3(s) => Simd::vectorize(s, Go(l)),
             Level::Base if B::WIDE_ONLY => l.go_scalar(),
-            Level::Base => l.go(),
+            Level::Base | Level::BaseLanes => l.go(),
         }
     }
 }
