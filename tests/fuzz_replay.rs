@@ -152,6 +152,12 @@ mod findings {
         let expect = f64::MAX * 1e-8 / 2.0;
         let la = f64::Ggx::new(ra).lambda(wa);
         assert!((la / expect - 1.0).abs() < 1e-14, "{la:e} vs {expect:e}");
+        // A subnormal |w_z| beside a unit w_xy (no rescaling): Lambda = sqrt(q) / (2 |w_z|)
+        // = 1e-4 / 2e-310 = 5e305 to 1e-9 (w_z = 1e-310 carries 44 bits); 1 / (2 |w_z|)
+        // alone would overflow (the reason the formula divides twice).
+        let ri = f64::Isotropic::new(1e-4).unwrap();
+        let ls = f64::Ggx::new(ri).lambda(DVec3::new(1.0, 0.0, 1e-310));
+        assert!((ls / 5e305 - 1.0).abs() < 1e-9, "{ls:e}");
         for hy in [1.0, 1e10, f64::INFINITY] {
             let l = f64::filter::rect::lambda_rect(r, DVec2::new(1.57, hy), w);
             assert!(l >= lg, "half_y {hy:e}: {l:e} < {lg:e}");
