@@ -114,14 +114,15 @@ impl<R: Roughness> LaneNdf for Ggx<R> {
         (if keep { v } else { 0.0 }, false)
     }
 
-    /// `ggx_lambda_core` where the scalar path reaches it (no rescaling, `q >= 0`,
-    /// `|w_z| > 0`, `w_z^2 + q` finite), flagged elsewhere.
+    /// `ggx_lambda_core` where the scalar path takes it (no rescaling, `q >= 0`, `|w_z| > 0`,
+    /// `w_z^2 + q` finite, a normal denominator), flagged elsewhere.
     #[inline(always)]
     fn lambda_lane(&self, w: Vec3) -> (F, bool) {
         let q = self.roughness.quadratic(Vec2::new(w.x, w.y));
         let az = w.z.abs();
         let fast = needs_no_rescale(w) & (q >= 0.0) & (az > 0.0) & (az * az + q < F::INFINITY);
-        (ggx_lambda_core(q, az), !fast)
+        let (lambda, normal) = ggx_lambda_core(q, az);
+        (lambda, !(fast & normal))
     }
 }
 

@@ -65,20 +65,27 @@ pub(crate) fn ggx_lambda(q: F, abs_wz: F) -> F {
             F::INFINITY
         };
     }
-    ggx_lambda_core(q, abs_wz)
+    let (lambda, normal) = ggx_lambda_core(q, abs_wz);
+    if normal {
+        lambda
+    } else {
+        // The denominator 2 |w_z| (r + |w_z|) is subnormal (a grazing |w_z| near 1e-308 with
+        // r near 1e-8 kept 8 digits; found by the box lobe's fuzz contract) or 0:
+        // q / (r + |w_z|) <= sqrt(q) first, then the exact 2 |w_z|.
+        q / (r + abs_wz) / (2.0 * abs_wz)
+    }
 }
 
-/// The formula of [`ggx_lambda`] without its checks, `q / (sqrt(w_z^2 + q) + |w_z|) /
-/// (2 |w_z|)` (no cancellation), for `q >= 0`, `|w_z| > 0` and a finite `w_z^2 + q`: the one
-/// source of GGX's `Lambda` for the scalar path and for `batch` (whose lanes take it where
-/// those hold).
+/// The formula of [`ggx_lambda`] without its checks, `q / (2 |w_z| (sqrt(w_z^2 + q) + |w_z|))`
+/// (no cancellation; one division), for `q >= 0`, `|w_z| > 0` and a finite `w_z^2 + q`, and
+/// whether its denominator is a normal number (else the value may have lost digits and
+/// [`ggx_lambda`] divides twice): the one source of GGX's `Lambda` for the scalar path and for
+/// `batch` (whose lanes take it where those hold and flag the rest).
 #[inline(always)]
-pub(crate) fn ggx_lambda_core(q: F, abs_wz: F) -> F {
+pub(crate) fn ggx_lambda_core(q: F, abs_wz: F) -> (F, bool) {
     let r = m::sqrt(abs_wz * abs_wz + q);
-    // q / (r + |w_z|) <= sqrt(q) first: the product 2 |w_z| (r + |w_z|) is subnormal for a
-    // grazing |w_z| near 1e-308 with r near 1e-8 and kept only 8 digits (found by the box
-    // lobe's fuzz contract, which compares its Lambda against this one).
-    q / (r + abs_wz) / (2.0 * abs_wz)
+    let den = 2.0 * abs_wz * (r + abs_wz);
+    (q / den, den >= F::MIN_POSITIVE)
 }
 
 impl<R: Roughness> Ndf for Ggx<R> {
