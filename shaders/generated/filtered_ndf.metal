@@ -190,6 +190,10 @@ constant filter_deferred_KernelConvention filter_presets_UNREAL = filter_deferre
 constant filter_deferred_KernelConvention filter_presets_BABYLON = filter_deferred_KernelConvention {2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_THREE_JS = filter_deferred_KernelConvention {2u, 3u, 1.0, 1.0, 0.0, 340282350000000000000000000000000000000.0, 0u, true, {}, 0.0525};
 constant float sampling_ONE_MINUS_EPS = 0.99999994;
+constant float sampling_beckmann_X_MAX = 9.0;
+constant uint sampling_beckmann_MAX_ITERATIONS = 64u;
+constant float sampling_beckmann_INV_SQRT_PI = 0.5641896;
+constant float sampling_beckmann_EPS = 0.00000011920929;
 
 float math_atan(
     float x
@@ -207,11 +211,11 @@ float math_atan(
     t = shift ? ((_e12 - 1.0) / (_e15 + 1.0)) : _e11;
     float _e20 = t;
     float _e21 = t;
-    float z_1 = _e20 * _e21;
-    float p_3 = (((((((-0.06451928 * z_1) + 0.10743731) * z_1) - 0.14263956) * z_1) + 0.1999954) * z_1) - 0.3333333;
+    float z_2 = _e20 * _e21;
+    float p_5 = (((((((-0.06451928 * z_2) + 0.10743731) * z_2) - 0.14263956) * z_2) + 0.1999954) * z_2) - 0.3333333;
     float _e36 = t;
     float _e37 = t;
-    r = _e36 + ((_e37 * z_1) * p_3);
+    r = _e36 + ((_e37 * z_2) * p_5);
     float _e42 = r;
     float _e44 = r;
     r = shift ? (math_QUARTER_PI + _e44) : _e42;
@@ -232,20 +236,20 @@ metal::float2 math_sincos_turns(
 ) {
     metal::float2 cs = {};
     float q_4 = metal::rint(4.0 * u);
-    float r_67 = u - (0.25 * q_4);
-    float z_2 = r_67 * r_67;
-    float s_15 = r_67 * ((((((((41.47283 * z_2) - 76.69787) * z_2) + 81.6052) * z_2) - 41.3417) * z_2) + 6.2831855);
-    float c_10 = (((((((59.22017 * z_2) - 85.44285) * z_2) + 64.939316) * z_2) - 19.739208) * z_2) + 1.0;
-    int k_23 = naga_f2i32(q_4) & 3;
-    cs = metal::float2(c_10, s_15);
-    if (k_23 == 1) {
-        cs = metal::float2(-(s_15), c_10);
+    float r_75 = u - (0.25 * q_4);
+    float z_3 = r_75 * r_75;
+    float s_19 = r_75 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855);
+    float c_13 = (((((((59.22017 * z_3) - 85.44285) * z_3) + 64.939316) * z_3) - 19.739208) * z_3) + 1.0;
+    int k_24 = naga_f2i32(q_4) & 3;
+    cs = metal::float2(c_13, s_19);
+    if (k_24 == 1) {
+        cs = metal::float2(-(s_19), c_13);
     } else {
-        if (k_23 == 2) {
-            cs = metal::float2(-(c_10), -(s_15));
+        if (k_24 == 2) {
+            cs = metal::float2(-(c_13), -(s_19));
         } else {
-            if (k_23 == 3) {
-                cs = metal::float2(s_15, -(c_10));
+            if (k_24 == 3) {
+                cs = metal::float2(s_19, -(c_13));
             }
         }
     }
@@ -257,13 +261,13 @@ float math_hypot(
     float x_1,
     float y
 ) {
-    float m_36 = metal::max(metal::abs(x_1), metal::abs(y));
-    if (m_36 <= 0.0) {
+    float m_41 = metal::max(metal::abs(x_1), metal::abs(y));
+    if (m_41 <= 0.0) {
         return 0.0;
     }
-    float a_17 = x_1 / m_36;
-    float b_4 = y / m_36;
-    return m_36 * metal::sqrt((a_17 * a_17) + (b_4 * b_4));
+    float a_17 = x_1 / m_41;
+    float b_4 = y / m_41;
+    return m_41 * metal::sqrt((a_17 * a_17) + (b_4 * b_4));
 }
 
 float math_exp(
@@ -271,19 +275,19 @@ float math_exp(
 ) {
     float xc = metal::clamp(x_2, -87.0, 88.0);
     float n_6 = metal::rint(xc * math_LOG2_E);
-    float r_68 = (xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO);
-    float r2_ = r_68 * r_68;
-    float p_4 = ((1.0 + r_68) + ((0.4999999 + (0.1666642 * r_68)) * r2_)) + (((0.041668225 + (0.008374816 * r_68)) + (0.0013836846 * r2_)) * (r2_ * r2_));
-    float s_16 = as_type<float>(static_cast<uint>(as_type<int>(as_type<uint>(naga_f2i32(n_6)) + as_type<uint>(127))) << 23u);
-    return (x_2 >= -87.0) ? (p_4 * s_16) : 0.0;
+    float r_76 = (xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO);
+    float r2_ = r_76 * r_76;
+    float p_6 = ((1.0 + r_76) + ((0.4999999 + (0.1666642 * r_76)) * r2_)) + (((0.041668225 + (0.008374816 * r_76)) + (0.0013836846 * r2_)) * (r2_ * r2_));
+    float s_20 = as_type<float>(static_cast<uint>(as_type<int>(as_type<uint>(naga_f2i32(n_6)) + as_type<uint>(127))) << 23u);
+    return (x_2 >= -87.0) ? (p_6 * s_20) : 0.0;
 }
 
 float math_atanh2_(
     float z
 ) {
     float z2_3 = z * z;
-    float s_17 = ((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3;
-    return (2.0 * z) + ((2.0 * z) * s_17);
+    float s_21 = ((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3;
+    return (2.0 * z) + ((2.0 * z) * s_21);
 }
 
 float math_ln(
@@ -387,14 +391,14 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
     float b_6 = c_3.s_xy / scale;
     float e_3 = c_3.s_yy / scale;
     float d_1 = 0.5 * (a_18 - e_3);
-    float r_69 = metal::sqrt((d_1 * d_1) + (b_6 * b_6));
-    float lmax_1 = ((0.5 * (a_18 + e_3)) + r_69) * scale;
+    float r_77 = metal::sqrt((d_1 * d_1) + (b_6 * b_6));
+    float lmax_1 = ((0.5 * (a_18 + e_3)) + r_77) * scale;
     if (lmax_1 <= max_eig) {
         return c_3;
     }
     float lmin_1 = metal::max(c_3.det / lmax_1, 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = r_69 < 0.000000000000000001;
+        local = r_77 < 0.000000000000000001;
     } else {
         local = true;
     }
@@ -402,10 +406,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
     if (_e46) {
         return kernel_covariance_Covariance {max_eig, 0.0, max_eig, max_eig * max_eig};
     }
-    float p_5 = r_69 + metal::abs(d_1);
-    float q_5 = (p_5 > 0.0) ? ((b_6 * b_6) / p_5) : 0.0;
-    metal::float2 ee = (d_1 >= 0.0) ? metal::float2(p_5, q_5) : metal::float2(q_5, p_5);
-    float inv_1 = 1.0 / (2.0 * r_69);
+    float p_7 = r_77 + metal::abs(d_1);
+    float q_5 = (p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0;
+    metal::float2 ee = (d_1 >= 0.0) ? metal::float2(p_7, q_5) : metal::float2(q_5, p_7);
+    float inv_1 = 1.0 / (2.0 * r_77);
     float p11_ = ee.x * inv_1;
     float p12_ = b_6 * inv_1;
     float p22_ = ee.y * inv_1;
@@ -493,19 +497,19 @@ float filter_deferred_norm_eval(
     metal::float3 dn_v
 ) {
     float a_19 = metal::dot(dn_u, dn_u);
-    float c_11 = metal::dot(dn_v, dn_v);
+    float c_14 = metal::dot(dn_v, dn_v);
     if (norm == filter_deferred_NORM_MAX_SQUARED) {
-        return metal::max(a_19, c_11);
+        return metal::max(a_19, c_14);
     }
     if (norm == filter_deferred_NORM_MAX_EIGENVALUE) {
-        float _e11 = filter_deferred_max_eigenvalue(a_19, metal::dot(dn_u, dn_v), c_11);
+        float _e11 = filter_deferred_max_eigenvalue(a_19, metal::dot(dn_u, dn_v), c_14);
         return _e11;
     }
     if (norm == filter_deferred_NORM_MAX_ABS_COMPONENT) {
-        metal::float3 m_37 = metal::max(metal::abs(dn_u), metal::abs(dn_v));
-        return metal::max(metal::max(m_37.x, m_37.y), m_37.z);
+        metal::float3 m_42 = metal::max(metal::abs(dn_u), metal::abs(dn_v));
+        return metal::max(metal::max(m_42.x, m_42.y), m_42.z);
     }
-    return a_19 + c_11;
+    return a_19 + c_14;
 }
 
 float filter_deferred_clamp_widening(
@@ -571,8 +575,8 @@ kernel_covariance_Covariance filter_deferred_normal_difference_covariance(
     float sigma
 ) {
     float sigma_sq = sigma * sigma;
-    metal::float3 x_8 = metal::cross(dn_u_3, dn_v_3) * sigma_sq;
-    return kernel_covariance_Covariance {metal::dot(dn_u_3, dn_u_3) * sigma_sq, metal::dot(dn_u_3, dn_v_3) * sigma_sq, metal::dot(dn_v_3, dn_v_3) * sigma_sq, metal::dot(x_8, x_8)};
+    metal::float3 x_11 = metal::cross(dn_u_3, dn_v_3) * sigma_sq;
+    return kernel_covariance_Covariance {metal::dot(dn_u_3, dn_u_3) * sigma_sq, metal::dot(dn_u_3, dn_v_3) * sigma_sq, metal::dot(dn_v_3, dn_v_3) * sigma_sq, metal::dot(x_11, x_11)};
 }
 
 float filter_deferred_bandwidth_alpha2_(
@@ -615,9 +619,9 @@ metal::float2 ndf_roughness_matrix_clamped_eigenvalues(
     if (det >= tau) {
         return l;
     }
-    float h_20 = 0.5 * (l.x + l.y);
+    float h_21 = 0.5 * (l.x + l.y);
     float gap = tau - det;
-    float t_11 = gap / (h_20 + metal::sqrt((h_20 * h_20) + gap));
+    float t_11 = gap / (h_21 + metal::sqrt((h_21 * h_21) + gap));
     float l1_ = l.x + t_11;
     return metal::float2(l1_, tau / l1_);
 }
@@ -706,9 +710,9 @@ metal::float3 ndf_roughness_matrix_entries_of(
     ndf_roughness_matrix_RoughnessMatrix r_6,
     metal::float2 l_2
 ) {
-    float c_12 = r_6.axis.x;
-    float s_18 = r_6.axis.y;
-    return metal::float3(((l_2.x * c_12) * c_12) + ((l_2.y * s_18) * s_18), ((l_2.x - l_2.y) * c_12) * s_18, ((l_2.x * s_18) * s_18) + ((l_2.y * c_12) * c_12));
+    float c_15 = r_6.axis.x;
+    float s_22 = r_6.axis.y;
+    return metal::float3(((l_2.x * c_15) * c_15) + ((l_2.y * s_22) * s_22), ((l_2.x - l_2.y) * c_15) * s_22, ((l_2.x * s_22) * s_22) + ((l_2.y * c_15) * c_15));
 }
 
 metal::float3 ndf_roughness_matrix_entries(
@@ -743,10 +747,10 @@ ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(
     float tau_3
 ) {
     metal::float3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_13 = a_2.axis.x;
-    float s_19 = a_2.axis.y;
-    float k1_1 = metal::max((((c_13 * c_13) * k_3.s_xx) + (((2.0 * c_13) * s_19) * k_3.s_xy)) + ((s_19 * s_19) * k_3.s_yy), 0.0);
-    float k2_1 = metal::max((((s_19 * s_19) * k_3.s_xx) - (((2.0 * c_13) * s_19) * k_3.s_xy)) + ((c_13 * c_13) * k_3.s_yy), 0.0);
+    float c_16 = a_2.axis.x;
+    float s_23 = a_2.axis.y;
+    float k1_1 = metal::max((((c_16 * c_16) * k_3.s_xx) + (((2.0 * c_16) * s_23) * k_3.s_xy)) + ((s_23 * s_23) * k_3.s_yy), 0.0);
+    float k2_1 = metal::max((((s_23 * s_23) * k_3.s_xx) - (((2.0 * c_16) * s_23) * k_3.s_xy)) + ((c_16 * c_16) * k_3.s_yy), 0.0);
     float _e38 = ndf_roughness_matrix_determinant(a_2);
     float det_4 = (_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * metal::max(k_3.det, 0.0));
     ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det(_e3.x + (2.0 * k_3.s_xx), _e3.y + (2.0 * k_3.s_xy), _e3.z + (2.0 * k_3.s_yy), det_4, metal::max(tau_3, 0.0));
@@ -915,8 +919,8 @@ float ndf_ggx_lambda_of(
     if (_e21) {
         return math_F32_MAX;
     }
-    float r_70 = metal::sqrt((abs_wz * abs_wz) + q_1);
-    return q_1 / ((2.0 * abs_wz) * (r_70 + abs_wz));
+    float r_78 = metal::sqrt((abs_wz * abs_wz) + q_1);
+    return q_1 / ((2.0 * abs_wz) * (r_78 + abs_wz));
 }
 
 float ndf_ggx_p22_isotropic(
@@ -1096,10 +1100,10 @@ float ndf_beckmann_d_of(
 ) {
     bool local_7 = {};
     float z2_4 = m_z_1 * m_z_1;
-    float x_9 = q_xy_1 / z2_4;
-    float k_24 = 1.0 / (((math_PI * sqrt_det_3) * z2_4) * z2_4);
+    float x_12 = q_xy_1 / z2_4;
+    float k_25 = 1.0 / (((math_PI * sqrt_det_3) * z2_4) * z2_4);
     float ln_k_1 = -((metal::log(math_PI * sqrt_det_3) + (4.0 * metal::log(metal::max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_9, k_24, ln_k_1);
+    float _e21 = ndf_beckmann_exp_neg_times(x_12, k_25, ln_k_1);
     if (m_z_1 > 0.0) {
         local_7 = _e21 <= math_F32_MAX;
     } else {
@@ -1168,8 +1172,8 @@ float ndf_beckmann_lambda_of(
     float _e87 = p;
     p = (_e87 * t_14) + 1.0631379;
     float _e91 = p;
-    float k_25 = _e91 / ((2.0 * a_21) + 1.0);
-    return metal::min((metal::exp(-(a_21) * a_21) * k_25) / ((3.5449078 * a_21) * (a_21 + k_25)), math_F32_MAX);
+    float k_26 = _e91 / ((2.0 * a_21) + 1.0);
+    return metal::min((metal::exp(-(a_21) * a_21) * k_26) / ((3.5449078 * a_21) * (a_21 + k_26)), math_F32_MAX);
 }
 
 float ndf_beckmann_p22_isotropic(
@@ -1571,8 +1575,8 @@ float filter_gaussian_ggx_quad_trapezoid(
                     float a_22 = (w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1);
                     uint _e91 = jj;
                     float _e95 = v_3;
-                    float x_10 = (1.0 * (kb + static_cast<float>(_e91))) - ((_e95 - 1.0) * a_22);
-                    float _e100 = math_exp(x_10);
+                    float x_13 = (1.0 * (kb + static_cast<float>(_e91))) - ((_e95 - 1.0) * a_22);
+                    float _e100 = math_exp(x_13);
                     last = (_e100 * metal::sqrt(ip1_1)) * metal::sqrt(ip2_1);
                     float _e105 = part;
                     float _e106 = last;
@@ -1683,8 +1687,8 @@ float filter_gaussian_ggx_quad_h_of(
     float r_49 = {};
     float a_23 = metal::abs(y_2);
     if (a_23 > 1.0) {
-        float i_11 = 1.0 / a_23;
-        r_49 = a_23 * metal::sqrt(1.0 + (i_11 * i_11));
+        float i_12 = 1.0 / a_23;
+        r_49 = a_23 * metal::sqrt(1.0 + (i_12 * i_12));
     } else {
         r_49 = metal::sqrt(1.0 + (y_2 * y_2));
     }
@@ -1721,12 +1725,12 @@ float filter_gaussian_ggx_quad_lambda_hermite(
         {
             uint _e16 = k_10;
             float _e17 = filter_gaussian_ggx_quad_hermite_node(_e16);
-            float x_11 = fs * _e17;
+            float x_14 = fs * _e17;
             float _e19 = acc_1;
             uint _e20 = k_10;
             float _e21 = filter_gaussian_ggx_quad_hermite_weight(_e20);
-            float _e23 = filter_gaussian_ggx_quad_h_of(z0_ - x_11);
-            float _e25 = filter_gaussian_ggx_quad_h_of(z0_ + x_11);
+            float _e23 = filter_gaussian_ggx_quad_h_of(z0_ - x_14);
+            float _e25 = filter_gaussian_ggx_quad_h_of(z0_ + x_14);
             acc_1 = _e19 + (_e21 * (_e23 + _e25));
         }
     }
@@ -1793,15 +1797,15 @@ float filter_gaussian_ggx_quad_sinh_run(
                 {
                     uint _e32 = ch_1;
                     uint _e36 = jj_1;
-                    float k_26 = static_cast<float>((first + (_e32 * 8u)) + _e36);
-                    float _e43 = math_exp(((sgn * 0.5) * h) * k_26);
+                    float k_27 = static_cast<float>((first + (_e32 * 8u)) + _e36);
+                    float _e43 = math_exp(((sgn * 0.5) * h) * k_27);
                     float it = 1.0 / _e43;
-                    float x_12 = ((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it);
-                    float arg = (-(x_12) * x_12) * i2s2_;
+                    float x_15 = ((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it);
+                    float arg = (-(x_15) * x_15) * i2s2_;
                     float it2_ = it * it;
                     float _e58 = math_exp(arg);
                     fl = (arg > -87.0) ? (_e58 * (1.0 + ((e2_ * it2_) * it2_))) : 0.0;
-                    xl = x_12;
+                    xl = x_15;
                     float _e68 = part_1;
                     float _e69 = fl;
                     part_1 = _e68 + _e69;
@@ -1840,14 +1844,14 @@ float filter_gaussian_ggx_quad_lambda_sinh(
     float root = oz_1 + metal::sqrt(qa_1 + (oz_1 * oz_1));
     float e0_1 = root / rq_1;
     float ie0_1 = rq_1 / root;
-    float h_21 = metal::min(filter_gaussian_ggx_quad_S_MAX, filter_gaussian_ggx_quad_S_COEF * metal::sqrt(metal::sqrt(ds2_)));
+    float h_22 = metal::min(filter_gaussian_ggx_quad_S_MAX, filter_gaussian_ggx_quad_S_COEF * metal::sqrt(metal::sqrt(ds2_)));
     float i2s2_1 = 0.5 / qs_1;
-    float c_up = (math_LN_2_ * qs_1) / (rq_1 * h_21);
-    float c_down = (((2.0 * h_21) + math_LN_2_) * qs_1) / (rq_1 * h_21);
+    float c_up = (math_LN_2_ * qs_1) / (rq_1 * h_22);
+    float c_down = (((2.0 * h_22) + math_LN_2_) * qs_1) / (rq_1 * h_22);
     float e2_1 = ie0_1 * ie0_1;
-    float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_21, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
-    float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_21, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
-    return _e35 * ((h_21 * qa_1) / (((4.0 * oz_1) * metal::sqrt(qs_1)) * math_SQRT_TAU));
+    float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
+    float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
+    return _e35 * ((h_22 * qa_1) / (((4.0 * oz_1) * metal::sqrt(qs_1)) * math_SQRT_TAU));
 }
 
 float filter_gaussian_ggx_quad_lambda(
@@ -1871,11 +1875,11 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(
     float l2_ = 0.0;
     metal::float2 v_4 = metal::float2(1.0, 0.0);
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
-    float c_14 = a_5.axis.x;
-    float s_20 = a_5.axis.y;
-    float k11_ = metal::max((((c_14 * c_14) * _e2.s_xx) + (((2.0 * c_14) * s_20) * _e2.s_xy)) + ((s_20 * s_20) * _e2.s_yy), 0.0);
-    float k22_ = metal::max((((s_20 * s_20) * _e2.s_xx) - (((2.0 * c_14) * s_20) * _e2.s_xy)) + ((c_14 * c_14) * _e2.s_yy), 0.0);
-    float k12_ = (((c_14 * c_14) - (s_20 * s_20)) * _e2.s_xy) + ((c_14 * s_20) * (_e2.s_yy - _e2.s_xx));
+    float c_17 = a_5.axis.x;
+    float s_24 = a_5.axis.y;
+    float k11_ = metal::max((((c_17 * c_17) * _e2.s_xx) + (((2.0 * c_17) * s_24) * _e2.s_xy)) + ((s_24 * s_24) * _e2.s_yy), 0.0);
+    float k22_ = metal::max((((s_24 * s_24) * _e2.s_xx) - (((2.0 * c_17) * s_24) * _e2.s_xy)) + ((c_17 * c_17) * _e2.s_yy), 0.0);
+    float k12_ = (((c_17 * c_17) - (s_24 * s_24)) * _e2.s_xy) + ((c_17 * s_24) * (_e2.s_yy - _e2.s_xx));
     metal::float2 l_6 = a_5.eig_c;
     metal::float2 isl = metal::float2(1.0) / metal::sqrt(l_6);
     float c11_ = (k11_ * isl.x) * isl.x;
@@ -1887,8 +1891,8 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(
     float l1_2 = (0.5 * (c11_ + c22_)) + _e75;
     if (_e75 > 0.0) {
         float big_2 = _e75 + metal::abs(half_);
-        metal::float2 w_23 = (half_ >= 0.0) ? metal::float2(big_2, c12_) : metal::float2(c12_, big_2);
-        v_4 = w_23 / metal::float2(metal::length(w_23));
+        metal::float2 w_24 = (half_ >= 0.0) ? metal::float2(big_2, c12_) : metal::float2(c12_, big_2);
+        v_4 = w_24 / metal::float2(metal::length(w_24));
         l2_ = metal::min(det_c / l1_2, l1_2);
     } else {
         if (l1_2 > 0.0) {
@@ -1906,9 +1910,9 @@ metal::float2 filter_gaussian_ggx_whiten(
     metal::float2 s_9
 ) {
     metal::float2 _e3 = ndf_roughness_matrix_rotate(g.a, s_9);
-    metal::float2 u_11 = _e3 * g.inv_sqrt_l;
-    metal::float2 c_15 = metal::float2((g.v.x * u_11.x) + (g.v.y * u_11.y), (g.v.x * u_11.y) - (g.v.y * u_11.x));
-    return c_15 * c_15;
+    metal::float2 u_16 = _e3 * g.inv_sqrt_l;
+    metal::float2 c_18 = metal::float2((g.v.x * u_16.x) + (g.v.y * u_16.y), (g.v.x * u_16.y) - (g.v.y * u_16.x));
+    return c_18 * c_18;
 }
 
 float filter_gaussian_ggx_p22_(
@@ -2013,15 +2017,15 @@ footprint_jacobian_Polar footprint_jacobian_polar(
         return footprint_jacobian_Polar {metal::float3(0.0, 0.0, 1.0), metal::float2(1.0, 0.0)};
     }
     metal::float3 h0_ = h_in / metal::float3(big_4);
-    metal::float3 h_22 = h0_ / metal::float3(metal::length(h0_));
-    float qs_4 = metal::max(metal::abs(h_22.x), metal::abs(h_22.y));
+    metal::float3 h_23 = h0_ / metal::float3(metal::length(h0_));
+    float qs_4 = metal::max(metal::abs(h_23.x), metal::abs(h_23.y));
     if (qs_4 > 0.0) {
-        metal::float2 q_6 = h_22.xy / metal::float2(qs_4);
+        metal::float2 q_6 = h_23.xy / metal::float2(qs_4);
         cs_1 = q_6 / metal::float2(metal::length(q_6));
     }
-    if (h_22.z >= footprint_jacobian_HZ_MIN) {
+    if (h_23.z >= footprint_jacobian_HZ_MIN) {
         metal::float2 _e44 = cs_1;
-        return footprint_jacobian_Polar {h_22, _e44};
+        return footprint_jacobian_Polar {h_23, _e44};
     }
     metal::float2 _e47 = cs_1;
     metal::float2 _e51 = cs_1;
@@ -2062,17 +2066,17 @@ metal::float2x2 footprint_jacobian_projected_to_slope(
     metal::float3 h_in_1
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
-    metal::float3 h_23 = _e1.h;
-    float k_27 = -1.0 / ((_e1.h.z * _e1.h.z) * _e1.h.z);
+    metal::float3 h_24 = _e1.h;
+    float k_28 = -1.0 / ((_e1.h.z * _e1.h.z) * _e1.h.z);
     float xy = _e1.h.x * _e1.h.y;
-    return metal::float2x2(metal::float2((_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z), xy) * k_27, metal::float2(xy, (_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z)) * k_27);
+    return metal::float2x2(metal::float2((_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z), xy) * k_28, metal::float2(xy, (_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z)) * k_28);
 }
 
 metal::float2x2 footprint_jacobian_slope_to_projected(
     metal::float3 h_in_2
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    metal::float3 h_24 = _e1.h;
+    metal::float3 h_25 = _e1.h;
     float xy_1 = _e1.h.x * _e1.h.y;
     return metal::float2x2(metal::float2((_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z), -(xy_1)) * -(_e1.h.z), metal::float2(-(xy_1), (_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z)) * -(_e1.h.z));
 }
@@ -2081,8 +2085,8 @@ metal::float2x2 footprint_jacobian_sphere_to_slope(
     metal::float3 h_5
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
-    float k_28 = -1.0 / (_e1.h.z * _e1.h.z);
-    return metal::float2x2(_e1.cs * k_28, metal::float2(-(_e1.h.z) * _e1.cs.y, _e1.h.z * _e1.cs.x) * k_28);
+    float k_29 = -1.0 / (_e1.h.z * _e1.h.z);
+    return metal::float2x2(_e1.cs * k_29, metal::float2(-(_e1.h.z) * _e1.cs.y, _e1.h.z * _e1.cs.x) * k_29);
 }
 
 float footprint_jacobian_det_sphere_to_projected(
@@ -2096,8 +2100,8 @@ float footprint_jacobian_det_projected_to_slope(
     metal::float3 h_7
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
-    float z_3 = _e1.h.z;
-    float z2_5 = z_3 * z_3;
+    float z_4 = _e1.h.z;
+    float z2_5 = z_4 * z_4;
     return 1.0 / (z2_5 * z2_5);
 }
 
@@ -2105,8 +2109,8 @@ float footprint_jacobian_det_sphere_to_slope(
     metal::float3 h_8
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float z_4 = _e1.h.z;
-    return 1.0 / ((z_4 * z_4) * z_4);
+    float z_5 = _e1.h.z;
+    return 1.0 / ((z_5 * z_5) * z_5);
 }
 
 metal::float2 footprint_jacobian_spherical_to_slope(
@@ -2129,8 +2133,8 @@ kernel_covariance_Covariance kernel_rect_covariance(
     kernel_rect_BoundingRect r_50,
     float sigma_1
 ) {
-    metal::float2 w_24 = r_50.half_extent * (2.0 * sigma_1);
-    metal::float2 v_15 = w_24 * w_24;
+    metal::float2 w_25 = r_50.half_extent * (2.0 * sigma_1);
+    metal::float2 v_15 = w_25 * w_25;
     return kernel_covariance_Covariance {v_15.x, 0.0, v_15.y, v_15.x * v_15.y};
 }
 
@@ -2174,7 +2178,7 @@ kernel_covariance_Covariance footprint_covariance(
     footprint_Footprint fp,
     float sigma_2
 ) {
-    metal::float2 u_12 = fp.dh_u;
+    metal::float2 u_17 = fp.dh_u;
     metal::float2 v_16 = fp.dh_v;
     float s2_ = sigma_2 * sigma_2;
     float cross_1 = ((fp.dh_u.x * fp.dh_v.y) - (fp.dh_u.y * fp.dh_v.x)) * s2_;
@@ -2204,15 +2208,15 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(
     float det_3 = {};
     metal::float2 lc = metal::min(a_7.eig, metal::float2(0.99));
     metal::float2 excess = a_7.eig - lc;
-    metal::float2 p_6 = lc / (metal::float2(1.0) - lc);
-    float c_16 = a_7.axis.x;
-    float s_21 = a_7.axis.y;
-    float p11_1 = ((p_6.x * c_16) * c_16) + ((p_6.y * s_21) * s_21);
-    float p12_1 = ((p_6.x - p_6.y) * c_16) * s_21;
-    float p22_1 = ((p_6.x * s_21) * s_21) + ((p_6.y * c_16) * c_16);
-    float k1_3 = metal::max((((c_16 * c_16) * k_11.s_xx) + (((2.0 * c_16) * s_21) * k_11.s_xy)) + ((s_21 * s_21) * k_11.s_yy), 0.0);
-    float k2_3 = metal::max((((s_21 * s_21) * k_11.s_xx) - (((2.0 * c_16) * s_21) * k_11.s_xy)) + ((c_16 * c_16) * k_11.s_yy), 0.0);
-    float d_2 = ((p_6.x * p_6.y) + (2.0 * ((p_6.y * k1_3) + (p_6.x * k2_3)))) + (4.0 * metal::max(k_11.det, 0.0));
+    metal::float2 p_8 = lc / (metal::float2(1.0) - lc);
+    float c_19 = a_7.axis.x;
+    float s_25 = a_7.axis.y;
+    float p11_1 = ((p_8.x * c_19) * c_19) + ((p_8.y * s_25) * s_25);
+    float p12_1 = ((p_8.x - p_8.y) * c_19) * s_25;
+    float p22_1 = ((p_8.x * s_25) * s_25) + ((p_8.y * c_19) * c_19);
+    float k1_3 = metal::max((((c_19 * c_19) * k_11.s_xx) + (((2.0 * c_19) * s_25) * k_11.s_xy)) + ((s_25 * s_25) * k_11.s_yy), 0.0);
+    float k2_3 = metal::max((((s_25 * s_25) * k_11.s_xx) - (((2.0 * c_19) * s_25) * k_11.s_xy)) + ((c_19 * c_19) * k_11.s_yy), 0.0);
+    float d_2 = ((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * metal::max(k_11.det, 0.0));
     float q11_ = p11_1 + (2.0 * k_11.s_xx);
     float q12_ = p12_1 + (2.0 * k_11.s_xy);
     float q22_ = p22_1 + (2.0 * k_11.s_yy);
@@ -2223,11 +2227,11 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(
     det_3 = d_2 / den_1;
     if (metal::max(excess.x, excess.y) > 0.0) {
         float _e114 = b11_;
-        b11_ = _e114 + (((excess.x * c_16) * c_16) + ((excess.y * s_21) * s_21));
+        b11_ = _e114 + (((excess.x * c_19) * c_19) + ((excess.y * s_25) * s_25));
         float _e123 = b12_;
-        b12_ = _e123 + (((excess.x - excess.y) * c_16) * s_21);
+        b12_ = _e123 + (((excess.x - excess.y) * c_19) * s_25);
         float _e130 = b22_;
-        b22_ = _e130 + (((excess.x * s_21) * s_21) + ((excess.y * c_16) * c_16));
+        b22_ = _e130 + (((excess.x * s_25) * s_25) + ((excess.y * c_19) * c_19));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -2294,9 +2298,9 @@ kernel_rect_BoundingRect kernel_clamp_rect(
         }
     }
     float lambda = metal::max(rules_1.max_extent, 0.0);
-    metal::float2 h_25 = metal::min(metal::abs(r_51.half_extent), metal::float2(lambda));
+    metal::float2 h_26 = metal::min(metal::abs(r_51.half_extent), metal::float2(lambda));
     metal::float2 _e25 = f_1;
-    return kernel_rect_BoundingRect {metal::max(h_25, metal::max(_e25, metal::float2(0.0)))};
+    return kernel_rect_BoundingRect {metal::max(h_26, metal::max(_e25, metal::float2(0.0)))};
 }
 
 kernel_covariance_Covariance kernel_clamp_kernel(
@@ -2358,9 +2362,9 @@ float filter_proxy_effective_alpha(
     float alpha_9,
     float half_extent
 ) {
-    float h_26 = metal::abs(half_extent);
-    float _e3 = math_hypot(alpha_9, h_26);
-    float t_15 = (_e3 > 0.0) ? (h_26 / _e3) : 0.0;
+    float h_27 = metal::abs(half_extent);
+    float _e3 = math_hypot(alpha_9, h_27);
+    float t_15 = (_e3 > 0.0) ? (h_27 / _e3) : 0.0;
     float _e9 = math_atan(t_15);
     float ratio = (t_15 > 0.0) ? (t_15 / _e9) : 1.0;
     return _e3 * metal::sqrt(ratio);
@@ -2530,18 +2534,18 @@ float filter_rect_mean_1d(
     float x0_ = (i_7.z >= 0.0) ? i_7.x : -(i_7.y);
     float x1_1 = (i_7.z >= 0.0) ? i_7.y : -(i_7.x);
     float dx = 2.0 * i_7.w;
-    float c_17 = metal::sqrt(c2_);
+    float c_20 = metal::sqrt(c2_);
     float r02_ = c2_ + (x0_ * x0_);
     float r12_ = c2_ + (x1_1 * x1_1);
     float x01_ = x0_ * x1_1;
-    float _e27 = filter_rect_atan2_upper(c_17 * dx, c2_ + x01_);
-    float inv_2 = 1.0 / (((2.0 * c_17) * c2_) * dx);
+    float _e27 = filter_rect_atan2_upper(c_20 * dx, c2_ + x01_);
+    float inv_2 = 1.0 / (((2.0 * c_20) * c2_) * dx);
     float p2_1 = (2.0 * r02_) * r12_;
     if (x0_ <= 0.0) {
         return (_e27 * inv_2) + (((c2_ - x01_) / p2_1) / c2_);
     }
     float rr = metal::sqrt(r02_) * metal::sqrt(r12_);
-    float _e49 = filter_rect_delta_minus_sin(_e27, (c_17 * dx) / rr);
+    float _e49 = filter_rect_delta_minus_sin(_e27, (c_20 * dx) / rr);
     return (_e49 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1);
 }
 
@@ -2592,9 +2596,9 @@ float filter_rect_edge(
     float v01_
 ) {
     float s2_1 = 1.0 + (u_3 * u_3);
-    float s_22 = metal::sqrt(s2_1);
-    float _e10 = filter_rect_atan2_upper(dv * s_22, s2_1 + v01_);
-    return (u_3 / s_22) * _e10;
+    float s_26 = metal::sqrt(s2_1);
+    float _e10 = filter_rect_atan2_upper(dv * s_26, s2_1 + v01_);
+    return (u_3 / s_26) * _e10;
 }
 
 float filter_rect_edges(
@@ -2609,8 +2613,8 @@ float filter_rect_edges(
     float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
     float _e20 = filter_rect_edge(v_6.y, du, u01_);
     float _e22 = filter_rect_edge(v_6.x, du, u01_);
-    float i_12 = 0.5 * ((_e15 - _e17) + (_e20 - _e22));
-    return i_12 / (du * dv_1);
+    float i_13 = 0.5 * ((_e15 - _e17) + (_e20 - _e22));
+    return i_13 / (du * dv_1);
 }
 
 float filter_rect_gl8_node(
@@ -2644,8 +2648,8 @@ float filter_rect_polar_near(
 ) {
     float acc_4 = 0.0;
     uint k_19 = 0u;
-    float c_18 = 0.5 * (lo + hi);
-    float h_27 = 0.5 * (hi - lo);
+    float c_21 = 0.5 * (lo + hi);
+    float h_28 = 0.5 * (hi - lo);
     uint2 loop_bound_8 = uint2(4294967295u);
     bool loop_init_8 = true;
     while(true) {
@@ -2664,9 +2668,9 @@ float filter_rect_polar_near(
         {
             uint _e16 = k_19;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_3 = h_27 * _e17;
-            float q0_ = 1.0 + ((c_18 - d_3) * (c_18 - d_3));
-            float q1_ = 1.0 + ((c_18 + d_3) * (c_18 + d_3));
+            float d_3 = h_28 * _e17;
+            float q0_ = 1.0 + ((c_21 - d_3) * (c_21 - d_3));
+            float q1_ = 1.0 + ((c_21 + d_3) * (c_21 + d_3));
             float _e29 = acc_4;
             uint _e30 = k_19;
             float _e31 = filter_rect_gl8_weight(_e30);
@@ -2684,8 +2688,8 @@ float filter_rect_polar_far(
 ) {
     float acc_5 = 0.0;
     uint k_20 = 0u;
-    float c_19 = 0.5 * (lo_1 + hi_1);
-    float h_28 = 0.5 * (hi_1 - lo_1);
+    float c_22 = 0.5 * (lo_1 + hi_1);
+    float h_29 = 0.5 * (hi_1 - lo_1);
     uint2 loop_bound_9 = uint2(4294967295u);
     bool loop_init_9 = true;
     while(true) {
@@ -2704,9 +2708,9 @@ float filter_rect_polar_far(
         {
             uint _e16 = k_20;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_4 = h_28 * _e17;
-            float t0_2 = (c_19 - d_4) * (c_19 - d_4);
-            float t1_4 = (c_19 + d_4) * (c_19 + d_4);
+            float d_4 = h_29 * _e17;
+            float t0_2 = (c_22 - d_4) * (c_22 - d_4);
+            float t1_4 = (c_22 + d_4) * (c_22 + d_4);
             float _e25 = acc_5;
             uint _e26 = k_20;
             float _e27 = filter_rect_gl8_weight(_e26);
@@ -2774,8 +2778,8 @@ float filter_rect_far_field(
     float _e9 = filter_rect_edge_polar(u_5.x, v_9.x, v_9.y);
     float _e14 = filter_rect_edge_polar(v_9.y, u_5.x, u_5.y);
     float _e18 = filter_rect_edge_polar(v_9.x, u_5.x, u_5.y);
-    float i_13 = -0.5 * ((_e5 - _e9) + (_e14 - _e18));
-    return i_13 / ((4.0 * u_5.w) * v_9.w);
+    float i_14 = -0.5 * ((_e5 - _e9) + (_e14 - _e18));
+    return i_14 / ((4.0 * u_5.w) * v_9.w);
 }
 
 float filter_rect_gap(
@@ -2854,9 +2858,9 @@ metal::float4 filter_rect_interval(
     float a_15
 ) {
     float ah = metal::abs(h_14);
-    float lo_3 = metal::clamp((c_8 - ah) / a_15, -1000000000000000000.0, filter_rect_BIG);
-    float hi_2 = metal::clamp((c_8 + ah) / a_15, -1000000000000000000.0, filter_rect_BIG);
-    return metal::float4(lo_3, hi_2, metal::clamp(c_8 / a_15, -1000000000000000000.0, filter_rect_BIG), metal::min(ah / a_15, filter_rect_BIG));
+    float lo_4 = metal::clamp((c_8 - ah) / a_15, -1000000000000000000.0, filter_rect_BIG);
+    float hi_3 = metal::clamp((c_8 + ah) / a_15, -1000000000000000000.0, filter_rect_BIG);
+    return metal::float4(lo_4, hi_3, metal::clamp(c_8 / a_15, -1000000000000000000.0, filter_rect_BIG), metal::min(ah / a_15, filter_rect_BIG));
 }
 
 float filter_rect_p22_rect(
@@ -2951,8 +2955,8 @@ float filter_rect_lambda_rho(
 ) {
     float a_29 = metal::abs(t_1);
     if (a_29 > 1.0) {
-        float i_14 = 1.0 / a_29;
-        return a_29 * metal::sqrt(1.0 + (i_14 * i_14));
+        float i_15 = 1.0 / a_29;
+        return a_29 * metal::sqrt(1.0 + (i_15 * i_15));
     }
     return metal::sqrt(1.0 + (t_1 * t_1));
 }
@@ -3017,10 +3021,10 @@ float filter_rect_lambda_psi1_diff(
     float _e4 = filter_rect_lambda_rho(t1_);
     float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_23 = _e5 + _e6;
-    float d_5 = (w_17 * s_23) / (_e3 + _e4);
+    float s_27 = _e5 + _e6;
+    float d_5 = (w_17 * s_27) / (_e3 + _e4);
     float _e12 = math_ln_1p(d_5 / _e6);
-    return 0.25 * (_e12 + ((0.5 * d_5) * s_23));
+    return 0.25 * (_e12 + ((0.5 * d_5) * s_27));
 }
 
 float filter_rect_lambda_mean_psi(
@@ -3171,10 +3175,10 @@ float filter_rect_lambda_expected_psi(
         float _e48 = acc_9;
         return _e48;
     }
-    float hi_3 = m_22 + kl;
-    float w_25 = 2.0 * kl;
+    float hi_4 = m_22 + kl;
+    float w_26 = 2.0 * kl;
     if (ks == 0.0) {
-        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_3, w_25);
+        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_4, w_26);
         return _e54;
     }
     uint _e59 = filter_rect_tier(ks * ks, 1.0 + (lo_2 * lo_2));
@@ -3197,21 +3201,21 @@ float filter_rect_lambda_expected_psi(
             {
                 uint _e70 = j_3;
                 float _e71 = filter_rect_gl_node(_e59, _e70);
-                float x_13 = ks * _e71;
+                float x_16 = ks * _e71;
                 float _e73 = acc_10;
                 uint _e74 = j_3;
                 float _e75 = filter_rect_gl_weight(_e59, _e74);
-                float _e78 = filter_rect_lambda_mean_psi(lo_2 + x_13, hi_3 + x_13, w_25);
-                float _e81 = filter_rect_lambda_mean_psi(lo_2 - x_13, hi_3 - x_13, w_25);
+                float _e78 = filter_rect_lambda_mean_psi(lo_2 + x_16, hi_4 + x_16, w_26);
+                float _e81 = filter_rect_lambda_mean_psi(lo_2 - x_16, hi_4 - x_16, w_26);
                 acc_10 = _e73 + (_e75 * (_e78 + _e81));
             }
         }
         float _e88 = acc_10;
         return _e88;
     }
-    float _e89 = filter_rect_lambda_mean_psi1_(hi_3, ks);
+    float _e89 = filter_rect_lambda_mean_psi1_(hi_4, ks);
     float _e90 = filter_rect_lambda_mean_psi1_(lo_2, ks);
-    return (_e89 - _e90) / w_25;
+    return (_e89 - _e90) / w_26;
 }
 
 float filter_rect_lambda_lambda_rect(
@@ -3252,8 +3256,8 @@ float filter_rect_lambda_lambda_rect(
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    metal::float2 alpha_11 = r_59.alpha;
-    metal::float2 ha = metal::min(metal::abs(half_extent_6), alpha_11 * filter_rect_lambda_BIG_K);
+    metal::float2 alpha_12 = r_59.alpha;
+    metal::float2 ha = metal::min(metal::abs(half_extent_6), alpha_12 * filter_rect_lambda_BIG_K);
     float _e63 = w_19.x;
     float ux = metal::abs(_e63) / _e46;
     float _e67 = w_19.y;
@@ -3283,8 +3287,8 @@ float filter_rect_lambda_lambda_rect(
     float _e107 = w_19.x;
     float wl_1 = long_x ? metal::abs(_e107) : metal::abs(_e104);
     float hl = long_x ? ha.x : ha.y;
-    float lo_4 = ((wz - (wl_1 * hl)) / _e46) / _e74;
-    float _e117 = filter_rect_lambda_expected_psi(mm, k1_4, k2_4, lo_4);
+    float lo_5 = ((wz - (wl_1 * hl)) / _e46) / _e74;
+    float _e117 = filter_rect_lambda_expected_psi(mm, k1_4, k2_4, lo_5);
     return _e117 / mm;
 }
 
@@ -3367,8 +3371,8 @@ filter_method_RectFilteredGgx filter_method_rect_lobe(
 ) {
     kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_14);
     kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
-    metal::float2 h_29 = _e6.half_extent;
-    return filter_method_RectFilteredGgx {material_7, h_29};
+    metal::float2 h_30 = _e6.half_extent;
+    return filter_method_RectFilteredGgx {material_7, h_30};
 }
 
 float filter_method_p22_rect_filtered(
@@ -3435,8 +3439,8 @@ ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(
 ) {
     kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_16);
     kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
-    metal::float2 h_30 = _e6.half_extent;
-    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_30);
+    metal::float2 h_31 = _e6.half_extent;
+    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_31);
     return _e8;
 }
 
@@ -3494,54 +3498,6 @@ filter_deferred_KernelConvention filter_presets_preset(
     }
 }
 
-metal::float2 footprint_slope_slope_from_sphere(
-    metal::float3 h_18
-) {
-    float z_5 = metal::max(h_18.z, math_F32_MIN_POSITIVE);
-    return metal::clamp(-(h_18.xy) / metal::float2(z_5), metal::float2(-340282350000000000000000000000000000000.0), metal::float2(340282350000000000000000000000000000000.0));
-}
-
-metal::float3 footprint_slope_sphere_from_slope(
-    metal::float2 s_13
-) {
-    float k_29 = metal::max(metal::max(metal::abs(s_13.x), metal::abs(s_13.y)), 1.0);
-    metal::float3 v_18 = metal::float3(-(s_13) / metal::float2(k_29), 1.0 / k_29);
-    return v_18 / metal::float3(metal::length(v_18));
-}
-
-metal::float2 footprint_slope_projected_from_sphere(
-    metal::float3 h_19
-) {
-    return h_19.xy;
-}
-
-metal::float3 footprint_slope_sphere_from_projected(
-    metal::float2 p_1
-) {
-    float r2_1 = metal::dot(p_1, p_1);
-    if (r2_1 < 1.0) {
-        return metal::float3(p_1, metal::sqrt(1.0 - r2_1));
-    }
-    metal::float2 q_7 = p_1 / metal::float2(metal::max(metal::max(metal::abs(p_1.x), metal::abs(p_1.y)), math_F32_MIN_POSITIVE));
-    return metal::float3(q_7 / metal::float2(metal::length(q_7)), 0.0);
-}
-
-metal::float2 footprint_slope_slope_from_projected(
-    metal::float2 p_2
-) {
-    metal::float3 _e1 = footprint_slope_sphere_from_projected(p_2);
-    metal::float2 _e2 = footprint_slope_slope_from_sphere(_e1);
-    return _e2;
-}
-
-metal::float2 footprint_slope_projected_from_slope(
-    metal::float2 s_14
-) {
-    metal::float3 _e1 = footprint_slope_sphere_from_slope(s_14);
-    metal::float2 _e2 = footprint_slope_projected_from_sphere(_e1);
-    return _e2;
-}
-
 sampling_Warp sampling_warp(
     ndf_roughness_matrix_RoughnessMatrix r_60
 ) {
@@ -3553,8 +3509,8 @@ sampling_Warp sampling_warp(
 metal::float3 sampling_normalize_scaled(
     metal::float3 v_12
 ) {
-    metal::float3 w_26 = v_12 / metal::float3(metal::max(metal::max(metal::abs(v_12.x), metal::abs(v_12.y)), metal::abs(v_12.z)));
-    return w_26 / metal::float3(metal::length(w_26));
+    metal::float3 w_27 = v_12 / metal::float3(metal::max(metal::max(metal::abs(v_12.x), metal::abs(v_12.y)), metal::abs(v_12.z)));
+    return w_27 / metal::float3(metal::length(w_27));
 }
 
 metal::float3 sampling_stretch(
@@ -3591,8 +3547,8 @@ metal::float3 sampling_ggx_standard_visible(
 ) {
     metal::float2 _e3 = math_sincos_turns(u_8.x);
     float z_6 = ((1.0 - u_8.y) * (1.0 + wi.z)) - wi.z;
-    float sin_theta = metal::sqrt(metal::clamp(1.0 - (z_6 * z_6), 0.0, 1.0));
-    return metal::float3(sin_theta * _e3, z_6) + wi;
+    float sin_theta_1 = metal::sqrt(metal::clamp(1.0 - (z_6 * z_6), 0.0, 1.0));
+    return metal::float3(sin_theta_1 * _e3, z_6) + wi;
 }
 
 metal::float3 sampling_sample_visible_normal(
@@ -3667,8 +3623,8 @@ float sampling_visible_normal_pdf(
     }
     float _e17 = ndf_ggx_d_matrix(r_64, m_34);
     float _e20 = ndf_ggx_lambda_matrix(r_64, wo_2);
-    float v_19 = (wom * _e17) / (wo_2.z * (1.0 + _e20));
-    return (v_19 <= math_F32_MAX) ? v_19 : 0.0;
+    float v_18 = (wom * _e17) / (wo_2.z * (1.0 + _e20));
+    return (v_18 <= math_F32_MAX) ? v_18 : 0.0;
 }
 
 float sampling_reflection_pdf_from_normal(
@@ -3685,8 +3641,8 @@ float sampling_reflection_pdf_from_normal(
     }
     float _e14 = ndf_ggx_d_matrix(r_65, m_35);
     float _e18 = ndf_ggx_lambda_matrix(r_65, _e8);
-    float v_20 = _e14 / ((4.0 * _e8.z) * (1.0 + _e18));
-    return (v_20 <= math_F32_MAX) ? v_20 : 0.0;
+    float v_19 = _e14 / ((4.0 * _e8.z) * (1.0 + _e18));
+    return (v_19 <= math_F32_MAX) ? v_19 : 0.0;
 }
 
 float sampling_reflection_pdf(
@@ -3699,13 +3655,506 @@ float sampling_reflection_pdf(
     }
     metal::float3 _e8 = sampling_normalize_scaled(wo_4);
     metal::float3 _e9 = sampling_normalize_scaled(wi_1);
-    metal::float3 h_31 = _e8 + _e9;
-    float len = metal::length(h_31);
+    metal::float3 h_32 = _e8 + _e9;
+    float len = metal::length(h_32);
     if (!((len > 0.0))) {
         return 0.0;
     }
-    float _e18 = sampling_reflection_pdf_from_normal(r_66, wo_4, h_31 / metal::float3(len));
+    float _e18 = sampling_reflection_pdf_from_normal(r_66, wo_4, h_32 / metal::float3(len));
     return _e18;
+}
+
+float filter_rect_sample_half(
+    float h_18,
+    float alpha_11
+) {
+    float v_20 = metal::abs(h_18);
+    return (v_20 >= 0.0) ? metal::min(v_20, filter_rect_BIG * alpha_11) : 0.0;
+}
+
+metal::float3 filter_rect_sample_normal_of_slope(
+    metal::float2 s_13
+) {
+    metal::float3 _e4 = sampling_normalize_scaled(metal::float3(-(s_13), 1.0));
+    return metal::float3(_e4.xy, metal::max(_e4.z, math_F32_MIN_POSITIVE));
+}
+
+metal::float3 filter_rect_sample_sample_normal_rect(
+    ndf_roughness_axis_aligned_AxisAligned r_67,
+    metal::float2 half_extent_7,
+    metal::float2 u_11,
+    metal::float2 u_box
+) {
+    metal::float2 a_34 = r_67.alpha;
+    float _e7 = filter_rect_sample_half(half_extent_7.x, r_67.alpha.x);
+    float _e10 = filter_rect_sample_half(half_extent_7.y, r_67.alpha.y);
+    metal::float2 h_33 = metal::float2(_e7, _e10);
+    float _e13 = sampling_clamp_unit(u_11.x);
+    float _e15 = sampling_clamp_unit(u_11.y);
+    metal::float2 _e16 = math_sincos_turns(_e15);
+    float rad_1 = metal::sqrt(_e13 / (1.0 - _e13));
+    metal::float2 g_6 = -(a_34) * (rad_1 * _e16);
+    float _e25 = sampling_clamp_unit(u_box.x);
+    float _e27 = sampling_clamp_unit(u_box.y);
+    metal::float2 b_9 = metal::float2(_e25, _e27);
+    metal::float2 d_6 = ((2.0 * b_9) - metal::float2(1.0)) * h_33;
+    metal::float3 _e36 = filter_rect_sample_normal_of_slope(g_6 + d_6);
+    return _e36;
+}
+
+float filter_rect_sample_normal_pdf_rect(
+    ndf_roughness_axis_aligned_AxisAligned r_68,
+    metal::float2 half_extent_8,
+    metal::float3 m_36
+) {
+    float _e3 = filter_rect_d_rect(r_68, m_36, half_extent_8);
+    return (m_36.z > 0.0) ? (_e3 * m_36.z) : 0.0;
+}
+
+float filter_rect_sample_visible_normal_pdf_rect(
+    ndf_roughness_axis_aligned_AxisAligned r_69,
+    metal::float2 half_extent_9,
+    metal::float3 wo_5,
+    metal::float3 m_37
+) {
+    bool local_22 = {};
+    bool local_23 = {};
+    float wom_1 = metal::dot(wo_5, m_37);
+    if (!(!((wo_5.z > 0.0)))) {
+        local_22 = !((m_37.z > 0.0));
+    } else {
+        local_22 = true;
+    }
+    bool _e17 = local_22;
+    if (!(_e17)) {
+        local_23 = !((wom_1 > 0.0));
+    } else {
+        local_23 = true;
+    }
+    bool _e25 = local_23;
+    if (_e25) {
+        return 0.0;
+    }
+    float _e27 = filter_rect_d_rect(r_69, m_37, half_extent_9);
+    float _e30 = filter_rect_lambda_lambda_rect(r_69, half_extent_9, wo_5);
+    float v_21 = (wom_1 * _e27) / (wo_5.z * (1.0 + _e30));
+    return (v_21 <= math_F32_MAX) ? v_21 : 0.0;
+}
+
+metal::float2 footprint_slope_slope_from_sphere(
+    metal::float3 h_19
+) {
+    float z_7 = metal::max(h_19.z, math_F32_MIN_POSITIVE);
+    return metal::clamp(-(h_19.xy) / metal::float2(z_7), metal::float2(-340282350000000000000000000000000000000.0), metal::float2(340282350000000000000000000000000000000.0));
+}
+
+metal::float3 footprint_slope_sphere_from_slope(
+    metal::float2 s_14
+) {
+    float k_30 = metal::max(metal::max(metal::abs(s_14.x), metal::abs(s_14.y)), 1.0);
+    metal::float3 v_22 = metal::float3(-(s_14) / metal::float2(k_30), 1.0 / k_30);
+    return v_22 / metal::float3(metal::length(v_22));
+}
+
+metal::float2 footprint_slope_projected_from_sphere(
+    metal::float3 h_20
+) {
+    return h_20.xy;
+}
+
+metal::float3 footprint_slope_sphere_from_projected(
+    metal::float2 p_1
+) {
+    float r2_1 = metal::dot(p_1, p_1);
+    if (r2_1 < 1.0) {
+        return metal::float3(p_1, metal::sqrt(1.0 - r2_1));
+    }
+    metal::float2 q_7 = p_1 / metal::float2(metal::max(metal::max(metal::abs(p_1.x), metal::abs(p_1.y)), math_F32_MIN_POSITIVE));
+    return metal::float3(q_7 / metal::float2(metal::length(q_7)), 0.0);
+}
+
+metal::float2 footprint_slope_slope_from_projected(
+    metal::float2 p_2
+) {
+    metal::float3 _e1 = footprint_slope_sphere_from_projected(p_2);
+    metal::float2 _e2 = footprint_slope_slope_from_sphere(_e1);
+    return _e2;
+}
+
+metal::float2 footprint_slope_projected_from_slope(
+    metal::float2 s_15
+) {
+    metal::float3 _e1 = footprint_slope_sphere_from_slope(s_15);
+    metal::float2 _e2 = footprint_slope_projected_from_sphere(_e1);
+    return _e2;
+}
+
+float sampling_beckmann_erfcx(
+    float z_1
+) {
+    float p_3 = 0.17087276;
+    float t_17 = 1.0 / (1.0 + (0.5 * z_1));
+    float _e9 = p_3;
+    p_3 = (_e9 * t_17) - 0.82215226;
+    float _e13 = p_3;
+    p_3 = (_e13 * t_17) + 1.4885159;
+    float _e17 = p_3;
+    p_3 = (_e17 * t_17) - 1.135204;
+    float _e21 = p_3;
+    p_3 = (_e21 * t_17) + 0.27886808;
+    float _e25 = p_3;
+    p_3 = (_e25 * t_17) - 0.18628806;
+    float _e29 = p_3;
+    p_3 = (_e29 * t_17) + 0.09678418;
+    float _e33 = p_3;
+    p_3 = (_e33 * t_17) + 0.37409195;
+    float _e37 = p_3;
+    p_3 = (_e37 * t_17) + 1.0000237;
+    float _e41 = p_3;
+    p_3 = (_e41 * t_17) - 1.2655122;
+    float _e45 = p_3;
+    float _e46 = math_exp(_e45);
+    return t_17 * _e46;
+}
+
+metal::float2 sampling_beckmann_cdf_terms(
+    float x_8,
+    float c_10,
+    float s_16
+) {
+    float k_23 = {};
+    float _e5 = math_exp(-(x_8) * x_8);
+    if (x_8 <= 0.0) {
+        float _e12 = sampling_beckmann_erfcx(-(x_8));
+        k_23 = (0.5 * _e5) * ((c_10 * _e12) + (s_16 * sampling_beckmann_INV_SQRT_PI));
+    } else {
+        float _e20 = sampling_beckmann_erfcx(x_8);
+        k_23 = c_10 - ((0.5 * _e5) * ((c_10 * _e20) - (s_16 * sampling_beckmann_INV_SQRT_PI)));
+    }
+    float _e27 = k_23;
+    return metal::float2(_e27, (sampling_beckmann_INV_SQRT_PI * _e5) * (c_10 - (s_16 * x_8)));
+}
+
+float sampling_beckmann_erfinv_guess(
+    float x_9
+) {
+    float w_23 = {};
+    float p_4 = {};
+    float a_35 = (1.0 - x_9) * (1.0 + x_9);
+    if (!((a_35 > 0.0))) {
+        return 0.0;
+    }
+    float _e10 = math_ln(a_35);
+    w_23 = -(_e10);
+    float _e14 = w_23;
+    if (_e14 < 5.0) {
+        float _e17 = w_23;
+        w_23 = _e17 - 2.5;
+        p_4 = 0.000000028102264;
+        float _e21 = p_4;
+        float _e22 = w_23;
+        p_4 = (_e21 * _e22) + 0.00000034327394;
+        float _e26 = p_4;
+        float _e27 = w_23;
+        p_4 = (_e26 * _e27) - 0.0000035233877;
+        float _e31 = p_4;
+        float _e32 = w_23;
+        p_4 = (_e31 * _e32) - 0.0000043915065;
+        float _e36 = p_4;
+        float _e37 = w_23;
+        p_4 = (_e36 * _e37) + 0.00021858087;
+        float _e41 = p_4;
+        float _e42 = w_23;
+        p_4 = (_e41 * _e42) - 0.001253725;
+        float _e46 = p_4;
+        float _e47 = w_23;
+        p_4 = (_e46 * _e47) - 0.0041776816;
+        float _e51 = p_4;
+        float _e52 = w_23;
+        p_4 = (_e51 * _e52) + 0.24664073;
+        float _e56 = p_4;
+        float _e57 = w_23;
+        p_4 = (_e56 * _e57) + 1.5014094;
+    } else {
+        float _e61 = w_23;
+        w_23 = metal::sqrt(_e61) - 3.0;
+        p_4 = -0.00020021426;
+        float _e66 = p_4;
+        float _e67 = w_23;
+        p_4 = (_e66 * _e67) + 0.00010095056;
+        float _e71 = p_4;
+        float _e72 = w_23;
+        p_4 = (_e71 * _e72) + 0.0013493432;
+        float _e76 = p_4;
+        float _e77 = w_23;
+        p_4 = (_e76 * _e77) - 0.0036734284;
+        float _e81 = p_4;
+        float _e82 = w_23;
+        p_4 = (_e81 * _e82) + 0.0057395077;
+        float _e86 = p_4;
+        float _e87 = w_23;
+        p_4 = (_e86 * _e87) - 0.0076224613;
+        float _e91 = p_4;
+        float _e92 = w_23;
+        p_4 = (_e91 * _e92) + 0.0094388705;
+        float _e96 = p_4;
+        float _e97 = w_23;
+        p_4 = (_e96 * _e97) + 1.001674;
+        float _e101 = p_4;
+        float _e102 = w_23;
+        p_4 = (_e101 * _e102) + 2.8329768;
+    }
+    float _e106 = p_4;
+    return _e106 * x_9;
+}
+
+float sampling_beckmann_invert_visible_slope_cdf(
+    float c_11,
+    float s_17,
+    float u_12
+) {
+    float lo_3 = -9.0;
+    float hi_2 = {};
+    bool local_24 = {};
+    float x_10 = {};
+    float dx_old = {};
+    uint i_11 = 0u;
+    bool local_25 = {};
+    bool local_26 = {};
+    float hi0_ = (s_17 > 0.0) ? metal::min(c_11 / s_17, sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX;
+    hi_2 = hi0_;
+    metal::float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_11, s_17);
+    float norm_1 = _e13.x;
+    float goal = u_12 * norm_1;
+    if (!((goal > 0.0))) {
+        float _e19 = lo_3;
+        return _e19;
+    }
+    float tol = 0.00000047683716 * goal;
+    float _e26 = sampling_beckmann_erfinv_guess((2.0 * u_12) - 1.0);
+    float _e27 = hi_2;
+    float _e32 = lo_3;
+    if (_e26 > _e32) {
+        float _e36 = hi_2;
+        local_24 = _e26 < _e36;
+    } else {
+        local_24 = false;
+    }
+    bool _e39 = local_24;
+    x_10 = _e39 ? _e26 : metal::min(0.0, 0.5 * _e27);
+    float _e42 = hi_2;
+    float _e43 = lo_3;
+    dx_old = _e42 - _e43;
+    uint2 loop_bound_15 = uint2(4294967295u);
+    bool loop_init_15 = true;
+    while(true) {
+        if (metal::all(loop_bound_15 == uint2(0u))) { break; }
+        loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
+        if (!loop_init_15) {
+            uint _e121 = i_11;
+            i_11 = _e121 + 1u;
+        }
+        loop_init_15 = false;
+        uint _e48 = i_11;
+        if (_e48 < sampling_beckmann_MAX_ITERATIONS) {
+        } else {
+            break;
+        }
+        {
+            float _e51 = x_10;
+            metal::float2 _e52 = sampling_beckmann_cdf_terms(_e51, c_11, s_17);
+            float g_7 = _e52.x - goal;
+            if (metal::abs(g_7) <= tol) {
+                float _e57 = x_10;
+                return _e57;
+            }
+            if (g_7 < 0.0) {
+                float _e60 = x_10;
+                lo_3 = _e60;
+            } else {
+                float _e61 = x_10;
+                hi_2 = _e61;
+            }
+            float _e62 = hi_2;
+            float _e63 = lo_3;
+            float _e66 = x_10;
+            if ((_e62 - _e63) <= (0.00000047683716 * (1.0 + metal::abs(_e66)))) {
+                float _e72 = lo_3;
+                float _e73 = hi_2;
+                return 0.5 * (_e72 + _e73);
+            }
+            float step = g_7 / _e52.y;
+            float _e79 = x_10;
+            float xn = _e79 - step;
+            float _e81 = lo_3;
+            if (xn > _e81) {
+                float _e85 = hi_2;
+                local_25 = xn < _e85;
+            } else {
+                local_25 = false;
+            }
+            bool _e88 = local_25;
+            if (_e88) {
+                float _e94 = dx_old;
+                local_26 = metal::abs(2.0 * g_7) <= metal::abs(_e94 * _e52.y);
+            } else {
+                local_26 = false;
+            }
+            bool _e100 = local_26;
+            if (_e100) {
+                dx_old = metal::abs(step);
+                x_10 = xn;
+                float _e104 = x_10;
+                if (metal::abs(step) <= (0.00000023841858 * (1.0 + metal::abs(_e104)))) {
+                    float _e110 = x_10;
+                    return _e110;
+                }
+            } else {
+                float _e111 = hi_2;
+                float _e112 = lo_3;
+                dx_old = 0.5 * (_e111 - _e112);
+                float _e116 = lo_3;
+                float _e117 = hi_2;
+                x_10 = 0.5 * (_e116 + _e117);
+            }
+        }
+    }
+    float _e124 = x_10;
+    return _e124;
+}
+
+float sampling_beckmann_visible_slope_quantile(
+    float cos_theta,
+    float sin_theta,
+    float u_13
+) {
+    float c_12 = 1.0;
+    float s_18 = 0.0;
+    bool local_27 = {};
+    bool local_28 = {};
+    if (cos_theta >= 0.0) {
+        local_27 = sin_theta >= 0.0;
+    } else {
+        local_27 = false;
+    }
+    bool _e14 = local_27;
+    if (_e14) {
+        local_28 = (cos_theta + sin_theta) > 0.0;
+    } else {
+        local_28 = false;
+    }
+    bool _e21 = local_28;
+    if (_e21) {
+        float _e22 = math_hypot(cos_theta, sin_theta);
+        c_12 = cos_theta / _e22;
+        s_18 = sin_theta / _e22;
+    }
+    float _e25 = c_12;
+    float _e26 = s_18;
+    float _e27 = sampling_clamp_unit(u_13);
+    float _e28 = sampling_beckmann_invert_visible_slope_cdf(_e25, _e26, _e27);
+    return _e28;
+}
+
+metal::float3 sampling_beckmann_sample_normal(
+    ndf_roughness_matrix_RoughnessMatrix r_70,
+    metal::float2 u_14
+) {
+    float _e3 = sampling_clamp_unit(u_14.x);
+    float _e5 = sampling_clamp_unit(u_14.y);
+    metal::float2 _e6 = math_sincos_turns(_e5);
+    float _e9 = math_ln(1.0 - _e3);
+    float _e14 = math_ln_1p(_e3 / (1.0 - _e3));
+    float e_6 = (_e3 < 0.5) ? _e14 : -(_e9);
+    metal::float3 n_8 = metal::float3(metal::sqrt(e_6) * _e6, 1.0);
+    sampling_Warp _e22 = sampling_warp(r_70);
+    metal::float3 _e23 = sampling_unstretch(_e22, n_8);
+    return _e23;
+}
+
+metal::float3 sampling_beckmann_sample_visible_normal(
+    ndf_roughness_matrix_RoughnessMatrix r_71,
+    metal::float3 wo_6,
+    metal::float2 u_15
+) {
+    bool local_29 = {};
+    if (!((wo_6.z > 0.0))) {
+        return metal::float3(0.0);
+    }
+    sampling_Warp _e9 = sampling_warp(r_71);
+    metal::float3 _e10 = sampling_normalize_scaled(wo_6);
+    metal::float3 _e11 = sampling_stretch(_e9, _e10);
+    metal::float3 _e12 = sampling_normalize_scaled(_e11);
+    if (!((_e12.z > 0.0))) {
+        return metal::float3(0.0);
+    }
+    float _e21 = math_hypot(_e12.x, _e12.y);
+    metal::float2 phi = (_e21 > 0.0) ? (_e12.xy / metal::float2(_e21)) : metal::float2(1.0, 0.0);
+    float _e33 = sampling_clamp_unit(u_15.x);
+    float _e34 = sampling_beckmann_invert_visible_slope_cdf(_e12.z, _e21, _e33);
+    float _e38 = sampling_clamp_unit(u_15.y);
+    float _e39 = sampling_beckmann_invert_visible_slope_cdf(1.0, 0.0, _e38);
+    metal::float2 t_18 = metal::float2((phi.x * _e34) - (phi.y * _e39), (phi.y * _e34) + (phi.x * _e39));
+    metal::float3 _e54 = sampling_unstretch(_e9, metal::float3(-(t_18), 1.0));
+    if (_e54.z > 0.0) {
+        local_29 = metal::dot(wo_6, _e54) > 0.0;
+    } else {
+        local_29 = false;
+    }
+    bool _e64 = local_29;
+    if (_e64) {
+        return _e54;
+    }
+    metal::float3 _e65 = sampling_unstretch(_e9, _e12);
+    return (_e65.z > 0.0) ? _e65 : metal::float3(0.0);
+}
+
+float sampling_beckmann_normal_pdf(
+    ndf_roughness_matrix_RoughnessMatrix r_72,
+    metal::float3 m_38
+) {
+    float _e2 = ndf_beckmann_d_matrix(r_72, m_38);
+    return (m_38.z > 0.0) ? (_e2 * m_38.z) : 0.0;
+}
+
+float sampling_beckmann_visible_normal_pdf(
+    ndf_roughness_matrix_RoughnessMatrix r_73,
+    metal::float3 wo_7,
+    metal::float3 m_39
+) {
+    bool local_30 = {};
+    float wom_2 = metal::dot(wo_7, m_39);
+    if (!(!((wo_7.z > 0.0)))) {
+        local_30 = !((wom_2 > 0.0));
+    } else {
+        local_30 = true;
+    }
+    bool _e15 = local_30;
+    if (_e15) {
+        return 0.0;
+    }
+    float _e17 = ndf_beckmann_d_matrix(r_73, m_39);
+    float _e20 = ndf_beckmann_lambda_matrix(r_73, wo_7);
+    float v_23 = (wom_2 * _e17) / (wo_7.z * (1.0 + _e20));
+    return (v_23 <= math_F32_MAX) ? v_23 : 0.0;
+}
+
+float sampling_beckmann_reflection_pdf_from_normal(
+    ndf_roughness_matrix_RoughnessMatrix r_74,
+    metal::float3 wo_8,
+    metal::float3 m_40
+) {
+    if (!((wo_8.z > 0.0))) {
+        return 0.0;
+    }
+    metal::float3 _e8 = sampling_normalize_scaled(wo_8);
+    if (!((metal::dot(_e8, m_40) > 0.0))) {
+        return 0.0;
+    }
+    float _e14 = ndf_beckmann_d_matrix(r_74, m_40);
+    float _e18 = ndf_beckmann_lambda_matrix(r_74, _e8);
+    float v_24 = _e14 / ((4.0 * _e8.z) * (1.0 + _e18));
+    return (v_24 <= math_F32_MAX) ? v_24 : 0.0;
 }
 
 struct filtered_ndf_entryOutput {
