@@ -312,18 +312,18 @@ float2 math_sincos_turns(float u)
     float q_4 = round((4.0 * u));
     float r_75 = (u - (0.25 * q_4));
     float z_3 = (r_75 * r_75);
-    float s_19 = (r_75 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855));
-    float c_13 = ((((((((59.22017 * z_3) - 85.44285) * z_3) + 64.939316) * z_3) - 19.739208) * z_3) + 1.0);
+    float s_20 = (r_75 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855));
+    float c_14 = ((((((((59.22017 * z_3) - 85.44285) * z_3) + 64.939316) * z_3) - 19.739208) * z_3) + 1.0);
     int k_24 = (naga_f2i32(q_4) & int(3));
-    cs = float2(c_13, s_19);
+    cs = float2(c_14, s_20);
     if ((k_24 == int(1))) {
-        cs = float2(-(s_19), c_13);
+        cs = float2(-(s_20), c_14);
     } else {
         if ((k_24 == int(2))) {
-            cs = float2(-(c_13), -(s_19));
+            cs = float2(-(c_14), -(s_20));
         } else {
             if ((k_24 == int(3))) {
-                cs = float2(s_19, -(c_13));
+                cs = float2(s_20, -(c_14));
             }
         }
     }
@@ -349,15 +349,15 @@ float math_exp(float x_2)
     float r_76 = ((xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO));
     float r2_ = (r_76 * r_76);
     float p_6 = (((1.0 + r_76) + ((0.4999999 + (0.1666642 * r_76)) * r2_)) + (((0.041668225 + (0.008374816 * r_76)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
-    float s_20 = asfloat((uint(asint(asuint(naga_f2i32(n_6)) + asuint(int(127)))) << 23u));
-    return ((x_2 >= -87.0) ? (p_6 * s_20) : 0.0);
+    float s_21 = asfloat((uint(asint(asuint(naga_f2i32(n_6)) + asuint(int(127)))) << 23u));
+    return ((x_2 >= -87.0) ? (p_6 * s_21) : 0.0);
 }
 
 float math_atanh2_(float z)
 {
     float z2_3 = (z * z);
-    float s_21 = (((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3);
-    return ((2.0 * z) + ((2.0 * z) * s_21));
+    float s_22 = (((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3);
+    return ((2.0 * z) + ((2.0 * z) * s_22));
 }
 
 float math_ln(float x_3)
@@ -566,19 +566,19 @@ float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5)
 float filter_deferred_norm_eval(uint norm, float3 dn_u, float3 dn_v)
 {
     float a_19 = dot(dn_u, dn_u);
-    float c_14 = dot(dn_v, dn_v);
+    float c_15 = dot(dn_v, dn_v);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
-        return max(a_19, c_14);
+        return max(a_19, c_15);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        const float _e11 = filter_deferred_max_eigenvalue(a_19, dot(dn_u, dn_v), c_14);
+        const float _e11 = filter_deferred_max_eigenvalue(a_19, dot(dn_u, dn_v), c_15);
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
         float3 m_42 = max(abs(dn_u), abs(dn_v));
         return max(max(m_42.x, m_42.y), m_42.z);
     }
-    return (a_19 + c_14);
+    return (a_19 + c_15);
 }
 
 float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_1)
@@ -631,8 +631,8 @@ float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha
 kernel_covariance_Covariance filter_deferred_normal_difference_covariance(float3 dn_u_3, float3 dn_v_3, float sigma)
 {
     float sigma_sq = (sigma * sigma);
-    float3 x_11 = (cross(dn_u_3, dn_v_3) * sigma_sq);
-    const kernel_covariance_Covariance kernel_covariance_covariance_12 = Constructkernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_11, x_11));
+    float3 x_12 = (cross(dn_u_3, dn_v_3) * sigma_sq);
+    const kernel_covariance_Covariance kernel_covariance_covariance_12 = Constructkernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_12, x_12));
     return kernel_covariance_covariance_12;
 }
 
@@ -751,9 +751,9 @@ float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5)
 
 float3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, float2 l_2)
 {
-    float c_15 = r_6.axis.x;
-    float s_22 = r_6.axis.y;
-    return float3((((l_2.x * c_15) * c_15) + ((l_2.y * s_22) * s_22)), (((l_2.x - l_2.y) * c_15) * s_22), (((l_2.x * s_22) * s_22) + ((l_2.y * c_15) * c_15)));
+    float c_16 = r_6.axis.x;
+    float s_23 = r_6.axis.y;
+    return float3((((l_2.x * c_16) * c_16) + ((l_2.y * s_23) * s_23)), (((l_2.x - l_2.y) * c_16) * s_23), (((l_2.x * s_23) * s_23) + ((l_2.y * c_16) * c_16)));
 }
 
 float3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7)
@@ -781,10 +781,10 @@ float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3)
 {
     const float3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_16 = a_2.axis.x;
-    float s_23 = a_2.axis.y;
-    float k1_1 = max(((((c_16 * c_16) * k_3.s_xx) + (((2.0 * c_16) * s_23) * k_3.s_xy)) + ((s_23 * s_23) * k_3.s_yy)), 0.0);
-    float k2_1 = max(((((s_23 * s_23) * k_3.s_xx) - (((2.0 * c_16) * s_23) * k_3.s_xy)) + ((c_16 * c_16) * k_3.s_yy)), 0.0);
+    float c_17 = a_2.axis.x;
+    float s_24 = a_2.axis.y;
+    float k1_1 = max(((((c_17 * c_17) * k_3.s_xx) + (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((s_24 * s_24) * k_3.s_yy)), 0.0);
+    float k2_1 = max(((((s_24 * s_24) * k_3.s_xx) - (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((c_17 * c_17) * k_3.s_yy)), 0.0);
     const float _e38 = ndf_roughness_matrix_determinant(a_2);
     float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * max(k_3.det, 0.0)));
     const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
@@ -1080,10 +1080,10 @@ float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3)
     bool local_7 = (bool)0;
 
     float z2_4 = (m_z_1 * m_z_1);
-    float x_12 = (q_xy_1 / z2_4);
+    float x_13 = (q_xy_1 / z2_4);
     float k_25 = (1.0 / (((math_PI * sqrt_det_3) * z2_4) * z2_4));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    const float _e21 = ndf_beckmann_exp_neg_times(x_12, k_25, ln_k_1);
+    const float _e21 = ndf_beckmann_exp_neg_times(x_13, k_25, ln_k_1);
     if ((m_z_1 > 0.0)) {
         local_7 = (_e21 <= math_F32_MAX);
     } else {
@@ -1493,8 +1493,8 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
                     float a_22 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
                     uint _e91 = jj;
                     float _e95 = v_3;
-                    float x_13 = ((1.0 * (kb + float(_e91))) - ((_e95 - 1.0) * a_22));
-                    const float _e100 = math_exp(x_13);
+                    float x_14 = ((1.0 * (kb + float(_e91))) - ((_e95 - 1.0) * a_22));
+                    const float _e100 = math_exp(x_14);
                     last = ((_e100 * sqrt(ip1_1)) * sqrt(ip2_1));
                     float _e105 = part;
                     float _e106 = last;
@@ -1635,12 +1635,12 @@ float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz)
         {
             uint _e16 = k_10;
             const float _e17 = filter_gaussian_ggx_quad_hermite_node(_e16);
-            float x_14 = (fs * _e17);
+            float x_15 = (fs * _e17);
             float _e19 = acc_1;
             uint _e20 = k_10;
             const float _e21 = filter_gaussian_ggx_quad_hermite_weight(_e20);
-            const float _e23 = filter_gaussian_ggx_quad_h_of((z0_ - x_14));
-            const float _e25 = filter_gaussian_ggx_quad_h_of((z0_ + x_14));
+            const float _e23 = filter_gaussian_ggx_quad_h_of((z0_ - x_15));
+            const float _e25 = filter_gaussian_ggx_quad_h_of((z0_ + x_15));
             acc_1 = (_e19 + (_e21 * (_e23 + _e25)));
         }
     }
@@ -1702,12 +1702,12 @@ float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, f
                     float k_27 = float(((first + (_e32 * 8u)) + _e36));
                     const float _e43 = math_exp((((sgn * 0.5) * h) * k_27));
                     float it = (1.0 / _e43);
-                    float x_15 = (((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it));
-                    float arg = ((-(x_15) * x_15) * i2s2_);
+                    float x_16 = (((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it));
+                    float arg = ((-(x_16) * x_16) * i2s2_);
                     float it2_ = (it * it);
                     const float _e58 = math_exp(arg);
                     fl = ((arg > -87.0) ? (_e58 * (1.0 + ((e2_ * it2_) * it2_))) : 0.0);
-                    xl = x_15;
+                    xl = x_16;
                     float _e68 = part_1;
                     float _e69 = fl;
                     part_1 = (_e68 + _e69);
@@ -1780,11 +1780,11 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roug
     float2 v_4 = float2(1.0, 0.0);
 
     const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
-    float c_17 = a_5.axis.x;
-    float s_24 = a_5.axis.y;
-    float k11_ = max(((((c_17 * c_17) * _e2.s_xx) + (((2.0 * c_17) * s_24) * _e2.s_xy)) + ((s_24 * s_24) * _e2.s_yy)), 0.0);
-    float k22_ = max(((((s_24 * s_24) * _e2.s_xx) - (((2.0 * c_17) * s_24) * _e2.s_xy)) + ((c_17 * c_17) * _e2.s_yy)), 0.0);
-    float k12_ = ((((c_17 * c_17) - (s_24 * s_24)) * _e2.s_xy) + ((c_17 * s_24) * (_e2.s_yy - _e2.s_xx)));
+    float c_18 = a_5.axis.x;
+    float s_25 = a_5.axis.y;
+    float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_25) * _e2.s_xy)) + ((s_25 * s_25) * _e2.s_yy)), 0.0);
+    float k22_ = max(((((s_25 * s_25) * _e2.s_xx) - (((2.0 * c_18) * s_25) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
+    float k12_ = ((((c_18 * c_18) - (s_25 * s_25)) * _e2.s_xy) + ((c_18 * s_25) * (_e2.s_yy - _e2.s_xx)));
     float2 l_6 = a_5.eig_c;
     float2 isl = ((1.0).xx / sqrt(l_6));
     float c11_ = ((k11_ * isl.x) * isl.x);
@@ -1815,8 +1815,8 @@ float2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g, flo
 {
     const float2 _e3 = ndf_roughness_matrix_rotate(g.a, s_9);
     float2 u_16 = (_e3 * g.inv_sqrt_l);
-    float2 c_18 = float2(((g.v.x * u_16.x) + (g.v.y * u_16.y)), ((g.v.x * u_16.y) - (g.v.y * u_16.x)));
-    return (c_18 * c_18);
+    float2 c_19 = float2(((g.v.x * u_16.x) + (g.v.y * u_16.y)), ((g.v.x * u_16.y) - (g.v.y * u_16.x)));
+    return (c_19 * c_19);
 }
 
 float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_1, float2 s_10)
@@ -2105,13 +2105,13 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     float2 lc = min(a_7.eig, (0.99).xx);
     float2 excess = (a_7.eig - lc);
     float2 p_8 = (lc / ((1.0).xx - lc));
-    float c_19 = a_7.axis.x;
-    float s_25 = a_7.axis.y;
-    float p11_1 = (((p_8.x * c_19) * c_19) + ((p_8.y * s_25) * s_25));
-    float p12_1 = (((p_8.x - p_8.y) * c_19) * s_25);
-    float p22_1 = (((p_8.x * s_25) * s_25) + ((p_8.y * c_19) * c_19));
-    float k1_3 = max(((((c_19 * c_19) * k_11.s_xx) + (((2.0 * c_19) * s_25) * k_11.s_xy)) + ((s_25 * s_25) * k_11.s_yy)), 0.0);
-    float k2_3 = max(((((s_25 * s_25) * k_11.s_xx) - (((2.0 * c_19) * s_25) * k_11.s_xy)) + ((c_19 * c_19) * k_11.s_yy)), 0.0);
+    float c_20 = a_7.axis.x;
+    float s_26 = a_7.axis.y;
+    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_26) * s_26));
+    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_26);
+    float p22_1 = (((p_8.x * s_26) * s_26) + ((p_8.y * c_20) * c_20));
+    float k1_3 = max(((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_26) * k_11.s_xy)) + ((s_26 * s_26) * k_11.s_yy)), 0.0);
+    float k2_3 = max(((((s_26 * s_26) * k_11.s_xx) - (((2.0 * c_20) * s_26) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy)), 0.0);
     float d_2 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
     float q11_ = (p11_1 + (2.0 * k_11.s_xx));
     float q12_ = (p12_1 + (2.0 * k_11.s_xy));
@@ -2123,11 +2123,11 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     det_3 = (d_2 / den_1);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_19) * c_19) + ((excess.y * s_25) * s_25)));
+        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_26) * s_26)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_19) * s_25));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_26));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_25) * s_25) + ((excess.y * c_19) * c_19)));
+        b22_ = (_e130 + (((excess.x * s_26) * s_26) + ((excess.y * c_20) * c_20)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -2396,18 +2396,18 @@ float filter_rect_mean_1d(float4 i_7, float c2_)
     float x0_ = ((i_7.z >= 0.0) ? i_7.x : -(i_7.y));
     float x1_1 = ((i_7.z >= 0.0) ? i_7.y : -(i_7.x));
     float dx = (2.0 * i_7.w);
-    float c_20 = sqrt(c2_);
+    float c_21 = sqrt(c2_);
     float r02_ = (c2_ + (x0_ * x0_));
     float r12_ = (c2_ + (x1_1 * x1_1));
     float x01_ = (x0_ * x1_1);
-    const float _e27 = filter_rect_atan2_upper((c_20 * dx), (c2_ + x01_));
-    float inv_2 = (1.0 / (((2.0 * c_20) * c2_) * dx));
+    const float _e27 = filter_rect_atan2_upper((c_21 * dx), (c2_ + x01_));
+    float inv_2 = (1.0 / (((2.0 * c_21) * c2_) * dx));
     float p2_1 = ((2.0 * r02_) * r12_);
     if ((x0_ <= 0.0)) {
         return ((_e27 * inv_2) + (((c2_ - x01_) / p2_1) / c2_));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
-    const float _e49 = filter_rect_delta_minus_sin(_e27, ((c_20 * dx) / rr));
+    const float _e49 = filter_rect_delta_minus_sin(_e27, ((c_21 * dx) / rr));
     return ((_e49 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1));
 }
 
@@ -2452,9 +2452,9 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, float4 other)
 float filter_rect_edge(float u_3, float dv, float v01_)
 {
     float s2_1 = (1.0 + (u_3 * u_3));
-    float s_26 = sqrt(s2_1);
-    const float _e10 = filter_rect_atan2_upper((dv * s_26), (s2_1 + v01_));
-    return ((u_3 / s_26) * _e10);
+    float s_27 = sqrt(s2_1);
+    const float _e10 = filter_rect_atan2_upper((dv * s_27), (s2_1 + v01_));
+    return ((u_3 / s_27) * _e10);
 }
 
 float filter_rect_edges(float4 u_4, float4 v_6)
@@ -2498,7 +2498,7 @@ float filter_rect_polar_near(float x2_, float lo, float hi)
     float acc_4 = 0.0;
     uint k_19 = 0u;
 
-    float c_21 = (0.5 * (lo + hi));
+    float c_22 = (0.5 * (lo + hi));
     float h_28 = (0.5 * (hi - lo));
     uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
     bool loop_init_8 = true;
@@ -2519,8 +2519,8 @@ float filter_rect_polar_near(float x2_, float lo, float hi)
             uint _e16 = k_19;
             const float _e17 = filter_rect_gl8_node(_e16);
             float d_3 = (h_28 * _e17);
-            float q0_ = (1.0 + ((c_21 - d_3) * (c_21 - d_3)));
-            float q1_ = (1.0 + ((c_21 + d_3) * (c_21 + d_3)));
+            float q0_ = (1.0 + ((c_22 - d_3) * (c_22 - d_3)));
+            float q1_ = (1.0 + ((c_22 + d_3) * (c_22 + d_3)));
             float _e29 = acc_4;
             uint _e30 = k_19;
             const float _e31 = filter_rect_gl8_weight(_e30);
@@ -2536,7 +2536,7 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
     float acc_5 = 0.0;
     uint k_20 = 0u;
 
-    float c_22 = (0.5 * (lo_1 + hi_1));
+    float c_23 = (0.5 * (lo_1 + hi_1));
     float h_29 = (0.5 * (hi_1 - lo_1));
     uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
     bool loop_init_9 = true;
@@ -2557,8 +2557,8 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
             uint _e16 = k_20;
             const float _e17 = filter_rect_gl8_node(_e16);
             float d_4 = (h_29 * _e17);
-            float t0_2 = ((c_22 - d_4) * (c_22 - d_4));
-            float t1_4 = ((c_22 + d_4) * (c_22 + d_4));
+            float t0_2 = ((c_23 - d_4) * (c_23 - d_4));
+            float t1_4 = ((c_23 + d_4) * (c_23 + d_4));
             float _e25 = acc_5;
             uint _e26 = k_20;
             const float _e27 = filter_rect_gl8_weight(_e26);
@@ -2841,10 +2841,10 @@ float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_17)
     const float _e4 = filter_rect_lambda_rho(t1_);
     const float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     const float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_27 = (_e5 + _e6);
-    float d_5 = ((w_17 * s_27) / (_e3 + _e4));
+    float s_28 = (_e5 + _e6);
+    float d_5 = ((w_17 * s_28) / (_e3 + _e4));
     const float _e12 = math_ln_1p((d_5 / _e6));
-    return (0.25 * (_e12 + ((0.5 * d_5) * s_27)));
+    return (0.25 * (_e12 + ((0.5 * d_5) * s_28)));
 }
 
 float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_18)
@@ -3011,12 +3011,12 @@ float filter_rect_lambda_expected_psi(float m_22, float k1_, float k2_, float lo
             {
                 uint _e70 = j_3;
                 const float _e71 = filter_rect_gl_node(_e59, _e70);
-                float x_16 = (ks * _e71);
+                float x_17 = (ks * _e71);
                 float _e73 = acc_10;
                 uint _e74 = j_3;
                 const float _e75 = filter_rect_gl_weight(_e59, _e74);
-                const float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_16), (hi_4 + x_16), w_26);
-                const float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_16), (hi_4 - x_16), w_26);
+                const float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_17), (hi_4 + x_17), w_26);
+                const float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_17), (hi_4 - x_17), w_26);
                 acc_10 = (_e73 + (_e75 * (_e78 + _e81)));
             }
         }
@@ -3449,12 +3449,12 @@ float3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAlig
     const float _e15 = sampling_clamp_unit(u_11.y);
     const float2 _e16 = math_sincos_turns(_e15);
     float rad_1 = sqrt((_e13 / (1.0 - _e13)));
-    float2 g_6 = (-(a_34) * (rad_1 * _e16));
+    float2 g_7 = (-(a_34) * (rad_1 * _e16));
     const float _e25 = sampling_clamp_unit(u_box.x);
     const float _e27 = sampling_clamp_unit(u_box.y);
     float2 b_9 = float2(_e25, _e27);
     float2 d_6 = (((2.0 * b_9) - (1.0).xx) * h_33);
-    const float3 _e36 = filter_rect_sample_normal_of_slope((g_6 + d_6));
+    const float3 _e36 = filter_rect_sample_normal_of_slope((g_7 + d_6));
     return _e36;
 }
 
@@ -3561,28 +3561,35 @@ float sampling_beckmann_erfcx(float z_1)
     return (t_17 * _e46);
 }
 
-float2 sampling_beckmann_cdf_terms(float x_8, float c_10, float s_16)
+float sampling_beckmann_upper_tail(float x_8, float c_10, float s_16)
+{
+    const float _e5 = math_exp((-(x_8) * x_8));
+    const float _e8 = sampling_beckmann_erfcx(x_8);
+    return ((0.5 * _e5) * ((c_10 * _e8) - (s_16 * sampling_beckmann_INV_SQRT_PI)));
+}
+
+float2 sampling_beckmann_cdf_terms(float x_9, float c_11, float s_17)
 {
     float k_23 = (float)0;
 
-    const float _e5 = math_exp((-(x_8) * x_8));
-    if ((x_8 <= 0.0)) {
-        const float _e12 = sampling_beckmann_erfcx(-(x_8));
-        k_23 = ((0.5 * _e5) * ((c_10 * _e12) + (s_16 * sampling_beckmann_INV_SQRT_PI)));
+    const float _e5 = math_exp((-(x_9) * x_9));
+    if ((x_9 <= 0.0)) {
+        const float _e12 = sampling_beckmann_erfcx(-(x_9));
+        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_17 * sampling_beckmann_INV_SQRT_PI)));
     } else {
-        const float _e20 = sampling_beckmann_erfcx(x_8);
-        k_23 = (c_10 - ((0.5 * _e5) * ((c_10 * _e20) - (s_16 * sampling_beckmann_INV_SQRT_PI))));
+        const float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_17);
+        k_23 = (c_11 - _e18);
     }
-    float _e27 = k_23;
-    return float2(_e27, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_10 - (s_16 * x_8))));
+    float _e20 = k_23;
+    return float2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_17 * x_9))));
 }
 
-float sampling_beckmann_erfinv_guess(float x_9)
+float sampling_beckmann_erfinv_guess(float x_10)
 {
     float w_23 = (float)0;
     float p_4 = (float)0;
 
-    float a_35 = ((1.0 - x_9) * (1.0 + x_9));
+    float a_35 = ((1.0 - x_10) * (1.0 + x_10));
     if (!((a_35 > 0.0))) {
         return 0.0;
     }
@@ -3647,126 +3654,139 @@ float sampling_beckmann_erfinv_guess(float x_9)
         p_4 = ((_e101 * _e102) + 2.8329768);
     }
     float _e106 = p_4;
-    return (_e106 * x_9);
+    return (_e106 * x_10);
 }
 
-float sampling_beckmann_invert_visible_slope_cdf(float c_11, float s_17, float u_12)
+float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u_12)
 {
     float lo_3 = -9.0;
     float hi_2 = (float)0;
     bool local_24 = (bool)0;
-    float x_10 = (float)0;
+    float x_11 = (float)0;
     float dx_old = (float)0;
     uint i_11 = 0u;
+    float g_6 = (float)0;
     bool local_25 = (bool)0;
     bool local_26 = (bool)0;
 
-    float hi0_ = ((s_17 > 0.0) ? min((c_11 / s_17), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
+    float hi0_ = ((s_18 > 0.0) ? min((c_12 / s_18), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
     hi_2 = hi0_;
-    const float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_11, s_17);
+    const float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_18);
     float norm_1 = _e13.x;
-    float goal = (u_12 * norm_1);
+    bool upper = (u_12 > 0.5);
+    float goal = ((upper ? (1.0 - u_12) : u_12) * norm_1);
     if (!((goal > 0.0))) {
-        float _e19 = lo_3;
-        return _e19;
+        float _e24 = lo_3;
+        return _e24;
     }
+    const float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_18);
     float tol = (4.7683716e-7 * goal);
-    const float _e26 = sampling_beckmann_erfinv_guess(((2.0 * u_12) - 1.0));
-    float _e27 = hi_2;
-    float _e32 = lo_3;
-    if ((_e26 > _e32)) {
-        float _e36 = hi_2;
-        local_24 = (_e26 < _e36);
+    const float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_12) - 1.0));
+    float _e35 = hi_2;
+    float _e40 = lo_3;
+    if ((_e34 > _e40)) {
+        float _e44 = hi_2;
+        local_24 = (_e34 < _e44);
     } else {
         local_24 = false;
     }
-    bool _e39 = local_24;
-    x_10 = (_e39 ? _e26 : min(0.0, (0.5 * _e27)));
-    float _e42 = hi_2;
-    float _e43 = lo_3;
-    dx_old = (_e42 - _e43);
+    bool _e47 = local_24;
+    x_11 = (_e47 ? _e34 : min(0.0, (0.5 * _e35)));
+    float _e50 = hi_2;
+    float _e51 = lo_3;
+    dx_old = (_e50 - _e51);
     uint2 loop_bound_15 = uint2(4294967295u, 4294967295u);
     bool loop_init_15 = true;
     while(true) {
         if (all(loop_bound_15 == uint2(0u, 0u))) { break; }
         loop_bound_15 -= uint2(loop_bound_15.y == 0u, 1u);
         if (!loop_init_15) {
-            uint _e121 = i_11;
-            i_11 = (_e121 + 1u);
+            uint _e144 = i_11;
+            i_11 = (_e144 + 1u);
         }
         loop_init_15 = false;
-        uint _e48 = i_11;
-        if ((_e48 < sampling_beckmann_MAX_ITERATIONS)) {
+        uint _e56 = i_11;
+        if ((_e56 < sampling_beckmann_MAX_ITERATIONS)) {
         } else {
             break;
         }
         {
-            float _e51 = x_10;
-            const float2 _e52 = sampling_beckmann_cdf_terms(_e51, c_11, s_17);
-            float g_7 = (_e52.x - goal);
-            if ((abs(g_7) <= tol)) {
-                float _e57 = x_10;
-                return _e57;
+            float _e59 = x_11;
+            const float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_18);
+            g_6 = (_e60.x - goal);
+            if (upper) {
+                float _e66 = x_11;
+                const float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_18);
+                float _e69 = x_11;
+                g_6 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
             }
-            if ((g_7 < 0.0)) {
-                float _e60 = x_10;
-                lo_3 = _e60;
+            float _e74 = g_6;
+            if ((abs(_e74) <= tol)) {
+                float _e77 = x_11;
+                return _e77;
+            }
+            float _e78 = g_6;
+            if ((_e78 < 0.0)) {
+                float _e81 = x_11;
+                lo_3 = _e81;
             } else {
-                float _e61 = x_10;
-                hi_2 = _e61;
+                float _e82 = x_11;
+                hi_2 = _e82;
             }
-            float _e62 = hi_2;
-            float _e63 = lo_3;
-            float _e66 = x_10;
-            if (((_e62 - _e63) <= (4.7683716e-7 * (1.0 + abs(_e66))))) {
-                float _e72 = lo_3;
-                float _e73 = hi_2;
-                return (0.5 * (_e72 + _e73));
+            float _e83 = hi_2;
+            float _e84 = lo_3;
+            float _e87 = x_11;
+            if (((_e83 - _e84) <= (4.7683716e-7 * (1.0 + abs(_e87))))) {
+                float _e93 = lo_3;
+                float _e94 = hi_2;
+                return (0.5 * (_e93 + _e94));
             }
-            float step_ = (g_7 / _e52.y);
-            float _e79 = x_10;
-            float xn = (_e79 - step_);
-            float _e81 = lo_3;
-            if ((xn > _e81)) {
-                float _e85 = hi_2;
-                local_25 = (xn < _e85);
+            float _e98 = g_6;
+            float step_ = (_e98 / _e60.y);
+            float _e101 = x_11;
+            float xn = (_e101 - step_);
+            float _e103 = lo_3;
+            if ((xn > _e103)) {
+                float _e107 = hi_2;
+                local_25 = (xn < _e107);
             } else {
                 local_25 = false;
             }
-            bool _e88 = local_25;
-            if (_e88) {
-                float _e94 = dx_old;
-                local_26 = (abs((2.0 * g_7)) <= abs((_e94 * _e52.y)));
+            bool _e110 = local_25;
+            if (_e110) {
+                float _e113 = g_6;
+                float _e117 = dx_old;
+                local_26 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
             } else {
                 local_26 = false;
             }
-            bool _e100 = local_26;
-            if (_e100) {
+            bool _e123 = local_26;
+            if (_e123) {
                 dx_old = abs(step_);
-                x_10 = xn;
-                float _e104 = x_10;
-                if ((abs(step_) <= (2.3841858e-7 * (1.0 + abs(_e104))))) {
-                    float _e110 = x_10;
-                    return _e110;
+                x_11 = xn;
+                float _e127 = x_11;
+                if ((abs(step_) <= (2.3841858e-7 * (1.0 + abs(_e127))))) {
+                    float _e133 = x_11;
+                    return _e133;
                 }
             } else {
-                float _e111 = hi_2;
-                float _e112 = lo_3;
-                dx_old = (0.5 * (_e111 - _e112));
-                float _e116 = lo_3;
-                float _e117 = hi_2;
-                x_10 = (0.5 * (_e116 + _e117));
+                float _e134 = hi_2;
+                float _e135 = lo_3;
+                dx_old = (0.5 * (_e134 - _e135));
+                float _e139 = lo_3;
+                float _e140 = hi_2;
+                x_11 = (0.5 * (_e139 + _e140));
             }
         }
     }
-    float _e124 = x_10;
-    return _e124;
+    float _e147 = x_11;
+    return _e147;
 }
 
 float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_13)
 {
-    float c_12 = 1.0;
-    float s_18 = 0.0;
+    float c_13 = 1.0;
+    float s_19 = 0.0;
     bool local_27 = (bool)0;
     bool local_28 = (bool)0;
 
@@ -3784,11 +3804,11 @@ float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta,
     bool _e21 = local_28;
     if (_e21) {
         const float _e22 = math_hypot(cos_theta, sin_theta);
-        c_12 = (cos_theta / _e22);
-        s_18 = (sin_theta / _e22);
+        c_13 = (cos_theta / _e22);
+        s_19 = (sin_theta / _e22);
     }
-    float _e25 = c_12;
-    float _e26 = s_18;
+    float _e25 = c_13;
+    float _e26 = s_19;
     const float _e27 = sampling_clamp_unit(u_13);
     const float _e28 = sampling_beckmann_invert_visible_slope_cdf(_e25, _e26, _e27);
     return _e28;

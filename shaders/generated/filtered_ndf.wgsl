@@ -3471,19 +3471,27 @@ fn sampling_beckmann_erfcx(z: f32) -> f32 {
     return t * math_exp(p);
 }
 
+/// `phi(x) = exp(-x^2) (c erfcx(x) - s / sqrt(pi)) / 2 = c - K(x)` for `x >= 0` (module
+/// docs): the upper tail of the visible-slope CDF, `K(hi) - K(x) = phi(x) - phi(hi)` for
+/// `0 <= x <= hi`, without the cancellation of `K(hi) - K(x)` in the far upper tail. Its
+/// error is `(x^2 + 18)` ulp of the magnitude `exp(-x^2) (c erfcx(x) + s / sqrt(pi)) / 2`.
+fn sampling_beckmann_upper_tail(x: f32, c: f32, s: f32) -> f32 {
+    return 0.5 * math_exp(-x * x) * (c * sampling_beckmann_erfcx(x) - s * sampling_beckmann_INV_SQRT_PI);
+}
+
 /// `(K(x), K'(x))` of the visible-slope CDF (module docs), `K'(x) = exp(-x^2) (c - s x) / sqrt(pi)`,
 /// for `(c, s) = (cos theta, sin theta)`. With `erfc(-x) = exp(-x^2) erfcx(-x)` for `x <= 0`
 /// and `2 - exp(-x^2) erfcx(x)` above: `K = exp(-x^2) (c erfcx(-x) + s / sqrt(pi)) / 2` (two
-/// positive terms) for `x <= 0`, `K = c - exp(-x^2) (c erfcx(x) - s / sqrt(pi)) / 2` above
-/// (`K >= c / 2` there: the difference loses at most a factor 2). Relative error within
-/// `(x^2 + 36)` ulp (`exp(-x^2)` carries the rounding of `x^2`, `x^2 / 2` ulp).
+/// positive terms) for `x <= 0`, `K = c - upper_tail(x)` above (`K >= c / 2` there: the
+/// difference loses at most a factor 2). Relative error within `(x^2 + 36)` ulp
+/// (`exp(-x^2)` carries the rounding of `x^2`, `x^2 / 2` ulp; `erfcx` 11).
 fn sampling_beckmann_cdf_terms(x: f32, c: f32, s: f32) -> vec2<f32> {
     let e = math_exp(-x * x);
     var k: f32;
     if x <= 0.0 {
         k = 0.5 * e * (c * sampling_beckmann_erfcx(-x) + s * sampling_beckmann_INV_SQRT_PI);
     } else {
-        k = c - 0.5 * e * (c * sampling_beckmann_erfcx(x) - s * sampling_beckmann_INV_SQRT_PI);
+        k = c - sampling_beckmann_upper_tail(x, c, s);
     }
     return vec2<f32>(k, sampling_beckmann_INV_SQRT_PI * e * (c - s * x));
 }
@@ -3526,28 +3534,39 @@ fn sampling_beckmann_erfinv_guess(x: f32) -> f32 {
 /// Solves `C(x) = u` for `x` in `[-X_MAX, min(mu, X_MAX)]` (the Rust
 /// `invert_visible_slope_cdf`), `(c, s) = (cos, sin)` of the unit-roughness view angle
 /// (`c, s >= 0`, not both zero), `u` in `[0, 1)`. Newton steps where they stay in the bracket
-/// and shrink the residual faster than bisection, bisection otherwise. Returns when the
-/// residual is within `4 eps` of the goal `u K(hi)`, a Newton step is below
-/// `2 eps (1 + |x|)`, or the bracket is narrower than `4 eps (1 + |x|)`: the result is the
-/// exact quantile of some `u'` with `|u' - u| <= u (2 err_K + 4 eps)` (`err_K` the relative
-/// error of `K`, `cdf_terms`), to within `4 eps (1 + |x|)`.
+/// and shrink the residual faster than bisection, bisection otherwise. Below `u = 1/2` the
+/// equation is `K(x) = u K(hi)`; above, `K(hi) - K(x) = (1 - u) K(hi)` (`1 - u` exact), with
+/// `K(hi) - K(x) = upper_tail(x) - upper_tail(hi)` for `x > 0`, so that the upper tail keeps
+/// its relative accuracy in `1 - u` as the lower one does in `u` (as f32 `K` it would carry
+/// `eps / (1 - u)`). Returns when the residual is within `4 eps` of the goal, a Newton step
+/// is below `2 eps (1 + |x|)`, or the bracket is narrower than `4 eps (1 + |x|)`: the result
+/// is the exact quantile of some `u'` with `|u' - u| <= u (2 err_K + 4 eps)` (`err_K` the
+/// relative error of `K`, `cdf_terms`) below `1/2`, `|(1 - u') - (1 - u)| <= (1 - u) err_R`
+/// above (`err_R` the error of the difference relative to it: the terms' magnitudes over
+/// their difference), to within `4 eps (1 + |x|)`.
 fn sampling_beckmann_invert_visible_slope_cdf(c: f32, s: f32, u: f32) -> f32 {
     let hi0 = select(sampling_beckmann_X_MAX, min(c / s, sampling_beckmann_X_MAX), s > 0.0);
     var lo = -sampling_beckmann_X_MAX;
     var hi = hi0;
     // The normaliser `K(mu)` by the same formula as `K(x)`: `C(hi) = 1` exactly.
     let norm = sampling_beckmann_cdf_terms(hi0, c, s).x;
-    let goal = u * norm;
+    let upper = u > 0.5;
+    let goal = select(u, 1.0 - u, upper) * norm;
     if !(goal > 0.0) {
         return lo;
     }
+    let tail_hi = sampling_beckmann_upper_tail(max(hi0, 0.0), c, s);
     let tol = 4.0 * sampling_beckmann_EPS * goal;
     let guess = sampling_beckmann_erfinv_guess(2.0 * u - 1.0);
     var x = select(min(0.0, 0.5 * hi), guess, guess > lo && guess < hi);
     var dx_old = hi - lo;
     for (var i = 0u; i < sampling_beckmann_MAX_ITERATIONS; i = i + 1u) {
         let kd = sampling_beckmann_cdf_terms(x, c, s);
-        let g = kd.x - goal;
+        // The residual, increasing in `x`: `K(x) - u K(hi)`, or `(1 - u) K(hi) - (K(hi) - K(x))`.
+        var g = kd.x - goal;
+        if upper {
+            g = goal - select(norm - kd.x, sampling_beckmann_upper_tail(x, c, s) - tail_hi, x > 0.0);
+        }
         if abs(g) <= tol {
             return x;
         }

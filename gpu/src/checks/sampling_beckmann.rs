@@ -9,10 +9,13 @@
 //! ends included), `u` uniform plus `2^-24`, `1e-30` and `1 - 2^-24`.
 //!
 //! Tolerances (absolute, derived per case from the `f64` reference):
-//! - The quantile `x = C^-1(u)`: the shader's solve returns the exact quantile of some `u'`
-//!   with `|u' - u| <= delta u`, `delta = 2 err_K + 4 EPS` (`err_K = (x^2 + 36) EPS`, the
-//!   relative error of `K` in `cdf_terms`, taken at `x` and at the bracket end `hi`): the
-//!   tolerance is the reference's own spread `max |C^-1(u (1 +- delta)) - x|`, plus the
+//! - The quantile `x = C^-1(u)`: below `u = 1/2` the shader's solve returns the exact
+//!   quantile of some `u'` with `|u' - u| <= delta u`, `delta = 2 err_K + 4 EPS`
+//!   (`err_K = (x^2 + 36) EPS`, the relative error of `K` in `cdf_terms`, taken at `x` and at
+//!   the bracket end `hi`); above, of some `u'` with `|(1 - u') - (1 - u)| <= delta (1 - u)`,
+//!   `delta` the error of `K(hi) - K(x)` as the shader forms it (`(t^2 + 36)` ulp of each
+//!   term's magnitude, over the difference, plus 4): the tolerance is the reference's own
+//!   spread `max |C^-1(u') - x|` over those `u'`, plus the
 //!   angle's error (`8 EPS` from the normalisation, times `|dx / dtheta|` by central
 //!   differences of the reference), plus the stopping rule `4 EPS (1 + |x|)`.
 //! - `sample_visible_normal`: the slopes `t = R(phi) (x, y)` carry the two quantiles'
@@ -33,10 +36,27 @@ use super::{Check, EPS, Tol, ndf};
 use crate::reference::{
     Beckmann, DVec3, NdfSampling, Roughness, SplitMix64, sampling, v2, v3,
 };
+use crate::reference::math::Real;
 
 /// The f64 quantile of the crate (`f64::sampling::beckmann::visible_slope_quantile`).
 fn quantile(c: f64, s: f64, u: f64) -> f64 {
     sampling::beckmann::visible_slope_quantile(c, s, u)
+}
+
+/// `K(t)` of the visible-slope CDF (`beckmann.wgsl`) in f64, and the magnitude of the terms
+/// the shader forms it from: for `t <= 0` `K` itself (two positive terms), above the upper
+/// tail `phi(t) = c - K(t)` and its terms' magnitude `(c erfc(t) + s exp(-t^2) / sqrt(pi)) / 2`.
+fn k_terms(t: f64, c: f64, s: f64) -> (f64, f64) {
+    let g = s * (-t * t).exp() / core::f64::consts::PI.sqrt();
+    if t <= 0.0 {
+        let k = 0.5 * (c * Real::erfc(-t) + g);
+        (k, k)
+    } else {
+        (
+            0.5 * (c * Real::erfc(t) - g),
+            0.5 * (c * Real::erfc(t) + g),
+        )
+    }
 }
 
 /// The tolerance of the module docs on the quantile `x` at `(c, s)` (unit) and `u`, with the
@@ -44,12 +64,36 @@ fn quantile(c: f64, s: f64, u: f64) -> f64 {
 fn quantile_tol(c: f64, s: f64, u: f64, dtheta: f64) -> f64 {
     let x = quantile(c, s, u);
     let hi = if s > 0.0 { (c / s).min(9.0) } else { 9.0 };
-    let err_k = |v: f64| (v * v + 36.0) * EPS;
-    let delta = 2.0 * err_k(x).max(err_k(hi)) + 4.0 * EPS;
+    let ulps = |v: f64| v * v + 36.0;
     let q = |u: f64| quantile(c, s, u.min(1.0 - f64::EPSILON / 2.0));
-    let spread = (q(u * (1.0 + delta)) - x)
-        .abs()
-        .max((q(u * (1.0 - delta)) - x).abs());
+    let spread = if u <= 0.5 {
+        // K(x) = u K(hi): relative errors err_K at x and at hi.
+        let delta = (2.0 * ulps(x).max(ulps(hi)) + 4.0) * EPS;
+        (q(u * (1.0 + delta)) - x)
+            .abs()
+            .max((q(u * (1.0 - delta)) - x).abs())
+    } else {
+        // K(hi) - K(x) = (1 - u) K(hi): the difference's error is its terms' magnitudes
+        // (times their ulp) over the difference itself.
+        let (kx, mx) = k_terms(x, c, s);
+        let (kh, mh) = k_terms(hi, c, s);
+        let (r, mags) = if x > 0.0 {
+            (kx - kh, ulps(x) * mx + ulps(hi) * mh)
+        } else {
+            // K(hi): c - phi(hi) above 0 (c and phi's terms), K itself at hi = 0.
+            let k_hi = if hi > 0.0 { c - kh } else { kh };
+            (k_hi - kx, ulps(x) * mx + 2.0 * ulps(hi) * (c + mh))
+        };
+        let v = 1.0 - u;
+        let delta = if r > 0.0 {
+            (mags / r + 4.0) * EPS
+        } else {
+            1.0
+        };
+        (q(1.0 - v * (1.0 + delta)) - x)
+            .abs()
+            .max((q(1.0 - v * (1.0 - delta)) - x).abs())
+    };
     let th = s.atan2(c);
     let h = 1e-6;
     let (a, b) = ((th - h).max(0.0), (th + h).min(core::f64::consts::FRAC_PI_2));
