@@ -1477,6 +1477,166 @@ fn filter_gaussian_ggx_quad_lambda(qa: f32, qs: f32, oz: f32) -> f32 {
     return filter_gaussian_ggx_quad_lambda_sinh(qa, qs, oz, ds2);
 }
 
+// ---- filtered_ndf::sampling (shaders/sampling/mod.wgsl) ----
+// Importance sampling of GGX with a roughness matrix, and the pdfs for multiple importance
+// sampling, mirroring `src/.../sampling/mod.rs` (GGX, `NdfSampling`). Densities per
+// steradian: `D(m) m_z` (KHPL16 eq. 2) and the visible normals
+// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014 eq. 16); the reflected direction
+// `wi = reflect(wo, m)` has `D_wo(m) / (4 wo.m)` (Walter et al. 2007 eq. 14).
+//
+// One linear warp for every roughness: with `A = L L^T` (lower Cholesky factor), slopes
+// `s = L t` map the unit-roughness NDF of `t` to the NDF of `A`; the visible normals of `A`
+// seen from `wo` are the image of the unit-roughness visible normals seen from
+// `normalize(L^T wo_xy, wo_z)` (Heitz and d'Eon 2014 section 4; the same algebra for any
+// `L`). The unit-roughness GGX sampler is the spherical caps of Dupuy and Benyoub 2023
+// (listing 3). The angle `2 pi u` goes through `math::sincos_turns` (WGSL allows the driver
+// `sin`/`cos` an absolute `2^-11`).
+//
+// Out of domain: `wo_z <= 0` has no visible normal: the samplers return the zero vector
+// (the Rust `None`) and the pdfs 0. `u` is clamped to `[0, 1 - 2^-24]`. `wo` need not be
+// normalised; `m` must be a unit vector for the pdfs.
+
+/// The largest f32 below 1: the upper clamp of the uniform numbers.
+const sampling_ONE_MINUS_EPS: f32 = 0.99999994;
+
+/// The lower Cholesky factor `L = [[l_xx, 0], [l_yx, l_yy]]` of a roughness, `A = L L^T`.
+struct sampling_Warp {
+    /// `sqrt(a11)`.
+    l_xx: f32,
+    /// `a12 / sqrt(a11)`.
+    l_yx: f32,
+    /// `sqrt(det A) / sqrt(a11)`.
+    l_yy: f32,
+}
+
+/// The warp of a roughness matrix: the Cholesky factor of the clamped matrix `A_c` that the
+/// density evaluates (`matrix.wgsl`; entries from its eigenbasis, `sqrt(det A_c)` as stored),
+/// so that the sampled lobe is the one `D` describes.
+fn sampling_warp(r: ndf_roughness_matrix_RoughnessMatrix) -> sampling_Warp {
+    let e = ndf_roughness_matrix_clamped_entries(r);
+    let l_xx = sqrt(e.x);
+    return sampling_Warp(l_xx, e.y / l_xx, r.sqrt_det / l_xx);
+}
+
+/// `v / |v|` after scaling by the largest component (no overflow or underflow of the
+/// squares). `v` non-zero.
+fn sampling_normalize_scaled(v: vec3<f32>) -> vec3<f32> {
+    let w = v / max(max(abs(v.x), abs(v.y)), abs(v.z));
+    return w / length(w);
+}
+
+/// `(L^T w_xy, w_z)`: a view direction into the unit-roughness space (unnormalised).
+fn sampling_stretch(l: sampling_Warp, w: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(l.l_xx * w.x + l.l_yx * w.y, l.l_yy * w.y, w.z);
+}
+
+/// `normalize(L n_xy, n_z)`: a unit-roughness normal back to roughness `A`.
+fn sampling_unstretch(l: sampling_Warp, n: vec3<f32>) -> vec3<f32> {
+    return sampling_normalize_scaled(vec3<f32>(l.l_xx * n.x, l.l_yx * n.x + l.l_yy * n.y, n.z));
+}
+
+/// A uniform number clamped into `[0, 1 - 2^-24]` (negative values to 0).
+fn sampling_clamp_unit(u: f32) -> f32 {
+    return select(0.0, min(u, sampling_ONE_MINUS_EPS), u >= 0.0);
+}
+
+/// Mirror reflection of `wo` about the unit normal `m`: `2 (wo.m) m - wo` (Walter et al.
+/// 2007 eq. 13).
+fn sampling_reflect(wo: vec3<f32>, m: vec3<f32>) -> vec3<f32> {
+    return 2.0 * dot(wo, m) * m - wo;
+}
+
+/// Unit-roughness GGX visible normal by spherical caps (Dupuy and Benyoub 2023): a uniform
+/// point `c` on the cap `z >= -wi_z` of the unit sphere, returned as `c + wi` (unnormalised).
+fn sampling_ggx_standard_visible(wi: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
+    let cs = math_sincos_turns(u.x);
+    let z = (1.0 - u.y) * (1.0 + wi.z) - wi.z;
+    let sin_theta = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
+    return vec3<f32>(sin_theta * cs, z) + wi;
+}
+
+/// Samples a visible micronormal `m` of GGX with roughness `r` from `u` in `[0, 1)^2`, with
+/// density `D_wo(m)` per steradian (Heitz 2014 eq. 16). The zero vector if `wo_z <= 0` (or
+/// the view is grazing to within the f32 range); otherwise a unit `m` with `m_z > 0` and
+/// `wo.m > 0` (should rounding break either, the lobe centre `unstretch(wi)` is returned,
+/// as in Rust).
+fn sampling_sample_visible_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
+    if !(wo.z > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let l = sampling_warp(r);
+    let wi = sampling_normalize_scaled(sampling_stretch(l, sampling_normalize_scaled(wo)));
+    if !(wi.z > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let n = sampling_ggx_standard_visible(wi, vec2<f32>(sampling_clamp_unit(u.x), sampling_clamp_unit(u.y)));
+    let m = sampling_unstretch(l, n);
+    if m.z > 0.0 && dot(wo, m) > 0.0 {
+        return m;
+    }
+    let c = sampling_unstretch(l, wi);
+    return select(vec3<f32>(0.0), c, c.z > 0.0);
+}
+
+/// Samples `m` with density `D(m) m_z` per steradian (the NDF itself): in the unit-roughness
+/// space `|t|^2 = u1 / (1 - u1)`, `n = (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))`,
+/// `phi = 2 pi u2`, then warped by `L`. Always `m_z > 0`.
+fn sampling_sample_normal(r: ndf_roughness_matrix_RoughnessMatrix, u: vec2<f32>) -> vec3<f32> {
+    let u1 = sampling_clamp_unit(u.x);
+    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
+    let n = vec3<f32>(sqrt(u1) * cs, sqrt(1.0 - u1));
+    return sampling_unstretch(sampling_warp(r), n);
+}
+
+/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
+/// `m_z <= 0`.
+fn sampling_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
+    return select(0.0, ndf_ggx_d_matrix(r, m) * m.z, m.z > 0.0);
+}
+
+/// The visible-normal density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian
+/// (Heitz 2014 eq. 16) for a unit `m`; 0 for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
+fn sampling_visible_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+    let wom = dot(wo, m);
+    if !(wo.z > 0.0) || !(wom > 0.0) {
+        return 0.0;
+    }
+    let v = wom * ndf_ggx_d_matrix(r, m) / (wo.z * (1.0 + ndf_ggx_lambda_matrix(r, wo)));
+    return select(0.0, v, v <= math_F32_MAX);
+}
+
+/// The density per steradian of `wi = reflect(wo, m)` for the unit half vector `m` itself:
+/// `G1(wo) D(m) / (4 wo_z)` (Walter et al. 2007 eq. 14, `wo` normalised here); 0 for
+/// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
+fn sampling_reflection_pdf_from_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+    if !(wo.z > 0.0) {
+        return 0.0;
+    }
+    let o = sampling_normalize_scaled(wo);
+    if !(dot(o, m) > 0.0) {
+        return 0.0;
+    }
+    let v = ndf_ggx_d_matrix(r, m) / (4.0 * o.z * (1.0 + ndf_ggx_lambda_matrix(r, o)));
+    return select(0.0, v, v <= math_F32_MAX);
+}
+
+/// The density per steradian of `wi` when `m` is drawn by [`sample_visible_normal`] and
+/// `wi = reflect(wo, m)`: [`reflection_pdf_from_normal`] with `m = normalize(wo + wi)`
+/// (both normalised first). 0 for `wo_z <= 0` and for `wi = -wo`. The recomputed half vector
+/// carries a direction error of about `eps / (2 wo.m)`: for a sampled direction prefer
+/// [`reflection_pdf_from_normal`] with the sampled `m`.
+fn sampling_reflection_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
+    if !(wo.z > 0.0) {
+        return 0.0;
+    }
+    let h = sampling_normalize_scaled(wo) + sampling_normalize_scaled(wi);
+    let len = length(h);
+    if !(len > 0.0) {
+        return 0.0;
+    }
+    return sampling_reflection_pdf_from_normal(r, wo, h / len);
+}
+
 // ---- filtered_ndf::filter::gaussian_ggx (shaders/filter/gaussian_ggx.wgsl) ----
 // The exact Gaussian-filtered GGX (`src/.../filter/gaussian_ggx.rs`, `GaussianFilteredGgx`):
 // the convolution of a GGX slope density of roughness `A` with a Gaussian kernel
@@ -1622,6 +1782,56 @@ fn filter_gaussian_ggx_g1(g: filter_gaussian_ggx_GaussianFilteredGgx, w: vec3<f3
 /// filtered lobe.
 fn filter_gaussian_ggx_g2(g: filter_gaussian_ggx_GaussianFilteredGgx, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
     return ndf_g2_of(filter_gaussian_ggx_lambda(g, i), filter_gaussian_ggx_lambda(g, o), dot(i, m), dot(o, m));
+}
+
+/// Two uniform numbers from one (the Rust `split` of the `f32` build): the high and the low
+/// twelve bits of `u` in `[0, 1)`, `((floor(4096 u) + 1/2) / 4096, frac(4096 u))`, both
+/// uniform on their grids and independent (every step exact in f32).
+fn filter_gaussian_ggx_split(u: f32) -> vec2<f32> {
+    let x = u * 4096.0;
+    let hi = floor(x);
+    return vec2<f32>((hi + 0.5) / 4096.0, x - hi);
+}
+
+/// Samples a unit micronormal `m` of the filtered lobe with density `D(m) m_z` per steradian
+/// (KHPL16 eq. 2; the Rust `NdfSampling::sample_normal`). Exact: the filtered slope is the sum
+/// of two independent slopes (module docs: the convolution), a GGX slope of roughness `A_c`,
+/// `B t` with `B` its Cholesky factor (`sampling::warp`) and `|t|^2 = u1 / (1 - u1)` (the
+/// inverse radial CDF of unit-roughness GGX, Walter et al. 2007 eq. 35), and a kernel slope
+/// `N(0, Sigma)` by Box-Muller along the kernel's principal axes (the eigenvector of the
+/// larger eigenvalue from the row without cancellation, as Rust). The four uniform numbers are
+/// the high and low halves of the bits of `u.x` (`u1`, `u3`) and `u.y` (`u2`, `u4`), 12 bits
+/// each ([`split`]). `u` is clamped to `[0, 1 - 2^-24]`. Always `m_z > 0` (kept at the
+/// smallest normal f32 where the slope leaves the f32 range).
+fn filter_gaussian_ggx_sample_normal(g: filter_gaussian_ggx_GaussianFilteredGgx, u: vec2<f32>) -> vec3<f32> {
+    let a = filter_gaussian_ggx_split(sampling_clamp_unit(u.x));
+    let b = filter_gaussian_ggx_split(sampling_clamp_unit(u.y));
+    // The GGX slope B t.
+    let t = sqrt(a.x / (1.0 - a.x)) * math_sincos_turns(b.x);
+    let l = sampling_warp(g.a);
+    let gs = vec2<f32>(l.l_xx * t.x, l.l_yx * t.x + l.l_yy * t.y);
+    // The kernel slope: -2 ln(1 - u3) as ln_1p below 1/2 (no cancellation), exact above.
+    let e = select(-math_ln(1.0 - a.y), math_ln_1p(a.y / (1.0 - a.y)), a.y < 0.5);
+    let y = sqrt(2.0 * e) * math_sincos_turns(b.y);
+    let k = g.k;
+    let ev = kernel_covariance_eigenvalues(k);
+    let khalf = 0.5 * (k.s_xx - k.s_yy);
+    let krad = math_hypot(khalf, k.s_xy);
+    var ax = vec2<f32>(1.0, 0.0);
+    if krad > 0.0 {
+        let w = select(vec2<f32>(k.s_xy, krad - khalf), vec2<f32>(krad + khalf, k.s_xy), khalf >= 0.0);
+        ax = w / math_hypot(w.x, w.y);
+    }
+    let kk = vec2<f32>(sqrt(ev.y) * y.x, sqrt(ev.x) * y.y);
+    let s = gs + vec2<f32>(ax.x * kk.x - ax.y * kk.y, ax.y * kk.x + ax.x * kk.y);
+    let n = sampling_normalize_scaled(vec3<f32>(-s, 1.0));
+    return vec3<f32>(n.xy, max(n.z, math_F32_MIN_POSITIVE));
+}
+
+/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
+/// `m_z <= 0`.
+fn filter_gaussian_ggx_normal_pdf(g: filter_gaussian_ggx_GaussianFilteredGgx, m: vec3<f32>) -> f32 {
+    return select(0.0, filter_gaussian_ggx_d(g, m) * m.z, m.z > 0.0);
 }
 
 // ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
@@ -3129,166 +3339,6 @@ fn filter_presets_preset(i: u32) -> filter_deferred_KernelConvention {
         case 10u: { return filter_presets_BABYLON; }
         default: { return filter_presets_THREE_JS; }
     }
-}
-
-// ---- filtered_ndf::sampling (shaders/sampling/mod.wgsl) ----
-// Importance sampling of GGX with a roughness matrix, and the pdfs for multiple importance
-// sampling, mirroring `src/.../sampling/mod.rs` (GGX, `NdfSampling`). Densities per
-// steradian: `D(m) m_z` (KHPL16 eq. 2) and the visible normals
-// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014 eq. 16); the reflected direction
-// `wi = reflect(wo, m)` has `D_wo(m) / (4 wo.m)` (Walter et al. 2007 eq. 14).
-//
-// One linear warp for every roughness: with `A = L L^T` (lower Cholesky factor), slopes
-// `s = L t` map the unit-roughness NDF of `t` to the NDF of `A`; the visible normals of `A`
-// seen from `wo` are the image of the unit-roughness visible normals seen from
-// `normalize(L^T wo_xy, wo_z)` (Heitz and d'Eon 2014 section 4; the same algebra for any
-// `L`). The unit-roughness GGX sampler is the spherical caps of Dupuy and Benyoub 2023
-// (listing 3). The angle `2 pi u` goes through `math::sincos_turns` (WGSL allows the driver
-// `sin`/`cos` an absolute `2^-11`).
-//
-// Out of domain: `wo_z <= 0` has no visible normal: the samplers return the zero vector
-// (the Rust `None`) and the pdfs 0. `u` is clamped to `[0, 1 - 2^-24]`. `wo` need not be
-// normalised; `m` must be a unit vector for the pdfs.
-
-/// The largest f32 below 1: the upper clamp of the uniform numbers.
-const sampling_ONE_MINUS_EPS: f32 = 0.99999994;
-
-/// The lower Cholesky factor `L = [[l_xx, 0], [l_yx, l_yy]]` of a roughness, `A = L L^T`.
-struct sampling_Warp {
-    /// `sqrt(a11)`.
-    l_xx: f32,
-    /// `a12 / sqrt(a11)`.
-    l_yx: f32,
-    /// `sqrt(det A) / sqrt(a11)`.
-    l_yy: f32,
-}
-
-/// The warp of a roughness matrix: the Cholesky factor of the clamped matrix `A_c` that the
-/// density evaluates (`matrix.wgsl`; entries from its eigenbasis, `sqrt(det A_c)` as stored),
-/// so that the sampled lobe is the one `D` describes.
-fn sampling_warp(r: ndf_roughness_matrix_RoughnessMatrix) -> sampling_Warp {
-    let e = ndf_roughness_matrix_clamped_entries(r);
-    let l_xx = sqrt(e.x);
-    return sampling_Warp(l_xx, e.y / l_xx, r.sqrt_det / l_xx);
-}
-
-/// `v / |v|` after scaling by the largest component (no overflow or underflow of the
-/// squares). `v` non-zero.
-fn sampling_normalize_scaled(v: vec3<f32>) -> vec3<f32> {
-    let w = v / max(max(abs(v.x), abs(v.y)), abs(v.z));
-    return w / length(w);
-}
-
-/// `(L^T w_xy, w_z)`: a view direction into the unit-roughness space (unnormalised).
-fn sampling_stretch(l: sampling_Warp, w: vec3<f32>) -> vec3<f32> {
-    return vec3<f32>(l.l_xx * w.x + l.l_yx * w.y, l.l_yy * w.y, w.z);
-}
-
-/// `normalize(L n_xy, n_z)`: a unit-roughness normal back to roughness `A`.
-fn sampling_unstretch(l: sampling_Warp, n: vec3<f32>) -> vec3<f32> {
-    return sampling_normalize_scaled(vec3<f32>(l.l_xx * n.x, l.l_yx * n.x + l.l_yy * n.y, n.z));
-}
-
-/// A uniform number clamped into `[0, 1 - 2^-24]` (negative values to 0).
-fn sampling_clamp_unit(u: f32) -> f32 {
-    return select(0.0, min(u, sampling_ONE_MINUS_EPS), u >= 0.0);
-}
-
-/// Mirror reflection of `wo` about the unit normal `m`: `2 (wo.m) m - wo` (Walter et al.
-/// 2007 eq. 13).
-fn sampling_reflect(wo: vec3<f32>, m: vec3<f32>) -> vec3<f32> {
-    return 2.0 * dot(wo, m) * m - wo;
-}
-
-/// Unit-roughness GGX visible normal by spherical caps (Dupuy and Benyoub 2023): a uniform
-/// point `c` on the cap `z >= -wi_z` of the unit sphere, returned as `c + wi` (unnormalised).
-fn sampling_ggx_standard_visible(wi: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
-    let cs = math_sincos_turns(u.x);
-    let z = (1.0 - u.y) * (1.0 + wi.z) - wi.z;
-    let sin_theta = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
-    return vec3<f32>(sin_theta * cs, z) + wi;
-}
-
-/// Samples a visible micronormal `m` of GGX with roughness `r` from `u` in `[0, 1)^2`, with
-/// density `D_wo(m)` per steradian (Heitz 2014 eq. 16). The zero vector if `wo_z <= 0` (or
-/// the view is grazing to within the f32 range); otherwise a unit `m` with `m_z > 0` and
-/// `wo.m > 0` (should rounding break either, the lobe centre `unstretch(wi)` is returned,
-/// as in Rust).
-fn sampling_sample_visible_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
-    if !(wo.z > 0.0) {
-        return vec3<f32>(0.0);
-    }
-    let l = sampling_warp(r);
-    let wi = sampling_normalize_scaled(sampling_stretch(l, sampling_normalize_scaled(wo)));
-    if !(wi.z > 0.0) {
-        return vec3<f32>(0.0);
-    }
-    let n = sampling_ggx_standard_visible(wi, vec2<f32>(sampling_clamp_unit(u.x), sampling_clamp_unit(u.y)));
-    let m = sampling_unstretch(l, n);
-    if m.z > 0.0 && dot(wo, m) > 0.0 {
-        return m;
-    }
-    let c = sampling_unstretch(l, wi);
-    return select(vec3<f32>(0.0), c, c.z > 0.0);
-}
-
-/// Samples `m` with density `D(m) m_z` per steradian (the NDF itself): in the unit-roughness
-/// space `|t|^2 = u1 / (1 - u1)`, `n = (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))`,
-/// `phi = 2 pi u2`, then warped by `L`. Always `m_z > 0`.
-fn sampling_sample_normal(r: ndf_roughness_matrix_RoughnessMatrix, u: vec2<f32>) -> vec3<f32> {
-    let u1 = sampling_clamp_unit(u.x);
-    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
-    let n = vec3<f32>(sqrt(u1) * cs, sqrt(1.0 - u1));
-    return sampling_unstretch(sampling_warp(r), n);
-}
-
-/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
-/// `m_z <= 0`.
-fn sampling_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
-    return select(0.0, ndf_ggx_d_matrix(r, m) * m.z, m.z > 0.0);
-}
-
-/// The visible-normal density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian
-/// (Heitz 2014 eq. 16) for a unit `m`; 0 for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
-fn sampling_visible_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    let wom = dot(wo, m);
-    if !(wo.z > 0.0) || !(wom > 0.0) {
-        return 0.0;
-    }
-    let v = wom * ndf_ggx_d_matrix(r, m) / (wo.z * (1.0 + ndf_ggx_lambda_matrix(r, wo)));
-    return select(0.0, v, v <= math_F32_MAX);
-}
-
-/// The density per steradian of `wi = reflect(wo, m)` for the unit half vector `m` itself:
-/// `G1(wo) D(m) / (4 wo_z)` (Walter et al. 2007 eq. 14, `wo` normalised here); 0 for
-/// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
-fn sampling_reflection_pdf_from_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    if !(wo.z > 0.0) {
-        return 0.0;
-    }
-    let o = sampling_normalize_scaled(wo);
-    if !(dot(o, m) > 0.0) {
-        return 0.0;
-    }
-    let v = ndf_ggx_d_matrix(r, m) / (4.0 * o.z * (1.0 + ndf_ggx_lambda_matrix(r, o)));
-    return select(0.0, v, v <= math_F32_MAX);
-}
-
-/// The density per steradian of `wi` when `m` is drawn by [`sample_visible_normal`] and
-/// `wi = reflect(wo, m)`: [`reflection_pdf_from_normal`] with `m = normalize(wo + wi)`
-/// (both normalised first). 0 for `wo_z <= 0` and for `wi = -wo`. The recomputed half vector
-/// carries a direction error of about `eps / (2 wo.m)`: for a sampled direction prefer
-/// [`reflection_pdf_from_normal`] with the sampled `m`.
-fn sampling_reflection_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
-    if !(wo.z > 0.0) {
-        return 0.0;
-    }
-    let h = sampling_normalize_scaled(wo) + sampling_normalize_scaled(wi);
-    let len = length(h);
-    if !(len > 0.0) {
-        return 0.0;
-    }
-    return sampling_reflection_pdf_from_normal(r, wo, h / len);
 }
 
 // ---- filtered_ndf::filter::rect::sample (shaders/filter/rect/sample.wgsl) ----

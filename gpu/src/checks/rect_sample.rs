@@ -110,7 +110,6 @@ pub fn all() -> Vec<Check> {
         let center = DVec2::new(-md.x / md.z, -md.y / md.z);
         let t_d = d_rect_ulps(r, center, hd);
         let t_l = lambda_rect_ulps(r, hd, wd);
-        let mut input = input;
         input.extend(m32);
         pd.case(
             input,
@@ -118,10 +117,7 @@ pub fn all() -> Vec<Check> {
                 rect::normal_pdf_rect(r, hd, md),
                 rect::visible_normal_pdf_rect(r, hd, wd, md),
             ],
-            vec![
-                Tol::ulps(t_d + 2.0),
-                Tol::ulps(t_d + t_l + 2.0 / wom + 4.0),
-            ],
+            vec![Tol::ulps(t_d + 2.0), Tol::ulps(t_d + t_l + 2.0 / wom + 4.0)],
         );
     }
     vec![sn, pd]

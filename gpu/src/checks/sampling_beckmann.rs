@@ -33,10 +33,8 @@
 
 use super::sampling::{Case, cases, err_q, warp_conditioning, warp_of};
 use super::{Check, EPS, Tol, ndf};
-use crate::reference::{
-    Beckmann, DVec3, NdfSampling, Roughness, SplitMix64, sampling, v2, v3,
-};
 use crate::reference::math::Real;
+use crate::reference::{Beckmann, DVec3, NdfSampling, Roughness, SplitMix64, sampling, v2, v3};
 
 /// The f64 quantile of the crate (`f64::sampling::beckmann::visible_slope_quantile`).
 fn quantile(c: f64, s: f64, u: f64) -> f64 {
@@ -52,10 +50,7 @@ fn k_terms(t: f64, c: f64, s: f64) -> (f64, f64) {
         let k = 0.5 * (c * Real::erfc(-t) + g);
         (k, k)
     } else {
-        (
-            0.5 * (c * Real::erfc(t) - g),
-            0.5 * (c * Real::erfc(t) + g),
-        )
+        (0.5 * (c * Real::erfc(t) - g), 0.5 * (c * Real::erfc(t) + g))
     }
 }
 
@@ -85,18 +80,17 @@ fn quantile_tol(c: f64, s: f64, u: f64, dtheta: f64) -> f64 {
             (k_hi - kx, ulps(x) * mx + 2.0 * ulps(hi) * (c + mh))
         };
         let v = 1.0 - u;
-        let delta = if r > 0.0 {
-            (mags / r + 4.0) * EPS
-        } else {
-            1.0
-        };
+        let delta = if r > 0.0 { (mags / r + 4.0) * EPS } else { 1.0 };
         (q(1.0 - v * (1.0 + delta)) - x)
             .abs()
             .max((q(1.0 - v * (1.0 - delta)) - x).abs())
     };
     let th = s.atan2(c);
     let h = 1e-6;
-    let (a, b) = ((th - h).max(0.0), (th + h).min(core::f64::consts::FRAC_PI_2));
+    let (a, b) = (
+        (th - h).max(0.0),
+        (th + h).min(core::f64::consts::FRAC_PI_2),
+    );
     let dxdt = if b > a {
         (quantile(b.cos(), b.sin(), u) - quantile(a.cos(), a.sin(), u)) / (b - a)
     } else {
@@ -139,7 +133,11 @@ fn visible_tol(c: &Case) -> f64 {
     let dy = quantile_tol(1.0, 0.0, u2, 0.0);
     let t = (cphi * x - sphi * y, sphi * x + cphi * y);
     let tl = t.0.hypot(t.1);
-    let dphi = if s > 0.0 { (2.0 * d_wi / s).min(2.0) } else { 0.0 };
+    let dphi = if s > 0.0 {
+        (2.0 * d_wi / s).min(2.0)
+    } else {
+        0.0
+    };
     let dt = dx + dy + tl * (dphi + 4.0 * EPS);
     let n = DVec3::new(-t.0, -t.1, 1.0);
     warp_conditioning(mm, n) * dt + 8.0 * EPS
