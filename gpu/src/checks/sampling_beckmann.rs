@@ -34,7 +34,9 @@
 use super::sampling::{Case, cases, err_q, warp_conditioning, warp_of};
 use super::{Check, EPS, Tol, ndf};
 use crate::reference::math::Real;
-use crate::reference::{Beckmann, DVec3, NdfSampling, Roughness, SplitMix64, sampling, v2, v3};
+use crate::reference::{
+    Beckmann, DVec3, NdfSampling, Roughness, RoughnessMatrix, SplitMix64, sampling, v2, v3,
+};
 
 /// The f64 quantile of the crate (`f64::sampling::beckmann::visible_slope_quantile`).
 fn quantile(c: f64, s: f64, u: f64) -> f64 {
@@ -114,8 +116,14 @@ fn beckmann_cases(n: usize) -> Vec<Case> {
 
 /// The bound on the sampled visible normal (module docs), per component.
 fn visible_tol(c: &Case) -> f64 {
-    let mm = warp_of(&c.m);
-    let wo = v3(c.wo).normalize();
+    sample_tol_of(&c.m, v3(c.wo), c.u)
+}
+
+/// [`visible_tol`] for the (f64) roughness `m`, the view `wo` and the uniform numbers `u` (as
+/// the shader reads them; the oracle's GPU backend uses it too).
+pub fn sample_tol_of(m: &RoughnessMatrix, wo: DVec3, u: [f32; 2]) -> f64 {
+    let mm = warp_of(m);
+    let wo = wo.normalize();
     let st = mm.transpose() * wo;
     let wi = st / st.length();
     let k_in = warp_conditioning(mm.transpose(), wo);
@@ -126,7 +134,7 @@ fn visible_tol(c: &Case) -> f64 {
     } else {
         (1.0, 0.0)
     };
-    let (u1, u2) = (f64::from(c.u[0]), f64::from(c.u[1]));
+    let (u1, u2) = (f64::from(u[0]), f64::from(u[1]));
     let x = quantile(wi.z, s, u1);
     let y = quantile(1.0, 0.0, u2);
     let dx = quantile_tol(wi.z, s, u1, 2.0 * d_wi);
