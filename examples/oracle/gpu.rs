@@ -46,6 +46,7 @@ const IMPORTS: &str = "#import filtered_ndf::math
 #import filtered_ndf::filter::presets
 #import filtered_ndf::filter::method
 #import filtered_ndf::sampling
+#import filtered_ndf::sampling::beckmann as beckmann_sampling
 
 // A roughness in 5 slots: [form, p0, p1, p2, p3], form 0 isotropic (alpha), 1 axis-aligned
 // (ax, ay), 2 matrix (a11, a12, a22, det A from the host in f64 of the f32 entries).
@@ -211,15 +212,25 @@ y(0u, v);",
 
 const PDF: GpuKernel = GpuKernel {
     name: "pdf",
-    body: "y(0u, sampling::visible_normal_pdf(oracle_matrix(0u), x3(5u), x3(8u)));",
-    n_in: 11,
+    body: "let r = oracle_matrix(0u);
+if x(11u) == 1.0 {
+    y(0u, beckmann_sampling::visible_normal_pdf(r, x3(5u), x3(8u)));
+} else {
+    y(0u, sampling::visible_normal_pdf(r, x3(5u), x3(8u)));
+}",
+    n_in: 12,
     n_out: 1,
 };
 
 const SAMPLE: GpuKernel = GpuKernel {
     name: "sample",
-    body: "y3(0u, sampling::sample_visible_normal(oracle_matrix(0u), x3(5u), x2(8u)));",
-    n_in: 10,
+    body: "let r = oracle_matrix(0u);
+if x(10u) == 1.0 {
+    y3(0u, beckmann_sampling::sample_visible_normal(r, x3(5u), x2(8u)));
+} else {
+    y3(0u, sampling::sample_visible_normal(r, x3(5u), x2(8u)));
+}",
+    n_in: 11,
     n_out: 3,
 };
 
@@ -595,16 +606,12 @@ fn job(v: &Value) -> Result<Job, String> {
         "g1" => ndf(3.0, &["w", "m"]),
         "g2" => ndf(4.0, &["i", "o", "m"]),
         "pdf" | "sample" => {
-            if dist(v)? == Dist::Beckmann {
-                return Err(no_shader(
-                    op,
-                    "the shaders sample GGX only: no WGSL Beckmann sampler",
-                ));
-            }
+            let d = dist_slot(dist(v)?);
             let mut input = roughness_slots(roughness_arg(v)?);
             push3(&mut input, array::<3>(v, "o")?);
             if op == "pdf" {
                 push3(&mut input, array::<3>(v, "m")?);
+                input.push(d);
                 Ok(Job {
                     kernel: kernel_index("pdf"),
                     input,
@@ -612,7 +619,7 @@ fn job(v: &Value) -> Result<Job, String> {
                 })
             } else {
                 let u = array::<2>(v, "u")?;
-                input.extend([f(u[0]), f(u[1])]);
+                input.extend([f(u[0]), f(u[1]), d]);
                 Ok(Job {
                     kernel: kernel_index("sample"),
                     input,

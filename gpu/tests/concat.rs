@@ -12,7 +12,9 @@ fn concatenated_file_matches_composition() {
     all.extend(checks::footprint::all());
     all.extend(checks::filters::all());
     all.extend(checks::sampling::all());
+    all.extend(checks::sampling_beckmann::all());
     all.extend(checks::rect::all());
+    all.extend(checks::rect_sample::all());
     for c in &all {
         let k = Kernel {
             imports: &c.imports,

@@ -31,8 +31,18 @@ fn sampling() {
 }
 
 #[test]
+fn sampling_beckmann() {
+    assert_group("sampling_beckmann", &checks::sampling_beckmann::all());
+}
+
+#[test]
 fn rect() {
     assert_group("rect", &checks::rect::all());
+}
+
+#[test]
+fn rect_sample() {
+    assert_group("rect_sample", &checks::rect_sample::all());
 }
 
 #[test]

@@ -38,6 +38,11 @@ struct ndf_roughness_axis_aligned_AxisAligned {
     vec2 alpha;
     vec2 inv_alpha_sq;
 };
+struct sampling_Warp {
+    float l_xx;
+    float l_yx;
+    float l_yy;
+};
 struct filter_gaussian_ggx_GaussianFilteredGgx {
     ndf_roughness_matrix_RoughnessMatrix a;
     vec2 inv_sqrt_l;
@@ -94,11 +99,6 @@ struct filter_method_RectFilteredGgx {
 struct filter_method_Proxy {
     kernel_clamp_ClampRules clamps;
 };
-struct sampling_Warp {
-    float l_xx;
-    float l_yx;
-    float l_yy;
-};
 const float math_PI = 3.1415927;
 const float math_HALF_PI = 1.5707964;
 const float math_QUARTER_PI = 0.7853982;
@@ -145,6 +145,7 @@ const float filter_gaussian_ggx_quad_S_MAX = 0.25;
 const float filter_gaussian_ggx_quad_S_COEF = 0.25;
 const float filter_gaussian_ggx_quad_S_EPS = 1e-8;
 const uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
+const float sampling_ONE_MINUS_EPS = 0.99999994;
 const float footprint_jacobian_HZ_MIN = 1e-6;
 const float footprint_SIGMA_PIXEL = 0.5;
 const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
@@ -178,7 +179,10 @@ const filter_deferred_KernelConvention filter_presets_O3DE = filter_deferred_Ker
 const filter_deferred_KernelConvention filter_presets_UNREAL = filter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 const filter_deferred_KernelConvention filter_presets_BABYLON = filter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 const filter_deferred_KernelConvention filter_presets_THREE_JS = filter_deferred_KernelConvention(2u, 3u, 1.0, 1.0, 0.0, 3.4028235e38, 0u, true, 0.0525);
-const float sampling_ONE_MINUS_EPS = 0.99999994;
+const float sampling_beckmann_X_MAX = 9.0;
+const uint sampling_beckmann_MAX_ITERATIONS = 64u;
+const float sampling_beckmann_INV_SQRT_PI = 0.5641896;
+const float sampling_beckmann_EPS = 1.1920929e-7;
 
 layout(location = 0) out vec4 _fs2p_location0;
 
@@ -196,11 +200,11 @@ float math_atan(float x) {
     t = (shift ? ((_e12 - 1.0) / (_e15 + 1.0)) : _e11);
     float _e20 = t;
     float _e21 = t;
-    float z_1 = (_e20 * _e21);
-    float p_3 = ((((((((-0.06451928 * z_1) + 0.10743731) * z_1) - 0.14263956) * z_1) + 0.1999954) * z_1) - 0.3333333);
+    float z_2 = (_e20 * _e21);
+    float p_5 = ((((((((-0.06451928 * z_2) + 0.10743731) * z_2) - 0.14263956) * z_2) + 0.1999954) * z_2) - 0.3333333);
     float _e36 = t;
     float _e37 = t;
-    r = (_e36 + ((_e37 * z_1) * p_3));
+    r = (_e36 + ((_e37 * z_2) * p_5));
     float _e42 = r;
     float _e44 = r;
     r = (shift ? (math_QUARTER_PI + _e44) : _e42);
@@ -215,20 +219,20 @@ float math_atan(float x) {
 vec2 math_sincos_turns(float u) {
     vec2 cs = vec2(0.0);
     float q_4 = roundEven((4.0 * u));
-    float r_67 = (u - (0.25 * q_4));
-    float z_2 = (r_67 * r_67);
-    float s_15 = (r_67 * ((((((((41.47283 * z_2) - 76.69787) * z_2) + 81.6052) * z_2) - 41.3417) * z_2) + 6.2831855));
-    float c_10 = ((((((((59.22017 * z_2) - 85.44285) * z_2) + 64.939316) * z_2) - 19.739208) * z_2) + 1.0);
-    int k_23 = (int(q_4) & 3);
-    cs = vec2(c_10, s_15);
-    if ((k_23 == 1)) {
-        cs = vec2(-(s_15), c_10);
+    float r_75 = (u - (0.25 * q_4));
+    float z_3 = (r_75 * r_75);
+    float s_20 = (r_75 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855));
+    float c_14 = ((((((((59.22017 * z_3) - 85.44285) * z_3) + 64.939316) * z_3) - 19.739208) * z_3) + 1.0);
+    int k_24 = (int(q_4) & 3);
+    cs = vec2(c_14, s_20);
+    if ((k_24 == 1)) {
+        cs = vec2(-(s_20), c_14);
     } else {
-        if ((k_23 == 2)) {
-            cs = vec2(-(c_10), -(s_15));
+        if ((k_24 == 2)) {
+            cs = vec2(-(c_14), -(s_20));
         } else {
-            if ((k_23 == 3)) {
-                cs = vec2(s_15, -(c_10));
+            if ((k_24 == 3)) {
+                cs = vec2(s_20, -(c_14));
             }
         }
     }
@@ -237,29 +241,29 @@ vec2 math_sincos_turns(float u) {
 }
 
 float math_hypot(float x_1, float y) {
-    float m_36 = max(abs(x_1), abs(y));
-    if ((m_36 <= 0.0)) {
+    float m_42 = max(abs(x_1), abs(y));
+    if ((m_42 <= 0.0)) {
         return 0.0;
     }
-    float a_17 = (x_1 / m_36);
-    float b_4 = (y / m_36);
-    return (m_36 * sqrt(((a_17 * a_17) + (b_4 * b_4))));
+    float a_17 = (x_1 / m_42);
+    float b_4 = (y / m_42);
+    return (m_42 * sqrt(((a_17 * a_17) + (b_4 * b_4))));
 }
 
 float math_exp(float x_2) {
     float xc = clamp(x_2, -87.0, 88.0);
     float n_6 = roundEven((xc * math_LOG2_E));
-    float r_68 = ((xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO));
-    float r2_ = (r_68 * r_68);
-    float p_4 = (((1.0 + r_68) + ((0.4999999 + (0.1666642 * r_68)) * r2_)) + (((0.041668225 + (0.008374816 * r_68)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
-    float s_16 = uintBitsToFloat((uint((int(n_6) + 127)) << 23u));
-    return ((x_2 >= -87.0) ? (p_4 * s_16) : 0.0);
+    float r_76 = ((xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO));
+    float r2_ = (r_76 * r_76);
+    float p_6 = (((1.0 + r_76) + ((0.4999999 + (0.1666642 * r_76)) * r2_)) + (((0.041668225 + (0.008374816 * r_76)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
+    float s_21 = uintBitsToFloat((uint((int(n_6) + 127)) << 23u));
+    return ((x_2 >= -87.0) ? (p_6 * s_21) : 0.0);
 }
 
 float math_atanh2_(float z) {
     float z2_3 = (z * z);
-    float s_17 = (((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3);
-    return ((2.0 * z) + ((2.0 * z) * s_17));
+    float s_22 = (((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3);
+    return ((2.0 * z) + ((2.0 * z) * s_22));
 }
 
 float math_ln(float x_3) {
@@ -339,14 +343,14 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     float b_6 = (c_3.s_xy / scale);
     float e_3 = (c_3.s_yy / scale);
     float d_1 = (0.5 * (a_18 - e_3));
-    float r_69 = sqrt(((d_1 * d_1) + (b_6 * b_6)));
-    float lmax_1 = (((0.5 * (a_18 + e_3)) + r_69) * scale);
+    float r_77 = sqrt(((d_1 * d_1) + (b_6 * b_6)));
+    float lmax_1 = (((0.5 * (a_18 + e_3)) + r_77) * scale);
     if ((lmax_1 <= max_eig)) {
         return c_3;
     }
     float lmin_1 = max((c_3.det / lmax_1), 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = (r_69 < 1e-18);
+        local = (r_77 < 1e-18);
     } else {
         local = true;
     }
@@ -354,10 +358,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     if (_e46) {
         return kernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
     }
-    float p_5 = (r_69 + abs(d_1));
-    float q_5 = ((p_5 > 0.0) ? ((b_6 * b_6) / p_5) : 0.0);
-    vec2 ee = ((d_1 >= 0.0) ? vec2(p_5, q_5) : vec2(q_5, p_5));
-    float inv_1 = (1.0 / (2.0 * r_69));
+    float p_7 = (r_77 + abs(d_1));
+    float q_5 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
+    vec2 ee = ((d_1 >= 0.0) ? vec2(p_7, q_5) : vec2(q_5, p_7));
+    float inv_1 = (1.0 / (2.0 * r_77));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_6 * inv_1);
     float p22_ = (ee.y * inv_1);
@@ -429,19 +433,19 @@ float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5) {
 
 float filter_deferred_norm_eval(uint norm, vec3 dn_u, vec3 dn_v) {
     float a_19 = dot(dn_u, dn_u);
-    float c_11 = dot(dn_v, dn_v);
+    float c_15 = dot(dn_v, dn_v);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
-        return max(a_19, c_11);
+        return max(a_19, c_15);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        float _e11 = filter_deferred_max_eigenvalue(a_19, dot(dn_u, dn_v), c_11);
+        float _e11 = filter_deferred_max_eigenvalue(a_19, dot(dn_u, dn_v), c_15);
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        vec3 m_37 = max(abs(dn_u), abs(dn_v));
-        return max(max(m_37.x, m_37.y), m_37.z);
+        vec3 m_43 = max(abs(dn_u), abs(dn_v));
+        return max(max(m_43.x, m_43.y), m_43.z);
     }
-    return (a_19 + c_11);
+    return (a_19 + c_15);
 }
 
 float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_1) {
@@ -487,8 +491,8 @@ float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha
 
 kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_3, vec3 dn_v_3, float sigma) {
     float sigma_sq = (sigma * sigma);
-    vec3 x_8 = (cross(dn_u_3, dn_v_3) * sigma_sq);
-    return kernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_8, x_8));
+    vec3 x_12 = (cross(dn_u_3, dn_v_3) * sigma_sq);
+    return kernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_12, x_12));
 }
 
 float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel) {
@@ -516,9 +520,9 @@ vec2 ndf_roughness_matrix_clamped_eigenvalues(vec2 l, float det, float tau) {
     if ((det >= tau)) {
         return l;
     }
-    float h_20 = (0.5 * (l.x + l.y));
+    float h_21 = (0.5 * (l.x + l.y));
     float gap = (tau - det);
-    float t_11 = (gap / (h_20 + sqrt(((h_20 * h_20) + gap))));
+    float t_11 = (gap / (h_21 + sqrt(((h_21 * h_21) + gap))));
     float l1_ = (l.x + t_11);
     return vec2(l1_, (tau / l1_));
 }
@@ -575,9 +579,9 @@ float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5) {
 }
 
 vec3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, vec2 l_2) {
-    float c_12 = r_6.axis.x;
-    float s_18 = r_6.axis.y;
-    return vec3((((l_2.x * c_12) * c_12) + ((l_2.y * s_18) * s_18)), (((l_2.x - l_2.y) * c_12) * s_18), (((l_2.x * s_18) * s_18) + ((l_2.y * c_12) * c_12)));
+    float c_16 = r_6.axis.x;
+    float s_23 = r_6.axis.y;
+    return vec3((((l_2.x * c_16) * c_16) + ((l_2.y * s_23) * s_23)), (((l_2.x - l_2.y) * c_16) * s_23), (((l_2.x * s_23) * s_23) + ((l_2.y * c_16) * c_16)));
 }
 
 vec3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7) {
@@ -600,10 +604,10 @@ float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10
 
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3) {
     vec3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_13 = a_2.axis.x;
-    float s_19 = a_2.axis.y;
-    float k1_1 = max(((((c_13 * c_13) * k_3.s_xx) + (((2.0 * c_13) * s_19) * k_3.s_xy)) + ((s_19 * s_19) * k_3.s_yy)), 0.0);
-    float k2_1 = max(((((s_19 * s_19) * k_3.s_xx) - (((2.0 * c_13) * s_19) * k_3.s_xy)) + ((c_13 * c_13) * k_3.s_yy)), 0.0);
+    float c_17 = a_2.axis.x;
+    float s_24 = a_2.axis.y;
+    float k1_1 = max(((((c_17 * c_17) * k_3.s_xx) + (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((s_24 * s_24) * k_3.s_yy)), 0.0);
+    float k2_1 = max(((((s_24 * s_24) * k_3.s_xx) - (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((c_17 * c_17) * k_3.s_yy)), 0.0);
     float _e38 = ndf_roughness_matrix_determinant(a_2);
     float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * max(k_3.det, 0.0)));
     ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
@@ -723,8 +727,8 @@ float ndf_ggx_lambda_of(float q_1, float abs_wz) {
     if (_e21) {
         return math_F32_MAX;
     }
-    float r_70 = sqrt(((abs_wz * abs_wz) + q_1));
-    return (q_1 / ((2.0 * abs_wz) * (r_70 + abs_wz)));
+    float r_78 = sqrt(((abs_wz * abs_wz) + q_1));
+    return (q_1 / ((2.0 * abs_wz) * (r_78 + abs_wz)));
 }
 
 float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_19, vec2 s_3) {
@@ -839,10 +843,10 @@ float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
 float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3) {
     bool local_7 = false;
     float z2_4 = (m_z_1 * m_z_1);
-    float x_9 = (q_xy_1 / z2_4);
-    float k_24 = (1.0 / (((math_PI * sqrt_det_3) * z2_4) * z2_4));
+    float x_13 = (q_xy_1 / z2_4);
+    float k_25 = (1.0 / (((math_PI * sqrt_det_3) * z2_4) * z2_4));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_9, k_24, ln_k_1);
+    float _e21 = ndf_beckmann_exp_neg_times(x_13, k_25, ln_k_1);
     if ((m_z_1 > 0.0)) {
         local_7 = (_e21 <= math_F32_MAX);
     } else {
@@ -908,8 +912,8 @@ float ndf_beckmann_lambda_of(float q_3, float abs_wz_1) {
     float _e87 = p;
     p = ((_e87 * t_14) + 1.0631379);
     float _e91 = p;
-    float k_25 = (_e91 / ((2.0 * a_21) + 1.0));
-    return min(((exp((-(a_21) * a_21)) * k_25) / ((3.5449078 * a_21) * (a_21 + k_25))), math_F32_MAX);
+    float k_26 = (_e91 / ((2.0 * a_21) + 1.0));
+    return min(((exp((-(a_21) * a_21)) * k_26) / ((3.5449078 * a_21) * (a_21 + k_26))), math_F32_MAX);
 }
 
 float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_34, vec2 s_6) {
@@ -1217,8 +1221,8 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
                     float a_22 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
                     uint _e91 = jj;
                     float _e95 = v_3;
-                    float x_10 = ((1.0 * (kb + float(_e91))) - ((_e95 - 1.0) * a_22));
-                    float _e100 = math_exp(x_10);
+                    float x_14 = ((1.0 * (kb + float(_e91))) - ((_e95 - 1.0) * a_22));
+                    float _e100 = math_exp(x_14);
                     last = ((_e100 * sqrt(ip1_1)) * sqrt(ip2_1));
                     float _e105 = part;
                     float _e106 = last;
@@ -1317,8 +1321,8 @@ float filter_gaussian_ggx_quad_h_of(float y_2) {
     float r_49 = 0.0;
     float a_23 = abs(y_2);
     if ((a_23 > 1.0)) {
-        float i_11 = (1.0 / a_23);
-        r_49 = (a_23 * sqrt((1.0 + (i_11 * i_11))));
+        float i_12 = (1.0 / a_23);
+        r_49 = (a_23 * sqrt((1.0 + (i_12 * i_12))));
     } else {
         r_49 = sqrt((1.0 + (y_2 * y_2)));
     }
@@ -1348,12 +1352,12 @@ float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz) {
         {
             uint _e16 = k_10;
             float _e17 = filter_gaussian_ggx_quad_hermite_node(_e16);
-            float x_11 = (fs * _e17);
+            float x_15 = (fs * _e17);
             float _e19 = acc_1;
             uint _e20 = k_10;
             float _e21 = filter_gaussian_ggx_quad_hermite_weight(_e20);
-            float _e23 = filter_gaussian_ggx_quad_h_of((z0_ - x_11));
-            float _e25 = filter_gaussian_ggx_quad_h_of((z0_ + x_11));
+            float _e23 = filter_gaussian_ggx_quad_h_of((z0_ - x_15));
+            float _e25 = filter_gaussian_ggx_quad_h_of((z0_ + x_15));
             acc_1 = (_e19 + (_e21 * (_e23 + _e25)));
         }
     }
@@ -1404,15 +1408,15 @@ float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, f
                 {
                     uint _e32 = ch_1;
                     uint _e36 = jj_1;
-                    float k_26 = float(((first + (_e32 * 8u)) + _e36));
-                    float _e43 = math_exp((((sgn * 0.5) * h) * k_26));
+                    float k_27 = float(((first + (_e32 * 8u)) + _e36));
+                    float _e43 = math_exp((((sgn * 0.5) * h) * k_27));
                     float it = (1.0 / _e43);
-                    float x_12 = (((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it));
-                    float arg = ((-(x_12) * x_12) * i2s2_);
+                    float x_16 = (((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it));
+                    float arg = ((-(x_16) * x_16) * i2s2_);
                     float it2_ = (it * it);
                     float _e58 = math_exp(arg);
                     fl = ((arg > -87.0) ? (_e58 * (1.0 + ((e2_ * it2_) * it2_))) : 0.0);
-                    xl = x_12;
+                    xl = x_16;
                     float _e68 = part_1;
                     float _e69 = fl;
                     part_1 = (_e68 + _e69);
@@ -1446,14 +1450,14 @@ float filter_gaussian_ggx_quad_lambda_sinh(float qa_1, float qs_1, float oz_1, f
     float root = (oz_1 + sqrt((qa_1 + (oz_1 * oz_1))));
     float e0_1 = (root / rq_1);
     float ie0_1 = (rq_1 / root);
-    float h_21 = min(filter_gaussian_ggx_quad_S_MAX, (filter_gaussian_ggx_quad_S_COEF * sqrt(sqrt(ds2_))));
+    float h_22 = min(filter_gaussian_ggx_quad_S_MAX, (filter_gaussian_ggx_quad_S_COEF * sqrt(sqrt(ds2_))));
     float i2s2_1 = (0.5 / qs_1);
-    float c_up = ((math_LN_2_ * qs_1) / (rq_1 * h_21));
-    float c_down = ((((2.0 * h_21) + math_LN_2_) * qs_1) / (rq_1 * h_21));
+    float c_up = ((math_LN_2_ * qs_1) / (rq_1 * h_22));
+    float c_down = ((((2.0 * h_22) + math_LN_2_) * qs_1) / (rq_1 * h_22));
     float e2_1 = (ie0_1 * ie0_1);
-    float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_21, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
-    float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_21, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
-    return (_e35 * ((h_21 * qa_1) / (((4.0 * oz_1) * sqrt(qs_1)) * math_SQRT_TAU)));
+    float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
+    float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
+    return (_e35 * ((h_22 * qa_1) / (((4.0 * oz_1) * sqrt(qs_1)) * math_SQRT_TAU)));
 }
 
 float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2) {
@@ -1466,15 +1470,141 @@ float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2) {
     return _e9;
 }
 
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_50) {
+    vec3 _e1 = ndf_roughness_matrix_clamped_entries(r_50);
+    float l_xx = sqrt(_e1.x);
+    return sampling_Warp(l_xx, (_e1.y / l_xx), (r_50.sqrt_det / l_xx));
+}
+
+vec3 sampling_normalize_scaled(vec3 v_4) {
+    vec3 w_24 = (v_4 / vec3(max(max(abs(v_4.x), abs(v_4.y)), abs(v_4.z))));
+    return (w_24 / vec3(length(w_24)));
+}
+
+vec3 sampling_stretch(sampling_Warp l_3, vec3 w_15) {
+    return vec3(((l_3.l_xx * w_15.x) + (l_3.l_yx * w_15.y)), (l_3.l_yy * w_15.y), w_15.z);
+}
+
+vec3 sampling_unstretch(sampling_Warp l_4, vec3 n_1) {
+    vec3 _e14 = sampling_normalize_scaled(vec3((l_4.l_xx * n_1.x), ((l_4.l_yx * n_1.x) + (l_4.l_yy * n_1.y)), n_1.z));
+    return _e14;
+}
+
+float sampling_clamp_unit(float u_1) {
+    return ((u_1 >= 0.0) ? min(u_1, sampling_ONE_MINUS_EPS) : 0.0);
+}
+
+vec3 sampling_reflect(vec3 wo, vec3 m_18) {
+    return (((2.0 * dot(wo, m_18)) * m_18) - wo);
+}
+
+vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_2) {
+    vec2 _e3 = math_sincos_turns(u_2.x);
+    float z_4 = (((1.0 - u_2.y) * (1.0 + wi.z)) - wi.z);
+    float sin_theta_1 = sqrt(clamp((1.0 - (z_4 * z_4)), 0.0, 1.0));
+    return (vec3((sin_theta_1 * _e3), z_4) + wi);
+}
+
+vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_51, vec3 wo_1, vec2 u_3) {
+    bool local_13 = false;
+    if (!((wo_1.z > 0.0))) {
+        return vec3(0.0);
+    }
+    sampling_Warp _e9 = sampling_warp(r_51);
+    vec3 _e10 = sampling_normalize_scaled(wo_1);
+    vec3 _e11 = sampling_stretch(_e9, _e10);
+    vec3 _e12 = sampling_normalize_scaled(_e11);
+    if (!((_e12.z > 0.0))) {
+        return vec3(0.0);
+    }
+    float _e20 = sampling_clamp_unit(u_3.x);
+    float _e22 = sampling_clamp_unit(u_3.y);
+    vec3 _e24 = sampling_ggx_standard_visible(_e12, vec2(_e20, _e22));
+    vec3 _e25 = sampling_unstretch(_e9, _e24);
+    if ((_e25.z > 0.0)) {
+        local_13 = (dot(wo_1, _e25) > 0.0);
+    } else {
+        local_13 = false;
+    }
+    bool _e35 = local_13;
+    if (_e35) {
+        return _e25;
+    }
+    vec3 _e36 = sampling_unstretch(_e9, _e12);
+    return ((_e36.z > 0.0) ? _e36 : vec3(0.0));
+}
+
+vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_52, vec2 u_4) {
+    float _e3 = sampling_clamp_unit(u_4.x);
+    float _e5 = sampling_clamp_unit(u_4.y);
+    vec2 _e6 = math_sincos_turns(_e5);
+    vec3 n_7 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
+    sampling_Warp _e13 = sampling_warp(r_52);
+    vec3 _e14 = sampling_unstretch(_e13, n_7);
+    return _e14;
+}
+
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_53, vec3 m_19) {
+    float _e2 = ndf_ggx_d_matrix(r_53, m_19);
+    return ((m_19.z > 0.0) ? (_e2 * m_19.z) : 0.0);
+}
+
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_54, vec3 wo_2, vec3 m_20) {
+    bool local_14 = false;
+    float wom = dot(wo_2, m_20);
+    if (!(!((wo_2.z > 0.0)))) {
+        local_14 = !((wom > 0.0));
+    } else {
+        local_14 = true;
+    }
+    bool _e15 = local_14;
+    if (_e15) {
+        return 0.0;
+    }
+    float _e17 = ndf_ggx_d_matrix(r_54, m_20);
+    float _e20 = ndf_ggx_lambda_matrix(r_54, wo_2);
+    float v_14 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
+    return ((v_14 <= math_F32_MAX) ? v_14 : 0.0);
+}
+
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_55, vec3 wo_3, vec3 m_21) {
+    if (!((wo_3.z > 0.0))) {
+        return 0.0;
+    }
+    vec3 _e8 = sampling_normalize_scaled(wo_3);
+    if (!((dot(_e8, m_21) > 0.0))) {
+        return 0.0;
+    }
+    float _e14 = ndf_ggx_d_matrix(r_55, m_21);
+    float _e18 = ndf_ggx_lambda_matrix(r_55, _e8);
+    float v_15 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
+    return ((v_15 <= math_F32_MAX) ? v_15 : 0.0);
+}
+
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_56, vec3 wo_4, vec3 wi_1) {
+    if (!((wo_4.z > 0.0))) {
+        return 0.0;
+    }
+    vec3 _e8 = sampling_normalize_scaled(wo_4);
+    vec3 _e9 = sampling_normalize_scaled(wi_1);
+    vec3 h_23 = (_e8 + _e9);
+    float len = length(h_23);
+    if (!((len > 0.0))) {
+        return 0.0;
+    }
+    float _e18 = sampling_reflection_pdf_from_normal(r_56, wo_4, (h_23 / vec3(len)));
+    return _e18;
+}
+
 filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_4) {
     float l2_ = 0.0;
-    vec2 v_4 = vec2(1.0, 0.0);
+    vec2 v_5 = vec2(1.0, 0.0);
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
-    float c_14 = a_5.axis.x;
-    float s_20 = a_5.axis.y;
-    float k11_ = max(((((c_14 * c_14) * _e2.s_xx) + (((2.0 * c_14) * s_20) * _e2.s_xy)) + ((s_20 * s_20) * _e2.s_yy)), 0.0);
-    float k22_ = max(((((s_20 * s_20) * _e2.s_xx) - (((2.0 * c_14) * s_20) * _e2.s_xy)) + ((c_14 * c_14) * _e2.s_yy)), 0.0);
-    float k12_ = ((((c_14 * c_14) - (s_20 * s_20)) * _e2.s_xy) + ((c_14 * s_20) * (_e2.s_yy - _e2.s_xx)));
+    float c_18 = a_5.axis.x;
+    float s_25 = a_5.axis.y;
+    float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_25) * _e2.s_xy)) + ((s_25 * s_25) * _e2.s_yy)), 0.0);
+    float k22_ = max(((((s_25 * s_25) * _e2.s_xx) - (((2.0 * c_18) * s_25) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
+    float k12_ = ((((c_18 * c_18) - (s_25 * s_25)) * _e2.s_xy) + ((c_18 * s_25) * (_e2.s_yy - _e2.s_xx)));
     vec2 l_6 = a_5.eig_c;
     vec2 isl = (vec2(1.0) / sqrt(l_6));
     float c11_ = ((k11_ * isl.x) * isl.x);
@@ -1486,15 +1616,15 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roug
     float l1_2 = ((0.5 * (c11_ + c22_)) + _e75);
     if ((_e75 > 0.0)) {
         float big_2 = (_e75 + abs(half_));
-        vec2 w_23 = ((half_ >= 0.0) ? vec2(big_2, c12_) : vec2(c12_, big_2));
-        v_4 = (w_23 / vec2(length(w_23)));
+        vec2 w_25 = ((half_ >= 0.0) ? vec2(big_2, c12_) : vec2(c12_, big_2));
+        v_5 = (w_25 / vec2(length(w_25)));
         l2_ = min((det_c / l1_2), l1_2);
     } else {
         if ((l1_2 > 0.0)) {
             l2_ = l1_2;
         }
     }
-    vec2 _e102 = v_4;
+    vec2 _e102 = v_5;
     float _e105 = l2_;
     float _e110 = ndf_roughness_matrix_sqrt_det(a_5);
     return filter_gaussian_ggx_GaussianFilteredGgx(a_5, isl, _e102, vec2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2);
@@ -1502,9 +1632,9 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roug
 
 vec2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g, vec2 s_9) {
     vec2 _e3 = ndf_roughness_matrix_rotate(g.a, s_9);
-    vec2 u_11 = (_e3 * g.inv_sqrt_l);
-    vec2 c_15 = vec2(((g.v.x * u_11.x) + (g.v.y * u_11.y)), ((g.v.x * u_11.y) - (g.v.y * u_11.x)));
-    return (c_15 * c_15);
+    vec2 u_18 = (_e3 * g.inv_sqrt_l);
+    vec2 c_19 = vec2(((g.v.x * u_18.x) + (g.v.y * u_18.y)), ((g.v.x * u_18.y) - (g.v.y * u_18.x)));
+    return (c_19 * c_19);
 }
 
 float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_1, vec2 s_10) {
@@ -1513,22 +1643,22 @@ float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_1, vec2
     return (g_1.norm * _e11);
 }
 
-float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, vec3 m_18) {
-    if (!((m_18.z > 0.0))) {
+float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, vec3 m_22) {
+    if (!((m_22.z > 0.0))) {
         return 0.0;
     }
-    vec2 _e8 = filter_gaussian_ggx_whiten(g_2, m_18.xy);
-    float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_18.z * m_18.z), g_2.tl.x, g_2.tl.y);
-    float v_14 = (g_2.norm * _e19);
-    return ((v_14 <= math_F32_MAX) ? v_14 : 0.0);
+    vec2 _e8 = filter_gaussian_ggx_whiten(g_2, m_22.xy);
+    float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_22.z * m_22.z), g_2.tl.x, g_2.tl.y);
+    float v_16 = (g_2.norm * _e19);
+    return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
 }
 
-float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, vec3 w_15) {
-    float big_3 = max(max(abs(w_15.x), abs(w_15.y)), abs(w_15.z));
+float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, vec3 w_16) {
+    float big_3 = max(max(abs(w_16.x), abs(w_16.y)), abs(w_16.z));
     if (!((big_3 > 0.0))) {
         return ((big_3 == 0.0) ? 0.0 : math_F32_MAX);
     }
-    vec3 ws = (w_15 / vec3(big_3));
+    vec3 ws = (w_16 / vec3(big_3));
     vec3 o_8 = (ws / vec3(length(ws)));
     float oz_3 = abs(o_8.z);
     float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_8.xy);
@@ -1549,21 +1679,66 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, ve
     return _e61;
 }
 
-float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, vec3 w_16, vec3 m_19) {
-    float _e3 = filter_gaussian_ggx_lambda(g_4, w_16);
-    float _e5 = ndf_g1_of(_e3, dot(w_16, m_19));
+float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, vec3 w_17, vec3 m_23) {
+    float _e3 = filter_gaussian_ggx_lambda(g_4, w_17);
+    float _e5 = ndf_g1_of(_e3, dot(w_17, m_23));
     return _e5;
 }
 
-float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, vec3 i_6, vec3 o_6, vec3 m_20) {
+float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, vec3 i_6, vec3 o_6, vec3 m_24) {
     float _e4 = filter_gaussian_ggx_lambda(g_5, i_6);
     float _e5 = filter_gaussian_ggx_lambda(g_5, o_6);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_20), dot(o_6, m_20));
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_24), dot(o_6, m_24));
     return _e8;
 }
 
-kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_21) {
-    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_21.second.x - (m_21.mean.x * m_21.mean.x)), (m_21.second.y - (m_21.mean.x * m_21.mean.y)), (m_21.second.z - (m_21.mean.y * m_21.mean.y)));
+vec2 filter_gaussian_ggx_split(float u_5) {
+    float x_17 = (u_5 * 4096.0);
+    float hi_3 = floor(x_17);
+    return vec2(((hi_3 + 0.5) / 4096.0), (x_17 - hi_3));
+}
+
+vec3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_6, vec2 u_6) {
+    vec2 ax = vec2(1.0, 0.0);
+    float _e3 = sampling_clamp_unit(u_6.x);
+    vec2 _e4 = filter_gaussian_ggx_split(_e3);
+    float _e6 = sampling_clamp_unit(u_6.y);
+    vec2 _e7 = filter_gaussian_ggx_split(_e6);
+    vec2 _e15 = math_sincos_turns(_e7.x);
+    vec2 t_15 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
+    sampling_Warp _e18 = sampling_warp(g_6.a);
+    vec2 gs = vec2((_e18.l_xx * t_15.x), ((_e18.l_yx * t_15.x) + (_e18.l_yy * t_15.y)));
+    float _e33 = math_ln((1.0 - _e4.y));
+    float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
+    float e_5 = ((_e4.y < 0.5) ? _e40 : -(_e33));
+    vec2 _e49 = math_sincos_turns(_e7.y);
+    vec2 y_4 = (sqrt((2.0 * e_5)) * _e49);
+    kernel_covariance_Covariance k_28 = g_6.k;
+    vec2 _e52 = kernel_covariance_eigenvalues(k_28);
+    float khalf = (0.5 * (k_28.s_xx - k_28.s_yy));
+    float _e59 = math_hypot(khalf, k_28.s_xy);
+    if ((_e59 > 0.0)) {
+        vec2 w_26 = ((khalf >= 0.0) ? vec2((_e59 + khalf), k_28.s_xy) : vec2(k_28.s_xy, (_e59 - khalf)));
+        float _e77 = math_hypot(w_26.x, w_26.y);
+        ax = (w_26 / vec2(_e77));
+    }
+    vec2 kk_1 = vec2((sqrt(_e52.y) * y_4.x), (sqrt(_e52.x) * y_4.y));
+    float _e90 = ax.x;
+    float _e94 = ax.y;
+    float _e99 = ax.y;
+    float _e103 = ax.x;
+    vec2 s_26 = (gs + vec2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
+    vec3 _e112 = sampling_normalize_scaled(vec3(-(s_26), 1.0));
+    return vec3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
+}
+
+float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_7, vec3 m_25) {
+    float _e2 = filter_gaussian_ggx_d(g_7, m_25);
+    return ((m_25.z > 0.0) ? (_e2 * m_25.z) : 0.0);
+}
+
+kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_26) {
+    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_26.second.x - (m_26.mean.x * m_26.mean.x)), (m_26.second.y - (m_26.mean.x * m_26.mean.y)), (m_26.second.z - (m_26.mean.y * m_26.mean.y)));
     kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
     return _e26;
 }
@@ -1583,15 +1758,15 @@ footprint_jacobian_Polar footprint_jacobian_polar(vec3 h_in) {
         return footprint_jacobian_Polar(vec3(0.0, 0.0, 1.0), vec2(1.0, 0.0));
     }
     vec3 h0_ = (h_in / vec3(big_4));
-    vec3 h_22 = (h0_ / vec3(length(h0_)));
-    float qs_4 = max(abs(h_22.x), abs(h_22.y));
+    vec3 h_24 = (h0_ / vec3(length(h0_)));
+    float qs_4 = max(abs(h_24.x), abs(h_24.y));
     if ((qs_4 > 0.0)) {
-        vec2 q_6 = (h_22.xy / vec2(qs_4));
+        vec2 q_6 = (h_24.xy / vec2(qs_4));
         cs_1 = (q_6 / vec2(length(q_6)));
     }
-    if ((h_22.z >= footprint_jacobian_HZ_MIN)) {
+    if ((h_24.z >= footprint_jacobian_HZ_MIN)) {
         vec2 _e44 = cs_1;
-        return footprint_jacobian_Polar(h_22, _e44);
+        return footprint_jacobian_Polar(h_24, _e44);
     }
     vec2 _e47 = cs_1;
     vec2 _e51 = cs_1;
@@ -1621,23 +1796,23 @@ mat2x2 footprint_jacobian_sphere_to_projected(vec3 h_4) {
 
 mat2x2 footprint_jacobian_projected_to_slope(vec3 h_in_1) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
-    vec3 h_23 = _e1.h;
-    float k_27 = (-1.0 / ((h_23.z * h_23.z) * h_23.z));
-    float xy = (h_23.x * h_23.y);
-    return mat2x2((vec2(((h_23.x * h_23.x) + (h_23.z * h_23.z)), xy) * k_27), (vec2(xy, ((h_23.y * h_23.y) + (h_23.z * h_23.z))) * k_27));
+    vec3 h_25 = _e1.h;
+    float k_29 = (-1.0 / ((h_25.z * h_25.z) * h_25.z));
+    float xy = (h_25.x * h_25.y);
+    return mat2x2((vec2(((h_25.x * h_25.x) + (h_25.z * h_25.z)), xy) * k_29), (vec2(xy, ((h_25.y * h_25.y) + (h_25.z * h_25.z))) * k_29));
 }
 
 mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_2) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    vec3 h_24 = _e1.h;
-    float xy_1 = (h_24.x * h_24.y);
-    return mat2x2((vec2(((h_24.y * h_24.y) + (h_24.z * h_24.z)), -(xy_1)) * -(h_24.z)), (vec2(-(xy_1), ((h_24.x * h_24.x) + (h_24.z * h_24.z))) * -(h_24.z)));
+    vec3 h_26 = _e1.h;
+    float xy_1 = (h_26.x * h_26.y);
+    return mat2x2((vec2(((h_26.y * h_26.y) + (h_26.z * h_26.z)), -(xy_1)) * -(h_26.z)), (vec2(-(xy_1), ((h_26.x * h_26.x) + (h_26.z * h_26.z))) * -(h_26.z)));
 }
 
 mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_5) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
-    float k_28 = (-1.0 / (_e1.h.z * _e1.h.z));
-    return mat2x2((_e1.cs * k_28), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_28));
+    float k_30 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return mat2x2((_e1.cs * k_30), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_30));
 }
 
 float footprint_jacobian_det_sphere_to_projected(vec3 h_6) {
@@ -1647,15 +1822,15 @@ float footprint_jacobian_det_sphere_to_projected(vec3 h_6) {
 
 float footprint_jacobian_det_projected_to_slope(vec3 h_7) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
-    float z_3 = _e1.h.z;
-    float z2_5 = (z_3 * z_3);
+    float z_5 = _e1.h.z;
+    float z2_5 = (z_5 * z_5);
     return (1.0 / (z2_5 * z2_5));
 }
 
 float footprint_jacobian_det_sphere_to_slope(vec3 h_8) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float z_4 = _e1.h.z;
-    return (1.0 / ((z_4 * z_4) * z_4));
+    float z_6 = _e1.h.z;
+    return (1.0 / ((z_6 * z_6) * z_6));
 }
 
 vec2 footprint_jacobian_spherical_to_slope(vec3 h_9, vec2 e_1) {
@@ -1668,10 +1843,10 @@ vec2 footprint_jacobian_spherical_to_projected(vec3 h_10, vec2 e_2) {
     return (_e2 * e_2);
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_50, float sigma_1) {
-    vec2 w_24 = (r_50.half_extent * (2.0 * sigma_1));
-    vec2 v_15 = (w_24 * w_24);
-    return kernel_covariance_Covariance(v_15.x, 0.0, v_15.y, (v_15.x * v_15.y));
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_57, float sigma_1) {
+    vec2 w_27 = (r_57.half_extent * (2.0 * sigma_1));
+    vec2 v_17 = (w_27 * w_27);
+    return kernel_covariance_Covariance(v_17.x, 0.0, v_17.y, (v_17.x * v_17.y));
 }
 
 footprint_Footprint footprint_from_slope_derivatives(vec2 dh_u, vec2 dh_v) {
@@ -1698,11 +1873,11 @@ footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) 
 }
 
 kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_2) {
-    vec2 u_12 = fp.dh_u;
-    vec2 v_16 = fp.dh_v;
+    vec2 u_19 = fp.dh_u;
+    vec2 v_18 = fp.dh_v;
     float s2_ = (sigma_2 * sigma_2);
-    float cross_1 = (((u_12.x * v_16.y) - (u_12.y * v_16.x)) * s2_);
-    return kernel_covariance_Covariance((((u_12.x * u_12.x) + (v_16.x * v_16.x)) * s2_), (((u_12.x * u_12.y) + (v_16.x * v_16.y)) * s2_), (((u_12.y * u_12.y) + (v_16.y * v_16.y)) * s2_), (cross_1 * cross_1));
+    float cross_1 = (((u_19.x * v_18.y) - (u_19.y * v_18.x)) * s2_);
+    return kernel_covariance_Covariance((((u_19.x * u_19.x) + (v_18.x * v_18.x)) * s2_), (((u_19.x * u_19.y) + (v_18.x * v_18.y)) * s2_), (((u_19.y * u_19.y) + (v_18.y * v_18.y)) * s2_), (cross_1 * cross_1));
 }
 
 kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1) {
@@ -1720,15 +1895,15 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     float det_3 = 0.0;
     vec2 lc = min(a_7.eig, vec2(0.99));
     vec2 excess = (a_7.eig - lc);
-    vec2 p_6 = (lc / (vec2(1.0) - lc));
-    float c_16 = a_7.axis.x;
-    float s_21 = a_7.axis.y;
-    float p11_1 = (((p_6.x * c_16) * c_16) + ((p_6.y * s_21) * s_21));
-    float p12_1 = (((p_6.x - p_6.y) * c_16) * s_21);
-    float p22_1 = (((p_6.x * s_21) * s_21) + ((p_6.y * c_16) * c_16));
-    float k1_3 = max(((((c_16 * c_16) * k_11.s_xx) + (((2.0 * c_16) * s_21) * k_11.s_xy)) + ((s_21 * s_21) * k_11.s_yy)), 0.0);
-    float k2_3 = max(((((s_21 * s_21) * k_11.s_xx) - (((2.0 * c_16) * s_21) * k_11.s_xy)) + ((c_16 * c_16) * k_11.s_yy)), 0.0);
-    float d_2 = (((p_6.x * p_6.y) + (2.0 * ((p_6.y * k1_3) + (p_6.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
+    vec2 p_8 = (lc / (vec2(1.0) - lc));
+    float c_20 = a_7.axis.x;
+    float s_27 = a_7.axis.y;
+    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_27) * s_27));
+    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_27);
+    float p22_1 = (((p_8.x * s_27) * s_27) + ((p_8.y * c_20) * c_20));
+    float k1_3 = max(((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_27) * k_11.s_xy)) + ((s_27 * s_27) * k_11.s_yy)), 0.0);
+    float k2_3 = max(((((s_27 * s_27) * k_11.s_xx) - (((2.0 * c_20) * s_27) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy)), 0.0);
+    float d_2 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
     float q11_ = (p11_1 + (2.0 * k_11.s_xx));
     float q12_ = (p12_1 + (2.0 * k_11.s_xy));
     float q22_ = (p22_1 + (2.0 * k_11.s_yy));
@@ -1739,11 +1914,11 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     det_3 = (d_2 / den_1);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_16) * c_16) + ((excess.y * s_21) * s_21)));
+        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_27) * s_27)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_16) * s_21));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_27));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_21) * s_21) + ((excess.y * c_16) * c_16)));
+        b22_ = (_e130 + (((excess.x * s_27) * s_27) + ((excess.y * c_20) * c_20)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -1786,7 +1961,7 @@ footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footpr
     return footprint_Footprint(((unit.dh_u / vec2(_e29)) * l_7), ((unit.dh_v / vec2(_e29)) * l_7));
 }
 
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_51, vec2 alpha_8) {
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_58, vec2 alpha_8) {
     vec2 f_1 = vec2(0.0);
     if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
         f_1 = vec2(rules_1.floor_);
@@ -1796,9 +1971,9 @@ kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kern
         }
     }
     float lambda = max(rules_1.max_extent, 0.0);
-    vec2 h_25 = min(abs(r_51.half_extent), vec2(lambda));
+    vec2 h_27 = min(abs(r_58.half_extent), vec2(lambda));
     vec2 _e25 = f_1;
-    return kernel_rect_BoundingRect(max(h_25, max(_e25, vec2(0.0))));
+    return kernel_rect_BoundingRect(max(h_27, max(_e25, vec2(0.0))));
 }
 
 kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_12) {
@@ -1837,11 +2012,11 @@ ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_
 }
 
 float filter_proxy_effective_alpha(float alpha_9, float half_extent) {
-    float h_26 = abs(half_extent);
-    float _e3 = math_hypot(alpha_9, h_26);
-    float t_15 = ((_e3 > 0.0) ? (h_26 / _e3) : 0.0);
-    float _e9 = math_atan(t_15);
-    float ratio = ((t_15 > 0.0) ? (t_15 / _e9) : 1.0);
+    float h_28 = abs(half_extent);
+    float _e3 = math_hypot(alpha_9, h_28);
+    float t_16 = ((_e3 > 0.0) ? (h_28 / _e3) : 0.0);
+    float _e9 = math_atan(t_16);
+    float ratio = ((t_16 > 0.0) ? (t_16 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
 }
 
@@ -1850,16 +2025,16 @@ float filter_proxy_effective_alpha_simple(float alpha_10, float half_extent_1) {
     return _e3;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_52, vec2 half_extent_2) {
-    float _e5 = filter_proxy_effective_alpha(r_52.alpha.x, half_extent_2.x);
-    float _e9 = filter_proxy_effective_alpha(r_52.alpha.y, half_extent_2.y);
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_59, vec2 half_extent_2) {
+    float _e5 = filter_proxy_effective_alpha(r_59.alpha.x, half_extent_2.x);
+    float _e9 = filter_proxy_effective_alpha(r_59.alpha.y, half_extent_2.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
     return _e11;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_53, vec2 half_extent_3) {
-    float _e5 = filter_proxy_effective_alpha_simple(r_53.alpha.x, half_extent_3.x);
-    float _e9 = filter_proxy_effective_alpha_simple(r_53.alpha.y, half_extent_3.y);
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_60, vec2 half_extent_3) {
+    float _e5 = filter_proxy_effective_alpha_simple(r_60.alpha.x, half_extent_3.x);
+    float _e9 = filter_proxy_effective_alpha_simple(r_60.alpha.y, half_extent_3.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
     return _e11;
 }
@@ -1877,11 +2052,11 @@ uint filter_rect_tier(float h2_, float l2_1) {
     return filter_rect_TIER_CLOSED;
 }
 
-float filter_rect_gl_node(uint n_1, uint k_13) {
-    if ((n_1 == 2u)) {
+float filter_rect_gl_node(uint n_2, uint k_13) {
+    if ((n_2 == 2u)) {
         return 0.57735026;
     }
-    if ((n_1 == 4u)) {
+    if ((n_2 == 4u)) {
         return ((k_13 == 0u) ? 0.33998105 : 0.8611363);
     }
     if ((k_13 == 0u)) {
@@ -1890,11 +2065,11 @@ float filter_rect_gl_node(uint n_1, uint k_13) {
     return ((k_13 == 1u) ? 0.6612094 : 0.9324695);
 }
 
-float filter_rect_gl_weight(uint n_2, uint k_14) {
-    if ((n_2 == 2u)) {
+float filter_rect_gl_weight(uint n_3, uint k_14) {
+    if ((n_3 == 2u)) {
         return 0.5;
     }
-    if ((n_2 == 4u)) {
+    if ((n_3 == 4u)) {
         return ((k_14 == 0u) ? 0.32607257 : 0.17392743);
     }
     if ((k_14 == 0u)) {
@@ -1903,12 +2078,12 @@ float filter_rect_gl_weight(uint n_2, uint k_14) {
     return ((k_14 == 1u) ? 0.18038079 : 0.085662246);
 }
 
-float filter_rect_f(float u_1, float v_5) {
-    float t_16 = ((1.0 + (u_1 * u_1)) + (v_5 * v_5));
-    return (1.0 / (t_16 * t_16));
+float filter_rect_f(float u_7, float v_6) {
+    float t_17 = ((1.0 + (u_7 * u_7)) + (v_6 * v_6));
+    return (1.0 / (t_17 * t_17));
 }
 
-float filter_rect_gl_mean(uint n_3, float u_2, float c_6, float h_12) {
+float filter_rect_gl_mean(uint n_4, float u_8, float c_6, float h_12) {
     float acc_2 = 0.0;
     uint k_15 = 0u;
     bool loop_init_6 = true;
@@ -1919,19 +2094,19 @@ float filter_rect_gl_mean(uint n_3, float u_2, float c_6, float h_12) {
         }
         loop_init_6 = false;
         uint _e8 = k_15;
-        if ((_e8 < (n_3 / 2u))) {
+        if ((_e8 < (n_4 / 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_15;
-            float _e13 = filter_rect_gl_node(n_3, _e12);
+            float _e13 = filter_rect_gl_node(n_4, _e12);
             float a_24 = (h_12 * _e13);
             float _e15 = acc_2;
             uint _e16 = k_15;
-            float _e17 = filter_rect_gl_weight(n_3, _e16);
-            float _e19 = filter_rect_f(u_2, (c_6 - a_24));
-            float _e21 = filter_rect_f(u_2, (c_6 + a_24));
+            float _e17 = filter_rect_gl_weight(n_4, _e16);
+            float _e19 = filter_rect_f(u_8, (c_6 - a_24));
+            float _e21 = filter_rect_f(u_8, (c_6 + a_24));
             acc_2 = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -1967,22 +2142,22 @@ float filter_rect_mean_1d(vec4 i_7, float c2_) {
     float x0_ = ((i_7.z >= 0.0) ? i_7.x : -(i_7.y));
     float x1_1 = ((i_7.z >= 0.0) ? i_7.y : -(i_7.x));
     float dx = (2.0 * i_7.w);
-    float c_17 = sqrt(c2_);
+    float c_21 = sqrt(c2_);
     float r02_ = (c2_ + (x0_ * x0_));
     float r12_ = (c2_ + (x1_1 * x1_1));
     float x01_ = (x0_ * x1_1);
-    float _e27 = filter_rect_atan2_upper((c_17 * dx), (c2_ + x01_));
-    float inv_2 = (1.0 / (((2.0 * c_17) * c2_) * dx));
+    float _e27 = filter_rect_atan2_upper((c_21 * dx), (c2_ + x01_));
+    float inv_2 = (1.0 / (((2.0 * c_21) * c2_) * dx));
     float p2_1 = ((2.0 * r02_) * r12_);
     if ((x0_ <= 0.0)) {
         return ((_e27 * inv_2) + (((c2_ - x01_) / p2_1) / c2_));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
-    float _e49 = filter_rect_delta_minus_sin(_e27, ((c_17 * dx) / rr));
+    float _e49 = filter_rect_delta_minus_sin(_e27, ((c_21 * dx) / rr));
     return ((_e49 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1));
 }
 
-float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, vec4 other) {
+float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, vec4 other) {
     float acc_3 = 0.0;
     uint k_16 = 0u;
     bool loop_init_7 = true;
@@ -1993,19 +2168,19 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, vec4 other) {
         }
         loop_init_7 = false;
         uint _e8 = k_16;
-        if ((_e8 < (n_4 / 2u))) {
+        if ((_e8 < (n_5 / 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_16;
-            float _e13 = filter_rect_gl_node(n_4, _e12);
+            float _e13 = filter_rect_gl_node(n_5, _e12);
             float a_25 = (h_13 * _e13);
             float x0_1 = (c_7 - a_25);
             float x1_2 = (c_7 + a_25);
             float _e17 = acc_3;
             uint _e18 = k_16;
-            float _e19 = filter_rect_gl_weight(n_4, _e18);
+            float _e19 = filter_rect_gl_weight(n_5, _e18);
             float _e23 = filter_rect_mean_1d(other, (1.0 + (x0_1 * x0_1)));
             float _e27 = filter_rect_mean_1d(other, (1.0 + (x1_2 * x1_2)));
             acc_3 = (_e17 + (_e19 * (_e23 + _e27)));
@@ -2015,24 +2190,24 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, vec4 other) {
     return _e34;
 }
 
-float filter_rect_edge(float u_3, float dv, float v01_) {
-    float s2_1 = (1.0 + (u_3 * u_3));
-    float s_22 = sqrt(s2_1);
-    float _e10 = filter_rect_atan2_upper((dv * s_22), (s2_1 + v01_));
-    return ((u_3 / s_22) * _e10);
+float filter_rect_edge(float u_9, float dv, float v01_) {
+    float s2_1 = (1.0 + (u_9 * u_9));
+    float s_28 = sqrt(s2_1);
+    float _e10 = filter_rect_atan2_upper((dv * s_28), (s2_1 + v01_));
+    return ((u_9 / s_28) * _e10);
 }
 
-float filter_rect_edges(vec4 u_4, vec4 v_6) {
-    float du = (2.0 * u_4.w);
-    float dv_1 = (2.0 * v_6.w);
-    float v01_1 = (v_6.x * v_6.y);
-    float u01_ = (u_4.x * u_4.y);
-    float _e15 = filter_rect_edge(u_4.y, dv_1, v01_1);
-    float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
-    float _e20 = filter_rect_edge(v_6.y, du, u01_);
-    float _e22 = filter_rect_edge(v_6.x, du, u01_);
-    float i_12 = (0.5 * ((_e15 - _e17) + (_e20 - _e22)));
-    return (i_12 / (du * dv_1));
+float filter_rect_edges(vec4 u_10, vec4 v_7) {
+    float du = (2.0 * u_10.w);
+    float dv_1 = (2.0 * v_7.w);
+    float v01_1 = (v_7.x * v_7.y);
+    float u01_ = (u_10.x * u_10.y);
+    float _e15 = filter_rect_edge(u_10.y, dv_1, v01_1);
+    float _e17 = filter_rect_edge(u_10.x, dv_1, v01_1);
+    float _e20 = filter_rect_edge(v_7.y, du, u01_);
+    float _e22 = filter_rect_edge(v_7.x, du, u01_);
+    float i_13 = (0.5 * ((_e15 - _e17) + (_e20 - _e22)));
+    return (i_13 / (du * dv_1));
 }
 
 float filter_rect_gl8_node(uint k_17) {
@@ -2058,8 +2233,8 @@ float filter_rect_gl8_weight(uint k_18) {
 float filter_rect_polar_near(float x2_, float lo, float hi) {
     float acc_4 = 0.0;
     uint k_19 = 0u;
-    float c_18 = (0.5 * (lo + hi));
-    float h_27 = (0.5 * (hi - lo));
+    float c_22 = (0.5 * (lo + hi));
+    float h_29 = (0.5 * (hi - lo));
     bool loop_init_8 = true;
     while(true) {
         if (!loop_init_8) {
@@ -2075,9 +2250,9 @@ float filter_rect_polar_near(float x2_, float lo, float hi) {
         {
             uint _e16 = k_19;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_3 = (h_27 * _e17);
-            float q0_ = (1.0 + ((c_18 - d_3) * (c_18 - d_3)));
-            float q1_ = (1.0 + ((c_18 + d_3) * (c_18 + d_3)));
+            float d_3 = (h_29 * _e17);
+            float q0_ = (1.0 + ((c_22 - d_3) * (c_22 - d_3)));
+            float q1_ = (1.0 + ((c_22 + d_3) * (c_22 + d_3)));
             float _e29 = acc_4;
             uint _e30 = k_19;
             float _e31 = filter_rect_gl8_weight(_e30);
@@ -2091,8 +2266,8 @@ float filter_rect_polar_near(float x2_, float lo, float hi) {
 float filter_rect_polar_far(float x2_1, float lo_1, float hi_1) {
     float acc_5 = 0.0;
     uint k_20 = 0u;
-    float c_19 = (0.5 * (lo_1 + hi_1));
-    float h_28 = (0.5 * (hi_1 - lo_1));
+    float c_23 = (0.5 * (lo_1 + hi_1));
+    float h_30 = (0.5 * (hi_1 - lo_1));
     bool loop_init_9 = true;
     while(true) {
         if (!loop_init_9) {
@@ -2108,9 +2283,9 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1) {
         {
             uint _e16 = k_20;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_4 = (h_28 * _e17);
-            float t0_2 = ((c_19 - d_4) * (c_19 - d_4));
-            float t1_4 = ((c_19 + d_4) * (c_19 + d_4));
+            float d_4 = (h_30 * _e17);
+            float t0_2 = ((c_23 - d_4) * (c_23 - d_4));
+            float t1_4 = ((c_23 + d_4) * (c_23 + d_4));
             float _e25 = acc_5;
             uint _e26 = k_20;
             float _e27 = filter_rect_gl8_weight(_e26);
@@ -2121,88 +2296,88 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1) {
     return (_e50 * (hi_1 - lo_1));
 }
 
-float filter_rect_edge_range(float ax, float a_13, float b_2) {
-    float v_7 = 0.0;
-    float x2_3 = (ax * ax);
-    if ((a_13 < ax)) {
-        float _e7 = v_7;
-        float _e11 = filter_rect_polar_near(x2_3, (a_13 / ax), (min(b_2, ax) / ax));
-        v_7 = (_e7 + _e11);
+float filter_rect_edge_range(float ax_1, float a_13, float b_2) {
+    float v_8 = 0.0;
+    float x2_3 = (ax_1 * ax_1);
+    if ((a_13 < ax_1)) {
+        float _e7 = v_8;
+        float _e11 = filter_rect_polar_near(x2_3, (a_13 / ax_1), (min(b_2, ax_1) / ax_1));
+        v_8 = (_e7 + _e11);
     }
-    if ((b_2 > ax)) {
-        float _e14 = v_7;
-        float _e18 = filter_rect_polar_far(x2_3, (ax / b_2), (ax / max(a_13, ax)));
-        v_7 = (_e14 + _e18);
+    if ((b_2 > ax_1)) {
+        float _e14 = v_8;
+        float _e18 = filter_rect_polar_far(x2_3, (ax_1 / b_2), (ax_1 / max(a_13, ax_1)));
+        v_8 = (_e14 + _e18);
     }
-    float _e20 = v_7;
+    float _e20 = v_8;
     return _e20;
 }
 
 float filter_rect_edge_polar(float x_7, float a_14, float b_3) {
-    float v_8 = 0.0;
-    float ax_1 = abs(x_7);
-    if ((ax_1 < 1e-12)) {
+    float v_9 = 0.0;
+    float ax_2 = abs(x_7);
+    if ((ax_2 < 1e-12)) {
         return 0.0;
     }
     if ((a_14 >= 0.0)) {
-        float _e10 = filter_rect_edge_range(ax_1, a_14, b_3);
-        v_8 = _e10;
+        float _e10 = filter_rect_edge_range(ax_2, a_14, b_3);
+        v_9 = _e10;
     } else {
         if ((b_3 <= 0.0)) {
-            float _e15 = filter_rect_edge_range(ax_1, -(b_3), -(a_14));
-            v_8 = _e15;
+            float _e15 = filter_rect_edge_range(ax_2, -(b_3), -(a_14));
+            v_9 = _e15;
         } else {
-            float _e18 = filter_rect_edge_range(ax_1, 0.0, -(a_14));
-            float _e20 = filter_rect_edge_range(ax_1, 0.0, b_3);
-            v_8 = (_e18 + _e20);
+            float _e18 = filter_rect_edge_range(ax_2, 0.0, -(a_14));
+            float _e20 = filter_rect_edge_range(ax_2, 0.0, b_3);
+            v_9 = (_e18 + _e20);
         }
     }
-    float _e22 = v_8;
-    float _e24 = v_8;
+    float _e22 = v_9;
+    float _e24 = v_9;
     return ((x_7 > 0.0) ? _e24 : -(_e22));
 }
 
-float filter_rect_far_field(vec4 u_5, vec4 v_9) {
-    float _e5 = filter_rect_edge_polar(u_5.y, v_9.x, v_9.y);
-    float _e9 = filter_rect_edge_polar(u_5.x, v_9.x, v_9.y);
-    float _e14 = filter_rect_edge_polar(v_9.y, u_5.x, u_5.y);
-    float _e18 = filter_rect_edge_polar(v_9.x, u_5.x, u_5.y);
-    float i_13 = (-0.5 * ((_e5 - _e9) + (_e14 - _e18)));
-    return (i_13 / ((4.0 * u_5.w) * v_9.w));
+float filter_rect_far_field(vec4 u_11, vec4 v_10) {
+    float _e5 = filter_rect_edge_polar(u_11.y, v_10.x, v_10.y);
+    float _e9 = filter_rect_edge_polar(u_11.x, v_10.x, v_10.y);
+    float _e14 = filter_rect_edge_polar(v_10.y, u_11.x, u_11.y);
+    float _e18 = filter_rect_edge_polar(v_10.x, u_11.x, u_11.y);
+    float i_14 = (-0.5 * ((_e5 - _e9) + (_e14 - _e18)));
+    return (i_14 / ((4.0 * u_11.w) * v_10.w));
 }
 
 float filter_rect_gap(vec4 i_8) {
     return max(max(i_8.x, -(i_8.y)), 0.0);
 }
 
-float filter_rect_mean_f(vec4 u_6, vec4 v_10) {
-    bool local_13 = false;
+float filter_rect_mean_f(vec4 u_12, vec4 v_11) {
+    bool local_15 = false;
     float acc_6 = 0.0;
     uint k_21 = 0u;
-    float _e2 = filter_rect_gap(u_6);
-    float _e3 = filter_rect_gap(v_10);
-    uint _e14 = filter_rect_tier((u_6.w * u_6.w), ((1.0 + (u_6.z * u_6.z)) + (_e3 * _e3)));
-    uint _e25 = filter_rect_tier((v_10.w * v_10.w), ((1.0 + (v_10.z * v_10.z)) + (_e2 * _e2)));
+    float _e2 = filter_rect_gap(u_12);
+    float _e3 = filter_rect_gap(v_11);
+    uint _e14 = filter_rect_tier((u_12.w * u_12.w), ((1.0 + (u_12.z * u_12.z)) + (_e3 * _e3)));
+    uint _e25 = filter_rect_tier((v_11.w * v_11.w), ((1.0 + (v_11.z * v_11.z)) + (_e2 * _e2)));
     if ((_e14 == filter_rect_TIER_CLOSED)) {
-        local_13 = (_e25 == filter_rect_TIER_CLOSED);
+        local_15 = (_e25 == filter_rect_TIER_CLOSED);
     } else {
-        local_13 = false;
+        local_15 = false;
     }
-    bool _e33 = local_13;
+    bool _e33 = local_15;
     if (_e33) {
         if ((((_e2 * _e2) + (_e3 * _e3)) > filter_rect_FAR2_)) {
-            float _e39 = filter_rect_far_field(u_6, v_10);
+            float _e39 = filter_rect_far_field(u_12, v_11);
             return _e39;
         }
-        float _e40 = filter_rect_edges(u_6, v_10);
+        float _e40 = filter_rect_edges(u_12, v_11);
         return _e40;
     }
     if ((_e14 == filter_rect_TIER_CLOSED)) {
-        float _e45 = filter_rect_gl_mean_1d(_e25, v_10.z, v_10.w, u_6);
+        float _e45 = filter_rect_gl_mean_1d(_e25, v_11.z, v_11.w, u_12);
         return _e45;
     }
     if ((_e25 == filter_rect_TIER_CLOSED)) {
-        float _e50 = filter_rect_gl_mean_1d(_e14, u_6.z, u_6.w, v_10);
+        float _e50 = filter_rect_gl_mean_1d(_e14, u_12.z, u_12.w, v_11);
         return _e50;
     }
     bool loop_init_10 = true;
@@ -2220,12 +2395,12 @@ float filter_rect_mean_f(vec4 u_6, vec4 v_10) {
         {
             uint _e60 = k_21;
             float _e61 = filter_rect_gl_node(_e14, _e60);
-            float a_26 = (u_6.w * _e61);
+            float a_26 = (u_12.w * _e61);
             float _e63 = acc_6;
             uint _e64 = k_21;
             float _e65 = filter_rect_gl_weight(_e14, _e64);
-            float _e70 = filter_rect_gl_mean(_e25, (u_6.z - a_26), v_10.z, v_10.w);
-            float _e75 = filter_rect_gl_mean(_e25, (u_6.z + a_26), v_10.z, v_10.w);
+            float _e70 = filter_rect_gl_mean(_e25, (u_12.z - a_26), v_11.z, v_11.w);
+            float _e75 = filter_rect_gl_mean(_e25, (u_12.z + a_26), v_11.z, v_11.w);
             acc_6 = (_e63 + (_e65 * (_e70 + _e75)));
         }
     }
@@ -2235,54 +2410,54 @@ float filter_rect_mean_f(vec4 u_6, vec4 v_10) {
 
 vec4 filter_rect_interval(float c_8, float h_14, float a_15) {
     float ah = abs(h_14);
-    float lo_3 = clamp(((c_8 - ah) / a_15), -1e18, filter_rect_BIG);
-    float hi_2 = clamp(((c_8 + ah) / a_15), -1e18, filter_rect_BIG);
-    return vec4(lo_3, hi_2, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
+    float lo_4 = clamp(((c_8 - ah) / a_15), -1e18, filter_rect_BIG);
+    float hi_4 = clamp(((c_8 + ah) / a_15), -1e18, filter_rect_BIG);
+    return vec4(lo_4, hi_4, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
 }
 
-float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_54, vec2 center, vec2 half_extent_4) {
-    bool local_14 = false;
+float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_61, vec2 center, vec2 half_extent_4) {
+    bool local_16 = false;
     if ((half_extent_4.x == 0.0)) {
-        local_14 = (half_extent_4.y == 0.0);
+        local_16 = (half_extent_4.y == 0.0);
     } else {
-        local_14 = false;
+        local_16 = false;
     }
-    bool _e12 = local_14;
+    bool _e12 = local_16;
     if (_e12) {
-        float _e13 = ndf_ggx_p22_axis_aligned(r_54, center);
+        float _e13 = ndf_ggx_p22_axis_aligned(r_61, center);
         return _e13;
     }
-    vec2 a_27 = r_54.alpha;
+    vec2 a_27 = r_61.alpha;
     vec4 _e18 = filter_rect_interval(center.x, half_extent_4.x, a_27.x);
     vec4 _e22 = filter_rect_interval(center.y, half_extent_4.y, a_27.y);
     float _e23 = filter_rect_mean_f(_e18, _e22);
     return max((_e23 * (math_INV_PI / (a_27.x * a_27.y))), 0.0);
 }
 
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_55, vec3 h_15, vec2 half_extent_5) {
-    bool local_15 = false;
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_62, vec3 h_15, vec2 half_extent_5) {
+    bool local_17 = false;
     if (!((h_15.z > 0.0))) {
         return 0.0;
     }
     if ((half_extent_5.x == 0.0)) {
-        local_15 = (half_extent_5.y == 0.0);
+        local_17 = (half_extent_5.y == 0.0);
     } else {
-        local_15 = false;
+        local_17 = false;
     }
-    bool _e17 = local_15;
+    bool _e17 = local_17;
     if (_e17) {
-        float _e18 = ndf_ggx_d_axis_aligned(r_55, h_15);
+        float _e18 = ndf_ggx_d_axis_aligned(r_62, h_15);
         return _e18;
     }
-    float _e24 = filter_rect_p22_rect(r_55, (-(h_15.xy) / vec2(h_15.z)), half_extent_5);
+    float _e24 = filter_rect_p22_rect(r_62, (-(h_15.xy) / vec2(h_15.z)), half_extent_5);
     float z2_6 = (h_15.z * h_15.z);
     return min((_e24 / (z2_6 * z2_6)), math_F32_MAX);
 }
 
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_56, vec2 hpp, vec3 h_16, vec2 footprint) {
-    bool local_16 = false;
-    float a_28 = r_56.alpha.x;
-    float b_8 = r_56.alpha.y;
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_63, vec2 hpp, vec3 h_16, vec2 footprint) {
+    bool local_18 = false;
+    float a_28 = r_63.alpha.x;
+    float b_8 = r_63.alpha.y;
     float a_2_ = (a_28 * a_28);
     float b_2_ = (b_8 * b_8);
     float x1_3 = (hpp.x - footprint.x);
@@ -2304,41 +2479,41 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_56, ve
     float val = ((((x1_3 * (_e37 - _e41)) / sx1_) + ((x2_4 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
     float den_2 = ((6.2831855 * (x1_3 - x2_4)) * (y1_ - y2_));
     float hz4_ = (((h_16.z * h_16.z) * h_16.z) * h_16.z);
-    float v_17 = ((val / den_2) / max(hz4_, 0.001));
-    if ((abs(v_17) <= math_F32_MAX)) {
-        local_16 = (den_2 != 0.0);
+    float v_19 = ((val / den_2) / max(hz4_, 0.001));
+    if ((abs(v_19) <= math_F32_MAX)) {
+        local_18 = (den_2 != 0.0);
     } else {
-        local_16 = false;
+        local_18 = false;
     }
-    bool _e109 = local_16;
-    return (_e109 ? v_17 : 0.0);
+    bool _e109 = local_18;
+    return (_e109 ? v_19 : 0.0);
 }
 
 float filter_rect_lambda_rho(float t_1) {
     float a_29 = abs(t_1);
     if ((a_29 > 1.0)) {
-        float i_14 = (1.0 / a_29);
-        return (a_29 * sqrt((1.0 + (i_14 * i_14))));
+        float i_15 = (1.0 / a_29);
+        return (a_29 * sqrt((1.0 + (i_15 * i_15))));
     }
     return sqrt((1.0 + (t_1 * t_1)));
 }
 
-float filter_rect_lambda_e_neg(float t_2, float r_57) {
-    return ((t_2 >= 0.0) ? (1.0 / (r_57 + t_2)) : (r_57 - t_2));
+float filter_rect_lambda_e_neg(float t_2, float r_64) {
+    return ((t_2 >= 0.0) ? (1.0 / (r_64 + t_2)) : (r_64 - t_2));
 }
 
-float filter_rect_lambda_asinh_of(float t_3, float r_58) {
-    float v_11 = 0.0;
+float filter_rect_lambda_asinh_of(float t_3, float r_65) {
+    float v_12 = 0.0;
     float a_30 = abs(t_3);
     if ((a_30 > 1.0)) {
-        float _e7 = math_ln((a_30 + r_58));
-        v_11 = _e7;
+        float _e7 = math_ln((a_30 + r_65));
+        v_12 = _e7;
     } else {
-        float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_58))));
-        v_11 = _e13;
+        float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_65))));
+        v_12 = _e13;
     }
-    float _e14 = v_11;
-    float _e15 = v_11;
+    float _e14 = v_12;
+    float _e15 = v_12;
     return ((t_3 < 0.0) ? -(_e15) : _e14);
 }
 
@@ -2362,20 +2537,20 @@ float filter_rect_lambda_psi2_(float t_6) {
     return (0.25 * ((((t_6 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336)));
 }
 
-float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_17) {
+float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_18) {
     float _e3 = filter_rect_lambda_rho(t0_);
     float _e4 = filter_rect_lambda_rho(t1_);
     float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_23 = (_e5 + _e6);
-    float d_5 = ((w_17 * s_23) / (_e3 + _e4));
+    float s_29 = (_e5 + _e6);
+    float d_5 = ((w_18 * s_29) / (_e3 + _e4));
     float _e12 = math_ln_1p((d_5 / _e6));
-    return (0.25 * (_e12 + ((0.5 * d_5) * s_23)));
+    return (0.25 * (_e12 + ((0.5 * d_5) * s_29)));
 }
 
-float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_18) {
-    float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_18);
-    return (_e3 / w_18);
+float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_19) {
+    float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_19);
+    return (_e3 / w_19);
 }
 
 uint filter_rect_lambda_rule(uint t_7) {
@@ -2455,17 +2630,17 @@ float filter_rect_lambda_gl_psi(uint t_9, float c_9, float h_17) {
     return _e28;
 }
 
-float filter_rect_lambda_expected_psi(float m_22, float k1_, float k2_, float lo_2) {
+float filter_rect_lambda_expected_psi(float m_27, float k1_, float k2_, float lo_2) {
     float acc_9 = 0.0;
     uint j_2 = 0u;
     float acc_10 = 0.0;
     uint j_3 = 0u;
     float ks = min(k1_, k2_);
     float kl = max(k1_, k2_);
-    float near_l = max((m_22 - ks), 0.0);
+    float near_l = max((m_27 - ks), 0.0);
     uint _e13 = filter_rect_tier((kl * kl), (1.0 + (near_l * near_l)));
     if ((_e13 != filter_rect_TIER_CLOSED)) {
-        float near_s = max((m_22 - kl), 0.0);
+        float near_s = max((m_27 - kl), 0.0);
         uint _e23 = filter_rect_tier((ks * ks), (1.0 + (near_s * near_s)));
         bool loop_init_13 = true;
         while(true) {
@@ -2486,18 +2661,18 @@ float filter_rect_lambda_expected_psi(float m_22, float k1_, float k2_, float lo
                 float _e35 = acc_9;
                 uint _e36 = j_2;
                 float _e37 = filter_rect_gl_weight(_e13, _e36);
-                float _e39 = filter_rect_lambda_gl_psi(_e23, (m_22 - a_33), ks);
-                float _e41 = filter_rect_lambda_gl_psi(_e23, (m_22 + a_33), ks);
+                float _e39 = filter_rect_lambda_gl_psi(_e23, (m_27 - a_33), ks);
+                float _e41 = filter_rect_lambda_gl_psi(_e23, (m_27 + a_33), ks);
                 acc_9 = (_e35 + (_e37 * (_e39 + _e41)));
             }
         }
         float _e48 = acc_9;
         return _e48;
     }
-    float hi_3 = (m_22 + kl);
-    float w_25 = (2.0 * kl);
+    float hi_5 = (m_27 + kl);
+    float w_28 = (2.0 * kl);
     if ((ks == 0.0)) {
-        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_3, w_25);
+        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_5, w_28);
         return _e54;
     }
     uint _e59 = filter_rect_tier((ks * ks), (1.0 + (lo_2 * lo_2)));
@@ -2517,77 +2692,77 @@ float filter_rect_lambda_expected_psi(float m_22, float k1_, float k2_, float lo
             {
                 uint _e70 = j_3;
                 float _e71 = filter_rect_gl_node(_e59, _e70);
-                float x_13 = (ks * _e71);
+                float x_18 = (ks * _e71);
                 float _e73 = acc_10;
                 uint _e74 = j_3;
                 float _e75 = filter_rect_gl_weight(_e59, _e74);
-                float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_13), (hi_3 + x_13), w_25);
-                float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_13), (hi_3 - x_13), w_25);
+                float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_18), (hi_5 + x_18), w_28);
+                float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_18), (hi_5 - x_18), w_28);
                 acc_10 = (_e73 + (_e75 * (_e78 + _e81)));
             }
         }
         float _e88 = acc_10;
         return _e88;
     }
-    float _e89 = filter_rect_lambda_mean_psi1_(hi_3, ks);
+    float _e89 = filter_rect_lambda_mean_psi1_(hi_5, ks);
     float _e90 = filter_rect_lambda_mean_psi1_(lo_2, ks);
-    return ((_e89 - _e90) / w_25);
+    return ((_e89 - _e90) / w_28);
 }
 
-float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_59, vec2 half_extent_6, vec3 w_in) {
-    vec3 w_19 = vec3(0.0);
-    bool local_17 = false;
-    bool local_18 = false;
+float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_66, vec2 half_extent_6, vec3 w_in) {
+    vec3 w_20 = vec3(0.0);
     bool local_19 = false;
+    bool local_20 = false;
+    bool local_21 = false;
     float big_6 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
-    w_19 = w_in;
+    w_20 = w_in;
     if (!((big_6 > 1.1529215e18))) {
         if ((big_6 < 8.6736174e-19)) {
-            local_18 = (big_6 > 0.0);
+            local_20 = (big_6 > 0.0);
         } else {
-            local_18 = false;
+            local_20 = false;
         }
-        bool _e24 = local_18;
-        local_17 = _e24;
+        bool _e24 = local_20;
+        local_19 = _e24;
     } else {
-        local_17 = true;
+        local_19 = true;
     }
-    bool _e26 = local_17;
+    bool _e26 = local_19;
     if (_e26) {
-        int e_5 = (int(((floatBitsToUint(big_6) >> 23u) & 255u)) - 127);
-        w_19 = (w_in * uintBitsToFloat((uint((127 - e_5)) << 23u)));
+        int e_6 = (int(((floatBitsToUint(big_6) >> 23u) & 255u)) - 127);
+        w_20 = (w_in * uintBitsToFloat((uint((127 - e_6)) << 23u)));
     }
-    float _e43 = w_19.x;
-    float _e45 = w_19.y;
+    float _e43 = w_20.x;
+    float _e45 = w_20.y;
     float _e46 = math_hypot(_e43, _e45);
     if ((_e46 <= 0.0)) {
         return 0.0;
     }
-    float _e51 = w_19.z;
+    float _e51 = w_20.z;
     float wz = abs(_e51);
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    vec2 alpha_11 = r_59.alpha;
-    vec2 ha = min(abs(half_extent_6), (alpha_11 * filter_rect_lambda_BIG_K));
-    float _e63 = w_19.x;
+    vec2 alpha_12 = r_66.alpha;
+    vec2 ha = min(abs(half_extent_6), (alpha_12 * filter_rect_lambda_BIG_K));
+    float _e63 = w_20.x;
     float ux = (abs(_e63) / _e46);
-    float _e67 = w_19.y;
+    float _e67 = w_20.y;
     float uy = (abs(_e67) / _e46);
-    float px = (ux * alpha_11.x);
-    float py = (uy * alpha_11.y);
+    float px = (ux * alpha_12.x);
+    float py = (uy * alpha_12.y);
     float _e74 = math_hypot(px, py);
-    float k1_4 = ((px / _e74) * (ha.x / alpha_11.x));
-    float k2_4 = ((py / _e74) * (ha.y / alpha_11.y));
+    float k1_4 = ((px / _e74) * (ha.x / alpha_12.x));
+    float k2_4 = ((py / _e74) * (ha.y / alpha_12.y));
     if ((k1_4 == 0.0)) {
-        local_19 = (k2_4 == 0.0);
+        local_21 = (k2_4 == 0.0);
     } else {
-        local_19 = false;
+        local_21 = false;
     }
-    bool _e92 = local_19;
+    bool _e92 = local_21;
     if (_e92) {
-        vec3 _e93 = w_19;
-        float _e94 = ndf_ggx_lambda_axis_aligned(r_59, _e93);
+        vec3 _e93 = w_20;
+        float _e94 = ndf_ggx_lambda_axis_aligned(r_66, _e93);
         return _e94;
     }
     float mm = ((wz / _e46) / _e74);
@@ -2595,12 +2770,12 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_59
         return ((0.25 / mm) / mm);
     }
     bool long_x = (k1_4 >= k2_4);
-    float _e104 = w_19.y;
-    float _e107 = w_19.x;
+    float _e104 = w_20.y;
+    float _e107 = w_20.x;
     float wl_1 = (long_x ? abs(_e107) : abs(_e104));
     float hl = (long_x ? ha.x : ha.y);
-    float lo_4 = (((wz - (wl_1 * hl)) / _e46) / _e74);
-    float _e117 = filter_rect_lambda_expected_psi(mm, k1_4, k2_4, lo_4);
+    float lo_5 = (((wz - (wl_1 * hl)) / _e46) / _e74);
+    float _e117 = filter_rect_lambda_expected_psi(mm, k1_4, k2_4, lo_5);
     return (_e117 / mm);
 }
 
@@ -2609,15 +2784,15 @@ ndf_roughness_matrix_RoughnessMatrix filter_method_gaussian_lobe(filter_method_G
     return _e5;
 }
 
-float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, vec3 m_23) {
+float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, vec3 m_28) {
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_1, material_1, fp_8);
-    float _e5 = ndf_ggx_d_matrix(_e4, m_23);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_28);
     return _e5;
 }
 
-float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_9, vec3 m_24) {
+float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_9, vec3 m_29) {
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_2, material_2, fp_9);
-    float _e5 = ndf_beckmann_d_matrix(_e4, m_24);
+    float _e5 = ndf_beckmann_d_matrix(_e4, m_29);
     return _e5;
 }
 
@@ -2627,9 +2802,9 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_method_exact_gaussian_lobe(filter
     return _e6;
 }
 
-float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, vec3 m_25) {
+float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, vec3 m_30) {
     filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_method_exact_gaussian_lobe(method_4, material_4, fp_11);
-    float _e5 = filter_gaussian_ggx_d(_e4, m_25);
+    float _e5 = filter_gaussian_ggx_d(_e4, m_30);
     return _e5;
 }
 
@@ -2638,17 +2813,17 @@ ndf_roughness_matrix_RoughnessMatrix filter_method_projected_lobe(filter_method_
     return _e5;
 }
 
-float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, vec3 m_26) {
+float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, vec3 m_31) {
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_projected_lobe(method_6, material_6, fp_13);
-    float _e5 = ndf_ggx_d_matrix(_e4, m_26);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_31);
     return _e5;
 }
 
 filter_method_RectFilteredGgx filter_method_rect_lobe(filter_method_Rect method_7, ndf_roughness_axis_aligned_AxisAligned material_7, footprint_Footprint fp_14) {
     kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_14);
     kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
-    vec2 h_29 = _e6.half_extent;
-    return filter_method_RectFilteredGgx(material_7, h_29);
+    vec2 h_31 = _e6.half_extent;
+    return filter_method_RectFilteredGgx(material_7, h_31);
 }
 
 float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe, vec2 s_12) {
@@ -2656,46 +2831,46 @@ float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe, vec2 s
     return _e4;
 }
 
-float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_1, vec3 m_27) {
-    float _e4 = filter_rect_d_rect(lobe_1.roughness, m_27, lobe_1.half_extent);
+float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_1, vec3 m_32) {
+    float _e4 = filter_rect_d_rect(lobe_1.roughness, m_32, lobe_1.half_extent);
     return _e4;
 }
 
-float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_2, vec3 w_20) {
-    float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_20);
+float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_2, vec3 w_21) {
+    float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_21);
     return _e4;
 }
 
-float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_3, vec3 w_21, vec3 m_28) {
-    float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_21);
-    float _e5 = ndf_g1_of(_e3, dot(w_21, m_28));
+float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_3, vec3 w_22, vec3 m_33) {
+    float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_22);
+    float _e5 = ndf_g1_of(_e3, dot(w_22, m_33));
     return _e5;
 }
 
-float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_4, vec3 i_9, vec3 o_7, vec3 m_29) {
+float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_4, vec3 i_9, vec3 o_7, vec3 m_34) {
     float _e4 = filter_method_lambda_rect_filtered(lobe_4, i_9);
     float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_7);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_29), dot(o_7, m_29));
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_34), dot(o_7, m_34));
     return _e8;
 }
 
-float filter_method_d_ggx_rect(filter_method_Rect method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, vec3 m_30) {
+float filter_method_d_ggx_rect(filter_method_Rect method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, vec3 m_35) {
     filter_method_RectFilteredGgx _e4 = filter_method_rect_lobe(method_8, material_8, fp_15);
-    float _e5 = filter_method_d_rect_filtered(_e4, m_30);
+    float _e5 = filter_method_d_rect_filtered(_e4, m_35);
     return _e5;
 }
 
 ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(filter_method_Proxy method_9, ndf_roughness_axis_aligned_AxisAligned material_9, footprint_Footprint fp_16) {
     kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_16);
     kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
-    vec2 h_30 = _e6.half_extent;
-    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_30);
+    vec2 h_32 = _e6.half_extent;
+    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_32);
     return _e8;
 }
 
-float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, vec3 m_31) {
+float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, vec3 m_36) {
     ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
-    float _e5 = ndf_ggx_d_axis_aligned(_e4, m_31);
+    float _e5 = ndf_ggx_d_axis_aligned(_e4, m_36);
     return _e5;
 }
 
@@ -2740,19 +2915,77 @@ filter_deferred_KernelConvention filter_presets_preset(uint i_10) {
     }
 }
 
-vec2 footprint_slope_slope_from_sphere(vec3 h_18) {
-    float z_5 = max(h_18.z, math_F32_MIN_POSITIVE);
-    return clamp((-(h_18.xy) / vec2(z_5)), vec2(-3.4028235e38), vec2(3.4028235e38));
+float filter_rect_sample_half(float h_18, float alpha_11) {
+    float v_20 = abs(h_18);
+    return ((v_20 >= 0.0) ? min(v_20, (filter_rect_BIG * alpha_11)) : 0.0);
 }
 
-vec3 footprint_slope_sphere_from_slope(vec2 s_13) {
-    float k_29 = max(max(abs(s_13.x), abs(s_13.y)), 1.0);
-    vec3 v_18 = vec3((-(s_13) / vec2(k_29)), (1.0 / k_29));
-    return (v_18 / vec3(length(v_18)));
+vec3 filter_rect_sample_normal_of_slope(vec2 s_13) {
+    vec3 _e4 = sampling_normalize_scaled(vec3(-(s_13), 1.0));
+    return vec3(_e4.xy, max(_e4.z, math_F32_MIN_POSITIVE));
 }
 
-vec2 footprint_slope_projected_from_sphere(vec3 h_19) {
-    return h_19.xy;
+vec3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_67, vec2 half_extent_7, vec2 u_13, vec2 u_box) {
+    vec2 a_34 = r_67.alpha;
+    float _e7 = filter_rect_sample_half(half_extent_7.x, a_34.x);
+    float _e10 = filter_rect_sample_half(half_extent_7.y, a_34.y);
+    vec2 h_33 = vec2(_e7, _e10);
+    float _e13 = sampling_clamp_unit(u_13.x);
+    float _e15 = sampling_clamp_unit(u_13.y);
+    vec2 _e16 = math_sincos_turns(_e15);
+    float rad_1 = sqrt((_e13 / (1.0 - _e13)));
+    vec2 g_9 = (-(a_34) * (rad_1 * _e16));
+    float _e25 = sampling_clamp_unit(u_box.x);
+    float _e27 = sampling_clamp_unit(u_box.y);
+    vec2 b_9 = vec2(_e25, _e27);
+    vec2 d_6 = (((2.0 * b_9) - vec2(1.0)) * h_33);
+    vec3 _e36 = filter_rect_sample_normal_of_slope((g_9 + d_6));
+    return _e36;
+}
+
+float filter_rect_sample_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_68, vec2 half_extent_8, vec3 m_37) {
+    float _e3 = filter_rect_d_rect(r_68, m_37, half_extent_8);
+    return ((m_37.z > 0.0) ? (_e3 * m_37.z) : 0.0);
+}
+
+float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_69, vec2 half_extent_9, vec3 wo_5, vec3 m_38) {
+    bool local_22 = false;
+    bool local_23 = false;
+    float wom_1 = dot(wo_5, m_38);
+    if (!(!((wo_5.z > 0.0)))) {
+        local_22 = !((m_38.z > 0.0));
+    } else {
+        local_22 = true;
+    }
+    bool _e17 = local_22;
+    if (!(_e17)) {
+        local_23 = !((wom_1 > 0.0));
+    } else {
+        local_23 = true;
+    }
+    bool _e25 = local_23;
+    if (_e25) {
+        return 0.0;
+    }
+    float _e27 = filter_rect_d_rect(r_69, m_38, half_extent_9);
+    float _e30 = filter_rect_lambda_lambda_rect(r_69, half_extent_9, wo_5);
+    float v_21 = ((wom_1 * _e27) / (wo_5.z * (1.0 + _e30)));
+    return ((v_21 <= math_F32_MAX) ? v_21 : 0.0);
+}
+
+vec2 footprint_slope_slope_from_sphere(vec3 h_19) {
+    float z_7 = max(h_19.z, math_F32_MIN_POSITIVE);
+    return clamp((-(h_19.xy) / vec2(z_7)), vec2(-3.4028235e38), vec2(3.4028235e38));
+}
+
+vec3 footprint_slope_sphere_from_slope(vec2 s_14) {
+    float k_31 = max(max(abs(s_14.x), abs(s_14.y)), 1.0);
+    vec3 v_22 = vec3((-(s_14) / vec2(k_31)), (1.0 / k_31));
+    return (v_22 / vec3(length(v_22)));
+}
+
+vec2 footprint_slope_projected_from_sphere(vec3 h_20) {
+    return h_20.xy;
 }
 
 vec3 footprint_slope_sphere_from_projected(vec2 p_1) {
@@ -2770,136 +3003,360 @@ vec2 footprint_slope_slope_from_projected(vec2 p_2) {
     return _e2;
 }
 
-vec2 footprint_slope_projected_from_slope(vec2 s_14) {
-    vec3 _e1 = footprint_slope_sphere_from_slope(s_14);
+vec2 footprint_slope_projected_from_slope(vec2 s_15) {
+    vec3 _e1 = footprint_slope_sphere_from_slope(s_15);
     vec2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
 }
 
-sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_60) {
-    vec3 _e1 = ndf_roughness_matrix_clamped_entries(r_60);
-    float l_xx = sqrt(_e1.x);
-    return sampling_Warp(l_xx, (_e1.y / l_xx), (r_60.sqrt_det / l_xx));
+float sampling_beckmann_erfcx(float z_1) {
+    float p_3 = 0.17087276;
+    float t_18 = (1.0 / (1.0 + (0.5 * z_1)));
+    float _e9 = p_3;
+    p_3 = ((_e9 * t_18) - 0.82215226);
+    float _e13 = p_3;
+    p_3 = ((_e13 * t_18) + 1.4885159);
+    float _e17 = p_3;
+    p_3 = ((_e17 * t_18) - 1.135204);
+    float _e21 = p_3;
+    p_3 = ((_e21 * t_18) + 0.27886808);
+    float _e25 = p_3;
+    p_3 = ((_e25 * t_18) - 0.18628806);
+    float _e29 = p_3;
+    p_3 = ((_e29 * t_18) + 0.09678418);
+    float _e33 = p_3;
+    p_3 = ((_e33 * t_18) + 0.37409195);
+    float _e37 = p_3;
+    p_3 = ((_e37 * t_18) + 1.0000237);
+    float _e41 = p_3;
+    p_3 = ((_e41 * t_18) - 1.2655122);
+    float _e45 = p_3;
+    float _e46 = math_exp(_e45);
+    return (t_18 * _e46);
 }
 
-vec3 sampling_normalize_scaled(vec3 v_12) {
-    vec3 w_26 = (v_12 / vec3(max(max(abs(v_12.x), abs(v_12.y)), abs(v_12.z))));
-    return (w_26 / vec3(length(w_26)));
+float sampling_beckmann_upper_tail(float x_8, float c_10, float s_16) {
+    float _e5 = math_exp((-(x_8) * x_8));
+    float _e8 = sampling_beckmann_erfcx(x_8);
+    return ((0.5 * _e5) * ((c_10 * _e8) - (s_16 * sampling_beckmann_INV_SQRT_PI)));
 }
 
-vec3 sampling_stretch(sampling_Warp l_3, vec3 w_22) {
-    return vec3(((l_3.l_xx * w_22.x) + (l_3.l_yx * w_22.y)), (l_3.l_yy * w_22.y), w_22.z);
+vec2 sampling_beckmann_cdf_terms(float x_9, float c_11, float s_17) {
+    float k_23 = 0.0;
+    float _e5 = math_exp((-(x_9) * x_9));
+    if ((x_9 <= 0.0)) {
+        float _e12 = sampling_beckmann_erfcx(-(x_9));
+        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_17 * sampling_beckmann_INV_SQRT_PI)));
+    } else {
+        float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_17);
+        k_23 = (c_11 - _e18);
+    }
+    float _e20 = k_23;
+    return vec2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_17 * x_9))));
 }
 
-vec3 sampling_unstretch(sampling_Warp l_4, vec3 n_5) {
-    vec3 _e14 = sampling_normalize_scaled(vec3((l_4.l_xx * n_5.x), ((l_4.l_yx * n_5.x) + (l_4.l_yy * n_5.y)), n_5.z));
-    return _e14;
+float sampling_beckmann_erfinv_guess(float x_10) {
+    float w_23 = 0.0;
+    float p_4 = 0.0;
+    float a_35 = ((1.0 - x_10) * (1.0 + x_10));
+    if (!((a_35 > 0.0))) {
+        return 0.0;
+    }
+    float _e10 = math_ln(a_35);
+    w_23 = -(_e10);
+    float _e14 = w_23;
+    if ((_e14 < 5.0)) {
+        float _e17 = w_23;
+        w_23 = (_e17 - 2.5);
+        p_4 = 2.8102264e-8;
+        float _e21 = p_4;
+        float _e22 = w_23;
+        p_4 = ((_e21 * _e22) + 3.4327394e-7);
+        float _e26 = p_4;
+        float _e27 = w_23;
+        p_4 = ((_e26 * _e27) - 3.5233877e-6);
+        float _e31 = p_4;
+        float _e32 = w_23;
+        p_4 = ((_e31 * _e32) - 4.3915065e-6);
+        float _e36 = p_4;
+        float _e37 = w_23;
+        p_4 = ((_e36 * _e37) + 0.00021858087);
+        float _e41 = p_4;
+        float _e42 = w_23;
+        p_4 = ((_e41 * _e42) - 0.001253725);
+        float _e46 = p_4;
+        float _e47 = w_23;
+        p_4 = ((_e46 * _e47) - 0.0041776816);
+        float _e51 = p_4;
+        float _e52 = w_23;
+        p_4 = ((_e51 * _e52) + 0.24664073);
+        float _e56 = p_4;
+        float _e57 = w_23;
+        p_4 = ((_e56 * _e57) + 1.5014094);
+    } else {
+        float _e61 = w_23;
+        w_23 = (sqrt(_e61) - 3.0);
+        p_4 = -0.00020021426;
+        float _e66 = p_4;
+        float _e67 = w_23;
+        p_4 = ((_e66 * _e67) + 0.00010095056);
+        float _e71 = p_4;
+        float _e72 = w_23;
+        p_4 = ((_e71 * _e72) + 0.0013493432);
+        float _e76 = p_4;
+        float _e77 = w_23;
+        p_4 = ((_e76 * _e77) - 0.0036734284);
+        float _e81 = p_4;
+        float _e82 = w_23;
+        p_4 = ((_e81 * _e82) + 0.0057395077);
+        float _e86 = p_4;
+        float _e87 = w_23;
+        p_4 = ((_e86 * _e87) - 0.0076224613);
+        float _e91 = p_4;
+        float _e92 = w_23;
+        p_4 = ((_e91 * _e92) + 0.0094388705);
+        float _e96 = p_4;
+        float _e97 = w_23;
+        p_4 = ((_e96 * _e97) + 1.001674);
+        float _e101 = p_4;
+        float _e102 = w_23;
+        p_4 = ((_e101 * _e102) + 2.8329768);
+    }
+    float _e106 = p_4;
+    return (_e106 * x_10);
 }
 
-float sampling_clamp_unit(float u_7) {
-    return ((u_7 >= 0.0) ? min(u_7, sampling_ONE_MINUS_EPS) : 0.0);
+float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u_14) {
+    float lo_3 = -9.0;
+    float hi_2 = 0.0;
+    bool local_24 = false;
+    float x_11 = 0.0;
+    float dx_old = 0.0;
+    uint i_11 = 0u;
+    float g_8 = 0.0;
+    bool local_25 = false;
+    bool local_26 = false;
+    float hi0_ = ((s_18 > 0.0) ? min((c_12 / s_18), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
+    hi_2 = hi0_;
+    vec2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_18);
+    float norm_1 = _e13.x;
+    bool upper = (u_14 > 0.5);
+    float goal = ((upper ? (1.0 - u_14) : u_14) * norm_1);
+    if (!((goal > 0.0))) {
+        float _e24 = lo_3;
+        return _e24;
+    }
+    float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_18);
+    float tol = (4.7683716e-7 * goal);
+    float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_14) - 1.0));
+    float _e35 = hi_2;
+    float _e40 = lo_3;
+    if ((_e34 > _e40)) {
+        float _e44 = hi_2;
+        local_24 = (_e34 < _e44);
+    } else {
+        local_24 = false;
+    }
+    bool _e47 = local_24;
+    x_11 = (_e47 ? _e34 : min(0.0, (0.5 * _e35)));
+    float _e50 = hi_2;
+    float _e51 = lo_3;
+    dx_old = (_e50 - _e51);
+    bool loop_init_15 = true;
+    while(true) {
+        if (!loop_init_15) {
+            uint _e144 = i_11;
+            i_11 = (_e144 + 1u);
+        }
+        loop_init_15 = false;
+        uint _e56 = i_11;
+        if ((_e56 < sampling_beckmann_MAX_ITERATIONS)) {
+        } else {
+            break;
+        }
+        {
+            float _e59 = x_11;
+            vec2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_18);
+            g_8 = (_e60.x - goal);
+            if (upper) {
+                float _e66 = x_11;
+                float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_18);
+                float _e69 = x_11;
+                g_8 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
+            }
+            float _e74 = g_8;
+            if ((abs(_e74) <= tol)) {
+                float _e77 = x_11;
+                return _e77;
+            }
+            float _e78 = g_8;
+            if ((_e78 < 0.0)) {
+                float _e81 = x_11;
+                lo_3 = _e81;
+            } else {
+                float _e82 = x_11;
+                hi_2 = _e82;
+            }
+            float _e83 = hi_2;
+            float _e84 = lo_3;
+            float _e87 = x_11;
+            if (((_e83 - _e84) <= (4.7683716e-7 * (1.0 + abs(_e87))))) {
+                float _e93 = lo_3;
+                float _e94 = hi_2;
+                return (0.5 * (_e93 + _e94));
+            }
+            float _e98 = g_8;
+            float step_ = (_e98 / _e60.y);
+            float _e101 = x_11;
+            float xn = (_e101 - step_);
+            float _e103 = lo_3;
+            if ((xn > _e103)) {
+                float _e107 = hi_2;
+                local_25 = (xn < _e107);
+            } else {
+                local_25 = false;
+            }
+            bool _e110 = local_25;
+            if (_e110) {
+                float _e113 = g_8;
+                float _e117 = dx_old;
+                local_26 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
+            } else {
+                local_26 = false;
+            }
+            bool _e123 = local_26;
+            if (_e123) {
+                dx_old = abs(step_);
+                x_11 = xn;
+                float _e127 = x_11;
+                if ((abs(step_) <= (2.3841858e-7 * (1.0 + abs(_e127))))) {
+                    float _e133 = x_11;
+                    return _e133;
+                }
+            } else {
+                float _e134 = hi_2;
+                float _e135 = lo_3;
+                dx_old = (0.5 * (_e134 - _e135));
+                float _e139 = lo_3;
+                float _e140 = hi_2;
+                x_11 = (0.5 * (_e139 + _e140));
+            }
+        }
+    }
+    float _e147 = x_11;
+    return _e147;
 }
 
-vec3 sampling_reflect(vec3 wo, vec3 m_32) {
-    return (((2.0 * dot(wo, m_32)) * m_32) - wo);
+float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_15) {
+    float c_13 = 1.0;
+    float s_19 = 0.0;
+    bool local_27 = false;
+    bool local_28 = false;
+    if ((cos_theta >= 0.0)) {
+        local_27 = (sin_theta >= 0.0);
+    } else {
+        local_27 = false;
+    }
+    bool _e14 = local_27;
+    if (_e14) {
+        local_28 = ((cos_theta + sin_theta) > 0.0);
+    } else {
+        local_28 = false;
+    }
+    bool _e21 = local_28;
+    if (_e21) {
+        float _e22 = math_hypot(cos_theta, sin_theta);
+        c_13 = (cos_theta / _e22);
+        s_19 = (sin_theta / _e22);
+    }
+    float _e25 = c_13;
+    float _e26 = s_19;
+    float _e27 = sampling_clamp_unit(u_15);
+    float _e28 = sampling_beckmann_invert_visible_slope_cdf(_e25, _e26, _e27);
+    return _e28;
 }
 
-vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_8) {
-    vec2 _e3 = math_sincos_turns(u_8.x);
-    float z_6 = (((1.0 - u_8.y) * (1.0 + wi.z)) - wi.z);
-    float sin_theta = sqrt(clamp((1.0 - (z_6 * z_6)), 0.0, 1.0));
-    return (vec3((sin_theta * _e3), z_6) + wi);
+vec3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_70, vec2 u_16) {
+    float _e3 = sampling_clamp_unit(u_16.x);
+    float _e5 = sampling_clamp_unit(u_16.y);
+    vec2 _e6 = math_sincos_turns(_e5);
+    float _e9 = math_ln((1.0 - _e3));
+    float _e14 = math_ln_1p((_e3 / (1.0 - _e3)));
+    float e_7 = ((_e3 < 0.5) ? _e14 : -(_e9));
+    vec3 n_8 = vec3((sqrt(e_7) * _e6), 1.0);
+    sampling_Warp _e22 = sampling_warp(r_70);
+    vec3 _e23 = sampling_unstretch(_e22, n_8);
+    return _e23;
 }
 
-vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_61, vec3 wo_1, vec2 u_9) {
-    bool local_20 = false;
-    if (!((wo_1.z > 0.0))) {
+vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_71, vec3 wo_6, vec2 u_17) {
+    bool local_29 = false;
+    if (!((wo_6.z > 0.0))) {
         return vec3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_61);
-    vec3 _e10 = sampling_normalize_scaled(wo_1);
+    sampling_Warp _e9 = sampling_warp(r_71);
+    vec3 _e10 = sampling_normalize_scaled(wo_6);
     vec3 _e11 = sampling_stretch(_e9, _e10);
     vec3 _e12 = sampling_normalize_scaled(_e11);
     if (!((_e12.z > 0.0))) {
         return vec3(0.0);
     }
-    float _e20 = sampling_clamp_unit(u_9.x);
-    float _e22 = sampling_clamp_unit(u_9.y);
-    vec3 _e24 = sampling_ggx_standard_visible(_e12, vec2(_e20, _e22));
-    vec3 _e25 = sampling_unstretch(_e9, _e24);
-    if ((_e25.z > 0.0)) {
-        local_20 = (dot(wo_1, _e25) > 0.0);
+    float _e21 = math_hypot(_e12.x, _e12.y);
+    vec2 phi = ((_e21 > 0.0) ? (_e12.xy / vec2(_e21)) : vec2(1.0, 0.0));
+    float _e33 = sampling_clamp_unit(u_17.x);
+    float _e34 = sampling_beckmann_invert_visible_slope_cdf(_e12.z, _e21, _e33);
+    float _e38 = sampling_clamp_unit(u_17.y);
+    float _e39 = sampling_beckmann_invert_visible_slope_cdf(1.0, 0.0, _e38);
+    vec2 t_19 = vec2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
+    vec3 _e54 = sampling_unstretch(_e9, vec3(-(t_19), 1.0));
+    if ((_e54.z > 0.0)) {
+        local_29 = (dot(wo_6, _e54) > 0.0);
     } else {
-        local_20 = false;
+        local_29 = false;
     }
-    bool _e35 = local_20;
-    if (_e35) {
-        return _e25;
+    bool _e64 = local_29;
+    if (_e64) {
+        return _e54;
     }
-    vec3 _e36 = sampling_unstretch(_e9, _e12);
-    return ((_e36.z > 0.0) ? _e36 : vec3(0.0));
+    vec3 _e65 = sampling_unstretch(_e9, _e12);
+    return ((_e65.z > 0.0) ? _e65 : vec3(0.0));
 }
 
-vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_62, vec2 u_10) {
-    float _e3 = sampling_clamp_unit(u_10.x);
-    float _e5 = sampling_clamp_unit(u_10.y);
-    vec2 _e6 = math_sincos_turns(_e5);
-    vec3 n_7 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
-    sampling_Warp _e13 = sampling_warp(r_62);
-    vec3 _e14 = sampling_unstretch(_e13, n_7);
-    return _e14;
+float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_72, vec3 m_39) {
+    float _e2 = ndf_beckmann_d_matrix(r_72, m_39);
+    return ((m_39.z > 0.0) ? (_e2 * m_39.z) : 0.0);
 }
 
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_63, vec3 m_33) {
-    float _e2 = ndf_ggx_d_matrix(r_63, m_33);
-    return ((m_33.z > 0.0) ? (_e2 * m_33.z) : 0.0);
-}
-
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_64, vec3 wo_2, vec3 m_34) {
-    bool local_21 = false;
-    float wom = dot(wo_2, m_34);
-    if (!(!((wo_2.z > 0.0)))) {
-        local_21 = !((wom > 0.0));
+float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_73, vec3 wo_7, vec3 m_40) {
+    bool local_30 = false;
+    float wom_2 = dot(wo_7, m_40);
+    if (!(!((wo_7.z > 0.0)))) {
+        local_30 = !((wom_2 > 0.0));
     } else {
-        local_21 = true;
+        local_30 = true;
     }
-    bool _e15 = local_21;
+    bool _e15 = local_30;
     if (_e15) {
         return 0.0;
     }
-    float _e17 = ndf_ggx_d_matrix(r_64, m_34);
-    float _e20 = ndf_ggx_lambda_matrix(r_64, wo_2);
-    float v_19 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
-    return ((v_19 <= math_F32_MAX) ? v_19 : 0.0);
+    float _e17 = ndf_beckmann_d_matrix(r_73, m_40);
+    float _e20 = ndf_beckmann_lambda_matrix(r_73, wo_7);
+    float v_23 = ((wom_2 * _e17) / (wo_7.z * (1.0 + _e20)));
+    return ((v_23 <= math_F32_MAX) ? v_23 : 0.0);
 }
 
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_65, vec3 wo_3, vec3 m_35) {
-    if (!((wo_3.z > 0.0))) {
+float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_74, vec3 wo_8, vec3 m_41) {
+    if (!((wo_8.z > 0.0))) {
         return 0.0;
     }
-    vec3 _e8 = sampling_normalize_scaled(wo_3);
-    if (!((dot(_e8, m_35) > 0.0))) {
+    vec3 _e8 = sampling_normalize_scaled(wo_8);
+    if (!((dot(_e8, m_41) > 0.0))) {
         return 0.0;
     }
-    float _e14 = ndf_ggx_d_matrix(r_65, m_35);
-    float _e18 = ndf_ggx_lambda_matrix(r_65, _e8);
-    float v_20 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
-    return ((v_20 <= math_F32_MAX) ? v_20 : 0.0);
-}
-
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_66, vec3 wo_4, vec3 wi_1) {
-    if (!((wo_4.z > 0.0))) {
-        return 0.0;
-    }
-    vec3 _e8 = sampling_normalize_scaled(wo_4);
-    vec3 _e9 = sampling_normalize_scaled(wi_1);
-    vec3 h_31 = (_e8 + _e9);
-    float len = length(h_31);
-    if (!((len > 0.0))) {
-        return 0.0;
-    }
-    float _e18 = sampling_reflection_pdf_from_normal(r_66, wo_4, (h_31 / vec3(len)));
-    return _e18;
+    float _e14 = ndf_beckmann_d_matrix(r_74, m_41);
+    float _e18 = ndf_beckmann_lambda_matrix(r_74, _e8);
+    float v_24 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
+    return ((v_24 <= math_F32_MAX) ? v_24 : 0.0);
 }
 
 void main() {

@@ -1477,6 +1477,166 @@ fn filter_gaussian_ggx_quad_lambda(qa: f32, qs: f32, oz: f32) -> f32 {
     return filter_gaussian_ggx_quad_lambda_sinh(qa, qs, oz, ds2);
 }
 
+// ---- filtered_ndf::sampling (shaders/sampling/mod.wgsl) ----
+// Importance sampling of GGX with a roughness matrix, and the pdfs for multiple importance
+// sampling, mirroring `src/.../sampling/mod.rs` (GGX, `NdfSampling`). Densities per
+// steradian: `D(m) m_z` (KHPL16 eq. 2) and the visible normals
+// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014 eq. 16); the reflected direction
+// `wi = reflect(wo, m)` has `D_wo(m) / (4 wo.m)` (Walter et al. 2007 eq. 14).
+//
+// One linear warp for every roughness: with `A = L L^T` (lower Cholesky factor), slopes
+// `s = L t` map the unit-roughness NDF of `t` to the NDF of `A`; the visible normals of `A`
+// seen from `wo` are the image of the unit-roughness visible normals seen from
+// `normalize(L^T wo_xy, wo_z)` (Heitz and d'Eon 2014 section 4; the same algebra for any
+// `L`). The unit-roughness GGX sampler is the spherical caps of Dupuy and Benyoub 2023
+// (listing 3). The angle `2 pi u` goes through `math::sincos_turns` (WGSL allows the driver
+// `sin`/`cos` an absolute `2^-11`).
+//
+// Out of domain: `wo_z <= 0` has no visible normal: the samplers return the zero vector
+// (the Rust `None`) and the pdfs 0. `u` is clamped to `[0, 1 - 2^-24]`. `wo` need not be
+// normalised; `m` must be a unit vector for the pdfs.
+
+/// The largest f32 below 1: the upper clamp of the uniform numbers.
+const sampling_ONE_MINUS_EPS: f32 = 0.99999994;
+
+/// The lower Cholesky factor `L = [[l_xx, 0], [l_yx, l_yy]]` of a roughness, `A = L L^T`.
+struct sampling_Warp {
+    /// `sqrt(a11)`.
+    l_xx: f32,
+    /// `a12 / sqrt(a11)`.
+    l_yx: f32,
+    /// `sqrt(det A) / sqrt(a11)`.
+    l_yy: f32,
+}
+
+/// The warp of a roughness matrix: the Cholesky factor of the clamped matrix `A_c` that the
+/// density evaluates (`matrix.wgsl`; entries from its eigenbasis, `sqrt(det A_c)` as stored),
+/// so that the sampled lobe is the one `D` describes.
+fn sampling_warp(r: ndf_roughness_matrix_RoughnessMatrix) -> sampling_Warp {
+    let e = ndf_roughness_matrix_clamped_entries(r);
+    let l_xx = sqrt(e.x);
+    return sampling_Warp(l_xx, e.y / l_xx, r.sqrt_det / l_xx);
+}
+
+/// `v / |v|` after scaling by the largest component (no overflow or underflow of the
+/// squares). `v` non-zero.
+fn sampling_normalize_scaled(v: vec3<f32>) -> vec3<f32> {
+    let w = v / max(max(abs(v.x), abs(v.y)), abs(v.z));
+    return w / length(w);
+}
+
+/// `(L^T w_xy, w_z)`: a view direction into the unit-roughness space (unnormalised).
+fn sampling_stretch(l: sampling_Warp, w: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(l.l_xx * w.x + l.l_yx * w.y, l.l_yy * w.y, w.z);
+}
+
+/// `normalize(L n_xy, n_z)`: a unit-roughness normal back to roughness `A`.
+fn sampling_unstretch(l: sampling_Warp, n: vec3<f32>) -> vec3<f32> {
+    return sampling_normalize_scaled(vec3<f32>(l.l_xx * n.x, l.l_yx * n.x + l.l_yy * n.y, n.z));
+}
+
+/// A uniform number clamped into `[0, 1 - 2^-24]` (negative values to 0).
+fn sampling_clamp_unit(u: f32) -> f32 {
+    return select(0.0, min(u, sampling_ONE_MINUS_EPS), u >= 0.0);
+}
+
+/// Mirror reflection of `wo` about the unit normal `m`: `2 (wo.m) m - wo` (Walter et al.
+/// 2007 eq. 13).
+fn sampling_reflect(wo: vec3<f32>, m: vec3<f32>) -> vec3<f32> {
+    return 2.0 * dot(wo, m) * m - wo;
+}
+
+/// Unit-roughness GGX visible normal by spherical caps (Dupuy and Benyoub 2023): a uniform
+/// point `c` on the cap `z >= -wi_z` of the unit sphere, returned as `c + wi` (unnormalised).
+fn sampling_ggx_standard_visible(wi: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
+    let cs = math_sincos_turns(u.x);
+    let z = (1.0 - u.y) * (1.0 + wi.z) - wi.z;
+    let sin_theta = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
+    return vec3<f32>(sin_theta * cs, z) + wi;
+}
+
+/// Samples a visible micronormal `m` of GGX with roughness `r` from `u` in `[0, 1)^2`, with
+/// density `D_wo(m)` per steradian (Heitz 2014 eq. 16). The zero vector if `wo_z <= 0` (or
+/// the view is grazing to within the f32 range); otherwise a unit `m` with `m_z > 0` and
+/// `wo.m > 0` (should rounding break either, the lobe centre `unstretch(wi)` is returned,
+/// as in Rust).
+fn sampling_sample_visible_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
+    if !(wo.z > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let l = sampling_warp(r);
+    let wi = sampling_normalize_scaled(sampling_stretch(l, sampling_normalize_scaled(wo)));
+    if !(wi.z > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let n = sampling_ggx_standard_visible(wi, vec2<f32>(sampling_clamp_unit(u.x), sampling_clamp_unit(u.y)));
+    let m = sampling_unstretch(l, n);
+    if m.z > 0.0 && dot(wo, m) > 0.0 {
+        return m;
+    }
+    let c = sampling_unstretch(l, wi);
+    return select(vec3<f32>(0.0), c, c.z > 0.0);
+}
+
+/// Samples `m` with density `D(m) m_z` per steradian (the NDF itself): in the unit-roughness
+/// space `|t|^2 = u1 / (1 - u1)`, `n = (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))`,
+/// `phi = 2 pi u2`, then warped by `L`. Always `m_z > 0`.
+fn sampling_sample_normal(r: ndf_roughness_matrix_RoughnessMatrix, u: vec2<f32>) -> vec3<f32> {
+    let u1 = sampling_clamp_unit(u.x);
+    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
+    let n = vec3<f32>(sqrt(u1) * cs, sqrt(1.0 - u1));
+    return sampling_unstretch(sampling_warp(r), n);
+}
+
+/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
+/// `m_z <= 0`.
+fn sampling_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
+    return select(0.0, ndf_ggx_d_matrix(r, m) * m.z, m.z > 0.0);
+}
+
+/// The visible-normal density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian
+/// (Heitz 2014 eq. 16) for a unit `m`; 0 for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
+fn sampling_visible_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+    let wom = dot(wo, m);
+    if !(wo.z > 0.0) || !(wom > 0.0) {
+        return 0.0;
+    }
+    let v = wom * ndf_ggx_d_matrix(r, m) / (wo.z * (1.0 + ndf_ggx_lambda_matrix(r, wo)));
+    return select(0.0, v, v <= math_F32_MAX);
+}
+
+/// The density per steradian of `wi = reflect(wo, m)` for the unit half vector `m` itself:
+/// `G1(wo) D(m) / (4 wo_z)` (Walter et al. 2007 eq. 14, `wo` normalised here); 0 for
+/// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
+fn sampling_reflection_pdf_from_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+    if !(wo.z > 0.0) {
+        return 0.0;
+    }
+    let o = sampling_normalize_scaled(wo);
+    if !(dot(o, m) > 0.0) {
+        return 0.0;
+    }
+    let v = ndf_ggx_d_matrix(r, m) / (4.0 * o.z * (1.0 + ndf_ggx_lambda_matrix(r, o)));
+    return select(0.0, v, v <= math_F32_MAX);
+}
+
+/// The density per steradian of `wi` when `m` is drawn by [`sample_visible_normal`] and
+/// `wi = reflect(wo, m)`: [`reflection_pdf_from_normal`] with `m = normalize(wo + wi)`
+/// (both normalised first). 0 for `wo_z <= 0` and for `wi = -wo`. The recomputed half vector
+/// carries a direction error of about `eps / (2 wo.m)`: for a sampled direction prefer
+/// [`reflection_pdf_from_normal`] with the sampled `m`.
+fn sampling_reflection_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
+    if !(wo.z > 0.0) {
+        return 0.0;
+    }
+    let h = sampling_normalize_scaled(wo) + sampling_normalize_scaled(wi);
+    let len = length(h);
+    if !(len > 0.0) {
+        return 0.0;
+    }
+    return sampling_reflection_pdf_from_normal(r, wo, h / len);
+}
+
 // ---- filtered_ndf::filter::gaussian_ggx (shaders/filter/gaussian_ggx.wgsl) ----
 // The exact Gaussian-filtered GGX (`src/.../filter/gaussian_ggx.rs`, `GaussianFilteredGgx`):
 // the convolution of a GGX slope density of roughness `A` with a Gaussian kernel
@@ -1622,6 +1782,56 @@ fn filter_gaussian_ggx_g1(g: filter_gaussian_ggx_GaussianFilteredGgx, w: vec3<f3
 /// filtered lobe.
 fn filter_gaussian_ggx_g2(g: filter_gaussian_ggx_GaussianFilteredGgx, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
     return ndf_g2_of(filter_gaussian_ggx_lambda(g, i), filter_gaussian_ggx_lambda(g, o), dot(i, m), dot(o, m));
+}
+
+/// Two uniform numbers from one (the Rust `split` of the `f32` build): the high and the low
+/// twelve bits of `u` in `[0, 1)`, `((floor(4096 u) + 1/2) / 4096, frac(4096 u))`, both
+/// uniform on their grids and independent (every step exact in f32).
+fn filter_gaussian_ggx_split(u: f32) -> vec2<f32> {
+    let x = u * 4096.0;
+    let hi = floor(x);
+    return vec2<f32>((hi + 0.5) / 4096.0, x - hi);
+}
+
+/// Samples a unit micronormal `m` of the filtered lobe with density `D(m) m_z` per steradian
+/// (KHPL16 eq. 2; the Rust `NdfSampling::sample_normal`). Exact: the filtered slope is the sum
+/// of two independent slopes (module docs: the convolution), a GGX slope of roughness `A_c`,
+/// `B t` with `B` its Cholesky factor (`sampling::warp`) and `|t|^2 = u1 / (1 - u1)` (the
+/// inverse radial CDF of unit-roughness GGX, Walter et al. 2007 eq. 35), and a kernel slope
+/// `N(0, Sigma)` by Box-Muller along the kernel's principal axes (the eigenvector of the
+/// larger eigenvalue from the row without cancellation, as Rust). The four uniform numbers are
+/// the high and low halves of the bits of `u.x` (`u1`, `u3`) and `u.y` (`u2`, `u4`), 12 bits
+/// each ([`split`]). `u` is clamped to `[0, 1 - 2^-24]`. Always `m_z > 0` (kept at the
+/// smallest normal f32 where the slope leaves the f32 range).
+fn filter_gaussian_ggx_sample_normal(g: filter_gaussian_ggx_GaussianFilteredGgx, u: vec2<f32>) -> vec3<f32> {
+    let a = filter_gaussian_ggx_split(sampling_clamp_unit(u.x));
+    let b = filter_gaussian_ggx_split(sampling_clamp_unit(u.y));
+    // The GGX slope B t.
+    let t = sqrt(a.x / (1.0 - a.x)) * math_sincos_turns(b.x);
+    let l = sampling_warp(g.a);
+    let gs = vec2<f32>(l.l_xx * t.x, l.l_yx * t.x + l.l_yy * t.y);
+    // The kernel slope: -2 ln(1 - u3) as ln_1p below 1/2 (no cancellation), exact above.
+    let e = select(-math_ln(1.0 - a.y), math_ln_1p(a.y / (1.0 - a.y)), a.y < 0.5);
+    let y = sqrt(2.0 * e) * math_sincos_turns(b.y);
+    let k = g.k;
+    let ev = kernel_covariance_eigenvalues(k);
+    let khalf = 0.5 * (k.s_xx - k.s_yy);
+    let krad = math_hypot(khalf, k.s_xy);
+    var ax = vec2<f32>(1.0, 0.0);
+    if krad > 0.0 {
+        let w = select(vec2<f32>(k.s_xy, krad - khalf), vec2<f32>(krad + khalf, k.s_xy), khalf >= 0.0);
+        ax = w / math_hypot(w.x, w.y);
+    }
+    let kk = vec2<f32>(sqrt(ev.y) * y.x, sqrt(ev.x) * y.y);
+    let s = gs + vec2<f32>(ax.x * kk.x - ax.y * kk.y, ax.y * kk.x + ax.x * kk.y);
+    let n = sampling_normalize_scaled(vec3<f32>(-s, 1.0));
+    return vec3<f32>(n.xy, max(n.z, math_F32_MIN_POSITIVE));
+}
+
+/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
+/// `m_z <= 0`.
+fn filter_gaussian_ggx_normal_pdf(g: filter_gaussian_ggx_GaussianFilteredGgx, m: vec3<f32>) -> f32 {
+    return select(0.0, filter_gaussian_ggx_d(g, m) * m.z, m.z > 0.0);
 }
 
 // ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
@@ -3131,6 +3341,75 @@ fn filter_presets_preset(i: u32) -> filter_deferred_KernelConvention {
     }
 }
 
+// ---- filtered_ndf::filter::rect::sample (shaders/filter/rect/sample.wgsl) ----
+// Importance sampling of the box-filtered GGX lobe (`boxed::d_rect`, `lambda::lambda_rect`)
+// and its pdfs, mirroring `src/.../filter/rect/sample.rs`.
+//
+// `D(m) m_z`: the lobe's slope is `s = g + delta` with `g` axis-aligned GGX and `delta`
+// uniform on the box `[-H_x, H_x] x [-H_y, H_y]` (its density is the box mean of `P22`,
+// `boxed::p22_rect`, KHPL16 eq. 16), so a GGX slope plus a uniform offset is an exact sample:
+// four uniform numbers, `u` for the GGX slope and `u_box` for the offset (the lobe's
+// conditional CDFs have no closed form, so two numbers would need a root find per
+// dimension). Visible normals: `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014
+// eq. 16) with the box lobe's own `Lambda`; its density is here, its sampler (an offset drawn
+// by its projected-area weight, two Newton solves over `Psi_1` means) is not yet.
+//
+// Out of domain: `u` components clamped to `[0, 1 - 2^-24]`; half extents by magnitude, at
+// most `1e18 alpha` (`boxed::BIG`; the Rust crate `1e60 alpha`); a sampled `m` is a unit
+// vector with `m_z > 0` (a slope beyond the f32 range keeps `m_z` at the smallest normal).
+
+/// A half extent as `boxed::p22_rect` reads it, in slope units: `|h|`, at most `BIG alpha`
+/// (NaN as 0 where the driver keeps the comparison).
+fn filter_rect_sample_half(h: f32, alpha: f32) -> f32 {
+    let v = abs(h);
+    return select(0.0, min(v, filter_rect_BIG * alpha), v >= 0.0);
+}
+
+/// The unit normal `normalize(-s, 1)` of the slope `s` (scaled first: no square overflows),
+/// `m_z` kept at the smallest normal f32 where it underflows.
+fn filter_rect_sample_normal_of_slope(s: vec2<f32>) -> vec3<f32> {
+    let n = sampling_normalize_scaled(vec3<f32>(-s, 1.0));
+    return vec3<f32>(n.xy, max(n.z, math_F32_MIN_POSITIVE));
+}
+
+/// Samples a unit micronormal `m` of the box-filtered GGX lobe (roughness `r`, slope-domain
+/// half extents `half_extent`) with density `D(m) m_z` per steradian, `D` = `boxed::d_rect`
+/// (KHPL16 eq. 16 per steradian): the axis-aligned GGX slope
+/// `g = -alpha sqrt(u1 / (1 - u1)) (cos phi, sin phi)`, `phi = 2 pi u2` (the GGX sampler's
+/// `D(m) m_z`, Walter et al. 2007 eq. 35-36 with the anisotropic stretch), plus the offset
+/// `(2 u_box - 1) H` uniform in the box. Exact; four uniform numbers in `[0, 1)`. Zero half
+/// extents: the GGX sample (the same direction as `sampling::sample_normal`).
+fn filter_rect_sample_sample_normal_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, u: vec2<f32>, u_box: vec2<f32>) -> vec3<f32> {
+    let a = r.alpha;
+    let h = vec2<f32>(filter_rect_sample_half(half_extent.x, a.x), filter_rect_sample_half(half_extent.y, a.y));
+    let u1 = sampling_clamp_unit(u.x);
+    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
+    let rad = sqrt(u1 / (1.0 - u1));
+    let g = -a * (rad * cs);
+    let b = vec2<f32>(sampling_clamp_unit(u_box.x), sampling_clamp_unit(u_box.y));
+    let d = (2.0 * b - 1.0) * h;
+    return filter_rect_sample_normal_of_slope(g + d);
+}
+
+/// The density of [`sample_normal_rect`], `D(m) m_z` per steradian with `D` =
+/// `boxed::d_rect`, for a unit `m`; 0 for `m_z <= 0`.
+fn filter_rect_sample_normal_pdf_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, m: vec3<f32>) -> f32 {
+    return select(0.0, filter_rect_d_rect(r, m, half_extent) * m.z, m.z > 0.0);
+}
+
+/// The visible-normal density of the box lobe,
+/// `D_wo(m) = max(0, wo.m) D(m) / (wo_z (1 + Lambda(wo)))` per steradian (Heitz 2014 eq. 16)
+/// for a unit `m`, `D` = `boxed::d_rect`, `Lambda` = `lambda::lambda_rect`. 0 for
+/// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`; `wo` need not be normalised.
+fn filter_rect_sample_visible_normal_pdf_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+    let wom = dot(wo, m);
+    if !(wo.z > 0.0) || !(m.z > 0.0) || !(wom > 0.0) {
+        return 0.0;
+    }
+    let v = wom * filter_rect_d_rect(r, m, half_extent) / (wo.z * (1.0 + filter_rect_lambda_lambda_rect(r, half_extent, wo)));
+    return select(0.0, v, v <= math_F32_MAX);
+}
+
 // ---- filtered_ndf::footprint::slope (shaders/footprint/slope.wgsl) ----
 // The three half-vector domains and the maps between them (TK19 supplement eq. 1-5),
 // mirroring `src/.../footprint/slope.rs`: the sphere (unit `h`, tangent frame, `z` = shading
@@ -3185,90 +3464,227 @@ fn footprint_slope_projected_from_slope(s: vec2<f32>) -> vec2<f32> {
     return footprint_slope_projected_from_sphere(footprint_slope_sphere_from_slope(s));
 }
 
-// ---- filtered_ndf::sampling (shaders/sampling/mod.wgsl) ----
-// Importance sampling of GGX with a roughness matrix, and the pdfs for multiple importance
-// sampling, mirroring `src/.../sampling/mod.rs` (GGX, `NdfSampling`). Densities per
-// steradian: `D(m) m_z` (KHPL16 eq. 2) and the visible normals
-// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014 eq. 16); the reflected direction
-// `wi = reflect(wo, m)` has `D_wo(m) / (4 wo.m)` (Walter et al. 2007 eq. 14).
+// ---- filtered_ndf::sampling::beckmann (shaders/sampling/beckmann.wgsl) ----
+// Importance sampling of Beckmann with a roughness matrix, and the pdfs, mirroring
+// `src/.../sampling/beckmann.rs` (the inversion of the visible-slope CDF) and the Beckmann
+// `NdfSampling` of `src/.../sampling/mod.rs`. Densities per steradian as for GGX
+// (`sampling/mod.wgsl`): `D(m) m_z` (KHPL16 eq. 2) and the visible normals
+// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014 eq. 16). The same linear warp
+// `A_c = L L^T` maps the unit-roughness samples to roughness `A` (`sampling::warp`).
 //
-// One linear warp for every roughness: with `A = L L^T` (lower Cholesky factor), slopes
-// `s = L t` map the unit-roughness NDF of `t` to the NDF of `A`; the visible normals of `A`
-// seen from `wo` are the image of the unit-roughness visible normals seen from
-// `normalize(L^T wo_xy, wo_z)` (Heitz and d'Eon 2014 section 4; the same algebra for any
-// `L`). The unit-roughness GGX sampler is the spherical caps of Dupuy and Benyoub 2023
-// (listing 3). The angle `2 pi u` goes through `math::sincos_turns` (WGSL allows the driver
-// `sin`/`cos` an absolute `2^-11`).
+// Visible normals (Heitz and d'Eon 2014 section 4; Jakob 2014): in the unit-roughness space
+// with the view azimuth rotated to `x`, the view `(sin theta, 0, cos theta)` sees the slopes
+// `(x, y)` with density `exp(-x^2 - y^2) (cos theta - x sin theta)+ / (pi cos theta (1 + Lambda))`:
+// `y` is a Gaussian of variance `1/2` and `x` has the CDF `C(x) = K(x) / K(mu)`,
+// `K(x) = cos theta erfc(-x) / 2 + sin theta exp(-x^2) / (2 sqrt(pi))`, `x <= mu = cot theta`,
+// `K(mu) = cos theta (1 + Lambda(theta))` (Heitz 2014 eq. 80). Both quantiles are solved by
+// the safeguarded Newton iteration of the Rust crate (Numerical Recipes' `rtsafe` rule) in
+// f32, with `K` evaluated as a sum of terms of one sign (below).
 //
-// Out of domain: `wo_z <= 0` has no visible normal: the samplers return the zero vector
-// (the Rust `None`) and the pdfs 0. `u` is clamped to `[0, 1 - 2^-24]`. `wo` need not be
-// normalised; `m` must be a unit vector for the pdfs.
+// Out of domain: `wo_z <= 0` has no visible normal: the samplers return the zero vector (the
+// Rust `None`) and the pdfs 0. `u` is clamped to `[0, 1 - 2^-24]`. The slope range is
+// `[-X_MAX, min(mu, X_MAX)]` with `X_MAX = 9` (the Rust `f32` bound; the `f64` build's is 26):
+// `u = 0` returns `-X_MAX` (the mass beyond, `< 1e-36`, is below the resolution of an f32
+// `u`). `wo` need not be normalised; `m` must be a unit vector for the pdfs.
 
-/// The largest f32 below 1: the upper clamp of the uniform numbers.
-const sampling_ONE_MINUS_EPS: f32 = 0.99999994;
+/// The bound of the slope range searched, in units of the unit roughness (the Rust `X_MAX`
+/// for `f32`: `exp(-81) ~ 6e-36` stays a normal f32).
+const sampling_beckmann_X_MAX: f32 = 9.0;
 
-/// The lower Cholesky factor `L = [[l_xx, 0], [l_yx, l_yy]]` of a roughness, `A = L L^T`.
-struct sampling_Warp {
-    /// `sqrt(a11)`.
-    l_xx: f32,
-    /// `a12 / sqrt(a11)`.
-    l_yx: f32,
-    /// `sqrt(det A) / sqrt(a11)`.
-    l_yy: f32,
+/// The iteration cap of the solve (never binding: bisection alone shrinks the bracket of
+/// width `< 2 X_MAX` to the f32 resolution in about 30 steps; Newton needs a few).
+const sampling_beckmann_MAX_ITERATIONS: u32 = 64u;
+
+/// `1 / sqrt(pi)`.
+const sampling_beckmann_INV_SQRT_PI: f32 = 0.564189583547756;
+
+/// f32 machine epsilon `2^-23`.
+const sampling_beckmann_EPS: f32 = 1.1920929e-7;
+
+/// The scaled complementary error function `erfcx(z) = exp(z^2) erfc(z)` for `z >= 0`, as
+/// `t exp(P(t))`, `t = 1 / (1 + z / 2)`, with the degree-9 polynomial `P` of Numerical
+/// Recipes' `erfcc` (Press et al. 1992 section 6.2, after Chebyshev; fractional error below
+/// `1.2e-7` for every `z >= 0`); `exp` is `math::exp` (3 ulp). Within about 11 ulp
+/// relative. Not meant for `z < 0`.
+fn sampling_beckmann_erfcx(z: f32) -> f32 {
+    let t = 1.0 / (1.0 + 0.5 * z);
+    var p = 0.17087277;
+    p = p * t - 0.82215223;
+    p = p * t + 1.48851587;
+    p = p * t - 1.13520398;
+    p = p * t + 0.27886807;
+    p = p * t - 0.18628806;
+    p = p * t + 0.09678418;
+    p = p * t + 0.37409196;
+    p = p * t + 1.00002368;
+    p = p * t - 1.26551223;
+    return t * math_exp(p);
 }
 
-/// The warp of a roughness matrix: the Cholesky factor of the clamped matrix `A_c` that the
-/// density evaluates (`matrix.wgsl`; entries from its eigenbasis, `sqrt(det A_c)` as stored),
-/// so that the sampled lobe is the one `D` describes.
-fn sampling_warp(r: ndf_roughness_matrix_RoughnessMatrix) -> sampling_Warp {
-    let e = ndf_roughness_matrix_clamped_entries(r);
-    let l_xx = sqrt(e.x);
-    return sampling_Warp(l_xx, e.y / l_xx, r.sqrt_det / l_xx);
+/// `phi(x) = exp(-x^2) (c erfcx(x) - s / sqrt(pi)) / 2 = c - K(x)` for `x >= 0` (module
+/// docs): the upper tail of the visible-slope CDF, `K(hi) - K(x) = phi(x) - phi(hi)` for
+/// `0 <= x <= hi`, without the cancellation of `K(hi) - K(x)` in the far upper tail. Its
+/// error is `(x^2 + 18)` ulp of the magnitude `exp(-x^2) (c erfcx(x) + s / sqrt(pi)) / 2`.
+fn sampling_beckmann_upper_tail(x: f32, c: f32, s: f32) -> f32 {
+    return 0.5 * math_exp(-x * x) * (c * sampling_beckmann_erfcx(x) - s * sampling_beckmann_INV_SQRT_PI);
 }
 
-/// `v / |v|` after scaling by the largest component (no overflow or underflow of the
-/// squares). `v` non-zero.
-fn sampling_normalize_scaled(v: vec3<f32>) -> vec3<f32> {
-    let w = v / max(max(abs(v.x), abs(v.y)), abs(v.z));
-    return w / length(w);
+/// `(K(x), K'(x))` of the visible-slope CDF (module docs), `K'(x) = exp(-x^2) (c - s x) / sqrt(pi)`,
+/// for `(c, s) = (cos theta, sin theta)`. With `erfc(-x) = exp(-x^2) erfcx(-x)` for `x <= 0`
+/// and `2 - exp(-x^2) erfcx(x)` above: `K = exp(-x^2) (c erfcx(-x) + s / sqrt(pi)) / 2` (two
+/// positive terms) for `x <= 0`, `K = c - upper_tail(x)` above (`K >= c / 2` there: the
+/// difference loses at most a factor 2). Relative error within `(x^2 + 36)` ulp
+/// (`exp(-x^2)` carries the rounding of `x^2`, `x^2 / 2` ulp; `erfcx` 11).
+fn sampling_beckmann_cdf_terms(x: f32, c: f32, s: f32) -> vec2<f32> {
+    let e = math_exp(-x * x);
+    var k: f32;
+    if x <= 0.0 {
+        k = 0.5 * e * (c * sampling_beckmann_erfcx(-x) + s * sampling_beckmann_INV_SQRT_PI);
+    } else {
+        k = c - sampling_beckmann_upper_tail(x, c, s);
+    }
+    return vec2<f32>(k, sampling_beckmann_INV_SQRT_PI * e * (c - s * x));
 }
 
-/// `(L^T w_xy, w_z)`: a view direction into the unit-roughness space (unnormalised).
-fn sampling_stretch(l: sampling_Warp, w: vec3<f32>) -> vec3<f32> {
-    return vec3<f32>(l.l_xx * w.x + l.l_yx * w.y, l.l_yy * w.y, w.z);
+/// Starting point only: `erf^-1(x)` by Giles 2010 ("Approximating the erfinv function",
+/// single-precision version). The solve owns the accuracy; `|x| >= 1` returns 0.
+fn sampling_beckmann_erfinv_guess(x: f32) -> f32 {
+    let a = (1.0 - x) * (1.0 + x);
+    if !(a > 0.0) {
+        return 0.0;
+    }
+    var w = -math_ln(a);
+    var p: f32;
+    if w < 5.0 {
+        w = w - 2.5;
+        p = 2.81022636e-08;
+        p = p * w + 3.43273939e-07;
+        p = p * w - 3.5233877e-06;
+        p = p * w - 4.39150654e-06;
+        p = p * w + 0.00021858087;
+        p = p * w - 0.00125372503;
+        p = p * w - 0.00417768164;
+        p = p * w + 0.246640727;
+        p = p * w + 1.50140941;
+    } else {
+        w = sqrt(w) - 3.0;
+        p = -0.000200214257;
+        p = p * w + 0.000100950558;
+        p = p * w + 0.00134934322;
+        p = p * w - 0.00367342844;
+        p = p * w + 0.00573950773;
+        p = p * w - 0.0076224613;
+        p = p * w + 0.00943887047;
+        p = p * w + 1.00167406;
+        p = p * w + 2.83297682;
+    }
+    return p * x;
 }
 
-/// `normalize(L n_xy, n_z)`: a unit-roughness normal back to roughness `A`.
-fn sampling_unstretch(l: sampling_Warp, n: vec3<f32>) -> vec3<f32> {
-    return sampling_normalize_scaled(vec3<f32>(l.l_xx * n.x, l.l_yx * n.x + l.l_yy * n.y, n.z));
+/// Solves `C(x) = u` for `x` in `[-X_MAX, min(mu, X_MAX)]` (the Rust
+/// `invert_visible_slope_cdf`), `(c, s) = (cos, sin)` of the unit-roughness view angle
+/// (`c, s >= 0`, not both zero), `u` in `[0, 1)`. Newton steps where they stay in the bracket
+/// and shrink the residual faster than bisection, bisection otherwise. Below `u = 1/2` the
+/// equation is `K(x) = u K(hi)`; above, `K(hi) - K(x) = (1 - u) K(hi)` (`1 - u` exact), with
+/// `K(hi) - K(x) = upper_tail(x) - upper_tail(hi)` for `x > 0`, so that the upper tail keeps
+/// its relative accuracy in `1 - u` as the lower one does in `u` (as f32 `K` it would carry
+/// `eps / (1 - u)`). Returns when the residual is within `4 eps` of the goal, a Newton step
+/// is below `2 eps (1 + |x|)`, or the bracket is narrower than `4 eps (1 + |x|)`: the result
+/// is the exact quantile of some `u'` with `|u' - u| <= u (2 err_K + 4 eps)` (`err_K` the
+/// relative error of `K`, `cdf_terms`) below `1/2`, `|(1 - u') - (1 - u)| <= (1 - u) err_R`
+/// above (`err_R` the error of the difference relative to it: the terms' magnitudes over
+/// their difference), to within `4 eps (1 + |x|)`.
+fn sampling_beckmann_invert_visible_slope_cdf(c: f32, s: f32, u: f32) -> f32 {
+    let hi0 = select(sampling_beckmann_X_MAX, min(c / s, sampling_beckmann_X_MAX), s > 0.0);
+    var lo = -sampling_beckmann_X_MAX;
+    var hi = hi0;
+    // The normaliser `K(mu)` by the same formula as `K(x)`: `C(hi) = 1` exactly.
+    let norm = sampling_beckmann_cdf_terms(hi0, c, s).x;
+    let upper = u > 0.5;
+    let goal = select(u, 1.0 - u, upper) * norm;
+    if !(goal > 0.0) {
+        return lo;
+    }
+    let tail_hi = sampling_beckmann_upper_tail(max(hi0, 0.0), c, s);
+    let tol = 4.0 * sampling_beckmann_EPS * goal;
+    let guess = sampling_beckmann_erfinv_guess(2.0 * u - 1.0);
+    var x = select(min(0.0, 0.5 * hi), guess, guess > lo && guess < hi);
+    var dx_old = hi - lo;
+    for (var i = 0u; i < sampling_beckmann_MAX_ITERATIONS; i = i + 1u) {
+        let kd = sampling_beckmann_cdf_terms(x, c, s);
+        // The residual, increasing in `x`: `K(x) - u K(hi)`, or `(1 - u) K(hi) - (K(hi) - K(x))`.
+        var g = kd.x - goal;
+        if upper {
+            g = goal - select(norm - kd.x, sampling_beckmann_upper_tail(x, c, s) - tail_hi, x > 0.0);
+        }
+        if abs(g) <= tol {
+            return x;
+        }
+        if g < 0.0 {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        if hi - lo <= 4.0 * sampling_beckmann_EPS * (1.0 + abs(x)) {
+            return 0.5 * (lo + hi);
+        }
+        let step = g / kd.y;
+        let xn = x - step;
+        if xn > lo && xn < hi && abs(2.0 * g) <= abs(dx_old * kd.y) {
+            dx_old = abs(step);
+            x = xn;
+            if abs(step) <= 2.0 * sampling_beckmann_EPS * (1.0 + abs(x)) {
+                return x;
+            }
+        } else {
+            dx_old = 0.5 * (hi - lo);
+            x = 0.5 * (lo + hi);
+        }
+    }
+    return x;
 }
 
-/// A uniform number clamped into `[0, 1 - 2^-24]` (negative values to 0).
-fn sampling_clamp_unit(u: f32) -> f32 {
-    return select(0.0, min(u, sampling_ONE_MINUS_EPS), u >= 0.0);
+/// The `x` component of a Beckmann visible slope in the standard configuration (the Rust
+/// `visible_slope_quantile`): the quantile `C^-1(u)` of the visible-slope CDF (module docs,
+/// Heitz 2014 eq. 80) for a view with `(cos theta, sin theta) = (cos_theta, sin_theta)` in
+/// the unit-roughness space (any non-negative pair, normalised here; `(1, 0)` gives the
+/// Gaussian of variance `1/2`, `erf^-1(2u - 1)`). `u` is clamped to `[0, 1 - 2^-24]`; the
+/// result lies in `[-9, min(cot theta, 9)]` (`u = 0` gives `-9`). Negative or NaN angles are
+/// treated as normal incidence. Accuracy: see `invert_visible_slope_cdf`.
+fn sampling_beckmann_visible_slope_quantile(cos_theta: f32, sin_theta: f32, u: f32) -> f32 {
+    var c = 1.0;
+    var s = 0.0;
+    if cos_theta >= 0.0 && sin_theta >= 0.0 && cos_theta + sin_theta > 0.0 {
+        let r = math_hypot(cos_theta, sin_theta);
+        c = cos_theta / r;
+        s = sin_theta / r;
+    }
+    return sampling_beckmann_invert_visible_slope_cdf(c, s, sampling_clamp_unit(u));
 }
 
-/// Mirror reflection of `wo` about the unit normal `m`: `2 (wo.m) m - wo` (Walter et al.
-/// 2007 eq. 13).
-fn sampling_reflect(wo: vec3<f32>, m: vec3<f32>) -> vec3<f32> {
-    return 2.0 * dot(wo, m) * m - wo;
+/// Samples `m` with density `D(m) m_z` per steradian (the NDF itself, KHPL16 eq. 2) of
+/// Beckmann with roughness `r`: in the unit-roughness space `|t|^2 = -ln(1 - u1)` (a Gaussian
+/// of slopes with covariance `I / 2`), `phi = 2 pi u2`, `n = (-t, 1)` up to the sign of `t`,
+/// then warped by `L` (slope covariance `A / 2`, KHPL16 eq. 14). `-ln(1 - u1)` as
+/// `ln_1p(u1 / (1 - u1))` below `u1 = 1/2` (no cancellation), `-ln(1 - u1)` (exact
+/// argument) above. Always `m_z > 0`.
+fn sampling_beckmann_sample_normal(r: ndf_roughness_matrix_RoughnessMatrix, u: vec2<f32>) -> vec3<f32> {
+    let u1 = sampling_clamp_unit(u.x);
+    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
+    let e = select(-math_ln(1.0 - u1), math_ln_1p(u1 / (1.0 - u1)), u1 < 0.5);
+    let n = vec3<f32>(sqrt(e) * cs, 1.0);
+    return sampling_unstretch(sampling_warp(r), n);
 }
 
-/// Unit-roughness GGX visible normal by spherical caps (Dupuy and Benyoub 2023): a uniform
-/// point `c` on the cap `z >= -wi_z` of the unit sphere, returned as `c + wi` (unnormalised).
-fn sampling_ggx_standard_visible(wi: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
-    let cs = math_sincos_turns(u.x);
-    let z = (1.0 - u.y) * (1.0 + wi.z) - wi.z;
-    let sin_theta = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
-    return vec3<f32>(sin_theta * cs, z) + wi;
-}
-
-/// Samples a visible micronormal `m` of GGX with roughness `r` from `u` in `[0, 1)^2`, with
-/// density `D_wo(m)` per steradian (Heitz 2014 eq. 16). The zero vector if `wo_z <= 0` (or
-/// the view is grazing to within the f32 range); otherwise a unit `m` with `m_z > 0` and
-/// `wo.m > 0` (should rounding break either, the lobe centre `unstretch(wi)` is returned,
-/// as in Rust).
-fn sampling_sample_visible_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
+/// Samples a visible micronormal `m` of Beckmann with roughness `r` from `u` in `[0, 1)^2`,
+/// with density `D_wo(m)` per steradian (Heitz 2014 eq. 16; Heitz and d'Eon 2014 section 4):
+/// the view stretched into the unit-roughness space, its azimuth rotated to `x`, the slope
+/// `x` the quantile of the visible-slope CDF of `u1` and `y` the Gaussian quantile of `u2`
+/// (`invert_visible_slope_cdf`), rotated back and warped by `L`. The zero vector if
+/// `wo_z <= 0` (or the view is grazing to within the f32 range); otherwise a unit `m` with
+/// `m_z > 0` and `wo.m > 0` (should rounding break either, the lobe centre
+/// `unstretch(wi)` is returned, as in Rust).
+fn sampling_beckmann_sample_visible_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
     if !(wo.z > 0.0) {
         return vec3<f32>(0.0);
     }
@@ -3277,8 +3693,12 @@ fn sampling_sample_visible_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: v
     if !(wi.z > 0.0) {
         return vec3<f32>(0.0);
     }
-    let n = sampling_ggx_standard_visible(wi, vec2<f32>(sampling_clamp_unit(u.x), sampling_clamp_unit(u.y)));
-    let m = sampling_unstretch(l, n);
+    let s = math_hypot(wi.x, wi.y);
+    let phi = select(vec2<f32>(1.0, 0.0), wi.xy / s, s > 0.0);
+    let x = sampling_beckmann_invert_visible_slope_cdf(wi.z, s, sampling_clamp_unit(u.x));
+    let y = sampling_beckmann_invert_visible_slope_cdf(1.0, 0.0, sampling_clamp_unit(u.y));
+    let t = vec2<f32>(phi.x * x - phi.y * y, phi.y * x + phi.x * y);
+    let m = sampling_unstretch(l, vec3<f32>(-t, 1.0));
     if m.z > 0.0 && dot(wo, m) > 0.0 {
         return m;
     }
@@ -3286,37 +3706,28 @@ fn sampling_sample_visible_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: v
     return select(vec3<f32>(0.0), c, c.z > 0.0);
 }
 
-/// Samples `m` with density `D(m) m_z` per steradian (the NDF itself): in the unit-roughness
-/// space `|t|^2 = u1 / (1 - u1)`, `n = (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))`,
-/// `phi = 2 pi u2`, then warped by `L`. Always `m_z > 0`.
-fn sampling_sample_normal(r: ndf_roughness_matrix_RoughnessMatrix, u: vec2<f32>) -> vec3<f32> {
-    let u1 = sampling_clamp_unit(u.x);
-    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
-    let n = vec3<f32>(sqrt(u1) * cs, sqrt(1.0 - u1));
-    return sampling_unstretch(sampling_warp(r), n);
-}
-
 /// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
 /// `m_z <= 0`.
-fn sampling_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
-    return select(0.0, ndf_ggx_d_matrix(r, m) * m.z, m.z > 0.0);
+fn sampling_beckmann_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
+    return select(0.0, ndf_beckmann_d_matrix(r, m) * m.z, m.z > 0.0);
 }
 
 /// The visible-normal density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian
-/// (Heitz 2014 eq. 16) for a unit `m`; 0 for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
-fn sampling_visible_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+/// (Heitz 2014 eq. 16) of Beckmann for a unit `m`; 0 for `wo_z <= 0`, `wo.m <= 0`,
+/// `m_z <= 0`.
+fn sampling_beckmann_visible_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
     let wom = dot(wo, m);
     if !(wo.z > 0.0) || !(wom > 0.0) {
         return 0.0;
     }
-    let v = wom * ndf_ggx_d_matrix(r, m) / (wo.z * (1.0 + ndf_ggx_lambda_matrix(r, wo)));
+    let v = wom * ndf_beckmann_d_matrix(r, m) / (wo.z * (1.0 + ndf_beckmann_lambda_matrix(r, wo)));
     return select(0.0, v, v <= math_F32_MAX);
 }
 
 /// The density per steradian of `wi = reflect(wo, m)` for the unit half vector `m` itself:
 /// `G1(wo) D(m) / (4 wo_z)` (Walter et al. 2007 eq. 14, `wo` normalised here); 0 for
 /// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
-fn sampling_reflection_pdf_from_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+fn sampling_beckmann_reflection_pdf_from_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
     if !(wo.z > 0.0) {
         return 0.0;
     }
@@ -3324,23 +3735,6 @@ fn sampling_reflection_pdf_from_normal(r: ndf_roughness_matrix_RoughnessMatrix, 
     if !(dot(o, m) > 0.0) {
         return 0.0;
     }
-    let v = ndf_ggx_d_matrix(r, m) / (4.0 * o.z * (1.0 + ndf_ggx_lambda_matrix(r, o)));
+    let v = ndf_beckmann_d_matrix(r, m) / (4.0 * o.z * (1.0 + ndf_beckmann_lambda_matrix(r, o)));
     return select(0.0, v, v <= math_F32_MAX);
-}
-
-/// The density per steradian of `wi` when `m` is drawn by [`sample_visible_normal`] and
-/// `wi = reflect(wo, m)`: [`reflection_pdf_from_normal`] with `m = normalize(wo + wi)`
-/// (both normalised first). 0 for `wo_z <= 0` and for `wi = -wo`. The recomputed half vector
-/// carries a direction error of about `eps / (2 wo.m)`: for a sampled direction prefer
-/// [`reflection_pdf_from_normal`] with the sampled `m`.
-fn sampling_reflection_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
-    if !(wo.z > 0.0) {
-        return 0.0;
-    }
-    let h = sampling_normalize_scaled(wo) + sampling_normalize_scaled(wi);
-    let len = length(h);
-    if !(len > 0.0) {
-        return 0.0;
-    }
-    return sampling_reflection_pdf_from_normal(r, wo, h / len);
 }

@@ -25,9 +25,11 @@ fn main() {
         ("footprint", checks::footprint::all()),
         ("filters", checks::filters::all()),
         ("rect", checks::rect::all()),
+        ("rect_sample", checks::rect_sample::all()),
         ("gaussian_ggx", checks::gaussian_ggx::all()),
         ("method", checks::method::all()),
         ("sampling", checks::sampling::all()),
+        ("sampling_beckmann", checks::sampling_beckmann::all()),
     ];
     let mut failed = 0;
     for (group, list) in &groups {

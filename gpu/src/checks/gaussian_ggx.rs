@@ -34,7 +34,7 @@ use super::rect::log_sensitivity;
 use super::{Check, EPS, Tol, draw};
 use crate::reference::{
     AxisAligned, ClampRules, Covariance, DVec2, DVec3, Footprint, GaussianFilteredGgx, Ndf,
-    Roughness, RoughnessMatrix, SplitMix64, matrix_from_eigen, strategies, v2, v3,
+    NdfSampling, Roughness, RoughnessMatrix, SplitMix64, matrix_from_eigen, strategies, v2, v3,
 };
 
 /// The rules' own error and the f32 arithmetic (module docs), in ulp.
@@ -282,8 +282,149 @@ y(2u, gaussian_ggx::lambda(g, x3(13u)));";
     c
 }
 
+/// The shader's split of one uniform number into two (12 bits each, the Rust `f32` build's
+/// `split`), in f64 (exact).
+fn split12(u: f32) -> (f64, f64) {
+    let x = f64::from(u) * 4096.0;
+    let hi = x.floor();
+    ((hi + 0.5) / 4096.0, x - hi)
+}
+
+/// `sample_normal` and `normal_pdf` of the filtered lobe, on the domain of [`domain`]
+/// (rotated materials, kernels from two footprint vectors, one in eight rank one).
+///
+/// Reference: the crate's `f64` sampler splits the bits of an `f64` `u` (26 bits each), the
+/// shader those of an `f32` (12 bits each, as the Rust `f32` build): the reference sample is the
+/// `f64` composition of the same steps at the shader's four numbers (`split12`): the GGX slope
+/// `B t` (`B` the Cholesky factor of `A_c` from `clamped_entries`, `sqrt_det`), plus the kernel
+/// slope along the sanitised kernel's principal axes (`Covariance::eigenvalues`, the
+/// eigenvector from the row without cancellation), as `gaussian_ggx.rs` writes them.
+///
+/// Tolerance (absolute, per component): the slope error `|ds|` moves the unit normal by at most
+/// `|ds| / sqrt(1 + |s|^2)`, plus `8 EPS` for its normalisation. `|ds|`: `12 EPS r sum |B_ij|`
+/// (the GGX radius `r` 5 ulp, `sincos_turns` 3, the warp's entries a few), `17 EPS r_k
+/// (sd_1 + sd_2)` (the Box-Muller radius `r_k` 6 ulp, `sincos_turns` 3, the standard
+/// deviations 8: the kernel's entries and carried determinant), `|k| delta_theta` for the
+/// principal axis (`delta_theta = min(8 EPS l_max / (l_max - l_min), 2)`: the eigenvector of a
+/// nearly isotropic kernel is as ill-conditioned as its gap makes it, and rotating the kernel
+/// sample moves it by `|k| delta_theta`), and `EPS |s|` for the sum. `normal_pdf`: `d`'s bound
+/// (`density_ulps` at the slope of `m`) plus 2 ulp.
+fn sampling(n: usize) -> Check {
+    let body = "let a = matrix::from_eigen(x2(0u), x2(2u));
+let k = footprint::covariance(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
+let g = gaussian_ggx::from_kernel(a, k);
+y3(0u, gaussian_ggx::sample_normal(g, x2(8u)));
+y(3u, gaussian_ggx::normal_pdf(g, x3(10u)));";
+    let mut c = Check::new(
+        "gaussian_ggx::{sample_normal, normal_pdf} (tests/gaussian_ggx.rs domain)",
+        IMPORTS,
+        body,
+        13,
+        4,
+    )
+    .tolerance("sample: |ds| / sqrt(1 + |s|^2) + 8 EPS absolute, |ds| from the GGX radius, the Box-Muller radius, the kernel's axis (its gap) and the sum (module docs); normal_pdf: density_ulps + 2");
+    let mut rng = SplitMix64(0x7361_6d67);
+    let mut made = 0;
+    while made < n {
+        let alpha = 10f64.powf(rng.range(-4.0, 0.0));
+        let aniso = 10f64.powf(rng.range(0.0, 2.0));
+        let phi = rng.range(0.0, core::f64::consts::PI);
+        let axis = [phi.cos() as f32, phi.sin() as f32];
+        let al = [alpha as f32, (alpha / aniso) as f32];
+        let Some(am) = matrix_from_eigen(axis, al) else {
+            continue;
+        };
+        let kw = 10f64.powf(rng.range(-3.0, 3.0)) * alpha;
+        let th = rng.range(0.0, core::f64::consts::PI);
+        let ratio = match made % 8 {
+            0 => 0.0,
+            _ => 10f64.powf(rng.range(-2.0, 0.0)),
+        };
+        let u = [(kw * th.cos()) as f32, (kw * th.sin()) as f32];
+        let v = [
+            (-kw * ratio * th.sin()) as f32,
+            (kw * ratio * th.cos()) as f32,
+        ];
+        let kernel = Footprint::from_slope_derivatives(v2(u), v2(v)).covariance(1.0);
+        let lobe = GaussianFilteredGgx::new(am, kernel);
+        let us: [f32; 2] = match made % 50 {
+            0 => [0.0, 0.0],
+            1 => [0.99999994, 0.99999994],
+            _ => [rng.uniform() as f32, rng.uniform() as f32],
+        };
+        // The reference sample (docs above).
+        let (u1, u3) = split12(us[0]);
+        let (u2, u4) = split12(us[1]);
+        let tau = core::f64::consts::TAU;
+        let r = (u1 / (1.0 - u1)).sqrt();
+        let (tx, ty) = (r * (tau * u2).cos(), r * (tau * u2).sin());
+        let (a11, a12, _) = am.clamped_entries();
+        let b11 = a11.sqrt();
+        let (b21, b22) = (a12 / b11, am.sqrt_det() / b11);
+        let g = DVec2::new(b11 * tx, b21 * tx + b22 * ty);
+        let ks = kernel.sanitized();
+        let (lmin, lmax) = ks.eigenvalues();
+        let khalf = 0.5 * (ks.s11 - ks.s22);
+        let krad = khalf.hypot(ks.s12);
+        let (kx, ky) = if krad > 0.0 {
+            let (vx, vy) = if khalf >= 0.0 {
+                (krad + khalf, ks.s12)
+            } else {
+                (ks.s12, krad - khalf)
+            };
+            let nv = vx.hypot(vy);
+            (vx / nv, vy / nv)
+        } else {
+            (1.0, 0.0)
+        };
+        let rk = (-2.0 * (1.0 - u3).ln()).sqrt();
+        let (sd1, sd2) = (lmax.max(0.0).sqrt(), lmin.max(0.0).sqrt());
+        let (k1, k2) = (sd1 * rk * (tau * u4).cos(), sd2 * rk * (tau * u4).sin());
+        let k = DVec2::new(kx * k1 - ky * k2, ky * k1 + kx * k2);
+        let s = g + k;
+        let m = DVec3::new(-s.x, -s.y, 1.0).normalize();
+        let gap = lmax - lmin;
+        let dtheta = if gap > 0.0 {
+            (8.0 * EPS * lmax / gap).min(2.0)
+        } else if lmax > 0.0 {
+            2.0
+        } else {
+            0.0
+        };
+        let ds = 12.0 * EPS * r * (b11 + b21.abs() + b22)
+            + 17.0 * EPS * rk * (sd1 + sd2)
+            + k.length() * dtheta
+            + EPS * s.length();
+        let t = ds / (1.0 + s.length_squared()).sqrt() + 8.0 * EPS;
+        let m32 = [m.x as f32, m.y as f32, m.z as f32];
+        let md = v3(m32);
+        let pdf = lobe.normal_pdf(md);
+        if !(pdf > 1e-30 && md.z > 0.0) {
+            continue;
+        }
+        let ms = DVec2::new(-md.x / md.z, -md.y / md.z);
+        let mut input = axis.to_vec();
+        input.extend(al);
+        input.extend(u);
+        input.extend(v);
+        input.extend(us);
+        input.extend(m32);
+        c.case(
+            input,
+            vec![m.x, m.y, m.z, pdf],
+            vec![
+                Tol::abs(t),
+                Tol::abs(t),
+                Tol::abs(t),
+                Tol::ulps(density_ulps(&am, &kernel, ms) + 2.0),
+            ],
+        );
+        made += 1;
+    }
+    c
+}
+
 /// The checks of `shaders/filter/gaussian_ggx.wgsl`.
 pub fn all() -> Vec<Check> {
-    let _ = EPS;
-    vec![front_door(2000), domain(2000)]
+    vec![front_door(2000), domain(2000), sampling(1000)]
 }

@@ -21,7 +21,9 @@ pub mod math;
 pub mod method;
 pub mod ndf;
 pub mod rect;
+pub mod rect_sample;
 pub mod sampling;
+pub mod sampling_beckmann;
 
 use crate::harness::{self, Kernel};
 use proptest::strategy::{Strategy, ValueTree};

@@ -26,16 +26,16 @@ use crate::reference::{
 };
 use glam::DMat3;
 
-struct Case {
-    axis: [f32; 2],
-    alpha: [f32; 2],
-    m: RoughnessMatrix,
-    wo: [f32; 3],
-    u: [f32; 2],
+pub(crate) struct Case {
+    pub(crate) axis: [f32; 2],
+    pub(crate) alpha: [f32; 2],
+    pub(crate) m: RoughnessMatrix,
+    pub(crate) wo: [f32; 3],
+    pub(crate) u: [f32; 2],
 }
 
 impl Case {
-    fn input(&self) -> Vec<f32> {
+    pub(crate) fn input(&self) -> Vec<f32> {
         let mut v = self.axis.to_vec();
         v.extend(self.alpha);
         v.extend(self.wo);
@@ -44,7 +44,7 @@ impl Case {
     }
 }
 
-fn cases(n: usize) -> Vec<Case> {
+pub(crate) fn cases(n: usize) -> Vec<Case> {
     let forms = draw(
         (strategies::axis_aligned(), 0.0..core::f64::consts::PI),
         n,
@@ -77,7 +77,7 @@ fn cases(n: usize) -> Vec<Case> {
 }
 
 /// `|(I - m m^T) M| / |M n|` (Frobenius): how a change of `n` moves `m = M n / |M n|`.
-fn warp_conditioning(mm: DMat3, n: DVec3) -> f64 {
+pub(crate) fn warp_conditioning(mm: DMat3, n: DVec3) -> f64 {
     let v = mm * n;
     let m = v / v.length();
     let p = DMat3::IDENTITY - DMat3::from_cols(m * m.x, m * m.y, m * m.z);
@@ -114,7 +114,7 @@ pub fn sample_tol_of(m: &RoughnessMatrix, wo: DVec3, u: [f32; 2]) -> f64 {
 }
 
 /// `M = [[l_xx, 0, 0], [l_yx, l_yy, 0], [0, 0, 1]]` of a reference matrix (f64), its `A_c`.
-fn warp_of(m: &RoughnessMatrix) -> DMat3 {
+pub(crate) fn warp_of(m: &RoughnessMatrix) -> DMat3 {
     let (a11, a12, _) = m.clamped_entries();
     let l11 = a11.sqrt();
     DMat3::from_cols(
@@ -124,7 +124,7 @@ fn warp_of(m: &RoughnessMatrix) -> DMat3 {
     )
 }
 
-fn err_q(c: &Case) -> f64 {
+pub(crate) fn err_q(c: &Case) -> f64 {
     let (l1, l2) = (f64::from(c.alpha[0]).powi(2), f64::from(c.alpha[1]).powi(2));
     8.0 + 8.0 * (l1.max(l2) / l1.min(l2)).sqrt()
 }
