@@ -4,7 +4,7 @@
 use super::super::PI;
 use super::roughness::{AxisAligned, Isotropic, Roughness, RoughnessMatrix};
 use super::{F, Vec2, Vec3};
-use super::{Ndf, rescale_direction};
+use super::{Ndf, lambda_outside_domain, rescale_direction};
 use crate::error::RoughnessError;
 use crate::math::{self as m, Real};
 
@@ -76,14 +76,8 @@ checked_constructors!(Beckmann, "Beckmann");
 /// [`Ndf`]).
 #[inline]
 pub(crate) fn beckmann_lambda(q: F, abs_wz: F) -> F {
-    if q.is_nan() || abs_wz.is_nan() {
-        return F::INFINITY;
-    }
-    if q <= 0.0 {
-        return 0.0;
-    }
-    if abs_wz <= 0.0 {
-        return F::INFINITY;
+    if let Some(v) = lambda_outside_domain(q, abs_wz) {
+        return v;
     }
     let a = abs_wz.to_f64() / m::sqrt(q.to_f64());
     if a > 26.0 {

@@ -3,7 +3,7 @@
 use super::super::PI;
 use super::roughness::{AxisAligned, Isotropic, Roughness, RoughnessMatrix};
 use super::{F, Vec2, Vec3};
-use super::{Ndf, rescale_direction};
+use super::{Ndf, lambda_outside_domain, rescale_direction};
 use crate::error::RoughnessError;
 use crate::math as m;
 
@@ -47,14 +47,8 @@ impl<R: Roughness> Ggx<R> {
 /// [`Ndf`]).
 #[inline]
 pub(crate) fn ggx_lambda(q: F, abs_wz: F) -> F {
-    if q.is_nan() || abs_wz.is_nan() {
-        return F::INFINITY;
-    }
-    if q <= 0.0 {
-        return 0.0;
-    }
-    if abs_wz <= 0.0 {
-        return F::INFINITY;
+    if let Some(v) = lambda_outside_domain(q, abs_wz) {
+        return v;
     }
     let r = m::sqrt(abs_wz * abs_wz + q);
     if !r.is_finite() {

@@ -104,6 +104,23 @@ pub(crate) fn needs_no_rescale(w: Vec3) -> bool {
     l2 > LO && l2 < HI
 }
 
+/// Smith's `Lambda` outside its formula's domain, from `q = w_xy^T A w_xy` and `|w_z|`, for
+/// both NDFs (the NaN policy of [`Ndf`]): `+inf` for NaN input and for a grazing `w`
+/// (`|w_z| = 0` with `q > 0`), `0` for `q <= 0` (normal incidence, the zero vector); `None`
+/// inside the domain (`q > 0`, `|w_z| > 0`).
+#[inline(always)]
+pub(crate) fn lambda_outside_domain(q: F, abs_wz: F) -> Option<F> {
+    if q.is_nan() || abs_wz.is_nan() {
+        Some(F::INFINITY)
+    } else if q <= 0.0 {
+        Some(0.0)
+    } else if abs_wz <= 0.0 {
+        Some(F::INFINITY)
+    } else {
+        None
+    }
+}
+
 /// `w` rescaled by its largest component when `|w|^2` is outside `[2^-40, 2^40]`, so that the
 /// quadratic forms of `Lambda` neither overflow nor underflow for huge or tiny finite input.
 /// Unit vectors pass through untouched (one compare).
