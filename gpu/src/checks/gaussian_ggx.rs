@@ -180,6 +180,52 @@ y(4u, gaussian_ggx::g2(g, w, o, h));";
     c
 }
 
+/// One case of the `tests/gaussian_ggx.rs` domain, as the shaders receive it: a lobe of
+/// roughness `alpha` in 1e-4..1, anisotropy to 100:1, rotated by `axis`, and the kernel
+/// `sigma^2 (u u^T + v v^T)` (`sigma = 1`) of standard deviations `kw` = 1e-3..1e3 lobe widths,
+/// rank one for every eighth case.
+struct DomainCase {
+    axis: [f32; 2],
+    al: [f32; 2],
+    am: RoughnessMatrix,
+    u: [f32; 2],
+    v: [f32; 2],
+    kernel: Covariance,
+    lobe: GaussianFilteredGgx,
+}
+
+/// The next [`DomainCase`] (`None` where the eigen form does not give a valid matrix).
+fn domain_case(rng: &mut SplitMix64, made: usize) -> Option<DomainCase> {
+    let alpha = 10f64.powf(rng.range(-4.0, 0.0));
+    let aniso = 10f64.powf(rng.range(0.0, 2.0));
+    let phi = rng.range(0.0, core::f64::consts::PI);
+    let axis = [phi.cos() as f32, phi.sin() as f32];
+    let al = [alpha as f32, (alpha / aniso) as f32];
+    let am = matrix_from_eigen(axis, al)?;
+    let kw = 10f64.powf(rng.range(-3.0, 3.0)) * alpha;
+    let th = rng.range(0.0, core::f64::consts::PI);
+    let ratio = match made % 8 {
+        0 => 0.0,
+        _ => 10f64.powf(rng.range(-2.0, 0.0)),
+    };
+    let u = [(kw * th.cos()) as f32, (kw * th.sin()) as f32];
+    let v = [
+        (-kw * ratio * th.sin()) as f32,
+        (kw * ratio * th.cos()) as f32,
+    ];
+    let kernel = Footprint::from_slope_derivatives(v2(u), v2(v)).covariance(1.0);
+    let lobe = GaussianFilteredGgx::new(am, kernel);
+    Some(DomainCase {
+        axis,
+        al,
+        am,
+        u,
+        v,
+        kernel,
+        lobe,
+    })
+}
+
 /// The cases of `tests/gaussian_ggx.rs`'s domain (module docs): rotated materials, kernels from
 /// two vectors.
 fn domain(n: usize) -> Check {
@@ -200,28 +246,18 @@ y(2u, gaussian_ggx::lambda(g, x3(13u)));";
     let mut rng = SplitMix64(0x6578_6163);
     let mut made = 0;
     while made < n {
-        let alpha = 10f64.powf(rng.range(-4.0, 0.0));
-        let aniso = 10f64.powf(rng.range(0.0, 2.0));
-        let phi = rng.range(0.0, core::f64::consts::PI);
-        let axis = [phi.cos() as f32, phi.sin() as f32];
-        let al = [alpha as f32, (alpha / aniso) as f32];
-        let Some(am) = matrix_from_eigen(axis, al) else {
+        let Some(DomainCase {
+            axis,
+            al,
+            am,
+            u,
+            v,
+            kernel,
+            lobe,
+        }) = domain_case(&mut rng, made)
+        else {
             continue;
         };
-        // Kernel sigma^2 (u u^T + v v^T), sigma = 1: standard deviations kw lobe widths.
-        let kw = 10f64.powf(rng.range(-3.0, 3.0)) * alpha;
-        let th = rng.range(0.0, core::f64::consts::PI);
-        let ratio = match made % 8 {
-            0 => 0.0,
-            _ => 10f64.powf(rng.range(-2.0, 0.0)),
-        };
-        let u = [(kw * th.cos()) as f32, (kw * th.sin()) as f32];
-        let v = [
-            (-kw * ratio * th.sin()) as f32,
-            (kw * ratio * th.cos()) as f32,
-        ];
-        let kernel = Footprint::from_slope_derivatives(v2(u), v2(v)).covariance(1.0);
-        let lobe = GaussianFilteredGgx::new(am, kernel);
         // s = rho L e with L the Cholesky factor of A + 2 Sigma.
         let (a11, a12, a22) = am.entries();
         let (f11, f12, f22) = (
@@ -326,27 +362,18 @@ y(3u, gaussian_ggx::normal_pdf(g, x3(10u)));";
     let mut rng = SplitMix64(0x7361_6d67);
     let mut made = 0;
     while made < n {
-        let alpha = 10f64.powf(rng.range(-4.0, 0.0));
-        let aniso = 10f64.powf(rng.range(0.0, 2.0));
-        let phi = rng.range(0.0, core::f64::consts::PI);
-        let axis = [phi.cos() as f32, phi.sin() as f32];
-        let al = [alpha as f32, (alpha / aniso) as f32];
-        let Some(am) = matrix_from_eigen(axis, al) else {
+        let Some(DomainCase {
+            axis,
+            al,
+            am,
+            u,
+            v,
+            kernel,
+            lobe,
+        }) = domain_case(&mut rng, made)
+        else {
             continue;
         };
-        let kw = 10f64.powf(rng.range(-3.0, 3.0)) * alpha;
-        let th = rng.range(0.0, core::f64::consts::PI);
-        let ratio = match made % 8 {
-            0 => 0.0,
-            _ => 10f64.powf(rng.range(-2.0, 0.0)),
-        };
-        let u = [(kw * th.cos()) as f32, (kw * th.sin()) as f32];
-        let v = [
-            (-kw * ratio * th.sin()) as f32,
-            (kw * ratio * th.cos()) as f32,
-        ];
-        let kernel = Footprint::from_slope_derivatives(v2(u), v2(v)).covariance(1.0);
-        let lobe = GaussianFilteredGgx::new(am, kernel);
         let us: [f32; 2] = match made % 50 {
             0 => [0.0, 0.0],
             1 => [0.99999994, 0.99999994],
