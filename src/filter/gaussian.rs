@@ -2,9 +2,8 @@
 //! matrix approximation for GGX.
 
 use super::super::kernel::Covariance;
-use super::super::ndf::roughness::{Roughness, RoughnessMatrix, det_wide};
+use super::super::ndf::roughness::{Roughness, RoughnessMatrix, det_clamp_tau, det_wide};
 use super::F;
-use crate::math::Real;
 
 /// `A' = A + 2 Sigma`, evaluated with the determinant clamp `tau = det(A)` (TK19 supplement).
 ///
@@ -38,12 +37,7 @@ pub fn gaussian_with_det_clamp<R: Roughness>(
     kernel: Covariance,
     det_clamp: F,
 ) -> RoughnessMatrix {
-    let tau = if det_clamp.is_finite() && det_clamp > 0.0 {
-        det_clamp.to_f64()
-    } else {
-        0.0
-    };
-    gaussian_sanitized(roughness, kernel.sanitized(), tau)
+    gaussian_sanitized(roughness, kernel.sanitized(), det_clamp_tau(det_clamp))
 }
 
 /// `A + 2 K` with the clamp `tau` (`<= 0`: none) for a kernel that [`Covariance::sanitized`]

@@ -1,7 +1,7 @@
 //! Projected-space filtering (Tokuyoshi and Kaplanyan 2021, JCGT 10(2)).
 
 use super::super::kernel::Covariance;
-use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
+use super::super::ndf::roughness::{Roughness, RoughnessMatrix, det_clamp_tau};
 use super::F;
 use super::gaussian::valid_clamp;
 use crate::math::Real;
@@ -57,12 +57,7 @@ pub fn projected_with_det_clamp<R: Roughness>(
     kernel: Covariance,
     det_clamp: F,
 ) -> RoughnessMatrix {
-    let tau = if det_clamp.is_finite() && det_clamp > 0.0 {
-        det_clamp.to_f64()
-    } else {
-        0.0
-    };
-    projected_sanitized(roughness, kernel.sanitized(), tau)
+    projected_sanitized(roughness, kernel.sanitized(), det_clamp_tau(det_clamp))
 }
 
 /// [`projected`] for a sanitised kernel, with the clamp `tau` (`<= 0`: none).

@@ -245,11 +245,7 @@ impl RoughnessMatrix {
     /// clamp can meet one) keeps the current clamp.
     #[inline]
     pub fn with_det_clamp(self, det_clamp: F) -> Self {
-        let tau = if det_clamp.is_finite() && det_clamp > 0.0 {
-            det_clamp.to_f64()
-        } else {
-            0.0
-        };
+        let tau = det_clamp_tau(det_clamp);
         let tau = if tau > 0.0 || det_wide(self.a11, self.a12, self.a22) > 0.0 {
             tau
         } else {
@@ -398,5 +394,17 @@ impl Roughness for RoughnessMatrix {
     #[inline]
     fn to_matrix(&self) -> RoughnessMatrix {
         *self
+    }
+}
+
+/// A determinant clamp given as a number, as the `f64` `tau` the clamped matrix takes: the
+/// value where finite and positive, else `0` (no clamp). One reading for
+/// [`RoughnessMatrix::with_det_clamp`] and the filters' `*_with_det_clamp`.
+#[inline(always)]
+pub(crate) fn det_clamp_tau(det_clamp: F) -> f64 {
+    if det_clamp.is_finite() && det_clamp > 0.0 {
+        det_clamp.to_f64()
+    } else {
+        0.0
     }
 }

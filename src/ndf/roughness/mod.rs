@@ -32,6 +32,7 @@ use crate::error::RoughnessError;
 pub use axis_aligned::AxisAligned;
 pub use isotropic::Isotropic;
 pub use matrix::RoughnessMatrix;
+pub(crate) use matrix::det_clamp_tau;
 
 /// Smallest supported roughness `alpha` (`A`'s smallest eigenvalue is `ALPHA_MIN^2`).
 pub const ALPHA_MIN: F = 1e-8;
