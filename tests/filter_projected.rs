@@ -185,6 +185,36 @@ fn psd32(k: (f32, f32, f32)) -> bool {
     a >= 0.0 && c >= 0.0 && b * b <= a * c
 }
 
+/// One case of the f32-against-f64 tests: a lobe of roughness `alpha` in [1e-4, 0.99] with
+/// anisotropy up to 100 at a seeded angle and a kernel 1e-2 to 1e2 alpha wide, rounded to f32
+/// and given to both precisions identically (`None` where the f32 matrix is rejected or the
+/// rounded kernel is not exactly positive semi-definite).
+#[allow(clippy::type_complexity)]
+fn f32_case(
+    next: &mut impl FnMut() -> f64,
+) -> Option<(
+    d::RoughnessMatrix,
+    s::RoughnessMatrix,
+    d::Covariance,
+    s::Covariance,
+)> {
+    let alpha = 10f64.powf(-4.0 + 3.998 * next());
+    let aniso = 10f64.powf(2.0 * next());
+    let (a11, a12, a22) = rotated(alpha * alpha, (alpha / aniso).powi(2), 3.2 * next());
+    let kk = (alpha * 10f64.powf(-2.0 + 4.0 * next())).powi(2);
+    let (k11, k12, k22) = rotated(kk, kk * next(), 3.2 * next());
+    let (a11, a12, a22) = (a11 as f32, a12 as f32, a22 as f32);
+    let kf = (k11 as f32, k12 as f32, k22 as f32);
+    let ad = d::RoughnessMatrix::new(a11.into(), a12.into(), a22.into()).ok()?;
+    let af = s::RoughnessMatrix::new(a11, a12, a22).ok()?;
+    if !psd32(kf) {
+        return None;
+    }
+    let kd = d::Covariance::new(kf.0.into(), kf.1.into(), kf.2.into());
+    let ks = s::Covariance::new(kf.0, kf.1, kf.2);
+    Some((ad, af, kd, ks))
+}
+
 #[test]
 fn f32_entries_are_the_f64_entries_rounded_once() {
     // Both filters in f32 against the same filters in f64 on identical inputs (entries and
@@ -202,26 +232,10 @@ fn f32_entries_are_the_f64_entries_rounded_once() {
     let tol = 0.5 * f64::from(f32::EPSILON) + f64::EPSILON;
     let (mut worst_g, mut worst_p, mut n) = (0.0f64, 0.0f64, 0);
     for _ in 0..4000 {
-        let alpha = 10f64.powf(-4.0 + 3.998 * next());
-        let aniso = 10f64.powf(2.0 * next());
-        let phi = 3.2 * next();
-        let (a11, a12, a22) = rotated(alpha * alpha, (alpha / aniso).powi(2), phi);
-        let kk = (alpha * 10f64.powf(-2.0 + 4.0 * next())).powi(2);
-        let (k11, k12, k22) = rotated(kk, kk * next(), 3.2 * next());
-        let (a11, a12, a22) = (a11 as f32, a12 as f32, a22 as f32);
-        let kf = (k11 as f32, k12 as f32, k22 as f32);
-        let (Ok(ad), Ok(af)) = (
-            d::RoughnessMatrix::new(a11.into(), a12.into(), a22.into()),
-            s::RoughnessMatrix::new(a11, a12, a22),
-        ) else {
+        let Some((ad, af, kd, ks)) = f32_case(&mut next) else {
             continue;
         };
-        if !psd32(kf) {
-            continue;
-        }
         n += 1;
-        let kd = d::Covariance::new(kf.0.into(), kf.1.into(), kf.2.into());
-        let ks = s::Covariance::new(kf.0, kf.1, kf.2);
         for (fd, ff, worst, what) in [
             (
                 d::filter::gaussian(ad, kd),
@@ -265,24 +279,9 @@ fn f32_densities_are_as_accurate_as_gaussian() {
     let eps = f64::from(f32::EPSILON);
     let (mut worst_g, mut worst_p) = (0.0f64, 0.0f64);
     for _ in 0..2000 {
-        let alpha = 10f64.powf(-4.0 + 3.998 * next());
-        let aniso = 10f64.powf(2.0 * next());
-        let (a11, a12, a22) = rotated(alpha * alpha, (alpha / aniso).powi(2), 3.2 * next());
-        let kk = (alpha * 10f64.powf(-2.0 + 4.0 * next())).powi(2);
-        let (k11, k12, k22) = rotated(kk, kk * next(), 3.2 * next());
-        let (a11, a12, a22) = (a11 as f32, a12 as f32, a22 as f32);
-        let kf = (k11 as f32, k12 as f32, k22 as f32);
-        let (Ok(ad), Ok(af)) = (
-            d::RoughnessMatrix::new(a11.into(), a12.into(), a22.into()),
-            s::RoughnessMatrix::new(a11, a12, a22),
-        ) else {
+        let Some((ad, af, kd, ks)) = f32_case(&mut next) else {
             continue;
         };
-        if !psd32(kf) {
-            continue;
-        }
-        let kd = d::Covariance::new(kf.0.into(), kf.1.into(), kf.2.into());
-        let ks = s::Covariance::new(kf.0, kf.1, kf.2);
         for (fd, ff, worst) in [
             (
                 d::filter::gaussian(ad, kd),
