@@ -63,12 +63,14 @@
 
 use super::{F, PI, Vec2, Vec3};
 
+mod deferred;
 mod filtered;
 mod lanes;
 mod ndf;
 mod rect;
 mod simd;
 
+pub use deferred::deferred_filter;
 pub use filtered::{beckmann_d_filtered, ggx_d_filtered};
 pub use ndf::{beckmann_d, beckmann_g2, beckmann_lambda, ggx_d, ggx_g2, ggx_lambda};
 pub use rect::d_rect;
