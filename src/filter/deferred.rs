@@ -233,9 +233,18 @@ impl Norm {
             Self::SumSquared => (dn_u.dot(dn_u) + dn_v.dot(dn_v), true),
             Self::MaxSquared => {
                 let (a, b) = (dn_u.dot(dn_u), dn_v.dot(dn_v));
-                (if a.is_nan() | b.is_nan() { F::NAN } else { a.max(b) }, true)
+                (
+                    if a.is_nan() | b.is_nan() {
+                        F::NAN
+                    } else {
+                        a.max(b)
+                    },
+                    true,
+                )
             }
-            Self::MaxEigenvalue => normal_difference_covariance(dn_u, dn_v, 1.0).max_eigenvalue_lane(),
+            Self::MaxEigenvalue => {
+                normal_difference_covariance(dn_u, dn_v, 1.0).max_eigenvalue_lane()
+            }
             Self::MaxAbsComponent => {
                 // Vec3::max drops a NaN operand: test the inputs, not the result.
                 let nan = dn_u.is_nan() | dn_v.is_nan();
