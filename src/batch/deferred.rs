@@ -28,7 +28,10 @@ use super::{F, Vec3, Vec3s};
 /// `alpha = p^2`, twice the relative error of `p`); see the module docs of [`super`].
 /// Elements whose norm leaves the lanes' domain (non-finite or overflowing Gram matrix for
 /// the eigenvalue norm, a NaN, infinite or subnormal norm before a power) are evaluated by
-/// the scalar function. Returns the number of elements written. Allocates nothing.
+/// the scalar function. On the SSE2 baseline (no `dispatch`, or a CPU without AVX2) every
+/// element runs the scalar function (the lanes measured no faster there; see the module docs
+/// of [`super`]), so the results there equal it bit for bit for every exponent. Returns the
+/// number of elements written. Allocates nothing.
 #[inline]
 pub fn deferred_filter(
     conv: &KernelConvention,
@@ -87,6 +90,11 @@ const NORMS: [Norm; 4] = [
 struct Deferred<const D: usize, const N: usize, const POW: bool>(KernelConvention);
 
 impl<const D: usize, const N: usize, const POW: bool> Kernel<7, 1> for Deferred<D, N, POW> {
+    // Measured on the SSE2 baseline (three `--quick` runs, scalar loop / batch): TK19 trace
+    // 0.8x-1.5x, TK19 max 0.9x-1.2x, Unreal 0.4x-0.5x (its power in `f64`, two lanes); with
+    // AVX-512 6x-34x. The lanes pay only with 256-bit vectors or wider.
+    const WIDE_ONLY: bool = true;
+
     /// The scalar steps ([`Norm::eval_lane`], [`KernelConvention::widening_of`],
     /// [`KernelConvention::apply_widening`], [`Isotropic::new_clamped`]) with the power of
     /// [`pow_lane`]; flagged where the norm or the power leaves its fast path.
@@ -110,7 +118,7 @@ impl<const D: usize, const N: usize, const POW: bool> Kernel<7, 1> for Deferred<
         ([v], !(n_ok & p_ok))
     }
 
-    #[inline]
+    #[inline(always)]
     fn scalar(&self, [a, ux, uy, uz, vx, vy, vz]: [F; 7]) -> [F; 1] {
         [self
             .0
