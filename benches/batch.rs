@@ -20,7 +20,7 @@ macro_rules! family {
     ($c:expr, $prec:ident, $t:ty) => {{
         use filtered_ndf::$prec::{
             AxisAligned, Beckmann, ClampRules, Footprint, Ggx, Isotropic, Ndf, RoughnessMatrix,
-            Vec2, Vec3, batch, filter::rect,
+            Vec2, Vec3, batch, filter::presets, filter::rect,
         };
         type Wall<'a> = BenchmarkGroup<'a, criterion::measurement::WallTime>;
         let cases = common::realistic_cases(N, 0xBA7C);
@@ -179,6 +179,38 @@ macro_rules! family {
             |i: usize| Ggx::new(rules.filter_gaussian(aa, fps[i], 0.5)).d(h(i)),
             |o: &mut [$t]| batch::ggx_d_filtered(&aa, &rules, 0.5, &hx, &hy, &hz, soa, o)
         );
+        // Deferred presets: per-element material roughness and world-space normal
+        // differences (the cases' slope derivatives as the tangential part of the normal's
+        // change per pixel, the footprint's cross term as its normal part).
+        let alpha_col = col(&|k| 0.02 + 0.5 * k.h[0].abs());
+        let (nz_u, nz_v) = (
+            col(&|k| k.dh_u[0] * k.dh_v[1]),
+            col(&|k| k.dh_u[1] * k.dh_v[0]),
+        );
+        let (dn_u, dn_v) = (
+            batch::Vec3s::new(&ux, &uy, &nz_u),
+            batch::Vec3s::new(&vx, &vy, &nz_v),
+        );
+        let dn = |i: usize| {
+            (
+                Vec3::new(ux[i], uy[i], nz_u[i]),
+                Vec3::new(vx[i], vy[i], nz_v[i]),
+            )
+        };
+        for (name, conv) in [
+            ("deferred_tk19_trace", presets::TK19_TRACE),
+            ("deferred_tk19_max", presets::TK19_MAX),
+            ("deferred_unreal", presets::UNREAL),
+        ] {
+            pair!(
+                name,
+                |i: usize| {
+                    let (u, v) = dn(i);
+                    conv.filter(alpha_col[i], u, v).alpha()
+                },
+                |o: &mut [$t]| batch::deferred_filter(&conv, &alpha_col, dn_u, dn_v, o)
+            );
+        }
         pair!(
             "d_rect",
             |i: usize| rect::d_rect(aa, h(i), Vec2::new(rx[i], ry[i])),

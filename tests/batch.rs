@@ -18,6 +18,8 @@
 //!   also against the `f64` scalar path on the same rounded inputs: `(11 + 4 x) eps`, the
 //!   scalar `f32` bound of `tests/ndf_precision.rs` (`(8 + 4 x) eps`) plus the polynomial's
 //!   `2.5e-7 <= 2.1 eps` and its rounding.
+//! - The deferred presets (`deferred_filter`): bit for bit for `exponent = 1`; with a power,
+//!   `(2 d + 1) eps` relative, `d` the lane power's error plus libm's (test docs).
 //! - Beckmann `Lambda`: the shared `erfc` fit (`beckmann_lambda_fast`), absolute
 //!   `L (1 + Lambda)`, `L = 2.1e-7` (`f32`) / `1.9e-8` (`f64`), plus the scalar path's own
 //!   error against `f64` (`(8 + 4 a^2) eps Lambda`, `tests/ndf_precision.rs`) and one rounding
@@ -440,6 +442,97 @@ macro_rules! suite {
                 let mut out = [1.0 as $t; 5];
                 batch::d_rect(&aa, &x, &y, &z, &f, &f, &mut out);
                 assert!(out.iter().all(|v| !v.is_nan()), "{out:?}");
+            }
+
+            /// Every deferred preset and a convention per remaining (domain, norm) pair over
+            /// the adversarial columns (`ux..vy` as normal differences, `x` as alpha):
+            /// bit for bit where `exponent = 1`; with a power (Unreal, Babylon.js: the
+            /// perceptual domain, `alpha_bar = max(p, k)^2`) within `(2 d + 1) eps` relative,
+            /// `d` the power's error in ulps against libm's (`pow_lane`: half an ulp plus
+            /// `1e-13` in `f32`, `1.6e-14 + 3 eps_64 |y| + eps_64` in `f64`; libm one ulp): the
+            /// square doubles it and each side rounds it once.
+            #[test]
+            fn deferred_presets_bit_for_bit() {
+                use filtered_ndf::$prec::filter::deferred::{
+                    Combine, Domain, KernelConvention, Norm,
+                };
+                use filtered_ndf::$prec::filter::presets;
+                let c = cols(0xDEF);
+                let (u, v) = (
+                    batch::Vec3s::new(&c.ux, &c.uy, &c.hy),
+                    batch::Vec3s::new(&c.vx, &c.vy, &c.hx),
+                );
+                let mut convs: Vec<(String, KernelConvention)> = presets::ALL
+                    .iter()
+                    .map(|(n, k)| (n.to_string(), *k))
+                    .collect();
+                for domain in [
+                    Domain::Alpha2,
+                    Domain::Alpha,
+                    Domain::Perceptual,
+                    Domain::ProjectedAlpha2,
+                ] {
+                    for norm in [
+                        Norm::SumSquared,
+                        Norm::MaxSquared,
+                        Norm::MaxEigenvalue,
+                        Norm::MaxAbsComponent,
+                    ] {
+                        for (exponent, combine) in [(1.0, Combine::Max), (0.5, Combine::Add)] {
+                            convs.push((
+                                format!("{domain:?} {norm:?} ^{exponent}"),
+                                KernelConvention {
+                                    domain,
+                                    norm,
+                                    exponent,
+                                    combine,
+                                    bias: 0.01,
+                                    ..presets::TK19_TRACE
+                                },
+                            ));
+                        }
+                    }
+                }
+                let mut out = vec![0.0 as $t; N];
+                for (name, k) in &convs {
+                    assert_eq!(batch::deferred_filter(k, &c.x, u, v, &mut out), N);
+                    let want = |i: usize| {
+                        k.filter(
+                            c.x[i],
+                            Vec3::new(c.ux[i], c.uy[i], c.hy[i]),
+                            Vec3::new(c.vx[i], c.vy[i], c.hx[i]),
+                        )
+                        .alpha()
+                    };
+                    if k.exponent == 1.0 {
+                        same(&out, want, name);
+                        continue;
+                    }
+                    for (i, &g) in out.iter().enumerate() {
+                        let w = want(i);
+                        assert!(!g.is_nan() && g > 0.0, "{name} [{i}]: {g}");
+                        if g == w {
+                            continue; // also every flagged element (the scalar path)
+                        }
+                        let n = k.norm.eval(
+                            Vec3::new(c.ux[i], c.uy[i], c.hy[i]),
+                            Vec3::new(c.vx[i], c.vy[i], c.hx[i]),
+                        ) as f64;
+                        let y = (k.exponent as f64 * n.ln()).abs();
+                        let d = if WIDE {
+                            1.6e-14 / EPS + 3.0 * y + 1.0 + 1.0
+                        } else {
+                            0.5 + 1e-13 / EPS + 1.0
+                        };
+                        // The perceptual domain squares (2 d + 1); alpha^2 takes a root
+                        // (d / 2 + 1), alpha and projected alpha^2 at most d + 1.
+                        let tol = (2.0 * d + 1.0) * EPS * w as f64;
+                        assert!(
+                            ((g - w) as f64).abs() <= tol,
+                            "{name} [{i}]: batch {g} vs scalar {w} (norm {n})"
+                        );
+                    }
+                }
             }
 
             #[test]

@@ -67,6 +67,7 @@ macro_rules! check {
         };
         let v = batch::Vec3s::new(&x, &y, &z);
         let w = batch::Vec3s::new(&y, &x, &z);
+        let fp_dn = batch::Vec3s::new(&ux, &uy, &vx);
         let iso = Isotropic::new(0.1 as $t).unwrap();
         let aa = AxisAligned::new(0.1 as $t, 0.02 as $t).unwrap();
         let mat = RoughnessMatrix::new(0.01 as $t, 0.002 as $t, 0.0009 as $t).unwrap();
@@ -93,6 +94,9 @@ macro_rules! check {
                 batch::ggx_d_filtered(&mat, &rules, 0.5, &x, &y, &z, fp, &mut out);
             }
             batch::d_rect(&aa, &x, &y, &z, &hx, &hy, &mut out);
+            for (_, conv) in filtered_ndf::$prec::filter::presets::ALL {
+                batch::deferred_filter(&conv, &z, v, fp_dn, &mut out);
+            }
         });
         assert_eq!(
             n,

@@ -15,6 +15,20 @@
 //!   `Lambda ~ exp(-a^2) / a^3` amplifies by `2 a^2 + 3`.
 //! - Beckmann `G2 = 1 / (1 + Lambda_i + Lambda_o)`: relative `2 L + 3 eps` plus the amplified
 //!   terms of each `Lambda` over `1 + Lambda_i + Lambda_o`.
+//! - The deferred presets (`deferred_filter`): bit for bit with the scalar path of the batch
+//!   precision for `exponent = 1` (`tests/batch.rs`), so against `f64` the scalar `f32`
+//!   path's error, derived step by step (in `eps` of the batch precision, relative): the
+//!   norm `R_n` (`|dn_u|^2 + |dn_v|^2`: six products and five sums of non-negative terms,
+//!   `3`; the larger of two dot products `1.5`; the Gram matrix's larger eigenvalue: entry
+//!   errors of `3 u tr`, a 1-Lipschitz eigenvalue with `tr <= 2 lambda_max`, and its own
+//!   mean, root and sum, `6`; the largest component `0`); the kernel `R_k = exponent R_n + 2`
+//!   (the scale constant rounded to `F` and the product) plus the power's (`1` in `f32`:
+//!   the lane's half ulp and the scalar's; `1.6e-14 / eps + 3 |y| + 1` in `f64`); the
+//!   material's value `R_v` (`alpha^2`, `sqrt(alpha)`: `1`; `alpha`: `0`; `alpha^2 / (1 -
+//!   alpha^2)`: `1 + 1 / (1 - alpha^2)`, the subtraction's conditioning, so `alpha <= 0.9`
+//!   here); the sum or max and the clamps and saturate (1-Lipschitz) `R = max(R_v, R_k) + 1`;
+//!   `to_alpha`: `R / 2 + 1` (`sqrt`), `R` (identity), `2 R + 1` (square), `R / 2 + 2`
+//!   (`sqrt(v / (1 + v))`); plus `1` for the rounded `ALPHA_MIN` floor.
 
 use filtered_ndf::f64 as d;
 use filtered_ndf::testing::rng::SplitMix64 as Rng;
@@ -264,6 +278,67 @@ macro_rules! suite {
                     "worst of the bound: GGX Lambda {:.3}, G2 {:.3}; Beckmann Lambda {:.3}, G2 {:.3}",
                     worst[0], worst[1], worst[2], worst[3]
                 );
+            }
+
+            /// The deferred presets against the `f64` scalar path (bound in the file docs).
+            #[test]
+            fn deferred_presets_against_f64() {
+                use filtered_ndf::f64::filter::deferred::{Domain, Norm};
+                let mut rng = Rng(0xDEF0);
+                let mut col = |f: &mut dyn FnMut(&mut Rng) -> f64| -> Vec<$t> {
+                    (0..N).map(|_| f(&mut rng) as $t).collect()
+                };
+                let alpha = col(&mut |r| if r.uniform() < 0.05 { 0.0 } else { r.log_uniform(1e-3, 0.9) });
+                // Normal differences from 1e-4 to 1 per pixel: unclamped to clamped kernels.
+                let mut dn = || col(&mut |r| r.normal() * r.log_uniform(1e-4, 1.0));
+                let (ux, uy, uz, vx, vy, vz) = (dn(), dn(), dn(), dn(), dn(), dn());
+                let (u, v) = (batch::Vec3s::new(&ux, &uy, &uz), batch::Vec3s::new(&vx, &vy, &vz));
+                let mut out = vec![0.0 as $t; N];
+                for (j, (name, k)) in filtered_ndf::$prec::filter::presets::ALL.iter().enumerate() {
+                    let k64 = filtered_ndf::f64::filter::presets::ALL[j].1;
+                    batch::deferred_filter(k, &alpha, u, v, &mut out);
+                    let mut worst = 0.0f64;
+                    for i in 0..N {
+                        let (a, du, dv) = (
+                            alpha[i] as f64,
+                            glam::DVec3::new(ux[i] as f64, uy[i] as f64, uz[i] as f64),
+                            glam::DVec3::new(vx[i] as f64, vy[i] as f64, vz[i] as f64),
+                        );
+                        let want = k64.filter(a, du, dv).alpha();
+                        let e = k64.exponent;
+                        let r_n = match k64.norm {
+                            Norm::SumSquared => 3.0,
+                            Norm::MaxSquared => 1.5,
+                            Norm::MaxEigenvalue => 6.0,
+                            Norm::MaxAbsComponent => 0.0,
+                        };
+                        let pow = if e == 1.0 {
+                            0.0
+                        } else if WIDE {
+                            let y = (e * k64.norm.eval(du, dv).ln()).abs();
+                            1.6e-14 / EPS + 3.0 * y + 1.0
+                        } else {
+                            1.0
+                        };
+                        let r_k = e * r_n + 2.0 + pow;
+                        let r_v = match k64.domain {
+                            Domain::Alpha => 0.0,
+                            Domain::Alpha2 | Domain::Perceptual => 1.0,
+                            Domain::ProjectedAlpha2 => 1.0 + 1.0 / (1.0 - a * a),
+                        };
+                        let r_out = r_v.max(r_k) + 1.0;
+                        let tol = 1.0 + match k64.domain {
+                            Domain::Alpha2 => r_out / 2.0 + 1.0,
+                            Domain::Alpha => r_out,
+                            Domain::Perceptual => 2.0 * r_out + 1.0,
+                            Domain::ProjectedAlpha2 => r_out / 2.0 + 2.0,
+                        };
+                        let err = (out[i] as f64 - want).abs() / want / EPS;
+                        worst = worst.max(err / tol);
+                        assert!(err <= tol, "{name} [{i}]: {} vs {want} ({err:.2} eps > {tol:.2})", out[i]);
+                    }
+                    println!("{name}: worst {worst:.3} of the bound");
+                }
             }
         }
     };

@@ -6,6 +6,7 @@
 //! |---|---|---|---|
 //! | [`exp_neg_times`] `e^-x k` | `Beckmann`'s `exp_neg_times` (libm `exp`, `ln`) | `exp_poly`'s (`2.5e-7` in `f32`, `1.5e-14` in `f64`) plus one rounding, for normal results | unit test below |
 //! | `filter::exp_poly` (shared with the exact Gaussian filter) | libm `exp` | `2.5e-7` / `1.5e-14` | `gaussian_ggx_quad` |
+//! | [`pow_lane`] `x^e` | libm `powf` (the deferred presets' norm exponent) | `1.6e-14 + 3 eps_64 abs(y)` + `eps_64`, `y = e ln x`, computed in `f64` (in `f32`: half an ulp plus `1e-13`) | unit test below |
 //! | `filter::beckmann_lambda_fast` (shared with its sampler) | Beckmann `Lambda` in `f64` (libm `erfc`) | `2.1e-7 (1 + Lambda)` / `1.9e-8 (1 + Lambda)` absolute | `gaussian_ggx_quad` |
 //!
 //! A lane whose input leaves the range these functions cover (a subnormal result, a
@@ -217,9 +218,112 @@ fn exp_neg_times_f64(x: f64, k: f64) -> (f64, bool) {
     )
 }
 
+/// `x^e` in lanes for the deferred presets' norm exponent ([`KernelConvention`]'s
+/// `exponent`), in `f64` arithmetic at either precision: `x = m 2^k`, `m` in
+/// `[sqrt(1/2), sqrt(2))`, `ln m = 2 atanh(s)`, `s = (m - 1) / (m + 1)` (`|s| <= 0.1716`) by
+/// its series to `s^21` (truncation below `2.3e-17` relative), `y = e (k ln2_hi + (k ln2_lo +
+/// ln m))` (`k ln2_hi` exact) and `e^y` by `filter::exp_poly`'s `f64` reduction.
+///
+/// Returns `(value, ok)`: `ok` for `x` a normal positive `f64` with `|y| <= 708`, or `x = 0`
+/// with `e > 0` (value `0`); elsewhere (NaN, infinite, subnormal or negative `x`, overflow)
+/// the caller's scalar path decides.
+///
+/// Error where `ok` (relative, against the exact power): the exponential's `1.5e-14` plus
+/// `|y|` times the relative error of `y` (`s` rounded twice, the sums, the product by `e`:
+/// at most `3 eps_64`), plus `eps_64`: `1.6e-14 + 3 eps_64 |y|`; in `f32` that before the
+/// final rounding to `f32`, so within `eps_32 / 2 + 1e-13` for `|y| <= 700` (well within one
+/// `f32` ulp of libm's `powf`). Tested below.
+///
+/// [`KernelConvention`]: super::super::filter::deferred::KernelConvention
+#[inline(always)]
+pub(crate) fn pow_lane(x: F, e: F) -> (F, bool) {
+    let (v, ok) = pow_f64(x.to_f64(), e.to_f64());
+    (F::from_f64(v), ok)
+}
+
+#[inline(always)]
+#[allow(clippy::manual_range_contains)] // `&` of compares: no branch in the lane.
+fn pow_f64(x: f64, e: f64) -> (f64, bool) {
+    const LN2_HI: f64 = 0.693_147_180_369_123_8; // 0x3fe62e42fee00000.
+    const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
+    // 1 / (2 j + 1), j = 1..10.
+    const C: [f64; 10] = [
+        1.0 / 3.0,
+        1.0 / 5.0,
+        1.0 / 7.0,
+        1.0 / 9.0,
+        1.0 / 11.0,
+        1.0 / 13.0,
+        1.0 / 15.0,
+        1.0 / 17.0,
+        1.0 / 19.0,
+        1.0 / 21.0,
+    ];
+    let b = x.to_bits();
+    // The biased exponent field as an `f64` (`2^52 + field`, minus `2^52`: exact), without
+    // an integer-to-float conversion (none for 64-bit integers before AVX-512).
+    let field =
+        f64::from_bits(0x4330_0000_0000_0000 | ((b >> 52) & 0x7ff)) - 4_503_599_627_370_496.0;
+    let m1 = f64::from_bits((b & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
+    let big = m1 > core::f64::consts::SQRT_2;
+    let m = if big { 0.5 * m1 } else { m1 };
+    let k = field - 1023.0 + if big { 1.0 } else { 0.0 };
+    // m - 1 is exact (Sterbenz).
+    let s = (m - 1.0) / (m + 1.0);
+    let s2 = s * s;
+    let mut p = C[9];
+    for c in C[..9].iter().rev() {
+        p = p * s2 + c;
+    }
+    let ln_m = 2.0 * s + (2.0 * s) * (s2 * p);
+    let y = e * (k * LN2_HI + (k * LN2_LO + ln_m));
+    let (q, kk) = exp_f64_reduced(y.clamp(-708.0, 708.0));
+    let n = (kk.to_bits() as i64).wrapping_sub(MAGIC_F64.to_bits() as i64);
+    // 2^n for |n| <= 1022 (|y| <= 708).
+    let two_n = f64::from_bits(((n + 1023) as u64) << 52);
+    let zero = x == 0.0;
+    let ok = ((x >= f64::MIN_POSITIVE) & (x <= f64::MAX) & (y.abs() <= 708.0)) | (zero & (e > 0.0));
+    (if zero { 0.0 } else { q * two_n }, ok)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn pow_lane_against_libm() {
+        // Against `f64::powf` (libm: within one ulp of the exact power) for x over
+        // [1e-30, 1e30] and the presets' exponents and others: the bound of `pow_lane` plus
+        // the reference's ulp.
+        let mut worst = 0.0f64;
+        for e in [0.333, 0.5, 1.0 / 3.0, 2.0, 0.1, 1.7, 3.0] {
+            for i in 0..=20_000 {
+                let x = F::from_f64(10f64.powf(-30.0 + 60.0 * (i as f64 / 20_000.0)));
+                let (xf, ef) = (x.to_f64(), F::from_f64(e).to_f64());
+                let exact = xf.powf(ef);
+                let (v, ok) = pow_lane(x, F::from_f64(e));
+                let y = ef * xf.ln();
+                if y.abs() > 700.0 || exact > F::MAX.to_f64() || exact < F::MIN_POSITIVE.to_f64() {
+                    continue;
+                }
+                assert!(ok, "x {x} e {e}");
+                let f = f64::EPSILON;
+                let bound = 1.6e-14
+                    + 3.0 * f * y.abs()
+                    + f
+                    + if WIDE { 0.0 } else { f32::EPSILON as f64 / 2.0 };
+                let err = (v.to_f64() - exact).abs() / exact;
+                assert!(err <= bound, "x {x} e {e}: {v} vs {exact}");
+                worst = worst.max(err);
+            }
+        }
+        println!("pow_lane worst relative error {worst:e}");
+        assert_eq!(pow_lane(0.0, 0.333), (0.0, true));
+        assert!(!pow_lane(0.0, -1.0).1);
+        assert!(!pow_lane(F::NAN, 0.333).1);
+        assert!(!pow_lane(F::INFINITY, 0.333).1);
+        assert!(!pow_lane(-1.0, 0.333).1);
+    }
 
     #[test]
     fn exp_neg_times_against_libm() {

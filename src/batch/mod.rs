@@ -36,9 +36,10 @@
 //! at run time, through `pulp`'s safe target-feature contexts: the crate stays
 //! `forbid(unsafe_code)`. [`simd_level`] names the instruction set in use. The lanes' results
 //! do not depend on it (no fused multiply-add is formed: Rust does not contract `a * b + c`).
-//! The filtered functions and the box filter vectorise profitably only with 256-bit vectors
-//! or wider (their lanes carry an `f64` matrix and both branches of the clamps; on SSE2 they
-//! measured 0.7 times the scalar loop): on the SSE2 baseline they run the scalar path
+//! The filtered functions, the box filter and the deferred presets vectorise profitably only
+//! with 256-bit vectors or wider (the filters' lanes carry an `f64` matrix and both branches
+//! of the clamps; on SSE2 they measured 0.7 times the scalar loop; the presets' lanes 0.4 to
+//! 1.5 times): on the SSE2 baseline they run the scalar path
 //! (so [`beckmann_d_filtered`] there equals the scalar route bit for bit; with AVX2 or
 //! AVX-512 it is within the bound below).
 //!
@@ -47,10 +48,17 @@
 //! | function | against the scalar function of the same precision | why | tested in |
 //! |---|---|---|---|
 //! | [`ggx_d`], [`ggx_lambda`], [`ggx_g2`], [`ggx_d_filtered`] (every [`ClampRules`](super::ClampRules)) | bit for bit | the lane is the scalar formula; every branch it skips is flagged | `tests/batch.rs` (random and adversarial input, every rule set, footprints that trigger each clamp) |
+//! | [`deferred_filter`] with `exponent = 1` (every preset but Unreal and Babylon.js) | bit for bit | the lane is the scalar steps with the domain and norm as constants (one loop per pair) and the branches as selects; the eigenvalue norm off its fast path is flagged | `tests/batch.rs` (every preset, every domain and norm, adversarial input) |
+//! | [`deferred_filter`] with another exponent | relative `(2 d + 1) eps` in the perceptual domain (`d + 1` in the others), `d` the power's error in ulps: the lane power's (`f64` arithmetic: half an `f32` ulp plus `1e-13`; in `f64` `1.6e-14 + 3 eps abs(y)`, `y = exponent ln(norm)`) plus libm's `powf` (one ulp) | `norm^exponent` by `lanes.rs`' `pow_lane`; the perceptual domain squares `p` | `tests/batch.rs`, the `pow_lane` unit test |
 //! | [`d_rect`] | bit for bit | the 2 x 2-point tier of the scalar case analysis in lanes, every other case flagged | `tests/batch.rs` |
 //! | [`beckmann_d`], [`beckmann_d_filtered`] | relative `E + 2 eps`, plus `x eps` where the scalar path takes its far-tail branch (`x > -ln F::MIN_POSITIVE`); results below `F::MIN_POSITIVE` flushed to `0` (absolute error below `F::MIN_POSITIVE`) | the exponent `x` and factor `k = n / pi` are the scalar path's bit for bit; `exp(-x) k` is the polynomial exponential (relative `E = 2.5e-7` in `f32`, `1.5e-14` in `f64`) and one rounding, against libm's `exp` (one ulp) and the scalar product; the scalar far-tail branch rounds `x - ln k` (up to `x eps`) | `tests/batch.rs` |
 //! | [`beckmann_lambda`] | absolute `L (1 + Lambda)`, `L = 2.1e-7` (`f32`), `1.9e-8` (`f64`), plus `(5 + 3 a^2) eps Lambda` | the `erfc` fit (Numerical Recipes `erfcc`) in place of libm's; `a = |w_z| / sqrt(q)` rounded twice in `F` (the scalar path forms it in `f64`), amplified by `2 a^2 + 3` | `tests/batch_bounds.rs` |
 //! | [`beckmann_g2`] | relative `2 L + 3 eps` plus the `Lambda` terms over `1 + Lambda_i + Lambda_o` | `G2 = 1 / (1 + Lambda_i + Lambda_o)` | `tests/batch_bounds.rs` |
+//!
+//! The deferred presets in `f32` against the `f64` scalar path: the scalar `f32` path's
+//! error, derived step by step in `tests/batch_bounds.rs` (at most `11 eps` for the presets,
+//! `alpha <= 0.9` for the projected domain, whose `alpha^2 / (1 - alpha^2)` amplifies by
+//! `1 / (1 - alpha^2)`).
 //!
 //! Against the `f64` scalar path on the same rounded inputs (`tests/batch_bounds.rs`), the
 //! `f32` functions keep the scalar `f32` bounds of `tests/ndf_precision.rs` (GGX `D` and
@@ -63,12 +71,14 @@
 
 use super::{F, PI, Vec2, Vec3};
 
+mod deferred;
 mod filtered;
 mod lanes;
 mod ndf;
 mod rect;
 mod simd;
 
+pub use deferred::deferred_filter;
 pub use filtered::{beckmann_d_filtered, ggx_d_filtered};
 pub use ndf::{beckmann_d, beckmann_g2, beckmann_lambda, ggx_d, ggx_g2, ggx_lambda};
 pub use rect::d_rect;

@@ -158,7 +158,7 @@ pub enum Domain {
 
 impl Domain {
     /// `alpha -> v` (see the variants). `alpha >= 0` expected.
-    #[inline]
+    #[inline(always)]
     pub fn from_alpha(self, alpha: F) -> F {
         match self {
             Self::Alpha2 => alpha * alpha,
@@ -177,7 +177,7 @@ impl Domain {
 
     /// `v -> alpha`, the inverse of [`Domain::from_alpha`] for `v >= 0`; `+inf` maps to
     /// `+inf` (1 for [`Domain::ProjectedAlpha2`]).
-    #[inline]
+    #[inline(always)]
     pub fn to_alpha(self, v: F) -> F {
         match self {
             Self::Alpha2 => m::sqrt(v),
@@ -215,24 +215,41 @@ impl Norm {
     /// [`Norm::MaxEigenvalue`] also if the Gram matrix overflows).
     #[inline]
     pub fn eval(self, dn_u: Vec3, dn_v: Vec3) -> F {
+        let (v, ok) = self.eval_lane(dn_u, dn_v);
+        if ok {
+            v
+        } else {
+            lambda_max(&normal_difference_covariance(dn_u, dn_v, 1.0))
+        }
+    }
+
+    /// [`Norm::eval`] without branches (the batch lane, and the scalar path's core):
+    /// `(measure, ok)`, the measure equal to [`Norm::eval`]'s where `ok`. Only
+    /// [`Norm::MaxEigenvalue`] can fail (not `ok` off the eigenvalue routine's fast path:
+    /// non-finite or overflowing Gram entries), then `eval` takes the full routine.
+    #[inline(always)]
+    pub(crate) fn eval_lane(self, dn_u: Vec3, dn_v: Vec3) -> (F, bool) {
         match self {
-            Self::SumSquared => dn_u.dot(dn_u) + dn_v.dot(dn_v),
+            Self::SumSquared => (dn_u.dot(dn_u) + dn_v.dot(dn_v), true),
             Self::MaxSquared => {
                 let (a, b) = (dn_u.dot(dn_u), dn_v.dot(dn_v));
-                if a.is_nan() || b.is_nan() {
-                    F::NAN
-                } else {
-                    a.max(b)
-                }
+                (
+                    if a.is_nan() | b.is_nan() {
+                        F::NAN
+                    } else {
+                        a.max(b)
+                    },
+                    true,
+                )
             }
-            Self::MaxEigenvalue => lambda_max(&normal_difference_covariance(dn_u, dn_v, 1.0)),
+            Self::MaxEigenvalue => {
+                normal_difference_covariance(dn_u, dn_v, 1.0).max_eigenvalue_lane()
+            }
             Self::MaxAbsComponent => {
                 // Vec3::max drops a NaN operand: test the inputs, not the result.
-                if dn_u.is_nan() || dn_v.is_nan() {
-                    F::NAN
-                } else {
-                    dn_u.abs().max(dn_v.abs()).max_element()
-                }
+                let nan = dn_u.is_nan() | dn_v.is_nan();
+                let v = dn_u.abs().max(dn_v.abs()).max_element();
+                (if nan { F::NAN } else { v }, true)
             }
         }
     }
@@ -294,11 +311,18 @@ impl KernelConvention {
         } else {
             m::powf(n, self.exponent)
         };
+        self.widening_of(raw)
+    }
+
+    /// The widening from `raw = norm^exponent`: `min(max(scale * raw + bias, 0), clamp)`,
+    /// NaN -> `clamp` (shared by [`KernelConvention::widening`] and the batch lane).
+    #[inline(always)]
+    pub(crate) fn widening_of(&self, raw: F) -> F {
         self.clamp_widening(self.scale * raw + self.bias)
     }
 
     /// `min(max(k, 0), clamp)`, NaN -> `clamp`.
-    #[inline]
+    #[inline(always)]
     fn clamp_widening(&self, k: F) -> F {
         if k.is_nan() {
             self.clamp
@@ -310,7 +334,7 @@ impl KernelConvention {
     /// Steps 1, 3 and 4 of [`apply`](Self::apply) for a kernel `k` already in `domain` units
     /// (clamped here like step 2). `alpha` NaN or negative counts as 0, `+inf` as
     /// [`ALPHA_MAX`]; the result is in `[0, ALPHA_MAX]` and never NaN.
-    #[inline]
+    #[inline(always)]
     pub fn apply_widening(&self, alpha: F, k: F) -> F {
         let alpha = if alpha > 0.0 {
             alpha.min(ALPHA_MAX)

@@ -52,8 +52,13 @@ impl Covariance {
     /// dominant negative one). NaN entries give `(0, 0)`.
     #[inline]
     pub fn eigenvalues(self) -> (F, F) {
-        let mean = 0.5 * (self.s11 + self.s22);
-        let max = mean + radius(0.5 * (self.s11 - self.s22), self.s12);
+        let (mean, max_direct, direct) = self.mean_and_max_direct();
+        // `mean + radius(d, b)`: `radius` is the direct root where `direct`.
+        let max = if direct {
+            max_direct
+        } else {
+            mean + m::hypot(0.5 * (self.s11 - self.s22), self.s12)
+        };
         // `mean >= 0` (every PSD matrix) without overflow: `lambda_max = mean + rad` has no
         // cancellation. Otherwise (negative mean, overflow, NaN) the general case.
         if !(mean >= 0.0 && max <= F::MAX) {
@@ -61,6 +66,28 @@ impl Covariance {
         }
         let min = if max > 0.0 { self.det_over(max) } else { 0.0 };
         (min.max(0.0), max)
+    }
+
+    /// `(mean, mean + sqrt(d^2 + b^2), direct)` with `d = (s11 - s22) / 2`, `b = s12`: the
+    /// larger eigenvalue by [`radius_direct`], valid where `direct` (else
+    /// [`Covariance::eigenvalues`] takes `hypot`).
+    #[inline(always)]
+    fn mean_and_max_direct(self) -> (F, F, bool) {
+        let mean = 0.5 * (self.s11 + self.s22);
+        let (r, direct) = radius_direct(0.5 * (self.s11 - self.s22), self.s12);
+        (mean, mean + r, direct)
+    }
+
+    /// The larger eigenvalue in lane form (branch-free): `(lambda_max, ok)`, equal to
+    /// `self.eigenvalues().1` bit for bit where `ok` (finite entries, the fast path of
+    /// [`Covariance::eigenvalues`] with the direct radius).
+    #[inline(always)]
+    pub(crate) fn max_eigenvalue_lane(self) -> (F, bool) {
+        let (mean, max, direct) = self.mean_and_max_direct();
+        let finite = (self.s11.abs() < F::INFINITY)
+            & (self.s12.abs() < F::INFINITY)
+            & (self.s22.abs() < F::INFINITY);
+        (max, finite & direct & (mean >= 0.0) & (max <= F::MAX))
     }
 
     /// `det / big` for `|big| >= ` every entry (an eigenvalue of the largest magnitude):
