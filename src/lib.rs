@@ -47,12 +47,12 @@
 //!
 //! | scene | call | cost | error | ROW |
 //! |---|---|---:|---:|---|
-//! | forward, GGX, any roughness form, per light (ddx/ddy of the half vector) | `material.filtered(Footprint::from_half_vector_derivatives(h, ddx_h, ddy_h), Gaussian::TK19)` | 13x | 8.5e-2 | `forward_ggx` |
-//! | forward, GGX, the highlight's shape matters (close-ups, baking, references) | `material.filtered(fp, ExactGaussian::KHPL16)` (exact), or `Rect::KHPL16` (exact box) | 43x / 17x | 8e-8 / 1.1e-2 | `forward_ggx_exact` |
-//! | forward, Beckmann | `material.filtered(fp, Gaussian::KHPL16)` (exact) | 2.7x | 1.2e-7 | `forward_beckmann` |
-//! | forward, derivatives of the projected `h_xy` (TK19 sec. 3.2) | `material.filtered(Footprint::from_projected_derivatives(..), Projected::TK21)` | 13x | 8.1e-2 | `projected` |
-//! | G-buffer with an anisotropic roughness | `material.filtered(fp, Proxy::KHPL16)`: a plain `Ggx<AxisAligned>` to store | 16x | 1.0e-1 | `gbuffer_anisotropic` |
-//! | deferred, one roughness channel | `Ggx::new(presets::TK19_TRACE.filter(alpha, ddx_n, ddy_n))` (or an engine's preset) | 8x | 1.7e-1 to 2.1e-1 | `deferred` |
+//! | forward, GGX, any roughness form, per light (ddx/ddy of the half vector) | `material.filtered(Footprint::from_half_vector_derivatives(h, ddx_h, ddy_h), Gaussian::TK19)` | 17x | 8.5e-2 | `forward_ggx` |
+//! | forward, GGX, the highlight's shape matters (close-ups, baking, references) | `material.filtered(fp, ExactGaussian::KHPL16)` (exact), or `Rect::KHPL16` (exact box) | 57x / 22x | 8e-8 / 1.1e-2 | `forward_ggx_exact` |
+//! | forward, Beckmann | `material.filtered(fp, Gaussian::KHPL16)` (exact) | 7.4x (2.5x unfiltered Beckmann) | 1.2e-7 | `forward_beckmann` |
+//! | forward, derivatives of the projected `h_xy` (TK19 sec. 3.2) | `material.filtered(Footprint::from_projected_derivatives(..), Projected::TK21)` | 17x | 8.1e-2 | `projected` |
+//! | G-buffer with an anisotropic roughness | `material.filtered(fp, Proxy::KHPL16)`: a plain `Ggx<AxisAligned>` to store | 22x | 1.0e-1 | `gbuffer_anisotropic` |
+//! | deferred, one roughness channel | `Ggx::new(presets::TK19_TRACE.filter(alpha, ddx_n, ddy_n))` (or an engine's preset) | 10x | 1.7e-1 to 2.1e-1 | `deferred` |
 //! | offline path tracer | `Footprint::from_ray_differentials(m, &frame, dx_u, dx_v)`, any method, then `sample_visible_normal` | as the method | as the method | `path_tracer` |
 //! | normal-mapped (LEAN moments) | `Ggx::new(filter::lean(alpha, pixel_covariance, &moments))` | as `Gaussian` | - | `normal_mapped` |
 //! | motion blur | `TemporalLobe::ggx(alpha, TemporalRoughness::from_normal_rate(dn_dt, dt).covariance())` | as `Gaussian` | - | `motion_blur` |
