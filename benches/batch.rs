@@ -216,6 +216,37 @@ macro_rules! family {
             |i: usize| rect::d_rect(aa, h(i), Vec2::new(rx[i], ry[i])),
             |o: &mut [$t]| batch::d_rect(&aa, &hx, &hy, &hz, &rx, &ry, o)
         );
+        // GGX visible normals (matrix form) from the views and uniform pairs: three outputs,
+        // so its own group rather than `pair!`.
+        {
+            use filtered_ndf::$prec::NdfSampling;
+            let lobe = Ggx::new(mat);
+            let (u1, u2): (Vec<$t>, Vec<$t>) = (0..N)
+                .map(|_| (rng.uniform() as $t, rng.uniform() as $t))
+                .unzip();
+            let (mut o2, mut o3) = (out.clone(), out.clone());
+            let mut g = group($c, "ggx_sample_visible_normal");
+            g.bench_function("scalar_loop", |b| {
+                b.iter(|| {
+                    for i in 0..N {
+                        let m = lobe
+                            .sample_visible_normal(o(black_box(i)), Vec2::new(u1[i], u2[i]))
+                            .unwrap_or(Vec3::ZERO);
+                        (out[i], o2[i], o3[i]) = (m.x, m.y, m.z);
+                    }
+                    black_box((&mut out, &mut o2, &mut o3));
+                })
+            });
+            g.bench_function("batch", |b| {
+                b.iter(|| {
+                    black_box(batch::ggx_sample_visible_normal(
+                        &mat, vo, &u1, &u2, &mut out, &mut o2, &mut o3,
+                    ));
+                    black_box((&mut out, &mut o2, &mut o3));
+                })
+            });
+            g.finish();
+        }
     }};
 }
 

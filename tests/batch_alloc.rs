@@ -72,6 +72,7 @@ macro_rules! check {
         let aa = AxisAligned::new(0.1 as $t, 0.02 as $t).unwrap();
         let mat = RoughnessMatrix::new(0.01 as $t, 0.002 as $t, 0.0009 as $t).unwrap();
         let mut out = vec![0.0 as $t; N];
+        let (mut o2, mut o3) = (out.clone(), out.clone());
         // Warm-up outside the count: one-time initialisation (the dispatcher's CPU detection
         // reads an environment variable once) is not per call.
         batch::ggx_d(&iso, &x, &y, &z, &mut out);
@@ -94,6 +95,10 @@ macro_rules! check {
                 batch::ggx_d_filtered(&mat, &rules, 0.5, &x, &y, &z, fp, &mut out);
             }
             batch::d_rect(&aa, &x, &y, &z, &hx, &hy, &mut out);
+            for (u1, u2) in [(&hx, &hy), (&ux, &vy)] {
+                batch::ggx_sample_visible_normal(&mat, v, u1, u2, &mut out, &mut o2, &mut o3);
+                batch::ggx_sample_visible_normal(&iso, w, u2, u1, &mut out, &mut o2, &mut o3);
+            }
             for (_, conv) in filtered_ndf::$prec::filter::presets::ALL {
                 batch::deferred_filter(&conv, &z, v, fp_dn, &mut out);
             }

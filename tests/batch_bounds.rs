@@ -147,6 +147,123 @@ macro_rules! suite {
                 };
             }
 
+            /// GGX visible-normal sampling against the `f64` scalar sampler, on the same rounded
+            /// inputs. The sample is compared in the unit-roughness space (the angle between
+            /// `normalize(L^-1 m_xy, m_z)` of both, `L` the `f64` Cholesky factor): the
+            /// position of the sample within the lobe. The bound, in units `E` of the batch
+            /// precision, `kappa` the condition number of `diag(L, 1)`, derived step by step
+            /// (angles of unit vectors = absolute errors):
+            ///
+            /// - `L`'s entries: relative `3 E` (square roots, a division and a difference
+            ///   with cancellation below `1 / (1 - 0.4^2)` for these forms); a map by `L` or
+            ///   `L^T` with those entries and its rounded sums (`1.5 E` per component) moves a
+            ///   direction by at most `kappa (3 + 1.5) sqrt(3) E < 8 kappa E`;
+            /// - the view `wi = normalize(L^T normalize(wo))`: `d_wi = (8.5 kappa + 1) E`;
+            /// - the cap height `z = (1 - u2)(1 + wi_z) - wi_z`: `d_z = 2 d_wi + 3 E`;
+            /// - the cap point `(sin t cos phi, sin t sin phi, z)`: `sin t = sqrt(1 - z^2)`
+            ///   errs by `(d_z + E) / sin t + E`; the azimuth's `(cos, sin)` by `S`:
+            ///   `sincos_2pi`'s `2e-15` plus half an ulp (lane), or libm's of `phi = 2 pi u1`
+            ///   rounded in the batch precision (`2 pi E`) plus its ulp (flagged elements):
+            ///   `S = 8 E` in `f32`, `9 E` (`2e-15 / eps_64`) in `f64`;
+            ///   `d_c = (d_z + E) / sin t + d_z + S + E`;
+            /// - `n = c + wi` (length `|n|` in `(0, 2]`, small where the cap point nears
+            ///   `-wi`): angle `(d_c + d_wi + E) / |n|`;
+            /// - `m = normalize(L n)`, pulled back by the exact `L^-1`: `9 kappa E`.
+            ///
+            /// So `B(E, S) = (d_c + d_wi + E) / |n| + 9 kappa E + E`, for the batch and,
+            /// with `E = eps_64`, `S = 8 E`, for the `f64` reference itself; the test takes
+            /// `sin t` and `|n|` from the `f64` steps. Elements where the `f64` sampler
+            /// returns `None` must give `(0, 0, 0)`.
+            #[test]
+            fn ggx_sample_visible_normal_against_f64() {
+                use filtered_ndf::f64::NdfSampling as _;
+                let dirs = directions(N, 0x5A);
+                let wo = Cols::new(&dirs);
+                let mut rng = Rng(0x5B);
+                let mut u: Vec<$t> = (0..2 * N).map(|_| rng.uniform() as $t).collect();
+                // Adversarial uniforms: the unit square's edges and out of range.
+                for (k, v) in [0.0, 1.0, -0.5, 2.0, <$t>::NAN, 1e-30, 0.25, 0.5, 0.75]
+                    .into_iter()
+                    .enumerate()
+                {
+                    u[7 * k] = v;
+                    u[N + 11 * k + 3] = v;
+                }
+                let (u1, u2) = u.split_at(N);
+                let (mut ox, mut oy, mut oz) = (vec![0.0 as $t; N], vec![0.0 as $t; N], vec![0.0 as $t; N]);
+                let s_batch = if WIDE { 9.0 } else { 8.0 };
+                let mut worst = 0.0f64;
+                for alpha in [0.01f64, 0.2, 1.0, 2.0] {
+                    for (name, f) in forms(alpha) {
+                        // The f64 Cholesky factor of the form (no clamp at these determinants).
+                        let (a, b) = ((alpha as $t) as f64, ((alpha * 0.3) as $t) as f64);
+                        let (l11, l21, l22) = match name {
+                            "isotropic" => (a, 0.0, a),
+                            "axis-aligned" => (a, 0.0, b),
+                            _ => {
+                                let (a, b) = (alpha as $t, (alpha * 0.3) as $t);
+                                let (a2, m12, b2) = ((a * a) as f64, (0.4 * a * b) as f64, (b * b) as f64);
+                                let l11 = a2.sqrt();
+                                let l21 = m12 / l11;
+                                (l11, l21, (b2 - l21 * l21).sqrt())
+                            }
+                        };
+                        let (s_max, s_min) = {
+                            // Singular values of [[l11, 0], [l21, l22]].
+                            let (t, det) = (l11 * l11 + l21 * l21 + l22 * l22, (l11 * l22).abs());
+                            let d = (t * t - 4.0 * det * det).max(0.0).sqrt();
+                            (((t + d) / 2.0).sqrt(), (2.0 * det * det / (t + d)).sqrt())
+                        };
+                        let kappa = s_max.max(1.0) / s_min.min(1.0);
+                        with_form!(f, |r, r64| {
+                            let n = batch::ggx_sample_visible_normal(
+                                &r, wo.soa(), u1, u2, &mut ox, &mut oy, &mut oz,
+                            );
+                            assert_eq!(n, N);
+                            let ggx = d::Ggx::new(r64);
+                            for i in 0..N {
+                                let w = wo.at(i);
+                                let uu = glam::DVec2::new(u1[i] as f64, u2[i] as f64);
+                                let got = glam::DVec3::new(ox[i] as f64, oy[i] as f64, oz[i] as f64);
+                                let Some(want) = ggx.sample_visible_normal(w, uu) else {
+                                    assert_eq!(got, glam::DVec3::ZERO, "{name} {alpha} [{i}]");
+                                    continue;
+                                };
+                                assert!(got.z > 0.0 && w.dot(got) > 0.0, "{name} {alpha} [{i}]: {got}");
+                                // The f64 steps' conditioning: sin t and |n|.
+                                let o = w.normalize();
+                                let wi = glam::DVec3::new(l11 * o.x + l21 * o.y, l22 * o.y, o.z).normalize();
+                                let cu = |x: f64| if x >= 0.0 { x.min(1.0 - EPS / 2.0) } else { 0.0 };
+                                let (c1, c2) = (cu(uu.x), cu(uu.y));
+                                let z = (1.0 - c2) * (1.0 + wi.z) - wi.z;
+                                let sin_t = (1.0 - z * z).max(0.0).sqrt();
+                                let phi = std::f64::consts::TAU * c1;
+                                let nn = glam::DVec3::new(sin_t * phi.cos(), sin_t * phi.sin(), z) + wi;
+                                let bound = |e: f64, s: f64| {
+                                    let d_wi = (8.5 * kappa + 1.0) * e;
+                                    let d_z = 2.0 * d_wi + 3.0 * e;
+                                    let d_c = (d_z + e) / sin_t + d_z + s * e + e;
+                                    (d_c + d_wi + e) / nn.length() + 9.0 * kappa * e + e
+                                };
+                                let tol = bound(EPS, s_batch) + bound(f64::EPSILON, 8.0);
+                                let back = |m: glam::DVec3| {
+                                    let y = (m.y - l21 / l11 * m.x) / l22;
+                                    glam::DVec3::new(m.x / l11, y, m.z).normalize()
+                                };
+                                let (gb, wb) = (back(got), back(want));
+                                let angle = (gb - wb).length();
+                                worst = worst.max(angle / tol);
+                                assert!(
+                                    angle <= tol,
+                                    "{name} {alpha} [{i}] wo {w} u {uu}: {got} vs {want} ({angle:e} > {tol:e})"
+                                );
+                            }
+                        });
+                    }
+                }
+                println!("ggx_sample_visible_normal: worst {worst:.3} of the bound");
+            }
+
             /// `a = |w_z| / sqrt(q)` of Beckmann's `Lambda` (in `f64`).
             fn a_of<R: d::Roughness>(r: &R, w: glam::DVec3) -> f64 {
                 w.z.abs() / r.quadratic(glam::DVec2::new(w.x, w.y)).sqrt()

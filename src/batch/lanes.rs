@@ -7,6 +7,7 @@
 //! | [`exp_neg_times`] `e^-x k` | `Beckmann`'s `exp_neg_times` (libm `exp`, `ln`) | `exp_poly`'s (`2.5e-7` in `f32`, `1.5e-14` in `f64`) plus one rounding, for normal results | unit test below |
 //! | `filter::exp_poly` (shared with the exact Gaussian filter) | libm `exp` | `2.5e-7` / `1.5e-14` | `gaussian_ggx_quad` |
 //! | [`pow_lane`] `x^e` | libm `powf` (the deferred presets' norm exponent) | `1.6e-14 + 3 eps_64 abs(y)` + `eps_64`, `y = e ln x`, computed in `f64` (in `f32`: half an ulp plus `1e-13`) | unit test below |
+//! | [`sincos_2pi`] `(sin 2 pi u, cos 2 pi u)` | libm `sin`, `cos` of `phi = 2 pi u` (the GGX visible-normal sampler's azimuth) | absolute `2e-15` computed in `f64` (in `f32`: plus half an `f32` ulp of the result) | unit test below |
 //! | `filter::beckmann_lambda_fast` (shared with its sampler) | Beckmann `Lambda` in `f64` (libm `erfc`) | `2.1e-7 (1 + Lambda)` / `1.9e-8 (1 + Lambda)` absolute | `gaussian_ggx_quad` |
 //!
 //! A lane whose input leaves the range these functions cover (a subnormal result, a
@@ -286,9 +287,113 @@ fn pow_f64(x: f64, e: f64) -> (f64, bool) {
     (if zero { 0.0 } else { q * two_n }, ok)
 }
 
+/// `(sin(2 pi u), cos(2 pi u))` for `u` in `[0, 1]` (the batch GGX visible-normal sampler's
+/// azimuth, `u` already clamped by the scalar sampler's `clamp_unit`), branch-free.
+///
+/// Computed in `f64` for both precisions: range reduction `t = 4 u` (exact), `k =
+/// round(t)` (by the `1.5 * 2^52` shift, exact), `r = (t - k) pi / 2` in `[-pi/4, pi/4]`
+/// (`t - k` exact: both are multiples of `t`'s ulp), then the Taylor polynomials of `sin r`
+/// (to `r^17`) and `cos r` (to `r^18`), whose truncation is below `(pi/4)^19 / 19! < 1e-19`,
+/// and the quadrant `k mod 4` by selects (`sin(r + k pi/2)`: swaps and signs, exact).
+///
+/// Error (absolute): `r` carries the rounding of `pi / 2` and of the product (`|r| <= pi/4`:
+/// below `2 eps_64 pi/4 < 3.5e-16`), which the 1-Lipschitz `sin`, `cos` pass on; Horner's
+/// rounding over terms of total magnitude below `1.4` is below `8 eps_64 < 1.8e-15`: in all
+/// `2e-15`; in `f32` plus the final rounding to `f32` (half an ulp of the result). Outside
+/// `[0, 1]` (the sampler never passes such `u`) the reduction stays exact while `4 u <
+/// 2^52`, so the bound holds there too; NaN gives NaN. Tested against libm below.
+#[inline(always)]
+pub(crate) fn sincos_2pi(u: F) -> (F, F) {
+    const SHIFT: f64 = 6_755_399_441_055_744.0; // 1.5 * 2^52
+    const FRAC_PI_2: f64 = core::f64::consts::FRAC_PI_2;
+    // 1 / n! for the odd (sin) and even (cos) powers.
+    const S: [f64; 8] = [
+        -1.0 / 6.0,
+        1.0 / 120.0,
+        -1.0 / 5040.0,
+        1.0 / 362_880.0,
+        -1.0 / 39_916_800.0,
+        1.0 / 6_227_020_800.0,
+        -1.0 / 1_307_674_368_000.0,
+        1.0 / 355_687_428_096_000.0,
+    ];
+    const C: [f64; 9] = [
+        -1.0 / 2.0,
+        1.0 / 24.0,
+        -1.0 / 720.0,
+        1.0 / 40_320.0,
+        -1.0 / 3_628_800.0,
+        1.0 / 479_001_600.0,
+        -1.0 / 87_178_291_200.0,
+        1.0 / 20_922_789_888_000.0,
+        -1.0 / 6_402_373_705_728_000.0,
+    ];
+    let t = 4.0 * u.to_f64();
+    let k = (t + SHIFT) - SHIFT;
+    let r = (t - k) * FRAC_PI_2;
+    let r2 = r * r;
+    let mut ps = S[7];
+    for c in S[..7].iter().rev() {
+        ps = ps * r2 + c;
+    }
+    let sr = r + r * (r2 * ps);
+    let mut pc = C[8];
+    for c in C[..8].iter().rev() {
+        pc = pc * r2 + c;
+    }
+    let cr = 1.0 + r2 * pc;
+    // k mod 4 from the low bits of k's shifted form (k >= 0 here; any integer works).
+    let q = (k + SHIFT).to_bits() & 3;
+    let odd = (q & 1) == 1;
+    let (s0, c0) = if odd { (cr, sr) } else { (sr, cr) };
+    // sin(r + q pi/2): (s, c), (c, -s), (-s, -c), (-c, s).
+    let sin_neg = q >= 2;
+    let cos_neg = (q == 1) | (q == 2);
+    let s = if sin_neg { -s0 } else { s0 };
+    let c = if cos_neg { -c0 } else { c0 };
+    (F::from_f64(s), F::from_f64(c))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sincos_2pi_against_libm() {
+        // Against libm's `sin`, `cos` in `f64` of `2 pi u` (the reference's own error: the
+        // rounding of `2 pi u`, below `2 pi eps_64`, plus libm's ulp): the bound of
+        // `sincos_2pi` plus the reference's, over [0, 1] densely, the quadrant boundaries,
+        // and the clamp's top `1 - eps/2`.
+        let mut us: Vec<F> = (0..=200_000)
+            .map(|i| F::from_f64(i as f64 / 200_000.0))
+            .collect();
+        for k in 0..=4 {
+            let b = F::from_f64(k as f64 / 4.0);
+            us.extend([b, b + F::EPSILON, b - F::EPSILON / 2.0, b + 1e-3, b - 1e-3]);
+        }
+        us.extend([1.0 - F::EPSILON / 2.0, F::MIN_POSITIVE, 1e-30]);
+        let reference = 2e-15 + 2.0 * core::f64::consts::PI * f64::EPSILON + f64::EPSILON;
+        let mut worst = 0.0f64;
+        for u in us {
+            if !(0.0..=1.0).contains(&u) {
+                continue;
+            }
+            let phi = 2.0 * core::f64::consts::PI * u.to_f64();
+            let (s, c) = sincos_2pi(u);
+            for (got, want) in [(s, phi.sin()), (c, phi.cos())] {
+                let half_ulp = if WIDE {
+                    0.0
+                } else {
+                    f32::EPSILON as f64 / 2.0 * want.abs()
+                };
+                let err = (got.to_f64() - want).abs();
+                assert!(err <= reference + half_ulp, "u {u}: {got} vs {want}");
+                worst = worst.max(err - half_ulp);
+            }
+        }
+        println!("sincos_2pi worst absolute error {worst:e}");
+        assert!(sincos_2pi(F::NAN).0.is_nan());
+    }
 
     #[test]
     fn pow_lane_against_libm() {

@@ -54,6 +54,7 @@
 //! | [`beckmann_d`], [`beckmann_d_filtered`] | relative `E + 2 eps`, plus `x eps` where the scalar path takes its far-tail branch (`x > -ln F::MIN_POSITIVE`); results below `F::MIN_POSITIVE` flushed to `0` (absolute error below `F::MIN_POSITIVE`) | the exponent `x` and factor `k = n / pi` are the scalar path's bit for bit; `exp(-x) k` is the polynomial exponential (relative `E = 2.5e-7` in `f32`, `1.5e-14` in `f64`) and one rounding, against libm's `exp` (one ulp) and the scalar product; the scalar far-tail branch rounds `x - ln k` (up to `x eps`) | `tests/batch.rs` |
 //! | [`beckmann_lambda`] | absolute `L (1 + Lambda)`, `L = 2.1e-7` (`f32`), `1.9e-8` (`f64`), plus `(5 + 3 a^2) eps Lambda` | the `erfc` fit (Numerical Recipes `erfcc`) in place of libm's; `a = |w_z| / sqrt(q)` rounded twice in `F` (the scalar path forms it in `f64`), amplified by `2 a^2 + 3` | `tests/batch_bounds.rs` |
 //! | [`beckmann_g2`] | relative `2 L + 3 eps` plus the `Lambda` terms over `1 + Lambda_i + Lambda_o` | `G2 = 1 / (1 + Lambda_i + Lambda_o)` | `tests/batch_bounds.rs` |
+//! | [`ggx_sample_visible_normal`] | not bit for bit: the angle between the samples in the unit-roughness space within `B(E, S)` of `tests/batch_bounds.rs` (`~ (9 kappa + 1) E + (d_c + d_wi + E) / abs(n)`, `kappa` the warp's condition number, `d_c` growing as `1 / sin theta` of the cap point) | the scalar sampler's steps and shared cores; `(cos, sin)` of the azimuth by `lanes.rs`' `sincos_2pi` (absolute `2e-15` in `f64`) in place of libm's of the rounded `phi`, the cap height not fused | `tests/batch_bounds.rs` (against `f64`), the `sincos_2pi` unit test |
 //!
 //! The deferred presets in `f32` against the `f64` scalar path: the scalar `f32` path's
 //! error, derived step by step in `tests/batch_bounds.rs` (at most `11 eps` for the presets,
@@ -66,6 +67,9 @@
 //! `(11 + 4 x) eps` for the scalar `(8 + 4 x) eps`; `Lambda`: `L (1 + Lambda) +
 //! (13 + 7 a^2) eps Lambda`).
 //!
+//! The sampler's bound holds for the scalar `f32` sampler too (its own error has the same
+//! form): both are within `B` of the `f64` sampler.
+//!
 //! Speed per core, scalar loop against batch, every kernel: the README's batch table
 //! (`benches/batch.rs`, groups `batch_<kernel>/<precision>` with `scalar_loop` and `batch`).
 
@@ -76,12 +80,14 @@ mod filtered;
 mod lanes;
 mod ndf;
 mod rect;
+mod sample;
 mod simd;
 
 pub use deferred::deferred_filter;
 pub use filtered::{beckmann_d_filtered, ggx_d_filtered};
 pub use ndf::{beckmann_d, beckmann_g2, beckmann_lambda, ggx_d, ggx_g2, ggx_lambda};
 pub use rect::d_rect;
+pub use sample::ggx_sample_visible_normal;
 
 /// Multi-core batches (feature `rayon`, std only): calls `f(start, out_chunk)` for the
 /// consecutive chunks of `out` of `chunk` elements (the last one shorter; `chunk = 0` counts as

@@ -170,9 +170,10 @@ fn positive(x: F) -> bool {
     x > 0.0
 }
 
-/// Clamps a uniform number into `[0, 1 - eps/2]`; NaN maps to `0`.
-#[inline]
-fn clamp_unit(u: F) -> F {
+/// Clamps a uniform number into `[0, 1 - eps/2]`; NaN maps to `0` (shared with the batch
+/// sampler's lane, where it compiles to selects).
+#[inline(always)]
+pub(crate) fn clamp_unit(u: F) -> F {
     if u >= 0.0 { u.min(ONE_MINUS_EPS) } else { 0.0 }
 }
 
@@ -185,7 +186,7 @@ fn normalize_scaled(v: Vec3) -> Vec3 {
 
 /// The lower Cholesky factor `L = [[l11, 0], [l21, l22]]` of a roughness, `A = L L^T`.
 #[derive(Clone, Copy)]
-struct Warp {
+pub(crate) struct Warp {
     l11: F,
     l21: F,
     l22: F,
@@ -196,25 +197,28 @@ impl Warp {
     /// [`RoughnessMatrix`](super::RoughnessMatrix), of its `A_c`): the warp samples the lobe
     /// that `D` and `Lambda` describe.
     #[inline]
-    fn new<R: Roughness>(r: &R) -> Self {
+    pub(crate) fn new<R: Roughness>(r: &R) -> Self {
         let (l11, l21, l22) = r.cholesky();
         Self { l11, l21, l22 }
     }
 
     /// `(L^T w_xy, w_z)`: a view direction into the unit-roughness space (unnormalised).
-    #[inline]
-    fn stretch(&self, w: Vec3) -> Vec3 {
+    #[inline(always)]
+    pub(crate) fn stretch(&self, w: Vec3) -> Vec3 {
         Vec3::new(self.l11 * w.x + self.l21 * w.y, self.l22 * w.y, w.z)
     }
 
     /// `normalize(L n_xy, n_z)`: a unit-roughness normal back to roughness `A`.
     #[inline]
     fn unstretch(&self, n: Vec3) -> Vec3 {
-        normalize_scaled(Vec3::new(
-            self.l11 * n.x,
-            self.l21 * n.x + self.l22 * n.y,
-            n.z,
-        ))
+        normalize_scaled(self.unstretch_raw(n))
+    }
+
+    /// `(L n_xy, n_z)`: [`Warp::unstretch`] before the normalisation (shared with the batch
+    /// sampler's lane).
+    #[inline(always)]
+    pub(crate) fn unstretch_raw(&self, n: Vec3) -> Vec3 {
+        Vec3::new(self.l11 * n.x, self.l21 * n.x + self.l22 * n.y, n.z)
     }
 
     /// The checked final step of a visible-normal sampler: maps the unit-roughness normal
@@ -254,8 +258,16 @@ fn standard_view(warp: &Warp, wo: Vec3) -> Option<Vec3> {
 fn ggx_standard_visible(wi: Vec3, u: Vec2) -> Vec3 {
     let phi = 2.0 * PI * u.x;
     let z = m::mul_add(1.0 - u.y, 1.0 + wi.z, -wi.z);
+    ggx_cap_point(wi, z, m::cos(phi), m::sin(phi))
+}
+
+/// The core of [`ggx_standard_visible`] shared with the batch sampler's lane: the point of
+/// the unit sphere at height `z` and azimuth `(cos phi, sin phi)`, plus `wi` (Dupuy and
+/// Benyoub 2023, listing 3).
+#[inline(always)]
+pub(crate) fn ggx_cap_point(wi: Vec3, z: F, cos_phi: F, sin_phi: F) -> Vec3 {
     let sin_theta = m::sqrt((1.0 - z * z).clamp(0.0, 1.0));
-    Vec3::new(sin_theta * m::cos(phi), sin_theta * m::sin(phi), z) + wi
+    Vec3::new(sin_theta * cos_phi, sin_theta * sin_phi, z) + wi
 }
 
 impl<R: Roughness> NdfSampling for Ggx<R> {
