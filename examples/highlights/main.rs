@@ -17,6 +17,7 @@ mod parallel;
 mod peaks;
 mod plot;
 mod render;
+mod residual;
 mod scene;
 mod temporal;
 
@@ -295,7 +296,9 @@ fn main() -> std::io::Result<()> {
     // (offline) against 2x2-quad differences (what a GPU does).
     let other = match o.route {
         FootprintRoute::Quad => FootprintRoute::RayDifferentials,
-        FootprintRoute::RayDifferentials | FootprintRoute::Moments => FootprintRoute::Quad,
+        FootprintRoute::RayDifferentials | FootprintRoute::Moments | FootprintRoute::SubWindows => {
+            FootprintRoute::Quad
+        }
     };
     let other_derivs = gb.derivatives(&scene, other);
     let mut route_table = String::new();
@@ -443,5 +446,6 @@ fn route_name(r: FootprintRoute) -> &'static str {
         FootprintRoute::Quad => "2x2-quad differences (GPU)",
         FootprintRoute::RayDifferentials => "ray differentials + M (offline)",
         FootprintRoute::Moments => "windowed slope moments (the false-glint fix)",
+        FootprintRoute::SubWindows => "windowed slope moments of sub-windows (the mixture)",
     }
 }

@@ -25,7 +25,23 @@ pub enum FootprintRoute {
     /// [`Scene::gradient_moments`]) plus the first-order parallax of the view and light
     /// directions, centred on the window's mean normal; elsewhere as `RayDifferentials`.
     Moments,
+    /// The sub-window fix of the Gaussian shape: on the water, the pixel's Gaussian window
+    /// split into [`SUB_GRID`]^2 sub-windows ([`GBuffer::subwindow_mixture`]), each with its
+    /// own windowed slope moments and half vector, the method's lobe averaged over them;
+    /// elsewhere as `RayDifferentials`. Shaded through [`GBuffer::mixtures`] and
+    /// [`shade_mixture`]; as one Gaussian per pixel ([`GBuffer::derivatives`]) it is the
+    /// `Moments` route, the mixture's total moments.
+    SubWindows,
 }
+
+/// Gauss-Hermite nodes per axis of the sub-window grid ([`FootprintRoute::SubWindows`]).
+pub const SUB_GRID: usize = 3;
+/// The fraction of the pixel window's covariance carried by the sub-window offsets (the rest,
+/// `1 - SUB_SPREAD`, is each sub-window's own covariance).
+pub const SUB_SPREAD: f32 = 0.75;
+
+/// A pixel's filter as a mixture: `(weight, derivatives)` per component, weights summing to 1.
+pub type Mixture = Vec<(f32, PixelDerivatives)>;
 
 /// Everything shading needs at one primary hit.
 #[derive(Clone, Copy, Debug)]
@@ -305,6 +321,89 @@ impl GBuffer {
         ]
     }
 
+    /// The [`FootprintRoute::SubWindows`] mixture at pixel `(x, y)`. The pixel's Gaussian
+    /// window `N(p, C)` on the tangent plane is the mixture over offsets `m ~ N(0, b C)` of
+    /// sub-windows `N(p + m, (1 - b) C)` (`b =` [`SUB_SPREAD`]); the offsets are integrated by
+    /// a [`SUB_GRID`]-point Gauss-Hermite rule per whitened axis of `C`. Each sub-window gets
+    /// the closed-form windowed moments of the waves ([`Scene::gradient_moments`]) over its
+    /// own window and centre, the parallax of its own smaller window, and its own half vector
+    /// (the eye and light seen from its centre, folded into `mean_shift`: the lobe is read at
+    /// `mean_shift * h` for the pixel centre's `h`). The mixture's total mean and covariance
+    /// are the whole window's (exactly, up to the rule); what it adds is the shape: a
+    /// distribution of slopes bounded where each sub-window sees part of one crest. Off the
+    /// water, one component: the `RayDifferentials` route.
+    pub fn subwindow_mixture(&self, scene: &Scene, x: usize, y: usize) -> Mixture {
+        self.subwindow_mixture_with(scene, (x, y), SUB_GRID, SUB_SPREAD)
+    }
+
+    /// [`Self::subwindow_mixture`] with a `grid`-point rule per axis and the offsets' share
+    /// `spread` of the window's covariance (the investigation's variants).
+    pub fn subwindow_mixture_with(
+        &self,
+        scene: &Scene,
+        (x, y): (usize, usize),
+        grid: usize,
+        spread: f32,
+    ) -> Mixture {
+        let rays = self.analytic_derivatives(x, y);
+        let Some((s, ray)) = self.pixels[y * self.width + x].as_ref() else {
+            return vec![(1.0, rays)];
+        };
+        if s.hit.object != 0 {
+            return vec![(1.0, rays)];
+        }
+        let (dx_u, dx_v) = ray.footprint_on_plane(&s.hit);
+        let (own, spread) = ((1.0 - spread).max(0.0).sqrt(), spread.sqrt());
+        let sub = (own * dx_u, own * dx_v);
+        let window = Self::window(sub.0, sub.1);
+        let light = s.hit.position + s.wi * s.dist2.sqrt();
+        let h_local = s.local(s.h);
+        let (nodes, weights) = gauss_hermite(grid);
+        let mut out = Vec::with_capacity(grid * grid);
+        for (&zu, &wu) in nodes.iter().zip(&weights) {
+            for (&zv, &wv) in nodes.iter().zip(&weights) {
+                let offset = methods::SIGMA_PIXEL * spread * (zu * dx_u + zv * dx_v);
+                let centre = s.hit.position + offset;
+                let hit = Hit {
+                    position: centre,
+                    ..s.hit
+                };
+                let Some((mean, cov)) = scene.gradient_moments(&hit, window) else {
+                    return vec![(1.0, rays)];
+                };
+                let d = self.derivatives_of_moments(s, sub, rays, mean, cov);
+                let h_k = ((self.eye - centre).normalize() + (light - centre).normalize())
+                    .normalize_or(s.h);
+                let to_own_h = Quat::from_rotation_arc(h_local, s.local(h_k));
+                out.push((
+                    wu * wv,
+                    PixelDerivatives {
+                        mean_shift: d.mean_shift * to_own_h,
+                        ..d
+                    },
+                ));
+            }
+        }
+        out
+    }
+
+    /// Per pixel, the filter of `route` as a mixture: the [`Self::subwindow_mixture`] on
+    /// the `SubWindows` route, one component of [`Self::derivatives`] on the others.
+    pub fn mixtures(&self, scene: &Scene, route: FootprintRoute) -> Vec<Mixture> {
+        match route {
+            FootprintRoute::SubWindows => parallel::rows(self.height, None, |y| {
+                (0..self.width)
+                    .map(|x| self.subwindow_mixture(scene, x, y))
+                    .collect()
+            }),
+            _ => self
+                .derivatives(scene, route)
+                .into_iter()
+                .map(|d| vec![(1.0, d)])
+                .collect(),
+        }
+    }
+
     /// The windowed-mixture experiment of `glints.rs` ([`Scene::gradient_mixture`]): per
     /// component its weight and its derivatives (as the `Moments` route's); empty off the
     /// water.
@@ -395,7 +494,9 @@ impl GBuffer {
                 .map(|x| match route {
                     FootprintRoute::Quad => self.quad_derivatives(x, y),
                     FootprintRoute::RayDifferentials => self.analytic_derivatives(x, y),
-                    FootprintRoute::Moments => self.moment_derivatives(scene, x, y),
+                    FootprintRoute::Moments | FootprintRoute::SubWindows => {
+                        self.moment_derivatives(scene, x, y)
+                    }
                 })
                 .collect()
         })
@@ -457,6 +558,52 @@ pub fn shade_frame(
             },
         )
     })
+}
+
+/// [`shade_frame`] with a mixture per pixel ([`GBuffer::mixtures`]): the method's density
+/// is the weighted sum of its density over the components (each its own footprint and
+/// `mean_shift`), the shading terms those of the pixel centre.
+pub fn shade_mixture(scene: &Scene, gb: &GBuffer, mixtures: &[Mixture], method: Method) -> Frame {
+    shade_with(scene, gb, method.family(), |i, h, alpha| {
+        mixtures[i]
+            .iter()
+            .map(|&(w, dv)| {
+                let h = if method.uses_footprint() {
+                    dv.mean_shift * h
+                } else {
+                    h
+                };
+                w * methods::filtered_d(
+                    method,
+                    &ShadingPoint {
+                        h,
+                        alpha,
+                        footprint: dv.footprint,
+                        dn_dx: dv.dn_dx,
+                        dn_dy: dv.dn_dy,
+                    },
+                )
+            })
+            .sum()
+    })
+}
+
+/// The `n`-point Gauss-Hermite rule for the standard normal (probabilists'): nodes and
+/// weights summing to 1, exact for polynomials of degree `2 n - 1`; `n` in 1..=4 (else 3).
+pub fn gauss_hermite(n: usize) -> (Vec<f32>, Vec<f32>) {
+    let s3 = 3.0f32.sqrt();
+    match n {
+        1 => (vec![0.0], vec![1.0]),
+        2 => (vec![-1.0, 1.0], vec![0.5, 0.5]),
+        4 => {
+            // Nodes sqrt(3 -+ sqrt(6)), weights 1 / (4 (3 -+ sqrt(6))).
+            let r6 = 6.0f32.sqrt();
+            let (a, b) = ((3.0 - r6).sqrt(), (3.0 + r6).sqrt());
+            let (wa, wb) = (1.0 / (4.0 * (3.0 - r6)), 1.0 / (4.0 * (3.0 + r6)));
+            (vec![-b, -a, a, b], vec![wb, wa, wa, wb])
+        }
+        _ => (vec![-s3, 0.0, s3], vec![1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0]),
+    }
 }
 
 /// One shading sample per pixel with the density `d(pixel index, local h, alpha)`.
@@ -644,13 +791,13 @@ impl Lattice {
 }
 
 /// The crate's seeded SplitMix64, one stream per pixel.
-fn pixel_rng(seed: u64, stream: u64) -> SplitMix64 {
+pub fn pixel_rng(seed: u64, stream: u64) -> SplitMix64 {
     let mut r = SplitMix64(seed ^ stream.wrapping_mul(0x9E37_79B9_7F4A_7C15));
     r.next_u64();
     r
 }
 
 /// Uniform in `(0, 1]` as `f32` (24 random bits).
-fn uniform_f32(r: &mut SplitMix64) -> f32 {
+pub fn uniform_f32(r: &mut SplitMix64) -> f32 {
     ((r.next_u64() >> 40) as f32 + 1.0) / (1u64 << 24) as f32
 }
