@@ -141,7 +141,11 @@ pub fn chain(
     let var = (sum_y2 / n - f64::from(y_mean).powi(2)).max(0.0);
     let se = (var / (n - 1.0)).sqrt() as f32;
     let scaled = |k: f32| {
-        let f = if y_mean > 0.0 { (1.0 + k * se / y_mean).max(0.0) } else { 1.0 };
+        let f = if y_mean > 0.0 {
+            (1.0 + k * se / y_mean).max(0.0)
+        } else {
+            1.0
+        };
         display(mean.as_vec3() * f, exposure)
     };
     Some(Chain {
