@@ -112,7 +112,7 @@ pub fn chain(
         let (rest, spec) = radiance_parts(scene, c, family, |_| d);
         display(rest + spec, exposure)
     };
-    let mut rng = render::pixel_rng(0x5EED_0F_C4A1, i as u64);
+    let mut rng = render::pixel_rng(0x005E_ED0F_C4A1, i as u64);
     let (mut d_rays, mut d_h, mut d_alpha) = (0.0f64, 0.0f64, 0.0f64);
     let (mut sum, mut sum_y2) = (Vec3::ZERO.as_dvec3(), 0.0f64);
     for _ in 0..samples {
