@@ -231,7 +231,7 @@ fn remaining(
                 .count()
         };
         rows.push(format!(
-            "| 8. what remains | {name}: false glints against the 512-spp reference / against a {CHAIN_SAMPLES}-spp reference at those pixels / the oracle 4096 / the reference rays / + own half vector / + own roughness still dark | {} / {} / {} / {} / {} / {} | - |",
+            "| 8. what remains | {name}: false glints against the 512-spp reference / of those, still false against a {CHAIN_SAMPLES}-spp reference; still dark (< {DARK}) at the steps oracle 4096 / reference rays / + own half vector / + own roughness | {} / {}; {} / {} / {} / {} | - |",
             pixels.len(),
             n(&|c| c.reference),
             n(&|c| c.oracle),
@@ -541,18 +541,24 @@ pub fn investigate(
                 (reference.full(fam), reference.specular(fam)),
                 o.exposure,
             );
-            eprintln!(
-                "subwindows {grid}x{grid} b={spread} traced {traced} {}: glints {} lost {} flip {:.4}/{:.4} spec {:.4}",
-                method.label(),
-                sc.false_glints,
-                sc.lost_highlights,
-                sc.flip_ldr,
-                sc.flip_hdr,
-                sc.specular
-            );
+            let centres = if traced {
+                "traced centres"
+            } else {
+                "centres on the tangent plane"
+            };
+            let what = if spread >= 1.0 {
+                format!(
+                    "control, no filtering: {} traced sub-pixel rays, the unfiltered lobe at each",
+                    grid * grid
+                )
+            } else {
+                format!(
+                    "{grid}x{grid} sub-windows, {centres}, offsets' share of the window b = {spread}"
+                )
+            };
             sub_rows.push(format!(
-                "| 9. sub-windows (the fix) | {}: {grid}x{grid} sub-windows, offsets' share of the window b = {spread} | {} | {} |",
-                method.label(), sc.false_glints, sc.lost_highlights
+                "| 9. sub-windows (the fix) | {}: {what}; FLIP {:.4} / {:.4}, specular error {:.4} | {} | {} |",
+                method.label(), sc.flip_ldr, sc.flip_hdr, sc.specular, sc.false_glints, sc.lost_highlights
             ));
         }
     }
@@ -667,6 +673,8 @@ pub fn investigate(
     writeln!(md, "6. **The Gaussian shape.** With the window's exact normals instead of any Gaussian (an oracle: 256 normal evaluations per pixel, not a method), the false glints of the windowed-moments route fall from {} to {}: what remains is the Gaussian fit of a slope distribution that, where the window spans about one short wave (the near glitter path), is bounded and far from Gaussian.", counts(after_ns).0, counts(&window).0).unwrap();
     writeln!(md, "7. **A support clamp.** The gradients within {} sigma of the window lie in a zonotope (each wave's gradient on a segment, the exact range of its cosine over the window's phases; `Scene::gradient_gap`, tested against 4000 points of a window); 0 where the reflecting gradient lies more than {} alpha outside it, the parallax subtracted: {} of {} water pixels are clamped, {} of the {} false glints of the windowed-moments route, so the bound (independent phases) is too loose where it matters.", render::SUPPORT_SIGMAS, render::SUPPORT_GAP_ALPHAS, clamped_water, water.len(), clamped_at_glints, mask_after.iter().filter(|&&b| b).count()).unwrap();
 
+    writeln!(md, "8. **What remains, pixel by pixel.** The table below follows each remaining false glint from the frame to a converged reference (`residual.rs`); a step that takes the pixel from above {BRIGHT} to below {DARK} is its cause: the oracle at 4096 points (the 256-point oracle's own convergence), the reference's own rays instead of the tangent-plane window (where the sub-pixel rays really meet the waves: occlusion and the heights' parallax at grazing view), each ray's half vector (the parallax of the eye and light), each ray's roughness (the level of detail), each ray's Fresnel, Smith term and cosines (the reference at {CHAIN_SAMPLES} spp, with its standard error), and the 512-spp reference itself (its convergence). Both the window's sigma (0.5 pixel) and its untruncated Gaussian are the same in the moments, the oracle and the reference; the step from the oracle to the reference's rays measures the rest of the window's mismatch.").unwrap();
+    writeln!(md, "9. **The fix: sub-windows.** The pixel's Gaussian window `N(p, C)` is the mixture over offsets `m ~ N(0, b C)` of the windows `N(p + m, (1 - b) C)`: a Gauss-Hermite grid of offsets, each sub-window with its own closed-form windowed moments and half vector, bounds the slope distribution the way the oracle does; traced centres (the sub-pixel ray through each offset meets the water) also take the window off the tangent plane. The control (b = 1) is plain supersampling with the same rays and the unfiltered lobe.").unwrap();
     md.push_str(&remaining_md);
 
     // Figures.
