@@ -862,8 +862,11 @@ mod tests {
     /// Gaussian pixel filter): for KHPL16's Beckmann kernel and the exact Gaussian filter of
     /// GGX, the `SubWindows` route makes fewer false glints than the `Moments` route (or
     /// none where it makes none), loses no more highlights, and has a lower FLIP and specular
-    /// error. The assertions keep only the order; the measured figures are in the comment
-    /// printed by the test.
+    /// error. The assertions keep only the order. Measured (false glints, lost), FLIP LDR /
+    /// HDR, specular error: KHPL16 Beckmann (28, 19), 0.0365 / 0.0683, 0.0585 -> (2, 5),
+    /// 0.0260 / 0.0558, 0.0408; exact Gaussian GGX (7, 12), 0.0318 / 0.0649, 0.0455 -> (0, 2),
+    /// 0.0252 / 0.0560, 0.0337 (against this 128-spp reference; 0 and 0 against the demo's
+    /// 512-spp one).
     #[test]
     fn subwindows_remove_the_remaining_false_glints() {
         let (w, h) = (256, 160);
