@@ -48,8 +48,9 @@ pub struct Options {
     pub investigate: bool,
     /// Which scenes: the water (`water`), the normal-mapped floor (`normal-map`), or both.
     pub scene: &'static str,
-    /// Also score the footprint methods on the windowed-moments route (the false-glint
-    /// fix), still frame and temporal test.
+    /// Also score the footprint methods on the routes of the false-glint fix
+    /// ([`FIX_ROUTES`]: windowed moments, and the sub-window mixture), still frame and
+    /// temporal test.
     pub fix: bool,
 }
 
@@ -219,7 +220,8 @@ fn main() -> std::io::Result<()> {
         save(&o, method.slug(), img)?;
         tiles.push((method.label().to_string(), img.to_rgb8(o.exposure)));
     }
-    // The false-glint fix: the footprint methods again on the windowed-moments route.
+    // The false-glint fix: the footprint methods again on each fix route (windowed moments,
+    // then the sub-window mixture).
     let fixed: Vec<Method> = if o.fix && !FIX_ROUTES.contains(&o.route) {
         o.methods
             .iter()
