@@ -17,6 +17,7 @@ mod parallel;
 mod peaks;
 mod plot;
 mod render;
+mod residual;
 mod scene;
 mod temporal;
 
@@ -47,8 +48,9 @@ pub struct Options {
     pub investigate: bool,
     /// Which scenes: the water (`water`), the normal-mapped floor (`normal-map`), or both.
     pub scene: &'static str,
-    /// Also score the footprint methods on the windowed-moments route (the false-glint
-    /// fix), still frame and temporal test.
+    /// Also score the footprint methods on the routes of the false-glint fix
+    /// ([`FIX_ROUTES`]: windowed moments, and the sub-window mixture), still frame and
+    /// temporal test.
     pub fix: bool,
 }
 
@@ -218,8 +220,9 @@ fn main() -> std::io::Result<()> {
         save(&o, method.slug(), img)?;
         tiles.push((method.label().to_string(), img.to_rgb8(o.exposure)));
     }
-    // The false-glint fix: the footprint methods again on the windowed-moments route.
-    let fixed: Vec<Method> = if o.fix && o.route != FootprintRoute::Moments {
+    // The false-glint fix: the footprint methods again on each fix route (windowed moments,
+    // then the sub-window mixture).
+    let fixed: Vec<Method> = if o.fix && !FIX_ROUTES.contains(&o.route) {
         o.methods
             .iter()
             .copied()
@@ -228,8 +231,18 @@ fn main() -> std::io::Result<()> {
     } else {
         Vec::new()
     };
+    // Per fix route: the time to build the per-pixel filters and the mean time to shade a
+    // frame with them (ms, this machine, one run).
+    let mut fix_cost = String::new();
     if !fixed.is_empty() {
-        let moments = gb.derivatives(&scene, FootprintRoute::Moments);
+        writeln!(fix_cost, "| route | filter inputs, ms per frame | shading, ms per frame (mean over {} methods) |", fixed.len()).unwrap();
+        writeln!(fix_cost, "|---|---:|---:|").unwrap();
+    }
+    for route in FIX_ROUTES.into_iter().filter(|_| !fixed.is_empty()) {
+        let t = Instant::now();
+        let mixtures = gb.mixtures(&scene, route);
+        let build_ms = t.elapsed().as_secs_f64() * 1e3;
+        let mut shade_ms = 0.0;
         let mut fixed_tiles = vec![
             (
                 "Reference Beckmann".to_string(),
@@ -241,26 +254,36 @@ fn main() -> std::io::Result<()> {
             ),
         ];
         for &method in &fixed {
-            let frame = render::shade_frame(&scene, &gb, &moments, method);
+            let t = Instant::now();
+            let frame = render::shade_mixture(&scene, &gb, &mixtures, method);
+            shade_ms += t.elapsed().as_secs_f64() * 1e3;
             let fam = method.family();
             let (sc, map) = metrics::score(
                 (&frame.total, &frame.specular),
                 (reference.full(fam), reference.specular(fam)),
                 o.exposure,
             );
-            scores.push((method, FootprintRoute::Moments, sc));
-            let slug = format!("{}-moments", method.slug());
+            scores.push((method, route, sc));
+            let slug = format!("{}-{}", method.slug(), route_slug(route));
             image_out::save(&map.to_rgb8(), &o.out.join(format!("flip-{slug}.png")))?;
             save(&o, &slug, &frame.total)?;
             fixed_tiles.push((
-                temporal::variant_label(method, FootprintRoute::Moments),
+                temporal::variant_label(method, route),
                 frame.total.to_rgb8(o.exposure),
             ));
         }
+        writeln!(
+            fix_cost,
+            "| {} | {build_ms:.1} | {:.1} |",
+            route_name(route),
+            shade_ms / fixed.len() as f64
+        )
+        .unwrap();
         let zoom = if o.width <= 320 { 2 } else { 1 };
         image_out::save(
             &contact_sheet(&fixed_tiles, 3, zoom),
-            &o.out.join("contact_sheet_moments.png"),
+            &o.out
+                .join(format!("contact_sheet_{}.png", route_slug(route))),
         )?;
     }
     // Engine conventions (issue: which one over- or under-filters on this scene): the same
@@ -295,7 +318,9 @@ fn main() -> std::io::Result<()> {
     // (offline) against 2x2-quad differences (what a GPU does).
     let other = match o.route {
         FootprintRoute::Quad => FootprintRoute::RayDifferentials,
-        FootprintRoute::RayDifferentials | FootprintRoute::Moments => FootprintRoute::Quad,
+        FootprintRoute::RayDifferentials | FootprintRoute::Moments | FootprintRoute::SubWindows => {
+            FootprintRoute::Quad
+        }
     };
     let other_derivs = gb.derivatives(&scene, other);
     let mut route_table = String::new();
@@ -334,6 +359,10 @@ fn main() -> std::io::Result<()> {
     }
     println!("\n## Both footprint routes on the same frame\n");
     print!("{route_table}");
+    if !fix_cost.is_empty() {
+        println!("\n## The false-glint fix's cost on the still frame\n");
+        print!("{fix_cost}");
+    }
     println!(
         "\nReference: {} spp per pixel ({:.1} s); doubling {} -> {} spp changes each RMSE by at most {:.2}%{}.",
         o.spp,
@@ -391,6 +420,13 @@ fn main() -> std::io::Result<()> {
         "## Both footprint routes on the same frame\n\n{route_table}"
     )
     .unwrap();
+    if !fix_cost.is_empty() {
+        writeln!(
+            md,
+            "## The false-glint fix's cost on the still frame\n\n{fix_cost}"
+        )
+        .unwrap();
+    }
     writeln!(md, "Reference: {} spp; doubling {} -> {} spp changes each RMSE by at most {:.2}%.\n{temporal_md}", o.spp, o.spp / 2, o.spp, 100.0 * worst_change).unwrap();
     if o.scene == "both" {
         let nm = normal_map::run(&o)?;
@@ -438,10 +474,22 @@ fn save(o: &Options, name: &str, img: &Image) -> std::io::Result<()> {
     image_out::save(&img.to_rgb8(o.exposure), &o.out.join(format!("{name}.png")))
 }
 
+/// The routes of the false-glint fix, scored beside `o.route` (still frame and temporal test).
+pub const FIX_ROUTES: [FootprintRoute; 2] = [FootprintRoute::Moments, FootprintRoute::SubWindows];
+
+/// File-name part of a fix route.
+fn route_slug(r: FootprintRoute) -> &'static str {
+    match r {
+        FootprintRoute::SubWindows => "subwindows",
+        _ => "moments",
+    }
+}
+
 fn route_name(r: FootprintRoute) -> &'static str {
     match r {
         FootprintRoute::Quad => "2x2-quad differences (GPU)",
         FootprintRoute::RayDifferentials => "ray differentials + M (offline)",
         FootprintRoute::Moments => "windowed slope moments (the false-glint fix)",
+        FootprintRoute::SubWindows => "windowed moments of 4x4 traced sub-windows (the mixture)",
     }
 }

@@ -25,7 +25,26 @@ pub enum FootprintRoute {
     /// [`Scene::gradient_moments`]) plus the first-order parallax of the view and light
     /// directions, centred on the window's mean normal; elsewhere as `RayDifferentials`.
     Moments,
+    /// The sub-window fix of the Gaussian shape: on the water, the pixel's Gaussian window
+    /// split into [`SUB_GRID`]^2 sub-windows ([`GBuffer::subwindow_mixture`]), each with its
+    /// own windowed slope moments and half vector, the method's lobe averaged over them;
+    /// elsewhere as `RayDifferentials`. Shaded through [`GBuffer::mixtures`] and
+    /// [`shade_mixture`]; as one Gaussian per pixel ([`GBuffer::derivatives`]) it is the
+    /// `Moments` route, the mixture's total moments.
+    SubWindows,
 }
+
+/// Gauss-Hermite nodes per axis of the sub-window grid ([`FootprintRoute::SubWindows`]).
+pub const SUB_GRID: usize = 4;
+/// The fraction of the pixel window's covariance carried by the sub-window offsets (the rest,
+/// `1 - SUB_SPREAD`, is each sub-window's own covariance).
+pub const SUB_SPREAD: f32 = 0.9;
+/// Whether the sub-windows' centres are traced (the sub-pixel ray through each offset meets
+/// the water) rather than placed on the pixel's tangent plane.
+pub const SUB_TRACED: bool = true;
+
+/// A pixel's filter as a mixture: `(weight, derivatives)` per component, weights summing to 1.
+pub type Mixture = Vec<(f32, PixelDerivatives)>;
 
 /// Everything shading needs at one primary hit.
 #[derive(Clone, Copy, Debug)]
@@ -305,6 +324,110 @@ impl GBuffer {
         ]
     }
 
+    /// The [`FootprintRoute::SubWindows`] mixture at pixel `(x, y)`. The pixel's Gaussian
+    /// window `N(p, C)` on the tangent plane is the mixture over offsets `m ~ N(0, b C)` of
+    /// sub-windows `N(p + m, (1 - b) C)` (`b =` [`SUB_SPREAD`]); the offsets are integrated by
+    /// a [`SUB_GRID`]-point Gauss-Hermite rule per whitened axis of `C`. Each sub-window gets
+    /// the closed-form windowed moments of the waves ([`Scene::gradient_moments`]) over its
+    /// own window and centre, the parallax of its own smaller window, and its own half vector
+    /// (the eye and light seen from its centre, folded into `mean_shift`: the lobe is read at
+    /// `mean_shift * h` for the pixel centre's `h`). The mixture's total mean and covariance
+    /// are the whole window's (exactly, up to the rule); what it adds is the shape: a
+    /// distribution of slopes bounded where each sub-window sees part of one crest. Off the
+    /// water, one component: the `RayDifferentials` route.
+    pub fn subwindow_mixture(&self, scene: &Scene, x: usize, y: usize) -> Mixture {
+        self.subwindow_mixture_with(scene, (x, y), (SUB_GRID, SUB_SPREAD), SUB_TRACED)
+    }
+
+    /// [`Self::subwindow_mixture`] with a `grid`-point rule per axis and the offsets' share
+    /// `spread` of the window's covariance (the investigation's variants).
+    pub fn subwindow_mixture_with(
+        &self,
+        scene: &Scene,
+        (x, y): (usize, usize),
+        (grid, spread): (usize, f32),
+        traced: bool,
+    ) -> Mixture {
+        let rays = self.analytic_derivatives(x, y);
+        let Some((s, ray)) = self.pixels[y * self.width + x].as_ref() else {
+            return vec![(1.0, rays)];
+        };
+        if s.hit.object != 0 {
+            return vec![(1.0, rays)];
+        }
+        let (dx_u, dx_v) = ray.footprint_on_plane(&s.hit);
+        let (own, spread) = ((1.0 - spread).max(0.0).sqrt(), spread.sqrt());
+        let sub = (own * dx_u, own * dx_v);
+        let window = Self::window(sub.0, sub.1);
+        let light = s.hit.position + s.wi * s.dist2.sqrt();
+        let h_local = s.local(s.h);
+        let (nodes, weights) = gauss_hermite(grid);
+        let mut out = Vec::with_capacity(grid * grid);
+        for (&zu, &wu) in nodes.iter().zip(&weights) {
+            for (&zv, &wv) in nodes.iter().zip(&weights) {
+                let offset = methods::SIGMA_PIXEL * spread * (zu * dx_u + zv * dx_v);
+                // The sub-window's centre: on the tangent plane, or where the sub-pixel ray
+                // through the offset meets the water (its own tangent plane's window).
+                let traced_hit = traced
+                    .then(|| {
+                        let k = methods::SIGMA_PIXEL * spread;
+                        let dir =
+                            (ray.ray.dir + k * (zu * ray.d_dir_dx + zv * ray.d_dir_dy)).normalize();
+                        let sub_ray = DiffRay {
+                            ray: crate::scene::Ray { dir, ..ray.ray },
+                            ..*ray
+                        };
+                        let hit = scene.intersect(&sub_ray.ray)?;
+                        (hit.object == 0).then(|| {
+                            let (du, dv) = sub_ray.footprint_on_plane(&hit);
+                            (hit, Self::window(own * du, own * dv))
+                        })
+                    })
+                    .flatten();
+                let (hit, window) = traced_hit.unwrap_or((
+                    Hit {
+                        position: s.hit.position + offset,
+                        ..s.hit
+                    },
+                    window,
+                ));
+                let centre = hit.position;
+                let Some((mean, cov)) = scene.gradient_moments(&hit, window) else {
+                    return vec![(1.0, rays)];
+                };
+                let d = self.derivatives_of_moments(s, sub, rays, mean, cov);
+                let h_k = ((self.eye - centre).normalize() + (light - centre).normalize())
+                    .normalize_or(s.h);
+                let to_own_h = Quat::from_rotation_arc(h_local, s.local(h_k));
+                out.push((
+                    wu * wv,
+                    PixelDerivatives {
+                        mean_shift: d.mean_shift * to_own_h,
+                        ..d
+                    },
+                ));
+            }
+        }
+        out
+    }
+
+    /// Per pixel, the filter of `route` as a mixture: the [`Self::subwindow_mixture`] on
+    /// the `SubWindows` route, one component of [`Self::derivatives`] on the others.
+    pub fn mixtures(&self, scene: &Scene, route: FootprintRoute) -> Vec<Mixture> {
+        match route {
+            FootprintRoute::SubWindows => parallel::rows(self.height, None, |y| {
+                (0..self.width)
+                    .map(|x| self.subwindow_mixture(scene, x, y))
+                    .collect()
+            }),
+            _ => self
+                .derivatives(scene, route)
+                .into_iter()
+                .map(|d| vec![(1.0, d)])
+                .collect(),
+        }
+    }
+
     /// The windowed-mixture experiment of `glints.rs` ([`Scene::gradient_mixture`]): per
     /// component its weight and its derivatives (as the `Moments` route's); empty off the
     /// water.
@@ -395,7 +518,9 @@ impl GBuffer {
                 .map(|x| match route {
                     FootprintRoute::Quad => self.quad_derivatives(x, y),
                     FootprintRoute::RayDifferentials => self.analytic_derivatives(x, y),
-                    FootprintRoute::Moments => self.moment_derivatives(scene, x, y),
+                    FootprintRoute::Moments | FootprintRoute::SubWindows => {
+                        self.moment_derivatives(scene, x, y)
+                    }
                 })
                 .collect()
         })
@@ -457,6 +582,52 @@ pub fn shade_frame(
             },
         )
     })
+}
+
+/// [`shade_frame`] with a mixture per pixel ([`GBuffer::mixtures`]): the method's density
+/// is the weighted sum of its density over the components (each its own footprint and
+/// `mean_shift`), the shading terms those of the pixel centre.
+pub fn shade_mixture(scene: &Scene, gb: &GBuffer, mixtures: &[Mixture], method: Method) -> Frame {
+    shade_with(scene, gb, method.family(), |i, h, alpha| {
+        mixtures[i]
+            .iter()
+            .map(|&(w, dv)| {
+                let h = if method.uses_footprint() {
+                    dv.mean_shift * h
+                } else {
+                    h
+                };
+                w * methods::filtered_d(
+                    method,
+                    &ShadingPoint {
+                        h,
+                        alpha,
+                        footprint: dv.footprint,
+                        dn_dx: dv.dn_dx,
+                        dn_dy: dv.dn_dy,
+                    },
+                )
+            })
+            .sum()
+    })
+}
+
+/// The `n`-point Gauss-Hermite rule for the standard normal (probabilists'): nodes and
+/// weights summing to 1, exact for polynomials of degree `2 n - 1`; `n` in 1..=4 (else 3).
+pub fn gauss_hermite(n: usize) -> (Vec<f32>, Vec<f32>) {
+    let s3 = 3.0f32.sqrt();
+    match n {
+        1 => (vec![0.0], vec![1.0]),
+        2 => (vec![-1.0, 1.0], vec![0.5, 0.5]),
+        4 => {
+            // Nodes sqrt(3 -+ sqrt(6)), weights 1 / (4 (3 -+ sqrt(6))).
+            let r6 = 6.0f32.sqrt();
+            let (a, b) = ((3.0 - r6).sqrt(), (3.0 + r6).sqrt());
+            let (wa, wb) = (1.0 / (4.0 * (3.0 - r6)), 1.0 / (4.0 * (3.0 + r6)));
+            (vec![-b, -a, a, b], vec![wb, wa, wa, wb])
+        }
+        _ => (vec![-s3, 0.0, s3], vec![1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0]),
+    }
 }
 
 /// One shading sample per pixel with the density `d(pixel index, local h, alpha)`.
@@ -644,13 +815,120 @@ impl Lattice {
 }
 
 /// The crate's seeded SplitMix64, one stream per pixel.
-fn pixel_rng(seed: u64, stream: u64) -> SplitMix64 {
+pub fn pixel_rng(seed: u64, stream: u64) -> SplitMix64 {
     let mut r = SplitMix64(seed ^ stream.wrapping_mul(0x9E37_79B9_7F4A_7C15));
     r.next_u64();
     r
 }
 
 /// Uniform in `(0, 1]` as `f32` (24 random bits).
-fn uniform_f32(r: &mut SplitMix64) -> f32 {
+pub fn uniform_f32(r: &mut SplitMix64) -> f32 {
     ((r.next_u64() >> 40) as f32 + 1.0) / (1u64 << 24) as f32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Lod;
+
+    /// The Gauss-Hermite rules against the standard normal's moments `E[z^(2j)] = (2j - 1)!!`,
+    /// which an `n`-point rule integrates exactly up to degree `2 n - 1` (to f32 rounding:
+    /// 1e-5 of the moment).
+    #[test]
+    fn gauss_hermite_rules_are_exact_to_their_degree() {
+        let double_factorial = [1.0f32, 1.0, 3.0, 15.0];
+        for n in 1..=4 {
+            let (z, w) = gauss_hermite(n);
+            for degree in 0..2 * n {
+                let m: f32 = z
+                    .iter()
+                    .zip(&w)
+                    .map(|(z, w)| w * z.powi(degree as i32))
+                    .sum();
+                let exact = if degree % 2 == 1 {
+                    0.0
+                } else {
+                    double_factorial[degree / 2]
+                };
+                assert!(
+                    (m - exact).abs() <= 1e-5 * exact.max(1.0),
+                    "n = {n}, degree {degree}: {m} vs {exact}"
+                );
+            }
+        }
+    }
+
+    /// The identity the sub-window route rests on: the Gaussian window `N(p, C)` is the
+    /// mixture over offsets `m ~ N(0, b C)` of the windows `N(p + m, (1 - b) C)`, so the
+    /// mixture of the sub-windows' closed-form moments (law of total covariance, offsets by
+    /// the route's own [`SUB_GRID`]-point rule and [`SUB_SPREAD`]) has the whole window's mean
+    /// and covariance. The window is chosen so that every phase the rule integrates has a
+    /// standard deviation of at most 0.5 over the offsets (the sum of two of the shortest
+    /// waves' wave vectors): the 4-point rule's error on `E[cos(t + s z)]` is then below
+    /// `n! / (2n)! s^8 = 2.3e-6` of the term, and f32 accumulation of 64 wave pairs and the
+    /// subtraction of the squared mean add at most 64 f32 epsilons (4e-6), both relative to
+    /// `(sum_i a_i k_i)^2`, the scale of every second-moment term: the tolerance is 1e-5 of
+    /// it; the window's covariance is over 30 times that tolerance, so a wrong split (`b`
+    /// for `sqrt(b)`) fails. The fades are off (eye high, tiny pixels).
+    #[test]
+    fn subwindow_mixture_keeps_the_window_moments() {
+        let scene = Scene::new(Lod {
+            eye: Vec3::new(0.0, 2.0, 14.0),
+            pixel_angle: 1e-4,
+        });
+        let p = scene.params();
+        let k_max = p.waves.iter().map(|w| w[0].hypot(w[1])).fold(0.0, f32::max);
+        let slope_sum: f32 = p.waves.iter().map(|w| w[2] * w[0].hypot(w[1])).sum();
+        // Offsets' standard deviation along any direction: sqrt(b) * sigma; 2 k_max of it 0.5.
+        let sigma = 0.5 / (2.0 * k_max * SUB_SPREAD.sqrt());
+        let c = [sigma * sigma, 0.3 * sigma * sigma, 0.8 * sigma * sigma];
+        let hit_at = |x: f32, z: f32| Hit {
+            t: 1.0,
+            position: Vec3::new(x, 0.0, z),
+            normal: Vec3::Y,
+            dn_dp: Mat3::ZERO,
+            object: 0,
+            albedo: Vec3::ZERO,
+            alpha: 0.01,
+        };
+        for (x, z) in [(0.3f32, -8.0f32), (-1.7, -20.0)] {
+            let (mean, cov) = scene.gradient_moments(&hit_at(x, z), c).unwrap();
+            let l11 = c[0].sqrt();
+            let l21 = c[1] / l11;
+            let l22 = (c[2] - l21 * l21).sqrt();
+            let (nodes, weights) = gauss_hermite(SUB_GRID);
+            let own = c.map(|v| v * (1.0 - SUB_SPREAD));
+            let (mut m, mut second) = (Vec2::ZERO, [0.0f32; 3]);
+            for (&zu, &wu) in nodes.iter().zip(&weights) {
+                for (&zv, &wv) in nodes.iter().zip(&weights) {
+                    let s = SUB_SPREAD.sqrt();
+                    let (ox, oz) = (s * l11 * zu, s * (l21 * zu + l22 * zv));
+                    let (mk, ck) = scene
+                        .gradient_moments(&hit_at(x + ox, z + oz), own)
+                        .unwrap();
+                    let w = wu * wv;
+                    m += w * mk;
+                    second[0] += w * (ck[0] + mk.x * mk.x);
+                    second[1] += w * (ck[1] + mk.x * mk.y);
+                    second[2] += w * (ck[2] + mk.y * mk.y);
+                }
+            }
+            let total = [
+                second[0] - m.x * m.x,
+                second[1] - m.x * m.y,
+                second[2] - m.y * m.y,
+            ];
+            let tol = 1e-5 * slope_sum * slope_sum;
+            assert!(cov[0] + cov[2] > 30.0 * tol, "window too small: {cov:?}");
+            assert!((m - mean).length() <= tol, "mean {m} vs {mean}");
+            for k in 0..3 {
+                assert!(
+                    (total[k] - cov[k]).abs() <= tol,
+                    "({x}, {z}) cov[{k}]: mixture {} vs window {} (tol {tol})",
+                    total[k],
+                    cov[k]
+                );
+            }
+        }
+    }
 }

@@ -31,7 +31,7 @@ pub struct Temporal {
 }
 
 /// Runs the test on `o.methods`, then `extra` (the engine presets: their flicker only), on
-/// `o.route`, then `fixed` on the windowed-moments route (the false-glint fix).
+/// `o.route`, then `fixed` on each route of the false-glint fix ([`crate::FIX_ROUTES`]).
 pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<Temporal> {
     let (w, h) = ((o.width / DOWNSCALE).max(2), (o.height / DOWNSCALE).max(2));
     let spp = (o.spp / SPP_DIVISOR).max(2);
@@ -40,7 +40,11 @@ pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<T
         .iter()
         .chain(extra)
         .map(|&m| (m, o.route))
-        .chain(fixed.iter().map(|&m| (m, FootprintRoute::Moments)))
+        .chain(
+            crate::FIX_ROUTES
+                .into_iter()
+                .flat_map(|r| fixed.iter().map(move |&m| (m, r))),
+        )
         .collect();
     let mut peaks = vec![Vec::new(); all.len()];
     let mut lums = vec![Vec::new(); all.len()];
@@ -57,14 +61,19 @@ pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<T
         }
         let gb = render::gbuffer(scene, &cam, w, h);
         let derivs = gb.derivatives(scene, o.route);
-        let moments = (!fixed.is_empty() && o.route != FootprintRoute::Moments)
-            .then(|| gb.derivatives(scene, FootprintRoute::Moments));
+        let fix: Vec<(FootprintRoute, Vec<render::Mixture>)> = crate::FIX_ROUTES
+            .into_iter()
+            .filter(|&r| !fixed.is_empty() && r != o.route)
+            .map(|r| (r, gb.mixtures(scene, r)))
+            .collect();
         for (i, &(m, route)) in all.iter().enumerate() {
-            let d = match (&moments, route) {
-                (Some(mo), FootprintRoute::Moments) => mo,
-                _ => &derivs,
+            let img = match fix
+                .iter()
+                .find(|(r, _)| *r == route && i >= o.methods.len())
+            {
+                Some((_, mix)) => render::shade_mixture(scene, &gb, mix, m).total,
+                None => render::shade(scene, &gb, &derivs, m),
             };
-            let img = render::shade(scene, &gb, d, m);
             peaks[i].push(img.peak());
             lums[i].push(display_luminance(&img, o.exposure));
         }
@@ -125,14 +134,15 @@ pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<T
             100.0 * distance(p, r)
         )
         .unwrap();
-        if i >= o.methods.len() && route != FootprintRoute::Moments {
+        let fix_route = crate::FIX_ROUTES.contains(&route) && route != o.route;
+        if i >= o.methods.len() && !fix_route {
             continue;
         }
         series.push(Series {
             label: variant_label(m, route),
             color: PALETTE[index_of(m) % PALETTE.len()],
             values: p.clone(),
-            dashed: route == FootprintRoute::Moments && o.route != FootprintRoute::Moments,
+            dashed: fix_route,
         });
     }
     let plot = line_plot(
@@ -158,6 +168,9 @@ pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<T
 pub fn variant_label(m: Method, route: FootprintRoute) -> String {
     match route {
         FootprintRoute::Moments if m.uses_footprint() => format!("{} + moments", m.label()),
+        FootprintRoute::SubWindows if m.uses_footprint() => {
+            format!("{} + sub-windows", m.label())
+        }
         _ => m.label().to_string(),
     }
 }
