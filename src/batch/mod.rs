@@ -78,7 +78,9 @@ use super::{F, PI, Vec2, Vec3};
 mod deferred;
 mod filtered;
 mod lanes;
+mod log;
 mod ndf;
+mod pdf;
 mod rect;
 mod sample;
 mod simd;
@@ -86,8 +88,12 @@ mod simd;
 pub use deferred::deferred_filter;
 pub use filtered::{beckmann_d_filtered, ggx_d_filtered};
 pub use ndf::{beckmann_d, beckmann_g2, beckmann_lambda, ggx_d, ggx_g2, ggx_lambda};
+pub use pdf::{
+    beckmann_reflection_pdf_from_normal, beckmann_visible_normal_pdf,
+    ggx_reflection_pdf_from_normal, ggx_visible_normal_pdf,
+};
 pub use rect::d_rect;
-pub use sample::ggx_sample_visible_normal;
+pub use sample::{beckmann_sample_normal, ggx_sample_normal, ggx_sample_visible_normal};
 
 /// Multi-core batches (feature `rayon`, std only): calls `f(start, out_chunk)` for the
 /// consecutive chunks of `out` of `chunk` elements (the last one shorter; `chunk = 0` counts as

@@ -1,0 +1,152 @@
+//! The samplers' densities over slices: the visible-normal pdf `D_wo(m)` and the reflection
+//! pdf `D_wo(m) / (4 wo.m)` of GGX and Beckmann, in every roughness form (multiple importance
+//! sampling over a batch of paths, baking).
+//!
+//! Each lane is the scalar function's own formula core (`visible_normal_pdf_core`,
+//! `reflection_pdf_core` of the sampling module) on the NDF's lane `D` and `Lambda`
+//! ([`LaneNdf`]), its checks as selects. Flagged, and evaluated by the scalar function: an
+//! element whose `D` or `Lambda` lane is flagged (a `Lambda` direction that needs rescaling,
+//! a grazing view, a Beckmann result out of the polynomial exponential's range) and, for the
+//! reflection pdf, a view whose normalisation needs the rescaling of
+//! [`crate::f32::vector::unit`]. GGX's pdfs are therefore the scalar values bit for bit;
+//! Beckmann's carry the lane `D` and `Lambda` bounds (module docs of [`super`]).
+
+use super::super::ndf::beckmann::Beckmann;
+use super::super::ndf::ggx::Ggx;
+use super::super::ndf::roughness::Roughness;
+use super::super::sampling::{NdfSampling, reflection_pdf_core, visible_normal_pdf_core};
+use super::lanes::{Kernel, run};
+use super::ndf::LaneNdf;
+use super::sample::unit_direct;
+use super::{F, Vec3, Vec3s};
+
+/// [`NdfSampling::visible_normal_pdf`] of GGX for each view `wo_i` and unit micronormal
+/// `m_i`: `out[i] = Ggx::new(*r).visible_normal_pdf(wo_i, m_i) = G1(wo) max(0, wo.m) D(m) /
+/// wo_z` per steradian of `m`, `G1 = 1 / (1 + Lambda(wo))` (Heitz 2014 eq. 16; Heitz and
+/// d'Eon 2014 eq. 2), **bit for bit**. `0` for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`,
+/// non-finite input or a non-finite value, as the scalar function (never NaN). `wo` need not
+/// be normalised. Returns the number of elements written (the shortest of the seven
+/// slices). Allocates nothing.
+#[inline]
+pub fn ggx_visible_normal_pdf<R: Roughness>(
+    r: &R,
+    wo: Vec3s<'_>,
+    m: Vec3s<'_>,
+    out: &mut [F],
+) -> usize {
+    run(&VisiblePdf(Ggx::new(*r)), six(wo, m), [out])
+}
+
+/// [`NdfSampling::visible_normal_pdf`] of Beckmann for each view and unit micronormal (as
+/// [`ggx_visible_normal_pdf`]): `out[i] = Beckmann::new(*r).visible_normal_pdf(wo_i, m_i)`
+/// within the bound of the module docs of [`super`] (the lane `D`'s relative `E + 2 eps`
+/// and the lane `Lambda`'s absolute `L (1 + Lambda)` over `1 + Lambda`, plus the formula's
+/// four roundings in each path; in `f32` against the `f64` scalar path: `(19 + 4 x) eps + L
+/// + (13 + 7 a^2) eps Lambda / (1 + Lambda) + 3 eps sum|wo_k m_k| / wo.m`, derived in
+/// `tests/batch_bounds.rs`). The same zeros as the scalar function. Returns the number of
+/// elements written. Allocates nothing.
+#[inline]
+pub fn beckmann_visible_normal_pdf<R: Roughness>(
+    r: &R,
+    wo: Vec3s<'_>,
+    m: Vec3s<'_>,
+    out: &mut [F],
+) -> usize {
+    run(&VisiblePdf(Beckmann::new(*r)), six(wo, m), [out])
+}
+
+/// [`NdfSampling::reflection_pdf_from_normal`] of GGX for each view `wo_i` and unit half
+/// vector `m_i`: `out[i] = Ggx::new(*r).reflection_pdf_from_normal(wo_i, m_i) = G1(wo) D(m) /
+/// (4 wo_z)` per steradian of `wi = reflect(wo, m)` (Walter et al. 2007 eq. 14, `wo`
+/// normalised), **bit for bit**. `0` for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`, non-finite
+/// input or a non-finite value, as the scalar function. Returns the number of elements
+/// written. Allocates nothing.
+#[inline]
+pub fn ggx_reflection_pdf_from_normal<R: Roughness>(
+    r: &R,
+    wo: Vec3s<'_>,
+    m: Vec3s<'_>,
+    out: &mut [F],
+) -> usize {
+    run(&ReflectionPdf(Ggx::new(*r)), six(wo, m), [out])
+}
+
+/// [`NdfSampling::reflection_pdf_from_normal`] of Beckmann (as
+/// [`ggx_reflection_pdf_from_normal`]) within the bound of the module docs of [`super`] (as
+/// [`beckmann_visible_normal_pdf`], less the `wo.m` factor, plus the normalisation of `wo`).
+/// Returns the number of elements written. Allocates nothing.
+#[inline]
+pub fn beckmann_reflection_pdf_from_normal<R: Roughness>(
+    r: &R,
+    wo: Vec3s<'_>,
+    m: Vec3s<'_>,
+    out: &mut [F],
+) -> usize {
+    run(&ReflectionPdf(Beckmann::new(*r)), six(wo, m), [out])
+}
+
+/// The six columns of two vectors.
+#[inline(always)]
+fn six<'a>(a: Vec3s<'a>, b: Vec3s<'a>) -> [&'a [F]; 6] {
+    [a.x, a.y, a.z, b.x, b.y, b.z]
+}
+
+/// `abs() < inf` per component: `is_finite` as compares (no branch, no integer bit tests).
+#[inline(always)]
+fn finite(v: Vec3) -> bool {
+    (v.x.abs() < F::INFINITY) & (v.y.abs() < F::INFINITY) & (v.z.abs() < F::INFINITY)
+}
+
+/// The visible-normal pdf of an NDF.
+struct VisiblePdf<N>(N);
+
+impl<N: LaneNdf + NdfSampling> Kernel<6, 1> for VisiblePdf<N> {
+    /// [`NdfSampling::visible_normal_pdf`]'s checks as one select around its core.
+    #[inline(always)]
+    fn lane(&self, [ox, oy, oz, mx, my, mz]: [F; 6]) -> ([F; 1], bool) {
+        let (wo, m) = (Vec3::new(ox, oy, oz), Vec3::new(mx, my, mz));
+        let wom = wo.dot(m);
+        let (d, slow_d) = self.0.d_lane(m);
+        let (lambda, slow_l) = self.0.lambda_lane(wo);
+        let v = visible_normal_pdf_core(wom, d, wo.z, lambda);
+        let live = finite(wo) & finite(m) & (wo.z > 0.0) & (wom > 0.0);
+        let keep = live & (v.abs() < F::INFINITY);
+        ([if keep { v } else { 0.0 }], live & (slow_d | slow_l))
+    }
+
+    #[inline]
+    fn scalar(&self, [ox, oy, oz, mx, my, mz]: [F; 6]) -> [F; 1] {
+        [self
+            .0
+            .visible_normal_pdf(Vec3::new(ox, oy, oz), Vec3::new(mx, my, mz))]
+    }
+}
+
+/// The reflection pdf (from the half vector) of an NDF.
+struct ReflectionPdf<N>(N);
+
+impl<N: LaneNdf + NdfSampling> Kernel<6, 1> for ReflectionPdf<N> {
+    /// [`NdfSampling::reflection_pdf_from_normal`]'s checks as one select around its core;
+    /// `wo` normalised by the direct path of `vector::unit` (flagged where that rescales).
+    #[inline(always)]
+    fn lane(&self, [ox, oy, oz, mx, my, mz]: [F; 6]) -> ([F; 1], bool) {
+        let (wo, m) = (Vec3::new(ox, oy, oz), Vec3::new(mx, my, mz));
+        let (o, direct) = unit_direct(wo);
+        let (d, slow_d) = self.0.d_lane(m);
+        let (lambda, slow_l) = self.0.lambda_lane(o);
+        let v = reflection_pdf_core(d, o.z, lambda);
+        let live = finite(wo) & finite(m) & (wo.z > 0.0);
+        let keep = live & (o.dot(m) > 0.0) & (v.abs() < F::INFINITY);
+        (
+            [if keep { v } else { 0.0 }],
+            live & (!direct | slow_d | slow_l),
+        )
+    }
+
+    #[inline]
+    fn scalar(&self, [ox, oy, oz, mx, my, mz]: [F; 6]) -> [F; 1] {
+        [self
+            .0
+            .reflection_pdf_from_normal(Vec3::new(ox, oy, oz), Vec3::new(mx, my, mz))]
+    }
+}
