@@ -406,6 +406,90 @@ macro_rules! suite {
                 assert!(empty.is_empty());
             }
 
+            /// The pdfs over the adversarial columns (views `(x, y, z)`, micronormals from a
+            /// second draw, both with NaN, infinities, zeros, huge and tiny values and
+            /// back-facing `z`), every roughness form and the clamped matrix: GGX's bit for
+            /// bit (the lane is the scalar core on the bit-for-bit `D` and `Lambda` lanes);
+            /// Beckmann's `0` wherever the scalar pdf is `0` (below the horizon, back-facing,
+            /// non-finite: the same checks as selects), finite and non-negative everywhere
+            /// (its value bounds: `tests/batch_bounds.rs`).
+            #[test]
+            fn pdfs_bit_for_bit_and_adversarial() {
+                use filtered_ndf::$prec::NdfSampling as _;
+                let c = cols(0x9DF);
+                let c2 = cols(0x9E0);
+                let wo = batch::Vec3s::new(&c.x, &c.y, &c.z);
+                // Mostly front-facing micronormals near the normal (`hx`, `hy` small).
+                let m = batch::Vec3s::new(&c2.hx, &c2.hy, &c2.z);
+                let (w, mm) = (
+                    |i: usize| h(&c, i),
+                    |i: usize| Vec3::new(c2.hx[i], c2.hy[i], c2.z[i]),
+                );
+                let mut out = vec![0.0 as $t; N];
+                let mut live = 0usize;
+                for alpha in [1e-4 as $t, 0.05, 0.5, 2.0] {
+                    let a2 = alpha * alpha;
+                    let iso = Isotropic::new(alpha).unwrap();
+                    let aa = AxisAligned::new(alpha, alpha * 0.3).unwrap();
+                    let mat = RoughnessMatrix::new(a2, 0.3 * a2, 0.5 * a2).unwrap();
+                    let clamped =
+                        RoughnessMatrix::new_with_det_clamp(a2, 0.0, a2 * 1e-8, 2e-8 * a2 * a2)
+                            .unwrap();
+                    macro_rules! each {
+                        ($r:expr, $name:expr) => {{
+                            let r = $r;
+                            let (g, b) = (Ggx::new(r), Beckmann::new(r));
+                            assert_eq!(batch::ggx_visible_normal_pdf(&r, wo, m, &mut out), N);
+                            same(
+                                &out,
+                                |i| g.visible_normal_pdf(w(i), mm(i)),
+                                &format!("ggx visible {}", $name),
+                            );
+                            live += out.iter().filter(|&&v| v > 0.0).count();
+                            batch::ggx_reflection_pdf_from_normal(&r, wo, m, &mut out);
+                            same(
+                                &out,
+                                |i| g.reflection_pdf_from_normal(w(i), mm(i)),
+                                &format!("ggx reflection {}", $name),
+                            );
+                            for reflection in [false, true] {
+                                if reflection {
+                                    batch::beckmann_reflection_pdf_from_normal(&r, wo, m, &mut out);
+                                } else {
+                                    batch::beckmann_visible_normal_pdf(&r, wo, m, &mut out);
+                                }
+                                for i in 0..N {
+                                    let want = if reflection {
+                                        b.reflection_pdf_from_normal(w(i), mm(i))
+                                    } else {
+                                        b.visible_normal_pdf(w(i), mm(i))
+                                    };
+                                    let got = out[i];
+                                    assert!(
+                                        got >= 0.0 && got.is_finite(),
+                                        "beckmann {} [{i}]: {got}",
+                                        $name
+                                    );
+                                    if want == 0.0 {
+                                        assert_eq!(
+                                            got, 0.0,
+                                            "beckmann {} reflection {reflection} [{i}]",
+                                            $name
+                                        );
+                                    }
+                                }
+                            }
+                        }};
+                    }
+                    each!(iso, "iso");
+                    each!(aa, "aa");
+                    each!(mat, "matrix");
+                    each!(clamped, "clamped");
+                }
+                // The columns reach the formula, not only the zero branches.
+                assert!(live > N, "{live} live elements");
+            }
+
             #[test]
             fn nan_and_back_facing_inputs_give_zero() {
                 let aa = AxisAligned::new(0.2, 0.1).unwrap();

@@ -99,6 +99,17 @@ macro_rules! check {
                 batch::ggx_sample_visible_normal(&mat, v, u1, u2, &mut out, &mut o2, &mut o3);
                 batch::ggx_sample_visible_normal(&iso, w, u2, u1, &mut out, &mut o2, &mut o3);
             }
+            batch::ggx_sample_normal(&mat, &hx, &ux, &mut out, &mut o2, &mut o3);
+            batch::beckmann_sample_normal(&aa, &ux, &hy, &mut out, &mut o2, &mut o3);
+            batch::beckmann_sample_normal(&mat, &hx, &hy, &mut out, &mut o2, &mut o3);
+            batch::ggx_visible_normal_pdf(&aa, v, w, &mut out);
+            batch::ggx_visible_normal_pdf(&mat, w, v, &mut out);
+            batch::beckmann_visible_normal_pdf(&iso, v, w, &mut out);
+            batch::beckmann_visible_normal_pdf(&mat, w, v, &mut out);
+            batch::ggx_reflection_pdf_from_normal(&iso, v, w, &mut out);
+            batch::ggx_reflection_pdf_from_normal(&mat, w, v, &mut out);
+            batch::beckmann_reflection_pdf_from_normal(&aa, v, w, &mut out);
+            batch::beckmann_reflection_pdf_from_normal(&mat, w, v, &mut out);
             for (_, conv) in filtered_ndf::$prec::filter::presets::ALL {
                 batch::deferred_filter(&conv, &z, v, fp_dn, &mut out);
             }
