@@ -216,6 +216,31 @@ macro_rules! family {
             |i: usize| rect::d_rect(aa, h(i), Vec2::new(rx[i], ry[i])),
             |o: &mut [$t]| batch::d_rect(&aa, &hx, &hy, &hz, &rx, &ry, o)
         );
+        // The samplers' pdfs (matrix form): the views and the cases' half vectors.
+        {
+            use filtered_ndf::$prec::NdfSampling;
+            let (g, b) = (Ggx::new(mat), Beckmann::new(mat));
+            pair!(
+                "ggx_visible_normal_pdf",
+                |i: usize| g.visible_normal_pdf(o(i), h(i)),
+                |out: &mut [$t]| batch::ggx_visible_normal_pdf(&mat, vo, vh, out)
+            );
+            pair!(
+                "beckmann_visible_normal_pdf",
+                |i: usize| b.visible_normal_pdf(o(i), h(i)),
+                |out: &mut [$t]| batch::beckmann_visible_normal_pdf(&mat, vo, vh, out)
+            );
+            pair!(
+                "ggx_reflection_pdf",
+                |i: usize| g.reflection_pdf_from_normal(o(i), h(i)),
+                |out: &mut [$t]| batch::ggx_reflection_pdf_from_normal(&mat, vo, vh, out)
+            );
+            pair!(
+                "beckmann_reflection_pdf",
+                |i: usize| b.reflection_pdf_from_normal(o(i), h(i)),
+                |out: &mut [$t]| batch::beckmann_reflection_pdf_from_normal(&mat, vo, vh, out)
+            );
+        }
         // GGX visible normals (matrix form) from the views and uniform pairs: three outputs,
         // so its own group rather than `pair!`.
         {
@@ -246,6 +271,35 @@ macro_rules! family {
                 })
             });
             g.finish();
+            // `D(m) m_z` sampling (matrix form) from the same uniform pairs.
+            macro_rules! normal_sampler {
+                ($name:expr, $lobe:expr, $batch:path) => {{
+                    let lobe = $lobe;
+                    let mut g = group($c, $name);
+                    g.bench_function("scalar_loop", |b| {
+                        b.iter(|| {
+                            for i in 0..N {
+                                let m = lobe.sample_normal(Vec2::new(u1[black_box(i)], u2[i]));
+                                (out[i], o2[i], o3[i]) = (m.x, m.y, m.z);
+                            }
+                            black_box((&mut out, &mut o2, &mut o3));
+                        })
+                    });
+                    g.bench_function("batch", |b| {
+                        b.iter(|| {
+                            black_box($batch(&mat, &u1, &u2, &mut out, &mut o2, &mut o3));
+                            black_box((&mut out, &mut o2, &mut o3));
+                        })
+                    });
+                    g.finish();
+                }};
+            }
+            normal_sampler!("ggx_sample_normal", Ggx::new(mat), batch::ggx_sample_normal);
+            normal_sampler!(
+                "beckmann_sample_normal",
+                Beckmann::new(mat),
+                batch::beckmann_sample_normal
+            );
         }
     }};
 }
