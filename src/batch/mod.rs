@@ -76,6 +76,7 @@
 use super::{F, PI, Vec2, Vec3};
 
 mod deferred;
+mod exact;
 mod filtered;
 mod lanes;
 mod log;
@@ -86,6 +87,7 @@ mod sample;
 mod simd;
 
 pub use deferred::deferred_filter;
+pub use exact::gaussian_filtered_ggx_d;
 pub use filtered::{beckmann_d_filtered, ggx_d_filtered};
 pub use ndf::{beckmann_d, beckmann_g2, beckmann_lambda, ggx_d, ggx_g2, ggx_lambda};
 pub use pdf::{
