@@ -216,6 +216,23 @@ macro_rules! family {
             |i: usize| rect::d_rect(aa, h(i), Vec2::new(rx[i], ry[i])),
             |o: &mut [$t]| batch::d_rect(&aa, &hx, &hy, &hz, &rx, &ry, o)
         );
+        // The exact Gaussian-filtered GGX, one lobe over the cases' half vectors: a light
+        // kernel (`2 l1 = 0.01`: Gauss-Laguerre and the far tail, all in lanes) and a heavy
+        // one (`2 l1 = 1`: the trapezoid rule, scalar, where `1 + q < 56`).
+        {
+            use filtered_ndf::$prec::{Covariance, GaussianFilteredGgx};
+            for (name, k) in [
+                ("gaussian_filtered_ggx_d_light", Covariance::new(5e-5, 0.0, 5e-5)),
+                ("gaussian_filtered_ggx_d_heavy", Covariance::new(5e-3, 0.0, 5e-3)),
+            ] {
+                let lobe = GaussianFilteredGgx::new(aa, k);
+                pair!(
+                    name,
+                    |i: usize| lobe.d(h(i)),
+                    |o: &mut [$t]| batch::gaussian_filtered_ggx_d(&lobe, &hx, &hy, &hz, o)
+                );
+            }
+        }
         // The samplers' pdfs (matrix form): the views and the cases' half vectors.
         {
             use filtered_ndf::$prec::NdfSampling;
