@@ -222,15 +222,19 @@ macro_rules! family {
         {
             use filtered_ndf::$prec::{Covariance, GaussianFilteredGgx};
             for (name, k) in [
-                ("gaussian_filtered_ggx_d_light", Covariance::new(5e-5, 0.0, 5e-5)),
-                ("gaussian_filtered_ggx_d_heavy", Covariance::new(5e-3, 0.0, 5e-3)),
+                (
+                    "gaussian_filtered_ggx_d_light",
+                    Covariance::new(5e-5, 0.0, 5e-5),
+                ),
+                (
+                    "gaussian_filtered_ggx_d_heavy",
+                    Covariance::new(5e-3, 0.0, 5e-3),
+                ),
             ] {
                 let lobe = GaussianFilteredGgx::new(aa, k);
-                pair!(
-                    name,
-                    |i: usize| lobe.d(h(i)),
-                    |o: &mut [$t]| batch::gaussian_filtered_ggx_d(&lobe, &hx, &hy, &hz, o)
-                );
+                pair!(name, |i: usize| lobe.d(h(i)), |o: &mut [$t]| {
+                    batch::gaussian_filtered_ggx_d(&lobe, &hx, &hy, &hz, o)
+                });
             }
         }
         // The samplers' pdfs (matrix form): the views and the cases' half vectors.

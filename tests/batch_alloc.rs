@@ -119,6 +119,13 @@ macro_rules! check {
             batch::ggx_reflection_pdf_from_normal(&mat, w, v, &mut out);
             batch::beckmann_reflection_pdf_from_normal(&aa, v, w, &mut out);
             batch::beckmann_reflection_pdf_from_normal(&mat, w, v, &mut out);
+            let kernels = batch::Covariances {
+                s11: &ux,
+                s12: &uy,
+                s22: &vx,
+            };
+            batch::ggx_d_projected(&aa, kernels, &x, &y, &z, &mut out);
+            batch::ggx_d_projected(&mat, kernels, &hx, &hy, &z, &mut out);
             for lobe in exact {
                 batch::gaussian_filtered_ggx_d(&lobe, &x, &y, &z, &mut out);
                 batch::gaussian_filtered_ggx_d(&lobe, &hx, &hy, &z, &mut out);

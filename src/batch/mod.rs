@@ -82,6 +82,7 @@ mod lanes;
 mod log;
 mod ndf;
 mod pdf;
+mod projected;
 mod rect;
 mod sample;
 mod simd;
@@ -94,6 +95,7 @@ pub use pdf::{
     beckmann_reflection_pdf_from_normal, beckmann_visible_normal_pdf,
     ggx_reflection_pdf_from_normal, ggx_visible_normal_pdf,
 };
+pub use projected::ggx_d_projected;
 pub use rect::d_rect;
 pub use sample::{beckmann_sample_normal, ggx_sample_normal, ggx_sample_visible_normal};
 
@@ -178,6 +180,32 @@ impl Footprints<'_> {
             Vec2::new(self.dh_u_x[i], self.dh_u_y[i]),
             Vec2::new(self.dh_v_x[i], self.dh_v_y[i]),
         )
+    }
+}
+
+/// Pixel kernels (slope covariances, [`Covariance`](super::Covariance)) in
+/// structure-of-arrays form: element `i` is `Covariance::new(s11[i], s12[i], s22[i])`.
+#[derive(Clone, Copy, Debug)]
+pub struct Covariances<'a> {
+    /// `Sigma_11` per element.
+    pub s11: &'a [F],
+    /// `Sigma_12` per element.
+    pub s12: &'a [F],
+    /// `Sigma_22` per element.
+    pub s22: &'a [F],
+}
+
+impl Covariances<'_> {
+    /// The shortest of the three slices.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.s11.len().min(self.s12.len()).min(self.s22.len())
+    }
+
+    /// Whether [`Covariances::len`] is `0`.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
     }
 }
 
