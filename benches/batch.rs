@@ -237,6 +237,30 @@ macro_rules! family {
                 });
             }
         }
+        // Projected-space filtering (TK21) with the cases' clamped kernels (the papers' rules),
+        // one per element.
+        {
+            use filtered_ndf::$prec::filter::projected;
+            let ks: Vec<_> = fps
+                .iter()
+                .map(|&f| rules.kernel(rules.footprint(f).covariance(0.5)))
+                .collect();
+            let (k11, k12, k22): (Vec<$t>, Vec<$t>, Vec<$t>) = (
+                ks.iter().map(|k| k.s11).collect(),
+                ks.iter().map(|k| k.s12).collect(),
+                ks.iter().map(|k| k.s22).collect(),
+            );
+            let kernels = batch::Covariances {
+                s11: &k11,
+                s12: &k12,
+                s22: &k22,
+            };
+            pair!(
+                "ggx_d_projected",
+                |i: usize| Ggx::new(projected(aa, ks[i])).d(h(i)),
+                |o: &mut [$t]| batch::ggx_d_projected(&aa, kernels, &hx, &hy, &hz, o)
+            );
+        }
         // The samplers' pdfs (matrix form): the views and the cases' half vectors.
         {
             use filtered_ndf::$prec::NdfSampling;
