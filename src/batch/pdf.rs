@@ -41,10 +41,12 @@ pub fn ggx_visible_normal_pdf<R: Roughness>(
 /// [`ggx_visible_normal_pdf`]): `out[i] = Beckmann::new(*r).visible_normal_pdf(wo_i, m_i)`
 /// within the bound of the module docs of [`super`] (the lane `D`'s relative `E + 2 eps`
 /// and the lane `Lambda`'s absolute `L (1 + Lambda)` over `1 + Lambda`, plus the formula's
-/// four roundings in each path; in `f32` against the `f64` scalar path: `(19 + 4 x) eps + L
-/// + (13 + 7 a^2) eps Lambda / (1 + Lambda) + 3 eps sum|wo_k m_k| / wo.m`, derived in
-/// `tests/batch_bounds.rs`). The same zeros as the scalar function. Returns the number of
-/// elements written. Allocates nothing.
+/// sum's and three operations' roundings in each path: first order `E + L + 10 eps + (5 + 3
+/// a^2) eps Lambda / (1 + Lambda)`; in `f32` against the `f64` scalar path: `(15 + 4 x) eps +
+/// L + (13 + 7 a^2) eps Lambda / (1 + Lambda) + 3 eps sum|wo_k m_k| / wo.m`, derived in
+/// `tests/batch_bounds.rs`); where the lane `D` flushes below `F::MIN_POSITIVE`, an absolute
+/// `F::MIN_POSITIVE wo.m / (wo_z (1 + Lambda))`. `0` exactly where the scalar function gives
+/// `0`. Returns the number of elements written. Allocates nothing.
 #[inline]
 pub fn beckmann_visible_normal_pdf<R: Roughness>(
     r: &R,
@@ -73,7 +75,9 @@ pub fn ggx_reflection_pdf_from_normal<R: Roughness>(
 
 /// [`NdfSampling::reflection_pdf_from_normal`] of Beckmann (as
 /// [`ggx_reflection_pdf_from_normal`]) within the bound of the module docs of [`super`] (as
-/// [`beckmann_visible_normal_pdf`], less the `wo.m` factor, plus the normalisation of `wo`).
+/// [`beckmann_visible_normal_pdf`], less the `wo.m` factor; against `f64` plus the
+/// normalisation of `wo`: `o_z` within `3 eps`, its direction moving `Lambda` by `(4 a^2 + 6)
+/// eps Lambda`, `tests/batch_bounds.rs`).
 /// Returns the number of elements written. Allocates nothing.
 #[inline]
 pub fn beckmann_reflection_pdf_from_normal<R: Roughness>(
