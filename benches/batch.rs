@@ -266,6 +266,16 @@ macro_rules! family {
             use filtered_ndf::$prec::NdfSampling;
             let (g, b) = (Ggx::new(mat), Beckmann::new(mat));
             pair!(
+                "ggx_normal_pdf",
+                |i: usize| g.normal_pdf(h(i)),
+                |out: &mut [$t]| batch::ggx_normal_pdf(&mat, &hx, &hy, &hz, out)
+            );
+            pair!(
+                "beckmann_normal_pdf",
+                |i: usize| b.normal_pdf(h(i)),
+                |out: &mut [$t]| batch::beckmann_normal_pdf(&mat, &hx, &hy, &hz, out)
+            );
+            pair!(
                 "ggx_visible_normal_pdf",
                 |i: usize| g.visible_normal_pdf(o(i), h(i)),
                 |out: &mut [$t]| batch::ggx_visible_normal_pdf(&mat, vo, vh, out)

@@ -439,6 +439,26 @@ macro_rules! suite {
                         ($r:expr, $name:expr) => {{
                             let r = $r;
                             let (g, b) = (Ggx::new(r), Beckmann::new(r));
+                            assert_eq!(
+                                batch::ggx_normal_pdf(&r, &c2.hx, &c2.hy, &c2.z, &mut out),
+                                N
+                            );
+                            same(
+                                &out,
+                                |i| g.normal_pdf(mm(i)),
+                                &format!("ggx normal pdf {}", $name),
+                            );
+                            batch::beckmann_normal_pdf(&r, &c2.hx, &c2.hy, &c2.z, &mut out);
+                            for i in 0..N {
+                                let want = b.normal_pdf(mm(i));
+                                assert!(
+                                    out[i] >= 0.0 && out[i].is_finite(),
+                                    "beckmann normal pdf [{i}]"
+                                );
+                                if want == 0.0 {
+                                    assert_eq!(out[i], 0.0, "beckmann normal pdf {} [{i}]", $name);
+                                }
+                            }
                             assert_eq!(batch::ggx_visible_normal_pdf(&r, wo, m, &mut out), N);
                             same(
                                 &out,

@@ -111,6 +111,8 @@ macro_rules! check {
             batch::ggx_sample_normal(&mat, &hx, &ux, &mut out, &mut o2, &mut o3);
             batch::beckmann_sample_normal(&aa, &ux, &hy, &mut out, &mut o2, &mut o3);
             batch::beckmann_sample_normal(&mat, &hx, &hy, &mut out, &mut o2, &mut o3);
+            batch::ggx_normal_pdf(&mat, &x, &y, &z, &mut out);
+            batch::beckmann_normal_pdf(&aa, &x, &y, &z, &mut out);
             batch::ggx_visible_normal_pdf(&aa, v, w, &mut out);
             batch::ggx_visible_normal_pdf(&mat, w, v, &mut out);
             batch::beckmann_visible_normal_pdf(&iso, v, w, &mut out);

@@ -295,8 +295,11 @@ macro_rules! suite {
             ///   GGX's `1 + Lambda` by at most `2` (`t = q / o_z^2` moves by `4`, `1 + Lambda =
             ///   (1 + sqrt(1 + t)) / 2` halves it at most); two roundings (`4 o_z` is exact).
             ///
+            /// - the `D(m) m_z` pdf: `D`'s bound plus the product's rounding `1`.
+            ///
             /// Where Beckmann's `D` is flushed below `F::MIN_POSITIVE`, the pdf's absolute
-            /// error adds `F::MIN_POSITIVE` times its factor `wo.m / (wo_z (1 + Lambda))`.
+            /// error adds `F::MIN_POSITIVE` times its factor `wo.m / (wo_z (1 + Lambda))`
+            /// (`m_z` for the `D(m) m_z` pdf).
             /// Where the `f64` pdf is `0` (below the horizon, back-facing) the batch gives `0`.
             #[test]
             fn pdfs_against_f64() {
@@ -360,6 +363,41 @@ macro_rules! suite {
                                         err <= tol,
                                         "{what} {name} {alpha} [{i}] wo {w} m {mm}: {got} vs {want} ({:.2} eps)",
                                         err / want / EPS
+                                    );
+                                }
+                            }
+                        })
+                    }
+                }
+                // The `D(m) m_z` pdfs: `D`'s bound plus the product's rounding (`m_z` is an
+                // input, exact), relative; Beckmann's flush: absolute `F::MIN_POSITIVE m_z`.
+                for (k, alpha) in [1e-3, 0.05, 0.4, 1.5].into_iter().enumerate() {
+                    let m = Cols::new(&micronormals(N, 0xA0 + k as u64, alpha));
+                    let mut out = vec![0.0 as $t; N];
+                    for (name, f) in forms(alpha) {
+                        with_form!(f, |r, r64| {
+                            for beckmann in [false, true] {
+                                if beckmann {
+                                    batch::beckmann_normal_pdf(&r, &m.x, &m.y, &m.z, &mut out);
+                                } else {
+                                    batch::ggx_normal_pdf(&r, &m.x, &m.y, &m.z, &mut out);
+                                }
+                                for i in 0..N {
+                                    let mm = m.at(i);
+                                    let (want, dtol) = if beckmann {
+                                        let x = r64.inv_quadratic(glam::DVec2::new(mm.x, mm.y)) / (mm.z * mm.z);
+                                        let dtol = if WIDE { 1.5e-14 / EPS + 2.0 + x } else { 11.0 + 4.0 * x };
+                                        (d::Beckmann::new(r64).normal_pdf(mm), dtol)
+                                    } else {
+                                        (d::Ggx::new(r64).normal_pdf(mm), 8.0)
+                                    };
+                                    let got = out[i] as f64;
+                                    let t = (dtol + 1.0) * EPS;
+                                    let flush = if beckmann { MIN * mm.z } else { 0.0 };
+                                    let err = (got - want).abs();
+                                    assert!(
+                                        err <= (t + t * t) * want + flush,
+                                        "normal pdf beckmann {beckmann} {name} {alpha} [{i}]: {got} vs {want}"
                                     );
                                 }
                             }

@@ -1,9 +1,9 @@
-//! The samplers' densities over slices: the visible-normal pdf `D_wo(m)` and the reflection
-//! pdf `D_wo(m) / (4 wo.m)` of GGX and Beckmann, in every roughness form (multiple importance
+//! The samplers' densities over slices: the `D(m) m_z` pdf, the visible-normal pdf `D_wo(m)`
+//! and the reflection pdf `D_wo(m) / (4 wo.m)` of GGX and Beckmann, in every roughness form (multiple importance
 //! sampling over a batch of paths, baking).
 //!
-//! Each lane is the scalar function's own formula core (`visible_normal_pdf_core`,
-//! `reflection_pdf_core` of the sampling module) on the NDF's lane `D` and `Lambda`
+//! Each lane is the scalar function's own formula core (`normal_pdf_core`,
+//! `visible_normal_pdf_core`, `reflection_pdf_core` of the sampling module) on the NDF's lane `D` and `Lambda`
 //! ([`LaneNdf`]), its checks as selects. Flagged, and evaluated by the scalar function: an
 //! element whose `D` or `Lambda` lane is flagged (a `Lambda` direction that needs rescaling,
 //! a grazing view, a Beckmann result out of the polynomial exponential's range) and, for the
@@ -14,11 +14,41 @@
 use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::Roughness;
-use super::super::sampling::{NdfSampling, reflection_pdf_core, visible_normal_pdf_core};
+use super::super::sampling::{
+    NdfSampling, normal_pdf_core, reflection_pdf_core, visible_normal_pdf_core,
+};
 use super::lanes::{Kernel, run};
 use super::ndf::LaneNdf;
 use super::sample::unit_direct;
 use super::{F, Vec3, Vec3s};
+
+/// [`NdfSampling::normal_pdf`] of GGX (the density of [`super::ggx_sample_normal`]) for each
+/// unit micronormal `m_i = (mx[i], my[i], mz[i])`: `out[i] = Ggx::new(*r).normal_pdf(m_i) =
+/// D(m) m_z` per steradian (KHPL16 eq. 2), **bit for bit**. `0` for `m_z <= 0` and non-finite
+/// `m`, as the scalar function. Returns the number of elements written (the shortest slice).
+/// Allocates nothing.
+#[inline]
+pub fn ggx_normal_pdf<R: Roughness>(r: &R, mx: &[F], my: &[F], mz: &[F], out: &mut [F]) -> usize {
+    run(&NormalPdf(Ggx::new(*r)), [mx, my, mz], [out])
+}
+
+/// [`NdfSampling::normal_pdf`] of Beckmann (the density of [`super::beckmann_sample_normal`]):
+/// `out[i] = Beckmann::new(*r).normal_pdf(m_i) = D(m) m_z` within Beckmann `D`'s lane bound
+/// plus the product's rounding in each path (relative `E + 4 eps`, plus `x eps` where the
+/// scalar `D` takes its far-tail branch; in `f32` against the `f64` scalar path `(12 + 4 x)
+/// eps`, `tests/batch_bounds.rs`); where the lane `D` flushes below `F::MIN_POSITIVE`, `0`
+/// (absolute error below `F::MIN_POSITIVE m_z`). `0` for `m_z <= 0` and non-finite `m`.
+/// Returns the number of elements written. Allocates nothing.
+#[inline]
+pub fn beckmann_normal_pdf<R: Roughness>(
+    r: &R,
+    mx: &[F],
+    my: &[F],
+    mz: &[F],
+    out: &mut [F],
+) -> usize {
+    run(&NormalPdf(Beckmann::new(*r)), [mx, my, mz], [out])
+}
 
 /// [`NdfSampling::visible_normal_pdf`] of GGX for each view `wo_i` and unit micronormal
 /// `m_i`: `out[i] = Ggx::new(*r).visible_normal_pdf(wo_i, m_i) = G1(wo) max(0, wo.m) D(m) /
@@ -99,6 +129,25 @@ fn six<'a>(a: Vec3s<'a>, b: Vec3s<'a>) -> [&'a [F]; 6] {
 #[inline(always)]
 fn finite(v: Vec3) -> bool {
     (v.x.abs() < F::INFINITY) & (v.y.abs() < F::INFINITY) & (v.z.abs() < F::INFINITY)
+}
+
+/// The `D(m) m_z` pdf of an NDF.
+struct NormalPdf<N>(N);
+
+impl<N: LaneNdf + NdfSampling> Kernel<3, 1> for NormalPdf<N> {
+    /// [`NdfSampling::normal_pdf`]'s checks as one select around its core.
+    #[inline(always)]
+    fn lane(&self, [x, y, z]: [F; 3]) -> ([F; 1], bool) {
+        let m = Vec3::new(x, y, z);
+        let (d, slow) = self.0.d_lane(m);
+        let live = finite(m) & (z > 0.0);
+        ([if live { normal_pdf_core(d, z) } else { 0.0 }], live & slow)
+    }
+
+    #[inline]
+    fn scalar(&self, [x, y, z]: [F; 3]) -> [F; 1] {
+        [self.0.normal_pdf(Vec3::new(x, y, z))]
+    }
 }
 
 /// The visible-normal pdf of an NDF.

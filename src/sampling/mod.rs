@@ -88,7 +88,7 @@ pub trait NdfSampling: Ndf {
         if !m.is_finite() || m.z <= 0.0 {
             return 0.0;
         }
-        self.d(m) * m.z
+        normal_pdf_core(self.d(m), m.z)
     }
 
     /// Samples a visible micronormal `m` with density `D_wo(m)` per steradian from `u` in
@@ -154,6 +154,13 @@ pub trait NdfSampling: Ndf {
         let v = reflection_pdf_core(self.d(m), o.z, self.lambda(o));
         if v.is_finite() { v } else { 0.0 }
     }
+}
+
+/// The formula of [`NdfSampling::normal_pdf`] once its checks passed: `D(m) m_z`. Shared
+/// with the batch pdfs' lanes.
+#[inline(always)]
+pub(crate) fn normal_pdf_core(d: F, m_z: F) -> F {
+    d * m_z
 }
 
 /// The formula of [`NdfSampling::visible_normal_pdf`] once its checks passed:
