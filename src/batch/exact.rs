@@ -6,8 +6,9 @@
 //! `gaussian_ggx_quad::rule`): the far-tail series or the fixed 8-node (`f32`) / 12-node
 //! (`f64`) Gauss-Laguerre rule, both straight-line code. Where the scalar path takes the
 //! trapezoid rule in `ln w` (an element-dependent node count, 16 to 64 nodes in `f32`: near
-//! the peak of a lobe whose kernel is wider than about `0.9 %` of its variance, `2 l1 >
-//! 0.0177 (1 + q)`), the element is flagged and evaluated by the scalar `D`.
+//! the peak of a lobe whose kernel widens its variance by more than about `1.8 %` along some
+//! axis, `2 l1 > 0.0177 (1 + q)`, `q` the squared whitened slope; `0.01` in `f64`), the
+//! element is flagged and evaluated by the scalar `D`.
 
 use super::super::filter::GaussianFilteredGgx;
 use super::super::ndf::Ndf;
@@ -24,8 +25,9 @@ use super::{F, Vec3};
 /// number of elements written (the shortest slice). Allocates nothing.
 ///
 /// Speed: elements where the scalar path takes the trapezoid rule (near the peak of a lobe
-/// whose kernel exceeds about `0.9 %` of its variance along some axis, `2 l1 > 0.0177 (1 +
-/// q)` in `f32`, `0.01` in `f64`) are evaluated by the scalar path after the vector pass;
+/// whose kernel widens its variance by more than about `1.8 %` along some axis, `2 l1 >
+/// 0.0177 (1 + q)` in `f32`, `0.01` in `f64`, `2 l1` of
+/// [`GaussianFilteredGgx::kernel_ratio`]) are evaluated by the scalar path after the vector pass;
 /// the others (the far tail and Gauss-Laguerre: every element of a lightly filtered lobe,
 /// the tails of any) run in vector lanes. The gain is smaller than for the closed-form
 /// kernels (about 2 times the scalar loop, `benches/batch.rs`): the scalar path already runs
