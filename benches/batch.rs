@@ -216,6 +216,86 @@ macro_rules! family {
             |i: usize| rect::d_rect(aa, h(i), Vec2::new(rx[i], ry[i])),
             |o: &mut [$t]| batch::d_rect(&aa, &hx, &hy, &hz, &rx, &ry, o)
         );
+        // The exact Gaussian-filtered GGX, one lobe over the cases' half vectors: a light
+        // kernel (`2 l1 = 0.01`: Gauss-Laguerre and the far tail, all in lanes) and a heavy
+        // one (`2 l1 = 1`: the trapezoid rule, scalar, where `1 + q < 56`).
+        {
+            use filtered_ndf::$prec::{Covariance, GaussianFilteredGgx};
+            for (name, k) in [
+                (
+                    "gaussian_filtered_ggx_d_light",
+                    Covariance::new(5e-5, 0.0, 5e-5),
+                ),
+                (
+                    "gaussian_filtered_ggx_d_heavy",
+                    Covariance::new(5e-3, 0.0, 5e-3),
+                ),
+            ] {
+                let lobe = GaussianFilteredGgx::new(aa, k);
+                pair!(name, |i: usize| lobe.d(h(i)), |o: &mut [$t]| {
+                    batch::gaussian_filtered_ggx_d(&lobe, &hx, &hy, &hz, o)
+                });
+            }
+        }
+        // Projected-space filtering (TK21) with the cases' clamped kernels (the papers' rules),
+        // one per element.
+        {
+            use filtered_ndf::$prec::filter::projected;
+            let ks: Vec<_> = fps
+                .iter()
+                .map(|&f| rules.kernel(rules.footprint(f).covariance(0.5)))
+                .collect();
+            let (k11, k12, k22): (Vec<$t>, Vec<$t>, Vec<$t>) = (
+                ks.iter().map(|k| k.s11).collect(),
+                ks.iter().map(|k| k.s12).collect(),
+                ks.iter().map(|k| k.s22).collect(),
+            );
+            let kernels = batch::Covariances {
+                s11: &k11,
+                s12: &k12,
+                s22: &k22,
+            };
+            pair!(
+                "ggx_d_projected",
+                |i: usize| Ggx::new(projected(aa, ks[i])).d(h(i)),
+                |o: &mut [$t]| batch::ggx_d_projected(&aa, kernels, &hx, &hy, &hz, o)
+            );
+        }
+        // The samplers' pdfs (matrix form): the views and the cases' half vectors.
+        {
+            use filtered_ndf::$prec::NdfSampling;
+            let (g, b) = (Ggx::new(mat), Beckmann::new(mat));
+            pair!(
+                "ggx_normal_pdf",
+                |i: usize| g.normal_pdf(h(i)),
+                |out: &mut [$t]| batch::ggx_normal_pdf(&mat, &hx, &hy, &hz, out)
+            );
+            pair!(
+                "beckmann_normal_pdf",
+                |i: usize| b.normal_pdf(h(i)),
+                |out: &mut [$t]| batch::beckmann_normal_pdf(&mat, &hx, &hy, &hz, out)
+            );
+            pair!(
+                "ggx_visible_normal_pdf",
+                |i: usize| g.visible_normal_pdf(o(i), h(i)),
+                |out: &mut [$t]| batch::ggx_visible_normal_pdf(&mat, vo, vh, out)
+            );
+            pair!(
+                "beckmann_visible_normal_pdf",
+                |i: usize| b.visible_normal_pdf(o(i), h(i)),
+                |out: &mut [$t]| batch::beckmann_visible_normal_pdf(&mat, vo, vh, out)
+            );
+            pair!(
+                "ggx_reflection_pdf",
+                |i: usize| g.reflection_pdf_from_normal(o(i), h(i)),
+                |out: &mut [$t]| batch::ggx_reflection_pdf_from_normal(&mat, vo, vh, out)
+            );
+            pair!(
+                "beckmann_reflection_pdf",
+                |i: usize| b.reflection_pdf_from_normal(o(i), h(i)),
+                |out: &mut [$t]| batch::beckmann_reflection_pdf_from_normal(&mat, vo, vh, out)
+            );
+        }
         // GGX visible normals (matrix form) from the views and uniform pairs: three outputs,
         // so its own group rather than `pair!`.
         {
@@ -246,6 +326,35 @@ macro_rules! family {
                 })
             });
             g.finish();
+            // `D(m) m_z` sampling (matrix form) from the same uniform pairs.
+            macro_rules! normal_sampler {
+                ($name:expr, $lobe:expr, $batch:path) => {{
+                    let lobe = $lobe;
+                    let mut g = group($c, $name);
+                    g.bench_function("scalar_loop", |b| {
+                        b.iter(|| {
+                            for i in 0..N {
+                                let m = lobe.sample_normal(Vec2::new(u1[black_box(i)], u2[i]));
+                                (out[i], o2[i], o3[i]) = (m.x, m.y, m.z);
+                            }
+                            black_box((&mut out, &mut o2, &mut o3));
+                        })
+                    });
+                    g.bench_function("batch", |b| {
+                        b.iter(|| {
+                            black_box($batch(&mat, &u1, &u2, &mut out, &mut o2, &mut o3));
+                            black_box((&mut out, &mut o2, &mut o3));
+                        })
+                    });
+                    g.finish();
+                }};
+            }
+            normal_sampler!("ggx_sample_normal", Ggx::new(mat), batch::ggx_sample_normal);
+            normal_sampler!(
+                "beckmann_sample_normal",
+                Beckmann::new(mat),
+                batch::beckmann_sample_normal
+            );
         }
     }};
 }

@@ -406,6 +406,228 @@ macro_rules! suite {
                 assert!(empty.is_empty());
             }
 
+            /// The pdfs over the adversarial columns (views `(x, y, z)`, micronormals from a
+            /// second draw, both with NaN, infinities, zeros, huge and tiny values and
+            /// back-facing `z`), every roughness form and the clamped matrix: GGX's bit for
+            /// bit (the lane is the scalar core on the bit-for-bit `D` and `Lambda` lanes);
+            /// Beckmann's `0` wherever the scalar pdf is `0` (below the horizon, back-facing,
+            /// non-finite: the same checks as selects), finite and non-negative everywhere
+            /// (its value bounds: `tests/batch_bounds.rs`).
+            #[test]
+            fn pdfs_bit_for_bit_and_adversarial() {
+                use filtered_ndf::$prec::NdfSampling as _;
+                let c = cols(0x9DF);
+                let c2 = cols(0x9E0);
+                let wo = batch::Vec3s::new(&c.x, &c.y, &c.z);
+                // Mostly front-facing micronormals near the normal (`hx`, `hy` small).
+                let m = batch::Vec3s::new(&c2.hx, &c2.hy, &c2.z);
+                let (w, mm) = (
+                    |i: usize| h(&c, i),
+                    |i: usize| Vec3::new(c2.hx[i], c2.hy[i], c2.z[i]),
+                );
+                let mut out = vec![0.0 as $t; N];
+                let mut live = 0usize;
+                for alpha in [1e-4 as $t, 0.05, 0.5, 2.0] {
+                    let a2 = alpha * alpha;
+                    let iso = Isotropic::new(alpha).unwrap();
+                    let aa = AxisAligned::new(alpha, alpha * 0.3).unwrap();
+                    let mat = RoughnessMatrix::new(a2, 0.3 * a2, 0.5 * a2).unwrap();
+                    let clamped =
+                        RoughnessMatrix::new_with_det_clamp(a2, 0.0, a2 * 1e-8, 2e-8 * a2 * a2)
+                            .unwrap();
+                    macro_rules! each {
+                        ($r:expr, $name:expr) => {{
+                            let r = $r;
+                            let (g, b) = (Ggx::new(r), Beckmann::new(r));
+                            assert_eq!(
+                                batch::ggx_normal_pdf(&r, &c2.hx, &c2.hy, &c2.z, &mut out),
+                                N
+                            );
+                            same(
+                                &out,
+                                |i| g.normal_pdf(mm(i)),
+                                &format!("ggx normal pdf {}", $name),
+                            );
+                            batch::beckmann_normal_pdf(&r, &c2.hx, &c2.hy, &c2.z, &mut out);
+                            for i in 0..N {
+                                let want = b.normal_pdf(mm(i));
+                                assert!(
+                                    out[i] >= 0.0 && out[i].is_finite(),
+                                    "beckmann normal pdf [{i}]"
+                                );
+                                if want == 0.0 {
+                                    assert_eq!(out[i], 0.0, "beckmann normal pdf {} [{i}]", $name);
+                                }
+                            }
+                            assert_eq!(batch::ggx_visible_normal_pdf(&r, wo, m, &mut out), N);
+                            same(
+                                &out,
+                                |i| g.visible_normal_pdf(w(i), mm(i)),
+                                &format!("ggx visible {}", $name),
+                            );
+                            live += out.iter().filter(|&&v| v > 0.0).count();
+                            batch::ggx_reflection_pdf_from_normal(&r, wo, m, &mut out);
+                            same(
+                                &out,
+                                |i| g.reflection_pdf_from_normal(w(i), mm(i)),
+                                &format!("ggx reflection {}", $name),
+                            );
+                            for reflection in [false, true] {
+                                if reflection {
+                                    batch::beckmann_reflection_pdf_from_normal(&r, wo, m, &mut out);
+                                } else {
+                                    batch::beckmann_visible_normal_pdf(&r, wo, m, &mut out);
+                                }
+                                for i in 0..N {
+                                    let want = if reflection {
+                                        b.reflection_pdf_from_normal(w(i), mm(i))
+                                    } else {
+                                        b.visible_normal_pdf(w(i), mm(i))
+                                    };
+                                    let got = out[i];
+                                    assert!(
+                                        got >= 0.0 && got.is_finite(),
+                                        "beckmann {} [{i}]: {got}",
+                                        $name
+                                    );
+                                    if want == 0.0 {
+                                        assert_eq!(
+                                            got, 0.0,
+                                            "beckmann {} reflection {reflection} [{i}]",
+                                            $name
+                                        );
+                                    }
+                                }
+                            }
+                        }};
+                    }
+                    each!(iso, "iso");
+                    each!(aa, "aa");
+                    each!(mat, "matrix");
+                    each!(clamped, "clamped");
+                }
+                // The columns reach the formula, not only the zero branches.
+                assert!(live > N, "{live} live elements");
+            }
+
+            /// The exact Gaussian-filtered GGX over the adversarial micronormals (wide `(x, y,
+            /// z)` and near-normal `(hx, hy, z)` columns: NaN, infinities, zeros, back-facing),
+            /// bit for bit, for lobes whose elements take every rule of `J`: the zero kernel
+            /// (far tail everywhere), kernels from `1e-4` to `10` lobe variances (Gauss-Laguerre
+            /// near the peak of the light ones, the trapezoid rule, flagged, near the peak of
+            /// the heavy ones, the far tail beyond), rank-one and rotated kernels on every
+            /// roughness form, and NaN and infinite kernels (sanitised).
+            #[test]
+            fn gaussian_filtered_ggx_bit_for_bit() {
+                use filtered_ndf::$prec::{Covariance, GaussianFilteredGgx};
+                let c = cols(0xE6A);
+                let mut out = vec![0.0 as $t; N];
+                let nan = <$t>::NAN;
+                for alpha in [1e-3 as $t, 0.05, 0.5] {
+                    let a2 = alpha * alpha;
+                    let iso = Isotropic::new(alpha).unwrap();
+                    let aa = AxisAligned::new(alpha, alpha * 0.3).unwrap();
+                    let mat = RoughnessMatrix::new(a2, 0.3 * a2, 0.5 * a2).unwrap();
+                    let kernels = [
+                        Covariance::new(0.0, 0.0, 0.0),
+                        Covariance::new(1e-4 * a2, 0.0, 1e-4 * a2),
+                        Covariance::new(3e-3 * a2, 1e-3 * a2, 2e-3 * a2),
+                        Covariance::new(0.3 * a2, 0.0, 0.0),
+                        Covariance::new(2.0 * a2, -1.5 * a2, 2.0 * a2),
+                        Covariance::new(10.0 * a2, 0.0, 10.0 * a2),
+                        Covariance::new(nan, 0.0, nan),
+                        Covariance::new(<$t>::INFINITY, 0.0, 1.0),
+                    ];
+                    for (j, k) in kernels.into_iter().enumerate() {
+                        let lobes = [
+                            ("iso", GaussianFilteredGgx::new(iso, k)),
+                            ("aa", GaussianFilteredGgx::new(aa, k)),
+                            ("matrix", GaussianFilteredGgx::new(mat, k)),
+                        ];
+                        for (name, lobe) in lobes {
+                            assert_eq!(
+                                batch::gaussian_filtered_ggx_d(&lobe, &c.x, &c.y, &c.z, &mut out),
+                                N
+                            );
+                            same(
+                                &out,
+                                |i| lobe.d(h(&c, i)),
+                                &format!("exact {name} {alpha} kernel {j} wide"),
+                            );
+                            batch::gaussian_filtered_ggx_d(&lobe, &c.hx, &c.hy, &c.z, &mut out);
+                            same(
+                                &out,
+                                |i| lobe.d(Vec3::new(c.hx[i], c.hy[i], c.z[i])),
+                                &format!("exact {name} {alpha} kernel {j} near"),
+                            );
+                        }
+                    }
+                }
+            }
+
+            /// Projected-space filtering (TK21) with a kernel per element, bit for bit against
+            /// `Ggx::new(filter::projected(r, Sigma_i)).d(h_i)`: the footprints' covariances
+            /// (`sigma = 0.5`; the wide columns give kernels from `1e-9` to `1e2`, and NaN and
+            /// infinite ones from the special values) and the raw adversarial columns as
+            /// entries (indefinite, negative, NaN, infinite: the sanitiser's general path),
+            /// every roughness form, `alpha` up to `2` (the eigenvalue split of `A` above
+            /// `PROJECTED_EIGEN_MAX`), and a matrix with an active determinant clamp.
+            #[test]
+            fn projected_bit_for_bit() {
+                use filtered_ndf::$prec::{Covariance, filter::projected};
+                let c = cols(0x7A21);
+                let ks: Vec<Covariance> = (0..N).map(|i| fp(&c, i).covariance(0.5)).collect();
+                let (k11, k12, k22): (Vec<$t>, Vec<$t>, Vec<$t>) = (
+                    ks.iter().map(|k| k.s11).collect(),
+                    ks.iter().map(|k| k.s12).collect(),
+                    ks.iter().map(|k| k.s22).collect(),
+                );
+                let footprint_kernels = batch::Covariances {
+                    s11: &k11,
+                    s12: &k12,
+                    s22: &k22,
+                };
+                let raw = batch::Covariances {
+                    s11: &c.ux,
+                    s12: &c.uy,
+                    s22: &c.vx,
+                };
+                let mut out = vec![0.0 as $t; N];
+                for alpha in [1e-4 as $t, 0.05, 0.5, 0.99, 2.0] {
+                    let a2 = alpha * alpha;
+                    let iso = Isotropic::new(alpha).unwrap();
+                    let aa = AxisAligned::new(alpha, alpha * 0.3).unwrap();
+                    let mat = RoughnessMatrix::new(a2, 0.3 * a2, 0.5 * a2).unwrap();
+                    let clamped =
+                        RoughnessMatrix::new_with_det_clamp(a2, 0.0, a2 * 1e-8, 2e-8 * a2 * a2)
+                            .unwrap();
+                    macro_rules! each {
+                        ($r:expr, $name:expr) => {{
+                            let r = $r;
+                            for (kname, kk) in [("footprint", footprint_kernels), ("raw", raw)] {
+                                assert_eq!(
+                                    batch::ggx_d_projected(&r, kk, &c.hx, &c.hy, &c.z, &mut out),
+                                    N
+                                );
+                                same(
+                                    &out,
+                                    |i| {
+                                        let k = Covariance::new(kk.s11[i], kk.s12[i], kk.s22[i]);
+                                        Ggx::new(projected(r, k))
+                                            .d(Vec3::new(c.hx[i], c.hy[i], c.z[i]))
+                                    },
+                                    &format!("projected {} {alpha} {kname}", $name),
+                                );
+                            }
+                        }};
+                    }
+                    each!(iso, "iso");
+                    each!(aa, "aa");
+                    each!(mat, "matrix");
+                    each!(clamped, "clamped");
+                }
+            }
+
             #[test]
             fn nan_and_back_facing_inputs_give_zero() {
                 let aa = AxisAligned::new(0.2, 0.1).unwrap();

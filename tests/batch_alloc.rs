@@ -73,6 +73,15 @@ macro_rules! check {
         let mat = RoughnessMatrix::new(0.01 as $t, 0.002 as $t, 0.0009 as $t).unwrap();
         let mut out = vec![0.0 as $t; N];
         let (mut o2, mut o3) = (out.clone(), out.clone());
+        // Exact Gaussian-filtered lobes (built outside the count: `new` is scalar), one light
+        // (Gauss-Laguerre lanes) and one heavy (trapezoid elements, the scalar fallback).
+        let exact = {
+            use filtered_ndf::$prec::{Covariance, GaussianFilteredGgx};
+            [
+                GaussianFilteredGgx::new(aa, Covariance::new(1e-5, 0.0, 1e-5)),
+                GaussianFilteredGgx::new(mat, Covariance::new(0.05, 0.01, 0.02)),
+            ]
+        };
         // Warm-up outside the count: one-time initialisation (the dispatcher's CPU detection
         // reads an environment variable once) is not per call.
         batch::ggx_d(&iso, &x, &y, &z, &mut out);
@@ -98,6 +107,30 @@ macro_rules! check {
             for (u1, u2) in [(&hx, &hy), (&ux, &vy)] {
                 batch::ggx_sample_visible_normal(&mat, v, u1, u2, &mut out, &mut o2, &mut o3);
                 batch::ggx_sample_visible_normal(&iso, w, u2, u1, &mut out, &mut o2, &mut o3);
+            }
+            batch::ggx_sample_normal(&mat, &hx, &ux, &mut out, &mut o2, &mut o3);
+            batch::beckmann_sample_normal(&aa, &ux, &hy, &mut out, &mut o2, &mut o3);
+            batch::beckmann_sample_normal(&mat, &hx, &hy, &mut out, &mut o2, &mut o3);
+            batch::ggx_normal_pdf(&mat, &x, &y, &z, &mut out);
+            batch::beckmann_normal_pdf(&aa, &x, &y, &z, &mut out);
+            batch::ggx_visible_normal_pdf(&aa, v, w, &mut out);
+            batch::ggx_visible_normal_pdf(&mat, w, v, &mut out);
+            batch::beckmann_visible_normal_pdf(&iso, v, w, &mut out);
+            batch::beckmann_visible_normal_pdf(&mat, w, v, &mut out);
+            batch::ggx_reflection_pdf_from_normal(&iso, v, w, &mut out);
+            batch::ggx_reflection_pdf_from_normal(&mat, w, v, &mut out);
+            batch::beckmann_reflection_pdf_from_normal(&aa, v, w, &mut out);
+            batch::beckmann_reflection_pdf_from_normal(&mat, w, v, &mut out);
+            let kernels = batch::Covariances {
+                s11: &ux,
+                s12: &uy,
+                s22: &vx,
+            };
+            batch::ggx_d_projected(&aa, kernels, &x, &y, &z, &mut out);
+            batch::ggx_d_projected(&mat, kernels, &hx, &hy, &z, &mut out);
+            for lobe in exact {
+                batch::gaussian_filtered_ggx_d(&lobe, &x, &y, &z, &mut out);
+                batch::gaussian_filtered_ggx_d(&lobe, &hx, &hy, &z, &mut out);
             }
             for (_, conv) in filtered_ndf::$prec::filter::presets::ALL {
                 batch::deferred_filter(&conv, &z, v, fp_dn, &mut out);

@@ -147,6 +147,269 @@ macro_rules! suite {
                 };
             }
 
+            /// The `f64` Cholesky factor `(l11, l21, l22)` of the form `name` of `forms(alpha)`
+            /// (no determinant clamp at these determinants), and the condition number `kappa`
+            /// of the warp `diag(L, 1)`.
+            fn warp_of(alpha: f64, name: &str) -> ((f64, f64, f64), f64) {
+                let (a, b) = ((alpha as $t) as f64, ((alpha * 0.3) as $t) as f64);
+                let (l11, l21, l22) = match name {
+                    "isotropic" => (a, 0.0, a),
+                    "axis-aligned" => (a, 0.0, b),
+                    _ => {
+                        let (a, b) = (alpha as $t, (alpha * 0.3) as $t);
+                        let (a2, m12, b2) = ((a * a) as f64, (0.4 * a * b) as f64, (b * b) as f64);
+                        let l11 = a2.sqrt();
+                        let l21 = m12 / l11;
+                        (l11, l21, (b2 - l21 * l21).sqrt())
+                    }
+                };
+                // Singular values of [[l11, 0], [l21, l22]].
+                let (t, det) = (l11 * l11 + l21 * l21 + l22 * l22, (l11 * l22).abs());
+                let d = (t * t - 4.0 * det * det).max(0.0).sqrt();
+                let (s_max, s_min) = (((t + d) / 2.0).sqrt(), (2.0 * det * det / (t + d)).sqrt());
+                ((l11, l21, l22), s_max.max(1.0) / s_min.min(1.0))
+            }
+
+            /// `normalize(L^-1 m_xy, m_z)`: a micronormal pulled back to the unit-roughness
+            /// space by the exact inverse of the `f64` factor.
+            fn pull_back((l11, l21, l22): (f64, f64, f64), m: glam::DVec3) -> glam::DVec3 {
+                let y = (m.y - l21 / l11 * m.x) / l22;
+                glam::DVec3::new(m.x / l11, y, m.z).normalize()
+            }
+
+            /// Uniform pairs with the unit square's edges and out-of-range values mixed in.
+            fn uniforms(seed: u64) -> (Vec<$t>, Vec<$t>) {
+                let mut rng = Rng(seed);
+                let mut u: Vec<$t> = (0..2 * N).map(|_| rng.uniform() as $t).collect();
+                for (k, v) in [0.0, 1.0, -0.5, 2.0, <$t>::NAN, 1e-30, 0.25, 0.5, 0.75, 1e-7, 1.0 - <$t>::EPSILON]
+                    .into_iter()
+                    .enumerate()
+                {
+                    u[7 * k] = v;
+                    u[N + 11 * k + 3] = v;
+                    u[13 * k + 5] = v;
+                    u[N + 13 * k + 5] = 1.0 - v;
+                }
+                let u2 = u.split_off(N);
+                (u, u2)
+            }
+
+            /// The `D(m) m_z` samplers against the `f64` scalar samplers on the same inputs,
+            /// compared in the unit-roughness space (angle between the pulled-back samples;
+            /// angles of unit vectors = absolute errors), the bound derived step by step in
+            /// units `E` of a precision, for the batch and, with `E = eps_64`, for the `f64`
+            /// reference itself (the tolerance is the sum: both against the exact sample):
+            ///
+            /// - the azimuth's `(cos, sin)`: `S E` (`S = 8` in `f32`, `9` in `f64`, as for the
+            ///   visible-normal sampler above: `sincos_2pi`'s `2e-15` plus half an ulp, or
+            ///   libm's of the rounded `phi = 2 pi u2`), times `r` in the standard normal's
+            ///   `xy`, plus the products' rounding `E r`;
+            /// - GGX: `r = sqrt(u1)` (`E`), `n_z = sqrt(1 - u1)` (`1 - u1` rounds by `E / 2`
+            ///   relative only for `u1 < 1/2`, the root halves it and rounds: `E`): `|n| = 1`,
+            ///   so the angle of `n` is within `(S + 3) E`;
+            /// - Beckmann: `l = ln(1 - u1)`: `1 - u1` rounded in `F` (`E / 2` relative, so
+            ///   `E / 2` absolute in `l`) and the logarithm (lane: `4 eps_64` plus half an
+            ///   ulp; libm: an ulp): `dl = E / 2 + E |l|`; `r = sqrt(-l)`: `|sqrt(p) -
+            ///   sqrt(q)| <= |p - q| / sqrt(q)` and `<= sqrt(|p - q|)`, so `dr = min(dl / r,
+            ///   sqrt(dl)) + E r / 2` (the root's rounding); `n = (r cos, r sin, 1)` turns by
+            ///   `dr / (1 + r^2)` and by `(S + 1) E r / sqrt(1 + r^2)`;
+            /// - `m = normalize(L n)` pulled back by the exact `L^-1`: `9 kappa E + E` (as for
+            ///   the visible-normal sampler above).
+            #[test]
+            fn sample_normal_against_f64() {
+                use filtered_ndf::f64::NdfSampling as _;
+                let (u1, u2) = uniforms(0x5C);
+                let (mut ox, mut oy, mut oz) = (vec![0.0 as $t; N], vec![0.0 as $t; N], vec![0.0 as $t; N]);
+                let s_batch = if WIDE { 9.0 } else { 8.0 };
+                let mut worst = [0.0f64; 2];
+                for alpha in [0.01f64, 0.2, 1.0, 2.0] {
+                    for (name, f) in forms(alpha) {
+                        let (l, kappa) = warp_of(alpha, name);
+                        let cu = |x: f64| if x >= 0.0 { x.min(1.0 - EPS / 2.0) } else { 0.0 };
+                        let warp = |e: f64| 9.0 * kappa * e + e;
+                        for beckmann in [false, true] {
+                            with_form!(f, |r, r64| {
+                                let n = if beckmann {
+                                    batch::beckmann_sample_normal(&r, &u1, &u2, &mut ox, &mut oy, &mut oz)
+                                } else {
+                                    batch::ggx_sample_normal(&r, &u1, &u2, &mut ox, &mut oy, &mut oz)
+                                };
+                                assert_eq!(n, N);
+                                for i in 0..N {
+                                    // The batch precision's clamp (`u = 1` clamps to `1 - E / 2`, not to
+                                    // the `f64` sampler's `1 - eps_64 / 2`), which the `f64` sampler's
+                                    // own clamp then leaves as it is: the same sampled point.
+                                    let uu = glam::DVec2::new(cu(u1[i] as f64), cu(u2[i] as f64));
+                                    let got = glam::DVec3::new(ox[i] as f64, oy[i] as f64, oz[i] as f64);
+                                    assert!(got.z > 0.0 && (got.length() - 1.0).abs() <= 4.0 * EPS, "[{i}] {got}");
+                                    let c1 = uu.x;
+                                    let (want, bound): (glam::DVec3, &dyn Fn(f64, f64) -> f64) = if beckmann {
+                                        let lq = (-(1.0 - c1).ln()).max(0.0);
+                                        let rr = lq.sqrt();
+                                        (
+                                            d::Beckmann::new(r64).sample_normal(uu),
+                                            &move |e: f64, s: f64| {
+                                                let dl = e / 2.0 + e * lq;
+                                                let dr = (dl / rr).min(dl.sqrt()) + e * rr / 2.0;
+                                                dr / (1.0 + lq) + (s + 1.0) * e * rr / (1.0 + lq).sqrt() + warp(e)
+                                            },
+                                        )
+                                    } else {
+                                        (
+                                            d::Ggx::new(r64).sample_normal(uu),
+                                            &move |e: f64, s: f64| (s + 3.0) * e + warp(e),
+                                        )
+                                    };
+                                    let tol = bound(EPS, s_batch) + bound(f64::EPSILON, 8.0);
+                                    let angle = (pull_back(l, got) - pull_back(l, want)).length();
+                                    worst[beckmann as usize] = worst[beckmann as usize].max(angle / tol);
+                                    assert!(
+                                        angle <= tol,
+                                        "{name} {alpha} beckmann {beckmann} [{i}] u {uu}: {got} vs {want} ({angle:e} > {tol:e})"
+                                    );
+                                }
+                            });
+                        }
+                    }
+                }
+                println!("sample_normal: worst GGX {:.3}, Beckmann {:.3} of the bound", worst[0], worst[1]);
+            }
+
+            /// The pdfs against the `f64` scalar pdfs on the same rounded inputs (relative, in
+            /// `eps` of the batch precision; GGX's batch pdfs are the scalar ones bit for bit,
+            /// `tests/batch.rs`, so the scalar path's error), derived step by step (first
+            /// order `t`, the products of `1 + e_i` within `t + t^2`):
+            ///
+            /// - `D(m)`: GGX `8`; Beckmann `11 + 4 x` (`f32`) or `1.5e-14 / eps + 2 + x`
+            ///   (`f64`), `x` the exponent (the `D` bounds above);
+            /// - `1 + Lambda(wo)`: `Lambda`'s absolute error over `1 + Lambda`, GGX
+            ///   `8 Lambda / (1 + Lambda)`, Beckmann `L + (13 + 7 a^2) Lambda / (1 + Lambda)`
+            ///   (the `Lambda` bounds above), plus the sum's rounding `1`;
+            /// - the visible pdf `(wo.m) D / (wo_z (1 + Lambda))`: `wo.m` in `F` (three
+            ///   products, two sums: `3 sum|wo_k m_k| / |wo.m|`) and three roundings;
+            /// - the reflection pdf `D / (4 o_z (1 + Lambda(o)))`, `o = wo / |wo|`: `o_z`
+            ///   within `3` (the squared length `1.5`, its root `0.5 + 0.75`, the quotient
+            ///   `0.5`, rounded up), the direction of `o` (each component's quotient rounds
+            ///   alone: `1`) moves `a = |o_z| / sqrt(q)` of Beckmann by `2` relative, which
+            ///   `Lambda` amplifies by `2 a^2 + 3` (`(4 a^2 + 6) Lambda / (1 + Lambda)`), and
+            ///   GGX's `1 + Lambda` by at most `2` (`t = q / o_z^2` moves by `4`, `1 + Lambda =
+            ///   (1 + sqrt(1 + t)) / 2` halves it at most); two roundings (`4 o_z` is exact).
+            ///
+            /// - the `D(m) m_z` pdf: `D`'s bound plus the product's rounding `1`.
+            ///
+            /// Where Beckmann's `D` is flushed below `F::MIN_POSITIVE`, the pdf's absolute
+            /// error adds `F::MIN_POSITIVE` times its factor `wo.m / (wo_z (1 + Lambda))`
+            /// (`m_z` for the `D(m) m_z` pdf).
+            /// Where the `f64` pdf is `0` (below the horizon, back-facing) the batch gives `0`.
+            #[test]
+            fn pdfs_against_f64() {
+                use filtered_ndf::f64::NdfSampling as _;
+                let wo = Cols::new(&directions(N, 0x9D));
+                let mut worst = [0.0f64; 4];
+                for (k, alpha) in [1e-3, 0.05, 0.4, 1.5].into_iter().enumerate() {
+                    let m = Cols::new(&micronormals(N, 0x9E + k as u64, alpha));
+                    let mut out = vec![0.0 as $t; N];
+                    for (name, f) in forms(alpha) {
+                        with_form!(f, |r, r64| {
+                            for (j, what) in ["ggx visible", "beckmann visible", "ggx reflection", "beckmann reflection"].into_iter().enumerate() {
+                                let (beckmann, reflection) = (j % 2 == 1, j >= 2);
+                                let n = match j {
+                                    0 => batch::ggx_visible_normal_pdf(&r, wo.soa(), m.soa(), &mut out),
+                                    1 => batch::beckmann_visible_normal_pdf(&r, wo.soa(), m.soa(), &mut out),
+                                    2 => batch::ggx_reflection_pdf_from_normal(&r, wo.soa(), m.soa(), &mut out),
+                                    _ => batch::beckmann_reflection_pdf_from_normal(&r, wo.soa(), m.soa(), &mut out),
+                                };
+                                assert_eq!(n, N);
+                                for i in 0..N {
+                                    let (w, mm) = (wo.at(i), m.at(i));
+                                    let o = w.normalize();
+                                    let (want, lam, dtol, lam_tol) = if beckmann {
+                                        let b = d::Beckmann::new(r64);
+                                        let want = if reflection { b.reflection_pdf_from_normal(w, mm) } else { b.visible_normal_pdf(w, mm) };
+                                        let x = r64.inv_quadratic(glam::DVec2::new(mm.x, mm.y)) / (mm.z * mm.z);
+                                        let dtol = if WIDE { 1.5e-14 / EPS + 2.0 + x } else { 11.0 + 4.0 * x };
+                                        let a = a_of(&r64, o);
+                                        let lam = b.lambda(o);
+                                        let amp = 13.0 + 7.0 * a * a + if reflection { 4.0 * a * a + 6.0 } else { 0.0 };
+                                        (want, lam, dtol, L / EPS + amp * lam / (1.0 + lam))
+                                    } else {
+                                        let g = d::Ggx::new(r64);
+                                        let want = if reflection { g.reflection_pdf_from_normal(w, mm) } else { g.visible_normal_pdf(w, mm) };
+                                        let lam = g.lambda(o);
+                                        (want, lam, 8.0, 8.0 * lam / (1.0 + lam) + if reflection { 2.0 } else { 0.0 })
+                                    };
+                                    let got = out[i] as f64;
+                                    assert!(got >= 0.0 && got.is_finite(), "{what} {name} [{i}]: {got}");
+                                    if want == 0.0 {
+                                        assert_eq!(got, 0.0, "{what} {name} {alpha} [{i}]");
+                                        continue;
+                                    }
+                                    let rest = if reflection {
+                                        3.0 + 2.0
+                                    } else {
+                                        let s = (w.x * mm.x).abs() + (w.y * mm.y).abs() + (w.z * mm.z).abs();
+                                        3.0 * s / w.dot(mm).abs() + 3.0
+                                    };
+                                    let t = (dtol + lam_tol + 1.0 + rest) * EPS;
+                                    let factor = if reflection { 0.25 / o.z } else { w.dot(mm) / w.z } / (1.0 + lam);
+                                    let flush = if beckmann { MIN * factor } else { 0.0 };
+                                    let tol = (t + t * t) * want + flush;
+                                    let err = (got - want).abs();
+                                    if got != 0.0 {
+                                        // The relative part (a flushed element is within `flush`).
+                                        worst[j] = worst[j].max(err / (tol - flush));
+                                    }
+                                    assert!(
+                                        err <= tol,
+                                        "{what} {name} {alpha} [{i}] wo {w} m {mm}: {got} vs {want} ({:.2} eps)",
+                                        err / want / EPS
+                                    );
+                                }
+                            }
+                        })
+                    }
+                }
+                // The `D(m) m_z` pdfs: `D`'s bound plus the product's rounding (`m_z` is an
+                // input, exact), relative; Beckmann's flush: absolute `F::MIN_POSITIVE m_z`.
+                for (k, alpha) in [1e-3, 0.05, 0.4, 1.5].into_iter().enumerate() {
+                    let m = Cols::new(&micronormals(N, 0xA0 + k as u64, alpha));
+                    let mut out = vec![0.0 as $t; N];
+                    for (name, f) in forms(alpha) {
+                        with_form!(f, |r, r64| {
+                            for beckmann in [false, true] {
+                                if beckmann {
+                                    batch::beckmann_normal_pdf(&r, &m.x, &m.y, &m.z, &mut out);
+                                } else {
+                                    batch::ggx_normal_pdf(&r, &m.x, &m.y, &m.z, &mut out);
+                                }
+                                for i in 0..N {
+                                    let mm = m.at(i);
+                                    let (want, dtol) = if beckmann {
+                                        let x = r64.inv_quadratic(glam::DVec2::new(mm.x, mm.y)) / (mm.z * mm.z);
+                                        let dtol = if WIDE { 1.5e-14 / EPS + 2.0 + x } else { 11.0 + 4.0 * x };
+                                        (d::Beckmann::new(r64).normal_pdf(mm), dtol)
+                                    } else {
+                                        (d::Ggx::new(r64).normal_pdf(mm), 8.0)
+                                    };
+                                    let got = out[i] as f64;
+                                    let t = (dtol + 1.0) * EPS;
+                                    let flush = if beckmann { MIN * mm.z } else { 0.0 };
+                                    let err = (got - want).abs();
+                                    assert!(
+                                        err <= (t + t * t) * want + flush,
+                                        "normal pdf beckmann {beckmann} {name} {alpha} [{i}]: {got} vs {want}"
+                                    );
+                                }
+                            }
+                        })
+                    }
+                }
+                println!(
+                    "pdfs, worst of the relative bound (unflushed): GGX visible {:.3}, Beckmann visible {:.3}, GGX reflection {:.3}, Beckmann reflection {:.3}",
+                    worst[0], worst[1], worst[2], worst[3]
+                );
+            }
+
             /// GGX visible-normal sampling against the `f64` scalar sampler, on the same rounded
             /// inputs. The sample is compared in the unit-roughness space (the angle between
             /// `normalize(L^-1 m_xy, m_z)` of both, `L` the `f64` Cholesky factor): the
@@ -195,26 +458,7 @@ macro_rules! suite {
                 let mut worst = 0.0f64;
                 for alpha in [0.01f64, 0.2, 1.0, 2.0] {
                     for (name, f) in forms(alpha) {
-                        // The f64 Cholesky factor of the form (no clamp at these determinants).
-                        let (a, b) = ((alpha as $t) as f64, ((alpha * 0.3) as $t) as f64);
-                        let (l11, l21, l22) = match name {
-                            "isotropic" => (a, 0.0, a),
-                            "axis-aligned" => (a, 0.0, b),
-                            _ => {
-                                let (a, b) = (alpha as $t, (alpha * 0.3) as $t);
-                                let (a2, m12, b2) = ((a * a) as f64, (0.4 * a * b) as f64, (b * b) as f64);
-                                let l11 = a2.sqrt();
-                                let l21 = m12 / l11;
-                                (l11, l21, (b2 - l21 * l21).sqrt())
-                            }
-                        };
-                        let (s_max, s_min) = {
-                            // Singular values of [[l11, 0], [l21, l22]].
-                            let (t, det) = (l11 * l11 + l21 * l21 + l22 * l22, (l11 * l22).abs());
-                            let d = (t * t - 4.0 * det * det).max(0.0).sqrt();
-                            (((t + d) / 2.0).sqrt(), (2.0 * det * det / (t + d)).sqrt())
-                        };
-                        let kappa = s_max.max(1.0) / s_min.min(1.0);
+                        let ((l11, l21, l22), kappa) = warp_of(alpha, name);
                         with_form!(f, |r, r64| {
                             let n = batch::ggx_sample_visible_normal(
                                 &r, wo.soa(), u1, u2, &mut ox, &mut oy, &mut oz,
@@ -246,11 +490,7 @@ macro_rules! suite {
                                     (d_c + d_wi + e) / nn.length() + 9.0 * kappa * e + e
                                 };
                                 let tol = bound(EPS, s_batch) + bound(f64::EPSILON, 8.0);
-                                let back = |m: glam::DVec3| {
-                                    let y = (m.y - l21 / l11 * m.x) / l22;
-                                    glam::DVec3::new(m.x / l11, y, m.z).normalize()
-                                };
-                                let (gb, wb) = (back(got), back(want));
+                                let (gb, wb) = (pull_back((l11, l21, l22), got), pull_back((l11, l21, l22), want));
                                 let angle = (gb - wb).length();
                                 worst = worst.max(angle / tol);
                                 assert!(

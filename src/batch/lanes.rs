@@ -245,8 +245,28 @@ pub(crate) fn pow_lane(x: F, e: F) -> (F, bool) {
 #[inline(always)]
 #[allow(clippy::manual_range_contains)] // `&` of compares: no branch in the lane.
 fn pow_f64(x: f64, e: f64) -> (f64, bool) {
-    const LN2_HI: f64 = 0.693_147_180_369_123_8; // 0x3fe62e42fee00000.
-    const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
+    let (k, ln_m) = ln_parts_f64(x);
+    let y = e * (k * LN2_HI + (k * LN2_LO + ln_m));
+    let (q, kk) = exp_f64_reduced(y.clamp(-708.0, 708.0));
+    let n = (kk.to_bits() as i64).wrapping_sub(MAGIC_F64.to_bits() as i64);
+    // 2^n for |n| <= 1022 (|y| <= 708).
+    let two_n = f64::from_bits(((n + 1023) as u64) << 52);
+    let zero = x == 0.0;
+    let ok = ((x >= f64::MIN_POSITIVE) & (x <= f64::MAX) & (y.abs() <= 708.0)) | (zero & (e > 0.0));
+    (if zero { 0.0 } else { q * two_n }, ok)
+}
+
+/// `ln 2` split: the high part has trailing zeros, so `k LN2_HI` is exact for `|k| < 2^11`.
+pub(crate) const LN2_HI: f64 = 0.693_147_180_369_123_8; // 0x3fe62e42fee00000.
+/// `ln 2 - LN2_HI`.
+pub(crate) const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
+
+/// The logarithm's reduction shared by [`pow_lane`] and `log::ln_lane`: `x = m 2^k` with `m` in
+/// `[sqrt(1/2), sqrt(2))`, returns `(k, ln m)`, `ln m = 2 atanh(s)`, `s = (m - 1) / (m + 1)`
+/// (`|s| <= 0.1716`) by its series to `s^21` (truncation below `2.3e-17` relative). For a
+/// normal positive finite `x` (elsewhere garbage: the callers flag it).
+#[inline(always)]
+pub(crate) fn ln_parts_f64(x: f64) -> (f64, f64) {
     // 1 / (2 j + 1), j = 1..10.
     const C: [f64; 10] = [
         1.0 / 3.0,
@@ -277,14 +297,7 @@ fn pow_f64(x: f64, e: f64) -> (f64, bool) {
         p = p * s2 + c;
     }
     let ln_m = 2.0 * s + (2.0 * s) * (s2 * p);
-    let y = e * (k * LN2_HI + (k * LN2_LO + ln_m));
-    let (q, kk) = exp_f64_reduced(y.clamp(-708.0, 708.0));
-    let n = (kk.to_bits() as i64).wrapping_sub(MAGIC_F64.to_bits() as i64);
-    // 2^n for |n| <= 1022 (|y| <= 708).
-    let two_n = f64::from_bits(((n + 1023) as u64) << 52);
-    let zero = x == 0.0;
-    let ok = ((x >= f64::MIN_POSITIVE) & (x <= f64::MAX) & (y.abs() <= 708.0)) | (zero & (e > 0.0));
-    (if zero { 0.0 } else { q * two_n }, ok)
+    (k, ln_m)
 }
 
 /// `(sin(2 pi u), cos(2 pi u))` for `u` in `[0, 1]` (the batch GGX visible-normal sampler's

@@ -29,14 +29,15 @@
 //! determinant clamp, a box-filter axis that needs more than two Gauss-Legendre nodes) are
 //! flagged. The flags cost nothing where nothing is flagged. Transcendental functions in
 //! lanes are polynomials (`exp`: `filter::exp_poly`'s reduction; Beckmann's `Lambda`: the
-//! `erfc` fit shared with the exact Gaussian filter's sampler).
+//! `erfc` fit shared with the exact Gaussian filter's sampler; `ln`: `log.rs`, on the
+//! reduction of `lanes.rs`' `pow_lane`).
 //!
 //! With the optional `dispatch` feature (std, x86-64) the same loop is also compiled for
 //! x86-64-v3 (AVX2, FMA) and x86-64-v4 (AVX-512) and the widest the CPU supports is chosen
 //! at run time, through `pulp`'s safe target-feature contexts: the crate stays
 //! `forbid(unsafe_code)`. [`simd_level`] names the instruction set in use. The lanes' results
 //! do not depend on it (no fused multiply-add is formed: Rust does not contract `a * b + c`).
-//! The filtered functions, the box filter and the deferred presets vectorise profitably only
+//! The filtered functions (also [`ggx_d_projected`]), the box filter and the deferred presets vectorise profitably only
 //! with 256-bit vectors or wider (the filters' lanes carry an `f64` matrix and both branches
 //! of the clamps; on SSE2 they measured 0.7 times the scalar loop; the presets' lanes 0.4 to
 //! 1.5 times): on the SSE2 baseline they run the scalar path
@@ -55,6 +56,12 @@
 //! | [`beckmann_lambda`] | absolute `L (1 + Lambda)`, `L = 2.1e-7` (`f32`), `1.9e-8` (`f64`), plus `(5 + 3 a^2) eps Lambda` | the `erfc` fit (Numerical Recipes `erfcc`) in place of libm's; `a = |w_z| / sqrt(q)` rounded twice in `F` (the scalar path forms it in `f64`), amplified by `2 a^2 + 3` | `tests/batch_bounds.rs` |
 //! | [`beckmann_g2`] | relative `2 L + 3 eps` plus the `Lambda` terms over `1 + Lambda_i + Lambda_o` | `G2 = 1 / (1 + Lambda_i + Lambda_o)` | `tests/batch_bounds.rs` |
 //! | [`ggx_sample_visible_normal`] | not bit for bit: the angle between the samples in the unit-roughness space within `B(E, S)` of `tests/batch_bounds.rs` (`~ (9 kappa + 1) E + (d_c + d_wi + E) / abs(n)`, `kappa` the warp's condition number, `d_c` growing as `1 / sin theta` of the cap point) | the scalar sampler's steps and shared cores; `(cos, sin)` of the azimuth by `lanes.rs`' `sincos_2pi` (absolute `2e-15` in `f64`) in place of libm's of the rounded `phi`, the cap height not fused | `tests/batch_bounds.rs` (against `f64`), the `sincos_2pi` unit test |
+//! | [`ggx_normal_pdf`], [`ggx_visible_normal_pdf`], [`ggx_reflection_pdf_from_normal`] (every roughness form) | bit for bit | the scalar pdf's core (`sampling`'s `normal_pdf_core`, `visible_normal_pdf_core`, `reflection_pdf_core`) on GGX's bit-for-bit `D` and `Lambda` lanes, its checks as selects; a view to rescale or a grazing `Lambda` flagged | `tests/batch.rs` (adversarial input, every form, the clamped matrix); against `f64`: `tests/batch_bounds.rs` |
+//! | [`beckmann_visible_normal_pdf`], [`beckmann_reflection_pdf_from_normal`] | relative `E + L + 10 eps + (5 + 3 a^2) eps Lambda / (1 + Lambda)` to first order (plus `x eps` where the scalar `D` takes its far-tail branch); where the lane `D` flushes below `F::MIN_POSITIVE`, absolute `F::MIN_POSITIVE` times the factor `wo.m / (wo_z (1 + Lambda))` (visible) or `1 / (4 o_z (1 + Lambda))` (reflection); `0` exactly where the scalar pdf is `0` | the same core on Beckmann's `D` lane (`E + 2 eps`) and `Lambda` lane (absolute `L (1 + Lambda) + (5 + 3 a^2) eps Lambda` over `1 + Lambda`), the sum and three operations rounding in each path | `tests/batch_bounds.rs` (against `f64`: `(15 + 4 x) eps + L + (13 + 7 a^2) eps Lambda / (1 + Lambda) + 3 eps sum|wo_k m_k| / wo.m` in `f32`, derived there), `tests/batch.rs` (the zeros, adversarial input) |
+//! | [`beckmann_normal_pdf`] | relative `E + 4 eps` (plus `x eps` in the scalar far tail); flushed below `F::MIN_POSITIVE` as [`beckmann_d`] (absolute `F::MIN_POSITIVE m_z`) | `D(m) m_z` on the `D` lane, the product rounding in each path | `tests/batch_bounds.rs` (against `f64`: `(12 + 4 x) eps`), `tests/batch.rs` (the zeros) |
+//! | [`ggx_sample_normal`], [`beckmann_sample_normal`] (`D(m) m_z`) | not bit for bit: the pulled-back angle within `(S + 3) E + 9 kappa E + E` (GGX) and `dr / (1 + r^2) + (S + 1) E r / sqrt(1 + r^2) + 9 kappa E + E` (Beckmann, `r^2 = -ln(1 - u1)`, `dr` the error of `r` from the logarithm's, `tests/batch_bounds.rs`) against `f64`, as the scalar sampler | the scalar sampler's steps and shared cores (`ggx_standard_normal`, `beckmann_standard_normal`, `Warp::unstretch_raw`); the azimuth by `sincos_2pi` and `ln(1 - u1)` by `log.rs`' `ln_lane` (relative `4 eps_64` in `f64`) in place of libm's | `tests/batch_bounds.rs`, the `ln_lane` unit test |
+//! | [`gaussian_filtered_ggx_d`] (one lobe) | bit for bit | the scalar `D`'s steps with the rule choice of `J` shared (`gaussian_ggx_quad::rule`): the far-tail series and Gauss-Laguerre in lanes, the trapezoid rule (an element-dependent node count) flagged | `tests/batch.rs` (kernels from `0` to `10` lobe variances, rank one, rotated, NaN, infinite; every form) |
+//! | [`ggx_d_projected`] (a kernel per element) | bit for bit | the scalar projected filter split into its lobe part (once per batch) and kernel part (`filter::ProjectedBase`); a kernel off the sanitiser's fast path and an active determinant clamp flagged | `tests/batch.rs` (footprint kernels and raw adversarial entries, `alpha` to `2`, the clamped matrix) |
 //!
 //! The deferred presets in `f32` against the `f64` scalar path: the scalar `f32` path's
 //! error, derived step by step in `tests/batch_bounds.rs` (at most `11 eps` for the presets,
@@ -76,18 +83,28 @@
 use super::{F, PI, Vec2, Vec3};
 
 mod deferred;
+mod exact;
 mod filtered;
 mod lanes;
+mod log;
 mod ndf;
+mod pdf;
+mod projected;
 mod rect;
 mod sample;
 mod simd;
 
 pub use deferred::deferred_filter;
+pub use exact::gaussian_filtered_ggx_d;
 pub use filtered::{beckmann_d_filtered, ggx_d_filtered};
 pub use ndf::{beckmann_d, beckmann_g2, beckmann_lambda, ggx_d, ggx_g2, ggx_lambda};
+pub use pdf::{
+    beckmann_normal_pdf, beckmann_reflection_pdf_from_normal, beckmann_visible_normal_pdf,
+    ggx_normal_pdf, ggx_reflection_pdf_from_normal, ggx_visible_normal_pdf,
+};
+pub use projected::ggx_d_projected;
 pub use rect::d_rect;
-pub use sample::ggx_sample_visible_normal;
+pub use sample::{beckmann_sample_normal, ggx_sample_normal, ggx_sample_visible_normal};
 
 /// Multi-core batches (feature `rayon`, std only): calls `f(start, out_chunk)` for the
 /// consecutive chunks of `out` of `chunk` elements (the last one shorter; `chunk = 0` counts as
@@ -170,6 +187,32 @@ impl Footprints<'_> {
             Vec2::new(self.dh_u_x[i], self.dh_u_y[i]),
             Vec2::new(self.dh_v_x[i], self.dh_v_y[i]),
         )
+    }
+}
+
+/// Pixel kernels (slope covariances, [`Covariance`](super::Covariance)) in
+/// structure-of-arrays form: element `i` is `Covariance::new(s11[i], s12[i], s22[i])`.
+#[derive(Clone, Copy, Debug)]
+pub struct Covariances<'a> {
+    /// `Sigma_11` per element.
+    pub s11: &'a [F],
+    /// `Sigma_12` per element.
+    pub s12: &'a [F],
+    /// `Sigma_22` per element.
+    pub s22: &'a [F],
+}
+
+impl Covariances<'_> {
+    /// The shortest of the three slices.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.s11.len().min(self.s12.len()).min(self.s22.len())
+    }
+
+    /// Whether [`Covariances::len`] is `0`.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
     }
 }
 

@@ -361,6 +361,28 @@ impl GaussianFilteredGgx {
     }
 }
 
+impl GaussianFilteredGgx {
+    /// [`Ndf::d`] in lanes (`batch::gaussian_filtered_ggx_d`): the same checks as selects,
+    /// the same whitening and `J` by `quad::j_lane` (the far tail or Gauss-Laguerre), so the
+    /// value of [`Ndf::d`] bit for bit where not flagged; flagged (`slow`) where `d` takes the
+    /// trapezoid rule. `(value, slow)`.
+    #[inline(always)]
+    pub(crate) fn d_lane(&self, mn: Vec3) -> (F, bool) {
+        let live = (mn.z > 0.0)
+            & (mn.x.abs() < F::INFINITY)
+            & (mn.y.abs() < F::INFINITY)
+            & (mn.z < F::INFINITY);
+        let z = mn.z.to_f64();
+        let z2 = z * z;
+        let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
+        let [tl1, tl2] = self.tl;
+        let (v, ok) = quad::j_lane(v1s, v2s, z2, tl1, tl2);
+        let d = F::from_f64(self.norm * v);
+        let keep = live & (d.abs() < F::INFINITY);
+        (if keep { d } else { 0.0 }, live & !ok)
+    }
+}
+
 impl Ndf for GaussianFilteredGgx {
     /// `P22_Sigma(s) = J / (pi sqrt(det A))` (module docs); `0` for a non-finite `s`.
     #[inline]

@@ -271,20 +271,46 @@ const GL_WIDE: f64 = if WIDE { 7e19 } else { 2.8e10 };
 #[inline]
 pub(super) fn j(v1s: f64, v2s: f64, z2: f64, tl1: f64, tl2: f64) -> f64 {
     let beta_m = z2 + v1s + v2s;
-    if beta_m >= FAR * tl1 * z2 {
+    let (far, laguerre) = rule(beta_m, z2, tl1);
+    if far {
         return far_tail(beta_m, v1s, v2s, tl1, tl2, z2);
     }
-    // beta = 1 + q = beta_m / z2. Gauss-Laguerre where 2 l1 <= GL_RATIO beta and (item 4) the
-    // plateau is negligible, 2 l1 (GL_PLATEAU + 1.5 ln beta) <= beta, which the first implies
-    // below beta = GL_WIDE.
-    if tl1 * z2 <= GL_RATIO * beta_m
-        && (beta_m <= GL_WIDE * z2
-            || tl1 * (GL_PLATEAU + 1.5 * ln_upper(beta_m / z2)) * z2 <= beta_m)
-    {
+    if laguerre {
         return j_laguerre(beta_m, v1s, v2s, z2, tl1, tl2);
     }
     let iz2 = 1.0 / z2;
     j_trapezoid(v1s * iz2, v2s * iz2, tl1, tl2) * iz2 * iz2
+}
+
+/// The rule [`j`] takes for `beta_m = z2 + v1s + v2s`: `(far, laguerre)`, the far tail where
+/// `far`, else Gauss-Laguerre where `laguerre`, else the trapezoid rule. Branch-free (`&`,
+/// `|` of compares; shared with the batch lane [`j_lane`]).
+#[inline(always)]
+fn rule(beta_m: f64, z2: f64, tl1: f64) -> (bool, bool) {
+    let far = beta_m >= FAR * tl1 * z2;
+    // beta = 1 + q = beta_m / z2. Gauss-Laguerre where 2 l1 <= GL_RATIO beta and (item 4) the
+    // plateau is negligible, 2 l1 (GL_PLATEAU + 1.5 ln beta) <= beta, which the first implies
+    // below beta = GL_WIDE.
+    let laguerre = (tl1 * z2 <= GL_RATIO * beta_m)
+        & ((beta_m <= GL_WIDE * z2)
+            | (tl1 * (GL_PLATEAU + 1.5 * ln_upper(beta_m / z2)) * z2 <= beta_m));
+    (far, laguerre)
+}
+
+/// [`j`] in lanes (`batch`'s exact Gaussian-filtered GGX): the far tail or Gauss-Laguerre
+/// selected by [`rule`], the same operations as [`j`], so the same value bit for bit where
+/// `ok`; `ok` is false where [`j`] takes the trapezoid rule (its node count depends on the
+/// element: the caller's scalar path evaluates it).
+#[inline(always)]
+pub(super) fn j_lane(v1s: f64, v2s: f64, z2: f64, tl1: f64, tl2: f64) -> (f64, bool) {
+    let beta_m = z2 + v1s + v2s;
+    let (far, laguerre) = rule(beta_m, z2, tl1);
+    let v = if far {
+        far_tail(beta_m, v1s, v2s, tl1, tl2, z2)
+    } else {
+        j_laguerre(beta_m, v1s, v2s, z2, tl1, tl2)
+    };
+    (v, far | laguerre)
 }
 
 /// The far-tail series of `J` (item 5) in homogeneous form: for a slope argument
@@ -303,7 +329,7 @@ pub(super) fn far_tail(beta: f64, c1s: f64, c2s: f64, tl1: f64, tl2: f64, z2: f6
 /// Gauss-Laguerre in `v = (1 + q) w` (item 4): `J = beta^-2 sum W_k F(v_k / beta)`,
 /// `F(w) = exp(sum c_i^2 2 l_i w^2 / p_i) / sqrt(p1 p2)`; homogeneous as [`j`]
 /// (`beta = beta_m / z2`, `c_i^2 = v_i^2 / z2`; the result is `J / z2^2`).
-#[inline]
+#[inline(always)]
 fn j_laguerre(beta_m: f64, v1s: f64, v2s: f64, z2: f64, tl1: f64, tl2: f64) -> f64 {
     let ib = 1.0 / beta_m;
     // 2 l_i / beta and c_i^2 2 l_i / beta^2.

@@ -50,4 +50,5 @@ pub use method::{
     ExactGaussian, Filterable, Gaussian, Method, Projected, Proxy, Rect, RectFilteredGgx,
 };
 pub(crate) use projected::projected_sanitized;
+pub(crate) use projected::ProjectedBase;
 pub use projected::{PROJECTED_EIGEN_MAX, projected, projected_with_det_clamp};

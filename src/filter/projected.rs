@@ -67,49 +67,87 @@ pub(crate) fn projected_sanitized<R: Roughness>(
     k: Covariance,
     tau: f64,
 ) -> RoughnessMatrix {
-    let (a11, a12, a22) = roughness.entries_f();
-    let w = |x: F| x.to_f64();
-    let (r11, r12, r22) = projected_wide((w(a11), w(a12), w(a22)), (w(k.s11), w(k.s12), w(k.s22)));
-    // Never below A on the diagonal (exact, by monotonicity): rounding in the excess split
-    // otherwise takes a tiny (e.g. subnormal, accepted with a large `tau`) `a11` to `<= 0`.
-    let b = (
-        F::from_f64(r11).max(a11),
-        F::from_f64(r12),
-        F::from_f64(r22).max(a22),
-    );
+    let base = ProjectedBase::new(roughness);
+    let b = base.entries(k);
     RoughnessMatrix::from_entries(b.0, b.1, b.2, valid_clamp(roughness, b, tau))
 }
 
-/// The entries of `A'` in `f64` (see [`projected`]).
-#[inline]
-fn projected_wide(a: (f64, f64, f64), k: (f64, f64, f64)) -> (f64, f64, f64) {
-    use crate::f64::kernel::Covariance as Wide;
-    let (a11, a12, a22) = a;
-    let k = Wide::new(k.0, k.1, k.2);
-    let ac = Wide::new(a11, a12, a22).clamp_eigenvalues(EIGEN_MAX);
-    let excess = Wide::new(a11 - ac.s11, a12 - ac.s12, a22 - ac.s22);
-    let (c11, c12, c22) = (ac.s11, ac.s12, ac.s22);
-    // P = (A - det(A) I) / det(I - A).
-    let det_ima = ((1.0 - c11) * (1.0 - c22) - c12 * c12).max(f64::MIN_POSITIVE);
-    let p = Wide::new(
-        (c11 * (1.0 - c22) + c12 * c12) / det_ima,
-        c12 / det_ima,
-        (c22 * (1.0 - c11) + c12 * c12) / det_ima,
-    );
-    let det_p = (p.s11 * p.s22 - p.s12 * p.s12).max(0.0);
-    let q = p + k * 2.0;
-    // det(P + 2K) = det P + 2 tr(adj(P) K) + 4 det K, every term >= 0 for P, K PSD: unlike
-    // q11 q22 - q12^2 it does not cancel when a huge, nearly rank-one K meets a tiny P (which
-    // sharpened the minor axis by 60x in f32 for alpha = 1e-8, found by fuzzing).
-    let det_k = (k.s11 * k.s22 - k.s12 * k.s12).max(0.0);
-    let cross = (p.s11 * k.s22 + p.s22 * k.s11 - 2.0 * p.s12 * k.s12).max(0.0);
-    let d = (det_p + 2.0 * cross + 4.0 * det_k).max(det_p);
-    let den = 1.0 + q.s11 + q.s22 + d;
-    // Each part is finite: q's entries are bounded by P (<= 1 / (1 - 0.99)^2 scale) plus the
-    // sanitized kernel (<= ALPHA_MAX^2).
-    (
-        (q.s11 + d) / den + excess.s11,
-        q.s12 / den + excess.s12,
-        (q.s22 + d) / den + excess.s22,
-    )
+/// The lobe's part of [`projected`] (its eigenvalue split `A = A_c + excess`, `P = A_c (I -
+/// A_c)^-1`, `det P`), computed once; [`ProjectedBase::entries`] then adds a kernel. Shared
+/// by the scalar path and `batch::ggx_d_projected`'s lanes (one lobe, a kernel per element).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ProjectedBase {
+    /// `A`'s entries in `F` (the floor of the result's diagonal).
+    a: (F, F, F),
+    /// `P`'s entries in `f64`.
+    p: (f64, f64, f64),
+    /// `det P`, `>= 0`.
+    det_p: f64,
+    /// `A - A_c`.
+    excess: (f64, f64, f64),
+}
+
+impl ProjectedBase {
+    /// The lobe's part, from its entries (in `f64`, see [`projected`]).
+    #[inline]
+    pub(crate) fn new<R: Roughness>(roughness: R) -> Self {
+        use crate::f64::kernel::Covariance as Wide;
+        let (a11, a12, a22) = roughness.entries_f();
+        let (w11, w12, w22) = (a11.to_f64(), a12.to_f64(), a22.to_f64());
+        let ac = Wide::new(w11, w12, w22).clamp_eigenvalues(EIGEN_MAX);
+        let excess = (w11 - ac.s11, w12 - ac.s12, w22 - ac.s22);
+        let (c11, c12, c22) = (ac.s11, ac.s12, ac.s22);
+        // P = (A - det(A) I) / det(I - A).
+        let det_ima = ((1.0 - c11) * (1.0 - c22) - c12 * c12).max(f64::MIN_POSITIVE);
+        let p = (
+            (c11 * (1.0 - c22) + c12 * c12) / det_ima,
+            c12 / det_ima,
+            (c22 * (1.0 - c11) + c12 * c12) / det_ima,
+        );
+        let det_p = (p.0 * p.2 - p.1 * p.1).max(0.0);
+        Self {
+            a: (a11, a12, a22),
+            p,
+            det_p,
+            excess,
+        }
+    }
+
+    /// The entries of `A'` for the sanitised kernel `k`, rounded to `F` once (never below
+    /// `A` on the diagonal). Branch-free (`max` of values only).
+    #[inline(always)]
+    pub(crate) fn entries(&self, k: Covariance) -> (F, F, F) {
+        let w = |x: F| x.to_f64();
+        let (r11, r12, r22) = self.wide((w(k.s11), w(k.s12), w(k.s22)));
+        // Never below A on the diagonal (exact, by monotonicity): rounding in the excess split
+        // otherwise takes a tiny (e.g. subnormal, accepted with a large `tau`) `a11` to `<= 0`.
+        (
+            F::from_f64(r11).max(self.a.0),
+            F::from_f64(r12),
+            F::from_f64(r22).max(self.a.2),
+        )
+    }
+
+    /// The entries of `A'` in `f64` (see [`projected`]).
+    #[inline(always)]
+    fn wide(&self, k: (f64, f64, f64)) -> (f64, f64, f64) {
+        let p = self.p;
+        let det_p = self.det_p;
+        let q = (p.0 + 2.0 * k.0, p.1 + 2.0 * k.1, p.2 + 2.0 * k.2);
+        // det(P + 2K) = det P + 2 tr(adj(P) K) + 4 det K, every term >= 0 for P, K PSD: unlike
+        // q11 q22 - q12^2 it does not cancel when a huge, nearly rank-one K meets a tiny P (which
+        // sharpened the minor axis by 60x in f32 for alpha = 1e-8, found by fuzzing).
+        let det_k = (k.0 * k.2 - k.1 * k.1).max(0.0);
+        let cross = (p.0 * k.2 + p.2 * k.0 - 2.0 * p.1 * k.1).max(0.0);
+        let d = (det_p + 2.0 * cross + 4.0 * det_k).max(det_p);
+        let den = 1.0 + q.0 + q.2 + d;
+        // Each part is finite: q's entries are bounded by P (<= 1 / (1 - 0.99)^2 scale) plus the
+        // sanitized kernel (<= ALPHA_MAX^2).
+        let e = self.excess;
+        (
+            (q.0 + d) / den + e.0,
+            q.1 / den + e.1,
+            (q.2 + d) / den + e.2,
+        )
+    }
 }

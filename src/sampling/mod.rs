@@ -88,7 +88,7 @@ pub trait NdfSampling: Ndf {
         if !m.is_finite() || m.z <= 0.0 {
             return 0.0;
         }
-        self.d(m) * m.z
+        normal_pdf_core(self.d(m), m.z)
     }
 
     /// Samples a visible micronormal `m` with density `D_wo(m)` per steradian from `u` in
@@ -109,8 +109,7 @@ pub trait NdfSampling: Ndf {
         if !positive(wom) {
             return 0.0;
         }
-        // G1 / wo_z with the wo scale cancelling in wo.m / wo_z and in Lambda.
-        let v = wom * self.d(m) / (wo.z * (1.0 + self.lambda(wo)));
+        let v = visible_normal_pdf_core(wom, self.d(m), wo.z, self.lambda(wo));
         if v.is_finite() { v } else { 0.0 }
     }
 
@@ -152,9 +151,31 @@ pub trait NdfSampling: Ndf {
         if !positive(o.dot(m)) {
             return 0.0;
         }
-        let v = self.d(m) / (4.0 * o.z * (1.0 + self.lambda(o)));
+        let v = reflection_pdf_core(self.d(m), o.z, self.lambda(o));
         if v.is_finite() { v } else { 0.0 }
     }
+}
+
+/// The formula of [`NdfSampling::normal_pdf`] once its checks passed: `D(m) m_z`. Shared
+/// with the batch pdfs' lanes.
+#[inline(always)]
+pub(crate) fn normal_pdf_core(d: F, m_z: F) -> F {
+    d * m_z
+}
+
+/// The formula of [`NdfSampling::visible_normal_pdf`] once its checks passed:
+/// `(wo.m) D(m) / (wo_z (1 + Lambda(wo)))` (`G1 / wo_z` with the scale of `wo` cancelling
+/// in `wo.m / wo_z` and in `Lambda`). Shared with the batch pdfs' lanes.
+#[inline(always)]
+pub(crate) fn visible_normal_pdf_core(wom: F, d: F, wo_z: F, lambda: F) -> F {
+    wom * d / (wo_z * (1.0 + lambda))
+}
+
+/// The formula of [`NdfSampling::reflection_pdf_from_normal`] once its checks passed, for
+/// the unit view `o`: `D(m) / (4 o_z (1 + Lambda(o)))`. Shared with the batch pdfs' lanes.
+#[inline(always)]
+pub(crate) fn reflection_pdf_core(d: F, o_z: F, lambda: F) -> F {
+    d / (4.0 * o_z * (1.0 + lambda))
 }
 
 /// Mirror reflection of `wo` about the unit normal `m`: `2 (wo.m) m - wo` (Walter et al. 2007
@@ -270,6 +291,25 @@ pub(crate) fn ggx_cap_point(wi: Vec3, z: F, cos_phi: F, sin_phi: F) -> Vec3 {
     Vec3::new(sin_theta * cos_phi, sin_theta * sin_phi, z) + wi
 }
 
+/// The unit-roughness GGX normal of `D(m) m_z` sampling: `|t|^2 = u1 / (1 - u1)`, i.e.
+/// `n = (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))` (a unit vector), for the clamped
+/// `u1` and the azimuth's `(cos phi, sin phi)`. Shared with the batch sampler's lane.
+#[inline(always)]
+pub(crate) fn ggx_standard_normal(u1: F, cos_phi: F, sin_phi: F) -> Vec3 {
+    let r = m::sqrt(u1);
+    Vec3::new(r * cos_phi, r * sin_phi, m::sqrt(1.0 - u1))
+}
+
+/// The unit-roughness Beckmann normal of `D(m) m_z` sampling, unnormalised: the slope of
+/// squared length `|t|^2 = -ln(1 - u1)` at the azimuth `(cos phi, sin phi)`,
+/// `n = (r cos phi, r sin phi, 1)`, `r = sqrt(-ln_1mu)`, from `ln_1mu = ln(1 - u1)` (`<= 0`).
+/// Shared with the batch sampler's lane.
+#[inline(always)]
+pub(crate) fn beckmann_standard_normal(ln_1mu: F, cos_phi: F, sin_phi: F) -> Vec3 {
+    let r = m::sqrt(-ln_1mu);
+    Vec3::new(r * cos_phi, r * sin_phi, 1.0)
+}
+
 impl<R: Roughness> NdfSampling for Ggx<R> {
     /// GGX `D(m) m_z`: in the unit-roughness space `|t|^2 = u1 / (1 - u1)`, i.e.
     /// `n = (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))`, `phi = 2 pi u2`, then warped
@@ -277,9 +317,8 @@ impl<R: Roughness> NdfSampling for Ggx<R> {
     #[inline]
     fn sample_normal(&self, u: Vec2) -> Vec3 {
         let (u1, u2) = (clamp_unit(u.x), clamp_unit(u.y));
-        let r = m::sqrt(u1);
         let phi = 2.0 * PI * u2;
-        let n = Vec3::new(r * m::cos(phi), r * m::sin(phi), m::sqrt(1.0 - u1));
+        let n = ggx_standard_normal(u1, m::cos(phi), m::sin(phi));
         Warp::new(&self.roughness).unstretch(n)
     }
 
@@ -300,9 +339,8 @@ impl<R: Roughness> NdfSampling for Beckmann<R> {
     #[inline]
     fn sample_normal(&self, u: Vec2) -> Vec3 {
         let (u1, u2) = (clamp_unit(u.x), clamp_unit(u.y));
-        let r = m::sqrt(-m::ln(1.0 - u1));
         let phi = 2.0 * PI * u2;
-        let n = Vec3::new(r * m::cos(phi), r * m::sin(phi), 1.0);
+        let n = beckmann_standard_normal(m::ln(1.0 - u1), m::cos(phi), m::sin(phi));
         Warp::new(&self.roughness).unstretch(n)
     }
 
