@@ -347,6 +347,138 @@ macro_rules! suite {
             }
 
             #[test]
+            fn filtered_tiers_every_path() {
+                // The filtered kernels run two lanes (`lanes.rs`, `Kernel::TIERED`): a cheap
+                // one without the kappa rule's eigenvalue clamp, whose flagged elements are
+                // gathered and run by the full lane, and what that flags by the scalar path;
+                // a block whose cheap lane flags more than half of it sends the next blocks to
+                // the full lane first, and one whose flags survive on more than half of it the
+                // next ones to the scalar path. Blocks of 512 with a chosen share of footprints
+                // beyond kappa / 2 (15 % as the bench's realistic ones, 90 %, none) and of NaN
+                // footprints (flagged by both lanes; 3 %, or every element), in an order that
+                // takes the driver through each state and back, against the scalar route: GGX
+                // bit for bit, Beckmann within the bound of `beckmann_close`.
+                const B: usize = 512;
+                // (share beyond kappa / 2, share NaN) per block.
+                let plan: [(f64, f64); 24] = [
+                    (0.15, 0.03),
+                    (0.15, 0.0),
+                    (0.9, 0.0),
+                    (0.15, 0.03),
+                    (0.0, 0.0),
+                    (0.9, 0.03),
+                    (0.15, 0.0),
+                    (0.15, 0.0),
+                    (0.15, 0.0),
+                    (0.15, 0.0),
+                    (0.15, 0.0),
+                    (0.15, 0.0),
+                    (0.0, 1.0),
+                    (0.15, 0.03),
+                    (0.9, 0.0),
+                    (0.0, 0.0),
+                    (0.15, 0.0),
+                    (0.15, 0.0),
+                    (0.15, 0.0),
+                    (0.15, 0.0),
+                    (0.15, 0.0),
+                    (0.15, 0.0),
+                    (0.15, 0.0),
+                    (0.15, 0.0),
+                ];
+                let n = plan.len() * B;
+                let mut rng = Rng(0x71E5);
+                let mut cols: [Vec<$t>; 7] = Default::default();
+                for &(wide, nan) in &plan {
+                    for _ in 0..B {
+                        let (p, q) = (rng.uniform(), rng.uniform());
+                        // Extent below 1 (no extent clamp); beyond kappa / 2 = 0.09 where
+                        // sigma^2 s^2 = s^2 / 4 > 0.09, i.e. s > 0.6.
+                        let s = if p < wide {
+                            rng.range(0.7, 0.95)
+                        } else {
+                            rng.log_uniform(1e-3, 0.5)
+                        };
+                        let (phi, shear) =
+                            (std::f64::consts::TAU * rng.uniform(), rng.range(0.0, 0.4));
+                        let (u, v) = (
+                            [s * phi.cos(), s * phi.sin()],
+                            [-shear * s * phi.sin(), shear * s * phi.cos()],
+                        );
+                        let u0 = if q < nan { f64::NAN } else { u[0] };
+                        let slope = [rng.normal() * 0.3, rng.normal() * 0.3];
+                        let l = (1.0 + slope[0] * slope[0] + slope[1] * slope[1]).sqrt();
+                        let vals = [-slope[0] / l, -slope[1] / l, 1.0 / l, u0, u[1], v[0], v[1]];
+                        for (c, x) in cols.iter_mut().zip(vals) {
+                            c.push(x as $t);
+                        }
+                    }
+                }
+                let [x, y, z, ux, uy, vx, vy] = &cols;
+                let fps = batch::Footprints {
+                    dh_u_x: ux,
+                    dh_u_y: uy,
+                    dh_v_x: vx,
+                    dh_v_y: vy,
+                };
+                let fp = |i: usize| {
+                    Footprint::from_slope_derivatives(
+                        Vec2::new(ux[i], uy[i]),
+                        Vec2::new(vx[i], vy[i]),
+                    )
+                };
+                let h = |i: usize| Vec3::new(x[i], y[i], z[i]);
+                let mut out = vec![0.0 as $t; n];
+                for (name, rules) in [
+                    ("default", ClampRules::default()),
+                    ("khpl16", ClampRules::KHPL16),
+                ] {
+                    // The input classes are there: per block, the share the kappa rule clamps.
+                    if rules.kappa.is_finite() {
+                        for (k, &(wide, nan)) in plan.iter().enumerate() {
+                            let clamped = (k * B..(k + 1) * B)
+                                .filter(|&i| {
+                                    let c = rules.footprint(fp(i)).covariance(0.5);
+                                    rules.kernel(c) != c.sanitized()
+                                })
+                                .count() as f64;
+                            let want = wide * (1.0 - nan) * B as f64;
+                            assert!(
+                                (clamped - want).abs() <= 0.1 * B as f64 + 1.0,
+                                "block {k}: {clamped}"
+                            );
+                        }
+                    }
+                    for alpha in [0.005 as $t, 0.1, 0.5] {
+                        let aa = AxisAligned::new(alpha, alpha * 1.5).unwrap();
+                        assert_eq!(
+                            batch::ggx_d_filtered(&aa, &rules, 0.5, x, y, z, fps, &mut out),
+                            n
+                        );
+                        same(
+                            &out,
+                            |i| Ggx::new(rules.filter_gaussian(aa, fp(i), 0.5)).d(h(i)),
+                            &format!("tiers ggx {name}"),
+                        );
+                        assert_eq!(
+                            batch::beckmann_d_filtered(&aa, &rules, 0.5, x, y, z, fps, &mut out),
+                            n
+                        );
+                        beckmann_close(
+                            &out,
+                            |i| {
+                                let a = rules.filter_gaussian(aa, fp(i), 0.5);
+                                let zz = z[i] as f64;
+                                let e = a.inv_quadratic(Vec2::new(x[i], y[i])) as f64 / (zz * zz);
+                                (Beckmann::new(a).d(h(i)), e)
+                            },
+                            &format!("tiers beckmann {name}"),
+                        );
+                    }
+                }
+            }
+
+            #[test]
             fn rect_bit_for_bit() {
                 let c = cols(0x2EC7);
                 let mut out = vec![0.0 as $t; N];

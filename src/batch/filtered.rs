@@ -6,7 +6,7 @@ use super::super::kernel::ClampRules;
 use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
-use super::lanes::{Kernel, run};
+use super::lanes::{Kernel, WIDE, run};
 use super::ndf::LaneNdf;
 use super::{F, Footprints, Vec2, Vec3};
 
@@ -86,15 +86,39 @@ struct Filtered<R, C> {
     sigma: F,
 }
 
-impl<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N> Kernel<7, 1> for Filtered<R, C> {
-    const WIDE_ONLY: bool = true;
-
+impl<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N> Filtered<R, C> {
+    /// The lane of [`ClampRules::filter_gaussian_lane`] with or without the eigenvalue clamp
+    /// (`FULL`), then the NDF's lane `D`.
     #[inline(always)]
-    fn lane(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> ([F; 1], bool) {
+    fn lane_with<const FULL: bool>(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> ([F; 1], bool) {
         let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
-        let (a, ok) = self.rules.filter_gaussian_lane(self.r, fp, self.sigma);
+        let (a, ok) = self
+            .rules
+            .filter_gaussian_lane::<R, FULL>(self.r, fp, self.sigma);
         let (v, slow) = (self.ndf)(a).d_lane(Vec3::new(hx, hy, hz));
         ([v], slow | !ok)
+    }
+}
+
+impl<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N> Kernel<7, 1> for Filtered<R, C> {
+    // In `f32` the tiered lanes pay on SSE2 too (measured, `FILTERED_NDF_SIMD=sse2-lanes`
+    // against the scalar loop on the bench's realistic inputs: 1.3 times as fast for Beckmann,
+    // 1.5 for GGX); in `f64` (two lanes) they do not (0.98 and 0.86), so there the baseline
+    // runs the scalar path.
+    const WIDE_ONLY: bool = WIDE;
+    // The first lane leaves the kappa rule's eigenvalue clamp (a square root and four
+    // divisions, which a branch-free lane computes for every element: half of the lane's
+    // time) to the second: on the realistic footprints of `benches/batch.rs` 15 % of the
+    // elements need it (`tests/batch.rs` checks both tiers).
+    const TIERED: bool = true;
+
+    #[inline(always)]
+    fn lane(&self, x: [F; 7]) -> ([F; 1], bool) {
+        self.lane_with::<false>(x)
+    }
+    #[inline(always)]
+    fn lane_full(&self, x: [F; 7]) -> ([F; 1], bool) {
+        self.lane_with::<true>(x)
     }
     // Always inlined: out of line, the footprint travels through memory and is read back
     // with wider loads than it was stored with (a store-forwarding stall, see

@@ -39,6 +39,18 @@ pub(crate) trait Kernel<const I: usize, const O: usize> {
     /// alone (measured: the filtered lanes, with their `f64` matrix and the clamps' both
     /// branches, ran at 0.7 times the scalar loop on SSE2).
     const WIDE_ONLY: bool = false;
+    /// Whether the kernel has a second vector path, [`Kernel::lane_full`], for the elements
+    /// that [`Kernel::lane`] flags: `lane` is then a cheaper lane covering the common case
+    /// only, and the driver gathers the elements it flags into a dense buffer, runs
+    /// `lane_full` over them (vectorised too) and leaves only what `lane_full` flags to
+    /// [`Kernel::scalar`].
+    const TIERED: bool = false;
+    /// The second vector path of a [`Kernel::TIERED`] kernel (same contract as
+    /// [`Kernel::lane`]: where it does not flag, the value the kernel documents).
+    #[inline(always)]
+    fn lane_full(&self, x: [F; I]) -> ([F; O], bool) {
+        self.lane(x)
+    }
 }
 
 /// Runs `k` over the elements of `ins` and writes its outputs to `outs`, for the common prefix
@@ -88,62 +100,55 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Body for Loop<'_, K, I, O>
 
     #[inline(always)]
     fn go_scalar(self) {
-        let Self { k, ins, outs } = self;
+        let Self { k, ins, mut outs } = self;
         let n = outs[0].len();
-        let ins = ins.map(|s| &s[..n]);
-        let mut outs = outs.map(|s| &mut s[..n]);
-        for i in 0..n {
-            for (col, v) in outs.iter_mut().zip(k.scalar(ins.map(|s| s[i]))) {
-                col[i] = v;
-            }
-        }
+        scalar_pass(k, &ins, &mut outs, 0, n, false);
     }
 
-    /// The blocks: the vector pass, then the scalar path for flagged elements. Where the
-    /// vector pass flags more than half of a block (inputs outside a kernel's lane domain, e.g.
+    /// The blocks: the vector pass, then (for a [`Kernel::TIERED`] kernel) the second vector
+    /// pass over the flagged elements gathered densely, then the scalar path for the elements
+    /// still flagged. Where the first lane of a tiered kernel flags more than half of a block,
+    /// the next [`SKIP`] blocks start from [`Kernel::lane_full`]; where what is left to the
+    /// scalar path is more than half of a block (inputs outside a kernel's lane domain, e.g.
     /// box filters wider than the two-node rule), the next [`SKIP`] blocks run the scalar path
-    /// alone, so that such input costs what a scalar loop costs, not both passes.
+    /// alone, so that such input costs what a scalar loop costs, not every pass.
+    ///
+    /// The loops index the columns by plain loops (`get`, `set`), not by `array::map` or
+    /// iterator adapters: those are ordinary functions, which LLVM stopped inlining into this
+    /// large function once it held two lanes, and then nothing vectorised (65 ns per element
+    /// instead of 3).
     #[inline(always)]
     fn go(self) {
-        let Self { k, ins, outs } = self;
+        let Self { k, ins, mut outs } = self;
         let n = outs[0].len();
-        // Every column re-sliced to `n` here, where the loop is: the bounds checks below then
-        // fold away (without it, kernels of many columns did not vectorise).
-        let ins = ins.map(|s| &s[..n]);
-        let mut outs = outs.map(|s| &mut s[..n]);
         let mut b = 0;
-        let mut skip = 0;
+        let mut skip = 0usize;
+        let mut full_only = 0usize;
         while b < n {
             let e = n.min(b + BLOCK);
             if skip > 0 {
                 skip -= 1;
-                for i in b..e {
-                    for (col, v) in outs.iter_mut().zip(k.scalar(ins.map(|s| s[i]))) {
-                        col[i] = v;
-                    }
-                }
+                scalar_pass(k, &ins, &mut outs, b, e, false);
                 b = e;
                 continue;
             }
-            let mut flagged = 0usize;
-            for i in b..e {
-                let (v, slow) = k.lane(ins.map(|s| s[i]));
-                for (col, v) in outs.iter_mut().zip(v) {
-                    col[i] = v;
+            let first = K::TIERED && full_only == 0;
+            full_only = full_only.saturating_sub(1);
+            // A const parameter, not a closure: a closure is a function of its own, which the
+            // dispatcher's target-feature context does not reach.
+            let mut flagged = if first {
+                vector_pass::<K, I, O, false>(k, &ins, &mut outs, b, e)
+            } else {
+                vector_pass::<K, I, O, true>(k, &ins, &mut outs, b, e)
+            };
+            if first && flagged > 0 {
+                if 2 * flagged > e - b {
+                    full_only = SKIP;
                 }
-                if slow {
-                    outs[0][i] = F::NAN;
-                }
-                flagged += usize::from(slow);
+                flagged = dense_pass(k, &ins, &mut outs, b, e);
             }
             if flagged > 0 {
-                for i in b..e {
-                    if outs[0][i].is_nan() {
-                        for (col, v) in outs.iter_mut().zip(k.scalar(ins.map(|s| s[i]))) {
-                            col[i] = v;
-                        }
-                    }
-                }
+                scalar_pass(k, &ins, &mut outs, b, e, true);
             }
             if 2 * flagged > e - b {
                 skip = SKIP;
@@ -151,6 +156,153 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Body for Loop<'_, K, I, O>
             b = e;
         }
     }
+}
+
+/// Element `i` of every column.
+#[inline(always)]
+fn get<const I: usize>(cols: &[&[F]; I], i: usize) -> [F; I] {
+    let mut x = [0.0 as F; I];
+    for c in 0..I {
+        x[c] = cols[c][i];
+    }
+    x
+}
+
+/// Writes element `i` of every column.
+#[inline(always)]
+fn set<const O: usize>(cols: &mut [&mut [F]; O], i: usize, v: [F; O]) {
+    for c in 0..O {
+        cols[c][i] = v[c];
+    }
+}
+
+/// Whether every column holds at least `e` elements (always, for the driver's columns; the
+/// test lets LLVM drop the bounds checks of the loops that follow it).
+#[inline(always)]
+fn long_enough<const I: usize, const O: usize>(
+    ins: &[&[F]; I],
+    outs: &[&mut [F]; O],
+    e: usize,
+) -> bool {
+    let mut ok = true;
+    for c in 0..I {
+        ok &= ins[c].len() >= e;
+    }
+    for c in 0..O {
+        ok &= outs[c].len() >= e;
+    }
+    ok
+}
+
+/// [`Kernel::scalar`] over `b..e` (with `only_flagged`, only where the first output is the
+/// NaN mark of a flagged element).
+#[inline(always)]
+fn scalar_pass<K: Kernel<I, O>, const I: usize, const O: usize>(
+    k: &K,
+    ins: &[&[F]; I],
+    outs: &mut [&mut [F]; O],
+    b: usize,
+    e: usize,
+    only_flagged: bool,
+) {
+    if !long_enough(ins, outs, e) {
+        return;
+    }
+    for i in b..e {
+        if !only_flagged || outs[0][i].is_nan() {
+            set(outs, i, k.scalar(get(ins, i)));
+        }
+    }
+}
+
+/// One vector pass of [`Kernel::lane`] (or with `FULL` [`Kernel::lane_full`]) over the
+/// elements `b..e`: writes the outputs, a NaN in the first output of each flagged element,
+/// and returns how many were flagged.
+#[inline(always)]
+fn vector_pass<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool>(
+    k: &K,
+    ins: &[&[F]; I],
+    outs: &mut [&mut [F]; O],
+    b: usize,
+    e: usize,
+) -> usize {
+    if !long_enough(ins, outs, e) {
+        return 0;
+    }
+    let mut flagged = 0usize;
+    for i in b..e {
+        let x = get(ins, i);
+        let (v, slow) = if FULL { k.lane_full(x) } else { k.lane(x) };
+        set(outs, i, v);
+        if slow {
+            outs[0][i] = F::NAN;
+        }
+        flagged += usize::from(slow);
+    }
+    flagged
+}
+
+/// Elements per gather of [`dense_pass`] (its buffers live on the stack: `(I + O) DENSE`
+/// floats).
+const DENSE: usize = 128;
+
+/// [`Kernel::lane_full`] over the elements of `b..e` that the first pass flagged (a NaN in
+/// the first output), gathered [`DENSE`] at a time into dense columns so that the loop over
+/// them vectorises, the results scattered back. Returns how many `lane_full` flagged in turn
+/// (their first output NaN again, for the scalar path).
+#[inline(always)]
+fn dense_pass<K: Kernel<I, O>, const I: usize, const O: usize>(
+    k: &K,
+    ins: &[&[F]; I],
+    outs: &mut [&mut [F]; O],
+    b: usize,
+    e: usize,
+) -> usize {
+    if !long_enough(ins, outs, e) {
+        return 0;
+    }
+    let mut xs = [[0.0 as F; DENSE]; I];
+    let mut ys = [[0.0 as F; DENSE]; O];
+    let mut at = [0usize; DENSE];
+    let mut still = 0usize;
+    let mut i = b;
+    while i < e {
+        let mut m = 0;
+        // The indices first, branch-free (every index is written at `m`, which advances past
+        // the flagged elements only: a branch on the mark mispredicted about as often as
+        // elements are flagged), then the columns of those.
+        while i < e && m < DENSE {
+            at[m] = i;
+            m += usize::from(outs[0][i].is_nan());
+            i += 1;
+        }
+        for j in 0..m.min(DENSE) {
+            for c in 0..I {
+                xs[c][j] = ins[c][at[j]];
+            }
+        }
+        for j in 0..m.min(DENSE) {
+            let mut x = [0.0 as F; I];
+            for c in 0..I {
+                x[c] = xs[c][j];
+            }
+            let (v, s) = k.lane_full(x);
+            for c in 0..O {
+                ys[c][j] = v[c];
+            }
+            if s {
+                ys[0][j] = F::NAN;
+            }
+        }
+        for j in 0..m.min(DENSE) {
+            let i = at[j];
+            for c in 0..O {
+                outs[c][i] = ys[c][j];
+            }
+            still += usize::from(ys[0][j].is_nan());
+        }
+    }
+    still
 }
 
 /// Blocks run by the scalar path alone after a block whose vector pass flagged more than half

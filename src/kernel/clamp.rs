@@ -266,10 +266,12 @@ impl ClampRules {
     /// [`ClampRules::filter_gaussian`] in `batch`'s lane form (branch-free): `(A', ok)`, `A'`
     /// equal to `filter_gaussian`'s bit for bit where `ok`, i.e. where every rule takes its
     /// fast path or common case (the footprint within `max_extent`; the kernel sane, then within
-    /// `kappa / 2` or clamped by the eigenvalue clamp's common case; the determinant clamp
-    /// inactive). The composition of the same pieces, not a second formula.
+    /// `kappa / 2`, or with `FULL` also clamped by the eigenvalue clamp's common case; the
+    /// determinant clamp inactive). The composition of the same pieces, not a second formula.
+    /// `FULL = false` is the cheap lane (no eigenvalue clamp: a kernel beyond `kappa / 2` is
+    /// flagged), `FULL = true` the one that `batch` runs on what the cheap one flags.
     #[inline(always)]
-    pub(crate) fn filter_gaussian_lane<R: Roughness>(
+    pub(crate) fn filter_gaussian_lane<R: Roughness, const FULL: bool>(
         &self,
         roughness: R,
         fp: Footprint,
@@ -278,7 +280,11 @@ impl ClampRules {
         // `kernel`: the sanitiser's fast path, then the eigenvalue clamp of the kappa rule.
         let k = fp.covariance(sigma);
         let sane = k.is_sane();
-        let (clamped, clamp_ok) = k.clamp_eigenvalues_lane(self.half_kappa());
+        let (clamped, clamp_ok) = if FULL {
+            k.clamp_eigenvalues_lane(self.half_kappa())
+        } else {
+            (k, k.psd_within(self.half_kappa()))
+        };
         let off = self.kappa_off();
         let k = if off { k } else { clamped };
         let kernel_ok = sane & (off | clamp_ok);

@@ -185,16 +185,19 @@ impl Covariance {
     /// `mean + sqrt(d^2 + b^2) <= max` as `d^2 + b^2 <= (max - mean)^2`. The bounds on
     /// `h = max - mean` keep `h^2` finite and normal (a square that underflows beside it is
     /// negligible; fuzzing found `h = 0` against underflowing squares).
+    ///
+    /// Branch-free (`|`, `&` of the comparisons, the same truth value as the short-circuit
+    /// form): `batch`'s first filtered lane is this test without the clamp, and with a branch
+    /// its loop did not vectorise.
     #[inline(always)]
+    #[allow(clippy::manual_range_contains)] // `&` of compares: no branch in the lane.
     pub(crate) fn psd_within(self, max: F) -> bool {
         let (a, b, c) = (self.s11, self.s12, self.s22);
         let tr = a + c;
-        if tr <= max {
-            return true;
-        }
         let (mean, d) = (0.5 * tr, 0.5 * (a - c));
         let h = max - mean;
-        (1.0 / FAST_EIGEN_MAX..=FAST_EIGEN_MAX).contains(&h) && d * d + b * b <= h * h
+        (tr <= max)
+            | ((h >= 1.0 / FAST_EIGEN_MAX) & (h <= FAST_EIGEN_MAX) & (d * d + b * b <= h * h))
     }
 
     /// The general case of [`Covariance::clamp_eigenvalues`] (out of line, with
