@@ -246,6 +246,9 @@ fn vector_pass<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool
 /// floats).
 const DENSE: usize = 128;
 
+/// The multiple of elements [`dense_pass`] runs its lane on (the widest vector, 16 `f32`).
+const PAD: usize = 16;
+
 /// [`Kernel::lane_full`] over the elements of `b..e` that the first pass flagged (a NaN in
 /// the first output), gathered [`DENSE`] at a time into dense columns so that the loop over
 /// them vectorises, the results scattered back. Returns how many `lane_full` flagged in turn
@@ -281,7 +284,16 @@ fn dense_pass<K: Kernel<I, O>, const I: usize, const O: usize>(
                 xs[c][j] = ins[c][at[j]];
             }
         }
-        for j in 0..m.min(DENSE) {
+        // The lane runs over `m` rounded up to a multiple of `PAD` (the padding repeats the
+        // last element, its results unused): the vectorised loop then has no remainder,
+        // which LLVM runs as a scalar loop of the lane (slower than the scalar path).
+        let padded = m.next_multiple_of(PAD).min(DENSE);
+        for j in m..padded {
+            for c in 0..I {
+                xs[c][j] = xs[c][m - 1];
+            }
+        }
+        for j in 0..padded {
             let mut x = [0.0 as F; I];
             for c in 0..I {
                 x[c] = xs[c][j];
