@@ -51,9 +51,11 @@ pub fn ggx_d_filtered<R: Roughness>(
 }
 
 /// The kernel shared by the Gaussian-filtered batch functions: the clamped pipeline
-/// [`ClampRules::filter_gaussian`] evaluated by the NDF `ndf(A')` at `h_i`. The lane takes
-/// the pipeline's fast path ([`ClampRules::filter_gaussian_lane`]) and the NDF's lane `D`;
-/// an element where a rule leaves its fast path is flagged and evaluated by the scalar route.
+/// [`ClampRules::filter_gaussian`] evaluated by the NDF `ndf(A')` at `h_i`. Two lanes (a
+/// [`Kernel::TIERED`] kernel): the first takes the pipeline's fast path without the `kappa`
+/// rule's eigenvalue clamp ([`ClampRules::filter_gaussian_lane`] with `FULL = false`), the
+/// second, over what the first flags, with it; then the NDF's lane `D`. An element where a
+/// rule leaves the second lane's fast path is flagged and evaluated by the scalar route.
 #[inline]
 fn d_filtered<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N>(
     ndf: C,

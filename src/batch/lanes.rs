@@ -36,8 +36,8 @@ pub(crate) trait Kernel<const I: usize, const O: usize> {
     fn scalar(&self, x: [F; I]) -> [F; O];
     /// Whether the lane pays only with 256-bit vectors or wider (AVX2, AVX-512): on the
     /// baseline (SSE2: 4 `f32` and 2 `f64` lanes) the driver then runs [`Kernel::scalar`]
-    /// alone (measured: the filtered lanes, with their `f64` matrix and the clamps' both
-    /// branches, ran at 0.7 times the scalar loop on SSE2).
+    /// alone (measured: the box filter's lanes, with both branches of the clamps, and the
+    /// `f64` filtered tiers, at or below the scalar loop's speed on SSE2).
     const WIDE_ONLY: bool = false;
     /// Whether the kernel has a second vector path, [`Kernel::lane_full`], for the elements
     /// that [`Kernel::lane`] flags: `lane` is then a cheaper lane covering the common case
@@ -178,6 +178,8 @@ fn set<const O: usize>(cols: &mut [&mut [F]; O], i: usize, v: [F; O]) {
 
 /// Whether every column holds at least `e` elements (always, for the driver's columns; the
 /// test lets LLVM drop the bounds checks of the loops that follow it).
+// Index loops on purpose: iterators are functions that LLVM may leave out of line (see `go`).
+#[allow(clippy::needless_range_loop)]
 #[inline(always)]
 fn long_enough<const I: usize, const O: usize>(
     ins: &[&[F]; I],
@@ -253,6 +255,8 @@ const PAD: usize = 16;
 /// the first output), gathered [`DENSE`] at a time into dense columns so that the loop over
 /// them vectorises, the results scattered back. Returns how many `lane_full` flagged in turn
 /// (their first output NaN again, for the scalar path).
+// Index loops on purpose: iterators are functions that LLVM may leave out of line (see `go`).
+#[allow(clippy::needless_range_loop)]
 #[inline(always)]
 fn dense_pass<K: Kernel<I, O>, const I: usize, const O: usize>(
     k: &K,

@@ -27,7 +27,14 @@
 //! helpers, not a copy): the rare inputs whose scalar path branches elsewhere (a rescaled
 //! direction, a grazing `w`, a kernel outside the eigenvalue clamp's common case, an active
 //! determinant clamp, a box-filter axis that needs more than two Gauss-Legendre nodes) are
-//! flagged. The flags cost nothing where nothing is flagged. Transcendental functions in
+//! flagged. The flags cost nothing where nothing is flagged. The filtered functions run two
+//! lanes (*tiers*): a cheap one without the `kappa` rule's eigenvalue clamp (half of the full
+//! lane's time: a square root and four divisions computed for every element by a
+//! branch-free lane), which flags the kernels beyond `kappa / 2` (15 % of the bench's
+//! realistic footprints); the driver gathers those into a dense buffer on the stack and runs
+//! the full lane over them, still vectorised, and only what that flags goes to the scalar
+//! path. Both tiers are the scalar formula where they do not flag, so the tiers change no
+//! result. Transcendental functions in
 //! lanes are polynomials (`exp`: `filter::exp_poly`'s reduction; Beckmann's `Lambda`: the
 //! `erfc` fit shared with the exact Gaussian filter's sampler; `ln`: `log.rs`, on the
 //! reduction of `lanes.rs`' `pow_lane`).
@@ -37,18 +44,20 @@
 //! at run time, through `pulp`'s safe target-feature contexts: the crate stays
 //! `forbid(unsafe_code)`. [`simd_level`] names the instruction set in use. The lanes' results
 //! do not depend on it (no fused multiply-add is formed: Rust does not contract `a * b + c`).
-//! The filtered functions (also [`ggx_d_projected`]), the box filter and the deferred presets vectorise profitably only
-//! with 256-bit vectors or wider (the filters' lanes carry an `f64` matrix and both branches
-//! of the clamps; on SSE2 they measured 0.7 times the scalar loop; the presets' lanes 0.4 to
-//! 1.5 times): on the SSE2 baseline they run the scalar path
-//! (so [`beckmann_d_filtered`] there equals the scalar route bit for bit; with AVX2 or
-//! AVX-512 it is within the bound below).
+//! [`ggx_d_projected`], the box filter, the deferred presets and the `f64` Gaussian-filtered
+//! functions vectorise profitably only with 256-bit vectors or wider (the box filter's and the
+//! projected filter's lanes carry both branches of the clamps; the presets' lanes measured 0.4
+//! to 1.5 times the scalar loop on SSE2; the `f64` Gaussian-filtered tiers 0.98 (Beckmann)
+//! and 0.86 (GGX) times): on the SSE2 baseline they run the scalar path (so `f64`
+//! [`beckmann_d_filtered`] there equals the scalar route bit for bit; with AVX2 or AVX-512 it
+//! is within the bound below). The `f32` Gaussian-filtered tiers pay on SSE2 too (1.3 and 1.5
+//! times the scalar loop) and run there.
 //!
 //! # Agreement with the scalar path
 //!
 //! | function | against the scalar function of the same precision | why | tested in |
 //! |---|---|---|---|
-//! | [`ggx_d`], [`ggx_lambda`], [`ggx_g2`], [`ggx_d_filtered`] (every [`ClampRules`](super::ClampRules)) | bit for bit | the lane is the scalar formula; every branch it skips is flagged | `tests/batch.rs` (random and adversarial input, every rule set, footprints that trigger each clamp) |
+//! | [`ggx_d`], [`ggx_lambda`], [`ggx_g2`], [`ggx_d_filtered`] (every [`ClampRules`](super::ClampRules)) | bit for bit | the lane is the scalar formula; every branch it skips is flagged | `tests/batch.rs` (random and adversarial input, every rule set, footprints that trigger each clamp, both tiers of the filtered lanes) |
 //! | [`deferred_filter`] with `exponent = 1` (every preset but Unreal and Babylon.js) | bit for bit | the lane is the scalar steps with the domain and norm as constants (one loop per pair) and the branches as selects; the eigenvalue norm off its fast path is flagged | `tests/batch.rs` (every preset, every domain and norm, adversarial input) |
 //! | [`deferred_filter`] with another exponent | relative `(2 d + 1) eps` in the perceptual domain (`d + 1` in the others), `d` the power's error in ulps: the lane power's (`f64` arithmetic: half an `f32` ulp plus `1e-13`; in `f64` `1.6e-14 + 3 eps abs(y)`, `y = exponent ln(norm)`) plus libm's `powf` (one ulp) | `norm^exponent` by `lanes.rs`' `pow_lane`; the perceptual domain squares `p` | `tests/batch.rs`, the `pow_lane` unit test |
 //! | [`d_rect`] | bit for bit | the 2 x 2-point tier of the scalar case analysis in lanes, every other case flagged | `tests/batch.rs` |
@@ -142,8 +151,9 @@ pub fn par_chunks(out: &mut [F], chunk: usize, f: impl Fn(usize, &mut [F]) + Syn
 /// `FILTERED_NDF_SIMD=sse2|avx2|avx512`, or `sse2-lanes`: the baseline with every lane, for
 /// tests); without it, the target features the crate was compiled for (`-C target-cpu`). For
 /// reports and benchmarks. A lane computes the same operations at any width; what the level
-/// changes is only whether the filtered functions and the box filter run their lanes (AVX2,
-/// AVX-512) or their scalar path (baseline), see the module docs.
+/// changes is only whether the box filter, the deferred presets and the `f64` filtered
+/// functions run their lanes (AVX2, AVX-512) or their scalar path (baseline), see the module
+/// docs.
 pub fn simd_level() -> &'static str {
     simd::level_name()
 }
