@@ -124,6 +124,11 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Body for Loop<'_, K, I, O>
         let mut b = 0;
         let mut skip = 0usize;
         let mut full_only = 0usize;
+        let mut buf = Dense {
+            xs: [[0.0; DENSE]; I],
+            ys: [[0.0; DENSE]; O],
+            at: [0; DENSE],
+        };
         while b < n {
             let e = n.min(b + BLOCK);
             if skip > 0 {
@@ -145,7 +150,7 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Body for Loop<'_, K, I, O>
                 if 2 * flagged > e - b {
                     full_only = SKIP;
                 }
-                flagged = dense_pass(k, &ins, &mut outs, b, e);
+                flagged = dense_pass(k, &ins, &mut outs, b, e, &mut buf);
             }
             if flagged > 0 {
                 scalar_pass(k, &ins, &mut outs, b, e, true);
@@ -244,6 +249,14 @@ fn vector_pass<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool
     flagged
 }
 
+/// The stack buffers of [`dense_pass`], made once per call of the driver (zeroing them per
+/// block cost a tenth of the dense pass).
+struct Dense<const I: usize, const O: usize> {
+    xs: [[F; DENSE]; I],
+    ys: [[F; DENSE]; O],
+    at: [usize; DENSE],
+}
+
 /// Elements per gather of [`dense_pass`] (its buffers live on the stack: `(I + O) DENSE`
 /// floats).
 const DENSE: usize = 128;
@@ -264,13 +277,12 @@ fn dense_pass<K: Kernel<I, O>, const I: usize, const O: usize>(
     outs: &mut [&mut [F]; O],
     b: usize,
     e: usize,
+    buf: &mut Dense<I, O>,
 ) -> usize {
     if !long_enough(ins, outs, e) {
         return 0;
     }
-    let mut xs = [[0.0 as F; DENSE]; I];
-    let mut ys = [[0.0 as F; DENSE]; O];
-    let mut at = [0usize; DENSE];
+    let Dense { xs, ys, at } = buf;
     let mut still = 0usize;
     let mut i = b;
     while i < e {
