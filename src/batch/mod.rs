@@ -151,9 +151,9 @@ pub fn par_chunks(out: &mut [F], chunk: usize, f: impl Fn(usize, &mut [F]) + Syn
 /// `FILTERED_NDF_SIMD=sse2|avx2|avx512`, or `sse2-lanes`: the baseline with every lane, for
 /// tests); without it, the target features the crate was compiled for (`-C target-cpu`). For
 /// reports and benchmarks. A lane computes the same operations at any width; what the level
-/// changes is only whether the box filter, the deferred presets and the `f64` filtered
-/// functions run their lanes (AVX2, AVX-512) or their scalar path (baseline), see the module
-/// docs.
+/// changes is only whether the box filter, the deferred presets, [`ggx_d_projected`] and the
+/// `f64` Gaussian-filtered functions run their lanes (AVX2, AVX-512) or their scalar path
+/// (baseline), see the module docs.
 pub fn simd_level() -> &'static str {
     simd::level_name()
 }
