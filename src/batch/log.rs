@@ -33,10 +33,7 @@ pub(crate) fn ln_lane(x: F) -> (F, bool) {
     let xf = x.to_f64();
     let (k, ln_m) = ln_parts_f64(xf);
     let v = k * LN2_HI + (k * LN2_LO + ln_m);
-    (
-        F::from_f64(v),
-        (xf >= f64::MIN_POSITIVE) & (xf <= f64::MAX),
-    )
+    (F::from_f64(v), (xf >= f64::MIN_POSITIVE) & (xf <= f64::MAX))
 }
 
 #[cfg(test)]

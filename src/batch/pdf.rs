@@ -141,7 +141,10 @@ impl<N: LaneNdf + NdfSampling> Kernel<3, 1> for NormalPdf<N> {
         let m = Vec3::new(x, y, z);
         let (d, slow) = self.0.d_lane(m);
         let live = finite(m) & (z > 0.0);
-        ([if live { normal_pdf_core(d, z) } else { 0.0 }], live & slow)
+        (
+            [if live { normal_pdf_core(d, z) } else { 0.0 }],
+            live & slow,
+        )
     }
 
     #[inline]

@@ -49,6 +49,6 @@ pub use lean::{LeanMoments, lean};
 pub use method::{
     ExactGaussian, Filterable, Gaussian, Method, Projected, Proxy, Rect, RectFilteredGgx,
 };
-pub(crate) use projected::projected_sanitized;
 pub(crate) use projected::ProjectedBase;
+pub(crate) use projected::projected_sanitized;
 pub use projected::{PROJECTED_EIGEN_MAX, projected, projected_with_det_clamp};
