@@ -3,7 +3,7 @@
 use super::super::filter::rect;
 use super::super::filter::rect::Tier;
 use super::super::ndf::roughness::AxisAligned;
-use super::lanes::{BLOCK, Body};
+use super::lanes::{BLOCK, Body, atan2_upper_lane};
 use super::{F, Vec2, Vec3};
 
 /// The exact box-filtered GGX [`rect::d_rect`] (KHPL16 eq. 16: the mean of the GGX slope
@@ -56,21 +56,28 @@ const PAIRS: [(Tier, Tier); 9] = [
     (Tier::Gl6, Tier::Gl6),
 ];
 
-/// The index in [`PAIRS`] of an element's tiers, `PAIRS.len()` for the others (the closed
-/// form, the `f64` 8- and 10-point rules: the scalar path).
+/// The class of the elements with a long side (a tier `Closed`): the closed-form lane.
+const CLOSED: u8 = PAIRS.len() as u8;
+/// The class of the rest (the `f64` 8- and 10-point rules): the scalar path.
+const REST: u8 = CLOSED + 1;
+
+/// The class of an element's tiers: its index in [`PAIRS`], [`CLOSED`] or [`REST`].
 #[inline(always)]
 fn pair_index((tu, tv): (Tier, Tier)) -> u8 {
     let k = |t: Tier| match t {
         Tier::Gl2 => 0u8,
         Tier::Gl4 => 1,
         Tier::Gl6 => 2,
+        Tier::Closed => 3,
         _ => 9,
     };
     let (a, b) = (k(tu), k(tv));
     if a < 3 && b < 3 {
         3 * a + b
+    } else if a == 3 || b == 3 {
+        CLOSED
     } else {
-        PAIRS.len() as u8
+        REST
     }
 }
 
@@ -119,7 +126,7 @@ impl Body for RectLoop<'_> {
         let mut b = 0;
         while b < n {
             let e = n.min(b + BLOCK);
-            let mut counts = [0usize; PAIRS.len() + 1];
+            let mut counts = [0usize; REST as usize + 1];
             for i in b..e {
                 let (h, s) = at(i);
                 let p = pair_index(rect::RectSetup::new(r, h, s).tiers);
@@ -154,9 +161,30 @@ impl Body for RectLoop<'_> {
                 )*};
             }
             pass!(0 1 2 3 4 5 6 7 8);
-            if counts[PAIRS.len()] > 0 {
+            // The closed form's lane (long sides): its own loop, the angles by the polynomial
+            // `atan2`; elements it does not take (far field, 1D closed form) flagged.
+            if counts[CLOSED as usize] > 0 {
+                let m = gather(&ins, b, e, &pair, CLOSED, &mut idx, &mut cols);
+                for j in 0..m {
+                    let h = Vec3::new(cols[0][j], cols[1][j], cols[2][j]);
+                    let s = Vec2::new(cols[3][j], cols[4][j]);
+                    let (v, sl) = rect::RectSetup::new(r, h, s).closed_lane(atan2_upper_lane);
+                    vals[j] = v;
+                    slow[j] = sl;
+                }
+                for j in 0..m {
+                    let i = b + idx[j] as usize;
+                    out[i] = if slow[j] {
+                        let (h, s) = at(i);
+                        rect::d_rect(r, h, s)
+                    } else {
+                        vals[j]
+                    };
+                }
+            }
+            if counts[REST as usize] > 0 {
                 for i in b..e {
-                    if pair[i - b] as usize == PAIRS.len() {
+                    if pair[i - b] == REST {
                         let (h, s) = at(i);
                         out[i] = rect::d_rect(r, h, s);
                     }
