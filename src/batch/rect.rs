@@ -133,18 +133,16 @@ impl Body for RectLoop<'_> {
                 pair[i - b] = p;
                 counts[p as usize] += 1;
             }
-            // One vector loop per pair, its tiers constants (a macro, not a loop over
-            // `PAIRS`: a loop that is not unrolled would leave them variables, and the case
-            // analysis in the lane would stop the vectoriser).
+            // One vector loop per class: the class's elements gathered, the lane `$lane`
+            // (of a `RectSetup`) over them, then the flagged ones by the scalar path.
             macro_rules! pass {
-                ($($k:literal)*) => {$(
-                    if counts[$k] > 0 {
-                        let (tu, tv) = PAIRS[$k];
-                        let m = gather(&ins, b, e, &pair, $k, &mut idx, &mut cols);
+                ($k:expr, $lane:expr) => {
+                    if counts[$k as usize] > 0 {
+                        let m = gather(&ins, b, e, &pair, $k as u8, &mut idx, &mut cols);
                         for j in 0..m {
                             let h = Vec3::new(cols[0][j], cols[1][j], cols[2][j]);
                             let s = Vec2::new(cols[3][j], cols[4][j]);
-                            let (v, sl) = rect::RectSetup::new(r, h, s).lane(tu, tv);
+                            let (v, sl) = $lane(rect::RectSetup::new(r, h, s));
                             vals[j] = v;
                             slow[j] = sl;
                         }
@@ -158,30 +156,20 @@ impl Body for RectLoop<'_> {
                             };
                         }
                     }
+                };
+            }
+            // The Gauss-Legendre pairs, each with its tiers as constants (a macro, not a loop
+            // over `PAIRS`: a loop that is not unrolled would leave them variables, and the
+            // case analysis in the lane would stop the vectoriser).
+            macro_rules! pairs {
+                ($($k:literal)*) => {$(
+                    pass!($k, |st: rect::RectSetup| st.lane(PAIRS[$k].0, PAIRS[$k].1));
                 )*};
             }
-            pass!(0 1 2 3 4 5 6 7 8);
-            // The closed form's lane (long sides): its own loop, the angles by the polynomial
-            // `atan2`; elements it does not take (far field, 1D closed form) flagged.
-            if counts[CLOSED as usize] > 0 {
-                let m = gather(&ins, b, e, &pair, CLOSED, &mut idx, &mut cols);
-                for j in 0..m {
-                    let h = Vec3::new(cols[0][j], cols[1][j], cols[2][j]);
-                    let s = Vec2::new(cols[3][j], cols[4][j]);
-                    let (v, sl) = rect::RectSetup::new(r, h, s).closed_lane(atan2_upper_lane);
-                    vals[j] = v;
-                    slow[j] = sl;
-                }
-                for j in 0..m {
-                    let i = b + idx[j] as usize;
-                    out[i] = if slow[j] {
-                        let (h, s) = at(i);
-                        rect::d_rect(r, h, s)
-                    } else {
-                        vals[j]
-                    };
-                }
-            }
+            pairs!(0 1 2 3 4 5 6 7 8);
+            // The closed form's lane (a long side): the four-edge form with the polynomial
+            // `atan2`; the elements it does not take (far field, 1D closed form) flagged.
+            pass!(CLOSED, |st: rect::RectSetup| st.closed_lane(atan2_upper_lane));
             if counts[REST as usize] > 0 {
                 for i in b..e {
                     if pair[i - b] == REST {
