@@ -117,7 +117,10 @@ mod gauss;
 mod lambda;
 mod printed;
 mod sample;
-pub(crate) use gauss::{GL2_X, GL4_W, GL4_X, GL6_W, GL6_X, Tier, WIDE, gl_of, rule, tier};
+pub(crate) use gauss::{
+    CLOSED_INDEX, GL2_X, GL4_W, GL4_X, GL6_W, GL6_X, Tier, WIDE, gl_of, rule, tier,
+};
+use gauss::{tier_index, tier_of_index};
 pub use lambda::lambda_rect;
 pub use printed::d_rect_printed;
 pub use sample::{
@@ -304,12 +307,19 @@ fn tensor(t: Tier, t2: Tier, uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
 /// the rectangle along each axis (`0` inside).
 #[inline(always)]
 fn tiers(uc: f64, vc: f64, hu: f64, hv: f64) -> (Tier, Tier, f64, f64) {
+    let (iu, iv, du, dv) = tier_indices(uc, vc, hu, hv);
+    (tier_of_index(iu), tier_of_index(iv), du, dv)
+}
+
+/// [`tiers`] as [`tier_index`]es (branch-free).
+#[inline(always)]
+fn tier_indices(uc: f64, vc: f64, hu: f64, hv: f64) -> (u8, u8, f64, f64) {
     let du = (uc.abs() - hu).max(0.0);
     let dv = (vc.abs() - hv).max(0.0);
     let lu2 = 1.0 + uc * uc + dv * dv;
     let lv2 = 1.0 + vc * vc + du * du;
     let (hu2, hv2) = (hu * hu, hv * hv);
-    (tier(hu2, lu2), tier(hv2, lv2), du, dv)
+    (tier_index(hu2, lu2), tier_index(hv2, lv2), du, dv)
 }
 
 /// The 2 x 2-point tensor Gauss-Legendre rule (both axes in tier `Gl2`, the most common case
@@ -557,6 +567,8 @@ pub(crate) struct RectSetup {
     k: f64,
     /// The tiers of the two axes.
     pub(crate) tiers: (Tier, Tier),
+    /// The same as [`tier_index`]es (for `batch`'s branch-free classification).
+    pub(crate) tier_indices: (u8, u8),
     /// The distances of the centre from the rectangle along each axis ([`tiers`]).
     d: (f64, f64),
 }
@@ -574,7 +586,7 @@ impl RectSetup {
         let (uc, vc, hu, hv, k) = unit_coords(r, center, half_extent);
         let nan = uc.is_nan() | vc.is_nan();
         let (uc, vc) = (uc.clamp(-BIG, BIG), vc.clamp(-BIG, BIG));
-        let (tu, tv, du, dv) = tiers(uc, vc, hu, hv);
+        let (iu, iv, du, dv) = tier_indices(uc, vc, hu, hv);
         Self {
             live,
             special: special | nan,
@@ -584,7 +596,8 @@ impl RectSetup {
             hu,
             hv,
             k,
-            tiers: (tu, tv),
+            tiers: (tier_of_index(iu), tier_of_index(iv)),
+            tier_indices: (iu, iv),
             d: (du, dv),
         }
     }
