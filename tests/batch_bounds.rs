@@ -179,6 +179,7 @@ macro_rules! suite {
                     [0.0, -0.0, -0.3, 1e-30, 1e30, f64::NAN, f64::INFINITY, -1e-3, 5.0];
                 let mut rng = Rng(0x2EC7_B0D5);
                 let (mut differ, mut long, mut worst) = (0usize, 0usize, 0.0f64);
+                let (mut gain, mut worst_rel) = (0.0f64, 0.0f64);
                 for (ax, ay) in [(1e-4, 3e-4), (0.01, 0.01), (0.2, 0.05), (0.7, 1.0)] {
                     let (ax, ay) = (ax as $t as f64, ay as $t as f64);
                     let aa = AxisAligned::new(ax as $t, ay as $t).unwrap();
@@ -229,10 +230,16 @@ macro_rules! suite {
                         if g.to_bits() != w.to_bits() {
                             differ += 1;
                             worst = worst.max(err / bound);
+                            worst_rel = worst_rel.max(err / w64.abs());
+                            gain = gain.max(m / w64.abs());
                         }
                     }
                 }
-                println!("d_rect: {long} elements with a long side, {differ} differ from the scalar path, worst {worst:.3} of the bound");
+                println!(
+                    "d_rect: {long} elements with a long side, {differ} differ from the \
+                     scalar path (largest M / D {gain:.3e}), worst {worst:.3} of the bound, \
+                     {worst_rel:.3e} relative"
+                );
                 assert!(long > N, "{long} long");
             }
 

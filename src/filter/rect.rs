@@ -620,8 +620,8 @@ impl RectSetup {
         (if self.live { v } else { 0.0 }, self.live & !fast)
     }
 
-    /// [`d_rect`] in lane form for an element whose tiers are `(tu, tv)`, both among `Gl2`,
-    /// `Gl4`, `Gl6` (constants at the call site: one vector loop per pair): `(value, slow)`,
+    /// [`d_rect`] in lane form for an element whose tiers are `(tu, tv)`, both Gauss-Legendre
+    /// tiers (constants at the call site: one vector loop per pair): `(value, slow)`,
     /// the value `d_rect`'s bit for bit unless `slow`. `slow` flags every element that
     /// `d_rect` does not take through that pair's Gauss-Legendre rule (other tiers, the
     /// special cases, the 2 x 2 rule's overflow branch) or its early zero. The same pieces
