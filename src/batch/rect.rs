@@ -196,9 +196,10 @@ impl Body for RectLoop<'_> {
                     let (lo, hi) = (start[$k as usize] as usize, start[$k as usize + 1] as usize);
                     for idx in perm[lo..hi].chunks(CHUNK) {
                         let m = idx.len();
-                        for (c, s) in cols.iter_mut().zip(&blk) {
-                            for (d, &i) in c[..m].iter_mut().zip(idx) {
-                                *d = s[i as usize];
+                        for (j, &i) in idx.iter().enumerate() {
+                            let i = i as usize;
+                            for (c, s) in cols.iter_mut().zip(&blk) {
+                                c[j] = s[i];
                             }
                         }
                         for j in 0..m {
