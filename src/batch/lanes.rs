@@ -102,8 +102,9 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Body for Loop<'_, K, I, O>
 
     /// The blocks: the vector pass, then the scalar path for flagged elements. Where the
     /// vector pass flags more than half of a block (inputs outside a kernel's lane domain, e.g.
-    /// box filters wider than the two-node rule), the next [`SKIP`] blocks run the scalar path
-    /// alone, so that such input costs what a scalar loop costs, not both passes.
+    /// filter kernels outside the eigenvalue clamp's common case), the next [`SKIP`] blocks run
+    /// the scalar path alone, so that such input costs what a scalar loop costs, not both
+    /// passes.
     #[inline(always)]
     fn go(self) {
         let Self { k, ins, outs } = self;

@@ -39,10 +39,10 @@
 //! at run time, through `pulp`'s safe target-feature contexts: the crate stays
 //! `forbid(unsafe_code)`. [`simd_level`] names the instruction set in use. The lanes' results
 //! do not depend on it (no fused multiply-add is formed: Rust does not contract `a * b + c`).
-//! The filtered functions, the box filter and the deferred presets vectorise profitably only
-//! with 256-bit vectors or wider (the filters' lanes carry an `f64` matrix and both branches
-//! of the clamps; on SSE2 they measured 0.7 times the scalar loop; the presets' lanes 0.4 to
-//! 1.5 times): on the SSE2 baseline they run the scalar path
+//! The filtered functions and the deferred presets vectorise profitably only with 256-bit
+//! vectors or wider (the filters' lanes carry an `f64` matrix and both branches of the
+//! clamps; on SSE2 they measured 0.7 times the scalar loop; the presets' lanes 0.4 to 1.5
+//! times): on the SSE2 baseline they run the scalar path
 //! (so [`beckmann_d_filtered`] there equals the scalar route bit for bit; with AVX2 or
 //! AVX-512 it is within the bound below).
 //!
@@ -129,8 +129,8 @@ pub fn par_chunks(out: &mut [F], chunk: usize, f: impl Fn(usize, &mut [F]) + Syn
 /// `FILTERED_NDF_SIMD=sse2|avx2|avx512`, or `sse2-lanes`: the baseline with every lane, for
 /// tests); without it, the target features the crate was compiled for (`-C target-cpu`). For
 /// reports and benchmarks. A lane computes the same operations at any width; what the level
-/// changes is only whether the filtered functions and the box filter run their lanes (AVX2,
-/// AVX-512) or their scalar path (baseline), see the module docs.
+/// changes is only whether the filtered functions and the deferred presets run their lanes
+/// (AVX2, AVX-512) or their scalar path (baseline), see the module docs.
 pub fn simd_level() -> &'static str {
     simd::level_name()
 }
