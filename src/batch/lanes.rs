@@ -400,10 +400,11 @@ pub(crate) fn atan2_upper_lane(y: f64, x: f64) -> f64 {
         1.945_506_571_482_614e2,
     ];
     // (hi, lo) of pi/4, pi/2, 3 pi/4, pi: hi the rounded value, lo the rest.
-    const PI_4: (f64, f64) = (0.785_398_163_397_448_3, 3.061_616_997_868_383e-17);
-    const PI_2: (f64, f64) = (1.570_796_326_794_896_6, 6.123_233_995_736_766e-17);
+    use core::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI as PI_HI};
+    const PI_4: (f64, f64) = (FRAC_PI_4, 3.061_616_997_868_383e-17);
+    const PI_2: (f64, f64) = (FRAC_PI_2, 6.123_233_995_736_766e-17);
     const PI3_4: (f64, f64) = (2.356_194_490_192_345, 9.184_850_993_605_148e-17);
-    const PI: (f64, f64) = (3.141_592_653_589_793, 1.224_646_799_147_353_2e-16);
+    const PI: (f64, f64) = (PI_HI, 1.224_646_799_147_353_2e-16);
     let ax = x.abs();
     let big = y > T3P8 * ax;
     let mid = !big & (y > 0.66 * ax);

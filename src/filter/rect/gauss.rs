@@ -125,7 +125,10 @@ pub(crate) fn tier_index(h2: f64, l2: f64) -> u8 {
     let n = if WIDE { 5 } else { 3 };
     let mut k = 0u8;
     for t in &TAU[..n] {
-        k += u8::from(!(h2 < t * t * l2));
+        // Negated: a NaN `h2` counts (the closed form, as the `if` chain had it).
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
+        let beyond = !(h2 < t * t * l2);
+        k += u8::from(beyond);
     }
     k
 }
