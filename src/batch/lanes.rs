@@ -542,7 +542,10 @@ mod tests {
         assert_eq!(atan2_upper_lane(1.0, -0.0), core::f64::consts::FRAC_PI_2);
         assert!(atan2_upper_lane(f64::NAN, 1.0).is_nan());
         assert!(atan2_upper_lane(1.0, f64::NAN).is_nan());
-        println!("atan2_upper_lane worst relative error {:.3} eps", worst / f64::EPSILON);
+        println!(
+            "atan2_upper_lane worst relative error {:.3} eps",
+            worst / f64::EPSILON
+        );
     }
 
     #[test]

@@ -237,7 +237,8 @@ impl Body for RectLoop<'_> {
             pairs!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24);
             // The closed form's lane (a long side): the four-edge form with the polynomial
             // `atan2`; the elements it does not take (far field, 1D closed form) flagged.
-            pass!(CLOSED, |st: rect::RectSetup| st.closed_lane(atan2_upper_lane));
+            pass!(CLOSED, |st: rect::RectSetup| st
+                .closed_lane(atan2_upper_lane));
             b = e;
         }
     }
