@@ -4,9 +4,11 @@
 //! several rule sets with footprints that trigger each clamp, the common-prefix rule for
 //! mismatched lengths, and NaN-free output.
 //!
-//! - GGX (`D`, `Lambda`, `G2`, TK19 filtered `D`) and the box filter: **bit for bit**
-//!   (`to_bits`). Their lanes evaluate the scalar path's own formula with its checks as
-//!   selects; a difference (e.g. a reassociation) is a bug.
+//! - GGX (`D`, `Lambda`, `G2`, TK19 filtered `D`) and the box filter's Gauss-Legendre
+//!   elements: **bit for bit** (`to_bits`). Their lanes evaluate the scalar path's own formula
+//!   with its checks as selects; a difference (e.g. a reassociation) is a bug. The box
+//!   filter's closed-form elements (a long side) differ by the polynomial `atan2`:
+//!   `tests/batch_bounds.rs`.
 //! - Beckmann `D` (unfiltered and filtered): the lane evaluates the scalar path's exponent
 //!   `x` and factor `k = n / pi` bit for bit and replaces libm's `exp(-x) k` by the polynomial
 //!   exponential `exp_neg_times` (relative `E = 2.5e-7` in `f32`, `1.5e-14` in `f64`, plus one
@@ -27,6 +29,9 @@
 //!   `2 L + 3 eps` relative plus the same amplified terms over `1 + Lambda_i + Lambda_o`.
 
 use filtered_ndf::testing::rng::SplitMix64 as Rng;
+
+#[path = "common/rect_edges.rs"]
+mod rect_edges;
 
 /// Adversarial scalars mixed into every input column.
 const SPECIAL: [f64; 12] = [
@@ -346,6 +351,12 @@ macro_rules! suite {
                 }
             }
 
+            /// Bit for bit wherever the scalar case analysis integrates both axes by
+            /// Gauss-Legendre rules (both ratios `H / L` below `0.25`, told from the module
+            /// docs' definition in `f64`: `common/rect_edges.rs`) and wherever `d_rect`
+            /// answers before the integral; the elements with a long side (closed forms:
+            /// the lane's polynomial `atan2`) are checked against their bound in
+            /// `tests/batch_bounds.rs`. Counts that both kinds occur.
             #[test]
             fn filtered_tiers_every_path() {
                 // The filtered kernels run two lanes (`lanes.rs`, `Kernel::TIERED`): a cheap
@@ -482,16 +493,34 @@ macro_rules! suite {
             fn rect_bit_for_bit() {
                 let c = cols(0x2EC7);
                 let mut out = vec![0.0 as $t; N];
+                let (mut short, mut long) = (0, 0);
                 for alpha in [1e-3 as $t, 0.1, 0.8] {
                     let aa = AxisAligned::new(alpha, alpha * 2.0).unwrap();
                     let n = batch::d_rect(&aa, &c.x, &c.y, &c.z, &c.hx, &c.hy, &mut out);
                     assert_eq!(n, N);
-                    same(
-                        &out,
-                        |i| rect::d_rect(aa, h(&c, i), Vec2::new(c.hx[i], c.hy[i])),
-                        "d_rect",
-                    );
+                    let a = (alpha as f64, (alpha * 2.0) as f64);
+                    for (i, &g) in out.iter().enumerate() {
+                        let u = rect_edges::unit_rect(
+                            a,
+                            [c.x[i] as f64, c.y[i] as f64, c.z[i] as f64],
+                            (c.hx[i] as f64, c.hy[i] as f64),
+                        );
+                        assert!(!g.is_nan(), "d_rect [{i}] is NaN");
+                        if u.as_ref().is_some_and(|u| !u.short()) {
+                            long += usize::from(u.is_some_and(|u| u.long()));
+                            continue;
+                        }
+                        short += 1;
+                        let w = rect::d_rect(aa, h(&c, i), Vec2::new(c.hx[i], c.hy[i]));
+                        assert_eq!(
+                            g.to_bits(),
+                            w.to_bits(),
+                            "d_rect [{i}]: batch {g} vs scalar {w}"
+                        );
+                    }
                 }
+                println!("d_rect: {short} elements bit for bit, {long} with a long side");
+                assert!(short > N && long > N / 10, "{short} short, {long} long");
             }
 
             #[test]

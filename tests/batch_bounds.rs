@@ -15,6 +15,13 @@
 //!   `Lambda ~ exp(-a^2) / a^3` amplifies by `2 a^2 + 3`.
 //! - Beckmann `G2 = 1 / (1 + Lambda_i + Lambda_o)`: relative `2 L + 3 eps` plus the amplified
 //!   terms of each `Lambda` over `1 + Lambda_i + Lambda_o`.
+//! - The box filter `d_rect`: against the scalar path of the batch precision (whose integral
+//!   is computed in `f64` in both builds: the `f64` scalar path of the same case analysis),
+//!   `|batch - scalar| <= (A + 2 + 3) eps_64 M + 4 eps_64 |D|` plus, in `f32`, one `f32` ulp
+//!   (the two `f64` values round apart at most once), `A = 3` the polynomial `atan2`'s bound
+//!   (`lanes.rs`), `2` libm's `atan` with its division and sum, `M` the four-edge terms'
+//!   magnitude scaled as their sum (`common/rect_edges.rs`; `filter::rect::edges_by`'s docs
+//!   derive the other roundings); so bit for bit off the closed form.
 //! - The deferred presets (`deferred_filter`): bit for bit with the scalar path of the batch
 //!   precision for `exponent = 1` (`tests/batch.rs`), so against `f64` the scalar `f32`
 //!   path's error, derived step by step (in `eps` of the batch precision, relative): the
@@ -32,6 +39,9 @@
 
 use filtered_ndf::f64 as d;
 use filtered_ndf::testing::rng::SplitMix64 as Rng;
+
+#[path = "common/rect_edges.rs"]
+mod rect_edges;
 
 /// Unit directions over the hemisphere and a little below, a share near grazing.
 fn directions(n: usize, seed: u64) -> Vec<[f64; 3]> {
@@ -408,6 +418,92 @@ macro_rules! suite {
                     "pdfs, worst of the relative bound (unflushed): GGX visible {:.3}, Beckmann visible {:.3}, GGX reflection {:.3}, Beckmann reflection {:.3}",
                     worst[0], worst[1], worst[2], worst[3]
                 );
+            }
+
+            /// `batch::d_rect` against `filter::rect::d_rect` of the same precision (the
+            /// integral in `f64` in both builds) within the bound of the file docs, derived:
+            /// the closed-form lane and the scalar path share every operation but the four
+            /// angles (`edges_by`); an angle with relative error `d` moves its edge term `e` by
+            /// `d |e|`, so the two angles' errors (`3` and `2 eps_64`) give
+            /// `5 eps_64 sum |e|`; the products by the angles and the three sums of each path
+            /// `1.5 eps_64 sum |e|` each (`3` in all); the area, the division, `k` and
+            /// `1 / h_z^4` round each path's result four times (`2 eps_64 |D|` each); `M` is
+            /// `sum |e|` scaled as `D` (`common/rect_edges.rs`, by libm: its own rounding is a
+            /// few `eps_64` of `M`, covered by the factor `1 + 1e-12`). In `f32` the two `f64`
+            /// values then round to `f32` at most one ulp apart. Inputs: realistic (half
+            /// vectors near the lobe, footprints from `1e-3` to `1e3` lobe widths, so a good
+            /// share with long sides: the four-edge form, the 1D closed form and the far field)
+            /// and adversarial (grazing and back-facing `h`, lobes to `1e-4`, half extents
+            /// `0`, negative, `1e-30`, `1e30`, NaN, infinite). Never NaN.
+            #[test]
+            fn d_rect_against_scalar_f64() {
+                use filtered_ndf::$prec::{Vec2, Vec3, filter::rect};
+                const SPECIAL: [f64; 9] =
+                    [0.0, -0.0, -0.3, 1e-30, 1e30, f64::NAN, f64::INFINITY, -1e-3, 5.0];
+                let mut rng = Rng(0x2EC7_B0D5);
+                let (mut differ, mut long, mut worst) = (0usize, 0usize, 0.0f64);
+                let (mut gain, mut worst_rel) = (0.0f64, 0.0f64);
+                for (ax, ay) in [(1e-4, 3e-4), (0.01, 0.01), (0.2, 0.05), (0.7, 1.0)] {
+                    let (ax, ay) = (ax as $t as f64, ay as $t as f64);
+                    let aa = AxisAligned::new(ax as $t, ay as $t).unwrap();
+                    let mut dirs = micronormals(N, rng.next_u64(), ax.max(ay));
+                    dirs.extend(directions(N / 2, rng.next_u64()));
+                    let n = dirs.len();
+                    let c = Cols::new(&dirs);
+                    let mut half = |a: f64| -> Vec<$t> {
+                        (0..n)
+                            .map(|_| {
+                                if rng.uniform() < 0.1 {
+                                    SPECIAL[(rng.uniform() * SPECIAL.len() as f64) as usize] as $t
+                                } else {
+                                    (a * rng.log_uniform(1e-3, 1e3)) as $t
+                                }
+                            })
+                            .collect()
+                    };
+                    let (hx, hy) = (half(ax), half(ay));
+                    let mut out = vec![0.0 as $t; n];
+                    assert_eq!(batch::d_rect(&aa, &c.x, &c.y, &c.z, &hx, &hy, &mut out), n);
+                    for i in 0..n {
+                        let (g, hv) = (out[i], Vec3::new(c.x[i], c.y[i], c.z[i]));
+                        let w = rect::d_rect(aa, hv, Vec2::new(hx[i], hy[i]));
+                        assert!(!g.is_nan(), "[{i}] NaN");
+                        let u = rect_edges::unit_rect(
+                            (ax, ay),
+                            c.at(i).to_array(),
+                            (hx[i] as f64, hy[i] as f64),
+                        );
+                        let m = u.as_ref().map_or(0.0, |u| u.edge_magnitude());
+                        long += usize::from(u.is_some_and(|u| u.long()));
+                        let (g64, w64) = (g as f64, w as f64);
+                        let e64 = f64::EPSILON;
+                        let mut bound = ((3.0 + 2.0 + 3.0) * e64 * m + 4.0 * e64 * w64.abs())
+                            * (1.0 + 1e-12);
+                        if !WIDE {
+                            bound += EPS * g64.abs().max(w64.abs());
+                        }
+                        let err = (g64 - w64).abs();
+                        // A non-finite magnitude (a rectangle beyond the range of f64 terms)
+                        // bounds nothing: those elements must agree bit for bit.
+                        if m.is_finite() {
+                            assert!(err <= bound, "[{i}] h {hv:?} half ({}, {}): batch {g:e} vs scalar {w:e}, bound {bound:e}", hx[i], hy[i]);
+                        } else {
+                            assert_eq!(g.to_bits(), w.to_bits(), "[{i}]");
+                        }
+                        if g.to_bits() != w.to_bits() {
+                            differ += 1;
+                            worst = worst.max(err / bound);
+                            worst_rel = worst_rel.max(err / w64.abs());
+                            gain = gain.max(m / w64.abs());
+                        }
+                    }
+                }
+                println!(
+                    "d_rect: {long} elements with a long side, {differ} differ from the \
+                     scalar path (largest M / D {gain:.3e}), worst {worst:.3} of the bound, \
+                     {worst_rel:.3e} relative"
+                );
+                assert!(long > N, "{long} long");
             }
 
             /// GGX visible-normal sampling against the `f64` scalar sampler, on the same rounded

@@ -26,32 +26,33 @@
 //! is the scalar function's own formula core with its checks turned into selects (the same
 //! helpers, not a copy): the rare inputs whose scalar path branches elsewhere (a rescaled
 //! direction, a grazing `w`, a kernel outside the eigenvalue clamp's common case, an active
-//! determinant clamp, a box-filter axis that needs more than two Gauss-Legendre nodes) are
-//! flagged. The flags cost nothing where nothing is flagged. The filtered functions run two
-//! lanes (*tiers*): a cheap one without the `kappa` rule's eigenvalue clamp (half of the full
-//! lane's time: a square root and four divisions computed for every element by a
-//! branch-free lane), which flags the kernels beyond `kappa / 2` (15 % of the bench's
-//! realistic footprints); the driver gathers those into a dense buffer on the stack and runs
-//! the full lane over them, still vectorised, and only what that flags goes to the scalar
-//! path. Both tiers are the scalar formula where they do not flag, so the tiers change no
-//! result. Transcendental functions in
-//! lanes are polynomials (`exp`: `filter::exp_poly`'s reduction; Beckmann's `Lambda`: the
-//! `erfc` fit shared with the exact Gaussian filter's sampler; `ln`: `log.rs`, on the
-//! reduction of `lanes.rs`' `pow_lane`).
+//! determinant clamp, the box filter's far field) are flagged. The flags cost nothing where
+//! nothing is flagged. The filtered functions run two lanes (*tiers*): a cheap one without
+//! the `kappa` rule's eigenvalue clamp (half of the full lane's time: a square root and four
+//! divisions computed for every element by a branch-free lane), which flags the kernels
+//! beyond `kappa / 2` (15 % of the bench's realistic footprints); the driver gathers those
+//! into a dense buffer on the stack and runs the full lane over them, still vectorised, and
+//! only what that flags goes to the scalar path. Both tiers are the scalar formula where they
+//! do not flag, so the tiers change no result. Transcendental functions in lanes are
+//! polynomials (`exp`: `filter::exp_poly`'s reduction; Beckmann's `Lambda`: the `erfc` fit
+//! shared with the exact Gaussian filter's sampler; `ln`: `log.rs`, on the reduction of
+//! `lanes.rs`' `pow_lane`; the box filter's `atan2`: Cephes' reduction and rational). Where
+//! one kernel has several lane forms (the box filter's pairs of Gauss-Legendre rules and its
+//! closed form), the elements are sorted by form first and each form runs its own loop.
 //!
 //! With the optional `dispatch` feature (std, x86-64) the same loop is also compiled for
 //! x86-64-v3 (AVX2, FMA) and x86-64-v4 (AVX-512) and the widest the CPU supports is chosen
 //! at run time, through `pulp`'s safe target-feature contexts: the crate stays
 //! `forbid(unsafe_code)`. [`simd_level`] names the instruction set in use. The lanes' results
 //! do not depend on it (no fused multiply-add is formed: Rust does not contract `a * b + c`).
-//! [`ggx_d_projected`], the box filter, the deferred presets and the `f64` Gaussian-filtered
-//! functions vectorise profitably only with 256-bit vectors or wider (the box filter's and the
-//! projected filter's lanes carry both branches of the clamps; the presets' lanes measured 0.4
-//! to 1.5 times the scalar loop on SSE2; the `f64` Gaussian-filtered tiers 0.98 (Beckmann)
-//! and 0.86 (GGX) times): on the SSE2 baseline they run the scalar path (so `f64`
-//! [`beckmann_d_filtered`] there equals the scalar route bit for bit; with AVX2 or AVX-512 it
-//! is within the bound below). The `f32` Gaussian-filtered tiers pay on SSE2 too (1.3 and 1.5
-//! times the scalar loop) and run there.
+//! [`ggx_d_projected`], the deferred presets and the `f64` Gaussian-filtered functions
+//! vectorise profitably only with 256-bit vectors or wider (the projected filter's lanes
+//! carry both branches of the clamps; the presets' lanes measured 0.4 to 1.5 times the scalar
+//! loop on SSE2; the `f64` Gaussian-filtered tiers 0.98 (Beckmann) and 0.86 (GGX) times): on
+//! the SSE2 baseline they run the scalar path (so `f64` [`beckmann_d_filtered`] there equals
+//! the scalar route bit for bit; with AVX2 or AVX-512 it is within the bound below). The
+//! `f32` Gaussian-filtered tiers pay on SSE2 too (1.3 and 1.5 times the scalar loop) and run
+//! there, as does the box filter (1.1 to 1.8 times).
 //!
 //! # Agreement with the scalar path
 //!
@@ -60,7 +61,8 @@
 //! | [`ggx_d`], [`ggx_lambda`], [`ggx_g2`], [`ggx_d_filtered`] (every [`ClampRules`](super::ClampRules)) | bit for bit | the lane is the scalar formula; every branch it skips is flagged | `tests/batch.rs` (random and adversarial input, every rule set, footprints that trigger each clamp, both tiers of the filtered lanes) |
 //! | [`deferred_filter`] with `exponent = 1` (every preset but Unreal and Babylon.js) | bit for bit | the lane is the scalar steps with the domain and norm as constants (one loop per pair) and the branches as selects; the eigenvalue norm off its fast path is flagged | `tests/batch.rs` (every preset, every domain and norm, adversarial input) |
 //! | [`deferred_filter`] with another exponent | relative `(2 d + 1) eps` in the perceptual domain (`d + 1` in the others), `d` the power's error in ulps: the lane power's (`f64` arithmetic: half an `f32` ulp plus `1e-13`; in `f64` `1.6e-14 + 3 eps abs(y)`, `y = exponent ln(norm)`) plus libm's `powf` (one ulp) | `norm^exponent` by `lanes.rs`' `pow_lane`; the perceptual domain squares `p` | `tests/batch.rs`, the `pow_lane` unit test |
-//! | [`d_rect`] | bit for bit | the 2 x 2-point tier of the scalar case analysis in lanes, every other case flagged | `tests/batch.rs` |
+//! | [`d_rect`], Gauss-Legendre elements (both sides short) and every element the lanes flag | bit for bit | the pairs of 2-, 4-, 6-point rules of the scalar case analysis in lanes (one loop per pair, the elements sorted by pair), every other case flagged | `tests/batch.rs` |
+//! | [`d_rect`], four-edge closed-form elements (a long side) | before the rounding to `F`, `8 eps_64 M + 4 eps_64 abs(D)`, `M` the edge terms' magnitudes scaled as `D` (`M / D` the form's cancellation); in `f32` then the same value or one ulp apart (measured: the same) | the scalar formula (`edges_by`) with the four angles by `lanes.rs`' `atan2_upper_lane` (`3 eps_64`) in place of libm's (`2 eps_64`); the products and sums round apart (`3 eps_64 M`), the area, division, `k`, `1 / h_z^4` (`4 eps_64 abs(D)`) | `tests/batch_bounds.rs` (realistic and adversarial input), the `atan2_upper_lane` unit test |
 //! | [`beckmann_d`], [`beckmann_d_filtered`] | relative `E + 2 eps`, plus `x eps` where the scalar path takes its far-tail branch (`x > -ln F::MIN_POSITIVE`); results below `F::MIN_POSITIVE` flushed to `0` (absolute error below `F::MIN_POSITIVE`) | the exponent `x` and factor `k = n / pi` are the scalar path's bit for bit; `exp(-x) k` is the polynomial exponential (relative `E = 2.5e-7` in `f32`, `1.5e-14` in `f64`) and one rounding, against libm's `exp` (one ulp) and the scalar product; the scalar far-tail branch rounds `x - ln k` (up to `x eps`) | `tests/batch.rs` |
 //! | [`beckmann_lambda`] | absolute `L (1 + Lambda)`, `L = 2.1e-7` (`f32`), `1.9e-8` (`f64`), plus `(5 + 3 a^2) eps Lambda` | the `erfc` fit (Numerical Recipes `erfcc`) in place of libm's; `a = |w_z| / sqrt(q)` rounded twice in `F` (the scalar path forms it in `f64`), amplified by `2 a^2 + 3` | `tests/batch_bounds.rs` |
 //! | [`beckmann_g2`] | relative `2 L + 3 eps` plus the `Lambda` terms over `1 + Lambda_i + Lambda_o` | `G2 = 1 / (1 + Lambda_i + Lambda_o)` | `tests/batch_bounds.rs` |
@@ -151,8 +153,8 @@ pub fn par_chunks(out: &mut [F], chunk: usize, f: impl Fn(usize, &mut [F]) + Syn
 /// `FILTERED_NDF_SIMD=sse2|avx2|avx512`, or `sse2-lanes`: the baseline with every lane, for
 /// tests); without it, the target features the crate was compiled for (`-C target-cpu`). For
 /// reports and benchmarks. A lane computes the same operations at any width; what the level
-/// changes is only whether the box filter, the deferred presets, [`ggx_d_projected`] and the
-/// `f64` Gaussian-filtered functions run their lanes (AVX2, AVX-512) or their scalar path
+/// changes is only whether the deferred presets, [`ggx_d_projected`] and the `f64`
+/// Gaussian-filtered functions run their lanes (AVX2, AVX-512) or their scalar path
 /// (baseline), see the module docs.
 pub fn simd_level() -> &'static str {
     simd::level_name()

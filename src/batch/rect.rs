@@ -1,23 +1,46 @@
 //! The exact box filter of GGX over slices (KHPL16 eq. 16, [`rect::d_rect`]).
 
 use super::super::filter::rect;
-use super::super::filter::rect::Tier;
+use super::super::filter::rect::{CLOSED_INDEX, Tier};
 use super::super::ndf::roughness::AxisAligned;
-use super::lanes::{BLOCK, Body};
+use super::lanes::{Body, atan2_upper_lane};
 use super::{F, Vec2, Vec3};
+
+/// Elements sorted by class at a time: the lane loops' scalar remainders come once per class
+/// and unit (with ten classes, a sixth of the elements in units of 512; measured 20 % slower
+/// than 4096). `perm` (`u16`) and `class` take 3 bytes an element on the stack.
+const UNIT: usize = 4096;
+/// Elements a lane loop evaluates at a time (the gathered columns and results on the stack).
+const CHUNK: usize = 256;
 
 /// The exact box-filtered GGX [`rect::d_rect`] (KHPL16 eq. 16: the mean of the GGX slope
 /// density over the slope-domain rectangle `s(h_i) +/- (half_x[i], half_y[i])`, divided by
 /// `h_z^4`; per steradian) for each half vector `h_i` and half extent:
-/// `out[i] = d_rect(*r, h_i, (half_x[i], half_y[i]))`, **bit for bit**. The half extents are
-/// the kernel as given (no clamps: pass rectangles already through `ClampRules::rect` for the
-/// clamped route). Out of domain as [`rect::d_rect`] (`0` below the horizon and for NaN, never
-/// NaN). Returns the number of elements written. Allocates nothing.
+/// `out[i] = d_rect(*r, h_i, (half_x[i], half_y[i]))`, bit for bit except for the four-edge
+/// closed form (below). The half extents are the kernel as given (no clamps: pass rectangles
+/// already through `ClampRules::rect` for the clamped route). Out of domain as
+/// [`rect::d_rect`] (`0` below the horizon and for NaN, never NaN). Returns the number of
+/// elements written. Allocates nothing (buffers on the stack: 18 KiB in `f32`, 25 KiB in
+/// `f64`).
 ///
-/// Vectorised where the scalar case analysis integrates both axes by Gauss-Legendre rules of
-/// 2, 4 or 6 nodes (short sides against the distance to the integrand's poles: most pixel
-/// footprints): per block, the elements of each pair of rules are gathered and evaluated by
-/// one vector loop with that pair's rules; the closed form (long sides) runs the scalar path.
+/// Vectorised where the scalar case analysis integrates both axes by Gauss-Legendre rules
+/// (short sides against the distance to the integrand's poles: most pixel
+/// footprints) and where it takes the four-edge closed form (a long side, KHPL16 Appendix A
+/// rewritten as four `atan2`: about a quarter of realistic footprints): per unit of 4096
+/// elements, the elements of each pair of rules and those of the closed form are sorted
+/// together and evaluated by one vector loop each (the pairs of `f64`'s 8- and 10-point rules
+/// too). The far field, the 1D closed form and the special cases run the scalar path.
+///
+/// **Agreement.** Gauss-Legendre elements (and all those of the scalar path): bit for bit.
+/// Four-edge elements: the lane evaluates the scalar path's formula (`edges_by`) with its
+/// four angles by a polynomial `atan2` (relative `3 eps_64`) in place of libm's (`2 eps_64`,
+/// with its division and sum); before the rounding to `F`,
+/// `|batch - scalar| <= 8 eps_64 M + 4 eps_64 |D|`, `M` the four edge terms' magnitudes
+/// `|u / S atan2(..)|` summed and scaled as their sum is into `D` (the form's cancellation:
+/// `M / D` up to `900` where the route takes the form, measured, so the bound is below about
+/// `2e-12` relative). In `f32` the two `f64` values round to the same `f32` or to neighbours
+/// (one ulp apart at most; measured: always the same); in `f64` measured within `7.5e-14`
+/// relative. Tested in `tests/batch_bounds.rs`.
 #[inline]
 pub fn d_rect(
     r: &AxisAligned,
@@ -43,41 +66,46 @@ pub fn d_rect(
     n
 }
 
-/// The tier pairs with a vector loop, in order: each its own loop with constant tiers.
-const PAIRS: [(Tier, Tier); 9] = [
-    (Tier::Gl2, Tier::Gl2),
-    (Tier::Gl2, Tier::Gl4),
-    (Tier::Gl2, Tier::Gl6),
-    (Tier::Gl4, Tier::Gl2),
-    (Tier::Gl4, Tier::Gl4),
-    (Tier::Gl4, Tier::Gl6),
-    (Tier::Gl6, Tier::Gl2),
-    (Tier::Gl6, Tier::Gl4),
-    (Tier::Gl6, Tier::Gl6),
-];
+/// The Gauss-Legendre tiers of the precision, in `filter::rect`'s `tier_index` order
+/// (`CLOSED_INDEX` of them: `Gl2`, `Gl4`, `Gl6`, and in `f64` `Gl8`, `Gl10`).
+const NT: usize = CLOSED_INDEX as usize;
 
-/// The index in [`PAIRS`] of an element's tiers, `PAIRS.len()` for the others (the closed
-/// form, the `f64` 8- and 10-point rules: the scalar path).
-#[inline(always)]
-fn pair_index((tu, tv): (Tier, Tier)) -> u8 {
-    let k = |t: Tier| match t {
-        Tier::Gl2 => 0u8,
-        Tier::Gl4 => 1,
-        Tier::Gl6 => 2,
-        _ => 9,
-    };
-    let (a, b) = (k(tu), k(tv));
-    if a < 3 && b < 3 {
-        3 * a + b
-    } else {
-        PAIRS.len() as u8
+/// The tier pairs with a vector loop, pair `(i, j)` at `NT i + j`: each its own loop with
+/// constant tiers (`NT^2` of them: 9 in `f32`, 25 in `f64`; the entries past them repeat
+/// `Gl6` and are never used).
+const PAIRS: [(Tier, Tier); 25] = {
+    let t = [Tier::Gl2, Tier::Gl4, Tier::Gl6, Tier::Gl8, Tier::Gl10];
+    let mut a = [(Tier::Gl6, Tier::Gl6); 25];
+    let mut k = 0;
+    while k < NT * NT {
+        a[k] = (t[k / NT], t[k % NT]);
+        k += 1;
     }
+    a
+};
+
+/// The class of the elements with a long side (a tier `Closed`): the closed-form lane.
+const CLOSED: u8 = (NT * NT) as u8;
+/// The number of classes.
+const NCLASS: usize = CLOSED as usize + 1;
+/// The parts of a unit in the counting sort (independent counters).
+const Q: usize = 4;
+
+/// The class of an element from its tiers' indices (`rect`'s `tier_index`, at most
+/// `CLOSED_INDEX = NT`): its pair's index in [`PAIRS`], or [`CLOSED`]. Branch-free (selects
+/// on integers): the classification loop vectorises.
+#[inline(always)]
+fn class_of((a, b): (u8, u8)) -> u8 {
+    let closed = (a == CLOSED_INDEX) | (b == CLOSED_INDEX);
+    if closed { CLOSED } else { NT as u8 * a + b }
 }
 
-/// The box filter's loop: per block, each element's tier pair (the scalar case analysis'
-/// first step), then per pair the block's elements of that pair gathered into contiguous
-/// columns and evaluated by one vector loop whose tiers are constants; the rest (and every
-/// flagged element) by [`rect::d_rect`]. Buffers on the stack: allocates nothing.
+/// The box filter's loop: per unit of [`UNIT`] elements, each element's class (its tier pair
+/// or the closed form: the scalar case analysis' first step, vectorised), a counting sort of
+/// the unit by class, then per class chunks of its elements gathered into contiguous columns
+/// and evaluated by one vector loop whose tiers are constants (or the closed-form lane); the
+/// rest (and every flagged element) by [`rect::d_rect`]. Buffers on the stack: allocates
+/// nothing.
 struct RectLoop<'a> {
     r: AxisAligned,
     ins: [&'a [F]; 5],
@@ -85,8 +113,10 @@ struct RectLoop<'a> {
 }
 
 impl Body for RectLoop<'_> {
-    // Measured at 0.7 times the scalar loop on SSE2 (two `f64` lanes, the gather).
-    const WIDE_ONLY: bool = true;
+    // The lanes pay on SSE2 too since the closed form has one (measured with
+    // `FILTERED_NDF_SIMD=sse2-lanes`: 1.3 to 1.8 times the scalar loop in `f32`, 1.1 in `f64`;
+    // before, with the closed form scalar and a scan per pair, 0.7).
+    const WIDE_ONLY: bool = false;
 
     #[inline(always)]
     fn go_scalar(self) {
@@ -111,33 +141,73 @@ impl Body for RectLoop<'_> {
                 Vec2::new(ins[3][i], ins[4][i]),
             )
         };
-        let mut pair = [0u8; BLOCK];
-        let mut idx = [0u16; BLOCK];
-        let mut cols = [[0.0 as F; BLOCK]; 5];
-        let mut vals = [0.0 as F; BLOCK];
-        let mut slow = [false; BLOCK];
+        let mut class = [0u8; UNIT];
+        let mut perm = [0u16; UNIT];
+        let mut cols = [[0.0 as F; CHUNK]; 5];
+        let mut vals = [0.0 as F; CHUNK];
+        let mut slow = [false; CHUNK];
         let mut b = 0;
         while b < n {
-            let e = n.min(b + BLOCK);
-            let mut counts = [0usize; PAIRS.len() + 1];
-            for i in b..e {
-                let (h, s) = at(i);
-                let p = pair_index(rect::RectSetup::new(r, h, s).tiers);
-                pair[i - b] = p;
-                counts[p as usize] += 1;
+            let e = n.min(b + UNIT);
+            let len = e - b;
+            let blk = ins.map(|s| &s[b..e]);
+            // The classes (the scalar case analysis' first step), in a vector loop.
+            for (i, c) in class[..len].iter_mut().enumerate() {
+                let h = Vec3::new(blk[0][i], blk[1][i], blk[2][i]);
+                let s = Vec2::new(blk[3][i], blk[4][i]);
+                *c = class_of(rect::RectSetup::new(r, h, s).tier_indices);
             }
-            // One vector loop per pair, its tiers constants (a macro, not a loop over
-            // `PAIRS`: a loop that is not unrolled would leave them variables, and the case
-            // analysis in the lane would stop the vectoriser).
+            // A counting sort of the unit's offsets by class: `perm[start[k]..start[k + 1]]`
+            // are the offsets of class `k`, in order. The unit in `Q` parts with their own
+            // counters, interleaved: consecutive elements of one class would otherwise chain
+            // every increment through memory (store-to-load forwarding, measured at a third of
+            // the loop's time). The counts per part by vectorised compares.
+            let q = len.div_ceil(Q);
+            let mut next = [[0u16; NCLASS]; Q];
+            for (cnt, part) in next.iter_mut().zip(class[..len].chunks(q)) {
+                for (k, c) in cnt.iter_mut().enumerate() {
+                    *c = part.iter().map(|&x| u16::from(x == k as u8)).sum();
+                }
+            }
+            let mut start = [0u16; NCLASS + 1];
+            let mut acc = 0u16;
+            for k in 0..NCLASS {
+                start[k] = acc;
+                for cnt in next.iter_mut() {
+                    let c = cnt[k];
+                    cnt[k] = acc;
+                    acc += c;
+                }
+            }
+            start[NCLASS] = acc;
+            for i in 0..q {
+                for (s, nx) in next.iter_mut().enumerate() {
+                    let j = s * q + i;
+                    if j < len {
+                        let slot = &mut nx[class[j] as usize];
+                        perm[*slot as usize] = j as u16;
+                        *slot += 1;
+                    }
+                }
+            }
+            // One vector loop per class, over chunks of its offsets: the chunk's elements
+            // gathered into contiguous columns, the lane `$lane` (of a `RectSetup`) over them,
+            // then the results scattered back, the flagged ones by the scalar path.
             macro_rules! pass {
-                ($($k:literal)*) => {$(
-                    if counts[$k] > 0 {
-                        let (tu, tv) = PAIRS[$k];
-                        let m = gather(&ins, b, e, &pair, $k, &mut idx, &mut cols);
+                ($k:expr, $lane:expr) => {
+                    let (lo, hi) = (start[$k as usize] as usize, start[$k as usize + 1] as usize);
+                    for idx in perm[lo..hi].chunks(CHUNK) {
+                        let m = idx.len();
+                        for (j, &i) in idx.iter().enumerate() {
+                            let i = i as usize;
+                            for (c, s) in cols.iter_mut().zip(&blk) {
+                                c[j] = s[i];
+                            }
+                        }
                         for j in 0..m {
                             let h = Vec3::new(cols[0][j], cols[1][j], cols[2][j]);
                             let s = Vec2::new(cols[3][j], cols[4][j]);
-                            let (v, sl) = rect::RectSetup::new(r, h, s).lane(tu, tv);
+                            let (v, sl) = $lane(rect::RectSetup::new(r, h, s));
                             vals[j] = v;
                             slow[j] = sl;
                         }
@@ -151,43 +221,25 @@ impl Body for RectLoop<'_> {
                             };
                         }
                     }
+                };
+            }
+            // The Gauss-Legendre pairs, each with its tiers as constants (a macro, not a loop
+            // over `PAIRS`: a loop that is not unrolled would leave them variables, and the
+            // case analysis in the lane would stop the vectoriser).
+            macro_rules! pairs {
+                ($($k:literal)*) => {$(
+                    // A constant condition: the `f64` pairs are not compiled in `f32`.
+                    if $k < NT * NT {
+                        pass!($k, |st: rect::RectSetup| st.lane(PAIRS[$k].0, PAIRS[$k].1));
+                    }
                 )*};
             }
-            pass!(0 1 2 3 4 5 6 7 8);
-            if counts[PAIRS.len()] > 0 {
-                for i in b..e {
-                    if pair[i - b] as usize == PAIRS.len() {
-                        let (h, s) = at(i);
-                        out[i] = rect::d_rect(r, h, s);
-                    }
-                }
-            }
+            pairs!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24);
+            // The closed form's lane (a long side): the four-edge form with the polynomial
+            // `atan2`; the elements it does not take (far field, 1D closed form) flagged.
+            pass!(CLOSED, |st: rect::RectSetup| st
+                .closed_lane(atan2_upper_lane));
             b = e;
         }
     }
-}
-
-/// Gathers the elements of block `b..e` whose pair is `k` into the first `m` entries of
-/// `cols` (and their offsets into `idx`); returns `m`.
-#[inline(always)]
-fn gather(
-    ins: &[&[F]; 5],
-    b: usize,
-    e: usize,
-    pair: &[u8; BLOCK],
-    k: u8,
-    idx: &mut [u16; BLOCK],
-    cols: &mut [[F; BLOCK]; 5],
-) -> usize {
-    let mut m = 0;
-    for i in b..e {
-        if pair[i - b] == k {
-            idx[m] = (i - b) as u16;
-            for (c, s) in cols.iter_mut().zip(ins) {
-                c[m] = s[i];
-            }
-            m += 1;
-        }
-    }
-    m
 }

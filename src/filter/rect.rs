@@ -117,7 +117,10 @@ mod gauss;
 mod lambda;
 mod printed;
 mod sample;
-pub(crate) use gauss::{GL2_X, GL4_W, GL4_X, GL6_W, GL6_X, Tier, WIDE, gl_of, rule, tier};
+pub(crate) use gauss::{
+    CLOSED_INDEX, GL2_X, GL4_W, GL4_X, GL6_W, GL6_X, Tier, WIDE, gl_of, rule, tier,
+};
+use gauss::{tier_index, tier_of_index};
 pub use lambda::lambda_rect;
 pub use printed::d_rect_printed;
 pub use sample::{
@@ -249,7 +252,9 @@ fn mean_1d(xc: f64, hx: f64, c2: f64) -> f64 {
 }
 
 /// `atan2(y, x)` for `y > 0`, in `(0, pi)`, with one `atan` and one division (cheaper than a
-/// general `atan2`; relative error that of `atan`, since `atan(z) / z` is well conditioned).
+/// general `atan2`; relative error that of `atan`, since `atan(z) / z` is well conditioned):
+/// libm's `atan` plus the division's and the sum's roundings, at most `2 eps_64` relative.
+/// The scalar path's angle of [`edges_by`]; `batch` passes its polynomial lane form instead.
 #[inline(always)]
 fn atan2_upper(y: f64, x: f64) -> f64 {
     if x > 0.0 {
@@ -259,40 +264,26 @@ fn atan2_upper(y: f64, x: f64) -> f64 {
     }
 }
 
-/// One edge of the contour form: `u / S atan2(dv S, S^2 + v0 v1)`, `S = sqrt(1 + u^2)`.
+/// One edge of the contour form: `u / S atan2(dv S, S^2 + v0 v1)`, `S = sqrt(1 + u^2)`, with
+/// the angle `atan2(y, x)` (`y > 0`) by `at2`.
 #[inline(always)]
-fn edge(u: f64, dv: f64, v01: f64) -> f64 {
+fn edge_by(at2: impl Fn(f64, f64) -> f64, u: f64, dv: f64, v01: f64) -> f64 {
     let s2 = 1.0 + u * u;
     let s = m::sqrt(s2);
-    u / s * atan2_upper(dv * s, s2 + v01)
+    u / s * at2(dv * s, s2 + v01)
 }
 
 /// Mean of `f` over the normalised rectangle `[uc +/- hu] x [vc +/- hv]` (`hu, hv >= 0`,
 /// finite), by the case analysis of the module docs.
 fn mean_f(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
     let (tu, tv, du, dv) = tiers(uc, vc, hu, hv);
+    if edges_route(tu, tv, (du, dv), uc, vc, hu, hv) {
+        return edges(uc, vc, hu, hv);
+    }
     match (tu, tv) {
-        (Tier::Closed, Tier::Closed) => {
-            if du * du + dv * dv > FAR2 {
-                far_field(uc, vc, hu, hv)
-            } else {
-                edges(uc, vc, hu, hv)
-            }
-        }
-        (Tier::Closed, t) => {
-            if edges_ok(uc, vc, hv) {
-                edges(uc, vc, hu, hv)
-            } else {
-                gl_of(t, vc, hv, |y| mean_1d(uc, hu, 1.0 + y * y))
-            }
-        }
-        (t, Tier::Closed) => {
-            if edges_ok(uc, vc, hu) {
-                edges(uc, vc, hu, hv)
-            } else {
-                gl_of(t, uc, hu, |x| mean_1d(vc, hv, 1.0 + x * x))
-            }
-        }
+        (Tier::Closed, Tier::Closed) => far_field(uc, vc, hu, hv),
+        (Tier::Closed, t) => gl_of(t, vc, hv, |y| mean_1d(uc, hu, 1.0 + y * y)),
+        (t, Tier::Closed) => gl_of(t, uc, hu, |x| mean_1d(vc, hv, 1.0 + x * x)),
         (Tier::Gl2, Tier::Gl2) => gl2x2(uc, vc, hu, hv),
         (t, t2) => tensor(t, t2, uc, vc, hu, hv),
     }
@@ -316,12 +307,19 @@ fn tensor(t: Tier, t2: Tier, uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
 /// the rectangle along each axis (`0` inside).
 #[inline(always)]
 fn tiers(uc: f64, vc: f64, hu: f64, hv: f64) -> (Tier, Tier, f64, f64) {
+    let (iu, iv, du, dv) = tier_indices(uc, vc, hu, hv);
+    (tier_of_index(iu), tier_of_index(iv), du, dv)
+}
+
+/// [`tiers`] as [`tier_index`]es (branch-free).
+#[inline(always)]
+fn tier_indices(uc: f64, vc: f64, hu: f64, hv: f64) -> (u8, u8, f64, f64) {
     let du = (uc.abs() - hu).max(0.0);
     let dv = (vc.abs() - hv).max(0.0);
     let lu2 = 1.0 + uc * uc + dv * dv;
     let lv2 = 1.0 + vc * vc + du * du;
     let (hu2, hv2) = (hu * hu, hv * hv);
-    (tier(hu2, lu2), tier(hv2, lv2), du, dv)
+    (tier_index(hu2, lu2), tier_index(hv2, lv2), du, dv)
 }
 
 /// The 2 x 2-point tensor Gauss-Legendre rule (both axes in tier `Gl2`, the most common case
@@ -356,15 +354,42 @@ fn gl2x2_rows(uc: f64, vc: f64, hu: f64, hv: f64) -> (f64, f64, f64, f64) {
     (n0, p0, n1, p1)
 }
 
-/// The four-edge closed form (module docs, case 3): the mean of `f` over the rectangle.
+/// The four-edge closed form (module docs, case 3): the mean of `f` over the rectangle, with
+/// libm's `atan` ([`edges_by`] with [`atan2_upper`]).
 #[inline]
 fn edges(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
+    edges_by(atan2_upper, uc, vc, hu, hv)
+}
+
+/// The four-edge closed form with the edges' angles `atan2(y, x)` (`y > 0`) by `at2`: the one
+/// formula of the scalar path ([`edges`]) and of `batch`'s lane ([`RectSetup::closed_lane`]).
+///
+/// Computed as `0.5 ((e(u1) - e(u0)) + (e(v1) - e(v0))) / (4 H_u H_v)` with the edge terms
+/// `e = (u / S) A`, `A` the angle. An angle with relative error `d` moves the result by at
+/// most `d` times `M = 0.5 sum |e| / (4 H_u H_v)`; the other roundings (the product by the
+/// angle, the three sums, the area, the division) by at most `3 eps_64 M + 2 eps_64 |mean|`.
+/// `M / |mean|` is the form's cancellation gain, which [`edges_route`] keeps below about
+/// `EDGES_GAIN` (module docs).
+#[inline(always)]
+fn edges_by(at2: impl Fn(f64, f64) -> f64 + Copy, uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
     let (u0, u1, v0, v1) = (uc - hu, uc + hu, vc - hv, vc + hv);
     let (du, dv) = (2.0 * hu, 2.0 * hv);
     let (u01, v01) = (u0 * u1, v0 * v1);
-    let i =
-        0.5 * ((edge(u1, dv, v01) - edge(u0, dv, v01)) + (edge(v1, du, u01) - edge(v0, du, u01)));
+    let e = |u: f64, d: f64, w01: f64| edge_by(at2, u, d, w01);
+    let i = 0.5 * ((e(u1, dv, v01) - e(u0, dv, v01)) + (e(v1, du, u01) - e(v0, du, u01)));
     i / (du * dv)
+}
+
+/// Whether [`mean_f`] takes the four-edge closed form for tiers `(tu, tv)` and distances
+/// `(du, dv)` from [`tiers`]: both sides long and the rectangle within `sqrt(FAR2)` of the
+/// peak, or one side long and [`edges_ok`] for the other. Branch-free (`&`, `|` of compares),
+/// for the lane.
+#[inline(always)]
+fn edges_route(tu: Tier, tv: Tier, d: (f64, f64), uc: f64, vc: f64, hu: f64, hv: f64) -> bool {
+    let (cu, cv) = (tu == Tier::Closed, tv == Tier::Closed);
+    (cu & cv & (d.0 * d.0 + d.1 * d.1 <= FAR2))
+        | (cu & !cv & edges_ok(uc, vc, hv))
+        | (!cu & cv & edges_ok(uc, vc, hu))
 }
 
 /// The mean of `f` over a rectangle far from the peak (`D^2 > FAR2`, both sides long), by the
@@ -542,6 +567,10 @@ pub(crate) struct RectSetup {
     k: f64,
     /// The tiers of the two axes.
     pub(crate) tiers: (Tier, Tier),
+    /// The same as [`tier_index`]es (for `batch`'s branch-free classification).
+    pub(crate) tier_indices: (u8, u8),
+    /// The distances of the centre from the rectangle along each axis ([`tiers`]).
+    d: (f64, f64),
 }
 
 impl RectSetup {
@@ -557,7 +586,7 @@ impl RectSetup {
         let (uc, vc, hu, hv, k) = unit_coords(r, center, half_extent);
         let nan = uc.is_nan() | vc.is_nan();
         let (uc, vc) = (uc.clamp(-BIG, BIG), vc.clamp(-BIG, BIG));
-        let (tu, tv, _, _) = tiers(uc, vc, hu, hv);
+        let (iu, iv, du, dv) = tier_indices(uc, vc, hu, hv);
         Self {
             live,
             special: special | nan,
@@ -567,12 +596,32 @@ impl RectSetup {
             hu,
             hv,
             k,
-            tiers: (tu, tv),
+            tiers: (tier_of_index(iu), tier_of_index(iv)),
+            tier_indices: (iu, iv),
+            d: (du, dv),
         }
     }
 
-    /// [`d_rect`] in lane form for an element whose tiers are `(tu, tv)`, both among `Gl2`,
-    /// `Gl4`, `Gl6` (constants at the call site: one vector loop per pair): `(value, slow)`,
+    /// [`d_rect`] in lane form for an element that [`mean_f`] takes through the four-edge
+    /// closed form ([`edges_route`]: a long side, near enough to the peak), the edges' angles
+    /// by `at2` (`batch`'s polynomial `atan2` for `y > 0`) instead of libm's: `(value, slow)`,
+    /// `slow` for every element that `d_rect` takes elsewhere (the far field, the 1D closed
+    /// form, the Gauss-Legendre tiers, the special cases). The value is `d_rect`'s up to the
+    /// angles' error propagated through [`edges_by`] (its docs; `batch::d_rect` states the
+    /// bound).
+    #[inline(always)]
+    pub(crate) fn closed_lane(self, at2: impl Fn(f64, f64) -> f64 + Copy) -> (F, bool) {
+        let Self { uc, vc, hu, hv, .. } = self;
+        let (tu, tv) = self.tiers;
+        let route = edges_route(tu, tv, self.d, uc, vc, hu, hv);
+        let mean = edges_by(at2, uc, vc, hu, hv);
+        let v = to_solid_angle((mean * self.k).max(0.0), self.ihz4);
+        let fast = route & !self.special;
+        (if self.live { v } else { 0.0 }, self.live & !fast)
+    }
+
+    /// [`d_rect`] in lane form for an element whose tiers are `(tu, tv)`, both Gauss-Legendre
+    /// tiers (constants at the call site: one vector loop per pair): `(value, slow)`,
     /// the value `d_rect`'s bit for bit unless `slow`. `slow` flags every element that
     /// `d_rect` does not take through that pair's Gauss-Legendre rule (other tiers, the
     /// special cases, the 2 x 2 rule's overflow branch) or its early zero. The same pieces

@@ -82,23 +82,59 @@ pub(crate) enum Tier {
 
 /// The tier of an axis of half length `H` at distance `L` from the nearest complex
 /// singularity of the integrand, from `H^2` and `L^2`. The thresholds [`TAU`] bound the
-/// truncation error of each rule (module docs).
+/// truncation error of each rule (module docs). The tier of [`tier_index`].
 #[inline(always)]
 pub(crate) fn tier(h2: f64, l2: f64) -> Tier {
-    if h2 < TAU[0] * TAU[0] * l2 {
-        Tier::Gl2
-    } else if h2 < TAU[1] * TAU[1] * l2 {
-        Tier::Gl4
-    } else if h2 < TAU[2] * TAU[2] * l2 {
-        Tier::Gl6
-    } else if WIDE && h2 < TAU[3] * TAU[3] * l2 {
-        Tier::Gl8
-    } else if WIDE && h2 < TAU[4] * TAU[4] * l2 {
-        Tier::Gl10
-    } else {
-        Tier::Closed
-    }
+    tier_of_index(tier_index(h2, l2))
 }
+
+/// The tier of a [`tier_index`].
+#[inline(always)]
+pub(crate) fn tier_of_index(k: u8) -> Tier {
+    TIERS[k as usize]
+}
+
+/// The tiers by [`tier_index`]: `Gl2`, `Gl4`, `Gl6`, then (`f64`) `Gl8`, `Gl10`, and `Closed`.
+const TIERS: [Tier; 6] = if WIDE {
+    [
+        Tier::Gl2,
+        Tier::Gl4,
+        Tier::Gl6,
+        Tier::Gl8,
+        Tier::Gl10,
+        Tier::Closed,
+    ]
+} else {
+    [
+        Tier::Gl2,
+        Tier::Gl4,
+        Tier::Gl6,
+        Tier::Closed,
+        Tier::Closed,
+        Tier::Closed,
+    ]
+};
+
+/// The index of an axis's tier in the order `Gl2`, `Gl4`, `Gl6`, (`f64`: `Gl8`, `Gl10`),
+/// `Closed` ([`CLOSED_INDEX`]): the number of thresholds [`TAU`] (the first three in `f32`) that `H` does not stay below,
+/// `!(H^2 < TAU^2 L^2)` each (a NaN counts as beyond every threshold: the closed form, as
+/// before). The thresholds increase, so the count is the first threshold `H` stays below.
+/// Branch-free, for `batch`'s classification loop.
+#[inline(always)]
+pub(crate) fn tier_index(h2: f64, l2: f64) -> u8 {
+    let n = if WIDE { 5 } else { 3 };
+    let mut k = 0u8;
+    for t in &TAU[..n] {
+        // Negated: a NaN `h2` counts (the closed form, as the `if` chain had it).
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
+        let beyond = !(h2 < t * t * l2);
+        k += u8::from(beyond);
+    }
+    k
+}
+
+/// [`tier_index`] of the closed form: `3` in `f32`, `5` in `f64`.
+pub(crate) const CLOSED_INDEX: u8 = if WIDE { 5 } else { 3 };
 
 /// The positive nodes and halved weights of the Gauss-Legendre rule of tier `t` (`Closed` has
 /// no rule and is never passed; it gets the 6-point rule; the 8- and 10-point arms exist in the
