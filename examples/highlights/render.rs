@@ -565,23 +565,28 @@ pub fn shade_frame(
     method: Method,
 ) -> Frame {
     shade_with(scene, gb, method.family(), |i, h, alpha| {
-        let dv = derivs[i];
-        let h = if method.uses_footprint() {
-            dv.mean_shift * h
-        } else {
-            h
-        };
-        methods::filtered_d(
-            method,
-            &ShadingPoint {
-                h,
-                alpha,
-                footprint: dv.footprint,
-                dn_dx: dv.dn_dx,
-                dn_dy: dv.dn_dy,
-            },
-        )
+        component_d(method, derivs[i], h, alpha)
     })
+}
+
+/// The method's density at the pixel's half vector `h` with one set of derivatives `dv`:
+/// its footprint, and its `mean_shift` applied to `h` where the method uses a footprint.
+fn component_d(method: Method, dv: PixelDerivatives, h: Vec3, alpha: f32) -> f32 {
+    let h = if method.uses_footprint() {
+        dv.mean_shift * h
+    } else {
+        h
+    };
+    methods::filtered_d(
+        method,
+        &ShadingPoint {
+            h,
+            alpha,
+            footprint: dv.footprint,
+            dn_dx: dv.dn_dx,
+            dn_dy: dv.dn_dy,
+        },
+    )
 }
 
 /// [`shade_frame`] with a mixture per pixel ([`GBuffer::mixtures`]): the method's density
@@ -591,23 +596,7 @@ pub fn shade_mixture(scene: &Scene, gb: &GBuffer, mixtures: &[Mixture], method: 
     shade_with(scene, gb, method.family(), |i, h, alpha| {
         mixtures[i]
             .iter()
-            .map(|&(w, dv)| {
-                let h = if method.uses_footprint() {
-                    dv.mean_shift * h
-                } else {
-                    h
-                };
-                w * methods::filtered_d(
-                    method,
-                    &ShadingPoint {
-                        h,
-                        alpha,
-                        footprint: dv.footprint,
-                        dn_dx: dv.dn_dx,
-                        dn_dy: dv.dn_dy,
-                    },
-                )
-            })
+            .map(|&(w, dv)| w * component_d(method, dv, h, alpha))
             .sum()
     })
 }
