@@ -194,22 +194,36 @@ macro_rules! suite {
                 }
             }
 
+            /// The roughness forms every batch kernel is tested on, for one `alpha`: isotropic,
+            /// axis-aligned (3.3:1), a rotated matrix (the LDL representation), an elongated
+            /// one (cond 1e8: LDL in f32, the eigenbasis in f64) and the same with the
+            /// determinant clamp active (LDL built out of line in f32).
+            fn forms(
+                alpha: $t,
+            ) -> (
+                Isotropic,
+                AxisAligned,
+                RoughnessMatrix,
+                RoughnessMatrix,
+                RoughnessMatrix,
+            ) {
+                let a2 = alpha * alpha;
+                (
+                    Isotropic::new(alpha).unwrap(),
+                    AxisAligned::new(alpha, alpha * 0.3).unwrap(),
+                    RoughnessMatrix::new(a2, 0.3 * a2, 0.5 * a2).unwrap(),
+                    RoughnessMatrix::new(a2, 0.0, a2 * 1e-8).unwrap(),
+                    RoughnessMatrix::new_with_det_clamp(a2, 0.0, a2 * 1e-8, 2e-8 * a2 * a2)
+                        .unwrap(),
+                )
+            }
+
             #[test]
             fn ndf_d_bit_for_bit() {
                 let c = cols(0xB47C);
                 let mut out = vec![0.0 as $t; N];
                 for alpha in [1e-4 as $t, 0.05, 0.5, 2.0] {
-                    let iso = Isotropic::new(alpha).unwrap();
-                    let aa = AxisAligned::new(alpha, alpha * 0.3).unwrap();
-                    let a2 = alpha * alpha;
-                    // A rotated matrix (the LDL representation), an elongated one (cond 1e8:
-                    // LDL in f32, the eigenbasis in f64) and the same with the determinant
-                    // clamp active (LDL built out of line in f32).
-                    let mat = RoughnessMatrix::new(a2, 0.3 * a2, 0.5 * a2).unwrap();
-                    let long = RoughnessMatrix::new(a2, 0.0, a2 * 1e-8).unwrap();
-                    let clamped =
-                        RoughnessMatrix::new_with_det_clamp(a2, 0.0, a2 * 1e-8, 2e-8 * a2 * a2)
-                            .unwrap();
+                    let (iso, aa, mat, long, clamped) = forms(alpha);
                     assert_eq!(batch::ggx_d(&iso, &c.x, &c.y, &c.z, &mut out), N);
                     same(&out, |i| Ggx::new(iso).d(h(&c, i)), "ggx iso");
                     batch::ggx_d(&aa, &c.x, &c.y, &c.z, &mut out);
@@ -589,13 +603,7 @@ macro_rules! suite {
                 let mut out = vec![0.0 as $t; N];
                 let mut live = 0usize;
                 for alpha in [1e-4 as $t, 0.05, 0.5, 2.0] {
-                    let a2 = alpha * alpha;
-                    let iso = Isotropic::new(alpha).unwrap();
-                    let aa = AxisAligned::new(alpha, alpha * 0.3).unwrap();
-                    let mat = RoughnessMatrix::new(a2, 0.3 * a2, 0.5 * a2).unwrap();
-                    let clamped =
-                        RoughnessMatrix::new_with_det_clamp(a2, 0.0, a2 * 1e-8, 2e-8 * a2 * a2)
-                            .unwrap();
+                    let (iso, aa, mat, _, clamped) = forms(alpha);
                     macro_rules! each {
                         ($r:expr, $name:expr) => {{
                             let r = $r;
@@ -755,13 +763,7 @@ macro_rules! suite {
                 };
                 let mut out = vec![0.0 as $t; N];
                 for alpha in [1e-4 as $t, 0.05, 0.5, 0.99, 2.0] {
-                    let a2 = alpha * alpha;
-                    let iso = Isotropic::new(alpha).unwrap();
-                    let aa = AxisAligned::new(alpha, alpha * 0.3).unwrap();
-                    let mat = RoughnessMatrix::new(a2, 0.3 * a2, 0.5 * a2).unwrap();
-                    let clamped =
-                        RoughnessMatrix::new_with_det_clamp(a2, 0.0, a2 * 1e-8, 2e-8 * a2 * a2)
-                            .unwrap();
+                    let (iso, aa, mat, _, clamped) = forms(alpha);
                     macro_rules! each {
                         ($r:expr, $name:expr) => {{
                             let r = $r;
