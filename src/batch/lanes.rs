@@ -237,6 +237,23 @@ fn vector_pass<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool
     if !long_enough(ins, outs, e) {
         return 0;
     }
+    // A whole block as arrays of `BLOCK` elements: the loop then has no bounds checks to
+    // prove. Indexed by `b..e` on the slices, it kept them (`long_enough` notwithstanding),
+    // and the vectoriser then left a last vector's worth of every block (16 or 32 of 512
+    // elements) to a scalar epilogue, measured at 45 % of the time of GGX's `Lambda`.
+    if e - b == BLOCK {
+        let mut xs: [&[F; BLOCK]; I] = [&[0.0; BLOCK]; I];
+        for c in 0..I {
+            if let Ok(x) = <&[F; BLOCK]>::try_from(&ins[c][b..e]) {
+                xs[c] = x;
+            }
+        }
+        // Never fails: every column holds `e` elements (`long_enough`), and `e - b = BLOCK`.
+        let ys = outs.each_mut().map(|o| {
+            <&mut [F; BLOCK]>::try_from(&mut o[b..e]).expect("a whole block")
+        });
+        return lane_loop::<K, I, O, FULL, BLOCK>(k, xs, ys);
+    }
     let mut flagged = 0usize;
     for i in b..e {
         let x = get(ins, i);
@@ -244,6 +261,31 @@ fn vector_pass<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool
         set(outs, i, v);
         if slow {
             outs[0][i] = F::NAN;
+        }
+        flagged += usize::from(slow);
+    }
+    flagged
+}
+
+/// The loop of [`vector_pass`] over one whole block (columns of `L` elements).
+#[inline(always)]
+fn lane_loop<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool, const L: usize>(
+    k: &K,
+    xs: [&[F; L]; I],
+    ys: [&mut [F; L]; O],
+) -> usize {
+    let mut flagged = 0usize;
+    for i in 0..L {
+        let mut x = [0.0 as F; I];
+        for c in 0..I {
+            x[c] = xs[c][i];
+        }
+        let (v, slow) = if FULL { k.lane_full(x) } else { k.lane(x) };
+        for c in 0..O {
+            ys[c][i] = v[c];
+        }
+        if slow {
+            ys[0][i] = F::NAN;
         }
         flagged += usize::from(slow);
     }
