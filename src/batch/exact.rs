@@ -11,8 +11,8 @@
 //! element is flagged and evaluated by the scalar `D`.
 
 use super::super::filter::GaussianFilteredGgx;
-use super::super::ndf::Ndf;
-use super::lanes::{Kernel, run};
+use super::lanes::run;
+use super::ndf::{D, LaneD};
 use super::{F, Vec3};
 
 /// [`Ndf::d`] of the exact Gaussian-filtered GGX lobe `lobe` for each micronormal `m_i =
@@ -42,20 +42,13 @@ pub fn gaussian_filtered_ggx_d(
     mz: &[F],
     out: &mut [F],
 ) -> usize {
-    run(&Exact(lobe), [mx, my, mz], [out])
+    run(&D(*lobe), [mx, my, mz], [out])
 }
 
-/// `D` of one exact Gaussian-filtered GGX lobe.
-struct Exact<'a>(&'a GaussianFilteredGgx);
-
-impl Kernel<3, 1> for Exact<'_> {
+impl LaneD for GaussianFilteredGgx {
+    /// [`GaussianFilteredGgx::d_lane`].
     #[inline(always)]
-    fn lane(&self, [x, y, z]: [F; 3]) -> ([F; 1], bool) {
-        let (v, slow) = self.0.d_lane(Vec3::new(x, y, z));
-        ([v], slow)
-    }
-    #[inline]
-    fn scalar(&self, [x, y, z]: [F; 3]) -> [F; 1] {
-        [self.0.d(Vec3::new(x, y, z))]
+    fn d_lane(&self, m: Vec3) -> (F, bool) {
+        GaussianFilteredGgx::d_lane(self, m)
     }
 }

@@ -96,15 +96,20 @@ fn nine<'a>([i, o, m]: [Vec3s<'a>; 3]) -> [&'a [F]; 9] {
     [i.x, i.y, i.z, o.x, o.y, o.z, m.x, m.y, m.z]
 }
 
-/// The lane forms of an NDF's `D` and `Lambda` (`(value, slow)`, see [`Kernel::lane`]).
-pub(crate) trait LaneNdf: Ndf {
+/// The lane form of an NDF's `D` (`(value, slow)`, see [`Kernel::lane`]): GGX, Beckmann and
+/// the exact Gaussian-filtered GGX.
+pub(crate) trait LaneD: Ndf {
     /// `D(m)`.
     fn d_lane(&self, m: Vec3) -> (F, bool);
+}
+
+/// The lane form of an NDF's `Lambda` too (GGX, Beckmann).
+pub(crate) trait LaneNdf: LaneD {
     /// `Lambda(w)`.
     fn lambda_lane(&self, w: Vec3) -> (F, bool);
 }
 
-impl<R: Roughness> LaneNdf for Ggx<R> {
+impl<R: Roughness> LaneD for Ggx<R> {
     /// [`Ndf::d`]'s checks as one select (`&`, and `abs() < inf` rather than `is_finite`, which
     /// compiles to integer bit tests): the same value, bit for bit, without a branch.
     #[inline(always)]
@@ -113,7 +118,9 @@ impl<R: Roughness> LaneNdf for Ggx<R> {
         let keep = (m.z > 0.0) & (v.abs() < F::INFINITY);
         (if keep { v } else { 0.0 }, false)
     }
+}
 
+impl<R: Roughness> LaneNdf for Ggx<R> {
     /// `ggx_lambda_core` where the scalar path takes it (no rescaling, `q >= 0`, `|w_z| > 0`,
     /// `w_z^2 + q` finite, a normal denominator), flagged elsewhere.
     #[inline(always)]
@@ -126,7 +133,7 @@ impl<R: Roughness> LaneNdf for Ggx<R> {
     }
 }
 
-impl<R: Roughness> LaneNdf for Beckmann<R> {
+impl<R: Roughness> LaneD for Beckmann<R> {
     /// The formula of Beckmann's `d` (`exponent_and_norm`, then `e^-x n / pi`) with the
     /// exponential of [`exp_neg_times`]. `0` below the horizon and for a NaN exponent, as the
     /// scalar path.
@@ -139,6 +146,9 @@ impl<R: Roughness> LaneNdf for Beckmann<R> {
         let live = (m.z > 0.0) & !x.is_nan();
         (if live { v } else { 0.0 }, live & !ok)
     }
+}
+
+impl<R: Roughness> LaneNdf for Beckmann<R> {
 
     /// `Lambda(a)`, `a = |w_z| / sqrt(w_xy^T A w_xy)`, by `beckmann_lambda_fast` (`0` at
     /// normal incidence, `q = 0`), flagged where the scalar path rescales `w`, at grazing `w`
@@ -155,9 +165,9 @@ impl<R: Roughness> LaneNdf for Beckmann<R> {
 }
 
 /// `D` of an NDF.
-struct D<N>(N);
+pub(super) struct D<N>(pub(super) N);
 
-impl<N: LaneNdf> Kernel<3, 1> for D<N> {
+impl<N: LaneD> Kernel<3, 1> for D<N> {
     #[inline(always)]
     fn lane(&self, [x, y, z]: [F; 3]) -> ([F; 1], bool) {
         let (v, slow) = self.0.d_lane(Vec3::new(x, y, z));

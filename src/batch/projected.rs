@@ -15,7 +15,7 @@ use super::super::ndf::Ndf;
 use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
 use super::lanes::{Kernel, run};
-use super::ndf::LaneNdf;
+use super::ndf::LaneD;
 use super::{Covariances, F, Vec3};
 
 /// [`Ndf::d`] of GGX filtered in projected space (Tokuyoshi and
