@@ -249,9 +249,9 @@ fn vector_pass<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool
             }
         }
         // Never fails: every column holds `e` elements (`long_enough`), and `e - b = BLOCK`.
-        let ys = outs.each_mut().map(|o| {
-            <&mut [F; BLOCK]>::try_from(&mut o[b..e]).expect("a whole block")
-        });
+        let ys = outs
+            .each_mut()
+            .map(|o| <&mut [F; BLOCK]>::try_from(&mut o[b..e]).expect("a whole block"));
         return lane_loop::<K, I, O, FULL, BLOCK>(k, xs, ys);
     }
     let mut flagged = 0usize;

@@ -149,7 +149,6 @@ impl<R: Roughness> LaneD for Beckmann<R> {
 }
 
 impl<R: Roughness> LaneNdf for Beckmann<R> {
-
     /// `Lambda(a)`, `a = |w_z| / sqrt(w_xy^T A w_xy)`, by `beckmann_lambda_fast` (`0` at
     /// normal incidence, `q = 0`), flagged where the scalar path rescales `w`, at grazing `w`
     /// and for `a < 1e-20` (where `Lambda` leaves the range of `F`).
