@@ -15,8 +15,8 @@ use super::lanes::run;
 use super::ndf::{D, LaneD};
 use super::{F, Vec3};
 
-/// [`Ndf::d`] of the exact Gaussian-filtered GGX lobe `lobe` for each micronormal `m_i =
-/// (mx[i], my[i], mz[i])`: `out[i] = lobe.d(m_i) = P22_Sigma(s(m)) / m_z^4` per steradian,
+/// [`Ndf::d`](super::super::ndf::Ndf::d) of the exact Gaussian-filtered GGX lobe `lobe` for
+/// each micronormal `m_i = (mx[i], my[i], mz[i])`: `out[i] = lobe.d(m_i) = P22_Sigma(s(m)) / m_z^4` per steradian,
 /// `P22_Sigma = J / (pi sqrt(det A))` the GGX slope density of roughness `A` convolved with
 /// the lobe's kernel `N(0, Sigma)` (KHPL16 section 5.2, eq. 15 per mixture component; module
 /// docs of [`GaussianFilteredGgx`]), **bit for bit**. `0` for `m_z <= 0` and non-finite `m`,
