@@ -333,13 +333,13 @@ float2 math_sincos_turns(float u)
 
 float math_hypot(float x_1, float y)
 {
-    float m_42 = max(abs(x_1), abs(y));
-    if ((m_42 <= 0.0)) {
+    float m_44 = max(abs(x_1), abs(y));
+    if ((m_44 <= 0.0)) {
         return 0.0;
     }
-    float a_17 = (x_1 / m_42);
-    float b_4 = (y / m_42);
-    return (m_42 * sqrt(((a_17 * a_17) + (b_4 * b_4))));
+    float a_17 = (x_1 / m_44);
+    float b_4 = (y / m_44);
+    return (m_44 * sqrt(((a_17 * a_17) + (b_4 * b_4))));
 }
 
 float math_exp(float x_2)
@@ -463,8 +463,8 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     float a_18 = (c_3.s_xx / scale);
     float b_6 = (c_3.s_xy / scale);
     float e_3 = (c_3.s_yy / scale);
-    float d_1 = (0.5 * (a_18 - e_3));
-    float r_77 = sqrt(((d_1 * d_1) + (b_6 * b_6)));
+    float d_3 = (0.5 * (a_18 - e_3));
+    float r_77 = sqrt(((d_3 * d_3) + (b_6 * b_6)));
     float lmax_1 = (((0.5 * (a_18 + e_3)) + r_77) * scale);
     if ((lmax_1 <= max_eig)) {
         const kernel_covariance_Covariance kernel_covariance_covariance_6 = c_3;
@@ -481,9 +481,9 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         const kernel_covariance_Covariance kernel_covariance_covariance_7 = Constructkernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
         return kernel_covariance_covariance_7;
     }
-    float p_7 = (r_77 + abs(d_1));
+    float p_7 = (r_77 + abs(d_3));
     float q_5 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
-    float2 ee = ((d_1 >= 0.0) ? float2(p_7, q_5) : float2(q_5, p_7));
+    float2 ee = ((d_3 >= 0.0) ? float2(p_7, q_5) : float2(q_5, p_7));
     float inv_1 = (1.0 / (2.0 * r_77));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_6 * inv_1);
@@ -575,8 +575,8 @@ float filter_deferred_norm_eval(uint norm, float3 dn_u, float3 dn_v)
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        float3 m_43 = max(abs(dn_u), abs(dn_v));
-        return max(max(m_43.x, m_43.y), m_43.z);
+        float3 m_45 = max(abs(dn_u), abs(dn_v));
+        return max(max(m_45.x, m_45.y), m_45.z);
     }
     return (a_19 + c_15);
 }
@@ -1862,54 +1862,79 @@ float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_53, float3 m_19
     return ((m_19.z > 0.0) ? (_e2 * m_19.z) : 0.0);
 }
 
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_54, float3 wo_2, float3 m_20)
+float sampling_visible_normal_pdf_of(float3 wo_2, float3 m_20, float d, float lambda)
 {
     bool local_14 = (bool)0;
+    bool local_15 = (bool)0;
 
     float wom = dot(wo_2, m_20);
-    if (!(!((wo_2.z > 0.0)))) {
-        local_14 = !((wom > 0.0));
+    float v_14 = ((wom * d) / (wo_2.z * (1.0 + lambda)));
+    if ((wo_2.z > 0.0)) {
+        local_14 = (wom > 0.0);
     } else {
-        local_14 = true;
+        local_14 = false;
     }
-    bool _e15 = local_14;
-    if (_e15) {
-        return 0.0;
+    bool _e19 = local_14;
+    if (_e19) {
+        local_15 = (v_14 <= math_F32_MAX);
+    } else {
+        local_15 = false;
     }
-    const float _e17 = ndf_ggx_d_matrix(r_54, m_20);
-    const float _e20 = ndf_ggx_lambda_matrix(r_54, wo_2);
-    float v_14 = ((wom * _e17) / (wo_2.z * (1.0 + _e20)));
-    return ((v_14 <= math_F32_MAX) ? v_14 : 0.0);
+    bool _e25 = local_15;
+    return (_e25 ? v_14 : 0.0);
 }
 
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_55, float3 wo_3, float3 m_21)
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_54, float3 wo_3, float3 m_21)
 {
-    if (!((wo_3.z > 0.0))) {
-        return 0.0;
-    }
-    const float3 _e8 = sampling_normalize_scaled(wo_3);
-    if (!((dot(_e8, m_21) > 0.0))) {
-        return 0.0;
-    }
-    const float _e14 = ndf_ggx_d_matrix(r_55, m_21);
-    const float _e18 = ndf_ggx_lambda_matrix(r_55, _e8);
-    float v_15 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
-    return ((v_15 <= math_F32_MAX) ? v_15 : 0.0);
+    const float _e3 = ndf_ggx_d_matrix(r_54, m_21);
+    const float _e4 = ndf_ggx_lambda_matrix(r_54, wo_3);
+    const float _e5 = sampling_visible_normal_pdf_of(wo_3, m_21, _e3, _e4);
+    return _e5;
 }
 
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_56, float3 wo_4, float3 wi_1)
+float sampling_reflection_pdf_of(float3 o_6, float3 m_22, float d_1, float lambda_1)
 {
-    if (!((wo_4.z > 0.0))) {
+    bool local_16 = (bool)0;
+    bool local_17 = (bool)0;
+
+    float v_15 = (d_1 / ((4.0 * o_6.z) * (1.0 + lambda_1)));
+    if ((o_6.z > 0.0)) {
+        local_16 = (dot(o_6, m_22) > 0.0);
+    } else {
+        local_16 = false;
+    }
+    bool _e20 = local_16;
+    if (_e20) {
+        local_17 = (v_15 <= math_F32_MAX);
+    } else {
+        local_17 = false;
+    }
+    bool _e26 = local_17;
+    return (_e26 ? v_15 : 0.0);
+}
+
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_55, float3 wo_4, float3 m_23)
+{
+    const float3 _e3 = sampling_normalize_scaled(wo_4);
+    const float _e4 = ndf_ggx_d_matrix(r_55, m_23);
+    const float _e5 = ndf_ggx_lambda_matrix(r_55, _e3);
+    const float _e6 = sampling_reflection_pdf_of(_e3, m_23, _e4, _e5);
+    return _e6;
+}
+
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_56, float3 wo_5, float3 wi_1)
+{
+    if (!((wo_5.z > 0.0))) {
         return 0.0;
     }
-    const float3 _e8 = sampling_normalize_scaled(wo_4);
+    const float3 _e8 = sampling_normalize_scaled(wo_5);
     const float3 _e9 = sampling_normalize_scaled(wi_1);
     float3 h_23 = (_e8 + _e9);
     float len = length(h_23);
     if (!((len > 0.0))) {
         return 0.0;
     }
-    const float _e18 = sampling_reflection_pdf_from_normal(r_56, wo_4, (h_23 / (len).xxx));
+    const float _e18 = sampling_reflection_pdf_from_normal(r_56, wo_5, (h_23 / (len).xxx));
     return _e18;
 }
 
@@ -1976,13 +2001,13 @@ float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_1, floa
     return (g_1.norm * _e11);
 }
 
-float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, float3 m_22)
+float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, float3 m_24)
 {
-    if (!((m_22.z > 0.0))) {
+    if (!((m_24.z > 0.0))) {
         return 0.0;
     }
-    const float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_22.xy);
-    const float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_22.z * m_22.z), g_2.tl.x, g_2.tl.y);
+    const float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_24.xy);
+    const float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_24.z * m_24.z), g_2.tl.x, g_2.tl.y);
     float v_16 = (g_2.norm * _e19);
     return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
 }
@@ -1994,11 +2019,11 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, fl
         return ((big_3 == 0.0) ? 0.0 : math_F32_MAX);
     }
     float3 ws = (w_16 / (big_3).xxx);
-    float3 o_8 = (ws / (length(ws)).xxx);
-    float oz_3 = abs(o_8.z);
-    const float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_8.xy);
+    float3 o_9 = (ws / (length(ws)).xxx);
+    float oz_3 = abs(o_9.z);
+    const float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_9.xy);
     kernel_covariance_Covariance kk = g_3.k;
-    float qs_3 = max(((((kk.s_xx * o_8.x) * o_8.x) + (((2.0 * kk.s_xy) * o_8.x) * o_8.y)) + ((kk.s_yy * o_8.y) * o_8.y)), 0.0);
+    float qs_3 = max(((((kk.s_xx * o_9.x) * o_9.x) + (((2.0 * kk.s_xy) * o_9.x) * o_9.y)) + ((kk.s_yy * o_9.y) * o_9.y)), 0.0);
     if ((qs_3 <= 0.0)) {
         const float _e52 = ndf_ggx_lambda_of(_e27, oz_3);
         return _e52;
@@ -2014,18 +2039,18 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, fl
     return _e61;
 }
 
-float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, float3 w_17, float3 m_23)
+float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, float3 w_17, float3 m_25)
 {
     const float _e3 = filter_gaussian_ggx_lambda(g_4, w_17);
-    const float _e5 = ndf_g1_of(_e3, dot(w_17, m_23));
+    const float _e5 = ndf_g1_of(_e3, dot(w_17, m_25));
     return _e5;
 }
 
-float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 i_6, float3 o_6, float3 m_24)
+float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 i_6, float3 o_7, float3 m_26)
 {
     const float _e4 = filter_gaussian_ggx_lambda(g_5, i_6);
-    const float _e5 = filter_gaussian_ggx_lambda(g_5, o_6);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_24), dot(o_6, m_24));
+    const float _e5 = filter_gaussian_ggx_lambda(g_5, o_7);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_26), dot(o_7, m_26));
     return _e8;
 }
 
@@ -2072,15 +2097,15 @@ float3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx
     return float3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
 }
 
-float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_7, float3 m_25)
+float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_7, float3 m_27)
 {
-    const float _e2 = filter_gaussian_ggx_d(g_7, m_25);
-    return ((m_25.z > 0.0) ? (_e2 * m_25.z) : 0.0);
+    const float _e2 = filter_gaussian_ggx_d(g_7, m_27);
+    return ((m_27.z > 0.0) ? (_e2 * m_27.z) : 0.0);
 }
 
-kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_26)
+kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_28)
 {
-    const kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_26.second.x - (m_26.mean.x * m_26.mean.x)), (m_26.second.y - (m_26.mean.x * m_26.mean.y)), (m_26.second.z - (m_26.mean.y * m_26.mean.y)));
+    const kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_28.second.x - (m_28.mean.x * m_28.mean.x)), (m_28.second.y - (m_28.mean.x * m_28.mean.y)), (m_28.second.z - (m_28.mean.y * m_28.mean.y)));
     const kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
     const kernel_covariance_Covariance kernel_covariance_covariance_13 = _e26;
     return kernel_covariance_covariance_13;
@@ -2311,15 +2336,15 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     float p22_1 = (((p_8.x * s_27) * s_27) + ((p_8.y * c_20) * c_20));
     float k1_3 = max(((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_27) * k_11.s_xy)) + ((s_27 * s_27) * k_11.s_yy)), 0.0);
     float k2_3 = max(((((s_27 * s_27) * k_11.s_xx) - (((2.0 * c_20) * s_27) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy)), 0.0);
-    float d_2 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
+    float d_4 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
     float q11_ = (p11_1 + (2.0 * k_11.s_xx));
     float q12_ = (p12_1 + (2.0 * k_11.s_xy));
     float q22_ = (p22_1 + (2.0 * k_11.s_yy));
-    float den_1 = (((1.0 + q11_) + q22_) + d_2);
-    b11_ = ((q11_ + d_2) / den_1);
+    float den_1 = (((1.0 + q11_) + q22_) + d_4);
+    b11_ = ((q11_ + d_4) / den_1);
     b12_ = (q12_ / den_1);
-    b22_ = ((q22_ + d_2) / den_1);
-    det_3 = (d_2 / den_1);
+    b22_ = ((q22_ + d_4) / den_1);
+    det_3 = (d_4 / den_1);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
         b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_27) * s_27)));
@@ -2389,8 +2414,8 @@ kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kern
             f_1 = min(abs(alpha_8), (rules_1.floor_).xx);
         }
     }
-    float lambda = max(rules_1.max_extent, 0.0);
-    float2 h_27 = min(abs(r_58.half_extent), (lambda).xx);
+    float lambda_2 = max(rules_1.max_extent, 0.0);
+    float2 h_27 = min(abs(r_58.half_extent), (lambda_2).xx);
     float2 _e25 = f_1;
     const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_27, max(_e25, (0.0).xx)));
     return kernel_rect_boundingrect_1;
@@ -2573,21 +2598,21 @@ float filter_rect_atan2_upper(float y_3, float x_6)
     return (math_HALF_PI + _e9);
 }
 
-float filter_rect_delta_minus_sin(float d, float sin_d)
+float filter_rect_delta_minus_sin(float d_2, float sin_d)
 {
     float s_11 = (float)0;
 
-    if ((d < 1.0)) {
-        float d2_1 = (d * d);
+    if ((d_2 < 1.0)) {
+        float d2_1 = (d_2 * d_2);
         s_11 = (1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909))));
         float _e17 = s_11;
         s_11 = (1.0 - ((d2_1 * 0.023809524) * _e17));
         float _e23 = s_11;
         s_11 = (1.0 - ((d2_1 * 0.05) * _e23));
         float _e30 = s_11;
-        return (((d * d2_1) * 0.16666667) * _e30);
+        return (((d_2 * d2_1) * 0.16666667) * _e30);
     }
-    return (d - sin_d);
+    return (d_2 - sin_d);
 }
 
 float filter_rect_mean_1d(float4 i_7, float c2_)
@@ -2717,9 +2742,9 @@ float filter_rect_polar_near(float x2_, float lo, float hi)
         {
             uint _e16 = k_19;
             const float _e17 = filter_rect_gl8_node(_e16);
-            float d_3 = (h_29 * _e17);
-            float q0_ = (1.0 + ((c_22 - d_3) * (c_22 - d_3)));
-            float q1_ = (1.0 + ((c_22 + d_3) * (c_22 + d_3)));
+            float d_5 = (h_29 * _e17);
+            float q0_ = (1.0 + ((c_22 - d_5) * (c_22 - d_5)));
+            float q1_ = (1.0 + ((c_22 + d_5) * (c_22 + d_5)));
             float _e29 = acc_4;
             uint _e30 = k_19;
             const float _e31 = filter_rect_gl8_weight(_e30);
@@ -2755,9 +2780,9 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
         {
             uint _e16 = k_20;
             const float _e17 = filter_rect_gl8_node(_e16);
-            float d_4 = (h_30 * _e17);
-            float t0_2 = ((c_23 - d_4) * (c_23 - d_4));
-            float t1_4 = ((c_23 + d_4) * (c_23 + d_4));
+            float d_6 = (h_30 * _e17);
+            float t0_2 = ((c_23 - d_6) * (c_23 - d_6));
+            float t1_4 = ((c_23 + d_6) * (c_23 + d_6));
             float _e25 = acc_5;
             uint _e26 = k_20;
             const float _e27 = filter_rect_gl8_weight(_e26);
@@ -2830,7 +2855,7 @@ float filter_rect_gap(float4 i_8)
 
 float filter_rect_mean_f(float4 u_12, float4 v_11)
 {
-    bool local_15 = (bool)0;
+    bool local_18 = (bool)0;
     float acc_6 = 0.0;
     uint k_21 = 0u;
 
@@ -2839,11 +2864,11 @@ float filter_rect_mean_f(float4 u_12, float4 v_11)
     const uint _e14 = filter_rect_tier((u_12.w * u_12.w), ((1.0 + (u_12.z * u_12.z)) + (_e3 * _e3)));
     const uint _e25 = filter_rect_tier((v_11.w * v_11.w), ((1.0 + (v_11.z * v_11.z)) + (_e2 * _e2)));
     if ((_e14 == filter_rect_TIER_CLOSED)) {
-        local_15 = (_e25 == filter_rect_TIER_CLOSED);
+        local_18 = (_e25 == filter_rect_TIER_CLOSED);
     } else {
-        local_15 = false;
+        local_18 = false;
     }
-    bool _e33 = local_15;
+    bool _e33 = local_18;
     if (_e33) {
         if ((((_e2 * _e2) + (_e3 * _e3)) > filter_rect_FAR2_)) {
             const float _e39 = filter_rect_far_field(u_12, v_11);
@@ -2901,14 +2926,14 @@ float4 filter_rect_interval(float c_8, float h_14, float a_15)
 
 float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_61, float2 center_, float2 half_extent_4)
 {
-    bool local_16 = (bool)0;
+    bool local_19 = (bool)0;
 
     if ((half_extent_4.x == 0.0)) {
-        local_16 = (half_extent_4.y == 0.0);
+        local_19 = (half_extent_4.y == 0.0);
     } else {
-        local_16 = false;
+        local_19 = false;
     }
-    bool _e12 = local_16;
+    bool _e12 = local_19;
     if (_e12) {
         const float _e13 = ndf_ggx_p22_axis_aligned(r_61, center_);
         return _e13;
@@ -2922,17 +2947,17 @@ float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_61, float2 c
 
 float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_62, float3 h_15, float2 half_extent_5)
 {
-    bool local_17 = (bool)0;
+    bool local_20 = (bool)0;
 
     if (!((h_15.z > 0.0))) {
         return 0.0;
     }
     if ((half_extent_5.x == 0.0)) {
-        local_17 = (half_extent_5.y == 0.0);
+        local_20 = (half_extent_5.y == 0.0);
     } else {
-        local_17 = false;
+        local_20 = false;
     }
-    bool _e17 = local_17;
+    bool _e17 = local_20;
     if (_e17) {
         const float _e18 = ndf_ggx_d_axis_aligned(r_62, h_15);
         return _e18;
@@ -2944,7 +2969,7 @@ float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_62, float3 h_1
 
 float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_63, float2 hpp, float3 h_16, float2 footprint)
 {
-    bool local_18 = (bool)0;
+    bool local_21 = (bool)0;
 
     float a_28 = r_63.alpha.x;
     float b_8 = r_63.alpha.y;
@@ -2971,11 +2996,11 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_63, fl
     float hz4_ = (((h_16.z * h_16.z) * h_16.z) * h_16.z);
     float v_19 = ((val / den_2) / max(hz4_, 0.001));
     if ((abs(v_19) <= math_F32_MAX)) {
-        local_18 = (den_2 != 0.0);
+        local_21 = (den_2 != 0.0);
     } else {
-        local_18 = false;
+        local_21 = false;
     }
-    bool _e109 = local_18;
+    bool _e109 = local_21;
     return (_e109 ? v_19 : 0.0);
 }
 
@@ -3041,9 +3066,9 @@ float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_18)
     const float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     const float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
     float s_29 = (_e5 + _e6);
-    float d_5 = ((w_18 * s_29) / (_e3 + _e4));
-    const float _e12 = math_ln_1p((d_5 / _e6));
-    return (0.25 * (_e12 + ((0.5 * d_5) * s_29)));
+    float d_7 = ((w_18 * s_29) / (_e3 + _e4));
+    const float _e12 = math_ln_1p((d_7 / _e6));
+    return (0.25 * (_e12 + ((0.5 * d_7) * s_29)));
 }
 
 float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_19)
@@ -3140,7 +3165,7 @@ float filter_rect_lambda_gl_psi(uint t_9, float c_9, float h_17)
     return _e28;
 }
 
-float filter_rect_lambda_expected_psi(float m_27, float k1_, float k2_, float lo_2)
+float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo_2)
 {
     float acc_9 = 0.0;
     uint j_2 = 0u;
@@ -3149,10 +3174,10 @@ float filter_rect_lambda_expected_psi(float m_27, float k1_, float k2_, float lo
 
     float ks = min(k1_, k2_);
     float kl = max(k1_, k2_);
-    float near_l = max((m_27 - ks), 0.0);
+    float near_l = max((m_29 - ks), 0.0);
     const uint _e13 = filter_rect_tier((kl * kl), (1.0 + (near_l * near_l)));
     if ((_e13 != filter_rect_TIER_CLOSED)) {
-        float near_s = max((m_27 - kl), 0.0);
+        float near_s = max((m_29 - kl), 0.0);
         const uint _e23 = filter_rect_tier((ks * ks), (1.0 + (near_s * near_s)));
         uint2 loop_bound_13 = uint2(4294967295u, 4294967295u);
         bool loop_init_13 = true;
@@ -3176,15 +3201,15 @@ float filter_rect_lambda_expected_psi(float m_27, float k1_, float k2_, float lo
                 float _e35 = acc_9;
                 uint _e36 = j_2;
                 const float _e37 = filter_rect_gl_weight(_e13, _e36);
-                const float _e39 = filter_rect_lambda_gl_psi(_e23, (m_27 - a_33), ks);
-                const float _e41 = filter_rect_lambda_gl_psi(_e23, (m_27 + a_33), ks);
+                const float _e39 = filter_rect_lambda_gl_psi(_e23, (m_29 - a_33), ks);
+                const float _e41 = filter_rect_lambda_gl_psi(_e23, (m_29 + a_33), ks);
                 acc_9 = (_e35 + (_e37 * (_e39 + _e41)));
             }
         }
         float _e48 = acc_9;
         return _e48;
     }
-    float hi_5 = (m_27 + kl);
+    float hi_5 = (m_29 + kl);
     float w_28 = (2.0 * kl);
     if ((ks == 0.0)) {
         const float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_5, w_28);
@@ -3230,24 +3255,24 @@ float filter_rect_lambda_expected_psi(float m_27, float k1_, float k2_, float lo
 float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_66, float2 half_extent_6, float3 w_in)
 {
     float3 w_20 = (float3)0;
-    bool local_19 = (bool)0;
-    bool local_20 = (bool)0;
-    bool local_21 = (bool)0;
+    bool local_22 = (bool)0;
+    bool local_23 = (bool)0;
+    bool local_24 = (bool)0;
 
     float big_6 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
     w_20 = w_in;
     if (!((big_6 > 1.1529215e18))) {
         if ((big_6 < 8.6736174e-19)) {
-            local_20 = (big_6 > 0.0);
+            local_23 = (big_6 > 0.0);
         } else {
-            local_20 = false;
+            local_23 = false;
         }
-        bool _e24 = local_20;
-        local_19 = _e24;
+        bool _e24 = local_23;
+        local_22 = _e24;
     } else {
-        local_19 = true;
+        local_22 = true;
     }
-    bool _e26 = local_19;
+    bool _e26 = local_22;
     if (_e26) {
         int e_6 = asint(asuint(int(((asuint(big_6) >> 23u) & 255u))) - asuint(int(127)));
         w_20 = (w_in * asfloat((uint(asint(asuint(int(127)) - asuint(e_6))) << 23u)));
@@ -3275,11 +3300,11 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_66
     float k1_4 = ((px / _e74) * (ha.x / alpha_12.x));
     float k2_4 = ((py / _e74) * (ha.y / alpha_12.y));
     if ((k1_4 == 0.0)) {
-        local_21 = (k2_4 == 0.0);
+        local_24 = (k2_4 == 0.0);
     } else {
-        local_21 = false;
+        local_24 = false;
     }
-    bool _e92 = local_21;
+    bool _e92 = local_24;
     if (_e92) {
         float3 _e93 = w_20;
         const float _e94 = ndf_ggx_lambda_axis_aligned(r_66, _e93);
@@ -3306,17 +3331,17 @@ ndf_roughness_matrix_RoughnessMatrix filter_method_gaussian_lobe(filter_method_G
     return ndf_roughness_matrix_roughnessmatrix_16;
 }
 
-float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, float3 m_28)
+float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, float3 m_30)
 {
     const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_1, material_1, fp_8);
-    const float _e5 = ndf_ggx_d_matrix(_e4, m_28);
+    const float _e5 = ndf_ggx_d_matrix(_e4, m_30);
     return _e5;
 }
 
-float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_9, float3 m_29)
+float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_9, float3 m_31)
 {
     const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_2, material_2, fp_9);
-    const float _e5 = ndf_beckmann_d_matrix(_e4, m_29);
+    const float _e5 = ndf_beckmann_d_matrix(_e4, m_31);
     return _e5;
 }
 
@@ -3328,10 +3353,10 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_method_exact_gaussian_lobe(filter
     return filter_gaussian_ggx_gaussianfilteredggx_1;
 }
 
-float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, float3 m_30)
+float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, float3 m_32)
 {
     const filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_method_exact_gaussian_lobe(method_4, material_4, fp_11);
-    const float _e5 = filter_gaussian_ggx_d(_e4, m_30);
+    const float _e5 = filter_gaussian_ggx_d(_e4, m_32);
     return _e5;
 }
 
@@ -3342,10 +3367,10 @@ ndf_roughness_matrix_RoughnessMatrix filter_method_projected_lobe(filter_method_
     return ndf_roughness_matrix_roughnessmatrix_17;
 }
 
-float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, float3 m_31)
+float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, float3 m_33)
 {
     const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_projected_lobe(method_6, material_6, fp_13);
-    const float _e5 = ndf_ggx_d_matrix(_e4, m_31);
+    const float _e5 = ndf_ggx_d_matrix(_e4, m_33);
     return _e5;
 }
 
@@ -3371,9 +3396,9 @@ float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe, float2
     return _e4;
 }
 
-float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_1, float3 m_32)
+float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_1, float3 m_34)
 {
-    const float _e4 = filter_rect_d_rect(lobe_1.roughness, m_32, lobe_1.half_extent);
+    const float _e4 = filter_rect_d_rect(lobe_1.roughness, m_34, lobe_1.half_extent);
     return _e4;
 }
 
@@ -3383,25 +3408,25 @@ float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_2, f
     return _e4;
 }
 
-float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_3, float3 w_22, float3 m_33)
+float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_3, float3 w_22, float3 m_35)
 {
     const float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_22);
-    const float _e5 = ndf_g1_of(_e3, dot(w_22, m_33));
+    const float _e5 = ndf_g1_of(_e3, dot(w_22, m_35));
     return _e5;
 }
 
-float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_4, float3 i_9, float3 o_7, float3 m_34)
+float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_4, float3 i_9, float3 o_8, float3 m_36)
 {
     const float _e4 = filter_method_lambda_rect_filtered(lobe_4, i_9);
-    const float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_7);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_34), dot(o_7, m_34));
+    const float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_8);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_36), dot(o_8, m_36));
     return _e8;
 }
 
-float filter_method_d_ggx_rect(filter_method_Rect method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, float3 m_35)
+float filter_method_d_ggx_rect(filter_method_Rect method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, float3 m_37)
 {
     const filter_method_RectFilteredGgx _e4 = filter_method_rect_lobe(method_8, material_8, fp_15);
-    const float _e5 = filter_method_d_rect_filtered(_e4, m_35);
+    const float _e5 = filter_method_d_rect_filtered(_e4, m_37);
     return _e5;
 }
 
@@ -3415,10 +3440,10 @@ ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(filter_method_Pr
     return ndf_roughness_axis_aligned_axisaligned_3;
 }
 
-float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, float3 m_36)
+float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, float3 m_38)
 {
     const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
-    const float _e5 = ndf_ggx_d_axis_aligned(_e4, m_36);
+    const float _e5 = ndf_ggx_d_axis_aligned(_e4, m_38);
     return _e5;
 }
 
@@ -3502,41 +3527,41 @@ float3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAlig
     const float _e25 = sampling_clamp_unit(u_box.x);
     const float _e27 = sampling_clamp_unit(u_box.y);
     float2 b_9 = float2(_e25, _e27);
-    float2 d_6 = (((2.0 * b_9) - (1.0).xx) * h_33);
-    const float3 _e36 = filter_rect_sample_normal_of_slope((g_9 + d_6));
+    float2 d_8 = (((2.0 * b_9) - (1.0).xx) * h_33);
+    const float3 _e36 = filter_rect_sample_normal_of_slope((g_9 + d_8));
     return _e36;
 }
 
-float filter_rect_sample_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_68, float2 half_extent_8, float3 m_37)
+float filter_rect_sample_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_68, float2 half_extent_8, float3 m_39)
 {
-    const float _e3 = filter_rect_d_rect(r_68, m_37, half_extent_8);
-    return ((m_37.z > 0.0) ? (_e3 * m_37.z) : 0.0);
+    const float _e3 = filter_rect_d_rect(r_68, m_39, half_extent_8);
+    return ((m_39.z > 0.0) ? (_e3 * m_39.z) : 0.0);
 }
 
-float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_69, float2 half_extent_9, float3 wo_5, float3 m_38)
+float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_69, float2 half_extent_9, float3 wo_6, float3 m_40)
 {
-    bool local_22 = (bool)0;
-    bool local_23 = (bool)0;
+    bool local_25 = (bool)0;
+    bool local_26 = (bool)0;
 
-    float wom_1 = dot(wo_5, m_38);
-    if (!(!((wo_5.z > 0.0)))) {
-        local_22 = !((m_38.z > 0.0));
+    float wom_1 = dot(wo_6, m_40);
+    if (!(!((wo_6.z > 0.0)))) {
+        local_25 = !((m_40.z > 0.0));
     } else {
-        local_22 = true;
+        local_25 = true;
     }
-    bool _e17 = local_22;
+    bool _e17 = local_25;
     if (!(_e17)) {
-        local_23 = !((wom_1 > 0.0));
+        local_26 = !((wom_1 > 0.0));
     } else {
-        local_23 = true;
+        local_26 = true;
     }
-    bool _e25 = local_23;
+    bool _e25 = local_26;
     if (_e25) {
         return 0.0;
     }
-    const float _e27 = filter_rect_d_rect(r_69, m_38, half_extent_9);
-    const float _e30 = filter_rect_lambda_lambda_rect(r_69, half_extent_9, wo_5);
-    float v_21 = ((wom_1 * _e27) / (wo_5.z * (1.0 + _e30)));
+    const float _e27 = filter_rect_d_rect(r_69, m_40, half_extent_9);
+    const float _e30 = filter_rect_lambda_lambda_rect(r_69, half_extent_9, wo_6);
+    float v_21 = ((wom_1 * _e27) / (wo_6.z * (1.0 + _e30)));
     return ((v_21 <= math_F32_MAX) ? v_21 : 0.0);
 }
 
@@ -3710,13 +3735,13 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
 {
     float lo_3 = -9.0;
     float hi_2 = (float)0;
-    bool local_24 = (bool)0;
+    bool local_27 = (bool)0;
     float x_11 = (float)0;
     float dx_old = (float)0;
     uint i_11 = 0u;
     float g_8 = (float)0;
-    bool local_25 = (bool)0;
-    bool local_26 = (bool)0;
+    bool local_28 = (bool)0;
+    bool local_29 = (bool)0;
 
     float hi0_ = ((s_18 > 0.0) ? min((c_12 / s_18), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
     hi_2 = hi0_;
@@ -3735,11 +3760,11 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
     float _e40 = lo_3;
     if ((_e34 > _e40)) {
         float _e44 = hi_2;
-        local_24 = (_e34 < _e44);
+        local_27 = (_e34 < _e44);
     } else {
-        local_24 = false;
+        local_27 = false;
     }
-    bool _e47 = local_24;
+    bool _e47 = local_27;
     x_11 = (_e47 ? _e34 : min(0.0, (0.5 * _e35)));
     float _e50 = hi_2;
     float _e51 = lo_3;
@@ -3797,19 +3822,19 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
             float _e103 = lo_3;
             if ((xn > _e103)) {
                 float _e107 = hi_2;
-                local_25 = (xn < _e107);
+                local_28 = (xn < _e107);
             } else {
-                local_25 = false;
+                local_28 = false;
             }
-            bool _e110 = local_25;
+            bool _e110 = local_28;
             if (_e110) {
                 float _e113 = g_8;
                 float _e117 = dx_old;
-                local_26 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
+                local_29 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
             } else {
-                local_26 = false;
+                local_29 = false;
             }
-            bool _e123 = local_26;
+            bool _e123 = local_29;
             if (_e123) {
                 dx_old = abs(step_);
                 x_11 = xn;
@@ -3836,21 +3861,21 @@ float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta,
 {
     float c_13 = 1.0;
     float s_19 = 0.0;
-    bool local_27 = (bool)0;
-    bool local_28 = (bool)0;
+    bool local_30 = (bool)0;
+    bool local_31 = (bool)0;
 
     if ((cos_theta >= 0.0)) {
-        local_27 = (sin_theta >= 0.0);
+        local_30 = (sin_theta >= 0.0);
     } else {
-        local_27 = false;
+        local_30 = false;
     }
-    bool _e14 = local_27;
+    bool _e14 = local_30;
     if (_e14) {
-        local_28 = ((cos_theta + sin_theta) > 0.0);
+        local_31 = ((cos_theta + sin_theta) > 0.0);
     } else {
-        local_28 = false;
+        local_31 = false;
     }
-    bool _e21 = local_28;
+    bool _e21 = local_31;
     if (_e21) {
         const float _e22 = math_hypot(cos_theta, sin_theta);
         c_13 = (cos_theta / _e22);
@@ -3877,15 +3902,15 @@ float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_70
     return _e23;
 }
 
-float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_71, float3 wo_6, float2 u_17)
+float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_71, float3 wo_7, float2 u_17)
 {
-    bool local_29 = (bool)0;
+    bool local_32 = (bool)0;
 
-    if (!((wo_6.z > 0.0))) {
+    if (!((wo_7.z > 0.0))) {
         return (0.0).xxx;
     }
     const sampling_Warp _e9 = sampling_warp(r_71);
-    const float3 _e10 = sampling_normalize_scaled(wo_6);
+    const float3 _e10 = sampling_normalize_scaled(wo_7);
     const float3 _e11 = sampling_stretch(_e9, _e10);
     const float3 _e12 = sampling_normalize_scaled(_e11);
     if (!((_e12.z > 0.0))) {
@@ -3900,11 +3925,11 @@ float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMat
     float2 t_19 = float2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
     const float3 _e54 = sampling_unstretch(_e9, float3(-(t_19), 1.0));
     if ((_e54.z > 0.0)) {
-        local_29 = (dot(wo_6, _e54) > 0.0);
+        local_32 = (dot(wo_7, _e54) > 0.0);
     } else {
-        local_29 = false;
+        local_32 = false;
     }
-    bool _e64 = local_29;
+    bool _e64 = local_32;
     if (_e64) {
         return _e54;
     }
@@ -3912,45 +3937,27 @@ float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMat
     return ((_e65.z > 0.0) ? _e65 : (0.0).xxx);
 }
 
-float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_72, float3 m_39)
+float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_72, float3 m_41)
 {
-    const float _e2 = ndf_beckmann_d_matrix(r_72, m_39);
-    return ((m_39.z > 0.0) ? (_e2 * m_39.z) : 0.0);
+    const float _e2 = ndf_beckmann_d_matrix(r_72, m_41);
+    return ((m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0);
 }
 
-float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_73, float3 wo_7, float3 m_40)
+float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_73, float3 wo_8, float3 m_42)
 {
-    bool local_30 = (bool)0;
-
-    float wom_2 = dot(wo_7, m_40);
-    if (!(!((wo_7.z > 0.0)))) {
-        local_30 = !((wom_2 > 0.0));
-    } else {
-        local_30 = true;
-    }
-    bool _e15 = local_30;
-    if (_e15) {
-        return 0.0;
-    }
-    const float _e17 = ndf_beckmann_d_matrix(r_73, m_40);
-    const float _e20 = ndf_beckmann_lambda_matrix(r_73, wo_7);
-    float v_23 = ((wom_2 * _e17) / (wo_7.z * (1.0 + _e20)));
-    return ((v_23 <= math_F32_MAX) ? v_23 : 0.0);
+    const float _e3 = ndf_beckmann_d_matrix(r_73, m_42);
+    const float _e4 = ndf_beckmann_lambda_matrix(r_73, wo_8);
+    const float _e5 = sampling_visible_normal_pdf_of(wo_8, m_42, _e3, _e4);
+    return _e5;
 }
 
-float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_74, float3 wo_8, float3 m_41)
+float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_74, float3 wo_9, float3 m_43)
 {
-    if (!((wo_8.z > 0.0))) {
-        return 0.0;
-    }
-    const float3 _e8 = sampling_normalize_scaled(wo_8);
-    if (!((dot(_e8, m_41) > 0.0))) {
-        return 0.0;
-    }
-    const float _e14 = ndf_beckmann_d_matrix(r_74, m_41);
-    const float _e18 = ndf_beckmann_lambda_matrix(r_74, _e8);
-    float v_24 = (_e14 / ((4.0 * _e8.z) * (1.0 + _e18)));
-    return ((v_24 <= math_F32_MAX) ? v_24 : 0.0);
+    const float3 _e3 = sampling_normalize_scaled(wo_9);
+    const float _e4 = ndf_beckmann_d_matrix(r_74, m_43);
+    const float _e5 = ndf_beckmann_lambda_matrix(r_74, _e3);
+    const float _e6 = sampling_reflection_pdf_of(_e3, m_43, _e4, _e5);
+    return _e6;
 }
 
 float4 filtered_ndf_entry() : SV_Target0

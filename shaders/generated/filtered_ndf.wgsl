@@ -1597,27 +1597,32 @@ fn sampling_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) ->
 /// The visible-normal density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian
 /// (Heitz 2014 eq. 16) for a unit `m`; 0 for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
 fn sampling_visible_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+    return sampling_visible_normal_pdf_of(wo, m, ndf_ggx_d_matrix(r, m), ndf_ggx_lambda_matrix(r, wo));
+}
+
+/// [`visible_normal_pdf`] from `D(m)` and `Lambda(wo)` of any NDF (GGX here, Beckmann in
+/// `sampling::beckmann`): `(wo.m) D / (wo_z (1 + Lambda))`; 0 for `wo_z <= 0`, `wo.m <= 0`
+/// and where the quotient is not finite.
+fn sampling_visible_normal_pdf_of(wo: vec3<f32>, m: vec3<f32>, d: f32, lambda: f32) -> f32 {
     let wom = dot(wo, m);
-    if !(wo.z > 0.0) || !(wom > 0.0) {
-        return 0.0;
-    }
-    let v = wom * ndf_ggx_d_matrix(r, m) / (wo.z * (1.0 + ndf_ggx_lambda_matrix(r, wo)));
-    return select(0.0, v, v <= math_F32_MAX);
+    let v = wom * d / (wo.z * (1.0 + lambda));
+    return select(0.0, v, wo.z > 0.0 && wom > 0.0 && v <= math_F32_MAX);
 }
 
 /// The density per steradian of `wi = reflect(wo, m)` for the unit half vector `m` itself:
 /// `G1(wo) D(m) / (4 wo_z)` (Walter et al. 2007 eq. 14, `wo` normalised here); 0 for
 /// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
 fn sampling_reflection_pdf_from_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    if !(wo.z > 0.0) {
-        return 0.0;
-    }
     let o = sampling_normalize_scaled(wo);
-    if !(dot(o, m) > 0.0) {
-        return 0.0;
-    }
-    let v = ndf_ggx_d_matrix(r, m) / (4.0 * o.z * (1.0 + ndf_ggx_lambda_matrix(r, o)));
-    return select(0.0, v, v <= math_F32_MAX);
+    return sampling_reflection_pdf_of(o, m, ndf_ggx_d_matrix(r, m), ndf_ggx_lambda_matrix(r, o));
+}
+
+/// [`reflection_pdf_from_normal`] from the normalised `o = normalize_scaled(wo)`, `D(m)` and
+/// `Lambda(o)` of any NDF: `D / (4 o_z (1 + Lambda))`; 0 for `o_z <= 0` (`wo_z <= 0`, or a
+/// `wo_z` that vanishes against `wo_xy`), `o.m <= 0` and where the quotient is not finite.
+fn sampling_reflection_pdf_of(o: vec3<f32>, m: vec3<f32>, d: f32, lambda: f32) -> f32 {
+    let v = d / (4.0 * o.z * (1.0 + lambda));
+    return select(0.0, v, o.z > 0.0 && dot(o, m) > 0.0 && v <= math_F32_MAX);
 }
 
 /// The density per steradian of `wi` when `m` is drawn by [`sample_visible_normal`] and
@@ -3716,25 +3721,15 @@ fn sampling_beckmann_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3
 /// (Heitz 2014 eq. 16) of Beckmann for a unit `m`; 0 for `wo_z <= 0`, `wo.m <= 0`,
 /// `m_z <= 0`.
 fn sampling_beckmann_visible_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    let wom = dot(wo, m);
-    if !(wo.z > 0.0) || !(wom > 0.0) {
-        return 0.0;
-    }
-    let v = wom * ndf_beckmann_d_matrix(r, m) / (wo.z * (1.0 + ndf_beckmann_lambda_matrix(r, wo)));
-    return select(0.0, v, v <= math_F32_MAX);
+    let d = ndf_beckmann_d_matrix(r, m);
+    return sampling_visible_normal_pdf_of(wo, m, d, ndf_beckmann_lambda_matrix(r, wo));
 }
 
 /// The density per steradian of `wi = reflect(wo, m)` for the unit half vector `m` itself:
 /// `G1(wo) D(m) / (4 wo_z)` (Walter et al. 2007 eq. 14, `wo` normalised here); 0 for
 /// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
 fn sampling_beckmann_reflection_pdf_from_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    if !(wo.z > 0.0) {
-        return 0.0;
-    }
     let o = sampling_normalize_scaled(wo);
-    if !(dot(o, m) > 0.0) {
-        return 0.0;
-    }
-    let v = ndf_beckmann_d_matrix(r, m) / (4.0 * o.z * (1.0 + ndf_beckmann_lambda_matrix(r, o)));
-    return select(0.0, v, v <= math_F32_MAX);
+    let d = ndf_beckmann_d_matrix(r, m);
+    return sampling_reflection_pdf_of(o, m, d, ndf_beckmann_lambda_matrix(r, o));
 }

@@ -256,25 +256,15 @@ fn normal_pdf(r: matrix::RoughnessMatrix, m: vec3<f32>) -> f32 {
 /// (Heitz 2014 eq. 16) of Beckmann for a unit `m`; 0 for `wo_z <= 0`, `wo.m <= 0`,
 /// `m_z <= 0`.
 fn visible_normal_pdf(r: matrix::RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    let wom = dot(wo, m);
-    if !(wo.z > 0.0) || !(wom > 0.0) {
-        return 0.0;
-    }
-    let v = wom * beckmann_ndf::d_matrix(r, m) / (wo.z * (1.0 + beckmann_ndf::lambda_matrix(r, wo)));
-    return select(0.0, v, v <= math::F32_MAX);
+    let d = beckmann_ndf::d_matrix(r, m);
+    return sampling::visible_normal_pdf_of(wo, m, d, beckmann_ndf::lambda_matrix(r, wo));
 }
 
 /// The density per steradian of `wi = reflect(wo, m)` for the unit half vector `m` itself:
 /// `G1(wo) D(m) / (4 wo_z)` (Walter et al. 2007 eq. 14, `wo` normalised here); 0 for
 /// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
 fn reflection_pdf_from_normal(r: matrix::RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    if !(wo.z > 0.0) {
-        return 0.0;
-    }
     let o = sampling::normalize_scaled(wo);
-    if !(dot(o, m) > 0.0) {
-        return 0.0;
-    }
-    let v = beckmann_ndf::d_matrix(r, m) / (4.0 * o.z * (1.0 + beckmann_ndf::lambda_matrix(r, o)));
-    return select(0.0, v, v <= math::F32_MAX);
+    let d = beckmann_ndf::d_matrix(r, m);
+    return sampling::reflection_pdf_of(o, m, d, beckmann_ndf::lambda_matrix(r, o));
 }

@@ -123,27 +123,32 @@ fn normal_pdf(r: matrix::RoughnessMatrix, m: vec3<f32>) -> f32 {
 /// The visible-normal density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian
 /// (Heitz 2014 eq. 16) for a unit `m`; 0 for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
 fn visible_normal_pdf(r: matrix::RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+    return visible_normal_pdf_of(wo, m, ggx::d_matrix(r, m), ggx::lambda_matrix(r, wo));
+}
+
+/// [`visible_normal_pdf`] from `D(m)` and `Lambda(wo)` of any NDF (GGX here, Beckmann in
+/// `sampling::beckmann`): `(wo.m) D / (wo_z (1 + Lambda))`; 0 for `wo_z <= 0`, `wo.m <= 0`
+/// and where the quotient is not finite.
+fn visible_normal_pdf_of(wo: vec3<f32>, m: vec3<f32>, d: f32, lambda: f32) -> f32 {
     let wom = dot(wo, m);
-    if !(wo.z > 0.0) || !(wom > 0.0) {
-        return 0.0;
-    }
-    let v = wom * ggx::d_matrix(r, m) / (wo.z * (1.0 + ggx::lambda_matrix(r, wo)));
-    return select(0.0, v, v <= math::F32_MAX);
+    let v = wom * d / (wo.z * (1.0 + lambda));
+    return select(0.0, v, wo.z > 0.0 && wom > 0.0 && v <= math::F32_MAX);
 }
 
 /// The density per steradian of `wi = reflect(wo, m)` for the unit half vector `m` itself:
 /// `G1(wo) D(m) / (4 wo_z)` (Walter et al. 2007 eq. 14, `wo` normalised here); 0 for
 /// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
 fn reflection_pdf_from_normal(r: matrix::RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    if !(wo.z > 0.0) {
-        return 0.0;
-    }
     let o = normalize_scaled(wo);
-    if !(dot(o, m) > 0.0) {
-        return 0.0;
-    }
-    let v = ggx::d_matrix(r, m) / (4.0 * o.z * (1.0 + ggx::lambda_matrix(r, o)));
-    return select(0.0, v, v <= math::F32_MAX);
+    return reflection_pdf_of(o, m, ggx::d_matrix(r, m), ggx::lambda_matrix(r, o));
+}
+
+/// [`reflection_pdf_from_normal`] from the normalised `o = normalize_scaled(wo)`, `D(m)` and
+/// `Lambda(o)` of any NDF: `D / (4 o_z (1 + Lambda))`; 0 for `o_z <= 0` (`wo_z <= 0`, or a
+/// `wo_z` that vanishes against `wo_xy`), `o.m <= 0` and where the quotient is not finite.
+fn reflection_pdf_of(o: vec3<f32>, m: vec3<f32>, d: f32, lambda: f32) -> f32 {
+    let v = d / (4.0 * o.z * (1.0 + lambda));
+    return select(0.0, v, o.z > 0.0 && dot(o, m) > 0.0 && v <= math::F32_MAX);
 }
 
 /// The density per steradian of `wi` when `m` is drawn by [`sample_visible_normal`] and
