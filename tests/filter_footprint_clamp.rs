@@ -423,8 +423,17 @@ fn clamp_eigenvalues_across_the_reciprocal_threshold_f32() {
             .map(|l| l.clamp(0.0, 10.0));
         let (w11, w12, w22) = want.entries();
         let ulp = f32::EPSILON as f64;
-        assert!(((c.s11 as f64) - w11).abs() <= 8.0 * ulp * w11, "{a}: {c:?} {want:?}");
-        assert!(((c.s22 as f64) - w22).abs() <= 8.0 * ulp * w22, "{a}: {c:?} {want:?}");
-        assert!(((c.s12 as f64) - w12).abs() <= 1e-5 * w12.abs(), "{a}: {c:?} {want:?}");
+        assert!(
+            ((c.s11 as f64) - w11).abs() <= 8.0 * ulp * w11,
+            "{a}: {c:?} {want:?}"
+        );
+        assert!(
+            ((c.s22 as f64) - w22).abs() <= 8.0 * ulp * w22,
+            "{a}: {c:?} {want:?}"
+        );
+        assert!(
+            ((c.s12 as f64) - w12).abs() <= 1e-5 * w12.abs(),
+            "{a}: {c:?} {want:?}"
+        );
     }
 }

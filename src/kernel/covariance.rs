@@ -318,6 +318,7 @@ impl Covariance {
     /// nonzero and at most `1 / F::MIN_POSITIVE`); without it the smaller eigenvalue is
     /// meaningless.
     #[inline(always)]
+    #[allow(clippy::manual_range_contains)] // `&` of compares: no branch in the lane.
     fn eigen_pair_recip(this: Self, k: F, s: Self, r: F) -> (F, F, bool) {
         let (s11, s12, s22) = (this.s11, this.s12, this.s22);
         let (up, _, big) = Self::big(k, s, r);
@@ -335,6 +336,7 @@ impl Covariance {
     /// `sqrt(F::MIN_POSITIVE / 4)` (the caller then answers the isotropic `c_max I`, whose
     /// error, at most `2 r` relative to the unit-size matrix, is far below `F::EPSILON`).
     #[inline(always)]
+    #[allow(clippy::manual_range_contains)] // `&` of compares: no branch in the lane.
     fn rebuild(self, r: F, c_max: F, c_min: F) -> (Self, bool) {
         let d = 0.5 * (self.s11 - self.s22);
         let p = r + d.abs();
