@@ -402,3 +402,38 @@ fn constructors_and_filters_never_produce_nan() {
         }
     }
 }
+
+#[test]
+fn clamp_eigenvalues_across_the_reciprocal_threshold_f32() {
+    // The general clamp takes `lambda_min` as `(hi / big) lo - (s12 / big) s12` with the
+    // quotients as products with `1 / big` where that is a normal number (`|big| <= 1 /
+    // F::MIN_POSITIVE = 8.5e37` in f32), with true quotients above. [[a, 0.5], [0.5, 1]]
+    // clamped to 10, `a` on both sides of the threshold, against the test side's f64
+    // decomposition of the same (f32-exact) entries (`testing::linalg`): lambda_max ~ a is
+    // clamped to 10, lambda_min = 1 - 0.25 / a ~ 1 is kept, the eigenvectors are kept.
+    // s11 and s22: 8 ulps of the entry: lambda_min's products (3 roundings, 2 ulps), the
+    // projectors' reciprocal `1 / 2rp` and products (`p (p w)`: 2.5 ulps), the weighted sum
+    // (1 ulp), doubled for the unit-size matrix's rounded entries. s12 = 9 sin cos ~ 4.5 / a
+    // comes from the scaled entry `0.5 / a`, subnormal for a > 4.3e37 (2^-20 relative at
+    // 3e38): 1e-5 relative.
+    for a in [1e37f32, 5e37, 8e37, 8.4e37, 8.6e37, 9e37, 3e38, f32::MAX] {
+        let c = s::Covariance::new(a, 0.5, 1.0).clamp_eigenvalues(10.0);
+        let want = Sym2::new(a as f64, 0.5, 1.0)
+            .eigen()
+            .map(|l| l.clamp(0.0, 10.0));
+        let (w11, w12, w22) = want.entries();
+        let ulp = f32::EPSILON as f64;
+        assert!(
+            ((c.s11 as f64) - w11).abs() <= 8.0 * ulp * w11,
+            "{a}: {c:?} {want:?}"
+        );
+        assert!(
+            ((c.s22 as f64) - w22).abs() <= 8.0 * ulp * w22,
+            "{a}: {c:?} {want:?}"
+        );
+        assert!(
+            ((c.s12 as f64) - w12).abs() <= 1e-5 * w12.abs(),
+            "{a}: {c:?} {want:?}"
+        );
+    }
+}

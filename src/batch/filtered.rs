@@ -108,9 +108,9 @@ impl<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N> Kernel<7, 1> for Fil
     // 1.5 for GGX); in `f64` (two lanes) they do not (0.98 and 0.86), so there the baseline
     // runs the scalar path.
     const WIDE_ONLY: bool = WIDE;
-    // The first lane leaves the kappa rule's eigenvalue clamp (a square root and four
-    // divisions, which a branch-free lane computes for every element: half of the lane's
-    // time) to the second: on the realistic footprints of `benches/batch.rs` 15 % of the
+    // The first lane leaves the kappa rule's eigenvalue clamp (a square root and two
+    // divisions, once four, which a branch-free lane computes for every element: with four,
+    // half of the lane's time) to the second: on the realistic footprints of `benches/batch.rs` 15 % of the
     // elements need it (`tests/batch.rs` checks both tiers).
     const TIERED: bool = true;
 

@@ -28,8 +28,8 @@
 //! direction, a grazing `w`, a kernel outside the eigenvalue clamp's common case, an active
 //! determinant clamp, the box filter's far field) are flagged. The flags cost nothing where
 //! nothing is flagged. The filtered functions run two lanes (*tiers*): a cheap one without
-//! the `kappa` rule's eigenvalue clamp (half of the full lane's time: a square root and four
-//! divisions computed for every element by a branch-free lane), which flags the kernels
+//! the `kappa` rule's eigenvalue clamp (half of the full lane's time when it had a square root
+//! and four divisions, now two, computed for every element by a branch-free lane), which flags the kernels
 //! beyond `kappa / 2` (15 % of the bench's realistic footprints); the driver gathers those
 //! into a dense buffer on the stack and runs the full lane over them, still vectorised, and
 //! only what that flags goes to the scalar path. Both tiers are the scalar formula where they

@@ -241,7 +241,7 @@ impl Covariance {
         // they are clamped to 0, and an input with one (indefinite, or a negative diagonal
         // entry) is rebuilt even when its largest eigenvalue is within the bound.
         let r = radius(0.5 * (s.s11 - s.s22), s.s12);
-        let (lmin, lmax, _) = Self::eigen_pair(this, k, s, r);
+        let (lmin, lmax) = Self::eigen_pair(this, k, s, r);
         let indefinite = s11 < 0.0 || s22 < 0.0 || lmin < 0.0;
         // Compared and rebuilt in the caller's units (`lambda` against `max`): `max / k` is
         // subnormal when `max << scale` and carries only a few bits (fuzzing found 40 %
@@ -266,59 +266,100 @@ impl Covariance {
 
     /// The eigenvalues `(lambda_min, lambda_max)` of `this` in the caller's units from the
     /// unit-size matrix `s = this / k` and its radius `r` (see
-    /// [`Covariance::clamp_eigenvalues_general`]); the flag says whether the smaller one came
-    /// from the direct quotient form (`|big|` finite and nonzero), the others being rare.
+    /// [`Covariance::clamp_eigenvalues_general`]): [`Covariance::eigen_pair_recip`] where
+    /// its flag holds, otherwise the smaller one from quotients (`|big|` finite and nonzero)
+    /// or from `det / big`, the cases being rare.
     #[inline(always)]
-    fn eigen_pair(this: Self, k: F, s: Self, r: F) -> (F, F, bool) {
+    fn eigen_pair(this: Self, k: F, s: Self, r: F) -> (F, F) {
+        let (lmin, lmax, recip) = Self::eigen_pair_recip(this, k, s, r);
+        if recip {
+            return (lmin, lmax);
+        }
+        let (up, big_s, big) = Self::big(k, s, r);
         let (s11, s12, s22) = (this.s11, this.s12, this.s22);
-        let mean = 0.5 * (s.s11 + s.s22);
-        let up = mean >= 0.0;
-        let big_s = if up { mean + r } else { mean - r };
-        let big = big_s * k;
-        let direct = big.is_finite() & (big != 0.0);
-        let other = if direct {
-            // `|big| >= |s11|, |s22|, |s12|`: each quotient is in `[-1, 1]`; the larger
-            // diagonal entry is divided (the smaller one's quotient could underflow).
-            let (lo, hi) = if s11.abs() <= s22.abs() {
-                (s11, s22)
-            } else {
-                (s22, s11)
-            };
+        let other = if big.is_finite() && big != 0.0 {
+            let (lo, hi) = Self::lo_hi(s11, s22);
             (hi / big) * lo - (s12 / big) * s12
         } else if big_s != 0.0 {
             s.det() / big_s * k
         } else {
             0.0
         };
+        if up { (other, big) } else { (big, other) }
+    }
+
+    /// The eigenvalue of larger magnitude of the unit-size matrix `s` of radius `r`, `mean
+    /// +/- r` with the sign of `mean` (no cancellation): `(mean >= 0, big_s, big_s k)`.
+    #[inline(always)]
+    fn big(k: F, s: Self, r: F) -> (bool, F, F) {
+        let mean = 0.5 * (s.s11 + s.s22);
+        let up = mean >= 0.0;
+        let big_s = if up { mean + r } else { mean - r };
+        (up, big_s, big_s * k)
+    }
+
+    /// The diagonal entries of smaller and larger magnitude.
+    #[inline(always)]
+    fn lo_hi(s11: F, s22: F) -> (F, F) {
+        if s11.abs() <= s22.abs() {
+            (s11, s22)
+        } else {
+            (s22, s11)
+        }
+    }
+
+    /// [`Covariance::eigen_pair`]'s common case, `batch`'s lane form: the eigenvalue of
+    /// larger magnitude `big = mean +/- r` (the sign of `mean`, no cancellation) and the
+    /// other as `(hi / big) lo - (s12 / big) s12` (`hi`, `lo` the diagonal entries of larger
+    /// and smaller magnitude: `|big| >= |s11|, |s22|, |s12|`, so each quotient is in
+    /// `[-1, 1]`; dividing the larger one, whose quotient cannot underflow) with one
+    /// division: the quotients as products with `1 / big`, one more rounding each (1.5 ulp
+    /// instead of 0.5). The flag says whether `1 / big` is a finite normal number (`|big|`
+    /// nonzero and at most `1 / F::MIN_POSITIVE`); without it the smaller eigenvalue is
+    /// meaningless.
+    #[inline(always)]
+    #[allow(clippy::manual_range_contains)] // `&` of compares: no branch in the lane.
+    fn eigen_pair_recip(this: Self, k: F, s: Self, r: F) -> (F, F, bool) {
+        let (s11, s12, s22) = (this.s11, this.s12, this.s22);
+        let (up, _, big) = Self::big(k, s, r);
+        let ib = 1.0 / big;
+        let recip = (ib.abs() >= F::MIN_POSITIVE) & (ib.abs() < F::INFINITY);
+        let (lo, hi) = Self::lo_hi(s11, s22);
+        let other = (hi * ib) * lo - (s12 * ib) * s12;
         let (lmin, lmax) = if up { (other, big) } else { (big, other) };
-        (lmin, lmax, direct)
+        (lmin, lmax, recip)
     }
 
     /// `c_max P_max + c_min P_min` for the unit-size matrix `self` of radius `r`, with
     /// `c_min < c_max` (so `lambda_max - lambda_min = 2 r > 0`); the flag is `false` where
-    /// `1 / 2r` overflows (the caller then answers the isotropic `c_max I`).
+    /// `2 r p` (`p = r + |d| >= r`) is not a finite normal number, i.e. `r` below about
+    /// `sqrt(F::MIN_POSITIVE / 4)` (the caller then answers the isotropic `c_max I`, whose
+    /// error, at most `2 r` relative to the unit-size matrix, is far below `F::EPSILON`).
     #[inline(always)]
+    #[allow(clippy::manual_range_contains)] // `&` of compares: no branch in the lane.
     fn rebuild(self, r: F, c_max: F, c_min: F) -> (Self, bool) {
         let d = 0.5 * (self.s11 - self.s22);
         let p = r + d.abs();
-        let q = if p > 0.0 {
-            self.s12 * self.s12 / p
-        } else {
-            0.0
-        };
-        let (e11, e22) = if d >= 0.0 { (p, q) } else { (q, p) };
+        // One division for `1 / 2r` and `q = s12^2 / p` (`batch`'s lane computes this for
+        // every element that needs the clamp): `w = 1 / (2 r p)`, `1 / 2r = p w`,
+        // `q / 2r = s12^2 w` (two more roundings than the quotients).
+        let rp = (2.0 * r) * p;
+        let w = 1.0 / rp;
+        let inv = p * w;
+        let (pp, pq) = (p * inv, (self.s12 * self.s12) * w);
+        let (p11, p22) = if d >= 0.0 { (pp, pq) } else { (pq, pp) };
         // Sigma' = c_max P_max + c_min P_min with the (scale-free) spectral projectors
-        // P_max = [[e11, s12], [s12, e22]] / 2r and P_min = [[e22, -s12], [-s12, e11]] / 2r:
-        // sums of non-negative terms, no cancellation.
-        let inv = 1.0 / (2.0 * r);
-        let (p11, p12, p22) = (e11 * inv, self.s12 * inv, e22 * inv);
+        // P_max = [[e11, s12], [s12, e22]] / 2r and P_min = [[e22, -s12], [-s12, e11]] / 2r
+        // (`e` the larger of `p`, `q = s12^2 / p` on the larger diagonal entry's side): sums
+        // of non-negative terms, no cancellation.
+        let p12 = self.s12 * inv;
         (
             Self::new(
                 c_max * p11 + c_min * p22,
                 (c_max - c_min) * p12,
                 c_max * p22 + c_min * p11,
             ),
-            inv.abs() < F::INFINITY,
+            (rp >= F::MIN_POSITIVE) & (rp < F::INFINITY),
         )
     }
 
@@ -326,7 +367,7 @@ impl Covariance {
     /// [`Covariance::is_sane`] accepts, in `batch`'s lane form (branch-free): `(result, ok)`,
     /// equal to it bit for bit where `ok`. `ok` holds on its fast path and on the general
     /// path's common case (entries in the fast range, the radius a normal square root, the
-    /// direct eigenvalue quotient, a finite `1 / 2r`); the same helpers as the general path.
+    /// direct eigenvalue quotient, `2 r p` a finite normal number); the same helpers as the general path.
     #[inline(always)]
     #[allow(clippy::manual_range_contains)] // `&` of compares: no branch in the lane.
     pub(crate) fn clamp_eigenvalues_lane(self, max: F) -> (Self, bool) {
@@ -337,7 +378,7 @@ impl Covariance {
         let unscaled = (scale >= 1.0 / FAST_EIGEN_MAX)
             & (scale <= FAST_EIGEN_MAX)
             & (d0 * d0 + s12 * s12 >= F::MIN_POSITIVE / F::EPSILON);
-        let (lmin, lmax, direct) = Self::eigen_pair(self, 1.0, self, r);
+        let (lmin, lmax, direct) = Self::eigen_pair_recip(self, 1.0, self, r);
         let max_c = max.min(F::MAX);
         let keep = !((s11 < 0.0) | (s22 < 0.0) | (lmin < 0.0)) & (lmax <= max_c);
         // `F::clamp` without its assertion (a panic path stops the vectoriser); `max_c >= 0`
