@@ -1,14 +1,18 @@
 //! The exact Gaussian-filtered GGX ([`GaussianFilteredGgx`], KHPL16 section 5.2's filter
 //! computed by the mixture identity) over slices of micronormals for one lobe.
 //!
-//! The lane is the scalar `D`'s own steps (`GaussianFilteredGgx::d_lane`: the checks as
-//! selects, the `f64` whitening, and `J` by the rule the scalar path picks, shared through
-//! `gaussian_ggx_quad::rule`): the far-tail series or the fixed 8-node (`f32`) / 12-node
-//! (`f64`) Gauss-Laguerre rule, both straight-line code. Where the scalar path takes the
-//! trapezoid rule in `ln w` (an element-dependent node count, 16 to 64 nodes in `f32`: near
-//! the peak of a lobe whose kernel widens its variance by more than about `1.8 %` along some
-//! axis, `2 l1 > 0.0177 (1 + q)`, `q` the squared whitened slope; `0.01` in `f64`), the
-//! element is flagged and evaluated by the scalar `D`.
+//! Two lanes ([`super::lanes::Kernel::TIERED`]), each the scalar `D`'s own steps
+//! (`GaussianFilteredGgx::d_lane`: the checks as selects, the `f64` whitening, and `J` by the
+//! rule the scalar path picks, shared through `gaussian_ggx_quad::rule`): the first holds the
+//! far-tail series and the fixed 8-node (`f32`) / 12-node (`f64`) Gauss-Laguerre rule; the
+//! elements where the scalar path takes the trapezoid rule in `ln w` (near the peak of a lobe
+//! whose kernel widens its variance by more than about `1.8 %` along some axis, `2 l1 >
+//! 0.0177 (1 + q)`, `q` the squared whitened slope; `0.01` in `f64`) are gathered and run by
+//! the second, the trapezoid rule's first 3 chunks of 8 nodes (`f32`; 9 of 4 in `f64`) as
+//! straight-line code with the loop's truncation test as a select. What the trapezoid rule
+//! needs longer for (kernels of several lobe variances) is flagged and evaluated by the
+//! scalar `D`. On SSE2 the second lane does not pay (0.96 and 0.88 times the scalar loop's
+//! speed in `f32` and `f64`) and the driver leaves those elements to the scalar `D` there.
 
 use super::super::filter::GaussianFilteredGgx;
 use super::lanes::run;
@@ -24,16 +28,13 @@ use super::{F, Vec3};
 /// over many half vectors); build it once with [`GaussianFilteredGgx::new`]. Returns the
 /// number of elements written (the shortest slice). Allocates nothing.
 ///
-/// Speed: elements where the scalar path takes the trapezoid rule (near the peak of a lobe
-/// whose kernel widens its variance by more than about `1.8 %` along some axis, `2 l1 >
-/// 0.0177 (1 + q)` in `f32`, `0.01` in `f64`, `2 l1` of
-/// [`GaussianFilteredGgx::kernel_ratio`]) are evaluated by the scalar path after the vector pass;
-/// the others (the far tail and Gauss-Laguerre: every element of a lightly filtered lobe,
-/// the tails of any) run in vector lanes. The gain is smaller than for the closed-form
-/// kernels (about 2 times the scalar loop, `benches/batch.rs`): the scalar path already runs
-/// its 8 Gauss-Laguerre nodes as one vector, so the lanes save the per-element set-up and the
-/// wider vectors only; a lobe whose elements mostly take the trapezoid rule runs at the
-/// scalar loop's speed less the driver's probing of one block in eight (about 5 %).
+/// Speed (`benches/batch.rs`, f32, AVX-512; the README's batch table has the figures): about
+/// 6 times the scalar loop for a lightly filtered lobe (every element on the far tail and
+/// Gauss-Laguerre), about 4 times for a lobe whose kernel is as wide as the lobe (`2 l1 = 1`:
+/// 71 % of the bench's half vectors on the trapezoid rule). The scalar path already runs its
+/// nodes as vectors (8 per vector), so the lanes gain the wider vectors, the set-up in lanes
+/// and no branches; a kernel of several lobe variances, whose trapezoid rule runs longer than
+/// the lane's chunks, falls back to the scalar path for those elements.
 #[inline]
 pub fn gaussian_filtered_ggx_d(
     lobe: &GaussianFilteredGgx,
@@ -46,9 +47,18 @@ pub fn gaussian_filtered_ggx_d(
 }
 
 impl LaneD for GaussianFilteredGgx {
-    /// [`GaussianFilteredGgx::d_lane`].
+    /// The far tail and Gauss-Laguerre (every element of a lightly filtered lobe, the tails
+    /// of any); the trapezoid rule's elements, flagged, go to the second lane.
     #[inline(always)]
     fn d_lane(&self, m: Vec3) -> (F, bool) {
-        GaussianFilteredGgx::d_lane(self, m)
+        GaussianFilteredGgx::d_lane::<false>(self, m)
+    }
+    const TIERED: bool = true;
+    const FULL_COVERS: bool = false;
+    const FULL_WIDE_ONLY: bool = true;
+    /// The trapezoid rule's first chunks (the elements the first lane flags).
+    #[inline(always)]
+    fn d_lane_full(&self, m: Vec3) -> (F, bool) {
+        GaussianFilteredGgx::d_lane::<true>(self, m)
     }
 }

@@ -46,6 +46,16 @@ pub(crate) trait Kernel<const I: usize, const O: usize> {
     /// `lane_full` over them (vectorised too) and leaves only what `lane_full` flags to
     /// [`Kernel::scalar`].
     const TIERED: bool = false;
+    /// Whether [`Kernel::lane_full`] covers what [`Kernel::lane`] covers too, so that the
+    /// driver may start a block from it (where the first lane flagged most of the last
+    /// block). `false` for a second lane that holds only what the first one flags (the exact
+    /// Gaussian filter's trapezoid rule): the driver then always starts from the first.
+    const FULL_COVERS: bool = true;
+    /// Whether [`Kernel::lane_full`] pays only with 256-bit vectors or wider: on the baseline
+    /// the driver then leaves what [`Kernel::lane`] flags to [`Kernel::scalar`] (measured:
+    /// the exact Gaussian filter's trapezoid lane, 0.96 and 0.88 times the scalar loop's
+    /// speed on SSE2 in `f32` and `f64`).
+    const FULL_WIDE_ONLY: bool = false;
     /// The second vector path of a [`Kernel::TIERED`] kernel (same contract as
     /// [`Kernel::lane`]: where it does not flag, the value the kernel documents).
     #[inline(always)]
@@ -92,6 +102,15 @@ pub(crate) trait Body {
     const WIDE_ONLY: bool;
     /// Runs the loop.
     fn go(self);
+    /// Runs the loop on the baseline instruction set (SSE2): [`Body::go`] without what pays
+    /// only with wider vectors ([`Kernel::FULL_WIDE_ONLY`]).
+    #[inline(always)]
+    fn go_narrow(self)
+    where
+        Self: Sized,
+    {
+        self.go()
+    }
     /// Runs the loop by the scalar path alone.
     fn go_scalar(self);
 }
@@ -120,6 +139,19 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Body for Loop<'_, K, I, O>
     /// instead of 3).
     #[inline(always)]
     fn go(self) {
+        self.blocks(K::TIERED);
+    }
+
+    #[inline(always)]
+    fn go_narrow(self) {
+        self.blocks(K::TIERED && !K::FULL_WIDE_ONLY);
+    }
+}
+
+impl<K: Kernel<I, O>, const I: usize, const O: usize> Loop<'_, K, I, O> {
+    /// [`Body::go`], with the second vector pass where `tiered`.
+    #[inline(always)]
+    fn blocks(self, tiered: bool) {
         let Self { k, ins, mut outs } = self;
         let n = outs[0].len();
         let mut b = 0;
@@ -138,17 +170,20 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Body for Loop<'_, K, I, O>
                 b = e;
                 continue;
             }
-            let first = K::TIERED && full_only == 0;
+            // `lane` (`first`), or where the last block flagged most of its elements and
+            // `lane_full` covers `lane`'s domain, `lane_full` (also `lane` for a kernel of one
+            // tier).
+            let first = tiered && full_only == 0;
             full_only = full_only.saturating_sub(1);
             // A const parameter, not a closure: a closure is a function of its own, which the
             // dispatcher's target-feature context does not reach.
-            let mut flagged = if first {
+            let mut flagged = if first || !K::TIERED || !tiered {
                 vector_pass::<K, I, O, false>(k, &ins, &mut outs, b, e)
             } else {
                 vector_pass::<K, I, O, true>(k, &ins, &mut outs, b, e)
             };
             if first && flagged > 0 {
-                if 2 * flagged > e - b {
+                if K::FULL_COVERS && 2 * flagged > e - b {
                     full_only = SKIP;
                 }
                 flagged = dense_pass(k, &ins, &mut outs, b, e, &mut buf);

@@ -101,6 +101,18 @@ fn nine<'a>([i, o, m]: [Vec3s<'a>; 3]) -> [&'a [F]; 9] {
 pub(crate) trait LaneD: Ndf {
     /// `D(m)`.
     fn d_lane(&self, m: Vec3) -> (F, bool);
+    /// Whether `D` has a second, costlier lane for what [`LaneD::d_lane`] flags
+    /// ([`Kernel::TIERED`]).
+    const TIERED: bool = false;
+    /// [`Kernel::FULL_COVERS`].
+    const FULL_COVERS: bool = true;
+    /// [`Kernel::FULL_WIDE_ONLY`].
+    const FULL_WIDE_ONLY: bool = false;
+    /// The second lane of a [`LaneD::TIERED`] `D`.
+    #[inline(always)]
+    fn d_lane_full(&self, m: Vec3) -> (F, bool) {
+        self.d_lane(m)
+    }
 }
 
 /// The lane form of an NDF's `Lambda` too (GGX, Beckmann).
@@ -167,9 +179,17 @@ impl<R: Roughness> LaneNdf for Beckmann<R> {
 pub(super) struct D<N>(pub(super) N);
 
 impl<N: LaneD> Kernel<3, 1> for D<N> {
+    const TIERED: bool = N::TIERED;
+    const FULL_COVERS: bool = N::FULL_COVERS;
+    const FULL_WIDE_ONLY: bool = N::FULL_WIDE_ONLY;
     #[inline(always)]
     fn lane(&self, [x, y, z]: [F; 3]) -> ([F; 1], bool) {
         let (v, slow) = self.0.d_lane(Vec3::new(x, y, z));
+        ([v], slow)
+    }
+    #[inline(always)]
+    fn lane_full(&self, [x, y, z]: [F; 3]) -> ([F; 1], bool) {
+        let (v, slow) = self.0.d_lane_full(Vec3::new(x, y, z));
         ([v], slow)
     }
     #[inline]

@@ -26,10 +26,12 @@ pub(crate) fn level_name() -> &'static str {
 #[cfg(not(all(feature = "dispatch", target_arch = "x86_64")))]
 #[inline(always)]
 pub(crate) fn dispatch<B: Body>(l: B) {
-    if B::WIDE_ONLY && !WIDE_BUILD {
+    if WIDE_BUILD {
+        l.go()
+    } else if B::WIDE_ONLY {
         l.go_scalar()
     } else {
-        l.go()
+        l.go_narrow()
     }
 }
 
@@ -106,7 +108,8 @@ mod wide {
             Level::V4(s) => Simd::vectorize(s, Go(l)),
             Level::V3(s) => Simd::vectorize(s, Go(l)),
             Level::Base if B::WIDE_ONLY => l.go_scalar(),
-            Level::Base | Level::BaseLanes => l.go(),
+            Level::Base => l.go_narrow(),
+            Level::BaseLanes => l.go(),
         }
     }
 }

@@ -363,11 +363,12 @@ impl GaussianFilteredGgx {
 
 impl GaussianFilteredGgx {
     /// [`Ndf::d`] in lanes (`batch::gaussian_filtered_ggx_d`): the same checks as selects,
-    /// the same whitening and `J` by `quad::j_lane` (the far tail or Gauss-Laguerre), so the
-    /// value of [`Ndf::d`] bit for bit where not flagged; flagged (`slow`) where `d` takes the
-    /// trapezoid rule. `(value, slow)`.
+    /// the same whitening and `J` by `quad::j_lane` (without `TRAPEZOID` the far tail or
+    /// Gauss-Laguerre, with it the trapezoid rule's first chunks), so the value of [`Ndf::d`]
+    /// bit for bit where not flagged; flagged (`slow`) where `d` takes a rule the lane does
+    /// not hold. `(value, slow)`.
     #[inline(always)]
-    pub(crate) fn d_lane(&self, mn: Vec3) -> (F, bool) {
+    pub(crate) fn d_lane<const TRAPEZOID: bool>(&self, mn: Vec3) -> (F, bool) {
         let live = (mn.z > 0.0)
             & (mn.x.abs() < F::INFINITY)
             & (mn.y.abs() < F::INFINITY)
@@ -376,7 +377,7 @@ impl GaussianFilteredGgx {
         let z2 = z * z;
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
         let [tl1, tl2] = self.tl;
-        let (v, ok) = quad::j_lane(v1s, v2s, z2, tl1, tl2);
+        let (v, ok) = quad::j_lane::<TRAPEZOID>(v1s, v2s, z2, tl1, tl2);
         let d = F::from_f64(self.norm * v);
         let keep = live & (d.abs() < F::INFINITY);
         (if keep { d } else { 0.0 }, live & !ok)

@@ -69,7 +69,7 @@ pub(crate) fn exp_f32_reduced(xc: f32) -> (f32, f32) {
 /// polynomial of degree 9 (error `1.35e-14`; Estrin, depth 7); relative error below `1.5e-14`
 /// (unit test below), far inside the `f64` rules' budget.
 #[inline(always)]
-fn exp_f64(x: f64) -> f64 {
+const fn exp_f64(x: f64) -> f64 {
     let (p, k) = exp_f64_reduced(x.clamp(-708.0, 709.0));
     let s = f64::from_bits(k.to_bits().wrapping_add(1023) << 52);
     let keep = 0u64.wrapping_sub((x >= -708.0) as u64);
@@ -82,7 +82,7 @@ pub(crate) const MAGIC_F64: f64 = 6_755_399_441_055_744.0;
 /// [`exp_f32_reduced`] for [`exp_f64`]: `e^x = p 2^n`, `n` held in `k`, for `|x| <= 1e6`
 /// (`n ln2_hi` is exact for `|n| < 2^21`).
 #[inline(always)]
-pub(crate) fn exp_f64_reduced(xc: f64) -> (f64, f64) {
+pub(crate) const fn exp_f64_reduced(xc: f64) -> (f64, f64) {
     const MAGIC: f64 = MAGIC_F64;
     const LN2_HI: f64 = 0.693_147_180_369_123_8; // 0x3fe62e42fee00000.
     const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
@@ -164,19 +164,14 @@ static RATIO: [F; NODES] = {
     r
 };
 
-/// `e^(-k H)`, `k < NODES`, in `f64`.
+/// `e^(-k H)`, `k < NODES`, in `f64`: [`exp_f64`] at compile time, so the same bits as the
+/// batch lane's [`exp_f64`] of the same argument (a table lookup there is a gather, which
+/// stopped its loop from vectorising).
 static INV_RATIO: [f64; NODES] = {
-    let emh = if WIDE {
-        0.740_818_220_681_717_8
-    } else {
-        0.606_530_659_712_633_4
-    };
     let mut r = [0.0; NODES];
-    let mut v = 1.0f64;
     let mut k = 0;
     while k < NODES {
-        r[k] = v;
-        v *= emh;
+        r[k] = exp_f64(-H * k as f64);
         k += 1;
     }
     r
@@ -297,20 +292,35 @@ fn rule(beta_m: f64, z2: f64, tl1: f64) -> (bool, bool) {
     (far, laguerre)
 }
 
-/// [`j`] in lanes (`batch`'s exact Gaussian-filtered GGX): the far tail or Gauss-Laguerre
-/// selected by [`rule`], the same operations as [`j`], so the same value bit for bit where
-/// `ok`; `ok` is false where [`j`] takes the trapezoid rule (its node count depends on the
-/// element: the caller's scalar path evaluates it).
+/// [`j`] in lanes (`batch`'s exact Gaussian-filtered GGX): the same operations as [`j`], so
+/// the same value bit for bit where `ok`. Without `TRAPEZOID` the far tail or
+/// Gauss-Laguerre, selected by [`rule`], `ok` false where [`j`] takes the trapezoid rule;
+/// with `TRAPEZOID` the trapezoid rule alone ([`j_trapezoid_lane`], its first chunks), `ok`
+/// false where [`j`] takes another rule or runs it longer. Two lanes, not one: a select
+/// computes every rule it holds for every element, and the trapezoid rule's 24 (`f32`) or 36
+/// (`f64`) nodes would cost the elements that do not need them 4 times their own rule.
 #[inline(always)]
-pub(super) fn j_lane(v1s: f64, v2s: f64, z2: f64, tl1: f64, tl2: f64) -> (f64, bool) {
+pub(super) fn j_lane<const TRAPEZOID: bool>(
+    v1s: f64,
+    v2s: f64,
+    z2: f64,
+    tl1: f64,
+    tl2: f64,
+) -> (f64, bool) {
     let beta_m = z2 + v1s + v2s;
     let (far, laguerre) = rule(beta_m, z2, tl1);
-    let v = if far {
-        far_tail(beta_m, v1s, v2s, tl1, tl2, z2)
+    if TRAPEZOID {
+        let iz2 = 1.0 / z2;
+        let (t, ok) = j_trapezoid_lane(v1s * iz2, v2s * iz2, tl1, tl2);
+        (t * iz2 * iz2, ok & !(far | laguerre))
     } else {
-        j_laguerre::<true>(beta_m, v1s, v2s, z2, tl1, tl2)
-    };
-    (v, far | laguerre)
+        let v = if far {
+            far_tail(beta_m, v1s, v2s, tl1, tl2, z2)
+        } else {
+            j_laguerre::<true>(beta_m, v1s, v2s, z2, tl1, tl2)
+        };
+        (v, far | laguerre)
+    }
 }
 
 /// The far-tail series of `J` (item 5) in homogeneous form: for a slope argument
@@ -385,7 +395,7 @@ macro_rules! unrolled {
     };
     (@ $n:expr, $k:ident => $body:expr; $($i:literal)*) => {{
         const { assert!($n <= 12) };
-        $( if $i < $n { let $k = $i; $body; } )*
+        $( if $i < $n { let $k: usize = $i; $body; } )*
     }};
 }
 use unrolled;
@@ -413,29 +423,7 @@ fn sum_tree<const N: usize>(mut a: [F; N]) -> F {
 /// truncated by the monotone bound.
 #[inline]
 fn j_trapezoid(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> f64 {
-    let beta = 1.0 + c1s + c2s;
-    let ib = 1.0 / beta;
-    let w_r = 2.0 * ib;
-    // k0 H >= ln(w_r / w_lo), w_lo = Y_LO / (beta + 2 l1): the first node w_r e^(-k0 H) is at
-    // or below w_lo.
-    let k0 = ceil_pos(ln_upper(2.0 / Y_LO * (beta + tl1) * ib) * (1.0 / H));
-    let k0 = (k0 as usize).min(NODES - 1);
-    let w_first = w_r * INV_RATIO[k0];
-    // Reference exponent x_r = -w_r - E(w_r) (f64): every node's exponent is taken against
-    // it, E(w) - E(w_r) = sum c_i^2 (w - w_r) / (p_i(w) p_i(w_r)), without cancellation.
-    let (pr1, pr2) = (1.0 + tl1 * w_r, 1.0 + tl2 * w_r);
-    let ipr = w_r / (pr1 * pr2);
-    let (k1, k2) = (c1s * pr2 * ipr, c2s * pr1 * ipr);
-    let x_r = -w_r - k1 - k2;
-    let scale = w_r * w_r * exp_f64(x_r);
-    // Per node, with v = w / w_r = e^((k - k0) H):
-    // g(t) / scale = exp(2 ln v - (v - 1)(w_r + (k1 p2 + k2 p1) / (p1 p2))) / sqrt(p1 p2),
-    // p_i = 1 + (2 l_i w_r) v.
-    let (fk1, fk2, fw) = (F::from_f64(k1), F::from_f64(k2), F::from_f64(w_r));
-    let (t1, t2) = (F::from_f64(tl1 * w_r), F::from_f64(tl2 * w_r));
-    let v0 = F::from_f64(INV_RATIO[k0]);
-    let l0 = F::from_f64(-2.0 * H * k0 as f64);
-    let stop = EPS_T * H * w_r * w_r;
+    let t = Trapezoid::new::<false>(c1s, c2s, tl1, tl2);
     let mut tot = [0.0; CH];
     let mut sum: F = 0.0;
     let mut k = 0;
@@ -443,41 +431,161 @@ fn j_trapezoid(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> f64 {
         RATIO[k..].first_chunk::<CH>(),
         LOG2RATIO[k..].first_chunk::<CH>(),
     ) {
-        let acc = trapezoid_chunk([v0, t1, t2, fw, fk1, fk2, l0], rk, lk);
-        for (t, a) in tot.iter_mut().zip(acc.iter()) {
-            *t += *a;
-        }
-        sum = sum_tree(tot);
+        let stop;
+        (tot, sum, stop) = t.step::<false>(tot, rk, lk);
         k += CH;
-        // Item 3: the nodes above the last sum to at most g_last b / w_last^2.
-        let last = acc[CH - 1].to_f64();
-        let vl = (v0 * rk[CH - 1]).to_f64();
-        let wl = vl * w_r;
-        let b = if wl >= 2.0 { 1.0 + wl } else { 7.47 };
-        let s = sum.to_f64();
-        if last * b <= stop * s * vl * vl || s.is_nan() {
+        if stop {
             break;
         }
     }
-    H * (sum.to_f64() * scale + series_below(c1s, c2s, tl1, tl2, w_first))
+    t.total(sum, c1s, c2s, tl1, tl2)
+}
+
+/// [`j_trapezoid`] in lanes: the same set-up, chunks and truncation test, the first
+/// [`TRAP_CHUNKS`] chunks as straight-line code, the loop's `break` as a select (the chunks
+/// after the one that stops it leave the sums as they were), so the same value bit for bit
+/// where `ok`; `ok` is false where the scalar loop runs longer (or the sum is NaN).
+#[inline(always)]
+#[allow(unused_assignments)] // The last chunk's partial sums are not read again.
+fn j_trapezoid_lane(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> (f64, bool) {
+    const { assert!(TRAP_CHUNKS * CH <= NODES) };
+    let t = Trapezoid::new::<true>(c1s, c2s, tl1, tl2);
+    let mut tot = [0.0; CH];
+    let mut sum: F = 0.0;
+    let mut done = false;
+    unrolled!(TRAP_CHUNKS, c => {
+        let (rk, lk) = (&RATIO, &LOG2RATIO);
+        let at = |r: &'static [F; NODES]| r[c * CH..].first_chunk::<CH>().unwrap_or(&[0.0; CH]);
+        let (next, s, stop) = t.step::<true>(tot, at(rk), at(lk));
+        if !done {
+            tot = next;
+            sum = s;
+        }
+        done |= stop;
+    });
+    (t.total(sum, c1s, c2s, tl1, tl2), done)
+}
+
+/// Chunks of [`j_trapezoid_lane`]: the longest run of the rule on the lobes a filter meets
+/// (measured, the batch bench's heavy kernel `2 l1 = 1` over its realistic half vectors: 2
+/// or 3 chunks of 8 in `f32`, 7 or 8 of 4 in `f64`); the lane flags what takes longer.
+const TRAP_CHUNKS: usize = if WIDE { 9 } else { 3 };
+
+/// The set-up of [`j_trapezoid`] for one argument `(c1^2, c2^2)`: the node constants of
+/// [`trapezoid_chunk`], the truncation test's and the series correction's.
+struct Trapezoid {
+    /// `[v0, 2 l1 w_r, 2 l2 w_r, w_r, k1, k2, l0]` ([`trapezoid_chunk`]).
+    c: [F; 7],
+    w_r: f64,
+    w_first: f64,
+    scale: f64,
+    stop: f64,
+}
+
+impl Trapezoid {
+    /// The set-up; `LANE`: without table lookups (the same values).
+    #[inline(always)]
+    fn new<const LANE: bool>(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> Self {
+        let beta = 1.0 + c1s + c2s;
+        let ib = 1.0 / beta;
+        let w_r = 2.0 * ib;
+        // k0 H >= ln(w_r / w_lo), w_lo = Y_LO / (beta + 2 l1): the first node w_r e^(-k0 H)
+        // is at or below w_lo.
+        let k0 = ceil_pos(ln_upper(2.0 / Y_LO * (beta + tl1) * ib) * (1.0 / H));
+        let k0 = k0.min((NODES - 1) as f64);
+        // e^(-k0 H): the table, or in a lane the same polynomial ([`INV_RATIO`]).
+        let v0 = if LANE {
+            exp_f64(-H * k0)
+        } else {
+            INV_RATIO[k0 as usize]
+        };
+        let w_first = w_r * v0;
+        // Reference exponent x_r = -w_r - E(w_r) (f64): every node's exponent is taken
+        // against it, E(w) - E(w_r) = sum c_i^2 (w - w_r) / (p_i(w) p_i(w_r)), without
+        // cancellation.
+        let (pr1, pr2) = (1.0 + tl1 * w_r, 1.0 + tl2 * w_r);
+        let ipr = w_r / (pr1 * pr2);
+        let (k1, k2) = (c1s * pr2 * ipr, c2s * pr1 * ipr);
+        let x_r = -w_r - k1 - k2;
+        let scale = w_r * w_r * exp_f64(x_r);
+        // Per node, with v = w / w_r = e^((k - k0) H):
+        // g(t) / scale = exp(2 ln v - (v - 1)(w_r + (k1 p2 + k2 p1) / (p1 p2))) / sqrt(p1 p2),
+        // p_i = 1 + (2 l_i w_r) v.
+        let c = [
+            F::from_f64(v0),
+            F::from_f64(tl1 * w_r),
+            F::from_f64(tl2 * w_r),
+            F::from_f64(w_r),
+            F::from_f64(k1),
+            F::from_f64(k2),
+            F::from_f64(-2.0 * H * k0),
+        ];
+        Self {
+            c,
+            w_r,
+            w_first,
+            scale,
+            stop: EPS_T * H * w_r * w_r,
+        }
+    }
+
+    /// One chunk of nodes (ratios `rk`, their logarithms `lk`) added to the partial sums
+    /// `tot`: `(tot, their sum, stop)`, `stop` where the truncation test (item 3: the nodes
+    /// above the last sum to at most `g_last b / w_last^2`) ends the rule or the sum is NaN.
+    /// `LANE`: the nodes as straight-line code (see [`j_laguerre`]).
+    #[inline(always)]
+    fn step<const LANE: bool>(
+        &self,
+        mut tot: [F; CH],
+        rk: &[F; CH],
+        lk: &[F; CH],
+    ) -> ([F; CH], F, bool) {
+        let acc = trapezoid_chunk::<LANE>(self.c, rk, lk);
+        for (t, a) in tot.iter_mut().zip(acc.iter()) {
+            *t += *a;
+        }
+        let sum = sum_tree(tot);
+        let last = acc[CH - 1].to_f64();
+        let vl = (self.c[0] * rk[CH - 1]).to_f64();
+        let wl = vl * self.w_r;
+        let b = if wl >= 2.0 { 1.0 + wl } else { 7.47 };
+        let s = sum.to_f64();
+        (tot, sum, (last * b <= self.stop * s * vl * vl) | s.is_nan())
+    }
+
+    /// `J` from the nodes' sum and the series correction below the first node.
+    #[inline(always)]
+    fn total(&self, sum: F, c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> f64 {
+        H * (sum.to_f64() * self.scale + series_below(c1s, c2s, tl1, tl2, self.w_first))
+    }
 }
 
 /// One chunk of [`j_trapezoid`]'s nodes: `g(t) / scale` at `v = v0 r_k` (see there), from the
-/// constants `[v0, 2 l1 w_r, 2 l2 w_r, w_r, k1, k2, l0]`.
+/// constants `[v0, 2 l1 w_r, 2 l2 w_r, w_r, k1, k2, l0]`. `LANE`: straight-line code.
 #[inline(always)]
-fn trapezoid_chunk(c: [F; 7], rk: &[F; CH], lk: &[F; CH]) -> [F; CH] {
-    let [v0, t1, t2, fw, fk1, fk2, l0] = c;
+fn trapezoid_chunk<const LANE: bool>(c: [F; 7], rk: &[F; CH], lk: &[F; CH]) -> [F; CH] {
     let mut acc = [0.0; CH];
-    for j in 0..CH {
-        let v = v0 * rk[j];
-        let p1 = 1.0 + t1 * v;
-        let p2 = 1.0 + t2 * v;
-        let inv = 1.0 / (p1 * p2);
-        let a = fw + (fk1 * p2 + fk2 * p1) * inv;
-        let x = (l0 + lk[j]) - (v - 1.0) * a;
-        acc[j] = exp_poly(x) * m::sqrt(inv);
+    if LANE {
+        unrolled!(CH, j => acc[j] = trapezoid_node(c, rk[j], lk[j]));
+    } else {
+        for j in 0..CH {
+            acc[j] = trapezoid_node(c, rk[j], lk[j]);
+        }
     }
     acc
+}
+
+/// One node of [`trapezoid_chunk`].
+#[inline(always)]
+fn trapezoid_node(c: [F; 7], rk: F, lk: F) -> F {
+    let [v0, t1, t2, fw, fk1, fk2, l0] = c;
+    let v = v0 * rk;
+    let p1 = 1.0 + t1 * v;
+    let p2 = 1.0 + t2 * v;
+    let inv = 1.0 / (p1 * p2);
+    let a = fw + (fk1 * p2 + fk2 * p1) * inv;
+    let x = (l0 + lk) - (v - 1.0) * a;
+    exp_poly(x) * m::sqrt(inv)
 }
 
 /// `ceil` for the small positive values of the node offset (no `ceil` in `core`).
@@ -521,32 +629,37 @@ const INV_N: [f64; N_SER + 1] = {
 /// The nodes below `w_first` (item 2): `sum_k w_k^2 phi(w_k)` over `w_k = w_first e^(-k H)`,
 /// `k >= 1`, with `phi = exp(-w - E(w)) / sqrt(p1 p2) = sum a_n w^n` truncated after `N_SER`
 /// terms: `sum_n a_n w_first^(n + 2) / (e^((n + 2) H) - 1)`.
-#[inline]
+#[inline(always)]
+#[allow(unused_assignments)] // The last term's power of `w_first` and `-2 l_i` are not read.
 fn series_below(c1s: f64, c2s: f64, tl1: f64, tl2: f64, w_first: f64) -> f64 {
     // ln phi = sum_n b_n w^n: b_n = -sum_i c_i^2 (-2 l_i)^(n-1) + sum_i (-2 l_i)^n / (2 n)
     // (from -E and -ln(p1 p2) / 2), and b_1 -= 1 (from -w).
+    // Straight-line code (`unrolled`): loops here, inside the batch lane's element loop,
+    // stopped it from vectorising.
     let mut b = [0.0; N_SER];
     let (mut m1, mut m2) = (1.0, 1.0);
-    for (n, bn) in b.iter_mut().enumerate() {
-        *bn = -(c1s * m1 + c2s * m2) - (tl1 * m1 + tl2 * m2) * (0.5 * INV_N[n + 1]);
+    unrolled!(N_SER, n => {
+        b[n] = -(c1s * m1 + c2s * m2) - (tl1 * m1 + tl2 * m2) * (0.5 * INV_N[n + 1]);
         m1 *= -tl1;
         m2 *= -tl2;
-    }
+    });
     b[0] -= 1.0;
     // phi = exp(sum b_n w^n): a_0 = 1, n a_n = sum_{j=1..n} j b_j a_(n-j).
     let mut a = [0.0; N_SER];
     a[0] = 1.0;
     let mut tail = GEOM[0];
     let mut wp = w_first;
-    for n in 1..N_SER {
+    unrolled!(N_SER, n => if n >= 1 {
         let mut s = 0.0;
-        for j in 1..=n {
-            s += j as f64 * b[j - 1] * a[n - j];
-        }
+        // `saturating_sub`: the indices of the skipped terms (`j = 0`, `j > n`) are never
+        // formed as an underflow.
+        unrolled!(N_SER, j => if j >= 1 && j <= n {
+            s += j as f64 * b[j.saturating_sub(1)] * a[n.saturating_sub(j)];
+        });
         a[n] = s * INV_N[n];
         tail += a[n] * wp * GEOM[n];
         wp *= w_first;
-    }
+    });
     tail * w_first * w_first
 }
 
@@ -882,6 +995,53 @@ mod tests {
         }
         println!("fast beckmann lambda worst {worst:e}");
         assert!(worst < if WIDE { 2.5e-8 } else { 2.5e-7 }, "{worst:e}");
+    }
+
+    /// The trapezoid rule's lane against its loop: the same bits wherever the lane does not
+    /// flag; every element of a kernel as wide as the lobe (`2 l1 = 1`, the batch bench's
+    /// heavy kernel) taken by the lane up to `1 + q = 10^3`, elements of the widest kernels
+    /// (`2 l1 = 100`, more chunks) flagged, and each chunk count up to `TRAP_CHUNKS` met.
+    #[test]
+    fn trapezoid_lane_matches_loop() {
+        let (mut taken, mut flagged) = (0usize, 0usize);
+        let mut chunks = [0usize; TRAP_CHUNKS + 1];
+        for &tl1 in &[0.02, 0.1, 0.3, 1.0, 3.0, 10.0, 100.0] {
+            for &r in &[1.0, 0.5, 0.1, 0.0] {
+                let tl2 = tl1 * r;
+                for i in 0..200 {
+                    let q = 10f64.powf(-4.0 + 7.0 * i as f64 / 199.0);
+                    for &split in &[1.0, 0.7, 0.2, 0.0] {
+                        let (c1s, c2s) = (q * split, q * (1.0 - split));
+                        let want = j_trapezoid(c1s, c2s, tl1, tl2);
+                        let (got, ok) = j_trapezoid_lane(c1s, c2s, tl1, tl2);
+                        if ok {
+                            assert_eq!(got.to_bits(), want.to_bits(), "{c1s} {c2s} {tl1} {tl2}");
+                            taken += 1;
+                            // The chunk the loop stops at: the first whose partial sums end it.
+                            let t = Trapezoid::new::<false>(c1s, c2s, tl1, tl2);
+                            let mut tot = [0.0; CH];
+                            for c in 0..TRAP_CHUNKS {
+                                let at = |r: &[F; NODES]| *r[c * CH..].first_chunk::<CH>().unwrap();
+                                let stop;
+                                (tot, _, stop) = t.step::<false>(tot, &at(&RATIO), &at(&LOG2RATIO));
+                                if stop {
+                                    chunks[c + 1] += 1;
+                                    break;
+                                }
+                            }
+                        } else {
+                            if tl1 == 1.0 && q <= 1e3 {
+                                panic!("flagged {c1s} {c2s} {tl1} {tl2}");
+                            }
+                            flagged += 1;
+                        }
+                    }
+                }
+            }
+        }
+        println!("trapezoid lane: {taken} taken, {flagged} flagged, stops per chunk {chunks:?}");
+        assert!(flagged > 0);
+        assert!(chunks[1..].iter().filter(|&&c| c > 0).count() >= TRAP_CHUNKS.min(2));
     }
 
     #[test]
