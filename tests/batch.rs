@@ -734,6 +734,75 @@ macro_rules! suite {
                 }
             }
 
+            /// The exact Gaussian filter's two lanes (`batch/exact.rs`): the far tail and
+            /// Gauss-Laguerre, the trapezoid rule's lane for what the first flags, and where the
+            /// first lane flagged most of a block, the next blocks sorted between the two
+            /// (`lanes.rs`, `split_pass`) until one is mostly first-lane again. A lobe whose
+            /// kernel is as wide as it (`2 l1 = 1`: the trapezoid rule where `1 + q < 56.5`),
+            /// blocks of 512 with a chosen share of micronormals near the peak (slopes within
+            /// 3 alpha, `q <= 9`: the trapezoid rule) against far ones (20 to 100 alpha:
+            /// Gauss-Laguerre or the far tail), some NaN (flagged by every lane), in an order that
+            /// takes the driver through each state and back; bit for bit against the scalar `D`,
+            /// on every instruction set the tests run at (`.ci/run`).
+            #[test]
+            fn gaussian_filtered_ggx_tiers_every_path() {
+                use filtered_ndf::$prec::{Covariance, GaussianFilteredGgx};
+                const B: usize = 512;
+                // (share near the peak, share NaN) per block.
+                let plan: [(f64, f64); 14] = [
+                    (0.15, 0.0),
+                    (0.9, 0.03),
+                    (0.9, 0.0),
+                    (1.0, 0.0),
+                    (0.15, 0.03),
+                    (0.15, 0.0),
+                    (0.9, 0.0),
+                    (0.0, 1.0),
+                    (0.9, 0.0),
+                    (0.0, 0.0),
+                    (0.0, 0.0),
+                    (0.9, 0.0),
+                    (0.15, 0.0),
+                    (0.5, 0.0),
+                ];
+                let alpha = 0.2;
+                let iso = Isotropic::new(alpha as $t).unwrap();
+                let k = (0.5 * alpha * alpha) as $t;
+                let lobe = GaussianFilteredGgx::new(iso, Covariance::new(k, 0.0, k));
+                let (l1, _) = lobe.kernel_ratio();
+                assert!((2.0 * l1 as f64 - 1.0).abs() < 1e-6, "{l1}");
+                let mut rng = Rng(0xE7AC);
+                let (mut x, mut y, mut z) = (Vec::new(), Vec::new(), Vec::new());
+                for &(near, nan) in &plan {
+                    for _ in 0..B {
+                        let (p, q) = (rng.uniform(), rng.uniform());
+                        let r = alpha
+                            * if p < near {
+                                rng.range(0.0, 3.0)
+                            } else {
+                                rng.range(20.0, 100.0)
+                            };
+                        let phi = std::f64::consts::TAU * rng.uniform();
+                        let (sx, sy) = (r * phi.cos(), r * phi.sin());
+                        let l = (1.0 + sx * sx + sy * sy).sqrt();
+                        let mx = if q < nan { f64::NAN } else { -sx / l };
+                        x.push(mx as $t);
+                        y.push((-sy / l) as $t);
+                        z.push((1.0 / l) as $t);
+                    }
+                }
+                let n = plan.len() * B;
+                let mut out = vec![0.0 as $t; n];
+                assert_eq!(
+                    batch::gaussian_filtered_ggx_d(&lobe, &x, &y, &z, &mut out),
+                    n
+                );
+                for (i, &g) in out.iter().enumerate() {
+                    let w = lobe.d(Vec3::new(x[i], y[i], z[i]));
+                    assert_eq!(g.to_bits(), w.to_bits(), "element {i}: {g:e} against {w:e}");
+                }
+            }
+
             /// Projected-space filtering (TK21) with a kernel per element, bit for bit against
             /// `Ggx::new(filter::projected(r, Sigma_i)).d(h_i)`: the footprints' covariances
             /// (`sigma = 0.5`; the wide columns give kernels from `1e-9` to `1e2`, and NaN and

@@ -56,6 +56,11 @@ impl LaneD for GaussianFilteredGgx {
     const TIERED: bool = true;
     const FULL_COVERS: bool = false;
     const FULL_WIDE_ONLY: bool = true;
+    /// Where the scalar path takes the trapezoid rule.
+    #[inline(always)]
+    fn d_second(&self, m: Vec3) -> bool {
+        GaussianFilteredGgx::takes_trapezoid(self, m)
+    }
     /// The trapezoid rule's first chunks (the elements the first lane flags).
     #[inline(always)]
     fn d_lane_full(&self, m: Vec3) -> (F, bool) {

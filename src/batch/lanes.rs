@@ -56,6 +56,16 @@ pub(crate) trait Kernel<const I: usize, const O: usize> {
     /// the exact Gaussian filter's trapezoid lane, 0.96 and 0.88 times the scalar loop's
     /// speed on SSE2 in `f32` and `f64`).
     const FULL_WIDE_ONLY: bool = false;
+    /// For a [`Kernel::TIERED`] kernel whose second lane does not cover the first
+    /// (`!FULL_COVERS`): whether [`Kernel::lane`] leaves the element to
+    /// [`Kernel::lane_full`], decided cheaply. Where the first lane flagged most of a block,
+    /// the driver sorts the next blocks by it and runs each lane over its own elements only
+    /// ([`Kernel::FULL_COVERS`]); a wrong answer costs speed only (the element is flagged by
+    /// the lane it was sent to and ends on the scalar path).
+    #[inline(always)]
+    fn second(&self, _x: [F; I]) -> bool {
+        false
+    }
     /// The second vector path of a [`Kernel::TIERED`] kernel (same contract as
     /// [`Kernel::lane`]: where it does not flag, the value the kernel documents).
     #[inline(always)]
@@ -157,16 +167,32 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Loop<'_, K, I, O> {
         let mut b = 0;
         let mut skip = 0usize;
         let mut full_only = 0usize;
+        // A kernel whose second lane does not cover the first, after a block whose first lane
+        // flagged most of it: each block sorted by `Kernel::second` (see `split_pass`).
+        let mut split = false;
         let mut buf = Dense {
             xs: [[0.0; DENSE]; I],
             ys: [[0.0; DENSE]; O],
             at: [0; DENSE],
+            marks: [false; BLOCK],
         };
         while b < n {
             let e = n.min(b + BLOCK);
             if skip > 0 {
                 skip -= 1;
                 scalar_pass(k, &ins, &mut outs, b, e, false);
+                b = e;
+                continue;
+            }
+            if !K::FULL_COVERS && tiered && split {
+                let (flagged, seconds) = split_pass(k, &ins, &mut outs, b, e, &mut buf);
+                split = 2 * seconds > e - b;
+                if flagged > 0 {
+                    scalar_pass(k, &ins, &mut outs, b, e, true);
+                }
+                if 2 * flagged > e - b {
+                    skip = SKIP;
+                }
                 b = e;
                 continue;
             }
@@ -183,10 +209,14 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Loop<'_, K, I, O> {
                 vector_pass::<K, I, O, true>(k, &ins, &mut outs, b, e)
             };
             if first && flagged > 0 {
-                if K::FULL_COVERS && 2 * flagged > e - b {
-                    full_only = SKIP;
+                if 2 * flagged > e - b {
+                    if K::FULL_COVERS {
+                        full_only = SKIP;
+                    } else {
+                        split = true;
+                    }
                 }
-                flagged = dense_pass(k, &ins, &mut outs, b, e, &mut buf);
+                flagged = dense_pass::<K, I, O, true, false>(k, &ins, &mut outs, b, e, &mut buf, true);
             }
             if flagged > 0 {
                 scalar_pass(k, &ins, &mut outs, b, e, true);
@@ -333,6 +363,8 @@ struct Dense<const I: usize, const O: usize> {
     xs: [[F; DENSE]; I],
     ys: [[F; DENSE]; O],
     at: [usize; DENSE],
+    /// [`split_pass`]'s sort of a block: `Kernel::second` per element.
+    marks: [bool; BLOCK],
 }
 
 /// Elements per gather of [`dense_pass`] (its buffers live on the stack: `(I + O) DENSE`
@@ -342,25 +374,27 @@ const DENSE: usize = 128;
 /// The multiple of elements [`dense_pass`] runs its lane on (the widest vector, 16 `f32`).
 const PAD: usize = 16;
 
-/// [`Kernel::lane_full`] over the elements of `b..e` that the first pass flagged (a NaN in
-/// the first output), gathered [`DENSE`] at a time into dense columns so that the loop over
-/// them vectorises, the results scattered back. Returns how many `lane_full` flagged in turn
-/// (their first output NaN again, for the scalar path).
+/// [`Kernel::lane_full`] (`FULL`, else [`Kernel::lane`]) over the elements of `b..e` that
+/// the first pass flagged (a NaN in the first output; with `MARKED` instead those whose
+/// mark in `buf.marks` is `want`), gathered [`DENSE`] at a time into dense columns so that
+/// the loop over them vectorises, the results scattered back. Returns how many the lane
+/// flagged in turn (their first output NaN, for the scalar path).
 // Index loops on purpose: iterators are functions that LLVM may leave out of line (see `go`).
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
-fn dense_pass<K: Kernel<I, O>, const I: usize, const O: usize>(
+fn dense_pass<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool, const MARKED: bool>(
     k: &K,
     ins: &[&[F]; I],
     outs: &mut [&mut [F]; O],
     b: usize,
     e: usize,
     buf: &mut Dense<I, O>,
+    want: bool,
 ) -> usize {
-    if !long_enough(ins, outs, e) {
+    if !long_enough(ins, outs, e) || e - b > BLOCK {
         return 0;
     }
-    let Dense { xs, ys, at } = buf;
+    let Dense { xs, ys, at, marks } = buf;
     let mut still = 0usize;
     let mut i = b;
     while i < e {
@@ -370,7 +404,12 @@ fn dense_pass<K: Kernel<I, O>, const I: usize, const O: usize>(
         // elements are flagged), then the columns of those.
         while i < e && m < DENSE {
             at[m] = i;
-            m += usize::from(outs[0][i].is_nan());
+            let picked = if MARKED {
+                marks[i - b] == want
+            } else {
+                outs[0][i].is_nan()
+            };
+            m += usize::from(picked);
             i += 1;
         }
         for j in 0..m.min(DENSE) {
@@ -392,7 +431,7 @@ fn dense_pass<K: Kernel<I, O>, const I: usize, const O: usize>(
             for c in 0..I {
                 x[c] = xs[c][j];
             }
-            let (v, s) = k.lane_full(x);
+            let (v, s) = if FULL { k.lane_full(x) } else { k.lane(x) };
             for c in 0..O {
                 ys[c][j] = v[c];
             }
@@ -409,6 +448,35 @@ fn dense_pass<K: Kernel<I, O>, const I: usize, const O: usize>(
         }
     }
     still
+}
+
+/// A block sorted by [`Kernel::second`]: [`Kernel::lane`] over the elements it sends to the
+/// first lane and [`Kernel::lane_full`] over the others, each gathered densely
+/// ([`dense_pass`]), so that neither lane runs over the other's elements. Returns how many
+/// the lanes flagged (a NaN in the first output) and how many were sent to the second lane.
+// Index loops on purpose: iterators are functions that LLVM may leave out of line (see `go`).
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn split_pass<K: Kernel<I, O>, const I: usize, const O: usize>(
+    k: &K,
+    ins: &[&[F]; I],
+    outs: &mut [&mut [F]; O],
+    b: usize,
+    e: usize,
+    buf: &mut Dense<I, O>,
+) -> (usize, usize) {
+    if !long_enough(ins, outs, e) || e - b > BLOCK {
+        return (0, 0);
+    }
+    let mut seconds = 0usize;
+    for i in b..e {
+        let s = k.second(get(ins, i));
+        buf.marks[i - b] = s;
+        seconds += usize::from(s);
+    }
+    let flagged = dense_pass::<K, I, O, false, true>(k, ins, outs, b, e, buf, false)
+        + dense_pass::<K, I, O, true, true>(k, ins, outs, b, e, buf, true);
+    (flagged, seconds)
 }
 
 /// Blocks run by the scalar path alone after a block whose vector pass flagged more than half

@@ -108,6 +108,11 @@ pub(crate) trait LaneD: Ndf {
     const FULL_COVERS: bool = true;
     /// [`Kernel::FULL_WIDE_ONLY`].
     const FULL_WIDE_ONLY: bool = false;
+    /// [`Kernel::second`].
+    #[inline(always)]
+    fn d_second(&self, _m: Vec3) -> bool {
+        false
+    }
     /// The second lane of a [`LaneD::TIERED`] `D`.
     #[inline(always)]
     fn d_lane_full(&self, m: Vec3) -> (F, bool) {
@@ -191,6 +196,10 @@ impl<N: LaneD> Kernel<3, 1> for D<N> {
     fn lane_full(&self, [x, y, z]: [F; 3]) -> ([F; 1], bool) {
         let (v, slow) = self.0.d_lane_full(Vec3::new(x, y, z));
         ([v], slow)
+    }
+    #[inline(always)]
+    fn second(&self, [x, y, z]: [F; 3]) -> bool {
+        self.0.d_second(Vec3::new(x, y, z))
     }
     #[inline]
     fn scalar(&self, [x, y, z]: [F; 3]) -> [F; 1] {

@@ -384,6 +384,22 @@ impl GaussianFilteredGgx {
     }
 }
 
+impl GaussianFilteredGgx {
+    /// Whether [`Ndf::d`] takes the trapezoid rule at `mn` (a live micronormal outside the
+    /// far tail and Gauss-Laguerre, `quad::rule`): the batch driver's sort of elements
+    /// between its two lanes.
+    #[inline(always)]
+    pub(crate) fn takes_trapezoid(&self, mn: Vec3) -> bool {
+        let live = (mn.z > 0.0)
+            & (mn.x.abs() < F::INFINITY)
+            & (mn.y.abs() < F::INFINITY)
+            & (mn.z < F::INFINITY);
+        let z = mn.z.to_f64();
+        let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
+        live & quad::takes_trapezoid(v1s, v2s, z * z, self.tl[0])
+    }
+}
+
 impl Ndf for GaussianFilteredGgx {
     /// `P22_Sigma(s) = J / (pi sqrt(det A))` (module docs); `0` for a non-finite `s`.
     #[inline]

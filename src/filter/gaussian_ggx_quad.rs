@@ -292,6 +292,13 @@ fn rule(beta_m: f64, z2: f64, tl1: f64) -> (bool, bool) {
     (far, laguerre)
 }
 
+/// Whether [`j`] takes the trapezoid rule (neither the far tail nor Gauss-Laguerre).
+#[inline(always)]
+pub(super) fn takes_trapezoid(v1s: f64, v2s: f64, z2: f64, tl1: f64) -> bool {
+    let (far, laguerre) = rule(z2 + v1s + v2s, z2, tl1);
+    !(far | laguerre)
+}
+
 /// [`j`] in lanes (`batch`'s exact Gaussian-filtered GGX): the same operations as [`j`], so
 /// the same value bit for bit where `ok`. Without `TRAPEZOID` the far tail or
 /// Gauss-Laguerre, selected by [`rule`], `ok` false where [`j`] takes the trapezoid rule;
