@@ -369,10 +369,7 @@ impl GaussianFilteredGgx {
     /// not hold. `(value, slow)`.
     #[inline(always)]
     pub(crate) fn d_lane<const TRAPEZOID: bool>(&self, mn: Vec3) -> (F, bool) {
-        let live = (mn.z > 0.0)
-            & (mn.x.abs() < F::INFINITY)
-            & (mn.y.abs() < F::INFINITY)
-            & (mn.z < F::INFINITY);
+        let live = live_lane(mn);
         let z = mn.z.to_f64();
         let z2 = z * z;
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
@@ -390,14 +387,18 @@ impl GaussianFilteredGgx {
     /// between its two lanes.
     #[inline(always)]
     pub(crate) fn takes_trapezoid(&self, mn: Vec3) -> bool {
-        let live = (mn.z > 0.0)
-            & (mn.x.abs() < F::INFINITY)
-            & (mn.y.abs() < F::INFINITY)
-            & (mn.z < F::INFINITY);
         let z = mn.z.to_f64();
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
-        live & quad::takes_trapezoid(v1s, v2s, z * z, self.tl[0])
+        live_lane(mn) & quad::takes_trapezoid(v1s, v2s, z * z, self.tl[0])
     }
+}
+
+/// Whether `D` evaluates at `mn` (finite, `m_z > 0`; else `0`): [`Ndf::d`]'s checks as one
+/// branch-free expression (`abs() < inf` rather than `is_finite`, which compiles to integer
+/// bit tests).
+#[inline(always)]
+fn live_lane(mn: Vec3) -> bool {
+    (mn.z > 0.0) & (mn.x.abs() < F::INFINITY) & (mn.y.abs() < F::INFINITY) & (mn.z < F::INFINITY)
 }
 
 impl Ndf for GaussianFilteredGgx {
