@@ -217,8 +217,9 @@ macro_rules! family {
             |o: &mut [$t]| batch::d_rect(&aa, &hx, &hy, &hz, &rx, &ry, o)
         );
         // The exact Gaussian-filtered GGX, one lobe over the cases' half vectors: a light
-        // kernel (`2 l1 = 0.01`: Gauss-Laguerre and the far tail, all in lanes) and a heavy
-        // one (`2 l1 = 1`: the trapezoid rule, scalar, where `1 + q < 56`).
+        // kernel (`2 l1 = 0.01`: Gauss-Laguerre and the far tail, the first lane) and a heavy
+        // one (`2 l1 = 1`: the trapezoid rule where `1 + q < 56`, 71 % of these half vectors,
+        // the second lane).
         {
             use filtered_ndf::$prec::{Covariance, GaussianFilteredGgx};
             for (name, k) in [
