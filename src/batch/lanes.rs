@@ -216,7 +216,8 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Loop<'_, K, I, O> {
                         split = true;
                     }
                 }
-                flagged = dense_pass::<K, I, O, true, false>(k, &ins, &mut outs, b, e, &mut buf, true);
+                flagged =
+                    dense_pass::<K, I, O, true, false>(k, &ins, &mut outs, b, e, &mut buf, true);
             }
             if flagged > 0 {
                 scalar_pass(k, &ins, &mut outs, b, e, true);
@@ -382,7 +383,13 @@ const PAD: usize = 16;
 // Index loops on purpose: iterators are functions that LLVM may leave out of line (see `go`).
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
-fn dense_pass<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool, const MARKED: bool>(
+fn dense_pass<
+    K: Kernel<I, O>,
+    const I: usize,
+    const O: usize,
+    const FULL: bool,
+    const MARKED: bool,
+>(
     k: &K,
     ins: &[&[F]; I],
     outs: &mut [&mut [F]; O],
