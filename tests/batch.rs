@@ -360,24 +360,6 @@ macro_rules! suite {
                                 },
                                 &format!("filtered ggx, {name}"),
                             );
-                            batch::ggx_d_filtered_projected(
-                                &aa,
-                                &rules,
-                                sigma,
-                                &c.x,
-                                &c.y,
-                                &c.z,
-                                soa(&c),
-                                &mut out,
-                            );
-                            same(
-                                &out,
-                                |i| {
-                                    Ggx::new(rules.filter_projected(aa, fp(&c, i), sigma))
-                                        .d(h(&c, i))
-                                },
-                                &format!("filtered ggx projected, {name}"),
-                            );
                         }
                     }
                 }
@@ -502,17 +484,6 @@ macro_rules! suite {
                             &out,
                             |i| Ggx::new(rules.filter_gaussian(aa, fp(i), 0.5)).d(h(i)),
                             &format!("tiers ggx {name}"),
-                        );
-                        assert_eq!(
-                            batch::ggx_d_filtered_projected(
-                                &aa, &rules, 0.5, x, y, z, fps, &mut out
-                            ),
-                            n
-                        );
-                        same(
-                            &out,
-                            |i| Ggx::new(rules.filter_projected(aa, fp(i), 0.5)).d(h(i)),
-                            &format!("tiers ggx projected {name}"),
                         );
                         assert_eq!(
                             batch::beckmann_d_filtered(&aa, &rules, 0.5, x, y, z, fps, &mut out),

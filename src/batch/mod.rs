@@ -58,7 +58,7 @@
 //!
 //! | function | against the scalar function of the same precision | why | tested in |
 //! |---|---|---|---|
-//! | [`ggx_d`], [`ggx_lambda`], [`ggx_g2`], [`ggx_d_filtered`], [`ggx_d_filtered_projected`] (every [`ClampRules`](super::ClampRules)) | bit for bit | the lane is the scalar formula; every branch it skips is flagged | `tests/batch.rs` (random and adversarial input, every rule set, footprints that trigger each clamp, both tiers of the filtered lanes) |
+//! | [`ggx_d`], [`ggx_lambda`], [`ggx_g2`], [`ggx_d_filtered`] (every [`ClampRules`](super::ClampRules)) | bit for bit | the lane is the scalar formula; every branch it skips is flagged | `tests/batch.rs` (random and adversarial input, every rule set, footprints that trigger each clamp, both tiers of the filtered lanes) |
 //! | [`deferred_filter`] with `exponent = 1` (every preset but Unreal and Babylon.js) | bit for bit | the lane is the scalar steps with the domain and norm as constants (one loop per pair) and the branches as selects; the eigenvalue norm off its fast path is flagged | `tests/batch.rs` (every preset, every domain and norm, adversarial input) |
 //! | [`deferred_filter`] with another exponent | relative `(2 d + 1) eps` in the perceptual domain (`d + 1` in the others), `d` the power's error in ulps: the lane power's (`f64` arithmetic: half an `f32` ulp plus `1e-13`; in `f64` `1.6e-14 + 3 eps abs(y)`, `y = exponent ln(norm)`) plus libm's `powf` (one ulp) | `norm^exponent` by `lanes.rs`' `pow_lane`; the perceptual domain squares `p` | `tests/batch.rs`, the `pow_lane` unit test |
 //! | [`d_rect`], Gauss-Legendre elements (both sides short) and every element the lanes flag | bit for bit | the pairs of 2-, 4-, 6-point rules of the scalar case analysis in lanes (one loop per pair, the elements sorted by pair), every other case flagged | `tests/batch.rs` |
@@ -107,7 +107,7 @@ mod simd;
 
 pub use deferred::deferred_filter;
 pub use exact::gaussian_filtered_ggx_d;
-pub use filtered::{beckmann_d_filtered, ggx_d_filtered, ggx_d_filtered_projected};
+pub use filtered::{beckmann_d_filtered, ggx_d_filtered};
 pub use ndf::{beckmann_d, beckmann_g2, beckmann_lambda, ggx_d, ggx_g2, ggx_lambda};
 pub use pdf::{
     beckmann_normal_pdf, beckmann_reflection_pdf_from_normal, beckmann_visible_normal_pdf,

@@ -277,37 +277,7 @@ impl ClampRules {
         fp: Footprint,
         sigma: F,
     ) -> (RoughnessMatrix, bool) {
-        let (k, kernel_ok) = self.kernel_lane::<FULL>(fp, sigma);
-        let (b11, b12, b22) = filter::gaussian_entries(roughness, k);
-        let (a, det_ok) =
-            RoughnessMatrix::from_entries_unclamped(b11, b12, b22, self.det_clamp_wide(roughness));
-        (a, kernel_ok & det_ok)
-    }
-
-    /// [`ClampRules::filter_projected`] in `batch`'s lane form, as
-    /// [`ClampRules::filter_gaussian_lane`]: the same kernel lane, then the projected filter's
-    /// kernel part on the lobe's part `base` (`ProjectedBase::new(roughness)`, once per batch).
-    #[inline(always)]
-    pub(crate) fn filter_projected_lane<R: Roughness, const FULL: bool>(
-        &self,
-        roughness: R,
-        base: &filter::ProjectedBase,
-        fp: Footprint,
-        sigma: F,
-    ) -> (RoughnessMatrix, bool) {
-        let (k, kernel_ok) = self.kernel_lane::<FULL>(fp, sigma);
-        let (b11, b12, b22) = base.entries(k);
-        let (a, det_ok) =
-            RoughnessMatrix::from_entries_unclamped(b11, b12, b22, self.det_clamp_wide(roughness));
-        (a, kernel_ok & det_ok)
-    }
-
-    /// `kernel(footprint(fp).covariance(sigma))` of the filters' lanes: `(kernel, ok)`, the
-    /// scalar rules' kernel bit for bit where `ok` (the footprint within `max_extent`, the
-    /// sanitiser's fast path, then the kappa rule: within `kappa / 2`, or with `FULL` the
-    /// eigenvalue clamp's common case).
-    #[inline(always)]
-    fn kernel_lane<const FULL: bool>(&self, fp: Footprint, sigma: F) -> (Covariance, bool) {
+        // `kernel`: the sanitiser's fast path, then the eigenvalue clamp of the kappa rule.
         let k = fp.covariance(sigma);
         let sane = k.is_sane();
         let (clamped, clamp_ok) = if FULL {
@@ -317,7 +287,11 @@ impl ClampRules {
         };
         let off = self.kappa_off();
         let k = if off { k } else { clamped };
-        (k, self.footprint_within(fp) & sane & (off | clamp_ok))
+        let kernel_ok = sane & (off | clamp_ok);
+        let (b11, b12, b22) = filter::gaussian_entries(roughness, k);
+        let (a, det_ok) =
+            RoughnessMatrix::from_entries_unclamped(b11, b12, b22, self.det_clamp_wide(roughness));
+        (a, self.footprint_within(fp) & kernel_ok & det_ok)
     }
 
     /// The projected-space pipeline (TK21), the rules as in [`ClampRules::filter_gaussian`]:
