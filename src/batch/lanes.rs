@@ -323,14 +323,25 @@ fn vector_pass<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool
     let mut flagged = 0usize;
     for i in b..e {
         let x = get(ins, i);
-        let (v, slow) = if FULL { k.lane_full(x) } else { k.lane(x) };
+        let (v, slow) = marked::<K, I, O, FULL>(k, x);
         set(outs, i, v);
-        if slow {
-            outs[0][i] = F::NAN;
-        }
         flagged += usize::from(slow);
     }
     flagged
+}
+
+/// [`Kernel::lane`] (or with `FULL` [`Kernel::lane_full`]) of one element, its first output
+/// replaced by the NaN mark where it is flagged: `(outputs, flagged)`.
+#[inline(always)]
+fn marked<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool>(
+    k: &K,
+    x: [F; I],
+) -> ([F; O], bool) {
+    let (mut v, slow) = if FULL { k.lane_full(x) } else { k.lane(x) };
+    if slow {
+        v[0] = F::NAN;
+    }
+    (v, slow)
 }
 
 /// The loop of [`vector_pass`] over one whole block (columns of `L` elements).
@@ -346,12 +357,9 @@ fn lane_loop<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool, 
         for c in 0..I {
             x[c] = xs[c][i];
         }
-        let (v, slow) = if FULL { k.lane_full(x) } else { k.lane(x) };
+        let (v, slow) = marked::<K, I, O, FULL>(k, x);
         for c in 0..O {
             ys[c][i] = v[c];
-        }
-        if slow {
-            ys[0][i] = F::NAN;
         }
         flagged += usize::from(slow);
     }
@@ -438,12 +446,9 @@ fn dense_pass<
             for c in 0..I {
                 x[c] = xs[c][j];
             }
-            let (v, s) = if FULL { k.lane_full(x) } else { k.lane(x) };
+            let (v, _) = marked::<K, I, O, FULL>(k, x);
             for c in 0..O {
                 ys[c][j] = v[c];
-            }
-            if s {
-                ys[0][j] = F::NAN;
             }
         }
         for j in 0..m.min(DENSE) {
