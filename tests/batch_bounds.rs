@@ -654,6 +654,85 @@ macro_rules! suite {
                 println!("D: worst GGX {:.3}, Beckmann {:.3} of the bound", worst[0], worst[1]);
             }
 
+            /// Filtered Beckmann (`batch::beckmann_d_filtered`) against the `f64` Beckmann `D`
+            /// of the matrix the scalar route of the batch precision builds
+            /// (`ClampRules::filter_gaussian`: its entries are the lanes' bit for bit), on
+            /// footprints from a twentieth of the lobe to twenty lobe widths, smooth lobes
+            /// included (`alpha = 0.01`: elongated filtered lobes whose correlation leaves the
+            /// `f32` lane's domain, `rho^2 > 3/4`, for the second, counted). In `f32`:
+            /// `E + (16 x + 10) eps`, the first lane's exponent (`30.7 u`) and norm (`16 u`)
+            /// plus the exponential (module docs); in `f64`: `1.5e-14 + (2 + x) eps`.
+            #[test]
+            fn d_filtered_against_f64() {
+                use filtered_ndf::$prec::{ClampRules, Footprint, Vec2};
+                let mut rng = Rng(0xF1D);
+                let (mut worst, mut correlated, mut total) = (0.0f64, 0usize, 0usize);
+                for (k, alpha) in [0.01, 0.05, 0.3].into_iter().enumerate() {
+                    let m = Cols::new(&micronormals(N, 0xF0 + k as u64, 3.0 * alpha));
+                    let mut fp = [vec![0.0 as $t; N], vec![0.0; N], vec![0.0; N], vec![0.0; N]];
+                    for i in 0..N {
+                        let ext = (alpha * rng.log_uniform(0.05, 20.0)).min(1.0);
+                        let e2 = ext * rng.log_uniform(0.1, 1.0);
+                        let (p1, p2) = (
+                            std::f64::consts::TAU * rng.uniform(),
+                            std::f64::consts::TAU * rng.uniform(),
+                        );
+                        fp[0][i] = (ext * p1.cos()) as $t;
+                        fp[1][i] = (ext * p1.sin()) as $t;
+                        fp[2][i] = (e2 * p2.cos()) as $t;
+                        fp[3][i] = (e2 * p2.sin()) as $t;
+                    }
+                    let soa = batch::Footprints {
+                        dh_u_x: &fp[0],
+                        dh_u_y: &fp[1],
+                        dh_v_x: &fp[2],
+                        dh_v_y: &fp[3],
+                    };
+                    let r = AxisAligned::new(alpha as $t, (1.5 * alpha) as $t).unwrap();
+                    for rules in [ClampRules::default(), ClampRules::NONE] {
+                        let mut out = vec![0.0 as $t; N];
+                        batch::beckmann_d_filtered(&r, &rules, 0.5, &m.x, &m.y, &m.z, soa, &mut out);
+                        for i in 0..N {
+                            let f = Footprint::from_slope_derivatives(
+                                Vec2::new(fp[0][i], fp[1][i]),
+                                Vec2::new(fp[2][i], fp[3][i]),
+                            );
+                            let a = rules.filter_gaussian(r, f, 0.5);
+                            if a.clamped_entries() != a.entries() {
+                                continue; // the determinant clamp: not on the lanes' path
+                            }
+                            let (a11, a12, a22) = a.entries();
+                            let (a11, a12, a22) = (a11 as f64, a12 as f64, a22 as f64);
+                            total += 1;
+                            correlated += usize::from(4.0 * a12 * a12 > 3.0 * a11 * a22);
+                            let r64 = d::RoughnessMatrix::new(a11, a12, a22).unwrap();
+                            let w = m.at(i);
+                            let want = d::Beckmann::new(r64).d(w);
+                            let x = r64.inv_quadratic(glam::DVec2::new(w.x, w.y)) / (w.z * w.z);
+                            let got = out[i] as f64;
+                            assert!(got >= 0.0 && !got.is_nan());
+                            if want < MIN {
+                                assert!((got - want).abs() <= MIN, "{got} vs {want}");
+                                continue;
+                            }
+                            let tol = if WIDE {
+                                1.5e-14 + (2.0 + x) * EPS
+                            } else {
+                                2.5e-7 + (16.0 * x + 10.0) * EPS
+                            };
+                            let e = (got - want).abs() / want;
+                            worst = worst.max(e / tol);
+                            assert!(e <= tol, "alpha {alpha} [{i}]: {got} vs {want} (x {x})");
+                        }
+                    }
+                }
+                assert!(total > 4 * N, "{total}");
+                assert!(correlated > total / 100, "{correlated} of {total} correlated");
+                println!(
+                    "filtered D: worst {worst:.3} of the bound; {correlated} of {total} correlated"
+                );
+            }
+
             #[test]
             fn lambda_and_g2_against_f64() {
                 let (o, i) = (

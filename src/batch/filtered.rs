@@ -3,12 +3,14 @@
 
 use super::super::footprint::Footprint;
 use super::super::kernel::ClampRules;
+use super::super::ndf::Ndf;
 use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
-use super::lanes::{Kernel, WIDE, run};
-use super::ndf::LaneNdf;
-use super::{F, Footprints, Vec2, Vec3};
+use super::lanes::{Kernel, WIDE, exp_neg_times, run};
+use super::ndf::LaneD;
+use super::{F, Footprints, PI, Vec2, Vec3};
+use core::marker::PhantomData;
 
 /// Filtered Beckmann (exact Gaussian filtering, KHPL16 eq. 15) through the clamped pipeline
 /// for each half vector and footprint: `out[i] = Beckmann::new(rules.filter_gaussian(*r,
@@ -28,7 +30,7 @@ pub fn beckmann_d_filtered<R: Roughness>(
     fp: Footprints<'_>,
     out: &mut [F],
 ) -> usize {
-    d_filtered(Beckmann::new, r, rules, sigma, [hx, hy, hz], fp, out)
+    d_filtered::<R, Beckmann<RoughnessMatrix>>(r, rules, sigma, [hx, hy, hz], fp, out)
 }
 
 /// Filtered GGX with the TK19 (section 2.2) matrix approximation `A' = A + 2 Sigma` through
@@ -47,18 +49,83 @@ pub fn ggx_d_filtered<R: Roughness>(
     fp: Footprints<'_>,
     out: &mut [F],
 ) -> usize {
-    d_filtered(Ggx::new, r, rules, sigma, [hx, hy, hz], fp, out)
+    d_filtered::<R, Ggx<RoughnessMatrix>>(r, rules, sigma, [hx, hy, hz], fp, out)
+}
+
+/// An NDF of a filtered matrix, as the Gaussian-filtered lanes evaluate it.
+trait FilteredNdf: LaneD + Ndf + Sized {
+    /// The NDF of `A'` (`Ggx::new`, `Beckmann::new`).
+    fn of(a: RoughnessMatrix) -> Self;
+    /// `D(m)` of the matrix with entries `e` where the determinant clamp `tau` is inactive, in
+    /// the first tier: `(D, flagged)`. By default the scalar path's matrix and the NDF's lane
+    /// `D` (bit for bit where not flagged).
+    #[inline(always)]
+    fn d_entries_lane(e: (F, F, F), tau: f64, m: Vec3) -> (F, bool) {
+        d_entries_exact::<Self>(e, tau, m)
+    }
+}
+
+/// [`FilteredNdf::d_entries_lane`]'s default: the scalar path's matrix
+/// (`RoughnessMatrix::from_entries_unclamped`, flagged where its clamp would act) and the
+/// NDF's lane `D`.
+#[inline(always)]
+fn d_entries_exact<N: FilteredNdf>((a11, a12, a22): (F, F, F), tau: f64, m: Vec3) -> (F, bool) {
+    let (a, ok) = RoughnessMatrix::from_entries_unclamped(a11, a12, a22, tau);
+    let (v, slow) = N::of(a).d_lane(m);
+    (v, slow | !ok)
+}
+
+impl FilteredNdf for Ggx<RoughnessMatrix> {
+    #[inline(always)]
+    fn of(a: RoughnessMatrix) -> Self {
+        Ggx::new(a)
+    }
+}
+
+impl FilteredNdf for Beckmann<RoughnessMatrix> {
+    #[inline(always)]
+    fn of(a: RoughnessMatrix) -> Self {
+        Beckmann::new(a)
+    }
+    /// In `f32` the exponent and norm in `f32` (`RoughnessMatrix::exponent_and_norm_narrow`,
+    /// its flags: a correlation `rho^2 > 3/4`, a determinant near `tau`, a step near the range
+    /// limits), then the exponential of the `D` lane: the whole lane at the full `f32` width.
+    /// In `f64` the default.
+    #[inline(always)]
+    fn d_entries_lane(e: (F, F, F), tau: f64, m: Vec3) -> (F, bool) {
+        if WIDE {
+            return d_entries_exact::<Self>(e, tau, m);
+        }
+        let (x, n, matrix_ok, eval_ok) = RoughnessMatrix::exponent_and_norm_narrow(
+            e.0,
+            e.1,
+            e.2,
+            tau,
+            Vec2::new(m.x, m.y),
+            m.z * m.z,
+        );
+        let (v, exp_ok) = exp_neg_times(x, n * (1.0 / PI));
+        let live = (m.z > 0.0) & !x.is_nan();
+        (
+            if live { v } else { 0.0 },
+            !matrix_ok | (live & !(eval_ok & exp_ok)),
+        )
+    }
 }
 
 /// The kernel shared by the Gaussian-filtered batch functions: the clamped pipeline
-/// [`ClampRules::filter_gaussian`] evaluated by the NDF `ndf(A')` at `h_i`. Two lanes (a
-/// [`Kernel::TIERED`] kernel): the first takes the pipeline's fast path without the `kappa`
-/// rule's eigenvalue clamp ([`ClampRules::filter_gaussian_lane`] with `FULL = false`), the
-/// second, over what the first flags, with it; then the NDF's lane `D`. An element where a
-/// rule leaves the second lane's fast path is flagged and evaluated by the scalar route.
+/// [`ClampRules::filter_gaussian`] evaluated by the NDF `N(A')` at `h_i`. In `f32` two lanes
+/// (a [`Kernel::TIERED`] kernel), both with the rules' fast paths and the eigenvalue clamp's
+/// common case ([`ClampRules::filter_gaussian_entries_lane`]): the first decides everything
+/// in `f32` (the kernel's sanity by [`Covariance::is_sane_sure`]) and evaluates `D` by
+/// [`FilteredNdf::d_entries_lane`], so that it runs at the full `f32` vector width; the
+/// second, over what the first flags, decides and evaluates as the scalar path (`f64`
+/// products, the scalar path's matrix, the NDF's lane `D`). What the second flags goes to the
+/// scalar route. In `f64` the first lane alone (the two would be the same).
+///
+/// [`Covariance::is_sane_sure`]: super::super::kernel::Covariance::is_sane_sure
 #[inline]
-fn d_filtered<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N>(
-    ndf: C,
+fn d_filtered<R: Roughness, N: FilteredNdf>(
     r: &R,
     rules: &ClampRules,
     sigma: F,
@@ -66,11 +133,11 @@ fn d_filtered<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N>(
     fp: Footprints<'_>,
     out: &mut [F],
 ) -> usize {
-    let k = Filtered {
-        ndf,
+    let k = Filtered::<R, N> {
         r: *r,
         rules: *rules,
         sigma,
+        ndf: PhantomData,
     };
     run(
         &k,
@@ -79,40 +146,45 @@ fn d_filtered<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N>(
     )
 }
 
-/// `D` of `ndf(rules.filter_gaussian(r, fp, sigma))`.
-/// `C` is the NDF's constructor as a function item (zero-sized, inlined into the lane).
-struct Filtered<R, C> {
-    ndf: C,
+/// `D` of `N(rules.filter_gaussian(r, fp, sigma))`.
+struct Filtered<R, N> {
     r: R,
     rules: ClampRules,
     sigma: F,
+    ndf: PhantomData<N>,
 }
 
-impl<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N> Filtered<R, C> {
-    /// The lane of [`ClampRules::filter_gaussian_lane`] with or without the eigenvalue clamp
-    /// (`FULL`), then the NDF's lane `D`.
+impl<R: Roughness, N: FilteredNdf> Filtered<R, N> {
+    /// The lane of [`ClampRules::filter_gaussian_entries_lane`], then `D`: the first tier's
+    /// (`FULL = false`: decided in `F`, [`FilteredNdf::d_entries_lane`]) or the second's
+    /// (`FULL`: decided as the scalar path, `d_entries_exact`).
     #[inline(always)]
     fn lane_with<const FULL: bool>(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> ([F; 1], bool) {
         let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
-        let (a, ok) = self
+        let (e, tau, ok) = self
             .rules
-            .filter_gaussian_lane::<R, FULL>(self.r, fp, self.sigma);
-        let (v, slow) = (self.ndf)(a).d_lane(Vec3::new(hx, hy, hz));
+            .filter_gaussian_entries_lane::<R, FULL>(self.r, fp, self.sigma);
+        let m = Vec3::new(hx, hy, hz);
+        let (v, slow) = if FULL {
+            d_entries_exact::<N>(e, tau, m)
+        } else {
+            N::d_entries_lane(e, tau, m)
+        };
         ([v], slow | !ok)
     }
 }
 
-impl<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N> Kernel<7, 1> for Filtered<R, C> {
+impl<R: Roughness, N: FilteredNdf> Kernel<7, 1> for Filtered<R, N> {
     // In `f32` the tiered lanes pay on SSE2 too (measured, `FILTERED_NDF_SIMD=sse2-lanes`
     // against the scalar loop on the bench's realistic inputs: 1.3 times as fast for Beckmann,
     // 1.5 for GGX); in `f64` (two lanes) they do not (0.98 and 0.86), so there the baseline
     // runs the scalar path.
     const WIDE_ONLY: bool = WIDE;
-    // The first lane leaves the kappa rule's eigenvalue clamp (a square root and two
-    // divisions, once four, which a branch-free lane computes for every element: with four,
-    // half of the lane's time) to the second: on the realistic footprints of `benches/batch.rs` 15 % of the
-    // elements need it (`tests/batch.rs` checks both tiers).
-    const TIERED: bool = true;
+    // The second lane takes what the first cannot decide or evaluate in `f32` alone (a
+    // correlated filtered matrix, `rho^2 > 3/4`; a nearly singular kernel): none of the
+    // bench's elements (its lobe `alpha = (0.1, 0.3)`), 7 % of those of an isotropic
+    // `alpha = 0.01` under the bench's footprints. In `f64` the two lanes would be the same.
+    const TIERED: bool = !WIDE;
 
     #[inline(always)]
     fn lane(&self, x: [F; 7]) -> ([F; 1], bool) {
@@ -129,6 +201,6 @@ impl<R: Roughness, N: LaneNdf, C: Fn(RoughnessMatrix) -> N> Kernel<7, 1> for Fil
     fn scalar(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> [F; 1] {
         let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
         let a = self.rules.filter_gaussian(self.r, fp, self.sigma);
-        [(self.ndf)(a).d(Vec3::new(hx, hy, hz))]
+        [N::of(a).d(Vec3::new(hx, hy, hz))]
     }
 }

@@ -27,13 +27,14 @@
 //! helpers, not a copy): the rare inputs whose scalar path branches elsewhere (a rescaled
 //! direction, a grazing `w`, a kernel outside the eigenvalue clamp's common case, an active
 //! determinant clamp, the box filter's far field) are flagged. The flags cost nothing where
-//! nothing is flagged. The filtered functions run two lanes (*tiers*): a cheap one without
-//! the `kappa` rule's eigenvalue clamp (half of the full lane's time when it had a square root
-//! and four divisions, now two, computed for every element by a branch-free lane), which flags the kernels
-//! beyond `kappa / 2` (15 % of the bench's realistic footprints); the driver gathers those
-//! into a dense buffer on the stack and runs the full lane over them, still vectorised, and
-//! only what that flags goes to the scalar path. Both tiers are the scalar formula where they
-//! do not flag, so the tiers change no result. Transcendental functions in lanes are
+//! nothing is flagged. The `f32` filtered functions run two lanes (*tiers*): the first decides
+//! the rules and (Beckmann) evaluates the filtered lobe in `f32` alone, so that it runs at the
+//! full vector width (16 `f32` lanes with AVX-512; one `f64` operation in a loop halves them),
+//! and flags what it cannot decide or evaluate to that precision (a nearly singular kernel, a
+//! filtered matrix with correlation `rho^2 > 3/4`); the driver gathers those into a dense
+//! buffer on the stack (their indices from the flags' bits, a word at a time) and runs the
+//! second lane over them, still vectorised, which decides and evaluates as the scalar path;
+//! only what that flags goes to the scalar path. Transcendental functions in lanes are
 //! polynomials (`exp`: `filter::exp_poly`'s reduction; Beckmann's `Lambda`: the `erfc` fit
 //! shared with the exact Gaussian filter's sampler; `ln`: `log.rs`, on the reduction of
 //! `lanes.rs`' `pow_lane`; the box filter's `atan2`: Cephes' reduction and rational). Where
@@ -63,7 +64,8 @@
 //! | [`deferred_filter`] with another exponent | relative `(2 d + 1) eps` in the perceptual domain (`d + 1` in the others), `d` the power's error in ulps: the lane power's (`f64` arithmetic: half an `f32` ulp plus `1e-13`; in `f64` `1.6e-14 + 3 eps abs(y)`, `y = exponent ln(norm)`) plus libm's `powf` (one ulp) | `norm^exponent` by `lanes.rs`' `pow_lane`; the perceptual domain squares `p` | `tests/batch.rs`, the `pow_lane` unit test |
 //! | [`d_rect`], Gauss-Legendre elements (both sides short) and every element the lanes flag | bit for bit | the pairs of 2-, 4-, 6-point rules of the scalar case analysis in lanes (one loop per pair, the elements sorted by pair), every other case flagged | `tests/batch.rs` |
 //! | [`d_rect`], four-edge closed-form elements (a long side) | before the rounding to `F`, `8 eps_64 M + 4 eps_64 abs(D)`, `M` the edge terms' magnitudes scaled as `D` (`M / D` the form's cancellation); in `f32` then the same value or one ulp apart (measured: the same) | the scalar formula (`edges_by`) with the four angles by `lanes.rs`' `atan2_upper_lane` (`3 eps_64`) in place of libm's (`2 eps_64`); the products and sums round apart (`3 eps_64 M`), the area, division, `k`, `1 / h_z^4` (`4 eps_64 abs(D)`) | `tests/batch_bounds.rs` (realistic and adversarial input), the `atan2_upper_lane` unit test |
-//! | [`beckmann_d`], [`beckmann_d_filtered`] | relative `E + 2 eps`, plus `x eps` where the scalar path takes its far-tail branch (`x > -ln F::MIN_POSITIVE`); results below `F::MIN_POSITIVE` flushed to `0` (absolute error below `F::MIN_POSITIVE`) | the exponent `x` and factor `k = n / pi` are the scalar path's bit for bit; `exp(-x) k` is the polynomial exponential (relative `E = 2.5e-7` in `f32`, `1.5e-14` in `f64`) and one rounding, against libm's `exp` (one ulp) and the scalar product; the scalar far-tail branch rounds `x - ln k` (up to `x eps`) | `tests/batch.rs` |
+//! | [`beckmann_d`], [`beckmann_d_filtered`] in `f64` | relative `E + 2 eps`, plus `x eps` where the scalar path takes its far-tail branch (`x > -ln F::MIN_POSITIVE`); results below `F::MIN_POSITIVE` flushed to `0` (absolute error below `F::MIN_POSITIVE`) | the exponent `x` and factor `k = n / pi` are the scalar path's bit for bit; `exp(-x) k` is the polynomial exponential (relative `E = 2.5e-7` in `f32`, `1.5e-14` in `f64`) and one rounding, against libm's `exp` (one ulp) and the scalar product; the scalar far-tail branch rounds `x - ln k` (up to `x eps`) | `tests/batch.rs` |
+//! | [`beckmann_d_filtered`] in `f32` | relative `E + (16 x + 13) eps` (plus `x eps` in the scalar far tail), flushed as [`beckmann_d`]; against the `f64` `D` of the same filtered matrix `E + (16 x + 10) eps`; the second lane's elements as [`beckmann_d`] | the filtered matrix's entries are the scalar route's bit for bit; the first lane forms `x` and `n` from them in `f32` (`RoughnessMatrix::exponent_and_norm_narrow`, where the matrix's correlation is `rho^2 <= 3/4`: `x` within `30.7 u`, `n` within `16 u`, `u = eps / 2`), the scalar path in `f64` (rounded once: `x u`); the condition number of `exp(-x)` makes both relative errors grow with `x` | `tests/batch.rs` (against the `f32` scalar route), `tests/batch_bounds.rs` (against `f64`), the unit test of `exponent_and_norm_narrow` |
 //! | [`beckmann_lambda`] | absolute `L (1 + Lambda)`, `L = 2.1e-7` (`f32`), `1.9e-8` (`f64`), plus `(5 + 3 a^2) eps Lambda` | the `erfc` fit (Numerical Recipes `erfcc`) in place of libm's; `a = |w_z| / sqrt(q)` rounded twice in `F` (the scalar path forms it in `f64`), amplified by `2 a^2 + 3` | `tests/batch_bounds.rs` |
 //! | [`beckmann_g2`] | relative `2 L + 3 eps` plus the `Lambda` terms over `1 + Lambda_i + Lambda_o` | `G2 = 1 / (1 + Lambda_i + Lambda_o)` | `tests/batch_bounds.rs` |
 //! | [`ggx_sample_visible_normal`] | not bit for bit: the angle between the samples in the unit-roughness space within `B(E, S)` of `tests/batch_bounds.rs` (`~ (9 kappa + 1) E + (d_c + d_wi + E) / abs(n)`, `kappa` the warp's condition number, `d_c` growing as `1 / sin theta` of the cap point) | the scalar sampler's steps and shared cores; `(cos, sin)` of the azimuth by `lanes.rs`' `sincos_2pi` (absolute `2e-15` in `f64`) in place of libm's of the rounded `phi`, the cap height not fused | `tests/batch_bounds.rs` (against `f64`), the `sincos_2pi` unit test |

@@ -263,35 +263,36 @@ impl ClampRules {
         filter::gaussian_sanitized(roughness, k, self.det_clamp_wide(roughness))
     }
 
-    /// [`ClampRules::filter_gaussian`] in `batch`'s lane form (branch-free): `(A', ok)`, `A'`
-    /// equal to `filter_gaussian`'s bit for bit where `ok`, i.e. where every rule takes its
-    /// fast path or common case (the footprint within `max_extent`; the kernel sane, then within
-    /// `kappa / 2`, or with `FULL` also clamped by the eigenvalue clamp's common case; the
-    /// determinant clamp inactive). The composition of the same pieces, not a second formula.
-    /// `FULL = false` is the cheap lane (no eigenvalue clamp: a kernel beyond `kappa / 2` is
-    /// flagged), `FULL = true` the one that `batch` runs on what the cheap one flags.
+    /// [`ClampRules::filter_gaussian`] in `batch`'s lane form (branch-free) up to the entries
+    /// of `A' = A + 2 Sigma`: `((a11, a12, a22), tau, ok)`, the entries `filter_gaussian`'s
+    /// (before its determinant clamp) bit for bit where `ok`, i.e. where the footprint and
+    /// kernel rules take their fast path or common case (the footprint within `max_extent`;
+    /// the kernel sane, then within `kappa / 2` or clamped by the eigenvalue clamp's common
+    /// case); `tau` the determinant clamp it applies (`f64`; `0` without `det_clamp`). Where
+    /// `det A' >= tau` (the caller's test), `filter_gaussian` returns the matrix of these
+    /// entries unclamped. The composition of the same pieces, not a second formula. With
+    /// `EXACT` the kernel's sanity is decided exactly (with `f64` products in `f32`), else in
+    /// `F` alone ([`Covariance::is_sane_sure`]: a nearly singular kernel is flagged), which
+    /// keeps an `f32` lane at the full vector width.
     #[inline(always)]
-    pub(crate) fn filter_gaussian_lane<R: Roughness, const FULL: bool>(
+    pub(crate) fn filter_gaussian_entries_lane<R: Roughness, const EXACT: bool>(
         &self,
         roughness: R,
         fp: Footprint,
         sigma: F,
-    ) -> (RoughnessMatrix, bool) {
+    ) -> ((F, F, F), f64, bool) {
         // `kernel`: the sanitiser's fast path, then the eigenvalue clamp of the kappa rule.
         let k = fp.covariance(sigma);
-        let sane = k.is_sane();
-        let (clamped, clamp_ok) = if FULL {
-            k.clamp_eigenvalues_lane(self.half_kappa())
-        } else {
-            (k, k.psd_within(self.half_kappa()))
-        };
+        let sane = if EXACT { k.is_sane() } else { k.is_sane_sure() };
+        let (clamped, clamp_ok) = k.clamp_eigenvalues_lane(self.half_kappa());
         let off = self.kappa_off();
         let k = if off { k } else { clamped };
         let kernel_ok = sane & (off | clamp_ok);
-        let (b11, b12, b22) = filter::gaussian_entries(roughness, k);
-        let (a, det_ok) =
-            RoughnessMatrix::from_entries_unclamped(b11, b12, b22, self.det_clamp_wide(roughness));
-        (a, self.footprint_within(fp) & kernel_ok & det_ok)
+        (
+            filter::gaussian_entries(roughness, k),
+            self.det_clamp_wide(roughness),
+            self.footprint_within(fp) & kernel_ok,
+        )
     }
 
     /// The projected-space pipeline (TK21), the rules as in [`ClampRules::filter_gaussian`]:

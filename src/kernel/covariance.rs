@@ -441,6 +441,15 @@ impl Covariance {
         psd(a, b, c) & (a + c <= KERNEL_MAX)
     }
 
+    /// [`Covariance::is_sane`] decided in `F` alone, `true` only where it is (`false` where
+    /// the rounded products cannot decide: `b^2` within `2 eps` of `a c`): for `batch`'s
+    /// `f32` lanes, which an `f64` product would hold to half their width. `f64`: `is_sane`.
+    #[inline(always)]
+    pub(crate) fn is_sane_sure(self) -> bool {
+        let (a, b, c) = (self.s11, self.s12, self.s22);
+        psd_sure(a, b, c) & (a + c <= KERNEL_MAX)
+    }
+
     /// The general case of [`Covariance::sanitized`] (out of line, with
     /// [`Covariance::detached`] at its call site).
     #[cold]
@@ -504,6 +513,22 @@ fn psd(a: F, b: F, c: F) -> bool {
         bb <= ac && (ac >= F::MIN_POSITIVE || b == 0.0)
     };
     products && a >= 0.0 && c >= 0.0
+}
+
+/// [`psd`] in `F` alone (for `f64`, `psd` itself), `true` only where `psd` is: in `f32`,
+/// `fl(b^2) <= fl(fl(a c) (1 - 2 eps))` with `fl(a c)` normal (or `b = 0`) implies
+/// `b^2 <= a c (1 - 2 u) / (1 - u) < a c` exactly (`u = eps / 2`; a subnormal `fl(b^2)` is
+/// off by at most `2^-150 < 2 u a c`).
+#[inline(always)]
+fn psd_sure(a: F, b: F, c: F) -> bool {
+    if core::mem::size_of::<F>() == 8 {
+        return psd(a, b, c);
+    }
+    let (bb, ac) = (b * b, a * c);
+    (bb <= ac * (1.0 - 2.0 * F::EPSILON))
+        & ((ac >= F::MIN_POSITIVE) | (b == 0.0))
+        & (a >= 0.0)
+        & (c >= 0.0)
 }
 
 /// `hypot(d, b)`: a plain square root where `d^2 + b^2` is a normal number at least
