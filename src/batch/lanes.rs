@@ -423,10 +423,12 @@ fn dense_pass<
     let mut i = b;
     while i < e {
         let mut m = 0;
-        // The indices first, then the columns of those. The NaN marks by words of `SCAN`: their bits first (a vector compare), then one
-        // step per flagged element (one scan step per element cost a third of filtered
-        // Beckmann's time with a fifth of the elements flagged). The sorted blocks' marks
-        // (`MARKED`, about half picked) by the loop below.
+        // The indices first, then the columns of those. The NaN marks by words of `SCAN`:
+        // their bits first (a vector compare), then one step per flagged element (one scan
+        // step per element cost a third of filtered Beckmann's time once its lane ran 16
+        // wide). The sorted blocks' marks (`MARKED`, about half picked) by the loop below: a
+        // word scan of them changed LLVM's vector width for the exact Gaussian filter's
+        // trapezoid lane (16 to 8) and cost its heavy kernel 60 %.
         while !MARKED && i + SCAN <= e && m + SCAN <= DENSE {
             let mut word = nan_word(outs[0], i);
             if word.count_ones() <= SPARSE {
