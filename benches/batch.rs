@@ -297,36 +297,48 @@ macro_rules! family {
                 |out: &mut [$t]| batch::beckmann_reflection_pdf_from_normal(&mat, vo, vh, out)
             );
         }
-        // GGX visible normals (matrix form) from the views and uniform pairs: three outputs,
-        // so its own group rather than `pair!`.
+        // Visible normals (matrix form) from the views and uniform pairs: three outputs, so
+        // their own groups rather than `pair!`.
         {
             use filtered_ndf::$prec::NdfSampling;
-            let lobe = Ggx::new(mat);
             let (u1, u2): (Vec<$t>, Vec<$t>) = (0..N)
                 .map(|_| (rng.uniform() as $t, rng.uniform() as $t))
                 .unzip();
             let (mut o2, mut o3) = (out.clone(), out.clone());
-            let mut g = group($c, "ggx_sample_visible_normal");
-            g.bench_function("scalar_loop", |b| {
-                b.iter(|| {
-                    for i in 0..N {
-                        let m = lobe
-                            .sample_visible_normal(o(black_box(i)), Vec2::new(u1[i], u2[i]))
-                            .unwrap_or(Vec3::ZERO);
-                        (out[i], o2[i], o3[i]) = (m.x, m.y, m.z);
-                    }
-                    black_box((&mut out, &mut o2, &mut o3));
-                })
-            });
-            g.bench_function("batch", |b| {
-                b.iter(|| {
-                    black_box(batch::ggx_sample_visible_normal(
-                        &mat, vo, &u1, &u2, &mut out, &mut o2, &mut o3,
-                    ));
-                    black_box((&mut out, &mut o2, &mut o3));
-                })
-            });
-            g.finish();
+            macro_rules! visible_sampler {
+                ($name:expr, $lobe:expr, $batch:path) => {{
+                    let lobe = $lobe;
+                    let mut g = group($c, $name);
+                    g.bench_function("scalar_loop", |b| {
+                        b.iter(|| {
+                            for i in 0..N {
+                                let m = lobe
+                                    .sample_visible_normal(o(black_box(i)), Vec2::new(u1[i], u2[i]))
+                                    .unwrap_or(Vec3::ZERO);
+                                (out[i], o2[i], o3[i]) = (m.x, m.y, m.z);
+                            }
+                            black_box((&mut out, &mut o2, &mut o3));
+                        })
+                    });
+                    g.bench_function("batch", |b| {
+                        b.iter(|| {
+                            black_box($batch(&mat, vo, &u1, &u2, &mut out, &mut o2, &mut o3));
+                            black_box((&mut out, &mut o2, &mut o3));
+                        })
+                    });
+                    g.finish();
+                }};
+            }
+            visible_sampler!(
+                "ggx_sample_visible_normal",
+                Ggx::new(mat),
+                batch::ggx_sample_visible_normal
+            );
+            visible_sampler!(
+                "beckmann_sample_visible_normal",
+                Beckmann::new(mat),
+                batch::beckmann_sample_visible_normal
+            );
             // `D(m) m_z` sampling (matrix form) from the same uniform pairs.
             macro_rules! normal_sampler {
                 ($name:expr, $lobe:expr, $batch:path) => {{

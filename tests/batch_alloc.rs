@@ -107,6 +107,8 @@ macro_rules! check {
             for (u1, u2) in [(&hx, &hy), (&ux, &vy)] {
                 batch::ggx_sample_visible_normal(&mat, v, u1, u2, &mut out, &mut o2, &mut o3);
                 batch::ggx_sample_visible_normal(&iso, w, u2, u1, &mut out, &mut o2, &mut o3);
+                batch::beckmann_sample_visible_normal(&mat, v, u1, u2, &mut out, &mut o2, &mut o3);
+                batch::beckmann_sample_visible_normal(&aa, w, u2, u1, &mut out, &mut o2, &mut o3);
             }
             batch::ggx_sample_normal(&mat, &hx, &ux, &mut out, &mut o2, &mut o3);
             batch::beckmann_sample_normal(&aa, &ux, &hy, &mut out, &mut o2, &mut o3);

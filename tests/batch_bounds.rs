@@ -254,7 +254,9 @@ macro_rules! suite {
                                     assert!(got.z > 0.0 && (got.length() - 1.0).abs() <= 4.0 * EPS, "[{i}] {got}");
                                     let c1 = uu.x;
                                     let (want, bound): (glam::DVec3, &dyn Fn(f64, f64) -> f64) = if beckmann {
-                                        let lq = (-(1.0 - c1).ln()).max(0.0);
+                                        // (Not `.max(0.0)`: `-0.0` may survive it, and `rr = -0` made the bound `-inf`.)
+                                        let lq = -(1.0 - c1).ln();
+                                        let lq = if lq > 0.0 { lq } else { 0.0 };
                                         let rr = lq.sqrt();
                                         (
                                             d::Beckmann::new(r64).sample_normal(uu),
@@ -598,6 +600,168 @@ macro_rules! suite {
                     }
                 }
                 println!("ggx_sample_visible_normal: worst {worst:.3} of the bound");
+            }
+
+            /// Beckmann's visible-slope CDF in `f64` with libm (the scalar sampler's `K`,
+            /// Heitz 2014 eq. 80): `C(x) = K(x) / K(hi)`, `hi = min(cot theta, x_max)`, and
+            /// the density `p(x) = K'(x) / K(hi)`, for the view `(c, s)`.
+            fn visible_cdf(x: f64, c: f64, s: f64, x_max: f64) -> (f64, f64) {
+                const INV_SQRT_PI: f64 = 0.564_189_583_547_756_3;
+                let k = |x: f64| {
+                    let e = (-x * x).exp();
+                    (0.5 * c * libm::erfc(-x) + 0.5 * s * INV_SQRT_PI * e, INV_SQRT_PI * e * (c - s * x))
+                };
+                let hi = if s > 0.0 { (c / s).min(x_max) } else { x_max };
+                let norm = k(hi).0;
+                let (kx, dk) = k(x.min(hi));
+                (kx / norm, dk.max(0.0) / norm)
+            }
+
+            /// The largest visible-slope density over `[a, b]`: at the ends or at the mode
+            /// `(c - sqrt(c^2 + 2 s^2)) / (2 s)` of `(c - s x) exp(-x^2)`.
+            fn density_max(a: f64, b: f64, c: f64, s: f64, x_max: f64) -> f64 {
+                let mode = if s > 0.0 { (c - (c * c + 2.0 * s * s).sqrt()) / (2.0 * s) } else { 0.0 };
+                let mut p = visible_cdf(a, c, s, x_max).1.max(visible_cdf(b, c, s, x_max).1);
+                if mode > a && mode < b {
+                    p = p.max(visible_cdf(mode, c, s, x_max).1);
+                }
+                p
+            }
+
+            /// The Beckmann visible-normal sampler against the `f64` scalar sampler's
+            /// visible-slope CDF, in `u`: each sample is pulled back to the unit-roughness
+            /// space by the exact `f64` warp, its slope turned into the `f64` view's frame,
+            /// `(x, y)`, and `C_theta(x)`, `C_0(y)` (libm) must be within `tol` of the clamped
+            /// `u1`, `u2`, where (`E` the batch precision's epsilon)
+            ///
+            /// - the quantile: the exact one of a `u'` within `A u` of `u`, `A = 8.5 eps_64 +
+            ///   d(x) + d(hi)`, `d(x) = 1.5e-14 + (x^2 / 2 + 66) eps_64` (`batch::quantile`),
+            ///   plus the reference `C`'s own error `(x^2 / 2 + 4) eps_64` at `x` and `hi`,
+            ///   plus the mass beyond the batch precision's bracket `C(-X_MAX)` (`X_MAX = 9`
+            ///   in `f32`);
+            /// - the view `wi` in `F`: within `d_wi = (8.5 kappa + 1) E` of the `f64` view (as
+            ///   for GGX above), so `theta` within `d_wi` (the test evaluates `C` at `theta
+            ///   +/- d_wi` and takes the largest change), and the azimuth within `d_wi / s`
+            ///   (`+ 2 eps_64`: the lane's `sqrt(wx^2 + wy^2)` for `hypot`), which turns the
+            ///   slope `t` by up to `|t| d_wi / s` (at most `2 |t|`);
+            /// - after the quantiles: `(-t_x, -t_y)` rounded to `F` (`E |t|`), the warp and
+            ///   normalisation in `F` and the exact pull-back (`9 kappa E + E` in angle, as
+            ///   above), which moves the slope of a unit vector by up to `(1 + |t|^2)` times
+            ///   the angle;
+            ///
+            /// so the slope moves by `dt` and the `u` of each component by the largest density
+            /// over `[x - dt, x + dt]` times `dt`. The same check with `E = eps_64` on the
+            /// `f64` scalar sampler's own samples (its quantile's `A = 8 eps_64` plus libm's
+            /// errors) validates the check. Elements where the `f64` sampler returns `None`
+            /// must give `(0, 0, 0)`.
+            #[test]
+            fn beckmann_sample_visible_normal_against_f64() {
+                use filtered_ndf::f64::NdfSampling as _;
+                let x_max_batch = if WIDE { 26.0 } else { 9.0 };
+                let dirs = directions(N, 0x5D);
+                let wo = Cols::new(&dirs);
+                let mut rng = Rng(0x5E);
+                let mut u: Vec<$t> = (0..2 * N).map(|_| rng.uniform() as $t).collect();
+                for (k, v) in [0.0, 1.0, -0.5, 2.0, <$t>::NAN, 1e-30, 1e-7, 0.25, 0.5, 0.75, 1.0 - <$t>::EPSILON]
+                    .into_iter()
+                    .enumerate()
+                {
+                    u[7 * k] = v;
+                    u[N + 11 * k + 3] = v;
+                }
+                let (u1, u2) = u.split_at(N);
+                let (mut ox, mut oy, mut oz) = (vec![0.0 as $t; N], vec![0.0 as $t; N], vec![0.0 as $t; N]);
+                let cu = |x: f64| if x >= 0.0 { x.min(1.0 - EPS / 2.0) } else { 0.0 };
+                let mut worst = [0.0f64; 2];
+                for alpha in [0.01f64, 0.2, 1.0, 2.0] {
+                    for (name, f) in forms(alpha) {
+                        let (l, kappa) = warp_of(alpha, name);
+                        let (l11, l21, l22) = l;
+                        with_form!(f, |r, r64| {
+                            let n = batch::beckmann_sample_visible_normal(
+                                &r, wo.soa(), u1, u2, &mut ox, &mut oy, &mut oz,
+                            );
+                            assert_eq!(n, N);
+                            let beckmann = d::Beckmann::new(r64);
+                            for i in 0..N {
+                                let w = wo.at(i);
+                                let (c1, c2) = (cu(u1[i] as f64), cu(u2[i] as f64));
+                                let got = glam::DVec3::new(ox[i] as f64, oy[i] as f64, oz[i] as f64);
+                                let Some(want) = beckmann.sample_visible_normal(w, glam::DVec2::new(c1, c2)) else {
+                                    assert_eq!(got, glam::DVec3::ZERO, "{name} {alpha} [{i}]");
+                                    continue;
+                                };
+                                assert!(
+                                    got.z > 0.0 && w.dot(got) > 0.0 && (got.length() - 1.0).abs() <= 4.0 * EPS,
+                                    "{name} {alpha} [{i}]: {got}"
+                                );
+                                // The f64 view and its frame.
+                                let o = w.normalize();
+                                let wi = glam::DVec3::new(l11 * o.x + l21 * o.y, l22 * o.y, o.z).normalize();
+                                let (c, s) = (wi.z, wi.x.hypot(wi.y));
+                                let (cp, sp) = if s > 0.0 { (wi.x / s, wi.y / s) } else { (1.0, 0.0) };
+                                for (k, m, e, x_max, a_quant) in [
+                                    (0usize, got, EPS, x_max_batch, None),
+                                    (1, want, f64::EPSILON, 26.0, Some(8.0 * f64::EPSILON)),
+                                ] {
+                                    let nb = pull_back(l, m);
+                                    let (tx, ty) = (-nb.x / nb.z, -nb.y / nb.z);
+                                    let t = tx.hypot(ty);
+                                    let (x, y) = (cp * tx + sp * ty, -sp * tx + cp * ty);
+                                    let d_wi = (8.5 * kappa + 1.0) * e;
+                                    let turn = if s > 0.0 { (d_wi / s + 2.0 * f64::EPSILON).min(2.0) } else { 2.0 };
+                                    let dt = t * turn + e * t + (9.0 * kappa * e + e) * (1.0 + t * t);
+                                    let lane_err = |x: f64| 1.5e-14 + (0.5 * x * x + 66.0) * f64::EPSILON;
+                                    let ref_err = |x: f64| (0.5 * x * x + 4.0) * f64::EPSILON;
+                                    let (tail, tail_y) = (visible_cdf(-x_max, c, s, 26.0).0, visible_cdf(-x_max, 1.0, 0.0, 26.0).0);
+                                    // x: the view angle moves by d_wi.
+                                    let theta = s.atan2(c);
+                                    let (cx, _) = visible_cdf(x, c, s, 26.0);
+                                    // `u = 0`: the bracket's bottom, `C(-X_MAX)` (the tail terms below).
+                                    let mut dc_theta = 0.0f64;
+                                    for tt in [theta - d_wi, theta + d_wi] {
+                                        let tt = tt.clamp(0.0, std::f64::consts::FRAC_PI_2);
+                                        dc_theta = dc_theta.max((visible_cdf(x, tt.cos(), tt.sin(), 26.0).0 - cx).abs());
+                                    }
+                                    let hi = if s > 0.0 { (c / s).min(x_max) } else { x_max };
+                                    let ax = a_quant.unwrap_or(8.5 * f64::EPSILON + lane_err(x) + lane_err(hi));
+                                    let tol_x = (ax + ref_err(x) + ref_err(hi)) * c1
+                                        + dc_theta
+                                        + density_max(x - dt, x + dt, c, s, 26.0) * dt
+                                        + if c1 == 0.0 { tail } else { 0.0 }
+                                        + 4.0 * f64::MIN_POSITIVE;
+                                    let ay = a_quant.unwrap_or(8.5 * f64::EPSILON + lane_err(y) + lane_err(x_max));
+                                    let (cy, _) = visible_cdf(y, 1.0, 0.0, 26.0);
+                                    let tol_y = (ay + ref_err(y) + ref_err(26.0)) * c2
+                                        + density_max(y - dt, y + dt, 1.0, 0.0, 26.0) * dt
+                                        + if c2 == 0.0 { tail_y } else { 0.0 }
+                                        + 4.0 * f64::MIN_POSITIVE;
+                                    // The scalar solve's other stop (also the batch's, for the
+                                    // elements its lane flags): a bracket of width `1e-13 (1 + |x|)`.
+                                    let wx = 1e-13 * (1.0 + x.abs());
+                                    let wy = 1e-13 * (1.0 + y.abs());
+                                    let tol_x = tol_x + density_max(x - wx - dt, x + wx + dt, c, s, 26.0) * wx;
+                                    let tol_y = tol_y + density_max(y - wy - dt, y + wy + dt, 1.0, 0.0, 26.0) * wy;
+                                    let (ex, ey) = ((cx - c1).abs(), (cy - c2).abs());
+                                    // (`u = 0` sits at its tail term.)
+                                    if c1 > 0.0 && c2 > 0.0 {
+                                        worst[k] = worst[k].max(ex / tol_x).max(ey / tol_y);
+                                    }
+                                    assert!(
+                                        ex <= tol_x && ey <= tol_y,
+                                        "{name} {alpha} [{i}] {} wo {w} u ({c1:e}, {c2:e}): m {m} (x, y) = ({x}, {y}): \
+                                         C(x) {cx:e} ({ex:e} vs {tol_x:e}), C(y) {cy:e} ({ey:e} vs {tol_y:e})",
+                                        ["batch", "f64"][k]
+                                    );
+                                }
+                            }
+                        });
+                    }
+                }
+                println!(
+                    "beckmann_sample_visible_normal: worst {:.3} of the bound (the f64 sampler: {:.3})",
+                    worst[0], worst[1]
+                );
             }
 
             /// `a = |w_z| / sqrt(q)` of Beckmann's `Lambda` (in `f64`).

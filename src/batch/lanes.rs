@@ -10,6 +10,7 @@
 //! | [`sincos_2pi`] `(sin 2 pi u, cos 2 pi u)` | libm `sin`, `cos` of `phi = 2 pi u` (the GGX visible-normal sampler's azimuth) | absolute `2e-15` computed in `f64` (in `f32`: plus half an `f32` ulp of the result) | unit test below |
 //! | [`atan2_upper_lane`] `atan2(y, x)`, `y > 0` | the box filter's `atan2_upper` (libm `atan`; the closed form's edge angles) | `3 eps_64` (derived `2.1`), in `f64` for both precisions | unit test below |
 //! | `filter::beckmann_lambda_fast` (shared with its sampler) | Beckmann `Lambda` in `f64` (libm `erfc`) | `2.1e-7 (1 + Lambda)` / `1.9e-8 (1 + Lambda)` absolute | `gaussian_ggx_quad` |
+//! | `quantile::erfc_neg_lane` `(exp(-x^2), erfc(-x))` | libm `exp`, `erfc` (Beckmann's visible-slope quantile) | `1.5e-14 + (x^2 / 2 + 64) eps_64`, in `f64` for both precisions | `quantile.rs` |
 //!
 //! A lane whose input leaves the range these functions cover (a subnormal result, a
 //! non-finite factor) is flagged, and the driver evaluates that element by the scalar

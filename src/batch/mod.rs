@@ -36,7 +36,8 @@
 //! second lane over them, still vectorised, which decides and evaluates as the scalar path;
 //! only what that flags goes to the scalar path. Transcendental functions in lanes are
 //! polynomials (`exp`: `filter::exp_poly`'s reduction; Beckmann's `Lambda`: the `erfc` fit
-//! shared with the exact Gaussian filter's sampler; `ln`: `log.rs`, on the reduction of
+//! shared with the exact Gaussian filter's sampler; Beckmann's visible-slope quantile: Cephes'
+//! `erfc` rationals, `quantile.rs`; `ln`: `log.rs`, on the reduction of
 //! `lanes.rs`' `pow_lane`; the box filter's `atan2`: Cephes' reduction and rational). Where
 //! one kernel has several lane forms (the box filter's pairs of Gauss-Legendre rules and its
 //! closed form), the elements are sorted by form first and each form runs its own loop.
@@ -72,6 +73,7 @@
 //! | [`ggx_normal_pdf`], [`ggx_visible_normal_pdf`], [`ggx_reflection_pdf_from_normal`] (every roughness form) | bit for bit | the scalar pdf's core (`sampling`'s `normal_pdf_core`, `visible_normal_pdf_core`, `reflection_pdf_core`) on GGX's bit-for-bit `D` and `Lambda` lanes, its checks as selects; a view to rescale or a grazing `Lambda` flagged | `tests/batch.rs` (adversarial input, every form, the clamped matrix); against `f64`: `tests/batch_bounds.rs` |
 //! | [`beckmann_visible_normal_pdf`], [`beckmann_reflection_pdf_from_normal`] | relative `E + L + 10 eps + (5 + 3 a^2) eps Lambda / (1 + Lambda)` to first order (plus `x eps` where the scalar `D` takes its far-tail branch); where the lane `D` flushes below `F::MIN_POSITIVE`, absolute `F::MIN_POSITIVE` times the factor `wo.m / (wo_z (1 + Lambda))` (visible) or `1 / (4 o_z (1 + Lambda))` (reflection); `0` exactly where the scalar pdf is `0` | the same core on Beckmann's `D` lane (`E + 2 eps`) and `Lambda` lane (absolute `L (1 + Lambda) + (5 + 3 a^2) eps Lambda` over `1 + Lambda`), the sum and three operations rounding in each path | `tests/batch_bounds.rs` (against `f64`: `(15 + 4 x) eps + L + (13 + 7 a^2) eps Lambda / (1 + Lambda) + 3 eps sum|wo_k m_k| / wo.m` in `f32`, derived there), `tests/batch.rs` (the zeros, adversarial input) |
 //! | [`beckmann_normal_pdf`] | relative `E + 4 eps` (plus `x eps` in the scalar far tail); flushed below `F::MIN_POSITIVE` as [`beckmann_d`] (absolute `F::MIN_POSITIVE m_z`) | `D(m) m_z` on the `D` lane, the product rounding in each path | `tests/batch_bounds.rs` (against `f64`: `(12 + 4 x) eps`), `tests/batch.rs` (the zeros) |
+//! | [`beckmann_sample_visible_normal`] | not bit for bit: each slope the exact quantile of a `u'` within `(8.5 eps_64 + d(x) + d(hi)) u` of `u`, `d(x) = 1.5e-14 + (x^2 / 2 + 66) eps_64` (the scalar path: `8 eps_64` plus libm's `(x^2 / 2 + 4) eps_64`, or a bracket of width `1e-13 (1 + abs(x))`) | the scalar sampler's view, rotation and warp; each quantile from Jakob's fitted guess by a fixed number of Halley steps on `erfc` by Cephes' rationals (`quantile.rs`) in place of the scalar safeguarded Newton solve on libm's `erfc`, the residual tested against the scalar solve's goal and every miss flagged (in the far tails of `u`) | `tests/batch_bounds.rs` (against the `f64` sampler's visible-slope CDF, the view's and the rounding's share derived there), the unit tests of `quantile.rs` |
 //! | [`ggx_sample_normal`], [`beckmann_sample_normal`] (`D(m) m_z`) | not bit for bit: the pulled-back angle within `(S + 3) E + 9 kappa E + E` (GGX) and `dr / (1 + r^2) + (S + 1) E r / sqrt(1 + r^2) + 9 kappa E + E` (Beckmann, `r^2 = -ln(1 - u1)`, `dr` the error of `r` from the logarithm's, `tests/batch_bounds.rs`) against `f64`, as the scalar sampler | the scalar sampler's steps and shared cores (`ggx_standard_normal`, `beckmann_standard_normal`, `Warp::unstretch_raw`); the azimuth by `sincos_2pi` and `ln(1 - u1)` by `log.rs`' `ln_lane` (relative `4 eps_64` in `f64`) in place of libm's | `tests/batch_bounds.rs`, the `ln_lane` unit test |
 //! | [`gaussian_filtered_ggx_d`] (one lobe) | bit for bit | the scalar `D`'s steps with the rule choice of `J` shared (`gaussian_ggx_quad::rule`): the far-tail series and Gauss-Laguerre in the first lane, the trapezoid rule's first chunks in the second (its truncation test as a select, `e^(-k0 H)` by the polynomial that fills the scalar path's table), a longer trapezoid rule flagged | `tests/batch.rs` (kernels from `0` to `10` lobe variances, rank one, rotated, NaN, infinite; every form; both lanes and the driver's sorted blocks), the trapezoid lane's unit test in `gaussian_ggx_quad.rs` |
 //! | [`ggx_d_projected`] (a kernel per element) | bit for bit | the scalar projected filter split into its lobe part (once per batch) and kernel part (`filter::ProjectedBase`); a kernel off the sanitiser's fast path and an active determinant clamp flagged | `tests/batch.rs` (footprint kernels and raw adversarial entries, `alpha` to `2`, the clamped matrix) |
@@ -103,6 +105,7 @@ mod log;
 mod ndf;
 mod pdf;
 mod projected;
+mod quantile;
 mod rect;
 mod sample;
 mod simd;
@@ -117,7 +120,10 @@ pub use pdf::{
 };
 pub use projected::ggx_d_projected;
 pub use rect::d_rect;
-pub use sample::{beckmann_sample_normal, ggx_sample_normal, ggx_sample_visible_normal};
+pub use sample::{
+    beckmann_sample_normal, beckmann_sample_visible_normal, ggx_sample_normal,
+    ggx_sample_visible_normal,
+};
 
 /// Multi-core batches (feature `rayon`, std only): calls `f(start, out_chunk)` for the
 /// consecutive chunks of `out` of `chunk` elements (the last one shorter; `chunk = 0` counts as

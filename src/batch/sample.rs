@@ -1,4 +1,4 @@
-//! Importance sampling over slices: GGX visible normals, and `D(m) m_z` of GGX and Beckmann.
+//! Importance sampling over slices: visible normals and `D(m) m_z` of GGX and Beckmann.
 //!
 //! The lane is the scalar sampler's own steps ([`NdfSampling::sample_visible_normal`] of
 //! [`Ggx`]: the view normalised and stretched by the Cholesky factor `L` of the roughness, a
@@ -21,8 +21,9 @@ use super::super::sampling::{
 };
 use super::lanes::{Kernel, run, sincos_2pi};
 use super::log::ln_lane;
+use super::quantile::visible_slope_quantile_lane;
 use super::{F, Vec2, Vec3, Vec3s};
-use crate::math as m;
+use crate::math::{self as m, Real};
 
 /// [`NdfSampling::sample_visible_normal`] of GGX for each view `wo_i = (wo.x[i], wo.y[i],
 /// wo.z[i])` and uniform pair `(u1[i], u2[i])`: writes the unit micronormal `m_i` with
@@ -158,12 +159,7 @@ pub fn ggx_sample_normal<R: Roughness>(
 /// error `dl = E / 2 + E |ln(1 - u1)|` of the logarithm (the rounding of `1 - u1` in `F` and
 /// of the logarithm). The scalar sampler is within the same bound.
 ///
-/// Why `D(m) m_z` and not the visible normals: the scalar Beckmann visible-normal sampler
-/// inverts the visible-slope CDF by a safeguarded Newton solve in `f64` with libm's `erfc`
-/// (`sampling::beckmann`; 8 iterations on average, up to 54 in the tails) to `8 eps_64`; a
-/// lane would need an `erfc` of that accuracy and a fixed iteration count covering the
-/// tails, which is not in the crate (the shared `erfc` fit is good to `1.2e-7`). Returns the
-/// number of elements written. Allocates nothing.
+/// Returns the number of elements written. Allocates nothing.
 #[inline]
 pub fn beckmann_sample_normal<R: Roughness>(
     r: &R,
@@ -223,6 +219,94 @@ impl<N: NdfSampling + StandardNormal> Kernel<2, 3> for NormalSampler<N> {
     #[inline]
     fn scalar(&self, [u1, u2]: [F; 2]) -> [F; 3] {
         let m = self.ndf.sample_normal(Vec2::new(u1, u2));
+        [m.x, m.y, m.z]
+    }
+}
+
+/// [`NdfSampling::sample_visible_normal`] of Beckmann for each view `wo_i` and uniform pair
+/// `(u1[i], u2[i])`: writes the unit micronormal `m_i` with density `D_wo(m) = G1(wo) max(0,
+/// wo.m) D(m) / wo_z` per steradian (Heitz and d'Eon 2014, section 4: in the unit-roughness
+/// space with the view's azimuth turned to `x`, the slope `x` is the quantile of the
+/// visible-slope CDF, `y` an independent Gaussian quantile; warped by the Cholesky factor of
+/// the roughness, as the scalar sampler) to `(out_x[i], out_y[i], out_z[i])`.
+///
+/// Where the scalar sampler returns `None` (`wo_z <= 0`, non-finite `wo`, a view grazing to
+/// within the float range): `(0, 0, 0)`. `u` outside `[0, 1)` is clamped as by the scalar
+/// sampler (NaN to `0`).
+///
+/// Agreement: not bit for bit. The scalar sampler solves for each quantile by a safeguarded
+/// Newton iteration on libm's `erfc` (7.7 evaluations on average); the lane takes a fitted
+/// guess and a fixed number of Halley steps on a rational `erfc` (three for `x`, one for `y`)
+/// and flags, for the scalar sampler, every element whose residual misses the scalar solve's
+/// goal (`batch::quantile`'s docs; in the far tails of `u`, some elements). So each quantile
+/// is the exact one of a `u'` within `(8.5 eps_64 + d(x) + d(hi)) u` of the clamped `u`, `d(x)
+/// = 1.5e-14 + (x^2 / 2 + 66) eps_64` the lane `K`'s relative error (the scalar path: the
+/// same form with libm's `(x^2 / 2 + 4) eps_64`); the steps after the quantiles (the view's
+/// azimuth `(wx, wy) / sqrt(wx^2 + wy^2)` in place of `hypot`, the rotation, `(-t_x, -t_y,
+/// 1)` rounded to `F`, the warp and the normalisation) are the scalar path's but for that
+/// root. `tests/batch_bounds.rs` checks the samples against the `f64` scalar sampler's
+/// visible-slope CDF (the `u` each sample is the quantile of) within the bound derived
+/// there. Every output is a unit vector with `m_z > 0` and `wo.m > 0`.
+///
+/// Returns the number of elements written (the shortest of the eight slices); leaves the
+/// rest untouched. Allocates nothing.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn beckmann_sample_visible_normal<R: Roughness>(
+    r: &R,
+    wo: Vec3s<'_>,
+    u1: &[F],
+    u2: &[F],
+    out_x: &mut [F],
+    out_y: &mut [F],
+    out_z: &mut [F],
+) -> usize {
+    let k = BeckmannVndf {
+        beckmann: Beckmann::new(*r),
+        warp: Warp::new(r),
+    };
+    run(&k, [wo.x, wo.y, wo.z, u1, u2], [out_x, out_y, out_z])
+}
+
+/// The kernel: Beckmann and its warp.
+struct BeckmannVndf<R: Roughness> {
+    beckmann: Beckmann<R>,
+    warp: Warp,
+}
+
+impl<R: Roughness> Kernel<5, 3> for BeckmannVndf<R> {
+    #[inline(always)]
+    fn lane(&self, [x, y, z, u1, u2]: [F; 5]) -> ([F; 3], bool) {
+        let wo = Vec3::new(x, y, z);
+        // `standard_view`, as the GGX lane.
+        let (o, ok_o) = unit_direct(wo);
+        let (wi, ok_s) = unit_direct(self.warp.stretch(o));
+        let view = (z > 0.0) & ok_o & ok_s & (wi.z > 0.0);
+        let (wx, wy, c) = (wi.x.to_f64(), wi.y.to_f64(), wi.z.to_f64());
+        let s2 = wx * wx + wy * wy;
+        let s = m::sqrt(s2);
+        let axis = s > 0.0;
+        // A subnormal `s2` loses the azimuth (`f64` only).
+        let ok_az = (s2 >= f64::MIN_POSITIVE / f64::EPSILON) | !axis;
+        let (cphi, sphi) = if axis { (wx / s, wy / s) } else { (1.0, 0.0) };
+        let (qx, ok_x) = visible_slope_quantile_lane::<3>(c, s, clamp_unit(u1).to_f64());
+        let (qy, ok_y) = visible_slope_quantile_lane::<1>(1.0, 0.0, clamp_unit(u2).to_f64());
+        let (tx, ty) = (cphi * qx - sphi * qy, sphi * qx + cphi * qy);
+        let n = Vec3::new(F::from_f64(-tx), F::from_f64(-ty), 1.0);
+        let (mm, ok_m) = unit_direct(self.warp.unstretch_raw(n));
+        let good = ok_m & (mm.z > 0.0) & (wo.dot(mm) > 0.0);
+        (
+            [mm.x, mm.y, mm.z],
+            !(view & ok_az & ok_x & ok_y & good),
+        )
+    }
+
+    #[inline]
+    fn scalar(&self, [x, y, z, u1, u2]: [F; 5]) -> [F; 3] {
+        let m = self
+            .beckmann
+            .sample_visible_normal(Vec3::new(x, y, z), Vec2::new(u1, u2))
+            .unwrap_or(Vec3::ZERO);
         [m.x, m.y, m.z]
     }
 }

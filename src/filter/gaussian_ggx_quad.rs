@@ -69,7 +69,7 @@ pub(crate) fn exp_f32_reduced(xc: f32) -> (f32, f32) {
 /// polynomial of degree 9 (error `1.35e-14`; Estrin, depth 7); relative error below `1.5e-14`
 /// (unit test below), far inside the `f64` rules' budget.
 #[inline(always)]
-const fn exp_f64(x: f64) -> f64 {
+pub(crate) const fn exp_f64(x: f64) -> f64 {
     let (p, k) = exp_f64_reduced(x.clamp(-708.0, 709.0));
     let s = f64::from_bits(k.to_bits().wrapping_add(1023) << 52);
     let keep = 0u64.wrapping_sub((x >= -708.0) as u64);

@@ -17,14 +17,15 @@
 use super::F;
 use crate::math::{self as m, Real};
 
-const INV_SQRT_PI: f64 = 0.564_189_583_547_756_3;
+/// `1 / sqrt(pi)`.
+pub(crate) const INV_SQRT_PI: f64 = 0.564_189_583_547_756_3;
 
 /// Bound of the slope range searched, in units of the standard (unit) roughness: the quantile
 /// of `u = 0` is clamped here. Chosen per precision so that `exp(-x^2)` and the densities
 /// built on it stay representable (`exp(-81) ~ 6e-36` for `f32`, `exp(-676) ~ 1e-294` for
 /// `f64`); the probability mass beyond it (`< 1e-36`, resp. `< 1e-295`) is below the
 /// resolution of any uniform number of that precision.
-const X_MAX: f64 = if F::MANTISSA_DIGITS > 24 { 26.0 } else { 9.0 };
+pub(crate) const X_MAX: f64 = if F::MANTISSA_DIGITS > 24 { 26.0 } else { 9.0 };
 
 /// Iteration cap of the safeguarded Newton solve. A Newton step is taken only if it stays in
 /// the bracket and shrinks the residual faster than bisection would (Numerical Recipes'
@@ -39,9 +40,30 @@ const MAX_ITERATIONS: usize = 100;
 /// `K(x)` and `K'(x)` (see the module docs).
 #[inline]
 fn cdf_terms(x: f64, c: f64, s: f64) -> (f64, f64) {
-    let e = m::exp(-x * x);
-    let k = 0.5 * c * m::erfc(-x) + 0.5 * s * INV_SQRT_PI * e;
+    cdf_terms_from(x, c, s, m::exp(-x * x), m::erfc(-x))
+}
+
+/// `K(x)` and `K'(x) = e (c - s x) / sqrt(pi)` from `e = exp(-x^2)` and `erfc(-x)` (however
+/// computed): shared with the batch sampler's lane (`batch::quantile`).
+#[inline(always)]
+pub(crate) fn cdf_terms_from(x: f64, c: f64, s: f64, e: f64, erfc_neg_x: f64) -> (f64, f64) {
+    let k = 0.5 * c * erfc_neg_x + 0.5 * s * INV_SQRT_PI * e;
     (k, INV_SQRT_PI * e * (c - s * x))
+}
+
+/// The top of the bracket of the solve: `min(cot theta, X_MAX)` (`X_MAX` at normal
+/// incidence, `s = 0`).
+#[inline(always)]
+pub(crate) fn bracket_top(c: f64, s: f64) -> f64 {
+    let cot = c / s;
+    if s > 0.0 { cot.min(X_MAX) } else { X_MAX }
+}
+
+/// The solve's residual goal for the target `u K(hi)`: `8 eps_64 target` plus the smallest
+/// normal number (see [`invert_visible_slope_cdf`]).
+#[inline(always)]
+pub(crate) fn residual_tolerance(target: f64) -> f64 {
+    8.0 * f64::EPSILON * target + f64::MIN_POSITIVE
 }
 
 /// Solves `C(x) = u` for `x in [-X_MAX, min(mu, X_MAX)]`, `(c, s) = (cos, sin)` of the
@@ -52,8 +74,7 @@ fn cdf_terms(x: f64, c: f64, s: f64) -> (f64, f64) {
 /// `u'` within 8 ulps of `u`, up to the few-ulp rounding of evaluating `K`), or is the centre
 /// of a bracket of width `<= 1e-13 (1 + |x|)` that contains the exact quantile.
 pub(crate) fn invert_visible_slope_cdf(c: f64, s: f64, u: f64) -> f64 {
-    let hi0 = if s > 0.0 { (c / s).min(X_MAX) } else { X_MAX };
-    let (mut lo, mut hi) = (-X_MAX, hi0);
+    let (mut lo, mut hi) = (-X_MAX, bracket_top(c, s));
     // K(hi) is the normaliser cos theta (1 + Lambda) evaluated by the same formula as K(x), so
     // that C(hi) = 1 exactly and every u < 1 has its root strictly inside the bracket.
     let norm = cdf_terms(hi, c, s).0;
@@ -61,7 +82,7 @@ pub(crate) fn invert_visible_slope_cdf(c: f64, s: f64, u: f64) -> f64 {
     if target.is_nan() || target <= 0.0 {
         return lo;
     }
-    let tol = 8.0 * f64::EPSILON * target + f64::MIN_POSITIVE;
+    let tol = residual_tolerance(target);
     // Start from the Gaussian quantile (exact at normal incidence and for the `y` slope, close
     // for moderate angles), or from the middle of the lobe if that is outside the bracket.
     let guess = erfinv_guess(2.0 * u - 1.0);
@@ -108,37 +129,44 @@ fn erfinv_guess(x: f64) -> f64 {
     if !w.is_finite() {
         return 0.0;
     }
-    let p = if w < 5.0 {
-        let w = w - 2.5;
-        [
-            3.432_739_39e-7,
-            -3.523_387_7e-6,
-            -4.391_506_54e-6,
-            2.185_808_7e-4,
-            -1.253_725_03e-3,
-            -4.177_681_64e-3,
-            2.466_407_27e-1,
-            1.501_409_41,
-        ]
-        .iter()
-        .fold(2.810_226_36e-8, |p, &c| m::mul_add(p, w, c))
+    let (w, (p0, c)) = if w < 5.0 {
+        (w - 2.5, ERFINV_CENTRAL)
     } else {
-        let w = m::sqrt(w) - 3.0;
-        [
-            1.009_505_58e-4,
-            1.349_343_22e-3,
-            -3.673_428_44e-3,
-            5.739_507_73e-3,
-            -7.622_461_3e-3,
-            9.438_870_47e-3,
-            1.001_674_06,
-            2.832_976_82,
-        ]
-        .iter()
-        .fold(-2.002_142_57e-4, |p, &c| m::mul_add(p, w, c))
+        (m::sqrt(w) - 3.0, ERFINV_TAIL)
     };
-    p * x
+    c.iter().fold(p0, |p, &c| m::mul_add(p, w, c)) * x
 }
+
+/// Giles 2010's `erf^-1(x) = p(w) x` for `w = -ln((1 - x)(1 + x)) < 5`: `p` in `w - 2.5`
+/// (leading coefficient, then Horner's order). Shared with the batch sampler's guess.
+pub(crate) const ERFINV_CENTRAL: (f64, [f64; 8]) = (
+    2.810_226_36e-8,
+    [
+        3.432_739_39e-7,
+        -3.523_387_7e-6,
+        -4.391_506_54e-6,
+        2.185_808_7e-4,
+        -1.253_725_03e-3,
+        -4.177_681_64e-3,
+        2.466_407_27e-1,
+        1.501_409_41,
+    ],
+);
+
+/// Giles 2010's `p` for `w >= 5`, in `sqrt(w) - 3`.
+pub(crate) const ERFINV_TAIL: (f64, [f64; 8]) = (
+    -2.002_142_57e-4,
+    [
+        1.009_505_58e-4,
+        1.349_343_22e-3,
+        -3.673_428_44e-3,
+        5.739_507_73e-3,
+        -7.622_461_3e-3,
+        9.438_870_47e-3,
+        1.001_674_06,
+        2.832_976_82,
+    ],
+);
 
 /// The `x` component of a Beckmann visible slope in the standard configuration: the quantile
 /// `C^-1(u)` of the CDF in the module docs, for a view direction with
