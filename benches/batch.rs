@@ -179,6 +179,11 @@ macro_rules! family {
             |i: usize| Ggx::new(rules.filter_gaussian(aa, fps[i], 0.5)).d(h(i)),
             |o: &mut [$t]| batch::ggx_d_filtered(&aa, &rules, 0.5, &hx, &hy, &hz, soa, o)
         );
+        pair!(
+            "ggx_d_filtered_projected",
+            |i: usize| Ggx::new(rules.filter_projected(aa, fps[i], 0.5)).d(h(i)),
+            |o: &mut [$t]| batch::ggx_d_filtered_projected(&aa, &rules, 0.5, &hx, &hy, &hz, soa, o)
+        );
         // Deferred presets: per-element material roughness and world-space normal
         // differences (the cases' slope derivatives as the tangential part of the normal's
         // change per pixel, the footprint's cross term as its normal part).

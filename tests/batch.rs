@@ -314,7 +314,7 @@ macro_rules! suite {
             #[test]
             fn filtered_equal_the_scalar_clamped_route_bit_for_bit() {
                 // The batch filtered functions answer what `ClampRules::filter_gaussian`
-                // answers, element by element, for every rule set and sigma, on footprints
+                // (`filter_projected` for the projected one) answers, element by element, for every rule set and sigma, on footprints
                 // that trigger each clamp (counted below, so the coverage cannot silently
                 // vanish) and on adversarial values.
                 let c = cols(0xF117);
@@ -377,6 +377,24 @@ macro_rules! suite {
                                         .d(h(&c, i))
                                 },
                                 &format!("filtered ggx, {name}"),
+                            );
+                            batch::ggx_d_filtered_projected(
+                                &aa,
+                                &rules,
+                                sigma,
+                                &c.x,
+                                &c.y,
+                                &c.z,
+                                soa(&c),
+                                &mut out,
+                            );
+                            same(
+                                &out,
+                                |i| {
+                                    Ggx::new(rules.filter_projected(aa, fp(&c, i), sigma))
+                                        .d(h(&c, i))
+                                },
+                                &format!("filtered ggx projected, {name}"),
                             );
                         }
                     }
@@ -510,6 +528,17 @@ macro_rules! suite {
                             &out,
                             |i| Ggx::new(rules.filter_gaussian(aa, fp(i), 0.5)).d(h(i)),
                             &format!("tiers ggx {name}"),
+                        );
+                        assert_eq!(
+                            batch::ggx_d_filtered_projected(
+                                &aa, &rules, 0.5, x, y, z, fps, &mut out
+                            ),
+                            n
+                        );
+                        same(
+                            &out,
+                            |i| Ggx::new(rules.filter_projected(aa, fp(i), 0.5)).d(h(i)),
+                            &format!("tiers ggx projected {name}"),
                         );
                         assert_eq!(
                             batch::beckmann_d_filtered(&aa, &rules, 0.5, x, y, z, fps, &mut out),

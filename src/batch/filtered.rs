@@ -1,6 +1,7 @@
 //! The front door's methods over slices: each half vector with its own pixel footprint, one
 //! material and one method for the whole batch.
 
+use super::super::filter::ProjectedBase;
 use super::super::footprint::Footprint;
 use super::super::kernel::ClampRules;
 use super::super::ndf::Ndf;
@@ -50,6 +51,77 @@ pub fn ggx_d_filtered<R: Roughness>(
     out: &mut [F],
 ) -> usize {
     d_filtered::<R, Ggx<RoughnessMatrix>>(r, rules, sigma, [hx, hy, hz], fp, out)
+}
+
+/// GGX filtered in projected space (TK21 Listing 1, [`super::ggx_d_projected`]) through the
+/// clamped pipeline for each half vector and footprint: `out[i] =
+/// Ggx::new(rules.filter_projected(*r, fp_i, sigma)).d(h_i)`
+/// ([`ClampRules::filter_projected`]: footprint extent, kernel roughness `kappa`,
+/// determinant clamp; the front door's `Projected` method), **bit for bit**. Returns the
+/// number of elements written. Allocates nothing.
+///
+/// One lane (the projected filter's kernel part runs in `f64` in both precisions, so an `f32`
+/// first tier would gain nothing): the rules' fast paths and the eigenvalue clamp's common
+/// case (`ClampRules::filter_projected_entries_lane`, the kernel's sanity decided exactly),
+/// the kernel part on the lobe's part computed once per batch (`filter::ProjectedBase`,
+/// shared with the scalar path), the matrix where its determinant clamp is inactive and GGX's
+/// lane `D`; every other element flagged and evaluated by the scalar route. As
+/// [`super::ggx_d_projected`], it runs its lanes with 256-bit vectors or wider only (the
+/// scalar route on the SSE2 baseline).
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn ggx_d_filtered_projected<R: Roughness>(
+    r: &R,
+    rules: &ClampRules,
+    sigma: F,
+    hx: &[F],
+    hy: &[F],
+    hz: &[F],
+    fp: Footprints<'_>,
+    out: &mut [F],
+) -> usize {
+    let k = FilteredProjected {
+        r: *r,
+        base: ProjectedBase::new(*r),
+        rules: *rules,
+        sigma,
+    };
+    run(
+        &k,
+        [hx, hy, hz, fp.dh_u_x, fp.dh_u_y, fp.dh_v_x, fp.dh_v_y],
+        [out],
+    )
+}
+
+/// `D` of `Ggx::new(rules.filter_projected(r, fp, sigma))`.
+struct FilteredProjected<R> {
+    r: R,
+    base: ProjectedBase,
+    rules: ClampRules,
+    sigma: F,
+}
+
+impl<R: Roughness> Kernel<7, 1> for FilteredProjected<R> {
+    // As `ggx_d_projected`'s lane: both branches of the projected filter's clamps in `f64`.
+    const WIDE_ONLY: bool = true;
+
+    #[inline(always)]
+    fn lane(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> ([F; 1], bool) {
+        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
+        let (e, tau, ok) = self
+            .rules
+            .filter_projected_entries_lane(self.r, &self.base, fp, self.sigma);
+        let (v, slow) = d_entries_exact::<Ggx<RoughnessMatrix>>(e, tau, Vec3::new(hx, hy, hz));
+        ([v], slow | !ok)
+    }
+
+    // Always inlined, as `Filtered::scalar` (the footprint through memory stalls).
+    #[inline(always)]
+    fn scalar(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> [F; 1] {
+        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
+        let a = self.rules.filter_projected(self.r, fp, self.sigma);
+        [Ggx::new(a).d(Vec3::new(hx, hy, hz))]
+    }
 }
 
 /// An NDF of a filtered matrix, as the Gaussian-filtered lanes evaluate it.

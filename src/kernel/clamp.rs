@@ -281,18 +281,43 @@ impl ClampRules {
         fp: Footprint,
         sigma: F,
     ) -> ((F, F, F), f64, bool) {
+        let (k, ok) = self.kernel_lane::<EXACT>(fp, sigma);
+        (
+            filter::gaussian_entries(roughness, k),
+            self.det_clamp_wide(roughness),
+            ok,
+        )
+    }
+
+    /// [`ClampRules::filter_projected`] in `batch`'s lane form up to the entries of `A'`, as
+    /// [`ClampRules::filter_gaussian_entries_lane`] (with the kernel's sanity decided exactly):
+    /// the same kernel, then the projected filter's kernel part on the lobe's part `base`
+    /// (`ProjectedBase::new(roughness)`, once per batch).
+    #[inline(always)]
+    pub(crate) fn filter_projected_entries_lane<R: Roughness>(
+        &self,
+        roughness: R,
+        base: &filter::ProjectedBase,
+        fp: Footprint,
+        sigma: F,
+    ) -> ((F, F, F), f64, bool) {
+        let (k, ok) = self.kernel_lane::<true>(fp, sigma);
+        (base.entries(k), self.det_clamp_wide(roughness), ok)
+    }
+
+    /// `kernel(footprint(fp).covariance(sigma))` of the filters' lanes: `(kernel, ok)`, the
+    /// scalar rules' kernel bit for bit where `ok` (the footprint within `max_extent`; the
+    /// kernel sane, decided exactly with `EXACT`, else by [`Covariance::is_sane_sure`]; then
+    /// within `kappa / 2` or clamped by the eigenvalue clamp's common case).
+    #[inline(always)]
+    fn kernel_lane<const EXACT: bool>(&self, fp: Footprint, sigma: F) -> (Covariance, bool) {
         // `kernel`: the sanitiser's fast path, then the eigenvalue clamp of the kappa rule.
         let k = fp.covariance(sigma);
         let sane = if EXACT { k.is_sane() } else { k.is_sane_sure() };
         let (clamped, clamp_ok) = k.clamp_eigenvalues_lane(self.half_kappa());
         let off = self.kappa_off();
         let k = if off { k } else { clamped };
-        let kernel_ok = sane & (off | clamp_ok);
-        (
-            filter::gaussian_entries(roughness, k),
-            self.det_clamp_wide(roughness),
-            self.footprint_within(fp) & kernel_ok,
-        )
+        (k, self.footprint_within(fp) & sane & (off | clamp_ok))
     }
 
     /// The projected-space pipeline (TK21), the rules as in [`ClampRules::filter_gaussian`]:
