@@ -186,7 +186,12 @@ fn ln_guess(x: f64) -> f64 {
 #[inline(always)]
 fn erfinv_guess_lane(b: f64) -> f64 {
     let w = -ln_guess((1.0 - b) * (1.0 + b));
-    let central = horner!(w - 2.5, ERFINV_CENTRAL.0, ERFINV_CENTRAL.1, [0, 1, 2, 3, 4, 5, 6, 7]);
+    let central = horner!(
+        w - 2.5,
+        ERFINV_CENTRAL.0,
+        ERFINV_CENTRAL.1,
+        [0, 1, 2, 3, 4, 5, 6, 7]
+    );
     let tail = horner!(
         m::sqrt(w.max(0.0)) - 3.0,
         ERFINV_TAIL.0,
@@ -241,7 +246,11 @@ fn halley_step(
 /// `u`); elsewhere (`u = 0`, NaN, a far-tail `u` the steps did not reach) the caller's scalar
 /// path decides.
 #[inline(always)]
-pub(crate) fn visible_slope_quantile_lane<const STEPS: usize>(c: f64, s: f64, u: f64) -> (f64, bool) {
+pub(crate) fn visible_slope_quantile_lane<const STEPS: usize>(
+    c: f64,
+    s: f64,
+    u: f64,
+) -> (f64, bool) {
     let (lo, hi) = (-X_MAX, bracket_top(c, s));
     let norm = k_terms(hi, c, s).0;
     let target = u * norm;
@@ -275,7 +284,6 @@ pub(crate) fn visible_slope_quantile_lane<const STEPS: usize>(c: f64, s: f64, u:
 mod tests {
     use super::*;
 
-
     /// `K` with libm's `erfc` and `exp` (the scalar path's), and its relative error bound:
     /// `exp(-x^2)` with the rounding of `x^2` (`x^2 eps / 2`) and libm's ulp, `erfc`'s ulp,
     /// the products and sum (`2 eps`).
@@ -301,7 +309,10 @@ mod tests {
             // The lane's erfc bound (K's without its products and sum) plus libm's ulp.
             let bound = k_lane_error(x) - 2.0 * f64::EPSILON + f64::EPSILON;
             let err = (v - want).abs() / want;
-            assert!(err <= bound, "x {x}: {v:e} vs {want:e} ({err:e} > {bound:e})");
+            assert!(
+                err <= bound,
+                "x {x}: {v:e} vs {want:e} ({err:e} > {bound:e})"
+            );
             worst = worst.max(err / f64::EPSILON);
             let we = m::exp(-x * x);
             let eb = 1.5e-14 + (0.5 * x * x + 1.0) * f64::EPSILON;
@@ -333,7 +344,9 @@ mod tests {
         let mut flagged = [0usize; 2];
         let mut total = [0usize; 2];
         let mut worst = 0.0f64;
-        for deg in [0.0f64, 1e-6, 10.0, 30.0, 45.0, 60.0, 75.0, 85.0, 88.0, 89.9, 89.99] {
+        for deg in [
+            0.0f64, 1e-6, 10.0, 30.0, 45.0, 60.0, 75.0, 85.0, 88.0, 89.9, 89.99,
+        ] {
             let th = deg.to_radians();
             let (c, s) = (th.cos(), th.sin());
             for i in 0..6000 {
@@ -355,7 +368,10 @@ mod tests {
                     continue;
                 }
                 let hi = bracket_top(c, s);
-                assert!(x >= -X_MAX && x <= hi, "{deg} u {u}: x {x} outside the bracket");
+                assert!(
+                    x >= -X_MAX && x <= hi,
+                    "{deg} u {u}: x {x} outside the bracket"
+                );
                 let (k, ek) = k_ref(x, c, s);
                 let (n, en) = k_ref(hi, c, s);
                 let rel = 8.5 * f64::EPSILON + k_lane_error(x) + k_lane_error(hi) + ek + en;

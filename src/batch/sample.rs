@@ -295,10 +295,7 @@ impl<R: Roughness> Kernel<5, 3> for BeckmannVndf<R> {
         let n = Vec3::new(F::from_f64(-tx), F::from_f64(-ty), 1.0);
         let (mm, ok_m) = unit_direct(self.warp.unstretch_raw(n));
         let good = ok_m & (mm.z > 0.0) & (wo.dot(mm) > 0.0);
-        (
-            [mm.x, mm.y, mm.z],
-            !(view & ok_az & ok_x & ok_y & good),
-        )
+        ([mm.x, mm.y, mm.z], !(view & ok_az & ok_x & ok_y & good))
     }
 
     #[inline]
