@@ -47,8 +47,8 @@
 //! at run time, through `pulp`'s safe target-feature contexts: the crate stays
 //! `forbid(unsafe_code)`. [`simd_level`] names the instruction set in use. The lanes' results
 //! do not depend on it (no fused multiply-add is formed: Rust does not contract `a * b + c`).
-//! [`ggx_d_projected`], [`ggx_d_filtered_projected`], the deferred presets and the `f64` Gaussian-filtered functions
-//! vectorise profitably only with 256-bit vectors or wider (the projected filter's lanes
+//! [`ggx_d_projected`], [`ggx_d_filtered_projected`], the deferred presets and the `f64`
+//! Gaussian-filtered functions vectorise profitably only with 256-bit vectors or wider (the projected filter's lanes
 //! carry both branches of the clamps; the presets' lanes measured 0.4 to 1.5 times the scalar
 //! loop on SSE2; the `f64` Gaussian-filtered tiers 0.98 (Beckmann) and 0.86 (GGX) times): on
 //! the SSE2 baseline they run the scalar path (so `f64` [`beckmann_d_filtered`] there equals
