@@ -19,8 +19,8 @@ const N: usize = 4096;
 macro_rules! family {
     ($c:expr, $prec:ident, $t:ty) => {{
         use filtered_ndf::$prec::{
-            AxisAligned, Beckmann, ClampRules, Footprint, Ggx, Isotropic, Ndf, RoughnessMatrix,
-            Vec2, Vec3, batch, filter::presets, filter::rect,
+            AxisAligned, Beckmann, ClampRules, Footprint, GaussianFilteredGgx, Ggx, Isotropic, Ndf,
+            RoughnessMatrix, Vec2, Vec3, batch, filter::presets, filter::rect,
         };
         type Wall<'a> = BenchmarkGroup<'a, criterion::measurement::WallTime>;
         let cases = common::realistic_cases(N, 0xBA7C);
@@ -184,6 +184,14 @@ macro_rules! family {
             |i: usize| Ggx::new(rules.filter_projected(aa, fps[i], 0.5)).d(h(i)),
             |o: &mut [$t]| batch::ggx_d_filtered_projected(&aa, &rules, 0.5, &hx, &hy, &hz, soa, o)
         );
+        pair!(
+            "ggx_d_filtered_exact",
+            |i: usize| {
+                let k = rules.kernel(rules.footprint(fps[i]).covariance(0.5));
+                GaussianFilteredGgx::new(aa, k).d(h(i))
+            },
+            |o: &mut [$t]| batch::ggx_d_filtered_exact(&aa, &rules, 0.5, &hx, &hy, &hz, soa, o)
+        );
         // Deferred presets: per-element material roughness and world-space normal
         // differences (the cases' slope derivatives as the tangential part of the normal's
         // change per pixel, the footprint's cross term as its normal part).
@@ -226,7 +234,7 @@ macro_rules! family {
         // one (`2 l1 = 1`: the trapezoid rule where `1 + q < 56`, 71 % of these half vectors,
         // the second lane).
         {
-            use filtered_ndf::$prec::{Covariance, GaussianFilteredGgx};
+            use filtered_ndf::$prec::Covariance;
             for (name, k) in [
                 (
                     "gaussian_filtered_ggx_d_light",

@@ -88,8 +88,8 @@ macro_rules! suite {
         mod $modname {
             use super::*;
             use filtered_ndf::$prec::{
-                AxisAligned, Beckmann, ClampRules, ExtentFloor, Footprint, Ggx, Isotropic, Ndf,
-                Roughness, RoughnessMatrix, Vec2, Vec3, batch, filter::rect,
+                AxisAligned, Beckmann, ClampRules, ExtentFloor, Footprint, GaussianFilteredGgx,
+                Ggx, Isotropic, Ndf, Roughness, RoughnessMatrix, Vec2, Vec3, batch, filter::rect,
             };
 
             const N: usize = 2000;
@@ -314,7 +314,8 @@ macro_rules! suite {
             #[test]
             fn filtered_equal_the_scalar_clamped_route_bit_for_bit() {
                 // The batch filtered functions answer what `ClampRules::filter_gaussian`
-                // (`filter_projected` for the projected one) answers, element by element, for every rule set and sigma, on footprints
+                // (`filter_projected` for the projected one, the exact Gaussian filter of the
+                // rules' kernel for the exact one) answers, element by element, for every rule set and sigma, on footprints
                 // that trigger each clamp (counted below, so the coverage cannot silently
                 // vanish) and on adversarial values.
                 let c = cols(0xF117);
@@ -395,6 +396,25 @@ macro_rules! suite {
                                         .d(h(&c, i))
                                 },
                                 &format!("filtered ggx projected, {name}"),
+                            );
+                            batch::ggx_d_filtered_exact(
+                                &aa,
+                                &rules,
+                                sigma,
+                                &c.x,
+                                &c.y,
+                                &c.z,
+                                soa(&c),
+                                &mut out,
+                            );
+                            same(
+                                &out,
+                                |i| {
+                                    let k =
+                                        rules.kernel(rules.footprint(fp(&c, i)).covariance(sigma));
+                                    GaussianFilteredGgx::new(aa, k).d(h(&c, i))
+                                },
+                                &format!("filtered ggx exact, {name}"),
                             );
                         }
                     }
@@ -539,6 +559,18 @@ macro_rules! suite {
                             &out,
                             |i| Ggx::new(rules.filter_projected(aa, fp(i), 0.5)).d(h(i)),
                             &format!("tiers ggx projected {name}"),
+                        );
+                        assert_eq!(
+                            batch::ggx_d_filtered_exact(&aa, &rules, 0.5, x, y, z, fps, &mut out),
+                            n
+                        );
+                        same(
+                            &out,
+                            |i| {
+                                let k = rules.kernel(rules.footprint(fp(i)).covariance(0.5));
+                                GaussianFilteredGgx::new(aa, k).d(h(i))
+                            },
+                            &format!("tiers ggx exact {name}"),
                         );
                         assert_eq!(
                             batch::beckmann_d_filtered(&aa, &rules, 0.5, x, y, z, fps, &mut out),
@@ -744,7 +776,7 @@ macro_rules! suite {
             /// roughness form, and NaN and infinite kernels (sanitised).
             #[test]
             fn gaussian_filtered_ggx_bit_for_bit() {
-                use filtered_ndf::$prec::{Covariance, GaussianFilteredGgx};
+                use filtered_ndf::$prec::Covariance;
                 let c = cols(0xE6A);
                 let mut out = vec![0.0 as $t; N];
                 let nan = <$t>::NAN;
@@ -802,7 +834,7 @@ macro_rules! suite {
             /// on every instruction set the tests run at (`.ci/run`).
             #[test]
             fn gaussian_filtered_ggx_tiers_every_path() {
-                use filtered_ndf::$prec::{Covariance, GaussianFilteredGgx};
+                use filtered_ndf::$prec::Covariance;
                 const B: usize = 512;
                 // (share near the peak, share NaN) per block.
                 let plan: [(f64, f64); 14] = [

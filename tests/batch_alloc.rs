@@ -104,6 +104,8 @@ macro_rules! check {
                 batch::ggx_d_filtered(&mat, &rules, 0.5, &x, &y, &z, fp, &mut out);
                 batch::ggx_d_filtered_projected(&aa, &rules, 0.5, &x, &y, &z, fp, &mut out);
                 batch::ggx_d_filtered_projected(&mat, &rules, 0.5, &x, &y, &z, fp, &mut out);
+                batch::ggx_d_filtered_exact(&aa, &rules, 0.5, &x, &y, &z, fp, &mut out);
+                batch::ggx_d_filtered_exact(&mat, &rules, 0.5, &x, &y, &z, fp, &mut out);
             }
             batch::d_rect(&aa, &x, &y, &z, &hx, &hy, &mut out);
             for (u1, u2) in [(&hx, &hy), (&ux, &vy)] {

@@ -15,9 +15,13 @@
 //! speed in `f32` and `f64`) and the driver leaves those elements to the scalar `D` there.
 
 use super::super::filter::GaussianFilteredGgx;
-use super::lanes::run;
+use super::super::footprint::Footprint;
+use super::super::kernel::ClampRules;
+use super::super::ndf::Ndf;
+use super::super::ndf::roughness::Roughness;
+use super::lanes::{Kernel, run};
 use super::ndf::{D, LaneD};
-use super::{F, Vec3};
+use super::{F, Footprints, Vec2, Vec3};
 
 /// [`Ndf::d`](super::super::ndf::Ndf::d) of the exact Gaussian-filtered GGX lobe `lobe` for
 /// each micronormal `m_i = (mx[i], my[i], mz[i])`: `out[i] = lobe.d(m_i) = P22_Sigma(s(m)) / m_z^4` per steradian,
@@ -65,5 +69,97 @@ impl LaneD for GaussianFilteredGgx {
     #[inline(always)]
     fn d_lane_full(&self, m: Vec3) -> (F, bool) {
         GaussianFilteredGgx::d_lane::<true>(self, m)
+    }
+}
+
+/// The exact Gaussian-filtered GGX with a footprint per element through the clamp rules (the
+/// front door's `ExactGaussian` method for GGX): `out[i] = GaussianFilteredGgx::new(*r,
+/// rules.kernel(rules.footprint(fp_i).covariance(sigma))).d(h_i)` per steradian, **bit for
+/// bit**, `sigma` the pixel filter's standard deviation in pixels. Returns the number of
+/// elements written. Allocates nothing.
+///
+/// The lanes of [`gaussian_filtered_ggx_d`] with the lobe built per element in the lane (the
+/// rules' kernel by `ClampRules::kernel_lane`, the kernel's sanity decided exactly, then
+/// [`GaussianFilteredGgx::new`]'s steps without its sanitiser, where the kernel is sane); an element whose footprint or kernel leaves the
+/// rules' fast paths or the eigenvalue clamp's common case is flagged and evaluated by the
+/// scalar route.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn ggx_d_filtered_exact<R: Roughness>(
+    r: &R,
+    rules: &ClampRules,
+    sigma: F,
+    hx: &[F],
+    hy: &[F],
+    hz: &[F],
+    fp: Footprints<'_>,
+    out: &mut [F],
+) -> usize {
+    let k = ExactFiltered {
+        r: *r,
+        rules: *rules,
+        sigma,
+    };
+    run(
+        &k,
+        [hx, hy, hz, fp.dh_u_x, fp.dh_u_y, fp.dh_v_x, fp.dh_v_y],
+        [out],
+    )
+}
+
+/// `D` of `GaussianFilteredGgx::new(r, rules.kernel(rules.footprint(fp).covariance(sigma)))`.
+struct ExactFiltered<R> {
+    r: R,
+    rules: ClampRules,
+    sigma: F,
+}
+
+impl<R: Roughness> ExactFiltered<R> {
+    /// The element's lobe in the lane, and whether its kernel is the scalar route's.
+    #[inline(always)]
+    fn lobe(&self, ux: F, uy: F, vx: F, vy: F) -> (GaussianFilteredGgx, bool) {
+        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
+        let (k, ok) = self.rules.kernel_lane::<true>(fp, self.sigma);
+        // `new` sanitises the rules' kernel again: the eigenvalue clamp can leave a nearly
+        // singular kernel within rounding of indefinite (found by the tiers test's rank-one
+        // footprints), which the sanitiser then changes; such elements are flagged.
+        (
+            GaussianFilteredGgx::of_sanitized(self.r, k),
+            ok & k.is_sane(),
+        )
+    }
+}
+
+impl<R: Roughness> Kernel<7, 1> for ExactFiltered<R> {
+    // The tiers of `gaussian_filtered_ggx_d` (its `LaneD` constants).
+    const TIERED: bool = true;
+    const FULL_COVERS: bool = false;
+    const FULL_WIDE_ONLY: bool = true;
+
+    #[inline(always)]
+    fn lane(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> ([F; 1], bool) {
+        let (lobe, ok) = self.lobe(ux, uy, vx, vy);
+        let (v, slow) = lobe.d_lane::<false>(Vec3::new(hx, hy, hz));
+        ([v], slow | !ok)
+    }
+    #[inline(always)]
+    fn lane_full(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> ([F; 1], bool) {
+        let (lobe, ok) = self.lobe(ux, uy, vx, vy);
+        let (v, slow) = lobe.d_lane::<true>(Vec3::new(hx, hy, hz));
+        ([v], slow | !ok)
+    }
+    #[inline(always)]
+    fn second(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> bool {
+        self.lobe(ux, uy, vx, vy)
+            .0
+            .takes_trapezoid(Vec3::new(hx, hy, hz))
+    }
+    // Always inlined, as `Filtered::scalar` (the footprint through memory stalls).
+    #[inline(always)]
+    fn scalar(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> [F; 1] {
+        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
+        let rules = self.rules;
+        let k = rules.kernel(rules.footprint(fp).covariance(self.sigma));
+        [GaussianFilteredGgx::new(self.r, k).d(Vec3::new(hx, hy, hz))]
     }
 }

@@ -112,7 +112,7 @@ mod sample;
 mod simd;
 
 pub use deferred::deferred_filter;
-pub use exact::gaussian_filtered_ggx_d;
+pub use exact::{gaussian_filtered_ggx_d, ggx_d_filtered_exact};
 pub use filtered::{beckmann_d_filtered, ggx_d_filtered, ggx_d_filtered_projected};
 pub use ndf::{beckmann_d, beckmann_g2, beckmann_lambda, ggx_d, ggx_g2, ggx_lambda};
 pub use pdf::{

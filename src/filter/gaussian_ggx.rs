@@ -233,11 +233,18 @@ impl GaussianFilteredGgx {
     /// `det A = sqrt_det()^2`.
     #[inline(always)]
     pub fn new<R: Roughness>(roughness: R, kernel: Covariance) -> Self {
+        Self::of_sanitized(roughness, kernel.sanitized())
+    }
+
+    /// [`GaussianFilteredGgx::new`] for a kernel `k` already sanitised
+    /// ([`Covariance::sanitized`] returns it unchanged), branch-free (its cases as selects):
+    /// `batch`'s lanes build a lobe per element with it.
+    #[inline(always)]
+    pub(crate) fn of_sanitized<R: Roughness>(roughness: R, k: Covariance) -> Self {
         let a = roughness.to_matrix();
         let (a11, a12, _) = a.clamped_entries();
         let (a11, a12) = (a11.to_f64(), a12.to_f64());
         let sd = roughness.sqrt_det().to_f64();
-        let k = kernel.sanitized();
         let (s11, s12, s22) = (k.s11.to_f64(), k.s12.to_f64(), k.s22.to_f64());
         // C = B^-1 Sigma B^-T for the Cholesky factor B of A (b22 from sqrt(det A): exact for
         // the isotropic and axis-aligned forms, accurate at any condition for the matrix
@@ -261,21 +268,25 @@ impl GaussianFilteredGgx {
         // The eigenvector v of l1 from the row without cancellation, unnormalised:
         // |v|^2 = 2 rad (rad + |half|); `T` holds its rows for v and v_perp, and `n2` is
         // 1 / |v|^2 (c_i^2 = (T s)_i^2 n2). One division for 1 / |v|^2 and 1 / l1.
-        let (mut l2, mut vx, mut vy, mut n2) = (0.0, 1.0, 0.0, 1.0);
-        if rad > 0.0 {
-            (vx, vy) = if half >= 0.0 {
-                (rad + half, c12)
-            } else {
-                (c12, rad - half)
-            };
-            let nv2 = 2.0 * rad * (rad + half.abs());
-            let r2 = 1.0 / (nv2 * l1);
-            n2 = l1 * r2;
-            l2 = (det_s * (a11 * r) * (a11 * r) * (nv2 * r2)).min(l1);
+        // (Computed for every C and selected: an isotropic C, `rad = 0`, has `v = (1, 0)`,
+        // `n2 = 1` and `l2 = l1`, or `0` for `l1 = 0`.)
+        let aniso = rad > 0.0;
+        let (ux, uy) = if half >= 0.0 {
+            (rad + half, c12)
+        } else {
+            (c12, rad - half)
+        };
+        let nv2 = 2.0 * rad * (rad + half.abs());
+        let r2 = 1.0 / (nv2 * l1);
+        let (vx, vy) = if aniso { (ux, uy) } else { (1.0, 0.0) };
+        let n2 = if aniso { l1 * r2 } else { 1.0 };
+        let l2 = if aniso {
+            (det_s * (a11 * r) * (a11 * r) * (nv2 * r2)).min(l1)
         } else if l1 > 0.0 {
-            // An isotropic C: l2 = l1.
-            l2 = l1;
-        }
+            l1
+        } else {
+            0.0
+        };
         let t = [
             vx * i11 + vy * i21,
             vy * i22,

@@ -310,7 +310,11 @@ impl ClampRules {
     /// kernel sane, decided exactly with `EXACT`, else by [`Covariance::is_sane_sure`]; then
     /// within `kappa / 2` or clamped by the eigenvalue clamp's common case).
     #[inline(always)]
-    fn kernel_lane<const EXACT: bool>(&self, fp: Footprint, sigma: F) -> (Covariance, bool) {
+    pub(crate) fn kernel_lane<const EXACT: bool>(
+        &self,
+        fp: Footprint,
+        sigma: F,
+    ) -> (Covariance, bool) {
         // `kernel`: the sanitiser's fast path, then the eigenvalue clamp of the kappa rule.
         let k = fp.covariance(sigma);
         let sane = if EXACT { k.is_sane() } else { k.is_sane_sure() };
