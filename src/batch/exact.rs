@@ -131,7 +131,9 @@ impl<R: Roughness> ExactFiltered<R> {
 }
 
 impl<R: Roughness> Kernel<7, 1> for ExactFiltered<R> {
-    // The tiers of `gaussian_filtered_ggx_d` (its `LaneD` constants).
+    // The tiers of `gaussian_filtered_ggx_d` (its `LaneD` constants). On SSE2 the first lane,
+    // with the lobe built per element in `f64`, is at par with the scalar route (0.95 times
+    // the scalar loop's speed in `f32`; the scalar route through the driver measured 0.93).
     const TIERED: bool = true;
     const FULL_COVERS: bool = false;
     const FULL_WIDE_ONLY: bool = true;
