@@ -192,6 +192,14 @@ macro_rules! family {
             },
             |o: &mut [$t]| batch::ggx_d_filtered_exact(&aa, &rules, 0.5, &hx, &hy, &hz, soa, o)
         );
+        pair!(
+            "d_rect_filtered",
+            |i: usize| {
+                let half = rules.rect(fps[i].bounding_rect(), aa.alpha()).half_extent;
+                rect::d_rect(aa, h(i), half)
+            },
+            |o: &mut [$t]| batch::d_rect_filtered(&aa, &rules, &hx, &hy, &hz, soa, o)
+        );
         // Deferred presets: per-element material roughness and world-space normal
         // differences (the cases' slope derivatives as the tangential part of the normal's
         // change per pixel, the footprint's cross term as its normal part).

@@ -591,6 +591,49 @@ macro_rules! suite {
                 }
             }
 
+            /// The front door's `Rect` route over slices (`d_rect_filtered`) is `d_rect` on the
+            /// rules' rectangles (`ClampRules::rect` of each footprint's bounding rectangle,
+            /// computed here by the scalar functions), bit for bit, for every rule set (the
+            /// floors of `GDC2016` included), on the columns three times over (6000 elements:
+            /// more than one unit of 4096) with adversarial footprints among them.
+            #[test]
+            fn rect_filtered_is_d_rect_of_the_rules_rectangles() {
+                let c = cols(0x2EC8);
+                let rep =
+                    |v: &Vec<$t>| -> Vec<$t> { v.iter().chain(v).chain(v).copied().collect() };
+                let (x, y, z) = (rep(&c.x), rep(&c.y), rep(&c.z));
+                let (ux, uy, vx, vy) = (rep(&c.ux), rep(&c.uy), rep(&c.vx), rep(&c.vy));
+                let n = x.len();
+                let fps = batch::Footprints {
+                    dh_u_x: &ux,
+                    dh_u_y: &uy,
+                    dh_v_x: &vx,
+                    dh_v_y: &vy,
+                };
+                let (mut got, mut want) = (vec![0.0 as $t; n], vec![0.0 as $t; n]);
+                for (name, rules) in rule_sets() {
+                    for alpha in [1e-3 as $t, 0.1, 0.8] {
+                        let aa = AxisAligned::new(alpha, alpha * 2.0).unwrap();
+                        let half: Vec<Vec2> = (0..n)
+                            .map(|i| {
+                                let f = Footprint::from_slope_derivatives(
+                                    Vec2::new(ux[i], uy[i]),
+                                    Vec2::new(vx[i], vy[i]),
+                                );
+                                rules.rect(f.bounding_rect(), aa.alpha()).half_extent
+                            })
+                            .collect();
+                        let (ex, ey): (Vec<$t>, Vec<$t>) = half.iter().map(|h| (h.x, h.y)).unzip();
+                        assert_eq!(
+                            batch::d_rect_filtered(&aa, &rules, &x, &y, &z, fps, &mut got),
+                            n
+                        );
+                        batch::d_rect(&aa, &x, &y, &z, &ex, &ey, &mut want);
+                        same(&got, |i| want[i], &format!("rect filtered {name} {alpha}"));
+                    }
+                }
+            }
+
             #[test]
             fn rect_bit_for_bit() {
                 let c = cols(0x2EC7);

@@ -121,7 +121,7 @@ pub use pdf::{
     ggx_normal_pdf, ggx_reflection_pdf_from_normal, ggx_visible_normal_pdf,
 };
 pub use projected::ggx_d_projected;
-pub use rect::d_rect;
+pub use rect::{d_rect, d_rect_filtered};
 pub use sample::{
     beckmann_sample_normal, beckmann_sample_visible_normal, ggx_sample_normal,
     ggx_sample_visible_normal,

@@ -176,22 +176,30 @@ impl ClampRules {
     /// conservative side). NaN half-extents become `0` before the floor; `+inf` becomes
     /// `lambda` (and stays infinite under [`ClampRules::NONE`]); negative values are taken by
     /// magnitude.
+    #[inline]
     pub fn rect(&self, r: BoundingRect, alpha: Vec2) -> BoundingRect {
+        self.rect_bounds(alpha).apply(r)
+    }
+
+    /// The per-axis bounds of [`ClampRules::rect`] for the lobe's `alpha`: computed once per
+    /// lobe by `batch`'s box filter, then applied per element.
+    #[inline]
+    pub(crate) fn rect_bounds(&self, alpha: Vec2) -> RectBounds {
         let floor = match self.floor {
             ExtentFloor::None => Vec2::ZERO,
             ExtentFloor::Constant(e) => Vec2::splat(e),
             ExtentFloor::AlphaCapped(cap) => alpha.abs().min(Vec2::splat(cap)),
         };
-        let fix = |v: F| if v.is_nan() { 0.0 } else { v.abs() };
         let floor_fix = |v: F| if v >= 0.0 && v.is_finite() { v } else { 0.0 };
         let lambda = if self.max_extent >= 0.0 {
             self.max_extent
         } else {
             0.0
         };
-        let h = Vec2::new(fix(r.half_extent.x), fix(r.half_extent.y)).min(Vec2::splat(lambda));
-        let f = Vec2::new(floor_fix(floor.x), floor_fix(floor.y));
-        BoundingRect::new(h.max(f))
+        RectBounds {
+            floor: Vec2::new(floor_fix(floor.x), floor_fix(floor.y)),
+            lambda,
+        }
     }
 
     /// The kernel-roughness rule of TK19 eq. 1 in matrix form: `2 Sigma'` has the
@@ -342,6 +350,24 @@ impl ClampRules {
     ) -> RoughnessMatrix {
         let k = self.kernel(self.footprint(fp).covariance(sigma));
         filter::projected_sanitized(roughness, k, self.det_clamp_wide(roughness))
+    }
+}
+
+/// The bounds of [`ClampRules::rect`] for one lobe: half extents clamped to `[floor,
+/// lambda]` per axis (the floor winning).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RectBounds {
+    floor: Vec2,
+    lambda: F,
+}
+
+impl RectBounds {
+    /// The clamped rectangle (branch-free: selects, `min`, `max`).
+    #[inline(always)]
+    pub(crate) fn apply(self, r: BoundingRect) -> BoundingRect {
+        let fix = |v: F| if v.is_nan() { 0.0 } else { v.abs() };
+        let h = Vec2::new(fix(r.half_extent.x), fix(r.half_extent.y)).min(Vec2::splat(self.lambda));
+        BoundingRect::new(h.max(self.floor))
     }
 }
 
