@@ -62,17 +62,57 @@ pub fn ggx_sample_visible_normal<R: Roughness>(
     out_y: &mut [F],
     out_z: &mut [F],
 ) -> usize {
-    let k = Vndf {
-        ggx: Ggx::new(*r),
+    let k = VisibleSampler {
+        ndf: Ggx::new(*r),
         warp: Warp::new(r),
     };
     run(&k, [wo.x, wo.y, wo.z, u1, u2], [out_x, out_y, out_z])
 }
 
-/// The kernel: the NDF and its warp.
-struct Vndf<R: Roughness> {
-    ggx: Ggx<R>,
+/// The visible-normal sampler of an NDF and its warp.
+struct VisibleSampler<N> {
+    ndf: N,
     warp: Warp,
+}
+
+/// The unit-roughness visible normal of an NDF's sampler in lanes, from the standard view
+/// `wi` and the clamped uniforms: `(n, slow)`, `n` unnormalised.
+trait StandardVisible {
+    fn standard_visible_lane(wi: Vec3, u1: F, u2: F) -> (Vec3, bool);
+}
+
+impl<R: Roughness> StandardVisible for Ggx<R> {
+    /// A point on the spherical cap plus `wi` (`ggx_cap_point`), the azimuth by
+    /// [`sincos_2pi`], the cap height not fused.
+    #[inline(always)]
+    fn standard_visible_lane(wi: Vec3, u1: F, u2: F) -> (Vec3, bool) {
+        let (sin_phi, cos_phi) = sincos_2pi(u1);
+        let h = (1.0 - u2) * (1.0 + wi.z) - wi.z;
+        (ggx_cap_point(wi, h, cos_phi, sin_phi), false)
+    }
+}
+
+impl<R: Roughness> StandardVisible for Beckmann<R> {
+    /// The scalar sampler's steps in `f64` (the view's azimuth by `sqrt(wx^2 + wy^2)` in
+    /// place of `hypot`), the two quantiles by `visible_slope_quantile_lane` (three steps for
+    /// `x`, one for the Gaussian `y`), flagged where either misses its goal or the azimuth
+    /// is lost to a subnormal `wx^2 + wy^2` (`f64` only).
+    #[inline(always)]
+    fn standard_visible_lane(wi: Vec3, u1: F, u2: F) -> (Vec3, bool) {
+        let (wx, wy, c) = (wi.x.to_f64(), wi.y.to_f64(), wi.z.to_f64());
+        let s2 = wx * wx + wy * wy;
+        let s = m::sqrt(s2);
+        let axis = s > 0.0;
+        let ok_az = (s2 >= f64::MIN_POSITIVE / f64::EPSILON) | !axis;
+        let (cphi, sphi) = if axis { (wx / s, wy / s) } else { (1.0, 0.0) };
+        let (qx, ok_x) = visible_slope_quantile_lane::<3>(c, s, u1.to_f64());
+        let (qy, ok_y) = visible_slope_quantile_lane::<1>(1.0, 0.0, u2.to_f64());
+        let (tx, ty) = (cphi * qx - sphi * qy, sphi * qx + cphi * qy);
+        (
+            Vec3::new(F::from_f64(-tx), F::from_f64(-ty), 1.0),
+            !(ok_az & ok_x & ok_y),
+        )
+    }
 }
 
 /// `v / sqrt(|v|^2)` where that needs no rescaling (the direct path of
@@ -85,7 +125,9 @@ pub(super) fn unit_direct(v: Vec3) -> (Vec3, bool) {
     (v / m::sqrt(l2), ok)
 }
 
-impl<R: Roughness> Kernel<5, 3> for Vndf<R> {
+impl<N: NdfSampling + StandardVisible> Kernel<5, 3> for VisibleSampler<N> {
+    /// The scalar sampler's steps: `standard_view`, the NDF's unit-roughness visible normal,
+    /// `Warp::unstretch_raw` and the direct normalisation, `visible_result`'s first check.
     #[inline(always)]
     fn lane(&self, [x, y, z, u1, u2]: [F; 5]) -> ([F; 3], bool) {
         let wo = Vec3::new(x, y, z);
@@ -94,20 +136,17 @@ impl<R: Roughness> Kernel<5, 3> for Vndf<R> {
         let (o, ok_o) = unit_direct(wo);
         let (wi, ok_s) = unit_direct(self.warp.stretch(o));
         let view = (z > 0.0) & ok_o & ok_s & (wi.z > 0.0);
-        let (u1, u2) = (clamp_unit(u1), clamp_unit(u2));
-        let (sin_phi, cos_phi) = sincos_2pi(u1);
-        let h = (1.0 - u2) * (1.0 + wi.z) - wi.z;
-        let n = ggx_cap_point(wi, h, cos_phi, sin_phi);
+        let (n, slow) = N::standard_visible_lane(wi, clamp_unit(u1), clamp_unit(u2));
         let (mm, ok_m) = unit_direct(self.warp.unstretch_raw(n));
         // `visible_result`'s first check (a finite `mm`: its squared length was direct).
         let good = ok_m & (mm.z > 0.0) & (wo.dot(mm) > 0.0);
-        ([mm.x, mm.y, mm.z], !(view & good))
+        ([mm.x, mm.y, mm.z], slow | !(view & good))
     }
 
     #[inline]
     fn scalar(&self, [x, y, z, u1, u2]: [F; 5]) -> [F; 3] {
         let m = self
-            .ggx
+            .ndf
             .sample_visible_normal(Vec3::new(x, y, z), Vec2::new(u1, u2))
             .unwrap_or(Vec3::ZERO);
         [m.x, m.y, m.z]
@@ -261,49 +300,9 @@ pub fn beckmann_sample_visible_normal<R: Roughness>(
     out_y: &mut [F],
     out_z: &mut [F],
 ) -> usize {
-    let k = BeckmannVndf {
-        beckmann: Beckmann::new(*r),
+    let k = VisibleSampler {
+        ndf: Beckmann::new(*r),
         warp: Warp::new(r),
     };
     run(&k, [wo.x, wo.y, wo.z, u1, u2], [out_x, out_y, out_z])
-}
-
-/// The kernel: Beckmann and its warp.
-struct BeckmannVndf<R: Roughness> {
-    beckmann: Beckmann<R>,
-    warp: Warp,
-}
-
-impl<R: Roughness> Kernel<5, 3> for BeckmannVndf<R> {
-    #[inline(always)]
-    fn lane(&self, [x, y, z, u1, u2]: [F; 5]) -> ([F; 3], bool) {
-        let wo = Vec3::new(x, y, z);
-        // `standard_view`, as the GGX lane.
-        let (o, ok_o) = unit_direct(wo);
-        let (wi, ok_s) = unit_direct(self.warp.stretch(o));
-        let view = (z > 0.0) & ok_o & ok_s & (wi.z > 0.0);
-        let (wx, wy, c) = (wi.x.to_f64(), wi.y.to_f64(), wi.z.to_f64());
-        let s2 = wx * wx + wy * wy;
-        let s = m::sqrt(s2);
-        let axis = s > 0.0;
-        // A subnormal `s2` loses the azimuth (`f64` only).
-        let ok_az = (s2 >= f64::MIN_POSITIVE / f64::EPSILON) | !axis;
-        let (cphi, sphi) = if axis { (wx / s, wy / s) } else { (1.0, 0.0) };
-        let (qx, ok_x) = visible_slope_quantile_lane::<3>(c, s, clamp_unit(u1).to_f64());
-        let (qy, ok_y) = visible_slope_quantile_lane::<1>(1.0, 0.0, clamp_unit(u2).to_f64());
-        let (tx, ty) = (cphi * qx - sphi * qy, sphi * qx + cphi * qy);
-        let n = Vec3::new(F::from_f64(-tx), F::from_f64(-ty), 1.0);
-        let (mm, ok_m) = unit_direct(self.warp.unstretch_raw(n));
-        let good = ok_m & (mm.z > 0.0) & (wo.dot(mm) > 0.0);
-        ([mm.x, mm.y, mm.z], !(view & ok_az & ok_x & ok_y & good))
-    }
-
-    #[inline]
-    fn scalar(&self, [x, y, z, u1, u2]: [F; 5]) -> [F; 3] {
-        let m = self
-            .beckmann
-            .sample_visible_normal(Vec3::new(x, y, z), Vec2::new(u1, u2))
-            .unwrap_or(Vec3::ZERO);
-        [m.x, m.y, m.z]
-    }
 }
