@@ -15,13 +15,12 @@
 //! speed in `f32` and `f64`) and the driver leaves those elements to the scalar `D` there.
 
 use super::super::filter::GaussianFilteredGgx;
-use super::super::footprint::Footprint;
 use super::super::kernel::ClampRules;
 use super::super::ndf::Ndf;
 use super::super::ndf::roughness::Roughness;
 use super::lanes::{Kernel, run};
 use super::ndf::{D, LaneD};
-use super::{F, Footprints, Vec2, Vec3};
+use super::{F, Footprints, Vec3, footprint, footprint_columns};
 
 /// [`Ndf::d`](super::super::ndf::Ndf::d) of the exact Gaussian-filtered GGX lobe `lobe` for
 /// each micronormal `m_i = (mx[i], my[i], mz[i])`: `out[i] = lobe.d(m_i) = P22_Sigma(s(m)) / m_z^4` per steradian,
@@ -100,11 +99,7 @@ pub fn ggx_d_filtered_exact<R: Roughness>(
         rules: *rules,
         sigma,
     };
-    run(
-        &k,
-        [hx, hy, hz, fp.dh_u_x, fp.dh_u_y, fp.dh_v_x, fp.dh_v_y],
-        [out],
-    )
+    run(&k, footprint_columns([hx, hy, hz], fp), [out])
 }
 
 /// `D` of `GaussianFilteredGgx::new(r, rules.kernel(rules.footprint(fp).covariance(sigma)))`.
@@ -118,7 +113,7 @@ impl<R: Roughness> ExactFiltered<R> {
     /// The element's lobe in the lane, and whether its kernel is the scalar route's.
     #[inline(always)]
     fn lobe(&self, ux: F, uy: F, vx: F, vy: F) -> (GaussianFilteredGgx, bool) {
-        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
+        let fp = footprint(ux, uy, vx, vy);
         let (k, ok) = self.rules.kernel_lane::<true>(fp, self.sigma);
         // `new` sanitises the rules' kernel again: the eigenvalue clamp can leave a nearly
         // singular kernel within rounding of indefinite (found by the tiers test's rank-one
@@ -159,7 +154,7 @@ impl<R: Roughness> Kernel<7, 1> for ExactFiltered<R> {
     // Always inlined, as `Filtered::scalar` (the footprint through memory stalls).
     #[inline(always)]
     fn scalar(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> [F; 1] {
-        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
+        let fp = footprint(ux, uy, vx, vy);
         let rules = self.rules;
         let k = rules.kernel(rules.footprint(fp).covariance(self.sigma));
         [GaussianFilteredGgx::new(self.r, k).d(Vec3::new(hx, hy, hz))]

@@ -2,7 +2,6 @@
 //! material and one method for the whole batch.
 
 use super::super::filter::ProjectedBase;
-use super::super::footprint::Footprint;
 use super::super::kernel::ClampRules;
 use super::super::ndf::Ndf;
 use super::super::ndf::beckmann::Beckmann;
@@ -10,7 +9,7 @@ use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
 use super::lanes::{Kernel, WIDE, exp_neg_times, run};
 use super::ndf::LaneD;
-use super::{F, Footprints, PI, Vec2, Vec3};
+use super::{F, Footprints, PI, Vec2, Vec3, footprint, footprint_columns};
 use core::marker::PhantomData;
 
 /// Filtered Beckmann (exact Gaussian filtering, KHPL16 eq. 15) through the clamped pipeline
@@ -86,11 +85,7 @@ pub fn ggx_d_filtered_projected<R: Roughness>(
         rules: *rules,
         sigma,
     };
-    run(
-        &k,
-        [hx, hy, hz, fp.dh_u_x, fp.dh_u_y, fp.dh_v_x, fp.dh_v_y],
-        [out],
-    )
+    run(&k, footprint_columns([hx, hy, hz], fp), [out])
 }
 
 /// `D` of `Ggx::new(rules.filter_projected(r, fp, sigma))`.
@@ -107,7 +102,7 @@ impl<R: Roughness> Kernel<7, 1> for FilteredProjected<R> {
 
     #[inline(always)]
     fn lane(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> ([F; 1], bool) {
-        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
+        let fp = footprint(ux, uy, vx, vy);
         let (e, tau, ok) = self
             .rules
             .filter_projected_entries_lane(self.r, &self.base, fp, self.sigma);
@@ -118,7 +113,7 @@ impl<R: Roughness> Kernel<7, 1> for FilteredProjected<R> {
     // Always inlined, as `Filtered::scalar` (the footprint through memory stalls).
     #[inline(always)]
     fn scalar(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> [F; 1] {
-        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
+        let fp = footprint(ux, uy, vx, vy);
         let a = self.rules.filter_projected(self.r, fp, self.sigma);
         [Ggx::new(a).d(Vec3::new(hx, hy, hz))]
     }
@@ -211,11 +206,7 @@ fn d_filtered<R: Roughness, N: FilteredNdf>(
         sigma,
         ndf: PhantomData,
     };
-    run(
-        &k,
-        [hx, hy, hz, fp.dh_u_x, fp.dh_u_y, fp.dh_v_x, fp.dh_v_y],
-        [out],
-    )
+    run(&k, footprint_columns([hx, hy, hz], fp), [out])
 }
 
 /// `D` of `N(rules.filter_gaussian(r, fp, sigma))`.
@@ -232,7 +223,7 @@ impl<R: Roughness, N: FilteredNdf> Filtered<R, N> {
     /// (`FULL`: decided as the scalar path, `d_entries_exact`).
     #[inline(always)]
     fn lane_with<const FULL: bool>(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> ([F; 1], bool) {
-        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
+        let fp = footprint(ux, uy, vx, vy);
         let (e, tau, ok) = self
             .rules
             .filter_gaussian_entries_lane::<R, FULL>(self.r, fp, self.sigma);
@@ -271,7 +262,7 @@ impl<R: Roughness, N: FilteredNdf> Kernel<7, 1> for Filtered<R, N> {
     // `ClampRules::filter_gaussian`): 2.3 times the scalar loop's time on SSE2.
     #[inline(always)]
     fn scalar(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> [F; 1] {
-        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
+        let fp = footprint(ux, uy, vx, vy);
         let a = self.rules.filter_gaussian(self.r, fp, self.sigma);
         [N::of(a).d(Vec3::new(hx, hy, hz))]
     }

@@ -205,11 +205,26 @@ impl Footprints<'_> {
     /// Element `i` (which must be below every slice length).
     #[inline]
     pub fn at(&self, i: usize) -> super::Footprint {
-        super::Footprint::from_slope_derivatives(
-            Vec2::new(self.dh_u_x[i], self.dh_u_y[i]),
-            Vec2::new(self.dh_v_x[i], self.dh_v_y[i]),
+        footprint(
+            self.dh_u_x[i],
+            self.dh_u_y[i],
+            self.dh_v_x[i],
+            self.dh_v_y[i],
         )
     }
+}
+
+/// The footprint of one element from its four derivatives (the footprint kernels' lanes).
+#[inline(always)]
+fn footprint(ux: F, uy: F, vx: F, vy: F) -> super::Footprint {
+    super::Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy))
+}
+
+/// The input columns of the footprint kernels: the half vector's three, then the four
+/// derivatives.
+#[inline]
+fn footprint_columns<'a>([hx, hy, hz]: [&'a [F]; 3], fp: Footprints<'a>) -> [&'a [F]; 7] {
+    [hx, hy, hz, fp.dh_u_x, fp.dh_u_y, fp.dh_v_x, fp.dh_v_y]
 }
 
 /// Pixel kernels (slope covariances, [`Covariance`](super::Covariance)) in
