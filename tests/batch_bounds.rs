@@ -660,16 +660,7 @@ macro_rules! suite {
                 let x_max_batch = if WIDE { 26.0 } else { 9.0 };
                 let dirs = directions(N, 0x5D);
                 let wo = Cols::new(&dirs);
-                let mut rng = Rng(0x5E);
-                let mut u: Vec<$t> = (0..2 * N).map(|_| rng.uniform() as $t).collect();
-                for (k, v) in [0.0, 1.0, -0.5, 2.0, <$t>::NAN, 1e-30, 1e-7, 0.25, 0.5, 0.75, 1.0 - <$t>::EPSILON]
-                    .into_iter()
-                    .enumerate()
-                {
-                    u[7 * k] = v;
-                    u[N + 11 * k + 3] = v;
-                }
-                let (u1, u2) = u.split_at(N);
+                let (u1, u2) = uniforms(0x5E);
                 let (mut ox, mut oy, mut oz) = (vec![0.0 as $t; N], vec![0.0 as $t; N], vec![0.0 as $t; N]);
                 let cu = |x: f64| if x >= 0.0 { x.min(1.0 - EPS / 2.0) } else { 0.0 };
                 let mut worst = [0.0f64; 2];
@@ -679,7 +670,7 @@ macro_rules! suite {
                         let (l11, l21, l22) = l;
                         with_form!(f, |r, r64| {
                             let n = batch::beckmann_sample_visible_normal(
-                                &r, wo.soa(), u1, u2, &mut ox, &mut oy, &mut oz,
+                                &r, wo.soa(), &u1, &u2, &mut ox, &mut oy, &mut oz,
                             );
                             assert_eq!(n, N);
                             let beckmann = d::Beckmann::new(r64);
