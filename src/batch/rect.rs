@@ -3,7 +3,7 @@
 use super::super::filter::rect;
 use super::super::filter::rect::{CLOSED_INDEX, Tier};
 use super::super::footprint::Footprint;
-use super::super::kernel::ClampRules;
+use super::super::kernel::{ClampRules, RectBounds};
 use super::super::ndf::roughness::AxisAligned;
 use super::lanes::{Body, atan2_upper_lane};
 use super::{F, Footprints, Vec2, Vec3};
@@ -96,33 +96,91 @@ pub fn d_rect_filtered(
         .min(hy.len())
         .min(hz.len())
         .min(fp.len());
-    let bounds = rules.rect_bounds(r.alpha());
-    let mut ex = [0.0 as F; UNIT];
-    let mut ey = [0.0 as F; UNIT];
-    let mut b = 0;
-    while b < n {
-        let e = n.min(b + UNIT);
-        let len = e - b;
-        let (ux, uy) = (&fp.dh_u_x[b..e], &fp.dh_u_y[b..e]);
-        let (vx, vy) = (&fp.dh_v_x[b..e], &fp.dh_v_y[b..e]);
-        for i in 0..len {
-            let f =
-                Footprint::from_slope_derivatives(Vec2::new(ux[i], uy[i]), Vec2::new(vx[i], vy[i]));
-            let h = bounds.apply(f.bounding_rect()).half_extent;
-            (ex[i], ey[i]) = (h.x, h.y);
-        }
-        d_rect(
-            r,
-            &hx[b..e],
-            &hy[b..e],
-            &hz[b..e],
-            &ex[..len],
-            &ey[..len],
-            &mut out[b..e],
-        );
-        b = e;
-    }
+    super::simd::dispatch(RectFootprints {
+        r: *r,
+        bounds: rules.rect_bounds(r.alpha()),
+        h: [&hx[..n], &hy[..n], &hz[..n]],
+        fp: [
+            &fp.dh_u_x[..n],
+            &fp.dh_u_y[..n],
+            &fp.dh_v_x[..n],
+            &fp.dh_v_y[..n],
+        ],
+        out: &mut out[..n],
+    });
     n
+}
+
+/// [`d_rect_filtered`]'s loop: per unit of [`UNIT`] elements, the clamped rectangles' half
+/// extents into stack arrays, then [`RectLoop`] over the unit, both in the dispatched
+/// instruction set (the rectangles computed outside it ran on the SSE2 baseline: 0.4 ns per
+/// element, `f32`, against about 0.1 with AVX-512).
+struct RectFootprints<'a> {
+    r: AxisAligned,
+    bounds: RectBounds,
+    h: [&'a [F]; 3],
+    fp: [&'a [F]; 4],
+    out: &'a mut [F],
+}
+
+impl RectFootprints<'_> {
+    /// The units, each through [`RectLoop::go`] or, with `SCALAR`, [`RectLoop::go_scalar`].
+    #[inline(always)]
+    fn units<const SCALAR: bool>(self) {
+        let Self {
+            r,
+            bounds,
+            h,
+            fp,
+            out,
+        } = self;
+        let n = out.len();
+        let mut ex = [0.0 as F; UNIT];
+        let mut ey = [0.0 as F; UNIT];
+        let mut b = 0;
+        while b < n {
+            let e = n.min(b + UNIT);
+            let len = e - b;
+            let [ux, uy, vx, vy] = fp.map(|s| &s[b..e]);
+            let its = ex[..len].iter_mut().zip(&mut ey[..len]);
+            for (((((x, y), &ux), &uy), &vx), &vy) in its.zip(ux).zip(uy).zip(vx).zip(vy) {
+                let f = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
+                let he = bounds.apply(f.bounding_rect()).half_extent;
+                (*x, *y) = (he.x, he.y);
+            }
+            let unit = RectLoop {
+                r,
+                ins: [
+                    &h[0][b..e],
+                    &h[1][b..e],
+                    &h[2][b..e],
+                    &ex[..len],
+                    &ey[..len],
+                ],
+                out: &mut out[b..e],
+            };
+            if SCALAR {
+                unit.go_scalar();
+            } else {
+                unit.go();
+            }
+            b = e;
+        }
+    }
+}
+
+impl Body for RectFootprints<'_> {
+    const WIDE_ONLY: bool = RectLoop::WIDE_ONLY;
+
+    #[inline(always)]
+    fn go(self) {
+        self.units::<false>();
+    }
+
+    #[inline(always)]
+    fn go_scalar(self) {
+        self.units::<true>();
+    }
 }
 
 /// The Gauss-Legendre tiers of the precision, in `filter::rect`'s `tier_index` order

@@ -8,6 +8,7 @@ mod clamp;
 mod covariance;
 mod rect;
 
+pub(crate) use clamp::RectBounds;
 pub use clamp::{ClampRules, ExtentFloor};
 pub use covariance::{Covariance, KERNEL_MAX};
 pub use rect::BoundingRect;
