@@ -8,10 +8,12 @@ use super::super::ndf::roughness::AxisAligned;
 use super::lanes::{Body, atan2_upper_lane};
 use super::{F, Footprints, Vec2, Vec3};
 
-/// Elements sorted by class at a time: the lane loops' scalar remainders come once per class
-/// and unit (with ten classes, a sixth of the elements in units of 512; measured 20 % slower
-/// than 4096). `perm` (`u16`) and `class` take 3 bytes an element on the stack.
-const UNIT: usize = 4096;
+/// Elements sorted by class at a time: the lane loops' padding comes once per class and unit
+/// (units of 512 measured 20 % slower than 4096; 2048 as fast as 4096 in `f32` since the
+/// gather moves pairs, 1024 10 % slower in `f64`). `class` and `perm` (`u8`, `u16`) and the
+/// pairs `(h_x, h_y)` and `(half_x, half_y)` take `3 + 4 size_of::<F>()` bytes an element on
+/// the stack.
+const UNIT: usize = 2048;
 /// Elements a lane loop evaluates at a time (the gathered columns and results on the stack).
 const CHUNK: usize = 256;
 /// The multiple of elements a lane loop runs on (the widest vector, 16 `f32`; `CHUNK` is a
@@ -25,13 +27,13 @@ const PAD: usize = 16;
 /// closed form (below). The half extents are the kernel as given (no clamps: pass rectangles
 /// already through `ClampRules::rect` for the clamped route). Out of domain as
 /// [`rect::d_rect`] (`0` below the horizon and for NaN, never NaN). Returns the number of
-/// elements written. Allocates nothing (buffers on the stack: 18 KiB in `f32`, 25 KiB in
+/// elements written. Allocates nothing (buffers on the stack: 44 KiB in `f32`, 82 KiB in
 /// `f64`).
 ///
 /// Vectorised where the scalar case analysis integrates both axes by Gauss-Legendre rules
 /// (short sides against the distance to the integrand's poles: most pixel
 /// footprints) and where it takes the four-edge closed form (a long side, KHPL16 Appendix A
-/// rewritten as four `atan2`: about a quarter of realistic footprints): per unit of 4096
+/// rewritten as four `atan2`: about a quarter of realistic footprints): per unit of 2048
 /// elements, the elements of each pair of rules and those of the closed form are sorted
 /// together and evaluated by one vector loop each (the pairs of `f64`'s 8- and 10-point rules
 /// too). The far field, the 1D closed form and the special cases run the scalar path.
@@ -65,7 +67,8 @@ pub fn d_rect(
         .min(half_y.len());
     super::simd::dispatch(RectLoop {
         r: *r,
-        ins: [&hx[..n], &hy[..n], &hz[..n], &half_x[..n], &half_y[..n]],
+        h: [&hx[..n], &hy[..n], &hz[..n]],
+        ext: Given([&half_x[..n], &half_y[..n]]),
         out: &mut out[..n],
     });
     n
@@ -76,9 +79,8 @@ pub fn d_rect(
 /// rules.rect(fp_i.bounding_rect(), r.alpha()).half_extent)` (KHPL16 eq. 16 over the
 /// rectangle of KHPL16 section 5.2; [`ClampRules::rect`]: maximum extent, floor), as
 /// [`d_rect`] on those half extents, bit for bit (so its agreement with the scalar path is
-/// [`d_rect`]'s). Returns the number of elements written. Allocates nothing (the half
-/// extents of 4096 elements at a time on the stack: 32 KiB in `f32`, 64 KiB in `f64`, besides
-/// [`d_rect`]'s).
+/// [`d_rect`]'s). Returns the number of elements written. Allocates nothing (`d_rect`'s
+/// loop, each rectangle computed where it classifies the element: the same stack buffers).
 #[inline]
 #[allow(clippy::too_many_arguments)]
 pub fn d_rect_filtered(
@@ -96,90 +98,67 @@ pub fn d_rect_filtered(
         .min(hy.len())
         .min(hz.len())
         .min(fp.len());
-    super::simd::dispatch(RectFootprints {
+    super::simd::dispatch(RectLoop {
         r: *r,
-        bounds: rules.rect_bounds(r.alpha()),
         h: [&hx[..n], &hy[..n], &hz[..n]],
-        fp: [
-            &fp.dh_u_x[..n],
-            &fp.dh_u_y[..n],
-            &fp.dh_v_x[..n],
-            &fp.dh_v_y[..n],
-        ],
+        ext: Clamped {
+            bounds: rules.rect_bounds(r.alpha()),
+            fp: [
+                &fp.dh_u_x[..n],
+                &fp.dh_u_y[..n],
+                &fp.dh_v_x[..n],
+                &fp.dh_v_y[..n],
+            ],
+        },
         out: &mut out[..n],
     });
     n
 }
 
-/// [`d_rect_filtered`]'s loop: per unit of [`UNIT`] elements, the clamped rectangles' half
-/// extents into stack arrays, then [`RectLoop`] over the unit, both in the dispatched
-/// instruction set (the rectangles computed outside it ran on the SSE2 baseline: 0.4 ns per
-/// element, `f32`, against about 0.1 with AVX-512).
-struct RectFootprints<'a> {
-    r: AxisAligned,
-    bounds: RectBounds,
-    h: [&'a [F]; 3],
-    fp: [&'a [F]; 4],
-    out: &'a mut [F],
+/// Where [`RectLoop`] takes each element's half extents from.
+trait Extents: Copy {
+    /// The elements `b..e` (within the slices).
+    fn range(self, b: usize, e: usize) -> Self;
+    /// The half extents of element `i`.
+    fn at(self, i: usize) -> Vec2;
 }
 
-impl RectFootprints<'_> {
-    /// The units, each through [`RectLoop::go`] or, with `SCALAR`, [`RectLoop::go_scalar`].
+/// The half extents given (`d_rect`).
+#[derive(Clone, Copy)]
+struct Given<'a>([&'a [F]; 2]);
+
+impl Extents for Given<'_> {
     #[inline(always)]
-    fn units<const SCALAR: bool>(self) {
-        let Self {
-            r,
-            bounds,
-            h,
-            fp,
-            out,
-        } = self;
-        let n = out.len();
-        let mut ex = [0.0 as F; UNIT];
-        let mut ey = [0.0 as F; UNIT];
-        let mut b = 0;
-        while b < n {
-            let e = n.min(b + UNIT);
-            let len = e - b;
-            let [ux, uy, vx, vy] = fp.map(|s| &s[b..e]);
-            let its = ex[..len].iter_mut().zip(&mut ey[..len]);
-            for (((((x, y), &ux), &uy), &vx), &vy) in its.zip(ux).zip(uy).zip(vx).zip(vy) {
-                let f = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
-                let he = bounds.apply(f.bounding_rect()).half_extent;
-                (*x, *y) = (he.x, he.y);
-            }
-            let unit = RectLoop {
-                r,
-                ins: [
-                    &h[0][b..e],
-                    &h[1][b..e],
-                    &h[2][b..e],
-                    &ex[..len],
-                    &ey[..len],
-                ],
-                out: &mut out[b..e],
-            };
-            if SCALAR {
-                unit.go_scalar();
-            } else {
-                unit.go();
-            }
-            b = e;
+    fn range(self, b: usize, e: usize) -> Self {
+        Self(self.0.map(|s| &s[b..e]))
+    }
+    #[inline(always)]
+    fn at(self, i: usize) -> Vec2 {
+        Vec2::new(self.0[0][i], self.0[1][i])
+    }
+}
+
+/// The half extents of the footprints' bounding rectangles after the rules
+/// (`d_rect_filtered`): `bounds.apply(fp_i.bounding_rect())`, as `ClampRules::rect`.
+#[derive(Clone, Copy)]
+struct Clamped<'a> {
+    bounds: RectBounds,
+    fp: [&'a [F]; 4],
+}
+
+impl Extents for Clamped<'_> {
+    #[inline(always)]
+    fn range(self, b: usize, e: usize) -> Self {
+        Self {
+            bounds: self.bounds,
+            fp: self.fp.map(|s| &s[b..e]),
         }
     }
-}
-
-impl Body for RectFootprints<'_> {
-    const WIDE_ONLY: bool = RectLoop::WIDE_ONLY;
-
     #[inline(always)]
-    fn go(self) {
-        self.units::<false>();
-    }
-
-    #[inline(always)]
-    fn go_scalar(self) {
-        self.units::<true>();
+    fn at(self, i: usize) -> Vec2 {
+        let [ux, uy, vx, vy] = self.fp;
+        let f = Footprint::from_slope_derivatives(Vec2::new(ux[i], uy[i]), Vec2::new(vx[i], vy[i]));
+        self.bounds.apply(f.bounding_rect()).half_extent
     }
 }
 
@@ -217,19 +196,23 @@ fn class_of((a, b): (u8, u8)) -> u8 {
     if closed { CLOSED } else { NT as u8 * a + b }
 }
 
-/// The box filter's loop: per unit of [`UNIT`] elements, each element's class (its tier pair
-/// or the closed form: the scalar case analysis' first step, vectorised), a counting sort of
-/// the unit by class, then per class chunks of its elements gathered into contiguous columns
-/// and evaluated by one vector loop whose tiers are constants (or the closed-form lane); the
-/// rest (and every flagged element) by [`rect::d_rect`]. Buffers on the stack: allocates
-/// nothing.
-struct RectLoop<'a> {
+/// The box filter's loop: per unit of [`UNIT`] elements, each element's half extents (given,
+/// or from its footprint by the rules: [`Extents`]) and class (its tier pair or the closed
+/// form: the scalar case analysis' first step), in one vector loop that also stores the
+/// element's `(h_x, h_y)` and half extents as pairs; a counting sort of the unit by class;
+/// then per class chunks of its elements gathered (`h_z` and the two pairs) into contiguous
+/// columns and evaluated by one vector loop whose tiers are constants (or the closed-form
+/// lane); the rest (and every flagged element) by [`rect::d_rect`]. Buffers on the stack:
+/// allocates nothing.
+struct RectLoop<'a, E> {
     r: AxisAligned,
-    ins: [&'a [F]; 5],
+    /// The half vectors' columns.
+    h: [&'a [F]; 3],
+    ext: E,
     out: &'a mut [F],
 }
 
-impl Body for RectLoop<'_> {
+impl<E: Extents> Body for RectLoop<'_, E> {
     // The lanes pay on SSE2 too since the closed form has one (measured with
     // `FILTERED_NDF_SIMD=sse2-lanes`: 1.3 to 1.8 times the scalar loop in `f32`, 1.1 in `f64`;
     // before, with the closed form scalar and a scan per pair, 0.7).
@@ -237,42 +220,38 @@ impl Body for RectLoop<'_> {
 
     #[inline(always)]
     fn go_scalar(self) {
-        let Self { r, ins, out } = self;
+        let Self { r, h, ext, out } = self;
         for (i, o) in out.iter_mut().enumerate() {
-            *o = rect::d_rect(
-                r,
-                Vec3::new(ins[0][i], ins[1][i], ins[2][i]),
-                Vec2::new(ins[3][i], ins[4][i]),
-            );
+            *o = rect::d_rect(r, Vec3::new(h[0][i], h[1][i], h[2][i]), ext.at(i));
         }
     }
 
     #[inline(always)]
     fn go(self) {
-        let Self { r, ins, out } = self;
+        let Self { r, h, ext, out } = self;
         let n = out.len();
-        let ins = ins.map(|s| &s[..n]);
-        let at = |i: usize| {
-            (
-                Vec3::new(ins[0][i], ins[1][i], ins[2][i]),
-                Vec2::new(ins[3][i], ins[4][i]),
-            )
-        };
         let mut class = [0u8; UNIT];
         let mut perm = [0u16; UNIT];
-        let mut cols = [[0.0 as F; CHUNK]; 5];
+        let mut pairs = [[[0.0 as F; 2]; UNIT]; 2];
+        let mut cols = [[0.0 as F; CHUNK]; 1];
+        let mut cpairs = [[[0.0 as F; 2]; CHUNK]; 2];
         let mut vals = [0.0 as F; CHUNK];
         let mut slow = [false; CHUNK];
         let mut b = 0;
         while b < n {
             let e = n.min(b + UNIT);
             let len = e - b;
-            let blk = ins.map(|s| &s[b..e]);
-            // The classes (the scalar case analysis' first step), in a vector loop.
+            let blk = h.map(|s| &s[b..e]);
+            let ext = ext.range(b, e);
+            // The classes (the scalar case analysis' first step), in a vector loop; the
+            // half vectors' `(x, y)` and the half extents stored as pairs (gathered below
+            // with three moves an element instead of five: 9 % of the time).
             for (i, c) in class[..len].iter_mut().enumerate() {
                 let h = Vec3::new(blk[0][i], blk[1][i], blk[2][i]);
-                let s = Vec2::new(blk[3][i], blk[4][i]);
+                let s = ext.at(i);
                 *c = class_of(rect::RectSetup::new(r, h, s).tier_indices);
+                pairs[0][i] = [h.x, h.y];
+                pairs[1][i] = [s.x, s.y];
             }
             // A counting sort of the unit's offsets by class: `perm[start[k]..start[k + 1]]`
             // are the offsets of class `k`, in order. The unit in `Q` parts with their own
@@ -317,9 +296,9 @@ impl Body for RectLoop<'_> {
                         let m = idx.len();
                         for (j, &i) in idx.iter().enumerate() {
                             let i = i as usize;
-                            for (c, s) in cols.iter_mut().zip(&blk) {
-                                c[j] = s[i];
-                            }
+                            cols[0][j] = blk[2][i];
+                            cpairs[0][j] = pairs[0][i];
+                            cpairs[1][j] = pairs[1][i];
                         }
                         // The lane runs over `m` rounded up to a multiple of `PAD` (the
                         // padding repeats the last element, its results unused): the vector
@@ -328,21 +307,23 @@ impl Body for RectLoop<'_> {
                         // vector's worth of elements left over).
                         let padded = m.next_multiple_of(PAD).min(CHUNK);
                         for j in m..padded {
-                            for c in cols.iter_mut() {
-                                c[j] = c[m - 1];
-                            }
+                            cols[0][j] = cols[0][m - 1];
+                            cpairs[0][j] = cpairs[0][m - 1];
+                            cpairs[1][j] = cpairs[1][m - 1];
                         }
+                        let at = |j: usize| {
+                            let (p, q) = (cpairs[0][j], cpairs[1][j]);
+                            (Vec3::new(p[0], p[1], cols[0][j]), Vec2::new(q[0], q[1]))
+                        };
                         for j in 0..padded {
-                            let h = Vec3::new(cols[0][j], cols[1][j], cols[2][j]);
-                            let s = Vec2::new(cols[3][j], cols[4][j]);
+                            let (h, s) = at(j);
                             let (v, sl) = $lane(rect::RectSetup::new(r, h, s));
                             vals[j] = v;
                             slow[j] = sl;
                         }
                         for j in 0..m {
-                            let i = b + idx[j] as usize;
-                            out[i] = if slow[j] {
-                                let (h, s) = at(i);
+                            out[b + idx[j] as usize] = if slow[j] {
+                                let (h, s) = at(j);
                                 rect::d_rect(r, h, s)
                             } else {
                                 vals[j]
