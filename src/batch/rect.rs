@@ -233,7 +233,7 @@ impl<E: Extents> Body for RectLoop<'_, E> {
         let mut class = [0u8; UNIT];
         let mut perm = [0u16; UNIT];
         let mut pairs = [[[0.0 as F; 2]; UNIT]; 2];
-        let mut cols = [[0.0 as F; CHUNK]; 1];
+        let mut z = [0.0 as F; CHUNK];
         let mut cpairs = [[[0.0 as F; 2]; CHUNK]; 2];
         let mut vals = [0.0 as F; CHUNK];
         let mut slow = [false; CHUNK];
@@ -296,7 +296,7 @@ impl<E: Extents> Body for RectLoop<'_, E> {
                         let m = idx.len();
                         for (j, &i) in idx.iter().enumerate() {
                             let i = i as usize;
-                            cols[0][j] = blk[2][i];
+                            z[j] = blk[2][i];
                             cpairs[0][j] = pairs[0][i];
                             cpairs[1][j] = pairs[1][i];
                         }
@@ -307,13 +307,13 @@ impl<E: Extents> Body for RectLoop<'_, E> {
                         // vector's worth of elements left over).
                         let padded = m.next_multiple_of(PAD).min(CHUNK);
                         for j in m..padded {
-                            cols[0][j] = cols[0][m - 1];
+                            z[j] = z[m - 1];
                             cpairs[0][j] = cpairs[0][m - 1];
                             cpairs[1][j] = cpairs[1][m - 1];
                         }
                         let at = |j: usize| {
                             let (p, q) = (cpairs[0][j], cpairs[1][j]);
-                            (Vec3::new(p[0], p[1], cols[0][j]), Vec2::new(q[0], q[1]))
+                            (Vec3::new(p[0], p[1], z[j]), Vec2::new(q[0], q[1]))
                         };
                         for j in 0..padded {
                             let (h, s) = at(j);
