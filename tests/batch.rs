@@ -654,6 +654,62 @@ macro_rules! suite {
                 }
             }
 
+            /// Rectangles far out on one axis (`|v_c|` from `4e12` to `1e15` roughness units)
+            /// with sides short against that distance (`H / L` from `0.03` to `0.2`: the
+            /// 4-, 6-, 8- and 10-point tiers), where a row's nodes lie beyond the shared
+            /// division's range (`q + reach^2 >= 1e25`): the scalar path divides per pair
+            /// there, the lanes flag them. Bit for bit with the scalar `d_rect`.
+            #[test]
+            fn rect_far_rows_bit_for_bit() {
+                let (mut x, mut y, mut z, mut hx, mut hy) =
+                    (vec![], vec![], vec![], vec![], vec![]);
+                for alpha in [0.01f64, 0.1, 0.5] {
+                    for big in [4e12f64, 3e13, 1e15] {
+                        for ratio in [0.03f64, 0.05, 0.09, 0.15, 0.2] {
+                            for small in [0.5f64, 5e-3 * big, 0.05 * big] {
+                                for swap in [false, true] {
+                                    // Slope `big * alpha` on one axis: `h = (0, -1, 1 / s)`.
+                                    let hz = 1.0 / (big * alpha);
+                                    let (far, near) = (ratio * big * alpha, small * alpha);
+                                    let (h, e) = if swap {
+                                        ([-1.0, 0.0, hz], (far, near))
+                                    } else {
+                                        ([0.0, -1.0, hz], (near, far))
+                                    };
+                                    x.push(h[0] as $t);
+                                    y.push(h[1] as $t);
+                                    z.push(h[2] as $t);
+                                    hx.push(e.0 as $t);
+                                    hy.push(e.1 as $t);
+                                }
+                            }
+                        }
+                    }
+                }
+                let n = x.len();
+                let mut out = vec![0.0 as $t; n];
+                for alpha in [0.01 as $t, 0.1, 0.5] {
+                    let aa = AxisAligned::new(alpha, alpha).unwrap();
+                    assert_eq!(batch::d_rect(&aa, &x, &y, &z, &hx, &hy, &mut out), n);
+                    let mut short = 0;
+                    for i in 0..n {
+                        let u = rect_edges::unit_rect(
+                            (alpha as f64, alpha as f64),
+                            [x[i] as f64, y[i] as f64, z[i] as f64],
+                            (hx[i] as f64, hy[i] as f64),
+                        );
+                        if !u.is_some_and(|u| u.short()) {
+                            continue;
+                        }
+                        short += 1;
+                        let h = Vec3::new(x[i], y[i], z[i]);
+                        let w = rect::d_rect(aa, h, Vec2::new(hx[i], hy[i]));
+                        assert_eq!(out[i].to_bits(), w.to_bits(), "[{i}]: {} vs {w}", out[i]);
+                    }
+                    assert!(2 * short > n, "{short} of {n} in the Gauss-Legendre tiers");
+                }
+            }
+
             /// Over [`cols3`] (`3 N` elements, across the sort's units).
             #[test]
             fn rect_bit_for_bit() {

@@ -149,8 +149,13 @@ const FAR2: f64 = if WIDE { 1e2 } else { 1e5 };
 /// positive. Beyond that, one division per pair; with the inputs clamped to `BIG`,
 /// `s_i <= 1e243`, and a product that overflows gives `finite / inf = 0`, the (underflowing)
 /// right value.
+///
+/// Returns the mean and whether the pairs share one division (always for `Gl2`, `Gl8`,
+/// `Gl10`). With `SHARED_ONLY` (`batch`'s lanes, which compute both sides of a select) the
+/// shared division's value alone, the scalar path's where the flag holds: a `Gl4` lane then
+/// takes one division instead of three, a `Gl6` lane one instead of four.
 #[inline(always)]
-fn gl_f(t: Tier, u: f64, c: f64, h: f64) -> f64 {
+fn gl_f_by<const SHARED_ONLY: bool>(t: Tier, u: f64, c: f64, h: f64) -> (f64, bool) {
     let q = 1.0 + u * u;
     let pair = |a: f64| {
         let (v0, v1) = (c - a, c + a);
@@ -160,15 +165,15 @@ fn gl_f(t: Tier, u: f64, c: f64, h: f64) -> f64 {
     };
     let reach = c.abs() + h;
     let shared = q + reach * reach < 1e25;
-    match t {
+    let v = match t {
         Tier::Gl2 => {
             let (n, p) = pair(h * GL2_X);
-            0.5 * n / p
+            return (0.5 * n / p, true);
         }
         Tier::Gl4 => {
             let (n0, p0) = pair(h * GL4_X[0]);
             let (n1, p1) = pair(h * GL4_X[1]);
-            if shared {
+            if SHARED_ONLY || shared {
                 (GL4_W[0] * n0 * p1 + GL4_W[1] * n1 * p0) / (p0 * p1)
             } else {
                 GL4_W[0] * n0 / p0 + GL4_W[1] * n1 / p1
@@ -183,20 +188,21 @@ fn gl_f(t: Tier, u: f64, c: f64, h: f64) -> f64 {
                 let (n, p) = pair(h * x);
                 acc += w * n / p;
             }
-            acc
+            return (acc, true);
         }
         _ => {
             let (n0, p0) = pair(h * GL6_X[0]);
             let (n1, p1) = pair(h * GL6_X[1]);
             let (n2, p2) = pair(h * GL6_X[2]);
-            if shared {
+            if SHARED_ONLY || shared {
                 (GL6_W[0] * n0 * (p1 * p2) + (GL6_W[1] * n1 * p2 + GL6_W[2] * n2 * p1) * p0)
                     / (p0 * p1 * p2)
             } else {
                 GL6_W[0] * n0 / p0 + GL6_W[1] * n1 / p1 + GL6_W[2] * n2 / p2
             }
         }
-    }
+    };
+    (v, shared)
 }
 
 /// `delta - sin(delta)` for `delta` in `[0, pi]`, given `sin(delta)` (series below 1, where
@@ -290,17 +296,34 @@ fn mean_f(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
 }
 
 /// The tensor Gauss-Legendre rule of tiers `(t, t2)` (neither `Closed`): rows along `u` by
-/// `t`, each row's mean along `v` by [`gl_f`] of tier `t2`. Written out rather than through
+/// `t`, each row's mean along `v` by [`gl_f_by`] of tier `t2`. Written out rather than through
 /// `gl_of`'s closure: the closure (two call sites) was not inlined, a call per row.
 #[inline(always)]
 fn tensor(t: Tier, t2: Tier, uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
+    tensor_by::<false>(t, t2, uc, vc, hu, hv).0
+}
+
+/// [`tensor`] and whether every row's pairs share one division (with `SHARED_ONLY` the shared
+/// values alone: [`gl_f_by`]).
+#[inline(always)]
+fn tensor_by<const SHARED_ONLY: bool>(
+    t: Tier,
+    t2: Tier,
+    uc: f64,
+    vc: f64,
+    hu: f64,
+    hv: f64,
+) -> (f64, bool) {
     let (xs, ws) = rule(t);
-    let mut acc = 0.0;
+    let (mut acc, mut shared) = (0.0, true);
     for (&x, &w) in xs.iter().zip(ws) {
         let a = hu * x;
-        acc += w * (gl_f(t2, uc - a, vc, hv) + gl_f(t2, uc + a, vc, hv));
+        let (f0, s0) = gl_f_by::<SHARED_ONLY>(t2, uc - a, vc, hv);
+        let (f1, s1) = gl_f_by::<SHARED_ONLY>(t2, uc + a, vc, hv);
+        acc += w * (f0 + f1);
+        shared &= s0 & s1;
     }
-    acc
+    (acc, shared)
 }
 
 /// The tiers of the two axes (module docs) and the distances `(du, dv)` of the centre from
@@ -324,7 +347,7 @@ fn tier_indices(uc: f64, vc: f64, hu: f64, hv: f64) -> (u8, u8, f64, f64) {
 
 /// The 2 x 2-point tensor Gauss-Legendre rule (both axes in tier `Gl2`, the most common case
 /// for pixel footprints): the mean of `f` at the four nodes, `(n0 / p0 + n1 / p1) / 4` per
-/// row pair as in [`gl_f`], with one division for both rows while `p0 p1` stays below
+/// row pair as in [`gl_f_by`], with one division for both rows while `p0 p1` stays below
 /// `1e300` (a few `f64` ulps from two divisions; all terms positive).
 #[inline(always)]
 fn gl2x2(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
@@ -623,8 +646,9 @@ impl RectSetup {
     /// [`d_rect`] in lane form for an element whose tiers are `(tu, tv)`, both Gauss-Legendre
     /// tiers (constants at the call site: one vector loop per pair): `(value, slow)`,
     /// the value `d_rect`'s bit for bit unless `slow`. `slow` flags every element that
-    /// `d_rect` does not take through that pair's Gauss-Legendre rule (the special cases, the
-    /// 2 x 2 rule's overflow branch) or its early zero. The same pieces as `d_rect`, composed
+    /// `d_rect` does not take through that pair's Gauss-Legendre rule with its rows' shared
+    /// division (the special cases, the 2 x 2 rule's overflow branch, a row's pairs beyond the
+    /// shared division's range: [`gl_f_by`]) or its early zero. The same pieces as `d_rect`, composed
     /// without branches.
     ///
     /// Precondition: `self.tiers == (tu, tv)`, which the caller has established by
@@ -644,7 +668,7 @@ impl RectSetup {
             let pp = p0 * p1;
             (0.25 * (n0 * p1 + n1 * p0) / pp, pp < 1e300)
         } else {
-            (tensor(tu, tv, uc, vc, hu, hv), true)
+            tensor_by::<true>(tu, tv, uc, vc, hu, hv)
         };
         let fast = ok & !self.special;
         let v = to_solid_angle((mean * self.k).max(0.0), self.ihz4);
