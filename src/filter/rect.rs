@@ -648,8 +648,8 @@ impl RectSetup {
     /// the value `d_rect`'s bit for bit unless `slow`. `slow` flags every element that
     /// `d_rect` does not take through that pair's Gauss-Legendre rule with its rows' shared
     /// division (the special cases, the 2 x 2 rule's overflow branch, a row's pairs beyond the
-    /// shared division's range: [`gl_f_by`]) or its early zero. The same pieces as `d_rect`, composed
-    /// without branches.
+    /// shared division's range: [`gl_f_by`]) or its early zero. The same pieces as `d_rect`,
+    /// composed without branches.
     ///
     /// Precondition: `self.tiers == (tu, tv)`, which the caller has established by
     /// classifying the element with this same setup's [`RectSetup::tier_indices`] (`batch`'s
