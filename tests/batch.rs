@@ -783,6 +783,17 @@ macro_rules! suite {
                     batch::d_rect(&aa, &c.x, &c.y, &c.z, &c.hx[..2], &c.hy, &mut out),
                     2
                 );
+                let mut out = vec![sentinel; N];
+                assert_eq!(
+                    batch::d_rect_filtered(&aa, &rules, &c.x, &c.y, &c.z, fps, &mut out),
+                    5
+                );
+                assert!(out[5..].iter().all(|&v| v == sentinel));
+                let full = soa(&c);
+                assert_eq!(
+                    batch::d_rect_filtered(&aa, &rules, &c.x, &c.y, &c.z[..3], full, &mut out),
+                    3
+                );
                 let empty = batch::Footprints {
                     dh_u_x: &[],
                     dh_u_y: &[],

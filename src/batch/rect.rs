@@ -58,20 +58,7 @@ pub fn d_rect(
     half_y: &[F],
     out: &mut [F],
 ) -> usize {
-    let n = out
-        .len()
-        .min(hx.len())
-        .min(hy.len())
-        .min(hz.len())
-        .min(half_x.len())
-        .min(half_y.len());
-    super::simd::dispatch(RectLoop {
-        r: *r,
-        h: [&hx[..n], &hy[..n], &hz[..n]],
-        ext: Given([&half_x[..n], &half_y[..n]]),
-        out: &mut out[..n],
-    });
-    n
+    rect_loop(r, [hx, hy, hz], Given([half_x, half_y]), out)
 }
 
 /// The front door's `Rect` method over slices: the exact box-filtered GGX over each
@@ -92,24 +79,24 @@ pub fn d_rect_filtered(
     fp: Footprints<'_>,
     out: &mut [F],
 ) -> usize {
-    let n = out
-        .len()
-        .min(hx.len())
-        .min(hy.len())
-        .min(hz.len())
-        .min(fp.len());
+    let ext = Clamped {
+        bounds: rules.rect_bounds(r.alpha()),
+        fp: [fp.dh_u_x, fp.dh_u_y, fp.dh_v_x, fp.dh_v_y],
+    };
+    rect_loop(r, [hx, hy, hz], ext, out)
+}
+
+/// [`RectLoop`] over the common prefix of the columns, dispatched: the number of elements
+/// written.
+#[inline(always)]
+fn rect_loop<E: Extents>(r: &AxisAligned, h: [&[F]; 3], ext: E, out: &mut [F]) -> usize {
+    let n = h
+        .iter()
+        .fold(out.len().min(ext.len()), |n, s| n.min(s.len()));
     super::simd::dispatch(RectLoop {
         r: *r,
-        h: [&hx[..n], &hy[..n], &hz[..n]],
-        ext: Clamped {
-            bounds: rules.rect_bounds(r.alpha()),
-            fp: [
-                &fp.dh_u_x[..n],
-                &fp.dh_u_y[..n],
-                &fp.dh_v_x[..n],
-                &fp.dh_v_y[..n],
-            ],
-        },
+        h: h.map(|s| &s[..n]),
+        ext: ext.range(0, n),
         out: &mut out[..n],
     });
     n
@@ -117,6 +104,8 @@ pub fn d_rect_filtered(
 
 /// Where [`RectLoop`] takes each element's half extents from.
 trait Extents: Copy {
+    /// The number of elements (the shortest slice).
+    fn len(self) -> usize;
     /// The elements `b..e` (within the slices).
     fn range(self, b: usize, e: usize) -> Self;
     /// The half extents of element `i`.
@@ -128,6 +117,10 @@ trait Extents: Copy {
 struct Given<'a>([&'a [F]; 2]);
 
 impl Extents for Given<'_> {
+    #[inline(always)]
+    fn len(self) -> usize {
+        self.0[0].len().min(self.0[1].len())
+    }
     #[inline(always)]
     fn range(self, b: usize, e: usize) -> Self {
         Self(self.0.map(|s| &s[b..e]))
@@ -147,6 +140,10 @@ struct Clamped<'a> {
 }
 
 impl Extents for Clamped<'_> {
+    #[inline(always)]
+    fn len(self) -> usize {
+        self.fp.iter().fold(usize::MAX, |n, s| n.min(s.len()))
+    }
     #[inline(always)]
     fn range(self, b: usize, e: usize) -> Self {
         Self {
