@@ -7,7 +7,7 @@ use super::super::ndf::Ndf;
 use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
-use super::lanes::{Kernel, WIDE, exp_neg_times, run};
+use super::lanes::{K_MAX, Kernel, WIDE, exp_neg_times, run};
 use super::ndf::LaneD;
 use super::{F, Footprints, PI, Vec2, Vec3, footprint, footprint_columns};
 use core::marker::PhantomData;
@@ -121,6 +121,8 @@ impl<R: Roughness> Kernel<7, 1> for FilteredProjected<R> {
 
 /// An NDF of a filtered matrix, as the Gaussian-filtered lanes evaluate it.
 trait FilteredNdf: LaneD + Ndf + Sized {
+    /// PROTOTYPE
+    const NARROW: bool = false;
     /// The NDF of `A'` (`Ggx::new`, `Beckmann::new`).
     fn of(a: RoughnessMatrix) -> Self;
     /// `D(m)` of the matrix with entries `e` where the determinant clamp `tau` is inactive, in
@@ -150,6 +152,7 @@ impl FilteredNdf for Ggx<RoughnessMatrix> {
 }
 
 impl FilteredNdf for Beckmann<RoughnessMatrix> {
+    const NARROW: bool = true;
     #[inline(always)]
     fn of(a: RoughnessMatrix) -> Self {
         Beckmann::new(a)
@@ -171,8 +174,10 @@ impl FilteredNdf for Beckmann<RoughnessMatrix> {
             Vec2::new(m.x, m.y),
             m.z * m.z,
         );
-        let (v, exp_ok) = exp_neg_times(x, n * (1.0 / PI));
-        let live = (m.z > 0.0) & !x.is_nan();
+        let k = n * (1.0 / PI);
+        let (v, _) = exp_neg_times(x, k);
+        let exp_ok = k <= K_MAX;
+        let live = m.z > 0.0;
         (
             if live { v } else { 0.0 },
             !matrix_ok | (live & !(eval_ok & exp_ok)),
@@ -251,6 +256,13 @@ impl<R: Roughness, N: FilteredNdf> Kernel<7, 1> for Filtered<R, N> {
 
     #[inline(always)]
     fn lane(&self, x: [F; 7]) -> ([F; 1], bool) {
+        if !WIDE && N::NARROW {
+            let [hx, hy, hz, ux, uy, vx, vy] = x;
+            let (e, ok) = self.rules.filter_gaussian_entries_narrow(self.r, [ux, uy, vx, vy], self.sigma);
+            let tau = self.rules.det_clamp_for(self.r) as f64;
+            let (v, slow) = N::d_entries_lane(e, tau, Vec3::new(hx, hy, hz));
+            return ([v], slow | !ok);
+        }
         self.lane_with::<false>(x)
     }
     #[inline(always)]

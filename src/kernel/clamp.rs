@@ -16,9 +16,9 @@
 use super::super::filter;
 use super::super::footprint::Footprint;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
-use super::{BoundingRect, Covariance};
+use super::{BoundingRect, Covariance, KERNEL_MAX};
 use super::{F, Vec2};
-use crate::math::Real;
+use crate::math::{self as m, Real};
 
 /// The lower bound on a rectangle's half-extents (KHPL16 section 5.2; GDC 2016).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -330,6 +330,51 @@ impl ClampRules {
         let off = self.kappa_off();
         let k = if off { k } else { clamped };
         (k, self.footprint_within(fp) & sane & (off | clamp_ok))
+    }
+
+    /// PROTOTYPE narrow entries.
+    #[inline(always)]
+    pub(crate) fn filter_gaussian_entries_narrow<R: Roughness>(
+        &self,
+        roughness: R,
+        [ux, uy, vx, vy]: [F; 4],
+        sigma: F,
+    ) -> ((F, F, F), bool) {
+        // Per batch (hoisted): the kernel in units of sigma^2, Sigma = sigma^2 Sigma_0.
+        let s2 = sigma * sigma;
+        let mu = if s2 > 0.0 { self.half_kappa() / s2 } else { F::INFINITY };
+        let l = self.max_extent;
+        let l4 = if l >= 0.0 { 4.0 * (l * l) } else { -1.0 };
+        let cap = (l4 * (1.0 - 16.0 * F::EPSILON))
+            .min(32.0 * mu)
+            .min(KERNEL_MAX / s2 * (1.0 - 16.0 * F::EPSILON));
+        let scale = 2.0 * s2;
+        let s_ok = scale <= F::MAX;
+        // Per element.
+        let (a0, b0, c0) = (ux * ux + vx * vx, ux * uy + vx * vy, uy * uy + vy * vy);
+        let dd = ux * vy - uy * vx;
+        let det2 = dd * (dd + dd);
+        let t0 = a0 + c0;
+        let d0 = a0 - c0;
+        let b2 = b0 + b0;
+        let r0 = m::sqrt(d0 * d0 + b2 * b2);
+        let l0 = t0 + r0;
+        let keep = l0 <= mu + mu;
+        let hn = mu * l0 - det2;
+        let iso = hn <= 0.0;
+        let w = 1.0 / (r0 * l0);
+        let h = hn * w;
+        let lmin = det2 * (r0 * w);
+        let (x11, x12, x22) = if keep {
+            (a0, b0, c0)
+        } else if iso {
+            (mu, 0.0, mu)
+        } else {
+            (lmin + h * (a0 - lmin), h * b0, lmin + h * (c0 - lmin))
+        };
+        let (a11, a12, a22) = roughness.entries_f();
+        let ok = s_ok & (l0 <= cap) & (keep | iso | (w <= F::MAX));
+        ((a11 + scale * x11, a12 + scale * x12, a22 + scale * x22), ok)
     }
 
     /// The projected-space pipeline (TK21), the rules as in [`ClampRules::filter_gaussian`]:

@@ -347,8 +347,8 @@ impl RoughnessMatrix {
         let num = us * us + c * (s.x * s.x);
         let w = a11 * t;
         let n = (w * c) * (w * m::sqrt(c));
-        let tau_up = F::from_f64(tau * (1.0 + 8.0 * F::EPSILON.to_f64()));
-        let matrix_ok = (4.0 * bb <= 3.0 * pr) & (c >= tau_up) & (c >= LOW);
+        let c_min = F::from_f64(tau * (1.0 + 8.0 * F::EPSILON.to_f64())).max(LOW);
+        let matrix_ok = (4.0 * bb <= 3.0 * pr) & (c >= c_min);
         let eval_ok = (den >= LOW) & (den <= F::MAX) & (num <= F::MAX);
         (num * t, n, matrix_ok, eval_ok)
     }
