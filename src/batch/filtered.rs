@@ -7,7 +7,7 @@ use super::super::ndf::Ndf;
 use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
-use super::lanes::{K_MAX, Kernel, WIDE, exp_neg_times, run};
+use super::lanes::{K_MAX, Kernel, Mid, WIDE, exp_neg_times, run};
 use super::ndf::LaneD;
 use super::{F, Footprints, PI, Vec2, Vec3, footprint, footprint_columns};
 use core::marker::PhantomData;
@@ -121,7 +121,10 @@ impl<R: Roughness> Kernel<7, 1> for FilteredProjected<R> {
 
 /// An NDF of a filtered matrix, as the Gaussian-filtered lanes evaluate it.
 trait FilteredNdf: LaneD + Ndf + Sized {
-    /// PROTOTYPE
+    /// Whether the first tier in `f32` is the narrow lane (the filtered matrix in `f32`
+    /// arithmetic, `ClampRules::filter_gaussian_entries_narrow`, within a stated error of the
+    /// scalar route's instead of bit for bit), for an NDF whose lane `D` has the matching
+    /// bound (`Beckmann`); else the scalar route's matrix.
     const NARROW: bool = false;
     /// The NDF of `A'` (`Ggx::new`, `Beckmann::new`).
     fn of(a: RoughnessMatrix) -> Self;
@@ -174,6 +177,8 @@ impl FilteredNdf for Beckmann<RoughnessMatrix> {
             Vec2::new(m.x, m.y),
             m.z * m.z,
         );
+        // Where both flags hold, `x >= 0` is not NaN (`num >= 0`, `0 < t <= 2^100`): only the
+        // factor's range is `exp_neg_times`' to check.
         let k = n * (1.0 / PI);
         let (v, _) = exp_neg_times(x, k);
         let exp_ok = k <= K_MAX;
@@ -254,14 +259,32 @@ impl<R: Roughness, N: FilteredNdf> Kernel<7, 1> for Filtered<R, N> {
     // `alpha = 0.01` under the bench's footprints. In `f64` the two lanes would be the same.
     const TIERED: bool = !WIDE;
 
+    // The narrow lane in two loops (`Kernel::STAGED`): the filtered matrix, then `D`.
+    const STAGED: bool = !WIDE && N::NARROW;
+
+    /// The narrow lane's first half: the entries of `A'`
+    /// (`ClampRules::filter_gaussian_entries_narrow`), a NaN first entry where its domain
+    /// ends (the second half's correlation test then flags the element).
+    #[inline(always)]
+    fn stage_one(&self, [_, _, _, ux, uy, vx, vy]: [F; 7]) -> Mid {
+        let ((a11, a12, a22), ok) =
+            self.rules
+                .filter_gaussian_entries_narrow(self.r, [ux, uy, vx, vy], self.sigma);
+        [if ok { a11 } else { F::NAN }, a12, a22]
+    }
+
+    /// The narrow lane's second half: `D` of the entries ([`FilteredNdf::d_entries_lane`]).
+    #[inline(always)]
+    fn stage_two(&self, [hx, hy, hz, ..]: [F; 7], [a11, a12, a22]: Mid) -> ([F; 1], bool) {
+        let tau = self.rules.det_clamp_wide(self.r);
+        let (v, slow) = N::d_entries_lane((a11, a12, a22), tau, Vec3::new(hx, hy, hz));
+        ([v], slow)
+    }
+
     #[inline(always)]
     fn lane(&self, x: [F; 7]) -> ([F; 1], bool) {
-        if !WIDE && N::NARROW {
-            let [hx, hy, hz, ux, uy, vx, vy] = x;
-            let (e, ok) = self.rules.filter_gaussian_entries_narrow(self.r, [ux, uy, vx, vy], self.sigma);
-            let tau = self.rules.det_clamp_for(self.r) as f64;
-            let (v, slow) = N::d_entries_lane(e, tau, Vec3::new(hx, hy, hz));
-            return ([v], slow | !ok);
+        if Self::STAGED {
+            return self.stage_two(x, self.stage_one(x));
         }
         self.lane_with::<false>(x)
     }

@@ -241,7 +241,7 @@ impl ClampRules {
 
     /// [`ClampRules::det_clamp_for`] in `f64`, as the filters use it.
     #[inline(always)]
-    fn det_clamp_wide<R: Roughness>(&self, roughness: R) -> f64 {
+    pub(crate) fn det_clamp_wide<R: Roughness>(&self, roughness: R) -> f64 {
         if self.det_clamp {
             roughness.lobe_det()
         } else {
@@ -332,7 +332,39 @@ impl ClampRules {
         (k, self.footprint_within(fp) & sane & (off | clamp_ok))
     }
 
-    /// PROTOTYPE narrow entries.
+    /// The entries of `A' = A + 2 Sigma'` of [`ClampRules::filter_gaussian`] in `f32`
+    /// arithmetic throughout, for `batch`'s narrow filtered-Beckmann lane (branch-free):
+    /// `(entries, ok)`, **not** the scalar route's entries bit for bit but within a scaled
+    /// error of them (below) where `ok`.
+    ///
+    /// The kernel in units of `sigma^2`: `Sigma_0 = [u; v]^T [u; v]` of the footprint
+    /// `(u, v)` (KHPL16 eq. 13), its eigenvalues `lambda_+- = (T +- R) / 2` (`T` the trace,
+    /// `R = sqrt((a - c)^2 + 4 b^2)`), its determinant from the footprint, `(u_x v_y - u_y
+    /// v_x)^2` (no cancelled `a c - b^2`), the `kappa` rule's bound `mu = kappa / (2
+    /// sigma^2)` (TK19 eq. 1): `Sigma_0` itself where `lambda_+ <= mu`, `mu I` where
+    /// `lambda_- >= mu` (decided as `mu lambda_+ >= det`, no division), else `Sigma_0' =
+    /// lambda_- I + h (Sigma_0 - lambda_- I)` with `h = (mu - lambda_-) / R` and `lambda_- =
+    /// det / lambda_+` (one division for both): the clamp of the larger eigenvalue to `mu`,
+    /// the smaller kept, each entry a sum of non-negative terms. Then `A' = A + 2 sigma^2
+    /// Sigma_0'`.
+    ///
+    /// `ok` holds where the footprint is within `max_extent` (decided by `lambda_+`, which
+    /// bounds the squared extent `(T + 2 |b|) / 4` from above, with a margin of `16 eps`: an
+    /// element nearer the bound is decided by the scalar route), the kernel within
+    /// [`KERNEL_MAX`] (the sanitiser's fast path), the clamp at most `16` times (`lambda_+ <=
+    /// 32 mu`: the bound below) and `2 sigma^2` finite; everything else is the scalar route's
+    /// (the caller flags it).
+    ///
+    /// Error where `ok` (against the exact pipeline on the same inputs): each entry of `A'`
+    /// within `24 u sqrt(A'_ii A'_jj)` (`u = eps / 2`), the sum of: the kernel's entries
+    /// (`2 u`, the off-diagonal one by Cauchy-Schwarz, `|u_x u_y| + |v_x v_y| <= sqrt(a c)`);
+    /// the determinant (`3 u` relative, and where the footprint is nearly degenerate its
+    /// absolute `2 u sqrt(lambda_- lambda_+)`, at most `8 u` of `sqrt(A'_11 A'_22)` once the
+    /// clamp is at most 16-fold); the clamp's arithmetic (`8 u`, the longest chain of
+    /// roundings, each relative to a non-negative term or, for `h`, cancelling only where its
+    /// product with `Sigma_0 - lambda_- I` is small); the scale and the sum with `A` (`3 u`),
+    /// and `2 u` for a `keep` or `iso` decided by rounding at its boundary (where the
+    /// branches meet). Tested against the `f64` pipeline below.
     #[inline(always)]
     pub(crate) fn filter_gaussian_entries_narrow<R: Roughness>(
         &self,
