@@ -31,6 +31,7 @@
 //!   of `a` amplified alike. `G2 = 1 / (1 + Lambda_i + Lambda_o)` then within
 //!   `2 L + 3 eps` relative plus the same amplified terms over `1 + Lambda_i + Lambda_o`.
 
+use filtered_ndf::f64 as d;
 use filtered_ndf::testing::rng::SplitMix64 as Rng;
 
 #[path = "common/rect_edges.rs"]
@@ -312,6 +313,83 @@ macro_rules! suite {
                 }
             }
 
+            /// Batch filtered Beckmann: each element is the `f32` first lane's (the narrow
+            /// lane) or the scalar route's matrix (the second lane, the scalar route), so it
+            /// must be as [`beckmann_close`] (`filtered`) to the scalar route's `D` or, in
+            /// `f32`, within the narrow lane's bound of the `f64` pipeline (`tests/batch_bounds.rs`
+            /// derives it: `E + (x (15.35 + 26 k) + 8.5 + 13 k) eps`, `k = 1 / (1 - |rho|)`).
+            /// `want` gives the scalar route's `(D, x)`, `want_64` the `f64` pipeline's `(D, x,
+            /// k)`.
+            fn filtered_beckmann_close(
+                got: &[$t],
+                want: impl Fn(usize) -> ($t, f64),
+                want_64: impl Fn(usize) -> (f64, f64, f64),
+                what: &str,
+            ) {
+                let mut narrow = 0;
+                for (i, &g) in got.iter().enumerate() {
+                    let (w, x) = want(i);
+                    assert!(!g.is_nan() && g >= 0.0, "{what} [{i}]: {g}");
+                    let (g, w) = (g as f64, w as f64);
+                    let err = (g - w).abs();
+                    let tail = if x >= TAIL { x } else { 0.0 };
+                    let tol = EXP_POLY + (2.0 + 11.0 * x + 10.0 + tail) * EPS;
+                    let scalar_ok = if w < <$t>::MIN_POSITIVE as f64 {
+                        err <= <$t>::MIN_POSITIVE as f64
+                    } else {
+                        err <= tol * w
+                    };
+                    if scalar_ok || WIDE {
+                        assert!(scalar_ok, "{what} [{i}]: batch {g} vs scalar {w} (x {x})");
+                        continue;
+                    }
+                    let (w64, x64, k) = want_64(i);
+                    let tol = EXP_POLY + (x64 * (15.35 + 26.0 * k) + 8.5 + 13.0 * k) * EPS;
+                    let ok = if w64 < <$t>::MIN_POSITIVE as f64 {
+                        (g - w64).abs() <= <$t>::MIN_POSITIVE as f64
+                    } else {
+                        (g - w64).abs() <= tol * w64
+                    };
+                    assert!(
+                        ok,
+                        "{what} [{i}]: batch {g} vs scalar {w}, f64 {w64} (x {x64}, k {k})"
+                    );
+                    narrow += 1;
+                }
+                println!("{what}: {narrow} within the narrow lane's bound only");
+            }
+
+            /// The `f64` pipeline of [`ClampRules::filter_gaussian`] and Beckmann's `D` on
+            /// element `i`'s inputs (the lobe's entries as rounded to the batch precision):
+            /// `(D, x, 1 / (1 - |rho|))` of the filtered matrix.
+            fn pipeline_64(
+                rules: &ClampRules,
+                r: AxisAligned,
+                sigma: $t,
+                c: &Cols,
+                i: usize,
+            ) -> (f64, f64, f64) {
+                let (r11, _, r22) = RoughnessMatrix::from(r).entries();
+                let r64 = d::RoughnessMatrix::new(r11 as f64, 0.0, r22 as f64).unwrap();
+                let rules64 = d::ClampRules {
+                    max_extent: rules.max_extent as f64,
+                    floor: d::ExtentFloor::None,
+                    kappa: rules.kappa as f64,
+                    det_clamp: rules.det_clamp,
+                };
+                let f = fp(c, i);
+                let f64p = d::Footprint::from_slope_derivatives(
+                    glam::DVec2::new(f.dh_u.x as f64, f.dh_u.y as f64),
+                    glam::DVec2::new(f.dh_v.x as f64, f.dh_v.y as f64),
+                );
+                let a = rules64.filter_gaussian(r64, f64p, sigma as f64);
+                let w = glam::DVec3::new(c.x[i] as f64, c.y[i] as f64, c.z[i] as f64);
+                let (b11, b12, b22) = a.clamped_entries();
+                let k = 1.0 / (1.0 - b12.abs() / (b11 * b22).sqrt());
+                let x = d::Roughness::inv_quadratic(&a, glam::DVec2::new(w.x, w.y)) / (w.z * w.z);
+                (d::Ndf::d(&d::Beckmann::new(a), w), x, k)
+            }
+
             /// The clamp sets of the test: the papers' defaults, none, the GDC 2016 listing,
             /// and a custom set with a tight extent and `kappa` and no determinant clamp.
             fn rule_sets() -> [(&'static str, ClampRules); 4] {
@@ -369,7 +447,7 @@ macro_rules! suite {
                                 &mut out,
                             );
                             assert_eq!(n, N);
-                            beckmann_close(
+                            filtered_beckmann_close(
                                 &out,
                                 |i| {
                                     let a = rules.filter_gaussian(aa, fp(&c, i), sigma);
@@ -378,7 +456,7 @@ macro_rules! suite {
                                         a.inv_quadratic(Vec2::new(c.x[i], c.y[i])) as f64 / (z * z);
                                     (Beckmann::new(a).d(h(&c, i)), x)
                                 },
-                                true,
+                                |i| pipeline_64(&rules, aa, sigma, &c, i),
                                 &format!("filtered beckmann, {name}"),
                             );
                             batch::ggx_d_filtered(

@@ -457,3 +457,114 @@ fn scaled_to(fp: Footprint, e: F) -> Footprint {
     // Divide first: `e / cur` alone overflows for `e` near `F::MAX`, and `0 * inf` is NaN.
     Footprint::from_slope_derivatives(fp.dh_u / cur * e, fp.dh_v / cur * e)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use super::super::super::ndf::roughness::AxisAligned;
+
+    /// `filter_gaussian_entries_narrow` (`f32`) against the pipeline in `f64` on the same
+    /// inputs, computed independently (the kernel's eigenvalues from `hypot` and the
+    /// footprint's determinant, its eigenvectors from `atan2`, both eigenvalues clamped and
+    /// the kernel rebuilt from them): where `ok`, every entry of `A'` within the documented
+    /// `24 u sqrt(A'_ii A'_jj)` plus `2 u` at the branches' boundaries (tested at `26 u`). On
+    /// footprints from `1e-4` to the extent bound, anisotropies to `1e4` (nearly degenerate
+    /// ones among them), exactly isotropic and degenerate ones, and clamps from none to
+    /// sixteen-fold; the shares of clamped and `mu I` results are counted so that neither
+    /// branch can go untested.
+    #[test]
+    fn narrow_entries_within_their_bound() {
+        if F::MANTISSA_DIGITS > 24 {
+            return; // `f32` only: `batch` uses it in `f32`.
+        }
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let u = F::EPSILON.to_f64() / 2.0;
+        let (mut worst, mut ok_n, mut clamped, mut iso, mut total) = (0.0f64, 0, 0, 0, 0);
+        for kappa in [0.18, 1e-3, F::INFINITY] {
+            let rules = ClampRules {
+                kappa,
+                ..ClampRules::DEFAULT
+            };
+            for sigma in [0.5 as F, 2.0] {
+                for alpha in [1e-3, 0.01, 0.1, 0.5] {
+                    let r = AxisAligned::new(F::from_f64(alpha), F::from_f64(1.5 * alpha)).unwrap();
+                    for k in 0..20_000 {
+                        let ext = 10f64.powf(-3.0 + 3.0 * next()) / sigma.to_f64();
+                        let aniso = match k % 8 {
+                            0 => 1.0,  // an isotropic kernel (`R = 0`)
+                            1 => 0.0,  // a degenerate one (`det = 0`)
+                            _ => 10f64.powf(-4.0 * next()),
+                        };
+                        let th = core::f64::consts::TAU * next();
+                        let (c, s) = (th.cos(), th.sin());
+                        let (ux, uy, vx, vy) = (
+                            F::from_f64(ext * c),
+                            F::from_f64(ext * s),
+                            F::from_f64(-ext * aniso * s),
+                            F::from_f64(ext * aniso * c),
+                        );
+                        let ((b11, b12, b22), ok) =
+                            rules.filter_gaussian_entries_narrow(r, [ux, uy, vx, vy], sigma);
+                        total += 1;
+                        if !ok {
+                            continue;
+                        }
+                        ok_n += 1;
+                        // The reference, in `f64`.
+                        let (ux, uy, vx, vy) =
+                            (ux.to_f64(), uy.to_f64(), vx.to_f64(), vy.to_f64());
+                        let s2 = sigma.to_f64() * sigma.to_f64();
+                        let (a, b, cc) = (
+                            s2 * (ux * ux + vx * vx),
+                            s2 * (ux * uy + vx * vy),
+                            s2 * (uy * uy + vy * vy),
+                        );
+                        let det = s2 * s2 * (ux * vy - uy * vx).powi(2);
+                        let lmax = 0.5 * (a + cc) + (0.5 * (a - cc)).hypot(b);
+                        let lmin = if lmax > 0.0 { det / lmax } else { 0.0 };
+                        let m = 0.5 * kappa.to_f64();
+                        // The larger eigenvalue's direction.
+                        let phi = 0.5 * b.atan2(0.5 * (a - cc));
+                        let (ec, es) = (phi.cos(), phi.sin());
+                        let (p, q) = (lmax.min(m), lmin.min(m));
+                        clamped += usize::from(lmax > m && lmin < m);
+                        iso += usize::from(lmin >= m);
+                        let (ax, ay) = (alpha * alpha, (1.5 * alpha) * (1.5 * alpha));
+                        let (ax, ay) = (F::from_f64(ax).to_f64(), F::from_f64(ay).to_f64());
+                        let want = [
+                            ax + 2.0 * (p * ec * ec + q * es * es),
+                            2.0 * (p - q) * ec * es,
+                            ay + 2.0 * (p * es * es + q * ec * ec),
+                        ];
+                        let got = [b11.to_f64(), b12.to_f64(), b22.to_f64()];
+                        let scale = [want[0], (want[0] * want[2]).sqrt(), want[2]];
+                        for j in 0..3 {
+                            let e = (got[j] - want[j]).abs() / scale[j] / u;
+                            worst = worst.max(e);
+                            assert!(
+                                e <= 26.0,
+                                "entry {j}: {} vs {} ({e} u; kappa {kappa}, sigma {sigma}, \
+                                 alpha {alpha}, footprint {:?})",
+                                got[j],
+                                want[j],
+                                (ux, uy, vx, vy)
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert!(ok_n > total / 3, "{ok_n} of {total} on the narrow path");
+        assert!(clamped > ok_n / 10, "{clamped} of {ok_n} clamped");
+        assert!(iso > ok_n / 50, "{iso} of {ok_n} isotropic");
+        std::println!(
+            "narrow entries: {ok_n} of {total} ok ({clamped} clamped, {iso} mu I); worst {worst:.2} u"
+        );
+    }
+}
