@@ -16,7 +16,8 @@
 //! **Memory.** No batch function allocates (`tests/batch_alloc.rs` counts with a global
 //! allocator, both precisions, the fallback path included) or touches memory beyond the
 //! slices it is given. Their working buffers are on the stack: at most 12 KiB for the kernels
-//! of the chunk driver (the gathered columns of its second pass), 44 KiB (`f32`) and 82 KiB
+//! of the chunk driver (the gathered columns of its second pass; 6 KiB more for the block
+//! buffer of `f32` [`beckmann_d_filtered`]'s two-loop first lane), 44 KiB (`f32`) and 82 KiB
 //! (`f64`) for the box filter's sort ([`d_rect`], [`d_rect_filtered`]).
 //!
 //! # How the loops vectorise
@@ -36,7 +37,12 @@
 //! filtered matrix with correlation `rho^2 > 3/4`); the driver gathers those into a dense
 //! buffer on the stack (their indices from the flags' bits, a word at a time) and runs the
 //! second lane over them, still vectorised, which decides and evaluates as the scalar path;
-//! only what that flags goes to the scalar path. Transcendental functions in lanes are
+//! only what that flags goes to the scalar path. Filtered Beckmann's first lane builds the
+//! filtered matrix in `f32` arithmetic too (within a stated bound of the scalar route's, not
+//! bit for bit; the table below) and runs as two loops over each block, the matrix then `D`
+//! through a block buffer: its dependency chain (two divisions and two square roots) is long
+//! for its instruction count, and the split lets the core overlap twice the elements
+//! (`Kernel::STAGED`, measured 1.27 times as fast). Transcendental functions in lanes are
 //! polynomials (`exp`: `filter::exp_poly`'s reduction; Beckmann's `Lambda`: the `erfc` fit
 //! shared with the exact Gaussian filter's sampler; Beckmann's visible-slope quantile: Cephes'
 //! `erfc` rationals, `quantile.rs`; `ln`: `log.rs`, on the reduction of
@@ -68,7 +74,7 @@
 //! | [`d_rect`], Gauss-Legendre elements (both sides short) and every element the lanes flag | bit for bit | the pairs of 2-, 4-, 6-point rules of the scalar case analysis in lanes (one loop per pair, the elements sorted by pair), every other case flagged | `tests/batch.rs` |
 //! | [`d_rect`], four-edge closed-form elements (a long side) | before the rounding to `F`, `8 eps_64 M + 4 eps_64 abs(D)`, `M` the edge terms' magnitudes scaled as `D` (`M / D` the form's cancellation); in `f32` then the same value or one ulp apart (measured: the same) | the scalar formula (`edges_by`) with the four angles by `lanes.rs`' `atan2_upper_lane` (`3 eps_64`) in place of libm's (`2 eps_64`); the products and sums round apart (`3 eps_64 M`), the area, division, `k`, `1 / h_z^4` (`4 eps_64 abs(D)`) | `tests/batch_bounds.rs` (realistic and adversarial input), the `atan2_upper_lane` unit test |
 //! | [`beckmann_d`], [`beckmann_d_filtered`] in `f64` | relative `E + 2 eps`, plus `x eps` where the scalar path takes its far-tail branch (`x > -ln F::MIN_POSITIVE`); results below `F::MIN_POSITIVE` flushed to `0` (absolute error below `F::MIN_POSITIVE`) | the exponent `x` and factor `k = n / pi` are the scalar path's bit for bit; `exp(-x) k` is the polynomial exponential (relative `E = 2.5e-7` in `f32`, `1.5e-14` in `f64`) and one rounding, against libm's `exp` (one ulp) and the scalar product; the scalar far-tail branch rounds `x - ln k` (up to `x eps`) | `tests/batch.rs` |
-//! | [`beckmann_d_filtered`] in `f32` | relative `E + (16 x + 13) eps` (plus `x eps` in the scalar far tail), flushed as [`beckmann_d`]; against the `f64` `D` of the same filtered matrix `E + (16 x + 10) eps`; the second lane's elements as [`beckmann_d`] | the filtered matrix's entries are the scalar route's bit for bit; the first lane forms `x` and `n` from them in `f32` (`RoughnessMatrix::exponent_and_norm_narrow`, where the matrix's correlation is `rho^2 <= 3/4`: `x` within `30.7 u`, `n` within `16 u`, `u = eps / 2`), the scalar path in `f64` (rounded once: `x u`); the condition number of `exp(-x)` makes both relative errors grow with `x` | `tests/batch.rs` (against the `f32` scalar route), `tests/batch_bounds.rs` (against `f64`), the unit test of `exponent_and_norm_narrow` |
+//! | [`beckmann_d_filtered`] in `f32` | against the `f64` pipeline (`ClampRules::filter_gaussian` and `D` in `f64` on the same inputs) relative `E + (x (15.35 + 26 k) + 8.5 + 13 k) eps`, `k = 1 / (1 - abs(rho))` of the filtered matrix (`<= 7.5`), flushed as [`beckmann_d`]; the second lane's elements against the `f64` `D` of the scalar route's matrix `E + (16 x + 10) eps` | the first (narrow) lane builds the filtered matrix in `f32` arithmetic (`ClampRules::filter_gaussian_entries_narrow`: its entries within `26 u sqrt(A'_ii A'_jj)` of the exact ones, `u = eps / 2`; the scalar route's matrix is not reproduced bit for bit, the price of the speed: 1.6x unfiltered instead of 3.3x), which moves `x` by at most `2 x 26 u k` and `ln n` by `26 u k` (first order), then forms `x` and `n` in `f32` (`RoughnessMatrix::exponent_and_norm_narrow`, where `rho^2 <= 3/4`: `x` within `30.7 u`, `n` within `16 u`); the second lane and the scalar path use the scalar route's matrix, `x` and `n` in `f64`; the condition number of `exp(-x)` makes the relative errors grow with `x` | `tests/batch.rs` (each element within the scalar route's bound or the first lane's), `tests/batch_bounds.rs` (against `f64`), the unit tests of `filter_gaussian_entries_narrow` and `exponent_and_norm_narrow` |
 //! | [`beckmann_lambda`] | absolute `L (1 + Lambda)`, `L = 2.1e-7` (`f32`), `1.9e-8` (`f64`), plus `(5 + 3 a^2) eps Lambda` | the `erfc` fit (Numerical Recipes `erfcc`) in place of libm's; `a = |w_z| / sqrt(q)` rounded twice in `F` (the scalar path forms it in `f64`), amplified by `2 a^2 + 3` | `tests/batch_bounds.rs` |
 //! | [`beckmann_g2`] | relative `2 L + 3 eps` plus the `Lambda` terms over `1 + Lambda_i + Lambda_o` | `G2 = 1 / (1 + Lambda_i + Lambda_o)` | `tests/batch_bounds.rs` |
 //! | [`ggx_sample_visible_normal`] | not bit for bit: the angle between the samples in the unit-roughness space within `B(E, S)` of `tests/batch_bounds.rs` (`~ (9 kappa + 1) E + (d_c + d_wi + E) / abs(n)`, `kappa` the warp's condition number, `d_c` growing as `1 / sin theta` of the cap point) | the scalar sampler's steps and shared cores; `(cos, sin)` of the azimuth by `lanes.rs`' `sincos_2pi` (absolute `2e-15` in `f64`) in place of libm's of the rounded `phi`, the cap height not fused | `tests/batch_bounds.rs` (against `f64`), the `sincos_2pi` unit test |

@@ -374,7 +374,11 @@ impl ClampRules {
     ) -> ((F, F, F), bool) {
         // Per batch (hoisted): the kernel in units of sigma^2, Sigma = sigma^2 Sigma_0.
         let s2 = sigma * sigma;
-        let mu = if s2 > 0.0 { self.half_kappa() / s2 } else { F::INFINITY };
+        let mu = if s2 > 0.0 {
+            self.half_kappa() / s2
+        } else {
+            F::INFINITY
+        };
         let l = self.max_extent;
         let l4 = if l >= 0.0 { 4.0 * (l * l) } else { -1.0 };
         let cap = (l4 * (1.0 - 16.0 * F::EPSILON))
@@ -406,7 +410,10 @@ impl ClampRules {
         };
         let (a11, a12, a22) = roughness.entries_f();
         let ok = s_ok & (l0 <= cap) & (keep | iso | (w <= F::MAX));
-        ((a11 + scale * x11, a12 + scale * x12, a22 + scale * x22), ok)
+        (
+            (a11 + scale * x11, a12 + scale * x12, a22 + scale * x22),
+            ok,
+        )
     }
 
     /// The projected-space pipeline (TK21), the rules as in [`ClampRules::filter_gaussian`]:
@@ -460,8 +467,8 @@ fn scaled_to(fp: Footprint, e: F) -> Footprint {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use super::super::super::ndf::roughness::AxisAligned;
+    use super::*;
 
     /// `filter_gaussian_entries_narrow` (`f32`) against the pipeline in `f64` on the same
     /// inputs, computed independently (the kernel's eigenvalues from `hypot` and the
@@ -497,8 +504,8 @@ mod tests {
                     for k in 0..20_000 {
                         let ext = 10f64.powf(-3.0 + 3.0 * next()) / sigma.to_f64();
                         let aniso = match k % 8 {
-                            0 => 1.0,  // an isotropic kernel (`R = 0`)
-                            1 => 0.0,  // a degenerate one (`det = 0`)
+                            0 => 1.0, // an isotropic kernel (`R = 0`)
+                            1 => 0.0, // a degenerate one (`det = 0`)
                             _ => 10f64.powf(-4.0 * next()),
                         };
                         let th = core::f64::consts::TAU * next();
@@ -517,8 +524,7 @@ mod tests {
                         }
                         ok_n += 1;
                         // The reference, in `f64`.
-                        let (ux, uy, vx, vy) =
-                            (ux.to_f64(), uy.to_f64(), vx.to_f64(), vy.to_f64());
+                        let (ux, uy, vx, vy) = (ux.to_f64(), uy.to_f64(), vx.to_f64(), vy.to_f64());
                         let s2 = sigma.to_f64() * sigma.to_f64();
                         let (a, b, cc) = (
                             s2 * (ux * ux + vx * vx),
