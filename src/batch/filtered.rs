@@ -277,7 +277,7 @@ impl<R: Roughness, N: FilteredNdf> Kernel<7, 1> for Filtered<R, N> {
     /// flags the element (the second half's matrix test then flags it).
     #[inline(always)]
     fn stage_one(&self, [_, _, _, ux, uy, vx, vy]: [F; 7]) -> Mid {
-        let ((a11, a12, a22), ok) = if N::NARROW {
+        let ((a11, a12, a22), ok) = if !WIDE && N::NARROW {
             self.rules
                 .filter_gaussian_entries_narrow(self.r, [ux, uy, vx, vy], self.sigma)
         } else {
