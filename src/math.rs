@@ -198,3 +198,14 @@ free_fns!(
     mul_add(a, b),
     hypot(y),
 );
+
+/// A uniform sample in `[0, 1)` from a 64-bit linear congruential step of `state` (Knuth's
+/// MMIX constants; the top 53 bits): the unit tests' seeded inputs, without the `testing`
+/// feature's generator.
+#[cfg(test)]
+pub(crate) fn test_uniform(state: &mut u64) -> f64 {
+    *state = state
+        .wrapping_mul(6_364_136_223_846_793_005)
+        .wrapping_add(1_442_695_040_888_963_407);
+    (*state >> 11) as f64 / (1u64 << 53) as f64
+}

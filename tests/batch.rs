@@ -154,35 +154,39 @@ macro_rules! suite {
             /// less one binade).
             const TAIL: f64 = -(<$t>::MIN_EXP as f64) * std::f64::consts::LN_2;
 
-            /// Batch Beckmann `D` against the scalar path of the same precision: `x` is the
-            /// exponent both evaluate (bound in the file docs); `filtered`: the filtered
-            /// lane, whose exponent and norm are computed in `f32` in `f32` (the wider bound).
-            fn beckmann_close(
-                got: &[$t],
-                want: impl Fn(usize) -> ($t, f64),
-                filtered: bool,
-                what: &str,
-            ) {
+            /// `|batch - scalar|` of a Beckmann `D` as a share of its bound against the scalar
+            /// path of the same precision (infinite beyond the flush): `x` is the exponent both
+            /// evaluate (bound in the file docs); `filtered`: a lane whose exponent and norm
+            /// are computed in `f32` in `f32` (the wider bound).
+            fn scalar_share(g: f64, w: f64, x: f64, filtered: bool) -> f64 {
+                let err = (g - w).abs();
+                if w < <$t>::MIN_POSITIVE as f64 {
+                    return if err <= <$t>::MIN_POSITIVE as f64 {
+                        0.0
+                    } else {
+                        f64::INFINITY
+                    };
+                }
+                let tail = if x >= TAIL { x } else { 0.0 };
+                let narrow = if filtered && !WIDE {
+                    11.0 * x + 10.0
+                } else {
+                    0.0
+                };
+                err / w / (EXP_POLY + (2.0 + narrow + tail) * EPS)
+            }
+
+            /// Batch Beckmann `D` against the scalar path of the same precision
+            /// ([`scalar_share`], unfiltered).
+            fn beckmann_close(got: &[$t], want: impl Fn(usize) -> ($t, f64), what: &str) {
                 let mut worst = 0.0f64;
                 for (i, &g) in got.iter().enumerate() {
                     let (w, x) = want(i);
                     assert!(!g.is_nan() && g >= 0.0, "{what} [{i}]: {g}");
-                    let (g, w) = (g as f64, w as f64);
-                    let err = (g - w).abs();
-                    if w < <$t>::MIN_POSITIVE as f64 {
-                        assert!(err <= <$t>::MIN_POSITIVE as f64, "{what} [{i}]: {g} vs {w}");
-                        continue;
-                    }
-                    let tail = if x >= TAIL { x } else { 0.0 };
-                    let narrow = if filtered && !WIDE {
-                        11.0 * x + 10.0
-                    } else {
-                        0.0
-                    };
-                    let tol = EXP_POLY + (2.0 + narrow + tail) * EPS;
-                    worst = worst.max(err / w / tol);
+                    let share = scalar_share(g as f64, w as f64, x, false);
+                    worst = worst.max(share);
                     assert!(
-                        err <= tol * w,
+                        share <= 1.0,
                         "{what} [{i}]: batch {g} vs scalar {w} (x {x})"
                     );
                 }
@@ -286,7 +290,6 @@ macro_rules! suite {
                                 x(&|s| iso.inv_quadratic(s), i),
                             )
                         },
-                        false,
                         "beckmann iso",
                     );
                     assert_eq!(batch::beckmann_d(&aa, &c.x, &c.y, &c.z, &mut out), N);
@@ -298,7 +301,6 @@ macro_rules! suite {
                                 x(&|s| aa.inv_quadratic(s), i),
                             )
                         },
-                        false,
                         "beckmann aa",
                     );
                     for (name, m) in [("matrix", mat), ("long", long), ("clamped", clamped)] {
@@ -306,7 +308,6 @@ macro_rules! suite {
                         beckmann_close(
                             &out,
                             |i| (Beckmann::new(m).d(h(&c, i)), x(&|s| m.inv_quadratic(s), i)),
-                            false,
                             &format!("beckmann {name}"),
                         );
                     }
@@ -330,15 +331,8 @@ macro_rules! suite {
                 for (i, &g) in got.iter().enumerate() {
                     let (w, x) = want(i);
                     assert!(!g.is_nan() && g >= 0.0, "{what} [{i}]: {g}");
-                    let (g, w) = (g as f64, w as f64);
-                    let err = (g - w).abs();
-                    let tail = if x >= TAIL { x } else { 0.0 };
-                    let tol = EXP_POLY + (2.0 + 11.0 * x + 10.0 + tail) * EPS;
-                    let scalar_ok = if w < <$t>::MIN_POSITIVE as f64 {
-                        err <= <$t>::MIN_POSITIVE as f64
-                    } else {
-                        err <= tol * w
-                    };
+                    let g = g as f64;
+                    let scalar_ok = scalar_share(g, w as f64, x, true) <= 1.0;
                     if scalar_ok || WIDE {
                         assert!(scalar_ok, "{what} [{i}]: batch {g} vs scalar {w} (x {x})");
                         continue;
@@ -359,15 +353,15 @@ macro_rules! suite {
                 println!("{what}: {narrow} within the narrow lane's bound only");
             }
 
-            /// The `f64` pipeline of [`ClampRules::filter_gaussian`] and Beckmann's `D` on
-            /// element `i`'s inputs (the lobe's entries as rounded to the batch precision):
-            /// `(D, x, 1 / (1 - |rho|))` of the filtered matrix.
+            /// The `f64` pipeline of [`ClampRules::filter_gaussian`] and Beckmann's `D` on the
+            /// footprint `f` and half vector `h` (the lobe's entries as rounded to the batch
+            /// precision): `(D, x, 1 / (1 - |rho|))` of the filtered matrix.
             fn pipeline_64(
                 rules: &ClampRules,
                 r: AxisAligned,
                 sigma: $t,
-                c: &Cols,
-                i: usize,
+                f: Footprint,
+                h: Vec3,
             ) -> (f64, f64, f64) {
                 let (r11, _, r22) = RoughnessMatrix::from(r).entries();
                 let r64 = d::RoughnessMatrix::new(r11 as f64, 0.0, r22 as f64).unwrap();
@@ -377,13 +371,12 @@ macro_rules! suite {
                     kappa: rules.kappa as f64,
                     det_clamp: rules.det_clamp,
                 };
-                let f = fp(c, i);
                 let f64p = d::Footprint::from_slope_derivatives(
                     glam::DVec2::new(f.dh_u.x as f64, f.dh_u.y as f64),
                     glam::DVec2::new(f.dh_v.x as f64, f.dh_v.y as f64),
                 );
                 let a = rules64.filter_gaussian(r64, f64p, sigma as f64);
-                let w = glam::DVec3::new(c.x[i] as f64, c.y[i] as f64, c.z[i] as f64);
+                let w = glam::DVec3::new(h.x as f64, h.y as f64, h.z as f64);
                 let (b11, b12, b22) = a.clamped_entries();
                 let k = 1.0 / (1.0 - b12.abs() / (b11 * b22).sqrt());
                 let x = d::Roughness::inv_quadratic(&a, glam::DVec2::new(w.x, w.y)) / (w.z * w.z);
@@ -456,7 +449,7 @@ macro_rules! suite {
                                         a.inv_quadratic(Vec2::new(c.x[i], c.y[i])) as f64 / (z * z);
                                     (Beckmann::new(a).d(h(&c, i)), x)
                                 },
-                                |i| pipeline_64(&rules, aa, sigma, &c, i),
+                                |i| pipeline_64(&rules, aa, sigma, fp(&c, i), h(&c, i)),
                                 &format!("filtered beckmann, {name}"),
                             );
                             batch::ggx_d_filtered(
@@ -674,7 +667,7 @@ macro_rules! suite {
                             batch::beckmann_d_filtered(&aa, &rules, 0.5, x, y, z, fps, &mut out),
                             n
                         );
-                        beckmann_close(
+                        filtered_beckmann_close(
                             &out,
                             |i| {
                                 let a = rules.filter_gaussian(aa, fp(i), 0.5);
@@ -682,7 +675,7 @@ macro_rules! suite {
                                 let e = a.inv_quadratic(Vec2::new(x[i], y[i])) as f64 / (zz * zz);
                                 (Beckmann::new(a).d(h(i)), e)
                             },
-                            true,
+                            |i| pipeline_64(&rules, aa, 0.5, fp(i), h(i)),
                             &format!("tiers beckmann {name}"),
                         );
                     }

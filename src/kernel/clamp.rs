@@ -485,12 +485,7 @@ mod tests {
             return; // `f32` only: `batch` uses it in `f32`.
         }
         let mut state = 0x2545_F491_4F6C_DD1Du64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = || crate::math::test_uniform(&mut state);
         let u = F::EPSILON.to_f64() / 2.0;
         let (mut worst, mut ok_n, mut clamped, mut iso, mut total) = (0.0f64, 0, 0, 0, 0);
         for kappa in [0.18, 1e-3, F::INFINITY] {

@@ -477,12 +477,7 @@ mod tests {
             return; // `f32` only: `batch` uses it in `f32`.
         }
         let mut state = 0x9E37_79B9_7F4A_7C15u64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = || crate::math::test_uniform(&mut state);
         let u = F::EPSILON.to_f64() / 2.0;
         let (mut worst_x, mut worst_n, mut kept, mut total) = (0.0f64, 0.0f64, 0, 0);
         for _ in 0..200_000 {
