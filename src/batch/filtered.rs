@@ -266,32 +266,23 @@ impl<R: Roughness, N: FilteredNdf> Kernel<7, 1> for Filtered<R, N> {
     // `alpha = 0.01` under the bench's footprints. In `f64` the two lanes would be the same.
     const TIERED: bool = !WIDE;
 
-    // The first lane in two loops in `f32` (`Kernel::STAGED`): the filtered matrix, then `D`
-    // (measured: TK19 GGX 8.5 against 9.0 us per 4096 elements; Beckmann's narrow lane in the
-    // driver's docs).
-    const STAGED: bool = !WIDE;
+    // Beckmann's narrow lane in two loops (`Kernel::STAGED`): the filtered matrix, then `D`
+    // (measured, alternating: 4.7 against 6.2 us per 4096 elements; TK19 GGX's exact first
+    // lane so split measured no faster, 9.44 against 9.48 us, the fastest of 8).
+    const STAGED: bool = !WIDE && N::NARROW;
 
-    /// The first lane's first half: the entries of `A'` (Beckmann's narrow ones,
-    /// `ClampRules::filter_gaussian_entries_narrow`, else the scalar route's,
-    /// [`ClampRules::filter_gaussian_entries_lane`]), a NaN first entry where the rules' lane
-    /// flags the element (the second half's matrix test then flags it).
+    /// The narrow lane's first half: the entries of `A'`
+    /// (`ClampRules::filter_gaussian_entries_narrow`), a NaN first entry where its domain
+    /// ends (the second half's correlation test then flags the element).
     #[inline(always)]
     fn stage_one(&self, [_, _, _, ux, uy, vx, vy]: [F; 7]) -> Mid {
-        let ((a11, a12, a22), ok) = if !WIDE && N::NARROW {
+        let ((a11, a12, a22), ok) =
             self.rules
-                .filter_gaussian_entries_narrow(self.r, [ux, uy, vx, vy], self.sigma)
-        } else {
-            let (e, _, ok) = self.rules.filter_gaussian_entries_lane::<R, false>(
-                self.r,
-                footprint(ux, uy, vx, vy),
-                self.sigma,
-            );
-            (e, ok)
-        };
+                .filter_gaussian_entries_narrow(self.r, [ux, uy, vx, vy], self.sigma);
         [if ok { a11 } else { F::NAN }, a12, a22]
     }
 
-    /// The first lane's second half: `D` of the entries ([`FilteredNdf::d_entries_lane`]).
+    /// The narrow lane's second half: `D` of the entries ([`FilteredNdf::d_entries_lane`]).
     #[inline(always)]
     fn stage_two(&self, [hx, hy, hz, ..]: [F; 7], [a11, a12, a22]: Mid) -> ([F; 1], bool) {
         let tau = self.rules.det_clamp_wide(self.r);

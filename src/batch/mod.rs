@@ -42,7 +42,7 @@
 //! bit for bit; the table below) and runs as two loops over each block, the matrix then `D`
 //! through a block buffer: its dependency chain (two divisions and two square roots) is long
 //! for its instruction count, and the split lets the core overlap twice the elements
-//! (`Kernel::STAGED`, measured 1.27 times as fast). Transcendental functions in lanes are
+//! (`Kernel::STAGED`, measured 1.3 times as fast). Transcendental functions in lanes are
 //! polynomials (`exp`: `filter::exp_poly`'s reduction; Beckmann's `Lambda`: the `erfc` fit
 //! shared with the exact Gaussian filter's sampler; Beckmann's visible-slope quantile: Cephes'
 //! `erfc` rationals, `quantile.rs`; `ln`: `log.rs`, on the reduction of
