@@ -337,23 +337,23 @@ impl ClampRules {
     /// `(entries, ok)`, **not** the scalar route's entries bit for bit but within a scaled
     /// error of them (below) where `ok`.
     ///
-    /// The kernel in units of `sigma^2`: `Sigma_0 = [u; v]^T [u; v]` of the footprint
-    /// `(u, v)` (KHPL16 eq. 13), its eigenvalues `lambda_+- = (T +- R) / 2` (`T` the trace,
-    /// `R = sqrt((a - c)^2 + 4 b^2)`), its determinant from the footprint, `(u_x v_y - u_y
-    /// v_x)^2` (no cancelled `a c - b^2`), the `kappa` rule's bound `mu = kappa / (2
-    /// sigma^2)` (TK19 eq. 1): `Sigma_0` itself where `lambda_+ <= mu`, `mu I` where
-    /// `lambda_- >= mu` (decided as `mu lambda_+ >= det`, no division), else `Sigma_0' =
-    /// lambda_- I + h (Sigma_0 - lambda_- I)` with `h = (mu - lambda_-) / R` and `lambda_- =
-    /// det / lambda_+` (one division for both): the clamp of the larger eigenvalue to `mu`,
-    /// the smaller kept, each entry a sum of non-negative terms. Then `A' = A + 2 sigma^2
-    /// Sigma_0'`.
+    /// The kernel in units of `sigma^2`: `Sigma_0 = u u^T + v v^T = [[a, b], [b, c]]` of the
+    /// footprint `(u, v)` ([`Footprint::covariance`], TK19 section 2.2), its eigenvalues
+    /// `lambda_+- = (T +- R) / 2` (`T = a + c`, `R = sqrt((a - c)^2 + 4 b^2)`), its determinant
+    /// from the footprint, `(u_x v_y - u_y v_x)^2` (no cancelled `a c - b^2`), the `kappa`
+    /// rule's bound `mu = kappa / (2 sigma^2)` (TK19 eq. 1): `Sigma_0` itself where `lambda_+
+    /// <= mu`, `mu I` where `lambda_- >= mu` (decided as `det >= mu lambda_+`, no division),
+    /// else `Sigma_0' = lambda_- I + h (Sigma_0 - lambda_- I)` with `h = (mu - lambda_-) / R`
+    /// and `lambda_- = det / lambda_+` (one division for both): the larger eigenvalue clamped
+    /// to `mu`, the smaller kept, each entry a sum of non-negative terms. Then `A' = A + 2
+    /// sigma^2 Sigma_0'` (KHPL16 eq. 15).
     ///
-    /// `ok` holds where the footprint is within `max_extent` (decided by `lambda_+`, which
-    /// bounds the squared extent `(T + 2 |b|) / 4` from above, with a margin of `16 eps`: an
-    /// element nearer the bound is decided by the scalar route), the kernel within
-    /// [`KERNEL_MAX`] (the sanitiser's fast path), the clamp at most `16` times (`lambda_+ <=
-    /// 32 mu`: the bound below) and `2 sigma^2` finite; everything else is the scalar route's
-    /// (the caller flags it).
+    /// `ok` holds where the footprint is within `max_extent` (decided by `2 lambda_+ = T + R
+    /// >= T + 2 |b|`, four times the squared extent, with a margin of `16 eps`: an element
+    /// nearer the bound is decided by the scalar route), the kernel within [`KERNEL_MAX`] (the
+    /// sanitiser's fast path), the clamp at most 16-fold (`lambda_+ <= 16 mu`: the bound
+    /// below) and `2 sigma^2` finite; everything else is the scalar route's (the caller flags
+    /// it).
     ///
     /// Error where `ok` (against the exact pipeline on the same inputs): each entry of `A'`
     /// within `24 u sqrt(A'_ii A'_jj)` (`u = eps / 2`), the sum of: the kernel's entries
