@@ -348,12 +348,12 @@ impl ClampRules {
     /// to `mu`, the smaller kept, each entry a sum of non-negative terms. Then `A' = A + 2
     /// sigma^2 Sigma_0'` (KHPL16 eq. 15).
     ///
-    /// `ok` holds where the footprint is within `max_extent` (decided by `2 lambda_+ = T + R
-    /// >= T + 2 |b|`, four times the squared extent, with a margin of `16 eps`: an element
-    /// nearer the bound is decided by the scalar route), the kernel within [`KERNEL_MAX`] (the
-    /// sanitiser's fast path), the clamp at most 16-fold (`lambda_+ <= 16 mu`: the bound
-    /// below) and `2 sigma^2` finite; everything else is the scalar route's (the caller flags
-    /// it).
+    /// `ok` holds where the footprint is within `max_extent` (decided by `2 lambda_+`, that is
+    /// `T + R`, at least `T + 2 |b|`, four times the squared extent, with a margin of `16
+    /// eps`: an element nearer the bound is decided by the scalar route), the kernel within
+    /// [`KERNEL_MAX`] (the sanitiser's fast path), the clamp at most 16-fold (`lambda_+ <= 16
+    /// mu`: the bound below) and `2 sigma^2` finite; everything else is the scalar route's
+    /// (the caller flags it).
     ///
     /// Error where `ok` (against the exact pipeline on the same inputs): each entry of `A'`
     /// within `24 u sqrt(A'_ii A'_jj)` (`u = eps / 2`), the sum of: the kernel's entries
