@@ -819,6 +819,72 @@ macro_rules! suite {
                 );
             }
 
+            /// An element's result does not depend on its place in the batch (an identity),
+            /// where the driver keeps every block on the first lane (realistic inputs: half
+            /// vectors within two lobe widths, footprints from a twentieth to eight lobe
+            /// widths, few elements flagged; a block with most elements flagged switches the
+            /// next blocks' path, by design): filtered Beckmann over the columns from offset
+            /// 300 equals the whole batch's results there, bit for bit. The whole batch's last,
+            /// partial block (the one-loop lane) falls in whole blocks of the shifted batch (in
+            /// `f32` the two-loop lane, `Kernel::STAGED`), so the two forms must agree.
+            #[test]
+            fn filtered_results_do_not_depend_on_the_block() {
+                let mut rng = Rng(0xB10C);
+                let alpha = 0.1;
+                let mut col = |f: &mut dyn FnMut(&mut Rng) -> f64| -> Vec<$t> {
+                    (0..N).map(|_| f(&mut rng) as $t).collect()
+                };
+                let sx = col(&mut |r| 2.0 * alpha * (2.0 * r.uniform() - 1.0));
+                let sy = col(&mut |r| 2.0 * alpha * (2.0 * r.uniform() - 1.0));
+                let fp: Vec<Vec<$t>> = (0..4)
+                    .map(|_| {
+                        col(&mut |r| alpha * r.log_uniform(0.05, 8.0) * (2.0 * r.uniform() - 1.0))
+                    })
+                    .collect();
+                let (mut x, mut y, mut z) = (vec![0.0 as $t; N], vec![0.0; N], vec![0.0; N]);
+                for i in 0..N {
+                    let m = Vec3::new(-sx[i], -sy[i], 1.0).normalize();
+                    (x[i], y[i], z[i]) = (m.x, m.y, m.z);
+                }
+                let aa = AxisAligned::new(alpha as $t, (1.5 * alpha) as $t).unwrap();
+                let k = 300;
+                let cols = |b: usize| batch::Footprints {
+                    dh_u_x: &fp[0][b..],
+                    dh_u_y: &fp[1][b..],
+                    dh_v_x: &fp[2][b..],
+                    dh_v_y: &fp[3][b..],
+                };
+                for (name, rules) in [
+                    ("default", ClampRules::default()),
+                    ("none", ClampRules::NONE),
+                ] {
+                    let mut whole = vec![0.0 as $t; N];
+                    batch::beckmann_d_filtered(&aa, &rules, 0.5, &x, &y, &z, cols(0), &mut whole);
+                    let mut part = vec![0.0 as $t; N - k];
+                    let n = batch::beckmann_d_filtered(
+                        &aa,
+                        &rules,
+                        0.5,
+                        &x[k..],
+                        &y[k..],
+                        &z[k..],
+                        cols(k),
+                        &mut part,
+                    );
+                    assert_eq!(n, N - k);
+                    for i in 0..n {
+                        assert_eq!(
+                            part[i].to_bits(),
+                            whole[k + i].to_bits(),
+                            "{name} [{}]: {} vs {}",
+                            k + i,
+                            part[i],
+                            whole[k + i]
+                        );
+                    }
+                }
+            }
+
             #[test]
             fn mismatched_lengths_process_the_common_prefix() {
                 let c = cols(0x1E57);
