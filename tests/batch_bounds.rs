@@ -831,7 +831,7 @@ macro_rules! suite {
             /// - the first lane (`f32`: the narrow lane, `A'` in `f32` arithmetic) against the
             ///   `f64` pipeline (`ClampRules::filter_gaussian` of the `f64` build on the same
             ///   inputs): its entries within `delta = 26 u sqrt(A'_ii A'_jj)`
-            ///   (`ClampRules::filter_gaussian_entries_narrow`), which moves `x` by at most
+            ///   (`Narrow::entries`), which moves `x` by at most
             ///   `2 delta x / (1 - |rho|)` and `ln n` by `delta / (1 - |rho|)` (first order;
             ///   `rho` the correlation of `A'`), plus the narrow `x` (`30.7 u`) and `n`
             ///   (`16 u`), the exponential `E` and the result's rounding: `E + (x (15.35 + 26 /

@@ -2,7 +2,7 @@
 //! material and one method for the whole batch.
 
 use super::super::filter::ProjectedBase;
-use super::super::kernel::ClampRules;
+use super::super::kernel::{ClampRules, Narrow};
 use super::super::ndf::Ndf;
 use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::Ggx;
@@ -127,7 +127,7 @@ impl<R: Roughness> Kernel<7, 1> for FilteredProjected<R> {
 /// An NDF of a filtered matrix, as the Gaussian-filtered lanes evaluate it.
 trait FilteredNdf: LaneD + Ndf + Sized {
     /// Whether the first tier in `f32` is the narrow lane (the filtered matrix in `f32`
-    /// arithmetic, `ClampRules::filter_gaussian_entries_narrow`, within a stated error of the
+    /// arithmetic, `Narrow::entries`, within a stated error of the
     /// scalar route's instead of bit for bit), for an NDF whose lane `D` has the matching
     /// bound (`Beckmann`); else the scalar route's matrix.
     const NARROW: bool = false;
@@ -202,7 +202,7 @@ impl FilteredNdf for Beckmann<RoughnessMatrix> {
 /// in `f32` (the kernel's sanity by [`Covariance::is_sane_sure`]) and evaluates `D` by
 /// [`FilteredNdf::d_entries_lane`], so that it runs at the full `f32` vector width (for
 /// Beckmann, [`FilteredNdf::NARROW`], the narrow lane instead:
-/// `ClampRules::filter_gaussian_entries_narrow`, in two loops, [`Kernel::STAGED`]); the
+/// `Narrow::entries`, in two loops, [`Kernel::STAGED`]); the
 /// second, over what the first flags, decides and evaluates as the scalar path (`f64`
 /// products, the scalar path's matrix, the NDF's lane `D`). What the second flags goes to the
 /// scalar route. In `f64` the first lane alone (the two would be the same).
@@ -221,6 +221,8 @@ fn d_filtered<R: Roughness, N: FilteredNdf>(
         r: *r,
         rules: *rules,
         sigma,
+        narrow: rules.narrow(*r, sigma),
+        tau: rules.det_clamp_wide(*r),
         ndf: PhantomData,
     };
     run(&k, footprint_columns([hx, hy, hz], fp), [out])
@@ -231,6 +233,11 @@ struct Filtered<R, N> {
     r: R,
     rules: ClampRules,
     sigma: F,
+    /// The narrow lane's per-batch constants (once per call: computed in the lane loop, their
+    /// branches kept LLVM from vectorising it for AVX2).
+    narrow: Narrow,
+    /// The determinant clamp (`ClampRules::det_clamp_wide`), once per call.
+    tau: f64,
     ndf: PhantomData<N>,
 }
 
@@ -272,21 +279,18 @@ impl<R: Roughness, N: FilteredNdf> Kernel<7, 1> for Filtered<R, N> {
     const STAGED: bool = !WIDE && N::NARROW;
 
     /// The narrow lane's first half: the entries of `A'`
-    /// (`ClampRules::filter_gaussian_entries_narrow`), a NaN first entry where its domain
+    /// (`Narrow::entries`), a NaN first entry where its domain
     /// ends (the second half's correlation test then flags the element).
     #[inline(always)]
     fn stage_one(&self, [_, _, _, ux, uy, vx, vy]: [F; 7]) -> Mid {
-        let ((a11, a12, a22), ok) =
-            self.rules
-                .filter_gaussian_entries_narrow(self.r, [ux, uy, vx, vy], self.sigma);
+        let ((a11, a12, a22), ok) = self.narrow.entries([ux, uy, vx, vy]);
         [if ok { a11 } else { F::NAN }, a12, a22]
     }
 
     /// The narrow lane's second half: `D` of the entries ([`FilteredNdf::d_entries_lane`]).
     #[inline(always)]
     fn stage_two(&self, [hx, hy, hz, ..]: [F; 7], [a11, a12, a22]: Mid) -> ([F; 1], bool) {
-        let tau = self.rules.det_clamp_wide(self.r);
-        let (v, slow) = N::d_entries_lane((a11, a12, a22), tau, Vec3::new(hx, hy, hz));
+        let (v, slow) = N::d_entries_lane((a11, a12, a22), self.tau, Vec3::new(hx, hy, hz));
         ([v], slow)
     }
 

@@ -332,8 +332,69 @@ impl ClampRules {
         (k, self.footprint_within(fp) & sane & (off | clamp_ok))
     }
 
+    /// The per-batch constants of [`Narrow::entries`] for `roughness` and `sigma`, computed
+    /// once per call of a batch function (inside the lane loop, the conditional division of
+    /// `mu` and the conditional load of `kappa` kept LLVM from vectorising the AVX2 loop:
+    /// 32 ns per element instead of 4.6, `f32`).
+    #[inline(always)]
+    pub(crate) fn narrow<R: Roughness>(&self, roughness: R, sigma: F) -> Narrow {
+        // The kernel in units of sigma^2, Sigma = sigma^2 Sigma_0.
+        let s2 = sigma * sigma;
+        let mu = if s2 > 0.0 {
+            self.half_kappa() / s2
+        } else {
+            F::INFINITY
+        };
+        let l = self.max_extent;
+        let l4 = if l >= 0.0 { 4.0 * (l * l) } else { -1.0 };
+        let cap = (l4 * (1.0 - 16.0 * F::EPSILON))
+            .min(32.0 * mu)
+            .min(KERNEL_MAX / s2 * (1.0 - 16.0 * F::EPSILON));
+        let scale = 2.0 * s2;
+        Narrow {
+            mu,
+            cap,
+            scale,
+            s_ok: scale <= F::MAX,
+            a: roughness.entries_f(),
+        }
+    }
+
+    /// The projected-space pipeline (TK21), the rules as in [`ClampRules::filter_gaussian`]:
+    /// [`ClampRules::footprint`] -> [`Footprint::covariance`] (`sigma` pixels; the footprint
+    /// of the half vector's projected-disk derivatives, TK19 section 3.2) ->
+    /// [`ClampRules::kernel`] -> [`filter::projected`], with the determinant clamp
+    /// `tau = det(A)` if `det_clamp` (else as [`filter::projected_with_det_clamp`] with `0`).
+    ///
+    /// Always inlined, as [`ClampRules::filter_gaussian`] (the footprint through memory
+    /// stalls: `batch::ggx_d_filtered_projected`'s scalar path took 66 instead of 38 ns per
+    /// element, `f32`).
+    #[inline(always)]
+    pub fn filter_projected<R: Roughness>(
+        &self,
+        roughness: R,
+        fp: Footprint,
+        sigma: F,
+    ) -> RoughnessMatrix {
+        let k = self.kernel(self.footprint(fp).covariance(sigma));
+        filter::projected_sanitized(roughness, k, self.det_clamp_wide(roughness))
+    }
+}
+
+/// The narrow filtered-Beckmann lane's per-batch constants ([`ClampRules::narrow`]): the
+/// lobe's entries, the `kappa` bound `mu`, the extent cap and the scale `2 sigma^2`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Narrow {
+    mu: F,
+    cap: F,
+    scale: F,
+    s_ok: bool,
+    a: (F, F, F),
+}
+
+impl Narrow {
     /// The entries of `A' = A + 2 Sigma'` of [`ClampRules::filter_gaussian`] in `f32`
-    /// arithmetic throughout, for `batch`'s narrow filtered-Beckmann lane (branch-free):
+    /// arithmetic throughout, for `batch`'s narrow filtered-Beckmann lane (branch-free), for the footprint `[u_x, u_y, v_x, v_y]`:
     /// `(entries, ok)`, **not** the scalar route's entries bit for bit but within a scaled
     /// error of them (below) where `ok`.
     ///
@@ -366,27 +427,14 @@ impl ClampRules {
     /// and `2 u` for a `keep` or `iso` decided by rounding at its boundary (where the
     /// branches meet). Tested against the `f64` pipeline below.
     #[inline(always)]
-    pub(crate) fn filter_gaussian_entries_narrow<R: Roughness>(
-        &self,
-        roughness: R,
-        [ux, uy, vx, vy]: [F; 4],
-        sigma: F,
-    ) -> ((F, F, F), bool) {
-        // Per batch (hoisted): the kernel in units of sigma^2, Sigma = sigma^2 Sigma_0.
-        let s2 = sigma * sigma;
-        let mu = if s2 > 0.0 {
-            self.half_kappa() / s2
-        } else {
-            F::INFINITY
-        };
-        let l = self.max_extent;
-        let l4 = if l >= 0.0 { 4.0 * (l * l) } else { -1.0 };
-        let cap = (l4 * (1.0 - 16.0 * F::EPSILON))
-            .min(32.0 * mu)
-            .min(KERNEL_MAX / s2 * (1.0 - 16.0 * F::EPSILON));
-        let scale = 2.0 * s2;
-        let s_ok = scale <= F::MAX;
-        // Per element.
+    pub(crate) fn entries(&self, [ux, uy, vx, vy]: [F; 4]) -> ((F, F, F), bool) {
+        let Self {
+            mu,
+            cap,
+            scale,
+            s_ok,
+            a: (a11, a12, a22),
+        } = *self;
         let (a0, b0, c0) = (ux * ux + vx * vx, ux * uy + vx * vy, uy * uy + vy * vy);
         let dd = ux * vy - uy * vx;
         let det2 = dd * (dd + dd);
@@ -408,32 +456,11 @@ impl ClampRules {
         } else {
             (lmin + h * (a0 - lmin), h * b0, lmin + h * (c0 - lmin))
         };
-        let (a11, a12, a22) = roughness.entries_f();
         let ok = s_ok & (l0 <= cap) & (keep | iso | (w <= F::MAX));
         (
             (a11 + scale * x11, a12 + scale * x12, a22 + scale * x22),
             ok,
         )
-    }
-
-    /// The projected-space pipeline (TK21), the rules as in [`ClampRules::filter_gaussian`]:
-    /// [`ClampRules::footprint`] -> [`Footprint::covariance`] (`sigma` pixels; the footprint
-    /// of the half vector's projected-disk derivatives, TK19 section 3.2) ->
-    /// [`ClampRules::kernel`] -> [`filter::projected`], with the determinant clamp
-    /// `tau = det(A)` if `det_clamp` (else as [`filter::projected_with_det_clamp`] with `0`).
-    ///
-    /// Always inlined, as [`ClampRules::filter_gaussian`] (the footprint through memory
-    /// stalls: `batch::ggx_d_filtered_projected`'s scalar path took 66 instead of 38 ns per
-    /// element, `f32`).
-    #[inline(always)]
-    pub fn filter_projected<R: Roughness>(
-        &self,
-        roughness: R,
-        fp: Footprint,
-        sigma: F,
-    ) -> RoughnessMatrix {
-        let k = self.kernel(self.footprint(fp).covariance(sigma));
-        filter::projected_sanitized(roughness, k, self.det_clamp_wide(roughness))
     }
 }
 
@@ -470,7 +497,7 @@ mod tests {
     use super::super::super::ndf::roughness::AxisAligned;
     use super::*;
 
-    /// `filter_gaussian_entries_narrow` (`f32`) against the pipeline in `f64` on the same
+    /// `Narrow::entries` (`f32`) against the pipeline in `f64` on the same
     /// inputs, computed independently (the kernel's eigenvalues from `hypot` and the
     /// footprint's determinant, its eigenvectors from `atan2`, both eigenvalues clamped and
     /// the kernel rebuilt from them): where `ok`, every entry of `A'` within the documented
@@ -512,7 +539,7 @@ mod tests {
                             F::from_f64(ext * aniso * c),
                         );
                         let ((b11, b12, b22), ok) =
-                            rules.filter_gaussian_entries_narrow(r, [ux, uy, vx, vy], sigma);
+                            rules.narrow(r, sigma).entries([ux, uy, vx, vy]);
                         total += 1;
                         if !ok {
                             continue;

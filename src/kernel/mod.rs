@@ -8,8 +8,8 @@ mod clamp;
 mod covariance;
 mod rect;
 
-pub(crate) use clamp::RectBounds;
 pub use clamp::{ClampRules, ExtentFloor};
+pub(crate) use clamp::{Narrow, RectBounds};
 pub use covariance::{Covariance, KERNEL_MAX};
 pub use rect::BoundingRect;
 
