@@ -387,7 +387,12 @@ fn lane_loop<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool, 
     let mut flagged = 0u32;
     if K::STAGED && !FULL {
         // The first half of every element, then the second (`Kernel::STAGED`). The buffer:
-        // `MID L` floats (6 KiB in `f32`).
+        // `MID L` floats (6 KiB in `f32`). The second loop writes its results over the first
+        // `O` columns of the buffer (element `i`'s after reading them), copied out after the
+        // loop: stored through the output slices, LLVM guarded the loop with run-time alias
+        // checks against the inputs and ran it at half the vector width (`f32`: 4 lanes on
+        // AVX2, 8 on AVX-512; filtered Beckmann 4.6 ns per element instead of 3.2 on AVX2).
+        const { assert!(O <= MID, "a staged kernel's outputs fit its buffer") };
         let mut mid = [[0.0 as F; L]; MID];
         for i in 0..L {
             let mut x = [0.0 as F; I];
@@ -410,12 +415,21 @@ fn lane_loop<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool, 
             }
             let (v, slow) = mark(k.stage_two(x, m));
             for c in 0..O {
-                ys[c][i] = v[c];
+                mid[c][i] = v[c];
             }
             flagged += u32::from(slow);
         }
+        for c in 0..O {
+            ys[c].copy_from_slice(&mid[c]);
+        }
         return flagged as usize;
     }
+    // The results to a buffer of the block's own, copied out after the loop: stored through
+    // the output slices, LLVM guarded the loop with run-time alias checks against the inputs
+    // and ran several kernels at half the vector width (measured on AVX2, `f32`: GGX `D`
+    // in the matrix form 1.22 -> 0.90 ns per element, the GGX normal pdf 1.94 -> 1.24, the
+    // Beckmann normal pdf 4.36 -> 2.65). `O L` floats (at most 6 KiB in `f32`).
+    let mut res = [[0.0 as F; L]; O];
     for i in 0..L {
         let mut x = [0.0 as F; I];
         for c in 0..I {
@@ -423,9 +437,12 @@ fn lane_loop<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool, 
         }
         let (v, slow) = marked::<K, I, O, FULL>(k, x);
         for c in 0..O {
-            ys[c][i] = v[c];
+            res[c][i] = v[c];
         }
         flagged += u32::from(slow);
+    }
+    for c in 0..O {
+        ys[c].copy_from_slice(&res[c]);
     }
     flagged as usize
 }

@@ -15,9 +15,10 @@
 //!
 //! **Memory.** No batch function allocates (`tests/batch_alloc.rs` counts with a global
 //! allocator, both precisions, the fallback path included) or touches memory beyond the
-//! slices it is given. Their working buffers are on the stack: at most 12 KiB for the kernels
-//! of the chunk driver (the gathered columns of its second pass; 6 KiB more for the block
-//! buffer of `f32` [`beckmann_d_filtered`]'s two-loop first lane), 44 KiB (`f32`) and 82 KiB
+//! slices it is given. Their working buffers are on the stack: at most 24 KiB for the kernels
+//! of the chunk driver (the gathered columns of its second pass, 12 KiB; a block's results,
+//! written there and then copied out, 12 KiB; 6 KiB more for the block buffer of `f32`
+//! [`beckmann_d_filtered`]'s two-loop first lane), 44 KiB (`f32`) and 82 KiB
 //! (`f64`) for the box filter's sort ([`d_rect`], [`d_rect_filtered`]).
 //!
 //! # How the loops vectorise
