@@ -391,7 +391,7 @@ fn lane_loop<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool, 
         // `O` columns of the buffer (element `i`'s after reading them), copied out after the
         // loop: stored through the output slices, LLVM guarded the loop with run-time alias
         // checks against the inputs and ran it at half the vector width (`f32`: 4 lanes on
-        // AVX2, 8 on AVX-512; filtered Beckmann 4.6 ns per element instead of 3.2 on AVX2).
+        // AVX2, 8 on AVX-512; filtered Beckmann 4.7 ns per element instead of 3.3 on AVX2).
         const { assert!(O <= MID, "a staged kernel's outputs fit its buffer") };
         let mut mid = [[0.0 as F; L]; MID];
         for i in 0..L {
@@ -427,8 +427,8 @@ fn lane_loop<K: Kernel<I, O>, const I: usize, const O: usize, const FULL: bool, 
     // The results to a buffer of the block's own, copied out after the loop: stored through
     // the output slices, LLVM guarded the loop with run-time alias checks against the inputs
     // and ran several kernels at half the vector width (measured on AVX2, `f32`: GGX `D`
-    // in the matrix form 1.22 -> 0.90 ns per element, the GGX normal pdf 1.94 -> 1.24, the
-    // Beckmann normal pdf 4.36 -> 2.65). `O L` floats (at most 6 KiB in `f32`).
+    // in the matrix form 1.32 -> 0.89 ns per element, the GGX normal pdf 2.08 -> 1.21, the
+    // Beckmann normal pdf 5.26 -> 2.65). `O L` floats (at most 12 KiB, in `f64`).
     let mut res = [[0.0 as F; L]; O];
     for i in 0..L {
         let mut x = [0.0 as F; I];

@@ -335,7 +335,7 @@ impl ClampRules {
     /// The per-batch constants of [`Narrow::entries`] for `roughness` and `sigma`, computed
     /// once per call of a batch function (inside the lane loop, the conditional division of
     /// `mu` and the conditional load of `kappa` kept LLVM from vectorising the AVX2 loop:
-    /// 32 ns per element instead of 4.6, `f32`).
+    /// `batch::beckmann_d_filtered` took 23 ns per element instead of 4.7, `f32`).
     #[inline(always)]
     pub(crate) fn narrow<R: Roughness>(&self, roughness: R, sigma: F) -> Narrow {
         // The kernel in units of sigma^2, Sigma = sigma^2 Sigma_0.
