@@ -191,12 +191,13 @@ pub fn ggx_sample_normal<R: Roughness>(
 /// clamped as by the scalar sampler; every output is a unit vector with `m_z > 0`.
 ///
 /// Agreement: not bit for bit (`ln(1 - u1)` by the lane logarithm `log::ln_lane`, relative
-/// `4 eps_64` computed in `f64`, and the azimuth by `sincos_2pi`, in place of libm's);
-/// against the `f64` scalar sampler, the pulled-back angle is within the bound derived in
-/// `tests/batch_bounds.rs`: `dr / (1 + r^2) + (S + 1) E r / sqrt(1 + r^2) + 9 kappa E + E`,
-/// `r = sqrt(-ln(1 - u1))`, `dr = min(dl / r, sqrt(dl)) + E r / 2` the error of `r` from the
-/// error `dl = E / 2 + E |ln(1 - u1)|` of the logarithm (the rounding of `1 - u1` in `F` and
-/// of the logarithm). The scalar sampler is within the same bound.
+/// `3 eps` computed in `f32` in the `f32` build, `4 eps` in `f64`, and the azimuth by
+/// `sincos_2pi`, in place of libm's); against the `f64` scalar sampler, the pulled-back angle
+/// is within the bound derived in `tests/batch_bounds.rs`: `dr / (1 + r^2) + (S + 1) E r /
+/// sqrt(1 + r^2) + 9 kappa E + E`, `r = sqrt(-ln(1 - u1))`, `dr = min(dl / r, sqrt(dl)) + E r
+/// / 2` the error of `r` from the error `dl = E / 2 + c E |ln(1 - u1)|` of the logarithm (the
+/// rounding of `1 - u1` in `F`, and the logarithm's `c E`: `c = 3` in `f32`, `4` in `f64`, `1`
+/// for libm's). The scalar sampler is within the same bound with `c = 1`.
 ///
 /// Returns the number of elements written. Allocates nothing.
 #[inline]
