@@ -211,7 +211,7 @@ macro_rules! suite {
             /// reference itself (the tolerance is the sum: both against the exact sample):
             ///
             /// - the azimuth's `(cos, sin)`: `S E` (`S = 8` in `f32`, `9` in `f64`, as for the
-            ///   visible-normal sampler above: `sincos_2pi`'s `2e-15` plus half an ulp, or
+            ///   visible-normal sampler above: `sincos_2pi`'s `2 E` or `2e-15`, or
             ///   libm's of the rounded `phi = 2 pi u2`), times `r` in the standard normal's
             ///   `xy`, plus the products' rounding `E r`;
             /// - GGX: `r = sqrt(u1)` (`E`), `n_z = sqrt(1 - u1)` (`1 - u1` rounds by `E / 2`
@@ -525,9 +525,9 @@ macro_rules! suite {
             /// - the cap height `z = (1 - u2)(1 + wi_z) - wi_z`: `d_z = 2 d_wi + 3 E`;
             /// - the cap point `(sin t cos phi, sin t sin phi, z)`: `sin t = sqrt(1 - z^2)`
             ///   errs by `(d_z + E) / sin t + E`; the azimuth's `(cos, sin)` by `S`:
-            ///   `sincos_2pi`'s `2e-15` plus half an ulp (lane), or libm's of `phi = 2 pi u1`
-            ///   rounded in the batch precision (`2 pi E`) plus its ulp (flagged elements):
-            ///   `S = 8 E` in `f32`, `9 E` (`2e-15 / eps_64`) in `f64`;
+            ///   `sincos_2pi`'s (lane: `2 E` in `f32`, `2e-15` in `f64`), or libm's of `phi =
+            ///   2 pi u1` rounded in the batch precision (`2 pi E`) plus its ulp (flagged
+            ///   elements): `S = 8 E` in `f32`, `9 E` (`2e-15 / eps_64`) in `f64`;
             ///   `d_c = (d_z + E) / sin t + d_z + S + E`;
             /// - `n = c + wi` (length `|n|` in `(0, 2]`, small where the cap point nears
             ///   `-wi`): angle `(d_c + d_wi + E) / |n|`;

@@ -777,23 +777,53 @@ pub(crate) fn ln_parts_f64(x: f64) -> (f64, f64) {
     (k, ln_m)
 }
 
-/// `(sin(2 pi u), cos(2 pi u))` for `u` in `[0, 1]` (the batch GGX visible-normal sampler's
-/// azimuth, `u` already clamped by the scalar sampler's `clamp_unit`), branch-free.
+/// `(sin(2 pi u), cos(2 pi u))` for `u` in `[0, 1]` (the batch samplers' azimuth, `u`
+/// already clamped by the scalar sampler's `clamp_unit`), branch-free, each precision in its
+/// own arithmetic (in `f32` the `f64` form held the samplers' `f32` loops to half width).
 ///
-/// Computed in `f64` for both precisions: range reduction `t = 4 u` (exact), `k =
-/// round(t)` (by the `1.5 * 2^52` shift, exact), `r = (t - k) pi / 2` in `[-pi/4, pi/4]`
-/// (`t - k` exact: both are multiples of `t`'s ulp), then the Taylor polynomials of `sin r`
-/// (to `r^17`) and `cos r` (to `r^18`), whose truncation is below `(pi/4)^19 / 19! < 1e-19`,
-/// and the quadrant `k mod 4` by selects (`sin(r + k pi/2)`: swaps and signs, exact).
+/// Range reduction `t = 4 u` (exact), `k = round(t)` (by the `1.5 * 2^p` shift, exact), `r =
+/// (t - k) pi / 2` in `[-pi/4, pi/4]` (`t - k` exact: both are multiples of `t`'s ulp), then
+/// the Taylor polynomials of `sin r` and `cos r` (in `f64` to `r^17` and `r^18`, truncation
+/// below `(pi/4)^19 / 19! < 1e-19`; in `f32` to `r^9` and `r^10`, below `(pi/4)^11 / 11! <
+/// 1.8e-9`, `0.015 eps_32`), and the quadrant `k mod 4` by selects (`sin(r + k pi/2)`: swaps
+/// and signs, exact).
 ///
-/// Error (absolute): `r` carries the rounding of `pi / 2` and of the product (`|r| <= pi/4`:
-/// below `2 eps_64 pi/4 < 3.5e-16`), which the 1-Lipschitz `sin`, `cos` pass on; Horner's
-/// rounding over terms of total magnitude below `1.4` is below `8 eps_64 < 1.8e-15`: in all
-/// `2e-15`; in `f32` plus the final rounding to `f32` (half an ulp of the result). Outside
-/// `[0, 1]` (the sampler never passes such `u`) the reduction stays exact while `4 u <
-/// 2^52`, so the bound holds there too; NaN gives NaN. Tested against libm below.
+/// Error (absolute, `eps` of the precision): `r` carries the rounding of `pi / 2` and of the
+/// product (`|r| <= pi/4`: below `eps pi/4`), which the 1-Lipschitz `sin`, `cos` pass on;
+/// Horner's rounding: in `f64` below `8 eps_64` over terms of total magnitude below `1.4`, in
+/// all `2e-15`; in `f32` the last sum's half ulp (at most `eps / 2`) and the correction
+/// term's (`r^2 |p| <= 0.31`: below `0.3 eps`), in all below `1.6 eps_32`, stated as `2
+/// eps_32` (`2.4e-7`). Outside `[0, 1]` (the samplers never pass such `u`) the reduction
+/// stays exact while `4 u < 2^(p - 1)`, so the bound holds there too; NaN gives NaN. Tested
+/// against libm below.
 #[inline(always)]
 pub(crate) fn sincos_2pi(u: F) -> (F, F) {
+    if WIDE {
+        let (s, c) = sincos_2pi_f64(u.to_f64());
+        (F::from_f64(s), F::from_f64(c))
+    } else {
+        let (s, c) = sincos_2pi_f32(u.to_f64() as f32);
+        (F::from_f64(s as f64), F::from_f64(c as f64))
+    }
+}
+
+/// `sin(r + q pi/2)`, `cos(r + q pi/2)` from `(sin r, cos r)` and `q = k mod 4`: `(s, c)`,
+/// `(c, -s)`, `(-s, -c)`, `(-c, s)`, by selects.
+#[inline(always)]
+fn quadrant<T: core::ops::Neg<Output = T> + Copy>(sr: T, cr: T, q: u32) -> (T, T) {
+    let odd = (q & 1) == 1;
+    let (s0, c0) = if odd { (cr, sr) } else { (sr, cr) };
+    let sin_neg = q >= 2;
+    let cos_neg = (q == 1) | (q == 2);
+    (
+        if sin_neg { -s0 } else { s0 },
+        if cos_neg { -c0 } else { c0 },
+    )
+}
+
+/// [`sincos_2pi`] in `f64` arithmetic.
+#[inline(always)]
+fn sincos_2pi_f64(u: f64) -> (f64, f64) {
     const SHIFT: f64 = 6_755_399_441_055_744.0; // 1.5 * 2^52
     const FRAC_PI_2: f64 = core::f64::consts::FRAC_PI_2;
     // 1 / n! for the odd (sin) and even (cos) powers.
@@ -818,7 +848,7 @@ pub(crate) fn sincos_2pi(u: F) -> (F, F) {
         1.0 / 20_922_789_888_000.0,
         -1.0 / 6_402_373_705_728_000.0,
     ];
-    let t = 4.0 * u.to_f64();
+    let t = 4.0 * u;
     let k = (t + SHIFT) - SHIFT;
     let r = (t - k) * FRAC_PI_2;
     let r2 = r * r;
@@ -833,15 +863,31 @@ pub(crate) fn sincos_2pi(u: F) -> (F, F) {
     }
     let cr = 1.0 + r2 * pc;
     // k mod 4 from the low bits of k's shifted form (k >= 0 here; any integer works).
-    let q = (k + SHIFT).to_bits() & 3;
-    let odd = (q & 1) == 1;
-    let (s0, c0) = if odd { (cr, sr) } else { (sr, cr) };
-    // sin(r + q pi/2): (s, c), (c, -s), (-s, -c), (-c, s).
-    let sin_neg = q >= 2;
-    let cos_neg = (q == 1) | (q == 2);
-    let s = if sin_neg { -s0 } else { s0 };
-    let c = if cos_neg { -c0 } else { c0 };
-    (F::from_f64(s), F::from_f64(c))
+    quadrant(sr, cr, ((k + SHIFT).to_bits() & 3) as u32)
+}
+
+/// [`sincos_2pi`] in `f32` arithmetic.
+#[inline(always)]
+fn sincos_2pi_f32(u: f32) -> (f32, f32) {
+    const SHIFT: f32 = 12_582_912.0; // 1.5 * 2^23
+    const FRAC_PI_2: f32 = core::f32::consts::FRAC_PI_2;
+    const S: [f32; 4] = [-1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362_880.0];
+    const C: [f32; 5] = [
+        -1.0 / 2.0,
+        1.0 / 24.0,
+        -1.0 / 720.0,
+        1.0 / 40_320.0,
+        -1.0 / 3_628_800.0,
+    ];
+    let t = 4.0 * u;
+    let k = (t + SHIFT) - SHIFT;
+    let r = (t - k) * FRAC_PI_2;
+    let r2 = r * r;
+    let ps = ((S[3] * r2 + S[2]) * r2 + S[1]) * r2 + S[0];
+    let sr = r + r * (r2 * ps);
+    let pc = (((C[4] * r2 + C[3]) * r2 + C[2]) * r2 + C[1]) * r2 + C[0];
+    let cr = 1.0 + r2 * pc;
+    quadrant(sr, cr, (k + SHIFT).to_bits() & 3)
 }
 
 /// `atan2(y, x)` for `y > 0` (an angle in `(0, pi)`), branch-free in `f64`: the lane form of
@@ -944,7 +990,13 @@ mod tests {
             us.extend([b, b + F::EPSILON, b - F::EPSILON / 2.0, b + 1e-3, b - 1e-3]);
         }
         us.extend([1.0 - F::EPSILON / 2.0, F::MIN_POSITIVE, 1e-30]);
-        let reference = 2e-15 + 2.0 * core::f64::consts::PI * f64::EPSILON + f64::EPSILON;
+        // The stated bound (`2e-15` in `f64`, `2 eps_32` in `f32`) and the reference's error.
+        let lane = if WIDE {
+            2e-15
+        } else {
+            2.0 * f32::EPSILON as f64
+        };
+        let reference = lane + 2.0 * core::f64::consts::PI * f64::EPSILON + f64::EPSILON;
         let mut worst = 0.0f64;
         for u in us {
             if !(0.0..=1.0).contains(&u) {
@@ -953,14 +1005,9 @@ mod tests {
             let phi = 2.0 * core::f64::consts::PI * u.to_f64();
             let (s, c) = sincos_2pi(u);
             for (got, want) in [(s, phi.sin()), (c, phi.cos())] {
-                let half_ulp = if WIDE {
-                    0.0
-                } else {
-                    f32::EPSILON as f64 / 2.0 * want.abs()
-                };
                 let err = (got.to_f64() - want).abs();
-                assert!(err <= reference + half_ulp, "u {u}: {got} vs {want}");
-                worst = worst.max(err - half_ulp);
+                assert!(err <= reference, "u {u}: {got} vs {want}");
+                worst = worst.max(err);
             }
         }
         println!("sincos_2pi worst absolute error {worst:e}");

@@ -37,7 +37,7 @@ use crate::math::{self as m, Real};
 /// sampler (NaN to `0`).
 ///
 /// Agreement: not bit for bit with the scalar sampler of the same precision (the lane's
-/// polynomial `sin`/`cos` of `2 pi u1`, absolute `2e-15` computed in `f64`, replace libm's of
+/// polynomial `sin`/`cos` of `2 pi u1`, absolute `2 eps_32` in `f32`, `2e-15` in `f64`, replace libm's of
 /// the rounded `phi`, and the cap height is not fused); against the `f64` scalar sampler on
 /// the same inputs, the angle between the samples pulled back to the unit-roughness space
 /// is within the bound `B` stated and derived in `tests/batch_bounds.rs`: `(9 kappa + 1) E`
@@ -161,7 +161,7 @@ impl<N: NdfSampling + StandardVisible> Kernel<5, 3> for VisibleSampler<N> {
 /// the scalar sampler (NaN to `0`); every output is a unit vector with `m_z > 0`.
 ///
 /// Agreement: not bit for bit with the scalar sampler of the same precision (the azimuth's
-/// `(cos, sin)` by the lane polynomial `sincos_2pi`, absolute `2e-15` computed in `f64`, in
+/// `(cos, sin)` by the lane polynomial `sincos_2pi`, absolute `2 eps_32` in `f32`, `2e-15` in `f64`, in
 /// place of libm's of the rounded `phi`); against the `f64` scalar sampler on the same
 /// inputs, the angle between the samples pulled back to the unit-roughness space is within
 /// `(S + 3) E + 9 kappa E + E` (`E` the precision's epsilon, `S = 8` in `f32`, `9` in `f64`,
