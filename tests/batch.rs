@@ -729,7 +729,9 @@ macro_rules! suite {
             /// with sides short against that distance (`H / L` from `0.03` to `0.2`: the
             /// 4-, 6-, 8- and 10-point tiers), where a row's nodes lie beyond the shared
             /// division's range (`q + reach^2 >= 1e25`): the scalar path divides per pair
-            /// there, the lanes flag them. Bit for bit with the scalar `d_rect`.
+            /// there, the lanes flag them (in `f32` the `f32` lanes flag them too: `h_z` below
+            /// `1e-6`, `1 + u_c^2 + v_c^2` at or beyond `1e30`). Bit for bit with the scalar
+            /// `d_rect`.
             #[test]
             fn rect_far_rows_bit_for_bit() {
                 let (mut x, mut y, mut z, mut hx, mut hy) =
@@ -781,9 +783,16 @@ macro_rules! suite {
                 }
             }
 
-            /// Over [`cols3`] (`3 N` elements, across the sort's units).
+            /// Over [`cols3`] (`3 N` elements, across the sort's units). `f64` only: in
+            /// `f32` the Gauss-Legendre elements take the `f32` lanes (`batch::rect_lane`),
+            /// checked against their bound in `tests/batch_bounds.rs`
+            /// (`d_rect_against_scalar_f64`), and the elements they flag by
+            /// `rect_far_rows_bit_for_bit` below.
             #[test]
             fn rect_bit_for_bit() {
+                if !WIDE {
+                    return;
+                }
                 let c = cols3(0x2EC7);
                 let mut out = vec![0.0 as $t; 3 * N];
                 let (mut short, mut long) = (0, 0);

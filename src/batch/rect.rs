@@ -5,49 +5,59 @@ use super::super::filter::rect::{CLOSED_INDEX, Tier};
 use super::super::footprint::Footprint;
 use super::super::kernel::{ClampRules, RectBounds};
 use super::super::ndf::roughness::AxisAligned;
-use super::lanes::{Body, atan2_upper_lane};
+use super::lanes::{Body, WIDE, atan2_upper_lane};
+use super::rect_lane;
 use super::{F, Footprints, Vec2, Vec3};
+use crate::math::Real;
 
 /// Elements sorted by class at a time: the lane loops' padding comes once per class and unit
-/// (units of 512 measured 20 % slower than 4096; 2048 as fast as 4096 in `f32` since the
-/// gather moves pairs, 1024 10 % slower in `f64`). `class` and `perm` (`u8`, `u16`) and the
-/// pairs `(h_x, h_y)` and `(half_x, half_y)` take `3 + 4 size_of::<F>()` bytes an element on
-/// the stack.
+/// (units of 512 measured 20 % slower than 4096; 2048 as fast as 4096 in `f32`, 1024 10 %
+/// slower in `f64`). `class` and `perm` (`u8`, `u16`) and the five columns take
+/// `3 + 5 size_of::<F>()` bytes an element on the stack, and the results `1 + size_of::<F>()`.
 const UNIT: usize = 2048;
-/// Elements a lane loop evaluates at a time (the gathered columns and results on the stack).
-const CHUNK: usize = 256;
-/// The multiple of elements a lane loop runs on (the widest vector, 16 `f32`; `CHUNK` is a
-/// multiple of it).
+/// The columns the lanes read: `(h_x, h_y, h_z, s_x, s_y)`, or the `f32` lanes' setup.
+const NCOL: usize = 5;
+/// The multiple of elements a lane loop runs on (the widest vector, 16 `f32`).
 const PAD: usize = 16;
 
 /// The exact box-filtered GGX [`rect::d_rect`] (KHPL16 eq. 16: the mean of the GGX slope
 /// density over the slope-domain rectangle `s(h_i) +/- (half_x[i], half_y[i])`, divided by
 /// `h_z^4`; per steradian) for each half vector `h_i` and half extent:
-/// `out[i] = d_rect(*r, h_i, (half_x[i], half_y[i]))`, bit for bit except for the four-edge
-/// closed form (below). The half extents are the kernel as given (no clamps: pass rectangles
-/// already through `ClampRules::rect` for the clamped route). Out of domain as
-/// [`rect::d_rect`] (`0` below the horizon and for NaN, never NaN). Returns the number of
-/// elements written. Allocates nothing (buffers on the stack: 44 KiB in `f32`, 82 KiB in
-/// `f64`).
+/// `out[i] = d_rect(*r, h_i, (half_x[i], half_y[i]))` within the bounds below. The half
+/// extents are the kernel as given (no clamps: pass rectangles already through
+/// `ClampRules::rect` for the clamped route). Out of domain as [`rect::d_rect`] (`0` below the
+/// horizon and for NaN, never NaN). Returns the number of elements written. Allocates nothing
+/// (buffers on the stack: 56 KiB in `f32`, 104 KiB in `f64`).
 ///
-/// Vectorised where the scalar case analysis integrates both axes by Gauss-Legendre rules
-/// (short sides against the distance to the integrand's poles: most pixel
-/// footprints) and where it takes the four-edge closed form (a long side, KHPL16 Appendix A
-/// rewritten as four `atan2`: about a quarter of realistic footprints): per unit of 2048
-/// elements, the elements of each pair of rules and those of the closed form are sorted
-/// together and evaluated by one vector loop each (the pairs of `f64`'s 8- and 10-point rules
-/// too). The far field, the 1D closed form and the special cases run the scalar path.
+/// Vectorised where the case analysis integrates both axes by Gauss-Legendre rules (short
+/// sides against the distance to the integrand's poles: most pixel footprints) and where it
+/// takes the four-edge closed form (a long side, KHPL16 Appendix A rewritten as four `atan2`):
+/// per unit of 2048 elements, the elements of each pair of rules and those of the closed form
+/// are sorted together and evaluated by one vector loop each. The far field, the 1D closed
+/// form and the special cases run the scalar path.
 ///
-/// **Agreement.** Gauss-Legendre elements (and all those of the scalar path): bit for bit.
-/// Four-edge elements: the lane evaluates the scalar path's formula (`edges_by`) with its
-/// four angles by a polynomial `atan2` (relative `3 eps_64`) in place of libm's (`2 eps_64`,
-/// with its division and sum); before the rounding to `F`,
-/// `|batch - scalar| <= 8 eps_64 M + 4 eps_64 |D|`, `M` the four edge terms' magnitudes
-/// `|u / S atan2(..)|` summed and scaled as their sum is into `D` (the form's cancellation:
-/// `M / D` up to `900` where the route takes the form, measured, so the bound is below about
-/// `2e-12` relative). In `f32` the two `f64` values round to the same `f32` or to neighbours
-/// (one ulp apart at most; measured: always the same); in `f64` measured within `7.5e-14`
-/// relative. Tested in `tests/batch_bounds.rs`.
+/// **Agreement.**
+/// - **`f32`, Gauss-Legendre elements** (both sides within `0.5` of their distance from the
+///   poles: 89 % of the benchmark's realistic elements): the `f32` lanes of
+///   `batch::rect_lane`, in `f32` arithmetic with two more tiers (8 and 10 points) than the
+///   scalar `f32` path; not bit for bit: within `78 u |D|` of the exact `D` (`u = 2^-24`,
+///   derived there; `4.6e-6` relative) plus the inputs' rounding (`u_c`, `v_c` to `4 u`, the
+///   half extents to `2 u`) times `D`'s sensitivity to them. Tested against the `f64` scalar
+///   path in `tests/batch_bounds.rs`: worst `0.12` of the bound, `11.4 u` relative, where the
+///   scalar `f32` path is within about `2 u`. The price of the speed: the `f64` lanes that
+///   matched the scalar path bit for bit ran at 13.9 ns an element, these at 8.5 (AVX-512,
+///   this crate's benchmark).
+/// - **`f64`, Gauss-Legendre elements** (and in both builds all those of the scalar path):
+///   bit for bit (the pairs of 2- to 10-point rules of the scalar case analysis).
+/// - **Four-edge elements**: the lane evaluates the scalar path's formula (`edges_by`) with
+///   its four angles by a polynomial `atan2` (relative `3 eps_64`) in place of libm's
+///   (`2 eps_64`, with its division and sum); before the rounding to `F`,
+///   `|batch - scalar| <= 8 eps_64 M + 4 eps_64 |D|`, `M` the four edge terms' magnitudes
+///   `|u / S atan2(..)|` summed and scaled as their sum is into `D` (the form's cancellation:
+///   `M / D` up to `900` where the route takes the form, measured, so the bound is below about
+///   `2e-12` relative). In `f32` the two `f64` values round to the same `f32` or to neighbours
+///   (one ulp apart at most; measured: always the same); in `f64` measured within `7.5e-14`
+///   relative. Tested in `tests/batch_bounds.rs`.
 #[inline]
 pub fn d_rect(
     r: &AxisAligned,
@@ -159,26 +169,34 @@ impl Extents for Clamped<'_> {
     }
 }
 
-/// The Gauss-Legendre tiers of the precision, in `filter::rect`'s `tier_index` order
-/// (`CLOSED_INDEX` of them: `Gl2`, `Gl4`, `Gl6`, and in `f64` `Gl8`, `Gl10`).
-const NT: usize = CLOSED_INDEX as usize;
+/// The Gauss-Legendre tiers with a vector loop: in `f64` the scalar path's (`filter::rect`'s
+/// `tier_index` order: `Gl2`, `Gl4`, `Gl6`, `Gl8`, `Gl10`, then `CLOSED_INDEX`), in `f32` the
+/// `f32` lanes' (`rect_lane`: 2 to 16 points, then the closed forms).
+const NT: usize = if WIDE {
+    CLOSED_INDEX as usize
+} else {
+    rect_lane::NT
+};
+/// The `f64` build's tiers (`NT` there).
+const NT64: usize = 5;
 
-/// The tier pairs with a vector loop, pair `(i, j)` at `NT i + j`: each its own loop with
-/// constant tiers (`NT^2` of them: 9 in `f32`, 25 in `f64`; the entries past them repeat
-/// `Gl6` and are never used).
-const PAIRS: [(Tier, Tier); 25] = {
+/// The `f64` build's tier pairs, pair `(i, j)` at `NT64 i + j`: each its own loop with
+/// constant tiers.
+const PAIRS: [(Tier, Tier); NT64 * NT64] = {
+    assert!(!WIDE || NT == NT64);
     let t = [Tier::Gl2, Tier::Gl4, Tier::Gl6, Tier::Gl8, Tier::Gl10];
-    let mut a = [(Tier::Gl6, Tier::Gl6); 25];
+    let mut a = [(Tier::Gl6, Tier::Gl6); NT64 * NT64];
     let mut k = 0;
-    while k < NT * NT {
-        a[k] = (t[k / NT], t[k % NT]);
+    while k < NT64 * NT64 {
+        a[k] = (t[k / NT64], t[k % NT64]);
         k += 1;
     }
     a
 };
 
-/// The class of the elements with a long side (a tier `Closed`): the closed-form lane.
-const CLOSED: u8 = (NT * NT) as u8;
+/// The class of the elements with a long side (a tier `Closed`): the closed-form lane (after
+/// the `NT^2` pairs in `f64`, the `NT (NT + 1) / 2` pairs `i <= j` in `f32`: `class_of32`).
+const CLOSED: u8 = if WIDE { NT * NT } else { NT * (NT + 1) / 2 } as u8;
 /// The number of classes.
 const NCLASS: usize = CLOSED as usize + 1;
 /// The parts of a unit in the counting sort (independent counters).
@@ -191,6 +209,20 @@ const Q: usize = 4;
 fn class_of((a, b): (u8, u8)) -> u8 {
     let closed = (a == CLOSED_INDEX) | (b == CLOSED_INDEX);
     if closed { CLOSED } else { NT as u8 * a + b }
+}
+
+/// The class of the pair `(i, j)`, `i <= j < NT`, in `f32`: the pairs numbered row by row,
+/// `(0, 0)` to `(0, NT - 1)`, then `(1, 1)`, and so on.
+#[inline(always)]
+const fn tri(i: u8, j: u8) -> u8 {
+    i * (2 * NT as u8 - 1 - i) / 2 + j
+}
+
+/// The class of an element from its `f32` lane tiers `(min, max)` (`rect_lane::Setup::tiers`):
+/// [`tri`], or [`CLOSED`]. Branch-free.
+#[inline(always)]
+fn class_of32((a, b): (u8, u8)) -> u8 {
+    if b == NT as u8 { CLOSED } else { tri(a, b) }
 }
 
 /// The box filter's loop: per unit of [`UNIT`] elements, each element's half extents (given,
@@ -227,34 +259,53 @@ impl<E: Extents> Body for RectLoop<'_, E> {
     fn go(self) {
         let Self { r, h, ext, out } = self;
         let n = out.len();
+        let consts = rect_lane::Consts::new(&r);
         let mut class = [0u8; UNIT];
-        let mut perm = [0u16; UNIT];
-        let mut pairs = [[[0.0 as F; 2]; UNIT]; 2];
-        let mut z = [0.0 as F; CHUNK];
-        let mut cpairs = [[[0.0 as F; 2]; CHUNK]; 2];
-        let mut vals = [0.0 as F; CHUNK];
-        let mut slow = [false; CHUNK];
+        // The offsets sorted by class, with `PAD` entries of slack: a class's lane loop runs
+        // over its elements rounded up to a multiple of `PAD` (the vector loop then leaves no
+        // remainder to a scalar loop of the lane, which took a sixth of the time), reading
+        // the next class's elements (or the slack's offset `0`) past its end; those results
+        // are never used.
+        let mut perm = [0u16; UNIT + PAD];
+        let mut cols = [[0.0 as F; UNIT]; NCOL];
+        let mut vals = [0.0 as F; UNIT + PAD];
+        let mut slow = [false; UNIT + PAD];
         let mut b = 0;
         while b < n {
             let e = n.min(b + UNIT);
             let len = e - b;
             let blk = h.map(|s| &s[b..e]);
             let ext = ext.range(b, e);
-            // The classes (the scalar case analysis' first step), in a vector loop; the
-            // half vectors' `(x, y)` and the half extents stored as pairs (gathered below
-            // with three moves an element instead of five: 9 % of the time).
+            // The classes (the scalar case analysis' first step) and what the lanes read, in a
+            // vector loop: in `f64` the inputs `(h, s)`, in `f32` the `f32` lanes' setup
+            // (`rect_lane::Setup::cols`), or the inputs for the closed form's lane.
             for (i, c) in class[..len].iter_mut().enumerate() {
                 let h = Vec3::new(blk[0][i], blk[1][i], blk[2][i]);
                 let s = ext.at(i);
-                *c = class_of(rect::RectSetup::new(r, h, s).tier_indices);
-                pairs[0][i] = [h.x, h.y];
-                pairs[1][i] = [s.x, s.y];
+                let inputs = [h.x, h.y, h.z, s.x, s.y];
+                let x = if WIDE {
+                    *c = class_of(rect::RectSetup::new(r, h, s).tier_indices);
+                    inputs
+                } else {
+                    let st = rect_lane::Setup::new(consts, h, s);
+                    *c = class_of32(st.tiers);
+                    if *c == CLOSED {
+                        inputs
+                    } else {
+                        st.cols().map(|x| F::from_f64(x.to_f64()))
+                    }
+                };
+                for (col, x) in cols.iter_mut().zip(x) {
+                    col[i] = x;
+                }
             }
-            // A counting sort of the unit's offsets by class: `perm[start[k]..start[k + 1]]`
-            // are the offsets of class `k`, in order. The unit in `Q` parts with their own
-            // counters, interleaved: consecutive elements of one class would otherwise chain
-            // every increment through memory (store-to-load forwarding, measured at a third of
-            // the loop's time). The counts per part by vectorised compares.
+            // A counting sort of the unit by class: `perm[start[k]..start[k + 1]]` are the
+            // offsets of class `k`, in order, and `sorted` the columns in that order. The
+            // unit in `Q` parts with their own counters, interleaved: consecutive elements of
+            // one class would otherwise chain every increment through memory
+            // (store-to-load forwarding, measured at a third of the loop's time). The counts
+            // per part by vectorised compares. The columns move here, with the offsets, rather
+            // than by a gather per class (measured: the gathers took 15 % of the time).
             let q = len.div_ceil(Q);
             let mut next = [[0u16; NCLASS]; Q];
             for (cnt, part) in next.iter_mut().zip(class[..len].chunks(q)) {
@@ -278,73 +329,73 @@ impl<E: Extents> Body for RectLoop<'_, E> {
                     let j = s * q + i;
                     if j < len {
                         let slot = &mut nx[class[j] as usize];
-                        perm[*slot as usize] = j as u16;
+                        let t = *slot as usize % UNIT;
+                        perm[t] = j as u16;
                         *slot += 1;
                     }
                 }
             }
-            // One vector loop per class, over chunks of its offsets: the chunk's elements
-            // gathered into contiguous columns, the lane `$lane` (of a `RectSetup`) over them,
-            // then the results scattered back, the flagged ones by the scalar path.
+            // One vector loop per class over its sorted columns: the lane `$lane` (`$x`: an
+            // element's columns) into `vals` and `slow`.
             macro_rules! pass {
-                ($k:expr, $lane:expr) => {
+                ($k:expr, |$x:ident| $lane:expr) => {
                     let (lo, hi) = (start[$k as usize] as usize, start[$k as usize + 1] as usize);
-                    for idx in perm[lo..hi].chunks(CHUNK) {
-                        let m = idx.len();
-                        for (j, &i) in idx.iter().enumerate() {
-                            let i = i as usize;
-                            z[j] = blk[2][i];
-                            cpairs[0][j] = pairs[0][i];
-                            cpairs[1][j] = pairs[1][i];
-                        }
-                        // The lane runs over `m` rounded up to a multiple of `PAD` (the
-                        // padding repeats the last element, its results unused): the vector
-                        // loop then leaves no remainder to a scalar loop of the lane (which
-                        // took a sixth of the time: ten classes a unit, each with up to a
-                        // vector's worth of elements left over).
-                        let padded = m.next_multiple_of(PAD).min(CHUNK);
-                        for j in m..padded {
-                            z[j] = z[m - 1];
-                            cpairs[0][j] = cpairs[0][m - 1];
-                            cpairs[1][j] = cpairs[1][m - 1];
-                        }
-                        let at = |j: usize| {
-                            let (p, q) = (cpairs[0][j], cpairs[1][j]);
-                            (Vec3::new(p[0], p[1], z[j]), Vec2::new(q[0], q[1]))
-                        };
-                        for j in 0..padded {
-                            let (h, s) = at(j);
-                            let (v, sl) = $lane(rect::RectSetup::new(r, h, s));
-                            vals[j] = v;
-                            slow[j] = sl;
-                        }
-                        for j in 0..m {
-                            out[b + idx[j] as usize] = if slow[j] {
-                                let (h, s) = at(j);
-                                rect::d_rect(r, h, s)
-                            } else {
-                                vals[j]
-                            };
-                        }
+                    let m = (hi - lo).next_multiple_of(PAD);
+                    // Slices of one length: the loop has no bounds checks.
+                    let p = &perm[lo..lo + m];
+                    let (vs, sls) = (&mut vals[lo..lo + m], &mut slow[lo..lo + m]);
+                    for j in 0..m {
+                        // Gathered in the lane loop (vector gathers with AVX2 and AVX-512).
+                        let i = p[j] as usize % UNIT;
+                        let $x = [cols[0][i], cols[1][i], cols[2][i], cols[3][i], cols[4][i]];
+                        let (v, sl) = $lane;
+                        vs[j] = v;
+                        sls[j] = sl;
                     }
                 };
             }
+            let split = |x: [F; NCOL]| (Vec3::new(x[0], x[1], x[2]), Vec2::new(x[3], x[4]));
             // The Gauss-Legendre pairs, each with its tiers as constants (a macro, not a loop
             // over `PAIRS`: a loop that is not unrolled would leave them variables, and the
             // case analysis in the lane would stop the vectoriser).
-            macro_rules! pairs {
+            macro_rules! pairs64 {
                 ($($k:literal)*) => {$(
-                    // A constant condition: the `f64` pairs are not compiled in `f32`.
-                    if $k < NT * NT {
-                        pass!($k, |st: rect::RectSetup| st.lane(PAIRS[$k].0, PAIRS[$k].1));
-                    }
+                    pass!($k, |x| {
+                        let (h, s) = split(x);
+                        rect::RectSetup::new(r, h, s).lane(PAIRS[$k].0, PAIRS[$k].1)
+                    });
                 )*};
             }
-            pairs!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24);
+            macro_rules! pairs32 {
+                ($($i:literal $j:literal),*) => {$(
+                    pass!(tri($i, $j), |x| {
+                        rect_lane::lane::<$i, $j>(consts, x.map(|v| v.to_f64() as f32))
+                    });
+                )*};
+            }
+            // Constant conditions: one build's pairs are not compiled in the other.
+            if WIDE {
+                pairs64!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24);
+            } else {
+                // The `f32` lanes: the pairs `(i, j)`, `i <= j` (`class_of32`), on the setup
+                // that the classification stored.
+                pairs32!(0 0, 0 1, 0 2, 0 3, 0 4, 1 1, 1 2, 1 3, 1 4, 2 2, 2 3, 2 4, 3 3, 3 4, 4 4);
+            }
             // The closed form's lane (a long side): the four-edge form with the polynomial
             // `atan2`; the elements it does not take (far field, 1D closed form) flagged.
-            pass!(CLOSED, |st: rect::RectSetup| st
-                .closed_lane(atan2_upper_lane));
+            pass!(CLOSED, |x| {
+                let (h, s) = split(x);
+                rect::RectSetup::new(r, h, s).closed_lane(atan2_upper_lane)
+            });
+            // The results back in input order, the flagged ones by the scalar path.
+            for (j, &i) in perm[..len].iter().enumerate() {
+                let i = i as usize;
+                out[b + i] = if slow[j] {
+                    rect::d_rect(r, Vec3::new(blk[0][i], blk[1][i], blk[2][i]), ext.at(i))
+                } else {
+                    vals[j]
+                };
+            }
             b = e;
         }
     }

@@ -118,7 +118,8 @@ mod lambda;
 mod printed;
 mod sample;
 pub(crate) use gauss::{
-    CLOSED_INDEX, GL2_X, GL4_W, GL4_X, GL6_W, GL6_X, Tier, WIDE, gl_of, rule, tier,
+    CLOSED_INDEX, GL2_X, GL4_W, GL4_X, GL6_W, GL6_X, GL8_W, GL8_X, GL10_W, GL10_X, Tier, WIDE,
+    gl_of, rule, tier,
 };
 use gauss::{tier_index, tier_of_index};
 pub use lambda::lambda_rect;
