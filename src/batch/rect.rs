@@ -278,22 +278,17 @@ impl<E: Extents> Body for RectLoop<'_, E> {
             let ext = ext.range(b, e);
             // The classes (the scalar case analysis' first step) and what the lanes read, in a
             // vector loop: in `f64` the inputs `(h, s)`, in `f32` the `f32` lanes' setup
-            // (`rect_lane::Setup::cols`), or the inputs for the closed form's lane.
+            // (`rect_lane::Setup::cols`).
             for (i, c) in class[..len].iter_mut().enumerate() {
                 let h = Vec3::new(blk[0][i], blk[1][i], blk[2][i]);
                 let s = ext.at(i);
-                let inputs = [h.x, h.y, h.z, s.x, s.y];
                 let x = if WIDE {
                     *c = class_of(rect::RectSetup::new(r, h, s).tier_indices);
-                    inputs
+                    [h.x, h.y, h.z, s.x, s.y]
                 } else {
                     let st = rect_lane::Setup::new(consts, h, s);
                     *c = class_of32(st.tiers);
-                    if *c == CLOSED {
-                        inputs
-                    } else {
-                        st.cols().map(|x| F::from_f64(x.to_f64()))
-                    }
+                    st.cols().map(|x| F::from_f64(x.to_f64()))
                 };
                 for (col, x) in cols.iter_mut().zip(x) {
                     col[i] = x;
@@ -355,6 +350,11 @@ impl<E: Extents> Body for RectLoop<'_, E> {
                 };
             }
             let split = |x: [F; NCOL]| (Vec3::new(x[0], x[1], x[2]), Vec2::new(x[3], x[4]));
+            // An element's inputs `(h, s)` by its offset in the unit.
+            let raw = |i: usize| {
+                let s = ext.at(i);
+                [blk[0][i], blk[1][i], blk[2][i], s.x, s.y]
+            };
             // The Gauss-Legendre pairs, each with its tiers as constants (a macro, not a loop
             // over `PAIRS`: a loop that is not unrolled would leave them variables, and the
             // case analysis in the lane would stop the vectoriser).
@@ -382,7 +382,18 @@ impl<E: Extents> Body for RectLoop<'_, E> {
                 pairs32!(0 0, 0 1, 0 2, 0 3, 0 4, 1 1, 1 2, 1 3, 1 4, 2 2, 2 3, 2 4, 3 3, 3 4, 4 4);
             }
             // The closed form's lane (a long side): the four-edge form with the polynomial
-            // `atan2`; the elements it does not take (far field, 1D closed form) flagged.
+            // `atan2`; the elements it does not take (far field, 1D closed form) flagged. In
+            // `f32` it reads the inputs, put in place of the setup here (a select in the
+            // classification kept that loop from vectorising with AVX2).
+            if !WIDE {
+                let (lo, hi) = (start[CLOSED as usize] as usize, start[NCLASS] as usize);
+                for &i in &perm[lo..hi] {
+                    let i = i as usize % UNIT;
+                    for (col, x) in cols.iter_mut().zip(raw(i)) {
+                        col[i] = x;
+                    }
+                }
+            }
             pass!(CLOSED, |x| {
                 let (h, s) = split(x);
                 rect::RectSetup::new(r, h, s).closed_lane(atan2_upper_lane)
@@ -391,7 +402,8 @@ impl<E: Extents> Body for RectLoop<'_, E> {
             for (j, &i) in perm[..len].iter().enumerate() {
                 let i = i as usize;
                 out[b + i] = if slow[j] {
-                    rect::d_rect(r, Vec3::new(blk[0][i], blk[1][i], blk[2][i]), ext.at(i))
+                    let (h, s) = split(raw(i));
+                    rect::d_rect(r, h, s)
                 } else {
                     vals[j]
                 };
