@@ -45,8 +45,9 @@ const PAD: usize = 16;
 ///   half extents to `2 u`) times `D`'s sensitivity to them. Tested against the `f64` scalar
 ///   path in `tests/batch_bounds.rs`: worst `0.12` of the bound, `11.4 u` relative, where the
 ///   scalar `f32` path is within about `2 u`. The price of the speed: the `f64` lanes that
-///   matched the scalar path bit for bit ran at 13.9 ns an element, these at 8.5 (AVX-512,
-///   this crate's benchmark).
+///   matched the scalar path bit for bit ran at 13.4 to 14.0 ns an element, these at 8.5 to
+///   9.7 (the benchmark's elements, AVX-512, the two builds alternating; AVX2 18 -> 14 ns,
+///   SSE2 29 -> 21 ns).
 /// - **`f64`, Gauss-Legendre elements** (and in both builds all those of the scalar path):
 ///   bit for bit (the pairs of 2- to 10-point rules of the scalar case analysis).
 /// - **Four-edge elements**: the lane evaluates the scalar path's formula (`edges_by`) with
