@@ -21,7 +21,10 @@
 //!   (the two `f64` values round apart at most once), `A = 3` the polynomial `atan2`'s bound
 //!   (`lanes.rs`), `2` libm's `atan` with its division and sum, `M` the four-edge terms'
 //!   magnitude scaled as their sum (`common/rect_edges.rs`; `filter::rect::edges_by`'s docs
-//!   derive the other roundings); so bit for bit off the closed form.
+//!   derive the other roundings); so bit for bit off the closed form, except in `f32` on the
+//!   elements of the `f32` lanes (`batch::rect_lane`: both sides within half their distance
+//!   from the poles), which are checked against the `f64` scalar path within their derived
+//!   bound instead ([`lane_bound`]).
 //! - The deferred presets (`deferred_filter`): bit for bit with the scalar path of the batch
 //!   precision for `exponent = 1` (`tests/batch.rs`), so against `f64` the scalar `f32`
 //!   path's error, derived step by step (in `eps` of the batch precision, relative): the

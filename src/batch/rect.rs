@@ -172,7 +172,7 @@ impl Extents for Clamped<'_> {
 
 /// The Gauss-Legendre tiers with a vector loop: in `f64` the scalar path's (`filter::rect`'s
 /// `tier_index` order: `Gl2`, `Gl4`, `Gl6`, `Gl8`, `Gl10`, then `CLOSED_INDEX`), in `f32` the
-/// `f32` lanes' (`rect_lane`: 2 to 16 points, then the closed forms).
+/// `f32` lanes' (`rect_lane`: 2 to 10 points, then the closed forms).
 const NT: usize = if WIDE {
     CLOSED_INDEX as usize
 } else {
@@ -228,12 +228,12 @@ fn class_of32((a, b): (u8, u8)) -> u8 {
 
 /// The box filter's loop: per unit of [`UNIT`] elements, each element's half extents (given,
 /// or from its footprint by the rules: [`Extents`]) and class (its tier pair or the closed
-/// form: the scalar case analysis' first step), in one vector loop that also stores the
-/// element's `(h_x, h_y)` and half extents as pairs; a counting sort of the unit by class;
-/// then per class chunks of its elements gathered (`h_z` and the two pairs) into contiguous
-/// columns and evaluated by one vector loop whose tiers are constants (or the closed-form
-/// lane); the rest (and every flagged element) by [`rect::d_rect`]. Buffers on the stack:
-/// allocates nothing.
+/// form: the case analysis' first step), in one vector loop that also stores the columns the
+/// lanes read (the inputs in `f64`, the `f32` lanes' setup in `f32`); a counting sort of the
+/// unit's offsets by class; then per class one vector loop whose tiers are constants (or the
+/// closed-form lane), gathering its elements' columns by their offsets; the results back in
+/// input order, every flagged element by [`rect::d_rect`]. Buffers on the stack: allocates
+/// nothing.
 struct RectLoop<'a, E> {
     r: AxisAligned,
     /// The half vectors' columns.
@@ -295,13 +295,13 @@ impl<E: Extents> Body for RectLoop<'_, E> {
                     col[i] = x;
                 }
             }
-            // A counting sort of the unit by class: `perm[start[k]..start[k + 1]]` are the
-            // offsets of class `k`, in order, and `sorted` the columns in that order. The
-            // unit in `Q` parts with their own counters, interleaved: consecutive elements of
-            // one class would otherwise chain every increment through memory
-            // (store-to-load forwarding, measured at a third of the loop's time). The counts
-            // per part by vectorised compares. The columns move here, with the offsets, rather
-            // than by a gather per class (measured: the gathers took 15 % of the time).
+            // A counting sort of the unit's offsets by class: `perm[start[k]..start[k + 1]]`
+            // are the offsets of class `k`, in order. The unit in `Q` parts with their own
+            // counters, interleaved: consecutive elements of one class would otherwise chain
+            // every increment through memory (store-to-load forwarding, measured at a third of
+            // the loop's time). The counts per part by vectorised compares. Only the offsets
+            // move (moving the five columns here took 22 % of the time; the lanes gather them,
+            // which measured faster than gathering each class into a buffer first).
             let q = len.div_ceil(Q);
             let mut next = [[0u16; NCLASS]; Q];
             for (cnt, part) in next.iter_mut().zip(class[..len].chunks(q)) {
@@ -331,7 +331,7 @@ impl<E: Extents> Body for RectLoop<'_, E> {
                     }
                 }
             }
-            // One vector loop per class over its sorted columns: the lane `$lane` (`$x`: an
+            // One vector loop per class over its sorted offsets: the lane `$lane` (`$x`: an
             // element's columns) into `vals` and `slow`.
             macro_rules! pass {
                 ($k:expr, |$x:ident| $lane:expr) => {

@@ -92,7 +92,7 @@ pub(crate) const NT: usize = 5;
 /// The most symmetric node pairs of a lane rule (10 points).
 const MAXP: usize = 5;
 /// The most node pairs that share a division: their product `prod (t_0 t_1 sigma^2)^2` within
-/// `[1e-4^8, 81^8]`, normal in `f32` (module docs, scaling).
+/// `[1e-4^8, 33^8]` (`t sigma` in `[0.1, 2.4]`), normal in `f32` (module docs, scaling).
 const PER_DIVISION: usize = 8;
 
 /// The rules by tier, `f64`: nodes (positive halves) and halved weights (unused entries `0`).
