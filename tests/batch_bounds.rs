@@ -890,7 +890,9 @@ macro_rules! suite {
                 println!("D: worst GGX {:.3}, Beckmann {:.3} of the bound", worst[0], worst[1]);
             }
 
-            /// Filtered Beckmann (`batch::beckmann_d_filtered`) against `f64`, on footprints
+            /// Filtered Beckmann (`batch::beckmann_d_filtered`) and TK19 GGX
+            /// (`batch::ggx_d_filtered`, the same first lane's matrix, `x` and `n`; its bound
+            /// in the loop) against `f64`, on footprints
             /// from a twentieth of the lobe to twenty lobe widths, smooth lobes included
             /// (`alpha = 0.01`: elongated filtered lobes whose correlation leaves the `f32`
             /// lane's domain, `rho^2 > 3/4`, for the second, counted). Each element is the
@@ -916,6 +918,7 @@ macro_rules! suite {
                 let mut rng = Rng(0xF1D);
                 let (mut worst, mut correlated, mut total, mut first) =
                     (0.0f64, 0usize, 0usize, 0usize);
+                let (mut worst_ggx, mut first_ggx) = (0.0f64, 0usize);
                 for (k, alpha) in [0.01, 0.05, 0.3].into_iter().enumerate() {
                     let m = Cols::new(&micronormals(N, 0xF0 + k as u64, 3.0 * alpha));
                     let mut fp = [vec![0.0 as $t; N], vec![0.0; N], vec![0.0; N], vec![0.0; N]];
@@ -947,6 +950,8 @@ macro_rules! suite {
                     ] {
                         let mut out = vec![0.0 as $t; N];
                         batch::beckmann_d_filtered(&r, &rules, 0.5, &m.x, &m.y, &m.z, soa, &mut out);
+                        let mut out_ggx = vec![0.0 as $t; N];
+                        batch::ggx_d_filtered(&r, &rules, 0.5, &m.x, &m.y, &m.z, soa, &mut out_ggx);
                         for i in 0..N {
                             let f = Footprint::from_slope_derivatives(
                                 Vec2::new(fp[0][i], fp[1][i]),
@@ -978,6 +983,38 @@ macro_rules! suite {
                                 2.5e-7
                                     + (x * (15.35 + 26.0 * k) + 8.5 + 13.0 * k) * EPS
                             };
+                            // TK19 GGX: its first lane in `f32` the same narrow matrix and
+                            // narrow `x`, `n`, then `D = n / (pi (1 + x)^2)`: `x`'s relative
+                            // error enters `D` times `2 x / (1 + x)` (instead of Beckmann's
+                            // `x`), `n`'s once, the sum, square, `1 / pi` (rounded), product and
+                            // division `6 u = 3 eps`: `(2 x / (1 + x)) (15.35 + 26 k) + 11 +
+                            // 13 k` eps. Else the second lane's (the scalar route's matrix,
+                            // bit for bit): the scalar `f32` GGX `D`'s `8 eps` against the `f64`
+                            // `D` of that matrix.
+                            let got_ggx = out_ggx[i] as f64;
+                            let want_ggx = d::Ggx::new(a64).d(w);
+                            let tol_ggx = if WIDE {
+                                8.0 * EPS
+                            } else {
+                                (2.0 * x / (1.0 + x) * (15.35 + 26.0 * k) + 11.0 + 13.0 * k) * EPS
+                            };
+                            let err_ggx = (got_ggx - want_ggx).abs();
+                            assert!(got_ggx >= 0.0, "ggx [{i}]: {got_ggx}");
+                            if want_ggx < MIN && err_ggx <= MIN {
+                                first_ggx += 1;
+                            } else if err_ggx <= tol_ggx * want_ggx {
+                                first_ggx += 1;
+                                worst_ggx = worst_ggx.max(err_ggx / want_ggx / tol_ggx);
+                            } else {
+                                let m64 = d::RoughnessMatrix::new(a11, a12, a22).unwrap();
+                                let w64 = d::Ggx::new(m64).d(w);
+                                assert!(
+                                    (got_ggx - w64).abs() <= 8.0 * EPS * w64
+                                        || (w64 < MIN && (got_ggx - w64).abs() <= MIN),
+                                    "filtered ggx, alpha {alpha} [{i}]: {got_ggx} vs f64 \
+                                     {want_ggx} (x {x}, k {k}), scalar route's f64 {w64}"
+                                );
+                            }
                             let lane_ok = if want < MIN {
                                 (got - want).abs() <= MIN
                             } else {
@@ -1004,9 +1041,14 @@ macro_rules! suite {
                 assert!(total > 4 * N, "{total}");
                 assert!(correlated > total / 100, "{correlated} of {total} correlated");
                 assert!(first > total * 9 / 10, "{first} of {total} within the first bound");
+                assert!(
+                    first_ggx > total * 9 / 10,
+                    "{first_ggx} of {total} GGX within the first bound"
+                );
                 println!(
                     "filtered D: {first} of {total} within the first lane's bound, worst \
-                     {worst:.3} of it; {correlated} correlated"
+                     {worst:.3} of it; {correlated} correlated; GGX {first_ggx}, worst \
+                     {worst_ggx:.3}"
                 );
             }
 
