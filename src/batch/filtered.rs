@@ -132,18 +132,43 @@ impl<R: Roughness> Kernel<7, 1> for FilteredProjected<R> {
 /// An NDF of a filtered matrix, as the Gaussian-filtered lanes evaluate it.
 trait FilteredNdf: LaneD + Ndf + Sized {
     /// Whether the first tier in `f32` is the narrow lane (the filtered matrix in `f32`
-    /// arithmetic, `Narrow::entries`, within a stated error of the
-    /// scalar route's instead of bit for bit), for an NDF whose lane `D` has the matching
-    /// bound (`Beckmann`); else the scalar route's matrix.
+    /// arithmetic, `Narrow::entries`, then the exponent and norm in `f32`,
+    /// `RoughnessMatrix::exponent_and_norm_narrow`), within a stated error of the scalar
+    /// route's instead of bit for bit, for an NDF whose [`FilteredNdf::d_narrow`] has the
+    /// matching bound; else the scalar route's matrix.
     const NARROW: bool = false;
     /// The NDF of `A'` (`Ggx::new`, `Beckmann::new`).
     fn of(a: RoughnessMatrix) -> Self;
+    /// The narrow lane's `D` from the exponent `x = m^T A^-1 m / m_z^2` (`x >= 0`, not NaN
+    /// where the narrow flags hold) and the factor `k = 1 / (pi sqrt(det A) m_z^4)`: `(D, ok)`,
+    /// `ok` where `D` is within its stated bound (module table). Used where
+    /// [`FilteredNdf::NARROW`] only.
+    fn d_narrow(x: F, k: F) -> (F, bool);
     /// `D(m)` of the matrix with entries `e` where the determinant clamp `tau` is inactive, in
-    /// the first tier: `(D, flagged)`. By default the scalar path's matrix and the NDF's lane
-    /// `D` (bit for bit where not flagged).
+    /// the first tier: `(D, flagged)`. In `f32` for a [`FilteredNdf::NARROW`] NDF the narrow
+    /// exponent and norm (its flags: a correlation `rho^2 > 3/4`, a determinant near `tau`, a
+    /// step near the range limits) and [`FilteredNdf::d_narrow`]: the whole lane at the full
+    /// `f32` width. Otherwise the scalar path's matrix and the NDF's lane `D` (bit for bit where
+    /// not flagged).
     #[inline(always)]
     fn d_entries_lane(e: (F, F, F), tau: f64, m: Vec3) -> (F, bool) {
-        d_entries_exact::<Self>(e, tau, m)
+        if WIDE || !Self::NARROW {
+            return d_entries_exact::<Self>(e, tau, m);
+        }
+        let (x, n, matrix_ok, eval_ok) = RoughnessMatrix::exponent_and_norm_narrow(
+            e.0,
+            e.1,
+            e.2,
+            tau,
+            Vec2::new(m.x, m.y),
+            m.z * m.z,
+        );
+        let (v, ok) = Self::d_narrow(x, n * (1.0 / PI));
+        let live = m.z > 0.0;
+        (
+            if live { v } else { 0.0 },
+            !matrix_ok | (live & !(eval_ok & ok)),
+        )
     }
 }
 
@@ -163,31 +188,12 @@ impl FilteredNdf for Ggx<RoughnessMatrix> {
     fn of(a: RoughnessMatrix) -> Self {
         Ggx::new(a)
     }
-    /// In `f32` Beckmann's exponent and norm in `f32` (`x = m^T A^-1 m / m_z^2`,
-    /// `n = 1 / (sqrt(det A) m_z^4)`: `RoughnessMatrix::exponent_and_norm_narrow`, its flags),
-    /// then `D = n / (pi (1 + x)^2)`; a result off `[F::MIN_POSITIVE, F::MAX]` flagged. In
-    /// `f64` the default.
+    /// `D = k / (1 + x)^2`; a result off `[F::MIN_POSITIVE, F::MAX]` flagged.
     #[inline(always)]
-    fn d_entries_lane(e: (F, F, F), tau: f64, m: Vec3) -> (F, bool) {
-        if WIDE {
-            return d_entries_exact::<Self>(e, tau, m);
-        }
-        let (x, n, matrix_ok, eval_ok) = RoughnessMatrix::exponent_and_norm_narrow(
-            e.0,
-            e.1,
-            e.2,
-            tau,
-            Vec2::new(m.x, m.y),
-            m.z * m.z,
-        );
+    fn d_narrow(x: F, k: F) -> (F, bool) {
         let q = 1.0 + x;
-        let v = n * (1.0 / PI) / (q * q);
-        let range_ok = (F::MIN_POSITIVE..=F::MAX).contains(&v);
-        let live = m.z > 0.0;
-        (
-            if live { v } else { 0.0 },
-            !matrix_ok | (live & !(eval_ok & range_ok)),
-        )
+        let v = k / (q * q);
+        (v, (F::MIN_POSITIVE..=F::MAX).contains(&v))
     }
 }
 
@@ -197,33 +203,13 @@ impl FilteredNdf for Beckmann<RoughnessMatrix> {
     fn of(a: RoughnessMatrix) -> Self {
         Beckmann::new(a)
     }
-    /// In `f32` the exponent and norm in `f32` (`RoughnessMatrix::exponent_and_norm_narrow`,
-    /// its flags: a correlation `rho^2 > 3/4`, a determinant near `tau`, a step near the range
-    /// limits), then the exponential of the `D` lane: the whole lane at the full `f32` width.
-    /// In `f64` the default.
+    /// `D = k exp(-x)` by the `D` lane's exponential; where the narrow flags hold, `x >= 0` is
+    /// not NaN (`num >= 0`, `0 < t <= 2^100`): only the factor's range is `exp_neg_times`' to
+    /// check.
     #[inline(always)]
-    fn d_entries_lane(e: (F, F, F), tau: f64, m: Vec3) -> (F, bool) {
-        if WIDE {
-            return d_entries_exact::<Self>(e, tau, m);
-        }
-        let (x, n, matrix_ok, eval_ok) = RoughnessMatrix::exponent_and_norm_narrow(
-            e.0,
-            e.1,
-            e.2,
-            tau,
-            Vec2::new(m.x, m.y),
-            m.z * m.z,
-        );
-        // Where both flags hold, `x >= 0` is not NaN (`num >= 0`, `0 < t <= 2^100`): only the
-        // factor's range is `exp_neg_times`' to check.
-        let k = n * (1.0 / PI);
+    fn d_narrow(x: F, k: F) -> (F, bool) {
         let (v, _) = exp_neg_times(x, k);
-        let exp_ok = k <= K_MAX;
-        let live = m.z > 0.0;
-        (
-            if live { v } else { 0.0 },
-            !matrix_ok | (live & !(eval_ok & exp_ok)),
-        )
+        (v, k <= K_MAX)
     }
 }
 
