@@ -4,11 +4,14 @@
 //! several rule sets with footprints that trigger each clamp, the common-prefix rule for
 //! mismatched lengths, and NaN-free output.
 //!
-//! - GGX (`D`, `Lambda`, `G2`, TK19 filtered `D`) and the box filter's Gauss-Legendre
-//!   elements: **bit for bit** (`to_bits`). Their lanes evaluate the scalar path's own formula
-//!   with its checks as selects; a difference (e.g. a reassociation) is a bug. The box
-//!   filter's closed-form elements (a long side) differ by the polynomial `atan2`:
-//!   `tests/batch_bounds.rs`.
+//! - GGX (`D`, `Lambda`, `G2`; TK19 filtered `D` in `f64`) and the box filter's
+//!   Gauss-Legendre elements in `f64`: **bit for bit** (`to_bits`). Their lanes evaluate the
+//!   scalar path's own formula with its checks as selects; a difference (e.g. a
+//!   reassociation) is a bug. The box filter's closed-form elements (a long side) differ by
+//!   the polynomial `atan2`, and in `f32` its Gauss-Legendre elements run in `f32` lanes:
+//!   both checked against their bounds in `tests/batch_bounds.rs`. TK19 filtered `D` in `f32`:
+//!   bit for bit with the scalar route where its second lane takes the element, else within
+//!   the narrow lane's bound of the `f64` pipeline (`filtered_ggx_close`).
 //! - Beckmann `D` (unfiltered and filtered): the lane evaluates the scalar path's exponent
 //!   `x` and factor `k = n / pi` bit for bit and replaces libm's `exp(-x) k` by the polynomial
 //!   exponential `exp_neg_times` (relative `E = 2.5e-7` in `f32`, `1.5e-14` in `f64`, plus one
