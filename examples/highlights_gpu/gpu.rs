@@ -50,7 +50,12 @@ impl Gpu {
             required_limits: adapter.limits(),
             ..Default::default()
         }))
-        .map_err(|e| format!("{info:?}: request_device failed: {e}"))?;
+        .map_err(|e| {
+            format!(
+                "{info:?}: request_device failed: {e}{}",
+                filtered_ndf_gpu::harness::device_failure_hint(&info)
+            )
+        })?;
         Ok(Self {
             device,
             queue,

@@ -14,6 +14,7 @@ use crate::plot::{PALETTE, Series, line_plot};
 use crate::render::{self, FootprintRoute};
 use crate::scene::Scene;
 use crate::{Options, parallel};
+use rayon::prelude::*;
 use std::fmt::Write as _;
 
 /// Resolution divisor and reference sample divisor of the temporal frames: the CPU demo's
@@ -162,71 +163,81 @@ pub fn still(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Still, S
         let name = format!("reference-{}.png", family.name().to_lowercase());
         save(&img.to_rgb8(o.exposure), &o.out.join(name)).map_err(|e| e.to_string())?;
     }
+    // Each route's CPU frames, metrics and images are independent: computed in parallel
+    // (at 1280x800 the loop took minutes on one core: FLIP and the PNG encoders are serial),
+    // then laid out in the routes' order.
+    let per_route: Vec<(Row, Rgb8, Option<Rgb8>)> = frames
+        .par_iter()
+        .zip(times)
+        .map(|((route, img), time)| -> Result<_, String> {
+            let m = cpu_method(*route);
+            let full = reference.full(m.family());
+            let cpu_rays = render::shade(&scene, &gb, &rays, m);
+            let cpu_quad_frame = render::shade_frame(&scene, &gb, &quad, m);
+            let cpu_quad = &cpu_quad_frame.total;
+            let specular = Image::new(
+                w,
+                h,
+                img.data
+                    .iter()
+                    .zip(&cpu_quad_frame.total.data)
+                    .zip(&cpu_quad_frame.specular.data)
+                    .map(|((&g, &t), &sp)| (g - (t - sp)).max(glam::Vec3::ZERO))
+                    .collect(),
+            );
+            let (scores, flip_map) = metrics::score(
+                (img, &specular),
+                (full, reference.specular(m.family())),
+                o.exposure,
+            );
+            save(
+                &flip_map.to_rgb8(),
+                &o.out.join(format!("flip-{}.png", slug(*route))),
+            )
+            .map_err(|e| e.to_string())?;
+            let row = Row {
+                route: *route,
+                gpu_rmse: img.rmse(full),
+                gpu_mean: img.mean_luminance() / full.mean_luminance(),
+                gpu_peak: img.peak() as f64 / full.peak() as f64,
+                cpu_rays_rmse: cpu_rays.rmse(full),
+                cpu_quad_rmse: cpu_quad.rmse(full),
+                cpu_rays_mean: cpu_rays.mean_luminance() / full.mean_luminance(),
+                cpu_rays_peak: cpu_rays.peak() as f64 / full.peak() as f64,
+                gpu_vs_cpu_quad: img.rmse(cpu_quad),
+                same_quads: img.rmse_where(cpu_quad, &interior)
+                    / cpu_quad.rmse_where(full, &interior).max(1e-30),
+                time,
+                scores,
+            };
+            let rgb = img.to_rgb8(o.exposure);
+            save(&rgb, &o.out.join(format!("{}.png", slug(*route)))).map_err(|e| e.to_string())?;
+            let shown = [
+                Route::Forward(Method::Unfiltered(Family::Ggx)),
+                Route::Forward(Method::Tk19Projected),
+                Route::Deferred(Some(2)),
+            ];
+            let rays = shown.contains(route).then(|| cpu_rays.to_rgb8(o.exposure));
+            Ok((row, rgb, rays))
+        })
+        .collect::<Result<_, String>>()?;
     let mut side_by_side = Vec::new();
-    for ((route, img), time) in frames.iter().zip(times) {
-        let m = cpu_method(*route);
-        let full = reference.full(m.family());
-        let cpu_rays = render::shade(&scene, &gb, &rays, m);
-        let cpu_quad_frame = render::shade_frame(&scene, &gb, &quad, m);
-        let cpu_quad = &cpu_quad_frame.total;
-        let specular = Image::new(
-            w,
-            h,
-            img.data
-                .iter()
-                .zip(&cpu_quad_frame.total.data)
-                .zip(&cpu_quad_frame.specular.data)
-                .map(|((&g, &t), &sp)| (g - (t - sp)).max(glam::Vec3::ZERO))
-                .collect(),
-        );
-        let (scores, flip_map) = metrics::score(
-            (img, &specular),
-            (full, reference.specular(m.family())),
-            o.exposure,
-        );
-        save(
-            &flip_map.to_rgb8(),
-            &o.out.join(format!("flip-{}.png", slug(*route))),
-        )
-        .map_err(|e| e.to_string())?;
-        rows.push(Row {
-            route: *route,
-            gpu_rmse: img.rmse(full),
-            gpu_mean: img.mean_luminance() / full.mean_luminance(),
-            gpu_peak: img.peak() as f64 / full.peak() as f64,
-            cpu_rays_rmse: cpu_rays.rmse(full),
-            cpu_quad_rmse: cpu_quad.rmse(full),
-            cpu_rays_mean: cpu_rays.mean_luminance() / full.mean_luminance(),
-            cpu_rays_peak: cpu_rays.peak() as f64 / full.peak() as f64,
-            gpu_vs_cpu_quad: img.rmse(cpu_quad),
-            same_quads: img.rmse_where(cpu_quad, &interior)
-                / cpu_quad.rmse_where(full, &interior).max(1e-30),
-            time,
-            scores,
-        });
-        let rgb = img.to_rgb8(o.exposure);
-        save(&rgb, &o.out.join(format!("{}.png", slug(*route)))).map_err(|e| e.to_string())?;
-        let prefix = match route {
+    for (row, rgb, rays) in per_route {
+        let m = cpu_method(row.route);
+        let prefix = match row.route {
             Route::Forward(_) => "GPU fwd",
             Route::Deferred(_) => "GPU def",
         };
         tiles.push((format!("{prefix}: {}", m.label()), rgb.clone()));
-        let shown = [
-            Route::Forward(Method::Unfiltered(Family::Ggx)),
-            Route::Forward(Method::Tk19Projected),
-            Route::Deferred(Some(2)),
-        ];
-        if shown.contains(route) {
+        if let Some(rays) = rays {
             side_by_side.push((
                 format!("CPU reference, GGX ({} spp)", o.spp),
-                full.to_rgb8(o.exposure),
+                reference.full(m.family()).to_rgb8(o.exposure),
             ));
-            side_by_side.push((
-                format!("CPU rays: {}", m.label()),
-                cpu_rays.to_rgb8(o.exposure),
-            ));
+            side_by_side.push((format!("CPU rays: {}", m.label()), rays));
             side_by_side.push((format!("{prefix}: {}", m.label()), rgb));
         }
+        rows.push(row);
     }
     let zoom = if o.width <= 160 { 2 } else { 1 };
     let sheet = contact_sheet(&tiles, 5, zoom);

@@ -137,13 +137,33 @@ fn open(choice: Choice) -> Result<Gpu, String> {
         required_limits: adapter.limits(),
         ..Default::default()
     }))
-    .map_err(|e| format!("{info:?}: request_device failed: {e}"))?;
+    .map_err(|e| {
+        format!(
+            "{info:?}: request_device failed: {e}{}",
+            device_failure_hint(&info)
+        )
+    })?;
     Ok(Gpu {
         device,
         queue,
         info,
         lock: Mutex::new(()),
     })
+}
+
+/// What a failed `request_device` most likely means, for its error message (empty where
+/// nothing is known). wgpu 30's GL backend asks EGL for a desktop OpenGL 3.3 context wherever
+/// EGL offers desktop OpenGL. Mesa's llvmpipe then gives its newest version (4.5), but
+/// NVIDIA's driver (580, on an H200) gave 3.3 exactly, without compute shaders (OpenGL 4.3),
+/// and `request_device` failed with "Parent device is lost".
+pub fn device_failure_hint(info: &wgpu::AdapterInfo) -> &'static str {
+    if info.backend == wgpu::Backend::Gl && info.driver_info.starts_with("3.") {
+        "; this is a desktop OpenGL 3.x context (wgpu's GL backend asks EGL for OpenGL 3.3, and \
+         this driver gave 3.3 exactly): compute shaders need OpenGL 4.3; use \
+         FILTERED_NDF_GPU_BACKEND=vulkan on this machine"
+    } else {
+        ""
+    }
 }
 
 /// The process-wide GPU of the backend chosen by [`BACKEND_VAR`] (opened on first use).

@@ -150,12 +150,21 @@ fn mean_1d(i: vec4<f32>, c2: f32) -> f32 {
     let x01 = x0 * x1;
     let d = atan2_upper(c * dx, c2 + x01);
     let inv = 1.0 / (2.0 * c * c2 * dx);
-    let p2 = 2.0 * r02 * r12;
     if x0 <= 0.0 {
-        // Divided in two steps: `c2 p2` overflows f32 for coordinates beyond ~1e6.
-        return d * inv + (c2 - x01) / p2 / c2;
+        // `(c2 - x0 x1) / (2 c2 r0^2 r1^2)` as the product of three factors in (0, 1]:
+        // `q = (c2 - x0 x1) / (r0 r1)` (Cauchy-Schwarz, as `x0 <= 0 <= x1`), `s = 1 / (r0 r1)`
+        // and `0.5 / c2`. However a compiler groups it, no partial product is below the term,
+        // so none is subnormal unless the term is; `min` keeps `q` from being regrouped. As
+        // `(c2 - x01) / p2 / c2` it lost the term on NVIDIA's Vulkan driver (H200, driver
+        // 580): its compiler merges the two divisions into one by `c2 p2`, beyond `2^126`
+        // for coordinates beyond about `1e6`, whose reciprocal flushes to 0 (`p22_rect` 15 %
+        // low in the far tail; WGSL lets a driver flush subnormals).
+        let s = inverseSqrt(r02) * inverseSqrt(r12);
+        let q = min((c2 - x01) * s, 1.0);
+        return d * inv + q * s * (0.5 / c2);
     }
     let rr = sqrt(r02) * sqrt(r12);
+    let p2 = 2.0 * r02 * r12;
     return delta_minus_sin(d, c * dx / rr) * inv + (1.0 + (x0 * x0 + x1 * x1 + c2) / (rr + x01)) / p2;
 }
 

@@ -2626,13 +2626,15 @@ float filter_rect_mean_1d(float4 i_7, float c2_)
     float x01_ = (x0_ * x1_1);
     const float _e27 = filter_rect_atan2_upper((c_21 * dx), (c2_ + x01_));
     float inv_2 = (1.0 / (((2.0 * c_21) * c2_) * dx));
-    float p2_1 = ((2.0 * r02_) * r12_);
     if ((x0_ <= 0.0)) {
-        return ((_e27 * inv_2) + (((c2_ - x01_) / p2_1) / c2_));
+        float s_28 = (rsqrt(r02_) * rsqrt(r12_));
+        float q_7 = min(((c2_ - x01_) * s_28), 1.0);
+        return ((_e27 * inv_2) + ((q_7 * s_28) * (0.5 / c2_)));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
-    const float _e49 = filter_rect_delta_minus_sin(_e27, ((c_21 * dx) / rr));
-    return ((_e49 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1));
+    float p2_1 = ((2.0 * r02_) * r12_);
+    const float _e57 = filter_rect_delta_minus_sin(_e27, ((c_21 * dx) / rr));
+    return ((_e57 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1));
 }
 
 float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, float4 other)
@@ -2676,9 +2678,9 @@ float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, float4 other)
 float filter_rect_edge(float u_9, float dv, float v01_)
 {
     float s2_1 = (1.0 + (u_9 * u_9));
-    float s_28 = sqrt(s2_1);
-    const float _e10 = filter_rect_atan2_upper((dv * s_28), (s2_1 + v01_));
-    return ((u_9 / s_28) * _e10);
+    float s_29 = sqrt(s2_1);
+    const float _e10 = filter_rect_atan2_upper((dv * s_29), (s2_1 + v01_));
+    return ((u_9 / s_29) * _e10);
 }
 
 float filter_rect_edges(float4 u_10, float4 v_7)
@@ -3065,10 +3067,10 @@ float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_18)
     const float _e4 = filter_rect_lambda_rho(t1_);
     const float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     const float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_29 = (_e5 + _e6);
-    float d_7 = ((w_18 * s_29) / (_e3 + _e4));
+    float s_30 = (_e5 + _e6);
+    float d_7 = ((w_18 * s_30) / (_e3 + _e4));
     const float _e12 = math_ln_1p((d_7 / _e6));
-    return (0.25 * (_e12 + ((0.5 * d_7) * s_29)));
+    return (0.25 * (_e12 + ((0.5 * d_7) * s_30)));
 }
 
 float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_19)
@@ -3589,8 +3591,8 @@ float3 footprint_slope_sphere_from_projected(float2 p_1)
     if ((r2_1 < 1.0)) {
         return float3(p_1, sqrt((1.0 - r2_1)));
     }
-    float2 q_7 = (p_1 / (max(max(abs(p_1.x), abs(p_1.y)), math_F32_MIN_POSITIVE)).xx);
-    return float3((q_7 / (length(q_7)).xx), 0.0);
+    float2 q_8 = (p_1 / (max(max(abs(p_1.x), abs(p_1.y)), math_F32_MIN_POSITIVE)).xx);
+    return float3((q_8 / (length(q_8)).xx), 0.0);
 }
 
 float2 footprint_slope_slope_from_projected(float2 p_2)

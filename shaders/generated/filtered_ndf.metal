@@ -2791,13 +2791,15 @@ float filter_rect_mean_1d(
     float x01_ = x0_ * x1_1;
     float _e27 = filter_rect_atan2_upper(c_21 * dx, c2_ + x01_);
     float inv_2 = 1.0 / (((2.0 * c_21) * c2_) * dx);
-    float p2_1 = (2.0 * r02_) * r12_;
     if (x0_ <= 0.0) {
-        return (_e27 * inv_2) + (((c2_ - x01_) / p2_1) / c2_);
+        float s_28 = metal::rsqrt(r02_) * metal::rsqrt(r12_);
+        float q_7 = metal::min((c2_ - x01_) * s_28, 1.0);
+        return (_e27 * inv_2) + ((q_7 * s_28) * (0.5 / c2_));
     }
     float rr = metal::sqrt(r02_) * metal::sqrt(r12_);
-    float _e49 = filter_rect_delta_minus_sin(_e27, (c_21 * dx) / rr);
-    return (_e49 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1);
+    float p2_1 = (2.0 * r02_) * r12_;
+    float _e57 = filter_rect_delta_minus_sin(_e27, (c_21 * dx) / rr);
+    return (_e57 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1);
 }
 
 float filter_rect_gl_mean_1d(
@@ -2847,9 +2849,9 @@ float filter_rect_edge(
     float v01_
 ) {
     float s2_1 = 1.0 + (u_9 * u_9);
-    float s_28 = metal::sqrt(s2_1);
-    float _e10 = filter_rect_atan2_upper(dv * s_28, s2_1 + v01_);
-    return (u_9 / s_28) * _e10;
+    float s_29 = metal::sqrt(s2_1);
+    float _e10 = filter_rect_atan2_upper(dv * s_29, s2_1 + v01_);
+    return (u_9 / s_29) * _e10;
 }
 
 float filter_rect_edges(
@@ -3272,10 +3274,10 @@ float filter_rect_lambda_psi1_diff(
     float _e4 = filter_rect_lambda_rho(t1_);
     float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_29 = _e5 + _e6;
-    float d_7 = (w_18 * s_29) / (_e3 + _e4);
+    float s_30 = _e5 + _e6;
+    float d_7 = (w_18 * s_30) / (_e3 + _e4);
     float _e12 = math_ln_1p(d_7 / _e6);
-    return 0.25 * (_e12 + ((0.5 * d_7) * s_29));
+    return 0.25 * (_e12 + ((0.5 * d_7) * s_30));
 }
 
 float filter_rect_lambda_mean_psi(
@@ -3854,8 +3856,8 @@ metal::float3 footprint_slope_sphere_from_projected(
     if (r2_1 < 1.0) {
         return metal::float3(p_1, metal::sqrt(1.0 - r2_1));
     }
-    metal::float2 q_7 = p_1 / metal::float2(metal::max(metal::max(metal::abs(p_1.x), metal::abs(p_1.y)), math_F32_MIN_POSITIVE));
-    return metal::float3(q_7 / metal::float2(metal::length(q_7)), 0.0);
+    metal::float2 q_8 = p_1 / metal::float2(metal::max(metal::max(metal::abs(p_1.x), metal::abs(p_1.y)), math_F32_MIN_POSITIVE));
+    return metal::float3(q_8 / metal::float2(metal::length(q_8)), 0.0);
 }
 
 metal::float2 footprint_slope_slope_from_projected(

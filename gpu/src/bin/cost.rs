@@ -8,8 +8,14 @@
 //!    llvmpipe, lavapipe) only the ratios mean anything.
 //!
 //! ```text
-//! FILTERED_NDF_GPU_BACKEND=vulkan cargo run --release -p filtered-ndf-gpu --bin cost [-- --static]
+//! FILTERED_NDF_GPU_BACKEND=vulkan cargo run --release -p filtered-ndf-gpu --bin cost \
+//!     [-- --static] [--cases 65536] [--reps 64]
 //! ```
+//!
+//! Each dispatch evaluates `cases x reps` rows (each case `reps` times, its half vector nudged
+//! each time) and is timed from submission to completion, so a dispatch must be long enough
+//! for that overhead (tens of microseconds) not to count: the defaults suit a software driver;
+//! a discrete GPU needs about `--cases 4194304 --reps 256` (a millisecond for unfiltered GGX).
 
 use filtered_ndf_gpu::harness::{self, Kernel};
 use filtered_ndf_gpu::{generate, kernels, modules};
@@ -24,7 +30,20 @@ fn khpl16(name: &str) -> &'static str {
 }
 
 fn main() {
-    let static_only = std::env::args().any(|a| a == "--static");
+    let args: Vec<String> = std::env::args().collect();
+    let static_only = args.iter().any(|a| a == "--static");
+    let flag = |name: &str, default: usize| -> usize {
+        args.iter().position(|a| a == name).map_or(default, |i| {
+            match args.get(i + 1).and_then(|v| v.parse().ok()) {
+                Some(v) if v > 0 => v,
+                _ => {
+                    eprintln!("cost: {name} takes a positive integer");
+                    std::process::exit(2)
+                }
+            }
+        })
+    };
+    let (n, reps) = (flag("--cases", 1 << 16), flag("--reps", 64) as u32);
     let rows = kernels::rows();
     let mut counts = Vec::new();
     for (name, expr) in &rows {
@@ -66,13 +85,12 @@ fn main() {
     }
     let gpu = harness::gpu().unwrap_or_else(|e| panic!("{e}"));
     println!(
-        "\nEvaluations per second on {} (only the ratios mean anything on a software driver):\n",
+        "\nEvaluations per second on {} ({n} cases x {reps} evaluations a dispatch; only the \
+         ratios mean anything on a software driver):\n",
         gpu.label()
     );
     // Seeded cases (SplitMix64): alpha log-uniform in [1e-3, 1], h within 80 degrees,
     // footprints log-uniform in [1e-4, 0.1].
-    let n = 1 << 16;
-    let reps = 64;
     let mut rng = filtered_ndf_gpu::reference::SplitMix64(0x636f_7374);
     let mut input = Vec::with_capacity(n * kernels::N_IN);
     for _ in 0..n {
