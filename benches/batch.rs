@@ -401,7 +401,8 @@ fn benches(c: &mut Criterion) {
 }
 
 /// `batch::par_chunks` (feature `rayon`): filtered Beckmann over 65536 elements in chunks of
-/// 4096 on pools of 1 and 2 threads (`batch_par/f32/threads_1`, `threads_2`).
+/// 4096 on pools of 1 and 2 threads (`batch_par/f32/threads_1`, `threads_2`), or of the sizes
+/// listed in `FILTERED_NDF_BENCH_THREADS`.
 #[cfg(feature = "rayon")]
 fn parallel(c: &mut Criterion) {
     use filtered_ndf::f32::{AxisAligned, ClampRules, batch};
@@ -418,7 +419,13 @@ fn parallel(c: &mut Criterion) {
     let mut g = c.benchmark_group("batch_par/f32");
     g.throughput(Throughput::Elements(M as u64));
     let mut out = vec![0.0f32; M];
-    for threads in [1, 2] {
+    // `FILTERED_NDF_BENCH_THREADS=1,2,4,8,16` measures larger pools (default: 1 and 2).
+    let pools: Vec<usize> = std::env::var("FILTERED_NDF_BENCH_THREADS")
+        .ok()
+        .map(|v| v.split(',').filter_map(|t| t.trim().parse().ok()).collect())
+        .filter(|v: &Vec<usize>| !v.is_empty())
+        .unwrap_or_else(|| vec![1, 2]);
+    for threads in pools {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
