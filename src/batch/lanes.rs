@@ -17,6 +17,7 @@
 //! function instead: the flags cost nothing where nothing is flagged.
 
 use super::super::filter::{MAGIC_F32, MAGIC_F64, exp_f32_reduced, exp_f64_reduced};
+use super::super::filter::{STATE_F, TrapezoidState};
 use super::F;
 use crate::math::Real;
 
@@ -72,6 +73,25 @@ pub(crate) trait Kernel<const I: usize, const O: usize> {
     #[inline(always)]
     fn lane_full(&self, x: [F; I]) -> ([F; O], bool) {
         self.lane(x)
+    }
+    /// Whether [`Kernel::lane_full`] runs in two stages over the gathered elements:
+    /// [`Kernel::full_one`] over all of them, then [`Kernel::full_two`] over those it leaves
+    /// unfinished, gathered again, from the state it hands over. For a second lane whose
+    /// work varies between elements (the exact Gaussian filter's trapezoid rule: 2 chunks of
+    /// nodes for most elements, 3 for some); the straight-line lane would compute the
+    /// longest for every element.
+    const FULL_STAGED: bool = false;
+    /// The first stage of a [`Kernel::FULL_STAGED`] second lane: `((outputs, slow), more,
+    /// state)`, the outputs and flag of [`Kernel::lane_full`] where `more` is false.
+    #[inline(always)]
+    fn full_one(&self, x: [F; I]) -> (([F; O], bool), bool, TrapezoidState) {
+        (self.lane_full(x), false, TrapezoidState::default())
+    }
+    /// The second stage of a [`Kernel::FULL_STAGED`] second lane, from the first's state (the
+    /// contract of [`Kernel::lane_full`]).
+    #[inline(always)]
+    fn full_two(&self, x: [F; I], _state: TrapezoidState) -> ([F; O], bool) {
+        self.lane_full(x)
     }
     /// Whether [`Kernel::lane`] is `stage_two(x, stage_one(x))` and the driver runs a whole
     /// block's first lane as two loops, [`Kernel::stage_one`] over the block into a [`Mid`]
@@ -201,6 +221,18 @@ impl<K: Kernel<I, O>, const I: usize, const O: usize> Loop<'_, K, I, O> {
             ys: [[0.0; DENSE]; O],
             at: [0; DENSE],
             marks: [false; BLOCK],
+            staged: if K::FULL_STAGED {
+                Some(Staged {
+                    sf: [[0.0; DENSE]; STATE_F],
+                    sf2: [[0.0; DENSE]; STATE_F],
+                    xs2: [[0.0; DENSE]; I],
+                    more: [false; DENSE],
+                    at2: [0; DENSE],
+                    ys2: [[0.0; DENSE]; O],
+                })
+            } else {
+                None
+            },
         };
         while b < n {
             let e = n.min(b + BLOCK);
@@ -455,6 +487,22 @@ struct Dense<const I: usize, const O: usize> {
     at: [usize; DENSE],
     /// [`split_pass`]'s sort of a block: `Kernel::second` per element.
     marks: [bool; BLOCK],
+    /// The buffers of a [`Kernel::FULL_STAGED`] lane (`None` for the other kernels, which
+    /// then neither fill nor zero them).
+    staged: Option<Staged<I, O>>,
+}
+
+/// The buffers of [`staged_full`]: the first stage's states, by columns, the unfinished
+/// elements' indices, inputs and states gathered, and their results (`(2 STATE_F + I + O)
+/// DENSE` floats and `DENSE` indices and marks: 11 KiB in `f32`, 13 KiB in `f64`, for `D`'s
+/// three inputs).
+struct Staged<const I: usize, const O: usize> {
+    sf: [[F; DENSE]; STATE_F],
+    sf2: [[F; DENSE]; STATE_F],
+    xs2: [[F; DENSE]; I],
+    more: [bool; DENSE],
+    at2: [usize; DENSE],
+    ys2: [[F; DENSE]; O],
 }
 
 /// Elements per gather of [`dense_pass`] (its buffers live on the stack: `(I + O) DENSE`
@@ -497,7 +545,13 @@ fn dense_pass<
     if !long_enough(ins, outs, e) || e - b > BLOCK {
         return 0;
     }
-    let Dense { xs, ys, at, marks } = buf;
+    let Dense {
+        xs,
+        ys,
+        at,
+        marks,
+        staged,
+    } = buf;
     let mut still = 0usize;
     let mut i = b;
     while i < e {
@@ -547,14 +601,18 @@ fn dense_pass<
                 xs[c][j] = xs[c][m - 1];
             }
         }
-        for j in 0..padded {
-            let mut x = [0.0 as F; I];
-            for c in 0..I {
-                x[c] = xs[c][j];
-            }
-            let (v, _) = marked::<K, I, O, FULL>(k, x);
-            for c in 0..O {
-                ys[c][j] = v[c];
+        if let (true, Some(st)) = (FULL, staged.as_mut()) {
+            staged_full(k, xs, ys, m, padded, st);
+        } else {
+            for j in 0..padded {
+                let mut x = [0.0 as F; I];
+                for c in 0..I {
+                    x[c] = xs[c][j];
+                }
+                let (v, _) = marked::<K, I, O, FULL>(k, x);
+                for c in 0..O {
+                    ys[c][j] = v[c];
+                }
             }
         }
         for j in 0..m.min(DENSE) {
@@ -566,6 +624,92 @@ fn dense_pass<
         }
     }
     still
+}
+
+/// A [`Kernel::FULL_STAGED`] second lane over the gathered columns `xs` (`m` elements,
+/// `padded` with the padding): [`Kernel::full_one`] over all, its states to `st`; then the
+/// unfinished ones gathered (padded to a multiple of [`PAD`]) and [`Kernel::full_two`] over
+/// them; every result to `ys` (the NaN mark where flagged).
+// Index loops on purpose: iterators are functions that LLVM may leave out of line (see `go`).
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn staged_full<K: Kernel<I, O>, const I: usize, const O: usize>(
+    k: &K,
+    xs: &[[F; DENSE]; I],
+    ys: &mut [[F; DENSE]; O],
+    m: usize,
+    padded: usize,
+    st: &mut Staged<I, O>,
+) {
+    let Staged {
+        sf,
+        sf2,
+        xs2,
+        more,
+        at2,
+        ys2,
+    } = st;
+    for j in 0..padded.min(DENSE) {
+        let mut x = [0.0 as F; I];
+        for c in 0..I {
+            x[c] = xs[c][j];
+        }
+        let (r, mo, st) = k.full_one(x);
+        let (v, _) = mark(r);
+        for c in 0..O {
+            ys[c][j] = v[c];
+        }
+        for c in 0..STATE_F {
+            sf[c][j] = st.f[c];
+        }
+        more[j] = mo;
+    }
+    // Branch-free compaction (as `dense_pass`'s gather).
+    let mut n = 0;
+    for j in 0..m.min(DENSE) {
+        at2[n] = j;
+        n += usize::from(more[j]);
+    }
+    if n == 0 {
+        return;
+    }
+    let padded2 = n.next_multiple_of(PAD).min(DENSE);
+    for t in n..padded2 {
+        at2[t] = at2[n - 1];
+    }
+    // The unfinished elements' inputs and states gathered first, then the lane over dense
+    // columns: gathering in the lane's loop (64-bit indices) held it to 8 `f32` lanes on
+    // AVX-512.
+    for t in 0..padded2 {
+        // Masked to the buffer's size (`DENSE` is a power of two): no bounds checks.
+        let j = at2[t] & (DENSE - 1);
+        for c in 0..I {
+            xs2[c][t] = xs[c][j];
+        }
+        for c in 0..STATE_F {
+            sf2[c][t] = sf[c][j];
+        }
+    }
+    for t in 0..padded2 {
+        let mut x = [0.0 as F; I];
+        for c in 0..I {
+            x[c] = xs2[c][t];
+        }
+        let mut st = TrapezoidState::default();
+        for c in 0..STATE_F {
+            st.f[c] = sf2[c][t];
+        }
+        let (v, _) = mark(k.full_two(x, st));
+        for c in 0..O {
+            ys2[c][t] = v[c];
+        }
+    }
+    for t in 0..n {
+        let j = at2[t] & (DENSE - 1);
+        for c in 0..O {
+            ys[c][j] = ys2[c][t];
+        }
+    }
 }
 
 /// Whether [`dense_pass`] picks element `i`: with `MARKED` its mark in `marks` (from `b`) is

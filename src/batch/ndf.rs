@@ -9,7 +9,7 @@
 //! replace libm's `exp` and `erfc` by the lane functions of [`super::lanes`] (bounds in the
 //! module docs of [`super`]).
 
-use super::super::filter::beckmann_lambda_fast;
+use super::super::filter::{TrapezoidState, beckmann_lambda_fast};
 use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::{Ggx, ggx_lambda_core};
 use super::super::ndf::roughness::Roughness;
@@ -118,6 +118,18 @@ pub(crate) trait LaneD: Ndf {
     fn d_lane_full(&self, m: Vec3) -> (F, bool) {
         self.d_lane(m)
     }
+    /// [`Kernel::FULL_STAGED`].
+    const FULL_STAGED: bool = false;
+    /// [`Kernel::full_one`].
+    #[inline(always)]
+    fn d_full_one(&self, m: Vec3) -> ((F, bool), bool, TrapezoidState) {
+        (self.d_lane_full(m), false, TrapezoidState::default())
+    }
+    /// [`Kernel::full_two`].
+    #[inline(always)]
+    fn d_full_two(&self, m: Vec3, _state: TrapezoidState) -> (F, bool) {
+        self.d_lane_full(m)
+    }
 }
 
 /// The lane form of an NDF's `Lambda` too (GGX, Beckmann).
@@ -200,6 +212,17 @@ impl<N: LaneD> Kernel<3, 1> for D<N> {
     #[inline(always)]
     fn second(&self, [x, y, z]: [F; 3]) -> bool {
         self.0.d_second(Vec3::new(x, y, z))
+    }
+    const FULL_STAGED: bool = N::FULL_STAGED;
+    #[inline(always)]
+    fn full_one(&self, [x, y, z]: [F; 3]) -> (([F; 1], bool), bool, TrapezoidState) {
+        let ((v, slow), more, st) = self.0.d_full_one(Vec3::new(x, y, z));
+        (([v], slow), more, st)
+    }
+    #[inline(always)]
+    fn full_two(&self, [x, y, z]: [F; 3], st: TrapezoidState) -> ([F; 1], bool) {
+        let (v, slow) = self.0.d_full_two(Vec3::new(x, y, z), st);
+        ([v], slow)
     }
     #[inline]
     fn scalar(&self, [x, y, z]: [F; 3]) -> [F; 1] {

@@ -386,10 +386,45 @@ impl GaussianFilteredGgx {
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
         let [tl1, tl2] = self.tl;
         let (v, ok) = quad::j_lane::<TRAPEZOID>(v1s, v2s, z2, tl1, tl2);
-        let d = F::from_f64(self.norm * v);
-        let keep = live & (d.abs() < F::INFINITY);
-        (if keep { d } else { 0.0 }, live & !ok)
+        finish_lane(self.norm, v, live, ok)
     }
+
+    /// [`Self::d_lane`]`::<true>` in two stages (`batch`'s staged trapezoid lane), its first:
+    /// `(value, slow, more, state)`, where `more` is false [`Self::d_lane`]`::<true>`'s
+    /// `(value, slow)` bit for bit, else the state that [`Self::d_trapezoid_rest`] finishes
+    /// (the trapezoid rule's element, not stopped after the first chunks).
+    #[inline(always)]
+    pub(crate) fn d_trapezoid_first(&self, mn: Vec3) -> (F, bool, bool, quad::TrapezoidState) {
+        let live = live_lane(mn);
+        let z = mn.z.to_f64();
+        let z2 = z * z;
+        let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
+        let [tl1, tl2] = self.tl;
+        let (v, ok, more, st) = quad::j_trapezoid_first(v1s, v2s, z2, tl1, tl2);
+        let (d, slow) = finish_lane(self.norm, v, live, ok);
+        (d, slow, live & more, st)
+    }
+
+    /// The second stage of [`Self::d_trapezoid_first`] at the same `mn`, from its state:
+    /// `(value, slow)` of [`Self::d_lane`]`::<true>`, bit for bit.
+    #[inline(always)]
+    pub(crate) fn d_trapezoid_rest(&self, mn: Vec3, st: &quad::TrapezoidState) -> (F, bool) {
+        let z = mn.z.to_f64();
+        let z2 = z * z;
+        let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
+        let [tl1, tl2] = self.tl;
+        let (v, ok) = quad::j_trapezoid_rest(v1s, v2s, z2, tl1, tl2, st);
+        finish_lane(self.norm, v, live_lane(mn), ok)
+    }
+}
+
+/// The end of [`GaussianFilteredGgx::d_lane`]: `D = norm J / m_z^4` from `v = J / m_z^4`, `0`
+/// where not `live` or not finite; `(value, slow)`, `slow` where live and not `ok`.
+#[inline(always)]
+fn finish_lane(norm: f64, v: f64, live: bool, ok: bool) -> (F, bool) {
+    let d = F::from_f64(norm * v);
+    let keep = live & (d.abs() < F::INFINITY);
+    (if keep { d } else { 0.0 }, live & !ok)
 }
 
 impl GaussianFilteredGgx {

@@ -473,6 +473,98 @@ fn j_trapezoid_lane(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> (f64, bool) {
     (t.total(sum, c1s, c2s, tl1, tl2), done)
 }
 
+/// Chunks of the first stage of [`j_trapezoid_first`] and [`j_trapezoid_rest`]: what most
+/// elements of a heavily filtered lobe need (the batch bench's heavy kernel `2 l1 = 1`: 78 %
+/// of its trapezoid elements stop after 2 chunks of 8 in `f32`, the others after 3).
+const FIRST_CHUNKS: usize = if WIDE { 7 } else { 2 };
+
+/// Values of `F` in a [`TrapezoidState`]: the partial sums after the first chunks (`CH`).
+pub(crate) const STATE_F: usize = CH;
+
+/// What the trapezoid lane hands from its first [`FIRST_CHUNKS`] chunks to the rest
+/// (`batch`'s staged second lane: the elements that need more chunks are gathered, so that
+/// the others do not compute them). The rest recomputes the set-up (`f64`): handing it over
+/// too held the first stage's `f32` loop to half its vector width (its widest values are
+/// then `f64` stores), which cost more than the set-up of the few elements that continue.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct TrapezoidState {
+    /// The partial sums.
+    pub(crate) f: [F; STATE_F],
+}
+
+/// [`j_lane`]`::<true>` in two stages, its first: the set-up and the first [`FIRST_CHUNKS`]
+/// chunks. Returns `(value, ok, more, state)`: where `more` is false, `(value, ok)` is
+/// [`j_lane`]`::<true>`'s, bit for bit; where it is true (the trapezoid rule's element, not
+/// stopped yet) [`j_trapezoid_rest`] finishes from `state`.
+#[inline(always)]
+pub(super) fn j_trapezoid_first(
+    v1s: f64,
+    v2s: f64,
+    z2: f64,
+    tl1: f64,
+    tl2: f64,
+) -> (f64, bool, bool, TrapezoidState) {
+    const { assert!(FIRST_CHUNKS < TRAP_CHUNKS) };
+    let beta_m = z2 + v1s + v2s;
+    let (far, laguerre) = rule(beta_m, z2, tl1);
+    let iz2 = 1.0 / z2;
+    let (c1s, c2s) = (v1s * iz2, v2s * iz2);
+    let t = Trapezoid::new::<true>(c1s, c2s, tl1, tl2);
+    let mut tot = [0.0; CH];
+    let mut sum: F = 0.0;
+    let mut done = false;
+    unrolled!(FIRST_CHUNKS, c => {
+        let (next, s, stop) = t.step::<true>(tot, chunk(&RATIO, c), chunk(&LOG2RATIO, c));
+        if !done {
+            tot = next;
+            sum = s;
+        }
+        done |= stop;
+    });
+    let other = far | laguerre;
+    let v = t.total(sum, c1s, c2s, tl1, tl2) * iz2 * iz2;
+    (v, done & !other, !(done | other), TrapezoidState { f: tot })
+}
+
+/// The second stage of [`j_trapezoid_first`] (same arguments, and its state): the set-up
+/// again, then the chunks after the first ones from the partial sums, the truncation test's
+/// `break` as a select as in [`j_trapezoid_lane`]. `(value, ok)` as [`j_lane`]`::<true>`'s
+/// for an element that [`j_trapezoid_first`] did not finish, bit for bit.
+#[inline(always)]
+#[allow(unused_assignments)] // The last chunk's partial sums are not read again.
+pub(super) fn j_trapezoid_rest(
+    v1s: f64,
+    v2s: f64,
+    z2: f64,
+    tl1: f64,
+    tl2: f64,
+    st: &TrapezoidState,
+) -> (f64, bool) {
+    let iz2 = 1.0 / z2;
+    let (c1s, c2s) = (v1s * iz2, v2s * iz2);
+    let t = Trapezoid::new::<true>(c1s, c2s, tl1, tl2);
+    let mut tot = st.f;
+    let mut sum: F = 0.0;
+    let mut done = false;
+    unrolled!(TRAP_CHUNKS, c => {
+        if c >= FIRST_CHUNKS {
+            let (next, s, stop) = t.step::<true>(tot, chunk(&RATIO, c), chunk(&LOG2RATIO, c));
+            if !done {
+                tot = next;
+                sum = s;
+            }
+            done |= stop;
+        }
+    });
+    (t.total(sum, c1s, c2s, tl1, tl2) * iz2 * iz2, done)
+}
+
+/// Chunk `c` of a node table (zeros past its end, which the lane never reaches).
+#[inline(always)]
+fn chunk(r: &'static [F; NODES], c: usize) -> &'static [F; CH] {
+    r[c * CH..].first_chunk::<CH>().unwrap_or(&[0.0; CH])
+}
+
 /// Chunks of [`j_trapezoid_lane`]: the longest run of the rule on the lobes a filter meets
 /// (measured, the batch bench's heavy kernel `2 l1 = 1` over its realistic half vectors: 2
 /// or 3 chunks of 8 in `f32`, 7 or 8 of 4 in `f64`); the lane flags what takes longer.
@@ -1049,6 +1141,40 @@ mod tests {
         println!("trapezoid lane: {taken} taken, {flagged} flagged, stops per chunk {chunks:?}");
         assert!(flagged > 0);
         assert!(chunks[1..].iter().filter(|&&c| c > 0).count() >= TRAP_CHUNKS.min(2));
+    }
+
+    /// The trapezoid lane in two stages (`j_trapezoid_first`, then `j_trapezoid_rest` where
+    /// it leaves the element unfinished) equals the one-pass lane `j_lane::<true>`, value and
+    /// flag, bit for bit, on the arguments of a normal (`z2 < 1`) and a slope (`z2 = 1`),
+    /// every rule's region included; both outcomes of the first stage occur.
+    #[test]
+    fn trapezoid_stages_match_lane() {
+        let (mut first, mut rest) = (0usize, 0usize);
+        for &tl1 in &[0.02, 0.1, 0.3, 1.0, 3.0, 10.0] {
+            for &r in &[1.0, 0.3, 0.0] {
+                let tl2 = tl1 * r;
+                for i in 0..120 {
+                    let q = 10f64.powf(-4.0 + 7.0 * i as f64 / 119.0);
+                    for &(split, z2) in &[(1.0, 1.0), (0.6, 0.8), (0.1, 0.3), (0.0, 1.0)] {
+                        let (v1s, v2s) = (q * split * z2, q * (1.0 - split) * z2);
+                        let (want, want_ok) = j_lane::<true>(v1s, v2s, z2, tl1, tl2);
+                        let (v, ok, more, st) = j_trapezoid_first(v1s, v2s, z2, tl1, tl2);
+                        let (got, got_ok) = if more {
+                            rest += 1;
+                            j_trapezoid_rest(v1s, v2s, z2, tl1, tl2, &st)
+                        } else {
+                            first += 1;
+                            (v, ok)
+                        };
+                        assert_eq!(got_ok, want_ok, "{v1s} {v2s} {z2} {tl1} {tl2}");
+                        if want_ok {
+                            assert_eq!(got.to_bits(), want.to_bits(), "{v1s} {v2s} {z2} {tl1}");
+                        }
+                    }
+                }
+            }
+        }
+        assert!(first > 0 && rest > 0, "{first} {rest}");
     }
 
     #[test]

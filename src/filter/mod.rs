@@ -43,7 +43,8 @@ pub use gaussian::{gaussian, gaussian_with_det_clamp};
 pub(crate) use gaussian::{gaussian_entries, gaussian_sanitized};
 pub use gaussian_ggx::GaussianFilteredGgx;
 pub(crate) use gaussian_ggx_quad::{
-    MAGIC_F32, MAGIC_F64, beckmann_lambda_fast, exp_f32_reduced, exp_f64, exp_f64_reduced,
+    MAGIC_F32, MAGIC_F64, STATE_F, TrapezoidState, beckmann_lambda_fast, exp_f32_reduced, exp_f64,
+    exp_f64_reduced,
 };
 pub use lean::{LeanMoments, lean};
 pub use method::{
