@@ -19,7 +19,7 @@
 //! of the chunk driver (the gathered columns of its second pass, 12 KiB; a block's results,
 //! written there and then copied out, 12 KiB; 6 KiB more for the block buffer of `f32`
 //! [`beckmann_d_filtered`]'s two-loop first lane; 11 KiB (`f32`) and 13 KiB (`f64`) more for
-//! [`gaussian_filtered_ggx_d`]'s two-stage trapezoid lane), 56 KiB (`f32`) and 104 KiB
+//! [`gaussian_filtered_ggx_d`]'s two-stage trapezoid lane), 60 KiB (`f32`) and 108 KiB
 //! (`f64`) for the box filter's sort ([`d_rect`], [`d_rect_filtered`]).
 //!
 //! # How the loops vectorise

@@ -27,7 +27,7 @@ const PAD: usize = 16;
 /// extents are the kernel as given (no clamps: pass rectangles already through
 /// `ClampRules::rect` for the clamped route). Out of domain as [`rect::d_rect`] (`0` below the
 /// horizon and for NaN, never NaN). Returns the number of elements written. Allocates nothing
-/// (buffers on the stack: 56 KiB in `f32`, 104 KiB in `f64`).
+/// (buffers on the stack: 60 KiB in `f32`, 108 KiB in `f64`).
 ///
 /// Vectorised where the case analysis integrates both axes by Gauss-Legendre rules (short
 /// sides against the distance to the integrand's poles: most pixel footprints) and where it
@@ -268,6 +268,10 @@ impl<E: Extents> Body for RectLoop<'_, E> {
         // the next class's elements (or the slack's offset `0`) past its end; those results
         // are never used.
         let mut perm = [0u16; UNIT + PAD];
+        // Its inverse: element `j`'s slot in `perm` (the results come back in input order by
+        // gathering through it, a vector loop; a scatter through `perm`, with its branch for
+        // the flagged elements, had taken a fifth of the time).
+        let mut inv = [0u16; UNIT];
         let mut cols = [[0.0 as F; UNIT]; NCOL];
         let mut vals = [0.0 as F; UNIT + PAD];
         let mut slow = [false; UNIT + PAD];
@@ -327,6 +331,7 @@ impl<E: Extents> Body for RectLoop<'_, E> {
                         let slot = &mut nx[class[j] as usize];
                         let t = *slot as usize % UNIT;
                         perm[t] = j as u16;
+                        inv[j] = t as u16;
                         *slot += 1;
                     }
                 }
@@ -399,15 +404,19 @@ impl<E: Extents> Body for RectLoop<'_, E> {
                 let (h, s) = split(x);
                 rect::RectSetup::new(r, h, s).closed_lane(atan2_upper_lane)
             });
-            // The results back in input order, the flagged ones by the scalar path.
-            for (j, &i) in perm[..len].iter().enumerate() {
-                let i = i as usize;
-                out[b + i] = if slow[j] {
+            // The results back in input order (gathered through `inv`: slices of one length,
+            // no bounds checks but the index's), then the flagged ones by the scalar path.
+            let o = &mut out[b..e];
+            for (o, &t) in o.iter_mut().zip(&inv[..len]) {
+                *o = vals[t as usize % UNIT];
+            }
+            // Any flagged, by a reduction that vectorises (`any` stops early: a scalar loop).
+            if slow[..len].iter().fold(false, |a, &x| a | x) {
+                for (&i, _) in perm[..len].iter().zip(&slow[..len]).filter(|(_, x)| **x) {
+                    let i = i as usize;
                     let (h, s) = split(raw(i));
-                    rect::d_rect(r, h, s)
-                } else {
-                    vals[j]
-                };
+                    o[i] = rect::d_rect(r, h, s);
+                }
             }
             b = e;
         }
