@@ -631,6 +631,8 @@ fn dense_pass<
 /// unfinished ones gathered (padded to a multiple of [`PAD`]) and [`Kernel::full_two`] over
 /// them; every result to `ys` (the NaN mark where flagged).
 // Index loops on purpose: iterators are functions that LLVM may leave out of line (see `go`).
+// The rows read and written here as `#[inline(always)]` helper functions measured 32 -> 54 ns
+// per element on the heavy exact Gaussian filter (the lane lost its vector width).
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
 fn staged_full<K: Kernel<I, O>, const I: usize, const O: usize>(
