@@ -4,7 +4,8 @@
 
 use super::super::filter::deferred::{Domain, KernelConvention, Norm};
 use super::super::ndf::roughness::Isotropic;
-use super::lanes::{Kernel, pow_lane, run};
+use super::lane_math::pow_lane;
+use super::lanes::{Kernel, run};
 use super::{F, Vec3, Vec3s};
 
 /// [`KernelConvention::filter`] for each material roughness `alpha[i]` and pair of
@@ -20,7 +21,7 @@ use super::{F, Vec3, Vec3s};
 /// but [`UNREAL`](super::super::filter::presets::UNREAL) and
 /// [`BABYLON`](super::super::filter::presets::BABYLON)): the lane is the scalar formula, its
 /// branches as selects. With another exponent, `norm^exponent` is the lane power of
-/// `lanes.rs` in place of libm's `powf` (relative `1.6e-14 + 3 eps_64 |y|`, `y = exponent
+/// `lane_math.rs` in place of libm's `powf` (relative `1.6e-14 + 3 eps_64 |y|`, `y = exponent
 /// ln(norm)`, computed in `f64`; in `f32` within half an `f32` ulp plus `1e-13` before the
 /// final rounding), so the widening `k = scale norm^exponent + bias` differs from the scalar
 /// one by at most one `f32` ulp of `scale norm^exponent` plus its rounding (`f32`), and

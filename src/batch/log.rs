@@ -1,6 +1,6 @@
 //! The natural logarithm in lanes (the Beckmann `D(m) m_z` sampler's `ln(1 - u1)`), on the
-//! reduction `x = m 2^k`, in `f64` the one shared with [`pow_lane`](super::lanes::pow_lane)
-//! (`lanes::ln_parts_f64`), in `f32` its `f32` form: plain arithmetic, bit casts and
+//! reduction `x = m 2^k`, in `f64` the one shared with [`pow_lane`](super::lane_math::pow_lane)
+//! (`lane_math::ln_parts_f64`), in `f32` its `f32` form: plain arithmetic, bit casts and
 //! selects, no calls, so the loop over elements vectorises.
 //!
 //! | function | replaces | bound (relative) | where tested |
@@ -8,13 +8,12 @@
 //! | [`ln_lane`] | libm `ln` | `4 eps_64` in `f64`, `3 eps_32` in `f32` (each computed in its precision) | unit test below |
 
 use super::F;
-use super::lanes::WIDE;
-use super::lanes::{LN2_HI, LN2_LO, ln_parts_f64};
+use super::lane_math::{LN2_HI, LN2_LO, WIDE, ln_parts_f64};
 use crate::math::Real;
 
 /// `ln x` in lanes: `ln x = k ln2_hi + (k ln2_lo + ln m)`, `x = m 2^k` with `m` in
 /// `[sqrt(1/2), sqrt(2))` and `ln m = 2 atanh(s)`, `s = (m - 1) / (m + 1)` (`|s| <= 0.1716`),
-/// by its series. In `f64` by `lanes::ln_parts_f64` (series to `s^21`, truncation below
+/// by its series. In `f64` by `lane_math::ln_parts_f64` (series to `s^21`, truncation below
 /// `2.3e-17` relative); in `f32` in `f32` arithmetic ([`ln_f32`]: the `f64` form held the
 /// `f32` sampler's loop to 4 lanes on AVX2).
 ///

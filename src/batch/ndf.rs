@@ -14,7 +14,8 @@ use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::{Ggx, ggx_lambda_core};
 use super::super::ndf::roughness::Roughness;
 use super::super::ndf::{Ndf, needs_no_rescale};
-use super::lanes::{Kernel, exp_neg_times, run};
+use super::lane_math::exp_neg_times;
+use super::lanes::{Kernel, run};
 use super::{F, PI, Vec2, Vec3, Vec3s};
 
 /// [`Ndf::d`] of GGX for each micronormal `m_i = (mx[i], my[i], mz[i])`:

@@ -35,7 +35,7 @@ use super::super::sampling::beckmann::{
     ERFINV_CENTRAL, ERFINV_TAIL, INV_SQRT_PI, X_MAX, bracket_top, cdf_terms_from,
     residual_tolerance,
 };
-use super::lanes::{LN2_HI, LN2_LO, atan2_upper_lane, ln_parts_f64};
+use super::lane_math::{LN2_HI, LN2_LO, atan2_upper_lane, ln_parts_f64};
 use crate::math as m;
 
 /// Cephes `ndtr.c`: `erf(x) = x T(x^2) / U(x^2)` for `|x| < 1` (`U` monic).
@@ -174,7 +174,7 @@ fn k_terms(x: f64, c: f64, s: f64) -> (f64, f64, f64) {
     (k, dk, d2k)
 }
 
-/// `ln x` for a normal positive `x` (the reduction of `lanes::ln_parts_f64`; elsewhere a
+/// `ln x` for a normal positive `x` (the reduction of `lane_math::ln_parts_f64`; elsewhere a
 /// finite value: only the guess uses it).
 #[inline(always)]
 fn ln_guess(x: f64) -> f64 {

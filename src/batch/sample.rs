@@ -19,7 +19,8 @@ use super::super::ndf::roughness::Roughness;
 use super::super::sampling::{
     NdfSampling, Warp, beckmann_standard_normal, clamp_unit, ggx_cap_point, ggx_standard_normal,
 };
-use super::lanes::{Kernel, run, sincos_2pi};
+use super::lane_math::sincos_2pi;
+use super::lanes::{Kernel, run};
 use super::log::ln_lane;
 use super::quantile::visible_slope_quantile_lane;
 use super::{F, Vec2, Vec3, Vec3s};
