@@ -4,7 +4,7 @@
 //! | function | replaces | bound (relative) | where tested |
 //! |---|---|---|---|
 //! | [`exp_neg_times`] `e^-x k` | `Beckmann`'s `exp_neg_times` (libm `exp`, `ln`) | `exp_poly`'s (`2.5e-7` in `f32`, `1.5e-14` in `f64`) plus one rounding, for normal results | unit test below |
-//! | `filter::exp_poly` (shared with the exact Gaussian filter) | libm `exp` | `2.5e-7` / `1.5e-14` | `gaussian_ggx_quad` |
+//! | `filter::exp_poly` (shared with the exact Gaussian filter) | libm `exp` | `2.5e-7` / `1.5e-14` | `filter/exp_poly.rs` |
 //! | [`pow_lane`] `x^e` | libm `powf` (the deferred presets' norm exponent) | `1.6e-14 + 3 eps_64 abs(y)` + `eps_64`, `y = e ln x`, computed in `f64` (in `f32`: half an ulp plus `1e-13`) | unit test below |
 //! | [`sincos_2pi`] `(sin 2 pi u, cos 2 pi u)` | libm `sin`, `cos` of `phi = 2 pi u` (the GGX visible-normal sampler's azimuth) | absolute `2e-15` computed in `f64` (in `f32`: plus half an `f32` ulp of the result) | unit test below |
 //! | [`atan2_upper_lane`] `atan2(y, x)`, `y > 0` | the box filter's `atan2_upper` (libm `atan`; the closed form's edge angles) | `3 eps_64` (derived `2.1`), in `f64` for both precisions | unit test below |

@@ -29,6 +29,7 @@
 use super::{F, Vec2, Vec3};
 
 pub mod deferred;
+mod exp_poly;
 mod gaussian;
 mod gaussian_ggx;
 mod gaussian_ggx_quad;
@@ -42,10 +43,8 @@ pub mod rect;
 pub use gaussian::{gaussian, gaussian_with_det_clamp};
 pub(crate) use gaussian::{gaussian_entries, gaussian_sanitized};
 pub use gaussian_ggx::GaussianFilteredGgx;
-pub(crate) use gaussian_ggx_quad::{
-    MAGIC_F32, MAGIC_F64, STATE_F, TrapezoidState, beckmann_lambda_fast, exp_f32_reduced, exp_f64,
-    exp_f64_reduced,
-};
+pub(crate) use exp_poly::{MAGIC_F32, MAGIC_F64, exp_f32_reduced, exp_f64, exp_f64_reduced};
+pub(crate) use gaussian_ggx_quad::{STATE_F, TrapezoidState, beckmann_lambda_fast};
 pub use lean::{LeanMoments, lean};
 pub use method::{
     ExactGaussian, Filterable, Gaussian, Method, Projected, Proxy, Rect, RectFilteredGgx,
