@@ -20,7 +20,7 @@ macro_rules! family {
     ($c:expr, $prec:ident, $t:ty) => {{
         use filtered_ndf::$prec::{
             AxisAligned, Beckmann, ClampRules, Footprint, GaussianFilteredGgx, Ggx, Isotropic, Ndf,
-            RoughnessMatrix, Vec2, Vec3, batch, filter::presets, filter::rect,
+            RoughnessMatrix, Vec2, Vec3, batch, filter::presets, filter::proxy, filter::rect,
         };
         type Wall<'a> = BenchmarkGroup<'a, criterion::measurement::WallTime>;
         let cases = common::realistic_cases(N, 0xBA7C);
@@ -199,6 +199,14 @@ macro_rules! family {
                 rect::d_rect(aa, h(i), half)
             },
             |o: &mut [$t]| batch::d_rect_filtered(&aa, &rules, &hx, &hy, &hz, soa, o)
+        );
+        pair!(
+            "ggx_d_filtered_proxy",
+            |i: usize| {
+                let half = rules.rect(fps[i].bounding_rect(), aa.alpha()).half_extent;
+                Ggx::new(proxy::proxy(aa, half)).d(h(i))
+            },
+            |o: &mut [$t]| batch::ggx_d_filtered_proxy(&aa, &rules, &hx, &hy, &hz, soa, o)
         );
         // Deferred presets: per-element material roughness and world-space normal
         // differences (the cases' slope derivatives as the tangential part of the normal's

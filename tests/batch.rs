@@ -779,6 +779,88 @@ macro_rules! suite {
                 }
             }
 
+            /// The front door's `Proxy` route over slices (`ggx_d_filtered_proxy`), for every
+            /// rule set, three roughnesses and the adversarial columns. The half extents are
+            /// the scalar route's bit for bit; the lane's `alpha'` per axis is within `10 u`
+            /// (`u = 2^-53`) of the exact value, the `f64` reference
+            /// (`filtered_ndf::f64::filter::proxy::effective_alpha`, libm) within `8.5 u`
+            /// (`batch::ggx_d_filtered_proxy`'s docs). So in `f32` the lane's rounded `alpha'`
+            /// is the reference's rounded value or a neighbour, and each element is the scalar
+            /// `D` of one of those nine roughness pairs, bit for bit (or the scalar route's
+            /// value, where the lane flags the element); in `f64` within `143 u` of the scalar
+            /// route (the docs' derivation). The lane's share is counted, so that a lane that
+            /// flags everything would not pass unnoticed.
+            #[test]
+            fn proxy_is_the_scalar_route_of_a_neighbouring_roughness() {
+                use filtered_ndf::f64::filter::proxy::effective_alpha as alpha_64;
+                use filtered_ndf::$prec::filter::proxy;
+                let c = cols3(0x920C);
+                let n = c.x.len();
+                let mut got = vec![0.0 as $t; n];
+                let u = f64::EPSILON / 2.0;
+                let (mut lane, mut total, mut worst) = (0usize, 0usize, 0.0f64);
+                for (name, rules) in rule_sets() {
+                    for alpha in [1e-3 as $t, 0.1, 0.8] {
+                        let aa = AxisAligned::new(alpha, alpha * 0.3).unwrap();
+                        let n_done = batch::ggx_d_filtered_proxy(
+                            &aa,
+                            &rules,
+                            &c.x,
+                            &c.y,
+                            &c.z,
+                            soa(&c),
+                            &mut got,
+                        );
+                        assert_eq!(n_done, n);
+                        for i in 0..n {
+                            let half = rules
+                                .rect(fp(&c, i).bounding_rect(), aa.alpha())
+                                .half_extent;
+                            let scalar = Ggx::new(proxy::proxy(aa, half)).d(h(&c, i));
+                            let g = got[i];
+                            assert!(!g.is_nan(), "proxy {name} {alpha} [{i}] is NaN");
+                            total += 1;
+                            if WIDE {
+                                let diff = (g as f64 - scalar as f64).abs();
+                                let bound = 143.0 * u * (scalar as f64).abs();
+                                assert!(
+                                    diff <= bound,
+                                    "proxy {name} {alpha} [{i}]: batch {g:e}, scalar {scalar:e}"
+                                );
+                                if diff > 0.0 {
+                                    worst = worst.max(diff / bound);
+                                }
+                                continue;
+                            }
+                            // The reference's alpha' rounded to F, and its neighbours.
+                            let near = |a: $t, hh: $t| -> [$t; 3] {
+                                let r = alpha_64(a as f64, hh as f64) as $t;
+                                [r.next_down(), r, r.next_up()]
+                            };
+                            let (nx, ny) = (near(aa.alpha().x, half.x), near(aa.alpha().y, half.y));
+                            let candidate = nx.iter().any(|&ax| {
+                                ny.iter().any(|&ay| {
+                                    let lobe = Ggx::new(AxisAligned::new_clamped(ax, ay));
+                                    lobe.d(h(&c, i)).to_bits() == g.to_bits()
+                                })
+                            });
+                            lane += usize::from(candidate);
+                            assert!(
+                                candidate || g.to_bits() == scalar.to_bits(),
+                                "proxy {name} {alpha} [{i}]: batch {g:e}, scalar {scalar:e}, \
+                                 half {half:?}"
+                            );
+                        }
+                    }
+                }
+                if WIDE {
+                    println!("proxy: worst {worst:.3} of the bound over {total} elements");
+                } else {
+                    println!("proxy: {lane} of {total} elements from the lane's roughness");
+                    assert!(lane * 10 >= total * 9, "{lane} of {total}");
+                }
+            }
+
             /// Rectangles far out on one axis (`|v_c|` from `4e12` to `1e15` roughness units)
             /// with sides short against that distance (`H / L` from `0.03` to `0.2`: the
             /// 4-, 6-, 8- and 10-point tiers), where a row's nodes lie beyond the shared

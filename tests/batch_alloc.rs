@@ -110,6 +110,7 @@ macro_rules! check {
             batch::d_rect(&aa, &x, &y, &z, &hx, &hy, &mut out);
             for rules in [ClampRules::default(), ClampRules::GDC2016] {
                 batch::d_rect_filtered(&aa, &rules, &x, &y, &z, fp, &mut out);
+                batch::ggx_d_filtered_proxy(&aa, &rules, &x, &y, &z, fp, &mut out);
             }
             for (u1, u2) in [(&hx, &hy), (&ux, &vy)] {
                 batch::ggx_sample_visible_normal(&mat, v, u1, u2, &mut out, &mut o2, &mut o3);

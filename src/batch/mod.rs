@@ -91,6 +91,7 @@
 //! | [`gaussian_filtered_ggx_d`] (one lobe) | bit for bit | the scalar `D`'s steps with the rule choice of `J` shared (`gaussian_ggx_quad::rule`): the far-tail series and Gauss-Laguerre in the first lane, the trapezoid rule's first chunks in the second (its truncation test as a select, `e^(-k0 H)` by the polynomial that fills the scalar path's table; in two stages, the elements not stopped after the first chunks gathered for the last), a longer trapezoid rule flagged | `tests/batch.rs` (kernels from `0` to `10` lobe variances, rank one, rotated, NaN, infinite; every form; both lanes, both stages and the driver's sorted blocks; a mutation of the second stage caught), the trapezoid lane's unit tests in `gaussian_ggx_quad.rs` |
 //! | [`ggx_d_filtered_projected`] (a footprint per element through the clamp rules) | bit for bit | the rules' lane (`ClampRules::filter_projected_entries_lane`: the kernel of the Gaussian lanes, decided exactly) and the projected filter's kernel part as [`ggx_d_projected`]; what leaves the rules' fast paths or the eigenvalue clamp's common case, and an active determinant clamp, flagged | `tests/batch.rs` (every rule set, footprints that trigger each clamp, adversarial input, the driver's states) |
 //! | [`ggx_d_filtered_exact`] (a footprint per element through the clamp rules) | bit for bit | the rules' kernel as for [`ggx_d_filtered_projected`], the lobe built in the lane by [`GaussianFilteredGgx::new`](super::GaussianFilteredGgx::new)'s steps (its cases as selects), then the lanes of [`gaussian_filtered_ggx_d`]; a kernel the lobe's sanitiser would change flagged | `tests/batch.rs` (every rule set, adversarial input, rank-one footprints, the driver's states; mutations of both lanes caught) |
+//! | [`ggx_d_filtered_proxy`] (a footprint per element through the clamp rules) | not bit for bit: each axis's effective roughness `alpha'` within `10 u` (`u = 2^-53`) of the exact value, so in `f32` the correctly rounded value or a neighbour and `D` the scalar `D` of that roughness bit for bit; in `f64` within `143 u` of the scalar route | the rules' clamped rectangle as [`d_rect_filtered`] (bit for bit), `alpha' = s sqrt(t / atan2(H, s))` in `f64` with `atan2` by `lane_math.rs`' `atan2_upper_lane` in place of libm's `hypot` and `atan`, then GGX's lane `D`; a direction to rescale, and in `f64` a half extent beyond `1e150`, flagged | `tests/batch.rs` (every rule set, adversarial footprints and half vectors: in `f32` each element the scalar `D` of one of the nine neighbouring roughness pairs; in `f64` worst `0.11` of the bound; perturbations of `alpha'` by `1e-12` (`f64`) and `2e-7` (`f32`) caught) |
 //! | [`ggx_d_projected`] (a kernel per element) | bit for bit | the scalar projected filter split into its lobe part (once per batch) and kernel part (`filter::ProjectedBase`); a kernel off the sanitiser's fast path and an active determinant clamp flagged | `tests/batch.rs` (footprint kernels and raw adversarial entries, `alpha` to `2`, the clamped matrix) |
 //!
 //! The deferred presets in `f32` against the `f64` scalar path: the scalar `f32` path's
@@ -121,6 +122,7 @@ mod log;
 mod ndf;
 mod pdf;
 mod projected;
+mod proxy;
 mod quantile;
 mod rect;
 mod rect_lane;
@@ -136,6 +138,7 @@ pub use pdf::{
     ggx_normal_pdf, ggx_reflection_pdf_from_normal, ggx_visible_normal_pdf,
 };
 pub use projected::ggx_d_projected;
+pub use proxy::ggx_d_filtered_proxy;
 pub use rect::{d_rect, d_rect_filtered};
 pub use sample::{
     beckmann_sample_normal, beckmann_sample_visible_normal, ggx_sample_normal,
