@@ -40,10 +40,10 @@ mod projected;
 pub mod proxy;
 pub mod rect;
 
+pub(crate) use exp_poly::{MAGIC_F32, MAGIC_F64, exp_f32_reduced, exp_f64, exp_f64_reduced};
 pub use gaussian::{gaussian, gaussian_with_det_clamp};
 pub(crate) use gaussian::{gaussian_entries, gaussian_sanitized};
 pub use gaussian_ggx::GaussianFilteredGgx;
-pub(crate) use exp_poly::{MAGIC_F32, MAGIC_F64, exp_f32_reduced, exp_f64, exp_f64_reduced};
 pub(crate) use gaussian_ggx_quad::{STATE_F, TrapezoidState, beckmann_lambda_fast};
 pub use lean::{LeanMoments, lean};
 pub use method::{
