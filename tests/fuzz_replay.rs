@@ -4,8 +4,8 @@
 //! regression inputs of every crash the fuzzer found.
 
 use filtered_ndf::testing::fuzz::{
-    check_filter, check_isotropic, check_jacobian, check_ndf, check_rect, check_sampling,
-    check_temporal,
+    check_batch, check_filter, check_gaussian_ggx, check_isotropic, check_jacobian, check_ndf,
+    check_rect, check_sampling, check_temporal,
 };
 
 use filtered_ndf::testing::rng::SplitMix64 as Rng;
@@ -53,6 +53,16 @@ fn seeded_random_bytes_sampling() {
 #[test]
 fn seeded_random_bytes_temporal() {
     replay(0xF022_0007, 3000, 256, check_temporal);
+}
+
+#[test]
+fn seeded_random_bytes_gaussian_ggx() {
+    replay(0xF022_0008, 2000, 128, check_gaussian_ggx);
+}
+
+#[test]
+fn seeded_random_bytes_batch() {
+    replay(0xF022_0009, 400, 2048, check_batch);
 }
 
 /// Every special-value tag (0..=14) in each of the first parameter and argument slots, for
@@ -103,7 +113,7 @@ fn regressions() {
 #[test]
 fn regression_corpus() {
     type Check = fn(&[u8]);
-    let targets: [(&str, Check); 7] = [
+    let targets: [(&str, Check); 9] = [
         ("ndf", check_ndf),
         ("filter", check_filter),
         ("rect", check_rect),
@@ -111,6 +121,8 @@ fn regression_corpus() {
         ("jacobian", check_jacobian),
         ("sampling", check_sampling),
         ("temporal", check_temporal),
+        ("gaussian_ggx", check_gaussian_ggx),
+        ("batch", check_batch),
     ];
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/fuzz_regressions");
     for (name, check) in targets {

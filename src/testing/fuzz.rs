@@ -7,10 +7,12 @@
 //! [`check_ndf`] decodes an NDF case and its arguments and panics if the documented contract
 //! is broken (see the function). One `check_*` function per further public evaluation family
 //! lives in a submodule and is re-exported here: [`check_filter`], [`check_rect`],
-//! [`check_isotropic`], [`check_jacobian`], [`check_sampling`], [`check_temporal`].
+//! [`check_isotropic`], [`check_jacobian`], [`check_sampling`], [`check_temporal`],
+//! [`check_gaussian_ggx`], [`check_batch`].
 
 use crate::RoughnessError;
 
+mod batch;
 mod dec;
 mod filter;
 mod gaussian_ggx;
@@ -20,6 +22,7 @@ mod rect;
 mod sampling;
 mod temporal;
 
+pub use batch::check_batch;
 pub use filter::check_filter;
 pub use gaussian_ggx::check_gaussian_ggx;
 pub use isotropic::check_isotropic;

@@ -1,0 +1,190 @@
+//! The contract of the slice API (`batch`): the chunk driver and every lane family on columns
+//! of fuzzer values, against the scalar functions they vectorise.
+
+use super::Bytes;
+use super::dec::{d32, d64, with_rough};
+
+/// The most elements decoded (then repeated, see [`check_batch`]).
+const MAX_DECODED: u8 = 40;
+/// The most repetitions of the decoded elements: up to `40 x 16 = 640` elements, past the
+/// driver's block of 512.
+const MAX_REPEAT: u8 = 16;
+/// A value no batch function writes for these inputs: the columns' tail in `out` must keep it.
+const SENTINEL: f64 = -12_345.0;
+
+macro_rules! batch_prec {
+    ($d:ident, $prec:ident, $b:expr) => {{
+        use crate::$prec::{
+            AxisAligned, Beckmann, ClampRules, Covariance, ExtentFloor, F, Footprint,
+            GaussianFilteredGgx, Ggx, Ndf, Vec2, Vec3, batch,
+            filter::{projected, proxy, rect},
+        };
+        use $d::f;
+        use crate::math::Real;
+        let b: &mut Bytes<'_> = $b;
+        let rough = $d::rough(b);
+        let aa = AxisAligned::new_clamped(f(b), f(b));
+        let rules = match b.byte() % 4 {
+            0 => ClampRules::default(),
+            1 => ClampRules::NONE,
+            2 => ClampRules::GDC2016,
+            _ => ClampRules {
+                max_extent: f(b),
+                floor: ExtentFloor::Constant(f(b)),
+                kappa: f(b),
+                det_clamp: true,
+            },
+        };
+        let sigma = f(b);
+        let kernel = Covariance::new(f(b), f(b), f(b));
+        let n0 = usize::from(b.byte() % (MAX_DECODED + 1));
+        let rep = usize::from(1 + b.byte() % MAX_REPEAT);
+        // Seven columns, element by element: the half vector, then the footprint's slope
+        // derivatives (also read as half extents and as kernel entries below).
+        let mut one: [Vec<F>; 7] = Default::default();
+        for _ in 0..n0 {
+            for c in &mut one {
+                c.push(f(b));
+            }
+        }
+        let cols: [Vec<F>; 7] = one.map(|c| c.repeat(rep));
+        let n = n0 * rep;
+        let [hx, hy, hz, ux, uy, vx, vy] = &cols;
+        let fp = batch::Footprints {
+            dh_u_x: ux,
+            dh_u_y: uy,
+            dh_v_x: vx,
+            dh_v_y: vy,
+        };
+        let h = |i: usize| Vec3::new(hx[i], hy[i], hz[i]);
+        let foot =
+            |i: usize| Footprint::from_slope_derivatives(Vec2::new(ux[i], uy[i]), Vec2::new(vx[i], vy[i]));
+        let sentinel = F::from_f64(SENTINEL);
+        let mut out = vec![sentinel; n + 3];
+        // Runs one batch function, then checks the length rule and each element against the
+        // scalar function: bit for bit where `exact`, else both NaN-free and the batch value
+        // `0` where the scalar one is (the documented zeros: below the horizon, NaN input).
+        let mut check = |what: &str,
+                         exact: bool,
+                         run: &mut dyn FnMut(&mut [F]) -> usize,
+                         scalar: &dyn Fn(usize) -> F| {
+            out.fill(sentinel);
+            let written = run(&mut out);
+            assert_eq!(written, n, "{what}: wrote {written} of {n}");
+            assert!(
+                out[n..].iter().all(|&v| v.to_bits() == sentinel.to_bits()),
+                "{what}: wrote past the columns"
+            );
+            for (i, &g) in out[..n].iter().enumerate() {
+                let s = scalar(i);
+                if exact {
+                    assert!(
+                        g.to_bits() == s.to_bits(),
+                        "{what} [{i}]: batch {g:e}, scalar {s:e}"
+                    );
+                } else {
+                    assert!(!g.is_nan() || s.is_nan(), "{what} [{i}]: batch NaN, scalar {s:e}");
+                    if s == 0.0 {
+                        assert_eq!(g, 0.0, "{what} [{i}]: batch {g:e} where the scalar is 0");
+                    }
+                }
+            }
+        };
+        const WIDE: bool = F::MANTISSA_DIGITS > 24;
+        with_rough!($d, rough, r => {
+            check("ggx_d", true, &mut |o| batch::ggx_d(&r, hx, hy, hz, o), &|i| {
+                Ggx::new(r).d(h(i))
+            });
+            check("ggx_lambda", true, &mut |o| batch::ggx_lambda(&r, hx, hy, hz, o), &|i| {
+                Ggx::new(r).lambda(h(i))
+            });
+            check("beckmann_d", false, &mut |o| batch::beckmann_d(&r, hx, hy, hz, o), &|i| {
+                Beckmann::new(r).d(h(i))
+            });
+            check(
+                "ggx_d_filtered",
+                WIDE,
+                &mut |o| batch::ggx_d_filtered(&r, &rules, sigma, hx, hy, hz, fp, o),
+                &|i| Ggx::new(rules.filter_gaussian(r, foot(i), sigma)).d(h(i)),
+            );
+            check(
+                "beckmann_d_filtered",
+                false,
+                &mut |o| batch::beckmann_d_filtered(&r, &rules, sigma, hx, hy, hz, fp, o),
+                &|i| Beckmann::new(rules.filter_gaussian(r, foot(i), sigma)).d(h(i)),
+            );
+            check(
+                "ggx_d_filtered_projected",
+                true,
+                &mut |o| batch::ggx_d_filtered_projected(&r, &rules, sigma, hx, hy, hz, fp, o),
+                &|i| Ggx::new(rules.filter_projected(r, foot(i), sigma)).d(h(i)),
+            );
+            check(
+                "ggx_d_filtered_exact",
+                true,
+                &mut |o| batch::ggx_d_filtered_exact(&r, &rules, sigma, hx, hy, hz, fp, o),
+                &|i| {
+                    let k = rules.kernel(rules.footprint(foot(i)).covariance(sigma));
+                    GaussianFilteredGgx::new(r, k).d(h(i))
+                },
+            );
+            let kernels = batch::Covariances {
+                s11: ux,
+                s12: uy,
+                s22: vx,
+            };
+            check(
+                "ggx_d_projected",
+                true,
+                &mut |o| batch::ggx_d_projected(&r, kernels, hx, hy, hz, o),
+                &|i| Ggx::new(projected(r, Covariance::new(ux[i], uy[i], vx[i]))).d(h(i)),
+            );
+            let lobe = GaussianFilteredGgx::new(r, kernel);
+            check(
+                "gaussian_filtered_ggx_d",
+                true,
+                &mut |o| batch::gaussian_filtered_ggx_d(&lobe, hx, hy, hz, o),
+                &|i| lobe.d(h(i)),
+            );
+        });
+        check(
+            "d_rect",
+            false,
+            &mut |o| batch::d_rect(&aa, hx, hy, hz, ux, vy, o),
+            &|i| rect::d_rect(aa, h(i), Vec2::new(ux[i], vy[i])),
+        );
+        check(
+            "d_rect_filtered",
+            false,
+            &mut |o| batch::d_rect_filtered(&aa, &rules, hx, hy, hz, fp, o),
+            &|i| {
+                let half = rules.rect(foot(i).bounding_rect(), aa.alpha()).half_extent;
+                rect::d_rect(aa, h(i), half)
+            },
+        );
+        check(
+            "ggx_d_filtered_proxy",
+            false,
+            &mut |o| batch::ggx_d_filtered_proxy(&aa, &rules, hx, hy, hz, fp, o),
+            &|i| {
+                let half = rules.rect(foot(i).bounding_rect(), aa.alpha()).half_extent;
+                Ggx::new(proxy::proxy(aa, half)).d(h(i))
+            },
+        );
+    }};
+}
+
+/// The contract of the slice API (`batch`) on fuzzer bytes, in both precisions: a roughness
+/// in every form, an axis-aligned one, clamp rules (the presets, or raw extent, floor and
+/// `kappa`), a pixel `sigma`, a kernel, and up to 40 elements of seven columns (half vector,
+/// footprint), repeated up to 16 times so that the driver's blocks and its sorted second
+/// lanes see runs longer than a block. For the `D` and `Lambda` families, the filtered
+/// routes, the projected and exact Gaussian filters, the box filter and the proxy: every
+/// function writes exactly the common length and nothing past it; the functions documented
+/// bit for bit equal the scalar function element by element (GGX `D` and `Lambda`, the
+/// projected routes, the exact Gaussian filter, TK19 GGX in `f64`); the others are NaN-free
+/// where the scalar function is and `0` where it is `0`. Panics on a violation.
+pub fn check_batch(data: &[u8]) {
+    batch_prec!(d64, f64, &mut Bytes::new(data));
+    batch_prec!(d32, f32, &mut Bytes::new(data));
+}
