@@ -349,6 +349,9 @@ impl<E: Extents> Body for RectLoop<'_, E> {
                     for j in 0..m {
                         // Gathered in the lane loop (vector gathers with AVX2 and AVX-512).
                         let i = p[j] as usize % UNIT;
+                        // The lanes' precondition: the class's own elements (not the padding
+                        // past them) are of its pair.
+                        debug_assert!(j >= hi - lo || usize::from(class[i]) == $k as usize);
                         let $x = [cols[0][i], cols[1][i], cols[2][i], cols[3][i], cols[4][i]];
                         let (v, sl) = $lane;
                         vs[j] = v;
