@@ -16,7 +16,7 @@ macro_rules! batch_prec {
     ($d:ident, $prec:ident, $b:expr) => {{
         use crate::$prec::{
             AxisAligned, Beckmann, ClampRules, Covariance, ExtentFloor, F, Footprint,
-            GaussianFilteredGgx, Ggx, Ndf, Vec2, Vec3, batch,
+            GaussianFilteredGgx, Ggx, Ndf, NdfSampling, Vec2, Vec3, batch,
             filter::{projected, proxy, rect},
         };
         use $d::f;
@@ -57,8 +57,10 @@ macro_rules! batch_prec {
             dh_v_y: vy,
         };
         let h = |i: usize| Vec3::new(hx[i], hy[i], hz[i]);
-        let foot =
-            |i: usize| Footprint::from_slope_derivatives(Vec2::new(ux[i], uy[i]), Vec2::new(vx[i], vy[i]));
+        let foot = |i: usize| {
+            let (du, dv) = (Vec2::new(ux[i], uy[i]), Vec2::new(vx[i], vy[i]));
+            Footprint::from_slope_derivatives(du, dv)
+        };
         let sentinel = F::from_f64(SENTINEL);
         let mut out = vec![sentinel; n + 3];
         // Runs one batch function, then checks the length rule and each element against the
@@ -139,6 +141,46 @@ macro_rules! batch_prec {
                 &mut |o| batch::ggx_d_projected(&r, kernels, hx, hy, hz, o),
                 &|i| Ggx::new(projected(r, Covariance::new(ux[i], uy[i], vx[i]))).d(h(i)),
             );
+            // The pdfs: `m` the half-vector columns, `wo` three of the footprint's.
+            let (m, wo) = (
+                batch::Vec3s { x: hx, y: hy, z: hz },
+                batch::Vec3s { x: ux, y: uy, z: vx },
+            );
+            let w = |i: usize| Vec3::new(ux[i], uy[i], vx[i]);
+            let (ggx, beckmann) = (Ggx::new(r), Beckmann::new(r));
+            check("ggx_normal_pdf", true, &mut |o| batch::ggx_normal_pdf(&r, hx, hy, hz, o), &|i| {
+                ggx.normal_pdf(h(i))
+            });
+            check(
+                "ggx_visible_normal_pdf",
+                true,
+                &mut |o| batch::ggx_visible_normal_pdf(&r, wo, m, o),
+                &|i| ggx.visible_normal_pdf(w(i), h(i)),
+            );
+            check(
+                "ggx_reflection_pdf_from_normal",
+                true,
+                &mut |o| batch::ggx_reflection_pdf_from_normal(&r, wo, m, o),
+                &|i| ggx.reflection_pdf_from_normal(w(i), h(i)),
+            );
+            check(
+                "beckmann_normal_pdf",
+                false,
+                &mut |o| batch::beckmann_normal_pdf(&r, hx, hy, hz, o),
+                &|i| beckmann.normal_pdf(h(i)),
+            );
+            check(
+                "beckmann_visible_normal_pdf",
+                false,
+                &mut |o| batch::beckmann_visible_normal_pdf(&r, wo, m, o),
+                &|i| beckmann.visible_normal_pdf(w(i), h(i)),
+            );
+            check(
+                "beckmann_reflection_pdf_from_normal",
+                false,
+                &mut |o| batch::beckmann_reflection_pdf_from_normal(&r, wo, m, o),
+                &|i| beckmann.reflection_pdf_from_normal(w(i), h(i)),
+            );
             let lobe = GaussianFilteredGgx::new(r, kernel);
             check(
                 "gaussian_filtered_ggx_d",
@@ -178,12 +220,12 @@ macro_rules! batch_prec {
 /// in every form, an axis-aligned one, clamp rules (the presets, or raw extent, floor and
 /// `kappa`), a pixel `sigma`, a kernel, and up to 40 elements of seven columns (half vector,
 /// footprint), repeated up to 16 times so that the driver's blocks and its sorted second
-/// lanes see runs longer than a block. For the `D` and `Lambda` families, the filtered
-/// routes, the projected and exact Gaussian filters, the box filter and the proxy: every
-/// function writes exactly the common length and nothing past it; the functions documented
-/// bit for bit equal the scalar function element by element (GGX `D` and `Lambda`, the
-/// projected routes, the exact Gaussian filter, TK19 GGX in `f64`); the others are NaN-free
-/// where the scalar function is and `0` where it is `0`. Panics on a violation.
+/// lanes see runs longer than a block. For the `D` and `Lambda` families, the pdfs, the
+/// filtered routes, the projected and exact Gaussian filters, the box filter and the proxy:
+/// every function writes exactly the common length and nothing past it; the functions
+/// documented bit for bit equal the scalar function element by element (GGX `D`, `Lambda`
+/// and pdfs, the projected routes, the exact Gaussian filter, TK19 GGX in `f64`); the others
+/// are NaN-free where the scalar function is and `0` where it is `0`. Panics on a violation.
 pub fn check_batch(data: &[u8]) {
     batch_prec!(d64, f64, &mut Bytes::new(data));
     batch_prec!(d32, f32, &mut Bytes::new(data));
