@@ -220,12 +220,12 @@ macro_rules! batch_prec {
 /// in every form, an axis-aligned one, clamp rules (the presets, or raw extent, floor and
 /// `kappa`), a pixel `sigma`, a kernel, and up to 40 elements of seven columns (half vector,
 /// footprint), repeated up to 16 times so that the driver's blocks and its sorted second
-/// lanes see runs longer than a block. For the `D` and `Lambda` families, the pdfs, the
-/// filtered routes, the projected and exact Gaussian filters, the box filter and the proxy:
-/// every function writes exactly the common length and nothing past it; the functions
-/// documented bit for bit equal the scalar function element by element (GGX `D`, `Lambda`
-/// and pdfs, the projected routes, the exact Gaussian filter, TK19 GGX in `f64`); the others
-/// are NaN-free where the scalar function is and `0` where it is `0`. Panics on a violation.
+/// lanes see runs longer than a block. For `D`, GGX's `Lambda`, the pdfs, the filtered
+/// routes, the projected and exact Gaussian filters, the box filter and the proxy: every
+/// function writes exactly the common length and nothing past it; the functions documented
+/// bit for bit equal the scalar function element by element (GGX `D`, `Lambda` and pdfs, the
+/// projected routes, the exact Gaussian filter, TK19 GGX in `f64`); the others are NaN-free
+/// where the scalar function is and `0` where it is `0`. Panics on a violation.
 pub fn check_batch(data: &[u8]) {
     batch_prec!(d64, f64, &mut Bytes::new(data));
     batch_prec!(d32, f32, &mut Bytes::new(data));
