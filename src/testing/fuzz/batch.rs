@@ -17,7 +17,7 @@ macro_rules! batch_prec {
         use crate::$prec::{
             AxisAligned, Beckmann, ClampRules, Covariance, ExtentFloor, F, Footprint,
             GaussianFilteredGgx, Ggx, Ndf, NdfSampling, Vec2, Vec3, batch,
-            filter::{projected, proxy, rect},
+            filter::{presets, projected, proxy, rect},
         };
         use $d::f;
         use crate::math::Real;
@@ -64,10 +64,12 @@ macro_rules! batch_prec {
         let sentinel = F::from_f64(SENTINEL);
         let mut out = vec![sentinel; n + 3];
         // Runs one batch function, then checks the length rule and each element against the
-        // scalar function: bit for bit where `exact`, else both NaN-free and the batch value
-        // `0` where the scalar one is (the documented zeros: below the horizon, NaN input).
+        // scalar function: bit for bit where `zero` is `None`; else NaN-free where the scalar
+        // value is, and within `zero` of `0` where the scalar value is `0` (the documented
+        // zeros of the densities, below the horizon and for NaN input: `0`; Beckmann's
+        // `Lambda`, within its absolute bound `L (1 + Lambda)` of it: `L`).
         let mut check = |what: &str,
-                         exact: bool,
+                         zero: Option<f64>,
                          run: &mut dyn FnMut(&mut [F]) -> usize,
                          scalar: &dyn Fn(usize) -> F| {
             out.fill(sentinel);
@@ -79,51 +81,54 @@ macro_rules! batch_prec {
             );
             for (i, &g) in out[..n].iter().enumerate() {
                 let s = scalar(i);
-                if exact {
+                if let Some(z) = zero {
+                    assert!(!g.is_nan() || s.is_nan(), "{what} [{i}]: batch NaN, scalar {s:e}");
+                    if s == 0.0 {
+                        assert!(
+                            g.to_f64().abs() <= z,
+                            "{what} [{i}]: batch {g:e} where the scalar is 0"
+                        );
+                    }
+                } else {
                     assert!(
                         g.to_bits() == s.to_bits(),
                         "{what} [{i}]: batch {g:e}, scalar {s:e}"
                     );
-                } else {
-                    assert!(!g.is_nan() || s.is_nan(), "{what} [{i}]: batch NaN, scalar {s:e}");
-                    if s == 0.0 {
-                        assert_eq!(g, 0.0, "{what} [{i}]: batch {g:e} where the scalar is 0");
-                    }
                 }
             }
         };
         const WIDE: bool = F::MANTISSA_DIGITS > 24;
         with_rough!($d, rough, r => {
-            check("ggx_d", true, &mut |o| batch::ggx_d(&r, hx, hy, hz, o), &|i| {
+            check("ggx_d", None, &mut |o| batch::ggx_d(&r, hx, hy, hz, o), &|i| {
                 Ggx::new(r).d(h(i))
             });
-            check("ggx_lambda", true, &mut |o| batch::ggx_lambda(&r, hx, hy, hz, o), &|i| {
+            check("ggx_lambda", None, &mut |o| batch::ggx_lambda(&r, hx, hy, hz, o), &|i| {
                 Ggx::new(r).lambda(h(i))
             });
-            check("beckmann_d", false, &mut |o| batch::beckmann_d(&r, hx, hy, hz, o), &|i| {
+            check("beckmann_d", Some(0.0), &mut |o| batch::beckmann_d(&r, hx, hy, hz, o), &|i| {
                 Beckmann::new(r).d(h(i))
             });
             check(
                 "ggx_d_filtered",
-                WIDE,
+                if WIDE { None } else { Some(0.0) },
                 &mut |o| batch::ggx_d_filtered(&r, &rules, sigma, hx, hy, hz, fp, o),
                 &|i| Ggx::new(rules.filter_gaussian(r, foot(i), sigma)).d(h(i)),
             );
             check(
                 "beckmann_d_filtered",
-                false,
+                Some(0.0),
                 &mut |o| batch::beckmann_d_filtered(&r, &rules, sigma, hx, hy, hz, fp, o),
                 &|i| Beckmann::new(rules.filter_gaussian(r, foot(i), sigma)).d(h(i)),
             );
             check(
                 "ggx_d_filtered_projected",
-                true,
+                None,
                 &mut |o| batch::ggx_d_filtered_projected(&r, &rules, sigma, hx, hy, hz, fp, o),
                 &|i| Ggx::new(rules.filter_projected(r, foot(i), sigma)).d(h(i)),
             );
             check(
                 "ggx_d_filtered_exact",
-                true,
+                None,
                 &mut |o| batch::ggx_d_filtered_exact(&r, &rules, sigma, hx, hy, hz, fp, o),
                 &|i| {
                     let k = rules.kernel(rules.footprint(foot(i)).covariance(sigma));
@@ -137,7 +142,7 @@ macro_rules! batch_prec {
             };
             check(
                 "ggx_d_projected",
-                true,
+                None,
                 &mut |o| batch::ggx_d_projected(&r, kernels, hx, hy, hz, o),
                 &|i| Ggx::new(projected(r, Covariance::new(ux[i], uy[i], vx[i]))).d(h(i)),
             );
@@ -148,56 +153,93 @@ macro_rules! batch_prec {
             );
             let w = |i: usize| Vec3::new(ux[i], uy[i], vx[i]);
             let (ggx, beckmann) = (Ggx::new(r), Beckmann::new(r));
-            check("ggx_normal_pdf", true, &mut |o| batch::ggx_normal_pdf(&r, hx, hy, hz, o), &|i| {
+            check("ggx_normal_pdf", None, &mut |o| batch::ggx_normal_pdf(&r, hx, hy, hz, o), &|i| {
                 ggx.normal_pdf(h(i))
             });
             check(
                 "ggx_visible_normal_pdf",
-                true,
+                None,
                 &mut |o| batch::ggx_visible_normal_pdf(&r, wo, m, o),
                 &|i| ggx.visible_normal_pdf(w(i), h(i)),
             );
             check(
                 "ggx_reflection_pdf_from_normal",
-                true,
+                None,
                 &mut |o| batch::ggx_reflection_pdf_from_normal(&r, wo, m, o),
                 &|i| ggx.reflection_pdf_from_normal(w(i), h(i)),
             );
             check(
                 "beckmann_normal_pdf",
-                false,
+                Some(0.0),
                 &mut |o| batch::beckmann_normal_pdf(&r, hx, hy, hz, o),
                 &|i| beckmann.normal_pdf(h(i)),
             );
             check(
                 "beckmann_visible_normal_pdf",
-                false,
+                Some(0.0),
                 &mut |o| batch::beckmann_visible_normal_pdf(&r, wo, m, o),
                 &|i| beckmann.visible_normal_pdf(w(i), h(i)),
             );
             check(
                 "beckmann_reflection_pdf_from_normal",
-                false,
+                Some(0.0),
                 &mut |o| batch::beckmann_reflection_pdf_from_normal(&r, wo, m, o),
                 &|i| beckmann.reflection_pdf_from_normal(w(i), h(i)),
+            );
+            check(
+                "beckmann_lambda",
+                Some(if WIDE { 1.9e-8 } else { 2.1e-7 }),
+                &mut |o| batch::beckmann_lambda(&r, hx, hy, hz, o),
+                &|i| beckmann.lambda(h(i)),
+            );
+            // G2 with the footprint's columns as the second direction and the half vector as
+            // the micronormal too.
+            let wi = batch::Vec3s { x: vy, y: ux, z: uy };
+            let v = |i: usize| Vec3::new(vy[i], ux[i], uy[i]);
+            check("ggx_g2", None, &mut |o| batch::ggx_g2(&r, wi, wo, m, o), &|i| {
+                ggx.g2(v(i), w(i), h(i))
+            });
+            check(
+                "beckmann_g2",
+                Some(0.0),
+                &mut |o| batch::beckmann_g2(&r, wi, wo, m, o),
+                &|i| beckmann.g2(v(i), w(i), h(i)),
             );
             let lobe = GaussianFilteredGgx::new(r, kernel);
             check(
                 "gaussian_filtered_ggx_d",
-                true,
+                None,
                 &mut |o| batch::gaussian_filtered_ggx_d(&lobe, hx, hy, hz, o),
                 &|i| lobe.d(h(i)),
             );
         });
+        // The deferred presets: roughness from the half vector's `x`, the differences from
+        // the other six columns.
+        let (du, dv) = (
+            batch::Vec3s { x: hy, y: hz, z: ux },
+            batch::Vec3s { x: uy, y: vx, z: vy },
+        );
+        for (name, conv) in presets::ALL {
+            let exact = conv.exponent == 1.0;
+            check(
+                name,
+                if exact { None } else { Some(0.0) },
+                &mut |o| batch::deferred_filter(&conv, hx, du, dv, o),
+                &|i| {
+                    let (a, b) = (Vec3::new(hy[i], hz[i], ux[i]), Vec3::new(uy[i], vx[i], vy[i]));
+                    conv.filter(hx[i], a, b).alpha()
+                },
+            );
+        }
         check(
             "d_rect",
-            false,
+            Some(0.0),
             &mut |o| batch::d_rect(&aa, hx, hy, hz, ux, vy, o),
             &|i| rect::d_rect(aa, h(i), Vec2::new(ux[i], vy[i])),
         );
         check(
             "d_rect_filtered",
-            false,
+            Some(0.0),
             &mut |o| batch::d_rect_filtered(&aa, &rules, hx, hy, hz, fp, o),
             &|i| {
                 let half = rules.rect(foot(i).bounding_rect(), aa.alpha()).half_extent;
@@ -206,7 +248,7 @@ macro_rules! batch_prec {
         );
         check(
             "ggx_d_filtered_proxy",
-            false,
+            Some(0.0),
             &mut |o| batch::ggx_d_filtered_proxy(&aa, &rules, hx, hy, hz, fp, o),
             &|i| {
                 let half = rules.rect(foot(i).bounding_rect(), aa.alpha()).half_extent;
@@ -220,12 +262,13 @@ macro_rules! batch_prec {
 /// in every form, an axis-aligned one, clamp rules (the presets, or raw extent, floor and
 /// `kappa`), a pixel `sigma`, a kernel, and up to 40 elements of seven columns (half vector,
 /// footprint), repeated up to 16 times so that the driver's blocks and its sorted second
-/// lanes see runs longer than a block. For `D`, GGX's `Lambda`, the pdfs, the filtered
-/// routes, the projected and exact Gaussian filters, the box filter and the proxy: every
-/// function writes exactly the common length and nothing past it; the functions documented
-/// bit for bit equal the scalar function element by element (GGX `D`, `Lambda` and pdfs, the
-/// projected routes, the exact Gaussian filter, TK19 GGX in `f64`); the others are NaN-free
-/// where the scalar function is and `0` where it is `0`. Panics on a violation.
+/// lanes see runs longer than a block. For `D`, `Lambda` and `G2`, the pdfs, the deferred
+/// presets, the filtered routes, the projected and exact Gaussian filters, the box filter and
+/// the proxy: every function writes exactly the common length and nothing past it; the
+/// functions documented bit for bit equal the scalar function element by element (GGX `D`,
+/// `Lambda`, `G2` and pdfs, the presets of exponent 1, the projected routes, the exact
+/// Gaussian filter, TK19 GGX in `f64`); the others are NaN-free where the scalar function is
+/// and `0` where it is `0`. Panics on a violation.
 pub fn check_batch(data: &[u8]) {
     batch_prec!(d64, f64, &mut Bytes::new(data));
     batch_prec!(d32, f32, &mut Bytes::new(data));
