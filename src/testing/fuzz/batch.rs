@@ -237,23 +237,19 @@ macro_rules! batch_prec {
             &mut |o| batch::d_rect(&aa, hx, hy, hz, ux, vy, o),
             &|i| rect::d_rect(aa, h(i), Vec2::new(ux[i], vy[i])),
         );
+        // The rules' clamped rectangle of element `i` (the box filter's and the proxy's).
+        let half = |i: usize| rules.rect(foot(i).bounding_rect(), aa.alpha()).half_extent;
         check(
             "d_rect_filtered",
             Some(0.0),
             &mut |o| batch::d_rect_filtered(&aa, &rules, hx, hy, hz, fp, o),
-            &|i| {
-                let half = rules.rect(foot(i).bounding_rect(), aa.alpha()).half_extent;
-                rect::d_rect(aa, h(i), half)
-            },
+            &|i| rect::d_rect(aa, h(i), half(i)),
         );
         check(
             "ggx_d_filtered_proxy",
             Some(0.0),
             &mut |o| batch::ggx_d_filtered_proxy(&aa, &rules, hx, hy, hz, fp, o),
-            &|i| {
-                let half = rules.rect(foot(i).bounding_rect(), aa.alpha()).half_extent;
-                Ggx::new(proxy::proxy(aa, half)).d(h(i))
-            },
+            &|i| Ggx::new(proxy::proxy(aa, half(i))).d(h(i)),
         );
     }};
 }
