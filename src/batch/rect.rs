@@ -213,6 +213,24 @@ fn class_of((a, b): (u8, u8)) -> u8 {
     if closed { CLOSED } else { NT as u8 * a + b }
 }
 
+/// The number of bytes of `part` equal to `k`: per lane of 64 a byte counter (at most
+/// `UNIT / 64 < 256` increments, no overflow), summed once at the end (a compare and a
+/// subtract per 64 bytes with AVX-512).
+#[inline(always)]
+fn count_eq(part: &[u8], k: u8) -> u16 {
+    const L: usize = 64;
+    const { assert!(UNIT / L < 256, "a lane's byte counter cannot overflow") };
+    let mut acc = [0u8; L];
+    let mut it = part.chunks_exact(L);
+    for c in &mut it {
+        for (a, &x) in acc.iter_mut().zip(c) {
+            *a += u8::from(x == k);
+        }
+    }
+    let tail: u16 = it.remainder().iter().map(|&x| u16::from(x == k)).sum();
+    acc.iter().map(|&a| u16::from(a)).sum::<u16>() + tail
+}
+
 /// The class of the pair `(i, j)`, `i <= j < NT`, in `f32`: the pairs numbered row by row,
 /// `(0, 0)` to `(0, NT - 1)`, then `(1, 1)`, and so on.
 #[inline(always)]
@@ -304,14 +322,16 @@ impl<E: Extents> Body for RectLoop<'_, E> {
             // are the offsets of class `k`, in order. The unit in `Q` parts with their own
             // counters, interleaved: consecutive elements of one class would otherwise chain
             // every increment through memory (store-to-load forwarding, measured at a third of
-            // the loop's time). The counts per part by vectorised compares. Only the offsets
-            // move (moving the five columns here took 22 % of the time; the lanes gather them,
-            // which measured faster than gathering each class into a buffer first).
+            // the loop's time). The counts per part by vectorised compares into byte counters
+            // (`count_eq`: 8.8 against 9.1 ns an element with `u16` sums, `f32`, AVX-512).
+            // Only the offsets move (moving the five columns here took 22 % of the time; the
+            // lanes gather them, which measured faster than gathering each class into a buffer
+            // first).
             let q = len.div_ceil(Q);
             let mut next = [[0u16; NCLASS]; Q];
             for (cnt, part) in next.iter_mut().zip(class[..len].chunks(q)) {
                 for (k, c) in cnt.iter_mut().enumerate() {
-                    *c = part.iter().map(|&x| u16::from(x == k as u8)).sum();
+                    *c = count_eq(part, k as u8);
                 }
             }
             let mut start = [0u16; NCLASS + 1];
@@ -423,6 +443,26 @@ impl<E: Extents> Body for RectLoop<'_, E> {
                 }
             }
             b = e;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `count_eq` counts as a plain filter does, for every length of a part (whole lanes of
+    /// 64 and a remainder) and every class, on bytes where each class is frequent and rare.
+    #[test]
+    fn count_eq_counts() {
+        let mut rng = crate::testing::rng::SplitMix64(0xC0FE);
+        let bytes: [u8; UNIT] =
+            core::array::from_fn(|_| (rng.uniform() * rng.uniform() * NCLASS as f64) as u8);
+        for len in (0..=UNIT).step_by(37).chain([63, 64, 65, UNIT]) {
+            for k in 0..=NCLASS as u8 {
+                let want = bytes[..len].iter().filter(|&&x| x == k).count();
+                assert_eq!(usize::from(count_eq(&bytes[..len], k)), want, "{len} {k}");
+            }
         }
     }
 }
