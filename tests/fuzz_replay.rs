@@ -333,6 +333,80 @@ mod findings {
     }
 
     #[test]
+    fn filters_keep_a_clamped_matrix_clamp() {
+        // f32: entries 1e-40 (singular) clamped to det A_c = 1 evaluate as about the identity;
+        // filtered without a clamp, A + 2 Sigma had det 2e-80 and D(0) = 1 / (pi sqrt(det))
+        // overflowed to inf. A kernel of 1e-40 next to A_c ~ I changes nothing measurable, so
+        // each filter must return a lobe with D(0) = 1 / pi (the identity's peak, GGX and
+        // Beckmann alike) to a few f32 ulps (tolerance 1e-6 relative: the clamp shift's
+        // rounding and 1 / pi's).
+        use f32::{Ndf, Roughness};
+        let r = f32::RoughnessMatrix::new_with_det_clamp(1e-40, 1e-40, 1e-40, 1.0).unwrap();
+        let k = f32::Covariance::new(1e-40, 0.0, 0.0);
+        let peak = 1.0 / core::f64::consts::PI;
+        let rules = f32::ClampRules {
+            det_clamp: false,
+            ..f32::ClampRules::DEFAULT
+        };
+        assert_eq!(rules.det_clamp_for(r), 1.0);
+        let fp = f32::Footprint::from_slope_derivatives(Vec2::new(1e-20, 0.0), Vec2::ZERO);
+        for (g, what) in [
+            (
+                f32::filter::gaussian_with_det_clamp(r, k, 0.0),
+                "gaussian_with_det_clamp",
+            ),
+            (
+                f32::filter::projected_with_det_clamp(r, k, 0.0),
+                "projected_with_det_clamp",
+            ),
+            (
+                rules.filter_gaussian(r, fp, 1.0),
+                "filter_gaussian without det_clamp",
+            ),
+            (
+                rules.filter_projected(r, fp, 1.0),
+                "filter_projected without det_clamp",
+            ),
+        ] {
+            for d in [
+                f32::Ggx::new(g).d(Vec3::Z),
+                f32::Beckmann::new(g).d(Vec3::Z),
+            ] {
+                assert!(
+                    (f64::from(d) / peak - 1.0).abs() < 1e-6,
+                    "{what}: D(0) = {d} for {:?}, sqrt_det {}",
+                    g.entries(),
+                    g.sqrt_det()
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn gaussian_filtered_ggx_far_tail_of_a_sharp_lobe() {
+        // The far-tail series formed P = l1 c1^2 + l2 c2^2 before dividing by beta: at a
+        // slope of 1e137 (1e145 lobe widths, the widest kernel) P overflowed while beta^-2
+        // underflowed, 0 inf = NaN. There the density is below every f64 (GGX's tail
+        // alpha^2 / (pi |s|^4) = 1e-565), so 0; at 1e60 it is representable, and a kernel of
+        // 1e8 slope^2 beside |s|^2 = 1e120 changes GGX's tail by a relative 1e-112: the
+        // filtered lobe equals GGX's closed form there to rounding (1e-12 relative: the
+        // series' and GGX's few roundings).
+        use f64::Ndf;
+        let r = f64::Isotropic::new(1e-8).unwrap();
+        let lobe =
+            f64::GaussianFilteredGgx::new(r, f64::Covariance::new(-0.0, 1e30, f64::INFINITY));
+        for s in [
+            DVec2::new(8.783404179181653e137, -1e-30),
+            DVec2::new(0.0, 1e137),
+        ] {
+            assert_eq!(lobe.p22(s), 0.0, "{s:?}");
+        }
+        let s = DVec2::new(1e60, 0.0);
+        let (p, g) = (lobe.p22(s), f64::Ggx::new(r).p22(s));
+        assert!(g > 0.0 && (p / g - 1.0).abs() < 1e-12, "{p:e} vs GGX {g:e}");
+    }
+
+    #[test]
     fn footprint_projected_of_a_nan_footprint() {
         let fp = f64::Footprint::from_slope_derivatives(DVec2::NAN, DVec2::NAN);
         let h = DVec3::new(-0.0, 0.0, -1e-30);

@@ -49,12 +49,12 @@ fn gaussian(a: matrix::RoughnessMatrix, kernel: covariance::Covariance) -> matri
 }
 
 /// [`gaussian`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
-/// filtered determinant here is never below `det A`, so no fallback is needed: the Rust
-/// `gaussian_with_det_clamp`).
+/// filtered determinant here is never below `det A`, so no fallback is needed), at least the
+/// material's own clamp ([`matrix::own_det_clamp`]): the Rust `gaussian_with_det_clamp`.
 fn gaussian_with_det_clamp(
     a: matrix::RoughnessMatrix,
     kernel: covariance::Covariance,
     det_clamp: f32,
 ) -> matrix::RoughnessMatrix {
-    return gaussian_sanitized(a, covariance::sanitized(kernel), det_clamp);
+    return gaussian_sanitized(a, covariance::sanitized(kernel), max(det_clamp, matrix::own_det_clamp(a)));
 }

@@ -25,14 +25,15 @@ fn projected(a: matrix::RoughnessMatrix, kernel: covariance::Covariance) -> matr
     return projected_sanitized(a, covariance::sanitized(kernel), matrix::clamped_det(a));
 }
 
-/// [`projected`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
-/// Rust `projected_with_det_clamp`).
+/// [`projected`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none), at
+/// least the material's own clamp ([`matrix::own_det_clamp`]; the Rust
+/// `projected_with_det_clamp`).
 fn projected_with_det_clamp(
     a: matrix::RoughnessMatrix,
     kernel: covariance::Covariance,
     det_clamp: f32,
 ) -> matrix::RoughnessMatrix {
-    return projected_sanitized(a, covariance::sanitized(kernel), det_clamp);
+    return projected_sanitized(a, covariance::sanitized(kernel), max(det_clamp, matrix::own_det_clamp(a)));
 }
 
 /// [`projected`] for a sanitised kernel `k`, with the clamp `tau` (`<= 0`: none). `A` is the

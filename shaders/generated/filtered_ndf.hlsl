@@ -310,9 +310,9 @@ float2 math_sincos_turns(float u)
     float2 cs = (float2)0;
 
     float q_4 = round((4.0 * u));
-    float r_75 = (u - (0.25 * q_4));
-    float z_3 = (r_75 * r_75);
-    float s_20 = (r_75 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855));
+    float r_76 = (u - (0.25 * q_4));
+    float z_3 = (r_76 * r_76);
+    float s_20 = (r_76 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855));
     float c_14 = ((((((((59.22017 * z_3) - 85.44285) * z_3) + 64.939316) * z_3) - 19.739208) * z_3) + 1.0);
     int k_24 = (naga_f2i32(q_4) & int(3));
     cs = float2(c_14, s_20);
@@ -346,9 +346,9 @@ float math_exp(float x_2)
 {
     float xc = clamp(x_2, -87.0, 88.0);
     float n_6 = round((xc * math_LOG2_E));
-    float r_76 = ((xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO));
-    float r2_ = (r_76 * r_76);
-    float p_6 = (((1.0 + r_76) + ((0.4999999 + (0.1666642 * r_76)) * r2_)) + (((0.041668225 + (0.008374816 * r_76)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
+    float r_77 = ((xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO));
+    float r2_ = (r_77 * r_77);
+    float p_6 = (((1.0 + r_77) + ((0.4999999 + (0.1666642 * r_77)) * r2_)) + (((0.041668225 + (0.008374816 * r_77)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
     float s_21 = asfloat((uint(asint(asuint(naga_f2i32(n_6)) + asuint(int(127)))) << 23u));
     return ((x_2 >= -87.0) ? (p_6 * s_21) : 0.0);
 }
@@ -464,15 +464,15 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     float b_6 = (c_3.s_xy / scale);
     float e_3 = (c_3.s_yy / scale);
     float d_3 = (0.5 * (a_18 - e_3));
-    float r_77 = sqrt(((d_3 * d_3) + (b_6 * b_6)));
-    float lmax_1 = (((0.5 * (a_18 + e_3)) + r_77) * scale);
+    float r_78 = sqrt(((d_3 * d_3) + (b_6 * b_6)));
+    float lmax_1 = (((0.5 * (a_18 + e_3)) + r_78) * scale);
     if ((lmax_1 <= max_eig)) {
         const kernel_covariance_Covariance kernel_covariance_covariance_6 = c_3;
         return kernel_covariance_covariance_6;
     }
     float lmin_1 = max((c_3.det / lmax_1), 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = (r_77 < 1e-18);
+        local = (r_78 < 1e-18);
     } else {
         local = true;
     }
@@ -481,10 +481,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         const kernel_covariance_Covariance kernel_covariance_covariance_7 = Constructkernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
         return kernel_covariance_covariance_7;
     }
-    float p_7 = (r_77 + abs(d_3));
+    float p_7 = (r_78 + abs(d_3));
     float q_5 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
     float2 ee = ((d_3 >= 0.0) ? float2(p_7, q_5) : float2(q_5, p_7));
-    float inv_1 = (1.0 / (2.0 * r_77));
+    float inv_1 = (1.0 / (2.0 * r_78));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_6 * inv_1);
     float p22_ = (ee.y * inv_1);
@@ -778,6 +778,11 @@ float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10
     return max(r_10.det, r_10.tau);
 }
 
+float ndf_roughness_matrix_own_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_11)
+{
+    return ((r_11.tau > r_11.det) ? r_11.tau : 0.0);
+}
+
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3)
 {
     const float3 _e3 = ndf_roughness_matrix_entries(a_2);
@@ -804,8 +809,9 @@ ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matr
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_3, float det_clamp_1)
 {
     const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e3, det_clamp_1);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_7 = _e4;
+    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_4);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_4, _e3, max(det_clamp_1, _e4));
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_7 = _e6;
     return ndf_roughness_matrix_roughnessmatrix_7;
 }
 
@@ -841,24 +847,24 @@ ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha
     return ndf_roughness_isotropic_isotropic;
 }
 
-float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_11, float2 s_1)
+float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_12, float2 s_1)
 {
-    return (dot(s_1, s_1) * r_11.inv_alpha_sq);
+    return (dot(s_1, s_1) * r_12.inv_alpha_sq);
 }
 
-float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_12, float2 w_1)
+float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_13, float2 w_1)
 {
-    return (dot(w_1, w_1) * (r_12.alpha * r_12.alpha));
+    return (dot(w_1, w_1) * (r_13.alpha * r_13.alpha));
 }
 
-float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_13)
+float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_14)
 {
-    return (r_13.alpha * r_13.alpha);
+    return (r_14.alpha * r_14.alpha);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_14)
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_15)
 {
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), (r_14.alpha).xx);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), (r_15.alpha).xx);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_8 = _e6;
     return ndf_roughness_matrix_roughnessmatrix_8;
 }
@@ -879,24 +885,24 @@ ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(flo
     return ndf_roughness_axis_aligned_axisaligned;
 }
 
-float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_15, float2 s_2)
+float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_16, float2 s_2)
 {
-    return dot((s_2 * s_2), r_15.inv_alpha_sq);
+    return dot((s_2 * s_2), r_16.inv_alpha_sq);
 }
 
-float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_16, float2 w_2)
+float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_17, float2 w_2)
 {
-    return dot((w_2 * w_2), (r_16.alpha * r_16.alpha));
+    return dot((w_2 * w_2), (r_17.alpha * r_17.alpha));
 }
 
-float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_17)
+float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_18)
 {
-    return (r_17.alpha.x * r_17.alpha.y);
+    return (r_18.alpha.x * r_18.alpha.y);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_18)
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_19)
 {
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), r_18.alpha);
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), r_19.alpha);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_9 = _e5;
     return ndf_roughness_matrix_roughnessmatrix_9;
 }
@@ -945,120 +951,120 @@ float ndf_ggx_lambda_of(float q_1, float abs_wz)
     if (_e21) {
         return math_F32_MAX;
     }
-    float r_78 = sqrt(((abs_wz * abs_wz) + q_1));
-    return (q_1 / ((2.0 * abs_wz) * (r_78 + abs_wz)));
+    float r_79 = sqrt(((abs_wz * abs_wz) + q_1));
+    return (q_1 / ((2.0 * abs_wz) * (r_79 + abs_wz)));
 }
 
-float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_19, float2 s_3)
+float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_20, float2 s_3)
 {
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_19, s_3);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_19);
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_20, s_3);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_20);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_20, float3 m)
+float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_21, float3 m)
 {
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_20, m.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_20);
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_21, m.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_21);
     const float _e6 = ndf_ggx_d_of(_e3, m.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_21, float3 w_3)
+float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_22, float3 w_3)
 {
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_21, w_3.xy);
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_22, w_3.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_3.z));
     return _e6;
 }
 
-float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_22, float3 w_4, float3 m_1)
+float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_23, float3 w_4, float3 m_1)
 {
-    const float _e3 = ndf_ggx_lambda_isotropic(r_22, w_4);
+    const float _e3 = ndf_ggx_lambda_isotropic(r_23, w_4);
     const float _e5 = ndf_g1_of(_e3, dot(w_4, m_1));
     return _e5;
 }
 
-float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_23, float3 i, float3 o, float3 m_2)
+float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_24, float3 i, float3 o, float3 m_2)
 {
-    const float _e4 = ndf_ggx_lambda_isotropic(r_23, i);
-    const float _e5 = ndf_ggx_lambda_isotropic(r_23, o);
+    const float _e4 = ndf_ggx_lambda_isotropic(r_24, i);
+    const float _e5 = ndf_ggx_lambda_isotropic(r_24, o);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_2), dot(o, m_2));
     return _e8;
 }
 
-float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_24, float2 s_4)
+float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, float2 s_4)
 {
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_24, s_4);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_24);
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_25, s_4);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_25);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, float3 m_3)
+float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, float3 m_3)
 {
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_25, m_3.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_25);
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_26, m_3.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_26);
     const float _e6 = ndf_ggx_d_of(_e3, m_3.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, float3 w_5)
+float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, float3 w_5)
 {
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_26, w_5.xy);
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_27, w_5.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_5.z));
     return _e6;
 }
 
-float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, float3 w_6, float3 m_4)
+float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, float3 w_6, float3 m_4)
 {
-    const float _e3 = ndf_ggx_lambda_axis_aligned(r_27, w_6);
+    const float _e3 = ndf_ggx_lambda_axis_aligned(r_28, w_6);
     const float _e5 = ndf_g1_of(_e3, dot(w_6, m_4));
     return _e5;
 }
 
-float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, float3 i_1, float3 o_1, float3 m_5)
+float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, float3 i_1, float3 o_1, float3 m_5)
 {
-    const float _e4 = ndf_ggx_lambda_axis_aligned(r_28, i_1);
-    const float _e5 = ndf_ggx_lambda_axis_aligned(r_28, o_1);
+    const float _e4 = ndf_ggx_lambda_axis_aligned(r_29, i_1);
+    const float _e5 = ndf_ggx_lambda_axis_aligned(r_29, o_1);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_5), dot(o_1, m_5));
     return _e8;
 }
 
-float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_29, float2 s_5)
+float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, float2 s_5)
 {
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_29, s_5);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_29);
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_30, s_5);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_30);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, float3 m_6)
+float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, float3 m_6)
 {
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_30, m_6.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_30);
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_31, m_6.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_31);
     const float _e6 = ndf_ggx_d_of(_e3, m_6.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, float3 w_7)
+float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, float3 w_7)
 {
-    const float _e3 = ndf_roughness_matrix_quadratic(r_31, w_7.xy);
+    const float _e3 = ndf_roughness_matrix_quadratic(r_32, w_7.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_7.z));
     return _e6;
 }
 
-float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, float3 w_8, float3 m_7)
+float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, float3 w_8, float3 m_7)
 {
-    const float _e3 = ndf_ggx_lambda_matrix(r_32, w_8);
+    const float _e3 = ndf_ggx_lambda_matrix(r_33, w_8);
     const float _e5 = ndf_g1_of(_e3, dot(w_8, m_7));
     return _e5;
 }
 
-float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, float3 i_2, float3 o_2, float3 m_8)
+float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, float3 i_2, float3 o_2, float3 m_8)
 {
-    const float _e4 = ndf_ggx_lambda_matrix(r_33, i_2);
-    const float _e5 = ndf_ggx_lambda_matrix(r_33, o_2);
+    const float _e4 = ndf_ggx_lambda_matrix(r_34, i_2);
+    const float _e5 = ndf_ggx_lambda_matrix(r_34, o_2);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_8), dot(o_2, m_8));
     return _e8;
 }
@@ -1155,116 +1161,116 @@ float ndf_beckmann_lambda_of(float q_3, float abs_wz_1)
     return min(((exp((-(a_21) * a_21)) * k_26) / ((3.5449078 * a_21) * (a_21 + k_26))), math_F32_MAX);
 }
 
-float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_34, float2 s_6)
+float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_35, float2 s_6)
 {
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_34, s_6);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_34);
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_35, s_6);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_35);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_35, float3 m_9)
+float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_36, float3 m_9)
 {
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_35, m_9.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_35);
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_36, m_9.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_36);
     const float _e6 = ndf_beckmann_d_of(_e3, m_9.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_36, float3 w_9)
+float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_37, float3 w_9)
 {
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_36, w_9.xy);
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_37, w_9.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_37, float3 w_10, float3 m_10)
+float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_38, float3 w_10, float3 m_10)
 {
-    const float _e3 = ndf_beckmann_lambda_isotropic(r_37, w_10);
+    const float _e3 = ndf_beckmann_lambda_isotropic(r_38, w_10);
     const float _e5 = ndf_g1_of(_e3, dot(w_10, m_10));
     return _e5;
 }
 
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_38, float3 i_3, float3 o_3, float3 m_11)
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_39, float3 i_3, float3 o_3, float3 m_11)
 {
-    const float _e4 = ndf_beckmann_lambda_isotropic(r_38, i_3);
-    const float _e5 = ndf_beckmann_lambda_isotropic(r_38, o_3);
+    const float _e4 = ndf_beckmann_lambda_isotropic(r_39, i_3);
+    const float _e5 = ndf_beckmann_lambda_isotropic(r_39, o_3);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_11), dot(o_3, m_11));
     return _e8;
 }
 
-float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_39, float2 s_7)
+float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_40, float2 s_7)
 {
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_39, s_7);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_39);
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_40, s_7);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_40);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_40, float3 m_12)
+float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_41, float3 m_12)
 {
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_40, m_12.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_40);
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_41, m_12.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_41);
     const float _e6 = ndf_beckmann_d_of(_e3, m_12.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_41, float3 w_11)
+float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, float3 w_11)
 {
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_41, w_11.xy);
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_42, w_11.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, float3 w_12, float3 m_13)
+float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, float3 w_12, float3 m_13)
 {
-    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_42, w_12);
+    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_43, w_12);
     const float _e5 = ndf_g1_of(_e3, dot(w_12, m_13));
     return _e5;
 }
 
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, float3 i_4, float3 o_4, float3 m_14)
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, float3 i_4, float3 o_4, float3 m_14)
 {
-    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_43, i_4);
-    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_43, o_4);
+    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_44, i_4);
+    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_44, o_4);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_14), dot(o_4, m_14));
     return _e8;
 }
 
-float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_44, float2 s_8)
+float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_45, float2 s_8)
 {
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_44, s_8);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_44);
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_45, s_8);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_45);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_45, float3 m_15)
+float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_46, float3 m_15)
 {
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_45, m_15.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_45);
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_46, m_15.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_46);
     const float _e6 = ndf_beckmann_d_of(_e3, m_15.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_46, float3 w_13)
+float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, float3 w_13)
 {
-    const float _e3 = ndf_roughness_matrix_quadratic(r_46, w_13.xy);
+    const float _e3 = ndf_roughness_matrix_quadratic(r_47, w_13.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, float3 w_14, float3 m_16)
+float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 w_14, float3 m_16)
 {
-    const float _e3 = ndf_beckmann_lambda_matrix(r_47, w_14);
+    const float _e3 = ndf_beckmann_lambda_matrix(r_48, w_14);
     const float _e5 = ndf_g1_of(_e3, dot(w_14, m_16));
     return _e5;
 }
 
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 i_5, float3 o_5, float3 m_17)
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, float3 i_5, float3 o_5, float3 m_17)
 {
-    const float _e4 = ndf_beckmann_lambda_matrix(r_48, i_5);
-    const float _e5 = ndf_beckmann_lambda_matrix(r_48, o_5);
+    const float _e4 = ndf_beckmann_lambda_matrix(r_49, i_5);
+    const float _e5 = ndf_beckmann_lambda_matrix(r_49, o_5);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_17), dot(o_5, m_17));
     return _e8;
 }
@@ -1595,17 +1601,17 @@ float filter_gaussian_ggx_quad_hermite_weight(uint k_9)
 
 float filter_gaussian_ggx_quad_h_of(float y_2)
 {
-    float r_49 = (float)0;
+    float r_50 = (float)0;
 
     float a_23 = abs(y_2);
     if ((a_23 > 1.0)) {
         float i_12 = (1.0 / a_23);
-        r_49 = (a_23 * sqrt((1.0 + (i_12 * i_12))));
+        r_50 = (a_23 * sqrt((1.0 + (i_12 * i_12))));
     } else {
-        r_49 = sqrt((1.0 + (y_2 * y_2)));
+        r_50 = sqrt((1.0 + (y_2 * y_2)));
     }
-    float _e16 = r_49;
-    float _e18 = r_49;
+    float _e16 = r_50;
+    float _e18 = r_50;
     return ((y_2 >= 0.0) ? (1.0 / (_e18 + y_2)) : (_e16 - y_2));
 }
 
@@ -1771,11 +1777,11 @@ sampling_Warp Constructsampling_Warp(float arg0, float arg1, float arg2) {
     return ret;
 }
 
-sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_50)
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_51)
 {
-    const float3 _e1 = ndf_roughness_matrix_clamped_entries(r_50);
+    const float3 _e1 = ndf_roughness_matrix_clamped_entries(r_51);
     float l_xx = sqrt(_e1.x);
-    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_50.sqrt_det / l_xx));
+    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_51.sqrt_det / l_xx));
     return sampling_warp_1;
 }
 
@@ -1814,14 +1820,14 @@ float3 sampling_ggx_standard_visible(float3 wi, float2 u_2)
     return (float3((sin_theta_1 * _e3), z_4) + wi);
 }
 
-float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_51, float3 wo_1, float2 u_3)
+float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_52, float3 wo_1, float2 u_3)
 {
     bool local_13 = (bool)0;
 
     if (!((wo_1.z > 0.0))) {
         return (0.0).xxx;
     }
-    const sampling_Warp _e9 = sampling_warp(r_51);
+    const sampling_Warp _e9 = sampling_warp(r_52);
     const float3 _e10 = sampling_normalize_scaled(wo_1);
     const float3 _e11 = sampling_stretch(_e9, _e10);
     const float3 _e12 = sampling_normalize_scaled(_e11);
@@ -1845,20 +1851,20 @@ float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_51,
     return ((_e36.z > 0.0) ? _e36 : (0.0).xxx);
 }
 
-float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_52, float2 u_4)
+float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_53, float2 u_4)
 {
     const float _e3 = sampling_clamp_unit(u_4.x);
     const float _e5 = sampling_clamp_unit(u_4.y);
     const float2 _e6 = math_sincos_turns(_e5);
     float3 n_7 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
-    const sampling_Warp _e13 = sampling_warp(r_52);
+    const sampling_Warp _e13 = sampling_warp(r_53);
     const float3 _e14 = sampling_unstretch(_e13, n_7);
     return _e14;
 }
 
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_53, float3 m_19)
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_54, float3 m_19)
 {
-    const float _e2 = ndf_ggx_d_matrix(r_53, m_19);
+    const float _e2 = ndf_ggx_d_matrix(r_54, m_19);
     return ((m_19.z > 0.0) ? (_e2 * m_19.z) : 0.0);
 }
 
@@ -1884,10 +1890,10 @@ float sampling_visible_normal_pdf_of(float3 wo_2, float3 m_20, float d, float la
     return (_e25 ? v_14 : 0.0);
 }
 
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_54, float3 wo_3, float3 m_21)
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_55, float3 wo_3, float3 m_21)
 {
-    const float _e3 = ndf_ggx_d_matrix(r_54, m_21);
-    const float _e4 = ndf_ggx_lambda_matrix(r_54, wo_3);
+    const float _e3 = ndf_ggx_d_matrix(r_55, m_21);
+    const float _e4 = ndf_ggx_lambda_matrix(r_55, wo_3);
     const float _e5 = sampling_visible_normal_pdf_of(wo_3, m_21, _e3, _e4);
     return _e5;
 }
@@ -1913,16 +1919,16 @@ float sampling_reflection_pdf_of(float3 o_6, float3 m_22, float d_1, float lambd
     return (_e26 ? v_15 : 0.0);
 }
 
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_55, float3 wo_4, float3 m_23)
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_56, float3 wo_4, float3 m_23)
 {
     const float3 _e3 = sampling_normalize_scaled(wo_4);
-    const float _e4 = ndf_ggx_d_matrix(r_55, m_23);
-    const float _e5 = ndf_ggx_lambda_matrix(r_55, _e3);
+    const float _e4 = ndf_ggx_d_matrix(r_56, m_23);
+    const float _e5 = ndf_ggx_lambda_matrix(r_56, _e3);
     const float _e6 = sampling_reflection_pdf_of(_e3, m_23, _e4, _e5);
     return _e6;
 }
 
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_56, float3 wo_5, float3 wi_1)
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_57, float3 wo_5, float3 wi_1)
 {
     if (!((wo_5.z > 0.0))) {
         return 0.0;
@@ -1934,7 +1940,7 @@ float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_56, float3 
     if (!((len > 0.0))) {
         return 0.0;
     }
-    const float _e18 = sampling_reflection_pdf_from_normal(r_56, wo_5, (h_23 / (len).xxx));
+    const float _e18 = sampling_reflection_pdf_from_normal(r_57, wo_5, (h_23 / (len).xxx));
     return _e18;
 }
 
@@ -2245,9 +2251,9 @@ float2 footprint_jacobian_spherical_to_projected(float3 h_10, float2 e_2)
     return mul(e_2, _e2);
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_57, float sigma_1)
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_58, float sigma_1)
 {
-    float2 w_27 = (r_57.half_extent * (2.0 * sigma_1));
+    float2 w_27 = (r_58.half_extent * (2.0 * sigma_1));
     float2 v_17 = (w_27 * w_27);
     const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_17.x, 0.0, v_17.y, (v_17.x * v_17.y));
     return kernel_covariance_covariance_14;
@@ -2380,8 +2386,9 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_ma
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance kernel_6, float det_clamp_2)
 {
     const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_9, _e3, det_clamp_2);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e4;
+    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_9);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_9, _e3, max(det_clamp_2, _e4));
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e6;
     return ndf_roughness_matrix_roughnessmatrix_13;
 }
 
@@ -2403,7 +2410,7 @@ footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footpr
     return footprint_footprint_7;
 }
 
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_58, float2 alpha_8)
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_59, float2 alpha_8)
 {
     float2 f_1 = (0.0).xx;
 
@@ -2415,7 +2422,7 @@ kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kern
         }
     }
     float lambda_2 = max(rules_1.max_extent, 0.0);
-    float2 h_27 = min(abs(r_58.half_extent), (lambda_2).xx);
+    float2 h_27 = min(abs(r_59.half_extent), (lambda_2).xx);
     float2 _e25 = f_1;
     const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_27, max(_e25, (0.0).xx)));
     return kernel_rect_boundingrect_1;
@@ -2435,8 +2442,9 @@ kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2
 
 float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_10)
 {
-    const float _e2 = ndf_roughness_matrix_clamped_det(a_10);
-    return (rules_3.det_clamp ? _e2 : 0.0);
+    const float _e2 = ndf_roughness_matrix_own_det_clamp(a_10);
+    const float _e3 = ndf_roughness_matrix_clamped_det(a_10);
+    return (rules_3.det_clamp ? _e3 : _e2);
 }
 
 kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_3)
@@ -2482,19 +2490,19 @@ float filter_proxy_effective_alpha_simple(float alpha_10, float half_extent_1)
     return _e3;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_59, float2 half_extent_2)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_60, float2 half_extent_2)
 {
-    const float _e5 = filter_proxy_effective_alpha(r_59.alpha.x, half_extent_2.x);
-    const float _e9 = filter_proxy_effective_alpha(r_59.alpha.y, half_extent_2.y);
+    const float _e5 = filter_proxy_effective_alpha(r_60.alpha.x, half_extent_2.x);
+    const float _e9 = filter_proxy_effective_alpha(r_60.alpha.y, half_extent_2.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_1 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_1;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_60, float2 half_extent_3)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_61, float2 half_extent_3)
 {
-    const float _e5 = filter_proxy_effective_alpha_simple(r_60.alpha.x, half_extent_3.x);
-    const float _e9 = filter_proxy_effective_alpha_simple(r_60.alpha.y, half_extent_3.y);
+    const float _e5 = filter_proxy_effective_alpha_simple(r_61.alpha.x, half_extent_3.x);
+    const float _e9 = filter_proxy_effective_alpha_simple(r_61.alpha.y, half_extent_3.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_2 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_2;
@@ -2926,7 +2934,7 @@ float4 filter_rect_interval(float c_8, float h_14, float a_15)
     return float4(lo_4, hi_4, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
 }
 
-float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_61, float2 center_, float2 half_extent_4)
+float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_62, float2 center_, float2 half_extent_4)
 {
     bool local_19 = (bool)0;
 
@@ -2937,17 +2945,17 @@ float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_61, float2 c
     }
     bool _e12 = local_19;
     if (_e12) {
-        const float _e13 = ndf_ggx_p22_axis_aligned(r_61, center_);
+        const float _e13 = ndf_ggx_p22_axis_aligned(r_62, center_);
         return _e13;
     }
-    float2 a_27 = r_61.alpha;
+    float2 a_27 = r_62.alpha;
     const float4 _e18 = filter_rect_interval(center_.x, half_extent_4.x, a_27.x);
     const float4 _e22 = filter_rect_interval(center_.y, half_extent_4.y, a_27.y);
     const float _e23 = filter_rect_mean_f(_e18, _e22);
     return max((_e23 * (math_INV_PI / (a_27.x * a_27.y))), 0.0);
 }
 
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_62, float3 h_15, float2 half_extent_5)
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_63, float3 h_15, float2 half_extent_5)
 {
     bool local_20 = (bool)0;
 
@@ -2961,20 +2969,20 @@ float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_62, float3 h_1
     }
     bool _e17 = local_20;
     if (_e17) {
-        const float _e18 = ndf_ggx_d_axis_aligned(r_62, h_15);
+        const float _e18 = ndf_ggx_d_axis_aligned(r_63, h_15);
         return _e18;
     }
-    const float _e24 = filter_rect_p22_rect(r_62, (-(h_15.xy) / (h_15.z).xx), half_extent_5);
+    const float _e24 = filter_rect_p22_rect(r_63, (-(h_15.xy) / (h_15.z).xx), half_extent_5);
     float z2_6 = (h_15.z * h_15.z);
     return min((_e24 / (z2_6 * z2_6)), math_F32_MAX);
 }
 
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_63, float2 hpp, float3 h_16, float2 footprint)
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_64, float2 hpp, float3 h_16, float2 footprint)
 {
     bool local_21 = (bool)0;
 
-    float a_28 = r_63.alpha.x;
-    float b_8 = r_63.alpha.y;
+    float a_28 = r_64.alpha.x;
+    float b_8 = r_64.alpha.y;
     float a_2_ = (a_28 * a_28);
     float b_2_ = (b_8 * b_8);
     float x1_3 = (hpp.x - footprint.x);
@@ -3016,21 +3024,21 @@ float filter_rect_lambda_rho(float t_1)
     return sqrt((1.0 + (t_1 * t_1)));
 }
 
-float filter_rect_lambda_e_neg(float t_2, float r_64)
+float filter_rect_lambda_e_neg(float t_2, float r_65)
 {
-    return ((t_2 >= 0.0) ? (1.0 / (r_64 + t_2)) : (r_64 - t_2));
+    return ((t_2 >= 0.0) ? (1.0 / (r_65 + t_2)) : (r_65 - t_2));
 }
 
-float filter_rect_lambda_asinh_of(float t_3, float r_65)
+float filter_rect_lambda_asinh_of(float t_3, float r_66)
 {
     float v_12 = (float)0;
 
     float a_30 = abs(t_3);
     if ((a_30 > 1.0)) {
-        const float _e7 = math_ln((a_30 + r_65));
+        const float _e7 = math_ln((a_30 + r_66));
         v_12 = _e7;
     } else {
-        const float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_65))));
+        const float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_66))));
         v_12 = _e13;
     }
     float _e14 = v_12;
@@ -3254,7 +3262,7 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
     return ((_e89 - _e90) / w_28);
 }
 
-float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_66, float2 half_extent_6, float3 w_in)
+float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67, float2 half_extent_6, float3 w_in)
 {
     float3 w_20 = (float3)0;
     bool local_22 = (bool)0;
@@ -3290,7 +3298,7 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_66
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    float2 alpha_12 = r_66.alpha;
+    float2 alpha_12 = r_67.alpha;
     float2 ha = min(abs(half_extent_6), (alpha_12 * filter_rect_lambda_BIG_K));
     float _e63 = w_20.x;
     float ux = (abs(_e63) / _e46);
@@ -3309,7 +3317,7 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_66
     bool _e92 = local_24;
     if (_e92) {
         float3 _e93 = w_20;
-        const float _e94 = ndf_ggx_lambda_axis_aligned(r_66, _e93);
+        const float _e94 = ndf_ggx_lambda_axis_aligned(r_67, _e93);
         return _e94;
     }
     float mm = ((wz / _e46) / _e74);
@@ -3515,9 +3523,9 @@ float3 filter_rect_sample_normal_of_slope(float2 s_13)
     return float3(_e4.xy, max(_e4.z, math_F32_MIN_POSITIVE));
 }
 
-float3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_67, float2 half_extent_7, float2 u_13, float2 u_box)
+float3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_68, float2 half_extent_7, float2 u_13, float2 u_box)
 {
-    float2 a_34 = r_67.alpha;
+    float2 a_34 = r_68.alpha;
     const float _e7 = filter_rect_sample_half(half_extent_7.x, a_34.x);
     const float _e10 = filter_rect_sample_half(half_extent_7.y, a_34.y);
     float2 h_33 = float2(_e7, _e10);
@@ -3534,13 +3542,13 @@ float3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAlig
     return _e36;
 }
 
-float filter_rect_sample_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_68, float2 half_extent_8, float3 m_39)
+float filter_rect_sample_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_69, float2 half_extent_8, float3 m_39)
 {
-    const float _e3 = filter_rect_d_rect(r_68, m_39, half_extent_8);
+    const float _e3 = filter_rect_d_rect(r_69, m_39, half_extent_8);
     return ((m_39.z > 0.0) ? (_e3 * m_39.z) : 0.0);
 }
 
-float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_69, float2 half_extent_9, float3 wo_6, float3 m_40)
+float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_70, float2 half_extent_9, float3 wo_6, float3 m_40)
 {
     bool local_25 = (bool)0;
     bool local_26 = (bool)0;
@@ -3561,8 +3569,8 @@ float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_Axis
     if (_e25) {
         return 0.0;
     }
-    const float _e27 = filter_rect_d_rect(r_69, m_40, half_extent_9);
-    const float _e30 = filter_rect_lambda_lambda_rect(r_69, half_extent_9, wo_6);
+    const float _e27 = filter_rect_d_rect(r_70, m_40, half_extent_9);
+    const float _e30 = filter_rect_lambda_lambda_rect(r_70, half_extent_9, wo_6);
     float v_21 = ((wom_1 * _e27) / (wo_6.z * (1.0 + _e30)));
     return ((v_21 <= math_F32_MAX) ? v_21 : 0.0);
 }
@@ -3890,7 +3898,7 @@ float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta,
     return _e28;
 }
 
-float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_70, float2 u_16)
+float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_71, float2 u_16)
 {
     const float _e3 = sampling_clamp_unit(u_16.x);
     const float _e5 = sampling_clamp_unit(u_16.y);
@@ -3899,19 +3907,19 @@ float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_70
     const float _e14 = math_ln_1p((_e3 / (1.0 - _e3)));
     float e_7 = ((_e3 < 0.5) ? _e14 : -(_e9));
     float3 n_8 = float3((sqrt(e_7) * _e6), 1.0);
-    const sampling_Warp _e22 = sampling_warp(r_70);
+    const sampling_Warp _e22 = sampling_warp(r_71);
     const float3 _e23 = sampling_unstretch(_e22, n_8);
     return _e23;
 }
 
-float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_71, float3 wo_7, float2 u_17)
+float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_72, float3 wo_7, float2 u_17)
 {
     bool local_32 = (bool)0;
 
     if (!((wo_7.z > 0.0))) {
         return (0.0).xxx;
     }
-    const sampling_Warp _e9 = sampling_warp(r_71);
+    const sampling_Warp _e9 = sampling_warp(r_72);
     const float3 _e10 = sampling_normalize_scaled(wo_7);
     const float3 _e11 = sampling_stretch(_e9, _e10);
     const float3 _e12 = sampling_normalize_scaled(_e11);
@@ -3939,25 +3947,25 @@ float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMat
     return ((_e65.z > 0.0) ? _e65 : (0.0).xxx);
 }
 
-float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_72, float3 m_41)
+float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_73, float3 m_41)
 {
-    const float _e2 = ndf_beckmann_d_matrix(r_72, m_41);
+    const float _e2 = ndf_beckmann_d_matrix(r_73, m_41);
     return ((m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0);
 }
 
-float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_73, float3 wo_8, float3 m_42)
+float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_74, float3 wo_8, float3 m_42)
 {
-    const float _e3 = ndf_beckmann_d_matrix(r_73, m_42);
-    const float _e4 = ndf_beckmann_lambda_matrix(r_73, wo_8);
+    const float _e3 = ndf_beckmann_d_matrix(r_74, m_42);
+    const float _e4 = ndf_beckmann_lambda_matrix(r_74, wo_8);
     const float _e5 = sampling_visible_normal_pdf_of(wo_8, m_42, _e3, _e4);
     return _e5;
 }
 
-float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_74, float3 wo_9, float3 m_43)
+float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_75, float3 wo_9, float3 m_43)
 {
     const float3 _e3 = sampling_normalize_scaled(wo_9);
-    const float _e4 = ndf_beckmann_d_matrix(r_74, m_43);
-    const float _e5 = ndf_beckmann_lambda_matrix(r_74, _e3);
+    const float _e4 = ndf_beckmann_d_matrix(r_75, m_43);
+    const float _e5 = ndf_beckmann_lambda_matrix(r_75, _e3);
     const float _e6 = sampling_reflection_pdf_of(_e3, m_43, _e4, _e5);
     return _e6;
 }

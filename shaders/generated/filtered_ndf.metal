@@ -236,9 +236,9 @@ metal::float2 math_sincos_turns(
 ) {
     metal::float2 cs = {};
     float q_4 = metal::rint(4.0 * u);
-    float r_75 = u - (0.25 * q_4);
-    float z_3 = r_75 * r_75;
-    float s_20 = r_75 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855);
+    float r_76 = u - (0.25 * q_4);
+    float z_3 = r_76 * r_76;
+    float s_20 = r_76 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855);
     float c_14 = (((((((59.22017 * z_3) - 85.44285) * z_3) + 64.939316) * z_3) - 19.739208) * z_3) + 1.0;
     int k_24 = naga_f2i32(q_4) & 3;
     cs = metal::float2(c_14, s_20);
@@ -275,9 +275,9 @@ float math_exp(
 ) {
     float xc = metal::clamp(x_2, -87.0, 88.0);
     float n_6 = metal::rint(xc * math_LOG2_E);
-    float r_76 = (xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO);
-    float r2_ = r_76 * r_76;
-    float p_6 = ((1.0 + r_76) + ((0.4999999 + (0.1666642 * r_76)) * r2_)) + (((0.041668225 + (0.008374816 * r_76)) + (0.0013836846 * r2_)) * (r2_ * r2_));
+    float r_77 = (xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO);
+    float r2_ = r_77 * r_77;
+    float p_6 = ((1.0 + r_77) + ((0.4999999 + (0.1666642 * r_77)) * r2_)) + (((0.041668225 + (0.008374816 * r_77)) + (0.0013836846 * r2_)) * (r2_ * r2_));
     float s_21 = as_type<float>(static_cast<uint>(as_type<int>(as_type<uint>(naga_f2i32(n_6)) + as_type<uint>(127))) << 23u);
     return (x_2 >= -87.0) ? (p_6 * s_21) : 0.0;
 }
@@ -391,14 +391,14 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
     float b_6 = c_3.s_xy / scale;
     float e_3 = c_3.s_yy / scale;
     float d_3 = 0.5 * (a_18 - e_3);
-    float r_77 = metal::sqrt((d_3 * d_3) + (b_6 * b_6));
-    float lmax_1 = ((0.5 * (a_18 + e_3)) + r_77) * scale;
+    float r_78 = metal::sqrt((d_3 * d_3) + (b_6 * b_6));
+    float lmax_1 = ((0.5 * (a_18 + e_3)) + r_78) * scale;
     if (lmax_1 <= max_eig) {
         return c_3;
     }
     float lmin_1 = metal::max(c_3.det / lmax_1, 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = r_77 < 0.000000000000000001;
+        local = r_78 < 0.000000000000000001;
     } else {
         local = true;
     }
@@ -406,10 +406,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
     if (_e46) {
         return kernel_covariance_Covariance {max_eig, 0.0, max_eig, max_eig * max_eig};
     }
-    float p_7 = r_77 + metal::abs(d_3);
+    float p_7 = r_78 + metal::abs(d_3);
     float q_5 = (p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0;
     metal::float2 ee = (d_3 >= 0.0) ? metal::float2(p_7, q_5) : metal::float2(q_5, p_7);
-    float inv_1 = 1.0 / (2.0 * r_77);
+    float inv_1 = 1.0 / (2.0 * r_78);
     float p11_ = ee.x * inv_1;
     float p12_ = b_6 * inv_1;
     float p22_ = ee.y * inv_1;
@@ -741,6 +741,12 @@ float ndf_roughness_matrix_clamped_det(
     return metal::max(r_10.det, r_10.tau);
 }
 
+float ndf_roughness_matrix_own_det_clamp(
+    ndf_roughness_matrix_RoughnessMatrix r_11
+) {
+    return (r_11.tau > r_11.det) ? r_11.tau : 0.0;
+}
+
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(
     ndf_roughness_matrix_RoughnessMatrix a_2,
     kernel_covariance_Covariance k_3,
@@ -773,8 +779,9 @@ ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(
     float det_clamp_1
 ) {
     kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e3, det_clamp_1);
-    return _e4;
+    float _e4 = ndf_roughness_matrix_own_det_clamp(a_4);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_4, _e3, metal::max(det_clamp_1, _e4));
+    return _e6;
 }
 
 float ndf_g1_of(
@@ -808,29 +815,29 @@ ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(
 }
 
 float ndf_roughness_isotropic_inv_quadratic(
-    ndf_roughness_isotropic_Isotropic r_11,
+    ndf_roughness_isotropic_Isotropic r_12,
     metal::float2 s_1
 ) {
-    return metal::dot(s_1, s_1) * r_11.inv_alpha_sq;
+    return metal::dot(s_1, s_1) * r_12.inv_alpha_sq;
 }
 
 float ndf_roughness_isotropic_quadratic(
-    ndf_roughness_isotropic_Isotropic r_12,
+    ndf_roughness_isotropic_Isotropic r_13,
     metal::float2 w_1
 ) {
-    return metal::dot(w_1, w_1) * (r_12.alpha * r_12.alpha);
+    return metal::dot(w_1, w_1) * (r_13.alpha * r_13.alpha);
 }
 
 float ndf_roughness_isotropic_sqrt_det(
-    ndf_roughness_isotropic_Isotropic r_13
+    ndf_roughness_isotropic_Isotropic r_14
 ) {
-    return r_13.alpha * r_13.alpha;
+    return r_14.alpha * r_14.alpha;
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(
-    ndf_roughness_isotropic_Isotropic r_14
+    ndf_roughness_isotropic_Isotropic r_15
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), metal::float2(r_14.alpha));
+    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), metal::float2(r_15.alpha));
     return _e6;
 }
 
@@ -844,29 +851,29 @@ ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(
 }
 
 float ndf_roughness_axis_aligned_inv_quadratic(
-    ndf_roughness_axis_aligned_AxisAligned r_15,
+    ndf_roughness_axis_aligned_AxisAligned r_16,
     metal::float2 s_2
 ) {
-    return metal::dot(s_2 * s_2, r_15.inv_alpha_sq);
+    return metal::dot(s_2 * s_2, r_16.inv_alpha_sq);
 }
 
 float ndf_roughness_axis_aligned_quadratic(
-    ndf_roughness_axis_aligned_AxisAligned r_16,
+    ndf_roughness_axis_aligned_AxisAligned r_17,
     metal::float2 w_2
 ) {
-    return metal::dot(w_2 * w_2, r_16.alpha * r_16.alpha);
+    return metal::dot(w_2 * w_2, r_17.alpha * r_17.alpha);
 }
 
 float ndf_roughness_axis_aligned_sqrt_det(
-    ndf_roughness_axis_aligned_AxisAligned r_17
+    ndf_roughness_axis_aligned_AxisAligned r_18
 ) {
-    return r_17.alpha.x * r_17.alpha.y;
+    return r_18.alpha.x * r_18.alpha.y;
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(
-    ndf_roughness_axis_aligned_AxisAligned r_18
+    ndf_roughness_axis_aligned_AxisAligned r_19
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), r_18.alpha);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), r_19.alpha);
     return _e5;
 }
 
@@ -919,159 +926,159 @@ float ndf_ggx_lambda_of(
     if (_e21) {
         return math_F32_MAX;
     }
-    float r_78 = metal::sqrt((abs_wz * abs_wz) + q_1);
-    return q_1 / ((2.0 * abs_wz) * (r_78 + abs_wz));
+    float r_79 = metal::sqrt((abs_wz * abs_wz) + q_1);
+    return q_1 / ((2.0 * abs_wz) * (r_79 + abs_wz));
 }
 
 float ndf_ggx_p22_isotropic(
-    ndf_roughness_isotropic_Isotropic r_19,
+    ndf_roughness_isotropic_Isotropic r_20,
     metal::float2 s_3
 ) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_19, s_3);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_19);
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_20, s_3);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_20);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_ggx_d_isotropic(
-    ndf_roughness_isotropic_Isotropic r_20,
+    ndf_roughness_isotropic_Isotropic r_21,
     metal::float3 m
 ) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_20, m.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_20);
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_21, m.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_21);
     float _e6 = ndf_ggx_d_of(_e3, m.z, _e5);
     return _e6;
 }
 
 float ndf_ggx_lambda_isotropic(
-    ndf_roughness_isotropic_Isotropic r_21,
+    ndf_roughness_isotropic_Isotropic r_22,
     metal::float3 w_3
 ) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_21, w_3.xy);
+    float _e3 = ndf_roughness_isotropic_quadratic(r_22, w_3.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_3.z));
     return _e6;
 }
 
 float ndf_ggx_g1_isotropic(
-    ndf_roughness_isotropic_Isotropic r_22,
+    ndf_roughness_isotropic_Isotropic r_23,
     metal::float3 w_4,
     metal::float3 m_1
 ) {
-    float _e3 = ndf_ggx_lambda_isotropic(r_22, w_4);
+    float _e3 = ndf_ggx_lambda_isotropic(r_23, w_4);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_4, m_1));
     return _e5;
 }
 
 float ndf_ggx_g2_isotropic(
-    ndf_roughness_isotropic_Isotropic r_23,
+    ndf_roughness_isotropic_Isotropic r_24,
     metal::float3 i,
     metal::float3 o,
     metal::float3 m_2
 ) {
-    float _e4 = ndf_ggx_lambda_isotropic(r_23, i);
-    float _e5 = ndf_ggx_lambda_isotropic(r_23, o);
+    float _e4 = ndf_ggx_lambda_isotropic(r_24, i);
+    float _e5 = ndf_ggx_lambda_isotropic(r_24, o);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i, m_2), metal::dot(o, m_2));
     return _e8;
 }
 
 float ndf_ggx_p22_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_24,
+    ndf_roughness_axis_aligned_AxisAligned r_25,
     metal::float2 s_4
 ) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_24, s_4);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_24);
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_25, s_4);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_25);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_ggx_d_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_25,
+    ndf_roughness_axis_aligned_AxisAligned r_26,
     metal::float3 m_3
 ) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_25, m_3.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_25);
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_26, m_3.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_26);
     float _e6 = ndf_ggx_d_of(_e3, m_3.z, _e5);
     return _e6;
 }
 
 float ndf_ggx_lambda_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_26,
+    ndf_roughness_axis_aligned_AxisAligned r_27,
     metal::float3 w_5
 ) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_26, w_5.xy);
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_27, w_5.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_5.z));
     return _e6;
 }
 
 float ndf_ggx_g1_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_27,
+    ndf_roughness_axis_aligned_AxisAligned r_28,
     metal::float3 w_6,
     metal::float3 m_4
 ) {
-    float _e3 = ndf_ggx_lambda_axis_aligned(r_27, w_6);
+    float _e3 = ndf_ggx_lambda_axis_aligned(r_28, w_6);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_6, m_4));
     return _e5;
 }
 
 float ndf_ggx_g2_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_28,
+    ndf_roughness_axis_aligned_AxisAligned r_29,
     metal::float3 i_1,
     metal::float3 o_1,
     metal::float3 m_5
 ) {
-    float _e4 = ndf_ggx_lambda_axis_aligned(r_28, i_1);
-    float _e5 = ndf_ggx_lambda_axis_aligned(r_28, o_1);
+    float _e4 = ndf_ggx_lambda_axis_aligned(r_29, i_1);
+    float _e5 = ndf_ggx_lambda_axis_aligned(r_29, o_1);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_1, m_5), metal::dot(o_1, m_5));
     return _e8;
 }
 
 float ndf_ggx_p22_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_29,
+    ndf_roughness_matrix_RoughnessMatrix r_30,
     metal::float2 s_5
 ) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_29, s_5);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_29);
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_30, s_5);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_30);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_ggx_d_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_30,
+    ndf_roughness_matrix_RoughnessMatrix r_31,
     metal::float3 m_6
 ) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_30, m_6.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_30);
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_31, m_6.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_31);
     float _e6 = ndf_ggx_d_of(_e3, m_6.z, _e5);
     return _e6;
 }
 
 float ndf_ggx_lambda_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_31,
+    ndf_roughness_matrix_RoughnessMatrix r_32,
     metal::float3 w_7
 ) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_31, w_7.xy);
+    float _e3 = ndf_roughness_matrix_quadratic(r_32, w_7.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_7.z));
     return _e6;
 }
 
 float ndf_ggx_g1_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_32,
+    ndf_roughness_matrix_RoughnessMatrix r_33,
     metal::float3 w_8,
     metal::float3 m_7
 ) {
-    float _e3 = ndf_ggx_lambda_matrix(r_32, w_8);
+    float _e3 = ndf_ggx_lambda_matrix(r_33, w_8);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_8, m_7));
     return _e5;
 }
 
 float ndf_ggx_g2_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_33,
+    ndf_roughness_matrix_RoughnessMatrix r_34,
     metal::float3 i_2,
     metal::float3 o_2,
     metal::float3 m_8
 ) {
-    float _e4 = ndf_ggx_lambda_matrix(r_33, i_2);
-    float _e5 = ndf_ggx_lambda_matrix(r_33, o_2);
+    float _e4 = ndf_ggx_lambda_matrix(r_34, i_2);
+    float _e5 = ndf_ggx_lambda_matrix(r_34, o_2);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_2, m_8), metal::dot(o_2, m_8));
     return _e8;
 }
@@ -1177,154 +1184,154 @@ float ndf_beckmann_lambda_of(
 }
 
 float ndf_beckmann_p22_isotropic(
-    ndf_roughness_isotropic_Isotropic r_34,
+    ndf_roughness_isotropic_Isotropic r_35,
     metal::float2 s_6
 ) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_34, s_6);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_34);
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_35, s_6);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_35);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_beckmann_d_isotropic(
-    ndf_roughness_isotropic_Isotropic r_35,
+    ndf_roughness_isotropic_Isotropic r_36,
     metal::float3 m_9
 ) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_35, m_9.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_35);
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_36, m_9.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_36);
     float _e6 = ndf_beckmann_d_of(_e3, m_9.z, _e5);
     return _e6;
 }
 
 float ndf_beckmann_lambda_isotropic(
-    ndf_roughness_isotropic_Isotropic r_36,
+    ndf_roughness_isotropic_Isotropic r_37,
     metal::float3 w_9
 ) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_36, w_9.xy);
+    float _e3 = ndf_roughness_isotropic_quadratic(r_37, w_9.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_9.z));
     return _e6;
 }
 
 float ndf_beckmann_g1_isotropic(
-    ndf_roughness_isotropic_Isotropic r_37,
+    ndf_roughness_isotropic_Isotropic r_38,
     metal::float3 w_10,
     metal::float3 m_10
 ) {
-    float _e3 = ndf_beckmann_lambda_isotropic(r_37, w_10);
+    float _e3 = ndf_beckmann_lambda_isotropic(r_38, w_10);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_10, m_10));
     return _e5;
 }
 
 float ndf_beckmann_g2_isotropic(
-    ndf_roughness_isotropic_Isotropic r_38,
+    ndf_roughness_isotropic_Isotropic r_39,
     metal::float3 i_3,
     metal::float3 o_3,
     metal::float3 m_11
 ) {
-    float _e4 = ndf_beckmann_lambda_isotropic(r_38, i_3);
-    float _e5 = ndf_beckmann_lambda_isotropic(r_38, o_3);
+    float _e4 = ndf_beckmann_lambda_isotropic(r_39, i_3);
+    float _e5 = ndf_beckmann_lambda_isotropic(r_39, o_3);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_3, m_11), metal::dot(o_3, m_11));
     return _e8;
 }
 
 float ndf_beckmann_p22_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_39,
+    ndf_roughness_axis_aligned_AxisAligned r_40,
     metal::float2 s_7
 ) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_39, s_7);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_39);
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_40, s_7);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_40);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_beckmann_d_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_40,
+    ndf_roughness_axis_aligned_AxisAligned r_41,
     metal::float3 m_12
 ) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_40, m_12.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_40);
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_41, m_12.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_41);
     float _e6 = ndf_beckmann_d_of(_e3, m_12.z, _e5);
     return _e6;
 }
 
 float ndf_beckmann_lambda_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_41,
+    ndf_roughness_axis_aligned_AxisAligned r_42,
     metal::float3 w_11
 ) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_41, w_11.xy);
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_42, w_11.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_11.z));
     return _e6;
 }
 
 float ndf_beckmann_g1_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_42,
+    ndf_roughness_axis_aligned_AxisAligned r_43,
     metal::float3 w_12,
     metal::float3 m_13
 ) {
-    float _e3 = ndf_beckmann_lambda_axis_aligned(r_42, w_12);
+    float _e3 = ndf_beckmann_lambda_axis_aligned(r_43, w_12);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_12, m_13));
     return _e5;
 }
 
 float ndf_beckmann_g2_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_43,
+    ndf_roughness_axis_aligned_AxisAligned r_44,
     metal::float3 i_4,
     metal::float3 o_4,
     metal::float3 m_14
 ) {
-    float _e4 = ndf_beckmann_lambda_axis_aligned(r_43, i_4);
-    float _e5 = ndf_beckmann_lambda_axis_aligned(r_43, o_4);
+    float _e4 = ndf_beckmann_lambda_axis_aligned(r_44, i_4);
+    float _e5 = ndf_beckmann_lambda_axis_aligned(r_44, o_4);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_4, m_14), metal::dot(o_4, m_14));
     return _e8;
 }
 
 float ndf_beckmann_p22_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_44,
+    ndf_roughness_matrix_RoughnessMatrix r_45,
     metal::float2 s_8
 ) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_44, s_8);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_44);
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_45, s_8);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_45);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_beckmann_d_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_45,
+    ndf_roughness_matrix_RoughnessMatrix r_46,
     metal::float3 m_15
 ) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_45, m_15.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_45);
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_46, m_15.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_46);
     float _e6 = ndf_beckmann_d_of(_e3, m_15.z, _e5);
     return _e6;
 }
 
 float ndf_beckmann_lambda_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_46,
+    ndf_roughness_matrix_RoughnessMatrix r_47,
     metal::float3 w_13
 ) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_46, w_13.xy);
+    float _e3 = ndf_roughness_matrix_quadratic(r_47, w_13.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_13.z));
     return _e6;
 }
 
 float ndf_beckmann_g1_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_47,
+    ndf_roughness_matrix_RoughnessMatrix r_48,
     metal::float3 w_14,
     metal::float3 m_16
 ) {
-    float _e3 = ndf_beckmann_lambda_matrix(r_47, w_14);
+    float _e3 = ndf_beckmann_lambda_matrix(r_48, w_14);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_14, m_16));
     return _e5;
 }
 
 float ndf_beckmann_g2_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_48,
+    ndf_roughness_matrix_RoughnessMatrix r_49,
     metal::float3 i_5,
     metal::float3 o_5,
     metal::float3 m_17
 ) {
-    float _e4 = ndf_beckmann_lambda_matrix(r_48, i_5);
-    float _e5 = ndf_beckmann_lambda_matrix(r_48, o_5);
+    float _e4 = ndf_beckmann_lambda_matrix(r_49, i_5);
+    float _e5 = ndf_beckmann_lambda_matrix(r_49, o_5);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_5, m_17), metal::dot(o_5, m_17));
     return _e8;
 }
@@ -1684,16 +1691,16 @@ float filter_gaussian_ggx_quad_hermite_weight(
 float filter_gaussian_ggx_quad_h_of(
     float y_2
 ) {
-    float r_49 = {};
+    float r_50 = {};
     float a_23 = metal::abs(y_2);
     if (a_23 > 1.0) {
         float i_12 = 1.0 / a_23;
-        r_49 = a_23 * metal::sqrt(1.0 + (i_12 * i_12));
+        r_50 = a_23 * metal::sqrt(1.0 + (i_12 * i_12));
     } else {
-        r_49 = metal::sqrt(1.0 + (y_2 * y_2));
+        r_50 = metal::sqrt(1.0 + (y_2 * y_2));
     }
-    float _e16 = r_49;
-    float _e18 = r_49;
+    float _e16 = r_50;
+    float _e18 = r_50;
     return (y_2 >= 0.0) ? (1.0 / (_e18 + y_2)) : (_e16 - y_2);
 }
 
@@ -1869,11 +1876,11 @@ float filter_gaussian_ggx_quad_lambda(
 }
 
 sampling_Warp sampling_warp(
-    ndf_roughness_matrix_RoughnessMatrix r_50
+    ndf_roughness_matrix_RoughnessMatrix r_51
 ) {
-    metal::float3 _e1 = ndf_roughness_matrix_clamped_entries(r_50);
+    metal::float3 _e1 = ndf_roughness_matrix_clamped_entries(r_51);
     float l_xx = metal::sqrt(_e1.x);
-    return sampling_Warp {l_xx, _e1.y / l_xx, r_50.sqrt_det / l_xx};
+    return sampling_Warp {l_xx, _e1.y / l_xx, r_51.sqrt_det / l_xx};
 }
 
 metal::float3 sampling_normalize_scaled(
@@ -1922,7 +1929,7 @@ metal::float3 sampling_ggx_standard_visible(
 }
 
 metal::float3 sampling_sample_visible_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_51,
+    ndf_roughness_matrix_RoughnessMatrix r_52,
     metal::float3 wo_1,
     metal::float2 u_3
 ) {
@@ -1930,7 +1937,7 @@ metal::float3 sampling_sample_visible_normal(
     if (!((wo_1.z > 0.0))) {
         return metal::float3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_51);
+    sampling_Warp _e9 = sampling_warp(r_52);
     metal::float3 _e10 = sampling_normalize_scaled(wo_1);
     metal::float3 _e11 = sampling_stretch(_e9, _e10);
     metal::float3 _e12 = sampling_normalize_scaled(_e11);
@@ -1955,23 +1962,23 @@ metal::float3 sampling_sample_visible_normal(
 }
 
 metal::float3 sampling_sample_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_52,
+    ndf_roughness_matrix_RoughnessMatrix r_53,
     metal::float2 u_4
 ) {
     float _e3 = sampling_clamp_unit(u_4.x);
     float _e5 = sampling_clamp_unit(u_4.y);
     metal::float2 _e6 = math_sincos_turns(_e5);
     metal::float3 n_7 = metal::float3(metal::sqrt(_e3) * _e6, metal::sqrt(1.0 - _e3));
-    sampling_Warp _e13 = sampling_warp(r_52);
+    sampling_Warp _e13 = sampling_warp(r_53);
     metal::float3 _e14 = sampling_unstretch(_e13, n_7);
     return _e14;
 }
 
 float sampling_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_53,
+    ndf_roughness_matrix_RoughnessMatrix r_54,
     metal::float3 m_19
 ) {
-    float _e2 = ndf_ggx_d_matrix(r_53, m_19);
+    float _e2 = ndf_ggx_d_matrix(r_54, m_19);
     return (m_19.z > 0.0) ? (_e2 * m_19.z) : 0.0;
 }
 
@@ -2001,12 +2008,12 @@ float sampling_visible_normal_pdf_of(
 }
 
 float sampling_visible_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_54,
+    ndf_roughness_matrix_RoughnessMatrix r_55,
     metal::float3 wo_3,
     metal::float3 m_21
 ) {
-    float _e3 = ndf_ggx_d_matrix(r_54, m_21);
-    float _e4 = ndf_ggx_lambda_matrix(r_54, wo_3);
+    float _e3 = ndf_ggx_d_matrix(r_55, m_21);
+    float _e4 = ndf_ggx_lambda_matrix(r_55, wo_3);
     float _e5 = sampling_visible_normal_pdf_of(wo_3, m_21, _e3, _e4);
     return _e5;
 }
@@ -2036,19 +2043,19 @@ float sampling_reflection_pdf_of(
 }
 
 float sampling_reflection_pdf_from_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_55,
+    ndf_roughness_matrix_RoughnessMatrix r_56,
     metal::float3 wo_4,
     metal::float3 m_23
 ) {
     metal::float3 _e3 = sampling_normalize_scaled(wo_4);
-    float _e4 = ndf_ggx_d_matrix(r_55, m_23);
-    float _e5 = ndf_ggx_lambda_matrix(r_55, _e3);
+    float _e4 = ndf_ggx_d_matrix(r_56, m_23);
+    float _e5 = ndf_ggx_lambda_matrix(r_56, _e3);
     float _e6 = sampling_reflection_pdf_of(_e3, m_23, _e4, _e5);
     return _e6;
 }
 
 float sampling_reflection_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_56,
+    ndf_roughness_matrix_RoughnessMatrix r_57,
     metal::float3 wo_5,
     metal::float3 wi_1
 ) {
@@ -2062,7 +2069,7 @@ float sampling_reflection_pdf(
     if (!((len > 0.0))) {
         return 0.0;
     }
-    float _e18 = sampling_reflection_pdf_from_normal(r_56, wo_5, h_23 / metal::float3(len));
+    float _e18 = sampling_reflection_pdf_from_normal(r_57, wo_5, h_23 / metal::float3(len));
     return _e18;
 }
 
@@ -2381,10 +2388,10 @@ metal::float2 footprint_jacobian_spherical_to_projected(
 }
 
 kernel_covariance_Covariance kernel_rect_covariance(
-    kernel_rect_BoundingRect r_57,
+    kernel_rect_BoundingRect r_58,
     float sigma_1
 ) {
-    metal::float2 w_27 = r_57.half_extent * (2.0 * sigma_1);
+    metal::float2 w_27 = r_58.half_extent * (2.0 * sigma_1);
     metal::float2 v_17 = w_27 * w_27;
     return kernel_covariance_Covariance {v_17.x, 0.0, v_17.y, v_17.x * v_17.y};
 }
@@ -2514,8 +2521,9 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(
     float det_clamp_2
 ) {
     kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_9, _e3, det_clamp_2);
-    return _e4;
+    float _e4 = ndf_roughness_matrix_own_det_clamp(a_9);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_9, _e3, metal::max(det_clamp_2, _e4));
+    return _e6;
 }
 
 footprint_Footprint kernel_clamp_footprint(
@@ -2537,7 +2545,7 @@ footprint_Footprint kernel_clamp_footprint(
 
 kernel_rect_BoundingRect kernel_clamp_rect(
     kernel_clamp_ClampRules rules_1,
-    kernel_rect_BoundingRect r_58,
+    kernel_rect_BoundingRect r_59,
     metal::float2 alpha_8
 ) {
     metal::float2 f_1 = metal::float2(0.0);
@@ -2549,7 +2557,7 @@ kernel_rect_BoundingRect kernel_clamp_rect(
         }
     }
     float lambda_2 = metal::max(rules_1.max_extent, 0.0);
-    metal::float2 h_27 = metal::min(metal::abs(r_58.half_extent), metal::float2(lambda_2));
+    metal::float2 h_27 = metal::min(metal::abs(r_59.half_extent), metal::float2(lambda_2));
     metal::float2 _e25 = f_1;
     return kernel_rect_BoundingRect {metal::max(h_27, metal::max(_e25, metal::float2(0.0)))};
 }
@@ -2570,8 +2578,9 @@ float kernel_clamp_det_clamp_for(
     kernel_clamp_ClampRules rules_3,
     ndf_roughness_matrix_RoughnessMatrix a_10
 ) {
-    float _e2 = ndf_roughness_matrix_clamped_det(a_10);
-    return rules_3.det_clamp ? _e2 : 0.0;
+    float _e2 = ndf_roughness_matrix_own_det_clamp(a_10);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_10);
+    return rules_3.det_clamp ? _e3 : _e2;
 }
 
 kernel_covariance_Covariance kernel_clamp_pixel_kernel(
@@ -2630,21 +2639,21 @@ float filter_proxy_effective_alpha_simple(
 }
 
 ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(
-    ndf_roughness_axis_aligned_AxisAligned r_59,
+    ndf_roughness_axis_aligned_AxisAligned r_60,
     metal::float2 half_extent_2
 ) {
-    float _e5 = filter_proxy_effective_alpha(r_59.alpha.x, half_extent_2.x);
-    float _e9 = filter_proxy_effective_alpha(r_59.alpha.y, half_extent_2.y);
+    float _e5 = filter_proxy_effective_alpha(r_60.alpha.x, half_extent_2.x);
+    float _e9 = filter_proxy_effective_alpha(r_60.alpha.y, half_extent_2.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(metal::float2(_e5, _e9));
     return _e11;
 }
 
 ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(
-    ndf_roughness_axis_aligned_AxisAligned r_60,
+    ndf_roughness_axis_aligned_AxisAligned r_61,
     metal::float2 half_extent_3
 ) {
-    float _e5 = filter_proxy_effective_alpha_simple(r_60.alpha.x, half_extent_3.x);
-    float _e9 = filter_proxy_effective_alpha_simple(r_60.alpha.y, half_extent_3.y);
+    float _e5 = filter_proxy_effective_alpha_simple(r_61.alpha.x, half_extent_3.x);
+    float _e9 = filter_proxy_effective_alpha_simple(r_61.alpha.y, half_extent_3.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(metal::float2(_e5, _e9));
     return _e11;
 }
@@ -3117,7 +3126,7 @@ metal::float4 filter_rect_interval(
 }
 
 float filter_rect_p22_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_61,
+    ndf_roughness_axis_aligned_AxisAligned r_62,
     metal::float2 center,
     metal::float2 half_extent_4
 ) {
@@ -3129,18 +3138,18 @@ float filter_rect_p22_rect(
     }
     bool _e12 = local_19;
     if (_e12) {
-        float _e13 = ndf_ggx_p22_axis_aligned(r_61, center);
+        float _e13 = ndf_ggx_p22_axis_aligned(r_62, center);
         return _e13;
     }
-    metal::float2 a_27 = r_61.alpha;
-    metal::float4 _e18 = filter_rect_interval(center.x, half_extent_4.x, r_61.alpha.x);
-    metal::float4 _e22 = filter_rect_interval(center.y, half_extent_4.y, r_61.alpha.y);
+    metal::float2 a_27 = r_62.alpha;
+    metal::float4 _e18 = filter_rect_interval(center.x, half_extent_4.x, r_62.alpha.x);
+    metal::float4 _e22 = filter_rect_interval(center.y, half_extent_4.y, r_62.alpha.y);
     float _e23 = filter_rect_mean_f(_e18, _e22);
-    return metal::max(_e23 * (math_INV_PI / (r_61.alpha.x * r_61.alpha.y)), 0.0);
+    return metal::max(_e23 * (math_INV_PI / (r_62.alpha.x * r_62.alpha.y)), 0.0);
 }
 
 float filter_rect_d_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_62,
+    ndf_roughness_axis_aligned_AxisAligned r_63,
     metal::float3 h_15,
     metal::float2 half_extent_5
 ) {
@@ -3155,23 +3164,23 @@ float filter_rect_d_rect(
     }
     bool _e17 = local_20;
     if (_e17) {
-        float _e18 = ndf_ggx_d_axis_aligned(r_62, h_15);
+        float _e18 = ndf_ggx_d_axis_aligned(r_63, h_15);
         return _e18;
     }
-    float _e24 = filter_rect_p22_rect(r_62, -(h_15.xy) / metal::float2(h_15.z), half_extent_5);
+    float _e24 = filter_rect_p22_rect(r_63, -(h_15.xy) / metal::float2(h_15.z), half_extent_5);
     float z2_6 = h_15.z * h_15.z;
     return metal::min(_e24 / (z2_6 * z2_6), math_F32_MAX);
 }
 
 float filter_rect_d_rect_printed(
-    ndf_roughness_axis_aligned_AxisAligned r_63,
+    ndf_roughness_axis_aligned_AxisAligned r_64,
     metal::float2 hpp,
     metal::float3 h_16,
     metal::float2 footprint
 ) {
     bool local_21 = {};
-    float a_28 = r_63.alpha.x;
-    float b_8 = r_63.alpha.y;
+    float a_28 = r_64.alpha.x;
+    float b_8 = r_64.alpha.y;
     float a_2_ = a_28 * a_28;
     float b_2_ = b_8 * b_8;
     float x1_3 = hpp.x - footprint.x;
@@ -3216,22 +3225,22 @@ float filter_rect_lambda_rho(
 
 float filter_rect_lambda_e_neg(
     float t_2,
-    float r_64
+    float r_65
 ) {
-    return (t_2 >= 0.0) ? (1.0 / (r_64 + t_2)) : (r_64 - t_2);
+    return (t_2 >= 0.0) ? (1.0 / (r_65 + t_2)) : (r_65 - t_2);
 }
 
 float filter_rect_lambda_asinh_of(
     float t_3,
-    float r_65
+    float r_66
 ) {
     float v_12 = {};
     float a_30 = metal::abs(t_3);
     if (a_30 > 1.0) {
-        float _e7 = math_ln(a_30 + r_65);
+        float _e7 = math_ln(a_30 + r_66);
         v_12 = _e7;
     } else {
-        float _e13 = math_ln_1p(a_30 + ((a_30 * a_30) / (1.0 + r_65)));
+        float _e13 = math_ln_1p(a_30 + ((a_30 * a_30) / (1.0 + r_66)));
         v_12 = _e13;
     }
     float _e14 = v_12;
@@ -3472,7 +3481,7 @@ float filter_rect_lambda_expected_psi(
 }
 
 float filter_rect_lambda_lambda_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_66,
+    ndf_roughness_axis_aligned_AxisAligned r_67,
     metal::float2 half_extent_6,
     metal::float3 w_in
 ) {
@@ -3509,17 +3518,17 @@ float filter_rect_lambda_lambda_rect(
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    metal::float2 alpha_12 = r_66.alpha;
+    metal::float2 alpha_12 = r_67.alpha;
     metal::float2 ha = metal::min(metal::abs(half_extent_6), alpha_12 * filter_rect_lambda_BIG_K);
     float _e63 = w_20.x;
     float ux = metal::abs(_e63) / _e46;
     float _e67 = w_20.y;
     float uy = metal::abs(_e67) / _e46;
-    float px = ux * r_66.alpha.x;
-    float py = uy * r_66.alpha.y;
+    float px = ux * r_67.alpha.x;
+    float py = uy * r_67.alpha.y;
     float _e74 = math_hypot(px, py);
-    float k1_4 = (px / _e74) * (ha.x / r_66.alpha.x);
-    float k2_4 = (py / _e74) * (ha.y / r_66.alpha.y);
+    float k1_4 = (px / _e74) * (ha.x / r_67.alpha.x);
+    float k2_4 = (py / _e74) * (ha.y / r_67.alpha.y);
     if (k1_4 == 0.0) {
         local_24 = k2_4 == 0.0;
     } else {
@@ -3528,7 +3537,7 @@ float filter_rect_lambda_lambda_rect(
     bool _e92 = local_24;
     if (_e92) {
         metal::float3 _e93 = w_20;
-        float _e94 = ndf_ggx_lambda_axis_aligned(r_66, _e93);
+        float _e94 = ndf_ggx_lambda_axis_aligned(r_67, _e93);
         return _e94;
     }
     float mm = (wz / _e46) / _e74;
@@ -3767,14 +3776,14 @@ metal::float3 filter_rect_sample_normal_of_slope(
 }
 
 metal::float3 filter_rect_sample_sample_normal_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_67,
+    ndf_roughness_axis_aligned_AxisAligned r_68,
     metal::float2 half_extent_7,
     metal::float2 u_13,
     metal::float2 u_box
 ) {
-    metal::float2 a_34 = r_67.alpha;
-    float _e7 = filter_rect_sample_half(half_extent_7.x, r_67.alpha.x);
-    float _e10 = filter_rect_sample_half(half_extent_7.y, r_67.alpha.y);
+    metal::float2 a_34 = r_68.alpha;
+    float _e7 = filter_rect_sample_half(half_extent_7.x, r_68.alpha.x);
+    float _e10 = filter_rect_sample_half(half_extent_7.y, r_68.alpha.y);
     metal::float2 h_33 = metal::float2(_e7, _e10);
     float _e13 = sampling_clamp_unit(u_13.x);
     float _e15 = sampling_clamp_unit(u_13.y);
@@ -3790,16 +3799,16 @@ metal::float3 filter_rect_sample_sample_normal_rect(
 }
 
 float filter_rect_sample_normal_pdf_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_68,
+    ndf_roughness_axis_aligned_AxisAligned r_69,
     metal::float2 half_extent_8,
     metal::float3 m_39
 ) {
-    float _e3 = filter_rect_d_rect(r_68, m_39, half_extent_8);
+    float _e3 = filter_rect_d_rect(r_69, m_39, half_extent_8);
     return (m_39.z > 0.0) ? (_e3 * m_39.z) : 0.0;
 }
 
 float filter_rect_sample_visible_normal_pdf_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_69,
+    ndf_roughness_axis_aligned_AxisAligned r_70,
     metal::float2 half_extent_9,
     metal::float3 wo_6,
     metal::float3 m_40
@@ -3822,8 +3831,8 @@ float filter_rect_sample_visible_normal_pdf_rect(
     if (_e25) {
         return 0.0;
     }
-    float _e27 = filter_rect_d_rect(r_69, m_40, half_extent_9);
-    float _e30 = filter_rect_lambda_lambda_rect(r_69, half_extent_9, wo_6);
+    float _e27 = filter_rect_d_rect(r_70, m_40, half_extent_9);
+    float _e30 = filter_rect_lambda_lambda_rect(r_70, half_extent_9, wo_6);
     float v_21 = (wom_1 * _e27) / (wo_6.z * (1.0 + _e30));
     return (v_21 <= math_F32_MAX) ? v_21 : 0.0;
 }
@@ -4167,7 +4176,7 @@ float sampling_beckmann_visible_slope_quantile(
 }
 
 metal::float3 sampling_beckmann_sample_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_70,
+    ndf_roughness_matrix_RoughnessMatrix r_71,
     metal::float2 u_16
 ) {
     float _e3 = sampling_clamp_unit(u_16.x);
@@ -4177,13 +4186,13 @@ metal::float3 sampling_beckmann_sample_normal(
     float _e14 = math_ln_1p(_e3 / (1.0 - _e3));
     float e_7 = (_e3 < 0.5) ? _e14 : -(_e9);
     metal::float3 n_8 = metal::float3(metal::sqrt(e_7) * _e6, 1.0);
-    sampling_Warp _e22 = sampling_warp(r_70);
+    sampling_Warp _e22 = sampling_warp(r_71);
     metal::float3 _e23 = sampling_unstretch(_e22, n_8);
     return _e23;
 }
 
 metal::float3 sampling_beckmann_sample_visible_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_71,
+    ndf_roughness_matrix_RoughnessMatrix r_72,
     metal::float3 wo_7,
     metal::float2 u_17
 ) {
@@ -4191,7 +4200,7 @@ metal::float3 sampling_beckmann_sample_visible_normal(
     if (!((wo_7.z > 0.0))) {
         return metal::float3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_71);
+    sampling_Warp _e9 = sampling_warp(r_72);
     metal::float3 _e10 = sampling_normalize_scaled(wo_7);
     metal::float3 _e11 = sampling_stretch(_e9, _e10);
     metal::float3 _e12 = sampling_normalize_scaled(_e11);
@@ -4220,32 +4229,32 @@ metal::float3 sampling_beckmann_sample_visible_normal(
 }
 
 float sampling_beckmann_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_72,
+    ndf_roughness_matrix_RoughnessMatrix r_73,
     metal::float3 m_41
 ) {
-    float _e2 = ndf_beckmann_d_matrix(r_72, m_41);
+    float _e2 = ndf_beckmann_d_matrix(r_73, m_41);
     return (m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0;
 }
 
 float sampling_beckmann_visible_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_73,
+    ndf_roughness_matrix_RoughnessMatrix r_74,
     metal::float3 wo_8,
     metal::float3 m_42
 ) {
-    float _e3 = ndf_beckmann_d_matrix(r_73, m_42);
-    float _e4 = ndf_beckmann_lambda_matrix(r_73, wo_8);
+    float _e3 = ndf_beckmann_d_matrix(r_74, m_42);
+    float _e4 = ndf_beckmann_lambda_matrix(r_74, wo_8);
     float _e5 = sampling_visible_normal_pdf_of(wo_8, m_42, _e3, _e4);
     return _e5;
 }
 
 float sampling_beckmann_reflection_pdf_from_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_74,
+    ndf_roughness_matrix_RoughnessMatrix r_75,
     metal::float3 wo_9,
     metal::float3 m_43
 ) {
     metal::float3 _e3 = sampling_normalize_scaled(wo_9);
-    float _e4 = ndf_beckmann_d_matrix(r_74, m_43);
-    float _e5 = ndf_beckmann_lambda_matrix(r_74, _e3);
+    float _e4 = ndf_beckmann_d_matrix(r_75, m_43);
+    float _e5 = ndf_beckmann_lambda_matrix(r_75, _e3);
     float _e6 = sampling_reflection_pdf_of(_e3, m_43, _e4, _e5);
     return _e6;
 }

@@ -693,6 +693,13 @@ fn ndf_roughness_matrix_clamped_det(r: ndf_roughness_matrix_RoughnessMatrix) -> 
     return max(r.det, r.tau);
 }
 
+/// The lobe's own clamp: `det A_c = tau` where the clamp is active (`tau > det A`), else 0
+/// (the Rust `own_det_clamp`). Every filter clamps with at least this, so that filtering never
+/// drops a clamped matrix's clamp (its entries may be far sharper than `A_c`).
+fn ndf_roughness_matrix_own_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return select(0.0, r.tau, r.tau > r.det);
+}
+
 // ---- filtered_ndf::filter::gaussian (shaders/filter/gaussian.wgsl) ----
 // Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
 // mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
@@ -740,14 +747,14 @@ fn filter_gaussian_gaussian(a: ndf_roughness_matrix_RoughnessMatrix, kernel: ker
 }
 
 /// [`gaussian`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
-/// filtered determinant here is never below `det A`, so no fallback is needed: the Rust
-/// `gaussian_with_det_clamp`).
+/// filtered determinant here is never below `det A`, so no fallback is needed), at least the
+/// material's own clamp ([`matrix::own_det_clamp`]): the Rust `gaussian_with_det_clamp`.
 fn filter_gaussian_gaussian_with_det_clamp(
     a: ndf_roughness_matrix_RoughnessMatrix,
     kernel: kernel_covariance_Covariance,
     det_clamp: f32,
 ) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), det_clamp);
+    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), max(det_clamp, ndf_roughness_matrix_own_det_clamp(a)));
 }
 
 // ---- filtered_ndf::ndf (shaders/ndf/mod.wgsl) ----
@@ -2147,14 +2154,15 @@ fn filter_projected_projected(a: ndf_roughness_matrix_RoughnessMatrix, kernel: k
     return filter_projected_projected_sanitized(a, kernel_covariance_sanitized(kernel), ndf_roughness_matrix_clamped_det(a));
 }
 
-/// [`projected`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
-/// Rust `projected_with_det_clamp`).
+/// [`projected`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none), at
+/// least the material's own clamp ([`matrix::own_det_clamp`]; the Rust
+/// `projected_with_det_clamp`).
 fn filter_projected_projected_with_det_clamp(
     a: ndf_roughness_matrix_RoughnessMatrix,
     kernel: kernel_covariance_Covariance,
     det_clamp: f32,
 ) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_projected_projected_sanitized(a, kernel_covariance_sanitized(kernel), det_clamp);
+    return filter_projected_projected_sanitized(a, kernel_covariance_sanitized(kernel), max(det_clamp, ndf_roughness_matrix_own_det_clamp(a)));
 }
 
 /// [`projected`] for a sanitised kernel `k`, with the clamp `tau` (`<= 0`: none). `A` is the
@@ -2281,9 +2289,10 @@ fn kernel_clamp_kernel(rules: kernel_clamp_ClampRules, k: kernel_covariance_Cova
 
 /// The determinant clamp `tau` for filtering `a` (the Rust `det_clamp_for`): `det A_c` of the
 /// unfiltered lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a
-/// clamped matrix its `max(det A, tau)`) if `det_clamp`, else 0.
+/// clamped matrix its `max(det A, tau)`) if `det_clamp`, else the material's own clamp
+/// ([`matrix::own_det_clamp`]: 0 unless it is a clamped matrix).
 fn kernel_clamp_det_clamp_for(rules: kernel_clamp_ClampRules, a: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return select(0.0, ndf_roughness_matrix_clamped_det(a), rules.det_clamp);
+    return select(ndf_roughness_matrix_own_det_clamp(a), ndf_roughness_matrix_clamped_det(a), rules.det_clamp);
 }
 
 /// The clamped pixel kernel of a footprint: [`footprint`] -> `pixel::covariance` (`sigma`

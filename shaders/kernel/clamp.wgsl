@@ -91,9 +91,10 @@ fn kernel(rules: ClampRules, k: covariance::Covariance) -> covariance::Covarianc
 
 /// The determinant clamp `tau` for filtering `a` (the Rust `det_clamp_for`): `det A_c` of the
 /// unfiltered lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a
-/// clamped matrix its `max(det A, tau)`) if `det_clamp`, else 0.
+/// clamped matrix its `max(det A, tau)`) if `det_clamp`, else the material's own clamp
+/// ([`matrix::own_det_clamp`]: 0 unless it is a clamped matrix).
 fn det_clamp_for(rules: ClampRules, a: matrix::RoughnessMatrix) -> f32 {
-    return select(0.0, matrix::clamped_det(a), rules.det_clamp);
+    return select(matrix::own_det_clamp(a), matrix::clamped_det(a), rules.det_clamp);
 }
 
 /// The clamped pixel kernel of a footprint: [`footprint`] -> `pixel::covariance` (`sigma`

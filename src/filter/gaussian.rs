@@ -30,14 +30,27 @@ pub fn gaussian<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMatr
 /// NaN, infinite or negative is treated as `0`). The kernel is [`Covariance::sanitized`]
 /// first. Without a clamp, a filtered determinant that rounds to `<= 0` (an extremely
 /// elongated kernel, or underflow) is clamped with `det(A)`, its exact lower bound, so the
-/// result is always valid.
+/// result is always valid. A clamped [`RoughnessMatrix`] keeps its own clamp: `tau` is at
+/// least its `det A_c` (its entries may be far sharper than `A_c`, even singular).
 #[inline]
 pub fn gaussian_with_det_clamp<R: Roughness>(
     roughness: R,
     kernel: Covariance,
     det_clamp: F,
 ) -> RoughnessMatrix {
-    gaussian_sanitized(roughness, kernel.sanitized(), det_clamp_tau(det_clamp))
+    gaussian_sanitized(
+        roughness,
+        kernel.sanitized(),
+        filter_tau(roughness, det_clamp),
+    )
+}
+
+/// The clamp of the filters' `*_with_det_clamp`: `det_clamp` as read by `det_clamp_tau`, at
+/// least the lobe's own clamp ([`Sealed::own_det_clamp`](super::super::ndf::roughness::sealed::Sealed::own_det_clamp):
+/// filtering never drops a clamped matrix's clamp).
+#[inline(always)]
+pub(crate) fn filter_tau<R: Roughness>(roughness: R, det_clamp: F) -> f64 {
+    det_clamp_tau(det_clamp).max(roughness.own_det_clamp())
 }
 
 /// `A + 2 K` with the clamp `tau` (`<= 0`: none) for a kernel that [`Covariance::sanitized`]

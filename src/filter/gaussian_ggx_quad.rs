@@ -232,10 +232,12 @@ pub(super) fn j_lane<const TRAPEZOID: bool>(
 #[inline]
 pub(super) fn far_tail(beta: f64, c1s: f64, c2s: f64, tl1: f64, tl2: f64, z2: f64) -> f64 {
     // J = beta^-2 (1 + 12 P z2 / beta^2 - 2 (l1 + l2) z2 / beta), P = l1 c1^2 + l2 c2^2.
-    let p = 0.5 * (tl1 * c1s + tl2 * c2s);
-    let ls = 0.5 * (tl1 + tl2);
+    // `P / beta` formed first (`c_i^2 <= beta`): `P` alone overflows for a slope near
+    // `1e150` lobe widths, and `ib^2` underflows to `0` there, `0 inf = NaN` (found by fuzzing).
     let ib = 1.0 / beta;
-    ib * ib * (1.0 + z2 * ib * (12.0 * p * ib - 2.0 * ls))
+    let p_ib = 0.5 * (tl1 * (c1s * ib) + tl2 * (c2s * ib));
+    let ls = 0.5 * (tl1 + tl2);
+    ib * ib * (1.0 + z2 * ib * (12.0 * p_ib - 2.0 * ls))
 }
 
 /// Gauss-Laguerre in `v = (1 + q) w` (item 4): `J = beta^-2 sum W_k F(v_k / beta)`,

@@ -1,9 +1,9 @@
 //! Projected-space filtering (Tokuyoshi and Kaplanyan 2021, JCGT 10(2)).
 
 use super::super::kernel::Covariance;
-use super::super::ndf::roughness::{Roughness, RoughnessMatrix, det_clamp_tau};
+use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
 use super::F;
-use super::gaussian::valid_clamp;
+use super::gaussian::{filter_tau, valid_clamp};
 use crate::math::Real;
 
 /// The largest eigenvalue of `A` that [`projected`] maps to projected space: `0.99`
@@ -50,14 +50,18 @@ pub fn projected<R: Roughness>(roughness: R, kernel: Covariance) -> RoughnessMat
 
 /// [`projected`] with an explicit determinant clamp `tau = det_clamp`, as
 /// [`super::gaussian_with_det_clamp`] (`0`, NaN, infinite or negative: no clamp beyond what
-/// keeps the result positive definite).
+/// keeps the result positive definite and a clamped matrix's own clamp).
 #[inline]
 pub fn projected_with_det_clamp<R: Roughness>(
     roughness: R,
     kernel: Covariance,
     det_clamp: F,
 ) -> RoughnessMatrix {
-    projected_sanitized(roughness, kernel.sanitized(), det_clamp_tau(det_clamp))
+    projected_sanitized(
+        roughness,
+        kernel.sanitized(),
+        filter_tau(roughness, det_clamp),
+    )
 }
 
 /// [`projected`] for a sanitised kernel, with the clamp `tau` (`<= 0`: none).

@@ -231,7 +231,8 @@ impl ClampRules {
 
     /// The determinant clamp `tau` for filtering `roughness`: `det(A)` of the unfiltered
     /// lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a clamped
-    /// [`RoughnessMatrix`] its `det A_c`) if `det_clamp`, else `0`. The determinant is the one
+    /// [`RoughnessMatrix`] its `det A_c`) if `det_clamp`, else `0` (but a clamped
+    /// `RoughnessMatrix` keeps its own clamp, `det A_c`, either way). The determinant is the one
     /// every filter clamps with (computed in `f64` from the entries by
     /// `det_wide`), rounded to `F`.
     #[inline]
@@ -245,7 +246,7 @@ impl ClampRules {
         if self.det_clamp {
             roughness.lobe_det()
         } else {
-            0.0
+            roughness.own_det_clamp()
         }
     }
 

@@ -177,3 +177,10 @@ fn determinant(r: RoughnessMatrix) -> f32 {
 fn clamped_det(r: RoughnessMatrix) -> f32 {
     return max(r.det, r.tau);
 }
+
+/// The lobe's own clamp: `det A_c = tau` where the clamp is active (`tau > det A`), else 0
+/// (the Rust `own_det_clamp`). Every filter clamps with at least this, so that filtering never
+/// drops a clamped matrix's clamp (its entries may be far sharper than `A_c`).
+fn own_det_clamp(r: RoughnessMatrix) -> f32 {
+    return select(0.0, r.tau, r.tau > r.det);
+}

@@ -201,7 +201,9 @@ fn sample_offsets(m: f64, kl: f64, ks: f64, ul: f64, us: f64) -> (f64, f64) {
 /// `G1 = 1 / (1 + Lambda)`, `Lambda` = [`super::lambda_rect`] (module docs: the offset by its
 /// projected-area weight, then GGX's visible normals seen from the sheared direction). Four
 /// uniform numbers: `u_box` for the offset, `u` for the GGX visible normal. `None` if
-/// `wo_z <= 0` or `wo` is not finite; zero half extents: GGX's sampler bit for bit.
+/// `wo_z <= 0` or `wo` is not finite, and where rounding leaves no certifiable sample, as for
+/// GGX's sampler (a view within the float range of grazing, module `sampling`); zero half
+/// extents: GGX's sampler bit for bit.
 pub fn sample_visible_normal_rect(
     r: AxisAligned,
     half_extent: Vec2,

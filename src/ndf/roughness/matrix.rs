@@ -408,6 +408,14 @@ impl sealed::Sealed for RoughnessMatrix {
         self.det
     }
     #[inline(always)]
+    fn own_det_clamp(&self) -> f64 {
+        if self.det > det_wide(self.a11, self.a12, self.a22) {
+            self.det
+        } else {
+            0.0
+        }
+    }
+    #[inline(always)]
     fn entries_f(&self) -> (F, F, F) {
         self.entries()
     }

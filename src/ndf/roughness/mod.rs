@@ -57,6 +57,17 @@ pub(crate) mod sealed {
         /// use as their clamp `tau`, so that a kernel too small to change the entries meets
         /// the clamp with equality.
         fn lobe_det(&self) -> f64;
+        /// The lobe's own determinant clamp: `det A_c` for a [`super::RoughnessMatrix`] whose
+        /// clamp is active (`det A_c > det A` of its entries), else `0` (every other lobe).
+        /// Every filter clamps with at least this, so that filtering never drops the lobe's
+        /// own clamp: the entries of a clamped matrix may be far sharper than `A_c`, even
+        /// singular, and `A + 2 Sigma` alone could then leave the range where `D` is finite
+        /// (found by fuzzing: `f32` entries `1e-40` clamped to `det A_c = 1`, filtered without a
+        /// clamp, gave `D(0) = inf`).
+        #[inline(always)]
+        fn own_det_clamp(&self) -> f64 {
+            0.0
+        }
         /// The entries `(a11, a12, a22)` of `A` in `F`, as given (for a clamped matrix `A`,
         /// not `A_c`): what a filter adds its kernel to, before clamping the result with
         /// [`Sealed::lobe_det`], so that a zero kernel returns the lobe unchanged.

@@ -247,7 +247,8 @@ macro_rules! filter_prec {
             let g = filter::gaussian(r, cov);
             eval(&g, "filter::gaussian");
             assert!(g.sqrt_det() >= sd * (1.0 - TOL), "gaussian sharpened: {g:?} < {r:?}");
-            eval(&filter::gaussian_with_det_clamp(r, cov, tau), "filter::gaussian_with_det_clamp");
+            let gc = filter::gaussian_with_det_clamp(r, cov, tau);
+            eval(&gc, &format!("filter::gaussian_with_det_clamp({r:?}, {cov:?}, {tau:?}) = {gc:?}"));
             let pr = rules.filter_projected(r, fp, sigma);
             eval(&pr, "rules.filter_projected");
             if rules.det_clamp {
