@@ -119,12 +119,16 @@ proptest! {
     ) {
         let fp = d::Footprint::from_slope_derivatives(DVec2::from(u), DVec2::from(v));
         let r = fp.bounding_rect();
+        let mut reach = DVec2::ZERO;
         for (a, b) in [(0.5, 0.5), (0.5, -0.5), (-0.5, 0.5), (-0.5, -0.5)] {
             let vtx = fp.dh_u * a + fp.dh_v * b;
-            // Tight: the vertices lie inside, and the rectangle touches them (1e-15 rounding).
+            // The vertices lie inside (1e-15: the vertex sums' rounding, inputs below 1).
             prop_assert!(vtx.abs().cmple(r.half_extent + 1e-15).all());
             prop_assert!(vtx.length() <= fp.max_extent() + 1e-15);
+            reach = reach.max(vtx.abs());
         }
+        // Tight: on each axis the farthest vertex touches the rectangle.
+        prop_assert!((reach - r.half_extent).abs().max_element() <= 1e-15, "{reach} {:?}", r);
         prop_assert!(r.half_extent.max_element() <= fp.max_extent() + 1e-15);
         let sig = fp.covariance(0.5);
         let sr = r.covariance(0.5);

@@ -407,6 +407,51 @@ mod findings {
     }
 
     #[test]
+    fn clamp_eigenvalues_at_the_top_of_the_range() {
+        // The bound F::MAX itself let the rebuilt s22 round past it: (0, 1e30, inf). The
+        // eigenvalues of [[-1.39e305, 1e30], [1e30, F::MAX]] are F::MAX (to 1e-29 relative,
+        // s12^2 / F::MAX^2 beside 1) and -1.39e305 (negative: clamped to 0), so the result is
+        // F::MAX times the projector on e_y (its off-diagonal s12 / (lambda_max - lambda_min)
+        // of it, 1e30 to 1e-3): finite, s22 within 16 eps of F::MAX.
+        let c = f64::Covariance::new(-1.3931855364567272e305, 1e30, f64::MAX);
+        for max in [f64::MAX, f64::INFINITY] {
+            let e = c.clamp_eigenvalues(max);
+            assert!(
+                e.s11.is_finite() && e.s12.is_finite() && e.s22.is_finite(),
+                "{e:?}"
+            );
+            assert!(e.s11 >= 0.0 && (e.s12 / 1e30 - 1.0).abs() < 1e-3, "{e:?}");
+            assert!(
+                e.s22 <= f64::MAX && e.s22 >= f64::MAX * (1.0 - 16.0 * f64::EPSILON),
+                "{e:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn ggx_lambda_of_a_view_within_the_subnormals_of_grazing() {
+        // f32: w / max|w| made w_z = 3.4e-45 subnormal (two significant bits) and GGX's
+        // Lambda 20 % high. Lambda = (sqrt(1 + alpha^2 |w_xy|^2 / w_z^2) - 1) / 2 is
+        // alpha |w_xy| / (2 |w_z|) - 1/2 + O(w_z / |w_xy|) here (a ratio of 3e44): the closed
+        // form in f64, to 1e-6 relative (a few f32 roundings). The box lobe's Lambda is at
+        // least GGX's (Jensen), equal for a vanishing box.
+        use f32::Ndf;
+        let r = f32::AxisAligned::new(1e-8, 1e-8).unwrap();
+        let w = Vec3::new(1.1450476e34, 3.8746752e-11, 3.8746752e-11);
+        let (x, y, z) = (f64::from(w.x), f64::from(w.y), f64::from(w.z));
+        let want = 1e-8 * (x * x + y * y).sqrt() / (2.0 * z) - 0.5;
+        for l in [
+            f32::Ggx::new(r).lambda(w),
+            f32::filter::rect::lambda_rect(r, Vec2::new(0.0, 1e-30), w),
+        ] {
+            assert!(
+                (f64::from(l) / want - 1.0).abs() < 1e-6,
+                "{l:e} vs {want:e}"
+            );
+        }
+    }
+
+    #[test]
     fn footprint_projected_of_a_nan_footprint() {
         let fp = f64::Footprint::from_slope_derivatives(DVec2::NAN, DVec2::NAN);
         let h = DVec3::new(-0.0, 0.0, -1e-30);

@@ -144,8 +144,9 @@ type BoxedPdf = Box<dyn Fn(DVec3, DVec3) -> f64>;
 #[test]
 fn reflection_pdf_integrates_to_one_over_the_sphere() {
     // Every m maps to one wi, so the reflection density integrates to 1 over the whole sphere
-    // of wi (including directions below the surface). Integrated to rel 1e-9; asserted to
-    // 1e-7 (nested-rule error).
+    // of wi (including directions below the surface). Integrated to rel 1e-10 per rule;
+    // asserted to 1e-9 plus the rules' summed error estimate (the nested rules' estimates
+    // are per inner integral, summed over the outer nodes: ten times the goal covers them).
     for &a in &[0.2, 0.8] {
         let ndfs: [(&str, BoxedPdf); 3] = [
             ("ggx iso", {
@@ -200,7 +201,7 @@ fn reflection_pdf_integrates_to_one_over_the_sphere() {
                     error: e.error + e2.error,
                 };
                 assert!(
-                    (e.value - 1.0).abs() < 1e-7,
+                    (e.value - 1.0).abs() < 1e-9 + e.error && e.error < 1e-8,
                     "{name} a={a} view {deg}: {e:?}"
                 );
             }
@@ -524,7 +525,12 @@ macro_rules! robustness {
                 let mm = ndf.sample_visible_normal(wo, u).unwrap();
                 let p1 = ndf.visible_normal_pdf(wo, mm);
                 let p2 = ndf.visible_normal_pdf(wo * 3.0, mm);
-                assert!((p1 - p2).abs() <= 1e-4 * p1, "{name}: {p1} vs {p2}");
+                // `wo` enters through `wo.m / wo_z` and `Lambda(wo)` (rescaled, homogeneous):
+                // a few roundings each; 64 eps of `F` covers them with margin.
+                assert!(
+                    (p1 - p2).abs() <= 64.0 * F::EPSILON * p1,
+                    "{name}: {p1} vs {p2}"
+                );
             }
 
             fn rotated(a: F, cond: F, angle: F) -> RoughnessMatrix {

@@ -149,7 +149,8 @@ impl Covariance {
     /// loses its negative part as well (e.g. `[[0, 1], [1, 0]]` with `max = 0.5` gives
     /// `0.5 P_max = [[0.25, 0.25], [0.25, 0.25]]`), a negative semi-definite one gives
     /// [`Covariance::ZERO`]. The result is always finite and positive semi-definite with
-    /// `lambda_max <= max` (to rounding; an infinite `max` acts as `F::MAX`).
+    /// `lambda_max <= max` (to rounding; a `max` above `F::MAX (1 - 16 eps)`, infinite
+    /// included, acts as that).
     ///
     /// Computed as `c_max P_max + c_min P_min` with the clamped eigenvalues `c` and the spectral
     /// projectors `P_max = (Sigma - lambda_min I) / (lambda_max - lambda_min)`,
@@ -211,8 +212,11 @@ impl Covariance {
             return Self::ZERO;
         }
         // An eigenvalue beyond `F::MAX` (entries near `F::MAX`) is not representable: the
-        // bound is at most `F::MAX`, so the result stays finite.
-        let max = max.min(F::MAX);
+        // bound is at most `F::MAX (1 - 16 eps)`, so the result stays finite (the rebuilt
+        // entries are `c_max` times projector entries within a few roundings of `[0, 1]`:
+        // with the bound `F::MAX` itself, `[[-1.4e305, 1e30], [1e30, F::MAX]]` rebuilt to an
+        // infinite `s22`; found by fuzzing).
+        let max = max.min(F::MAX * (1.0 - 16.0 * F::EPSILON));
         let this = Self::new(s11, s12, s22);
         let scale = s11.abs().max(s22.abs()).max(s12.abs());
         if scale <= 0.0 {
