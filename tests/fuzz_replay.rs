@@ -452,6 +452,23 @@ mod findings {
     }
 
     #[test]
+    fn box_visible_normal_of_an_infinite_box_near_grazing() {
+        // f32: a view 1.2e-30 from grazing beside a box infinite along y; the sample and the
+        // sheared cap's pole both rounded onto wo's horizon and the sampler refused. It now
+        // returns a unit normal above both horizons (wo.m > 0, checked in f64).
+        let r = f32::AxisAligned::new(1e-8, 1e-8).unwrap();
+        let wo = Vec3::new(1e30, 1e-30, 1.2156863);
+        let half = Vec2::new(1e-30, f32::INFINITY);
+        let u = Vec2::splat(1e30);
+        let m = f32::filter::rect::sample_visible_normal_rect(r, half, wo, u, u).unwrap();
+        let wom = wo.as_dvec3().dot(m.as_dvec3());
+        assert!(
+            m.z > 0.0 && (m.length() - 1.0).abs() < 1e-6 && wom > 0.0,
+            "{m:?}"
+        );
+    }
+
+    #[test]
     fn footprint_projected_of_a_nan_footprint() {
         let fp = f64::Footprint::from_slope_derivatives(DVec2::NAN, DVec2::NAN);
         let h = DVec3::new(-0.0, 0.0, -1e-30);

@@ -201,9 +201,11 @@ fn sample_offsets(m: f64, kl: f64, ks: f64, ul: f64, us: f64) -> (f64, f64) {
 /// `G1 = 1 / (1 + Lambda)`, `Lambda` = [`super::lambda_rect`] (module docs: the offset by its
 /// projected-area weight, then GGX's visible normals seen from the sheared direction). Four
 /// uniform numbers: `u_box` for the offset, `u` for the GGX visible normal. `None` if
-/// `wo_z <= 0` or `wo` is not finite, and where rounding leaves no certifiable sample, as for
-/// GGX's sampler (a view within the float range of grazing, module `sampling`); zero half
-/// extents: GGX's sampler bit for bit.
+/// `wo_z <= 0` or `wo` is not finite. Zero half extents: GGX's sampler bit for bit (which
+/// also returns `None` for a view within the float range of grazing, module `sampling`).
+/// Should rounding put both the sample and its fallback, the sheared cap's pole, on or behind
+/// `wo`'s horizon, the geometric normal `(0, 0, 1)` is returned (a rounding corner: a box of
+/// huge extent beside a view near grazing).
 pub fn sample_visible_normal_rect(
     r: AxisAligned,
     half_extent: Vec2,
@@ -306,7 +308,14 @@ fn visible_with_offset(
     // Rounding broke wo.m > 0 (u on the rim of the cap): the cap's pole c = (0, 0, 1), which
     // is on every cap, gives n = (wi_x, wi_y, 1 + wi_z) with n_z > 0 and wi.n = 1 + wi_z > 0.
     let c = sample(wi.0, wi.1, one_plus);
-    visible(c).then_some(c)
+    if visible(c) {
+        return Some(c);
+    }
+    // Rounding broke that too (a box of huge extent beside a view near grazing, in `f32`:
+    // the pole's slope is `delta` itself, whose normal rounds onto wo's horizon; found by
+    // fuzzing): the geometric normal, visible for every `wo_z > 0` and of positive density.
+    let n = Vec3::new(0.0, 0.0, 1.0);
+    visible(n).then_some(n)
 }
 
 /// The density of [`sample_visible_normal_rect`],

@@ -126,11 +126,14 @@ macro_rules! rect_prec {
                     "visible_normal_pdf_rect = {vp:?}"
                 );
             }
-            // `None` is documented for views within the float range of grazing (as GGX's
-            // sampler, module `sampling`): relative to `wo`'s scale, not absolute (a view
-            // `(1e30, 0, 1e-30)` is `1e-60` from grazing; found by fuzzing).
+            // `None` is documented for a view at or below the horizon, and with zero half
+            // extents for views within the float range of grazing (GGX's sampler, module
+            // `sampling`): relative to `wo`'s scale, not absolute (a view `(1e30, 0, 1e-30)`
+            // is `1e-60` from grazing; found by fuzzing).
             None => assert!(
-                !(wo.is_finite() && wo.z > 0.0) || wo.z / wo.abs().max_element() <= 1e-30,
+                !(wo.is_finite() && wo.z > 0.0)
+                    || (!(half.x.abs() > 0.0 || half.y.abs() > 0.0) // zero or NaN: GGX's
+                        && wo.z / wo.abs().max_element() <= 1e-30),
                 "sample_visible_normal_rect({r:?}, {half:?}, {wo:?}, {u:?}, {ub:?}) refused a view \
                  above the horizon"
             ),
