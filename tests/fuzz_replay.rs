@@ -452,6 +452,29 @@ mod findings {
     }
 
     #[test]
+    fn ggx_lambda_of_a_subnormal_w_z() {
+        // f64: w_z = 5e-324 (one bit) on input; w / max|w| rounded it to a multiple of the
+        // smallest subnormal (w_z / max|w| = 1.3e-313, 2e-11 apart) and GGX's Lambda came out
+        // 7e-12 off, below the box lobe's (found by the rect target). Here Lambda =
+        // alpha |w_xy| / (2 |w_z|) - 1/2 + O(|w_z| / |w_xy|) with alpha |w_xy| / (2 |w_z|) =
+        // 3.9e304: the 1/2 is 1e-305 of it, so the leading term in f64 (four roundings of a
+        // few 1e-16) is the reference, to 1e-14 relative. The box lobe's Lambda (a box of
+        // 1e-32 lobe widths along w_xy adds (k / m)^2 ~ 1e-65) is the same to 1e-14.
+        use f64::Ndf;
+        let r = f64::AxisAligned::new(1e-8, 1e-8).unwrap();
+        let w = DVec3::new(1e-40, 3.874675120456176e-11, 5e-324);
+        let want = 1e-8 * w.x.hypot(w.y) / (2.0 * w.z);
+        for l in [
+            f64::Ggx::new(r).lambda(w),
+            f64::filter::rect::lambda_rect(r, DVec2::new(3.874675120456176e-11, f64::NAN), w),
+        ] {
+            assert!((l / want - 1.0).abs() < 1e-14, "{l:e} vs {want:e}");
+        }
+        // No f32 twin: the rescaling only runs for |w| >= 2^20, so a subnormal w_z makes
+        // |w_xy| / |w_z| >= 2^20 / 1.4e-45 = 7e50 and Lambda >= 1e-8 of that, beyond f32::MAX.
+    }
+
+    #[test]
     fn box_visible_normal_of_an_infinite_box_near_grazing() {
         // f32: a view 1.2e-30 from grazing beside a box infinite along y; the sample and the
         // sheared cap's pole both rounded onto wo's horizon and the sampler refused. It now

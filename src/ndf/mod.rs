@@ -128,7 +128,10 @@ pub(crate) fn lambda_outside_domain(q: F, abs_wz: F) -> Option<F> {
 /// can still be finite: `alpha |w_xy| / (2 |w_z|)`), `w` is scaled instead so that `|w_z|` is
 /// the smallest normal number, keeping its digits (`|w_xy|` then stays below
 /// `F::MAX / |w_z| * F::MIN_POSITIVE`, finite): a subnormal `w_z` of `(1e34, 4e-11, 4e-11)`
-/// in `f32` had cost GGX's `Lambda` 20 % (found by the box lobe's fuzz contract).
+/// in `f32` had cost GGX's `Lambda` 20 % (found by the box lobe's fuzz contract). A `w_z`
+/// subnormal on input is scaled up exactly by `2^(MANTISSA_DIGITS - 1)` instead (all its
+/// digits; the division by `mx` would round it to a multiple of the smallest subnormal: `7e-12`
+/// in `f64` for `w = (1e-40, 3.9e-11, 5e-324)`, found the same way).
 #[inline]
 pub(crate) fn rescale_direction(w: Vec3) -> Vec3 {
     if needs_no_rescale(w) {
@@ -140,10 +143,25 @@ pub(crate) fn rescale_direction(w: Vec3) -> Vec3 {
     }
     let v = w / mx;
     let az = w.z.abs();
-    if v.z == 0.0 || v.z.abs() >= F::MIN_POSITIVE || az < F::MIN_POSITIVE {
+    if v.z.abs() >= F::MIN_POSITIVE || az == 0.0 {
         v
-    } else {
+    } else if az >= F::MIN_POSITIVE {
+        if v.z == 0.0 {
+            // `|w_xy| / |w_z|` beyond `F::MAX`: grazing to every digit `F` has.
+            return v;
+        }
         // `az < mx F::MIN_POSITIVE <= 4` here, so the divisor is finite and normal.
         w / (az / F::MIN_POSITIVE)
+    } else {
+        // `w_z` subnormal on input (and `v.z` too, so `mx > az / F::MIN_POSITIVE >=
+        // 2^-(MANTISSA_DIGITS - 1)`): scaled up exactly by `2^(MANTISSA_DIGITS - 1)`, which
+        // makes every subnormal normal, with its digits; `|w_xy|` lands at least near 1, so
+        // nothing underflows. Where that overflows, `|w_xy| / |w_z|` exceeds `F::MAX` and `v`
+        // (grazing) is as good.
+        let s = w * SUBNORMAL_LIFT;
+        if s.is_finite() { s } else { v }
     }
 }
+
+/// `2^(MANTISSA_DIGITS - 1)`: times the smallest subnormal, the smallest normal number.
+const SUBNORMAL_LIFT: F = (1u64 << (F::MANTISSA_DIGITS - 1)) as F;
