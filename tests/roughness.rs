@@ -279,14 +279,26 @@ macro_rules! per_precision {
                     }
                     let l = n.lambda(m);
                     assert!(l >= 0.0, "{n:?} lambda({m}) = {l}");
-                    for &w in &vs {
+                    for (j, &w) in vs.iter().enumerate() {
                         let g1 = n.g1(w, m);
                         assert!((0.0..=1.0).contains(&g1), "{n:?} g1({w}, {m}) = {g1}");
                         if w.dot(m) <= 0.0 {
                             assert_eq!(g1, 0.0);
                         }
-                        let g2 = n.g2(w, -w, m);
-                        assert!((0.0..=1.0).contains(&g2) && g2 <= g1, "{n:?} g2 = {g2}");
+                        // G2 against each other vector as the incoming direction (i = -w
+                        // would always give 0: one of i.m, w.m is <= 0): in [0, 1], at most
+                        // either G1, 0 where either direction is behind m.
+                        for &i in vs.iter().skip(j % 3).step_by(3) {
+                            let g2 = n.g2(i, w, m);
+                            let gi = n.g1(i, m);
+                            assert!(
+                                (0.0..=1.0).contains(&g2) && g2 <= g1 && g2 <= gi,
+                                "{n:?} g2({i}, {w}, {m}) = {g2}, g1 {g1} {gi}"
+                            );
+                            if i.dot(m) <= 0.0 || w.dot(m) <= 0.0 {
+                                assert_eq!(g2, 0.0, "{n:?} g2({i}, {w}, {m})");
+                            }
+                        }
                     }
                 }
                 // Lambda is scale invariant: tiny and huge copies of a direction agree. Scaling

@@ -257,7 +257,8 @@ impl Setup {
         let hv = (sy.abs() * c.ib).max(0.0);
         let t0 = 1.0 + uc * uc + vc * vc;
         #[allow(clippy::neg_cmp_op_on_partial_ord)]
-        let special = ((sx == 0.0) & (sy == 0.0))
+        // Both half extents zero or NaN: the scalar path's unfiltered `D`, bit for bit.
+        let special = (!(sx.abs() > 0.0) & !(sy.abs() > 0.0))
             | !(hz >= 1e-6)
             | !(t0 < 1e30)
             | !(hu < 1e15)

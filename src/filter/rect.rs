@@ -476,6 +476,13 @@ fn edges_ok(uc: f64, vc: f64, h_short: f64) -> bool {
     l2 * l2 * l2 < EDGES_GAIN * EDGES_GAIN * h_short * h_short
 }
 
+/// Both half extents `0` or NaN (NaN counts as `0`): the unfiltered lobe, bit for bit.
+#[inline(always)]
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+pub(crate) fn zero_footprint(half_extent: Vec2) -> bool {
+    !(half_extent.x.abs() > 0.0) & !(half_extent.y.abs() > 0.0)
+}
+
 /// Sanitised `f64` half extent: `|h|`, NaN as `0`, at most `BIG`.
 #[inline(always)]
 pub(crate) fn half64(h: F, inv_alpha: f64) -> f64 {
@@ -518,11 +525,12 @@ fn unit_coords(r: AxisAligned, center: (f64, f64), half_extent: Vec2) -> (f64, f
 /// average) or both (returns [`Ndf::p22`] of the unfiltered GGX, bit for bit).
 ///
 /// Domain: any finite `center` and `half_extent`; negative half extents count by their
-/// absolute value, NaN half extents as `0`, a NaN centre returns `0`. Never NaN, never
+/// absolute value, NaN half extents as `0` (both NaN or zero: bit for bit the unfiltered
+/// `p22`), a NaN centre returns `0`. Never NaN, never
 /// negative; `0` only where the average underflows.
 #[inline]
 pub fn p22_rect(r: AxisAligned, center: Vec2, half_extent: Vec2) -> F {
-    if half_extent.x == 0.0 && half_extent.y == 0.0 {
+    if zero_footprint(half_extent) {
         // A NaN centre returns 0 here too (the unfiltered `p22` would give NaN).
         let p = Ggx::new(r).p22(center);
         return if p.is_nan() { 0.0 } else { p };
@@ -550,7 +558,7 @@ pub fn d_rect(r: AxisAligned, h: Vec3, half_extent: Vec2) -> F {
     if !h.is_finite() || h.z <= 0.0 {
         return 0.0;
     }
-    if (half_extent.x == 0.0 && half_extent.y == 0.0) || h.z.to_f64() < 1e-70 {
+    if zero_footprint(half_extent) || h.z.to_f64() < 1e-70 {
         return Ggx::new(r).d(h);
     }
     let (center, ihz4) = slope_of(h);
@@ -605,7 +613,7 @@ impl RectSetup {
             & (h.y.abs() < F::INFINITY)
             & (h.z < F::INFINITY)
             & (h.z > 0.0);
-        let special = ((half_extent.x == 0.0) & (half_extent.y == 0.0)) | (h.z.to_f64() < 1e-70);
+        let special = zero_footprint(half_extent) | (h.z.to_f64() < 1e-70);
         let (center, ihz4) = slope_of(h);
         let (uc, vc, hu, hv, k) = unit_coords(r, center, half_extent);
         let nan = uc.is_nan() | vc.is_nan();
