@@ -483,6 +483,27 @@ mod findings {
     }
 
     #[test]
+    fn box_lambda_of_a_huge_direction_with_a_small_w_z() {
+        // f64: w = (1, -8.3e298, -3.9e-17) was scaled by 2^-992 into [1, 2), which made w_z
+        // subnormal (9e-316, 27 bits): the box lobe's Lambda 9e-10 below GGX's. Lambda =
+        // alpha_y |w_y| / (2 |w_z|) - 1/2 + O(|w_z| / |w_xy|) (alpha_x |w_x| adds 1e-582 to
+        // q): 1.07e307, the 1/2 far below rounding, so the leading term in f64 (three
+        // roundings) is the reference to 1e-14. The box (1e-30 along y, 1e-22 lobe widths;
+        // infinite along x, where w_x / |w_xy| = 1e-299) changes the expectation of psi by
+        // about 1e-22 relative.
+        use f64::Ndf;
+        let r = f64::AxisAligned::new(1e4, 1e-8).unwrap();
+        let w = DVec3::new(1.0, -8.266521481192677e298, -3.8746751204561125e-17);
+        let want = 1e-8 * w.y.abs() / (2.0 * w.z.abs());
+        for l in [
+            f64::Ggx::new(r).lambda(w),
+            f64::filter::rect::lambda_rect(r, DVec2::new(f64::NEG_INFINITY, -1e-30), w),
+        ] {
+            assert!((l / want - 1.0).abs() < 1e-14, "{l:e} vs {want:e}");
+        }
+    }
+
+    #[test]
     fn box_visible_normal_of_an_infinite_box_near_grazing() {
         // f32: a view 1.2e-30 from grazing beside a box infinite along y; the sample and the
         // sheared cap's pole both rounded onto wo's horizon and the sampler refused. It now

@@ -70,11 +70,18 @@ use super::{BIG, F, Tier, Vec2, Vec3, gl_of, half64, tier};
 use crate::math::{self as m, Real};
 
 /// `w` in `f64`, scaled by a power of two (exactly) when its largest component is outside
-/// `[2^-400, 2^400]`, so that `|w_i| H_i` (`H_i <= 1e60 alpha_i`) neither overflows nor
-/// underflows; `Lambda` is homogeneous of degree 0. Unit vectors pass unchanged; a non-finite
-/// `w` too.
+/// `[2^-400, 2^400]`, into `[1, 2)`, so that `|w_i| H_i` (`H_i <= 1e60 alpha_i`) neither
+/// overflows nor underflows, nor do the visible sampler's squares of `w_i delta_i`; `Lambda`
+/// is homogeneous of degree 0. Unit vectors pass unchanged; a non-finite `w` too.
 #[inline]
 pub(super) fn scaled(w: Vec3) -> (f64, f64, f64) {
+    scaled_to(w, 0)
+}
+
+/// [`scaled`] with a largest component above `2^400` scaled into `[2^top, 2^(top + 1))`
+/// instead (`0 <= top <= 399`); below `2^-400`, into `[1, 2)` as there.
+#[inline]
+fn scaled_to(w: Vec3, top: i64) -> (f64, f64, f64) {
     let (x, y, z) = (w.x.to_f64(), w.y.to_f64(), w.z.to_f64());
     let mx = x.abs().max(y.abs()).max(z.abs());
     const HI: f64 = 2.58e120; // 2^400
@@ -86,6 +93,7 @@ pub(super) fn scaled(w: Vec3) -> (f64, f64, f64) {
     // for e = 1023, whose 2^-1023 is subnormal and has no exponent field (the field 0 would
     // read as 0 and scale every vector to the zero vector): mx then lands in [2, 4).
     let e = ((mx.to_bits() >> 52) & 0x7ff) as i64 - 1023;
+    let e = if mx > HI { e - top } else { e };
     let s = f64::from_bits(((1023 - e).max(1) as u64) << 52);
     (x * s, y * s, z * s)
 }
@@ -223,7 +231,11 @@ pub fn lambda_rect(r: AxisAligned, half_extent: Vec2, w: Vec3) -> F {
         half64(half_extent.x, 1.0 / ax),
         half64(half_extent.y, 1.0 / ay),
     );
-    let (wx, wy, wz) = scaled(w);
+    // A huge `w` is scaled down only to `[2^399, 2^400)`: into `[1, 2)` a small `w_z` beside
+    // it could turn subnormal and lose digits (`w = (1, -8e298, -3.9e-17)` went to `9e-316`:
+    // 9e-10 relative, found by fuzzing); here it does so only where `|w_xy| / |w_z|` exceeds
+    // `2^1421`, where `Lambda` is `+inf` for every roughness in range.
+    let (wx, wy, wz) = scaled_to(w, 399);
     let l = m::hypot(wx, wy);
     let mu = wz.abs() / l;
     if mu.is_nan() {
