@@ -17,15 +17,15 @@
 //! reduces to the 1D integral along its range (the neglected variance changes the result by a
 //! relative `O(1e-24)`).
 //!
-//! Error estimate: the sum of the piecewise estimates, plus, in 2D, the largest relative error
-//! of an inner integral times the value (the integrand is positive, so this bounds the
-//! integrated inner error).
+//! Error estimate: the sum of the piecewise estimates, plus, in 2D, the inner integrals'
+//! error estimates integrated with the outer rule's weights
+//! ([`super::quadrature::integrate_estimates`]).
 
 extern crate alloc;
 use alloc::vec::Vec;
 
 use super::linalg::Sym2;
-use super::quadrature::{Estimate, Tolerance, integrate};
+use super::quadrature::{Estimate, Tolerance, integrate_estimates};
 use crate::f64::{Beckmann, Covariance, Ggx, Ndf, Roughness, RoughnessMatrix, Vec2};
 
 const INV_SQRT_2PI: f64 = 0.398_942_280_401_432_7;
@@ -70,7 +70,7 @@ pub fn gaussian_convolution<Fd: FnMut(Vec2) -> f64>(
         let wx = cond_width(e1);
         let mut g = |x: f64| {
             let v = density(s - y * e2 - x * e1) * normal(x, sd1);
-            if v.is_finite() { v } else { 0.0 }
+            (if v.is_finite() { v } else { 0.0 }, 0.0)
         };
         line(&mut g, &[(0.0, sd1, false), (x_star, wx, true)], tol)
     };
@@ -84,22 +84,21 @@ pub fn gaussian_convolution<Fd: FnMut(Vec2) -> f64>(
         abs: tol.abs * 0.1,
         ..tol
     };
-    let mut max_rel = 0.0_f64;
     let y_star = e2.dot(s - center);
     let wy = width(e2);
+    // The inner integrals' errors are integrated with the outer rule's weights (the estimate
+    // adds them to the outer one).
     let mut g = |y: f64| {
         let e = inner(y, &mut density, inner_tol);
-        if e.value > 0.0 {
-            max_rel = max_rel.max(e.error / e.value);
+        let n = normal(y, sd2);
+        let (v, err) = (e.value * n, e.error * n);
+        if v.is_finite() && err.is_finite() {
+            (v, err)
+        } else {
+            (0.0, 0.0)
         }
-        let v = e.value * normal(y, sd2);
-        if v.is_finite() { v } else { 0.0 }
     };
-    let outer = line(&mut g, &[(0.0, sd2, false), (y_star, wy, true)], tol);
-    Estimate {
-        value: outer.value,
-        error: outer.error + max_rel * outer.value.abs(),
-    }
+    line(&mut g, &[(0.0, sd2, false), (y_star, wy, true)], tol)
 }
 
 /// The Gaussian-filtered GGX slope density `(P22_GGX * N_Sigma)(s)` (per unit slope area).
@@ -144,7 +143,12 @@ fn normal(x: f64, sd: f64) -> f64 {
 }
 
 /// `integral_R g(x) dx` split at breakpoints around features `(centre, width, heavy_tail)`.
-fn line(g: &mut dyn FnMut(f64) -> f64, features: &[(f64, f64, bool)], tol: Tolerance) -> Estimate {
+/// `g` returns a value and its own absolute error (`0` for a plain integrand).
+fn line(
+    g: &mut dyn FnMut(f64) -> (f64, f64),
+    features: &[(f64, f64, bool)],
+    tol: Tolerance,
+) -> Estimate {
     const GAUSS: [f64; 5] = [0.0, 1.0, 3.0, 6.0, 10.0];
     const HEAVY: [f64; 7] = [0.0, 0.5, 2.0, 8.0, 32.0, 128.0, 512.0];
     let mut pts: Vec<f64> = Vec::new();
@@ -173,18 +177,24 @@ fn line(g: &mut dyn FnMut(f64) -> f64, features: &[(f64, f64, bool)], tol: Toler
     let mut value = 0.0;
     let mut error = 0.0;
     for w in pts.windows(2) {
-        let e = integrate(&mut *g, w[0], w[1], piece_tol);
+        let e = integrate_estimates(&mut *g, w[0], w[1], piece_tol);
         value += e.value;
         error += e.error;
     }
     // Tails: x = b +/- L t / (1 - t), t in [0, 1).
     let (lo, hi) = (pts[0], pts[pts.len() - 1]);
     for (b, sign) in [(hi, 1.0), (lo, -1.0)] {
-        let e = integrate(
+        let e = integrate_estimates(
             |t| {
                 let d = 1.0 - t;
-                let v = g(b + sign * big * t / d) * big / (d * d);
-                if v.is_finite() { v } else { 0.0 }
+                let j = big / (d * d);
+                let (v, err) = g(b + sign * big * t / d);
+                let (v, err) = (v * j, err * j);
+                if v.is_finite() && err.is_finite() {
+                    (v, err)
+                } else {
+                    (0.0, 0.0)
+                }
             },
             0.0,
             1.0,
