@@ -504,6 +504,40 @@ mod findings {
     }
 
     #[test]
+    fn ggx_lambda_of_a_tiny_w_xy_beside_a_large_alpha() {
+        // f32: after the rescaling w = (2e-22, 0, -1), and w_x^2 = 3.9e-44 was subnormal (five
+        // bits) before its product with alpha^2 = 1e8: GGX's Lambda 1.3 % high, above the box
+        // lobe's (found by the rect target). Lambda = (sqrt(1 + x^2) - 1) / 2 with
+        // x = alpha |w_xy| / |w_z| = 2e-18 is x^2 / 4 to 1e-36 relative: that in f64 is the
+        // reference, to 1e-6 (a few f32 roundings: the rescaling, the product, the square, the
+        // quotient). The same in f64 at w_x = 1e-156 (a subnormal square there, 1e-312: 2.5e-12
+        // before), to 1e-14.
+        use f32::Ndf as _;
+        let w = Vec3::new(1e-30, 0.0, -5.080218e-9);
+        let x = 1e4 * f64::from(w.x) / f64::from(w.z).abs();
+        let want = x * x / 4.0;
+        for l in [
+            f32::Ggx::new(f32::AxisAligned::new(1e4, 1e4).unwrap()).lambda(w),
+            f32::Ggx::new(f32::Isotropic::new(1e4).unwrap()).lambda(w),
+            f32::filter::rect::lambda_rect(f32::AxisAligned::new(1e4, 1e4).unwrap(), Vec2::ONE, w),
+        ] {
+            assert!(
+                (f64::from(l) / want - 1.0).abs() < 1e-6,
+                "{l:e} vs {want:e}"
+            );
+        }
+        use f64::Ndf as _;
+        let w = DVec3::new(1e-156, 0.0, 1.0);
+        let want = (1e4 * 1e-156) * (1e4 * 1e-156) / 4.0;
+        for l in [
+            f64::Ggx::new(f64::AxisAligned::new(1e4, 1e4).unwrap()).lambda(w),
+            f64::Ggx::new(f64::Isotropic::new(1e4).unwrap()).lambda(w),
+        ] {
+            assert!((l / want - 1.0).abs() < 1e-14, "{l:e} vs {want:e}");
+        }
+    }
+
+    #[test]
     fn box_visible_normal_of_an_infinite_box_near_grazing() {
         // f32: a view 1.2e-30 from grazing beside a box infinite along y; the sample and the
         // sheared cap's pole both rounded onto wo's horizon and the sampler refused. It now

@@ -657,7 +657,8 @@ float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_
 }
 
 float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_13, vec2 w_1) {
-    return (dot(w_1, w_1) * (r_13.alpha * r_13.alpha));
+    vec2 s_25 = (w_1 * r_13.alpha);
+    return dot(s_25, s_25);
 }
 
 float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_14) {
@@ -681,7 +682,8 @@ float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAl
 }
 
 float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_17, vec2 w_2) {
-    return dot((w_2 * w_2), (r_17.alpha * r_17.alpha));
+    vec2 s_26 = (w_2 * r_17.alpha);
+    return dot(s_26, s_26);
 }
 
 float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_18) {
@@ -1628,10 +1630,10 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roug
     vec2 v_5 = vec2(1.0, 0.0);
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
     float c_18 = a_5.axis.x;
-    float s_25 = a_5.axis.y;
-    float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_25) * _e2.s_xy)) + ((s_25 * s_25) * _e2.s_yy)), 0.0);
-    float k22_ = max(((((s_25 * s_25) * _e2.s_xx) - (((2.0 * c_18) * s_25) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
-    float k12_ = ((((c_18 * c_18) - (s_25 * s_25)) * _e2.s_xy) + ((c_18 * s_25) * (_e2.s_yy - _e2.s_xx)));
+    float s_27 = a_5.axis.y;
+    float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((s_27 * s_27) * _e2.s_yy)), 0.0);
+    float k22_ = max(((((s_27 * s_27) * _e2.s_xx) - (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
+    float k12_ = ((((c_18 * c_18) - (s_27 * s_27)) * _e2.s_xy) + ((c_18 * s_27) * (_e2.s_yy - _e2.s_xx)));
     vec2 l_6 = a_5.eig_c;
     vec2 isl = (vec2(1.0) / sqrt(l_6));
     float c11_ = ((k11_ * isl.x) * isl.x);
@@ -1754,8 +1756,8 @@ vec3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g
     float _e94 = ax.y;
     float _e99 = ax.y;
     float _e103 = ax.x;
-    vec2 s_26 = (gs + vec2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
-    vec3 _e112 = sampling_normalize_scaled(vec3(-(s_26), 1.0));
+    vec2 s_28 = (gs + vec2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
+    vec3 _e112 = sampling_normalize_scaled(vec3(-(s_28), 1.0));
     return vec3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
 }
 
@@ -1924,12 +1926,12 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     vec2 excess = (a_7.eig - lc);
     vec2 p_8 = (lc / (vec2(1.0) - lc));
     float c_20 = a_7.axis.x;
-    float s_27 = a_7.axis.y;
-    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_27) * s_27));
-    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_27);
-    float p22_1 = (((p_8.x * s_27) * s_27) + ((p_8.y * c_20) * c_20));
-    float k1_3 = max(((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_27) * k_11.s_xy)) + ((s_27 * s_27) * k_11.s_yy)), 0.0);
-    float k2_3 = max(((((s_27 * s_27) * k_11.s_xx) - (((2.0 * c_20) * s_27) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy)), 0.0);
+    float s_29 = a_7.axis.y;
+    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_29) * s_29));
+    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_29);
+    float p22_1 = (((p_8.x * s_29) * s_29) + ((p_8.y * c_20) * c_20));
+    float k1_3 = max(((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_29) * k_11.s_xy)) + ((s_29 * s_29) * k_11.s_yy)), 0.0);
+    float k2_3 = max(((((s_29 * s_29) * k_11.s_xx) - (((2.0 * c_20) * s_29) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy)), 0.0);
     float d_4 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
     float q11_ = (p11_1 + (2.0 * k_11.s_xx));
     float q12_ = (p12_1 + (2.0 * k_11.s_xy));
@@ -1941,11 +1943,11 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     det_3 = (d_4 / den_1);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_27) * s_27)));
+        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_29) * s_29)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_27));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_29));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_27) * s_27) + ((excess.y * c_20) * c_20)));
+        b22_ = (_e130 + (((excess.x * s_29) * s_29) + ((excess.y * c_20) * c_20)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -2178,9 +2180,9 @@ float filter_rect_mean_1d(vec4 i_7, float c2_) {
     float _e27 = filter_rect_atan2_upper((c_21 * dx), (c2_ + x01_));
     float inv_2 = (1.0 / (((2.0 * c_21) * c2_) * dx));
     if ((x0_ <= 0.0)) {
-        float s_28 = (inversesqrt(r02_) * inversesqrt(r12_));
-        float q_7 = min(((c2_ - x01_) * s_28), 1.0);
-        return ((_e27 * inv_2) + ((q_7 * s_28) * (0.5 / c2_)));
+        float s_30 = (inversesqrt(r02_) * inversesqrt(r12_));
+        float q_7 = min(((c2_ - x01_) * s_30), 1.0);
+        return ((_e27 * inv_2) + ((q_7 * s_30) * (0.5 / c2_)));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
     float p2_1 = ((2.0 * r02_) * r12_);
@@ -2223,9 +2225,9 @@ float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, vec4 other) {
 
 float filter_rect_edge(float u_9, float dv, float v01_) {
     float s2_1 = (1.0 + (u_9 * u_9));
-    float s_29 = sqrt(s2_1);
-    float _e10 = filter_rect_atan2_upper((dv * s_29), (s2_1 + v01_));
-    return ((u_9 / s_29) * _e10);
+    float s_31 = sqrt(s2_1);
+    float _e10 = filter_rect_atan2_upper((dv * s_31), (s2_1 + v01_));
+    return ((u_9 / s_31) * _e10);
 }
 
 float filter_rect_edges(vec4 u_10, vec4 v_7) {
@@ -2573,10 +2575,10 @@ float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_18) {
     float _e4 = filter_rect_lambda_rho(t1_);
     float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_30 = (_e5 + _e6);
-    float d_7 = ((w_18 * s_30) / (_e3 + _e4));
+    float s_32 = (_e5 + _e6);
+    float d_7 = ((w_18 * s_32) / (_e3 + _e4));
     float _e12 = math_ln_1p((d_7 / _e6));
-    return (0.25 * (_e12 + ((0.5 * d_7) * s_30)));
+    return (0.25 * (_e12 + ((0.5 * d_7) * s_32)));
 }
 
 float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_19) {

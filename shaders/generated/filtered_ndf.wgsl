@@ -816,10 +816,11 @@ fn ndf_roughness_isotropic_inv_quadratic(r: ndf_roughness_isotropic_Isotropic, s
     return dot(s, s) * r.inv_alpha_sq;
 }
 
-/// `w^T A w = alpha^2 |w|^2` for a tangent-plane `w` (Smith's projected roughness). Within
-/// 3 ulp.
+/// `w^T A w = |alpha w|^2` for a tangent-plane `w` (Smith's projected roughness), `w` scaled
+/// first as in the axis-aligned form. Within 4 ulp.
 fn ndf_roughness_isotropic_quadratic(r: ndf_roughness_isotropic_Isotropic, w: vec2<f32>) -> f32 {
-    return dot(w, w) * (r.alpha * r.alpha);
+    let s = w * r.alpha;
+    return dot(s, s);
 }
 
 /// `sqrt(det A) = alpha^2`. Within 1 ulp.
@@ -855,9 +856,11 @@ fn ndf_roughness_axis_aligned_inv_quadratic(r: ndf_roughness_axis_aligned_AxisAl
     return dot(s * s, r.inv_alpha_sq);
 }
 
-/// `w^T A w = alpha_x^2 w_x^2 + alpha_y^2 w_y^2`. Within 4 ulp.
+/// `w^T A w = (alpha_x w_x)^2 + (alpha_y w_y)^2`, `w` scaled first (no subnormal square of a
+/// tiny `w_i` beside a large `alpha_i`). Within 4 ulp.
 fn ndf_roughness_axis_aligned_quadratic(r: ndf_roughness_axis_aligned_AxisAligned, w: vec2<f32>) -> f32 {
-    return dot(w * w, r.alpha * r.alpha);
+    let s = w * r.alpha;
+    return dot(s, s);
 }
 
 /// `sqrt(det A) = alpha_x alpha_y`. Within 1 ulp.

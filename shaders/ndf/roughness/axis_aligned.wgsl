@@ -25,9 +25,11 @@ fn inv_quadratic(r: AxisAligned, s: vec2<f32>) -> f32 {
     return dot(s * s, r.inv_alpha_sq);
 }
 
-/// `w^T A w = alpha_x^2 w_x^2 + alpha_y^2 w_y^2`. Within 4 ulp.
+/// `w^T A w = (alpha_x w_x)^2 + (alpha_y w_y)^2`, `w` scaled first (no subnormal square of a
+/// tiny `w_i` beside a large `alpha_i`). Within 4 ulp.
 fn quadratic(r: AxisAligned, w: vec2<f32>) -> f32 {
-    return dot(w * w, r.alpha * r.alpha);
+    let s = w * r.alpha;
+    return dot(s, s);
 }
 
 /// `sqrt(det A) = alpha_x alpha_y`. Within 1 ulp.

@@ -23,10 +23,11 @@ fn inv_quadratic(r: Isotropic, s: vec2<f32>) -> f32 {
     return dot(s, s) * r.inv_alpha_sq;
 }
 
-/// `w^T A w = alpha^2 |w|^2` for a tangent-plane `w` (Smith's projected roughness). Within
-/// 3 ulp.
+/// `w^T A w = |alpha w|^2` for a tangent-plane `w` (Smith's projected roughness), `w` scaled
+/// first as in the axis-aligned form. Within 4 ulp.
 fn quadratic(r: Isotropic, w: vec2<f32>) -> f32 {
-    return dot(w, w) * (r.alpha * r.alpha);
+    let s = w * r.alpha;
+    return dot(s, s);
 }
 
 /// `sqrt(det A) = alpha^2`. Within 1 ulp.

@@ -69,7 +69,10 @@ impl Roughness for Isotropic {
     }
     #[inline]
     fn quadratic(&self, w: Vec2) -> F {
-        w.length_squared() * (self.alpha * self.alpha)
+        // `|alpha w|^2`: `w` scaled first, as the axis-aligned form (no subnormal square of a
+        // tiny `w` beside a large `alpha`; both forms agree bit for bit at equal alphas).
+        let s = w * self.alpha;
+        s.dot(s)
     }
     #[inline]
     fn sqrt_det(&self) -> F {
