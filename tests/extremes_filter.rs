@@ -28,7 +28,7 @@ use extremes_support::{
 };
 use filtered_ndf::math::Real;
 use filtered_ndf::testing::linalg::Sym2;
-use filtered_ndf::testing::quadrature::Tolerance;
+use filtered_ndf::testing::quadrature::{Estimate, Tolerance};
 use std::f64::consts::PI;
 const FOOTPRINTS: [(f64, &str); 3] = [
     (0.0, "footprint 0"),
@@ -88,32 +88,47 @@ fn p22_sensitivity(a: &DdSym, tau: f64, x: f64, y: f64, beckmann: bool) -> f64 {
 
 /// Mean of the axis-aligned GGX slope density over `[cx +/- hx] x [cy +/- hy]`, by nested
 /// adaptive quadrature with breakpoints around the peak (f64).
-fn rect_mean_ref(a: f64, b: f64, cx: f64, cy: f64, hx: f64, hy: f64) -> f64 {
+fn rect_mean_ref(a: f64, b: f64, cx: f64, cy: f64, hx: f64, hy: f64) -> Estimate {
     let p22 = |x: f64, y: f64| {
         let t = 1.0 + (x / a) * (x / a) + (y / b) * (y / b);
         1.0 / (PI * a * b * t * t)
     };
     // An axis whose half extent is below 1e-7 of the distance scale |c| + width is evaluated
     // at its centre: the mean then differs from the point value by a relative
-    // ~ (h / (|c| + w))^2 <= 1e-14, while a quadrature over an interval of a few ulps of `c`
-    // (e.g. 1e-12 around 3400) would be dominated by the rounding of its nodes.
-    let hx = if hx <= 1e-7 * (cx.abs() + a) { 0.0 } else { hx };
-    let hy = if hy <= 1e-7 * (cy.abs() + b) { 0.0 } else { hy };
-    if hx == 0.0 && hy == 0.0 {
-        return p22(cx, cy);
+    // ~ (h / (|c| + w))^2 <= 1e-14 (counted in the estimate), while a quadrature over an
+    // interval of a few ulps of `c` (e.g. 1e-12 around 3400) would be dominated by the
+    // rounding of its nodes.
+    let small = |h: f64, c: f64, w: f64| h <= 1e-7 * (c.abs() + w);
+    let (sx, sy) = (small(hx, cx, a), small(hy, cy, b));
+    let point = |v: f64| Estimate {
+        value: v,
+        error: 1e-14 * v,
+    };
+    if sx && sy {
+        return point(p22(cx, cy));
     }
     let tol = Tolerance::relative(1e-13);
-    let inner = |y: f64| -> f64 {
-        if hx == 0.0 {
-            p22(cx, y)
+    let inner = |y: f64| -> (f64, f64) {
+        if sx {
+            let v = p22(cx, y);
+            (v, 1e-14 * v)
         } else {
-            integrate_feature(|x| p22(x, y), cx - hx, cx + hx, 0.0, a, tol) / (2.0 * hx)
+            let e = integrate_feature(|x| (p22(x, y), 0.0), cx - hx, cx + hx, 0.0, a, tol);
+            (e.value / (2.0 * hx), e.error / (2.0 * hx))
         }
     };
-    if hy == 0.0 {
-        inner(cy)
+    if sy {
+        let (v, e) = inner(cy);
+        Estimate {
+            value: v,
+            error: e + 1e-14 * v,
+        }
     } else {
-        integrate_feature(inner, cy - hy, cy + hy, 0.0, b, tol) / (2.0 * hy)
+        let e = integrate_feature(inner, cy - hy, cy + hy, 0.0, b, tol);
+        Estimate {
+            value: e.value / (2.0 * hy),
+            error: e.error / (2.0 * hy),
+        }
     }
 }
 
@@ -457,7 +472,7 @@ macro_rules! sweep {
                 }
             }
 
-            pub fn rect(map: &mut ErrorMap, refs: &mut Vec<f64>, use_refs: bool) {
+            pub fn rect(map: &mut ErrorMap, refs: &mut Vec<Estimate>, use_refs: bool) {
                 let eps = unit_eps(PREC);
                 let floor = min_positive(PREC);
                 let mut idx = 0;
@@ -498,12 +513,16 @@ macro_rules! sweep {
                                         v
                                     };
                                     idx += 1;
-                                    let reference = mean / (h[2] * h[2] * h[2] * h[2]);
-                                    // Tolerance: the module documents a few ulps in f32 and a
-                                    // worst case of 2.4e-8 in f64 (closed form far from the
-                                    // peak); 64 eps + 1e-7 covers both, plus the quadrature's
-                                    // 1e-12 goal.
-                                    let tol = 64.0 * eps + if PREC == F64 { 1e-7 } else { 0.0 };
+                                    let reference = mean.value / (h[2] * h[2] * h[2] * h[2]);
+                                    // Tolerance: the module documents the f64 value rounded
+                                    // once in f32 (16 eps also covers GGX's own D, a few ulps,
+                                    // for a zero box) and at most 8e-14 in f64 (a scan against
+                                    // 80-digit arithmetic): 1e-13; plus four times the
+                                    // reference's own estimate (its goal 1e-13), both required.
+                                    let qerr = |e: &Estimate| e.error / e.value.abs().max(floor);
+                                    map.require(qerr(&mean) <= 1e-12, || format!("rect reference {mean:?}"));
+                                    let doc = if PREC == F64 { 1e-13 } else { 16.0 * eps };
+                                    let tol = doc + 4.0 * qerr(&mean);
                                     map.record("d_rect", &regions, PREC, rel_err(got, reference, floor), tol, || {
                                         format!("{label} {form} {flabel} {shape} {dir}: {got:e} vs {reference:e}")
                                     });
@@ -518,6 +537,9 @@ macro_rules! sweep {
                                     };
                                     idx += 1;
                                     let got = rect::p22_rect(rough, Vec2::new(f(px), f(py)), half).to_f64();
+                                    map.require(qerr(&pmean) <= 1e-12, || format!("rect reference {pmean:?}"));
+                                    let tol = doc + 4.0 * qerr(&pmean);
+                                    let pmean = pmean.value;
                                     map.record_density("p22_rect", &regions, PREC, (got, pmean, floor), tol, || {
                                         format!("{label} {form} {flabel} {shape} {dir}: {got:e} vs {pmean:e}")
                                     });
@@ -536,7 +558,7 @@ macro_rules! sweep {
                         let h = r32(fp);
                         // KHPL16 eq. 19: the GGX of roughness alpha' has the peak of the lobe
                         // box-filtered over [-H, H]^2: 1 / (pi alpha'^2) = mean (quadrature).
-                        let mean = rect_mean_ref(a, a, 0.0, 0.0, h, h);
+                        let mean = rect_mean_ref(a, a, 0.0, 0.0, h, h).value;
                         let reference = 1.0 / (PI * mean).sqrt();
                         let got = proxy::effective_alpha(f(a), f(h)).to_f64();
                         // Tolerance: a hypot, an atan, a square root: 16 eps; plus the

@@ -26,7 +26,7 @@ use extremes_support::{
     ggx_p22_ref, min_positive, rel_err, unit_eps,
 };
 use filtered_ndf::math::Real;
-use filtered_ndf::testing::quadrature::{Estimate, Tolerance, integrate, integrate_line};
+use filtered_ndf::testing::quadrature::{Estimate, Tolerance, integrate_estimates, integrate_line};
 
 /// `int f(s) ds` over the half plane `{s : wo.m(s) > 0}` = `{u < u0}` with `u = s . d`,
 /// `d = -wo_xy / |wo_xy|` (the clamp of the visible-normal pdf is a boundary, not a kink):
@@ -39,7 +39,7 @@ fn visible_integral(
     w: f64,
     w_min: f64,
     tol: Tolerance,
-) -> f64 {
+) -> Estimate {
     let rxy = wo[0].hypot(wo[1]);
     let (dx, dy) = if rxy > 0.0 {
         (-wo[0] / rxy, -wo[1] / rxy)
@@ -52,26 +52,55 @@ fn visible_integral(
     } else {
         f64::NEG_INFINITY
     };
-    let inner =
-        |u: f64| integrate_line(|v| f(u * dx - v * dy, u * dy + v * dx), 0.0, w_min, tol).value;
+    // The inner integrals' estimates ride along with their values (integrated by the outer
+    // rule's weights, `integrate_estimates`).
+    let inner = |u: f64| {
+        let e = integrate_line(|v| f(u * dx - v * dy, u * dy + v * dx), 0.0, w_min, tol);
+        (e.value, e.error)
+    };
     if u0 == f64::NEG_INFINITY {
-        return integrate_line(inner, 0.0, w, tol).value;
+        // Normal incidence: the outer line through the same substitution as `integrate_line`,
+        // x = L t / (1 - t^2).
+        return integrate_estimates(
+            |t| {
+                let d = 1.0 - t * t;
+                let j = w * (1.0 + t * t) / (d * d);
+                let (v, e) = inner(w * t / d);
+                let (v, e) = (v * j, e * j);
+                if v.is_finite() && e.is_finite() {
+                    (v, e)
+                } else {
+                    (0.0, 0.0)
+                }
+            },
+            -1.0,
+            1.0,
+            tol,
+        );
     }
     // u in (u0, u0 + R] piecewise, then the tail beyond, mapped.
     let big = 1e4 * w + u0.abs();
     let body = extremes_support::integrate_feature(&inner, u0, u0 + big, 0.0, w, tol);
-    let tail = integrate(
+    let tail = integrate_estimates(
         |t| {
             let d = 1.0 - t;
-            let v = inner(u0 + big + big * t / d) * big / (d * d);
-            if v.is_finite() { v } else { 0.0 }
+            let j = big / (d * d);
+            let (v, e) = inner(u0 + big + big * t / d);
+            let (v, e) = (v * j, e * j);
+            if v.is_finite() && e.is_finite() {
+                (v, e)
+            } else {
+                (0.0, 0.0)
+            }
         },
         0.0,
         1.0,
         tol,
-    )
-    .value;
-    body + tail
+    );
+    Estimate {
+        value: body.value + tail.value,
+        error: body.error + tail.error,
+    }
 }
 
 const PI: f64 = std::f64::consts::PI;
@@ -573,14 +602,14 @@ macro_rules! sweep {
                                     w_inner,
                                     goal,
                                 );
-                                let total = Estimate {
-                                    value: total,
-                                    error: 0.0,
-                                };
-                                // Tolerance: ten times the quadrature's goal (the clamp along
-                                // wo.m = 0 is a boundary of the integration domain, not a kink
-                                // inside it), plus 64 eps of rounding per sample.
-                                let tol = 10.0 * goal.rel + 64.0 * eps;
+                                // Tolerance: four times the quadrature's own estimate (the
+                                // clamp along wo.m = 0 is a boundary of the integration
+                                // domain, not a kink inside it), required within ten times its
+                                // goal, plus 64 eps of rounding per sample.
+                                map.require(total.error <= 10.0 * goal.rel, || {
+                                    format!("{label} {form} {wlabel}: quadrature {total:?}")
+                                });
+                                let tol = 4.0 * total.error.max(1e-16) + 64.0 * eps;
                                 map.record(
                                     k,
                                     &[label, form, wlabel, "normalisation (quadrature)"],

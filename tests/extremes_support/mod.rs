@@ -5,7 +5,7 @@
 //! Nothing here calls the code under test.
 #![allow(dead_code)]
 
-use filtered_ndf::testing::quadrature::{Tolerance, integrate};
+use filtered_ndf::testing::quadrature::{Estimate, Tolerance, integrate_estimates};
 use std::collections::BTreeMap;
 
 /// A double-double number `hi + lo` (about 106 bits), for references whose `f64` evaluation
@@ -427,15 +427,17 @@ fn fmt(e: Option<f64>) -> String {
 }
 
 /// `integral_a^b f` for an integrand with a narrow feature of width `w` at `c`: split at
-/// `c +/- w {0, 1, 4, 16, ...}` inside `[a, b]` so the adaptive rule cannot step over it.
+/// `c +/- w {0, 1, 4, 16, ...}` inside `[a, b]` so the adaptive rule cannot step over it. `f`
+/// returns a value and its own absolute error (`0` for a plain integrand; an inner integral's
+/// estimate, integrated alongside); the result's estimate sums the pieces'.
 pub fn integrate_feature(
-    mut f: impl FnMut(f64) -> f64,
+    mut f: impl FnMut(f64) -> (f64, f64),
     a: f64,
     b: f64,
     c: f64,
     w: f64,
     tol: Tolerance,
-) -> f64 {
+) -> Estimate {
     let mut pts = vec![a, b];
     let mut k = 0.0;
     while k < 1e30 {
@@ -451,9 +453,14 @@ pub fn integrate_feature(
     }
     pts.sort_by(|x, y| x.total_cmp(y));
     pts.dedup();
-    let mut total = 0.0;
+    let mut total = Estimate {
+        value: 0.0,
+        error: 0.0,
+    };
     for p in pts.windows(2) {
-        total += integrate(&mut f, p[0], p[1], tol).value;
+        let e = integrate_estimates(&mut f, p[0], p[1], tol);
+        total.value += e.value;
+        total.error += e.error;
     }
     total
 }
