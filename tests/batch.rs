@@ -171,8 +171,9 @@ macro_rules! suite {
                     };
                 }
                 let tail = if x >= TAIL { x } else { 0.0 };
+                // The file docs' `(16 x + 11) eps` of the narrow exponent and norm.
                 let narrow = if filtered && !WIDE {
-                    11.0 * x + 10.0
+                    16.0 * x + 11.0
                 } else {
                     0.0
                 };
@@ -196,8 +197,8 @@ macro_rules! suite {
                 println!("{what}: worst {worst:.3} of the bound");
             }
 
-            /// [`cols`] of three seeds end to end: `3 N` elements, more than one unit of the
-            /// box filter's sort (4096 in `f32`, 2048 in `f64`).
+            /// [`cols`] of three seeds end to end: `3 N` elements, about three units of the
+            /// box filter's sort (2048 elements).
             fn cols3(seed: u64) -> Cols {
                 let k = [seed, seed ^ 0x5EED_0001, seed ^ 0x5EED_0002].map(cols);
                 let cat = |f: fn(&Cols) -> &Vec<$t>| -> Vec<$t> {
@@ -565,12 +566,9 @@ macro_rules! suite {
                 }
             }
 
-            /// Bit for bit wherever the scalar case analysis integrates both axes by
-            /// Gauss-Legendre rules (both ratios `H / L` below `0.25`, told from the module
-            /// docs' definition in `f64`: `common/rect_edges.rs`) and wherever `d_rect`
-            /// answers before the integral; the elements with a long side (closed forms:
-            /// the lane's polynomial `atan2`) are checked against their bound in
-            /// `tests/batch_bounds.rs`. Counts that both kinds occur.
+            /// The filtered kernels' driver through every state of its lanes (first lane,
+            /// second lane, scalar path, and back), against the scalar route: GGX bit for bit,
+            /// Beckmann within `beckmann_close`'s bound (details below).
             #[test]
             fn filtered_tiers_every_path() {
                 // The `f32` filtered kernels run two lanes (`lanes.rs`, `Kernel::TIERED`): the
@@ -740,7 +738,7 @@ macro_rules! suite {
             /// rules' rectangles (`ClampRules::rect` of each footprint's bounding rectangle,
             /// computed here by the scalar functions), bit for bit, for every rule set (the
             /// floors of `GDC2016` included), on the columns three times over (6000 elements:
-            /// more than one unit of 4096) with adversarial footprints among them.
+            /// about three units of the sort's 2048) with adversarial footprints among them.
             #[test]
             fn rect_filtered_is_d_rect_of_the_rules_rectangles() {
                 let c = cols(0x2EC8);

@@ -73,14 +73,15 @@ fn reference_handles_zero_and_singular_kernels() {
     assert_eq!(e.value, g.p22(sl));
     assert_eq!(e.error, 0.0);
     // Singular kernel along x: a 1D convolution. Compare with a nearly singular kernel
-    // (variance 1e-20 across): they differ by O(1e-20 / alpha^2) = 4e-18 relative, so the
-    // 1D and 2D code paths must agree to the reference tolerance.
+    // (variance 1e-12 across, the 2D path): they differ by O(1e-12 / alpha^2) = 4e-10
+    // relative (alpha = 0.05), so the 1D and 2D code paths must agree to that, with a factor 4
+    // for the constant, plus both quadratures' own estimates.
     let k0 = d::Covariance::new(4e-4, 0.0, 0.0);
     let k1 = d::Covariance::new(4e-4, 0.0, 1e-12);
     let e0 = gref::ggx(r, k0, sl, Tolerance::relative(REF_REL));
     let e1 = gref::ggx(r, k1, sl, Tolerance::relative(REF_REL));
     assert!(
-        (e0.value - e1.value).abs() <= 1e-8 * e0.value,
+        (e0.value - e1.value).abs() <= 1.6e-9 * e0.value + e0.error + e1.error,
         "{e0:?} {e1:?}"
     );
     // Beckmann through the singular path equals the closed form.

@@ -800,7 +800,7 @@ fn readme_example() {
     use glam::Vec3;
 
     // Unit sphere at the origin moving along +x at 1 unit per shutter; ray straight down -z.
-    let (x, v) = (Vec3::new(0.2, 0.3, 0.933_809), Vec3::X);
+    let (x, v) = (Vec3::new(0.2, 0.3, 0.87f32.sqrt()), Vec3::X);
     let sample = LevelSetSample {
         grad: 2.0 * x, // phi = |x - c(t)|^2 - 1
         hess: Sym3::IDENTITY.scale(2.0),
@@ -816,5 +816,17 @@ fn readme_example() {
     // D is widened along the motion, G is the base lobe's.
     let m = Vec3::Z;
     assert!(lobe.d(m) < filtered_ndf::f32::Beckmann::isotropic(0.02).unwrap().d(m));
-    assert!(temporal.alpha() > 0.03 && temporal.alpha() < 0.05);
+    // Closed form: the hit point on the fixed ray is (0.2 - t, 0.3, z(t)) relative to the
+    // centre, z = sqrt(r^2 - (0.2 - t)^2 - 0.09), so dn/dt = (-1, 0, 0.2 / z) / r at t = 0
+    // (normal to n; r = |x| = 1 up to x's rounding to f32), and the box shutter of length 0.1
+    // spreads the slope uniformly: variance |dn/dt|^2 0.1^2 / 12, alpha = sqrt(2 variance) =
+    // 0.1 |dn/dt| / sqrt(6) = 0.041751. In f64 from the same f32 inputs; to 1e-5 relative
+    // (the f32 pipeline: the hit rates, the frame and the covariance, a few dozen roundings of
+    // 6e-8 each).
+    let xd = x.as_dvec3();
+    let z = xd.z;
+    let rate = (1.0 + (0.2 / z) * (0.2 / z)).sqrt() / xd.length();
+    let want = 0.1 * rate / 6f64.sqrt();
+    let got = f64::from(temporal.alpha());
+    assert!((got / want - 1.0).abs() < 1e-5, "{got} vs {want}");
 }
