@@ -533,6 +533,35 @@ fn p22_on_both_sides_of_the_rule_switches() {
 }
 
 #[test]
+fn p22_on_both_sides_of_the_plateau_edge() {
+    // Beyond 1 + q = GL_WIDE (2.8e10 in f32, 7e19 in f64) Gauss-Laguerre's edge is no longer
+    // 2 l1 = r (1 + q) but the plateau condition 2 l1 (P + 1.5 ln(1 + q)) = 1 + q (P = 20 in
+    // f32, 31.5 in f64; module docs of the quadrature, item 4): the kernel at 0.9, 1 and 1.1
+    // times that edge, 1 + q at half and twice GL_WIDE of each precision, rank-one and
+    // isotropic kernels; both precisions against the 2D reference at every case.
+    let alpha = 0.01f64;
+    let a2 = alpha * alpha;
+    let mut cs = Vec::new();
+    for (wide, plateau) in [(2.8e10, 20.0), (7e19, 31.5)] {
+        for beta in [0.5 * wide, 2.0 * wide] {
+            let edge = beta / (plateau + 1.5 * f64::ln(beta));
+            for f in [0.9, 1.0, 1.1] {
+                for iso in [false, true] {
+                    let k = 0.5 * edge * f * a2;
+                    cs.push(Case {
+                        a: (a2 as f32, 0.0, a2 as f32),
+                        k: (k as f32, 0.0, if iso { k as f32 } else { 0.0 }),
+                        s: ((alpha * (beta - 1.0).sqrt()) as f32, 0.0),
+                    });
+                }
+            }
+        }
+    }
+    let (w64, w32) = check_against_reference(&cs);
+    println!("plateau edge: worst f64 {w64:.3e}, f32 {w32:.3e}");
+}
+
+#[test]
 fn lambda_on_both_sides_of_the_rule_switch() {
     // delta_s^2 = qs / (qa + o_z^2) at 0.9, 1 and 1.1 times the Gauss-Hermite edge (0.01), for
     // lobe-dominated, balanced and kernel-dominated views.
