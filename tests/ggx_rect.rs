@@ -1,7 +1,9 @@
 //! The exact GGX box filter (`ggx_rect`) against f64 adaptive quadrature of the GGX slope
 //! density, in both precisions, plus the printed GDC formula as the baseline.
 
-use filtered_ndf::testing::quadrature::{Tolerance, integrate, integrate_2d, integrate_plane};
+use filtered_ndf::testing::quadrature::{
+    Estimate, Tolerance, integrate, integrate_2d, integrate_plane,
+};
 use filtered_ndf::testing::rng::SplitMix64 as Rng;
 use filtered_ndf::{f32 as s, f64 as d};
 use proptest::prelude::*;
@@ -30,31 +32,54 @@ fn pieces(c: f64, h: f64) -> Vec<(f64, f64)> {
 /// 1e-14: the Gauss-Kronrod estimate over-estimates the true error of these smooth integrands
 /// by orders of magnitude.
 fn reference(a: f64, b: f64, cx: f64, cy: f64, hx: f64, hy: f64) -> f64 {
+    let e = reference_estimate(a, b, cx, cy, hx, hy);
+    // Every caller's tolerance is at least TOL64 = 1e-12: the estimate must be well below it.
+    assert!(
+        e.error <= 1e-13 * e.value.abs(),
+        "reference not converged: {e:?} (a {a}, b {b}, c ({cx}, {cy}), h ({hx}, {hy}))"
+    );
+    e.value
+}
+
+/// [`reference`] with the quadrature's error estimate (summed over the pieces).
+fn reference_estimate(a: f64, b: f64, cx: f64, cy: f64, hx: f64, hy: f64) -> Estimate {
     let tol = Tolerance::relative(1e-14);
+    let sum = |es: Vec<Estimate>, w: f64| Estimate {
+        value: es.iter().map(|e| e.value).sum::<f64>() / w,
+        error: es.iter().map(|e| e.error).sum::<f64>() / w,
+    };
     match (hx == 0.0, hy == 0.0) {
-        (true, true) => p22(a, b, cx, cy),
-        (true, false) => {
+        (true, true) => Estimate {
+            value: p22(a, b, cx, cy),
+            error: 0.0,
+        },
+        (true, false) => sum(
             pieces(cy, hy)
                 .iter()
-                .map(|&(y0, y1)| integrate(|dy| p22(a, b, cx, cy + dy), y0, y1, tol).value)
-                .sum::<f64>()
-                / (2.0 * hy)
-        }
-        (false, true) => {
+                .map(|&(y0, y1)| integrate(|dy| p22(a, b, cx, cy + dy), y0, y1, tol))
+                .collect(),
+            2.0 * hy,
+        ),
+        (false, true) => sum(
             pieces(cx, hx)
                 .iter()
-                .map(|&(x0, x1)| integrate(|dx| p22(a, b, cx + dx, cy), x0, x1, tol).value)
-                .sum::<f64>()
-                / (2.0 * hx)
-        }
+                .map(|&(x0, x1)| integrate(|dx| p22(a, b, cx + dx, cy), x0, x1, tol))
+                .collect(),
+            2.0 * hx,
+        ),
         (false, false) => {
-            let mut sum = 0.0;
+            let mut es = Vec::new();
             for &xr in &pieces(cx, hx) {
                 for &yr in &pieces(cy, hy) {
-                    sum += integrate_2d(|dx, dy| p22(a, b, cx + dx, cy + dy), xr, yr, tol).value;
+                    es.push(integrate_2d(
+                        |dx, dy| p22(a, b, cx + dx, cy + dy),
+                        xr,
+                        yr,
+                        tol,
+                    ));
                 }
             }
-            sum / (4.0 * hx * hy)
+            sum(es, 4.0 * hx * hy)
         }
     }
 }
