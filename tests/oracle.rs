@@ -37,7 +37,8 @@ fn err(v: &Value) -> &str {
 fn session_replies_line_by_line_with_closed_form_values() {
     let r = run_session();
     assert_eq!(r.len(), 63, "one reply per input line");
-    // GGX peak 1 / (pi alpha^2); f64 to 1e-15 relative, f32 to one f32 rounding (6e-8).
+    // GGX peak 1 / (pi alpha^2); f64 to 1e-15 relative (a few roundings of 1.1e-16), f32 to
+    // its three roundings (alpha^2, the product with pi, the reciprocal; 6e-8 each): 2e-7.
     let peak = 1.0 / (PI * 0.01);
     assert!((ok(&r[0]) - peak).abs() < 1e-15 * peak);
     assert!((ok(&r[1]) - peak).abs() < 2e-7 * peak);
