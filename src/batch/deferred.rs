@@ -33,7 +33,6 @@ use super::{F, Vec3, Vec3s};
 /// element runs the scalar function (the lanes measured no faster there; see the module docs
 /// of [`super`]), so the results there equal it bit for bit for every exponent. Returns the
 /// number of elements written. Allocates nothing.
-#[inline]
 pub fn deferred_filter(
     conv: &KernelConvention,
     alpha: &[F],

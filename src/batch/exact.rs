@@ -46,7 +46,6 @@ use super::{F, Footprints, Vec3, footprint, footprint_columns};
 /// the wider vectors, the set-up in lanes
 /// and no branches; a kernel of several lobe variances, whose trapezoid rule runs longer than
 /// the lane's chunks, falls back to the scalar path for those elements.
-#[inline]
 pub fn gaussian_filtered_ggx_d(
     lobe: &GaussianFilteredGgx,
     mx: &[F],
@@ -91,35 +90,36 @@ impl LaneD for GaussianFilteredGgx {
     }
 }
 
-/// The exact Gaussian-filtered GGX with a footprint per element through the clamp rules (the
-/// front door's `ExactGaussian` method for GGX): `out[i] = GaussianFilteredGgx::new(*r,
-/// rules.kernel(rules.footprint(fp_i).covariance(sigma))).d(h_i)` per steradian, **bit for
-/// bit**, `sigma` the pixel filter's standard deviation in pixels. Returns the number of
-/// elements written. Allocates nothing.
-///
-/// The lanes of [`gaussian_filtered_ggx_d`] with the lobe built per element in the lane (the
-/// rules' kernel by `ClampRules::kernel_lane`, the kernel's sanity decided exactly, then
-/// [`GaussianFilteredGgx::new`]'s steps without its sanitiser, where the kernel is sane); an element whose footprint or kernel leaves the
-/// rules' fast paths or the eigenvalue clamp's common case is flagged and evaluated by the
-/// scalar route.
-#[inline]
-#[allow(clippy::too_many_arguments)]
-pub fn ggx_d_filtered_exact<R: Roughness>(
-    r: &R,
-    rules: &ClampRules,
-    sigma: F,
-    hx: &[F],
-    hy: &[F],
-    hz: &[F],
-    fp: Footprints<'_>,
-    out: &mut [F],
-) -> usize {
-    let k = ExactFiltered {
-        r: *r,
-        rules: *rules,
-        sigma,
-    };
-    run(&k, footprint_columns([hx, hy, hz], fp), [out])
+per_form! {
+    /// The exact Gaussian-filtered GGX with a footprint per element through the clamp rules (the
+    /// front door's `ExactGaussian` method for GGX): `out[i] = GaussianFilteredGgx::new(*r,
+    /// rules.kernel(rules.footprint(fp_i).covariance(sigma))).d(h_i)` per steradian, **bit for
+    /// bit**, `sigma` the pixel filter's standard deviation in pixels. Returns the number of
+    /// elements written. Allocates nothing.
+    ///
+    /// The lanes of [`gaussian_filtered_ggx_d`] with the lobe built per element in the lane (the
+    /// rules' kernel by `ClampRules::kernel_lane`, the kernel's sanity decided exactly, then
+    /// [`GaussianFilteredGgx::new`]'s steps without its sanitiser, where the kernel is sane); an element whose footprint or kernel leaves the
+    /// rules' fast paths or the eigenvalue clamp's common case is flagged and evaluated by the
+    /// scalar route.
+    #[allow(clippy::too_many_arguments)]
+    pub fn ggx_d_filtered_exact(
+        r: &R,
+        rules: &ClampRules,
+        sigma: F,
+        hx: &[F],
+        hy: &[F],
+        hz: &[F],
+        fp: Footprints<'_>,
+        out: &mut [F],
+    ) -> usize {
+        let k = ExactFiltered {
+            r: *r,
+            rules: *rules,
+            sigma,
+        };
+        run(&k, footprint_columns([hx, hy, hz], fp), [out])
+    }
 }
 
 /// `D` of `GaussianFilteredGgx::new(r, rules.kernel(rules.footprint(fp).covariance(sigma)))`.

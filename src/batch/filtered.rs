@@ -13,90 +13,93 @@ use super::ndf::LaneD;
 use super::{F, Footprints, PI, Vec2, Vec3, footprint, footprint_columns};
 use core::marker::PhantomData;
 
-/// Filtered Beckmann (exact Gaussian filtering, KHPL16 eq. 15) through the clamped pipeline
-/// for each half vector and footprint: `out[i] = Beckmann::new(rules.filter_gaussian(*r,
-/// fp_i, sigma)).d(h_i)` ([`ClampRules::filter_gaussian`]: footprint extent, kernel
-/// roughness `kappa`, determinant clamp; [`ClampRules::NONE`] for none), `sigma` the pixel
-/// filter's standard deviation in pixels (e.g. [`super::super::kernel::SIGMA_PIXEL`]).
-/// Returns the number of elements written. Allocates nothing.
-///
-/// In `f32` the first lane builds `A'` in `f32` arithmetic (the `kappa` clamp by the
-/// footprint's own determinant and one division), within the module table's bound of the
-/// `f64` pipeline rather than bit for bit with the scalar route: 1.6 times the unfiltered
-/// `beckmann_d` instead of 3.3 (module docs).
-#[inline]
-#[allow(clippy::too_many_arguments)]
-pub fn beckmann_d_filtered<R: Roughness>(
-    r: &R,
-    rules: &ClampRules,
-    sigma: F,
-    hx: &[F],
-    hy: &[F],
-    hz: &[F],
-    fp: Footprints<'_>,
-    out: &mut [F],
-) -> usize {
-    d_filtered::<R, Beckmann<RoughnessMatrix>>(r, rules, sigma, [hx, hy, hz], fp, out)
+per_form! {
+    /// Filtered Beckmann (exact Gaussian filtering, KHPL16 eq. 15) through the clamped pipeline
+    /// for each half vector and footprint: `out[i] = Beckmann::new(rules.filter_gaussian(*r,
+    /// fp_i, sigma)).d(h_i)` ([`ClampRules::filter_gaussian`]: footprint extent, kernel
+    /// roughness `kappa`, determinant clamp; [`ClampRules::NONE`] for none), `sigma` the pixel
+    /// filter's standard deviation in pixels (e.g. [`super::super::kernel::SIGMA_PIXEL`]).
+    /// Returns the number of elements written. Allocates nothing.
+    ///
+    /// In `f32` the first lane builds `A'` in `f32` arithmetic (the `kappa` clamp by the
+    /// footprint's own determinant and one division), within the module table's bound of the
+    /// `f64` pipeline rather than bit for bit with the scalar route: 1.6 times the unfiltered
+    /// `beckmann_d` instead of 3.3 (module docs).
+    #[allow(clippy::too_many_arguments)]
+    pub fn beckmann_d_filtered(
+        r: &R,
+        rules: &ClampRules,
+        sigma: F,
+        hx: &[F],
+        hy: &[F],
+        hz: &[F],
+        fp: Footprints<'_>,
+        out: &mut [F],
+    ) -> usize {
+        d_filtered::<_, Beckmann<RoughnessMatrix>>(r, rules, sigma, [hx, hy, hz], fp, out)
+    }
 }
 
-/// Filtered GGX with the TK19 (section 2.2) matrix approximation `A' = A + 2 Sigma` through
-/// the clamped pipeline for each half vector and footprint: `out[i] =
-/// Ggx::new(rules.filter_gaussian(*r, fp_i, sigma)).d(h_i)` (see [`beckmann_d_filtered`]).
-/// Returns the number of elements written. Allocates nothing.
-///
-/// In `f32` the first lane is Beckmann's narrow one (`A'`, `x` and `n` in `f32` arithmetic),
-/// then `D = n / (pi (1 + x)^2)`: within the module table's bound of the `f64` pipeline rather
-/// than bit for bit with the scalar route (on an Intel AVX-512 machine 1.8 ns an element
-/// instead of 5.2 to 5.7; AVX2 3.6 instead of 7.2, SSE2 5.0 instead of 12.4).
-#[inline]
-#[allow(clippy::too_many_arguments)]
-pub fn ggx_d_filtered<R: Roughness>(
-    r: &R,
-    rules: &ClampRules,
-    sigma: F,
-    hx: &[F],
-    hy: &[F],
-    hz: &[F],
-    fp: Footprints<'_>,
-    out: &mut [F],
-) -> usize {
-    d_filtered::<R, Ggx<RoughnessMatrix>>(r, rules, sigma, [hx, hy, hz], fp, out)
+per_form! {
+    /// Filtered GGX with the TK19 (section 2.2) matrix approximation `A' = A + 2 Sigma` through
+    /// the clamped pipeline for each half vector and footprint: `out[i] =
+    /// Ggx::new(rules.filter_gaussian(*r, fp_i, sigma)).d(h_i)` (see [`beckmann_d_filtered`]).
+    /// Returns the number of elements written. Allocates nothing.
+    ///
+    /// In `f32` the first lane is Beckmann's narrow one (`A'`, `x` and `n` in `f32` arithmetic),
+    /// then `D = n / (pi (1 + x)^2)`: within the module table's bound of the `f64` pipeline rather
+    /// than bit for bit with the scalar route (on an Intel AVX-512 machine 1.8 ns an element
+    /// instead of 5.2 to 5.7; AVX2 3.6 instead of 7.2, SSE2 5.0 instead of 12.4).
+    #[allow(clippy::too_many_arguments)]
+    pub fn ggx_d_filtered(
+        r: &R,
+        rules: &ClampRules,
+        sigma: F,
+        hx: &[F],
+        hy: &[F],
+        hz: &[F],
+        fp: Footprints<'_>,
+        out: &mut [F],
+    ) -> usize {
+        d_filtered::<_, Ggx<RoughnessMatrix>>(r, rules, sigma, [hx, hy, hz], fp, out)
+    }
 }
 
-/// GGX filtered in projected space (TK21 Listing 1, [`super::ggx_d_projected`]) through the
-/// clamped pipeline for each half vector and footprint: `out[i] =
-/// Ggx::new(rules.filter_projected(*r, fp_i, sigma)).d(h_i)`
-/// ([`ClampRules::filter_projected`]: footprint extent, kernel roughness `kappa`,
-/// determinant clamp; the front door's `Projected` method), **bit for bit**. Returns the
-/// number of elements written. Allocates nothing.
-///
-/// One lane (the projected filter's kernel part runs in `f64` in both precisions, so an `f32`
-/// first tier would gain nothing): the rules' fast paths and the eigenvalue clamp's common
-/// case (`ClampRules::filter_projected_entries_lane`, the kernel's sanity decided exactly),
-/// the kernel part on the lobe's part computed once per batch (`filter::ProjectedBase`,
-/// shared with the scalar path), the matrix where its determinant clamp is inactive and GGX's
-/// lane `D`; every other element flagged and evaluated by the scalar route. As
-/// [`super::ggx_d_projected`], it runs its lanes with 256-bit vectors or wider only (the
-/// scalar route on the SSE2 baseline).
-#[inline]
-#[allow(clippy::too_many_arguments)]
-pub fn ggx_d_filtered_projected<R: Roughness>(
-    r: &R,
-    rules: &ClampRules,
-    sigma: F,
-    hx: &[F],
-    hy: &[F],
-    hz: &[F],
-    fp: Footprints<'_>,
-    out: &mut [F],
-) -> usize {
-    let k = FilteredProjected {
-        r: *r,
-        base: ProjectedBase::new(*r),
-        rules: *rules,
-        sigma,
-    };
-    run(&k, footprint_columns([hx, hy, hz], fp), [out])
+per_form! {
+    /// GGX filtered in projected space (TK21 Listing 1, [`super::ggx_d_projected`]) through the
+    /// clamped pipeline for each half vector and footprint: `out[i] =
+    /// Ggx::new(rules.filter_projected(*r, fp_i, sigma)).d(h_i)`
+    /// ([`ClampRules::filter_projected`]: footprint extent, kernel roughness `kappa`,
+    /// determinant clamp; the front door's `Projected` method), **bit for bit**. Returns the
+    /// number of elements written. Allocates nothing.
+    ///
+    /// One lane (the projected filter's kernel part runs in `f64` in both precisions, so an `f32`
+    /// first tier would gain nothing): the rules' fast paths and the eigenvalue clamp's common
+    /// case (`ClampRules::filter_projected_entries_lane`, the kernel's sanity decided exactly),
+    /// the kernel part on the lobe's part computed once per batch (`filter::ProjectedBase`,
+    /// shared with the scalar path), the matrix where its determinant clamp is inactive and GGX's
+    /// lane `D`; every other element flagged and evaluated by the scalar route. As
+    /// [`super::ggx_d_projected`], it runs its lanes with 256-bit vectors or wider only (the
+    /// scalar route on the SSE2 baseline).
+    #[allow(clippy::too_many_arguments)]
+    pub fn ggx_d_filtered_projected(
+        r: &R,
+        rules: &ClampRules,
+        sigma: F,
+        hx: &[F],
+        hy: &[F],
+        hz: &[F],
+        fp: Footprints<'_>,
+        out: &mut [F],
+    ) -> usize {
+        let k = FilteredProjected {
+            r: *r,
+            base: ProjectedBase::new(*r),
+            rules: *rules,
+            sigma,
+        };
+        run(&k, footprint_columns([hx, hy, hz], fp), [out])
+    }
 }
 
 /// `D` of `Ggx::new(rules.filter_projected(r, fp, sigma))`.

@@ -22,6 +22,15 @@
 //! [`gaussian_filtered_ggx_d`]'s two-stage trapezoid lane), 60 KiB (`f32`) and 108 KiB
 //! (`f64`) for the box filter's sort ([`d_rect`], [`d_rect_filtered`]).
 //!
+//! **Compilation.** Every function's loops are compiled in this crate, once per roughness form
+//! (the generic functions match on the form and call a non-generic function per kernel), not
+//! in the crates that call them. Before, each calling crate compiled the loops it used again:
+//! with `dispatch` (release, this crate's 2-core development machine), the three batch test
+//! crates took 8 min 11 s to build after the library and now take 15 s; the library and
+//! `tests/batch_alloc.rs` (164 lines) together 7 min 17 s, now 2 min 5 s; the batch benchmark
+//! with the library 5 min 24 s, now 2 min 30 s. The same loops run: 41 `f32` batch groups of
+//! `benches/batch.rs` measured alternately with both builds, equal within the noise.
+//!
 //! # How the loops vectorise
 //!
 //! Every function runs one chunk driver (`lanes.rs`): per block of 512 elements, a loop over a
@@ -111,7 +120,37 @@
 //! Speed per core, scalar loop against batch, every kernel: the README's batch table
 //! (`benches/batch.rs`, groups `batch_<kernel>/<precision>` with `scalar_loop` and `batch`).
 
+use super::ndf::roughness::Roughness;
+use super::ndf::roughness::sealed::{Form, Sealed};
 use super::{F, PI, Vec2, Vec3};
+
+/// Defines a public batch function over any roughness form `R` whose loops are compiled in
+/// this crate, once per form, rather than in every crate that calls it: the generic function
+/// only turns `r` into its [`Form`] and calls a non-generic function that matches on it, each
+/// arm the body with `r` bound to a reference to that concrete form. The body inlines the
+/// whole chunk driver (with `dispatch`, once per instruction set), which, compiled in every
+/// caller, had cost minutes per calling crate (module docs, *Compilation*); the call through
+/// the match costs nothing measurable per slice.
+macro_rules! per_form {
+    (
+        $(#[$attr:meta])*
+        pub fn $name:ident($r:ident: &R $(, $p:ident: $t:ty)* $(,)?) -> usize $body:block
+    ) => {
+        $(#[$attr])*
+        #[inline]
+        pub fn $name<R: super::Roughness>($r: &R $(, $p: $t)*) -> usize {
+            #[allow(clippy::too_many_arguments)]
+            fn each(form: &super::Form $(, $p: $t)*) -> usize {
+                match form {
+                    super::Form::Isotropic($r) => $body,
+                    super::Form::AxisAligned($r) => $body,
+                    super::Form::Matrix($r) => $body,
+                }
+            }
+            each(&super::Sealed::form($r) $(, $p)*)
+        }
+    };
+}
 
 mod deferred;
 mod exact;

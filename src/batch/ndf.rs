@@ -18,77 +18,83 @@ use super::lane_math::exp_neg_times;
 use super::lanes::{Kernel, run};
 use super::{F, PI, Vec2, Vec3, Vec3s};
 
-/// [`Ndf::d`] of GGX for each micronormal `m_i = (mx[i], my[i], mz[i])`:
-/// `out[i] = Ggx::new(*r).d(m_i) = 1 / (pi sqrt(det A) m_z^4 (1 + m_xy^T A^-1 m_xy / m_z^2)^2)`
-/// per steradian (TK19 supplement sec. 1), **bit for bit**. Any `m` (unit or not); `0` for
-/// `m_z <= 0` and NaN input. Returns the number of elements written (the shortest slice
-/// length). Allocates nothing.
-#[inline]
-pub fn ggx_d<R: Roughness>(r: &R, mx: &[F], my: &[F], mz: &[F], out: &mut [F]) -> usize {
-    run(&D(Ggx::new(*r)), [mx, my, mz], [out])
+per_form! {
+    /// [`Ndf::d`] of GGX for each micronormal `m_i = (mx[i], my[i], mz[i])`:
+    /// `out[i] = Ggx::new(*r).d(m_i) = 1 / (pi sqrt(det A) m_z^4 (1 + m_xy^T A^-1 m_xy / m_z^2)^2)`
+    /// per steradian (TK19 supplement sec. 1), **bit for bit**. Any `m` (unit or not); `0` for
+    /// `m_z <= 0` and NaN input. Returns the number of elements written (the shortest slice
+    /// length). Allocates nothing.
+    pub fn ggx_d(r: &R, mx: &[F], my: &[F], mz: &[F], out: &mut [F]) -> usize {
+        run(&D(Ggx::new(*r)), [mx, my, mz], [out])
+    }
 }
 
-/// [`Ndf::d`] of Beckmann for each micronormal:
-/// `out[i] = Beckmann::new(*r).d(m_i) = exp(-m_xy^T A^-1 m_xy / m_z^2) / (pi sqrt(det A)
-/// m_z^4)` per steradian (KHPL16 eq. 2), within the bound of the module docs of [`super`]
-/// (relative `2.5e-7 + 2 eps` in `f32`: the exponential in lanes). `0` for `m_z <= 0`, NaN
-/// input and results below `F::MIN_POSITIVE`. Returns the number of elements written.
-/// Allocates nothing.
-#[inline]
-pub fn beckmann_d<R: Roughness>(r: &R, mx: &[F], my: &[F], mz: &[F], out: &mut [F]) -> usize {
-    run(&D(Beckmann::new(*r)), [mx, my, mz], [out])
+per_form! {
+    /// [`Ndf::d`] of Beckmann for each micronormal:
+    /// `out[i] = Beckmann::new(*r).d(m_i) = exp(-m_xy^T A^-1 m_xy / m_z^2) / (pi sqrt(det A)
+    /// m_z^4)` per steradian (KHPL16 eq. 2), within the bound of the module docs of [`super`]
+    /// (relative `2.5e-7 + 2 eps` in `f32`: the exponential in lanes). `0` for `m_z <= 0`, NaN
+    /// input and results below `F::MIN_POSITIVE`. Returns the number of elements written.
+    /// Allocates nothing.
+    pub fn beckmann_d(r: &R, mx: &[F], my: &[F], mz: &[F], out: &mut [F]) -> usize {
+        run(&D(Beckmann::new(*r)), [mx, my, mz], [out])
+    }
 }
 
-/// Smith's [`Ndf::lambda`] of GGX for each direction `w_i = (wx[i], wy[i], wz[i])`:
-/// `out[i] = Ggx::new(*r).lambda(w_i) = (sqrt(1 + w_xy^T A w_xy / w_z^2) - 1) / 2`
-/// (dimensionless, Heitz 2014), **bit for bit**; out of domain as the scalar function (`+inf`
-/// for NaN or `w_z = 0` with `w_xy != 0`). Returns the number of elements written. Allocates
-/// nothing.
-#[inline]
-pub fn ggx_lambda<R: Roughness>(r: &R, wx: &[F], wy: &[F], wz: &[F], out: &mut [F]) -> usize {
-    run(&Lambda(Ggx::new(*r)), [wx, wy, wz], [out])
+per_form! {
+    /// Smith's [`Ndf::lambda`] of GGX for each direction `w_i = (wx[i], wy[i], wz[i])`:
+    /// `out[i] = Ggx::new(*r).lambda(w_i) = (sqrt(1 + w_xy^T A w_xy / w_z^2) - 1) / 2`
+    /// (dimensionless, Heitz 2014), **bit for bit**; out of domain as the scalar function (`+inf`
+    /// for NaN or `w_z = 0` with `w_xy != 0`). Returns the number of elements written. Allocates
+    /// nothing.
+    pub fn ggx_lambda(r: &R, wx: &[F], wy: &[F], wz: &[F], out: &mut [F]) -> usize {
+        run(&Lambda(Ggx::new(*r)), [wx, wy, wz], [out])
+    }
 }
 
-/// Smith's [`Ndf::lambda`] of Beckmann for each direction:
-/// `out[i] = Beckmann::new(*r).lambda(w_i) = (exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2`,
-/// `a = |w_z| / sqrt(w_xy^T A w_xy)` (dimensionless, Heitz 2014), within the bound of the
-/// module docs of [`super`] (absolute `2.1e-7 (1 + Lambda)` in `f32`: the `erfc` fit shared
-/// with the exact Gaussian filter's sampler); out of domain as the scalar function. Returns
-/// the number of elements written. Allocates nothing.
-#[inline]
-pub fn beckmann_lambda<R: Roughness>(r: &R, wx: &[F], wy: &[F], wz: &[F], out: &mut [F]) -> usize {
-    run(&Lambda(Beckmann::new(*r)), [wx, wy, wz], [out])
+per_form! {
+    /// Smith's [`Ndf::lambda`] of Beckmann for each direction:
+    /// `out[i] = Beckmann::new(*r).lambda(w_i) = (exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2`,
+    /// `a = |w_z| / sqrt(w_xy^T A w_xy)` (dimensionless, Heitz 2014), within the bound of the
+    /// module docs of [`super`] (absolute `2.1e-7 (1 + Lambda)` in `f32`: the `erfc` fit shared
+    /// with the exact Gaussian filter's sampler); out of domain as the scalar function. Returns
+    /// the number of elements written. Allocates nothing.
+    pub fn beckmann_lambda(r: &R, wx: &[F], wy: &[F], wz: &[F], out: &mut [F]) -> usize {
+        run(&Lambda(Beckmann::new(*r)), [wx, wy, wz], [out])
+    }
 }
 
-/// Height-correlated Smith `G2(i, o, m) = chi+(i.m) chi+(o.m) / (1 + Lambda(i) + Lambda(o))`
-/// of GGX ([`Ndf::g2`], Heitz 2014, height-correlated form) for each triple of directions:
-/// `out[k] = Ggx::new(*r).g2(i_k, o_k, m_k)`, **bit for bit**; in `[0, 1]`, `0` for NaN.
-/// Returns the number of elements written (the shortest of the ten slices). Allocates
-/// nothing.
-#[inline]
-pub fn ggx_g2<R: Roughness>(
-    r: &R,
-    i: Vec3s<'_>,
-    o: Vec3s<'_>,
-    m: Vec3s<'_>,
-    out: &mut [F],
-) -> usize {
-    run(&G2(Ggx::new(*r)), nine([i, o, m]), [out])
+per_form! {
+    /// Height-correlated Smith `G2(i, o, m) = chi+(i.m) chi+(o.m) / (1 + Lambda(i) + Lambda(o))`
+    /// of GGX ([`Ndf::g2`], Heitz 2014, height-correlated form) for each triple of directions:
+    /// `out[k] = Ggx::new(*r).g2(i_k, o_k, m_k)`, **bit for bit**; in `[0, 1]`, `0` for NaN.
+    /// Returns the number of elements written (the shortest of the ten slices). Allocates
+    /// nothing.
+    pub fn ggx_g2(
+        r: &R,
+        i: Vec3s<'_>,
+        o: Vec3s<'_>,
+        m: Vec3s<'_>,
+        out: &mut [F],
+    ) -> usize {
+        run(&G2(Ggx::new(*r)), nine([i, o, m]), [out])
+    }
 }
 
-/// Height-correlated Smith `G2(i, o, m)` of Beckmann (as [`ggx_g2`]) for each triple of
-/// directions: `out[k] = Beckmann::new(*r).g2(i_k, o_k, m_k)` within the bound of the module
-/// docs of [`super`] (relative `4.2e-7 + 3 eps` in `f32`, plus the amplified rounding of
-/// `a`). Returns the number of elements written. Allocates nothing.
-#[inline]
-pub fn beckmann_g2<R: Roughness>(
-    r: &R,
-    i: Vec3s<'_>,
-    o: Vec3s<'_>,
-    m: Vec3s<'_>,
-    out: &mut [F],
-) -> usize {
-    run(&G2(Beckmann::new(*r)), nine([i, o, m]), [out])
+per_form! {
+    /// Height-correlated Smith `G2(i, o, m)` of Beckmann (as [`ggx_g2`]) for each triple of
+    /// directions: `out[k] = Beckmann::new(*r).g2(i_k, o_k, m_k)` within the bound of the module
+    /// docs of [`super`] (relative `4.2e-7 + 3 eps` in `f32`, plus the amplified rounding of
+    /// `a`). Returns the number of elements written. Allocates nothing.
+    pub fn beckmann_g2(
+        r: &R,
+        i: Vec3s<'_>,
+        o: Vec3s<'_>,
+        m: Vec3s<'_>,
+        out: &mut [F],
+    ) -> usize {
+        run(&G2(Beckmann::new(*r)), nine([i, o, m]), [out])
+    }
 }
 
 /// The nine columns of three vectors.

@@ -13,7 +13,6 @@
 
 use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::Ggx;
-use super::super::ndf::roughness::Roughness;
 use super::super::sampling::{
     NdfSampling, normal_pdf_core, reflection_pdf_core, visible_normal_pdf_core,
 };
@@ -22,101 +21,107 @@ use super::ndf::LaneNdf;
 use super::sample::unit_direct;
 use super::{F, Vec3, Vec3s};
 
-/// [`NdfSampling::normal_pdf`] of GGX (the density of [`super::ggx_sample_normal`]) for each
-/// unit micronormal `m_i = (mx[i], my[i], mz[i])`: `out[i] = Ggx::new(*r).normal_pdf(m_i) =
-/// D(m) m_z` per steradian (KHPL16 eq. 2), **bit for bit**. `0` for `m_z <= 0` and non-finite
-/// `m`, as the scalar function. Returns the number of elements written (the shortest slice).
-/// Allocates nothing.
-#[inline]
-pub fn ggx_normal_pdf<R: Roughness>(r: &R, mx: &[F], my: &[F], mz: &[F], out: &mut [F]) -> usize {
-    run(&NormalPdf(Ggx::new(*r)), [mx, my, mz], [out])
+per_form! {
+    /// [`NdfSampling::normal_pdf`] of GGX (the density of [`super::ggx_sample_normal`]) for each
+    /// unit micronormal `m_i = (mx[i], my[i], mz[i])`: `out[i] = Ggx::new(*r).normal_pdf(m_i) =
+    /// D(m) m_z` per steradian (KHPL16 eq. 2), **bit for bit**. `0` for `m_z <= 0` and non-finite
+    /// `m`, as the scalar function. Returns the number of elements written (the shortest slice).
+    /// Allocates nothing.
+    pub fn ggx_normal_pdf(r: &R, mx: &[F], my: &[F], mz: &[F], out: &mut [F]) -> usize {
+        run(&NormalPdf(Ggx::new(*r)), [mx, my, mz], [out])
+    }
 }
 
-/// [`NdfSampling::normal_pdf`] of Beckmann (the density of [`super::beckmann_sample_normal`]):
-/// `out[i] = Beckmann::new(*r).normal_pdf(m_i) = D(m) m_z` within Beckmann `D`'s lane bound
-/// plus the product's rounding in each path (relative `E + 4 eps`, plus `x eps` where the
-/// scalar `D` takes its far-tail branch; in `f32` against the `f64` scalar path `(12 + 4 x)
-/// eps`, `tests/batch_bounds.rs`); where the lane `D` flushes below `F::MIN_POSITIVE`, `0`
-/// (absolute error below `F::MIN_POSITIVE m_z`). `0` for `m_z <= 0` and non-finite `m`.
-/// Returns the number of elements written. Allocates nothing.
-#[inline]
-pub fn beckmann_normal_pdf<R: Roughness>(
-    r: &R,
-    mx: &[F],
-    my: &[F],
-    mz: &[F],
-    out: &mut [F],
-) -> usize {
-    run(&NormalPdf(Beckmann::new(*r)), [mx, my, mz], [out])
+per_form! {
+    /// [`NdfSampling::normal_pdf`] of Beckmann (the density of [`super::beckmann_sample_normal`]):
+    /// `out[i] = Beckmann::new(*r).normal_pdf(m_i) = D(m) m_z` within Beckmann `D`'s lane bound
+    /// plus the product's rounding in each path (relative `E + 4 eps`, plus `x eps` where the
+    /// scalar `D` takes its far-tail branch; in `f32` against the `f64` scalar path `(12 + 4 x)
+    /// eps`, `tests/batch_bounds.rs`); where the lane `D` flushes below `F::MIN_POSITIVE`, `0`
+    /// (absolute error below `F::MIN_POSITIVE m_z`). `0` for `m_z <= 0` and non-finite `m`.
+    /// Returns the number of elements written. Allocates nothing.
+    pub fn beckmann_normal_pdf(
+        r: &R,
+        mx: &[F],
+        my: &[F],
+        mz: &[F],
+        out: &mut [F],
+    ) -> usize {
+        run(&NormalPdf(Beckmann::new(*r)), [mx, my, mz], [out])
+    }
 }
 
-/// [`NdfSampling::visible_normal_pdf`] of GGX for each view `wo_i` and unit micronormal
-/// `m_i`: `out[i] = Ggx::new(*r).visible_normal_pdf(wo_i, m_i) = G1(wo) max(0, wo.m) D(m) /
-/// wo_z` per steradian of `m`, `G1 = 1 / (1 + Lambda(wo))` (Heitz 2014 eq. 16; Heitz and
-/// d'Eon 2014 eq. 2), **bit for bit**. `0` for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`,
-/// non-finite input or a non-finite value, as the scalar function (never NaN). `wo` need not
-/// be normalised. Returns the number of elements written (the shortest of the seven
-/// slices). Allocates nothing.
-#[inline]
-pub fn ggx_visible_normal_pdf<R: Roughness>(
-    r: &R,
-    wo: Vec3s<'_>,
-    m: Vec3s<'_>,
-    out: &mut [F],
-) -> usize {
-    run(&VisiblePdf(Ggx::new(*r)), six(wo, m), [out])
+per_form! {
+    /// [`NdfSampling::visible_normal_pdf`] of GGX for each view `wo_i` and unit micronormal
+    /// `m_i`: `out[i] = Ggx::new(*r).visible_normal_pdf(wo_i, m_i) = G1(wo) max(0, wo.m) D(m) /
+    /// wo_z` per steradian of `m`, `G1 = 1 / (1 + Lambda(wo))` (Heitz 2014 eq. 16; Heitz and
+    /// d'Eon 2014 eq. 2), **bit for bit**. `0` for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`,
+    /// non-finite input or a non-finite value, as the scalar function (never NaN). `wo` need not
+    /// be normalised. Returns the number of elements written (the shortest of the seven
+    /// slices). Allocates nothing.
+    pub fn ggx_visible_normal_pdf(
+        r: &R,
+        wo: Vec3s<'_>,
+        m: Vec3s<'_>,
+        out: &mut [F],
+    ) -> usize {
+        run(&VisiblePdf(Ggx::new(*r)), six(wo, m), [out])
+    }
 }
 
-/// [`NdfSampling::visible_normal_pdf`] of Beckmann for each view and unit micronormal (as
-/// [`ggx_visible_normal_pdf`]): `out[i] = Beckmann::new(*r).visible_normal_pdf(wo_i, m_i)`
-/// within the bound of the module docs of [`super`] (the lane `D`'s relative `E + 2 eps`
-/// and the lane `Lambda`'s absolute `L (1 + Lambda)` over `1 + Lambda`, plus the formula's
-/// sum's and three operations' roundings in each path: first order `E + L + 10 eps + (5 + 3
-/// a^2) eps Lambda / (1 + Lambda)`; in `f32` against the `f64` scalar path: `(15 + 4 x) eps +
-/// L + (13 + 7 a^2) eps Lambda / (1 + Lambda) + 3 eps sum|wo_k m_k| / wo.m`, derived in
-/// `tests/batch_bounds.rs`); where the lane `D` flushes below `F::MIN_POSITIVE`, an absolute
-/// `F::MIN_POSITIVE wo.m / (wo_z (1 + Lambda))`. `0` exactly where the scalar function gives
-/// `0`. Returns the number of elements written. Allocates nothing.
-#[inline]
-pub fn beckmann_visible_normal_pdf<R: Roughness>(
-    r: &R,
-    wo: Vec3s<'_>,
-    m: Vec3s<'_>,
-    out: &mut [F],
-) -> usize {
-    run(&VisiblePdf(Beckmann::new(*r)), six(wo, m), [out])
+per_form! {
+    /// [`NdfSampling::visible_normal_pdf`] of Beckmann for each view and unit micronormal (as
+    /// [`ggx_visible_normal_pdf`]): `out[i] = Beckmann::new(*r).visible_normal_pdf(wo_i, m_i)`
+    /// within the bound of the module docs of [`super`] (the lane `D`'s relative `E + 2 eps`
+    /// and the lane `Lambda`'s absolute `L (1 + Lambda)` over `1 + Lambda`, plus the formula's
+    /// sum's and three operations' roundings in each path: first order `E + L + 10 eps + (5 + 3
+    /// a^2) eps Lambda / (1 + Lambda)`; in `f32` against the `f64` scalar path: `(15 + 4 x) eps +
+    /// L + (13 + 7 a^2) eps Lambda / (1 + Lambda) + 3 eps sum|wo_k m_k| / wo.m`, derived in
+    /// `tests/batch_bounds.rs`); where the lane `D` flushes below `F::MIN_POSITIVE`, an absolute
+    /// `F::MIN_POSITIVE wo.m / (wo_z (1 + Lambda))`. `0` exactly where the scalar function gives
+    /// `0`. Returns the number of elements written. Allocates nothing.
+    pub fn beckmann_visible_normal_pdf(
+        r: &R,
+        wo: Vec3s<'_>,
+        m: Vec3s<'_>,
+        out: &mut [F],
+    ) -> usize {
+        run(&VisiblePdf(Beckmann::new(*r)), six(wo, m), [out])
+    }
 }
 
-/// [`NdfSampling::reflection_pdf_from_normal`] of GGX for each view `wo_i` and unit half
-/// vector `m_i`: `out[i] = Ggx::new(*r).reflection_pdf_from_normal(wo_i, m_i) = G1(wo) D(m) /
-/// (4 wo_z)` per steradian of `wi = reflect(wo, m)` (Walter et al. 2007 eq. 14, `wo`
-/// normalised), **bit for bit**. `0` for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`, non-finite
-/// input or a non-finite value, as the scalar function. Returns the number of elements
-/// written. Allocates nothing.
-#[inline]
-pub fn ggx_reflection_pdf_from_normal<R: Roughness>(
-    r: &R,
-    wo: Vec3s<'_>,
-    m: Vec3s<'_>,
-    out: &mut [F],
-) -> usize {
-    run(&ReflectionPdf(Ggx::new(*r)), six(wo, m), [out])
+per_form! {
+    /// [`NdfSampling::reflection_pdf_from_normal`] of GGX for each view `wo_i` and unit half
+    /// vector `m_i`: `out[i] = Ggx::new(*r).reflection_pdf_from_normal(wo_i, m_i) = G1(wo) D(m) /
+    /// (4 wo_z)` per steradian of `wi = reflect(wo, m)` (Walter et al. 2007 eq. 14, `wo`
+    /// normalised), **bit for bit**. `0` for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`, non-finite
+    /// input or a non-finite value, as the scalar function. Returns the number of elements
+    /// written. Allocates nothing.
+    pub fn ggx_reflection_pdf_from_normal(
+        r: &R,
+        wo: Vec3s<'_>,
+        m: Vec3s<'_>,
+        out: &mut [F],
+    ) -> usize {
+        run(&ReflectionPdf(Ggx::new(*r)), six(wo, m), [out])
+    }
 }
 
-/// [`NdfSampling::reflection_pdf_from_normal`] of Beckmann (as
-/// [`ggx_reflection_pdf_from_normal`]) within the bound of the module docs of [`super`] (as
-/// [`beckmann_visible_normal_pdf`], less the `wo.m` factor; against `f64` plus the
-/// normalisation of `wo`: `o_z` within `3 eps`, its direction moving `Lambda` by `(4 a^2 + 6)
-/// eps Lambda`, `tests/batch_bounds.rs`).
-/// Returns the number of elements written. Allocates nothing.
-#[inline]
-pub fn beckmann_reflection_pdf_from_normal<R: Roughness>(
-    r: &R,
-    wo: Vec3s<'_>,
-    m: Vec3s<'_>,
-    out: &mut [F],
-) -> usize {
-    run(&ReflectionPdf(Beckmann::new(*r)), six(wo, m), [out])
+per_form! {
+    /// [`NdfSampling::reflection_pdf_from_normal`] of Beckmann (as
+    /// [`ggx_reflection_pdf_from_normal`]) within the bound of the module docs of [`super`] (as
+    /// [`beckmann_visible_normal_pdf`], less the `wo.m` factor; against `f64` plus the
+    /// normalisation of `wo`: `o_z` within `3 eps`, its direction moving `Lambda` by `(4 a^2 + 6)
+    /// eps Lambda`, `tests/batch_bounds.rs`).
+    /// Returns the number of elements written. Allocates nothing.
+    pub fn beckmann_reflection_pdf_from_normal(
+        r: &R,
+        wo: Vec3s<'_>,
+        m: Vec3s<'_>,
+        out: &mut [F],
+    ) -> usize {
+        run(&ReflectionPdf(Beckmann::new(*r)), six(wo, m), [out])
+    }
 }
 
 /// The six columns of two vectors.

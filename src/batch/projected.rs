@@ -14,44 +14,46 @@ use super::super::kernel::Covariance;
 use super::super::ndf::Ndf;
 use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
+use super::Sealed as _;
 use super::lanes::{Kernel, run};
 use super::ndf::LaneD;
 use super::{Covariances, F, Vec3};
 
-/// [`Ndf::d`] of GGX filtered in projected space (Tokuyoshi and
-/// Kaplanyan 2021, JCGT 10(2), Listing 1: `P = A (I - A)^-1`, `P' = P + 2 Sigma`, `A' = P'
-/// (I + P')^-1`; [`projected`]) for each half vector `h_i = (hx[i], hy[i], hz[i])` and pixel
-/// kernel `Sigma_i` (slope^2, e.g. [`Footprint::covariance`](super::super::Footprint::covariance)
-/// after the caller's clamp rules): `out[i] = Ggx::new(projected(*r, Sigma_i)).d(h_i)` per
-/// steradian, **bit for bit**. The kernel is sanitised as by [`projected`] (NaN: no
-/// filtering; infinite: the widest kernel; indefinite: the nearest PSD matrix). `0` for
-/// `h_z <= 0` and NaN `h`. Returns the number of elements written (the shortest slice).
-/// Allocates nothing.
-///
-/// The front door's [`Projected`](super::super::filter::Projected) method applies
-/// [`ClampRules::filter_projected`](super::super::ClampRules::filter_projected) to a
-/// footprint first (maximum extent, `kappa`): with `rules.kernel(rules.footprint(fp)
-/// .covariance(sigma))` as `Sigma_i` this is that route (the determinant clamp
-/// `tau = det A` is [`projected`]'s).
-#[inline]
-pub fn ggx_d_projected<R: Roughness>(
-    r: &R,
-    kernels: Covariances<'_>,
-    hx: &[F],
-    hy: &[F],
-    hz: &[F],
-    out: &mut [F],
-) -> usize {
-    let k = ProjectedD {
-        r: *r,
-        base: ProjectedBase::new(*r),
-        tau: r.lobe_det(),
-    };
-    run(
-        &k,
-        [hx, hy, hz, kernels.s11, kernels.s12, kernels.s22],
-        [out],
-    )
+per_form! {
+    /// [`Ndf::d`] of GGX filtered in projected space (Tokuyoshi and
+    /// Kaplanyan 2021, JCGT 10(2), Listing 1: `P = A (I - A)^-1`, `P' = P + 2 Sigma`, `A' = P'
+    /// (I + P')^-1`; [`projected`]) for each half vector `h_i = (hx[i], hy[i], hz[i])` and pixel
+    /// kernel `Sigma_i` (slope^2, e.g. [`Footprint::covariance`](super::super::Footprint::covariance)
+    /// after the caller's clamp rules): `out[i] = Ggx::new(projected(*r, Sigma_i)).d(h_i)` per
+    /// steradian, **bit for bit**. The kernel is sanitised as by [`projected`] (NaN: no
+    /// filtering; infinite: the widest kernel; indefinite: the nearest PSD matrix). `0` for
+    /// `h_z <= 0` and NaN `h`. Returns the number of elements written (the shortest slice).
+    /// Allocates nothing.
+    ///
+    /// The front door's [`Projected`](super::super::filter::Projected) method applies
+    /// [`ClampRules::filter_projected`](super::super::ClampRules::filter_projected) to a
+    /// footprint first (maximum extent, `kappa`): with `rules.kernel(rules.footprint(fp)
+    /// .covariance(sigma))` as `Sigma_i` this is that route (the determinant clamp
+    /// `tau = det A` is [`projected`]'s).
+    pub fn ggx_d_projected(
+        r: &R,
+        kernels: Covariances<'_>,
+        hx: &[F],
+        hy: &[F],
+        hz: &[F],
+        out: &mut [F],
+    ) -> usize {
+        let k = ProjectedD {
+            r: *r,
+            base: ProjectedBase::new(*r),
+            tau: r.lobe_det(),
+        };
+        run(
+            &k,
+            [hx, hy, hz, kernels.s11, kernels.s12, kernels.s22],
+            [out],
+        )
+    }
 }
 
 /// `D` of `Ggx::new(projected(r, Sigma))`.

@@ -60,7 +60,6 @@ const PAD: usize = 16;
 ///   `2e-12` relative). In `f32` the two `f64` values round to the same `f32` or to neighbours
 ///   (one ulp apart at most; measured: always the same); in `f64` measured within `7.5e-14`
 ///   relative. Tested in `tests/batch_bounds.rs`.
-#[inline]
 pub fn d_rect(
     r: &AxisAligned,
     hx: &[F],

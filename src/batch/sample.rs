@@ -26,48 +26,49 @@ use super::quantile::visible_slope_quantile_lane;
 use super::{F, Vec2, Vec3, Vec3s};
 use crate::math::{self as m, Real};
 
-/// [`NdfSampling::sample_visible_normal`] of GGX for each view `wo_i = (wo.x[i], wo.y[i],
-/// wo.z[i])` and uniform pair `(u1[i], u2[i])`: writes the unit micronormal `m_i` with
-/// density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian (Heitz 2018, "Sampling
-/// the GGX Distribution of Visible Normals"; spherical caps of Dupuy and Benyoub 2023,
-/// listing 3; warped by the Cholesky factor of the roughness, TK19 supplement section 1, as
-/// the scalar sampler) to `(out_x[i], out_y[i], out_z[i])`.
-///
-/// Where the scalar sampler returns `None` (`wo_z <= 0`, non-finite `wo`, a view grazing to
-/// within the float range): `(0, 0, 0)`. `u` outside `[0, 1)` is clamped as by the scalar
-/// sampler (NaN to `0`).
-///
-/// Agreement: not bit for bit with the scalar sampler of the same precision (the lane's
-/// polynomial `sin`/`cos` of `2 pi u1`, absolute `2 eps_32` in `f32`, `2e-15` in `f64`, replace libm's of
-/// the rounded `phi`, and the cap height is not fused); against the `f64` scalar sampler on
-/// the same inputs, the angle between the samples pulled back to the unit-roughness space
-/// is within the bound `B` stated and derived in `tests/batch_bounds.rs`: `(9 kappa + 1) E`
-/// plus `(d_c + d_wi + E) / |n|`, where `d_wi = (8.5 kappa + 1) E` and `d_c` (the cap
-/// point's error) is about `(17 kappa + 8) E / sin theta + S E`, `E` the precision's
-/// epsilon, `kappa` the condition number of the warp `diag(L, 1)`, `sin theta` the radius
-/// of the cap point, `|n|` the length of the unit-roughness normal before normalisation,
-/// `S = 8` (`f32`) / `9` (`f64`) the azimuth's error in `E`. The scalar `f32` sampler's own
-/// error has the same form. Every output is a unit vector with `m_z > 0` and `wo.m > 0` (those
-/// checks are the lane's or, flagged, the scalar path's).
-///
-/// Returns the number of elements written (the shortest of the eight slices); leaves the
-/// rest untouched. Allocates nothing.
-#[inline]
-#[allow(clippy::too_many_arguments)]
-pub fn ggx_sample_visible_normal<R: Roughness>(
-    r: &R,
-    wo: Vec3s<'_>,
-    u1: &[F],
-    u2: &[F],
-    out_x: &mut [F],
-    out_y: &mut [F],
-    out_z: &mut [F],
-) -> usize {
-    let k = VisibleSampler {
-        ndf: Ggx::new(*r),
-        warp: Warp::new(r),
-    };
-    run(&k, [wo.x, wo.y, wo.z, u1, u2], [out_x, out_y, out_z])
+per_form! {
+    /// [`NdfSampling::sample_visible_normal`] of GGX for each view `wo_i = (wo.x[i], wo.y[i],
+    /// wo.z[i])` and uniform pair `(u1[i], u2[i])`: writes the unit micronormal `m_i` with
+    /// density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian (Heitz 2018, "Sampling
+    /// the GGX Distribution of Visible Normals"; spherical caps of Dupuy and Benyoub 2023,
+    /// listing 3; warped by the Cholesky factor of the roughness, TK19 supplement section 1, as
+    /// the scalar sampler) to `(out_x[i], out_y[i], out_z[i])`.
+    ///
+    /// Where the scalar sampler returns `None` (`wo_z <= 0`, non-finite `wo`, a view grazing to
+    /// within the float range): `(0, 0, 0)`. `u` outside `[0, 1)` is clamped as by the scalar
+    /// sampler (NaN to `0`).
+    ///
+    /// Agreement: not bit for bit with the scalar sampler of the same precision (the lane's
+    /// polynomial `sin`/`cos` of `2 pi u1`, absolute `2 eps_32` in `f32`, `2e-15` in `f64`, replace libm's of
+    /// the rounded `phi`, and the cap height is not fused); against the `f64` scalar sampler on
+    /// the same inputs, the angle between the samples pulled back to the unit-roughness space
+    /// is within the bound `B` stated and derived in `tests/batch_bounds.rs`: `(9 kappa + 1) E`
+    /// plus `(d_c + d_wi + E) / |n|`, where `d_wi = (8.5 kappa + 1) E` and `d_c` (the cap
+    /// point's error) is about `(17 kappa + 8) E / sin theta + S E`, `E` the precision's
+    /// epsilon, `kappa` the condition number of the warp `diag(L, 1)`, `sin theta` the radius
+    /// of the cap point, `|n|` the length of the unit-roughness normal before normalisation,
+    /// `S = 8` (`f32`) / `9` (`f64`) the azimuth's error in `E`. The scalar `f32` sampler's own
+    /// error has the same form. Every output is a unit vector with `m_z > 0` and `wo.m > 0` (those
+    /// checks are the lane's or, flagged, the scalar path's).
+    ///
+    /// Returns the number of elements written (the shortest of the eight slices); leaves the
+    /// rest untouched. Allocates nothing.
+    #[allow(clippy::too_many_arguments)]
+    pub fn ggx_sample_visible_normal(
+        r: &R,
+        wo: Vec3s<'_>,
+        u1: &[F],
+        u2: &[F],
+        out_x: &mut [F],
+        out_y: &mut [F],
+        out_z: &mut [F],
+    ) -> usize {
+        let k = VisibleSampler {
+            ndf: Ggx::new(*r),
+            warp: Warp::new(r),
+        };
+        run(&k, [wo.x, wo.y, wo.z, u1, u2], [out_x, out_y, out_z])
+    }
 }
 
 /// The visible-normal sampler of an NDF and its warp.
@@ -154,67 +155,69 @@ impl<N: NdfSampling + StandardVisible> Kernel<5, 3> for VisibleSampler<N> {
     }
 }
 
-/// [`NdfSampling::sample_normal`] of GGX for each uniform pair `(u1[i], u2[i])`: writes the
-/// unit micronormal `m_i` with density `D(m) m_z` per steradian (KHPL16 eq. 2; in the
-/// unit-roughness space `n = (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))`, `phi = 2 pi
-/// u2`, warped by the Cholesky factor of the roughness, TK19 supplement section 1, as the
-/// scalar sampler) to `(out_x[i], out_y[i], out_z[i])`. `u` outside `[0, 1)` is clamped as by
-/// the scalar sampler (NaN to `0`); every output is a unit vector with `m_z > 0`.
-///
-/// Agreement: not bit for bit with the scalar sampler of the same precision (the azimuth's
-/// `(cos, sin)` by the lane polynomial `sincos_2pi`, absolute `2 eps_32` in `f32`, `2e-15` in `f64`, in
-/// place of libm's of the rounded `phi`); against the `f64` scalar sampler on the same
-/// inputs, the angle between the samples pulled back to the unit-roughness space is within
-/// `(S + 3) E + 9 kappa E + E` (`E` the precision's epsilon, `S = 8` in `f32`, `9` in `f64`,
-/// `kappa` the condition number of the warp `diag(L, 1)`), derived in
-/// `tests/batch_bounds.rs`; the scalar sampler is within the same bound. Returns the number
-/// of elements written (the shortest of the five slices). Allocates nothing.
-#[inline]
-pub fn ggx_sample_normal<R: Roughness>(
-    r: &R,
-    u1: &[F],
-    u2: &[F],
-    out_x: &mut [F],
-    out_y: &mut [F],
-    out_z: &mut [F],
-) -> usize {
-    let k = NormalSampler {
-        ndf: Ggx::new(*r),
-        warp: Warp::new(r),
-    };
-    run(&k, [u1, u2], [out_x, out_y, out_z])
+per_form! {
+    /// [`NdfSampling::sample_normal`] of GGX for each uniform pair `(u1[i], u2[i])`: writes the
+    /// unit micronormal `m_i` with density `D(m) m_z` per steradian (KHPL16 eq. 2; in the
+    /// unit-roughness space `n = (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))`, `phi = 2 pi
+    /// u2`, warped by the Cholesky factor of the roughness, TK19 supplement section 1, as the
+    /// scalar sampler) to `(out_x[i], out_y[i], out_z[i])`. `u` outside `[0, 1)` is clamped as by
+    /// the scalar sampler (NaN to `0`); every output is a unit vector with `m_z > 0`.
+    ///
+    /// Agreement: not bit for bit with the scalar sampler of the same precision (the azimuth's
+    /// `(cos, sin)` by the lane polynomial `sincos_2pi`, absolute `2 eps_32` in `f32`, `2e-15` in `f64`, in
+    /// place of libm's of the rounded `phi`); against the `f64` scalar sampler on the same
+    /// inputs, the angle between the samples pulled back to the unit-roughness space is within
+    /// `(S + 3) E + 9 kappa E + E` (`E` the precision's epsilon, `S = 8` in `f32`, `9` in `f64`,
+    /// `kappa` the condition number of the warp `diag(L, 1)`), derived in
+    /// `tests/batch_bounds.rs`; the scalar sampler is within the same bound. Returns the number
+    /// of elements written (the shortest of the five slices). Allocates nothing.
+    pub fn ggx_sample_normal(
+        r: &R,
+        u1: &[F],
+        u2: &[F],
+        out_x: &mut [F],
+        out_y: &mut [F],
+        out_z: &mut [F],
+    ) -> usize {
+        let k = NormalSampler {
+            ndf: Ggx::new(*r),
+            warp: Warp::new(r),
+        };
+        run(&k, [u1, u2], [out_x, out_y, out_z])
+    }
 }
 
-/// [`NdfSampling::sample_normal`] of Beckmann for each uniform pair: the unit micronormal
-/// with density `D(m) m_z` per steradian (KHPL16 eq. 2; in the unit-roughness space the slope
-/// of squared length `-ln(1 - u1)` at the azimuth `phi = 2 pi u2`, a Gaussian of covariance
-/// `I / 2`, warped by the Cholesky factor of the roughness, as the scalar sampler). `u`
-/// clamped as by the scalar sampler; every output is a unit vector with `m_z > 0`.
-///
-/// Agreement: not bit for bit (`ln(1 - u1)` by the lane logarithm `log::ln_lane`, relative
-/// `3 eps` computed in `f32` in the `f32` build, `4 eps` in `f64`, and the azimuth by
-/// `sincos_2pi`, in place of libm's); against the `f64` scalar sampler, the pulled-back angle
-/// is within the bound derived in `tests/batch_bounds.rs`: `dr / (1 + r^2) + (S + 1) E r /
-/// sqrt(1 + r^2) + 9 kappa E + E`, `r = sqrt(-ln(1 - u1))`, `dr = min(dl / r, sqrt(dl)) + E r
-/// / 2` the error of `r` from the error `dl = E / 2 + c E |ln(1 - u1)|` of the logarithm (the
-/// rounding of `1 - u1` in `F`, and the logarithm's `c E`: `c = 3` in `f32`, `4` in `f64`, `1`
-/// for libm's). The scalar sampler is within the same bound with `c = 1`.
-///
-/// Returns the number of elements written. Allocates nothing.
-#[inline]
-pub fn beckmann_sample_normal<R: Roughness>(
-    r: &R,
-    u1: &[F],
-    u2: &[F],
-    out_x: &mut [F],
-    out_y: &mut [F],
-    out_z: &mut [F],
-) -> usize {
-    let k = NormalSampler {
-        ndf: Beckmann::new(*r),
-        warp: Warp::new(r),
-    };
-    run(&k, [u1, u2], [out_x, out_y, out_z])
+per_form! {
+    /// [`NdfSampling::sample_normal`] of Beckmann for each uniform pair: the unit micronormal
+    /// with density `D(m) m_z` per steradian (KHPL16 eq. 2; in the unit-roughness space the slope
+    /// of squared length `-ln(1 - u1)` at the azimuth `phi = 2 pi u2`, a Gaussian of covariance
+    /// `I / 2`, warped by the Cholesky factor of the roughness, as the scalar sampler). `u`
+    /// clamped as by the scalar sampler; every output is a unit vector with `m_z > 0`.
+    ///
+    /// Agreement: not bit for bit (`ln(1 - u1)` by the lane logarithm `log::ln_lane`, relative
+    /// `3 eps` computed in `f32` in the `f32` build, `4 eps` in `f64`, and the azimuth by
+    /// `sincos_2pi`, in place of libm's); against the `f64` scalar sampler, the pulled-back angle
+    /// is within the bound derived in `tests/batch_bounds.rs`: `dr / (1 + r^2) + (S + 1) E r /
+    /// sqrt(1 + r^2) + 9 kappa E + E`, `r = sqrt(-ln(1 - u1))`, `dr = min(dl / r, sqrt(dl)) + E r
+    /// / 2` the error of `r` from the error `dl = E / 2 + c E |ln(1 - u1)|` of the logarithm (the
+    /// rounding of `1 - u1` in `F`, and the logarithm's `c E`: `c = 3` in `f32`, `4` in `f64`, `1`
+    /// for libm's). The scalar sampler is within the same bound with `c = 1`.
+    ///
+    /// Returns the number of elements written. Allocates nothing.
+    pub fn beckmann_sample_normal(
+        r: &R,
+        u1: &[F],
+        u2: &[F],
+        out_x: &mut [F],
+        out_y: &mut [F],
+        out_z: &mut [F],
+    ) -> usize {
+        let k = NormalSampler {
+            ndf: Beckmann::new(*r),
+            warp: Warp::new(r),
+        };
+        run(&k, [u1, u2], [out_x, out_y, out_z])
+    }
 }
 
 /// The `D(m) m_z` sampler of an NDF and its warp.
@@ -264,47 +267,48 @@ impl<N: NdfSampling + StandardNormal> Kernel<2, 3> for NormalSampler<N> {
     }
 }
 
-/// [`NdfSampling::sample_visible_normal`] of Beckmann for each view `wo_i` and uniform pair
-/// `(u1[i], u2[i])`: writes the unit micronormal `m_i` with density `D_wo(m) = G1(wo) max(0,
-/// wo.m) D(m) / wo_z` per steradian (Heitz and d'Eon 2014, section 4: in the unit-roughness
-/// space with the view's azimuth turned to `x`, the slope `x` is the quantile of the
-/// visible-slope CDF, `y` an independent Gaussian quantile; warped by the Cholesky factor of
-/// the roughness, as the scalar sampler) to `(out_x[i], out_y[i], out_z[i])`.
-///
-/// Where the scalar sampler returns `None` (`wo_z <= 0`, non-finite `wo`, a view grazing to
-/// within the float range): `(0, 0, 0)`. `u` outside `[0, 1)` is clamped as by the scalar
-/// sampler (NaN to `0`).
-///
-/// Agreement: not bit for bit. The scalar sampler solves for each quantile by a safeguarded
-/// Newton iteration on libm's `erfc` (7.7 evaluations on average); the lane takes a fitted
-/// guess and a fixed number of Halley steps on a rational `erfc` (three for `x`, one for `y`)
-/// and flags, for the scalar sampler, every element whose residual misses the scalar solve's
-/// goal (`batch::quantile`'s docs; in the far tails of `u`, some elements). So each quantile
-/// is the exact one of a `u'` within `(8.5 eps_64 + d(x) + d(hi)) u` of the clamped `u`, `d(x)
-/// = 1.5e-14 + (x^2 / 2 + 66) eps_64` the lane `K`'s relative error (the scalar path: the
-/// same form with libm's `(x^2 / 2 + 4) eps_64`); the steps after the quantiles (the view's
-/// azimuth `(wx, wy) / sqrt(wx^2 + wy^2)` in place of `hypot`, the rotation, `(-t_x, -t_y,
-/// 1)` rounded to `F`, the warp and the normalisation) are the scalar path's but for that
-/// root. `tests/batch_bounds.rs` checks the samples against the `f64` scalar sampler's
-/// visible-slope CDF (the `u` each sample is the quantile of) within the bound derived
-/// there. Every output is a unit vector with `m_z > 0` and `wo.m > 0`.
-///
-/// Returns the number of elements written (the shortest of the eight slices); leaves the
-/// rest untouched. Allocates nothing.
-#[inline]
-#[allow(clippy::too_many_arguments)]
-pub fn beckmann_sample_visible_normal<R: Roughness>(
-    r: &R,
-    wo: Vec3s<'_>,
-    u1: &[F],
-    u2: &[F],
-    out_x: &mut [F],
-    out_y: &mut [F],
-    out_z: &mut [F],
-) -> usize {
-    let k = VisibleSampler {
-        ndf: Beckmann::new(*r),
-        warp: Warp::new(r),
-    };
-    run(&k, [wo.x, wo.y, wo.z, u1, u2], [out_x, out_y, out_z])
+per_form! {
+    /// [`NdfSampling::sample_visible_normal`] of Beckmann for each view `wo_i` and uniform pair
+    /// `(u1[i], u2[i])`: writes the unit micronormal `m_i` with density `D_wo(m) = G1(wo) max(0,
+    /// wo.m) D(m) / wo_z` per steradian (Heitz and d'Eon 2014, section 4: in the unit-roughness
+    /// space with the view's azimuth turned to `x`, the slope `x` is the quantile of the
+    /// visible-slope CDF, `y` an independent Gaussian quantile; warped by the Cholesky factor of
+    /// the roughness, as the scalar sampler) to `(out_x[i], out_y[i], out_z[i])`.
+    ///
+    /// Where the scalar sampler returns `None` (`wo_z <= 0`, non-finite `wo`, a view grazing to
+    /// within the float range): `(0, 0, 0)`. `u` outside `[0, 1)` is clamped as by the scalar
+    /// sampler (NaN to `0`).
+    ///
+    /// Agreement: not bit for bit. The scalar sampler solves for each quantile by a safeguarded
+    /// Newton iteration on libm's `erfc` (7.7 evaluations on average); the lane takes a fitted
+    /// guess and a fixed number of Halley steps on a rational `erfc` (three for `x`, one for `y`)
+    /// and flags, for the scalar sampler, every element whose residual misses the scalar solve's
+    /// goal (`batch::quantile`'s docs; in the far tails of `u`, some elements). So each quantile
+    /// is the exact one of a `u'` within `(8.5 eps_64 + d(x) + d(hi)) u` of the clamped `u`, `d(x)
+    /// = 1.5e-14 + (x^2 / 2 + 66) eps_64` the lane `K`'s relative error (the scalar path: the
+    /// same form with libm's `(x^2 / 2 + 4) eps_64`); the steps after the quantiles (the view's
+    /// azimuth `(wx, wy) / sqrt(wx^2 + wy^2)` in place of `hypot`, the rotation, `(-t_x, -t_y,
+    /// 1)` rounded to `F`, the warp and the normalisation) are the scalar path's but for that
+    /// root. `tests/batch_bounds.rs` checks the samples against the `f64` scalar sampler's
+    /// visible-slope CDF (the `u` each sample is the quantile of) within the bound derived
+    /// there. Every output is a unit vector with `m_z > 0` and `wo.m > 0`.
+    ///
+    /// Returns the number of elements written (the shortest of the eight slices); leaves the
+    /// rest untouched. Allocates nothing.
+    #[allow(clippy::too_many_arguments)]
+    pub fn beckmann_sample_visible_normal(
+        r: &R,
+        wo: Vec3s<'_>,
+        u1: &[F],
+        u2: &[F],
+        out_x: &mut [F],
+        out_y: &mut [F],
+        out_z: &mut [F],
+    ) -> usize {
+        let k = VisibleSampler {
+            ndf: Beckmann::new(*r),
+            warp: Warp::new(r),
+        };
+        run(&k, [wo.x, wo.y, wo.z, u1, u2], [out_x, out_y, out_z])
+    }
 }

@@ -60,6 +60,10 @@ impl From<Isotropic> for AxisAligned {
 
 impl sealed::Sealed for AxisAligned {
     #[inline(always)]
+    fn form(&self) -> sealed::Form {
+        sealed::Form::AxisAligned(*self)
+    }
+    #[inline(always)]
     fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F) {
         over_z2(self.inv_quadratic(m), self.inv_sqrt_det, z2)
     }

@@ -43,6 +43,10 @@ impl Isotropic {
 
 impl sealed::Sealed for Isotropic {
     #[inline(always)]
+    fn form(&self) -> sealed::Form {
+        sealed::Form::Isotropic(*self)
+    }
+    #[inline(always)]
     fn exponent_and_norm(&self, m: Vec2, z2: F) -> (F, F) {
         // sqrt(det A) = alpha^2.
         over_z2(self.inv_quadratic(m), self.inv_alpha2, z2)

@@ -392,6 +392,10 @@ fn wide_form(q: f64, v: Vec2, form: impl Fn(f64, f64) -> f64) -> F {
 
 impl sealed::Sealed for RoughnessMatrix {
     #[inline(always)]
+    fn form(&self) -> sealed::Form {
+        sealed::Form::Matrix(*self)
+    }
+    #[inline(always)]
     fn exponent_and_norm(&self, mxy: Vec2, z2: F) -> (F, F) {
         // t = 1 / (c p z2), the one division; x = adj_form t and n = 1 / (sqrt(c) z2^2) =
         // (p t)^2 c^(3/2), all in f64. `c (p z2)`: a matrix built inline (filtering) reaches

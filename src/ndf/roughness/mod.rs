@@ -40,7 +40,19 @@ pub const ALPHA_MIN: F = 1e-8;
 pub const ALPHA_MAX: F = 1e4;
 
 pub(crate) mod sealed {
-    use super::{F, Vec2};
+    use super::{AxisAligned, F, Isotropic, RoughnessMatrix, Vec2};
+
+    /// A roughness form as a value: what `batch`'s entry points match on, so that their loops
+    /// are compiled in this crate once per form (`batch::per_form`).
+    #[derive(Clone, Copy, Debug)]
+    pub enum Form {
+        /// [`Isotropic`].
+        Isotropic(Isotropic),
+        /// [`AxisAligned`].
+        AxisAligned(AxisAligned),
+        /// [`RoughnessMatrix`].
+        Matrix(RoughnessMatrix),
+    }
 
     /// Crate-internal evaluation helpers of the roughness forms (unnameable outside the
     /// crate, which also seals [`super::Roughness`]). Each describes the matrix the form
@@ -75,6 +87,8 @@ pub(crate) mod sealed {
         /// The lower Cholesky factor `(l11, l21, l22)` of the evaluated matrix,
         /// `A = [[l11, 0], [l21, l22]] [[l11, l21], [0, l22]]` (the samplers' warp).
         fn cholesky(&self) -> (F, F, F);
+        /// The form as a [`Form`] value.
+        fn form(&self) -> Form;
     }
 }
 
