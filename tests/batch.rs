@@ -1406,9 +1406,9 @@ macro_rules! suite {
             /// the adversarial columns (`ux..vy` as normal differences, `x` as alpha):
             /// bit for bit where `exponent = 1`; with a power (Unreal, Babylon.js: the
             /// perceptual domain, `alpha_bar = max(p, k)^2`) within `(2 d + 1) eps` relative,
-            /// `d` the power's error in ulps against libm's (`pow_lane`: half an ulp plus
-            /// `1e-13` in `f32`, `1.6e-14 + 3 eps_64 |y| + eps_64` in `f64`; libm one ulp): the
-            /// square doubles it and each side rounds it once.
+            /// `d` the power's error in ulps against libm's (`pow_lane`: `(5 + 3 |e|) u` in
+            /// `f32`, `u = eps / 2`, `1.6e-14 + 3 eps_64 |y| + eps_64` in `f64`; libm one ulp):
+            /// the square doubles it and each side rounds it once.
             #[test]
             fn deferred_presets_bit_for_bit() {
                 use filtered_ndf::$prec::filter::deferred::{
@@ -1480,7 +1480,8 @@ macro_rules! suite {
                         let d = if WIDE {
                             1.6e-14 / EPS + 3.0 * y + 1.0 + 1.0
                         } else {
-                            0.5 + 1e-13 / EPS + 1.0
+                            // `(5 + 3 |e|) u`, `u = eps / 2`.
+                            2.5 + 1.5 * (k.exponent as f64).abs() + 1.0
                         };
                         // The perceptual domain squares (2 d + 1); alpha^2 takes a root
                         // (d / 2 + 1), alpha and projected alpha^2 at most d + 1.

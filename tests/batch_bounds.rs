@@ -32,8 +32,9 @@
 //!   `3`; the larger of two dot products `1.5`; the Gram matrix's larger eigenvalue: entry
 //!   errors of `3 u tr`, a 1-Lipschitz eigenvalue with `tr <= 2 lambda_max`, and its own
 //!   mean, root and sum, `6`; the largest component `0`); the kernel `R_k = exponent R_n + 2`
-//!   (the scale constant rounded to `F` and the product) plus the power's (`1` in `f32`:
-//!   the lane's half ulp and the scalar's; `1.6e-14 / eps + 3 |y| + 1` in `f64`); the
+//!   (the scale constant rounded to `F` and the product) plus the power's (`2.5 + 1.5
+//!   |exponent|` in `f32`: the lane power's `(5 + 3 |e|) u`, `u = eps / 2`, computed in
+//!   `f32`; `1.6e-14 / eps + 3 |y| + 1` in `f64`); the
 //!   material's value `R_v` (`alpha^2`, `sqrt(alpha)`: `1`; `alpha`: `0`; `alpha^2 / (1 -
 //!   alpha^2)`: `1 + 1 / (1 - alpha^2)`, the subtraction's conditioning, so `alpha <= 0.9`
 //!   here); the sum or max and the clamps and saturate (1-Lipschitz) `R = max(R_v, R_k) + 1`;
@@ -1169,7 +1170,8 @@ macro_rules! suite {
                             let y = (e * k64.norm.eval(du, dv).ln()).abs();
                             1.6e-14 / EPS + 3.0 * y + 1.0
                         } else {
-                            1.0
+                            // `pow_lane`'s `(5 + 3 |e|) u`, `u = eps / 2`.
+                            2.5 + 1.5 * e.abs()
                         };
                         let r_k = e * r_n + 2.0 + pow;
                         let r_v = match k64.domain {

@@ -4,7 +4,7 @@
 
 use super::super::filter::deferred::{Domain, KernelConvention, Norm};
 use super::super::ndf::roughness::Isotropic;
-use super::lane_math::pow_lane;
+use super::lane_math::{Power, pow_lane};
 use super::lanes::{Kernel, run};
 use super::{F, Vec3, Vec3s};
 
@@ -21,10 +21,11 @@ use super::{F, Vec3, Vec3s};
 /// but [`UNREAL`](super::super::filter::presets::UNREAL) and
 /// [`BABYLON`](super::super::filter::presets::BABYLON)): the lane is the scalar formula, its
 /// branches as selects. With another exponent, `norm^exponent` is the lane power of
-/// `lane_math.rs` in place of libm's `powf` (relative `1.6e-14 + 3 eps_64 |y|`, `y = exponent
-/// ln(norm)`, computed in `f64`; in `f32` within half an `f32` ulp plus `1e-13` before the
-/// final rounding), so the widening `k = scale norm^exponent + bias` differs from the scalar
-/// one by at most one `f32` ulp of `scale norm^exponent` plus its rounding (`f32`), and
+/// `lane_math.rs` in place of libm's `powf` (relative, in `f64` `1.6e-14 + 3 eps_64 |y|`, `y =
+/// exponent ln(norm)`; in `f32`, computed in `f32` arithmetic, `(5 + 3 |exponent|) u`, `u =
+/// 2^-24`, for any norm: `6 u` for Unreal's `0.333`, where the `f64` power had held the
+/// loop to half the vector width and cost twice the time), so the widening `k = scale
+/// norm^exponent + bias` differs from the scalar one by that plus libm's ulp, and
 /// `alpha_bar` by what the domain's `to_alpha` makes of it (the perceptual domain:
 /// `alpha = p^2`, twice the relative error of `p`); see the module docs of [`super`].
 /// Elements whose norm leaves the lanes' domain (non-finite or overflowing Gram matrix for
@@ -42,14 +43,15 @@ pub fn deferred_filter(
 ) -> usize {
     let ins = [alpha, dn_u.x, dn_u.y, dn_u.z, dn_v.x, dn_v.y, dn_v.z];
     let c = *conv;
+    let pow = Power::new(c.exponent);
     // One loop per (domain, norm, power) with those constants: a `match` in the lane on a
     // loop-invariant enum would stop the vectoriser.
     macro_rules! go {
         ($d:literal, $n:literal) => {
             if c.exponent == 1.0 {
-                run(&Deferred::<$d, $n, false>(c), ins, [out])
+                run(&Deferred::<$d, $n, false> { c, pow }, ins, [out])
             } else {
-                run(&Deferred::<$d, $n, true>(c), ins, [out])
+                run(&Deferred::<$d, $n, true> { c, pow }, ins, [out])
             }
         };
     }
@@ -87,7 +89,11 @@ const NORMS: [Norm; 4] = [
 
 /// [`KernelConvention::filter`] with the domain `DOMAINS[D]` and norm `NORMS[N]` constants
 /// (the convention's own, set by [`deferred_filter`]), and `POW` whether `exponent != 1`.
-struct Deferred<const D: usize, const N: usize, const POW: bool>(KernelConvention);
+struct Deferred<const D: usize, const N: usize, const POW: bool> {
+    c: KernelConvention,
+    /// `c.exponent` split for [`pow_lane`].
+    pow: Power,
+}
 
 impl<const D: usize, const N: usize, const POW: bool> Kernel<7, 1> for Deferred<D, N, POW> {
     // Measured on the SSE2 baseline (three `--quick` runs, scalar loop / batch): TK19 trace
@@ -103,13 +109,13 @@ impl<const D: usize, const N: usize, const POW: bool> Kernel<7, 1> for Deferred<
         let c = KernelConvention {
             domain: DOMAINS[D],
             norm: NORMS[N],
-            ..self.0
+            ..self.c
         };
         let (n, n_ok) = c
             .norm
             .eval_lane(Vec3::new(ux, uy, uz), Vec3::new(vx, vy, vz));
         let (raw, p_ok) = if POW {
-            pow_lane(n, c.exponent)
+            pow_lane(n, &self.pow)
         } else {
             (n, true)
         };
@@ -121,7 +127,7 @@ impl<const D: usize, const N: usize, const POW: bool> Kernel<7, 1> for Deferred<
     #[inline(always)]
     fn scalar(&self, [a, ux, uy, uz, vx, vy, vz]: [F; 7]) -> [F; 1] {
         [self
-            .0
+            .c
             .filter(a, Vec3::new(ux, uy, uz), Vec3::new(vx, vy, vz))
             .alpha()]
     }

@@ -7,8 +7,9 @@
 //! |---|---|---|---|
 //! | [`ln_lane`] | libm `ln` | `4 eps_64` in `f64`, `3 eps_32` in `f32` (each computed in its precision) | unit test below |
 
+use super::super::filter::{LN2_HI_F32, LN2_LO_F32};
 use super::F;
-use super::lane_math::{LN2_HI, LN2_LO, WIDE, ln_parts_f64};
+use super::lane_math::{LN2_HI, LN2_LO, WIDE, ln_parts_f32, ln_parts_f64};
 use crate::math::Real;
 
 /// `ln x` in lanes: `ln x = k ln2_hi + (k ln2_lo + ln m)`, `x = m 2^k` with `m` in
@@ -45,24 +46,8 @@ pub(crate) fn ln_lane(x: F) -> (F, bool) {
 /// [`ln_lane`] in `f32` arithmetic, for a positive normal `x` (its docs).
 #[inline(always)]
 fn ln_f32(x: f32) -> f32 {
-    // 1 / (2 j + 1), j = 1..4: the series of atanh(s) / s through s^8.
-    const C: [f32; 4] = [1.0 / 3.0, 1.0 / 5.0, 1.0 / 7.0, 1.0 / 9.0];
-    // ln 2 split: `LN2_HI_32` (0x3f317200) has 9 trailing zero bits, so `k LN2_HI_32` is exact
-    // for `|k| < 512`.
-    const LN2_HI_32: f32 = 0.693_145_75;
-    const LN2_LO_32: f32 = 1.428_606_8e-6;
-    let b = x.to_bits();
-    let field = ((b >> 23) & 0xff) as i32;
-    let m1 = f32::from_bits((b & 0x007f_ffff) | 0x3f80_0000);
-    let big = m1 > core::f32::consts::SQRT_2;
-    let m = if big { 0.5 * m1 } else { m1 };
-    let k = (field - 127 + i32::from(big)) as f32;
-    // m - 1 is exact (Sterbenz).
-    let s = (m - 1.0) / (m + 1.0);
-    let s2 = s * s;
-    let p = ((C[3] * s2 + C[2]) * s2 + C[1]) * s2 + C[0];
-    let ln_m = 2.0 * s + (2.0 * s) * (s2 * p);
-    k * LN2_HI_32 + (k * LN2_LO_32 + ln_m)
+    let (k, ln_m) = ln_parts_f32(x);
+    k * LN2_HI_F32 + (k * LN2_LO_F32 + ln_m)
 }
 
 #[cfg(test)]

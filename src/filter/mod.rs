@@ -40,7 +40,10 @@ mod projected;
 pub mod proxy;
 pub mod rect;
 
-pub(crate) use exp_poly::{MAGIC_F32, MAGIC_F64, exp_f32_reduced, exp_f64, exp_f64_reduced};
+pub(crate) use exp_poly::{
+    LN2_HI_F32, LN2_LO_F32, MAGIC_F32, MAGIC_F64, exp_f32_poly, exp_f32_reduced, exp_f64,
+    exp_f64_reduced,
+};
 pub use gaussian::{gaussian, gaussian_with_det_clamp};
 pub(crate) use gaussian::{gaussian_entries, gaussian_sanitized};
 pub use gaussian_ggx::GaussianFilteredGgx;
