@@ -7,8 +7,7 @@
 //! (`objdump -d --no-show-raw-insn target/release/deps/batch-*`) and look for packed
 //! single-precision ops (`mulps`, `divps`, `sqrtps`, `addps`) in the kernels' loops.
 
-#[path = "common/mod.rs"]
-mod common;
+use filtered_ndf::testing::shading as common;
 
 use criterion::{BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;

@@ -1,5 +1,5 @@
 //! One benchmark group per kernel family, each in f32 and f64, over the seeded realistic
-//! cases of `benches/common` (the trade table measures error on the same cases):
+//! cases of `filtered_ndf::testing::shading` (the trade table measures error on the same cases):
 //! filtered Beckmann vs unfiltered Beckmann, filtered GGX (TK19 matrix, TK21 projected) vs
 //! unfiltered GGX, the GGX proxy (exact and simple), the isotropic deferred variants and engine presets, the Jacobians, the
 //! footprint-to-kernel conversions, and the supersampling baseline (unfiltered GGX averaged
@@ -8,7 +8,7 @@
 //! `cargo bench --bench filtered` (add `-- --quick` for a short run). Figures are per
 //! evaluation (`Throughput::Elements`); compare ratios within one run.
 
-mod common;
+use filtered_ndf::testing::shading as common;
 
 use criterion::{BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;

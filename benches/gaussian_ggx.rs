@@ -1,5 +1,5 @@
 //! The exact Gaussian-filtered GGX against the filters a renderer would otherwise use, in one
-//! run, f32 and f64, on the seeded realistic cases of `benches/common` (the trade table's
+//! run, f32 and f64, on the seeded realistic cases of `filtered_ndf::testing::shading` (the trade table's
 //! cases): unfiltered GGX, the TK19 matrix approximation `Ggx::new(filter::gaussian(A, Sigma))`
 //! (building the lobe included), the exact box filter `rect::d_rect` over the footprint's
 //! bounding rectangle (the speed bar of issue 17), and the exact Gaussian filter, once with the
@@ -10,7 +10,7 @@
 //! `cargo bench --bench gaussian_ggx -- --quick`. Figures are per evaluation
 //! (`Throughput::Elements`); compare ratios within one run.
 
-mod common;
+use filtered_ndf::testing::shading as common;
 
 use criterion::{BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;

@@ -1,4 +1,4 @@
-//! The rows of the trade table (`examples/tradeoff.rs`) as WGSL snippets over one input
+//! The rows of the trade table (`filtered-ndf-demo`'s `tradeoff`) as WGSL snippets over one input
 //! layout, for the cost measurements (`--bin cost`): static SPIR-V instruction counts and
 //! evaluations per second, both relative to unfiltered GGX. Their accuracy is checked
 //! row by row in [`crate::checks::filters`] and [`crate::checks::rect`].

@@ -9,6 +9,7 @@
 //!   dispatch, on the backend chosen by `FILTERED_NDF_GPU_BACKEND`.
 //! - [`reference`]: the crate's `f64` functions the shader functions are compared with.
 //! - [`checks`]: the conformance checks (cases, WGSL call, reference, tolerance).
+//! - [`oracle_backend`]: the reference oracle's `--backend gpu` (binary `oracle`).
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
@@ -18,4 +19,5 @@ pub mod generate;
 pub mod harness;
 pub mod kernels;
 pub mod modules;
+pub mod oracle_backend;
 pub mod reference;

@@ -1,5 +1,5 @@
-//! The oracle's GPU backend (`examples/oracle/gpu.rs`, binary `oracle` of this crate) on the
-//! session file of `tests/oracle.rs` (`tests/data/oracle_session.jsonl`): every line it
+//! The oracle's GPU backend (`oracle_backend`, binary `oracle` of this crate) on the
+//! session file of the oracle's test (`oracle/tests/data/oracle_session.jsonl`): every line it
 //! answers with a number is within the conformance harness's tolerance of the function it
 //! calls, relative to the CPU `f64` answer at the same f32 arguments (every number of the line
 //! rounded to f32 before the `f64` evaluation: the references of `gpu/src/checks/` are taken
@@ -7,12 +7,8 @@
 //! without a shader answer an error naming the op. The backend is chosen by
 //! `FILTERED_NDF_GPU_BACKEND`; a missing adapter fails with a message naming the package.
 
-#[path = "../../examples/oracle/eval.rs"]
-#[allow(dead_code)]
-mod eval;
-#[path = "../../examples/oracle/gpu.rs"]
-#[allow(dead_code)]
-mod gpu_backend;
+use filtered_ndf_gpu::oracle_backend as gpu_backend;
+use filtered_ndf_oracle::eval;
 
 use filtered_ndf_gpu::checks::{self, Tol};
 use filtered_ndf_gpu::reference::{
@@ -22,7 +18,7 @@ use serde_json::{Value, json};
 
 /// The session, one entry per non-blank line.
 fn session() -> Vec<&'static str> {
-    include_str!("../../tests/data/oracle_session.jsonl")
+    include_str!("../../oracle/tests/data/oracle_session.jsonl")
         .lines()
         .filter(|l| !l.trim().is_empty())
         .collect()

@@ -56,4 +56,5 @@ pub mod gaussian_reference;
 pub mod linalg;
 pub mod quadrature;
 pub mod rng;
+pub mod shading;
 pub mod strategies;

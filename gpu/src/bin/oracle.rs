@@ -1,13 +1,13 @@
-//! The reference oracle with its GPU backend: `examples/oracle` (its evaluator, shared by
-//! `#[path]`) plus `--backend gpu`, which answers every op that has a shader through the WGSL
-//! modules in f32 (`examples/oracle/gpu.rs`; ops without one answer an error naming the op).
+//! The reference oracle with its GPU backend: the evaluator of `filtered-ndf-oracle` plus
+//! `--backend gpu`, which answers every op that has a shader through the WGSL modules in f32
+//! ([`filtered_ndf_gpu::oracle_backend`]; ops without one answer an error naming the op).
 //! The GPU backend lives here, in the workspace member that depends on wgpu, so that the
 //! library's `cargo test` does not build wgpu nor need a GPU driver.
 //!
 //! ```text
-//! cargo run --release -p filtered-ndf-gpu --bin oracle -- --backend gpu < queries.jsonl
-//! FILTERED_NDF_GPU_BACKEND=gl cargo run --release -p filtered-ndf-gpu --bin oracle -- --backend gpu
-//! cargo run --release -p filtered-ndf-gpu --bin oracle -- --backend cpu    # as the example
+//! cargo run --release -p filtered-ndf-gpu --bin oracle-gpu -- --backend gpu < queries.jsonl
+//! FILTERED_NDF_GPU_BACKEND=gl cargo run --release -p filtered-ndf-gpu --bin oracle-gpu -- --backend gpu
+//! cargo run --release -p filtered-ndf-gpu --bin oracle-gpu -- --backend cpu    # as the example
 //! ```
 //!
 //! With `--backend gpu` the whole input is read first and answered in order, batched into one
@@ -15,11 +15,8 @@
 //! `gl`, `any`), and a missing adapter answers each line with an error naming the package to
 //! install.
 
-#[path = "../../../examples/oracle/eval.rs"]
-#[allow(dead_code)]
-mod eval;
-#[path = "../../../examples/oracle/gpu.rs"]
-mod gpu_backend;
+use filtered_ndf_gpu::oracle_backend as gpu_backend;
+use filtered_ndf_oracle::eval;
 
 use std::io::{Read, Write};
 

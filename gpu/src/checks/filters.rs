@@ -1,5 +1,5 @@
 //! `shaders/filter/` and `shaders/kernel/clamp.wgsl`'s pipeline: the rows of the trade table
-//! (`examples/tradeoff.rs`) as WGSL, end to end (the filtered `D(h)` of one shading point),
+//! (`filtered-ndf-demo`'s `tradeoff`) as WGSL, end to end (the filtered `D(h)` of one shading point),
 //! and the building blocks (proxy roughness, deferred conventions, the 12 presets, LEAN).
 //!
 //! Cases: axis-aligned materials from `strategies::axis_aligned` (alpha log-uniform in

@@ -1,8 +1,6 @@
 //! The oracle's GPU backend (`--backend gpu`): the same JSON lines answered through the WGSL
 //! modules of `shaders/` in f32, so that a shader author can diff a port against ours and ours
-//! against the CPU references. Built by the workspace member `filtered-ndf-gpu`
-//! (`cargo run -p filtered-ndf-gpu --bin oracle -- --backend gpu`): the library's examples do
-//! not depend on wgpu.
+//! against the CPU references (`cargo run -p filtered-ndf-gpu --bin oracle-gpu -- --backend gpu`).
 //!
 //! Design. Every line is first checked by the CPU evaluator in `f32` (the same argument
 //! parsing, the same error messages for bad input; `eval::eval_line`); a valid line of an op
@@ -15,14 +13,13 @@
 //! `"f32"` evaluate in f32. The shaders' `F32_MAX` (their stand-in for `+inf`, e.g. `Lambda` at
 //! grazing) is written as `"inf"`, as the CPU backend writes infinities.
 
-// The CPU evaluator's argument parsing (`eval.rs` is a sibling module wherever this file is
-// included: the binary `oracle` of `filtered-ndf-gpu` and its test `oracle_gpu`).
-use crate::eval::args::{
+// The CPU evaluator's argument parsing.
+use crate::harness::{self, Kernel};
+use filtered_ndf_oracle::args::{
     ClampArg, ClampPreset, Dist, FloorArg, FootprintArg, Point, RoughnessArg, array, clamps_arg,
     dist, footprint_arg, kernel_arg, number, opt_non_negative, opt_number, point, roughness_arg,
     string,
 };
-use filtered_ndf_gpu::harness::{self, Kernel};
 use serde_json::{Value, json};
 
 /// The shader modules every kernel may use, and the decoders of the common argument slots.

@@ -6,11 +6,12 @@
 use crate::camera::camera_at;
 use crate::methods::Method;
 use crate::metrics::{display_luminance, flicker_energy, flicker_error};
+use crate::options::Options;
 use crate::peaks::{distance, mean, variation};
 use crate::plot::{PALETTE, Series, line_plot};
+use crate::render;
 use crate::render::FootprintRoute;
 use crate::scene::Scene;
-use crate::{Options, render};
 use std::fmt::Write as _;
 
 /// Resolution divisor and reference sample divisor of the temporal frames (keeps the default
@@ -31,7 +32,7 @@ pub struct Temporal {
 }
 
 /// Runs the test on `o.methods`, then `extra` (the engine presets: their flicker only), on
-/// `o.route`, then `fixed` on each route of the false-glint fix ([`crate::FIX_ROUTES`]).
+/// `o.route`, then `fixed` on each route of the false-glint fix ([`crate::options::FIX_ROUTES`]).
 pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<Temporal> {
     let (w, h) = ((o.width / DOWNSCALE).max(2), (o.height / DOWNSCALE).max(2));
     let spp = (o.spp / SPP_DIVISOR).max(2);
@@ -41,7 +42,7 @@ pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<T
         .chain(extra)
         .map(|&m| (m, o.route))
         .chain(
-            crate::FIX_ROUTES
+            crate::options::FIX_ROUTES
                 .into_iter()
                 .flat_map(|r| fixed.iter().map(move |&m| (m, r))),
         )
@@ -61,7 +62,7 @@ pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<T
         }
         let gb = render::gbuffer(scene, &cam, w, h);
         let derivs = gb.derivatives(scene, o.route);
-        let fix: Vec<(FootprintRoute, Vec<render::Mixture>)> = crate::FIX_ROUTES
+        let fix: Vec<(FootprintRoute, Vec<render::Mixture>)> = crate::options::FIX_ROUTES
             .into_iter()
             .filter(|&r| !fixed.is_empty() && r != o.route)
             .map(|r| (r, gb.mixtures(scene, r)))
@@ -134,7 +135,7 @@ pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<T
             100.0 * distance(p, r)
         )
         .unwrap();
-        let fix_route = crate::FIX_ROUTES.contains(&route) && route != o.route;
+        let fix_route = crate::options::FIX_ROUTES.contains(&route) && route != o.route;
         if i >= o.methods.len() && !fix_route {
             continue;
         }

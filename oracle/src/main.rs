@@ -3,16 +3,16 @@
 //! an error line and the evaluator goes on.
 //!
 //! ```sh
-//! echo '{"op":"ndf","dist":"ggx","roughness":0.1,"m":[0,0,1]}' | cargo run --release --example oracle
-//! cargo run --release --example oracle -- --list
+//! echo '{"op":"ndf","dist":"ggx","roughness":0.1,"m":[0,0,1]}' | cargo run --release -p filtered-ndf-oracle
+//! cargo run --release -p filtered-ndf-oracle -- --list
 //! ```
 //!
 //! `--backend cpu` (the default) evaluates with the library. `--backend gpu` (every op that has
 //! a shader, through the WGSL modules of `shaders/` in f32) is the binary `oracle` of the
 //! workspace member `filtered-ndf-gpu`, which depends on wgpu:
-//! `cargo run --release -p filtered-ndf-gpu --bin oracle -- --backend gpu`.
+//! `cargo run --release -p filtered-ndf-gpu --bin oracle-gpu -- --backend gpu`.
 
-mod eval;
+use filtered_ndf_oracle::eval;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -26,7 +26,7 @@ fn main() {
             Some("gpu") => {
                 eprintln!(
                     "oracle: --backend gpu lives in the workspace member filtered-ndf-gpu (it \
-                     depends on wgpu): cargo run --release -p filtered-ndf-gpu --bin oracle -- \
+                     depends on wgpu): cargo run --release -p filtered-ndf-gpu --bin oracle-gpu -- \
                      --backend gpu"
                 );
                 std::process::exit(2);

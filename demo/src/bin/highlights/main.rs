@@ -2,57 +2,21 @@
 //! point light, GGX / Beckmann at roughness 0.01, shaded with one sample per pixel by each
 //! filtering method and compared with a supersampled reference.
 //!
-//! Run: `cargo run --release --example highlights -- [--width 256] [--height 160]
+//! Run: `cargo run --release -p filtered-ndf-demo --bin highlights -- [--width 256] [--height 160]
 //! [--spp 512] [--frames 16] [--out target/highlights] [--methods a,b,..|all]
 //! [--presets on|off] [--investigate on|off] [--fix on|off] [--scene both|water|normal-map]
 //! [--footprint quad|rays|moments] [--threads 2] [--seed 1]`.
 
-mod camera;
-mod glints;
-mod image_out;
-mod methods;
-mod metrics;
-mod normal_map;
-mod parallel;
-mod peaks;
-mod plot;
-mod render;
-mod residual;
-mod scene;
-mod temporal;
-
-use camera::camera_at;
-use image_out::{Image, Rgb8, contact_sheet};
-use methods::{Family, Method};
-use render::FootprintRoute;
-use scene::Scene;
+use filtered_ndf_demo::camera::camera_at;
+use filtered_ndf_demo::image_out::{Image, Rgb8, contact_sheet};
+use filtered_ndf_demo::methods::{Family, Method};
+use filtered_ndf_demo::options::{FIX_ROUTES, Options};
+use filtered_ndf_demo::render::FootprintRoute;
+use filtered_ndf_demo::scene::Scene;
+use filtered_ndf_demo::{glints, image_out, metrics, normal_map, parallel, render, temporal};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
-
-/// Command-line options.
-pub struct Options {
-    pub width: usize,
-    pub height: usize,
-    pub spp: usize,
-    pub frames: usize,
-    pub out: PathBuf,
-    pub methods: Vec<Method>,
-    pub route: FootprintRoute,
-    pub threads: usize,
-    pub seed: u64,
-    pub exposure: f32,
-    /// Also shade the engine presets (table only).
-    pub presets: bool,
-    /// Run the false-glint investigation (`glints.rs`).
-    pub investigate: bool,
-    /// Which scenes: the water (`water`), the normal-mapped floor (`normal-map`), or both.
-    pub scene: &'static str,
-    /// Also score the footprint methods on the routes of the false-glint fix
-    /// ([`FIX_ROUTES`]: windowed moments, and the sub-window mixture), still frame and
-    /// temporal test.
-    pub fix: bool,
-}
 
 fn usage() -> ! {
     let slugs: Vec<&str> = Method::ALL.iter().map(|m| m.slug()).collect();
@@ -473,9 +437,6 @@ fn lead_table(
 fn save(o: &Options, name: &str, img: &Image) -> std::io::Result<()> {
     image_out::save(&img.to_rgb8(o.exposure), &o.out.join(format!("{name}.png")))
 }
-
-/// The routes of the false-glint fix, scored beside `o.route` (still frame and temporal test).
-pub const FIX_ROUTES: [FootprintRoute; 2] = [FootprintRoute::Moments, FootprintRoute::SubWindows];
 
 /// File-name part of a fix route.
 fn route_slug(r: FootprintRoute) -> &'static str {

@@ -431,7 +431,7 @@ impl Sphere {
 }
 
 /// The scene's parameters as plain numbers: what the GPU demonstration uploads to its shaders
-/// (`examples/highlights_gpu/shaders/scene.wgsl` evaluates the same surfaces from them).
+/// (`demo/src/bin/highlights_gpu/shaders/scene.wgsl` evaluates the same surfaces from them).
 #[derive(Clone, Debug)]
 #[allow(dead_code)] // read by the GPU demonstration only
 pub struct Params {

@@ -1,5 +1,5 @@
 //! The sparkle problem and its cure in a fragment shader: the CPU demonstration's scene
-//! (`examples/highlights`: wavy water and glossy spheres, roughness 0.01, one point light)
+//! (`highlights`: wavy water and glossy spheres, roughness 0.01, one point light)
 //! rasterised with wgpu, headless, every filter fed by the GPU's 2x2-quad derivatives
 //! (`dpdxFine` / `dpdyFine`) of the shaded quantities, in forward shading (per light, the
 //! half vector's derivatives) and in deferred shading (a G-buffer pass that stores the
@@ -7,7 +7,7 @@
 //! compared with the CPU demo's ray-traced reference of the same camera and scene, and with
 //! the CPU demo's own one-sample frames.
 //!
-//! Run: `cargo run --release --example highlights_gpu -- [--quick | --full]
+//! Run: `cargo run --release -p filtered-ndf-demo --features gpu --bin highlights_gpu -- [--quick | --full]
 //! [--check] [--width 256] [--height 160] [--spp 512] [--frames 16] [--repeats 31] [--out DIR]
 //! [--threads 2] [--seed 1]`; the adapter is chosen by `FILTERED_NDF_GPU_BACKEND=vulkan|gl|any`
 //! (as the conformance harness: a real GPU first; Mesa's lavapipe or llvmpipe without one).
@@ -20,31 +20,12 @@
 //! every pixel of its quads (beyond its silhouette too, as helper lanes do for a triangle) and
 //! discards the pixels that see something else, so a quad difference never mixes objects.
 
-// The CPU demonstration's modules: the one scene description, its camera, its methods and
-// renderer (the reference, and its own frames to compare with), its images and plots. Some
-// of their items serve the CPU demonstration only.
-#[path = "../highlights/camera.rs"]
-mod camera;
-#[path = "../highlights/image_out.rs"]
-#[allow(dead_code)]
-mod image_out;
-#[path = "../highlights/methods.rs"]
-#[allow(dead_code)]
-mod methods;
-#[path = "../highlights/metrics.rs"]
-#[allow(dead_code)]
-mod metrics;
-#[path = "../highlights/parallel.rs"]
-mod parallel;
-#[path = "../highlights/peaks.rs"]
-mod peaks;
-#[path = "../highlights/plot.rs"]
-mod plot;
-#[path = "../highlights/render.rs"]
-#[allow(dead_code)]
-mod render;
-#[path = "../highlights/scene.rs"]
-mod scene;
+// The CPU demonstration's modules (the library of this crate): the one scene description, its
+// camera, its methods and renderer (the reference, and its own frames to compare with), its
+// images and plots.
+use filtered_ndf_demo::{
+    camera, image_out, methods, metrics, parallel, peaks, plot, render, scene,
+};
 
 mod frame;
 mod gpu;

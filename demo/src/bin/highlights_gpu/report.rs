@@ -18,7 +18,7 @@ use rayon::prelude::*;
 use std::fmt::Write as _;
 
 /// Resolution divisor and reference sample divisor of the temporal frames: the CPU demo's
-/// (`examples/highlights/temporal.rs`), so that both temporal tables describe the same frames.
+/// (`filtered_ndf_demo::temporal`), so that both temporal tables describe the same frames.
 const DOWNSCALE: u32 = 2;
 const SPP_DIVISOR: usize = 4;
 
@@ -404,7 +404,7 @@ pub fn markdown(o: &Options, gpu: &Gpu, compile_s: f64, s: &Still, t: &Temporal)
         t.height
     )
     .unwrap();
-    writeln!(md, "The CPU demo's metrics (`examples/highlights/metrics.rs`) on the GPU frames, against the CPU reference ({} spp still, {} spp temporal): FLIP LDR / HDR means (maps `flip-gpu-*.png`), flicker error and energy over the reference sequence's energy, the peak's frame-to-frame variation, the specular term's error (the GPU frame less the CPU quad frame's ambient, diffuse and sky), false glints (display > {} where the reference < {}) and lost highlights (the reverse), HDR RMSE; the verdict against unfiltered of the same NDF (forward).\n", o.spp, t.spp, metrics::BRIGHT, metrics::DARK).unwrap();
+    writeln!(md, "The CPU demo's metrics (`filtered_ndf_demo::metrics`) on the GPU frames, against the CPU reference ({} spp still, {} spp temporal): FLIP LDR / HDR means (maps `flip-gpu-*.png`), flicker error and energy over the reference sequence's energy, the peak's frame-to-frame variation, the specular term's error (the GPU frame less the CPU quad frame's ambient, diffuse and sky), false glints (display > {} where the reference < {}) and lost highlights (the reverse), HDR RMSE; the verdict against unfiltered of the same NDF (forward).\n", o.spp, t.spp, metrics::BRIGHT, metrics::DARK).unwrap();
     let rows: Vec<LeadRow> = s
         .rows
         .iter()

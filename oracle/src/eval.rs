@@ -1,5 +1,5 @@
-//! The oracle's evaluator: one JSON object in, one JSON object out. Shared by
-//! `examples/oracle/main.rs` and the end-to-end test `tests/oracle.rs` (one source).
+//! The oracle's evaluator: one JSON object in, one JSON object out, for the binary `oracle`,
+//! its end-to-end test `tests/oracle.rs` and the GPU backend of `filtered-ndf-gpu`.
 //!
 //! Layout: [`OPS`] is the dispatcher and the documentation at once (every op is one entry with
 //! its arguments, equation and handlers, so an op cannot exist without its `--list` text);
@@ -7,10 +7,7 @@
 //! compiled once per precision into [`p32`] and [`p64`] as the library compiles its own
 //! modules.
 
-#[path = "args.rs"]
-pub(crate) mod args;
-
-use args::Precision;
+use crate::args::{self, Precision};
 use serde_json::{Value, json};
 use std::io::{BufRead, Write};
 
@@ -78,7 +75,7 @@ point:      at most one of \"m\" (unit micronormal: D), \"slope\" (P22), \"w\" (
 backends:   --backend cpu (the default) evaluates with the library; --backend gpu answers every
             op that has a shader through the WGSL modules of shaders/ in f32, batched, after
             the end of input (ops without one answer an error naming the op):
-            cargo run --release -p filtered-ndf-gpu --bin oracle -- --backend gpu";
+            cargo run --release -p filtered-ndf-gpu --bin oracle-gpu -- --backend gpu";
 
 /// Every op: the dispatcher and `--list` (see [`list`]).
 pub const OPS: &[OpInfo] = &[
@@ -343,7 +340,7 @@ macro_rules! typed_ops {
     ($module:ident, $precision:ident) => {
         #[doc = concat!("The ops evaluated in `filtered_ndf::", stringify!($precision), "`.")]
         pub mod $module {
-            use super::args::*;
+            use crate::args::*;
             use filtered_ndf::$precision as p;
             include!("typed.rs");
             include!("ops_ndf.rs");

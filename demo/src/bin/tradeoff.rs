@@ -10,7 +10,7 @@
 //!   Gaussian-filtered GGX (`GaussianFilteredGgx`, the mixture identity with a proven bound of
 //!   1.1e-11 relative, tested against 2-D quadrature of the convolution in
 //!   `tests/gaussian_ggx.rs`), for Beckmann its closed form `A + 2 Sigma` (KHPL16 eq. 15).
-//! - Inputs: the seeded realistic cases of `benches/common` (the benchmarks use the same),
+//! - Inputs: the seeded realistic cases of `filtered_ndf::testing::shading` (the benchmarks use the same),
 //!   plus extremes (roughness 1e-3 and 1e-4 with tiny footprints, grazing half vectors,
 //!   footprints of slope 1).
 //! - Kernels run in f32 (the shading precision) with the papers' default clamps. Deferred
@@ -19,8 +19,7 @@
 //! - Cost: wall time per evaluation over the whole case set, in one process (ratios between
 //!   rows are what matter; `cargo bench` has the criterion figures).
 
-#[path = "../benches/common/mod.rs"]
-mod common;
+use filtered_ndf::testing::shading as common;
 
 use filtered_ndf::f32 as p;
 use filtered_ndf::f64 as q;

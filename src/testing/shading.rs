@@ -1,9 +1,8 @@
-//! Seeded, realistic inputs shared by every benchmark and by the trade-table example
-//! (`examples/tradeoff.rs` includes this file), so that cost and error are measured on the
-//! same distribution.
-#![allow(dead_code)]
+//! Seeded, realistic shading inputs shared by every benchmark and by the trade table
+//! (`filtered-ndf-demo`'s `tradeoff`), so that cost and error are measured on the same
+//! distribution.
 
-pub use filtered_ndf::testing::rng::SplitMix64 as Rng;
+pub use super::rng::SplitMix64 as Rng;
 
 /// One shading situation a renderer meets: a material, a half vector and a pixel footprint.
 #[derive(Clone, Copy, Debug)]

@@ -1,11 +1,9 @@
-//! End-to-end test of the oracle example's evaluator on a file of queries, bad lines
+//! End-to-end test of the oracle's evaluator on a file of queries, bad lines
 //! included, and value tests of every op. Expected values are closed forms written out here or
 //! f64 quadrature (`filtered_ndf::testing::quadrature`), never the crate's own output; each
 //! tolerance states why it is that size.
 
-#[path = "../examples/oracle/eval.rs"]
-#[allow(dead_code)]
-mod eval;
+use filtered_ndf_oracle::eval;
 
 use filtered_ndf::testing::quadrature::integrate_plane;
 use filtered_ndf::testing::quadrature::{Tolerance, integrate, integrate_2d, integrate_line};

@@ -71,7 +71,7 @@ impl Camera {
     }
 }
 
-/// What the GPU demonstration (`examples/highlights_gpu`) needs of the camera: its rays as
+/// What the GPU demonstration (`highlights_gpu`) needs of the camera: its rays as
 /// a linear function of the pixel, and the projection of world points (for scissor rects).
 #[allow(dead_code)] // the CPU demonstration traces `Camera::ray` instead
 impl Camera {

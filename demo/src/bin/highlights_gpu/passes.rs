@@ -193,8 +193,11 @@ impl Renderer {
     pub fn new(gpu: &Gpu) -> Result<Self, String> {
         let mut composer = filtered_ndf_gpu::modules::composer()?;
         for (source, path) in [
-            (SCENE_WGSL, "examples/highlights_gpu/shaders/scene.wgsl"),
-            (SHADING_WGSL, "examples/highlights_gpu/shaders/shading.wgsl"),
+            (SCENE_WGSL, "demo/src/bin/highlights_gpu/shaders/scene.wgsl"),
+            (
+                SHADING_WGSL,
+                "demo/src/bin/highlights_gpu/shaders/shading.wgsl",
+            ),
         ] {
             let added = composer.add_composable_module(ComposableModuleDescriptor {
                 source,
