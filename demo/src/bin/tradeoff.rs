@@ -2,7 +2,7 @@
 //! filtered NDF and its cost per evaluation, as a markdown table and
 //! an SVG scatter plot (error vs. cost, log-log).
 //!
-//! `cargo run --release --example tradeoff [-- --cases N] [--out DIR]`
+//! `cargo run --release -p filtered-ndf-demo --bin tradeoff [-- --cases N] [--out DIR]`
 //!
 //! - The exact filtered NDF is the GGX (or Beckmann) slope density convolved with the
 //!   Gaussian pixel footprint `Sigma = 0.25 (dh_u dh_u^T + dh_v dh_v^T)` (KHPL16 eq. 12-13,
