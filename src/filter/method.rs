@@ -83,7 +83,7 @@ impl<R: Roughness> Filterable for Beckmann<R> {}
 /// For Beckmann this is the exact convolution of the lobe with the kernel (a Beckmann lobe is
 /// a Gaussian of slopes with covariance `A / 2`). For GGX it is TK19's approximation: the GGX
 /// of roughness `A + 2 Sigma` (its error against the exact Gaussian-filtered GGX is in the
-/// trade table, [`crate::tables`]).
+/// trade table, `docs/tradeoff.md` in the repository).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Gaussian {
     /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
