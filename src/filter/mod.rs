@@ -47,7 +47,7 @@ pub(crate) use exp_poly::{
 pub use gaussian::{gaussian, gaussian_with_det_clamp};
 pub(crate) use gaussian::{gaussian_entries, gaussian_sanitized};
 pub use gaussian_ggx::GaussianFilteredGgx;
-pub(crate) use gaussian_ggx_quad::{STATE_F, TrapezoidState, beckmann_lambda_fast};
+pub(crate) use gaussian_ggx_quad::{TrapezoidState, beckmann_lambda_fast};
 pub use lean::{LeanMoments, lean};
 pub use method::{
     ExactGaussian, Filterable, Gaussian, Method, Projected, Proxy, Rect, RectFilteredGgx,

@@ -69,11 +69,13 @@
 //! scalar `f32` path is within about one ulp of `D`. `tests/batch_bounds.rs`
 //! (`d_rect_against_scalar_f64`) checks each element against the `f64` scalar path: worst
 //! `0.12` of the bound, `11.4 u` relative. This is the price of the speed (the lanes run at
-//! twice the `f64` lanes' width; figures in `batch::d_rect`'s docs).
+//! twice the `f64` lanes' width; figures in `docs/batch_measurements.md`).
 
-use super::super::filter::rect::{GL2_X, GL4_W, GL4_X, GL6_W, GL6_X, GL8_W, GL8_X, GL10_W, GL10_X};
-use super::super::ndf::roughness::AxisAligned;
-use super::{F, Vec2, Vec3};
+use super::super::super::super::filter::rect::{
+    GL2_X, GL4_W, GL4_X, GL6_W, GL6_X, GL8_W, GL8_X, GL10_W, GL10_X,
+};
+use super::super::super::super::ndf::roughness::AxisAligned;
+use super::super::super::super::{F, Vec2, Vec3};
 use crate::math::Real;
 
 /// The lane tiers' upper ratios `H / L`, squared: 2, 4, 6, 8 and 10 points (module docs).

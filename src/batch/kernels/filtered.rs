@@ -1,16 +1,17 @@
-//! The front door's methods over slices: each half vector with its own pixel footprint, one
-//! material and one method for the whole batch.
+//! The Gaussian-filtered NDFs over slices (the front door's `Gaussian` method: KHPL16's exact
+//! filtered Beckmann, TK19's `A + 2 Sigma` for GGX): each half vector with its own pixel
+//! footprint through the clamp rules, one material for the whole batch.
 
-use super::super::filter::ProjectedBase;
-use super::super::kernel::{ClampRules, Narrow};
-use super::super::ndf::Ndf;
-use super::super::ndf::beckmann::Beckmann;
-use super::super::ndf::ggx::Ggx;
-use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
-use super::lane_math::{K_MAX, WIDE, exp_neg_times};
-use super::lanes::{Kernel, Mid, run};
+use super::super::super::kernel::{ClampRules, Narrow};
+use super::super::super::ndf::Ndf;
+use super::super::super::ndf::beckmann::Beckmann;
+use super::super::super::ndf::ggx::Ggx;
+use super::super::super::ndf::roughness::{Roughness, RoughnessMatrix};
+use super::super::super::{F, PI, Vec2, Vec3};
+use super::super::columns::{Footprints, footprint, footprint_columns};
+use super::super::engine::lane_math::{K_MAX, WIDE, exp_neg_times};
+use super::super::engine::{Kernel, Mid, run};
 use super::ndf::LaneD;
-use super::{F, Footprints, PI, Vec2, Vec3, footprint, footprint_columns};
 use core::marker::PhantomData;
 
 per_form! {
@@ -18,13 +19,13 @@ per_form! {
     /// for each half vector and footprint: `out[i] = Beckmann::new(rules.filter_gaussian(*r,
     /// fp_i, sigma)).d(h_i)` ([`ClampRules::filter_gaussian`]: footprint extent, kernel
     /// roughness `kappa`, determinant clamp; [`ClampRules::NONE`] for none), `sigma` the pixel
-    /// filter's standard deviation in pixels (e.g. [`super::super::kernel::SIGMA_PIXEL`]).
+    /// filter's standard deviation in pixels (e.g. [`super::super::super::kernel::SIGMA_PIXEL`]).
     /// Returns the number of elements written. Allocates nothing.
     ///
     /// In `f32` the first lane builds `A'` in `f32` arithmetic (the `kappa` clamp by the
     /// footprint's own determinant and one division), within the module table's bound of the
-    /// `f64` pipeline rather than bit for bit with the scalar route: 1.6 times the unfiltered
-    /// `beckmann_d` instead of 3.3 (module docs).
+    /// `f64` pipeline rather than bit for bit with the scalar route (one division and one
+    /// square root fewer per element than the scalar route's matrix; module docs).
     #[allow(clippy::too_many_arguments)]
     pub fn beckmann_d_filtered(
         r: &R,
@@ -48,8 +49,7 @@ per_form! {
     ///
     /// In `f32` the first lane is Beckmann's narrow one (`A'`, `x` and `n` in `f32` arithmetic),
     /// then `D = n / (pi (1 + x)^2)`: within the module table's bound of the `f64` pipeline rather
-    /// than bit for bit with the scalar route (on an Intel AVX-512 machine 1.8 ns an element
-    /// instead of 5.2 to 5.7; AVX2 3.6 instead of 7.2, SSE2 5.0 instead of 12.4).
+    /// than bit for bit with the scalar route.
     #[allow(clippy::too_many_arguments)]
     pub fn ggx_d_filtered(
         r: &R,
@@ -62,74 +62,6 @@ per_form! {
         out: &mut [F],
     ) -> usize {
         d_filtered::<_, Ggx<RoughnessMatrix>>(r, rules, sigma, [hx, hy, hz], fp, out)
-    }
-}
-
-per_form! {
-    /// GGX filtered in projected space (TK21 Listing 1, [`super::ggx_d_projected`]) through the
-    /// clamped pipeline for each half vector and footprint: `out[i] =
-    /// Ggx::new(rules.filter_projected(*r, fp_i, sigma)).d(h_i)`
-    /// ([`ClampRules::filter_projected`]: footprint extent, kernel roughness `kappa`,
-    /// determinant clamp; the front door's `Projected` method), **bit for bit**. Returns the
-    /// number of elements written. Allocates nothing.
-    ///
-    /// One lane (the projected filter's kernel part runs in `f64` in both precisions, so an `f32`
-    /// first tier would gain nothing): the rules' fast paths and the eigenvalue clamp's common
-    /// case (`ClampRules::filter_projected_entries_lane`, the kernel's sanity decided exactly),
-    /// the kernel part on the lobe's part computed once per batch (`filter::ProjectedBase`,
-    /// shared with the scalar path), the matrix where its determinant clamp is inactive and GGX's
-    /// lane `D`; every other element flagged and evaluated by the scalar route. As
-    /// [`super::ggx_d_projected`], it runs its lanes with 256-bit vectors or wider only (the
-    /// scalar route on the SSE2 baseline).
-    #[allow(clippy::too_many_arguments)]
-    pub fn ggx_d_filtered_projected(
-        r: &R,
-        rules: &ClampRules,
-        sigma: F,
-        hx: &[F],
-        hy: &[F],
-        hz: &[F],
-        fp: Footprints<'_>,
-        out: &mut [F],
-    ) -> usize {
-        let k = FilteredProjected {
-            r: *r,
-            base: ProjectedBase::new(*r),
-            rules: *rules,
-            sigma,
-        };
-        run(&k, footprint_columns([hx, hy, hz], fp), [out])
-    }
-}
-
-/// `D` of `Ggx::new(rules.filter_projected(r, fp, sigma))`.
-struct FilteredProjected<R> {
-    r: R,
-    base: ProjectedBase,
-    rules: ClampRules,
-    sigma: F,
-}
-
-impl<R: Roughness> Kernel<7, 1> for FilteredProjected<R> {
-    // As `ggx_d_projected`'s lane: both branches of the projected filter's clamps in `f64`.
-    const WIDE_ONLY: bool = true;
-
-    #[inline(always)]
-    fn lane(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> ([F; 1], bool) {
-        let fp = footprint(ux, uy, vx, vy);
-        let (e, tau, ok) = self
-            .rules
-            .filter_projected_entries_lane(self.r, &self.base, fp, self.sigma);
-        let (v, slow) = d_entries_exact::<Ggx<RoughnessMatrix>>(e, tau, Vec3::new(hx, hy, hz));
-        ([v], slow | !ok)
-    }
-
-    // Always inlined, as `Filtered::scalar` (the footprint through memory stalls).
-    #[inline(always)]
-    fn scalar(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> [F; 1] {
-        let fp = footprint(ux, uy, vx, vy);
-        let a = self.rules.filter_projected(self.r, fp, self.sigma);
-        [Ggx::new(a).d(Vec3::new(hx, hy, hz))]
     }
 }
 
@@ -229,7 +161,7 @@ impl FilteredNdf for Beckmann<RoughnessMatrix> {
 /// products, the scalar path's matrix, the NDF's lane `D`). What the second flags goes to the
 /// scalar route. In `f64` the first lane alone (the two would be the same).
 ///
-/// [`Covariance::is_sane_sure`]: super::super::kernel::Covariance::is_sane_sure
+/// [`Covariance::is_sane_sure`]: super::super::super::kernel::Covariance::is_sane_sure
 #[inline]
 fn d_filtered<R: Roughness, N: FilteredNdf>(
     r: &R,
@@ -239,7 +171,7 @@ fn d_filtered<R: Roughness, N: FilteredNdf>(
     fp: Footprints<'_>,
     out: &mut [F],
 ) -> usize {
-    let k = Filtered::<R, N> {
+    let kernel = Filtered::<R, N> {
         r: *r,
         rules: *rules,
         sigma,
@@ -247,7 +179,7 @@ fn d_filtered<R: Roughness, N: FilteredNdf>(
         tau: rules.det_clamp_wide(*r),
         ndf: PhantomData,
     };
-    run(&k, footprint_columns([hx, hy, hz], fp), [out])
+    run(&kernel, footprint_columns([hx, hy, hz], fp), [out])
 }
 
 /// `D` of `N(rules.filter_gaussian(r, fp, sigma))`.
@@ -284,21 +216,18 @@ impl<R: Roughness, N: FilteredNdf> Filtered<R, N> {
 }
 
 impl<R: Roughness, N: FilteredNdf> Kernel<7, 1> for Filtered<R, N> {
-    // In `f32` the tiered lanes pay on SSE2 too (measured, `FILTERED_NDF_SIMD=sse2-lanes`
-    // against the scalar loop on the bench's realistic inputs: 1.3 times as fast for Beckmann,
-    // 1.5 for GGX); in `f64` (two lanes) they do not (0.98 and 0.86), so there the baseline
-    // runs the scalar path.
+    // In `f32` the tiered lanes pay on SSE2 too; in `f64` (two lanes per 128-bit vector) they
+    // do not, so there the baseline runs the scalar path (`docs/batch_measurements.md`).
     const WIDE_ONLY: bool = WIDE;
     // The second lane takes what the first cannot decide or evaluate in `f32` alone (a
-    // correlated filtered matrix, `rho^2 > 3/4`; a nearly singular kernel): none of the
-    // bench's elements (its lobe `alpha = (0.1, 0.3)`), 7 % of those of an isotropic
-    // `alpha = 0.01` under the bench's footprints. In `f64` the two lanes would be the same.
+    // correlated filtered matrix, `rho^2 > 3/4`; a nearly singular kernel): rare for
+    // realistic footprints, more frequent for smooth lobes. In `f64` the two lanes would be
+    // the same.
     const TIERED: bool = !WIDE;
 
-    // The narrow lanes in two loops (`Kernel::STAGED`): the filtered matrix, then `D`
-    // (measured, alternating: Beckmann 4.7 against 6.2 us per 4096 elements; TK19 GGX on an
-    // Intel AVX-512 machine 1.8 against 3.55 ns per element. Its exact first lane, before it
-    // had a narrow one, so split measured no faster: 9.44 against 9.48 us).
+    // The narrow lanes in two loops (`Kernel::STAGED`): the filtered matrix, then `D`. Each
+    // half has a division and a square root in its dependency chain; split, the core overlaps
+    // twice the elements.
     const STAGED: bool = !WIDE && N::NARROW;
 
     /// The narrow lane's first half: the entries of `A'`
@@ -330,7 +259,7 @@ impl<R: Roughness, N: FilteredNdf> Kernel<7, 1> for Filtered<R, N> {
     }
     // Always inlined: out of line, the footprint travels through memory and is read back
     // with wider loads than it was stored with (a store-forwarding stall, see
-    // `ClampRules::filter_gaussian`): 2.3 times the scalar loop's time on SSE2.
+    // `ClampRules::filter_gaussian`).
     #[inline(always)]
     fn scalar(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> [F; 1] {
         let fp = footprint(ux, uy, vx, vy);

@@ -1,7 +1,7 @@
 //! The exact Gaussian-filtered GGX ([`GaussianFilteredGgx`], KHPL16 section 5.2's filter
 //! computed by the mixture identity) over slices of micronormals for one lobe.
 //!
-//! Two lanes ([`super::lanes::Kernel::TIERED`]), each the scalar `D`'s own steps
+//! Two lanes (a tiered kernel of the engine), each the scalar `D`'s own steps
 //! (`GaussianFilteredGgx::d_lane`: the checks as selects, the `f64` whitening, and `J` by the
 //! rule the scalar path picks, shared through `gaussian_ggx_quad::rule`): the first holds the
 //! far-tail series and the fixed 8-node (`f32`) / 12-node (`f64`) Gauss-Laguerre rule; the
@@ -10,26 +10,25 @@
 //! 0.0177 (1 + q)`, `q` the squared whitened slope; `0.01` in `f64`) are gathered and run by
 //! the second, the trapezoid rule's first 3 chunks of 8 nodes (`f32`; 9 of 4 in `f64`) as
 //! straight-line code with the loop's truncation test as a select. For one lobe the second
-//! lane runs in two stages ([`super::lanes::Kernel::FULL_STAGED`]): the set-up and the first
-//! 2 chunks (`f32`; 7 in `f64`) for every element, then the set-up again and the last chunk
-//! for those not stopped by then, gathered (22 % of the bench's heavy kernel's trapezoid
-//! elements in `f32`): 30.7-31.0 against 33.2-33.9 ns per element in `f32`, 86-89 against
-//! 91-98 in `f64` (AVX-512, alternating the builds). With the lobe built per element
-//! ([`ggx_d_filtered_exact`]) the second stage would build it again, which costs more than
-//! it saves: that lane stays in one stage. What the trapezoid rule
-//! needs longer for (kernels of several lobe variances) is flagged and evaluated by the
-//! scalar `D`. On SSE2 the second lane does not pay (0.96 and 0.88 times the scalar loop's
-//! speed in `f32` and `f64`) and the driver leaves those elements to the scalar `D` there.
+//! lane runs in two stages (the engine's staged second lane): the set-up and the first 2
+//! chunks (`f32`; 7 in `f64`) for every element, then the set-up again and the last chunk for
+//! those not stopped by then, gathered, so that the elements that stop early do not compute
+//! the longest chunk count. With the lobe built per element ([`ggx_d_filtered_exact`]) the
+//! second stage would build it again, which costs more than it saves: that lane stays in one
+//! stage. What the trapezoid rule needs longer for (kernels of several lobe variances) is
+//! flagged and evaluated by the scalar `D`. On SSE2 the second lane does not pay and the
+//! driver leaves those elements to the scalar `D` there (`docs/batch_measurements.md`).
 
-use super::super::filter::{GaussianFilteredGgx, TrapezoidState};
-use super::super::kernel::ClampRules;
-use super::super::ndf::Ndf;
-use super::super::ndf::roughness::Roughness;
-use super::lanes::{Kernel, run};
+use super::super::super::filter::{GaussianFilteredGgx, TrapezoidState};
+use super::super::super::kernel::ClampRules;
+use super::super::super::ndf::Ndf;
+use super::super::super::ndf::roughness::Roughness;
+use super::super::super::{F, Vec3};
+use super::super::columns::{Footprints, footprint, footprint_columns};
+use super::super::engine::{Carry, Kernel, run};
 use super::ndf::{D, LaneD};
-use super::{F, Footprints, Vec3, footprint, footprint_columns};
 
-/// [`Ndf::d`](super::super::ndf::Ndf::d) of the exact Gaussian-filtered GGX lobe `lobe` for
+/// [`Ndf::d`](super::super::super::ndf::Ndf::d) of the exact Gaussian-filtered GGX lobe `lobe` for
 /// each micronormal `m_i = (mx[i], my[i], mz[i])`: `out[i] = lobe.d(m_i) = P22_Sigma(s(m)) / m_z^4` per steradian,
 /// `P22_Sigma = J / (pi sqrt(det A))` the GGX slope density of roughness `A` convolved with
 /// the lobe's kernel `N(0, Sigma)` (KHPL16 section 5.2, eq. 15 per mixture component; module
@@ -38,14 +37,10 @@ use super::{F, Footprints, Vec3, footprint, footprint_columns};
 /// over many half vectors); build it once with [`GaussianFilteredGgx::new`]. Returns the
 /// number of elements written (the shortest slice). Allocates nothing.
 ///
-/// Speed (`benches/batch.rs`, f32, AVX-512; the README's batch table has the figures): about
-/// 6 times the scalar loop for a lightly filtered lobe (every element on the far tail and
-/// Gauss-Laguerre), 3.4 to 3.9 times for a lobe whose kernel is as wide as the lobe (`2 l1 =
-/// 1`: 71 % of the bench's half vectors on the trapezoid rule; a 16-core and a 2-core Xeon).
 /// The scalar path already runs its nodes as vectors (a loop over 8 nodes), so the lanes gain
-/// the wider vectors, the set-up in lanes
-/// and no branches; a kernel of several lobe variances, whose trapezoid rule runs longer than
-/// the lane's chunks, falls back to the scalar path for those elements.
+/// the wider vectors, the set-up in lanes and no branches; a kernel of several lobe
+/// variances, whose trapezoid rule runs longer than the lane's chunks, falls back to the
+/// scalar path for those elements (speed: `docs/batch_measurements.md`).
 pub fn gaussian_filtered_ggx_d(
     lobe: &GaussianFilteredGgx,
     mx: &[F],
@@ -80,13 +75,14 @@ impl LaneD for GaussianFilteredGgx {
     /// those not stopped by then.
     const FULL_STAGED: bool = true;
     #[inline(always)]
-    fn d_full_one(&self, m: Vec3) -> ((F, bool), bool, TrapezoidState) {
-        let (v, slow, more, st) = self.d_trapezoid_first(m);
-        ((v, slow), more, st)
+    fn d_full_one(&self, m: Vec3) -> ((F, bool), bool, Carry) {
+        // The trapezoid rule's partial sums are one `Carry` (`STATE_F = CARRY` values).
+        let (v, slow, more, state) = self.d_trapezoid_first(m);
+        ((v, slow), more, state.f)
     }
     #[inline(always)]
-    fn d_full_two(&self, m: Vec3, st: TrapezoidState) -> (F, bool) {
-        self.d_trapezoid_rest(m, &st)
+    fn d_full_two(&self, m: Vec3, carry: Carry) -> (F, bool) {
+        self.d_trapezoid_rest(m, &TrapezoidState { f: carry })
     }
 }
 
@@ -113,12 +109,12 @@ per_form! {
         fp: Footprints<'_>,
         out: &mut [F],
     ) -> usize {
-        let k = ExactFiltered {
+        let kernel = ExactFiltered {
             r: *r,
             rules: *rules,
             sigma,
         };
-        run(&k, footprint_columns([hx, hy, hz], fp), [out])
+        run(&kernel, footprint_columns([hx, hy, hz], fp), [out])
     }
 }
 
@@ -147,8 +143,7 @@ impl<R: Roughness> ExactFiltered<R> {
 
 impl<R: Roughness> Kernel<7, 1> for ExactFiltered<R> {
     // The tiers of `gaussian_filtered_ggx_d` (its `LaneD` constants). On SSE2 the first lane,
-    // with the lobe built per element in `f64`, is at par with the scalar route (0.95 times
-    // the scalar loop's speed in `f32`; the scalar route through the driver measured 0.93).
+    // with the lobe built per element in `f64`, is at par with the scalar route.
     const TIERED: bool = true;
     const FULL_COVERS: bool = false;
     const FULL_WIDE_ONLY: bool = true;
@@ -165,8 +160,8 @@ impl<R: Roughness> Kernel<7, 1> for ExactFiltered<R> {
         let (v, slow) = lobe.d_lane::<true>(Vec3::new(hx, hy, hz));
         ([v], slow | !ok)
     }
-    // Not `FULL_STAGED`: its second stage would build the element's lobe again, which cost
-    // more than the chunks it saves (36.7 against 36.0 ns per element, `f32`, AVX-512).
+    // Not `FULL_STAGED`: its second stage would build the element's lobe again, which costs
+    // more than the chunks it saves.
     #[inline(always)]
     fn second(&self, [hx, hy, hz, ux, uy, vx, vy]: [F; 7]) -> bool {
         self.lobe(ux, uy, vx, vy)

@@ -1,12 +1,13 @@
 //! The deferred presets over slices: one [`KernelConvention`] (a preset of
-//! [`presets`](super::super::filter::presets) or any other) applied to arrays of material
+//! [`presets`](super::super::super::filter::presets) or any other) applied to arrays of material
 //! roughness and world-space normal differences.
 
-use super::super::filter::deferred::{Domain, KernelConvention, Norm};
-use super::super::ndf::roughness::Isotropic;
-use super::lane_math::{Power, pow_lane};
-use super::lanes::{Kernel, run};
-use super::{F, Vec3, Vec3s};
+use super::super::super::filter::deferred::{Domain, KernelConvention, Norm};
+use super::super::super::ndf::roughness::Isotropic;
+use super::super::super::{F, Vec3};
+use super::super::columns::Vec3s;
+use super::super::engine::lane_math::{Power, pow_lane};
+use super::super::engine::{Kernel, run};
 
 /// [`KernelConvention::filter`] for each material roughness `alpha[i]` and pair of
 /// world-space normal differences `dn_u_i = (dn_u.x[i], ...)`, `dn_v_i` (G-buffer
@@ -18,21 +19,21 @@ use super::{F, Vec3, Vec3s};
 /// kernel, as the scalar function; never NaN.
 ///
 /// **Bit for bit** with the scalar function for conventions with `exponent = 1` (every preset
-/// but [`UNREAL`](super::super::filter::presets::UNREAL) and
-/// [`BABYLON`](super::super::filter::presets::BABYLON)): the lane is the scalar formula, its
-/// branches as selects. With another exponent, `norm^exponent` is the lane power of
-/// `lane_math.rs` in place of libm's `powf` (relative, in `f64` `1.6e-14 + 3 eps_64 |y|`, `y =
+/// but [`UNREAL`](super::super::super::filter::presets::UNREAL) and
+/// [`BABYLON`](super::super::super::filter::presets::BABYLON)): the lane is the scalar formula, its
+/// branches as selects. With another exponent, `norm^exponent` is the engine's lane power
+/// `pow_lane` in place of libm's `powf` (relative, in `f64` `1.6e-14 + 3 eps_64 |y|`, `y =
 /// exponent ln(norm)`; in `f32`, computed in `f32` arithmetic, `(5 + 3 |exponent|) u`, `u =
-/// 2^-24`, for any norm: `6 u` for Unreal's `0.333`, where the `f64` power had held the
-/// loop to half the vector width and cost twice the time), so the widening `k = scale
+/// 2^-24`, for any norm: `6 u` for Unreal's `0.333`; in `f32` arithmetic so that no `f64`
+/// value holds the loop to half the vector width), so the widening `k = scale
 /// norm^exponent + bias` differs from the scalar one by that plus libm's ulp, and
 /// `alpha_bar` by what the domain's `to_alpha` makes of it (the perceptual domain:
-/// `alpha = p^2`, twice the relative error of `p`); see the module docs of [`super`].
+/// `alpha = p^2`, twice the relative error of `p`); see the module docs of `batch`.
 /// Elements whose norm leaves the lanes' domain (non-finite or overflowing Gram matrix for
 /// the eigenvalue norm, a NaN, infinite or subnormal norm before a power) are evaluated by
 /// the scalar function. On the SSE2 baseline (no `dispatch`, or a CPU without AVX2) every
-/// element runs the scalar function (the lanes measured no faster there; see the module docs
-/// of [`super`]), so the results there equal it bit for bit for every exponent. Returns the
+/// element runs the scalar function (the lanes do not pay there; see the module docs of
+/// `batch`), so the results there equal it bit for bit for every exponent. Returns the
 /// number of elements written. Allocates nothing.
 pub fn deferred_filter(
     conv: &KernelConvention,
@@ -96,9 +97,8 @@ struct Deferred<const D: usize, const N: usize, const POW: bool> {
 }
 
 impl<const D: usize, const N: usize, const POW: bool> Kernel<7, 1> for Deferred<D, N, POW> {
-    // Measured on the SSE2 baseline (three `--quick` runs, scalar loop / batch): TK19 trace
-    // 0.8x-1.5x, TK19 max 0.9x-1.2x, Unreal 0.4x-0.5x (its power in `f64`, two lanes); with
-    // AVX-512 6x-34x. The lanes pay only with 256-bit vectors or wider.
+    // The lanes pay only with 256-bit vectors or wider: on SSE2 they run at or below the
+    // scalar loop's speed (`docs/batch_measurements.md`).
     const WIDE_ONLY: bool = true;
 
     /// The scalar steps ([`Norm::eval_lane`], [`KernelConvention::widening_of`],

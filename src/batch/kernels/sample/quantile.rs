@@ -30,12 +30,12 @@
 //! k_lane_error(hi)) u + F::MIN_POSITIVE / K(hi)` (the scalar path's bound has the same form
 //! with libm's errors: `(x^2 / 2 + 4) eps_64`).
 
-use super::super::filter::exp_f64;
-use super::super::sampling::beckmann::{
+use super::super::super::super::filter::exp_f64;
+use super::super::super::super::sampling::beckmann::{
     ERFINV_CENTRAL, ERFINV_TAIL, INV_SQRT_PI, X_MAX, bracket_top, cdf_terms_from,
     residual_tolerance,
 };
-use super::lane_math::{LN2_HI, LN2_LO, atan2_upper_lane, ln_parts_f64};
+use super::super::super::engine::lane_math::{LN2_HI, LN2_LO, atan2_upper_lane, ln_parts_f64};
 use crate::math as m;
 
 /// Cephes `ndtr.c`: `erf(x) = x T(x^2) / U(x^2)` for `|x| < 1` (`U` monic).

@@ -1,20 +1,82 @@
-//! The natural logarithm in lanes (the Beckmann `D(m) m_z` sampler's `ln(1 - u1)`), on the
-//! reduction `x = m 2^k`, in `f64` the one shared with [`pow_lane`](super::lane_math::pow_lane)
-//! (`lane_math::ln_parts_f64`), in `f32` its `f32` form: plain arithmetic, bit casts and
-//! selects, no calls, so the loop over elements vectorises.
-//!
-//! | function | replaces | bound (relative) | where tested |
-//! |---|---|---|---|
-//! | [`ln_lane`] | libm `ln` | `4 eps_64` in `f64`, `3 eps_32` in `f32` (each computed in its precision) | unit test below |
+//! The natural logarithm in lanes (the Beckmann `D(m) m_z` sampler's `ln(1 - u1)`), and the
+//! reduction `x = m 2^k` it shares with [`pow_lane`](super::pow_lane): plain arithmetic, bit
+//! casts and selects, no calls, so the loop over elements vectorises.
 
-use super::super::filter::{LN2_HI_F32, LN2_LO_F32};
-use super::F;
-use super::lane_math::{LN2_HI, LN2_LO, WIDE, ln_parts_f32, ln_parts_f64};
+use super::super::super::super::F;
+use super::super::super::super::filter::{LN2_HI_F32, LN2_LO_F32};
+use super::WIDE;
 use crate::math::Real;
+
+/// `ln 2` split: the high part has trailing zeros, so `k LN2_HI` is exact for `|k| < 2^11`.
+pub(crate) const LN2_HI: f64 = 0.693_147_180_369_123_8; // 0x3fe62e42fee00000.
+/// `ln 2 - LN2_HI`.
+pub(crate) const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
+
+/// The logarithm's reduction shared by [`pow_lane`](super::pow_lane) and [`ln_lane`]: `x = m 2^k` with `m` in
+/// `[sqrt(1/2), sqrt(2))`, returns `(k, ln m)`, `ln m = 2 atanh(s)`, `s = (m - 1) / (m + 1)`
+/// (`|s| <= 0.1716`) by its series to `s^21` (truncation below `2.3e-17` relative). For a
+/// normal positive finite `x` (elsewhere garbage: the callers flag it).
+#[inline(always)]
+pub(crate) fn ln_parts_f64(x: f64) -> (f64, f64) {
+    // 1 / (2 j + 1), j = 1..10.
+    const C: [f64; 10] = [
+        1.0 / 3.0,
+        1.0 / 5.0,
+        1.0 / 7.0,
+        1.0 / 9.0,
+        1.0 / 11.0,
+        1.0 / 13.0,
+        1.0 / 15.0,
+        1.0 / 17.0,
+        1.0 / 19.0,
+        1.0 / 21.0,
+    ];
+    let b = x.to_bits();
+    // The biased exponent field as an `f64` (`2^52 + field`, minus `2^52`: exact), without
+    // an integer-to-float conversion (none for 64-bit integers before AVX-512).
+    let field =
+        f64::from_bits(0x4330_0000_0000_0000 | ((b >> 52) & 0x7ff)) - 4_503_599_627_370_496.0;
+    let m1 = f64::from_bits((b & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
+    // The mantissa in `[1, 2)`, halved above `sqrt 2` (its exponent then one more).
+    let halved = m1 > core::f64::consts::SQRT_2;
+    let m = if halved { 0.5 * m1 } else { m1 };
+    let k = field - 1023.0 + if halved { 1.0 } else { 0.0 };
+    // m - 1 is exact (Sterbenz).
+    let s = (m - 1.0) / (m + 1.0);
+    let s2 = s * s;
+    let mut p = C[9];
+    for c in C[..9].iter().rev() {
+        p = p * s2 + c;
+    }
+    let ln_m = 2.0 * s + (2.0 * s) * (s2 * p);
+    (k, ln_m)
+}
+
+/// [`ln_parts_f64`] in `f32` arithmetic ([`ln_lane`] and [`pow_lane`](super::pow_lane) in `f32`): `(k, ln
+/// m)`, the series of `atanh(s) / s` through `s^8` (truncation `s^10 / 11 < 2.1e-9`
+/// relative); `ln m` within `1.5 eps_32` of its value (`s` rounded twice, the series' terms
+/// below `s^2 / 3 < 0.01` of it; `log.rs`). For a normal positive finite `x` (elsewhere
+/// garbage: the callers flag it).
+#[inline(always)]
+pub(crate) fn ln_parts_f32(x: f32) -> (f32, f32) {
+    // 1 / (2 j + 1), j = 1..4.
+    const C: [f32; 4] = [1.0 / 3.0, 1.0 / 5.0, 1.0 / 7.0, 1.0 / 9.0];
+    let b = x.to_bits();
+    let field = ((b >> 23) & 0xff) as i32;
+    let m1 = f32::from_bits((b & 0x007f_ffff) | 0x3f80_0000);
+    let halved = m1 > core::f32::consts::SQRT_2;
+    let m = if halved { 0.5 * m1 } else { m1 };
+    let k = (field - 127 + i32::from(halved)) as f32;
+    // m - 1 is exact (Sterbenz).
+    let s = (m - 1.0) / (m + 1.0);
+    let s2 = s * s;
+    let p = ((C[3] * s2 + C[2]) * s2 + C[1]) * s2 + C[0];
+    (k, 2.0 * s + (2.0 * s) * (s2 * p))
+}
 
 /// `ln x` in lanes: `ln x = k ln2_hi + (k ln2_lo + ln m)`, `x = m 2^k` with `m` in
 /// `[sqrt(1/2), sqrt(2))` and `ln m = 2 atanh(s)`, `s = (m - 1) / (m + 1)` (`|s| <= 0.1716`),
-/// by its series. In `f64` by `lane_math::ln_parts_f64` (series to `s^21`, truncation below
+/// by its series. In `f64` by [`ln_parts_f64`] (series to `s^21`, truncation below
 /// `2.3e-17` relative); in `f32` in `f32` arithmetic ([`ln_f32`]: the `f64` form held the
 /// `f32` sampler's loop to 4 lanes on AVX2).
 ///

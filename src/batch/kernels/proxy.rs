@@ -8,19 +8,20 @@
 //! computed in `f64` with `atan2` by [`atan2_upper_lane`] in place of libm's `hypot` and
 //! `atan` (which have no lane form), then [`AxisAligned::new_clamped`] and GGX's lane `D`.
 
-use super::super::filter::proxy;
-use super::super::kernel::{ClampRules, RectBounds};
-use super::super::ndf::Ndf;
-use super::super::ndf::ggx::Ggx;
-use super::super::ndf::roughness::AxisAligned;
-use super::lane_math::atan2_upper_lane;
-use super::lanes::{Kernel, run};
+use super::super::super::filter::proxy;
+use super::super::super::kernel::{ClampRules, RectBounds};
+use super::super::super::ndf::Ndf;
+use super::super::super::ndf::ggx::Ggx;
+use super::super::super::ndf::roughness::AxisAligned;
+use super::super::super::{F, Vec3};
+use super::super::columns::{Footprints, footprint, footprint_columns};
+use super::super::engine::lane_math::atan2_upper_lane;
+use super::super::engine::{Kernel, run};
 use super::ndf::LaneD;
-use super::{F, Footprints, Vec3, footprint, footprint_columns};
-use crate::math::Real;
+use crate::math::{self as m, Real};
 
 /// [`Ndf::d`] of the GGX proxy lobe (KHPL16 section 5.4; the front door's
-/// [`Proxy`](super::super::filter::Proxy) method with `Proxy { clamps: *rules }`) for each half
+/// [`Proxy`](super::super::super::filter::Proxy) method with `Proxy { clamps: *rules }`) for each half
 /// vector `h_i = (hx[i], hy[i], hz[i])` and footprint `fp_i`: `out[i] = Ggx::new(proxy(*r,
 /// H_i)).d(h_i)` per steradian, `H_i = rules.rect(fp_i.bounding_rect(), r.alpha())
 /// .half_extent` (the clamped bounding rectangle of KHPL16 section 5.2), [`proxy::proxy`] the
@@ -65,12 +66,12 @@ pub fn ggx_d_filtered_proxy(
     fp: Footprints<'_>,
     out: &mut [F],
 ) -> usize {
-    let k = ProxyD {
+    let kernel = ProxyD {
         r: *r,
         rules: *rules,
         bounds: rules.rect_bounds(r.alpha()),
     };
-    run(&k, footprint_columns([hx, hy, hz], fp), [out])
+    run(&kernel, footprint_columns([hx, hy, hz], fp), [out])
 }
 
 /// `D` of `Ggx::new(proxy(r, rules.rect(fp.bounding_rect(), r.alpha()).half_extent))`.
@@ -100,11 +101,11 @@ fn effective_alpha_lane(alpha: F, half_extent: F) -> (F, bool) {
         half_extent.abs().to_f64()
     };
     let a = alpha.to_f64();
-    let s = (a * a + h * h).sqrt();
+    let s = m::sqrt(a * a + h * h);
     // atan2(H, s) needs H > 0: a stand-in of 1 where H = 0, whose result is not used.
     let live = h > 0.0;
     let phi = atan2_upper_lane(if live { h } else { 1.0 }, s);
-    let wide = s * (h / s / phi).sqrt();
+    let wide = s * m::sqrt(h / s / phi);
     let v = if live { wide } else { a };
     (F::from_f64(v), h <= H_MAX)
 }

@@ -6,17 +6,18 @@
 //! scalar function's checks become selects, and the rare inputs they send elsewhere
 //! (a rescaled direction, a grazing `w`) are flagged and evaluated by the scalar function.
 //! GGX's `D`, `Lambda` and `G2` are therefore the scalar values bit for bit; Beckmann's
-//! replace libm's `exp` and `erfc` by the lane functions of [`super::lanes`] (bounds in the
-//! module docs of [`super`]).
+//! replace libm's `exp` and `erfc` by the engine's lane math (bounds in the module docs of
+//! `batch`).
 
-use super::super::filter::{TrapezoidState, beckmann_lambda_fast};
-use super::super::ndf::beckmann::Beckmann;
-use super::super::ndf::ggx::{Ggx, ggx_lambda_core};
-use super::super::ndf::roughness::Roughness;
-use super::super::ndf::{Ndf, needs_no_rescale};
-use super::lane_math::exp_neg_times;
-use super::lanes::{Kernel, run};
-use super::{F, PI, Vec2, Vec3, Vec3s};
+use super::super::super::filter::beckmann_lambda_fast;
+use super::super::super::ndf::beckmann::Beckmann;
+use super::super::super::ndf::ggx::{Ggx, ggx_lambda_core};
+use super::super::super::ndf::roughness::Roughness;
+use super::super::super::ndf::{Ndf, needs_no_rescale};
+use super::super::super::{F, PI, Vec2, Vec3};
+use super::super::columns::Vec3s;
+use super::super::engine::lane_math::exp_neg_times;
+use super::super::engine::{CARRY, Carry, Kernel, run};
 
 per_form! {
     /// [`Ndf::d`] of GGX for each micronormal `m_i = (mx[i], my[i], mz[i])`:
@@ -129,12 +130,12 @@ pub(crate) trait LaneD: Ndf {
     const FULL_STAGED: bool = false;
     /// [`Kernel::full_one`].
     #[inline(always)]
-    fn d_full_one(&self, m: Vec3) -> ((F, bool), bool, TrapezoidState) {
-        (self.d_lane_full(m), false, TrapezoidState::default())
+    fn d_full_one(&self, m: Vec3) -> ((F, bool), bool, Carry) {
+        (self.d_lane_full(m), false, [0.0; CARRY])
     }
     /// [`Kernel::full_two`].
     #[inline(always)]
-    fn d_full_two(&self, m: Vec3, _state: TrapezoidState) -> (F, bool) {
+    fn d_full_two(&self, m: Vec3, _carry: Carry) -> (F, bool) {
         self.d_lane_full(m)
     }
 }
@@ -222,13 +223,13 @@ impl<N: LaneD> Kernel<3, 1> for D<N> {
     }
     const FULL_STAGED: bool = N::FULL_STAGED;
     #[inline(always)]
-    fn full_one(&self, [x, y, z]: [F; 3]) -> (([F; 1], bool), bool, TrapezoidState) {
-        let ((v, slow), more, st) = self.0.d_full_one(Vec3::new(x, y, z));
-        (([v], slow), more, st)
+    fn full_one(&self, [x, y, z]: [F; 3]) -> (([F; 1], bool), bool, Carry) {
+        let ((v, slow), more, carry) = self.0.d_full_one(Vec3::new(x, y, z));
+        (([v], slow), more, carry)
     }
     #[inline(always)]
-    fn full_two(&self, [x, y, z]: [F; 3], st: TrapezoidState) -> ([F; 1], bool) {
-        let (v, slow) = self.0.d_full_two(Vec3::new(x, y, z), st);
+    fn full_two(&self, [x, y, z]: [F; 3], carry: Carry) -> ([F; 1], bool) {
+        let (v, slow) = self.0.d_full_two(Vec3::new(x, y, z), carry);
         ([v], slow)
     }
     #[inline]

@@ -13,18 +13,20 @@
 //! fails the sampler's final check (`m_z > 0`, `wo.m > 0`: the scalar path then returns the
 //! lobe centre).
 
-use super::super::ndf::beckmann::Beckmann;
-use super::super::ndf::ggx::Ggx;
-use super::super::ndf::roughness::Roughness;
-use super::super::sampling::{
+use super::super::super::ndf::beckmann::Beckmann;
+use super::super::super::ndf::ggx::Ggx;
+use super::super::super::ndf::roughness::Roughness;
+use super::super::super::sampling::{
     NdfSampling, Warp, beckmann_standard_normal, clamp_unit, ggx_cap_point, ggx_standard_normal,
 };
-use super::lane_math::sincos_2pi;
-use super::lanes::{Kernel, run};
-use super::log::ln_lane;
-use super::quantile::visible_slope_quantile_lane;
-use super::{F, Vec2, Vec3, Vec3s};
+use super::super::super::{F, Vec2, Vec3};
+use super::super::columns::Vec3s;
+use super::super::engine::lane_math::{ln_lane, sincos_2pi};
+use super::super::engine::{Kernel, run};
 use crate::math::{self as m, Real};
+use quantile::visible_slope_quantile_lane;
+
+mod quantile;
 
 per_form! {
     /// [`NdfSampling::sample_visible_normal`] of GGX for each view `wo_i = (wo.x[i], wo.y[i],
@@ -63,11 +65,11 @@ per_form! {
         out_y: &mut [F],
         out_z: &mut [F],
     ) -> usize {
-        let k = VisibleSampler {
+        let kernel = VisibleSampler {
             ndf: Ggx::new(*r),
             warp: Warp::new(r),
         };
-        run(&k, [wo.x, wo.y, wo.z, u1, u2], [out_x, out_y, out_z])
+        run(&kernel, [wo.x, wo.y, wo.z, u1, u2], [out_x, out_y, out_z])
     }
 }
 
@@ -179,11 +181,11 @@ per_form! {
         out_y: &mut [F],
         out_z: &mut [F],
     ) -> usize {
-        let k = NormalSampler {
+        let kernel = NormalSampler {
             ndf: Ggx::new(*r),
             warp: Warp::new(r),
         };
-        run(&k, [u1, u2], [out_x, out_y, out_z])
+        run(&kernel, [u1, u2], [out_x, out_y, out_z])
     }
 }
 
@@ -212,11 +214,11 @@ per_form! {
         out_y: &mut [F],
         out_z: &mut [F],
     ) -> usize {
-        let k = NormalSampler {
+        let kernel = NormalSampler {
             ndf: Beckmann::new(*r),
             warp: Warp::new(r),
         };
-        run(&k, [u1, u2], [out_x, out_y, out_z])
+        run(&kernel, [u1, u2], [out_x, out_y, out_z])
     }
 }
 
@@ -305,10 +307,10 @@ per_form! {
         out_y: &mut [F],
         out_z: &mut [F],
     ) -> usize {
-        let k = VisibleSampler {
+        let kernel = VisibleSampler {
             ndf: Beckmann::new(*r),
             warp: Warp::new(r),
         };
-        run(&k, [wo.x, wo.y, wo.z, u1, u2], [out_x, out_y, out_z])
+        run(&kernel, [wo.x, wo.y, wo.z, u1, u2], [out_x, out_y, out_z])
     }
 }

@@ -11,15 +11,16 @@
 //! [`crate::f32::vector::unit`]. GGX's pdfs are therefore the scalar values bit for bit;
 //! Beckmann's carry the lane `D` and `Lambda` bounds (module docs of [`super`]).
 
-use super::super::ndf::beckmann::Beckmann;
-use super::super::ndf::ggx::Ggx;
-use super::super::sampling::{
+use super::super::super::ndf::beckmann::Beckmann;
+use super::super::super::ndf::ggx::Ggx;
+use super::super::super::sampling::{
     NdfSampling, normal_pdf_core, reflection_pdf_core, visible_normal_pdf_core,
 };
-use super::lanes::{Kernel, run};
+use super::super::super::{F, Vec3};
+use super::super::columns::Vec3s;
+use super::super::engine::{Kernel, run};
 use super::ndf::LaneNdf;
 use super::sample::unit_direct;
-use super::{F, Vec3, Vec3s};
 
 per_form! {
     /// [`NdfSampling::normal_pdf`] of GGX (the density of [`super::ggx_sample_normal`]) for each
