@@ -2,6 +2,7 @@
 //!
 //! - [`modules`]: the shader modules on disk, their `#define_import_path`s and imports, and
 //!   their composition with naga_oil (as Bevy composes its shaders).
+//! - [`syntax`]: a lexical scan of WGSL (top-level items, qualified names, calls).
 //! - [`concat`]: the single concatenated WGSL file for those who paste.
 //! - [`generate`]: the naga translations under `shaders/generated/` (GLSL 330, GLSL ES 310,
 //!   HLSL SM 5.1, MSL) and the check that the checked-in copies are up to date.
@@ -21,3 +22,4 @@ pub mod kernels;
 pub mod modules;
 pub mod oracle_backend;
 pub mod reference;
+pub mod syntax;

@@ -145,7 +145,7 @@ pub fn load_all() -> Result<Vec<Module>, String> {
         let imports = parse_imports(&source).map_err(|e| format!("shaders/{file}: {e}"))?;
         // naga_oil reads `name::` as a module path even where `name` is a function of the
         // module: an item may not share its name with an import alias.
-        let names = crate::concat::top_level_names(&source);
+        let names = crate::syntax::top_level_names(&source);
         if let Some(i) = imports.iter().find(|i| names.contains(&i.alias)) {
             return Err(format!(
                 "shaders/{file}: `{}` is both an item and an import alias: import `{}` with `as`",
