@@ -10,12 +10,14 @@
 //!   dispatch, on the backend chosen by `FILTERED_NDF_GPU_BACKEND`.
 //! - [`reference`]: the crate's `f64` functions the shader functions are compared with.
 //! - [`checks`]: the conformance checks (cases, WGSL call, reference, tolerance).
+//! - [`coverage`]: which exported WGSL functions the checks call.
 //! - [`oracle_backend`]: the reference oracle's `--backend gpu` (binary `oracle`).
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
 pub mod checks;
 pub mod concat;
+pub mod coverage;
 pub mod generate;
 pub mod harness;
 pub mod kernels;
