@@ -13,6 +13,8 @@
 //!   the mean unit normal, the mean squared base roughness), averaged in `f64` over its
 //!   footprint on the base level by a [`Kernel`]: the GPUs' box or the exact footprint.
 //! - **Storage** ([`store_f32`], [`store_f16`]): the five moments per texel.
+//! - **Fits** ([`fit`]): the GGX and Beckmann roughness (isotropic, or anisotropic with its
+//!   angle) closest to each texel's distribution of normals, by total variation.
 //! - **Bands** ([`bake_rows`]): rows `r0..r1` of one level, every requested output at once;
 //!   bands of different rows or levels are independent, so a caller can bake them on as
 //!   many threads as it likes (the command-line baker uses rayon across rows).
@@ -44,6 +46,7 @@
 //!   + 3 * 2^-25`.
 
 pub mod f16;
+pub mod fit;
 pub mod footprint;
 pub mod input;
 pub mod layout;
@@ -87,13 +90,28 @@ pub fn lean_moments(t: &[f32; 5]) -> crate::f32::LeanMoments {
 }
 
 /// What [`bake_rows`] writes: each present slice holds the band's texels row-major
-/// (`rows.len() * level width` entries at least).
+/// (`rows.len() * level width` entries at least). Roughnesses are `alpha` ([`fit`]; glTF's
+/// perceptual roughness is [`fit::perceptual`] of it); anisotropic lobes are
+/// `[alpha_x, alpha_y, angle]` ([`fit::AnisotropicAlpha`], whose
+/// [`khr`](fit::AnisotropicAlpha::khr) gives `KHR_materials_anisotropy`'s encoding).
 #[derive(Debug, Default)]
 pub struct Band<'o> {
     /// The moments in `f32` ([`store_f32`]).
     pub moments: Option<&'o mut [[f32; 5]]>,
     /// The moments in `f16` ([`store_f16`]).
     pub moments_f16: Option<&'o mut [[u16; 5]]>,
+    /// The isotropic GGX fit ([`fit::ggx_isotropic`]).
+    pub ggx: Option<&'o mut [f32]>,
+    /// The anisotropic GGX fit ([`fit::ggx_anisotropic`]).
+    pub ggx_anisotropic: Option<&'o mut [[f32; 3]]>,
+    /// The isotropic Beckmann fit ([`fit::beckmann_isotropic`]).
+    pub beckmann: Option<&'o mut [f32]>,
+    /// The anisotropic Beckmann fit ([`fit::beckmann_anisotropic`]).
+    pub beckmann_anisotropic: Option<&'o mut [[f32; 3]]>,
+}
+
+fn lobe_f32(a: fit::AnisotropicAlpha) -> [f32; 3] {
+    [a.alpha_x as f32, a.alpha_y as f32, a.angle as f32]
 }
 
 fn check_out<T>(out: &Option<&mut [T]>, n: usize) -> Result<(), BakeError> {
@@ -131,6 +149,14 @@ pub fn bake_rows<S: SlopeSource>(
     let n = rows.len() * lv.width;
     check_out(&band.moments, n)?;
     check_out(&band.moments_f16, n)?;
+    check_out(&band.ggx, n)?;
+    check_out(&band.ggx_anisotropic, n)?;
+    check_out(&band.beckmann, n)?;
+    check_out(&band.beckmann_anisotropic, n)?;
+    let fits = band.ggx.is_some()
+        || band.ggx_anisotropic.is_some()
+        || band.beckmann.is_some()
+        || band.beckmann_anisotropic.is_some();
     if scratch.len() < layout.scratch_len() {
         return Err(BakeError::Output {
             expected: layout.scratch_len(),
@@ -147,6 +173,22 @@ pub fn bake_rows<S: SlopeSource>(
             }
             if let Some(m) = band.moments_f16.as_deref_mut() {
                 m[at + i] = store_f16(t);
+            }
+            if !fits {
+                continue;
+            }
+            let spread = fit::Spread::of(t);
+            if let Some(m) = band.ggx.as_deref_mut() {
+                m[at + i] = fit::ggx_isotropic(&spread) as f32;
+            }
+            if let Some(m) = band.ggx_anisotropic.as_deref_mut() {
+                m[at + i] = lobe_f32(fit::ggx_anisotropic(&spread));
+            }
+            if let Some(m) = band.beckmann.as_deref_mut() {
+                m[at + i] = fit::beckmann_isotropic(&spread) as f32;
+            }
+            if let Some(m) = band.beckmann_anisotropic.as_deref_mut() {
+                m[at + i] = lobe_f32(fit::beckmann_anisotropic(&spread));
             }
         }
     }
