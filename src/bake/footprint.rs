@@ -214,13 +214,13 @@ pub struct TexelStats {
 }
 
 impl TexelStats {
-    /// `w` times base texel `(x, y)`'s statistics added in.
+    /// `w` times a base texel's slope moments and normal added in (`alpha2` apart).
     #[inline(always)]
-    fn add(&mut self, w: f64, s: DVec2, n: DVec3, alpha2: f64) {
-        self.mean += w * s;
-        self.second += w * DVec3::new(s.x * s.x, s.x * s.y, s.y * s.y);
+    fn add(&mut self, w: f64, s: DVec2, n: DVec3) {
+        let ws = w * s;
+        self.mean += ws;
+        self.second += DVec3::new(ws.x * s.x, ws.x * s.y, ws.y * s.y);
         self.normal += w * n;
-        self.alpha2 += w * alpha2;
     }
 
     #[inline(always)]
@@ -298,13 +298,21 @@ pub fn footprint_row<S: SlopeSource>(
     };
     for y in fy.lo..fy.hi {
         let wy = fy.weight(y);
-        for (x, acc) in scratch[..used].iter_mut().enumerate() {
-            let (s, n) = source.texel(x, y);
-            let a2 = match base {
-                BaseRoughness::Texture(t) => t.alpha2(x, y),
-                BaseRoughness::Constant(_) => 0.0,
-            };
-            acc.add(wy, s, n, a2);
+        let row = scratch[..used].iter_mut().enumerate();
+        match base {
+            BaseRoughness::Texture(t) => {
+                for (x, acc) in row {
+                    let (s, n) = source.texel(x, y);
+                    acc.add(wy, s, n);
+                    acc.alpha2 += wy * t.alpha2(x, y);
+                }
+            }
+            BaseRoughness::Constant(_) => {
+                for (x, acc) in row {
+                    let (s, n) = source.texel(x, y);
+                    acc.add(wy, s, n);
+                }
+            }
         }
     }
     for (i, o) in out[..lv.width].iter_mut().enumerate() {

@@ -416,7 +416,7 @@ impl SlopeSource for NormalMap<'_> {
         };
         let inv = 1.0 / nz;
         let n = DVec3::new(nx, ny, nz);
-        (DVec2::new(-nx * inv, -ny * inv), n / n.length())
+        (DVec2::new(-nx * inv, -ny * inv), n * (1.0 / n.length()))
     }
 }
 
@@ -553,7 +553,7 @@ impl SlopeSource for HeightMap<'_> {
         assert!(x < self.width && y < self.height);
         let s = self.slope(x, y);
         let n = DVec3::new(-s.x, -s.y, 1.0);
-        (s, n / n.length())
+        (s, n * (1.0 / n.length()))
     }
 }
 
@@ -619,6 +619,6 @@ impl SlopeSource for SlopeMap<'_> {
         assert!(x < self.width && y < self.height);
         let s = self.slopes[y * self.width + x];
         let n = DVec3::new(-s.x, -s.y, 1.0);
-        (s, n / n.length())
+        (s, n * (1.0 / n.length()))
     }
 }
