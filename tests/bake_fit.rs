@@ -189,7 +189,7 @@ fn derive_ggx_fit_table() {
         .collect();
     println!("[");
     for (j, (g, tv)) in nodes.iter().enumerate() {
-        println!("    {g:.15e}, // t = {j}/64, TV at the minimum {tv:.4e}");
+        println!("    {g:?}, // t = {j}/64, TV at the minimum {tv:.4e}");
     }
     println!("]");
     // Errors: the rule (n vs 2n nodes) at a few nodes, interpolation at every midpoint.

@@ -40,10 +40,10 @@
 //!   `c = E[s_x^2] - E[s_x]^2`, is then within `2^-24 (E[s_x^2] + 2 E[s_x]^2)` (plus the
 //!   shader's own `f32` rounding of the difference): absolute, so a texel whose variance is far
 //!   below its squared mean slope (a smooth but tilted region) keeps only the digits above that.
-//! - `f16` ([`f16`]): relative `2^-11` for magnitudes in `[2^-14, 65504]`, absolute `2^-25`
-//!   below, saturated at `65504` above (a second moment past that needs `|s| > 256`, a normal
-//!   within 0.22 degrees of the horizon): the covariance within `2^-11 (E[s_x^2] + 2 E[s_x]^2)
-//!   + 3 * 2^-25`.
+//! - `f16` ([`mod@f16`]): relative `2^-11` (plus the `2^-24` of the intermediate `f32`) for
+//!   magnitudes in `[2^-14, 65504]`, absolute `2^-25` below, saturated at `65504` above (a
+//!   second moment past that needs `|s| > 256`, a normal within 0.22 degrees of the horizon):
+//!   the covariance within `2^-11 (E[s_x^2] + 2 E[s_x]^2) + 3 * 2^-25`.
 
 pub mod f16;
 pub mod fit;
