@@ -72,6 +72,7 @@
 #![deny(missing_docs)]
 #![allow(clippy::duplicate_mod)]
 
+pub mod bake;
 pub mod contract;
 pub mod error;
 pub mod math;
