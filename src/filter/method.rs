@@ -50,7 +50,7 @@ use super::super::ndf::Ndf;
 use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{AxisAligned, Isotropic, Roughness, RoughnessMatrix};
-use super::{F, GaussianFilteredGgx, Vec2, Vec3, proxy, rect};
+use super::{F, GaussianFilteredGgx, Tolerance, Vec2, Vec3, proxy, rect};
 
 /// A filtering method: turns a material NDF `N` and a pixel footprint into a filtered lobe
 /// (see the [module docs](self) for the methods and what each returns).
@@ -143,6 +143,22 @@ impl<R: Roughness> Method<Beckmann<R>> for Gaussian {
 /// [`GaussianFilteredGgx`] (what [`Gaussian`] approximates by `A + 2 Sigma`); for Beckmann the
 /// exact filter is `A + 2 Sigma` itself, so this gives the same lobe as [`Gaussian`] with the
 /// same rules: a renderer switches NDF without switching method.
+///
+/// `tolerance` sets the accuracy of the GGX lobe's density ([`Tolerance`]: the proven relative
+/// bound of each setting and its rules in the module docs of [`GaussianFilteredGgx`]); the
+/// Beckmann lobe is exact at every setting.
+///
+/// ```
+/// use filtered_ndf::f32::prelude::*;
+/// use glam::{Vec2, Vec3};
+///
+/// let material = Ggx::isotropic(0.05).unwrap();
+/// let footprint = Footprint::from_slope_derivatives(Vec2::new(0.04, 0.0), Vec2::new(0.0, 0.03));
+/// let fast = material.filtered(footprint, ExactGaussian::KHPL16.with_tolerance(Tolerance::Rel1e3));
+/// let full = material.filtered(footprint, ExactGaussian::KHPL16);
+/// let h = Vec3::new(0.03, 0.01, 1.0).normalize();
+/// assert!((fast.d(h) - full.d(h)).abs() <= 1e-3 * full.d(h));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ExactGaussian {
     /// The clamp rules applied to the footprint and the kernel (for Beckmann also the
@@ -150,6 +166,8 @@ pub struct ExactGaussian {
     pub clamps: ClampRules,
     /// The standard deviation of the Gaussian pixel filter, in pixels.
     pub sigma: F,
+    /// The accuracy setting of the GGX lobe's density ([`Tolerance::Full`] unless asked).
+    pub tolerance: Tolerance,
 }
 
 impl ExactGaussian {
@@ -159,7 +177,16 @@ impl ExactGaussian {
     pub const KHPL16: Self = Self {
         clamps: ClampRules::KHPL16,
         sigma: SIGMA_PIXEL,
+        tolerance: Tolerance::Full,
     };
+
+    /// This method with the GGX lobe's density at the accuracy setting `tolerance`
+    /// ([`Tolerance`]; e.g. `ExactGaussian::KHPL16.with_tolerance(Tolerance::Rel1e3)`).
+    #[inline]
+    #[must_use]
+    pub const fn with_tolerance(self, tolerance: Tolerance) -> Self {
+        Self { tolerance, ..self }
+    }
 
     /// The clamped pixel kernel of `footprint`.
     #[inline]
@@ -181,6 +208,7 @@ impl<R: Roughness> Method<Ggx<R>> for ExactGaussian {
     #[inline]
     fn lobe(&self, material: &Ggx<R>, footprint: Footprint) -> Self::Lobe {
         GaussianFilteredGgx::new(material.roughness, self.kernel(footprint))
+            .with_tolerance(self.tolerance)
     }
 }
 
