@@ -412,9 +412,11 @@ impl GaussianFilteredGgx {
     #[inline(always)]
     fn j(&self, v1s: f64, v2s: f64, z2: f64) -> f64 {
         let [tl1, tl2] = self.tl;
-        match tol::rule_of(self.tol) {
+        match tol::index(self.tol) {
             None => quad::j(v1s, v2s, z2, tl1, tl2),
-            Some(rule) => tol::j(rule, v1s, v2s, z2, tl1, tl2),
+            Some(0) => tol::j::<0>(v1s, v2s, z2, tl1, tl2),
+            Some(1) => tol::j::<1>(v1s, v2s, z2, tl1, tl2),
+            Some(_) => tol::j::<2>(v1s, v2s, z2, tl1, tl2),
         }
     }
 

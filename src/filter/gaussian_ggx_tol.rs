@@ -76,25 +76,28 @@ const fn rule(h: f64, exp_h: f64, far: f64, eps_t: f64, y_lo: f64) -> Rule {
     }
 }
 
-/// [`Tolerance::Rel1e4`]: step `0.6`, truncation `1e-5`, `Y = 0.12`, far tail `K = 1500`.
-static RULE_1E4: Rule = rule(0.6, 1.822_118_800_390_508_9, 1500.0, 1e-5, 0.12);
-/// [`Tolerance::Rel1e3`]: step `0.75`, truncation `1e-4`, `Y = 0.2`, far tail `K = 500`.
-static RULE_1E3: Rule = rule(0.75, 2.117_000_016_612_675, 500.0, 1e-4, 0.2);
-/// [`Tolerance::Rel1e2`]: step `1`, truncation `5e-4`, `Y = 0.35`, far tail `K = 160`.
-static RULE_1E2: Rule = rule(1.0, core::f64::consts::E, 160.0, 5e-4, 0.35);
+/// The reduced settings' rules, indexed by [`index`]: [`Tolerance::Rel1e4`] (step `0.6`,
+/// truncation `1e-5`, `Y = 0.12`, far tail `K = 1500`), [`Tolerance::Rel1e3`] (`0.75`, `1e-4`,
+/// `0.2`, `500`), [`Tolerance::Rel1e2`] (`1`, `5e-4`, `0.35`, `160`). A `const`: each
+/// setting's loop is compiled with its constants.
+const RULES: [Rule; 3] = [
+    rule(0.6, 1.822_118_800_390_508_9, 1500.0, 1e-5, 0.12),
+    rule(0.75, 2.117_000_016_612_675, 500.0, 1e-4, 0.2),
+    rule(1.0, core::f64::consts::E, 160.0, 5e-4, 0.35),
+];
 
-/// The rule of a reduced setting (`None` for [`Tolerance::Full`]).
+/// The index of a reduced setting in [`RULES`] (`None` for [`Tolerance::Full`]).
 #[inline(always)]
-pub(super) fn rule_of(t: Tolerance) -> Option<&'static Rule> {
+pub(super) const fn index(t: Tolerance) -> Option<usize> {
     match t {
         Tolerance::Full => None,
-        Tolerance::Rel1e4 => Some(&RULE_1E4),
-        Tolerance::Rel1e3 => Some(&RULE_1E3),
-        Tolerance::Rel1e2 => Some(&RULE_1E2),
+        Tolerance::Rel1e4 => Some(0),
+        Tolerance::Rel1e3 => Some(1),
+        Tolerance::Rel1e2 => Some(2),
     }
 }
 
-/// Whether `rule` takes the far-tail series at `beta = beta_m / z2 = 1 + q`:
+/// Whether the rule takes the far-tail series at `beta = beta_m / z2 = 1 + q`:
 /// `2 l1 (far + 12 ln beta) <= beta` (`ln` bounded above, so the test errs toward the
 /// trapezoid rule).
 #[inline(always)]
@@ -102,9 +105,11 @@ pub(super) fn takes_far(rule: &Rule, beta_m: f64, z2: f64, tl1: f64) -> bool {
     tl1 * z2 * (rule.far + 12.0 * ln_upper(beta_m / z2)) <= beta_m
 }
 
-/// `J / z2^2` by `rule` (the reduced counterpart of `gaussian_ggx_quad::j`, same arguments).
+/// `J / z2^2` by the rule `RULES[S]` (the reduced counterpart of `gaussian_ggx_quad::j`, same
+/// arguments).
 #[inline]
-pub(super) fn j(rule: &Rule, v1s: f64, v2s: f64, z2: f64, tl1: f64, tl2: f64) -> f64 {
+pub(super) fn j<const S: usize>(v1s: f64, v2s: f64, z2: f64, tl1: f64, tl2: f64) -> f64 {
+    let rule = const { &RULES[S] };
     let beta_m = z2 + v1s + v2s;
     if takes_far(rule, beta_m, z2, tl1) {
         return far_tail(beta_m, v1s, v2s, tl1, tl2, z2);
@@ -116,8 +121,8 @@ pub(super) fn j(rule: &Rule, v1s: f64, v2s: f64, z2: f64, tl1: f64, tl2: f64) ->
 /// The trapezoid rule in `t = ln w` of `rule`: the full rule's nodes, reference exponent and
 /// truncation test (`gaussian_ggx_quad`, items 1 to 3 of the module docs) with the rule's
 /// step, first node and tolerance, and a four-term series below the first node.
-#[inline]
-fn trapezoid(rule: &Rule, c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> f64 {
+#[inline(always)]
+fn trapezoid(rule: &'static Rule, c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> f64 {
     let h = rule.h;
     let beta = 1.0 + c1s + c2s;
     let w_r = 2.0 / beta;
@@ -153,12 +158,14 @@ fn trapezoid(rule: &Rule, c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> f64 {
         let (Some(rk), Some(lk)) = (rk, lk) else {
             break;
         };
-        let mut last: F = 0.0;
+        let mut acc = [0.0; CH];
         for j in 0..CH {
-            let a = node(c, rk[j], lk[j]);
-            tot[j] += a;
-            last = a;
+            acc[j] = node(c, rk[j], lk[j]);
         }
+        for (t, a) in tot.iter_mut().zip(acc.iter()) {
+            *t += *a;
+        }
+        let last = acc[CH - 1];
         k += CH;
         // Item 3: the nodes above the last sum to at most g_last b / w_last^2.
         let s = sum_tree(tot).to_f64();
