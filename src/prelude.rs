@@ -3,13 +3,13 @@
 //!
 //! The material NDFs and their roughness forms, the footprint, the front door
 //! ([`Filterable::filtered`] with a [`Method`]: [`Gaussian`], [`ExactGaussian`], [`Projected`], [`Rect`],
-//! [`Proxy`]), the clamp rules, the deferred presets, and the traits whose methods every lobe
+//! [`Proxy`]; the exact filter's [`Tolerance`]), the clamp rules, the deferred presets, and the traits whose methods every lobe
 //! has ([`Ndf`], [`NdfSampling`]).
 
 pub use super::filter::presets;
 pub use super::filter::{
     ExactGaussian, Filterable, Gaussian, GaussianFilteredGgx, Method, Projected, Proxy, Rect,
-    RectFilteredGgx,
+    RectFilteredGgx, Tolerance,
 };
 pub use super::{
     AxisAligned, Beckmann, ClampRules, Footprint, Ggx, Isotropic, KernelConvention, Ndf,

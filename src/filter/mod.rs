@@ -33,12 +33,14 @@ mod exp_poly;
 mod gaussian;
 mod gaussian_ggx;
 mod gaussian_ggx_quad;
+mod gaussian_ggx_tol;
 mod lean;
 pub mod method;
 pub mod presets;
 mod projected;
 pub mod proxy;
 pub mod rect;
+mod tolerance;
 
 pub(crate) use exp_poly::{
     LN2_HI_F32, LN2_LO_F32, MAGIC_F32, MAGIC_F64, exp_f32_poly, exp_f32_reduced, exp_f64,
@@ -54,4 +56,5 @@ pub use method::{
 };
 pub(crate) use projected::ProjectedBase;
 pub(crate) use projected::projected_sanitized;
+pub use tolerance::Tolerance;
 pub use projected::{PROJECTED_EIGEN_MAX, projected, projected_with_det_clamp};

@@ -18,15 +18,27 @@
 //!   section 5.4; for an anisotropic material their kernel is added to both axes.
 //! - Cost: wall time per evaluation over the whole case set, in one process (ratios between
 //!   rows are what matter; `cargo bench` has the criterion figures).
+//! - The exact Gaussian filter is measured at each accuracy setting (`Tolerance`), a curve
+//!   in the plot; the which-kernel guide's figures (`which_kernel_figures.md`, module
+//!   `figures`) and the regions where the approximations err by more than 10 % (module
+//!   `regions`, appended to `tradeoff.md`) come from the same run.
 
 use filtered_ndf::testing::shading as common;
 
 use filtered_ndf::f32 as p;
 use filtered_ndf::f64 as q;
 use p::Ndf as _;
-use p::filter::{ExactGaussian, Filterable, Gaussian, Projected, Proxy, Rect};
+use p::filter::{ExactGaussian, Filterable, Gaussian, Projected, Proxy, Rect, Tolerance};
+
+/// The exact Gaussian filter's row name (its reduced settings add the setting's name).
+const EXACT: &str = "GGX exact Gaussian (this crate)";
+/// The front door's exact Beckmann filter (the which-kernel guide's `forward_beckmann`).
+const BECKMANN_FRONT_DOOR: &str = "Beckmann Gaussian::KHPL16 (front door, exact)";
 use std::hint::black_box;
 use std::time::Instant;
+
+mod figures;
+mod regions;
 
 /// One case in both precisions, with its reference.
 struct Case {
@@ -133,13 +145,23 @@ fn ggx_kernels() -> Vec<(String, Kernel)> {
             Box::new(|c: &Case| p::Ggx::new(c.alpha).d(c.h)),
         ),
         (
-            "GGX exact Gaussian (this crate)".into(),
+            EXACT.into(),
             Box::new(|c: &Case| {
                 p::Ggx::new(c.alpha)
                     .filtered(c.fp, ExactGaussian::KHPL16)
                     .d(c.h)
             }),
         ),
+    ];
+    // The trade inside the exact filter: each reduced accuracy setting (a point of its curve).
+    for t in &Tolerance::ALL[1..] {
+        let m = ExactGaussian::KHPL16.with_tolerance(*t);
+        k.push((
+            format!("{EXACT} {t:?}"),
+            Box::new(move |c: &Case| p::Ggx::new(c.alpha).filtered(c.fp, m).d(c.h)),
+        ));
+    }
+    k.extend::<[(String, Kernel); 7]>([
         (
             "GGX TK19 A+2Sigma (matrix)".into(),
             Box::new(|c: &Case| p::Ggx::new(c.alpha).filtered(c.fp, Gaussian::TK19).d(c.h)),
@@ -181,7 +203,7 @@ fn ggx_kernels() -> Vec<(String, Kernel)> {
                 p::Ggx::new(p::filter::proxy::proxy_simple(c.alpha, he)).d(c.h)
             }),
         ),
-    ];
+    ]);
     for (name, conv) in p::filter::presets::ALL {
         k.push((
             format!("GGX deferred: {name}"),
@@ -202,6 +224,14 @@ fn beckmann_kernels() -> Vec<(String, Kernel)> {
             Box::new(|c: &Case| {
                 let a = p::filter::gaussian(c.alpha, c.fp.covariance(sigma()));
                 p::Beckmann::new(a).d(c.h)
+            }),
+        ),
+        (
+            BECKMANN_FRONT_DOOR.into(),
+            Box::new(|c: &Case| {
+                p::Beckmann::new(c.alpha)
+                    .filtered(c.fp, Gaussian::KHPL16)
+                    .d(c.h)
             }),
         ),
         (
@@ -263,19 +293,27 @@ fn measure(name: String, family: &'static str, cases: &[Case], f: &dyn Fn(&Case)
         }
     }
     rel.sort_by(f64::total_cmp);
-    // Cost: the fastest of five blocks, each repeating the whole set for at least 6 ms (the
-    // minimum filters out interference from other processes on a shared machine).
-    let mut ns = f64::INFINITY;
-    for _ in 0..5 {
-        let start = Instant::now();
-        let mut evals = 0usize;
-        while start.elapsed().as_micros() < 6000 {
+    // Cost: the fastest of five blocks, each repeating the whole set for at least 6 ms of
+    // this thread's CPU time (the minimum and the CPU clock filter out interference from other
+    // processes on a shared machine: time spent descheduled does not count).
+    // The clock is read once per block (a read costs microseconds): the block's pass count
+    // doubles until a block takes 6 ms.
+    let block = |passes: usize| -> f64 {
+        let start = cpu_ns();
+        for _ in 0..passes {
             for c in cases {
                 black_box(f(black_box(c)));
             }
-            evals += cases.len();
         }
-        ns = ns.min(start.elapsed().as_nanos() as f64 / evals as f64);
+        cpu_ns() - start
+    };
+    let mut passes = 1usize;
+    while block(passes) < 6e6 {
+        passes *= 2;
+    }
+    let mut ns = f64::INFINITY;
+    for _ in 0..5 {
+        ns = ns.min(block(passes) / (passes * cases.len()) as f64);
     }
     Row {
         name,
@@ -361,6 +399,17 @@ fn panel(s: &mut String, all: &[Row], err: &dyn Fn(&Row) -> Option<f64>, title: 
         "<polyline points=\"{}\" fill=\"none\" stroke=\"#c33\" stroke-width=\"1.5\"/>\n",
         ss.join(" ")
     );
+    // The exact Gaussian filter's accuracy settings, as a curve.
+    let ex: Vec<String> = rows
+        .iter()
+        .zip(&pts)
+        .filter(|(r, _)| r.name.starts_with(EXACT))
+        .map(|(_, p)| format!("{},{}", sx(p.0), sy(p.1)))
+        .collect();
+    *s += &format!(
+        "<polyline points=\"{}\" fill=\"none\" stroke=\"#33c\" stroke-width=\"1.5\" stroke-dasharray=\"4 3\"/>\n",
+        ex.join(" ")
+    );
     for ((i, r, _), p) in shown.iter().zip(&pts) {
         let (x, y) = (sx(p.0), sy(p.1));
         *s += &format!(
@@ -420,6 +469,19 @@ fn svg(rows: &[Row], path: &std::path::Path) -> std::io::Result<()> {
     }
     s += "</svg>\n";
     std::fs::write(path, s)
+}
+
+/// This thread's CPU time in nanoseconds (Linux: `/proc/thread-self/schedstat`, the time on
+/// the CPU in ns); elsewhere the wall clock since the first call.
+fn cpu_ns() -> f64 {
+    if let Some(t) = std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+    {
+        return t;
+    }
+    static START: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
+    START.get_or_init(Instant::now).elapsed().as_nanos() as f64
 }
 
 /// The CPU model from `/proc/cpuinfo` where there is one, else the architecture.
@@ -495,8 +557,9 @@ fn main() -> std::io::Result<()> {
     md += &format!(
         "Measured on {} cases ({} realistic + extremes), f32 kernels vs the f64 exact \
          Gaussian-filtered NDF (GGX: `GaussianFilteredGgx`, within 1.1e-11 of the convolution; \
-         Beckmann: `A + 2 Sigma`); machine: {}, {} cores. Costs are single-threaded wall \
-         time in one run: compare ratios.\n\n",
+         Beckmann: `A + 2 Sigma`); machine: {}, {} cores. Costs are single-threaded CPU \
+         time in one run (the thread's own, so that a busy machine's descheduling does not \
+         count): compare ratios.\n\n",
         cases.len(),
         n,
         cpu_name(),
@@ -534,8 +597,12 @@ fn main() -> std::io::Result<()> {
             ss_n
         );
     }
+    let fig = figures::markdown(&rows, ggx_base, beck_base);
+    md += "\n";
+    md += &regions::markdown();
     print!("{md}");
     std::fs::write(out.join("tradeoff.md"), &md)?;
+    std::fs::write(out.join("which_kernel_figures.md"), &fig)?;
     let mut all = rows;
     all.extend(ss_rows);
     svg(&all, &out.join("tradeoff.svg"))?;
