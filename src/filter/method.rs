@@ -234,7 +234,7 @@ impl<R: Roughness> Method<Beckmann<R>> for ExactGaussian {
 /// A)^-1`, `P' = P + 2 Sigma`, `A' = P' (I + P')^-1` ([`super::projected`]), with the kernel
 /// `Sigma` of the footprint after the clamp rules ([`ClampRules::filter_projected`]: maximum
 /// extent, `kappa`, determinant clamp). The footprint should hold projected-disk derivatives (see the
-/// [module docs](self)). Where it is wrong ([`crate::tables`], "Where each approximation is
+/// [module docs](self)). Where it is wrong (`docs/tradeoff.md`, "Where each approximation is
 /// wrong"; a slope footprint, exact at `h = n`): as TK19, `D` errs by more than 10 % once the
 /// footprint is wider than about 0.3 lobe widths, except within one lobe width of the peak
 /// (there from 0.7 to 2 lobe widths of footprint); up to 600 % far in the tails.
@@ -331,7 +331,7 @@ impl Method<Ggx<Isotropic>> for Rect {
 /// The GGX proxy of KHPL16 section 5.4 (eq. 18-19, solved exactly: [`proxy::proxy`]): the
 /// axis-aligned GGX whose peak equals the peak of the box-filtered GGX over the clamped
 /// bounding rectangle ([`Rect`]), per axis. Axis-aligned materials only. Where it is wrong
-/// against the exact Gaussian filter ([`crate::tables`], "Where each approximation is
+/// against the exact Gaussian filter (`docs/tradeoff.md`, "Where each approximation is
 /// wrong"): `D` errs by more than 10 % once the footprint is wider than about 0.2 lobe widths
 /// at the peak and 0.3 to 0.5 lobe widths two or more lobe widths out; between one half and
 /// one lobe width from the peak only from 0.3 to 5 lobe widths of footprint; up to 420 %.
