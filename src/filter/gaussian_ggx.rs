@@ -132,34 +132,34 @@
 //! | `Rel1e2` | 160 | 1.0 | 0.35 | `5e-4` | `4.3e-3` | `7.80e-3 + 8.8e-4 + 5e-4 + 1.6e-5 = 9.2e-3` |
 //!
 //! - **T1. Where the rules switch.** The far-tail series where `2 l1 (K + 12 ln(1 + q)) <= 1 + q`
-//!    (`ln` bounded above as in item 4, so the test errs toward the trapezoid rule), the
-//!    trapezoid rule everywhere else. Nothing else switches: the trapezoid rule's node count
-//!    follows from its first node and its truncation test.
+//!   (`ln` bounded above as in item 4, so the test errs toward the trapezoid rule), the
+//!   trapezoid rule everywhere else. Nothing else switches: the trapezoid rule's node count
+//!   follows from its first node and its truncation test.
 //! - **T2. The far tail's remainder, proven.** With `u = (1 + q) w`, `rho_i = 2 l_i / (1 + q)`,
-//!    `rho = rho_1`, `gamma_i = c_i^2 / (1 + q)` (`sum gamma_i < 1`): `J (1 + q)^2 =
-//!    integral u e^-u e^psi du`, `psi = sum gamma_i rho_i u^2 / (1 + rho_i u) - sum ln(1 + rho_i
-//!    u) / 2`, and the series of item 5 is `integral u e^-u (1 + psi_1) du`, `psi_1 = sum gamma_i
-//!    rho_i u^2 - sum rho_i u / 2`. For `u <= 1 / (2 rho)`: `|psi - psi_1| <= rho^2 (u^3 +
-//!    u^2 / 2)` (from `1 - 1 / (1 + x) <= x` and `x - x^2 / 2 <= ln(1 + x) <= x`), `|psi| <= rho
-//!    max(u^2, u)` and `psi <= rho u^2 <= u / 2`, so by Taylor's remainder `|e^psi - 1 - psi_1| <=
-//!    rho^2 (u^3 + u^2 / 2 + max(u^4, u^2) e^min(rho u^2, u / 2) / 2)`, whose integral against
-//!    `u e^-u` is `C rho^2` with `C = 88.7, 92.5, 107.4` at `rho = 1 / K` (numerical integration
-//!    of this explicit bound). Beyond `u = 1 / (2 rho)` the integrand is at most `u exp(-u / (1 +
-//!    q) - q / (6 l1))` (there `u / (1 + rho u) >= 1 / (3 rho)`), which integrates to at most
-//!    `(1 + q)^2 (1 + 1 / (2 rho)) e^(-1 / (3 rho))`: the kernel's own Gaussian tail, which the
-//!    series does not hold and which the `12 ln(1 + q)` term of the switch keeps below
-//!    `exp(-(K / 6 - ln(1 + K / 2)))` (`<= 2.2e-10`). Relative to `J (1 + q)^2 >= 1 - 2 rho -
-//!    C rho^2`: the table's far-tail bounds.
+//!   `rho = rho_1`, `gamma_i = c_i^2 / (1 + q)` (`sum gamma_i < 1`): `J (1 + q)^2 =
+//!   integral u e^-u e^psi du`, `psi = sum gamma_i rho_i u^2 / (1 + rho_i u) - sum ln(1 + rho_i
+//!   u) / 2`, and the series of item 5 is `integral u e^-u (1 + psi_1) du`, `psi_1 = sum gamma_i
+//!   rho_i u^2 - sum rho_i u / 2`. For `u <= 1 / (2 rho)`: `|psi - psi_1| <= rho^2 (u^3 +
+//!   u^2 / 2)` (from `1 - 1 / (1 + x) <= x` and `x - x^2 / 2 <= ln(1 + x) <= x`), `|psi| <= rho
+//!   max(u^2, u)` and `psi <= rho u^2 <= u / 2`, so by Taylor's remainder `|e^psi - 1 - psi_1| <=
+//!   rho^2 (u^3 + u^2 / 2 + max(u^4, u^2) e^min(rho u^2, u / 2) / 2)`, whose integral against
+//!   `u e^-u` is `C rho^2` with `C = 88.7, 92.5, 107.4` at `rho = 1 / K` (numerical integration
+//!   of this explicit bound). Beyond `u = 1 / (2 rho)` the integrand is at most `u exp(-u / (1 +
+//!   q) - q / (6 l1))` (there `u / (1 + rho u) >= 1 / (3 rho)`), which integrates to at most
+//!   `(1 + q)^2 (1 + 1 / (2 rho)) e^(-1 / (3 rho))`: the kernel's own Gaussian tail, which the
+//!   series does not hold and which the `12 ln(1 + q)` term of the switch keeps below
+//!   `exp(-(K / 6 - ln(1 + K / 2)))` (`<= 2.2e-10`). Relative to `J (1 + q)^2 >= 1 - 2 rho -
+//!   C rho^2`: the table's far-tail bounds.
 //! - **T3. The trapezoid rule's error, proven.** Items 1 to 3 hold for any step: the discretisation
-//!    bound `min_a 2 / (cos^2 a (e^(2 pi a / h) - 1))` at the setting's `h`, the lower end's
-//!    bound of item 2 with four terms (`N = 4`) and the first node at or below `Y / (1 + q +
-//!    2 l1)`, and the truncation `eps_t` (its `b = 7.47` below `w = 2` needs the whole-line sum
-//!    of `w e^-w` within 1 % of its integral: the discretisation bound is `<= 7.8e-3`). The
-//!    nodes' exponent is formed in the lobe's precision with the reference exponent folded in
-//!    (`|x_r| <= 4`), so in `f32` it carries at most the rounding of two terms below `180`:
-//!    `1.6e-5` (at the largest first-node offsets; `< 2e-6` for kernels below `1e6` lobe
-//!    variances), and the polynomial `exp` its `2.5e-7`. The node tables cover the first node's
-//!    offset up to `e^88` (kernels to about `1e37` lobe variances), as the full rule's.
+//!   bound `min_a 2 / (cos^2 a (e^(2 pi a / h) - 1))` at the setting's `h`, the lower end's
+//!   bound of item 2 with four terms (`N = 4`) and the first node at or below `Y / (1 + q +
+//!   2 l1)`, and the truncation `eps_t` (its `b = 7.47` below `w = 2` needs the whole-line sum
+//!   of `w e^-w` within 1 % of its integral: the discretisation bound is `<= 7.8e-3`). The
+//!   nodes' exponent is formed in the lobe's precision with the reference exponent folded in
+//!   (`|x_r| <= 4`), so in `f32` it carries at most the rounding of two terms below `180`:
+//!   `1.6e-5` (at the largest first-node offsets; `< 2e-6` for kernels below `1e6` lobe
+//!   variances), and the polynomial `exp` its `2.5e-7`. The node tables cover the first node's
+//!   offset up to `e^88` (kernels to about `1e37` lobe variances), as the full rule's.
 //!
 //! Measured against the `Full` rule in `f64` (2e5 seeded cases over `alpha` `1e-4..1`, kernels
 //! `1e-3..1e3` lobe widths, slopes `1e-3..1e3` filtered widths): worst `1.2e-5`, `2.1e-4`,

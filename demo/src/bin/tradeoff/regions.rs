@@ -154,10 +154,9 @@ pub fn markdown() -> String {
     md += "\n|---|";
     md += &"---:|".repeat(DISTANCES.len());
     md += "\n";
-    for (i, r) in RATIOS.iter().enumerate() {
+    for (r, row) in RATIOS.iter().zip(&maps[0]) {
         md += &format!("| {r} |");
-        for j in 0..DISTANCES.len() {
-            let e = maps[0][i][j];
+        for &e in row {
             if e > LIMIT {
                 md += &format!(" {:.0} |", 100.0 * e);
             } else {
