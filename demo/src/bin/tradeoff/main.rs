@@ -19,7 +19,7 @@
 //! - Cost: wall time per evaluation over the whole case set, in one process (ratios between
 //!   rows are what matter; `cargo bench` has the criterion figures).
 //! - The exact Gaussian filter is measured at each accuracy setting (`Tolerance`), a curve
-//!   in the plot; the which-kernel guide's figures (`which_kernel_figures.md`, module
+//!   in the plot; the which-kernel guide's figures (`src/doc/which_kernel.md` and the README's copy, module
 //!   `figures`) and the regions where the approximations err by more than 10 % (module
 //!   `regions`, appended to `tradeoff.md`) come from the same run.
 
@@ -35,6 +35,7 @@ const EXACT: &str = "GGX exact Gaussian (this crate)";
 /// The front door's exact Beckmann filter (the which-kernel guide's `forward_beckmann`).
 const BECKMANN_FRONT_DOOR: &str = "Beckmann Gaussian::KHPL16 (front door, exact)";
 use std::hint::black_box;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 mod figures;
@@ -602,7 +603,7 @@ fn main() -> std::io::Result<()> {
     md += &regions::markdown();
     print!("{md}");
     std::fs::write(out.join("tradeoff.md"), &md)?;
-    std::fs::write(out.join("which_kernel_figures.md"), &fig)?;
+    figures::write(&repository_root(), &fig)?;
     let mut all = rows;
     all.extend(ss_rows);
     svg(&all, &out.join("tradeoff.svg"))?;
@@ -613,4 +614,9 @@ fn main() -> std::io::Result<()> {
         t0.elapsed().as_secs_f64()
     );
     Ok(())
+}
+
+/// The repository's root (this crate is `demo/` in it).
+fn repository_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
 }
