@@ -491,8 +491,9 @@ mod tests {
     const VERSION_TOL: f64 = 3.4e-5;
     /// Mean LDR-FLIP of the PNG pair of `tests/data/`, 67 pixels per degree.
     const FLIP_LDR_NVIDIA: f64 = 0.205_382_138;
-    /// HDR-FLIP's exposures for the HDR pair's reference: start, stop, count.
-    const FLIP_HDR_EXPOSURES_NVIDIA: (f32, f32, usize) = (-4.916_702_747, 4.110_420_704, 10);
+    /// HDR-FLIP's exposures for the HDR pair's reference: start, stop, count (printed
+    /// -4.916702747, 4.110420704; to f32 precision here).
+    const FLIP_HDR_EXPOSURES_NVIDIA: (f32, f32, usize) = (-4.916_703, 4.110_421, 10);
     /// Mean HDR-FLIP of the HDR pair (the package's float pipeline).
     const FLIP_HDR_NVIDIA: f64 = 0.152_552_187;
     /// Mean HDR-FLIP of the HDR pair with each exposure's tone-mapped images quantised to

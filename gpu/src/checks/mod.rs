@@ -27,10 +27,13 @@ pub mod sampling_beckmann;
 
 use crate::harness::{self, Kernel};
 
+/// A group's checks, built on call (cases and `f64` references).
+pub type Group = fn() -> Vec<Check>;
+
 /// Every group of checks: its name (the test of `gpu/tests/conformance.rs` that runs it, and
 /// the report's `target/gpu-conformance/<backend>/<name>.tsv`) and its checks.
 /// `gpu/tests/coverage.rs` requires every exported WGSL function to be called by one of them.
-pub const GROUPS: &[(&str, fn() -> Vec<Check>)] = &[
+pub const GROUPS: &[(&str, Group)] = &[
     ("math", math::all),
     ("ndf", ndf::all),
     ("footprint", footprint::all),

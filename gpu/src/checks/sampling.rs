@@ -93,7 +93,7 @@ fn sample_tol(c: &Case) -> f64 {
     sample_tol_of(&c.m, v3(c.wo), c.u)
 }
 
-/// [`sample_tol`] for the (f64) roughness `m`, the view `wo` and the uniform numbers `u`
+/// `sample_tol` for the (f64) roughness `m`, the view `wo` and the uniform numbers `u`
 /// (as the shader reads them).
 pub fn sample_tol_of(m: &RoughnessMatrix, wo: DVec3, u: [f32; 2]) -> f64 {
     let mm = warp_of(m);
