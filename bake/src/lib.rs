@@ -17,6 +17,26 @@
 //! written into a temporary directory beside `DIR` and renamed to `DIR` at the end, so a
 //! failure leaves `DIR` as it was (absent, or the previous bake). An existing `DIR` is
 //! replaced only if it is empty or holds a previous bake (its `report.md`).
+//!
+//! # Who loads the files
+//! Every chain is a KTX 2.0 file ([`ktx`]) of an uncompressed Vulkan format with all its mip
+//! levels, no supercompression, transfer function linear (the chains are data, not colour):
+//! - **wgpu**: upload the file's levels with `DeviceExt::create_texture_with_data` in
+//!   mip-major order, `mip_level_count` = the file's `levelCount`; tested for every format the
+//!   baker writes (`tests/wgpu_load.rs`, on lavapipe).
+//! - **Bevy**: its `ktx2` feature (`bevy_image`'s KTX2 loader, built on the `ktx2` crate, the
+//!   reader `tests/cli.rs` checks the files with) maps `R8_UNORM`, `R8G8B8A8_UNORM`,
+//!   `R16_SFLOAT`, `R16G16B16A16_SFLOAT`, `R32_SFLOAT`, `R32G32B32A32_SFLOAT` to the wgpu
+//!   formats of the same names and keeps the levels.
+//! - **three.js**: `KTX2Loader` reads these six formats without transcoding (its table of
+//!   uncompressed formats, `FORMAT_MAP` in `examples/jsm/loaders/KTX2Loader.js`), levels
+//!   included.
+//! - **Godot 4** (`modules/ktx/texture_loader_ktx.cpp`, through libktx): `R8_UNORM` (as
+//!   `L8`), `R16_SFLOAT`, `R16G16B16A16_SFLOAT`, `R32_SFLOAT`, `R32G32B32A32_SFLOAT` with their
+//!   levels; it has no case for `R8G8B8A8_UNORM` (only `_SRGB` and `_UINT`), so the
+//!   `anisotropy.ktx2` texture of `--anisotropic` does not load there as written.
+//!
+//! Only the wgpu path is tested here; the others are read from their loaders' sources.
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
