@@ -58,8 +58,8 @@
 //! `E(wo) = integral f wi_z dwi` is below `1`. For isotropic GGX (f64 quadrature,
 //! `tests/bsdf.rs`; `docs/bsdf.md` tabulates every lobe): `E = 0.9996` at roughness `0.02`
 //! seen from above and `0.894` from 89 degrees; `0.948` and `0.971` at roughness `0.2`;
-//! `0.504` and `0.948` at roughness `0.7`. A filtered lobe is wider than the material's, so
-//! it loses more.
+//! `0.504` and `0.948` at roughness `0.7`. A filtered lobe has the albedo of its own, wider
+//! distribution (`docs/bsdf.md`).
 //!
 //! ## Random numbers: [`Bsdf::sample_dimension`]
 //! `sample` takes four uniform numbers `u: [F; 4]` for every lobe, so code generic over
