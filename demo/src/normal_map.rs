@@ -125,6 +125,12 @@ fn gradient(x: f32, z: f32) -> Vec2 {
         .sum()
 }
 
+impl Default for NormalMap {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl NormalMap {
     pub fn new() -> Self {
         let texel = TILE / TEXELS as f32;
