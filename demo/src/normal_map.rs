@@ -114,12 +114,6 @@ pub struct NormalMap {
     levels: Vec<Level>,
 }
 
-impl Default for NormalMap {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
 /// The height field's gradient at `(x, z)` (world, m).
 fn gradient(x: f32, z: f32) -> Vec2 {
     WAVES
