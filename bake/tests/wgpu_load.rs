@@ -72,8 +72,8 @@ fn load_and_read_back(g: &Gpu, path: &Path) -> (Vec<Vec<u8>>, Vec<Vec<u8>>, u32)
     for k in 0..h.level_count {
         let m = size.mip_level_size(k, wgpu::TextureDimension::D2);
         let row = m.width * texel;
-        let padded = row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
-            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let padded =
+            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let buffer = g.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("read back"),
             size: u64::from(padded * m.height),
@@ -133,7 +133,8 @@ fn every_file_loads_into_a_texture_with_all_its_mips_and_reads_back_unchanged() 
     let g = gpu().unwrap_or_else(|e| panic!("{e}"));
     let dir = tmp("all");
     // The real map, anisotropic, glTF storage: R8_UNORM, R8G8B8A8_UNORM, RGBA16F, R16F.
-    let real = Path::new(env!("CARGO_MANIFEST_DIR")).join("../demo/data/normal_maps/pmndrs_0011.png");
+    let real =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../demo/data/normal_maps/pmndrs_0011.png");
     let mut o = Options::new(&real, dir.join("real"));
     o.anisotropic = true;
     o.unit_tolerance = Some(f64::INFINITY);
