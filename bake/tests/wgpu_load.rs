@@ -104,7 +104,7 @@ fn load_and_read_back(g: &Gpu, path: &Path) -> (Vec<Vec<u8>>, Vec<Vec<u8>>, u32)
         g.device
             .poll(wgpu::PollType::wait_indefinitely())
             .expect("poll");
-        let data = slice.get_mapped_range();
+        let data = slice.get_mapped_range().expect("a mapped range");
         let level: Vec<u8> = data
             .chunks(padded as usize)
             .flat_map(|r| &r[..row as usize])
