@@ -16,7 +16,9 @@
 //! `[0, 1]`, sizes that differ); the error names the file and the texel. The outputs are
 //! written into a temporary directory beside `DIR` and renamed to `DIR` at the end, so a
 //! failure leaves `DIR` as it was (absent, or the previous bake). An existing `DIR` is
-//! replaced only if it is empty or holds a previous bake (its `report.md`).
+//! replaced only if it is empty or holds a previous bake (its `report.md`). A bake killed
+//! while writing leaves its temporary directory `.DIR.bake-PID` beside `DIR` (and `DIR` as
+//! it was); delete it by hand.
 //!
 //! # Who loads the files
 //! Every chain is a KTX 2.0 file ([`ktx`]) of an uncompressed Vulkan format with all its mip
