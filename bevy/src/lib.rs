@@ -1,0 +1,1 @@
+//! A Bevy plugin for filtered-ndf.
