@@ -1,2 +1,0 @@
-//! The sparkle scene (placeholder while the build runs).
-fn main() {}
