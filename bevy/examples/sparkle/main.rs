@@ -230,7 +230,7 @@ fn build_app(o: &Options, report: &SharedPipelineReport) -> App {
     .add_plugins((FilteredNdfPlugin, Pr24427Plugin))
     .insert_resource(GlobalAmbientLight {
         color: Color::srgb(0.6, 0.75, 1.0),
-        brightness: 300.0,
+        brightness: 3.0,
         affects_lightmapped_meshes: true,
     });
     if o.deferred {
@@ -293,7 +293,7 @@ fn spawn_scene(app: &mut App, o: &Options, views: &[View]) -> Vec<Handle<BevyIma
     world.spawn((
         PointLight {
             color: Color::srgb(1.0, 0.92, 0.8),
-            intensity: 4.0e9,
+            intensity: 3.0e6,
             range: 1000.0,
             radius: 0.0,
             shadow_maps_enabled: false,
