@@ -10,6 +10,11 @@ use filtered_ndf::f32::filter::deferred::{Combine, Domain, KernelConvention, Nor
 use filtered_ndf::f32::filter::presets;
 use filtered_ndf::f32::kernel::SIGMA_PIXEL;
 
+/// The standard deviation of a one-pixel box filter, `1 / sqrt(12)` pixels: the pixel
+/// filter of an image supersampled on a regular grid and averaged (Bevy's MSAA resolve, or
+/// rendering larger and box-downsampling), as [`FilteredNdfExtension::sigma`].
+pub const SIGMA_BOX_PIXEL: f32 = 0.288_675_13;
+
 /// `StandardMaterial` with its roughness filtered before lighting (see
 /// [`FilteredNdfExtension`]).
 pub type FilteredNdfMaterial = ExtendedMaterial<StandardMaterial, FilteredNdfExtension>;
@@ -398,6 +403,13 @@ mod tests {
         for big in [f32::INFINITY, 1e30] {
             assert_eq!(FilteredNdfUniform::from(&e.with_sigma(big)).scale, f32::MAX);
         }
+    }
+
+    #[test]
+    fn the_box_filter_sigma_is_one_over_root_twelve() {
+        // Closed form: the variance of the uniform distribution on [-1/2, 1/2] is 1/12.
+        let exact = (1.0f64 / 12.0).sqrt();
+        assert!((f64::from(SIGMA_BOX_PIXEL) - exact).abs() <= 0.5 * f64::from(f32::EPSILON) * exact);
     }
 
     #[test]

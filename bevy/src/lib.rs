@@ -50,5 +50,7 @@ pub mod extension;
 pub mod plugin;
 pub mod wgsl;
 
-pub use extension::{FilteredNdfExtension, FilteredNdfMaterial, FilteredNdfUniform, RoughnessFilter};
+pub use extension::{
+    FilteredNdfExtension, FilteredNdfMaterial, FilteredNdfUniform, RoughnessFilter, SIGMA_BOX_PIXEL,
+};
 pub use plugin::{FilteredNdfPlugin, FilteredNdfShaders, MATERIAL_SHADER, ROUGHNESS_IMPORT_PATH};

@@ -49,7 +49,7 @@ use bevy::render::render_resource::{
 use bevy::render::view::Msaa;
 use bevy::render::{Render, RenderApp, RenderPlugin, RenderSystems};
 use filtered_ndf_bevy::{
-    FilteredNdfExtension, FilteredNdfMaterial, FilteredNdfPlugin, RoughnessFilter,
+    FilteredNdfExtension, FilteredNdfMaterial, FilteredNdfPlugin, RoughnessFilter, SIGMA_BOX_PIXEL,
 };
 use bevy::image::Image as BevyImage;
 use filtered_ndf_demo::image_out::{self, Image};
@@ -100,7 +100,7 @@ impl Options {
             }
         }
         if o.quick {
-            (o.width, o.height, o.frames, o.ss, o.ss_check) = (160, 96, 6, 4, 0);
+            (o.frames, o.ss_check) = (6, 0);
         }
         Ok(o)
     }
@@ -168,6 +168,12 @@ fn views(o: &Options) -> Vec<View> {
                 Shading::Plugin(FilteredNdfExtension::new(f)),
             ));
         }
+        for f in [RoughnessFilter::Tk19Trace, RoughnessFilter::Tk19Average] {
+            v.push(method(
+                &format!("plugin: {}, sigma = 1/sqrt(12)", f.label()),
+                Shading::Plugin(FilteredNdfExtension::new(f).with_sigma(SIGMA_BOX_PIXEL)),
+            ));
+        }
     }
     v.push(View {
         label: format!("reference ({0}x{0} supersampled)", o.ss),
@@ -230,7 +236,7 @@ fn build_app(o: &Options, report: &SharedPipelineReport) -> App {
     .add_plugins((FilteredNdfPlugin, Pr24427Plugin))
     .insert_resource(GlobalAmbientLight {
         color: Color::srgb(0.6, 0.75, 1.0),
-        brightness: 3.0,
+        brightness: 1.0,
         affects_lightmapped_meshes: true,
     });
     if o.deferred {
@@ -264,7 +270,7 @@ fn spawn_scene(app: &mut App, o: &Options, views: &[View]) -> Vec<Handle<BevyIma
             continue;
         }
         let layer = RenderLayers::layer(i);
-        let water = (Mesh3d(mesh.clone()), Transform::IDENTITY, layer);
+        let water = (Mesh3d(mesh.clone()), scene::lake_transform(), layer);
         match v.shading {
             Shading::Unfiltered => {
                 let m = world
@@ -293,7 +299,7 @@ fn spawn_scene(app: &mut App, o: &Options, views: &[View]) -> Vec<Handle<BevyIma
     world.spawn((
         PointLight {
             color: Color::srgb(1.0, 0.92, 0.8),
-            intensity: 3.0e6,
+            intensity: 1.0e6,
             range: 1000.0,
             radius: 0.0,
             shadow_maps_enabled: false,
@@ -319,7 +325,7 @@ fn spawn_scene(app: &mut App, o: &Options, views: &[View]) -> Vec<Handle<BevyIma
             Camera3d::default(),
             Camera {
                 order: i as isize,
-                clear_color: ClearColorConfig::Custom(Color::srgb(0.35, 0.45, 0.6)),
+                clear_color: ClearColorConfig::Custom(Color::srgb(0.12, 0.14, 0.2)),
                 ..default()
             },
             RenderTarget::Image(handle.clone().into()),

@@ -1,7 +1,9 @@
-//! The scene: a wide plane of water-like ripples (a tiled normal map of a sum of sines, no mip
-//! chain, as a PNG loads in Bevy) at low roughness under a distant point light, seen at a
-//! grazing angle, so that ripples far away are smaller than a pixel and their highlights
-//! sparkle; the camera's short move along the shore.
+//! The scene: a lake of water-like ripples (a tiled normal map of a sum of sines, no mip chain,
+//! as a PNG loads in Bevy) at low roughness under a low point light across the lake, seen from
+//! a few metres up: ripples a few pixels wide near the camera, about one pixel where the
+//! light's reflection is, a few per pixel at the far shore, so that the highlights sparkle;
+//! the camera's short move along the shore. The ripples are at most a few per pixel, so that a
+//! supersampled reference resolves them.
 
 use bevy::asset::RenderAssetUsages;
 use bevy::image::{ImageAddressMode, ImageFilterMode, ImageSampler, ImageSamplerDescriptor};
@@ -12,16 +14,18 @@ use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
 /// The normal map's size in texels (square).
 pub const NORMAL_MAP_SIZE: usize = 512;
 /// The size of one normal-map tile on the water, metres.
-pub const TILE_METRES: f32 = 2.0;
-/// The half size of the water plane, metres.
-pub const WATER_HALF_SIZE: f32 = 200.0;
+pub const TILE_METRES: f32 = 4.0;
+/// The lake's half size across (x) and along the view (z), metres.
+pub const LAKE_HALF_SIZE: Vec2 = Vec2::new(40.0, 25.0);
+/// The lake's centre on the view axis (it spans `z` from 5 m behind the camera to 45 m ahead).
+pub const LAKE_CENTRE_Z: f32 = -20.0;
 /// The RMS slope of the ripples (both directions together).
 pub const SLOPE_RMS: f32 = 0.2;
 /// The water's perceptual roughness (Bevy's `perceptual_roughness`; `alpha` = its square).
 pub const PERCEPTUAL_ROUGHNESS: f32 = 0.12;
 
 /// The camera's height above the water, metres.
-const EYE_HEIGHT: f32 = 1.7;
+const EYE_HEIGHT: f32 = 6.0;
 /// The camera's vertical field of view, radians.
 pub const FOV_Y: f32 = 0.7;
 
@@ -41,14 +45,15 @@ impl SplitMix {
 
 /// The ripples' slope field over one tile, `(dh/dx, dh/dy)` per texel (row-major, `y` down
 /// the texture): a sum of sines with integer wave numbers (periodic on the tile), amplitudes
-/// falling as `k^-2` (slopes as `k^-1`), scaled to [`SLOPE_RMS`].
+/// falling as `k^-2` (slopes as `k^-1`), wavelengths from 0.15 m to 1 m, scaled to
+/// [`SLOPE_RMS`].
 fn slopes() -> Vec<Vec2> {
     let n = NORMAL_MAP_SIZE;
     let mut rng = SplitMix(0x5eed);
     // (wave vector in cycles per tile, amplitude of the slope, phase)
     let mut waves = Vec::new();
     for _ in 0..48 {
-        let k = 3.0 + 45.0 * rng.next_f32();
+        let k = (TILE_METRES / 1.0) + (TILE_METRES / 0.15 - TILE_METRES / 1.0) * rng.next_f32();
         let theta = std::f32::consts::TAU * rng.next_f32();
         let kv = (Vec2::new(theta.cos(), theta.sin()) * k).round();
         if kv == Vec2::ZERO {
@@ -110,7 +115,7 @@ pub fn normal_map() -> Image {
 /// The water plane's mesh: positions, normals and UVs of Bevy's plane, and the constant
 /// tangent `+x` the normal map needs.
 pub fn water_mesh() -> Mesh {
-    let mut mesh = Plane3d::new(Vec3::Y, Vec2::splat(WATER_HALF_SIZE)).mesh().build();
+    let mut mesh = Plane3d::new(Vec3::Y, LAKE_HALF_SIZE).mesh().build();
     let count = mesh.count_vertices();
     mesh.insert_attribute(Mesh::ATTRIBUTE_TANGENT, vec![[1.0f32, 0.0, 0.0, 1.0]; count]);
     mesh
@@ -124,15 +129,21 @@ pub fn water_material(normal_map: Handle<Image>) -> StandardMaterial {
         metallic: 0.0,
         reflectance: 0.5,
         normal_map_texture: Some(normal_map),
-        uv_transform: Affine2::from_scale(Vec2::splat(2.0 * WATER_HALF_SIZE / TILE_METRES)),
+        uv_transform: Affine2::from_scale(2.0 * LAKE_HALF_SIZE / TILE_METRES),
         ..default()
     }
 }
 
-/// The point light: far across the water and up, so that its reflection is a glitter path
-/// from the middle distance to the horizon.
+/// The lake's transform.
+pub fn lake_transform() -> Transform {
+    Transform::from_xyz(0.0, 0.0, LAKE_CENTRE_Z)
+}
+
+/// The point light: across the lake and up, so that its reflection is a glitter path around
+/// 18 m from the camera (mirror point `80 * 6 / 26` m), from the resolved ripples to the
+/// sub-pixel ones.
 pub fn light_transform() -> Transform {
-    Transform::from_xyz(0.0, 12.0, -150.0)
+    Transform::from_xyz(0.0, 20.0, -80.0)
 }
 
 /// The camera at frame `i` of `frames`: walking 0.5 m along the shore and 0.3 m forward over
@@ -144,5 +155,5 @@ pub fn camera_transform(i: usize, frames: usize) -> Transform {
         0.0
     };
     let eye = Vec3::new(-0.25 + 0.5 * t, EYE_HEIGHT, -0.3 * t);
-    Transform::from_translation(eye).looking_at(Vec3::new(0.0, 0.0, -60.0), Vec3::Y)
+    Transform::from_translation(eye).looking_at(Vec3::new(0.0, 0.0, -20.0), Vec3::Y)
 }
