@@ -48,7 +48,10 @@
 
 pub mod extension;
 pub mod plugin;
-pub mod wgsl;
+
+/// The WGSL modules of `filtered-ndf` (the `filtered-ndf-wgsl` crate): [`wgsl::MODULES`], each
+/// module's import path, file and source.
+pub use filtered_ndf_wgsl as wgsl;
 
 pub use extension::{
     FilteredNdfExtension, FilteredNdfMaterial, FilteredNdfUniform, RoughnessFilter, SIGMA_BOX_PIXEL,
