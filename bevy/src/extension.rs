@@ -254,7 +254,11 @@ impl From<&FilteredNdfExtension> for FilteredNdfUniform {
         let Some(c) = e.filter.convention() else {
             return Self::default();
         };
-        let sigma = if e.sigma.is_nan() { 0.0 } else { e.sigma.max(0.0) };
+        let sigma = if e.sigma.is_nan() {
+            0.0
+        } else {
+            e.sigma.max(0.0)
+        };
         let width = sigma / SIGMA_PIXEL;
         let clamp = match e.kappa {
             Some(k) if !k.is_nan() => k.max(0.0),
@@ -382,7 +386,11 @@ mod tests {
             assert_eq!(u.bias, c.bias);
             assert_eq!(u.perceptual_floor, c.perceptual_floor);
             assert_eq!(u.saturate, u32::from(c.saturate));
-            let clamp = if c.clamp.is_finite() { c.clamp } else { f32::MAX };
+            let clamp = if c.clamp.is_finite() {
+                c.clamp
+            } else {
+                f32::MAX
+            };
             assert_eq!(u.clamp, clamp, "{}", f.label());
         }
         // TK19 Listing 2: 2 sigma^2 = 0.5, kappa = 0.18.
@@ -409,7 +417,9 @@ mod tests {
     fn the_box_filter_sigma_is_one_over_root_twelve() {
         // Closed form: the variance of the uniform distribution on [-1/2, 1/2] is 1/12.
         let exact = (1.0f64 / 12.0).sqrt();
-        assert!((f64::from(SIGMA_BOX_PIXEL) - exact).abs() <= 0.5 * f64::from(f32::EPSILON) * exact);
+        assert!(
+            (f64::from(SIGMA_BOX_PIXEL) - exact).abs() <= 0.5 * f64::from(f32::EPSILON) * exact
+        );
     }
 
     #[test]
@@ -418,7 +428,10 @@ mod tests {
         assert_eq!(FilteredNdfUniform::from(&e).clamp, 0.04);
         assert_eq!(FilteredNdfUniform::from(&e.with_kappa(0.1)).clamp, 0.1);
         assert_eq!(FilteredNdfUniform::from(&e.with_kappa(-3.0)).clamp, 0.0);
-        assert_eq!(FilteredNdfUniform::from(&e.with_kappa(f32::NAN)).clamp, 0.04);
+        assert_eq!(
+            FilteredNdfUniform::from(&e.with_kappa(f32::NAN)).clamp,
+            0.04
+        );
         assert_eq!(
             FilteredNdfUniform::from(&e.with_kappa(f32::INFINITY)).clamp,
             f32::MAX

@@ -41,7 +41,12 @@ impl Plugin for FilteredNdfPlugin {
         let mut shaders = app.world_mut().resource_mut::<Assets<Shader>>();
         let mut modules: Vec<Handle<Shader>> = wgsl::MODULES
             .iter()
-            .map(|m| shaders.add(Shader::from_wgsl(m.source, format!("filtered_ndf/{}", m.file))))
+            .map(|m| {
+                shaders.add(Shader::from_wgsl(
+                    m.source,
+                    format!("filtered_ndf/{}", m.file),
+                ))
+            })
             .collect();
         modules.push(shaders.add(Shader::from_wgsl(
             ROUGHNESS_WGSL,

@@ -117,7 +117,10 @@ pub fn normal_map() -> Image {
 pub fn water_mesh() -> Mesh {
     let mut mesh = Plane3d::new(Vec3::Y, LAKE_HALF_SIZE).mesh().build();
     let count = mesh.count_vertices();
-    mesh.insert_attribute(Mesh::ATTRIBUTE_TANGENT, vec![[1.0f32, 0.0, 0.0, 1.0]; count]);
+    mesh.insert_attribute(
+        Mesh::ATTRIBUTE_TANGENT,
+        vec![[1.0f32, 0.0, 0.0, 1.0]; count],
+    );
     mesh
 }
 
