@@ -226,7 +226,9 @@ fn build_app(o: &Options, report: &SharedPipelineReport) -> App {
                 ..default()
             })
             .set(LogPlugin {
-                filter: "wgpu=error,naga=warn,bevy_render=info,bevy_app=warn".to_string(),
+                // A frame's readbacks are despawned once every target has arrived; the copies
+                // still in flight then warn that nobody listens.
+                filter: "wgpu=error,naga=warn,bevy_render=info,bevy_render::gpu_readback=error,bevy_app=warn".to_string(),
                 ..default()
             })
             .disable::<PipelinedRenderingPlugin>(),
