@@ -424,13 +424,15 @@ mod tests {
 
     #[test]
     fn kappa_overrides_the_clamp() {
+        // Filament's clamp is its `specularAntiAliasingThreshold` 0.2 squared, in f32.
+        let filament_clamp = 0.2f32 * 0.2;
         let e = FilteredNdfExtension::new(RoughnessFilter::Filament);
-        assert_eq!(FilteredNdfUniform::from(&e).clamp, 0.04);
+        assert_eq!(FilteredNdfUniform::from(&e).clamp, filament_clamp);
         assert_eq!(FilteredNdfUniform::from(&e.with_kappa(0.1)).clamp, 0.1);
         assert_eq!(FilteredNdfUniform::from(&e.with_kappa(-3.0)).clamp, 0.0);
         assert_eq!(
             FilteredNdfUniform::from(&e.with_kappa(f32::NAN)).clamp,
-            0.04
+            filament_clamp
         );
         assert_eq!(
             FilteredNdfUniform::from(&e.with_kappa(f32::INFINITY)).clamp,
