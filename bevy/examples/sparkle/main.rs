@@ -23,8 +23,8 @@
 //! `--check` exits with status 1 if a pipeline fails (a shader that does not compose, an
 //! import that never resolves), a frame is black or not finite, the plugin switched off does
 //! not render what `StandardMaterial` renders, or the plugin's default is not closer to the
-//! reference than unfiltered Bevy in RMSE (HDR), lost highlights and flicker error (not
-//! FLIP: see docs/bevy.md). `--docs FILE`
+//! reference than unfiltered Bevy in RMSE (HDR) and lost highlights (not FLIP, not flicker:
+//! see docs/bevy.md). `--docs FILE`
 //! rewrites the generated part of FILE (between its `sparkle:begin` and `sparkle:end` marks)
 //! and writes the images beside it in a folder of the file's name. Runs on Mesa's lavapipe
 //! (Vulkan) without a GPU.
@@ -688,9 +688,10 @@ fn check(
         }
     }
     // What the figures support (docs/bevy.md): the plugin's default is closer to the
-    // reference than unfiltered Bevy in linear radiance (RMSE), loses fewer of the reference's
-    // highlights, and flickers no further from the reference's flicker. It is not closer on
-    // FLIP, which the check therefore does not claim.
+    // reference than unfiltered Bevy in linear radiance (RMSE) and loses fewer of the
+    // reference's highlights, both by far more than the reference's own error (its 4x4
+    // against 8x8 supersampling). It is not closer on FLIP, and the flicker error of the 4x4
+    // reference against the 8x8 one exceeds every method's, so neither is claimed.
     let base = &rows[0];
     match rows.iter().find(|r| r.label == PLUGIN_DEFAULT) {
         Some(p) => {
@@ -700,9 +701,6 @@ fn check(
             }
             if p.lost_highlights >= base.lost_highlights {
                 missing.push("lost highlights");
-            }
-            if p.flicker_error >= base.flicker_error {
-                missing.push("flicker error");
             }
             if !missing.is_empty() {
                 failures.push(format!(
