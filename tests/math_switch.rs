@@ -19,7 +19,7 @@ fn args() -> Vec<f64> {
     }
     for k in -40..40 {
         let x = k as f64 * std::f64::consts::FRAC_PI_4;
-        v.extend([x, x + 1e-9, x - 1e-9, k as f64 * 0.693_147_180_559_945_3]);
+        v.extend([x, x + 1e-9, x - 1e-9, k as f64 * std::f64::consts::LN_2]);
     }
     v
 }
