@@ -7,7 +7,9 @@
 //! comparison) -> [`metrics`] (what a viewer sees) -> [`image_out`] and [`plot`]; the scenes'
 //! runs ([`normal_map`], [`temporal`]) and investigations ([`glints`], [`residual`]) on top.
 
+pub mod bumpy;
 pub mod camera;
+pub mod floor_reference;
 pub mod glints;
 pub mod image_out;
 pub mod methods;
