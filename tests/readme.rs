@@ -9,7 +9,9 @@ const WHICH_KERNEL: &str = include_str!("../src/doc/which_kernel.md");
 fn generated_block<'a>(text: &'a str, name: &str) -> &'a str {
     let open = format!("<!-- {name}");
     let close = format!("<!-- /{name} -->");
-    let start = text.find(&open).unwrap_or_else(|| panic!("README lacks the marker {open}"));
+    let start = text
+        .find(&open)
+        .unwrap_or_else(|| panic!("README lacks the marker {open}"));
     let body = start + text[start..].find('\n').expect("a line after the marker") + 1;
     let end = text[body..]
         .find(&close)
@@ -30,7 +32,10 @@ fn which_kernel_table_is_the_generated_file() {
 #[test]
 fn readme_is_a_manual_of_at_most_300_lines() {
     let lines = README.lines().count();
-    assert!(lines <= 300, "README.md has {lines} lines; measurements belong in docs/");
+    assert!(
+        lines <= 300,
+        "README.md has {lines} lines; measurements belong in docs/"
+    );
 }
 
 #[test]

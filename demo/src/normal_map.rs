@@ -205,6 +205,7 @@ impl NormalMap {
     }
 
     /// The level-0 surface's slope at `(x, z)` (the bilinear map the reference integrates).
+    #[cfg(test)]
     pub(crate) fn slope(&self, x: f32, z: f32) -> Vec2 {
         self.bilinear(0, x, z).0
     }
