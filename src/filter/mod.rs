@@ -33,12 +33,14 @@ mod exp_poly;
 mod gaussian;
 mod gaussian_ggx;
 mod gaussian_ggx_quad;
+mod gaussian_ggx_tol;
 mod lean;
 pub mod method;
 pub mod presets;
 mod projected;
 pub mod proxy;
 pub mod rect;
+mod tolerance;
 
 pub(crate) use exp_poly::{
     LN2_HI_F32, LN2_LO_F32, MAGIC_F32, MAGIC_F64, exp_f32_poly, exp_f32_reduced, exp_f64,
@@ -47,7 +49,7 @@ pub(crate) use exp_poly::{
 pub use gaussian::{gaussian, gaussian_with_det_clamp};
 pub(crate) use gaussian::{gaussian_entries, gaussian_sanitized};
 pub use gaussian_ggx::GaussianFilteredGgx;
-pub(crate) use gaussian_ggx_quad::{STATE_F, TrapezoidState, beckmann_lambda_fast};
+pub(crate) use gaussian_ggx_quad::{TrapezoidState, beckmann_lambda_fast};
 pub use lean::{LeanMoments, lean};
 pub use method::{
     ExactGaussian, Filterable, Gaussian, Method, Projected, Proxy, Rect, RectFilteredGgx,
@@ -55,3 +57,4 @@ pub use method::{
 pub(crate) use projected::ProjectedBase;
 pub(crate) use projected::projected_sanitized;
 pub use projected::{PROJECTED_EIGEN_MAX, projected, projected_with_det_clamp};
+pub use tolerance::Tolerance;
