@@ -201,7 +201,7 @@ fn run_scene(o: &Options, kind: SceneKind) -> std::io::Result<String> {
     for family in [Family::Beckmann, Family::Ggx] {
         let img = reference.full(family);
         let name = format!("reference-{}", family.name().to_lowercase());
-        save(&o, &name, img)?;
+        save(o, &name, img)?;
         tiles.push((
             format!("Reference {} {}spp", family.name(), o.spp),
             img.to_rgb8(o.exposure),
@@ -249,7 +249,7 @@ fn run_scene(o: &Options, kind: SceneKind) -> std::io::Result<String> {
             ms
         )
         .unwrap();
-        save(&o, method.slug(), img)?;
+        save(o, method.slug(), img)?;
         tiles.push((method.label().to_string(), img.to_rgb8(o.exposure)));
     }
     // The false-glint fix: the footprint methods again on each fix route (windowed moments,
@@ -300,7 +300,7 @@ fn run_scene(o: &Options, kind: SceneKind) -> std::io::Result<String> {
             scores.push((method, route, sc));
             let slug = format!("{}-{}", method.slug(), route_slug(route));
             image_out::save(&map.to_rgb8(), &o.out.join(format!("flip-{slug}.png")))?;
-            save(&o, &slug, &frame.total)?;
+            save(o, &slug, &frame.total)?;
             fixed_tiles.push((
                 temporal::variant_label(method, route),
                 frame.total.to_rgb8(o.exposure),
