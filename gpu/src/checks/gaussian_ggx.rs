@@ -453,5 +453,106 @@ y(3u, gaussian_ggx::normal_pdf(g, x3(10u)));";
 
 /// The checks of `shaders/filter/gaussian_ggx.wgsl`.
 pub fn all() -> Vec<Check> {
-    vec![front_door(2000), domain(2000), sampling(1000)]
+    vec![
+        front_door(2000),
+        domain(2000),
+        settings(2000),
+        sampling(1000),
+    ]
+}
+
+/// The reduced accuracy settings (`gaussian_ggx::TOL_1E4`, `TOL_1E3`, `TOL_1E2`, the Rust
+/// `Tolerance`): `p22` and `d` on the cases of [`domain`] against the `f64` lobe at the full
+/// setting (within `1.1e-11` of the convolution). Tolerance: the setting's proven bound
+/// (`1e-4`, `1e-3`, `1e-2` relative, Rust module docs "Tolerance settings") plus the full
+/// setting's `f32` tolerance of the same case (the rules' own `1.8e-6` and the set-up's
+/// rounding, [`density_ulps`]): the shader's set-up is the same at every setting, and its
+/// rounding enters the reduced rule as it enters the full one.
+fn settings(n: usize) -> Check {
+    let body = "let a = matrix::from_eigen(x2(0u), x2(2u));
+let k = footprint::covariance(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
+let g = gaussian_ggx::from_kernel(a, k);
+let s = x2(8u);
+let m = x3(10u);
+let g4 = gaussian_ggx::with_tolerance(g, gaussian_ggx::TOL_1E4);
+let g3 = gaussian_ggx::with_tolerance(g, gaussian_ggx::TOL_1E3);
+let g2 = gaussian_ggx::with_tolerance(g, gaussian_ggx::TOL_1E2);
+y(0u, gaussian_ggx::p22(g4, s));
+y(1u, gaussian_ggx::d(g4, m));
+y(2u, gaussian_ggx::p22(g3, s));
+y(3u, gaussian_ggx::d(g3, m));
+y(4u, gaussian_ggx::p22(g2, s));
+y(5u, gaussian_ggx::d(g2, m));";
+    let mut c = Check::new(
+        "gaussian_ggx::{p22, d} at TOL_1E4, TOL_1E3, TOL_1E2 (tests/gaussian_ggx.rs domain)",
+        IMPORTS,
+        body,
+        13,
+        6,
+    )
+    .tolerance("the setting's bound (1e-4, 1e-3, 1e-2) / EPS + the full setting's density ulps (checks/gaussian_ggx.rs)");
+    let mut rng = SplitMix64(0x701E_0053);
+    let mut made = 0;
+    while made < n {
+        let Some(DomainCase {
+            axis,
+            al,
+            am,
+            u,
+            v,
+            kernel,
+            lobe,
+        }) = domain_case(&mut rng, made)
+        else {
+            continue;
+        };
+        let (a11, a12, a22) = am.entries();
+        let (f11, f12, f22) = (
+            a11 + 2.0 * kernel.s11,
+            a12 + 2.0 * kernel.s12,
+            a22 + 2.0 * kernel.s22,
+        );
+        let l11 = f11.sqrt();
+        let l21 = f12 / l11;
+        let l22 = (f22 - l21 * l21).max(0.0).sqrt();
+        let rho = if made % 2 == 0 {
+            rng.range(0.0, 50.0)
+        } else {
+            10f64.powf(rng.range(-3.0, 1.7))
+        };
+        let t = rng.range(0.0, core::f64::consts::TAU);
+        let (ex, ey) = (t.cos(), t.sin());
+        let s = [
+            (rho * l11 * ex) as f32,
+            (rho * (l21 * ex + l22 * ey)) as f32,
+        ];
+        let sd = v2(s);
+        let m = DVec3::new(-sd.x, -sd.y, 1.0).normalize();
+        let m32 = [m.x as f32, m.y as f32, m.z as f32];
+        let md = v3(m32);
+        let (p, d) = (lobe.p22(sd), lobe.d(md));
+        if !(p > 1e-30 && d > 1e-30) {
+            continue;
+        }
+        let mut input = axis.to_vec();
+        input.extend(al);
+        input.extend(u);
+        input.extend(v);
+        input.extend(s);
+        input.extend(m32);
+        let ms = DVec2::new(-md.x / md.z, -md.y / md.z);
+        let (up, ud) = (
+            density_ulps(&am, &kernel, sd),
+            density_ulps(&am, &kernel, ms),
+        );
+        let mut expect = Vec::new();
+        let mut tol = Vec::new();
+        for bound in [1e-4, 1e-3, 1e-2] {
+            expect.extend([p, d]);
+            tol.extend([Tol::ulps(up + bound / EPS), Tol::ulps(ud + bound / EPS)]);
+        }
+        c.case(input, expect, tol);
+        made += 1;
+    }
+    c
 }
