@@ -55,3 +55,25 @@ impl fmt::Display for UnknownSimdLevel {
 }
 
 impl core::error::Error for UnknownSimdLevel {}
+
+/// Why a checked Fresnel constructor refused its input (`Dielectric::new`,
+/// `Conductor::new`, `Schlick::new` of the `bsdf` stage).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FresnelError {
+    /// An index of refraction, extinction coefficient or reflectance is NaN or infinite.
+    NotFinite,
+    /// A value is outside its domain: an index of refraction `<= 0`, an extinction
+    /// coefficient `< 0`, a normal-incidence reflectance outside `[0, 1]`.
+    OutOfRange,
+}
+
+impl fmt::Display for FresnelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            FresnelError::NotFinite => "Fresnel parameter is NaN or infinite",
+            FresnelError::OutOfRange => "Fresnel parameter is outside its domain",
+        })
+    }
+}
+
+impl core::error::Error for FresnelError {}

@@ -54,7 +54,8 @@
 //! `Vec2/Vec3/Mat2` and `DVec2/DVec3/DMat2`. The modules follow the pipeline: `ndf`
 //! (roughness forms, GGX, Beckmann) -> `footprint` (slope maps, Jacobians, footprints) ->
 //! `kernel` (covariance, rectangle, clamp rules) -> `filter` (the methods, the front door,
-//! deferred presets) -> `sampling`, with `temporal` (Tessari et al.) and `batch` beside.
+//! deferred presets) -> `sampling` -> `bsdf` (microfacet reflection with Fresnel, for path
+//! tracers), with `temporal` (Tessari et al.) and `batch` beside.
 //!
 //! ## Conventions
 //! Tangent frame with `z` along the shading normal; slope `s = -h_xy / h_z`; `p22` is a
@@ -77,7 +78,7 @@ pub mod contract;
 pub mod error;
 pub mod math;
 
-pub use error::RoughnessError;
+pub use error::{FresnelError, RoughnessError};
 
 /// Declares the precision-generic modules inside [`f32`] and [`f64`]. Each file is written
 /// once against the aliases `F`, `Vec2`, `Vec3`, `Mat2` of its parent module.
@@ -85,9 +86,12 @@ macro_rules! precision_modules {
     () => {
         // Each stage is deliberately loaded once per precision. The folders read as the
         // pipeline: roughness and NDFs -> footprints and Jacobians -> kernels and clamps ->
-        // filters -> sampling, with the temporal extension and batch evaluation beside.
+        // filters -> sampling -> bsdf, with the temporal extension and batch evaluation
+        // beside.
         #[path = "batch/mod.rs"]
         pub mod batch;
+        #[path = "bsdf/mod.rs"]
+        pub mod bsdf;
         #[path = "filter/mod.rs"]
         pub mod filter;
         #[path = "footprint/mod.rs"]

@@ -64,15 +64,16 @@ macro_rules! every_function {
             s12: &uy,
             s22: &vx,
         };
-        let mut written = Vec::new();
-        written.push(batch::ggx_d(&iso, &x, &y, &z, &mut out));
-        written.push(batch::ggx_d(&aa, &x, &y, &z, &mut out));
-        written.push(batch::ggx_d(&mat, &x, &y, &z, &mut out));
-        written.push(batch::beckmann_d(&mat, &x, &y, &z, &mut out));
-        written.push(batch::ggx_lambda(&mat, &x, &y, &z, &mut out));
-        written.push(batch::beckmann_lambda(&mat, &x, &y, &z, &mut out));
-        written.push(batch::ggx_g2(&mat, v, w, v, &mut out));
-        written.push(batch::beckmann_g2(&mat, v, w, v, &mut out));
+        let mut written = vec![
+            batch::ggx_d(&iso, &x, &y, &z, &mut out),
+            batch::ggx_d(&aa, &x, &y, &z, &mut out),
+            batch::ggx_d(&mat, &x, &y, &z, &mut out),
+            batch::beckmann_d(&mat, &x, &y, &z, &mut out),
+            batch::ggx_lambda(&mat, &x, &y, &z, &mut out),
+            batch::beckmann_lambda(&mat, &x, &y, &z, &mut out),
+            batch::ggx_g2(&mat, v, w, v, &mut out),
+            batch::beckmann_g2(&mat, v, w, v, &mut out),
+        ];
         for rules in [ClampRules::default(), ClampRules::NONE, ClampRules::GDC2016] {
             for f in [fp, small] {
                 for h in [v, batch::Vec3s::new(&hx, &hy, &z)] {

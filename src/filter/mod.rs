@@ -56,5 +56,5 @@ pub use method::{
 };
 pub(crate) use projected::ProjectedBase;
 pub(crate) use projected::projected_sanitized;
-pub use tolerance::Tolerance;
 pub use projected::{PROJECTED_EIGEN_MAX, projected, projected_with_det_clamp};
+pub use tolerance::Tolerance;
