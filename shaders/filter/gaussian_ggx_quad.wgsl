@@ -113,47 +113,35 @@ fn laguerre(beta_m: f32, v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32
 }
 
 /// The constants of a trapezoid rule in `ln w` (items 2 and 3, and the Rust `Tolerance`
-/// settings): step `h`, `e^h`, the truncation tolerance, the first node's bound `Y`, and the
-/// geometric sums `1 / (e^((n + 2) h) - 1)`, `n < 4`, of the series below the first node.
+/// settings): step `h`, `e^h`, the truncation tolerance, the first node's bound `Y`, the
+/// geometric sums `1 / (e^((n + 2) h) - 1)`, `n < 4`, of the series below the first node, and
+/// the most nodes (a multiple of 8, `nodes h <= 88`: every `e^(k h)` finite in f32).
 struct TrapezoidRule {
     h: f32,
     exp_h: f32,
     eps_t: f32,
     y_lo: f32,
     geom: vec4<f32>,
+    nodes: u32,
 }
 
 /// The full rule (step 0.5).
-const FULL_RULE: TrapezoidRule = TrapezoidRule(H, EXP_H, EPS_T, Y_LO, vec4<f32>(0.5819767068693265, 0.2872169167888683, 0.15651764274966565, 0.08942548983385201));
+const FULL_RULE: TrapezoidRule = TrapezoidRule(H, EXP_H, EPS_T, Y_LO, vec4<f32>(0.5819767068693265, 0.2872169167888683, 0.15651764274966565, 0.08942548983385201), CHUNKS * 8u);
 
 /// The accuracy settings (the Rust `Tolerance`): `TOL_FULL` the rules above; the others the
 /// far-tail series where `2 l1 (K + 12 ln(1 + q)) <= 1 + q`, else the trapezoid rule of
 /// [`reduced_rule`], with the relative bounds `1e-4`, `1e-3`, `1e-2` (Rust module docs,
-/// "Tolerance settings"). `ln` is `math::ln` here, not the Rust upper bound, so the switch can
-/// sit a few ulp of `1 + q` away from the Rust one: both rules hold their bounds on both sides.
+/// "Tolerance settings"); their constants are the Rust rules' (written by `generate`). `ln` is
+/// `math::ln` here, not the Rust upper bound, so the switch can sit a few ulp of `1 + q` away
+/// from the Rust one: both rules hold their bounds on both sides. The truncation test runs
+/// every 8 nodes (Rust: 4), so the WGSL never stops earlier than the Rust rule.
 const TOL_FULL: u32 = 0u;
 const TOL_1E4: u32 = 1u;
 const TOL_1E3: u32 = 2u;
 const TOL_1E2: u32 = 3u;
 
-/// The far-tail switch `K` of a reduced setting.
-fn reduced_far(tol: u32) -> f32 {
-    switch tol {
-        case 1u: { return 1500.0; }
-        case 2u: { return 500.0; }
-        default: { return 160.0; }
-    }
-}
-
-/// The trapezoid rule of a reduced setting: steps `0.6`, `0.75`, `1`; truncation `1e-5`,
-/// `1e-4`, `5e-4`; `Y` `0.12`, `0.2`, `0.35`.
-fn reduced_rule(tol: u32) -> TrapezoidRule {
-    switch tol {
-        case 1u: { return TrapezoidRule(0.6, 1.8221188003905089, 1e-5, 0.12, vec4<f32>(0.43101276069333316, 0.19803362651500597, 0.09976877209617539, 0.05239569649125595)); }
-        case 2u: { return TrapezoidRule(0.75, 2.117000016612675, 1e-4, 0.2, vec4<f32>(0.2872169167888683, 0.11781705030408059, 0.05239569649125595, 0.024084150793529126)); }
-        default: { return TrapezoidRule(1.0, 2.718281828459045, 5e-4, 0.35, vec4<f32>(0.15651764274966565, 0.05239569649125595, 0.01865736036377405, 0.006783654906304231)); }
-    }
-}
+// BEGIN reduced rules
+// END reduced rules
 
 /// `J / z2^2` (as [`j`]) at the accuracy setting `tol` (`TOL_FULL` to `TOL_1E2`).
 fn j_tol(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32, tol: u32) -> f32 {
@@ -202,7 +190,7 @@ fn trapezoid_rule(c1s: f32, c2s: f32, tl1: f32, tl2: f32, rule: TrapezoidRule) -
     let ib = 1.0 / beta;
     let w_r = 2.0 * ib;
     // k0 h >= ln(w_r / w_lo), w_lo = Y / (beta + 2 l1).
-    let k0 = min(ceil(math::ln(2.0 / rule.y_lo * (beta + tl1) * ib) / hs), min(f32(CHUNKS * 8u - 1u), floor(87.0 / hs)));
+    let k0 = min(ceil(math::ln(2.0 / rule.y_lo * (beta + tl1) * ib) / hs), min(f32(rule.nodes - 1u), floor(87.0 / hs)));
     let w_first = w_r * math::exp(-k0 * hs);
     // The reference exponent x_r = -w_r - E(w_r); E(w) - E(w_r) = sum c_i^2 (w - w_r) /
     // (p_i(w) p_i(w_r)) without cancellation.
@@ -218,7 +206,7 @@ fn trapezoid_rule(c1s: f32, c2s: f32, tl1: f32, tl2: f32, rule: TrapezoidRule) -
     let t2 = tl2 * w_r;
     let stop = rule.eps_t * hs * w_r * w_r;
     var sum = 0.0;
-    for (var ch = 0u; ch < CHUNKS; ch++) {
+    for (var ch = 0u; ch < rule.nodes / 8u; ch++) {
         let kb = f32(ch * 8u) - k0;
         var v = math::exp(kb * hs);
         var part = 0.0;
