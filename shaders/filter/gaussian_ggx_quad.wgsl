@@ -141,6 +141,28 @@ const TOL_1E3: u32 = 2u;
 const TOL_1E2: u32 = 3u;
 
 // BEGIN reduced rules
+// Written by `cargo run -p filtered-ndf-gpu --bin generate` from the Rust rules
+// (`filtered_ndf::testing::tolerance_rules`); do not edit.
+
+/// The far-tail switch `K` of a reduced setting (`TOL_1E4`, `TOL_1E3`, else `TOL_1E2`).
+fn reduced_far(tol: u32) -> f32 {
+    switch tol {
+        case 1u: { return 1500.0; }
+        case 2u: { return 500.0; }
+        default: { return 160.0; }
+    }
+}
+
+/// The trapezoid rule of a reduced setting (`TOL_1E4`, `TOL_1E3`, else `TOL_1E2`): the
+/// Rust rule's constants, its node count rounded down to the 8-node chunks of
+/// [`trapezoid_rule`].
+fn reduced_rule(tol: u32) -> TrapezoidRule {
+    switch tol {
+        case 1u: { return TrapezoidRule(0.6, 1.8221188003905089, 1e-5, 0.12, vec4<f32>(0.43101276069333316, 0.19803362651500594, 0.09976877209617539, 0.05239569649125596), 144u); }
+        case 2u: { return TrapezoidRule(0.75, 2.117000016612675, 0.0001, 0.2, vec4<f32>(0.2872169167888682, 0.11781705030408056, 0.05239569649125593, 0.02408415079352912), 112u); }
+        default: { return TrapezoidRule(1.0, 2.718281828459045, 0.0005, 0.35, vec4<f32>(0.15651764274966568, 0.05239569649125596, 0.01865736036377405, 0.006783654906304232), 88u); }
+    }
+}
 // END reduced rules
 
 /// `J / z2^2` (as [`j`]) at the accuracy setting `tol` (`TOL_FULL` to `TOL_1E2`).
