@@ -453,12 +453,10 @@ y(3u, gaussian_ggx::normal_pdf(g, x3(10u)));";
 
 /// The checks of `shaders/filter/gaussian_ggx.wgsl`.
 pub fn all() -> Vec<Check> {
-    vec![
-        front_door(2000),
-        domain(2000),
-        settings(2000),
-        sampling(1000),
-    ]
+    let mut all = vec![front_door(2000), domain(2000)];
+    all.extend(settings(2000));
+    all.push(sampling(1000));
+    all
 }
 
 /// The far-tail switches `K` of the reduced settings (`Tolerance::Rel1e4`, `Rel1e3`,
@@ -468,7 +466,7 @@ fn far_switches() -> [f64; 3] {
 }
 
 /// The reduced accuracy settings (`gaussian_ggx::TOL_1E4`, `TOL_1E3`, `TOL_1E2`, the Rust
-/// `Tolerance`): `p22` and `d` of each setting against the `f64` lobe at the full setting
+/// `Tolerance`), one check per setting: `p22` and `d` against the `f64` lobe at the full setting
 /// (within `1.1e-11` of the convolution, `tests/gaussian_ggx.rs`), on two sets of cases:
 /// the cases of [`domain`], and cases on both sides of each setting's far-tail switch
 /// `2 l1 (K + 12 ln(1 + q)) <= 1 + q` (the only switch of a reduced setting: the far-tail series
@@ -484,32 +482,12 @@ fn far_switches() -> [f64; 3] {
 /// full rule's own `1.8e-6` is not in a reduced rule's error: it over-counts by 15 ulp). The
 /// shader's set-up is the same at every setting, and its rounding enters a reduced rule as it
 /// enters the full one.
-fn settings(n: usize) -> Check {
-    let body = "let a = matrix::from_eigen(x2(0u), x2(2u));
-let k = footprint::covariance(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
-let g = gaussian_ggx::from_kernel(a, k);
-let s = x2(8u);
-let m = x3(10u);
-let g4 = gaussian_ggx::with_tolerance(g, gaussian_ggx::TOL_1E4);
-let g3 = gaussian_ggx::with_tolerance(g, gaussian_ggx::TOL_1E3);
-let g2 = gaussian_ggx::with_tolerance(g, gaussian_ggx::TOL_1E2);
-y(0u, gaussian_ggx::p22(g4, s));
-y(1u, gaussian_ggx::d(g4, m));
-y(2u, gaussian_ggx::p22(g3, s));
-y(3u, gaussian_ggx::d(g3, m));
-y(4u, gaussian_ggx::p22(g2, s));
-y(5u, gaussian_ggx::d(g2, m));";
-    let mut c = Check::new(
-        "gaussian_ggx::{p22, d} at TOL_1E4, TOL_1E3, TOL_1E2 (tests/gaussian_ggx.rs domain; both sides of each far-tail switch)",
-        IMPORTS,
-        body,
-        13,
-        6,
-    )
-    .tolerance("the setting's proven bound (1e-4, 1e-3, 1e-2) / EPS + the full setting's f32 density ulps (checks/gaussian_ggx.rs)");
+fn settings(n: usize) -> Vec<Check> {
+    // The cases: inputs, the f64 full-setting p22 and d, and their full-setting f32 ulps.
+    let mut cases: Vec<(Vec<f32>, [f64; 2], [f64; 2])> = Vec::new();
     // One case: the material, the footprint vectors and the slope; `None` where the
     // reference underflows.
-    let add = |c: &mut Check,
+    let add = |cases: &mut Vec<(Vec<f32>, [f64; 2], [f64; 2])>,
                axis: [f32; 2],
                al: [f32; 2],
                u: [f32; 2],
@@ -534,17 +512,11 @@ y(5u, gaussian_ggx::d(g2, m));";
         input.extend(s);
         input.extend(m32);
         let ms = DVec2::new(-md.x / md.z, -md.y / md.z);
-        let (up, ud) = (
+        let ulps = [
             density_ulps(&am, &kernel, sd),
             density_ulps(&am, &kernel, ms),
-        );
-        let mut expect = Vec::new();
-        let mut tol = Vec::new();
-        for bound in [1e-4, 1e-3, 1e-2] {
-            expect.extend([p, d]);
-            tol.extend([Tol::ulps(up + bound / EPS), Tol::ulps(ud + bound / EPS)]);
-        }
-        c.case(input, expect, tol);
+        ];
+        cases.push((input, [p, d], ulps));
         Some(())
     };
     let mut rng = SplitMix64(0x701E_0053);
@@ -582,7 +554,7 @@ y(5u, gaussian_ggx::d(g2, m));";
             (rho * l11 * ex) as f32,
             (rho * (l21 * ex + l22 * ey)) as f32,
         ];
-        if add(&mut c, axis, al, u, v, s).is_some() {
+        if add(&mut cases, axis, al, u, v, s).is_some() {
             made += 1;
         }
     }
@@ -613,7 +585,7 @@ y(5u, gaussian_ggx::d(g2, m));";
                             (switch - 1.0).abs() >= 0.5 * delta.abs() && far_side == (delta < 0.0),
                             "switch case K = {far}, 1 + q = {beta}, delta = {delta}: {switch}"
                         );
-                        if add(&mut c, axis, al, u, v, s).is_some() {
+                        if add(&mut cases, axis, al, u, v, s).is_some() {
                             sides[usize::from(far_side)] += 1;
                         }
                     }
@@ -625,5 +597,39 @@ y(5u, gaussian_ggx::d(g2, m));";
         sides[0] >= 100 && sides[1] >= 100,
         "switch cases per side: {sides:?}"
     );
-    c
+    [("TOL_1E4", 1e-4), ("TOL_1E3", 1e-3), ("TOL_1E2", 1e-2)]
+        .into_iter()
+        .map(|(setting, bound)| {
+            let body = format!(
+                "let a = matrix::from_eigen(x2(0u), x2(2u));
+let k = footprint::covariance(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
+let g = gaussian_ggx::with_tolerance(gaussian_ggx::from_kernel(a, k), gaussian_ggx::{setting});
+y(0u, gaussian_ggx::p22(g, x2(8u)));
+y(1u, gaussian_ggx::d(g, x3(10u)));"
+            );
+            let mut c = Check::new(
+                &format!(
+                    "gaussian_ggx::{{p22, d}} at {setting} (tests/gaussian_ggx.rs domain; both sides of each far-tail switch)"
+                ),
+                IMPORTS,
+                &body,
+                13,
+                2,
+            )
+            .tolerance(&format!(
+                "the setting's proven bound {bound:e} / EPS + the full setting's f32 density ulps (checks/gaussian_ggx.rs)"
+            ));
+            for (input, expect, ulps) in &cases {
+                c.case(
+                    input.clone(),
+                    expect.to_vec(),
+                    vec![
+                        Tol::ulps(ulps[0] + bound / EPS),
+                        Tol::ulps(ulps[1] + bound / EPS),
+                    ],
+                );
+            }
+            c
+        })
+        .collect()
 }
