@@ -73,15 +73,18 @@ struct ExactGaussian {
     clamps: clamp::ClampRules,
     /// The standard deviation of the Gaussian pixel filter, in pixels.
     sigma: f32,
+    /// The accuracy setting of the GGX lobe's density (`gaussian_ggx::TOL_*`, the Rust
+    /// `Tolerance`).
+    tolerance: u32,
 }
 
 /// The unbiased filter of the footprint: `lambda = 1` (KHPL16 section 5.2), no `kappa`,
-/// `sigma = 0.5`.
-const KHPL16_EXACT_GAUSSIAN: ExactGaussian = ExactGaussian(clamp::KHPL16_RULES, pixel::SIGMA_PIXEL);
+/// `sigma = 0.5`, the full accuracy.
+const KHPL16_EXACT_GAUSSIAN: ExactGaussian = ExactGaussian(clamp::KHPL16_RULES, pixel::SIGMA_PIXEL, gaussian_ggx::TOL_FULL);
 
 /// The GGX lobe of the exact Gaussian filter (the Rust `ExactGaussian::lobe` for GGX).
 fn exact_gaussian_lobe(method: ExactGaussian, material: matrix::RoughnessMatrix, fp: pixel::Footprint) -> gaussian_ggx::GaussianFilteredGgx {
-    return gaussian_ggx::from_kernel(material, clamp::pixel_kernel(method.clamps, fp, method.sigma));
+    return gaussian_ggx::with_tolerance(gaussian_ggx::from_kernel(material, clamp::pixel_kernel(method.clamps, fp, method.sigma)), method.tolerance);
 }
 
 /// `D(m)` of [`exact_gaussian_lobe`].

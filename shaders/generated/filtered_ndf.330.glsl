@@ -38,6 +38,14 @@ struct ndf_roughness_axis_aligned_AxisAligned {
     vec2 alpha;
     vec2 inv_alpha_sq;
 };
+struct filter_gaussian_ggx_quad_TrapezoidRule {
+    float h;
+    float exp_h;
+    float eps_t;
+    float y_lo;
+    vec4 geom;
+    uint nodes;
+};
 struct sampling_Warp {
     float l_xx;
     float l_yx;
@@ -50,6 +58,7 @@ struct filter_gaussian_ggx_GaussianFilteredGgx {
     vec2 tl;
     float norm;
     kernel_covariance_Covariance k;
+    uint tol;
 };
 struct filter_lean_LeanMoments {
     vec2 mean;
@@ -84,6 +93,7 @@ struct filter_method_Gaussian {
 struct filter_method_ExactGaussian {
     kernel_clamp_ClampRules clamps;
     float sigma;
+    uint tolerance;
 };
 struct filter_method_Projected {
     kernel_clamp_ClampRules clamps;
@@ -140,12 +150,21 @@ const uint filter_gaussian_ggx_quad_CHUNKS = 22u;
 const float filter_gaussian_ggx_quad_GL_RATIO = 0.0177;
 const float filter_gaussian_ggx_quad_GL_PLATEAU = 20.0;
 const float filter_gaussian_ggx_quad_GL_WIDE = 28000000000.0;
+const filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_FULL_RULE = filter_gaussian_ggx_quad_TrapezoidRule(0.5, 1.6487212, 1e-7, 0.054, vec4(0.5819767, 0.28721693, 0.15651764, 0.08942549), 176u);
+const uint filter_gaussian_ggx_quad_TOL_FULL = 0u;
+const uint filter_gaussian_ggx_quad_TOL_1E4_ = 1u;
+const uint filter_gaussian_ggx_quad_TOL_1E3_ = 2u;
+const uint filter_gaussian_ggx_quad_TOL_1E2_ = 3u;
 const float filter_gaussian_ggx_quad_GH_MAX = 0.01;
 const float filter_gaussian_ggx_quad_S_MAX = 0.25;
 const float filter_gaussian_ggx_quad_S_COEF = 0.25;
 const float filter_gaussian_ggx_quad_S_EPS = 1e-8;
 const uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
 const float sampling_ONE_MINUS_EPS = 0.99999994;
+const uint filter_gaussian_ggx_TOL_FULL = 0u;
+const uint filter_gaussian_ggx_TOL_1E4_ = 1u;
+const uint filter_gaussian_ggx_TOL_1E3_ = 2u;
+const uint filter_gaussian_ggx_TOL_1E2_ = 3u;
 const float footprint_jacobian_HZ_MIN = 1e-6;
 const float footprint_SIGMA_PIXEL = 0.5;
 const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
@@ -162,7 +181,7 @@ const uint filter_rect_TIER_CLOSED = 0u;
 const float filter_rect_lambda_BIG_K = 1000000000000.0;
 const filter_method_Gaussian filter_method_TK19_GAUSSIAN = filter_method_Gaussian(kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
 const filter_method_Gaussian filter_method_KHPL16_GAUSSIAN = filter_method_Gaussian(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
-const filter_method_ExactGaussian filter_method_KHPL16_EXACT_GAUSSIAN = filter_method_ExactGaussian(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
+const filter_method_ExactGaussian filter_method_KHPL16_EXACT_GAUSSIAN = filter_method_ExactGaussian(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5, 0u);
 const filter_method_Projected filter_method_TK21_PROJECTED = filter_method_Projected(kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
 const filter_method_Rect filter_method_KHPL16_RECT = filter_method_Rect(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
 const filter_method_Rect filter_method_GDC2016_RECT = filter_method_Rect(kernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true));
@@ -252,17 +271,17 @@ float math_hypot(float x_1, float y) {
 
 float math_exp(float x_2) {
     float xc = clamp(x_2, -87.0, 88.0);
-    float n_6 = roundEven((xc * math_LOG2_E));
-    float r_77 = ((xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO));
+    float n_5 = roundEven((xc * math_LOG2_E));
+    float r_77 = ((xc - (n_5 * math_LN2_HI)) - (n_5 * math_LN2_LO));
     float r2_ = (r_77 * r_77);
     float p_6 = (((1.0 + r_77) + ((0.4999999 + (0.1666642 * r_77)) * r2_)) + (((0.041668225 + (0.008374816 * r_77)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
-    float s_21 = uintBitsToFloat((uint((int(n_6) + 127)) << 23u));
+    float s_21 = uintBitsToFloat((uint((int(n_5) + 127)) << 23u));
     return ((x_2 >= -87.0) ? (p_6 * s_21) : 0.0);
 }
 
 float math_atanh2_(float z) {
-    float z2_3 = (z * z);
-    float s_22 = (((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3);
+    float z2_4 = (z * z);
+    float s_22 = (((((((((z2_4 * 0.09090909) + 0.11111111) * z2_4) + 0.14285715) * z2_4) + 0.2) * z2_4) + 0.33333334) * z2_4);
     return ((2.0 * z) + ((2.0 * z) * s_22));
 }
 
@@ -849,9 +868,9 @@ float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
 
 float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3) {
     bool local_7 = false;
-    float z2_4 = (m_z_1 * m_z_1);
-    float x_13 = (q_xy_1 / z2_4);
-    float k_25 = (1.0 / (((math_PI * sqrt_det_3) * z2_4) * z2_4));
+    float z2_5 = (m_z_1 * m_z_1);
+    float x_13 = (q_xy_1 / z2_5);
+    float k_25 = (1.0 / (((math_PI * sqrt_det_3) * z2_5) * z2_5));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
     float _e21 = ndf_beckmann_exp_neg_times(x_13, k_25, ln_k_1);
     if ((m_z_1 > 0.0)) {
@@ -1126,24 +1145,7 @@ float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, floa
     return ((_e53 * ib_1) * ib_1);
 }
 
-float filter_gaussian_ggx_quad_geom(uint n) {
-    switch(n) {
-        case 0u: {
-            return 0.5819767;
-        }
-        case 1u: {
-            return 0.28721693;
-        }
-        case 2u: {
-            return 0.15651764;
-        }
-        default: {
-            return 0.08942549;
-        }
-    }
-}
-
-float filter_gaussian_ggx_quad_series_below(float c1s_1, float c2s_1, float tl1_2, float tl2_2, float y_1) {
+float filter_gaussian_ggx_quad_series_below(float c1s_1, float c2s_1, float tl1_2, float tl2_2, float y_1, vec4 geom) {
     float x1_ = (tl1_2 * y_1);
     float x2_2 = (tl2_2 * y_1);
     float d1_ = (c1s_1 * y_1);
@@ -1153,15 +1155,11 @@ float filter_gaussian_ggx_quad_series_below(float c1s_1, float c2s_1, float tl1_
     float b3_ = (-((((d1_ * x1_) * x1_) + ((d2_ * x2_2) * x2_2))) - (0.16666667 * (((x1_ * x1_) * x1_) + ((x2_2 * x2_2) * x2_2))));
     float a2_1 = (0.5 * ((a1_ * a1_) + (2.0 * b2_)));
     float a3_ = (0.33333334 * (((a1_ * a2_1) + ((2.0 * b2_) * a1_)) + (3.0 * b3_)));
-    float _e56 = filter_gaussian_ggx_quad_geom(0u);
-    float _e58 = filter_gaussian_ggx_quad_geom(1u);
-    float _e62 = filter_gaussian_ggx_quad_geom(2u);
-    float _e66 = filter_gaussian_ggx_quad_geom(3u);
-    float tail = (((_e56 + (a1_ * _e58)) + (a2_1 * _e62)) + (a3_ * _e66));
+    float tail = (((geom.x + (a1_ * geom.y)) + (a2_1 * geom.z)) + (a3_ * geom.w));
     return ((tail * y_1) * y_1);
 }
 
-float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, float tl2_3) {
+float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl1_3, float tl2_3, filter_gaussian_ggx_quad_TrapezoidRule rule) {
     float sum = 0.0;
     uint ch = 0u;
     float v_3 = 0.0;
@@ -1169,95 +1167,96 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
     float last = 0.0;
     float vl = 0.0;
     uint jj = 0u;
+    float hs = rule.h;
     float beta_1 = ((1.0 + c1s_2) + c2s_2);
     float ib_2 = (1.0 / beta_1);
     float w_r = (2.0 * ib_2);
-    float _e15 = math_ln(((37.037037 * (beta_1 + tl1_3)) * ib_2));
-    float k0_ = min(ceil((_e15 / filter_gaussian_ggx_quad_H)), 175.0);
-    float _e24 = math_exp((-(k0_) * filter_gaussian_ggx_quad_H));
-    float w_first = (w_r * _e24);
+    float _e19 = math_ln((((2.0 / rule.y_lo) * (beta_1 + tl1_3)) * ib_2));
+    float k0_ = min(ceil((_e19 / hs)), min(float((rule.nodes - 1u)), floor((87.0 / hs))));
+    float _e33 = math_exp((-(k0_) * hs));
+    float w_first = (w_r * _e33);
     float pr1_ = (1.0 + (tl1_3 * w_r));
     float pr2_ = (1.0 + (tl2_3 * w_r));
     float k1_2 = (c1s_2 * (w_r / pr1_));
     float k2_2 = (c2s_2 * (w_r / pr2_));
     float x_r = ((-(w_r) - k1_2) - k2_2);
-    float _e40 = math_exp(x_r);
-    float scale_1 = ((w_r * w_r) * _e40);
+    float _e49 = math_exp(x_r);
+    float scale_1 = ((w_r * w_r) * _e49);
     float t1_3 = (tl1_3 * w_r);
     float t2_1 = (tl2_3 * w_r);
-    float stop = ((5e-8 * w_r) * w_r);
+    float stop = (((rule.eps_t * hs) * w_r) * w_r);
     bool loop_init_1 = true;
     while(true) {
         if (!loop_init_1) {
-            uint _e136 = ch;
-            ch = (_e136 + 1u);
+            uint _e148 = ch;
+            ch = (_e148 + 1u);
         }
         loop_init_1 = false;
-        uint _e51 = ch;
-        if ((_e51 < filter_gaussian_ggx_quad_CHUNKS)) {
+        uint _e61 = ch;
+        if ((_e61 < (rule.nodes / 8u))) {
         } else {
             break;
         }
         {
-            uint _e54 = ch;
-            float kb = (float((_e54 * 8u)) - k0_);
-            float _e61 = math_exp((kb * filter_gaussian_ggx_quad_H));
-            v_3 = _e61;
+            uint _e66 = ch;
+            float kb = (float((_e66 * 8u)) - k0_);
+            float _e72 = math_exp((kb * hs));
+            v_3 = _e72;
             part = 0.0;
             last = 0.0;
-            float _e67 = v_3;
-            vl = _e67;
+            float _e78 = v_3;
+            vl = _e78;
             jj = 0u;
             bool loop_init_2 = true;
             while(true) {
                 if (!loop_init_2) {
-                    uint _e113 = jj;
-                    jj = (_e113 + 1u);
+                    uint _e125 = jj;
+                    jj = (_e125 + 1u);
                 }
                 loop_init_2 = false;
-                uint _e71 = jj;
-                if ((_e71 < 8u)) {
+                uint _e82 = jj;
+                if ((_e82 < 8u)) {
                 } else {
                     break;
                 }
                 {
-                    float _e74 = v_3;
-                    float ip1_1 = (1.0 / (1.0 + (t1_3 * _e74)));
-                    float _e80 = v_3;
-                    float ip2_1 = (1.0 / (1.0 + (t2_1 * _e80)));
+                    float _e85 = v_3;
+                    float ip1_1 = (1.0 / (1.0 + (t1_3 * _e85)));
+                    float _e91 = v_3;
+                    float ip2_1 = (1.0 / (1.0 + (t2_1 * _e91)));
                     float a_22 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
-                    uint _e91 = jj;
-                    float _e95 = v_3;
-                    float x_14 = ((1.0 * (kb + float(_e91))) - ((_e95 - 1.0) * a_22));
-                    float _e100 = math_exp(x_14);
-                    last = ((_e100 * sqrt(ip1_1)) * sqrt(ip2_1));
-                    float _e105 = part;
-                    float _e106 = last;
-                    part = (_e105 + _e106);
-                    float _e108 = v_3;
-                    vl = _e108;
-                    float _e109 = v_3;
-                    v_3 = (_e109 * filter_gaussian_ggx_quad_EXP_H);
+                    uint _e103 = jj;
+                    float _e107 = v_3;
+                    float x_14 = (((2.0 * hs) * (kb + float(_e103))) - ((_e107 - 1.0) * a_22));
+                    float _e112 = math_exp(x_14);
+                    last = ((_e112 * sqrt(ip1_1)) * sqrt(ip2_1));
+                    float _e117 = part;
+                    float _e118 = last;
+                    part = (_e117 + _e118);
+                    float _e120 = v_3;
+                    vl = _e120;
+                    float _e121 = v_3;
+                    v_3 = (_e121 * rule.exp_h);
                 }
             }
-            float _e115 = sum;
-            float _e116 = part;
-            sum = (_e115 + _e116);
-            float _e118 = vl;
-            float wl = (_e118 * w_r);
-            float b_7 = ((wl >= 2.0) ? (1.0 + wl) : 7.47);
-            float _e126 = last;
-            float _e128 = sum;
+            float _e127 = sum;
+            float _e128 = part;
+            sum = (_e127 + _e128);
             float _e130 = vl;
-            float _e132 = vl;
-            if (((_e126 * b_7) <= (((stop * _e128) * _e130) * _e132))) {
+            float wl = (_e130 * w_r);
+            float b_7 = ((wl >= 2.0) ? (1.0 + wl) : 7.47);
+            float _e138 = last;
+            float _e140 = sum;
+            float _e142 = vl;
+            float _e144 = vl;
+            if (((_e138 * b_7) <= (((stop * _e140) * _e142) * _e144))) {
                 break;
             }
         }
     }
-    float _e139 = sum;
-    float _e141 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first);
-    return (filter_gaussian_ggx_quad_H * ((_e139 * scale_1) + _e141));
+    float _e150 = sum;
+    float _e153 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first, rule.geom);
+    return (hs * ((_e150 * scale_1) + _e153));
 }
 
 float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1_4, float tl2_4) {
@@ -1286,8 +1285,54 @@ float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1
         return _e37;
     }
     float iz2_ = (1.0 / z2_2);
-    float _e42 = filter_gaussian_ggx_quad_trapezoid((v1s_1 * iz2_), (v2s_1 * iz2_), tl1_4, tl2_4);
-    return ((_e42 * iz2_) * iz2_);
+    float _e43 = filter_gaussian_ggx_quad_trapezoid_rule((v1s_1 * iz2_), (v2s_1 * iz2_), tl1_4, tl2_4, filter_gaussian_ggx_quad_FULL_RULE);
+    return ((_e43 * iz2_) * iz2_);
+}
+
+float filter_gaussian_ggx_quad_reduced_far(uint tol) {
+    switch(tol) {
+        case 1u: {
+            return 1500.0;
+        }
+        case 2u: {
+            return 500.0;
+        }
+        default: {
+            return 160.0;
+        }
+    }
+}
+
+filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_reduced_rule(uint tol_1) {
+    switch(tol_1) {
+        case 1u: {
+            return filter_gaussian_ggx_quad_TrapezoidRule(0.6, 1.8221188, 1e-5, 0.12, vec4(0.43101275, 0.19803363, 0.09976877, 0.052395698), 144u);
+        }
+        case 2u: {
+            return filter_gaussian_ggx_quad_TrapezoidRule(0.75, 2.117, 0.0001, 0.2, vec4(0.28721693, 0.11781705, 0.052395698, 0.02408415), 112u);
+        }
+        default: {
+            return filter_gaussian_ggx_quad_TrapezoidRule(1.0, 2.7182817, 0.0005, 0.35, vec4(0.15651764, 0.052395698, 0.01865736, 0.006783655), 88u);
+        }
+    }
+}
+
+float filter_gaussian_ggx_quad_j_tol(float v1s_2, float v2s_2, float z2_3, float tl1_5, float tl2_5, uint tol_2) {
+    if ((tol_2 == filter_gaussian_ggx_quad_TOL_FULL)) {
+        float _e8 = filter_gaussian_ggx_quad_j(v1s_2, v2s_2, z2_3, tl1_5, tl2_5);
+        return _e8;
+    }
+    float beta_m_2 = ((z2_3 + v1s_2) + v2s_2);
+    float _e12 = filter_gaussian_ggx_quad_reduced_far(tol_2);
+    float _e14 = math_ln((beta_m_2 / z2_3));
+    if ((((tl1_5 * z2_3) * (_e12 + (12.0 * _e14))) <= beta_m_2)) {
+        float _e20 = filter_gaussian_ggx_quad_far_tail(beta_m_2, v1s_2, v2s_2, tl1_5, tl2_5, z2_3);
+        return _e20;
+    }
+    float iz2_1 = (1.0 / z2_3);
+    filter_gaussian_ggx_quad_TrapezoidRule _e25 = filter_gaussian_ggx_quad_reduced_rule(tol_2);
+    float _e26 = filter_gaussian_ggx_quad_trapezoid_rule((v1s_2 * iz2_1), (v2s_2 * iz2_1), tl1_5, tl2_5, _e25);
+    return ((_e26 * iz2_1) * iz2_1);
 }
 
 float filter_gaussian_ggx_quad_hermite_node(uint k_8) {
@@ -1492,8 +1537,8 @@ vec3 sampling_stretch(sampling_Warp l_3, vec3 w_15) {
     return vec3(((l_3.l_xx * w_15.x) + (l_3.l_yx * w_15.y)), (l_3.l_yy * w_15.y), w_15.z);
 }
 
-vec3 sampling_unstretch(sampling_Warp l_4, vec3 n_1) {
-    vec3 _e14 = sampling_normalize_scaled(vec3((l_4.l_xx * n_1.x), ((l_4.l_yx * n_1.x) + (l_4.l_yy * n_1.y)), n_1.z));
+vec3 sampling_unstretch(sampling_Warp l_4, vec3 n) {
+    vec3 _e14 = sampling_normalize_scaled(vec3((l_4.l_xx * n.x), ((l_4.l_yx * n.x) + (l_4.l_yy * n.y)), n.z));
     return _e14;
 }
 
@@ -1545,9 +1590,9 @@ vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_53, vec2 u_4)
     float _e3 = sampling_clamp_unit(u_4.x);
     float _e5 = sampling_clamp_unit(u_4.y);
     vec2 _e6 = math_sincos_turns(_e5);
-    vec3 n_7 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
+    vec3 n_6 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
     sampling_Warp _e13 = sampling_warp(r_53);
-    vec3 _e14 = sampling_unstretch(_e13, n_7);
+    vec3 _e14 = sampling_unstretch(_e13, n_6);
     return _e14;
 }
 
@@ -1625,6 +1670,14 @@ float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_57, vec3 wo
     return _e18;
 }
 
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_with_tolerance(filter_gaussian_ggx_GaussianFilteredGgx g, uint tol_3) {
+    filter_gaussian_ggx_GaussianFilteredGgx out_1 = filter_gaussian_ggx_GaussianFilteredGgx(ndf_roughness_matrix_RoughnessMatrix(vec2(0.0), vec2(0.0), vec2(0.0), vec2(0.0), 0.0, 0.0, 0.0), vec2(0.0), vec2(0.0), vec2(0.0), 0.0, kernel_covariance_Covariance(0.0, 0.0, 0.0, 0.0), 0u);
+    out_1 = g;
+    out_1.tol = tol_3;
+    filter_gaussian_ggx_GaussianFilteredGgx _e4 = out_1;
+    return _e4;
+}
+
 filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_4) {
     float l2_ = 0.0;
     vec2 v_5 = vec2(1.0, 0.0);
@@ -1656,33 +1709,33 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roug
     vec2 _e102 = v_5;
     float _e105 = l2_;
     float _e110 = ndf_roughness_matrix_sqrt_det(a_5);
-    return filter_gaussian_ggx_GaussianFilteredGgx(a_5, isl, _e102, vec2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2);
+    return filter_gaussian_ggx_GaussianFilteredGgx(a_5, isl, _e102, vec2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2, filter_gaussian_ggx_TOL_FULL);
 }
 
-vec2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g, vec2 s_9) {
-    vec2 _e3 = ndf_roughness_matrix_rotate(g.a, s_9);
-    vec2 u_18 = (_e3 * g.inv_sqrt_l);
-    vec2 c_19 = vec2(((g.v.x * u_18.x) + (g.v.y * u_18.y)), ((g.v.x * u_18.y) - (g.v.y * u_18.x)));
+vec2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g_1, vec2 s_9) {
+    vec2 _e3 = ndf_roughness_matrix_rotate(g_1.a, s_9);
+    vec2 u_18 = (_e3 * g_1.inv_sqrt_l);
+    vec2 c_19 = vec2(((g_1.v.x * u_18.x) + (g_1.v.y * u_18.y)), ((g_1.v.x * u_18.y) - (g_1.v.y * u_18.x)));
     return (c_19 * c_19);
 }
 
-float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_1, vec2 s_10) {
-    vec2 _e2 = filter_gaussian_ggx_whiten(g_1, s_10);
-    float _e11 = filter_gaussian_ggx_quad_j(_e2.x, _e2.y, 1.0, g_1.tl.x, g_1.tl.y);
-    return (g_1.norm * _e11);
+float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_2, vec2 s_10) {
+    vec2 _e2 = filter_gaussian_ggx_whiten(g_2, s_10);
+    float _e12 = filter_gaussian_ggx_quad_j_tol(_e2.x, _e2.y, 1.0, g_2.tl.x, g_2.tl.y, g_2.tol);
+    return (g_2.norm * _e12);
 }
 
-float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, vec3 m_24) {
+float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_3, vec3 m_24) {
     if (!((m_24.z > 0.0))) {
         return 0.0;
     }
-    vec2 _e8 = filter_gaussian_ggx_whiten(g_2, m_24.xy);
-    float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_24.z * m_24.z), g_2.tl.x, g_2.tl.y);
-    float v_16 = (g_2.norm * _e19);
+    vec2 _e8 = filter_gaussian_ggx_whiten(g_3, m_24.xy);
+    float _e20 = filter_gaussian_ggx_quad_j_tol(_e8.x, _e8.y, (m_24.z * m_24.z), g_3.tl.x, g_3.tl.y, g_3.tol);
+    float v_16 = (g_3.norm * _e20);
     return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
 }
 
-float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, vec3 w_16) {
+float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_4, vec3 w_16) {
     float big_3 = max(max(abs(w_16.x), abs(w_16.y)), abs(w_16.z));
     if (!((big_3 > 0.0))) {
         return ((big_3 == 0.0) ? 0.0 : math_F32_MAX);
@@ -1690,8 +1743,8 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, ve
     vec3 ws = (w_16 / vec3(big_3));
     vec3 o_9 = (ws / vec3(length(ws)));
     float oz_3 = abs(o_9.z);
-    float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_9.xy);
-    kernel_covariance_Covariance kk = g_3.k;
+    float _e27 = ndf_roughness_matrix_quadratic(g_4.a, o_9.xy);
+    kernel_covariance_Covariance kk = g_4.k;
     float qs_3 = max(((((kk.s_xx * o_9.x) * o_9.x) + (((2.0 * kk.s_xy) * o_9.x) * o_9.y)) + ((kk.s_yy * o_9.y) * o_9.y)), 0.0);
     if ((qs_3 <= 0.0)) {
         float _e52 = ndf_ggx_lambda_of(_e27, oz_3);
@@ -1708,15 +1761,15 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, ve
     return _e61;
 }
 
-float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, vec3 w_17, vec3 m_25) {
-    float _e3 = filter_gaussian_ggx_lambda(g_4, w_17);
+float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_5, vec3 w_17, vec3 m_25) {
+    float _e3 = filter_gaussian_ggx_lambda(g_5, w_17);
     float _e5 = ndf_g1_of(_e3, dot(w_17, m_25));
     return _e5;
 }
 
-float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, vec3 i_6, vec3 o_7, vec3 m_26) {
-    float _e4 = filter_gaussian_ggx_lambda(g_5, i_6);
-    float _e5 = filter_gaussian_ggx_lambda(g_5, o_7);
+float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_6, vec3 i_6, vec3 o_7, vec3 m_26) {
+    float _e4 = filter_gaussian_ggx_lambda(g_6, i_6);
+    float _e5 = filter_gaussian_ggx_lambda(g_6, o_7);
     float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_26), dot(o_7, m_26));
     return _e8;
 }
@@ -1727,7 +1780,7 @@ vec2 filter_gaussian_ggx_split(float u_5) {
     return vec2(((hi_3 + 0.5) / 4096.0), (x_17 - hi_3));
 }
 
-vec3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_6, vec2 u_6) {
+vec3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_7, vec2 u_6) {
     vec2 ax = vec2(1.0, 0.0);
     float _e3 = sampling_clamp_unit(u_6.x);
     vec2 _e4 = filter_gaussian_ggx_split(_e3);
@@ -1735,14 +1788,14 @@ vec3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g
     vec2 _e7 = filter_gaussian_ggx_split(_e6);
     vec2 _e15 = math_sincos_turns(_e7.x);
     vec2 t_15 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
-    sampling_Warp _e18 = sampling_warp(g_6.a);
+    sampling_Warp _e18 = sampling_warp(g_7.a);
     vec2 gs = vec2((_e18.l_xx * t_15.x), ((_e18.l_yx * t_15.x) + (_e18.l_yy * t_15.y)));
     float _e33 = math_ln((1.0 - _e4.y));
     float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
     float e_5 = ((_e4.y < 0.5) ? _e40 : -(_e33));
     vec2 _e49 = math_sincos_turns(_e7.y);
     vec2 y_4 = (sqrt((2.0 * e_5)) * _e49);
-    kernel_covariance_Covariance k_28 = g_6.k;
+    kernel_covariance_Covariance k_28 = g_7.k;
     vec2 _e52 = kernel_covariance_eigenvalues(k_28);
     float khalf = (0.5 * (k_28.s_xx - k_28.s_yy));
     float _e59 = math_hypot(khalf, k_28.s_xy);
@@ -1761,8 +1814,8 @@ vec3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g
     return vec3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
 }
 
-float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_7, vec3 m_27) {
-    float _e2 = filter_gaussian_ggx_d(g_7, m_27);
+float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_8, vec3 m_27) {
+    float _e2 = filter_gaussian_ggx_d(g_8, m_27);
     return ((m_27.z > 0.0) ? (_e2 * m_27.z) : 0.0);
 }
 
@@ -1852,8 +1905,8 @@ float footprint_jacobian_det_sphere_to_projected(vec3 h_6) {
 float footprint_jacobian_det_projected_to_slope(vec3 h_7) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
     float z_5 = _e1.h.z;
-    float z2_5 = (z_5 * z_5);
-    return (1.0 / (z2_5 * z2_5));
+    float z2_6 = (z_5 * z_5);
+    return (1.0 / (z2_6 * z2_6));
 }
 
 float footprint_jacobian_det_sphere_to_slope(vec3 h_8) {
@@ -2083,11 +2136,11 @@ uint filter_rect_tier(float h2_, float l2_1) {
     return filter_rect_TIER_CLOSED;
 }
 
-float filter_rect_gl_node(uint n_2, uint k_13) {
-    if ((n_2 == 2u)) {
+float filter_rect_gl_node(uint n_1, uint k_13) {
+    if ((n_1 == 2u)) {
         return 0.57735026;
     }
-    if ((n_2 == 4u)) {
+    if ((n_1 == 4u)) {
         return ((k_13 == 0u) ? 0.33998105 : 0.8611363);
     }
     if ((k_13 == 0u)) {
@@ -2096,11 +2149,11 @@ float filter_rect_gl_node(uint n_2, uint k_13) {
     return ((k_13 == 1u) ? 0.6612094 : 0.9324695);
 }
 
-float filter_rect_gl_weight(uint n_3, uint k_14) {
-    if ((n_3 == 2u)) {
+float filter_rect_gl_weight(uint n_2, uint k_14) {
+    if ((n_2 == 2u)) {
         return 0.5;
     }
-    if ((n_3 == 4u)) {
+    if ((n_2 == 4u)) {
         return ((k_14 == 0u) ? 0.32607257 : 0.17392743);
     }
     if ((k_14 == 0u)) {
@@ -2114,7 +2167,7 @@ float filter_rect_f(float u_7, float v_6) {
     return (1.0 / (t_17 * t_17));
 }
 
-float filter_rect_gl_mean(uint n_4, float u_8, float c_6, float h_12) {
+float filter_rect_gl_mean(uint n_3, float u_8, float c_6, float h_12) {
     float acc_2 = 0.0;
     uint k_15 = 0u;
     bool loop_init_6 = true;
@@ -2125,17 +2178,17 @@ float filter_rect_gl_mean(uint n_4, float u_8, float c_6, float h_12) {
         }
         loop_init_6 = false;
         uint _e8 = k_15;
-        if ((_e8 < (n_4 / 2u))) {
+        if ((_e8 < (n_3 / 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_15;
-            float _e13 = filter_rect_gl_node(n_4, _e12);
+            float _e13 = filter_rect_gl_node(n_3, _e12);
             float a_24 = (h_12 * _e13);
             float _e15 = acc_2;
             uint _e16 = k_15;
-            float _e17 = filter_rect_gl_weight(n_4, _e16);
+            float _e17 = filter_rect_gl_weight(n_3, _e16);
             float _e19 = filter_rect_f(u_8, (c_6 - a_24));
             float _e21 = filter_rect_f(u_8, (c_6 + a_24));
             acc_2 = (_e15 + (_e17 * (_e19 + _e21)));
@@ -2190,7 +2243,7 @@ float filter_rect_mean_1d(vec4 i_7, float c2_) {
     return ((_e57 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1));
 }
 
-float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, vec4 other) {
+float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, vec4 other) {
     float acc_3 = 0.0;
     uint k_16 = 0u;
     bool loop_init_7 = true;
@@ -2201,19 +2254,19 @@ float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, vec4 other) {
         }
         loop_init_7 = false;
         uint _e8 = k_16;
-        if ((_e8 < (n_5 / 2u))) {
+        if ((_e8 < (n_4 / 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_16;
-            float _e13 = filter_rect_gl_node(n_5, _e12);
+            float _e13 = filter_rect_gl_node(n_4, _e12);
             float a_25 = (h_13 * _e13);
             float x0_1 = (c_7 - a_25);
             float x1_2 = (c_7 + a_25);
             float _e17 = acc_3;
             uint _e18 = k_16;
-            float _e19 = filter_rect_gl_weight(n_5, _e18);
+            float _e19 = filter_rect_gl_weight(n_4, _e18);
             float _e23 = filter_rect_mean_1d(other, (1.0 + (x0_1 * x0_1)));
             float _e27 = filter_rect_mean_1d(other, (1.0 + (x1_2 * x1_2)));
             acc_3 = (_e17 + (_e19 * (_e23 + _e27)));
@@ -2483,8 +2536,8 @@ float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_63, vec3 h_15,
         return _e18;
     }
     float _e24 = filter_rect_p22_rect(r_63, (-(h_15.xy) / vec2(h_15.z)), half_extent_5);
-    float z2_6 = (h_15.z * h_15.z);
-    return min((_e24 / (z2_6 * z2_6)), math_F32_MAX);
+    float z2_7 = (h_15.z * h_15.z);
+    return min((_e24 / (z2_7 * z2_7)), math_F32_MAX);
 }
 
 float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_64, vec2 hpp, vec3 h_16, vec2 footprint) {
@@ -2832,7 +2885,8 @@ float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_rou
 filter_gaussian_ggx_GaussianFilteredGgx filter_method_exact_gaussian_lobe(filter_method_ExactGaussian method_3, ndf_roughness_matrix_RoughnessMatrix material_3, footprint_Footprint fp_10) {
     kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_10, method_3.sigma);
     filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
-    return _e6;
+    filter_gaussian_ggx_GaussianFilteredGgx _e8 = filter_gaussian_ggx_with_tolerance(_e6, method_3.tolerance);
+    return _e8;
 }
 
 float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, vec3 m_32) {
@@ -2967,12 +3021,12 @@ vec3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligne
     float _e15 = sampling_clamp_unit(u_13.y);
     vec2 _e16 = math_sincos_turns(_e15);
     float rad_1 = sqrt((_e13 / (1.0 - _e13)));
-    vec2 g_9 = (-(a_34) * (rad_1 * _e16));
+    vec2 g_10 = (-(a_34) * (rad_1 * _e16));
     float _e25 = sampling_clamp_unit(u_box.x);
     float _e27 = sampling_clamp_unit(u_box.y);
     vec2 b_9 = vec2(_e25, _e27);
     vec2 d_8 = (((2.0 * b_9) - vec2(1.0)) * h_33);
-    vec3 _e36 = filter_rect_sample_normal_of_slope((g_9 + d_8));
+    vec3 _e36 = filter_rect_sample_normal_of_slope((g_10 + d_8));
     return _e36;
 }
 
@@ -3166,7 +3220,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
     float x_11 = 0.0;
     float dx_old = 0.0;
     uint i_11 = 0u;
-    float g_8 = 0.0;
+    float g_9 = 0.0;
     bool local_28 = false;
     bool local_29 = false;
     float hi0_ = ((s_18 > 0.0) ? min((c_12 / s_18), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
@@ -3180,7 +3234,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
         return _e24;
     }
     float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_18);
-    float tol = (4.7683716e-7 * goal);
+    float tol_4 = (4.7683716e-7 * goal);
     float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_14) - 1.0));
     float _e35 = hi_2;
     float _e40 = lo_3;
@@ -3210,19 +3264,19 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
         {
             float _e59 = x_11;
             vec2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_18);
-            g_8 = (_e60.x - goal);
+            g_9 = (_e60.x - goal);
             if (upper) {
                 float _e66 = x_11;
                 float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_18);
                 float _e69 = x_11;
-                g_8 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
+                g_9 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
             }
-            float _e74 = g_8;
-            if ((abs(_e74) <= tol)) {
+            float _e74 = g_9;
+            if ((abs(_e74) <= tol_4)) {
                 float _e77 = x_11;
                 return _e77;
             }
-            float _e78 = g_8;
+            float _e78 = g_9;
             if ((_e78 < 0.0)) {
                 float _e81 = x_11;
                 lo_3 = _e81;
@@ -3238,7 +3292,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
                 float _e94 = hi_2;
                 return (0.5 * (_e93 + _e94));
             }
-            float _e98 = g_8;
+            float _e98 = g_9;
             float step_ = (_e98 / _e60.y);
             float _e101 = x_11;
             float xn = (_e101 - step_);
@@ -3251,7 +3305,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
             }
             bool _e110 = local_28;
             if (_e110) {
-                float _e113 = g_8;
+                float _e113 = g_9;
                 float _e117 = dx_old;
                 local_29 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
             } else {
@@ -3316,9 +3370,9 @@ vec3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_71, 
     float _e9 = math_ln((1.0 - _e3));
     float _e14 = math_ln_1p((_e3 / (1.0 - _e3)));
     float e_7 = ((_e3 < 0.5) ? _e14 : -(_e9));
-    vec3 n_8 = vec3((sqrt(e_7) * _e6), 1.0);
+    vec3 n_7 = vec3((sqrt(e_7) * _e6), 1.0);
     sampling_Warp _e22 = sampling_warp(r_71);
-    vec3 _e23 = sampling_unstretch(_e22, n_8);
+    vec3 _e23 = sampling_unstretch(_e22, n_7);
     return _e23;
 }
 

@@ -43,6 +43,18 @@ struct ndf_roughness_axis_aligned_AxisAligned {
     float2 inv_alpha_sq;
 };
 
+struct filter_gaussian_ggx_quad_TrapezoidRule {
+    float h;
+    float exp_h;
+    float eps_t;
+    float y_lo;
+    float4 geom;
+    uint nodes;
+    int _end_pad_0;
+    int _end_pad_1;
+    int _end_pad_2;
+};
+
 struct sampling_Warp {
     float l_xx;
     float l_yx;
@@ -56,7 +68,7 @@ struct filter_gaussian_ggx_GaussianFilteredGgx {
     float2 tl;
     float norm;
     kernel_covariance_Covariance k;
-    int _end_pad_0;
+    uint tol;
 };
 
 struct filter_lean_LeanMoments {
@@ -107,6 +119,7 @@ struct filter_method_Gaussian {
 struct filter_method_ExactGaussian {
     kernel_clamp_ClampRules clamps;
     float sigma;
+    uint tolerance;
 };
 
 struct filter_method_Projected {
@@ -127,6 +140,17 @@ struct filter_method_Proxy {
     kernel_clamp_ClampRules clamps;
 };
 
+filter_gaussian_ggx_quad_TrapezoidRule Constructfilter_gaussian_ggx_quad_TrapezoidRule(float arg0, float arg1, float arg2, float arg3, float4 arg4, uint arg5) {
+    filter_gaussian_ggx_quad_TrapezoidRule ret = (filter_gaussian_ggx_quad_TrapezoidRule)0;
+    ret.h = arg0;
+    ret.exp_h = arg1;
+    ret.eps_t = arg2;
+    ret.y_lo = arg3;
+    ret.geom = arg4;
+    ret.nodes = arg5;
+    return ret;
+}
+
 kernel_clamp_ClampRules Constructkernel_clamp_ClampRules(float arg0, uint arg1, float arg2, float arg3, bool arg4) {
     kernel_clamp_ClampRules ret = (kernel_clamp_ClampRules)0;
     ret.max_extent = arg0;
@@ -144,10 +168,11 @@ filter_method_Gaussian Constructfilter_method_Gaussian(kernel_clamp_ClampRules a
     return ret;
 }
 
-filter_method_ExactGaussian Constructfilter_method_ExactGaussian(kernel_clamp_ClampRules arg0, float arg1) {
+filter_method_ExactGaussian Constructfilter_method_ExactGaussian(kernel_clamp_ClampRules arg0, float arg1, uint arg2) {
     filter_method_ExactGaussian ret = (filter_method_ExactGaussian)0;
     ret.clamps = arg0;
     ret.sigma = arg1;
+    ret.tolerance = arg2;
     return ret;
 }
 
@@ -225,12 +250,21 @@ static const uint filter_gaussian_ggx_quad_CHUNKS = 22u;
 static const float filter_gaussian_ggx_quad_GL_RATIO = 0.0177;
 static const float filter_gaussian_ggx_quad_GL_PLATEAU = 20.0;
 static const float filter_gaussian_ggx_quad_GL_WIDE = 28000000000.0;
+static const filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_FULL_RULE = Constructfilter_gaussian_ggx_quad_TrapezoidRule(0.5, 1.6487212, 1e-7, 0.054, float4(0.5819767, 0.28721693, 0.15651764, 0.08942549), 176u);
+static const uint filter_gaussian_ggx_quad_TOL_FULL = 0u;
+static const uint filter_gaussian_ggx_quad_TOL_1E4_ = 1u;
+static const uint filter_gaussian_ggx_quad_TOL_1E3_ = 2u;
+static const uint filter_gaussian_ggx_quad_TOL_1E2_ = 3u;
 static const float filter_gaussian_ggx_quad_GH_MAX = 0.01;
 static const float filter_gaussian_ggx_quad_S_MAX = 0.25;
 static const float filter_gaussian_ggx_quad_S_COEF = 0.25;
 static const float filter_gaussian_ggx_quad_S_EPS = 1e-8;
 static const uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
 static const float sampling_ONE_MINUS_EPS = 0.99999994;
+static const uint filter_gaussian_ggx_TOL_FULL = 0u;
+static const uint filter_gaussian_ggx_TOL_1E4_ = 1u;
+static const uint filter_gaussian_ggx_TOL_1E3_ = 2u;
+static const uint filter_gaussian_ggx_TOL_1E2_ = 3u;
 static const float footprint_jacobian_HZ_MIN = 1e-6;
 static const float footprint_SIGMA_PIXEL = 0.5;
 static const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
@@ -247,7 +281,7 @@ static const uint filter_rect_TIER_CLOSED = 0u;
 static const float filter_rect_lambda_BIG_K = 1000000000000.0;
 static const filter_method_Gaussian filter_method_TK19_GAUSSIAN = Constructfilter_method_Gaussian(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
 static const filter_method_Gaussian filter_method_KHPL16_GAUSSIAN = Constructfilter_method_Gaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
-static const filter_method_ExactGaussian filter_method_KHPL16_EXACT_GAUSSIAN = Constructfilter_method_ExactGaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
+static const filter_method_ExactGaussian filter_method_KHPL16_EXACT_GAUSSIAN = Constructfilter_method_ExactGaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5, 0u);
 static const filter_method_Projected filter_method_TK21_PROJECTED = Constructfilter_method_Projected(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
 static const filter_method_Rect filter_method_KHPL16_RECT = Constructfilter_method_Rect(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
 static const filter_method_Rect filter_method_GDC2016_RECT = Constructfilter_method_Rect(Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true));
@@ -345,18 +379,18 @@ float math_hypot(float x_1, float y)
 float math_exp(float x_2)
 {
     float xc = clamp(x_2, -87.0, 88.0);
-    float n_6 = round((xc * math_LOG2_E));
-    float r_77 = ((xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO));
+    float n_5 = round((xc * math_LOG2_E));
+    float r_77 = ((xc - (n_5 * math_LN2_HI)) - (n_5 * math_LN2_LO));
     float r2_ = (r_77 * r_77);
     float p_6 = (((1.0 + r_77) + ((0.4999999 + (0.1666642 * r_77)) * r2_)) + (((0.041668225 + (0.008374816 * r_77)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
-    float s_21 = asfloat((uint(asint(asuint(naga_f2i32(n_6)) + asuint(int(127)))) << 23u));
+    float s_21 = asfloat((uint(asint(asuint(naga_f2i32(n_5)) + asuint(int(127)))) << 23u));
     return ((x_2 >= -87.0) ? (p_6 * s_21) : 0.0);
 }
 
 float math_atanh2_(float z)
 {
-    float z2_3 = (z * z);
-    float s_22 = (((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3);
+    float z2_4 = (z * z);
+    float s_22 = (((((((((z2_4 * 0.09090909) + 0.11111111) * z2_4) + 0.14285715) * z2_4) + 0.2) * z2_4) + 0.33333334) * z2_4);
     return ((2.0 * z) + ((2.0 * z) * s_22));
 }
 
@@ -1087,9 +1121,9 @@ float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3)
 {
     bool local_7 = (bool)0;
 
-    float z2_4 = (m_z_1 * m_z_1);
-    float x_13 = (q_xy_1 / z2_4);
-    float k_25 = (1.0 / (((math_PI * sqrt_det_3) * z2_4) * z2_4));
+    float z2_5 = (m_z_1 * m_z_1);
+    float x_13 = (q_xy_1 / z2_5);
+    float k_25 = (1.0 / (((math_PI * sqrt_det_3) * z2_5) * z2_5));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
     const float _e21 = ndf_beckmann_exp_neg_times(x_13, k_25, ln_k_1);
     if ((m_z_1 > 0.0)) {
@@ -1389,25 +1423,7 @@ float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, floa
     return ((_e53 * ib_1) * ib_1);
 }
 
-float filter_gaussian_ggx_quad_geom(uint n)
-{
-    switch(n) {
-        case 0u: {
-            return 0.5819767;
-        }
-        case 1u: {
-            return 0.28721693;
-        }
-        case 2u: {
-            return 0.15651764;
-        }
-        default: {
-            return 0.08942549;
-        }
-    }
-}
-
-float filter_gaussian_ggx_quad_series_below(float c1s_1, float c2s_1, float tl1_2, float tl2_2, float y_1)
+float filter_gaussian_ggx_quad_series_below(float c1s_1, float c2s_1, float tl1_2, float tl2_2, float y_1, float4 geom)
 {
     float x1_ = (tl1_2 * y_1);
     float x2_2 = (tl2_2 * y_1);
@@ -1418,15 +1434,15 @@ float filter_gaussian_ggx_quad_series_below(float c1s_1, float c2s_1, float tl1_
     float b3_ = (-((((d1_ * x1_) * x1_) + ((d2_ * x2_2) * x2_2))) - (0.16666667 * (((x1_ * x1_) * x1_) + ((x2_2 * x2_2) * x2_2))));
     float a2_1 = (0.5 * ((a1_ * a1_) + (2.0 * b2_)));
     float a3_ = (0.33333334 * (((a1_ * a2_1) + ((2.0 * b2_) * a1_)) + (3.0 * b3_)));
-    const float _e56 = filter_gaussian_ggx_quad_geom(0u);
-    const float _e58 = filter_gaussian_ggx_quad_geom(1u);
-    const float _e62 = filter_gaussian_ggx_quad_geom(2u);
-    const float _e66 = filter_gaussian_ggx_quad_geom(3u);
-    float tail = (((_e56 + (a1_ * _e58)) + (a2_1 * _e62)) + (a3_ * _e66));
+    float tail = (((geom.x + (a1_ * geom.y)) + (a2_1 * geom.z)) + (a3_ * geom.w));
     return ((tail * y_1) * y_1);
 }
 
-float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, float tl2_3)
+uint naga_div(uint lhs, uint rhs) {
+    return lhs / (rhs == 0u ? 1u : rhs);
+}
+
+float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl1_3, float tl2_3, filter_gaussian_ggx_quad_TrapezoidRule rule)
 {
     float sum = 0.0;
     uint ch = 0u;
@@ -1436,47 +1452,48 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
     float vl = (float)0;
     uint jj = (uint)0;
 
+    float hs = rule.h;
     float beta_1 = ((1.0 + c1s_2) + c2s_2);
     float ib_2 = (1.0 / beta_1);
     float w_r = (2.0 * ib_2);
-    const float _e15 = math_ln(((37.037037 * (beta_1 + tl1_3)) * ib_2));
-    float k0_ = min(ceil((_e15 / filter_gaussian_ggx_quad_H)), 175.0);
-    const float _e24 = math_exp((-(k0_) * filter_gaussian_ggx_quad_H));
-    float w_first = (w_r * _e24);
+    const float _e19 = math_ln((((2.0 / rule.y_lo) * (beta_1 + tl1_3)) * ib_2));
+    float k0_ = min(ceil((_e19 / hs)), min(float((rule.nodes - 1u)), floor((87.0 / hs))));
+    const float _e33 = math_exp((-(k0_) * hs));
+    float w_first = (w_r * _e33);
     float pr1_ = (1.0 + (tl1_3 * w_r));
     float pr2_ = (1.0 + (tl2_3 * w_r));
     float k1_2 = (c1s_2 * (w_r / pr1_));
     float k2_2 = (c2s_2 * (w_r / pr2_));
     float x_r = ((-(w_r) - k1_2) - k2_2);
-    const float _e40 = math_exp(x_r);
-    float scale_1 = ((w_r * w_r) * _e40);
+    const float _e49 = math_exp(x_r);
+    float scale_1 = ((w_r * w_r) * _e49);
     float t1_3 = (tl1_3 * w_r);
     float t2_1 = (tl2_3 * w_r);
-    float stop = ((5e-8 * w_r) * w_r);
+    float stop = (((rule.eps_t * hs) * w_r) * w_r);
     uint2 loop_bound_1 = uint2(4294967295u, 4294967295u);
     bool loop_init_1 = true;
     while(true) {
         if (all(loop_bound_1 == uint2(0u, 0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e136 = ch;
-            ch = (_e136 + 1u);
+            uint _e148 = ch;
+            ch = (_e148 + 1u);
         }
         loop_init_1 = false;
-        uint _e51 = ch;
-        if ((_e51 < filter_gaussian_ggx_quad_CHUNKS)) {
+        uint _e61 = ch;
+        if ((_e61 < naga_div(rule.nodes, 8u))) {
         } else {
             break;
         }
         {
-            uint _e54 = ch;
-            float kb = (float((_e54 * 8u)) - k0_);
-            const float _e61 = math_exp((kb * filter_gaussian_ggx_quad_H));
-            v_3 = _e61;
+            uint _e66 = ch;
+            float kb = (float((_e66 * 8u)) - k0_);
+            const float _e72 = math_exp((kb * hs));
+            v_3 = _e72;
             part = 0.0;
             last = 0.0;
-            float _e67 = v_3;
-            vl = _e67;
+            float _e78 = v_3;
+            vl = _e78;
             jj = 0u;
             uint2 loop_bound_2 = uint2(4294967295u, 4294967295u);
             bool loop_init_2 = true;
@@ -1484,53 +1501,53 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
                 if (all(loop_bound_2 == uint2(0u, 0u))) { break; }
                 loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
                 if (!loop_init_2) {
-                    uint _e113 = jj;
-                    jj = (_e113 + 1u);
+                    uint _e125 = jj;
+                    jj = (_e125 + 1u);
                 }
                 loop_init_2 = false;
-                uint _e71 = jj;
-                if ((_e71 < 8u)) {
+                uint _e82 = jj;
+                if ((_e82 < 8u)) {
                 } else {
                     break;
                 }
                 {
-                    float _e74 = v_3;
-                    float ip1_1 = (1.0 / (1.0 + (t1_3 * _e74)));
-                    float _e80 = v_3;
-                    float ip2_1 = (1.0 / (1.0 + (t2_1 * _e80)));
+                    float _e85 = v_3;
+                    float ip1_1 = (1.0 / (1.0 + (t1_3 * _e85)));
+                    float _e91 = v_3;
+                    float ip2_1 = (1.0 / (1.0 + (t2_1 * _e91)));
                     float a_22 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
-                    uint _e91 = jj;
-                    float _e95 = v_3;
-                    float x_14 = ((1.0 * (kb + float(_e91))) - ((_e95 - 1.0) * a_22));
-                    const float _e100 = math_exp(x_14);
-                    last = ((_e100 * sqrt(ip1_1)) * sqrt(ip2_1));
-                    float _e105 = part;
-                    float _e106 = last;
-                    part = (_e105 + _e106);
-                    float _e108 = v_3;
-                    vl = _e108;
-                    float _e109 = v_3;
-                    v_3 = (_e109 * filter_gaussian_ggx_quad_EXP_H);
+                    uint _e103 = jj;
+                    float _e107 = v_3;
+                    float x_14 = (((2.0 * hs) * (kb + float(_e103))) - ((_e107 - 1.0) * a_22));
+                    const float _e112 = math_exp(x_14);
+                    last = ((_e112 * sqrt(ip1_1)) * sqrt(ip2_1));
+                    float _e117 = part;
+                    float _e118 = last;
+                    part = (_e117 + _e118);
+                    float _e120 = v_3;
+                    vl = _e120;
+                    float _e121 = v_3;
+                    v_3 = (_e121 * rule.exp_h);
                 }
             }
-            float _e115 = sum;
-            float _e116 = part;
-            sum = (_e115 + _e116);
-            float _e118 = vl;
-            float wl = (_e118 * w_r);
-            float b_7 = ((wl >= 2.0) ? (1.0 + wl) : 7.47);
-            float _e126 = last;
-            float _e128 = sum;
+            float _e127 = sum;
+            float _e128 = part;
+            sum = (_e127 + _e128);
             float _e130 = vl;
-            float _e132 = vl;
-            if (((_e126 * b_7) <= (((stop * _e128) * _e130) * _e132))) {
+            float wl = (_e130 * w_r);
+            float b_7 = ((wl >= 2.0) ? (1.0 + wl) : 7.47);
+            float _e138 = last;
+            float _e140 = sum;
+            float _e142 = vl;
+            float _e144 = vl;
+            if (((_e138 * b_7) <= (((stop * _e140) * _e142) * _e144))) {
                 break;
             }
         }
     }
-    float _e139 = sum;
-    const float _e141 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first);
-    return (filter_gaussian_ggx_quad_H * ((_e139 * scale_1) + _e141));
+    float _e150 = sum;
+    const float _e153 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first, rule.geom);
+    return (hs * ((_e150 * scale_1) + _e153));
 }
 
 float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1_4, float tl2_4)
@@ -1561,8 +1578,60 @@ float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1
         return _e37;
     }
     float iz2_ = (1.0 / z2_2);
-    const float _e42 = filter_gaussian_ggx_quad_trapezoid((v1s_1 * iz2_), (v2s_1 * iz2_), tl1_4, tl2_4);
-    return ((_e42 * iz2_) * iz2_);
+    const float _e43 = filter_gaussian_ggx_quad_trapezoid_rule((v1s_1 * iz2_), (v2s_1 * iz2_), tl1_4, tl2_4, filter_gaussian_ggx_quad_FULL_RULE);
+    return ((_e43 * iz2_) * iz2_);
+}
+
+float filter_gaussian_ggx_quad_reduced_far(uint tol)
+{
+    switch(tol) {
+        case 1u: {
+            return 1500.0;
+        }
+        case 2u: {
+            return 500.0;
+        }
+        default: {
+            return 160.0;
+        }
+    }
+}
+
+filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_reduced_rule(uint tol_1)
+{
+    switch(tol_1) {
+        case 1u: {
+            const filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_trapezoidrule = Constructfilter_gaussian_ggx_quad_TrapezoidRule(0.6, 1.8221188, 1e-5, 0.12, float4(0.43101275, 0.19803363, 0.09976877, 0.052395698), 144u);
+            return filter_gaussian_ggx_quad_trapezoidrule;
+        }
+        case 2u: {
+            const filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_trapezoidrule_1 = Constructfilter_gaussian_ggx_quad_TrapezoidRule(0.75, 2.117, 0.0001, 0.2, float4(0.28721693, 0.11781705, 0.052395698, 0.02408415), 112u);
+            return filter_gaussian_ggx_quad_trapezoidrule_1;
+        }
+        default: {
+            const filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_trapezoidrule_2 = Constructfilter_gaussian_ggx_quad_TrapezoidRule(1.0, 2.7182817, 0.0005, 0.35, float4(0.15651764, 0.052395698, 0.01865736, 0.006783655), 88u);
+            return filter_gaussian_ggx_quad_trapezoidrule_2;
+        }
+    }
+}
+
+float filter_gaussian_ggx_quad_j_tol(float v1s_2, float v2s_2, float z2_3, float tl1_5, float tl2_5, uint tol_2)
+{
+    if ((tol_2 == filter_gaussian_ggx_quad_TOL_FULL)) {
+        const float _e8 = filter_gaussian_ggx_quad_j(v1s_2, v2s_2, z2_3, tl1_5, tl2_5);
+        return _e8;
+    }
+    float beta_m_2 = ((z2_3 + v1s_2) + v2s_2);
+    const float _e12 = filter_gaussian_ggx_quad_reduced_far(tol_2);
+    const float _e14 = math_ln((beta_m_2 / z2_3));
+    if ((((tl1_5 * z2_3) * (_e12 + (12.0 * _e14))) <= beta_m_2)) {
+        const float _e20 = filter_gaussian_ggx_quad_far_tail(beta_m_2, v1s_2, v2s_2, tl1_5, tl2_5, z2_3);
+        return _e20;
+    }
+    float iz2_1 = (1.0 / z2_3);
+    const filter_gaussian_ggx_quad_TrapezoidRule _e25 = filter_gaussian_ggx_quad_reduced_rule(tol_2);
+    const float _e26 = filter_gaussian_ggx_quad_trapezoid_rule((v1s_2 * iz2_1), (v2s_2 * iz2_1), tl1_5, tl2_5, _e25);
+    return ((_e26 * iz2_1) * iz2_1);
 }
 
 float filter_gaussian_ggx_quad_hermite_node(uint k_8)
@@ -1798,9 +1867,9 @@ float3 sampling_stretch(sampling_Warp l_3, float3 w_15)
     return float3(((l_3.l_xx * w_15.x) + (l_3.l_yx * w_15.y)), (l_3.l_yy * w_15.y), w_15.z);
 }
 
-float3 sampling_unstretch(sampling_Warp l_4, float3 n_1)
+float3 sampling_unstretch(sampling_Warp l_4, float3 n)
 {
-    const float3 _e14 = sampling_normalize_scaled(float3((l_4.l_xx * n_1.x), ((l_4.l_yx * n_1.x) + (l_4.l_yy * n_1.y)), n_1.z));
+    const float3 _e14 = sampling_normalize_scaled(float3((l_4.l_xx * n.x), ((l_4.l_yx * n.x) + (l_4.l_yy * n.y)), n.z));
     return _e14;
 }
 
@@ -1858,9 +1927,9 @@ float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_53, float2 
     const float _e3 = sampling_clamp_unit(u_4.x);
     const float _e5 = sampling_clamp_unit(u_4.y);
     const float2 _e6 = math_sincos_turns(_e5);
-    float3 n_7 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
+    float3 n_6 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
     const sampling_Warp _e13 = sampling_warp(r_53);
-    const float3 _e14 = sampling_unstretch(_e13, n_7);
+    const float3 _e14 = sampling_unstretch(_e13, n_6);
     return _e14;
 }
 
@@ -1946,7 +2015,18 @@ float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_57, float3 
     return _e18;
 }
 
-filter_gaussian_ggx_GaussianFilteredGgx Constructfilter_gaussian_ggx_GaussianFilteredGgx(ndf_roughness_matrix_RoughnessMatrix arg0, float2 arg1, float2 arg2, float2 arg3, float arg4, kernel_covariance_Covariance arg5) {
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_with_tolerance(filter_gaussian_ggx_GaussianFilteredGgx g, uint tol_3)
+{
+    filter_gaussian_ggx_GaussianFilteredGgx out_1 = (filter_gaussian_ggx_GaussianFilteredGgx)0;
+
+    out_1 = g;
+    out_1.tol = tol_3;
+    filter_gaussian_ggx_GaussianFilteredGgx _e4 = out_1;
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx = _e4;
+    return filter_gaussian_ggx_gaussianfilteredggx;
+}
+
+filter_gaussian_ggx_GaussianFilteredGgx Constructfilter_gaussian_ggx_GaussianFilteredGgx(ndf_roughness_matrix_RoughnessMatrix arg0, float2 arg1, float2 arg2, float2 arg3, float arg4, kernel_covariance_Covariance arg5, uint arg6) {
     filter_gaussian_ggx_GaussianFilteredGgx ret = (filter_gaussian_ggx_GaussianFilteredGgx)0;
     ret.a = arg0;
     ret.inv_sqrt_l = arg1;
@@ -1954,6 +2034,7 @@ filter_gaussian_ggx_GaussianFilteredGgx Constructfilter_gaussian_ggx_GaussianFil
     ret.tl = arg3;
     ret.norm = arg4;
     ret.k = arg5;
+    ret.tol = arg6;
     return ret;
 }
 
@@ -1990,37 +2071,37 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roug
     float2 _e102 = v_5;
     float _e105 = l2_;
     const float _e110 = ndf_roughness_matrix_sqrt_det(a_5);
-    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx = Constructfilter_gaussian_ggx_GaussianFilteredGgx(a_5, isl, _e102, float2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2);
-    return filter_gaussian_ggx_gaussianfilteredggx;
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_1 = Constructfilter_gaussian_ggx_GaussianFilteredGgx(a_5, isl, _e102, float2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2, filter_gaussian_ggx_TOL_FULL);
+    return filter_gaussian_ggx_gaussianfilteredggx_1;
 }
 
-float2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g, float2 s_9)
+float2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g_1, float2 s_9)
 {
-    const float2 _e3 = ndf_roughness_matrix_rotate(g.a, s_9);
-    float2 u_18 = (_e3 * g.inv_sqrt_l);
-    float2 c_19 = float2(((g.v.x * u_18.x) + (g.v.y * u_18.y)), ((g.v.x * u_18.y) - (g.v.y * u_18.x)));
+    const float2 _e3 = ndf_roughness_matrix_rotate(g_1.a, s_9);
+    float2 u_18 = (_e3 * g_1.inv_sqrt_l);
+    float2 c_19 = float2(((g_1.v.x * u_18.x) + (g_1.v.y * u_18.y)), ((g_1.v.x * u_18.y) - (g_1.v.y * u_18.x)));
     return (c_19 * c_19);
 }
 
-float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_1, float2 s_10)
+float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_2, float2 s_10)
 {
-    const float2 _e2 = filter_gaussian_ggx_whiten(g_1, s_10);
-    const float _e11 = filter_gaussian_ggx_quad_j(_e2.x, _e2.y, 1.0, g_1.tl.x, g_1.tl.y);
-    return (g_1.norm * _e11);
+    const float2 _e2 = filter_gaussian_ggx_whiten(g_2, s_10);
+    const float _e12 = filter_gaussian_ggx_quad_j_tol(_e2.x, _e2.y, 1.0, g_2.tl.x, g_2.tl.y, g_2.tol);
+    return (g_2.norm * _e12);
 }
 
-float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, float3 m_24)
+float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_3, float3 m_24)
 {
     if (!((m_24.z > 0.0))) {
         return 0.0;
     }
-    const float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_24.xy);
-    const float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_24.z * m_24.z), g_2.tl.x, g_2.tl.y);
-    float v_16 = (g_2.norm * _e19);
+    const float2 _e8 = filter_gaussian_ggx_whiten(g_3, m_24.xy);
+    const float _e20 = filter_gaussian_ggx_quad_j_tol(_e8.x, _e8.y, (m_24.z * m_24.z), g_3.tl.x, g_3.tl.y, g_3.tol);
+    float v_16 = (g_3.norm * _e20);
     return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
 }
 
-float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, float3 w_16)
+float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_4, float3 w_16)
 {
     float big_3 = max(max(abs(w_16.x), abs(w_16.y)), abs(w_16.z));
     if (!((big_3 > 0.0))) {
@@ -2029,8 +2110,8 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, fl
     float3 ws = (w_16 / (big_3).xxx);
     float3 o_9 = (ws / (length(ws)).xxx);
     float oz_3 = abs(o_9.z);
-    const float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_9.xy);
-    kernel_covariance_Covariance kk = g_3.k;
+    const float _e27 = ndf_roughness_matrix_quadratic(g_4.a, o_9.xy);
+    kernel_covariance_Covariance kk = g_4.k;
     float qs_3 = max(((((kk.s_xx * o_9.x) * o_9.x) + (((2.0 * kk.s_xy) * o_9.x) * o_9.y)) + ((kk.s_yy * o_9.y) * o_9.y)), 0.0);
     if ((qs_3 <= 0.0)) {
         const float _e52 = ndf_ggx_lambda_of(_e27, oz_3);
@@ -2047,17 +2128,17 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, fl
     return _e61;
 }
 
-float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, float3 w_17, float3 m_25)
+float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 w_17, float3 m_25)
 {
-    const float _e3 = filter_gaussian_ggx_lambda(g_4, w_17);
+    const float _e3 = filter_gaussian_ggx_lambda(g_5, w_17);
     const float _e5 = ndf_g1_of(_e3, dot(w_17, m_25));
     return _e5;
 }
 
-float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 i_6, float3 o_7, float3 m_26)
+float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_6, float3 i_6, float3 o_7, float3 m_26)
 {
-    const float _e4 = filter_gaussian_ggx_lambda(g_5, i_6);
-    const float _e5 = filter_gaussian_ggx_lambda(g_5, o_7);
+    const float _e4 = filter_gaussian_ggx_lambda(g_6, i_6);
+    const float _e5 = filter_gaussian_ggx_lambda(g_6, o_7);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_26), dot(o_7, m_26));
     return _e8;
 }
@@ -2069,7 +2150,7 @@ float2 filter_gaussian_ggx_split(float u_5)
     return float2(((hi_3 + 0.5) / 4096.0), (x_17 - hi_3));
 }
 
-float3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_6, float2 u_6)
+float3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_7, float2 u_6)
 {
     float2 ax = float2(1.0, 0.0);
 
@@ -2079,14 +2160,14 @@ float3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx
     const float2 _e7 = filter_gaussian_ggx_split(_e6);
     const float2 _e15 = math_sincos_turns(_e7.x);
     float2 t_15 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
-    const sampling_Warp _e18 = sampling_warp(g_6.a);
+    const sampling_Warp _e18 = sampling_warp(g_7.a);
     float2 gs = float2((_e18.l_xx * t_15.x), ((_e18.l_yx * t_15.x) + (_e18.l_yy * t_15.y)));
     const float _e33 = math_ln((1.0 - _e4.y));
     const float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
     float e_5 = ((_e4.y < 0.5) ? _e40 : -(_e33));
     const float2 _e49 = math_sincos_turns(_e7.y);
     float2 y_4 = (sqrt((2.0 * e_5)) * _e49);
-    kernel_covariance_Covariance k_28 = g_6.k;
+    kernel_covariance_Covariance k_28 = g_7.k;
     const float2 _e52 = kernel_covariance_eigenvalues(k_28);
     float khalf = (0.5 * (k_28.s_xx - k_28.s_yy));
     const float _e59 = math_hypot(khalf, k_28.s_xy);
@@ -2105,9 +2186,9 @@ float3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx
     return float3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
 }
 
-float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_7, float3 m_27)
+float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_8, float3 m_27)
 {
-    const float _e2 = filter_gaussian_ggx_d(g_7, m_27);
+    const float _e2 = filter_gaussian_ggx_d(g_8, m_27);
     return ((m_27.z > 0.0) ? (_e2 * m_27.z) : 0.0);
 }
 
@@ -2230,8 +2311,8 @@ float footprint_jacobian_det_projected_to_slope(float3 h_7)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
     float z_5 = _e1.h.z;
-    float z2_5 = (z_5 * z_5);
-    return (1.0 / (z2_5 * z2_5));
+    float z2_6 = (z_5 * z_5);
+    return (1.0 / (z2_6 * z2_6));
 }
 
 float footprint_jacobian_det_sphere_to_slope(float3 h_8)
@@ -2524,12 +2605,12 @@ uint filter_rect_tier(float h2_, float l2_1)
     return filter_rect_TIER_CLOSED;
 }
 
-float filter_rect_gl_node(uint n_2, uint k_13)
+float filter_rect_gl_node(uint n_1, uint k_13)
 {
-    if ((n_2 == 2u)) {
+    if ((n_1 == 2u)) {
         return 0.57735026;
     }
-    if ((n_2 == 4u)) {
+    if ((n_1 == 4u)) {
         return ((k_13 == 0u) ? 0.33998105 : 0.8611363);
     }
     if ((k_13 == 0u)) {
@@ -2538,12 +2619,12 @@ float filter_rect_gl_node(uint n_2, uint k_13)
     return ((k_13 == 1u) ? 0.6612094 : 0.9324695);
 }
 
-float filter_rect_gl_weight(uint n_3, uint k_14)
+float filter_rect_gl_weight(uint n_2, uint k_14)
 {
-    if ((n_3 == 2u)) {
+    if ((n_2 == 2u)) {
         return 0.5;
     }
-    if ((n_3 == 4u)) {
+    if ((n_2 == 4u)) {
         return ((k_14 == 0u) ? 0.32607257 : 0.17392743);
     }
     if ((k_14 == 0u)) {
@@ -2558,11 +2639,7 @@ float filter_rect_f(float u_7, float v_6)
     return (1.0 / (t_17 * t_17));
 }
 
-uint naga_div(uint lhs, uint rhs) {
-    return lhs / (rhs == 0u ? 1u : rhs);
-}
-
-float filter_rect_gl_mean(uint n_4, float u_8, float c_6, float h_12)
+float filter_rect_gl_mean(uint n_3, float u_8, float c_6, float h_12)
 {
     float acc_2 = 0.0;
     uint k_15 = 0u;
@@ -2578,17 +2655,17 @@ float filter_rect_gl_mean(uint n_4, float u_8, float c_6, float h_12)
         }
         loop_init_6 = false;
         uint _e8 = k_15;
-        if ((_e8 < naga_div(n_4, 2u))) {
+        if ((_e8 < naga_div(n_3, 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_15;
-            const float _e13 = filter_rect_gl_node(n_4, _e12);
+            const float _e13 = filter_rect_gl_node(n_3, _e12);
             float a_24 = (h_12 * _e13);
             float _e15 = acc_2;
             uint _e16 = k_15;
-            const float _e17 = filter_rect_gl_weight(n_4, _e16);
+            const float _e17 = filter_rect_gl_weight(n_3, _e16);
             const float _e19 = filter_rect_f(u_8, (c_6 - a_24));
             const float _e21 = filter_rect_f(u_8, (c_6 + a_24));
             acc_2 = (_e15 + (_e17 * (_e19 + _e21)));
@@ -2647,7 +2724,7 @@ float filter_rect_mean_1d(float4 i_7, float c2_)
     return ((_e57 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1));
 }
 
-float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, float4 other)
+float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, float4 other)
 {
     float acc_3 = 0.0;
     uint k_16 = 0u;
@@ -2663,19 +2740,19 @@ float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, float4 other)
         }
         loop_init_7 = false;
         uint _e8 = k_16;
-        if ((_e8 < naga_div(n_5, 2u))) {
+        if ((_e8 < naga_div(n_4, 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_16;
-            const float _e13 = filter_rect_gl_node(n_5, _e12);
+            const float _e13 = filter_rect_gl_node(n_4, _e12);
             float a_25 = (h_13 * _e13);
             float x0_1 = (c_7 - a_25);
             float x1_2 = (c_7 + a_25);
             float _e17 = acc_3;
             uint _e18 = k_16;
-            const float _e19 = filter_rect_gl_weight(n_5, _e18);
+            const float _e19 = filter_rect_gl_weight(n_4, _e18);
             const float _e23 = filter_rect_mean_1d(other, (1.0 + (x0_1 * x0_1)));
             const float _e27 = filter_rect_mean_1d(other, (1.0 + (x1_2 * x1_2)));
             acc_3 = (_e17 + (_e19 * (_e23 + _e27)));
@@ -2975,8 +3052,8 @@ float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_63, float3 h_1
         return _e18;
     }
     const float _e24 = filter_rect_p22_rect(r_63, (-(h_15.xy) / (h_15.z).xx), half_extent_5);
-    float z2_6 = (h_15.z * h_15.z);
-    return min((_e24 / (z2_6 * z2_6)), math_F32_MAX);
+    float z2_7 = (h_15.z * h_15.z);
+    return min((_e24 / (z2_7 * z2_7)), math_F32_MAX);
 }
 
 float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_64, float2 hpp, float3 h_16, float2 footprint)
@@ -3361,8 +3438,9 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_method_exact_gaussian_lobe(filter
 {
     const kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_10, method_3.sigma);
     const filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
-    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_1 = _e6;
-    return filter_gaussian_ggx_gaussianfilteredggx_1;
+    const filter_gaussian_ggx_GaussianFilteredGgx _e8 = filter_gaussian_ggx_with_tolerance(_e6, method_3.tolerance);
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_2 = _e8;
+    return filter_gaussian_ggx_gaussianfilteredggx_2;
 }
 
 float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, float3 m_32)
@@ -3535,12 +3613,12 @@ float3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAlig
     const float _e15 = sampling_clamp_unit(u_13.y);
     const float2 _e16 = math_sincos_turns(_e15);
     float rad_1 = sqrt((_e13 / (1.0 - _e13)));
-    float2 g_9 = (-(a_34) * (rad_1 * _e16));
+    float2 g_10 = (-(a_34) * (rad_1 * _e16));
     const float _e25 = sampling_clamp_unit(u_box.x);
     const float _e27 = sampling_clamp_unit(u_box.y);
     float2 b_9 = float2(_e25, _e27);
     float2 d_8 = (((2.0 * b_9) - (1.0).xx) * h_33);
-    const float3 _e36 = filter_rect_sample_normal_of_slope((g_9 + d_8));
+    const float3 _e36 = filter_rect_sample_normal_of_slope((g_10 + d_8));
     return _e36;
 }
 
@@ -3751,7 +3829,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
     float x_11 = (float)0;
     float dx_old = (float)0;
     uint i_11 = 0u;
-    float g_8 = (float)0;
+    float g_9 = (float)0;
     bool local_28 = (bool)0;
     bool local_29 = (bool)0;
 
@@ -3766,7 +3844,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
         return _e24;
     }
     const float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_18);
-    float tol = (4.7683716e-7 * goal);
+    float tol_4 = (4.7683716e-7 * goal);
     const float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_14) - 1.0));
     float _e35 = hi_2;
     float _e40 = lo_3;
@@ -3799,19 +3877,19 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
         {
             float _e59 = x_11;
             const float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_18);
-            g_8 = (_e60.x - goal);
+            g_9 = (_e60.x - goal);
             if (upper) {
                 float _e66 = x_11;
                 const float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_18);
                 float _e69 = x_11;
-                g_8 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
+                g_9 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
             }
-            float _e74 = g_8;
-            if ((abs(_e74) <= tol)) {
+            float _e74 = g_9;
+            if ((abs(_e74) <= tol_4)) {
                 float _e77 = x_11;
                 return _e77;
             }
-            float _e78 = g_8;
+            float _e78 = g_9;
             if ((_e78 < 0.0)) {
                 float _e81 = x_11;
                 lo_3 = _e81;
@@ -3827,7 +3905,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
                 float _e94 = hi_2;
                 return (0.5 * (_e93 + _e94));
             }
-            float _e98 = g_8;
+            float _e98 = g_9;
             float step_ = (_e98 / _e60.y);
             float _e101 = x_11;
             float xn = (_e101 - step_);
@@ -3840,7 +3918,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
             }
             bool _e110 = local_28;
             if (_e110) {
-                float _e113 = g_8;
+                float _e113 = g_9;
                 float _e117 = dx_old;
                 local_29 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
             } else {
@@ -3908,9 +3986,9 @@ float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_71
     const float _e9 = math_ln((1.0 - _e3));
     const float _e14 = math_ln_1p((_e3 / (1.0 - _e3)));
     float e_7 = ((_e3 < 0.5) ? _e14 : -(_e9));
-    float3 n_8 = float3((sqrt(e_7) * _e6), 1.0);
+    float3 n_7 = float3((sqrt(e_7) * _e6), 1.0);
     const sampling_Warp _e22 = sampling_warp(r_71);
-    const float3 _e23 = sampling_unstretch(_e22, n_8);
+    const float3 _e23 = sampling_unstretch(_e22, n_7);
     return _e23;
 }
 

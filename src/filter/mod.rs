@@ -33,7 +33,7 @@ mod exp_poly;
 mod gaussian;
 mod gaussian_ggx;
 mod gaussian_ggx_quad;
-mod gaussian_ggx_tol;
+pub(crate) mod gaussian_ggx_tol;
 mod lean;
 pub mod method;
 pub mod presets;
