@@ -45,6 +45,7 @@
 //!   second moment past that needs `|s| > 256`, a normal within 0.22 degrees of the horizon):
 //!   the covariance within `2^-11 (E[s_x^2] + 2 E[s_x]^2) + 3 * 2^-25`.
 
+pub mod decode;
 pub mod f16;
 pub mod fit;
 pub mod footprint;
