@@ -33,7 +33,7 @@ per_form! {
 per_form! {
     /// [`Ndf::d`] of Beckmann for each micronormal:
     /// `out[i] = Beckmann::new(*r).d(m_i) = exp(-m_xy^T A^-1 m_xy / m_z^2) / (pi sqrt(det A)
-    /// m_z^4)` per steradian (KHPL16 eq. 2), within the bound of the module docs of [`super`]
+    /// m_z^4)` per steradian (KHPL16 eq. 2), within the bound of the module docs of [`batch`](super::super)
     /// (relative `2.5e-7 + 2 eps` in `f32`: the exponential in lanes). `0` for `m_z <= 0`, NaN
     /// input and results below `F::MIN_POSITIVE`. Returns the number of elements written.
     /// Allocates nothing.
@@ -57,7 +57,7 @@ per_form! {
     /// Smith's [`Ndf::lambda`] of Beckmann for each direction:
     /// `out[i] = Beckmann::new(*r).lambda(w_i) = (exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2`,
     /// `a = |w_z| / sqrt(w_xy^T A w_xy)` (dimensionless, Heitz 2014), within the bound of the
-    /// module docs of [`super`] (absolute `2.1e-7 (1 + Lambda)` in `f32`: the `erfc` fit shared
+    /// module docs of [`batch`](super::super) (absolute `2.1e-7 (1 + Lambda)` in `f32`: the `erfc` fit shared
     /// with the exact Gaussian filter's sampler); out of domain as the scalar function. Returns
     /// the number of elements written. Allocates nothing.
     pub fn beckmann_lambda(r: &R, wx: &[F], wy: &[F], wz: &[F], out: &mut [F]) -> usize {
@@ -85,7 +85,7 @@ per_form! {
 per_form! {
     /// Height-correlated Smith `G2(i, o, m)` of Beckmann (as [`ggx_g2`]) for each triple of
     /// directions: `out[k] = Beckmann::new(*r).g2(i_k, o_k, m_k)` within the bound of the module
-    /// docs of [`super`] (relative `4.2e-7 + 3 eps` in `f32`, plus the amplified rounding of
+    /// docs of [`batch`](super::super) (relative `4.2e-7 + 3 eps` in `f32`, plus the amplified rounding of
     /// `a`). Returns the number of elements written. Allocates nothing.
     pub fn beckmann_g2(
         r: &R,

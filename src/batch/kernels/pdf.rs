@@ -9,7 +9,7 @@
 //! a grazing view, a Beckmann result out of the polynomial exponential's range) and, for the
 //! reflection pdf, a view whose normalisation needs the rescaling of
 //! [`crate::f32::vector::unit`]. GGX's pdfs are therefore the scalar values bit for bit;
-//! Beckmann's carry the lane `D` and `Lambda` bounds (module docs of [`super`]).
+//! Beckmann's carry the lane `D` and `Lambda` bounds (module docs of [`batch`](super::super)).
 
 use super::super::super::ndf::beckmann::Beckmann;
 use super::super::super::ndf::ggx::Ggx;
@@ -73,7 +73,7 @@ per_form! {
 per_form! {
     /// [`NdfSampling::visible_normal_pdf`] of Beckmann for each view and unit micronormal (as
     /// [`ggx_visible_normal_pdf`]): `out[i] = Beckmann::new(*r).visible_normal_pdf(wo_i, m_i)`
-    /// within the bound of the module docs of [`super`] (the lane `D`'s relative `E + 2 eps`
+    /// within the bound of the module docs of [`batch`](super::super) (the lane `D`'s relative `E + 2 eps`
     /// and the lane `Lambda`'s absolute `L (1 + Lambda)` over `1 + Lambda`, plus the formula's
     /// sum's and three operations' roundings in each path: first order `E + L + 10 eps + (5 + 3
     /// a^2) eps Lambda / (1 + Lambda)`; in `f32` against the `f64` scalar path: `(15 + 4 x) eps +
@@ -110,7 +110,7 @@ per_form! {
 
 per_form! {
     /// [`NdfSampling::reflection_pdf_from_normal`] of Beckmann (as
-    /// [`ggx_reflection_pdf_from_normal`]) within the bound of the module docs of [`super`] (as
+    /// [`ggx_reflection_pdf_from_normal`]) within the bound of the module docs of [`batch`](super::super) (as
     /// [`beckmann_visible_normal_pdf`], less the `wo.m` factor; against `f64` plus the
     /// normalisation of `wo`: `o_z` within `3 eps`, its direction moving `Lambda` by `(4 a^2 + 6)
     /// eps Lambda`, `tests/batch_bounds.rs`).
