@@ -47,10 +47,7 @@ fn texels() -> Vec<Texel> {
             (0.25, DVec2::new(0.04, 0.02)),
             (0.25, DVec2::new(0.0, -0.025)),
         ]),
-        texel(&[
-            (0.5, DVec2::new(0.31, 0.29)),
-            (0.5, DVec2::new(0.35, 0.33)),
-        ]),
+        texel(&[(0.5, DVec2::new(0.31, 0.29)), (0.5, DVec2::new(0.35, 0.33))]),
         texel(&[(1.0, DVec2::new(0.1, -0.2))]),
         texel(&[
             (0.1, DVec2::new(1.5, 0.2)),
@@ -111,7 +108,10 @@ fn gaussian_beckmann_is_the_exact_nested_convolution() {
             for s in [DVec2::ZERO, DVec2::new(0.02, 0.01), DVec2::new(-0.05, 0.04)] {
                 let e = gref::beckmann(material.roughness, k, s, QTol::relative(1e-10));
                 let got = lobe.p22(s);
-                assert!((got - e.value).abs() <= 1e-9 * e.value + e.error, "{s}: {got} vs {e:?}");
+                assert!(
+                    (got - e.value).abs() <= 1e-9 * e.value + e.error,
+                    "{s}: {got} vs {e:?}"
+                );
                 assert_eq!(exact.p22(s), got);
             }
         }
@@ -134,11 +134,15 @@ fn gaussian_and_projected_ggx_filter_the_widened_matrix() {
         let h = DVec3::new(0.01, -0.02, 1.0).normalize();
         for (got, want) in [
             (
-                material.filtered(fp, Lean::new(Gaussian::TK19, t.moments)).d(h),
+                material
+                    .filtered(fp, Lean::new(Gaussian::TK19, t.moments))
+                    .d(h),
                 Ggx::new(widened).filtered(fp, Gaussian::TK19).d(h),
             ),
             (
-                material.filtered(fp, Lean::new(Projected::TK21, t.moments)).d(h),
+                material
+                    .filtered(fp, Lean::new(Projected::TK21, t.moments))
+                    .d(h),
                 Ggx::new(widened).filtered(fp, Projected::TK21).d(h),
             ),
         ] {
@@ -243,8 +247,14 @@ fn any_moments_give_finite_lobes() {
     // every lobe finite.
     let bad = [
         LeanMoments::new(DVec2::new(0.5, 0.5), d::Covariance::new(0.0, 1.0, 0.0)),
-        LeanMoments::new(DVec2::new(f64::NAN, 0.0), d::Covariance::new(f64::NAN, 0.0, 1.0)),
-        LeanMoments::new(DVec2::ZERO, d::Covariance::new(f64::INFINITY, 0.0, f64::INFINITY)),
+        LeanMoments::new(
+            DVec2::new(f64::NAN, 0.0),
+            d::Covariance::new(f64::NAN, 0.0, 1.0),
+        ),
+        LeanMoments::new(
+            DVec2::ZERO,
+            d::Covariance::new(f64::INFINITY, 0.0, f64::INFINITY),
+        ),
     ];
     let fp = Footprint::from_slope_derivatives(U, V);
     let a = d::AxisAligned::new(0.1, 0.2).unwrap();
@@ -257,7 +267,9 @@ fn any_moments_give_finite_lobes() {
             g.filtered(fp, Lean::new(Projected::TK21, m)).d(h),
             g.filtered(fp, Lean::new(Rect::KHPL16, m)).d(h),
             g.filtered(fp, Lean::new(Proxy::KHPL16, m)).d(h),
-            Beckmann::new(a).filtered(fp, Lean::new(Gaussian::TK19, m)).d(h),
+            Beckmann::new(a)
+                .filtered(fp, Lean::new(Gaussian::TK19, m))
+                .d(h),
         ];
         for v in ds {
             assert!(v.is_finite() && v >= 0.0, "{m:?}: {v}");

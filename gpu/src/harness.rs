@@ -288,7 +288,11 @@ pub fn float32_filterable() -> Result<bool, String> {
 }
 
 /// [`run`] with [`Textures`] bound.
-pub fn run_textured(kernel: &Kernel, inputs: &[f32], textures: &Textures) -> Result<Vec<f32>, String> {
+pub fn run_textured(
+    kernel: &Kernel,
+    inputs: &[f32],
+    textures: &Textures,
+) -> Result<Vec<f32>, String> {
     let n = inputs.len() / kernel.n_in;
     if n == 0 {
         return Ok(Vec::new());

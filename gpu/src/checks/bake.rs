@@ -76,8 +76,16 @@ impl Chain {
                 moments: Some(&mut texels[lv.offset..lv.offset + lv.len()]),
                 ..Default::default()
             };
-            bake::bake_rows(&map, &settings, &layout, k, 0..lv.height, &mut scratch, band)
-                .expect("bakes");
+            bake::bake_rows(
+                &map,
+                &settings,
+                &layout,
+                k,
+                0..lv.height,
+                &mut scratch,
+                band,
+            )
+            .expect("bakes");
         }
         if half {
             for t in &mut texels {
@@ -146,7 +154,9 @@ impl Chain {
 const OUT: &str = "y2(0u, m.mean);\ny(2u, m.second.x);\ny(3u, m.second.y);\ny(4u, m.second.z);";
 
 fn imports() -> String {
-    format!("#import filtered_ndf::filter::lean\n#import filtered_ndf::bake::moments\n{TEXTURE_DECLARATIONS}")
+    format!(
+        "#import filtered_ndf::filter::lean\n#import filtered_ndf::bake::moments\n{TEXTURE_DECLARATIONS}"
+    )
 }
 
 fn level_check(chain: &Chain, half: bool) -> Check {
@@ -289,7 +299,11 @@ fn covariance_check(chain: &Chain) -> Check {
                 c.case(
                     vec![uv[0], uv[1], k as f32],
                     vec![cv.s11, cv.s12, cv.s22],
-                    vec![d(t[0], t[0], cv.s11), d(t[0], t[1], cv.s12), d(t[1], t[1], cv.s22)],
+                    vec![
+                        d(t[0], t[0], cv.s11),
+                        d(t[0], t[1], cv.s12),
+                        d(t[1], t[1], cv.s22),
+                    ],
                 );
             }
         }
@@ -313,7 +327,11 @@ fn roughness_checks() -> Vec<Check> {
     .tolerance("1 ulp (one rounded product)");
     for k in 1..=255 {
         let r = k as f32 / 255.0;
-        perceptual.case(vec![r], vec![alpha_from_perceptual(r.into())], vec![Tol::ulps(1.0)]);
+        perceptual.case(
+            vec![r],
+            vec![alpha_from_perceptual(r.into())],
+            vec![Tol::ulps(1.0)],
+        );
     }
     // Entries of the matrix: from_eigen's eigenbasis reconstructed by `matrix::entries`
     // (4 ulp of the largest entry, `checks/filters.rs`), the axis from `sincos_turns` (3 ulp
@@ -339,7 +357,11 @@ fn roughness_checks() -> Vec<Check> {
         };
         let m = l.matrix();
         let s = l.alpha_x * l.alpha_x;
-        aniso.case(lobe.to_vec(), vec![m.0, m.1, m.2], vec![Tol::of_scale(16.0, s); 3]);
+        aniso.case(
+            lobe.to_vec(),
+            vec![m.0, m.1, m.2],
+            vec![Tol::of_scale(16.0, s); 3],
+        );
     }
     // KHR: the direction normalised (3 ulp), alpha_t = mix(alpha_b, 1, b^2) (4 roundings):
     // 24 ulp of alpha_t^2 per entry with the axis' and entries' share.
@@ -359,7 +381,10 @@ fn roughness_checks() -> Vec<Check> {
             (rng.range(0.0, 1.0) * 255.0).round() as f32 / 255.0,
             1.0,
         ];
-        let dir = DVec2::new(2.0 * f64::from(texel[0]) - 1.0, 2.0 * f64::from(texel[1]) - 1.0);
+        let dir = DVec2::new(
+            2.0 * f64::from(texel[0]) - 1.0,
+            2.0 * f64::from(texel[1]) - 1.0,
+        );
         if dir.length() < 0.05 {
             continue;
         }

@@ -104,10 +104,17 @@ fn points(n: usize) -> Vec<Point> {
     (0..n)
         .map(|k| {
             let mean = DVec2::new(rng.range(-0.5, 0.5), rng.range(-0.5, 0.5));
-            let (l1, l2) = (10f64.powf(rng.range(-5.0, -1.0)), 10f64.powf(rng.range(-5.0, -1.0)));
+            let (l1, l2) = (
+                10f64.powf(rng.range(-5.0, -1.0)),
+                10f64.powf(rng.range(-5.0, -1.0)),
+            );
             let t = rng.range(0.0, std::f64::consts::PI);
             let (c, s) = (t.cos(), t.sin());
-            let cov = (c * c * l1 + s * s * l2, c * s * (l1 - l2), s * s * l1 + c * c * l2);
+            let cov = (
+                c * c * l1 + s * s * l2,
+                c * s * (l1 - l2),
+                s * s * l1 + c * c * l2,
+            );
             Point {
                 alpha: [a[k].alpha().x as f32, a[k].alpha().y as f32],
                 du: [fps[k].dh_u.x as f32, fps[k].dh_u.y as f32],
@@ -156,13 +163,17 @@ pub fn all() -> Vec<Check> {
         }
         checks.push(c);
     };
-    for (name, m) in [("TK19_GAUSSIAN", Gaussian::TK19), ("KHPL16_GAUSSIAN", Gaussian::KHPL16)] {
+    for (name, m) in [
+        ("TK19_GAUSSIAN", Gaussian::TK19),
+        ("KHPL16_GAUSSIAN", Gaussian::KHPL16),
+    ] {
         one(
             &format!("lean_nested::gaussian_lobe (GGX, method::{name})"),
             &format!("ggx::d_matrix(lean_nested::gaussian_lobe(method::{name}, a, fp, m), h)"),
             &move |p| {
                 let h = v3(p.h);
-                let d = |mo: &LeanMoments| Ggx::new(p.material()).filtered(p.fp(), Lean::new(m, *mo));
+                let d =
+                    |mo: &LeanMoments| Ggx::new(p.material()).filtered(p.fp(), Lean::new(m, *mo));
                 let lobe = d(&p.moments());
                 let t = super::filters::filtered_d_tol(&lobe.roughness, h, true)
                     + p.det_ulps(lobe.roughness.entries())
@@ -216,13 +227,19 @@ pub fn all() -> Vec<Check> {
             (d(&p.moments()).d(h), t)
         },
     );
-    for (name, m) in [("KHPL16_RECT", Rect::KHPL16), ("GDC2016_RECT", Rect::GDC2016)] {
+    for (name, m) in [
+        ("KHPL16_RECT", Rect::KHPL16),
+        ("GDC2016_RECT", Rect::GDC2016),
+    ] {
         one(
             &format!("lean_nested::rect_lobe (method::{name})"),
-            &format!("method::d_rect_filtered(lean_nested::rect_lobe(method::{name}, r, fp, m), h)"),
+            &format!(
+                "method::d_rect_filtered(lean_nested::rect_lobe(method::{name}, r, fp, m), h)"
+            ),
             &move |p| {
                 let h = v3(p.h);
-                let d = |mo: &LeanMoments| Ggx::new(p.material()).filtered(p.fp(), Lean::new(m, *mo));
+                let d =
+                    |mo: &LeanMoments| Ggx::new(p.material()).filtered(p.fp(), Lean::new(m, *mo));
                 let lobe = d(&p.moments());
                 let c = DVec2::new(-h.x / h.z, -h.y / h.z);
                 // Plus the widened alphas' own rounding (sqrt of a rounded sum: 2 ulp each)
@@ -254,7 +271,10 @@ pub fn all() -> Vec<Check> {
             };
             // The proxy's bound (checks/method.rs) with the widened alphas' rounding added to
             // its inputs (2 ulp, entering `D` with weight up to 4).
-            let t = 2.0 * (7.0 + 4.0 * 12.0 + 1.0) + 6.0 + 2.0 * 12.0 + 8.0
+            let t = 2.0 * (7.0 + 4.0 * 12.0 + 1.0)
+                + 6.0
+                + 2.0 * 12.0
+                + 8.0
                 + moment_ulps(p, &|mo| d(mo).d(h));
             (d(&p.moments()).d(h), t)
         },
@@ -274,7 +294,8 @@ pub fn all() -> Vec<Check> {
         for case in &mut c.cases {
             case.tol = vec![Tol::abs(8.0 * EPS)];
         }
-        c.tolerance = "8 EPS absolute (normalize: 3 ulp; dot with a unit vector: 3 ulp of 1)".into();
+        c.tolerance =
+            "8 EPS absolute (normalize: 3 ulp; dot with a unit vector: 3 ulp of 1)".into();
     }
     checks
 }
