@@ -231,6 +231,22 @@ pub fn run(check: &Check) -> Result<Outcome, String> {
         n_in: check.n_in,
         n_out: check.n_out,
     };
+    if let Some(t) = &check.textures
+        && !t.half
+        && !harness::float32_filterable()?
+    {
+        return Ok(Outcome {
+            name: check.name.clone(),
+            cases: 0,
+            worst_rel: 0.0,
+            worst_abs: 0.0,
+            worst_of_tol: 0.0,
+            tolerance: "not run: the adapter lacks float32-filterable".into(),
+            worst_case: String::new(),
+            failures: Vec::new(),
+            n_failed: 0,
+        });
+    }
     let out = match &check.textures {
         Some(t) => harness::run_textured(&kernel, &input, t),
         None => harness::run(&kernel, &input),
