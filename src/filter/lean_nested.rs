@@ -35,7 +35,9 @@ use super::{
 use crate::math as m;
 
 /// A method of the front door with the LEAN moments of the shaded texel nested into it
-/// (KHPL16 eq. 21; the table of the [module docs](self)):
+/// (KHPL16 eq. 21): each method filters the material widened by [`lean_widened`] (the box
+/// methods: [`lean_widened_axis_aligned`]; the exact Gaussian filter of GGX: one kernel
+/// `Sigma_L + K_P`), the clamp rules acting on the pixel kernel only:
 /// `material.filtered(footprint, Lean::new(Gaussian::TK19, moments))`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lean<M> {
