@@ -34,6 +34,8 @@ groups!(
     rect_sample,
     gaussian_ggx,
     method,
+    lean_nested,
+    bake,
     sampling,
     sampling_beckmann,
 );

@@ -8,11 +8,28 @@
 precision highp float;
 precision highp int;
 
+struct ndf_roughness_matrix_RoughnessMatrix {
+    vec2 axis;
+    vec2 eig;
+    vec2 eig_c;
+    vec2 inv_eig;
+    float sqrt_det;
+    float det;
+    float tau;
+};
 struct kernel_covariance_Covariance {
     float s_xx;
     float s_xy;
     float s_yy;
     float det;
+};
+struct filter_lean_LeanMoments {
+    vec2 mean;
+    vec3 second;
+};
+struct ndf_roughness_isotropic_Isotropic {
+    float alpha;
+    float inv_alpha_sq;
 };
 struct filter_deferred_KernelConvention {
     uint domain;
@@ -24,19 +41,6 @@ struct filter_deferred_KernelConvention {
     uint combine;
     bool saturate;
     float perceptual_floor;
-};
-struct ndf_roughness_matrix_RoughnessMatrix {
-    vec2 axis;
-    vec2 eig;
-    vec2 eig_c;
-    vec2 inv_eig;
-    float sqrt_det;
-    float det;
-    float tau;
-};
-struct ndf_roughness_isotropic_Isotropic {
-    float alpha;
-    float inv_alpha_sq;
 };
 struct ndf_roughness_axis_aligned_AxisAligned {
     vec2 alpha;
@@ -63,10 +67,6 @@ struct filter_gaussian_ggx_GaussianFilteredGgx {
     float norm;
     kernel_covariance_Covariance k;
     uint tol;
-};
-struct filter_lean_LeanMoments {
-    vec2 mean;
-    vec3 second;
 };
 struct footprint_jacobian_Polar {
     vec3 h;
@@ -126,9 +126,9 @@ const float math_LN_2_ = 0.6931472;
 const float math_SQRT_TAU = 2.5066283;
 const float math_LOG2_E = 1.442695;
 const float math_SQRT_2_ = 1.4142135;
+const float kernel_covariance_KERNEL_MAX = 100000000.0;
 const float ndf_roughness_ALPHA_MIN = 1e-8;
 const float ndf_roughness_ALPHA_MAX = 10000.0;
-const float kernel_covariance_KERNEL_MAX = 100000000.0;
 const float filter_deferred_KAPPA = 0.18;
 const uint filter_deferred_DOMAIN_ALPHA_SQ = 0u;
 const uint filter_deferred_DOMAIN_ALPHA = 1u;
@@ -212,9 +212,9 @@ layout(location = 0) out vec4 _fs2p_location0;
 float math_atan(float x) {
     float t = 0.0;
     float r = 0.0;
-    float a_16 = abs(x);
-    bool inv = (a_16 > 1.0);
-    t = (inv ? (1.0 / a_16) : a_16);
+    float a_17 = abs(x);
+    bool inv = (a_17 > 1.0);
+    t = (inv ? (1.0 / a_17) : a_17);
     float _e8 = t;
     bool shift = (_e8 > math_TAN_EIGHTH_PI);
     float _e11 = t;
@@ -242,20 +242,20 @@ float math_atan(float x) {
 vec2 math_sincos_turns(float u) {
     vec2 cs = vec2(0.0);
     float q_4 = roundEven((4.0 * u));
-    float r_76 = (u - (0.25 * q_4));
-    float z_3 = (r_76 * r_76);
-    float s_20 = (r_76 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855));
+    float r_79 = (u - (0.25 * q_4));
+    float z_3 = (r_79 * r_79);
+    float s_22 = (r_79 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855));
     float c_14 = ((((((((59.22017 * z_3) - 85.44285) * z_3) + 64.939316) * z_3) - 19.739208) * z_3) + 1.0);
     int k_24 = (int(q_4) & 3);
-    cs = vec2(c_14, s_20);
+    cs = vec2(c_14, s_22);
     if ((k_24 == 1)) {
-        cs = vec2(-(s_20), c_14);
+        cs = vec2(-(s_22), c_14);
     } else {
         if ((k_24 == 2)) {
-            cs = vec2(-(c_14), -(s_20));
+            cs = vec2(-(c_14), -(s_22));
         } else {
             if ((k_24 == 3)) {
-                cs = vec2(s_20, -(c_14));
+                cs = vec2(s_22, -(c_14));
             }
         }
     }
@@ -264,29 +264,29 @@ vec2 math_sincos_turns(float u) {
 }
 
 float math_hypot(float x_1, float y) {
-    float m_44 = max(abs(x_1), abs(y));
-    if ((m_44 <= 0.0)) {
+    float m_49 = max(abs(x_1), abs(y));
+    if ((m_49 <= 0.0)) {
         return 0.0;
     }
-    float a_17 = (x_1 / m_44);
-    float b_4 = (y / m_44);
-    return (m_44 * sqrt(((a_17 * a_17) + (b_4 * b_4))));
+    float a_18 = (x_1 / m_49);
+    float b_4 = (y / m_49);
+    return (m_49 * sqrt(((a_18 * a_18) + (b_4 * b_4))));
 }
 
 float math_exp(float x_2) {
     float xc = clamp(x_2, -87.0, 88.0);
     float n_5 = roundEven((xc * math_LOG2_E));
-    float r_77 = ((xc - (n_5 * math_LN2_HI)) - (n_5 * math_LN2_LO));
-    float r2_ = (r_77 * r_77);
-    float p_6 = (((1.0 + r_77) + ((0.4999999 + (0.1666642 * r_77)) * r2_)) + (((0.041668225 + (0.008374816 * r_77)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
-    float s_21 = uintBitsToFloat((uint((int(n_5) + 127)) << 23u));
-    return ((x_2 >= -87.0) ? (p_6 * s_21) : 0.0);
+    float r_80 = ((xc - (n_5 * math_LN2_HI)) - (n_5 * math_LN2_LO));
+    float r2_ = (r_80 * r_80);
+    float p_6 = (((1.0 + r_80) + ((0.4999999 + (0.1666642 * r_80)) * r2_)) + (((0.041668225 + (0.008374816 * r_80)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
+    float s_23 = uintBitsToFloat((uint((int(n_5) + 127)) << 23u));
+    return ((x_2 >= -87.0) ? (p_6 * s_23) : 0.0);
 }
 
 float math_atanh2_(float z) {
     float z2_4 = (z * z);
-    float s_22 = (((((((((z2_4 * 0.09090909) + 0.11111111) * z2_4) + 0.14285715) * z2_4) + 0.2) * z2_4) + 0.33333334) * z2_4);
-    return ((2.0 * z) + ((2.0 * z) * s_22));
+    float s_24 = (((((((((z2_4 * 0.09090909) + 0.11111111) * z2_4) + 0.14285715) * z2_4) + 0.2) * z2_4) + 0.33333334) * z2_4);
+    return ((2.0 * z) + ((2.0 * z) * s_24));
 }
 
 float math_ln(float x_3) {
@@ -319,8 +319,99 @@ float math_ln_1p(float x_4) {
     return _e9;
 }
 
-float ndf_roughness_clamp_alpha(float alpha) {
-    return ((alpha >= ndf_roughness_ALPHA_MIN) ? min(alpha, ndf_roughness_ALPHA_MAX) : ndf_roughness_ALPHA_MIN);
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(vec2 axis, vec2 alpha) {
+    vec2 l_5 = (alpha * alpha);
+    return ndf_roughness_matrix_RoughnessMatrix(axis, l_5, l_5, (vec2(1.0) / l_5), (alpha.x * alpha.y), (l_5.x * l_5.y), 0.0);
+}
+
+vec2 ndf_roughness_matrix_clamped_eigenvalues(vec2 l, float det, float tau) {
+    if ((det >= tau)) {
+        return l;
+    }
+    float h_21 = (0.5 * (l.x + l.y));
+    float gap = (tau - det);
+    float t_11 = (gap / (h_21 + sqrt(((h_21 * h_21) + gap))));
+    float l1_ = (l.x + t_11);
+    return vec2(l1_, (tau / l1_));
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(vec2 axis_1, vec2 l_1, float det_1, float tau_1) {
+    vec2 _e4 = ndf_roughness_matrix_clamped_eigenvalues(l_1, det_1, tau_1);
+    return ndf_roughness_matrix_RoughnessMatrix(axis_1, l_1, _e4, (vec2(1.0) / _e4), sqrt(max(det_1, tau_1)), det_1, tau_1);
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det_2, float tau_2) {
+    vec2 v = vec2(0.0);
+    float half_diff = (0.5 * (a11_ - a22_));
+    float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
+    float l1_1 = ((0.5 * (a11_ + a22_)) + rad);
+    float l2_2 = (max(det_2, 0.0) / l1_1);
+    float big = (rad + abs(half_diff));
+    v = ((half_diff < 0.0) ? vec2(a12_, big) : vec2(big, a12_));
+    if ((big <= 0.0)) {
+        v = vec2(1.0, 0.0);
+    }
+    vec2 _e32 = v;
+    vec2 _e33 = v;
+    vec2 axis_2 = (_e32 / vec2(length(_e33)));
+    ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, vec2(l1_1, l2_2), det_2, tau_2);
+    return _e38;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(float a11_1, float a12_1, float a22_1) {
+    ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_entries_det(a11_1, a12_1, a22_1, ((a11_1 * a22_1) - (a12_1 * a12_1)), 0.0);
+    return _e7;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_1, float det_clamp) {
+    ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_eigenbasis(r_1.axis, r_1.eig, r_1.det, max(det_clamp, 0.0));
+    return _e7;
+}
+
+vec2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, vec2 v_1) {
+    return vec2(((r_2.axis.x * v_1.x) + (r_2.axis.y * v_1.y)), ((r_2.axis.x * v_1.y) - (r_2.axis.y * v_1.x)));
+}
+
+float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, vec2 s) {
+    vec2 _e2 = ndf_roughness_matrix_rotate(r_3, s);
+    return dot((_e2 * _e2), r_3.inv_eig);
+}
+
+float ndf_roughness_matrix_quadratic(ndf_roughness_matrix_RoughnessMatrix r_4, vec2 w) {
+    vec2 _e2 = ndf_roughness_matrix_rotate(r_4, w);
+    return dot((_e2 * _e2), r_4.eig_c);
+}
+
+float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5) {
+    return r_5.sqrt_det;
+}
+
+vec3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, vec2 l_2) {
+    float c_15 = r_6.axis.x;
+    float s_25 = r_6.axis.y;
+    return vec3((((l_2.x * c_15) * c_15) + ((l_2.y * s_25) * s_25)), (((l_2.x - l_2.y) * c_15) * s_25), (((l_2.x * s_25) * s_25) + ((l_2.y * c_15) * c_15)));
+}
+
+vec3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7) {
+    vec3 _e2 = ndf_roughness_matrix_entries_of(r_7, r_7.eig);
+    return _e2;
+}
+
+vec3 ndf_roughness_matrix_clamped_entries(ndf_roughness_matrix_RoughnessMatrix r_8) {
+    vec3 _e2 = ndf_roughness_matrix_entries_of(r_8, r_8.eig_c);
+    return _e2;
+}
+
+float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_9) {
+    return r_9.det;
+}
+
+float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10) {
+    return max(r_10.det, r_10.tau);
+}
+
+float ndf_roughness_matrix_own_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_11) {
+    return ((r_11.tau > r_11.det) ? r_11.tau : 0.0);
 }
 
 kernel_covariance_Covariance kernel_covariance_zero() {
@@ -362,18 +453,18 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     if ((scale <= 0.0)) {
         return c_3;
     }
-    float a_18 = (c_3.s_xx / scale);
+    float a_19 = (c_3.s_xx / scale);
     float b_6 = (c_3.s_xy / scale);
     float e_3 = (c_3.s_yy / scale);
-    float d_3 = (0.5 * (a_18 - e_3));
-    float r_78 = sqrt(((d_3 * d_3) + (b_6 * b_6)));
-    float lmax_1 = (((0.5 * (a_18 + e_3)) + r_78) * scale);
+    float d_3 = (0.5 * (a_19 - e_3));
+    float r_81 = sqrt(((d_3 * d_3) + (b_6 * b_6)));
+    float lmax_1 = (((0.5 * (a_19 + e_3)) + r_81) * scale);
     if ((lmax_1 <= max_eig)) {
         return c_3;
     }
     float lmin_1 = max((c_3.det / lmax_1), 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = (r_78 < 1e-18);
+        local = (r_81 < 1e-18);
     } else {
         local = true;
     }
@@ -381,10 +472,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     if (_e46) {
         return kernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
     }
-    float p_7 = (r_78 + abs(d_3));
+    float p_7 = (r_81 + abs(d_3));
     float q_5 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
     vec2 ee = ((d_3 >= 0.0) ? vec2(p_7, q_5) : vec2(q_5, p_7));
-    float inv_1 = (1.0 / (2.0 * r_78));
+    float inv_1 = (1.0 / (2.0 * r_81));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_6 * inv_1);
     float p22_ = (ee.y * inv_1);
@@ -394,8 +485,8 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
 kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covariance c_4) {
     bool local_1 = false;
     bool local_2 = false;
-    float big = max(max(abs(c_4.s_xx), abs(c_4.s_yy)), abs(c_4.s_xy));
-    if ((big > math_F32_MAX)) {
+    float big_1 = max(max(abs(c_4.s_xx), abs(c_4.s_yy)), abs(c_4.s_xy));
+    if ((big_1 > math_F32_MAX)) {
         return kernel_covariance_Covariance(100000000.0, 0.0, 100000000.0, 1e16);
     }
     if ((c_4.s_xx >= 0.0)) {
@@ -422,57 +513,177 @@ kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covar
     return _e50;
 }
 
-float filter_deferred_from_alpha(uint domain, float alpha_1) {
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_1, kernel_covariance_Covariance k_1, float tau_3) {
+    vec3 _e3 = ndf_roughness_matrix_entries(a_1);
+    float c_16 = a_1.axis.x;
+    float s_26 = a_1.axis.y;
+    float k1_1 = max(((((c_16 * c_16) * k_1.s_xx) + (((2.0 * c_16) * s_26) * k_1.s_xy)) + ((s_26 * s_26) * k_1.s_yy)), 0.0);
+    float k2_1 = max(((((s_26 * s_26) * k_1.s_xx) - (((2.0 * c_16) * s_26) * k_1.s_xy)) + ((c_16 * c_16) * k_1.s_yy)), 0.0);
+    float _e38 = ndf_roughness_matrix_determinant(a_1);
+    float det_4 = ((_e38 + (2.0 * ((a_1.eig.y * k1_1) + (a_1.eig.x * k2_1)))) + (4.0 * max(k_1.det, 0.0)));
+    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_1.s_xx)), (_e3.y + (2.0 * k_1.s_xy)), (_e3.z + (2.0 * k_1.s_yy)), det_4, max(tau_3, 0.0));
+    return _e72;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance kernel) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_2);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_2, _e2, _e3);
+    return _e4;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel_1, float det_clamp_1) {
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_1);
+    float _e4 = ndf_roughness_matrix_own_det_clamp(a_3);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_3, _e3, max(det_clamp_1, _e4));
+    return _e6;
+}
+
+kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m) {
+    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m.second.x - (m.mean.x * m.mean.x)), (m.second.y - (m.mean.x * m.mean.y)), (m.second.z - (m.mean.y * m.mean.y)));
+    kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
+    return _e26;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments) {
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
+    kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
+    kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_4, _e5);
+    return _e6;
+}
+
+filter_lean_LeanMoments bake_moments_from_texels(vec4 rgba, float xy) {
+    return filter_lean_LeanMoments(rgba.xy, vec3(rgba.z, xy, rgba.w));
+}
+
+filter_lean_LeanMoments bake_moments_sample_grad(highp sampler2D moments_1, highp sampler2D moments_xy, vec2 uv, vec2 ddx_uv, vec2 ddy_uv) {
+    vec4 rgba_1 = textureGrad(moments_1, vec2(uv), ddx_uv, ddy_uv);
+    vec4 _e7 = textureGrad(moments_xy, vec2(uv), ddx_uv, ddy_uv);
+    float xy_1 = _e7.x;
+    filter_lean_LeanMoments _e9 = bake_moments_from_texels(rgba_1, xy_1);
+    return _e9;
+}
+
+filter_lean_LeanMoments bake_moments_sample_level(highp sampler2D moments_2, highp sampler2D moments_xy_1, vec2 uv_1, float level) {
+    vec4 rgba_2 = textureLod(moments_2, vec2(uv_1), level);
+    vec4 _e6 = textureLod(moments_xy_1, vec2(uv_1), level);
+    float xy_2 = _e6.x;
+    filter_lean_LeanMoments _e8 = bake_moments_from_texels(rgba_2, xy_2);
+    return _e8;
+}
+
+float ndf_roughness_clamp_alpha(float alpha_1) {
+    return ((alpha_1 >= ndf_roughness_ALPHA_MIN) ? min(alpha_1, ndf_roughness_ALPHA_MAX) : ndf_roughness_ALPHA_MIN);
+}
+
+ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_2) {
+    float _e1 = ndf_roughness_clamp_alpha(alpha_2);
+    return ndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
+}
+
+float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_12, vec2 s_3) {
+    return (dot(s_3, s_3) * r_12.inv_alpha_sq);
+}
+
+float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_13, vec2 w_1) {
+    vec2 s_27 = (w_1 * r_13.alpha);
+    return dot(s_27, s_27);
+}
+
+float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_14) {
+    return (r_14.alpha * r_14.alpha);
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_15) {
+    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), vec2(r_15.alpha));
+    return _e6;
+}
+
+ndf_roughness_isotropic_Isotropic bake_roughness_from_perceptual(float r_16) {
+    ndf_roughness_isotropic_Isotropic _e2 = ndf_roughness_isotropic_from_alpha((r_16 * r_16));
+    return _e2;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_anisotropic(vec3 lobe) {
+    vec2 _e4 = math_sincos_turns((lobe.z * 0.15915494));
+    float _e6 = ndf_roughness_clamp_alpha(lobe.x);
+    float _e8 = ndf_roughness_clamp_alpha(lobe.y);
+    vec2 a_20 = vec2(_e6, _e8);
+    ndf_roughness_matrix_RoughnessMatrix _e10 = ndf_roughness_matrix_from_eigen(_e4, a_20);
+    return _e10;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_khr_anisotropy(float r_17, vec4 anisotropy) {
+    vec2 d_4 = ((2.0 * anisotropy.xy) - vec2(1.0));
+    float len = length(d_4);
+    vec2 axis_3 = ((len > 0.0) ? (d_4 / vec2(len)) : vec2(1.0, 0.0));
+    float alpha_b = (r_17 * r_17);
+    float b_7 = anisotropy.z;
+    float alpha_t = mix(alpha_b, 1.0, (b_7 * b_7));
+    float _e22 = ndf_roughness_clamp_alpha(alpha_t);
+    float _e23 = ndf_roughness_clamp_alpha(alpha_b);
+    vec2 a_21 = vec2(_e22, _e23);
+    ndf_roughness_matrix_RoughnessMatrix _e25 = ndf_roughness_matrix_from_eigen(axis_3, a_21);
+    return _e25;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_matrix_texel(vec4 t_1) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = ndf_roughness_matrix_from_entries(t_1.x, t_1.y, t_1.z);
+    return _e4;
+}
+
+float filter_deferred_from_alpha(uint domain, float alpha_3) {
     if ((domain == filter_deferred_DOMAIN_ALPHA)) {
-        return alpha_1;
+        return alpha_3;
     }
     if ((domain == filter_deferred_DOMAIN_PERCEPTUAL)) {
-        return sqrt(alpha_1);
+        return sqrt(alpha_3);
     }
-    float a2_ = (alpha_1 * alpha_1);
+    float a2_ = (alpha_3 * alpha_3);
     if ((domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
         return ((a2_ < 1.0) ? (a2_ / (1.0 - a2_)) : math_F32_MAX);
     }
     return a2_;
 }
 
-float filter_deferred_to_alpha(uint domain_1, float v) {
+float filter_deferred_to_alpha(uint domain_1, float v_2) {
     if ((domain_1 == filter_deferred_DOMAIN_ALPHA)) {
-        return v;
+        return v_2;
     }
     if ((domain_1 == filter_deferred_DOMAIN_PERCEPTUAL)) {
-        return (v * v);
+        return (v_2 * v_2);
     }
     if ((domain_1 == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
-        return ((v < math_F32_MAX) ? sqrt((v / (1.0 + v))) : 1.0);
+        return ((v_2 < math_F32_MAX) ? sqrt((v_2 / (1.0 + v_2))) : 1.0);
     }
-    return sqrt(v);
+    return sqrt(v_2);
 }
 
-float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5) {
-    float _e9 = math_hypot((0.5 * (a_1 - c_5)), b_1);
-    return max(((0.5 * (a_1 + c_5)) + _e9), 0.0);
+float filter_deferred_max_eigenvalue(float a_5, float b_1, float c_5) {
+    float _e9 = math_hypot((0.5 * (a_5 - c_5)), b_1);
+    return max(((0.5 * (a_5 + c_5)) + _e9), 0.0);
 }
 
 float filter_deferred_norm_eval(uint norm, vec3 dn_u, vec3 dn_v) {
-    float a_19 = dot(dn_u, dn_u);
-    float c_15 = dot(dn_v, dn_v);
+    float a_22 = dot(dn_u, dn_u);
+    float c_17 = dot(dn_v, dn_v);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
-        return max(a_19, c_15);
+        return max(a_22, c_17);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        float _e11 = filter_deferred_max_eigenvalue(a_19, dot(dn_u, dn_v), c_15);
+        float _e11 = filter_deferred_max_eigenvalue(a_22, dot(dn_u, dn_v), c_17);
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        vec3 m_45 = max(abs(dn_u), abs(dn_v));
-        return max(max(m_45.x, m_45.y), m_45.z);
+        vec3 m_50 = max(abs(dn_u), abs(dn_v));
+        return max(max(m_50.x, m_50.y), m_50.z);
     }
-    return (a_19 + c_15);
+    return (a_22 + c_17);
 }
 
-float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_1) {
-    return min(max(k_1, 0.0), conv.clamp_);
+float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_2) {
+    return min(max(k_2, 0.0), conv.clamp_);
 }
 
 float filter_deferred_widening(filter_deferred_KernelConvention conv_1, vec3 dn_u_1, vec3 dn_v_1) {
@@ -487,15 +698,15 @@ float filter_deferred_widening(filter_deferred_KernelConvention conv_1, vec3 dn_
     return _e20;
 }
 
-float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, float alpha_in, float k_2) {
-    float alpha_2 = 0.0;
+float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, float alpha_in, float k_3) {
+    float alpha_4 = 0.0;
     float out_ = 0.0;
-    alpha_2 = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
-    float _e7 = alpha_2;
-    alpha_2 = max(_e7, (conv_2.perceptual_floor * conv_2.perceptual_floor));
-    float _e13 = alpha_2;
+    alpha_4 = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
+    float _e7 = alpha_4;
+    alpha_4 = max(_e7, (conv_2.perceptual_floor * conv_2.perceptual_floor));
+    float _e13 = alpha_4;
     float _e14 = filter_deferred_from_alpha(conv_2.domain, _e13);
-    float _e15 = filter_deferred_clamp_widening(conv_2, k_2);
+    float _e15 = filter_deferred_clamp_widening(conv_2, k_3);
     out_ = ((conv_2.combine == filter_deferred_COMBINE_MAX) ? max(_e14, _e15) : (_e14 + _e15));
     if (conv_2.saturate) {
         float _e24 = out_;
@@ -506,9 +717,9 @@ float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, fl
     return clamp(_e29, 0.0, ndf_roughness_ALPHA_MAX);
 }
 
-float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_3, vec3 dn_u_2, vec3 dn_v_2) {
+float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_5, vec3 dn_u_2, vec3 dn_v_2) {
     float _e4 = filter_deferred_widening(conv_3, dn_u_2, dn_v_2);
-    float _e5 = filter_deferred_apply_widening(conv_3, alpha_3, _e4);
+    float _e5 = filter_deferred_apply_widening(conv_3, alpha_5, _e4);
     return _e5;
 }
 
@@ -518,141 +729,20 @@ kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 d
     return kernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_12, x_12));
 }
 
-float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel) {
+float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel_2) {
     if ((bandwidth == filter_deferred_BANDWIDTH_MAX)) {
-        float _e7 = filter_deferred_max_eigenvalue(kernel.s_xx, kernel.s_xy, kernel.s_yy);
+        float _e7 = filter_deferred_max_eigenvalue(kernel_2.s_xx, kernel_2.s_xy, kernel_2.s_yy);
         return (2.0 * _e7);
     }
-    float t_10 = (kernel.s_xx + kernel.s_yy);
-    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_10) : t_10);
+    float t_12 = (kernel_2.s_xx + kernel_2.s_yy);
+    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_12) : t_12);
 }
 
-float filter_deferred_filtered_alpha(float alpha_4, kernel_covariance_Covariance kernel_1, uint bandwidth_1, float kappa) {
+float filter_deferred_filtered_alpha(float alpha_6, kernel_covariance_Covariance kernel_3, uint bandwidth_1, float kappa) {
     filter_deferred_KernelConvention conv_4 = filter_deferred_KernelConvention(filter_deferred_DOMAIN_ALPHA_SQ, filter_deferred_NORM_SUM_SQUARED, 0.5, 1.0, 0.0, kappa, filter_deferred_COMBINE_ADD, true, 0.0);
-    float _e13 = filter_deferred_bandwidth_alpha2_(bandwidth_1, kernel_1);
-    float _e14 = filter_deferred_apply_widening(conv_4, alpha_4, _e13);
+    float _e13 = filter_deferred_bandwidth_alpha2_(bandwidth_1, kernel_3);
+    float _e14 = filter_deferred_apply_widening(conv_4, alpha_6, _e13);
     return _e14;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(vec2 axis, vec2 alpha_5) {
-    vec2 l_5 = (alpha_5 * alpha_5);
-    return ndf_roughness_matrix_RoughnessMatrix(axis, l_5, l_5, (vec2(1.0) / l_5), (alpha_5.x * alpha_5.y), (l_5.x * l_5.y), 0.0);
-}
-
-vec2 ndf_roughness_matrix_clamped_eigenvalues(vec2 l, float det, float tau) {
-    if ((det >= tau)) {
-        return l;
-    }
-    float h_21 = (0.5 * (l.x + l.y));
-    float gap = (tau - det);
-    float t_11 = (gap / (h_21 + sqrt(((h_21 * h_21) + gap))));
-    float l1_ = (l.x + t_11);
-    return vec2(l1_, (tau / l1_));
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(vec2 axis_1, vec2 l_1, float det_1, float tau_1) {
-    vec2 _e4 = ndf_roughness_matrix_clamped_eigenvalues(l_1, det_1, tau_1);
-    return ndf_roughness_matrix_RoughnessMatrix(axis_1, l_1, _e4, (vec2(1.0) / _e4), sqrt(max(det_1, tau_1)), det_1, tau_1);
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det_2, float tau_2) {
-    vec2 v_1 = vec2(0.0);
-    float half_diff = (0.5 * (a11_ - a22_));
-    float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
-    float l1_1 = ((0.5 * (a11_ + a22_)) + rad);
-    float l2_2 = (max(det_2, 0.0) / l1_1);
-    float big_1 = (rad + abs(half_diff));
-    v_1 = ((half_diff < 0.0) ? vec2(a12_, big_1) : vec2(big_1, a12_));
-    if ((big_1 <= 0.0)) {
-        v_1 = vec2(1.0, 0.0);
-    }
-    vec2 _e32 = v_1;
-    vec2 _e33 = v_1;
-    vec2 axis_2 = (_e32 / vec2(length(_e33)));
-    ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, vec2(l1_1, l2_2), det_2, tau_2);
-    return _e38;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(float a11_1, float a12_1, float a22_1) {
-    ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_entries_det(a11_1, a12_1, a22_1, ((a11_1 * a22_1) - (a12_1 * a12_1)), 0.0);
-    return _e7;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_1, float det_clamp) {
-    ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_eigenbasis(r_1.axis, r_1.eig, r_1.det, max(det_clamp, 0.0));
-    return _e7;
-}
-
-vec2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, vec2 v_2) {
-    return vec2(((r_2.axis.x * v_2.x) + (r_2.axis.y * v_2.y)), ((r_2.axis.x * v_2.y) - (r_2.axis.y * v_2.x)));
-}
-
-float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, vec2 s) {
-    vec2 _e2 = ndf_roughness_matrix_rotate(r_3, s);
-    return dot((_e2 * _e2), r_3.inv_eig);
-}
-
-float ndf_roughness_matrix_quadratic(ndf_roughness_matrix_RoughnessMatrix r_4, vec2 w) {
-    vec2 _e2 = ndf_roughness_matrix_rotate(r_4, w);
-    return dot((_e2 * _e2), r_4.eig_c);
-}
-
-float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5) {
-    return r_5.sqrt_det;
-}
-
-vec3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, vec2 l_2) {
-    float c_16 = r_6.axis.x;
-    float s_23 = r_6.axis.y;
-    return vec3((((l_2.x * c_16) * c_16) + ((l_2.y * s_23) * s_23)), (((l_2.x - l_2.y) * c_16) * s_23), (((l_2.x * s_23) * s_23) + ((l_2.y * c_16) * c_16)));
-}
-
-vec3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7) {
-    vec3 _e2 = ndf_roughness_matrix_entries_of(r_7, r_7.eig);
-    return _e2;
-}
-
-vec3 ndf_roughness_matrix_clamped_entries(ndf_roughness_matrix_RoughnessMatrix r_8) {
-    vec3 _e2 = ndf_roughness_matrix_entries_of(r_8, r_8.eig_c);
-    return _e2;
-}
-
-float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_9) {
-    return r_9.det;
-}
-
-float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10) {
-    return max(r_10.det, r_10.tau);
-}
-
-float ndf_roughness_matrix_own_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_11) {
-    return ((r_11.tau > r_11.det) ? r_11.tau : 0.0);
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3) {
-    vec3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_17 = a_2.axis.x;
-    float s_24 = a_2.axis.y;
-    float k1_1 = max(((((c_17 * c_17) * k_3.s_xx) + (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((s_24 * s_24) * k_3.s_yy)), 0.0);
-    float k2_1 = max(((((s_24 * s_24) * k_3.s_xx) - (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((c_17 * c_17) * k_3.s_yy)), 0.0);
-    float _e38 = ndf_roughness_matrix_determinant(a_2);
-    float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * max(k_3.det, 0.0)));
-    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
-    return _e72;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel_2) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_3);
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_3, _e2, _e3);
-    return _e4;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_3, float det_clamp_1) {
-    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
-    float _e4 = ndf_roughness_matrix_own_det_clamp(a_4);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_4, _e3, max(det_clamp_1, _e4));
-    return _e6;
 }
 
 float ndf_g1_of(float lambda_w, float w_dot_m) {
@@ -670,63 +760,40 @@ float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m) {
     return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
 }
 
-ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_6) {
-    float _e1 = ndf_roughness_clamp_alpha(alpha_6);
-    return ndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
-}
-
-float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_12, vec2 s_1) {
-    return (dot(s_1, s_1) * r_12.inv_alpha_sq);
-}
-
-float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_13, vec2 w_1) {
-    vec2 s_25 = (w_1 * r_13.alpha);
-    return dot(s_25, s_25);
-}
-
-float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_14) {
-    return (r_14.alpha * r_14.alpha);
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_15) {
-    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), vec2(r_15.alpha));
-    return _e6;
-}
-
 ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(vec2 alpha_7) {
     float _e2 = ndf_roughness_clamp_alpha(alpha_7.x);
     float _e4 = ndf_roughness_clamp_alpha(alpha_7.y);
-    vec2 a_20 = vec2(_e2, _e4);
-    return ndf_roughness_axis_aligned_AxisAligned(a_20, (vec2(1.0) / (a_20 * a_20)));
+    vec2 a_23 = vec2(_e2, _e4);
+    return ndf_roughness_axis_aligned_AxisAligned(a_23, (vec2(1.0) / (a_23 * a_23)));
 }
 
-float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_16, vec2 s_2) {
-    return dot((s_2 * s_2), r_16.inv_alpha_sq);
+float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_18, vec2 s_4) {
+    return dot((s_4 * s_4), r_18.inv_alpha_sq);
 }
 
-float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_17, vec2 w_2) {
-    vec2 s_26 = (w_2 * r_17.alpha);
-    return dot(s_26, s_26);
+float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_19, vec2 w_2) {
+    vec2 s_28 = (w_2 * r_19.alpha);
+    return dot(s_28, s_28);
 }
 
-float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_18) {
-    return (r_18.alpha.x * r_18.alpha.y);
+float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_20) {
+    return (r_20.alpha.x * r_20.alpha.y);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_19) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), r_19.alpha);
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_21) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), r_21.alpha);
     return _e5;
 }
 
 float ndf_ggx_p22_of(float q, float sqrt_det) {
-    float t_12 = (1.0 + q);
-    return ((q >= 0.0) ? (1.0 / (((math_PI * sqrt_det) * t_12) * t_12)) : 0.0);
+    float t_13 = (1.0 + q);
+    return ((q >= 0.0) ? (1.0 / (((math_PI * sqrt_det) * t_13) * t_13)) : 0.0);
 }
 
 float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1) {
     bool local_4 = false;
-    float t_13 = (q_xy + (m_z * m_z));
-    float v_13 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
+    float t_14 = (q_xy + (m_z * m_z));
+    float v_13 = (1.0 / (((math_PI * sqrt_det_1) * t_14) * t_14));
     if ((m_z > 0.0)) {
         local_4 = (v_13 <= math_F32_MAX);
     } else {
@@ -757,106 +824,106 @@ float ndf_ggx_lambda_of(float q_1, float abs_wz) {
     if (_e21) {
         return math_F32_MAX;
     }
-    float r_79 = sqrt(((abs_wz * abs_wz) + q_1));
-    return (q_1 / ((2.0 * abs_wz) * (r_79 + abs_wz)));
+    float r_82 = sqrt(((abs_wz * abs_wz) + q_1));
+    return (q_1 / ((2.0 * abs_wz) * (r_82 + abs_wz)));
 }
 
-float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_20, vec2 s_3) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_20, s_3);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_20);
+float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_22, vec2 s_5) {
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_22, s_5);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_22);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_21, vec3 m) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_21, m.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_21);
-    float _e6 = ndf_ggx_d_of(_e3, m.z, _e5);
+float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_23, vec3 m_1) {
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_23, m_1.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_23);
+    float _e6 = ndf_ggx_d_of(_e3, m_1.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_22, vec3 w_3) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_22, w_3.xy);
+float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_24, vec3 w_3) {
+    float _e3 = ndf_roughness_isotropic_quadratic(r_24, w_3.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, abs(w_3.z));
     return _e6;
 }
 
-float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_23, vec3 w_4, vec3 m_1) {
-    float _e3 = ndf_ggx_lambda_isotropic(r_23, w_4);
-    float _e5 = ndf_g1_of(_e3, dot(w_4, m_1));
+float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_25, vec3 w_4, vec3 m_2) {
+    float _e3 = ndf_ggx_lambda_isotropic(r_25, w_4);
+    float _e5 = ndf_g1_of(_e3, dot(w_4, m_2));
     return _e5;
 }
 
-float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_24, vec3 i, vec3 o, vec3 m_2) {
-    float _e4 = ndf_ggx_lambda_isotropic(r_24, i);
-    float _e5 = ndf_ggx_lambda_isotropic(r_24, o);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_2), dot(o, m_2));
+float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_26, vec3 i, vec3 o, vec3 m_3) {
+    float _e4 = ndf_ggx_lambda_isotropic(r_26, i);
+    float _e5 = ndf_ggx_lambda_isotropic(r_26, o);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_3), dot(o, m_3));
     return _e8;
 }
 
-float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, vec2 s_4) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_25, s_4);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_25);
+float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, vec2 s_6) {
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_27, s_6);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_27);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, vec3 m_3) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_26, m_3.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_26);
-    float _e6 = ndf_ggx_d_of(_e3, m_3.z, _e5);
+float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, vec3 m_4) {
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_28, m_4.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_28);
+    float _e6 = ndf_ggx_d_of(_e3, m_4.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, vec3 w_5) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_27, w_5.xy);
+float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, vec3 w_5) {
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_29, w_5.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, abs(w_5.z));
     return _e6;
 }
 
-float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, vec3 w_6, vec3 m_4) {
-    float _e3 = ndf_ggx_lambda_axis_aligned(r_28, w_6);
-    float _e5 = ndf_g1_of(_e3, dot(w_6, m_4));
+float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_30, vec3 w_6, vec3 m_5) {
+    float _e3 = ndf_ggx_lambda_axis_aligned(r_30, w_6);
+    float _e5 = ndf_g1_of(_e3, dot(w_6, m_5));
     return _e5;
 }
 
-float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, vec3 i_1, vec3 o_1, vec3 m_5) {
-    float _e4 = ndf_ggx_lambda_axis_aligned(r_29, i_1);
-    float _e5 = ndf_ggx_lambda_axis_aligned(r_29, o_1);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_5), dot(o_1, m_5));
+float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_31, vec3 i_1, vec3 o_1, vec3 m_6) {
+    float _e4 = ndf_ggx_lambda_axis_aligned(r_31, i_1);
+    float _e5 = ndf_ggx_lambda_axis_aligned(r_31, o_1);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_6), dot(o_1, m_6));
     return _e8;
 }
 
-float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, vec2 s_5) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_30, s_5);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_30);
+float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, vec2 s_7) {
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_32, s_7);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_32);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, vec3 m_6) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_31, m_6.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_31);
-    float _e6 = ndf_ggx_d_of(_e3, m_6.z, _e5);
+float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, vec3 m_7) {
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_33, m_7.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_33);
+    float _e6 = ndf_ggx_d_of(_e3, m_7.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, vec3 w_7) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_32, w_7.xy);
+float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, vec3 w_7) {
+    float _e3 = ndf_roughness_matrix_quadratic(r_34, w_7.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, abs(w_7.z));
     return _e6;
 }
 
-float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, vec3 w_8, vec3 m_7) {
-    float _e3 = ndf_ggx_lambda_matrix(r_33, w_8);
-    float _e5 = ndf_g1_of(_e3, dot(w_8, m_7));
+float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_35, vec3 w_8, vec3 m_8) {
+    float _e3 = ndf_ggx_lambda_matrix(r_35, w_8);
+    float _e5 = ndf_g1_of(_e3, dot(w_8, m_8));
     return _e5;
 }
 
-float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, vec3 i_2, vec3 o_2, vec3 m_8) {
-    float _e4 = ndf_ggx_lambda_matrix(r_34, i_2);
-    float _e5 = ndf_ggx_lambda_matrix(r_34, o_2);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_8), dot(o_2, m_8));
+float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_36, vec3 i_2, vec3 o_2, vec3 m_9) {
+    float _e4 = ndf_ggx_lambda_matrix(r_36, i_2);
+    float _e5 = ndf_ggx_lambda_matrix(r_36, o_2);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_9), dot(o_2, m_9));
     return _e8;
 }
 
@@ -908,140 +975,140 @@ float ndf_beckmann_lambda_of(float q_3, float abs_wz_1) {
     if (_e21) {
         return math_F32_MAX;
     }
-    float a_21 = (abs_wz_1 / sqrt(q_3));
-    if ((a_21 > 9.5)) {
+    float a_24 = (abs_wz_1 / sqrt(q_3));
+    if ((a_24 > 9.5)) {
         return 0.0;
     }
-    float t_14 = ((a_21 - 3.0) / (a_21 + 3.0));
+    float t_15 = ((a_24 - 3.0) / (a_24 + 3.0));
     float _e35 = p;
-    p = ((_e35 * t_14) + 0.00028491428);
+    p = ((_e35 * t_15) + 0.00028491428);
     float _e39 = p;
-    p = ((_e39 * t_14) + 1.8268152e-5);
+    p = ((_e39 * t_15) + 1.8268152e-5);
     float _e43 = p;
-    p = ((_e43 * t_14) - 0.0018242653);
+    p = ((_e43 * t_15) - 0.0018242653);
     float _e47 = p;
-    p = ((_e47 * t_14) + 0.0013654069);
+    p = ((_e47 * t_15) + 0.0013654069);
     float _e51 = p;
-    p = ((_e51 * t_14) + 0.0055811945);
+    p = ((_e51 * t_15) + 0.0055811945);
     float _e55 = p;
-    p = ((_e55 * t_14) - 0.009357543);
+    p = ((_e55 * t_15) - 0.009357543);
     float _e59 = p;
-    p = ((_e59 * t_14) - 0.0076571554);
+    p = ((_e59 * t_15) - 0.0076571554);
     float _e63 = p;
-    p = ((_e63 * t_14) + 0.036274612);
+    p = ((_e63 * t_15) + 0.036274612);
     float _e67 = p;
-    p = ((_e67 * t_14) - 0.023293633);
+    p = ((_e67 * t_15) - 0.023293633);
     float _e71 = p;
-    p = ((_e71 * t_14) - 0.07646358);
+    p = ((_e71 * t_15) - 0.07646358);
     float _e75 = p;
-    p = ((_e75 * t_14) + 0.2117349);
+    p = ((_e75 * t_15) + 0.2117349);
     float _e79 = p;
-    p = ((_e79 * t_14) - 0.23284179);
+    p = ((_e79 * t_15) - 0.23284179);
     float _e83 = p;
-    p = ((_e83 * t_14) + 0.03307925);
+    p = ((_e83 * t_15) + 0.03307925);
     float _e87 = p;
-    p = ((_e87 * t_14) + 1.0631379);
+    p = ((_e87 * t_15) + 1.0631379);
     float _e91 = p;
-    float k_26 = (_e91 / ((2.0 * a_21) + 1.0));
-    return min(((exp((-(a_21) * a_21)) * k_26) / ((3.5449078 * a_21) * (a_21 + k_26))), math_F32_MAX);
+    float k_26 = (_e91 / ((2.0 * a_24) + 1.0));
+    return min(((exp((-(a_24) * a_24)) * k_26) / ((3.5449078 * a_24) * (a_24 + k_26))), math_F32_MAX);
 }
 
-float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_35, vec2 s_6) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_35, s_6);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_35);
+float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_37, vec2 s_8) {
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_8);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_36, vec3 m_9) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_36, m_9.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_36);
-    float _e6 = ndf_beckmann_d_of(_e3, m_9.z, _e5);
+float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_38, vec3 m_10) {
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_10.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
+    float _e6 = ndf_beckmann_d_of(_e3, m_10.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_37, vec3 w_9) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_37, w_9.xy);
+float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_39, vec3 w_9) {
+    float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_38, vec3 w_10, vec3 m_10) {
-    float _e3 = ndf_beckmann_lambda_isotropic(r_38, w_10);
-    float _e5 = ndf_g1_of(_e3, dot(w_10, m_10));
+float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_40, vec3 w_10, vec3 m_11) {
+    float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
+    float _e5 = ndf_g1_of(_e3, dot(w_10, m_11));
     return _e5;
 }
 
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_39, vec3 i_3, vec3 o_3, vec3 m_11) {
-    float _e4 = ndf_beckmann_lambda_isotropic(r_39, i_3);
-    float _e5 = ndf_beckmann_lambda_isotropic(r_39, o_3);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_11), dot(o_3, m_11));
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_41, vec3 i_3, vec3 o_3, vec3 m_12) {
+    float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_3);
+    float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_12), dot(o_3, m_12));
     return _e8;
 }
 
-float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_40, vec2 s_7) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_40, s_7);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_40);
+float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, vec2 s_9) {
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_9);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_41, vec3 m_12) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_41, m_12.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_41);
-    float _e6 = ndf_beckmann_d_of(_e3, m_12.z, _e5);
+float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, vec3 m_13) {
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_13.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
+    float _e6 = ndf_beckmann_d_of(_e3, m_13.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, vec3 w_11) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_42, w_11.xy);
+float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, vec3 w_11) {
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, vec3 w_12, vec3 m_13) {
-    float _e3 = ndf_beckmann_lambda_axis_aligned(r_43, w_12);
-    float _e5 = ndf_g1_of(_e3, dot(w_12, m_13));
+float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_45, vec3 w_12, vec3 m_14) {
+    float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
+    float _e5 = ndf_g1_of(_e3, dot(w_12, m_14));
     return _e5;
 }
 
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, vec3 i_4, vec3 o_4, vec3 m_14) {
-    float _e4 = ndf_beckmann_lambda_axis_aligned(r_44, i_4);
-    float _e5 = ndf_beckmann_lambda_axis_aligned(r_44, o_4);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_14), dot(o_4, m_14));
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_46, vec3 i_4, vec3 o_4, vec3 m_15) {
+    float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_4);
+    float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_15), dot(o_4, m_15));
     return _e8;
 }
 
-float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_45, vec2 s_8) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_45, s_8);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_45);
+float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, vec2 s_10) {
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_10);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_46, vec3 m_15) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_46, m_15.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_46);
-    float _e6 = ndf_beckmann_d_of(_e3, m_15.z, _e5);
+float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, vec3 m_16) {
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_16.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
+    float _e6 = ndf_beckmann_d_of(_e3, m_16.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, vec3 w_13) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_47, w_13.xy);
+float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, vec3 w_13) {
+    float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, vec3 w_14, vec3 m_16) {
-    float _e3 = ndf_beckmann_lambda_matrix(r_48, w_14);
-    float _e5 = ndf_g1_of(_e3, dot(w_14, m_16));
+float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_50, vec3 w_14, vec3 m_17) {
+    float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
+    float _e5 = ndf_g1_of(_e3, dot(w_14, m_17));
     return _e5;
 }
 
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, vec3 i_5, vec3 o_5, vec3 m_17) {
-    float _e4 = ndf_beckmann_lambda_matrix(r_49, i_5);
-    float _e5 = ndf_beckmann_lambda_matrix(r_49, o_5);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_17), dot(o_5, m_17));
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_51, vec3 i_5, vec3 o_5, vec3 m_18) {
+    float _e4 = ndf_beckmann_lambda_matrix(r_51, i_5);
+    float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_18), dot(o_5, m_18));
     return _e8;
 }
 
@@ -1228,10 +1295,10 @@ float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl
                     float ip1_1 = (1.0 / (1.0 + (t1_3 * _e85)));
                     float _e91 = v_3;
                     float ip2_1 = (1.0 / (1.0 + (t2_1 * _e91)));
-                    float a_22 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
+                    float a_25 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
                     uint _e103 = jj;
                     float _e107 = v_3;
-                    float x_14 = (((2.0 * hs) * (kb + float(_e103))) - ((_e107 - 1.0) * a_22));
+                    float x_14 = (((2.0 * hs) * (kb + float(_e103))) - ((_e107 - 1.0) * a_25));
                     float _e112 = math_exp(x_14);
                     last = ((_e112 * sqrt(ip1_1)) * sqrt(ip2_1));
                     float _e117 = part;
@@ -1248,12 +1315,12 @@ float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl
             sum = (_e127 + _e128);
             float _e130 = vl;
             float wl = (_e130 * w_r);
-            float b_7 = ((wl >= 2.0) ? (1.0 + wl) : 7.47);
+            float b_8 = ((wl >= 2.0) ? (1.0 + wl) : 7.47);
             float _e138 = last;
             float _e140 = sum;
             float _e142 = vl;
             float _e144 = vl;
-            if (((_e138 * b_7) <= (((stop * _e140) * _e142) * _e144))) {
+            if (((_e138 * b_8) <= (((stop * _e140) * _e142) * _e144))) {
                 break;
             }
         }
@@ -1374,16 +1441,16 @@ float filter_gaussian_ggx_quad_hermite_weight(uint k_9) {
 }
 
 float filter_gaussian_ggx_quad_h_of(float y_2) {
-    float r_50 = 0.0;
-    float a_23 = abs(y_2);
-    if ((a_23 > 1.0)) {
-        float i_12 = (1.0 / a_23);
-        r_50 = (a_23 * sqrt((1.0 + (i_12 * i_12))));
+    float r_52 = 0.0;
+    float a_26 = abs(y_2);
+    if ((a_26 > 1.0)) {
+        float i_12 = (1.0 / a_26);
+        r_52 = (a_26 * sqrt((1.0 + (i_12 * i_12))));
     } else {
-        r_50 = sqrt((1.0 + (y_2 * y_2)));
+        r_52 = sqrt((1.0 + (y_2 * y_2)));
     }
-    float _e16 = r_50;
-    float _e18 = r_50;
+    float _e16 = r_52;
+    float _e18 = r_52;
     return ((y_2 >= 0.0) ? (1.0 / (_e18 + y_2)) : (_e16 - y_2));
 }
 
@@ -1526,10 +1593,10 @@ float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2) {
     return _e9;
 }
 
-sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_51) {
-    vec3 _e1 = ndf_roughness_matrix_clamped_entries(r_51);
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_53) {
+    vec3 _e1 = ndf_roughness_matrix_clamped_entries(r_53);
     float l_xx = sqrt(_e1.x);
-    return sampling_Warp(l_xx, (_e1.y / l_xx), (r_51.sqrt_det / l_xx));
+    return sampling_Warp(l_xx, (_e1.y / l_xx), (r_53.sqrt_det / l_xx));
 }
 
 vec3 sampling_normalize_scaled(vec3 v_4) {
@@ -1550,8 +1617,8 @@ float sampling_clamp_unit(float u_1) {
     return ((u_1 >= 0.0) ? min(u_1, sampling_ONE_MINUS_EPS) : 0.0);
 }
 
-vec3 sampling_reflect(vec3 wo, vec3 m_18) {
-    return (((2.0 * dot(wo, m_18)) * m_18) - wo);
+vec3 sampling_reflect(vec3 wo, vec3 m_19) {
+    return (((2.0 * dot(wo, m_19)) * m_19) - wo);
 }
 
 vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_2) {
@@ -1561,12 +1628,12 @@ vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_2) {
     return (vec3((sin_theta_1 * _e3), z_4) + wi);
 }
 
-vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_52, vec3 wo_1, vec2 u_3) {
+vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_54, vec3 wo_1, vec2 u_3) {
     bool local_13 = false;
     if (!((wo_1.z > 0.0))) {
         return vec3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_52);
+    sampling_Warp _e9 = sampling_warp(r_54);
     vec3 _e10 = sampling_normalize_scaled(wo_1);
     vec3 _e11 = sampling_stretch(_e9, _e10);
     vec3 _e12 = sampling_normalize_scaled(_e11);
@@ -1590,25 +1657,25 @@ vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_52, v
     return ((_e36.z > 0.0) ? _e36 : vec3(0.0));
 }
 
-vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_53, vec2 u_4) {
+vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_55, vec2 u_4) {
     float _e3 = sampling_clamp_unit(u_4.x);
     float _e5 = sampling_clamp_unit(u_4.y);
     vec2 _e6 = math_sincos_turns(_e5);
     vec3 n_6 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
-    sampling_Warp _e13 = sampling_warp(r_53);
+    sampling_Warp _e13 = sampling_warp(r_55);
     vec3 _e14 = sampling_unstretch(_e13, n_6);
     return _e14;
 }
 
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_54, vec3 m_19) {
-    float _e2 = ndf_ggx_d_matrix(r_54, m_19);
-    return ((m_19.z > 0.0) ? (_e2 * m_19.z) : 0.0);
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_56, vec3 m_20) {
+    float _e2 = ndf_ggx_d_matrix(r_56, m_20);
+    return ((m_20.z > 0.0) ? (_e2 * m_20.z) : 0.0);
 }
 
-float sampling_visible_normal_pdf_of(vec3 wo_2, vec3 m_20, float d, float lambda) {
+float sampling_visible_normal_pdf_of(vec3 wo_2, vec3 m_21, float d, float lambda) {
     bool local_14 = false;
     bool local_15 = false;
-    float wom = dot(wo_2, m_20);
+    float wom = dot(wo_2, m_21);
     float v_14 = ((wom * d) / (wo_2.z * (1.0 + lambda)));
     if ((wo_2.z > 0.0)) {
         local_14 = (wom > 0.0);
@@ -1625,19 +1692,19 @@ float sampling_visible_normal_pdf_of(vec3 wo_2, vec3 m_20, float d, float lambda
     return (_e25 ? v_14 : 0.0);
 }
 
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_55, vec3 wo_3, vec3 m_21) {
-    float _e3 = ndf_ggx_d_matrix(r_55, m_21);
-    float _e4 = ndf_ggx_lambda_matrix(r_55, wo_3);
-    float _e5 = sampling_visible_normal_pdf_of(wo_3, m_21, _e3, _e4);
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_57, vec3 wo_3, vec3 m_22) {
+    float _e3 = ndf_ggx_d_matrix(r_57, m_22);
+    float _e4 = ndf_ggx_lambda_matrix(r_57, wo_3);
+    float _e5 = sampling_visible_normal_pdf_of(wo_3, m_22, _e3, _e4);
     return _e5;
 }
 
-float sampling_reflection_pdf_of(vec3 o_6, vec3 m_22, float d_1, float lambda_1) {
+float sampling_reflection_pdf_of(vec3 o_6, vec3 m_23, float d_1, float lambda_1) {
     bool local_16 = false;
     bool local_17 = false;
     float v_15 = (d_1 / ((4.0 * o_6.z) * (1.0 + lambda_1)));
     if ((o_6.z > 0.0)) {
-        local_16 = (dot(o_6, m_22) > 0.0);
+        local_16 = (dot(o_6, m_23) > 0.0);
     } else {
         local_16 = false;
     }
@@ -1651,26 +1718,26 @@ float sampling_reflection_pdf_of(vec3 o_6, vec3 m_22, float d_1, float lambda_1)
     return (_e26 ? v_15 : 0.0);
 }
 
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_56, vec3 wo_4, vec3 m_23) {
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_58, vec3 wo_4, vec3 m_24) {
     vec3 _e3 = sampling_normalize_scaled(wo_4);
-    float _e4 = ndf_ggx_d_matrix(r_56, m_23);
-    float _e5 = ndf_ggx_lambda_matrix(r_56, _e3);
-    float _e6 = sampling_reflection_pdf_of(_e3, m_23, _e4, _e5);
+    float _e4 = ndf_ggx_d_matrix(r_58, m_24);
+    float _e5 = ndf_ggx_lambda_matrix(r_58, _e3);
+    float _e6 = sampling_reflection_pdf_of(_e3, m_24, _e4, _e5);
     return _e6;
 }
 
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_57, vec3 wo_5, vec3 wi_1) {
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_59, vec3 wo_5, vec3 wi_1) {
     if (!((wo_5.z > 0.0))) {
         return 0.0;
     }
     vec3 _e8 = sampling_normalize_scaled(wo_5);
     vec3 _e9 = sampling_normalize_scaled(wi_1);
     vec3 h_23 = (_e8 + _e9);
-    float len = length(h_23);
-    if (!((len > 0.0))) {
+    float len_1 = length(h_23);
+    if (!((len_1 > 0.0))) {
         return 0.0;
     }
-    float _e18 = sampling_reflection_pdf_from_normal(r_57, wo_5, (h_23 / vec3(len)));
+    float _e18 = sampling_reflection_pdf_from_normal(r_59, wo_5, (h_23 / vec3(len_1)));
     return _e18;
 }
 
@@ -1682,16 +1749,16 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_with_tolerance(filte
     return _e4;
 }
 
-filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_4) {
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance kernel_4) {
     float l2_ = 0.0;
     vec2 v_5 = vec2(1.0, 0.0);
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
-    float c_18 = a_5.axis.x;
-    float s_27 = a_5.axis.y;
-    float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((s_27 * s_27) * _e2.s_yy)), 0.0);
-    float k22_ = max(((((s_27 * s_27) * _e2.s_xx) - (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
-    float k12_ = ((((c_18 * c_18) - (s_27 * s_27)) * _e2.s_xy) + ((c_18 * s_27) * (_e2.s_yy - _e2.s_xx)));
-    vec2 l_6 = a_5.eig_c;
+    float c_18 = a_6.axis.x;
+    float s_29 = a_6.axis.y;
+    float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_29) * _e2.s_xy)) + ((s_29 * s_29) * _e2.s_yy)), 0.0);
+    float k22_ = max(((((s_29 * s_29) * _e2.s_xx) - (((2.0 * c_18) * s_29) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
+    float k12_ = ((((c_18 * c_18) - (s_29 * s_29)) * _e2.s_xy) + ((c_18 * s_29) * (_e2.s_yy - _e2.s_xx)));
+    vec2 l_6 = a_6.eig_c;
     vec2 isl = (vec2(1.0) / sqrt(l_6));
     float c11_ = ((k11_ * isl.x) * isl.x);
     float c22_ = ((k22_ * isl.y) * isl.y);
@@ -1712,29 +1779,29 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roug
     }
     vec2 _e102 = v_5;
     float _e105 = l2_;
-    float _e110 = ndf_roughness_matrix_sqrt_det(a_5);
-    return filter_gaussian_ggx_GaussianFilteredGgx(a_5, isl, _e102, vec2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2, filter_gaussian_ggx_TOL_FULL);
+    float _e110 = ndf_roughness_matrix_sqrt_det(a_6);
+    return filter_gaussian_ggx_GaussianFilteredGgx(a_6, isl, _e102, vec2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2, filter_gaussian_ggx_TOL_FULL);
 }
 
-vec2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g_1, vec2 s_9) {
-    vec2 _e3 = ndf_roughness_matrix_rotate(g_1.a, s_9);
+vec2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g_1, vec2 s_11) {
+    vec2 _e3 = ndf_roughness_matrix_rotate(g_1.a, s_11);
     vec2 u_18 = (_e3 * g_1.inv_sqrt_l);
     vec2 c_19 = vec2(((g_1.v.x * u_18.x) + (g_1.v.y * u_18.y)), ((g_1.v.x * u_18.y) - (g_1.v.y * u_18.x)));
     return (c_19 * c_19);
 }
 
-float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_2, vec2 s_10) {
-    vec2 _e2 = filter_gaussian_ggx_whiten(g_2, s_10);
+float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_2, vec2 s_12) {
+    vec2 _e2 = filter_gaussian_ggx_whiten(g_2, s_12);
     float _e12 = filter_gaussian_ggx_quad_j_tol(_e2.x, _e2.y, 1.0, g_2.tl.x, g_2.tl.y, g_2.tol);
     return (g_2.norm * _e12);
 }
 
-float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_3, vec3 m_24) {
-    if (!((m_24.z > 0.0))) {
+float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_3, vec3 m_25) {
+    if (!((m_25.z > 0.0))) {
         return 0.0;
     }
-    vec2 _e8 = filter_gaussian_ggx_whiten(g_3, m_24.xy);
-    float _e20 = filter_gaussian_ggx_quad_j_tol(_e8.x, _e8.y, (m_24.z * m_24.z), g_3.tl.x, g_3.tl.y, g_3.tol);
+    vec2 _e8 = filter_gaussian_ggx_whiten(g_3, m_25.xy);
+    float _e20 = filter_gaussian_ggx_quad_j_tol(_e8.x, _e8.y, (m_25.z * m_25.z), g_3.tl.x, g_3.tl.y, g_3.tol);
     float v_16 = (g_3.norm * _e20);
     return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
 }
@@ -1765,16 +1832,16 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_4, ve
     return _e61;
 }
 
-float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_5, vec3 w_17, vec3 m_25) {
+float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_5, vec3 w_17, vec3 m_26) {
     float _e3 = filter_gaussian_ggx_lambda(g_5, w_17);
-    float _e5 = ndf_g1_of(_e3, dot(w_17, m_25));
+    float _e5 = ndf_g1_of(_e3, dot(w_17, m_26));
     return _e5;
 }
 
-float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_6, vec3 i_6, vec3 o_7, vec3 m_26) {
+float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_6, vec3 i_6, vec3 o_7, vec3 m_27) {
     float _e4 = filter_gaussian_ggx_lambda(g_6, i_6);
     float _e5 = filter_gaussian_ggx_lambda(g_6, o_7);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_26), dot(o_7, m_26));
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_27), dot(o_7, m_27));
     return _e8;
 }
 
@@ -1791,9 +1858,9 @@ vec3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g
     float _e6 = sampling_clamp_unit(u_6.y);
     vec2 _e7 = filter_gaussian_ggx_split(_e6);
     vec2 _e15 = math_sincos_turns(_e7.x);
-    vec2 t_15 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
+    vec2 t_16 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
     sampling_Warp _e18 = sampling_warp(g_7.a);
-    vec2 gs = vec2((_e18.l_xx * t_15.x), ((_e18.l_yx * t_15.x) + (_e18.l_yy * t_15.y)));
+    vec2 gs = vec2((_e18.l_xx * t_16.x), ((_e18.l_yx * t_16.x) + (_e18.l_yy * t_16.y)));
     float _e33 = math_ln((1.0 - _e4.y));
     float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
     float e_5 = ((_e4.y < 0.5) ? _e40 : -(_e33));
@@ -1813,28 +1880,14 @@ vec3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g
     float _e94 = ax.y;
     float _e99 = ax.y;
     float _e103 = ax.x;
-    vec2 s_28 = (gs + vec2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
-    vec3 _e112 = sampling_normalize_scaled(vec3(-(s_28), 1.0));
+    vec2 s_30 = (gs + vec2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
+    vec3 _e112 = sampling_normalize_scaled(vec3(-(s_30), 1.0));
     return vec3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
 }
 
-float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_8, vec3 m_27) {
-    float _e2 = filter_gaussian_ggx_d(g_8, m_27);
-    return ((m_27.z > 0.0) ? (_e2 * m_27.z) : 0.0);
-}
-
-kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_28) {
-    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_28.second.x - (m_28.mean.x * m_28.mean.x)), (m_28.second.y - (m_28.mean.x * m_28.mean.y)), (m_28.second.z - (m_28.mean.y * m_28.mean.y)));
-    kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
-    return _e26;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments) {
-    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
-    kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
-    kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_6, _e5);
-    return _e6;
+float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_8, vec3 m_28) {
+    float _e2 = filter_gaussian_ggx_d(g_8, m_28);
+    return ((m_28.z > 0.0) ? (_e2 * m_28.z) : 0.0);
 }
 
 footprint_jacobian_Polar footprint_jacobian_polar(vec3 h_in) {
@@ -1884,15 +1937,15 @@ mat2x2 footprint_jacobian_projected_to_slope(vec3 h_in_1) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
     vec3 h_25 = _e1.h;
     float k_29 = (-1.0 / ((h_25.z * h_25.z) * h_25.z));
-    float xy = (h_25.x * h_25.y);
-    return mat2x2((vec2(((h_25.x * h_25.x) + (h_25.z * h_25.z)), xy) * k_29), (vec2(xy, ((h_25.y * h_25.y) + (h_25.z * h_25.z))) * k_29));
+    float xy_3 = (h_25.x * h_25.y);
+    return mat2x2((vec2(((h_25.x * h_25.x) + (h_25.z * h_25.z)), xy_3) * k_29), (vec2(xy_3, ((h_25.y * h_25.y) + (h_25.z * h_25.z))) * k_29));
 }
 
 mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_2) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
     vec3 h_26 = _e1.h;
-    float xy_1 = (h_26.x * h_26.y);
-    return mat2x2((vec2(((h_26.y * h_26.y) + (h_26.z * h_26.z)), -(xy_1)) * -(h_26.z)), (vec2(-(xy_1), ((h_26.x * h_26.x) + (h_26.z * h_26.z))) * -(h_26.z)));
+    float xy_4 = (h_26.x * h_26.y);
+    return mat2x2((vec2(((h_26.y * h_26.y) + (h_26.z * h_26.z)), -(xy_4)) * -(h_26.z)), (vec2(-(xy_4), ((h_26.x * h_26.x) + (h_26.z * h_26.z))) * -(h_26.z)));
 }
 
 mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_5) {
@@ -1929,8 +1982,8 @@ vec2 footprint_jacobian_spherical_to_projected(vec3 h_10, vec2 e_2) {
     return (_e2 * e_2);
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_58, float sigma_1) {
-    vec2 w_27 = (r_58.half_extent * (2.0 * sigma_1));
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_60, float sigma_1) {
+    vec2 w_27 = (r_60.half_extent * (2.0 * sigma_1));
     vec2 v_17 = (w_27 * w_27);
     return kernel_covariance_Covariance(v_17.x, 0.0, v_17.y, (v_17.x * v_17.y));
 }
@@ -1983,28 +2036,28 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     vec2 excess = (a_7.eig - lc);
     vec2 p_8 = (lc / (vec2(1.0) - lc));
     float c_20 = a_7.axis.x;
-    float s_29 = a_7.axis.y;
-    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_29) * s_29));
-    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_29);
-    float p22_1 = (((p_8.x * s_29) * s_29) + ((p_8.y * c_20) * c_20));
-    float k1_3 = max(((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_29) * k_11.s_xy)) + ((s_29 * s_29) * k_11.s_yy)), 0.0);
-    float k2_3 = max(((((s_29 * s_29) * k_11.s_xx) - (((2.0 * c_20) * s_29) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy)), 0.0);
-    float d_4 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
+    float s_31 = a_7.axis.y;
+    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_31) * s_31));
+    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_31);
+    float p22_1 = (((p_8.x * s_31) * s_31) + ((p_8.y * c_20) * c_20));
+    float k1_3 = max(((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_31) * k_11.s_xy)) + ((s_31 * s_31) * k_11.s_yy)), 0.0);
+    float k2_3 = max(((((s_31 * s_31) * k_11.s_xx) - (((2.0 * c_20) * s_31) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy)), 0.0);
+    float d_5 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
     float q11_ = (p11_1 + (2.0 * k_11.s_xx));
     float q12_ = (p12_1 + (2.0 * k_11.s_xy));
     float q22_ = (p22_1 + (2.0 * k_11.s_yy));
-    float den_1 = (((1.0 + q11_) + q22_) + d_4);
-    b11_ = ((q11_ + d_4) / den_1);
+    float den_1 = (((1.0 + q11_) + q22_) + d_5);
+    b11_ = ((q11_ + d_5) / den_1);
     b12_ = (q12_ / den_1);
-    b22_ = ((q22_ + d_4) / den_1);
-    det_3 = (d_4 / den_1);
+    b22_ = ((q22_ + d_5) / den_1);
+    det_3 = (d_5 / den_1);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_29) * s_29)));
+        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_31) * s_31)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_29));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_31));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_29) * s_29) + ((excess.y * c_20) * c_20)));
+        b22_ = (_e130 + (((excess.x * s_31) * s_31) + ((excess.y * c_20) * c_20)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -2048,7 +2101,7 @@ footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footpr
     return footprint_Footprint(((unit.dh_u / vec2(_e29)) * l_7), ((unit.dh_v / vec2(_e29)) * l_7));
 }
 
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_59, vec2 alpha_8) {
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_61, vec2 alpha_8) {
     vec2 f_1 = vec2(0.0);
     if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
         f_1 = vec2(rules_1.floor_);
@@ -2058,7 +2111,7 @@ kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kern
         }
     }
     float lambda_2 = max(rules_1.max_extent, 0.0);
-    vec2 h_27 = min(abs(r_59.half_extent), vec2(lambda_2));
+    vec2 h_27 = min(abs(r_61.half_extent), vec2(lambda_2));
     vec2 _e25 = f_1;
     return kernel_rect_BoundingRect(max(h_27, max(_e25, vec2(0.0))));
 }
@@ -2102,9 +2155,9 @@ ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_
 float filter_proxy_effective_alpha(float alpha_9, float half_extent) {
     float h_28 = abs(half_extent);
     float _e3 = math_hypot(alpha_9, h_28);
-    float t_16 = ((_e3 > 0.0) ? (h_28 / _e3) : 0.0);
-    float _e9 = math_atan(t_16);
-    float ratio = ((t_16 > 0.0) ? (t_16 / _e9) : 1.0);
+    float t_17 = ((_e3 > 0.0) ? (h_28 / _e3) : 0.0);
+    float _e9 = math_atan(t_17);
+    float ratio = ((t_17 > 0.0) ? (t_17 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
 }
 
@@ -2113,16 +2166,16 @@ float filter_proxy_effective_alpha_simple(float alpha_10, float half_extent_1) {
     return _e3;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_60, vec2 half_extent_2) {
-    float _e5 = filter_proxy_effective_alpha(r_60.alpha.x, half_extent_2.x);
-    float _e9 = filter_proxy_effective_alpha(r_60.alpha.y, half_extent_2.y);
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_62, vec2 half_extent_2) {
+    float _e5 = filter_proxy_effective_alpha(r_62.alpha.x, half_extent_2.x);
+    float _e9 = filter_proxy_effective_alpha(r_62.alpha.y, half_extent_2.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
     return _e11;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_61, vec2 half_extent_3) {
-    float _e5 = filter_proxy_effective_alpha_simple(r_61.alpha.x, half_extent_3.x);
-    float _e9 = filter_proxy_effective_alpha_simple(r_61.alpha.y, half_extent_3.y);
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_63, vec2 half_extent_3) {
+    float _e5 = filter_proxy_effective_alpha_simple(r_63.alpha.x, half_extent_3.x);
+    float _e9 = filter_proxy_effective_alpha_simple(r_63.alpha.y, half_extent_3.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
     return _e11;
 }
@@ -2167,8 +2220,8 @@ float filter_rect_gl_weight(uint n_2, uint k_14) {
 }
 
 float filter_rect_f(float u_7, float v_6) {
-    float t_17 = ((1.0 + (u_7 * u_7)) + (v_6 * v_6));
-    return (1.0 / (t_17 * t_17));
+    float t_18 = ((1.0 + (u_7 * u_7)) + (v_6 * v_6));
+    return (1.0 / (t_18 * t_18));
 }
 
 float filter_rect_gl_mean(uint n_3, float u_8, float c_6, float h_12) {
@@ -2189,12 +2242,12 @@ float filter_rect_gl_mean(uint n_3, float u_8, float c_6, float h_12) {
         {
             uint _e12 = k_15;
             float _e13 = filter_rect_gl_node(n_3, _e12);
-            float a_24 = (h_12 * _e13);
+            float a_27 = (h_12 * _e13);
             float _e15 = acc_2;
             uint _e16 = k_15;
             float _e17 = filter_rect_gl_weight(n_3, _e16);
-            float _e19 = filter_rect_f(u_8, (c_6 - a_24));
-            float _e21 = filter_rect_f(u_8, (c_6 + a_24));
+            float _e19 = filter_rect_f(u_8, (c_6 - a_27));
+            float _e21 = filter_rect_f(u_8, (c_6 + a_27));
             acc_2 = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -2212,15 +2265,15 @@ float filter_rect_atan2_upper(float y_3, float x_6) {
 }
 
 float filter_rect_delta_minus_sin(float d_2, float sin_d) {
-    float s_11 = 0.0;
+    float s_13 = 0.0;
     if ((d_2 < 1.0)) {
         float d2_1 = (d_2 * d_2);
-        s_11 = (1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909))));
-        float _e17 = s_11;
-        s_11 = (1.0 - ((d2_1 * 0.023809524) * _e17));
-        float _e23 = s_11;
-        s_11 = (1.0 - ((d2_1 * 0.05) * _e23));
-        float _e30 = s_11;
+        s_13 = (1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909))));
+        float _e17 = s_13;
+        s_13 = (1.0 - ((d2_1 * 0.023809524) * _e17));
+        float _e23 = s_13;
+        s_13 = (1.0 - ((d2_1 * 0.05) * _e23));
+        float _e30 = s_13;
         return (((d_2 * d2_1) * 0.16666667) * _e30);
     }
     return (d_2 - sin_d);
@@ -2237,9 +2290,9 @@ float filter_rect_mean_1d(vec4 i_7, float c2_) {
     float _e27 = filter_rect_atan2_upper((c_21 * dx), (c2_ + x01_));
     float inv_2 = (1.0 / (((2.0 * c_21) * c2_) * dx));
     if ((x0_ <= 0.0)) {
-        float s_30 = (inversesqrt(r02_) * inversesqrt(r12_));
-        float q_7 = min(((c2_ - x01_) * s_30), 1.0);
-        return ((_e27 * inv_2) + ((q_7 * s_30) * (0.5 / c2_)));
+        float s_32 = (inversesqrt(r02_) * inversesqrt(r12_));
+        float q_7 = min(((c2_ - x01_) * s_32), 1.0);
+        return ((_e27 * inv_2) + ((q_7 * s_32) * (0.5 / c2_)));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
     float p2_1 = ((2.0 * r02_) * r12_);
@@ -2265,9 +2318,9 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, vec4 other) {
         {
             uint _e12 = k_16;
             float _e13 = filter_rect_gl_node(n_4, _e12);
-            float a_25 = (h_13 * _e13);
-            float x0_1 = (c_7 - a_25);
-            float x1_2 = (c_7 + a_25);
+            float a_28 = (h_13 * _e13);
+            float x0_1 = (c_7 - a_28);
+            float x1_2 = (c_7 + a_28);
             float _e17 = acc_3;
             uint _e18 = k_16;
             float _e19 = filter_rect_gl_weight(n_4, _e18);
@@ -2282,9 +2335,9 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, vec4 other) {
 
 float filter_rect_edge(float u_9, float dv, float v01_) {
     float s2_1 = (1.0 + (u_9 * u_9));
-    float s_31 = sqrt(s2_1);
-    float _e10 = filter_rect_atan2_upper((dv * s_31), (s2_1 + v01_));
-    return ((u_9 / s_31) * _e10);
+    float s_33 = sqrt(s2_1);
+    float _e10 = filter_rect_atan2_upper((dv * s_33), (s2_1 + v01_));
+    return ((u_9 / s_33) * _e10);
 }
 
 float filter_rect_edges(vec4 u_10, vec4 v_7) {
@@ -2340,9 +2393,9 @@ float filter_rect_polar_near(float x2_, float lo, float hi) {
         {
             uint _e16 = k_19;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_5 = (h_29 * _e17);
-            float q0_ = (1.0 + ((c_22 - d_5) * (c_22 - d_5)));
-            float q1_ = (1.0 + ((c_22 + d_5) * (c_22 + d_5)));
+            float d_6 = (h_29 * _e17);
+            float q0_ = (1.0 + ((c_22 - d_6) * (c_22 - d_6)));
+            float q1_ = (1.0 + ((c_22 + d_6) * (c_22 + d_6)));
             float _e29 = acc_4;
             uint _e30 = k_19;
             float _e31 = filter_rect_gl8_weight(_e30);
@@ -2373,9 +2426,9 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1) {
         {
             uint _e16 = k_20;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_6 = (h_30 * _e17);
-            float t0_2 = ((c_23 - d_6) * (c_23 - d_6));
-            float t1_4 = ((c_23 + d_6) * (c_23 + d_6));
+            float d_7 = (h_30 * _e17);
+            float t0_2 = ((c_23 - d_7) * (c_23 - d_7));
+            float t1_4 = ((c_23 + d_7) * (c_23 + d_7));
             float _e25 = acc_5;
             uint _e26 = k_20;
             float _e27 = filter_rect_gl8_weight(_e26);
@@ -2485,12 +2538,12 @@ float filter_rect_mean_f(vec4 u_12, vec4 v_11) {
         {
             uint _e60 = k_21;
             float _e61 = filter_rect_gl_node(_e14, _e60);
-            float a_26 = (u_12.w * _e61);
+            float a_29 = (u_12.w * _e61);
             float _e63 = acc_6;
             uint _e64 = k_21;
             float _e65 = filter_rect_gl_weight(_e14, _e64);
-            float _e70 = filter_rect_gl_mean(_e25, (u_12.z - a_26), v_11.z, v_11.w);
-            float _e75 = filter_rect_gl_mean(_e25, (u_12.z + a_26), v_11.z, v_11.w);
+            float _e70 = filter_rect_gl_mean(_e25, (u_12.z - a_29), v_11.z, v_11.w);
+            float _e75 = filter_rect_gl_mean(_e25, (u_12.z + a_29), v_11.z, v_11.w);
             acc_6 = (_e63 + (_e65 * (_e70 + _e75)));
         }
     }
@@ -2505,7 +2558,7 @@ vec4 filter_rect_interval(float c_8, float h_14, float a_15) {
     return vec4(lo_4, hi_4, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
 }
 
-float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_62, vec2 center, vec2 half_extent_4) {
+float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_64, vec2 center, vec2 half_extent_4) {
     bool local_19 = false;
     if ((half_extent_4.x == 0.0)) {
         local_19 = (half_extent_4.y == 0.0);
@@ -2514,17 +2567,17 @@ float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_62, vec2 cen
     }
     bool _e12 = local_19;
     if (_e12) {
-        float _e13 = ndf_ggx_p22_axis_aligned(r_62, center);
+        float _e13 = ndf_ggx_p22_axis_aligned(r_64, center);
         return _e13;
     }
-    vec2 a_27 = r_62.alpha;
-    vec4 _e18 = filter_rect_interval(center.x, half_extent_4.x, a_27.x);
-    vec4 _e22 = filter_rect_interval(center.y, half_extent_4.y, a_27.y);
+    vec2 a_30 = r_64.alpha;
+    vec4 _e18 = filter_rect_interval(center.x, half_extent_4.x, a_30.x);
+    vec4 _e22 = filter_rect_interval(center.y, half_extent_4.y, a_30.y);
     float _e23 = filter_rect_mean_f(_e18, _e22);
-    return max((_e23 * (math_INV_PI / (a_27.x * a_27.y))), 0.0);
+    return max((_e23 * (math_INV_PI / (a_30.x * a_30.y))), 0.0);
 }
 
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_63, vec3 h_15, vec2 half_extent_5) {
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_65, vec3 h_15, vec2 half_extent_5) {
     bool local_20 = false;
     if (!((h_15.z > 0.0))) {
         return 0.0;
@@ -2536,20 +2589,20 @@ float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_63, vec3 h_15,
     }
     bool _e17 = local_20;
     if (_e17) {
-        float _e18 = ndf_ggx_d_axis_aligned(r_63, h_15);
+        float _e18 = ndf_ggx_d_axis_aligned(r_65, h_15);
         return _e18;
     }
-    float _e24 = filter_rect_p22_rect(r_63, (-(h_15.xy) / vec2(h_15.z)), half_extent_5);
+    float _e24 = filter_rect_p22_rect(r_65, (-(h_15.xy) / vec2(h_15.z)), half_extent_5);
     float z2_7 = (h_15.z * h_15.z);
     return min((_e24 / (z2_7 * z2_7)), math_F32_MAX);
 }
 
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_64, vec2 hpp, vec3 h_16, vec2 footprint) {
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_66, vec2 hpp, vec3 h_16, vec2 footprint) {
     bool local_21 = false;
-    float a_28 = r_64.alpha.x;
-    float b_8 = r_64.alpha.y;
-    float a_2_ = (a_28 * a_28);
-    float b_2_ = (b_8 * b_8);
+    float a_31 = r_66.alpha.x;
+    float b_9 = r_66.alpha.y;
+    float a_2_ = (a_31 * a_31);
+    float b_2_ = (b_9 * b_9);
     float x1_3 = (hpp.x - footprint.x);
     float x2_4 = (hpp.x + footprint.x);
     float y1_ = (hpp.y - footprint.y);
@@ -2558,14 +2611,14 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_64, ve
     float sx2_ = sqrt(((x2_4 * x2_4) + a_2_));
     float sy1_ = sqrt(((y1_ * y1_) + b_2_));
     float sy2_ = sqrt(((y2_ * y2_) + b_2_));
-    float _e37 = math_atan(((y1_ * a_28) / (sx1_ * b_8)));
-    float _e41 = math_atan(((y2_ * a_28) / (sx1_ * b_8)));
-    float _e48 = math_atan(((y1_ * a_28) / (sx2_ * b_8)));
-    float _e53 = math_atan(((y2_ * a_28) / (sx2_ * b_8)));
-    float _e62 = math_atan(((x1_3 * b_8) / (a_28 * sy1_)));
-    float _e66 = math_atan(((x2_4 * b_8) / (a_28 * sy1_)));
-    float _e73 = math_atan(((x1_3 * b_8) / (a_28 * sy2_)));
-    float _e78 = math_atan(((x2_4 * b_8) / (a_28 * sy2_)));
+    float _e37 = math_atan(((y1_ * a_31) / (sx1_ * b_9)));
+    float _e41 = math_atan(((y2_ * a_31) / (sx1_ * b_9)));
+    float _e48 = math_atan(((y1_ * a_31) / (sx2_ * b_9)));
+    float _e53 = math_atan(((y2_ * a_31) / (sx2_ * b_9)));
+    float _e62 = math_atan(((x1_3 * b_9) / (a_31 * sy1_)));
+    float _e66 = math_atan(((x2_4 * b_9) / (a_31 * sy1_)));
+    float _e73 = math_atan(((x1_3 * b_9) / (a_31 * sy2_)));
+    float _e78 = math_atan(((x2_4 * b_9) / (a_31 * sy2_)));
     float val = ((((x1_3 * (_e37 - _e41)) / sx1_) + ((x2_4 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
     float den_2 = ((6.2831855 * (x1_3 - x2_4)) * (y1_ - y2_));
     float hz4_ = (((h_16.z * h_16.z) * h_16.z) * h_16.z);
@@ -2579,52 +2632,52 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_64, ve
     return (_e109 ? v_19 : 0.0);
 }
 
-float filter_rect_lambda_rho(float t_1) {
-    float a_29 = abs(t_1);
-    if ((a_29 > 1.0)) {
-        float i_15 = (1.0 / a_29);
-        return (a_29 * sqrt((1.0 + (i_15 * i_15))));
+float filter_rect_lambda_rho(float t_2) {
+    float a_32 = abs(t_2);
+    if ((a_32 > 1.0)) {
+        float i_15 = (1.0 / a_32);
+        return (a_32 * sqrt((1.0 + (i_15 * i_15))));
     }
-    return sqrt((1.0 + (t_1 * t_1)));
+    return sqrt((1.0 + (t_2 * t_2)));
 }
 
-float filter_rect_lambda_e_neg(float t_2, float r_65) {
-    return ((t_2 >= 0.0) ? (1.0 / (r_65 + t_2)) : (r_65 - t_2));
+float filter_rect_lambda_e_neg(float t_3, float r_67) {
+    return ((t_3 >= 0.0) ? (1.0 / (r_67 + t_3)) : (r_67 - t_3));
 }
 
-float filter_rect_lambda_asinh_of(float t_3, float r_66) {
+float filter_rect_lambda_asinh_of(float t_4, float r_68) {
     float v_12 = 0.0;
-    float a_30 = abs(t_3);
-    if ((a_30 > 1.0)) {
-        float _e7 = math_ln((a_30 + r_66));
+    float a_33 = abs(t_4);
+    if ((a_33 > 1.0)) {
+        float _e7 = math_ln((a_33 + r_68));
         v_12 = _e7;
     } else {
-        float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_66))));
+        float _e13 = math_ln_1p((a_33 + ((a_33 * a_33) / (1.0 + r_68))));
         v_12 = _e13;
     }
     float _e14 = v_12;
     float _e15 = v_12;
-    return ((t_3 < 0.0) ? -(_e15) : _e14);
+    return ((t_4 < 0.0) ? -(_e15) : _e14);
 }
 
-float filter_rect_lambda_psi(float t_4) {
-    float _e1 = filter_rect_lambda_rho(t_4);
-    float _e2 = filter_rect_lambda_e_neg(t_4, _e1);
+float filter_rect_lambda_psi(float t_5) {
+    float _e1 = filter_rect_lambda_rho(t_5);
+    float _e2 = filter_rect_lambda_e_neg(t_5, _e1);
     return (0.5 * _e2);
 }
 
-float filter_rect_lambda_psi1_(float t_5) {
-    float _e1 = filter_rect_lambda_rho(t_5);
-    float _e2 = filter_rect_lambda_e_neg(t_5, _e1);
-    float _e3 = filter_rect_lambda_asinh_of(t_5, _e1);
-    return (0.25 * (_e3 - ((0.5 * _e2) * _e2)));
-}
-
-float filter_rect_lambda_psi2_(float t_6) {
+float filter_rect_lambda_psi1_(float t_6) {
     float _e1 = filter_rect_lambda_rho(t_6);
     float _e2 = filter_rect_lambda_e_neg(t_6, _e1);
     float _e3 = filter_rect_lambda_asinh_of(t_6, _e1);
-    return (0.25 * ((((t_6 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336)));
+    return (0.25 * (_e3 - ((0.5 * _e2) * _e2)));
+}
+
+float filter_rect_lambda_psi2_(float t_7) {
+    float _e1 = filter_rect_lambda_rho(t_7);
+    float _e2 = filter_rect_lambda_e_neg(t_7, _e1);
+    float _e3 = filter_rect_lambda_asinh_of(t_7, _e1);
+    return (0.25 * ((((t_7 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336)));
 }
 
 float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_18) {
@@ -2632,10 +2685,10 @@ float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_18) {
     float _e4 = filter_rect_lambda_rho(t1_);
     float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_32 = (_e5 + _e6);
-    float d_7 = ((w_18 * s_32) / (_e3 + _e4));
-    float _e12 = math_ln_1p((d_7 / _e6));
-    return (0.25 * (_e12 + ((0.5 * d_7) * s_32)));
+    float s_34 = (_e5 + _e6);
+    float d_8 = ((w_18 * s_34) / (_e3 + _e4));
+    float _e12 = math_ln_1p((d_8 / _e6));
+    return (0.25 * (_e12 + ((0.5 * d_8) * s_34)));
 }
 
 float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_19) {
@@ -2643,21 +2696,21 @@ float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_19) {
     return (_e3 / w_19);
 }
 
-uint filter_rect_lambda_rule(uint t_7) {
-    return ((t_7 == filter_rect_TIER_CLOSED) ? 6u : t_7);
+uint filter_rect_lambda_rule(uint t_8) {
+    return ((t_8 == filter_rect_TIER_CLOSED) ? 6u : t_8);
 }
 
-float filter_rect_lambda_mean_psi1_(float t_8, float k_22) {
+float filter_rect_lambda_mean_psi1_(float t_9, float k_22) {
     float acc_7 = 0.0;
     uint j = 0u;
     if ((k_22 == 0.0)) {
-        float _e4 = filter_rect_lambda_psi1_(t_8);
+        float _e4 = filter_rect_lambda_psi1_(t_9);
         return _e4;
     }
-    uint _e9 = filter_rect_tier((k_22 * k_22), (1.0 + (t_8 * t_8)));
+    uint _e9 = filter_rect_tier((k_22 * k_22), (1.0 + (t_9 * t_9)));
     if ((_e9 == filter_rect_TIER_CLOSED)) {
-        float _e13 = filter_rect_lambda_psi2_((t_8 + k_22));
-        float _e15 = filter_rect_lambda_psi2_((t_8 - k_22));
+        float _e13 = filter_rect_lambda_psi2_((t_9 + k_22));
+        float _e15 = filter_rect_lambda_psi2_((t_9 - k_22));
         return ((_e13 - _e15) / (2.0 * k_22));
     }
     bool loop_init_11 = true;
@@ -2675,12 +2728,12 @@ float filter_rect_lambda_mean_psi1_(float t_8, float k_22) {
         {
             uint _e28 = j;
             float _e29 = filter_rect_gl_node(_e9, _e28);
-            float a_31 = (k_22 * _e29);
+            float a_34 = (k_22 * _e29);
             float _e31 = acc_7;
             uint _e32 = j;
             float _e33 = filter_rect_gl_weight(_e9, _e32);
-            float _e35 = filter_rect_lambda_psi1_((t_8 - a_31));
-            float _e37 = filter_rect_lambda_psi1_((t_8 + a_31));
+            float _e35 = filter_rect_lambda_psi1_((t_9 - a_34));
+            float _e37 = filter_rect_lambda_psi1_((t_9 + a_34));
             acc_7 = (_e31 + (_e33 * (_e35 + _e37)));
         }
     }
@@ -2688,10 +2741,10 @@ float filter_rect_lambda_mean_psi1_(float t_8, float k_22) {
     return _e44;
 }
 
-float filter_rect_lambda_gl_psi(uint t_9, float c_9, float h_17) {
+float filter_rect_lambda_gl_psi(uint t_10, float c_9, float h_17) {
     float acc_8 = 0.0;
     uint j_1 = 0u;
-    uint _e3 = filter_rect_lambda_rule(t_9);
+    uint _e3 = filter_rect_lambda_rule(t_10);
     bool loop_init_12 = true;
     while(true) {
         if (!loop_init_12) {
@@ -2707,12 +2760,12 @@ float filter_rect_lambda_gl_psi(uint t_9, float c_9, float h_17) {
         {
             uint _e12 = j_1;
             float _e13 = filter_rect_gl_node(_e3, _e12);
-            float a_32 = (h_17 * _e13);
+            float a_35 = (h_17 * _e13);
             float _e15 = acc_8;
             uint _e16 = j_1;
             float _e17 = filter_rect_gl_weight(_e3, _e16);
-            float _e19 = filter_rect_lambda_psi((c_9 - a_32));
-            float _e21 = filter_rect_lambda_psi((c_9 + a_32));
+            float _e19 = filter_rect_lambda_psi((c_9 - a_35));
+            float _e21 = filter_rect_lambda_psi((c_9 + a_35));
             acc_8 = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -2747,12 +2800,12 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
             {
                 uint _e32 = j_2;
                 float _e33 = filter_rect_gl_node(_e13, _e32);
-                float a_33 = (kl * _e33);
+                float a_36 = (kl * _e33);
                 float _e35 = acc_9;
                 uint _e36 = j_2;
                 float _e37 = filter_rect_gl_weight(_e13, _e36);
-                float _e39 = filter_rect_lambda_gl_psi(_e23, (m_29 - a_33), ks);
-                float _e41 = filter_rect_lambda_gl_psi(_e23, (m_29 + a_33), ks);
+                float _e39 = filter_rect_lambda_gl_psi(_e23, (m_29 - a_36), ks);
+                float _e41 = filter_rect_lambda_gl_psi(_e23, (m_29 + a_36), ks);
                 acc_9 = (_e35 + (_e37 * (_e39 + _e41)));
             }
         }
@@ -2799,7 +2852,7 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
     return ((_e89 - _e90) / w_28);
 }
 
-float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67, vec2 half_extent_6, vec3 w_in) {
+float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_69, vec2 half_extent_6, vec3 w_in) {
     vec3 w_20 = vec3(0.0);
     bool local_22 = false;
     bool local_23 = false;
@@ -2833,7 +2886,7 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    vec2 alpha_12 = r_67.alpha;
+    vec2 alpha_12 = r_69.alpha;
     vec2 ha = min(abs(half_extent_6), (alpha_12 * filter_rect_lambda_BIG_K));
     float _e63 = w_20.x;
     float ux = (abs(_e63) / _e46);
@@ -2852,7 +2905,7 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67
     bool _e92 = local_24;
     if (_e92) {
         vec3 _e93 = w_20;
-        float _e94 = ndf_ggx_lambda_axis_aligned(r_67, _e93);
+        float _e94 = ndf_ggx_lambda_axis_aligned(r_69, _e93);
         return _e94;
     }
     float mm = ((wz / _e46) / _e74);
@@ -2917,30 +2970,30 @@ filter_method_RectFilteredGgx filter_method_rect_lobe(filter_method_Rect method_
     return filter_method_RectFilteredGgx(material_7, h_31);
 }
 
-float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe, vec2 s_12) {
-    float _e4 = filter_rect_p22_rect(lobe.roughness, s_12, lobe.half_extent);
+float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe_1, vec2 s_14) {
+    float _e4 = filter_rect_p22_rect(lobe_1.roughness, s_14, lobe_1.half_extent);
     return _e4;
 }
 
-float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_1, vec3 m_34) {
-    float _e4 = filter_rect_d_rect(lobe_1.roughness, m_34, lobe_1.half_extent);
+float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_2, vec3 m_34) {
+    float _e4 = filter_rect_d_rect(lobe_2.roughness, m_34, lobe_2.half_extent);
     return _e4;
 }
 
-float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_2, vec3 w_21) {
-    float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_21);
+float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_3, vec3 w_21) {
+    float _e4 = filter_rect_lambda_lambda_rect(lobe_3.roughness, lobe_3.half_extent, w_21);
     return _e4;
 }
 
-float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_3, vec3 w_22, vec3 m_35) {
-    float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_22);
+float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_4, vec3 w_22, vec3 m_35) {
+    float _e3 = filter_method_lambda_rect_filtered(lobe_4, w_22);
     float _e5 = ndf_g1_of(_e3, dot(w_22, m_35));
     return _e5;
 }
 
-float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_4, vec3 i_9, vec3 o_8, vec3 m_36) {
-    float _e4 = filter_method_lambda_rect_filtered(lobe_4, i_9);
-    float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_8);
+float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_5, vec3 i_9, vec3 o_8, vec3 m_36) {
+    float _e4 = filter_method_lambda_rect_filtered(lobe_5, i_9);
+    float _e5 = filter_method_lambda_rect_filtered(lobe_5, o_8);
     float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_36), dot(o_8, m_36));
     return _e8;
 }
@@ -2962,6 +3015,55 @@ ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(filter_method_Pr
 float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, vec3 m_38) {
     ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
     float _e5 = ndf_ggx_d_axis_aligned(_e4, m_38);
+    return _e5;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_lean_widened(ndf_roughness_matrix_RoughnessMatrix a_16, filter_lean_LeanMoments moments_3) {
+    kernel_covariance_Covariance _e2 = filter_lean_covariance(moments_3);
+    ndf_roughness_matrix_RoughnessMatrix _e3 = filter_gaussian_gaussian(a_16, _e2);
+    return _e3;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_lean_widened_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_70, filter_lean_LeanMoments moments_4) {
+    kernel_covariance_Covariance _e2 = filter_lean_covariance(moments_4);
+    vec2 a_37 = r_70.alpha;
+    ndf_roughness_axis_aligned_AxisAligned _e12 = ndf_roughness_axis_aligned_from_alpha(sqrt(((a_37 * a_37) + (2.0 * vec2(_e2.s_xx, _e2.s_yy)))));
+    return _e12;
+}
+
+vec3 filter_lean_nested_lean_mean_normal(filter_lean_LeanMoments moments_5) {
+    return normalize(vec3(-(moments_5.mean), 1.0));
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_gaussian_lobe(filter_method_Gaussian m_39, ndf_roughness_matrix_RoughnessMatrix material_11, footprint_Footprint fp_18, filter_lean_LeanMoments moments_6) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_lean_nested_lean_widened(material_11, moments_6);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_method_gaussian_lobe(m_39, _e4, fp_18);
+    return _e5;
+}
+
+filter_gaussian_ggx_GaussianFilteredGgx filter_lean_nested_exact_gaussian_lobe(filter_method_ExactGaussian m_40, ndf_roughness_matrix_RoughnessMatrix material_12, footprint_Footprint fp_19, filter_lean_LeanMoments moments_7) {
+    kernel_covariance_Covariance _e6 = kernel_clamp_pixel_kernel(m_40.clamps, fp_19, m_40.sigma);
+    kernel_covariance_Covariance _e7 = filter_lean_covariance(moments_7);
+    kernel_covariance_Covariance _e8 = kernel_covariance_add(_e6, _e7);
+    filter_gaussian_ggx_GaussianFilteredGgx _e9 = filter_gaussian_ggx_from_kernel(material_12, _e8);
+    return _e9;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_projected_lobe(filter_method_Projected m_41, ndf_roughness_matrix_RoughnessMatrix material_13, footprint_Footprint fp_20, filter_lean_LeanMoments moments_8) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_lean_nested_lean_widened(material_13, moments_8);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_method_projected_lobe(m_41, _e4, fp_20);
+    return _e5;
+}
+
+filter_method_RectFilteredGgx filter_lean_nested_rect_lobe(filter_method_Rect m_42, ndf_roughness_axis_aligned_AxisAligned material_14, footprint_Footprint fp_21, filter_lean_LeanMoments moments_9) {
+    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_lean_nested_lean_widened_axis_aligned(material_14, moments_9);
+    filter_method_RectFilteredGgx _e5 = filter_method_rect_lobe(m_42, _e4, fp_21);
+    return _e5;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_proxy_lobe(filter_method_Proxy m_43, ndf_roughness_axis_aligned_AxisAligned material_15, footprint_Footprint fp_22, filter_lean_LeanMoments moments_10) {
+    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_lean_nested_lean_widened_axis_aligned(material_15, moments_10);
+    ndf_roughness_axis_aligned_AxisAligned _e5 = filter_method_proxy_lobe(m_43, _e4, fp_22);
     return _e5;
 }
 
@@ -3011,40 +3113,40 @@ float filter_rect_sample_half(float h_18, float alpha_11) {
     return ((v_20 >= 0.0) ? min(v_20, (filter_rect_BIG * alpha_11)) : 0.0);
 }
 
-vec3 filter_rect_sample_normal_of_slope(vec2 s_13) {
-    vec3 _e4 = sampling_normalize_scaled(vec3(-(s_13), 1.0));
+vec3 filter_rect_sample_normal_of_slope(vec2 s_15) {
+    vec3 _e4 = sampling_normalize_scaled(vec3(-(s_15), 1.0));
     return vec3(_e4.xy, max(_e4.z, math_F32_MIN_POSITIVE));
 }
 
-vec3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_68, vec2 half_extent_7, vec2 u_13, vec2 u_box) {
-    vec2 a_34 = r_68.alpha;
-    float _e7 = filter_rect_sample_half(half_extent_7.x, a_34.x);
-    float _e10 = filter_rect_sample_half(half_extent_7.y, a_34.y);
+vec3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_71, vec2 half_extent_7, vec2 u_13, vec2 u_box) {
+    vec2 a_38 = r_71.alpha;
+    float _e7 = filter_rect_sample_half(half_extent_7.x, a_38.x);
+    float _e10 = filter_rect_sample_half(half_extent_7.y, a_38.y);
     vec2 h_33 = vec2(_e7, _e10);
     float _e13 = sampling_clamp_unit(u_13.x);
     float _e15 = sampling_clamp_unit(u_13.y);
     vec2 _e16 = math_sincos_turns(_e15);
     float rad_1 = sqrt((_e13 / (1.0 - _e13)));
-    vec2 g_10 = (-(a_34) * (rad_1 * _e16));
+    vec2 g_10 = (-(a_38) * (rad_1 * _e16));
     float _e25 = sampling_clamp_unit(u_box.x);
     float _e27 = sampling_clamp_unit(u_box.y);
-    vec2 b_9 = vec2(_e25, _e27);
-    vec2 d_8 = (((2.0 * b_9) - vec2(1.0)) * h_33);
-    vec3 _e36 = filter_rect_sample_normal_of_slope((g_10 + d_8));
+    vec2 b_10 = vec2(_e25, _e27);
+    vec2 d_9 = (((2.0 * b_10) - vec2(1.0)) * h_33);
+    vec3 _e36 = filter_rect_sample_normal_of_slope((g_10 + d_9));
     return _e36;
 }
 
-float filter_rect_sample_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_69, vec2 half_extent_8, vec3 m_39) {
-    float _e3 = filter_rect_d_rect(r_69, m_39, half_extent_8);
-    return ((m_39.z > 0.0) ? (_e3 * m_39.z) : 0.0);
+float filter_rect_sample_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_72, vec2 half_extent_8, vec3 m_44) {
+    float _e3 = filter_rect_d_rect(r_72, m_44, half_extent_8);
+    return ((m_44.z > 0.0) ? (_e3 * m_44.z) : 0.0);
 }
 
-float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_70, vec2 half_extent_9, vec3 wo_6, vec3 m_40) {
+float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_73, vec2 half_extent_9, vec3 wo_6, vec3 m_45) {
     bool local_25 = false;
     bool local_26 = false;
-    float wom_1 = dot(wo_6, m_40);
+    float wom_1 = dot(wo_6, m_45);
     if (!(!((wo_6.z > 0.0)))) {
-        local_25 = !((m_40.z > 0.0));
+        local_25 = !((m_45.z > 0.0));
     } else {
         local_25 = true;
     }
@@ -3058,8 +3160,8 @@ float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_Axis
     if (_e25) {
         return 0.0;
     }
-    float _e27 = filter_rect_d_rect(r_70, m_40, half_extent_9);
-    float _e30 = filter_rect_lambda_lambda_rect(r_70, half_extent_9, wo_6);
+    float _e27 = filter_rect_d_rect(r_73, m_45, half_extent_9);
+    float _e30 = filter_rect_lambda_lambda_rect(r_73, half_extent_9, wo_6);
     float v_21 = ((wom_1 * _e27) / (wo_6.z * (1.0 + _e30)));
     return ((v_21 <= math_F32_MAX) ? v_21 : 0.0);
 }
@@ -3069,9 +3171,9 @@ vec2 footprint_slope_slope_from_sphere(vec3 h_19) {
     return clamp((-(h_19.xy) / vec2(z_7)), vec2(-3.4028235e38), vec2(3.4028235e38));
 }
 
-vec3 footprint_slope_sphere_from_slope(vec2 s_14) {
-    float k_31 = max(max(abs(s_14.x), abs(s_14.y)), 1.0);
-    vec3 v_22 = vec3((-(s_14) / vec2(k_31)), (1.0 / k_31));
+vec3 footprint_slope_sphere_from_slope(vec2 s_16) {
+    float k_31 = max(max(abs(s_16.x), abs(s_16.y)), 1.0);
+    vec3 v_22 = vec3((-(s_16) / vec2(k_31)), (1.0 / k_31));
     return (v_22 / vec3(length(v_22)));
 }
 
@@ -3094,66 +3196,66 @@ vec2 footprint_slope_slope_from_projected(vec2 p_2) {
     return _e2;
 }
 
-vec2 footprint_slope_projected_from_slope(vec2 s_15) {
-    vec3 _e1 = footprint_slope_sphere_from_slope(s_15);
+vec2 footprint_slope_projected_from_slope(vec2 s_17) {
+    vec3 _e1 = footprint_slope_sphere_from_slope(s_17);
     vec2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
 }
 
 float sampling_beckmann_erfcx(float z_1) {
     float p_3 = 0.17087276;
-    float t_18 = (1.0 / (1.0 + (0.5 * z_1)));
+    float t_19 = (1.0 / (1.0 + (0.5 * z_1)));
     float _e9 = p_3;
-    p_3 = ((_e9 * t_18) - 0.82215226);
+    p_3 = ((_e9 * t_19) - 0.82215226);
     float _e13 = p_3;
-    p_3 = ((_e13 * t_18) + 1.4885159);
+    p_3 = ((_e13 * t_19) + 1.4885159);
     float _e17 = p_3;
-    p_3 = ((_e17 * t_18) - 1.135204);
+    p_3 = ((_e17 * t_19) - 1.135204);
     float _e21 = p_3;
-    p_3 = ((_e21 * t_18) + 0.27886808);
+    p_3 = ((_e21 * t_19) + 0.27886808);
     float _e25 = p_3;
-    p_3 = ((_e25 * t_18) - 0.18628806);
+    p_3 = ((_e25 * t_19) - 0.18628806);
     float _e29 = p_3;
-    p_3 = ((_e29 * t_18) + 0.09678418);
+    p_3 = ((_e29 * t_19) + 0.09678418);
     float _e33 = p_3;
-    p_3 = ((_e33 * t_18) + 0.37409195);
+    p_3 = ((_e33 * t_19) + 0.37409195);
     float _e37 = p_3;
-    p_3 = ((_e37 * t_18) + 1.0000237);
+    p_3 = ((_e37 * t_19) + 1.0000237);
     float _e41 = p_3;
-    p_3 = ((_e41 * t_18) - 1.2655122);
+    p_3 = ((_e41 * t_19) - 1.2655122);
     float _e45 = p_3;
     float _e46 = math_exp(_e45);
-    return (t_18 * _e46);
+    return (t_19 * _e46);
 }
 
-float sampling_beckmann_upper_tail(float x_8, float c_10, float s_16) {
+float sampling_beckmann_upper_tail(float x_8, float c_10, float s_18) {
     float _e5 = math_exp((-(x_8) * x_8));
     float _e8 = sampling_beckmann_erfcx(x_8);
-    return ((0.5 * _e5) * ((c_10 * _e8) - (s_16 * sampling_beckmann_INV_SQRT_PI)));
+    return ((0.5 * _e5) * ((c_10 * _e8) - (s_18 * sampling_beckmann_INV_SQRT_PI)));
 }
 
-vec2 sampling_beckmann_cdf_terms(float x_9, float c_11, float s_17) {
+vec2 sampling_beckmann_cdf_terms(float x_9, float c_11, float s_19) {
     float k_23 = 0.0;
     float _e5 = math_exp((-(x_9) * x_9));
     if ((x_9 <= 0.0)) {
         float _e12 = sampling_beckmann_erfcx(-(x_9));
-        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_17 * sampling_beckmann_INV_SQRT_PI)));
+        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_19 * sampling_beckmann_INV_SQRT_PI)));
     } else {
-        float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_17);
+        float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_19);
         k_23 = (c_11 - _e18);
     }
     float _e20 = k_23;
-    return vec2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_17 * x_9))));
+    return vec2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_19 * x_9))));
 }
 
 float sampling_beckmann_erfinv_guess(float x_10) {
     float w_23 = 0.0;
     float p_4 = 0.0;
-    float a_35 = ((1.0 - x_10) * (1.0 + x_10));
-    if (!((a_35 > 0.0))) {
+    float a_39 = ((1.0 - x_10) * (1.0 + x_10));
+    if (!((a_39 > 0.0))) {
         return 0.0;
     }
-    float _e10 = math_ln(a_35);
+    float _e10 = math_ln(a_39);
     w_23 = -(_e10);
     float _e14 = w_23;
     if ((_e14 < 5.0)) {
@@ -3217,7 +3319,7 @@ float sampling_beckmann_erfinv_guess(float x_10) {
     return (_e106 * x_10);
 }
 
-float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u_14) {
+float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_20, float u_14) {
     float lo_3 = -9.0;
     float hi_2 = 0.0;
     bool local_27 = false;
@@ -3227,9 +3329,9 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
     float g_9 = 0.0;
     bool local_28 = false;
     bool local_29 = false;
-    float hi0_ = ((s_18 > 0.0) ? min((c_12 / s_18), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
+    float hi0_ = ((s_20 > 0.0) ? min((c_12 / s_20), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
     hi_2 = hi0_;
-    vec2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_18);
+    vec2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_20);
     float norm_1 = _e13.x;
     bool upper = (u_14 > 0.5);
     float goal = ((upper ? (1.0 - u_14) : u_14) * norm_1);
@@ -3237,7 +3339,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
         float _e24 = lo_3;
         return _e24;
     }
-    float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_18);
+    float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_20);
     float tol_4 = (4.7683716e-7 * goal);
     float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_14) - 1.0));
     float _e35 = hi_2;
@@ -3267,11 +3369,11 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
         }
         {
             float _e59 = x_11;
-            vec2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_18);
+            vec2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_20);
             g_9 = (_e60.x - goal);
             if (upper) {
                 float _e66 = x_11;
-                float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_18);
+                float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_20);
                 float _e69 = x_11;
                 g_9 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
             }
@@ -3340,7 +3442,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
 
 float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_15) {
     float c_13 = 1.0;
-    float s_19 = 0.0;
+    float s_21 = 0.0;
     bool local_30 = false;
     bool local_31 = false;
     if ((cos_theta >= 0.0)) {
@@ -3358,16 +3460,16 @@ float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta,
     if (_e21) {
         float _e22 = math_hypot(cos_theta, sin_theta);
         c_13 = (cos_theta / _e22);
-        s_19 = (sin_theta / _e22);
+        s_21 = (sin_theta / _e22);
     }
     float _e25 = c_13;
-    float _e26 = s_19;
+    float _e26 = s_21;
     float _e27 = sampling_clamp_unit(u_15);
     float _e28 = sampling_beckmann_invert_visible_slope_cdf(_e25, _e26, _e27);
     return _e28;
 }
 
-vec3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_71, vec2 u_16) {
+vec3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_74, vec2 u_16) {
     float _e3 = sampling_clamp_unit(u_16.x);
     float _e5 = sampling_clamp_unit(u_16.y);
     vec2 _e6 = math_sincos_turns(_e5);
@@ -3375,17 +3477,17 @@ vec3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_71, 
     float _e14 = math_ln_1p((_e3 / (1.0 - _e3)));
     float e_7 = ((_e3 < 0.5) ? _e14 : -(_e9));
     vec3 n_7 = vec3((sqrt(e_7) * _e6), 1.0);
-    sampling_Warp _e22 = sampling_warp(r_71);
+    sampling_Warp _e22 = sampling_warp(r_74);
     vec3 _e23 = sampling_unstretch(_e22, n_7);
     return _e23;
 }
 
-vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_72, vec3 wo_7, vec2 u_17) {
+vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_75, vec3 wo_7, vec2 u_17) {
     bool local_32 = false;
     if (!((wo_7.z > 0.0))) {
         return vec3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_72);
+    sampling_Warp _e9 = sampling_warp(r_75);
     vec3 _e10 = sampling_normalize_scaled(wo_7);
     vec3 _e11 = sampling_stretch(_e9, _e10);
     vec3 _e12 = sampling_normalize_scaled(_e11);
@@ -3398,8 +3500,8 @@ vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatri
     float _e34 = sampling_beckmann_invert_visible_slope_cdf(_e12.z, _e21, _e33);
     float _e38 = sampling_clamp_unit(u_17.y);
     float _e39 = sampling_beckmann_invert_visible_slope_cdf(1.0, 0.0, _e38);
-    vec2 t_19 = vec2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
-    vec3 _e54 = sampling_unstretch(_e9, vec3(-(t_19), 1.0));
+    vec2 t_20 = vec2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
+    vec3 _e54 = sampling_unstretch(_e9, vec3(-(t_20), 1.0));
     if ((_e54.z > 0.0)) {
         local_32 = (dot(wo_7, _e54) > 0.0);
     } else {
@@ -3413,23 +3515,23 @@ vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatri
     return ((_e65.z > 0.0) ? _e65 : vec3(0.0));
 }
 
-float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_73, vec3 m_41) {
-    float _e2 = ndf_beckmann_d_matrix(r_73, m_41);
-    return ((m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0);
+float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_76, vec3 m_46) {
+    float _e2 = ndf_beckmann_d_matrix(r_76, m_46);
+    return ((m_46.z > 0.0) ? (_e2 * m_46.z) : 0.0);
 }
 
-float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_74, vec3 wo_8, vec3 m_42) {
-    float _e3 = ndf_beckmann_d_matrix(r_74, m_42);
-    float _e4 = ndf_beckmann_lambda_matrix(r_74, wo_8);
-    float _e5 = sampling_visible_normal_pdf_of(wo_8, m_42, _e3, _e4);
+float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_77, vec3 wo_8, vec3 m_47) {
+    float _e3 = ndf_beckmann_d_matrix(r_77, m_47);
+    float _e4 = ndf_beckmann_lambda_matrix(r_77, wo_8);
+    float _e5 = sampling_visible_normal_pdf_of(wo_8, m_47, _e3, _e4);
     return _e5;
 }
 
-float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_75, vec3 wo_9, vec3 m_43) {
+float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_78, vec3 wo_9, vec3 m_48) {
     vec3 _e3 = sampling_normalize_scaled(wo_9);
-    float _e4 = ndf_beckmann_d_matrix(r_75, m_43);
-    float _e5 = ndf_beckmann_lambda_matrix(r_75, _e3);
-    float _e6 = sampling_reflection_pdf_of(_e3, m_43, _e4, _e5);
+    float _e4 = ndf_beckmann_d_matrix(r_78, m_48);
+    float _e5 = ndf_beckmann_lambda_matrix(r_78, _e3);
+    float _e6 = sampling_reflection_pdf_of(_e3, m_48, _e4, _e5);
     return _e6;
 }
 

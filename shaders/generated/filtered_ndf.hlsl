@@ -3,11 +3,35 @@
 // Names are those of shaders/generated/filtered_ndf.wgsl (module path as prefix);
 // the documentation is in the WGSL modules under shaders/. The entry point at the
 // end exists only because naga translates one: delete it when pasting.
+struct ndf_roughness_matrix_RoughnessMatrix {
+    float2 axis;
+    float2 eig;
+    float2 eig_c;
+    float2 inv_eig;
+    float sqrt_det;
+    float det;
+    float tau;
+    int _end_pad_0;
+};
+
 struct kernel_covariance_Covariance {
     float s_xx;
     float s_xy;
     float s_yy;
     float det;
+};
+
+struct filter_lean_LeanMoments {
+    float2 mean;
+    int _pad1_0;
+    int _pad1_1;
+    float3 second;
+    int _end_pad_0;
+};
+
+struct ndf_roughness_isotropic_Isotropic {
+    float alpha;
+    float inv_alpha_sq;
 };
 
 struct filter_deferred_KernelConvention {
@@ -20,22 +44,6 @@ struct filter_deferred_KernelConvention {
     uint combine;
     bool saturate_;
     float perceptual_floor;
-};
-
-struct ndf_roughness_matrix_RoughnessMatrix {
-    float2 axis;
-    float2 eig;
-    float2 eig_c;
-    float2 inv_eig;
-    float sqrt_det;
-    float det;
-    float tau;
-    int _end_pad_0;
-};
-
-struct ndf_roughness_isotropic_Isotropic {
-    float alpha;
-    float inv_alpha_sq;
 };
 
 struct ndf_roughness_axis_aligned_AxisAligned {
@@ -69,14 +77,6 @@ struct filter_gaussian_ggx_GaussianFilteredGgx {
     float norm;
     kernel_covariance_Covariance k;
     uint tol;
-};
-
-struct filter_lean_LeanMoments {
-    float2 mean;
-    int _pad1_0;
-    int _pad1_1;
-    float3 second;
-    int _end_pad_0;
 };
 
 struct footprint_jacobian_Polar {
@@ -222,9 +222,9 @@ static const float math_LN_2_ = 0.6931472;
 static const float math_SQRT_TAU = 2.5066283;
 static const float math_LOG2_E = 1.442695;
 static const float math_SQRT_2_ = 1.4142135;
+static const float kernel_covariance_KERNEL_MAX = 100000000.0;
 static const float ndf_roughness_ALPHA_MIN = 1e-8;
 static const float ndf_roughness_ALPHA_MAX = 10000.0;
-static const float kernel_covariance_KERNEL_MAX = 100000000.0;
 static const float filter_deferred_KAPPA = 0.18;
 static const uint filter_deferred_DOMAIN_ALPHA_SQ = 0u;
 static const uint filter_deferred_DOMAIN_ALPHA = 1u;
@@ -308,9 +308,9 @@ float math_atan(float x)
     float t = (float)0;
     float r = (float)0;
 
-    float a_16 = abs(x);
-    bool inv = (a_16 > 1.0);
-    t = (inv ? (1.0 / a_16) : a_16);
+    float a_17 = abs(x);
+    bool inv = (a_17 > 1.0);
+    t = (inv ? (1.0 / a_17) : a_17);
     float _e8 = t;
     bool shift = (_e8 > math_TAN_EIGHTH_PI);
     float _e11 = t;
@@ -344,20 +344,20 @@ float2 math_sincos_turns(float u)
     float2 cs = (float2)0;
 
     float q_4 = round((4.0 * u));
-    float r_76 = (u - (0.25 * q_4));
-    float z_3 = (r_76 * r_76);
-    float s_20 = (r_76 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855));
+    float r_79 = (u - (0.25 * q_4));
+    float z_3 = (r_79 * r_79);
+    float s_22 = (r_79 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855));
     float c_14 = ((((((((59.22017 * z_3) - 85.44285) * z_3) + 64.939316) * z_3) - 19.739208) * z_3) + 1.0);
     int k_24 = (naga_f2i32(q_4) & int(3));
-    cs = float2(c_14, s_20);
+    cs = float2(c_14, s_22);
     if ((k_24 == int(1))) {
-        cs = float2(-(s_20), c_14);
+        cs = float2(-(s_22), c_14);
     } else {
         if ((k_24 == int(2))) {
-            cs = float2(-(c_14), -(s_20));
+            cs = float2(-(c_14), -(s_22));
         } else {
             if ((k_24 == int(3))) {
-                cs = float2(s_20, -(c_14));
+                cs = float2(s_22, -(c_14));
             }
         }
     }
@@ -367,31 +367,31 @@ float2 math_sincos_turns(float u)
 
 float math_hypot(float x_1, float y)
 {
-    float m_44 = max(abs(x_1), abs(y));
-    if ((m_44 <= 0.0)) {
+    float m_49 = max(abs(x_1), abs(y));
+    if ((m_49 <= 0.0)) {
         return 0.0;
     }
-    float a_17 = (x_1 / m_44);
-    float b_4 = (y / m_44);
-    return (m_44 * sqrt(((a_17 * a_17) + (b_4 * b_4))));
+    float a_18 = (x_1 / m_49);
+    float b_4 = (y / m_49);
+    return (m_49 * sqrt(((a_18 * a_18) + (b_4 * b_4))));
 }
 
 float math_exp(float x_2)
 {
     float xc = clamp(x_2, -87.0, 88.0);
     float n_5 = round((xc * math_LOG2_E));
-    float r_77 = ((xc - (n_5 * math_LN2_HI)) - (n_5 * math_LN2_LO));
-    float r2_ = (r_77 * r_77);
-    float p_6 = (((1.0 + r_77) + ((0.4999999 + (0.1666642 * r_77)) * r2_)) + (((0.041668225 + (0.008374816 * r_77)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
-    float s_21 = asfloat((uint(asint(asuint(naga_f2i32(n_5)) + asuint(int(127)))) << 23u));
-    return ((x_2 >= -87.0) ? (p_6 * s_21) : 0.0);
+    float r_80 = ((xc - (n_5 * math_LN2_HI)) - (n_5 * math_LN2_LO));
+    float r2_ = (r_80 * r_80);
+    float p_6 = (((1.0 + r_80) + ((0.4999999 + (0.1666642 * r_80)) * r2_)) + (((0.041668225 + (0.008374816 * r_80)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
+    float s_23 = asfloat((uint(asint(asuint(naga_f2i32(n_5)) + asuint(int(127)))) << 23u));
+    return ((x_2 >= -87.0) ? (p_6 * s_23) : 0.0);
 }
 
 float math_atanh2_(float z)
 {
     float z2_4 = (z * z);
-    float s_22 = (((((((((z2_4 * 0.09090909) + 0.11111111) * z2_4) + 0.14285715) * z2_4) + 0.2) * z2_4) + 0.33333334) * z2_4);
-    return ((2.0 * z) + ((2.0 * z) * s_22));
+    float s_24 = (((((((((z2_4 * 0.09090909) + 0.11111111) * z2_4) + 0.14285715) * z2_4) + 0.2) * z2_4) + 0.33333334) * z2_4);
+    return ((2.0 * z) + ((2.0 * z) * s_24));
 }
 
 float math_ln(float x_3)
@@ -427,9 +427,133 @@ float math_ln_1p(float x_4)
     return _e9;
 }
 
-float ndf_roughness_clamp_alpha(float alpha)
+ndf_roughness_matrix_RoughnessMatrix Constructndf_roughness_matrix_RoughnessMatrix(float2 arg0, float2 arg1, float2 arg2, float2 arg3, float arg4, float arg5, float arg6) {
+    ndf_roughness_matrix_RoughnessMatrix ret = (ndf_roughness_matrix_RoughnessMatrix)0;
+    ret.axis = arg0;
+    ret.eig = arg1;
+    ret.eig_c = arg2;
+    ret.inv_eig = arg3;
+    ret.sqrt_det = arg4;
+    ret.det = arg5;
+    ret.tau = arg6;
+    return ret;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(float2 axis, float2 alpha)
 {
-    return ((alpha >= ndf_roughness_ALPHA_MIN) ? min(alpha, ndf_roughness_ALPHA_MAX) : ndf_roughness_ALPHA_MIN);
+    float2 l_5 = (alpha * alpha);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix = Constructndf_roughness_matrix_RoughnessMatrix(axis, l_5, l_5, ((1.0).xx / l_5), (alpha.x * alpha.y), (l_5.x * l_5.y), 0.0);
+    return ndf_roughness_matrix_roughnessmatrix;
+}
+
+float2 ndf_roughness_matrix_clamped_eigenvalues(float2 l, float det, float tau)
+{
+    if ((det >= tau)) {
+        return l;
+    }
+    float h_21 = (0.5 * (l.x + l.y));
+    float gap = (tau - det);
+    float t_11 = (gap / (h_21 + sqrt(((h_21 * h_21) + gap))));
+    float l1_ = (l.x + t_11);
+    return float2(l1_, (tau / l1_));
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(float2 axis_1, float2 l_1, float det_1, float tau_1)
+{
+    const float2 _e4 = ndf_roughness_matrix_clamped_eigenvalues(l_1, det_1, tau_1);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_1 = Constructndf_roughness_matrix_RoughnessMatrix(axis_1, l_1, _e4, ((1.0).xx / _e4), sqrt(max(det_1, tau_1)), det_1, tau_1);
+    return ndf_roughness_matrix_roughnessmatrix_1;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det_2, float tau_2)
+{
+    float2 v = (float2)0;
+
+    float half_diff = (0.5 * (a11_ - a22_));
+    float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
+    float l1_1 = ((0.5 * (a11_ + a22_)) + rad);
+    float l2_2 = (max(det_2, 0.0) / l1_1);
+    float big = (rad + abs(half_diff));
+    v = ((half_diff < 0.0) ? float2(a12_, big) : float2(big, a12_));
+    if ((big <= 0.0)) {
+        v = float2(1.0, 0.0);
+    }
+    float2 _e32 = v;
+    float2 _e33 = v;
+    float2 axis_2 = (_e32 / (length(_e33)).xx);
+    const ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, float2(l1_1, l2_2), det_2, tau_2);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_2 = _e38;
+    return ndf_roughness_matrix_roughnessmatrix_2;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(float a11_1, float a12_1, float a22_1)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_entries_det(a11_1, a12_1, a22_1, ((a11_1 * a22_1) - (a12_1 * a12_1)), 0.0);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_3 = _e7;
+    return ndf_roughness_matrix_roughnessmatrix_3;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_1, float det_clamp)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_eigenbasis(r_1.axis, r_1.eig, r_1.det, max(det_clamp, 0.0));
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_4 = _e7;
+    return ndf_roughness_matrix_roughnessmatrix_4;
+}
+
+float2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, float2 v_1)
+{
+    return float2(((r_2.axis.x * v_1.x) + (r_2.axis.y * v_1.y)), ((r_2.axis.x * v_1.y) - (r_2.axis.y * v_1.x)));
+}
+
+float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, float2 s)
+{
+    const float2 _e2 = ndf_roughness_matrix_rotate(r_3, s);
+    return dot((_e2 * _e2), r_3.inv_eig);
+}
+
+float ndf_roughness_matrix_quadratic(ndf_roughness_matrix_RoughnessMatrix r_4, float2 w)
+{
+    const float2 _e2 = ndf_roughness_matrix_rotate(r_4, w);
+    return dot((_e2 * _e2), r_4.eig_c);
+}
+
+float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5)
+{
+    return r_5.sqrt_det;
+}
+
+float3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, float2 l_2)
+{
+    float c_15 = r_6.axis.x;
+    float s_25 = r_6.axis.y;
+    return float3((((l_2.x * c_15) * c_15) + ((l_2.y * s_25) * s_25)), (((l_2.x - l_2.y) * c_15) * s_25), (((l_2.x * s_25) * s_25) + ((l_2.y * c_15) * c_15)));
+}
+
+float3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7)
+{
+    const float3 _e2 = ndf_roughness_matrix_entries_of(r_7, r_7.eig);
+    return _e2;
+}
+
+float3 ndf_roughness_matrix_clamped_entries(ndf_roughness_matrix_RoughnessMatrix r_8)
+{
+    const float3 _e2 = ndf_roughness_matrix_entries_of(r_8, r_8.eig_c);
+    return _e2;
+}
+
+float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_9)
+{
+    return r_9.det;
+}
+
+float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10)
+{
+    return max(r_10.det, r_10.tau);
+}
+
+float ndf_roughness_matrix_own_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_11)
+{
+    return ((r_11.tau > r_11.det) ? r_11.tau : 0.0);
 }
 
 kernel_covariance_Covariance Constructkernel_covariance_Covariance(float arg0, float arg1, float arg2, float arg3) {
@@ -494,19 +618,19 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         const kernel_covariance_Covariance kernel_covariance_covariance_5 = c_3;
         return kernel_covariance_covariance_5;
     }
-    float a_18 = (c_3.s_xx / scale);
+    float a_19 = (c_3.s_xx / scale);
     float b_6 = (c_3.s_xy / scale);
     float e_3 = (c_3.s_yy / scale);
-    float d_3 = (0.5 * (a_18 - e_3));
-    float r_78 = sqrt(((d_3 * d_3) + (b_6 * b_6)));
-    float lmax_1 = (((0.5 * (a_18 + e_3)) + r_78) * scale);
+    float d_3 = (0.5 * (a_19 - e_3));
+    float r_81 = sqrt(((d_3 * d_3) + (b_6 * b_6)));
+    float lmax_1 = (((0.5 * (a_19 + e_3)) + r_81) * scale);
     if ((lmax_1 <= max_eig)) {
         const kernel_covariance_Covariance kernel_covariance_covariance_6 = c_3;
         return kernel_covariance_covariance_6;
     }
     float lmin_1 = max((c_3.det / lmax_1), 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = (r_78 < 1e-18);
+        local = (r_81 < 1e-18);
     } else {
         local = true;
     }
@@ -515,10 +639,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         const kernel_covariance_Covariance kernel_covariance_covariance_7 = Constructkernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
         return kernel_covariance_covariance_7;
     }
-    float p_7 = (r_78 + abs(d_3));
+    float p_7 = (r_81 + abs(d_3));
     float q_5 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
     float2 ee = ((d_3 >= 0.0) ? float2(p_7, q_5) : float2(q_5, p_7));
-    float inv_1 = (1.0 / (2.0 * r_78));
+    float inv_1 = (1.0 / (2.0 * r_81));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_6 * inv_1);
     float p22_ = (ee.y * inv_1);
@@ -531,8 +655,8 @@ kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covar
     bool local_1 = (bool)0;
     bool local_2 = (bool)0;
 
-    float big = max(max(abs(c_4.s_xx), abs(c_4.s_yy)), abs(c_4.s_xy));
-    if ((big > math_F32_MAX)) {
+    float big_1 = max(max(abs(c_4.s_xx), abs(c_4.s_yy)), abs(c_4.s_xy));
+    if ((big_1 > math_F32_MAX)) {
         const kernel_covariance_Covariance kernel_covariance_covariance_9 = Constructkernel_covariance_Covariance(100000000.0, 0.0, 100000000.0, 1e16);
         return kernel_covariance_covariance_9;
     }
@@ -562,62 +686,228 @@ kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covar
     return kernel_covariance_covariance_11;
 }
 
-float filter_deferred_from_alpha(uint domain, float alpha_1)
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_1, kernel_covariance_Covariance k_1, float tau_3)
+{
+    const float3 _e3 = ndf_roughness_matrix_entries(a_1);
+    float c_16 = a_1.axis.x;
+    float s_26 = a_1.axis.y;
+    float k1_1 = max(((((c_16 * c_16) * k_1.s_xx) + (((2.0 * c_16) * s_26) * k_1.s_xy)) + ((s_26 * s_26) * k_1.s_yy)), 0.0);
+    float k2_1 = max(((((s_26 * s_26) * k_1.s_xx) - (((2.0 * c_16) * s_26) * k_1.s_xy)) + ((c_16 * c_16) * k_1.s_yy)), 0.0);
+    const float _e38 = ndf_roughness_matrix_determinant(a_1);
+    float det_4 = ((_e38 + (2.0 * ((a_1.eig.y * k1_1) + (a_1.eig.x * k2_1)))) + (4.0 * max(k_1.det, 0.0)));
+    const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_1.s_xx)), (_e3.y + (2.0 * k_1.s_xy)), (_e3.z + (2.0 * k_1.s_yy)), det_4, max(tau_3, 0.0));
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_5 = _e72;
+    return ndf_roughness_matrix_roughnessmatrix_5;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance kernel)
+{
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel);
+    const float _e3 = ndf_roughness_matrix_clamped_det(a_2);
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_2, _e2, _e3);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_6 = _e4;
+    return ndf_roughness_matrix_roughnessmatrix_6;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel_1, float det_clamp_1)
+{
+    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_1);
+    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_3);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_3, _e3, max(det_clamp_1, _e4));
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_7 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_7;
+}
+
+kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m)
+{
+    const kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m.second.x - (m.mean.x * m.mean.x)), (m.second.y - (m.mean.x * m.mean.y)), (m.second.z - (m.mean.y * m.mean.y)));
+    const kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
+    const kernel_covariance_Covariance kernel_covariance_covariance_12 = _e26;
+    return kernel_covariance_covariance_12;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments)
+{
+    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
+    const kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
+    const kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_4, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_8 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_8;
+}
+
+filter_lean_LeanMoments Constructfilter_lean_LeanMoments(float2 arg0, float3 arg1) {
+    filter_lean_LeanMoments ret = (filter_lean_LeanMoments)0;
+    ret.mean = arg0;
+    ret.second = arg1;
+    return ret;
+}
+
+filter_lean_LeanMoments bake_moments_from_texels(float4 rgba, float xy)
+{
+    const filter_lean_LeanMoments filter_lean_leanmoments = Constructfilter_lean_LeanMoments(rgba.xy, float3(rgba.z, xy, rgba.w));
+    return filter_lean_leanmoments;
+}
+
+filter_lean_LeanMoments bake_moments_sample_grad(Texture2D<float4> moments_1, Texture2D<float4> moments_xy, SamplerState s_1, float2 uv, float2 ddx_uv, float2 ddy_uv)
+{
+    float4 rgba_1 = moments_1.SampleGrad(s_1, uv, ddx_uv, ddy_uv);
+    float4 _e7 = moments_xy.SampleGrad(s_1, uv, ddx_uv, ddy_uv);
+    float xy_1 = _e7.x;
+    const filter_lean_LeanMoments _e9 = bake_moments_from_texels(rgba_1, xy_1);
+    const filter_lean_LeanMoments filter_lean_leanmoments_1 = _e9;
+    return filter_lean_leanmoments_1;
+}
+
+filter_lean_LeanMoments bake_moments_sample_level(Texture2D<float4> moments_2, Texture2D<float4> moments_xy_1, SamplerState s_2, float2 uv_1, float level)
+{
+    float4 rgba_2 = moments_2.SampleLevel(s_2, uv_1, level);
+    float4 _e6 = moments_xy_1.SampleLevel(s_2, uv_1, level);
+    float xy_2 = _e6.x;
+    const filter_lean_LeanMoments _e8 = bake_moments_from_texels(rgba_2, xy_2);
+    const filter_lean_LeanMoments filter_lean_leanmoments_2 = _e8;
+    return filter_lean_leanmoments_2;
+}
+
+float ndf_roughness_clamp_alpha(float alpha_1)
+{
+    return ((alpha_1 >= ndf_roughness_ALPHA_MIN) ? min(alpha_1, ndf_roughness_ALPHA_MAX) : ndf_roughness_ALPHA_MIN);
+}
+
+ndf_roughness_isotropic_Isotropic Constructndf_roughness_isotropic_Isotropic(float arg0, float arg1) {
+    ndf_roughness_isotropic_Isotropic ret = (ndf_roughness_isotropic_Isotropic)0;
+    ret.alpha = arg0;
+    ret.inv_alpha_sq = arg1;
+    return ret;
+}
+
+ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_2)
+{
+    const float _e1 = ndf_roughness_clamp_alpha(alpha_2);
+    const ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_isotropic = Constructndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
+    return ndf_roughness_isotropic_isotropic;
+}
+
+float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_12, float2 s_3)
+{
+    return (dot(s_3, s_3) * r_12.inv_alpha_sq);
+}
+
+float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_13, float2 w_1)
+{
+    float2 s_27 = (w_1 * r_13.alpha);
+    return dot(s_27, s_27);
+}
+
+float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_14)
+{
+    return (r_14.alpha * r_14.alpha);
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_15)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), (r_15.alpha).xx);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_9 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_9;
+}
+
+ndf_roughness_isotropic_Isotropic bake_roughness_from_perceptual(float r_16)
+{
+    const ndf_roughness_isotropic_Isotropic _e2 = ndf_roughness_isotropic_from_alpha((r_16 * r_16));
+    const ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_isotropic_1 = _e2;
+    return ndf_roughness_isotropic_isotropic_1;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_anisotropic(float3 lobe)
+{
+    const float2 _e4 = math_sincos_turns((lobe.z * 0.15915494));
+    const float _e6 = ndf_roughness_clamp_alpha(lobe.x);
+    const float _e8 = ndf_roughness_clamp_alpha(lobe.y);
+    float2 a_20 = float2(_e6, _e8);
+    const ndf_roughness_matrix_RoughnessMatrix _e10 = ndf_roughness_matrix_from_eigen(_e4, a_20);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_10 = _e10;
+    return ndf_roughness_matrix_roughnessmatrix_10;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_khr_anisotropy(float r_17, float4 anisotropy)
+{
+    float2 d_4 = ((2.0 * anisotropy.xy) - (1.0).xx);
+    float len = length(d_4);
+    float2 axis_3 = ((len > 0.0) ? (d_4 / (len).xx) : float2(1.0, 0.0));
+    float alpha_b = (r_17 * r_17);
+    float b_7 = anisotropy.z;
+    float alpha_t = lerp(alpha_b, 1.0, (b_7 * b_7));
+    const float _e22 = ndf_roughness_clamp_alpha(alpha_t);
+    const float _e23 = ndf_roughness_clamp_alpha(alpha_b);
+    float2 a_21 = float2(_e22, _e23);
+    const ndf_roughness_matrix_RoughnessMatrix _e25 = ndf_roughness_matrix_from_eigen(axis_3, a_21);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_11 = _e25;
+    return ndf_roughness_matrix_roughnessmatrix_11;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_matrix_texel(float4 t_1)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = ndf_roughness_matrix_from_entries(t_1.x, t_1.y, t_1.z);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e4;
+    return ndf_roughness_matrix_roughnessmatrix_12;
+}
+
+float filter_deferred_from_alpha(uint domain, float alpha_3)
 {
     if ((domain == filter_deferred_DOMAIN_ALPHA)) {
-        return alpha_1;
+        return alpha_3;
     }
     if ((domain == filter_deferred_DOMAIN_PERCEPTUAL)) {
-        return sqrt(alpha_1);
+        return sqrt(alpha_3);
     }
-    float a2_ = (alpha_1 * alpha_1);
+    float a2_ = (alpha_3 * alpha_3);
     if ((domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
         return ((a2_ < 1.0) ? (a2_ / (1.0 - a2_)) : math_F32_MAX);
     }
     return a2_;
 }
 
-float filter_deferred_to_alpha(uint domain_1, float v)
+float filter_deferred_to_alpha(uint domain_1, float v_2)
 {
     if ((domain_1 == filter_deferred_DOMAIN_ALPHA)) {
-        return v;
+        return v_2;
     }
     if ((domain_1 == filter_deferred_DOMAIN_PERCEPTUAL)) {
-        return (v * v);
+        return (v_2 * v_2);
     }
     if ((domain_1 == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
-        return ((v < math_F32_MAX) ? sqrt((v / (1.0 + v))) : 1.0);
+        return ((v_2 < math_F32_MAX) ? sqrt((v_2 / (1.0 + v_2))) : 1.0);
     }
-    return sqrt(v);
+    return sqrt(v_2);
 }
 
-float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5)
+float filter_deferred_max_eigenvalue(float a_5, float b_1, float c_5)
 {
-    const float _e9 = math_hypot((0.5 * (a_1 - c_5)), b_1);
-    return max(((0.5 * (a_1 + c_5)) + _e9), 0.0);
+    const float _e9 = math_hypot((0.5 * (a_5 - c_5)), b_1);
+    return max(((0.5 * (a_5 + c_5)) + _e9), 0.0);
 }
 
 float filter_deferred_norm_eval(uint norm, float3 dn_u, float3 dn_v)
 {
-    float a_19 = dot(dn_u, dn_u);
-    float c_15 = dot(dn_v, dn_v);
+    float a_22 = dot(dn_u, dn_u);
+    float c_17 = dot(dn_v, dn_v);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
-        return max(a_19, c_15);
+        return max(a_22, c_17);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        const float _e11 = filter_deferred_max_eigenvalue(a_19, dot(dn_u, dn_v), c_15);
+        const float _e11 = filter_deferred_max_eigenvalue(a_22, dot(dn_u, dn_v), c_17);
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        float3 m_45 = max(abs(dn_u), abs(dn_v));
-        return max(max(m_45.x, m_45.y), m_45.z);
+        float3 m_50 = max(abs(dn_u), abs(dn_v));
+        return max(max(m_50.x, m_50.y), m_50.z);
     }
-    return (a_19 + c_15);
+    return (a_22 + c_17);
 }
 
-float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_1)
+float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_2)
 {
-    return min(max(k_1, 0.0), conv.clamp_);
+    return min(max(k_2, 0.0), conv.clamp_);
 }
 
 float filter_deferred_widening(filter_deferred_KernelConvention conv_1, float3 dn_u_1, float3 dn_v_1)
@@ -634,17 +924,17 @@ float filter_deferred_widening(filter_deferred_KernelConvention conv_1, float3 d
     return _e20;
 }
 
-float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, float alpha_in, float k_2)
+float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, float alpha_in, float k_3)
 {
-    float alpha_2 = (float)0;
+    float alpha_4 = (float)0;
     float out_ = (float)0;
 
-    alpha_2 = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
-    float _e7 = alpha_2;
-    alpha_2 = max(_e7, (conv_2.perceptual_floor * conv_2.perceptual_floor));
-    float _e13 = alpha_2;
+    alpha_4 = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
+    float _e7 = alpha_4;
+    alpha_4 = max(_e7, (conv_2.perceptual_floor * conv_2.perceptual_floor));
+    float _e13 = alpha_4;
     const float _e14 = filter_deferred_from_alpha(conv_2.domain, _e13);
-    const float _e15 = filter_deferred_clamp_widening(conv_2, k_2);
+    const float _e15 = filter_deferred_clamp_widening(conv_2, k_3);
     out_ = ((conv_2.combine == filter_deferred_COMBINE_MAX) ? max(_e14, _e15) : (_e14 + _e15));
     if (conv_2.saturate_) {
         float _e24 = out_;
@@ -655,10 +945,10 @@ float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, fl
     return clamp(_e29, 0.0, ndf_roughness_ALPHA_MAX);
 }
 
-float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_3, float3 dn_u_2, float3 dn_v_2)
+float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_5, float3 dn_u_2, float3 dn_v_2)
 {
     const float _e4 = filter_deferred_widening(conv_3, dn_u_2, dn_v_2);
-    const float _e5 = filter_deferred_apply_widening(conv_3, alpha_3, _e4);
+    const float _e5 = filter_deferred_apply_widening(conv_3, alpha_5, _e4);
     return _e5;
 }
 
@@ -666,187 +956,26 @@ kernel_covariance_Covariance filter_deferred_normal_difference_covariance(float3
 {
     float sigma_sq = (sigma * sigma);
     float3 x_12 = (cross(dn_u_3, dn_v_3) * sigma_sq);
-    const kernel_covariance_Covariance kernel_covariance_covariance_12 = Constructkernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_12, x_12));
-    return kernel_covariance_covariance_12;
+    const kernel_covariance_Covariance kernel_covariance_covariance_13 = Constructkernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_12, x_12));
+    return kernel_covariance_covariance_13;
 }
 
-float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel)
+float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel_2)
 {
     if ((bandwidth == filter_deferred_BANDWIDTH_MAX)) {
-        const float _e7 = filter_deferred_max_eigenvalue(kernel.s_xx, kernel.s_xy, kernel.s_yy);
+        const float _e7 = filter_deferred_max_eigenvalue(kernel_2.s_xx, kernel_2.s_xy, kernel_2.s_yy);
         return (2.0 * _e7);
     }
-    float t_10 = (kernel.s_xx + kernel.s_yy);
-    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_10) : t_10);
+    float t_12 = (kernel_2.s_xx + kernel_2.s_yy);
+    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_12) : t_12);
 }
 
-float filter_deferred_filtered_alpha(float alpha_4, kernel_covariance_Covariance kernel_1, uint bandwidth_1, float kappa)
+float filter_deferred_filtered_alpha(float alpha_6, kernel_covariance_Covariance kernel_3, uint bandwidth_1, float kappa)
 {
     filter_deferred_KernelConvention conv_4 = Constructfilter_deferred_KernelConvention(filter_deferred_DOMAIN_ALPHA_SQ, filter_deferred_NORM_SUM_SQUARED, 0.5, 1.0, 0.0, kappa, filter_deferred_COMBINE_ADD, true, 0.0);
-    const float _e13 = filter_deferred_bandwidth_alpha2_(bandwidth_1, kernel_1);
-    const float _e14 = filter_deferred_apply_widening(conv_4, alpha_4, _e13);
+    const float _e13 = filter_deferred_bandwidth_alpha2_(bandwidth_1, kernel_3);
+    const float _e14 = filter_deferred_apply_widening(conv_4, alpha_6, _e13);
     return _e14;
-}
-
-ndf_roughness_matrix_RoughnessMatrix Constructndf_roughness_matrix_RoughnessMatrix(float2 arg0, float2 arg1, float2 arg2, float2 arg3, float arg4, float arg5, float arg6) {
-    ndf_roughness_matrix_RoughnessMatrix ret = (ndf_roughness_matrix_RoughnessMatrix)0;
-    ret.axis = arg0;
-    ret.eig = arg1;
-    ret.eig_c = arg2;
-    ret.inv_eig = arg3;
-    ret.sqrt_det = arg4;
-    ret.det = arg5;
-    ret.tau = arg6;
-    return ret;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(float2 axis, float2 alpha_5)
-{
-    float2 l_5 = (alpha_5 * alpha_5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix = Constructndf_roughness_matrix_RoughnessMatrix(axis, l_5, l_5, ((1.0).xx / l_5), (alpha_5.x * alpha_5.y), (l_5.x * l_5.y), 0.0);
-    return ndf_roughness_matrix_roughnessmatrix;
-}
-
-float2 ndf_roughness_matrix_clamped_eigenvalues(float2 l, float det, float tau)
-{
-    if ((det >= tau)) {
-        return l;
-    }
-    float h_21 = (0.5 * (l.x + l.y));
-    float gap = (tau - det);
-    float t_11 = (gap / (h_21 + sqrt(((h_21 * h_21) + gap))));
-    float l1_ = (l.x + t_11);
-    return float2(l1_, (tau / l1_));
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(float2 axis_1, float2 l_1, float det_1, float tau_1)
-{
-    const float2 _e4 = ndf_roughness_matrix_clamped_eigenvalues(l_1, det_1, tau_1);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_1 = Constructndf_roughness_matrix_RoughnessMatrix(axis_1, l_1, _e4, ((1.0).xx / _e4), sqrt(max(det_1, tau_1)), det_1, tau_1);
-    return ndf_roughness_matrix_roughnessmatrix_1;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det_2, float tau_2)
-{
-    float2 v_1 = (float2)0;
-
-    float half_diff = (0.5 * (a11_ - a22_));
-    float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
-    float l1_1 = ((0.5 * (a11_ + a22_)) + rad);
-    float l2_2 = (max(det_2, 0.0) / l1_1);
-    float big_1 = (rad + abs(half_diff));
-    v_1 = ((half_diff < 0.0) ? float2(a12_, big_1) : float2(big_1, a12_));
-    if ((big_1 <= 0.0)) {
-        v_1 = float2(1.0, 0.0);
-    }
-    float2 _e32 = v_1;
-    float2 _e33 = v_1;
-    float2 axis_2 = (_e32 / (length(_e33)).xx);
-    const ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, float2(l1_1, l2_2), det_2, tau_2);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_2 = _e38;
-    return ndf_roughness_matrix_roughnessmatrix_2;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(float a11_1, float a12_1, float a22_1)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_entries_det(a11_1, a12_1, a22_1, ((a11_1 * a22_1) - (a12_1 * a12_1)), 0.0);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_3 = _e7;
-    return ndf_roughness_matrix_roughnessmatrix_3;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_1, float det_clamp)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_eigenbasis(r_1.axis, r_1.eig, r_1.det, max(det_clamp, 0.0));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_4 = _e7;
-    return ndf_roughness_matrix_roughnessmatrix_4;
-}
-
-float2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, float2 v_2)
-{
-    return float2(((r_2.axis.x * v_2.x) + (r_2.axis.y * v_2.y)), ((r_2.axis.x * v_2.y) - (r_2.axis.y * v_2.x)));
-}
-
-float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, float2 s)
-{
-    const float2 _e2 = ndf_roughness_matrix_rotate(r_3, s);
-    return dot((_e2 * _e2), r_3.inv_eig);
-}
-
-float ndf_roughness_matrix_quadratic(ndf_roughness_matrix_RoughnessMatrix r_4, float2 w)
-{
-    const float2 _e2 = ndf_roughness_matrix_rotate(r_4, w);
-    return dot((_e2 * _e2), r_4.eig_c);
-}
-
-float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5)
-{
-    return r_5.sqrt_det;
-}
-
-float3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, float2 l_2)
-{
-    float c_16 = r_6.axis.x;
-    float s_23 = r_6.axis.y;
-    return float3((((l_2.x * c_16) * c_16) + ((l_2.y * s_23) * s_23)), (((l_2.x - l_2.y) * c_16) * s_23), (((l_2.x * s_23) * s_23) + ((l_2.y * c_16) * c_16)));
-}
-
-float3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7)
-{
-    const float3 _e2 = ndf_roughness_matrix_entries_of(r_7, r_7.eig);
-    return _e2;
-}
-
-float3 ndf_roughness_matrix_clamped_entries(ndf_roughness_matrix_RoughnessMatrix r_8)
-{
-    const float3 _e2 = ndf_roughness_matrix_entries_of(r_8, r_8.eig_c);
-    return _e2;
-}
-
-float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_9)
-{
-    return r_9.det;
-}
-
-float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10)
-{
-    return max(r_10.det, r_10.tau);
-}
-
-float ndf_roughness_matrix_own_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_11)
-{
-    return ((r_11.tau > r_11.det) ? r_11.tau : 0.0);
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3)
-{
-    const float3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_17 = a_2.axis.x;
-    float s_24 = a_2.axis.y;
-    float k1_1 = max(((((c_17 * c_17) * k_3.s_xx) + (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((s_24 * s_24) * k_3.s_yy)), 0.0);
-    float k2_1 = max(((((s_24 * s_24) * k_3.s_xx) - (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((c_17 * c_17) * k_3.s_yy)), 0.0);
-    const float _e38 = ndf_roughness_matrix_determinant(a_2);
-    float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * max(k_3.det, 0.0)));
-    const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_5 = _e72;
-    return ndf_roughness_matrix_roughnessmatrix_5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel_2)
-{
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
-    const float _e3 = ndf_roughness_matrix_clamped_det(a_3);
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_3, _e2, _e3);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_6 = _e4;
-    return ndf_roughness_matrix_roughnessmatrix_6;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_3, float det_clamp_1)
-{
-    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
-    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_4);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_4, _e3, max(det_clamp_1, _e4));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_7 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_7;
 }
 
 float ndf_g1_of(float lambda_w, float w_dot_m)
@@ -867,43 +996,6 @@ float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m)
     return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
 }
 
-ndf_roughness_isotropic_Isotropic Constructndf_roughness_isotropic_Isotropic(float arg0, float arg1) {
-    ndf_roughness_isotropic_Isotropic ret = (ndf_roughness_isotropic_Isotropic)0;
-    ret.alpha = arg0;
-    ret.inv_alpha_sq = arg1;
-    return ret;
-}
-
-ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_6)
-{
-    const float _e1 = ndf_roughness_clamp_alpha(alpha_6);
-    const ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_isotropic = Constructndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
-    return ndf_roughness_isotropic_isotropic;
-}
-
-float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_12, float2 s_1)
-{
-    return (dot(s_1, s_1) * r_12.inv_alpha_sq);
-}
-
-float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_13, float2 w_1)
-{
-    float2 s_25 = (w_1 * r_13.alpha);
-    return dot(s_25, s_25);
-}
-
-float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_14)
-{
-    return (r_14.alpha * r_14.alpha);
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_15)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), (r_15.alpha).xx);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_8 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_8;
-}
-
 ndf_roughness_axis_aligned_AxisAligned Constructndf_roughness_axis_aligned_AxisAligned(float2 arg0, float2 arg1) {
     ndf_roughness_axis_aligned_AxisAligned ret = (ndf_roughness_axis_aligned_AxisAligned)0;
     ret.alpha = arg0;
@@ -915,46 +1007,46 @@ ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(flo
 {
     const float _e2 = ndf_roughness_clamp_alpha(alpha_7.x);
     const float _e4 = ndf_roughness_clamp_alpha(alpha_7.y);
-    float2 a_20 = float2(_e2, _e4);
-    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned = Constructndf_roughness_axis_aligned_AxisAligned(a_20, ((1.0).xx / (a_20 * a_20)));
+    float2 a_23 = float2(_e2, _e4);
+    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned = Constructndf_roughness_axis_aligned_AxisAligned(a_23, ((1.0).xx / (a_23 * a_23)));
     return ndf_roughness_axis_aligned_axisaligned;
 }
 
-float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_16, float2 s_2)
+float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_18, float2 s_4)
 {
-    return dot((s_2 * s_2), r_16.inv_alpha_sq);
+    return dot((s_4 * s_4), r_18.inv_alpha_sq);
 }
 
-float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_17, float2 w_2)
+float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_19, float2 w_2)
 {
-    float2 s_26 = (w_2 * r_17.alpha);
-    return dot(s_26, s_26);
+    float2 s_28 = (w_2 * r_19.alpha);
+    return dot(s_28, s_28);
 }
 
-float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_18)
+float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_20)
 {
-    return (r_18.alpha.x * r_18.alpha.y);
+    return (r_20.alpha.x * r_20.alpha.y);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_19)
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_21)
 {
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), r_19.alpha);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_9 = _e5;
-    return ndf_roughness_matrix_roughnessmatrix_9;
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), r_21.alpha);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_13;
 }
 
 float ndf_ggx_p22_of(float q, float sqrt_det)
 {
-    float t_12 = (1.0 + q);
-    return ((q >= 0.0) ? (1.0 / (((math_PI * sqrt_det) * t_12) * t_12)) : 0.0);
+    float t_13 = (1.0 + q);
+    return ((q >= 0.0) ? (1.0 / (((math_PI * sqrt_det) * t_13) * t_13)) : 0.0);
 }
 
 float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1)
 {
     bool local_4 = (bool)0;
 
-    float t_13 = (q_xy + (m_z * m_z));
-    float v_13 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
+    float t_14 = (q_xy + (m_z * m_z));
+    float v_13 = (1.0 / (((math_PI * sqrt_det_1) * t_14) * t_14));
     if ((m_z > 0.0)) {
         local_4 = (v_13 <= math_F32_MAX);
     } else {
@@ -987,121 +1079,121 @@ float ndf_ggx_lambda_of(float q_1, float abs_wz)
     if (_e21) {
         return math_F32_MAX;
     }
-    float r_79 = sqrt(((abs_wz * abs_wz) + q_1));
-    return (q_1 / ((2.0 * abs_wz) * (r_79 + abs_wz)));
+    float r_82 = sqrt(((abs_wz * abs_wz) + q_1));
+    return (q_1 / ((2.0 * abs_wz) * (r_82 + abs_wz)));
 }
 
-float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_20, float2 s_3)
+float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_22, float2 s_5)
 {
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_20, s_3);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_20);
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_22, s_5);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_22);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_21, float3 m)
+float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_23, float3 m_1)
 {
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_21, m.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_21);
-    const float _e6 = ndf_ggx_d_of(_e3, m.z, _e5);
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_23, m_1.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_23);
+    const float _e6 = ndf_ggx_d_of(_e3, m_1.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_22, float3 w_3)
+float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_24, float3 w_3)
 {
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_22, w_3.xy);
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_24, w_3.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_3.z));
     return _e6;
 }
 
-float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_23, float3 w_4, float3 m_1)
+float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_25, float3 w_4, float3 m_2)
 {
-    const float _e3 = ndf_ggx_lambda_isotropic(r_23, w_4);
-    const float _e5 = ndf_g1_of(_e3, dot(w_4, m_1));
+    const float _e3 = ndf_ggx_lambda_isotropic(r_25, w_4);
+    const float _e5 = ndf_g1_of(_e3, dot(w_4, m_2));
     return _e5;
 }
 
-float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_24, float3 i, float3 o, float3 m_2)
+float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_26, float3 i, float3 o, float3 m_3)
 {
-    const float _e4 = ndf_ggx_lambda_isotropic(r_24, i);
-    const float _e5 = ndf_ggx_lambda_isotropic(r_24, o);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_2), dot(o, m_2));
+    const float _e4 = ndf_ggx_lambda_isotropic(r_26, i);
+    const float _e5 = ndf_ggx_lambda_isotropic(r_26, o);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_3), dot(o, m_3));
     return _e8;
 }
 
-float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, float2 s_4)
+float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, float2 s_6)
 {
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_25, s_4);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_25);
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_27, s_6);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_27);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, float3 m_3)
+float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, float3 m_4)
 {
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_26, m_3.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_26);
-    const float _e6 = ndf_ggx_d_of(_e3, m_3.z, _e5);
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_28, m_4.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_28);
+    const float _e6 = ndf_ggx_d_of(_e3, m_4.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, float3 w_5)
+float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, float3 w_5)
 {
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_27, w_5.xy);
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_29, w_5.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_5.z));
     return _e6;
 }
 
-float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, float3 w_6, float3 m_4)
+float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_30, float3 w_6, float3 m_5)
 {
-    const float _e3 = ndf_ggx_lambda_axis_aligned(r_28, w_6);
-    const float _e5 = ndf_g1_of(_e3, dot(w_6, m_4));
+    const float _e3 = ndf_ggx_lambda_axis_aligned(r_30, w_6);
+    const float _e5 = ndf_g1_of(_e3, dot(w_6, m_5));
     return _e5;
 }
 
-float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, float3 i_1, float3 o_1, float3 m_5)
+float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_31, float3 i_1, float3 o_1, float3 m_6)
 {
-    const float _e4 = ndf_ggx_lambda_axis_aligned(r_29, i_1);
-    const float _e5 = ndf_ggx_lambda_axis_aligned(r_29, o_1);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_5), dot(o_1, m_5));
+    const float _e4 = ndf_ggx_lambda_axis_aligned(r_31, i_1);
+    const float _e5 = ndf_ggx_lambda_axis_aligned(r_31, o_1);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_6), dot(o_1, m_6));
     return _e8;
 }
 
-float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, float2 s_5)
+float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, float2 s_7)
 {
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_30, s_5);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_30);
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_32, s_7);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_32);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, float3 m_6)
+float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, float3 m_7)
 {
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_31, m_6.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_31);
-    const float _e6 = ndf_ggx_d_of(_e3, m_6.z, _e5);
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_33, m_7.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_33);
+    const float _e6 = ndf_ggx_d_of(_e3, m_7.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, float3 w_7)
+float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, float3 w_7)
 {
-    const float _e3 = ndf_roughness_matrix_quadratic(r_32, w_7.xy);
+    const float _e3 = ndf_roughness_matrix_quadratic(r_34, w_7.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_7.z));
     return _e6;
 }
 
-float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, float3 w_8, float3 m_7)
+float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_35, float3 w_8, float3 m_8)
 {
-    const float _e3 = ndf_ggx_lambda_matrix(r_33, w_8);
-    const float _e5 = ndf_g1_of(_e3, dot(w_8, m_7));
+    const float _e3 = ndf_ggx_lambda_matrix(r_35, w_8);
+    const float _e5 = ndf_g1_of(_e3, dot(w_8, m_8));
     return _e5;
 }
 
-float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, float3 i_2, float3 o_2, float3 m_8)
+float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_36, float3 i_2, float3 o_2, float3 m_9)
 {
-    const float _e4 = ndf_ggx_lambda_matrix(r_34, i_2);
-    const float _e5 = ndf_ggx_lambda_matrix(r_34, o_2);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_8), dot(o_2, m_8));
+    const float _e4 = ndf_ggx_lambda_matrix(r_36, i_2);
+    const float _e5 = ndf_ggx_lambda_matrix(r_36, o_2);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_9), dot(o_2, m_9));
     return _e8;
 }
 
@@ -1159,155 +1251,155 @@ float ndf_beckmann_lambda_of(float q_3, float abs_wz_1)
     if (_e21) {
         return math_F32_MAX;
     }
-    float a_21 = (abs_wz_1 / sqrt(q_3));
-    if ((a_21 > 9.5)) {
+    float a_24 = (abs_wz_1 / sqrt(q_3));
+    if ((a_24 > 9.5)) {
         return 0.0;
     }
-    float t_14 = ((a_21 - 3.0) / (a_21 + 3.0));
+    float t_15 = ((a_24 - 3.0) / (a_24 + 3.0));
     float _e35 = p;
-    p = ((_e35 * t_14) + 0.00028491428);
+    p = ((_e35 * t_15) + 0.00028491428);
     float _e39 = p;
-    p = ((_e39 * t_14) + 1.8268152e-5);
+    p = ((_e39 * t_15) + 1.8268152e-5);
     float _e43 = p;
-    p = ((_e43 * t_14) - 0.0018242653);
+    p = ((_e43 * t_15) - 0.0018242653);
     float _e47 = p;
-    p = ((_e47 * t_14) + 0.0013654069);
+    p = ((_e47 * t_15) + 0.0013654069);
     float _e51 = p;
-    p = ((_e51 * t_14) + 0.0055811945);
+    p = ((_e51 * t_15) + 0.0055811945);
     float _e55 = p;
-    p = ((_e55 * t_14) - 0.009357543);
+    p = ((_e55 * t_15) - 0.009357543);
     float _e59 = p;
-    p = ((_e59 * t_14) - 0.0076571554);
+    p = ((_e59 * t_15) - 0.0076571554);
     float _e63 = p;
-    p = ((_e63 * t_14) + 0.036274612);
+    p = ((_e63 * t_15) + 0.036274612);
     float _e67 = p;
-    p = ((_e67 * t_14) - 0.023293633);
+    p = ((_e67 * t_15) - 0.023293633);
     float _e71 = p;
-    p = ((_e71 * t_14) - 0.07646358);
+    p = ((_e71 * t_15) - 0.07646358);
     float _e75 = p;
-    p = ((_e75 * t_14) + 0.2117349);
+    p = ((_e75 * t_15) + 0.2117349);
     float _e79 = p;
-    p = ((_e79 * t_14) - 0.23284179);
+    p = ((_e79 * t_15) - 0.23284179);
     float _e83 = p;
-    p = ((_e83 * t_14) + 0.03307925);
+    p = ((_e83 * t_15) + 0.03307925);
     float _e87 = p;
-    p = ((_e87 * t_14) + 1.0631379);
+    p = ((_e87 * t_15) + 1.0631379);
     float _e91 = p;
-    float k_26 = (_e91 / ((2.0 * a_21) + 1.0));
-    return min(((exp((-(a_21) * a_21)) * k_26) / ((3.5449078 * a_21) * (a_21 + k_26))), math_F32_MAX);
+    float k_26 = (_e91 / ((2.0 * a_24) + 1.0));
+    return min(((exp((-(a_24) * a_24)) * k_26) / ((3.5449078 * a_24) * (a_24 + k_26))), math_F32_MAX);
 }
 
-float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_35, float2 s_6)
+float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_37, float2 s_8)
 {
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_35, s_6);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_35);
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_8);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_36, float3 m_9)
+float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_38, float3 m_10)
 {
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_36, m_9.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_36);
-    const float _e6 = ndf_beckmann_d_of(_e3, m_9.z, _e5);
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_10.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
+    const float _e6 = ndf_beckmann_d_of(_e3, m_10.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_37, float3 w_9)
+float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_39, float3 w_9)
 {
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_37, w_9.xy);
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_38, float3 w_10, float3 m_10)
+float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_40, float3 w_10, float3 m_11)
 {
-    const float _e3 = ndf_beckmann_lambda_isotropic(r_38, w_10);
-    const float _e5 = ndf_g1_of(_e3, dot(w_10, m_10));
+    const float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
+    const float _e5 = ndf_g1_of(_e3, dot(w_10, m_11));
     return _e5;
 }
 
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_39, float3 i_3, float3 o_3, float3 m_11)
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_41, float3 i_3, float3 o_3, float3 m_12)
 {
-    const float _e4 = ndf_beckmann_lambda_isotropic(r_39, i_3);
-    const float _e5 = ndf_beckmann_lambda_isotropic(r_39, o_3);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_11), dot(o_3, m_11));
+    const float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_3);
+    const float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_12), dot(o_3, m_12));
     return _e8;
 }
 
-float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_40, float2 s_7)
+float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, float2 s_9)
 {
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_40, s_7);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_40);
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_9);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_41, float3 m_12)
+float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, float3 m_13)
 {
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_41, m_12.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_41);
-    const float _e6 = ndf_beckmann_d_of(_e3, m_12.z, _e5);
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_13.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
+    const float _e6 = ndf_beckmann_d_of(_e3, m_13.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, float3 w_11)
+float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, float3 w_11)
 {
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_42, w_11.xy);
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, float3 w_12, float3 m_13)
+float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_45, float3 w_12, float3 m_14)
 {
-    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_43, w_12);
-    const float _e5 = ndf_g1_of(_e3, dot(w_12, m_13));
+    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
+    const float _e5 = ndf_g1_of(_e3, dot(w_12, m_14));
     return _e5;
 }
 
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, float3 i_4, float3 o_4, float3 m_14)
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_46, float3 i_4, float3 o_4, float3 m_15)
 {
-    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_44, i_4);
-    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_44, o_4);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_14), dot(o_4, m_14));
+    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_4);
+    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_15), dot(o_4, m_15));
     return _e8;
 }
 
-float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_45, float2 s_8)
+float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, float2 s_10)
 {
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_45, s_8);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_45);
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_10);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_46, float3 m_15)
+float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 m_16)
 {
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_46, m_15.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_46);
-    const float _e6 = ndf_beckmann_d_of(_e3, m_15.z, _e5);
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_16.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
+    const float _e6 = ndf_beckmann_d_of(_e3, m_16.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, float3 w_13)
+float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, float3 w_13)
 {
-    const float _e3 = ndf_roughness_matrix_quadratic(r_47, w_13.xy);
+    const float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 w_14, float3 m_16)
+float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_50, float3 w_14, float3 m_17)
 {
-    const float _e3 = ndf_beckmann_lambda_matrix(r_48, w_14);
-    const float _e5 = ndf_g1_of(_e3, dot(w_14, m_16));
+    const float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
+    const float _e5 = ndf_g1_of(_e3, dot(w_14, m_17));
     return _e5;
 }
 
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, float3 i_5, float3 o_5, float3 m_17)
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_51, float3 i_5, float3 o_5, float3 m_18)
 {
-    const float _e4 = ndf_beckmann_lambda_matrix(r_49, i_5);
-    const float _e5 = ndf_beckmann_lambda_matrix(r_49, o_5);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_17), dot(o_5, m_17));
+    const float _e4 = ndf_beckmann_lambda_matrix(r_51, i_5);
+    const float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_18), dot(o_5, m_18));
     return _e8;
 }
 
@@ -1515,10 +1607,10 @@ float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl
                     float ip1_1 = (1.0 / (1.0 + (t1_3 * _e85)));
                     float _e91 = v_3;
                     float ip2_1 = (1.0 / (1.0 + (t2_1 * _e91)));
-                    float a_22 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
+                    float a_25 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
                     uint _e103 = jj;
                     float _e107 = v_3;
-                    float x_14 = (((2.0 * hs) * (kb + float(_e103))) - ((_e107 - 1.0) * a_22));
+                    float x_14 = (((2.0 * hs) * (kb + float(_e103))) - ((_e107 - 1.0) * a_25));
                     const float _e112 = math_exp(x_14);
                     last = ((_e112 * sqrt(ip1_1)) * sqrt(ip2_1));
                     float _e117 = part;
@@ -1535,12 +1627,12 @@ float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl
             sum = (_e127 + _e128);
             float _e130 = vl;
             float wl = (_e130 * w_r);
-            float b_7 = ((wl >= 2.0) ? (1.0 + wl) : 7.47);
+            float b_8 = ((wl >= 2.0) ? (1.0 + wl) : 7.47);
             float _e138 = last;
             float _e140 = sum;
             float _e142 = vl;
             float _e144 = vl;
-            if (((_e138 * b_7) <= (((stop * _e140) * _e142) * _e144))) {
+            if (((_e138 * b_8) <= (((stop * _e140) * _e142) * _e144))) {
                 break;
             }
         }
@@ -1672,17 +1764,17 @@ float filter_gaussian_ggx_quad_hermite_weight(uint k_9)
 
 float filter_gaussian_ggx_quad_h_of(float y_2)
 {
-    float r_50 = (float)0;
+    float r_52 = (float)0;
 
-    float a_23 = abs(y_2);
-    if ((a_23 > 1.0)) {
-        float i_12 = (1.0 / a_23);
-        r_50 = (a_23 * sqrt((1.0 + (i_12 * i_12))));
+    float a_26 = abs(y_2);
+    if ((a_26 > 1.0)) {
+        float i_12 = (1.0 / a_26);
+        r_52 = (a_26 * sqrt((1.0 + (i_12 * i_12))));
     } else {
-        r_50 = sqrt((1.0 + (y_2 * y_2)));
+        r_52 = sqrt((1.0 + (y_2 * y_2)));
     }
-    float _e16 = r_50;
-    float _e18 = r_50;
+    float _e16 = r_52;
+    float _e18 = r_52;
     return ((y_2 >= 0.0) ? (1.0 / (_e18 + y_2)) : (_e16 - y_2));
 }
 
@@ -1848,11 +1940,11 @@ sampling_Warp Constructsampling_Warp(float arg0, float arg1, float arg2) {
     return ret;
 }
 
-sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_51)
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_53)
 {
-    const float3 _e1 = ndf_roughness_matrix_clamped_entries(r_51);
+    const float3 _e1 = ndf_roughness_matrix_clamped_entries(r_53);
     float l_xx = sqrt(_e1.x);
-    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_51.sqrt_det / l_xx));
+    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_53.sqrt_det / l_xx));
     return sampling_warp_1;
 }
 
@@ -1878,9 +1970,9 @@ float sampling_clamp_unit(float u_1)
     return ((u_1 >= 0.0) ? min(u_1, sampling_ONE_MINUS_EPS) : 0.0);
 }
 
-float3 sampling_reflect(float3 wo, float3 m_18)
+float3 sampling_reflect(float3 wo, float3 m_19)
 {
-    return (((2.0 * dot(wo, m_18)) * m_18) - wo);
+    return (((2.0 * dot(wo, m_19)) * m_19) - wo);
 }
 
 float3 sampling_ggx_standard_visible(float3 wi, float2 u_2)
@@ -1891,14 +1983,14 @@ float3 sampling_ggx_standard_visible(float3 wi, float2 u_2)
     return (float3((sin_theta_1 * _e3), z_4) + wi);
 }
 
-float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_52, float3 wo_1, float2 u_3)
+float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_54, float3 wo_1, float2 u_3)
 {
     bool local_13 = (bool)0;
 
     if (!((wo_1.z > 0.0))) {
         return (0.0).xxx;
     }
-    const sampling_Warp _e9 = sampling_warp(r_52);
+    const sampling_Warp _e9 = sampling_warp(r_54);
     const float3 _e10 = sampling_normalize_scaled(wo_1);
     const float3 _e11 = sampling_stretch(_e9, _e10);
     const float3 _e12 = sampling_normalize_scaled(_e11);
@@ -1922,29 +2014,29 @@ float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_52,
     return ((_e36.z > 0.0) ? _e36 : (0.0).xxx);
 }
 
-float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_53, float2 u_4)
+float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_55, float2 u_4)
 {
     const float _e3 = sampling_clamp_unit(u_4.x);
     const float _e5 = sampling_clamp_unit(u_4.y);
     const float2 _e6 = math_sincos_turns(_e5);
     float3 n_6 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
-    const sampling_Warp _e13 = sampling_warp(r_53);
+    const sampling_Warp _e13 = sampling_warp(r_55);
     const float3 _e14 = sampling_unstretch(_e13, n_6);
     return _e14;
 }
 
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_54, float3 m_19)
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_56, float3 m_20)
 {
-    const float _e2 = ndf_ggx_d_matrix(r_54, m_19);
-    return ((m_19.z > 0.0) ? (_e2 * m_19.z) : 0.0);
+    const float _e2 = ndf_ggx_d_matrix(r_56, m_20);
+    return ((m_20.z > 0.0) ? (_e2 * m_20.z) : 0.0);
 }
 
-float sampling_visible_normal_pdf_of(float3 wo_2, float3 m_20, float d, float lambda)
+float sampling_visible_normal_pdf_of(float3 wo_2, float3 m_21, float d, float lambda)
 {
     bool local_14 = (bool)0;
     bool local_15 = (bool)0;
 
-    float wom = dot(wo_2, m_20);
+    float wom = dot(wo_2, m_21);
     float v_14 = ((wom * d) / (wo_2.z * (1.0 + lambda)));
     if ((wo_2.z > 0.0)) {
         local_14 = (wom > 0.0);
@@ -1961,22 +2053,22 @@ float sampling_visible_normal_pdf_of(float3 wo_2, float3 m_20, float d, float la
     return (_e25 ? v_14 : 0.0);
 }
 
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_55, float3 wo_3, float3 m_21)
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_57, float3 wo_3, float3 m_22)
 {
-    const float _e3 = ndf_ggx_d_matrix(r_55, m_21);
-    const float _e4 = ndf_ggx_lambda_matrix(r_55, wo_3);
-    const float _e5 = sampling_visible_normal_pdf_of(wo_3, m_21, _e3, _e4);
+    const float _e3 = ndf_ggx_d_matrix(r_57, m_22);
+    const float _e4 = ndf_ggx_lambda_matrix(r_57, wo_3);
+    const float _e5 = sampling_visible_normal_pdf_of(wo_3, m_22, _e3, _e4);
     return _e5;
 }
 
-float sampling_reflection_pdf_of(float3 o_6, float3 m_22, float d_1, float lambda_1)
+float sampling_reflection_pdf_of(float3 o_6, float3 m_23, float d_1, float lambda_1)
 {
     bool local_16 = (bool)0;
     bool local_17 = (bool)0;
 
     float v_15 = (d_1 / ((4.0 * o_6.z) * (1.0 + lambda_1)));
     if ((o_6.z > 0.0)) {
-        local_16 = (dot(o_6, m_22) > 0.0);
+        local_16 = (dot(o_6, m_23) > 0.0);
     } else {
         local_16 = false;
     }
@@ -1990,16 +2082,16 @@ float sampling_reflection_pdf_of(float3 o_6, float3 m_22, float d_1, float lambd
     return (_e26 ? v_15 : 0.0);
 }
 
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_56, float3 wo_4, float3 m_23)
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_58, float3 wo_4, float3 m_24)
 {
     const float3 _e3 = sampling_normalize_scaled(wo_4);
-    const float _e4 = ndf_ggx_d_matrix(r_56, m_23);
-    const float _e5 = ndf_ggx_lambda_matrix(r_56, _e3);
-    const float _e6 = sampling_reflection_pdf_of(_e3, m_23, _e4, _e5);
+    const float _e4 = ndf_ggx_d_matrix(r_58, m_24);
+    const float _e5 = ndf_ggx_lambda_matrix(r_58, _e3);
+    const float _e6 = sampling_reflection_pdf_of(_e3, m_24, _e4, _e5);
     return _e6;
 }
 
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_57, float3 wo_5, float3 wi_1)
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_59, float3 wo_5, float3 wi_1)
 {
     if (!((wo_5.z > 0.0))) {
         return 0.0;
@@ -2007,11 +2099,11 @@ float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_57, float3 
     const float3 _e8 = sampling_normalize_scaled(wo_5);
     const float3 _e9 = sampling_normalize_scaled(wi_1);
     float3 h_23 = (_e8 + _e9);
-    float len = length(h_23);
-    if (!((len > 0.0))) {
+    float len_1 = length(h_23);
+    if (!((len_1 > 0.0))) {
         return 0.0;
     }
-    const float _e18 = sampling_reflection_pdf_from_normal(r_57, wo_5, (h_23 / (len).xxx));
+    const float _e18 = sampling_reflection_pdf_from_normal(r_59, wo_5, (h_23 / (len_1).xxx));
     return _e18;
 }
 
@@ -2038,18 +2130,18 @@ filter_gaussian_ggx_GaussianFilteredGgx Constructfilter_gaussian_ggx_GaussianFil
     return ret;
 }
 
-filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_4)
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance kernel_4)
 {
     float l2_ = 0.0;
     float2 v_5 = float2(1.0, 0.0);
 
     const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
-    float c_18 = a_5.axis.x;
-    float s_27 = a_5.axis.y;
-    float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((s_27 * s_27) * _e2.s_yy)), 0.0);
-    float k22_ = max(((((s_27 * s_27) * _e2.s_xx) - (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
-    float k12_ = ((((c_18 * c_18) - (s_27 * s_27)) * _e2.s_xy) + ((c_18 * s_27) * (_e2.s_yy - _e2.s_xx)));
-    float2 l_6 = a_5.eig_c;
+    float c_18 = a_6.axis.x;
+    float s_29 = a_6.axis.y;
+    float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_29) * _e2.s_xy)) + ((s_29 * s_29) * _e2.s_yy)), 0.0);
+    float k22_ = max(((((s_29 * s_29) * _e2.s_xx) - (((2.0 * c_18) * s_29) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
+    float k12_ = ((((c_18 * c_18) - (s_29 * s_29)) * _e2.s_xy) + ((c_18 * s_29) * (_e2.s_yy - _e2.s_xx)));
+    float2 l_6 = a_6.eig_c;
     float2 isl = ((1.0).xx / sqrt(l_6));
     float c11_ = ((k11_ * isl.x) * isl.x);
     float c22_ = ((k22_ * isl.y) * isl.y);
@@ -2070,33 +2162,33 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roug
     }
     float2 _e102 = v_5;
     float _e105 = l2_;
-    const float _e110 = ndf_roughness_matrix_sqrt_det(a_5);
-    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_1 = Constructfilter_gaussian_ggx_GaussianFilteredGgx(a_5, isl, _e102, float2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2, filter_gaussian_ggx_TOL_FULL);
+    const float _e110 = ndf_roughness_matrix_sqrt_det(a_6);
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_1 = Constructfilter_gaussian_ggx_GaussianFilteredGgx(a_6, isl, _e102, float2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2, filter_gaussian_ggx_TOL_FULL);
     return filter_gaussian_ggx_gaussianfilteredggx_1;
 }
 
-float2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g_1, float2 s_9)
+float2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g_1, float2 s_11)
 {
-    const float2 _e3 = ndf_roughness_matrix_rotate(g_1.a, s_9);
+    const float2 _e3 = ndf_roughness_matrix_rotate(g_1.a, s_11);
     float2 u_18 = (_e3 * g_1.inv_sqrt_l);
     float2 c_19 = float2(((g_1.v.x * u_18.x) + (g_1.v.y * u_18.y)), ((g_1.v.x * u_18.y) - (g_1.v.y * u_18.x)));
     return (c_19 * c_19);
 }
 
-float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_2, float2 s_10)
+float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_2, float2 s_12)
 {
-    const float2 _e2 = filter_gaussian_ggx_whiten(g_2, s_10);
+    const float2 _e2 = filter_gaussian_ggx_whiten(g_2, s_12);
     const float _e12 = filter_gaussian_ggx_quad_j_tol(_e2.x, _e2.y, 1.0, g_2.tl.x, g_2.tl.y, g_2.tol);
     return (g_2.norm * _e12);
 }
 
-float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_3, float3 m_24)
+float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_3, float3 m_25)
 {
-    if (!((m_24.z > 0.0))) {
+    if (!((m_25.z > 0.0))) {
         return 0.0;
     }
-    const float2 _e8 = filter_gaussian_ggx_whiten(g_3, m_24.xy);
-    const float _e20 = filter_gaussian_ggx_quad_j_tol(_e8.x, _e8.y, (m_24.z * m_24.z), g_3.tl.x, g_3.tl.y, g_3.tol);
+    const float2 _e8 = filter_gaussian_ggx_whiten(g_3, m_25.xy);
+    const float _e20 = filter_gaussian_ggx_quad_j_tol(_e8.x, _e8.y, (m_25.z * m_25.z), g_3.tl.x, g_3.tl.y, g_3.tol);
     float v_16 = (g_3.norm * _e20);
     return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
 }
@@ -2128,18 +2220,18 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_4, fl
     return _e61;
 }
 
-float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 w_17, float3 m_25)
+float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 w_17, float3 m_26)
 {
     const float _e3 = filter_gaussian_ggx_lambda(g_5, w_17);
-    const float _e5 = ndf_g1_of(_e3, dot(w_17, m_25));
+    const float _e5 = ndf_g1_of(_e3, dot(w_17, m_26));
     return _e5;
 }
 
-float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_6, float3 i_6, float3 o_7, float3 m_26)
+float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_6, float3 i_6, float3 o_7, float3 m_27)
 {
     const float _e4 = filter_gaussian_ggx_lambda(g_6, i_6);
     const float _e5 = filter_gaussian_ggx_lambda(g_6, o_7);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_26), dot(o_7, m_26));
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_27), dot(o_7, m_27));
     return _e8;
 }
 
@@ -2159,9 +2251,9 @@ float3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx
     const float _e6 = sampling_clamp_unit(u_6.y);
     const float2 _e7 = filter_gaussian_ggx_split(_e6);
     const float2 _e15 = math_sincos_turns(_e7.x);
-    float2 t_15 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
+    float2 t_16 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
     const sampling_Warp _e18 = sampling_warp(g_7.a);
-    float2 gs = float2((_e18.l_xx * t_15.x), ((_e18.l_yx * t_15.x) + (_e18.l_yy * t_15.y)));
+    float2 gs = float2((_e18.l_xx * t_16.x), ((_e18.l_yx * t_16.x) + (_e18.l_yy * t_16.y)));
     const float _e33 = math_ln((1.0 - _e4.y));
     const float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
     float e_5 = ((_e4.y < 0.5) ? _e40 : -(_e33));
@@ -2181,33 +2273,15 @@ float3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx
     float _e94 = ax.y;
     float _e99 = ax.y;
     float _e103 = ax.x;
-    float2 s_28 = (gs + float2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
-    const float3 _e112 = sampling_normalize_scaled(float3(-(s_28), 1.0));
+    float2 s_30 = (gs + float2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
+    const float3 _e112 = sampling_normalize_scaled(float3(-(s_30), 1.0));
     return float3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
 }
 
-float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_8, float3 m_27)
+float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_8, float3 m_28)
 {
-    const float _e2 = filter_gaussian_ggx_d(g_8, m_27);
-    return ((m_27.z > 0.0) ? (_e2 * m_27.z) : 0.0);
-}
-
-kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_28)
-{
-    const kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_28.second.x - (m_28.mean.x * m_28.mean.x)), (m_28.second.y - (m_28.mean.x * m_28.mean.y)), (m_28.second.z - (m_28.mean.y * m_28.mean.y)));
-    const kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
-    const kernel_covariance_Covariance kernel_covariance_covariance_13 = _e26;
-    return kernel_covariance_covariance_13;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments)
-{
-    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
-    const kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
-    const kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_6, _e5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_10 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_10;
+    const float _e2 = filter_gaussian_ggx_d(g_8, m_28);
+    return ((m_28.z > 0.0) ? (_e2 * m_28.z) : 0.0);
 }
 
 footprint_jacobian_Polar Constructfootprint_jacobian_Polar(float3 arg0, float2 arg1) {
@@ -2282,16 +2356,16 @@ float2x2 footprint_jacobian_projected_to_slope(float3 h_in_1)
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
     float3 h_25 = _e1.h;
     float k_29 = (-1.0 / ((h_25.z * h_25.z) * h_25.z));
-    float xy = (h_25.x * h_25.y);
-    return float2x2((float2(((h_25.x * h_25.x) + (h_25.z * h_25.z)), xy) * k_29), (float2(xy, ((h_25.y * h_25.y) + (h_25.z * h_25.z))) * k_29));
+    float xy_3 = (h_25.x * h_25.y);
+    return float2x2((float2(((h_25.x * h_25.x) + (h_25.z * h_25.z)), xy_3) * k_29), (float2(xy_3, ((h_25.y * h_25.y) + (h_25.z * h_25.z))) * k_29));
 }
 
 float2x2 footprint_jacobian_slope_to_projected(float3 h_in_2)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
     float3 h_26 = _e1.h;
-    float xy_1 = (h_26.x * h_26.y);
-    return float2x2((float2(((h_26.y * h_26.y) + (h_26.z * h_26.z)), -(xy_1)) * -(h_26.z)), (float2(-(xy_1), ((h_26.x * h_26.x) + (h_26.z * h_26.z))) * -(h_26.z)));
+    float xy_4 = (h_26.x * h_26.y);
+    return float2x2((float2(((h_26.y * h_26.y) + (h_26.z * h_26.z)), -(xy_4)) * -(h_26.z)), (float2(-(xy_4), ((h_26.x * h_26.x) + (h_26.z * h_26.z))) * -(h_26.z)));
 }
 
 float2x2 footprint_jacobian_sphere_to_slope(float3 h_5)
@@ -2334,9 +2408,9 @@ float2 footprint_jacobian_spherical_to_projected(float3 h_10, float2 e_2)
     return mul(e_2, _e2);
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_58, float sigma_1)
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_60, float sigma_1)
 {
-    float2 w_27 = (r_58.half_extent * (2.0 * sigma_1));
+    float2 w_27 = (r_60.half_extent * (2.0 * sigma_1));
     float2 v_17 = (w_27 * w_27);
     const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_17.x, 0.0, v_17.y, (v_17.x * v_17.y));
     return kernel_covariance_covariance_14;
@@ -2419,28 +2493,28 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     float2 excess = (a_7.eig - lc);
     float2 p_8 = (lc / ((1.0).xx - lc));
     float c_20 = a_7.axis.x;
-    float s_29 = a_7.axis.y;
-    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_29) * s_29));
-    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_29);
-    float p22_1 = (((p_8.x * s_29) * s_29) + ((p_8.y * c_20) * c_20));
-    float k1_3 = max(((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_29) * k_11.s_xy)) + ((s_29 * s_29) * k_11.s_yy)), 0.0);
-    float k2_3 = max(((((s_29 * s_29) * k_11.s_xx) - (((2.0 * c_20) * s_29) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy)), 0.0);
-    float d_4 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
+    float s_31 = a_7.axis.y;
+    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_31) * s_31));
+    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_31);
+    float p22_1 = (((p_8.x * s_31) * s_31) + ((p_8.y * c_20) * c_20));
+    float k1_3 = max(((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_31) * k_11.s_xy)) + ((s_31 * s_31) * k_11.s_yy)), 0.0);
+    float k2_3 = max(((((s_31 * s_31) * k_11.s_xx) - (((2.0 * c_20) * s_31) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy)), 0.0);
+    float d_5 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
     float q11_ = (p11_1 + (2.0 * k_11.s_xx));
     float q12_ = (p12_1 + (2.0 * k_11.s_xy));
     float q22_ = (p22_1 + (2.0 * k_11.s_yy));
-    float den_1 = (((1.0 + q11_) + q22_) + d_4);
-    b11_ = ((q11_ + d_4) / den_1);
+    float den_1 = (((1.0 + q11_) + q22_) + d_5);
+    b11_ = ((q11_ + d_5) / den_1);
     b12_ = (q12_ / den_1);
-    b22_ = ((q22_ + d_4) / den_1);
-    det_3 = (d_4 / den_1);
+    b22_ = ((q22_ + d_5) / den_1);
+    det_3 = (d_5 / den_1);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_29) * s_29)));
+        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_31) * s_31)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_29));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_31));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_29) * s_29) + ((excess.y * c_20) * c_20)));
+        b22_ = (_e130 + (((excess.x * s_31) * s_31) + ((excess.y * c_20) * c_20)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -2453,8 +2527,8 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     float _e151 = b22_;
     float _e154 = det_3;
     const ndf_roughness_matrix_RoughnessMatrix _e157 = ndf_roughness_matrix_from_entries_det(max(_e147, _e146.x), _e150, max(_e151, _e146.z), _e154, max(tau_4, 0.0));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_11 = _e157;
-    return ndf_roughness_matrix_roughnessmatrix_11;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_14 = _e157;
+    return ndf_roughness_matrix_roughnessmatrix_14;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_5)
@@ -2462,8 +2536,8 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_ma
     const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_5);
     const float _e3 = ndf_roughness_matrix_clamped_det(a_8);
     const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_8, _e2, _e3);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e4;
-    return ndf_roughness_matrix_roughnessmatrix_12;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_15 = _e4;
+    return ndf_roughness_matrix_roughnessmatrix_15;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance kernel_6, float det_clamp_2)
@@ -2471,8 +2545,8 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(n
     const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
     const float _e4 = ndf_roughness_matrix_own_det_clamp(a_9);
     const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_9, _e3, max(det_clamp_2, _e4));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_13;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_16 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_16;
 }
 
 footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3)
@@ -2493,7 +2567,7 @@ footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footpr
     return footprint_footprint_7;
 }
 
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_59, float2 alpha_8)
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_61, float2 alpha_8)
 {
     float2 f_1 = (0.0).xx;
 
@@ -2505,7 +2579,7 @@ kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kern
         }
     }
     float lambda_2 = max(rules_1.max_extent, 0.0);
-    float2 h_27 = min(abs(r_59.half_extent), (lambda_2).xx);
+    float2 h_27 = min(abs(r_61.half_extent), (lambda_2).xx);
     float2 _e25 = f_1;
     const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_27, max(_e25, (0.0).xx)));
     return kernel_rect_boundingrect_1;
@@ -2544,8 +2618,8 @@ ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_C
     const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
     const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_11);
     const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_11, _e4, _e5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_14 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_14;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_17 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_17;
 }
 
 ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_6, float sigma_5)
@@ -2553,17 +2627,17 @@ ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_
     const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_5);
     const float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
     const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_15 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_15;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_18 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_18;
 }
 
 float filter_proxy_effective_alpha(float alpha_9, float half_extent)
 {
     float h_28 = abs(half_extent);
     const float _e3 = math_hypot(alpha_9, h_28);
-    float t_16 = ((_e3 > 0.0) ? (h_28 / _e3) : 0.0);
-    const float _e9 = math_atan(t_16);
-    float ratio = ((t_16 > 0.0) ? (t_16 / _e9) : 1.0);
+    float t_17 = ((_e3 > 0.0) ? (h_28 / _e3) : 0.0);
+    const float _e9 = math_atan(t_17);
+    float ratio = ((t_17 > 0.0) ? (t_17 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
 }
 
@@ -2573,19 +2647,19 @@ float filter_proxy_effective_alpha_simple(float alpha_10, float half_extent_1)
     return _e3;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_60, float2 half_extent_2)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_62, float2 half_extent_2)
 {
-    const float _e5 = filter_proxy_effective_alpha(r_60.alpha.x, half_extent_2.x);
-    const float _e9 = filter_proxy_effective_alpha(r_60.alpha.y, half_extent_2.y);
+    const float _e5 = filter_proxy_effective_alpha(r_62.alpha.x, half_extent_2.x);
+    const float _e9 = filter_proxy_effective_alpha(r_62.alpha.y, half_extent_2.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_1 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_1;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_61, float2 half_extent_3)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_63, float2 half_extent_3)
 {
-    const float _e5 = filter_proxy_effective_alpha_simple(r_61.alpha.x, half_extent_3.x);
-    const float _e9 = filter_proxy_effective_alpha_simple(r_61.alpha.y, half_extent_3.y);
+    const float _e5 = filter_proxy_effective_alpha_simple(r_63.alpha.x, half_extent_3.x);
+    const float _e9 = filter_proxy_effective_alpha_simple(r_63.alpha.y, half_extent_3.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_2 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_2;
@@ -2635,8 +2709,8 @@ float filter_rect_gl_weight(uint n_2, uint k_14)
 
 float filter_rect_f(float u_7, float v_6)
 {
-    float t_17 = ((1.0 + (u_7 * u_7)) + (v_6 * v_6));
-    return (1.0 / (t_17 * t_17));
+    float t_18 = ((1.0 + (u_7 * u_7)) + (v_6 * v_6));
+    return (1.0 / (t_18 * t_18));
 }
 
 float filter_rect_gl_mean(uint n_3, float u_8, float c_6, float h_12)
@@ -2662,12 +2736,12 @@ float filter_rect_gl_mean(uint n_3, float u_8, float c_6, float h_12)
         {
             uint _e12 = k_15;
             const float _e13 = filter_rect_gl_node(n_3, _e12);
-            float a_24 = (h_12 * _e13);
+            float a_27 = (h_12 * _e13);
             float _e15 = acc_2;
             uint _e16 = k_15;
             const float _e17 = filter_rect_gl_weight(n_3, _e16);
-            const float _e19 = filter_rect_f(u_8, (c_6 - a_24));
-            const float _e21 = filter_rect_f(u_8, (c_6 + a_24));
+            const float _e19 = filter_rect_f(u_8, (c_6 - a_27));
+            const float _e21 = filter_rect_f(u_8, (c_6 + a_27));
             acc_2 = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -2687,16 +2761,16 @@ float filter_rect_atan2_upper(float y_3, float x_6)
 
 float filter_rect_delta_minus_sin(float d_2, float sin_d)
 {
-    float s_11 = (float)0;
+    float s_13 = (float)0;
 
     if ((d_2 < 1.0)) {
         float d2_1 = (d_2 * d_2);
-        s_11 = (1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909))));
-        float _e17 = s_11;
-        s_11 = (1.0 - ((d2_1 * 0.023809524) * _e17));
-        float _e23 = s_11;
-        s_11 = (1.0 - ((d2_1 * 0.05) * _e23));
-        float _e30 = s_11;
+        s_13 = (1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909))));
+        float _e17 = s_13;
+        s_13 = (1.0 - ((d2_1 * 0.023809524) * _e17));
+        float _e23 = s_13;
+        s_13 = (1.0 - ((d2_1 * 0.05) * _e23));
+        float _e30 = s_13;
         return (((d_2 * d2_1) * 0.16666667) * _e30);
     }
     return (d_2 - sin_d);
@@ -2714,9 +2788,9 @@ float filter_rect_mean_1d(float4 i_7, float c2_)
     const float _e27 = filter_rect_atan2_upper((c_21 * dx), (c2_ + x01_));
     float inv_2 = (1.0 / (((2.0 * c_21) * c2_) * dx));
     if ((x0_ <= 0.0)) {
-        float s_30 = (rsqrt(r02_) * rsqrt(r12_));
-        float q_7 = min(((c2_ - x01_) * s_30), 1.0);
-        return ((_e27 * inv_2) + ((q_7 * s_30) * (0.5 / c2_)));
+        float s_32 = (rsqrt(r02_) * rsqrt(r12_));
+        float q_7 = min(((c2_ - x01_) * s_32), 1.0);
+        return ((_e27 * inv_2) + ((q_7 * s_32) * (0.5 / c2_)));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
     float p2_1 = ((2.0 * r02_) * r12_);
@@ -2747,9 +2821,9 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, float4 other)
         {
             uint _e12 = k_16;
             const float _e13 = filter_rect_gl_node(n_4, _e12);
-            float a_25 = (h_13 * _e13);
-            float x0_1 = (c_7 - a_25);
-            float x1_2 = (c_7 + a_25);
+            float a_28 = (h_13 * _e13);
+            float x0_1 = (c_7 - a_28);
+            float x1_2 = (c_7 + a_28);
             float _e17 = acc_3;
             uint _e18 = k_16;
             const float _e19 = filter_rect_gl_weight(n_4, _e18);
@@ -2765,9 +2839,9 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, float4 other)
 float filter_rect_edge(float u_9, float dv, float v01_)
 {
     float s2_1 = (1.0 + (u_9 * u_9));
-    float s_31 = sqrt(s2_1);
-    const float _e10 = filter_rect_atan2_upper((dv * s_31), (s2_1 + v01_));
-    return ((u_9 / s_31) * _e10);
+    float s_33 = sqrt(s2_1);
+    const float _e10 = filter_rect_atan2_upper((dv * s_33), (s2_1 + v01_));
+    return ((u_9 / s_33) * _e10);
 }
 
 float filter_rect_edges(float4 u_10, float4 v_7)
@@ -2831,9 +2905,9 @@ float filter_rect_polar_near(float x2_, float lo, float hi)
         {
             uint _e16 = k_19;
             const float _e17 = filter_rect_gl8_node(_e16);
-            float d_5 = (h_29 * _e17);
-            float q0_ = (1.0 + ((c_22 - d_5) * (c_22 - d_5)));
-            float q1_ = (1.0 + ((c_22 + d_5) * (c_22 + d_5)));
+            float d_6 = (h_29 * _e17);
+            float q0_ = (1.0 + ((c_22 - d_6) * (c_22 - d_6)));
+            float q1_ = (1.0 + ((c_22 + d_6) * (c_22 + d_6)));
             float _e29 = acc_4;
             uint _e30 = k_19;
             const float _e31 = filter_rect_gl8_weight(_e30);
@@ -2869,9 +2943,9 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
         {
             uint _e16 = k_20;
             const float _e17 = filter_rect_gl8_node(_e16);
-            float d_6 = (h_30 * _e17);
-            float t0_2 = ((c_23 - d_6) * (c_23 - d_6));
-            float t1_4 = ((c_23 + d_6) * (c_23 + d_6));
+            float d_7 = (h_30 * _e17);
+            float t0_2 = ((c_23 - d_7) * (c_23 - d_7));
+            float t1_4 = ((c_23 + d_7) * (c_23 + d_7));
             float _e25 = acc_5;
             uint _e26 = k_20;
             const float _e27 = filter_rect_gl8_weight(_e26);
@@ -2992,12 +3066,12 @@ float filter_rect_mean_f(float4 u_12, float4 v_11)
         {
             uint _e60 = k_21;
             const float _e61 = filter_rect_gl_node(_e14, _e60);
-            float a_26 = (u_12.w * _e61);
+            float a_29 = (u_12.w * _e61);
             float _e63 = acc_6;
             uint _e64 = k_21;
             const float _e65 = filter_rect_gl_weight(_e14, _e64);
-            const float _e70 = filter_rect_gl_mean(_e25, (u_12.z - a_26), v_11.z, v_11.w);
-            const float _e75 = filter_rect_gl_mean(_e25, (u_12.z + a_26), v_11.z, v_11.w);
+            const float _e70 = filter_rect_gl_mean(_e25, (u_12.z - a_29), v_11.z, v_11.w);
+            const float _e75 = filter_rect_gl_mean(_e25, (u_12.z + a_29), v_11.z, v_11.w);
             acc_6 = (_e63 + (_e65 * (_e70 + _e75)));
         }
     }
@@ -3013,7 +3087,7 @@ float4 filter_rect_interval(float c_8, float h_14, float a_15)
     return float4(lo_4, hi_4, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
 }
 
-float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_62, float2 center_, float2 half_extent_4)
+float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_64, float2 center_, float2 half_extent_4)
 {
     bool local_19 = (bool)0;
 
@@ -3024,17 +3098,17 @@ float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_62, float2 c
     }
     bool _e12 = local_19;
     if (_e12) {
-        const float _e13 = ndf_ggx_p22_axis_aligned(r_62, center_);
+        const float _e13 = ndf_ggx_p22_axis_aligned(r_64, center_);
         return _e13;
     }
-    float2 a_27 = r_62.alpha;
-    const float4 _e18 = filter_rect_interval(center_.x, half_extent_4.x, a_27.x);
-    const float4 _e22 = filter_rect_interval(center_.y, half_extent_4.y, a_27.y);
+    float2 a_30 = r_64.alpha;
+    const float4 _e18 = filter_rect_interval(center_.x, half_extent_4.x, a_30.x);
+    const float4 _e22 = filter_rect_interval(center_.y, half_extent_4.y, a_30.y);
     const float _e23 = filter_rect_mean_f(_e18, _e22);
-    return max((_e23 * (math_INV_PI / (a_27.x * a_27.y))), 0.0);
+    return max((_e23 * (math_INV_PI / (a_30.x * a_30.y))), 0.0);
 }
 
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_63, float3 h_15, float2 half_extent_5)
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_65, float3 h_15, float2 half_extent_5)
 {
     bool local_20 = (bool)0;
 
@@ -3048,22 +3122,22 @@ float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_63, float3 h_1
     }
     bool _e17 = local_20;
     if (_e17) {
-        const float _e18 = ndf_ggx_d_axis_aligned(r_63, h_15);
+        const float _e18 = ndf_ggx_d_axis_aligned(r_65, h_15);
         return _e18;
     }
-    const float _e24 = filter_rect_p22_rect(r_63, (-(h_15.xy) / (h_15.z).xx), half_extent_5);
+    const float _e24 = filter_rect_p22_rect(r_65, (-(h_15.xy) / (h_15.z).xx), half_extent_5);
     float z2_7 = (h_15.z * h_15.z);
     return min((_e24 / (z2_7 * z2_7)), math_F32_MAX);
 }
 
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_64, float2 hpp, float3 h_16, float2 footprint)
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_66, float2 hpp, float3 h_16, float2 footprint)
 {
     bool local_21 = (bool)0;
 
-    float a_28 = r_64.alpha.x;
-    float b_8 = r_64.alpha.y;
-    float a_2_ = (a_28 * a_28);
-    float b_2_ = (b_8 * b_8);
+    float a_31 = r_66.alpha.x;
+    float b_9 = r_66.alpha.y;
+    float a_2_ = (a_31 * a_31);
+    float b_2_ = (b_9 * b_9);
     float x1_3 = (hpp.x - footprint.x);
     float x2_4 = (hpp.x + footprint.x);
     float y1_ = (hpp.y - footprint.y);
@@ -3072,14 +3146,14 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_64, fl
     float sx2_ = sqrt(((x2_4 * x2_4) + a_2_));
     float sy1_ = sqrt(((y1_ * y1_) + b_2_));
     float sy2_ = sqrt(((y2_ * y2_) + b_2_));
-    const float _e37 = math_atan(((y1_ * a_28) / (sx1_ * b_8)));
-    const float _e41 = math_atan(((y2_ * a_28) / (sx1_ * b_8)));
-    const float _e48 = math_atan(((y1_ * a_28) / (sx2_ * b_8)));
-    const float _e53 = math_atan(((y2_ * a_28) / (sx2_ * b_8)));
-    const float _e62 = math_atan(((x1_3 * b_8) / (a_28 * sy1_)));
-    const float _e66 = math_atan(((x2_4 * b_8) / (a_28 * sy1_)));
-    const float _e73 = math_atan(((x1_3 * b_8) / (a_28 * sy2_)));
-    const float _e78 = math_atan(((x2_4 * b_8) / (a_28 * sy2_)));
+    const float _e37 = math_atan(((y1_ * a_31) / (sx1_ * b_9)));
+    const float _e41 = math_atan(((y2_ * a_31) / (sx1_ * b_9)));
+    const float _e48 = math_atan(((y1_ * a_31) / (sx2_ * b_9)));
+    const float _e53 = math_atan(((y2_ * a_31) / (sx2_ * b_9)));
+    const float _e62 = math_atan(((x1_3 * b_9) / (a_31 * sy1_)));
+    const float _e66 = math_atan(((x2_4 * b_9) / (a_31 * sy1_)));
+    const float _e73 = math_atan(((x1_3 * b_9) / (a_31 * sy2_)));
+    const float _e78 = math_atan(((x2_4 * b_9) / (a_31 * sy2_)));
     float val = ((((x1_3 * (_e37 - _e41)) / sx1_) + ((x2_4 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
     float den_2 = ((6.2831855 * (x1_3 - x2_4)) * (y1_ - y2_));
     float hz4_ = (((h_16.z * h_16.z) * h_16.z) * h_16.z);
@@ -3093,59 +3167,59 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_64, fl
     return (_e109 ? v_19 : 0.0);
 }
 
-float filter_rect_lambda_rho(float t_1)
+float filter_rect_lambda_rho(float t_2)
 {
-    float a_29 = abs(t_1);
-    if ((a_29 > 1.0)) {
-        float i_15 = (1.0 / a_29);
-        return (a_29 * sqrt((1.0 + (i_15 * i_15))));
+    float a_32 = abs(t_2);
+    if ((a_32 > 1.0)) {
+        float i_15 = (1.0 / a_32);
+        return (a_32 * sqrt((1.0 + (i_15 * i_15))));
     }
-    return sqrt((1.0 + (t_1 * t_1)));
+    return sqrt((1.0 + (t_2 * t_2)));
 }
 
-float filter_rect_lambda_e_neg(float t_2, float r_65)
+float filter_rect_lambda_e_neg(float t_3, float r_67)
 {
-    return ((t_2 >= 0.0) ? (1.0 / (r_65 + t_2)) : (r_65 - t_2));
+    return ((t_3 >= 0.0) ? (1.0 / (r_67 + t_3)) : (r_67 - t_3));
 }
 
-float filter_rect_lambda_asinh_of(float t_3, float r_66)
+float filter_rect_lambda_asinh_of(float t_4, float r_68)
 {
     float v_12 = (float)0;
 
-    float a_30 = abs(t_3);
-    if ((a_30 > 1.0)) {
-        const float _e7 = math_ln((a_30 + r_66));
+    float a_33 = abs(t_4);
+    if ((a_33 > 1.0)) {
+        const float _e7 = math_ln((a_33 + r_68));
         v_12 = _e7;
     } else {
-        const float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_66))));
+        const float _e13 = math_ln_1p((a_33 + ((a_33 * a_33) / (1.0 + r_68))));
         v_12 = _e13;
     }
     float _e14 = v_12;
     float _e15 = v_12;
-    return ((t_3 < 0.0) ? -(_e15) : _e14);
+    return ((t_4 < 0.0) ? -(_e15) : _e14);
 }
 
-float filter_rect_lambda_psi(float t_4)
-{
-    const float _e1 = filter_rect_lambda_rho(t_4);
-    const float _e2 = filter_rect_lambda_e_neg(t_4, _e1);
-    return (0.5 * _e2);
-}
-
-float filter_rect_lambda_psi1_(float t_5)
+float filter_rect_lambda_psi(float t_5)
 {
     const float _e1 = filter_rect_lambda_rho(t_5);
     const float _e2 = filter_rect_lambda_e_neg(t_5, _e1);
-    const float _e3 = filter_rect_lambda_asinh_of(t_5, _e1);
-    return (0.25 * (_e3 - ((0.5 * _e2) * _e2)));
+    return (0.5 * _e2);
 }
 
-float filter_rect_lambda_psi2_(float t_6)
+float filter_rect_lambda_psi1_(float t_6)
 {
     const float _e1 = filter_rect_lambda_rho(t_6);
     const float _e2 = filter_rect_lambda_e_neg(t_6, _e1);
     const float _e3 = filter_rect_lambda_asinh_of(t_6, _e1);
-    return (0.25 * ((((t_6 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336)));
+    return (0.25 * (_e3 - ((0.5 * _e2) * _e2)));
+}
+
+float filter_rect_lambda_psi2_(float t_7)
+{
+    const float _e1 = filter_rect_lambda_rho(t_7);
+    const float _e2 = filter_rect_lambda_e_neg(t_7, _e1);
+    const float _e3 = filter_rect_lambda_asinh_of(t_7, _e1);
+    return (0.25 * ((((t_7 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336)));
 }
 
 float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_18)
@@ -3154,10 +3228,10 @@ float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_18)
     const float _e4 = filter_rect_lambda_rho(t1_);
     const float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     const float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_32 = (_e5 + _e6);
-    float d_7 = ((w_18 * s_32) / (_e3 + _e4));
-    const float _e12 = math_ln_1p((d_7 / _e6));
-    return (0.25 * (_e12 + ((0.5 * d_7) * s_32)));
+    float s_34 = (_e5 + _e6);
+    float d_8 = ((w_18 * s_34) / (_e3 + _e4));
+    const float _e12 = math_ln_1p((d_8 / _e6));
+    return (0.25 * (_e12 + ((0.5 * d_8) * s_34)));
 }
 
 float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_19)
@@ -3166,24 +3240,24 @@ float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_19)
     return (_e3 / w_19);
 }
 
-uint filter_rect_lambda_rule(uint t_7)
+uint filter_rect_lambda_rule(uint t_8)
 {
-    return ((t_7 == filter_rect_TIER_CLOSED) ? 6u : t_7);
+    return ((t_8 == filter_rect_TIER_CLOSED) ? 6u : t_8);
 }
 
-float filter_rect_lambda_mean_psi1_(float t_8, float k_22)
+float filter_rect_lambda_mean_psi1_(float t_9, float k_22)
 {
     float acc_7 = 0.0;
     uint j = 0u;
 
     if ((k_22 == 0.0)) {
-        const float _e4 = filter_rect_lambda_psi1_(t_8);
+        const float _e4 = filter_rect_lambda_psi1_(t_9);
         return _e4;
     }
-    const uint _e9 = filter_rect_tier((k_22 * k_22), (1.0 + (t_8 * t_8)));
+    const uint _e9 = filter_rect_tier((k_22 * k_22), (1.0 + (t_9 * t_9)));
     if ((_e9 == filter_rect_TIER_CLOSED)) {
-        const float _e13 = filter_rect_lambda_psi2_((t_8 + k_22));
-        const float _e15 = filter_rect_lambda_psi2_((t_8 - k_22));
+        const float _e13 = filter_rect_lambda_psi2_((t_9 + k_22));
+        const float _e15 = filter_rect_lambda_psi2_((t_9 - k_22));
         return ((_e13 - _e15) / (2.0 * k_22));
     }
     uint2 loop_bound_11 = uint2(4294967295u, 4294967295u);
@@ -3204,12 +3278,12 @@ float filter_rect_lambda_mean_psi1_(float t_8, float k_22)
         {
             uint _e28 = j;
             const float _e29 = filter_rect_gl_node(_e9, _e28);
-            float a_31 = (k_22 * _e29);
+            float a_34 = (k_22 * _e29);
             float _e31 = acc_7;
             uint _e32 = j;
             const float _e33 = filter_rect_gl_weight(_e9, _e32);
-            const float _e35 = filter_rect_lambda_psi1_((t_8 - a_31));
-            const float _e37 = filter_rect_lambda_psi1_((t_8 + a_31));
+            const float _e35 = filter_rect_lambda_psi1_((t_9 - a_34));
+            const float _e37 = filter_rect_lambda_psi1_((t_9 + a_34));
             acc_7 = (_e31 + (_e33 * (_e35 + _e37)));
         }
     }
@@ -3217,12 +3291,12 @@ float filter_rect_lambda_mean_psi1_(float t_8, float k_22)
     return _e44;
 }
 
-float filter_rect_lambda_gl_psi(uint t_9, float c_9, float h_17)
+float filter_rect_lambda_gl_psi(uint t_10, float c_9, float h_17)
 {
     float acc_8 = 0.0;
     uint j_1 = 0u;
 
-    const uint _e3 = filter_rect_lambda_rule(t_9);
+    const uint _e3 = filter_rect_lambda_rule(t_10);
     uint2 loop_bound_12 = uint2(4294967295u, 4294967295u);
     bool loop_init_12 = true;
     while(true) {
@@ -3241,12 +3315,12 @@ float filter_rect_lambda_gl_psi(uint t_9, float c_9, float h_17)
         {
             uint _e12 = j_1;
             const float _e13 = filter_rect_gl_node(_e3, _e12);
-            float a_32 = (h_17 * _e13);
+            float a_35 = (h_17 * _e13);
             float _e15 = acc_8;
             uint _e16 = j_1;
             const float _e17 = filter_rect_gl_weight(_e3, _e16);
-            const float _e19 = filter_rect_lambda_psi((c_9 - a_32));
-            const float _e21 = filter_rect_lambda_psi((c_9 + a_32));
+            const float _e19 = filter_rect_lambda_psi((c_9 - a_35));
+            const float _e21 = filter_rect_lambda_psi((c_9 + a_35));
             acc_8 = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -3286,12 +3360,12 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
             {
                 uint _e32 = j_2;
                 const float _e33 = filter_rect_gl_node(_e13, _e32);
-                float a_33 = (kl * _e33);
+                float a_36 = (kl * _e33);
                 float _e35 = acc_9;
                 uint _e36 = j_2;
                 const float _e37 = filter_rect_gl_weight(_e13, _e36);
-                const float _e39 = filter_rect_lambda_gl_psi(_e23, (m_29 - a_33), ks);
-                const float _e41 = filter_rect_lambda_gl_psi(_e23, (m_29 + a_33), ks);
+                const float _e39 = filter_rect_lambda_gl_psi(_e23, (m_29 - a_36), ks);
+                const float _e41 = filter_rect_lambda_gl_psi(_e23, (m_29 + a_36), ks);
                 acc_9 = (_e35 + (_e37 * (_e39 + _e41)));
             }
         }
@@ -3341,7 +3415,7 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
     return ((_e89 - _e90) / w_28);
 }
 
-float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67, float2 half_extent_6, float3 w_in)
+float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_69, float2 half_extent_6, float3 w_in)
 {
     float3 w_20 = (float3)0;
     bool local_22 = (bool)0;
@@ -3377,7 +3451,7 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    float2 alpha_12 = r_67.alpha;
+    float2 alpha_12 = r_69.alpha;
     float2 ha = min(abs(half_extent_6), (alpha_12 * filter_rect_lambda_BIG_K));
     float _e63 = w_20.x;
     float ux = (abs(_e63) / _e46);
@@ -3396,7 +3470,7 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67
     bool _e92 = local_24;
     if (_e92) {
         float3 _e93 = w_20;
-        const float _e94 = ndf_ggx_lambda_axis_aligned(r_67, _e93);
+        const float _e94 = ndf_ggx_lambda_axis_aligned(r_69, _e93);
         return _e94;
     }
     float mm = ((wz / _e46) / _e74);
@@ -3416,8 +3490,8 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67
 ndf_roughness_matrix_RoughnessMatrix filter_method_gaussian_lobe(filter_method_Gaussian method, ndf_roughness_matrix_RoughnessMatrix material, footprint_Footprint fp_7)
 {
     const ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_gaussian(method.clamps, material, fp_7, method.sigma);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_16 = _e5;
-    return ndf_roughness_matrix_roughnessmatrix_16;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_19 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_19;
 }
 
 float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, float3 m_30)
@@ -3453,8 +3527,8 @@ float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, n
 ndf_roughness_matrix_RoughnessMatrix filter_method_projected_lobe(filter_method_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_12)
 {
     const ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_17 = _e5;
-    return ndf_roughness_matrix_roughnessmatrix_17;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_20 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_20;
 }
 
 float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, float3 m_33)
@@ -3480,35 +3554,35 @@ filter_method_RectFilteredGgx filter_method_rect_lobe(filter_method_Rect method_
     return filter_method_rectfilteredggx;
 }
 
-float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe, float2 s_12)
+float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe_1, float2 s_14)
 {
-    const float _e4 = filter_rect_p22_rect(lobe.roughness, s_12, lobe.half_extent);
+    const float _e4 = filter_rect_p22_rect(lobe_1.roughness, s_14, lobe_1.half_extent);
     return _e4;
 }
 
-float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_1, float3 m_34)
+float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_2, float3 m_34)
 {
-    const float _e4 = filter_rect_d_rect(lobe_1.roughness, m_34, lobe_1.half_extent);
+    const float _e4 = filter_rect_d_rect(lobe_2.roughness, m_34, lobe_2.half_extent);
     return _e4;
 }
 
-float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_2, float3 w_21)
+float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_3, float3 w_21)
 {
-    const float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_21);
+    const float _e4 = filter_rect_lambda_lambda_rect(lobe_3.roughness, lobe_3.half_extent, w_21);
     return _e4;
 }
 
-float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_3, float3 w_22, float3 m_35)
+float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_4, float3 w_22, float3 m_35)
 {
-    const float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_22);
+    const float _e3 = filter_method_lambda_rect_filtered(lobe_4, w_22);
     const float _e5 = ndf_g1_of(_e3, dot(w_22, m_35));
     return _e5;
 }
 
-float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_4, float3 i_9, float3 o_8, float3 m_36)
+float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_5, float3 i_9, float3 o_8, float3 m_36)
 {
-    const float _e4 = filter_method_lambda_rect_filtered(lobe_4, i_9);
-    const float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_8);
+    const float _e4 = filter_method_lambda_rect_filtered(lobe_5, i_9);
+    const float _e5 = filter_method_lambda_rect_filtered(lobe_5, o_8);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_36), dot(o_8, m_36));
     return _e8;
 }
@@ -3535,6 +3609,70 @@ float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axi
     const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
     const float _e5 = ndf_ggx_d_axis_aligned(_e4, m_38);
     return _e5;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_lean_widened(ndf_roughness_matrix_RoughnessMatrix a_16, filter_lean_LeanMoments moments_3)
+{
+    const kernel_covariance_Covariance _e2 = filter_lean_covariance(moments_3);
+    const ndf_roughness_matrix_RoughnessMatrix _e3 = filter_gaussian_gaussian(a_16, _e2);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_21 = _e3;
+    return ndf_roughness_matrix_roughnessmatrix_21;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_lean_widened_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_70, filter_lean_LeanMoments moments_4)
+{
+    const kernel_covariance_Covariance _e2 = filter_lean_covariance(moments_4);
+    float2 a_37 = r_70.alpha;
+    const ndf_roughness_axis_aligned_AxisAligned _e12 = ndf_roughness_axis_aligned_from_alpha(sqrt(((a_37 * a_37) + (2.0 * float2(_e2.s_xx, _e2.s_yy)))));
+    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_4 = _e12;
+    return ndf_roughness_axis_aligned_axisaligned_4;
+}
+
+float3 filter_lean_nested_lean_mean_normal(filter_lean_LeanMoments moments_5)
+{
+    return normalize(float3(-(moments_5.mean), 1.0));
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_gaussian_lobe(filter_method_Gaussian m_39, ndf_roughness_matrix_RoughnessMatrix material_11, footprint_Footprint fp_18, filter_lean_LeanMoments moments_6)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_lean_nested_lean_widened(material_11, moments_6);
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_method_gaussian_lobe(m_39, _e4, fp_18);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_22 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_22;
+}
+
+filter_gaussian_ggx_GaussianFilteredGgx filter_lean_nested_exact_gaussian_lobe(filter_method_ExactGaussian m_40, ndf_roughness_matrix_RoughnessMatrix material_12, footprint_Footprint fp_19, filter_lean_LeanMoments moments_7)
+{
+    const kernel_covariance_Covariance _e6 = kernel_clamp_pixel_kernel(m_40.clamps, fp_19, m_40.sigma);
+    const kernel_covariance_Covariance _e7 = filter_lean_covariance(moments_7);
+    const kernel_covariance_Covariance _e8 = kernel_covariance_add(_e6, _e7);
+    const filter_gaussian_ggx_GaussianFilteredGgx _e9 = filter_gaussian_ggx_from_kernel(material_12, _e8);
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_3 = _e9;
+    return filter_gaussian_ggx_gaussianfilteredggx_3;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_projected_lobe(filter_method_Projected m_41, ndf_roughness_matrix_RoughnessMatrix material_13, footprint_Footprint fp_20, filter_lean_LeanMoments moments_8)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_lean_nested_lean_widened(material_13, moments_8);
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_method_projected_lobe(m_41, _e4, fp_20);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_23 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_23;
+}
+
+filter_method_RectFilteredGgx filter_lean_nested_rect_lobe(filter_method_Rect m_42, ndf_roughness_axis_aligned_AxisAligned material_14, footprint_Footprint fp_21, filter_lean_LeanMoments moments_9)
+{
+    const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_lean_nested_lean_widened_axis_aligned(material_14, moments_9);
+    const filter_method_RectFilteredGgx _e5 = filter_method_rect_lobe(m_42, _e4, fp_21);
+    const filter_method_RectFilteredGgx filter_method_rectfilteredggx_1 = _e5;
+    return filter_method_rectfilteredggx_1;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_proxy_lobe(filter_method_Proxy m_43, ndf_roughness_axis_aligned_AxisAligned material_15, footprint_Footprint fp_22, filter_lean_LeanMoments moments_10)
+{
+    const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_lean_nested_lean_widened_axis_aligned(material_15, moments_10);
+    const ndf_roughness_axis_aligned_AxisAligned _e5 = filter_method_proxy_lobe(m_43, _e4, fp_22);
+    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_5 = _e5;
+    return ndf_roughness_axis_aligned_axisaligned_5;
 }
 
 filter_deferred_KernelConvention filter_presets_preset(uint i_10)
@@ -3597,45 +3735,45 @@ float filter_rect_sample_half(float h_18, float alpha_11)
     return ((v_20 >= 0.0) ? min(v_20, (filter_rect_BIG * alpha_11)) : 0.0);
 }
 
-float3 filter_rect_sample_normal_of_slope(float2 s_13)
+float3 filter_rect_sample_normal_of_slope(float2 s_15)
 {
-    const float3 _e4 = sampling_normalize_scaled(float3(-(s_13), 1.0));
+    const float3 _e4 = sampling_normalize_scaled(float3(-(s_15), 1.0));
     return float3(_e4.xy, max(_e4.z, math_F32_MIN_POSITIVE));
 }
 
-float3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_68, float2 half_extent_7, float2 u_13, float2 u_box)
+float3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_71, float2 half_extent_7, float2 u_13, float2 u_box)
 {
-    float2 a_34 = r_68.alpha;
-    const float _e7 = filter_rect_sample_half(half_extent_7.x, a_34.x);
-    const float _e10 = filter_rect_sample_half(half_extent_7.y, a_34.y);
+    float2 a_38 = r_71.alpha;
+    const float _e7 = filter_rect_sample_half(half_extent_7.x, a_38.x);
+    const float _e10 = filter_rect_sample_half(half_extent_7.y, a_38.y);
     float2 h_33 = float2(_e7, _e10);
     const float _e13 = sampling_clamp_unit(u_13.x);
     const float _e15 = sampling_clamp_unit(u_13.y);
     const float2 _e16 = math_sincos_turns(_e15);
     float rad_1 = sqrt((_e13 / (1.0 - _e13)));
-    float2 g_10 = (-(a_34) * (rad_1 * _e16));
+    float2 g_10 = (-(a_38) * (rad_1 * _e16));
     const float _e25 = sampling_clamp_unit(u_box.x);
     const float _e27 = sampling_clamp_unit(u_box.y);
-    float2 b_9 = float2(_e25, _e27);
-    float2 d_8 = (((2.0 * b_9) - (1.0).xx) * h_33);
-    const float3 _e36 = filter_rect_sample_normal_of_slope((g_10 + d_8));
+    float2 b_10 = float2(_e25, _e27);
+    float2 d_9 = (((2.0 * b_10) - (1.0).xx) * h_33);
+    const float3 _e36 = filter_rect_sample_normal_of_slope((g_10 + d_9));
     return _e36;
 }
 
-float filter_rect_sample_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_69, float2 half_extent_8, float3 m_39)
+float filter_rect_sample_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_72, float2 half_extent_8, float3 m_44)
 {
-    const float _e3 = filter_rect_d_rect(r_69, m_39, half_extent_8);
-    return ((m_39.z > 0.0) ? (_e3 * m_39.z) : 0.0);
+    const float _e3 = filter_rect_d_rect(r_72, m_44, half_extent_8);
+    return ((m_44.z > 0.0) ? (_e3 * m_44.z) : 0.0);
 }
 
-float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_70, float2 half_extent_9, float3 wo_6, float3 m_40)
+float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_73, float2 half_extent_9, float3 wo_6, float3 m_45)
 {
     bool local_25 = (bool)0;
     bool local_26 = (bool)0;
 
-    float wom_1 = dot(wo_6, m_40);
+    float wom_1 = dot(wo_6, m_45);
     if (!(!((wo_6.z > 0.0)))) {
-        local_25 = !((m_40.z > 0.0));
+        local_25 = !((m_45.z > 0.0));
     } else {
         local_25 = true;
     }
@@ -3649,8 +3787,8 @@ float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_Axis
     if (_e25) {
         return 0.0;
     }
-    const float _e27 = filter_rect_d_rect(r_70, m_40, half_extent_9);
-    const float _e30 = filter_rect_lambda_lambda_rect(r_70, half_extent_9, wo_6);
+    const float _e27 = filter_rect_d_rect(r_73, m_45, half_extent_9);
+    const float _e30 = filter_rect_lambda_lambda_rect(r_73, half_extent_9, wo_6);
     float v_21 = ((wom_1 * _e27) / (wo_6.z * (1.0 + _e30)));
     return ((v_21 <= math_F32_MAX) ? v_21 : 0.0);
 }
@@ -3661,10 +3799,10 @@ float2 footprint_slope_slope_from_sphere(float3 h_19)
     return clamp((-(h_19.xy) / (z_7).xx), (-3.4028235e38).xx, (3.4028235e38).xx);
 }
 
-float3 footprint_slope_sphere_from_slope(float2 s_14)
+float3 footprint_slope_sphere_from_slope(float2 s_16)
 {
-    float k_31 = max(max(abs(s_14.x), abs(s_14.y)), 1.0);
-    float3 v_22 = float3((-(s_14) / (k_31).xx), (1.0 / k_31));
+    float k_31 = max(max(abs(s_16.x), abs(s_16.y)), 1.0);
+    float3 v_22 = float3((-(s_16) / (k_31).xx), (1.0 / k_31));
     return (v_22 / (length(v_22)).xxx);
 }
 
@@ -3690,9 +3828,9 @@ float2 footprint_slope_slope_from_projected(float2 p_2)
     return _e2;
 }
 
-float2 footprint_slope_projected_from_slope(float2 s_15)
+float2 footprint_slope_projected_from_slope(float2 s_17)
 {
-    const float3 _e1 = footprint_slope_sphere_from_slope(s_15);
+    const float3 _e1 = footprint_slope_sphere_from_slope(s_17);
     const float2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
 }
@@ -3701,51 +3839,51 @@ float sampling_beckmann_erfcx(float z_1)
 {
     float p_3 = 0.17087276;
 
-    float t_18 = (1.0 / (1.0 + (0.5 * z_1)));
+    float t_19 = (1.0 / (1.0 + (0.5 * z_1)));
     float _e9 = p_3;
-    p_3 = ((_e9 * t_18) - 0.82215226);
+    p_3 = ((_e9 * t_19) - 0.82215226);
     float _e13 = p_3;
-    p_3 = ((_e13 * t_18) + 1.4885159);
+    p_3 = ((_e13 * t_19) + 1.4885159);
     float _e17 = p_3;
-    p_3 = ((_e17 * t_18) - 1.135204);
+    p_3 = ((_e17 * t_19) - 1.135204);
     float _e21 = p_3;
-    p_3 = ((_e21 * t_18) + 0.27886808);
+    p_3 = ((_e21 * t_19) + 0.27886808);
     float _e25 = p_3;
-    p_3 = ((_e25 * t_18) - 0.18628806);
+    p_3 = ((_e25 * t_19) - 0.18628806);
     float _e29 = p_3;
-    p_3 = ((_e29 * t_18) + 0.09678418);
+    p_3 = ((_e29 * t_19) + 0.09678418);
     float _e33 = p_3;
-    p_3 = ((_e33 * t_18) + 0.37409195);
+    p_3 = ((_e33 * t_19) + 0.37409195);
     float _e37 = p_3;
-    p_3 = ((_e37 * t_18) + 1.0000237);
+    p_3 = ((_e37 * t_19) + 1.0000237);
     float _e41 = p_3;
-    p_3 = ((_e41 * t_18) - 1.2655122);
+    p_3 = ((_e41 * t_19) - 1.2655122);
     float _e45 = p_3;
     const float _e46 = math_exp(_e45);
-    return (t_18 * _e46);
+    return (t_19 * _e46);
 }
 
-float sampling_beckmann_upper_tail(float x_8, float c_10, float s_16)
+float sampling_beckmann_upper_tail(float x_8, float c_10, float s_18)
 {
     const float _e5 = math_exp((-(x_8) * x_8));
     const float _e8 = sampling_beckmann_erfcx(x_8);
-    return ((0.5 * _e5) * ((c_10 * _e8) - (s_16 * sampling_beckmann_INV_SQRT_PI)));
+    return ((0.5 * _e5) * ((c_10 * _e8) - (s_18 * sampling_beckmann_INV_SQRT_PI)));
 }
 
-float2 sampling_beckmann_cdf_terms(float x_9, float c_11, float s_17)
+float2 sampling_beckmann_cdf_terms(float x_9, float c_11, float s_19)
 {
     float k_23 = (float)0;
 
     const float _e5 = math_exp((-(x_9) * x_9));
     if ((x_9 <= 0.0)) {
         const float _e12 = sampling_beckmann_erfcx(-(x_9));
-        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_17 * sampling_beckmann_INV_SQRT_PI)));
+        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_19 * sampling_beckmann_INV_SQRT_PI)));
     } else {
-        const float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_17);
+        const float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_19);
         k_23 = (c_11 - _e18);
     }
     float _e20 = k_23;
-    return float2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_17 * x_9))));
+    return float2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_19 * x_9))));
 }
 
 float sampling_beckmann_erfinv_guess(float x_10)
@@ -3753,11 +3891,11 @@ float sampling_beckmann_erfinv_guess(float x_10)
     float w_23 = (float)0;
     float p_4 = (float)0;
 
-    float a_35 = ((1.0 - x_10) * (1.0 + x_10));
-    if (!((a_35 > 0.0))) {
+    float a_39 = ((1.0 - x_10) * (1.0 + x_10));
+    if (!((a_39 > 0.0))) {
         return 0.0;
     }
-    const float _e10 = math_ln(a_35);
+    const float _e10 = math_ln(a_39);
     w_23 = -(_e10);
     float _e14 = w_23;
     if ((_e14 < 5.0)) {
@@ -3821,7 +3959,7 @@ float sampling_beckmann_erfinv_guess(float x_10)
     return (_e106 * x_10);
 }
 
-float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u_14)
+float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_20, float u_14)
 {
     float lo_3 = -9.0;
     float hi_2 = (float)0;
@@ -3833,9 +3971,9 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
     bool local_28 = (bool)0;
     bool local_29 = (bool)0;
 
-    float hi0_ = ((s_18 > 0.0) ? min((c_12 / s_18), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
+    float hi0_ = ((s_20 > 0.0) ? min((c_12 / s_20), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
     hi_2 = hi0_;
-    const float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_18);
+    const float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_20);
     float norm_1 = _e13.x;
     bool upper = (u_14 > 0.5);
     float goal = ((upper ? (1.0 - u_14) : u_14) * norm_1);
@@ -3843,7 +3981,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
         float _e24 = lo_3;
         return _e24;
     }
-    const float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_18);
+    const float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_20);
     float tol_4 = (4.7683716e-7 * goal);
     const float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_14) - 1.0));
     float _e35 = hi_2;
@@ -3876,11 +4014,11 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
         }
         {
             float _e59 = x_11;
-            const float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_18);
+            const float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_20);
             g_9 = (_e60.x - goal);
             if (upper) {
                 float _e66 = x_11;
-                const float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_18);
+                const float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_20);
                 float _e69 = x_11;
                 g_9 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
             }
@@ -3950,7 +4088,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
 float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_15)
 {
     float c_13 = 1.0;
-    float s_19 = 0.0;
+    float s_21 = 0.0;
     bool local_30 = (bool)0;
     bool local_31 = (bool)0;
 
@@ -3969,16 +4107,16 @@ float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta,
     if (_e21) {
         const float _e22 = math_hypot(cos_theta, sin_theta);
         c_13 = (cos_theta / _e22);
-        s_19 = (sin_theta / _e22);
+        s_21 = (sin_theta / _e22);
     }
     float _e25 = c_13;
-    float _e26 = s_19;
+    float _e26 = s_21;
     const float _e27 = sampling_clamp_unit(u_15);
     const float _e28 = sampling_beckmann_invert_visible_slope_cdf(_e25, _e26, _e27);
     return _e28;
 }
 
-float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_71, float2 u_16)
+float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_74, float2 u_16)
 {
     const float _e3 = sampling_clamp_unit(u_16.x);
     const float _e5 = sampling_clamp_unit(u_16.y);
@@ -3987,19 +4125,19 @@ float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_71
     const float _e14 = math_ln_1p((_e3 / (1.0 - _e3)));
     float e_7 = ((_e3 < 0.5) ? _e14 : -(_e9));
     float3 n_7 = float3((sqrt(e_7) * _e6), 1.0);
-    const sampling_Warp _e22 = sampling_warp(r_71);
+    const sampling_Warp _e22 = sampling_warp(r_74);
     const float3 _e23 = sampling_unstretch(_e22, n_7);
     return _e23;
 }
 
-float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_72, float3 wo_7, float2 u_17)
+float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_75, float3 wo_7, float2 u_17)
 {
     bool local_32 = (bool)0;
 
     if (!((wo_7.z > 0.0))) {
         return (0.0).xxx;
     }
-    const sampling_Warp _e9 = sampling_warp(r_72);
+    const sampling_Warp _e9 = sampling_warp(r_75);
     const float3 _e10 = sampling_normalize_scaled(wo_7);
     const float3 _e11 = sampling_stretch(_e9, _e10);
     const float3 _e12 = sampling_normalize_scaled(_e11);
@@ -4012,8 +4150,8 @@ float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMat
     const float _e34 = sampling_beckmann_invert_visible_slope_cdf(_e12.z, _e21, _e33);
     const float _e38 = sampling_clamp_unit(u_17.y);
     const float _e39 = sampling_beckmann_invert_visible_slope_cdf(1.0, 0.0, _e38);
-    float2 t_19 = float2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
-    const float3 _e54 = sampling_unstretch(_e9, float3(-(t_19), 1.0));
+    float2 t_20 = float2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
+    const float3 _e54 = sampling_unstretch(_e9, float3(-(t_20), 1.0));
     if ((_e54.z > 0.0)) {
         local_32 = (dot(wo_7, _e54) > 0.0);
     } else {
@@ -4027,26 +4165,26 @@ float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMat
     return ((_e65.z > 0.0) ? _e65 : (0.0).xxx);
 }
 
-float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_73, float3 m_41)
+float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_76, float3 m_46)
 {
-    const float _e2 = ndf_beckmann_d_matrix(r_73, m_41);
-    return ((m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0);
+    const float _e2 = ndf_beckmann_d_matrix(r_76, m_46);
+    return ((m_46.z > 0.0) ? (_e2 * m_46.z) : 0.0);
 }
 
-float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_74, float3 wo_8, float3 m_42)
+float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_77, float3 wo_8, float3 m_47)
 {
-    const float _e3 = ndf_beckmann_d_matrix(r_74, m_42);
-    const float _e4 = ndf_beckmann_lambda_matrix(r_74, wo_8);
-    const float _e5 = sampling_visible_normal_pdf_of(wo_8, m_42, _e3, _e4);
+    const float _e3 = ndf_beckmann_d_matrix(r_77, m_47);
+    const float _e4 = ndf_beckmann_lambda_matrix(r_77, wo_8);
+    const float _e5 = sampling_visible_normal_pdf_of(wo_8, m_47, _e3, _e4);
     return _e5;
 }
 
-float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_75, float3 wo_9, float3 m_43)
+float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_78, float3 wo_9, float3 m_48)
 {
     const float3 _e3 = sampling_normalize_scaled(wo_9);
-    const float _e4 = ndf_beckmann_d_matrix(r_75, m_43);
-    const float _e5 = ndf_beckmann_lambda_matrix(r_75, _e3);
-    const float _e6 = sampling_reflection_pdf_of(_e3, m_43, _e4, _e5);
+    const float _e4 = ndf_beckmann_d_matrix(r_78, m_48);
+    const float _e5 = ndf_beckmann_lambda_matrix(r_78, _e3);
+    const float _e6 = sampling_reflection_pdf_of(_e3, m_48, _e4, _e5);
     return _e6;
 }
 

@@ -168,23 +168,188 @@ fn math_ln_1p(x: f32) -> f32 {
     return math_ln(1.0 + x);
 }
 
-// ---- filtered_ndf::ndf::roughness (shaders/ndf/roughness/mod.wgsl) ----
-// The roughness forms (`src/.../roughness/`): a roughness is the matrix `A` of TK19
-// supplement section 1 (Heitz 2014 section 5.4). Both NDFs depend on a slope `s` only through
-// `s^T A^-1 s` and `sqrt(det A)`, and Smith's `Lambda(w)` only through `w_xy^T A w_xy`: each
-// form (`isotropic`, `axis_aligned`, `matrix`) provides those three numbers as
-// `inv_quadratic`, `quadratic` and `sqrt_det`, and the NDF modules take them as arguments.
-// This module holds what the three share.
+// ---- filtered_ndf::ndf::roughness::matrix (shaders/ndf/roughness/matrix.wgsl) ----
+/// A symmetric positive-definite roughness matrix `A = [[a11, a12], [a12, a22]]` (TK19
+/// supplement section 1; Heitz 2014 section 5.4) with the TK19 determinant clamp `tau`
+/// (supplement, "Practical Implementation"; `det_clamp` in the Rust API), mirroring
+/// `RoughnessMatrix` of `src/.../ndf/roughness/matrix.rs`.
+///
+/// **The determinant clamp: one clamped matrix.** Every function (`D`, `P22`, `Lambda`, the
+/// sampler's warp) evaluates one matrix `A_c`: `A` itself when `det A >= tau`, else
+/// `A_c = A + t I` with `t > 0` the root of `det(A + t I) = tau`,
+/// `t = (tau - det A) / (tr(A) / 2 + sqrt(tr(A)^2 / 4 + tau - det A))` (no cancellation). So
+/// `det A_c = max(det A, tau)` and the density is normalised for `A_c` (TK19's literal
+/// `sqrt(max(det A, tau))` with `A^-1 = adj(A) / max(det A, tau)` is not: its integral is
+/// `sqrt(tau / det A)`). `A_c - A = t I` shares `A`'s eigenvectors, so in the eigenbasis
+/// `A_c = R diag(l1 + t, l2 + t) R^T`, and with `(l1 + t)(l2 + t) = tau` the clamped minor
+/// eigenvalue is `tau / (l1 + t)`, a quotient of positive numbers (no cancellation whatever
+/// `t`). Filters add their kernel to `A` as given ([`entries`], [`determinant`]) and clamp the
+/// result with `det A_c` ([`clamped_det`]), as the Rust filters do.
+///
+/// **Representation: the eigenbasis.** `A = R diag(l1, l2) R^T` with `R = [e1, e2]`,
+/// `e1 = axis`, `e2 = (-axis.y, axis.x)`. Both quadratic forms are then sums of two
+/// non-negative squares of the rotated vector. The Rust crate evaluates the matrix form in
+/// f64 (an LDL form); WGSL has only f32, where the LDL form (and the entries of `A^-1`)
+/// cancel to a relative `cond(A) eps`. In the eigenbasis a rotation error `d theta` changes
+/// `s^T A^-1 s` by at most `sqrt(cond A) d theta` relative (first order, from the cross term
+/// `2 r1 r2 (1/l1 - 1/l2) d theta`, bounded with `|r_i| <= sqrt(l_i q)`), and the rotated
+/// components carry at most 4 ulp of `|s|`, so
+///
+/// `|d q| / q <= eps (8 + 8 sqrt(cond A_c)) + (relative error of the eigenvalues)`,
+///
+/// `eps = 2^-23`, `cond A_c = (l1 + t) / (l2 + t)`. The eigenvalues come from the constructor:
+/// [`from_eigen`] takes them exactly (the way to build a rotated anisotropic material);
+/// [`from_entries_det`] takes `det A` from the caller (the filters pass it as a sum of
+/// non-negative terms), `l1` is a sum of non-negative terms and `l2 = det / l1`, both within
+/// a few ulp; [`from_entries`] forms `det A = a11 a22 - a12^2` in f32, which cancels to a
+/// relative `cond(A) eps`: use it only for well-conditioned matrices. The clamp adds at most
+/// 5 ulp to the clamped eigenvalues (`t` within 4 ulp of its own value; `l1 + t` a sum of
+/// positive terms; `tau / (l1 + t)` one division).
+///
+/// NaN: none of these functions tests for NaN (WGSL lets a driver assume none occurs).
+struct ndf_roughness_matrix_RoughnessMatrix {
+    /// Unit eigenvector `e1 = (c, s)` of `l1`; `e2 = (-s, c)`.
+    axis: vec2<f32>,
+    /// Eigenvalues `(l1, l2)` of `A` as given, along `(e1, e2)` (both `> 0`).
+    eig: vec2<f32>,
+    /// Eigenvalues of `A_c`: `(l1 + t, tau / (l1 + t))`, or `eig` when the clamp is inactive.
+    eig_c: vec2<f32>,
+    /// Eigenvalues of `A_c^-1` along `(e1, e2)`: `1 / eig_c`.
+    inv_eig: vec2<f32>,
+    /// `sqrt(det A_c) = sqrt(max(det A, tau))`.
+    sqrt_det: f32,
+    /// `det A` as the constructor had it (`l1 l2`, or the caller's sum of non-negative terms).
+    det: f32,
+    /// The clamp `tau` (0: none).
+    tau: f32,
+}
 
-/// Smallest supported roughness `alpha` (`A`'s smallest eigenvalue is `ALPHA_MIN^2`).
-const ndf_roughness_ALPHA_MIN: f32 = 1e-8;
-/// Largest supported roughness `alpha` (`A`'s largest eigenvalue is `ALPHA_MAX^2`).
-const ndf_roughness_ALPHA_MAX: f32 = 1e4;
+/// `A = R diag(alpha_x^2, alpha_y^2) R^T` with `R = [axis, perp(axis)]` for a unit `axis`
+/// (the tangent-space direction of `alpha_x`), no determinant clamp: a rotated anisotropic
+/// material. `alpha` is not clamped (the caller keeps it in `[ALPHA_MIN, ALPHA_MAX]`).
+fn ndf_roughness_matrix_from_eigen(axis: vec2<f32>, alpha: vec2<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
+    let l = alpha * alpha;
+    return ndf_roughness_matrix_RoughnessMatrix(axis, l, l, 1.0 / l, alpha.x * alpha.y, l.x * l.y, 0.0);
+}
 
-/// `alpha` clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust `clamp_alpha`; a NaN that the
-/// driver preserves maps to `ALPHA_MIN`).
-fn ndf_roughness_clamp_alpha(alpha: f32) -> f32 {
-    return select(ndf_roughness_ALPHA_MIN, min(alpha, ndf_roughness_ALPHA_MAX), alpha >= ndf_roughness_ALPHA_MIN);
+/// The clamped eigenvalues `(l1 + t, tau / (l1 + t))` of `A_c` for `A`'s eigenvalues `l`
+/// (`l1 >= l2`), `det = l1 l2` as the caller has it and the clamp `tau`; `l` itself when
+/// `det >= tau` (type docs).
+fn ndf_roughness_matrix_clamped_eigenvalues(l: vec2<f32>, det: f32, tau: f32) -> vec2<f32> {
+    if det >= tau {
+        return l;
+    }
+    let h = 0.5 * (l.x + l.y);
+    let gap = tau - det;
+    let t = gap / (h + sqrt(h * h + gap));
+    let l1 = l.x + t;
+    return vec2<f32>(l1, tau / l1);
+}
+
+/// A matrix from its eigenbasis, its eigenvalues `l` (`l1 >= l2`, `l2 >= 0`), the
+/// determinant `det` of `A` as the caller has it (`l1 l2`, or a sum of non-negative terms) and
+/// the clamp `tau >= 0` (0: none).
+fn ndf_roughness_matrix_from_eigenbasis(axis: vec2<f32>, l: vec2<f32>, det: f32, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    let lc = ndf_roughness_matrix_clamped_eigenvalues(l, det, tau);
+    return ndf_roughness_matrix_RoughnessMatrix(axis, l, lc, 1.0 / lc, sqrt(max(det, tau)), det, tau);
+}
+
+/// The eigen-decomposition of `A` from its entries and its determinant `det` (computed by
+/// the caller without cancellation, e.g. as a sum of non-negative terms), with the
+/// determinant clamp `tau >= 0` (0: none; the type docs for `A_c`). The caller guarantees
+/// `a11 > 0`, `a22 > 0` and `max(det, tau) > 0` (the Rust `from_entries`; no checks).
+///
+/// `l1 = (a11 + a22) / 2 + hypot((a11 - a22) / 2, a12)` (no cancellation), `l2 = det / l1`;
+/// the eigenvector of `l1` from whichever row of `A - l2 I` avoids cancellation. Entries up
+/// to `1e18` in magnitude (the squares stay finite).
+fn ndf_roughness_matrix_from_entries_det(a11: f32, a12: f32, a22: f32, det: f32, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    let half_diff = 0.5 * (a11 - a22);
+    let rad = sqrt(half_diff * half_diff + a12 * a12);
+    let l1 = 0.5 * (a11 + a22) + rad;
+    let l2 = max(det, 0.0) / l1;
+    // e1 from the row whose diagonal part does not cancel: (rad + |d|, a12) when a11 >= a22,
+    // else (a12, rad + |d|); any axis when A is isotropic.
+    let big = rad + abs(half_diff);
+    var v = select(vec2<f32>(big, a12), vec2<f32>(a12, big), half_diff < 0.0);
+    if big <= 0.0 {
+        v = vec2<f32>(1.0, 0.0);
+    }
+    let axis = v / length(v);
+    return ndf_roughness_matrix_from_eigenbasis(axis, vec2<f32>(l1, l2), det, tau);
+}
+
+/// [`from_entries_det`] with `det = a11 a22 - a12^2` formed here in f32 (relative error up
+/// to `cond(A) eps`, see the type docs) and no clamp. For well-conditioned matrices.
+fn ndf_roughness_matrix_from_entries(a11: f32, a12: f32, a22: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_entries_det(a11, a12, a22, a11 * a22 - a12 * a12, 0.0);
+}
+
+/// The same matrix `A` evaluated with the determinant clamp `tau = det_clamp` (the Rust
+/// `with_det_clamp`; `<= 0`: none): `A_c` recomputed from `A`'s eigenvalues.
+fn ndf_roughness_matrix_with_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix, det_clamp: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_eigenbasis(r.axis, r.eig, r.det, max(det_clamp, 0.0));
+}
+
+/// `v` in the eigenbasis: `(v . e1, v . e2)`.
+fn ndf_roughness_matrix_rotate(r: ndf_roughness_matrix_RoughnessMatrix, v: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(r.axis.x * v.x + r.axis.y * v.y, r.axis.x * v.y - r.axis.y * v.x);
+}
+
+/// `s^T A_c^-1 s = u1^2 / (l1 + t) + u2^2 / (l2 + t)` for the rotated `u` (error bound in the
+/// type docs).
+fn ndf_roughness_matrix_inv_quadratic(r: ndf_roughness_matrix_RoughnessMatrix, s: vec2<f32>) -> f32 {
+    let u = ndf_roughness_matrix_rotate(r, s);
+    return dot(u * u, r.inv_eig);
+}
+
+/// `w^T A_c w = u1^2 (l1 + t) + u2^2 (l2 + t)` (Smith's projected roughness of the matrix the
+/// density evaluates).
+fn ndf_roughness_matrix_quadratic(r: ndf_roughness_matrix_RoughnessMatrix, w: vec2<f32>) -> f32 {
+    let u = ndf_roughness_matrix_rotate(r, w);
+    return dot(u * u, r.eig_c);
+}
+
+/// `sqrt(det A_c) = sqrt(max(det A, tau))`.
+fn ndf_roughness_matrix_sqrt_det(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return r.sqrt_det;
+}
+
+/// The entries `(a11, a12, a22)` of the matrix with eigenvalues `l` in `r`'s eigenbasis: sums
+/// of non-negative terms on the diagonal (within a few ulp of `l1`).
+fn ndf_roughness_matrix_entries_of(r: ndf_roughness_matrix_RoughnessMatrix, l: vec2<f32>) -> vec3<f32> {
+    let c = r.axis.x;
+    let s = r.axis.y;
+    return vec3<f32>(l.x * c * c + l.y * s * s, (l.x - l.y) * c * s, l.x * s * s + l.y * c * c);
+}
+
+/// The entries `(a11, a12, a22)` of `A` as given: what a filter adds its kernel to.
+fn ndf_roughness_matrix_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
+    return ndf_roughness_matrix_entries_of(r, r.eig);
+}
+
+/// The entries of `A_c`, the matrix every function evaluates (`A`'s own when the clamp is
+/// inactive).
+fn ndf_roughness_matrix_clamped_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
+    return ndf_roughness_matrix_entries_of(r, r.eig_c);
+}
+
+/// `det A` (without the clamp), as the constructor had it.
+fn ndf_roughness_matrix_determinant(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return r.det;
+}
+
+/// `det A_c = max(det A, tau)`: the clamp a filter of this lobe uses (the Rust
+/// `clamped_det`, `lobe_det`), so that a kernel too small to change the entries meets the
+/// clamp with equality (and returns the lobe unchanged).
+fn ndf_roughness_matrix_clamped_det(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return max(r.det, r.tau);
+}
+
+/// The lobe's own clamp: `det A_c = tau` where the clamp is active (`tau > det A`), else 0
+/// (the Rust `own_det_clamp`). Every filter clamps with at least this, so that filtering never
+/// drops a clamped matrix's clamp (its entries may be far sharper than `A_c`).
+fn ndf_roughness_matrix_own_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return select(0.0, r.tau, r.tau > r.det);
 }
 
 // ---- filtered_ndf::kernel::covariance (shaders/kernel/covariance.wgsl) ----
@@ -317,6 +482,270 @@ fn kernel_covariance_sanitized(c: kernel_covariance_Covariance) -> kernel_covari
     let bound = sqrt(s_xx) * sqrt(s_yy);
     let s_xy = clamp(c.s_xy, -bound, bound);
     return kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance(s_xx, s_xy, s_yy, 0.0), kernel_covariance_KERNEL_MAX);
+}
+
+// ---- filtered_ndf::filter::gaussian (shaders/filter/gaussian.wgsl) ----
+// Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
+// mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
+//
+// The determinant clamp: the result is evaluated as the one clamped matrix `A'_c` of
+// `matrix.wgsl` (`A' + t I` where `det A' < tau`). In exact arithmetic
+// `det(A + 2 Sigma) >= det A`, and here the filtered determinant is a sum of non-negative
+// terms that contains `det A` itself, so with `tau = det A_c` of an unclamped material the
+// clamp is inactive (equality for a zero kernel); it acts for a material that is itself
+// clamped (`tau = det A_c > det A`) and for an explicit `tau` above the filtered determinant.
+
+/// `A + 2 K` for a sanitised kernel `K`, with its determinant
+/// `det(A + 2 K) = det A + 2 tr(adj(A) K) + 4 det K`, every term non-negative for `A` positive
+/// definite and `K` PSD, so that the filtered minor axis keeps its relative accuracy (f32
+/// would cancel in `b11 b22 - b12^2`): with `A = R diag(l) R^T`,
+/// `tr(adj(A) K) = l2 e1^T K e1 + l1 e2^T K e2`, and `det K` as the kernel carries it.
+/// Evaluated with the determinant clamp `tau` (`<= 0`: none). `A` is the material's matrix as
+/// given ([`matrix::entries`]; a clamped material is filtered as `A + 2 K` with its own `tau`,
+/// as in Rust).
+fn filter_gaussian_gaussian_sanitized(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    let e = ndf_roughness_matrix_entries(a);
+    let c = a.axis.x;
+    let s = a.axis.y;
+    let k1 = max(c * c * k.s_xx + 2.0 * c * s * k.s_xy + s * s * k.s_yy, 0.0);
+    let k2 = max(s * s * k.s_xx - 2.0 * c * s * k.s_xy + c * c * k.s_yy, 0.0);
+    let det = ndf_roughness_matrix_determinant(a) + 2.0 * (a.eig.y * k1 + a.eig.x * k2) + 4.0 * max(k.det, 0.0);
+    return ndf_roughness_matrix_from_entries_det(
+        e.x + 2.0 * k.s_xx,
+        e.y + 2.0 * k.s_xy,
+        e.z + 2.0 * k.s_yy,
+        det,
+        max(tau, 0.0),
+    );
+}
+
+/// `A' = A + 2 Sigma`, evaluated with the determinant clamp `tau = det A_c` of the material
+/// (TK19 supplement; no bias in exact arithmetic since `det(A + 2 Sigma) >= det A`). Beckmann:
+/// exact (KHPL16 eq. 15, covariances of Gaussians add with `A = 2 B`). GGX: the TK19 section
+/// 2.2 / KHPL16 approximation. The kernel is `covariance::sanitized` first. Accuracy: the
+/// filtered matrix is evaluated in its eigenbasis with `det` from non-negative terms
+/// (`matrix.wgsl`: `s^T A'^-1 s` within `eps (10 + 16 sqrt(cond A'))`, the extra
+/// `8 sqrt(cond)` for the rounding of the kernel's entries).
+fn filter_gaussian_gaussian(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), ndf_roughness_matrix_clamped_det(a));
+}
+
+/// [`gaussian`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
+/// filtered determinant here is never below `det A`, so no fallback is needed), at least the
+/// material's own clamp ([`matrix::own_det_clamp`]): the Rust `gaussian_with_det_clamp`.
+fn filter_gaussian_gaussian_with_det_clamp(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    kernel: kernel_covariance_Covariance,
+    det_clamp: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), max(det_clamp, ndf_roughness_matrix_own_det_clamp(a)));
+}
+
+// ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
+// LEAN mapping's moments and the nested convolution of KHPL16 section 5.5, eq. 21,
+// mirroring `src/.../filter/lean.rs`.
+
+/// First and second moments of normal-map slopes (Olano and Baker 2010), linearly
+/// filterable: `mean = E[s]`, `second = (E[s_x^2], E[s_x s_y], E[s_y^2])`.
+struct filter_lean_LeanMoments {
+    /// `(E[s_x], E[s_y])`.
+    mean: vec2<f32>,
+    /// `(E[s_x^2], E[s_x s_y], E[s_y^2])`.
+    second: vec3<f32>,
+}
+
+/// The covariance of the normal-map slopes, `E[s s^T] - E[s] E[s]^T` (LEAN eq. 5; KHPL16's
+/// `K_L`), `cov::sanitized` (mip filtering can make it slightly indefinite). Its
+/// determinant is formed from the differences (cancelling for elongated moments).
+fn filter_lean_covariance(m: filter_lean_LeanMoments) -> kernel_covariance_Covariance {
+    let c = kernel_covariance_from_entries(
+        m.second.x - m.mean.x * m.mean.x,
+        m.second.y - m.mean.x * m.mean.y,
+        m.second.z - m.mean.y * m.mean.y,
+    );
+    return kernel_covariance_sanitized(c);
+}
+
+/// `K_L * K_P * D = (K_L * K_P) * D` (KHPL16 eq. 21): the covariances add and the sum is
+/// filtered by `gaussian::gaussian` (`A' = A + 2 (Sigma_L + Sigma_P)`, `tau = det A`).
+fn filter_lean_lean(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    pixel: kernel_covariance_Covariance,
+    moments: filter_lean_LeanMoments,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian(a, kernel_covariance_add(kernel_covariance_sanitized(pixel), filter_lean_covariance(moments)));
+}
+
+// ---- filtered_ndf::bake::moments (shaders/bake/moments.wgsl) ----
+// The baked LEAN moment chain (`src/bake`, `filtered_ndf::bake::bake_rows`) as two textures
+// with all their mips, sampled by the hardware's trilinear or anisotropic filtering. Every
+// moment is linear in the texel weights, so a filtered fetch is the moments of the filter's
+// footprint on the base level (to the chain's storage rounding): the covariance is formed
+// after filtering, never filtered itself.
+//
+// | texture | format | channels |
+// |---|---|---|
+// | `moments` | `rgba16float` (filterable everywhere) or `rgba32float` (`float32-filterable`) | `(E[s_x], E[s_y], E[s_x^2], E[s_y^2])` |
+// | `moments_xy` | `r16float` or `r32float` | `E[s_x s_y]` |
+//
+// (the layout the command-line baker writes, `moments.ktx2` and `moments_xy.ktx2`: RGBA + R
+// because no filterable three-channel float format exists in WebGPU). Slopes are the bake's:
+// `s = -n_xy / n_z` in its OpenGL tangent frame (`x` along `+u`, `y` up the image, i.e. along
+// `-v` in WebGPU's texture coordinates when the image's first row is its top).
+
+/// The moments of one filtered fetch of each texture: `rgba = (E[s_x], E[s_y], E[s_x^2],
+/// E[s_y^2])`, `xy = E[s_x s_y]` (the Rust `bake::lean_moments` of the texel
+/// `[rgba.x, rgba.y, rgba.z, xy, rgba.w]`).
+fn bake_moments_from_texels(rgba: vec4<f32>, xy: f32) -> filter_lean_LeanMoments {
+    return filter_lean_LeanMoments(rgba.xy, vec3<f32>(rgba.z, xy, rgba.w));
+}
+
+/// The moments over a pixel footprint: both textures sampled with explicit derivatives of
+/// `uv` (`textureSampleGrad`: trilinear or anisotropic, as `s` is set up; any shader stage,
+/// uniform control flow not required). In a fragment shader pass `dpdx(uv)`, `dpdy(uv)`.
+fn bake_moments_sample_grad(
+    moments: texture_2d<f32>,
+    moments_xy: texture_2d<f32>,
+    s: sampler,
+    uv: vec2<f32>,
+    ddx_uv: vec2<f32>,
+    ddy_uv: vec2<f32>,
+) -> filter_lean_LeanMoments {
+    let rgba = textureSampleGrad(moments, s, uv, ddx_uv, ddy_uv);
+    let xy = textureSampleGrad(moments_xy, s, uv, ddx_uv, ddy_uv).x;
+    return bake_moments_from_texels(rgba, xy);
+}
+
+/// The moments at an explicit level of detail (`textureSampleLevel`: bilinear within a
+/// level, linear between levels with a linear mipmap filter): for ray tracing, compute
+/// shaders, or a level chosen from the footprint by the caller.
+fn bake_moments_sample_level(
+    moments: texture_2d<f32>,
+    moments_xy: texture_2d<f32>,
+    s: sampler,
+    uv: vec2<f32>,
+    level: f32,
+) -> filter_lean_LeanMoments {
+    let rgba = textureSampleLevel(moments, s, uv, level);
+    let xy = textureSampleLevel(moments_xy, s, uv, level).x;
+    return bake_moments_from_texels(rgba, xy);
+}
+
+// ---- filtered_ndf::ndf::roughness (shaders/ndf/roughness/mod.wgsl) ----
+// The roughness forms (`src/.../roughness/`): a roughness is the matrix `A` of TK19
+// supplement section 1 (Heitz 2014 section 5.4). Both NDFs depend on a slope `s` only through
+// `s^T A^-1 s` and `sqrt(det A)`, and Smith's `Lambda(w)` only through `w_xy^T A w_xy`: each
+// form (`isotropic`, `axis_aligned`, `matrix`) provides those three numbers as
+// `inv_quadratic`, `quadratic` and `sqrt_det`, and the NDF modules take them as arguments.
+// This module holds what the three share.
+
+/// Smallest supported roughness `alpha` (`A`'s smallest eigenvalue is `ALPHA_MIN^2`).
+const ndf_roughness_ALPHA_MIN: f32 = 1e-8;
+/// Largest supported roughness `alpha` (`A`'s largest eigenvalue is `ALPHA_MAX^2`).
+const ndf_roughness_ALPHA_MAX: f32 = 1e4;
+
+/// `alpha` clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust `clamp_alpha`; a NaN that the
+/// driver preserves maps to `ALPHA_MIN`).
+fn ndf_roughness_clamp_alpha(alpha: f32) -> f32 {
+    return select(ndf_roughness_ALPHA_MIN, min(alpha, ndf_roughness_ALPHA_MAX), alpha >= ndf_roughness_ALPHA_MIN);
+}
+
+// ---- filtered_ndf::ndf::roughness::isotropic (shaders/ndf/roughness/isotropic.wgsl) ----
+/// Isotropic roughness `alpha`: `A = alpha^2 I`.
+struct ndf_roughness_isotropic_Isotropic {
+    /// The roughness `alpha`.
+    alpha: f32,
+    /// `1 / alpha^2`.
+    inv_alpha_sq: f32,
+}
+
+/// The isotropic roughness `alpha`, clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust
+/// `Isotropic::new_clamped`).
+fn ndf_roughness_isotropic_from_alpha(alpha: f32) -> ndf_roughness_isotropic_Isotropic {
+    let a = ndf_roughness_clamp_alpha(alpha);
+    return ndf_roughness_isotropic_Isotropic(a, 1.0 / (a * a));
+}
+
+/// `s^T A^-1 s = |s|^2 / alpha^2` (dimensionless). Within 4 ulp.
+fn ndf_roughness_isotropic_inv_quadratic(r: ndf_roughness_isotropic_Isotropic, s: vec2<f32>) -> f32 {
+    return dot(s, s) * r.inv_alpha_sq;
+}
+
+/// `w^T A w = |alpha w|^2` for a tangent-plane `w` (Smith's projected roughness), `w` scaled
+/// first as in the axis-aligned form. Within 4 ulp.
+fn ndf_roughness_isotropic_quadratic(r: ndf_roughness_isotropic_Isotropic, w: vec2<f32>) -> f32 {
+    let s = w * r.alpha;
+    return dot(s, s);
+}
+
+/// `sqrt(det A) = alpha^2`. Within 1 ulp.
+fn ndf_roughness_isotropic_sqrt_det(r: ndf_roughness_isotropic_Isotropic) -> f32 {
+    return r.alpha * r.alpha;
+}
+
+/// This roughness as a [`matrix::RoughnessMatrix`], `alpha^2 I` (no determinant clamp).
+fn ndf_roughness_isotropic_to_matrix(r: ndf_roughness_isotropic_Isotropic) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_eigen(vec2<f32>(1.0, 0.0), vec2<f32>(r.alpha));
+}
+
+// ---- filtered_ndf::bake::roughness (shaders/bake/roughness.wgsl) ----
+// A baked roughness chain (`src/bake/fit.rs`: the GGX or Beckmann lobe closest to each mip
+// texel's distribution of normals) read back as the lobe, mirroring `src/bake/decode.rs`.
+// Fetch the texel with the hardware's filtering as any material texture; each function takes
+// the fetched value(s) in the encoding the chain was stored in:
+//
+// | stored | function | lobe |
+// |---|---|---|
+// | `alpha` (`r16float`) | `isotropic::from_alpha` | `Isotropic` |
+// | glTF perceptual roughness `r = sqrt(alpha)` (metallic-roughness G channel) | `from_perceptual` | `Isotropic` |
+// | `[alpha_x, alpha_y, angle]` (`fit::AnisotropicAlpha`) | `from_anisotropic` | `RoughnessMatrix` |
+// | `KHR_materials_anisotropy`: roughness `r` and the anisotropy texel | `from_khr_anisotropy` | `RoughnessMatrix` |
+// | the roughness matrix `(A11, A12, A22, 1)` (`rgba16float`) | `from_matrix_texel` | `RoughnessMatrix` |
+//
+// Filtering the stored values is the engines' convention (a mip of perceptual roughness is
+// not the perceptual roughness of the mip); the chain's fits are per texel, so fetch at texel
+// centres of the level for the exact fit.
+
+/// glTF's perceptual roughness `r` as the isotropic lobe `alpha = r^2` (the Rust
+/// `bake::decode::alpha_from_perceptual`), clamped as `isotropic::from_alpha`.
+fn bake_roughness_from_perceptual(r: f32) -> ndf_roughness_isotropic_Isotropic {
+    return ndf_roughness_isotropic_from_alpha(r * r);
+}
+
+/// The anisotropic lobe `[alpha_x, alpha_y, angle]` (`alpha_x` along the direction at `angle`
+/// radians from `+x` towards `+y`) as the matrix `A = R diag(alpha_x^2, alpha_y^2) R^T` (the
+/// Rust `AnisotropicAlpha::matrix`); the angle's cosine and sine by `math::sincos_turns`
+/// (the driver's `cos`, `sin` may err by `2^-11`), the alphas clamped into
+/// `[ALPHA_MIN, ALPHA_MAX]`.
+fn bake_roughness_from_anisotropic(lobe: vec3<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
+    let axis = math_sincos_turns(lobe.z * (0.5 * math_INV_PI));
+    let a = vec2<f32>(ndf_roughness_clamp_alpha(lobe.x), ndf_roughness_clamp_alpha(lobe.y));
+    return ndf_roughness_matrix_from_eigen(axis, a);
+}
+
+/// The lobe of `KHR_materials_anisotropy` (the Rust `KhrAnisotropy::alpha`): the
+/// metallic-roughness texture's perceptual roughness `r` (`alpha_b = r^2` across the
+/// anisotropy direction) and the anisotropy texel as fetched from its unorm texture:
+/// direction `(cos, sin) = 2 rg - 1` (normalised: 8-bit channels are not unit), strength `b`,
+/// `alpha_t = mix(alpha_b, 1, b^2)` along the direction (the extension's definition).
+/// Multiply `b` by the material's `anisotropyStrength` and rotate the direction by its
+/// `anisotropyRotation` before calling, as the extension says. A zero direction is `+x`.
+fn bake_roughness_from_khr_anisotropy(r: f32, anisotropy: vec4<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
+    let d = 2.0 * anisotropy.xy - 1.0;
+    let len = length(d);
+    let axis = select(vec2<f32>(1.0, 0.0), d / len, len > 0.0);
+    let alpha_b = r * r;
+    let b = anisotropy.z;
+    let alpha_t = mix(alpha_b, 1.0, b * b);
+    let a = vec2<f32>(ndf_roughness_clamp_alpha(alpha_t), ndf_roughness_clamp_alpha(alpha_b));
+    return ndf_roughness_matrix_from_eigen(axis, a);
+}
+
+/// The roughness matrix stored as `(A11, A12, A22, 1)` (the baker's `--store alpha
+/// --anisotropic`): `matrix::from_entries` (its determinant formed in f32, within
+/// `cond(A) eps`).
+fn bake_roughness_from_matrix_texel(t: vec4<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_entries(t.x, t.y, t.z);
 }
 
 // ---- filtered_ndf::filter::deferred (shaders/filter/deferred.wgsl) ----
@@ -516,247 +945,6 @@ fn filter_deferred_filtered_alpha(alpha: f32, kernel: kernel_covariance_Covarian
     return filter_deferred_apply_widening(conv, alpha, filter_deferred_bandwidth_alpha2(bandwidth, kernel));
 }
 
-// ---- filtered_ndf::ndf::roughness::matrix (shaders/ndf/roughness/matrix.wgsl) ----
-/// A symmetric positive-definite roughness matrix `A = [[a11, a12], [a12, a22]]` (TK19
-/// supplement section 1; Heitz 2014 section 5.4) with the TK19 determinant clamp `tau`
-/// (supplement, "Practical Implementation"; `det_clamp` in the Rust API), mirroring
-/// `RoughnessMatrix` of `src/.../ndf/roughness/matrix.rs`.
-///
-/// **The determinant clamp: one clamped matrix.** Every function (`D`, `P22`, `Lambda`, the
-/// sampler's warp) evaluates one matrix `A_c`: `A` itself when `det A >= tau`, else
-/// `A_c = A + t I` with `t > 0` the root of `det(A + t I) = tau`,
-/// `t = (tau - det A) / (tr(A) / 2 + sqrt(tr(A)^2 / 4 + tau - det A))` (no cancellation). So
-/// `det A_c = max(det A, tau)` and the density is normalised for `A_c` (TK19's literal
-/// `sqrt(max(det A, tau))` with `A^-1 = adj(A) / max(det A, tau)` is not: its integral is
-/// `sqrt(tau / det A)`). `A_c - A = t I` shares `A`'s eigenvectors, so in the eigenbasis
-/// `A_c = R diag(l1 + t, l2 + t) R^T`, and with `(l1 + t)(l2 + t) = tau` the clamped minor
-/// eigenvalue is `tau / (l1 + t)`, a quotient of positive numbers (no cancellation whatever
-/// `t`). Filters add their kernel to `A` as given ([`entries`], [`determinant`]) and clamp the
-/// result with `det A_c` ([`clamped_det`]), as the Rust filters do.
-///
-/// **Representation: the eigenbasis.** `A = R diag(l1, l2) R^T` with `R = [e1, e2]`,
-/// `e1 = axis`, `e2 = (-axis.y, axis.x)`. Both quadratic forms are then sums of two
-/// non-negative squares of the rotated vector. The Rust crate evaluates the matrix form in
-/// f64 (an LDL form); WGSL has only f32, where the LDL form (and the entries of `A^-1`)
-/// cancel to a relative `cond(A) eps`. In the eigenbasis a rotation error `d theta` changes
-/// `s^T A^-1 s` by at most `sqrt(cond A) d theta` relative (first order, from the cross term
-/// `2 r1 r2 (1/l1 - 1/l2) d theta`, bounded with `|r_i| <= sqrt(l_i q)`), and the rotated
-/// components carry at most 4 ulp of `|s|`, so
-///
-/// `|d q| / q <= eps (8 + 8 sqrt(cond A_c)) + (relative error of the eigenvalues)`,
-///
-/// `eps = 2^-23`, `cond A_c = (l1 + t) / (l2 + t)`. The eigenvalues come from the constructor:
-/// [`from_eigen`] takes them exactly (the way to build a rotated anisotropic material);
-/// [`from_entries_det`] takes `det A` from the caller (the filters pass it as a sum of
-/// non-negative terms), `l1` is a sum of non-negative terms and `l2 = det / l1`, both within
-/// a few ulp; [`from_entries`] forms `det A = a11 a22 - a12^2` in f32, which cancels to a
-/// relative `cond(A) eps`: use it only for well-conditioned matrices. The clamp adds at most
-/// 5 ulp to the clamped eigenvalues (`t` within 4 ulp of its own value; `l1 + t` a sum of
-/// positive terms; `tau / (l1 + t)` one division).
-///
-/// NaN: none of these functions tests for NaN (WGSL lets a driver assume none occurs).
-struct ndf_roughness_matrix_RoughnessMatrix {
-    /// Unit eigenvector `e1 = (c, s)` of `l1`; `e2 = (-s, c)`.
-    axis: vec2<f32>,
-    /// Eigenvalues `(l1, l2)` of `A` as given, along `(e1, e2)` (both `> 0`).
-    eig: vec2<f32>,
-    /// Eigenvalues of `A_c`: `(l1 + t, tau / (l1 + t))`, or `eig` when the clamp is inactive.
-    eig_c: vec2<f32>,
-    /// Eigenvalues of `A_c^-1` along `(e1, e2)`: `1 / eig_c`.
-    inv_eig: vec2<f32>,
-    /// `sqrt(det A_c) = sqrt(max(det A, tau))`.
-    sqrt_det: f32,
-    /// `det A` as the constructor had it (`l1 l2`, or the caller's sum of non-negative terms).
-    det: f32,
-    /// The clamp `tau` (0: none).
-    tau: f32,
-}
-
-/// `A = R diag(alpha_x^2, alpha_y^2) R^T` with `R = [axis, perp(axis)]` for a unit `axis`
-/// (the tangent-space direction of `alpha_x`), no determinant clamp: a rotated anisotropic
-/// material. `alpha` is not clamped (the caller keeps it in `[ALPHA_MIN, ALPHA_MAX]`).
-fn ndf_roughness_matrix_from_eigen(axis: vec2<f32>, alpha: vec2<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
-    let l = alpha * alpha;
-    return ndf_roughness_matrix_RoughnessMatrix(axis, l, l, 1.0 / l, alpha.x * alpha.y, l.x * l.y, 0.0);
-}
-
-/// The clamped eigenvalues `(l1 + t, tau / (l1 + t))` of `A_c` for `A`'s eigenvalues `l`
-/// (`l1 >= l2`), `det = l1 l2` as the caller has it and the clamp `tau`; `l` itself when
-/// `det >= tau` (type docs).
-fn ndf_roughness_matrix_clamped_eigenvalues(l: vec2<f32>, det: f32, tau: f32) -> vec2<f32> {
-    if det >= tau {
-        return l;
-    }
-    let h = 0.5 * (l.x + l.y);
-    let gap = tau - det;
-    let t = gap / (h + sqrt(h * h + gap));
-    let l1 = l.x + t;
-    return vec2<f32>(l1, tau / l1);
-}
-
-/// A matrix from its eigenbasis, its eigenvalues `l` (`l1 >= l2`, `l2 >= 0`), the
-/// determinant `det` of `A` as the caller has it (`l1 l2`, or a sum of non-negative terms) and
-/// the clamp `tau >= 0` (0: none).
-fn ndf_roughness_matrix_from_eigenbasis(axis: vec2<f32>, l: vec2<f32>, det: f32, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
-    let lc = ndf_roughness_matrix_clamped_eigenvalues(l, det, tau);
-    return ndf_roughness_matrix_RoughnessMatrix(axis, l, lc, 1.0 / lc, sqrt(max(det, tau)), det, tau);
-}
-
-/// The eigen-decomposition of `A` from its entries and its determinant `det` (computed by
-/// the caller without cancellation, e.g. as a sum of non-negative terms), with the
-/// determinant clamp `tau >= 0` (0: none; the type docs for `A_c`). The caller guarantees
-/// `a11 > 0`, `a22 > 0` and `max(det, tau) > 0` (the Rust `from_entries`; no checks).
-///
-/// `l1 = (a11 + a22) / 2 + hypot((a11 - a22) / 2, a12)` (no cancellation), `l2 = det / l1`;
-/// the eigenvector of `l1` from whichever row of `A - l2 I` avoids cancellation. Entries up
-/// to `1e18` in magnitude (the squares stay finite).
-fn ndf_roughness_matrix_from_entries_det(a11: f32, a12: f32, a22: f32, det: f32, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
-    let half_diff = 0.5 * (a11 - a22);
-    let rad = sqrt(half_diff * half_diff + a12 * a12);
-    let l1 = 0.5 * (a11 + a22) + rad;
-    let l2 = max(det, 0.0) / l1;
-    // e1 from the row whose diagonal part does not cancel: (rad + |d|, a12) when a11 >= a22,
-    // else (a12, rad + |d|); any axis when A is isotropic.
-    let big = rad + abs(half_diff);
-    var v = select(vec2<f32>(big, a12), vec2<f32>(a12, big), half_diff < 0.0);
-    if big <= 0.0 {
-        v = vec2<f32>(1.0, 0.0);
-    }
-    let axis = v / length(v);
-    return ndf_roughness_matrix_from_eigenbasis(axis, vec2<f32>(l1, l2), det, tau);
-}
-
-/// [`from_entries_det`] with `det = a11 a22 - a12^2` formed here in f32 (relative error up
-/// to `cond(A) eps`, see the type docs) and no clamp. For well-conditioned matrices.
-fn ndf_roughness_matrix_from_entries(a11: f32, a12: f32, a22: f32) -> ndf_roughness_matrix_RoughnessMatrix {
-    return ndf_roughness_matrix_from_entries_det(a11, a12, a22, a11 * a22 - a12 * a12, 0.0);
-}
-
-/// The same matrix `A` evaluated with the determinant clamp `tau = det_clamp` (the Rust
-/// `with_det_clamp`; `<= 0`: none): `A_c` recomputed from `A`'s eigenvalues.
-fn ndf_roughness_matrix_with_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix, det_clamp: f32) -> ndf_roughness_matrix_RoughnessMatrix {
-    return ndf_roughness_matrix_from_eigenbasis(r.axis, r.eig, r.det, max(det_clamp, 0.0));
-}
-
-/// `v` in the eigenbasis: `(v . e1, v . e2)`.
-fn ndf_roughness_matrix_rotate(r: ndf_roughness_matrix_RoughnessMatrix, v: vec2<f32>) -> vec2<f32> {
-    return vec2<f32>(r.axis.x * v.x + r.axis.y * v.y, r.axis.x * v.y - r.axis.y * v.x);
-}
-
-/// `s^T A_c^-1 s = u1^2 / (l1 + t) + u2^2 / (l2 + t)` for the rotated `u` (error bound in the
-/// type docs).
-fn ndf_roughness_matrix_inv_quadratic(r: ndf_roughness_matrix_RoughnessMatrix, s: vec2<f32>) -> f32 {
-    let u = ndf_roughness_matrix_rotate(r, s);
-    return dot(u * u, r.inv_eig);
-}
-
-/// `w^T A_c w = u1^2 (l1 + t) + u2^2 (l2 + t)` (Smith's projected roughness of the matrix the
-/// density evaluates).
-fn ndf_roughness_matrix_quadratic(r: ndf_roughness_matrix_RoughnessMatrix, w: vec2<f32>) -> f32 {
-    let u = ndf_roughness_matrix_rotate(r, w);
-    return dot(u * u, r.eig_c);
-}
-
-/// `sqrt(det A_c) = sqrt(max(det A, tau))`.
-fn ndf_roughness_matrix_sqrt_det(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return r.sqrt_det;
-}
-
-/// The entries `(a11, a12, a22)` of the matrix with eigenvalues `l` in `r`'s eigenbasis: sums
-/// of non-negative terms on the diagonal (within a few ulp of `l1`).
-fn ndf_roughness_matrix_entries_of(r: ndf_roughness_matrix_RoughnessMatrix, l: vec2<f32>) -> vec3<f32> {
-    let c = r.axis.x;
-    let s = r.axis.y;
-    return vec3<f32>(l.x * c * c + l.y * s * s, (l.x - l.y) * c * s, l.x * s * s + l.y * c * c);
-}
-
-/// The entries `(a11, a12, a22)` of `A` as given: what a filter adds its kernel to.
-fn ndf_roughness_matrix_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
-    return ndf_roughness_matrix_entries_of(r, r.eig);
-}
-
-/// The entries of `A_c`, the matrix every function evaluates (`A`'s own when the clamp is
-/// inactive).
-fn ndf_roughness_matrix_clamped_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
-    return ndf_roughness_matrix_entries_of(r, r.eig_c);
-}
-
-/// `det A` (without the clamp), as the constructor had it.
-fn ndf_roughness_matrix_determinant(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return r.det;
-}
-
-/// `det A_c = max(det A, tau)`: the clamp a filter of this lobe uses (the Rust
-/// `clamped_det`, `lobe_det`), so that a kernel too small to change the entries meets the
-/// clamp with equality (and returns the lobe unchanged).
-fn ndf_roughness_matrix_clamped_det(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return max(r.det, r.tau);
-}
-
-/// The lobe's own clamp: `det A_c = tau` where the clamp is active (`tau > det A`), else 0
-/// (the Rust `own_det_clamp`). Every filter clamps with at least this, so that filtering never
-/// drops a clamped matrix's clamp (its entries may be far sharper than `A_c`).
-fn ndf_roughness_matrix_own_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return select(0.0, r.tau, r.tau > r.det);
-}
-
-// ---- filtered_ndf::filter::gaussian (shaders/filter/gaussian.wgsl) ----
-// Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
-// mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
-//
-// The determinant clamp: the result is evaluated as the one clamped matrix `A'_c` of
-// `matrix.wgsl` (`A' + t I` where `det A' < tau`). In exact arithmetic
-// `det(A + 2 Sigma) >= det A`, and here the filtered determinant is a sum of non-negative
-// terms that contains `det A` itself, so with `tau = det A_c` of an unclamped material the
-// clamp is inactive (equality for a zero kernel); it acts for a material that is itself
-// clamped (`tau = det A_c > det A`) and for an explicit `tau` above the filtered determinant.
-
-/// `A + 2 K` for a sanitised kernel `K`, with its determinant
-/// `det(A + 2 K) = det A + 2 tr(adj(A) K) + 4 det K`, every term non-negative for `A` positive
-/// definite and `K` PSD, so that the filtered minor axis keeps its relative accuracy (f32
-/// would cancel in `b11 b22 - b12^2`): with `A = R diag(l) R^T`,
-/// `tr(adj(A) K) = l2 e1^T K e1 + l1 e2^T K e2`, and `det K` as the kernel carries it.
-/// Evaluated with the determinant clamp `tau` (`<= 0`: none). `A` is the material's matrix as
-/// given ([`matrix::entries`]; a clamped material is filtered as `A + 2 K` with its own `tau`,
-/// as in Rust).
-fn filter_gaussian_gaussian_sanitized(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
-    let e = ndf_roughness_matrix_entries(a);
-    let c = a.axis.x;
-    let s = a.axis.y;
-    let k1 = max(c * c * k.s_xx + 2.0 * c * s * k.s_xy + s * s * k.s_yy, 0.0);
-    let k2 = max(s * s * k.s_xx - 2.0 * c * s * k.s_xy + c * c * k.s_yy, 0.0);
-    let det = ndf_roughness_matrix_determinant(a) + 2.0 * (a.eig.y * k1 + a.eig.x * k2) + 4.0 * max(k.det, 0.0);
-    return ndf_roughness_matrix_from_entries_det(
-        e.x + 2.0 * k.s_xx,
-        e.y + 2.0 * k.s_xy,
-        e.z + 2.0 * k.s_yy,
-        det,
-        max(tau, 0.0),
-    );
-}
-
-/// `A' = A + 2 Sigma`, evaluated with the determinant clamp `tau = det A_c` of the material
-/// (TK19 supplement; no bias in exact arithmetic since `det(A + 2 Sigma) >= det A`). Beckmann:
-/// exact (KHPL16 eq. 15, covariances of Gaussians add with `A = 2 B`). GGX: the TK19 section
-/// 2.2 / KHPL16 approximation. The kernel is `covariance::sanitized` first. Accuracy: the
-/// filtered matrix is evaluated in its eigenbasis with `det` from non-negative terms
-/// (`matrix.wgsl`: `s^T A'^-1 s` within `eps (10 + 16 sqrt(cond A'))`, the extra
-/// `8 sqrt(cond)` for the rounding of the kernel's entries).
-fn filter_gaussian_gaussian(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), ndf_roughness_matrix_clamped_det(a));
-}
-
-/// [`gaussian`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
-/// filtered determinant here is never below `det A`, so no fallback is needed), at least the
-/// material's own clamp ([`matrix::own_det_clamp`]): the Rust `gaussian_with_det_clamp`.
-fn filter_gaussian_gaussian_with_det_clamp(
-    a: ndf_roughness_matrix_RoughnessMatrix,
-    kernel: kernel_covariance_Covariance,
-    det_clamp: f32,
-) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), max(det_clamp, ndf_roughness_matrix_own_det_clamp(a)));
-}
-
 // ---- filtered_ndf::ndf (shaders/ndf/mod.wgsl) ----
 // What every NDF shares (`src/.../ndf/mod.rs`, the `Ndf` trait): the Smith terms derived
 // from `Lambda` once. Conventions (all NDFs, all roughness forms): tangent frame with `z` the
@@ -793,44 +981,6 @@ fn ndf_g1_of(lambda_w: f32, w_dot_m: f32) -> f32 {
 /// section 1; Heitz 2014 eq. 99) from both `Lambda`s and both dot products. In `[0, 1]`.
 fn ndf_g2_of(lambda_i: f32, lambda_o: f32, i_dot_m: f32, o_dot_m: f32) -> f32 {
     return select(0.0, 1.0 / (1.0 + lambda_i + lambda_o), i_dot_m > 0.0 && o_dot_m > 0.0);
-}
-
-// ---- filtered_ndf::ndf::roughness::isotropic (shaders/ndf/roughness/isotropic.wgsl) ----
-/// Isotropic roughness `alpha`: `A = alpha^2 I`.
-struct ndf_roughness_isotropic_Isotropic {
-    /// The roughness `alpha`.
-    alpha: f32,
-    /// `1 / alpha^2`.
-    inv_alpha_sq: f32,
-}
-
-/// The isotropic roughness `alpha`, clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust
-/// `Isotropic::new_clamped`).
-fn ndf_roughness_isotropic_from_alpha(alpha: f32) -> ndf_roughness_isotropic_Isotropic {
-    let a = ndf_roughness_clamp_alpha(alpha);
-    return ndf_roughness_isotropic_Isotropic(a, 1.0 / (a * a));
-}
-
-/// `s^T A^-1 s = |s|^2 / alpha^2` (dimensionless). Within 4 ulp.
-fn ndf_roughness_isotropic_inv_quadratic(r: ndf_roughness_isotropic_Isotropic, s: vec2<f32>) -> f32 {
-    return dot(s, s) * r.inv_alpha_sq;
-}
-
-/// `w^T A w = |alpha w|^2` for a tangent-plane `w` (Smith's projected roughness), `w` scaled
-/// first as in the axis-aligned form. Within 4 ulp.
-fn ndf_roughness_isotropic_quadratic(r: ndf_roughness_isotropic_Isotropic, w: vec2<f32>) -> f32 {
-    let s = w * r.alpha;
-    return dot(s, s);
-}
-
-/// `sqrt(det A) = alpha^2`. Within 1 ulp.
-fn ndf_roughness_isotropic_sqrt_det(r: ndf_roughness_isotropic_Isotropic) -> f32 {
-    return r.alpha * r.alpha;
-}
-
-/// This roughness as a [`matrix::RoughnessMatrix`], `alpha^2 I` (no determinant clamp).
-fn ndf_roughness_isotropic_to_matrix(r: ndf_roughness_isotropic_Isotropic) -> ndf_roughness_matrix_RoughnessMatrix {
-    return ndf_roughness_matrix_from_eigen(vec2<f32>(1.0, 0.0), vec2<f32>(r.alpha));
 }
 
 // ---- filtered_ndf::ndf::roughness::axis_aligned (shaders/ndf/roughness/axis_aligned.wgsl) ----
@@ -1924,41 +2074,6 @@ fn filter_gaussian_ggx_sample_normal(g: filter_gaussian_ggx_GaussianFilteredGgx,
 /// `m_z <= 0`.
 fn filter_gaussian_ggx_normal_pdf(g: filter_gaussian_ggx_GaussianFilteredGgx, m: vec3<f32>) -> f32 {
     return select(0.0, filter_gaussian_ggx_d(g, m) * m.z, m.z > 0.0);
-}
-
-// ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
-// LEAN mapping's moments and the nested convolution of KHPL16 section 5.5, eq. 21,
-// mirroring `src/.../filter/lean.rs`.
-
-/// First and second moments of normal-map slopes (Olano and Baker 2010), linearly
-/// filterable: `mean = E[s]`, `second = (E[s_x^2], E[s_x s_y], E[s_y^2])`.
-struct filter_lean_LeanMoments {
-    /// `(E[s_x], E[s_y])`.
-    mean: vec2<f32>,
-    /// `(E[s_x^2], E[s_x s_y], E[s_y^2])`.
-    second: vec3<f32>,
-}
-
-/// The covariance of the normal-map slopes, `E[s s^T] - E[s] E[s]^T` (LEAN eq. 5; KHPL16's
-/// `K_L`), `cov::sanitized` (mip filtering can make it slightly indefinite). Its
-/// determinant is formed from the differences (cancelling for elongated moments).
-fn filter_lean_covariance(m: filter_lean_LeanMoments) -> kernel_covariance_Covariance {
-    let c = kernel_covariance_from_entries(
-        m.second.x - m.mean.x * m.mean.x,
-        m.second.y - m.mean.x * m.mean.y,
-        m.second.z - m.mean.y * m.mean.y,
-    );
-    return kernel_covariance_sanitized(c);
-}
-
-/// `K_L * K_P * D = (K_L * K_P) * D` (KHPL16 eq. 21): the covariances add and the sum is
-/// filtered by `gaussian::gaussian` (`A' = A + 2 (Sigma_L + Sigma_P)`, `tau = det A`).
-fn filter_lean_lean(
-    a: ndf_roughness_matrix_RoughnessMatrix,
-    pixel: kernel_covariance_Covariance,
-    moments: filter_lean_LeanMoments,
-) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian(a, kernel_covariance_add(kernel_covariance_sanitized(pixel), filter_lean_covariance(moments)));
 }
 
 // ---- filtered_ndf::footprint::jacobian (shaders/footprint/jacobian.wgsl) ----
@@ -3256,6 +3371,92 @@ fn filter_method_proxy_lobe(method: filter_method_Proxy, material: ndf_roughness
 /// `D(m)` of [`proxy_lobe`].
 fn filter_method_d_ggx_proxy(method: filter_method_Proxy, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
     return ndf_ggx_d_axis_aligned(filter_method_proxy_lobe(method, material, fp), m);
+}
+
+// ---- filtered_ndf::filter::lean_nested (shaders/filter/lean_nested.wgsl) ----
+// LEAN moments nested into every method of the front door (KHPL16 section 5.5, eq. 21),
+// mirroring `src/.../filter/lean_nested.rs` (`Lean<M>`): the material is widened by the LEAN
+// kernel, `A_L = A + 2 Sigma_L` (`lean_widened`), then each method filters the widened lobe
+// over the pixel footprint as it filters a material. The clamp rules act on the pixel kernel
+// only. `moments` come from the baked chain (`bake::moments::sample_grad`).
+//
+// | method (`filter::method`) | nested lobe function | evaluate with |
+// |---|---|---|
+// | `Gaussian` | `gaussian_lobe` | `ggx::*_matrix`, `beckmann::*_matrix` |
+// | `ExactGaussian` | `exact_gaussian_lobe` (GGX: one kernel `Sigma_L + K_P`, exact); Beckmann: `gaussian_lobe` | `gaussian_ggx::*` |
+// | `Projected` | `projected_lobe` | `ggx::*_matrix` |
+// | `Rect` | `rect_lobe` (the widened diagonal, `lean_widened_axis_aligned`) | `method::*_rect_filtered` |
+// | `Proxy` | `proxy_lobe` (likewise) | `ggx::*_axis_aligned` |
+
+/// `A_L = A + 2 Sigma_L`, `Sigma_L = lean::covariance(moments)` (PSD-projected), with the
+/// determinant clamp `tau = det A` (the Rust `lean_widened`; `gaussian::gaussian`).
+fn filter_lean_nested_lean_widened(a: ndf_roughness_matrix_RoughnessMatrix, moments: filter_lean_LeanMoments) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian(a, filter_lean_covariance(moments));
+}
+
+/// The box methods' lobe: `alpha_i' = sqrt(alpha_i^2 + 2 (Sigma_L)_ii)`, the diagonal of
+/// `A_L` (the Rust `lean_widened_axis_aligned`), clamped as `axis_aligned::from_alpha`.
+fn filter_lean_nested_lean_widened_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, moments: filter_lean_LeanMoments) -> ndf_roughness_axis_aligned_AxisAligned {
+    let c = filter_lean_covariance(moments);
+    let a = r.alpha;
+    return ndf_roughness_axis_aligned_from_alpha(sqrt(a * a + 2.0 * vec2<f32>(c.s_xx, c.s_yy)));
+}
+
+/// The texel's shading normal, `normalize(-E[s_x], -E[s_y], 1)` (the Rust `lean_mean_normal`).
+fn filter_lean_nested_lean_mean_normal(moments: filter_lean_LeanMoments) -> vec3<f32> {
+    return normalize(vec3<f32>(-moments.mean, 1.0));
+}
+
+/// `Lean<Gaussian>::lobe`: `method::gaussian_lobe` of the widened material.
+fn filter_lean_nested_gaussian_lobe(
+    m: filter_method_Gaussian,
+    material: ndf_roughness_matrix_RoughnessMatrix,
+    fp: footprint_Footprint,
+    moments: filter_lean_LeanMoments,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_method_gaussian_lobe(m, filter_lean_nested_lean_widened(material, moments), fp);
+}
+
+/// `Lean<ExactGaussian>::lobe` for GGX: the exact Gaussian-filtered GGX of the material over
+/// one kernel, the method's clamped pixel kernel plus `Sigma_L` (both Gaussians, so they add).
+fn filter_lean_nested_exact_gaussian_lobe(
+    m: filter_method_ExactGaussian,
+    material: ndf_roughness_matrix_RoughnessMatrix,
+    fp: footprint_Footprint,
+    moments: filter_lean_LeanMoments,
+) -> filter_gaussian_ggx_GaussianFilteredGgx {
+    let k = kernel_covariance_add(kernel_clamp_pixel_kernel(m.clamps, fp, m.sigma), filter_lean_covariance(moments));
+    return filter_gaussian_ggx_from_kernel(material, k);
+}
+
+/// `Lean<Projected>::lobe`: `method::projected_lobe` of the widened material.
+fn filter_lean_nested_projected_lobe(
+    m: filter_method_Projected,
+    material: ndf_roughness_matrix_RoughnessMatrix,
+    fp: footprint_Footprint,
+    moments: filter_lean_LeanMoments,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_method_projected_lobe(m, filter_lean_nested_lean_widened(material, moments), fp);
+}
+
+/// `Lean<Rect>::lobe`: `method::rect_lobe` of the widened axis-aligned lobe.
+fn filter_lean_nested_rect_lobe(
+    m: filter_method_Rect,
+    material: ndf_roughness_axis_aligned_AxisAligned,
+    fp: footprint_Footprint,
+    moments: filter_lean_LeanMoments,
+) -> filter_method_RectFilteredGgx {
+    return filter_method_rect_lobe(m, filter_lean_nested_lean_widened_axis_aligned(material, moments), fp);
+}
+
+/// `Lean<Proxy>::lobe`: `method::proxy_lobe` of the widened axis-aligned lobe.
+fn filter_lean_nested_proxy_lobe(
+    m: filter_method_Proxy,
+    material: ndf_roughness_axis_aligned_AxisAligned,
+    fp: footprint_Footprint,
+    moments: filter_lean_LeanMoments,
+) -> ndf_roughness_axis_aligned_AxisAligned {
+    return filter_method_proxy_lobe(m, filter_lean_nested_lean_widened_axis_aligned(material, moments), fp);
 }
 
 // ---- filtered_ndf::filter::presets (shaders/filter/presets.wgsl) ----

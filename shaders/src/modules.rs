@@ -12,9 +12,9 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../math.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::ndf::roughness",
-        file: "ndf/roughness/mod.wgsl",
-        source: include_str!("../ndf/roughness/mod.wgsl"),
+        import_path: "filtered_ndf::ndf::roughness::matrix",
+        file: "ndf/roughness/matrix.wgsl",
+        source: include_str!("../ndf/roughness/matrix.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::kernel::covariance",
@@ -22,29 +22,44 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../kernel/covariance.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::filter::deferred",
-        file: "filter/deferred.wgsl",
-        source: include_str!("../filter/deferred.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::ndf::roughness::matrix",
-        file: "ndf/roughness/matrix.wgsl",
-        source: include_str!("../ndf/roughness/matrix.wgsl"),
-    },
-    Module {
         import_path: "filtered_ndf::filter::gaussian",
         file: "filter/gaussian.wgsl",
         source: include_str!("../filter/gaussian.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::ndf",
-        file: "ndf/mod.wgsl",
-        source: include_str!("../ndf/mod.wgsl"),
+        import_path: "filtered_ndf::filter::lean",
+        file: "filter/lean.wgsl",
+        source: include_str!("../filter/lean.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::bake::moments",
+        file: "bake/moments.wgsl",
+        source: include_str!("../bake/moments.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::ndf::roughness",
+        file: "ndf/roughness/mod.wgsl",
+        source: include_str!("../ndf/roughness/mod.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::ndf::roughness::isotropic",
         file: "ndf/roughness/isotropic.wgsl",
         source: include_str!("../ndf/roughness/isotropic.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::bake::roughness",
+        file: "bake/roughness.wgsl",
+        source: include_str!("../bake/roughness.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::filter::deferred",
+        file: "filter/deferred.wgsl",
+        source: include_str!("../filter/deferred.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::ndf",
+        file: "ndf/mod.wgsl",
+        source: include_str!("../ndf/mod.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::ndf::roughness::axis_aligned",
@@ -75,11 +90,6 @@ pub const MODULES: &[Module] = &[
         import_path: "filtered_ndf::filter::gaussian_ggx",
         file: "filter/gaussian_ggx.wgsl",
         source: include_str!("../filter/gaussian_ggx.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::filter::lean",
-        file: "filter/lean.wgsl",
-        source: include_str!("../filter/lean.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::footprint::jacobian",
@@ -125,6 +135,11 @@ pub const MODULES: &[Module] = &[
         import_path: "filtered_ndf::filter::method",
         file: "filter/method.wgsl",
         source: include_str!("../filter/method.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::filter::lean_nested",
+        file: "filter/lean_nested.wgsl",
+        source: include_str!("../filter/lean_nested.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::filter::presets",

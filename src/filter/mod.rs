@@ -35,6 +35,7 @@ mod gaussian_ggx;
 mod gaussian_ggx_quad;
 pub(crate) mod gaussian_ggx_tol;
 mod lean;
+mod lean_nested;
 pub mod method;
 pub mod presets;
 mod projected;
@@ -51,6 +52,7 @@ pub(crate) use gaussian::{gaussian_entries, gaussian_sanitized};
 pub use gaussian_ggx::GaussianFilteredGgx;
 pub(crate) use gaussian_ggx_quad::{TrapezoidState, beckmann_lambda_fast};
 pub use lean::{LeanMoments, lean};
+pub use lean_nested::{Lean, lean_mean_normal, lean_widened, lean_widened_axis_aligned};
 pub use method::{
     ExactGaussian, Filterable, Gaussian, Method, Projected, Proxy, Rect, RectFilteredGgx,
 };
