@@ -1,5 +1,5 @@
 //! The constants of the exact Gaussian-filtered GGX's reduced accuracy settings
-//! ([`Tolerance`](crate::f64::filter::Tolerance) other than `Full`; derivations in the module
+//! ([`Tolerance`] other than `Full`; derivations in the module
 //! docs of `GaussianFilteredGgx`, "Tolerance settings"), read from the rules the crate
 //! evaluates: the one source of a port's constants. The `filtered-ndf-gpu` crate's `generate`
 //! writes them into the WGSL (`shaders/filter/gaussian_ggx_quad.wgsl`), and its `--check`
