@@ -32,6 +32,7 @@ const IMPORTS: &str = "#import filtered_ndf::math
 #import filtered_ndf::footprint
 #import filtered_ndf::footprint::jacobian
 #import filtered_ndf::kernel::covariance
+#import filtered_ndf::kernel::rect as bounding
 #import filtered_ndf::kernel::clamp
 #import filtered_ndf::filter::gaussian
 #import filtered_ndf::filter::projected
@@ -265,7 +266,7 @@ y(0u, select(min(max(v, 1e-8), 1e4), v, x(8u) != 0.0));",
 
 const FILTER_ROUGHNESS: GpuKernel = GpuKernel {
     name: "filter_roughness",
-    body: "let k = footprint::covariance(oracle_footprint(5u), x(13u));
+    body: "let k = covariance::from_footprint(oracle_footprint(5u), x(13u));
 var af: matrix::RoughnessMatrix;
 if x(14u) == 0.0 {
     af = gaussian::gaussian(oracle_matrix(0u), k);
@@ -287,7 +288,7 @@ const GGX_RECT: GpuKernel = GpuKernel {
 const GGX_RECT_FOOTPRINT: GpuKernel = GpuKernel {
     name: "ggx_rect_footprint",
     body: "let r = axis_aligned::from_alpha(x2(0u));
-let he = clamp::rect(oracle_rules(10u), footprint::bounding_rect(oracle_footprint(2u)), r.alpha).half_extent;
+let he = clamp::rect(oracle_rules(10u), bounding::from_footprint(oracle_footprint(2u)), r.alpha).half_extent;
 let lobe = method::RectFilteredGgx(r, he);
 if x(15u) == 3.0 {
     y2(0u, he);

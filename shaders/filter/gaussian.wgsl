@@ -1,7 +1,9 @@
 #define_import_path filtered_ndf::filter::gaussian
 
 #import filtered_ndf::ndf::roughness::matrix
+#import filtered_ndf::footprint as pixel
 #import filtered_ndf::kernel::covariance
+#import filtered_ndf::kernel::clamp
 
 // Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
 // mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
@@ -57,4 +59,17 @@ fn gaussian_with_det_clamp(
     det_clamp: f32,
 ) -> matrix::RoughnessMatrix {
     return gaussian_sanitized(a, covariance::sanitized(kernel), max(det_clamp, matrix::own_det_clamp(a)));
+}
+
+/// The whole Gaussian pipeline: `clamp::footprint` -> `covariance::from_footprint` (`sigma` pixels)
+/// -> `clamp::kernel` -> `A' = A + 2 Sigma` with `tau = det A_c` if `det_clamp` (the TK19 matrix
+/// filter; exact for Beckmann). The result is the one clamped matrix of `matrix.wgsl`. The
+/// Rust `ClampRules::filter_gaussian`: the rules are the kernel stage's data, applied here.
+fn filter_gaussian(
+    rules: clamp::ClampRules,
+    a: matrix::RoughnessMatrix,
+    fp: pixel::Footprint,
+    sigma: f32,
+) -> matrix::RoughnessMatrix {
+    return gaussian_sanitized(a, clamp::pixel_kernel(rules, fp, sigma), clamp::det_clamp_for(rules, a));
 }

@@ -6,7 +6,10 @@
 #import filtered_ndf::ndf::roughness::axis_aligned
 #import filtered_ndf::ndf::roughness::matrix
 #import filtered_ndf::footprint as pixel
+#import filtered_ndf::kernel::rect as bounding
 #import filtered_ndf::kernel::clamp
+#import filtered_ndf::filter::gaussian
+#import filtered_ndf::filter::projected
 #import filtered_ndf::filter::gaussian_ggx
 #import filtered_ndf::filter::proxy as proxy_roughness
 #import filtered_ndf::filter::rect
@@ -52,7 +55,7 @@ const KHPL16_GAUSSIAN: Gaussian = Gaussian(clamp::KHPL16_RULES, pixel::SIGMA_PIX
 /// The lobe of `material` filtered by `method` over `fp` (the Rust `Gaussian::lobe`): the
 /// filtered roughness matrix, for `ggx::*_matrix` or `beckmann::*_matrix`.
 fn gaussian_lobe(method: Gaussian, material: matrix::RoughnessMatrix, fp: pixel::Footprint) -> matrix::RoughnessMatrix {
-    return clamp::filter_gaussian(method.clamps, material, fp, method.sigma);
+    return gaussian::filter_gaussian(method.clamps, material, fp, method.sigma);
 }
 
 /// `D(m)` of the GGX lobe of [`gaussian_lobe`].
@@ -103,7 +106,7 @@ const TK21_PROJECTED: Projected = Projected(clamp::DEFAULT_RULES, pixel::SIGMA_P
 
 /// The GGX lobe of projected-space filtering (the Rust `Projected::lobe`), for `ggx::*_matrix`.
 fn projected_lobe(method: Projected, material: matrix::RoughnessMatrix, fp: pixel::Footprint) -> matrix::RoughnessMatrix {
-    return clamp::filter_projected(method.clamps, material, fp, method.sigma);
+    return projected::filter_projected(method.clamps, material, fp, method.sigma);
 }
 
 /// `D(m)` of [`projected_lobe`].
@@ -134,7 +137,7 @@ struct RectFilteredGgx {
 
 /// The box-filtered lobe of `material` over `fp` (the Rust `Rect::lobe`).
 fn rect_lobe(method: Rect, material: axis_aligned::AxisAligned, fp: pixel::Footprint) -> RectFilteredGgx {
-    let h = clamp::rect(method.clamps, pixel::bounding_rect(fp), material.alpha).half_extent;
+    let h = clamp::rect(method.clamps, bounding::from_footprint(fp), material.alpha).half_extent;
     return RectFilteredGgx(material, h);
 }
 
@@ -181,7 +184,7 @@ const KHPL16_PROXY: Proxy = Proxy(clamp::KHPL16_RULES);
 
 /// The proxy roughness (the Rust `Proxy::lobe`), for `ggx::*_axis_aligned`.
 fn proxy_lobe(method: Proxy, material: axis_aligned::AxisAligned, fp: pixel::Footprint) -> axis_aligned::AxisAligned {
-    let h = clamp::rect(method.clamps, pixel::bounding_rect(fp), material.alpha).half_extent;
+    let h = clamp::rect(method.clamps, bounding::from_footprint(fp), material.alpha).half_extent;
     return proxy_roughness::proxy(material, h);
 }
 

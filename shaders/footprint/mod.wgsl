@@ -1,14 +1,14 @@
 #define_import_path filtered_ndf::footprint
 
 #import filtered_ndf::footprint::jacobian
-#import filtered_ndf::kernel::covariance as cov
-#import filtered_ndf::kernel::rect as bounding
 
 // Pixel footprints in the slope domain (KHPL16 sections 4.2, 4.3; TK19 section 2.2),
 // mirroring `Footprint` of `src/.../footprint/mod.rs`: the slope change of the half vector
 // across one pixel step in `x` (`dh_u`) and in `y` (`dh_v`). A Gaussian pixel filter of
 // standard deviation `sigma` pixels carried into the slope domain has covariance
-// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`.
+// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`; the kernel stage builds it
+// (`kernel::covariance::from_footprint`) and the bounding rectangle
+// (`kernel::rect::from_footprint`).
 
 /// The standard deviation of the pixel filter of KHPL16 and TK19, in pixels.
 const SIGMA_PIXEL: f32 = 0.5;
@@ -59,28 +59,6 @@ fn from_normal_differences(dn_u: vec3<f32>, dn_v: vec3<f32>) -> Footprint {
     let lu = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_u), 1e-6);
     let lv = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_v), 1e-6);
     return Footprint(dn_u.xy * (2.0 / lu), dn_v.xy * (2.0 / lv));
-}
-
-/// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels, with
-/// `det Sigma = sigma^4 (dh_u x dh_v)^2` from the vectors (accurate for elongated kernels).
-fn covariance(fp: Footprint, sigma: f32) -> cov::Covariance {
-    let u = fp.dh_u;
-    let v = fp.dh_v;
-    let s2 = sigma * sigma;
-    let cross = (u.x * v.y - u.y * v.x) * s2;
-    return cov::Covariance(
-        (u.x * u.x + v.x * v.x) * s2,
-        (u.x * u.y + v.x * v.y) * s2,
-        (u.y * u.y + v.y * v.y) * s2,
-        cross * cross,
-    );
-}
-
-/// The axis-aligned bounding rectangle of the one-pixel parallelogram (KHPL16 section 5.3;
-/// GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
-/// `(|dh_u| + |dh_v|) / 2` per axis.
-fn bounding_rect(fp: Footprint) -> bounding::BoundingRect {
-    return bounding::BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
 }
 
 /// The largest centre-to-vertex distance of the one-pixel parallelogram,

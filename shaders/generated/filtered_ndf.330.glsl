@@ -4,6 +4,18 @@
 // Names are those of shaders/generated/filtered_ndf.wgsl (module path as prefix);
 // the documentation is in the WGSL modules under shaders/. The entry point at the
 // end exists only because naga translates one: delete it when pasting.
+struct footprint_jacobian_Polar {
+    vec3 h;
+    vec2 cs;
+};
+struct footprint_jacobian_SphericalBasis {
+    vec3 e_x;
+    vec3 e_y;
+};
+struct footprint_Footprint {
+    vec2 dh_u;
+    vec2 dh_v;
+};
 struct kernel_covariance_Covariance {
     float s_xx;
     float s_xy;
@@ -30,6 +42,16 @@ struct ndf_roughness_matrix_RoughnessMatrix {
     float det;
     float tau;
 };
+struct kernel_rect_BoundingRect {
+    vec2 half_extent;
+};
+struct kernel_clamp_ClampRules {
+    float max_extent;
+    uint floor_kind;
+    float floor_;
+    float kappa;
+    bool det_clamp;
+};
 struct ndf_roughness_isotropic_Isotropic {
     float alpha;
     float inv_alpha_sq;
@@ -37,11 +59,6 @@ struct ndf_roughness_isotropic_Isotropic {
 struct ndf_roughness_axis_aligned_AxisAligned {
     vec2 alpha;
     vec2 inv_alpha_sq;
-};
-struct sampling_Warp {
-    float l_xx;
-    float l_yx;
-    float l_yy;
 };
 struct filter_gaussian_ggx_GaussianFilteredGgx {
     ndf_roughness_matrix_RoughnessMatrix a;
@@ -54,28 +71,6 @@ struct filter_gaussian_ggx_GaussianFilteredGgx {
 struct filter_lean_LeanMoments {
     vec2 mean;
     vec3 second;
-};
-struct footprint_jacobian_Polar {
-    vec3 h;
-    vec2 cs;
-};
-struct footprint_jacobian_SphericalBasis {
-    vec3 e_x;
-    vec3 e_y;
-};
-struct kernel_rect_BoundingRect {
-    vec2 half_extent;
-};
-struct footprint_Footprint {
-    vec2 dh_u;
-    vec2 dh_v;
-};
-struct kernel_clamp_ClampRules {
-    float max_extent;
-    uint floor_kind;
-    float floor_;
-    float kappa;
-    bool det_clamp;
 };
 struct filter_method_Gaussian {
     kernel_clamp_ClampRules clamps;
@@ -99,6 +94,11 @@ struct filter_method_RectFilteredGgx {
 struct filter_method_Proxy {
     kernel_clamp_ClampRules clamps;
 };
+struct sampling_Warp {
+    float l_xx;
+    float l_yx;
+    float l_yy;
+};
 const float math_PI = 3.1415927;
 const float math_HALF_PI = 1.5707964;
 const float math_QUARTER_PI = 0.7853982;
@@ -114,6 +114,8 @@ const float math_LOG2_E = 1.442695;
 const float math_SQRT_2_ = 1.4142135;
 const float ndf_roughness_ALPHA_MIN = 1e-8;
 const float ndf_roughness_ALPHA_MAX = 10000.0;
+const float footprint_jacobian_HZ_MIN = 1e-6;
+const float footprint_SIGMA_PIXEL = 0.5;
 const float kernel_covariance_KERNEL_MAX = 100000000.0;
 const float filter_deferred_KAPPA = 0.18;
 const uint filter_deferred_DOMAIN_ALPHA_SQ = 0u;
@@ -129,6 +131,13 @@ const uint filter_deferred_COMBINE_MAX = 1u;
 const uint filter_deferred_BANDWIDTH_MAX = 0u;
 const uint filter_deferred_BANDWIDTH_TRACE = 1u;
 const uint filter_deferred_BANDWIDTH_AVERAGE = 2u;
+const uint kernel_clamp_FLOOR_NONE = 0u;
+const uint kernel_clamp_FLOOR_CONSTANT = 1u;
+const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
+const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
+const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
+const kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
+const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
 const float ndf_beckmann_EXP_SPLIT = 80.0;
 const float ndf_beckmann_SQRT_PI = 1.7724539;
 const float filter_gaussian_ggx_quad_FAR = 320000.0;
@@ -145,17 +154,7 @@ const float filter_gaussian_ggx_quad_S_MAX = 0.25;
 const float filter_gaussian_ggx_quad_S_COEF = 0.25;
 const float filter_gaussian_ggx_quad_S_EPS = 1e-8;
 const uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
-const float sampling_ONE_MINUS_EPS = 0.99999994;
-const float footprint_jacobian_HZ_MIN = 1e-6;
-const float footprint_SIGMA_PIXEL = 0.5;
 const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
-const uint kernel_clamp_FLOOR_NONE = 0u;
-const uint kernel_clamp_FLOOR_CONSTANT = 1u;
-const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
-const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
-const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
-const kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
-const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
 const float filter_rect_BIG = 1e18;
 const float filter_rect_FAR2_ = 0.25;
 const uint filter_rect_TIER_CLOSED = 0u;
@@ -179,6 +178,7 @@ const filter_deferred_KernelConvention filter_presets_O3DE = filter_deferred_Ker
 const filter_deferred_KernelConvention filter_presets_UNREAL = filter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 const filter_deferred_KernelConvention filter_presets_BABYLON = filter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 const filter_deferred_KernelConvention filter_presets_THREE_JS = filter_deferred_KernelConvention(2u, 3u, 1.0, 1.0, 0.0, 3.4028235e38, 0u, true, 0.0525);
+const float sampling_ONE_MINUS_EPS = 0.99999994;
 const float sampling_beckmann_X_MAX = 9.0;
 const uint sampling_beckmann_MAX_ITERATIONS = 64u;
 const float sampling_beckmann_INV_SQRT_PI = 0.5641896;
@@ -300,12 +300,139 @@ float ndf_roughness_clamp_alpha(float alpha) {
     return ((alpha >= ndf_roughness_ALPHA_MIN) ? min(alpha, ndf_roughness_ALPHA_MAX) : ndf_roughness_ALPHA_MIN);
 }
 
+footprint_jacobian_Polar footprint_jacobian_polar(vec3 h_in) {
+    vec2 cs_1 = vec2(1.0, 0.0);
+    float big = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if ((big <= 0.0)) {
+        return footprint_jacobian_Polar(vec3(0.0, 0.0, 1.0), vec2(1.0, 0.0));
+    }
+    vec3 h0_ = (h_in / vec3(big));
+    vec3 h_21 = (h0_ / vec3(length(h0_)));
+    float qs_3 = max(abs(h_21.x), abs(h_21.y));
+    if ((qs_3 > 0.0)) {
+        vec2 q_5 = (h_21.xy / vec2(qs_3));
+        cs_1 = (q_5 / vec2(length(q_5)));
+    }
+    if ((h_21.z >= footprint_jacobian_HZ_MIN)) {
+        vec2 _e44 = cs_1;
+        return footprint_jacobian_Polar(h_21, _e44);
+    }
+    vec2 _e47 = cs_1;
+    vec2 _e51 = cs_1;
+    return footprint_jacobian_Polar(vec3((1.0 * _e47), footprint_jacobian_HZ_MIN), _e51);
+}
+
+vec3 footprint_jacobian_sanitize(vec3 h) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h);
+    return _e1.h;
+}
+
+footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(vec3 h_1) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
+    float st = length(_e1.h.xy);
+    return footprint_jacobian_SphericalBasis(vec3((_e1.h.z * _e1.cs), -(st)), vec3(-(_e1.cs.y), _e1.cs.x, 0.0));
+}
+
+vec2 footprint_jacobian_spherical_components(vec3 h_2, vec3 dh) {
+    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_2);
+    return vec2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
+}
+
+mat2x2 footprint_jacobian_sphere_to_projected(vec3 h_3) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_3);
+    return mat2x2((_e1.h.z * _e1.cs), vec2(-(_e1.cs.y), _e1.cs.x));
+}
+
+mat2x2 footprint_jacobian_projected_to_slope(vec3 h_in_1) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
+    vec3 h_22 = _e1.h;
+    float k_25 = (-1.0 / ((h_22.z * h_22.z) * h_22.z));
+    float xy = (h_22.x * h_22.y);
+    return mat2x2((vec2(((h_22.x * h_22.x) + (h_22.z * h_22.z)), xy) * k_25), (vec2(xy, ((h_22.y * h_22.y) + (h_22.z * h_22.z))) * k_25));
+}
+
+mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_2) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
+    vec3 h_23 = _e1.h;
+    float xy_1 = (h_23.x * h_23.y);
+    return mat2x2((vec2(((h_23.y * h_23.y) + (h_23.z * h_23.z)), -(xy_1)) * -(h_23.z)), (vec2(-(xy_1), ((h_23.x * h_23.x) + (h_23.z * h_23.z))) * -(h_23.z)));
+}
+
+mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_4) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
+    float k_26 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return mat2x2((_e1.cs * k_26), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_26));
+}
+
+float footprint_jacobian_det_sphere_to_projected(vec3 h_5) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
+    return _e1.h.z;
+}
+
+float footprint_jacobian_det_projected_to_slope(vec3 h_6) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
+    float z_4 = _e1.h.z;
+    float z2_4 = (z_4 * z_4);
+    return (1.0 / (z2_4 * z2_4));
+}
+
+float footprint_jacobian_det_sphere_to_slope(vec3 h_7) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
+    float z_5 = _e1.h.z;
+    return (1.0 / ((z_5 * z_5) * z_5));
+}
+
+vec2 footprint_jacobian_spherical_to_slope(vec3 h_8, vec2 e_1) {
+    mat2x2 _e2 = footprint_jacobian_sphere_to_slope(h_8);
+    return (_e2 * e_1);
+}
+
+vec2 footprint_jacobian_spherical_to_projected(vec3 h_9, vec2 e_2) {
+    mat2x2 _e2 = footprint_jacobian_sphere_to_projected(h_9);
+    return (_e2 * e_2);
+}
+
+footprint_Footprint footprint_from_slope_derivatives(vec2 dh_u, vec2 dh_v) {
+    return footprint_Footprint(dh_u, dh_v);
+}
+
+footprint_Footprint footprint_from_projected_derivatives(vec2 dp_u, vec2 dp_v) {
+    return footprint_Footprint(dp_u, dp_v);
+}
+
+footprint_Footprint footprint_from_projected_derivatives_in_slope(vec3 h_10, vec2 dp_u_1, vec2 dp_v_1) {
+    float big_1 = max(max(abs(h_10.x), abs(h_10.y)), abs(h_10.z));
+    if ((big_1 <= 0.0)) {
+        return footprint_Footprint(vec2(0.0), vec2(0.0));
+    }
+    mat2x2 _e18 = footprint_jacobian_projected_to_slope(h_10);
+    return footprint_Footprint((_e18 * dp_u_1), (_e18 * dp_v_1));
+}
+
+footprint_Footprint footprint_from_normal_differences(vec3 dn_u, vec3 dn_v) {
+    float lu = max(length((vec3(0.0, 0.0, 2.0) + dn_u)), 1e-6);
+    float lv = max(length((vec3(0.0, 0.0, 2.0) + dn_v)), 1e-6);
+    return footprint_Footprint((dn_u.xy * (2.0 / lu)), (dn_v.xy * (2.0 / lv)));
+}
+
+float footprint_max_extent(footprint_Footprint fp) {
+    return (0.5 * max(length((fp.dh_u + fp.dh_v)), length((fp.dh_u - fp.dh_v))));
+}
+
 kernel_covariance_Covariance kernel_covariance_zero() {
     return kernel_covariance_Covariance(0.0, 0.0, 0.0, 0.0);
 }
 
 kernel_covariance_Covariance kernel_covariance_from_entries(float s_xx, float s_xy, float s_yy) {
     return kernel_covariance_Covariance(s_xx, s_xy, s_yy, ((s_xx * s_yy) - (s_xy * s_xy)));
+}
+
+kernel_covariance_Covariance kernel_covariance_from_footprint(footprint_Footprint fp_1, float sigma) {
+    vec2 u_18 = fp_1.dh_u;
+    vec2 v_13 = fp_1.dh_v;
+    float s2_ = (sigma * sigma);
+    float cross_ = (((u_18.x * v_13.y) - (u_18.y * v_13.x)) * s2_);
+    return kernel_covariance_Covariance((((u_18.x * u_18.x) + (v_13.x * v_13.x)) * s2_), (((u_18.x * u_18.y) + (v_13.x * v_13.y)) * s2_), (((u_18.y * u_18.y) + (v_13.y * v_13.y)) * s2_), (cross_ * cross_));
 }
 
 float kernel_covariance_trace(kernel_covariance_Covariance c) {
@@ -317,8 +444,8 @@ kernel_covariance_Covariance kernel_covariance_scaled(kernel_covariance_Covarian
 }
 
 kernel_covariance_Covariance kernel_covariance_add(kernel_covariance_Covariance a, kernel_covariance_Covariance b) {
-    float cross_ = (((a.s_xx * b.s_yy) + (a.s_yy * b.s_xx)) - ((2.0 * a.s_xy) * b.s_xy));
-    return kernel_covariance_Covariance((a.s_xx + b.s_xx), (a.s_xy + b.s_xy), (a.s_yy + b.s_yy), ((a.det + b.det) + cross_));
+    float cross_1 = (((a.s_xx * b.s_yy) + (a.s_yy * b.s_xx)) - ((2.0 * a.s_xy) * b.s_xy));
+    return kernel_covariance_Covariance((a.s_xx + b.s_xx), (a.s_xy + b.s_xy), (a.s_yy + b.s_yy), ((a.det + b.det) + cross_1));
 }
 
 vec2 kernel_covariance_eigenvalues(kernel_covariance_Covariance c_2) {
@@ -359,8 +486,8 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         return kernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
     }
     float p_7 = (r_78 + abs(d_3));
-    float q_5 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
-    vec2 ee = ((d_3 >= 0.0) ? vec2(p_7, q_5) : vec2(q_5, p_7));
+    float q_6 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
+    vec2 ee = ((d_3 >= 0.0) ? vec2(p_7, q_6) : vec2(q_6, p_7));
     float inv_1 = (1.0 / (2.0 * r_78));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_6 * inv_1);
@@ -371,8 +498,8 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
 kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covariance c_4) {
     bool local_1 = false;
     bool local_2 = false;
-    float big = max(max(abs(c_4.s_xx), abs(c_4.s_yy)), abs(c_4.s_xy));
-    if ((big > math_F32_MAX)) {
+    float big_2 = max(max(abs(c_4.s_xx), abs(c_4.s_yy)), abs(c_4.s_xy));
+    if ((big_2 > math_F32_MAX)) {
         return kernel_covariance_Covariance(100000000.0, 0.0, 100000000.0, 1e16);
     }
     if ((c_4.s_xx >= 0.0)) {
@@ -431,18 +558,18 @@ float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5) {
     return max(((0.5 * (a_1 + c_5)) + _e9), 0.0);
 }
 
-float filter_deferred_norm_eval(uint norm, vec3 dn_u, vec3 dn_v) {
-    float a_19 = dot(dn_u, dn_u);
-    float c_15 = dot(dn_v, dn_v);
+float filter_deferred_norm_eval(uint norm, vec3 dn_u_1, vec3 dn_v_1) {
+    float a_19 = dot(dn_u_1, dn_u_1);
+    float c_15 = dot(dn_v_1, dn_v_1);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
         return max(a_19, c_15);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        float _e11 = filter_deferred_max_eigenvalue(a_19, dot(dn_u, dn_v), c_15);
+        float _e11 = filter_deferred_max_eigenvalue(a_19, dot(dn_u_1, dn_v_1), c_15);
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        vec3 m_45 = max(abs(dn_u), abs(dn_v));
+        vec3 m_45 = max(abs(dn_u_1), abs(dn_v_1));
         return max(max(m_45.x, m_45.y), m_45.z);
     }
     return (a_19 + c_15);
@@ -452,9 +579,9 @@ float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, floa
     return min(max(k_1, 0.0), conv.clamp_);
 }
 
-float filter_deferred_widening(filter_deferred_KernelConvention conv_1, vec3 dn_u_1, vec3 dn_v_1) {
+float filter_deferred_widening(filter_deferred_KernelConvention conv_1, vec3 dn_u_2, vec3 dn_v_2) {
     float raw = 0.0;
-    float _e4 = filter_deferred_norm_eval(conv_1.norm, dn_u_1, dn_v_1);
+    float _e4 = filter_deferred_norm_eval(conv_1.norm, dn_u_2, dn_v_2);
     raw = _e4;
     if ((conv_1.exponent != 1.0)) {
         raw = ((_e4 > 0.0) ? pow(_e4, conv_1.exponent) : 0.0);
@@ -483,16 +610,16 @@ float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, fl
     return clamp(_e29, 0.0, ndf_roughness_ALPHA_MAX);
 }
 
-float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_3, vec3 dn_u_2, vec3 dn_v_2) {
-    float _e4 = filter_deferred_widening(conv_3, dn_u_2, dn_v_2);
+float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_3, vec3 dn_u_3, vec3 dn_v_3) {
+    float _e4 = filter_deferred_widening(conv_3, dn_u_3, dn_v_3);
     float _e5 = filter_deferred_apply_widening(conv_3, alpha_3, _e4);
     return _e5;
 }
 
-kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_3, vec3 dn_v_3, float sigma) {
-    float sigma_sq = (sigma * sigma);
-    vec3 x_12 = (cross(dn_u_3, dn_v_3) * sigma_sq);
-    return kernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_12, x_12));
+kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_4, vec3 dn_v_4, float sigma_1) {
+    float sigma_sq = (sigma_1 * sigma_1);
+    vec3 x_12 = (cross(dn_u_4, dn_v_4) * sigma_sq);
+    return kernel_covariance_Covariance((dot(dn_u_4, dn_u_4) * sigma_sq), (dot(dn_u_4, dn_v_4) * sigma_sq), (dot(dn_v_4, dn_v_4) * sigma_sq), dot(x_12, x_12));
 }
 
 float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel) {
@@ -520,9 +647,9 @@ vec2 ndf_roughness_matrix_clamped_eigenvalues(vec2 l, float det, float tau) {
     if ((det >= tau)) {
         return l;
     }
-    float h_21 = (0.5 * (l.x + l.y));
+    float h_24 = (0.5 * (l.x + l.y));
     float gap = (tau - det);
-    float t_11 = (gap / (h_21 + sqrt(((h_21 * h_21) + gap))));
+    float t_11 = (gap / (h_24 + sqrt(((h_24 * h_24) + gap))));
     float l1_ = (l.x + t_11);
     return vec2(l1_, (tau / l1_));
 }
@@ -538,9 +665,9 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float
     float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
     float l1_1 = ((0.5 * (a11_ + a22_)) + rad);
     float l2_2 = (max(det_2, 0.0) / l1_1);
-    float big_1 = (rad + abs(half_diff));
-    v_1 = ((half_diff < 0.0) ? vec2(a12_, big_1) : vec2(big_1, a12_));
-    if ((big_1 <= 0.0)) {
+    float big_3 = (rad + abs(half_diff));
+    v_1 = ((half_diff < 0.0) ? vec2(a12_, big_3) : vec2(big_3, a12_));
+    if ((big_3 <= 0.0)) {
         v_1 = vec2(1.0, 0.0);
     }
     vec2 _e32 = v_1;
@@ -606,29 +733,97 @@ float ndf_roughness_matrix_own_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_
     return ((r_11.tau > r_11.det) ? r_11.tau : 0.0);
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3) {
-    vec3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_17 = a_2.axis.x;
-    float s_24 = a_2.axis.y;
-    float k1_1 = max(((((c_17 * c_17) * k_3.s_xx) + (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((s_24 * s_24) * k_3.s_yy)), 0.0);
-    float k2_1 = max(((((s_24 * s_24) * k_3.s_xx) - (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((c_17 * c_17) * k_3.s_yy)), 0.0);
-    float _e38 = ndf_roughness_matrix_determinant(a_2);
-    float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * max(k_3.det, 0.0)));
-    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
+kernel_rect_BoundingRect kernel_rect_from_footprint(footprint_Footprint fp_2) {
+    return kernel_rect_BoundingRect(((abs(fp_2.dh_u) + abs(fp_2.dh_v)) * 0.5));
+}
+
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_12, float sigma_2) {
+    vec2 w_24 = (r_12.half_extent * (2.0 * sigma_2));
+    vec2 v_14 = (w_24 * w_24);
+    return kernel_covariance_Covariance(v_14.x, 0.0, v_14.y, (v_14.x * v_14.y));
+}
+
+footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3) {
+    float l_6 = max(rules.max_extent, 0.0);
+    float scale_1 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
+    if ((scale_1 <= 0.0)) {
+        return fp_3;
+    }
+    footprint_Footprint unit = footprint_Footprint((fp_3.dh_u / vec2(scale_1)), (fp_3.dh_v / vec2(scale_1)));
+    float _e29 = footprint_max_extent(unit);
+    if (((_e29 * scale_1) <= l_6)) {
+        return fp_3;
+    }
+    return footprint_Footprint(((unit.dh_u / vec2(_e29)) * l_6), ((unit.dh_v / vec2(_e29)) * l_6));
+}
+
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_13, vec2 alpha_6) {
+    vec2 f_1 = vec2(0.0);
+    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
+        f_1 = vec2(rules_1.floor_);
+    } else {
+        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
+            f_1 = min(abs(alpha_6), vec2(rules_1.floor_));
+        }
+    }
+    float lambda_2 = max(rules_1.max_extent, 0.0);
+    vec2 h_25 = min(abs(r_13.half_extent), vec2(lambda_2));
+    vec2 _e25 = f_1;
+    return kernel_rect_BoundingRect(max(h_25, max(_e25, vec2(0.0))));
+}
+
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_3) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_3);
+    if ((rules_2.kappa >= math_F32_MAX)) {
+        return _e2;
+    }
+    kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
+    return _e11;
+}
+
+float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_2) {
+    float _e2 = ndf_roughness_matrix_own_det_clamp(a_2);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_2);
+    return (rules_3.det_clamp ? _e3 : _e2);
+}
+
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_3) {
+    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
+    kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_3);
+    kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
+    return _e5;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance k_4, float tau_3) {
+    vec3 _e3 = ndf_roughness_matrix_entries(a_3);
+    float c_17 = a_3.axis.x;
+    float s_24 = a_3.axis.y;
+    float k1_1 = max(((((c_17 * c_17) * k_4.s_xx) + (((2.0 * c_17) * s_24) * k_4.s_xy)) + ((s_24 * s_24) * k_4.s_yy)), 0.0);
+    float k2_1 = max(((((s_24 * s_24) * k_4.s_xx) - (((2.0 * c_17) * s_24) * k_4.s_xy)) + ((c_17 * c_17) * k_4.s_yy)), 0.0);
+    float _e38 = ndf_roughness_matrix_determinant(a_3);
+    float det_4 = ((_e38 + (2.0 * ((a_3.eig.y * k1_1) + (a_3.eig.x * k2_1)))) + (4.0 * max(k_4.det, 0.0)));
+    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_4.s_xx)), (_e3.y + (2.0 * k_4.s_xy)), (_e3.z + (2.0 * k_4.s_yy)), det_4, max(tau_3, 0.0));
     return _e72;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel_2) {
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_2) {
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_3);
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_3, _e2, _e3);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_4);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e2, _e3);
     return _e4;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_3, float det_clamp_1) {
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_3, float det_clamp_1) {
     kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
-    float _e4 = ndf_roughness_matrix_own_det_clamp(a_4);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_4, _e3, max(det_clamp_1, _e4));
+    float _e4 = ndf_roughness_matrix_own_det_clamp(a_5);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_5, _e3, max(det_clamp_1, _e4));
+    return _e6;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_6, footprint_Footprint fp_5, float sigma_4) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
+    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_6);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_6, _e4, _e5);
     return _e6;
 }
 
@@ -647,51 +842,51 @@ float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m) {
     return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
 }
 
-ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_6) {
-    float _e1 = ndf_roughness_clamp_alpha(alpha_6);
+ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_7) {
+    float _e1 = ndf_roughness_clamp_alpha(alpha_7);
     return ndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
 }
 
-float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_12, vec2 s_1) {
-    return (dot(s_1, s_1) * r_12.inv_alpha_sq);
+float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_14, vec2 s_1) {
+    return (dot(s_1, s_1) * r_14.inv_alpha_sq);
 }
 
-float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_13, vec2 w_1) {
-    vec2 s_25 = (w_1 * r_13.alpha);
+float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_15, vec2 w_1) {
+    vec2 s_25 = (w_1 * r_15.alpha);
     return dot(s_25, s_25);
 }
 
-float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_14) {
-    return (r_14.alpha * r_14.alpha);
+float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_16) {
+    return (r_16.alpha * r_16.alpha);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_15) {
-    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), vec2(r_15.alpha));
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_17) {
+    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), vec2(r_17.alpha));
     return _e6;
 }
 
-ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(vec2 alpha_7) {
-    float _e2 = ndf_roughness_clamp_alpha(alpha_7.x);
-    float _e4 = ndf_roughness_clamp_alpha(alpha_7.y);
+ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(vec2 alpha_8) {
+    float _e2 = ndf_roughness_clamp_alpha(alpha_8.x);
+    float _e4 = ndf_roughness_clamp_alpha(alpha_8.y);
     vec2 a_20 = vec2(_e2, _e4);
     return ndf_roughness_axis_aligned_AxisAligned(a_20, (vec2(1.0) / (a_20 * a_20)));
 }
 
-float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_16, vec2 s_2) {
-    return dot((s_2 * s_2), r_16.inv_alpha_sq);
+float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_18, vec2 s_2) {
+    return dot((s_2 * s_2), r_18.inv_alpha_sq);
 }
 
-float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_17, vec2 w_2) {
-    vec2 s_26 = (w_2 * r_17.alpha);
+float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_19, vec2 w_2) {
+    vec2 s_26 = (w_2 * r_19.alpha);
     return dot(s_26, s_26);
 }
 
-float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_18) {
-    return (r_18.alpha.x * r_18.alpha.y);
+float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_20) {
+    return (r_20.alpha.x * r_20.alpha.y);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_19) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), r_19.alpha);
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_21) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), r_21.alpha);
     return _e5;
 }
 
@@ -703,14 +898,14 @@ float ndf_ggx_p22_of(float q, float sqrt_det) {
 float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1) {
     bool local_4 = false;
     float t_13 = (q_xy + (m_z * m_z));
-    float v_13 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
+    float v_15 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
     if ((m_z > 0.0)) {
-        local_4 = (v_13 <= math_F32_MAX);
+        local_4 = (v_15 <= math_F32_MAX);
     } else {
         local_4 = false;
     }
     bool _e18 = local_4;
-    return (_e18 ? v_13 : 0.0);
+    return (_e18 ? v_15 : 0.0);
 }
 
 float ndf_ggx_lambda_of(float q_1, float abs_wz) {
@@ -738,107 +933,107 @@ float ndf_ggx_lambda_of(float q_1, float abs_wz) {
     return (q_1 / ((2.0 * abs_wz) * (r_79 + abs_wz)));
 }
 
-float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_20, vec2 s_3) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_20, s_3);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_20);
+float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_22, vec2 s_3) {
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_22, s_3);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_22);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_21, vec3 m) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_21, m.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_21);
+float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_23, vec3 m) {
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_23, m.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_23);
     float _e6 = ndf_ggx_d_of(_e3, m.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_22, vec3 w_3) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_22, w_3.xy);
+float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_24, vec3 w_3) {
+    float _e3 = ndf_roughness_isotropic_quadratic(r_24, w_3.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, abs(w_3.z));
     return _e6;
 }
 
-float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_23, vec3 w_4, vec3 m_1) {
-    float _e3 = ndf_ggx_lambda_isotropic(r_23, w_4);
+float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_25, vec3 w_4, vec3 m_1) {
+    float _e3 = ndf_ggx_lambda_isotropic(r_25, w_4);
     float _e5 = ndf_g1_of(_e3, dot(w_4, m_1));
     return _e5;
 }
 
-float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_24, vec3 i, vec3 o, vec3 m_2) {
-    float _e4 = ndf_ggx_lambda_isotropic(r_24, i);
-    float _e5 = ndf_ggx_lambda_isotropic(r_24, o);
+float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_26, vec3 i, vec3 o, vec3 m_2) {
+    float _e4 = ndf_ggx_lambda_isotropic(r_26, i);
+    float _e5 = ndf_ggx_lambda_isotropic(r_26, o);
     float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_2), dot(o, m_2));
     return _e8;
 }
 
-float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, vec2 s_4) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_25, s_4);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_25);
+float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, vec2 s_4) {
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_27, s_4);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_27);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, vec3 m_3) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_26, m_3.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_26);
+float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, vec3 m_3) {
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_28, m_3.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_28);
     float _e6 = ndf_ggx_d_of(_e3, m_3.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, vec3 w_5) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_27, w_5.xy);
+float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, vec3 w_5) {
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_29, w_5.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, abs(w_5.z));
     return _e6;
 }
 
-float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, vec3 w_6, vec3 m_4) {
-    float _e3 = ndf_ggx_lambda_axis_aligned(r_28, w_6);
+float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_30, vec3 w_6, vec3 m_4) {
+    float _e3 = ndf_ggx_lambda_axis_aligned(r_30, w_6);
     float _e5 = ndf_g1_of(_e3, dot(w_6, m_4));
     return _e5;
 }
 
-float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, vec3 i_1, vec3 o_1, vec3 m_5) {
-    float _e4 = ndf_ggx_lambda_axis_aligned(r_29, i_1);
-    float _e5 = ndf_ggx_lambda_axis_aligned(r_29, o_1);
+float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_31, vec3 i_1, vec3 o_1, vec3 m_5) {
+    float _e4 = ndf_ggx_lambda_axis_aligned(r_31, i_1);
+    float _e5 = ndf_ggx_lambda_axis_aligned(r_31, o_1);
     float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_5), dot(o_1, m_5));
     return _e8;
 }
 
-float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, vec2 s_5) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_30, s_5);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_30);
+float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, vec2 s_5) {
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_32, s_5);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_32);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, vec3 m_6) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_31, m_6.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_31);
+float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, vec3 m_6) {
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_33, m_6.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_33);
     float _e6 = ndf_ggx_d_of(_e3, m_6.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, vec3 w_7) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_32, w_7.xy);
+float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, vec3 w_7) {
+    float _e3 = ndf_roughness_matrix_quadratic(r_34, w_7.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, abs(w_7.z));
     return _e6;
 }
 
-float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, vec3 w_8, vec3 m_7) {
-    float _e3 = ndf_ggx_lambda_matrix(r_33, w_8);
+float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_35, vec3 w_8, vec3 m_7) {
+    float _e3 = ndf_ggx_lambda_matrix(r_35, w_8);
     float _e5 = ndf_g1_of(_e3, dot(w_8, m_7));
     return _e5;
 }
 
-float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, vec3 i_2, vec3 o_2, vec3 m_8) {
-    float _e4 = ndf_ggx_lambda_matrix(r_34, i_2);
-    float _e5 = ndf_ggx_lambda_matrix(r_34, o_2);
+float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_36, vec3 i_2, vec3 o_2, vec3 m_8) {
+    float _e4 = ndf_ggx_lambda_matrix(r_36, i_2);
+    float _e5 = ndf_ggx_lambda_matrix(r_36, o_2);
     float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_8), dot(o_2, m_8));
     return _e8;
 }
 
-float ndf_beckmann_exp_neg_times(float x_5, float k_4, float ln_k) {
-    return ((x_5 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_5)) : (exp(-(x_5)) * k_4));
+float ndf_beckmann_exp_neg_times(float x_5, float k_5, float ln_k) {
+    return ((x_5 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_5)) : (exp(-(x_5)) * k_5));
 }
 
 float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
@@ -849,11 +1044,11 @@ float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
 
 float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3) {
     bool local_7 = false;
-    float z2_4 = (m_z_1 * m_z_1);
-    float x_13 = (q_xy_1 / z2_4);
-    float k_25 = (1.0 / (((math_PI * sqrt_det_3) * z2_4) * z2_4));
+    float z2_5 = (m_z_1 * m_z_1);
+    float x_13 = (q_xy_1 / z2_5);
+    float k_27 = (1.0 / (((math_PI * sqrt_det_3) * z2_5) * z2_5));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_13, k_25, ln_k_1);
+    float _e21 = ndf_beckmann_exp_neg_times(x_13, k_27, ln_k_1);
     if ((m_z_1 > 0.0)) {
         local_7 = (_e21 <= math_F32_MAX);
     } else {
@@ -919,111 +1114,111 @@ float ndf_beckmann_lambda_of(float q_3, float abs_wz_1) {
     float _e87 = p;
     p = ((_e87 * t_14) + 1.0631379);
     float _e91 = p;
-    float k_26 = (_e91 / ((2.0 * a_21) + 1.0));
-    return min(((exp((-(a_21) * a_21)) * k_26) / ((3.5449078 * a_21) * (a_21 + k_26))), math_F32_MAX);
+    float k_28 = (_e91 / ((2.0 * a_21) + 1.0));
+    return min(((exp((-(a_21) * a_21)) * k_28) / ((3.5449078 * a_21) * (a_21 + k_28))), math_F32_MAX);
 }
 
-float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_35, vec2 s_6) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_35, s_6);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_35);
+float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_37, vec2 s_6) {
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_6);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_36, vec3 m_9) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_36, m_9.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_36);
+float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_38, vec3 m_9) {
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_9.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
     float _e6 = ndf_beckmann_d_of(_e3, m_9.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_37, vec3 w_9) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_37, w_9.xy);
+float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_39, vec3 w_9) {
+    float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_38, vec3 w_10, vec3 m_10) {
-    float _e3 = ndf_beckmann_lambda_isotropic(r_38, w_10);
+float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_40, vec3 w_10, vec3 m_10) {
+    float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
     float _e5 = ndf_g1_of(_e3, dot(w_10, m_10));
     return _e5;
 }
 
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_39, vec3 i_3, vec3 o_3, vec3 m_11) {
-    float _e4 = ndf_beckmann_lambda_isotropic(r_39, i_3);
-    float _e5 = ndf_beckmann_lambda_isotropic(r_39, o_3);
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_41, vec3 i_3, vec3 o_3, vec3 m_11) {
+    float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_3);
+    float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
     float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_11), dot(o_3, m_11));
     return _e8;
 }
 
-float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_40, vec2 s_7) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_40, s_7);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_40);
+float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, vec2 s_7) {
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_7);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_41, vec3 m_12) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_41, m_12.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_41);
+float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, vec3 m_12) {
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_12.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
     float _e6 = ndf_beckmann_d_of(_e3, m_12.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, vec3 w_11) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_42, w_11.xy);
+float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, vec3 w_11) {
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, vec3 w_12, vec3 m_13) {
-    float _e3 = ndf_beckmann_lambda_axis_aligned(r_43, w_12);
+float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_45, vec3 w_12, vec3 m_13) {
+    float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
     float _e5 = ndf_g1_of(_e3, dot(w_12, m_13));
     return _e5;
 }
 
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, vec3 i_4, vec3 o_4, vec3 m_14) {
-    float _e4 = ndf_beckmann_lambda_axis_aligned(r_44, i_4);
-    float _e5 = ndf_beckmann_lambda_axis_aligned(r_44, o_4);
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_46, vec3 i_4, vec3 o_4, vec3 m_14) {
+    float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_4);
+    float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
     float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_14), dot(o_4, m_14));
     return _e8;
 }
 
-float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_45, vec2 s_8) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_45, s_8);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_45);
+float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, vec2 s_8) {
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_8);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_46, vec3 m_15) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_46, m_15.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_46);
+float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, vec3 m_15) {
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_15.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
     float _e6 = ndf_beckmann_d_of(_e3, m_15.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, vec3 w_13) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_47, w_13.xy);
+float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, vec3 w_13) {
+    float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, vec3 w_14, vec3 m_16) {
-    float _e3 = ndf_beckmann_lambda_matrix(r_48, w_14);
+float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_50, vec3 w_14, vec3 m_16) {
+    float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
     float _e5 = ndf_g1_of(_e3, dot(w_14, m_16));
     return _e5;
 }
 
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, vec3 i_5, vec3 o_5, vec3 m_17) {
-    float _e4 = ndf_beckmann_lambda_matrix(r_49, i_5);
-    float _e5 = ndf_beckmann_lambda_matrix(r_49, o_5);
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_51, vec3 i_5, vec3 o_5, vec3 m_17) {
+    float _e4 = ndf_beckmann_lambda_matrix(r_51, i_5);
+    float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
     float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_17), dot(o_5, m_17));
     return _e8;
 }
 
-float filter_gaussian_ggx_quad_laguerre_node(uint k_5) {
-    switch(k_5) {
+float filter_gaussian_ggx_quad_laguerre_node(uint k_6) {
+    switch(k_6) {
         case 0u: {
             return 0.40938357;
         }
@@ -1051,8 +1246,8 @@ float filter_gaussian_ggx_quad_laguerre_node(uint k_5) {
     }
 }
 
-float filter_gaussian_ggx_quad_laguerre_weight(uint k_6) {
-    switch(k_6) {
+float filter_gaussian_ggx_quad_laguerre_weight(uint k_7) {
+    switch(k_7) {
         case 0u: {
             return 0.18763255;
         }
@@ -1089,7 +1284,7 @@ float filter_gaussian_ggx_quad_far_tail(float beta, float c1s, float c2s, float 
 
 float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, float z2_1, float tl1_1, float tl2_1) {
     float acc = 0.0;
-    uint k_7 = 0u;
+    uint k_8 = 0u;
     float ib_1 = (1.0 / beta_m);
     float t1_2 = ((tl1_1 * z2_1) * ib_1);
     float t2_ = ((tl2_1 * z2_1) * ib_1);
@@ -1098,17 +1293,17 @@ float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, floa
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e51 = k_7;
-            k_7 = (_e51 + 1u);
+            uint _e51 = k_8;
+            k_8 = (_e51 + 1u);
         }
         loop_init = false;
-        uint _e20 = k_7;
+        uint _e20 = k_8;
         if ((_e20 < 8u)) {
         } else {
             break;
         }
         {
-            uint _e23 = k_7;
+            uint _e23 = k_8;
             float _e24 = filter_gaussian_ggx_quad_laguerre_node(_e23);
             float p1_ = (1.0 + (t1_2 * _e24));
             float p2_ = (1.0 + (t2_ * _e24));
@@ -1116,7 +1311,7 @@ float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, floa
             float ip2_ = (1.0 / p2_);
             float e_4 = ((_e24 * _e24) * ((g1_ * ip1_) + (g2_ * ip2_)));
             float _e40 = acc;
-            uint _e41 = k_7;
+            uint _e41 = k_8;
             float _e42 = filter_gaussian_ggx_quad_laguerre_weight(_e41);
             float _e43 = math_exp(e_4);
             acc = (_e40 + (((_e42 * _e43) * sqrt(ip1_)) * sqrt(ip2_)));
@@ -1182,7 +1377,7 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
     float k2_2 = (c2s_2 * (w_r / pr2_));
     float x_r = ((-(w_r) - k1_2) - k2_2);
     float _e40 = math_exp(x_r);
-    float scale_1 = ((w_r * w_r) * _e40);
+    float scale_2 = ((w_r * w_r) * _e40);
     float t1_3 = (tl1_3 * w_r);
     float t2_1 = (tl2_3 * w_r);
     float stop = ((5e-8 * w_r) * w_r);
@@ -1257,7 +1452,7 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
     }
     float _e139 = sum;
     float _e141 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first);
-    return (filter_gaussian_ggx_quad_H * ((_e139 * scale_1) + _e141));
+    return (filter_gaussian_ggx_quad_H * ((_e139 * scale_2) + _e141));
 }
 
 float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1_4, float tl2_4) {
@@ -1290,8 +1485,8 @@ float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1
     return ((_e42 * iz2_) * iz2_);
 }
 
-float filter_gaussian_ggx_quad_hermite_node(uint k_8) {
-    switch(k_8) {
+float filter_gaussian_ggx_quad_hermite_node(uint k_9) {
+    switch(k_9) {
         case 0u: {
             return 0.5390798;
         }
@@ -1307,8 +1502,8 @@ float filter_gaussian_ggx_quad_hermite_node(uint k_8) {
     }
 }
 
-float filter_gaussian_ggx_quad_hermite_weight(uint k_9) {
-    switch(k_9) {
+float filter_gaussian_ggx_quad_hermite_weight(uint k_10) {
+    switch(k_10) {
         case 0u: {
             return 0.37301224;
         }
@@ -1325,43 +1520,43 @@ float filter_gaussian_ggx_quad_hermite_weight(uint k_9) {
 }
 
 float filter_gaussian_ggx_quad_h_of(float y_2) {
-    float r_50 = 0.0;
+    float r_52 = 0.0;
     float a_23 = abs(y_2);
     if ((a_23 > 1.0)) {
         float i_12 = (1.0 / a_23);
-        r_50 = (a_23 * sqrt((1.0 + (i_12 * i_12))));
+        r_52 = (a_23 * sqrt((1.0 + (i_12 * i_12))));
     } else {
-        r_50 = sqrt((1.0 + (y_2 * y_2)));
+        r_52 = sqrt((1.0 + (y_2 * y_2)));
     }
-    float _e16 = r_50;
-    float _e18 = r_50;
+    float _e16 = r_52;
+    float _e18 = r_52;
     return ((y_2 >= 0.0) ? (1.0 / (_e18 + y_2)) : (_e16 - y_2));
 }
 
 float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz) {
     float acc_1 = 0.0;
-    uint k_10 = 0u;
+    uint k_11 = 0u;
     float iq = (1.0 / qa);
     float z0_ = (oz * sqrt(iq));
     float fs = sqrt((qs * iq));
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
-            uint _e30 = k_10;
-            k_10 = (_e30 + 1u);
+            uint _e30 = k_11;
+            k_11 = (_e30 + 1u);
         }
         loop_init_3 = false;
-        uint _e13 = k_10;
+        uint _e13 = k_11;
         if ((_e13 < 4u)) {
         } else {
             break;
         }
         {
-            uint _e16 = k_10;
+            uint _e16 = k_11;
             float _e17 = filter_gaussian_ggx_quad_hermite_node(_e16);
             float x_15 = (fs * _e17);
             float _e19 = acc_1;
-            uint _e20 = k_10;
+            uint _e20 = k_11;
             float _e21 = filter_gaussian_ggx_quad_hermite_weight(_e20);
             float _e23 = filter_gaussian_ggx_quad_h_of((z0_ - x_15));
             float _e25 = filter_gaussian_ggx_quad_h_of((z0_ + x_15));
@@ -1372,7 +1567,7 @@ float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz) {
     return (_e32 / (2.0 * z0_));
 }
 
-float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, float ie0_, float i2s2_, float e2_, float c_stop, float total_in) {
+float filter_gaussian_ggx_quad_sinh_run(bool up, float h_11, float rq, float e0_, float ie0_, float i2s2_, float e2_, float c_stop, float total_in) {
     float total = 0.0;
     uint ch_1 = 0u;
     float fl = 0.0;
@@ -1415,8 +1610,8 @@ float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, f
                 {
                     uint _e32 = ch_1;
                     uint _e36 = jj_1;
-                    float k_27 = float(((first + (_e32 * 8u)) + _e36));
-                    float _e43 = math_exp((((sgn * 0.5) * h) * k_27));
+                    float k_29 = float(((first + (_e32 * 8u)) + _e36));
+                    float _e43 = math_exp((((sgn * 0.5) * h_11) * k_29));
                     float it = (1.0 / _e43);
                     float x_16 = (((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it));
                     float arg = ((-(x_16) * x_16) * i2s2_);
@@ -1457,14 +1652,14 @@ float filter_gaussian_ggx_quad_lambda_sinh(float qa_1, float qs_1, float oz_1, f
     float root = (oz_1 + sqrt((qa_1 + (oz_1 * oz_1))));
     float e0_1 = (root / rq_1);
     float ie0_1 = (rq_1 / root);
-    float h_22 = min(filter_gaussian_ggx_quad_S_MAX, (filter_gaussian_ggx_quad_S_COEF * sqrt(sqrt(ds2_))));
+    float h_26 = min(filter_gaussian_ggx_quad_S_MAX, (filter_gaussian_ggx_quad_S_COEF * sqrt(sqrt(ds2_))));
     float i2s2_1 = (0.5 / qs_1);
-    float c_up = ((math_LN_2_ * qs_1) / (rq_1 * h_22));
-    float c_down = ((((2.0 * h_22) + math_LN_2_) * qs_1) / (rq_1 * h_22));
+    float c_up = ((math_LN_2_ * qs_1) / (rq_1 * h_26));
+    float c_down = ((((2.0 * h_26) + math_LN_2_) * qs_1) / (rq_1 * h_26));
     float e2_1 = (ie0_1 * ie0_1);
-    float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
-    float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
-    return (_e35 * ((h_22 * qa_1) / (((4.0 * oz_1) * sqrt(qs_1)) * math_SQRT_TAU)));
+    float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_26, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
+    float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_26, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
+    return (_e35 * ((h_26 * qa_1) / (((4.0 * oz_1) * sqrt(qs_1)) * math_SQRT_TAU)));
 }
 
 float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2) {
@@ -1477,192 +1672,44 @@ float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2) {
     return _e9;
 }
 
-sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_51) {
-    vec3 _e1 = ndf_roughness_matrix_clamped_entries(r_51);
-    float l_xx = sqrt(_e1.x);
-    return sampling_Warp(l_xx, (_e1.y / l_xx), (r_51.sqrt_det / l_xx));
-}
-
-vec3 sampling_normalize_scaled(vec3 v_4) {
-    vec3 w_24 = (v_4 / vec3(max(max(abs(v_4.x), abs(v_4.y)), abs(v_4.z))));
-    return (w_24 / vec3(length(w_24)));
-}
-
-vec3 sampling_stretch(sampling_Warp l_3, vec3 w_15) {
-    return vec3(((l_3.l_xx * w_15.x) + (l_3.l_yx * w_15.y)), (l_3.l_yy * w_15.y), w_15.z);
-}
-
-vec3 sampling_unstretch(sampling_Warp l_4, vec3 n_1) {
-    vec3 _e14 = sampling_normalize_scaled(vec3((l_4.l_xx * n_1.x), ((l_4.l_yx * n_1.x) + (l_4.l_yy * n_1.y)), n_1.z));
-    return _e14;
-}
-
-float sampling_clamp_unit(float u_1) {
-    return ((u_1 >= 0.0) ? min(u_1, sampling_ONE_MINUS_EPS) : 0.0);
-}
-
-vec3 sampling_reflect(vec3 wo, vec3 m_18) {
-    return (((2.0 * dot(wo, m_18)) * m_18) - wo);
-}
-
-vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_2) {
-    vec2 _e3 = math_sincos_turns(u_2.x);
-    float z_4 = (((1.0 - u_2.y) * (1.0 + wi.z)) - wi.z);
-    float sin_theta_1 = sqrt(clamp((1.0 - (z_4 * z_4)), 0.0, 1.0));
-    return (vec3((sin_theta_1 * _e3), z_4) + wi);
-}
-
-vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_52, vec3 wo_1, vec2 u_3) {
-    bool local_13 = false;
-    if (!((wo_1.z > 0.0))) {
-        return vec3(0.0);
-    }
-    sampling_Warp _e9 = sampling_warp(r_52);
-    vec3 _e10 = sampling_normalize_scaled(wo_1);
-    vec3 _e11 = sampling_stretch(_e9, _e10);
-    vec3 _e12 = sampling_normalize_scaled(_e11);
-    if (!((_e12.z > 0.0))) {
-        return vec3(0.0);
-    }
-    float _e20 = sampling_clamp_unit(u_3.x);
-    float _e22 = sampling_clamp_unit(u_3.y);
-    vec3 _e24 = sampling_ggx_standard_visible(_e12, vec2(_e20, _e22));
-    vec3 _e25 = sampling_unstretch(_e9, _e24);
-    if ((_e25.z > 0.0)) {
-        local_13 = (dot(wo_1, _e25) > 0.0);
-    } else {
-        local_13 = false;
-    }
-    bool _e35 = local_13;
-    if (_e35) {
-        return _e25;
-    }
-    vec3 _e36 = sampling_unstretch(_e9, _e12);
-    return ((_e36.z > 0.0) ? _e36 : vec3(0.0));
-}
-
-vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_53, vec2 u_4) {
-    float _e3 = sampling_clamp_unit(u_4.x);
-    float _e5 = sampling_clamp_unit(u_4.y);
-    vec2 _e6 = math_sincos_turns(_e5);
-    vec3 n_7 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
-    sampling_Warp _e13 = sampling_warp(r_53);
-    vec3 _e14 = sampling_unstretch(_e13, n_7);
-    return _e14;
-}
-
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_54, vec3 m_19) {
-    float _e2 = ndf_ggx_d_matrix(r_54, m_19);
-    return ((m_19.z > 0.0) ? (_e2 * m_19.z) : 0.0);
-}
-
-float sampling_visible_normal_pdf_of(vec3 wo_2, vec3 m_20, float d, float lambda) {
-    bool local_14 = false;
-    bool local_15 = false;
-    float wom = dot(wo_2, m_20);
-    float v_14 = ((wom * d) / (wo_2.z * (1.0 + lambda)));
-    if ((wo_2.z > 0.0)) {
-        local_14 = (wom > 0.0);
-    } else {
-        local_14 = false;
-    }
-    bool _e19 = local_14;
-    if (_e19) {
-        local_15 = (v_14 <= math_F32_MAX);
-    } else {
-        local_15 = false;
-    }
-    bool _e25 = local_15;
-    return (_e25 ? v_14 : 0.0);
-}
-
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_55, vec3 wo_3, vec3 m_21) {
-    float _e3 = ndf_ggx_d_matrix(r_55, m_21);
-    float _e4 = ndf_ggx_lambda_matrix(r_55, wo_3);
-    float _e5 = sampling_visible_normal_pdf_of(wo_3, m_21, _e3, _e4);
-    return _e5;
-}
-
-float sampling_reflection_pdf_of(vec3 o_6, vec3 m_22, float d_1, float lambda_1) {
-    bool local_16 = false;
-    bool local_17 = false;
-    float v_15 = (d_1 / ((4.0 * o_6.z) * (1.0 + lambda_1)));
-    if ((o_6.z > 0.0)) {
-        local_16 = (dot(o_6, m_22) > 0.0);
-    } else {
-        local_16 = false;
-    }
-    bool _e20 = local_16;
-    if (_e20) {
-        local_17 = (v_15 <= math_F32_MAX);
-    } else {
-        local_17 = false;
-    }
-    bool _e26 = local_17;
-    return (_e26 ? v_15 : 0.0);
-}
-
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_56, vec3 wo_4, vec3 m_23) {
-    vec3 _e3 = sampling_normalize_scaled(wo_4);
-    float _e4 = ndf_ggx_d_matrix(r_56, m_23);
-    float _e5 = ndf_ggx_lambda_matrix(r_56, _e3);
-    float _e6 = sampling_reflection_pdf_of(_e3, m_23, _e4, _e5);
-    return _e6;
-}
-
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_57, vec3 wo_5, vec3 wi_1) {
-    if (!((wo_5.z > 0.0))) {
-        return 0.0;
-    }
-    vec3 _e8 = sampling_normalize_scaled(wo_5);
-    vec3 _e9 = sampling_normalize_scaled(wi_1);
-    vec3 h_23 = (_e8 + _e9);
-    float len = length(h_23);
-    if (!((len > 0.0))) {
-        return 0.0;
-    }
-    float _e18 = sampling_reflection_pdf_from_normal(r_57, wo_5, (h_23 / vec3(len)));
-    return _e18;
-}
-
-filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_4) {
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance kernel_4) {
     float l2_ = 0.0;
-    vec2 v_5 = vec2(1.0, 0.0);
+    vec2 v_4 = vec2(1.0, 0.0);
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
-    float c_18 = a_5.axis.x;
-    float s_27 = a_5.axis.y;
+    float c_18 = a_7.axis.x;
+    float s_27 = a_7.axis.y;
     float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((s_27 * s_27) * _e2.s_yy)), 0.0);
     float k22_ = max(((((s_27 * s_27) * _e2.s_xx) - (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
     float k12_ = ((((c_18 * c_18) - (s_27 * s_27)) * _e2.s_xy) + ((c_18 * s_27) * (_e2.s_yy - _e2.s_xx)));
-    vec2 l_6 = a_5.eig_c;
-    vec2 isl = (vec2(1.0) / sqrt(l_6));
+    vec2 l_7 = a_7.eig_c;
+    vec2 isl = (vec2(1.0) / sqrt(l_7));
     float c11_ = ((k11_ * isl.x) * isl.x);
     float c22_ = ((k22_ * isl.y) * isl.y);
     float c12_ = ((k12_ * isl.x) * isl.y);
-    float det_c = (max(_e2.det, 0.0) / (l_6.x * l_6.y));
+    float det_c = (max(_e2.det, 0.0) / (l_7.x * l_7.y));
     float half_ = (0.5 * (c11_ - c22_));
     float _e75 = math_hypot(half_, c12_);
     float l1_2 = ((0.5 * (c11_ + c22_)) + _e75);
     if ((_e75 > 0.0)) {
-        float big_2 = (_e75 + abs(half_));
-        vec2 w_25 = ((half_ >= 0.0) ? vec2(big_2, c12_) : vec2(c12_, big_2));
-        v_5 = (w_25 / vec2(length(w_25)));
+        float big_4 = (_e75 + abs(half_));
+        vec2 w_25 = ((half_ >= 0.0) ? vec2(big_4, c12_) : vec2(c12_, big_4));
+        v_4 = (w_25 / vec2(length(w_25)));
         l2_ = min((det_c / l1_2), l1_2);
     } else {
         if ((l1_2 > 0.0)) {
             l2_ = l1_2;
         }
     }
-    vec2 _e102 = v_5;
+    vec2 _e102 = v_4;
     float _e105 = l2_;
-    float _e110 = ndf_roughness_matrix_sqrt_det(a_5);
-    return filter_gaussian_ggx_GaussianFilteredGgx(a_5, isl, _e102, vec2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2);
+    float _e110 = ndf_roughness_matrix_sqrt_det(a_7);
+    return filter_gaussian_ggx_GaussianFilteredGgx(a_7, isl, _e102, vec2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2);
 }
 
 vec2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g, vec2 s_9) {
     vec2 _e3 = ndf_roughness_matrix_rotate(g.a, s_9);
-    vec2 u_18 = (_e3 * g.inv_sqrt_l);
-    vec2 c_19 = vec2(((g.v.x * u_18.x) + (g.v.y * u_18.y)), ((g.v.x * u_18.y) - (g.v.y * u_18.x)));
+    vec2 u_19 = (_e3 * g.inv_sqrt_l);
+    vec2 c_19 = vec2(((g.v.x * u_19.x) + (g.v.y * u_19.y)), ((g.v.x * u_19.y) - (g.v.y * u_19.x)));
     return (c_19 * c_19);
 }
 
@@ -1672,28 +1719,28 @@ float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_1, vec2
     return (g_1.norm * _e11);
 }
 
-float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, vec3 m_24) {
-    if (!((m_24.z > 0.0))) {
+float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, vec3 m_18) {
+    if (!((m_18.z > 0.0))) {
         return 0.0;
     }
-    vec2 _e8 = filter_gaussian_ggx_whiten(g_2, m_24.xy);
-    float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_24.z * m_24.z), g_2.tl.x, g_2.tl.y);
+    vec2 _e8 = filter_gaussian_ggx_whiten(g_2, m_18.xy);
+    float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_18.z * m_18.z), g_2.tl.x, g_2.tl.y);
     float v_16 = (g_2.norm * _e19);
     return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
 }
 
-float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, vec3 w_16) {
-    float big_3 = max(max(abs(w_16.x), abs(w_16.y)), abs(w_16.z));
-    if (!((big_3 > 0.0))) {
-        return ((big_3 == 0.0) ? 0.0 : math_F32_MAX);
+float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, vec3 w_15) {
+    float big_5 = max(max(abs(w_15.x), abs(w_15.y)), abs(w_15.z));
+    if (!((big_5 > 0.0))) {
+        return ((big_5 == 0.0) ? 0.0 : math_F32_MAX);
     }
-    vec3 ws = (w_16 / vec3(big_3));
+    vec3 ws = (w_15 / vec3(big_5));
     vec3 o_9 = (ws / vec3(length(ws)));
     float oz_3 = abs(o_9.z);
     float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_9.xy);
     kernel_covariance_Covariance kk = g_3.k;
-    float qs_3 = max(((((kk.s_xx * o_9.x) * o_9.x) + (((2.0 * kk.s_xy) * o_9.x) * o_9.y)) + ((kk.s_yy * o_9.y) * o_9.y)), 0.0);
-    if ((qs_3 <= 0.0)) {
+    float qs_4 = max(((((kk.s_xx * o_9.x) * o_9.x) + (((2.0 * kk.s_xy) * o_9.x) * o_9.y)) + ((kk.s_yy * o_9.y) * o_9.y)), 0.0);
+    if ((qs_4 <= 0.0)) {
         float _e52 = ndf_ggx_lambda_of(_e27, oz_3);
         return _e52;
     }
@@ -1701,241 +1748,59 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, ve
         return math_F32_MAX;
     }
     if ((_e27 <= 0.0)) {
-        float _e60 = ndf_beckmann_lambda_of((2.0 * qs_3), oz_3);
+        float _e60 = ndf_beckmann_lambda_of((2.0 * qs_4), oz_3);
         return _e60;
     }
-    float _e61 = filter_gaussian_ggx_quad_lambda(_e27, qs_3, oz_3);
+    float _e61 = filter_gaussian_ggx_quad_lambda(_e27, qs_4, oz_3);
     return _e61;
 }
 
-float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, vec3 w_17, vec3 m_25) {
-    float _e3 = filter_gaussian_ggx_lambda(g_4, w_17);
-    float _e5 = ndf_g1_of(_e3, dot(w_17, m_25));
+float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, vec3 w_16, vec3 m_19) {
+    float _e3 = filter_gaussian_ggx_lambda(g_4, w_16);
+    float _e5 = ndf_g1_of(_e3, dot(w_16, m_19));
     return _e5;
 }
 
-float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, vec3 i_6, vec3 o_7, vec3 m_26) {
+float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, vec3 i_6, vec3 o_6, vec3 m_20) {
     float _e4 = filter_gaussian_ggx_lambda(g_5, i_6);
-    float _e5 = filter_gaussian_ggx_lambda(g_5, o_7);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_26), dot(o_7, m_26));
+    float _e5 = filter_gaussian_ggx_lambda(g_5, o_6);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_20), dot(o_6, m_20));
     return _e8;
 }
 
-vec2 filter_gaussian_ggx_split(float u_5) {
-    float x_17 = (u_5 * 4096.0);
-    float hi_3 = floor(x_17);
-    return vec2(((hi_3 + 0.5) / 4096.0), (x_17 - hi_3));
-}
-
-vec3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_6, vec2 u_6) {
-    vec2 ax = vec2(1.0, 0.0);
-    float _e3 = sampling_clamp_unit(u_6.x);
-    vec2 _e4 = filter_gaussian_ggx_split(_e3);
-    float _e6 = sampling_clamp_unit(u_6.y);
-    vec2 _e7 = filter_gaussian_ggx_split(_e6);
-    vec2 _e15 = math_sincos_turns(_e7.x);
-    vec2 t_15 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
-    sampling_Warp _e18 = sampling_warp(g_6.a);
-    vec2 gs = vec2((_e18.l_xx * t_15.x), ((_e18.l_yx * t_15.x) + (_e18.l_yy * t_15.y)));
-    float _e33 = math_ln((1.0 - _e4.y));
-    float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
-    float e_5 = ((_e4.y < 0.5) ? _e40 : -(_e33));
-    vec2 _e49 = math_sincos_turns(_e7.y);
-    vec2 y_4 = (sqrt((2.0 * e_5)) * _e49);
-    kernel_covariance_Covariance k_28 = g_6.k;
-    vec2 _e52 = kernel_covariance_eigenvalues(k_28);
-    float khalf = (0.5 * (k_28.s_xx - k_28.s_yy));
-    float _e59 = math_hypot(khalf, k_28.s_xy);
-    if ((_e59 > 0.0)) {
-        vec2 w_26 = ((khalf >= 0.0) ? vec2((_e59 + khalf), k_28.s_xy) : vec2(k_28.s_xy, (_e59 - khalf)));
-        float _e77 = math_hypot(w_26.x, w_26.y);
-        ax = (w_26 / vec2(_e77));
-    }
-    vec2 kk_1 = vec2((sqrt(_e52.y) * y_4.x), (sqrt(_e52.x) * y_4.y));
-    float _e90 = ax.x;
-    float _e94 = ax.y;
-    float _e99 = ax.y;
-    float _e103 = ax.x;
-    vec2 s_28 = (gs + vec2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
-    vec3 _e112 = sampling_normalize_scaled(vec3(-(s_28), 1.0));
-    return vec3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
-}
-
-float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_7, vec3 m_27) {
-    float _e2 = filter_gaussian_ggx_d(g_7, m_27);
-    return ((m_27.z > 0.0) ? (_e2 * m_27.z) : 0.0);
-}
-
-kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_28) {
-    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_28.second.x - (m_28.mean.x * m_28.mean.x)), (m_28.second.y - (m_28.mean.x * m_28.mean.y)), (m_28.second.z - (m_28.mean.y * m_28.mean.y)));
+kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_21) {
+    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_21.second.x - (m_21.mean.x * m_21.mean.x)), (m_21.second.y - (m_21.mean.x * m_21.mean.y)), (m_21.second.z - (m_21.mean.y * m_21.mean.y)));
     kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
     return _e26;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments) {
+ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments) {
     kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
     kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
     kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_6, _e5);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_8, _e5);
     return _e6;
 }
 
-footprint_jacobian_Polar footprint_jacobian_polar(vec3 h_in) {
-    vec2 cs_1 = vec2(1.0, 0.0);
-    float big_4 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
-    if ((big_4 <= 0.0)) {
-        return footprint_jacobian_Polar(vec3(0.0, 0.0, 1.0), vec2(1.0, 0.0));
-    }
-    vec3 h0_ = (h_in / vec3(big_4));
-    vec3 h_24 = (h0_ / vec3(length(h0_)));
-    float qs_4 = max(abs(h_24.x), abs(h_24.y));
-    if ((qs_4 > 0.0)) {
-        vec2 q_6 = (h_24.xy / vec2(qs_4));
-        cs_1 = (q_6 / vec2(length(q_6)));
-    }
-    if ((h_24.z >= footprint_jacobian_HZ_MIN)) {
-        vec2 _e44 = cs_1;
-        return footprint_jacobian_Polar(h_24, _e44);
-    }
-    vec2 _e47 = cs_1;
-    vec2 _e51 = cs_1;
-    return footprint_jacobian_Polar(vec3((1.0 * _e47), footprint_jacobian_HZ_MIN), _e51);
-}
-
-vec3 footprint_jacobian_sanitize(vec3 h_1) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
-    return _e1.h;
-}
-
-footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(vec3 h_2) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_2);
-    float st = length(_e1.h.xy);
-    return footprint_jacobian_SphericalBasis(vec3((_e1.h.z * _e1.cs), -(st)), vec3(-(_e1.cs.y), _e1.cs.x, 0.0));
-}
-
-vec2 footprint_jacobian_spherical_components(vec3 h_3, vec3 dh) {
-    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_3);
-    return vec2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
-}
-
-mat2x2 footprint_jacobian_sphere_to_projected(vec3 h_4) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
-    return mat2x2((_e1.h.z * _e1.cs), vec2(-(_e1.cs.y), _e1.cs.x));
-}
-
-mat2x2 footprint_jacobian_projected_to_slope(vec3 h_in_1) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
-    vec3 h_25 = _e1.h;
-    float k_29 = (-1.0 / ((h_25.z * h_25.z) * h_25.z));
-    float xy = (h_25.x * h_25.y);
-    return mat2x2((vec2(((h_25.x * h_25.x) + (h_25.z * h_25.z)), xy) * k_29), (vec2(xy, ((h_25.y * h_25.y) + (h_25.z * h_25.z))) * k_29));
-}
-
-mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_2) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    vec3 h_26 = _e1.h;
-    float xy_1 = (h_26.x * h_26.y);
-    return mat2x2((vec2(((h_26.y * h_26.y) + (h_26.z * h_26.z)), -(xy_1)) * -(h_26.z)), (vec2(-(xy_1), ((h_26.x * h_26.x) + (h_26.z * h_26.z))) * -(h_26.z)));
-}
-
-mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_5) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
-    float k_30 = (-1.0 / (_e1.h.z * _e1.h.z));
-    return mat2x2((_e1.cs * k_30), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_30));
-}
-
-float footprint_jacobian_det_sphere_to_projected(vec3 h_6) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
-    return _e1.h.z;
-}
-
-float footprint_jacobian_det_projected_to_slope(vec3 h_7) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
-    float z_5 = _e1.h.z;
-    float z2_5 = (z_5 * z_5);
-    return (1.0 / (z2_5 * z2_5));
-}
-
-float footprint_jacobian_det_sphere_to_slope(vec3 h_8) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float z_6 = _e1.h.z;
-    return (1.0 / ((z_6 * z_6) * z_6));
-}
-
-vec2 footprint_jacobian_spherical_to_slope(vec3 h_9, vec2 e_1) {
-    mat2x2 _e2 = footprint_jacobian_sphere_to_slope(h_9);
-    return (_e2 * e_1);
-}
-
-vec2 footprint_jacobian_spherical_to_projected(vec3 h_10, vec2 e_2) {
-    mat2x2 _e2 = footprint_jacobian_sphere_to_projected(h_10);
-    return (_e2 * e_2);
-}
-
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_58, float sigma_1) {
-    vec2 w_27 = (r_58.half_extent * (2.0 * sigma_1));
-    vec2 v_17 = (w_27 * w_27);
-    return kernel_covariance_Covariance(v_17.x, 0.0, v_17.y, (v_17.x * v_17.y));
-}
-
-footprint_Footprint footprint_from_slope_derivatives(vec2 dh_u, vec2 dh_v) {
-    return footprint_Footprint(dh_u, dh_v);
-}
-
-footprint_Footprint footprint_from_projected_derivatives(vec2 dp_u, vec2 dp_v) {
-    return footprint_Footprint(dp_u, dp_v);
-}
-
-footprint_Footprint footprint_from_projected_derivatives_in_slope(vec3 h_11, vec2 dp_u_1, vec2 dp_v_1) {
-    float big_5 = max(max(abs(h_11.x), abs(h_11.y)), abs(h_11.z));
-    if ((big_5 <= 0.0)) {
-        return footprint_Footprint(vec2(0.0), vec2(0.0));
-    }
-    mat2x2 _e18 = footprint_jacobian_projected_to_slope(h_11);
-    return footprint_Footprint((_e18 * dp_u_1), (_e18 * dp_v_1));
-}
-
-footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) {
-    float lu = max(length((vec3(0.0, 0.0, 2.0) + dn_u_4)), 1e-6);
-    float lv = max(length((vec3(0.0, 0.0, 2.0) + dn_v_4)), 1e-6);
-    return footprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
-}
-
-kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_2) {
-    vec2 u_19 = fp.dh_u;
-    vec2 v_18 = fp.dh_v;
-    float s2_ = (sigma_2 * sigma_2);
-    float cross_1 = (((u_19.x * v_18.y) - (u_19.y * v_18.x)) * s2_);
-    return kernel_covariance_Covariance((((u_19.x * u_19.x) + (v_18.x * v_18.x)) * s2_), (((u_19.x * u_19.y) + (v_18.x * v_18.y)) * s2_), (((u_19.y * u_19.y) + (v_18.y * v_18.y)) * s2_), (cross_1 * cross_1));
-}
-
-kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1) {
-    return kernel_rect_BoundingRect(((abs(fp_1.dh_u) + abs(fp_1.dh_v)) * 0.5));
-}
-
-float footprint_max_extent(footprint_Footprint fp_2) {
-    return (0.5 * max(length((fp_2.dh_u + fp_2.dh_v)), length((fp_2.dh_u - fp_2.dh_v))));
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance k_11, float tau_4) {
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance k_12, float tau_4) {
     float b11_ = 0.0;
     float b12_ = 0.0;
     float b22_ = 0.0;
     float det_3 = 0.0;
-    vec2 lc = min(a_7.eig, vec2(0.99));
-    vec2 excess = (a_7.eig - lc);
+    vec2 lc = min(a_9.eig, vec2(0.99));
+    vec2 excess = (a_9.eig - lc);
     vec2 p_8 = (lc / (vec2(1.0) - lc));
-    float c_20 = a_7.axis.x;
-    float s_29 = a_7.axis.y;
-    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_29) * s_29));
-    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_29);
-    float p22_1 = (((p_8.x * s_29) * s_29) + ((p_8.y * c_20) * c_20));
-    float k1_3 = max(((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_29) * k_11.s_xy)) + ((s_29 * s_29) * k_11.s_yy)), 0.0);
-    float k2_3 = max(((((s_29 * s_29) * k_11.s_xx) - (((2.0 * c_20) * s_29) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy)), 0.0);
-    float d_4 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
-    float q11_ = (p11_1 + (2.0 * k_11.s_xx));
-    float q12_ = (p12_1 + (2.0 * k_11.s_xy));
-    float q22_ = (p22_1 + (2.0 * k_11.s_yy));
+    float c_20 = a_9.axis.x;
+    float s_28 = a_9.axis.y;
+    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_28) * s_28));
+    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_28);
+    float p22_1 = (((p_8.x * s_28) * s_28) + ((p_8.y * c_20) * c_20));
+    float k1_3 = max(((((c_20 * c_20) * k_12.s_xx) + (((2.0 * c_20) * s_28) * k_12.s_xy)) + ((s_28 * s_28) * k_12.s_yy)), 0.0);
+    float k2_3 = max(((((s_28 * s_28) * k_12.s_xx) - (((2.0 * c_20) * s_28) * k_12.s_xy)) + ((c_20 * c_20) * k_12.s_yy)), 0.0);
+    float d_4 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_12.det, 0.0)));
+    float q11_ = (p11_1 + (2.0 * k_12.s_xx));
+    float q12_ = (p12_1 + (2.0 * k_12.s_xy));
+    float q22_ = (p22_1 + (2.0 * k_12.s_yy));
     float den_1 = (((1.0 + q11_) + q22_) + d_4);
     b11_ = ((q11_ + d_4) / den_1);
     b12_ = (q12_ / den_1);
@@ -1943,18 +1808,18 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     det_3 = (d_4 / den_1);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_29) * s_29)));
+        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_28) * s_28)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_29));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_28));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_29) * s_29) + ((excess.y * c_20) * c_20)));
+        b22_ = (_e130 + (((excess.x * s_28) * s_28) + ((excess.y * c_20) * c_20)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
         float _e143 = b12_;
         det_3 = ((_e139 * _e140) - (_e142 * _e143));
     }
-    vec3 _e146 = ndf_roughness_matrix_entries(a_7);
+    vec3 _e146 = ndf_roughness_matrix_entries(a_9);
     float _e147 = b11_;
     float _e150 = b12_;
     float _e151 = b22_;
@@ -1963,79 +1828,21 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     return _e157;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_5) {
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_10, kernel_covariance_Covariance kernel_5) {
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_5);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_8);
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_8, _e2, _e3);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_10);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_10, _e2, _e3);
     return _e4;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance kernel_6, float det_clamp_2) {
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_11, kernel_covariance_Covariance kernel_6, float det_clamp_2) {
     kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
-    float _e4 = ndf_roughness_matrix_own_det_clamp(a_9);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_9, _e3, max(det_clamp_2, _e4));
+    float _e4 = ndf_roughness_matrix_own_det_clamp(a_11);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_11, _e3, max(det_clamp_2, _e4));
     return _e6;
 }
 
-footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3) {
-    float l_7 = max(rules.max_extent, 0.0);
-    float scale_2 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
-    if ((scale_2 <= 0.0)) {
-        return fp_3;
-    }
-    footprint_Footprint unit = footprint_Footprint((fp_3.dh_u / vec2(scale_2)), (fp_3.dh_v / vec2(scale_2)));
-    float _e29 = footprint_max_extent(unit);
-    if (((_e29 * scale_2) <= l_7)) {
-        return fp_3;
-    }
-    return footprint_Footprint(((unit.dh_u / vec2(_e29)) * l_7), ((unit.dh_v / vec2(_e29)) * l_7));
-}
-
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_59, vec2 alpha_8) {
-    vec2 f_1 = vec2(0.0);
-    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
-        f_1 = vec2(rules_1.floor_);
-    } else {
-        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
-            f_1 = min(abs(alpha_8), vec2(rules_1.floor_));
-        }
-    }
-    float lambda_2 = max(rules_1.max_extent, 0.0);
-    vec2 h_27 = min(abs(r_59.half_extent), vec2(lambda_2));
-    vec2 _e25 = f_1;
-    return kernel_rect_BoundingRect(max(h_27, max(_e25, vec2(0.0))));
-}
-
-kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_12) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_12);
-    if ((rules_2.kappa >= math_F32_MAX)) {
-        return _e2;
-    }
-    kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
-    return _e11;
-}
-
-float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_10) {
-    float _e2 = ndf_roughness_matrix_own_det_clamp(a_10);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_10);
-    return (rules_3.det_clamp ? _e3 : _e2);
-}
-
-kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_3) {
-    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
-    kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_3);
-    kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
-    return _e5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_11, footprint_Footprint fp_5, float sigma_4) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
-    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_11);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_11, _e4, _e5);
-    return _e6;
-}
-
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_6, float sigma_5) {
+ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_6, float sigma_5) {
     kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_5);
     float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
     ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
@@ -2043,11 +1850,11 @@ ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_
 }
 
 float filter_proxy_effective_alpha(float alpha_9, float half_extent) {
-    float h_28 = abs(half_extent);
-    float _e3 = math_hypot(alpha_9, h_28);
-    float t_16 = ((_e3 > 0.0) ? (h_28 / _e3) : 0.0);
-    float _e9 = math_atan(t_16);
-    float ratio = ((t_16 > 0.0) ? (t_16 / _e9) : 1.0);
+    float h_27 = abs(half_extent);
+    float _e3 = math_hypot(alpha_9, h_27);
+    float t_15 = ((_e3 > 0.0) ? (h_27 / _e3) : 0.0);
+    float _e9 = math_atan(t_15);
+    float ratio = ((t_15 > 0.0) ? (t_15 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
 }
 
@@ -2056,16 +1863,16 @@ float filter_proxy_effective_alpha_simple(float alpha_10, float half_extent_1) {
     return _e3;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_60, vec2 half_extent_2) {
-    float _e5 = filter_proxy_effective_alpha(r_60.alpha.x, half_extent_2.x);
-    float _e9 = filter_proxy_effective_alpha(r_60.alpha.y, half_extent_2.y);
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_53, vec2 half_extent_2) {
+    float _e5 = filter_proxy_effective_alpha(r_53.alpha.x, half_extent_2.x);
+    float _e9 = filter_proxy_effective_alpha(r_53.alpha.y, half_extent_2.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
     return _e11;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_61, vec2 half_extent_3) {
-    float _e5 = filter_proxy_effective_alpha_simple(r_61.alpha.x, half_extent_3.x);
-    float _e9 = filter_proxy_effective_alpha_simple(r_61.alpha.y, half_extent_3.y);
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_54, vec2 half_extent_3) {
+    float _e5 = filter_proxy_effective_alpha_simple(r_54.alpha.x, half_extent_3.x);
+    float _e9 = filter_proxy_effective_alpha_simple(r_54.alpha.y, half_extent_3.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
     return _e11;
 }
@@ -2083,11 +1890,11 @@ uint filter_rect_tier(float h2_, float l2_1) {
     return filter_rect_TIER_CLOSED;
 }
 
-float filter_rect_gl_node(uint n_2, uint k_13) {
-    if ((n_2 == 2u)) {
+float filter_rect_gl_node(uint n_1, uint k_13) {
+    if ((n_1 == 2u)) {
         return 0.57735026;
     }
-    if ((n_2 == 4u)) {
+    if ((n_1 == 4u)) {
         return ((k_13 == 0u) ? 0.33998105 : 0.8611363);
     }
     if ((k_13 == 0u)) {
@@ -2096,11 +1903,11 @@ float filter_rect_gl_node(uint n_2, uint k_13) {
     return ((k_13 == 1u) ? 0.6612094 : 0.9324695);
 }
 
-float filter_rect_gl_weight(uint n_3, uint k_14) {
-    if ((n_3 == 2u)) {
+float filter_rect_gl_weight(uint n_2, uint k_14) {
+    if ((n_2 == 2u)) {
         return 0.5;
     }
-    if ((n_3 == 4u)) {
+    if ((n_2 == 4u)) {
         return ((k_14 == 0u) ? 0.32607257 : 0.17392743);
     }
     if ((k_14 == 0u)) {
@@ -2109,12 +1916,12 @@ float filter_rect_gl_weight(uint n_3, uint k_14) {
     return ((k_14 == 1u) ? 0.18038079 : 0.085662246);
 }
 
-float filter_rect_f(float u_7, float v_6) {
-    float t_17 = ((1.0 + (u_7 * u_7)) + (v_6 * v_6));
-    return (1.0 / (t_17 * t_17));
+float filter_rect_f(float u_1, float v_5) {
+    float t_16 = ((1.0 + (u_1 * u_1)) + (v_5 * v_5));
+    return (1.0 / (t_16 * t_16));
 }
 
-float filter_rect_gl_mean(uint n_4, float u_8, float c_6, float h_12) {
+float filter_rect_gl_mean(uint n_3, float u_2, float c_6, float h_12) {
     float acc_2 = 0.0;
     uint k_15 = 0u;
     bool loop_init_6 = true;
@@ -2125,19 +1932,19 @@ float filter_rect_gl_mean(uint n_4, float u_8, float c_6, float h_12) {
         }
         loop_init_6 = false;
         uint _e8 = k_15;
-        if ((_e8 < (n_4 / 2u))) {
+        if ((_e8 < (n_3 / 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_15;
-            float _e13 = filter_rect_gl_node(n_4, _e12);
+            float _e13 = filter_rect_gl_node(n_3, _e12);
             float a_24 = (h_12 * _e13);
             float _e15 = acc_2;
             uint _e16 = k_15;
-            float _e17 = filter_rect_gl_weight(n_4, _e16);
-            float _e19 = filter_rect_f(u_8, (c_6 - a_24));
-            float _e21 = filter_rect_f(u_8, (c_6 + a_24));
+            float _e17 = filter_rect_gl_weight(n_3, _e16);
+            float _e19 = filter_rect_f(u_2, (c_6 - a_24));
+            float _e21 = filter_rect_f(u_2, (c_6 + a_24));
             acc_2 = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -2154,19 +1961,19 @@ float filter_rect_atan2_upper(float y_3, float x_6) {
     return (math_HALF_PI + _e9);
 }
 
-float filter_rect_delta_minus_sin(float d_2, float sin_d) {
+float filter_rect_delta_minus_sin(float d, float sin_d) {
     float s_11 = 0.0;
-    if ((d_2 < 1.0)) {
-        float d2_1 = (d_2 * d_2);
+    if ((d < 1.0)) {
+        float d2_1 = (d * d);
         s_11 = (1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909))));
         float _e17 = s_11;
         s_11 = (1.0 - ((d2_1 * 0.023809524) * _e17));
         float _e23 = s_11;
         s_11 = (1.0 - ((d2_1 * 0.05) * _e23));
         float _e30 = s_11;
-        return (((d_2 * d2_1) * 0.16666667) * _e30);
+        return (((d * d2_1) * 0.16666667) * _e30);
     }
-    return (d_2 - sin_d);
+    return (d - sin_d);
 }
 
 float filter_rect_mean_1d(vec4 i_7, float c2_) {
@@ -2180,9 +1987,9 @@ float filter_rect_mean_1d(vec4 i_7, float c2_) {
     float _e27 = filter_rect_atan2_upper((c_21 * dx), (c2_ + x01_));
     float inv_2 = (1.0 / (((2.0 * c_21) * c2_) * dx));
     if ((x0_ <= 0.0)) {
-        float s_30 = (inversesqrt(r02_) * inversesqrt(r12_));
-        float q_7 = min(((c2_ - x01_) * s_30), 1.0);
-        return ((_e27 * inv_2) + ((q_7 * s_30) * (0.5 / c2_)));
+        float s_29 = (inversesqrt(r02_) * inversesqrt(r12_));
+        float q_7 = min(((c2_ - x01_) * s_29), 1.0);
+        return ((_e27 * inv_2) + ((q_7 * s_29) * (0.5 / c2_)));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
     float p2_1 = ((2.0 * r02_) * r12_);
@@ -2190,7 +1997,7 @@ float filter_rect_mean_1d(vec4 i_7, float c2_) {
     return ((_e57 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1));
 }
 
-float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, vec4 other) {
+float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, vec4 other) {
     float acc_3 = 0.0;
     uint k_16 = 0u;
     bool loop_init_7 = true;
@@ -2201,19 +2008,19 @@ float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, vec4 other) {
         }
         loop_init_7 = false;
         uint _e8 = k_16;
-        if ((_e8 < (n_5 / 2u))) {
+        if ((_e8 < (n_4 / 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_16;
-            float _e13 = filter_rect_gl_node(n_5, _e12);
+            float _e13 = filter_rect_gl_node(n_4, _e12);
             float a_25 = (h_13 * _e13);
             float x0_1 = (c_7 - a_25);
             float x1_2 = (c_7 + a_25);
             float _e17 = acc_3;
             uint _e18 = k_16;
-            float _e19 = filter_rect_gl_weight(n_5, _e18);
+            float _e19 = filter_rect_gl_weight(n_4, _e18);
             float _e23 = filter_rect_mean_1d(other, (1.0 + (x0_1 * x0_1)));
             float _e27 = filter_rect_mean_1d(other, (1.0 + (x1_2 * x1_2)));
             acc_3 = (_e17 + (_e19 * (_e23 + _e27)));
@@ -2223,22 +2030,22 @@ float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, vec4 other) {
     return _e34;
 }
 
-float filter_rect_edge(float u_9, float dv, float v01_) {
-    float s2_1 = (1.0 + (u_9 * u_9));
-    float s_31 = sqrt(s2_1);
-    float _e10 = filter_rect_atan2_upper((dv * s_31), (s2_1 + v01_));
-    return ((u_9 / s_31) * _e10);
+float filter_rect_edge(float u_3, float dv, float v01_) {
+    float s2_1 = (1.0 + (u_3 * u_3));
+    float s_30 = sqrt(s2_1);
+    float _e10 = filter_rect_atan2_upper((dv * s_30), (s2_1 + v01_));
+    return ((u_3 / s_30) * _e10);
 }
 
-float filter_rect_edges(vec4 u_10, vec4 v_7) {
-    float du = (2.0 * u_10.w);
-    float dv_1 = (2.0 * v_7.w);
-    float v01_1 = (v_7.x * v_7.y);
-    float u01_ = (u_10.x * u_10.y);
-    float _e15 = filter_rect_edge(u_10.y, dv_1, v01_1);
-    float _e17 = filter_rect_edge(u_10.x, dv_1, v01_1);
-    float _e20 = filter_rect_edge(v_7.y, du, u01_);
-    float _e22 = filter_rect_edge(v_7.x, du, u01_);
+float filter_rect_edges(vec4 u_4, vec4 v_6) {
+    float du = (2.0 * u_4.w);
+    float dv_1 = (2.0 * v_6.w);
+    float v01_1 = (v_6.x * v_6.y);
+    float u01_ = (u_4.x * u_4.y);
+    float _e15 = filter_rect_edge(u_4.y, dv_1, v01_1);
+    float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
+    float _e20 = filter_rect_edge(v_6.y, du, u01_);
+    float _e22 = filter_rect_edge(v_6.x, du, u01_);
     float i_13 = (0.5 * ((_e15 - _e17) + (_e20 - _e22)));
     return (i_13 / (du * dv_1));
 }
@@ -2267,7 +2074,7 @@ float filter_rect_polar_near(float x2_, float lo, float hi) {
     float acc_4 = 0.0;
     uint k_19 = 0u;
     float c_22 = (0.5 * (lo + hi));
-    float h_29 = (0.5 * (hi - lo));
+    float h_28 = (0.5 * (hi - lo));
     bool loop_init_8 = true;
     while(true) {
         if (!loop_init_8) {
@@ -2283,7 +2090,7 @@ float filter_rect_polar_near(float x2_, float lo, float hi) {
         {
             uint _e16 = k_19;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_5 = (h_29 * _e17);
+            float d_5 = (h_28 * _e17);
             float q0_ = (1.0 + ((c_22 - d_5) * (c_22 - d_5)));
             float q1_ = (1.0 + ((c_22 + d_5) * (c_22 + d_5)));
             float _e29 = acc_4;
@@ -2300,7 +2107,7 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1) {
     float acc_5 = 0.0;
     uint k_20 = 0u;
     float c_23 = (0.5 * (lo_1 + hi_1));
-    float h_30 = (0.5 * (hi_1 - lo_1));
+    float h_29 = (0.5 * (hi_1 - lo_1));
     bool loop_init_9 = true;
     while(true) {
         if (!loop_init_9) {
@@ -2316,7 +2123,7 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1) {
         {
             uint _e16 = k_20;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_6 = (h_30 * _e17);
+            float d_6 = (h_29 * _e17);
             float t0_2 = ((c_23 - d_6) * (c_23 - d_6));
             float t1_4 = ((c_23 + d_6) * (c_23 + d_6));
             float _e25 = acc_5;
@@ -2329,88 +2136,88 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1) {
     return (_e50 * (hi_1 - lo_1));
 }
 
-float filter_rect_edge_range(float ax_1, float a_13, float b_2) {
-    float v_8 = 0.0;
-    float x2_3 = (ax_1 * ax_1);
-    if ((a_13 < ax_1)) {
-        float _e7 = v_8;
-        float _e11 = filter_rect_polar_near(x2_3, (a_13 / ax_1), (min(b_2, ax_1) / ax_1));
-        v_8 = (_e7 + _e11);
+float filter_rect_edge_range(float ax, float a_13, float b_2) {
+    float v_7 = 0.0;
+    float x2_3 = (ax * ax);
+    if ((a_13 < ax)) {
+        float _e7 = v_7;
+        float _e11 = filter_rect_polar_near(x2_3, (a_13 / ax), (min(b_2, ax) / ax));
+        v_7 = (_e7 + _e11);
     }
-    if ((b_2 > ax_1)) {
-        float _e14 = v_8;
-        float _e18 = filter_rect_polar_far(x2_3, (ax_1 / b_2), (ax_1 / max(a_13, ax_1)));
-        v_8 = (_e14 + _e18);
+    if ((b_2 > ax)) {
+        float _e14 = v_7;
+        float _e18 = filter_rect_polar_far(x2_3, (ax / b_2), (ax / max(a_13, ax)));
+        v_7 = (_e14 + _e18);
     }
-    float _e20 = v_8;
+    float _e20 = v_7;
     return _e20;
 }
 
 float filter_rect_edge_polar(float x_7, float a_14, float b_3) {
-    float v_9 = 0.0;
+    float v_8 = 0.0;
     float ax_2 = abs(x_7);
     if ((ax_2 < 1e-12)) {
         return 0.0;
     }
     if ((a_14 >= 0.0)) {
         float _e10 = filter_rect_edge_range(ax_2, a_14, b_3);
-        v_9 = _e10;
+        v_8 = _e10;
     } else {
         if ((b_3 <= 0.0)) {
             float _e15 = filter_rect_edge_range(ax_2, -(b_3), -(a_14));
-            v_9 = _e15;
+            v_8 = _e15;
         } else {
             float _e18 = filter_rect_edge_range(ax_2, 0.0, -(a_14));
             float _e20 = filter_rect_edge_range(ax_2, 0.0, b_3);
-            v_9 = (_e18 + _e20);
+            v_8 = (_e18 + _e20);
         }
     }
-    float _e22 = v_9;
-    float _e24 = v_9;
+    float _e22 = v_8;
+    float _e24 = v_8;
     return ((x_7 > 0.0) ? _e24 : -(_e22));
 }
 
-float filter_rect_far_field(vec4 u_11, vec4 v_10) {
-    float _e5 = filter_rect_edge_polar(u_11.y, v_10.x, v_10.y);
-    float _e9 = filter_rect_edge_polar(u_11.x, v_10.x, v_10.y);
-    float _e14 = filter_rect_edge_polar(v_10.y, u_11.x, u_11.y);
-    float _e18 = filter_rect_edge_polar(v_10.x, u_11.x, u_11.y);
+float filter_rect_far_field(vec4 u_5, vec4 v_9) {
+    float _e5 = filter_rect_edge_polar(u_5.y, v_9.x, v_9.y);
+    float _e9 = filter_rect_edge_polar(u_5.x, v_9.x, v_9.y);
+    float _e14 = filter_rect_edge_polar(v_9.y, u_5.x, u_5.y);
+    float _e18 = filter_rect_edge_polar(v_9.x, u_5.x, u_5.y);
     float i_14 = (-0.5 * ((_e5 - _e9) + (_e14 - _e18)));
-    return (i_14 / ((4.0 * u_11.w) * v_10.w));
+    return (i_14 / ((4.0 * u_5.w) * v_9.w));
 }
 
 float filter_rect_gap(vec4 i_8) {
     return max(max(i_8.x, -(i_8.y)), 0.0);
 }
 
-float filter_rect_mean_f(vec4 u_12, vec4 v_11) {
-    bool local_18 = false;
+float filter_rect_mean_f(vec4 u_6, vec4 v_10) {
+    bool local_13 = false;
     float acc_6 = 0.0;
     uint k_21 = 0u;
-    float _e2 = filter_rect_gap(u_12);
-    float _e3 = filter_rect_gap(v_11);
-    uint _e14 = filter_rect_tier((u_12.w * u_12.w), ((1.0 + (u_12.z * u_12.z)) + (_e3 * _e3)));
-    uint _e25 = filter_rect_tier((v_11.w * v_11.w), ((1.0 + (v_11.z * v_11.z)) + (_e2 * _e2)));
+    float _e2 = filter_rect_gap(u_6);
+    float _e3 = filter_rect_gap(v_10);
+    uint _e14 = filter_rect_tier((u_6.w * u_6.w), ((1.0 + (u_6.z * u_6.z)) + (_e3 * _e3)));
+    uint _e25 = filter_rect_tier((v_10.w * v_10.w), ((1.0 + (v_10.z * v_10.z)) + (_e2 * _e2)));
     if ((_e14 == filter_rect_TIER_CLOSED)) {
-        local_18 = (_e25 == filter_rect_TIER_CLOSED);
+        local_13 = (_e25 == filter_rect_TIER_CLOSED);
     } else {
-        local_18 = false;
+        local_13 = false;
     }
-    bool _e33 = local_18;
+    bool _e33 = local_13;
     if (_e33) {
         if ((((_e2 * _e2) + (_e3 * _e3)) > filter_rect_FAR2_)) {
-            float _e39 = filter_rect_far_field(u_12, v_11);
+            float _e39 = filter_rect_far_field(u_6, v_10);
             return _e39;
         }
-        float _e40 = filter_rect_edges(u_12, v_11);
+        float _e40 = filter_rect_edges(u_6, v_10);
         return _e40;
     }
     if ((_e14 == filter_rect_TIER_CLOSED)) {
-        float _e45 = filter_rect_gl_mean_1d(_e25, v_11.z, v_11.w, u_12);
+        float _e45 = filter_rect_gl_mean_1d(_e25, v_10.z, v_10.w, u_6);
         return _e45;
     }
     if ((_e25 == filter_rect_TIER_CLOSED)) {
-        float _e50 = filter_rect_gl_mean_1d(_e14, u_12.z, u_12.w, v_11);
+        float _e50 = filter_rect_gl_mean_1d(_e14, u_6.z, u_6.w, v_10);
         return _e50;
     }
     bool loop_init_10 = true;
@@ -2428,12 +2235,12 @@ float filter_rect_mean_f(vec4 u_12, vec4 v_11) {
         {
             uint _e60 = k_21;
             float _e61 = filter_rect_gl_node(_e14, _e60);
-            float a_26 = (u_12.w * _e61);
+            float a_26 = (u_6.w * _e61);
             float _e63 = acc_6;
             uint _e64 = k_21;
             float _e65 = filter_rect_gl_weight(_e14, _e64);
-            float _e70 = filter_rect_gl_mean(_e25, (u_12.z - a_26), v_11.z, v_11.w);
-            float _e75 = filter_rect_gl_mean(_e25, (u_12.z + a_26), v_11.z, v_11.w);
+            float _e70 = filter_rect_gl_mean(_e25, (u_6.z - a_26), v_10.z, v_10.w);
+            float _e75 = filter_rect_gl_mean(_e25, (u_6.z + a_26), v_10.z, v_10.w);
             acc_6 = (_e63 + (_e65 * (_e70 + _e75)));
         }
     }
@@ -2444,53 +2251,53 @@ float filter_rect_mean_f(vec4 u_12, vec4 v_11) {
 vec4 filter_rect_interval(float c_8, float h_14, float a_15) {
     float ah = abs(h_14);
     float lo_4 = clamp(((c_8 - ah) / a_15), -1e18, filter_rect_BIG);
-    float hi_4 = clamp(((c_8 + ah) / a_15), -1e18, filter_rect_BIG);
-    return vec4(lo_4, hi_4, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
+    float hi_3 = clamp(((c_8 + ah) / a_15), -1e18, filter_rect_BIG);
+    return vec4(lo_4, hi_3, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
 }
 
-float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_62, vec2 center, vec2 half_extent_4) {
-    bool local_19 = false;
+float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_55, vec2 center, vec2 half_extent_4) {
+    bool local_14 = false;
     if ((half_extent_4.x == 0.0)) {
-        local_19 = (half_extent_4.y == 0.0);
+        local_14 = (half_extent_4.y == 0.0);
     } else {
-        local_19 = false;
+        local_14 = false;
     }
-    bool _e12 = local_19;
+    bool _e12 = local_14;
     if (_e12) {
-        float _e13 = ndf_ggx_p22_axis_aligned(r_62, center);
+        float _e13 = ndf_ggx_p22_axis_aligned(r_55, center);
         return _e13;
     }
-    vec2 a_27 = r_62.alpha;
+    vec2 a_27 = r_55.alpha;
     vec4 _e18 = filter_rect_interval(center.x, half_extent_4.x, a_27.x);
     vec4 _e22 = filter_rect_interval(center.y, half_extent_4.y, a_27.y);
     float _e23 = filter_rect_mean_f(_e18, _e22);
     return max((_e23 * (math_INV_PI / (a_27.x * a_27.y))), 0.0);
 }
 
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_63, vec3 h_15, vec2 half_extent_5) {
-    bool local_20 = false;
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_56, vec3 h_15, vec2 half_extent_5) {
+    bool local_15 = false;
     if (!((h_15.z > 0.0))) {
         return 0.0;
     }
     if ((half_extent_5.x == 0.0)) {
-        local_20 = (half_extent_5.y == 0.0);
+        local_15 = (half_extent_5.y == 0.0);
     } else {
-        local_20 = false;
+        local_15 = false;
     }
-    bool _e17 = local_20;
+    bool _e17 = local_15;
     if (_e17) {
-        float _e18 = ndf_ggx_d_axis_aligned(r_63, h_15);
+        float _e18 = ndf_ggx_d_axis_aligned(r_56, h_15);
         return _e18;
     }
-    float _e24 = filter_rect_p22_rect(r_63, (-(h_15.xy) / vec2(h_15.z)), half_extent_5);
+    float _e24 = filter_rect_p22_rect(r_56, (-(h_15.xy) / vec2(h_15.z)), half_extent_5);
     float z2_6 = (h_15.z * h_15.z);
     return min((_e24 / (z2_6 * z2_6)), math_F32_MAX);
 }
 
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_64, vec2 hpp, vec3 h_16, vec2 footprint) {
-    bool local_21 = false;
-    float a_28 = r_64.alpha.x;
-    float b_8 = r_64.alpha.y;
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_57, vec2 hpp, vec3 h_16, vec2 footprint) {
+    bool local_16 = false;
+    float a_28 = r_57.alpha.x;
+    float b_8 = r_57.alpha.y;
     float a_2_ = (a_28 * a_28);
     float b_2_ = (b_8 * b_8);
     float x1_3 = (hpp.x - footprint.x);
@@ -2512,14 +2319,14 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_64, ve
     float val = ((((x1_3 * (_e37 - _e41)) / sx1_) + ((x2_4 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
     float den_2 = ((6.2831855 * (x1_3 - x2_4)) * (y1_ - y2_));
     float hz4_ = (((h_16.z * h_16.z) * h_16.z) * h_16.z);
-    float v_19 = ((val / den_2) / max(hz4_, 0.001));
-    if ((abs(v_19) <= math_F32_MAX)) {
-        local_21 = (den_2 != 0.0);
+    float v_17 = ((val / den_2) / max(hz4_, 0.001));
+    if ((abs(v_17) <= math_F32_MAX)) {
+        local_16 = (den_2 != 0.0);
     } else {
-        local_21 = false;
+        local_16 = false;
     }
-    bool _e109 = local_21;
-    return (_e109 ? v_19 : 0.0);
+    bool _e109 = local_16;
+    return (_e109 ? v_17 : 0.0);
 }
 
 float filter_rect_lambda_rho(float t_1) {
@@ -2531,22 +2338,22 @@ float filter_rect_lambda_rho(float t_1) {
     return sqrt((1.0 + (t_1 * t_1)));
 }
 
-float filter_rect_lambda_e_neg(float t_2, float r_65) {
-    return ((t_2 >= 0.0) ? (1.0 / (r_65 + t_2)) : (r_65 - t_2));
+float filter_rect_lambda_e_neg(float t_2, float r_58) {
+    return ((t_2 >= 0.0) ? (1.0 / (r_58 + t_2)) : (r_58 - t_2));
 }
 
-float filter_rect_lambda_asinh_of(float t_3, float r_66) {
-    float v_12 = 0.0;
+float filter_rect_lambda_asinh_of(float t_3, float r_59) {
+    float v_11 = 0.0;
     float a_30 = abs(t_3);
     if ((a_30 > 1.0)) {
-        float _e7 = math_ln((a_30 + r_66));
-        v_12 = _e7;
+        float _e7 = math_ln((a_30 + r_59));
+        v_11 = _e7;
     } else {
-        float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_66))));
-        v_12 = _e13;
+        float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_59))));
+        v_11 = _e13;
     }
-    float _e14 = v_12;
-    float _e15 = v_12;
+    float _e14 = v_11;
+    float _e15 = v_11;
     return ((t_3 < 0.0) ? -(_e15) : _e14);
 }
 
@@ -2570,20 +2377,20 @@ float filter_rect_lambda_psi2_(float t_6) {
     return (0.25 * ((((t_6 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336)));
 }
 
-float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_18) {
+float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_17) {
     float _e3 = filter_rect_lambda_rho(t0_);
     float _e4 = filter_rect_lambda_rho(t1_);
     float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_32 = (_e5 + _e6);
-    float d_7 = ((w_18 * s_32) / (_e3 + _e4));
+    float s_31 = (_e5 + _e6);
+    float d_7 = ((w_17 * s_31) / (_e3 + _e4));
     float _e12 = math_ln_1p((d_7 / _e6));
-    return (0.25 * (_e12 + ((0.5 * d_7) * s_32)));
+    return (0.25 * (_e12 + ((0.5 * d_7) * s_31)));
 }
 
-float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_19) {
-    float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_19);
-    return (_e3 / w_19);
+float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_18) {
+    float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_18);
+    return (_e3 / w_18);
 }
 
 uint filter_rect_lambda_rule(uint t_7) {
@@ -2663,17 +2470,17 @@ float filter_rect_lambda_gl_psi(uint t_9, float c_9, float h_17) {
     return _e28;
 }
 
-float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo_2) {
+float filter_rect_lambda_expected_psi(float m_22, float k1_, float k2_, float lo_2) {
     float acc_9 = 0.0;
     uint j_2 = 0u;
     float acc_10 = 0.0;
     uint j_3 = 0u;
     float ks = min(k1_, k2_);
     float kl = max(k1_, k2_);
-    float near_l = max((m_29 - ks), 0.0);
+    float near_l = max((m_22 - ks), 0.0);
     uint _e13 = filter_rect_tier((kl * kl), (1.0 + (near_l * near_l)));
     if ((_e13 != filter_rect_TIER_CLOSED)) {
-        float near_s = max((m_29 - kl), 0.0);
+        float near_s = max((m_22 - kl), 0.0);
         uint _e23 = filter_rect_tier((ks * ks), (1.0 + (near_s * near_s)));
         bool loop_init_13 = true;
         while(true) {
@@ -2694,18 +2501,18 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
                 float _e35 = acc_9;
                 uint _e36 = j_2;
                 float _e37 = filter_rect_gl_weight(_e13, _e36);
-                float _e39 = filter_rect_lambda_gl_psi(_e23, (m_29 - a_33), ks);
-                float _e41 = filter_rect_lambda_gl_psi(_e23, (m_29 + a_33), ks);
+                float _e39 = filter_rect_lambda_gl_psi(_e23, (m_22 - a_33), ks);
+                float _e41 = filter_rect_lambda_gl_psi(_e23, (m_22 + a_33), ks);
                 acc_9 = (_e35 + (_e37 * (_e39 + _e41)));
             }
         }
         float _e48 = acc_9;
         return _e48;
     }
-    float hi_5 = (m_29 + kl);
-    float w_28 = (2.0 * kl);
+    float hi_4 = (m_22 + kl);
+    float w_26 = (2.0 * kl);
     if ((ks == 0.0)) {
-        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_5, w_28);
+        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_4, w_26);
         return _e54;
     }
     uint _e59 = filter_rect_tier((ks * ks), (1.0 + (lo_2 * lo_2)));
@@ -2725,62 +2532,62 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
             {
                 uint _e70 = j_3;
                 float _e71 = filter_rect_gl_node(_e59, _e70);
-                float x_18 = (ks * _e71);
+                float x_17 = (ks * _e71);
                 float _e73 = acc_10;
                 uint _e74 = j_3;
                 float _e75 = filter_rect_gl_weight(_e59, _e74);
-                float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_18), (hi_5 + x_18), w_28);
-                float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_18), (hi_5 - x_18), w_28);
+                float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_17), (hi_4 + x_17), w_26);
+                float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_17), (hi_4 - x_17), w_26);
                 acc_10 = (_e73 + (_e75 * (_e78 + _e81)));
             }
         }
         float _e88 = acc_10;
         return _e88;
     }
-    float _e89 = filter_rect_lambda_mean_psi1_(hi_5, ks);
+    float _e89 = filter_rect_lambda_mean_psi1_(hi_4, ks);
     float _e90 = filter_rect_lambda_mean_psi1_(lo_2, ks);
-    return ((_e89 - _e90) / w_28);
+    return ((_e89 - _e90) / w_26);
 }
 
-float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67, vec2 half_extent_6, vec3 w_in) {
-    vec3 w_20 = vec3(0.0);
-    bool local_22 = false;
-    bool local_23 = false;
-    bool local_24 = false;
+float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_60, vec2 half_extent_6, vec3 w_in) {
+    vec3 w_19 = vec3(0.0);
+    bool local_17 = false;
+    bool local_18 = false;
+    bool local_19 = false;
     float big_6 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
-    w_20 = w_in;
+    w_19 = w_in;
     if (!((big_6 > 1.1529215e18))) {
         if ((big_6 < 8.6736174e-19)) {
-            local_23 = (big_6 > 0.0);
+            local_18 = (big_6 > 0.0);
         } else {
-            local_23 = false;
+            local_18 = false;
         }
-        bool _e24 = local_23;
-        local_22 = _e24;
+        bool _e24 = local_18;
+        local_17 = _e24;
     } else {
-        local_22 = true;
+        local_17 = true;
     }
-    bool _e26 = local_22;
+    bool _e26 = local_17;
     if (_e26) {
-        int e_6 = (int(((floatBitsToUint(big_6) >> 23u) & 255u)) - 127);
-        w_20 = (w_in * uintBitsToFloat((uint((127 - e_6)) << 23u)));
+        int e_5 = (int(((floatBitsToUint(big_6) >> 23u) & 255u)) - 127);
+        w_19 = (w_in * uintBitsToFloat((uint((127 - e_5)) << 23u)));
     }
-    float _e43 = w_20.x;
-    float _e45 = w_20.y;
+    float _e43 = w_19.x;
+    float _e45 = w_19.y;
     float _e46 = math_hypot(_e43, _e45);
     if ((_e46 <= 0.0)) {
         return 0.0;
     }
-    float _e51 = w_20.z;
+    float _e51 = w_19.z;
     float wz = abs(_e51);
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    vec2 alpha_12 = r_67.alpha;
+    vec2 alpha_12 = r_60.alpha;
     vec2 ha = min(abs(half_extent_6), (alpha_12 * filter_rect_lambda_BIG_K));
-    float _e63 = w_20.x;
+    float _e63 = w_19.x;
     float ux = (abs(_e63) / _e46);
-    float _e67 = w_20.y;
+    float _e67 = w_19.y;
     float uy = (abs(_e67) / _e46);
     float px = (ux * alpha_12.x);
     float py = (uy * alpha_12.y);
@@ -2788,14 +2595,14 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67
     float k1_4 = ((px / _e74) * (ha.x / alpha_12.x));
     float k2_4 = ((py / _e74) * (ha.y / alpha_12.y));
     if ((k1_4 == 0.0)) {
-        local_24 = (k2_4 == 0.0);
+        local_19 = (k2_4 == 0.0);
     } else {
-        local_24 = false;
+        local_19 = false;
     }
-    bool _e92 = local_24;
+    bool _e92 = local_19;
     if (_e92) {
-        vec3 _e93 = w_20;
-        float _e94 = ndf_ggx_lambda_axis_aligned(r_67, _e93);
+        vec3 _e93 = w_19;
+        float _e94 = ndf_ggx_lambda_axis_aligned(r_60, _e93);
         return _e94;
     }
     float mm = ((wz / _e46) / _e74);
@@ -2803,8 +2610,8 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67
         return ((0.25 / mm) / mm);
     }
     bool long_x = (k1_4 >= k2_4);
-    float _e104 = w_20.y;
-    float _e107 = w_20.x;
+    float _e104 = w_19.y;
+    float _e107 = w_19.x;
     float wl_1 = (long_x ? abs(_e107) : abs(_e104));
     float hl = (long_x ? ha.x : ha.y);
     float lo_5 = (((wz - (wl_1 * hl)) / _e46) / _e74);
@@ -2813,19 +2620,19 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_method_gaussian_lobe(filter_method_Gaussian method, ndf_roughness_matrix_RoughnessMatrix material, footprint_Footprint fp_7) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_gaussian(method.clamps, material, fp_7, method.sigma);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_filter_gaussian(method.clamps, material, fp_7, method.sigma);
     return _e5;
 }
 
-float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, vec3 m_30) {
+float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, vec3 m_23) {
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_1, material_1, fp_8);
-    float _e5 = ndf_ggx_d_matrix(_e4, m_30);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_23);
     return _e5;
 }
 
-float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_9, vec3 m_31) {
+float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_9, vec3 m_24) {
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_2, material_2, fp_9);
-    float _e5 = ndf_beckmann_d_matrix(_e4, m_31);
+    float _e5 = ndf_beckmann_d_matrix(_e4, m_24);
     return _e5;
 }
 
@@ -2835,28 +2642,28 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_method_exact_gaussian_lobe(filter
     return _e6;
 }
 
-float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, vec3 m_32) {
+float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, vec3 m_25) {
     filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_method_exact_gaussian_lobe(method_4, material_4, fp_11);
-    float _e5 = filter_gaussian_ggx_d(_e4, m_32);
+    float _e5 = filter_gaussian_ggx_d(_e4, m_25);
     return _e5;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_method_projected_lobe(filter_method_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_12) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
     return _e5;
 }
 
-float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, vec3 m_33) {
+float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, vec3 m_26) {
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_projected_lobe(method_6, material_6, fp_13);
-    float _e5 = ndf_ggx_d_matrix(_e4, m_33);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_26);
     return _e5;
 }
 
 filter_method_RectFilteredGgx filter_method_rect_lobe(filter_method_Rect method_7, ndf_roughness_axis_aligned_AxisAligned material_7, footprint_Footprint fp_14) {
-    kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_14);
+    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_14);
     kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
-    vec2 h_31 = _e6.half_extent;
-    return filter_method_RectFilteredGgx(material_7, h_31);
+    vec2 h_30 = _e6.half_extent;
+    return filter_method_RectFilteredGgx(material_7, h_30);
 }
 
 float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe, vec2 s_12) {
@@ -2864,46 +2671,46 @@ float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe, vec2 s
     return _e4;
 }
 
-float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_1, vec3 m_34) {
-    float _e4 = filter_rect_d_rect(lobe_1.roughness, m_34, lobe_1.half_extent);
+float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_1, vec3 m_27) {
+    float _e4 = filter_rect_d_rect(lobe_1.roughness, m_27, lobe_1.half_extent);
     return _e4;
 }
 
-float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_2, vec3 w_21) {
-    float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_21);
+float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_2, vec3 w_20) {
+    float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_20);
     return _e4;
 }
 
-float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_3, vec3 w_22, vec3 m_35) {
-    float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_22);
-    float _e5 = ndf_g1_of(_e3, dot(w_22, m_35));
+float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_3, vec3 w_21, vec3 m_28) {
+    float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_21);
+    float _e5 = ndf_g1_of(_e3, dot(w_21, m_28));
     return _e5;
 }
 
-float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_4, vec3 i_9, vec3 o_8, vec3 m_36) {
+float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_4, vec3 i_9, vec3 o_7, vec3 m_29) {
     float _e4 = filter_method_lambda_rect_filtered(lobe_4, i_9);
-    float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_8);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_36), dot(o_8, m_36));
+    float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_7);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_29), dot(o_7, m_29));
     return _e8;
 }
 
-float filter_method_d_ggx_rect(filter_method_Rect method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, vec3 m_37) {
+float filter_method_d_ggx_rect(filter_method_Rect method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, vec3 m_30) {
     filter_method_RectFilteredGgx _e4 = filter_method_rect_lobe(method_8, material_8, fp_15);
-    float _e5 = filter_method_d_rect_filtered(_e4, m_37);
+    float _e5 = filter_method_d_rect_filtered(_e4, m_30);
     return _e5;
 }
 
 ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(filter_method_Proxy method_9, ndf_roughness_axis_aligned_AxisAligned material_9, footprint_Footprint fp_16) {
-    kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_16);
+    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_16);
     kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
-    vec2 h_32 = _e6.half_extent;
-    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_32);
+    vec2 h_31 = _e6.half_extent;
+    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_31);
     return _e8;
 }
 
-float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, vec3 m_38) {
+float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, vec3 m_31) {
     ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
-    float _e5 = ndf_ggx_d_axis_aligned(_e4, m_38);
+    float _e5 = ndf_ggx_d_axis_aligned(_e4, m_31);
     return _e5;
 }
 
@@ -2948,77 +2755,19 @@ filter_deferred_KernelConvention filter_presets_preset(uint i_10) {
     }
 }
 
-float filter_rect_sample_half(float h_18, float alpha_11) {
-    float v_20 = abs(h_18);
-    return ((v_20 >= 0.0) ? min(v_20, (filter_rect_BIG * alpha_11)) : 0.0);
+vec2 footprint_slope_slope_from_sphere(vec3 h_18) {
+    float z_6 = max(h_18.z, math_F32_MIN_POSITIVE);
+    return clamp((-(h_18.xy) / vec2(z_6)), vec2(-3.4028235e38), vec2(3.4028235e38));
 }
 
-vec3 filter_rect_sample_normal_of_slope(vec2 s_13) {
-    vec3 _e4 = sampling_normalize_scaled(vec3(-(s_13), 1.0));
-    return vec3(_e4.xy, max(_e4.z, math_F32_MIN_POSITIVE));
+vec3 footprint_slope_sphere_from_slope(vec2 s_13) {
+    float k_30 = max(max(abs(s_13.x), abs(s_13.y)), 1.0);
+    vec3 v_18 = vec3((-(s_13) / vec2(k_30)), (1.0 / k_30));
+    return (v_18 / vec3(length(v_18)));
 }
 
-vec3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_68, vec2 half_extent_7, vec2 u_13, vec2 u_box) {
-    vec2 a_34 = r_68.alpha;
-    float _e7 = filter_rect_sample_half(half_extent_7.x, a_34.x);
-    float _e10 = filter_rect_sample_half(half_extent_7.y, a_34.y);
-    vec2 h_33 = vec2(_e7, _e10);
-    float _e13 = sampling_clamp_unit(u_13.x);
-    float _e15 = sampling_clamp_unit(u_13.y);
-    vec2 _e16 = math_sincos_turns(_e15);
-    float rad_1 = sqrt((_e13 / (1.0 - _e13)));
-    vec2 g_9 = (-(a_34) * (rad_1 * _e16));
-    float _e25 = sampling_clamp_unit(u_box.x);
-    float _e27 = sampling_clamp_unit(u_box.y);
-    vec2 b_9 = vec2(_e25, _e27);
-    vec2 d_8 = (((2.0 * b_9) - vec2(1.0)) * h_33);
-    vec3 _e36 = filter_rect_sample_normal_of_slope((g_9 + d_8));
-    return _e36;
-}
-
-float filter_rect_sample_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_69, vec2 half_extent_8, vec3 m_39) {
-    float _e3 = filter_rect_d_rect(r_69, m_39, half_extent_8);
-    return ((m_39.z > 0.0) ? (_e3 * m_39.z) : 0.0);
-}
-
-float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_70, vec2 half_extent_9, vec3 wo_6, vec3 m_40) {
-    bool local_25 = false;
-    bool local_26 = false;
-    float wom_1 = dot(wo_6, m_40);
-    if (!(!((wo_6.z > 0.0)))) {
-        local_25 = !((m_40.z > 0.0));
-    } else {
-        local_25 = true;
-    }
-    bool _e17 = local_25;
-    if (!(_e17)) {
-        local_26 = !((wom_1 > 0.0));
-    } else {
-        local_26 = true;
-    }
-    bool _e25 = local_26;
-    if (_e25) {
-        return 0.0;
-    }
-    float _e27 = filter_rect_d_rect(r_70, m_40, half_extent_9);
-    float _e30 = filter_rect_lambda_lambda_rect(r_70, half_extent_9, wo_6);
-    float v_21 = ((wom_1 * _e27) / (wo_6.z * (1.0 + _e30)));
-    return ((v_21 <= math_F32_MAX) ? v_21 : 0.0);
-}
-
-vec2 footprint_slope_slope_from_sphere(vec3 h_19) {
-    float z_7 = max(h_19.z, math_F32_MIN_POSITIVE);
-    return clamp((-(h_19.xy) / vec2(z_7)), vec2(-3.4028235e38), vec2(3.4028235e38));
-}
-
-vec3 footprint_slope_sphere_from_slope(vec2 s_14) {
-    float k_31 = max(max(abs(s_14.x), abs(s_14.y)), 1.0);
-    vec3 v_22 = vec3((-(s_14) / vec2(k_31)), (1.0 / k_31));
-    return (v_22 / vec3(length(v_22)));
-}
-
-vec2 footprint_slope_projected_from_sphere(vec3 h_20) {
-    return h_20.xy;
+vec2 footprint_slope_projected_from_sphere(vec3 h_19) {
+    return h_19.xy;
 }
 
 vec3 footprint_slope_sphere_from_projected(vec2 p_1) {
@@ -3036,66 +2785,214 @@ vec2 footprint_slope_slope_from_projected(vec2 p_2) {
     return _e2;
 }
 
-vec2 footprint_slope_projected_from_slope(vec2 s_15) {
-    vec3 _e1 = footprint_slope_sphere_from_slope(s_15);
+vec2 footprint_slope_projected_from_slope(vec2 s_14) {
+    vec3 _e1 = footprint_slope_sphere_from_slope(s_14);
     vec2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
 }
 
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_61) {
+    vec3 _e1 = ndf_roughness_matrix_clamped_entries(r_61);
+    float l_xx = sqrt(_e1.x);
+    return sampling_Warp(l_xx, (_e1.y / l_xx), (r_61.sqrt_det / l_xx));
+}
+
+vec3 sampling_normalize_scaled(vec3 v_12) {
+    vec3 w_27 = (v_12 / vec3(max(max(abs(v_12.x), abs(v_12.y)), abs(v_12.z))));
+    return (w_27 / vec3(length(w_27)));
+}
+
+vec3 sampling_stretch(sampling_Warp l_3, vec3 w_22) {
+    return vec3(((l_3.l_xx * w_22.x) + (l_3.l_yx * w_22.y)), (l_3.l_yy * w_22.y), w_22.z);
+}
+
+vec3 sampling_unstretch(sampling_Warp l_4, vec3 n_5) {
+    vec3 _e14 = sampling_normalize_scaled(vec3((l_4.l_xx * n_5.x), ((l_4.l_yx * n_5.x) + (l_4.l_yy * n_5.y)), n_5.z));
+    return _e14;
+}
+
+float sampling_clamp_unit(float u_7) {
+    return ((u_7 >= 0.0) ? min(u_7, sampling_ONE_MINUS_EPS) : 0.0);
+}
+
+vec3 sampling_reflect(vec3 wo, vec3 m_32) {
+    return (((2.0 * dot(wo, m_32)) * m_32) - wo);
+}
+
+vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_8) {
+    vec2 _e3 = math_sincos_turns(u_8.x);
+    float z_7 = (((1.0 - u_8.y) * (1.0 + wi.z)) - wi.z);
+    float sin_theta_1 = sqrt(clamp((1.0 - (z_7 * z_7)), 0.0, 1.0));
+    return (vec3((sin_theta_1 * _e3), z_7) + wi);
+}
+
+vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_62, vec3 wo_1, vec2 u_9) {
+    bool local_20 = false;
+    if (!((wo_1.z > 0.0))) {
+        return vec3(0.0);
+    }
+    sampling_Warp _e9 = sampling_warp(r_62);
+    vec3 _e10 = sampling_normalize_scaled(wo_1);
+    vec3 _e11 = sampling_stretch(_e9, _e10);
+    vec3 _e12 = sampling_normalize_scaled(_e11);
+    if (!((_e12.z > 0.0))) {
+        return vec3(0.0);
+    }
+    float _e20 = sampling_clamp_unit(u_9.x);
+    float _e22 = sampling_clamp_unit(u_9.y);
+    vec3 _e24 = sampling_ggx_standard_visible(_e12, vec2(_e20, _e22));
+    vec3 _e25 = sampling_unstretch(_e9, _e24);
+    if ((_e25.z > 0.0)) {
+        local_20 = (dot(wo_1, _e25) > 0.0);
+    } else {
+        local_20 = false;
+    }
+    bool _e35 = local_20;
+    if (_e35) {
+        return _e25;
+    }
+    vec3 _e36 = sampling_unstretch(_e9, _e12);
+    return ((_e36.z > 0.0) ? _e36 : vec3(0.0));
+}
+
+vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_63, vec2 u_10) {
+    float _e3 = sampling_clamp_unit(u_10.x);
+    float _e5 = sampling_clamp_unit(u_10.y);
+    vec2 _e6 = math_sincos_turns(_e5);
+    vec3 n_7 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
+    sampling_Warp _e13 = sampling_warp(r_63);
+    vec3 _e14 = sampling_unstretch(_e13, n_7);
+    return _e14;
+}
+
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_64, vec3 m_33) {
+    float _e2 = ndf_ggx_d_matrix(r_64, m_33);
+    return ((m_33.z > 0.0) ? (_e2 * m_33.z) : 0.0);
+}
+
+float sampling_visible_normal_pdf_of(vec3 wo_2, vec3 m_34, float d_1, float lambda) {
+    bool local_21 = false;
+    bool local_22 = false;
+    float wom = dot(wo_2, m_34);
+    float v_19 = ((wom * d_1) / (wo_2.z * (1.0 + lambda)));
+    if ((wo_2.z > 0.0)) {
+        local_21 = (wom > 0.0);
+    } else {
+        local_21 = false;
+    }
+    bool _e19 = local_21;
+    if (_e19) {
+        local_22 = (v_19 <= math_F32_MAX);
+    } else {
+        local_22 = false;
+    }
+    bool _e25 = local_22;
+    return (_e25 ? v_19 : 0.0);
+}
+
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_65, vec3 wo_3, vec3 m_35) {
+    float _e3 = ndf_ggx_d_matrix(r_65, m_35);
+    float _e4 = ndf_ggx_lambda_matrix(r_65, wo_3);
+    float _e5 = sampling_visible_normal_pdf_of(wo_3, m_35, _e3, _e4);
+    return _e5;
+}
+
+float sampling_reflection_pdf_of(vec3 o_8, vec3 m_36, float d_2, float lambda_1) {
+    bool local_23 = false;
+    bool local_24 = false;
+    float v_20 = (d_2 / ((4.0 * o_8.z) * (1.0 + lambda_1)));
+    if ((o_8.z > 0.0)) {
+        local_23 = (dot(o_8, m_36) > 0.0);
+    } else {
+        local_23 = false;
+    }
+    bool _e20 = local_23;
+    if (_e20) {
+        local_24 = (v_20 <= math_F32_MAX);
+    } else {
+        local_24 = false;
+    }
+    bool _e26 = local_24;
+    return (_e26 ? v_20 : 0.0);
+}
+
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_66, vec3 wo_4, vec3 m_37) {
+    vec3 _e3 = sampling_normalize_scaled(wo_4);
+    float _e4 = ndf_ggx_d_matrix(r_66, m_37);
+    float _e5 = ndf_ggx_lambda_matrix(r_66, _e3);
+    float _e6 = sampling_reflection_pdf_of(_e3, m_37, _e4, _e5);
+    return _e6;
+}
+
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_67, vec3 wo_5, vec3 wi_1) {
+    if (!((wo_5.z > 0.0))) {
+        return 0.0;
+    }
+    vec3 _e8 = sampling_normalize_scaled(wo_5);
+    vec3 _e9 = sampling_normalize_scaled(wi_1);
+    vec3 h_32 = (_e8 + _e9);
+    float len = length(h_32);
+    if (!((len > 0.0))) {
+        return 0.0;
+    }
+    float _e18 = sampling_reflection_pdf_from_normal(r_67, wo_5, (h_32 / vec3(len)));
+    return _e18;
+}
+
 float sampling_beckmann_erfcx(float z_1) {
     float p_3 = 0.17087276;
-    float t_18 = (1.0 / (1.0 + (0.5 * z_1)));
+    float t_17 = (1.0 / (1.0 + (0.5 * z_1)));
     float _e9 = p_3;
-    p_3 = ((_e9 * t_18) - 0.82215226);
+    p_3 = ((_e9 * t_17) - 0.82215226);
     float _e13 = p_3;
-    p_3 = ((_e13 * t_18) + 1.4885159);
+    p_3 = ((_e13 * t_17) + 1.4885159);
     float _e17 = p_3;
-    p_3 = ((_e17 * t_18) - 1.135204);
+    p_3 = ((_e17 * t_17) - 1.135204);
     float _e21 = p_3;
-    p_3 = ((_e21 * t_18) + 0.27886808);
+    p_3 = ((_e21 * t_17) + 0.27886808);
     float _e25 = p_3;
-    p_3 = ((_e25 * t_18) - 0.18628806);
+    p_3 = ((_e25 * t_17) - 0.18628806);
     float _e29 = p_3;
-    p_3 = ((_e29 * t_18) + 0.09678418);
+    p_3 = ((_e29 * t_17) + 0.09678418);
     float _e33 = p_3;
-    p_3 = ((_e33 * t_18) + 0.37409195);
+    p_3 = ((_e33 * t_17) + 0.37409195);
     float _e37 = p_3;
-    p_3 = ((_e37 * t_18) + 1.0000237);
+    p_3 = ((_e37 * t_17) + 1.0000237);
     float _e41 = p_3;
-    p_3 = ((_e41 * t_18) - 1.2655122);
+    p_3 = ((_e41 * t_17) - 1.2655122);
     float _e45 = p_3;
     float _e46 = math_exp(_e45);
-    return (t_18 * _e46);
+    return (t_17 * _e46);
 }
 
-float sampling_beckmann_upper_tail(float x_8, float c_10, float s_16) {
+float sampling_beckmann_upper_tail(float x_8, float c_10, float s_15) {
     float _e5 = math_exp((-(x_8) * x_8));
     float _e8 = sampling_beckmann_erfcx(x_8);
-    return ((0.5 * _e5) * ((c_10 * _e8) - (s_16 * sampling_beckmann_INV_SQRT_PI)));
+    return ((0.5 * _e5) * ((c_10 * _e8) - (s_15 * sampling_beckmann_INV_SQRT_PI)));
 }
 
-vec2 sampling_beckmann_cdf_terms(float x_9, float c_11, float s_17) {
+vec2 sampling_beckmann_cdf_terms(float x_9, float c_11, float s_16) {
     float k_23 = 0.0;
     float _e5 = math_exp((-(x_9) * x_9));
     if ((x_9 <= 0.0)) {
         float _e12 = sampling_beckmann_erfcx(-(x_9));
-        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_17 * sampling_beckmann_INV_SQRT_PI)));
+        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_16 * sampling_beckmann_INV_SQRT_PI)));
     } else {
-        float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_17);
+        float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_16);
         k_23 = (c_11 - _e18);
     }
     float _e20 = k_23;
-    return vec2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_17 * x_9))));
+    return vec2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_16 * x_9))));
 }
 
 float sampling_beckmann_erfinv_guess(float x_10) {
     float w_23 = 0.0;
     float p_4 = 0.0;
-    float a_35 = ((1.0 - x_10) * (1.0 + x_10));
-    if (!((a_35 > 0.0))) {
+    float a_34 = ((1.0 - x_10) * (1.0 + x_10));
+    if (!((a_34 > 0.0))) {
         return 0.0;
     }
-    float _e10 = math_ln(a_35);
+    float _e10 = math_ln(a_34);
     w_23 = -(_e10);
     float _e14 = w_23;
     if ((_e14 < 5.0)) {
@@ -3159,38 +3056,38 @@ float sampling_beckmann_erfinv_guess(float x_10) {
     return (_e106 * x_10);
 }
 
-float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u_14) {
+float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u_11) {
     float lo_3 = -9.0;
     float hi_2 = 0.0;
-    bool local_27 = false;
+    bool local_25 = false;
     float x_11 = 0.0;
     float dx_old = 0.0;
     uint i_11 = 0u;
-    float g_8 = 0.0;
-    bool local_28 = false;
-    bool local_29 = false;
-    float hi0_ = ((s_18 > 0.0) ? min((c_12 / s_18), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
+    float g_6 = 0.0;
+    bool local_26 = false;
+    bool local_27 = false;
+    float hi0_ = ((s_17 > 0.0) ? min((c_12 / s_17), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
     hi_2 = hi0_;
-    vec2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_18);
+    vec2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_17);
     float norm_1 = _e13.x;
-    bool upper = (u_14 > 0.5);
-    float goal = ((upper ? (1.0 - u_14) : u_14) * norm_1);
+    bool upper = (u_11 > 0.5);
+    float goal = ((upper ? (1.0 - u_11) : u_11) * norm_1);
     if (!((goal > 0.0))) {
         float _e24 = lo_3;
         return _e24;
     }
-    float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_18);
+    float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_17);
     float tol = (4.7683716e-7 * goal);
-    float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_14) - 1.0));
+    float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_11) - 1.0));
     float _e35 = hi_2;
     float _e40 = lo_3;
     if ((_e34 > _e40)) {
         float _e44 = hi_2;
-        local_27 = (_e34 < _e44);
+        local_25 = (_e34 < _e44);
     } else {
-        local_27 = false;
+        local_25 = false;
     }
-    bool _e47 = local_27;
+    bool _e47 = local_25;
     x_11 = (_e47 ? _e34 : min(0.0, (0.5 * _e35)));
     float _e50 = hi_2;
     float _e51 = lo_3;
@@ -3209,20 +3106,20 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
         }
         {
             float _e59 = x_11;
-            vec2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_18);
-            g_8 = (_e60.x - goal);
+            vec2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_17);
+            g_6 = (_e60.x - goal);
             if (upper) {
                 float _e66 = x_11;
-                float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_18);
+                float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_17);
                 float _e69 = x_11;
-                g_8 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
+                g_6 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
             }
-            float _e74 = g_8;
+            float _e74 = g_6;
             if ((abs(_e74) <= tol)) {
                 float _e77 = x_11;
                 return _e77;
             }
-            float _e78 = g_8;
+            float _e78 = g_6;
             if ((_e78 < 0.0)) {
                 float _e81 = x_11;
                 lo_3 = _e81;
@@ -3238,26 +3135,26 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
                 float _e94 = hi_2;
                 return (0.5 * (_e93 + _e94));
             }
-            float _e98 = g_8;
+            float _e98 = g_6;
             float step_ = (_e98 / _e60.y);
             float _e101 = x_11;
             float xn = (_e101 - step_);
             float _e103 = lo_3;
             if ((xn > _e103)) {
                 float _e107 = hi_2;
-                local_28 = (xn < _e107);
+                local_26 = (xn < _e107);
             } else {
-                local_28 = false;
+                local_26 = false;
             }
-            bool _e110 = local_28;
+            bool _e110 = local_26;
             if (_e110) {
-                float _e113 = g_8;
+                float _e113 = g_6;
                 float _e117 = dx_old;
-                local_29 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
+                local_27 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
             } else {
-                local_29 = false;
+                local_27 = false;
             }
-            bool _e123 = local_29;
+            bool _e123 = local_27;
             if (_e123) {
                 dx_old = abs(step_);
                 x_11 = xn;
@@ -3280,55 +3177,55 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
     return _e147;
 }
 
-float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_15) {
+float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_12) {
     float c_13 = 1.0;
-    float s_19 = 0.0;
-    bool local_30 = false;
-    bool local_31 = false;
+    float s_18 = 0.0;
+    bool local_28 = false;
+    bool local_29 = false;
     if ((cos_theta >= 0.0)) {
-        local_30 = (sin_theta >= 0.0);
+        local_28 = (sin_theta >= 0.0);
     } else {
-        local_30 = false;
+        local_28 = false;
     }
-    bool _e14 = local_30;
+    bool _e14 = local_28;
     if (_e14) {
-        local_31 = ((cos_theta + sin_theta) > 0.0);
+        local_29 = ((cos_theta + sin_theta) > 0.0);
     } else {
-        local_31 = false;
+        local_29 = false;
     }
-    bool _e21 = local_31;
+    bool _e21 = local_29;
     if (_e21) {
         float _e22 = math_hypot(cos_theta, sin_theta);
         c_13 = (cos_theta / _e22);
-        s_19 = (sin_theta / _e22);
+        s_18 = (sin_theta / _e22);
     }
     float _e25 = c_13;
-    float _e26 = s_19;
-    float _e27 = sampling_clamp_unit(u_15);
+    float _e26 = s_18;
+    float _e27 = sampling_clamp_unit(u_12);
     float _e28 = sampling_beckmann_invert_visible_slope_cdf(_e25, _e26, _e27);
     return _e28;
 }
 
-vec3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_71, vec2 u_16) {
-    float _e3 = sampling_clamp_unit(u_16.x);
-    float _e5 = sampling_clamp_unit(u_16.y);
+vec3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_68, vec2 u_13) {
+    float _e3 = sampling_clamp_unit(u_13.x);
+    float _e5 = sampling_clamp_unit(u_13.y);
     vec2 _e6 = math_sincos_turns(_e5);
     float _e9 = math_ln((1.0 - _e3));
     float _e14 = math_ln_1p((_e3 / (1.0 - _e3)));
-    float e_7 = ((_e3 < 0.5) ? _e14 : -(_e9));
-    vec3 n_8 = vec3((sqrt(e_7) * _e6), 1.0);
-    sampling_Warp _e22 = sampling_warp(r_71);
+    float e_6 = ((_e3 < 0.5) ? _e14 : -(_e9));
+    vec3 n_8 = vec3((sqrt(e_6) * _e6), 1.0);
+    sampling_Warp _e22 = sampling_warp(r_68);
     vec3 _e23 = sampling_unstretch(_e22, n_8);
     return _e23;
 }
 
-vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_72, vec3 wo_7, vec2 u_17) {
-    bool local_32 = false;
-    if (!((wo_7.z > 0.0))) {
+vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_69, vec3 wo_6, vec2 u_14) {
+    bool local_30 = false;
+    if (!((wo_6.z > 0.0))) {
         return vec3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_72);
-    vec3 _e10 = sampling_normalize_scaled(wo_7);
+    sampling_Warp _e9 = sampling_warp(r_69);
+    vec3 _e10 = sampling_normalize_scaled(wo_6);
     vec3 _e11 = sampling_stretch(_e9, _e10);
     vec3 _e12 = sampling_normalize_scaled(_e11);
     if (!((_e12.z > 0.0))) {
@@ -3336,18 +3233,18 @@ vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatri
     }
     float _e21 = math_hypot(_e12.x, _e12.y);
     vec2 phi = ((_e21 > 0.0) ? (_e12.xy / vec2(_e21)) : vec2(1.0, 0.0));
-    float _e33 = sampling_clamp_unit(u_17.x);
+    float _e33 = sampling_clamp_unit(u_14.x);
     float _e34 = sampling_beckmann_invert_visible_slope_cdf(_e12.z, _e21, _e33);
-    float _e38 = sampling_clamp_unit(u_17.y);
+    float _e38 = sampling_clamp_unit(u_14.y);
     float _e39 = sampling_beckmann_invert_visible_slope_cdf(1.0, 0.0, _e38);
-    vec2 t_19 = vec2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
-    vec3 _e54 = sampling_unstretch(_e9, vec3(-(t_19), 1.0));
+    vec2 t_18 = vec2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
+    vec3 _e54 = sampling_unstretch(_e9, vec3(-(t_18), 1.0));
     if ((_e54.z > 0.0)) {
-        local_32 = (dot(wo_7, _e54) > 0.0);
+        local_30 = (dot(wo_6, _e54) > 0.0);
     } else {
-        local_32 = false;
+        local_30 = false;
     }
-    bool _e64 = local_32;
+    bool _e64 = local_30;
     if (_e64) {
         return _e54;
     }
@@ -3355,24 +3252,127 @@ vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatri
     return ((_e65.z > 0.0) ? _e65 : vec3(0.0));
 }
 
-float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_73, vec3 m_41) {
-    float _e2 = ndf_beckmann_d_matrix(r_73, m_41);
-    return ((m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0);
+float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_70, vec3 m_38) {
+    float _e2 = ndf_beckmann_d_matrix(r_70, m_38);
+    return ((m_38.z > 0.0) ? (_e2 * m_38.z) : 0.0);
 }
 
-float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_74, vec3 wo_8, vec3 m_42) {
-    float _e3 = ndf_beckmann_d_matrix(r_74, m_42);
-    float _e4 = ndf_beckmann_lambda_matrix(r_74, wo_8);
-    float _e5 = sampling_visible_normal_pdf_of(wo_8, m_42, _e3, _e4);
+float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_71, vec3 wo_7, vec3 m_39) {
+    float _e3 = ndf_beckmann_d_matrix(r_71, m_39);
+    float _e4 = ndf_beckmann_lambda_matrix(r_71, wo_7);
+    float _e5 = sampling_visible_normal_pdf_of(wo_7, m_39, _e3, _e4);
     return _e5;
 }
 
-float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_75, vec3 wo_9, vec3 m_43) {
-    vec3 _e3 = sampling_normalize_scaled(wo_9);
-    float _e4 = ndf_beckmann_d_matrix(r_75, m_43);
-    float _e5 = ndf_beckmann_lambda_matrix(r_75, _e3);
-    float _e6 = sampling_reflection_pdf_of(_e3, m_43, _e4, _e5);
+float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_72, vec3 wo_8, vec3 m_40) {
+    vec3 _e3 = sampling_normalize_scaled(wo_8);
+    float _e4 = ndf_beckmann_d_matrix(r_72, m_40);
+    float _e5 = ndf_beckmann_lambda_matrix(r_72, _e3);
+    float _e6 = sampling_reflection_pdf_of(_e3, m_40, _e4, _e5);
     return _e6;
+}
+
+vec2 sampling_gaussian_ggx_split(float u_15) {
+    float x_18 = (u_15 * 4096.0);
+    float hi_5 = floor(x_18);
+    return vec2(((hi_5 + 0.5) / 4096.0), (x_18 - hi_5));
+}
+
+vec3 sampling_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_7, vec2 u_16) {
+    vec2 ax_1 = vec2(1.0, 0.0);
+    float _e3 = sampling_clamp_unit(u_16.x);
+    vec2 _e4 = sampling_gaussian_ggx_split(_e3);
+    float _e6 = sampling_clamp_unit(u_16.y);
+    vec2 _e7 = sampling_gaussian_ggx_split(_e6);
+    vec2 _e15 = math_sincos_turns(_e7.x);
+    vec2 t_19 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
+    sampling_Warp _e18 = sampling_warp(g_7.a);
+    vec2 gs = vec2((_e18.l_xx * t_19.x), ((_e18.l_yx * t_19.x) + (_e18.l_yy * t_19.y)));
+    float _e33 = math_ln((1.0 - _e4.y));
+    float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
+    float e_7 = ((_e4.y < 0.5) ? _e40 : -(_e33));
+    vec2 _e49 = math_sincos_turns(_e7.y);
+    vec2 y_4 = (sqrt((2.0 * e_7)) * _e49);
+    kernel_covariance_Covariance k_31 = g_7.k;
+    vec2 _e52 = kernel_covariance_eigenvalues(k_31);
+    float khalf = (0.5 * (k_31.s_xx - k_31.s_yy));
+    float _e59 = math_hypot(khalf, k_31.s_xy);
+    if ((_e59 > 0.0)) {
+        vec2 w_28 = ((khalf >= 0.0) ? vec2((_e59 + khalf), k_31.s_xy) : vec2(k_31.s_xy, (_e59 - khalf)));
+        float _e77 = math_hypot(w_28.x, w_28.y);
+        ax_1 = (w_28 / vec2(_e77));
+    }
+    vec2 kk_1 = vec2((sqrt(_e52.y) * y_4.x), (sqrt(_e52.x) * y_4.y));
+    float _e90 = ax_1.x;
+    float _e94 = ax_1.y;
+    float _e99 = ax_1.y;
+    float _e103 = ax_1.x;
+    vec2 s_32 = (gs + vec2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
+    vec3 _e112 = sampling_normalize_scaled(vec3(-(s_32), 1.0));
+    return vec3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
+}
+
+float sampling_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_8, vec3 m_41) {
+    float _e2 = filter_gaussian_ggx_d(g_8, m_41);
+    return ((m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0);
+}
+
+float sampling_rect_half(float h_20, float alpha_11) {
+    float v_21 = abs(h_20);
+    return ((v_21 >= 0.0) ? min(v_21, (filter_rect_BIG * alpha_11)) : 0.0);
+}
+
+vec3 sampling_rect_normal_of_slope(vec2 s_19) {
+    vec3 _e4 = sampling_normalize_scaled(vec3(-(s_19), 1.0));
+    return vec3(_e4.xy, max(_e4.z, math_F32_MIN_POSITIVE));
+}
+
+vec3 sampling_rect_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_73, vec2 half_extent_7, vec2 u_17, vec2 u_box) {
+    vec2 a_35 = r_73.alpha;
+    float _e7 = sampling_rect_half(half_extent_7.x, a_35.x);
+    float _e10 = sampling_rect_half(half_extent_7.y, a_35.y);
+    vec2 h_33 = vec2(_e7, _e10);
+    float _e13 = sampling_clamp_unit(u_17.x);
+    float _e15 = sampling_clamp_unit(u_17.y);
+    vec2 _e16 = math_sincos_turns(_e15);
+    float rad_1 = sqrt((_e13 / (1.0 - _e13)));
+    vec2 g_9 = (-(a_35) * (rad_1 * _e16));
+    float _e25 = sampling_clamp_unit(u_box.x);
+    float _e27 = sampling_clamp_unit(u_box.y);
+    vec2 b_9 = vec2(_e25, _e27);
+    vec2 d_8 = (((2.0 * b_9) - vec2(1.0)) * h_33);
+    vec3 _e36 = sampling_rect_normal_of_slope((g_9 + d_8));
+    return _e36;
+}
+
+float sampling_rect_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_74, vec2 half_extent_8, vec3 m_42) {
+    float _e3 = filter_rect_d_rect(r_74, m_42, half_extent_8);
+    return ((m_42.z > 0.0) ? (_e3 * m_42.z) : 0.0);
+}
+
+float sampling_rect_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_75, vec2 half_extent_9, vec3 wo_9, vec3 m_43) {
+    bool local_31 = false;
+    bool local_32 = false;
+    float wom_1 = dot(wo_9, m_43);
+    if (!(!((wo_9.z > 0.0)))) {
+        local_31 = !((m_43.z > 0.0));
+    } else {
+        local_31 = true;
+    }
+    bool _e17 = local_31;
+    if (!(_e17)) {
+        local_32 = !((wom_1 > 0.0));
+    } else {
+        local_32 = true;
+    }
+    bool _e25 = local_32;
+    if (_e25) {
+        return 0.0;
+    }
+    float _e27 = filter_rect_d_rect(r_75, m_43, half_extent_9);
+    float _e30 = filter_rect_lambda_lambda_rect(r_75, half_extent_9, wo_9);
+    float v_22 = ((wom_1 * _e27) / (wo_9.z * (1.0 + _e30)));
+    return ((v_22 <= math_F32_MAX) ? v_22 : 0.0);
 }
 
 void main() {

@@ -3,6 +3,26 @@
 // Names are those of shaders/generated/filtered_ndf.wgsl (module path as prefix);
 // the documentation is in the WGSL modules under shaders/. The entry point at the
 // end exists only because naga translates one: delete it when pasting.
+struct footprint_jacobian_Polar {
+    float3 h;
+    int _pad1_0;
+    float2 cs;
+    int _end_pad_0;
+    int _end_pad_1;
+};
+
+struct footprint_jacobian_SphericalBasis {
+    float3 e_x;
+    int _pad1_0;
+    float3 e_y;
+    int _end_pad_0;
+};
+
+struct footprint_Footprint {
+    float2 dh_u;
+    float2 dh_v;
+};
+
 struct kernel_covariance_Covariance {
     float s_xx;
     float s_xy;
@@ -33,6 +53,18 @@ struct ndf_roughness_matrix_RoughnessMatrix {
     int _end_pad_0;
 };
 
+struct kernel_rect_BoundingRect {
+    float2 half_extent;
+};
+
+struct kernel_clamp_ClampRules {
+    float max_extent;
+    uint floor_kind;
+    float floor_;
+    float kappa;
+    bool det_clamp;
+};
+
 struct ndf_roughness_isotropic_Isotropic {
     float alpha;
     float inv_alpha_sq;
@@ -41,12 +73,6 @@ struct ndf_roughness_isotropic_Isotropic {
 struct ndf_roughness_axis_aligned_AxisAligned {
     float2 alpha;
     float2 inv_alpha_sq;
-};
-
-struct sampling_Warp {
-    float l_xx;
-    float l_yx;
-    float l_yy;
 };
 
 struct filter_gaussian_ggx_GaussianFilteredGgx {
@@ -65,38 +91,6 @@ struct filter_lean_LeanMoments {
     int _pad1_1;
     float3 second;
     int _end_pad_0;
-};
-
-struct footprint_jacobian_Polar {
-    float3 h;
-    int _pad1_0;
-    float2 cs;
-    int _end_pad_0;
-    int _end_pad_1;
-};
-
-struct footprint_jacobian_SphericalBasis {
-    float3 e_x;
-    int _pad1_0;
-    float3 e_y;
-    int _end_pad_0;
-};
-
-struct kernel_rect_BoundingRect {
-    float2 half_extent;
-};
-
-struct footprint_Footprint {
-    float2 dh_u;
-    float2 dh_v;
-};
-
-struct kernel_clamp_ClampRules {
-    float max_extent;
-    uint floor_kind;
-    float floor_;
-    float kappa;
-    bool det_clamp;
 };
 
 struct filter_method_Gaussian {
@@ -125,6 +119,12 @@ struct filter_method_RectFilteredGgx {
 
 struct filter_method_Proxy {
     kernel_clamp_ClampRules clamps;
+};
+
+struct sampling_Warp {
+    float l_xx;
+    float l_yx;
+    float l_yy;
 };
 
 kernel_clamp_ClampRules Constructkernel_clamp_ClampRules(float arg0, uint arg1, float arg2, float arg3, bool arg4) {
@@ -199,6 +199,8 @@ static const float math_LOG2_E = 1.442695;
 static const float math_SQRT_2_ = 1.4142135;
 static const float ndf_roughness_ALPHA_MIN = 1e-8;
 static const float ndf_roughness_ALPHA_MAX = 10000.0;
+static const float footprint_jacobian_HZ_MIN = 1e-6;
+static const float footprint_SIGMA_PIXEL = 0.5;
 static const float kernel_covariance_KERNEL_MAX = 100000000.0;
 static const float filter_deferred_KAPPA = 0.18;
 static const uint filter_deferred_DOMAIN_ALPHA_SQ = 0u;
@@ -214,6 +216,13 @@ static const uint filter_deferred_COMBINE_MAX = 1u;
 static const uint filter_deferred_BANDWIDTH_MAX = 0u;
 static const uint filter_deferred_BANDWIDTH_TRACE = 1u;
 static const uint filter_deferred_BANDWIDTH_AVERAGE = 2u;
+static const uint kernel_clamp_FLOOR_NONE = 0u;
+static const uint kernel_clamp_FLOOR_CONSTANT = 1u;
+static const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
+static const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
+static const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
+static const kernel_clamp_ClampRules kernel_clamp_NO_RULES = Constructkernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
+static const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
 static const float ndf_beckmann_EXP_SPLIT = 80.0;
 static const float ndf_beckmann_SQRT_PI = 1.7724539;
 static const float filter_gaussian_ggx_quad_FAR = 320000.0;
@@ -230,17 +239,7 @@ static const float filter_gaussian_ggx_quad_S_MAX = 0.25;
 static const float filter_gaussian_ggx_quad_S_COEF = 0.25;
 static const float filter_gaussian_ggx_quad_S_EPS = 1e-8;
 static const uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
-static const float sampling_ONE_MINUS_EPS = 0.99999994;
-static const float footprint_jacobian_HZ_MIN = 1e-6;
-static const float footprint_SIGMA_PIXEL = 0.5;
 static const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
-static const uint kernel_clamp_FLOOR_NONE = 0u;
-static const uint kernel_clamp_FLOOR_CONSTANT = 1u;
-static const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
-static const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
-static const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
-static const kernel_clamp_ClampRules kernel_clamp_NO_RULES = Constructkernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
-static const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
 static const float filter_rect_BIG = 1e18;
 static const float filter_rect_FAR2_ = 0.25;
 static const uint filter_rect_TIER_CLOSED = 0u;
@@ -264,6 +263,7 @@ static const filter_deferred_KernelConvention filter_presets_O3DE = Constructfil
 static const filter_deferred_KernelConvention filter_presets_UNREAL = Constructfilter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 static const filter_deferred_KernelConvention filter_presets_BABYLON = Constructfilter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 static const filter_deferred_KernelConvention filter_presets_THREE_JS = Constructfilter_deferred_KernelConvention(2u, 3u, 1.0, 1.0, 0.0, 3.4028235e38, 0u, true, 0.0525);
+static const float sampling_ONE_MINUS_EPS = 0.99999994;
 static const float sampling_beckmann_X_MAX = 9.0;
 static const uint sampling_beckmann_MAX_ITERATIONS = 64u;
 static const float sampling_beckmann_INV_SQRT_PI = 0.5641896;
@@ -398,6 +398,174 @@ float ndf_roughness_clamp_alpha(float alpha)
     return ((alpha >= ndf_roughness_ALPHA_MIN) ? min(alpha, ndf_roughness_ALPHA_MAX) : ndf_roughness_ALPHA_MIN);
 }
 
+footprint_jacobian_Polar Constructfootprint_jacobian_Polar(float3 arg0, float2 arg1) {
+    footprint_jacobian_Polar ret = (footprint_jacobian_Polar)0;
+    ret.h = arg0;
+    ret.cs = arg1;
+    return ret;
+}
+
+footprint_jacobian_Polar footprint_jacobian_polar(float3 h_in)
+{
+    float2 cs_1 = float2(1.0, 0.0);
+
+    float big = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if ((big <= 0.0)) {
+        const footprint_jacobian_Polar footprint_jacobian_polar_1 = Constructfootprint_jacobian_Polar(float3(0.0, 0.0, 1.0), float2(1.0, 0.0));
+        return footprint_jacobian_polar_1;
+    }
+    float3 h0_ = (h_in / (big).xxx);
+    float3 h_21 = (h0_ / (length(h0_)).xxx);
+    float qs_3 = max(abs(h_21.x), abs(h_21.y));
+    if ((qs_3 > 0.0)) {
+        float2 q_5 = (h_21.xy / (qs_3).xx);
+        cs_1 = (q_5 / (length(q_5)).xx);
+    }
+    if ((h_21.z >= footprint_jacobian_HZ_MIN)) {
+        float2 _e44 = cs_1;
+        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_21, _e44);
+        return footprint_jacobian_polar_2;
+    }
+    float2 _e47 = cs_1;
+    float2 _e51 = cs_1;
+    const footprint_jacobian_Polar footprint_jacobian_polar_3 = Constructfootprint_jacobian_Polar(float3((1.0 * _e47), footprint_jacobian_HZ_MIN), _e51);
+    return footprint_jacobian_polar_3;
+}
+
+float3 footprint_jacobian_sanitize(float3 h)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h);
+    return _e1.h;
+}
+
+footprint_jacobian_SphericalBasis Constructfootprint_jacobian_SphericalBasis(float3 arg0, float3 arg1) {
+    footprint_jacobian_SphericalBasis ret = (footprint_jacobian_SphericalBasis)0;
+    ret.e_x = arg0;
+    ret.e_y = arg1;
+    return ret;
+}
+
+footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(float3 h_1)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
+    float st = length(_e1.h.xy);
+    const footprint_jacobian_SphericalBasis footprint_jacobian_sphericalbasis = Constructfootprint_jacobian_SphericalBasis(float3((_e1.h.z * _e1.cs), -(st)), float3(-(_e1.cs.y), _e1.cs.x, 0.0));
+    return footprint_jacobian_sphericalbasis;
+}
+
+float2 footprint_jacobian_spherical_components(float3 h_2, float3 dh)
+{
+    const footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_2);
+    return float2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
+}
+
+float2x2 footprint_jacobian_sphere_to_projected(float3 h_3)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_3);
+    return float2x2((_e1.h.z * _e1.cs), float2(-(_e1.cs.y), _e1.cs.x));
+}
+
+float2x2 footprint_jacobian_projected_to_slope(float3 h_in_1)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
+    float3 h_22 = _e1.h;
+    float k_25 = (-1.0 / ((h_22.z * h_22.z) * h_22.z));
+    float xy = (h_22.x * h_22.y);
+    return float2x2((float2(((h_22.x * h_22.x) + (h_22.z * h_22.z)), xy) * k_25), (float2(xy, ((h_22.y * h_22.y) + (h_22.z * h_22.z))) * k_25));
+}
+
+float2x2 footprint_jacobian_slope_to_projected(float3 h_in_2)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
+    float3 h_23 = _e1.h;
+    float xy_1 = (h_23.x * h_23.y);
+    return float2x2((float2(((h_23.y * h_23.y) + (h_23.z * h_23.z)), -(xy_1)) * -(h_23.z)), (float2(-(xy_1), ((h_23.x * h_23.x) + (h_23.z * h_23.z))) * -(h_23.z)));
+}
+
+float2x2 footprint_jacobian_sphere_to_slope(float3 h_4)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
+    float k_26 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return float2x2((_e1.cs * k_26), (float2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_26));
+}
+
+float footprint_jacobian_det_sphere_to_projected(float3 h_5)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
+    return _e1.h.z;
+}
+
+float footprint_jacobian_det_projected_to_slope(float3 h_6)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
+    float z_4 = _e1.h.z;
+    float z2_4 = (z_4 * z_4);
+    return (1.0 / (z2_4 * z2_4));
+}
+
+float footprint_jacobian_det_sphere_to_slope(float3 h_7)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
+    float z_5 = _e1.h.z;
+    return (1.0 / ((z_5 * z_5) * z_5));
+}
+
+float2 footprint_jacobian_spherical_to_slope(float3 h_8, float2 e_1)
+{
+    const float2x2 _e2 = footprint_jacobian_sphere_to_slope(h_8);
+    return mul(e_1, _e2);
+}
+
+float2 footprint_jacobian_spherical_to_projected(float3 h_9, float2 e_2)
+{
+    const float2x2 _e2 = footprint_jacobian_sphere_to_projected(h_9);
+    return mul(e_2, _e2);
+}
+
+footprint_Footprint Constructfootprint_Footprint(float2 arg0, float2 arg1) {
+    footprint_Footprint ret = (footprint_Footprint)0;
+    ret.dh_u = arg0;
+    ret.dh_v = arg1;
+    return ret;
+}
+
+footprint_Footprint footprint_from_slope_derivatives(float2 dh_u, float2 dh_v)
+{
+    const footprint_Footprint footprint_footprint = Constructfootprint_Footprint(dh_u, dh_v);
+    return footprint_footprint;
+}
+
+footprint_Footprint footprint_from_projected_derivatives(float2 dp_u, float2 dp_v)
+{
+    const footprint_Footprint footprint_footprint_1 = Constructfootprint_Footprint(dp_u, dp_v);
+    return footprint_footprint_1;
+}
+
+footprint_Footprint footprint_from_projected_derivatives_in_slope(float3 h_10, float2 dp_u_1, float2 dp_v_1)
+{
+    float big_1 = max(max(abs(h_10.x), abs(h_10.y)), abs(h_10.z));
+    if ((big_1 <= 0.0)) {
+        const footprint_Footprint footprint_footprint_2 = Constructfootprint_Footprint((0.0).xx, (0.0).xx);
+        return footprint_footprint_2;
+    }
+    const float2x2 _e18 = footprint_jacobian_projected_to_slope(h_10);
+    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint(mul(dp_u_1, _e18), mul(dp_v_1, _e18));
+    return footprint_footprint_3;
+}
+
+footprint_Footprint footprint_from_normal_differences(float3 dn_u, float3 dn_v)
+{
+    float lu = max(length((float3(0.0, 0.0, 2.0) + dn_u)), 1e-6);
+    float lv = max(length((float3(0.0, 0.0, 2.0) + dn_v)), 1e-6);
+    const footprint_Footprint footprint_footprint_4 = Constructfootprint_Footprint((dn_u.xy * (2.0 / lu)), (dn_v.xy * (2.0 / lv)));
+    return footprint_footprint_4;
+}
+
+float footprint_max_extent(footprint_Footprint fp)
+{
+    return (0.5 * max(length((fp.dh_u + fp.dh_v)), length((fp.dh_u - fp.dh_v))));
+}
+
 kernel_covariance_Covariance Constructkernel_covariance_Covariance(float arg0, float arg1, float arg2, float arg3) {
     kernel_covariance_Covariance ret = (kernel_covariance_Covariance)0;
     ret.s_xx = arg0;
@@ -419,6 +587,16 @@ kernel_covariance_Covariance kernel_covariance_from_entries(float s_xx, float s_
     return kernel_covariance_covariance_1;
 }
 
+kernel_covariance_Covariance kernel_covariance_from_footprint(footprint_Footprint fp_1, float sigma)
+{
+    float2 u_18 = fp_1.dh_u;
+    float2 v_13 = fp_1.dh_v;
+    float s2_ = (sigma * sigma);
+    float cross_ = (((u_18.x * v_13.y) - (u_18.y * v_13.x)) * s2_);
+    const kernel_covariance_Covariance kernel_covariance_covariance_2 = Constructkernel_covariance_Covariance((((u_18.x * u_18.x) + (v_13.x * v_13.x)) * s2_), (((u_18.x * u_18.y) + (v_13.x * v_13.y)) * s2_), (((u_18.y * u_18.y) + (v_13.y * v_13.y)) * s2_), (cross_ * cross_));
+    return kernel_covariance_covariance_2;
+}
+
 float kernel_covariance_trace(kernel_covariance_Covariance c)
 {
     return (c.s_xx + c.s_yy);
@@ -426,15 +604,15 @@ float kernel_covariance_trace(kernel_covariance_Covariance c)
 
 kernel_covariance_Covariance kernel_covariance_scaled(kernel_covariance_Covariance c_1, float k)
 {
-    const kernel_covariance_Covariance kernel_covariance_covariance_2 = Constructkernel_covariance_Covariance((c_1.s_xx * k), (c_1.s_xy * k), (c_1.s_yy * k), ((c_1.det * k) * k));
-    return kernel_covariance_covariance_2;
+    const kernel_covariance_Covariance kernel_covariance_covariance_3 = Constructkernel_covariance_Covariance((c_1.s_xx * k), (c_1.s_xy * k), (c_1.s_yy * k), ((c_1.det * k) * k));
+    return kernel_covariance_covariance_3;
 }
 
 kernel_covariance_Covariance kernel_covariance_add(kernel_covariance_Covariance a, kernel_covariance_Covariance b)
 {
-    float cross_ = (((a.s_xx * b.s_yy) + (a.s_yy * b.s_xx)) - ((2.0 * a.s_xy) * b.s_xy));
-    const kernel_covariance_Covariance kernel_covariance_covariance_3 = Constructkernel_covariance_Covariance((a.s_xx + b.s_xx), (a.s_xy + b.s_xy), (a.s_yy + b.s_yy), ((a.det + b.det) + cross_));
-    return kernel_covariance_covariance_3;
+    float cross_1 = (((a.s_xx * b.s_yy) + (a.s_yy * b.s_xx)) - ((2.0 * a.s_xy) * b.s_xy));
+    const kernel_covariance_Covariance kernel_covariance_covariance_4 = Constructkernel_covariance_Covariance((a.s_xx + b.s_xx), (a.s_xy + b.s_xy), (a.s_yy + b.s_yy), ((a.det + b.det) + cross_1));
+    return kernel_covariance_covariance_4;
 }
 
 float2 kernel_covariance_eigenvalues(kernel_covariance_Covariance c_2)
@@ -452,13 +630,13 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
 
     if (!((max_eig >= 0.0))) {
         const kernel_covariance_Covariance _e5 = kernel_covariance_zero();
-        const kernel_covariance_Covariance kernel_covariance_covariance_4 = _e5;
-        return kernel_covariance_covariance_4;
+        const kernel_covariance_Covariance kernel_covariance_covariance_5 = _e5;
+        return kernel_covariance_covariance_5;
     }
     float scale = max(max(abs(c_3.s_xx), abs(c_3.s_yy)), abs(c_3.s_xy));
     if ((scale <= 0.0)) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_5 = c_3;
-        return kernel_covariance_covariance_5;
+        const kernel_covariance_Covariance kernel_covariance_covariance_6 = c_3;
+        return kernel_covariance_covariance_6;
     }
     float a_18 = (c_3.s_xx / scale);
     float b_6 = (c_3.s_xy / scale);
@@ -467,8 +645,8 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     float r_78 = sqrt(((d_3 * d_3) + (b_6 * b_6)));
     float lmax_1 = (((0.5 * (a_18 + e_3)) + r_78) * scale);
     if ((lmax_1 <= max_eig)) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_6 = c_3;
-        return kernel_covariance_covariance_6;
+        const kernel_covariance_Covariance kernel_covariance_covariance_7 = c_3;
+        return kernel_covariance_covariance_7;
     }
     float lmin_1 = max((c_3.det / lmax_1), 0.0);
     if (!((lmin_1 >= max_eig))) {
@@ -478,18 +656,18 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     }
     bool _e46 = local;
     if (_e46) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_7 = Constructkernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
-        return kernel_covariance_covariance_7;
+        const kernel_covariance_Covariance kernel_covariance_covariance_8 = Constructkernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
+        return kernel_covariance_covariance_8;
     }
     float p_7 = (r_78 + abs(d_3));
-    float q_5 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
-    float2 ee = ((d_3 >= 0.0) ? float2(p_7, q_5) : float2(q_5, p_7));
+    float q_6 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
+    float2 ee = ((d_3 >= 0.0) ? float2(p_7, q_6) : float2(q_6, p_7));
     float inv_1 = (1.0 / (2.0 * r_78));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_6 * inv_1);
     float p22_ = (ee.y * inv_1);
-    const kernel_covariance_Covariance kernel_covariance_covariance_8 = Constructkernel_covariance_Covariance(((max_eig * p11_) + (lmin_1 * p22_)), ((max_eig - lmin_1) * p12_), ((max_eig * p22_) + (lmin_1 * p11_)), (max_eig * lmin_1));
-    return kernel_covariance_covariance_8;
+    const kernel_covariance_Covariance kernel_covariance_covariance_9 = Constructkernel_covariance_Covariance(((max_eig * p11_) + (lmin_1 * p22_)), ((max_eig - lmin_1) * p12_), ((max_eig * p22_) + (lmin_1 * p11_)), (max_eig * lmin_1));
+    return kernel_covariance_covariance_9;
 }
 
 kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covariance c_4)
@@ -497,10 +675,10 @@ kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covar
     bool local_1 = (bool)0;
     bool local_2 = (bool)0;
 
-    float big = max(max(abs(c_4.s_xx), abs(c_4.s_yy)), abs(c_4.s_xy));
-    if ((big > math_F32_MAX)) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_9 = Constructkernel_covariance_Covariance(100000000.0, 0.0, 100000000.0, 1e16);
-        return kernel_covariance_covariance_9;
+    float big_2 = max(max(abs(c_4.s_xx), abs(c_4.s_yy)), abs(c_4.s_xy));
+    if ((big_2 > math_F32_MAX)) {
+        const kernel_covariance_Covariance kernel_covariance_covariance_10 = Constructkernel_covariance_Covariance(100000000.0, 0.0, 100000000.0, 1e16);
+        return kernel_covariance_covariance_10;
     }
     if ((c_4.s_xx >= 0.0)) {
         local_1 = (c_4.s_yy >= 0.0);
@@ -516,16 +694,16 @@ kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covar
     bool _e32 = local_2;
     if (_e32) {
         const kernel_covariance_Covariance _e34 = kernel_covariance_clamp_eigenvalues(c_4, kernel_covariance_KERNEL_MAX);
-        const kernel_covariance_Covariance kernel_covariance_covariance_10 = _e34;
-        return kernel_covariance_covariance_10;
+        const kernel_covariance_Covariance kernel_covariance_covariance_11 = _e34;
+        return kernel_covariance_covariance_11;
     }
     float s_xx_1 = max(c_4.s_xx, 0.0);
     float s_yy_1 = max(c_4.s_yy, 0.0);
     float bound = (sqrt(s_xx_1) * sqrt(s_yy_1));
     float s_xy_1 = clamp(c_4.s_xy, -(bound), bound);
     const kernel_covariance_Covariance _e50 = kernel_covariance_clamp_eigenvalues(Constructkernel_covariance_Covariance(s_xx_1, s_xy_1, s_yy_1, 0.0), kernel_covariance_KERNEL_MAX);
-    const kernel_covariance_Covariance kernel_covariance_covariance_11 = _e50;
-    return kernel_covariance_covariance_11;
+    const kernel_covariance_Covariance kernel_covariance_covariance_12 = _e50;
+    return kernel_covariance_covariance_12;
 }
 
 float filter_deferred_from_alpha(uint domain, float alpha_1)
@@ -563,19 +741,19 @@ float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5)
     return max(((0.5 * (a_1 + c_5)) + _e9), 0.0);
 }
 
-float filter_deferred_norm_eval(uint norm, float3 dn_u, float3 dn_v)
+float filter_deferred_norm_eval(uint norm, float3 dn_u_1, float3 dn_v_1)
 {
-    float a_19 = dot(dn_u, dn_u);
-    float c_15 = dot(dn_v, dn_v);
+    float a_19 = dot(dn_u_1, dn_u_1);
+    float c_15 = dot(dn_v_1, dn_v_1);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
         return max(a_19, c_15);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        const float _e11 = filter_deferred_max_eigenvalue(a_19, dot(dn_u, dn_v), c_15);
+        const float _e11 = filter_deferred_max_eigenvalue(a_19, dot(dn_u_1, dn_v_1), c_15);
         return _e11;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        float3 m_45 = max(abs(dn_u), abs(dn_v));
+        float3 m_45 = max(abs(dn_u_1), abs(dn_v_1));
         return max(max(m_45.x, m_45.y), m_45.z);
     }
     return (a_19 + c_15);
@@ -586,11 +764,11 @@ float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, floa
     return min(max(k_1, 0.0), conv.clamp_);
 }
 
-float filter_deferred_widening(filter_deferred_KernelConvention conv_1, float3 dn_u_1, float3 dn_v_1)
+float filter_deferred_widening(filter_deferred_KernelConvention conv_1, float3 dn_u_2, float3 dn_v_2)
 {
     float raw = (float)0;
 
-    const float _e4 = filter_deferred_norm_eval(conv_1.norm, dn_u_1, dn_v_1);
+    const float _e4 = filter_deferred_norm_eval(conv_1.norm, dn_u_2, dn_v_2);
     raw = _e4;
     if ((conv_1.exponent != 1.0)) {
         raw = ((_e4 > 0.0) ? pow(_e4, conv_1.exponent) : 0.0);
@@ -621,19 +799,19 @@ float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, fl
     return clamp(_e29, 0.0, ndf_roughness_ALPHA_MAX);
 }
 
-float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_3, float3 dn_u_2, float3 dn_v_2)
+float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_3, float3 dn_u_3, float3 dn_v_3)
 {
-    const float _e4 = filter_deferred_widening(conv_3, dn_u_2, dn_v_2);
+    const float _e4 = filter_deferred_widening(conv_3, dn_u_3, dn_v_3);
     const float _e5 = filter_deferred_apply_widening(conv_3, alpha_3, _e4);
     return _e5;
 }
 
-kernel_covariance_Covariance filter_deferred_normal_difference_covariance(float3 dn_u_3, float3 dn_v_3, float sigma)
+kernel_covariance_Covariance filter_deferred_normal_difference_covariance(float3 dn_u_4, float3 dn_v_4, float sigma_1)
 {
-    float sigma_sq = (sigma * sigma);
-    float3 x_12 = (cross(dn_u_3, dn_v_3) * sigma_sq);
-    const kernel_covariance_Covariance kernel_covariance_covariance_12 = Constructkernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_12, x_12));
-    return kernel_covariance_covariance_12;
+    float sigma_sq = (sigma_1 * sigma_1);
+    float3 x_12 = (cross(dn_u_4, dn_v_4) * sigma_sq);
+    const kernel_covariance_Covariance kernel_covariance_covariance_13 = Constructkernel_covariance_Covariance((dot(dn_u_4, dn_u_4) * sigma_sq), (dot(dn_u_4, dn_v_4) * sigma_sq), (dot(dn_v_4, dn_v_4) * sigma_sq), dot(x_12, x_12));
+    return kernel_covariance_covariance_13;
 }
 
 float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel)
@@ -678,9 +856,9 @@ float2 ndf_roughness_matrix_clamped_eigenvalues(float2 l, float det, float tau)
     if ((det >= tau)) {
         return l;
     }
-    float h_21 = (0.5 * (l.x + l.y));
+    float h_24 = (0.5 * (l.x + l.y));
     float gap = (tau - det);
-    float t_11 = (gap / (h_21 + sqrt(((h_21 * h_21) + gap))));
+    float t_11 = (gap / (h_24 + sqrt(((h_24 * h_24) + gap))));
     float l1_ = (l.x + t_11);
     return float2(l1_, (tau / l1_));
 }
@@ -700,9 +878,9 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float
     float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
     float l1_1 = ((0.5 * (a11_ + a22_)) + rad);
     float l2_2 = (max(det_2, 0.0) / l1_1);
-    float big_1 = (rad + abs(half_diff));
-    v_1 = ((half_diff < 0.0) ? float2(a12_, big_1) : float2(big_1, a12_));
-    if ((big_1 <= 0.0)) {
+    float big_3 = (rad + abs(half_diff));
+    v_1 = ((half_diff < 0.0) ? float2(a12_, big_3) : float2(big_3, a12_));
+    if ((big_3 <= 0.0)) {
         v_1 = float2(1.0, 0.0);
     }
     float2 _e32 = v_1;
@@ -783,36 +961,129 @@ float ndf_roughness_matrix_own_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_
     return ((r_11.tau > r_11.det) ? r_11.tau : 0.0);
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3)
+kernel_rect_BoundingRect Constructkernel_rect_BoundingRect(float2 arg0) {
+    kernel_rect_BoundingRect ret = (kernel_rect_BoundingRect)0;
+    ret.half_extent = arg0;
+    return ret;
+}
+
+kernel_rect_BoundingRect kernel_rect_from_footprint(footprint_Footprint fp_2)
 {
-    const float3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_17 = a_2.axis.x;
-    float s_24 = a_2.axis.y;
-    float k1_1 = max(((((c_17 * c_17) * k_3.s_xx) + (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((s_24 * s_24) * k_3.s_yy)), 0.0);
-    float k2_1 = max(((((s_24 * s_24) * k_3.s_xx) - (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((c_17 * c_17) * k_3.s_yy)), 0.0);
-    const float _e38 = ndf_roughness_matrix_determinant(a_2);
-    float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * max(k_3.det, 0.0)));
-    const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
+    const kernel_rect_BoundingRect kernel_rect_boundingrect = Constructkernel_rect_BoundingRect(((abs(fp_2.dh_u) + abs(fp_2.dh_v)) * 0.5));
+    return kernel_rect_boundingrect;
+}
+
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_12, float sigma_2)
+{
+    float2 w_24 = (r_12.half_extent * (2.0 * sigma_2));
+    float2 v_14 = (w_24 * w_24);
+    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_14.x, 0.0, v_14.y, (v_14.x * v_14.y));
+    return kernel_covariance_covariance_14;
+}
+
+footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3)
+{
+    float l_6 = max(rules.max_extent, 0.0);
+    float scale_1 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
+    if ((scale_1 <= 0.0)) {
+        const footprint_Footprint footprint_footprint_5 = fp_3;
+        return footprint_footprint_5;
+    }
+    footprint_Footprint unit = Constructfootprint_Footprint((fp_3.dh_u / (scale_1).xx), (fp_3.dh_v / (scale_1).xx));
+    const float _e29 = footprint_max_extent(unit);
+    if (((_e29 * scale_1) <= l_6)) {
+        const footprint_Footprint footprint_footprint_6 = fp_3;
+        return footprint_footprint_6;
+    }
+    const footprint_Footprint footprint_footprint_7 = Constructfootprint_Footprint(((unit.dh_u / (_e29).xx) * l_6), ((unit.dh_v / (_e29).xx) * l_6));
+    return footprint_footprint_7;
+}
+
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_13, float2 alpha_6)
+{
+    float2 f_1 = (0.0).xx;
+
+    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
+        f_1 = (rules_1.floor_).xx;
+    } else {
+        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
+            f_1 = min(abs(alpha_6), (rules_1.floor_).xx);
+        }
+    }
+    float lambda_2 = max(rules_1.max_extent, 0.0);
+    float2 h_25 = min(abs(r_13.half_extent), (lambda_2).xx);
+    float2 _e25 = f_1;
+    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_25, max(_e25, (0.0).xx)));
+    return kernel_rect_boundingrect_1;
+}
+
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_3)
+{
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_3);
+    if ((rules_2.kappa >= math_F32_MAX)) {
+        const kernel_covariance_Covariance kernel_covariance_covariance_15 = _e2;
+        return kernel_covariance_covariance_15;
+    }
+    const kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
+    const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e11;
+    return kernel_covariance_covariance_16;
+}
+
+float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_2)
+{
+    const float _e2 = ndf_roughness_matrix_own_det_clamp(a_2);
+    const float _e3 = ndf_roughness_matrix_clamped_det(a_2);
+    return (rules_3.det_clamp ? _e3 : _e2);
+}
+
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_3)
+{
+    const footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
+    const kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_3);
+    const kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
+    const kernel_covariance_Covariance kernel_covariance_covariance_17 = _e5;
+    return kernel_covariance_covariance_17;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance k_4, float tau_3)
+{
+    const float3 _e3 = ndf_roughness_matrix_entries(a_3);
+    float c_17 = a_3.axis.x;
+    float s_24 = a_3.axis.y;
+    float k1_1 = max(((((c_17 * c_17) * k_4.s_xx) + (((2.0 * c_17) * s_24) * k_4.s_xy)) + ((s_24 * s_24) * k_4.s_yy)), 0.0);
+    float k2_1 = max(((((s_24 * s_24) * k_4.s_xx) - (((2.0 * c_17) * s_24) * k_4.s_xy)) + ((c_17 * c_17) * k_4.s_yy)), 0.0);
+    const float _e38 = ndf_roughness_matrix_determinant(a_3);
+    float det_4 = ((_e38 + (2.0 * ((a_3.eig.y * k1_1) + (a_3.eig.x * k2_1)))) + (4.0 * max(k_4.det, 0.0)));
+    const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_4.s_xx)), (_e3.y + (2.0 * k_4.s_xy)), (_e3.z + (2.0 * k_4.s_yy)), det_4, max(tau_3, 0.0));
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_5 = _e72;
     return ndf_roughness_matrix_roughnessmatrix_5;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel_2)
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_2)
 {
     const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
-    const float _e3 = ndf_roughness_matrix_clamped_det(a_3);
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_3, _e2, _e3);
+    const float _e3 = ndf_roughness_matrix_clamped_det(a_4);
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e2, _e3);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_6 = _e4;
     return ndf_roughness_matrix_roughnessmatrix_6;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_3, float det_clamp_1)
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_3, float det_clamp_1)
 {
     const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
-    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_4);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_4, _e3, max(det_clamp_1, _e4));
+    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_5);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_5, _e3, max(det_clamp_1, _e4));
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_7 = _e6;
     return ndf_roughness_matrix_roughnessmatrix_7;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_6, footprint_Footprint fp_5, float sigma_4)
+{
+    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
+    const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_6);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_6, _e4, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_8 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_8;
 }
 
 float ndf_g1_of(float lambda_w, float w_dot_m)
@@ -840,34 +1111,34 @@ ndf_roughness_isotropic_Isotropic Constructndf_roughness_isotropic_Isotropic(flo
     return ret;
 }
 
-ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_6)
+ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_7)
 {
-    const float _e1 = ndf_roughness_clamp_alpha(alpha_6);
+    const float _e1 = ndf_roughness_clamp_alpha(alpha_7);
     const ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_isotropic = Constructndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
     return ndf_roughness_isotropic_isotropic;
 }
 
-float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_12, float2 s_1)
+float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_14, float2 s_1)
 {
-    return (dot(s_1, s_1) * r_12.inv_alpha_sq);
+    return (dot(s_1, s_1) * r_14.inv_alpha_sq);
 }
 
-float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_13, float2 w_1)
+float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_15, float2 w_1)
 {
-    float2 s_25 = (w_1 * r_13.alpha);
+    float2 s_25 = (w_1 * r_15.alpha);
     return dot(s_25, s_25);
 }
 
-float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_14)
+float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_16)
 {
-    return (r_14.alpha * r_14.alpha);
+    return (r_16.alpha * r_16.alpha);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_15)
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_17)
 {
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), (r_15.alpha).xx);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_8 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_8;
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), (r_17.alpha).xx);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_9 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_9;
 }
 
 ndf_roughness_axis_aligned_AxisAligned Constructndf_roughness_axis_aligned_AxisAligned(float2 arg0, float2 arg1) {
@@ -877,36 +1148,36 @@ ndf_roughness_axis_aligned_AxisAligned Constructndf_roughness_axis_aligned_AxisA
     return ret;
 }
 
-ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(float2 alpha_7)
+ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(float2 alpha_8)
 {
-    const float _e2 = ndf_roughness_clamp_alpha(alpha_7.x);
-    const float _e4 = ndf_roughness_clamp_alpha(alpha_7.y);
+    const float _e2 = ndf_roughness_clamp_alpha(alpha_8.x);
+    const float _e4 = ndf_roughness_clamp_alpha(alpha_8.y);
     float2 a_20 = float2(_e2, _e4);
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned = Constructndf_roughness_axis_aligned_AxisAligned(a_20, ((1.0).xx / (a_20 * a_20)));
     return ndf_roughness_axis_aligned_axisaligned;
 }
 
-float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_16, float2 s_2)
+float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_18, float2 s_2)
 {
-    return dot((s_2 * s_2), r_16.inv_alpha_sq);
+    return dot((s_2 * s_2), r_18.inv_alpha_sq);
 }
 
-float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_17, float2 w_2)
+float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_19, float2 w_2)
 {
-    float2 s_26 = (w_2 * r_17.alpha);
+    float2 s_26 = (w_2 * r_19.alpha);
     return dot(s_26, s_26);
 }
 
-float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_18)
+float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_20)
 {
-    return (r_18.alpha.x * r_18.alpha.y);
+    return (r_20.alpha.x * r_20.alpha.y);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_19)
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_21)
 {
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), r_19.alpha);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_9 = _e5;
-    return ndf_roughness_matrix_roughnessmatrix_9;
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), r_21.alpha);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_10 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_10;
 }
 
 float ndf_ggx_p22_of(float q, float sqrt_det)
@@ -920,14 +1191,14 @@ float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1)
     bool local_4 = (bool)0;
 
     float t_13 = (q_xy + (m_z * m_z));
-    float v_13 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
+    float v_15 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
     if ((m_z > 0.0)) {
-        local_4 = (v_13 <= math_F32_MAX);
+        local_4 = (v_15 <= math_F32_MAX);
     } else {
         local_4 = false;
     }
     bool _e18 = local_4;
-    return (_e18 ? v_13 : 0.0);
+    return (_e18 ? v_15 : 0.0);
 }
 
 float ndf_ggx_lambda_of(float q_1, float abs_wz)
@@ -957,123 +1228,123 @@ float ndf_ggx_lambda_of(float q_1, float abs_wz)
     return (q_1 / ((2.0 * abs_wz) * (r_79 + abs_wz)));
 }
 
-float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_20, float2 s_3)
+float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_22, float2 s_3)
 {
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_20, s_3);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_20);
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_22, s_3);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_22);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_21, float3 m)
+float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_23, float3 m)
 {
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_21, m.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_21);
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_23, m.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_23);
     const float _e6 = ndf_ggx_d_of(_e3, m.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_22, float3 w_3)
+float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_24, float3 w_3)
 {
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_22, w_3.xy);
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_24, w_3.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_3.z));
     return _e6;
 }
 
-float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_23, float3 w_4, float3 m_1)
+float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_25, float3 w_4, float3 m_1)
 {
-    const float _e3 = ndf_ggx_lambda_isotropic(r_23, w_4);
+    const float _e3 = ndf_ggx_lambda_isotropic(r_25, w_4);
     const float _e5 = ndf_g1_of(_e3, dot(w_4, m_1));
     return _e5;
 }
 
-float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_24, float3 i, float3 o, float3 m_2)
+float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_26, float3 i, float3 o, float3 m_2)
 {
-    const float _e4 = ndf_ggx_lambda_isotropic(r_24, i);
-    const float _e5 = ndf_ggx_lambda_isotropic(r_24, o);
+    const float _e4 = ndf_ggx_lambda_isotropic(r_26, i);
+    const float _e5 = ndf_ggx_lambda_isotropic(r_26, o);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_2), dot(o, m_2));
     return _e8;
 }
 
-float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, float2 s_4)
+float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, float2 s_4)
 {
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_25, s_4);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_25);
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_27, s_4);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_27);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, float3 m_3)
+float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, float3 m_3)
 {
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_26, m_3.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_26);
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_28, m_3.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_28);
     const float _e6 = ndf_ggx_d_of(_e3, m_3.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, float3 w_5)
+float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, float3 w_5)
 {
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_27, w_5.xy);
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_29, w_5.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_5.z));
     return _e6;
 }
 
-float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, float3 w_6, float3 m_4)
+float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_30, float3 w_6, float3 m_4)
 {
-    const float _e3 = ndf_ggx_lambda_axis_aligned(r_28, w_6);
+    const float _e3 = ndf_ggx_lambda_axis_aligned(r_30, w_6);
     const float _e5 = ndf_g1_of(_e3, dot(w_6, m_4));
     return _e5;
 }
 
-float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, float3 i_1, float3 o_1, float3 m_5)
+float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_31, float3 i_1, float3 o_1, float3 m_5)
 {
-    const float _e4 = ndf_ggx_lambda_axis_aligned(r_29, i_1);
-    const float _e5 = ndf_ggx_lambda_axis_aligned(r_29, o_1);
+    const float _e4 = ndf_ggx_lambda_axis_aligned(r_31, i_1);
+    const float _e5 = ndf_ggx_lambda_axis_aligned(r_31, o_1);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_5), dot(o_1, m_5));
     return _e8;
 }
 
-float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, float2 s_5)
+float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, float2 s_5)
 {
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_30, s_5);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_30);
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_32, s_5);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_32);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, float3 m_6)
+float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, float3 m_6)
 {
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_31, m_6.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_31);
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_33, m_6.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_33);
     const float _e6 = ndf_ggx_d_of(_e3, m_6.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, float3 w_7)
+float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, float3 w_7)
 {
-    const float _e3 = ndf_roughness_matrix_quadratic(r_32, w_7.xy);
+    const float _e3 = ndf_roughness_matrix_quadratic(r_34, w_7.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_7.z));
     return _e6;
 }
 
-float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, float3 w_8, float3 m_7)
+float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_35, float3 w_8, float3 m_7)
 {
-    const float _e3 = ndf_ggx_lambda_matrix(r_33, w_8);
+    const float _e3 = ndf_ggx_lambda_matrix(r_35, w_8);
     const float _e5 = ndf_g1_of(_e3, dot(w_8, m_7));
     return _e5;
 }
 
-float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, float3 i_2, float3 o_2, float3 m_8)
+float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_36, float3 i_2, float3 o_2, float3 m_8)
 {
-    const float _e4 = ndf_ggx_lambda_matrix(r_34, i_2);
-    const float _e5 = ndf_ggx_lambda_matrix(r_34, o_2);
+    const float _e4 = ndf_ggx_lambda_matrix(r_36, i_2);
+    const float _e5 = ndf_ggx_lambda_matrix(r_36, o_2);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_8), dot(o_2, m_8));
     return _e8;
 }
 
-float ndf_beckmann_exp_neg_times(float x_5, float k_4, float ln_k)
+float ndf_beckmann_exp_neg_times(float x_5, float k_5, float ln_k)
 {
-    return ((x_5 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_5)) : (exp(-(x_5)) * k_4));
+    return ((x_5 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_5)) : (exp(-(x_5)) * k_5));
 }
 
 float ndf_beckmann_p22_of(float q_2, float sqrt_det_2)
@@ -1087,11 +1358,11 @@ float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3)
 {
     bool local_7 = (bool)0;
 
-    float z2_4 = (m_z_1 * m_z_1);
-    float x_13 = (q_xy_1 / z2_4);
-    float k_25 = (1.0 / (((math_PI * sqrt_det_3) * z2_4) * z2_4));
+    float z2_5 = (m_z_1 * m_z_1);
+    float x_13 = (q_xy_1 / z2_5);
+    float k_27 = (1.0 / (((math_PI * sqrt_det_3) * z2_5) * z2_5));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    const float _e21 = ndf_beckmann_exp_neg_times(x_13, k_25, ln_k_1);
+    const float _e21 = ndf_beckmann_exp_neg_times(x_13, k_27, ln_k_1);
     if ((m_z_1 > 0.0)) {
         local_7 = (_e21 <= math_F32_MAX);
     } else {
@@ -1159,127 +1430,127 @@ float ndf_beckmann_lambda_of(float q_3, float abs_wz_1)
     float _e87 = p;
     p = ((_e87 * t_14) + 1.0631379);
     float _e91 = p;
-    float k_26 = (_e91 / ((2.0 * a_21) + 1.0));
-    return min(((exp((-(a_21) * a_21)) * k_26) / ((3.5449078 * a_21) * (a_21 + k_26))), math_F32_MAX);
+    float k_28 = (_e91 / ((2.0 * a_21) + 1.0));
+    return min(((exp((-(a_21) * a_21)) * k_28) / ((3.5449078 * a_21) * (a_21 + k_28))), math_F32_MAX);
 }
 
-float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_35, float2 s_6)
+float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_37, float2 s_6)
 {
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_35, s_6);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_35);
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_6);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_36, float3 m_9)
+float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_38, float3 m_9)
 {
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_36, m_9.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_36);
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_9.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
     const float _e6 = ndf_beckmann_d_of(_e3, m_9.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_37, float3 w_9)
+float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_39, float3 w_9)
 {
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_37, w_9.xy);
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_38, float3 w_10, float3 m_10)
+float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_40, float3 w_10, float3 m_10)
 {
-    const float _e3 = ndf_beckmann_lambda_isotropic(r_38, w_10);
+    const float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
     const float _e5 = ndf_g1_of(_e3, dot(w_10, m_10));
     return _e5;
 }
 
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_39, float3 i_3, float3 o_3, float3 m_11)
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_41, float3 i_3, float3 o_3, float3 m_11)
 {
-    const float _e4 = ndf_beckmann_lambda_isotropic(r_39, i_3);
-    const float _e5 = ndf_beckmann_lambda_isotropic(r_39, o_3);
+    const float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_3);
+    const float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_11), dot(o_3, m_11));
     return _e8;
 }
 
-float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_40, float2 s_7)
+float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, float2 s_7)
 {
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_40, s_7);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_40);
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_7);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_41, float3 m_12)
+float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, float3 m_12)
 {
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_41, m_12.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_41);
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_12.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
     const float _e6 = ndf_beckmann_d_of(_e3, m_12.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, float3 w_11)
+float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, float3 w_11)
 {
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_42, w_11.xy);
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, float3 w_12, float3 m_13)
+float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_45, float3 w_12, float3 m_13)
 {
-    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_43, w_12);
+    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
     const float _e5 = ndf_g1_of(_e3, dot(w_12, m_13));
     return _e5;
 }
 
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, float3 i_4, float3 o_4, float3 m_14)
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_46, float3 i_4, float3 o_4, float3 m_14)
 {
-    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_44, i_4);
-    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_44, o_4);
+    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_4);
+    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_14), dot(o_4, m_14));
     return _e8;
 }
 
-float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_45, float2 s_8)
+float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, float2 s_8)
 {
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_45, s_8);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_45);
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_8);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_46, float3 m_15)
+float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 m_15)
 {
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_46, m_15.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_46);
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_15.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
     const float _e6 = ndf_beckmann_d_of(_e3, m_15.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, float3 w_13)
+float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, float3 w_13)
 {
-    const float _e3 = ndf_roughness_matrix_quadratic(r_47, w_13.xy);
+    const float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 w_14, float3 m_16)
+float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_50, float3 w_14, float3 m_16)
 {
-    const float _e3 = ndf_beckmann_lambda_matrix(r_48, w_14);
+    const float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
     const float _e5 = ndf_g1_of(_e3, dot(w_14, m_16));
     return _e5;
 }
 
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, float3 i_5, float3 o_5, float3 m_17)
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_51, float3 i_5, float3 o_5, float3 m_17)
 {
-    const float _e4 = ndf_beckmann_lambda_matrix(r_49, i_5);
-    const float _e5 = ndf_beckmann_lambda_matrix(r_49, o_5);
+    const float _e4 = ndf_beckmann_lambda_matrix(r_51, i_5);
+    const float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_17), dot(o_5, m_17));
     return _e8;
 }
 
-float filter_gaussian_ggx_quad_laguerre_node(uint k_5)
+float filter_gaussian_ggx_quad_laguerre_node(uint k_6)
 {
-    switch(k_5) {
+    switch(k_6) {
         case 0u: {
             return 0.40938357;
         }
@@ -1307,9 +1578,9 @@ float filter_gaussian_ggx_quad_laguerre_node(uint k_5)
     }
 }
 
-float filter_gaussian_ggx_quad_laguerre_weight(uint k_6)
+float filter_gaussian_ggx_quad_laguerre_weight(uint k_7)
 {
-    switch(k_6) {
+    switch(k_7) {
         case 0u: {
             return 0.18763255;
         }
@@ -1348,7 +1619,7 @@ float filter_gaussian_ggx_quad_far_tail(float beta, float c1s, float c2s, float 
 float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, float z2_1, float tl1_1, float tl2_1)
 {
     float acc = 0.0;
-    uint k_7 = 0u;
+    uint k_8 = 0u;
 
     float ib_1 = (1.0 / beta_m);
     float t1_2 = ((tl1_1 * z2_1) * ib_1);
@@ -1361,17 +1632,17 @@ float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, floa
         if (all(loop_bound == uint2(0u, 0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e51 = k_7;
-            k_7 = (_e51 + 1u);
+            uint _e51 = k_8;
+            k_8 = (_e51 + 1u);
         }
         loop_init = false;
-        uint _e20 = k_7;
+        uint _e20 = k_8;
         if ((_e20 < 8u)) {
         } else {
             break;
         }
         {
-            uint _e23 = k_7;
+            uint _e23 = k_8;
             const float _e24 = filter_gaussian_ggx_quad_laguerre_node(_e23);
             float p1_ = (1.0 + (t1_2 * _e24));
             float p2_ = (1.0 + (t2_ * _e24));
@@ -1379,7 +1650,7 @@ float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, floa
             float ip2_ = (1.0 / p2_);
             float e_4 = ((_e24 * _e24) * ((g1_ * ip1_) + (g2_ * ip2_)));
             float _e40 = acc;
-            uint _e41 = k_7;
+            uint _e41 = k_8;
             const float _e42 = filter_gaussian_ggx_quad_laguerre_weight(_e41);
             const float _e43 = math_exp(e_4);
             acc = (_e40 + (((_e42 * _e43) * sqrt(ip1_)) * sqrt(ip2_)));
@@ -1449,7 +1720,7 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
     float k2_2 = (c2s_2 * (w_r / pr2_));
     float x_r = ((-(w_r) - k1_2) - k2_2);
     const float _e40 = math_exp(x_r);
-    float scale_1 = ((w_r * w_r) * _e40);
+    float scale_2 = ((w_r * w_r) * _e40);
     float t1_3 = (tl1_3 * w_r);
     float t2_1 = (tl2_3 * w_r);
     float stop = ((5e-8 * w_r) * w_r);
@@ -1530,7 +1801,7 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
     }
     float _e139 = sum;
     const float _e141 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first);
-    return (filter_gaussian_ggx_quad_H * ((_e139 * scale_1) + _e141));
+    return (filter_gaussian_ggx_quad_H * ((_e139 * scale_2) + _e141));
 }
 
 float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1_4, float tl2_4)
@@ -1565,9 +1836,9 @@ float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1
     return ((_e42 * iz2_) * iz2_);
 }
 
-float filter_gaussian_ggx_quad_hermite_node(uint k_8)
+float filter_gaussian_ggx_quad_hermite_node(uint k_9)
 {
-    switch(k_8) {
+    switch(k_9) {
         case 0u: {
             return 0.5390798;
         }
@@ -1583,9 +1854,9 @@ float filter_gaussian_ggx_quad_hermite_node(uint k_8)
     }
 }
 
-float filter_gaussian_ggx_quad_hermite_weight(uint k_9)
+float filter_gaussian_ggx_quad_hermite_weight(uint k_10)
 {
-    switch(k_9) {
+    switch(k_10) {
         case 0u: {
             return 0.37301224;
         }
@@ -1603,24 +1874,24 @@ float filter_gaussian_ggx_quad_hermite_weight(uint k_9)
 
 float filter_gaussian_ggx_quad_h_of(float y_2)
 {
-    float r_50 = (float)0;
+    float r_52 = (float)0;
 
     float a_23 = abs(y_2);
     if ((a_23 > 1.0)) {
         float i_12 = (1.0 / a_23);
-        r_50 = (a_23 * sqrt((1.0 + (i_12 * i_12))));
+        r_52 = (a_23 * sqrt((1.0 + (i_12 * i_12))));
     } else {
-        r_50 = sqrt((1.0 + (y_2 * y_2)));
+        r_52 = sqrt((1.0 + (y_2 * y_2)));
     }
-    float _e16 = r_50;
-    float _e18 = r_50;
+    float _e16 = r_52;
+    float _e18 = r_52;
     return ((y_2 >= 0.0) ? (1.0 / (_e18 + y_2)) : (_e16 - y_2));
 }
 
 float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz)
 {
     float acc_1 = 0.0;
-    uint k_10 = 0u;
+    uint k_11 = 0u;
 
     float iq = (1.0 / qa);
     float z0_ = (oz * sqrt(iq));
@@ -1631,21 +1902,21 @@ float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz)
         if (all(loop_bound_3 == uint2(0u, 0u))) { break; }
         loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
         if (!loop_init_3) {
-            uint _e30 = k_10;
-            k_10 = (_e30 + 1u);
+            uint _e30 = k_11;
+            k_11 = (_e30 + 1u);
         }
         loop_init_3 = false;
-        uint _e13 = k_10;
+        uint _e13 = k_11;
         if ((_e13 < 4u)) {
         } else {
             break;
         }
         {
-            uint _e16 = k_10;
+            uint _e16 = k_11;
             const float _e17 = filter_gaussian_ggx_quad_hermite_node(_e16);
             float x_15 = (fs * _e17);
             float _e19 = acc_1;
-            uint _e20 = k_10;
+            uint _e20 = k_11;
             const float _e21 = filter_gaussian_ggx_quad_hermite_weight(_e20);
             const float _e23 = filter_gaussian_ggx_quad_h_of((z0_ - x_15));
             const float _e25 = filter_gaussian_ggx_quad_h_of((z0_ + x_15));
@@ -1656,7 +1927,7 @@ float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz)
     return (_e32 / (2.0 * z0_));
 }
 
-float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, float ie0_, float i2s2_, float e2_, float c_stop, float total_in)
+float filter_gaussian_ggx_quad_sinh_run(bool up, float h_11, float rq, float e0_, float ie0_, float i2s2_, float e2_, float c_stop, float total_in)
 {
     float total = (float)0;
     uint ch_1 = 0u;
@@ -1707,8 +1978,8 @@ float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, f
                 {
                     uint _e32 = ch_1;
                     uint _e36 = jj_1;
-                    float k_27 = float(((first + (_e32 * 8u)) + _e36));
-                    const float _e43 = math_exp((((sgn * 0.5) * h) * k_27));
+                    float k_29 = float(((first + (_e32 * 8u)) + _e36));
+                    const float _e43 = math_exp((((sgn * 0.5) * h_11) * k_29));
                     float it = (1.0 / _e43);
                     float x_16 = (((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it));
                     float arg = ((-(x_16) * x_16) * i2s2_);
@@ -1750,14 +2021,14 @@ float filter_gaussian_ggx_quad_lambda_sinh(float qa_1, float qs_1, float oz_1, f
     float root = (oz_1 + sqrt((qa_1 + (oz_1 * oz_1))));
     float e0_1 = (root / rq_1);
     float ie0_1 = (rq_1 / root);
-    float h_22 = min(filter_gaussian_ggx_quad_S_MAX, (filter_gaussian_ggx_quad_S_COEF * sqrt(sqrt(ds2_))));
+    float h_26 = min(filter_gaussian_ggx_quad_S_MAX, (filter_gaussian_ggx_quad_S_COEF * sqrt(sqrt(ds2_))));
     float i2s2_1 = (0.5 / qs_1);
-    float c_up = ((math_LN_2_ * qs_1) / (rq_1 * h_22));
-    float c_down = ((((2.0 * h_22) + math_LN_2_) * qs_1) / (rq_1 * h_22));
+    float c_up = ((math_LN_2_ * qs_1) / (rq_1 * h_26));
+    float c_down = ((((2.0 * h_26) + math_LN_2_) * qs_1) / (rq_1 * h_26));
     float e2_1 = (ie0_1 * ie0_1);
-    const float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
-    const float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
-    return (_e35 * ((h_22 * qa_1) / (((4.0 * oz_1) * sqrt(qs_1)) * math_SQRT_TAU)));
+    const float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_26, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
+    const float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_26, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
+    return (_e35 * ((h_26 * qa_1) / (((4.0 * oz_1) * sqrt(qs_1)) * math_SQRT_TAU)));
 }
 
 float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2)
@@ -1771,181 +2042,6 @@ float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2)
     return _e9;
 }
 
-sampling_Warp Constructsampling_Warp(float arg0, float arg1, float arg2) {
-    sampling_Warp ret = (sampling_Warp)0;
-    ret.l_xx = arg0;
-    ret.l_yx = arg1;
-    ret.l_yy = arg2;
-    return ret;
-}
-
-sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_51)
-{
-    const float3 _e1 = ndf_roughness_matrix_clamped_entries(r_51);
-    float l_xx = sqrt(_e1.x);
-    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_51.sqrt_det / l_xx));
-    return sampling_warp_1;
-}
-
-float3 sampling_normalize_scaled(float3 v_4)
-{
-    float3 w_24 = (v_4 / (max(max(abs(v_4.x), abs(v_4.y)), abs(v_4.z))).xxx);
-    return (w_24 / (length(w_24)).xxx);
-}
-
-float3 sampling_stretch(sampling_Warp l_3, float3 w_15)
-{
-    return float3(((l_3.l_xx * w_15.x) + (l_3.l_yx * w_15.y)), (l_3.l_yy * w_15.y), w_15.z);
-}
-
-float3 sampling_unstretch(sampling_Warp l_4, float3 n_1)
-{
-    const float3 _e14 = sampling_normalize_scaled(float3((l_4.l_xx * n_1.x), ((l_4.l_yx * n_1.x) + (l_4.l_yy * n_1.y)), n_1.z));
-    return _e14;
-}
-
-float sampling_clamp_unit(float u_1)
-{
-    return ((u_1 >= 0.0) ? min(u_1, sampling_ONE_MINUS_EPS) : 0.0);
-}
-
-float3 sampling_reflect(float3 wo, float3 m_18)
-{
-    return (((2.0 * dot(wo, m_18)) * m_18) - wo);
-}
-
-float3 sampling_ggx_standard_visible(float3 wi, float2 u_2)
-{
-    const float2 _e3 = math_sincos_turns(u_2.x);
-    float z_4 = (((1.0 - u_2.y) * (1.0 + wi.z)) - wi.z);
-    float sin_theta_1 = sqrt(clamp((1.0 - (z_4 * z_4)), 0.0, 1.0));
-    return (float3((sin_theta_1 * _e3), z_4) + wi);
-}
-
-float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_52, float3 wo_1, float2 u_3)
-{
-    bool local_13 = (bool)0;
-
-    if (!((wo_1.z > 0.0))) {
-        return (0.0).xxx;
-    }
-    const sampling_Warp _e9 = sampling_warp(r_52);
-    const float3 _e10 = sampling_normalize_scaled(wo_1);
-    const float3 _e11 = sampling_stretch(_e9, _e10);
-    const float3 _e12 = sampling_normalize_scaled(_e11);
-    if (!((_e12.z > 0.0))) {
-        return (0.0).xxx;
-    }
-    const float _e20 = sampling_clamp_unit(u_3.x);
-    const float _e22 = sampling_clamp_unit(u_3.y);
-    const float3 _e24 = sampling_ggx_standard_visible(_e12, float2(_e20, _e22));
-    const float3 _e25 = sampling_unstretch(_e9, _e24);
-    if ((_e25.z > 0.0)) {
-        local_13 = (dot(wo_1, _e25) > 0.0);
-    } else {
-        local_13 = false;
-    }
-    bool _e35 = local_13;
-    if (_e35) {
-        return _e25;
-    }
-    const float3 _e36 = sampling_unstretch(_e9, _e12);
-    return ((_e36.z > 0.0) ? _e36 : (0.0).xxx);
-}
-
-float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_53, float2 u_4)
-{
-    const float _e3 = sampling_clamp_unit(u_4.x);
-    const float _e5 = sampling_clamp_unit(u_4.y);
-    const float2 _e6 = math_sincos_turns(_e5);
-    float3 n_7 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
-    const sampling_Warp _e13 = sampling_warp(r_53);
-    const float3 _e14 = sampling_unstretch(_e13, n_7);
-    return _e14;
-}
-
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_54, float3 m_19)
-{
-    const float _e2 = ndf_ggx_d_matrix(r_54, m_19);
-    return ((m_19.z > 0.0) ? (_e2 * m_19.z) : 0.0);
-}
-
-float sampling_visible_normal_pdf_of(float3 wo_2, float3 m_20, float d, float lambda)
-{
-    bool local_14 = (bool)0;
-    bool local_15 = (bool)0;
-
-    float wom = dot(wo_2, m_20);
-    float v_14 = ((wom * d) / (wo_2.z * (1.0 + lambda)));
-    if ((wo_2.z > 0.0)) {
-        local_14 = (wom > 0.0);
-    } else {
-        local_14 = false;
-    }
-    bool _e19 = local_14;
-    if (_e19) {
-        local_15 = (v_14 <= math_F32_MAX);
-    } else {
-        local_15 = false;
-    }
-    bool _e25 = local_15;
-    return (_e25 ? v_14 : 0.0);
-}
-
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_55, float3 wo_3, float3 m_21)
-{
-    const float _e3 = ndf_ggx_d_matrix(r_55, m_21);
-    const float _e4 = ndf_ggx_lambda_matrix(r_55, wo_3);
-    const float _e5 = sampling_visible_normal_pdf_of(wo_3, m_21, _e3, _e4);
-    return _e5;
-}
-
-float sampling_reflection_pdf_of(float3 o_6, float3 m_22, float d_1, float lambda_1)
-{
-    bool local_16 = (bool)0;
-    bool local_17 = (bool)0;
-
-    float v_15 = (d_1 / ((4.0 * o_6.z) * (1.0 + lambda_1)));
-    if ((o_6.z > 0.0)) {
-        local_16 = (dot(o_6, m_22) > 0.0);
-    } else {
-        local_16 = false;
-    }
-    bool _e20 = local_16;
-    if (_e20) {
-        local_17 = (v_15 <= math_F32_MAX);
-    } else {
-        local_17 = false;
-    }
-    bool _e26 = local_17;
-    return (_e26 ? v_15 : 0.0);
-}
-
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_56, float3 wo_4, float3 m_23)
-{
-    const float3 _e3 = sampling_normalize_scaled(wo_4);
-    const float _e4 = ndf_ggx_d_matrix(r_56, m_23);
-    const float _e5 = ndf_ggx_lambda_matrix(r_56, _e3);
-    const float _e6 = sampling_reflection_pdf_of(_e3, m_23, _e4, _e5);
-    return _e6;
-}
-
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_57, float3 wo_5, float3 wi_1)
-{
-    if (!((wo_5.z > 0.0))) {
-        return 0.0;
-    }
-    const float3 _e8 = sampling_normalize_scaled(wo_5);
-    const float3 _e9 = sampling_normalize_scaled(wi_1);
-    float3 h_23 = (_e8 + _e9);
-    float len = length(h_23);
-    if (!((len > 0.0))) {
-        return 0.0;
-    }
-    const float _e18 = sampling_reflection_pdf_from_normal(r_57, wo_5, (h_23 / (len).xxx));
-    return _e18;
-}
-
 filter_gaussian_ggx_GaussianFilteredGgx Constructfilter_gaussian_ggx_GaussianFilteredGgx(ndf_roughness_matrix_RoughnessMatrix arg0, float2 arg1, float2 arg2, float2 arg3, float arg4, kernel_covariance_Covariance arg5) {
     filter_gaussian_ggx_GaussianFilteredGgx ret = (filter_gaussian_ggx_GaussianFilteredGgx)0;
     ret.a = arg0;
@@ -1957,48 +2053,48 @@ filter_gaussian_ggx_GaussianFilteredGgx Constructfilter_gaussian_ggx_GaussianFil
     return ret;
 }
 
-filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_4)
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance kernel_4)
 {
     float l2_ = 0.0;
-    float2 v_5 = float2(1.0, 0.0);
+    float2 v_4 = float2(1.0, 0.0);
 
     const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
-    float c_18 = a_5.axis.x;
-    float s_27 = a_5.axis.y;
+    float c_18 = a_7.axis.x;
+    float s_27 = a_7.axis.y;
     float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((s_27 * s_27) * _e2.s_yy)), 0.0);
     float k22_ = max(((((s_27 * s_27) * _e2.s_xx) - (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
     float k12_ = ((((c_18 * c_18) - (s_27 * s_27)) * _e2.s_xy) + ((c_18 * s_27) * (_e2.s_yy - _e2.s_xx)));
-    float2 l_6 = a_5.eig_c;
-    float2 isl = ((1.0).xx / sqrt(l_6));
+    float2 l_7 = a_7.eig_c;
+    float2 isl = ((1.0).xx / sqrt(l_7));
     float c11_ = ((k11_ * isl.x) * isl.x);
     float c22_ = ((k22_ * isl.y) * isl.y);
     float c12_ = ((k12_ * isl.x) * isl.y);
-    float det_c = (max(_e2.det, 0.0) / (l_6.x * l_6.y));
+    float det_c = (max(_e2.det, 0.0) / (l_7.x * l_7.y));
     float half_ = (0.5 * (c11_ - c22_));
     const float _e75 = math_hypot(half_, c12_);
     float l1_2 = ((0.5 * (c11_ + c22_)) + _e75);
     if ((_e75 > 0.0)) {
-        float big_2 = (_e75 + abs(half_));
-        float2 w_25 = ((half_ >= 0.0) ? float2(big_2, c12_) : float2(c12_, big_2));
-        v_5 = (w_25 / (length(w_25)).xx);
+        float big_4 = (_e75 + abs(half_));
+        float2 w_25 = ((half_ >= 0.0) ? float2(big_4, c12_) : float2(c12_, big_4));
+        v_4 = (w_25 / (length(w_25)).xx);
         l2_ = min((det_c / l1_2), l1_2);
     } else {
         if ((l1_2 > 0.0)) {
             l2_ = l1_2;
         }
     }
-    float2 _e102 = v_5;
+    float2 _e102 = v_4;
     float _e105 = l2_;
-    const float _e110 = ndf_roughness_matrix_sqrt_det(a_5);
-    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx = Constructfilter_gaussian_ggx_GaussianFilteredGgx(a_5, isl, _e102, float2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2);
+    const float _e110 = ndf_roughness_matrix_sqrt_det(a_7);
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx = Constructfilter_gaussian_ggx_GaussianFilteredGgx(a_7, isl, _e102, float2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2);
     return filter_gaussian_ggx_gaussianfilteredggx;
 }
 
 float2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g, float2 s_9)
 {
     const float2 _e3 = ndf_roughness_matrix_rotate(g.a, s_9);
-    float2 u_18 = (_e3 * g.inv_sqrt_l);
-    float2 c_19 = float2(((g.v.x * u_18.x) + (g.v.y * u_18.y)), ((g.v.x * u_18.y) - (g.v.y * u_18.x)));
+    float2 u_19 = (_e3 * g.inv_sqrt_l);
+    float2 c_19 = float2(((g.v.x * u_19.x) + (g.v.y * u_19.y)), ((g.v.x * u_19.y) - (g.v.y * u_19.x)));
     return (c_19 * c_19);
 }
 
@@ -2009,30 +2105,30 @@ float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_1, floa
     return (g_1.norm * _e11);
 }
 
-float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, float3 m_24)
+float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, float3 m_18)
 {
-    if (!((m_24.z > 0.0))) {
+    if (!((m_18.z > 0.0))) {
         return 0.0;
     }
-    const float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_24.xy);
-    const float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_24.z * m_24.z), g_2.tl.x, g_2.tl.y);
+    const float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_18.xy);
+    const float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_18.z * m_18.z), g_2.tl.x, g_2.tl.y);
     float v_16 = (g_2.norm * _e19);
     return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
 }
 
-float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, float3 w_16)
+float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, float3 w_15)
 {
-    float big_3 = max(max(abs(w_16.x), abs(w_16.y)), abs(w_16.z));
-    if (!((big_3 > 0.0))) {
-        return ((big_3 == 0.0) ? 0.0 : math_F32_MAX);
+    float big_5 = max(max(abs(w_15.x), abs(w_15.y)), abs(w_15.z));
+    if (!((big_5 > 0.0))) {
+        return ((big_5 == 0.0) ? 0.0 : math_F32_MAX);
     }
-    float3 ws = (w_16 / (big_3).xxx);
+    float3 ws = (w_15 / (big_5).xxx);
     float3 o_9 = (ws / (length(ws)).xxx);
     float oz_3 = abs(o_9.z);
     const float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_9.xy);
     kernel_covariance_Covariance kk = g_3.k;
-    float qs_3 = max(((((kk.s_xx * o_9.x) * o_9.x) + (((2.0 * kk.s_xy) * o_9.x) * o_9.y)) + ((kk.s_yy * o_9.y) * o_9.y)), 0.0);
-    if ((qs_3 <= 0.0)) {
+    float qs_4 = max(((((kk.s_xx * o_9.x) * o_9.x) + (((2.0 * kk.s_xy) * o_9.x) * o_9.y)) + ((kk.s_yy * o_9.y) * o_9.y)), 0.0);
+    if ((qs_4 <= 0.0)) {
         const float _e52 = ndf_ggx_lambda_of(_e27, oz_3);
         return _e52;
     }
@@ -2040,314 +2136,67 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, fl
         return math_F32_MAX;
     }
     if ((_e27 <= 0.0)) {
-        const float _e60 = ndf_beckmann_lambda_of((2.0 * qs_3), oz_3);
+        const float _e60 = ndf_beckmann_lambda_of((2.0 * qs_4), oz_3);
         return _e60;
     }
-    const float _e61 = filter_gaussian_ggx_quad_lambda(_e27, qs_3, oz_3);
+    const float _e61 = filter_gaussian_ggx_quad_lambda(_e27, qs_4, oz_3);
     return _e61;
 }
 
-float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, float3 w_17, float3 m_25)
+float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, float3 w_16, float3 m_19)
 {
-    const float _e3 = filter_gaussian_ggx_lambda(g_4, w_17);
-    const float _e5 = ndf_g1_of(_e3, dot(w_17, m_25));
+    const float _e3 = filter_gaussian_ggx_lambda(g_4, w_16);
+    const float _e5 = ndf_g1_of(_e3, dot(w_16, m_19));
     return _e5;
 }
 
-float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 i_6, float3 o_7, float3 m_26)
+float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 i_6, float3 o_6, float3 m_20)
 {
     const float _e4 = filter_gaussian_ggx_lambda(g_5, i_6);
-    const float _e5 = filter_gaussian_ggx_lambda(g_5, o_7);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_26), dot(o_7, m_26));
+    const float _e5 = filter_gaussian_ggx_lambda(g_5, o_6);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_20), dot(o_6, m_20));
     return _e8;
 }
 
-float2 filter_gaussian_ggx_split(float u_5)
+kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_21)
 {
-    float x_17 = (u_5 * 4096.0);
-    float hi_3 = floor(x_17);
-    return float2(((hi_3 + 0.5) / 4096.0), (x_17 - hi_3));
-}
-
-float3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_6, float2 u_6)
-{
-    float2 ax = float2(1.0, 0.0);
-
-    const float _e3 = sampling_clamp_unit(u_6.x);
-    const float2 _e4 = filter_gaussian_ggx_split(_e3);
-    const float _e6 = sampling_clamp_unit(u_6.y);
-    const float2 _e7 = filter_gaussian_ggx_split(_e6);
-    const float2 _e15 = math_sincos_turns(_e7.x);
-    float2 t_15 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
-    const sampling_Warp _e18 = sampling_warp(g_6.a);
-    float2 gs = float2((_e18.l_xx * t_15.x), ((_e18.l_yx * t_15.x) + (_e18.l_yy * t_15.y)));
-    const float _e33 = math_ln((1.0 - _e4.y));
-    const float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
-    float e_5 = ((_e4.y < 0.5) ? _e40 : -(_e33));
-    const float2 _e49 = math_sincos_turns(_e7.y);
-    float2 y_4 = (sqrt((2.0 * e_5)) * _e49);
-    kernel_covariance_Covariance k_28 = g_6.k;
-    const float2 _e52 = kernel_covariance_eigenvalues(k_28);
-    float khalf = (0.5 * (k_28.s_xx - k_28.s_yy));
-    const float _e59 = math_hypot(khalf, k_28.s_xy);
-    if ((_e59 > 0.0)) {
-        float2 w_26 = ((khalf >= 0.0) ? float2((_e59 + khalf), k_28.s_xy) : float2(k_28.s_xy, (_e59 - khalf)));
-        const float _e77 = math_hypot(w_26.x, w_26.y);
-        ax = (w_26 / (_e77).xx);
-    }
-    float2 kk_1 = float2((sqrt(_e52.y) * y_4.x), (sqrt(_e52.x) * y_4.y));
-    float _e90 = ax.x;
-    float _e94 = ax.y;
-    float _e99 = ax.y;
-    float _e103 = ax.x;
-    float2 s_28 = (gs + float2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
-    const float3 _e112 = sampling_normalize_scaled(float3(-(s_28), 1.0));
-    return float3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
-}
-
-float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_7, float3 m_27)
-{
-    const float _e2 = filter_gaussian_ggx_d(g_7, m_27);
-    return ((m_27.z > 0.0) ? (_e2 * m_27.z) : 0.0);
-}
-
-kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_28)
-{
-    const kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_28.second.x - (m_28.mean.x * m_28.mean.x)), (m_28.second.y - (m_28.mean.x * m_28.mean.y)), (m_28.second.z - (m_28.mean.y * m_28.mean.y)));
+    const kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_21.second.x - (m_21.mean.x * m_21.mean.x)), (m_21.second.y - (m_21.mean.x * m_21.mean.y)), (m_21.second.z - (m_21.mean.y * m_21.mean.y)));
     const kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
-    const kernel_covariance_Covariance kernel_covariance_covariance_13 = _e26;
-    return kernel_covariance_covariance_13;
+    const kernel_covariance_Covariance kernel_covariance_covariance_18 = _e26;
+    return kernel_covariance_covariance_18;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments)
+ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments)
 {
     const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
     const kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
     const kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_6, _e5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_10 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_10;
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_8, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_11 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_11;
 }
 
-footprint_jacobian_Polar Constructfootprint_jacobian_Polar(float3 arg0, float2 arg1) {
-    footprint_jacobian_Polar ret = (footprint_jacobian_Polar)0;
-    ret.h = arg0;
-    ret.cs = arg1;
-    return ret;
-}
-
-footprint_jacobian_Polar footprint_jacobian_polar(float3 h_in)
-{
-    float2 cs_1 = float2(1.0, 0.0);
-
-    float big_4 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
-    if ((big_4 <= 0.0)) {
-        const footprint_jacobian_Polar footprint_jacobian_polar_1 = Constructfootprint_jacobian_Polar(float3(0.0, 0.0, 1.0), float2(1.0, 0.0));
-        return footprint_jacobian_polar_1;
-    }
-    float3 h0_ = (h_in / (big_4).xxx);
-    float3 h_24 = (h0_ / (length(h0_)).xxx);
-    float qs_4 = max(abs(h_24.x), abs(h_24.y));
-    if ((qs_4 > 0.0)) {
-        float2 q_6 = (h_24.xy / (qs_4).xx);
-        cs_1 = (q_6 / (length(q_6)).xx);
-    }
-    if ((h_24.z >= footprint_jacobian_HZ_MIN)) {
-        float2 _e44 = cs_1;
-        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_24, _e44);
-        return footprint_jacobian_polar_2;
-    }
-    float2 _e47 = cs_1;
-    float2 _e51 = cs_1;
-    const footprint_jacobian_Polar footprint_jacobian_polar_3 = Constructfootprint_jacobian_Polar(float3((1.0 * _e47), footprint_jacobian_HZ_MIN), _e51);
-    return footprint_jacobian_polar_3;
-}
-
-float3 footprint_jacobian_sanitize(float3 h_1)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
-    return _e1.h;
-}
-
-footprint_jacobian_SphericalBasis Constructfootprint_jacobian_SphericalBasis(float3 arg0, float3 arg1) {
-    footprint_jacobian_SphericalBasis ret = (footprint_jacobian_SphericalBasis)0;
-    ret.e_x = arg0;
-    ret.e_y = arg1;
-    return ret;
-}
-
-footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(float3 h_2)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_2);
-    float st = length(_e1.h.xy);
-    const footprint_jacobian_SphericalBasis footprint_jacobian_sphericalbasis = Constructfootprint_jacobian_SphericalBasis(float3((_e1.h.z * _e1.cs), -(st)), float3(-(_e1.cs.y), _e1.cs.x, 0.0));
-    return footprint_jacobian_sphericalbasis;
-}
-
-float2 footprint_jacobian_spherical_components(float3 h_3, float3 dh)
-{
-    const footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_3);
-    return float2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
-}
-
-float2x2 footprint_jacobian_sphere_to_projected(float3 h_4)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
-    return float2x2((_e1.h.z * _e1.cs), float2(-(_e1.cs.y), _e1.cs.x));
-}
-
-float2x2 footprint_jacobian_projected_to_slope(float3 h_in_1)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
-    float3 h_25 = _e1.h;
-    float k_29 = (-1.0 / ((h_25.z * h_25.z) * h_25.z));
-    float xy = (h_25.x * h_25.y);
-    return float2x2((float2(((h_25.x * h_25.x) + (h_25.z * h_25.z)), xy) * k_29), (float2(xy, ((h_25.y * h_25.y) + (h_25.z * h_25.z))) * k_29));
-}
-
-float2x2 footprint_jacobian_slope_to_projected(float3 h_in_2)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    float3 h_26 = _e1.h;
-    float xy_1 = (h_26.x * h_26.y);
-    return float2x2((float2(((h_26.y * h_26.y) + (h_26.z * h_26.z)), -(xy_1)) * -(h_26.z)), (float2(-(xy_1), ((h_26.x * h_26.x) + (h_26.z * h_26.z))) * -(h_26.z)));
-}
-
-float2x2 footprint_jacobian_sphere_to_slope(float3 h_5)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
-    float k_30 = (-1.0 / (_e1.h.z * _e1.h.z));
-    return float2x2((_e1.cs * k_30), (float2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_30));
-}
-
-float footprint_jacobian_det_sphere_to_projected(float3 h_6)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
-    return _e1.h.z;
-}
-
-float footprint_jacobian_det_projected_to_slope(float3 h_7)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
-    float z_5 = _e1.h.z;
-    float z2_5 = (z_5 * z_5);
-    return (1.0 / (z2_5 * z2_5));
-}
-
-float footprint_jacobian_det_sphere_to_slope(float3 h_8)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float z_6 = _e1.h.z;
-    return (1.0 / ((z_6 * z_6) * z_6));
-}
-
-float2 footprint_jacobian_spherical_to_slope(float3 h_9, float2 e_1)
-{
-    const float2x2 _e2 = footprint_jacobian_sphere_to_slope(h_9);
-    return mul(e_1, _e2);
-}
-
-float2 footprint_jacobian_spherical_to_projected(float3 h_10, float2 e_2)
-{
-    const float2x2 _e2 = footprint_jacobian_sphere_to_projected(h_10);
-    return mul(e_2, _e2);
-}
-
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_58, float sigma_1)
-{
-    float2 w_27 = (r_58.half_extent * (2.0 * sigma_1));
-    float2 v_17 = (w_27 * w_27);
-    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_17.x, 0.0, v_17.y, (v_17.x * v_17.y));
-    return kernel_covariance_covariance_14;
-}
-
-footprint_Footprint Constructfootprint_Footprint(float2 arg0, float2 arg1) {
-    footprint_Footprint ret = (footprint_Footprint)0;
-    ret.dh_u = arg0;
-    ret.dh_v = arg1;
-    return ret;
-}
-
-footprint_Footprint footprint_from_slope_derivatives(float2 dh_u, float2 dh_v)
-{
-    const footprint_Footprint footprint_footprint = Constructfootprint_Footprint(dh_u, dh_v);
-    return footprint_footprint;
-}
-
-footprint_Footprint footprint_from_projected_derivatives(float2 dp_u, float2 dp_v)
-{
-    const footprint_Footprint footprint_footprint_1 = Constructfootprint_Footprint(dp_u, dp_v);
-    return footprint_footprint_1;
-}
-
-footprint_Footprint footprint_from_projected_derivatives_in_slope(float3 h_11, float2 dp_u_1, float2 dp_v_1)
-{
-    float big_5 = max(max(abs(h_11.x), abs(h_11.y)), abs(h_11.z));
-    if ((big_5 <= 0.0)) {
-        const footprint_Footprint footprint_footprint_2 = Constructfootprint_Footprint((0.0).xx, (0.0).xx);
-        return footprint_footprint_2;
-    }
-    const float2x2 _e18 = footprint_jacobian_projected_to_slope(h_11);
-    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint(mul(dp_u_1, _e18), mul(dp_v_1, _e18));
-    return footprint_footprint_3;
-}
-
-footprint_Footprint footprint_from_normal_differences(float3 dn_u_4, float3 dn_v_4)
-{
-    float lu = max(length((float3(0.0, 0.0, 2.0) + dn_u_4)), 1e-6);
-    float lv = max(length((float3(0.0, 0.0, 2.0) + dn_v_4)), 1e-6);
-    const footprint_Footprint footprint_footprint_4 = Constructfootprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
-    return footprint_footprint_4;
-}
-
-kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_2)
-{
-    float2 u_19 = fp.dh_u;
-    float2 v_18 = fp.dh_v;
-    float s2_ = (sigma_2 * sigma_2);
-    float cross_1 = (((u_19.x * v_18.y) - (u_19.y * v_18.x)) * s2_);
-    const kernel_covariance_Covariance kernel_covariance_covariance_15 = Constructkernel_covariance_Covariance((((u_19.x * u_19.x) + (v_18.x * v_18.x)) * s2_), (((u_19.x * u_19.y) + (v_18.x * v_18.y)) * s2_), (((u_19.y * u_19.y) + (v_18.y * v_18.y)) * s2_), (cross_1 * cross_1));
-    return kernel_covariance_covariance_15;
-}
-
-kernel_rect_BoundingRect Constructkernel_rect_BoundingRect(float2 arg0) {
-    kernel_rect_BoundingRect ret = (kernel_rect_BoundingRect)0;
-    ret.half_extent = arg0;
-    return ret;
-}
-
-kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1)
-{
-    const kernel_rect_BoundingRect kernel_rect_boundingrect = Constructkernel_rect_BoundingRect(((abs(fp_1.dh_u) + abs(fp_1.dh_v)) * 0.5));
-    return kernel_rect_boundingrect;
-}
-
-float footprint_max_extent(footprint_Footprint fp_2)
-{
-    return (0.5 * max(length((fp_2.dh_u + fp_2.dh_v)), length((fp_2.dh_u - fp_2.dh_v))));
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance k_11, float tau_4)
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance k_12, float tau_4)
 {
     float b11_ = (float)0;
     float b12_ = (float)0;
     float b22_ = (float)0;
     float det_3 = (float)0;
 
-    float2 lc = min(a_7.eig, (0.99).xx);
-    float2 excess = (a_7.eig - lc);
+    float2 lc = min(a_9.eig, (0.99).xx);
+    float2 excess = (a_9.eig - lc);
     float2 p_8 = (lc / ((1.0).xx - lc));
-    float c_20 = a_7.axis.x;
-    float s_29 = a_7.axis.y;
-    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_29) * s_29));
-    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_29);
-    float p22_1 = (((p_8.x * s_29) * s_29) + ((p_8.y * c_20) * c_20));
-    float k1_3 = max(((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_29) * k_11.s_xy)) + ((s_29 * s_29) * k_11.s_yy)), 0.0);
-    float k2_3 = max(((((s_29 * s_29) * k_11.s_xx) - (((2.0 * c_20) * s_29) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy)), 0.0);
-    float d_4 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
-    float q11_ = (p11_1 + (2.0 * k_11.s_xx));
-    float q12_ = (p12_1 + (2.0 * k_11.s_xy));
-    float q22_ = (p22_1 + (2.0 * k_11.s_yy));
+    float c_20 = a_9.axis.x;
+    float s_28 = a_9.axis.y;
+    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_28) * s_28));
+    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_28);
+    float p22_1 = (((p_8.x * s_28) * s_28) + ((p_8.y * c_20) * c_20));
+    float k1_3 = max(((((c_20 * c_20) * k_12.s_xx) + (((2.0 * c_20) * s_28) * k_12.s_xy)) + ((s_28 * s_28) * k_12.s_yy)), 0.0);
+    float k2_3 = max(((((s_28 * s_28) * k_12.s_xx) - (((2.0 * c_20) * s_28) * k_12.s_xy)) + ((c_20 * c_20) * k_12.s_yy)), 0.0);
+    float d_4 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_12.det, 0.0)));
+    float q11_ = (p11_1 + (2.0 * k_12.s_xx));
+    float q12_ = (p12_1 + (2.0 * k_12.s_xy));
+    float q22_ = (p22_1 + (2.0 * k_12.s_yy));
     float den_1 = (((1.0 + q11_) + q22_) + d_4);
     b11_ = ((q11_ + d_4) / den_1);
     b12_ = (q12_ / den_1);
@@ -2355,119 +2204,46 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     det_3 = (d_4 / den_1);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_29) * s_29)));
+        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_28) * s_28)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_29));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_28));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_29) * s_29) + ((excess.y * c_20) * c_20)));
+        b22_ = (_e130 + (((excess.x * s_28) * s_28) + ((excess.y * c_20) * c_20)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
         float _e143 = b12_;
         det_3 = ((_e139 * _e140) - (_e142 * _e143));
     }
-    const float3 _e146 = ndf_roughness_matrix_entries(a_7);
+    const float3 _e146 = ndf_roughness_matrix_entries(a_9);
     float _e147 = b11_;
     float _e150 = b12_;
     float _e151 = b22_;
     float _e154 = det_3;
     const ndf_roughness_matrix_RoughnessMatrix _e157 = ndf_roughness_matrix_from_entries_det(max(_e147, _e146.x), _e150, max(_e151, _e146.z), _e154, max(tau_4, 0.0));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_11 = _e157;
-    return ndf_roughness_matrix_roughnessmatrix_11;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_5)
-{
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_5);
-    const float _e3 = ndf_roughness_matrix_clamped_det(a_8);
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_8, _e2, _e3);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e4;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e157;
     return ndf_roughness_matrix_roughnessmatrix_12;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance kernel_6, float det_clamp_2)
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_10, kernel_covariance_Covariance kernel_5)
 {
-    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
-    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_9);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_9, _e3, max(det_clamp_2, _e4));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e6;
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_5);
+    const float _e3 = ndf_roughness_matrix_clamped_det(a_10);
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_10, _e2, _e3);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e4;
     return ndf_roughness_matrix_roughnessmatrix_13;
 }
 
-footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3)
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_11, kernel_covariance_Covariance kernel_6, float det_clamp_2)
 {
-    float l_7 = max(rules.max_extent, 0.0);
-    float scale_2 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
-    if ((scale_2 <= 0.0)) {
-        const footprint_Footprint footprint_footprint_5 = fp_3;
-        return footprint_footprint_5;
-    }
-    footprint_Footprint unit = Constructfootprint_Footprint((fp_3.dh_u / (scale_2).xx), (fp_3.dh_v / (scale_2).xx));
-    const float _e29 = footprint_max_extent(unit);
-    if (((_e29 * scale_2) <= l_7)) {
-        const footprint_Footprint footprint_footprint_6 = fp_3;
-        return footprint_footprint_6;
-    }
-    const footprint_Footprint footprint_footprint_7 = Constructfootprint_Footprint(((unit.dh_u / (_e29).xx) * l_7), ((unit.dh_v / (_e29).xx) * l_7));
-    return footprint_footprint_7;
-}
-
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_59, float2 alpha_8)
-{
-    float2 f_1 = (0.0).xx;
-
-    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
-        f_1 = (rules_1.floor_).xx;
-    } else {
-        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
-            f_1 = min(abs(alpha_8), (rules_1.floor_).xx);
-        }
-    }
-    float lambda_2 = max(rules_1.max_extent, 0.0);
-    float2 h_27 = min(abs(r_59.half_extent), (lambda_2).xx);
-    float2 _e25 = f_1;
-    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_27, max(_e25, (0.0).xx)));
-    return kernel_rect_boundingrect_1;
-}
-
-kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_12)
-{
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_12);
-    if ((rules_2.kappa >= math_F32_MAX)) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e2;
-        return kernel_covariance_covariance_16;
-    }
-    const kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
-    const kernel_covariance_Covariance kernel_covariance_covariance_17 = _e11;
-    return kernel_covariance_covariance_17;
-}
-
-float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_10)
-{
-    const float _e2 = ndf_roughness_matrix_own_det_clamp(a_10);
-    const float _e3 = ndf_roughness_matrix_clamped_det(a_10);
-    return (rules_3.det_clamp ? _e3 : _e2);
-}
-
-kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_3)
-{
-    const footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
-    const kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_3);
-    const kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
-    const kernel_covariance_Covariance kernel_covariance_covariance_18 = _e5;
-    return kernel_covariance_covariance_18;
-}
-
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_11, footprint_Footprint fp_5, float sigma_4)
-{
-    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
-    const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_11);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_11, _e4, _e5);
+    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
+    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_11);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_11, _e3, max(det_clamp_2, _e4));
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_14 = _e6;
     return ndf_roughness_matrix_roughnessmatrix_14;
 }
 
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_6, float sigma_5)
+ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_6, float sigma_5)
 {
     const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_5);
     const float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
@@ -2478,11 +2254,11 @@ ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_
 
 float filter_proxy_effective_alpha(float alpha_9, float half_extent)
 {
-    float h_28 = abs(half_extent);
-    const float _e3 = math_hypot(alpha_9, h_28);
-    float t_16 = ((_e3 > 0.0) ? (h_28 / _e3) : 0.0);
-    const float _e9 = math_atan(t_16);
-    float ratio = ((t_16 > 0.0) ? (t_16 / _e9) : 1.0);
+    float h_27 = abs(half_extent);
+    const float _e3 = math_hypot(alpha_9, h_27);
+    float t_15 = ((_e3 > 0.0) ? (h_27 / _e3) : 0.0);
+    const float _e9 = math_atan(t_15);
+    float ratio = ((t_15 > 0.0) ? (t_15 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
 }
 
@@ -2492,19 +2268,19 @@ float filter_proxy_effective_alpha_simple(float alpha_10, float half_extent_1)
     return _e3;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_60, float2 half_extent_2)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_53, float2 half_extent_2)
 {
-    const float _e5 = filter_proxy_effective_alpha(r_60.alpha.x, half_extent_2.x);
-    const float _e9 = filter_proxy_effective_alpha(r_60.alpha.y, half_extent_2.y);
+    const float _e5 = filter_proxy_effective_alpha(r_53.alpha.x, half_extent_2.x);
+    const float _e9 = filter_proxy_effective_alpha(r_53.alpha.y, half_extent_2.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_1 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_1;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_61, float2 half_extent_3)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_54, float2 half_extent_3)
 {
-    const float _e5 = filter_proxy_effective_alpha_simple(r_61.alpha.x, half_extent_3.x);
-    const float _e9 = filter_proxy_effective_alpha_simple(r_61.alpha.y, half_extent_3.y);
+    const float _e5 = filter_proxy_effective_alpha_simple(r_54.alpha.x, half_extent_3.x);
+    const float _e9 = filter_proxy_effective_alpha_simple(r_54.alpha.y, half_extent_3.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_2 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_2;
@@ -2524,12 +2300,12 @@ uint filter_rect_tier(float h2_, float l2_1)
     return filter_rect_TIER_CLOSED;
 }
 
-float filter_rect_gl_node(uint n_2, uint k_13)
+float filter_rect_gl_node(uint n_1, uint k_13)
 {
-    if ((n_2 == 2u)) {
+    if ((n_1 == 2u)) {
         return 0.57735026;
     }
-    if ((n_2 == 4u)) {
+    if ((n_1 == 4u)) {
         return ((k_13 == 0u) ? 0.33998105 : 0.8611363);
     }
     if ((k_13 == 0u)) {
@@ -2538,12 +2314,12 @@ float filter_rect_gl_node(uint n_2, uint k_13)
     return ((k_13 == 1u) ? 0.6612094 : 0.9324695);
 }
 
-float filter_rect_gl_weight(uint n_3, uint k_14)
+float filter_rect_gl_weight(uint n_2, uint k_14)
 {
-    if ((n_3 == 2u)) {
+    if ((n_2 == 2u)) {
         return 0.5;
     }
-    if ((n_3 == 4u)) {
+    if ((n_2 == 4u)) {
         return ((k_14 == 0u) ? 0.32607257 : 0.17392743);
     }
     if ((k_14 == 0u)) {
@@ -2552,17 +2328,17 @@ float filter_rect_gl_weight(uint n_3, uint k_14)
     return ((k_14 == 1u) ? 0.18038079 : 0.085662246);
 }
 
-float filter_rect_f(float u_7, float v_6)
+float filter_rect_f(float u_1, float v_5)
 {
-    float t_17 = ((1.0 + (u_7 * u_7)) + (v_6 * v_6));
-    return (1.0 / (t_17 * t_17));
+    float t_16 = ((1.0 + (u_1 * u_1)) + (v_5 * v_5));
+    return (1.0 / (t_16 * t_16));
 }
 
 uint naga_div(uint lhs, uint rhs) {
     return lhs / (rhs == 0u ? 1u : rhs);
 }
 
-float filter_rect_gl_mean(uint n_4, float u_8, float c_6, float h_12)
+float filter_rect_gl_mean(uint n_3, float u_2, float c_6, float h_12)
 {
     float acc_2 = 0.0;
     uint k_15 = 0u;
@@ -2578,19 +2354,19 @@ float filter_rect_gl_mean(uint n_4, float u_8, float c_6, float h_12)
         }
         loop_init_6 = false;
         uint _e8 = k_15;
-        if ((_e8 < naga_div(n_4, 2u))) {
+        if ((_e8 < naga_div(n_3, 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_15;
-            const float _e13 = filter_rect_gl_node(n_4, _e12);
+            const float _e13 = filter_rect_gl_node(n_3, _e12);
             float a_24 = (h_12 * _e13);
             float _e15 = acc_2;
             uint _e16 = k_15;
-            const float _e17 = filter_rect_gl_weight(n_4, _e16);
-            const float _e19 = filter_rect_f(u_8, (c_6 - a_24));
-            const float _e21 = filter_rect_f(u_8, (c_6 + a_24));
+            const float _e17 = filter_rect_gl_weight(n_3, _e16);
+            const float _e19 = filter_rect_f(u_2, (c_6 - a_24));
+            const float _e21 = filter_rect_f(u_2, (c_6 + a_24));
             acc_2 = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -2608,21 +2384,21 @@ float filter_rect_atan2_upper(float y_3, float x_6)
     return (math_HALF_PI + _e9);
 }
 
-float filter_rect_delta_minus_sin(float d_2, float sin_d)
+float filter_rect_delta_minus_sin(float d, float sin_d)
 {
     float s_11 = (float)0;
 
-    if ((d_2 < 1.0)) {
-        float d2_1 = (d_2 * d_2);
+    if ((d < 1.0)) {
+        float d2_1 = (d * d);
         s_11 = (1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909))));
         float _e17 = s_11;
         s_11 = (1.0 - ((d2_1 * 0.023809524) * _e17));
         float _e23 = s_11;
         s_11 = (1.0 - ((d2_1 * 0.05) * _e23));
         float _e30 = s_11;
-        return (((d_2 * d2_1) * 0.16666667) * _e30);
+        return (((d * d2_1) * 0.16666667) * _e30);
     }
-    return (d_2 - sin_d);
+    return (d - sin_d);
 }
 
 float filter_rect_mean_1d(float4 i_7, float c2_)
@@ -2637,9 +2413,9 @@ float filter_rect_mean_1d(float4 i_7, float c2_)
     const float _e27 = filter_rect_atan2_upper((c_21 * dx), (c2_ + x01_));
     float inv_2 = (1.0 / (((2.0 * c_21) * c2_) * dx));
     if ((x0_ <= 0.0)) {
-        float s_30 = (rsqrt(r02_) * rsqrt(r12_));
-        float q_7 = min(((c2_ - x01_) * s_30), 1.0);
-        return ((_e27 * inv_2) + ((q_7 * s_30) * (0.5 / c2_)));
+        float s_29 = (rsqrt(r02_) * rsqrt(r12_));
+        float q_7 = min(((c2_ - x01_) * s_29), 1.0);
+        return ((_e27 * inv_2) + ((q_7 * s_29) * (0.5 / c2_)));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
     float p2_1 = ((2.0 * r02_) * r12_);
@@ -2647,7 +2423,7 @@ float filter_rect_mean_1d(float4 i_7, float c2_)
     return ((_e57 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1));
 }
 
-float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, float4 other)
+float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, float4 other)
 {
     float acc_3 = 0.0;
     uint k_16 = 0u;
@@ -2663,19 +2439,19 @@ float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, float4 other)
         }
         loop_init_7 = false;
         uint _e8 = k_16;
-        if ((_e8 < naga_div(n_5, 2u))) {
+        if ((_e8 < naga_div(n_4, 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_16;
-            const float _e13 = filter_rect_gl_node(n_5, _e12);
+            const float _e13 = filter_rect_gl_node(n_4, _e12);
             float a_25 = (h_13 * _e13);
             float x0_1 = (c_7 - a_25);
             float x1_2 = (c_7 + a_25);
             float _e17 = acc_3;
             uint _e18 = k_16;
-            const float _e19 = filter_rect_gl_weight(n_5, _e18);
+            const float _e19 = filter_rect_gl_weight(n_4, _e18);
             const float _e23 = filter_rect_mean_1d(other, (1.0 + (x0_1 * x0_1)));
             const float _e27 = filter_rect_mean_1d(other, (1.0 + (x1_2 * x1_2)));
             acc_3 = (_e17 + (_e19 * (_e23 + _e27)));
@@ -2685,24 +2461,24 @@ float filter_rect_gl_mean_1d(uint n_5, float c_7, float h_13, float4 other)
     return _e34;
 }
 
-float filter_rect_edge(float u_9, float dv, float v01_)
+float filter_rect_edge(float u_3, float dv, float v01_)
 {
-    float s2_1 = (1.0 + (u_9 * u_9));
-    float s_31 = sqrt(s2_1);
-    const float _e10 = filter_rect_atan2_upper((dv * s_31), (s2_1 + v01_));
-    return ((u_9 / s_31) * _e10);
+    float s2_1 = (1.0 + (u_3 * u_3));
+    float s_30 = sqrt(s2_1);
+    const float _e10 = filter_rect_atan2_upper((dv * s_30), (s2_1 + v01_));
+    return ((u_3 / s_30) * _e10);
 }
 
-float filter_rect_edges(float4 u_10, float4 v_7)
+float filter_rect_edges(float4 u_4, float4 v_6)
 {
-    float du = (2.0 * u_10.w);
-    float dv_1 = (2.0 * v_7.w);
-    float v01_1 = (v_7.x * v_7.y);
-    float u01_ = (u_10.x * u_10.y);
-    const float _e15 = filter_rect_edge(u_10.y, dv_1, v01_1);
-    const float _e17 = filter_rect_edge(u_10.x, dv_1, v01_1);
-    const float _e20 = filter_rect_edge(v_7.y, du, u01_);
-    const float _e22 = filter_rect_edge(v_7.x, du, u01_);
+    float du = (2.0 * u_4.w);
+    float dv_1 = (2.0 * v_6.w);
+    float v01_1 = (v_6.x * v_6.y);
+    float u01_ = (u_4.x * u_4.y);
+    const float _e15 = filter_rect_edge(u_4.y, dv_1, v01_1);
+    const float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
+    const float _e20 = filter_rect_edge(v_6.y, du, u01_);
+    const float _e22 = filter_rect_edge(v_6.x, du, u01_);
     float i_13 = (0.5 * ((_e15 - _e17) + (_e20 - _e22)));
     return (i_13 / (du * dv_1));
 }
@@ -2735,7 +2511,7 @@ float filter_rect_polar_near(float x2_, float lo, float hi)
     uint k_19 = 0u;
 
     float c_22 = (0.5 * (lo + hi));
-    float h_29 = (0.5 * (hi - lo));
+    float h_28 = (0.5 * (hi - lo));
     uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
     bool loop_init_8 = true;
     while(true) {
@@ -2754,7 +2530,7 @@ float filter_rect_polar_near(float x2_, float lo, float hi)
         {
             uint _e16 = k_19;
             const float _e17 = filter_rect_gl8_node(_e16);
-            float d_5 = (h_29 * _e17);
+            float d_5 = (h_28 * _e17);
             float q0_ = (1.0 + ((c_22 - d_5) * (c_22 - d_5)));
             float q1_ = (1.0 + ((c_22 + d_5) * (c_22 + d_5)));
             float _e29 = acc_4;
@@ -2773,7 +2549,7 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
     uint k_20 = 0u;
 
     float c_23 = (0.5 * (lo_1 + hi_1));
-    float h_30 = (0.5 * (hi_1 - lo_1));
+    float h_29 = (0.5 * (hi_1 - lo_1));
     uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
     bool loop_init_9 = true;
     while(true) {
@@ -2792,7 +2568,7 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
         {
             uint _e16 = k_20;
             const float _e17 = filter_rect_gl8_node(_e16);
-            float d_6 = (h_30 * _e17);
+            float d_6 = (h_29 * _e17);
             float t0_2 = ((c_23 - d_6) * (c_23 - d_6));
             float t1_4 = ((c_23 + d_6) * (c_23 + d_6));
             float _e25 = acc_5;
@@ -2805,28 +2581,28 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
     return (_e50 * (hi_1 - lo_1));
 }
 
-float filter_rect_edge_range(float ax_1, float a_13, float b_2)
+float filter_rect_edge_range(float ax, float a_13, float b_2)
 {
-    float v_8 = 0.0;
+    float v_7 = 0.0;
 
-    float x2_3 = (ax_1 * ax_1);
-    if ((a_13 < ax_1)) {
-        float _e7 = v_8;
-        const float _e11 = filter_rect_polar_near(x2_3, (a_13 / ax_1), (min(b_2, ax_1) / ax_1));
-        v_8 = (_e7 + _e11);
+    float x2_3 = (ax * ax);
+    if ((a_13 < ax)) {
+        float _e7 = v_7;
+        const float _e11 = filter_rect_polar_near(x2_3, (a_13 / ax), (min(b_2, ax) / ax));
+        v_7 = (_e7 + _e11);
     }
-    if ((b_2 > ax_1)) {
-        float _e14 = v_8;
-        const float _e18 = filter_rect_polar_far(x2_3, (ax_1 / b_2), (ax_1 / max(a_13, ax_1)));
-        v_8 = (_e14 + _e18);
+    if ((b_2 > ax)) {
+        float _e14 = v_7;
+        const float _e18 = filter_rect_polar_far(x2_3, (ax / b_2), (ax / max(a_13, ax)));
+        v_7 = (_e14 + _e18);
     }
-    float _e20 = v_8;
+    float _e20 = v_7;
     return _e20;
 }
 
 float filter_rect_edge_polar(float x_7, float a_14, float b_3)
 {
-    float v_9 = (float)0;
+    float v_8 = (float)0;
 
     float ax_2 = abs(x_7);
     if ((ax_2 < 1e-12)) {
@@ -2834,30 +2610,30 @@ float filter_rect_edge_polar(float x_7, float a_14, float b_3)
     }
     if ((a_14 >= 0.0)) {
         const float _e10 = filter_rect_edge_range(ax_2, a_14, b_3);
-        v_9 = _e10;
+        v_8 = _e10;
     } else {
         if ((b_3 <= 0.0)) {
             const float _e15 = filter_rect_edge_range(ax_2, -(b_3), -(a_14));
-            v_9 = _e15;
+            v_8 = _e15;
         } else {
             const float _e18 = filter_rect_edge_range(ax_2, 0.0, -(a_14));
             const float _e20 = filter_rect_edge_range(ax_2, 0.0, b_3);
-            v_9 = (_e18 + _e20);
+            v_8 = (_e18 + _e20);
         }
     }
-    float _e22 = v_9;
-    float _e24 = v_9;
+    float _e22 = v_8;
+    float _e24 = v_8;
     return ((x_7 > 0.0) ? _e24 : -(_e22));
 }
 
-float filter_rect_far_field(float4 u_11, float4 v_10)
+float filter_rect_far_field(float4 u_5, float4 v_9)
 {
-    const float _e5 = filter_rect_edge_polar(u_11.y, v_10.x, v_10.y);
-    const float _e9 = filter_rect_edge_polar(u_11.x, v_10.x, v_10.y);
-    const float _e14 = filter_rect_edge_polar(v_10.y, u_11.x, u_11.y);
-    const float _e18 = filter_rect_edge_polar(v_10.x, u_11.x, u_11.y);
+    const float _e5 = filter_rect_edge_polar(u_5.y, v_9.x, v_9.y);
+    const float _e9 = filter_rect_edge_polar(u_5.x, v_9.x, v_9.y);
+    const float _e14 = filter_rect_edge_polar(v_9.y, u_5.x, u_5.y);
+    const float _e18 = filter_rect_edge_polar(v_9.x, u_5.x, u_5.y);
     float i_14 = (-0.5 * ((_e5 - _e9) + (_e14 - _e18)));
-    return (i_14 / ((4.0 * u_11.w) * v_10.w));
+    return (i_14 / ((4.0 * u_5.w) * v_9.w));
 }
 
 float filter_rect_gap(float4 i_8)
@@ -2865,36 +2641,36 @@ float filter_rect_gap(float4 i_8)
     return max(max(i_8.x, -(i_8.y)), 0.0);
 }
 
-float filter_rect_mean_f(float4 u_12, float4 v_11)
+float filter_rect_mean_f(float4 u_6, float4 v_10)
 {
-    bool local_18 = (bool)0;
+    bool local_13 = (bool)0;
     float acc_6 = 0.0;
     uint k_21 = 0u;
 
-    const float _e2 = filter_rect_gap(u_12);
-    const float _e3 = filter_rect_gap(v_11);
-    const uint _e14 = filter_rect_tier((u_12.w * u_12.w), ((1.0 + (u_12.z * u_12.z)) + (_e3 * _e3)));
-    const uint _e25 = filter_rect_tier((v_11.w * v_11.w), ((1.0 + (v_11.z * v_11.z)) + (_e2 * _e2)));
+    const float _e2 = filter_rect_gap(u_6);
+    const float _e3 = filter_rect_gap(v_10);
+    const uint _e14 = filter_rect_tier((u_6.w * u_6.w), ((1.0 + (u_6.z * u_6.z)) + (_e3 * _e3)));
+    const uint _e25 = filter_rect_tier((v_10.w * v_10.w), ((1.0 + (v_10.z * v_10.z)) + (_e2 * _e2)));
     if ((_e14 == filter_rect_TIER_CLOSED)) {
-        local_18 = (_e25 == filter_rect_TIER_CLOSED);
+        local_13 = (_e25 == filter_rect_TIER_CLOSED);
     } else {
-        local_18 = false;
+        local_13 = false;
     }
-    bool _e33 = local_18;
+    bool _e33 = local_13;
     if (_e33) {
         if ((((_e2 * _e2) + (_e3 * _e3)) > filter_rect_FAR2_)) {
-            const float _e39 = filter_rect_far_field(u_12, v_11);
+            const float _e39 = filter_rect_far_field(u_6, v_10);
             return _e39;
         }
-        const float _e40 = filter_rect_edges(u_12, v_11);
+        const float _e40 = filter_rect_edges(u_6, v_10);
         return _e40;
     }
     if ((_e14 == filter_rect_TIER_CLOSED)) {
-        const float _e45 = filter_rect_gl_mean_1d(_e25, v_11.z, v_11.w, u_12);
+        const float _e45 = filter_rect_gl_mean_1d(_e25, v_10.z, v_10.w, u_6);
         return _e45;
     }
     if ((_e25 == filter_rect_TIER_CLOSED)) {
-        const float _e50 = filter_rect_gl_mean_1d(_e14, u_12.z, u_12.w, v_11);
+        const float _e50 = filter_rect_gl_mean_1d(_e14, u_6.z, u_6.w, v_10);
         return _e50;
     }
     uint2 loop_bound_10 = uint2(4294967295u, 4294967295u);
@@ -2915,12 +2691,12 @@ float filter_rect_mean_f(float4 u_12, float4 v_11)
         {
             uint _e60 = k_21;
             const float _e61 = filter_rect_gl_node(_e14, _e60);
-            float a_26 = (u_12.w * _e61);
+            float a_26 = (u_6.w * _e61);
             float _e63 = acc_6;
             uint _e64 = k_21;
             const float _e65 = filter_rect_gl_weight(_e14, _e64);
-            const float _e70 = filter_rect_gl_mean(_e25, (u_12.z - a_26), v_11.z, v_11.w);
-            const float _e75 = filter_rect_gl_mean(_e25, (u_12.z + a_26), v_11.z, v_11.w);
+            const float _e70 = filter_rect_gl_mean(_e25, (u_6.z - a_26), v_10.z, v_10.w);
+            const float _e75 = filter_rect_gl_mean(_e25, (u_6.z + a_26), v_10.z, v_10.w);
             acc_6 = (_e63 + (_e65 * (_e70 + _e75)));
         }
     }
@@ -2932,59 +2708,59 @@ float4 filter_rect_interval(float c_8, float h_14, float a_15)
 {
     float ah = abs(h_14);
     float lo_4 = clamp(((c_8 - ah) / a_15), -1e18, filter_rect_BIG);
-    float hi_4 = clamp(((c_8 + ah) / a_15), -1e18, filter_rect_BIG);
-    return float4(lo_4, hi_4, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
+    float hi_3 = clamp(((c_8 + ah) / a_15), -1e18, filter_rect_BIG);
+    return float4(lo_4, hi_3, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
 }
 
-float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_62, float2 center_, float2 half_extent_4)
+float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_55, float2 center_, float2 half_extent_4)
 {
-    bool local_19 = (bool)0;
+    bool local_14 = (bool)0;
 
     if ((half_extent_4.x == 0.0)) {
-        local_19 = (half_extent_4.y == 0.0);
+        local_14 = (half_extent_4.y == 0.0);
     } else {
-        local_19 = false;
+        local_14 = false;
     }
-    bool _e12 = local_19;
+    bool _e12 = local_14;
     if (_e12) {
-        const float _e13 = ndf_ggx_p22_axis_aligned(r_62, center_);
+        const float _e13 = ndf_ggx_p22_axis_aligned(r_55, center_);
         return _e13;
     }
-    float2 a_27 = r_62.alpha;
+    float2 a_27 = r_55.alpha;
     const float4 _e18 = filter_rect_interval(center_.x, half_extent_4.x, a_27.x);
     const float4 _e22 = filter_rect_interval(center_.y, half_extent_4.y, a_27.y);
     const float _e23 = filter_rect_mean_f(_e18, _e22);
     return max((_e23 * (math_INV_PI / (a_27.x * a_27.y))), 0.0);
 }
 
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_63, float3 h_15, float2 half_extent_5)
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_56, float3 h_15, float2 half_extent_5)
 {
-    bool local_20 = (bool)0;
+    bool local_15 = (bool)0;
 
     if (!((h_15.z > 0.0))) {
         return 0.0;
     }
     if ((half_extent_5.x == 0.0)) {
-        local_20 = (half_extent_5.y == 0.0);
+        local_15 = (half_extent_5.y == 0.0);
     } else {
-        local_20 = false;
+        local_15 = false;
     }
-    bool _e17 = local_20;
+    bool _e17 = local_15;
     if (_e17) {
-        const float _e18 = ndf_ggx_d_axis_aligned(r_63, h_15);
+        const float _e18 = ndf_ggx_d_axis_aligned(r_56, h_15);
         return _e18;
     }
-    const float _e24 = filter_rect_p22_rect(r_63, (-(h_15.xy) / (h_15.z).xx), half_extent_5);
+    const float _e24 = filter_rect_p22_rect(r_56, (-(h_15.xy) / (h_15.z).xx), half_extent_5);
     float z2_6 = (h_15.z * h_15.z);
     return min((_e24 / (z2_6 * z2_6)), math_F32_MAX);
 }
 
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_64, float2 hpp, float3 h_16, float2 footprint)
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_57, float2 hpp, float3 h_16, float2 footprint)
 {
-    bool local_21 = (bool)0;
+    bool local_16 = (bool)0;
 
-    float a_28 = r_64.alpha.x;
-    float b_8 = r_64.alpha.y;
+    float a_28 = r_57.alpha.x;
+    float b_8 = r_57.alpha.y;
     float a_2_ = (a_28 * a_28);
     float b_2_ = (b_8 * b_8);
     float x1_3 = (hpp.x - footprint.x);
@@ -3006,14 +2782,14 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_64, fl
     float val = ((((x1_3 * (_e37 - _e41)) / sx1_) + ((x2_4 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
     float den_2 = ((6.2831855 * (x1_3 - x2_4)) * (y1_ - y2_));
     float hz4_ = (((h_16.z * h_16.z) * h_16.z) * h_16.z);
-    float v_19 = ((val / den_2) / max(hz4_, 0.001));
-    if ((abs(v_19) <= math_F32_MAX)) {
-        local_21 = (den_2 != 0.0);
+    float v_17 = ((val / den_2) / max(hz4_, 0.001));
+    if ((abs(v_17) <= math_F32_MAX)) {
+        local_16 = (den_2 != 0.0);
     } else {
-        local_21 = false;
+        local_16 = false;
     }
-    bool _e109 = local_21;
-    return (_e109 ? v_19 : 0.0);
+    bool _e109 = local_16;
+    return (_e109 ? v_17 : 0.0);
 }
 
 float filter_rect_lambda_rho(float t_1)
@@ -3026,25 +2802,25 @@ float filter_rect_lambda_rho(float t_1)
     return sqrt((1.0 + (t_1 * t_1)));
 }
 
-float filter_rect_lambda_e_neg(float t_2, float r_65)
+float filter_rect_lambda_e_neg(float t_2, float r_58)
 {
-    return ((t_2 >= 0.0) ? (1.0 / (r_65 + t_2)) : (r_65 - t_2));
+    return ((t_2 >= 0.0) ? (1.0 / (r_58 + t_2)) : (r_58 - t_2));
 }
 
-float filter_rect_lambda_asinh_of(float t_3, float r_66)
+float filter_rect_lambda_asinh_of(float t_3, float r_59)
 {
-    float v_12 = (float)0;
+    float v_11 = (float)0;
 
     float a_30 = abs(t_3);
     if ((a_30 > 1.0)) {
-        const float _e7 = math_ln((a_30 + r_66));
-        v_12 = _e7;
+        const float _e7 = math_ln((a_30 + r_59));
+        v_11 = _e7;
     } else {
-        const float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_66))));
-        v_12 = _e13;
+        const float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_59))));
+        v_11 = _e13;
     }
-    float _e14 = v_12;
-    float _e15 = v_12;
+    float _e14 = v_11;
+    float _e15 = v_11;
     return ((t_3 < 0.0) ? -(_e15) : _e14);
 }
 
@@ -3071,22 +2847,22 @@ float filter_rect_lambda_psi2_(float t_6)
     return (0.25 * ((((t_6 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336)));
 }
 
-float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_18)
+float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_17)
 {
     const float _e3 = filter_rect_lambda_rho(t0_);
     const float _e4 = filter_rect_lambda_rho(t1_);
     const float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     const float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_32 = (_e5 + _e6);
-    float d_7 = ((w_18 * s_32) / (_e3 + _e4));
+    float s_31 = (_e5 + _e6);
+    float d_7 = ((w_17 * s_31) / (_e3 + _e4));
     const float _e12 = math_ln_1p((d_7 / _e6));
-    return (0.25 * (_e12 + ((0.5 * d_7) * s_32)));
+    return (0.25 * (_e12 + ((0.5 * d_7) * s_31)));
 }
 
-float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_19)
+float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_18)
 {
-    const float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_19);
-    return (_e3 / w_19);
+    const float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_18);
+    return (_e3 / w_18);
 }
 
 uint filter_rect_lambda_rule(uint t_7)
@@ -3177,7 +2953,7 @@ float filter_rect_lambda_gl_psi(uint t_9, float c_9, float h_17)
     return _e28;
 }
 
-float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo_2)
+float filter_rect_lambda_expected_psi(float m_22, float k1_, float k2_, float lo_2)
 {
     float acc_9 = 0.0;
     uint j_2 = 0u;
@@ -3186,10 +2962,10 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
 
     float ks = min(k1_, k2_);
     float kl = max(k1_, k2_);
-    float near_l = max((m_29 - ks), 0.0);
+    float near_l = max((m_22 - ks), 0.0);
     const uint _e13 = filter_rect_tier((kl * kl), (1.0 + (near_l * near_l)));
     if ((_e13 != filter_rect_TIER_CLOSED)) {
-        float near_s = max((m_29 - kl), 0.0);
+        float near_s = max((m_22 - kl), 0.0);
         const uint _e23 = filter_rect_tier((ks * ks), (1.0 + (near_s * near_s)));
         uint2 loop_bound_13 = uint2(4294967295u, 4294967295u);
         bool loop_init_13 = true;
@@ -3213,18 +2989,18 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
                 float _e35 = acc_9;
                 uint _e36 = j_2;
                 const float _e37 = filter_rect_gl_weight(_e13, _e36);
-                const float _e39 = filter_rect_lambda_gl_psi(_e23, (m_29 - a_33), ks);
-                const float _e41 = filter_rect_lambda_gl_psi(_e23, (m_29 + a_33), ks);
+                const float _e39 = filter_rect_lambda_gl_psi(_e23, (m_22 - a_33), ks);
+                const float _e41 = filter_rect_lambda_gl_psi(_e23, (m_22 + a_33), ks);
                 acc_9 = (_e35 + (_e37 * (_e39 + _e41)));
             }
         }
         float _e48 = acc_9;
         return _e48;
     }
-    float hi_5 = (m_29 + kl);
-    float w_28 = (2.0 * kl);
+    float hi_4 = (m_22 + kl);
+    float w_26 = (2.0 * kl);
     if ((ks == 0.0)) {
-        const float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_5, w_28);
+        const float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_4, w_26);
         return _e54;
     }
     const uint _e59 = filter_rect_tier((ks * ks), (1.0 + (lo_2 * lo_2)));
@@ -3247,64 +3023,64 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
             {
                 uint _e70 = j_3;
                 const float _e71 = filter_rect_gl_node(_e59, _e70);
-                float x_18 = (ks * _e71);
+                float x_17 = (ks * _e71);
                 float _e73 = acc_10;
                 uint _e74 = j_3;
                 const float _e75 = filter_rect_gl_weight(_e59, _e74);
-                const float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_18), (hi_5 + x_18), w_28);
-                const float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_18), (hi_5 - x_18), w_28);
+                const float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_17), (hi_4 + x_17), w_26);
+                const float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_17), (hi_4 - x_17), w_26);
                 acc_10 = (_e73 + (_e75 * (_e78 + _e81)));
             }
         }
         float _e88 = acc_10;
         return _e88;
     }
-    const float _e89 = filter_rect_lambda_mean_psi1_(hi_5, ks);
+    const float _e89 = filter_rect_lambda_mean_psi1_(hi_4, ks);
     const float _e90 = filter_rect_lambda_mean_psi1_(lo_2, ks);
-    return ((_e89 - _e90) / w_28);
+    return ((_e89 - _e90) / w_26);
 }
 
-float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67, float2 half_extent_6, float3 w_in)
+float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_60, float2 half_extent_6, float3 w_in)
 {
-    float3 w_20 = (float3)0;
-    bool local_22 = (bool)0;
-    bool local_23 = (bool)0;
-    bool local_24 = (bool)0;
+    float3 w_19 = (float3)0;
+    bool local_17 = (bool)0;
+    bool local_18 = (bool)0;
+    bool local_19 = (bool)0;
 
     float big_6 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
-    w_20 = w_in;
+    w_19 = w_in;
     if (!((big_6 > 1.1529215e18))) {
         if ((big_6 < 8.6736174e-19)) {
-            local_23 = (big_6 > 0.0);
+            local_18 = (big_6 > 0.0);
         } else {
-            local_23 = false;
+            local_18 = false;
         }
-        bool _e24 = local_23;
-        local_22 = _e24;
+        bool _e24 = local_18;
+        local_17 = _e24;
     } else {
-        local_22 = true;
+        local_17 = true;
     }
-    bool _e26 = local_22;
+    bool _e26 = local_17;
     if (_e26) {
-        int e_6 = asint(asuint(int(((asuint(big_6) >> 23u) & 255u))) - asuint(int(127)));
-        w_20 = (w_in * asfloat((uint(asint(asuint(int(127)) - asuint(e_6))) << 23u)));
+        int e_5 = asint(asuint(int(((asuint(big_6) >> 23u) & 255u))) - asuint(int(127)));
+        w_19 = (w_in * asfloat((uint(asint(asuint(int(127)) - asuint(e_5))) << 23u)));
     }
-    float _e43 = w_20.x;
-    float _e45 = w_20.y;
+    float _e43 = w_19.x;
+    float _e45 = w_19.y;
     const float _e46 = math_hypot(_e43, _e45);
     if ((_e46 <= 0.0)) {
         return 0.0;
     }
-    float _e51 = w_20.z;
+    float _e51 = w_19.z;
     float wz = abs(_e51);
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    float2 alpha_12 = r_67.alpha;
+    float2 alpha_12 = r_60.alpha;
     float2 ha = min(abs(half_extent_6), (alpha_12 * filter_rect_lambda_BIG_K));
-    float _e63 = w_20.x;
+    float _e63 = w_19.x;
     float ux = (abs(_e63) / _e46);
-    float _e67 = w_20.y;
+    float _e67 = w_19.y;
     float uy = (abs(_e67) / _e46);
     float px = (ux * alpha_12.x);
     float py = (uy * alpha_12.y);
@@ -3312,14 +3088,14 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67
     float k1_4 = ((px / _e74) * (ha.x / alpha_12.x));
     float k2_4 = ((py / _e74) * (ha.y / alpha_12.y));
     if ((k1_4 == 0.0)) {
-        local_24 = (k2_4 == 0.0);
+        local_19 = (k2_4 == 0.0);
     } else {
-        local_24 = false;
+        local_19 = false;
     }
-    bool _e92 = local_24;
+    bool _e92 = local_19;
     if (_e92) {
-        float3 _e93 = w_20;
-        const float _e94 = ndf_ggx_lambda_axis_aligned(r_67, _e93);
+        float3 _e93 = w_19;
+        const float _e94 = ndf_ggx_lambda_axis_aligned(r_60, _e93);
         return _e94;
     }
     float mm = ((wz / _e46) / _e74);
@@ -3327,8 +3103,8 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67
         return ((0.25 / mm) / mm);
     }
     bool long_x = (k1_4 >= k2_4);
-    float _e104 = w_20.y;
-    float _e107 = w_20.x;
+    float _e104 = w_19.y;
+    float _e107 = w_19.x;
     float wl_1 = (long_x ? abs(_e107) : abs(_e104));
     float hl = (long_x ? ha.x : ha.y);
     float lo_5 = (((wz - (wl_1 * hl)) / _e46) / _e74);
@@ -3338,22 +3114,22 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_67
 
 ndf_roughness_matrix_RoughnessMatrix filter_method_gaussian_lobe(filter_method_Gaussian method, ndf_roughness_matrix_RoughnessMatrix material, footprint_Footprint fp_7)
 {
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_gaussian(method.clamps, material, fp_7, method.sigma);
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_filter_gaussian(method.clamps, material, fp_7, method.sigma);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_16 = _e5;
     return ndf_roughness_matrix_roughnessmatrix_16;
 }
 
-float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, float3 m_30)
+float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, float3 m_23)
 {
     const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_1, material_1, fp_8);
-    const float _e5 = ndf_ggx_d_matrix(_e4, m_30);
+    const float _e5 = ndf_ggx_d_matrix(_e4, m_23);
     return _e5;
 }
 
-float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_9, float3 m_31)
+float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_9, float3 m_24)
 {
     const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_2, material_2, fp_9);
-    const float _e5 = ndf_beckmann_d_matrix(_e4, m_31);
+    const float _e5 = ndf_beckmann_d_matrix(_e4, m_24);
     return _e5;
 }
 
@@ -3365,24 +3141,24 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_method_exact_gaussian_lobe(filter
     return filter_gaussian_ggx_gaussianfilteredggx_1;
 }
 
-float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, float3 m_32)
+float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, float3 m_25)
 {
     const filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_method_exact_gaussian_lobe(method_4, material_4, fp_11);
-    const float _e5 = filter_gaussian_ggx_d(_e4, m_32);
+    const float _e5 = filter_gaussian_ggx_d(_e4, m_25);
     return _e5;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_method_projected_lobe(filter_method_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_12)
 {
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_17 = _e5;
     return ndf_roughness_matrix_roughnessmatrix_17;
 }
 
-float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, float3 m_33)
+float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, float3 m_26)
 {
     const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_projected_lobe(method_6, material_6, fp_13);
-    const float _e5 = ndf_ggx_d_matrix(_e4, m_33);
+    const float _e5 = ndf_ggx_d_matrix(_e4, m_26);
     return _e5;
 }
 
@@ -3395,10 +3171,10 @@ filter_method_RectFilteredGgx Constructfilter_method_RectFilteredGgx(ndf_roughne
 
 filter_method_RectFilteredGgx filter_method_rect_lobe(filter_method_Rect method_7, ndf_roughness_axis_aligned_AxisAligned material_7, footprint_Footprint fp_14)
 {
-    const kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_14);
+    const kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_14);
     const kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
-    float2 h_31 = _e6.half_extent;
-    const filter_method_RectFilteredGgx filter_method_rectfilteredggx = Constructfilter_method_RectFilteredGgx(material_7, h_31);
+    float2 h_30 = _e6.half_extent;
+    const filter_method_RectFilteredGgx filter_method_rectfilteredggx = Constructfilter_method_RectFilteredGgx(material_7, h_30);
     return filter_method_rectfilteredggx;
 }
 
@@ -3408,54 +3184,54 @@ float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe, float2
     return _e4;
 }
 
-float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_1, float3 m_34)
+float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_1, float3 m_27)
 {
-    const float _e4 = filter_rect_d_rect(lobe_1.roughness, m_34, lobe_1.half_extent);
+    const float _e4 = filter_rect_d_rect(lobe_1.roughness, m_27, lobe_1.half_extent);
     return _e4;
 }
 
-float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_2, float3 w_21)
+float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_2, float3 w_20)
 {
-    const float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_21);
+    const float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_20);
     return _e4;
 }
 
-float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_3, float3 w_22, float3 m_35)
+float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_3, float3 w_21, float3 m_28)
 {
-    const float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_22);
-    const float _e5 = ndf_g1_of(_e3, dot(w_22, m_35));
+    const float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_21);
+    const float _e5 = ndf_g1_of(_e3, dot(w_21, m_28));
     return _e5;
 }
 
-float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_4, float3 i_9, float3 o_8, float3 m_36)
+float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_4, float3 i_9, float3 o_7, float3 m_29)
 {
     const float _e4 = filter_method_lambda_rect_filtered(lobe_4, i_9);
-    const float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_8);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_36), dot(o_8, m_36));
+    const float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_7);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_29), dot(o_7, m_29));
     return _e8;
 }
 
-float filter_method_d_ggx_rect(filter_method_Rect method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, float3 m_37)
+float filter_method_d_ggx_rect(filter_method_Rect method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, float3 m_30)
 {
     const filter_method_RectFilteredGgx _e4 = filter_method_rect_lobe(method_8, material_8, fp_15);
-    const float _e5 = filter_method_d_rect_filtered(_e4, m_37);
+    const float _e5 = filter_method_d_rect_filtered(_e4, m_30);
     return _e5;
 }
 
 ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(filter_method_Proxy method_9, ndf_roughness_axis_aligned_AxisAligned material_9, footprint_Footprint fp_16)
 {
-    const kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_16);
+    const kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_16);
     const kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
-    float2 h_32 = _e6.half_extent;
-    const ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_32);
+    float2 h_31 = _e6.half_extent;
+    const ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_31);
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_3 = _e8;
     return ndf_roughness_axis_aligned_axisaligned_3;
 }
 
-float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, float3 m_38)
+float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, float3 m_31)
 {
     const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
-    const float _e5 = ndf_ggx_d_axis_aligned(_e4, m_38);
+    const float _e5 = ndf_ggx_d_axis_aligned(_e4, m_31);
     return _e5;
 }
 
@@ -3513,86 +3289,22 @@ filter_deferred_KernelConvention filter_presets_preset(uint i_10)
     }
 }
 
-float filter_rect_sample_half(float h_18, float alpha_11)
+float2 footprint_slope_slope_from_sphere(float3 h_18)
 {
-    float v_20 = abs(h_18);
-    return ((v_20 >= 0.0) ? min(v_20, (filter_rect_BIG * alpha_11)) : 0.0);
+    float z_6 = max(h_18.z, math_F32_MIN_POSITIVE);
+    return clamp((-(h_18.xy) / (z_6).xx), (-3.4028235e38).xx, (3.4028235e38).xx);
 }
 
-float3 filter_rect_sample_normal_of_slope(float2 s_13)
+float3 footprint_slope_sphere_from_slope(float2 s_13)
 {
-    const float3 _e4 = sampling_normalize_scaled(float3(-(s_13), 1.0));
-    return float3(_e4.xy, max(_e4.z, math_F32_MIN_POSITIVE));
+    float k_30 = max(max(abs(s_13.x), abs(s_13.y)), 1.0);
+    float3 v_18 = float3((-(s_13) / (k_30).xx), (1.0 / k_30));
+    return (v_18 / (length(v_18)).xxx);
 }
 
-float3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_68, float2 half_extent_7, float2 u_13, float2 u_box)
+float2 footprint_slope_projected_from_sphere(float3 h_19)
 {
-    float2 a_34 = r_68.alpha;
-    const float _e7 = filter_rect_sample_half(half_extent_7.x, a_34.x);
-    const float _e10 = filter_rect_sample_half(half_extent_7.y, a_34.y);
-    float2 h_33 = float2(_e7, _e10);
-    const float _e13 = sampling_clamp_unit(u_13.x);
-    const float _e15 = sampling_clamp_unit(u_13.y);
-    const float2 _e16 = math_sincos_turns(_e15);
-    float rad_1 = sqrt((_e13 / (1.0 - _e13)));
-    float2 g_9 = (-(a_34) * (rad_1 * _e16));
-    const float _e25 = sampling_clamp_unit(u_box.x);
-    const float _e27 = sampling_clamp_unit(u_box.y);
-    float2 b_9 = float2(_e25, _e27);
-    float2 d_8 = (((2.0 * b_9) - (1.0).xx) * h_33);
-    const float3 _e36 = filter_rect_sample_normal_of_slope((g_9 + d_8));
-    return _e36;
-}
-
-float filter_rect_sample_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_69, float2 half_extent_8, float3 m_39)
-{
-    const float _e3 = filter_rect_d_rect(r_69, m_39, half_extent_8);
-    return ((m_39.z > 0.0) ? (_e3 * m_39.z) : 0.0);
-}
-
-float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_70, float2 half_extent_9, float3 wo_6, float3 m_40)
-{
-    bool local_25 = (bool)0;
-    bool local_26 = (bool)0;
-
-    float wom_1 = dot(wo_6, m_40);
-    if (!(!((wo_6.z > 0.0)))) {
-        local_25 = !((m_40.z > 0.0));
-    } else {
-        local_25 = true;
-    }
-    bool _e17 = local_25;
-    if (!(_e17)) {
-        local_26 = !((wom_1 > 0.0));
-    } else {
-        local_26 = true;
-    }
-    bool _e25 = local_26;
-    if (_e25) {
-        return 0.0;
-    }
-    const float _e27 = filter_rect_d_rect(r_70, m_40, half_extent_9);
-    const float _e30 = filter_rect_lambda_lambda_rect(r_70, half_extent_9, wo_6);
-    float v_21 = ((wom_1 * _e27) / (wo_6.z * (1.0 + _e30)));
-    return ((v_21 <= math_F32_MAX) ? v_21 : 0.0);
-}
-
-float2 footprint_slope_slope_from_sphere(float3 h_19)
-{
-    float z_7 = max(h_19.z, math_F32_MIN_POSITIVE);
-    return clamp((-(h_19.xy) / (z_7).xx), (-3.4028235e38).xx, (3.4028235e38).xx);
-}
-
-float3 footprint_slope_sphere_from_slope(float2 s_14)
-{
-    float k_31 = max(max(abs(s_14.x), abs(s_14.y)), 1.0);
-    float3 v_22 = float3((-(s_14) / (k_31).xx), (1.0 / k_31));
-    return (v_22 / (length(v_22)).xxx);
-}
-
-float2 footprint_slope_projected_from_sphere(float3 h_20)
-{
-    return h_20.xy;
+    return h_19.xy;
 }
 
 float3 footprint_slope_sphere_from_projected(float2 p_1)
@@ -3612,62 +3324,237 @@ float2 footprint_slope_slope_from_projected(float2 p_2)
     return _e2;
 }
 
-float2 footprint_slope_projected_from_slope(float2 s_15)
+float2 footprint_slope_projected_from_slope(float2 s_14)
 {
-    const float3 _e1 = footprint_slope_sphere_from_slope(s_15);
+    const float3 _e1 = footprint_slope_sphere_from_slope(s_14);
     const float2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
+}
+
+sampling_Warp Constructsampling_Warp(float arg0, float arg1, float arg2) {
+    sampling_Warp ret = (sampling_Warp)0;
+    ret.l_xx = arg0;
+    ret.l_yx = arg1;
+    ret.l_yy = arg2;
+    return ret;
+}
+
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_61)
+{
+    const float3 _e1 = ndf_roughness_matrix_clamped_entries(r_61);
+    float l_xx = sqrt(_e1.x);
+    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_61.sqrt_det / l_xx));
+    return sampling_warp_1;
+}
+
+float3 sampling_normalize_scaled(float3 v_12)
+{
+    float3 w_27 = (v_12 / (max(max(abs(v_12.x), abs(v_12.y)), abs(v_12.z))).xxx);
+    return (w_27 / (length(w_27)).xxx);
+}
+
+float3 sampling_stretch(sampling_Warp l_3, float3 w_22)
+{
+    return float3(((l_3.l_xx * w_22.x) + (l_3.l_yx * w_22.y)), (l_3.l_yy * w_22.y), w_22.z);
+}
+
+float3 sampling_unstretch(sampling_Warp l_4, float3 n_5)
+{
+    const float3 _e14 = sampling_normalize_scaled(float3((l_4.l_xx * n_5.x), ((l_4.l_yx * n_5.x) + (l_4.l_yy * n_5.y)), n_5.z));
+    return _e14;
+}
+
+float sampling_clamp_unit(float u_7)
+{
+    return ((u_7 >= 0.0) ? min(u_7, sampling_ONE_MINUS_EPS) : 0.0);
+}
+
+float3 sampling_reflect(float3 wo, float3 m_32)
+{
+    return (((2.0 * dot(wo, m_32)) * m_32) - wo);
+}
+
+float3 sampling_ggx_standard_visible(float3 wi, float2 u_8)
+{
+    const float2 _e3 = math_sincos_turns(u_8.x);
+    float z_7 = (((1.0 - u_8.y) * (1.0 + wi.z)) - wi.z);
+    float sin_theta_1 = sqrt(clamp((1.0 - (z_7 * z_7)), 0.0, 1.0));
+    return (float3((sin_theta_1 * _e3), z_7) + wi);
+}
+
+float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_62, float3 wo_1, float2 u_9)
+{
+    bool local_20 = (bool)0;
+
+    if (!((wo_1.z > 0.0))) {
+        return (0.0).xxx;
+    }
+    const sampling_Warp _e9 = sampling_warp(r_62);
+    const float3 _e10 = sampling_normalize_scaled(wo_1);
+    const float3 _e11 = sampling_stretch(_e9, _e10);
+    const float3 _e12 = sampling_normalize_scaled(_e11);
+    if (!((_e12.z > 0.0))) {
+        return (0.0).xxx;
+    }
+    const float _e20 = sampling_clamp_unit(u_9.x);
+    const float _e22 = sampling_clamp_unit(u_9.y);
+    const float3 _e24 = sampling_ggx_standard_visible(_e12, float2(_e20, _e22));
+    const float3 _e25 = sampling_unstretch(_e9, _e24);
+    if ((_e25.z > 0.0)) {
+        local_20 = (dot(wo_1, _e25) > 0.0);
+    } else {
+        local_20 = false;
+    }
+    bool _e35 = local_20;
+    if (_e35) {
+        return _e25;
+    }
+    const float3 _e36 = sampling_unstretch(_e9, _e12);
+    return ((_e36.z > 0.0) ? _e36 : (0.0).xxx);
+}
+
+float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_63, float2 u_10)
+{
+    const float _e3 = sampling_clamp_unit(u_10.x);
+    const float _e5 = sampling_clamp_unit(u_10.y);
+    const float2 _e6 = math_sincos_turns(_e5);
+    float3 n_7 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
+    const sampling_Warp _e13 = sampling_warp(r_63);
+    const float3 _e14 = sampling_unstretch(_e13, n_7);
+    return _e14;
+}
+
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_64, float3 m_33)
+{
+    const float _e2 = ndf_ggx_d_matrix(r_64, m_33);
+    return ((m_33.z > 0.0) ? (_e2 * m_33.z) : 0.0);
+}
+
+float sampling_visible_normal_pdf_of(float3 wo_2, float3 m_34, float d_1, float lambda)
+{
+    bool local_21 = (bool)0;
+    bool local_22 = (bool)0;
+
+    float wom = dot(wo_2, m_34);
+    float v_19 = ((wom * d_1) / (wo_2.z * (1.0 + lambda)));
+    if ((wo_2.z > 0.0)) {
+        local_21 = (wom > 0.0);
+    } else {
+        local_21 = false;
+    }
+    bool _e19 = local_21;
+    if (_e19) {
+        local_22 = (v_19 <= math_F32_MAX);
+    } else {
+        local_22 = false;
+    }
+    bool _e25 = local_22;
+    return (_e25 ? v_19 : 0.0);
+}
+
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_65, float3 wo_3, float3 m_35)
+{
+    const float _e3 = ndf_ggx_d_matrix(r_65, m_35);
+    const float _e4 = ndf_ggx_lambda_matrix(r_65, wo_3);
+    const float _e5 = sampling_visible_normal_pdf_of(wo_3, m_35, _e3, _e4);
+    return _e5;
+}
+
+float sampling_reflection_pdf_of(float3 o_8, float3 m_36, float d_2, float lambda_1)
+{
+    bool local_23 = (bool)0;
+    bool local_24 = (bool)0;
+
+    float v_20 = (d_2 / ((4.0 * o_8.z) * (1.0 + lambda_1)));
+    if ((o_8.z > 0.0)) {
+        local_23 = (dot(o_8, m_36) > 0.0);
+    } else {
+        local_23 = false;
+    }
+    bool _e20 = local_23;
+    if (_e20) {
+        local_24 = (v_20 <= math_F32_MAX);
+    } else {
+        local_24 = false;
+    }
+    bool _e26 = local_24;
+    return (_e26 ? v_20 : 0.0);
+}
+
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_66, float3 wo_4, float3 m_37)
+{
+    const float3 _e3 = sampling_normalize_scaled(wo_4);
+    const float _e4 = ndf_ggx_d_matrix(r_66, m_37);
+    const float _e5 = ndf_ggx_lambda_matrix(r_66, _e3);
+    const float _e6 = sampling_reflection_pdf_of(_e3, m_37, _e4, _e5);
+    return _e6;
+}
+
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_67, float3 wo_5, float3 wi_1)
+{
+    if (!((wo_5.z > 0.0))) {
+        return 0.0;
+    }
+    const float3 _e8 = sampling_normalize_scaled(wo_5);
+    const float3 _e9 = sampling_normalize_scaled(wi_1);
+    float3 h_32 = (_e8 + _e9);
+    float len = length(h_32);
+    if (!((len > 0.0))) {
+        return 0.0;
+    }
+    const float _e18 = sampling_reflection_pdf_from_normal(r_67, wo_5, (h_32 / (len).xxx));
+    return _e18;
 }
 
 float sampling_beckmann_erfcx(float z_1)
 {
     float p_3 = 0.17087276;
 
-    float t_18 = (1.0 / (1.0 + (0.5 * z_1)));
+    float t_17 = (1.0 / (1.0 + (0.5 * z_1)));
     float _e9 = p_3;
-    p_3 = ((_e9 * t_18) - 0.82215226);
+    p_3 = ((_e9 * t_17) - 0.82215226);
     float _e13 = p_3;
-    p_3 = ((_e13 * t_18) + 1.4885159);
+    p_3 = ((_e13 * t_17) + 1.4885159);
     float _e17 = p_3;
-    p_3 = ((_e17 * t_18) - 1.135204);
+    p_3 = ((_e17 * t_17) - 1.135204);
     float _e21 = p_3;
-    p_3 = ((_e21 * t_18) + 0.27886808);
+    p_3 = ((_e21 * t_17) + 0.27886808);
     float _e25 = p_3;
-    p_3 = ((_e25 * t_18) - 0.18628806);
+    p_3 = ((_e25 * t_17) - 0.18628806);
     float _e29 = p_3;
-    p_3 = ((_e29 * t_18) + 0.09678418);
+    p_3 = ((_e29 * t_17) + 0.09678418);
     float _e33 = p_3;
-    p_3 = ((_e33 * t_18) + 0.37409195);
+    p_3 = ((_e33 * t_17) + 0.37409195);
     float _e37 = p_3;
-    p_3 = ((_e37 * t_18) + 1.0000237);
+    p_3 = ((_e37 * t_17) + 1.0000237);
     float _e41 = p_3;
-    p_3 = ((_e41 * t_18) - 1.2655122);
+    p_3 = ((_e41 * t_17) - 1.2655122);
     float _e45 = p_3;
     const float _e46 = math_exp(_e45);
-    return (t_18 * _e46);
+    return (t_17 * _e46);
 }
 
-float sampling_beckmann_upper_tail(float x_8, float c_10, float s_16)
+float sampling_beckmann_upper_tail(float x_8, float c_10, float s_15)
 {
     const float _e5 = math_exp((-(x_8) * x_8));
     const float _e8 = sampling_beckmann_erfcx(x_8);
-    return ((0.5 * _e5) * ((c_10 * _e8) - (s_16 * sampling_beckmann_INV_SQRT_PI)));
+    return ((0.5 * _e5) * ((c_10 * _e8) - (s_15 * sampling_beckmann_INV_SQRT_PI)));
 }
 
-float2 sampling_beckmann_cdf_terms(float x_9, float c_11, float s_17)
+float2 sampling_beckmann_cdf_terms(float x_9, float c_11, float s_16)
 {
     float k_23 = (float)0;
 
     const float _e5 = math_exp((-(x_9) * x_9));
     if ((x_9 <= 0.0)) {
         const float _e12 = sampling_beckmann_erfcx(-(x_9));
-        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_17 * sampling_beckmann_INV_SQRT_PI)));
+        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_16 * sampling_beckmann_INV_SQRT_PI)));
     } else {
-        const float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_17);
+        const float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_16);
         k_23 = (c_11 - _e18);
     }
     float _e20 = k_23;
-    return float2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_17 * x_9))));
+    return float2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_16 * x_9))));
 }
 
 float sampling_beckmann_erfinv_guess(float x_10)
@@ -3675,11 +3562,11 @@ float sampling_beckmann_erfinv_guess(float x_10)
     float w_23 = (float)0;
     float p_4 = (float)0;
 
-    float a_35 = ((1.0 - x_10) * (1.0 + x_10));
-    if (!((a_35 > 0.0))) {
+    float a_34 = ((1.0 - x_10) * (1.0 + x_10));
+    if (!((a_34 > 0.0))) {
         return 0.0;
     }
-    const float _e10 = math_ln(a_35);
+    const float _e10 = math_ln(a_34);
     w_23 = -(_e10);
     float _e14 = w_23;
     if ((_e14 < 5.0)) {
@@ -3743,40 +3630,40 @@ float sampling_beckmann_erfinv_guess(float x_10)
     return (_e106 * x_10);
 }
 
-float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u_14)
+float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u_11)
 {
     float lo_3 = -9.0;
     float hi_2 = (float)0;
-    bool local_27 = (bool)0;
+    bool local_25 = (bool)0;
     float x_11 = (float)0;
     float dx_old = (float)0;
     uint i_11 = 0u;
-    float g_8 = (float)0;
-    bool local_28 = (bool)0;
-    bool local_29 = (bool)0;
+    float g_6 = (float)0;
+    bool local_26 = (bool)0;
+    bool local_27 = (bool)0;
 
-    float hi0_ = ((s_18 > 0.0) ? min((c_12 / s_18), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
+    float hi0_ = ((s_17 > 0.0) ? min((c_12 / s_17), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
     hi_2 = hi0_;
-    const float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_18);
+    const float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_17);
     float norm_1 = _e13.x;
-    bool upper = (u_14 > 0.5);
-    float goal = ((upper ? (1.0 - u_14) : u_14) * norm_1);
+    bool upper = (u_11 > 0.5);
+    float goal = ((upper ? (1.0 - u_11) : u_11) * norm_1);
     if (!((goal > 0.0))) {
         float _e24 = lo_3;
         return _e24;
     }
-    const float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_18);
+    const float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_17);
     float tol = (4.7683716e-7 * goal);
-    const float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_14) - 1.0));
+    const float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_11) - 1.0));
     float _e35 = hi_2;
     float _e40 = lo_3;
     if ((_e34 > _e40)) {
         float _e44 = hi_2;
-        local_27 = (_e34 < _e44);
+        local_25 = (_e34 < _e44);
     } else {
-        local_27 = false;
+        local_25 = false;
     }
-    bool _e47 = local_27;
+    bool _e47 = local_25;
     x_11 = (_e47 ? _e34 : min(0.0, (0.5 * _e35)));
     float _e50 = hi_2;
     float _e51 = lo_3;
@@ -3798,20 +3685,20 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
         }
         {
             float _e59 = x_11;
-            const float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_18);
-            g_8 = (_e60.x - goal);
+            const float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_17);
+            g_6 = (_e60.x - goal);
             if (upper) {
                 float _e66 = x_11;
-                const float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_18);
+                const float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_17);
                 float _e69 = x_11;
-                g_8 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
+                g_6 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
             }
-            float _e74 = g_8;
+            float _e74 = g_6;
             if ((abs(_e74) <= tol)) {
                 float _e77 = x_11;
                 return _e77;
             }
-            float _e78 = g_8;
+            float _e78 = g_6;
             if ((_e78 < 0.0)) {
                 float _e81 = x_11;
                 lo_3 = _e81;
@@ -3827,26 +3714,26 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
                 float _e94 = hi_2;
                 return (0.5 * (_e93 + _e94));
             }
-            float _e98 = g_8;
+            float _e98 = g_6;
             float step_ = (_e98 / _e60.y);
             float _e101 = x_11;
             float xn = (_e101 - step_);
             float _e103 = lo_3;
             if ((xn > _e103)) {
                 float _e107 = hi_2;
-                local_28 = (xn < _e107);
+                local_26 = (xn < _e107);
             } else {
-                local_28 = false;
+                local_26 = false;
             }
-            bool _e110 = local_28;
+            bool _e110 = local_26;
             if (_e110) {
-                float _e113 = g_8;
+                float _e113 = g_6;
                 float _e117 = dx_old;
-                local_29 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
+                local_27 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
             } else {
-                local_29 = false;
+                local_27 = false;
             }
-            bool _e123 = local_29;
+            bool _e123 = local_27;
             if (_e123) {
                 dx_old = abs(step_);
                 x_11 = xn;
@@ -3869,60 +3756,60 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_18, float u
     return _e147;
 }
 
-float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_15)
+float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_12)
 {
     float c_13 = 1.0;
-    float s_19 = 0.0;
-    bool local_30 = (bool)0;
-    bool local_31 = (bool)0;
+    float s_18 = 0.0;
+    bool local_28 = (bool)0;
+    bool local_29 = (bool)0;
 
     if ((cos_theta >= 0.0)) {
-        local_30 = (sin_theta >= 0.0);
+        local_28 = (sin_theta >= 0.0);
     } else {
-        local_30 = false;
+        local_28 = false;
     }
-    bool _e14 = local_30;
+    bool _e14 = local_28;
     if (_e14) {
-        local_31 = ((cos_theta + sin_theta) > 0.0);
+        local_29 = ((cos_theta + sin_theta) > 0.0);
     } else {
-        local_31 = false;
+        local_29 = false;
     }
-    bool _e21 = local_31;
+    bool _e21 = local_29;
     if (_e21) {
         const float _e22 = math_hypot(cos_theta, sin_theta);
         c_13 = (cos_theta / _e22);
-        s_19 = (sin_theta / _e22);
+        s_18 = (sin_theta / _e22);
     }
     float _e25 = c_13;
-    float _e26 = s_19;
-    const float _e27 = sampling_clamp_unit(u_15);
+    float _e26 = s_18;
+    const float _e27 = sampling_clamp_unit(u_12);
     const float _e28 = sampling_beckmann_invert_visible_slope_cdf(_e25, _e26, _e27);
     return _e28;
 }
 
-float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_71, float2 u_16)
+float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_68, float2 u_13)
 {
-    const float _e3 = sampling_clamp_unit(u_16.x);
-    const float _e5 = sampling_clamp_unit(u_16.y);
+    const float _e3 = sampling_clamp_unit(u_13.x);
+    const float _e5 = sampling_clamp_unit(u_13.y);
     const float2 _e6 = math_sincos_turns(_e5);
     const float _e9 = math_ln((1.0 - _e3));
     const float _e14 = math_ln_1p((_e3 / (1.0 - _e3)));
-    float e_7 = ((_e3 < 0.5) ? _e14 : -(_e9));
-    float3 n_8 = float3((sqrt(e_7) * _e6), 1.0);
-    const sampling_Warp _e22 = sampling_warp(r_71);
+    float e_6 = ((_e3 < 0.5) ? _e14 : -(_e9));
+    float3 n_8 = float3((sqrt(e_6) * _e6), 1.0);
+    const sampling_Warp _e22 = sampling_warp(r_68);
     const float3 _e23 = sampling_unstretch(_e22, n_8);
     return _e23;
 }
 
-float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_72, float3 wo_7, float2 u_17)
+float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_69, float3 wo_6, float2 u_14)
 {
-    bool local_32 = (bool)0;
+    bool local_30 = (bool)0;
 
-    if (!((wo_7.z > 0.0))) {
+    if (!((wo_6.z > 0.0))) {
         return (0.0).xxx;
     }
-    const sampling_Warp _e9 = sampling_warp(r_72);
-    const float3 _e10 = sampling_normalize_scaled(wo_7);
+    const sampling_Warp _e9 = sampling_warp(r_69);
+    const float3 _e10 = sampling_normalize_scaled(wo_6);
     const float3 _e11 = sampling_stretch(_e9, _e10);
     const float3 _e12 = sampling_normalize_scaled(_e11);
     if (!((_e12.z > 0.0))) {
@@ -3930,18 +3817,18 @@ float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMat
     }
     const float _e21 = math_hypot(_e12.x, _e12.y);
     float2 phi = ((_e21 > 0.0) ? (_e12.xy / (_e21).xx) : float2(1.0, 0.0));
-    const float _e33 = sampling_clamp_unit(u_17.x);
+    const float _e33 = sampling_clamp_unit(u_14.x);
     const float _e34 = sampling_beckmann_invert_visible_slope_cdf(_e12.z, _e21, _e33);
-    const float _e38 = sampling_clamp_unit(u_17.y);
+    const float _e38 = sampling_clamp_unit(u_14.y);
     const float _e39 = sampling_beckmann_invert_visible_slope_cdf(1.0, 0.0, _e38);
-    float2 t_19 = float2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
-    const float3 _e54 = sampling_unstretch(_e9, float3(-(t_19), 1.0));
+    float2 t_18 = float2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
+    const float3 _e54 = sampling_unstretch(_e9, float3(-(t_18), 1.0));
     if ((_e54.z > 0.0)) {
-        local_32 = (dot(wo_7, _e54) > 0.0);
+        local_30 = (dot(wo_6, _e54) > 0.0);
     } else {
-        local_32 = false;
+        local_30 = false;
     }
-    bool _e64 = local_32;
+    bool _e64 = local_30;
     if (_e64) {
         return _e54;
     }
@@ -3949,27 +3836,140 @@ float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMat
     return ((_e65.z > 0.0) ? _e65 : (0.0).xxx);
 }
 
-float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_73, float3 m_41)
+float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_70, float3 m_38)
 {
-    const float _e2 = ndf_beckmann_d_matrix(r_73, m_41);
-    return ((m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0);
+    const float _e2 = ndf_beckmann_d_matrix(r_70, m_38);
+    return ((m_38.z > 0.0) ? (_e2 * m_38.z) : 0.0);
 }
 
-float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_74, float3 wo_8, float3 m_42)
+float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_71, float3 wo_7, float3 m_39)
 {
-    const float _e3 = ndf_beckmann_d_matrix(r_74, m_42);
-    const float _e4 = ndf_beckmann_lambda_matrix(r_74, wo_8);
-    const float _e5 = sampling_visible_normal_pdf_of(wo_8, m_42, _e3, _e4);
+    const float _e3 = ndf_beckmann_d_matrix(r_71, m_39);
+    const float _e4 = ndf_beckmann_lambda_matrix(r_71, wo_7);
+    const float _e5 = sampling_visible_normal_pdf_of(wo_7, m_39, _e3, _e4);
     return _e5;
 }
 
-float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_75, float3 wo_9, float3 m_43)
+float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_72, float3 wo_8, float3 m_40)
 {
-    const float3 _e3 = sampling_normalize_scaled(wo_9);
-    const float _e4 = ndf_beckmann_d_matrix(r_75, m_43);
-    const float _e5 = ndf_beckmann_lambda_matrix(r_75, _e3);
-    const float _e6 = sampling_reflection_pdf_of(_e3, m_43, _e4, _e5);
+    const float3 _e3 = sampling_normalize_scaled(wo_8);
+    const float _e4 = ndf_beckmann_d_matrix(r_72, m_40);
+    const float _e5 = ndf_beckmann_lambda_matrix(r_72, _e3);
+    const float _e6 = sampling_reflection_pdf_of(_e3, m_40, _e4, _e5);
     return _e6;
+}
+
+float2 sampling_gaussian_ggx_split(float u_15)
+{
+    float x_18 = (u_15 * 4096.0);
+    float hi_5 = floor(x_18);
+    return float2(((hi_5 + 0.5) / 4096.0), (x_18 - hi_5));
+}
+
+float3 sampling_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_7, float2 u_16)
+{
+    float2 ax_1 = float2(1.0, 0.0);
+
+    const float _e3 = sampling_clamp_unit(u_16.x);
+    const float2 _e4 = sampling_gaussian_ggx_split(_e3);
+    const float _e6 = sampling_clamp_unit(u_16.y);
+    const float2 _e7 = sampling_gaussian_ggx_split(_e6);
+    const float2 _e15 = math_sincos_turns(_e7.x);
+    float2 t_19 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
+    const sampling_Warp _e18 = sampling_warp(g_7.a);
+    float2 gs = float2((_e18.l_xx * t_19.x), ((_e18.l_yx * t_19.x) + (_e18.l_yy * t_19.y)));
+    const float _e33 = math_ln((1.0 - _e4.y));
+    const float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
+    float e_7 = ((_e4.y < 0.5) ? _e40 : -(_e33));
+    const float2 _e49 = math_sincos_turns(_e7.y);
+    float2 y_4 = (sqrt((2.0 * e_7)) * _e49);
+    kernel_covariance_Covariance k_31 = g_7.k;
+    const float2 _e52 = kernel_covariance_eigenvalues(k_31);
+    float khalf = (0.5 * (k_31.s_xx - k_31.s_yy));
+    const float _e59 = math_hypot(khalf, k_31.s_xy);
+    if ((_e59 > 0.0)) {
+        float2 w_28 = ((khalf >= 0.0) ? float2((_e59 + khalf), k_31.s_xy) : float2(k_31.s_xy, (_e59 - khalf)));
+        const float _e77 = math_hypot(w_28.x, w_28.y);
+        ax_1 = (w_28 / (_e77).xx);
+    }
+    float2 kk_1 = float2((sqrt(_e52.y) * y_4.x), (sqrt(_e52.x) * y_4.y));
+    float _e90 = ax_1.x;
+    float _e94 = ax_1.y;
+    float _e99 = ax_1.y;
+    float _e103 = ax_1.x;
+    float2 s_32 = (gs + float2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
+    const float3 _e112 = sampling_normalize_scaled(float3(-(s_32), 1.0));
+    return float3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
+}
+
+float sampling_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_8, float3 m_41)
+{
+    const float _e2 = filter_gaussian_ggx_d(g_8, m_41);
+    return ((m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0);
+}
+
+float sampling_rect_half(float h_20, float alpha_11)
+{
+    float v_21 = abs(h_20);
+    return ((v_21 >= 0.0) ? min(v_21, (filter_rect_BIG * alpha_11)) : 0.0);
+}
+
+float3 sampling_rect_normal_of_slope(float2 s_19)
+{
+    const float3 _e4 = sampling_normalize_scaled(float3(-(s_19), 1.0));
+    return float3(_e4.xy, max(_e4.z, math_F32_MIN_POSITIVE));
+}
+
+float3 sampling_rect_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_73, float2 half_extent_7, float2 u_17, float2 u_box)
+{
+    float2 a_35 = r_73.alpha;
+    const float _e7 = sampling_rect_half(half_extent_7.x, a_35.x);
+    const float _e10 = sampling_rect_half(half_extent_7.y, a_35.y);
+    float2 h_33 = float2(_e7, _e10);
+    const float _e13 = sampling_clamp_unit(u_17.x);
+    const float _e15 = sampling_clamp_unit(u_17.y);
+    const float2 _e16 = math_sincos_turns(_e15);
+    float rad_1 = sqrt((_e13 / (1.0 - _e13)));
+    float2 g_9 = (-(a_35) * (rad_1 * _e16));
+    const float _e25 = sampling_clamp_unit(u_box.x);
+    const float _e27 = sampling_clamp_unit(u_box.y);
+    float2 b_9 = float2(_e25, _e27);
+    float2 d_8 = (((2.0 * b_9) - (1.0).xx) * h_33);
+    const float3 _e36 = sampling_rect_normal_of_slope((g_9 + d_8));
+    return _e36;
+}
+
+float sampling_rect_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_74, float2 half_extent_8, float3 m_42)
+{
+    const float _e3 = filter_rect_d_rect(r_74, m_42, half_extent_8);
+    return ((m_42.z > 0.0) ? (_e3 * m_42.z) : 0.0);
+}
+
+float sampling_rect_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_75, float2 half_extent_9, float3 wo_9, float3 m_43)
+{
+    bool local_31 = (bool)0;
+    bool local_32 = (bool)0;
+
+    float wom_1 = dot(wo_9, m_43);
+    if (!(!((wo_9.z > 0.0)))) {
+        local_31 = !((m_43.z > 0.0));
+    } else {
+        local_31 = true;
+    }
+    bool _e17 = local_31;
+    if (!(_e17)) {
+        local_32 = !((wom_1 > 0.0));
+    } else {
+        local_32 = true;
+    }
+    bool _e25 = local_32;
+    if (_e25) {
+        return 0.0;
+    }
+    const float _e27 = filter_rect_d_rect(r_75, m_43, half_extent_9);
+    const float _e30 = filter_rect_lambda_lambda_rect(r_75, half_extent_9, wo_9);
+    float v_22 = ((wom_1 * _e27) / (wo_9.z * (1.0 + _e30)));
+    return ((v_22 <= math_F32_MAX) ? v_22 : 0.0);
 }
 
 float4 filtered_ndf_entry() : SV_Target0

@@ -9,6 +9,19 @@
 
 using metal::uint;
 
+struct footprint_jacobian_Polar {
+    metal::float3 h;
+    metal::float2 cs;
+    char _pad2[8];
+};
+struct footprint_jacobian_SphericalBasis {
+    metal::float3 e_x;
+    metal::float3 e_y;
+};
+struct footprint_Footprint {
+    metal::float2 dh_u;
+    metal::float2 dh_v;
+};
 struct kernel_covariance_Covariance {
     float s_xx;
     float s_xy;
@@ -37,6 +50,17 @@ struct ndf_roughness_matrix_RoughnessMatrix {
     float tau;
     char _pad7[4];
 };
+struct kernel_rect_BoundingRect {
+    metal::float2 half_extent;
+};
+struct kernel_clamp_ClampRules {
+    float max_extent;
+    uint floor_kind;
+    float floor;
+    float kappa;
+    bool det_clamp;
+    char _pad5[3];
+};
 struct ndf_roughness_isotropic_Isotropic {
     float alpha;
     float inv_alpha_sq;
@@ -44,11 +68,6 @@ struct ndf_roughness_isotropic_Isotropic {
 struct ndf_roughness_axis_aligned_AxisAligned {
     metal::float2 alpha;
     metal::float2 inv_alpha_sq;
-};
-struct sampling_Warp {
-    float l_xx;
-    float l_yx;
-    float l_yy;
 };
 struct filter_gaussian_ggx_GaussianFilteredGgx {
     ndf_roughness_matrix_RoughnessMatrix a;
@@ -63,30 +82,6 @@ struct filter_lean_LeanMoments {
     metal::float2 mean;
     char _pad1[8];
     metal::float3 second;
-};
-struct footprint_jacobian_Polar {
-    metal::float3 h;
-    metal::float2 cs;
-    char _pad2[8];
-};
-struct footprint_jacobian_SphericalBasis {
-    metal::float3 e_x;
-    metal::float3 e_y;
-};
-struct kernel_rect_BoundingRect {
-    metal::float2 half_extent;
-};
-struct footprint_Footprint {
-    metal::float2 dh_u;
-    metal::float2 dh_v;
-};
-struct kernel_clamp_ClampRules {
-    float max_extent;
-    uint floor_kind;
-    float floor;
-    float kappa;
-    bool det_clamp;
-    char _pad5[3];
 };
 struct filter_method_Gaussian {
     kernel_clamp_ClampRules clamps;
@@ -110,6 +105,11 @@ struct filter_method_RectFilteredGgx {
 struct filter_method_Proxy {
     kernel_clamp_ClampRules clamps;
 };
+struct sampling_Warp {
+    float l_xx;
+    float l_yx;
+    float l_yy;
+};
 constant float math_PI = 3.1415927;
 constant float math_HALF_PI = 1.5707964;
 constant float math_QUARTER_PI = 0.7853982;
@@ -125,6 +125,8 @@ constant float math_LOG2_E = 1.442695;
 constant float math_SQRT_2_ = 1.4142135;
 constant float ndf_roughness_ALPHA_MIN = 0.00000001;
 constant float ndf_roughness_ALPHA_MAX = 10000.0;
+constant float footprint_jacobian_HZ_MIN = 0.000001;
+constant float footprint_SIGMA_PIXEL = 0.5;
 constant float kernel_covariance_KERNEL_MAX = 100000000.0;
 constant float filter_deferred_KAPPA = 0.18;
 constant uint filter_deferred_DOMAIN_ALPHA_SQ = 0u;
@@ -140,6 +142,13 @@ constant uint filter_deferred_COMBINE_MAX = 1u;
 constant uint filter_deferred_BANDWIDTH_MAX = 0u;
 constant uint filter_deferred_BANDWIDTH_TRACE = 1u;
 constant uint filter_deferred_BANDWIDTH_AVERAGE = 2u;
+constant uint kernel_clamp_FLOOR_NONE = 0u;
+constant uint kernel_clamp_FLOOR_CONSTANT = 1u;
+constant uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
+constant kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true};
+constant kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true};
+constant kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules {340282350000000000000000000000000000000.0, 0u, 0.0, 340282350000000000000000000000000000000.0, false};
+constant kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true};
 constant float ndf_beckmann_EXP_SPLIT = 80.0;
 constant float ndf_beckmann_SQRT_PI = 1.7724539;
 constant float filter_gaussian_ggx_quad_FAR = 320000.0;
@@ -156,17 +165,7 @@ constant float filter_gaussian_ggx_quad_S_MAX = 0.25;
 constant float filter_gaussian_ggx_quad_S_COEF = 0.25;
 constant float filter_gaussian_ggx_quad_S_EPS = 0.00000001;
 constant uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
-constant float sampling_ONE_MINUS_EPS = 0.99999994;
-constant float footprint_jacobian_HZ_MIN = 0.000001;
-constant float footprint_SIGMA_PIXEL = 0.5;
 constant float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
-constant uint kernel_clamp_FLOOR_NONE = 0u;
-constant uint kernel_clamp_FLOOR_CONSTANT = 1u;
-constant uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
-constant kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true};
-constant kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true};
-constant kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules {340282350000000000000000000000000000000.0, 0u, 0.0, 340282350000000000000000000000000000000.0, false};
-constant kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true};
 constant float filter_rect_BIG = 1000000000000000000.0;
 constant float filter_rect_FAR2_ = 0.25;
 constant uint filter_rect_TIER_CLOSED = 0u;
@@ -190,6 +189,7 @@ constant filter_deferred_KernelConvention filter_presets_O3DE = filter_deferred_
 constant filter_deferred_KernelConvention filter_presets_UNREAL = filter_deferred_KernelConvention {2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_BABYLON = filter_deferred_KernelConvention {2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_THREE_JS = filter_deferred_KernelConvention {2u, 3u, 1.0, 1.0, 0.0, 340282350000000000000000000000000000000.0, 0u, true, {}, 0.0525};
+constant float sampling_ONE_MINUS_EPS = 0.99999994;
 constant float sampling_beckmann_X_MAX = 9.0;
 constant uint sampling_beckmann_MAX_ITERATIONS = 64u;
 constant float sampling_beckmann_INV_SQRT_PI = 0.5641896;
@@ -330,6 +330,169 @@ float ndf_roughness_clamp_alpha(
     return (alpha >= ndf_roughness_ALPHA_MIN) ? metal::min(alpha, ndf_roughness_ALPHA_MAX) : ndf_roughness_ALPHA_MIN;
 }
 
+footprint_jacobian_Polar footprint_jacobian_polar(
+    metal::float3 h_in
+) {
+    metal::float2 cs_1 = metal::float2(1.0, 0.0);
+    float big = metal::max(metal::max(metal::abs(h_in.x), metal::abs(h_in.y)), metal::abs(h_in.z));
+    if (big <= 0.0) {
+        return footprint_jacobian_Polar {metal::float3(0.0, 0.0, 1.0), metal::float2(1.0, 0.0)};
+    }
+    metal::float3 h0_ = h_in / metal::float3(big);
+    metal::float3 h_21 = h0_ / metal::float3(metal::length(h0_));
+    float qs_3 = metal::max(metal::abs(h_21.x), metal::abs(h_21.y));
+    if (qs_3 > 0.0) {
+        metal::float2 q_5 = h_21.xy / metal::float2(qs_3);
+        cs_1 = q_5 / metal::float2(metal::length(q_5));
+    }
+    if (h_21.z >= footprint_jacobian_HZ_MIN) {
+        metal::float2 _e44 = cs_1;
+        return footprint_jacobian_Polar {h_21, _e44};
+    }
+    metal::float2 _e47 = cs_1;
+    metal::float2 _e51 = cs_1;
+    return footprint_jacobian_Polar {metal::float3(1.0 * _e47, footprint_jacobian_HZ_MIN), _e51};
+}
+
+metal::float3 footprint_jacobian_sanitize(
+    metal::float3 h
+) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h);
+    return _e1.h;
+}
+
+footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(
+    metal::float3 h_1
+) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
+    float st = metal::length(_e1.h.xy);
+    return footprint_jacobian_SphericalBasis {metal::float3(_e1.h.z * _e1.cs, -(st)), metal::float3(-(_e1.cs.y), _e1.cs.x, 0.0)};
+}
+
+metal::float2 footprint_jacobian_spherical_components(
+    metal::float3 h_2,
+    metal::float3 dh
+) {
+    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_2);
+    return metal::float2(metal::dot(dh, _e2.e_x), metal::dot(dh, _e2.e_y));
+}
+
+metal::float2x2 footprint_jacobian_sphere_to_projected(
+    metal::float3 h_3
+) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_3);
+    return metal::float2x2(_e1.h.z * _e1.cs, metal::float2(-(_e1.cs.y), _e1.cs.x));
+}
+
+metal::float2x2 footprint_jacobian_projected_to_slope(
+    metal::float3 h_in_1
+) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
+    metal::float3 h_22 = _e1.h;
+    float k_25 = -1.0 / ((_e1.h.z * _e1.h.z) * _e1.h.z);
+    float xy = _e1.h.x * _e1.h.y;
+    return metal::float2x2(metal::float2((_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z), xy) * k_25, metal::float2(xy, (_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z)) * k_25);
+}
+
+metal::float2x2 footprint_jacobian_slope_to_projected(
+    metal::float3 h_in_2
+) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
+    metal::float3 h_23 = _e1.h;
+    float xy_1 = _e1.h.x * _e1.h.y;
+    return metal::float2x2(metal::float2((_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z), -(xy_1)) * -(_e1.h.z), metal::float2(-(xy_1), (_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z)) * -(_e1.h.z));
+}
+
+metal::float2x2 footprint_jacobian_sphere_to_slope(
+    metal::float3 h_4
+) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
+    float k_26 = -1.0 / (_e1.h.z * _e1.h.z);
+    return metal::float2x2(_e1.cs * k_26, metal::float2(-(_e1.h.z) * _e1.cs.y, _e1.h.z * _e1.cs.x) * k_26);
+}
+
+float footprint_jacobian_det_sphere_to_projected(
+    metal::float3 h_5
+) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
+    return _e1.h.z;
+}
+
+float footprint_jacobian_det_projected_to_slope(
+    metal::float3 h_6
+) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
+    float z_4 = _e1.h.z;
+    float z2_4 = z_4 * z_4;
+    return 1.0 / (z2_4 * z2_4);
+}
+
+float footprint_jacobian_det_sphere_to_slope(
+    metal::float3 h_7
+) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
+    float z_5 = _e1.h.z;
+    return 1.0 / ((z_5 * z_5) * z_5);
+}
+
+metal::float2 footprint_jacobian_spherical_to_slope(
+    metal::float3 h_8,
+    metal::float2 e_1
+) {
+    metal::float2x2 _e2 = footprint_jacobian_sphere_to_slope(h_8);
+    return _e2 * e_1;
+}
+
+metal::float2 footprint_jacobian_spherical_to_projected(
+    metal::float3 h_9,
+    metal::float2 e_2
+) {
+    metal::float2x2 _e2 = footprint_jacobian_sphere_to_projected(h_9);
+    return _e2 * e_2;
+}
+
+footprint_Footprint footprint_from_slope_derivatives(
+    metal::float2 dh_u,
+    metal::float2 dh_v
+) {
+    return footprint_Footprint {dh_u, dh_v};
+}
+
+footprint_Footprint footprint_from_projected_derivatives(
+    metal::float2 dp_u,
+    metal::float2 dp_v
+) {
+    return footprint_Footprint {dp_u, dp_v};
+}
+
+footprint_Footprint footprint_from_projected_derivatives_in_slope(
+    metal::float3 h_10,
+    metal::float2 dp_u_1,
+    metal::float2 dp_v_1
+) {
+    float big_1 = metal::max(metal::max(metal::abs(h_10.x), metal::abs(h_10.y)), metal::abs(h_10.z));
+    if (big_1 <= 0.0) {
+        return footprint_Footprint {metal::float2(0.0), metal::float2(0.0)};
+    }
+    metal::float2x2 _e18 = footprint_jacobian_projected_to_slope(h_10);
+    return footprint_Footprint {_e18 * dp_u_1, _e18 * dp_v_1};
+}
+
+footprint_Footprint footprint_from_normal_differences(
+    metal::float3 dn_u,
+    metal::float3 dn_v
+) {
+    float lu = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_u), 0.000001);
+    float lv = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_v), 0.000001);
+    return footprint_Footprint {dn_u.xy * (2.0 / lu), dn_v.xy * (2.0 / lv)};
+}
+
+float footprint_max_extent(
+    footprint_Footprint fp
+) {
+    return 0.5 * metal::max(metal::length(fp.dh_u + fp.dh_v), metal::length(fp.dh_u - fp.dh_v));
+}
+
 kernel_covariance_Covariance kernel_covariance_zero(
 ) {
     return kernel_covariance_Covariance {0.0, 0.0, 0.0, 0.0};
@@ -341,6 +504,17 @@ kernel_covariance_Covariance kernel_covariance_from_entries(
     float s_yy
 ) {
     return kernel_covariance_Covariance {s_xx, s_xy, s_yy, (s_xx * s_yy) - (s_xy * s_xy)};
+}
+
+kernel_covariance_Covariance kernel_covariance_from_footprint(
+    footprint_Footprint fp_1,
+    float sigma
+) {
+    metal::float2 u_18 = fp_1.dh_u;
+    metal::float2 v_13 = fp_1.dh_v;
+    float s2_ = sigma * sigma;
+    float cross = ((fp_1.dh_u.x * fp_1.dh_v.y) - (fp_1.dh_u.y * fp_1.dh_v.x)) * s2_;
+    return kernel_covariance_Covariance {((fp_1.dh_u.x * fp_1.dh_u.x) + (fp_1.dh_v.x * fp_1.dh_v.x)) * s2_, ((fp_1.dh_u.x * fp_1.dh_u.y) + (fp_1.dh_v.x * fp_1.dh_v.y)) * s2_, ((fp_1.dh_u.y * fp_1.dh_u.y) + (fp_1.dh_v.y * fp_1.dh_v.y)) * s2_, cross * cross};
 }
 
 float kernel_covariance_trace(
@@ -360,8 +534,8 @@ kernel_covariance_Covariance kernel_covariance_add(
     kernel_covariance_Covariance a,
     kernel_covariance_Covariance b
 ) {
-    float cross = ((a.s_xx * b.s_yy) + (a.s_yy * b.s_xx)) - ((2.0 * a.s_xy) * b.s_xy);
-    return kernel_covariance_Covariance {a.s_xx + b.s_xx, a.s_xy + b.s_xy, a.s_yy + b.s_yy, (a.det + b.det) + cross};
+    float cross_1 = ((a.s_xx * b.s_yy) + (a.s_yy * b.s_xx)) - ((2.0 * a.s_xy) * b.s_xy);
+    return kernel_covariance_Covariance {a.s_xx + b.s_xx, a.s_xy + b.s_xy, a.s_yy + b.s_yy, (a.det + b.det) + cross_1};
 }
 
 metal::float2 kernel_covariance_eigenvalues(
@@ -407,8 +581,8 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
         return kernel_covariance_Covariance {max_eig, 0.0, max_eig, max_eig * max_eig};
     }
     float p_7 = r_78 + metal::abs(d_3);
-    float q_5 = (p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0;
-    metal::float2 ee = (d_3 >= 0.0) ? metal::float2(p_7, q_5) : metal::float2(q_5, p_7);
+    float q_6 = (p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0;
+    metal::float2 ee = (d_3 >= 0.0) ? metal::float2(p_7, q_6) : metal::float2(q_6, p_7);
     float inv_1 = 1.0 / (2.0 * r_78);
     float p11_ = ee.x * inv_1;
     float p12_ = b_6 * inv_1;
@@ -421,8 +595,8 @@ kernel_covariance_Covariance kernel_covariance_sanitized(
 ) {
     bool local_1 = {};
     bool local_2 = {};
-    float big = metal::max(metal::max(metal::abs(c_4.s_xx), metal::abs(c_4.s_yy)), metal::abs(c_4.s_xy));
-    if (big > math_F32_MAX) {
+    float big_2 = metal::max(metal::max(metal::abs(c_4.s_xx), metal::abs(c_4.s_yy)), metal::abs(c_4.s_xy));
+    if (big_2 > math_F32_MAX) {
         return kernel_covariance_Covariance {100000000.0, 0.0, 100000000.0, 10000000000000000.0};
     }
     if (c_4.s_xx >= 0.0) {
@@ -493,20 +667,20 @@ float filter_deferred_max_eigenvalue(
 
 float filter_deferred_norm_eval(
     uint norm,
-    metal::float3 dn_u,
-    metal::float3 dn_v
+    metal::float3 dn_u_1,
+    metal::float3 dn_v_1
 ) {
-    float a_19 = metal::dot(dn_u, dn_u);
-    float c_15 = metal::dot(dn_v, dn_v);
+    float a_19 = metal::dot(dn_u_1, dn_u_1);
+    float c_15 = metal::dot(dn_v_1, dn_v_1);
     if (norm == filter_deferred_NORM_MAX_SQUARED) {
         return metal::max(a_19, c_15);
     }
     if (norm == filter_deferred_NORM_MAX_EIGENVALUE) {
-        float _e11 = filter_deferred_max_eigenvalue(a_19, metal::dot(dn_u, dn_v), c_15);
+        float _e11 = filter_deferred_max_eigenvalue(a_19, metal::dot(dn_u_1, dn_v_1), c_15);
         return _e11;
     }
     if (norm == filter_deferred_NORM_MAX_ABS_COMPONENT) {
-        metal::float3 m_45 = metal::max(metal::abs(dn_u), metal::abs(dn_v));
+        metal::float3 m_45 = metal::max(metal::abs(dn_u_1), metal::abs(dn_v_1));
         return metal::max(metal::max(m_45.x, m_45.y), m_45.z);
     }
     return a_19 + c_15;
@@ -521,11 +695,11 @@ float filter_deferred_clamp_widening(
 
 float filter_deferred_widening(
     filter_deferred_KernelConvention conv_1,
-    metal::float3 dn_u_1,
-    metal::float3 dn_v_1
+    metal::float3 dn_u_2,
+    metal::float3 dn_v_2
 ) {
     float raw = {};
-    float _e4 = filter_deferred_norm_eval(conv_1.norm, dn_u_1, dn_v_1);
+    float _e4 = filter_deferred_norm_eval(conv_1.norm, dn_u_2, dn_v_2);
     raw = _e4;
     if (conv_1.exponent != 1.0) {
         raw = (_e4 > 0.0) ? metal::pow(_e4, conv_1.exponent) : 0.0;
@@ -561,22 +735,22 @@ float filter_deferred_apply_widening(
 float filter_deferred_apply(
     filter_deferred_KernelConvention conv_3,
     float alpha_3,
-    metal::float3 dn_u_2,
-    metal::float3 dn_v_2
+    metal::float3 dn_u_3,
+    metal::float3 dn_v_3
 ) {
-    float _e4 = filter_deferred_widening(conv_3, dn_u_2, dn_v_2);
+    float _e4 = filter_deferred_widening(conv_3, dn_u_3, dn_v_3);
     float _e5 = filter_deferred_apply_widening(conv_3, alpha_3, _e4);
     return _e5;
 }
 
 kernel_covariance_Covariance filter_deferred_normal_difference_covariance(
-    metal::float3 dn_u_3,
-    metal::float3 dn_v_3,
-    float sigma
+    metal::float3 dn_u_4,
+    metal::float3 dn_v_4,
+    float sigma_1
 ) {
-    float sigma_sq = sigma * sigma;
-    metal::float3 x_12 = metal::cross(dn_u_3, dn_v_3) * sigma_sq;
-    return kernel_covariance_Covariance {metal::dot(dn_u_3, dn_u_3) * sigma_sq, metal::dot(dn_u_3, dn_v_3) * sigma_sq, metal::dot(dn_v_3, dn_v_3) * sigma_sq, metal::dot(x_12, x_12)};
+    float sigma_sq = sigma_1 * sigma_1;
+    metal::float3 x_12 = metal::cross(dn_u_4, dn_v_4) * sigma_sq;
+    return kernel_covariance_Covariance {metal::dot(dn_u_4, dn_u_4) * sigma_sq, metal::dot(dn_u_4, dn_v_4) * sigma_sq, metal::dot(dn_v_4, dn_v_4) * sigma_sq, metal::dot(x_12, x_12)};
 }
 
 float filter_deferred_bandwidth_alpha2_(
@@ -619,9 +793,9 @@ metal::float2 ndf_roughness_matrix_clamped_eigenvalues(
     if (det >= tau) {
         return l;
     }
-    float h_21 = 0.5 * (l.x + l.y);
+    float h_24 = 0.5 * (l.x + l.y);
     float gap = tau - det;
-    float t_11 = gap / (h_21 + metal::sqrt((h_21 * h_21) + gap));
+    float t_11 = gap / (h_24 + metal::sqrt((h_24 * h_24) + gap));
     float l1_ = l.x + t_11;
     return metal::float2(l1_, tau / l1_);
 }
@@ -648,9 +822,9 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(
     float rad = metal::sqrt((half_diff * half_diff) + (a12_ * a12_));
     float l1_1 = (0.5 * (a11_ + a22_)) + rad;
     float l2_2 = metal::max(det_2, 0.0) / l1_1;
-    float big_1 = rad + metal::abs(half_diff);
-    v_1 = (half_diff < 0.0) ? metal::float2(a12_, big_1) : metal::float2(big_1, a12_);
-    if (big_1 <= 0.0) {
+    float big_3 = rad + metal::abs(half_diff);
+    v_1 = (half_diff < 0.0) ? metal::float2(a12_, big_3) : metal::float2(big_3, a12_);
+    if (big_3 <= 0.0) {
         v_1 = metal::float2(1.0, 0.0);
     }
     metal::float2 _e32 = v_1;
@@ -747,40 +921,135 @@ float ndf_roughness_matrix_own_det_clamp(
     return (r_11.tau > r_11.det) ? r_11.tau : 0.0;
 }
 
+kernel_rect_BoundingRect kernel_rect_from_footprint(
+    footprint_Footprint fp_2
+) {
+    return kernel_rect_BoundingRect {(metal::abs(fp_2.dh_u) + metal::abs(fp_2.dh_v)) * 0.5};
+}
+
+kernel_covariance_Covariance kernel_rect_covariance(
+    kernel_rect_BoundingRect r_12,
+    float sigma_2
+) {
+    metal::float2 w_24 = r_12.half_extent * (2.0 * sigma_2);
+    metal::float2 v_14 = w_24 * w_24;
+    return kernel_covariance_Covariance {v_14.x, 0.0, v_14.y, v_14.x * v_14.y};
+}
+
+footprint_Footprint kernel_clamp_footprint(
+    kernel_clamp_ClampRules rules,
+    footprint_Footprint fp_3
+) {
+    float l_6 = metal::max(rules.max_extent, 0.0);
+    float scale_1 = metal::max(metal::max(metal::abs(fp_3.dh_u.x), metal::abs(fp_3.dh_u.y)), metal::max(metal::abs(fp_3.dh_v.x), metal::abs(fp_3.dh_v.y)));
+    if (scale_1 <= 0.0) {
+        return fp_3;
+    }
+    footprint_Footprint unit = footprint_Footprint {fp_3.dh_u / metal::float2(scale_1), fp_3.dh_v / metal::float2(scale_1)};
+    float _e29 = footprint_max_extent(unit);
+    if ((_e29 * scale_1) <= l_6) {
+        return fp_3;
+    }
+    return footprint_Footprint {(unit.dh_u / metal::float2(_e29)) * l_6, (unit.dh_v / metal::float2(_e29)) * l_6};
+}
+
+kernel_rect_BoundingRect kernel_clamp_rect(
+    kernel_clamp_ClampRules rules_1,
+    kernel_rect_BoundingRect r_13,
+    metal::float2 alpha_6
+) {
+    metal::float2 f_1 = metal::float2(0.0);
+    if (rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT) {
+        f_1 = metal::float2(rules_1.floor);
+    } else {
+        if (rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED) {
+            f_1 = metal::min(metal::abs(alpha_6), metal::float2(rules_1.floor));
+        }
+    }
+    float lambda_2 = metal::max(rules_1.max_extent, 0.0);
+    metal::float2 h_25 = metal::min(metal::abs(r_13.half_extent), metal::float2(lambda_2));
+    metal::float2 _e25 = f_1;
+    return kernel_rect_BoundingRect {metal::max(h_25, metal::max(_e25, metal::float2(0.0)))};
+}
+
+kernel_covariance_Covariance kernel_clamp_kernel(
+    kernel_clamp_ClampRules rules_2,
+    kernel_covariance_Covariance k_3
+) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_3);
+    if (rules_2.kappa >= math_F32_MAX) {
+        return _e2;
+    }
+    kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, 0.5 * metal::max(rules_2.kappa, 0.0));
+    return _e11;
+}
+
+float kernel_clamp_det_clamp_for(
+    kernel_clamp_ClampRules rules_3,
+    ndf_roughness_matrix_RoughnessMatrix a_2
+) {
+    float _e2 = ndf_roughness_matrix_own_det_clamp(a_2);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_2);
+    return rules_3.det_clamp ? _e3 : _e2;
+}
+
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(
+    kernel_clamp_ClampRules rules_4,
+    footprint_Footprint fp_4,
+    float sigma_3
+) {
+    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
+    kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_3);
+    kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
+    return _e5;
+}
+
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(
-    ndf_roughness_matrix_RoughnessMatrix a_2,
-    kernel_covariance_Covariance k_3,
+    ndf_roughness_matrix_RoughnessMatrix a_3,
+    kernel_covariance_Covariance k_4,
     float tau_3
 ) {
-    metal::float3 _e3 = ndf_roughness_matrix_entries(a_2);
-    float c_17 = a_2.axis.x;
-    float s_24 = a_2.axis.y;
-    float k1_1 = metal::max((((c_17 * c_17) * k_3.s_xx) + (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((s_24 * s_24) * k_3.s_yy), 0.0);
-    float k2_1 = metal::max((((s_24 * s_24) * k_3.s_xx) - (((2.0 * c_17) * s_24) * k_3.s_xy)) + ((c_17 * c_17) * k_3.s_yy), 0.0);
-    float _e38 = ndf_roughness_matrix_determinant(a_2);
-    float det_4 = (_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * metal::max(k_3.det, 0.0));
-    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det(_e3.x + (2.0 * k_3.s_xx), _e3.y + (2.0 * k_3.s_xy), _e3.z + (2.0 * k_3.s_yy), det_4, metal::max(tau_3, 0.0));
+    metal::float3 _e3 = ndf_roughness_matrix_entries(a_3);
+    float c_17 = a_3.axis.x;
+    float s_24 = a_3.axis.y;
+    float k1_1 = metal::max((((c_17 * c_17) * k_4.s_xx) + (((2.0 * c_17) * s_24) * k_4.s_xy)) + ((s_24 * s_24) * k_4.s_yy), 0.0);
+    float k2_1 = metal::max((((s_24 * s_24) * k_4.s_xx) - (((2.0 * c_17) * s_24) * k_4.s_xy)) + ((c_17 * c_17) * k_4.s_yy), 0.0);
+    float _e38 = ndf_roughness_matrix_determinant(a_3);
+    float det_4 = (_e38 + (2.0 * ((a_3.eig.y * k1_1) + (a_3.eig.x * k2_1)))) + (4.0 * metal::max(k_4.det, 0.0));
+    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det(_e3.x + (2.0 * k_4.s_xx), _e3.y + (2.0 * k_4.s_xy), _e3.z + (2.0 * k_4.s_yy), det_4, metal::max(tau_3, 0.0));
     return _e72;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(
-    ndf_roughness_matrix_RoughnessMatrix a_3,
+    ndf_roughness_matrix_RoughnessMatrix a_4,
     kernel_covariance_Covariance kernel_2
 ) {
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_3);
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_3, _e2, _e3);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_4);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e2, _e3);
     return _e4;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(
-    ndf_roughness_matrix_RoughnessMatrix a_4,
+    ndf_roughness_matrix_RoughnessMatrix a_5,
     kernel_covariance_Covariance kernel_3,
     float det_clamp_1
 ) {
     kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
-    float _e4 = ndf_roughness_matrix_own_det_clamp(a_4);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_4, _e3, metal::max(det_clamp_1, _e4));
+    float _e4 = ndf_roughness_matrix_own_det_clamp(a_5);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_5, _e3, metal::max(det_clamp_1, _e4));
+    return _e6;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(
+    kernel_clamp_ClampRules rules_5,
+    ndf_roughness_matrix_RoughnessMatrix a_6,
+    footprint_Footprint fp_5,
+    float sigma_4
+) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
+    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_6);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_6, _e4, _e5);
     return _e6;
 }
 
@@ -808,74 +1077,74 @@ float ndf_g2_of(
 }
 
 ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(
-    float alpha_6
+    float alpha_7
 ) {
-    float _e1 = ndf_roughness_clamp_alpha(alpha_6);
+    float _e1 = ndf_roughness_clamp_alpha(alpha_7);
     return ndf_roughness_isotropic_Isotropic {_e1, 1.0 / (_e1 * _e1)};
 }
 
 float ndf_roughness_isotropic_inv_quadratic(
-    ndf_roughness_isotropic_Isotropic r_12,
+    ndf_roughness_isotropic_Isotropic r_14,
     metal::float2 s_1
 ) {
-    return metal::dot(s_1, s_1) * r_12.inv_alpha_sq;
+    return metal::dot(s_1, s_1) * r_14.inv_alpha_sq;
 }
 
 float ndf_roughness_isotropic_quadratic(
-    ndf_roughness_isotropic_Isotropic r_13,
+    ndf_roughness_isotropic_Isotropic r_15,
     metal::float2 w_1
 ) {
-    metal::float2 s_25 = w_1 * r_13.alpha;
+    metal::float2 s_25 = w_1 * r_15.alpha;
     return metal::dot(s_25, s_25);
 }
 
 float ndf_roughness_isotropic_sqrt_det(
-    ndf_roughness_isotropic_Isotropic r_14
+    ndf_roughness_isotropic_Isotropic r_16
 ) {
-    return r_14.alpha * r_14.alpha;
+    return r_16.alpha * r_16.alpha;
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(
-    ndf_roughness_isotropic_Isotropic r_15
+    ndf_roughness_isotropic_Isotropic r_17
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), metal::float2(r_15.alpha));
+    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), metal::float2(r_17.alpha));
     return _e6;
 }
 
 ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(
-    metal::float2 alpha_7
+    metal::float2 alpha_8
 ) {
-    float _e2 = ndf_roughness_clamp_alpha(alpha_7.x);
-    float _e4 = ndf_roughness_clamp_alpha(alpha_7.y);
+    float _e2 = ndf_roughness_clamp_alpha(alpha_8.x);
+    float _e4 = ndf_roughness_clamp_alpha(alpha_8.y);
     metal::float2 a_20 = metal::float2(_e2, _e4);
     return ndf_roughness_axis_aligned_AxisAligned {a_20, metal::float2(1.0) / (a_20 * a_20)};
 }
 
 float ndf_roughness_axis_aligned_inv_quadratic(
-    ndf_roughness_axis_aligned_AxisAligned r_16,
+    ndf_roughness_axis_aligned_AxisAligned r_18,
     metal::float2 s_2
 ) {
-    return metal::dot(s_2 * s_2, r_16.inv_alpha_sq);
+    return metal::dot(s_2 * s_2, r_18.inv_alpha_sq);
 }
 
 float ndf_roughness_axis_aligned_quadratic(
-    ndf_roughness_axis_aligned_AxisAligned r_17,
+    ndf_roughness_axis_aligned_AxisAligned r_19,
     metal::float2 w_2
 ) {
-    metal::float2 s_26 = w_2 * r_17.alpha;
+    metal::float2 s_26 = w_2 * r_19.alpha;
     return metal::dot(s_26, s_26);
 }
 
 float ndf_roughness_axis_aligned_sqrt_det(
-    ndf_roughness_axis_aligned_AxisAligned r_18
+    ndf_roughness_axis_aligned_AxisAligned r_20
 ) {
-    return r_18.alpha.x * r_18.alpha.y;
+    return r_20.alpha.x * r_20.alpha.y;
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(
-    ndf_roughness_axis_aligned_AxisAligned r_19
+    ndf_roughness_axis_aligned_AxisAligned r_21
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), r_19.alpha);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), r_21.alpha);
     return _e5;
 }
 
@@ -894,14 +1163,14 @@ float ndf_ggx_d_of(
 ) {
     bool local_4 = {};
     float t_13 = q_xy + (m_z * m_z);
-    float v_13 = 1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13);
+    float v_15 = 1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13);
     if (m_z > 0.0) {
-        local_4 = v_13 <= math_F32_MAX;
+        local_4 = v_15 <= math_F32_MAX;
     } else {
         local_4 = false;
     }
     bool _e18 = local_4;
-    return _e18 ? v_13 : 0.0;
+    return _e18 ? v_15 : 0.0;
 }
 
 float ndf_ggx_lambda_of(
@@ -933,164 +1202,164 @@ float ndf_ggx_lambda_of(
 }
 
 float ndf_ggx_p22_isotropic(
-    ndf_roughness_isotropic_Isotropic r_20,
+    ndf_roughness_isotropic_Isotropic r_22,
     metal::float2 s_3
 ) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_20, s_3);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_20);
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_22, s_3);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_22);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_ggx_d_isotropic(
-    ndf_roughness_isotropic_Isotropic r_21,
+    ndf_roughness_isotropic_Isotropic r_23,
     metal::float3 m
 ) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_21, m.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_21);
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_23, m.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_23);
     float _e6 = ndf_ggx_d_of(_e3, m.z, _e5);
     return _e6;
 }
 
 float ndf_ggx_lambda_isotropic(
-    ndf_roughness_isotropic_Isotropic r_22,
+    ndf_roughness_isotropic_Isotropic r_24,
     metal::float3 w_3
 ) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_22, w_3.xy);
+    float _e3 = ndf_roughness_isotropic_quadratic(r_24, w_3.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_3.z));
     return _e6;
 }
 
 float ndf_ggx_g1_isotropic(
-    ndf_roughness_isotropic_Isotropic r_23,
+    ndf_roughness_isotropic_Isotropic r_25,
     metal::float3 w_4,
     metal::float3 m_1
 ) {
-    float _e3 = ndf_ggx_lambda_isotropic(r_23, w_4);
+    float _e3 = ndf_ggx_lambda_isotropic(r_25, w_4);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_4, m_1));
     return _e5;
 }
 
 float ndf_ggx_g2_isotropic(
-    ndf_roughness_isotropic_Isotropic r_24,
+    ndf_roughness_isotropic_Isotropic r_26,
     metal::float3 i,
     metal::float3 o,
     metal::float3 m_2
 ) {
-    float _e4 = ndf_ggx_lambda_isotropic(r_24, i);
-    float _e5 = ndf_ggx_lambda_isotropic(r_24, o);
+    float _e4 = ndf_ggx_lambda_isotropic(r_26, i);
+    float _e5 = ndf_ggx_lambda_isotropic(r_26, o);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i, m_2), metal::dot(o, m_2));
     return _e8;
 }
 
 float ndf_ggx_p22_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_25,
+    ndf_roughness_axis_aligned_AxisAligned r_27,
     metal::float2 s_4
 ) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_25, s_4);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_25);
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_27, s_4);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_27);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_ggx_d_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_26,
+    ndf_roughness_axis_aligned_AxisAligned r_28,
     metal::float3 m_3
 ) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_26, m_3.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_26);
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_28, m_3.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_28);
     float _e6 = ndf_ggx_d_of(_e3, m_3.z, _e5);
     return _e6;
 }
 
 float ndf_ggx_lambda_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_27,
+    ndf_roughness_axis_aligned_AxisAligned r_29,
     metal::float3 w_5
 ) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_27, w_5.xy);
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_29, w_5.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_5.z));
     return _e6;
 }
 
 float ndf_ggx_g1_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_28,
+    ndf_roughness_axis_aligned_AxisAligned r_30,
     metal::float3 w_6,
     metal::float3 m_4
 ) {
-    float _e3 = ndf_ggx_lambda_axis_aligned(r_28, w_6);
+    float _e3 = ndf_ggx_lambda_axis_aligned(r_30, w_6);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_6, m_4));
     return _e5;
 }
 
 float ndf_ggx_g2_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_29,
+    ndf_roughness_axis_aligned_AxisAligned r_31,
     metal::float3 i_1,
     metal::float3 o_1,
     metal::float3 m_5
 ) {
-    float _e4 = ndf_ggx_lambda_axis_aligned(r_29, i_1);
-    float _e5 = ndf_ggx_lambda_axis_aligned(r_29, o_1);
+    float _e4 = ndf_ggx_lambda_axis_aligned(r_31, i_1);
+    float _e5 = ndf_ggx_lambda_axis_aligned(r_31, o_1);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_1, m_5), metal::dot(o_1, m_5));
     return _e8;
 }
 
 float ndf_ggx_p22_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_30,
+    ndf_roughness_matrix_RoughnessMatrix r_32,
     metal::float2 s_5
 ) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_30, s_5);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_30);
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_32, s_5);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_32);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_ggx_d_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_31,
+    ndf_roughness_matrix_RoughnessMatrix r_33,
     metal::float3 m_6
 ) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_31, m_6.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_31);
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_33, m_6.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_33);
     float _e6 = ndf_ggx_d_of(_e3, m_6.z, _e5);
     return _e6;
 }
 
 float ndf_ggx_lambda_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_32,
+    ndf_roughness_matrix_RoughnessMatrix r_34,
     metal::float3 w_7
 ) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_32, w_7.xy);
+    float _e3 = ndf_roughness_matrix_quadratic(r_34, w_7.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_7.z));
     return _e6;
 }
 
 float ndf_ggx_g1_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_33,
+    ndf_roughness_matrix_RoughnessMatrix r_35,
     metal::float3 w_8,
     metal::float3 m_7
 ) {
-    float _e3 = ndf_ggx_lambda_matrix(r_33, w_8);
+    float _e3 = ndf_ggx_lambda_matrix(r_35, w_8);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_8, m_7));
     return _e5;
 }
 
 float ndf_ggx_g2_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_34,
+    ndf_roughness_matrix_RoughnessMatrix r_36,
     metal::float3 i_2,
     metal::float3 o_2,
     metal::float3 m_8
 ) {
-    float _e4 = ndf_ggx_lambda_matrix(r_34, i_2);
-    float _e5 = ndf_ggx_lambda_matrix(r_34, o_2);
+    float _e4 = ndf_ggx_lambda_matrix(r_36, i_2);
+    float _e5 = ndf_ggx_lambda_matrix(r_36, o_2);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_2, m_8), metal::dot(o_2, m_8));
     return _e8;
 }
 
 float ndf_beckmann_exp_neg_times(
     float x_5,
-    float k_4,
+    float k_5,
     float ln_k
 ) {
-    return (x_5 > ndf_beckmann_EXP_SPLIT) ? metal::exp(ln_k - x_5) : (metal::exp(-(x_5)) * k_4);
+    return (x_5 > ndf_beckmann_EXP_SPLIT) ? metal::exp(ln_k - x_5) : (metal::exp(-(x_5)) * k_5);
 }
 
 float ndf_beckmann_p22_of(
@@ -1108,11 +1377,11 @@ float ndf_beckmann_d_of(
     float sqrt_det_3
 ) {
     bool local_7 = {};
-    float z2_4 = m_z_1 * m_z_1;
-    float x_13 = q_xy_1 / z2_4;
-    float k_25 = 1.0 / (((math_PI * sqrt_det_3) * z2_4) * z2_4);
+    float z2_5 = m_z_1 * m_z_1;
+    float x_13 = q_xy_1 / z2_5;
+    float k_27 = 1.0 / (((math_PI * sqrt_det_3) * z2_5) * z2_5);
     float ln_k_1 = -((metal::log(math_PI * sqrt_det_3) + (4.0 * metal::log(metal::max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_13, k_25, ln_k_1);
+    float _e21 = ndf_beckmann_exp_neg_times(x_13, k_27, ln_k_1);
     if (m_z_1 > 0.0) {
         local_7 = _e21 <= math_F32_MAX;
     } else {
@@ -1181,167 +1450,167 @@ float ndf_beckmann_lambda_of(
     float _e87 = p;
     p = (_e87 * t_14) + 1.0631379;
     float _e91 = p;
-    float k_26 = _e91 / ((2.0 * a_21) + 1.0);
-    return metal::min((metal::exp(-(a_21) * a_21) * k_26) / ((3.5449078 * a_21) * (a_21 + k_26)), math_F32_MAX);
+    float k_28 = _e91 / ((2.0 * a_21) + 1.0);
+    return metal::min((metal::exp(-(a_21) * a_21) * k_28) / ((3.5449078 * a_21) * (a_21 + k_28)), math_F32_MAX);
 }
 
 float ndf_beckmann_p22_isotropic(
-    ndf_roughness_isotropic_Isotropic r_35,
+    ndf_roughness_isotropic_Isotropic r_37,
     metal::float2 s_6
 ) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_35, s_6);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_35);
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_6);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_beckmann_d_isotropic(
-    ndf_roughness_isotropic_Isotropic r_36,
+    ndf_roughness_isotropic_Isotropic r_38,
     metal::float3 m_9
 ) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_36, m_9.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_36);
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_9.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
     float _e6 = ndf_beckmann_d_of(_e3, m_9.z, _e5);
     return _e6;
 }
 
 float ndf_beckmann_lambda_isotropic(
-    ndf_roughness_isotropic_Isotropic r_37,
+    ndf_roughness_isotropic_Isotropic r_39,
     metal::float3 w_9
 ) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_37, w_9.xy);
+    float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_9.z));
     return _e6;
 }
 
 float ndf_beckmann_g1_isotropic(
-    ndf_roughness_isotropic_Isotropic r_38,
+    ndf_roughness_isotropic_Isotropic r_40,
     metal::float3 w_10,
     metal::float3 m_10
 ) {
-    float _e3 = ndf_beckmann_lambda_isotropic(r_38, w_10);
+    float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_10, m_10));
     return _e5;
 }
 
 float ndf_beckmann_g2_isotropic(
-    ndf_roughness_isotropic_Isotropic r_39,
+    ndf_roughness_isotropic_Isotropic r_41,
     metal::float3 i_3,
     metal::float3 o_3,
     metal::float3 m_11
 ) {
-    float _e4 = ndf_beckmann_lambda_isotropic(r_39, i_3);
-    float _e5 = ndf_beckmann_lambda_isotropic(r_39, o_3);
+    float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_3);
+    float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_3, m_11), metal::dot(o_3, m_11));
     return _e8;
 }
 
 float ndf_beckmann_p22_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_40,
+    ndf_roughness_axis_aligned_AxisAligned r_42,
     metal::float2 s_7
 ) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_40, s_7);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_40);
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_7);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_beckmann_d_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_41,
+    ndf_roughness_axis_aligned_AxisAligned r_43,
     metal::float3 m_12
 ) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_41, m_12.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_41);
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_12.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
     float _e6 = ndf_beckmann_d_of(_e3, m_12.z, _e5);
     return _e6;
 }
 
 float ndf_beckmann_lambda_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_42,
+    ndf_roughness_axis_aligned_AxisAligned r_44,
     metal::float3 w_11
 ) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_42, w_11.xy);
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_11.z));
     return _e6;
 }
 
 float ndf_beckmann_g1_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_43,
+    ndf_roughness_axis_aligned_AxisAligned r_45,
     metal::float3 w_12,
     metal::float3 m_13
 ) {
-    float _e3 = ndf_beckmann_lambda_axis_aligned(r_43, w_12);
+    float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_12, m_13));
     return _e5;
 }
 
 float ndf_beckmann_g2_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_44,
+    ndf_roughness_axis_aligned_AxisAligned r_46,
     metal::float3 i_4,
     metal::float3 o_4,
     metal::float3 m_14
 ) {
-    float _e4 = ndf_beckmann_lambda_axis_aligned(r_44, i_4);
-    float _e5 = ndf_beckmann_lambda_axis_aligned(r_44, o_4);
+    float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_4);
+    float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_4, m_14), metal::dot(o_4, m_14));
     return _e8;
 }
 
 float ndf_beckmann_p22_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_45,
+    ndf_roughness_matrix_RoughnessMatrix r_47,
     metal::float2 s_8
 ) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_45, s_8);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_45);
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_8);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_beckmann_d_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_46,
+    ndf_roughness_matrix_RoughnessMatrix r_48,
     metal::float3 m_15
 ) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_46, m_15.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_46);
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_15.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
     float _e6 = ndf_beckmann_d_of(_e3, m_15.z, _e5);
     return _e6;
 }
 
 float ndf_beckmann_lambda_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_47,
+    ndf_roughness_matrix_RoughnessMatrix r_49,
     metal::float3 w_13
 ) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_47, w_13.xy);
+    float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_13.z));
     return _e6;
 }
 
 float ndf_beckmann_g1_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_48,
+    ndf_roughness_matrix_RoughnessMatrix r_50,
     metal::float3 w_14,
     metal::float3 m_16
 ) {
-    float _e3 = ndf_beckmann_lambda_matrix(r_48, w_14);
+    float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_14, m_16));
     return _e5;
 }
 
 float ndf_beckmann_g2_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_49,
+    ndf_roughness_matrix_RoughnessMatrix r_51,
     metal::float3 i_5,
     metal::float3 o_5,
     metal::float3 m_17
 ) {
-    float _e4 = ndf_beckmann_lambda_matrix(r_49, i_5);
-    float _e5 = ndf_beckmann_lambda_matrix(r_49, o_5);
+    float _e4 = ndf_beckmann_lambda_matrix(r_51, i_5);
+    float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_5, m_17), metal::dot(o_5, m_17));
     return _e8;
 }
 
 float filter_gaussian_ggx_quad_laguerre_node(
-    uint k_5
+    uint k_6
 ) {
-    switch(k_5) {
+    switch(k_6) {
         case 0u: {
             return 0.40938357;
         }
@@ -1370,9 +1639,9 @@ float filter_gaussian_ggx_quad_laguerre_node(
 }
 
 float filter_gaussian_ggx_quad_laguerre_weight(
-    uint k_6
+    uint k_7
 ) {
-    switch(k_6) {
+    switch(k_7) {
         case 0u: {
             return 0.18763255;
         }
@@ -1423,7 +1692,7 @@ float filter_gaussian_ggx_quad_laguerre(
     float tl2_1
 ) {
     float acc = 0.0;
-    uint k_7 = 0u;
+    uint k_8 = 0u;
     float ib_1 = 1.0 / beta_m;
     float t1_2 = (tl1_1 * z2_1) * ib_1;
     float t2_ = (tl2_1 * z2_1) * ib_1;
@@ -1435,17 +1704,17 @@ float filter_gaussian_ggx_quad_laguerre(
         if (metal::all(loop_bound == uint2(0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e51 = k_7;
-            k_7 = _e51 + 1u;
+            uint _e51 = k_8;
+            k_8 = _e51 + 1u;
         }
         loop_init = false;
-        uint _e20 = k_7;
+        uint _e20 = k_8;
         if (_e20 < 8u) {
         } else {
             break;
         }
         {
-            uint _e23 = k_7;
+            uint _e23 = k_8;
             float _e24 = filter_gaussian_ggx_quad_laguerre_node(_e23);
             float p1_ = 1.0 + (t1_2 * _e24);
             float p2_ = 1.0 + (t2_ * _e24);
@@ -1453,7 +1722,7 @@ float filter_gaussian_ggx_quad_laguerre(
             float ip2_ = 1.0 / p2_;
             float e_4 = (_e24 * _e24) * ((g1_ * ip1_) + (g2_ * ip2_));
             float _e40 = acc;
-            uint _e41 = k_7;
+            uint _e41 = k_8;
             float _e42 = filter_gaussian_ggx_quad_laguerre_weight(_e41);
             float _e43 = math_exp(e_4);
             acc = _e40 + (((_e42 * _e43) * metal::sqrt(ip1_)) * metal::sqrt(ip2_));
@@ -1532,7 +1801,7 @@ float filter_gaussian_ggx_quad_trapezoid(
     float k2_2 = c2s_2 * (w_r / pr2_);
     float x_r = (-(w_r) - k1_2) - k2_2;
     float _e40 = math_exp(x_r);
-    float scale_1 = (w_r * w_r) * _e40;
+    float scale_2 = (w_r * w_r) * _e40;
     float t1_3 = tl1_3 * w_r;
     float t2_1 = tl2_3 * w_r;
     float stop = (0.00000005 * w_r) * w_r;
@@ -1613,7 +1882,7 @@ float filter_gaussian_ggx_quad_trapezoid(
     }
     float _e139 = sum;
     float _e141 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first);
-    return filter_gaussian_ggx_quad_H * ((_e139 * scale_1) + _e141);
+    return filter_gaussian_ggx_quad_H * ((_e139 * scale_2) + _e141);
 }
 
 float filter_gaussian_ggx_quad_j(
@@ -1653,9 +1922,9 @@ float filter_gaussian_ggx_quad_j(
 }
 
 float filter_gaussian_ggx_quad_hermite_node(
-    uint k_8
+    uint k_9
 ) {
-    switch(k_8) {
+    switch(k_9) {
         case 0u: {
             return 0.5390798;
         }
@@ -1672,9 +1941,9 @@ float filter_gaussian_ggx_quad_hermite_node(
 }
 
 float filter_gaussian_ggx_quad_hermite_weight(
-    uint k_9
+    uint k_10
 ) {
-    switch(k_9) {
+    switch(k_10) {
         case 0u: {
             return 0.37301224;
         }
@@ -1693,16 +1962,16 @@ float filter_gaussian_ggx_quad_hermite_weight(
 float filter_gaussian_ggx_quad_h_of(
     float y_2
 ) {
-    float r_50 = {};
+    float r_52 = {};
     float a_23 = metal::abs(y_2);
     if (a_23 > 1.0) {
         float i_12 = 1.0 / a_23;
-        r_50 = a_23 * metal::sqrt(1.0 + (i_12 * i_12));
+        r_52 = a_23 * metal::sqrt(1.0 + (i_12 * i_12));
     } else {
-        r_50 = metal::sqrt(1.0 + (y_2 * y_2));
+        r_52 = metal::sqrt(1.0 + (y_2 * y_2));
     }
-    float _e16 = r_50;
-    float _e18 = r_50;
+    float _e16 = r_52;
+    float _e18 = r_52;
     return (y_2 >= 0.0) ? (1.0 / (_e18 + y_2)) : (_e16 - y_2);
 }
 
@@ -1712,7 +1981,7 @@ float filter_gaussian_ggx_quad_lambda_hermite(
     float oz
 ) {
     float acc_1 = 0.0;
-    uint k_10 = 0u;
+    uint k_11 = 0u;
     float iq = 1.0 / qa;
     float z0_ = oz * metal::sqrt(iq);
     float fs = metal::sqrt(qs * iq);
@@ -1722,21 +1991,21 @@ float filter_gaussian_ggx_quad_lambda_hermite(
         if (metal::all(loop_bound_3 == uint2(0u))) { break; }
         loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
         if (!loop_init_3) {
-            uint _e30 = k_10;
-            k_10 = _e30 + 1u;
+            uint _e30 = k_11;
+            k_11 = _e30 + 1u;
         }
         loop_init_3 = false;
-        uint _e13 = k_10;
+        uint _e13 = k_11;
         if (_e13 < 4u) {
         } else {
             break;
         }
         {
-            uint _e16 = k_10;
+            uint _e16 = k_11;
             float _e17 = filter_gaussian_ggx_quad_hermite_node(_e16);
             float x_15 = fs * _e17;
             float _e19 = acc_1;
-            uint _e20 = k_10;
+            uint _e20 = k_11;
             float _e21 = filter_gaussian_ggx_quad_hermite_weight(_e20);
             float _e23 = filter_gaussian_ggx_quad_h_of(z0_ - x_15);
             float _e25 = filter_gaussian_ggx_quad_h_of(z0_ + x_15);
@@ -1749,7 +2018,7 @@ float filter_gaussian_ggx_quad_lambda_hermite(
 
 float filter_gaussian_ggx_quad_sinh_run(
     bool up,
-    float h,
+    float h_11,
     float rq,
     float e0_,
     float ie0_,
@@ -1806,8 +2075,8 @@ float filter_gaussian_ggx_quad_sinh_run(
                 {
                     uint _e32 = ch_1;
                     uint _e36 = jj_1;
-                    float k_27 = static_cast<float>((first + (_e32 * 8u)) + _e36);
-                    float _e43 = math_exp(((sgn * 0.5) * h) * k_27);
+                    float k_29 = static_cast<float>((first + (_e32 * 8u)) + _e36);
+                    float _e43 = math_exp(((sgn * 0.5) * h_11) * k_29);
                     float it = 1.0 / _e43;
                     float x_16 = ((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it);
                     float arg = (-(x_16) * x_16) * i2s2_;
@@ -1853,14 +2122,14 @@ float filter_gaussian_ggx_quad_lambda_sinh(
     float root = oz_1 + metal::sqrt(qa_1 + (oz_1 * oz_1));
     float e0_1 = root / rq_1;
     float ie0_1 = rq_1 / root;
-    float h_22 = metal::min(filter_gaussian_ggx_quad_S_MAX, filter_gaussian_ggx_quad_S_COEF * metal::sqrt(metal::sqrt(ds2_)));
+    float h_26 = metal::min(filter_gaussian_ggx_quad_S_MAX, filter_gaussian_ggx_quad_S_COEF * metal::sqrt(metal::sqrt(ds2_)));
     float i2s2_1 = 0.5 / qs_1;
-    float c_up = (math_LN_2_ * qs_1) / (rq_1 * h_22);
-    float c_down = (((2.0 * h_22) + math_LN_2_) * qs_1) / (rq_1 * h_22);
+    float c_up = (math_LN_2_ * qs_1) / (rq_1 * h_26);
+    float c_down = (((2.0 * h_26) + math_LN_2_) * qs_1) / (rq_1 * h_26);
     float e2_1 = ie0_1 * ie0_1;
-    float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
-    float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
-    return _e35 * ((h_22 * qa_1) / (((4.0 * oz_1) * metal::sqrt(qs_1)) * math_SQRT_TAU));
+    float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_26, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
+    float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_26, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
+    return _e35 * ((h_26 * qa_1) / (((4.0 * oz_1) * metal::sqrt(qs_1)) * math_SQRT_TAU));
 }
 
 float filter_gaussian_ggx_quad_lambda(
@@ -1877,239 +2146,41 @@ float filter_gaussian_ggx_quad_lambda(
     return _e9;
 }
 
-sampling_Warp sampling_warp(
-    ndf_roughness_matrix_RoughnessMatrix r_51
-) {
-    metal::float3 _e1 = ndf_roughness_matrix_clamped_entries(r_51);
-    float l_xx = metal::sqrt(_e1.x);
-    return sampling_Warp {l_xx, _e1.y / l_xx, r_51.sqrt_det / l_xx};
-}
-
-metal::float3 sampling_normalize_scaled(
-    metal::float3 v_4
-) {
-    metal::float3 w_24 = v_4 / metal::float3(metal::max(metal::max(metal::abs(v_4.x), metal::abs(v_4.y)), metal::abs(v_4.z)));
-    return w_24 / metal::float3(metal::length(w_24));
-}
-
-metal::float3 sampling_stretch(
-    sampling_Warp l_3,
-    metal::float3 w_15
-) {
-    return metal::float3((l_3.l_xx * w_15.x) + (l_3.l_yx * w_15.y), l_3.l_yy * w_15.y, w_15.z);
-}
-
-metal::float3 sampling_unstretch(
-    sampling_Warp l_4,
-    metal::float3 n_1
-) {
-    metal::float3 _e14 = sampling_normalize_scaled(metal::float3(l_4.l_xx * n_1.x, (l_4.l_yx * n_1.x) + (l_4.l_yy * n_1.y), n_1.z));
-    return _e14;
-}
-
-float sampling_clamp_unit(
-    float u_1
-) {
-    return (u_1 >= 0.0) ? metal::min(u_1, sampling_ONE_MINUS_EPS) : 0.0;
-}
-
-metal::float3 sampling_reflect(
-    metal::float3 wo,
-    metal::float3 m_18
-) {
-    return ((2.0 * metal::dot(wo, m_18)) * m_18) - wo;
-}
-
-metal::float3 sampling_ggx_standard_visible(
-    metal::float3 wi,
-    metal::float2 u_2
-) {
-    metal::float2 _e3 = math_sincos_turns(u_2.x);
-    float z_4 = ((1.0 - u_2.y) * (1.0 + wi.z)) - wi.z;
-    float sin_theta_1 = metal::sqrt(metal::clamp(1.0 - (z_4 * z_4), 0.0, 1.0));
-    return metal::float3(sin_theta_1 * _e3, z_4) + wi;
-}
-
-metal::float3 sampling_sample_visible_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_52,
-    metal::float3 wo_1,
-    metal::float2 u_3
-) {
-    bool local_13 = {};
-    if (!((wo_1.z > 0.0))) {
-        return metal::float3(0.0);
-    }
-    sampling_Warp _e9 = sampling_warp(r_52);
-    metal::float3 _e10 = sampling_normalize_scaled(wo_1);
-    metal::float3 _e11 = sampling_stretch(_e9, _e10);
-    metal::float3 _e12 = sampling_normalize_scaled(_e11);
-    if (!((_e12.z > 0.0))) {
-        return metal::float3(0.0);
-    }
-    float _e20 = sampling_clamp_unit(u_3.x);
-    float _e22 = sampling_clamp_unit(u_3.y);
-    metal::float3 _e24 = sampling_ggx_standard_visible(_e12, metal::float2(_e20, _e22));
-    metal::float3 _e25 = sampling_unstretch(_e9, _e24);
-    if (_e25.z > 0.0) {
-        local_13 = metal::dot(wo_1, _e25) > 0.0;
-    } else {
-        local_13 = false;
-    }
-    bool _e35 = local_13;
-    if (_e35) {
-        return _e25;
-    }
-    metal::float3 _e36 = sampling_unstretch(_e9, _e12);
-    return (_e36.z > 0.0) ? _e36 : metal::float3(0.0);
-}
-
-metal::float3 sampling_sample_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_53,
-    metal::float2 u_4
-) {
-    float _e3 = sampling_clamp_unit(u_4.x);
-    float _e5 = sampling_clamp_unit(u_4.y);
-    metal::float2 _e6 = math_sincos_turns(_e5);
-    metal::float3 n_7 = metal::float3(metal::sqrt(_e3) * _e6, metal::sqrt(1.0 - _e3));
-    sampling_Warp _e13 = sampling_warp(r_53);
-    metal::float3 _e14 = sampling_unstretch(_e13, n_7);
-    return _e14;
-}
-
-float sampling_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_54,
-    metal::float3 m_19
-) {
-    float _e2 = ndf_ggx_d_matrix(r_54, m_19);
-    return (m_19.z > 0.0) ? (_e2 * m_19.z) : 0.0;
-}
-
-float sampling_visible_normal_pdf_of(
-    metal::float3 wo_2,
-    metal::float3 m_20,
-    float d,
-    float lambda
-) {
-    bool local_14 = {};
-    bool local_15 = {};
-    float wom = metal::dot(wo_2, m_20);
-    float v_14 = (wom * d) / (wo_2.z * (1.0 + lambda));
-    if (wo_2.z > 0.0) {
-        local_14 = wom > 0.0;
-    } else {
-        local_14 = false;
-    }
-    bool _e19 = local_14;
-    if (_e19) {
-        local_15 = v_14 <= math_F32_MAX;
-    } else {
-        local_15 = false;
-    }
-    bool _e25 = local_15;
-    return _e25 ? v_14 : 0.0;
-}
-
-float sampling_visible_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_55,
-    metal::float3 wo_3,
-    metal::float3 m_21
-) {
-    float _e3 = ndf_ggx_d_matrix(r_55, m_21);
-    float _e4 = ndf_ggx_lambda_matrix(r_55, wo_3);
-    float _e5 = sampling_visible_normal_pdf_of(wo_3, m_21, _e3, _e4);
-    return _e5;
-}
-
-float sampling_reflection_pdf_of(
-    metal::float3 o_6,
-    metal::float3 m_22,
-    float d_1,
-    float lambda_1
-) {
-    bool local_16 = {};
-    bool local_17 = {};
-    float v_15 = d_1 / ((4.0 * o_6.z) * (1.0 + lambda_1));
-    if (o_6.z > 0.0) {
-        local_16 = metal::dot(o_6, m_22) > 0.0;
-    } else {
-        local_16 = false;
-    }
-    bool _e20 = local_16;
-    if (_e20) {
-        local_17 = v_15 <= math_F32_MAX;
-    } else {
-        local_17 = false;
-    }
-    bool _e26 = local_17;
-    return _e26 ? v_15 : 0.0;
-}
-
-float sampling_reflection_pdf_from_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_56,
-    metal::float3 wo_4,
-    metal::float3 m_23
-) {
-    metal::float3 _e3 = sampling_normalize_scaled(wo_4);
-    float _e4 = ndf_ggx_d_matrix(r_56, m_23);
-    float _e5 = ndf_ggx_lambda_matrix(r_56, _e3);
-    float _e6 = sampling_reflection_pdf_of(_e3, m_23, _e4, _e5);
-    return _e6;
-}
-
-float sampling_reflection_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_57,
-    metal::float3 wo_5,
-    metal::float3 wi_1
-) {
-    if (!((wo_5.z > 0.0))) {
-        return 0.0;
-    }
-    metal::float3 _e8 = sampling_normalize_scaled(wo_5);
-    metal::float3 _e9 = sampling_normalize_scaled(wi_1);
-    metal::float3 h_23 = _e8 + _e9;
-    float len = metal::length(h_23);
-    if (!((len > 0.0))) {
-        return 0.0;
-    }
-    float _e18 = sampling_reflection_pdf_from_normal(r_57, wo_5, h_23 / metal::float3(len));
-    return _e18;
-}
-
 filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(
-    ndf_roughness_matrix_RoughnessMatrix a_5,
+    ndf_roughness_matrix_RoughnessMatrix a_7,
     kernel_covariance_Covariance kernel_4
 ) {
     float l2_ = 0.0;
-    metal::float2 v_5 = metal::float2(1.0, 0.0);
+    metal::float2 v_4 = metal::float2(1.0, 0.0);
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
-    float c_18 = a_5.axis.x;
-    float s_27 = a_5.axis.y;
+    float c_18 = a_7.axis.x;
+    float s_27 = a_7.axis.y;
     float k11_ = metal::max((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((s_27 * s_27) * _e2.s_yy), 0.0);
     float k22_ = metal::max((((s_27 * s_27) * _e2.s_xx) - (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy), 0.0);
     float k12_ = (((c_18 * c_18) - (s_27 * s_27)) * _e2.s_xy) + ((c_18 * s_27) * (_e2.s_yy - _e2.s_xx));
-    metal::float2 l_6 = a_5.eig_c;
-    metal::float2 isl = metal::float2(1.0) / metal::sqrt(l_6);
+    metal::float2 l_7 = a_7.eig_c;
+    metal::float2 isl = metal::float2(1.0) / metal::sqrt(l_7);
     float c11_ = (k11_ * isl.x) * isl.x;
     float c22_ = (k22_ * isl.y) * isl.y;
     float c12_ = (k12_ * isl.x) * isl.y;
-    float det_c = metal::max(_e2.det, 0.0) / (a_5.eig_c.x * a_5.eig_c.y);
+    float det_c = metal::max(_e2.det, 0.0) / (a_7.eig_c.x * a_7.eig_c.y);
     float half_ = 0.5 * (c11_ - c22_);
     float _e75 = math_hypot(half_, c12_);
     float l1_2 = (0.5 * (c11_ + c22_)) + _e75;
     if (_e75 > 0.0) {
-        float big_2 = _e75 + metal::abs(half_);
-        metal::float2 w_25 = (half_ >= 0.0) ? metal::float2(big_2, c12_) : metal::float2(c12_, big_2);
-        v_5 = w_25 / metal::float2(metal::length(w_25));
+        float big_4 = _e75 + metal::abs(half_);
+        metal::float2 w_25 = (half_ >= 0.0) ? metal::float2(big_4, c12_) : metal::float2(c12_, big_4);
+        v_4 = w_25 / metal::float2(metal::length(w_25));
         l2_ = metal::min(det_c / l1_2, l1_2);
     } else {
         if (l1_2 > 0.0) {
             l2_ = l1_2;
         }
     }
-    metal::float2 _e102 = v_5;
+    metal::float2 _e102 = v_4;
     float _e105 = l2_;
-    float _e110 = ndf_roughness_matrix_sqrt_det(a_5);
-    return filter_gaussian_ggx_GaussianFilteredGgx {a_5, isl, _e102, metal::float2(2.0 * l1_2, 2.0 * _e105), math_INV_PI / _e110, _e2};
+    float _e110 = ndf_roughness_matrix_sqrt_det(a_7);
+    return filter_gaussian_ggx_GaussianFilteredGgx {a_7, isl, _e102, metal::float2(2.0 * l1_2, 2.0 * _e105), math_INV_PI / _e110, _e2};
 }
 
 metal::float2 filter_gaussian_ggx_whiten(
@@ -2117,8 +2188,8 @@ metal::float2 filter_gaussian_ggx_whiten(
     metal::float2 s_9
 ) {
     metal::float2 _e3 = ndf_roughness_matrix_rotate(g.a, s_9);
-    metal::float2 u_18 = _e3 * g.inv_sqrt_l;
-    metal::float2 c_19 = metal::float2((g.v.x * u_18.x) + (g.v.y * u_18.y), (g.v.x * u_18.y) - (g.v.y * u_18.x));
+    metal::float2 u_19 = _e3 * g.inv_sqrt_l;
+    metal::float2 c_19 = metal::float2((g.v.x * u_19.x) + (g.v.y * u_19.y), (g.v.x * u_19.y) - (g.v.y * u_19.x));
     return c_19 * c_19;
 }
 
@@ -2133,32 +2204,32 @@ float filter_gaussian_ggx_p22_(
 
 float filter_gaussian_ggx_d(
     filter_gaussian_ggx_GaussianFilteredGgx g_2,
-    metal::float3 m_24
+    metal::float3 m_18
 ) {
-    if (!((m_24.z > 0.0))) {
+    if (!((m_18.z > 0.0))) {
         return 0.0;
     }
-    metal::float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_24.xy);
-    float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, m_24.z * m_24.z, g_2.tl.x, g_2.tl.y);
+    metal::float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_18.xy);
+    float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, m_18.z * m_18.z, g_2.tl.x, g_2.tl.y);
     float v_16 = g_2.norm * _e19;
     return (v_16 <= math_F32_MAX) ? v_16 : 0.0;
 }
 
 float filter_gaussian_ggx_lambda(
     filter_gaussian_ggx_GaussianFilteredGgx g_3,
-    metal::float3 w_16
+    metal::float3 w_15
 ) {
-    float big_3 = metal::max(metal::max(metal::abs(w_16.x), metal::abs(w_16.y)), metal::abs(w_16.z));
-    if (!((big_3 > 0.0))) {
-        return (big_3 == 0.0) ? 0.0 : math_F32_MAX;
+    float big_5 = metal::max(metal::max(metal::abs(w_15.x), metal::abs(w_15.y)), metal::abs(w_15.z));
+    if (!((big_5 > 0.0))) {
+        return (big_5 == 0.0) ? 0.0 : math_F32_MAX;
     }
-    metal::float3 ws = w_16 / metal::float3(big_3);
+    metal::float3 ws = w_15 / metal::float3(big_5);
     metal::float3 o_9 = ws / metal::float3(metal::length(ws));
     float oz_3 = metal::abs(o_9.z);
     float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_9.xy);
     kernel_covariance_Covariance kk = g_3.k;
-    float qs_3 = metal::max((((g_3.k.s_xx * o_9.x) * o_9.x) + (((2.0 * g_3.k.s_xy) * o_9.x) * o_9.y)) + ((g_3.k.s_yy * o_9.y) * o_9.y), 0.0);
-    if (qs_3 <= 0.0) {
+    float qs_4 = metal::max((((g_3.k.s_xx * o_9.x) * o_9.x) + (((2.0 * g_3.k.s_xy) * o_9.x) * o_9.y)) + ((g_3.k.s_yy * o_9.y) * o_9.y), 0.0);
+    if (qs_4 <= 0.0) {
         float _e52 = ndf_ggx_lambda_of(_e27, oz_3);
         return _e52;
     }
@@ -2166,320 +2237,78 @@ float filter_gaussian_ggx_lambda(
         return math_F32_MAX;
     }
     if (_e27 <= 0.0) {
-        float _e60 = ndf_beckmann_lambda_of(2.0 * qs_3, oz_3);
+        float _e60 = ndf_beckmann_lambda_of(2.0 * qs_4, oz_3);
         return _e60;
     }
-    float _e61 = filter_gaussian_ggx_quad_lambda(_e27, qs_3, oz_3);
+    float _e61 = filter_gaussian_ggx_quad_lambda(_e27, qs_4, oz_3);
     return _e61;
 }
 
 float filter_gaussian_ggx_g1_(
     filter_gaussian_ggx_GaussianFilteredGgx g_4,
-    metal::float3 w_17,
-    metal::float3 m_25
+    metal::float3 w_16,
+    metal::float3 m_19
 ) {
-    float _e3 = filter_gaussian_ggx_lambda(g_4, w_17);
-    float _e5 = ndf_g1_of(_e3, metal::dot(w_17, m_25));
+    float _e3 = filter_gaussian_ggx_lambda(g_4, w_16);
+    float _e5 = ndf_g1_of(_e3, metal::dot(w_16, m_19));
     return _e5;
 }
 
 float filter_gaussian_ggx_g2_(
     filter_gaussian_ggx_GaussianFilteredGgx g_5,
     metal::float3 i_6,
-    metal::float3 o_7,
-    metal::float3 m_26
+    metal::float3 o_6,
+    metal::float3 m_20
 ) {
     float _e4 = filter_gaussian_ggx_lambda(g_5, i_6);
-    float _e5 = filter_gaussian_ggx_lambda(g_5, o_7);
-    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_6, m_26), metal::dot(o_7, m_26));
+    float _e5 = filter_gaussian_ggx_lambda(g_5, o_6);
+    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_6, m_20), metal::dot(o_6, m_20));
     return _e8;
 }
 
-metal::float2 filter_gaussian_ggx_split(
-    float u_5
-) {
-    float x_17 = u_5 * 4096.0;
-    float hi_3 = metal::floor(x_17);
-    return metal::float2((hi_3 + 0.5) / 4096.0, x_17 - hi_3);
-}
-
-metal::float3 filter_gaussian_ggx_sample_normal(
-    filter_gaussian_ggx_GaussianFilteredGgx g_6,
-    metal::float2 u_6
-) {
-    metal::float2 ax = metal::float2(1.0, 0.0);
-    float _e3 = sampling_clamp_unit(u_6.x);
-    metal::float2 _e4 = filter_gaussian_ggx_split(_e3);
-    float _e6 = sampling_clamp_unit(u_6.y);
-    metal::float2 _e7 = filter_gaussian_ggx_split(_e6);
-    metal::float2 _e15 = math_sincos_turns(_e7.x);
-    metal::float2 t_15 = metal::sqrt(_e4.x / (1.0 - _e4.x)) * _e15;
-    sampling_Warp _e18 = sampling_warp(g_6.a);
-    metal::float2 gs = metal::float2(_e18.l_xx * t_15.x, (_e18.l_yx * t_15.x) + (_e18.l_yy * t_15.y));
-    float _e33 = math_ln(1.0 - _e4.y);
-    float _e40 = math_ln_1p(_e4.y / (1.0 - _e4.y));
-    float e_5 = (_e4.y < 0.5) ? _e40 : -(_e33);
-    metal::float2 _e49 = math_sincos_turns(_e7.y);
-    metal::float2 y_4 = metal::sqrt(2.0 * e_5) * _e49;
-    kernel_covariance_Covariance k_28 = g_6.k;
-    metal::float2 _e52 = kernel_covariance_eigenvalues(k_28);
-    float khalf = 0.5 * (g_6.k.s_xx - g_6.k.s_yy);
-    float _e59 = math_hypot(khalf, g_6.k.s_xy);
-    if (_e59 > 0.0) {
-        metal::float2 w_26 = (khalf >= 0.0) ? metal::float2(_e59 + khalf, g_6.k.s_xy) : metal::float2(g_6.k.s_xy, _e59 - khalf);
-        float _e77 = math_hypot(w_26.x, w_26.y);
-        ax = w_26 / metal::float2(_e77);
-    }
-    metal::float2 kk_1 = metal::float2(metal::sqrt(_e52.y) * y_4.x, metal::sqrt(_e52.x) * y_4.y);
-    float _e90 = ax.x;
-    float _e94 = ax.y;
-    float _e99 = ax.y;
-    float _e103 = ax.x;
-    metal::float2 s_28 = gs + metal::float2((_e90 * kk_1.x) - (_e94 * kk_1.y), (_e99 * kk_1.x) + (_e103 * kk_1.y));
-    metal::float3 _e112 = sampling_normalize_scaled(metal::float3(-(s_28), 1.0));
-    return metal::float3(_e112.xy, metal::max(_e112.z, math_F32_MIN_POSITIVE));
-}
-
-float filter_gaussian_ggx_normal_pdf(
-    filter_gaussian_ggx_GaussianFilteredGgx g_7,
-    metal::float3 m_27
-) {
-    float _e2 = filter_gaussian_ggx_d(g_7, m_27);
-    return (m_27.z > 0.0) ? (_e2 * m_27.z) : 0.0;
-}
-
 kernel_covariance_Covariance filter_lean_covariance(
-    filter_lean_LeanMoments m_28
+    filter_lean_LeanMoments m_21
 ) {
-    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries(m_28.second.x - (m_28.mean.x * m_28.mean.x), m_28.second.y - (m_28.mean.x * m_28.mean.y), m_28.second.z - (m_28.mean.y * m_28.mean.y));
+    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries(m_21.second.x - (m_21.mean.x * m_21.mean.x), m_21.second.y - (m_21.mean.x * m_21.mean.y), m_21.second.z - (m_21.mean.y * m_21.mean.y));
     kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
     return _e26;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(
-    ndf_roughness_matrix_RoughnessMatrix a_6,
+    ndf_roughness_matrix_RoughnessMatrix a_8,
     kernel_covariance_Covariance pixel,
     filter_lean_LeanMoments moments
 ) {
     kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
     kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
     kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_6, _e5);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_8, _e5);
     return _e6;
 }
 
-footprint_jacobian_Polar footprint_jacobian_polar(
-    metal::float3 h_in
-) {
-    metal::float2 cs_1 = metal::float2(1.0, 0.0);
-    float big_4 = metal::max(metal::max(metal::abs(h_in.x), metal::abs(h_in.y)), metal::abs(h_in.z));
-    if (big_4 <= 0.0) {
-        return footprint_jacobian_Polar {metal::float3(0.0, 0.0, 1.0), metal::float2(1.0, 0.0)};
-    }
-    metal::float3 h0_ = h_in / metal::float3(big_4);
-    metal::float3 h_24 = h0_ / metal::float3(metal::length(h0_));
-    float qs_4 = metal::max(metal::abs(h_24.x), metal::abs(h_24.y));
-    if (qs_4 > 0.0) {
-        metal::float2 q_6 = h_24.xy / metal::float2(qs_4);
-        cs_1 = q_6 / metal::float2(metal::length(q_6));
-    }
-    if (h_24.z >= footprint_jacobian_HZ_MIN) {
-        metal::float2 _e44 = cs_1;
-        return footprint_jacobian_Polar {h_24, _e44};
-    }
-    metal::float2 _e47 = cs_1;
-    metal::float2 _e51 = cs_1;
-    return footprint_jacobian_Polar {metal::float3(1.0 * _e47, footprint_jacobian_HZ_MIN), _e51};
-}
-
-metal::float3 footprint_jacobian_sanitize(
-    metal::float3 h_1
-) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
-    return _e1.h;
-}
-
-footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(
-    metal::float3 h_2
-) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_2);
-    float st = metal::length(_e1.h.xy);
-    return footprint_jacobian_SphericalBasis {metal::float3(_e1.h.z * _e1.cs, -(st)), metal::float3(-(_e1.cs.y), _e1.cs.x, 0.0)};
-}
-
-metal::float2 footprint_jacobian_spherical_components(
-    metal::float3 h_3,
-    metal::float3 dh
-) {
-    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_3);
-    return metal::float2(metal::dot(dh, _e2.e_x), metal::dot(dh, _e2.e_y));
-}
-
-metal::float2x2 footprint_jacobian_sphere_to_projected(
-    metal::float3 h_4
-) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
-    return metal::float2x2(_e1.h.z * _e1.cs, metal::float2(-(_e1.cs.y), _e1.cs.x));
-}
-
-metal::float2x2 footprint_jacobian_projected_to_slope(
-    metal::float3 h_in_1
-) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
-    metal::float3 h_25 = _e1.h;
-    float k_29 = -1.0 / ((_e1.h.z * _e1.h.z) * _e1.h.z);
-    float xy = _e1.h.x * _e1.h.y;
-    return metal::float2x2(metal::float2((_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z), xy) * k_29, metal::float2(xy, (_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z)) * k_29);
-}
-
-metal::float2x2 footprint_jacobian_slope_to_projected(
-    metal::float3 h_in_2
-) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    metal::float3 h_26 = _e1.h;
-    float xy_1 = _e1.h.x * _e1.h.y;
-    return metal::float2x2(metal::float2((_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z), -(xy_1)) * -(_e1.h.z), metal::float2(-(xy_1), (_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z)) * -(_e1.h.z));
-}
-
-metal::float2x2 footprint_jacobian_sphere_to_slope(
-    metal::float3 h_5
-) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
-    float k_30 = -1.0 / (_e1.h.z * _e1.h.z);
-    return metal::float2x2(_e1.cs * k_30, metal::float2(-(_e1.h.z) * _e1.cs.y, _e1.h.z * _e1.cs.x) * k_30);
-}
-
-float footprint_jacobian_det_sphere_to_projected(
-    metal::float3 h_6
-) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
-    return _e1.h.z;
-}
-
-float footprint_jacobian_det_projected_to_slope(
-    metal::float3 h_7
-) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
-    float z_5 = _e1.h.z;
-    float z2_5 = z_5 * z_5;
-    return 1.0 / (z2_5 * z2_5);
-}
-
-float footprint_jacobian_det_sphere_to_slope(
-    metal::float3 h_8
-) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float z_6 = _e1.h.z;
-    return 1.0 / ((z_6 * z_6) * z_6);
-}
-
-metal::float2 footprint_jacobian_spherical_to_slope(
-    metal::float3 h_9,
-    metal::float2 e_1
-) {
-    metal::float2x2 _e2 = footprint_jacobian_sphere_to_slope(h_9);
-    return _e2 * e_1;
-}
-
-metal::float2 footprint_jacobian_spherical_to_projected(
-    metal::float3 h_10,
-    metal::float2 e_2
-) {
-    metal::float2x2 _e2 = footprint_jacobian_sphere_to_projected(h_10);
-    return _e2 * e_2;
-}
-
-kernel_covariance_Covariance kernel_rect_covariance(
-    kernel_rect_BoundingRect r_58,
-    float sigma_1
-) {
-    metal::float2 w_27 = r_58.half_extent * (2.0 * sigma_1);
-    metal::float2 v_17 = w_27 * w_27;
-    return kernel_covariance_Covariance {v_17.x, 0.0, v_17.y, v_17.x * v_17.y};
-}
-
-footprint_Footprint footprint_from_slope_derivatives(
-    metal::float2 dh_u,
-    metal::float2 dh_v
-) {
-    return footprint_Footprint {dh_u, dh_v};
-}
-
-footprint_Footprint footprint_from_projected_derivatives(
-    metal::float2 dp_u,
-    metal::float2 dp_v
-) {
-    return footprint_Footprint {dp_u, dp_v};
-}
-
-footprint_Footprint footprint_from_projected_derivatives_in_slope(
-    metal::float3 h_11,
-    metal::float2 dp_u_1,
-    metal::float2 dp_v_1
-) {
-    float big_5 = metal::max(metal::max(metal::abs(h_11.x), metal::abs(h_11.y)), metal::abs(h_11.z));
-    if (big_5 <= 0.0) {
-        return footprint_Footprint {metal::float2(0.0), metal::float2(0.0)};
-    }
-    metal::float2x2 _e18 = footprint_jacobian_projected_to_slope(h_11);
-    return footprint_Footprint {_e18 * dp_u_1, _e18 * dp_v_1};
-}
-
-footprint_Footprint footprint_from_normal_differences(
-    metal::float3 dn_u_4,
-    metal::float3 dn_v_4
-) {
-    float lu = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_u_4), 0.000001);
-    float lv = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_v_4), 0.000001);
-    return footprint_Footprint {dn_u_4.xy * (2.0 / lu), dn_v_4.xy * (2.0 / lv)};
-}
-
-kernel_covariance_Covariance footprint_covariance(
-    footprint_Footprint fp,
-    float sigma_2
-) {
-    metal::float2 u_19 = fp.dh_u;
-    metal::float2 v_18 = fp.dh_v;
-    float s2_ = sigma_2 * sigma_2;
-    float cross_1 = ((fp.dh_u.x * fp.dh_v.y) - (fp.dh_u.y * fp.dh_v.x)) * s2_;
-    return kernel_covariance_Covariance {((fp.dh_u.x * fp.dh_u.x) + (fp.dh_v.x * fp.dh_v.x)) * s2_, ((fp.dh_u.x * fp.dh_u.y) + (fp.dh_v.x * fp.dh_v.y)) * s2_, ((fp.dh_u.y * fp.dh_u.y) + (fp.dh_v.y * fp.dh_v.y)) * s2_, cross_1 * cross_1};
-}
-
-kernel_rect_BoundingRect footprint_bounding_rect(
-    footprint_Footprint fp_1
-) {
-    return kernel_rect_BoundingRect {(metal::abs(fp_1.dh_u) + metal::abs(fp_1.dh_v)) * 0.5};
-}
-
-float footprint_max_extent(
-    footprint_Footprint fp_2
-) {
-    return 0.5 * metal::max(metal::length(fp_2.dh_u + fp_2.dh_v), metal::length(fp_2.dh_u - fp_2.dh_v));
-}
-
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(
-    ndf_roughness_matrix_RoughnessMatrix a_7,
-    kernel_covariance_Covariance k_11,
+    ndf_roughness_matrix_RoughnessMatrix a_9,
+    kernel_covariance_Covariance k_12,
     float tau_4
 ) {
     float b11_ = {};
     float b12_ = {};
     float b22_ = {};
     float det_3 = {};
-    metal::float2 lc = metal::min(a_7.eig, metal::float2(0.99));
-    metal::float2 excess = a_7.eig - lc;
+    metal::float2 lc = metal::min(a_9.eig, metal::float2(0.99));
+    metal::float2 excess = a_9.eig - lc;
     metal::float2 p_8 = lc / (metal::float2(1.0) - lc);
-    float c_20 = a_7.axis.x;
-    float s_29 = a_7.axis.y;
-    float p11_1 = ((p_8.x * c_20) * c_20) + ((p_8.y * s_29) * s_29);
-    float p12_1 = ((p_8.x - p_8.y) * c_20) * s_29;
-    float p22_1 = ((p_8.x * s_29) * s_29) + ((p_8.y * c_20) * c_20);
-    float k1_3 = metal::max((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_29) * k_11.s_xy)) + ((s_29 * s_29) * k_11.s_yy), 0.0);
-    float k2_3 = metal::max((((s_29 * s_29) * k_11.s_xx) - (((2.0 * c_20) * s_29) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy), 0.0);
-    float d_4 = ((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * metal::max(k_11.det, 0.0));
-    float q11_ = p11_1 + (2.0 * k_11.s_xx);
-    float q12_ = p12_1 + (2.0 * k_11.s_xy);
-    float q22_ = p22_1 + (2.0 * k_11.s_yy);
+    float c_20 = a_9.axis.x;
+    float s_28 = a_9.axis.y;
+    float p11_1 = ((p_8.x * c_20) * c_20) + ((p_8.y * s_28) * s_28);
+    float p12_1 = ((p_8.x - p_8.y) * c_20) * s_28;
+    float p22_1 = ((p_8.x * s_28) * s_28) + ((p_8.y * c_20) * c_20);
+    float k1_3 = metal::max((((c_20 * c_20) * k_12.s_xx) + (((2.0 * c_20) * s_28) * k_12.s_xy)) + ((s_28 * s_28) * k_12.s_yy), 0.0);
+    float k2_3 = metal::max((((s_28 * s_28) * k_12.s_xx) - (((2.0 * c_20) * s_28) * k_12.s_xy)) + ((c_20 * c_20) * k_12.s_yy), 0.0);
+    float d_4 = ((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * metal::max(k_12.det, 0.0));
+    float q11_ = p11_1 + (2.0 * k_12.s_xx);
+    float q12_ = p12_1 + (2.0 * k_12.s_xy);
+    float q22_ = p22_1 + (2.0 * k_12.s_yy);
     float den_1 = ((1.0 + q11_) + q22_) + d_4;
     b11_ = (q11_ + d_4) / den_1;
     b12_ = q12_ / den_1;
@@ -2487,18 +2316,18 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(
     det_3 = d_4 / den_1;
     if (metal::max(excess.x, excess.y) > 0.0) {
         float _e114 = b11_;
-        b11_ = _e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_29) * s_29));
+        b11_ = _e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_28) * s_28));
         float _e123 = b12_;
-        b12_ = _e123 + (((excess.x - excess.y) * c_20) * s_29);
+        b12_ = _e123 + (((excess.x - excess.y) * c_20) * s_28);
         float _e130 = b22_;
-        b22_ = _e130 + (((excess.x * s_29) * s_29) + ((excess.y * c_20) * c_20));
+        b22_ = _e130 + (((excess.x * s_28) * s_28) + ((excess.y * c_20) * c_20));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
         float _e143 = b12_;
         det_3 = (_e139 * _e140) - (_e142 * _e143);
     }
-    metal::float3 _e146 = ndf_roughness_matrix_entries(a_7);
+    metal::float3 _e146 = ndf_roughness_matrix_entries(a_9);
     float _e147 = b11_;
     float _e150 = b12_;
     float _e151 = b22_;
@@ -2508,107 +2337,27 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(
-    ndf_roughness_matrix_RoughnessMatrix a_8,
+    ndf_roughness_matrix_RoughnessMatrix a_10,
     kernel_covariance_Covariance kernel_5
 ) {
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_5);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_8);
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_8, _e2, _e3);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_10);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_10, _e2, _e3);
     return _e4;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(
-    ndf_roughness_matrix_RoughnessMatrix a_9,
+    ndf_roughness_matrix_RoughnessMatrix a_11,
     kernel_covariance_Covariance kernel_6,
     float det_clamp_2
 ) {
     kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
-    float _e4 = ndf_roughness_matrix_own_det_clamp(a_9);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_9, _e3, metal::max(det_clamp_2, _e4));
+    float _e4 = ndf_roughness_matrix_own_det_clamp(a_11);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_11, _e3, metal::max(det_clamp_2, _e4));
     return _e6;
 }
 
-footprint_Footprint kernel_clamp_footprint(
-    kernel_clamp_ClampRules rules,
-    footprint_Footprint fp_3
-) {
-    float l_7 = metal::max(rules.max_extent, 0.0);
-    float scale_2 = metal::max(metal::max(metal::abs(fp_3.dh_u.x), metal::abs(fp_3.dh_u.y)), metal::max(metal::abs(fp_3.dh_v.x), metal::abs(fp_3.dh_v.y)));
-    if (scale_2 <= 0.0) {
-        return fp_3;
-    }
-    footprint_Footprint unit = footprint_Footprint {fp_3.dh_u / metal::float2(scale_2), fp_3.dh_v / metal::float2(scale_2)};
-    float _e29 = footprint_max_extent(unit);
-    if ((_e29 * scale_2) <= l_7) {
-        return fp_3;
-    }
-    return footprint_Footprint {(unit.dh_u / metal::float2(_e29)) * l_7, (unit.dh_v / metal::float2(_e29)) * l_7};
-}
-
-kernel_rect_BoundingRect kernel_clamp_rect(
-    kernel_clamp_ClampRules rules_1,
-    kernel_rect_BoundingRect r_59,
-    metal::float2 alpha_8
-) {
-    metal::float2 f_1 = metal::float2(0.0);
-    if (rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT) {
-        f_1 = metal::float2(rules_1.floor);
-    } else {
-        if (rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED) {
-            f_1 = metal::min(metal::abs(alpha_8), metal::float2(rules_1.floor));
-        }
-    }
-    float lambda_2 = metal::max(rules_1.max_extent, 0.0);
-    metal::float2 h_27 = metal::min(metal::abs(r_59.half_extent), metal::float2(lambda_2));
-    metal::float2 _e25 = f_1;
-    return kernel_rect_BoundingRect {metal::max(h_27, metal::max(_e25, metal::float2(0.0)))};
-}
-
-kernel_covariance_Covariance kernel_clamp_kernel(
-    kernel_clamp_ClampRules rules_2,
-    kernel_covariance_Covariance k_12
-) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_12);
-    if (rules_2.kappa >= math_F32_MAX) {
-        return _e2;
-    }
-    kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, 0.5 * metal::max(rules_2.kappa, 0.0));
-    return _e11;
-}
-
-float kernel_clamp_det_clamp_for(
-    kernel_clamp_ClampRules rules_3,
-    ndf_roughness_matrix_RoughnessMatrix a_10
-) {
-    float _e2 = ndf_roughness_matrix_own_det_clamp(a_10);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_10);
-    return rules_3.det_clamp ? _e3 : _e2;
-}
-
-kernel_covariance_Covariance kernel_clamp_pixel_kernel(
-    kernel_clamp_ClampRules rules_4,
-    footprint_Footprint fp_4,
-    float sigma_3
-) {
-    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
-    kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_3);
-    kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
-    return _e5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(
-    kernel_clamp_ClampRules rules_5,
-    ndf_roughness_matrix_RoughnessMatrix a_11,
-    footprint_Footprint fp_5,
-    float sigma_4
-) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
-    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_11);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_11, _e4, _e5);
-    return _e6;
-}
-
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(
+ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(
     kernel_clamp_ClampRules rules_6,
     ndf_roughness_matrix_RoughnessMatrix a_12,
     footprint_Footprint fp_6,
@@ -2624,11 +2373,11 @@ float filter_proxy_effective_alpha(
     float alpha_9,
     float half_extent
 ) {
-    float h_28 = metal::abs(half_extent);
-    float _e3 = math_hypot(alpha_9, h_28);
-    float t_16 = (_e3 > 0.0) ? (h_28 / _e3) : 0.0;
-    float _e9 = math_atan(t_16);
-    float ratio = (t_16 > 0.0) ? (t_16 / _e9) : 1.0;
+    float h_27 = metal::abs(half_extent);
+    float _e3 = math_hypot(alpha_9, h_27);
+    float t_15 = (_e3 > 0.0) ? (h_27 / _e3) : 0.0;
+    float _e9 = math_atan(t_15);
+    float ratio = (t_15 > 0.0) ? (t_15 / _e9) : 1.0;
     return _e3 * metal::sqrt(ratio);
 }
 
@@ -2641,21 +2390,21 @@ float filter_proxy_effective_alpha_simple(
 }
 
 ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(
-    ndf_roughness_axis_aligned_AxisAligned r_60,
+    ndf_roughness_axis_aligned_AxisAligned r_53,
     metal::float2 half_extent_2
 ) {
-    float _e5 = filter_proxy_effective_alpha(r_60.alpha.x, half_extent_2.x);
-    float _e9 = filter_proxy_effective_alpha(r_60.alpha.y, half_extent_2.y);
+    float _e5 = filter_proxy_effective_alpha(r_53.alpha.x, half_extent_2.x);
+    float _e9 = filter_proxy_effective_alpha(r_53.alpha.y, half_extent_2.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(metal::float2(_e5, _e9));
     return _e11;
 }
 
 ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(
-    ndf_roughness_axis_aligned_AxisAligned r_61,
+    ndf_roughness_axis_aligned_AxisAligned r_54,
     metal::float2 half_extent_3
 ) {
-    float _e5 = filter_proxy_effective_alpha_simple(r_61.alpha.x, half_extent_3.x);
-    float _e9 = filter_proxy_effective_alpha_simple(r_61.alpha.y, half_extent_3.y);
+    float _e5 = filter_proxy_effective_alpha_simple(r_54.alpha.x, half_extent_3.x);
+    float _e9 = filter_proxy_effective_alpha_simple(r_54.alpha.y, half_extent_3.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(metal::float2(_e5, _e9));
     return _e11;
 }
@@ -2677,13 +2426,13 @@ uint filter_rect_tier(
 }
 
 float filter_rect_gl_node(
-    uint n_2,
+    uint n_1,
     uint k_13
 ) {
-    if (n_2 == 2u) {
+    if (n_1 == 2u) {
         return 0.57735026;
     }
-    if (n_2 == 4u) {
+    if (n_1 == 4u) {
         return (k_13 == 0u) ? 0.33998105 : 0.8611363;
     }
     if (k_13 == 0u) {
@@ -2693,13 +2442,13 @@ float filter_rect_gl_node(
 }
 
 float filter_rect_gl_weight(
-    uint n_3,
+    uint n_2,
     uint k_14
 ) {
-    if (n_3 == 2u) {
+    if (n_2 == 2u) {
         return 0.5;
     }
-    if (n_3 == 4u) {
+    if (n_2 == 4u) {
         return (k_14 == 0u) ? 0.32607257 : 0.17392743;
     }
     if (k_14 == 0u) {
@@ -2709,11 +2458,11 @@ float filter_rect_gl_weight(
 }
 
 float filter_rect_f(
-    float u_7,
-    float v_6
+    float u_1,
+    float v_5
 ) {
-    float t_17 = (1.0 + (u_7 * u_7)) + (v_6 * v_6);
-    return 1.0 / (t_17 * t_17);
+    float t_16 = (1.0 + (u_1 * u_1)) + (v_5 * v_5);
+    return 1.0 / (t_16 * t_16);
 }
 
 uint naga_div(uint lhs, uint rhs) {
@@ -2721,8 +2470,8 @@ uint naga_div(uint lhs, uint rhs) {
 }
 
 float filter_rect_gl_mean(
-    uint n_4,
-    float u_8,
+    uint n_3,
+    float u_2,
     float c_6,
     float h_12
 ) {
@@ -2739,19 +2488,19 @@ float filter_rect_gl_mean(
         }
         loop_init_6 = false;
         uint _e8 = k_15;
-        if (_e8 < naga_div(n_4, 2u)) {
+        if (_e8 < naga_div(n_3, 2u)) {
         } else {
             break;
         }
         {
             uint _e12 = k_15;
-            float _e13 = filter_rect_gl_node(n_4, _e12);
+            float _e13 = filter_rect_gl_node(n_3, _e12);
             float a_24 = h_12 * _e13;
             float _e15 = acc_2;
             uint _e16 = k_15;
-            float _e17 = filter_rect_gl_weight(n_4, _e16);
-            float _e19 = filter_rect_f(u_8, c_6 - a_24);
-            float _e21 = filter_rect_f(u_8, c_6 + a_24);
+            float _e17 = filter_rect_gl_weight(n_3, _e16);
+            float _e19 = filter_rect_f(u_2, c_6 - a_24);
+            float _e21 = filter_rect_f(u_2, c_6 + a_24);
             acc_2 = _e15 + (_e17 * (_e19 + _e21));
         }
     }
@@ -2772,21 +2521,21 @@ float filter_rect_atan2_upper(
 }
 
 float filter_rect_delta_minus_sin(
-    float d_2,
+    float d,
     float sin_d
 ) {
     float s_11 = {};
-    if (d_2 < 1.0) {
-        float d2_1 = d_2 * d_2;
+    if (d < 1.0) {
+        float d2_1 = d * d;
         s_11 = 1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909)));
         float _e17 = s_11;
         s_11 = 1.0 - ((d2_1 * 0.023809524) * _e17);
         float _e23 = s_11;
         s_11 = 1.0 - ((d2_1 * 0.05) * _e23);
         float _e30 = s_11;
-        return ((d_2 * d2_1) * 0.16666667) * _e30;
+        return ((d * d2_1) * 0.16666667) * _e30;
     }
-    return d_2 - sin_d;
+    return d - sin_d;
 }
 
 float filter_rect_mean_1d(
@@ -2803,9 +2552,9 @@ float filter_rect_mean_1d(
     float _e27 = filter_rect_atan2_upper(c_21 * dx, c2_ + x01_);
     float inv_2 = 1.0 / (((2.0 * c_21) * c2_) * dx);
     if (x0_ <= 0.0) {
-        float s_30 = metal::rsqrt(r02_) * metal::rsqrt(r12_);
-        float q_7 = metal::min((c2_ - x01_) * s_30, 1.0);
-        return (_e27 * inv_2) + ((q_7 * s_30) * (0.5 / c2_));
+        float s_29 = metal::rsqrt(r02_) * metal::rsqrt(r12_);
+        float q_7 = metal::min((c2_ - x01_) * s_29, 1.0);
+        return (_e27 * inv_2) + ((q_7 * s_29) * (0.5 / c2_));
     }
     float rr = metal::sqrt(r02_) * metal::sqrt(r12_);
     float p2_1 = (2.0 * r02_) * r12_;
@@ -2814,7 +2563,7 @@ float filter_rect_mean_1d(
 }
 
 float filter_rect_gl_mean_1d(
-    uint n_5,
+    uint n_4,
     float c_7,
     float h_13,
     metal::float4 other
@@ -2832,19 +2581,19 @@ float filter_rect_gl_mean_1d(
         }
         loop_init_7 = false;
         uint _e8 = k_16;
-        if (_e8 < naga_div(n_5, 2u)) {
+        if (_e8 < naga_div(n_4, 2u)) {
         } else {
             break;
         }
         {
             uint _e12 = k_16;
-            float _e13 = filter_rect_gl_node(n_5, _e12);
+            float _e13 = filter_rect_gl_node(n_4, _e12);
             float a_25 = h_13 * _e13;
             float x0_1 = c_7 - a_25;
             float x1_2 = c_7 + a_25;
             float _e17 = acc_3;
             uint _e18 = k_16;
-            float _e19 = filter_rect_gl_weight(n_5, _e18);
+            float _e19 = filter_rect_gl_weight(n_4, _e18);
             float _e23 = filter_rect_mean_1d(other, 1.0 + (x0_1 * x0_1));
             float _e27 = filter_rect_mean_1d(other, 1.0 + (x1_2 * x1_2));
             acc_3 = _e17 + (_e19 * (_e23 + _e27));
@@ -2855,28 +2604,28 @@ float filter_rect_gl_mean_1d(
 }
 
 float filter_rect_edge(
-    float u_9,
+    float u_3,
     float dv,
     float v01_
 ) {
-    float s2_1 = 1.0 + (u_9 * u_9);
-    float s_31 = metal::sqrt(s2_1);
-    float _e10 = filter_rect_atan2_upper(dv * s_31, s2_1 + v01_);
-    return (u_9 / s_31) * _e10;
+    float s2_1 = 1.0 + (u_3 * u_3);
+    float s_30 = metal::sqrt(s2_1);
+    float _e10 = filter_rect_atan2_upper(dv * s_30, s2_1 + v01_);
+    return (u_3 / s_30) * _e10;
 }
 
 float filter_rect_edges(
-    metal::float4 u_10,
-    metal::float4 v_7
+    metal::float4 u_4,
+    metal::float4 v_6
 ) {
-    float du = 2.0 * u_10.w;
-    float dv_1 = 2.0 * v_7.w;
-    float v01_1 = v_7.x * v_7.y;
-    float u01_ = u_10.x * u_10.y;
-    float _e15 = filter_rect_edge(u_10.y, dv_1, v01_1);
-    float _e17 = filter_rect_edge(u_10.x, dv_1, v01_1);
-    float _e20 = filter_rect_edge(v_7.y, du, u01_);
-    float _e22 = filter_rect_edge(v_7.x, du, u01_);
+    float du = 2.0 * u_4.w;
+    float dv_1 = 2.0 * v_6.w;
+    float v01_1 = v_6.x * v_6.y;
+    float u01_ = u_4.x * u_4.y;
+    float _e15 = filter_rect_edge(u_4.y, dv_1, v01_1);
+    float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
+    float _e20 = filter_rect_edge(v_6.y, du, u01_);
+    float _e22 = filter_rect_edge(v_6.x, du, u01_);
     float i_13 = 0.5 * ((_e15 - _e17) + (_e20 - _e22));
     return i_13 / (du * dv_1);
 }
@@ -2913,7 +2662,7 @@ float filter_rect_polar_near(
     float acc_4 = 0.0;
     uint k_19 = 0u;
     float c_22 = 0.5 * (lo + hi);
-    float h_29 = 0.5 * (hi - lo);
+    float h_28 = 0.5 * (hi - lo);
     uint2 loop_bound_8 = uint2(4294967295u);
     bool loop_init_8 = true;
     while(true) {
@@ -2932,7 +2681,7 @@ float filter_rect_polar_near(
         {
             uint _e16 = k_19;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_5 = h_29 * _e17;
+            float d_5 = h_28 * _e17;
             float q0_ = 1.0 + ((c_22 - d_5) * (c_22 - d_5));
             float q1_ = 1.0 + ((c_22 + d_5) * (c_22 + d_5));
             float _e29 = acc_4;
@@ -2953,7 +2702,7 @@ float filter_rect_polar_far(
     float acc_5 = 0.0;
     uint k_20 = 0u;
     float c_23 = 0.5 * (lo_1 + hi_1);
-    float h_30 = 0.5 * (hi_1 - lo_1);
+    float h_29 = 0.5 * (hi_1 - lo_1);
     uint2 loop_bound_9 = uint2(4294967295u);
     bool loop_init_9 = true;
     while(true) {
@@ -2972,7 +2721,7 @@ float filter_rect_polar_far(
         {
             uint _e16 = k_20;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_6 = h_30 * _e17;
+            float d_6 = h_29 * _e17;
             float t0_2 = (c_23 - d_6) * (c_23 - d_6);
             float t1_4 = (c_23 + d_6) * (c_23 + d_6);
             float _e25 = acc_5;
@@ -2986,23 +2735,23 @@ float filter_rect_polar_far(
 }
 
 float filter_rect_edge_range(
-    float ax_1,
+    float ax,
     float a_13,
     float b_2
 ) {
-    float v_8 = 0.0;
-    float x2_3 = ax_1 * ax_1;
-    if (a_13 < ax_1) {
-        float _e7 = v_8;
-        float _e11 = filter_rect_polar_near(x2_3, a_13 / ax_1, metal::min(b_2, ax_1) / ax_1);
-        v_8 = _e7 + _e11;
+    float v_7 = 0.0;
+    float x2_3 = ax * ax;
+    if (a_13 < ax) {
+        float _e7 = v_7;
+        float _e11 = filter_rect_polar_near(x2_3, a_13 / ax, metal::min(b_2, ax) / ax);
+        v_7 = _e7 + _e11;
     }
-    if (b_2 > ax_1) {
-        float _e14 = v_8;
-        float _e18 = filter_rect_polar_far(x2_3, ax_1 / b_2, ax_1 / metal::max(a_13, ax_1));
-        v_8 = _e14 + _e18;
+    if (b_2 > ax) {
+        float _e14 = v_7;
+        float _e18 = filter_rect_polar_far(x2_3, ax / b_2, ax / metal::max(a_13, ax));
+        v_7 = _e14 + _e18;
     }
-    float _e20 = v_8;
+    float _e20 = v_7;
     return _e20;
 }
 
@@ -3011,39 +2760,39 @@ float filter_rect_edge_polar(
     float a_14,
     float b_3
 ) {
-    float v_9 = {};
+    float v_8 = {};
     float ax_2 = metal::abs(x_7);
     if (ax_2 < 0.000000000001) {
         return 0.0;
     }
     if (a_14 >= 0.0) {
         float _e10 = filter_rect_edge_range(ax_2, a_14, b_3);
-        v_9 = _e10;
+        v_8 = _e10;
     } else {
         if (b_3 <= 0.0) {
             float _e15 = filter_rect_edge_range(ax_2, -(b_3), -(a_14));
-            v_9 = _e15;
+            v_8 = _e15;
         } else {
             float _e18 = filter_rect_edge_range(ax_2, 0.0, -(a_14));
             float _e20 = filter_rect_edge_range(ax_2, 0.0, b_3);
-            v_9 = _e18 + _e20;
+            v_8 = _e18 + _e20;
         }
     }
-    float _e22 = v_9;
-    float _e24 = v_9;
+    float _e22 = v_8;
+    float _e24 = v_8;
     return (x_7 > 0.0) ? _e24 : -(_e22);
 }
 
 float filter_rect_far_field(
-    metal::float4 u_11,
-    metal::float4 v_10
+    metal::float4 u_5,
+    metal::float4 v_9
 ) {
-    float _e5 = filter_rect_edge_polar(u_11.y, v_10.x, v_10.y);
-    float _e9 = filter_rect_edge_polar(u_11.x, v_10.x, v_10.y);
-    float _e14 = filter_rect_edge_polar(v_10.y, u_11.x, u_11.y);
-    float _e18 = filter_rect_edge_polar(v_10.x, u_11.x, u_11.y);
+    float _e5 = filter_rect_edge_polar(u_5.y, v_9.x, v_9.y);
+    float _e9 = filter_rect_edge_polar(u_5.x, v_9.x, v_9.y);
+    float _e14 = filter_rect_edge_polar(v_9.y, u_5.x, u_5.y);
+    float _e18 = filter_rect_edge_polar(v_9.x, u_5.x, u_5.y);
     float i_14 = -0.5 * ((_e5 - _e9) + (_e14 - _e18));
-    return i_14 / ((4.0 * u_11.w) * v_10.w);
+    return i_14 / ((4.0 * u_5.w) * v_9.w);
 }
 
 float filter_rect_gap(
@@ -3053,36 +2802,36 @@ float filter_rect_gap(
 }
 
 float filter_rect_mean_f(
-    metal::float4 u_12,
-    metal::float4 v_11
+    metal::float4 u_6,
+    metal::float4 v_10
 ) {
-    bool local_18 = {};
+    bool local_13 = {};
     float acc_6 = 0.0;
     uint k_21 = 0u;
-    float _e2 = filter_rect_gap(u_12);
-    float _e3 = filter_rect_gap(v_11);
-    uint _e14 = filter_rect_tier(u_12.w * u_12.w, (1.0 + (u_12.z * u_12.z)) + (_e3 * _e3));
-    uint _e25 = filter_rect_tier(v_11.w * v_11.w, (1.0 + (v_11.z * v_11.z)) + (_e2 * _e2));
+    float _e2 = filter_rect_gap(u_6);
+    float _e3 = filter_rect_gap(v_10);
+    uint _e14 = filter_rect_tier(u_6.w * u_6.w, (1.0 + (u_6.z * u_6.z)) + (_e3 * _e3));
+    uint _e25 = filter_rect_tier(v_10.w * v_10.w, (1.0 + (v_10.z * v_10.z)) + (_e2 * _e2));
     if (_e14 == filter_rect_TIER_CLOSED) {
-        local_18 = _e25 == filter_rect_TIER_CLOSED;
+        local_13 = _e25 == filter_rect_TIER_CLOSED;
     } else {
-        local_18 = false;
+        local_13 = false;
     }
-    bool _e33 = local_18;
+    bool _e33 = local_13;
     if (_e33) {
         if (((_e2 * _e2) + (_e3 * _e3)) > filter_rect_FAR2_) {
-            float _e39 = filter_rect_far_field(u_12, v_11);
+            float _e39 = filter_rect_far_field(u_6, v_10);
             return _e39;
         }
-        float _e40 = filter_rect_edges(u_12, v_11);
+        float _e40 = filter_rect_edges(u_6, v_10);
         return _e40;
     }
     if (_e14 == filter_rect_TIER_CLOSED) {
-        float _e45 = filter_rect_gl_mean_1d(_e25, v_11.z, v_11.w, u_12);
+        float _e45 = filter_rect_gl_mean_1d(_e25, v_10.z, v_10.w, u_6);
         return _e45;
     }
     if (_e25 == filter_rect_TIER_CLOSED) {
-        float _e50 = filter_rect_gl_mean_1d(_e14, u_12.z, u_12.w, v_11);
+        float _e50 = filter_rect_gl_mean_1d(_e14, u_6.z, u_6.w, v_10);
         return _e50;
     }
     uint2 loop_bound_10 = uint2(4294967295u);
@@ -3103,12 +2852,12 @@ float filter_rect_mean_f(
         {
             uint _e60 = k_21;
             float _e61 = filter_rect_gl_node(_e14, _e60);
-            float a_26 = u_12.w * _e61;
+            float a_26 = u_6.w * _e61;
             float _e63 = acc_6;
             uint _e64 = k_21;
             float _e65 = filter_rect_gl_weight(_e14, _e64);
-            float _e70 = filter_rect_gl_mean(_e25, u_12.z - a_26, v_11.z, v_11.w);
-            float _e75 = filter_rect_gl_mean(_e25, u_12.z + a_26, v_11.z, v_11.w);
+            float _e70 = filter_rect_gl_mean(_e25, u_6.z - a_26, v_10.z, v_10.w);
+            float _e75 = filter_rect_gl_mean(_e25, u_6.z + a_26, v_10.z, v_10.w);
             acc_6 = _e63 + (_e65 * (_e70 + _e75));
         }
     }
@@ -3123,66 +2872,66 @@ metal::float4 filter_rect_interval(
 ) {
     float ah = metal::abs(h_14);
     float lo_4 = metal::clamp((c_8 - ah) / a_15, -1000000000000000000.0, filter_rect_BIG);
-    float hi_4 = metal::clamp((c_8 + ah) / a_15, -1000000000000000000.0, filter_rect_BIG);
-    return metal::float4(lo_4, hi_4, metal::clamp(c_8 / a_15, -1000000000000000000.0, filter_rect_BIG), metal::min(ah / a_15, filter_rect_BIG));
+    float hi_3 = metal::clamp((c_8 + ah) / a_15, -1000000000000000000.0, filter_rect_BIG);
+    return metal::float4(lo_4, hi_3, metal::clamp(c_8 / a_15, -1000000000000000000.0, filter_rect_BIG), metal::min(ah / a_15, filter_rect_BIG));
 }
 
 float filter_rect_p22_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_62,
+    ndf_roughness_axis_aligned_AxisAligned r_55,
     metal::float2 center,
     metal::float2 half_extent_4
 ) {
-    bool local_19 = {};
+    bool local_14 = {};
     if (half_extent_4.x == 0.0) {
-        local_19 = half_extent_4.y == 0.0;
+        local_14 = half_extent_4.y == 0.0;
     } else {
-        local_19 = false;
+        local_14 = false;
     }
-    bool _e12 = local_19;
+    bool _e12 = local_14;
     if (_e12) {
-        float _e13 = ndf_ggx_p22_axis_aligned(r_62, center);
+        float _e13 = ndf_ggx_p22_axis_aligned(r_55, center);
         return _e13;
     }
-    metal::float2 a_27 = r_62.alpha;
-    metal::float4 _e18 = filter_rect_interval(center.x, half_extent_4.x, r_62.alpha.x);
-    metal::float4 _e22 = filter_rect_interval(center.y, half_extent_4.y, r_62.alpha.y);
+    metal::float2 a_27 = r_55.alpha;
+    metal::float4 _e18 = filter_rect_interval(center.x, half_extent_4.x, r_55.alpha.x);
+    metal::float4 _e22 = filter_rect_interval(center.y, half_extent_4.y, r_55.alpha.y);
     float _e23 = filter_rect_mean_f(_e18, _e22);
-    return metal::max(_e23 * (math_INV_PI / (r_62.alpha.x * r_62.alpha.y)), 0.0);
+    return metal::max(_e23 * (math_INV_PI / (r_55.alpha.x * r_55.alpha.y)), 0.0);
 }
 
 float filter_rect_d_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_63,
+    ndf_roughness_axis_aligned_AxisAligned r_56,
     metal::float3 h_15,
     metal::float2 half_extent_5
 ) {
-    bool local_20 = {};
+    bool local_15 = {};
     if (!((h_15.z > 0.0))) {
         return 0.0;
     }
     if (half_extent_5.x == 0.0) {
-        local_20 = half_extent_5.y == 0.0;
+        local_15 = half_extent_5.y == 0.0;
     } else {
-        local_20 = false;
+        local_15 = false;
     }
-    bool _e17 = local_20;
+    bool _e17 = local_15;
     if (_e17) {
-        float _e18 = ndf_ggx_d_axis_aligned(r_63, h_15);
+        float _e18 = ndf_ggx_d_axis_aligned(r_56, h_15);
         return _e18;
     }
-    float _e24 = filter_rect_p22_rect(r_63, -(h_15.xy) / metal::float2(h_15.z), half_extent_5);
+    float _e24 = filter_rect_p22_rect(r_56, -(h_15.xy) / metal::float2(h_15.z), half_extent_5);
     float z2_6 = h_15.z * h_15.z;
     return metal::min(_e24 / (z2_6 * z2_6), math_F32_MAX);
 }
 
 float filter_rect_d_rect_printed(
-    ndf_roughness_axis_aligned_AxisAligned r_64,
+    ndf_roughness_axis_aligned_AxisAligned r_57,
     metal::float2 hpp,
     metal::float3 h_16,
     metal::float2 footprint
 ) {
-    bool local_21 = {};
-    float a_28 = r_64.alpha.x;
-    float b_8 = r_64.alpha.y;
+    bool local_16 = {};
+    float a_28 = r_57.alpha.x;
+    float b_8 = r_57.alpha.y;
     float a_2_ = a_28 * a_28;
     float b_2_ = b_8 * b_8;
     float x1_3 = hpp.x - footprint.x;
@@ -3204,14 +2953,14 @@ float filter_rect_d_rect_printed(
     float val = (((x1_3 * (_e37 - _e41)) / sx1_) + ((x2_4 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_));
     float den_2 = (6.2831855 * (x1_3 - x2_4)) * (y1_ - y2_);
     float hz4_ = ((h_16.z * h_16.z) * h_16.z) * h_16.z;
-    float v_19 = (val / den_2) / metal::max(hz4_, 0.001);
-    if (metal::abs(v_19) <= math_F32_MAX) {
-        local_21 = den_2 != 0.0;
+    float v_17 = (val / den_2) / metal::max(hz4_, 0.001);
+    if (metal::abs(v_17) <= math_F32_MAX) {
+        local_16 = den_2 != 0.0;
     } else {
-        local_21 = false;
+        local_16 = false;
     }
-    bool _e109 = local_21;
-    return _e109 ? v_19 : 0.0;
+    bool _e109 = local_16;
+    return _e109 ? v_17 : 0.0;
 }
 
 float filter_rect_lambda_rho(
@@ -3227,26 +2976,26 @@ float filter_rect_lambda_rho(
 
 float filter_rect_lambda_e_neg(
     float t_2,
-    float r_65
+    float r_58
 ) {
-    return (t_2 >= 0.0) ? (1.0 / (r_65 + t_2)) : (r_65 - t_2);
+    return (t_2 >= 0.0) ? (1.0 / (r_58 + t_2)) : (r_58 - t_2);
 }
 
 float filter_rect_lambda_asinh_of(
     float t_3,
-    float r_66
+    float r_59
 ) {
-    float v_12 = {};
+    float v_11 = {};
     float a_30 = metal::abs(t_3);
     if (a_30 > 1.0) {
-        float _e7 = math_ln(a_30 + r_66);
-        v_12 = _e7;
+        float _e7 = math_ln(a_30 + r_59);
+        v_11 = _e7;
     } else {
-        float _e13 = math_ln_1p(a_30 + ((a_30 * a_30) / (1.0 + r_66)));
-        v_12 = _e13;
+        float _e13 = math_ln_1p(a_30 + ((a_30 * a_30) / (1.0 + r_59)));
+        v_11 = _e13;
     }
-    float _e14 = v_12;
-    float _e15 = v_12;
+    float _e14 = v_11;
+    float _e15 = v_11;
     return (t_3 < 0.0) ? -(_e15) : _e14;
 }
 
@@ -3279,25 +3028,25 @@ float filter_rect_lambda_psi2_(
 float filter_rect_lambda_psi1_diff(
     float t0_,
     float t1_,
-    float w_18
+    float w_17
 ) {
     float _e3 = filter_rect_lambda_rho(t0_);
     float _e4 = filter_rect_lambda_rho(t1_);
     float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_32 = _e5 + _e6;
-    float d_7 = (w_18 * s_32) / (_e3 + _e4);
+    float s_31 = _e5 + _e6;
+    float d_7 = (w_17 * s_31) / (_e3 + _e4);
     float _e12 = math_ln_1p(d_7 / _e6);
-    return 0.25 * (_e12 + ((0.5 * d_7) * s_32));
+    return 0.25 * (_e12 + ((0.5 * d_7) * s_31));
 }
 
 float filter_rect_lambda_mean_psi(
     float t0_1,
     float t1_1,
-    float w_19
+    float w_18
 ) {
-    float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_19);
-    return _e3 / w_19;
+    float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_18);
+    return _e3 / w_18;
 }
 
 uint filter_rect_lambda_rule(
@@ -3393,7 +3142,7 @@ float filter_rect_lambda_gl_psi(
 }
 
 float filter_rect_lambda_expected_psi(
-    float m_29,
+    float m_22,
     float k1_,
     float k2_,
     float lo_2
@@ -3404,10 +3153,10 @@ float filter_rect_lambda_expected_psi(
     uint j_3 = 0u;
     float ks = metal::min(k1_, k2_);
     float kl = metal::max(k1_, k2_);
-    float near_l = metal::max(m_29 - ks, 0.0);
+    float near_l = metal::max(m_22 - ks, 0.0);
     uint _e13 = filter_rect_tier(kl * kl, 1.0 + (near_l * near_l));
     if (_e13 != filter_rect_TIER_CLOSED) {
-        float near_s = metal::max(m_29 - kl, 0.0);
+        float near_s = metal::max(m_22 - kl, 0.0);
         uint _e23 = filter_rect_tier(ks * ks, 1.0 + (near_s * near_s));
         uint2 loop_bound_13 = uint2(4294967295u);
         bool loop_init_13 = true;
@@ -3431,18 +3180,18 @@ float filter_rect_lambda_expected_psi(
                 float _e35 = acc_9;
                 uint _e36 = j_2;
                 float _e37 = filter_rect_gl_weight(_e13, _e36);
-                float _e39 = filter_rect_lambda_gl_psi(_e23, m_29 - a_33, ks);
-                float _e41 = filter_rect_lambda_gl_psi(_e23, m_29 + a_33, ks);
+                float _e39 = filter_rect_lambda_gl_psi(_e23, m_22 - a_33, ks);
+                float _e41 = filter_rect_lambda_gl_psi(_e23, m_22 + a_33, ks);
                 acc_9 = _e35 + (_e37 * (_e39 + _e41));
             }
         }
         float _e48 = acc_9;
         return _e48;
     }
-    float hi_5 = m_29 + kl;
-    float w_28 = 2.0 * kl;
+    float hi_4 = m_22 + kl;
+    float w_26 = 2.0 * kl;
     if (ks == 0.0) {
-        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_5, w_28);
+        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_4, w_26);
         return _e54;
     }
     uint _e59 = filter_rect_tier(ks * ks, 1.0 + (lo_2 * lo_2));
@@ -3465,81 +3214,81 @@ float filter_rect_lambda_expected_psi(
             {
                 uint _e70 = j_3;
                 float _e71 = filter_rect_gl_node(_e59, _e70);
-                float x_18 = ks * _e71;
+                float x_17 = ks * _e71;
                 float _e73 = acc_10;
                 uint _e74 = j_3;
                 float _e75 = filter_rect_gl_weight(_e59, _e74);
-                float _e78 = filter_rect_lambda_mean_psi(lo_2 + x_18, hi_5 + x_18, w_28);
-                float _e81 = filter_rect_lambda_mean_psi(lo_2 - x_18, hi_5 - x_18, w_28);
+                float _e78 = filter_rect_lambda_mean_psi(lo_2 + x_17, hi_4 + x_17, w_26);
+                float _e81 = filter_rect_lambda_mean_psi(lo_2 - x_17, hi_4 - x_17, w_26);
                 acc_10 = _e73 + (_e75 * (_e78 + _e81));
             }
         }
         float _e88 = acc_10;
         return _e88;
     }
-    float _e89 = filter_rect_lambda_mean_psi1_(hi_5, ks);
+    float _e89 = filter_rect_lambda_mean_psi1_(hi_4, ks);
     float _e90 = filter_rect_lambda_mean_psi1_(lo_2, ks);
-    return (_e89 - _e90) / w_28;
+    return (_e89 - _e90) / w_26;
 }
 
 float filter_rect_lambda_lambda_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_67,
+    ndf_roughness_axis_aligned_AxisAligned r_60,
     metal::float2 half_extent_6,
     metal::float3 w_in
 ) {
-    metal::float3 w_20 = {};
-    bool local_22 = {};
-    bool local_23 = {};
-    bool local_24 = {};
+    metal::float3 w_19 = {};
+    bool local_17 = {};
+    bool local_18 = {};
+    bool local_19 = {};
     float big_6 = metal::max(metal::max(metal::abs(w_in.x), metal::abs(w_in.y)), metal::abs(w_in.z));
-    w_20 = w_in;
+    w_19 = w_in;
     if (!((big_6 > 1152921500000000000.0))) {
         if (big_6 < 0.00000000000000000086736174) {
-            local_23 = big_6 > 0.0;
+            local_18 = big_6 > 0.0;
         } else {
-            local_23 = false;
+            local_18 = false;
         }
-        bool _e24 = local_23;
-        local_22 = _e24;
+        bool _e24 = local_18;
+        local_17 = _e24;
     } else {
-        local_22 = true;
+        local_17 = true;
     }
-    bool _e26 = local_22;
+    bool _e26 = local_17;
     if (_e26) {
-        int e_6 = as_type<int>(as_type<uint>(static_cast<int>((as_type<uint>(big_6) >> 23u) & 255u)) - as_type<uint>(127));
-        w_20 = w_in * as_type<float>(static_cast<uint>(as_type<int>(as_type<uint>(127) - as_type<uint>(e_6))) << 23u);
+        int e_5 = as_type<int>(as_type<uint>(static_cast<int>((as_type<uint>(big_6) >> 23u) & 255u)) - as_type<uint>(127));
+        w_19 = w_in * as_type<float>(static_cast<uint>(as_type<int>(as_type<uint>(127) - as_type<uint>(e_5))) << 23u);
     }
-    float _e43 = w_20.x;
-    float _e45 = w_20.y;
+    float _e43 = w_19.x;
+    float _e45 = w_19.y;
     float _e46 = math_hypot(_e43, _e45);
     if (_e46 <= 0.0) {
         return 0.0;
     }
-    float _e51 = w_20.z;
+    float _e51 = w_19.z;
     float wz = metal::abs(_e51);
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    metal::float2 alpha_12 = r_67.alpha;
+    metal::float2 alpha_12 = r_60.alpha;
     metal::float2 ha = metal::min(metal::abs(half_extent_6), alpha_12 * filter_rect_lambda_BIG_K);
-    float _e63 = w_20.x;
+    float _e63 = w_19.x;
     float ux = metal::abs(_e63) / _e46;
-    float _e67 = w_20.y;
+    float _e67 = w_19.y;
     float uy = metal::abs(_e67) / _e46;
-    float px = ux * r_67.alpha.x;
-    float py = uy * r_67.alpha.y;
+    float px = ux * r_60.alpha.x;
+    float py = uy * r_60.alpha.y;
     float _e74 = math_hypot(px, py);
-    float k1_4 = (px / _e74) * (ha.x / r_67.alpha.x);
-    float k2_4 = (py / _e74) * (ha.y / r_67.alpha.y);
+    float k1_4 = (px / _e74) * (ha.x / r_60.alpha.x);
+    float k2_4 = (py / _e74) * (ha.y / r_60.alpha.y);
     if (k1_4 == 0.0) {
-        local_24 = k2_4 == 0.0;
+        local_19 = k2_4 == 0.0;
     } else {
-        local_24 = false;
+        local_19 = false;
     }
-    bool _e92 = local_24;
+    bool _e92 = local_19;
     if (_e92) {
-        metal::float3 _e93 = w_20;
-        float _e94 = ndf_ggx_lambda_axis_aligned(r_67, _e93);
+        metal::float3 _e93 = w_19;
+        float _e94 = ndf_ggx_lambda_axis_aligned(r_60, _e93);
         return _e94;
     }
     float mm = (wz / _e46) / _e74;
@@ -3547,8 +3296,8 @@ float filter_rect_lambda_lambda_rect(
         return (0.25 / mm) / mm;
     }
     bool long_x = k1_4 >= k2_4;
-    float _e104 = w_20.y;
-    float _e107 = w_20.x;
+    float _e104 = w_19.y;
+    float _e107 = w_19.x;
     float wl_1 = long_x ? metal::abs(_e107) : metal::abs(_e104);
     float hl = long_x ? ha.x : ha.y;
     float lo_5 = ((wz - (wl_1 * hl)) / _e46) / _e74;
@@ -3561,7 +3310,7 @@ ndf_roughness_matrix_RoughnessMatrix filter_method_gaussian_lobe(
     ndf_roughness_matrix_RoughnessMatrix material,
     footprint_Footprint fp_7
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_gaussian(method.clamps, material, fp_7, method.sigma);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_filter_gaussian(method.clamps, material, fp_7, method.sigma);
     return _e5;
 }
 
@@ -3569,10 +3318,10 @@ float filter_method_d_ggx_gaussian(
     filter_method_Gaussian method_1,
     ndf_roughness_matrix_RoughnessMatrix material_1,
     footprint_Footprint fp_8,
-    metal::float3 m_30
+    metal::float3 m_23
 ) {
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_1, material_1, fp_8);
-    float _e5 = ndf_ggx_d_matrix(_e4, m_30);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_23);
     return _e5;
 }
 
@@ -3580,10 +3329,10 @@ float filter_method_d_beckmann_gaussian(
     filter_method_Gaussian method_2,
     ndf_roughness_matrix_RoughnessMatrix material_2,
     footprint_Footprint fp_9,
-    metal::float3 m_31
+    metal::float3 m_24
 ) {
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_2, material_2, fp_9);
-    float _e5 = ndf_beckmann_d_matrix(_e4, m_31);
+    float _e5 = ndf_beckmann_d_matrix(_e4, m_24);
     return _e5;
 }
 
@@ -3601,10 +3350,10 @@ float filter_method_d_ggx_exact_gaussian(
     filter_method_ExactGaussian method_4,
     ndf_roughness_matrix_RoughnessMatrix material_4,
     footprint_Footprint fp_11,
-    metal::float3 m_32
+    metal::float3 m_25
 ) {
     filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_method_exact_gaussian_lobe(method_4, material_4, fp_11);
-    float _e5 = filter_gaussian_ggx_d(_e4, m_32);
+    float _e5 = filter_gaussian_ggx_d(_e4, m_25);
     return _e5;
 }
 
@@ -3613,7 +3362,7 @@ ndf_roughness_matrix_RoughnessMatrix filter_method_projected_lobe(
     ndf_roughness_matrix_RoughnessMatrix material_5,
     footprint_Footprint fp_12
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
     return _e5;
 }
 
@@ -3621,10 +3370,10 @@ float filter_method_d_ggx_projected(
     filter_method_Projected method_6,
     ndf_roughness_matrix_RoughnessMatrix material_6,
     footprint_Footprint fp_13,
-    metal::float3 m_33
+    metal::float3 m_26
 ) {
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_projected_lobe(method_6, material_6, fp_13);
-    float _e5 = ndf_ggx_d_matrix(_e4, m_33);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_26);
     return _e5;
 }
 
@@ -3633,10 +3382,10 @@ filter_method_RectFilteredGgx filter_method_rect_lobe(
     ndf_roughness_axis_aligned_AxisAligned material_7,
     footprint_Footprint fp_14
 ) {
-    kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_14);
+    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_14);
     kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
-    metal::float2 h_31 = _e6.half_extent;
-    return filter_method_RectFilteredGgx {material_7, h_31};
+    metal::float2 h_30 = _e6.half_extent;
+    return filter_method_RectFilteredGgx {material_7, h_30};
 }
 
 float filter_method_p22_rect_filtered(
@@ -3649,39 +3398,39 @@ float filter_method_p22_rect_filtered(
 
 float filter_method_d_rect_filtered(
     filter_method_RectFilteredGgx lobe_1,
-    metal::float3 m_34
+    metal::float3 m_27
 ) {
-    float _e4 = filter_rect_d_rect(lobe_1.roughness, m_34, lobe_1.half_extent);
+    float _e4 = filter_rect_d_rect(lobe_1.roughness, m_27, lobe_1.half_extent);
     return _e4;
 }
 
 float filter_method_lambda_rect_filtered(
     filter_method_RectFilteredGgx lobe_2,
-    metal::float3 w_21
+    metal::float3 w_20
 ) {
-    float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_21);
+    float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_20);
     return _e4;
 }
 
 float filter_method_g1_rect_filtered(
     filter_method_RectFilteredGgx lobe_3,
-    metal::float3 w_22,
-    metal::float3 m_35
+    metal::float3 w_21,
+    metal::float3 m_28
 ) {
-    float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_22);
-    float _e5 = ndf_g1_of(_e3, metal::dot(w_22, m_35));
+    float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_21);
+    float _e5 = ndf_g1_of(_e3, metal::dot(w_21, m_28));
     return _e5;
 }
 
 float filter_method_g2_rect_filtered(
     filter_method_RectFilteredGgx lobe_4,
     metal::float3 i_9,
-    metal::float3 o_8,
-    metal::float3 m_36
+    metal::float3 o_7,
+    metal::float3 m_29
 ) {
     float _e4 = filter_method_lambda_rect_filtered(lobe_4, i_9);
-    float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_8);
-    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_9, m_36), metal::dot(o_8, m_36));
+    float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_7);
+    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_9, m_29), metal::dot(o_7, m_29));
     return _e8;
 }
 
@@ -3689,10 +3438,10 @@ float filter_method_d_ggx_rect(
     filter_method_Rect method_8,
     ndf_roughness_axis_aligned_AxisAligned material_8,
     footprint_Footprint fp_15,
-    metal::float3 m_37
+    metal::float3 m_30
 ) {
     filter_method_RectFilteredGgx _e4 = filter_method_rect_lobe(method_8, material_8, fp_15);
-    float _e5 = filter_method_d_rect_filtered(_e4, m_37);
+    float _e5 = filter_method_d_rect_filtered(_e4, m_30);
     return _e5;
 }
 
@@ -3701,10 +3450,10 @@ ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(
     ndf_roughness_axis_aligned_AxisAligned material_9,
     footprint_Footprint fp_16
 ) {
-    kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_16);
+    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_16);
     kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
-    metal::float2 h_32 = _e6.half_extent;
-    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_32);
+    metal::float2 h_31 = _e6.half_extent;
+    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_31);
     return _e8;
 }
 
@@ -3712,10 +3461,10 @@ float filter_method_d_ggx_proxy(
     filter_method_Proxy method_10,
     ndf_roughness_axis_aligned_AxisAligned material_10,
     footprint_Footprint fp_17,
-    metal::float3 m_38
+    metal::float3 m_31
 ) {
     ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
-    float _e5 = ndf_ggx_d_axis_aligned(_e4, m_38);
+    float _e5 = ndf_ggx_d_axis_aligned(_e4, m_31);
     return _e5;
 }
 
@@ -3762,102 +3511,25 @@ filter_deferred_KernelConvention filter_presets_preset(
     }
 }
 
-float filter_rect_sample_half(
-    float h_18,
-    float alpha_11
-) {
-    float v_20 = metal::abs(h_18);
-    return (v_20 >= 0.0) ? metal::min(v_20, filter_rect_BIG * alpha_11) : 0.0;
-}
-
-metal::float3 filter_rect_sample_normal_of_slope(
-    metal::float2 s_13
-) {
-    metal::float3 _e4 = sampling_normalize_scaled(metal::float3(-(s_13), 1.0));
-    return metal::float3(_e4.xy, metal::max(_e4.z, math_F32_MIN_POSITIVE));
-}
-
-metal::float3 filter_rect_sample_sample_normal_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_68,
-    metal::float2 half_extent_7,
-    metal::float2 u_13,
-    metal::float2 u_box
-) {
-    metal::float2 a_34 = r_68.alpha;
-    float _e7 = filter_rect_sample_half(half_extent_7.x, r_68.alpha.x);
-    float _e10 = filter_rect_sample_half(half_extent_7.y, r_68.alpha.y);
-    metal::float2 h_33 = metal::float2(_e7, _e10);
-    float _e13 = sampling_clamp_unit(u_13.x);
-    float _e15 = sampling_clamp_unit(u_13.y);
-    metal::float2 _e16 = math_sincos_turns(_e15);
-    float rad_1 = metal::sqrt(_e13 / (1.0 - _e13));
-    metal::float2 g_9 = -(a_34) * (rad_1 * _e16);
-    float _e25 = sampling_clamp_unit(u_box.x);
-    float _e27 = sampling_clamp_unit(u_box.y);
-    metal::float2 b_9 = metal::float2(_e25, _e27);
-    metal::float2 d_8 = ((2.0 * b_9) - metal::float2(1.0)) * h_33;
-    metal::float3 _e36 = filter_rect_sample_normal_of_slope(g_9 + d_8);
-    return _e36;
-}
-
-float filter_rect_sample_normal_pdf_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_69,
-    metal::float2 half_extent_8,
-    metal::float3 m_39
-) {
-    float _e3 = filter_rect_d_rect(r_69, m_39, half_extent_8);
-    return (m_39.z > 0.0) ? (_e3 * m_39.z) : 0.0;
-}
-
-float filter_rect_sample_visible_normal_pdf_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_70,
-    metal::float2 half_extent_9,
-    metal::float3 wo_6,
-    metal::float3 m_40
-) {
-    bool local_25 = {};
-    bool local_26 = {};
-    float wom_1 = metal::dot(wo_6, m_40);
-    if (!(!((wo_6.z > 0.0)))) {
-        local_25 = !((m_40.z > 0.0));
-    } else {
-        local_25 = true;
-    }
-    bool _e17 = local_25;
-    if (!(_e17)) {
-        local_26 = !((wom_1 > 0.0));
-    } else {
-        local_26 = true;
-    }
-    bool _e25 = local_26;
-    if (_e25) {
-        return 0.0;
-    }
-    float _e27 = filter_rect_d_rect(r_70, m_40, half_extent_9);
-    float _e30 = filter_rect_lambda_lambda_rect(r_70, half_extent_9, wo_6);
-    float v_21 = (wom_1 * _e27) / (wo_6.z * (1.0 + _e30));
-    return (v_21 <= math_F32_MAX) ? v_21 : 0.0;
-}
-
 metal::float2 footprint_slope_slope_from_sphere(
-    metal::float3 h_19
+    metal::float3 h_18
 ) {
-    float z_7 = metal::max(h_19.z, math_F32_MIN_POSITIVE);
-    return metal::clamp(-(h_19.xy) / metal::float2(z_7), metal::float2(-340282350000000000000000000000000000000.0), metal::float2(340282350000000000000000000000000000000.0));
+    float z_6 = metal::max(h_18.z, math_F32_MIN_POSITIVE);
+    return metal::clamp(-(h_18.xy) / metal::float2(z_6), metal::float2(-340282350000000000000000000000000000000.0), metal::float2(340282350000000000000000000000000000000.0));
 }
 
 metal::float3 footprint_slope_sphere_from_slope(
-    metal::float2 s_14
+    metal::float2 s_13
 ) {
-    float k_31 = metal::max(metal::max(metal::abs(s_14.x), metal::abs(s_14.y)), 1.0);
-    metal::float3 v_22 = metal::float3(-(s_14) / metal::float2(k_31), 1.0 / k_31);
-    return v_22 / metal::float3(metal::length(v_22));
+    float k_30 = metal::max(metal::max(metal::abs(s_13.x), metal::abs(s_13.y)), 1.0);
+    metal::float3 v_18 = metal::float3(-(s_13) / metal::float2(k_30), 1.0 / k_30);
+    return v_18 / metal::float3(metal::length(v_18));
 }
 
 metal::float2 footprint_slope_projected_from_sphere(
-    metal::float3 h_20
+    metal::float3 h_19
 ) {
-    return h_20.xy;
+    return h_19.xy;
 }
 
 metal::float3 footprint_slope_sphere_from_projected(
@@ -3880,67 +3552,265 @@ metal::float2 footprint_slope_slope_from_projected(
 }
 
 metal::float2 footprint_slope_projected_from_slope(
-    metal::float2 s_15
+    metal::float2 s_14
 ) {
-    metal::float3 _e1 = footprint_slope_sphere_from_slope(s_15);
+    metal::float3 _e1 = footprint_slope_sphere_from_slope(s_14);
     metal::float2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
+}
+
+sampling_Warp sampling_warp(
+    ndf_roughness_matrix_RoughnessMatrix r_61
+) {
+    metal::float3 _e1 = ndf_roughness_matrix_clamped_entries(r_61);
+    float l_xx = metal::sqrt(_e1.x);
+    return sampling_Warp {l_xx, _e1.y / l_xx, r_61.sqrt_det / l_xx};
+}
+
+metal::float3 sampling_normalize_scaled(
+    metal::float3 v_12
+) {
+    metal::float3 w_27 = v_12 / metal::float3(metal::max(metal::max(metal::abs(v_12.x), metal::abs(v_12.y)), metal::abs(v_12.z)));
+    return w_27 / metal::float3(metal::length(w_27));
+}
+
+metal::float3 sampling_stretch(
+    sampling_Warp l_3,
+    metal::float3 w_22
+) {
+    return metal::float3((l_3.l_xx * w_22.x) + (l_3.l_yx * w_22.y), l_3.l_yy * w_22.y, w_22.z);
+}
+
+metal::float3 sampling_unstretch(
+    sampling_Warp l_4,
+    metal::float3 n_5
+) {
+    metal::float3 _e14 = sampling_normalize_scaled(metal::float3(l_4.l_xx * n_5.x, (l_4.l_yx * n_5.x) + (l_4.l_yy * n_5.y), n_5.z));
+    return _e14;
+}
+
+float sampling_clamp_unit(
+    float u_7
+) {
+    return (u_7 >= 0.0) ? metal::min(u_7, sampling_ONE_MINUS_EPS) : 0.0;
+}
+
+metal::float3 sampling_reflect(
+    metal::float3 wo,
+    metal::float3 m_32
+) {
+    return ((2.0 * metal::dot(wo, m_32)) * m_32) - wo;
+}
+
+metal::float3 sampling_ggx_standard_visible(
+    metal::float3 wi,
+    metal::float2 u_8
+) {
+    metal::float2 _e3 = math_sincos_turns(u_8.x);
+    float z_7 = ((1.0 - u_8.y) * (1.0 + wi.z)) - wi.z;
+    float sin_theta_1 = metal::sqrt(metal::clamp(1.0 - (z_7 * z_7), 0.0, 1.0));
+    return metal::float3(sin_theta_1 * _e3, z_7) + wi;
+}
+
+metal::float3 sampling_sample_visible_normal(
+    ndf_roughness_matrix_RoughnessMatrix r_62,
+    metal::float3 wo_1,
+    metal::float2 u_9
+) {
+    bool local_20 = {};
+    if (!((wo_1.z > 0.0))) {
+        return metal::float3(0.0);
+    }
+    sampling_Warp _e9 = sampling_warp(r_62);
+    metal::float3 _e10 = sampling_normalize_scaled(wo_1);
+    metal::float3 _e11 = sampling_stretch(_e9, _e10);
+    metal::float3 _e12 = sampling_normalize_scaled(_e11);
+    if (!((_e12.z > 0.0))) {
+        return metal::float3(0.0);
+    }
+    float _e20 = sampling_clamp_unit(u_9.x);
+    float _e22 = sampling_clamp_unit(u_9.y);
+    metal::float3 _e24 = sampling_ggx_standard_visible(_e12, metal::float2(_e20, _e22));
+    metal::float3 _e25 = sampling_unstretch(_e9, _e24);
+    if (_e25.z > 0.0) {
+        local_20 = metal::dot(wo_1, _e25) > 0.0;
+    } else {
+        local_20 = false;
+    }
+    bool _e35 = local_20;
+    if (_e35) {
+        return _e25;
+    }
+    metal::float3 _e36 = sampling_unstretch(_e9, _e12);
+    return (_e36.z > 0.0) ? _e36 : metal::float3(0.0);
+}
+
+metal::float3 sampling_sample_normal(
+    ndf_roughness_matrix_RoughnessMatrix r_63,
+    metal::float2 u_10
+) {
+    float _e3 = sampling_clamp_unit(u_10.x);
+    float _e5 = sampling_clamp_unit(u_10.y);
+    metal::float2 _e6 = math_sincos_turns(_e5);
+    metal::float3 n_7 = metal::float3(metal::sqrt(_e3) * _e6, metal::sqrt(1.0 - _e3));
+    sampling_Warp _e13 = sampling_warp(r_63);
+    metal::float3 _e14 = sampling_unstretch(_e13, n_7);
+    return _e14;
+}
+
+float sampling_normal_pdf(
+    ndf_roughness_matrix_RoughnessMatrix r_64,
+    metal::float3 m_33
+) {
+    float _e2 = ndf_ggx_d_matrix(r_64, m_33);
+    return (m_33.z > 0.0) ? (_e2 * m_33.z) : 0.0;
+}
+
+float sampling_visible_normal_pdf_of(
+    metal::float3 wo_2,
+    metal::float3 m_34,
+    float d_1,
+    float lambda
+) {
+    bool local_21 = {};
+    bool local_22 = {};
+    float wom = metal::dot(wo_2, m_34);
+    float v_19 = (wom * d_1) / (wo_2.z * (1.0 + lambda));
+    if (wo_2.z > 0.0) {
+        local_21 = wom > 0.0;
+    } else {
+        local_21 = false;
+    }
+    bool _e19 = local_21;
+    if (_e19) {
+        local_22 = v_19 <= math_F32_MAX;
+    } else {
+        local_22 = false;
+    }
+    bool _e25 = local_22;
+    return _e25 ? v_19 : 0.0;
+}
+
+float sampling_visible_normal_pdf(
+    ndf_roughness_matrix_RoughnessMatrix r_65,
+    metal::float3 wo_3,
+    metal::float3 m_35
+) {
+    float _e3 = ndf_ggx_d_matrix(r_65, m_35);
+    float _e4 = ndf_ggx_lambda_matrix(r_65, wo_3);
+    float _e5 = sampling_visible_normal_pdf_of(wo_3, m_35, _e3, _e4);
+    return _e5;
+}
+
+float sampling_reflection_pdf_of(
+    metal::float3 o_8,
+    metal::float3 m_36,
+    float d_2,
+    float lambda_1
+) {
+    bool local_23 = {};
+    bool local_24 = {};
+    float v_20 = d_2 / ((4.0 * o_8.z) * (1.0 + lambda_1));
+    if (o_8.z > 0.0) {
+        local_23 = metal::dot(o_8, m_36) > 0.0;
+    } else {
+        local_23 = false;
+    }
+    bool _e20 = local_23;
+    if (_e20) {
+        local_24 = v_20 <= math_F32_MAX;
+    } else {
+        local_24 = false;
+    }
+    bool _e26 = local_24;
+    return _e26 ? v_20 : 0.0;
+}
+
+float sampling_reflection_pdf_from_normal(
+    ndf_roughness_matrix_RoughnessMatrix r_66,
+    metal::float3 wo_4,
+    metal::float3 m_37
+) {
+    metal::float3 _e3 = sampling_normalize_scaled(wo_4);
+    float _e4 = ndf_ggx_d_matrix(r_66, m_37);
+    float _e5 = ndf_ggx_lambda_matrix(r_66, _e3);
+    float _e6 = sampling_reflection_pdf_of(_e3, m_37, _e4, _e5);
+    return _e6;
+}
+
+float sampling_reflection_pdf(
+    ndf_roughness_matrix_RoughnessMatrix r_67,
+    metal::float3 wo_5,
+    metal::float3 wi_1
+) {
+    if (!((wo_5.z > 0.0))) {
+        return 0.0;
+    }
+    metal::float3 _e8 = sampling_normalize_scaled(wo_5);
+    metal::float3 _e9 = sampling_normalize_scaled(wi_1);
+    metal::float3 h_32 = _e8 + _e9;
+    float len = metal::length(h_32);
+    if (!((len > 0.0))) {
+        return 0.0;
+    }
+    float _e18 = sampling_reflection_pdf_from_normal(r_67, wo_5, h_32 / metal::float3(len));
+    return _e18;
 }
 
 float sampling_beckmann_erfcx(
     float z_1
 ) {
     float p_3 = 0.17087276;
-    float t_18 = 1.0 / (1.0 + (0.5 * z_1));
+    float t_17 = 1.0 / (1.0 + (0.5 * z_1));
     float _e9 = p_3;
-    p_3 = (_e9 * t_18) - 0.82215226;
+    p_3 = (_e9 * t_17) - 0.82215226;
     float _e13 = p_3;
-    p_3 = (_e13 * t_18) + 1.4885159;
+    p_3 = (_e13 * t_17) + 1.4885159;
     float _e17 = p_3;
-    p_3 = (_e17 * t_18) - 1.135204;
+    p_3 = (_e17 * t_17) - 1.135204;
     float _e21 = p_3;
-    p_3 = (_e21 * t_18) + 0.27886808;
+    p_3 = (_e21 * t_17) + 0.27886808;
     float _e25 = p_3;
-    p_3 = (_e25 * t_18) - 0.18628806;
+    p_3 = (_e25 * t_17) - 0.18628806;
     float _e29 = p_3;
-    p_3 = (_e29 * t_18) + 0.09678418;
+    p_3 = (_e29 * t_17) + 0.09678418;
     float _e33 = p_3;
-    p_3 = (_e33 * t_18) + 0.37409195;
+    p_3 = (_e33 * t_17) + 0.37409195;
     float _e37 = p_3;
-    p_3 = (_e37 * t_18) + 1.0000237;
+    p_3 = (_e37 * t_17) + 1.0000237;
     float _e41 = p_3;
-    p_3 = (_e41 * t_18) - 1.2655122;
+    p_3 = (_e41 * t_17) - 1.2655122;
     float _e45 = p_3;
     float _e46 = math_exp(_e45);
-    return t_18 * _e46;
+    return t_17 * _e46;
 }
 
 float sampling_beckmann_upper_tail(
     float x_8,
     float c_10,
-    float s_16
+    float s_15
 ) {
     float _e5 = math_exp(-(x_8) * x_8);
     float _e8 = sampling_beckmann_erfcx(x_8);
-    return (0.5 * _e5) * ((c_10 * _e8) - (s_16 * sampling_beckmann_INV_SQRT_PI));
+    return (0.5 * _e5) * ((c_10 * _e8) - (s_15 * sampling_beckmann_INV_SQRT_PI));
 }
 
 metal::float2 sampling_beckmann_cdf_terms(
     float x_9,
     float c_11,
-    float s_17
+    float s_16
 ) {
     float k_23 = {};
     float _e5 = math_exp(-(x_9) * x_9);
     if (x_9 <= 0.0) {
         float _e12 = sampling_beckmann_erfcx(-(x_9));
-        k_23 = (0.5 * _e5) * ((c_11 * _e12) + (s_17 * sampling_beckmann_INV_SQRT_PI));
+        k_23 = (0.5 * _e5) * ((c_11 * _e12) + (s_16 * sampling_beckmann_INV_SQRT_PI));
     } else {
-        float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_17);
+        float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_16);
         k_23 = c_11 - _e18;
     }
     float _e20 = k_23;
-    return metal::float2(_e20, (sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_17 * x_9)));
+    return metal::float2(_e20, (sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_16 * x_9)));
 }
 
 float sampling_beckmann_erfinv_guess(
@@ -3948,11 +3818,11 @@ float sampling_beckmann_erfinv_guess(
 ) {
     float w_23 = {};
     float p_4 = {};
-    float a_35 = (1.0 - x_10) * (1.0 + x_10);
-    if (!((a_35 > 0.0))) {
+    float a_34 = (1.0 - x_10) * (1.0 + x_10);
+    if (!((a_34 > 0.0))) {
         return 0.0;
     }
-    float _e10 = math_ln(a_35);
+    float _e10 = math_ln(a_34);
     w_23 = -(_e10);
     float _e14 = w_23;
     if (_e14 < 5.0) {
@@ -4018,40 +3888,40 @@ float sampling_beckmann_erfinv_guess(
 
 float sampling_beckmann_invert_visible_slope_cdf(
     float c_12,
-    float s_18,
-    float u_14
+    float s_17,
+    float u_11
 ) {
     float lo_3 = -9.0;
     float hi_2 = {};
-    bool local_27 = {};
+    bool local_25 = {};
     float x_11 = {};
     float dx_old = {};
     uint i_11 = 0u;
-    float g_8 = {};
-    bool local_28 = {};
-    bool local_29 = {};
-    float hi0_ = (s_18 > 0.0) ? metal::min(c_12 / s_18, sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX;
+    float g_6 = {};
+    bool local_26 = {};
+    bool local_27 = {};
+    float hi0_ = (s_17 > 0.0) ? metal::min(c_12 / s_17, sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX;
     hi_2 = hi0_;
-    metal::float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_18);
+    metal::float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_17);
     float norm_1 = _e13.x;
-    bool upper = u_14 > 0.5;
-    float goal = (upper ? (1.0 - u_14) : u_14) * norm_1;
+    bool upper = u_11 > 0.5;
+    float goal = (upper ? (1.0 - u_11) : u_11) * norm_1;
     if (!((goal > 0.0))) {
         float _e24 = lo_3;
         return _e24;
     }
-    float _e27 = sampling_beckmann_upper_tail(metal::max(hi0_, 0.0), c_12, s_18);
+    float _e27 = sampling_beckmann_upper_tail(metal::max(hi0_, 0.0), c_12, s_17);
     float tol = 0.00000047683716 * goal;
-    float _e34 = sampling_beckmann_erfinv_guess((2.0 * u_14) - 1.0);
+    float _e34 = sampling_beckmann_erfinv_guess((2.0 * u_11) - 1.0);
     float _e35 = hi_2;
     float _e40 = lo_3;
     if (_e34 > _e40) {
         float _e44 = hi_2;
-        local_27 = _e34 < _e44;
+        local_25 = _e34 < _e44;
     } else {
-        local_27 = false;
+        local_25 = false;
     }
-    bool _e47 = local_27;
+    bool _e47 = local_25;
     x_11 = _e47 ? _e34 : metal::min(0.0, 0.5 * _e35);
     float _e50 = hi_2;
     float _e51 = lo_3;
@@ -4073,20 +3943,20 @@ float sampling_beckmann_invert_visible_slope_cdf(
         }
         {
             float _e59 = x_11;
-            metal::float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_18);
-            g_8 = _e60.x - goal;
+            metal::float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_17);
+            g_6 = _e60.x - goal;
             if (upper) {
                 float _e66 = x_11;
-                float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_18);
+                float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_17);
                 float _e69 = x_11;
-                g_8 = goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x));
+                g_6 = goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x));
             }
-            float _e74 = g_8;
+            float _e74 = g_6;
             if (metal::abs(_e74) <= tol) {
                 float _e77 = x_11;
                 return _e77;
             }
-            float _e78 = g_8;
+            float _e78 = g_6;
             if (_e78 < 0.0) {
                 float _e81 = x_11;
                 lo_3 = _e81;
@@ -4102,26 +3972,26 @@ float sampling_beckmann_invert_visible_slope_cdf(
                 float _e94 = hi_2;
                 return 0.5 * (_e93 + _e94);
             }
-            float _e98 = g_8;
+            float _e98 = g_6;
             float step = _e98 / _e60.y;
             float _e101 = x_11;
             float xn = _e101 - step;
             float _e103 = lo_3;
             if (xn > _e103) {
                 float _e107 = hi_2;
-                local_28 = xn < _e107;
+                local_26 = xn < _e107;
             } else {
-                local_28 = false;
+                local_26 = false;
             }
-            bool _e110 = local_28;
+            bool _e110 = local_26;
             if (_e110) {
-                float _e113 = g_8;
+                float _e113 = g_6;
                 float _e117 = dx_old;
-                local_29 = metal::abs(2.0 * _e113) <= metal::abs(_e117 * _e60.y);
+                local_27 = metal::abs(2.0 * _e113) <= metal::abs(_e117 * _e60.y);
             } else {
-                local_29 = false;
+                local_27 = false;
             }
-            bool _e123 = local_29;
+            bool _e123 = local_27;
             if (_e123) {
                 dx_old = metal::abs(step);
                 x_11 = xn;
@@ -4147,63 +4017,63 @@ float sampling_beckmann_invert_visible_slope_cdf(
 float sampling_beckmann_visible_slope_quantile(
     float cos_theta,
     float sin_theta,
-    float u_15
+    float u_12
 ) {
     float c_13 = 1.0;
-    float s_19 = 0.0;
-    bool local_30 = {};
-    bool local_31 = {};
+    float s_18 = 0.0;
+    bool local_28 = {};
+    bool local_29 = {};
     if (cos_theta >= 0.0) {
-        local_30 = sin_theta >= 0.0;
+        local_28 = sin_theta >= 0.0;
     } else {
-        local_30 = false;
+        local_28 = false;
     }
-    bool _e14 = local_30;
+    bool _e14 = local_28;
     if (_e14) {
-        local_31 = (cos_theta + sin_theta) > 0.0;
+        local_29 = (cos_theta + sin_theta) > 0.0;
     } else {
-        local_31 = false;
+        local_29 = false;
     }
-    bool _e21 = local_31;
+    bool _e21 = local_29;
     if (_e21) {
         float _e22 = math_hypot(cos_theta, sin_theta);
         c_13 = cos_theta / _e22;
-        s_19 = sin_theta / _e22;
+        s_18 = sin_theta / _e22;
     }
     float _e25 = c_13;
-    float _e26 = s_19;
-    float _e27 = sampling_clamp_unit(u_15);
+    float _e26 = s_18;
+    float _e27 = sampling_clamp_unit(u_12);
     float _e28 = sampling_beckmann_invert_visible_slope_cdf(_e25, _e26, _e27);
     return _e28;
 }
 
 metal::float3 sampling_beckmann_sample_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_71,
-    metal::float2 u_16
+    ndf_roughness_matrix_RoughnessMatrix r_68,
+    metal::float2 u_13
 ) {
-    float _e3 = sampling_clamp_unit(u_16.x);
-    float _e5 = sampling_clamp_unit(u_16.y);
+    float _e3 = sampling_clamp_unit(u_13.x);
+    float _e5 = sampling_clamp_unit(u_13.y);
     metal::float2 _e6 = math_sincos_turns(_e5);
     float _e9 = math_ln(1.0 - _e3);
     float _e14 = math_ln_1p(_e3 / (1.0 - _e3));
-    float e_7 = (_e3 < 0.5) ? _e14 : -(_e9);
-    metal::float3 n_8 = metal::float3(metal::sqrt(e_7) * _e6, 1.0);
-    sampling_Warp _e22 = sampling_warp(r_71);
+    float e_6 = (_e3 < 0.5) ? _e14 : -(_e9);
+    metal::float3 n_8 = metal::float3(metal::sqrt(e_6) * _e6, 1.0);
+    sampling_Warp _e22 = sampling_warp(r_68);
     metal::float3 _e23 = sampling_unstretch(_e22, n_8);
     return _e23;
 }
 
 metal::float3 sampling_beckmann_sample_visible_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_72,
-    metal::float3 wo_7,
-    metal::float2 u_17
+    ndf_roughness_matrix_RoughnessMatrix r_69,
+    metal::float3 wo_6,
+    metal::float2 u_14
 ) {
-    bool local_32 = {};
-    if (!((wo_7.z > 0.0))) {
+    bool local_30 = {};
+    if (!((wo_6.z > 0.0))) {
         return metal::float3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_72);
-    metal::float3 _e10 = sampling_normalize_scaled(wo_7);
+    sampling_Warp _e9 = sampling_warp(r_69);
+    metal::float3 _e10 = sampling_normalize_scaled(wo_6);
     metal::float3 _e11 = sampling_stretch(_e9, _e10);
     metal::float3 _e12 = sampling_normalize_scaled(_e11);
     if (!((_e12.z > 0.0))) {
@@ -4211,18 +4081,18 @@ metal::float3 sampling_beckmann_sample_visible_normal(
     }
     float _e21 = math_hypot(_e12.x, _e12.y);
     metal::float2 phi = (_e21 > 0.0) ? (_e12.xy / metal::float2(_e21)) : metal::float2(1.0, 0.0);
-    float _e33 = sampling_clamp_unit(u_17.x);
+    float _e33 = sampling_clamp_unit(u_14.x);
     float _e34 = sampling_beckmann_invert_visible_slope_cdf(_e12.z, _e21, _e33);
-    float _e38 = sampling_clamp_unit(u_17.y);
+    float _e38 = sampling_clamp_unit(u_14.y);
     float _e39 = sampling_beckmann_invert_visible_slope_cdf(1.0, 0.0, _e38);
-    metal::float2 t_19 = metal::float2((phi.x * _e34) - (phi.y * _e39), (phi.y * _e34) + (phi.x * _e39));
-    metal::float3 _e54 = sampling_unstretch(_e9, metal::float3(-(t_19), 1.0));
+    metal::float2 t_18 = metal::float2((phi.x * _e34) - (phi.y * _e39), (phi.y * _e34) + (phi.x * _e39));
+    metal::float3 _e54 = sampling_unstretch(_e9, metal::float3(-(t_18), 1.0));
     if (_e54.z > 0.0) {
-        local_32 = metal::dot(wo_7, _e54) > 0.0;
+        local_30 = metal::dot(wo_6, _e54) > 0.0;
     } else {
-        local_32 = false;
+        local_30 = false;
     }
-    bool _e64 = local_32;
+    bool _e64 = local_30;
     if (_e64) {
         return _e54;
     }
@@ -4231,34 +4101,164 @@ metal::float3 sampling_beckmann_sample_visible_normal(
 }
 
 float sampling_beckmann_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_73,
-    metal::float3 m_41
+    ndf_roughness_matrix_RoughnessMatrix r_70,
+    metal::float3 m_38
 ) {
-    float _e2 = ndf_beckmann_d_matrix(r_73, m_41);
-    return (m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0;
+    float _e2 = ndf_beckmann_d_matrix(r_70, m_38);
+    return (m_38.z > 0.0) ? (_e2 * m_38.z) : 0.0;
 }
 
 float sampling_beckmann_visible_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_74,
-    metal::float3 wo_8,
-    metal::float3 m_42
+    ndf_roughness_matrix_RoughnessMatrix r_71,
+    metal::float3 wo_7,
+    metal::float3 m_39
 ) {
-    float _e3 = ndf_beckmann_d_matrix(r_74, m_42);
-    float _e4 = ndf_beckmann_lambda_matrix(r_74, wo_8);
-    float _e5 = sampling_visible_normal_pdf_of(wo_8, m_42, _e3, _e4);
+    float _e3 = ndf_beckmann_d_matrix(r_71, m_39);
+    float _e4 = ndf_beckmann_lambda_matrix(r_71, wo_7);
+    float _e5 = sampling_visible_normal_pdf_of(wo_7, m_39, _e3, _e4);
     return _e5;
 }
 
 float sampling_beckmann_reflection_pdf_from_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_75,
+    ndf_roughness_matrix_RoughnessMatrix r_72,
+    metal::float3 wo_8,
+    metal::float3 m_40
+) {
+    metal::float3 _e3 = sampling_normalize_scaled(wo_8);
+    float _e4 = ndf_beckmann_d_matrix(r_72, m_40);
+    float _e5 = ndf_beckmann_lambda_matrix(r_72, _e3);
+    float _e6 = sampling_reflection_pdf_of(_e3, m_40, _e4, _e5);
+    return _e6;
+}
+
+metal::float2 sampling_gaussian_ggx_split(
+    float u_15
+) {
+    float x_18 = u_15 * 4096.0;
+    float hi_5 = metal::floor(x_18);
+    return metal::float2((hi_5 + 0.5) / 4096.0, x_18 - hi_5);
+}
+
+metal::float3 sampling_gaussian_ggx_sample_normal(
+    filter_gaussian_ggx_GaussianFilteredGgx g_7,
+    metal::float2 u_16
+) {
+    metal::float2 ax_1 = metal::float2(1.0, 0.0);
+    float _e3 = sampling_clamp_unit(u_16.x);
+    metal::float2 _e4 = sampling_gaussian_ggx_split(_e3);
+    float _e6 = sampling_clamp_unit(u_16.y);
+    metal::float2 _e7 = sampling_gaussian_ggx_split(_e6);
+    metal::float2 _e15 = math_sincos_turns(_e7.x);
+    metal::float2 t_19 = metal::sqrt(_e4.x / (1.0 - _e4.x)) * _e15;
+    sampling_Warp _e18 = sampling_warp(g_7.a);
+    metal::float2 gs = metal::float2(_e18.l_xx * t_19.x, (_e18.l_yx * t_19.x) + (_e18.l_yy * t_19.y));
+    float _e33 = math_ln(1.0 - _e4.y);
+    float _e40 = math_ln_1p(_e4.y / (1.0 - _e4.y));
+    float e_7 = (_e4.y < 0.5) ? _e40 : -(_e33);
+    metal::float2 _e49 = math_sincos_turns(_e7.y);
+    metal::float2 y_4 = metal::sqrt(2.0 * e_7) * _e49;
+    kernel_covariance_Covariance k_31 = g_7.k;
+    metal::float2 _e52 = kernel_covariance_eigenvalues(k_31);
+    float khalf = 0.5 * (g_7.k.s_xx - g_7.k.s_yy);
+    float _e59 = math_hypot(khalf, g_7.k.s_xy);
+    if (_e59 > 0.0) {
+        metal::float2 w_28 = (khalf >= 0.0) ? metal::float2(_e59 + khalf, g_7.k.s_xy) : metal::float2(g_7.k.s_xy, _e59 - khalf);
+        float _e77 = math_hypot(w_28.x, w_28.y);
+        ax_1 = w_28 / metal::float2(_e77);
+    }
+    metal::float2 kk_1 = metal::float2(metal::sqrt(_e52.y) * y_4.x, metal::sqrt(_e52.x) * y_4.y);
+    float _e90 = ax_1.x;
+    float _e94 = ax_1.y;
+    float _e99 = ax_1.y;
+    float _e103 = ax_1.x;
+    metal::float2 s_32 = gs + metal::float2((_e90 * kk_1.x) - (_e94 * kk_1.y), (_e99 * kk_1.x) + (_e103 * kk_1.y));
+    metal::float3 _e112 = sampling_normalize_scaled(metal::float3(-(s_32), 1.0));
+    return metal::float3(_e112.xy, metal::max(_e112.z, math_F32_MIN_POSITIVE));
+}
+
+float sampling_gaussian_ggx_normal_pdf(
+    filter_gaussian_ggx_GaussianFilteredGgx g_8,
+    metal::float3 m_41
+) {
+    float _e2 = filter_gaussian_ggx_d(g_8, m_41);
+    return (m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0;
+}
+
+float sampling_rect_half(
+    float h_20,
+    float alpha_11
+) {
+    float v_21 = metal::abs(h_20);
+    return (v_21 >= 0.0) ? metal::min(v_21, filter_rect_BIG * alpha_11) : 0.0;
+}
+
+metal::float3 sampling_rect_normal_of_slope(
+    metal::float2 s_19
+) {
+    metal::float3 _e4 = sampling_normalize_scaled(metal::float3(-(s_19), 1.0));
+    return metal::float3(_e4.xy, metal::max(_e4.z, math_F32_MIN_POSITIVE));
+}
+
+metal::float3 sampling_rect_sample_normal_rect(
+    ndf_roughness_axis_aligned_AxisAligned r_73,
+    metal::float2 half_extent_7,
+    metal::float2 u_17,
+    metal::float2 u_box
+) {
+    metal::float2 a_35 = r_73.alpha;
+    float _e7 = sampling_rect_half(half_extent_7.x, r_73.alpha.x);
+    float _e10 = sampling_rect_half(half_extent_7.y, r_73.alpha.y);
+    metal::float2 h_33 = metal::float2(_e7, _e10);
+    float _e13 = sampling_clamp_unit(u_17.x);
+    float _e15 = sampling_clamp_unit(u_17.y);
+    metal::float2 _e16 = math_sincos_turns(_e15);
+    float rad_1 = metal::sqrt(_e13 / (1.0 - _e13));
+    metal::float2 g_9 = -(a_35) * (rad_1 * _e16);
+    float _e25 = sampling_clamp_unit(u_box.x);
+    float _e27 = sampling_clamp_unit(u_box.y);
+    metal::float2 b_9 = metal::float2(_e25, _e27);
+    metal::float2 d_8 = ((2.0 * b_9) - metal::float2(1.0)) * h_33;
+    metal::float3 _e36 = sampling_rect_normal_of_slope(g_9 + d_8);
+    return _e36;
+}
+
+float sampling_rect_normal_pdf_rect(
+    ndf_roughness_axis_aligned_AxisAligned r_74,
+    metal::float2 half_extent_8,
+    metal::float3 m_42
+) {
+    float _e3 = filter_rect_d_rect(r_74, m_42, half_extent_8);
+    return (m_42.z > 0.0) ? (_e3 * m_42.z) : 0.0;
+}
+
+float sampling_rect_visible_normal_pdf_rect(
+    ndf_roughness_axis_aligned_AxisAligned r_75,
+    metal::float2 half_extent_9,
     metal::float3 wo_9,
     metal::float3 m_43
 ) {
-    metal::float3 _e3 = sampling_normalize_scaled(wo_9);
-    float _e4 = ndf_beckmann_d_matrix(r_75, m_43);
-    float _e5 = ndf_beckmann_lambda_matrix(r_75, _e3);
-    float _e6 = sampling_reflection_pdf_of(_e3, m_43, _e4, _e5);
-    return _e6;
+    bool local_31 = {};
+    bool local_32 = {};
+    float wom_1 = metal::dot(wo_9, m_43);
+    if (!(!((wo_9.z > 0.0)))) {
+        local_31 = !((m_43.z > 0.0));
+    } else {
+        local_31 = true;
+    }
+    bool _e17 = local_31;
+    if (!(_e17)) {
+        local_32 = !((wom_1 > 0.0));
+    } else {
+        local_32 = true;
+    }
+    bool _e25 = local_32;
+    if (_e25) {
+        return 0.0;
+    }
+    float _e27 = filter_rect_d_rect(r_75, m_43, half_extent_9);
+    float _e30 = filter_rect_lambda_lambda_rect(r_75, half_extent_9, wo_9);
+    float v_22 = (wom_1 * _e27) / (wo_9.z * (1.0 + _e30));
+    return (v_22 <= math_F32_MAX) ? v_22 : 0.0;
 }
 
 struct filtered_ndf_entryOutput {

@@ -187,6 +187,217 @@ fn ndf_roughness_clamp_alpha(alpha: f32) -> f32 {
     return select(ndf_roughness_ALPHA_MIN, min(alpha, ndf_roughness_ALPHA_MAX), alpha >= ndf_roughness_ALPHA_MIN);
 }
 
+// ---- filtered_ndf::footprint::jacobian (shaders/footprint/jacobian.wgsl) ----
+// Jacobians between the three half-vector domains (TK19 supplement section 2, eq. 1-7) and
+// the error propagation of TK19 section 3.1, mirroring `src/.../footprint/jacobian.rs`.
+// Matrices are the paper's `J[i][j] = d out_i / d in_j` stored column-major (WGSL
+// `mat2x2<f32>` like glam's `Mat2`): column `j` is the derivative with respect to input `j`,
+// and `J * v` is the paper's product. Spherical changes are the arc lengths `(psi_x, psi_y)`
+// along `e_x = (cos theta cos phi, cos theta sin phi, -sin theta)` and
+// `e_y = (-sin phi, cos phi, 0)`. Input: `h` is normalised here; a zero `h` is the pole;
+// `h_z` is clamped to `HZ_MIN` at constant azimuth; at the pole `phi = 0`.
+// (Non-finite input: WGSL lets a driver assume it never occurs.)
+
+/// Smallest `h_z` the Jacobians use (`1 / HZ_MIN^4 = 1e24` stays finite in f32).
+const footprint_jacobian_HZ_MIN: f32 = 1e-6;
+
+/// A half vector reduced to what the Jacobians need: the sanitised unit `h` and
+/// `(cos phi, sin phi)`.
+struct footprint_jacobian_Polar {
+    /// The sanitised unit half vector.
+    h: vec3<f32>,
+    /// `(cos phi, sin phi)` of its azimuth (`(1, 0)` at the pole).
+    cs: vec2<f32>,
+}
+
+/// Normalise (after scaling by the largest component), take the azimuth from `h_xy` scaled
+/// to unit size, clamp `h_z >= HZ_MIN` keeping the azimuth.
+fn footprint_jacobian_polar(h_in: vec3<f32>) -> footprint_jacobian_Polar {
+    let big = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if big <= 0.0 {
+        return footprint_jacobian_Polar(vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(1.0, 0.0));
+    }
+    let h0 = h_in / big;
+    let h = h0 / length(h0);
+    let qs = max(abs(h.x), abs(h.y));
+    var cs = vec2<f32>(1.0, 0.0);
+    if qs > 0.0 {
+        let q = h.xy / qs;
+        cs = q / length(q);
+    }
+    if h.z >= footprint_jacobian_HZ_MIN {
+        return footprint_jacobian_Polar(h, cs);
+    }
+    let st = sqrt(1.0 - footprint_jacobian_HZ_MIN * footprint_jacobian_HZ_MIN);
+    return footprint_jacobian_Polar(vec3<f32>(st * cs, footprint_jacobian_HZ_MIN), cs);
+}
+
+/// The unit half vector the Jacobians use for input `h` (normalised, zero -> the pole,
+/// `h_z >= HZ_MIN` at constant azimuth).
+fn footprint_jacobian_sanitize(h: vec3<f32>) -> vec3<f32> {
+    return footprint_jacobian_polar(h).h;
+}
+
+/// The spherical basis `(e_x, e_y)` at `h` (TK19 supplement eq. 3, columns 1 and 2).
+struct footprint_jacobian_SphericalBasis {
+    /// `e_x`, along the great circle through `h` and `n`, away from `n`.
+    e_x: vec3<f32>,
+    /// `e_y = n x h / |n x h|`.
+    e_y: vec3<f32>,
+}
+
+/// `(e_x, e_y)` at `h`: `e_x = (cos theta cos phi, cos theta sin phi, -sin theta)`,
+/// `e_y = (-sin phi, cos phi, 0)`; `(+x, +y)` at the pole.
+fn footprint_jacobian_spherical_basis(h: vec3<f32>) -> footprint_jacobian_SphericalBasis {
+    let p = footprint_jacobian_polar(h);
+    let st = length(p.h.xy);
+    return footprint_jacobian_SphericalBasis(
+        vec3<f32>(p.h.z * p.cs, -st),
+        vec3<f32>(-p.cs.y, p.cs.x, 0.0),
+    );
+}
+
+/// `(dh . e_x, dh . e_y)` (radians) of a tangent change `dh` of the unit half vector (TK19
+/// section 3.1).
+fn footprint_jacobian_spherical_components(h: vec3<f32>, dh: vec3<f32>) -> vec2<f32> {
+    let b = footprint_jacobian_spherical_basis(h);
+    return vec2<f32>(dot(dh, b.e_x), dot(dh, b.e_y));
+}
+
+/// `J(o->perp) = [[h_z cos phi, -sin phi], [h_z sin phi, cos phi]]` (TK19 supplement eq. 4),
+/// determinant `h_z`; `I` at the pole.
+fn footprint_jacobian_sphere_to_projected(h: vec3<f32>) -> mat2x2<f32> {
+    let p = footprint_jacobian_polar(h);
+    return mat2x2<f32>(p.h.z * p.cs, vec2<f32>(-p.cs.y, p.cs.x));
+}
+
+/// `J(perp->par) = -1 / h_z^3 [[h_x^2 + h_z^2, h_x h_y], [h_x h_y, h_y^2 + h_z^2]]` (TK19
+/// supplement eq. 6, with `1 - h_y^2` written as `h_x^2 + h_z^2` for accuracy at the
+/// horizon); determinant `1 / h_z^4`; `-I` at the pole.
+fn footprint_jacobian_projected_to_slope(h_in: vec3<f32>) -> mat2x2<f32> {
+    let h = footprint_jacobian_polar(h_in).h;
+    let k = -1.0 / (h.z * h.z * h.z);
+    let xy = h.x * h.y;
+    return mat2x2<f32>(
+        vec2<f32>(h.x * h.x + h.z * h.z, xy) * k,
+        vec2<f32>(xy, h.y * h.y + h.z * h.z) * k,
+    );
+}
+
+/// `J(par->perp) = -h_z [[h_y^2 + h_z^2, -h_x h_y], [-h_x h_y, h_x^2 + h_z^2]]`, the inverse
+/// of [`projected_to_slope`]; determinant `h_z^4`; `-I` at the pole.
+fn footprint_jacobian_slope_to_projected(h_in: vec3<f32>) -> mat2x2<f32> {
+    let h = footprint_jacobian_polar(h_in).h;
+    let xy = h.x * h.y;
+    return mat2x2<f32>(
+        vec2<f32>(h.y * h.y + h.z * h.z, -xy) * -h.z,
+        vec2<f32>(-xy, h.x * h.x + h.z * h.z) * -h.z,
+    );
+}
+
+/// `J(o->par) = -1 / h_z^2 [[cos phi, -h_z sin phi], [sin phi, h_z cos phi]]` (TK19
+/// supplement eq. 7; section 3.1); determinant `1 / h_z^3`; `-I` at the pole.
+fn footprint_jacobian_sphere_to_slope(h: vec3<f32>) -> mat2x2<f32> {
+    let p = footprint_jacobian_polar(h);
+    let k = -1.0 / (p.h.z * p.h.z);
+    return mat2x2<f32>(p.cs * k, vec2<f32>(-p.h.z * p.cs.y, p.h.z * p.cs.x) * k);
+}
+
+/// `det J(o->perp) = h_z` (TK19 section 3.2), in `[HZ_MIN, 1]`.
+fn footprint_jacobian_det_sphere_to_projected(h: vec3<f32>) -> f32 {
+    return footprint_jacobian_polar(h).h.z;
+}
+
+/// `det J(perp->par) = 1 / h_z^4`, in `[1, 1e24]`.
+fn footprint_jacobian_det_projected_to_slope(h: vec3<f32>) -> f32 {
+    let z = footprint_jacobian_polar(h).h.z;
+    let z2 = z * z;
+    return 1.0 / (z2 * z2);
+}
+
+/// `det J(o->par) = 1 / h_z^3` (TK19 section 3.1), in `[1, 1e18]`.
+fn footprint_jacobian_det_sphere_to_slope(h: vec3<f32>) -> f32 {
+    let z = footprint_jacobian_polar(h).h.z;
+    return 1.0 / (z * z * z);
+}
+
+/// A spherical error `(eps_x, eps_y)` mapped to the slope domain, `J(o->par) eps` (TK19
+/// section 3.1).
+fn footprint_jacobian_spherical_to_slope(h: vec3<f32>, e: vec2<f32>) -> vec2<f32> {
+    return footprint_jacobian_sphere_to_slope(h) * e;
+}
+
+/// The same error mapped to the projected disk, `J(o->perp) eps` (TK19 section 3.2).
+fn footprint_jacobian_spherical_to_projected(h: vec3<f32>, e: vec2<f32>) -> vec2<f32> {
+    return footprint_jacobian_sphere_to_projected(h) * e;
+}
+
+// ---- filtered_ndf::footprint (shaders/footprint/mod.wgsl) ----
+// Pixel footprints in the slope domain (KHPL16 sections 4.2, 4.3; TK19 section 2.2),
+// mirroring `Footprint` of `src/.../footprint/mod.rs`: the slope change of the half vector
+// across one pixel step in `x` (`dh_u`) and in `y` (`dh_v`). A Gaussian pixel filter of
+// standard deviation `sigma` pixels carried into the slope domain has covariance
+// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`; the kernel stage builds it
+// (`kernel::covariance::from_footprint`) and the bounding rectangle
+// (`kernel::rect::from_footprint`).
+
+/// The standard deviation of the pixel filter of KHPL16 and TK19, in pixels.
+const footprint_SIGMA_PIXEL: f32 = 0.5;
+
+/// A slope-domain pixel footprint.
+struct footprint_Footprint {
+    /// Slope change per pixel step along the image `x` axis.
+    dh_u: vec2<f32>,
+    /// Slope change per pixel step along the image `y` axis.
+    dh_v: vec2<f32>,
+}
+
+/// From slope-domain derivatives, e.g. `dpdx`/`dpdy` of the slope of `h` (KHPL16 section
+/// 5.1).
+fn footprint_from_slope_derivatives(dh_u: vec2<f32>, dh_v: vec2<f32>) -> footprint_Footprint {
+    return footprint_Footprint(dh_u, dh_v);
+}
+
+/// From derivatives of the projected half vector `p = h_xy` (TK19 section 3.2, Listing 1:
+/// `ddx(halfvectorTS.xy)`), used as slope changes directly, as TK19 does (no Jacobian: the
+/// bandwidth shrinks by `h_z` at grazing half vectors relative to the sphere).
+fn footprint_from_projected_derivatives(dp_u: vec2<f32>, dp_v: vec2<f32>) -> footprint_Footprint {
+    return footprint_Footprint(dp_u, dp_v);
+}
+
+/// The slope-domain footprint of disk derivatives at the half vector `h`:
+/// `dh = J(perp->par) dp` (TK19 supplement eq. 6, [`jacobian::projected_to_slope`]: `h`
+/// normalised, clamped to the horizon `h_z >= 1e-6` at constant azimuth). A zero `h` gives a
+/// zero footprint.
+fn footprint_from_projected_derivatives_in_slope(
+    h: vec3<f32>,
+    dp_u: vec2<f32>,
+    dp_v: vec2<f32>,
+) -> footprint_Footprint {
+    let big = max(max(abs(h.x), abs(h.y)), abs(h.z));
+    if big <= 0.0 {
+        return footprint_Footprint(vec2<f32>(0.0), vec2<f32>(0.0));
+    }
+    let j = footprint_jacobian_projected_to_slope(h);
+    return footprint_Footprint(j * dp_u, j * dp_v);
+}
+
+/// The deferred footprint from normal differences to the neighbouring pixels (TK19 section
+/// 4.4, eq. 3) in the tangent frame of the current normal: `2 (dn)_xy / |2 e_z + dn|` per
+/// difference (the derivative of the half-way normal on the disk, whose length is `|dn|`
+/// for unit normals), the denominator clamped to `>= 1e-6`.
+fn footprint_from_normal_differences(dn_u: vec3<f32>, dn_v: vec3<f32>) -> footprint_Footprint {
+    let lu = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_u), 1e-6);
+    let lv = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_v), 1e-6);
+    return footprint_Footprint(dn_u.xy * (2.0 / lu), dn_v.xy * (2.0 / lv));
+}
+
+/// The largest centre-to-vertex distance of the one-pixel parallelogram,
+/// `max(|dh_u + dh_v|, |dh_u - dh_v|) / 2`: the extent clamped by KHPL16 section 5.2.
+fn footprint_max_extent(fp: footprint_Footprint) -> f32 {
+    return 0.5 * max(length(fp.dh_u + fp.dh_v), length(fp.dh_u - fp.dh_v));
+}
+
 // ---- filtered_ndf::kernel::covariance (shaders/kernel/covariance.wgsl) ----
 // A symmetric positive semi-definite slope-domain covariance (KHPL16 section 4.3, TK19
 // section 2.2), mirroring `Covariance` of `src/.../kernel/covariance.rs`.
@@ -202,7 +413,7 @@ const kernel_covariance_KERNEL_MAX: f32 = 1e8;
 /// determinant is computed once, where it is accurate, and carried: from footprint vectors
 /// as `sigma^4 (dh_u x dh_v)^2`, from a clamp as the product of the new eigenvalues, from a
 /// sum as `det a + det b + (a_xx b_yy + a_yy b_xx - 2 a_xy b_xy)`. Build covariances with the
-/// functions of this module (or `footprint::covariance`), not the struct constructor.
+/// functions of this module (e.g. [`from_footprint`]), not the struct constructor.
 struct kernel_covariance_Covariance {
     /// Variance along the tangent `x`.
     s_xx: f32,
@@ -223,6 +434,22 @@ fn kernel_covariance_zero() -> kernel_covariance_Covariance {
 /// `eps (s_xx s_yy + s_xy^2)` absolute).
 fn kernel_covariance_from_entries(s_xx: f32, s_xy: f32, s_yy: f32) -> kernel_covariance_Covariance {
     return kernel_covariance_Covariance(s_xx, s_xy, s_yy, s_xx * s_yy - s_xy * s_xy);
+}
+
+/// The Gaussian pixel kernel of a footprint, `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`
+/// (TK19 section 2.2), `sigma` in pixels, with `det Sigma = sigma^4 (dh_u x dh_v)^2` from the
+/// vectors (accurate for elongated kernels). The Rust `Covariance::from_footprint`.
+fn kernel_covariance_from_footprint(fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
+    let u = fp.dh_u;
+    let v = fp.dh_v;
+    let s2 = sigma * sigma;
+    let cross = (u.x * v.y - u.y * v.x) * s2;
+    return kernel_covariance_Covariance(
+        (u.x * u.x + v.x * v.x) * s2,
+        (u.x * u.y + v.x * v.y) * s2,
+        (u.y * u.y + v.y * v.y) * s2,
+        cross * cross,
+    );
 }
 
 /// `tr(Sigma) = lambda_min + lambda_max` (TK19 eq. 2).
@@ -700,6 +927,130 @@ fn ndf_roughness_matrix_own_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix) -
     return select(0.0, r.tau, r.tau > r.det);
 }
 
+// ---- filtered_ndf::kernel::rect (shaders/kernel/rect.wgsl) ----
+// The axis-aligned slope-domain rectangle of KHPL16 section 5.3 (the `footprint` of the
+// GDC 2016 `GGXRectIntegral`), mirroring `BoundingRect` of `src/.../kernel/rect.rs`.
+
+/// A rectangle centred on the half vector's slope, by its half-extents (slope units, `>= 0`).
+/// It bounds the one-pixel parallelogram: `half_extent = (|dh_u| + |dh_v|) / 2`.
+struct kernel_rect_BoundingRect {
+    /// Half-extents along the tangent `x` and bitangent `y`.
+    half_extent: vec2<f32>,
+}
+
+/// The axis-aligned bounding rectangle of a footprint's one-pixel parallelogram (KHPL16
+/// section 5.3; GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
+/// `(|dh_u| + |dh_v|) / 2` per axis. The Rust `BoundingRect::from_footprint`.
+fn kernel_rect_from_footprint(fp: footprint_Footprint) -> kernel_rect_BoundingRect {
+    return kernel_rect_BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
+}
+
+/// The Gaussian-equivalent diagonal covariance `diag((2 sigma h_x)^2, (2 sigma h_y)^2)`
+/// (`sigma` in pixels; GDC 2016 Beckmann listing `rghns_sq += fp * fp * 2`, TK19 Listing 3).
+fn kernel_rect_covariance(r: kernel_rect_BoundingRect, sigma: f32) -> kernel_covariance_Covariance {
+    let w = r.half_extent * (2.0 * sigma);
+    let v = w * w;
+    return kernel_covariance_Covariance(v.x, 0.0, v.y, v.x * v.y);
+}
+
+// ---- filtered_ndf::kernel::clamp (shaders/kernel/clamp.wgsl) ----
+// The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, GDC 2016,
+// TK19 eq. 1 and supplement), mirroring `ClampRules` of `src/.../kernel/clamp.rs`. A rule is
+// off when its bound is `F32_MAX` (`max_extent`, `kappa`; the Rust `F::INFINITY`),
+// `FLOOR_NONE`, or `det_clamp = false`. Constants mirror `ClampRules::DEFAULT`, `KHPL16`,
+// `NONE`, `GDC2016` (`*_RULES`: WGSL names may not end in a digit here, see shaders/README.md).
+// The rules are data: the filters apply them (`filter::gaussian::filter_gaussian`,
+// `filter::projected::filter_projected`).
+
+/// No rectangle floor.
+const kernel_clamp_FLOOR_NONE: u32 = 0u;
+/// Half-extents `>= floor` on both axes (KHPL16 section 5.2, `epsilon = 1e-3`).
+const kernel_clamp_FLOOR_CONSTANT: u32 = 1u;
+/// Half-extents `>= min(alpha_axis, floor)` per axis (GDC 2016 `min(roughness, 0.1)`).
+const kernel_clamp_FLOOR_ALPHA_CAPPED: u32 = 2u;
+
+/// The clamping rules.
+struct kernel_clamp_ClampRules {
+    /// `lambda`: the largest centre-to-vertex extent of the parallelogram and the largest
+    /// rectangle half-extent (slope units).
+    max_extent: f32,
+    /// `FLOOR_NONE`, `FLOOR_CONSTANT` or `FLOOR_ALPHA_CAPPED`.
+    floor_kind: u32,
+    /// The floor's constant (`epsilon`, or the cap of `FLOOR_ALPHA_CAPPED`).
+    floor: f32,
+    /// `kappa`: the largest kernel roughness^2 `2 lambda_i(Sigma)` per eigen-direction.
+    kappa: f32,
+    /// Evaluate filtered matrices with `tau = det(A_unfiltered)`.
+    det_clamp: bool,
+}
+
+/// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
+const kernel_clamp_DEFAULT_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_CONSTANT, 1e-3, 0.18, true);
+/// KHPL16's rules for its exact kernels: `lambda = 1` (section 5.2) and the determinant clamp;
+/// no rectangle floor (the exact rectangle integral needs none), no `kappa` (a TK19 addition).
+const kernel_clamp_KHPL16_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, true);
+/// No clamping (unbiased; for references and the exact rectangle integral).
+const kernel_clamp_NO_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(math_F32_MAX, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, false);
+/// The GDC 2016 listing: `fp = clamp(fp, min(roughness, 0.1), 1)`, no `kappa`, with `tau`.
+const kernel_clamp_GDC2016_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_ALPHA_CAPPED, 0.1, math_F32_MAX, true);
+
+/// The maximum-extent rule on a parallelogram (KHPL16 section 5.2): both vectors scaled by
+/// `min(1, lambda / max_extent)`, keeping the shape. The extent is measured on the
+/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0.
+fn kernel_clamp_footprint(rules: kernel_clamp_ClampRules, fp: footprint_Footprint) -> footprint_Footprint {
+    let l = max(rules.max_extent, 0.0);
+    let scale = max(max(abs(fp.dh_u.x), abs(fp.dh_u.y)), max(abs(fp.dh_v.x), abs(fp.dh_v.y)));
+    if scale <= 0.0 {
+        return fp;
+    }
+    let unit = footprint_Footprint(fp.dh_u / scale, fp.dh_v / scale);
+    let e = footprint_max_extent(unit);
+    if e * scale <= l {
+        return fp;
+    }
+    return footprint_Footprint(unit.dh_u / e * l, unit.dh_v / e * l);
+}
+
+/// The rectangle rules: half-extents taken by magnitude, clamped to `[floor, lambda]` per
+/// axis (KHPL16 section 5.2; GDC 2016 `clamp(fp, fp_min, fp_max)`), `alpha` the lobe's
+/// per-axis roughness for `FLOOR_ALPHA_CAPPED`; if the floor exceeds `lambda` the floor wins.
+fn kernel_clamp_rect(rules: kernel_clamp_ClampRules, r: kernel_rect_BoundingRect, alpha: vec2<f32>) -> kernel_rect_BoundingRect {
+    var f = vec2<f32>(0.0);
+    if rules.floor_kind == kernel_clamp_FLOOR_CONSTANT {
+        f = vec2<f32>(rules.floor);
+    } else if rules.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED {
+        f = min(abs(alpha), vec2<f32>(rules.floor));
+    }
+    let lambda = max(rules.max_extent, 0.0);
+    let h = min(abs(r.half_extent), vec2<f32>(lambda));
+    return kernel_rect_BoundingRect(max(h, max(f, vec2<f32>(0.0))));
+}
+
+/// The kernel-roughness rule of TK19 eq. 1 in matrix form: `2 Sigma'` has the eigenvalues
+/// `min(2 lambda_i, kappa)` and `Sigma`'s eigenvectors, after `covariance::sanitized`. A
+/// negative `kappa` counts as 0.
+fn kernel_clamp_kernel(rules: kernel_clamp_ClampRules, k: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
+    let s = kernel_covariance_sanitized(k);
+    if rules.kappa >= math_F32_MAX {
+        return s;
+    }
+    return kernel_covariance_clamp_eigenvalues(s, 0.5 * max(rules.kappa, 0.0));
+}
+
+/// The determinant clamp `tau` for filtering `a` (the Rust `det_clamp_for`): `det A_c` of the
+/// unfiltered lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a
+/// clamped matrix its `max(det A, tau)`) if `det_clamp`, else the material's own clamp
+/// ([`matrix::own_det_clamp`]: 0 unless it is a clamped matrix).
+fn kernel_clamp_det_clamp_for(rules: kernel_clamp_ClampRules, a: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return select(ndf_roughness_matrix_own_det_clamp(a), ndf_roughness_matrix_clamped_det(a), rules.det_clamp);
+}
+
+/// The clamped pixel kernel of a footprint: [`footprint`] -> `covariance::from_footprint` (`sigma`
+/// pixels) -> [`kernel`] (sanitised once).
+fn kernel_clamp_pixel_kernel(rules: kernel_clamp_ClampRules, fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
+    return kernel_clamp_kernel(rules, kernel_covariance_from_footprint(kernel_clamp_footprint(rules, fp), sigma));
+}
+
 // ---- filtered_ndf::filter::gaussian (shaders/filter/gaussian.wgsl) ----
 // Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
 // mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
@@ -755,6 +1106,19 @@ fn filter_gaussian_gaussian_with_det_clamp(
     det_clamp: f32,
 ) -> ndf_roughness_matrix_RoughnessMatrix {
     return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), max(det_clamp, ndf_roughness_matrix_own_det_clamp(a)));
+}
+
+/// The whole Gaussian pipeline: `clamp::footprint` -> `covariance::from_footprint` (`sigma` pixels)
+/// -> `clamp::kernel` -> `A' = A + 2 Sigma` with `tau = det A_c` if `det_clamp` (the TK19 matrix
+/// filter; exact for Beckmann). The result is the one clamped matrix of `matrix.wgsl`. The
+/// Rust `ClampRules::filter_gaussian`: the rules are the kernel stage's data, applied here.
+fn filter_gaussian_filter_gaussian(
+    rules: kernel_clamp_ClampRules,
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    fp: footprint_Footprint,
+    sigma: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian_sanitized(a, kernel_clamp_pixel_kernel(rules, fp, sigma), kernel_clamp_det_clamp_for(rules, a));
 }
 
 // ---- filtered_ndf::ndf (shaders/ndf/mod.wgsl) ----
@@ -1487,171 +1851,6 @@ fn filter_gaussian_ggx_quad_lambda(qa: f32, qs: f32, oz: f32) -> f32 {
     return filter_gaussian_ggx_quad_lambda_sinh(qa, qs, oz, ds2);
 }
 
-// ---- filtered_ndf::sampling (shaders/sampling/mod.wgsl) ----
-// Importance sampling of GGX with a roughness matrix, and the pdfs for multiple importance
-// sampling, mirroring `src/.../sampling/mod.rs` (GGX, `NdfSampling`). Densities per
-// steradian: `D(m) m_z` (KHPL16 eq. 2) and the visible normals
-// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014 eq. 16); the reflected direction
-// `wi = reflect(wo, m)` has `D_wo(m) / (4 wo.m)` (Walter et al. 2007 eq. 14).
-//
-// One linear warp for every roughness: with `A = L L^T` (lower Cholesky factor), slopes
-// `s = L t` map the unit-roughness NDF of `t` to the NDF of `A`; the visible normals of `A`
-// seen from `wo` are the image of the unit-roughness visible normals seen from
-// `normalize(L^T wo_xy, wo_z)` (Heitz and d'Eon 2014 section 4; the same algebra for any
-// `L`). The unit-roughness GGX sampler is the spherical caps of Dupuy and Benyoub 2023
-// (listing 3). The angle `2 pi u` goes through `math::sincos_turns` (WGSL allows the driver
-// `sin`/`cos` an absolute `2^-11`).
-//
-// Out of domain: `wo_z <= 0` has no visible normal: the samplers return the zero vector
-// (the Rust `None`) and the pdfs 0. `u` is clamped to `[0, 1 - 2^-24]`. `wo` need not be
-// normalised; `m` must be a unit vector for the pdfs.
-
-/// The largest f32 below 1: the upper clamp of the uniform numbers.
-const sampling_ONE_MINUS_EPS: f32 = 0.99999994;
-
-/// The lower Cholesky factor `L = [[l_xx, 0], [l_yx, l_yy]]` of a roughness, `A = L L^T`.
-struct sampling_Warp {
-    /// `sqrt(a11)`.
-    l_xx: f32,
-    /// `a12 / sqrt(a11)`.
-    l_yx: f32,
-    /// `sqrt(det A) / sqrt(a11)`.
-    l_yy: f32,
-}
-
-/// The warp of a roughness matrix: the Cholesky factor of the clamped matrix `A_c` that the
-/// density evaluates (`matrix.wgsl`; entries from its eigenbasis, `sqrt(det A_c)` as stored),
-/// so that the sampled lobe is the one `D` describes.
-fn sampling_warp(r: ndf_roughness_matrix_RoughnessMatrix) -> sampling_Warp {
-    let e = ndf_roughness_matrix_clamped_entries(r);
-    let l_xx = sqrt(e.x);
-    return sampling_Warp(l_xx, e.y / l_xx, r.sqrt_det / l_xx);
-}
-
-/// `v / |v|` after scaling by the largest component (no overflow or underflow of the
-/// squares). `v` non-zero.
-fn sampling_normalize_scaled(v: vec3<f32>) -> vec3<f32> {
-    let w = v / max(max(abs(v.x), abs(v.y)), abs(v.z));
-    return w / length(w);
-}
-
-/// `(L^T w_xy, w_z)`: a view direction into the unit-roughness space (unnormalised).
-fn sampling_stretch(l: sampling_Warp, w: vec3<f32>) -> vec3<f32> {
-    return vec3<f32>(l.l_xx * w.x + l.l_yx * w.y, l.l_yy * w.y, w.z);
-}
-
-/// `normalize(L n_xy, n_z)`: a unit-roughness normal back to roughness `A`.
-fn sampling_unstretch(l: sampling_Warp, n: vec3<f32>) -> vec3<f32> {
-    return sampling_normalize_scaled(vec3<f32>(l.l_xx * n.x, l.l_yx * n.x + l.l_yy * n.y, n.z));
-}
-
-/// A uniform number clamped into `[0, 1 - 2^-24]` (negative values to 0).
-fn sampling_clamp_unit(u: f32) -> f32 {
-    return select(0.0, min(u, sampling_ONE_MINUS_EPS), u >= 0.0);
-}
-
-/// Mirror reflection of `wo` about the unit normal `m`: `2 (wo.m) m - wo` (Walter et al.
-/// 2007 eq. 13).
-fn sampling_reflect(wo: vec3<f32>, m: vec3<f32>) -> vec3<f32> {
-    return 2.0 * dot(wo, m) * m - wo;
-}
-
-/// Unit-roughness GGX visible normal by spherical caps (Dupuy and Benyoub 2023): a uniform
-/// point `c` on the cap `z >= -wi_z` of the unit sphere, returned as `c + wi` (unnormalised).
-fn sampling_ggx_standard_visible(wi: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
-    let cs = math_sincos_turns(u.x);
-    let z = (1.0 - u.y) * (1.0 + wi.z) - wi.z;
-    let sin_theta = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
-    return vec3<f32>(sin_theta * cs, z) + wi;
-}
-
-/// Samples a visible micronormal `m` of GGX with roughness `r` from `u` in `[0, 1)^2`, with
-/// density `D_wo(m)` per steradian (Heitz 2014 eq. 16). The zero vector if `wo_z <= 0` (or
-/// the view is grazing to within the f32 range); otherwise a unit `m` with `m_z > 0` and
-/// `wo.m > 0` (should rounding break either, the lobe centre `unstretch(wi)` is returned,
-/// as in Rust).
-fn sampling_sample_visible_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
-    if !(wo.z > 0.0) {
-        return vec3<f32>(0.0);
-    }
-    let l = sampling_warp(r);
-    let wi = sampling_normalize_scaled(sampling_stretch(l, sampling_normalize_scaled(wo)));
-    if !(wi.z > 0.0) {
-        return vec3<f32>(0.0);
-    }
-    let n = sampling_ggx_standard_visible(wi, vec2<f32>(sampling_clamp_unit(u.x), sampling_clamp_unit(u.y)));
-    let m = sampling_unstretch(l, n);
-    if m.z > 0.0 && dot(wo, m) > 0.0 {
-        return m;
-    }
-    let c = sampling_unstretch(l, wi);
-    return select(vec3<f32>(0.0), c, c.z > 0.0);
-}
-
-/// Samples `m` with density `D(m) m_z` per steradian (the NDF itself): in the unit-roughness
-/// space `|t|^2 = u1 / (1 - u1)`, `n = (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))`,
-/// `phi = 2 pi u2`, then warped by `L`. Always `m_z > 0`.
-fn sampling_sample_normal(r: ndf_roughness_matrix_RoughnessMatrix, u: vec2<f32>) -> vec3<f32> {
-    let u1 = sampling_clamp_unit(u.x);
-    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
-    let n = vec3<f32>(sqrt(u1) * cs, sqrt(1.0 - u1));
-    return sampling_unstretch(sampling_warp(r), n);
-}
-
-/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
-/// `m_z <= 0`.
-fn sampling_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
-    return select(0.0, ndf_ggx_d_matrix(r, m) * m.z, m.z > 0.0);
-}
-
-/// The visible-normal density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian
-/// (Heitz 2014 eq. 16) for a unit `m`; 0 for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
-fn sampling_visible_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    return sampling_visible_normal_pdf_of(wo, m, ndf_ggx_d_matrix(r, m), ndf_ggx_lambda_matrix(r, wo));
-}
-
-/// [`visible_normal_pdf`] from `D(m)` and `Lambda(wo)` of any NDF (GGX here, Beckmann in
-/// `sampling::beckmann`): `(wo.m) D / (wo_z (1 + Lambda))`; 0 for `wo_z <= 0`, `wo.m <= 0`
-/// and where the quotient is not finite.
-fn sampling_visible_normal_pdf_of(wo: vec3<f32>, m: vec3<f32>, d: f32, lambda: f32) -> f32 {
-    let wom = dot(wo, m);
-    let v = wom * d / (wo.z * (1.0 + lambda));
-    return select(0.0, v, wo.z > 0.0 && wom > 0.0 && v <= math_F32_MAX);
-}
-
-/// The density per steradian of `wi = reflect(wo, m)` for the unit half vector `m` itself:
-/// `G1(wo) D(m) / (4 wo_z)` (Walter et al. 2007 eq. 14, `wo` normalised here); 0 for
-/// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
-fn sampling_reflection_pdf_from_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    let o = sampling_normalize_scaled(wo);
-    return sampling_reflection_pdf_of(o, m, ndf_ggx_d_matrix(r, m), ndf_ggx_lambda_matrix(r, o));
-}
-
-/// [`reflection_pdf_from_normal`] from the normalised `o = normalize_scaled(wo)`, `D(m)` and
-/// `Lambda(o)` of any NDF: `D / (4 o_z (1 + Lambda))`; 0 for `o_z <= 0` (`wo_z <= 0`, or a
-/// `wo_z` that vanishes against `wo_xy`), `o.m <= 0` and where the quotient is not finite.
-fn sampling_reflection_pdf_of(o: vec3<f32>, m: vec3<f32>, d: f32, lambda: f32) -> f32 {
-    let v = d / (4.0 * o.z * (1.0 + lambda));
-    return select(0.0, v, o.z > 0.0 && dot(o, m) > 0.0 && v <= math_F32_MAX);
-}
-
-/// The density per steradian of `wi` when `m` is drawn by [`sample_visible_normal`] and
-/// `wi = reflect(wo, m)`: [`reflection_pdf_from_normal`] with `m = normalize(wo + wi)`
-/// (both normalised first). 0 for `wo_z <= 0` and for `wi = -wo`. The recomputed half vector
-/// carries a direction error of about `eps / (2 wo.m)`: for a sampled direction prefer
-/// [`reflection_pdf_from_normal`] with the sampled `m`.
-fn sampling_reflection_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
-    if !(wo.z > 0.0) {
-        return 0.0;
-    }
-    let h = sampling_normalize_scaled(wo) + sampling_normalize_scaled(wi);
-    let len = length(h);
-    if !(len > 0.0) {
-        return 0.0;
-    }
-    return sampling_reflection_pdf_from_normal(r, wo, h / len);
-}
-
 // ---- filtered_ndf::filter::gaussian_ggx (shaders/filter/gaussian_ggx.wgsl) ----
 // The exact Gaussian-filtered GGX (`src/.../filter/gaussian_ggx.rs`, `GaussianFilteredGgx`):
 // the convolution of a GGX slope density of roughness `A` with a Gaussian kernel
@@ -1799,56 +1998,6 @@ fn filter_gaussian_ggx_g2(g: filter_gaussian_ggx_GaussianFilteredGgx, i: vec3<f3
     return ndf_g2_of(filter_gaussian_ggx_lambda(g, i), filter_gaussian_ggx_lambda(g, o), dot(i, m), dot(o, m));
 }
 
-/// Two uniform numbers from one (the Rust `split` of the `f32` build): the high and the low
-/// twelve bits of `u` in `[0, 1)`, `((floor(4096 u) + 1/2) / 4096, frac(4096 u))`, both
-/// uniform on their grids and independent (every step exact in f32).
-fn filter_gaussian_ggx_split(u: f32) -> vec2<f32> {
-    let x = u * 4096.0;
-    let hi = floor(x);
-    return vec2<f32>((hi + 0.5) / 4096.0, x - hi);
-}
-
-/// Samples a unit micronormal `m` of the filtered lobe with density `D(m) m_z` per steradian
-/// (KHPL16 eq. 2; the Rust `NdfSampling::sample_normal`). Exact: the filtered slope is the sum
-/// of two independent slopes (module docs: the convolution), a GGX slope of roughness `A_c`,
-/// `B t` with `B` its Cholesky factor (`sampling::warp`) and `|t|^2 = u1 / (1 - u1)` (the
-/// inverse radial CDF of unit-roughness GGX, Walter et al. 2007 eq. 35), and a kernel slope
-/// `N(0, Sigma)` by Box-Muller along the kernel's principal axes (the eigenvector of the
-/// larger eigenvalue from the row without cancellation, as Rust). The four uniform numbers are
-/// the high and low halves of the bits of `u.x` (`u1`, `u3`) and `u.y` (`u2`, `u4`), 12 bits
-/// each ([`split`]). `u` is clamped to `[0, 1 - 2^-24]`. Always `m_z > 0` (kept at the
-/// smallest normal f32 where the slope leaves the f32 range).
-fn filter_gaussian_ggx_sample_normal(g: filter_gaussian_ggx_GaussianFilteredGgx, u: vec2<f32>) -> vec3<f32> {
-    let a = filter_gaussian_ggx_split(sampling_clamp_unit(u.x));
-    let b = filter_gaussian_ggx_split(sampling_clamp_unit(u.y));
-    // The GGX slope B t.
-    let t = sqrt(a.x / (1.0 - a.x)) * math_sincos_turns(b.x);
-    let l = sampling_warp(g.a);
-    let gs = vec2<f32>(l.l_xx * t.x, l.l_yx * t.x + l.l_yy * t.y);
-    // The kernel slope: -2 ln(1 - u3) as ln_1p below 1/2 (no cancellation), exact above.
-    let e = select(-math_ln(1.0 - a.y), math_ln_1p(a.y / (1.0 - a.y)), a.y < 0.5);
-    let y = sqrt(2.0 * e) * math_sincos_turns(b.y);
-    let k = g.k;
-    let ev = kernel_covariance_eigenvalues(k);
-    let khalf = 0.5 * (k.s_xx - k.s_yy);
-    let krad = math_hypot(khalf, k.s_xy);
-    var ax = vec2<f32>(1.0, 0.0);
-    if krad > 0.0 {
-        let w = select(vec2<f32>(k.s_xy, krad - khalf), vec2<f32>(krad + khalf, k.s_xy), khalf >= 0.0);
-        ax = w / math_hypot(w.x, w.y);
-    }
-    let kk = vec2<f32>(sqrt(ev.y) * y.x, sqrt(ev.x) * y.y);
-    let s = gs + vec2<f32>(ax.x * kk.x - ax.y * kk.y, ax.y * kk.x + ax.x * kk.y);
-    let n = sampling_normalize_scaled(vec3<f32>(-s, 1.0));
-    return vec3<f32>(n.xy, max(n.z, math_F32_MIN_POSITIVE));
-}
-
-/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
-/// `m_z <= 0`.
-fn filter_gaussian_ggx_normal_pdf(g: filter_gaussian_ggx_GaussianFilteredGgx, m: vec3<f32>) -> f32 {
-    return select(0.0, filter_gaussian_ggx_d(g, m) * m.z, m.z > 0.0);
-}
-
 // ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
 // LEAN mapping's moments and the nested convolution of KHPL16 section 5.5, eq. 21,
 // mirroring `src/.../filter/lean.rs`.
@@ -1882,256 +2031,6 @@ fn filter_lean_lean(
     moments: filter_lean_LeanMoments,
 ) -> ndf_roughness_matrix_RoughnessMatrix {
     return filter_gaussian_gaussian(a, kernel_covariance_add(kernel_covariance_sanitized(pixel), filter_lean_covariance(moments)));
-}
-
-// ---- filtered_ndf::footprint::jacobian (shaders/footprint/jacobian.wgsl) ----
-// Jacobians between the three half-vector domains (TK19 supplement section 2, eq. 1-7) and
-// the error propagation of TK19 section 3.1, mirroring `src/.../footprint/jacobian.rs`.
-// Matrices are the paper's `J[i][j] = d out_i / d in_j` stored column-major (WGSL
-// `mat2x2<f32>` like glam's `Mat2`): column `j` is the derivative with respect to input `j`,
-// and `J * v` is the paper's product. Spherical changes are the arc lengths `(psi_x, psi_y)`
-// along `e_x = (cos theta cos phi, cos theta sin phi, -sin theta)` and
-// `e_y = (-sin phi, cos phi, 0)`. Input: `h` is normalised here; a zero `h` is the pole;
-// `h_z` is clamped to `HZ_MIN` at constant azimuth; at the pole `phi = 0`.
-// (Non-finite input: WGSL lets a driver assume it never occurs.)
-
-/// Smallest `h_z` the Jacobians use (`1 / HZ_MIN^4 = 1e24` stays finite in f32).
-const footprint_jacobian_HZ_MIN: f32 = 1e-6;
-
-/// A half vector reduced to what the Jacobians need: the sanitised unit `h` and
-/// `(cos phi, sin phi)`.
-struct footprint_jacobian_Polar {
-    /// The sanitised unit half vector.
-    h: vec3<f32>,
-    /// `(cos phi, sin phi)` of its azimuth (`(1, 0)` at the pole).
-    cs: vec2<f32>,
-}
-
-/// Normalise (after scaling by the largest component), take the azimuth from `h_xy` scaled
-/// to unit size, clamp `h_z >= HZ_MIN` keeping the azimuth.
-fn footprint_jacobian_polar(h_in: vec3<f32>) -> footprint_jacobian_Polar {
-    let big = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
-    if big <= 0.0 {
-        return footprint_jacobian_Polar(vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(1.0, 0.0));
-    }
-    let h0 = h_in / big;
-    let h = h0 / length(h0);
-    let qs = max(abs(h.x), abs(h.y));
-    var cs = vec2<f32>(1.0, 0.0);
-    if qs > 0.0 {
-        let q = h.xy / qs;
-        cs = q / length(q);
-    }
-    if h.z >= footprint_jacobian_HZ_MIN {
-        return footprint_jacobian_Polar(h, cs);
-    }
-    let st = sqrt(1.0 - footprint_jacobian_HZ_MIN * footprint_jacobian_HZ_MIN);
-    return footprint_jacobian_Polar(vec3<f32>(st * cs, footprint_jacobian_HZ_MIN), cs);
-}
-
-/// The unit half vector the Jacobians use for input `h` (normalised, zero -> the pole,
-/// `h_z >= HZ_MIN` at constant azimuth).
-fn footprint_jacobian_sanitize(h: vec3<f32>) -> vec3<f32> {
-    return footprint_jacobian_polar(h).h;
-}
-
-/// The spherical basis `(e_x, e_y)` at `h` (TK19 supplement eq. 3, columns 1 and 2).
-struct footprint_jacobian_SphericalBasis {
-    /// `e_x`, along the great circle through `h` and `n`, away from `n`.
-    e_x: vec3<f32>,
-    /// `e_y = n x h / |n x h|`.
-    e_y: vec3<f32>,
-}
-
-/// `(e_x, e_y)` at `h`: `e_x = (cos theta cos phi, cos theta sin phi, -sin theta)`,
-/// `e_y = (-sin phi, cos phi, 0)`; `(+x, +y)` at the pole.
-fn footprint_jacobian_spherical_basis(h: vec3<f32>) -> footprint_jacobian_SphericalBasis {
-    let p = footprint_jacobian_polar(h);
-    let st = length(p.h.xy);
-    return footprint_jacobian_SphericalBasis(
-        vec3<f32>(p.h.z * p.cs, -st),
-        vec3<f32>(-p.cs.y, p.cs.x, 0.0),
-    );
-}
-
-/// `(dh . e_x, dh . e_y)` (radians) of a tangent change `dh` of the unit half vector (TK19
-/// section 3.1).
-fn footprint_jacobian_spherical_components(h: vec3<f32>, dh: vec3<f32>) -> vec2<f32> {
-    let b = footprint_jacobian_spherical_basis(h);
-    return vec2<f32>(dot(dh, b.e_x), dot(dh, b.e_y));
-}
-
-/// `J(o->perp) = [[h_z cos phi, -sin phi], [h_z sin phi, cos phi]]` (TK19 supplement eq. 4),
-/// determinant `h_z`; `I` at the pole.
-fn footprint_jacobian_sphere_to_projected(h: vec3<f32>) -> mat2x2<f32> {
-    let p = footprint_jacobian_polar(h);
-    return mat2x2<f32>(p.h.z * p.cs, vec2<f32>(-p.cs.y, p.cs.x));
-}
-
-/// `J(perp->par) = -1 / h_z^3 [[h_x^2 + h_z^2, h_x h_y], [h_x h_y, h_y^2 + h_z^2]]` (TK19
-/// supplement eq. 6, with `1 - h_y^2` written as `h_x^2 + h_z^2` for accuracy at the
-/// horizon); determinant `1 / h_z^4`; `-I` at the pole.
-fn footprint_jacobian_projected_to_slope(h_in: vec3<f32>) -> mat2x2<f32> {
-    let h = footprint_jacobian_polar(h_in).h;
-    let k = -1.0 / (h.z * h.z * h.z);
-    let xy = h.x * h.y;
-    return mat2x2<f32>(
-        vec2<f32>(h.x * h.x + h.z * h.z, xy) * k,
-        vec2<f32>(xy, h.y * h.y + h.z * h.z) * k,
-    );
-}
-
-/// `J(par->perp) = -h_z [[h_y^2 + h_z^2, -h_x h_y], [-h_x h_y, h_x^2 + h_z^2]]`, the inverse
-/// of [`projected_to_slope`]; determinant `h_z^4`; `-I` at the pole.
-fn footprint_jacobian_slope_to_projected(h_in: vec3<f32>) -> mat2x2<f32> {
-    let h = footprint_jacobian_polar(h_in).h;
-    let xy = h.x * h.y;
-    return mat2x2<f32>(
-        vec2<f32>(h.y * h.y + h.z * h.z, -xy) * -h.z,
-        vec2<f32>(-xy, h.x * h.x + h.z * h.z) * -h.z,
-    );
-}
-
-/// `J(o->par) = -1 / h_z^2 [[cos phi, -h_z sin phi], [sin phi, h_z cos phi]]` (TK19
-/// supplement eq. 7; section 3.1); determinant `1 / h_z^3`; `-I` at the pole.
-fn footprint_jacobian_sphere_to_slope(h: vec3<f32>) -> mat2x2<f32> {
-    let p = footprint_jacobian_polar(h);
-    let k = -1.0 / (p.h.z * p.h.z);
-    return mat2x2<f32>(p.cs * k, vec2<f32>(-p.h.z * p.cs.y, p.h.z * p.cs.x) * k);
-}
-
-/// `det J(o->perp) = h_z` (TK19 section 3.2), in `[HZ_MIN, 1]`.
-fn footprint_jacobian_det_sphere_to_projected(h: vec3<f32>) -> f32 {
-    return footprint_jacobian_polar(h).h.z;
-}
-
-/// `det J(perp->par) = 1 / h_z^4`, in `[1, 1e24]`.
-fn footprint_jacobian_det_projected_to_slope(h: vec3<f32>) -> f32 {
-    let z = footprint_jacobian_polar(h).h.z;
-    let z2 = z * z;
-    return 1.0 / (z2 * z2);
-}
-
-/// `det J(o->par) = 1 / h_z^3` (TK19 section 3.1), in `[1, 1e18]`.
-fn footprint_jacobian_det_sphere_to_slope(h: vec3<f32>) -> f32 {
-    let z = footprint_jacobian_polar(h).h.z;
-    return 1.0 / (z * z * z);
-}
-
-/// A spherical error `(eps_x, eps_y)` mapped to the slope domain, `J(o->par) eps` (TK19
-/// section 3.1).
-fn footprint_jacobian_spherical_to_slope(h: vec3<f32>, e: vec2<f32>) -> vec2<f32> {
-    return footprint_jacobian_sphere_to_slope(h) * e;
-}
-
-/// The same error mapped to the projected disk, `J(o->perp) eps` (TK19 section 3.2).
-fn footprint_jacobian_spherical_to_projected(h: vec3<f32>, e: vec2<f32>) -> vec2<f32> {
-    return footprint_jacobian_sphere_to_projected(h) * e;
-}
-
-// ---- filtered_ndf::kernel::rect (shaders/kernel/rect.wgsl) ----
-// The axis-aligned slope-domain rectangle of KHPL16 section 5.3 (the `footprint` of the
-// GDC 2016 `GGXRectIntegral`), mirroring `BoundingRect` of `src/.../kernel/rect.rs`.
-
-/// A rectangle centred on the half vector's slope, by its half-extents (slope units, `>= 0`).
-/// It bounds the one-pixel parallelogram: `half_extent = (|dh_u| + |dh_v|) / 2`.
-struct kernel_rect_BoundingRect {
-    /// Half-extents along the tangent `x` and bitangent `y`.
-    half_extent: vec2<f32>,
-}
-
-/// The Gaussian-equivalent diagonal covariance `diag((2 sigma h_x)^2, (2 sigma h_y)^2)`
-/// (`sigma` in pixels; GDC 2016 Beckmann listing `rghns_sq += fp * fp * 2`, TK19 Listing 3).
-fn kernel_rect_covariance(r: kernel_rect_BoundingRect, sigma: f32) -> kernel_covariance_Covariance {
-    let w = r.half_extent * (2.0 * sigma);
-    let v = w * w;
-    return kernel_covariance_Covariance(v.x, 0.0, v.y, v.x * v.y);
-}
-
-// ---- filtered_ndf::footprint (shaders/footprint/mod.wgsl) ----
-// Pixel footprints in the slope domain (KHPL16 sections 4.2, 4.3; TK19 section 2.2),
-// mirroring `Footprint` of `src/.../footprint/mod.rs`: the slope change of the half vector
-// across one pixel step in `x` (`dh_u`) and in `y` (`dh_v`). A Gaussian pixel filter of
-// standard deviation `sigma` pixels carried into the slope domain has covariance
-// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`.
-
-/// The standard deviation of the pixel filter of KHPL16 and TK19, in pixels.
-const footprint_SIGMA_PIXEL: f32 = 0.5;
-
-/// A slope-domain pixel footprint.
-struct footprint_Footprint {
-    /// Slope change per pixel step along the image `x` axis.
-    dh_u: vec2<f32>,
-    /// Slope change per pixel step along the image `y` axis.
-    dh_v: vec2<f32>,
-}
-
-/// From slope-domain derivatives, e.g. `dpdx`/`dpdy` of the slope of `h` (KHPL16 section
-/// 5.1).
-fn footprint_from_slope_derivatives(dh_u: vec2<f32>, dh_v: vec2<f32>) -> footprint_Footprint {
-    return footprint_Footprint(dh_u, dh_v);
-}
-
-/// From derivatives of the projected half vector `p = h_xy` (TK19 section 3.2, Listing 1:
-/// `ddx(halfvectorTS.xy)`), used as slope changes directly, as TK19 does (no Jacobian: the
-/// bandwidth shrinks by `h_z` at grazing half vectors relative to the sphere).
-fn footprint_from_projected_derivatives(dp_u: vec2<f32>, dp_v: vec2<f32>) -> footprint_Footprint {
-    return footprint_Footprint(dp_u, dp_v);
-}
-
-/// The slope-domain footprint of disk derivatives at the half vector `h`:
-/// `dh = J(perp->par) dp` (TK19 supplement eq. 6, [`jacobian::projected_to_slope`]: `h`
-/// normalised, clamped to the horizon `h_z >= 1e-6` at constant azimuth). A zero `h` gives a
-/// zero footprint.
-fn footprint_from_projected_derivatives_in_slope(
-    h: vec3<f32>,
-    dp_u: vec2<f32>,
-    dp_v: vec2<f32>,
-) -> footprint_Footprint {
-    let big = max(max(abs(h.x), abs(h.y)), abs(h.z));
-    if big <= 0.0 {
-        return footprint_Footprint(vec2<f32>(0.0), vec2<f32>(0.0));
-    }
-    let j = footprint_jacobian_projected_to_slope(h);
-    return footprint_Footprint(j * dp_u, j * dp_v);
-}
-
-/// The deferred footprint from normal differences to the neighbouring pixels (TK19 section
-/// 4.4, eq. 3) in the tangent frame of the current normal: `2 (dn)_xy / |2 e_z + dn|` per
-/// difference (the derivative of the half-way normal on the disk, whose length is `|dn|`
-/// for unit normals), the denominator clamped to `>= 1e-6`.
-fn footprint_from_normal_differences(dn_u: vec3<f32>, dn_v: vec3<f32>) -> footprint_Footprint {
-    let lu = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_u), 1e-6);
-    let lv = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_v), 1e-6);
-    return footprint_Footprint(dn_u.xy * (2.0 / lu), dn_v.xy * (2.0 / lv));
-}
-
-/// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels, with
-/// `det Sigma = sigma^4 (dh_u x dh_v)^2` from the vectors (accurate for elongated kernels).
-fn footprint_covariance(fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
-    let u = fp.dh_u;
-    let v = fp.dh_v;
-    let s2 = sigma * sigma;
-    let cross = (u.x * v.y - u.y * v.x) * s2;
-    return kernel_covariance_Covariance(
-        (u.x * u.x + v.x * v.x) * s2,
-        (u.x * u.y + v.x * v.y) * s2,
-        (u.y * u.y + v.y * v.y) * s2,
-        cross * cross,
-    );
-}
-
-/// The axis-aligned bounding rectangle of the one-pixel parallelogram (KHPL16 section 5.3;
-/// GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
-/// `(|dh_u| + |dh_v|) / 2` per axis.
-fn footprint_bounding_rect(fp: footprint_Footprint) -> kernel_rect_BoundingRect {
-    return kernel_rect_BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
-}
-
-/// The largest centre-to-vertex distance of the one-pixel parallelogram,
-/// `max(|dh_u + dh_v|, |dh_u - dh_v|) / 2`: the extent clamped by KHPL16 section 5.2.
-fn footprint_max_extent(fp: footprint_Footprint) -> f32 {
-    return 0.5 * max(length(fp.dh_u + fp.dh_v), length(fp.dh_u - fp.dh_v));
 }
 
 // ---- filtered_ndf::filter::projected (shaders/filter/projected.wgsl) ----
@@ -2208,119 +2107,11 @@ fn filter_projected_projected_sanitized(
     return ndf_roughness_matrix_from_entries_det(max(b11, e.x), b12, max(b22, e.z), det, max(tau, 0.0));
 }
 
-// ---- filtered_ndf::kernel::clamp (shaders/kernel/clamp.wgsl) ----
-// The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, GDC 2016,
-// TK19 eq. 1 and supplement), mirroring `ClampRules` of `src/.../kernel/clamp.rs`. A rule is
-// off when its bound is `F32_MAX` (`max_extent`, `kappa`; the Rust `F::INFINITY`),
-// `FLOOR_NONE`, or `det_clamp = false`. Constants mirror `ClampRules::DEFAULT`, `KHPL16`,
-// `NONE`, `GDC2016` (`*_RULES`: WGSL names may not end in a digit here, see shaders/README.md).
-
-/// No rectangle floor.
-const kernel_clamp_FLOOR_NONE: u32 = 0u;
-/// Half-extents `>= floor` on both axes (KHPL16 section 5.2, `epsilon = 1e-3`).
-const kernel_clamp_FLOOR_CONSTANT: u32 = 1u;
-/// Half-extents `>= min(alpha_axis, floor)` per axis (GDC 2016 `min(roughness, 0.1)`).
-const kernel_clamp_FLOOR_ALPHA_CAPPED: u32 = 2u;
-
-/// The clamping rules.
-struct kernel_clamp_ClampRules {
-    /// `lambda`: the largest centre-to-vertex extent of the parallelogram and the largest
-    /// rectangle half-extent (slope units).
-    max_extent: f32,
-    /// `FLOOR_NONE`, `FLOOR_CONSTANT` or `FLOOR_ALPHA_CAPPED`.
-    floor_kind: u32,
-    /// The floor's constant (`epsilon`, or the cap of `FLOOR_ALPHA_CAPPED`).
-    floor: f32,
-    /// `kappa`: the largest kernel roughness^2 `2 lambda_i(Sigma)` per eigen-direction.
-    kappa: f32,
-    /// Evaluate filtered matrices with `tau = det(A_unfiltered)`.
-    det_clamp: bool,
-}
-
-/// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
-const kernel_clamp_DEFAULT_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_CONSTANT, 1e-3, 0.18, true);
-/// KHPL16's rules for its exact kernels: `lambda = 1` (section 5.2) and the determinant clamp;
-/// no rectangle floor (the exact rectangle integral needs none), no `kappa` (a TK19 addition).
-const kernel_clamp_KHPL16_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, true);
-/// No clamping (unbiased; for references and the exact rectangle integral).
-const kernel_clamp_NO_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(math_F32_MAX, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, false);
-/// The GDC 2016 listing: `fp = clamp(fp, min(roughness, 0.1), 1)`, no `kappa`, with `tau`.
-const kernel_clamp_GDC2016_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_ALPHA_CAPPED, 0.1, math_F32_MAX, true);
-
-/// The maximum-extent rule on a parallelogram (KHPL16 section 5.2): both vectors scaled by
-/// `min(1, lambda / max_extent)`, keeping the shape. The extent is measured on the
-/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0.
-fn kernel_clamp_footprint(rules: kernel_clamp_ClampRules, fp: footprint_Footprint) -> footprint_Footprint {
-    let l = max(rules.max_extent, 0.0);
-    let scale = max(max(abs(fp.dh_u.x), abs(fp.dh_u.y)), max(abs(fp.dh_v.x), abs(fp.dh_v.y)));
-    if scale <= 0.0 {
-        return fp;
-    }
-    let unit = footprint_Footprint(fp.dh_u / scale, fp.dh_v / scale);
-    let e = footprint_max_extent(unit);
-    if e * scale <= l {
-        return fp;
-    }
-    return footprint_Footprint(unit.dh_u / e * l, unit.dh_v / e * l);
-}
-
-/// The rectangle rules: half-extents taken by magnitude, clamped to `[floor, lambda]` per
-/// axis (KHPL16 section 5.2; GDC 2016 `clamp(fp, fp_min, fp_max)`), `alpha` the lobe's
-/// per-axis roughness for `FLOOR_ALPHA_CAPPED`; if the floor exceeds `lambda` the floor wins.
-fn kernel_clamp_rect(rules: kernel_clamp_ClampRules, r: kernel_rect_BoundingRect, alpha: vec2<f32>) -> kernel_rect_BoundingRect {
-    var f = vec2<f32>(0.0);
-    if rules.floor_kind == kernel_clamp_FLOOR_CONSTANT {
-        f = vec2<f32>(rules.floor);
-    } else if rules.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED {
-        f = min(abs(alpha), vec2<f32>(rules.floor));
-    }
-    let lambda = max(rules.max_extent, 0.0);
-    let h = min(abs(r.half_extent), vec2<f32>(lambda));
-    return kernel_rect_BoundingRect(max(h, max(f, vec2<f32>(0.0))));
-}
-
-/// The kernel-roughness rule of TK19 eq. 1 in matrix form: `2 Sigma'` has the eigenvalues
-/// `min(2 lambda_i, kappa)` and `Sigma`'s eigenvectors, after `covariance::sanitized`. A
-/// negative `kappa` counts as 0.
-fn kernel_clamp_kernel(rules: kernel_clamp_ClampRules, k: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
-    let s = kernel_covariance_sanitized(k);
-    if rules.kappa >= math_F32_MAX {
-        return s;
-    }
-    return kernel_covariance_clamp_eigenvalues(s, 0.5 * max(rules.kappa, 0.0));
-}
-
-/// The determinant clamp `tau` for filtering `a` (the Rust `det_clamp_for`): `det A_c` of the
-/// unfiltered lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a
-/// clamped matrix its `max(det A, tau)`) if `det_clamp`, else the material's own clamp
-/// ([`matrix::own_det_clamp`]: 0 unless it is a clamped matrix).
-fn kernel_clamp_det_clamp_for(rules: kernel_clamp_ClampRules, a: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return select(ndf_roughness_matrix_own_det_clamp(a), ndf_roughness_matrix_clamped_det(a), rules.det_clamp);
-}
-
-/// The clamped pixel kernel of a footprint: [`footprint`] -> `pixel::covariance` (`sigma`
-/// pixels) -> [`kernel`] (sanitised once).
-fn kernel_clamp_pixel_kernel(rules: kernel_clamp_ClampRules, fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
-    return kernel_clamp_kernel(rules, footprint_covariance(kernel_clamp_footprint(rules, fp), sigma));
-}
-
-/// The whole Gaussian pipeline: [`footprint`] -> `pixel::covariance` (`sigma` pixels)
-/// -> [`kernel`] -> `A' = A + 2 Sigma` with `tau = det A_c` if `det_clamp` (the TK19 matrix
-/// filter; exact for Beckmann). The result is the one clamped matrix of `matrix.wgsl`.
-fn kernel_clamp_filter_gaussian(
-    rules: kernel_clamp_ClampRules,
-    a: ndf_roughness_matrix_RoughnessMatrix,
-    fp: footprint_Footprint,
-    sigma: f32,
-) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_sanitized(a, kernel_clamp_pixel_kernel(rules, fp, sigma), kernel_clamp_det_clamp_for(rules, a));
-}
-
-/// The projected-space pipeline (TK21), the rules as in [`filter_gaussian`]: [`footprint`]
-/// -> `pixel::covariance` (`sigma` pixels; the footprint of the half vector's projected-disk
-/// derivatives, TK19 section 3.2) -> [`kernel`] -> `projected::projected_sanitized` with
+/// The projected-space pipeline (TK21), the rules as in `gaussian::filter_gaussian`: `clamp::footprint`
+/// -> `covariance::from_footprint` (`sigma` pixels; the footprint of the half vector's projected-disk
+/// derivatives, TK19 section 3.2) -> `clamp::kernel` -> [`projected_sanitized`] with
 /// `tau = det A_c` if `det_clamp` (the Rust `ClampRules::filter_projected`).
-fn kernel_clamp_filter_projected(
+fn filter_projected_filter_projected(
     rules: kernel_clamp_ClampRules,
     a: ndf_roughness_matrix_RoughnessMatrix,
     fp: footprint_Footprint,
@@ -3040,7 +2831,7 @@ const filter_method_KHPL16_GAUSSIAN: filter_method_Gaussian = filter_method_Gaus
 /// The lobe of `material` filtered by `method` over `fp` (the Rust `Gaussian::lobe`): the
 /// filtered roughness matrix, for `ggx::*_matrix` or `beckmann::*_matrix`.
 fn filter_method_gaussian_lobe(method: filter_method_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> ndf_roughness_matrix_RoughnessMatrix {
-    return kernel_clamp_filter_gaussian(method.clamps, material, fp, method.sigma);
+    return filter_gaussian_filter_gaussian(method.clamps, material, fp, method.sigma);
 }
 
 /// `D(m)` of the GGX lobe of [`gaussian_lobe`].
@@ -3091,7 +2882,7 @@ const filter_method_TK21_PROJECTED: filter_method_Projected = filter_method_Proj
 
 /// The GGX lobe of projected-space filtering (the Rust `Projected::lobe`), for `ggx::*_matrix`.
 fn filter_method_projected_lobe(method: filter_method_Projected, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> ndf_roughness_matrix_RoughnessMatrix {
-    return kernel_clamp_filter_projected(method.clamps, material, fp, method.sigma);
+    return filter_projected_filter_projected(method.clamps, material, fp, method.sigma);
 }
 
 /// `D(m)` of [`projected_lobe`].
@@ -3122,7 +2913,7 @@ struct filter_method_RectFilteredGgx {
 
 /// The box-filtered lobe of `material` over `fp` (the Rust `Rect::lobe`).
 fn filter_method_rect_lobe(method: filter_method_Rect, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint) -> filter_method_RectFilteredGgx {
-    let h = kernel_clamp_rect(method.clamps, footprint_bounding_rect(fp), material.alpha).half_extent;
+    let h = kernel_clamp_rect(method.clamps, kernel_rect_from_footprint(fp), material.alpha).half_extent;
     return filter_method_RectFilteredGgx(material, h);
 }
 
@@ -3169,7 +2960,7 @@ const filter_method_KHPL16_PROXY: filter_method_Proxy = filter_method_Proxy(kern
 
 /// The proxy roughness (the Rust `Proxy::lobe`), for `ggx::*_axis_aligned`.
 fn filter_method_proxy_lobe(method: filter_method_Proxy, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint) -> ndf_roughness_axis_aligned_AxisAligned {
-    let h = kernel_clamp_rect(method.clamps, footprint_bounding_rect(fp), material.alpha).half_extent;
+    let h = kernel_clamp_rect(method.clamps, kernel_rect_from_footprint(fp), material.alpha).half_extent;
     return filter_proxy_proxy(material, h);
 }
 
@@ -3367,75 +3158,6 @@ fn filter_presets_preset(i: u32) -> filter_deferred_KernelConvention {
     }
 }
 
-// ---- filtered_ndf::filter::rect::sample (shaders/filter/rect/sample.wgsl) ----
-// Importance sampling of the box-filtered GGX lobe (`boxed::d_rect`, `lambda::lambda_rect`)
-// and its pdfs, mirroring `src/.../filter/rect/sample.rs`.
-//
-// `D(m) m_z`: the lobe's slope is `s = g + delta` with `g` axis-aligned GGX and `delta`
-// uniform on the box `[-H_x, H_x] x [-H_y, H_y]` (its density is the box mean of `P22`,
-// `boxed::p22_rect`, KHPL16 eq. 16), so a GGX slope plus a uniform offset is an exact sample:
-// four uniform numbers, `u` for the GGX slope and `u_box` for the offset (the lobe's
-// conditional CDFs have no closed form, so two numbers would need a root find per
-// dimension). Visible normals: `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014
-// eq. 16) with the box lobe's own `Lambda`; its density is here, its sampler (an offset drawn
-// by its projected-area weight, two Newton solves over `Psi_1` means) is not yet.
-//
-// Out of domain: `u` components clamped to `[0, 1 - 2^-24]`; half extents by magnitude, at
-// most `1e18 alpha` (`boxed::BIG`; the Rust crate `1e60 alpha`); a sampled `m` is a unit
-// vector with `m_z > 0` (a slope beyond the f32 range keeps `m_z` at the smallest normal).
-
-/// A half extent as `boxed::p22_rect` reads it, in slope units: `|h|`, at most `BIG alpha`
-/// (NaN as 0 where the driver keeps the comparison).
-fn filter_rect_sample_half(h: f32, alpha: f32) -> f32 {
-    let v = abs(h);
-    return select(0.0, min(v, filter_rect_BIG * alpha), v >= 0.0);
-}
-
-/// The unit normal `normalize(-s, 1)` of the slope `s` (scaled first: no square overflows),
-/// `m_z` kept at the smallest normal f32 where it underflows.
-fn filter_rect_sample_normal_of_slope(s: vec2<f32>) -> vec3<f32> {
-    let n = sampling_normalize_scaled(vec3<f32>(-s, 1.0));
-    return vec3<f32>(n.xy, max(n.z, math_F32_MIN_POSITIVE));
-}
-
-/// Samples a unit micronormal `m` of the box-filtered GGX lobe (roughness `r`, slope-domain
-/// half extents `half_extent`) with density `D(m) m_z` per steradian, `D` = `boxed::d_rect`
-/// (KHPL16 eq. 16 per steradian): the axis-aligned GGX slope
-/// `g = -alpha sqrt(u1 / (1 - u1)) (cos phi, sin phi)`, `phi = 2 pi u2` (the GGX sampler's
-/// `D(m) m_z`, Walter et al. 2007 eq. 35-36 with the anisotropic stretch), plus the offset
-/// `(2 u_box - 1) H` uniform in the box. Exact; four uniform numbers in `[0, 1)`. Zero half
-/// extents: the GGX sample (the same direction as `sampling::sample_normal`).
-fn filter_rect_sample_sample_normal_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, u: vec2<f32>, u_box: vec2<f32>) -> vec3<f32> {
-    let a = r.alpha;
-    let h = vec2<f32>(filter_rect_sample_half(half_extent.x, a.x), filter_rect_sample_half(half_extent.y, a.y));
-    let u1 = sampling_clamp_unit(u.x);
-    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
-    let rad = sqrt(u1 / (1.0 - u1));
-    let g = -a * (rad * cs);
-    let b = vec2<f32>(sampling_clamp_unit(u_box.x), sampling_clamp_unit(u_box.y));
-    let d = (2.0 * b - 1.0) * h;
-    return filter_rect_sample_normal_of_slope(g + d);
-}
-
-/// The density of [`sample_normal_rect`], `D(m) m_z` per steradian with `D` =
-/// `boxed::d_rect`, for a unit `m`; 0 for `m_z <= 0`.
-fn filter_rect_sample_normal_pdf_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, m: vec3<f32>) -> f32 {
-    return select(0.0, filter_rect_d_rect(r, m, half_extent) * m.z, m.z > 0.0);
-}
-
-/// The visible-normal density of the box lobe,
-/// `D_wo(m) = max(0, wo.m) D(m) / (wo_z (1 + Lambda(wo)))` per steradian (Heitz 2014 eq. 16)
-/// for a unit `m`, `D` = `boxed::d_rect`, `Lambda` = `lambda::lambda_rect`. 0 for
-/// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`; `wo` need not be normalised.
-fn filter_rect_sample_visible_normal_pdf_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    let wom = dot(wo, m);
-    if !(wo.z > 0.0) || !(m.z > 0.0) || !(wom > 0.0) {
-        return 0.0;
-    }
-    let v = wom * filter_rect_d_rect(r, m, half_extent) / (wo.z * (1.0 + filter_rect_lambda_lambda_rect(r, half_extent, wo)));
-    return select(0.0, v, v <= math_F32_MAX);
-}
-
 // ---- filtered_ndf::footprint::slope (shaders/footprint/slope.wgsl) ----
 // The three half-vector domains and the maps between them (TK19 supplement eq. 1-5),
 // mirroring `src/.../footprint/slope.rs`: the sphere (unit `h`, tangent frame, `z` = shading
@@ -3488,6 +3210,171 @@ fn footprint_slope_slope_from_projected(p: vec2<f32>) -> vec2<f32> {
 /// Disk point of a slope, `p = -s / sqrt(1 + |s|^2)`.
 fn footprint_slope_projected_from_slope(s: vec2<f32>) -> vec2<f32> {
     return footprint_slope_projected_from_sphere(footprint_slope_sphere_from_slope(s));
+}
+
+// ---- filtered_ndf::sampling (shaders/sampling/mod.wgsl) ----
+// Importance sampling of GGX with a roughness matrix, and the pdfs for multiple importance
+// sampling, mirroring `src/.../sampling/mod.rs` (GGX, `NdfSampling`). Densities per
+// steradian: `D(m) m_z` (KHPL16 eq. 2) and the visible normals
+// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014 eq. 16); the reflected direction
+// `wi = reflect(wo, m)` has `D_wo(m) / (4 wo.m)` (Walter et al. 2007 eq. 14).
+//
+// One linear warp for every roughness: with `A = L L^T` (lower Cholesky factor), slopes
+// `s = L t` map the unit-roughness NDF of `t` to the NDF of `A`; the visible normals of `A`
+// seen from `wo` are the image of the unit-roughness visible normals seen from
+// `normalize(L^T wo_xy, wo_z)` (Heitz and d'Eon 2014 section 4; the same algebra for any
+// `L`). The unit-roughness GGX sampler is the spherical caps of Dupuy and Benyoub 2023
+// (listing 3). The angle `2 pi u` goes through `math::sincos_turns` (WGSL allows the driver
+// `sin`/`cos` an absolute `2^-11`).
+//
+// Out of domain: `wo_z <= 0` has no visible normal: the samplers return the zero vector
+// (the Rust `None`) and the pdfs 0. `u` is clamped to `[0, 1 - 2^-24]`. `wo` need not be
+// normalised; `m` must be a unit vector for the pdfs.
+
+/// The largest f32 below 1: the upper clamp of the uniform numbers.
+const sampling_ONE_MINUS_EPS: f32 = 0.99999994;
+
+/// The lower Cholesky factor `L = [[l_xx, 0], [l_yx, l_yy]]` of a roughness, `A = L L^T`.
+struct sampling_Warp {
+    /// `sqrt(a11)`.
+    l_xx: f32,
+    /// `a12 / sqrt(a11)`.
+    l_yx: f32,
+    /// `sqrt(det A) / sqrt(a11)`.
+    l_yy: f32,
+}
+
+/// The warp of a roughness matrix: the Cholesky factor of the clamped matrix `A_c` that the
+/// density evaluates (`matrix.wgsl`; entries from its eigenbasis, `sqrt(det A_c)` as stored),
+/// so that the sampled lobe is the one `D` describes.
+fn sampling_warp(r: ndf_roughness_matrix_RoughnessMatrix) -> sampling_Warp {
+    let e = ndf_roughness_matrix_clamped_entries(r);
+    let l_xx = sqrt(e.x);
+    return sampling_Warp(l_xx, e.y / l_xx, r.sqrt_det / l_xx);
+}
+
+/// `v / |v|` after scaling by the largest component (no overflow or underflow of the
+/// squares). `v` non-zero.
+fn sampling_normalize_scaled(v: vec3<f32>) -> vec3<f32> {
+    let w = v / max(max(abs(v.x), abs(v.y)), abs(v.z));
+    return w / length(w);
+}
+
+/// `(L^T w_xy, w_z)`: a view direction into the unit-roughness space (unnormalised).
+fn sampling_stretch(l: sampling_Warp, w: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(l.l_xx * w.x + l.l_yx * w.y, l.l_yy * w.y, w.z);
+}
+
+/// `normalize(L n_xy, n_z)`: a unit-roughness normal back to roughness `A`.
+fn sampling_unstretch(l: sampling_Warp, n: vec3<f32>) -> vec3<f32> {
+    return sampling_normalize_scaled(vec3<f32>(l.l_xx * n.x, l.l_yx * n.x + l.l_yy * n.y, n.z));
+}
+
+/// A uniform number clamped into `[0, 1 - 2^-24]` (negative values to 0).
+fn sampling_clamp_unit(u: f32) -> f32 {
+    return select(0.0, min(u, sampling_ONE_MINUS_EPS), u >= 0.0);
+}
+
+/// Mirror reflection of `wo` about the unit normal `m`: `2 (wo.m) m - wo` (Walter et al.
+/// 2007 eq. 13).
+fn sampling_reflect(wo: vec3<f32>, m: vec3<f32>) -> vec3<f32> {
+    return 2.0 * dot(wo, m) * m - wo;
+}
+
+/// Unit-roughness GGX visible normal by spherical caps (Dupuy and Benyoub 2023): a uniform
+/// point `c` on the cap `z >= -wi_z` of the unit sphere, returned as `c + wi` (unnormalised).
+fn sampling_ggx_standard_visible(wi: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
+    let cs = math_sincos_turns(u.x);
+    let z = (1.0 - u.y) * (1.0 + wi.z) - wi.z;
+    let sin_theta = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
+    return vec3<f32>(sin_theta * cs, z) + wi;
+}
+
+/// Samples a visible micronormal `m` of GGX with roughness `r` from `u` in `[0, 1)^2`, with
+/// density `D_wo(m)` per steradian (Heitz 2014 eq. 16). The zero vector if `wo_z <= 0` (or
+/// the view is grazing to within the f32 range); otherwise a unit `m` with `m_z > 0` and
+/// `wo.m > 0` (should rounding break either, the lobe centre `unstretch(wi)` is returned,
+/// as in Rust).
+fn sampling_sample_visible_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
+    if !(wo.z > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let l = sampling_warp(r);
+    let wi = sampling_normalize_scaled(sampling_stretch(l, sampling_normalize_scaled(wo)));
+    if !(wi.z > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let n = sampling_ggx_standard_visible(wi, vec2<f32>(sampling_clamp_unit(u.x), sampling_clamp_unit(u.y)));
+    let m = sampling_unstretch(l, n);
+    if m.z > 0.0 && dot(wo, m) > 0.0 {
+        return m;
+    }
+    let c = sampling_unstretch(l, wi);
+    return select(vec3<f32>(0.0), c, c.z > 0.0);
+}
+
+/// Samples `m` with density `D(m) m_z` per steradian (the NDF itself): in the unit-roughness
+/// space `|t|^2 = u1 / (1 - u1)`, `n = (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))`,
+/// `phi = 2 pi u2`, then warped by `L`. Always `m_z > 0`.
+fn sampling_sample_normal(r: ndf_roughness_matrix_RoughnessMatrix, u: vec2<f32>) -> vec3<f32> {
+    let u1 = sampling_clamp_unit(u.x);
+    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
+    let n = vec3<f32>(sqrt(u1) * cs, sqrt(1.0 - u1));
+    return sampling_unstretch(sampling_warp(r), n);
+}
+
+/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
+/// `m_z <= 0`.
+fn sampling_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
+    return select(0.0, ndf_ggx_d_matrix(r, m) * m.z, m.z > 0.0);
+}
+
+/// The visible-normal density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian
+/// (Heitz 2014 eq. 16) for a unit `m`; 0 for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
+fn sampling_visible_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+    return sampling_visible_normal_pdf_of(wo, m, ndf_ggx_d_matrix(r, m), ndf_ggx_lambda_matrix(r, wo));
+}
+
+/// [`visible_normal_pdf`] from `D(m)` and `Lambda(wo)` of any NDF (GGX here, Beckmann in
+/// `sampling::beckmann`): `(wo.m) D / (wo_z (1 + Lambda))`; 0 for `wo_z <= 0`, `wo.m <= 0`
+/// and where the quotient is not finite.
+fn sampling_visible_normal_pdf_of(wo: vec3<f32>, m: vec3<f32>, d: f32, lambda: f32) -> f32 {
+    let wom = dot(wo, m);
+    let v = wom * d / (wo.z * (1.0 + lambda));
+    return select(0.0, v, wo.z > 0.0 && wom > 0.0 && v <= math_F32_MAX);
+}
+
+/// The density per steradian of `wi = reflect(wo, m)` for the unit half vector `m` itself:
+/// `G1(wo) D(m) / (4 wo_z)` (Walter et al. 2007 eq. 14, `wo` normalised here); 0 for
+/// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
+fn sampling_reflection_pdf_from_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+    let o = sampling_normalize_scaled(wo);
+    return sampling_reflection_pdf_of(o, m, ndf_ggx_d_matrix(r, m), ndf_ggx_lambda_matrix(r, o));
+}
+
+/// [`reflection_pdf_from_normal`] from the normalised `o = normalize_scaled(wo)`, `D(m)` and
+/// `Lambda(o)` of any NDF: `D / (4 o_z (1 + Lambda))`; 0 for `o_z <= 0` (`wo_z <= 0`, or a
+/// `wo_z` that vanishes against `wo_xy`), `o.m <= 0` and where the quotient is not finite.
+fn sampling_reflection_pdf_of(o: vec3<f32>, m: vec3<f32>, d: f32, lambda: f32) -> f32 {
+    let v = d / (4.0 * o.z * (1.0 + lambda));
+    return select(0.0, v, o.z > 0.0 && dot(o, m) > 0.0 && v <= math_F32_MAX);
+}
+
+/// The density per steradian of `wi` when `m` is drawn by [`sample_visible_normal`] and
+/// `wi = reflect(wo, m)`: [`reflection_pdf_from_normal`] with `m = normalize(wo + wi)`
+/// (both normalised first). 0 for `wo_z <= 0` and for `wi = -wo`. The recomputed half vector
+/// carries a direction error of about `eps / (2 wo.m)`: for a sampled direction prefer
+/// [`reflection_pdf_from_normal`] with the sampled `m`.
+fn sampling_reflection_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
+    if !(wo.z > 0.0) {
+        return 0.0;
+    }
+    let h = sampling_normalize_scaled(wo) + sampling_normalize_scaled(wi);
+    let len = length(h);
+    if !(len > 0.0) {
+        return 0.0;
+    }
+    return sampling_reflection_pdf_from_normal(r, wo, h / len);
 }
 
 // ---- filtered_ndf::sampling::beckmann (shaders/sampling/beckmann.wgsl) ----
@@ -3753,4 +3640,128 @@ fn sampling_beckmann_reflection_pdf_from_normal(r: ndf_roughness_matrix_Roughnes
     let o = sampling_normalize_scaled(wo);
     let d = ndf_beckmann_d_matrix(r, m);
     return sampling_reflection_pdf_of(o, m, d, ndf_beckmann_lambda_matrix(r, o));
+}
+
+// ---- filtered_ndf::sampling::gaussian_ggx (shaders/sampling/gaussian_ggx.wgsl) ----
+// Importance sampling of the exact Gaussian-filtered GGX lobe (`filter::gaussian_ggx`),
+// mirroring `src/.../sampling/gaussian_ggx.rs`: normals with density `D(m) m_z`, exactly, as
+// the sum of a GGX slope and an independent kernel slope.
+
+/// Two uniform numbers from one (the Rust `split` of the `f32` build): the high and the low
+/// twelve bits of `u` in `[0, 1)`, `((floor(4096 u) + 1/2) / 4096, frac(4096 u))`, both
+/// uniform on their grids and independent (every step exact in f32).
+fn sampling_gaussian_ggx_split(u: f32) -> vec2<f32> {
+    let x = u * 4096.0;
+    let hi = floor(x);
+    return vec2<f32>((hi + 0.5) / 4096.0, x - hi);
+}
+
+/// Samples a unit micronormal `m` of the filtered lobe with density `D(m) m_z` per steradian
+/// (KHPL16 eq. 2; the Rust `NdfSampling::sample_normal`). Exact: the filtered slope is the sum
+/// of two independent slopes (module docs: the convolution), a GGX slope of roughness `A_c`,
+/// `B t` with `B` its Cholesky factor (`sampling::warp`) and `|t|^2 = u1 / (1 - u1)` (the
+/// inverse radial CDF of unit-roughness GGX, Walter et al. 2007 eq. 35), and a kernel slope
+/// `N(0, Sigma)` by Box-Muller along the kernel's principal axes (the eigenvector of the
+/// larger eigenvalue from the row without cancellation, as Rust). The four uniform numbers are
+/// the high and low halves of the bits of `u.x` (`u1`, `u3`) and `u.y` (`u2`, `u4`), 12 bits
+/// each ([`split`]). `u` is clamped to `[0, 1 - 2^-24]`. Always `m_z > 0` (kept at the
+/// smallest normal f32 where the slope leaves the f32 range).
+fn sampling_gaussian_ggx_sample_normal(g: filter_gaussian_ggx_GaussianFilteredGgx, u: vec2<f32>) -> vec3<f32> {
+    let a = sampling_gaussian_ggx_split(sampling_clamp_unit(u.x));
+    let b = sampling_gaussian_ggx_split(sampling_clamp_unit(u.y));
+    // The GGX slope B t.
+    let t = sqrt(a.x / (1.0 - a.x)) * math_sincos_turns(b.x);
+    let l = sampling_warp(g.a);
+    let gs = vec2<f32>(l.l_xx * t.x, l.l_yx * t.x + l.l_yy * t.y);
+    // The kernel slope: -2 ln(1 - u3) as ln_1p below 1/2 (no cancellation), exact above.
+    let e = select(-math_ln(1.0 - a.y), math_ln_1p(a.y / (1.0 - a.y)), a.y < 0.5);
+    let y = sqrt(2.0 * e) * math_sincos_turns(b.y);
+    let k = g.k;
+    let ev = kernel_covariance_eigenvalues(k);
+    let khalf = 0.5 * (k.s_xx - k.s_yy);
+    let krad = math_hypot(khalf, k.s_xy);
+    var ax = vec2<f32>(1.0, 0.0);
+    if krad > 0.0 {
+        let w = select(vec2<f32>(k.s_xy, krad - khalf), vec2<f32>(krad + khalf, k.s_xy), khalf >= 0.0);
+        ax = w / math_hypot(w.x, w.y);
+    }
+    let kk = vec2<f32>(sqrt(ev.y) * y.x, sqrt(ev.x) * y.y);
+    let s = gs + vec2<f32>(ax.x * kk.x - ax.y * kk.y, ax.y * kk.x + ax.x * kk.y);
+    let n = sampling_normalize_scaled(vec3<f32>(-s, 1.0));
+    return vec3<f32>(n.xy, max(n.z, math_F32_MIN_POSITIVE));
+}
+
+/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
+/// `m_z <= 0`.
+fn sampling_gaussian_ggx_normal_pdf(g: filter_gaussian_ggx_GaussianFilteredGgx, m: vec3<f32>) -> f32 {
+    return select(0.0, filter_gaussian_ggx_d(g, m) * m.z, m.z > 0.0);
+}
+
+// ---- filtered_ndf::sampling::rect (shaders/sampling/rect.wgsl) ----
+// Importance sampling of the box-filtered GGX lobe (`boxed::d_rect`, `lambda::lambda_rect`)
+// and its pdfs, mirroring `src/.../sampling/rect.rs`.
+//
+// `D(m) m_z`: the lobe's slope is `s = g + delta` with `g` axis-aligned GGX and `delta`
+// uniform on the box `[-H_x, H_x] x [-H_y, H_y]` (its density is the box mean of `P22`,
+// `boxed::p22_rect`, KHPL16 eq. 16), so a GGX slope plus a uniform offset is an exact sample:
+// four uniform numbers, `u` for the GGX slope and `u_box` for the offset (the lobe's
+// conditional CDFs have no closed form, so two numbers would need a root find per
+// dimension). Visible normals: `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014
+// eq. 16) with the box lobe's own `Lambda`; its density is here, its sampler (an offset drawn
+// by its projected-area weight, two Newton solves over `Psi_1` means) is not yet.
+//
+// Out of domain: `u` components clamped to `[0, 1 - 2^-24]`; half extents by magnitude, at
+// most `1e18 alpha` (`boxed::BIG`; the Rust crate `1e60 alpha`); a sampled `m` is a unit
+// vector with `m_z > 0` (a slope beyond the f32 range keeps `m_z` at the smallest normal).
+
+/// A half extent as `boxed::p22_rect` reads it, in slope units: `|h|`, at most `BIG alpha`
+/// (NaN as 0 where the driver keeps the comparison).
+fn sampling_rect_half(h: f32, alpha: f32) -> f32 {
+    let v = abs(h);
+    return select(0.0, min(v, filter_rect_BIG * alpha), v >= 0.0);
+}
+
+/// The unit normal `normalize(-s, 1)` of the slope `s` (scaled first: no square overflows),
+/// `m_z` kept at the smallest normal f32 where it underflows.
+fn sampling_rect_normal_of_slope(s: vec2<f32>) -> vec3<f32> {
+    let n = sampling_normalize_scaled(vec3<f32>(-s, 1.0));
+    return vec3<f32>(n.xy, max(n.z, math_F32_MIN_POSITIVE));
+}
+
+/// Samples a unit micronormal `m` of the box-filtered GGX lobe (roughness `r`, slope-domain
+/// half extents `half_extent`) with density `D(m) m_z` per steradian, `D` = `boxed::d_rect`
+/// (KHPL16 eq. 16 per steradian): the axis-aligned GGX slope
+/// `g = -alpha sqrt(u1 / (1 - u1)) (cos phi, sin phi)`, `phi = 2 pi u2` (the GGX sampler's
+/// `D(m) m_z`, Walter et al. 2007 eq. 35-36 with the anisotropic stretch), plus the offset
+/// `(2 u_box - 1) H` uniform in the box. Exact; four uniform numbers in `[0, 1)`. Zero half
+/// extents: the GGX sample (the same direction as `sampling::sample_normal`).
+fn sampling_rect_sample_normal_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, u: vec2<f32>, u_box: vec2<f32>) -> vec3<f32> {
+    let a = r.alpha;
+    let h = vec2<f32>(sampling_rect_half(half_extent.x, a.x), sampling_rect_half(half_extent.y, a.y));
+    let u1 = sampling_clamp_unit(u.x);
+    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
+    let rad = sqrt(u1 / (1.0 - u1));
+    let g = -a * (rad * cs);
+    let b = vec2<f32>(sampling_clamp_unit(u_box.x), sampling_clamp_unit(u_box.y));
+    let d = (2.0 * b - 1.0) * h;
+    return sampling_rect_normal_of_slope(g + d);
+}
+
+/// The density of [`sample_normal_rect`], `D(m) m_z` per steradian with `D` =
+/// `boxed::d_rect`, for a unit `m`; 0 for `m_z <= 0`.
+fn sampling_rect_normal_pdf_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, m: vec3<f32>) -> f32 {
+    return select(0.0, filter_rect_d_rect(r, m, half_extent) * m.z, m.z > 0.0);
+}
+
+/// The visible-normal density of the box lobe,
+/// `D_wo(m) = max(0, wo.m) D(m) / (wo_z (1 + Lambda(wo)))` per steradian (Heitz 2014 eq. 16)
+/// for a unit `m`, `D` = `boxed::d_rect`, `Lambda` = `lambda::lambda_rect`. 0 for
+/// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`; `wo` need not be normalised.
+fn sampling_rect_visible_normal_pdf_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+    let wom = dot(wo, m);
+    if !(wo.z > 0.0) || !(m.z > 0.0) || !(wom > 0.0) {
+        return 0.0;
+    }
+    let v = wom * filter_rect_d_rect(r, m, half_extent) / (wo.z * (1.0 + filter_rect_lambda_lambda_rect(r, half_extent, wo)));
+    return select(0.0, v, v <= math_F32_MAX);
 }

@@ -50,7 +50,7 @@
 //! has the same trace as `Sigma` exactly and the same eigenvalues to first order in `|dn|`
 //! (exactly when both average normals share one tangent frame).
 
-use super::super::kernel::Covariance;
+use super::super::kernel::{Covariance, SIGMA_PIXEL};
 use super::super::ndf::roughness::{ALPHA_MAX, Isotropic};
 use super::{F, Vec3};
 use crate::math as m;
@@ -90,16 +90,29 @@ impl Bandwidth {
     }
 
     /// The same variant as a [`KernelConvention`] on world-space normal differences, with
-    /// TK19's defaults (`sigma^2 = 0.25`, `kappa = 0.18` on `alpha^2`, final saturate):
-    /// [`presets::TK19_MAX`](super::presets::TK19_MAX),
-    /// [`presets::TK19_TRACE`](super::presets::TK19_TRACE),
-    /// [`presets::TK19_AVERAGE`](super::presets::TK19_AVERAGE).
+    /// TK19's defaults (Listing 2: `sigma^2 = 0.25`, `kappa = 0.18` on `alpha^2`, final
+    /// saturate): the kernel `2 sigma^2 lambda_max(Gram)` ([`Norm::MaxEigenvalue`]),
+    /// `2 sigma^2 (|dn_u|^2 + |dn_v|^2)` or `sigma^2 (|dn_u|^2 + |dn_v|^2)`
+    /// ([`Norm::SumSquared`]). The presets `TK19_MAX`, `TK19_TRACE` and `TK19_AVERAGE` are
+    /// these values.
     #[inline]
     pub const fn convention(self) -> KernelConvention {
-        match self {
-            Self::Max => super::presets::TK19_MAX,
-            Self::Trace => super::presets::TK19_TRACE,
-            Self::Average => super::presets::TK19_AVERAGE,
+        let s2 = SIGMA_PIXEL * SIGMA_PIXEL;
+        let (norm, scale) = match self {
+            Self::Max => (Norm::MaxEigenvalue, 2.0 * s2),
+            Self::Trace => (Norm::SumSquared, 2.0 * s2),
+            Self::Average => (Norm::SumSquared, s2),
+        };
+        KernelConvention {
+            domain: Domain::Alpha2,
+            norm,
+            scale,
+            exponent: 1.0,
+            bias: 0.0,
+            clamp: KAPPA,
+            combine: Combine::Add,
+            saturate: true,
+            perceptual_floor: 0.0,
         }
     }
 }

@@ -1,7 +1,8 @@
 //! `A' = A + 2 Sigma`: the Beckmann convolution (KHPL16 eq. 13-15) and the TK19 (section 2.2)
 //! matrix approximation for GGX.
 
-use super::super::kernel::Covariance;
+use super::super::footprint::Footprint;
+use super::super::kernel::{ClampRules, Covariance};
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix, det_clamp_tau, det_wide};
 use super::F;
 
@@ -82,5 +83,56 @@ pub(crate) fn valid_clamp<R: Roughness>(roughness: R, (b11, b12, b22): (F, F, F)
         tau
     } else {
         roughness.lobe_det()
+    }
+}
+
+/// The Gaussian pipeline on the clamp rules: the rules (`kernel::clamp`) are data, the filter
+/// applies them.
+impl ClampRules {
+    /// The whole Gaussian pipeline: [`ClampRules::footprint`] -> [`Footprint::covariance`]
+    /// (`sigma` pixels) -> [`ClampRules::kernel`] -> `A' = A + 2 Sigma` ([`gaussian`]), with
+    /// the determinant clamp `tau = det(A)` if `det_clamp` (else as
+    /// [`gaussian_with_det_clamp`] with `0`). The kernel is sanitised once (by
+    /// [`ClampRules::kernel`]). Exact for Beckmann, the TK19 approximation for GGX.
+    ///
+    /// Always inlined: called out of line, the footprint argument travels through memory, and
+    /// a footprint assembled from four scalars just before the call (the batch loops; a
+    /// shader's `ddx`/`ddy`) is read back with wider loads than it was stored with, a
+    /// store-forwarding stall.
+    #[inline(always)]
+    pub fn filter_gaussian<R: Roughness>(
+        &self,
+        roughness: R,
+        fp: Footprint,
+        sigma: F,
+    ) -> RoughnessMatrix {
+        let k = self.kernel(self.footprint(fp).covariance(sigma));
+        gaussian_sanitized(roughness, k, self.det_clamp_wide(roughness))
+    }
+
+    /// [`ClampRules::filter_gaussian`] in `batch`'s lane form (branch-free) up to the entries
+    /// of `A' = A + 2 Sigma`: `((a11, a12, a22), tau, ok)`, the entries `filter_gaussian`'s
+    /// (before its determinant clamp) bit for bit where `ok`, i.e. where the footprint and
+    /// kernel rules take their fast path or common case (the footprint within `max_extent`;
+    /// the kernel sane, then within `kappa / 2` or clamped by the eigenvalue clamp's common
+    /// case); `tau` the determinant clamp it applies (`f64`; `0` without `det_clamp`). Where
+    /// `det A' >= tau` (the caller's test), `filter_gaussian` returns the matrix of these
+    /// entries unclamped. The composition of the same pieces, not a second formula. With
+    /// `EXACT` the kernel's sanity is decided exactly (with `f64` products in `f32`), else in
+    /// `F` alone (a nearly singular kernel is flagged), which keeps an `f32` lane at the full
+    /// vector width.
+    #[inline(always)]
+    pub(crate) fn filter_gaussian_entries_lane<R: Roughness, const EXACT: bool>(
+        &self,
+        roughness: R,
+        fp: Footprint,
+        sigma: F,
+    ) -> ((F, F, F), f64, bool) {
+        let (k, ok) = self.kernel_lane::<EXACT>(fp, sigma);
+        (
+            gaussian_entries(roughness, k),
+            self.det_clamp_wide(roughness),
+            ok,
+        )
     }
 }

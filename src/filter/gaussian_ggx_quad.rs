@@ -848,7 +848,7 @@ fn sinh_chunk(
 /// from `w = 8.3e-7` to `w = 39`.
 pub(super) const SAMPLE_N: usize = 36;
 /// `ln w_0` of the sampler's grid.
-pub(super) const SAMPLE_T0: f64 = -14.0;
+pub(crate) const SAMPLE_T0: f64 = -14.0;
 
 /// `(w_k, W_k = w_k e^-w_k / 2)` of the sampler's grid (the trapezoid rule in `ln w`, step
 /// `1/2`, of `e^-w dw`), in `F`.
@@ -915,7 +915,7 @@ pub(crate) fn beckmann_lambda_fast(a: F) -> F {
 /// for `qa = o^T A o`, `qs = o^T Sigma o`, `oz = o_z` of a unit `o` with `oz > 0`, by inverting
 /// the cumulative weights at `u` in `[0, 1)`: the index and the remainder rescaled to
 /// `[0, 1]`.
-pub(super) fn sample_component(qa: f64, qs: f64, oz: f64, u: f64) -> (usize, f64) {
+pub(crate) fn sample_component(qa: f64, qs: f64, oz: f64, u: f64) -> (usize, f64) {
     // a_k = oz / sqrt(qa / w_k + 2 qs), bounded below (oz ~ 0: Lambda ~ 1 / a; the largest
     // weight then dominates and stays finite).
     let (fqa, fqs, foz) = (F::from_f64(qa), F::from_f64(2.0 * qs), F::from_f64(oz));

@@ -367,35 +367,6 @@ impl RectFilteredGgx {
     }
 }
 
-impl RectFilteredGgx {
-    /// A micronormal with density `D(m) m_z` ([`rect::sample_normal_rect`]: the GGX slope of
-    /// `u` plus the offset of `u_box` in the box). Exact.
-    #[inline]
-    pub fn sample_normal(&self, u: Vec2, u_box: Vec2) -> Vec3 {
-        rect::sample_normal_rect(self.roughness, self.half_extent, u, u_box)
-    }
-
-    /// The density `D(m) m_z` of [`RectFilteredGgx::sample_normal`] per steradian.
-    #[inline]
-    pub fn normal_pdf(&self, m: Vec3) -> F {
-        rect::normal_pdf_rect(self.roughness, self.half_extent, m)
-    }
-
-    /// A visible micronormal seen from `wo`, density `G1(wo) max(0, wo.m) D(m) / wo_z`
-    /// ([`rect::sample_visible_normal_rect`]). Exact; `None` for `wo_z <= 0` or non-finite
-    /// `wo`.
-    #[inline]
-    pub fn sample_visible_normal(&self, wo: Vec3, u: Vec2, u_box: Vec2) -> Option<Vec3> {
-        rect::sample_visible_normal_rect(self.roughness, self.half_extent, wo, u, u_box)
-    }
-
-    /// The density of [`RectFilteredGgx::sample_visible_normal`] per steradian.
-    #[inline]
-    pub fn visible_normal_pdf(&self, wo: Vec3, m: Vec3) -> F {
-        rect::visible_normal_pdf_rect(self.roughness, self.half_extent, wo, m)
-    }
-}
-
 impl Ndf for RectFilteredGgx {
     #[inline]
     fn p22(&self, s: Vec2) -> F {

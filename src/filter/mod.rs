@@ -45,13 +45,13 @@ pub(crate) use exp_poly::{
     exp_f64_reduced,
 };
 pub use gaussian::{gaussian, gaussian_with_det_clamp};
-pub(crate) use gaussian::{gaussian_entries, gaussian_sanitized};
 pub use gaussian_ggx::GaussianFilteredGgx;
-pub(crate) use gaussian_ggx_quad::{STATE_F, TrapezoidState, beckmann_lambda_fast};
+pub(crate) use gaussian_ggx_quad::{
+    SAMPLE_T0, STATE_F, TrapezoidState, beckmann_lambda_fast, sample_component,
+};
 pub use lean::{LeanMoments, lean};
 pub use method::{
     ExactGaussian, Filterable, Gaussian, Method, Projected, Proxy, Rect, RectFilteredGgx,
 };
 pub(crate) use projected::ProjectedBase;
-pub(crate) use projected::projected_sanitized;
 pub use projected::{PROJECTED_EIGEN_MAX, projected, projected_with_det_clamp};

@@ -23,42 +23,25 @@
 //! | [`THREE_JS`] | `p` | `max abs component of dn_u, dn_v` | none | add, yes |
 
 use super::super::PI;
-use super::super::kernel::SIGMA_PIXEL;
 use super::F;
-use super::deferred::{Combine, Domain, KernelConvention, Norm};
+use super::deferred::{Bandwidth, Combine, Domain, KernelConvention, Norm};
 
 /// TK19 eq. 4 and Listing 2 (conservative, trace bandwidth):
 /// `alpha_bar^2 = saturate(alpha^2 + min(2 sigma^2 (|dn_u|^2 + |dn_v|^2), kappa))` with
 /// `sigma^2 = 0.25`, `kappa = 0.18`. Source: Tokuyoshi and Kaplanyan 2019, "Improved
 /// Geometric Specular Antialiasing", sect. 4.5.
-pub const TK19_TRACE: KernelConvention = KernelConvention {
-    domain: Domain::Alpha2,
-    norm: Norm::SumSquared,
-    scale: 2.0 * SIGMA_PIXEL * SIGMA_PIXEL,
-    exponent: 1.0,
-    bias: 0.0,
-    clamp: super::deferred::KAPPA,
-    combine: Combine::Add,
-    saturate: true,
-    perceptual_floor: 0.0,
-};
+pub const TK19_TRACE: KernelConvention = Bandwidth::Trace.convention();
 
 /// TK19 eq. 5 (less conservative, average of the eigenvalues): as [`TK19_TRACE`] with
 /// kernel `sigma^2 (|dn_u|^2 + |dn_v|^2)` (Listing 2 without the factor 2). TK19 sect. 4.6.
-pub const TK19_AVERAGE: KernelConvention = KernelConvention {
-    scale: SIGMA_PIXEL * SIGMA_PIXEL,
-    ..TK19_TRACE
-};
+pub const TK19_AVERAGE: KernelConvention = Bandwidth::Average.convention();
 
 /// TK19 eq. 1 (tightest conservative isotropic kernel): kernel `2 lambda_max`, with
 /// `lambda_max` the largest eigenvalue of `sigma^2` times the Gram matrix of `dn_u, dn_v`
 /// (equal to the footprint covariance's to first order; see
 /// [`normal_difference_covariance`](super::deferred::normal_difference_covariance)).
 /// TK19 sect. 4.2.
-pub const TK19_MAX: KernelConvention = KernelConvention {
-    norm: Norm::MaxEigenvalue,
-    ..TK19_TRACE
-};
+pub const TK19_MAX: KernelConvention = Bandwidth::Max.convention();
 
 /// Tokuyoshi and Kaplanyan 2021, "Stable Geometric Specular Antialiasing with Projected-Space
 /// NDF Filtering" (JCGT 10(2)), Listing 5: `alpha_bar^2 = saturate(alpha^2 + min((|dn_u|^2 +

@@ -1,6 +1,7 @@
 //! Projected-space filtering (Tokuyoshi and Kaplanyan 2021, JCGT 10(2)).
 
-use super::super::kernel::Covariance;
+use super::super::footprint::Footprint;
+use super::super::kernel::{ClampRules, Covariance};
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
 use super::F;
 use super::gaussian::{filter_tau, valid_clamp};
@@ -74,6 +75,45 @@ pub(crate) fn projected_sanitized<R: Roughness>(
     let base = ProjectedBase::new(roughness);
     let b = base.entries(k);
     RoughnessMatrix::from_entries(b.0, b.1, b.2, valid_clamp(roughness, b, tau))
+}
+
+/// The projected-space pipeline on the clamp rules (the rules are data, the filter applies
+/// them).
+impl ClampRules {
+    /// The projected-space pipeline (TK21), the rules as in [`ClampRules::filter_gaussian`]:
+    /// [`ClampRules::footprint`] -> [`Footprint::covariance`] (`sigma` pixels; the footprint
+    /// of the half vector's projected-disk derivatives, TK19 section 3.2) ->
+    /// [`ClampRules::kernel`] -> [`projected`], with the determinant clamp `tau = det(A)` if
+    /// `det_clamp` (else as [`projected_with_det_clamp`] with `0`).
+    ///
+    /// Always inlined, as [`ClampRules::filter_gaussian`] (a footprint passed through memory
+    /// stalls on store forwarding).
+    #[inline(always)]
+    pub fn filter_projected<R: Roughness>(
+        &self,
+        roughness: R,
+        fp: Footprint,
+        sigma: F,
+    ) -> RoughnessMatrix {
+        let k = self.kernel(self.footprint(fp).covariance(sigma));
+        projected_sanitized(roughness, k, self.det_clamp_wide(roughness))
+    }
+
+    /// [`ClampRules::filter_projected`] in `batch`'s lane form up to the entries of `A'`, as
+    /// [`ClampRules::filter_gaussian_entries_lane`] (with the kernel's sanity decided exactly):
+    /// the same kernel, then the projected filter's kernel part on the lobe's part `base`
+    /// (`ProjectedBase::new(roughness)`, once per batch).
+    #[inline(always)]
+    pub(crate) fn filter_projected_entries_lane<R: Roughness>(
+        &self,
+        roughness: R,
+        base: &ProjectedBase,
+        fp: Footprint,
+        sigma: F,
+    ) -> ((F, F, F), f64, bool) {
+        let (k, ok) = self.kernel_lane::<true>(fp, sigma);
+        (base.entries(k), self.det_clamp_wide(roughness), ok)
+    }
 }
 
 /// The lobe's part of [`projected`] (its eigenvalue split `A = A_c + excess`, `P = A_c (I -

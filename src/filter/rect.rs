@@ -116,17 +116,14 @@ use crate::math::{self as m, Real};
 mod gauss;
 mod lambda;
 mod printed;
-mod sample;
 pub(crate) use gauss::{
     CLOSED_INDEX, GL2_X, GL4_W, GL4_X, GL6_W, GL6_X, GL8_W, GL8_X, GL10_W, GL10_X, Tier, WIDE,
     gl_of, rule, tier,
 };
 use gauss::{tier_index, tier_of_index};
 pub use lambda::lambda_rect;
+pub(crate) use lambda::{mean_psi, mean_psi1, psi, psi1_diff, scaled};
 pub use printed::d_rect_printed;
-pub use sample::{
-    normal_pdf_rect, sample_normal_rect, sample_visible_normal_rect, visible_normal_pdf_rect,
-};
 
 const PI64: f64 = core::f64::consts::PI;
 

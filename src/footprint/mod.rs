@@ -15,14 +15,14 @@
 //!   [`Footprint::from_projected_derivatives_in_slope`] mapped to slope space); normal
 //!   differences ([`Footprint::from_normal_differences`], TK19 eq. 3); ray differentials
 //!   through the geometry's `M` ([`Footprint::from_ray_differentials`], KHPL16 4.2).
-//! - Kernel shapes (the next stage, [`super::kernel`]): [`Covariance`] (the Gaussian,
-//!   [`Footprint::covariance`]) and [`BoundingRect`] (the conservative rectangle of KHPL16
-//!   5.3, [`Footprint::bounding_rect`]).
+//! - Kernel shapes are the next stage's ([`super::kernel`]), which builds them from a
+//!   footprint: the Gaussian `Covariance::from_footprint` (also `footprint.covariance(sigma)`)
+//!   and the conservative rectangle of KHPL16 5.3, `BoundingRect::from_footprint` (also
+//!   `footprint.bounding_rect()`).
 //! - [`slope`]: the maps between the sphere, the projected disk and the slope plane;
 //!   [`jacobian`]: their Jacobians (TK19 supplement); [`geometry`]: the half-vector Jacobian
 //!   `M` and ray-differential footprints (KHPL16 section 4).
 
-use super::kernel::{BoundingRect, Covariance};
 use super::vector;
 use super::{F, Mat2, Vec2, Vec3};
 
@@ -180,31 +180,9 @@ impl Footprint {
         Self::from_normal_differences(local(dn_u), local(dn_v))
     }
 
-    /// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels.
-    #[inline]
-    pub fn covariance(self, sigma: F) -> Covariance {
-        let (u, v) = (self.dh_u, self.dh_v);
-        Covariance::new(
-            u.x * u.x + v.x * v.x,
-            u.x * u.y + v.x * v.y,
-            u.y * u.y + v.y * v.y,
-        ) * (sigma * sigma)
-    }
-
-    /// The axis-aligned bounding rectangle of the one-pixel parallelogram
-    /// `{a dh_u + b dh_v : |a|, |b| <= 1/2}` (KHPL16 section 5.3; GDC 2016 listing
-    /// `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`; TK19 Listing 3 `abs(dU) + abs(dV)`
-    /// is its full side): half-extent `(|dh_u| + |dh_v|) / 2` per axis.
-    #[inline]
-    pub fn bounding_rect(self) -> BoundingRect {
-        BoundingRect {
-            half_extent: (self.dh_u.abs() + self.dh_v.abs()) * 0.5,
-        }
-    }
-
     /// The largest distance from the centre to a vertex of the one-pixel parallelogram,
     /// `max(|dh_u + dh_v|, |dh_u - dh_v|) / 2`: the extent clamped by KHPL16 section 5.2.
-    /// It bounds both half-extents of [`Footprint::bounding_rect`] (unless the squares in the
+    /// It bounds both half-extents of the footprint's bounding rectangle (unless the squares in the
     /// lengths underflow: vectors below about `1e-19` in `f32`, `1e-154` in `f64`, give `0`).
     #[inline]
     pub fn max_extent(self) -> F {

@@ -5,6 +5,10 @@
 //! holds the papers' defaults; [`ClampRules::NONE`] disables all of them (the unbiased
 //! filter, for references); [`ClampRules::GDC2016`] is the GDC listing's configuration.
 //!
+//! The rules are data: the filters apply them ([`ClampRules::filter_gaussian`] in
+//! `filter::gaussian`, [`ClampRules::filter_projected`] in `filter::projected`, the methods of
+//! `filter`).
+//!
 //! | rule | field | default | protects against | costs |
 //! |---|---|---|---|---|
 //! | maximum extent | `max_extent` | `lambda = 1` (KHPL16 5.2) | footprints that cover the slope plane (grazing views, silhouettes, quad extrapolation): false highlights and flattened lobes | footprints wider than `lambda` are under-filtered: aliasing is left where the footprint estimate exceeds `lambda` |
@@ -13,9 +17,8 @@
 //! | kernel roughness | `kappa` | `kappa = 0.18` (TK19 eq. 1) | derivative estimation errors at edges and grazing angles (TK19 3.1) that blow the kernel up | kernel roughness^2 is capped at `kappa` per eigen-direction: under-filtering (residual aliasing) where `2 lambda > kappa`, i.e. where the footprint is wider than `sqrt(0.18) = 0.42` in roughness units |
 //! | determinant clamp | `det_clamp` | on, `tau = det(A)` (TK19 supplement) | an elongated filtered matrix whose determinant lost its digits when its entries were rounded (the inverse explodes) | none in exact arithmetic (`det(A + 2 Sigma) >= det(A)`); in floats, where it is active, it adds `t I` to the filtered matrix (`det = tau`, see `RoughnessMatrix`): the filtered peak never exceeds the unfiltered one |
 
-use super::super::filter;
 use super::super::footprint::Footprint;
-use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
+use super::super::ndf::roughness::Roughness;
 use super::{BoundingRect, Covariance, KERNEL_MAX};
 use super::{F, Vec2};
 use crate::math::{self as m, Real};
@@ -231,7 +234,7 @@ impl ClampRules {
 
     /// The determinant clamp `tau` for filtering `roughness`: `det(A)` of the unfiltered
     /// lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a clamped
-    /// [`RoughnessMatrix`] its `det A_c`) if `det_clamp`, else `0` (but a clamped
+    /// [`RoughnessMatrix`](super::super::ndf::roughness::RoughnessMatrix) its `det A_c`) if `det_clamp`, else `0` (but a clamped
     /// `RoughnessMatrix` keeps its own clamp, `det A_c`, either way). The determinant is the one
     /// every filter clamps with (computed in `f64` from the entries by
     /// `det_wide`), rounded to `F`.
@@ -248,70 +251,6 @@ impl ClampRules {
         } else {
             roughness.own_det_clamp()
         }
-    }
-
-    /// The whole Gaussian pipeline: [`ClampRules::footprint`] -> [`Footprint::covariance`]
-    /// (`sigma` pixels) -> [`ClampRules::kernel`] -> `A' = A + 2 Sigma`
-    /// ([`filter::gaussian`]), with the determinant clamp `tau = det(A)` if `det_clamp`
-    /// (else as [`filter::gaussian_with_det_clamp`] with `0`). The kernel is sanitised once
-    /// (by [`ClampRules::kernel`]). Exact for Beckmann, the TK19 approximation for GGX.
-    ///
-    /// Always inlined (a speed measure): called out of line, the footprint argument travels
-    /// through memory, and a footprint assembled from four scalars just before the call (the
-    /// batch loops; a shader's `ddx`/`ddy`) is read back with wider loads than it was stored
-    /// with, a store-forwarding stall: `batch::ggx_d_filtered` (`f32`, 4096 elements) took
-    /// 122 instead of 34 us.
-    #[inline(always)]
-    pub fn filter_gaussian<R: Roughness>(
-        &self,
-        roughness: R,
-        fp: Footprint,
-        sigma: F,
-    ) -> RoughnessMatrix {
-        let k = self.kernel(self.footprint(fp).covariance(sigma));
-        filter::gaussian_sanitized(roughness, k, self.det_clamp_wide(roughness))
-    }
-
-    /// [`ClampRules::filter_gaussian`] in `batch`'s lane form (branch-free) up to the entries
-    /// of `A' = A + 2 Sigma`: `((a11, a12, a22), tau, ok)`, the entries `filter_gaussian`'s
-    /// (before its determinant clamp) bit for bit where `ok`, i.e. where the footprint and
-    /// kernel rules take their fast path or common case (the footprint within `max_extent`;
-    /// the kernel sane, then within `kappa / 2` or clamped by the eigenvalue clamp's common
-    /// case); `tau` the determinant clamp it applies (`f64`; `0` without `det_clamp`). Where
-    /// `det A' >= tau` (the caller's test), `filter_gaussian` returns the matrix of these
-    /// entries unclamped. The composition of the same pieces, not a second formula. With
-    /// `EXACT` the kernel's sanity is decided exactly (with `f64` products in `f32`), else in
-    /// `F` alone ([`Covariance::is_sane_sure`]: a nearly singular kernel is flagged), which
-    /// keeps an `f32` lane at the full vector width.
-    #[inline(always)]
-    pub(crate) fn filter_gaussian_entries_lane<R: Roughness, const EXACT: bool>(
-        &self,
-        roughness: R,
-        fp: Footprint,
-        sigma: F,
-    ) -> ((F, F, F), f64, bool) {
-        let (k, ok) = self.kernel_lane::<EXACT>(fp, sigma);
-        (
-            filter::gaussian_entries(roughness, k),
-            self.det_clamp_wide(roughness),
-            ok,
-        )
-    }
-
-    /// [`ClampRules::filter_projected`] in `batch`'s lane form up to the entries of `A'`, as
-    /// [`ClampRules::filter_gaussian_entries_lane`] (with the kernel's sanity decided exactly):
-    /// the same kernel, then the projected filter's kernel part on the lobe's part `base`
-    /// (`ProjectedBase::new(roughness)`, once per batch).
-    #[inline(always)]
-    pub(crate) fn filter_projected_entries_lane<R: Roughness>(
-        &self,
-        roughness: R,
-        base: &filter::ProjectedBase,
-        fp: Footprint,
-        sigma: F,
-    ) -> ((F, F, F), f64, bool) {
-        let (k, ok) = self.kernel_lane::<true>(fp, sigma);
-        (base.entries(k), self.det_clamp_wide(roughness), ok)
     }
 
     /// `kernel(footprint(fp).covariance(sigma))` of the filters' lanes: `(kernel, ok)`, the
@@ -359,26 +298,6 @@ impl ClampRules {
             s_ok: scale <= F::MAX,
             a: roughness.entries_f(),
         }
-    }
-
-    /// The projected-space pipeline (TK21), the rules as in [`ClampRules::filter_gaussian`]:
-    /// [`ClampRules::footprint`] -> [`Footprint::covariance`] (`sigma` pixels; the footprint
-    /// of the half vector's projected-disk derivatives, TK19 section 3.2) ->
-    /// [`ClampRules::kernel`] -> [`filter::projected`], with the determinant clamp
-    /// `tau = det(A)` if `det_clamp` (else as [`filter::projected_with_det_clamp`] with `0`).
-    ///
-    /// Always inlined, as [`ClampRules::filter_gaussian`] (the footprint through memory
-    /// stalls: `batch::ggx_d_filtered_projected`'s scalar path took 66 instead of 38 ns per
-    /// element, `f32`).
-    #[inline(always)]
-    pub fn filter_projected<R: Roughness>(
-        &self,
-        roughness: R,
-        fp: Footprint,
-        sigma: F,
-    ) -> RoughnessMatrix {
-        let k = self.kernel(self.footprint(fp).covariance(sigma));
-        filter::projected_sanitized(roughness, k, self.det_clamp_wide(roughness))
     }
 }
 

@@ -2,6 +2,7 @@
 //! TK19 section 2.2), with the eigenvalue clamp of TK19 eq. 1 and the sanitiser every filter
 //! applies first.
 
+use super::super::footprint::Footprint;
 use super::super::ndf::roughness::ALPHA_MAX;
 use super::F;
 use crate::math::{self as m, Real};
@@ -31,6 +32,21 @@ impl Covariance {
     #[inline]
     pub const fn new(s11: F, s12: F, s22: F) -> Self {
         Self { s11, s12, s22 }
+    }
+
+    /// The Gaussian pixel kernel of a footprint carried into the slope domain:
+    /// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2; KHPL16 eq. 13 with
+    /// `sigma` folded into the vectors), `sigma` the pixel filter's standard deviation in pixels
+    /// (0.5 in both papers). Entries in slope^2; non-finite footprint entries give
+    /// non-finite entries (see [`Covariance::sanitized`]).
+    #[inline]
+    pub fn from_footprint(fp: Footprint, sigma: F) -> Self {
+        let (u, v) = (fp.dh_u, fp.dh_v);
+        Self::new(
+            u.x * u.x + v.x * v.x,
+            u.x * u.y + v.x * v.y,
+            u.y * u.y + v.y * v.y,
+        ) * (sigma * sigma)
     }
 
     /// `tr(Sigma) = lambda_min + lambda_max` (TK19 eq. 2).
@@ -557,6 +573,15 @@ fn radius_direct(d: F, b: F) -> (F, bool) {
 
 /// The largest kernel eigenvalue kept by [`Covariance::sanitized`] (slope^2): `ALPHA_MAX^2`.
 pub const KERNEL_MAX: F = ALPHA_MAX * ALPHA_MAX;
+
+impl Footprint {
+    /// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels:
+    /// [`Covariance::from_footprint`].
+    #[inline]
+    pub fn covariance(self, sigma: F) -> Covariance {
+        Covariance::from_footprint(self, sigma)
+    }
+}
 
 impl core::ops::Add for Covariance {
     type Output = Self;

@@ -74,7 +74,7 @@ use crate::math::{self as m, Real};
 /// overflows nor underflows, nor do the visible sampler's squares of `w_i delta_i`; `Lambda`
 /// is homogeneous of degree 0. Unit vectors pass unchanged; a non-finite `w` too.
 #[inline]
-pub(super) fn scaled(w: Vec3) -> (f64, f64, f64) {
+pub(crate) fn scaled(w: Vec3) -> (f64, f64, f64) {
     scaled_to(w, 0)
 }
 
@@ -133,7 +133,7 @@ fn asinh(t: f64, r: f64) -> f64 {
 
 /// `psi(t) = E[(X - t)^+]` of the unit GGX marginal, `(sqrt(1 + t^2) - t) / 2`.
 #[inline(always)]
-pub(super) fn psi(t: f64) -> f64 {
+pub(crate) fn psi(t: f64) -> f64 {
     0.5 * e_neg(t).0
 }
 
@@ -155,7 +155,7 @@ fn psi2(t: f64) -> f64 {
 /// exactly (module docs, case 2): `(ln(1 + d / E_1) + d (E_0 + E_1) / 2) / 4`,
 /// `d = E_0 - E_1 = w (E_0 + E_1) / (rho_0 + rho_1)`; all terms `>= 0`.
 #[inline]
-pub(super) fn psi1_diff(t0: f64, t1: f64, w: f64) -> f64 {
+pub(crate) fn psi1_diff(t0: f64, t1: f64, w: f64) -> f64 {
     let (e0, r0) = e_neg(t0);
     let (e1, r1) = e_neg(t1);
     let s = e0 + e1;
@@ -165,13 +165,13 @@ pub(super) fn psi1_diff(t0: f64, t1: f64, w: f64) -> f64 {
 
 /// The mean of `psi` over `[t0, t1]`, `w = t1 - t0 > 0` given exactly.
 #[inline]
-pub(super) fn mean_psi(t0: f64, t1: f64, w: f64) -> f64 {
+pub(crate) fn mean_psi(t0: f64, t1: f64, w: f64) -> f64 {
     psi1_diff(t0, t1, w) / w
 }
 
 /// `A(t)`: the mean of `Psi_1` over `[t - k, t + k]` (module docs, case 3).
 #[inline]
-pub(super) fn mean_psi1(t: f64, k: f64) -> f64 {
+pub(crate) fn mean_psi1(t: f64, k: f64) -> f64 {
     if k == 0.0 {
         return psi1(t);
     }

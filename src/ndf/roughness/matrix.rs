@@ -1,10 +1,7 @@
 //! The full-matrix roughness form: any symmetric positive-definite `A`, with the TK19
 //! determinant clamp.
 
-use super::{
-    ALPHA_MAX, ALPHA_MIN, AxisAligned, F, Isotropic, Mat2, Roughness, RoughnessError, Vec2,
-    det_wide, sealed,
-};
+use super::{ALPHA_MAX, ALPHA_MIN, F, Mat2, Roughness, RoughnessError, Vec2, det_wide, sealed};
 use crate::math::{self as m, Real};
 
 /// Full symmetric positive-definite roughness matrix `A = [[a11, a12], [a12, a22]]` (TK19
@@ -351,22 +348,6 @@ impl RoughnessMatrix {
         let matrix_ok = (4.0 * bb <= 3.0 * pr) & (c >= c_min);
         let eval_ok = (den >= LOW) & (den <= F::MAX) & (num <= F::MAX);
         (num * t, n, matrix_ok, eval_ok)
-    }
-}
-
-impl From<AxisAligned> for RoughnessMatrix {
-    /// Equal to `RoughnessMatrix::new(alpha_x^2, 0, alpha_y^2)` (squares rounded to `F`).
-    #[inline]
-    fn from(r: AxisAligned) -> Self {
-        r.to_matrix()
-    }
-}
-
-impl From<Isotropic> for RoughnessMatrix {
-    /// Equal to `RoughnessMatrix::new(alpha^2, 0, alpha^2)` (the square rounded to `F`).
-    #[inline]
-    fn from(r: Isotropic) -> Self {
-        r.to_matrix()
     }
 }
 

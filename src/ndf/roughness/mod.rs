@@ -12,7 +12,8 @@
 //! | [`RoughnessMatrix`] `A` | any symmetric positive definite | 3 mul, 2 mul-adds, in `f64` |
 //!
 //! Conversions go one way: `Isotropic -> AxisAligned -> RoughnessMatrix`, each equal to the
-//! checked constructor of the wider form with the squared roughness rounded to `F`.
+//! checked constructor of the wider form with the squared roughness rounded to `F`, and each
+//! written in the narrower form's file (a form's file knows only the wider forms).
 //! Roughness is dimensionless (a slope-domain length: `alpha` is the slope at which the GGX
 //! density falls to a quarter of its peak).
 //!

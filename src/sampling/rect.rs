@@ -1,10 +1,10 @@
-//! Exact importance sampling of the box-filtered GGX lobe ([`super::d_rect`],
-//! [`super::lambda_rect`]): the NDF `D(m) m_z` and the distribution of visible normals, with
+//! Exact importance sampling of the box-filtered GGX lobe ([`RectFilteredGgx`]; its density
+//! [`d_rect`], its [`lambda_rect`]): the NDF `D(m) m_z` and the distribution of visible normals, with
 //! their pdfs.
 //!
 //! # `D(m) m_z`
 //! The lobe's slope is `s = g + delta` with `g` axis-aligned GGX and `delta` uniform on the box
-//! `[-H_x, H_x] x [-H_y, H_y]`: its density is the box mean of `P22`, i.e. [`super::p22_rect`]
+//! `[-H_x, H_x] x [-H_y, H_y]`: its density is the box mean of `P22`, i.e. [`p22_rect`](super::super::filter::rect::p22_rect)
 //! at `s`, and `D(m) m_z dm = P(s) ds`. So a GGX slope (the unit-roughness sample of
 //! [`NdfSampling::sample_normal`] for `Ggx`, warped by `alpha`) plus a uniform offset is an
 //! exact sample. **Four uniform numbers**: `u` for the GGX slope (as `NdfSampling`) and `u_box`
@@ -16,12 +16,12 @@
 //!
 //! # Visible normals
 //! `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014 eq. 16) with `G1 = 1 / (1 + Lambda)`,
-//! `Lambda` = [`super::lambda_rect`]. In slopes the visible density is proportional to
+//! `Lambda` = [`lambda_rect`]. In slopes the visible density is proportional to
 //! `(wo_z - wo_xy.s)^+ P(s) = E_delta[(wo'_z - wo_xy.g)^+ P_GGX(g)]` with
 //! `wo'_z = wo_z - wo_xy.delta`: for a fixed offset, the visible slopes of GGX seen from the
 //! sheared direction `wo' = (wo_xy, wo'_z)` (which may point below the horizon), whose total
 //! weight is `|wo_xy| psi(u.delta - mu)` (the projected area `mu + E[(q - mu')^+]` of the
-//! shifted GGX, `psi` of [`super::lambda_rect`]'s module docs, `u`, `mu` as there). So:
+//! shifted GGX, `psi` of [`lambda_rect`]'s module docs, `u`, `mu` as there). So:
 //! 1. draw the offset `delta` with density proportional to `psi(u.delta - mu)` on the box. In
 //!    units of the projected roughness `a` the weight depends on `v = v_l + v_s`,
 //!    `v_i = u_i delta_i / a` uniform on `[-k_i, k_i]`: `v_l` (the longer projected side) by
@@ -43,17 +43,20 @@
 //! # Out-of-domain input
 //! As [`NdfSampling`]: `u` components clamped to `[0, 1 - eps/2]`, NaN to `0`; the visible
 //! sampler returns `None` for `wo_z <= 0` or non-finite `wo`; half extents sanitised as in
-//! [`super::p22_rect`] (magnitude, NaN as `0`, at most `1e60 alpha`). Zero half extents give
+//! [`p22_rect`](super::super::filter::rect::p22_rect) (magnitude, NaN as `0`, at most `1e60 alpha`). Zero half extents give
 //! GGX's own samplers bit for bit. A sampled `m` is a finite unit vector with `m_z > 0` (in `f32`
 //! a slope beyond `1e38` has its `m_z` rounded up to the smallest normal float), and the visible
 //! sample has `wo.m > 0` (should rounding break it, the centre of the sheared GGX is used, as
 //! the GGX sampler does).
 
-use super::super::super::ndf::ggx::Ggx;
-use super::super::super::ndf::roughness::AxisAligned;
-use super::super::super::sampling::NdfSampling;
-use super::lambda::{mean_psi, mean_psi1, psi, psi1_diff, scaled};
-use super::{BIG, F, Tier, Vec2, Vec3, d_rect, gl_of, lambda_rect, tier};
+use super::super::filter::RectFilteredGgx;
+use super::super::filter::rect::{
+    BIG, Tier, d_rect, gl_of, lambda_rect, mean_psi, mean_psi1, psi, psi1_diff, scaled, tier,
+};
+use super::super::ndf::ggx::Ggx;
+use super::super::ndf::roughness::AxisAligned;
+use super::NdfSampling;
+use super::{F, Vec2, Vec3};
 use crate::math::{self as m, Real};
 
 const PI64: f64 = core::f64::consts::PI;
@@ -65,7 +68,7 @@ fn unit(u: F) -> f64 {
     (if u >= 0.0 { u.min(ONE_MINUS_EPS) } else { 0.0 }).to_f64()
 }
 
-/// A half extent sanitised as [`super::p22_rect`] does, in slope units: `|h|`, NaN as `0`, at
+/// A half extent sanitised as [`p22_rect`](super::super::filter::rect::p22_rect) does, in slope units: `|h|`, NaN as `0`, at
 /// most `1e60 alpha`.
 #[inline]
 fn half(h: F, alpha: f64) -> f64 {
@@ -89,7 +92,7 @@ fn normal_of_slope(sx: f64, sy: f64) -> Vec3 {
 }
 
 /// Samples a unit micronormal `m` of the box-filtered GGX lobe with density `D(m) m_z` per
-/// steradian, `D` = [`super::d_rect`] (module docs): the GGX slope of `u` (as
+/// steradian, `D` = [`d_rect`] (module docs): the GGX slope of `u` (as
 /// [`NdfSampling::sample_normal`]) plus the offset `(2 u_box - 1) H` uniform in the box. Exact;
 /// four uniform numbers in `[0, 1)`. Zero half extents: GGX's sampler bit for bit.
 #[inline]
@@ -112,7 +115,7 @@ pub fn sample_normal_rect(r: AxisAligned, half_extent: Vec2, u: Vec2, u_box: Vec
 }
 
 /// The density of [`sample_normal_rect`], `D(m) m_z` per steradian with `D` =
-/// [`super::d_rect`], for a unit `m`; `0` for `m_z <= 0` and non-finite `m`.
+/// [`d_rect`], for a unit `m`; `0` for `m_z <= 0` and non-finite `m`.
 #[inline]
 pub fn normal_pdf_rect(r: AxisAligned, half_extent: Vec2, m: Vec3) -> F {
     if !m.is_finite() || m.z <= 0.0 {
@@ -197,8 +200,8 @@ fn sample_offsets(m: f64, kl: f64, ks: f64, ul: f64, us: f64) -> (f64, f64) {
 }
 
 /// Samples a visible micronormal of the box-filtered GGX lobe seen from `wo`, with density
-/// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian, `D` = [`super::d_rect`],
-/// `G1 = 1 / (1 + Lambda)`, `Lambda` = [`super::lambda_rect`] (module docs: the offset by its
+/// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian, `D` = [`d_rect`],
+/// `G1 = 1 / (1 + Lambda)`, `Lambda` = [`lambda_rect`] (module docs: the offset by its
 /// projected-area weight, then GGX's visible normals seen from the sheared direction). Four
 /// uniform numbers: `u_box` for the offset, `u` for the GGX visible normal. `None` if
 /// `wo_z <= 0` or `wo` is not finite. Zero half extents: GGX's sampler bit for bit (which
@@ -320,7 +323,7 @@ fn visible_with_offset(
 
 /// The density of [`sample_visible_normal_rect`],
 /// `D_wo(m) = max(0, wo.m) D(m) / (wo_z (1 + Lambda(wo)))` per steradian for a unit `m`, with
-/// `D` = [`super::d_rect`] and `Lambda` = [`super::lambda_rect`]. `0` for `wo_z <= 0`,
+/// `D` = [`d_rect`] and `Lambda` = [`lambda_rect`]. `0` for `wo_z <= 0`,
 /// `wo.m <= 0`, `m_z <= 0` or non-finite input.
 #[inline]
 pub fn visible_normal_pdf_rect(r: AxisAligned, half_extent: Vec2, wo: Vec3, m: Vec3) -> F {
@@ -333,4 +336,34 @@ pub fn visible_normal_pdf_rect(r: AxisAligned, half_extent: Vec2, wo: Vec3, m: V
     }
     let v = wom * d_rect(r, m, half_extent) / (wo.z * (1.0 + lambda_rect(r, half_extent, wo)));
     if v.is_finite() { v } else { 0.0 }
+}
+
+/// The box lobe's exact samplers (four uniform numbers, see the module docs) and their pdfs.
+impl RectFilteredGgx {
+    /// A micronormal with density `D(m) m_z` ([`sample_normal_rect`]: the GGX slope of
+    /// `u` plus the offset of `u_box` in the box). Exact.
+    #[inline]
+    pub fn sample_normal(&self, u: Vec2, u_box: Vec2) -> Vec3 {
+        sample_normal_rect(self.roughness, self.half_extent, u, u_box)
+    }
+
+    /// The density `D(m) m_z` of [`RectFilteredGgx::sample_normal`] per steradian.
+    #[inline]
+    pub fn normal_pdf(&self, m: Vec3) -> F {
+        normal_pdf_rect(self.roughness, self.half_extent, m)
+    }
+
+    /// A visible micronormal seen from `wo`, density `G1(wo) max(0, wo.m) D(m) / wo_z`
+    /// ([`sample_visible_normal_rect`]). Exact; `None` for `wo_z <= 0` or non-finite
+    /// `wo`.
+    #[inline]
+    pub fn sample_visible_normal(&self, wo: Vec3, u: Vec2, u_box: Vec2) -> Option<Vec3> {
+        sample_visible_normal_rect(self.roughness, self.half_extent, wo, u, u_box)
+    }
+
+    /// The density of [`RectFilteredGgx::sample_visible_normal`] per steradian.
+    #[inline]
+    pub fn visible_normal_pdf(&self, wo: Vec3, m: Vec3) -> F {
+        visible_normal_pdf_rect(self.roughness, self.half_extent, wo, m)
+    }
 }

@@ -1,4 +1,4 @@
-#define_import_path filtered_ndf::filter::rect::sample
+#define_import_path filtered_ndf::sampling::rect
 
 #import filtered_ndf::math
 #import filtered_ndf::ndf::roughness::axis_aligned
@@ -7,7 +7,7 @@
 #import filtered_ndf::sampling
 
 // Importance sampling of the box-filtered GGX lobe (`boxed::d_rect`, `lambda::lambda_rect`)
-// and its pdfs, mirroring `src/.../filter/rect/sample.rs`.
+// and its pdfs, mirroring `src/.../sampling/rect.rs`.
 //
 // `D(m) m_z`: the lobe's slope is `s = g + delta` with `g` axis-aligned GGX and `delta`
 // uniform on the box `[-H_x, H_x] x [-H_y, H_y]` (its density is the box mean of `P22`,
