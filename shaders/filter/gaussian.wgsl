@@ -1,6 +1,8 @@
 #define_import_path filtered_ndf::filter::gaussian
 
 #import filtered_ndf::ndf::roughness::matrix
+#import filtered_ndf::ndf::ggx
+#import filtered_ndf::ndf::beckmann
 #import filtered_ndf::footprint as pixel
 #import filtered_ndf::kernel::covariance
 #import filtered_ndf::kernel::clamp
@@ -72,4 +74,34 @@ fn filter_gaussian(
     sigma: f32,
 ) -> matrix::RoughnessMatrix {
     return gaussian_sanitized(a, clamp::pixel_kernel(rules, fp, sigma), clamp::det_clamp_for(rules, a));
+}
+
+/// `A' = A + 2 Sigma` with the clamped Gaussian pixel kernel (KHPL16 eq. 13-15; TK19 section
+/// 2.2): exact for Beckmann, TK19's approximation for GGX.
+struct Gaussian {
+    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
+    clamps: clamp::ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+}
+
+/// TK19: the default rules (`lambda = 1`, `kappa = 0.18`, the determinant clamp), `sigma = 0.5`.
+const TK19_GAUSSIAN: Gaussian = Gaussian(clamp::DEFAULT_RULES, pixel::SIGMA_PIXEL);
+/// KHPL16's parallelogram kernel: `lambda = 1` and the determinant clamp, no `kappa`.
+const KHPL16_GAUSSIAN: Gaussian = Gaussian(clamp::KHPL16_RULES, pixel::SIGMA_PIXEL);
+
+/// The lobe of `material` filtered by `method` over `fp` (the Rust `Gaussian::lobe`): the
+/// filtered roughness matrix, for `ggx::*_matrix` or `beckmann::*_matrix`.
+fn gaussian_lobe(method: Gaussian, material: matrix::RoughnessMatrix, fp: pixel::Footprint) -> matrix::RoughnessMatrix {
+    return filter_gaussian(method.clamps, material, fp, method.sigma);
+}
+
+/// `D(m)` of the GGX lobe of [`gaussian_lobe`].
+fn d_ggx_gaussian(method: Gaussian, material: matrix::RoughnessMatrix, fp: pixel::Footprint, m: vec3<f32>) -> f32 {
+    return ggx::d_matrix(gaussian_lobe(method, material, fp), m);
+}
+
+/// `D(m)` of the Beckmann lobe of [`gaussian_lobe`] (the exact Gaussian filter of Beckmann).
+fn d_beckmann_gaussian(method: Gaussian, material: matrix::RoughnessMatrix, fp: pixel::Footprint, m: vec3<f32>) -> f32 {
+    return beckmann::d_matrix(gaussian_lobe(method, material, fp), m);
 }

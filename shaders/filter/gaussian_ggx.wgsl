@@ -5,7 +5,9 @@
 #import filtered_ndf::ndf::ggx
 #import filtered_ndf::ndf::beckmann
 #import filtered_ndf::ndf::roughness::matrix
+#import filtered_ndf::footprint as pixel
 #import filtered_ndf::kernel::covariance
+#import filtered_ndf::kernel::clamp
 #import filtered_ndf::filter::gaussian_ggx_quad as quad
 
 // The exact Gaussian-filtered GGX (`src/.../filter/gaussian_ggx.rs`, `GaussianFilteredGgx`):
@@ -152,4 +154,28 @@ fn g1(g: GaussianFilteredGgx, w: vec3<f32>, m: vec3<f32>) -> f32 {
 /// filtered lobe.
 fn g2(g: GaussianFilteredGgx, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
     return ndf::g2_of(lambda(g, i), lambda(g, o), dot(i, m), dot(o, m));
+}
+
+/// The exact Gaussian filter: the material's slope density convolved with the clamped pixel
+/// kernel (GGX: `GaussianFilteredGgx`; Beckmann: `A + 2 Sigma`, `gaussian::gaussian_lobe` with the
+/// same rules).
+struct ExactGaussian {
+    /// The clamp rules applied to the footprint and the kernel.
+    clamps: clamp::ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+}
+
+/// The unbiased filter of the footprint: `lambda = 1` (KHPL16 section 5.2), no `kappa`,
+/// `sigma = 0.5`.
+const KHPL16_EXACT_GAUSSIAN: ExactGaussian = ExactGaussian(clamp::KHPL16_RULES, pixel::SIGMA_PIXEL);
+
+/// The GGX lobe of the exact Gaussian filter (the Rust `ExactGaussian::lobe` for GGX).
+fn exact_gaussian_lobe(method: ExactGaussian, material: matrix::RoughnessMatrix, fp: pixel::Footprint) -> GaussianFilteredGgx {
+    return from_kernel(material, clamp::pixel_kernel(method.clamps, fp, method.sigma));
+}
+
+/// `D(m)` of [`exact_gaussian_lobe`].
+fn d_ggx_exact_gaussian(method: ExactGaussian, material: matrix::RoughnessMatrix, fp: pixel::Footprint, m: vec3<f32>) -> f32 {
+    return d(exact_gaussian_lobe(method, material, fp), m);
 }

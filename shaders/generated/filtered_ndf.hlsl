@@ -53,6 +53,16 @@ struct ndf_roughness_matrix_RoughnessMatrix {
     int _end_pad_0;
 };
 
+struct ndf_roughness_isotropic_Isotropic {
+    float alpha;
+    float inv_alpha_sq;
+};
+
+struct ndf_roughness_axis_aligned_AxisAligned {
+    float2 alpha;
+    float2 inv_alpha_sq;
+};
+
 struct kernel_rect_BoundingRect {
     float2 half_extent;
 };
@@ -65,14 +75,9 @@ struct kernel_clamp_ClampRules {
     bool det_clamp;
 };
 
-struct ndf_roughness_isotropic_Isotropic {
-    float alpha;
-    float inv_alpha_sq;
-};
-
-struct ndf_roughness_axis_aligned_AxisAligned {
-    float2 alpha;
-    float2 inv_alpha_sq;
+struct filter_gaussian_Gaussian {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
 };
 
 struct filter_gaussian_ggx_GaussianFilteredGgx {
@@ -85,6 +90,11 @@ struct filter_gaussian_ggx_GaussianFilteredGgx {
     int _end_pad_0;
 };
 
+struct filter_gaussian_ggx_ExactGaussian {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
+};
+
 struct filter_lean_LeanMoments {
     float2 mean;
     int _pad1_0;
@@ -93,32 +103,22 @@ struct filter_lean_LeanMoments {
     int _end_pad_0;
 };
 
-struct filter_method_Gaussian {
+struct filter_projected_Projected {
     kernel_clamp_ClampRules clamps;
     float sigma;
 };
 
-struct filter_method_ExactGaussian {
-    kernel_clamp_ClampRules clamps;
-    float sigma;
-};
-
-struct filter_method_Projected {
-    kernel_clamp_ClampRules clamps;
-    float sigma;
-};
-
-struct filter_method_Rect {
+struct filter_proxy_Proxy {
     kernel_clamp_ClampRules clamps;
 };
 
-struct filter_method_RectFilteredGgx {
+struct filter_rect_lobe_Rect {
+    kernel_clamp_ClampRules clamps;
+};
+
+struct filter_rect_lobe_RectFilteredGgx {
     ndf_roughness_axis_aligned_AxisAligned roughness;
     float2 half_extent;
-};
-
-struct filter_method_Proxy {
-    kernel_clamp_ClampRules clamps;
 };
 
 struct sampling_Warp {
@@ -137,36 +137,17 @@ kernel_clamp_ClampRules Constructkernel_clamp_ClampRules(float arg0, uint arg1, 
     return ret;
 }
 
-filter_method_Gaussian Constructfilter_method_Gaussian(kernel_clamp_ClampRules arg0, float arg1) {
-    filter_method_Gaussian ret = (filter_method_Gaussian)0;
+filter_gaussian_Gaussian Constructfilter_gaussian_Gaussian(kernel_clamp_ClampRules arg0, float arg1) {
+    filter_gaussian_Gaussian ret = (filter_gaussian_Gaussian)0;
     ret.clamps = arg0;
     ret.sigma = arg1;
     return ret;
 }
 
-filter_method_ExactGaussian Constructfilter_method_ExactGaussian(kernel_clamp_ClampRules arg0, float arg1) {
-    filter_method_ExactGaussian ret = (filter_method_ExactGaussian)0;
+filter_gaussian_ggx_ExactGaussian Constructfilter_gaussian_ggx_ExactGaussian(kernel_clamp_ClampRules arg0, float arg1) {
+    filter_gaussian_ggx_ExactGaussian ret = (filter_gaussian_ggx_ExactGaussian)0;
     ret.clamps = arg0;
     ret.sigma = arg1;
-    return ret;
-}
-
-filter_method_Projected Constructfilter_method_Projected(kernel_clamp_ClampRules arg0, float arg1) {
-    filter_method_Projected ret = (filter_method_Projected)0;
-    ret.clamps = arg0;
-    ret.sigma = arg1;
-    return ret;
-}
-
-filter_method_Rect Constructfilter_method_Rect(kernel_clamp_ClampRules arg0) {
-    filter_method_Rect ret = (filter_method_Rect)0;
-    ret.clamps = arg0;
-    return ret;
-}
-
-filter_method_Proxy Constructfilter_method_Proxy(kernel_clamp_ClampRules arg0) {
-    filter_method_Proxy ret = (filter_method_Proxy)0;
-    ret.clamps = arg0;
     return ret;
 }
 
@@ -181,6 +162,25 @@ filter_deferred_KernelConvention Constructfilter_deferred_KernelConvention(uint 
     ret.combine = arg6;
     ret.saturate_ = arg7;
     ret.perceptual_floor = arg8;
+    return ret;
+}
+
+filter_projected_Projected Constructfilter_projected_Projected(kernel_clamp_ClampRules arg0, float arg1) {
+    filter_projected_Projected ret = (filter_projected_Projected)0;
+    ret.clamps = arg0;
+    ret.sigma = arg1;
+    return ret;
+}
+
+filter_proxy_Proxy Constructfilter_proxy_Proxy(kernel_clamp_ClampRules arg0) {
+    filter_proxy_Proxy ret = (filter_proxy_Proxy)0;
+    ret.clamps = arg0;
+    return ret;
+}
+
+filter_rect_lobe_Rect Constructfilter_rect_lobe_Rect(kernel_clamp_ClampRules arg0) {
+    filter_rect_lobe_Rect ret = (filter_rect_lobe_Rect)0;
+    ret.clamps = arg0;
     return ret;
 }
 
@@ -216,6 +216,8 @@ static const uint filter_deferred_COMBINE_MAX = 1u;
 static const uint filter_deferred_BANDWIDTH_MAX = 0u;
 static const uint filter_deferred_BANDWIDTH_TRACE = 1u;
 static const uint filter_deferred_BANDWIDTH_AVERAGE = 2u;
+static const float ndf_beckmann_EXP_SPLIT = 80.0;
+static const float ndf_beckmann_SQRT_PI = 1.7724539;
 static const uint kernel_clamp_FLOOR_NONE = 0u;
 static const uint kernel_clamp_FLOOR_CONSTANT = 1u;
 static const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
@@ -223,8 +225,8 @@ static const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = Constructkerne
 static const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
 static const kernel_clamp_ClampRules kernel_clamp_NO_RULES = Constructkernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
 static const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
-static const float ndf_beckmann_EXP_SPLIT = 80.0;
-static const float ndf_beckmann_SQRT_PI = 1.7724539;
+static const filter_gaussian_Gaussian filter_gaussian_TK19_GAUSSIAN = Constructfilter_gaussian_Gaussian(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
+static const filter_gaussian_Gaussian filter_gaussian_KHPL16_GAUSSIAN = Constructfilter_gaussian_Gaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
 static const float filter_gaussian_ggx_quad_FAR = 320000.0;
 static const float filter_gaussian_ggx_quad_H = 0.5;
 static const float filter_gaussian_ggx_quad_EXP_H = 1.6487212;
@@ -239,18 +241,7 @@ static const float filter_gaussian_ggx_quad_S_MAX = 0.25;
 static const float filter_gaussian_ggx_quad_S_COEF = 0.25;
 static const float filter_gaussian_ggx_quad_S_EPS = 1e-8;
 static const uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
-static const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
-static const float filter_rect_BIG = 1e18;
-static const float filter_rect_FAR2_ = 0.25;
-static const uint filter_rect_TIER_CLOSED = 0u;
-static const float filter_rect_lambda_BIG_K = 1000000000000.0;
-static const filter_method_Gaussian filter_method_TK19_GAUSSIAN = Constructfilter_method_Gaussian(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
-static const filter_method_Gaussian filter_method_KHPL16_GAUSSIAN = Constructfilter_method_Gaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
-static const filter_method_ExactGaussian filter_method_KHPL16_EXACT_GAUSSIAN = Constructfilter_method_ExactGaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
-static const filter_method_Projected filter_method_TK21_PROJECTED = Constructfilter_method_Projected(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
-static const filter_method_Rect filter_method_KHPL16_RECT = Constructfilter_method_Rect(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
-static const filter_method_Rect filter_method_GDC2016_RECT = Constructfilter_method_Rect(Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true));
-static const filter_method_Proxy filter_method_KHPL16_PROXY = Constructfilter_method_Proxy(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
+static const filter_gaussian_ggx_ExactGaussian filter_gaussian_ggx_KHPL16_EXACT_GAUSSIAN = Constructfilter_gaussian_ggx_ExactGaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
 static const filter_deferred_KernelConvention filter_presets_TK19_TRACE = Constructfilter_deferred_KernelConvention(0u, 0u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
 static const filter_deferred_KernelConvention filter_presets_TK19_AVERAGE = Constructfilter_deferred_KernelConvention(0u, 0u, 0.25, 1.0, 0.0, 0.18, 0u, true, 0.0);
 static const filter_deferred_KernelConvention filter_presets_TK19_MAX = Constructfilter_deferred_KernelConvention(0u, 2u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
@@ -263,6 +254,15 @@ static const filter_deferred_KernelConvention filter_presets_O3DE = Constructfil
 static const filter_deferred_KernelConvention filter_presets_UNREAL = Constructfilter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 static const filter_deferred_KernelConvention filter_presets_BABYLON = Constructfilter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 static const filter_deferred_KernelConvention filter_presets_THREE_JS = Constructfilter_deferred_KernelConvention(2u, 3u, 1.0, 1.0, 0.0, 3.4028235e38, 0u, true, 0.0525);
+static const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
+static const filter_projected_Projected filter_projected_TK21_PROJECTED = Constructfilter_projected_Projected(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
+static const filter_proxy_Proxy filter_proxy_KHPL16_PROXY = Constructfilter_proxy_Proxy(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
+static const float filter_rect_BIG = 1e18;
+static const float filter_rect_FAR2_ = 0.25;
+static const uint filter_rect_TIER_CLOSED = 0u;
+static const float filter_rect_lambda_BIG_K = 1000000000000.0;
+static const filter_rect_lobe_Rect filter_rect_lobe_KHPL16_RECT = Constructfilter_rect_lobe_Rect(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
+static const filter_rect_lobe_Rect filter_rect_lobe_GDC2016_RECT = Constructfilter_rect_lobe_Rect(Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true));
 static const float sampling_ONE_MINUS_EPS = 0.99999994;
 static const float sampling_beckmann_X_MAX = 9.0;
 static const uint sampling_beckmann_MAX_ITERATIONS = 64u;
@@ -961,131 +961,6 @@ float ndf_roughness_matrix_own_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_
     return ((r_11.tau > r_11.det) ? r_11.tau : 0.0);
 }
 
-kernel_rect_BoundingRect Constructkernel_rect_BoundingRect(float2 arg0) {
-    kernel_rect_BoundingRect ret = (kernel_rect_BoundingRect)0;
-    ret.half_extent = arg0;
-    return ret;
-}
-
-kernel_rect_BoundingRect kernel_rect_from_footprint(footprint_Footprint fp_2)
-{
-    const kernel_rect_BoundingRect kernel_rect_boundingrect = Constructkernel_rect_BoundingRect(((abs(fp_2.dh_u) + abs(fp_2.dh_v)) * 0.5));
-    return kernel_rect_boundingrect;
-}
-
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_12, float sigma_2)
-{
-    float2 w_24 = (r_12.half_extent * (2.0 * sigma_2));
-    float2 v_14 = (w_24 * w_24);
-    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_14.x, 0.0, v_14.y, (v_14.x * v_14.y));
-    return kernel_covariance_covariance_14;
-}
-
-footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3)
-{
-    float l_6 = max(rules.max_extent, 0.0);
-    float scale_1 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
-    if ((scale_1 <= 0.0)) {
-        const footprint_Footprint footprint_footprint_5 = fp_3;
-        return footprint_footprint_5;
-    }
-    footprint_Footprint unit = Constructfootprint_Footprint((fp_3.dh_u / (scale_1).xx), (fp_3.dh_v / (scale_1).xx));
-    const float _e29 = footprint_max_extent(unit);
-    if (((_e29 * scale_1) <= l_6)) {
-        const footprint_Footprint footprint_footprint_6 = fp_3;
-        return footprint_footprint_6;
-    }
-    const footprint_Footprint footprint_footprint_7 = Constructfootprint_Footprint(((unit.dh_u / (_e29).xx) * l_6), ((unit.dh_v / (_e29).xx) * l_6));
-    return footprint_footprint_7;
-}
-
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_13, float2 alpha_6)
-{
-    float2 f_1 = (0.0).xx;
-
-    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
-        f_1 = (rules_1.floor_).xx;
-    } else {
-        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
-            f_1 = min(abs(alpha_6), (rules_1.floor_).xx);
-        }
-    }
-    float lambda_2 = max(rules_1.max_extent, 0.0);
-    float2 h_25 = min(abs(r_13.half_extent), (lambda_2).xx);
-    float2 _e25 = f_1;
-    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_25, max(_e25, (0.0).xx)));
-    return kernel_rect_boundingrect_1;
-}
-
-kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_3)
-{
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_3);
-    if ((rules_2.kappa >= math_F32_MAX)) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_15 = _e2;
-        return kernel_covariance_covariance_15;
-    }
-    const kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
-    const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e11;
-    return kernel_covariance_covariance_16;
-}
-
-float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_2)
-{
-    const float _e2 = ndf_roughness_matrix_own_det_clamp(a_2);
-    const float _e3 = ndf_roughness_matrix_clamped_det(a_2);
-    return (rules_3.det_clamp ? _e3 : _e2);
-}
-
-kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_3)
-{
-    const footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
-    const kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_3);
-    const kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
-    const kernel_covariance_Covariance kernel_covariance_covariance_17 = _e5;
-    return kernel_covariance_covariance_17;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance k_4, float tau_3)
-{
-    const float3 _e3 = ndf_roughness_matrix_entries(a_3);
-    float c_17 = a_3.axis.x;
-    float s_24 = a_3.axis.y;
-    float k1_1 = max(((((c_17 * c_17) * k_4.s_xx) + (((2.0 * c_17) * s_24) * k_4.s_xy)) + ((s_24 * s_24) * k_4.s_yy)), 0.0);
-    float k2_1 = max(((((s_24 * s_24) * k_4.s_xx) - (((2.0 * c_17) * s_24) * k_4.s_xy)) + ((c_17 * c_17) * k_4.s_yy)), 0.0);
-    const float _e38 = ndf_roughness_matrix_determinant(a_3);
-    float det_4 = ((_e38 + (2.0 * ((a_3.eig.y * k1_1) + (a_3.eig.x * k2_1)))) + (4.0 * max(k_4.det, 0.0)));
-    const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_4.s_xx)), (_e3.y + (2.0 * k_4.s_xy)), (_e3.z + (2.0 * k_4.s_yy)), det_4, max(tau_3, 0.0));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_5 = _e72;
-    return ndf_roughness_matrix_roughnessmatrix_5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_2)
-{
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
-    const float _e3 = ndf_roughness_matrix_clamped_det(a_4);
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e2, _e3);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_6 = _e4;
-    return ndf_roughness_matrix_roughnessmatrix_6;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_3, float det_clamp_1)
-{
-    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
-    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_5);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_5, _e3, max(det_clamp_1, _e4));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_7 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_7;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_6, footprint_Footprint fp_5, float sigma_4)
-{
-    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
-    const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_6);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_6, _e4, _e5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_8 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_8;
-}
-
 float ndf_g1_of(float lambda_w, float w_dot_m)
 {
     return ((w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0);
@@ -1111,34 +986,34 @@ ndf_roughness_isotropic_Isotropic Constructndf_roughness_isotropic_Isotropic(flo
     return ret;
 }
 
-ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_7)
+ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_6)
 {
-    const float _e1 = ndf_roughness_clamp_alpha(alpha_7);
+    const float _e1 = ndf_roughness_clamp_alpha(alpha_6);
     const ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_isotropic = Constructndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
     return ndf_roughness_isotropic_isotropic;
 }
 
-float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_14, float2 s_1)
+float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_12, float2 s_1)
 {
-    return (dot(s_1, s_1) * r_14.inv_alpha_sq);
+    return (dot(s_1, s_1) * r_12.inv_alpha_sq);
 }
 
-float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_15, float2 w_1)
+float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_13, float2 w_1)
 {
-    float2 s_25 = (w_1 * r_15.alpha);
-    return dot(s_25, s_25);
+    float2 s_24 = (w_1 * r_13.alpha);
+    return dot(s_24, s_24);
 }
 
-float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_16)
+float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_14)
 {
-    return (r_16.alpha * r_16.alpha);
+    return (r_14.alpha * r_14.alpha);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_17)
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_15)
 {
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), (r_17.alpha).xx);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_9 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_9;
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), (r_15.alpha).xx);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_5 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_5;
 }
 
 ndf_roughness_axis_aligned_AxisAligned Constructndf_roughness_axis_aligned_AxisAligned(float2 arg0, float2 arg1) {
@@ -1148,36 +1023,36 @@ ndf_roughness_axis_aligned_AxisAligned Constructndf_roughness_axis_aligned_AxisA
     return ret;
 }
 
-ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(float2 alpha_8)
+ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(float2 alpha_7)
 {
-    const float _e2 = ndf_roughness_clamp_alpha(alpha_8.x);
-    const float _e4 = ndf_roughness_clamp_alpha(alpha_8.y);
+    const float _e2 = ndf_roughness_clamp_alpha(alpha_7.x);
+    const float _e4 = ndf_roughness_clamp_alpha(alpha_7.y);
     float2 a_20 = float2(_e2, _e4);
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned = Constructndf_roughness_axis_aligned_AxisAligned(a_20, ((1.0).xx / (a_20 * a_20)));
     return ndf_roughness_axis_aligned_axisaligned;
 }
 
-float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_18, float2 s_2)
+float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_16, float2 s_2)
 {
-    return dot((s_2 * s_2), r_18.inv_alpha_sq);
+    return dot((s_2 * s_2), r_16.inv_alpha_sq);
 }
 
-float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_19, float2 w_2)
+float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_17, float2 w_2)
 {
-    float2 s_26 = (w_2 * r_19.alpha);
-    return dot(s_26, s_26);
+    float2 s_25 = (w_2 * r_17.alpha);
+    return dot(s_25, s_25);
 }
 
-float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_20)
+float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_18)
 {
-    return (r_20.alpha.x * r_20.alpha.y);
+    return (r_18.alpha.x * r_18.alpha.y);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_21)
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_19)
 {
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), r_21.alpha);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_10 = _e5;
-    return ndf_roughness_matrix_roughnessmatrix_10;
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), r_19.alpha);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_6 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_6;
 }
 
 float ndf_ggx_p22_of(float q, float sqrt_det)
@@ -1191,14 +1066,14 @@ float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1)
     bool local_4 = (bool)0;
 
     float t_13 = (q_xy + (m_z * m_z));
-    float v_15 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
+    float v_14 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
     if ((m_z > 0.0)) {
-        local_4 = (v_15 <= math_F32_MAX);
+        local_4 = (v_14 <= math_F32_MAX);
     } else {
         local_4 = false;
     }
     bool _e18 = local_4;
-    return (_e18 ? v_15 : 0.0);
+    return (_e18 ? v_14 : 0.0);
 }
 
 float ndf_ggx_lambda_of(float q_1, float abs_wz)
@@ -1228,123 +1103,123 @@ float ndf_ggx_lambda_of(float q_1, float abs_wz)
     return (q_1 / ((2.0 * abs_wz) * (r_79 + abs_wz)));
 }
 
-float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_22, float2 s_3)
+float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_20, float2 s_3)
 {
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_22, s_3);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_22);
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_20, s_3);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_20);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_23, float3 m)
+float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_21, float3 m)
 {
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_23, m.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_23);
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_21, m.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_21);
     const float _e6 = ndf_ggx_d_of(_e3, m.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_24, float3 w_3)
+float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_22, float3 w_3)
 {
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_24, w_3.xy);
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_22, w_3.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_3.z));
     return _e6;
 }
 
-float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_25, float3 w_4, float3 m_1)
+float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_23, float3 w_4, float3 m_1)
 {
-    const float _e3 = ndf_ggx_lambda_isotropic(r_25, w_4);
+    const float _e3 = ndf_ggx_lambda_isotropic(r_23, w_4);
     const float _e5 = ndf_g1_of(_e3, dot(w_4, m_1));
     return _e5;
 }
 
-float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_26, float3 i, float3 o, float3 m_2)
+float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_24, float3 i, float3 o, float3 m_2)
 {
-    const float _e4 = ndf_ggx_lambda_isotropic(r_26, i);
-    const float _e5 = ndf_ggx_lambda_isotropic(r_26, o);
+    const float _e4 = ndf_ggx_lambda_isotropic(r_24, i);
+    const float _e5 = ndf_ggx_lambda_isotropic(r_24, o);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_2), dot(o, m_2));
     return _e8;
 }
 
-float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, float2 s_4)
+float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, float2 s_4)
 {
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_27, s_4);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_27);
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_25, s_4);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_25);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, float3 m_3)
+float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, float3 m_3)
 {
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_28, m_3.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_28);
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_26, m_3.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_26);
     const float _e6 = ndf_ggx_d_of(_e3, m_3.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, float3 w_5)
+float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, float3 w_5)
 {
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_29, w_5.xy);
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_27, w_5.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_5.z));
     return _e6;
 }
 
-float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_30, float3 w_6, float3 m_4)
+float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, float3 w_6, float3 m_4)
 {
-    const float _e3 = ndf_ggx_lambda_axis_aligned(r_30, w_6);
+    const float _e3 = ndf_ggx_lambda_axis_aligned(r_28, w_6);
     const float _e5 = ndf_g1_of(_e3, dot(w_6, m_4));
     return _e5;
 }
 
-float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_31, float3 i_1, float3 o_1, float3 m_5)
+float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, float3 i_1, float3 o_1, float3 m_5)
 {
-    const float _e4 = ndf_ggx_lambda_axis_aligned(r_31, i_1);
-    const float _e5 = ndf_ggx_lambda_axis_aligned(r_31, o_1);
+    const float _e4 = ndf_ggx_lambda_axis_aligned(r_29, i_1);
+    const float _e5 = ndf_ggx_lambda_axis_aligned(r_29, o_1);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_5), dot(o_1, m_5));
     return _e8;
 }
 
-float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, float2 s_5)
+float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, float2 s_5)
 {
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_32, s_5);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_32);
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_30, s_5);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_30);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, float3 m_6)
+float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, float3 m_6)
 {
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_33, m_6.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_33);
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_31, m_6.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_31);
     const float _e6 = ndf_ggx_d_of(_e3, m_6.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, float3 w_7)
+float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, float3 w_7)
 {
-    const float _e3 = ndf_roughness_matrix_quadratic(r_34, w_7.xy);
+    const float _e3 = ndf_roughness_matrix_quadratic(r_32, w_7.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_7.z));
     return _e6;
 }
 
-float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_35, float3 w_8, float3 m_7)
+float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, float3 w_8, float3 m_7)
 {
-    const float _e3 = ndf_ggx_lambda_matrix(r_35, w_8);
+    const float _e3 = ndf_ggx_lambda_matrix(r_33, w_8);
     const float _e5 = ndf_g1_of(_e3, dot(w_8, m_7));
     return _e5;
 }
 
-float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_36, float3 i_2, float3 o_2, float3 m_8)
+float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, float3 i_2, float3 o_2, float3 m_8)
 {
-    const float _e4 = ndf_ggx_lambda_matrix(r_36, i_2);
-    const float _e5 = ndf_ggx_lambda_matrix(r_36, o_2);
+    const float _e4 = ndf_ggx_lambda_matrix(r_34, i_2);
+    const float _e5 = ndf_ggx_lambda_matrix(r_34, o_2);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_8), dot(o_2, m_8));
     return _e8;
 }
 
-float ndf_beckmann_exp_neg_times(float x_5, float k_5, float ln_k)
+float ndf_beckmann_exp_neg_times(float x_5, float k_3, float ln_k)
 {
-    return ((x_5 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_5)) : (exp(-(x_5)) * k_5));
+    return ((x_5 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_5)) : (exp(-(x_5)) * k_3));
 }
 
 float ndf_beckmann_p22_of(float q_2, float sqrt_det_2)
@@ -1434,118 +1309,264 @@ float ndf_beckmann_lambda_of(float q_3, float abs_wz_1)
     return min(((exp((-(a_21) * a_21)) * k_28) / ((3.5449078 * a_21) * (a_21 + k_28))), math_F32_MAX);
 }
 
-float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_37, float2 s_6)
+float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_35, float2 s_6)
 {
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_6);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_35, s_6);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_35);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_38, float3 m_9)
+float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_36, float3 m_9)
 {
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_9.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_36, m_9.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_36);
     const float _e6 = ndf_beckmann_d_of(_e3, m_9.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_39, float3 w_9)
+float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_37, float3 w_9)
 {
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_37, w_9.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_40, float3 w_10, float3 m_10)
+float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_38, float3 w_10, float3 m_10)
 {
-    const float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
+    const float _e3 = ndf_beckmann_lambda_isotropic(r_38, w_10);
     const float _e5 = ndf_g1_of(_e3, dot(w_10, m_10));
     return _e5;
 }
 
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_41, float3 i_3, float3 o_3, float3 m_11)
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_39, float3 i_3, float3 o_3, float3 m_11)
 {
-    const float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_3);
-    const float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
+    const float _e4 = ndf_beckmann_lambda_isotropic(r_39, i_3);
+    const float _e5 = ndf_beckmann_lambda_isotropic(r_39, o_3);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_11), dot(o_3, m_11));
     return _e8;
 }
 
-float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, float2 s_7)
+float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_40, float2 s_7)
 {
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_7);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_40, s_7);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_40);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, float3 m_12)
+float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_41, float3 m_12)
 {
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_12.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_41, m_12.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_41);
     const float _e6 = ndf_beckmann_d_of(_e3, m_12.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, float3 w_11)
+float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, float3 w_11)
 {
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_42, w_11.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_45, float3 w_12, float3 m_13)
+float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, float3 w_12, float3 m_13)
 {
-    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
+    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_43, w_12);
     const float _e5 = ndf_g1_of(_e3, dot(w_12, m_13));
     return _e5;
 }
 
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_46, float3 i_4, float3 o_4, float3 m_14)
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, float3 i_4, float3 o_4, float3 m_14)
 {
-    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_4);
-    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
+    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_44, i_4);
+    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_44, o_4);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_14), dot(o_4, m_14));
     return _e8;
 }
 
-float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, float2 s_8)
+float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_45, float2 s_8)
 {
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_8);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_45, s_8);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_45);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 m_15)
+float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_46, float3 m_15)
 {
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_15.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_46, m_15.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_46);
     const float _e6 = ndf_beckmann_d_of(_e3, m_15.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, float3 w_13)
+float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, float3 w_13)
 {
-    const float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
+    const float _e3 = ndf_roughness_matrix_quadratic(r_47, w_13.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_50, float3 w_14, float3 m_16)
+float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 w_14, float3 m_16)
 {
-    const float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
+    const float _e3 = ndf_beckmann_lambda_matrix(r_48, w_14);
     const float _e5 = ndf_g1_of(_e3, dot(w_14, m_16));
     return _e5;
 }
 
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_51, float3 i_5, float3 o_5, float3 m_17)
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, float3 i_5, float3 o_5, float3 m_17)
 {
-    const float _e4 = ndf_beckmann_lambda_matrix(r_51, i_5);
-    const float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
+    const float _e4 = ndf_beckmann_lambda_matrix(r_49, i_5);
+    const float _e5 = ndf_beckmann_lambda_matrix(r_49, o_5);
     const float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_17), dot(o_5, m_17));
     return _e8;
+}
+
+kernel_rect_BoundingRect Constructkernel_rect_BoundingRect(float2 arg0) {
+    kernel_rect_BoundingRect ret = (kernel_rect_BoundingRect)0;
+    ret.half_extent = arg0;
+    return ret;
+}
+
+kernel_rect_BoundingRect kernel_rect_from_footprint(footprint_Footprint fp_2)
+{
+    const kernel_rect_BoundingRect kernel_rect_boundingrect = Constructkernel_rect_BoundingRect(((abs(fp_2.dh_u) + abs(fp_2.dh_v)) * 0.5));
+    return kernel_rect_boundingrect;
+}
+
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_50, float sigma_2)
+{
+    float2 w_24 = (r_50.half_extent * (2.0 * sigma_2));
+    float2 v_15 = (w_24 * w_24);
+    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_15.x, 0.0, v_15.y, (v_15.x * v_15.y));
+    return kernel_covariance_covariance_14;
+}
+
+footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3)
+{
+    float l_6 = max(rules.max_extent, 0.0);
+    float scale_1 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
+    if ((scale_1 <= 0.0)) {
+        const footprint_Footprint footprint_footprint_5 = fp_3;
+        return footprint_footprint_5;
+    }
+    footprint_Footprint unit = Constructfootprint_Footprint((fp_3.dh_u / (scale_1).xx), (fp_3.dh_v / (scale_1).xx));
+    const float _e29 = footprint_max_extent(unit);
+    if (((_e29 * scale_1) <= l_6)) {
+        const footprint_Footprint footprint_footprint_6 = fp_3;
+        return footprint_footprint_6;
+    }
+    const footprint_Footprint footprint_footprint_7 = Constructfootprint_Footprint(((unit.dh_u / (_e29).xx) * l_6), ((unit.dh_v / (_e29).xx) * l_6));
+    return footprint_footprint_7;
+}
+
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_51, float2 alpha_8)
+{
+    float2 f_1 = (0.0).xx;
+
+    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
+        f_1 = (rules_1.floor_).xx;
+    } else {
+        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
+            f_1 = min(abs(alpha_8), (rules_1.floor_).xx);
+        }
+    }
+    float lambda_2 = max(rules_1.max_extent, 0.0);
+    float2 h_25 = min(abs(r_51.half_extent), (lambda_2).xx);
+    float2 _e25 = f_1;
+    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_25, max(_e25, (0.0).xx)));
+    return kernel_rect_boundingrect_1;
+}
+
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_4)
+{
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_4);
+    if ((rules_2.kappa >= math_F32_MAX)) {
+        const kernel_covariance_Covariance kernel_covariance_covariance_15 = _e2;
+        return kernel_covariance_covariance_15;
+    }
+    const kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
+    const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e11;
+    return kernel_covariance_covariance_16;
+}
+
+float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_2)
+{
+    const float _e2 = ndf_roughness_matrix_own_det_clamp(a_2);
+    const float _e3 = ndf_roughness_matrix_clamped_det(a_2);
+    return (rules_3.det_clamp ? _e3 : _e2);
+}
+
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_3)
+{
+    const footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
+    const kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_3);
+    const kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
+    const kernel_covariance_Covariance kernel_covariance_covariance_17 = _e5;
+    return kernel_covariance_covariance_17;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance k_5, float tau_3)
+{
+    const float3 _e3 = ndf_roughness_matrix_entries(a_3);
+    float c_17 = a_3.axis.x;
+    float s_26 = a_3.axis.y;
+    float k1_1 = max(((((c_17 * c_17) * k_5.s_xx) + (((2.0 * c_17) * s_26) * k_5.s_xy)) + ((s_26 * s_26) * k_5.s_yy)), 0.0);
+    float k2_1 = max(((((s_26 * s_26) * k_5.s_xx) - (((2.0 * c_17) * s_26) * k_5.s_xy)) + ((c_17 * c_17) * k_5.s_yy)), 0.0);
+    const float _e38 = ndf_roughness_matrix_determinant(a_3);
+    float det_4 = ((_e38 + (2.0 * ((a_3.eig.y * k1_1) + (a_3.eig.x * k2_1)))) + (4.0 * max(k_5.det, 0.0)));
+    const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_5.s_xx)), (_e3.y + (2.0 * k_5.s_xy)), (_e3.z + (2.0 * k_5.s_yy)), det_4, max(tau_3, 0.0));
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_7 = _e72;
+    return ndf_roughness_matrix_roughnessmatrix_7;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_2)
+{
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
+    const float _e3 = ndf_roughness_matrix_clamped_det(a_4);
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e2, _e3);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_8 = _e4;
+    return ndf_roughness_matrix_roughnessmatrix_8;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_3, float det_clamp_1)
+{
+    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
+    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_5);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_5, _e3, max(det_clamp_1, _e4));
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_9 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_9;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_6, footprint_Footprint fp_5, float sigma_4)
+{
+    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
+    const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_6);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_6, _e4, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_10 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_10;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_lobe(filter_gaussian_Gaussian method, ndf_roughness_matrix_RoughnessMatrix material, footprint_Footprint fp_6)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_filter_gaussian(method.clamps, material, fp_6, method.sigma);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_11 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_11;
+}
+
+float filter_gaussian_d_ggx_gaussian(filter_gaussian_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_7, float3 m_18)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_1, material_1, fp_7);
+    const float _e5 = ndf_ggx_d_matrix(_e4, m_18);
+    return _e5;
+}
+
+float filter_gaussian_d_beckmann_gaussian(filter_gaussian_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_8, float3 m_19)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_2, material_2, fp_8);
+    const float _e5 = ndf_beckmann_d_matrix(_e4, m_19);
+    return _e5;
 }
 
 float filter_gaussian_ggx_quad_laguerre_node(uint k_6)
@@ -2105,13 +2126,13 @@ float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_1, floa
     return (g_1.norm * _e11);
 }
 
-float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, float3 m_18)
+float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, float3 m_20)
 {
-    if (!((m_18.z > 0.0))) {
+    if (!((m_20.z > 0.0))) {
         return 0.0;
     }
-    const float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_18.xy);
-    const float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_18.z * m_18.z), g_2.tl.x, g_2.tl.y);
+    const float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_20.xy);
+    const float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_20.z * m_20.z), g_2.tl.x, g_2.tl.y);
     float v_16 = (g_2.norm * _e19);
     return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
 }
@@ -2143,24 +2164,39 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, fl
     return _e61;
 }
 
-float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, float3 w_16, float3 m_19)
+float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, float3 w_16, float3 m_21)
 {
     const float _e3 = filter_gaussian_ggx_lambda(g_4, w_16);
-    const float _e5 = ndf_g1_of(_e3, dot(w_16, m_19));
+    const float _e5 = ndf_g1_of(_e3, dot(w_16, m_21));
     return _e5;
 }
 
-float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 i_6, float3 o_6, float3 m_20)
+float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 i_6, float3 o_6, float3 m_22)
 {
     const float _e4 = filter_gaussian_ggx_lambda(g_5, i_6);
     const float _e5 = filter_gaussian_ggx_lambda(g_5, o_6);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_20), dot(o_6, m_20));
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_22), dot(o_6, m_22));
     return _e8;
 }
 
-kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_21)
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_exact_gaussian_lobe(filter_gaussian_ggx_ExactGaussian method_3, ndf_roughness_matrix_RoughnessMatrix material_3, footprint_Footprint fp_9)
 {
-    const kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_21.second.x - (m_21.mean.x * m_21.mean.x)), (m_21.second.y - (m_21.mean.x * m_21.mean.y)), (m_21.second.z - (m_21.mean.y * m_21.mean.y)));
+    const kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_9, method_3.sigma);
+    const filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_1 = _e6;
+    return filter_gaussian_ggx_gaussianfilteredggx_1;
+}
+
+float filter_gaussian_ggx_d_ggx_exact_gaussian(filter_gaussian_ggx_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_10, float3 m_23)
+{
+    const filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_gaussian_ggx_exact_gaussian_lobe(method_4, material_4, fp_10);
+    const float _e5 = filter_gaussian_ggx_d(_e4, m_23);
+    return _e5;
+}
+
+kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_24)
+{
+    const kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_24.second.x - (m_24.mean.x * m_24.mean.x)), (m_24.second.y - (m_24.mean.x * m_24.mean.y)), (m_24.second.z - (m_24.mean.y * m_24.mean.y)));
     const kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
     const kernel_covariance_Covariance kernel_covariance_covariance_18 = _e26;
     return kernel_covariance_covariance_18;
@@ -2172,8 +2208,62 @@ ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_Rough
     const kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
     const kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
     const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_8, _e5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_11 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_11;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_12;
+}
+
+filter_deferred_KernelConvention filter_presets_preset(uint i_7)
+{
+    switch(i_7) {
+        case 0u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention = filter_presets_TK19_MAX;
+            return filter_deferred_kernelconvention;
+        }
+        case 1u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_1 = filter_presets_TK19_TRACE;
+            return filter_deferred_kernelconvention_1;
+        }
+        case 2u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_2 = filter_presets_TK19_AVERAGE;
+            return filter_deferred_kernelconvention_2;
+        }
+        case 3u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_3 = filter_presets_TK21_LISTING;
+            return filter_deferred_kernelconvention_3;
+        }
+        case 4u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_4 = filter_presets_FILAMENT;
+            return filter_deferred_kernelconvention_4;
+        }
+        case 5u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_5 = filter_presets_UNITY_HDRP;
+            return filter_deferred_kernelconvention_5;
+        }
+        case 6u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_6 = filter_presets_UNITY_HDRP_PROJECTED;
+            return filter_deferred_kernelconvention_6;
+        }
+        case 7u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_7 = filter_presets_GODOT;
+            return filter_deferred_kernelconvention_7;
+        }
+        case 8u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_8 = filter_presets_O3DE;
+            return filter_deferred_kernelconvention_8;
+        }
+        case 9u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_9 = filter_presets_UNREAL;
+            return filter_deferred_kernelconvention_9;
+        }
+        case 10u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_10 = filter_presets_BABYLON;
+            return filter_deferred_kernelconvention_10;
+        }
+        default: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_11 = filter_presets_THREE_JS;
+            return filter_deferred_kernelconvention_11;
+        }
+    }
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance k_12, float tau_4)
@@ -2221,8 +2311,8 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     float _e151 = b22_;
     float _e154 = det_3;
     const ndf_roughness_matrix_RoughnessMatrix _e157 = ndf_roughness_matrix_from_entries_det(max(_e147, _e146.x), _e150, max(_e151, _e146.z), _e154, max(tau_4, 0.0));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e157;
-    return ndf_roughness_matrix_roughnessmatrix_12;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e157;
+    return ndf_roughness_matrix_roughnessmatrix_13;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_10, kernel_covariance_Covariance kernel_5)
@@ -2230,8 +2320,8 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_ma
     const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_5);
     const float _e3 = ndf_roughness_matrix_clamped_det(a_10);
     const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_10, _e2, _e3);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e4;
-    return ndf_roughness_matrix_roughnessmatrix_13;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_14 = _e4;
+    return ndf_roughness_matrix_roughnessmatrix_14;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_11, kernel_covariance_Covariance kernel_6, float det_clamp_2)
@@ -2239,17 +2329,31 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(n
     const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
     const float _e4 = ndf_roughness_matrix_own_det_clamp(a_11);
     const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_11, _e3, max(det_clamp_2, _e4));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_14 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_14;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_6, float sigma_5)
-{
-    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_5);
-    const float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_15 = _e6;
     return ndf_roughness_matrix_roughnessmatrix_15;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_11, float sigma_5)
+{
+    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_11, sigma_5);
+    const float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_16 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_16;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_lobe(filter_projected_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_12)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_17 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_17;
+}
+
+float filter_projected_d_ggx_projected(filter_projected_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, float3 m_25)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_lobe(method_6, material_6, fp_13);
+    const float _e5 = ndf_ggx_d_matrix(_e4, m_25);
+    return _e5;
 }
 
 float filter_proxy_effective_alpha(float alpha_9, float half_extent)
@@ -2284,6 +2388,23 @@ ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_a
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_2 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_2;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_lobe(filter_proxy_Proxy method_7, ndf_roughness_axis_aligned_AxisAligned material_7, footprint_Footprint fp_14)
+{
+    const kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_14);
+    const kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
+    float2 h_28 = _e6.half_extent;
+    const ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_7, h_28);
+    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_3 = _e8;
+    return ndf_roughness_axis_aligned_axisaligned_3;
+}
+
+float filter_proxy_d_ggx_proxy(filter_proxy_Proxy method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, float3 m_26)
+{
+    const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_proxy_proxy_lobe(method_8, material_8, fp_15);
+    const float _e5 = ndf_ggx_d_axis_aligned(_e4, m_26);
+    return _e5;
 }
 
 uint filter_rect_tier(float h2_, float l2_1)
@@ -2401,11 +2522,11 @@ float filter_rect_delta_minus_sin(float d, float sin_d)
     return (d - sin_d);
 }
 
-float filter_rect_mean_1d(float4 i_7, float c2_)
+float filter_rect_mean_1d(float4 i_8, float c2_)
 {
-    float x0_ = ((i_7.z >= 0.0) ? i_7.x : -(i_7.y));
-    float x1_1 = ((i_7.z >= 0.0) ? i_7.y : -(i_7.x));
-    float dx = (2.0 * i_7.w);
+    float x0_ = ((i_8.z >= 0.0) ? i_8.x : -(i_8.y));
+    float x1_1 = ((i_8.z >= 0.0) ? i_8.y : -(i_8.x));
+    float dx = (2.0 * i_8.w);
     float c_21 = sqrt(c2_);
     float r02_ = (c2_ + (x0_ * x0_));
     float r12_ = (c2_ + (x1_1 * x1_1));
@@ -2511,7 +2632,7 @@ float filter_rect_polar_near(float x2_, float lo, float hi)
     uint k_19 = 0u;
 
     float c_22 = (0.5 * (lo + hi));
-    float h_28 = (0.5 * (hi - lo));
+    float h_29 = (0.5 * (hi - lo));
     uint2 loop_bound_8 = uint2(4294967295u, 4294967295u);
     bool loop_init_8 = true;
     while(true) {
@@ -2530,7 +2651,7 @@ float filter_rect_polar_near(float x2_, float lo, float hi)
         {
             uint _e16 = k_19;
             const float _e17 = filter_rect_gl8_node(_e16);
-            float d_5 = (h_28 * _e17);
+            float d_5 = (h_29 * _e17);
             float q0_ = (1.0 + ((c_22 - d_5) * (c_22 - d_5)));
             float q1_ = (1.0 + ((c_22 + d_5) * (c_22 + d_5)));
             float _e29 = acc_4;
@@ -2549,7 +2670,7 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
     uint k_20 = 0u;
 
     float c_23 = (0.5 * (lo_1 + hi_1));
-    float h_29 = (0.5 * (hi_1 - lo_1));
+    float h_30 = (0.5 * (hi_1 - lo_1));
     uint2 loop_bound_9 = uint2(4294967295u, 4294967295u);
     bool loop_init_9 = true;
     while(true) {
@@ -2568,7 +2689,7 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
         {
             uint _e16 = k_20;
             const float _e17 = filter_rect_gl8_node(_e16);
-            float d_6 = (h_29 * _e17);
+            float d_6 = (h_30 * _e17);
             float t0_2 = ((c_23 - d_6) * (c_23 - d_6));
             float t1_4 = ((c_23 + d_6) * (c_23 + d_6));
             float _e25 = acc_5;
@@ -2636,9 +2757,9 @@ float filter_rect_far_field(float4 u_5, float4 v_9)
     return (i_14 / ((4.0 * u_5.w) * v_9.w));
 }
 
-float filter_rect_gap(float4 i_8)
+float filter_rect_gap(float4 i_9)
 {
-    return max(max(i_8.x, -(i_8.y)), 0.0);
+    return max(max(i_9.x, -(i_9.y)), 0.0);
 }
 
 float filter_rect_mean_f(float4 u_6, float4 v_10)
@@ -2953,7 +3074,7 @@ float filter_rect_lambda_gl_psi(uint t_9, float c_9, float h_17)
     return _e28;
 }
 
-float filter_rect_lambda_expected_psi(float m_22, float k1_, float k2_, float lo_2)
+float filter_rect_lambda_expected_psi(float m_27, float k1_, float k2_, float lo_2)
 {
     float acc_9 = 0.0;
     uint j_2 = 0u;
@@ -2962,10 +3083,10 @@ float filter_rect_lambda_expected_psi(float m_22, float k1_, float k2_, float lo
 
     float ks = min(k1_, k2_);
     float kl = max(k1_, k2_);
-    float near_l = max((m_22 - ks), 0.0);
+    float near_l = max((m_27 - ks), 0.0);
     const uint _e13 = filter_rect_tier((kl * kl), (1.0 + (near_l * near_l)));
     if ((_e13 != filter_rect_TIER_CLOSED)) {
-        float near_s = max((m_22 - kl), 0.0);
+        float near_s = max((m_27 - kl), 0.0);
         const uint _e23 = filter_rect_tier((ks * ks), (1.0 + (near_s * near_s)));
         uint2 loop_bound_13 = uint2(4294967295u, 4294967295u);
         bool loop_init_13 = true;
@@ -2989,15 +3110,15 @@ float filter_rect_lambda_expected_psi(float m_22, float k1_, float k2_, float lo
                 float _e35 = acc_9;
                 uint _e36 = j_2;
                 const float _e37 = filter_rect_gl_weight(_e13, _e36);
-                const float _e39 = filter_rect_lambda_gl_psi(_e23, (m_22 - a_33), ks);
-                const float _e41 = filter_rect_lambda_gl_psi(_e23, (m_22 + a_33), ks);
+                const float _e39 = filter_rect_lambda_gl_psi(_e23, (m_27 - a_33), ks);
+                const float _e41 = filter_rect_lambda_gl_psi(_e23, (m_27 + a_33), ks);
                 acc_9 = (_e35 + (_e37 * (_e39 + _e41)));
             }
         }
         float _e48 = acc_9;
         return _e48;
     }
-    float hi_4 = (m_22 + kl);
+    float hi_4 = (m_27 + kl);
     float w_26 = (2.0 * kl);
     if ((ks == 0.0)) {
         const float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_4, w_26);
@@ -3112,181 +3233,60 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_60
     return (_e117 / mm);
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_method_gaussian_lobe(filter_method_Gaussian method, ndf_roughness_matrix_RoughnessMatrix material, footprint_Footprint fp_7)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_filter_gaussian(method.clamps, material, fp_7, method.sigma);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_16 = _e5;
-    return ndf_roughness_matrix_roughnessmatrix_16;
-}
-
-float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, float3 m_23)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_1, material_1, fp_8);
-    const float _e5 = ndf_ggx_d_matrix(_e4, m_23);
-    return _e5;
-}
-
-float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_9, float3 m_24)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_2, material_2, fp_9);
-    const float _e5 = ndf_beckmann_d_matrix(_e4, m_24);
-    return _e5;
-}
-
-filter_gaussian_ggx_GaussianFilteredGgx filter_method_exact_gaussian_lobe(filter_method_ExactGaussian method_3, ndf_roughness_matrix_RoughnessMatrix material_3, footprint_Footprint fp_10)
-{
-    const kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_10, method_3.sigma);
-    const filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
-    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_1 = _e6;
-    return filter_gaussian_ggx_gaussianfilteredggx_1;
-}
-
-float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, float3 m_25)
-{
-    const filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_method_exact_gaussian_lobe(method_4, material_4, fp_11);
-    const float _e5 = filter_gaussian_ggx_d(_e4, m_25);
-    return _e5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_method_projected_lobe(filter_method_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_12)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_17 = _e5;
-    return ndf_roughness_matrix_roughnessmatrix_17;
-}
-
-float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, float3 m_26)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_projected_lobe(method_6, material_6, fp_13);
-    const float _e5 = ndf_ggx_d_matrix(_e4, m_26);
-    return _e5;
-}
-
-filter_method_RectFilteredGgx Constructfilter_method_RectFilteredGgx(ndf_roughness_axis_aligned_AxisAligned arg0, float2 arg1) {
-    filter_method_RectFilteredGgx ret = (filter_method_RectFilteredGgx)0;
+filter_rect_lobe_RectFilteredGgx Constructfilter_rect_lobe_RectFilteredGgx(ndf_roughness_axis_aligned_AxisAligned arg0, float2 arg1) {
+    filter_rect_lobe_RectFilteredGgx ret = (filter_rect_lobe_RectFilteredGgx)0;
     ret.roughness = arg0;
     ret.half_extent = arg1;
     return ret;
 }
 
-filter_method_RectFilteredGgx filter_method_rect_lobe(filter_method_Rect method_7, ndf_roughness_axis_aligned_AxisAligned material_7, footprint_Footprint fp_14)
+filter_rect_lobe_RectFilteredGgx filter_rect_lobe_rect_lobe(filter_rect_lobe_Rect method_9, ndf_roughness_axis_aligned_AxisAligned material_9, footprint_Footprint fp_16)
 {
-    const kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_14);
-    const kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
-    float2 h_30 = _e6.half_extent;
-    const filter_method_RectFilteredGgx filter_method_rectfilteredggx = Constructfilter_method_RectFilteredGgx(material_7, h_30);
-    return filter_method_rectfilteredggx;
+    const kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_16);
+    const kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
+    float2 h_31 = _e6.half_extent;
+    const filter_rect_lobe_RectFilteredGgx filter_rect_lobe_rectfilteredggx = Constructfilter_rect_lobe_RectFilteredGgx(material_9, h_31);
+    return filter_rect_lobe_rectfilteredggx;
 }
 
-float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe, float2 s_12)
+float filter_rect_lobe_p22_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe, float2 s_12)
 {
     const float _e4 = filter_rect_p22_rect(lobe.roughness, s_12, lobe.half_extent);
     return _e4;
 }
 
-float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_1, float3 m_27)
+float filter_rect_lobe_d_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_1, float3 m_28)
 {
-    const float _e4 = filter_rect_d_rect(lobe_1.roughness, m_27, lobe_1.half_extent);
+    const float _e4 = filter_rect_d_rect(lobe_1.roughness, m_28, lobe_1.half_extent);
     return _e4;
 }
 
-float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_2, float3 w_20)
+float filter_rect_lobe_lambda_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_2, float3 w_20)
 {
     const float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_20);
     return _e4;
 }
 
-float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_3, float3 w_21, float3 m_28)
+float filter_rect_lobe_g1_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_3, float3 w_21, float3 m_29)
 {
-    const float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_21);
-    const float _e5 = ndf_g1_of(_e3, dot(w_21, m_28));
+    const float _e3 = filter_rect_lobe_lambda_rect_filtered(lobe_3, w_21);
+    const float _e5 = ndf_g1_of(_e3, dot(w_21, m_29));
     return _e5;
 }
 
-float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_4, float3 i_9, float3 o_7, float3 m_29)
+float filter_rect_lobe_g2_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_4, float3 i_10, float3 o_7, float3 m_30)
 {
-    const float _e4 = filter_method_lambda_rect_filtered(lobe_4, i_9);
-    const float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_7);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_29), dot(o_7, m_29));
+    const float _e4 = filter_rect_lobe_lambda_rect_filtered(lobe_4, i_10);
+    const float _e5 = filter_rect_lobe_lambda_rect_filtered(lobe_4, o_7);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_10, m_30), dot(o_7, m_30));
     return _e8;
 }
 
-float filter_method_d_ggx_rect(filter_method_Rect method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, float3 m_30)
+float filter_rect_lobe_d_ggx_rect(filter_rect_lobe_Rect method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, float3 m_31)
 {
-    const filter_method_RectFilteredGgx _e4 = filter_method_rect_lobe(method_8, material_8, fp_15);
-    const float _e5 = filter_method_d_rect_filtered(_e4, m_30);
+    const filter_rect_lobe_RectFilteredGgx _e4 = filter_rect_lobe_rect_lobe(method_10, material_10, fp_17);
+    const float _e5 = filter_rect_lobe_d_rect_filtered(_e4, m_31);
     return _e5;
-}
-
-ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(filter_method_Proxy method_9, ndf_roughness_axis_aligned_AxisAligned material_9, footprint_Footprint fp_16)
-{
-    const kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_16);
-    const kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
-    float2 h_31 = _e6.half_extent;
-    const ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_31);
-    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_3 = _e8;
-    return ndf_roughness_axis_aligned_axisaligned_3;
-}
-
-float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, float3 m_31)
-{
-    const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
-    const float _e5 = ndf_ggx_d_axis_aligned(_e4, m_31);
-    return _e5;
-}
-
-filter_deferred_KernelConvention filter_presets_preset(uint i_10)
-{
-    switch(i_10) {
-        case 0u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention = filter_presets_TK19_MAX;
-            return filter_deferred_kernelconvention;
-        }
-        case 1u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_1 = filter_presets_TK19_TRACE;
-            return filter_deferred_kernelconvention_1;
-        }
-        case 2u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_2 = filter_presets_TK19_AVERAGE;
-            return filter_deferred_kernelconvention_2;
-        }
-        case 3u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_3 = filter_presets_TK21_LISTING;
-            return filter_deferred_kernelconvention_3;
-        }
-        case 4u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_4 = filter_presets_FILAMENT;
-            return filter_deferred_kernelconvention_4;
-        }
-        case 5u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_5 = filter_presets_UNITY_HDRP;
-            return filter_deferred_kernelconvention_5;
-        }
-        case 6u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_6 = filter_presets_UNITY_HDRP_PROJECTED;
-            return filter_deferred_kernelconvention_6;
-        }
-        case 7u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_7 = filter_presets_GODOT;
-            return filter_deferred_kernelconvention_7;
-        }
-        case 8u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_8 = filter_presets_O3DE;
-            return filter_deferred_kernelconvention_8;
-        }
-        case 9u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_9 = filter_presets_UNREAL;
-            return filter_deferred_kernelconvention_9;
-        }
-        case 10u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_10 = filter_presets_BABYLON;
-            return filter_deferred_kernelconvention_10;
-        }
-        default: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_11 = filter_presets_THREE_JS;
-            return filter_deferred_kernelconvention_11;
-        }
-    }
 }
 
 float2 footprint_slope_slope_from_sphere(float3 h_18)

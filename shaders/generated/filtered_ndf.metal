@@ -50,6 +50,14 @@ struct ndf_roughness_matrix_RoughnessMatrix {
     float tau;
     char _pad7[4];
 };
+struct ndf_roughness_isotropic_Isotropic {
+    float alpha;
+    float inv_alpha_sq;
+};
+struct ndf_roughness_axis_aligned_AxisAligned {
+    metal::float2 alpha;
+    metal::float2 inv_alpha_sq;
+};
 struct kernel_rect_BoundingRect {
     metal::float2 half_extent;
 };
@@ -61,13 +69,9 @@ struct kernel_clamp_ClampRules {
     bool det_clamp;
     char _pad5[3];
 };
-struct ndf_roughness_isotropic_Isotropic {
-    float alpha;
-    float inv_alpha_sq;
-};
-struct ndf_roughness_axis_aligned_AxisAligned {
-    metal::float2 alpha;
-    metal::float2 inv_alpha_sq;
+struct filter_gaussian_Gaussian {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
 };
 struct filter_gaussian_ggx_GaussianFilteredGgx {
     ndf_roughness_matrix_RoughnessMatrix a;
@@ -78,32 +82,28 @@ struct filter_gaussian_ggx_GaussianFilteredGgx {
     kernel_covariance_Covariance k;
     char _pad6[4];
 };
+struct filter_gaussian_ggx_ExactGaussian {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
+};
 struct filter_lean_LeanMoments {
     metal::float2 mean;
     char _pad1[8];
     metal::float3 second;
 };
-struct filter_method_Gaussian {
+struct filter_projected_Projected {
     kernel_clamp_ClampRules clamps;
     float sigma;
 };
-struct filter_method_ExactGaussian {
-    kernel_clamp_ClampRules clamps;
-    float sigma;
-};
-struct filter_method_Projected {
-    kernel_clamp_ClampRules clamps;
-    float sigma;
-};
-struct filter_method_Rect {
+struct filter_proxy_Proxy {
     kernel_clamp_ClampRules clamps;
 };
-struct filter_method_RectFilteredGgx {
+struct filter_rect_lobe_Rect {
+    kernel_clamp_ClampRules clamps;
+};
+struct filter_rect_lobe_RectFilteredGgx {
     ndf_roughness_axis_aligned_AxisAligned roughness;
     metal::float2 half_extent;
-};
-struct filter_method_Proxy {
-    kernel_clamp_ClampRules clamps;
 };
 struct sampling_Warp {
     float l_xx;
@@ -142,6 +142,8 @@ constant uint filter_deferred_COMBINE_MAX = 1u;
 constant uint filter_deferred_BANDWIDTH_MAX = 0u;
 constant uint filter_deferred_BANDWIDTH_TRACE = 1u;
 constant uint filter_deferred_BANDWIDTH_AVERAGE = 2u;
+constant float ndf_beckmann_EXP_SPLIT = 80.0;
+constant float ndf_beckmann_SQRT_PI = 1.7724539;
 constant uint kernel_clamp_FLOOR_NONE = 0u;
 constant uint kernel_clamp_FLOOR_CONSTANT = 1u;
 constant uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
@@ -149,8 +151,8 @@ constant kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_Clamp
 constant kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true};
 constant kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules {340282350000000000000000000000000000000.0, 0u, 0.0, 340282350000000000000000000000000000000.0, false};
 constant kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true};
-constant float ndf_beckmann_EXP_SPLIT = 80.0;
-constant float ndf_beckmann_SQRT_PI = 1.7724539;
+constant filter_gaussian_Gaussian filter_gaussian_TK19_GAUSSIAN = filter_gaussian_Gaussian {kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true}, 0.5};
+constant filter_gaussian_Gaussian filter_gaussian_KHPL16_GAUSSIAN = filter_gaussian_Gaussian {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}, 0.5};
 constant float filter_gaussian_ggx_quad_FAR = 320000.0;
 constant float filter_gaussian_ggx_quad_H = 0.5;
 constant float filter_gaussian_ggx_quad_EXP_H = 1.6487212;
@@ -165,18 +167,7 @@ constant float filter_gaussian_ggx_quad_S_MAX = 0.25;
 constant float filter_gaussian_ggx_quad_S_COEF = 0.25;
 constant float filter_gaussian_ggx_quad_S_EPS = 0.00000001;
 constant uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
-constant float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
-constant float filter_rect_BIG = 1000000000000000000.0;
-constant float filter_rect_FAR2_ = 0.25;
-constant uint filter_rect_TIER_CLOSED = 0u;
-constant float filter_rect_lambda_BIG_K = 1000000000000.0;
-constant filter_method_Gaussian filter_method_TK19_GAUSSIAN = filter_method_Gaussian {kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true}, 0.5};
-constant filter_method_Gaussian filter_method_KHPL16_GAUSSIAN = filter_method_Gaussian {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}, 0.5};
-constant filter_method_ExactGaussian filter_method_KHPL16_EXACT_GAUSSIAN = filter_method_ExactGaussian {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}, 0.5};
-constant filter_method_Projected filter_method_TK21_PROJECTED = filter_method_Projected {kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true}, 0.5};
-constant filter_method_Rect filter_method_KHPL16_RECT = filter_method_Rect {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}};
-constant filter_method_Rect filter_method_GDC2016_RECT = filter_method_Rect {kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true}};
-constant filter_method_Proxy filter_method_KHPL16_PROXY = filter_method_Proxy {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}};
+constant filter_gaussian_ggx_ExactGaussian filter_gaussian_ggx_KHPL16_EXACT_GAUSSIAN = filter_gaussian_ggx_ExactGaussian {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}, 0.5};
 constant filter_deferred_KernelConvention filter_presets_TK19_TRACE = filter_deferred_KernelConvention {0u, 0u, 0.5, 1.0, 0.0, 0.18, 0u, true, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_TK19_AVERAGE = filter_deferred_KernelConvention {0u, 0u, 0.25, 1.0, 0.0, 0.18, 0u, true, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_TK19_MAX = filter_deferred_KernelConvention {0u, 2u, 0.5, 1.0, 0.0, 0.18, 0u, true, {}, 0.0};
@@ -189,6 +180,15 @@ constant filter_deferred_KernelConvention filter_presets_O3DE = filter_deferred_
 constant filter_deferred_KernelConvention filter_presets_UNREAL = filter_deferred_KernelConvention {2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_BABYLON = filter_deferred_KernelConvention {2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_THREE_JS = filter_deferred_KernelConvention {2u, 3u, 1.0, 1.0, 0.0, 340282350000000000000000000000000000000.0, 0u, true, {}, 0.0525};
+constant float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
+constant filter_projected_Projected filter_projected_TK21_PROJECTED = filter_projected_Projected {kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true}, 0.5};
+constant filter_proxy_Proxy filter_proxy_KHPL16_PROXY = filter_proxy_Proxy {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}};
+constant float filter_rect_BIG = 1000000000000000000.0;
+constant float filter_rect_FAR2_ = 0.25;
+constant uint filter_rect_TIER_CLOSED = 0u;
+constant float filter_rect_lambda_BIG_K = 1000000000000.0;
+constant filter_rect_lobe_Rect filter_rect_lobe_KHPL16_RECT = filter_rect_lobe_Rect {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}};
+constant filter_rect_lobe_Rect filter_rect_lobe_GDC2016_RECT = filter_rect_lobe_Rect {kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true}};
 constant float sampling_ONE_MINUS_EPS = 0.99999994;
 constant float sampling_beckmann_X_MAX = 9.0;
 constant uint sampling_beckmann_MAX_ITERATIONS = 64u;
@@ -921,138 +921,6 @@ float ndf_roughness_matrix_own_det_clamp(
     return (r_11.tau > r_11.det) ? r_11.tau : 0.0;
 }
 
-kernel_rect_BoundingRect kernel_rect_from_footprint(
-    footprint_Footprint fp_2
-) {
-    return kernel_rect_BoundingRect {(metal::abs(fp_2.dh_u) + metal::abs(fp_2.dh_v)) * 0.5};
-}
-
-kernel_covariance_Covariance kernel_rect_covariance(
-    kernel_rect_BoundingRect r_12,
-    float sigma_2
-) {
-    metal::float2 w_24 = r_12.half_extent * (2.0 * sigma_2);
-    metal::float2 v_14 = w_24 * w_24;
-    return kernel_covariance_Covariance {v_14.x, 0.0, v_14.y, v_14.x * v_14.y};
-}
-
-footprint_Footprint kernel_clamp_footprint(
-    kernel_clamp_ClampRules rules,
-    footprint_Footprint fp_3
-) {
-    float l_6 = metal::max(rules.max_extent, 0.0);
-    float scale_1 = metal::max(metal::max(metal::abs(fp_3.dh_u.x), metal::abs(fp_3.dh_u.y)), metal::max(metal::abs(fp_3.dh_v.x), metal::abs(fp_3.dh_v.y)));
-    if (scale_1 <= 0.0) {
-        return fp_3;
-    }
-    footprint_Footprint unit = footprint_Footprint {fp_3.dh_u / metal::float2(scale_1), fp_3.dh_v / metal::float2(scale_1)};
-    float _e29 = footprint_max_extent(unit);
-    if ((_e29 * scale_1) <= l_6) {
-        return fp_3;
-    }
-    return footprint_Footprint {(unit.dh_u / metal::float2(_e29)) * l_6, (unit.dh_v / metal::float2(_e29)) * l_6};
-}
-
-kernel_rect_BoundingRect kernel_clamp_rect(
-    kernel_clamp_ClampRules rules_1,
-    kernel_rect_BoundingRect r_13,
-    metal::float2 alpha_6
-) {
-    metal::float2 f_1 = metal::float2(0.0);
-    if (rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT) {
-        f_1 = metal::float2(rules_1.floor);
-    } else {
-        if (rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED) {
-            f_1 = metal::min(metal::abs(alpha_6), metal::float2(rules_1.floor));
-        }
-    }
-    float lambda_2 = metal::max(rules_1.max_extent, 0.0);
-    metal::float2 h_25 = metal::min(metal::abs(r_13.half_extent), metal::float2(lambda_2));
-    metal::float2 _e25 = f_1;
-    return kernel_rect_BoundingRect {metal::max(h_25, metal::max(_e25, metal::float2(0.0)))};
-}
-
-kernel_covariance_Covariance kernel_clamp_kernel(
-    kernel_clamp_ClampRules rules_2,
-    kernel_covariance_Covariance k_3
-) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_3);
-    if (rules_2.kappa >= math_F32_MAX) {
-        return _e2;
-    }
-    kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, 0.5 * metal::max(rules_2.kappa, 0.0));
-    return _e11;
-}
-
-float kernel_clamp_det_clamp_for(
-    kernel_clamp_ClampRules rules_3,
-    ndf_roughness_matrix_RoughnessMatrix a_2
-) {
-    float _e2 = ndf_roughness_matrix_own_det_clamp(a_2);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_2);
-    return rules_3.det_clamp ? _e3 : _e2;
-}
-
-kernel_covariance_Covariance kernel_clamp_pixel_kernel(
-    kernel_clamp_ClampRules rules_4,
-    footprint_Footprint fp_4,
-    float sigma_3
-) {
-    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
-    kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_3);
-    kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
-    return _e5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(
-    ndf_roughness_matrix_RoughnessMatrix a_3,
-    kernel_covariance_Covariance k_4,
-    float tau_3
-) {
-    metal::float3 _e3 = ndf_roughness_matrix_entries(a_3);
-    float c_17 = a_3.axis.x;
-    float s_24 = a_3.axis.y;
-    float k1_1 = metal::max((((c_17 * c_17) * k_4.s_xx) + (((2.0 * c_17) * s_24) * k_4.s_xy)) + ((s_24 * s_24) * k_4.s_yy), 0.0);
-    float k2_1 = metal::max((((s_24 * s_24) * k_4.s_xx) - (((2.0 * c_17) * s_24) * k_4.s_xy)) + ((c_17 * c_17) * k_4.s_yy), 0.0);
-    float _e38 = ndf_roughness_matrix_determinant(a_3);
-    float det_4 = (_e38 + (2.0 * ((a_3.eig.y * k1_1) + (a_3.eig.x * k2_1)))) + (4.0 * metal::max(k_4.det, 0.0));
-    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det(_e3.x + (2.0 * k_4.s_xx), _e3.y + (2.0 * k_4.s_xy), _e3.z + (2.0 * k_4.s_yy), det_4, metal::max(tau_3, 0.0));
-    return _e72;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(
-    ndf_roughness_matrix_RoughnessMatrix a_4,
-    kernel_covariance_Covariance kernel_2
-) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_4);
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e2, _e3);
-    return _e4;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(
-    ndf_roughness_matrix_RoughnessMatrix a_5,
-    kernel_covariance_Covariance kernel_3,
-    float det_clamp_1
-) {
-    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
-    float _e4 = ndf_roughness_matrix_own_det_clamp(a_5);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_5, _e3, metal::max(det_clamp_1, _e4));
-    return _e6;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(
-    kernel_clamp_ClampRules rules_5,
-    ndf_roughness_matrix_RoughnessMatrix a_6,
-    footprint_Footprint fp_5,
-    float sigma_4
-) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
-    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_6);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_6, _e4, _e5);
-    return _e6;
-}
-
 float ndf_g1_of(
     float lambda_w,
     float w_dot_m
@@ -1077,74 +945,74 @@ float ndf_g2_of(
 }
 
 ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(
-    float alpha_7
+    float alpha_6
 ) {
-    float _e1 = ndf_roughness_clamp_alpha(alpha_7);
+    float _e1 = ndf_roughness_clamp_alpha(alpha_6);
     return ndf_roughness_isotropic_Isotropic {_e1, 1.0 / (_e1 * _e1)};
 }
 
 float ndf_roughness_isotropic_inv_quadratic(
-    ndf_roughness_isotropic_Isotropic r_14,
+    ndf_roughness_isotropic_Isotropic r_12,
     metal::float2 s_1
 ) {
-    return metal::dot(s_1, s_1) * r_14.inv_alpha_sq;
+    return metal::dot(s_1, s_1) * r_12.inv_alpha_sq;
 }
 
 float ndf_roughness_isotropic_quadratic(
-    ndf_roughness_isotropic_Isotropic r_15,
+    ndf_roughness_isotropic_Isotropic r_13,
     metal::float2 w_1
 ) {
-    metal::float2 s_25 = w_1 * r_15.alpha;
-    return metal::dot(s_25, s_25);
+    metal::float2 s_24 = w_1 * r_13.alpha;
+    return metal::dot(s_24, s_24);
 }
 
 float ndf_roughness_isotropic_sqrt_det(
-    ndf_roughness_isotropic_Isotropic r_16
+    ndf_roughness_isotropic_Isotropic r_14
 ) {
-    return r_16.alpha * r_16.alpha;
+    return r_14.alpha * r_14.alpha;
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(
-    ndf_roughness_isotropic_Isotropic r_17
+    ndf_roughness_isotropic_Isotropic r_15
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), metal::float2(r_17.alpha));
+    ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), metal::float2(r_15.alpha));
     return _e6;
 }
 
 ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(
-    metal::float2 alpha_8
+    metal::float2 alpha_7
 ) {
-    float _e2 = ndf_roughness_clamp_alpha(alpha_8.x);
-    float _e4 = ndf_roughness_clamp_alpha(alpha_8.y);
+    float _e2 = ndf_roughness_clamp_alpha(alpha_7.x);
+    float _e4 = ndf_roughness_clamp_alpha(alpha_7.y);
     metal::float2 a_20 = metal::float2(_e2, _e4);
     return ndf_roughness_axis_aligned_AxisAligned {a_20, metal::float2(1.0) / (a_20 * a_20)};
 }
 
 float ndf_roughness_axis_aligned_inv_quadratic(
-    ndf_roughness_axis_aligned_AxisAligned r_18,
+    ndf_roughness_axis_aligned_AxisAligned r_16,
     metal::float2 s_2
 ) {
-    return metal::dot(s_2 * s_2, r_18.inv_alpha_sq);
+    return metal::dot(s_2 * s_2, r_16.inv_alpha_sq);
 }
 
 float ndf_roughness_axis_aligned_quadratic(
-    ndf_roughness_axis_aligned_AxisAligned r_19,
+    ndf_roughness_axis_aligned_AxisAligned r_17,
     metal::float2 w_2
 ) {
-    metal::float2 s_26 = w_2 * r_19.alpha;
-    return metal::dot(s_26, s_26);
+    metal::float2 s_25 = w_2 * r_17.alpha;
+    return metal::dot(s_25, s_25);
 }
 
 float ndf_roughness_axis_aligned_sqrt_det(
-    ndf_roughness_axis_aligned_AxisAligned r_20
+    ndf_roughness_axis_aligned_AxisAligned r_18
 ) {
-    return r_20.alpha.x * r_20.alpha.y;
+    return r_18.alpha.x * r_18.alpha.y;
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(
-    ndf_roughness_axis_aligned_AxisAligned r_21
+    ndf_roughness_axis_aligned_AxisAligned r_19
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), r_21.alpha);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(metal::float2(1.0, 0.0), r_19.alpha);
     return _e5;
 }
 
@@ -1163,14 +1031,14 @@ float ndf_ggx_d_of(
 ) {
     bool local_4 = {};
     float t_13 = q_xy + (m_z * m_z);
-    float v_15 = 1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13);
+    float v_14 = 1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13);
     if (m_z > 0.0) {
-        local_4 = v_15 <= math_F32_MAX;
+        local_4 = v_14 <= math_F32_MAX;
     } else {
         local_4 = false;
     }
     bool _e18 = local_4;
-    return _e18 ? v_15 : 0.0;
+    return _e18 ? v_14 : 0.0;
 }
 
 float ndf_ggx_lambda_of(
@@ -1202,164 +1070,164 @@ float ndf_ggx_lambda_of(
 }
 
 float ndf_ggx_p22_isotropic(
-    ndf_roughness_isotropic_Isotropic r_22,
+    ndf_roughness_isotropic_Isotropic r_20,
     metal::float2 s_3
 ) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_22, s_3);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_22);
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_20, s_3);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_20);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_ggx_d_isotropic(
-    ndf_roughness_isotropic_Isotropic r_23,
+    ndf_roughness_isotropic_Isotropic r_21,
     metal::float3 m
 ) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_23, m.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_23);
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_21, m.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_21);
     float _e6 = ndf_ggx_d_of(_e3, m.z, _e5);
     return _e6;
 }
 
 float ndf_ggx_lambda_isotropic(
-    ndf_roughness_isotropic_Isotropic r_24,
+    ndf_roughness_isotropic_Isotropic r_22,
     metal::float3 w_3
 ) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_24, w_3.xy);
+    float _e3 = ndf_roughness_isotropic_quadratic(r_22, w_3.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_3.z));
     return _e6;
 }
 
 float ndf_ggx_g1_isotropic(
-    ndf_roughness_isotropic_Isotropic r_25,
+    ndf_roughness_isotropic_Isotropic r_23,
     metal::float3 w_4,
     metal::float3 m_1
 ) {
-    float _e3 = ndf_ggx_lambda_isotropic(r_25, w_4);
+    float _e3 = ndf_ggx_lambda_isotropic(r_23, w_4);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_4, m_1));
     return _e5;
 }
 
 float ndf_ggx_g2_isotropic(
-    ndf_roughness_isotropic_Isotropic r_26,
+    ndf_roughness_isotropic_Isotropic r_24,
     metal::float3 i,
     metal::float3 o,
     metal::float3 m_2
 ) {
-    float _e4 = ndf_ggx_lambda_isotropic(r_26, i);
-    float _e5 = ndf_ggx_lambda_isotropic(r_26, o);
+    float _e4 = ndf_ggx_lambda_isotropic(r_24, i);
+    float _e5 = ndf_ggx_lambda_isotropic(r_24, o);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i, m_2), metal::dot(o, m_2));
     return _e8;
 }
 
 float ndf_ggx_p22_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_27,
+    ndf_roughness_axis_aligned_AxisAligned r_25,
     metal::float2 s_4
 ) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_27, s_4);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_27);
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_25, s_4);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_25);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_ggx_d_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_28,
+    ndf_roughness_axis_aligned_AxisAligned r_26,
     metal::float3 m_3
 ) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_28, m_3.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_28);
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_26, m_3.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_26);
     float _e6 = ndf_ggx_d_of(_e3, m_3.z, _e5);
     return _e6;
 }
 
 float ndf_ggx_lambda_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_29,
+    ndf_roughness_axis_aligned_AxisAligned r_27,
     metal::float3 w_5
 ) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_29, w_5.xy);
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_27, w_5.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_5.z));
     return _e6;
 }
 
 float ndf_ggx_g1_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_30,
+    ndf_roughness_axis_aligned_AxisAligned r_28,
     metal::float3 w_6,
     metal::float3 m_4
 ) {
-    float _e3 = ndf_ggx_lambda_axis_aligned(r_30, w_6);
+    float _e3 = ndf_ggx_lambda_axis_aligned(r_28, w_6);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_6, m_4));
     return _e5;
 }
 
 float ndf_ggx_g2_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_31,
+    ndf_roughness_axis_aligned_AxisAligned r_29,
     metal::float3 i_1,
     metal::float3 o_1,
     metal::float3 m_5
 ) {
-    float _e4 = ndf_ggx_lambda_axis_aligned(r_31, i_1);
-    float _e5 = ndf_ggx_lambda_axis_aligned(r_31, o_1);
+    float _e4 = ndf_ggx_lambda_axis_aligned(r_29, i_1);
+    float _e5 = ndf_ggx_lambda_axis_aligned(r_29, o_1);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_1, m_5), metal::dot(o_1, m_5));
     return _e8;
 }
 
 float ndf_ggx_p22_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_32,
+    ndf_roughness_matrix_RoughnessMatrix r_30,
     metal::float2 s_5
 ) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_32, s_5);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_32);
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_30, s_5);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_30);
     float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_ggx_d_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_33,
+    ndf_roughness_matrix_RoughnessMatrix r_31,
     metal::float3 m_6
 ) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_33, m_6.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_33);
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_31, m_6.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_31);
     float _e6 = ndf_ggx_d_of(_e3, m_6.z, _e5);
     return _e6;
 }
 
 float ndf_ggx_lambda_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_34,
+    ndf_roughness_matrix_RoughnessMatrix r_32,
     metal::float3 w_7
 ) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_34, w_7.xy);
+    float _e3 = ndf_roughness_matrix_quadratic(r_32, w_7.xy);
     float _e6 = ndf_ggx_lambda_of(_e3, metal::abs(w_7.z));
     return _e6;
 }
 
 float ndf_ggx_g1_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_35,
+    ndf_roughness_matrix_RoughnessMatrix r_33,
     metal::float3 w_8,
     metal::float3 m_7
 ) {
-    float _e3 = ndf_ggx_lambda_matrix(r_35, w_8);
+    float _e3 = ndf_ggx_lambda_matrix(r_33, w_8);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_8, m_7));
     return _e5;
 }
 
 float ndf_ggx_g2_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_36,
+    ndf_roughness_matrix_RoughnessMatrix r_34,
     metal::float3 i_2,
     metal::float3 o_2,
     metal::float3 m_8
 ) {
-    float _e4 = ndf_ggx_lambda_matrix(r_36, i_2);
-    float _e5 = ndf_ggx_lambda_matrix(r_36, o_2);
+    float _e4 = ndf_ggx_lambda_matrix(r_34, i_2);
+    float _e5 = ndf_ggx_lambda_matrix(r_34, o_2);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_2, m_8), metal::dot(o_2, m_8));
     return _e8;
 }
 
 float ndf_beckmann_exp_neg_times(
     float x_5,
-    float k_5,
+    float k_3,
     float ln_k
 ) {
-    return (x_5 > ndf_beckmann_EXP_SPLIT) ? metal::exp(ln_k - x_5) : (metal::exp(-(x_5)) * k_5);
+    return (x_5 > ndf_beckmann_EXP_SPLIT) ? metal::exp(ln_k - x_5) : (metal::exp(-(x_5)) * k_3);
 }
 
 float ndf_beckmann_p22_of(
@@ -1455,156 +1323,319 @@ float ndf_beckmann_lambda_of(
 }
 
 float ndf_beckmann_p22_isotropic(
-    ndf_roughness_isotropic_Isotropic r_37,
+    ndf_roughness_isotropic_Isotropic r_35,
     metal::float2 s_6
 ) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_6);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_35, s_6);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_35);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_beckmann_d_isotropic(
-    ndf_roughness_isotropic_Isotropic r_38,
+    ndf_roughness_isotropic_Isotropic r_36,
     metal::float3 m_9
 ) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_9.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_36, m_9.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_36);
     float _e6 = ndf_beckmann_d_of(_e3, m_9.z, _e5);
     return _e6;
 }
 
 float ndf_beckmann_lambda_isotropic(
-    ndf_roughness_isotropic_Isotropic r_39,
+    ndf_roughness_isotropic_Isotropic r_37,
     metal::float3 w_9
 ) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
+    float _e3 = ndf_roughness_isotropic_quadratic(r_37, w_9.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_9.z));
     return _e6;
 }
 
 float ndf_beckmann_g1_isotropic(
-    ndf_roughness_isotropic_Isotropic r_40,
+    ndf_roughness_isotropic_Isotropic r_38,
     metal::float3 w_10,
     metal::float3 m_10
 ) {
-    float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
+    float _e3 = ndf_beckmann_lambda_isotropic(r_38, w_10);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_10, m_10));
     return _e5;
 }
 
 float ndf_beckmann_g2_isotropic(
-    ndf_roughness_isotropic_Isotropic r_41,
+    ndf_roughness_isotropic_Isotropic r_39,
     metal::float3 i_3,
     metal::float3 o_3,
     metal::float3 m_11
 ) {
-    float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_3);
-    float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
+    float _e4 = ndf_beckmann_lambda_isotropic(r_39, i_3);
+    float _e5 = ndf_beckmann_lambda_isotropic(r_39, o_3);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_3, m_11), metal::dot(o_3, m_11));
     return _e8;
 }
 
 float ndf_beckmann_p22_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_42,
+    ndf_roughness_axis_aligned_AxisAligned r_40,
     metal::float2 s_7
 ) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_7);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_40, s_7);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_40);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_beckmann_d_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_43,
+    ndf_roughness_axis_aligned_AxisAligned r_41,
     metal::float3 m_12
 ) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_12.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_41, m_12.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_41);
     float _e6 = ndf_beckmann_d_of(_e3, m_12.z, _e5);
     return _e6;
 }
 
 float ndf_beckmann_lambda_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_44,
+    ndf_roughness_axis_aligned_AxisAligned r_42,
     metal::float3 w_11
 ) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_42, w_11.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_11.z));
     return _e6;
 }
 
 float ndf_beckmann_g1_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_45,
+    ndf_roughness_axis_aligned_AxisAligned r_43,
     metal::float3 w_12,
     metal::float3 m_13
 ) {
-    float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
+    float _e3 = ndf_beckmann_lambda_axis_aligned(r_43, w_12);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_12, m_13));
     return _e5;
 }
 
 float ndf_beckmann_g2_axis_aligned(
-    ndf_roughness_axis_aligned_AxisAligned r_46,
+    ndf_roughness_axis_aligned_AxisAligned r_44,
     metal::float3 i_4,
     metal::float3 o_4,
     metal::float3 m_14
 ) {
-    float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_4);
-    float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
+    float _e4 = ndf_beckmann_lambda_axis_aligned(r_44, i_4);
+    float _e5 = ndf_beckmann_lambda_axis_aligned(r_44, o_4);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_4, m_14), metal::dot(o_4, m_14));
     return _e8;
 }
 
 float ndf_beckmann_p22_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_47,
+    ndf_roughness_matrix_RoughnessMatrix r_45,
     metal::float2 s_8
 ) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_8);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_45, s_8);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_45);
     float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
 float ndf_beckmann_d_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_48,
+    ndf_roughness_matrix_RoughnessMatrix r_46,
     metal::float3 m_15
 ) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_15.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_46, m_15.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_46);
     float _e6 = ndf_beckmann_d_of(_e3, m_15.z, _e5);
     return _e6;
 }
 
 float ndf_beckmann_lambda_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_49,
+    ndf_roughness_matrix_RoughnessMatrix r_47,
     metal::float3 w_13
 ) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
+    float _e3 = ndf_roughness_matrix_quadratic(r_47, w_13.xy);
     float _e6 = ndf_beckmann_lambda_of(_e3, metal::abs(w_13.z));
     return _e6;
 }
 
 float ndf_beckmann_g1_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_50,
+    ndf_roughness_matrix_RoughnessMatrix r_48,
     metal::float3 w_14,
     metal::float3 m_16
 ) {
-    float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
+    float _e3 = ndf_beckmann_lambda_matrix(r_48, w_14);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_14, m_16));
     return _e5;
 }
 
 float ndf_beckmann_g2_matrix(
-    ndf_roughness_matrix_RoughnessMatrix r_51,
+    ndf_roughness_matrix_RoughnessMatrix r_49,
     metal::float3 i_5,
     metal::float3 o_5,
     metal::float3 m_17
 ) {
-    float _e4 = ndf_beckmann_lambda_matrix(r_51, i_5);
-    float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
+    float _e4 = ndf_beckmann_lambda_matrix(r_49, i_5);
+    float _e5 = ndf_beckmann_lambda_matrix(r_49, o_5);
     float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_5, m_17), metal::dot(o_5, m_17));
     return _e8;
+}
+
+kernel_rect_BoundingRect kernel_rect_from_footprint(
+    footprint_Footprint fp_2
+) {
+    return kernel_rect_BoundingRect {(metal::abs(fp_2.dh_u) + metal::abs(fp_2.dh_v)) * 0.5};
+}
+
+kernel_covariance_Covariance kernel_rect_covariance(
+    kernel_rect_BoundingRect r_50,
+    float sigma_2
+) {
+    metal::float2 w_24 = r_50.half_extent * (2.0 * sigma_2);
+    metal::float2 v_15 = w_24 * w_24;
+    return kernel_covariance_Covariance {v_15.x, 0.0, v_15.y, v_15.x * v_15.y};
+}
+
+footprint_Footprint kernel_clamp_footprint(
+    kernel_clamp_ClampRules rules,
+    footprint_Footprint fp_3
+) {
+    float l_6 = metal::max(rules.max_extent, 0.0);
+    float scale_1 = metal::max(metal::max(metal::abs(fp_3.dh_u.x), metal::abs(fp_3.dh_u.y)), metal::max(metal::abs(fp_3.dh_v.x), metal::abs(fp_3.dh_v.y)));
+    if (scale_1 <= 0.0) {
+        return fp_3;
+    }
+    footprint_Footprint unit = footprint_Footprint {fp_3.dh_u / metal::float2(scale_1), fp_3.dh_v / metal::float2(scale_1)};
+    float _e29 = footprint_max_extent(unit);
+    if ((_e29 * scale_1) <= l_6) {
+        return fp_3;
+    }
+    return footprint_Footprint {(unit.dh_u / metal::float2(_e29)) * l_6, (unit.dh_v / metal::float2(_e29)) * l_6};
+}
+
+kernel_rect_BoundingRect kernel_clamp_rect(
+    kernel_clamp_ClampRules rules_1,
+    kernel_rect_BoundingRect r_51,
+    metal::float2 alpha_8
+) {
+    metal::float2 f_1 = metal::float2(0.0);
+    if (rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT) {
+        f_1 = metal::float2(rules_1.floor);
+    } else {
+        if (rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED) {
+            f_1 = metal::min(metal::abs(alpha_8), metal::float2(rules_1.floor));
+        }
+    }
+    float lambda_2 = metal::max(rules_1.max_extent, 0.0);
+    metal::float2 h_25 = metal::min(metal::abs(r_51.half_extent), metal::float2(lambda_2));
+    metal::float2 _e25 = f_1;
+    return kernel_rect_BoundingRect {metal::max(h_25, metal::max(_e25, metal::float2(0.0)))};
+}
+
+kernel_covariance_Covariance kernel_clamp_kernel(
+    kernel_clamp_ClampRules rules_2,
+    kernel_covariance_Covariance k_4
+) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_4);
+    if (rules_2.kappa >= math_F32_MAX) {
+        return _e2;
+    }
+    kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, 0.5 * metal::max(rules_2.kappa, 0.0));
+    return _e11;
+}
+
+float kernel_clamp_det_clamp_for(
+    kernel_clamp_ClampRules rules_3,
+    ndf_roughness_matrix_RoughnessMatrix a_2
+) {
+    float _e2 = ndf_roughness_matrix_own_det_clamp(a_2);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_2);
+    return rules_3.det_clamp ? _e3 : _e2;
+}
+
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(
+    kernel_clamp_ClampRules rules_4,
+    footprint_Footprint fp_4,
+    float sigma_3
+) {
+    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
+    kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_3);
+    kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
+    return _e5;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(
+    ndf_roughness_matrix_RoughnessMatrix a_3,
+    kernel_covariance_Covariance k_5,
+    float tau_3
+) {
+    metal::float3 _e3 = ndf_roughness_matrix_entries(a_3);
+    float c_17 = a_3.axis.x;
+    float s_26 = a_3.axis.y;
+    float k1_1 = metal::max((((c_17 * c_17) * k_5.s_xx) + (((2.0 * c_17) * s_26) * k_5.s_xy)) + ((s_26 * s_26) * k_5.s_yy), 0.0);
+    float k2_1 = metal::max((((s_26 * s_26) * k_5.s_xx) - (((2.0 * c_17) * s_26) * k_5.s_xy)) + ((c_17 * c_17) * k_5.s_yy), 0.0);
+    float _e38 = ndf_roughness_matrix_determinant(a_3);
+    float det_4 = (_e38 + (2.0 * ((a_3.eig.y * k1_1) + (a_3.eig.x * k2_1)))) + (4.0 * metal::max(k_5.det, 0.0));
+    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det(_e3.x + (2.0 * k_5.s_xx), _e3.y + (2.0 * k_5.s_xy), _e3.z + (2.0 * k_5.s_yy), det_4, metal::max(tau_3, 0.0));
+    return _e72;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(
+    ndf_roughness_matrix_RoughnessMatrix a_4,
+    kernel_covariance_Covariance kernel_2
+) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_4);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e2, _e3);
+    return _e4;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(
+    ndf_roughness_matrix_RoughnessMatrix a_5,
+    kernel_covariance_Covariance kernel_3,
+    float det_clamp_1
+) {
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
+    float _e4 = ndf_roughness_matrix_own_det_clamp(a_5);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_5, _e3, metal::max(det_clamp_1, _e4));
+    return _e6;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(
+    kernel_clamp_ClampRules rules_5,
+    ndf_roughness_matrix_RoughnessMatrix a_6,
+    footprint_Footprint fp_5,
+    float sigma_4
+) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
+    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_6);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_6, _e4, _e5);
+    return _e6;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_lobe(
+    filter_gaussian_Gaussian method,
+    ndf_roughness_matrix_RoughnessMatrix material,
+    footprint_Footprint fp_6
+) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_filter_gaussian(method.clamps, material, fp_6, method.sigma);
+    return _e5;
+}
+
+float filter_gaussian_d_ggx_gaussian(
+    filter_gaussian_Gaussian method_1,
+    ndf_roughness_matrix_RoughnessMatrix material_1,
+    footprint_Footprint fp_7,
+    metal::float3 m_18
+) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_1, material_1, fp_7);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_18);
+    return _e5;
+}
+
+float filter_gaussian_d_beckmann_gaussian(
+    filter_gaussian_Gaussian method_2,
+    ndf_roughness_matrix_RoughnessMatrix material_2,
+    footprint_Footprint fp_8,
+    metal::float3 m_19
+) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_2, material_2, fp_8);
+    float _e5 = ndf_beckmann_d_matrix(_e4, m_19);
+    return _e5;
 }
 
 float filter_gaussian_ggx_quad_laguerre_node(
@@ -2204,13 +2235,13 @@ float filter_gaussian_ggx_p22_(
 
 float filter_gaussian_ggx_d(
     filter_gaussian_ggx_GaussianFilteredGgx g_2,
-    metal::float3 m_18
+    metal::float3 m_20
 ) {
-    if (!((m_18.z > 0.0))) {
+    if (!((m_20.z > 0.0))) {
         return 0.0;
     }
-    metal::float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_18.xy);
-    float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, m_18.z * m_18.z, g_2.tl.x, g_2.tl.y);
+    metal::float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_20.xy);
+    float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, m_20.z * m_20.z, g_2.tl.x, g_2.tl.y);
     float v_16 = g_2.norm * _e19;
     return (v_16 <= math_F32_MAX) ? v_16 : 0.0;
 }
@@ -2247,10 +2278,10 @@ float filter_gaussian_ggx_lambda(
 float filter_gaussian_ggx_g1_(
     filter_gaussian_ggx_GaussianFilteredGgx g_4,
     metal::float3 w_16,
-    metal::float3 m_19
+    metal::float3 m_21
 ) {
     float _e3 = filter_gaussian_ggx_lambda(g_4, w_16);
-    float _e5 = ndf_g1_of(_e3, metal::dot(w_16, m_19));
+    float _e5 = ndf_g1_of(_e3, metal::dot(w_16, m_21));
     return _e5;
 }
 
@@ -2258,18 +2289,39 @@ float filter_gaussian_ggx_g2_(
     filter_gaussian_ggx_GaussianFilteredGgx g_5,
     metal::float3 i_6,
     metal::float3 o_6,
-    metal::float3 m_20
+    metal::float3 m_22
 ) {
     float _e4 = filter_gaussian_ggx_lambda(g_5, i_6);
     float _e5 = filter_gaussian_ggx_lambda(g_5, o_6);
-    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_6, m_20), metal::dot(o_6, m_20));
+    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_6, m_22), metal::dot(o_6, m_22));
     return _e8;
 }
 
-kernel_covariance_Covariance filter_lean_covariance(
-    filter_lean_LeanMoments m_21
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_exact_gaussian_lobe(
+    filter_gaussian_ggx_ExactGaussian method_3,
+    ndf_roughness_matrix_RoughnessMatrix material_3,
+    footprint_Footprint fp_9
 ) {
-    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries(m_21.second.x - (m_21.mean.x * m_21.mean.x), m_21.second.y - (m_21.mean.x * m_21.mean.y), m_21.second.z - (m_21.mean.y * m_21.mean.y));
+    kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_9, method_3.sigma);
+    filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
+    return _e6;
+}
+
+float filter_gaussian_ggx_d_ggx_exact_gaussian(
+    filter_gaussian_ggx_ExactGaussian method_4,
+    ndf_roughness_matrix_RoughnessMatrix material_4,
+    footprint_Footprint fp_10,
+    metal::float3 m_23
+) {
+    filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_gaussian_ggx_exact_gaussian_lobe(method_4, material_4, fp_10);
+    float _e5 = filter_gaussian_ggx_d(_e4, m_23);
+    return _e5;
+}
+
+kernel_covariance_Covariance filter_lean_covariance(
+    filter_lean_LeanMoments m_24
+) {
+    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries(m_24.second.x - (m_24.mean.x * m_24.mean.x), m_24.second.y - (m_24.mean.x * m_24.mean.y), m_24.second.z - (m_24.mean.y * m_24.mean.y));
     kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
     return _e26;
 }
@@ -2284,6 +2336,49 @@ ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(
     kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
     ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_8, _e5);
     return _e6;
+}
+
+filter_deferred_KernelConvention filter_presets_preset(
+    uint i_7
+) {
+    switch(i_7) {
+        case 0u: {
+            return filter_presets_TK19_MAX;
+        }
+        case 1u: {
+            return filter_presets_TK19_TRACE;
+        }
+        case 2u: {
+            return filter_presets_TK19_AVERAGE;
+        }
+        case 3u: {
+            return filter_presets_TK21_LISTING;
+        }
+        case 4u: {
+            return filter_presets_FILAMENT;
+        }
+        case 5u: {
+            return filter_presets_UNITY_HDRP;
+        }
+        case 6u: {
+            return filter_presets_UNITY_HDRP_PROJECTED;
+        }
+        case 7u: {
+            return filter_presets_GODOT;
+        }
+        case 8u: {
+            return filter_presets_O3DE;
+        }
+        case 9u: {
+            return filter_presets_UNREAL;
+        }
+        case 10u: {
+            return filter_presets_BABYLON;
+        }
+        default: {
+            return filter_presets_THREE_JS;
+        }
+    }
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(
@@ -2360,13 +2455,33 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(
 ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(
     kernel_clamp_ClampRules rules_6,
     ndf_roughness_matrix_RoughnessMatrix a_12,
-    footprint_Footprint fp_6,
+    footprint_Footprint fp_11,
     float sigma_5
 ) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_5);
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_11, sigma_5);
     float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
     ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
     return _e6;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_lobe(
+    filter_projected_Projected method_5,
+    ndf_roughness_matrix_RoughnessMatrix material_5,
+    footprint_Footprint fp_12
+) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
+    return _e5;
+}
+
+float filter_projected_d_ggx_projected(
+    filter_projected_Projected method_6,
+    ndf_roughness_matrix_RoughnessMatrix material_6,
+    footprint_Footprint fp_13,
+    metal::float3 m_25
+) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_lobe(method_6, material_6, fp_13);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_25);
+    return _e5;
 }
 
 float filter_proxy_effective_alpha(
@@ -2407,6 +2522,29 @@ ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(
     float _e9 = filter_proxy_effective_alpha_simple(r_54.alpha.y, half_extent_3.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(metal::float2(_e5, _e9));
     return _e11;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_lobe(
+    filter_proxy_Proxy method_7,
+    ndf_roughness_axis_aligned_AxisAligned material_7,
+    footprint_Footprint fp_14
+) {
+    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_14);
+    kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
+    metal::float2 h_28 = _e6.half_extent;
+    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_7, h_28);
+    return _e8;
+}
+
+float filter_proxy_d_ggx_proxy(
+    filter_proxy_Proxy method_8,
+    ndf_roughness_axis_aligned_AxisAligned material_8,
+    footprint_Footprint fp_15,
+    metal::float3 m_26
+) {
+    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_proxy_proxy_lobe(method_8, material_8, fp_15);
+    float _e5 = ndf_ggx_d_axis_aligned(_e4, m_26);
+    return _e5;
 }
 
 uint filter_rect_tier(
@@ -2539,12 +2677,12 @@ float filter_rect_delta_minus_sin(
 }
 
 float filter_rect_mean_1d(
-    metal::float4 i_7,
+    metal::float4 i_8,
     float c2_
 ) {
-    float x0_ = (i_7.z >= 0.0) ? i_7.x : -(i_7.y);
-    float x1_1 = (i_7.z >= 0.0) ? i_7.y : -(i_7.x);
-    float dx = 2.0 * i_7.w;
+    float x0_ = (i_8.z >= 0.0) ? i_8.x : -(i_8.y);
+    float x1_1 = (i_8.z >= 0.0) ? i_8.y : -(i_8.x);
+    float dx = 2.0 * i_8.w;
     float c_21 = metal::sqrt(c2_);
     float r02_ = c2_ + (x0_ * x0_);
     float r12_ = c2_ + (x1_1 * x1_1);
@@ -2662,7 +2800,7 @@ float filter_rect_polar_near(
     float acc_4 = 0.0;
     uint k_19 = 0u;
     float c_22 = 0.5 * (lo + hi);
-    float h_28 = 0.5 * (hi - lo);
+    float h_29 = 0.5 * (hi - lo);
     uint2 loop_bound_8 = uint2(4294967295u);
     bool loop_init_8 = true;
     while(true) {
@@ -2681,7 +2819,7 @@ float filter_rect_polar_near(
         {
             uint _e16 = k_19;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_5 = h_28 * _e17;
+            float d_5 = h_29 * _e17;
             float q0_ = 1.0 + ((c_22 - d_5) * (c_22 - d_5));
             float q1_ = 1.0 + ((c_22 + d_5) * (c_22 + d_5));
             float _e29 = acc_4;
@@ -2702,7 +2840,7 @@ float filter_rect_polar_far(
     float acc_5 = 0.0;
     uint k_20 = 0u;
     float c_23 = 0.5 * (lo_1 + hi_1);
-    float h_29 = 0.5 * (hi_1 - lo_1);
+    float h_30 = 0.5 * (hi_1 - lo_1);
     uint2 loop_bound_9 = uint2(4294967295u);
     bool loop_init_9 = true;
     while(true) {
@@ -2721,7 +2859,7 @@ float filter_rect_polar_far(
         {
             uint _e16 = k_20;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_6 = h_29 * _e17;
+            float d_6 = h_30 * _e17;
             float t0_2 = (c_23 - d_6) * (c_23 - d_6);
             float t1_4 = (c_23 + d_6) * (c_23 + d_6);
             float _e25 = acc_5;
@@ -2796,9 +2934,9 @@ float filter_rect_far_field(
 }
 
 float filter_rect_gap(
-    metal::float4 i_8
+    metal::float4 i_9
 ) {
-    return metal::max(metal::max(i_8.x, -(i_8.y)), 0.0);
+    return metal::max(metal::max(i_9.x, -(i_9.y)), 0.0);
 }
 
 float filter_rect_mean_f(
@@ -3142,7 +3280,7 @@ float filter_rect_lambda_gl_psi(
 }
 
 float filter_rect_lambda_expected_psi(
-    float m_22,
+    float m_27,
     float k1_,
     float k2_,
     float lo_2
@@ -3153,10 +3291,10 @@ float filter_rect_lambda_expected_psi(
     uint j_3 = 0u;
     float ks = metal::min(k1_, k2_);
     float kl = metal::max(k1_, k2_);
-    float near_l = metal::max(m_22 - ks, 0.0);
+    float near_l = metal::max(m_27 - ks, 0.0);
     uint _e13 = filter_rect_tier(kl * kl, 1.0 + (near_l * near_l));
     if (_e13 != filter_rect_TIER_CLOSED) {
-        float near_s = metal::max(m_22 - kl, 0.0);
+        float near_s = metal::max(m_27 - kl, 0.0);
         uint _e23 = filter_rect_tier(ks * ks, 1.0 + (near_s * near_s));
         uint2 loop_bound_13 = uint2(4294967295u);
         bool loop_init_13 = true;
@@ -3180,15 +3318,15 @@ float filter_rect_lambda_expected_psi(
                 float _e35 = acc_9;
                 uint _e36 = j_2;
                 float _e37 = filter_rect_gl_weight(_e13, _e36);
-                float _e39 = filter_rect_lambda_gl_psi(_e23, m_22 - a_33, ks);
-                float _e41 = filter_rect_lambda_gl_psi(_e23, m_22 + a_33, ks);
+                float _e39 = filter_rect_lambda_gl_psi(_e23, m_27 - a_33, ks);
+                float _e41 = filter_rect_lambda_gl_psi(_e23, m_27 + a_33, ks);
                 acc_9 = _e35 + (_e37 * (_e39 + _e41));
             }
         }
         float _e48 = acc_9;
         return _e48;
     }
-    float hi_4 = m_22 + kl;
+    float hi_4 = m_27 + kl;
     float w_26 = 2.0 * kl;
     if (ks == 0.0) {
         float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_4, w_26);
@@ -3305,210 +3443,72 @@ float filter_rect_lambda_lambda_rect(
     return _e117 / mm;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_method_gaussian_lobe(
-    filter_method_Gaussian method,
-    ndf_roughness_matrix_RoughnessMatrix material,
-    footprint_Footprint fp_7
-) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_filter_gaussian(method.clamps, material, fp_7, method.sigma);
-    return _e5;
-}
-
-float filter_method_d_ggx_gaussian(
-    filter_method_Gaussian method_1,
-    ndf_roughness_matrix_RoughnessMatrix material_1,
-    footprint_Footprint fp_8,
-    metal::float3 m_23
-) {
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_1, material_1, fp_8);
-    float _e5 = ndf_ggx_d_matrix(_e4, m_23);
-    return _e5;
-}
-
-float filter_method_d_beckmann_gaussian(
-    filter_method_Gaussian method_2,
-    ndf_roughness_matrix_RoughnessMatrix material_2,
-    footprint_Footprint fp_9,
-    metal::float3 m_24
-) {
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_2, material_2, fp_9);
-    float _e5 = ndf_beckmann_d_matrix(_e4, m_24);
-    return _e5;
-}
-
-filter_gaussian_ggx_GaussianFilteredGgx filter_method_exact_gaussian_lobe(
-    filter_method_ExactGaussian method_3,
-    ndf_roughness_matrix_RoughnessMatrix material_3,
-    footprint_Footprint fp_10
-) {
-    kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_10, method_3.sigma);
-    filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
-    return _e6;
-}
-
-float filter_method_d_ggx_exact_gaussian(
-    filter_method_ExactGaussian method_4,
-    ndf_roughness_matrix_RoughnessMatrix material_4,
-    footprint_Footprint fp_11,
-    metal::float3 m_25
-) {
-    filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_method_exact_gaussian_lobe(method_4, material_4, fp_11);
-    float _e5 = filter_gaussian_ggx_d(_e4, m_25);
-    return _e5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_method_projected_lobe(
-    filter_method_Projected method_5,
-    ndf_roughness_matrix_RoughnessMatrix material_5,
-    footprint_Footprint fp_12
-) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
-    return _e5;
-}
-
-float filter_method_d_ggx_projected(
-    filter_method_Projected method_6,
-    ndf_roughness_matrix_RoughnessMatrix material_6,
-    footprint_Footprint fp_13,
-    metal::float3 m_26
-) {
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_projected_lobe(method_6, material_6, fp_13);
-    float _e5 = ndf_ggx_d_matrix(_e4, m_26);
-    return _e5;
-}
-
-filter_method_RectFilteredGgx filter_method_rect_lobe(
-    filter_method_Rect method_7,
-    ndf_roughness_axis_aligned_AxisAligned material_7,
-    footprint_Footprint fp_14
-) {
-    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_14);
-    kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
-    metal::float2 h_30 = _e6.half_extent;
-    return filter_method_RectFilteredGgx {material_7, h_30};
-}
-
-float filter_method_p22_rect_filtered(
-    filter_method_RectFilteredGgx lobe,
-    metal::float2 s_12
-) {
-    float _e4 = filter_rect_p22_rect(lobe.roughness, s_12, lobe.half_extent);
-    return _e4;
-}
-
-float filter_method_d_rect_filtered(
-    filter_method_RectFilteredGgx lobe_1,
-    metal::float3 m_27
-) {
-    float _e4 = filter_rect_d_rect(lobe_1.roughness, m_27, lobe_1.half_extent);
-    return _e4;
-}
-
-float filter_method_lambda_rect_filtered(
-    filter_method_RectFilteredGgx lobe_2,
-    metal::float3 w_20
-) {
-    float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_20);
-    return _e4;
-}
-
-float filter_method_g1_rect_filtered(
-    filter_method_RectFilteredGgx lobe_3,
-    metal::float3 w_21,
-    metal::float3 m_28
-) {
-    float _e3 = filter_method_lambda_rect_filtered(lobe_3, w_21);
-    float _e5 = ndf_g1_of(_e3, metal::dot(w_21, m_28));
-    return _e5;
-}
-
-float filter_method_g2_rect_filtered(
-    filter_method_RectFilteredGgx lobe_4,
-    metal::float3 i_9,
-    metal::float3 o_7,
-    metal::float3 m_29
-) {
-    float _e4 = filter_method_lambda_rect_filtered(lobe_4, i_9);
-    float _e5 = filter_method_lambda_rect_filtered(lobe_4, o_7);
-    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_9, m_29), metal::dot(o_7, m_29));
-    return _e8;
-}
-
-float filter_method_d_ggx_rect(
-    filter_method_Rect method_8,
-    ndf_roughness_axis_aligned_AxisAligned material_8,
-    footprint_Footprint fp_15,
-    metal::float3 m_30
-) {
-    filter_method_RectFilteredGgx _e4 = filter_method_rect_lobe(method_8, material_8, fp_15);
-    float _e5 = filter_method_d_rect_filtered(_e4, m_30);
-    return _e5;
-}
-
-ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(
-    filter_method_Proxy method_9,
+filter_rect_lobe_RectFilteredGgx filter_rect_lobe_rect_lobe(
+    filter_rect_lobe_Rect method_9,
     ndf_roughness_axis_aligned_AxisAligned material_9,
     footprint_Footprint fp_16
 ) {
     kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_16);
     kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
     metal::float2 h_31 = _e6.half_extent;
-    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_31);
+    return filter_rect_lobe_RectFilteredGgx {material_9, h_31};
+}
+
+float filter_rect_lobe_p22_rect_filtered(
+    filter_rect_lobe_RectFilteredGgx lobe,
+    metal::float2 s_12
+) {
+    float _e4 = filter_rect_p22_rect(lobe.roughness, s_12, lobe.half_extent);
+    return _e4;
+}
+
+float filter_rect_lobe_d_rect_filtered(
+    filter_rect_lobe_RectFilteredGgx lobe_1,
+    metal::float3 m_28
+) {
+    float _e4 = filter_rect_d_rect(lobe_1.roughness, m_28, lobe_1.half_extent);
+    return _e4;
+}
+
+float filter_rect_lobe_lambda_rect_filtered(
+    filter_rect_lobe_RectFilteredGgx lobe_2,
+    metal::float3 w_20
+) {
+    float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_20);
+    return _e4;
+}
+
+float filter_rect_lobe_g1_rect_filtered(
+    filter_rect_lobe_RectFilteredGgx lobe_3,
+    metal::float3 w_21,
+    metal::float3 m_29
+) {
+    float _e3 = filter_rect_lobe_lambda_rect_filtered(lobe_3, w_21);
+    float _e5 = ndf_g1_of(_e3, metal::dot(w_21, m_29));
+    return _e5;
+}
+
+float filter_rect_lobe_g2_rect_filtered(
+    filter_rect_lobe_RectFilteredGgx lobe_4,
+    metal::float3 i_10,
+    metal::float3 o_7,
+    metal::float3 m_30
+) {
+    float _e4 = filter_rect_lobe_lambda_rect_filtered(lobe_4, i_10);
+    float _e5 = filter_rect_lobe_lambda_rect_filtered(lobe_4, o_7);
+    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_10, m_30), metal::dot(o_7, m_30));
     return _e8;
 }
 
-float filter_method_d_ggx_proxy(
-    filter_method_Proxy method_10,
+float filter_rect_lobe_d_ggx_rect(
+    filter_rect_lobe_Rect method_10,
     ndf_roughness_axis_aligned_AxisAligned material_10,
     footprint_Footprint fp_17,
     metal::float3 m_31
 ) {
-    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
-    float _e5 = ndf_ggx_d_axis_aligned(_e4, m_31);
+    filter_rect_lobe_RectFilteredGgx _e4 = filter_rect_lobe_rect_lobe(method_10, material_10, fp_17);
+    float _e5 = filter_rect_lobe_d_rect_filtered(_e4, m_31);
     return _e5;
-}
-
-filter_deferred_KernelConvention filter_presets_preset(
-    uint i_10
-) {
-    switch(i_10) {
-        case 0u: {
-            return filter_presets_TK19_MAX;
-        }
-        case 1u: {
-            return filter_presets_TK19_TRACE;
-        }
-        case 2u: {
-            return filter_presets_TK19_AVERAGE;
-        }
-        case 3u: {
-            return filter_presets_TK21_LISTING;
-        }
-        case 4u: {
-            return filter_presets_FILAMENT;
-        }
-        case 5u: {
-            return filter_presets_UNITY_HDRP;
-        }
-        case 6u: {
-            return filter_presets_UNITY_HDRP_PROJECTED;
-        }
-        case 7u: {
-            return filter_presets_GODOT;
-        }
-        case 8u: {
-            return filter_presets_O3DE;
-        }
-        case 9u: {
-            return filter_presets_UNREAL;
-        }
-        case 10u: {
-            return filter_presets_BABYLON;
-        }
-        default: {
-            return filter_presets_THREE_JS;
-        }
-    }
 }
 
 metal::float2 footprint_slope_slope_from_sphere(

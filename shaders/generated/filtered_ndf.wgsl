@@ -927,200 +927,6 @@ fn ndf_roughness_matrix_own_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix) -
     return select(0.0, r.tau, r.tau > r.det);
 }
 
-// ---- filtered_ndf::kernel::rect (shaders/kernel/rect.wgsl) ----
-// The axis-aligned slope-domain rectangle of KHPL16 section 5.3 (the `footprint` of the
-// GDC 2016 `GGXRectIntegral`), mirroring `BoundingRect` of `src/.../kernel/rect.rs`.
-
-/// A rectangle centred on the half vector's slope, by its half-extents (slope units, `>= 0`).
-/// It bounds the one-pixel parallelogram: `half_extent = (|dh_u| + |dh_v|) / 2`.
-struct kernel_rect_BoundingRect {
-    /// Half-extents along the tangent `x` and bitangent `y`.
-    half_extent: vec2<f32>,
-}
-
-/// The axis-aligned bounding rectangle of a footprint's one-pixel parallelogram (KHPL16
-/// section 5.3; GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
-/// `(|dh_u| + |dh_v|) / 2` per axis. The Rust `BoundingRect::from_footprint`.
-fn kernel_rect_from_footprint(fp: footprint_Footprint) -> kernel_rect_BoundingRect {
-    return kernel_rect_BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
-}
-
-/// The Gaussian-equivalent diagonal covariance `diag((2 sigma h_x)^2, (2 sigma h_y)^2)`
-/// (`sigma` in pixels; GDC 2016 Beckmann listing `rghns_sq += fp * fp * 2`, TK19 Listing 3).
-fn kernel_rect_covariance(r: kernel_rect_BoundingRect, sigma: f32) -> kernel_covariance_Covariance {
-    let w = r.half_extent * (2.0 * sigma);
-    let v = w * w;
-    return kernel_covariance_Covariance(v.x, 0.0, v.y, v.x * v.y);
-}
-
-// ---- filtered_ndf::kernel::clamp (shaders/kernel/clamp.wgsl) ----
-// The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, GDC 2016,
-// TK19 eq. 1 and supplement), mirroring `ClampRules` of `src/.../kernel/clamp.rs`. A rule is
-// off when its bound is `F32_MAX` (`max_extent`, `kappa`; the Rust `F::INFINITY`),
-// `FLOOR_NONE`, or `det_clamp = false`. Constants mirror `ClampRules::DEFAULT`, `KHPL16`,
-// `NONE`, `GDC2016` (`*_RULES`: WGSL names may not end in a digit here, see shaders/README.md).
-// The rules are data: the filters apply them (`filter::gaussian::filter_gaussian`,
-// `filter::projected::filter_projected`).
-
-/// No rectangle floor.
-const kernel_clamp_FLOOR_NONE: u32 = 0u;
-/// Half-extents `>= floor` on both axes (KHPL16 section 5.2, `epsilon = 1e-3`).
-const kernel_clamp_FLOOR_CONSTANT: u32 = 1u;
-/// Half-extents `>= min(alpha_axis, floor)` per axis (GDC 2016 `min(roughness, 0.1)`).
-const kernel_clamp_FLOOR_ALPHA_CAPPED: u32 = 2u;
-
-/// The clamping rules.
-struct kernel_clamp_ClampRules {
-    /// `lambda`: the largest centre-to-vertex extent of the parallelogram and the largest
-    /// rectangle half-extent (slope units).
-    max_extent: f32,
-    /// `FLOOR_NONE`, `FLOOR_CONSTANT` or `FLOOR_ALPHA_CAPPED`.
-    floor_kind: u32,
-    /// The floor's constant (`epsilon`, or the cap of `FLOOR_ALPHA_CAPPED`).
-    floor: f32,
-    /// `kappa`: the largest kernel roughness^2 `2 lambda_i(Sigma)` per eigen-direction.
-    kappa: f32,
-    /// Evaluate filtered matrices with `tau = det(A_unfiltered)`.
-    det_clamp: bool,
-}
-
-/// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
-const kernel_clamp_DEFAULT_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_CONSTANT, 1e-3, 0.18, true);
-/// KHPL16's rules for its exact kernels: `lambda = 1` (section 5.2) and the determinant clamp;
-/// no rectangle floor (the exact rectangle integral needs none), no `kappa` (a TK19 addition).
-const kernel_clamp_KHPL16_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, true);
-/// No clamping (unbiased; for references and the exact rectangle integral).
-const kernel_clamp_NO_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(math_F32_MAX, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, false);
-/// The GDC 2016 listing: `fp = clamp(fp, min(roughness, 0.1), 1)`, no `kappa`, with `tau`.
-const kernel_clamp_GDC2016_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_ALPHA_CAPPED, 0.1, math_F32_MAX, true);
-
-/// The maximum-extent rule on a parallelogram (KHPL16 section 5.2): both vectors scaled by
-/// `min(1, lambda / max_extent)`, keeping the shape. The extent is measured on the
-/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0.
-fn kernel_clamp_footprint(rules: kernel_clamp_ClampRules, fp: footprint_Footprint) -> footprint_Footprint {
-    let l = max(rules.max_extent, 0.0);
-    let scale = max(max(abs(fp.dh_u.x), abs(fp.dh_u.y)), max(abs(fp.dh_v.x), abs(fp.dh_v.y)));
-    if scale <= 0.0 {
-        return fp;
-    }
-    let unit = footprint_Footprint(fp.dh_u / scale, fp.dh_v / scale);
-    let e = footprint_max_extent(unit);
-    if e * scale <= l {
-        return fp;
-    }
-    return footprint_Footprint(unit.dh_u / e * l, unit.dh_v / e * l);
-}
-
-/// The rectangle rules: half-extents taken by magnitude, clamped to `[floor, lambda]` per
-/// axis (KHPL16 section 5.2; GDC 2016 `clamp(fp, fp_min, fp_max)`), `alpha` the lobe's
-/// per-axis roughness for `FLOOR_ALPHA_CAPPED`; if the floor exceeds `lambda` the floor wins.
-fn kernel_clamp_rect(rules: kernel_clamp_ClampRules, r: kernel_rect_BoundingRect, alpha: vec2<f32>) -> kernel_rect_BoundingRect {
-    var f = vec2<f32>(0.0);
-    if rules.floor_kind == kernel_clamp_FLOOR_CONSTANT {
-        f = vec2<f32>(rules.floor);
-    } else if rules.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED {
-        f = min(abs(alpha), vec2<f32>(rules.floor));
-    }
-    let lambda = max(rules.max_extent, 0.0);
-    let h = min(abs(r.half_extent), vec2<f32>(lambda));
-    return kernel_rect_BoundingRect(max(h, max(f, vec2<f32>(0.0))));
-}
-
-/// The kernel-roughness rule of TK19 eq. 1 in matrix form: `2 Sigma'` has the eigenvalues
-/// `min(2 lambda_i, kappa)` and `Sigma`'s eigenvectors, after `covariance::sanitized`. A
-/// negative `kappa` counts as 0.
-fn kernel_clamp_kernel(rules: kernel_clamp_ClampRules, k: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
-    let s = kernel_covariance_sanitized(k);
-    if rules.kappa >= math_F32_MAX {
-        return s;
-    }
-    return kernel_covariance_clamp_eigenvalues(s, 0.5 * max(rules.kappa, 0.0));
-}
-
-/// The determinant clamp `tau` for filtering `a` (the Rust `det_clamp_for`): `det A_c` of the
-/// unfiltered lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a
-/// clamped matrix its `max(det A, tau)`) if `det_clamp`, else the material's own clamp
-/// ([`matrix::own_det_clamp`]: 0 unless it is a clamped matrix).
-fn kernel_clamp_det_clamp_for(rules: kernel_clamp_ClampRules, a: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return select(ndf_roughness_matrix_own_det_clamp(a), ndf_roughness_matrix_clamped_det(a), rules.det_clamp);
-}
-
-/// The clamped pixel kernel of a footprint: [`footprint`] -> `covariance::from_footprint` (`sigma`
-/// pixels) -> [`kernel`] (sanitised once).
-fn kernel_clamp_pixel_kernel(rules: kernel_clamp_ClampRules, fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
-    return kernel_clamp_kernel(rules, kernel_covariance_from_footprint(kernel_clamp_footprint(rules, fp), sigma));
-}
-
-// ---- filtered_ndf::filter::gaussian (shaders/filter/gaussian.wgsl) ----
-// Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
-// mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
-//
-// The determinant clamp: the result is evaluated as the one clamped matrix `A'_c` of
-// `matrix.wgsl` (`A' + t I` where `det A' < tau`). In exact arithmetic
-// `det(A + 2 Sigma) >= det A`, and here the filtered determinant is a sum of non-negative
-// terms that contains `det A` itself, so with `tau = det A_c` of an unclamped material the
-// clamp is inactive (equality for a zero kernel); it acts for a material that is itself
-// clamped (`tau = det A_c > det A`) and for an explicit `tau` above the filtered determinant.
-
-/// `A + 2 K` for a sanitised kernel `K`, with its determinant
-/// `det(A + 2 K) = det A + 2 tr(adj(A) K) + 4 det K`, every term non-negative for `A` positive
-/// definite and `K` PSD, so that the filtered minor axis keeps its relative accuracy (f32
-/// would cancel in `b11 b22 - b12^2`): with `A = R diag(l) R^T`,
-/// `tr(adj(A) K) = l2 e1^T K e1 + l1 e2^T K e2`, and `det K` as the kernel carries it.
-/// Evaluated with the determinant clamp `tau` (`<= 0`: none). `A` is the material's matrix as
-/// given ([`matrix::entries`]; a clamped material is filtered as `A + 2 K` with its own `tau`,
-/// as in Rust).
-fn filter_gaussian_gaussian_sanitized(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
-    let e = ndf_roughness_matrix_entries(a);
-    let c = a.axis.x;
-    let s = a.axis.y;
-    let k1 = max(c * c * k.s_xx + 2.0 * c * s * k.s_xy + s * s * k.s_yy, 0.0);
-    let k2 = max(s * s * k.s_xx - 2.0 * c * s * k.s_xy + c * c * k.s_yy, 0.0);
-    let det = ndf_roughness_matrix_determinant(a) + 2.0 * (a.eig.y * k1 + a.eig.x * k2) + 4.0 * max(k.det, 0.0);
-    return ndf_roughness_matrix_from_entries_det(
-        e.x + 2.0 * k.s_xx,
-        e.y + 2.0 * k.s_xy,
-        e.z + 2.0 * k.s_yy,
-        det,
-        max(tau, 0.0),
-    );
-}
-
-/// `A' = A + 2 Sigma`, evaluated with the determinant clamp `tau = det A_c` of the material
-/// (TK19 supplement; no bias in exact arithmetic since `det(A + 2 Sigma) >= det A`). Beckmann:
-/// exact (KHPL16 eq. 15, covariances of Gaussians add with `A = 2 B`). GGX: the TK19 section
-/// 2.2 / KHPL16 approximation. The kernel is `covariance::sanitized` first. Accuracy: the
-/// filtered matrix is evaluated in its eigenbasis with `det` from non-negative terms
-/// (`matrix.wgsl`: `s^T A'^-1 s` within `eps (10 + 16 sqrt(cond A'))`, the extra
-/// `8 sqrt(cond)` for the rounding of the kernel's entries).
-fn filter_gaussian_gaussian(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), ndf_roughness_matrix_clamped_det(a));
-}
-
-/// [`gaussian`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
-/// filtered determinant here is never below `det A`, so no fallback is needed), at least the
-/// material's own clamp ([`matrix::own_det_clamp`]): the Rust `gaussian_with_det_clamp`.
-fn filter_gaussian_gaussian_with_det_clamp(
-    a: ndf_roughness_matrix_RoughnessMatrix,
-    kernel: kernel_covariance_Covariance,
-    det_clamp: f32,
-) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), max(det_clamp, ndf_roughness_matrix_own_det_clamp(a)));
-}
-
-/// The whole Gaussian pipeline: `clamp::footprint` -> `covariance::from_footprint` (`sigma` pixels)
-/// -> `clamp::kernel` -> `A' = A + 2 Sigma` with `tau = det A_c` if `det_clamp` (the TK19 matrix
-/// filter; exact for Beckmann). The result is the one clamped matrix of `matrix.wgsl`. The
-/// Rust `ClampRules::filter_gaussian`: the rules are the kernel stage's data, applied here.
-fn filter_gaussian_filter_gaussian(
-    rules: kernel_clamp_ClampRules,
-    a: ndf_roughness_matrix_RoughnessMatrix,
-    fp: footprint_Footprint,
-    sigma: f32,
-) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_sanitized(a, kernel_clamp_pixel_kernel(rules, fp, sigma), kernel_clamp_det_clamp_for(rules, a));
-}
-
 // ---- filtered_ndf::ndf (shaders/ndf/mod.wgsl) ----
 // What every NDF shares (`src/.../ndf/mod.rs`, the `Ndf` trait): the Smith terms derived
 // from `Lambda` once. Conventions (all NDFs, all roughness forms): tangent frame with `z` the
@@ -1534,6 +1340,230 @@ fn ndf_beckmann_g1_matrix(r: ndf_roughness_matrix_RoughnessMatrix, w: vec3<f32>,
 /// `G2(i, o, m)` of Beckmann with a roughness matrix (height-correlated).
 fn ndf_beckmann_g2_matrix(r: ndf_roughness_matrix_RoughnessMatrix, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
     return ndf_g2_of(ndf_beckmann_lambda_matrix(r, i), ndf_beckmann_lambda_matrix(r, o), dot(i, m), dot(o, m));
+}
+
+// ---- filtered_ndf::kernel::rect (shaders/kernel/rect.wgsl) ----
+// The axis-aligned slope-domain rectangle of KHPL16 section 5.3 (the `footprint` of the
+// GDC 2016 `GGXRectIntegral`), mirroring `BoundingRect` of `src/.../kernel/rect.rs`.
+
+/// A rectangle centred on the half vector's slope, by its half-extents (slope units, `>= 0`).
+/// It bounds the one-pixel parallelogram: `half_extent = (|dh_u| + |dh_v|) / 2`.
+struct kernel_rect_BoundingRect {
+    /// Half-extents along the tangent `x` and bitangent `y`.
+    half_extent: vec2<f32>,
+}
+
+/// The axis-aligned bounding rectangle of a footprint's one-pixel parallelogram (KHPL16
+/// section 5.3; GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
+/// `(|dh_u| + |dh_v|) / 2` per axis. The Rust `BoundingRect::from_footprint`.
+fn kernel_rect_from_footprint(fp: footprint_Footprint) -> kernel_rect_BoundingRect {
+    return kernel_rect_BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
+}
+
+/// The Gaussian-equivalent diagonal covariance `diag((2 sigma h_x)^2, (2 sigma h_y)^2)`
+/// (`sigma` in pixels; GDC 2016 Beckmann listing `rghns_sq += fp * fp * 2`, TK19 Listing 3).
+fn kernel_rect_covariance(r: kernel_rect_BoundingRect, sigma: f32) -> kernel_covariance_Covariance {
+    let w = r.half_extent * (2.0 * sigma);
+    let v = w * w;
+    return kernel_covariance_Covariance(v.x, 0.0, v.y, v.x * v.y);
+}
+
+// ---- filtered_ndf::kernel::clamp (shaders/kernel/clamp.wgsl) ----
+// The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, GDC 2016,
+// TK19 eq. 1 and supplement), mirroring `ClampRules` of `src/.../kernel/clamp.rs`. A rule is
+// off when its bound is `F32_MAX` (`max_extent`, `kappa`; the Rust `F::INFINITY`),
+// `FLOOR_NONE`, or `det_clamp = false`. Constants mirror `ClampRules::DEFAULT`, `KHPL16`,
+// `NONE`, `GDC2016` (`*_RULES`: WGSL names may not end in a digit here, see shaders/README.md).
+// The rules are data: the filters apply them (`filter::gaussian::filter_gaussian`,
+// `filter::projected::filter_projected`).
+
+/// No rectangle floor.
+const kernel_clamp_FLOOR_NONE: u32 = 0u;
+/// Half-extents `>= floor` on both axes (KHPL16 section 5.2, `epsilon = 1e-3`).
+const kernel_clamp_FLOOR_CONSTANT: u32 = 1u;
+/// Half-extents `>= min(alpha_axis, floor)` per axis (GDC 2016 `min(roughness, 0.1)`).
+const kernel_clamp_FLOOR_ALPHA_CAPPED: u32 = 2u;
+
+/// The clamping rules.
+struct kernel_clamp_ClampRules {
+    /// `lambda`: the largest centre-to-vertex extent of the parallelogram and the largest
+    /// rectangle half-extent (slope units).
+    max_extent: f32,
+    /// `FLOOR_NONE`, `FLOOR_CONSTANT` or `FLOOR_ALPHA_CAPPED`.
+    floor_kind: u32,
+    /// The floor's constant (`epsilon`, or the cap of `FLOOR_ALPHA_CAPPED`).
+    floor: f32,
+    /// `kappa`: the largest kernel roughness^2 `2 lambda_i(Sigma)` per eigen-direction.
+    kappa: f32,
+    /// Evaluate filtered matrices with `tau = det(A_unfiltered)`.
+    det_clamp: bool,
+}
+
+/// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
+const kernel_clamp_DEFAULT_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_CONSTANT, 1e-3, 0.18, true);
+/// KHPL16's rules for its exact kernels: `lambda = 1` (section 5.2) and the determinant clamp;
+/// no rectangle floor (the exact rectangle integral needs none), no `kappa` (a TK19 addition).
+const kernel_clamp_KHPL16_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, true);
+/// No clamping (unbiased; for references and the exact rectangle integral).
+const kernel_clamp_NO_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(math_F32_MAX, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, false);
+/// The GDC 2016 listing: `fp = clamp(fp, min(roughness, 0.1), 1)`, no `kappa`, with `tau`.
+const kernel_clamp_GDC2016_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_ALPHA_CAPPED, 0.1, math_F32_MAX, true);
+
+/// The maximum-extent rule on a parallelogram (KHPL16 section 5.2): both vectors scaled by
+/// `min(1, lambda / max_extent)`, keeping the shape. The extent is measured on the
+/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0.
+fn kernel_clamp_footprint(rules: kernel_clamp_ClampRules, fp: footprint_Footprint) -> footprint_Footprint {
+    let l = max(rules.max_extent, 0.0);
+    let scale = max(max(abs(fp.dh_u.x), abs(fp.dh_u.y)), max(abs(fp.dh_v.x), abs(fp.dh_v.y)));
+    if scale <= 0.0 {
+        return fp;
+    }
+    let unit = footprint_Footprint(fp.dh_u / scale, fp.dh_v / scale);
+    let e = footprint_max_extent(unit);
+    if e * scale <= l {
+        return fp;
+    }
+    return footprint_Footprint(unit.dh_u / e * l, unit.dh_v / e * l);
+}
+
+/// The rectangle rules: half-extents taken by magnitude, clamped to `[floor, lambda]` per
+/// axis (KHPL16 section 5.2; GDC 2016 `clamp(fp, fp_min, fp_max)`), `alpha` the lobe's
+/// per-axis roughness for `FLOOR_ALPHA_CAPPED`; if the floor exceeds `lambda` the floor wins.
+fn kernel_clamp_rect(rules: kernel_clamp_ClampRules, r: kernel_rect_BoundingRect, alpha: vec2<f32>) -> kernel_rect_BoundingRect {
+    var f = vec2<f32>(0.0);
+    if rules.floor_kind == kernel_clamp_FLOOR_CONSTANT {
+        f = vec2<f32>(rules.floor);
+    } else if rules.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED {
+        f = min(abs(alpha), vec2<f32>(rules.floor));
+    }
+    let lambda = max(rules.max_extent, 0.0);
+    let h = min(abs(r.half_extent), vec2<f32>(lambda));
+    return kernel_rect_BoundingRect(max(h, max(f, vec2<f32>(0.0))));
+}
+
+/// The kernel-roughness rule of TK19 eq. 1 in matrix form: `2 Sigma'` has the eigenvalues
+/// `min(2 lambda_i, kappa)` and `Sigma`'s eigenvectors, after `covariance::sanitized`. A
+/// negative `kappa` counts as 0.
+fn kernel_clamp_kernel(rules: kernel_clamp_ClampRules, k: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
+    let s = kernel_covariance_sanitized(k);
+    if rules.kappa >= math_F32_MAX {
+        return s;
+    }
+    return kernel_covariance_clamp_eigenvalues(s, 0.5 * max(rules.kappa, 0.0));
+}
+
+/// The determinant clamp `tau` for filtering `a` (the Rust `det_clamp_for`): `det A_c` of the
+/// unfiltered lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a
+/// clamped matrix its `max(det A, tau)`) if `det_clamp`, else the material's own clamp
+/// ([`matrix::own_det_clamp`]: 0 unless it is a clamped matrix).
+fn kernel_clamp_det_clamp_for(rules: kernel_clamp_ClampRules, a: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return select(ndf_roughness_matrix_own_det_clamp(a), ndf_roughness_matrix_clamped_det(a), rules.det_clamp);
+}
+
+/// The clamped pixel kernel of a footprint: [`footprint`] -> `covariance::from_footprint` (`sigma`
+/// pixels) -> [`kernel`] (sanitised once).
+fn kernel_clamp_pixel_kernel(rules: kernel_clamp_ClampRules, fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
+    return kernel_clamp_kernel(rules, kernel_covariance_from_footprint(kernel_clamp_footprint(rules, fp), sigma));
+}
+
+// ---- filtered_ndf::filter::gaussian (shaders/filter/gaussian.wgsl) ----
+// Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
+// mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
+//
+// The determinant clamp: the result is evaluated as the one clamped matrix `A'_c` of
+// `matrix.wgsl` (`A' + t I` where `det A' < tau`). In exact arithmetic
+// `det(A + 2 Sigma) >= det A`, and here the filtered determinant is a sum of non-negative
+// terms that contains `det A` itself, so with `tau = det A_c` of an unclamped material the
+// clamp is inactive (equality for a zero kernel); it acts for a material that is itself
+// clamped (`tau = det A_c > det A`) and for an explicit `tau` above the filtered determinant.
+
+/// `A + 2 K` for a sanitised kernel `K`, with its determinant
+/// `det(A + 2 K) = det A + 2 tr(adj(A) K) + 4 det K`, every term non-negative for `A` positive
+/// definite and `K` PSD, so that the filtered minor axis keeps its relative accuracy (f32
+/// would cancel in `b11 b22 - b12^2`): with `A = R diag(l) R^T`,
+/// `tr(adj(A) K) = l2 e1^T K e1 + l1 e2^T K e2`, and `det K` as the kernel carries it.
+/// Evaluated with the determinant clamp `tau` (`<= 0`: none). `A` is the material's matrix as
+/// given ([`matrix::entries`]; a clamped material is filtered as `A + 2 K` with its own `tau`,
+/// as in Rust).
+fn filter_gaussian_gaussian_sanitized(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    let e = ndf_roughness_matrix_entries(a);
+    let c = a.axis.x;
+    let s = a.axis.y;
+    let k1 = max(c * c * k.s_xx + 2.0 * c * s * k.s_xy + s * s * k.s_yy, 0.0);
+    let k2 = max(s * s * k.s_xx - 2.0 * c * s * k.s_xy + c * c * k.s_yy, 0.0);
+    let det = ndf_roughness_matrix_determinant(a) + 2.0 * (a.eig.y * k1 + a.eig.x * k2) + 4.0 * max(k.det, 0.0);
+    return ndf_roughness_matrix_from_entries_det(
+        e.x + 2.0 * k.s_xx,
+        e.y + 2.0 * k.s_xy,
+        e.z + 2.0 * k.s_yy,
+        det,
+        max(tau, 0.0),
+    );
+}
+
+/// `A' = A + 2 Sigma`, evaluated with the determinant clamp `tau = det A_c` of the material
+/// (TK19 supplement; no bias in exact arithmetic since `det(A + 2 Sigma) >= det A`). Beckmann:
+/// exact (KHPL16 eq. 15, covariances of Gaussians add with `A = 2 B`). GGX: the TK19 section
+/// 2.2 / KHPL16 approximation. The kernel is `covariance::sanitized` first. Accuracy: the
+/// filtered matrix is evaluated in its eigenbasis with `det` from non-negative terms
+/// (`matrix.wgsl`: `s^T A'^-1 s` within `eps (10 + 16 sqrt(cond A'))`, the extra
+/// `8 sqrt(cond)` for the rounding of the kernel's entries).
+fn filter_gaussian_gaussian(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), ndf_roughness_matrix_clamped_det(a));
+}
+
+/// [`gaussian`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
+/// filtered determinant here is never below `det A`, so no fallback is needed), at least the
+/// material's own clamp ([`matrix::own_det_clamp`]): the Rust `gaussian_with_det_clamp`.
+fn filter_gaussian_gaussian_with_det_clamp(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    kernel: kernel_covariance_Covariance,
+    det_clamp: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), max(det_clamp, ndf_roughness_matrix_own_det_clamp(a)));
+}
+
+/// The whole Gaussian pipeline: `clamp::footprint` -> `covariance::from_footprint` (`sigma` pixels)
+/// -> `clamp::kernel` -> `A' = A + 2 Sigma` with `tau = det A_c` if `det_clamp` (the TK19 matrix
+/// filter; exact for Beckmann). The result is the one clamped matrix of `matrix.wgsl`. The
+/// Rust `ClampRules::filter_gaussian`: the rules are the kernel stage's data, applied here.
+fn filter_gaussian_filter_gaussian(
+    rules: kernel_clamp_ClampRules,
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    fp: footprint_Footprint,
+    sigma: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian_sanitized(a, kernel_clamp_pixel_kernel(rules, fp, sigma), kernel_clamp_det_clamp_for(rules, a));
+}
+
+/// `A' = A + 2 Sigma` with the clamped Gaussian pixel kernel (KHPL16 eq. 13-15; TK19 section
+/// 2.2): exact for Beckmann, TK19's approximation for GGX.
+struct filter_gaussian_Gaussian {
+    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
+    clamps: kernel_clamp_ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+}
+
+/// TK19: the default rules (`lambda = 1`, `kappa = 0.18`, the determinant clamp), `sigma = 0.5`.
+const filter_gaussian_TK19_GAUSSIAN: filter_gaussian_Gaussian = filter_gaussian_Gaussian(kernel_clamp_DEFAULT_RULES, footprint_SIGMA_PIXEL);
+/// KHPL16's parallelogram kernel: `lambda = 1` and the determinant clamp, no `kappa`.
+const filter_gaussian_KHPL16_GAUSSIAN: filter_gaussian_Gaussian = filter_gaussian_Gaussian(kernel_clamp_KHPL16_RULES, footprint_SIGMA_PIXEL);
+
+/// The lobe of `material` filtered by `method` over `fp` (the Rust `Gaussian::lobe`): the
+/// filtered roughness matrix, for `ggx::*_matrix` or `beckmann::*_matrix`.
+fn filter_gaussian_gaussian_lobe(method: filter_gaussian_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_filter_gaussian(method.clamps, material, fp, method.sigma);
+}
+
+/// `D(m)` of the GGX lobe of [`gaussian_lobe`].
+fn filter_gaussian_d_ggx_gaussian(method: filter_gaussian_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return ndf_ggx_d_matrix(filter_gaussian_gaussian_lobe(method, material, fp), m);
+}
+
+/// `D(m)` of the Beckmann lobe of [`gaussian_lobe`] (the exact Gaussian filter of Beckmann).
+fn filter_gaussian_d_beckmann_gaussian(method: filter_gaussian_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return ndf_beckmann_d_matrix(filter_gaussian_gaussian_lobe(method, material, fp), m);
 }
 
 // ---- filtered_ndf::filter::gaussian_ggx_quad (shaders/filter/gaussian_ggx_quad.wgsl) ----
@@ -1998,6 +2028,30 @@ fn filter_gaussian_ggx_g2(g: filter_gaussian_ggx_GaussianFilteredGgx, i: vec3<f3
     return ndf_g2_of(filter_gaussian_ggx_lambda(g, i), filter_gaussian_ggx_lambda(g, o), dot(i, m), dot(o, m));
 }
 
+/// The exact Gaussian filter: the material's slope density convolved with the clamped pixel
+/// kernel (GGX: `GaussianFilteredGgx`; Beckmann: `A + 2 Sigma`, `gaussian::gaussian_lobe` with the
+/// same rules).
+struct filter_gaussian_ggx_ExactGaussian {
+    /// The clamp rules applied to the footprint and the kernel.
+    clamps: kernel_clamp_ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+}
+
+/// The unbiased filter of the footprint: `lambda = 1` (KHPL16 section 5.2), no `kappa`,
+/// `sigma = 0.5`.
+const filter_gaussian_ggx_KHPL16_EXACT_GAUSSIAN: filter_gaussian_ggx_ExactGaussian = filter_gaussian_ggx_ExactGaussian(kernel_clamp_KHPL16_RULES, footprint_SIGMA_PIXEL);
+
+/// The GGX lobe of the exact Gaussian filter (the Rust `ExactGaussian::lobe` for GGX).
+fn filter_gaussian_ggx_exact_gaussian_lobe(method: filter_gaussian_ggx_ExactGaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> filter_gaussian_ggx_GaussianFilteredGgx {
+    return filter_gaussian_ggx_from_kernel(material, kernel_clamp_pixel_kernel(method.clamps, fp, method.sigma));
+}
+
+/// `D(m)` of [`exact_gaussian_lobe`].
+fn filter_gaussian_ggx_d_ggx_exact_gaussian(method: filter_gaussian_ggx_ExactGaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return filter_gaussian_ggx_d(filter_gaussian_ggx_exact_gaussian_lobe(method, material, fp), m);
+}
+
 // ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
 // LEAN mapping's moments and the nested convolution of KHPL16 section 5.5, eq. 21,
 // mirroring `src/.../filter/lean.rs`.
@@ -2031,6 +2085,195 @@ fn filter_lean_lean(
     moments: filter_lean_LeanMoments,
 ) -> ndf_roughness_matrix_RoughnessMatrix {
     return filter_gaussian_gaussian(a, kernel_covariance_add(kernel_covariance_sanitized(pixel), filter_lean_covariance(moments)));
+}
+
+// ---- filtered_ndf::filter::presets (shaders/filter/presets.wgsl) ----
+// The published isotropic specular-antialiasing conventions as `deferred::KernelConvention`
+// values, mirroring `src/.../filter/presets.rs` (whose docs give each source, formula and
+// engine default). `alpha` is the GGX roughness, `p = sqrt(alpha)` the perceptual one.
+// Names that would end in a digit carry a suffix (naga renames such identifiers).
+//
+// | preset | domain | kernel | clamp | combine, saturate |
+// |---|---|---|---|---|
+// | TK19_TRACE, O3DE | alpha^2 | 0.5 (|dn_u|^2 + |dn_v|^2) | 0.18 | add, yes |
+// | TK19_AVERAGE | alpha^2 | 0.25 (...) | 0.18 | add, yes |
+// | TK19_MAX | alpha^2 | 0.5 lambda_max(Gram) | 0.18 | add, yes |
+// | TK21_LISTING | alpha^2 | (...) / (2 pi) | 0.18 | add, yes |
+// | FILAMENT | alpha^2 | 0.3 (...), perceptual floor 0.045 | 0.04 | add, yes |
+// | UNITY_HDRP | alpha^2 | 0.2 (...) | 0.04 | add, yes |
+// | UNITY_HDRP_PROJECTED | alpha^2 / (1 - alpha^2) | 0.2 (...) | 0.04 | add, yes |
+// | GODOT | alpha | 0.5 (...) | 0.18 | add, yes |
+// | UNREAL, BABYLON | p | max(|dn_u|^2, |dn_v|^2)^0.333 | 1 | max, no |
+// | THREE_JS | p | max abs component, floor 0.0525 | none | add, yes |
+
+/// TK19 eq. 4 and Listing 2 (trace bandwidth): `saturate(alpha^2 + min(0.5 (|dn_u|^2 +
+/// |dn_v|^2), 0.18))`.
+const filter_presets_TK19_TRACE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// TK19 eq. 5 (average of the eigenvalues): kernel `0.25 (|dn_u|^2 + |dn_v|^2)`.
+const filter_presets_TK19_AVERAGE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.25,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// TK19 eq. 1 (tightest conservative isotropic kernel): `0.5 lambda_max` of the Gram matrix.
+const filter_presets_TK19_MAX: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_MAX_EIGENVALUE,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Tokuyoshi and Kaplanyan 2021, Listing 5: `saturate(alpha^2 + min((|dn_u|^2 +
+/// |dn_v|^2) / (2 pi), 0.18))`.
+const filter_presets_TK21_LISTING: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.159154943091895,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Filament `normalFiltering`: variance 0.15 (kernel `0.3 (...)`), threshold `0.2^2`,
+/// perceptual roughness floor 0.045.
+const filter_presets_FILAMENT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.3,
+    1.0,
+    0.0,
+    0.04,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.045,
+);
+/// Unity HDRP `NormalFiltering`: screen-space variance 0.1 (kernel `0.2 (...)`),
+/// threshold `0.2^2`.
+const filter_presets_UNITY_HDRP: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.2,
+    1.0,
+    0.0,
+    0.04,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Unity HDRP `ProjectedSpaceNormalFiltering` (after TK21): [`UNITY_HDRP`] in the domain
+/// `alpha^2 / (1 - alpha^2)`.
+const filter_presets_UNITY_HDRP_PROJECTED: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.2,
+    1.0,
+    0.0,
+    0.04,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Godot 4 screen-space roughness limiter: TK19's formula on `alpha` (amount 0.25, limit
+/// 0.18).
+const filter_presets_GODOT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// O3DE `CalculateSpecularAA`: TK19 Listing 2 verbatim, identical to [`TK19_TRACE`].
+const filter_presets_O3DE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Unreal `NormalCurvatureToRoughness`: `max(p, max(|dn_x|^2, |dn_y|^2)^0.333)`.
+const filter_presets_UNREAL: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PERCEPTUAL,
+    filter_deferred_NORM_MAX_SQUARED,
+    1.0,
+    0.333,
+    0.0,
+    1.0,
+    filter_deferred_COMBINE_MAX,
+    false,
+    0.0,
+);
+/// Babylon.js (Vlachos 2015), the analytic-light path: as [`UNREAL`].
+const filter_presets_BABYLON: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PERCEPTUAL,
+    filter_deferred_NORM_MAX_SQUARED,
+    1.0,
+    0.333,
+    0.0,
+    1.0,
+    filter_deferred_COMBINE_MAX,
+    false,
+    0.0,
+);
+/// three.js: `min(max(p, 0.0525) + max abs component of dn, 1)` on the perceptual roughness.
+const filter_presets_THREE_JS: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PERCEPTUAL,
+    filter_deferred_NORM_MAX_ABS_COMPONENT,
+    1.0,
+    1.0,
+    0.0,
+    math_F32_MAX,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0525,
+);
+
+/// Every preset, in the order of the Rust `presets::ALL`: TK19 max, trace, average, TK21,
+/// Filament, Unity HDRP, Unity HDRP projected, Godot, O3DE, Unreal, Babylon.js, three.js.
+fn filter_presets_preset(i: u32) -> filter_deferred_KernelConvention {
+    switch i {
+        case 0u: { return filter_presets_TK19_MAX; }
+        case 1u: { return filter_presets_TK19_TRACE; }
+        case 2u: { return filter_presets_TK19_AVERAGE; }
+        case 3u: { return filter_presets_TK21_LISTING; }
+        case 4u: { return filter_presets_FILAMENT; }
+        case 5u: { return filter_presets_UNITY_HDRP; }
+        case 6u: { return filter_presets_UNITY_HDRP_PROJECTED; }
+        case 7u: { return filter_presets_GODOT; }
+        case 8u: { return filter_presets_O3DE; }
+        case 9u: { return filter_presets_UNREAL; }
+        case 10u: { return filter_presets_BABYLON; }
+        default: { return filter_presets_THREE_JS; }
+    }
 }
 
 // ---- filtered_ndf::filter::projected (shaders/filter/projected.wgsl) ----
@@ -2120,6 +2363,28 @@ fn filter_projected_filter_projected(
     return filter_projected_projected_sanitized(a, kernel_clamp_pixel_kernel(rules, fp, sigma), kernel_clamp_det_clamp_for(rules, a));
 }
 
+/// Projected-space filtering of GGX (Tokuyoshi and Kaplanyan 2021), the kernel of the
+/// footprint after the clamp rules.
+struct filter_projected_Projected {
+    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
+    clamps: kernel_clamp_ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+}
+
+/// TK21: the default rules, `sigma = 0.5`.
+const filter_projected_TK21_PROJECTED: filter_projected_Projected = filter_projected_Projected(kernel_clamp_DEFAULT_RULES, footprint_SIGMA_PIXEL);
+
+/// The GGX lobe of projected-space filtering (the Rust `Projected::lobe`), for `ggx::*_matrix`.
+fn filter_projected_projected_lobe(method: filter_projected_Projected, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_projected_filter_projected(method.clamps, material, fp, method.sigma);
+}
+
+/// `D(m)` of [`projected_lobe`].
+fn filter_projected_d_ggx_projected(method: filter_projected_Projected, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return ndf_ggx_d_matrix(filter_projected_projected_lobe(method, material, fp), m);
+}
+
 // ---- filtered_ndf::filter::proxy (shaders/filter/proxy.wgsl) ----
 // The GGX proxy of KHPL16 section 5.4 (eq. 18-20), mirroring `src/.../filter/proxy.rs`: an
 // effective roughness whose unfiltered GGX has the peak of the box-filtered GGX. Eq. 19
@@ -2159,6 +2424,27 @@ fn filter_proxy_proxy_simple(r: ndf_roughness_axis_aligned_AxisAligned, half_ext
         filter_proxy_effective_alpha_simple(r.alpha.x, half_extent.x),
         filter_proxy_effective_alpha_simple(r.alpha.y, half_extent.y),
     ));
+}
+
+/// The GGX proxy of KHPL16 section 5.4 (eq. 18-19, solved exactly): the axis-aligned GGX whose
+/// peak is the box-filtered peak over the clamped bounding rectangle, per axis.
+struct filter_proxy_Proxy {
+    /// The clamp rules applied to the rectangle's half extents.
+    clamps: kernel_clamp_ClampRules,
+}
+
+/// KHPL16: half extents clamped to `lambda = 1`, no floor.
+const filter_proxy_KHPL16_PROXY: filter_proxy_Proxy = filter_proxy_Proxy(kernel_clamp_KHPL16_RULES);
+
+/// The proxy roughness (the Rust `Proxy::lobe`), for `ggx::*_axis_aligned`.
+fn filter_proxy_proxy_lobe(method: filter_proxy_Proxy, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint) -> ndf_roughness_axis_aligned_AxisAligned {
+    let h = kernel_clamp_rect(method.clamps, kernel_rect_from_footprint(fp), material.alpha).half_extent;
+    return filter_proxy_proxy(material, h);
+}
+
+/// `D(m)` of [`proxy_lobe`].
+fn filter_proxy_d_ggx_proxy(method: filter_proxy_Proxy, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return ndf_ggx_d_axis_aligned(filter_proxy_proxy_lobe(method, material, fp), m);
 }
 
 // ---- filtered_ndf::filter::rect (shaders/filter/rect.wgsl) ----
@@ -2790,121 +3076,27 @@ fn filter_rect_lambda_lambda_rect(r: ndf_roughness_axis_aligned_AxisAligned, hal
     return filter_rect_lambda_expected_psi(mm, k1, k2, lo) / mm;
 }
 
-// ---- filtered_ndf::filter::method (shaders/filter/method.wgsl) ----
-// The front door (`src/.../filter/method.rs`): one call from what a shader has (a material
-// roughness and a pixel footprint) to a filtered lobe whose functions describe one
-// distribution. WGSL has no traits, so each method is a small struct (its clamp rules and
-// pixel filter width, with the Rust presets as constants) and a `*_lobe` function that returns
-// the lobe, plus a `d_*` function that returns the filtered `D(m)` in one call:
-//
-// | method (Rust) | constants | lobe function | the lobe, evaluated with |
-// |---|---|---|---|
-// | `Gaussian` | `TK19_GAUSSIAN`, `KHPL16_GAUSSIAN` | `gaussian_lobe` | `matrix::RoughnessMatrix`: `ggx::*_matrix` (TK19's `A + 2 Sigma`), `beckmann::*_matrix` (exact) |
-// | `ExactGaussian` | `KHPL16_EXACT_GAUSSIAN` | `exact_gaussian_lobe` | `gaussian_ggx::GaussianFilteredGgx`: `gaussian_ggx::{p22, d, lambda, g1, g2}`; for Beckmann the exact filter is `gaussian_lobe` with the same rules |
-// | `Projected` | `TK21_PROJECTED` | `projected_lobe` | `matrix::RoughnessMatrix`: `ggx::*_matrix` |
-// | `Rect` | `KHPL16_RECT`, `GDC2016_RECT` | `rect_lobe` | [`RectFilteredGgx`]: `p22_rect_filtered`, `d_rect_filtered`, `lambda_rect_filtered` (the box lobe's own), `g1_rect_filtered`, `g2_rect_filtered` |
-// | `Proxy` | `KHPL16_PROXY` | `proxy_lobe` | `axis_aligned::AxisAligned`: `ggx::*_axis_aligned` |
-//
-// The materials: a roughness matrix for the Gaussian methods (an isotropic or axis-aligned
-// material converts with its `to_matrix`), an axis-aligned roughness for the box methods (their
-// rectangle is axis-aligned; an isotropic `alpha` is `axis_aligned::from_alpha(vec2(alpha))`,
-// as the Rust `From<Isotropic>`). The footprint: `footprint::Footprint` from whichever
-// derivatives the shader has (`footprint.wgsl`); `Projected` wants the projected-disk
-// derivatives (TK19 section 3.2), a slope footprint is exact at `h = n`.
-// (Names: WGSL identifiers may not end in a digit here, see shaders/README.md, so the Rust
-// `Gaussian::TK19` is `TK19_GAUSSIAN`.)
-
-/// `A' = A + 2 Sigma` with the clamped Gaussian pixel kernel (KHPL16 eq. 13-15; TK19 section
-/// 2.2): exact for Beckmann, TK19's approximation for GGX.
-struct filter_method_Gaussian {
-    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
-    clamps: kernel_clamp_ClampRules,
-    /// The standard deviation of the Gaussian pixel filter, in pixels.
-    sigma: f32,
-}
-
-/// TK19: the default rules (`lambda = 1`, `kappa = 0.18`, the determinant clamp), `sigma = 0.5`.
-const filter_method_TK19_GAUSSIAN: filter_method_Gaussian = filter_method_Gaussian(kernel_clamp_DEFAULT_RULES, footprint_SIGMA_PIXEL);
-/// KHPL16's parallelogram kernel: `lambda = 1` and the determinant clamp, no `kappa`.
-const filter_method_KHPL16_GAUSSIAN: filter_method_Gaussian = filter_method_Gaussian(kernel_clamp_KHPL16_RULES, footprint_SIGMA_PIXEL);
-
-/// The lobe of `material` filtered by `method` over `fp` (the Rust `Gaussian::lobe`): the
-/// filtered roughness matrix, for `ggx::*_matrix` or `beckmann::*_matrix`.
-fn filter_method_gaussian_lobe(method: filter_method_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_filter_gaussian(method.clamps, material, fp, method.sigma);
-}
-
-/// `D(m)` of the GGX lobe of [`gaussian_lobe`].
-fn filter_method_d_ggx_gaussian(method: filter_method_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
-    return ndf_ggx_d_matrix(filter_method_gaussian_lobe(method, material, fp), m);
-}
-
-/// `D(m)` of the Beckmann lobe of [`gaussian_lobe`] (the exact Gaussian filter of Beckmann).
-fn filter_method_d_beckmann_gaussian(method: filter_method_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
-    return ndf_beckmann_d_matrix(filter_method_gaussian_lobe(method, material, fp), m);
-}
-
-/// The exact Gaussian filter: the material's slope density convolved with the clamped pixel
-/// kernel (GGX: `GaussianFilteredGgx`; Beckmann: `A + 2 Sigma`, [`gaussian_lobe`] with the
-/// same rules).
-struct filter_method_ExactGaussian {
-    /// The clamp rules applied to the footprint and the kernel.
-    clamps: kernel_clamp_ClampRules,
-    /// The standard deviation of the Gaussian pixel filter, in pixels.
-    sigma: f32,
-}
-
-/// The unbiased filter of the footprint: `lambda = 1` (KHPL16 section 5.2), no `kappa`,
-/// `sigma = 0.5`.
-const filter_method_KHPL16_EXACT_GAUSSIAN: filter_method_ExactGaussian = filter_method_ExactGaussian(kernel_clamp_KHPL16_RULES, footprint_SIGMA_PIXEL);
-
-/// The GGX lobe of the exact Gaussian filter (the Rust `ExactGaussian::lobe` for GGX).
-fn filter_method_exact_gaussian_lobe(method: filter_method_ExactGaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> filter_gaussian_ggx_GaussianFilteredGgx {
-    return filter_gaussian_ggx_from_kernel(material, kernel_clamp_pixel_kernel(method.clamps, fp, method.sigma));
-}
-
-/// `D(m)` of [`exact_gaussian_lobe`].
-fn filter_method_d_ggx_exact_gaussian(method: filter_method_ExactGaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
-    return filter_gaussian_ggx_d(filter_method_exact_gaussian_lobe(method, material, fp), m);
-}
-
-/// Projected-space filtering of GGX (Tokuyoshi and Kaplanyan 2021), the kernel of the
-/// footprint after the clamp rules.
-struct filter_method_Projected {
-    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
-    clamps: kernel_clamp_ClampRules,
-    /// The standard deviation of the Gaussian pixel filter, in pixels.
-    sigma: f32,
-}
-
-/// TK21: the default rules, `sigma = 0.5`.
-const filter_method_TK21_PROJECTED: filter_method_Projected = filter_method_Projected(kernel_clamp_DEFAULT_RULES, footprint_SIGMA_PIXEL);
-
-/// The GGX lobe of projected-space filtering (the Rust `Projected::lobe`), for `ggx::*_matrix`.
-fn filter_method_projected_lobe(method: filter_method_Projected, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_projected_filter_projected(method.clamps, material, fp, method.sigma);
-}
-
-/// `D(m)` of [`projected_lobe`].
-fn filter_method_d_ggx_projected(method: filter_method_Projected, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
-    return ndf_ggx_d_matrix(filter_method_projected_lobe(method, material, fp), m);
-}
+// ---- filtered_ndf::filter::rect::lobe (shaders/filter/rect/lobe.wgsl) ----
+// The box-filter method and its lobe (`src/.../filter/rect/lobe.rs`): `Rect` (KHPL16 section
+// 5.3, the footprint's bounding rectangle after the clamp rules) gives `RectFilteredGgx`, the
+// axis-aligned GGX averaged over that rectangle (`boxed::p22_rect`, `boxed::d_rect`), with its
+// own Smith `Lambda` (`box_lambda::lambda_rect`). Its sampler is `sampling::rect`.
 
 /// The exact box filter of KHPL16 section 5.3 over the footprint's bounding rectangle, its half
 /// extents clamped by the rules (`clamp::rect`).
-struct filter_method_Rect {
+struct filter_rect_lobe_Rect {
     /// The clamp rules applied to the rectangle's half extents.
     clamps: kernel_clamp_ClampRules,
 }
 
 /// KHPL16 with the exact integral: half extents clamped to `lambda = 1`, no floor.
-const filter_method_KHPL16_RECT: filter_method_Rect = filter_method_Rect(kernel_clamp_KHPL16_RULES);
+const filter_rect_lobe_KHPL16_RECT: filter_rect_lobe_Rect = filter_rect_lobe_Rect(kernel_clamp_KHPL16_RULES);
 /// The GDC 2016 listing's clamps: half extents in `[min(alpha, 0.1), 1]`.
-const filter_method_GDC2016_RECT: filter_method_Rect = filter_method_Rect(kernel_clamp_GDC2016_RULES);
+const filter_rect_lobe_GDC2016_RECT: filter_rect_lobe_Rect = filter_rect_lobe_Rect(kernel_clamp_GDC2016_RULES);
 
 /// The exactly box-filtered GGX lobe (the Rust `RectFilteredGgx`): the material's slope density
 /// averaged over `[-half_extent, half_extent]` around each slope.
-struct filter_method_RectFilteredGgx {
+struct filter_rect_lobe_RectFilteredGgx {
     /// The material's roughness.
     roughness: ndf_roughness_axis_aligned_AxisAligned,
     /// The rectangle's half extents (slope units, `>= 0`).
@@ -2912,250 +3104,40 @@ struct filter_method_RectFilteredGgx {
 }
 
 /// The box-filtered lobe of `material` over `fp` (the Rust `Rect::lobe`).
-fn filter_method_rect_lobe(method: filter_method_Rect, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint) -> filter_method_RectFilteredGgx {
+fn filter_rect_lobe_rect_lobe(method: filter_rect_lobe_Rect, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint) -> filter_rect_lobe_RectFilteredGgx {
     let h = kernel_clamp_rect(method.clamps, kernel_rect_from_footprint(fp), material.alpha).half_extent;
-    return filter_method_RectFilteredGgx(material, h);
+    return filter_rect_lobe_RectFilteredGgx(material, h);
 }
 
-/// `P22(s)` of the box lobe (`rect::p22_rect`).
-fn filter_method_p22_rect_filtered(lobe: filter_method_RectFilteredGgx, s: vec2<f32>) -> f32 {
+/// `P22(s)` of the box lobe (`boxed::p22_rect`).
+fn filter_rect_lobe_p22_rect_filtered(lobe: filter_rect_lobe_RectFilteredGgx, s: vec2<f32>) -> f32 {
     return filter_rect_p22_rect(lobe.roughness, s, lobe.half_extent);
 }
 
-/// `D(m)` of the box lobe (`rect::d_rect`).
-fn filter_method_d_rect_filtered(lobe: filter_method_RectFilteredGgx, m: vec3<f32>) -> f32 {
+/// `D(m)` of the box lobe (`boxed::d_rect`).
+fn filter_rect_lobe_d_rect_filtered(lobe: filter_rect_lobe_RectFilteredGgx, m: vec3<f32>) -> f32 {
     return filter_rect_d_rect(lobe.roughness, m, lobe.half_extent);
 }
 
 /// Smith `Lambda(w)` of the box lobe: the box-filtered distribution's own
-/// (`rect::lambda::lambda_rect`), so that `g1`, `g2` and `d` describe one distribution.
-fn filter_method_lambda_rect_filtered(lobe: filter_method_RectFilteredGgx, w: vec3<f32>) -> f32 {
+/// (`lambda::lambda_rect`), so that `g1`, `g2` and `d` describe one distribution.
+fn filter_rect_lobe_lambda_rect_filtered(lobe: filter_rect_lobe_RectFilteredGgx, w: vec3<f32>) -> f32 {
     return filter_rect_lambda_lambda_rect(lobe.roughness, lobe.half_extent, w);
 }
 
 /// `G1(w, m)` of the box lobe.
-fn filter_method_g1_rect_filtered(lobe: filter_method_RectFilteredGgx, w: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g1_of(filter_method_lambda_rect_filtered(lobe, w), dot(w, m));
+fn filter_rect_lobe_g1_rect_filtered(lobe: filter_rect_lobe_RectFilteredGgx, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(filter_rect_lobe_lambda_rect_filtered(lobe, w), dot(w, m));
 }
 
 /// `G2(i, o, m)` of the box lobe (height-correlated).
-fn filter_method_g2_rect_filtered(lobe: filter_method_RectFilteredGgx, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g2_of(filter_method_lambda_rect_filtered(lobe, i), filter_method_lambda_rect_filtered(lobe, o), dot(i, m), dot(o, m));
+fn filter_rect_lobe_g2_rect_filtered(lobe: filter_rect_lobe_RectFilteredGgx, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g2_of(filter_rect_lobe_lambda_rect_filtered(lobe, i), filter_rect_lobe_lambda_rect_filtered(lobe, o), dot(i, m), dot(o, m));
 }
 
 /// `D(m)` of [`rect_lobe`].
-fn filter_method_d_ggx_rect(method: filter_method_Rect, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
-    return filter_method_d_rect_filtered(filter_method_rect_lobe(method, material, fp), m);
-}
-
-/// The GGX proxy of KHPL16 section 5.4 (eq. 18-19, solved exactly): the axis-aligned GGX whose
-/// peak is the box-filtered peak over the clamped bounding rectangle, per axis.
-struct filter_method_Proxy {
-    /// The clamp rules applied to the rectangle's half extents.
-    clamps: kernel_clamp_ClampRules,
-}
-
-/// KHPL16: half extents clamped to `lambda = 1`, no floor.
-const filter_method_KHPL16_PROXY: filter_method_Proxy = filter_method_Proxy(kernel_clamp_KHPL16_RULES);
-
-/// The proxy roughness (the Rust `Proxy::lobe`), for `ggx::*_axis_aligned`.
-fn filter_method_proxy_lobe(method: filter_method_Proxy, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint) -> ndf_roughness_axis_aligned_AxisAligned {
-    let h = kernel_clamp_rect(method.clamps, kernel_rect_from_footprint(fp), material.alpha).half_extent;
-    return filter_proxy_proxy(material, h);
-}
-
-/// `D(m)` of [`proxy_lobe`].
-fn filter_method_d_ggx_proxy(method: filter_method_Proxy, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
-    return ndf_ggx_d_axis_aligned(filter_method_proxy_lobe(method, material, fp), m);
-}
-
-// ---- filtered_ndf::filter::presets (shaders/filter/presets.wgsl) ----
-// The published isotropic specular-antialiasing conventions as `deferred::KernelConvention`
-// values, mirroring `src/.../filter/presets.rs` (whose docs give each source, formula and
-// engine default). `alpha` is the GGX roughness, `p = sqrt(alpha)` the perceptual one.
-// Names that would end in a digit carry a suffix (naga renames such identifiers).
-//
-// | preset | domain | kernel | clamp | combine, saturate |
-// |---|---|---|---|---|
-// | TK19_TRACE, O3DE | alpha^2 | 0.5 (|dn_u|^2 + |dn_v|^2) | 0.18 | add, yes |
-// | TK19_AVERAGE | alpha^2 | 0.25 (...) | 0.18 | add, yes |
-// | TK19_MAX | alpha^2 | 0.5 lambda_max(Gram) | 0.18 | add, yes |
-// | TK21_LISTING | alpha^2 | (...) / (2 pi) | 0.18 | add, yes |
-// | FILAMENT | alpha^2 | 0.3 (...), perceptual floor 0.045 | 0.04 | add, yes |
-// | UNITY_HDRP | alpha^2 | 0.2 (...) | 0.04 | add, yes |
-// | UNITY_HDRP_PROJECTED | alpha^2 / (1 - alpha^2) | 0.2 (...) | 0.04 | add, yes |
-// | GODOT | alpha | 0.5 (...) | 0.18 | add, yes |
-// | UNREAL, BABYLON | p | max(|dn_u|^2, |dn_v|^2)^0.333 | 1 | max, no |
-// | THREE_JS | p | max abs component, floor 0.0525 | none | add, yes |
-
-/// TK19 eq. 4 and Listing 2 (trace bandwidth): `saturate(alpha^2 + min(0.5 (|dn_u|^2 +
-/// |dn_v|^2), 0.18))`.
-const filter_presets_TK19_TRACE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.5,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// TK19 eq. 5 (average of the eigenvalues): kernel `0.25 (|dn_u|^2 + |dn_v|^2)`.
-const filter_presets_TK19_AVERAGE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.25,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// TK19 eq. 1 (tightest conservative isotropic kernel): `0.5 lambda_max` of the Gram matrix.
-const filter_presets_TK19_MAX: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_MAX_EIGENVALUE,
-    0.5,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Tokuyoshi and Kaplanyan 2021, Listing 5: `saturate(alpha^2 + min((|dn_u|^2 +
-/// |dn_v|^2) / (2 pi), 0.18))`.
-const filter_presets_TK21_LISTING: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.159154943091895,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Filament `normalFiltering`: variance 0.15 (kernel `0.3 (...)`), threshold `0.2^2`,
-/// perceptual roughness floor 0.045.
-const filter_presets_FILAMENT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.3,
-    1.0,
-    0.0,
-    0.04,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.045,
-);
-/// Unity HDRP `NormalFiltering`: screen-space variance 0.1 (kernel `0.2 (...)`),
-/// threshold `0.2^2`.
-const filter_presets_UNITY_HDRP: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.2,
-    1.0,
-    0.0,
-    0.04,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Unity HDRP `ProjectedSpaceNormalFiltering` (after TK21): [`UNITY_HDRP`] in the domain
-/// `alpha^2 / (1 - alpha^2)`.
-const filter_presets_UNITY_HDRP_PROJECTED: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.2,
-    1.0,
-    0.0,
-    0.04,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Godot 4 screen-space roughness limiter: TK19's formula on `alpha` (amount 0.25, limit
-/// 0.18).
-const filter_presets_GODOT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.5,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// O3DE `CalculateSpecularAA`: TK19 Listing 2 verbatim, identical to [`TK19_TRACE`].
-const filter_presets_O3DE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.5,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Unreal `NormalCurvatureToRoughness`: `max(p, max(|dn_x|^2, |dn_y|^2)^0.333)`.
-const filter_presets_UNREAL: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_PERCEPTUAL,
-    filter_deferred_NORM_MAX_SQUARED,
-    1.0,
-    0.333,
-    0.0,
-    1.0,
-    filter_deferred_COMBINE_MAX,
-    false,
-    0.0,
-);
-/// Babylon.js (Vlachos 2015), the analytic-light path: as [`UNREAL`].
-const filter_presets_BABYLON: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_PERCEPTUAL,
-    filter_deferred_NORM_MAX_SQUARED,
-    1.0,
-    0.333,
-    0.0,
-    1.0,
-    filter_deferred_COMBINE_MAX,
-    false,
-    0.0,
-);
-/// three.js: `min(max(p, 0.0525) + max abs component of dn, 1)` on the perceptual roughness.
-const filter_presets_THREE_JS: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_PERCEPTUAL,
-    filter_deferred_NORM_MAX_ABS_COMPONENT,
-    1.0,
-    1.0,
-    0.0,
-    math_F32_MAX,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0525,
-);
-
-/// Every preset, in the order of the Rust `presets::ALL`: TK19 max, trace, average, TK21,
-/// Filament, Unity HDRP, Unity HDRP projected, Godot, O3DE, Unreal, Babylon.js, three.js.
-fn filter_presets_preset(i: u32) -> filter_deferred_KernelConvention {
-    switch i {
-        case 0u: { return filter_presets_TK19_MAX; }
-        case 1u: { return filter_presets_TK19_TRACE; }
-        case 2u: { return filter_presets_TK19_AVERAGE; }
-        case 3u: { return filter_presets_TK21_LISTING; }
-        case 4u: { return filter_presets_FILAMENT; }
-        case 5u: { return filter_presets_UNITY_HDRP; }
-        case 6u: { return filter_presets_UNITY_HDRP_PROJECTED; }
-        case 7u: { return filter_presets_GODOT; }
-        case 8u: { return filter_presets_O3DE; }
-        case 9u: { return filter_presets_UNREAL; }
-        case 10u: { return filter_presets_BABYLON; }
-        default: { return filter_presets_THREE_JS; }
-    }
+fn filter_rect_lobe_d_ggx_rect(method: filter_rect_lobe_Rect, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return filter_rect_lobe_d_rect_filtered(filter_rect_lobe_rect_lobe(method, material, fp), m);
 }
 
 // ---- filtered_ndf::footprint::slope (shaders/footprint/slope.wgsl) ----

@@ -1,10 +1,14 @@
 //! `A' = A + 2 Sigma`: the Beckmann convolution (KHPL16 eq. 13-15) and the TK19 (section 2.2)
-//! matrix approximation for GGX.
+//! matrix approximation for GGX; its pipeline through the clamp rules
+//! ([`ClampRules::filter_gaussian`]) and its method ([`Gaussian`]).
 
 use super::super::footprint::Footprint;
-use super::super::kernel::{ClampRules, Covariance};
+use super::super::kernel::{ClampRules, Covariance, SIGMA_PIXEL};
+use super::super::ndf::beckmann::Beckmann;
+use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix, det_clamp_tau, det_wide};
 use super::F;
+use super::method::Method;
 
 /// `A' = A + 2 Sigma`, evaluated with the determinant clamp `tau = det(A)` (TK19 supplement).
 ///
@@ -133,6 +137,67 @@ impl ClampRules {
             gaussian_entries(roughness, k),
             self.det_clamp_wide(roughness),
             ok,
+        )
+    }
+}
+
+/// `A' = A + 2 Sigma` with the Gaussian pixel kernel `Sigma = sigma^2 (dh_u dh_u^T + dh_v
+/// dh_v^T)` (KHPL16 eq. 13-15; TK19 section 2.2), after the clamp rules
+/// ([`ClampRules::filter_gaussian`]: maximum extent, `kappa`, determinant clamp).
+///
+/// For Beckmann this is the exact convolution of the lobe with the kernel (a Beckmann lobe is
+/// a Gaussian of slopes with covariance `A / 2`). For GGX it is TK19's approximation: the GGX
+/// of roughness `A + 2 Sigma` (its error against the exact Gaussian-filtered GGX is in the
+/// trade table, [`crate::tables`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Gaussian {
+    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
+    pub clamps: ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    pub sigma: F,
+}
+
+impl Gaussian {
+    /// TK19's configuration: [`ClampRules::default`] (`lambda = 1`, `kappa = 0.18`, the
+    /// determinant clamp) and `sigma = 0.5` pixels.
+    pub const TK19: Self = Self {
+        clamps: ClampRules::DEFAULT,
+        sigma: SIGMA_PIXEL,
+    };
+
+    /// KHPL16's configuration for the parallelogram kernel: the maximum extent `lambda = 1`
+    /// (section 5.2) and the determinant clamp, no `kappa`; `sigma = 0.5` pixels.
+    pub const KHPL16: Self = Self {
+        clamps: ClampRules::KHPL16,
+        sigma: SIGMA_PIXEL,
+    };
+}
+
+impl Default for Gaussian {
+    /// [`Gaussian::TK19`].
+    fn default() -> Self {
+        Self::TK19
+    }
+}
+
+impl<R: Roughness> Method<Ggx<R>> for Gaussian {
+    type Lobe = Ggx<RoughnessMatrix>;
+    #[inline]
+    fn lobe(&self, material: &Ggx<R>, footprint: Footprint) -> Self::Lobe {
+        Ggx::new(
+            self.clamps
+                .filter_gaussian(material.roughness, footprint, self.sigma),
+        )
+    }
+}
+
+impl<R: Roughness> Method<Beckmann<R>> for Gaussian {
+    type Lobe = Beckmann<RoughnessMatrix>;
+    #[inline]
+    fn lobe(&self, material: &Beckmann<R>, footprint: Footprint) -> Self::Lobe {
+        Beckmann::new(
+            self.clamps
+                .filter_gaussian(material.roughness, footprint, self.sigma),
         )
     }
 }

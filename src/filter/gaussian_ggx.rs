@@ -175,11 +175,15 @@
 //! `lambda` never return NaN: non-finite arguments give `0` (`p22`, `d`) and `lambda` follows
 //! [`Ndf::lambda`] (`+inf` at grazing, `0` at normal incidence).
 
-use super::super::kernel::Covariance;
+use super::super::footprint::Footprint;
+use super::super::kernel::{ClampRules, Covariance, SIGMA_PIXEL};
+use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::{Ggx, ggx_lambda};
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
 use super::super::ndf::{Ndf, rescale_direction};
+use super::gaussian::Gaussian;
 use super::gaussian_ggx_quad as quad;
+use super::method::Method;
 use super::{F, Vec2, Vec3};
 use crate::math::{self as m, Real};
 
@@ -488,5 +492,64 @@ impl Ndf for GaussianFilteredGgx {
         } else {
             F::from_f64(v)
         }
+    }
+}
+
+/// The exact Gaussian filter: the material's slope density convolved with the pixel kernel
+/// `N(0, Sigma)`, `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` after the clamp rules
+/// ([`ClampRules::footprint`], [`ClampRules::kernel`]). For GGX the lobe is
+/// [`GaussianFilteredGgx`] (what [`Gaussian`] approximates by `A + 2 Sigma`); for Beckmann the
+/// exact filter is `A + 2 Sigma` itself, so this gives the same lobe as [`Gaussian`] with the
+/// same rules: a renderer switches NDF without switching method.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ExactGaussian {
+    /// The clamp rules applied to the footprint and the kernel (for Beckmann also the
+    /// determinant clamp of the filtered matrix).
+    pub clamps: ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    pub sigma: F,
+}
+
+impl ExactGaussian {
+    /// The unbiased filter of the footprint: the maximum extent `lambda = 1` of KHPL16
+    /// section 5.2 (a first-order footprint wider than that is not trustworthy), no `kappa`;
+    /// `sigma = 0.5` pixels.
+    pub const KHPL16: Self = Self {
+        clamps: ClampRules::KHPL16,
+        sigma: SIGMA_PIXEL,
+    };
+
+    /// The clamped pixel kernel of `footprint`.
+    #[inline]
+    fn kernel(&self, footprint: Footprint) -> Covariance {
+        let rules = self.clamps;
+        rules.kernel(rules.footprint(footprint).covariance(self.sigma))
+    }
+}
+
+impl Default for ExactGaussian {
+    /// [`ExactGaussian::KHPL16`].
+    fn default() -> Self {
+        Self::KHPL16
+    }
+}
+
+impl<R: Roughness> Method<Ggx<R>> for ExactGaussian {
+    type Lobe = GaussianFilteredGgx;
+    #[inline]
+    fn lobe(&self, material: &Ggx<R>, footprint: Footprint) -> Self::Lobe {
+        GaussianFilteredGgx::new(material.roughness, self.kernel(footprint))
+    }
+}
+
+impl<R: Roughness> Method<Beckmann<R>> for ExactGaussian {
+    type Lobe = Beckmann<RoughnessMatrix>;
+    #[inline]
+    fn lobe(&self, material: &Beckmann<R>, footprint: Footprint) -> Self::Lobe {
+        Gaussian {
+            clamps: self.clamps,
+            sigma: self.sigma,
+        }
+        .lobe(material, footprint)
     }
 }

@@ -1,10 +1,14 @@
-//! Projected-space filtering (Tokuyoshi and Kaplanyan 2021, JCGT 10(2)).
+//! Projected-space filtering (Tokuyoshi and Kaplanyan 2021, JCGT 10(2)): the filter, its
+//! pipeline through the clamp rules ([`ClampRules::filter_projected`]) and its method
+//! ([`Projected`]).
 
 use super::super::footprint::Footprint;
-use super::super::kernel::{ClampRules, Covariance};
+use super::super::kernel::{ClampRules, Covariance, SIGMA_PIXEL};
+use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
 use super::F;
 use super::gaussian::{filter_tau, valid_clamp};
+use super::method::Method;
 use crate::math::Real;
 
 /// The largest eigenvalue of `A` that [`projected`] maps to projected space: `0.99`
@@ -192,6 +196,47 @@ impl ProjectedBase {
             (q.0 + d) / den + e.0,
             q.1 / den + e.1,
             (q.2 + d) / den + e.2,
+        )
+    }
+}
+
+/// Projected-space filtering of GGX (Tokuyoshi and Kaplanyan 2021, JCGT 10(2)): `P = A (I -
+/// A)^-1`, `P' = P + 2 Sigma`, `A' = P' (I + P')^-1` ([`projected`]), with the kernel
+/// `Sigma` of the footprint after the clamp rules ([`ClampRules::filter_projected`]: maximum
+/// extent, `kappa`, determinant clamp). The footprint should hold projected-disk derivatives (see the
+/// [front door](super::method)).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Projected {
+    /// The clamp rules applied to the footprint and the kernel.
+    pub clamps: ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    pub sigma: F,
+}
+
+impl Projected {
+    /// TK21's configuration: [`ClampRules::default`] and `sigma = 0.5` pixels (TK21's
+    /// `SIGMA2 = 1 / (2 pi)` is a variance of its own pixel filter; set `sigma` to
+    /// `sqrt(1 / (2 pi))` to reproduce it).
+    pub const TK21: Self = Self {
+        clamps: ClampRules::DEFAULT,
+        sigma: SIGMA_PIXEL,
+    };
+}
+
+impl Default for Projected {
+    /// [`Projected::TK21`].
+    fn default() -> Self {
+        Self::TK21
+    }
+}
+
+impl<R: Roughness> Method<Ggx<R>> for Projected {
+    type Lobe = Ggx<RoughnessMatrix>;
+    #[inline]
+    fn lobe(&self, material: &Ggx<R>, footprint: Footprint) -> Self::Lobe {
+        Ggx::new(
+            self.clamps
+                .filter_projected(material.roughness, footprint, self.sigma),
         )
     }
 }

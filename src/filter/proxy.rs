@@ -32,7 +32,12 @@
 //! for its anisotropic G-buffer roughness. Eq. 19 then holds exactly for isotropic lobes and
 //! square footprints (the case the paper solves); otherwise it is the paper's approximation.
 
-use super::super::ndf::roughness::AxisAligned;
+use super::super::footprint::Footprint;
+use super::super::kernel::ClampRules;
+use super::super::ndf::ggx::Ggx;
+use super::super::ndf::roughness::{AxisAligned, Isotropic};
+use super::method::Method;
+use super::rect::Rect;
 use super::{F, Vec2};
 use crate::math as m;
 
@@ -88,4 +93,48 @@ pub fn proxy_simple(r: AxisAligned, half_extent: Vec2) -> AxisAligned {
         effective_alpha_simple(a.x, half_extent.x),
         effective_alpha_simple(a.y, half_extent.y),
     )
+}
+
+/// The GGX proxy of KHPL16 section 5.4 (eq. 18-19, solved exactly: [`proxy`]): the
+/// axis-aligned GGX whose peak equals the peak of the box-filtered GGX over the clamped
+/// bounding rectangle ([`Rect`]), per axis. Axis-aligned materials only.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Proxy {
+    /// The clamp rules applied to the rectangle's half extents.
+    pub clamps: ClampRules,
+}
+
+impl Proxy {
+    /// KHPL16: half extents clamped to `lambda = 1`, no floor.
+    pub const KHPL16: Self = Self {
+        clamps: ClampRules::KHPL16,
+    };
+}
+
+impl Default for Proxy {
+    /// [`Proxy::KHPL16`].
+    fn default() -> Self {
+        Self::KHPL16
+    }
+}
+
+impl Method<Ggx<AxisAligned>> for Proxy {
+    type Lobe = Ggx<AxisAligned>;
+    #[inline]
+    fn lobe(&self, material: &Ggx<AxisAligned>, footprint: Footprint) -> Self::Lobe {
+        let r = material.roughness;
+        let half = Rect {
+            clamps: self.clamps,
+        }
+        .half_extent(r, footprint);
+        Ggx::new(proxy(r, half))
+    }
+}
+
+impl Method<Ggx<Isotropic>> for Proxy {
+    type Lobe = Ggx<AxisAligned>;
+    #[inline]
+    fn lobe(&self, material: &Ggx<Isotropic>, footprint: Footprint) -> Self::Lobe {
+        self.lobe(&Ggx::new(AxisAligned::from(material.roughness)), footprint)
+    }
 }

@@ -95,9 +95,9 @@
 //!
 //! # The box lobe
 //! [`lambda_rect`] is the exact Smith `Lambda` of this distribution (module `lambda`), so
-//! that `d_rect`, `G1 = 1 / (1 + lambda_rect)` and `G2` describe one lobe; [`sample_normal_rect`]
-//! and [`sample_visible_normal_rect`] sample it exactly, with the pdfs [`normal_pdf_rect`] and
-//! [`visible_normal_pdf_rect`] (module `sample`).
+//! that `d_rect`, `G1 = 1 / (1 + lambda_rect)` and `G2` describe one lobe: [`RectFilteredGgx`]
+//! (module `lobe`, with its method [`Rect`]). The sampling stage samples it exactly, with its
+//! pdfs (`sampling::rect`).
 //!
 //! # Inputs outside the domain
 //! Negative half extents are used by their absolute value (the rectangle is the same); NaN half
@@ -115,6 +115,7 @@ use crate::math::{self as m, Real};
 
 mod gauss;
 mod lambda;
+mod lobe;
 mod printed;
 pub(crate) use gauss::{
     CLOSED_INDEX, GL2_X, GL4_W, GL4_X, GL6_W, GL6_X, GL8_W, GL8_X, GL10_W, GL10_X, Tier, WIDE,
@@ -123,6 +124,7 @@ pub(crate) use gauss::{
 use gauss::{tier_index, tier_of_index};
 pub use lambda::lambda_rect;
 pub(crate) use lambda::{mean_psi, mean_psi1, psi, psi1_diff, scaled};
+pub use lobe::{Rect, RectFilteredGgx};
 pub use printed::d_rect_printed;
 
 const PI64: f64 = core::f64::consts::PI;

@@ -66,8 +66,11 @@ const IMPORTS: &str = "#import filtered_ndf::ndf::roughness::axis_aligned
 #import filtered_ndf::ndf::ggx
 #import filtered_ndf::ndf::beckmann
 #import filtered_ndf::footprint
+#import filtered_ndf::filter::gaussian
 #import filtered_ndf::filter::gaussian_ggx
-#import filtered_ndf::filter::method";
+#import filtered_ndf::filter::projected
+#import filtered_ndf::filter::rect::lobe
+#import filtered_ndf::filter::proxy";
 
 const PROLOGUE: &str = "let r = axis_aligned::from_alpha(x2(0u));
 let a = axis_aligned::to_matrix(r);
@@ -97,8 +100,8 @@ pub fn all() -> Vec<Check> {
             Gaussian::KHPL16
         };
         one(
-            &format!("method::d_ggx_gaussian (method::{name})"),
-            &format!("method::d_ggx_gaussian(method::{name}, a, fp, h)"),
+            &format!("gaussian::d_ggx_gaussian (gaussian::{name})"),
+            &format!("gaussian::d_ggx_gaussian(gaussian::{name}, a, fp, h)"),
             &move |p| {
                 let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
                 let h = v3(p.h);
@@ -109,8 +112,8 @@ pub fn all() -> Vec<Check> {
             },
         );
         one(
-            &format!("method::d_beckmann_gaussian (method::{name})"),
-            &format!("method::d_beckmann_gaussian(method::{name}, a, fp, h)"),
+            &format!("gaussian::d_beckmann_gaussian (gaussian::{name})"),
+            &format!("gaussian::d_beckmann_gaussian(gaussian::{name}, a, fp, h)"),
             &move |p| {
                 let lobe = Beckmann::new(p.material()).filtered(p.fp(), m);
                 let h = v3(p.h);
@@ -122,8 +125,8 @@ pub fn all() -> Vec<Check> {
         );
     }
     one(
-        "method::d_ggx_projected (method::TK21_PROJECTED)",
-        "method::d_ggx_projected(method::TK21_PROJECTED, a, fp, h)",
+        "projected::d_ggx_projected (projected::TK21_PROJECTED)",
+        "projected::d_ggx_projected(projected::TK21_PROJECTED, a, fp, h)",
         &|p| {
             let lobe = Ggx::new(p.material()).filtered(p.fp(), Projected::TK21);
             let h = v3(p.h);
@@ -138,8 +141,8 @@ pub fn all() -> Vec<Check> {
         r.kernel(r.footprint(p.fp()).covariance(0.5))
     };
     one(
-        "method::d_ggx_exact_gaussian (method::KHPL16_EXACT_GAUSSIAN)",
-        "method::d_ggx_exact_gaussian(method::KHPL16_EXACT_GAUSSIAN, a, fp, h)",
+        "gaussian_ggx::d_ggx_exact_gaussian (gaussian_ggx::KHPL16_EXACT_GAUSSIAN)",
+        "gaussian_ggx::d_ggx_exact_gaussian(gaussian_ggx::KHPL16_EXACT_GAUSSIAN, a, fp, h)",
         &|p| {
             let lobe = Ggx::new(p.material()).filtered(p.fp(), ExactGaussian::KHPL16);
             let h = v3(p.h);
@@ -150,8 +153,8 @@ pub fn all() -> Vec<Check> {
         },
     );
     one(
-        "gaussian_ggx::lambda(method::exact_gaussian_lobe) (method::KHPL16_EXACT_GAUSSIAN)",
-        "gaussian_ggx::lambda(method::exact_gaussian_lobe(method::KHPL16_EXACT_GAUSSIAN, a, fp), w)",
+        "gaussian_ggx::lambda(gaussian_ggx::exact_gaussian_lobe) (gaussian_ggx::KHPL16_EXACT_GAUSSIAN)",
+        "gaussian_ggx::lambda(gaussian_ggx::exact_gaussian_lobe(gaussian_ggx::KHPL16_EXACT_GAUSSIAN, a, fp), w)",
         &|p| {
             let lobe = Ggx::new(p.material()).filtered(p.fp(), ExactGaussian::KHPL16);
             let w = v3(p.w);
@@ -163,8 +166,8 @@ pub fn all() -> Vec<Check> {
     for (name, gdc) in [("KHPL16_RECT", false), ("GDC2016_RECT", true)] {
         let m = if gdc { Rect::GDC2016 } else { Rect::KHPL16 };
         one(
-            &format!("method::d_ggx_rect (method::{name})"),
-            &format!("method::d_ggx_rect(method::{name}, r, fp, h)"),
+            &format!("lobe::d_ggx_rect (lobe::{name})"),
+            &format!("lobe::d_ggx_rect(lobe::{name}, r, fp, h)"),
             &move |p| {
                 let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
                 let h = v3(p.h);
@@ -174,8 +177,8 @@ pub fn all() -> Vec<Check> {
             },
         );
         one(
-            &format!("method::lambda_rect_filtered (method::{name})"),
-            &format!("method::lambda_rect_filtered(method::rect_lobe(method::{name}, r, fp), w)"),
+            &format!("lobe::lambda_rect_filtered (lobe::{name})"),
+            &format!("lobe::lambda_rect_filtered(lobe::rect_lobe(lobe::{name}, r, fp), w)"),
             &move |p| {
                 let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
                 let w = v3(p.w);
@@ -184,8 +187,8 @@ pub fn all() -> Vec<Check> {
             },
         );
         one(
-            &format!("method::g2_rect_filtered (method::{name})"),
-            &format!("method::g2_rect_filtered(method::rect_lobe(method::{name}, r, fp), w, o, h)"),
+            &format!("lobe::g2_rect_filtered (lobe::{name})"),
+            &format!("lobe::g2_rect_filtered(lobe::rect_lobe(lobe::{name}, r, fp), w, o, h)"),
             &move |p| {
                 let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
                 let (w, o, h) = (v3(p.w), v3(p.o), v3(p.h));
@@ -199,8 +202,8 @@ pub fn all() -> Vec<Check> {
         );
     }
     one(
-        "method::d_ggx_proxy (method::KHPL16_PROXY)",
-        "method::d_ggx_proxy(method::KHPL16_PROXY, r, fp, h)",
+        "proxy::d_ggx_proxy (proxy::KHPL16_PROXY)",
+        "proxy::d_ggx_proxy(proxy::KHPL16_PROXY, r, fp, h)",
         &|p| {
             let lobe = Ggx::new(p.material()).filtered(p.fp(), Proxy::KHPL16);
             (

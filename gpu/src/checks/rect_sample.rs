@@ -20,7 +20,7 @@
 use super::rect::{d_rect_ulps, lambda_rect_ulps};
 use super::{Check, EPS, Tol, draw};
 use crate::reference::{
-    AxisAligned, ClampRules, DVec2, Footprint, SplitMix64, rect, sampling, strategies, v2, v3,
+    AxisAligned, ClampRules, DVec2, Footprint, SplitMix64, sampling, strategies, v2, v3,
 };
 
 /// The checks of `sampling/rect.wgsl`.
