@@ -14,7 +14,7 @@ use crate::math as m;
 
 /// The squared lengths for which `v / sqrt(|v|^2)` needs no rescaling (module docs).
 #[inline(always)]
-fn direct(l2: F) -> bool {
+fn in_direct_range(l2: F) -> bool {
     (F::MIN_POSITIVE / F::EPSILON..=F::MAX).contains(&l2)
 }
 
@@ -24,7 +24,7 @@ fn direct(l2: F) -> bool {
 #[inline]
 pub fn length(v: Vec3) -> F {
     let l2 = v.length_squared();
-    if direct(l2) {
+    if in_direct_range(l2) {
         return m::sqrt(l2);
     }
     // `max_element` skips NaN: test the vector itself.
@@ -45,7 +45,7 @@ macro_rules! unit_and_length_of {
     ($v:expr) => {{
         let v = $v;
         let l2 = v.length_squared();
-        if direct(l2) {
+        if in_direct_range(l2) {
             let len = m::sqrt(l2);
             return Some((v / len, len));
         }

@@ -102,7 +102,7 @@ fn whiten(g: GaussianFilteredGgx, s: vec2<f32>) -> vec2<f32> {
 /// underflows.
 fn p22(g: GaussianFilteredGgx, s: vec2<f32>) -> f32 {
     let c = whiten(g, s);
-    return g.norm * quad::j(c.x, c.y, 1.0, g.tl.x, g.tl.y);
+    return g.norm * quad::mixture_integral(c.x, c.y, 1.0, g.tl.x, g.tl.y);
 }
 
 /// `D(m) = P22_Sigma(s(m)) / m_z^4` per steradian for a unit micronormal (the Rust `d`): `0`
@@ -113,7 +113,7 @@ fn d(g: GaussianFilteredGgx, m: vec3<f32>) -> f32 {
         return 0.0;
     }
     let c = whiten(g, m.xy);
-    let v = g.norm * quad::j(c.x, c.y, m.z * m.z, g.tl.x, g.tl.y);
+    let v = g.norm * quad::mixture_integral(c.x, c.y, m.z * m.z, g.tl.x, g.tl.y);
     return select(0.0, v, v <= math::F32_MAX);
 }
 

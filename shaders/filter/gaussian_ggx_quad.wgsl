@@ -68,7 +68,7 @@ fn laguerre_weight(k: u32) -> f32 {
 /// `2 l1 >= 2 l2 >= 0` (the Rust `j`): `J(c)` itself for `z2 = 1` (a slope), `J / m_z^4` for a
 /// normal (`z2 = m_z^2`, `v = T m_xy`) without forming the slope. The rule by `q = |c|^2` and
 /// the kernel ratio (module docs).
-fn j(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
+fn mixture_integral(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
     let beta_m = z2 + v1s + v2s;
     if beta_m >= FAR * tl1 * z2 {
         return far_tail(beta_m, v1s, v2s, tl1, tl2, z2);
@@ -81,7 +81,7 @@ fn j(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
     return trapezoid(v1s * iz2, v2s * iz2, tl1, tl2) * iz2 * iz2;
 }
 
-/// The far-tail series of `J` (item 5), homogeneous as [`j`]:
+/// The far-tail series of `J` (item 5), homogeneous as [`mixture_integral`]:
 /// `J = beta^-2 (1 + 12 P z2 / beta^2 - 2 (l1 + l2) z2 / beta)`, `P = l1 c1^2 + l2 c2^2`
 /// (`P / beta` formed first: no overflow).
 fn far_tail(beta: f32, c1s: f32, c2s: f32, tl1: f32, tl2: f32, z2: f32) -> f32 {
@@ -92,7 +92,7 @@ fn far_tail(beta: f32, c1s: f32, c2s: f32, tl1: f32, tl2: f32, z2: f32) -> f32 {
 }
 
 /// Gauss-Laguerre in `v = (1 + q) w` (item 4): `J = beta^-2 sum W_k F(v_k / beta)`,
-/// `F(w) = exp(sum c_i^2 2 l_i w^2 / p_i) / sqrt(p1 p2)`; homogeneous as [`j`].
+/// `F(w) = exp(sum c_i^2 2 l_i w^2 / p_i) / sqrt(p1 p2)`; homogeneous as [`mixture_integral`].
 fn laguerre(beta_m: f32, v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
     let ib = 1.0 / beta_m;
     let t1 = tl1 * z2 * ib;

@@ -9,10 +9,10 @@
 // mirroring `src/.../sampling/gaussian_ggx.rs`: normals with density `D(m) m_z`, exactly, as
 // the sum of a GGX slope and an independent kernel slope.
 
-/// Two uniform numbers from one (the Rust `split` of the `f32` build): the high and the low
+/// Two uniform numbers from one (the Rust `split_bits` of the `f32` build): the high and the low
 /// twelve bits of `u` in `[0, 1)`, `((floor(4096 u) + 1/2) / 4096, frac(4096 u))`, both
 /// uniform on their grids and independent (every step exact in f32).
-fn split(u: f32) -> vec2<f32> {
+fn split_bits(u: f32) -> vec2<f32> {
     let x = u * 4096.0;
     let hi = floor(x);
     return vec2<f32>((hi + 0.5) / 4096.0, x - hi);
@@ -26,11 +26,11 @@ fn split(u: f32) -> vec2<f32> {
 /// `N(0, Sigma)` by Box-Muller along the kernel's principal axes (the eigenvector of the
 /// larger eigenvalue from the row without cancellation, as Rust). The four uniform numbers are
 /// the high and low halves of the bits of `u.x` (`u1`, `u3`) and `u.y` (`u2`, `u4`), 12 bits
-/// each ([`split`]). `u` is clamped to `[0, 1 - 2^-24]`. Always `m_z > 0` (kept at the
+/// each ([`split_bits`]). `u` is clamped to `[0, 1 - 2^-24]`. Always `m_z > 0` (kept at the
 /// smallest normal f32 where the slope leaves the f32 range).
 fn sample_normal(g: filtered::GaussianFilteredGgx, u: vec2<f32>) -> vec3<f32> {
-    let a = split(sampling::clamp_unit(u.x));
-    let b = split(sampling::clamp_unit(u.y));
+    let a = split_bits(sampling::clamp_unit(u.x));
+    let b = split_bits(sampling::clamp_unit(u.y));
     // The GGX slope B t.
     let t = sqrt(a.x / (1.0 - a.x)) * math::sincos_turns(b.x);
     let l = sampling::warp(g.a);

@@ -24,7 +24,7 @@
 
 /// A half extent as `boxed::p22_rect` reads it, in slope units: `|h|`, at most `BIG alpha`
 /// (NaN as 0 where the driver keeps the comparison).
-fn half(h: f32, alpha: f32) -> f32 {
+fn sanitized_half_extent(h: f32, alpha: f32) -> f32 {
     let v = abs(h);
     return select(0.0, min(v, boxed::BIG * alpha), v >= 0.0);
 }
@@ -45,7 +45,7 @@ fn normal_of_slope(s: vec2<f32>) -> vec3<f32> {
 /// extents: the GGX sample (the same direction as `sampling::sample_normal`).
 fn sample_normal_rect(r: axis_aligned::AxisAligned, half_extent: vec2<f32>, u: vec2<f32>, u_box: vec2<f32>) -> vec3<f32> {
     let a = r.alpha;
-    let h = vec2<f32>(half(half_extent.x, a.x), half(half_extent.y, a.y));
+    let h = vec2<f32>(sanitized_half_extent(half_extent.x, a.x), sanitized_half_extent(half_extent.y, a.y));
     let u1 = sampling::clamp_unit(u.x);
     let cs = math::sincos_turns(sampling::clamp_unit(u.y));
     let rad = sqrt(u1 / (1.0 - u1));

@@ -337,7 +337,7 @@ impl GaussianFilteredGgx {
             // |s| beyond ~1e150: the density is below every representable positive value.
             return 0.0;
         }
-        self.norm * quad::j(c1s, c2s, 1.0, self.tl[0], self.tl[1])
+        self.norm * quad::mixture_integral(c1s, c2s, 1.0, self.tl[0], self.tl[1])
     }
 
     /// `(o^T A o, o^T Sigma o)` for a tangent-plane vector `o`, in `f64`.
@@ -355,7 +355,7 @@ impl GaussianFilteredGgx {
 
 impl GaussianFilteredGgx {
     /// [`Ndf::d`] in lanes (`batch::gaussian_filtered_ggx_d`): the same checks as selects,
-    /// the same whitening and `J` by `quad::j_lane` (without `TRAPEZOID` the far tail or
+    /// the same whitening and `J` by `quad::mixture_integral_lane` (without `TRAPEZOID` the far tail or
     /// Gauss-Laguerre, with it the trapezoid rule's first chunks), so the value of [`Ndf::d`]
     /// bit for bit where not flagged; flagged (`slow`) where `d` takes a rule the lane does
     /// not hold. `(value, slow)`.
@@ -366,7 +366,7 @@ impl GaussianFilteredGgx {
         let z2 = z * z;
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
         let [tl1, tl2] = self.tl;
-        let (v, ok) = quad::j_lane::<TRAPEZOID>(v1s, v2s, z2, tl1, tl2);
+        let (v, ok) = quad::mixture_integral_lane::<TRAPEZOID>(v1s, v2s, z2, tl1, tl2);
         finish_lane(self.norm, v, live, ok)
     }
 
@@ -381,7 +381,7 @@ impl GaussianFilteredGgx {
         let z2 = z * z;
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
         let [tl1, tl2] = self.tl;
-        let (v, ok, more, st) = quad::j_trapezoid_first(v1s, v2s, z2, tl1, tl2);
+        let (v, ok, more, st) = quad::mixture_integral_trapezoid_first(v1s, v2s, z2, tl1, tl2);
         let (d, slow) = finish_lane(self.norm, v, live, ok);
         (d, slow, live & more, st)
     }
@@ -394,7 +394,7 @@ impl GaussianFilteredGgx {
         let z2 = z * z;
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
         let [tl1, tl2] = self.tl;
-        let (v, ok) = quad::j_trapezoid_rest(v1s, v2s, z2, tl1, tl2, st);
+        let (v, ok) = quad::mixture_integral_trapezoid_rest(v1s, v2s, z2, tl1, tl2, st);
         finish_lane(self.norm, v, live_lane(mn), ok)
     }
 }
@@ -449,7 +449,7 @@ impl Ndf for GaussianFilteredGgx {
         let z2 = z * z;
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
         let [tl1, tl2] = self.tl;
-        let v = quad::j(v1s, v2s, z2, tl1, tl2);
+        let v = quad::mixture_integral(v1s, v2s, z2, tl1, tl2);
         let d = F::from_f64(self.norm * v);
         if d.is_finite() { d } else { 0.0 }
     }

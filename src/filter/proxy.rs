@@ -43,7 +43,7 @@ use crate::math as m;
 
 /// Sanitised half extent: `|h|`, NaN as `0`, `+inf` as `F::MAX`.
 #[inline(always)]
-fn half(h: F) -> F {
+fn sanitized_half_extent(h: F) -> F {
     if h.is_nan() { 0.0 } else { h.abs().min(F::MAX) }
 }
 
@@ -57,7 +57,7 @@ fn half(h: F) -> F {
 /// NaN for a non-positive or non-finite `alpha`).
 #[inline]
 pub fn effective_alpha(alpha: F, half_extent: F) -> F {
-    let h = half(half_extent);
+    let h = sanitized_half_extent(half_extent);
     let s = m::hypot(alpha, h);
     let t = if s > 0.0 { h / s } else { 0.0 };
     let ratio = if t > 0.0 { t / m::atan(t) } else { 1.0 };
@@ -69,7 +69,7 @@ pub fn effective_alpha(alpha: F, half_extent: F) -> F {
 /// [`effective_alpha`].
 #[inline]
 pub fn effective_alpha_simple(alpha: F, half_extent: F) -> F {
-    m::hypot(alpha, half(half_extent))
+    m::hypot(alpha, sanitized_half_extent(half_extent))
 }
 
 /// The exact GGX proxy roughness per axis ([`effective_alpha`] on each axis), clamped into the

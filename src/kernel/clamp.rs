@@ -255,7 +255,7 @@ impl ClampRules {
 
     /// `kernel(footprint(fp).covariance(sigma))` of the filters' lanes: `(kernel, ok)`, the
     /// scalar rules' kernel bit for bit where `ok` (the footprint within `max_extent`; the
-    /// kernel sane, decided exactly with `EXACT`, else by [`Covariance::is_sane_sure`]; then
+    /// kernel sane, decided exactly with `EXACT`, else by [`Covariance::is_sane_conservative`]; then
     /// within `kappa / 2` or clamped by the eigenvalue clamp's common case).
     #[inline(always)]
     pub(crate) fn kernel_lane<const EXACT: bool>(
@@ -265,7 +265,11 @@ impl ClampRules {
     ) -> (Covariance, bool) {
         // `kernel`: the sanitiser's fast path, then the eigenvalue clamp of the kappa rule.
         let k = fp.covariance(sigma);
-        let sane = if EXACT { k.is_sane() } else { k.is_sane_sure() };
+        let sane = if EXACT {
+            k.is_sane()
+        } else {
+            k.is_sane_conservative()
+        };
         let (clamped, clamp_ok) = k.clamp_eigenvalues_lane(self.half_kappa());
         let off = self.kappa_off();
         let k = if off { k } else { clamped };
@@ -417,6 +421,52 @@ mod tests {
     use super::super::super::ndf::roughness::AxisAligned;
     use super::*;
 
+    /// Which of `Narrow::entries`' cases the reference took.
+    #[derive(PartialEq)]
+    enum Split {
+        Kept,
+        Clamped,
+        Isotropic,
+    }
+
+    /// The entries of `A' = A + 2 Sigma'` in `f64`, computed independently of
+    /// `Narrow::entries`: the kernel `Sigma = sigma^2 (u u^T + v v^T)` of the footprint
+    /// `[u_x, u_y, v_x, v_y]`, its eigenvalues from `hypot` and the footprint's determinant, its
+    /// eigenvectors from `atan2`, both eigenvalues clamped to `kappa / 2` and the kernel rebuilt
+    /// from them; `A = diag(alpha^2, (1.5 alpha)^2)` rounded to `F` as the lobe stores it.
+    fn reference_entries(fp: [f64; 4], sigma: F, kappa: F, alpha: f64) -> ([f64; 3], Split) {
+        let [ux, uy, vx, vy] = fp;
+        let s2 = sigma.to_f64() * sigma.to_f64();
+        let (a, b, cc) = (
+            s2 * (ux * ux + vx * vx),
+            s2 * (ux * uy + vx * vy),
+            s2 * (uy * uy + vy * vy),
+        );
+        let det = s2 * s2 * (ux * vy - uy * vx).powi(2);
+        let lmax = 0.5 * (a + cc) + (0.5 * (a - cc)).hypot(b);
+        let lmin = if lmax > 0.0 { det / lmax } else { 0.0 };
+        let m = 0.5 * kappa.to_f64();
+        // The larger eigenvalue's direction.
+        let phi = 0.5 * b.atan2(0.5 * (a - cc));
+        let (ec, es) = (phi.cos(), phi.sin());
+        let (p, q) = (lmax.min(m), lmin.min(m));
+        let split = if lmin >= m {
+            Split::Isotropic
+        } else if lmax > m {
+            Split::Clamped
+        } else {
+            Split::Kept
+        };
+        let (ax, ay) = (alpha * alpha, (1.5 * alpha) * (1.5 * alpha));
+        let (ax, ay) = (F::from_f64(ax).to_f64(), F::from_f64(ay).to_f64());
+        let want = [
+            ax + 2.0 * (p * ec * ec + q * es * es),
+            2.0 * (p - q) * ec * es,
+            ay + 2.0 * (p * es * es + q * ec * ec),
+        ];
+        (want, split)
+    }
+
     /// `Narrow::entries` (`f32`) against the pipeline in `f64` on the same
     /// inputs, computed independently (the kernel's eigenvalues from `hypot` and the
     /// footprint's determinant, its eigenvectors from `atan2`, both eigenvalues clamped and
@@ -465,31 +515,10 @@ mod tests {
                             continue;
                         }
                         ok_n += 1;
-                        // The reference, in `f64`.
-                        let (ux, uy, vx, vy) = (ux.to_f64(), uy.to_f64(), vx.to_f64(), vy.to_f64());
-                        let s2 = sigma.to_f64() * sigma.to_f64();
-                        let (a, b, cc) = (
-                            s2 * (ux * ux + vx * vx),
-                            s2 * (ux * uy + vx * vy),
-                            s2 * (uy * uy + vy * vy),
-                        );
-                        let det = s2 * s2 * (ux * vy - uy * vx).powi(2);
-                        let lmax = 0.5 * (a + cc) + (0.5 * (a - cc)).hypot(b);
-                        let lmin = if lmax > 0.0 { det / lmax } else { 0.0 };
-                        let m = 0.5 * kappa.to_f64();
-                        // The larger eigenvalue's direction.
-                        let phi = 0.5 * b.atan2(0.5 * (a - cc));
-                        let (ec, es) = (phi.cos(), phi.sin());
-                        let (p, q) = (lmax.min(m), lmin.min(m));
-                        clamped += usize::from(lmax > m && lmin < m);
-                        iso += usize::from(lmin >= m);
-                        let (ax, ay) = (alpha * alpha, (1.5 * alpha) * (1.5 * alpha));
-                        let (ax, ay) = (F::from_f64(ax).to_f64(), F::from_f64(ay).to_f64());
-                        let want = [
-                            ax + 2.0 * (p * ec * ec + q * es * es),
-                            2.0 * (p - q) * ec * es,
-                            ay + 2.0 * (p * es * es + q * ec * ec),
-                        ];
+                        let fp = [ux, uy, vx, vy].map(|x| x.to_f64());
+                        let (want, split) = reference_entries(fp, sigma, kappa, alpha);
+                        clamped += usize::from(split == Split::Clamped);
+                        iso += usize::from(split == Split::Isotropic);
                         let got = [b11.to_f64(), b12.to_f64(), b22.to_f64()];
                         let scale = [want[0], (want[0] * want[2]).sqrt(), want[2]];
                         for j in 0..3 {
@@ -501,7 +530,7 @@ mod tests {
                                  alpha {alpha}, footprint {:?})",
                                 got[j],
                                 want[j],
-                                (ux, uy, vx, vy)
+                                fp
                             );
                         }
                     }

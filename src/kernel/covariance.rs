@@ -183,7 +183,7 @@ impl Covariance {
         if psd(a, b, c) && a + c <= FAST_EIGEN_MAX && self.psd_within(max) {
             return self;
         }
-        Self::clamp_eigenvalues_general(a, b, c, max).detached()
+        Self::clamp_eigenvalues_general(a, b, c, max).fresh_values()
     }
 
     /// [`Covariance::clamp_eigenvalues`] of a kernel that [`Covariance::sanitized`] returned
@@ -193,7 +193,7 @@ impl Covariance {
         if self.psd_within(max) {
             return self;
         }
-        Self::clamp_eigenvalues_general(self.s11, self.s12, self.s22, max).detached()
+        Self::clamp_eigenvalues_general(self.s11, self.s12, self.s22, max).fresh_values()
     }
 
     /// Whether the largest eigenvalue of a finite PSD matrix is at most `max` (NaN: false),
@@ -218,7 +218,7 @@ impl Covariance {
     }
 
     /// The general case of [`Covariance::clamp_eigenvalues`] (out of line, with
-    /// [`Covariance::detached`] at its call sites).
+    /// [`Covariance::fresh_values`] at its call sites).
     #[cold]
     #[inline(never)]
     fn clamp_eigenvalues_general(s11: F, s12: F, s22: F, max: F) -> Self {
@@ -295,7 +295,7 @@ impl Covariance {
         if recip {
             return (lmin, lmax);
         }
-        let (up, big_s, big) = Self::big(k, s, r);
+        let (up, big_s, big) = Self::larger_magnitude_eigenvalue(k, s, r);
         let (s11, s12, s22) = (this.s11, this.s12, this.s22);
         let other = if big.is_finite() && big != 0.0 {
             let (lo, hi) = Self::lo_hi(s11, s22);
@@ -311,7 +311,7 @@ impl Covariance {
     /// The eigenvalue of larger magnitude of the unit-size matrix `s` of radius `r`, `mean
     /// +/- r` with the sign of `mean` (no cancellation): `(mean >= 0, big_s, big_s k)`.
     #[inline(always)]
-    fn big(k: F, s: Self, r: F) -> (bool, F, F) {
+    fn larger_magnitude_eigenvalue(k: F, s: Self, r: F) -> (bool, F, F) {
         let mean = 0.5 * (s.s11 + s.s22);
         let up = mean >= 0.0;
         let big_s = if up { mean + r } else { mean - r };
@@ -341,7 +341,7 @@ impl Covariance {
     #[allow(clippy::manual_range_contains)] // `&` of compares: no branch in the lane.
     fn eigen_pair_recip(this: Self, k: F, s: Self, r: F) -> (F, F, bool) {
         let (s11, s12, s22) = (this.s11, this.s12, this.s22);
-        let (up, _, big) = Self::big(k, s, r);
+        let (up, _, big) = Self::larger_magnitude_eigenvalue(k, s, r);
         let ib = 1.0 / big;
         let recip = (ib.abs() >= F::MIN_POSITIVE) & (ib.abs() < F::INFINITY);
         let (lo, hi) = Self::lo_hi(s11, s22);
@@ -417,7 +417,7 @@ impl Covariance {
         } else {
             v
         }
-        .detached();
+        .fresh_values();
         let fast = self.psd_within(max);
         let ok = fast
             | ((max >= 0.0)
@@ -450,7 +450,7 @@ impl Covariance {
         if self.is_sane() {
             return self;
         }
-        Self::sanitized_general(a, b, c).detached()
+        Self::sanitized_general(a, b, c).fresh_values()
     }
 
     /// Whether [`Covariance::sanitized`] returns `self` by its fast path: finite, positive
@@ -465,13 +465,13 @@ impl Covariance {
     /// the rounded products cannot decide: `b^2` within `2 eps` of `a c`): for `batch`'s
     /// `f32` lanes, which an `f64` product would hold to half their width. `f64`: `is_sane`.
     #[inline(always)]
-    pub(crate) fn is_sane_sure(self) -> bool {
+    pub(crate) fn is_sane_conservative(self) -> bool {
         let (a, b, c) = (self.s11, self.s12, self.s22);
-        psd_sure(a, b, c) & (a + c <= KERNEL_MAX)
+        psd_conservative(a, b, c) & (a + c <= KERNEL_MAX)
     }
 
     /// The general case of [`Covariance::sanitized`] (out of line, with
-    /// [`Covariance::detached`] at its call site).
+    /// [`Covariance::fresh_values`] at its call site).
     #[cold]
     #[inline(never)]
     fn sanitized_general(a: F, b: F, c: F) -> Self {
@@ -492,15 +492,13 @@ impl Covariance {
 
 impl Covariance {
     /// The result of an out-of-line general path as fresh values (`x + 0`, which only turns
-    /// `-0` into `+0`). A speed measure, not part of any formula: an aggregate comes back from
-    /// a call through memory, and returned as is the compiler also wrote the inlined fast
-    /// path's value into that memory and read it back with loads straddling the stores (a
-    /// store-forwarding stall). Measured (`benches/filtered.rs`, `--quick`, fastest of five
-    /// runs per build): `ggx_matrix/f64/tk21_projected` takes 2.2 to 2.3 times as long without
-    /// it (93.6 vs 41.6 us per 1024 evaluations on a loaded machine); the other kernels are
-    /// unaffected within noise.
+    /// `-0` into `+0`). Not part of any formula: an aggregate comes back from an out-of-line
+    /// call through memory, and returned as is the compiler also writes the inlined fast
+    /// path's value into that memory and reads it back with loads straddling the stores (a
+    /// store-forwarding stall); the additions keep the values in registers
+    /// (`benches/filtered.rs`, `ggx_matrix/*/tk21_projected`, shows the difference).
     #[inline(always)]
-    fn detached(self) -> Self {
+    fn fresh_values(self) -> Self {
         Self::new(self.s11 + 0.0, self.s12 + 0.0, self.s22 + 0.0)
     }
 }
@@ -540,7 +538,7 @@ fn psd(a: F, b: F, c: F) -> bool {
 /// `b^2 <= a c (1 - 2 u) / (1 - u) < a c` exactly (`u = eps / 2`; a subnormal `fl(b^2)` is
 /// off by at most `2^-150 < 2 u a c`).
 #[inline(always)]
-fn psd_sure(a: F, b: F, c: F) -> bool {
+fn psd_conservative(a: F, b: F, c: F) -> bool {
     if core::mem::size_of::<F>() == 8 {
         return psd(a, b, c);
     }

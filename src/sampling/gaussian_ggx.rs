@@ -13,7 +13,7 @@ use crate::math::{self as m, Real};
 
 /// A uniform number from `[0, 1)` (NaN and out-of-range values clamped, as the other samplers).
 #[inline]
-fn unit(u: F) -> f64 {
+fn uniform_f64(u: F) -> f64 {
     let u = u.to_f64();
     if u >= 0.0 {
         u.min(1.0 - 0.5 * f64::EPSILON)
@@ -25,7 +25,7 @@ fn unit(u: F) -> f64 {
 /// Two uniform numbers from one: the high and the low half of its bits (`2^12` levels each
 /// from an `f32`, `2^26` from an `f64`). Both uniform on their grids, independent.
 #[inline]
-fn split(u: f64) -> (f64, f64) {
+fn split_bits(u: f64) -> (f64, f64) {
     let k = if F::MANTISSA_DIGITS > 24 {
         67_108_864.0
     } else {
@@ -67,8 +67,8 @@ impl NdfSampling for GaussianFilteredGgx {
     /// (12 bits each from an `f32`, 26 from an `f64`).
     #[inline]
     fn sample_normal(&self, u: Vec2) -> Vec3 {
-        let (u1, u3) = split(unit(u.x));
-        let (u2, u4) = split(unit(u.y));
+        let (u1, u3) = split_bits(uniform_f64(u.x));
+        let (u2, u4) = split_bits(uniform_f64(u.y));
         let tau = core::f64::consts::TAU;
         let r = m::sqrt(u1 / (1.0 - u1));
         let (tx, ty) = (r * m::cos(tau * u2), r * m::sin(tau * u2));
@@ -117,7 +117,7 @@ impl NdfSampling for GaussianFilteredGgx {
         let n = m::sqrt(ox * ox + oy * oy + oz * oz);
         let (ox, oy, oz) = (ox / n, oy / n, oz / n);
         let (qa, qs) = self.projected(ox, oy);
-        let (k, ux) = sample_component(qa, qs, oz, unit(u.x));
+        let (k, ux) = sample_component(qa, qs, oz, uniform_f64(u.x));
         let (a11, a12, a22) = self.a.clamped_entries();
         let [s11, s12, s22] = self.k;
         let iw = m::exp(-SAMPLE_T0 - 0.5 * k as f64);

@@ -63,7 +63,7 @@ const PI64: f64 = core::f64::consts::PI;
 
 /// Clamps a uniform number into `[0, 1 - eps/2]` of `F` (NaN to `0`), as `f64`.
 #[inline]
-fn unit(u: F) -> f64 {
+fn uniform_f64(u: F) -> f64 {
     const ONE_MINUS_EPS: F = 1.0 - 0.5 * F::EPSILON;
     (if u >= 0.0 { u.min(ONE_MINUS_EPS) } else { 0.0 }).to_f64()
 }
@@ -71,7 +71,7 @@ fn unit(u: F) -> f64 {
 /// A half extent sanitised as [`p22_rect`](super::super::filter::rect::p22_rect) does, in slope units: `|h|`, NaN as `0`, at
 /// most `1e60 alpha`.
 #[inline]
-fn half(h: F, alpha: f64) -> f64 {
+fn sanitized_half_extent(h: F, alpha: f64) -> f64 {
     let v = h.to_f64().abs();
     if v.is_nan() { 0.0 } else { v.min(BIG * alpha) }
 }
@@ -99,18 +99,21 @@ fn normal_of_slope(sx: f64, sy: f64) -> Vec3 {
 pub fn sample_normal_rect(r: AxisAligned, half_extent: Vec2, u: Vec2, u_box: Vec2) -> Vec3 {
     let alpha = r.alpha();
     let (ax, ay) = (alpha.x.to_f64(), alpha.y.to_f64());
-    let (hx, hy) = (half(half_extent.x, ax), half(half_extent.y, ay));
+    let (hx, hy) = (
+        sanitized_half_extent(half_extent.x, ax),
+        sanitized_half_extent(half_extent.y, ay),
+    );
     if hx == 0.0 && hy == 0.0 {
         return Ggx::new(r).sample_normal(u);
     }
     // Unit-roughness GGX: |t|^2 = u1 / (1 - u1), phi = 2 pi u2; slope -alpha t (the sign of
     // the GGX sampler's normal (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))).
-    let (u1, u2) = (unit(u.x), unit(u.y));
+    let (u1, u2) = (uniform_f64(u.x), uniform_f64(u.y));
     let rad = m::sqrt(u1 / (1.0 - u1));
     let phi = 2.0 * PI64 * u2;
     let (gx, gy) = (-ax * rad * m::cos(phi), -ay * rad * m::sin(phi));
-    let dx = (2.0 * unit(u_box.x) - 1.0) * hx;
-    let dy = (2.0 * unit(u_box.y) - 1.0) * hy;
+    let dx = (2.0 * uniform_f64(u_box.x) - 1.0) * hx;
+    let dy = (2.0 * uniform_f64(u_box.y) - 1.0) * hy;
     normal_of_slope(gx + dx, gy + dy)
 }
 
@@ -129,7 +132,7 @@ pub fn normal_pdf_rect(r: AxisAligned, half_extent: Vec2, m: Vec3) -> F {
 /// the Gauss-Legendre rule of the positive differences while `k` is short next to the branch
 /// points (`L^2 = 1 + min(t0^2, t1^2)`), else the difference of the means of `Psi_1`.
 #[inline]
-fn cum(t0: f64, t1: f64, w: f64, k: f64) -> f64 {
+fn mean_psi1_diff(t0: f64, t1: f64, w: f64, k: f64) -> f64 {
     if k == 0.0 {
         return psi1_diff(t0, t1, w);
     }
@@ -144,7 +147,7 @@ fn cum(t0: f64, t1: f64, w: f64, k: f64) -> f64 {
 /// `y`, `f(lo) <= y <= f(hi)`: Newton steps kept inside a bisection bracket, until a step or
 /// the bracket is below `4e-16` of the larger of `|x|` and the initial bracket (at most 100
 /// evaluations; bisection alone needs fewer than that to reach the tolerance).
-fn invert(mut lo: f64, mut hi: f64, y: f64, f: impl Fn(f64) -> (f64, f64)) -> f64 {
+fn invert_increasing(mut lo: f64, mut hi: f64, y: f64, f: impl Fn(f64) -> (f64, f64)) -> f64 {
     let width = hi - lo;
     let mut x = 0.5 * (lo + hi);
     for _ in 0..100 {
@@ -177,9 +180,9 @@ fn sample_offsets(m: f64, kl: f64, ks: f64, ul: f64, us: f64) -> (f64, f64) {
     // v_l: the marginal CDF is cum(-k_l - m, v - m, k_s) / cum(-k_l - m, k_l - m, k_s), its
     // derivative the mean of psi over [v - m - k_s, v - m + k_s].
     let t0 = -kl - m;
-    let total = cum(t0, kl - m, 2.0 * kl, ks);
-    let vl = invert(-kl, kl, ul * total, |v| {
-        let c = cum(t0, v - m, v + kl, ks);
+    let total = mean_psi1_diff(t0, kl - m, 2.0 * kl, ks);
+    let vl = invert_increasing(-kl, kl, ul * total, |v| {
+        let c = mean_psi1_diff(t0, v - m, v + kl, ks);
         let d = if ks == 0.0 {
             psi(v - m)
         } else {
@@ -193,7 +196,7 @@ fn sample_offsets(m: f64, kl: f64, ks: f64, ul: f64, us: f64) -> (f64, f64) {
     // v_s given v_l: density psi(v_s + v_l - m) on [-k_s, k_s].
     let c = vl - m;
     let total = psi1_diff(c - ks, c + ks, 2.0 * ks);
-    let vs = invert(-ks, ks, us * total, |v| {
+    let vs = invert_increasing(-ks, ks, us * total, |v| {
         (psi1_diff(c - ks, c + v, v + ks), psi(c + v))
     });
     (vl, vs)
@@ -221,14 +224,17 @@ pub fn sample_visible_normal_rect(
     }
     let alpha = r.alpha();
     let (ax, ay) = (alpha.x.to_f64(), alpha.y.to_f64());
-    let (hx, hy) = (half(half_extent.x, ax), half(half_extent.y, ay));
+    let (hx, hy) = (
+        sanitized_half_extent(half_extent.x, ax),
+        sanitized_half_extent(half_extent.y, ay),
+    );
     if hx == 0.0 && hy == 0.0 {
         return Ggx::new(r).sample_visible_normal(wo, u);
     }
     // wo scaled by a power of two into [2^-400, 2^400] (homogeneous; no overflow below).
     let (wx, wy, wz) = scaled(wo);
     let l = m::hypot(wx, wy);
-    let (bx, by) = (unit(u_box.x), unit(u_box.y));
+    let (bx, by) = (uniform_f64(u_box.x), uniform_f64(u_box.y));
     let uniform = ((2.0 * bx - 1.0) * hx, (2.0 * by - 1.0) * hy);
     let (dx, dy) = if l == 0.0 {
         // Normal incidence: every offset sees the same projected area.
@@ -280,7 +286,7 @@ fn visible_with_offset(
     let wi = (sx / norm, sy / norm, wz_shear / norm);
     // Spherical cap (Dupuy and Benyoub 2023, listing 3): c uniform on z >= -wi_z, n = c + wi,
     // written so that neither n_z = (1 - u_y)(1 + wi_z) nor 1 - c_z = u_y (1 + wi_z) cancels.
-    let (u1, u2) = (unit(u.x), unit(u.y));
+    let (u1, u2) = (uniform_f64(u.x), uniform_f64(u.y));
     let one_plus = if wi.2 < -0.5 {
         (wi.0 * wi.0 + wi.1 * wi.1) / (1.0 - wi.2)
     } else {

@@ -236,17 +236,17 @@ fn clamp_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
         RoughnessMatrix::new_with_det_clamp(a.x * a.x, 0.0, a.y * a.y, tau.into())
             .expect("in range")
     };
-    for (ggx, f) in [
-        (true, "filter_gaussian"),
-        (false, "filter_gaussian"),
-        (true, "filter_projected"),
+    for (ggx, module, f) in [
+        (true, "gaussian", "filter_gaussian"),
+        (false, "gaussian", "filter_gaussian"),
+        (true, "projected", "filter_projected"),
     ] {
         checks.push(filtered_row_tau(
             &format!(
-                "clamp::{f} ({}, default rules, clamped material)",
+                "{module}::{f} ({}, default rules, clamped material)",
                 if ggx { "GGX" } else { "Beckmann" }
             ),
-            &format!("clamp::{f}(clamp::DEFAULT_RULES, matrix::with_det_clamp(a, x(9u)), fp, 0.5)"),
+            &format!("{module}::{f}(clamp::DEFAULT_RULES, matrix::with_det_clamp(a, x(9u)), fp, 0.5)"),
             ggx,
             pts,
             &taus,
