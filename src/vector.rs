@@ -86,6 +86,20 @@ pub fn unit2(v: Vec2) -> Option<Vec2> {
     unit2_and_length(v).map(|(u, _)| u)
 }
 
+/// `v` with each NaN component replaced by `0`, infinite components kept: the crate's policy
+/// for derivative inputs (footprints and normal differences, [`crate::contract`]): a NaN
+/// carries no information, so it contributes no widening.
+#[inline(always)]
+pub fn nan_to_zero(v: Vec3) -> Vec3 {
+    Vec3::select(v.is_nan_mask(), Vec3::ZERO, v)
+}
+
+/// [`nan_to_zero`] for a 2-vector.
+#[inline(always)]
+pub fn nan_to_zero2(v: Vec2) -> Vec2 {
+    Vec2::select(v.is_nan_mask(), Vec2::ZERO, v)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

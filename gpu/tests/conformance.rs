@@ -46,6 +46,11 @@ fn rect_sample() {
 }
 
 #[test]
+fn nan_policy() {
+    assert_group("nan_policy", &checks::nan_policy::all());
+}
+
+#[test]
 fn gaussian_ggx() {
     assert_group("gaussian_ggx", &checks::gaussian_ggx::all());
 }

@@ -48,12 +48,22 @@ const GDC2016_RULES: ClampRules = ClampRules(1.0, FLOOR_ALPHA_CAPPED, 0.1, math:
 
 /// The maximum-extent rule on a parallelogram (KHPL16 section 5.2): both vectors scaled by
 /// `min(1, lambda / max_extent)`, keeping the shape. The extent is measured on the
-/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0.
-fn footprint(rules: ClampRules, fp: pixel::Footprint) -> pixel::Footprint {
+/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0. The NaN
+/// policy, as the Rust `ClampRules::footprint`: a NaN entry counts as 0; infinite entries
+/// (where the driver keeps them) keep their sign, the finite ones become 0, and the result
+/// has extent `lambda`, the widest footprint the rule allows.
+fn footprint(rules: ClampRules, fp_in: pixel::Footprint) -> pixel::Footprint {
+    let fp = pixel::nan_to_zero(fp_in);
     let l = max(rules.max_extent, 0.0);
     let scale = max(max(abs(fp.dh_u.x), abs(fp.dh_u.y)), max(abs(fp.dh_v.x), abs(fp.dh_v.y)));
     if scale <= 0.0 {
         return fp;
+    }
+    if scale > math::F32_MAX {
+        let iu = select(vec2<f32>(0.0), sign(fp.dh_u), abs(fp.dh_u) > vec2<f32>(math::F32_MAX));
+        let iv = select(vec2<f32>(0.0), sign(fp.dh_v), abs(fp.dh_v) > vec2<f32>(math::F32_MAX));
+        let e = pixel::max_extent(pixel::Footprint(iu, iv));
+        return pixel::Footprint(iu / e * l, iv / e * l);
     }
     let unit = pixel::Footprint(fp.dh_u / scale, fp.dh_v / scale);
     let e = pixel::max_extent(unit);

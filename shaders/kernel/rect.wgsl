@@ -15,8 +15,10 @@ struct BoundingRect {
 
 /// The axis-aligned bounding rectangle of a footprint's one-pixel parallelogram (KHPL16
 /// section 5.3; GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
-/// `(|dh_u| + |dh_v|) / 2` per axis. The Rust `BoundingRect::from_footprint`.
-fn from_footprint(fp: pixel::Footprint) -> BoundingRect {
+/// `(|dh_u| + |dh_v|) / 2` per axis. The Rust `BoundingRect::from_footprint`; a NaN footprint
+/// entry counts as 0 (`pixel::nan_to_zero`).
+fn from_footprint(fp_in: pixel::Footprint) -> BoundingRect {
+    let fp = pixel::nan_to_zero(fp_in);
     return BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
 }
 

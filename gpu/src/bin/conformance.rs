@@ -26,6 +26,7 @@ fn main() {
         ("filters", checks::filters::all()),
         ("rect", checks::rect::all()),
         ("rect_sample", checks::rect_sample::all()),
+        ("nan_policy", checks::nan_policy::all()),
         ("gaussian_ggx", checks::gaussian_ggx::all()),
         ("method", checks::method::all()),
         ("sampling", checks::sampling::all()),

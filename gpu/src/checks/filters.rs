@@ -246,7 +246,9 @@ fn clamp_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
                 "{module}::{f} ({}, default rules, clamped material)",
                 if ggx { "GGX" } else { "Beckmann" }
             ),
-            &format!("{module}::{f}(clamp::DEFAULT_RULES, matrix::with_det_clamp(a, x(9u)), fp, 0.5)"),
+            &format!(
+                "{module}::{f}(clamp::DEFAULT_RULES, matrix::with_det_clamp(a, x(9u)), fp, 0.5)"
+            ),
             ggx,
             pts,
             &taus,

@@ -19,6 +19,7 @@ pub mod footprint;
 pub mod gaussian_ggx;
 pub mod math;
 pub mod method;
+pub mod nan_policy;
 pub mod ndf;
 pub mod rect;
 pub mod rect_sample;

@@ -66,9 +66,9 @@ use crate::math::{self as m, Real};
 #[derive(Clone, Copy, Debug)]
 // Fields in 16-byte groups of what is read together, the groups 16-byte aligned: a copy of
 // the matrix through memory (passed by value, or spilled) is written in 16-byte pieces, and a
-// vector load of two fields across two pieces cannot be forwarded from those stores. What it
-// buys, measured (1024 GGX `D`, the matrix passed by value through `black_box`): 2.4 instead
-// of 16.9 us in `f32`, 2.2 instead of 16.4 us in `f64` (the default field order stalls).
+// vector load of two fields across two pieces cannot be forwarded from those stores (with the
+// default field order, GGX `D` of a matrix passed by value stalls on every call;
+// `benches/ndf.rs`).
 #[repr(C, align(16))]
 pub struct RoughnessMatrix {
     /// `c = det A_c = max(det A, tau)`, in `f64`.
