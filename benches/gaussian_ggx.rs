@@ -7,6 +7,10 @@
 //! visible-normal sampling of the exact lobe beside the TK19 lobe's (prebuilt lobes, seeded
 //! views: three in four up to 80 degrees, one in four from 80 to 89.9).
 //!
+//! The front door's rows (`front_door_*`) compare TK19 (`Gaussian::TK19`) with the exact
+//! filter (`ExactGaussian::KHPL16`) at each [`Tolerance`](filtered_ndf::f32::filter::Tolerance)
+//! setting, both with their clamp rules and the lobe built per evaluation.
+//!
 //! `cargo bench --bench gaussian_ggx -- --quick`. Figures are per evaluation
 //! (`Throughput::Elements`); compare ratios within one run.
 
@@ -23,6 +27,7 @@ macro_rules! group {
         use filtered_ndf::$prec::{
             AxisAligned, Footprint, GaussianFilteredGgx, Ggx, Ndf, NdfSampling, Vec2, Vec3, filter,
             filter::rect,
+            filter::{ExactGaussian, Filterable, Gaussian, Tolerance},
         };
         type Wall<'a> = BenchmarkGroup<'a, criterion::measurement::WallTime>;
         let c = |x: f64| <$t as Real>::from_f64(x);
@@ -87,6 +92,17 @@ macro_rules! group {
             GaussianFilteredGgx::new(r[i], fp[i].covariance(0.5)).d(h[i])
         });
         run(&mut g, "exact_gaussian_d", |i| lobes[i].d(h[i]));
+        // Through the front door, with the clamp rules: TK19 against the exact Gaussian filter
+        // at each tolerance setting (the trade inside the exact filter).
+        run(&mut g, "front_door_tk19", |i| {
+            Ggx::new(r[i]).filtered(fp[i], Gaussian::TK19).d(h[i])
+        });
+        for t in Tolerance::ALL {
+            let m = ExactGaussian::KHPL16.with_tolerance(t);
+            run(&mut g, &format!("front_door_exact_{t:?}"), |i| {
+                Ggx::new(r[i]).filtered(fp[i], m).d(h[i])
+            });
+        }
         run(&mut g, "tk19_lambda", |i| tk19[i].lambda(views[i]));
         run(&mut g, "exact_gaussian_lambda", |i| {
             lobes[i].lambda(views[i])

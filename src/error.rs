@@ -1,4 +1,5 @@
-//! Errors of the checked constructors (precision independent).
+//! Errors of the checked constructors and of the batch kernels' SIMD level request (precision
+//! independent).
 
 use core::fmt;
 
@@ -37,3 +38,42 @@ impl fmt::Display for RoughnessError {
 }
 
 impl core::error::Error for RoughnessError {}
+
+/// A name that is no SIMD level of the batch kernels (`batch::simd_available`, the value of
+/// `FILTERED_NDF_SIMD` in `batch::simd_requested`): the levels are `sse2`, `sse2-lanes`,
+/// `avx2`, `avx512` (x86-64) and `baseline` (elsewhere).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct UnknownSimdLevel;
+
+impl fmt::Display for UnknownSimdLevel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(
+            "not a SIMD level of the batch kernels: expected sse2, sse2-lanes, avx2, avx512 \
+             (x86-64) or baseline",
+        )
+    }
+}
+
+impl core::error::Error for UnknownSimdLevel {}
+
+/// Why a checked Fresnel constructor refused its input (`Dielectric::new`,
+/// `Conductor::new`, `Schlick::new` of the `bsdf` stage).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FresnelError {
+    /// An index of refraction, extinction coefficient or reflectance is NaN or infinite.
+    NotFinite,
+    /// A value is outside its domain: an index of refraction `<= 0`, an extinction
+    /// coefficient `< 0`, a normal-incidence reflectance outside `[0, 1]`.
+    OutOfRange,
+}
+
+impl fmt::Display for FresnelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            FresnelError::NotFinite => "Fresnel parameter is NaN or infinite",
+            FresnelError::OutOfRange => "Fresnel parameter is outside its domain",
+        })
+    }
+}
+
+impl core::error::Error for FresnelError {}

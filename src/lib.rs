@@ -42,20 +42,11 @@
 //! ## Which kernel for which scene
 //!
 //! Cost: CPU `f32` time per evaluation relative to unfiltered GGX; error: median relative error
-//! against the exact Gaussian-filtered NDF; both from the trade table ([`tables`]). Each
-//! row runs as `cargo run --release --example which_kernel -- ROW`.
+//! of `D` against the exact Gaussian-filtered NDF; both written by the trade table's run (the
+//! demonstration crate's `tradeoff`). Each row runs as
+//! `cargo run --release --example which_kernel -- ROW`.
 //!
-//! | scene | call | cost | error | ROW |
-//! |---|---|---:|---:|---|
-//! | forward, GGX, any roughness form, per light (ddx/ddy of the half vector) | `material.filtered(Footprint::from_half_vector_derivatives(h, ddx_h, ddy_h), Gaussian::TK19)` | 17x | 8.5e-2 | `forward_ggx` |
-//! | forward, GGX, the highlight's shape matters (close-ups, baking, references) | `material.filtered(fp, ExactGaussian::KHPL16)` (exact), or `Rect::KHPL16` (exact box) | 57x / 22x | 8e-8 / 1.1e-2 | `forward_ggx_exact` |
-//! | forward, Beckmann | `material.filtered(fp, Gaussian::KHPL16)` (exact) | 7.4x (2.5x unfiltered Beckmann) | 1.2e-7 | `forward_beckmann` |
-//! | forward, derivatives of the projected `h_xy` (TK19 sec. 3.2) | `material.filtered(Footprint::from_projected_derivatives(..), Projected::TK21)` | 17x | 8.1e-2 | `projected` |
-//! | G-buffer with an anisotropic roughness | `material.filtered(fp, Proxy::KHPL16)`: a plain `Ggx<AxisAligned>` to store | 22x | 1.0e-1 | `gbuffer_anisotropic` |
-//! | deferred, one roughness channel | `Ggx::new(presets::TK19_TRACE.filter(alpha, ddx_n, ddy_n))` (or an engine's preset) | 10x | 1.7e-1 to 2.1e-1 | `deferred` |
-//! | offline path tracer | `Footprint::from_ray_differentials(m, &frame, dx_u, dx_v)`, any method, then `sample_visible_normal` | as the method | as the method | `path_tracer` |
-//! | normal-mapped (LEAN moments) | `Ggx::new(filter::lean(alpha, pixel_covariance, &moments))` | as `Gaussian` | - | `normal_mapped` |
-//! | motion blur | `TemporalLobe::ggx(alpha, TemporalRoughness::from_normal_rate(dn_dt, dt).covariance())` | as `Gaussian` | - | `motion_blur` |
+#![doc = include_str!("doc/which_kernel.md")]
 //!
 //! ## Layout
 //! Every formula exists once and is compiled twice: [`f32`](mod@f32) (shading) and
@@ -63,7 +54,8 @@
 //! `Vec2/Vec3/Mat2` and `DVec2/DVec3/DMat2`. The modules follow the pipeline: `ndf`
 //! (roughness forms, GGX, Beckmann) -> `footprint` (slope maps, Jacobians, footprints) ->
 //! `kernel` (covariance, rectangle, clamp rules) -> `filter` (the methods, the front door,
-//! deferred presets) -> `sampling`, with `temporal` (Tessari et al.) and `batch` beside.
+//! deferred presets) -> `sampling` -> `bsdf` (microfacet reflection with Fresnel, for path
+//! tracers), with `temporal` (Tessari et al.) and `batch` beside.
 //!
 //! ## Conventions
 //! Tangent frame with `z` along the shading normal; slope `s = -h_xy / h_z`; `p22` is a
@@ -72,18 +64,21 @@
 //! ## Features
 //! - `std` (default): standard-library float intrinsics.
 //! - `libm`: all float math through `libm` (required for `no_std`).
-//! - `testing`: proptest strategies and f64 quadrature references for downstream tests.
+//! - `testing`: proptest strategies, f64 quadrature references and seeded shading cases for
+//!   downstream tests.
+//! - `dispatch`: runtime AVX2 / AVX-512 dispatch of the [`f32::batch`] kernels.
+//! - `rayon`: batch kernels over chunks on rayon's thread pool.
 #![cfg_attr(not(feature = "std"), no_std)]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 #![allow(clippy::duplicate_mod)]
 
+pub mod bake;
 pub mod contract;
 pub mod error;
 pub mod math;
-pub mod tables;
 
-pub use error::RoughnessError;
+pub use error::{FresnelError, RoughnessError};
 
 /// Declares the precision-generic modules inside [`f32`] and [`f64`]. Each file is written
 /// once against the aliases `F`, `Vec2`, `Vec3`, `Mat2` of its parent module.
@@ -91,9 +86,12 @@ macro_rules! precision_modules {
     () => {
         // Each stage is deliberately loaded once per precision. The folders read as the
         // pipeline: roughness and NDFs -> footprints and Jacobians -> kernels and clamps ->
-        // filters -> sampling, with the temporal extension and batch evaluation beside.
+        // filters -> sampling -> bsdf, with the temporal extension and batch evaluation
+        // beside.
         #[path = "batch/mod.rs"]
         pub mod batch;
+        #[path = "bsdf/mod.rs"]
+        pub mod bsdf;
         #[path = "filter/mod.rs"]
         pub mod filter;
         #[path = "footprint/mod.rs"]

@@ -3,13 +3,15 @@
 //!
 //! The material NDFs and their roughness forms, the footprint, the front door
 //! ([`Filterable::filtered`] with a [`Method`]: [`Gaussian`], [`ExactGaussian`], [`Projected`], [`Rect`],
-//! [`Proxy`]), the clamp rules, the deferred presets, and the traits whose methods every lobe
-//! has ([`Ndf`], [`NdfSampling`]).
+//! [`Proxy`]; the exact filter's [`Tolerance`]), the clamp rules, the deferred presets, the
+//! traits whose methods every lobe has ([`Ndf`], [`NdfSampling`]), and the path tracer's BSDF
+//! over any lobe ([`Bsdf`], [`MicrofacetReflection`]).
 
+pub use super::bsdf::{Bsdf, MicrofacetReflection};
 pub use super::filter::presets;
 pub use super::filter::{
     ExactGaussian, Filterable, Gaussian, GaussianFilteredGgx, Method, Projected, Proxy, Rect,
-    RectFilteredGgx,
+    RectFilteredGgx, Tolerance,
 };
 pub use super::{
     AxisAligned, Beckmann, ClampRules, Footprint, Ggx, Isotropic, KernelConvention, Ndf,

@@ -1494,14 +1494,59 @@ macro_rules! suite {
                 }
             }
 
+            /// The kernels run at the level `FILTERED_NDF_SIMD` requests, and the test fails
+            /// with the reason where they cannot: a name that is no level, a level this CPU
+            /// (or this build) cannot run (`.ci/run` skips those, by the same detection:
+            /// `examples/simd_levels.rs`), or an available level not used. Unset, the widest
+            /// level available.
             #[test]
-            fn simd_level_is_named() {
+            fn simd_level_is_the_requested_one() {
                 let level = batch::simd_level();
-                assert!(
-                    ["sse2", "avx2", "avx512", "baseline"].contains(&level),
-                    "{level}"
-                );
+                assert_eq!(batch::simd_available(level), Ok(true), "{level}");
+                let env = std::env::var("FILTERED_NDF_SIMD").unwrap_or_default();
+                match batch::simd_requested() {
+                    Err(e) => panic!("FILTERED_NDF_SIMD={env:?}: {e}"),
+                    Ok(None) => {
+                        assert!(env.is_empty(), "{env:?}");
+                        // `sse2-lanes` is a test mode of SSE2, never chosen unrequested.
+                        let widest = batch::SIMD_LEVELS
+                            .into_iter()
+                            .rev()
+                            .find(|&l| l != "sse2-lanes" && batch::simd_available(l) == Ok(true));
+                        assert_eq!(Some(level), widest, "unrequested: not the widest level");
+                    }
+                    Ok(Some(requested)) => {
+                        assert_eq!(requested, env);
+                        assert_eq!(
+                            batch::simd_available(requested),
+                            Ok(true),
+                            "FILTERED_NDF_SIMD={requested}: this CPU or build cannot run it, \
+                             so the batch kernels ran at {level} (the levels available here: \
+                             `cargo run --features dispatch --example simd_levels`)"
+                        );
+                        assert_eq!(
+                            level, requested,
+                            "FILTERED_NDF_SIMD={requested} is available but not used"
+                        );
+                    }
+                }
                 println!("batch kernels on {level}");
+            }
+
+            /// Level names: each of `SIMD_LEVELS` is one, anything else (a near miss, a
+            /// different case, the empty name) is not.
+            #[test]
+            fn simd_level_names() {
+                for level in batch::SIMD_LEVELS {
+                    assert!(batch::simd_available(level).is_ok(), "{level}");
+                }
+                for bad in ["", "avx-512", "AVX2", "sse", "sse2 ", "neon"] {
+                    assert_eq!(
+                        batch::simd_available(bad),
+                        Err(filtered_ndf::error::UnknownSimdLevel),
+                        "{bad:?}"
+                    );
+                }
             }
 
             #[test]

@@ -2,7 +2,7 @@
 //! Gaussian-filtered GGX, against the exact Gaussian-filtered GGX (f64 quadrature,
 //! `testing::gaussian_reference`): bounds and limits derived from the GGX density, not
 //! figures measured from the code. The measured error distributions (median, p99, max over
-//! realistic cases) are in the trade table (`cargo run --release --example tradeoff`).
+//! realistic cases) are in the trade table (`cargo run --release -p filtered-ndf-demo --bin tradeoff`).
 //!
 //! Notation: `A` the lobe's roughness matrix, `Sigma` the kernel, `B = A^-1`, at a slope `s`:
 //! `q = s^T B s`, `tau = tr(B Sigma)`, `u = s^T B Sigma B s`. TK19's approximation is the GGX

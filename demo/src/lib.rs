@@ -7,6 +7,7 @@
 //! comparison) -> [`metrics`] (what a viewer sees) -> [`image_out`] and [`plot`]; the scenes'
 //! runs ([`normal_map`], [`temporal`]) and investigations ([`glints`], [`residual`]) on top.
 
+pub mod bake_baselines;
 pub mod camera;
 pub mod glints;
 pub mod image_out;

@@ -20,9 +20,11 @@ use glam::Vec3;
 /// FLIP's default pixels per degree: a 0.7 m wide 3840-pixel monitor at 0.7 m.
 pub const PIXELS_PER_DEGREE: f32 = 67.0;
 
-/// Display luminance above which a pixel counts as bright.
+/// Display luminance above which a pixel counts as bright: strictly above, so a pixel at
+/// exactly `BRIGHT` is not bright (and `BRIGHT.next_up()` is).
 pub const BRIGHT: f32 = 0.8;
-/// Display luminance below which a pixel counts as dark.
+/// Display luminance below which a pixel counts as dark: strictly below, so a pixel at
+/// exactly `DARK` is not dark (and `DARK.next_down()` is).
 pub const DARK: f32 = 0.3;
 
 /// A FLIP error map (per pixel, in `[0, 1]`) and its mean.
@@ -165,7 +167,8 @@ pub fn display_luminance(img: &Image, exposure: f32) -> Vec<f32> {
 }
 
 /// Pixels bright in `test` and dark in `reference` ([`BRIGHT`], [`DARK`], display
-/// luminance), and the reverse: `(false glints, lost highlights)` as masks.
+/// luminance; both comparisons strict, so a pixel exactly at a threshold is neither bright nor
+/// dark), and the reverse: `(false glints, lost highlights)` as masks.
 pub fn glint_masks(test: &[f32], reference: &[f32]) -> (Vec<bool>, Vec<bool>) {
     test.iter()
         .zip(reference)
@@ -422,6 +425,160 @@ mod tests {
         let reference = [0.1, 0.9, 0.5, 0.1];
         let test = [0.9, 0.1, 0.9, 0.2];
         assert_eq!(glint_counts(&test, &reference), (1, 1));
+    }
+
+    /// Glints only the method has and highlights only the reference has, at different pixels
+    /// and in different numbers: each lands in its own count, and swapping the images swaps
+    /// the counts.
+    #[test]
+    fn glints_on_asymmetric_inputs() {
+        // 12 pixels: three false glints (0, 4, 9), one lost highlight (6), and pixels that
+        // count as neither: both bright (2), both dark (3), bright over mid-grey (5), mid-grey
+        // over dark (7), dark under mid-grey (8), bright under bright (10), dark over dark (11).
+        let reference = [
+            0.0, 0.5, 0.95, 0.1, 0.29, 0.4, 1.0, 0.1, 0.6, 0.2, 0.85, 0.0,
+        ];
+        let test = [
+            0.9, 0.5, 0.99, 0.2, 1.0, 0.9, 0.1, 0.6, 0.1, 0.81, 0.95, 0.05,
+        ];
+        let (glints, lost) = glint_masks(&test, &reference);
+        let at = |m: &[bool]| (0..m.len()).filter(|&i| m[i]).collect::<Vec<_>>();
+        assert_eq!(at(&glints), [0, 4, 9]);
+        assert_eq!(at(&lost), [6]);
+        assert_eq!(glint_counts(&test, &reference), (3, 1));
+        assert_eq!(glint_counts(&reference, &test), (1, 3));
+        // Only glints, no highlight in the reference; only lost highlights, none in the test.
+        assert_eq!(glint_counts(&[0.9; 5], &[0.0; 5]), (5, 0));
+        assert_eq!(glint_counts(&[0.0; 5], &[0.9; 5]), (0, 5));
+        assert_eq!(glint_counts(&[], &[]), (0, 0));
+    }
+
+    /// A pixel exactly at a threshold is neither bright nor dark (both comparisons are
+    /// strict); one f32 ulp past it, it is.
+    #[test]
+    fn glints_at_the_thresholds() {
+        let (b, d) = (BRIGHT, DARK);
+        // The test pixel at `BRIGHT`, one ulp below and above it, over a black reference.
+        assert_eq!(glint_counts(&[b], &[0.0]), (0, 0));
+        assert_eq!(glint_counts(&[b.next_down()], &[0.0]), (0, 0));
+        assert_eq!(glint_counts(&[b.next_up()], &[0.0]), (1, 0));
+        // The reference pixel at `DARK`, one ulp above and below it, under a white test.
+        assert_eq!(glint_counts(&[1.0], &[d]), (0, 0));
+        assert_eq!(glint_counts(&[1.0], &[d.next_up()]), (0, 0));
+        assert_eq!(glint_counts(&[1.0], &[d.next_down()]), (1, 0));
+        // The same for lost highlights, the roles swapped.
+        assert_eq!(glint_counts(&[0.0], &[b]), (0, 0));
+        assert_eq!(glint_counts(&[0.0], &[b.next_up()]), (0, 1));
+        assert_eq!(glint_counts(&[d], &[1.0]), (0, 0));
+        assert_eq!(glint_counts(&[d.next_down()], &[1.0]), (0, 1));
+        // Both at once, each one ulp past its threshold: counted; at the thresholds: not.
+        assert_eq!(glint_counts(&[b.next_up()], &[d.next_down()]), (1, 0));
+        assert_eq!(glint_counts(&[b], &[d]), (0, 0));
+    }
+
+    // Reference values from NVIDIA's own implementation: `flip-evaluator` 1.7 from PyPI
+    // (pybind11 over NVIDIA's C++ `FLIP.h`), printed by `tests/data/flip_reference.py`. The
+    // `nv-flip` crate wraps NVIDIA's C++ too, but an older release (the 2022 `CPP/` sources,
+    // before 1.3 reordered some transforms and 1.4 changed the median): on the LDR pair the
+    // two give different values in every pixel (up to 2.2e-4, median 1.9e-4 relative, of
+    // mixed sign), `mean |difference| = 3.33e-5`, measured once by dumping this crate's map
+    // beside the package's. That mean absolute difference bounds the difference of the mean
+    // FLIPs, and is the tolerance `VERSION_TOL` below (rounded up). It still fails a wrong
+    // pixels-per-degree (67 -> 60 or 70 moves the mean by 9e-4, 7e-4), swapped channels
+    // (1e-2) or sRGB bytes taken as linear (1.8e-2).
+
+    /// The mean absolute per-pixel difference of the two NVIDIA versions, rounded up.
+    const VERSION_TOL: f64 = 3.4e-5;
+    /// Mean LDR-FLIP of the PNG pair of `tests/data/`, 67 pixels per degree.
+    const FLIP_LDR_NVIDIA: f64 = 0.205_382_138;
+    /// HDR-FLIP's exposures for the HDR pair's reference: start, stop, count (printed
+    /// -4.916702747, 4.110420704; to f32 precision here).
+    const FLIP_HDR_EXPOSURES_NVIDIA: (f32, f32, usize) = (-4.916_703, 4.110_421, 10);
+    /// Mean HDR-FLIP of the HDR pair (the package's float pipeline).
+    const FLIP_HDR_NVIDIA: f64 = 0.152_552_187;
+    /// Mean HDR-FLIP of the HDR pair with each exposure's tone-mapped images quantised to
+    /// 8-bit sRGB before the package's LDR-FLIP, as [`flip_hdr`] does (the `nv-flip` input is
+    /// 8-bit): the package at the crate's quantisation.
+    const FLIP_HDR_8BIT_NVIDIA: f64 = 0.152_731_185;
+    /// The mean absolute per-pixel effect of that quantisation on this pair, as the script
+    /// prints it (the package alone): it bounds the difference of the two HDR means.
+    const QUANTISATION_TOL: f64 = 8.41e-4;
+
+    /// The LDR pair of `tests/data/` (8-bit sRGB PNGs written by
+    /// `tests/data/flip_reference.py`).
+    fn ldr_pair() -> (usize, usize, Vec<u8>, Vec<u8>) {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+        let load = |name: &str| {
+            let p = dir.join(name);
+            image::open(&p)
+                .unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+                .to_rgb8()
+        };
+        let (r, t) = (load("flip_ldr_reference.png"), load("flip_ldr_test.png"));
+        assert_eq!(r.dimensions(), t.dimensions());
+        let (w, h) = r.dimensions();
+        (w as usize, h as usize, t.into_raw(), r.into_raw())
+    }
+
+    /// The HDR pair of `tests/data/flip_reference.py` (`hdr_pair`), built from the same
+    /// formulas: every value a dyadic rational, exact in f32 in both languages.
+    fn hdr_pair() -> (Image, Image) {
+        let n = 32;
+        let reference = image(n, n, |x, y| {
+            if (x as i32 - 25, y as i32 - 6) == (0, 0) {
+                return Vec3::splat(64.0);
+            }
+            if (x as i32 - 12).pow(2) + (y as i32 - 20).pow(2) < 9 {
+                return Vec3::splat(16.0);
+            }
+            let r = (1 + (x + y) % 8) as f32 / 32.0;
+            Vec3::new(r, r * 0.75, r * 0.5)
+        });
+        let test = image(n, n, |x, y| {
+            let c = reference.data[y * n + x];
+            match (x, y) {
+                (25, 6) => Vec3::splat(0.5),
+                (5, 5) => Vec3::splat(32.0),
+                _ if c == Vec3::splat(16.0) => Vec3::splat(8.0),
+                _ if (3 * x + 5 * y) % 7 == 0 => c * 1.5,
+                _ => c,
+            }
+        });
+        (test, reference)
+    }
+
+    #[test]
+    fn flip_ldr_matches_nvidia_reference_implementation() {
+        let (w, h, test, reference) = ldr_pair();
+        let map = ldr_flip_bytes(w, h, &test, &reference);
+        let got = map.iter().map(|&x| f64::from(x)).sum::<f64>() / map.len() as f64;
+        assert!(
+            (got - FLIP_LDR_NVIDIA).abs() <= VERSION_TOL,
+            "LDR-FLIP mean {got:.9}, NVIDIA {FLIP_LDR_NVIDIA}"
+        );
+    }
+
+    #[test]
+    fn flip_hdr_matches_nvidia_reference_implementation() {
+        let (test, reference) = hdr_pair();
+        // The exposures, within 4 ulp of their magnitude (`log2` of f32 ratios).
+        let e = hdr_exposures(&reference);
+        let (start, stop, count) = FLIP_HDR_EXPOSURES_NVIDIA;
+        assert_eq!(e.len(), count, "{e:?}");
+        let ulps4 = |x: f32| 4.0 * f32::EPSILON * x.abs();
+        assert!((e[0] - start).abs() <= ulps4(start), "{e:?}");
+        assert!((e[count - 1] - stop).abs() <= ulps4(stop), "{e:?}");
+        let got = flip_hdr(&test, &reference).mean();
+        // The same quantisation as the package run at it: the versions' difference only.
+        assert!(
+            (got - FLIP_HDR_8BIT_NVIDIA).abs() <= VERSION_TOL,
+            "HDR-FLIP mean {got:.9}, NVIDIA at 8 bits {FLIP_HDR_8BIT_NVIDIA}"
+        );
+        // The package's own float HDR-FLIP: plus the quantisation's effect.
+        assert!(
+            (got - FLIP_HDR_NVIDIA).abs() <= QUANTISATION_TOL + VERSION_TOL,
+            "HDR-FLIP mean {got:.9}, NVIDIA {FLIP_HDR_NVIDIA}"
+        );
     }
 
     #[test]

@@ -7,8 +7,9 @@
 //!   (seamless), wavelengths 0.8 m down to 2 cm, each of slope amplitude 0.07, sampled as a
 //!   256 x 256 normal map: each texel stores the slope `s = grad h` (the crate's slope of the
 //!   normal) at its centre. The reference surface is that map, bilinearly interpolated.
-//! - **The mip chain.** Level `l + 1` averages 2 x 2 texels of level `l`: the LEAN moments
-//!   `E[s]` and `E[s s^T]` (Olano and Baker 2010), linear, so they survive the averaging.
+//! - **The mip chain.** Baked by `filtered_ndf::bake` from the level-0 slopes: each texel of
+//!   level `l` holds the LEAN moments `E[s]` and `E[s s^T]` (Olano and Baker 2010) over its
+//!   `2^l x 2^l` base texels, summed in `f64` and stored in `f32`.
 //!   Lookups are trilinear, at the level of the longer ray-differential footprint axis (a
 //!   GPU's isotropic mip selection).
 //! - **Shading.** The slope-space (LEAN) model: at a point with mean slope `mu`, the
@@ -125,47 +126,61 @@ fn gradient(x: f32, z: f32) -> Vec2 {
         .sum()
 }
 
+impl Default for NormalMap {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl NormalMap {
+    /// The level-0 slopes sampled at texel centres, and the chain baked from them by
+    /// `filtered_ndf::bake` (the exact-footprint kernel, `f64` sums over each texel's base
+    /// footprint, stored in `f32`).
     pub fn new() -> Self {
+        use filtered_ndf::bake::{
+            Band, BaseRoughness, ChainLayout, Kernel, Settings, SlopeMap, TexelStats, bake_rows,
+        };
         let texel = TILE / TEXELS as f32;
-        let mut mean = Vec::with_capacity(TEXELS * TEXELS);
-        let mut second = Vec::with_capacity(TEXELS * TEXELS);
-        for j in 0..TEXELS {
-            for i in 0..TEXELS {
-                let s = gradient((i as f32 + 0.5) * texel, (j as f32 + 0.5) * texel);
-                mean.push(s);
-                second.push([s.x * s.x, s.x * s.y, s.y * s.y]);
-            }
-        }
-        let mut levels = vec![Level {
-            size: TEXELS,
-            mean,
-            second,
-        }];
-        while levels.last().unwrap().size > 1 {
-            let prev = levels.last().unwrap();
-            let size = prev.size / 2;
-            let (mut mean, mut second) = (Vec::new(), Vec::new());
-            for j in 0..size {
-                for i in 0..size {
-                    let idx = [
-                        2 * j * prev.size + 2 * i,
-                        2 * j * prev.size + 2 * i + 1,
-                        (2 * j + 1) * prev.size + 2 * i,
-                        (2 * j + 1) * prev.size + 2 * i + 1,
-                    ];
-                    mean.push(idx.iter().map(|&k| prev.mean[k]).sum::<Vec2>() * 0.25);
-                    let mut m = [0.0; 3];
-                    for &k in &idx {
-                        for (c, v) in m.iter_mut().zip(prev.second[k]) {
-                            *c += 0.25 * v;
-                        }
-                    }
-                    second.push(m);
+        let slopes: Vec<glam::DVec2> = (0..TEXELS * TEXELS)
+            .map(|k| {
+                let (i, j) = (k % TEXELS, k / TEXELS);
+                gradient((i as f32 + 0.5) * texel, (j as f32 + 0.5) * texel).as_dvec2()
+            })
+            .collect();
+        let map = SlopeMap::new(&slopes, TEXELS, TEXELS).expect("finite, moderate slopes");
+        let layout = ChainLayout::new(TEXELS, TEXELS).expect("a non-empty map");
+        let settings = Settings {
+            kernel: Kernel::Area,
+            // The lobe does not enter the moments; the floor's own alpha is applied at shading.
+            base: BaseRoughness::Constant(0.01),
+        };
+        let mut moments = vec![[0.0f32; 5]; layout.len()];
+        let mut scratch = vec![TexelStats::default(); layout.scratch_len()];
+        let levels = (0..layout.levels())
+            .map(|l| {
+                let lv = layout.level(l);
+                let out = &mut moments[lv.rows(0..lv.height)];
+                let band = Band {
+                    moments: Some(&mut *out),
+                    ..Band::default()
+                };
+                bake_rows(
+                    &map,
+                    &settings,
+                    &layout,
+                    l,
+                    0..lv.height,
+                    &mut scratch,
+                    band,
+                )
+                .expect("outputs sized by the layout");
+                Level {
+                    size: lv.width,
+                    mean: out.iter().map(|t| Vec2::new(t[0], t[1])).collect(),
+                    second: out.iter().map(|t| [t[2], t[3], t[4]]).collect(),
                 }
-            }
-            levels.push(Level { size, mean, second });
-        }
+            })
+            .collect();
         Self { levels }
     }
 

@@ -13,6 +13,7 @@
 //! against the composed modules (`gpu/tests/concat.rs`).
 
 use crate::modules::{Module, ROOT};
+use crate::syntax::{Tok, tokens, top_level_names};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// The prefix of a module's names in the concatenated file: its path below `filtered_ndf`
@@ -22,107 +23,6 @@ pub fn prefix(path: &str) -> String {
         .unwrap_or(path)
         .trim_start_matches("::")
         .replace("::", "_")
-}
-
-/// The top-level item names a module declares (`fn`, `struct`, `const`, `alias`,
-/// `override`, `var` at brace depth 0).
-pub fn top_level_names(source: &str) -> BTreeSet<String> {
-    let mut names = BTreeSet::new();
-    let mut depth = 0i32;
-    let toks = tokens(source);
-    let mut i = 0;
-    while i < toks.len() {
-        match &toks[i] {
-            Tok::Punct('{') => depth += 1,
-            Tok::Punct('}') => depth -= 1,
-            Tok::Ident(k)
-                if depth == 0
-                    && matches!(
-                        k.as_str(),
-                        "fn" | "struct" | "const" | "alias" | "override" | "var"
-                    ) =>
-            {
-                // The next identifier (past whitespace, comments and the template list of
-                // `var<private> name`).
-                let mut j = i + 1;
-                while j < toks.len() && !matches!(toks[j], Tok::Ident(_)) {
-                    j += 1;
-                }
-                if let Some(Tok::Ident(n)) = toks.get(j) {
-                    names.insert(n.clone());
-                }
-            }
-            _ => {}
-        }
-        i += 1;
-    }
-    names
-}
-
-/// A lexical token: enough of WGSL to rename identifiers safely.
-#[derive(Clone, Debug, PartialEq)]
-enum Tok {
-    Ident(String),
-    Punct(char),
-    /// Anything else kept verbatim: whitespace, comments, numbers, `#` lines.
-    Other(String),
-}
-
-fn tokens(src: &str) -> Vec<Tok> {
-    let b: Vec<char> = src.chars().collect();
-    let mut out = Vec::new();
-    let mut i = 0;
-    while i < b.len() {
-        let c = b[i];
-        if c == '/' && b.get(i + 1) == Some(&'/') {
-            let s = i;
-            while i < b.len() && b[i] != '\n' {
-                i += 1;
-            }
-            out.push(Tok::Other(b[s..i].iter().collect()));
-        } else if c == '/' && b.get(i + 1) == Some(&'*') {
-            let s = i;
-            i += 2;
-            while i + 1 < b.len() && !(b[i] == '*' && b[i + 1] == '/') {
-                i += 1;
-            }
-            i = (i + 2).min(b.len());
-            out.push(Tok::Other(b[s..i].iter().collect()));
-        } else if c == '#' {
-            let s = i;
-            while i < b.len() && b[i] != '\n' {
-                i += 1;
-            }
-            out.push(Tok::Other(b[s..i].iter().collect()));
-        } else if c.is_ascii_alphabetic() || c == '_' {
-            let s = i;
-            while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == '_') {
-                i += 1;
-            }
-            out.push(Tok::Ident(b[s..i].iter().collect()));
-        } else if c.is_ascii_digit() {
-            // A number, including exponents and suffixes (`1e-8`, `2.5f`, `3u`).
-            let s = i;
-            while i < b.len()
-                && (b[i].is_ascii_alphanumeric()
-                    || b[i] == '.'
-                    || ((b[i] == '-' || b[i] == '+') && matches!(b[i - 1], 'e' | 'E')))
-            {
-                i += 1;
-            }
-            out.push(Tok::Other(b[s..i].iter().collect()));
-        } else if c.is_whitespace() {
-            let s = i;
-            while i < b.len() && b[i].is_whitespace() {
-                i += 1;
-            }
-            out.push(Tok::Other(b[s..i].iter().collect()));
-        } else {
-            out.push(Tok::Punct(c));
-            i += 1;
-        }
-    }
-    out
 }
 
 /// Rewrites one source: drops `#define_import_path` and `#import` lines, prefixes its own
@@ -241,15 +141,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn names_and_rewrite() {
+    fn rewrite_prefixes_own_names_and_imports() {
         let s = "#import filtered_ndf::math\nstruct A {\n    x: f32,\n}\nconst K: f32 = 1.0;\nfn f(a: A) -> f32 {\n    let f = a.x;\n    return f * K + math::PI;\n}\n";
         let names = top_level_names(s);
-        let toks = tokens(s);
-        assert_eq!(
-            names.iter().cloned().collect::<Vec<_>>(),
-            ["A", "K", "f"],
-            "{toks:?}"
-        );
         let mut imports = BTreeMap::new();
         imports.insert("math".to_string(), "math".to_string());
         let r = rewrite(s, Some(("m", &names)), &imports).unwrap();

@@ -15,10 +15,15 @@
 //! (not checked in) is validated by `spirv-val` in `gpu/tests/generated.rs` when that tool is
 //! installed (CI installs it).
 //!
+//! The same run writes the `filtered-ndf-wgsl` crate's table of modules
+//! (`shaders/src/modules.rs`, [`crate::wgsl_crate`]). Everything is generated from the files on
+//! disk ([`modules::load_from_disk`]), so one run brings every output up to date.
+//!
 //! Regenerate with `cargo run -p filtered-ndf-gpu --bin generate`; `--check` compares with
 //! the checked-in files instead and fails on any difference (CI runs it).
 
-use crate::{concat, modules};
+use crate::modules::Module;
+use crate::{concat, modules, wgsl_crate};
 use naga::back;
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
@@ -30,7 +35,8 @@ pub fn generated_dir() -> std::path::PathBuf {
     modules::shaders_dir().join("generated")
 }
 
-/// The concatenated WGSL of every module (header included).
+/// The concatenated WGSL of every module the crate ships ([`modules::load_all`]), header
+/// included.
 pub fn concatenated() -> Result<String, String> {
     concat::concatenate(&modules::load_all()?)
 }
@@ -80,9 +86,9 @@ pub fn spirv(module: &naga::Module, info: &ModuleInfo) -> Result<Vec<u32>, Strin
     back::spv::write_vec(module, info, &options, None).map_err(|e| format!("SPIR-V: {e}"))
 }
 
-/// Every generated file: `(file name, contents)`.
-pub fn outputs() -> Result<Vec<(String, String)>, String> {
-    let wgsl = concatenated()?;
+/// Every file of `shaders/generated/` for `modules`: `(file name, contents)`.
+pub fn outputs(modules: &[Module]) -> Result<Vec<(String, String)>, String> {
+    let wgsl = concat::concatenate(modules)?;
     let full = with_entry(&wgsl);
     let (module, info) = parse_and_validate(&full, "shaders/generated/filtered_ndf.wgsl")?;
     let mut files = vec![("filtered_ndf.wgsl".to_string(), wgsl)];
@@ -157,12 +163,22 @@ pub fn outputs() -> Result<Vec<(String, String)>, String> {
     Ok(files)
 }
 
-/// Writes every generated file (`check = false`) or compares them with the checked-in
-/// copies (`check = true`). Returns the files that differ (written or out of date).
+/// Writes every generated file and the crate's table (`check = false`) or compares them with
+/// the checked-in copies (`check = true`), all from the files on disk. Returns the files that
+/// differ (written or out of date).
 pub fn run(check: bool) -> Result<Vec<String>, String> {
     let dir = generated_dir();
     let mut differ = Vec::new();
-    let files = outputs()?;
+    let modules = modules::load_from_disk()?;
+    let table = wgsl_crate::table_path();
+    let contents = wgsl_crate::table_source(&modules);
+    if std::fs::read_to_string(&table).unwrap_or_default() != contents {
+        differ.push(format!("shaders/{}", wgsl_crate::TABLE));
+        if !check {
+            std::fs::write(&table, &contents).map_err(|e| format!("{}: {e}", table.display()))?;
+        }
+    }
+    let files = outputs(&modules)?;
     if !check {
         std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     }

@@ -1,4 +1,5 @@
-//! The WGSL modules under `shaders/`: discovery, import graph and naga_oil composition.
+//! The WGSL modules under `shaders/` (the `filtered-ndf-wgsl` crate): discovery, import
+//! graph and naga_oil composition.
 //!
 //! Layout rule (checked here): the file `shaders/a/b/c.wgsl` declares
 //! `#define_import_path filtered_ndf::a::b::c`, and `shaders/a/mod.wgsl` declares
@@ -123,16 +124,39 @@ fn walk(dir: &Path, base: &Path, out: &mut Vec<String>) -> std::io::Result<()> {
     Ok(())
 }
 
-/// Every module of `shaders/` (outside `generated/`), checked against the layout rule and
-/// sorted so that each module comes after everything it imports (ties by path).
+/// Every module of `shaders/` as the `filtered-ndf-wgsl` crate ships it
+/// (`filtered_ndf_wgsl::MODULES`, the one source the composer, the harness and a Bevy plugin
+/// read), checked against the layout rule and sorted so that each module comes after
+/// everything it imports (ties by path).
 pub fn load_all() -> Result<Vec<Module>, String> {
+    checked(
+        filtered_ndf_wgsl::MODULES
+            .iter()
+            .map(|m| (m.file.to_string(), m.source.to_string())),
+    )
+}
+
+/// Every `.wgsl` file under `shaders/` (outside `generated/`) as read from disk now, checked
+/// and sorted as [`load_all`]: what `generate` writes the crate's table from.
+/// `gpu/tests/composition.rs` requires the two to agree.
+pub fn load_from_disk() -> Result<Vec<Module>, String> {
     let base = shaders_dir();
     let mut files = Vec::new();
     walk(&base, &base, &mut files).map_err(|e| format!("reading {}: {e}", base.display()))?;
-    let mut by_path = BTreeMap::new();
+    let mut sources = Vec::new();
     for file in files {
         let source = std::fs::read_to_string(base.join(&file))
             .map_err(|e| format!("reading shaders/{file}: {e}"))?;
+        sources.push((file, source));
+    }
+    checked(sources)
+}
+
+/// Modules from `(file, source)` pairs: each checked against the layout rule and the import
+/// forms, sorted in import order.
+fn checked(sources: impl IntoIterator<Item = (String, String)>) -> Result<Vec<Module>, String> {
+    let mut by_path = BTreeMap::new();
+    for (file, source) in sources {
         let expected = expected_import_path(&file);
         match declared_path(&source) {
             Some(p) if p == expected => {}
@@ -145,22 +169,25 @@ pub fn load_all() -> Result<Vec<Module>, String> {
         let imports = parse_imports(&source).map_err(|e| format!("shaders/{file}: {e}"))?;
         // naga_oil reads `name::` as a module path even where `name` is a function of the
         // module: an item may not share its name with an import alias.
-        let names = crate::concat::top_level_names(&source);
+        let names = crate::syntax::top_level_names(&source);
         if let Some(i) = imports.iter().find(|i| names.contains(&i.alias)) {
             return Err(format!(
                 "shaders/{file}: `{}` is both an item and an import alias: import `{}` with `as`",
                 i.alias, i.path
             ));
         }
-        by_path.insert(
-            expected.clone(),
-            Module {
-                path: expected,
-                file,
-                source,
-                imports,
-            },
-        );
+        let module = Module {
+            path: expected.clone(),
+            file,
+            source,
+            imports,
+        };
+        if let Some(old) = by_path.insert(expected, module) {
+            return Err(format!(
+                "shaders/{}: a second module {}",
+                old.file, old.path
+            ));
+        }
     }
     // Topological order (depth first, dependencies first).
     let mut order: Vec<Module> = Vec::new();

@@ -1,8 +1,28 @@
 //! naga_oil composition of the modules of `shaders/`, as Bevy composes its shaders: every
-//! module composes on its own, and a fragment shader in Bevy's style imports and calls them.
-//! No GPU needed.
+//! module composes on its own, and a fragment shader in Bevy's style imports and calls them;
+//! the modules come from the `filtered-ndf-wgsl` crate's table, which holds every file on
+//! disk. No GPU needed.
 
-use filtered_ndf_gpu::modules::{compose, load_all};
+use filtered_ndf_gpu::modules::{compose, load_all, load_from_disk};
+
+#[test]
+fn the_crates_table_holds_every_file_on_disk() {
+    let key = |m: &filtered_ndf_gpu::modules::Module| (m.path.clone(), m.file.clone());
+    let shipped = load_all().expect("the crate's modules load");
+    let disk = load_from_disk().expect("the files load");
+    assert_eq!(
+        shipped.iter().map(key).collect::<Vec<_>>(),
+        disk.iter().map(key).collect::<Vec<_>>(),
+        "shaders/src/modules.rs is out of date: run `cargo run -p filtered-ndf-gpu --bin generate`"
+    );
+    for (s, d) in shipped.iter().zip(&disk) {
+        assert!(
+            s.source == d.source,
+            "{}: the crate's source differs",
+            s.file
+        );
+    }
+}
 
 #[test]
 fn every_module_composes_alone() {

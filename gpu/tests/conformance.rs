@@ -5,57 +5,36 @@
 
 use filtered_ndf_gpu::checks::{self, assert_group};
 
-#[test]
-fn math() {
-    assert_group("math", &checks::math::all());
+/// One test per group of `checks::GROUPS` (run in parallel), and a test that the list here is
+/// that list.
+macro_rules! groups {
+    ($($name:ident),* $(,)?) => {
+        $(
+            #[test]
+            fn $name() {
+                assert_group(stringify!($name), &checks::group(stringify!($name)));
+            }
+        )*
+
+        #[test]
+        fn every_group_has_a_test() {
+            let here = [$(stringify!($name)),*];
+            let groups: Vec<&str> = checks::GROUPS.iter().map(|(n, _)| *n).collect();
+            assert_eq!(here.as_slice(), groups.as_slice());
+        }
+    };
 }
 
-#[test]
-fn ndf() {
-    assert_group("ndf", &checks::ndf::all());
-}
-
-#[test]
-fn footprint_and_kernel() {
-    assert_group("footprint", &checks::footprint::all());
-}
-
-#[test]
-fn filters() {
-    assert_group("filters", &checks::filters::all());
-}
-
-#[test]
-fn sampling() {
-    assert_group("sampling", &checks::sampling::all());
-}
-
-#[test]
-fn sampling_beckmann() {
-    assert_group("sampling_beckmann", &checks::sampling_beckmann::all());
-}
-
-#[test]
-fn rect() {
-    assert_group("rect", &checks::rect::all());
-}
-
-#[test]
-fn rect_sample() {
-    assert_group("rect_sample", &checks::rect_sample::all());
-}
-
-#[test]
-fn nan_policy() {
-    assert_group("nan_policy", &checks::nan_policy::all());
-}
-
-#[test]
-fn gaussian_ggx() {
-    assert_group("gaussian_ggx", &checks::gaussian_ggx::all());
-}
-
-#[test]
-fn method() {
-    assert_group("method", &checks::method::all());
-}
+groups!(
+    math,
+    ndf,
+    footprint,
+    filters,
+    rect,
+    rect_sample,
+    nan_policy,
+    gaussian_ggx,
+    method,
+    sampling,
+    sampling_beckmann,
+);

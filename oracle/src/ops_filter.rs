@@ -191,6 +191,7 @@ pub fn filtered(v: &Value) -> Result<Value, String> {
             let g = ExactGaussian {
                 clamps: clamp_rules(base.clamps, clamps),
                 sigma: sigma.map_or(base.sigma, f),
+                ..base
             };
             with_roughness!(r, rr => match d {
                 Dist::Ggx => lobe_out(&p::Ggx::new(rr).filtered(fp, g), point, |_| {

@@ -119,6 +119,54 @@
 //! cases: 8 (`f32`) / 12 (`f64`) for the Gauss-Laguerre half, a median of 16 / 28 (90th
 //! percentile 24 / 40) for the trapezoid half; up to 64 / 104 over the tested domain.
 //!
+//! # Tolerance settings
+//! [`Tolerance`] chooses the rules of `J` (the density: `p22`, `d`; `Lambda` and the samplers
+//! keep the rules above at every setting). [`Tolerance::Full`], the default, is the set above.
+//! The reduced settings drop Gauss-Laguerre (whose bound is measured, item 4) and keep two
+//! rules whose bounds are proven, with the constants of this table (`gaussian_ggx_tol.rs`):
+//!
+//! | setting | far tail `K` | step `h` | `Y` | `eps_t` | far-tail bound | trapezoid bound (disc. + lower end + top + `f32` exponent) |
+//! |---|---:|---:|---:|---:|---:|---:|
+//! | `Rel1e4` | 1500 | 0.6 | 0.12 | `1e-5` | `4.0e-5` | `2.94e-5 + 8.3e-6 + 1e-5 + 1.6e-5 = 6.4e-5` |
+//! | `Rel1e3` | 500 | 0.75 | 0.2 | `1e-4` | `3.8e-4` | `5.09e-4 + 9.5e-5 + 1e-4 + 1.6e-5 = 7.2e-4` |
+//! | `Rel1e2` | 160 | 1.0 | 0.35 | `5e-4` | `4.3e-3` | `7.80e-3 + 8.8e-4 + 5e-4 + 1.6e-5 = 9.2e-3` |
+//!
+//! - **T1. Where the rules switch.** The far-tail series where `2 l1 (K + 12 ln(1 + q)) <= 1 + q`
+//!   (`ln` bounded above as in item 4, so the test errs toward the trapezoid rule), the
+//!   trapezoid rule everywhere else. Nothing else switches: the trapezoid rule's node count
+//!   follows from its first node and its truncation test.
+//! - **T2. The far tail's remainder, proven.** With `u = (1 + q) w`, `rho_i = 2 l_i / (1 + q)`,
+//!   `rho = rho_1`, `gamma_i = c_i^2 / (1 + q)` (`sum gamma_i < 1`): `J (1 + q)^2 =
+//!   integral u e^-u e^psi du`, `psi = sum gamma_i rho_i u^2 / (1 + rho_i u) - sum ln(1 + rho_i
+//!   u) / 2`, and the series of item 5 is `integral u e^-u (1 + psi_1) du`, `psi_1 = sum gamma_i
+//!   rho_i u^2 - sum rho_i u / 2`. For `u <= 1 / (2 rho)`: `|psi - psi_1| <= rho^2 (u^3 +
+//!   u^2 / 2)` (from `1 - 1 / (1 + x) <= x` and `x - x^2 / 2 <= ln(1 + x) <= x`), `|psi| <= rho
+//!   max(u^2, u)` and `psi <= rho u^2 <= u / 2`, so by Taylor's remainder `|e^psi - 1 - psi_1| <=
+//!   rho^2 (u^3 + u^2 / 2 + max(u^4, u^2) e^min(rho u^2, u / 2) / 2)`, whose integral against
+//!   `u e^-u` is `C rho^2` with `C = 88.7, 92.5, 107.4` at `rho = 1 / K` (numerical integration
+//!   of this explicit bound). Beyond `u = 1 / (2 rho)` the integrand is at most `u exp(-u / (1 +
+//!   q) - q / (6 l1))` (there `u / (1 + rho u) >= 1 / (3 rho)`), which integrates to at most
+//!   `(1 + q)^2 (1 + 1 / (2 rho)) e^(-1 / (3 rho))`: the kernel's own Gaussian tail, which the
+//!   series does not hold and which the `12 ln(1 + q)` term of the switch keeps below
+//!   `exp(-(K / 6 - ln(1 + K / 2)))` (`<= 2.2e-10`). Relative to `J (1 + q)^2 >= 1 - 2 rho -
+//!   C rho^2`: the table's far-tail bounds.
+//! - **T3. The trapezoid rule's error, proven.** Items 1 to 3 hold for any step: the discretisation
+//!   bound `min_a 2 / (cos^2 a (e^(2 pi a / h) - 1))` at the setting's `h`, the lower end's
+//!   bound of item 2 with four terms (`N = 4`) and the first node at or below `Y / (1 + q +
+//!   2 l1)`, and the truncation `eps_t` (its `b = 7.47` below `w = 2` needs the whole-line sum
+//!   of `w e^-w` within 1 % of its integral: the discretisation bound is `<= 7.8e-3`). The
+//!   nodes' exponent is formed in the lobe's precision with the reference exponent folded in
+//!   (`|x_r| <= 4`), so in `f32` it carries at most the rounding of two terms below `180`:
+//!   `1.6e-5` (at the largest first-node offsets; `< 2e-6` for kernels below `1e6` lobe
+//!   variances), and the polynomial `exp` its `2.5e-7`. The node tables cover the first node's
+//!   offset up to `e^88` (kernels to about `1e37` lobe variances), as the full rule's.
+//!
+//! Measured against the `Full` rule in `f64` (2e5 seeded cases over `alpha` `1e-4..1`, kernels
+//! `1e-3..1e3` lobe widths, slopes `1e-3..1e3` filtered widths): worst `1.2e-5`, `2.1e-4`,
+//! `4.1e-3` for `Rel1e4`, `Rel1e3`, `Rel1e2` (the discretisation bound is about three times
+//! the actual error, item 1); `tests/gaussian_ggx_tolerance.rs` tests each setting against
+//! the 2-D quadrature of the convolution, on both sides of its switch.
+//!
 //! # Smith `Lambda`: the filtered distribution's own
 //! `Lambda` is a linear functional of the slope density (Heitz 2014 eq. 72), so the filtered
 //! lobe's `Lambda` is the same mixture of the Beckmann `Lambda`s of its components, roughness
@@ -183,7 +231,9 @@ use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
 use super::super::ndf::{Ndf, rescale_direction};
 use super::gaussian::Gaussian;
 use super::gaussian_ggx_quad as quad;
+use super::gaussian_ggx_tol as tol;
 use super::method::Method;
+use super::tolerance::Tolerance;
 use super::{F, Vec2, Vec3};
 use crate::math::{self as m, Real};
 
@@ -226,6 +276,8 @@ pub struct GaussianFilteredGgx {
     pub(crate) k: [f64; 3],
     /// The unfiltered roughness as a matrix (the `Beckmann` components of the sampler).
     pub(crate) a: RoughnessMatrix,
+    /// The accuracy setting of `p22` and `d`.
+    tol: Tolerance,
 }
 
 impl GaussianFilteredGgx {
@@ -304,7 +356,26 @@ impl GaussianFilteredGgx {
             b: [b11, a12 * b11 * sd * r, sd * b11 * sd * r],
             k: [s11, s12, s22],
             a,
+            tol: Tolerance::Full,
         }
+    }
+
+    /// This lobe with the density (`p22`, `d`) evaluated at the accuracy setting `tolerance`
+    /// (module docs, "Tolerance settings"); [`GaussianFilteredGgx::new`] gives
+    /// [`Tolerance::Full`]. `Lambda` and the samplers are unchanged.
+    #[inline]
+    #[must_use]
+    pub const fn with_tolerance(self, tolerance: Tolerance) -> Self {
+        Self {
+            tol: tolerance,
+            ..self
+        }
+    }
+
+    /// The accuracy setting of the density.
+    #[inline]
+    pub const fn tolerance(&self) -> Tolerance {
+        self.tol
     }
 
     /// The unfiltered GGX lobe (its roughness as a matrix).
@@ -337,7 +408,19 @@ impl GaussianFilteredGgx {
             // |s| beyond ~1e150: the density is below every representable positive value.
             return 0.0;
         }
-        self.norm * quad::mixture_integral(c1s, c2s, 1.0, self.tl[0], self.tl[1])
+        self.norm * self.mixture_integral(c1s, c2s, 1.0)
+    }
+
+    /// `J / z2^2` (`quad::mixture_integral`) by the rules of the lobe's setting.
+    #[inline(always)]
+    fn mixture_integral(&self, v1s: f64, v2s: f64, z2: f64) -> f64 {
+        let [tl1, tl2] = self.tl;
+        match tol::index(self.tol) {
+            None => quad::mixture_integral(v1s, v2s, z2, tl1, tl2),
+            Some(0) => tol::j::<0>(v1s, v2s, z2, tl1, tl2),
+            Some(1) => tol::j::<1>(v1s, v2s, z2, tl1, tl2),
+            Some(_) => tol::j::<2>(v1s, v2s, z2, tl1, tl2),
+        }
     }
 
     /// `(o^T A o, o^T Sigma o)` for a tangent-plane vector `o`, in `f64`.
@@ -367,7 +450,7 @@ impl GaussianFilteredGgx {
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
         let [tl1, tl2] = self.tl;
         let (v, ok) = quad::mixture_integral_lane::<TRAPEZOID>(v1s, v2s, z2, tl1, tl2);
-        finish_lane(self.norm, v, live, ok)
+        finish_lane(self.norm, v, live, ok & self.full())
     }
 
     /// [`Self::d_lane`]`::<true>` in two stages (`batch`'s staged trapezoid lane), its first:
@@ -382,8 +465,9 @@ impl GaussianFilteredGgx {
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
         let [tl1, tl2] = self.tl;
         let (v, ok, more, st) = quad::mixture_integral_trapezoid_first(v1s, v2s, z2, tl1, tl2);
-        let (d, slow) = finish_lane(self.norm, v, live, ok);
-        (d, slow, live & more, st)
+        let full = self.full();
+        let (d, slow) = finish_lane(self.norm, v, live, ok & full);
+        (d, slow, live & more & full, st)
     }
 
     /// The second stage of [`Self::d_trapezoid_first`] at the same `mn`, from its state:
@@ -395,7 +479,7 @@ impl GaussianFilteredGgx {
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
         let [tl1, tl2] = self.tl;
         let (v, ok) = quad::mixture_integral_trapezoid_rest(v1s, v2s, z2, tl1, tl2, st);
-        finish_lane(self.norm, v, live_lane(mn), ok)
+        finish_lane(self.norm, v, live_lane(mn), ok & self.full())
     }
 }
 
@@ -416,7 +500,14 @@ impl GaussianFilteredGgx {
     pub(crate) fn takes_trapezoid(&self, mn: Vec3) -> bool {
         let z = mn.z.to_f64();
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
-        live_lane(mn) & quad::takes_trapezoid(v1s, v2s, z * z, self.tl[0])
+        live_lane(mn) & quad::takes_trapezoid(v1s, v2s, z * z, self.tl[0]) & self.full()
+    }
+
+    /// Whether the lobe's setting is [`Tolerance::Full`], the rules the batch lanes hold: the
+    /// lanes flag every element of a lobe at another setting (the scalar `d` evaluates it).
+    #[inline(always)]
+    fn full(&self) -> bool {
+        matches!(self.tol, Tolerance::Full)
     }
 }
 
@@ -448,8 +539,7 @@ impl Ndf for GaussianFilteredGgx {
         let z = mn.z.to_f64();
         let z2 = z * z;
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
-        let [tl1, tl2] = self.tl;
-        let v = quad::mixture_integral(v1s, v2s, z2, tl1, tl2);
+        let v = self.mixture_integral(v1s, v2s, z2);
         let d = F::from_f64(self.norm * v);
         if d.is_finite() { d } else { 0.0 }
     }
@@ -501,6 +591,22 @@ impl Ndf for GaussianFilteredGgx {
 /// [`GaussianFilteredGgx`] (what [`Gaussian`] approximates by `A + 2 Sigma`); for Beckmann the
 /// exact filter is `A + 2 Sigma` itself, so this gives the same lobe as [`Gaussian`] with the
 /// same rules: a renderer switches NDF without switching method.
+///
+/// `tolerance` sets the accuracy of the GGX lobe's density ([`Tolerance`]: the proven relative
+/// bound of each setting and its rules in the module docs of [`GaussianFilteredGgx`]); the
+/// Beckmann lobe is exact at every setting.
+///
+/// ```
+/// use filtered_ndf::f32::prelude::*;
+/// use glam::{Vec2, Vec3};
+///
+/// let material = Ggx::isotropic(0.05).unwrap();
+/// let footprint = Footprint::from_slope_derivatives(Vec2::new(0.04, 0.0), Vec2::new(0.0, 0.03));
+/// let fast = material.filtered(footprint, ExactGaussian::KHPL16.with_tolerance(Tolerance::Rel1e3));
+/// let full = material.filtered(footprint, ExactGaussian::KHPL16);
+/// let h = Vec3::new(0.03, 0.01, 1.0).normalize();
+/// assert!((fast.d(h) - full.d(h)).abs() <= 1e-3 * full.d(h));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ExactGaussian {
     /// The clamp rules applied to the footprint and the kernel (for Beckmann also the
@@ -508,6 +614,8 @@ pub struct ExactGaussian {
     pub clamps: ClampRules,
     /// The standard deviation of the Gaussian pixel filter, in pixels.
     pub sigma: F,
+    /// The accuracy setting of the GGX lobe's density ([`Tolerance::Full`] unless asked).
+    pub tolerance: Tolerance,
 }
 
 impl ExactGaussian {
@@ -517,7 +625,16 @@ impl ExactGaussian {
     pub const KHPL16: Self = Self {
         clamps: ClampRules::KHPL16,
         sigma: SIGMA_PIXEL,
+        tolerance: Tolerance::Full,
     };
+
+    /// This method with the GGX lobe's density at the accuracy setting `tolerance`
+    /// ([`Tolerance`]; e.g. `ExactGaussian::KHPL16.with_tolerance(Tolerance::Rel1e3)`).
+    #[inline]
+    #[must_use]
+    pub const fn with_tolerance(self, tolerance: Tolerance) -> Self {
+        Self { tolerance, ..self }
+    }
 
     /// The clamped pixel kernel of `footprint`.
     #[inline]
@@ -539,6 +656,7 @@ impl<R: Roughness> Method<Ggx<R>> for ExactGaussian {
     #[inline]
     fn lobe(&self, material: &Ggx<R>, footprint: Footprint) -> Self::Lobe {
         GaussianFilteredGgx::new(material.roughness, self.kernel(footprint))
+            .with_tolerance(self.tolerance)
     }
 }
 

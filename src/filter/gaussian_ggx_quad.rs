@@ -17,7 +17,7 @@ pub(super) const WIDE: bool = F::MANTISSA_DIGITS > 24;
 /// An upper bound of `ln x` for `x >= 1` (exact at powers of two, at most `1 - ln 2` too
 /// large): `e ln 2 + (m - 1)` for `x = m 2^e`, `m` in `[1, 2)` (`ln m <= m - 1`).
 #[inline(always)]
-fn ln_upper(x: f64) -> f64 {
+pub(super) fn ln_upper(x: f64) -> f64 {
     let b = x.to_bits();
     let e = ((b >> 52) & 0x7ff) as f64 - 1023.0;
     let mant = f64::from_bits((b & 0x000f_ffff_ffff_ffff) | 0x3ff0_0000_0000_0000);
@@ -306,7 +306,7 @@ use unrolled;
 
 /// The sum of an array by pairwise halving (vector adds, not a serial chain).
 #[inline(always)]
-fn sum_tree<const N: usize>(mut a: [F; N]) -> F {
+pub(super) fn sum_tree<const N: usize>(mut a: [F; N]) -> F {
     let mut n = N;
     while n > 1 {
         let h = n / 2;
@@ -588,7 +588,7 @@ fn trapezoid_node(c: [F; 7], rk: F, lk: F) -> F {
 
 /// `ceil` for the small positive values of the node offset (no `ceil` in `core`).
 #[inline(always)]
-fn ceil_pos(x: f64) -> f64 {
+pub(super) fn ceil_pos(x: f64) -> f64 {
     let t = x as i64 as f64;
     if t < x { t + 1.0 } else { t }
 }

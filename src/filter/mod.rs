@@ -33,12 +33,14 @@ mod exp_poly;
 mod gaussian;
 mod gaussian_ggx;
 mod gaussian_ggx_quad;
+mod gaussian_ggx_tol;
 mod lean;
 pub mod method;
 pub mod presets;
 mod projected;
 pub mod proxy;
 pub mod rect;
+mod tolerance;
 
 pub(crate) use exp_poly::{
     LN2_HI_F32, LN2_LO_F32, MAGIC_F32, MAGIC_F64, exp_f32_poly, exp_f32_reduced, exp_f64,
@@ -47,7 +49,7 @@ pub(crate) use exp_poly::{
 pub use gaussian::{Gaussian, gaussian, gaussian_with_det_clamp};
 pub use gaussian_ggx::{ExactGaussian, GaussianFilteredGgx};
 pub(crate) use gaussian_ggx_quad::{
-    SAMPLE_T0, STATE_F, TrapezoidState, beckmann_lambda_fast, sample_component,
+    SAMPLE_T0, TrapezoidState, beckmann_lambda_fast, sample_component,
 };
 pub use lean::{LeanMoments, lean};
 pub use method::{Filterable, Method};
@@ -55,3 +57,4 @@ pub(crate) use projected::ProjectedBase;
 pub use projected::{PROJECTED_EIGEN_MAX, Projected, projected, projected_with_det_clamp};
 pub use proxy::Proxy;
 pub use rect::{Rect, RectFilteredGgx};
+pub use tolerance::Tolerance;

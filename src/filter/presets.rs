@@ -21,6 +21,13 @@
 //! | [`UNREAL`] | `p` | `max(|dn_u|^2, |dn_v|^2)^0.333` | 1 | max, no |
 //! | [`BABYLON`] (Vlachos 2015) | `p` | `max(|dn_u|^2, |dn_v|^2)^0.333` | 1 | max, no |
 //! | [`THREE_JS`] | `p` | `max abs component of dn_u, dn_v` | none | add, yes |
+//!
+//! Where they are wrong against the exact Gaussian filter (measured on a grid with `dn = dh`,
+//! `docs/tradeoff.md`, "Where each approximation is wrong"): every preset's `D` errs by more
+//! than 10 % once the footprint (the normal's change per pixel) is wider than 0.2 to 0.5 lobe
+//! widths, at the peak and in the tails alike (Filament only from 5 lobe widths at the peak;
+//! Godot, Unreal and Babylon.js from 0.5 to 1 lobe widths beyond two lobe widths out), by up
+//! to 800 % (Godot) to 2900 % (Unreal, Babylon.js, three.js).
 
 use super::super::PI;
 use super::F;

@@ -204,7 +204,10 @@ impl ProjectedBase {
 /// A)^-1`, `P' = P + 2 Sigma`, `A' = P' (I + P')^-1` ([`projected`]), with the kernel
 /// `Sigma` of the footprint after the clamp rules ([`ClampRules::filter_projected`]: maximum
 /// extent, `kappa`, determinant clamp). The footprint should hold projected-disk derivatives (see the
-/// [front door](super::method)).
+/// [front door](super::method)). Where it is wrong (`docs/tradeoff.md`, "Where each approximation is
+/// wrong"; a slope footprint, exact at `h = n`): as TK19, `D` errs by more than 10 % once the
+/// footprint is wider than about 0.3 lobe widths, except within one lobe width of the peak
+/// (there from 0.7 to 2 lobe widths of footprint); up to 600 % far in the tails.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Projected {
     /// The clamp rules applied to the footprint and the kernel.

@@ -19,22 +19,9 @@ fn main() {
     println!("Conformance on {}\n", gpu.label());
     println!("| group | WGSL function | cases | worst error | of tolerance | tolerance |");
     println!("|---|---|---:|---|---:|---|");
-    let groups: Vec<(&str, Vec<checks::Check>)> = vec![
-        ("math", checks::math::all()),
-        ("ndf", checks::ndf::all()),
-        ("footprint", checks::footprint::all()),
-        ("filters", checks::filters::all()),
-        ("rect", checks::rect::all()),
-        ("rect_sample", checks::rect_sample::all()),
-        ("nan_policy", checks::nan_policy::all()),
-        ("gaussian_ggx", checks::gaussian_ggx::all()),
-        ("method", checks::method::all()),
-        ("sampling", checks::sampling::all()),
-        ("sampling_beckmann", checks::sampling_beckmann::all()),
-    ];
     let mut failed = 0;
-    for (group, list) in &groups {
-        let (outcomes, _) = run_group(group, list).unwrap_or_else(|e| panic!("{e}"));
+    for (group, all) in checks::GROUPS {
+        let (outcomes, _) = run_group(group, &all()).unwrap_or_else(|e| panic!("{e}"));
         for o in outcomes {
             failed += usize::from(o.n_failed > 0);
             println!(

@@ -574,6 +574,24 @@ fn kernel_checks(fps: &[([f32; 2], [f32; 2])], rng: &mut SplitMix64) -> Vec<Chec
     }
     checks.extend([ce, cc, ck]);
 
+    // The zero kernel: constant, exactly zero (one case; its entries are multiplied by the
+    // input 1, exactly, so that the shader reads its input buffer).
+    let mut z = Check::new(
+        "covariance::zero",
+        imports,
+        "let k = covariance::zero(); y4(0u, vec4<f32>(k.s_xx, k.s_xy, k.s_yy, k.det) * x(0u));",
+        1,
+        4,
+    )
+    .tolerance("exact (every entry and the determinant 0)");
+    let k = Covariance::ZERO;
+    z.case(
+        vec![1.0],
+        vec![k.s11, k.s12, k.s22, k.s11 * k.s22 - k.s12 * k.s12],
+        vec![Tol::abs(0.0); 4],
+    );
+    checks.push(z);
+
     // sanitized on arbitrary (indefinite, negative, huge) entries.
     let mut cs = Check::new(
         "covariance::sanitized",

@@ -8,12 +8,13 @@
 //! carries their stated bounds (reused from their checks): the filtered-matrix `D` rule of
 //! [`super::filters`] (`Gaussian`, `Projected`), the exact Gaussian's condition-number rule of
 //! [`super::gaussian_ggx`], `d_rect`'s and `lambda_rect`'s of [`super::rect`], the proxy's
-//! `2 (7 + 4 x 12 + 1) + 6 + 2 x 12` ulp; `g1`, `g2` of the box lobe from its `Lambda`.
+//! `2 (7 + 4 x 12 + 1) + 6 + 2 x 12` ulp; `g1`, `g2` of the box lobe from its `Lambda`;
+//! `p22_rect_filtered` from `p22_rect`'s and the box's f32 rounding.
 
-use super::{Check, Tol, draw};
+use super::{Check, EPS, Tol, draw};
 use crate::reference::{
     AxisAligned, Beckmann, DVec2, DVec3, ExactGaussian, Filterable, Footprint, Gaussian, Ggx, Ndf,
-    Projected, Proxy, Rect, Roughness, strategies, v2, v3,
+    Projected, Proxy, Rect, RectFilteredGgx, Roughness, SplitMix64, strategies, v2, v3,
 };
 
 /// One shading point: material, footprint, half vector `h`, views `w`, `o`.
@@ -212,5 +213,94 @@ pub fn all() -> Vec<Check> {
             )
         },
     );
+    for (name, m) in [
+        ("KHPL16_RECT", Rect::KHPL16),
+        ("GDC2016_RECT", Rect::GDC2016),
+    ] {
+        checks.push(p22_rect_filtered(&pts, name, m));
+        checks.push(g1_rect_filtered(&pts, name, m));
+    }
     checks
+}
+
+/// `method::g1_rect_filtered(lobe, w, h)` of the box lobe at the trade table's shading points
+/// (views `w` from `upper_hemisphere(89.9)`, micronormals `h` from `upper_hemisphere(89)`).
+///
+/// Tolerance: `G1 = chi+(w.m) / (1 + Lambda(w))` carries the bound of its `Lambda`
+/// ([`super::rect::lambda_rect_ulps`]) times `|d ln G1 / d ln Lambda| = Lambda / (1 + Lambda)`,
+/// plus 4 ulp for `1 + Lambda` and the quotient (as `g2_rect_filtered`'s). Where `|w.m| <= 4
+/// EPS` the f32 dot product of the unit vectors (within 3 EPS) may take either sign, so the
+/// shader may answer 0 or the value: the tolerance there is the value (absolute).
+fn g1_rect_filtered(pts: &[Point], name: &str, m: Rect) -> Check {
+    let body = format!(
+        "{PROLOGUE}\ny(0u, method::g1_rect_filtered(method::rect_lobe(method::{name}, r, fp), w, h));"
+    );
+    let mut c = Check::new(
+        &format!("method::g1_rect_filtered (method::{name})"),
+        IMPORTS,
+        &body,
+        15,
+        1,
+    )
+    .tolerance("lambda_rect_ulps times Lambda / (1 + Lambda), plus 4 ulp; the value itself where |w.m| <= 4 EPS (the sign of the f32 dot)");
+    for p in pts {
+        let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
+        let (w, h) = (v3(p.w), v3(p.h));
+        let l = lobe.lambda(w);
+        let tol = if w.dot(h).abs() <= 4.0 * EPS {
+            Tol::abs(1.0 / (1.0 + l) + super::TINY)
+        } else {
+            let f = if l.is_finite() { l / (1.0 + l) } else { 1.0 };
+            let lt = super::rect::lambda_rect_ulps(lobe.roughness, lobe.half_extent, w);
+            Tol::ulps(lt * f + 4.0)
+        };
+        c.case(p.input(), vec![lobe.g1(w, h)], vec![tol]);
+    }
+    c
+}
+
+/// `method::p22_rect_filtered` of the box lobe `method::rect_lobe(method, r, fp)` at the
+/// trade table's shading points, at two slopes each: the half vector's `-h_xy / h_z` (rounded
+/// to f32, as the shader reads it), and a slope drawn uniformly in the box widened by half
+/// (`s_i = t_i H_i`, `t_i` in `[-1.5, 1.5]`), where the filtered lobe is flat-topped and its
+/// edges cut through it.
+///
+/// Tolerance: the bound of `rect::p22_rect` at that centre and box ([`super::rect::rect_ulps`]),
+/// plus the rounding of the box: the shader forms the half extents `(|dh_u| + |dh_v|) / 2`
+/// in f32 (one rounding, half an ulp; the clamps' `min` and `max` are exact), which moves
+/// `P22` by its log-sensitivity to each half extent (central differences of the `f64`
+/// reference, [`super::rect::log_sensitivity`]) times one ulp.
+fn p22_rect_filtered(pts: &[Point], name: &str, m: Rect) -> Check {
+    let body = format!(
+        "{PROLOGUE}\ny(0u, method::p22_rect_filtered(method::rect_lobe(method::{name}, r, fp), x2(15u)));"
+    );
+    let mut c = Check::new(
+        &format!("method::p22_rect_filtered (method::{name})"),
+        IMPORTS,
+        &body,
+        17,
+        1,
+    )
+    .tolerance("rect_ulps at the slope and box, plus 1 ulp times P22's log-sensitivity to each half extent (the box's f32 rounding)");
+    let mut rng = SplitMix64(0x7032_3272);
+    for p in pts {
+        let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
+        let he = lobe.half_extent;
+        let h = v3(p.h);
+        let inside = [
+            (rng.range(-1.5, 1.5) * he.x) as f32,
+            (rng.range(-1.5, 1.5) * he.y) as f32,
+        ];
+        for s in [[(-h.x / h.z) as f32, (-h.y / h.z) as f32], inside] {
+            let sd = v2(s);
+            let p22 = |he: DVec2| RectFilteredGgx::new(lobe.roughness, he).p22(sd);
+            let kx = super::rect::log_sensitivity(he.x, |x| p22(DVec2::new(x, he.y)));
+            let ky = super::rect::log_sensitivity(he.y, |y| p22(DVec2::new(he.x, y)));
+            let t = super::rect::rect_ulps(lobe.roughness, sd, he) + kx + ky;
+            let mut input = p.input();
+            input.extend(s);
+            c.case(input, vec![lobe.p22(sd)], vec![Tol::ulps(t)]);
+        }
+    }
+    c
 }

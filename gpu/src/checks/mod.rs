@@ -27,6 +27,35 @@ pub mod sampling;
 pub mod sampling_beckmann;
 
 use crate::harness::{self, Kernel};
+
+/// A group's checks, built on call (cases and `f64` references).
+pub type Group = fn() -> Vec<Check>;
+
+/// Every group of checks: its name (the test of `gpu/tests/conformance.rs` that runs it, and
+/// the report's `target/gpu-conformance/<backend>/<name>.tsv`) and its checks.
+/// `gpu/tests/coverage.rs` requires every exported WGSL function to be called by one of them.
+pub const GROUPS: &[(&str, Group)] = &[
+    ("math", math::all),
+    ("ndf", ndf::all),
+    ("footprint", footprint::all),
+    ("filters", filters::all),
+    ("rect", rect::all),
+    ("rect_sample", rect_sample::all),
+    ("nan_policy", nan_policy::all),
+    ("gaussian_ggx", gaussian_ggx::all),
+    ("method", method::all),
+    ("sampling", sampling::all),
+    ("sampling_beckmann", sampling_beckmann::all),
+];
+
+/// The checks of the group `name` of [`GROUPS`].
+pub fn group(name: &str) -> Vec<Check> {
+    let (_, all) = GROUPS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .unwrap_or_else(|| panic!("no check group `{name}`"));
+    all()
+}
 use proptest::strategy::{Strategy, ValueTree};
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 

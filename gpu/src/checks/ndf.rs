@@ -413,7 +413,99 @@ pub fn all() -> Vec<Check> {
     for kind in ["isotropic", "axis_aligned", "matrix", "matrix_clamped"] {
         v.extend(form_checks(kind, 2000));
     }
+    v.extend(matrix_constructors(2000));
     v
+}
+
+/// `isotropic::to_matrix` and `matrix::from_entries`, read back through `matrix::entries`,
+/// `matrix::sqrt_det` and `matrix::determinant`.
+///
+/// `isotropic::to_matrix` (isotropic roughness from `strategies::isotropic` and the range's
+/// ends `1e-8`, `1e4`): `alpha^2 I` through `from_eigen((1, 0), (alpha, alpha))`, so the
+/// diagonal and `sqrt det` are `alpha alpha` rounded once (1 ulp), the off-diagonal entry
+/// `(l - l) c s` exactly 0, the determinant `l l` rounded twice (2 ulp).
+///
+/// `matrix::from_entries` (the f32 entries of `strategies::matrix`: `alpha_x` log-uniform in
+/// `[1e-4, 2]`, anisotropy `1e-3` to `1e3`, rotated): `det = a11 a22 - a12^2` formed in f32,
+/// within `u (a11 a22 + a12^2) + u |det|` (`u = EPS / 2`: the two products and the
+/// difference, each rounded once; fewer with a fused multiply-add), the documented
+/// `cond(A) eps` for elongated matrices. `sqrt det`: half that relative error plus 3 ulp for
+/// `sqrt`, so `c / 4 + 4` ulp with `c = (a11 a22 + a12^2) / |det|`. The entries,
+/// reconstructed from the eigenbasis: `32 EPS` of the largest entry as for the filtered
+/// matrices ([`super::filters`]: `l1` 5 ulp, the reconstruction 3, the eigenvector's angle
+/// 4 `EPS` times `2 (l1 - l2)`), plus the determinant's error carried into `l2 = det / l1`.
+fn matrix_constructors(n: usize) -> Vec<Check> {
+    let read =
+        "y3(0u, matrix::entries(a));\ny(3u, matrix::sqrt_det(a));\ny(4u, matrix::determinant(a));";
+    let mut iso = Check::new(
+        "isotropic::to_matrix",
+        "#import filtered_ndf::ndf::roughness::isotropic\n#import filtered_ndf::ndf::roughness::matrix",
+        &format!("let a = isotropic::to_matrix(isotropic::from_alpha(x(0u)));\n{read}"),
+        1,
+        5,
+    )
+    .tolerance("diagonal and sqrt det 1 ulp (alpha alpha), off-diagonal exactly 0, det 2 ulp");
+    let alphas = draw(strategies::isotropic(), n, "to_matrix alpha")
+        .into_iter()
+        .map(|r| r.alpha() as f32)
+        .chain([1.0001e-8, 1e4]);
+    for a in alphas {
+        let m = Isotropic::new(a.into()).expect("in range").to_matrix();
+        let (a11, a12, a22) = m.entries();
+        let l = f64::from(a).powi(2);
+        iso.case(
+            vec![a],
+            vec![a11, a12, a22, m.sqrt_det(), l * l],
+            vec![
+                Tol::ulps(1.0),
+                Tol::abs(0.0),
+                Tol::ulps(1.0),
+                Tol::ulps(1.0),
+                Tol::ulps(2.0),
+            ],
+        );
+    }
+    let mut ent = Check::new(
+        "matrix::from_entries",
+        "#import filtered_ndf::ndf::roughness::matrix",
+        &format!("let a = matrix::from_entries(x(0u), x(1u), x(2u));\n{read}"),
+        3,
+        5,
+    )
+    .tolerance("det u (a11 a22 + a12^2) + u |det| (f32 products and difference); sqrt det c / 4 + 4 ulp; entries 32 EPS of the largest plus det's error / l1");
+    let u = 0.5 * EPS;
+    for m in draw(strategies::matrix(), n, "from_entries matrix") {
+        let (b11, b12, b22) = m.entries();
+        let e = [b11 as f32, b12 as f32, b22 as f32];
+        let (a11, a12, a22) = (f64::from(e[0]), f64::from(e[1]), f64::from(e[2]));
+        // The f32 entries as a matrix (products of f32 values are exact in f64).
+        let det = a11 * a22 - a12 * a12;
+        let Ok(r) = RoughnessMatrix::new(a11, a12, a22) else {
+            continue;
+        };
+        let terms = a11 * a22 + a12 * a12;
+        let det_err = u * terms + u * det.abs();
+        let l1 = 0.5 * (a11 + a22) + (0.5 * (a11 - a22)).hypot(a12);
+        let largest = a11.abs().max(a22.abs()).max(a12.abs());
+        let entry = Tol::of_scale(32.0 + det_err / l1 / (EPS * largest), largest);
+        ent.case(
+            e.to_vec(),
+            vec![a11, a12, a22, r.sqrt_det(), det],
+            vec![
+                entry,
+                entry,
+                entry,
+                Tol::ulps(0.25 * terms / det + 4.0),
+                // Reported relative to `det`.
+                Tol {
+                    rel: 0.0,
+                    abs: det_err + super::TINY,
+                    scale: det.abs(),
+                },
+            ],
+        );
+    }
+    vec![iso, ent]
 }
 
 /// `r32` re-exported for sibling modules' use in doc examples.

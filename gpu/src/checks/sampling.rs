@@ -93,7 +93,7 @@ fn sample_tol(c: &Case) -> f64 {
     sample_tol_of(&c.m, v3(c.wo), c.u)
 }
 
-/// [`sample_tol`] for the (f64) roughness `m`, the view `wo` and the uniform numbers `u`
+/// `sample_tol` for the (f64) roughness `m`, the view `wo` and the uniform numbers `u`
 /// (as the shader reads them).
 pub fn sample_tol_of(m: &RoughnessMatrix, wo: DVec3, u: [f32; 2]) -> f64 {
     let mm = warp_of(m);
@@ -172,6 +172,18 @@ pub fn all() -> Vec<Check> {
     )
     .tolerance("reflection_pdf_from_normal's, plus the reference D's largest relative change under a move of the half vector by up to 4 EPS / (wo.h) (closed-form bound); [0, reference] where h_z <= 16 EPS / (wo.h) (chi+ decided by rounding)");
 
+    // reflect(wo, m) = 2 (wo.m) m - wo of a view and the normal sampled for it: per
+    // component the dot product (3 products and 2 sums of unit vectors, `1.5 EPS`) doubled and
+    // scaled by `|m_i| <= 1` (3 EPS), the product (1 EPS) and the difference (1.5 EPS): within
+    // `6 EPS` absolute of the unit length.
+    let mut rf = Check::new(
+        "sampling::reflect",
+        imports,
+        &format!("{pre}y3(0u, sampling::reflect(wo, x3(9u)));"),
+        12,
+        3,
+    )
+    .tolerance("6 EPS absolute per component (the dot product 1.5, doubled and scaled 3, product 1, difference 1.5)");
     for c in &cs {
         let ggx = Ggx::new(c.m);
         let wo = v3(c.wo);
@@ -222,6 +234,10 @@ pub fn all() -> Vec<Check> {
                 Tol::ulps(base),
             ],
         );
+        let mut input = c.input();
+        input.extend(m32);
+        let r = sampling::reflect(wo, m);
+        rf.case(input, vec![r.x, r.y, r.z], vec![Tol::of_scale(6.0, 1.0); 3]);
         let wi = sampling::reflect(wo.normalize(), m);
         let wi32 = [wi.x as f32, wi.y as f32, wi.z as f32];
         let wi = v3(wi32);
@@ -249,7 +265,7 @@ pub fn all() -> Vec<Check> {
         input.extend(wi32);
         pr.case(input, vec![reference], vec![tol]);
     }
-    checks.extend([sv, sn, pv, pr]);
+    checks.extend([sv, sn, pv, pr, rf]);
     checks
 }
 

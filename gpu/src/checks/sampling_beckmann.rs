@@ -119,7 +119,7 @@ fn visible_tol(c: &Case) -> f64 {
     sample_tol_of(&c.m, v3(c.wo), c.u)
 }
 
-/// [`visible_tol`] for the (f64) roughness `m`, the view `wo` and the uniform numbers `u` (as
+/// `visible_tol` for the (f64) roughness `m`, the view `wo` and the uniform numbers `u` (as
 /// the shader reads them; the oracle's GPU backend uses it too).
 pub fn sample_tol_of(m: &RoughnessMatrix, wo: DVec3, u: [f32; 2]) -> f64 {
     let mm = warp_of(m);

@@ -1,9 +1,9 @@
 #define_import_path highlights::scene
 
 // The demonstration's scene on the GPU: the same analytic surfaces as
-// `examples/highlights/scene.rs` (wavy water with its level of detail, five spheres, one point
+// `demo/src/scene.rs` (wavy water with its level of detail, five spheres, one point
 // light), with the parameters of that one description uploaded as `Scene` (see
-// `examples/highlights_gpu/frame.rs`). Each function mirrors the Rust one of the same name.
+// `demo/src/bin/highlights_gpu/frame.rs`). Each function mirrors the Rust one of the same name.
 
 /// Waves and spheres (the sizes of `scene.rs`).
 const N_WAVES: u32 = 8u;
