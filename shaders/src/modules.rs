@@ -122,9 +122,9 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../filter/rect/lambda.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::filter::method",
-        file: "filter/method.wgsl",
-        source: include_str!("../filter/method.wgsl"),
+        import_path: "filtered_ndf::filter::rect::lobe",
+        file: "filter/rect/lobe.wgsl",
+        source: include_str!("../filter/rect/lobe.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::filter::presets",
@@ -132,9 +132,14 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../filter/presets.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::filter::rect::sample",
-        file: "filter/rect/sample.wgsl",
-        source: include_str!("../filter/rect/sample.wgsl"),
+        import_path: "filtered_ndf::sampling::rect",
+        file: "sampling/rect.wgsl",
+        source: include_str!("../sampling/rect.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::sampling::gaussian_ggx",
+        file: "sampling/gaussian_ggx.wgsl",
+        source: include_str!("../sampling/gaussian_ggx.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::footprint::slope",
