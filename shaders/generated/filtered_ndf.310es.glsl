@@ -300,6 +300,28 @@ float math_ln_1p(float x_4) {
     return _e9;
 }
 
+bool math_is_nan(float x_5) {
+    return ((floatBitsToUint(x_5) & 2147483647u) > 2139095040u);
+}
+
+float math_nan_to_zero(float x_6) {
+    bool _e1 = math_is_nan(x_6);
+    return (_e1 ? 0.0 : x_6);
+}
+
+vec2 math_nan_to_zero2_(vec2 v) {
+    float _e2 = math_nan_to_zero(v.x);
+    float _e4 = math_nan_to_zero(v.y);
+    return vec2(_e2, _e4);
+}
+
+vec3 math_nan_to_zero3_(vec3 v_1) {
+    float _e2 = math_nan_to_zero(v_1.x);
+    float _e4 = math_nan_to_zero(v_1.y);
+    float _e6 = math_nan_to_zero(v_1.z);
+    return vec3(_e2, _e4, _e6);
+}
+
 float ndf_roughness_clamp_alpha(float alpha) {
     return ((alpha >= ndf_roughness_ALPHA_MIN) ? min(alpha, ndf_roughness_ALPHA_MAX) : ndf_roughness_ALPHA_MIN);
 }
@@ -410,17 +432,27 @@ footprint_Footprint footprint_from_projected_derivatives_in_slope(vec3 h_10, vec
         return footprint_Footprint(vec2(0.0), vec2(0.0));
     }
     mat2x2 _e18 = footprint_jacobian_projected_to_slope(h_10);
-    return footprint_Footprint((_e18 * dp_u_1), (_e18 * dp_v_1));
+    vec2 _e19 = math_nan_to_zero2_(dp_u_1);
+    vec2 _e21 = math_nan_to_zero2_(dp_v_1);
+    return footprint_Footprint((_e18 * _e19), (_e18 * _e21));
 }
 
-footprint_Footprint footprint_from_normal_differences(vec3 dn_u, vec3 dn_v) {
-    float lu = max(length((vec3(0.0, 0.0, 2.0) + dn_u)), 1e-6);
-    float lv = max(length((vec3(0.0, 0.0, 2.0) + dn_v)), 1e-6);
-    return footprint_Footprint((dn_u.xy * (2.0 / lu)), (dn_v.xy * (2.0 / lv)));
+footprint_Footprint footprint_from_normal_differences(vec3 dn_u_in, vec3 dn_v_in) {
+    vec3 _e2 = math_nan_to_zero3_(dn_u_in);
+    vec3 _e3 = math_nan_to_zero3_(dn_v_in);
+    float lu = max(length((vec3(0.0, 0.0, 2.0) + _e2)), 1e-6);
+    float lv = max(length((vec3(0.0, 0.0, 2.0) + _e3)), 1e-6);
+    return footprint_Footprint((_e2.xy * (2.0 / lu)), (_e3.xy * (2.0 / lv)));
 }
 
-float footprint_max_extent(footprint_Footprint fp) {
-    return (0.5 * max(length((fp.dh_u + fp.dh_v)), length((fp.dh_u - fp.dh_v))));
+footprint_Footprint footprint_nan_to_zero(footprint_Footprint fp) {
+    vec2 _e2 = math_nan_to_zero2_(fp.dh_u);
+    vec2 _e4 = math_nan_to_zero2_(fp.dh_v);
+    return footprint_Footprint(_e2, _e4);
+}
+
+float footprint_max_extent(footprint_Footprint fp_1) {
+    return (0.5 * max(length((fp_1.dh_u + fp_1.dh_v)), length((fp_1.dh_u - fp_1.dh_v))));
 }
 
 kernel_covariance_Covariance kernel_covariance_zero() {
@@ -431,12 +463,13 @@ kernel_covariance_Covariance kernel_covariance_from_entries(float s_xx, float s_
     return kernel_covariance_Covariance(s_xx, s_xy, s_yy, ((s_xx * s_yy) - (s_xy * s_xy)));
 }
 
-kernel_covariance_Covariance kernel_covariance_from_footprint(footprint_Footprint fp_1, float sigma) {
-    vec2 u_18 = fp_1.dh_u;
-    vec2 v_13 = fp_1.dh_v;
+kernel_covariance_Covariance kernel_covariance_from_footprint(footprint_Footprint fp_in, float sigma) {
+    footprint_Footprint _e2 = footprint_nan_to_zero(fp_in);
+    vec2 u_18 = _e2.dh_u;
+    vec2 v_15 = _e2.dh_v;
     float s2_ = (sigma * sigma);
-    float cross_ = (((u_18.x * v_13.y) - (u_18.y * v_13.x)) * s2_);
-    return kernel_covariance_Covariance((((u_18.x * u_18.x) + (v_13.x * v_13.x)) * s2_), (((u_18.x * u_18.y) + (v_13.x * v_13.y)) * s2_), (((u_18.y * u_18.y) + (v_13.y * v_13.y)) * s2_), (cross_ * cross_));
+    float cross_ = (((u_18.x * v_15.y) - (u_18.y * v_15.x)) * s2_);
+    return kernel_covariance_Covariance((((u_18.x * u_18.x) + (v_15.x * v_15.x)) * s2_), (((u_18.x * u_18.y) + (v_15.x * v_15.y)) * s2_), (((u_18.y * u_18.y) + (v_15.y * v_15.y)) * s2_), (cross_ * cross_));
 }
 
 float kernel_covariance_trace(kernel_covariance_Covariance c) {
@@ -499,35 +532,93 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     return kernel_covariance_Covariance(((max_eig * p11_) + (lmin_1 * p22_)), ((max_eig - lmin_1) * p12_), ((max_eig * p22_) + (lmin_1 * p11_)), (max_eig * lmin_1));
 }
 
-kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covariance c_4) {
+kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covariance c_in) {
     bool local_1 = false;
     bool local_2 = false;
-    float big_2 = max(max(abs(c_4.s_xx), abs(c_4.s_yy)), abs(c_4.s_xy));
-    if ((big_2 > math_F32_MAX)) {
+    kernel_covariance_Covariance c_4 = kernel_covariance_Covariance(0.0, 0.0, 0.0, 0.0);
+    bool local_3 = false;
+    bool local_4 = false;
+    bool local_5 = false;
+    bool local_6 = false;
+    bool local_7 = false;
+    if (!((abs(c_in.s_xx) > math_F32_MAX))) {
+        local_1 = (abs(c_in.s_xy) > math_F32_MAX);
+    } else {
+        local_1 = true;
+    }
+    bool _e13 = local_1;
+    if (!(_e13)) {
+        local_2 = (abs(c_in.s_yy) > math_F32_MAX);
+    } else {
+        local_2 = true;
+    }
+    bool inf = local_2;
+    if (inf) {
         return kernel_covariance_Covariance(100000000.0, 0.0, 100000000.0, 1e16);
     }
-    if ((c_4.s_xx >= 0.0)) {
-        local_1 = (c_4.s_yy >= 0.0);
+    float _e29 = math_nan_to_zero(c_in.s_xx);
+    float _e31 = math_nan_to_zero(c_in.s_xy);
+    float _e33 = math_nan_to_zero(c_in.s_yy);
+    c_4 = kernel_covariance_Covariance(_e29, _e31, _e33, c_in.det);
+    float _e38 = c_4.det;
+    bool _e39 = math_is_nan(_e38);
+    if (!(_e39)) {
+        bool _e44 = math_is_nan(c_in.s_xx);
+        local_3 = _e44;
     } else {
-        local_1 = false;
+        local_3 = true;
     }
-    bool _e25 = local_1;
-    if (_e25) {
-        local_2 = (c_4.det >= 0.0);
+    bool _e46 = local_3;
+    if (!(_e46)) {
+        bool _e51 = math_is_nan(c_in.s_xy);
+        local_4 = _e51;
     } else {
-        local_2 = false;
+        local_4 = true;
     }
-    bool _e32 = local_2;
-    if (_e32) {
-        kernel_covariance_Covariance _e34 = kernel_covariance_clamp_eigenvalues(c_4, kernel_covariance_KERNEL_MAX);
-        return _e34;
+    bool _e53 = local_4;
+    if (!(_e53)) {
+        bool _e58 = math_is_nan(c_in.s_yy);
+        local_5 = _e58;
+    } else {
+        local_5 = true;
     }
-    float s_xx_1 = max(c_4.s_xx, 0.0);
-    float s_yy_1 = max(c_4.s_yy, 0.0);
+    bool _e60 = local_5;
+    if (_e60) {
+        float _e63 = c_4.s_xx;
+        float _e65 = c_4.s_yy;
+        float _e68 = c_4.s_xy;
+        float _e70 = c_4.s_xy;
+        c_4.det = ((_e63 * _e65) - (_e68 * _e70));
+    }
+    float _e74 = c_4.s_xx;
+    if ((_e74 >= 0.0)) {
+        float _e80 = c_4.s_yy;
+        local_6 = (_e80 >= 0.0);
+    } else {
+        local_6 = false;
+    }
+    bool _e84 = local_6;
+    if (_e84) {
+        float _e88 = c_4.det;
+        local_7 = (_e88 >= 0.0);
+    } else {
+        local_7 = false;
+    }
+    bool _e92 = local_7;
+    if (_e92) {
+        kernel_covariance_Covariance _e93 = c_4;
+        kernel_covariance_Covariance _e95 = kernel_covariance_clamp_eigenvalues(_e93, kernel_covariance_KERNEL_MAX);
+        return _e95;
+    }
+    float _e97 = c_4.s_xx;
+    float s_xx_1 = max(_e97, 0.0);
+    float _e101 = c_4.s_yy;
+    float s_yy_1 = max(_e101, 0.0);
     float bound = (sqrt(s_xx_1) * sqrt(s_yy_1));
-    float s_xy_1 = clamp(c_4.s_xy, -(bound), bound);
-    kernel_covariance_Covariance _e50 = kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance(s_xx_1, s_xy_1, s_yy_1, 0.0), kernel_covariance_KERNEL_MAX);
-    return _e50;
+    float _e108 = c_4.s_xy;
+    float s_xy_1 = clamp(_e108, -(bound), bound);
+    kernel_covariance_Covariance _e114 = kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance(s_xx_1, s_xy_1, s_yy_1, 0.0), kernel_covariance_KERNEL_MAX);
+    return _e114;
 }
 
 float filter_deferred_from_alpha(uint domain, float alpha_1) {
@@ -544,17 +635,17 @@ float filter_deferred_from_alpha(uint domain, float alpha_1) {
     return a2_;
 }
 
-float filter_deferred_to_alpha(uint domain_1, float v) {
+float filter_deferred_to_alpha(uint domain_1, float v_2) {
     if ((domain_1 == filter_deferred_DOMAIN_ALPHA)) {
-        return v;
+        return v_2;
     }
     if ((domain_1 == filter_deferred_DOMAIN_PERCEPTUAL)) {
-        return (v * v);
+        return (v_2 * v_2);
     }
     if ((domain_1 == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
-        return ((v < math_F32_MAX) ? sqrt((v / (1.0 + v))) : 1.0);
+        return ((v_2 < math_F32_MAX) ? sqrt((v_2 / (1.0 + v_2))) : 1.0);
     }
-    return sqrt(v);
+    return sqrt(v_2);
 }
 
 float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5) {
@@ -562,37 +653,51 @@ float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5) {
     return max(((0.5 * (a_1 + c_5)) + _e9), 0.0);
 }
 
-float filter_deferred_norm_eval(uint norm, vec3 dn_u_1, vec3 dn_v_1) {
-    float a_19 = dot(dn_u_1, dn_u_1);
-    float c_15 = dot(dn_v_1, dn_v_1);
+float filter_deferred_norm_eval(uint norm, vec3 dn_u_in_1, vec3 dn_v_in_1) {
+    vec3 _e3 = math_nan_to_zero3_(dn_u_in_1);
+    vec3 _e4 = math_nan_to_zero3_(dn_v_in_1);
+    float a_19 = dot(_e3, _e3);
+    float c_15 = dot(_e4, _e4);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
         return max(a_19, c_15);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        float _e11 = filter_deferred_max_eigenvalue(a_19, dot(dn_u_1, dn_v_1), c_15);
-        return _e11;
+        float _e13 = filter_deferred_max_eigenvalue(a_19, dot(_e3, _e4), c_15);
+        return _e13;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        vec3 m_45 = max(abs(dn_u_1), abs(dn_v_1));
+        vec3 m_45 = max(abs(_e3), abs(_e4));
         return max(max(m_45.x, m_45.y), m_45.z);
     }
     return (a_19 + c_15);
 }
 
 float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_1) {
-    return min(max(k_1, 0.0), conv.clamp_);
+    bool _e7 = math_is_nan(k_1);
+    return (_e7 ? conv.clamp_ : min(max(k_1, 0.0), conv.clamp_));
 }
 
-float filter_deferred_widening(filter_deferred_KernelConvention conv_1, vec3 dn_u_2, vec3 dn_v_2) {
+float filter_deferred_widening(filter_deferred_KernelConvention conv_1, vec3 dn_u, vec3 dn_v) {
+    bool local_8 = false;
     float raw = 0.0;
-    float _e4 = filter_deferred_norm_eval(conv_1.norm, dn_u_2, dn_v_2);
-    raw = _e4;
-    if ((conv_1.exponent != 1.0)) {
-        raw = ((_e4 > 0.0) ? pow(_e4, conv_1.exponent) : 0.0);
+    vec3 lim = vec3(3.4028235e38);
+    if (!(any(greaterThan(abs(dn_u), lim)))) {
+        local_8 = any(greaterThan(abs(dn_v), lim));
+    } else {
+        local_8 = true;
     }
-    float _e16 = raw;
-    float _e20 = filter_deferred_clamp_widening(conv_1, ((conv_1.scale * _e16) + conv_1.bias));
-    return _e20;
+    bool _e15 = local_8;
+    if (_e15) {
+        return conv_1.clamp_;
+    }
+    float _e18 = filter_deferred_norm_eval(conv_1.norm, dn_u, dn_v);
+    raw = _e18;
+    if ((conv_1.exponent != 1.0)) {
+        raw = ((_e18 > 0.0) ? pow(_e18, conv_1.exponent) : 0.0);
+    }
+    float _e30 = raw;
+    float _e34 = filter_deferred_clamp_widening(conv_1, ((conv_1.scale * _e30) + conv_1.bias));
+    return _e34;
 }
 
 float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, float alpha_in, float k_2) {
@@ -614,24 +719,27 @@ float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, fl
     return clamp(_e29, 0.0, ndf_roughness_ALPHA_MAX);
 }
 
-float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_3, vec3 dn_u_3, vec3 dn_v_3) {
-    float _e4 = filter_deferred_widening(conv_3, dn_u_3, dn_v_3);
+float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_3, vec3 dn_u_1, vec3 dn_v_1) {
+    float _e4 = filter_deferred_widening(conv_3, dn_u_1, dn_v_1);
     float _e5 = filter_deferred_apply_widening(conv_3, alpha_3, _e4);
     return _e5;
 }
 
-kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_4, vec3 dn_v_4, float sigma_1) {
+kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_2, vec3 dn_v_2, float sigma_1) {
     float sigma_sq = (sigma_1 * sigma_1);
-    vec3 x_12 = (cross(dn_u_4, dn_v_4) * sigma_sq);
-    return kernel_covariance_Covariance((dot(dn_u_4, dn_u_4) * sigma_sq), (dot(dn_u_4, dn_v_4) * sigma_sq), (dot(dn_v_4, dn_v_4) * sigma_sq), dot(x_12, x_12));
+    vec3 x_14 = (cross(dn_u_2, dn_v_2) * sigma_sq);
+    return kernel_covariance_Covariance((dot(dn_u_2, dn_u_2) * sigma_sq), (dot(dn_u_2, dn_v_2) * sigma_sq), (dot(dn_v_2, dn_v_2) * sigma_sq), dot(x_14, x_14));
 }
 
 float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel) {
+    float _e3 = math_nan_to_zero(kernel.s_xx);
+    float _e5 = math_nan_to_zero(kernel.s_xy);
+    float _e7 = math_nan_to_zero(kernel.s_yy);
     if ((bandwidth == filter_deferred_BANDWIDTH_MAX)) {
-        float _e7 = filter_deferred_max_eigenvalue(kernel.s_xx, kernel.s_xy, kernel.s_yy);
-        return (2.0 * _e7);
+        float _e10 = filter_deferred_max_eigenvalue(_e3, _e5, _e7);
+        return (2.0 * _e10);
     }
-    float t_10 = (kernel.s_xx + kernel.s_yy);
+    float t_10 = (_e3 + _e7);
     return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_10) : t_10);
 }
 
@@ -664,18 +772,18 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(vec2 a
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det_2, float tau_2) {
-    vec2 v_1 = vec2(0.0);
+    vec2 v_3 = vec2(0.0);
     float half_diff = (0.5 * (a11_ - a22_));
     float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
     float l1_1 = ((0.5 * (a11_ + a22_)) + rad);
     float l2_2 = (max(det_2, 0.0) / l1_1);
-    float big_3 = (rad + abs(half_diff));
-    v_1 = ((half_diff < 0.0) ? vec2(a12_, big_3) : vec2(big_3, a12_));
-    if ((big_3 <= 0.0)) {
-        v_1 = vec2(1.0, 0.0);
+    float big_2 = (rad + abs(half_diff));
+    v_3 = ((half_diff < 0.0) ? vec2(a12_, big_2) : vec2(big_2, a12_));
+    if ((big_2 <= 0.0)) {
+        v_3 = vec2(1.0, 0.0);
     }
-    vec2 _e32 = v_1;
-    vec2 _e33 = v_1;
+    vec2 _e32 = v_3;
+    vec2 _e33 = v_3;
     vec2 axis_2 = (_e32 / vec2(length(_e33)));
     ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, vec2(l1_1, l2_2), det_2, tau_2);
     return _e38;
@@ -691,8 +799,8 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(ndf_rou
     return _e7;
 }
 
-vec2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, vec2 v_2) {
-    return vec2(((r_2.axis.x * v_2.x) + (r_2.axis.y * v_2.y)), ((r_2.axis.x * v_2.y) - (r_2.axis.y * v_2.x)));
+vec2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, vec2 v_4) {
+    return vec2(((r_2.axis.x * v_4.x) + (r_2.axis.y * v_4.y)), ((r_2.axis.x * v_4.y) - (r_2.axis.y * v_4.x)));
 }
 
 float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, vec2 s) {
@@ -742,13 +850,13 @@ float ndf_g1_of(float lambda_w, float w_dot_m) {
 }
 
 float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m) {
-    bool local_3 = false;
+    bool local_9 = false;
     if ((i_dot_m > 0.0)) {
-        local_3 = (o_dot_m > 0.0);
+        local_9 = (o_dot_m > 0.0);
     } else {
-        local_3 = false;
+        local_9 = false;
     }
-    bool _e16 = local_3;
+    bool _e16 = local_9;
     return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
 }
 
@@ -806,36 +914,36 @@ float ndf_ggx_p22_of(float q, float sqrt_det) {
 }
 
 float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1) {
-    bool local_4 = false;
+    bool local_10 = false;
     float t_13 = (q_xy + (m_z * m_z));
-    float v_14 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
+    float v_16 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
     if ((m_z > 0.0)) {
-        local_4 = (v_14 <= math_F32_MAX);
+        local_10 = (v_16 <= math_F32_MAX);
     } else {
-        local_4 = false;
+        local_10 = false;
     }
-    bool _e18 = local_4;
-    return (_e18 ? v_14 : 0.0);
+    bool _e18 = local_10;
+    return (_e18 ? v_16 : 0.0);
 }
 
 float ndf_ggx_lambda_of(float q_1, float abs_wz) {
-    bool local_5 = false;
-    bool local_6 = false;
+    bool local_11 = false;
+    bool local_12 = false;
     if ((q_1 <= 0.0)) {
-        local_5 = (abs_wz >= 0.0);
+        local_11 = (abs_wz >= 0.0);
     } else {
-        local_5 = false;
+        local_11 = false;
     }
-    bool _e9 = local_5;
+    bool _e9 = local_11;
     if (_e9) {
         return 0.0;
     }
     if (!(!((abs_wz > 0.0)))) {
-        local_6 = !((q_1 > 0.0));
+        local_12 = !((q_1 > 0.0));
     } else {
-        local_6 = true;
+        local_12 = true;
     }
-    bool _e21 = local_6;
+    bool _e21 = local_12;
     if (_e21) {
         return math_F32_MAX;
     }
@@ -942,8 +1050,8 @@ float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, vec3 i_2, vec
     return _e8;
 }
 
-float ndf_beckmann_exp_neg_times(float x_5, float k_3, float ln_k) {
-    return ((x_5 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_5)) : (exp(-(x_5)) * k_3));
+float ndf_beckmann_exp_neg_times(float x_7, float k_3, float ln_k) {
+    return ((x_7 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_7)) : (exp(-(x_7)) * k_3));
 }
 
 float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
@@ -953,40 +1061,40 @@ float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
 }
 
 float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3) {
-    bool local_7 = false;
+    bool local_13 = false;
     float z2_5 = (m_z_1 * m_z_1);
-    float x_13 = (q_xy_1 / z2_5);
+    float x_15 = (q_xy_1 / z2_5);
     float k_27 = (1.0 / (((math_PI * sqrt_det_3) * z2_5) * z2_5));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_13, k_27, ln_k_1);
+    float _e21 = ndf_beckmann_exp_neg_times(x_15, k_27, ln_k_1);
     if ((m_z_1 > 0.0)) {
-        local_7 = (_e21 <= math_F32_MAX);
+        local_13 = (_e21 <= math_F32_MAX);
     } else {
-        local_7 = false;
+        local_13 = false;
     }
-    bool _e29 = local_7;
+    bool _e29 = local_13;
     return (_e29 ? _e21 : 0.0);
 }
 
 float ndf_beckmann_lambda_of(float q_3, float abs_wz_1) {
-    bool local_8 = false;
-    bool local_9 = false;
+    bool local_14 = false;
+    bool local_15 = false;
     float p = -3.849172e-5;
     if ((q_3 <= 0.0)) {
-        local_8 = (abs_wz_1 >= 0.0);
+        local_14 = (abs_wz_1 >= 0.0);
     } else {
-        local_8 = false;
+        local_14 = false;
     }
-    bool _e9 = local_8;
+    bool _e9 = local_14;
     if (_e9) {
         return 0.0;
     }
     if (!(!((abs_wz_1 > 0.0)))) {
-        local_9 = !((q_3 > 0.0));
+        local_15 = !((q_3 > 0.0));
     } else {
-        local_9 = true;
+        local_15 = true;
     }
-    bool _e21 = local_9;
+    bool _e21 = local_15;
     if (_e21) {
         return math_F32_MAX;
     }
@@ -1127,28 +1235,36 @@ float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, vec3 i_5
     return _e8;
 }
 
-kernel_rect_BoundingRect kernel_rect_from_footprint(footprint_Footprint fp_2) {
-    return kernel_rect_BoundingRect(((abs(fp_2.dh_u) + abs(fp_2.dh_v)) * 0.5));
+kernel_rect_BoundingRect kernel_rect_from_footprint(footprint_Footprint fp_in_1) {
+    footprint_Footprint _e1 = footprint_nan_to_zero(fp_in_1);
+    return kernel_rect_BoundingRect(((abs(_e1.dh_u) + abs(_e1.dh_v)) * 0.5));
 }
 
 kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_50, float sigma_2) {
     vec2 w_24 = (r_50.half_extent * (2.0 * sigma_2));
-    vec2 v_15 = (w_24 * w_24);
-    return kernel_covariance_Covariance(v_15.x, 0.0, v_15.y, (v_15.x * v_15.y));
+    vec2 v_17 = (w_24 * w_24);
+    return kernel_covariance_Covariance(v_17.x, 0.0, v_17.y, (v_17.x * v_17.y));
 }
 
-footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3) {
+footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_in_2) {
+    footprint_Footprint _e2 = footprint_nan_to_zero(fp_in_2);
     float l_6 = max(rules.max_extent, 0.0);
-    float scale_1 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
+    float scale_1 = max(max(abs(_e2.dh_u.x), abs(_e2.dh_u.y)), max(abs(_e2.dh_v.x), abs(_e2.dh_v.y)));
     if ((scale_1 <= 0.0)) {
-        return fp_3;
+        return _e2;
     }
-    footprint_Footprint unit = footprint_Footprint((fp_3.dh_u / vec2(scale_1)), (fp_3.dh_v / vec2(scale_1)));
-    float _e29 = footprint_max_extent(unit);
-    if (((_e29 * scale_1) <= l_6)) {
-        return fp_3;
+    if ((scale_1 > math_F32_MAX)) {
+        vec2 iu = mix(vec2(0.0), sign(_e2.dh_u), greaterThan(abs(_e2.dh_u), vec2(3.4028235e38)));
+        vec2 iv = mix(vec2(0.0), sign(_e2.dh_v), greaterThan(abs(_e2.dh_v), vec2(3.4028235e38)));
+        float _e46 = footprint_max_extent(footprint_Footprint(iu, iv));
+        return footprint_Footprint(((iu / vec2(_e46)) * l_6), ((iv / vec2(_e46)) * l_6));
     }
-    return footprint_Footprint(((unit.dh_u / vec2(_e29)) * l_6), ((unit.dh_v / vec2(_e29)) * l_6));
+    footprint_Footprint unit = footprint_Footprint((_e2.dh_u / vec2(scale_1)), (_e2.dh_v / vec2(scale_1)));
+    float _e61 = footprint_max_extent(unit);
+    if (((_e61 * scale_1) <= l_6)) {
+        return _e2;
+    }
+    return footprint_Footprint(((unit.dh_u / vec2(_e61)) * l_6), ((unit.dh_v / vec2(_e61)) * l_6));
 }
 
 kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_51, vec2 alpha_8) {
@@ -1181,8 +1297,8 @@ float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_
     return (rules_3.det_clamp ? _e3 : _e2);
 }
 
-kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_3) {
-    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_2, float sigma_3) {
+    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_2);
     kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_3);
     kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
     return _e5;
@@ -1214,26 +1330,26 @@ ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf
     return _e6;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_6, footprint_Footprint fp_5, float sigma_4) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_6, footprint_Footprint fp_3, float sigma_4) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_3, sigma_4);
     float _e5 = kernel_clamp_det_clamp_for(rules_5, a_6);
     ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_6, _e4, _e5);
     return _e6;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_lobe(filter_gaussian_Gaussian method, ndf_roughness_matrix_RoughnessMatrix material, footprint_Footprint fp_6) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_filter_gaussian(method.clamps, material, fp_6, method.sigma);
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_lobe(filter_gaussian_Gaussian method, ndf_roughness_matrix_RoughnessMatrix material, footprint_Footprint fp_4) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_filter_gaussian(method.clamps, material, fp_4, method.sigma);
     return _e5;
 }
 
-float filter_gaussian_d_ggx_gaussian(filter_gaussian_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_7, vec3 m_18) {
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_1, material_1, fp_7);
+float filter_gaussian_d_ggx_gaussian(filter_gaussian_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_5, vec3 m_18) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_1, material_1, fp_5);
     float _e5 = ndf_ggx_d_matrix(_e4, m_18);
     return _e5;
 }
 
-float filter_gaussian_d_beckmann_gaussian(filter_gaussian_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_8, vec3 m_19) {
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_2, material_2, fp_8);
+float filter_gaussian_d_beckmann_gaussian(filter_gaussian_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_6, vec3 m_19) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_2, material_2, fp_6);
     float _e5 = ndf_beckmann_d_matrix(_e4, m_19);
     return _e5;
 }
@@ -1380,7 +1496,7 @@ float filter_gaussian_ggx_quad_series_below(float c1s_1, float c2s_1, float tl1_
 float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, float tl2_3) {
     float sum = 0.0;
     uint ch = 0u;
-    float v_3 = 0.0;
+    float v_5 = 0.0;
     float part = 0.0;
     float last = 0.0;
     float vl = 0.0;
@@ -1418,10 +1534,10 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
             uint _e54 = ch;
             float kb = (float((_e54 * 8u)) - k0_);
             float _e61 = math_exp((kb * filter_gaussian_ggx_quad_H));
-            v_3 = _e61;
+            v_5 = _e61;
             part = 0.0;
             last = 0.0;
-            float _e67 = v_3;
+            float _e67 = v_5;
             vl = _e67;
             jj = 0u;
             bool loop_init_2 = true;
@@ -1437,23 +1553,23 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
                     break;
                 }
                 {
-                    float _e74 = v_3;
+                    float _e74 = v_5;
                     float ip1_1 = (1.0 / (1.0 + (t1_3 * _e74)));
-                    float _e80 = v_3;
+                    float _e80 = v_5;
                     float ip2_1 = (1.0 / (1.0 + (t2_1 * _e80)));
                     float a_22 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
                     uint _e91 = jj;
-                    float _e95 = v_3;
-                    float x_14 = ((1.0 * (kb + float(_e91))) - ((_e95 - 1.0) * a_22));
-                    float _e100 = math_exp(x_14);
+                    float _e95 = v_5;
+                    float x_16 = ((1.0 * (kb + float(_e91))) - ((_e95 - 1.0) * a_22));
+                    float _e100 = math_exp(x_16);
                     last = ((_e100 * sqrt(ip1_1)) * sqrt(ip2_1));
                     float _e105 = part;
                     float _e106 = last;
                     part = (_e105 + _e106);
-                    float _e108 = v_3;
+                    float _e108 = v_5;
                     vl = _e108;
-                    float _e109 = v_3;
-                    v_3 = (_e109 * filter_gaussian_ggx_quad_EXP_H);
+                    float _e109 = v_5;
+                    v_5 = (_e109 * filter_gaussian_ggx_quad_EXP_H);
                 }
             }
             float _e115 = sum;
@@ -1476,9 +1592,9 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
     return (filter_gaussian_ggx_quad_H * ((_e139 * scale_2) + _e141));
 }
 
-float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1_4, float tl2_4) {
-    bool local_10 = false;
-    bool local_11 = false;
+float filter_gaussian_ggx_quad_mixture_integral(float v1s_1, float v2s_1, float z2_2, float tl1_4, float tl2_4) {
+    bool local_16 = false;
+    bool local_17 = false;
     float beta_m_1 = ((z2_2 + v1s_1) + v2s_1);
     if ((beta_m_1 >= ((filter_gaussian_ggx_quad_FAR * tl1_4) * z2_2))) {
         float _e11 = filter_gaussian_ggx_quad_far_tail(beta_m_1, v1s_1, v2s_1, tl1_4, tl2_4, z2_2);
@@ -1487,16 +1603,16 @@ float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1
     if (((tl1_4 * z2_2) <= (filter_gaussian_ggx_quad_GL_RATIO * beta_m_1))) {
         if (!((beta_m_1 <= (filter_gaussian_ggx_quad_GL_WIDE * z2_2)))) {
             float _e26 = math_ln((beta_m_1 / z2_2));
-            local_11 = (((tl1_4 * (filter_gaussian_ggx_quad_GL_PLATEAU + (1.5 * _e26))) * z2_2) <= beta_m_1);
+            local_17 = (((tl1_4 * (filter_gaussian_ggx_quad_GL_PLATEAU + (1.5 * _e26))) * z2_2) <= beta_m_1);
         } else {
-            local_11 = true;
+            local_17 = true;
         }
-        bool _e34 = local_11;
-        local_10 = _e34;
+        bool _e34 = local_17;
+        local_16 = _e34;
     } else {
-        local_10 = false;
+        local_16 = false;
     }
-    bool _e36 = local_10;
+    bool _e36 = local_16;
     if (_e36) {
         float _e37 = filter_gaussian_ggx_quad_laguerre(beta_m_1, v1s_1, v2s_1, z2_2, tl1_4, tl2_4);
         return _e37;
@@ -1575,12 +1691,12 @@ float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz) {
         {
             uint _e16 = k_11;
             float _e17 = filter_gaussian_ggx_quad_hermite_node(_e16);
-            float x_15 = (fs * _e17);
+            float x_17 = (fs * _e17);
             float _e19 = acc_1;
             uint _e20 = k_11;
             float _e21 = filter_gaussian_ggx_quad_hermite_weight(_e20);
-            float _e23 = filter_gaussian_ggx_quad_h_of((z0_ - x_15));
-            float _e25 = filter_gaussian_ggx_quad_h_of((z0_ + x_15));
+            float _e23 = filter_gaussian_ggx_quad_h_of((z0_ - x_17));
+            float _e25 = filter_gaussian_ggx_quad_h_of((z0_ + x_17));
             acc_1 = (_e19 + (_e21 * (_e23 + _e25)));
         }
     }
@@ -1595,7 +1711,7 @@ float filter_gaussian_ggx_quad_sinh_run(bool up, float h_11, float rq, float e0_
     float xl = 0.0;
     float part_1 = 0.0;
     uint jj_1 = 0u;
-    bool local_12 = false;
+    bool local_18 = false;
     total = total_in;
     float sgn = (up ? 1.0 : -1.0);
     uint first = (up ? 0u : 1u);
@@ -1634,12 +1750,12 @@ float filter_gaussian_ggx_quad_sinh_run(bool up, float h_11, float rq, float e0_
                     float k_29 = float(((first + (_e32 * 8u)) + _e36));
                     float _e43 = math_exp((((sgn * 0.5) * h_11) * k_29));
                     float it = (1.0 / _e43);
-                    float x_16 = (((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it));
-                    float arg = ((-(x_16) * x_16) * i2s2_);
+                    float x_18 = (((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it));
+                    float arg = ((-(x_18) * x_18) * i2s2_);
                     float it2_ = (it * it);
                     float _e58 = math_exp(arg);
                     fl = ((arg > -87.0) ? (_e58 * (1.0 + ((e2_ * it2_) * it2_))) : 0.0);
-                    xl = x_16;
+                    xl = x_18;
                     float _e68 = part_1;
                     float _e69 = fl;
                     part_1 = (_e68 + _e69);
@@ -1654,11 +1770,11 @@ float filter_gaussian_ggx_quad_sinh_run(bool up, float h_11, float rq, float e0_
             if (done) {
                 float _e85 = fl;
                 float _e87 = total;
-                local_12 = (_e85 <= (filter_gaussian_ggx_quad_S_EPS * _e87));
+                local_18 = (_e85 <= (filter_gaussian_ggx_quad_S_EPS * _e87));
             } else {
-                local_12 = false;
+                local_18 = false;
             }
-            bool _e91 = local_12;
+            bool _e91 = local_18;
             if (_e91) {
                 break;
             }
@@ -1695,7 +1811,7 @@ float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2) {
 
 filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance kernel_4) {
     float l2_ = 0.0;
-    vec2 v_4 = vec2(1.0, 0.0);
+    vec2 v_6 = vec2(1.0, 0.0);
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
     float c_18 = a_7.axis.x;
     float s_27 = a_7.axis.y;
@@ -1712,16 +1828,16 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roug
     float _e75 = math_hypot(half_, c12_);
     float l1_2 = ((0.5 * (c11_ + c22_)) + _e75);
     if ((_e75 > 0.0)) {
-        float big_4 = (_e75 + abs(half_));
-        vec2 w_25 = ((half_ >= 0.0) ? vec2(big_4, c12_) : vec2(c12_, big_4));
-        v_4 = (w_25 / vec2(length(w_25)));
+        float big_3 = (_e75 + abs(half_));
+        vec2 w_25 = ((half_ >= 0.0) ? vec2(big_3, c12_) : vec2(c12_, big_3));
+        v_6 = (w_25 / vec2(length(w_25)));
         l2_ = min((det_c / l1_2), l1_2);
     } else {
         if ((l1_2 > 0.0)) {
             l2_ = l1_2;
         }
     }
-    vec2 _e102 = v_4;
+    vec2 _e102 = v_6;
     float _e105 = l2_;
     float _e110 = ndf_roughness_matrix_sqrt_det(a_7);
     return filter_gaussian_ggx_GaussianFilteredGgx(a_7, isl, _e102, vec2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2);
@@ -1736,7 +1852,7 @@ vec2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g, vec2 
 
 float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_1, vec2 s_10) {
     vec2 _e2 = filter_gaussian_ggx_whiten(g_1, s_10);
-    float _e11 = filter_gaussian_ggx_quad_j(_e2.x, _e2.y, 1.0, g_1.tl.x, g_1.tl.y);
+    float _e11 = filter_gaussian_ggx_quad_mixture_integral(_e2.x, _e2.y, 1.0, g_1.tl.x, g_1.tl.y);
     return (g_1.norm * _e11);
 }
 
@@ -1745,17 +1861,17 @@ float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, vec3 m_
         return 0.0;
     }
     vec2 _e8 = filter_gaussian_ggx_whiten(g_2, m_20.xy);
-    float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, (m_20.z * m_20.z), g_2.tl.x, g_2.tl.y);
-    float v_16 = (g_2.norm * _e19);
-    return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
+    float _e19 = filter_gaussian_ggx_quad_mixture_integral(_e8.x, _e8.y, (m_20.z * m_20.z), g_2.tl.x, g_2.tl.y);
+    float v_18 = (g_2.norm * _e19);
+    return ((v_18 <= math_F32_MAX) ? v_18 : 0.0);
 }
 
 float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, vec3 w_15) {
-    float big_5 = max(max(abs(w_15.x), abs(w_15.y)), abs(w_15.z));
-    if (!((big_5 > 0.0))) {
-        return ((big_5 == 0.0) ? 0.0 : math_F32_MAX);
+    float big_4 = max(max(abs(w_15.x), abs(w_15.y)), abs(w_15.z));
+    if (!((big_4 > 0.0))) {
+        return ((big_4 == 0.0) ? 0.0 : math_F32_MAX);
     }
-    vec3 ws = (w_15 / vec3(big_5));
+    vec3 ws = (w_15 / vec3(big_4));
     vec3 o_9 = (ws / vec3(length(ws)));
     float oz_3 = abs(o_9.z);
     float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_9.xy);
@@ -1789,14 +1905,14 @@ float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, vec3 
     return _e8;
 }
 
-filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_exact_gaussian_lobe(filter_gaussian_ggx_ExactGaussian method_3, ndf_roughness_matrix_RoughnessMatrix material_3, footprint_Footprint fp_9) {
-    kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_9, method_3.sigma);
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_exact_gaussian_lobe(filter_gaussian_ggx_ExactGaussian method_3, ndf_roughness_matrix_RoughnessMatrix material_3, footprint_Footprint fp_7) {
+    kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_7, method_3.sigma);
     filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
     return _e6;
 }
 
-float filter_gaussian_ggx_d_ggx_exact_gaussian(filter_gaussian_ggx_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_10, vec3 m_23) {
-    filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_gaussian_ggx_exact_gaussian_lobe(method_4, material_4, fp_10);
+float filter_gaussian_ggx_d_ggx_exact_gaussian(filter_gaussian_ggx_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_8, vec3 m_23) {
+    filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_gaussian_ggx_exact_gaussian_lobe(method_4, material_4, fp_8);
     float _e5 = filter_gaussian_ggx_d(_e4, m_23);
     return _e5;
 }
@@ -1916,20 +2032,20 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(n
     return _e6;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_11, float sigma_5) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_11, sigma_5);
+ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_9, float sigma_5) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_9, sigma_5);
     float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
     ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
     return _e6;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_lobe(filter_projected_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_12) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_lobe(filter_projected_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_10) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_10, method_5.sigma);
     return _e5;
 }
 
-float filter_projected_d_ggx_projected(filter_projected_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, vec3 m_25) {
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_lobe(method_6, material_6, fp_13);
+float filter_projected_d_ggx_projected(filter_projected_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_11, vec3 m_25) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_lobe(method_6, material_6, fp_11);
     float _e5 = ndf_ggx_d_matrix(_e4, m_25);
     return _e5;
 }
@@ -1962,16 +2078,16 @@ ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_a
     return _e11;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_lobe(filter_proxy_Proxy method_7, ndf_roughness_axis_aligned_AxisAligned material_7, footprint_Footprint fp_14) {
-    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_14);
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_lobe(filter_proxy_Proxy method_7, ndf_roughness_axis_aligned_AxisAligned material_7, footprint_Footprint fp_12) {
+    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_12);
     kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
     vec2 h_28 = _e6.half_extent;
     ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_7, h_28);
     return _e8;
 }
 
-float filter_proxy_d_ggx_proxy(filter_proxy_Proxy method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, vec3 m_26) {
-    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_proxy_proxy_lobe(method_8, material_8, fp_15);
+float filter_proxy_d_ggx_proxy(filter_proxy_Proxy method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_13, vec3 m_26) {
+    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_proxy_proxy_lobe(method_8, material_8, fp_13);
     float _e5 = ndf_ggx_d_axis_aligned(_e4, m_26);
     return _e5;
 }
@@ -2015,8 +2131,8 @@ float filter_rect_gl_weight(uint n_2, uint k_14) {
     return ((k_14 == 1u) ? 0.18038079 : 0.085662246);
 }
 
-float filter_rect_f(float u_1, float v_5) {
-    float t_16 = ((1.0 + (u_1 * u_1)) + (v_5 * v_5));
+float filter_rect_f(float u_1, float v_7) {
+    float t_16 = ((1.0 + (u_1 * u_1)) + (v_7 * v_7));
     return (1.0 / (t_16 * t_16));
 }
 
@@ -2051,12 +2167,12 @@ float filter_rect_gl_mean(uint n_3, float u_2, float c_6, float h_12) {
     return _e28;
 }
 
-float filter_rect_atan2_upper(float y_3, float x_6) {
-    if ((x_6 > 0.0)) {
-        float _e5 = math_atan((y_3 / x_6));
+float filter_rect_atan2_upper(float y_3, float x_8) {
+    if ((x_8 > 0.0)) {
+        float _e5 = math_atan((y_3 / x_8));
         return _e5;
     }
-    float _e9 = math_atan((-(x_6) / y_3));
+    float _e9 = math_atan((-(x_8) / y_3));
     return (math_HALF_PI + _e9);
 }
 
@@ -2136,15 +2252,15 @@ float filter_rect_edge(float u_3, float dv, float v01_) {
     return ((u_3 / s_30) * _e10);
 }
 
-float filter_rect_edges(vec4 u_4, vec4 v_6) {
+float filter_rect_edges(vec4 u_4, vec4 v_8) {
     float du = (2.0 * u_4.w);
-    float dv_1 = (2.0 * v_6.w);
-    float v01_1 = (v_6.x * v_6.y);
+    float dv_1 = (2.0 * v_8.w);
+    float v01_1 = (v_8.x * v_8.y);
     float u01_ = (u_4.x * u_4.y);
     float _e15 = filter_rect_edge(u_4.y, dv_1, v01_1);
     float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
-    float _e20 = filter_rect_edge(v_6.y, du, u01_);
-    float _e22 = filter_rect_edge(v_6.x, du, u01_);
+    float _e20 = filter_rect_edge(v_8.y, du, u01_);
+    float _e22 = filter_rect_edge(v_8.x, du, u01_);
     float i_13 = (0.5 * ((_e15 - _e17) + (_e20 - _e22)));
     return (i_13 / (du * dv_1));
 }
@@ -2236,87 +2352,87 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1) {
 }
 
 float filter_rect_edge_range(float ax, float a_13, float b_2) {
-    float v_7 = 0.0;
+    float v_9 = 0.0;
     float x2_3 = (ax * ax);
     if ((a_13 < ax)) {
-        float _e7 = v_7;
+        float _e7 = v_9;
         float _e11 = filter_rect_polar_near(x2_3, (a_13 / ax), (min(b_2, ax) / ax));
-        v_7 = (_e7 + _e11);
+        v_9 = (_e7 + _e11);
     }
     if ((b_2 > ax)) {
-        float _e14 = v_7;
+        float _e14 = v_9;
         float _e18 = filter_rect_polar_far(x2_3, (ax / b_2), (ax / max(a_13, ax)));
-        v_7 = (_e14 + _e18);
+        v_9 = (_e14 + _e18);
     }
-    float _e20 = v_7;
+    float _e20 = v_9;
     return _e20;
 }
 
-float filter_rect_edge_polar(float x_7, float a_14, float b_3) {
-    float v_8 = 0.0;
-    float ax_2 = abs(x_7);
+float filter_rect_edge_polar(float x_9, float a_14, float b_3) {
+    float v_10 = 0.0;
+    float ax_2 = abs(x_9);
     if ((ax_2 < 1e-12)) {
         return 0.0;
     }
     if ((a_14 >= 0.0)) {
         float _e10 = filter_rect_edge_range(ax_2, a_14, b_3);
-        v_8 = _e10;
+        v_10 = _e10;
     } else {
         if ((b_3 <= 0.0)) {
             float _e15 = filter_rect_edge_range(ax_2, -(b_3), -(a_14));
-            v_8 = _e15;
+            v_10 = _e15;
         } else {
             float _e18 = filter_rect_edge_range(ax_2, 0.0, -(a_14));
             float _e20 = filter_rect_edge_range(ax_2, 0.0, b_3);
-            v_8 = (_e18 + _e20);
+            v_10 = (_e18 + _e20);
         }
     }
-    float _e22 = v_8;
-    float _e24 = v_8;
-    return ((x_7 > 0.0) ? _e24 : -(_e22));
+    float _e22 = v_10;
+    float _e24 = v_10;
+    return ((x_9 > 0.0) ? _e24 : -(_e22));
 }
 
-float filter_rect_far_field(vec4 u_5, vec4 v_9) {
-    float _e5 = filter_rect_edge_polar(u_5.y, v_9.x, v_9.y);
-    float _e9 = filter_rect_edge_polar(u_5.x, v_9.x, v_9.y);
-    float _e14 = filter_rect_edge_polar(v_9.y, u_5.x, u_5.y);
-    float _e18 = filter_rect_edge_polar(v_9.x, u_5.x, u_5.y);
+float filter_rect_far_field(vec4 u_5, vec4 v_11) {
+    float _e5 = filter_rect_edge_polar(u_5.y, v_11.x, v_11.y);
+    float _e9 = filter_rect_edge_polar(u_5.x, v_11.x, v_11.y);
+    float _e14 = filter_rect_edge_polar(v_11.y, u_5.x, u_5.y);
+    float _e18 = filter_rect_edge_polar(v_11.x, u_5.x, u_5.y);
     float i_14 = (-0.5 * ((_e5 - _e9) + (_e14 - _e18)));
-    return (i_14 / ((4.0 * u_5.w) * v_9.w));
+    return (i_14 / ((4.0 * u_5.w) * v_11.w));
 }
 
 float filter_rect_gap(vec4 i_9) {
     return max(max(i_9.x, -(i_9.y)), 0.0);
 }
 
-float filter_rect_mean_f(vec4 u_6, vec4 v_10) {
-    bool local_13 = false;
+float filter_rect_mean_f(vec4 u_6, vec4 v_12) {
+    bool local_19 = false;
     float acc_6 = 0.0;
     uint k_21 = 0u;
     float _e2 = filter_rect_gap(u_6);
-    float _e3 = filter_rect_gap(v_10);
+    float _e3 = filter_rect_gap(v_12);
     uint _e14 = filter_rect_tier((u_6.w * u_6.w), ((1.0 + (u_6.z * u_6.z)) + (_e3 * _e3)));
-    uint _e25 = filter_rect_tier((v_10.w * v_10.w), ((1.0 + (v_10.z * v_10.z)) + (_e2 * _e2)));
+    uint _e25 = filter_rect_tier((v_12.w * v_12.w), ((1.0 + (v_12.z * v_12.z)) + (_e2 * _e2)));
     if ((_e14 == filter_rect_TIER_CLOSED)) {
-        local_13 = (_e25 == filter_rect_TIER_CLOSED);
+        local_19 = (_e25 == filter_rect_TIER_CLOSED);
     } else {
-        local_13 = false;
+        local_19 = false;
     }
-    bool _e33 = local_13;
+    bool _e33 = local_19;
     if (_e33) {
         if ((((_e2 * _e2) + (_e3 * _e3)) > filter_rect_FAR2_)) {
-            float _e39 = filter_rect_far_field(u_6, v_10);
+            float _e39 = filter_rect_far_field(u_6, v_12);
             return _e39;
         }
-        float _e40 = filter_rect_edges(u_6, v_10);
+        float _e40 = filter_rect_edges(u_6, v_12);
         return _e40;
     }
     if ((_e14 == filter_rect_TIER_CLOSED)) {
-        float _e45 = filter_rect_gl_mean_1d(_e25, v_10.z, v_10.w, u_6);
+        float _e45 = filter_rect_gl_mean_1d(_e25, v_12.z, v_12.w, u_6);
         return _e45;
     }
     if ((_e25 == filter_rect_TIER_CLOSED)) {
-        float _e50 = filter_rect_gl_mean_1d(_e14, u_6.z, u_6.w, v_10);
+        float _e50 = filter_rect_gl_mean_1d(_e14, u_6.z, u_6.w, v_12);
         return _e50;
     }
     bool loop_init_10 = true;
@@ -2338,8 +2454,8 @@ float filter_rect_mean_f(vec4 u_6, vec4 v_10) {
             float _e63 = acc_6;
             uint _e64 = k_21;
             float _e65 = filter_rect_gl_weight(_e14, _e64);
-            float _e70 = filter_rect_gl_mean(_e25, (u_6.z - a_26), v_10.z, v_10.w);
-            float _e75 = filter_rect_gl_mean(_e25, (u_6.z + a_26), v_10.z, v_10.w);
+            float _e70 = filter_rect_gl_mean(_e25, (u_6.z - a_26), v_12.z, v_12.w);
+            float _e75 = filter_rect_gl_mean(_e25, (u_6.z + a_26), v_12.z, v_12.w);
             acc_6 = (_e63 + (_e65 * (_e70 + _e75)));
         }
     }
@@ -2355,13 +2471,13 @@ vec4 filter_rect_interval(float c_8, float h_14, float a_15) {
 }
 
 float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_55, vec2 center, vec2 half_extent_4) {
-    bool local_14 = false;
+    bool local_20 = false;
     if ((half_extent_4.x == 0.0)) {
-        local_14 = (half_extent_4.y == 0.0);
+        local_20 = (half_extent_4.y == 0.0);
     } else {
-        local_14 = false;
+        local_20 = false;
     }
-    bool _e12 = local_14;
+    bool _e12 = local_20;
     if (_e12) {
         float _e13 = ndf_ggx_p22_axis_aligned(r_55, center);
         return _e13;
@@ -2374,16 +2490,16 @@ float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_55, vec2 cen
 }
 
 float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_56, vec3 h_15, vec2 half_extent_5) {
-    bool local_15 = false;
+    bool local_21 = false;
     if (!((h_15.z > 0.0))) {
         return 0.0;
     }
     if ((half_extent_5.x == 0.0)) {
-        local_15 = (half_extent_5.y == 0.0);
+        local_21 = (half_extent_5.y == 0.0);
     } else {
-        local_15 = false;
+        local_21 = false;
     }
-    bool _e17 = local_15;
+    bool _e17 = local_21;
     if (_e17) {
         float _e18 = ndf_ggx_d_axis_aligned(r_56, h_15);
         return _e18;
@@ -2394,7 +2510,7 @@ float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_56, vec3 h_15,
 }
 
 float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_57, vec2 hpp, vec3 h_16, vec2 footprint) {
-    bool local_16 = false;
+    bool local_22 = false;
     float a_28 = r_57.alpha.x;
     float b_8 = r_57.alpha.y;
     float a_2_ = (a_28 * a_28);
@@ -2418,14 +2534,14 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_57, ve
     float val = ((((x1_3 * (_e37 - _e41)) / sx1_) + ((x2_4 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
     float den_2 = ((6.2831855 * (x1_3 - x2_4)) * (y1_ - y2_));
     float hz4_ = (((h_16.z * h_16.z) * h_16.z) * h_16.z);
-    float v_17 = ((val / den_2) / max(hz4_, 0.001));
-    if ((abs(v_17) <= math_F32_MAX)) {
-        local_16 = (den_2 != 0.0);
+    float v_19 = ((val / den_2) / max(hz4_, 0.001));
+    if ((abs(v_19) <= math_F32_MAX)) {
+        local_22 = (den_2 != 0.0);
     } else {
-        local_16 = false;
+        local_22 = false;
     }
-    bool _e109 = local_16;
-    return (_e109 ? v_17 : 0.0);
+    bool _e109 = local_22;
+    return (_e109 ? v_19 : 0.0);
 }
 
 float filter_rect_lambda_rho(float t_1) {
@@ -2442,17 +2558,17 @@ float filter_rect_lambda_e_neg(float t_2, float r_58) {
 }
 
 float filter_rect_lambda_asinh_of(float t_3, float r_59) {
-    float v_11 = 0.0;
+    float v_13 = 0.0;
     float a_30 = abs(t_3);
     if ((a_30 > 1.0)) {
         float _e7 = math_ln((a_30 + r_59));
-        v_11 = _e7;
+        v_13 = _e7;
     } else {
         float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_59))));
-        v_11 = _e13;
+        v_13 = _e13;
     }
-    float _e14 = v_11;
-    float _e15 = v_11;
+    float _e14 = v_13;
+    float _e15 = v_13;
     return ((t_3 < 0.0) ? -(_e15) : _e14);
 }
 
@@ -2631,12 +2747,12 @@ float filter_rect_lambda_expected_psi(float m_27, float k1_, float k2_, float lo
             {
                 uint _e70 = j_3;
                 float _e71 = filter_rect_gl_node(_e59, _e70);
-                float x_17 = (ks * _e71);
+                float x_19 = (ks * _e71);
                 float _e73 = acc_10;
                 uint _e74 = j_3;
                 float _e75 = filter_rect_gl_weight(_e59, _e74);
-                float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_17), (hi_4 + x_17), w_26);
-                float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_17), (hi_4 - x_17), w_26);
+                float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_19), (hi_4 + x_19), w_26);
+                float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_19), (hi_4 - x_19), w_26);
                 acc_10 = (_e73 + (_e75 * (_e78 + _e81)));
             }
         }
@@ -2650,25 +2766,25 @@ float filter_rect_lambda_expected_psi(float m_27, float k1_, float k2_, float lo
 
 float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_60, vec2 half_extent_6, vec3 w_in) {
     vec3 w_19 = vec3(0.0);
-    bool local_17 = false;
-    bool local_18 = false;
-    bool local_19 = false;
-    float big_6 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
+    bool local_23 = false;
+    bool local_24 = false;
+    bool local_25 = false;
+    float big_5 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
     w_19 = w_in;
-    if (!((big_6 > 1.1529215e18))) {
-        if ((big_6 < 8.6736174e-19)) {
-            local_18 = (big_6 > 0.0);
+    if (!((big_5 > 1.1529215e18))) {
+        if ((big_5 < 8.6736174e-19)) {
+            local_24 = (big_5 > 0.0);
         } else {
-            local_18 = false;
+            local_24 = false;
         }
-        bool _e24 = local_18;
-        local_17 = _e24;
+        bool _e24 = local_24;
+        local_23 = _e24;
     } else {
-        local_17 = true;
+        local_23 = true;
     }
-    bool _e26 = local_17;
+    bool _e26 = local_23;
     if (_e26) {
-        int e_5 = (int(((floatBitsToUint(big_6) >> 23u) & 255u)) - 127);
+        int e_5 = (int(((floatBitsToUint(big_5) >> 23u) & 255u)) - 127);
         w_19 = (w_in * uintBitsToFloat((uint((127 - e_5)) << 23u)));
     }
     float _e43 = w_19.x;
@@ -2694,11 +2810,11 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_60
     float k1_4 = ((px / _e74) * (ha.x / alpha_12.x));
     float k2_4 = ((py / _e74) * (ha.y / alpha_12.y));
     if ((k1_4 == 0.0)) {
-        local_19 = (k2_4 == 0.0);
+        local_25 = (k2_4 == 0.0);
     } else {
-        local_19 = false;
+        local_25 = false;
     }
-    bool _e92 = local_19;
+    bool _e92 = local_25;
     if (_e92) {
         vec3 _e93 = w_19;
         float _e94 = ndf_ggx_lambda_axis_aligned(r_60, _e93);
@@ -2718,8 +2834,8 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_60
     return (_e117 / mm);
 }
 
-filter_rect_lobe_RectFilteredGgx filter_rect_lobe_rect_lobe(filter_rect_lobe_Rect method_9, ndf_roughness_axis_aligned_AxisAligned material_9, footprint_Footprint fp_16) {
-    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_16);
+filter_rect_lobe_RectFilteredGgx filter_rect_lobe_rect_lobe(filter_rect_lobe_Rect method_9, ndf_roughness_axis_aligned_AxisAligned material_9, footprint_Footprint fp_14) {
+    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_14);
     kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
     vec2 h_31 = _e6.half_extent;
     return filter_rect_lobe_RectFilteredGgx(material_9, h_31);
@@ -2753,8 +2869,8 @@ float filter_rect_lobe_g2_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_4,
     return _e8;
 }
 
-float filter_rect_lobe_d_ggx_rect(filter_rect_lobe_Rect method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, vec3 m_31) {
-    filter_rect_lobe_RectFilteredGgx _e4 = filter_rect_lobe_rect_lobe(method_10, material_10, fp_17);
+float filter_rect_lobe_d_ggx_rect(filter_rect_lobe_Rect method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_15, vec3 m_31) {
+    filter_rect_lobe_RectFilteredGgx _e4 = filter_rect_lobe_rect_lobe(method_10, material_10, fp_15);
     float _e5 = filter_rect_lobe_d_rect_filtered(_e4, m_31);
     return _e5;
 }
@@ -2766,8 +2882,8 @@ vec2 footprint_slope_slope_from_sphere(vec3 h_18) {
 
 vec3 footprint_slope_sphere_from_slope(vec2 s_13) {
     float k_30 = max(max(abs(s_13.x), abs(s_13.y)), 1.0);
-    vec3 v_18 = vec3((-(s_13) / vec2(k_30)), (1.0 / k_30));
-    return (v_18 / vec3(length(v_18)));
+    vec3 v_20 = vec3((-(s_13) / vec2(k_30)), (1.0 / k_30));
+    return (v_20 / vec3(length(v_20)));
 }
 
 vec2 footprint_slope_projected_from_sphere(vec3 h_19) {
@@ -2801,8 +2917,8 @@ sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_61) {
     return sampling_Warp(l_xx, (_e1.y / l_xx), (r_61.sqrt_det / l_xx));
 }
 
-vec3 sampling_normalize_scaled(vec3 v_12) {
-    vec3 w_27 = (v_12 / vec3(max(max(abs(v_12.x), abs(v_12.y)), abs(v_12.z))));
+vec3 sampling_normalize_scaled(vec3 v_14) {
+    vec3 w_27 = (v_14 / vec3(max(max(abs(v_14.x), abs(v_14.y)), abs(v_14.z))));
     return (w_27 / vec3(length(w_27)));
 }
 
@@ -2831,7 +2947,7 @@ vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_8) {
 }
 
 vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_62, vec3 wo_1, vec2 u_9) {
-    bool local_20 = false;
+    bool local_26 = false;
     if (!((wo_1.z > 0.0))) {
         return vec3(0.0);
     }
@@ -2847,11 +2963,11 @@ vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_62, v
     vec3 _e24 = sampling_ggx_standard_visible(_e12, vec2(_e20, _e22));
     vec3 _e25 = sampling_unstretch(_e9, _e24);
     if ((_e25.z > 0.0)) {
-        local_20 = (dot(wo_1, _e25) > 0.0);
+        local_26 = (dot(wo_1, _e25) > 0.0);
     } else {
-        local_20 = false;
+        local_26 = false;
     }
-    bool _e35 = local_20;
+    bool _e35 = local_26;
     if (_e35) {
         return _e25;
     }
@@ -2875,23 +2991,23 @@ float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_64, vec3 m_33) 
 }
 
 float sampling_visible_normal_pdf_of(vec3 wo_2, vec3 m_34, float d_1, float lambda) {
-    bool local_21 = false;
-    bool local_22 = false;
+    bool local_27 = false;
+    bool local_28 = false;
     float wom = dot(wo_2, m_34);
-    float v_19 = ((wom * d_1) / (wo_2.z * (1.0 + lambda)));
+    float v_21 = ((wom * d_1) / (wo_2.z * (1.0 + lambda)));
     if ((wo_2.z > 0.0)) {
-        local_21 = (wom > 0.0);
+        local_27 = (wom > 0.0);
     } else {
-        local_21 = false;
+        local_27 = false;
     }
-    bool _e19 = local_21;
+    bool _e19 = local_27;
     if (_e19) {
-        local_22 = (v_19 <= math_F32_MAX);
+        local_28 = (v_21 <= math_F32_MAX);
     } else {
-        local_22 = false;
+        local_28 = false;
     }
-    bool _e25 = local_22;
-    return (_e25 ? v_19 : 0.0);
+    bool _e25 = local_28;
+    return (_e25 ? v_21 : 0.0);
 }
 
 float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_65, vec3 wo_3, vec3 m_35) {
@@ -2902,22 +3018,22 @@ float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_65, vec
 }
 
 float sampling_reflection_pdf_of(vec3 o_8, vec3 m_36, float d_2, float lambda_1) {
-    bool local_23 = false;
-    bool local_24 = false;
-    float v_20 = (d_2 / ((4.0 * o_8.z) * (1.0 + lambda_1)));
+    bool local_29 = false;
+    bool local_30 = false;
+    float v_22 = (d_2 / ((4.0 * o_8.z) * (1.0 + lambda_1)));
     if ((o_8.z > 0.0)) {
-        local_23 = (dot(o_8, m_36) > 0.0);
+        local_29 = (dot(o_8, m_36) > 0.0);
     } else {
-        local_23 = false;
+        local_29 = false;
     }
-    bool _e20 = local_23;
+    bool _e20 = local_29;
     if (_e20) {
-        local_24 = (v_20 <= math_F32_MAX);
+        local_30 = (v_22 <= math_F32_MAX);
     } else {
-        local_24 = false;
+        local_30 = false;
     }
-    bool _e26 = local_24;
-    return (_e26 ? v_20 : 0.0);
+    bool _e26 = local_30;
+    return (_e26 ? v_22 : 0.0);
 }
 
 float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_66, vec3 wo_4, vec3 m_37) {
@@ -2969,30 +3085,30 @@ float sampling_beckmann_erfcx(float z_1) {
     return (t_17 * _e46);
 }
 
-float sampling_beckmann_upper_tail(float x_8, float c_10, float s_15) {
-    float _e5 = math_exp((-(x_8) * x_8));
-    float _e8 = sampling_beckmann_erfcx(x_8);
+float sampling_beckmann_upper_tail(float x_10, float c_10, float s_15) {
+    float _e5 = math_exp((-(x_10) * x_10));
+    float _e8 = sampling_beckmann_erfcx(x_10);
     return ((0.5 * _e5) * ((c_10 * _e8) - (s_15 * sampling_beckmann_INV_SQRT_PI)));
 }
 
-vec2 sampling_beckmann_cdf_terms(float x_9, float c_11, float s_16) {
+vec2 sampling_beckmann_cdf_terms(float x_11, float c_11, float s_16) {
     float k_23 = 0.0;
-    float _e5 = math_exp((-(x_9) * x_9));
-    if ((x_9 <= 0.0)) {
-        float _e12 = sampling_beckmann_erfcx(-(x_9));
+    float _e5 = math_exp((-(x_11) * x_11));
+    if ((x_11 <= 0.0)) {
+        float _e12 = sampling_beckmann_erfcx(-(x_11));
         k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_16 * sampling_beckmann_INV_SQRT_PI)));
     } else {
-        float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_16);
+        float _e18 = sampling_beckmann_upper_tail(x_11, c_11, s_16);
         k_23 = (c_11 - _e18);
     }
     float _e20 = k_23;
-    return vec2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_16 * x_9))));
+    return vec2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_16 * x_11))));
 }
 
-float sampling_beckmann_erfinv_guess(float x_10) {
+float sampling_beckmann_erfinv_guess(float x_12) {
     float w_23 = 0.0;
     float p_4 = 0.0;
-    float a_34 = ((1.0 - x_10) * (1.0 + x_10));
+    float a_34 = ((1.0 - x_12) * (1.0 + x_12));
     if (!((a_34 > 0.0))) {
         return 0.0;
     }
@@ -3057,19 +3173,19 @@ float sampling_beckmann_erfinv_guess(float x_10) {
         p_4 = ((_e101 * _e102) + 2.8329768);
     }
     float _e106 = p_4;
-    return (_e106 * x_10);
+    return (_e106 * x_12);
 }
 
 float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u_11) {
     float lo_3 = -9.0;
     float hi_2 = 0.0;
-    bool local_25 = false;
-    float x_11 = 0.0;
+    bool local_31 = false;
+    float x_13 = 0.0;
     float dx_old = 0.0;
     uint i_11 = 0u;
     float g_6 = 0.0;
-    bool local_26 = false;
-    bool local_27 = false;
+    bool local_32 = false;
+    bool local_33 = false;
     float hi0_ = ((s_17 > 0.0) ? min((c_12 / s_17), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
     hi_2 = hi0_;
     vec2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_17);
@@ -3087,12 +3203,12 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u
     float _e40 = lo_3;
     if ((_e34 > _e40)) {
         float _e44 = hi_2;
-        local_25 = (_e34 < _e44);
+        local_31 = (_e34 < _e44);
     } else {
-        local_25 = false;
+        local_31 = false;
     }
-    bool _e47 = local_25;
-    x_11 = (_e47 ? _e34 : min(0.0, (0.5 * _e35)));
+    bool _e47 = local_31;
+    x_13 = (_e47 ? _e34 : min(0.0, (0.5 * _e35)));
     float _e50 = hi_2;
     float _e51 = lo_3;
     dx_old = (_e50 - _e51);
@@ -3109,31 +3225,31 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u
             break;
         }
         {
-            float _e59 = x_11;
+            float _e59 = x_13;
             vec2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_17);
             g_6 = (_e60.x - goal);
             if (upper) {
-                float _e66 = x_11;
+                float _e66 = x_13;
                 float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_17);
-                float _e69 = x_11;
+                float _e69 = x_13;
                 g_6 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
             }
             float _e74 = g_6;
             if ((abs(_e74) <= tol)) {
-                float _e77 = x_11;
+                float _e77 = x_13;
                 return _e77;
             }
             float _e78 = g_6;
             if ((_e78 < 0.0)) {
-                float _e81 = x_11;
+                float _e81 = x_13;
                 lo_3 = _e81;
             } else {
-                float _e82 = x_11;
+                float _e82 = x_13;
                 hi_2 = _e82;
             }
             float _e83 = hi_2;
             float _e84 = lo_3;
-            float _e87 = x_11;
+            float _e87 = x_13;
             if (((_e83 - _e84) <= (4.7683716e-7 * (1.0 + abs(_e87))))) {
                 float _e93 = lo_3;
                 float _e94 = hi_2;
@@ -3141,30 +3257,30 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u
             }
             float _e98 = g_6;
             float step_ = (_e98 / _e60.y);
-            float _e101 = x_11;
+            float _e101 = x_13;
             float xn = (_e101 - step_);
             float _e103 = lo_3;
             if ((xn > _e103)) {
                 float _e107 = hi_2;
-                local_26 = (xn < _e107);
+                local_32 = (xn < _e107);
             } else {
-                local_26 = false;
+                local_32 = false;
             }
-            bool _e110 = local_26;
+            bool _e110 = local_32;
             if (_e110) {
                 float _e113 = g_6;
                 float _e117 = dx_old;
-                local_27 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
+                local_33 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
             } else {
-                local_27 = false;
+                local_33 = false;
             }
-            bool _e123 = local_27;
+            bool _e123 = local_33;
             if (_e123) {
                 dx_old = abs(step_);
-                x_11 = xn;
-                float _e127 = x_11;
+                x_13 = xn;
+                float _e127 = x_13;
                 if ((abs(step_) <= (2.3841858e-7 * (1.0 + abs(_e127))))) {
-                    float _e133 = x_11;
+                    float _e133 = x_13;
                     return _e133;
                 }
             } else {
@@ -3173,31 +3289,31 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u
                 dx_old = (0.5 * (_e134 - _e135));
                 float _e139 = lo_3;
                 float _e140 = hi_2;
-                x_11 = (0.5 * (_e139 + _e140));
+                x_13 = (0.5 * (_e139 + _e140));
             }
         }
     }
-    float _e147 = x_11;
+    float _e147 = x_13;
     return _e147;
 }
 
 float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_12) {
     float c_13 = 1.0;
     float s_18 = 0.0;
-    bool local_28 = false;
-    bool local_29 = false;
+    bool local_34 = false;
+    bool local_35 = false;
     if ((cos_theta >= 0.0)) {
-        local_28 = (sin_theta >= 0.0);
+        local_34 = (sin_theta >= 0.0);
     } else {
-        local_28 = false;
+        local_34 = false;
     }
-    bool _e14 = local_28;
+    bool _e14 = local_34;
     if (_e14) {
-        local_29 = ((cos_theta + sin_theta) > 0.0);
+        local_35 = ((cos_theta + sin_theta) > 0.0);
     } else {
-        local_29 = false;
+        local_35 = false;
     }
-    bool _e21 = local_29;
+    bool _e21 = local_35;
     if (_e21) {
         float _e22 = math_hypot(cos_theta, sin_theta);
         c_13 = (cos_theta / _e22);
@@ -3224,7 +3340,7 @@ vec3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_68, 
 }
 
 vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_69, vec3 wo_6, vec2 u_14) {
-    bool local_30 = false;
+    bool local_36 = false;
     if (!((wo_6.z > 0.0))) {
         return vec3(0.0);
     }
@@ -3244,11 +3360,11 @@ vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatri
     vec2 t_18 = vec2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
     vec3 _e54 = sampling_unstretch(_e9, vec3(-(t_18), 1.0));
     if ((_e54.z > 0.0)) {
-        local_30 = (dot(wo_6, _e54) > 0.0);
+        local_36 = (dot(wo_6, _e54) > 0.0);
     } else {
-        local_30 = false;
+        local_36 = false;
     }
-    bool _e64 = local_30;
+    bool _e64 = local_36;
     if (_e64) {
         return _e54;
     }
@@ -3276,18 +3392,18 @@ float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_Roughnes
     return _e6;
 }
 
-vec2 sampling_gaussian_ggx_split(float u_15) {
-    float x_18 = (u_15 * 4096.0);
-    float hi_5 = floor(x_18);
-    return vec2(((hi_5 + 0.5) / 4096.0), (x_18 - hi_5));
+vec2 sampling_gaussian_ggx_split_bits(float u_15) {
+    float x_20 = (u_15 * 4096.0);
+    float hi_5 = floor(x_20);
+    return vec2(((hi_5 + 0.5) / 4096.0), (x_20 - hi_5));
 }
 
 vec3 sampling_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_7, vec2 u_16) {
     vec2 ax_1 = vec2(1.0, 0.0);
     float _e3 = sampling_clamp_unit(u_16.x);
-    vec2 _e4 = sampling_gaussian_ggx_split(_e3);
+    vec2 _e4 = sampling_gaussian_ggx_split_bits(_e3);
     float _e6 = sampling_clamp_unit(u_16.y);
-    vec2 _e7 = sampling_gaussian_ggx_split(_e6);
+    vec2 _e7 = sampling_gaussian_ggx_split_bits(_e6);
     vec2 _e15 = math_sincos_turns(_e7.x);
     vec2 t_19 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
     sampling_Warp _e18 = sampling_warp(g_7.a);
@@ -3321,9 +3437,9 @@ float sampling_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g
     return ((m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0);
 }
 
-float sampling_rect_half(float h_20, float alpha_11) {
-    float v_21 = abs(h_20);
-    return ((v_21 >= 0.0) ? min(v_21, (filter_rect_BIG * alpha_11)) : 0.0);
+float sampling_rect_sanitized_half_extent(float h_20, float alpha_11) {
+    float v_23 = abs(h_20);
+    return ((v_23 >= 0.0) ? min(v_23, (filter_rect_BIG * alpha_11)) : 0.0);
 }
 
 vec3 sampling_rect_normal_of_slope(vec2 s_19) {
@@ -3333,8 +3449,8 @@ vec3 sampling_rect_normal_of_slope(vec2 s_19) {
 
 vec3 sampling_rect_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_73, vec2 half_extent_7, vec2 u_17, vec2 u_box) {
     vec2 a_35 = r_73.alpha;
-    float _e7 = sampling_rect_half(half_extent_7.x, a_35.x);
-    float _e10 = sampling_rect_half(half_extent_7.y, a_35.y);
+    float _e7 = sampling_rect_sanitized_half_extent(half_extent_7.x, a_35.x);
+    float _e10 = sampling_rect_sanitized_half_extent(half_extent_7.y, a_35.y);
     vec2 h_33 = vec2(_e7, _e10);
     float _e13 = sampling_clamp_unit(u_17.x);
     float _e15 = sampling_clamp_unit(u_17.y);
@@ -3355,28 +3471,28 @@ float sampling_rect_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_74,
 }
 
 float sampling_rect_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_75, vec2 half_extent_9, vec3 wo_9, vec3 m_43) {
-    bool local_31 = false;
-    bool local_32 = false;
+    bool local_37 = false;
+    bool local_38 = false;
     float wom_1 = dot(wo_9, m_43);
     if (!(!((wo_9.z > 0.0)))) {
-        local_31 = !((m_43.z > 0.0));
+        local_37 = !((m_43.z > 0.0));
     } else {
-        local_31 = true;
+        local_37 = true;
     }
-    bool _e17 = local_31;
+    bool _e17 = local_37;
     if (!(_e17)) {
-        local_32 = !((wom_1 > 0.0));
+        local_38 = !((wom_1 > 0.0));
     } else {
-        local_32 = true;
+        local_38 = true;
     }
-    bool _e25 = local_32;
+    bool _e25 = local_38;
     if (_e25) {
         return 0.0;
     }
     float _e27 = filter_rect_d_rect(r_75, m_43, half_extent_9);
     float _e30 = filter_rect_lambda_lambda_rect(r_75, half_extent_9, wo_9);
-    float v_22 = ((wom_1 * _e27) / (wo_9.z * (1.0 + _e30)));
-    return ((v_22 <= math_F32_MAX) ? v_22 : 0.0);
+    float v_24 = ((wom_1 * _e27) / (wo_9.z * (1.0 + _e30)));
+    return ((v_24 <= math_F32_MAX) ? v_24 : 0.0);
 }
 
 void main() {

@@ -324,6 +324,36 @@ float math_ln_1p(
     return _e9;
 }
 
+bool math_is_nan(
+    float x_5
+) {
+    return (as_type<uint>(x_5) & 2147483647u) > 2139095040u;
+}
+
+float math_nan_to_zero(
+    float x_6
+) {
+    bool _e1 = math_is_nan(x_6);
+    return _e1 ? 0.0 : x_6;
+}
+
+metal::float2 math_nan_to_zero2_(
+    metal::float2 v
+) {
+    float _e2 = math_nan_to_zero(v.x);
+    float _e4 = math_nan_to_zero(v.y);
+    return metal::float2(_e2, _e4);
+}
+
+metal::float3 math_nan_to_zero3_(
+    metal::float3 v_1
+) {
+    float _e2 = math_nan_to_zero(v_1.x);
+    float _e4 = math_nan_to_zero(v_1.y);
+    float _e6 = math_nan_to_zero(v_1.z);
+    return metal::float3(_e2, _e4, _e6);
+}
+
 float ndf_roughness_clamp_alpha(
     float alpha
 ) {
@@ -475,22 +505,34 @@ footprint_Footprint footprint_from_projected_derivatives_in_slope(
         return footprint_Footprint {metal::float2(0.0), metal::float2(0.0)};
     }
     metal::float2x2 _e18 = footprint_jacobian_projected_to_slope(h_10);
-    return footprint_Footprint {_e18 * dp_u_1, _e18 * dp_v_1};
+    metal::float2 _e19 = math_nan_to_zero2_(dp_u_1);
+    metal::float2 _e21 = math_nan_to_zero2_(dp_v_1);
+    return footprint_Footprint {_e18 * _e19, _e18 * _e21};
 }
 
 footprint_Footprint footprint_from_normal_differences(
-    metal::float3 dn_u,
-    metal::float3 dn_v
+    metal::float3 dn_u_in,
+    metal::float3 dn_v_in
 ) {
-    float lu = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_u), 0.000001);
-    float lv = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + dn_v), 0.000001);
-    return footprint_Footprint {dn_u.xy * (2.0 / lu), dn_v.xy * (2.0 / lv)};
+    metal::float3 _e2 = math_nan_to_zero3_(dn_u_in);
+    metal::float3 _e3 = math_nan_to_zero3_(dn_v_in);
+    float lu = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + _e2), 0.000001);
+    float lv = metal::max(metal::length(metal::float3(0.0, 0.0, 2.0) + _e3), 0.000001);
+    return footprint_Footprint {_e2.xy * (2.0 / lu), _e3.xy * (2.0 / lv)};
+}
+
+footprint_Footprint footprint_nan_to_zero(
+    footprint_Footprint fp
+) {
+    metal::float2 _e2 = math_nan_to_zero2_(fp.dh_u);
+    metal::float2 _e4 = math_nan_to_zero2_(fp.dh_v);
+    return footprint_Footprint {_e2, _e4};
 }
 
 float footprint_max_extent(
-    footprint_Footprint fp
+    footprint_Footprint fp_1
 ) {
-    return 0.5 * metal::max(metal::length(fp.dh_u + fp.dh_v), metal::length(fp.dh_u - fp.dh_v));
+    return 0.5 * metal::max(metal::length(fp_1.dh_u + fp_1.dh_v), metal::length(fp_1.dh_u - fp_1.dh_v));
 }
 
 kernel_covariance_Covariance kernel_covariance_zero(
@@ -507,14 +549,15 @@ kernel_covariance_Covariance kernel_covariance_from_entries(
 }
 
 kernel_covariance_Covariance kernel_covariance_from_footprint(
-    footprint_Footprint fp_1,
+    footprint_Footprint fp_in,
     float sigma
 ) {
-    metal::float2 u_18 = fp_1.dh_u;
-    metal::float2 v_13 = fp_1.dh_v;
+    footprint_Footprint _e2 = footprint_nan_to_zero(fp_in);
+    metal::float2 u_18 = _e2.dh_u;
+    metal::float2 v_15 = _e2.dh_v;
     float s2_ = sigma * sigma;
-    float cross = ((fp_1.dh_u.x * fp_1.dh_v.y) - (fp_1.dh_u.y * fp_1.dh_v.x)) * s2_;
-    return kernel_covariance_Covariance {((fp_1.dh_u.x * fp_1.dh_u.x) + (fp_1.dh_v.x * fp_1.dh_v.x)) * s2_, ((fp_1.dh_u.x * fp_1.dh_u.y) + (fp_1.dh_v.x * fp_1.dh_v.y)) * s2_, ((fp_1.dh_u.y * fp_1.dh_u.y) + (fp_1.dh_v.y * fp_1.dh_v.y)) * s2_, cross * cross};
+    float cross = ((_e2.dh_u.x * _e2.dh_v.y) - (_e2.dh_u.y * _e2.dh_v.x)) * s2_;
+    return kernel_covariance_Covariance {((_e2.dh_u.x * _e2.dh_u.x) + (_e2.dh_v.x * _e2.dh_v.x)) * s2_, ((_e2.dh_u.x * _e2.dh_u.y) + (_e2.dh_v.x * _e2.dh_v.y)) * s2_, ((_e2.dh_u.y * _e2.dh_u.y) + (_e2.dh_v.y * _e2.dh_v.y)) * s2_, cross * cross};
 }
 
 float kernel_covariance_trace(
@@ -591,36 +634,94 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
 }
 
 kernel_covariance_Covariance kernel_covariance_sanitized(
-    kernel_covariance_Covariance c_4
+    kernel_covariance_Covariance c_in
 ) {
     bool local_1 = {};
     bool local_2 = {};
-    float big_2 = metal::max(metal::max(metal::abs(c_4.s_xx), metal::abs(c_4.s_yy)), metal::abs(c_4.s_xy));
-    if (big_2 > math_F32_MAX) {
+    kernel_covariance_Covariance c_4 = {};
+    bool local_3 = {};
+    bool local_4 = {};
+    bool local_5 = {};
+    bool local_6 = {};
+    bool local_7 = {};
+    if (!((metal::abs(c_in.s_xx) > math_F32_MAX))) {
+        local_1 = metal::abs(c_in.s_xy) > math_F32_MAX;
+    } else {
+        local_1 = true;
+    }
+    bool _e13 = local_1;
+    if (!(_e13)) {
+        local_2 = metal::abs(c_in.s_yy) > math_F32_MAX;
+    } else {
+        local_2 = true;
+    }
+    bool inf = local_2;
+    if (inf) {
         return kernel_covariance_Covariance {100000000.0, 0.0, 100000000.0, 10000000000000000.0};
     }
-    if (c_4.s_xx >= 0.0) {
-        local_1 = c_4.s_yy >= 0.0;
+    float _e29 = math_nan_to_zero(c_in.s_xx);
+    float _e31 = math_nan_to_zero(c_in.s_xy);
+    float _e33 = math_nan_to_zero(c_in.s_yy);
+    c_4 = kernel_covariance_Covariance {_e29, _e31, _e33, c_in.det};
+    float _e38 = c_4.det;
+    bool _e39 = math_is_nan(_e38);
+    if (!(_e39)) {
+        bool _e44 = math_is_nan(c_in.s_xx);
+        local_3 = _e44;
     } else {
-        local_1 = false;
+        local_3 = true;
     }
-    bool _e25 = local_1;
-    if (_e25) {
-        local_2 = c_4.det >= 0.0;
+    bool _e46 = local_3;
+    if (!(_e46)) {
+        bool _e51 = math_is_nan(c_in.s_xy);
+        local_4 = _e51;
     } else {
-        local_2 = false;
+        local_4 = true;
     }
-    bool _e32 = local_2;
-    if (_e32) {
-        kernel_covariance_Covariance _e34 = kernel_covariance_clamp_eigenvalues(c_4, kernel_covariance_KERNEL_MAX);
-        return _e34;
+    bool _e53 = local_4;
+    if (!(_e53)) {
+        bool _e58 = math_is_nan(c_in.s_yy);
+        local_5 = _e58;
+    } else {
+        local_5 = true;
     }
-    float s_xx_1 = metal::max(c_4.s_xx, 0.0);
-    float s_yy_1 = metal::max(c_4.s_yy, 0.0);
+    bool _e60 = local_5;
+    if (_e60) {
+        float _e63 = c_4.s_xx;
+        float _e65 = c_4.s_yy;
+        float _e68 = c_4.s_xy;
+        float _e70 = c_4.s_xy;
+        c_4.det = (_e63 * _e65) - (_e68 * _e70);
+    }
+    float _e74 = c_4.s_xx;
+    if (_e74 >= 0.0) {
+        float _e80 = c_4.s_yy;
+        local_6 = _e80 >= 0.0;
+    } else {
+        local_6 = false;
+    }
+    bool _e84 = local_6;
+    if (_e84) {
+        float _e88 = c_4.det;
+        local_7 = _e88 >= 0.0;
+    } else {
+        local_7 = false;
+    }
+    bool _e92 = local_7;
+    if (_e92) {
+        kernel_covariance_Covariance _e93 = c_4;
+        kernel_covariance_Covariance _e95 = kernel_covariance_clamp_eigenvalues(_e93, kernel_covariance_KERNEL_MAX);
+        return _e95;
+    }
+    float _e97 = c_4.s_xx;
+    float s_xx_1 = metal::max(_e97, 0.0);
+    float _e101 = c_4.s_yy;
+    float s_yy_1 = metal::max(_e101, 0.0);
     float bound = metal::sqrt(s_xx_1) * metal::sqrt(s_yy_1);
-    float s_xy_1 = metal::clamp(c_4.s_xy, -(bound), bound);
-    kernel_covariance_Covariance _e50 = kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance {s_xx_1, s_xy_1, s_yy_1, 0.0}, kernel_covariance_KERNEL_MAX);
-    return _e50;
+    float _e108 = c_4.s_xy;
+    float s_xy_1 = metal::clamp(_e108, -(bound), bound);
+    kernel_covariance_Covariance _e114 = kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance {s_xx_1, s_xy_1, s_yy_1, 0.0}, kernel_covariance_KERNEL_MAX);
+    return _e114;
 }
 
 float filter_deferred_from_alpha(
@@ -642,18 +743,18 @@ float filter_deferred_from_alpha(
 
 float filter_deferred_to_alpha(
     uint domain_1,
-    float v
+    float v_2
 ) {
     if (domain_1 == filter_deferred_DOMAIN_ALPHA) {
-        return v;
+        return v_2;
     }
     if (domain_1 == filter_deferred_DOMAIN_PERCEPTUAL) {
-        return v * v;
+        return v_2 * v_2;
     }
     if (domain_1 == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ) {
-        return (v < math_F32_MAX) ? metal::sqrt(v / (1.0 + v)) : 1.0;
+        return (v_2 < math_F32_MAX) ? metal::sqrt(v_2 / (1.0 + v_2)) : 1.0;
     }
-    return metal::sqrt(v);
+    return metal::sqrt(v_2);
 }
 
 float filter_deferred_max_eigenvalue(
@@ -667,20 +768,22 @@ float filter_deferred_max_eigenvalue(
 
 float filter_deferred_norm_eval(
     uint norm,
-    metal::float3 dn_u_1,
-    metal::float3 dn_v_1
+    metal::float3 dn_u_in_1,
+    metal::float3 dn_v_in_1
 ) {
-    float a_19 = metal::dot(dn_u_1, dn_u_1);
-    float c_15 = metal::dot(dn_v_1, dn_v_1);
+    metal::float3 _e3 = math_nan_to_zero3_(dn_u_in_1);
+    metal::float3 _e4 = math_nan_to_zero3_(dn_v_in_1);
+    float a_19 = metal::dot(_e3, _e3);
+    float c_15 = metal::dot(_e4, _e4);
     if (norm == filter_deferred_NORM_MAX_SQUARED) {
         return metal::max(a_19, c_15);
     }
     if (norm == filter_deferred_NORM_MAX_EIGENVALUE) {
-        float _e11 = filter_deferred_max_eigenvalue(a_19, metal::dot(dn_u_1, dn_v_1), c_15);
-        return _e11;
+        float _e13 = filter_deferred_max_eigenvalue(a_19, metal::dot(_e3, _e4), c_15);
+        return _e13;
     }
     if (norm == filter_deferred_NORM_MAX_ABS_COMPONENT) {
-        metal::float3 m_45 = metal::max(metal::abs(dn_u_1), metal::abs(dn_v_1));
+        metal::float3 m_45 = metal::max(metal::abs(_e3), metal::abs(_e4));
         return metal::max(metal::max(m_45.x, m_45.y), m_45.z);
     }
     return a_19 + c_15;
@@ -690,23 +793,35 @@ float filter_deferred_clamp_widening(
     filter_deferred_KernelConvention conv,
     float k_1
 ) {
-    return metal::min(metal::max(k_1, 0.0), conv.clamp);
+    bool _e7 = math_is_nan(k_1);
+    return _e7 ? conv.clamp : metal::min(metal::max(k_1, 0.0), conv.clamp);
 }
 
 float filter_deferred_widening(
     filter_deferred_KernelConvention conv_1,
-    metal::float3 dn_u_2,
-    metal::float3 dn_v_2
+    metal::float3 dn_u,
+    metal::float3 dn_v
 ) {
+    bool local_8 = {};
     float raw = {};
-    float _e4 = filter_deferred_norm_eval(conv_1.norm, dn_u_2, dn_v_2);
-    raw = _e4;
-    if (conv_1.exponent != 1.0) {
-        raw = (_e4 > 0.0) ? metal::pow(_e4, conv_1.exponent) : 0.0;
+    metal::float3 lim = metal::float3(340282350000000000000000000000000000000.0);
+    if (!(metal::any(metal::abs(dn_u) > lim))) {
+        local_8 = metal::any(metal::abs(dn_v) > lim);
+    } else {
+        local_8 = true;
     }
-    float _e16 = raw;
-    float _e20 = filter_deferred_clamp_widening(conv_1, (conv_1.scale * _e16) + conv_1.bias);
-    return _e20;
+    bool _e15 = local_8;
+    if (_e15) {
+        return conv_1.clamp;
+    }
+    float _e18 = filter_deferred_norm_eval(conv_1.norm, dn_u, dn_v);
+    raw = _e18;
+    if (conv_1.exponent != 1.0) {
+        raw = (_e18 > 0.0) ? metal::pow(_e18, conv_1.exponent) : 0.0;
+    }
+    float _e30 = raw;
+    float _e34 = filter_deferred_clamp_widening(conv_1, (conv_1.scale * _e30) + conv_1.bias);
+    return _e34;
 }
 
 float filter_deferred_apply_widening(
@@ -735,33 +850,36 @@ float filter_deferred_apply_widening(
 float filter_deferred_apply(
     filter_deferred_KernelConvention conv_3,
     float alpha_3,
-    metal::float3 dn_u_3,
-    metal::float3 dn_v_3
+    metal::float3 dn_u_1,
+    metal::float3 dn_v_1
 ) {
-    float _e4 = filter_deferred_widening(conv_3, dn_u_3, dn_v_3);
+    float _e4 = filter_deferred_widening(conv_3, dn_u_1, dn_v_1);
     float _e5 = filter_deferred_apply_widening(conv_3, alpha_3, _e4);
     return _e5;
 }
 
 kernel_covariance_Covariance filter_deferred_normal_difference_covariance(
-    metal::float3 dn_u_4,
-    metal::float3 dn_v_4,
+    metal::float3 dn_u_2,
+    metal::float3 dn_v_2,
     float sigma_1
 ) {
     float sigma_sq = sigma_1 * sigma_1;
-    metal::float3 x_12 = metal::cross(dn_u_4, dn_v_4) * sigma_sq;
-    return kernel_covariance_Covariance {metal::dot(dn_u_4, dn_u_4) * sigma_sq, metal::dot(dn_u_4, dn_v_4) * sigma_sq, metal::dot(dn_v_4, dn_v_4) * sigma_sq, metal::dot(x_12, x_12)};
+    metal::float3 x_14 = metal::cross(dn_u_2, dn_v_2) * sigma_sq;
+    return kernel_covariance_Covariance {metal::dot(dn_u_2, dn_u_2) * sigma_sq, metal::dot(dn_u_2, dn_v_2) * sigma_sq, metal::dot(dn_v_2, dn_v_2) * sigma_sq, metal::dot(x_14, x_14)};
 }
 
 float filter_deferred_bandwidth_alpha2_(
     uint bandwidth,
     kernel_covariance_Covariance kernel_
 ) {
+    float _e3 = math_nan_to_zero(kernel_.s_xx);
+    float _e5 = math_nan_to_zero(kernel_.s_xy);
+    float _e7 = math_nan_to_zero(kernel_.s_yy);
     if (bandwidth == filter_deferred_BANDWIDTH_MAX) {
-        float _e7 = filter_deferred_max_eigenvalue(kernel_.s_xx, kernel_.s_xy, kernel_.s_yy);
-        return 2.0 * _e7;
+        float _e10 = filter_deferred_max_eigenvalue(_e3, _e5, _e7);
+        return 2.0 * _e10;
     }
-    float t_10 = kernel_.s_xx + kernel_.s_yy;
+    float t_10 = _e3 + _e7;
     return (bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_10) : t_10;
 }
 
@@ -817,18 +935,18 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(
     float det_2,
     float tau_2
 ) {
-    metal::float2 v_1 = {};
+    metal::float2 v_3 = {};
     float half_diff = 0.5 * (a11_ - a22_);
     float rad = metal::sqrt((half_diff * half_diff) + (a12_ * a12_));
     float l1_1 = (0.5 * (a11_ + a22_)) + rad;
     float l2_2 = metal::max(det_2, 0.0) / l1_1;
-    float big_3 = rad + metal::abs(half_diff);
-    v_1 = (half_diff < 0.0) ? metal::float2(a12_, big_3) : metal::float2(big_3, a12_);
-    if (big_3 <= 0.0) {
-        v_1 = metal::float2(1.0, 0.0);
+    float big_2 = rad + metal::abs(half_diff);
+    v_3 = (half_diff < 0.0) ? metal::float2(a12_, big_2) : metal::float2(big_2, a12_);
+    if (big_2 <= 0.0) {
+        v_3 = metal::float2(1.0, 0.0);
     }
-    metal::float2 _e32 = v_1;
-    metal::float2 _e33 = v_1;
+    metal::float2 _e32 = v_3;
+    metal::float2 _e33 = v_3;
     metal::float2 axis_2 = _e32 / metal::float2(metal::length(_e33));
     ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, metal::float2(l1_1, l2_2), det_2, tau_2);
     return _e38;
@@ -853,9 +971,9 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(
 
 metal::float2 ndf_roughness_matrix_rotate(
     ndf_roughness_matrix_RoughnessMatrix r_2,
-    metal::float2 v_2
+    metal::float2 v_4
 ) {
-    return metal::float2((r_2.axis.x * v_2.x) + (r_2.axis.y * v_2.y), (r_2.axis.x * v_2.y) - (r_2.axis.y * v_2.x));
+    return metal::float2((r_2.axis.x * v_4.x) + (r_2.axis.y * v_4.y), (r_2.axis.x * v_4.y) - (r_2.axis.y * v_4.x));
 }
 
 float ndf_roughness_matrix_inv_quadratic(
@@ -934,13 +1052,13 @@ float ndf_g2_of(
     float i_dot_m,
     float o_dot_m
 ) {
-    bool local_3 = {};
+    bool local_9 = {};
     if (i_dot_m > 0.0) {
-        local_3 = o_dot_m > 0.0;
+        local_9 = o_dot_m > 0.0;
     } else {
-        local_3 = false;
+        local_9 = false;
     }
-    bool _e16 = local_3;
+    bool _e16 = local_9;
     return _e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0;
 }
 
@@ -1029,39 +1147,39 @@ float ndf_ggx_d_of(
     float m_z,
     float sqrt_det_1
 ) {
-    bool local_4 = {};
+    bool local_10 = {};
     float t_13 = q_xy + (m_z * m_z);
-    float v_14 = 1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13);
+    float v_16 = 1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13);
     if (m_z > 0.0) {
-        local_4 = v_14 <= math_F32_MAX;
+        local_10 = v_16 <= math_F32_MAX;
     } else {
-        local_4 = false;
+        local_10 = false;
     }
-    bool _e18 = local_4;
-    return _e18 ? v_14 : 0.0;
+    bool _e18 = local_10;
+    return _e18 ? v_16 : 0.0;
 }
 
 float ndf_ggx_lambda_of(
     float q_1,
     float abs_wz
 ) {
-    bool local_5 = {};
-    bool local_6 = {};
+    bool local_11 = {};
+    bool local_12 = {};
     if (q_1 <= 0.0) {
-        local_5 = abs_wz >= 0.0;
+        local_11 = abs_wz >= 0.0;
     } else {
-        local_5 = false;
+        local_11 = false;
     }
-    bool _e9 = local_5;
+    bool _e9 = local_11;
     if (_e9) {
         return 0.0;
     }
     if (!(!((abs_wz > 0.0)))) {
-        local_6 = !((q_1 > 0.0));
+        local_12 = !((q_1 > 0.0));
     } else {
-        local_6 = true;
+        local_12 = true;
     }
-    bool _e21 = local_6;
+    bool _e21 = local_12;
     if (_e21) {
         return math_F32_MAX;
     }
@@ -1223,11 +1341,11 @@ float ndf_ggx_g2_matrix(
 }
 
 float ndf_beckmann_exp_neg_times(
-    float x_5,
+    float x_7,
     float k_3,
     float ln_k
 ) {
-    return (x_5 > ndf_beckmann_EXP_SPLIT) ? metal::exp(ln_k - x_5) : (metal::exp(-(x_5)) * k_3);
+    return (x_7 > ndf_beckmann_EXP_SPLIT) ? metal::exp(ln_k - x_7) : (metal::exp(-(x_7)) * k_3);
 }
 
 float ndf_beckmann_p22_of(
@@ -1244,18 +1362,18 @@ float ndf_beckmann_d_of(
     float m_z_1,
     float sqrt_det_3
 ) {
-    bool local_7 = {};
+    bool local_13 = {};
     float z2_5 = m_z_1 * m_z_1;
-    float x_13 = q_xy_1 / z2_5;
+    float x_15 = q_xy_1 / z2_5;
     float k_27 = 1.0 / (((math_PI * sqrt_det_3) * z2_5) * z2_5);
     float ln_k_1 = -((metal::log(math_PI * sqrt_det_3) + (4.0 * metal::log(metal::max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_13, k_27, ln_k_1);
+    float _e21 = ndf_beckmann_exp_neg_times(x_15, k_27, ln_k_1);
     if (m_z_1 > 0.0) {
-        local_7 = _e21 <= math_F32_MAX;
+        local_13 = _e21 <= math_F32_MAX;
     } else {
-        local_7 = false;
+        local_13 = false;
     }
-    bool _e29 = local_7;
+    bool _e29 = local_13;
     return _e29 ? _e21 : 0.0;
 }
 
@@ -1263,24 +1381,24 @@ float ndf_beckmann_lambda_of(
     float q_3,
     float abs_wz_1
 ) {
-    bool local_8 = {};
-    bool local_9 = {};
+    bool local_14 = {};
+    bool local_15 = {};
     float p = -0.00003849172;
     if (q_3 <= 0.0) {
-        local_8 = abs_wz_1 >= 0.0;
+        local_14 = abs_wz_1 >= 0.0;
     } else {
-        local_8 = false;
+        local_14 = false;
     }
-    bool _e9 = local_8;
+    bool _e9 = local_14;
     if (_e9) {
         return 0.0;
     }
     if (!(!((abs_wz_1 > 0.0)))) {
-        local_9 = !((q_3 > 0.0));
+        local_15 = !((q_3 > 0.0));
     } else {
-        local_9 = true;
+        local_15 = true;
     }
-    bool _e21 = local_9;
+    bool _e21 = local_15;
     if (_e21) {
         return math_F32_MAX;
     }
@@ -1476,9 +1594,10 @@ float ndf_beckmann_g2_matrix(
 }
 
 kernel_rect_BoundingRect kernel_rect_from_footprint(
-    footprint_Footprint fp_2
+    footprint_Footprint fp_in_1
 ) {
-    return kernel_rect_BoundingRect {(metal::abs(fp_2.dh_u) + metal::abs(fp_2.dh_v)) * 0.5};
+    footprint_Footprint _e1 = footprint_nan_to_zero(fp_in_1);
+    return kernel_rect_BoundingRect {(metal::abs(_e1.dh_u) + metal::abs(_e1.dh_v)) * 0.5};
 }
 
 kernel_covariance_Covariance kernel_rect_covariance(
@@ -1486,25 +1605,32 @@ kernel_covariance_Covariance kernel_rect_covariance(
     float sigma_2
 ) {
     metal::float2 w_24 = r_50.half_extent * (2.0 * sigma_2);
-    metal::float2 v_15 = w_24 * w_24;
-    return kernel_covariance_Covariance {v_15.x, 0.0, v_15.y, v_15.x * v_15.y};
+    metal::float2 v_17 = w_24 * w_24;
+    return kernel_covariance_Covariance {v_17.x, 0.0, v_17.y, v_17.x * v_17.y};
 }
 
 footprint_Footprint kernel_clamp_footprint(
     kernel_clamp_ClampRules rules,
-    footprint_Footprint fp_3
+    footprint_Footprint fp_in_2
 ) {
+    footprint_Footprint _e2 = footprint_nan_to_zero(fp_in_2);
     float l_6 = metal::max(rules.max_extent, 0.0);
-    float scale_1 = metal::max(metal::max(metal::abs(fp_3.dh_u.x), metal::abs(fp_3.dh_u.y)), metal::max(metal::abs(fp_3.dh_v.x), metal::abs(fp_3.dh_v.y)));
+    float scale_1 = metal::max(metal::max(metal::abs(_e2.dh_u.x), metal::abs(_e2.dh_u.y)), metal::max(metal::abs(_e2.dh_v.x), metal::abs(_e2.dh_v.y)));
     if (scale_1 <= 0.0) {
-        return fp_3;
+        return _e2;
     }
-    footprint_Footprint unit = footprint_Footprint {fp_3.dh_u / metal::float2(scale_1), fp_3.dh_v / metal::float2(scale_1)};
-    float _e29 = footprint_max_extent(unit);
-    if ((_e29 * scale_1) <= l_6) {
-        return fp_3;
+    if (scale_1 > math_F32_MAX) {
+        metal::float2 iu = metal::select(metal::float2(0.0), metal::sign(_e2.dh_u), metal::abs(_e2.dh_u) > metal::float2(340282350000000000000000000000000000000.0));
+        metal::float2 iv = metal::select(metal::float2(0.0), metal::sign(_e2.dh_v), metal::abs(_e2.dh_v) > metal::float2(340282350000000000000000000000000000000.0));
+        float _e46 = footprint_max_extent(footprint_Footprint {iu, iv});
+        return footprint_Footprint {(iu / metal::float2(_e46)) * l_6, (iv / metal::float2(_e46)) * l_6};
     }
-    return footprint_Footprint {(unit.dh_u / metal::float2(_e29)) * l_6, (unit.dh_v / metal::float2(_e29)) * l_6};
+    footprint_Footprint unit = footprint_Footprint {_e2.dh_u / metal::float2(scale_1), _e2.dh_v / metal::float2(scale_1)};
+    float _e61 = footprint_max_extent(unit);
+    if ((_e61 * scale_1) <= l_6) {
+        return _e2;
+    }
+    return footprint_Footprint {(unit.dh_u / metal::float2(_e61)) * l_6, (unit.dh_v / metal::float2(_e61)) * l_6};
 }
 
 kernel_rect_BoundingRect kernel_clamp_rect(
@@ -1549,10 +1675,10 @@ float kernel_clamp_det_clamp_for(
 
 kernel_covariance_Covariance kernel_clamp_pixel_kernel(
     kernel_clamp_ClampRules rules_4,
-    footprint_Footprint fp_4,
+    footprint_Footprint fp_2,
     float sigma_3
 ) {
-    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
+    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_2);
     kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_3);
     kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
     return _e5;
@@ -1598,10 +1724,10 @@ ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(
     kernel_clamp_ClampRules rules_5,
     ndf_roughness_matrix_RoughnessMatrix a_6,
-    footprint_Footprint fp_5,
+    footprint_Footprint fp_3,
     float sigma_4
 ) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_3, sigma_4);
     float _e5 = kernel_clamp_det_clamp_for(rules_5, a_6);
     ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_6, _e4, _e5);
     return _e6;
@@ -1610,19 +1736,19 @@ ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_lobe(
     filter_gaussian_Gaussian method,
     ndf_roughness_matrix_RoughnessMatrix material,
-    footprint_Footprint fp_6
+    footprint_Footprint fp_4
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_filter_gaussian(method.clamps, material, fp_6, method.sigma);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_filter_gaussian(method.clamps, material, fp_4, method.sigma);
     return _e5;
 }
 
 float filter_gaussian_d_ggx_gaussian(
     filter_gaussian_Gaussian method_1,
     ndf_roughness_matrix_RoughnessMatrix material_1,
-    footprint_Footprint fp_7,
+    footprint_Footprint fp_5,
     metal::float3 m_18
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_1, material_1, fp_7);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_1, material_1, fp_5);
     float _e5 = ndf_ggx_d_matrix(_e4, m_18);
     return _e5;
 }
@@ -1630,10 +1756,10 @@ float filter_gaussian_d_ggx_gaussian(
 float filter_gaussian_d_beckmann_gaussian(
     filter_gaussian_Gaussian method_2,
     ndf_roughness_matrix_RoughnessMatrix material_2,
-    footprint_Footprint fp_8,
+    footprint_Footprint fp_6,
     metal::float3 m_19
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_2, material_2, fp_8);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_2, material_2, fp_6);
     float _e5 = ndf_beckmann_d_matrix(_e4, m_19);
     return _e5;
 }
@@ -1814,7 +1940,7 @@ float filter_gaussian_ggx_quad_trapezoid(
 ) {
     float sum = 0.0;
     uint ch = 0u;
-    float v_3 = {};
+    float v_5 = {};
     float part = {};
     float last = {};
     float vl = {};
@@ -1855,10 +1981,10 @@ float filter_gaussian_ggx_quad_trapezoid(
             uint _e54 = ch;
             float kb = static_cast<float>(_e54 * 8u) - k0_;
             float _e61 = math_exp(kb * filter_gaussian_ggx_quad_H);
-            v_3 = _e61;
+            v_5 = _e61;
             part = 0.0;
             last = 0.0;
-            float _e67 = v_3;
+            float _e67 = v_5;
             vl = _e67;
             jj = 0u;
             uint2 loop_bound_2 = uint2(4294967295u);
@@ -1877,23 +2003,23 @@ float filter_gaussian_ggx_quad_trapezoid(
                     break;
                 }
                 {
-                    float _e74 = v_3;
+                    float _e74 = v_5;
                     float ip1_1 = 1.0 / (1.0 + (t1_3 * _e74));
-                    float _e80 = v_3;
+                    float _e80 = v_5;
                     float ip2_1 = 1.0 / (1.0 + (t2_1 * _e80));
                     float a_22 = (w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1);
                     uint _e91 = jj;
-                    float _e95 = v_3;
-                    float x_14 = (1.0 * (kb + static_cast<float>(_e91))) - ((_e95 - 1.0) * a_22);
-                    float _e100 = math_exp(x_14);
+                    float _e95 = v_5;
+                    float x_16 = (1.0 * (kb + static_cast<float>(_e91))) - ((_e95 - 1.0) * a_22);
+                    float _e100 = math_exp(x_16);
                     last = (_e100 * metal::sqrt(ip1_1)) * metal::sqrt(ip2_1);
                     float _e105 = part;
                     float _e106 = last;
                     part = _e105 + _e106;
-                    float _e108 = v_3;
+                    float _e108 = v_5;
                     vl = _e108;
-                    float _e109 = v_3;
-                    v_3 = _e109 * filter_gaussian_ggx_quad_EXP_H;
+                    float _e109 = v_5;
+                    v_5 = _e109 * filter_gaussian_ggx_quad_EXP_H;
                 }
             }
             float _e115 = sum;
@@ -1916,15 +2042,15 @@ float filter_gaussian_ggx_quad_trapezoid(
     return filter_gaussian_ggx_quad_H * ((_e139 * scale_2) + _e141);
 }
 
-float filter_gaussian_ggx_quad_j(
+float filter_gaussian_ggx_quad_mixture_integral(
     float v1s_1,
     float v2s_1,
     float z2_2,
     float tl1_4,
     float tl2_4
 ) {
-    bool local_10 = {};
-    bool local_11 = {};
+    bool local_16 = {};
+    bool local_17 = {};
     float beta_m_1 = (z2_2 + v1s_1) + v2s_1;
     if (beta_m_1 >= ((filter_gaussian_ggx_quad_FAR * tl1_4) * z2_2)) {
         float _e11 = filter_gaussian_ggx_quad_far_tail(beta_m_1, v1s_1, v2s_1, tl1_4, tl2_4, z2_2);
@@ -1933,16 +2059,16 @@ float filter_gaussian_ggx_quad_j(
     if ((tl1_4 * z2_2) <= (filter_gaussian_ggx_quad_GL_RATIO * beta_m_1)) {
         if (!((beta_m_1 <= (filter_gaussian_ggx_quad_GL_WIDE * z2_2)))) {
             float _e26 = math_ln(beta_m_1 / z2_2);
-            local_11 = ((tl1_4 * (filter_gaussian_ggx_quad_GL_PLATEAU + (1.5 * _e26))) * z2_2) <= beta_m_1;
+            local_17 = ((tl1_4 * (filter_gaussian_ggx_quad_GL_PLATEAU + (1.5 * _e26))) * z2_2) <= beta_m_1;
         } else {
-            local_11 = true;
+            local_17 = true;
         }
-        bool _e34 = local_11;
-        local_10 = _e34;
+        bool _e34 = local_17;
+        local_16 = _e34;
     } else {
-        local_10 = false;
+        local_16 = false;
     }
-    bool _e36 = local_10;
+    bool _e36 = local_16;
     if (_e36) {
         float _e37 = filter_gaussian_ggx_quad_laguerre(beta_m_1, v1s_1, v2s_1, z2_2, tl1_4, tl2_4);
         return _e37;
@@ -2034,12 +2160,12 @@ float filter_gaussian_ggx_quad_lambda_hermite(
         {
             uint _e16 = k_11;
             float _e17 = filter_gaussian_ggx_quad_hermite_node(_e16);
-            float x_15 = fs * _e17;
+            float x_17 = fs * _e17;
             float _e19 = acc_1;
             uint _e20 = k_11;
             float _e21 = filter_gaussian_ggx_quad_hermite_weight(_e20);
-            float _e23 = filter_gaussian_ggx_quad_h_of(z0_ - x_15);
-            float _e25 = filter_gaussian_ggx_quad_h_of(z0_ + x_15);
+            float _e23 = filter_gaussian_ggx_quad_h_of(z0_ - x_17);
+            float _e25 = filter_gaussian_ggx_quad_h_of(z0_ + x_17);
             acc_1 = _e19 + (_e21 * (_e23 + _e25));
         }
     }
@@ -2064,7 +2190,7 @@ float filter_gaussian_ggx_quad_sinh_run(
     float xl = {};
     float part_1 = {};
     uint jj_1 = {};
-    bool local_12 = {};
+    bool local_18 = {};
     total = total_in;
     float sgn = up ? 1.0 : -1.0;
     uint first = up ? 0u : 1u;
@@ -2109,12 +2235,12 @@ float filter_gaussian_ggx_quad_sinh_run(
                     float k_29 = static_cast<float>((first + (_e32 * 8u)) + _e36);
                     float _e43 = math_exp(((sgn * 0.5) * h_11) * k_29);
                     float it = 1.0 / _e43;
-                    float x_16 = ((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it);
-                    float arg = (-(x_16) * x_16) * i2s2_;
+                    float x_18 = ((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it);
+                    float arg = (-(x_18) * x_18) * i2s2_;
                     float it2_ = it * it;
                     float _e58 = math_exp(arg);
                     fl = (arg > -87.0) ? (_e58 * (1.0 + ((e2_ * it2_) * it2_))) : 0.0;
-                    xl = x_16;
+                    xl = x_18;
                     float _e68 = part_1;
                     float _e69 = fl;
                     part_1 = _e68 + _e69;
@@ -2129,11 +2255,11 @@ float filter_gaussian_ggx_quad_sinh_run(
             if (done) {
                 float _e85 = fl;
                 float _e87 = total;
-                local_12 = _e85 <= (filter_gaussian_ggx_quad_S_EPS * _e87);
+                local_18 = _e85 <= (filter_gaussian_ggx_quad_S_EPS * _e87);
             } else {
-                local_12 = false;
+                local_18 = false;
             }
-            bool _e91 = local_12;
+            bool _e91 = local_18;
             if (_e91) {
                 break;
             }
@@ -2182,7 +2308,7 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(
     kernel_covariance_Covariance kernel_4
 ) {
     float l2_ = 0.0;
-    metal::float2 v_4 = metal::float2(1.0, 0.0);
+    metal::float2 v_6 = metal::float2(1.0, 0.0);
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
     float c_18 = a_7.axis.x;
     float s_27 = a_7.axis.y;
@@ -2199,16 +2325,16 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(
     float _e75 = math_hypot(half_, c12_);
     float l1_2 = (0.5 * (c11_ + c22_)) + _e75;
     if (_e75 > 0.0) {
-        float big_4 = _e75 + metal::abs(half_);
-        metal::float2 w_25 = (half_ >= 0.0) ? metal::float2(big_4, c12_) : metal::float2(c12_, big_4);
-        v_4 = w_25 / metal::float2(metal::length(w_25));
+        float big_3 = _e75 + metal::abs(half_);
+        metal::float2 w_25 = (half_ >= 0.0) ? metal::float2(big_3, c12_) : metal::float2(c12_, big_3);
+        v_6 = w_25 / metal::float2(metal::length(w_25));
         l2_ = metal::min(det_c / l1_2, l1_2);
     } else {
         if (l1_2 > 0.0) {
             l2_ = l1_2;
         }
     }
-    metal::float2 _e102 = v_4;
+    metal::float2 _e102 = v_6;
     float _e105 = l2_;
     float _e110 = ndf_roughness_matrix_sqrt_det(a_7);
     return filter_gaussian_ggx_GaussianFilteredGgx {a_7, isl, _e102, metal::float2(2.0 * l1_2, 2.0 * _e105), math_INV_PI / _e110, _e2};
@@ -2229,7 +2355,7 @@ float filter_gaussian_ggx_p22_(
     metal::float2 s_10
 ) {
     metal::float2 _e2 = filter_gaussian_ggx_whiten(g_1, s_10);
-    float _e11 = filter_gaussian_ggx_quad_j(_e2.x, _e2.y, 1.0, g_1.tl.x, g_1.tl.y);
+    float _e11 = filter_gaussian_ggx_quad_mixture_integral(_e2.x, _e2.y, 1.0, g_1.tl.x, g_1.tl.y);
     return g_1.norm * _e11;
 }
 
@@ -2241,20 +2367,20 @@ float filter_gaussian_ggx_d(
         return 0.0;
     }
     metal::float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_20.xy);
-    float _e19 = filter_gaussian_ggx_quad_j(_e8.x, _e8.y, m_20.z * m_20.z, g_2.tl.x, g_2.tl.y);
-    float v_16 = g_2.norm * _e19;
-    return (v_16 <= math_F32_MAX) ? v_16 : 0.0;
+    float _e19 = filter_gaussian_ggx_quad_mixture_integral(_e8.x, _e8.y, m_20.z * m_20.z, g_2.tl.x, g_2.tl.y);
+    float v_18 = g_2.norm * _e19;
+    return (v_18 <= math_F32_MAX) ? v_18 : 0.0;
 }
 
 float filter_gaussian_ggx_lambda(
     filter_gaussian_ggx_GaussianFilteredGgx g_3,
     metal::float3 w_15
 ) {
-    float big_5 = metal::max(metal::max(metal::abs(w_15.x), metal::abs(w_15.y)), metal::abs(w_15.z));
-    if (!((big_5 > 0.0))) {
-        return (big_5 == 0.0) ? 0.0 : math_F32_MAX;
+    float big_4 = metal::max(metal::max(metal::abs(w_15.x), metal::abs(w_15.y)), metal::abs(w_15.z));
+    if (!((big_4 > 0.0))) {
+        return (big_4 == 0.0) ? 0.0 : math_F32_MAX;
     }
-    metal::float3 ws = w_15 / metal::float3(big_5);
+    metal::float3 ws = w_15 / metal::float3(big_4);
     metal::float3 o_9 = ws / metal::float3(metal::length(ws));
     float oz_3 = metal::abs(o_9.z);
     float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_9.xy);
@@ -2300,9 +2426,9 @@ float filter_gaussian_ggx_g2_(
 filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_exact_gaussian_lobe(
     filter_gaussian_ggx_ExactGaussian method_3,
     ndf_roughness_matrix_RoughnessMatrix material_3,
-    footprint_Footprint fp_9
+    footprint_Footprint fp_7
 ) {
-    kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_9, method_3.sigma);
+    kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_7, method_3.sigma);
     filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
     return _e6;
 }
@@ -2310,10 +2436,10 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_exact_gaussian_lobe(
 float filter_gaussian_ggx_d_ggx_exact_gaussian(
     filter_gaussian_ggx_ExactGaussian method_4,
     ndf_roughness_matrix_RoughnessMatrix material_4,
-    footprint_Footprint fp_10,
+    footprint_Footprint fp_8,
     metal::float3 m_23
 ) {
-    filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_gaussian_ggx_exact_gaussian_lobe(method_4, material_4, fp_10);
+    filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_gaussian_ggx_exact_gaussian_lobe(method_4, material_4, fp_8);
     float _e5 = filter_gaussian_ggx_d(_e4, m_23);
     return _e5;
 }
@@ -2455,10 +2581,10 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(
 ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(
     kernel_clamp_ClampRules rules_6,
     ndf_roughness_matrix_RoughnessMatrix a_12,
-    footprint_Footprint fp_11,
+    footprint_Footprint fp_9,
     float sigma_5
 ) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_11, sigma_5);
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_9, sigma_5);
     float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
     ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
     return _e6;
@@ -2467,19 +2593,19 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_lobe(
     filter_projected_Projected method_5,
     ndf_roughness_matrix_RoughnessMatrix material_5,
-    footprint_Footprint fp_12
+    footprint_Footprint fp_10
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_10, method_5.sigma);
     return _e5;
 }
 
 float filter_projected_d_ggx_projected(
     filter_projected_Projected method_6,
     ndf_roughness_matrix_RoughnessMatrix material_6,
-    footprint_Footprint fp_13,
+    footprint_Footprint fp_11,
     metal::float3 m_25
 ) {
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_lobe(method_6, material_6, fp_13);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_lobe(method_6, material_6, fp_11);
     float _e5 = ndf_ggx_d_matrix(_e4, m_25);
     return _e5;
 }
@@ -2527,9 +2653,9 @@ ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(
 ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_lobe(
     filter_proxy_Proxy method_7,
     ndf_roughness_axis_aligned_AxisAligned material_7,
-    footprint_Footprint fp_14
+    footprint_Footprint fp_12
 ) {
-    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_14);
+    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_12);
     kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
     metal::float2 h_28 = _e6.half_extent;
     ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_7, h_28);
@@ -2539,10 +2665,10 @@ ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_lobe(
 float filter_proxy_d_ggx_proxy(
     filter_proxy_Proxy method_8,
     ndf_roughness_axis_aligned_AxisAligned material_8,
-    footprint_Footprint fp_15,
+    footprint_Footprint fp_13,
     metal::float3 m_26
 ) {
-    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_proxy_proxy_lobe(method_8, material_8, fp_15);
+    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_proxy_proxy_lobe(method_8, material_8, fp_13);
     float _e5 = ndf_ggx_d_axis_aligned(_e4, m_26);
     return _e5;
 }
@@ -2597,9 +2723,9 @@ float filter_rect_gl_weight(
 
 float filter_rect_f(
     float u_1,
-    float v_5
+    float v_7
 ) {
-    float t_16 = (1.0 + (u_1 * u_1)) + (v_5 * v_5);
+    float t_16 = (1.0 + (u_1 * u_1)) + (v_7 * v_7);
     return 1.0 / (t_16 * t_16);
 }
 
@@ -2648,13 +2774,13 @@ float filter_rect_gl_mean(
 
 float filter_rect_atan2_upper(
     float y_3,
-    float x_6
+    float x_8
 ) {
-    if (x_6 > 0.0) {
-        float _e5 = math_atan(y_3 / x_6);
+    if (x_8 > 0.0) {
+        float _e5 = math_atan(y_3 / x_8);
         return _e5;
     }
-    float _e9 = math_atan(-(x_6) / y_3);
+    float _e9 = math_atan(-(x_8) / y_3);
     return math_HALF_PI + _e9;
 }
 
@@ -2754,16 +2880,16 @@ float filter_rect_edge(
 
 float filter_rect_edges(
     metal::float4 u_4,
-    metal::float4 v_6
+    metal::float4 v_8
 ) {
     float du = 2.0 * u_4.w;
-    float dv_1 = 2.0 * v_6.w;
-    float v01_1 = v_6.x * v_6.y;
+    float dv_1 = 2.0 * v_8.w;
+    float v01_1 = v_8.x * v_8.y;
     float u01_ = u_4.x * u_4.y;
     float _e15 = filter_rect_edge(u_4.y, dv_1, v01_1);
     float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
-    float _e20 = filter_rect_edge(v_6.y, du, u01_);
-    float _e22 = filter_rect_edge(v_6.x, du, u01_);
+    float _e20 = filter_rect_edge(v_8.y, du, u01_);
+    float _e22 = filter_rect_edge(v_8.x, du, u01_);
     float i_13 = 0.5 * ((_e15 - _e17) + (_e20 - _e22));
     return i_13 / (du * dv_1);
 }
@@ -2877,60 +3003,60 @@ float filter_rect_edge_range(
     float a_13,
     float b_2
 ) {
-    float v_7 = 0.0;
+    float v_9 = 0.0;
     float x2_3 = ax * ax;
     if (a_13 < ax) {
-        float _e7 = v_7;
+        float _e7 = v_9;
         float _e11 = filter_rect_polar_near(x2_3, a_13 / ax, metal::min(b_2, ax) / ax);
-        v_7 = _e7 + _e11;
+        v_9 = _e7 + _e11;
     }
     if (b_2 > ax) {
-        float _e14 = v_7;
+        float _e14 = v_9;
         float _e18 = filter_rect_polar_far(x2_3, ax / b_2, ax / metal::max(a_13, ax));
-        v_7 = _e14 + _e18;
+        v_9 = _e14 + _e18;
     }
-    float _e20 = v_7;
+    float _e20 = v_9;
     return _e20;
 }
 
 float filter_rect_edge_polar(
-    float x_7,
+    float x_9,
     float a_14,
     float b_3
 ) {
-    float v_8 = {};
-    float ax_2 = metal::abs(x_7);
+    float v_10 = {};
+    float ax_2 = metal::abs(x_9);
     if (ax_2 < 0.000000000001) {
         return 0.0;
     }
     if (a_14 >= 0.0) {
         float _e10 = filter_rect_edge_range(ax_2, a_14, b_3);
-        v_8 = _e10;
+        v_10 = _e10;
     } else {
         if (b_3 <= 0.0) {
             float _e15 = filter_rect_edge_range(ax_2, -(b_3), -(a_14));
-            v_8 = _e15;
+            v_10 = _e15;
         } else {
             float _e18 = filter_rect_edge_range(ax_2, 0.0, -(a_14));
             float _e20 = filter_rect_edge_range(ax_2, 0.0, b_3);
-            v_8 = _e18 + _e20;
+            v_10 = _e18 + _e20;
         }
     }
-    float _e22 = v_8;
-    float _e24 = v_8;
-    return (x_7 > 0.0) ? _e24 : -(_e22);
+    float _e22 = v_10;
+    float _e24 = v_10;
+    return (x_9 > 0.0) ? _e24 : -(_e22);
 }
 
 float filter_rect_far_field(
     metal::float4 u_5,
-    metal::float4 v_9
+    metal::float4 v_11
 ) {
-    float _e5 = filter_rect_edge_polar(u_5.y, v_9.x, v_9.y);
-    float _e9 = filter_rect_edge_polar(u_5.x, v_9.x, v_9.y);
-    float _e14 = filter_rect_edge_polar(v_9.y, u_5.x, u_5.y);
-    float _e18 = filter_rect_edge_polar(v_9.x, u_5.x, u_5.y);
+    float _e5 = filter_rect_edge_polar(u_5.y, v_11.x, v_11.y);
+    float _e9 = filter_rect_edge_polar(u_5.x, v_11.x, v_11.y);
+    float _e14 = filter_rect_edge_polar(v_11.y, u_5.x, u_5.y);
+    float _e18 = filter_rect_edge_polar(v_11.x, u_5.x, u_5.y);
     float i_14 = -0.5 * ((_e5 - _e9) + (_e14 - _e18));
-    return i_14 / ((4.0 * u_5.w) * v_9.w);
+    return i_14 / ((4.0 * u_5.w) * v_11.w);
 }
 
 float filter_rect_gap(
@@ -2941,35 +3067,35 @@ float filter_rect_gap(
 
 float filter_rect_mean_f(
     metal::float4 u_6,
-    metal::float4 v_10
+    metal::float4 v_12
 ) {
-    bool local_13 = {};
+    bool local_19 = {};
     float acc_6 = 0.0;
     uint k_21 = 0u;
     float _e2 = filter_rect_gap(u_6);
-    float _e3 = filter_rect_gap(v_10);
+    float _e3 = filter_rect_gap(v_12);
     uint _e14 = filter_rect_tier(u_6.w * u_6.w, (1.0 + (u_6.z * u_6.z)) + (_e3 * _e3));
-    uint _e25 = filter_rect_tier(v_10.w * v_10.w, (1.0 + (v_10.z * v_10.z)) + (_e2 * _e2));
+    uint _e25 = filter_rect_tier(v_12.w * v_12.w, (1.0 + (v_12.z * v_12.z)) + (_e2 * _e2));
     if (_e14 == filter_rect_TIER_CLOSED) {
-        local_13 = _e25 == filter_rect_TIER_CLOSED;
+        local_19 = _e25 == filter_rect_TIER_CLOSED;
     } else {
-        local_13 = false;
+        local_19 = false;
     }
-    bool _e33 = local_13;
+    bool _e33 = local_19;
     if (_e33) {
         if (((_e2 * _e2) + (_e3 * _e3)) > filter_rect_FAR2_) {
-            float _e39 = filter_rect_far_field(u_6, v_10);
+            float _e39 = filter_rect_far_field(u_6, v_12);
             return _e39;
         }
-        float _e40 = filter_rect_edges(u_6, v_10);
+        float _e40 = filter_rect_edges(u_6, v_12);
         return _e40;
     }
     if (_e14 == filter_rect_TIER_CLOSED) {
-        float _e45 = filter_rect_gl_mean_1d(_e25, v_10.z, v_10.w, u_6);
+        float _e45 = filter_rect_gl_mean_1d(_e25, v_12.z, v_12.w, u_6);
         return _e45;
     }
     if (_e25 == filter_rect_TIER_CLOSED) {
-        float _e50 = filter_rect_gl_mean_1d(_e14, u_6.z, u_6.w, v_10);
+        float _e50 = filter_rect_gl_mean_1d(_e14, u_6.z, u_6.w, v_12);
         return _e50;
     }
     uint2 loop_bound_10 = uint2(4294967295u);
@@ -2994,8 +3120,8 @@ float filter_rect_mean_f(
             float _e63 = acc_6;
             uint _e64 = k_21;
             float _e65 = filter_rect_gl_weight(_e14, _e64);
-            float _e70 = filter_rect_gl_mean(_e25, u_6.z - a_26, v_10.z, v_10.w);
-            float _e75 = filter_rect_gl_mean(_e25, u_6.z + a_26, v_10.z, v_10.w);
+            float _e70 = filter_rect_gl_mean(_e25, u_6.z - a_26, v_12.z, v_12.w);
+            float _e75 = filter_rect_gl_mean(_e25, u_6.z + a_26, v_12.z, v_12.w);
             acc_6 = _e63 + (_e65 * (_e70 + _e75));
         }
     }
@@ -3019,13 +3145,13 @@ float filter_rect_p22_rect(
     metal::float2 center,
     metal::float2 half_extent_4
 ) {
-    bool local_14 = {};
+    bool local_20 = {};
     if (half_extent_4.x == 0.0) {
-        local_14 = half_extent_4.y == 0.0;
+        local_20 = half_extent_4.y == 0.0;
     } else {
-        local_14 = false;
+        local_20 = false;
     }
-    bool _e12 = local_14;
+    bool _e12 = local_20;
     if (_e12) {
         float _e13 = ndf_ggx_p22_axis_aligned(r_55, center);
         return _e13;
@@ -3042,16 +3168,16 @@ float filter_rect_d_rect(
     metal::float3 h_15,
     metal::float2 half_extent_5
 ) {
-    bool local_15 = {};
+    bool local_21 = {};
     if (!((h_15.z > 0.0))) {
         return 0.0;
     }
     if (half_extent_5.x == 0.0) {
-        local_15 = half_extent_5.y == 0.0;
+        local_21 = half_extent_5.y == 0.0;
     } else {
-        local_15 = false;
+        local_21 = false;
     }
-    bool _e17 = local_15;
+    bool _e17 = local_21;
     if (_e17) {
         float _e18 = ndf_ggx_d_axis_aligned(r_56, h_15);
         return _e18;
@@ -3067,7 +3193,7 @@ float filter_rect_d_rect_printed(
     metal::float3 h_16,
     metal::float2 footprint
 ) {
-    bool local_16 = {};
+    bool local_22 = {};
     float a_28 = r_57.alpha.x;
     float b_8 = r_57.alpha.y;
     float a_2_ = a_28 * a_28;
@@ -3091,14 +3217,14 @@ float filter_rect_d_rect_printed(
     float val = (((x1_3 * (_e37 - _e41)) / sx1_) + ((x2_4 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_));
     float den_2 = (6.2831855 * (x1_3 - x2_4)) * (y1_ - y2_);
     float hz4_ = ((h_16.z * h_16.z) * h_16.z) * h_16.z;
-    float v_17 = (val / den_2) / metal::max(hz4_, 0.001);
-    if (metal::abs(v_17) <= math_F32_MAX) {
-        local_16 = den_2 != 0.0;
+    float v_19 = (val / den_2) / metal::max(hz4_, 0.001);
+    if (metal::abs(v_19) <= math_F32_MAX) {
+        local_22 = den_2 != 0.0;
     } else {
-        local_16 = false;
+        local_22 = false;
     }
-    bool _e109 = local_16;
-    return _e109 ? v_17 : 0.0;
+    bool _e109 = local_22;
+    return _e109 ? v_19 : 0.0;
 }
 
 float filter_rect_lambda_rho(
@@ -3123,17 +3249,17 @@ float filter_rect_lambda_asinh_of(
     float t_3,
     float r_59
 ) {
-    float v_11 = {};
+    float v_13 = {};
     float a_30 = metal::abs(t_3);
     if (a_30 > 1.0) {
         float _e7 = math_ln(a_30 + r_59);
-        v_11 = _e7;
+        v_13 = _e7;
     } else {
         float _e13 = math_ln_1p(a_30 + ((a_30 * a_30) / (1.0 + r_59)));
-        v_11 = _e13;
+        v_13 = _e13;
     }
-    float _e14 = v_11;
-    float _e15 = v_11;
+    float _e14 = v_13;
+    float _e15 = v_13;
     return (t_3 < 0.0) ? -(_e15) : _e14;
 }
 
@@ -3352,12 +3478,12 @@ float filter_rect_lambda_expected_psi(
             {
                 uint _e70 = j_3;
                 float _e71 = filter_rect_gl_node(_e59, _e70);
-                float x_17 = ks * _e71;
+                float x_19 = ks * _e71;
                 float _e73 = acc_10;
                 uint _e74 = j_3;
                 float _e75 = filter_rect_gl_weight(_e59, _e74);
-                float _e78 = filter_rect_lambda_mean_psi(lo_2 + x_17, hi_4 + x_17, w_26);
-                float _e81 = filter_rect_lambda_mean_psi(lo_2 - x_17, hi_4 - x_17, w_26);
+                float _e78 = filter_rect_lambda_mean_psi(lo_2 + x_19, hi_4 + x_19, w_26);
+                float _e81 = filter_rect_lambda_mean_psi(lo_2 - x_19, hi_4 - x_19, w_26);
                 acc_10 = _e73 + (_e75 * (_e78 + _e81));
             }
         }
@@ -3375,25 +3501,25 @@ float filter_rect_lambda_lambda_rect(
     metal::float3 w_in
 ) {
     metal::float3 w_19 = {};
-    bool local_17 = {};
-    bool local_18 = {};
-    bool local_19 = {};
-    float big_6 = metal::max(metal::max(metal::abs(w_in.x), metal::abs(w_in.y)), metal::abs(w_in.z));
+    bool local_23 = {};
+    bool local_24 = {};
+    bool local_25 = {};
+    float big_5 = metal::max(metal::max(metal::abs(w_in.x), metal::abs(w_in.y)), metal::abs(w_in.z));
     w_19 = w_in;
-    if (!((big_6 > 1152921500000000000.0))) {
-        if (big_6 < 0.00000000000000000086736174) {
-            local_18 = big_6 > 0.0;
+    if (!((big_5 > 1152921500000000000.0))) {
+        if (big_5 < 0.00000000000000000086736174) {
+            local_24 = big_5 > 0.0;
         } else {
-            local_18 = false;
+            local_24 = false;
         }
-        bool _e24 = local_18;
-        local_17 = _e24;
+        bool _e24 = local_24;
+        local_23 = _e24;
     } else {
-        local_17 = true;
+        local_23 = true;
     }
-    bool _e26 = local_17;
+    bool _e26 = local_23;
     if (_e26) {
-        int e_5 = as_type<int>(as_type<uint>(static_cast<int>((as_type<uint>(big_6) >> 23u) & 255u)) - as_type<uint>(127));
+        int e_5 = as_type<int>(as_type<uint>(static_cast<int>((as_type<uint>(big_5) >> 23u) & 255u)) - as_type<uint>(127));
         w_19 = w_in * as_type<float>(static_cast<uint>(as_type<int>(as_type<uint>(127) - as_type<uint>(e_5))) << 23u);
     }
     float _e43 = w_19.x;
@@ -3419,11 +3545,11 @@ float filter_rect_lambda_lambda_rect(
     float k1_4 = (px / _e74) * (ha.x / r_60.alpha.x);
     float k2_4 = (py / _e74) * (ha.y / r_60.alpha.y);
     if (k1_4 == 0.0) {
-        local_19 = k2_4 == 0.0;
+        local_25 = k2_4 == 0.0;
     } else {
-        local_19 = false;
+        local_25 = false;
     }
-    bool _e92 = local_19;
+    bool _e92 = local_25;
     if (_e92) {
         metal::float3 _e93 = w_19;
         float _e94 = ndf_ggx_lambda_axis_aligned(r_60, _e93);
@@ -3446,9 +3572,9 @@ float filter_rect_lambda_lambda_rect(
 filter_rect_lobe_RectFilteredGgx filter_rect_lobe_rect_lobe(
     filter_rect_lobe_Rect method_9,
     ndf_roughness_axis_aligned_AxisAligned material_9,
-    footprint_Footprint fp_16
+    footprint_Footprint fp_14
 ) {
-    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_16);
+    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_14);
     kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
     metal::float2 h_31 = _e6.half_extent;
     return filter_rect_lobe_RectFilteredGgx {material_9, h_31};
@@ -3503,10 +3629,10 @@ float filter_rect_lobe_g2_rect_filtered(
 float filter_rect_lobe_d_ggx_rect(
     filter_rect_lobe_Rect method_10,
     ndf_roughness_axis_aligned_AxisAligned material_10,
-    footprint_Footprint fp_17,
+    footprint_Footprint fp_15,
     metal::float3 m_31
 ) {
-    filter_rect_lobe_RectFilteredGgx _e4 = filter_rect_lobe_rect_lobe(method_10, material_10, fp_17);
+    filter_rect_lobe_RectFilteredGgx _e4 = filter_rect_lobe_rect_lobe(method_10, material_10, fp_15);
     float _e5 = filter_rect_lobe_d_rect_filtered(_e4, m_31);
     return _e5;
 }
@@ -3522,8 +3648,8 @@ metal::float3 footprint_slope_sphere_from_slope(
     metal::float2 s_13
 ) {
     float k_30 = metal::max(metal::max(metal::abs(s_13.x), metal::abs(s_13.y)), 1.0);
-    metal::float3 v_18 = metal::float3(-(s_13) / metal::float2(k_30), 1.0 / k_30);
-    return v_18 / metal::float3(metal::length(v_18));
+    metal::float3 v_20 = metal::float3(-(s_13) / metal::float2(k_30), 1.0 / k_30);
+    return v_20 / metal::float3(metal::length(v_20));
 }
 
 metal::float2 footprint_slope_projected_from_sphere(
@@ -3568,9 +3694,9 @@ sampling_Warp sampling_warp(
 }
 
 metal::float3 sampling_normalize_scaled(
-    metal::float3 v_12
+    metal::float3 v_14
 ) {
-    metal::float3 w_27 = v_12 / metal::float3(metal::max(metal::max(metal::abs(v_12.x), metal::abs(v_12.y)), metal::abs(v_12.z)));
+    metal::float3 w_27 = v_14 / metal::float3(metal::max(metal::max(metal::abs(v_14.x), metal::abs(v_14.y)), metal::abs(v_14.z)));
     return w_27 / metal::float3(metal::length(w_27));
 }
 
@@ -3617,7 +3743,7 @@ metal::float3 sampling_sample_visible_normal(
     metal::float3 wo_1,
     metal::float2 u_9
 ) {
-    bool local_20 = {};
+    bool local_26 = {};
     if (!((wo_1.z > 0.0))) {
         return metal::float3(0.0);
     }
@@ -3633,11 +3759,11 @@ metal::float3 sampling_sample_visible_normal(
     metal::float3 _e24 = sampling_ggx_standard_visible(_e12, metal::float2(_e20, _e22));
     metal::float3 _e25 = sampling_unstretch(_e9, _e24);
     if (_e25.z > 0.0) {
-        local_20 = metal::dot(wo_1, _e25) > 0.0;
+        local_26 = metal::dot(wo_1, _e25) > 0.0;
     } else {
-        local_20 = false;
+        local_26 = false;
     }
-    bool _e35 = local_20;
+    bool _e35 = local_26;
     if (_e35) {
         return _e25;
     }
@@ -3672,23 +3798,23 @@ float sampling_visible_normal_pdf_of(
     float d_1,
     float lambda
 ) {
-    bool local_21 = {};
-    bool local_22 = {};
+    bool local_27 = {};
+    bool local_28 = {};
     float wom = metal::dot(wo_2, m_34);
-    float v_19 = (wom * d_1) / (wo_2.z * (1.0 + lambda));
+    float v_21 = (wom * d_1) / (wo_2.z * (1.0 + lambda));
     if (wo_2.z > 0.0) {
-        local_21 = wom > 0.0;
+        local_27 = wom > 0.0;
     } else {
-        local_21 = false;
+        local_27 = false;
     }
-    bool _e19 = local_21;
+    bool _e19 = local_27;
     if (_e19) {
-        local_22 = v_19 <= math_F32_MAX;
+        local_28 = v_21 <= math_F32_MAX;
     } else {
-        local_22 = false;
+        local_28 = false;
     }
-    bool _e25 = local_22;
-    return _e25 ? v_19 : 0.0;
+    bool _e25 = local_28;
+    return _e25 ? v_21 : 0.0;
 }
 
 float sampling_visible_normal_pdf(
@@ -3708,22 +3834,22 @@ float sampling_reflection_pdf_of(
     float d_2,
     float lambda_1
 ) {
-    bool local_23 = {};
-    bool local_24 = {};
-    float v_20 = d_2 / ((4.0 * o_8.z) * (1.0 + lambda_1));
+    bool local_29 = {};
+    bool local_30 = {};
+    float v_22 = d_2 / ((4.0 * o_8.z) * (1.0 + lambda_1));
     if (o_8.z > 0.0) {
-        local_23 = metal::dot(o_8, m_36) > 0.0;
+        local_29 = metal::dot(o_8, m_36) > 0.0;
     } else {
-        local_23 = false;
+        local_29 = false;
     }
-    bool _e20 = local_23;
+    bool _e20 = local_29;
     if (_e20) {
-        local_24 = v_20 <= math_F32_MAX;
+        local_30 = v_22 <= math_F32_MAX;
     } else {
-        local_24 = false;
+        local_30 = false;
     }
-    bool _e26 = local_24;
-    return _e26 ? v_20 : 0.0;
+    bool _e26 = local_30;
+    return _e26 ? v_22 : 0.0;
 }
 
 float sampling_reflection_pdf_from_normal(
@@ -3786,39 +3912,39 @@ float sampling_beckmann_erfcx(
 }
 
 float sampling_beckmann_upper_tail(
-    float x_8,
+    float x_10,
     float c_10,
     float s_15
 ) {
-    float _e5 = math_exp(-(x_8) * x_8);
-    float _e8 = sampling_beckmann_erfcx(x_8);
+    float _e5 = math_exp(-(x_10) * x_10);
+    float _e8 = sampling_beckmann_erfcx(x_10);
     return (0.5 * _e5) * ((c_10 * _e8) - (s_15 * sampling_beckmann_INV_SQRT_PI));
 }
 
 metal::float2 sampling_beckmann_cdf_terms(
-    float x_9,
+    float x_11,
     float c_11,
     float s_16
 ) {
     float k_23 = {};
-    float _e5 = math_exp(-(x_9) * x_9);
-    if (x_9 <= 0.0) {
-        float _e12 = sampling_beckmann_erfcx(-(x_9));
+    float _e5 = math_exp(-(x_11) * x_11);
+    if (x_11 <= 0.0) {
+        float _e12 = sampling_beckmann_erfcx(-(x_11));
         k_23 = (0.5 * _e5) * ((c_11 * _e12) + (s_16 * sampling_beckmann_INV_SQRT_PI));
     } else {
-        float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_16);
+        float _e18 = sampling_beckmann_upper_tail(x_11, c_11, s_16);
         k_23 = c_11 - _e18;
     }
     float _e20 = k_23;
-    return metal::float2(_e20, (sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_16 * x_9)));
+    return metal::float2(_e20, (sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_16 * x_11)));
 }
 
 float sampling_beckmann_erfinv_guess(
-    float x_10
+    float x_12
 ) {
     float w_23 = {};
     float p_4 = {};
-    float a_34 = (1.0 - x_10) * (1.0 + x_10);
+    float a_34 = (1.0 - x_12) * (1.0 + x_12);
     if (!((a_34 > 0.0))) {
         return 0.0;
     }
@@ -3883,7 +4009,7 @@ float sampling_beckmann_erfinv_guess(
         p_4 = (_e101 * _e102) + 2.8329768;
     }
     float _e106 = p_4;
-    return _e106 * x_10;
+    return _e106 * x_12;
 }
 
 float sampling_beckmann_invert_visible_slope_cdf(
@@ -3893,13 +4019,13 @@ float sampling_beckmann_invert_visible_slope_cdf(
 ) {
     float lo_3 = -9.0;
     float hi_2 = {};
-    bool local_25 = {};
-    float x_11 = {};
+    bool local_31 = {};
+    float x_13 = {};
     float dx_old = {};
     uint i_11 = 0u;
     float g_6 = {};
-    bool local_26 = {};
-    bool local_27 = {};
+    bool local_32 = {};
+    bool local_33 = {};
     float hi0_ = (s_17 > 0.0) ? metal::min(c_12 / s_17, sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX;
     hi_2 = hi0_;
     metal::float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_17);
@@ -3917,12 +4043,12 @@ float sampling_beckmann_invert_visible_slope_cdf(
     float _e40 = lo_3;
     if (_e34 > _e40) {
         float _e44 = hi_2;
-        local_25 = _e34 < _e44;
+        local_31 = _e34 < _e44;
     } else {
-        local_25 = false;
+        local_31 = false;
     }
-    bool _e47 = local_25;
-    x_11 = _e47 ? _e34 : metal::min(0.0, 0.5 * _e35);
+    bool _e47 = local_31;
+    x_13 = _e47 ? _e34 : metal::min(0.0, 0.5 * _e35);
     float _e50 = hi_2;
     float _e51 = lo_3;
     dx_old = _e50 - _e51;
@@ -3942,31 +4068,31 @@ float sampling_beckmann_invert_visible_slope_cdf(
             break;
         }
         {
-            float _e59 = x_11;
+            float _e59 = x_13;
             metal::float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_17);
             g_6 = _e60.x - goal;
             if (upper) {
-                float _e66 = x_11;
+                float _e66 = x_13;
                 float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_17);
-                float _e69 = x_11;
+                float _e69 = x_13;
                 g_6 = goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x));
             }
             float _e74 = g_6;
             if (metal::abs(_e74) <= tol) {
-                float _e77 = x_11;
+                float _e77 = x_13;
                 return _e77;
             }
             float _e78 = g_6;
             if (_e78 < 0.0) {
-                float _e81 = x_11;
+                float _e81 = x_13;
                 lo_3 = _e81;
             } else {
-                float _e82 = x_11;
+                float _e82 = x_13;
                 hi_2 = _e82;
             }
             float _e83 = hi_2;
             float _e84 = lo_3;
-            float _e87 = x_11;
+            float _e87 = x_13;
             if ((_e83 - _e84) <= (0.00000047683716 * (1.0 + metal::abs(_e87)))) {
                 float _e93 = lo_3;
                 float _e94 = hi_2;
@@ -3974,30 +4100,30 @@ float sampling_beckmann_invert_visible_slope_cdf(
             }
             float _e98 = g_6;
             float step = _e98 / _e60.y;
-            float _e101 = x_11;
+            float _e101 = x_13;
             float xn = _e101 - step;
             float _e103 = lo_3;
             if (xn > _e103) {
                 float _e107 = hi_2;
-                local_26 = xn < _e107;
+                local_32 = xn < _e107;
             } else {
-                local_26 = false;
+                local_32 = false;
             }
-            bool _e110 = local_26;
+            bool _e110 = local_32;
             if (_e110) {
                 float _e113 = g_6;
                 float _e117 = dx_old;
-                local_27 = metal::abs(2.0 * _e113) <= metal::abs(_e117 * _e60.y);
+                local_33 = metal::abs(2.0 * _e113) <= metal::abs(_e117 * _e60.y);
             } else {
-                local_27 = false;
+                local_33 = false;
             }
-            bool _e123 = local_27;
+            bool _e123 = local_33;
             if (_e123) {
                 dx_old = metal::abs(step);
-                x_11 = xn;
-                float _e127 = x_11;
+                x_13 = xn;
+                float _e127 = x_13;
                 if (metal::abs(step) <= (0.00000023841858 * (1.0 + metal::abs(_e127)))) {
-                    float _e133 = x_11;
+                    float _e133 = x_13;
                     return _e133;
                 }
             } else {
@@ -4006,11 +4132,11 @@ float sampling_beckmann_invert_visible_slope_cdf(
                 dx_old = 0.5 * (_e134 - _e135);
                 float _e139 = lo_3;
                 float _e140 = hi_2;
-                x_11 = 0.5 * (_e139 + _e140);
+                x_13 = 0.5 * (_e139 + _e140);
             }
         }
     }
-    float _e147 = x_11;
+    float _e147 = x_13;
     return _e147;
 }
 
@@ -4021,20 +4147,20 @@ float sampling_beckmann_visible_slope_quantile(
 ) {
     float c_13 = 1.0;
     float s_18 = 0.0;
-    bool local_28 = {};
-    bool local_29 = {};
+    bool local_34 = {};
+    bool local_35 = {};
     if (cos_theta >= 0.0) {
-        local_28 = sin_theta >= 0.0;
+        local_34 = sin_theta >= 0.0;
     } else {
-        local_28 = false;
+        local_34 = false;
     }
-    bool _e14 = local_28;
+    bool _e14 = local_34;
     if (_e14) {
-        local_29 = (cos_theta + sin_theta) > 0.0;
+        local_35 = (cos_theta + sin_theta) > 0.0;
     } else {
-        local_29 = false;
+        local_35 = false;
     }
-    bool _e21 = local_29;
+    bool _e21 = local_35;
     if (_e21) {
         float _e22 = math_hypot(cos_theta, sin_theta);
         c_13 = cos_theta / _e22;
@@ -4068,7 +4194,7 @@ metal::float3 sampling_beckmann_sample_visible_normal(
     metal::float3 wo_6,
     metal::float2 u_14
 ) {
-    bool local_30 = {};
+    bool local_36 = {};
     if (!((wo_6.z > 0.0))) {
         return metal::float3(0.0);
     }
@@ -4088,11 +4214,11 @@ metal::float3 sampling_beckmann_sample_visible_normal(
     metal::float2 t_18 = metal::float2((phi.x * _e34) - (phi.y * _e39), (phi.y * _e34) + (phi.x * _e39));
     metal::float3 _e54 = sampling_unstretch(_e9, metal::float3(-(t_18), 1.0));
     if (_e54.z > 0.0) {
-        local_30 = metal::dot(wo_6, _e54) > 0.0;
+        local_36 = metal::dot(wo_6, _e54) > 0.0;
     } else {
-        local_30 = false;
+        local_36 = false;
     }
-    bool _e64 = local_30;
+    bool _e64 = local_36;
     if (_e64) {
         return _e54;
     }
@@ -4131,12 +4257,12 @@ float sampling_beckmann_reflection_pdf_from_normal(
     return _e6;
 }
 
-metal::float2 sampling_gaussian_ggx_split(
+metal::float2 sampling_gaussian_ggx_split_bits(
     float u_15
 ) {
-    float x_18 = u_15 * 4096.0;
-    float hi_5 = metal::floor(x_18);
-    return metal::float2((hi_5 + 0.5) / 4096.0, x_18 - hi_5);
+    float x_20 = u_15 * 4096.0;
+    float hi_5 = metal::floor(x_20);
+    return metal::float2((hi_5 + 0.5) / 4096.0, x_20 - hi_5);
 }
 
 metal::float3 sampling_gaussian_ggx_sample_normal(
@@ -4145,9 +4271,9 @@ metal::float3 sampling_gaussian_ggx_sample_normal(
 ) {
     metal::float2 ax_1 = metal::float2(1.0, 0.0);
     float _e3 = sampling_clamp_unit(u_16.x);
-    metal::float2 _e4 = sampling_gaussian_ggx_split(_e3);
+    metal::float2 _e4 = sampling_gaussian_ggx_split_bits(_e3);
     float _e6 = sampling_clamp_unit(u_16.y);
-    metal::float2 _e7 = sampling_gaussian_ggx_split(_e6);
+    metal::float2 _e7 = sampling_gaussian_ggx_split_bits(_e6);
     metal::float2 _e15 = math_sincos_turns(_e7.x);
     metal::float2 t_19 = metal::sqrt(_e4.x / (1.0 - _e4.x)) * _e15;
     sampling_Warp _e18 = sampling_warp(g_7.a);
@@ -4184,12 +4310,12 @@ float sampling_gaussian_ggx_normal_pdf(
     return (m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0;
 }
 
-float sampling_rect_half(
+float sampling_rect_sanitized_half_extent(
     float h_20,
     float alpha_11
 ) {
-    float v_21 = metal::abs(h_20);
-    return (v_21 >= 0.0) ? metal::min(v_21, filter_rect_BIG * alpha_11) : 0.0;
+    float v_23 = metal::abs(h_20);
+    return (v_23 >= 0.0) ? metal::min(v_23, filter_rect_BIG * alpha_11) : 0.0;
 }
 
 metal::float3 sampling_rect_normal_of_slope(
@@ -4206,8 +4332,8 @@ metal::float3 sampling_rect_sample_normal_rect(
     metal::float2 u_box
 ) {
     metal::float2 a_35 = r_73.alpha;
-    float _e7 = sampling_rect_half(half_extent_7.x, r_73.alpha.x);
-    float _e10 = sampling_rect_half(half_extent_7.y, r_73.alpha.y);
+    float _e7 = sampling_rect_sanitized_half_extent(half_extent_7.x, r_73.alpha.x);
+    float _e10 = sampling_rect_sanitized_half_extent(half_extent_7.y, r_73.alpha.y);
     metal::float2 h_33 = metal::float2(_e7, _e10);
     float _e13 = sampling_clamp_unit(u_17.x);
     float _e15 = sampling_clamp_unit(u_17.y);
@@ -4237,28 +4363,28 @@ float sampling_rect_visible_normal_pdf_rect(
     metal::float3 wo_9,
     metal::float3 m_43
 ) {
-    bool local_31 = {};
-    bool local_32 = {};
+    bool local_37 = {};
+    bool local_38 = {};
     float wom_1 = metal::dot(wo_9, m_43);
     if (!(!((wo_9.z > 0.0)))) {
-        local_31 = !((m_43.z > 0.0));
+        local_37 = !((m_43.z > 0.0));
     } else {
-        local_31 = true;
+        local_37 = true;
     }
-    bool _e17 = local_31;
+    bool _e17 = local_37;
     if (!(_e17)) {
-        local_32 = !((wom_1 > 0.0));
+        local_38 = !((wom_1 > 0.0));
     } else {
-        local_32 = true;
+        local_38 = true;
     }
-    bool _e25 = local_32;
+    bool _e25 = local_38;
     if (_e25) {
         return 0.0;
     }
     float _e27 = filter_rect_d_rect(r_75, m_43, half_extent_9);
     float _e30 = filter_rect_lambda_lambda_rect(r_75, half_extent_9, wo_9);
-    float v_22 = (wom_1 * _e27) / (wo_9.z * (1.0 + _e30));
-    return (v_22 <= math_F32_MAX) ? v_22 : 0.0;
+    float v_24 = (wom_1 * _e27) / (wo_9.z * (1.0 + _e30));
+    return (v_24 <= math_F32_MAX) ? v_24 : 0.0;
 }
 
 struct filtered_ndf_entryOutput {

@@ -168,6 +168,29 @@ fn math_ln_1p(x: f32) -> f32 {
     return math_ln(1.0 + x);
 }
 
+/// Whether `x` is NaN, decided on its bits (exponent all ones, mantissa non-zero): integer
+/// arithmetic, which no driver folds away under a no-NaN assumption (a float comparison such
+/// as `x != x` may be). The Rust `is_nan`.
+fn math_is_nan(x: f32) -> bool {
+    return (bitcast<u32>(x) & 0x7fffffffu) > 0x7f800000u;
+}
+
+/// `x` with NaN replaced by `0`: the NaN policy of footprints and normal differences (the Rust
+/// `vector::nan_to_zero`): a NaN entry carries no information and widens nothing.
+fn math_nan_to_zero(x: f32) -> f32 {
+    return select(x, 0.0, math_is_nan(x));
+}
+
+/// [`nan_to_zero`] per component of a 2-vector.
+fn math_nan_to_zero2(v: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(math_nan_to_zero(v.x), math_nan_to_zero(v.y));
+}
+
+/// [`nan_to_zero`] per component of a 3-vector.
+fn math_nan_to_zero3(v: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(math_nan_to_zero(v.x), math_nan_to_zero(v.y), math_nan_to_zero(v.z));
+}
+
 // ---- filtered_ndf::ndf::roughness (shaders/ndf/roughness/mod.wgsl) ----
 // The roughness forms (`src/.../roughness/`): a roughness is the matrix `A` of TK19
 // supplement section 1 (Heitz 2014 section 5.4). Both NDFs depend on a slope `s` only through
@@ -341,6 +364,11 @@ fn footprint_jacobian_spherical_to_projected(h: vec3<f32>, e: vec2<f32>) -> vec2
 // (`kernel::covariance::from_footprint`) and the bounding rectangle
 // (`kernel::rect::from_footprint`).
 
+// NaN policy (the Rust `contract`, as in `src/.../footprint/mod.rs`): a NaN derivative entry
+// carries no information and counts as 0 (`math::nan_to_zero`, decided on the bits, so it
+// holds whatever a driver assumes about floats); an infinite entry saturates: the clamp
+// rules turn it into the widest kernel they allow (where the driver keeps infinities).
+
 /// The standard deviation of the pixel filter of KHPL16 and TK19, in pixels.
 const footprint_SIGMA_PIXEL: f32 = 0.5;
 
@@ -368,7 +396,7 @@ fn footprint_from_projected_derivatives(dp_u: vec2<f32>, dp_v: vec2<f32>) -> foo
 /// The slope-domain footprint of disk derivatives at the half vector `h`:
 /// `dh = J(perp->par) dp` (TK19 supplement eq. 6, [`jacobian::projected_to_slope`]: `h`
 /// normalised, clamped to the horizon `h_z >= 1e-6` at constant azimuth). A zero `h` gives a
-/// zero footprint.
+/// zero footprint; a NaN derivative entry counts as 0 (module docs).
 fn footprint_from_projected_derivatives_in_slope(
     h: vec3<f32>,
     dp_u: vec2<f32>,
@@ -379,17 +407,26 @@ fn footprint_from_projected_derivatives_in_slope(
         return footprint_Footprint(vec2<f32>(0.0), vec2<f32>(0.0));
     }
     let j = footprint_jacobian_projected_to_slope(h);
-    return footprint_Footprint(j * dp_u, j * dp_v);
+    return footprint_Footprint(j * math_nan_to_zero2(dp_u), j * math_nan_to_zero2(dp_v));
 }
 
 /// The deferred footprint from normal differences to the neighbouring pixels (TK19 section
 /// 4.4, eq. 3) in the tangent frame of the current normal: `2 (dn)_xy / |2 e_z + dn|` per
 /// difference (the derivative of the half-way normal on the disk, whose length is `|dn|`
-/// for unit normals), the denominator clamped to `>= 1e-6`.
-fn footprint_from_normal_differences(dn_u: vec3<f32>, dn_v: vec3<f32>) -> footprint_Footprint {
+/// for unit normals), the denominator clamped to `>= 1e-6`. A NaN entry of a difference counts
+/// as 0 (module docs).
+fn footprint_from_normal_differences(dn_u_in: vec3<f32>, dn_v_in: vec3<f32>) -> footprint_Footprint {
+    let dn_u = math_nan_to_zero3(dn_u_in);
+    let dn_v = math_nan_to_zero3(dn_v_in);
     let lu = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_u), 1e-6);
     let lv = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_v), 1e-6);
     return footprint_Footprint(dn_u.xy * (2.0 / lu), dn_v.xy * (2.0 / lv));
+}
+
+/// The footprint with each NaN entry replaced by 0 (the Rust `Footprint::nan_to_zero`), as
+/// the kernel stage reads a footprint (module docs).
+fn footprint_nan_to_zero(fp: footprint_Footprint) -> footprint_Footprint {
+    return footprint_Footprint(math_nan_to_zero2(fp.dh_u), math_nan_to_zero2(fp.dh_v));
 }
 
 /// The largest centre-to-vertex distance of the one-pixel parallelogram,
@@ -438,8 +475,10 @@ fn kernel_covariance_from_entries(s_xx: f32, s_xy: f32, s_yy: f32) -> kernel_cov
 
 /// The Gaussian pixel kernel of a footprint, `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`
 /// (TK19 section 2.2), `sigma` in pixels, with `det Sigma = sigma^4 (dh_u x dh_v)^2` from the
-/// vectors (accurate for elongated kernels). The Rust `Covariance::from_footprint`.
-fn kernel_covariance_from_footprint(fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
+/// vectors (accurate for elongated kernels). The Rust `Covariance::from_footprint`; a NaN
+/// footprint entry counts as 0 (`pixel::nan_to_zero`).
+fn kernel_covariance_from_footprint(fp_in: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
+    let fp = footprint_nan_to_zero(fp_in);
     let u = fp.dh_u;
     let v = fp.dh_v;
     let s2 = sigma * sigma;
@@ -529,12 +568,17 @@ fn kernel_covariance_clamp_eigenvalues(c: kernel_covariance_Covariance, max_eig:
 /// determinant would cancel. Otherwise negative variances are raised to 0 and `|s_xy|`
 /// lowered to `sqrt(s_xx s_yy)` (the nearest PSD matrix with the same diagonal, determinant
 /// 0). An infinite entry (where the driver keeps infinities) gives the widest kernel
-/// `KERNEL_MAX I`. Then [`clamp_eigenvalues`] with `KERNEL_MAX`. (The Rust version also maps
-/// NaN to [`zero`]; WGSL lets a driver assume NaN never occurs.)
-fn kernel_covariance_sanitized(c: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
-    let big = max(max(abs(c.s_xx), abs(c.s_yy)), abs(c.s_xy));
-    if big > math_F32_MAX {
+/// `KERNEL_MAX I`; otherwise a NaN entry counts as 0 (decided on its bits, `math::nan_to_zero`;
+/// a NaN determinant is recomputed from the entries). Then [`clamp_eigenvalues`] with
+/// `KERNEL_MAX`. As the Rust `Covariance::sanitized`.
+fn kernel_covariance_sanitized(c_in: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
+    let inf = abs(c_in.s_xx) > math_F32_MAX || abs(c_in.s_xy) > math_F32_MAX || abs(c_in.s_yy) > math_F32_MAX;
+    if inf {
         return kernel_covariance_Covariance(kernel_covariance_KERNEL_MAX, 0.0, kernel_covariance_KERNEL_MAX, kernel_covariance_KERNEL_MAX * kernel_covariance_KERNEL_MAX);
+    }
+    var c = kernel_covariance_Covariance(math_nan_to_zero(c_in.s_xx), math_nan_to_zero(c_in.s_xy), math_nan_to_zero(c_in.s_yy), c_in.det);
+    if math_is_nan(c.det) || math_is_nan(c_in.s_xx) || math_is_nan(c_in.s_xy) || math_is_nan(c_in.s_yy) {
+        c.det = c.s_xx * c.s_yy - c.s_xy * c.s_xy;
     }
     if c.s_xx >= 0.0 && c.s_yy >= 0.0 && c.det >= 0.0 {
         return kernel_covariance_clamp_eigenvalues(c, kernel_covariance_KERNEL_MAX);
@@ -646,8 +690,11 @@ fn filter_deferred_max_eigenvalue(a: f32, b: f32, c: f32) -> f32 {
     return max(0.5 * (a + c) + math_hypot(0.5 * (a - c), b), 0.0);
 }
 
-/// The measure `norm` of `(dn_u, dn_v)`, `>= 0`.
-fn filter_deferred_norm_eval(norm: u32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+/// The measure `norm` of `(dn_u, dn_v)`, `>= 0`. The NaN policy (as the Rust `Norm::eval`):
+/// a NaN entry of a difference counts as 0 (`math::nan_to_zero3`, decided on the bits).
+fn filter_deferred_norm_eval(norm: u32, dn_u_in: vec3<f32>, dn_v_in: vec3<f32>) -> f32 {
+    let dn_u = math_nan_to_zero3(dn_u_in);
+    let dn_v = math_nan_to_zero3(dn_v_in);
     let a = dot(dn_u, dn_u);
     let c = dot(dn_v, dn_v);
     if norm == filter_deferred_NORM_MAX_SQUARED {
@@ -663,9 +710,10 @@ fn filter_deferred_norm_eval(norm: u32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32
     return a + c;
 }
 
-/// `min(max(k, 0), clamp)`.
+/// `min(max(k, 0), clamp)`; a NaN `k` (which only an infinite difference gives, `inf * 0`,
+/// once NaN entries count as 0) is the clamp: an infinite difference saturates.
 fn filter_deferred_clamp_widening(conv: filter_deferred_KernelConvention, k: f32) -> f32 {
-    return min(max(k, 0.0), conv.clamp);
+    return select(min(max(k, 0.0), conv.clamp), conv.clamp, math_is_nan(k));
 }
 
 /// The widening `min(max(scale norm^exponent + bias, 0), clamp)` in domain units (the kernel's
@@ -673,6 +721,12 @@ fn filter_deferred_clamp_widening(conv: filter_deferred_KernelConvention, k: f32
 /// driver's (`exp2(e log2 n)`: within `3 + 2 |e log2 n|` ulp plus `log2`'s error); a zero
 /// norm gives `max(bias, 0)`.
 fn filter_deferred_widening(conv: filter_deferred_KernelConvention, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+    // An infinite entry (where the driver keeps infinities) saturates: the clamp, as the Rust
+    // widening of an infinite norm (decided here, before `inf * 0` can meet a `max`).
+    let lim = vec3<f32>(math_F32_MAX);
+    if any(abs(dn_u) > lim) || any(abs(dn_v) > lim) {
+        return conv.clamp;
+    }
     let n = filter_deferred_norm_eval(conv.norm, dn_u, dn_v);
     var raw = n;
     if conv.exponent != 1.0 {
@@ -719,10 +773,14 @@ fn filter_deferred_normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>
 /// The kernel's squared roughness of a bandwidth (`BANDWIDTH_*`) before the clamp:
 /// `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`.
 fn filter_deferred_bandwidth_alpha2(bandwidth: u32, kernel: kernel_covariance_Covariance) -> f32 {
+    // A NaN entry counts as 0 (the NaN policy, as the Rust `Bandwidth::alpha2`).
+    let s_xx = math_nan_to_zero(kernel.s_xx);
+    let s_xy = math_nan_to_zero(kernel.s_xy);
+    let s_yy = math_nan_to_zero(kernel.s_yy);
     if bandwidth == filter_deferred_BANDWIDTH_MAX {
-        return 2.0 * filter_deferred_max_eigenvalue(kernel.s_xx, kernel.s_xy, kernel.s_yy);
+        return 2.0 * filter_deferred_max_eigenvalue(s_xx, s_xy, s_yy);
     }
-    let t = kernel.s_xx + kernel.s_yy;
+    let t = s_xx + s_yy;
     return select(t, 2.0 * t, bandwidth == filter_deferred_BANDWIDTH_TRACE);
 }
 
@@ -1355,8 +1413,10 @@ struct kernel_rect_BoundingRect {
 
 /// The axis-aligned bounding rectangle of a footprint's one-pixel parallelogram (KHPL16
 /// section 5.3; GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
-/// `(|dh_u| + |dh_v|) / 2` per axis. The Rust `BoundingRect::from_footprint`.
-fn kernel_rect_from_footprint(fp: footprint_Footprint) -> kernel_rect_BoundingRect {
+/// `(|dh_u| + |dh_v|) / 2` per axis. The Rust `BoundingRect::from_footprint`; a NaN footprint
+/// entry counts as 0 (`pixel::nan_to_zero`).
+fn kernel_rect_from_footprint(fp_in: footprint_Footprint) -> kernel_rect_BoundingRect {
+    let fp = footprint_nan_to_zero(fp_in);
     return kernel_rect_BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
 }
 
@@ -1411,12 +1471,22 @@ const kernel_clamp_GDC2016_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRu
 
 /// The maximum-extent rule on a parallelogram (KHPL16 section 5.2): both vectors scaled by
 /// `min(1, lambda / max_extent)`, keeping the shape. The extent is measured on the
-/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0.
-fn kernel_clamp_footprint(rules: kernel_clamp_ClampRules, fp: footprint_Footprint) -> footprint_Footprint {
+/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0. The NaN
+/// policy, as the Rust `ClampRules::footprint`: a NaN entry counts as 0; infinite entries
+/// (where the driver keeps them) keep their sign, the finite ones become 0, and the result
+/// has extent `lambda`, the widest footprint the rule allows.
+fn kernel_clamp_footprint(rules: kernel_clamp_ClampRules, fp_in: footprint_Footprint) -> footprint_Footprint {
+    let fp = footprint_nan_to_zero(fp_in);
     let l = max(rules.max_extent, 0.0);
     let scale = max(max(abs(fp.dh_u.x), abs(fp.dh_u.y)), max(abs(fp.dh_v.x), abs(fp.dh_v.y)));
     if scale <= 0.0 {
         return fp;
+    }
+    if scale > math_F32_MAX {
+        let iu = select(vec2<f32>(0.0), sign(fp.dh_u), abs(fp.dh_u) > vec2<f32>(math_F32_MAX));
+        let iv = select(vec2<f32>(0.0), sign(fp.dh_v), abs(fp.dh_v) > vec2<f32>(math_F32_MAX));
+        let e = footprint_max_extent(footprint_Footprint(iu, iv));
+        return footprint_Footprint(iu / e * l, iv / e * l);
     }
     let unit = footprint_Footprint(fp.dh_u / scale, fp.dh_v / scale);
     let e = footprint_max_extent(unit);
@@ -1633,7 +1703,7 @@ fn filter_gaussian_ggx_quad_laguerre_weight(k: u32) -> f32 {
 /// `2 l1 >= 2 l2 >= 0` (the Rust `j`): `J(c)` itself for `z2 = 1` (a slope), `J / m_z^4` for a
 /// normal (`z2 = m_z^2`, `v = T m_xy`) without forming the slope. The rule by `q = |c|^2` and
 /// the kernel ratio (module docs).
-fn filter_gaussian_ggx_quad_j(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
+fn filter_gaussian_ggx_quad_mixture_integral(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
     let beta_m = z2 + v1s + v2s;
     if beta_m >= filter_gaussian_ggx_quad_FAR * tl1 * z2 {
         return filter_gaussian_ggx_quad_far_tail(beta_m, v1s, v2s, tl1, tl2, z2);
@@ -1646,7 +1716,7 @@ fn filter_gaussian_ggx_quad_j(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -
     return filter_gaussian_ggx_quad_trapezoid(v1s * iz2, v2s * iz2, tl1, tl2) * iz2 * iz2;
 }
 
-/// The far-tail series of `J` (item 5), homogeneous as [`j`]:
+/// The far-tail series of `J` (item 5), homogeneous as [`mixture_integral`]:
 /// `J = beta^-2 (1 + 12 P z2 / beta^2 - 2 (l1 + l2) z2 / beta)`, `P = l1 c1^2 + l2 c2^2`
 /// (`P / beta` formed first: no overflow).
 fn filter_gaussian_ggx_quad_far_tail(beta: f32, c1s: f32, c2s: f32, tl1: f32, tl2: f32, z2: f32) -> f32 {
@@ -1657,7 +1727,7 @@ fn filter_gaussian_ggx_quad_far_tail(beta: f32, c1s: f32, c2s: f32, tl1: f32, tl
 }
 
 /// Gauss-Laguerre in `v = (1 + q) w` (item 4): `J = beta^-2 sum W_k F(v_k / beta)`,
-/// `F(w) = exp(sum c_i^2 2 l_i w^2 / p_i) / sqrt(p1 p2)`; homogeneous as [`j`].
+/// `F(w) = exp(sum c_i^2 2 l_i w^2 / p_i) / sqrt(p1 p2)`; homogeneous as [`mixture_integral`].
 fn filter_gaussian_ggx_quad_laguerre(beta_m: f32, v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
     let ib = 1.0 / beta_m;
     let t1 = tl1 * z2 * ib;
@@ -1974,7 +2044,7 @@ fn filter_gaussian_ggx_whiten(g: filter_gaussian_ggx_GaussianFilteredGgx, s: vec
 /// underflows.
 fn filter_gaussian_ggx_p22(g: filter_gaussian_ggx_GaussianFilteredGgx, s: vec2<f32>) -> f32 {
     let c = filter_gaussian_ggx_whiten(g, s);
-    return g.norm * filter_gaussian_ggx_quad_j(c.x, c.y, 1.0, g.tl.x, g.tl.y);
+    return g.norm * filter_gaussian_ggx_quad_mixture_integral(c.x, c.y, 1.0, g.tl.x, g.tl.y);
 }
 
 /// `D(m) = P22_Sigma(s(m)) / m_z^4` per steradian for a unit micronormal (the Rust `d`): `0`
@@ -1985,7 +2055,7 @@ fn filter_gaussian_ggx_d(g: filter_gaussian_ggx_GaussianFilteredGgx, m: vec3<f32
         return 0.0;
     }
     let c = filter_gaussian_ggx_whiten(g, m.xy);
-    let v = g.norm * filter_gaussian_ggx_quad_j(c.x, c.y, m.z * m.z, g.tl.x, g.tl.y);
+    let v = g.norm * filter_gaussian_ggx_quad_mixture_integral(c.x, c.y, m.z * m.z, g.tl.x, g.tl.y);
     return select(0.0, v, v <= math_F32_MAX);
 }
 
@@ -3629,10 +3699,10 @@ fn sampling_beckmann_reflection_pdf_from_normal(r: ndf_roughness_matrix_Roughnes
 // mirroring `src/.../sampling/gaussian_ggx.rs`: normals with density `D(m) m_z`, exactly, as
 // the sum of a GGX slope and an independent kernel slope.
 
-/// Two uniform numbers from one (the Rust `split` of the `f32` build): the high and the low
+/// Two uniform numbers from one (the Rust `split_bits` of the `f32` build): the high and the low
 /// twelve bits of `u` in `[0, 1)`, `((floor(4096 u) + 1/2) / 4096, frac(4096 u))`, both
 /// uniform on their grids and independent (every step exact in f32).
-fn sampling_gaussian_ggx_split(u: f32) -> vec2<f32> {
+fn sampling_gaussian_ggx_split_bits(u: f32) -> vec2<f32> {
     let x = u * 4096.0;
     let hi = floor(x);
     return vec2<f32>((hi + 0.5) / 4096.0, x - hi);
@@ -3646,11 +3716,11 @@ fn sampling_gaussian_ggx_split(u: f32) -> vec2<f32> {
 /// `N(0, Sigma)` by Box-Muller along the kernel's principal axes (the eigenvector of the
 /// larger eigenvalue from the row without cancellation, as Rust). The four uniform numbers are
 /// the high and low halves of the bits of `u.x` (`u1`, `u3`) and `u.y` (`u2`, `u4`), 12 bits
-/// each ([`split`]). `u` is clamped to `[0, 1 - 2^-24]`. Always `m_z > 0` (kept at the
+/// each ([`split_bits`]). `u` is clamped to `[0, 1 - 2^-24]`. Always `m_z > 0` (kept at the
 /// smallest normal f32 where the slope leaves the f32 range).
 fn sampling_gaussian_ggx_sample_normal(g: filter_gaussian_ggx_GaussianFilteredGgx, u: vec2<f32>) -> vec3<f32> {
-    let a = sampling_gaussian_ggx_split(sampling_clamp_unit(u.x));
-    let b = sampling_gaussian_ggx_split(sampling_clamp_unit(u.y));
+    let a = sampling_gaussian_ggx_split_bits(sampling_clamp_unit(u.x));
+    let b = sampling_gaussian_ggx_split_bits(sampling_clamp_unit(u.y));
     // The GGX slope B t.
     let t = sqrt(a.x / (1.0 - a.x)) * math_sincos_turns(b.x);
     let l = sampling_warp(g.a);
@@ -3698,7 +3768,7 @@ fn sampling_gaussian_ggx_normal_pdf(g: filter_gaussian_ggx_GaussianFilteredGgx, 
 
 /// A half extent as `boxed::p22_rect` reads it, in slope units: `|h|`, at most `BIG alpha`
 /// (NaN as 0 where the driver keeps the comparison).
-fn sampling_rect_half(h: f32, alpha: f32) -> f32 {
+fn sampling_rect_sanitized_half_extent(h: f32, alpha: f32) -> f32 {
     let v = abs(h);
     return select(0.0, min(v, filter_rect_BIG * alpha), v >= 0.0);
 }
@@ -3719,7 +3789,7 @@ fn sampling_rect_normal_of_slope(s: vec2<f32>) -> vec3<f32> {
 /// extents: the GGX sample (the same direction as `sampling::sample_normal`).
 fn sampling_rect_sample_normal_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, u: vec2<f32>, u_box: vec2<f32>) -> vec3<f32> {
     let a = r.alpha;
-    let h = vec2<f32>(sampling_rect_half(half_extent.x, a.x), sampling_rect_half(half_extent.y, a.y));
+    let h = vec2<f32>(sampling_rect_sanitized_half_extent(half_extent.x, a.x), sampling_rect_sanitized_half_extent(half_extent.y, a.y));
     let u1 = sampling_clamp_unit(u.x);
     let cs = math_sincos_turns(sampling_clamp_unit(u.y));
     let rad = sqrt(u1 / (1.0 - u1));

@@ -17,6 +17,16 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../ndf/roughness/mod.wgsl"),
     },
     Module {
+        import_path: "filtered_ndf::footprint::jacobian",
+        file: "footprint/jacobian.wgsl",
+        source: include_str!("../footprint/jacobian.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::footprint",
+        file: "footprint/mod.wgsl",
+        source: include_str!("../footprint/mod.wgsl"),
+    },
+    Module {
         import_path: "filtered_ndf::kernel::covariance",
         file: "kernel/covariance.wgsl",
         source: include_str!("../kernel/covariance.wgsl"),
@@ -30,11 +40,6 @@ pub const MODULES: &[Module] = &[
         import_path: "filtered_ndf::ndf::roughness::matrix",
         file: "ndf/roughness/matrix.wgsl",
         source: include_str!("../ndf/roughness/matrix.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::filter::gaussian",
-        file: "filter/gaussian.wgsl",
-        source: include_str!("../filter/gaussian.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::ndf",
@@ -62,14 +67,24 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../ndf/beckmann.wgsl"),
     },
     Module {
+        import_path: "filtered_ndf::kernel::rect",
+        file: "kernel/rect.wgsl",
+        source: include_str!("../kernel/rect.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::kernel::clamp",
+        file: "kernel/clamp.wgsl",
+        source: include_str!("../kernel/clamp.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::filter::gaussian",
+        file: "filter/gaussian.wgsl",
+        source: include_str!("../filter/gaussian.wgsl"),
+    },
+    Module {
         import_path: "filtered_ndf::filter::gaussian_ggx_quad",
         file: "filter/gaussian_ggx_quad.wgsl",
         source: include_str!("../filter/gaussian_ggx_quad.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::sampling",
-        file: "sampling/mod.wgsl",
-        source: include_str!("../sampling/mod.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::filter::gaussian_ggx",
@@ -82,29 +97,14 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../filter/lean.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::footprint::jacobian",
-        file: "footprint/jacobian.wgsl",
-        source: include_str!("../footprint/jacobian.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::kernel::rect",
-        file: "kernel/rect.wgsl",
-        source: include_str!("../kernel/rect.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::footprint",
-        file: "footprint/mod.wgsl",
-        source: include_str!("../footprint/mod.wgsl"),
+        import_path: "filtered_ndf::filter::presets",
+        file: "filter/presets.wgsl",
+        source: include_str!("../filter/presets.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::filter::projected",
         file: "filter/projected.wgsl",
         source: include_str!("../filter/projected.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::kernel::clamp",
-        file: "kernel/clamp.wgsl",
-        source: include_str!("../kernel/clamp.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::filter::proxy",
@@ -127,14 +127,19 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../filter/rect/lobe.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::filter::presets",
-        file: "filter/presets.wgsl",
-        source: include_str!("../filter/presets.wgsl"),
+        import_path: "filtered_ndf::footprint::slope",
+        file: "footprint/slope.wgsl",
+        source: include_str!("../footprint/slope.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::sampling::rect",
-        file: "sampling/rect.wgsl",
-        source: include_str!("../sampling/rect.wgsl"),
+        import_path: "filtered_ndf::sampling",
+        file: "sampling/mod.wgsl",
+        source: include_str!("../sampling/mod.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::sampling::beckmann",
+        file: "sampling/beckmann.wgsl",
+        source: include_str!("../sampling/beckmann.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::sampling::gaussian_ggx",
@@ -142,13 +147,8 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../sampling/gaussian_ggx.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::footprint::slope",
-        file: "footprint/slope.wgsl",
-        source: include_str!("../footprint/slope.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::sampling::beckmann",
-        file: "sampling/beckmann.wgsl",
-        source: include_str!("../sampling/beckmann.wgsl"),
+        import_path: "filtered_ndf::sampling::rect",
+        file: "sampling/rect.wgsl",
+        source: include_str!("../sampling/rect.wgsl"),
     },
 ];
