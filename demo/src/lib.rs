@@ -8,7 +8,9 @@
 //! runs ([`normal_map`], [`temporal`]) and investigations ([`glints`], [`residual`]) on top.
 
 pub mod bake_baselines;
+pub mod bumpy;
 pub mod camera;
+pub mod floor_reference;
 pub mod glints;
 pub mod image_out;
 pub mod methods;

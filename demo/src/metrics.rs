@@ -260,28 +260,52 @@ pub fn score(
 /// the energy ratio alone cannot tell a sequence that changes where the reference does from
 /// one that changes as much elsewhere.
 /// Returns the names of the metrics on which `m` does not beat `base` (strictly better, or
-/// both counts zero).
+/// both counts zero): [`not_better_by`] with no reference error.
 pub fn not_better(m: (&Scores, f64), base: (&Scores, f64)) -> Vec<&'static str> {
-    let ((s, fm), (b, fb)) = (m, base);
+    not_better_by(m, base, (&Scores::default(), 0.0))
+}
+
+/// The names of the metrics on which `m` does not beat `base` by more than the reference's
+/// own error `err` (each metric of the N-spp reference scored against an independent
+/// reference of 4N samples, [`reference_error`]): `m` beats `base` on a metric `M` when
+/// `M(base) - M(m) > M(ref_N vs ref_4N)`, the flicker error included (`err.1`); on the glint
+/// counts when `base - m > ` the reference's own count of that kind, or when both are zero
+/// (nothing to beat).
+///
+/// Why that margin: each score is taken against the N-spp reference, not the converged
+/// image. For a distance `d` obeying the triangle inequality (the RMSE of the specular term;
+/// FLIP approximately) `|d(x, ref_N) - d(x, truth)| <= d(ref_N, truth)`, and
+/// `d(ref_N, ref_4N)` estimates `d(ref_N, truth)` from above (the two references'
+/// independent noises add: `(1 + 1/4)^(1/2)` times it for Monte Carlo noise). Both methods
+/// are scored against the same reference, so their scores move together; a margin above
+/// that bound is one the reference's noise cannot have made.
+pub fn not_better_by(
+    m: (&Scores, f64),
+    base: (&Scores, f64),
+    err: (&Scores, f64),
+) -> Vec<&'static str> {
+    let ((s, fm), (b, fb), (e, fe)) = (m, base, err);
     let mut out = Vec::new();
-    let better = |x: f64, y: f64| x < y;
-    let count = |x: usize, y: usize| x < y || (x == 0 && y == 0);
-    if !better(s.flip_ldr, b.flip_ldr) {
+    let better = |x: f64, y: f64, margin: f64| y - x > margin;
+    let count = |x: usize, y: usize, margin: usize| {
+        (x == 0 && y == 0) || y as f64 - x as f64 > margin as f64
+    };
+    if !better(s.flip_ldr, b.flip_ldr, e.flip_ldr) {
         out.push("FLIP LDR");
     }
-    if !better(s.flip_hdr, b.flip_hdr) {
+    if !better(s.flip_hdr, b.flip_hdr, e.flip_hdr) {
         out.push("FLIP HDR");
     }
-    if !better(fm, fb) {
+    if !better(fm, fb, fe) {
         out.push("flicker");
     }
-    if !better(s.specular, b.specular) {
+    if !better(s.specular, b.specular, e.specular) {
         out.push("specular");
     }
-    if !count(s.false_glints, b.false_glints) {
+    if !count(s.false_glints, b.false_glints, e.false_glints) {
         out.push("false glints");
     }
-    if !count(s.lost_highlights, b.lost_highlights) {
+    if !count(s.lost_highlights, b.lost_highlights, e.lost_highlights) {
         out.push("lost highlights");
     }
     out
@@ -289,12 +313,40 @@ pub fn not_better(m: (&Scores, f64), base: (&Scores, f64)) -> Vec<&'static str> 
 
 /// The verdict column: "beats unfiltered on all" or the metrics it does not beat it on.
 pub fn verdict(m: (&Scores, f64), base: (&Scores, f64)) -> String {
-    let missing = not_better(m, base);
+    verdict_text(not_better(m, base))
+}
+
+/// [`verdict`] by more than the reference's own error ([`not_better_by`]).
+pub fn verdict_by(m: (&Scores, f64), base: (&Scores, f64), err: (&Scores, f64)) -> String {
+    verdict_text(not_better_by(m, base, err))
+}
+
+fn verdict_text(missing: Vec<&'static str>) -> String {
     if missing.is_empty() {
         "**beats unfiltered on all**".to_string()
     } else {
         format!("not: {}", missing.join(", "))
     }
+}
+
+/// The reference's own error: the still-frame scores of the N-spp reference (frame and
+/// specular term) against an independent reference of four times the samples (another seed).
+pub fn reference_error(
+    reference: (&Image, &Image),
+    reference_4n: (&Image, &Image),
+    exposure: f32,
+) -> Scores {
+    score(reference, reference_4n, exposure).0
+}
+
+/// The label of the reference-error row: `reference (N spp) vs (4N spp)`, with the temporal
+/// test's samples where they differ (`; temporal M vs 4M spp`).
+pub fn reference_error_label(spp: usize, temporal_spp: Option<usize>) -> String {
+    let mut label = format!("reference ({spp} spp) vs ({} spp)", 4 * spp);
+    if let Some(t) = temporal_spp.filter(|&t| t != spp) {
+        label.push_str(&format!("; temporal {t} vs {} spp", 4 * t));
+    }
+    label
 }
 
 /// A method's temporal scores ([`flicker_error`] and [`flicker_energy`] over the reference's
@@ -321,6 +373,15 @@ pub struct LeadRow {
 /// specular error, false glints and lost highlights, the HDR RMSE, and where it stands
 /// against the unfiltered row of its NDF ([`verdict`]). A missing score prints as `-`.
 pub fn lead_table(rows: &[LeadRow]) -> String {
+    lead_table_with(rows, &[])
+}
+
+/// [`lead_table`] with the references' own errors: `references` holds, per NDF, the row of
+/// the N-spp reference scored against the 4N-spp one (its label from
+/// [`reference_error_label`]), printed first; each verdict then counts only the margins
+/// above that NDF's reference error ([`verdict_by`]). An NDF without such a row is judged by
+/// [`verdict`].
+pub fn lead_table_with(rows: &[LeadRow], references: &[LeadRow]) -> String {
     use std::fmt::Write as _;
     let mut t = String::new();
     writeln!(t, "| method | NDF | FLIP LDR | FLIP HDR | flicker error / ref. | flicker energy / ref. | peak flicker | specular error | false glints | lost highlights | RMSE (HDR) | against unfiltered |").unwrap();
@@ -336,13 +397,7 @@ pub fn lead_table(rows: &[LeadRow]) -> String {
             "-".to_string()
         }
     };
-    for r in rows {
-        let base = rows.iter().find(|b| b.baseline && b.ndf == r.ndf);
-        let verdict = match (base, r.flicker, base.and_then(|b| b.flicker)) {
-            _ if r.baseline => "(baseline)".to_string(),
-            (Some(b), Some(f), Some(bf)) => verdict((&r.scores, f.error), (&b.scores, bf.error)),
-            _ => "-".to_string(),
-        };
+    let line = |t: &mut String, r: &LeadRow, verdict: String| {
         let f = r.flicker.unwrap_or(Flicker {
             error: f64::NAN,
             energy: f64::NAN,
@@ -366,6 +421,145 @@ pub fn lead_table(rows: &[LeadRow]) -> String {
             verdict
         )
         .unwrap();
+    };
+    for r in references {
+        line(
+            &mut t,
+            r,
+            "(the reference's own error: the margins)".to_string(),
+        );
+    }
+    for r in rows {
+        let verdict = if r.baseline {
+            "(baseline)".to_string()
+        } else {
+            missing(r, rows, references).map_or("-".to_string(), verdict_text)
+        };
+        line(&mut t, r, verdict);
+    }
+    t
+}
+
+/// The metrics on which row `r` does not beat the baseline row of its NDF in `rows`, by more
+/// than its NDF's reference error in `references` where there is one ([`not_better_by`]);
+/// `None` without a baseline or flicker scores.
+pub fn missing(r: &LeadRow, rows: &[LeadRow], references: &[LeadRow]) -> Option<Vec<&'static str>> {
+    let b = rows.iter().find(|b| b.baseline && b.ndf == r.ndf)?;
+    let (f, bf) = (r.flicker?, b.flicker?);
+    let zero = (Scores::default(), 0.0);
+    let err = references
+        .iter()
+        .find(|e| e.ndf == r.ndf)
+        .map_or(zero, |e| (e.scores, e.flicker.map_or(0.0, |x| x.error)));
+    Some(not_better_by(
+        (&r.scores, f.error),
+        (&b.scores, bf.error),
+        (&err.0, err.1),
+    ))
+}
+
+/// For each metric of `failed` (names as [`not_better_by`] gives them): row `r`'s value less
+/// its baseline's, and the reference's error in parentheses; `r` beats the baseline on that
+/// metric only where the difference is below minus the error (lower is better on all six).
+pub fn shortfalls(
+    r: &LeadRow,
+    rows: &[LeadRow],
+    references: &[LeadRow],
+    failed: &[&str],
+) -> Vec<String> {
+    let Some(b) = rows.iter().find(|b| b.baseline && b.ndf == r.ndf) else {
+        return Vec::new();
+    };
+    let e = references.iter().find(|e| e.ndf == r.ndf);
+    let flicker = |x: &LeadRow| x.flicker.map_or(f64::NAN, |f| f.error);
+    let value = |x: &LeadRow, name: &str| match name {
+        "FLIP LDR" => x.scores.flip_ldr,
+        "FLIP HDR" => x.scores.flip_hdr,
+        "flicker" => flicker(x),
+        "specular" => x.scores.specular,
+        "false glints" => x.scores.false_glints as f64,
+        _ => x.scores.lost_highlights as f64,
+    };
+    failed
+        .iter()
+        .map(|&name| {
+            let d = value(r, name) - value(b, name);
+            let err = e.map_or(0.0, |e| value(e, name));
+            if matches!(name, "false glints" | "lost highlights") {
+                format!("{name} {d:+.0} ({err:.0})")
+            } else if name == "flicker" {
+                format!("{name} {d:+.2} ({err:.2})")
+            } else {
+                format!("{name} {d:+.4} ({err:.4})")
+            }
+        })
+        .collect()
+}
+
+/// One route of the "where each route stands" table: its name, the indices of its rows in
+/// the lead table's `rows`, and what it costs (free text: measured times).
+pub struct RouteGroup {
+    pub name: String,
+    pub rows: Vec<usize>,
+    pub cost: String,
+}
+
+/// Where each route stands: per route, its best row (the fewest metrics on which it does not
+/// beat unfiltered by more than the reference's error, [`missing`]; ties to the lower FLIP
+/// LDR), what that row fails, its FLIP LDR, flicker error and glint counts, and the route's
+/// cost.
+pub fn standing_table(groups: &[RouteGroup], rows: &[LeadRow], references: &[LeadRow]) -> String {
+    use std::fmt::Write as _;
+    let mut t = String::new();
+    writeln!(t, "| route | best method | beats unfiltered (by more than the reference's error) | short by: method - unfiltered (reference's error) | FLIP LDR | flicker error / ref. | false glints / lost highlights | cost |").unwrap();
+    writeln!(t, "|---|---|---|---|---:|---:|---:|---|").unwrap();
+    for g in groups {
+        let best = g
+            .rows
+            .iter()
+            .filter_map(|&i| {
+                let r = rows.get(i)?;
+                let m = if r.baseline {
+                    None
+                } else {
+                    missing(r, rows, references)
+                };
+                Some((r, m))
+            })
+            .min_by(|(a, ma), (b, mb)| {
+                let n = |m: &Option<Vec<&str>>| m.as_ref().map_or(usize::MAX, Vec::len);
+                n(ma)
+                    .cmp(&n(mb))
+                    .then(a.scores.flip_ldr.total_cmp(&b.scores.flip_ldr))
+            });
+        let Some((r, m)) = best else { continue };
+        let stands = match (&m, r.baseline) {
+            (_, true) => "(baseline)".to_string(),
+            (Some(m), _) if m.is_empty() => "**on all six**".to_string(),
+            (Some(m), _) => format!("all but {}", m.join(", ")),
+            (None, _) => "-".to_string(),
+        };
+        let flicker = r
+            .flicker
+            .map_or("-".to_string(), |f| format!("{:.2}", f.error));
+        let short = match (&m, r.baseline) {
+            (Some(m), false) if !m.is_empty() => shortfalls(r, rows, references, m).join("; "),
+            _ => "-".to_string(),
+        };
+        writeln!(
+            t,
+            "| {} | {} | {} | {} | {:.4} | {} | {} / {} | {} |",
+            g.name,
+            r.label,
+            stands,
+            short,
+            r.scores.flip_ldr,
+            flicker,
+            r.scores.false_glints,
+            r.scores.lost_highlights,
+            g.cost
+        )
+        .unwrap();
     }
     t
 }
@@ -383,6 +577,56 @@ mod tests {
                 .map(|(x, y)| f(x, y))
                 .collect(),
         )
+    }
+
+    /// A row that wins FLIP LDR by more than the reference's error, wins FLIP HDR by less
+    /// than it, and loses on false glints: the verdict names the last two, and the shortfalls
+    /// are the differences written by hand from the scores below, with the errors beside.
+    #[test]
+    fn shortfalls_are_the_differences_beside_the_reference_error() {
+        let row = |label: &str, baseline, s: Scores, flicker| LeadRow {
+            label: label.to_string(),
+            ndf: "GGX",
+            baseline,
+            scores: s,
+            flicker: Some(Flicker {
+                error: flicker,
+                energy: 1.0,
+                peak_variation: 0.0,
+            }),
+        };
+        let base = Scores {
+            flip_ldr: 0.05,
+            flip_hdr: 0.08,
+            specular: 0.06,
+            false_glints: 0,
+            lost_highlights: 40,
+            rmse_hdr: 1.0,
+        };
+        let method = Scores {
+            flip_ldr: 0.04,
+            flip_hdr: 0.079,
+            specular: 0.05,
+            false_glints: 3,
+            lost_highlights: 10,
+            rmse_hdr: 0.5,
+        };
+        let error = Scores {
+            flip_ldr: 0.002,
+            flip_hdr: 0.004,
+            specular: 0.001,
+            false_glints: 1,
+            lost_highlights: 2,
+            rmse_hdr: 0.1,
+        };
+        let rows = [row("u", true, base, 2.0), row("m", false, method, 1.5)];
+        let refs = [row("r", false, error, 0.25)];
+        let failed = missing(&rows[1], &rows, &refs).unwrap();
+        assert_eq!(failed, ["FLIP HDR", "false glints"]);
+        assert_eq!(
+            shortfalls(&rows[1], &rows, &refs, &failed),
+            ["FLIP HDR -0.0010 (0.0040)", "false glints +3 (1)"]
+        );
     }
 
     #[test]
@@ -624,5 +868,64 @@ mod tests {
             ..good
         };
         assert_eq!(not_better((&glinty, 1.0), (&base, 4.0)), ["false glints"]);
+    }
+
+    /// The verdict with the reference's own error: a margin counts only above it, on every
+    /// metric (strictly: a margin equal to the error does not), and two zero counts pass.
+    #[test]
+    fn verdict_by_needs_each_margin_above_the_reference_error() {
+        let base = Scores {
+            flip_ldr: 0.20,
+            flip_hdr: 0.30,
+            specular: 0.10,
+            false_glints: 0,
+            lost_highlights: 10,
+            rmse_hdr: 1.0,
+        };
+        let m = Scores {
+            flip_ldr: 0.15,
+            flip_hdr: 0.25,
+            specular: 0.08,
+            false_glints: 0,
+            lost_highlights: 5,
+            rmse_hdr: 0.5,
+        };
+        let small = Scores {
+            flip_ldr: 0.01,
+            flip_hdr: 0.01,
+            specular: 0.01,
+            false_glints: 3,
+            lost_highlights: 4,
+            rmse_hdr: 0.0,
+        };
+        assert!(not_better_by((&m, 1.0), (&base, 2.0), (&small, 0.5)).is_empty());
+        // A margin under its error, or equal to it (the counts: 10 - 5 = 5), fails that
+        // metric alone.
+        let big = Scores {
+            flip_ldr: 0.06,
+            flip_hdr: 0.04,
+            specular: 0.01,
+            false_glints: 3,
+            lost_highlights: 5,
+            rmse_hdr: 0.0,
+        };
+        assert_eq!(
+            not_better_by((&m, 1.0), (&base, 2.0), (&big, 1.5)),
+            ["FLIP LDR", "flicker", "lost highlights"]
+        );
+        // A false glint where unfiltered has none fails whatever the error.
+        let glinty = Scores {
+            false_glints: 1,
+            ..m
+        };
+        assert_eq!(
+            not_better_by((&glinty, 1.0), (&base, 2.0), (&small, 0.5)),
+            ["false glints"]
+        );
+        // With zero error it is the plain verdict.
+        assert_eq!(
+            not_better_by((&m, 1.0), (&base, 2.0), (&Scores::default(), 0.0)),
+            not_better((&m, 1.0), (&base, 2.0))
+        );
     }
 }

@@ -5,6 +5,7 @@ use crate::render::FootprintRoute;
 use std::path::PathBuf;
 
 /// Command-line options.
+#[derive(Clone)]
 pub struct Options {
     pub width: usize,
     pub height: usize,
@@ -20,13 +21,20 @@ pub struct Options {
     pub presets: bool,
     /// Run the false-glint investigation (`glints.rs`).
     pub investigate: bool,
-    /// Which scenes: the water (`water`), the normal-mapped floor (`normal-map`), or both.
+    /// Which scenes: the water (`water`), the normal-mapped floor (`normal-map`), the bumpy
+    /// spheres (`bumpy`), or all three (`all`).
     pub scene: &'static str,
     /// Also score the footprint methods on the routes of the false-glint fix
-    /// ([`FIX_ROUTES`]: windowed moments, and the sub-window mixture), still frame and
-    /// temporal test.
+    /// ([`FIX_ROUTES`]), still frame and temporal test.
     pub fix: bool,
 }
 
-/// The routes of the false-glint fix, scored beside `o.route` (still frame and temporal test).
-pub const FIX_ROUTES: [FootprintRoute; 2] = [FootprintRoute::Moments, FootprintRoute::SubWindows];
+/// The routes of the false-glint fix, scored beside `o.route` (still frame and temporal test):
+/// the windowed moments, the two cheaper fixes of their Gaussian shape (2x2 sub-footprints,
+/// the fourth-moment split), and the 4x4 traced sub-windows.
+pub const FIX_ROUTES: [FootprintRoute; 4] = [
+    FootprintRoute::Moments,
+    FootprintRoute::SubFootprints,
+    FootprintRoute::KurtosisSplit,
+    FootprintRoute::SubWindows,
+];

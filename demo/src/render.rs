@@ -32,7 +32,26 @@ pub enum FootprintRoute {
     /// [`shade_mixture`]; as one Gaussian per pixel ([`GBuffer::derivatives`]) it is the
     /// `Moments` route, the mixture's total moments.
     SubWindows,
+    /// A cheaper fix of the Gaussian shape, from what a texture lookup of baked moments gives:
+    /// on the water, the pixel's window split into 2x2 sub-footprints on its tangent plane
+    /// (offsets' share [`SUB_FOOTPRINT_SPREAD`] of the window), each with its own windowed
+    /// moments (mean slope and second moments) and half vector, the lobe averaged over the
+    /// four ([`GBuffer::subwindow_mixture_with`], untraced); elsewhere as `RayDifferentials`.
+    SubFootprints,
+    /// A non-Gaussian fit from the window's fourth moment: on the water, where the slopes'
+    /// kurtosis along the windowed covariance's principal axis is under 3 (the bounded,
+    /// bimodal distribution of a window over about one crest), the windowed Gaussian split
+    /// into two with the same mean, covariance and fourth moment there
+    /// ([`GBuffer::kurtosis_split`]); elsewhere as `Moments`.
+    KurtosisSplit,
 }
+
+/// The share of the pixel window's covariance carried by the offsets of the
+/// [`FootprintRoute::SubFootprints`] (the rest is each sub-footprint's own).
+pub const SUB_FOOTPRINT_SPREAD: f32 = 0.75;
+/// Gauss-Hermite nodes per axis of the window quadrature that measures the fourth moment of
+/// the slopes ([`GBuffer::kurtosis_split`]).
+pub const KURTOSIS_NODES: usize = 8;
 
 /// Gauss-Hermite nodes per axis of the sub-window grid ([`FootprintRoute::SubWindows`]).
 pub const SUB_GRID: usize = 4;
@@ -420,12 +439,93 @@ impl GBuffer {
                     .map(|x| self.subwindow_mixture(scene, x, y))
                     .collect()
             }),
+            FootprintRoute::SubFootprints => parallel::rows(self.height, None, |y| {
+                (0..self.width)
+                    .map(|x| {
+                        self.subwindow_mixture_with(scene, (x, y), (2, SUB_FOOTPRINT_SPREAD), false)
+                    })
+                    .collect()
+            }),
+            FootprintRoute::KurtosisSplit => parallel::rows(self.height, None, |y| {
+                (0..self.width)
+                    .map(|x| self.kurtosis_split(scene, x, y))
+                    .collect()
+            }),
             _ => self
                 .derivatives(scene, route)
                 .into_iter()
                 .map(|d| vec![(1.0, d)])
                 .collect(),
         }
+    }
+
+    /// The [`FootprintRoute::KurtosisSplit`] mixture at pixel `(x, y)`. The window's height
+    /// gradients `g` have mean `mu` and covariance `C` in closed form
+    /// ([`Scene::gradient_moments`]); along `C`'s principal axis `e` the fourth central moment
+    /// `m4 = E[(e . (g - mu))^4]` comes from a [`KURTOSIS_NODES`]^2-point Gauss-Hermite
+    /// quadrature of the window ([`Scene::window_gradients`]). A Gaussian has `m4 = 3 m2^2`;
+    /// a window over about one crest has less (its slopes are bounded, piled at the ends of
+    /// their range). There the Gaussian is replaced by the two-component mixture
+    /// `1/2 N(mu +- delta e, C - delta^2 e e^T)`, which keeps `mu` and `C` and has the
+    /// window's `m4`: `m4 = 3 m2^2 - 2 delta^4`, so `delta^4 = (3 m2^2 - m4) / 2` (capped at
+    /// `delta^2 <= 0.95 m2`, where the components would degenerate). Each component becomes a
+    /// kernel as the `Moments` route's (its own centre, the window's parallax). Elsewhere,
+    /// and off the water, the `Moments` route.
+    pub fn kurtosis_split(&self, scene: &Scene, x: usize, y: usize) -> Mixture {
+        let single = vec![(1.0, self.moment_derivatives(scene, x, y))];
+        let rays = self.analytic_derivatives(x, y);
+        let Some((s, ray)) = self.pixels[y * self.width + x].as_ref() else {
+            return single;
+        };
+        let (dx_u, dx_v) = ray.footprint_on_plane(&s.hit);
+        let window = Self::window(dx_u, dx_v);
+        let (Some((mean, cov)), Some(points)) = (
+            scene.gradient_moments(&s.hit, window),
+            scene.window_gradients(&s.hit, window, KURTOSIS_NODES),
+        ) else {
+            return single;
+        };
+        let c = Covariance::new(cov[0], cov[1], cov[2]);
+        let (l1, l2) = c.eigenvalues();
+        let m2 = l1.max(l2);
+        if m2 <= 1e-12 {
+            return single;
+        }
+        let e = if cov[1].abs() > 1e-12 * m2 {
+            Vec2::new(m2 - cov[2], cov[1]).normalize_or(Vec2::X)
+        } else if cov[0] >= cov[2] {
+            Vec2::X
+        } else {
+            Vec2::Y
+        };
+        let m4: f32 = points
+            .iter()
+            .map(|&(w, g)| w * e.dot(g - mean).powi(4))
+            .sum();
+        let deficit = 3.0 * m2 * m2 - m4;
+        if deficit <= 0.0 {
+            return single;
+        }
+        let delta2 = (0.5 * deficit).sqrt().min(0.95 * m2);
+        let delta = delta2.sqrt();
+        let own = [
+            cov[0] - delta2 * e.x * e.x,
+            cov[1] - delta2 * e.x * e.y,
+            cov[2] - delta2 * e.y * e.y,
+        ];
+        [1.0f32, -1.0]
+            .into_iter()
+            .map(|side| {
+                let d = self.derivatives_of_moments(
+                    s,
+                    (dx_u, dx_v),
+                    rays,
+                    mean + side * delta * e,
+                    own,
+                );
+                (0.5, d)
+            })
+            .collect()
     }
 
     /// The windowed-mixture experiment of `glints.rs` ([`Scene::gradient_mixture`]): per
@@ -518,9 +618,10 @@ impl GBuffer {
                 .map(|x| match route {
                     FootprintRoute::Quad => self.quad_derivatives(x, y),
                     FootprintRoute::RayDifferentials => self.analytic_derivatives(x, y),
-                    FootprintRoute::Moments | FootprintRoute::SubWindows => {
-                        self.moment_derivatives(scene, x, y)
-                    }
+                    FootprintRoute::Moments
+                    | FootprintRoute::SubWindows
+                    | FootprintRoute::SubFootprints
+                    | FootprintRoute::KurtosisSplit => self.moment_derivatives(scene, x, y),
                 })
                 .collect()
         })
@@ -602,21 +703,55 @@ pub fn shade_mixture(scene: &Scene, gb: &GBuffer, mixtures: &[Mixture], method: 
 }
 
 /// The `n`-point Gauss-Hermite rule for the standard normal (probabilists'): nodes and
-/// weights summing to 1, exact for polynomials of degree `2 n - 1`; `n` in 1..=4 (else 3).
+/// weights summing to 1, exact for polynomials of degree `2 n - 1`; `n >= 1` (0 reads as 1).
+/// The nodes are the roots of the Hermite polynomial `He_n` (`He_{k+1} = x He_k - k
+/// He_{k-1}`), bracketed on a grid of step 1e-3 over `|x| <= 2 sqrt(n) + 2` (which holds
+/// them all) and bisected in f64; the weights are `n! / (n^2 He_{n-1}(x_i)^2)`.
 pub fn gauss_hermite(n: usize) -> (Vec<f32>, Vec<f32>) {
-    let s3 = 3.0f32.sqrt();
-    match n {
-        1 => (vec![0.0], vec![1.0]),
-        2 => (vec![-1.0, 1.0], vec![0.5, 0.5]),
-        4 => {
-            // Nodes sqrt(3 -+ sqrt(6)), weights 1 / (4 (3 -+ sqrt(6))).
-            let r6 = 6.0f32.sqrt();
-            let (a, b) = ((3.0 - r6).sqrt(), (3.0 + r6).sqrt());
-            let (wa, wb) = (1.0 / (4.0 * (3.0 - r6)), 1.0 / (4.0 * (3.0 + r6)));
-            (vec![-b, -a, a, b], vec![wb, wa, wa, wb])
+    let n = n.max(1);
+    // (He_n(x), He_{n-1}(x)).
+    let he = |x: f64| {
+        let (mut prev, mut cur) = (1.0f64, x);
+        if n == 1 {
+            return (cur, prev);
         }
-        _ => (vec![-s3, 0.0, s3], vec![1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0]),
+        for k in 1..n {
+            (prev, cur) = (cur, x * cur - k as f64 * prev);
+        }
+        (cur, prev)
+    };
+    let reach = 2.0 * (n as f64).sqrt() + 2.0;
+    let steps = (2.0 * reach / 1e-3) as usize;
+    let mut nodes = Vec::with_capacity(n);
+    let mut a = -reach;
+    let mut fa = he(a).0;
+    for i in 1..=steps {
+        let b = -reach + i as f64 * 1e-3;
+        let fb = he(b).0;
+        if fa == 0.0 || fa * fb < 0.0 {
+            let (mut lo, mut hi, mut flo) = (a, b, fa);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                let fm = he(mid).0;
+                if flo * fm <= 0.0 {
+                    hi = mid;
+                } else {
+                    (lo, flo) = (mid, fm);
+                }
+            }
+            nodes.push(0.5 * (lo + hi));
+        }
+        (a, fa) = (b, fb);
     }
+    let factorial: f64 = (1..=n).map(|k| k as f64).product();
+    let weights: Vec<f32> = nodes
+        .iter()
+        .map(|&x| {
+            let p = he(x).1;
+            (factorial / ((n * n) as f64 * p * p)) as f32
+        })
+        .collect();
+    (nodes.into_iter().map(|x| x as f32).collect(), weights)
 }
 
 /// One shading sample per pixel with the density `d(pixel index, local h, alpha)`.
@@ -668,6 +803,11 @@ impl Reference {
         &self.specular[family as usize]
     }
 }
+
+/// The seed offset of the references of four times the samples that measure a reference's
+/// own error ([`crate::metrics::reference_error`]): `seed ^ SEED_4N` draws other streams per
+/// pixel, independent of `seed`'s.
+pub const SEED_4N: u64 = 0x4A4A_5EED;
 
 /// Renders the reference with `spp` sub-pixel samples drawn from the same Gaussian pixel
 /// filter (sigma = 0.5 pixel) the footprint kernels assume, unfiltered NDFs. Each half of the
@@ -760,6 +900,85 @@ pub fn reference_with(
     }
 }
 
+/// How many samples a reference draws per pixel.
+#[derive(Clone, Debug)]
+pub enum Samples {
+    /// Rounds of [`ROUND`] samples (each round the rank-1 lattice under its own random
+    /// shift: independent randomised quasi-Monte Carlo replicates of the pixel's mean), at
+    /// least `min` samples, until the standard error of the pixel's display luminance (the
+    /// spread of the rounds' display luminances over the square root of their number) is at
+    /// most `target`, or `max` samples are drawn. Stopping on the estimate biases the mean by
+    /// about one standard error at most, where the target is met.
+    Adaptive { min: usize, max: usize, target: f32 },
+    /// Exactly this many samples at each pixel (rounded up to whole rounds): the counts of an
+    /// adaptive reference times four, for its error.
+    Counts(Vec<usize>),
+    /// This many samples at every pixel (rounded up to whole rounds).
+    Each(usize),
+}
+
+/// The samples per round of an adaptive reference ([`Samples::Adaptive`]).
+pub const ROUND: usize = 128;
+
+/// One pixel's mean of `K` radiance sums under `samples` (`index`: the pixel's index, for
+/// [`Samples::Counts`]), drawn by `sample(offset)` at sub-pixel offsets from the pixel
+/// centre (the Gaussian pixel filter of standard deviation `sigma` pixels, Box-Muller over
+/// the shifted lattice), shifts from `rng`. The stopping rule reads component 0 as the
+/// pixel's radiance. Returns the means and the samples drawn.
+pub fn sample_pixel<const K: usize>(
+    samples: &Samples,
+    index: usize,
+    rng: &mut SplitMix64,
+    (sigma, exposure): (f32, f32),
+    mut sample: impl FnMut((f32, f32)) -> [Vec3; K],
+) -> ([Vec3; K], usize) {
+    let lattice = Lattice::new(ROUND);
+    let (min_rounds, max_rounds, target) = match samples {
+        Samples::Adaptive { min, max, target } => (
+            min.div_ceil(ROUND).max(2),
+            max.div_ceil(ROUND).max(2),
+            *target,
+        ),
+        Samples::Counts(c) => {
+            let r = c[index].div_ceil(ROUND).max(1);
+            (r, r, f32::INFINITY)
+        }
+        Samples::Each(n) => {
+            let r = n.div_ceil(ROUND).max(1);
+            (r, r, f32::INFINITY)
+        }
+    };
+    let mut sums = [Vec3::ZERO; K];
+    let mut display: Vec<f32> = Vec::new();
+    for round in 0..max_rounds {
+        let shift = (uniform_f32(rng), uniform_f32(rng));
+        let mut part = [Vec3::ZERO; K];
+        for j in 0..ROUND {
+            let v = sample(lattice.gaussian(j, shift, sigma));
+            for (p, x) in part.iter_mut().zip(v) {
+                *p += x;
+            }
+        }
+        for (s, p) in sums.iter_mut().zip(part) {
+            *s += p;
+        }
+        display.push(crate::image_out::luminance(crate::image_out::tonemap(
+            part[0] / ROUND as f32,
+            exposure,
+        )));
+        let r = round + 1;
+        if r >= min_rounds {
+            let mean = display.iter().sum::<f32>() / r as f32;
+            let var = display.iter().map(|y| (y - mean).powi(2)).sum::<f32>() / (r - 1) as f32;
+            if (var / r as f32).sqrt() <= target {
+                break;
+            }
+        }
+    }
+    let n = display.len() * ROUND;
+    (sums.map(|s| s / n as f32), n)
+}
+
 /// A rank-1 lattice of `n` points `(j / n, j g / n)`, `g` coprime to `n` near `n / phi`.
 struct Lattice {
     n: usize,
@@ -820,27 +1039,29 @@ mod tests {
     use super::*;
     use crate::scene::Lod;
 
-    /// The Gauss-Hermite rules against the standard normal's moments `E[z^(2j)] = (2j - 1)!!`,
-    /// which an `n`-point rule integrates exactly up to degree `2 n - 1` (to f32 rounding:
-    /// 1e-5 of the moment).
+    /// The Gauss-Hermite rules against the standard normal's moments `E[z^(2j)] = (2j - 1)!!`
+    /// (0 for odd degrees), which an `n`-point rule integrates exactly up to degree `2 n - 1`,
+    /// with `n` nodes each. The f32 nodes and weights are summed in f64; their rounding (6e-8
+    /// relative, times the degree, at most 15) moves the sum by under 1e-5 of the scale
+    /// `sum_i w_i |z_i|^degree`, the tolerance (odd degrees cancel to 0 from terms of that
+    /// scale).
     #[test]
     fn gauss_hermite_rules_are_exact_to_their_degree() {
-        let double_factorial = [1.0f32, 1.0, 3.0, 15.0];
-        for n in 1..=4 {
+        let double_factorial = [1.0f64, 1.0, 3.0, 15.0, 105.0, 945.0, 10395.0, 135135.0];
+        for n in 1..=8 {
             let (z, w) = gauss_hermite(n);
+            assert_eq!((z.len(), w.len()), (n, n));
             for degree in 0..2 * n {
-                let m: f32 = z
-                    .iter()
-                    .zip(&w)
-                    .map(|(z, w)| w * z.powi(degree as i32))
-                    .sum();
+                let term = |(z, w): (&f32, &f32)| f64::from(*w) * f64::from(*z).powi(degree as i32);
+                let m: f64 = z.iter().zip(&w).map(term).sum();
+                let scale: f64 = z.iter().zip(&w).map(|p| term(p).abs()).sum();
                 let exact = if degree % 2 == 1 {
                     0.0
                 } else {
                     double_factorial[degree / 2]
                 };
                 assert!(
-                    (m - exact).abs() <= 1e-5 * exact.max(1.0),
+                    (m - exact).abs() <= 1e-5 * scale.max(1.0),
                     "n = {n}, degree {degree}: {m} vs {exact}"
                 );
             }

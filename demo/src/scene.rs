@@ -1,7 +1,10 @@
-//! The procedural scene: a tile of wavy water (a sum of sines, as in KHPL16 Fig. 2) with a
-//! few small glossy spheres floating on it, lit by one small point light low over the horizon
-//! so that the water shows a glitter path. World space is `y`-up.
+//! The procedural scenes. The water: a tile of wavy water (a sum of sines, as in KHPL16
+//! Fig. 2) with a few small glossy spheres floating on it, lit by one small point light low
+//! over the horizon so that the water shows a glitter path. The bumpy spheres
+//! ([`crate::bumpy`]): glossy spheres whose only detail is their geometry, lit from behind the
+//! viewer. World space is `y`-up.
 
+use crate::bumpy::{Bumps, BumpySphere};
 use glam::{Mat3, Vec2, Vec3};
 
 /// A ray `origin + t dir`, `dir` unit.
@@ -185,6 +188,32 @@ impl Water {
                 (wj * norm, mean + g, cov)
             })
             .collect()
+    }
+
+    /// The height gradients over the Gaussian window `c` centred on `(x, z)` (fades frozen, as
+    /// [`Self::gradient_moments`]), at the nodes of an `n`-point Gauss-Hermite rule per
+    /// whitened axis of `c`: `(weight, gradient)` per node, weights summing to 1.
+    pub fn window_gradients(&self, x: f32, z: f32, c: [f32; 3], n: usize) -> Vec<(f32, Vec2)> {
+        let waves: Vec<(f32, Vec2, f32)> = self
+            .fades(x, z)
+            .map(|(w, f)| (f * w.amplitude, Vec2::new(w.kx, w.kz), w.phase))
+            .collect();
+        let l11 = c[0].max(0.0).sqrt();
+        let l21 = if l11 > 0.0 { c[1] / l11 } else { 0.0 };
+        let l22 = (c[2] - l21 * l21).max(0.0).sqrt();
+        let (nodes, weights) = crate::render::gauss_hermite(n);
+        let mut out = Vec::with_capacity(n * n);
+        for (&u, &wu) in nodes.iter().zip(&weights) {
+            for (&v, &wv) in nodes.iter().zip(&weights) {
+                let p = Vec2::new(x + l11 * u, z + l21 * u + l22 * v);
+                let g: Vec2 = waves
+                    .iter()
+                    .map(|&(a, k, phase)| k * (a * (k.dot(p) + phase).cos()))
+                    .sum();
+                out.push((wu * wv, g));
+            }
+        }
+        out
     }
 
     /// A zonotope holding every height gradient within `k` standard deviations of the
@@ -375,7 +404,7 @@ pub fn zonotope_gap(centre: Vec2, generators: &[Vec2], p: Vec2) -> f32 {
 /// `sin(x)` to about 1e-7 absolute for moderate `|x|` (the march evaluates millions of
 /// sines): Cody-Waite reduction by `pi`, then the odd Taylor polynomial to `x^11` on
 /// `[-pi/2, pi/2]`.
-fn fast_sin(x: f32) -> f32 {
+pub(crate) fn fast_sin(x: f32) -> f32 {
     const PI_HI: f32 = 3.140_625;
     const PI_LO: f32 = 9.676_536e-4;
     let k = (x * std::f32::consts::FRAC_1_PI).round();
@@ -435,20 +464,61 @@ impl Sphere {
 #[derive(Clone, Debug)]
 #[allow(dead_code)] // read by the GPU demonstration only
 pub struct Params {
-    /// Per wave: `k_x`, `k_z`, amplitude, phase, wavelength.
+    pub kind: SceneKind,
+    /// Per wave: `k_x`, `k_z`, amplitude, phase, wavelength (empty without water).
     pub waves: Vec<[f32; 5]>,
     /// The water's slab half-height and slope bound (the march's), half width, `z_near`,
-    /// `z_far`.
+    /// `z_far` (zeros without water).
     pub water: [f32; 5],
     pub water_albedo: Vec3,
-    /// Per sphere: centre, radius, albedo.
+    /// Per sphere: centre, radius, albedo; in the bumpy scene, the bumpy spheres' base
+    /// spheres.
     pub spheres: Vec<(Vec3, f32, Vec3)>,
+    /// Per bump wave of the bumpy scene: `k` (xyz), amplitude, phase (empty in the water
+    /// scene).
+    pub bumps: Vec<[f32; 5]>,
+    /// The bumps' `sum a_i` (the shell's half-thickness) and the field's Lipschitz constant
+    /// (zeros in the water scene).
+    pub bump_bound: f32,
+    pub bump_lipschitz: f32,
+}
+
+/// Which scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SceneKind {
+    /// The wavy water with its glossy spheres (KHPL16 Fig. 2).
+    Water,
+    /// Glossy bumpy spheres, geometric curvature only ([`crate::bumpy`]).
+    Bumpy,
+}
+
+impl SceneKind {
+    /// The command-line and file name.
+    pub fn slug(self) -> &'static str {
+        match self {
+            SceneKind::Water => "water",
+            SceneKind::Bumpy => "bumpy",
+        }
+    }
+
+    /// The tables' name.
+    pub fn name(self) -> &'static str {
+        match self {
+            SceneKind::Water => "the water",
+            SceneKind::Bumpy => "the bumpy spheres",
+        }
+    }
 }
 
 /// The whole scene.
 pub struct Scene {
-    water: Water,
+    pub kind: SceneKind,
+    /// The water (the water scene only).
+    water: Option<Water>,
     spheres: Vec<Sphere>,
+    /// The bumpy spheres and their bumps (the bumpy scene only).
+    bumpy: Vec<BumpySphere>,
+    bumps: Bumps,
     /// Point light position (world) and radiant intensity (RGB, per steradian).
     pub light_position: Vec3,
     pub light_intensity: Vec3,
@@ -458,6 +528,8 @@ pub struct Scene {
     pub alpha: f32,
     /// Normal-incidence Fresnel reflectance.
     pub f0: f32,
+    /// The background's horizon and zenith radiance (see [`Scene::sky`]).
+    pub sky: [Vec3; 2],
 }
 
 impl Scene {
@@ -469,7 +541,10 @@ impl Scene {
             albedo: Vec3::from(albedo),
         };
         Self {
-            water: Water::new(lod),
+            kind: SceneKind::Water,
+            water: Some(Water::new(lod)),
+            bumpy: Vec::new(),
+            bumps: Bumps::new(),
             spheres: vec![
                 sphere(-1.6, -3.0, 0.45, [0.5, 0.08, 0.05]),
                 sphere(-0.5, -5.0, 0.35, [0.6, 0.45, 0.05]),
@@ -482,6 +557,35 @@ impl Scene {
             ambient: Vec3::new(0.35, 0.45, 0.6),
             alpha: 0.01,
             f0: 0.04,
+            sky: [Vec3::new(0.25, 0.3, 0.42), Vec3::new(0.05, 0.09, 0.2)],
+        }
+    }
+
+    /// The bumpy spheres ([`crate::bumpy`]) against a dark background, under a distant point
+    /// light behind and above the viewer (irradiance about 50 at the spheres), so that their
+    /// glints lie on the faces the camera sees (object `1 + i`: sphere `i`). No level of
+    /// detail: the bumps stay at every distance.
+    pub fn bumpy() -> Self {
+        Self {
+            kind: SceneKind::Bumpy,
+            water: None,
+            spheres: Vec::new(),
+            bumpy: crate::bumpy::spheres(),
+            bumps: Bumps::new(),
+            light_position: Vec3::new(40.0, 70.0, 90.0),
+            light_intensity: Vec3::new(1.0, 0.9, 0.75) * 7.5e5,
+            ambient: Vec3::new(0.35, 0.45, 0.6),
+            alpha: 0.01,
+            f0: 0.04,
+            sky: [Vec3::new(0.03, 0.035, 0.045), Vec3::new(0.01, 0.012, 0.02)],
+        }
+    }
+
+    /// The scene `kind` as seen from `lod.eye`.
+    pub fn of(kind: SceneKind, lod: Lod) -> Self {
+        match kind {
+            SceneKind::Water => Self::new(lod),
+            SceneKind::Bumpy => Self::bumpy(),
         }
     }
 
@@ -495,14 +599,27 @@ impl Scene {
                 }
             }
         }
+        for (i, s) in self.bumpy.iter().enumerate() {
+            let t_max = best.map_or(f32::INFINITY, |b| b.t);
+            if let Some(t) = self.bumps.crossing(s, ray, t_max) {
+                best = Some(self.bumps.hit_at(s, ray, t, i as u32 + 1, self.alpha));
+            }
+        }
         let t_max = best.map_or(f32::INFINITY, |b| b.t);
-        self.water.intersect(ray, t_max, self.alpha).or(best)
+        self.water
+            .as_ref()
+            .and_then(|w| w.intersect(ray, t_max, self.alpha))
+            .or(best)
     }
 
-    /// The water's unit normal at `(x, z)` (the level of detail of this view).
+    /// The water's unit normal at `(x, z)` (the level of detail of this view; up without
+    /// water).
     #[allow(dead_code)] // the false-glint investigation only
     pub fn water_normal(&self, x: f32, z: f32) -> Vec3 {
-        let ([_, hx, hz, ..], _) = self.water.derivatives(x, z);
+        let Some(water) = &self.water else {
+            return Vec3::Y;
+        };
+        let ([_, hx, hz, ..], _) = water.derivatives(x, z);
         Vec3::new(-hx, 1.0, -hz).normalize()
     }
 
@@ -510,36 +627,37 @@ impl Scene {
     /// standard deviations of the Gaussian window `c` at `hit` ([`Water::gradient_support`]),
     /// in gradient units; 0 inside; `None` on the spheres.
     pub fn gradient_gap(&self, hit: &Hit, c: [f32; 3], k: f32, g: Vec2) -> Option<f32> {
-        (hit.object == 0).then(|| {
-            let (center, generators) =
-                self.water
-                    .gradient_support(hit.position.x, hit.position.z, c, k);
-            zonotope_gap(center, &generators, g)
-        })
+        let water = self.water.as_ref().filter(|_| hit.object == 0)?;
+        let (center, generators) = water.gradient_support(hit.position.x, hit.position.z, c, k);
+        Some(zonotope_gap(center, &generators, g))
     }
 
     /// [`Water::gradient_mixture`] at `hit`; `None` on the spheres.
     #[allow(dead_code)] // the false-glint investigation only
     pub fn gradient_mixture(&self, hit: &Hit, c: [f32; 3]) -> Option<Vec<(f32, Vec2, [f32; 3])>> {
-        (hit.object == 0).then(|| {
-            self.water
-                .gradient_mixture(hit.position.x, hit.position.z, c)
-        })
+        let water = self.water.as_ref().filter(|_| hit.object == 0)?;
+        Some(water.gradient_mixture(hit.position.x, hit.position.z, c))
+    }
+
+    /// [`Water::window_gradients`] at `hit` (`n` nodes per axis); `None` off the water.
+    pub fn window_gradients(&self, hit: &Hit, c: [f32; 3], n: usize) -> Option<Vec<(f32, Vec2)>> {
+        let water = self.water.as_ref().filter(|_| hit.object == 0)?;
+        Some(water.window_gradients(hit.position.x, hit.position.z, c, n))
     }
 
     /// The moments of the water's height gradient over a Gaussian window at `hit` (see
     /// [`Water::gradient_moments`]); `None` on the spheres.
     pub fn gradient_moments(&self, hit: &Hit, c: [f32; 3]) -> Option<(Vec2, [f32; 3])> {
-        (hit.object == 0).then(|| {
-            self.water
-                .gradient_moments(hit.position.x, hit.position.z, c)
-        })
+        let water = self.water.as_ref().filter(|_| hit.object == 0)?;
+        Some(water.gradient_moments(hit.position.x, hit.position.z, c))
     }
 
-    /// Background radiance for a ray that hits nothing: a dim sky gradient.
+    /// Background radiance for a ray that hits nothing: a dim sky gradient from [`Self::sky`]'s
+    /// horizon colour to its zenith colour.
     pub fn sky(&self, dir: Vec3) -> Vec3 {
         let k = dir.y.clamp(0.0, 1.0);
-        Vec3::new(0.25, 0.3, 0.42).lerp(Vec3::new(0.05, 0.09, 0.2), k.sqrt())
+        let [horizon, zenith] = self.sky;
+        horizon.lerp(zenith, k.sqrt())
     }
 }
 
@@ -547,20 +665,39 @@ impl Scene {
 impl Scene {
     /// The parameters of the surfaces (see [`Params`]).
     pub fn params(&self) -> Params {
-        let w = &self.water;
+        let (waves, water) = match &self.water {
+            Some(w) => (
+                w.waves
+                    .iter()
+                    .map(|v| [v.kx, v.kz, v.amplitude, v.phase, v.wavelength])
+                    .collect(),
+                [w.bound, w.slope_bound, w.half_width, w.z_near, w.z_far],
+            ),
+            None => (Vec::new(), [0.0; 5]),
+        };
+        let bumpy = self.kind == SceneKind::Bumpy;
         Params {
-            waves: w
-                .waves
-                .iter()
-                .map(|v| [v.kx, v.kz, v.amplitude, v.phase, v.wavelength])
-                .collect(),
-            water: [w.bound, w.slope_bound, w.half_width, w.z_near, w.z_far],
+            kind: self.kind,
+            waves,
+            water,
             water_albedo: WATER_ALBEDO,
             spheres: self
                 .spheres
                 .iter()
                 .map(|s| (s.center, s.radius, s.albedo))
+                .chain(self.bumpy.iter().map(|s| (s.center, s.radius, s.albedo)))
                 .collect(),
+            bumps: if bumpy {
+                self.bumps
+                    .waves
+                    .iter()
+                    .map(|w| [w.k.x, w.k.y, w.k.z, w.amplitude, w.phase])
+                    .collect()
+            } else {
+                Vec::new()
+            },
+            bump_bound: if bumpy { self.bumps.bound } else { 0.0 },
+            bump_lipschitz: if bumpy { self.bumps.lipschitz } else { 0.0 },
         }
     }
 }

@@ -11,7 +11,7 @@ use crate::peaks::{distance, mean, variation};
 use crate::plot::{PALETTE, Series, line_plot};
 use crate::render;
 use crate::render::FootprintRoute;
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneKind};
 use std::fmt::Write as _;
 
 /// Resolution divisor and reference sample divisor of the temporal frames (keeps the default
@@ -28,12 +28,24 @@ pub struct Temporal {
     pub flicker_error: Vec<f64>,
     /// Frame-to-frame variation of the peak.
     pub peak_variation: Vec<f64>,
+    /// Per family (Beckmann, GGX): the reference sequence's own flicker error, against an
+    /// independent sequence of four times the samples, over its flicker energy (the margin
+    /// of the verdict, [`crate::metrics::not_better_by`]).
+    pub reference_error: [f64; 2],
+    /// The reference sequence's samples per pixel.
+    pub spp: usize,
     pub markdown: String,
 }
 
-/// Runs the test on `o.methods`, then `extra` (the engine presets: their flicker only), on
-/// `o.route`, then `fixed` on each route of the false-glint fix ([`crate::options::FIX_ROUTES`]).
-pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<Temporal> {
+/// Runs the test on the scene `kind`: `o.methods`, then `extra` (the engine presets: their
+/// flicker only), on `o.route`, then `fixed` on each route of the false-glint fix
+/// ([`crate::options::FIX_ROUTES`]).
+pub fn run(
+    o: &Options,
+    kind: SceneKind,
+    extra: &[Method],
+    fixed: &[Method],
+) -> std::io::Result<Temporal> {
     let (w, h) = ((o.width / DOWNSCALE).max(2), (o.height / DOWNSCALE).max(2));
     let spp = (o.spp / SPP_DIVISOR).max(2);
     let all: Vec<(Method, FootprintRoute)> = o
@@ -51,14 +63,20 @@ pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<T
     let mut lums = vec![Vec::new(); all.len()];
     let mut ref_peaks = [Vec::new(), Vec::new()];
     let mut ref_lums = [Vec::new(), Vec::new()];
+    let mut ref4_lums = [Vec::new(), Vec::new()];
     let bar = crate::parallel::bar("temporal frames", o.frames);
     for f in 0..o.frames {
         let cam = camera_at(f, w, h);
-        let scene = &Scene::new(cam.lod());
+        let scene = &Scene::of(kind, cam.lod());
         let reference = render::reference(scene, &cam, w, h, spp, o.seed, None);
         for (k, img) in reference.full.iter().enumerate() {
             ref_peaks[k].push(img.peak());
             ref_lums[k].push(display_luminance(img, o.exposure));
+        }
+        let reference_4n =
+            render::reference(scene, &cam, w, h, 4 * spp, o.seed ^ render::SEED_4N, None);
+        for (k, img) in reference_4n.full.iter().enumerate() {
+            ref4_lums[k].push(display_luminance(img, o.exposure));
         }
         let gb = render::gbuffer(scene, &cam, w, h);
         let derivs = gb.derivatives(scene, o.route);
@@ -97,6 +115,8 @@ pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<T
     .unwrap();
     writeln!(md, "|---|---:|---:|---:|---:|---:|").unwrap();
     let reference_flicker = [flicker_energy(&ref_lums[0]), flicker_energy(&ref_lums[1])];
+    let reference_error =
+        [0, 1].map(|k| flicker_error(&ref_lums[k], &ref4_lums[k]) / reference_flicker[k]);
     let mut series = Vec::new();
     for (k, name) in ["Reference Beckmann", "Reference GGX"].iter().enumerate() {
         let p = &ref_peaks[k];
@@ -106,6 +126,15 @@ pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<T
             reference_flicker[k],
             mean(p),
             100.0 * variation(p)
+        )
+        .unwrap();
+        writeln!(
+            md,
+            "| {name}, {} spp vs {} spp | {:.2} | {:.2} | - | - | - |",
+            spp,
+            4 * spp,
+            flicker_energy(&ref4_lums[k]) / reference_flicker[k],
+            reference_error[k]
         )
         .unwrap();
         series.push(Series {
@@ -161,16 +190,24 @@ pub fn run(o: &Options, extra: &[Method], fixed: &[Method]) -> std::io::Result<T
         flicker,
         flicker_error: flicker_err,
         peak_variation,
+        reference_error,
+        spp,
         markdown: md,
     })
 }
 
-/// A method's label, with the footprint route when it is the windowed-moments one.
+/// A method's label, with the footprint route when it is one of the false-glint fix's.
 pub fn variant_label(m: Method, route: FootprintRoute) -> String {
     match route {
         FootprintRoute::Moments if m.uses_footprint() => format!("{} + moments", m.label()),
         FootprintRoute::SubWindows if m.uses_footprint() => {
             format!("{} + sub-windows", m.label())
+        }
+        FootprintRoute::SubFootprints if m.uses_footprint() => {
+            format!("{} + 2x2 sub-footprints", m.label())
+        }
+        FootprintRoute::KurtosisSplit if m.uses_footprint() => {
+            format!("{} + kurtosis split", m.label())
         }
         _ => m.label().to_string(),
     }

@@ -16,14 +16,16 @@
 //! installed (CI installs it).
 //!
 //! The same run writes the `filtered-ndf-wgsl` crate's table of modules
-//! (`shaders/src/modules.rs`, [`crate::wgsl_crate`]). Everything is generated from the files on
+//! (`shaders/src/modules.rs`, [`crate::wgsl_crate`]) and, first, the reduced accuracy
+//! settings' constants in `shaders/filter/gaussian_ggx_quad.wgsl` from the Rust rules
+//! ([`crate::wgsl_rules`]). Everything is generated from the files on
 //! disk ([`modules::load_from_disk`]), so one run brings every output up to date.
 //!
 //! Regenerate with `cargo run -p filtered-ndf-gpu --bin generate`; `--check` compares with
 //! the checked-in files instead and fails on any difference (CI runs it).
 
 use crate::modules::Module;
-use crate::{concat, modules, wgsl_crate};
+use crate::{concat, modules, wgsl_crate, wgsl_rules};
 use naga::back;
 use naga::valid::{Capabilities, ModuleInfo, ValidationFlags, Validator};
 
@@ -163,12 +165,22 @@ pub fn outputs(modules: &[Module]) -> Result<Vec<(String, String)>, String> {
     Ok(files)
 }
 
-/// Writes every generated file and the crate's table (`check = false`) or compares them with
+/// Writes the reduced rules' constants, every generated file and the crate's table (`check = false`) or compares them with
 /// the checked-in copies (`check = true`), all from the files on disk. Returns the files that
 /// differ (written or out of date).
 pub fn run(check: bool) -> Result<Vec<String>, String> {
     let dir = generated_dir();
     let mut differ = Vec::new();
+    let rules = wgsl_rules::path();
+    let source =
+        std::fs::read_to_string(&rules).map_err(|e| format!("{}: {e}", rules.display()))?;
+    let contents = wgsl_rules::with_block(&source)?;
+    if source != contents {
+        differ.push(format!("shaders/{}", wgsl_rules::FILE));
+        if !check {
+            std::fs::write(&rules, &contents).map_err(|e| format!("{}: {e}", rules.display()))?;
+        }
+    }
     let modules = modules::load_from_disk()?;
     let table = wgsl_crate::table_path();
     let contents = wgsl_crate::table_source(&modules);

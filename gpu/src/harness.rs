@@ -134,6 +134,7 @@ fn open(choice: Choice) -> Result<Gpu, String> {
     let info = adapter.get_info();
     let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
         label: Some("filtered-ndf conformance"),
+        required_features: adapter.features() & wgpu::Features::FLOAT32_FILTERABLE,
         required_limits: adapter.limits(),
         ..Default::default()
     }))
@@ -244,6 +245,100 @@ pub fn run(kernel: &Kernel, inputs: &[f32]) -> Result<Vec<f32>, String> {
     run_module(module, n, inputs, kernel.n_out)
 }
 
+/// One mip chain of float texels, level after level, each row-major with `channels` values
+/// per texel (the layout of `filtered_ndf::bake::ChainLayout`, sizes by the GPU rule).
+#[derive(Clone, Debug)]
+pub struct TextureChain {
+    /// The base level's width.
+    pub width: u32,
+    /// The base level's height.
+    pub height: u32,
+    /// `4` (`rgba*float`) or `1` (`r*float`).
+    pub channels: u32,
+    /// Every level's texels, level after level.
+    pub texels: Vec<f32>,
+}
+
+/// The textures of the moment-chain checks, bound beside the buffers: `@binding(2)` the
+/// RGBA chain, `@binding(3)` the one-channel chain, `@binding(4)` a sampler (linear
+/// magnification, minification and mip filtering, clamped to the edge). Declare them in the
+/// snippet's imports as `harness_moments`, `harness_moments_xy`, `harness_sampler`.
+#[derive(Clone, Debug)]
+pub struct Textures {
+    /// The four-channel chain.
+    pub rgba: TextureChain,
+    /// The one-channel chain.
+    pub r: TextureChain,
+    /// Upload as `rgba16float` / `r16float` (the texels must be `f16` values) instead of
+    /// `rgba32float` / `r32float` (filterable only with `float32-filterable`).
+    pub half: bool,
+}
+
+/// The WGSL declarations of the bindings of [`Textures`], for a snippet's imports.
+pub const TEXTURE_DECLARATIONS: &str = "@group(0) @binding(2) var harness_moments: texture_2d<f32>;
+@group(0) @binding(3) var harness_moments_xy: texture_2d<f32>;
+@group(0) @binding(4) var harness_sampler: sampler;";
+
+/// Whether the adapter filters 32-bit float textures (`float32-filterable`).
+pub fn float32_filterable() -> Result<bool, String> {
+    Ok(gpu()?
+        .device
+        .features()
+        .contains(wgpu::Features::FLOAT32_FILTERABLE))
+}
+
+/// [`run`] with [`Textures`] bound.
+pub fn run_textured(
+    kernel: &Kernel,
+    inputs: &[f32],
+    textures: &Textures,
+) -> Result<Vec<f32>, String> {
+    let n = inputs.len() / kernel.n_in;
+    if n == 0 {
+        return Ok(Vec::new());
+    }
+    let module = crate::modules::compose(&kernel.shader(), "harness.wgsl")?;
+    run_module_with(module, n, inputs, kernel.n_out, Some(textures))
+}
+
+fn upload(gpu: &Gpu, c: &TextureChain, half: bool) -> wgpu::TextureView {
+    let levels = 32 - c.width.max(c.height).leading_zeros();
+    let format = match (c.channels, half) {
+        (4, false) => wgpu::TextureFormat::Rgba32Float,
+        (4, true) => wgpu::TextureFormat::Rgba16Float,
+        (_, false) => wgpu::TextureFormat::R32Float,
+        (_, true) => wgpu::TextureFormat::R16Float,
+    };
+    let bytes: Vec<u8> = if half {
+        c.texels
+            .iter()
+            .flat_map(|&v| filtered_ndf::bake::f16::f16_from_f32(v).to_le_bytes())
+            .collect()
+    } else {
+        bytemuck::cast_slice(&c.texels).to_vec()
+    };
+    let tex = gpu.device.create_texture_with_data(
+        &gpu.queue,
+        &wgpu::TextureDescriptor {
+            label: Some("harness chain"),
+            size: wgpu::Extent3d {
+                width: c.width,
+                height: c.height,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: levels,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        &bytes,
+    );
+    tex.create_view(&Default::default())
+}
+
 /// [`run`] with the shader built on the concatenated file (`shaders/generated/filtered_ndf.wgsl`
 /// as generated now) instead of the naga_oil composition: the snippet's `alias::item`
 /// references are rewritten to the concatenated names ([`crate::concat`]).
@@ -271,6 +366,7 @@ fn prepare(
     n: usize,
     inputs: &[f32],
     n_out: usize,
+    textures: Option<&Textures>,
 ) -> Result<Prepared, String> {
     let device = &gpu.device;
     let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
@@ -304,19 +400,42 @@ fn prepare(
         usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
         mapped_at_creation: false,
     });
+    let views = textures.map(|t| (upload(gpu, &t.rgba, t.half), upload(gpu, &t.r, t.half)));
+    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("harness"),
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        mipmap_filter: wgpu::MipmapFilterMode::Linear,
+        ..Default::default()
+    });
+    let mut entries = vec![
+        wgpu::BindGroupEntry {
+            binding: 0,
+            resource: input.as_entire_binding(),
+        },
+        wgpu::BindGroupEntry {
+            binding: 1,
+            resource: output.as_entire_binding(),
+        },
+    ];
+    if let Some((rgba, r)) = &views {
+        entries.push(wgpu::BindGroupEntry {
+            binding: 2,
+            resource: wgpu::BindingResource::TextureView(rgba),
+        });
+        entries.push(wgpu::BindGroupEntry {
+            binding: 3,
+            resource: wgpu::BindingResource::TextureView(r),
+        });
+        entries.push(wgpu::BindGroupEntry {
+            binding: 4,
+            resource: wgpu::BindingResource::Sampler(&sampler),
+        });
+    }
     let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("harness"),
         layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: input.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: output.as_entire_binding(),
-            },
-        ],
+        entries: &entries,
     });
     if let Some(e) = pollster::block_on(scope.pop()) {
         return Err(format!("{}: {e}", gpu.label()));
@@ -366,7 +485,7 @@ pub fn time_module(
 ) -> Result<Vec<f64>, String> {
     let gpu = gpu()?;
     let _guard = gpu.lock.lock().unwrap_or_else(|e| e.into_inner());
-    let p = prepare(gpu, module, n, inputs, n_out)?;
+    let p = prepare(gpu, module, n, inputs, n_out, None)?;
     dispatch(gpu, &p, false)?;
     let mut t = Vec::new();
     for _ in 0..runs {
@@ -385,9 +504,19 @@ pub fn run_module(
     inputs: &[f32],
     n_out: usize,
 ) -> Result<Vec<f32>, String> {
+    run_module_with(module, n, inputs, n_out, None)
+}
+
+fn run_module_with(
+    module: naga::Module,
+    n: usize,
+    inputs: &[f32],
+    n_out: usize,
+    textures: Option<&Textures>,
+) -> Result<Vec<f32>, String> {
     let gpu = gpu()?;
     let _guard = gpu.lock.lock().unwrap_or_else(|e| e.into_inner());
-    let p = prepare(gpu, module, n, inputs, n_out)?;
+    let p = prepare(gpu, module, n, inputs, n_out, textures)?;
     dispatch(gpu, &p, true)?;
     let slice = p.staging.slice(..);
     let (tx, rx) = std::sync::mpsc::channel();

@@ -43,6 +43,18 @@ pub fn rows() -> Vec<(String, String)> {
             "gaussian_ggx::d(gaussian_ggx::from_kernel(a, clamp::pixel_kernel(clamp::KHPL16_RULES, fp, 0.5)), h)",
         ),
         (
+            "GGX exact Gaussian (this crate) Rel1e4",
+            "gaussian_ggx::d(gaussian_ggx::with_tolerance(gaussian_ggx::from_kernel(a, clamp::pixel_kernel(clamp::KHPL16_RULES, fp, 0.5)), gaussian_ggx::TOL_1E4), h)",
+        ),
+        (
+            "GGX exact Gaussian (this crate) Rel1e3",
+            "gaussian_ggx::d(gaussian_ggx::with_tolerance(gaussian_ggx::from_kernel(a, clamp::pixel_kernel(clamp::KHPL16_RULES, fp, 0.5)), gaussian_ggx::TOL_1E3), h)",
+        ),
+        (
+            "GGX exact Gaussian (this crate) Rel1e2",
+            "gaussian_ggx::d(gaussian_ggx::with_tolerance(gaussian_ggx::from_kernel(a, clamp::pixel_kernel(clamp::KHPL16_RULES, fp, 0.5)), gaussian_ggx::TOL_1E2), h)",
+        ),
+        (
             "GGX TK19 A+2Sigma (matrix)",
             "ggx::d_matrix(gaussian::filter_gaussian(clamp::DEFAULT_RULES, a, fp, 0.5), h)",
         ),

@@ -8,6 +8,8 @@
 //! - [`generate`]: the naga translations under `shaders/generated/` (GLSL 330, GLSL ES 310,
 //!   HLSL SM 5.1, MSL) and the check that the checked-in copies are up to date.
 //! - [`wgsl_crate`]: the `filtered-ndf-wgsl` crate's table of modules (`shaders/src/`).
+//! - [`wgsl_rules`]: the WGSL constants of the exact Gaussian filter's accuracy settings, from
+//!   the Rust rules.
 //! - [`harness`]: a wgpu compute harness that evaluates a WGSL function over many cases in one
 //!   dispatch, on the backend chosen by `FILTERED_NDF_GPU_BACKEND`.
 //! - [`reference`](mod@reference): the crate's `f64` functions the shader functions are compared with.
@@ -28,3 +30,4 @@ pub mod oracle_backend;
 pub mod reference;
 pub mod syntax;
 pub mod wgsl_crate;
+pub mod wgsl_rules;

@@ -326,7 +326,7 @@ if mth == 0.0 || (mth == 1.0 && !g) {
         y(0u, point_beckmann_matrix(lobe, 21u));
     }
 } else if mth == 1.0 {
-    let lobe = gaussian_ggx::exact_gaussian_lobe(gaussian_ggx::ExactGaussian(rules, sigma), oracle_matrix(2u), fp);
+    let lobe = gaussian_ggx::exact_gaussian_lobe(gaussian_ggx::ExactGaussian(rules, sigma, gaussian_ggx::TOL_FULL), oracle_matrix(2u), fp);
     if pk == 0.0 {
         y(0u, gaussian_ggx::d(lobe, x3(22u)));
     } else if pk == 1.0 {

@@ -7,7 +7,7 @@
 
 /// `f64::filter::method`: the front door's methods.
 pub use filtered_ndf::f64::filter::{
-    ExactGaussian, Filterable, Gaussian, Projected, Proxy, Rect, RectFilteredGgx,
+    ExactGaussian, Filterable, Gaussian, Lean, LeanMoments, Projected, Proxy, Rect, RectFilteredGgx,
 };
 pub use filtered_ndf::f64::{
     AxisAligned, Beckmann, ClampRules, Covariance, Footprint, GaussianFilteredGgx, Ggx, Isotropic,

@@ -35,6 +35,8 @@ groups!(
     nan_policy,
     gaussian_ggx,
     method,
+    lean_nested,
+    bake,
     sampling,
     sampling_beckmann,
 );

@@ -56,6 +56,25 @@ struct GaussianFilteredGgx {
     norm: f32,
     /// The sanitised kernel (for `Lambda`'s `o^T Sigma o`).
     k: covariance::Covariance,
+    /// The accuracy setting of `p22` and `d` (the Rust `Tolerance`): one of the `TOL_*`
+    /// constants.
+    tol: u32,
+}
+
+/// The accuracy settings of the density (the Rust `Tolerance`; bounds in its module docs,
+/// "Tolerance settings"): the full rules (relative error `1.8e-6`, the default), then `1e-4`,
+/// `1e-3` and `1e-2`. Out-of-range values act as `TOL_1E2`.
+const TOL_FULL: u32 = quad::TOL_FULL;
+const TOL_1E4: u32 = quad::TOL_1E4;
+const TOL_1E3: u32 = quad::TOL_1E3;
+const TOL_1E2: u32 = quad::TOL_1E2;
+
+/// The lobe `g` with its density at the accuracy setting `tol` (the Rust
+/// `GaussianFilteredGgx::with_tolerance`); `Lambda` and the samplers are unchanged.
+fn with_tolerance(g: GaussianFilteredGgx, tol: u32) -> GaussianFilteredGgx {
+    var out = g;
+    out.tol = tol;
+    return out;
 }
 
 /// The lobe of GGX roughness `a` (evaluated as its `A_c`) filtered by the kernel `kernel`
@@ -88,7 +107,7 @@ fn from_kernel(a: matrix::RoughnessMatrix, kernel: covariance::Covariance) -> Ga
     } else if l1 > 0.0 {
         l2 = l1;
     }
-    return GaussianFilteredGgx(a, isl, v, vec2<f32>(2.0 * l1, 2.0 * l2), math::INV_PI / matrix::sqrt_det(a), k);
+    return GaussianFilteredGgx(a, isl, v, vec2<f32>(2.0 * l1, 2.0 * l2), math::INV_PI / matrix::sqrt_det(a), k, TOL_FULL);
 }
 
 /// `(c1^2, c2^2)` of a tangent-plane vector `s` (a slope, or `m_xy` of a normal).
@@ -102,7 +121,7 @@ fn whiten(g: GaussianFilteredGgx, s: vec2<f32>) -> vec2<f32> {
 /// underflows.
 fn p22(g: GaussianFilteredGgx, s: vec2<f32>) -> f32 {
     let c = whiten(g, s);
-    return g.norm * quad::mixture_integral(c.x, c.y, 1.0, g.tl.x, g.tl.y);
+    return g.norm * quad::j_tol(c.x, c.y, 1.0, g.tl.x, g.tl.y, g.tol);
 }
 
 /// `D(m) = P22_Sigma(s(m)) / m_z^4` per steradian for a unit micronormal (the Rust `d`): `0`
@@ -113,7 +132,7 @@ fn d(g: GaussianFilteredGgx, m: vec3<f32>) -> f32 {
         return 0.0;
     }
     let c = whiten(g, m.xy);
-    let v = g.norm * quad::mixture_integral(c.x, c.y, m.z * m.z, g.tl.x, g.tl.y);
+    let v = g.norm * quad::j_tol(c.x, c.y, m.z * m.z, g.tl.x, g.tl.y, g.tol);
     return select(0.0, v, v <= math::F32_MAX);
 }
 
@@ -164,15 +183,17 @@ struct ExactGaussian {
     clamps: clamp::ClampRules,
     /// The standard deviation of the Gaussian pixel filter, in pixels.
     sigma: f32,
+    /// The accuracy setting of the GGX lobe's density (`TOL_*`, the Rust `Tolerance`).
+    tolerance: u32,
 }
 
 /// The unbiased filter of the footprint: `lambda = 1` (KHPL16 section 5.2), no `kappa`,
-/// `sigma = 0.5`.
-const KHPL16_EXACT_GAUSSIAN: ExactGaussian = ExactGaussian(clamp::KHPL16_RULES, pixel::SIGMA_PIXEL);
+/// `sigma = 0.5`, the full accuracy.
+const KHPL16_EXACT_GAUSSIAN: ExactGaussian = ExactGaussian(clamp::KHPL16_RULES, pixel::SIGMA_PIXEL, TOL_FULL);
 
 /// The GGX lobe of the exact Gaussian filter (the Rust `ExactGaussian::lobe` for GGX).
 fn exact_gaussian_lobe(method: ExactGaussian, material: matrix::RoughnessMatrix, fp: pixel::Footprint) -> GaussianFilteredGgx {
-    return from_kernel(material, clamp::pixel_kernel(method.clamps, fp, method.sigma));
+    return with_tolerance(from_kernel(material, clamp::pixel_kernel(method.clamps, fp, method.sigma)), method.tolerance);
 }
 
 /// `D(m)` of [`exact_gaussian_lobe`].

@@ -65,7 +65,7 @@ fn laguerre_weight(k: u32) -> f32 {
 }
 
 /// `J / z2^2` for `c_i^2 = v_i^2 / z2` from `(v1^2, v2^2)`, `z2 > 0` and `(2 l1, 2 l2)`,
-/// `2 l1 >= 2 l2 >= 0` (the Rust `j`): `J(c)` itself for `z2 = 1` (a slope), `J / m_z^4` for a
+/// `2 l1 >= 2 l2 >= 0` (the Rust `mixture_integral`): `J(c)` itself for `z2 = 1` (a slope), `J / m_z^4` for a
 /// normal (`z2 = m_z^2`, `v = T m_xy`) without forming the slope. The rule by `q = |c|^2` and
 /// the kernel ratio (module docs).
 fn mixture_integral(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
@@ -78,7 +78,7 @@ fn mixture_integral(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
         return laguerre(beta_m, v1s, v2s, z2, tl1, tl2);
     }
     let iz2 = 1.0 / z2;
-    return trapezoid(v1s * iz2, v2s * iz2, tl1, tl2) * iz2 * iz2;
+    return trapezoid_rule(v1s * iz2, v2s * iz2, tl1, tl2, FULL_RULE) * iz2 * iz2;
 }
 
 /// The far-tail series of `J` (item 5), homogeneous as [`mixture_integral`]:
@@ -112,14 +112,70 @@ fn laguerre(beta_m: f32, v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32
     return acc * ib * ib;
 }
 
-/// The geometric sums `1 / (e^((n + 2) H) - 1)` of the series below the first node.
-fn geom(n: u32) -> f32 {
-    switch n {
-        case 0u: { return 0.5819767068693265; }
-        case 1u: { return 0.2872169167888683; }
-        case 2u: { return 0.15651764274966565; }
-        default: { return 0.08942548983385201; }
+/// The constants of a trapezoid rule in `ln w` (items 2 and 3, and the Rust `Tolerance`
+/// settings): step `h`, `e^h`, the truncation tolerance, the first node's bound `Y`, the
+/// geometric sums `1 / (e^((n + 2) h) - 1)`, `n < 4`, of the series below the first node, and
+/// the most nodes (a multiple of 8, `nodes h <= 88`: every `e^(k h)` finite in f32).
+struct TrapezoidRule {
+    h: f32,
+    exp_h: f32,
+    eps_t: f32,
+    y_lo: f32,
+    geom: vec4<f32>,
+    nodes: u32,
+}
+
+/// The full rule (step 0.5).
+const FULL_RULE: TrapezoidRule = TrapezoidRule(H, EXP_H, EPS_T, Y_LO, vec4<f32>(0.5819767068693265, 0.2872169167888683, 0.15651764274966565, 0.08942548983385201), CHUNKS * 8u);
+
+/// The accuracy settings (the Rust `Tolerance`): `TOL_FULL` the rules above; the others the
+/// far-tail series where `2 l1 (K + 12 ln(1 + q)) <= 1 + q`, else the trapezoid rule of
+/// [`reduced_rule`], with the relative bounds `1e-4`, `1e-3`, `1e-2` (Rust module docs,
+/// "Tolerance settings"); their constants are the Rust rules' (written by `generate`). `ln` is
+/// `math::ln` here, not the Rust upper bound, so the switch can sit a few ulp of `1 + q` away
+/// from the Rust one: both rules hold their bounds on both sides. The truncation test runs
+/// every 8 nodes (Rust: 4), so the WGSL never stops earlier than the Rust rule.
+const TOL_FULL: u32 = 0u;
+const TOL_1E4: u32 = 1u;
+const TOL_1E3: u32 = 2u;
+const TOL_1E2: u32 = 3u;
+
+// BEGIN reduced rules
+// Written by `cargo run -p filtered-ndf-gpu --bin generate` from the Rust rules
+// (`filtered_ndf::testing::tolerance_rules`); do not edit.
+
+/// The far-tail switch `K` of a reduced setting (`TOL_1E4`, `TOL_1E3`, else `TOL_1E2`).
+fn reduced_far(tol: u32) -> f32 {
+    switch tol {
+        case 1u: { return 1500.0; }
+        case 2u: { return 500.0; }
+        default: { return 160.0; }
     }
+}
+
+/// The trapezoid rule of a reduced setting (`TOL_1E4`, `TOL_1E3`, else `TOL_1E2`): the
+/// Rust rule's constants, its node count rounded down to the 8-node chunks of
+/// [`trapezoid_rule`].
+fn reduced_rule(tol: u32) -> TrapezoidRule {
+    switch tol {
+        case 1u: { return TrapezoidRule(0.6, 1.8221188003905089, 1e-5, 0.12, vec4<f32>(0.43101276069333316, 0.19803362651500594, 0.09976877209617539, 0.05239569649125596), 144u); }
+        case 2u: { return TrapezoidRule(0.75, 2.117000016612675, 0.0001, 0.2, vec4<f32>(0.2872169167888682, 0.11781705030408056, 0.05239569649125593, 0.02408415079352912), 112u); }
+        default: { return TrapezoidRule(1.0, 2.718281828459045, 0.0005, 0.35, vec4<f32>(0.15651764274966568, 0.05239569649125596, 0.01865736036377405, 0.006783654906304232), 88u); }
+    }
+}
+// END reduced rules
+
+/// `J / z2^2` (as [`mixture_integral`]) at the accuracy setting `tol` (`TOL_FULL` to `TOL_1E2`).
+fn j_tol(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32, tol: u32) -> f32 {
+    if tol == TOL_FULL {
+        return mixture_integral(v1s, v2s, z2, tl1, tl2);
+    }
+    let beta_m = z2 + v1s + v2s;
+    if tl1 * z2 * (reduced_far(tol) + 12.0 * math::ln(beta_m / z2)) <= beta_m {
+        return far_tail(beta_m, v1s, v2s, tl1, tl2, z2);
+    }
+    let iz2 = 1.0 / z2;
+    return trapezoid_rule(v1s * iz2, v2s * iz2, tl1, tl2, reduced_rule(tol)) * iz2 * iz2;
 }
 
 /// The nodes below `w_first` (item 2): `sum_k w_k^2 phi(w_k)` over `w_k = w_first e^(-k H)`,
@@ -127,7 +183,7 @@ fn geom(n: u32) -> f32 {
 /// Scaled by `y = w_first`: with `x_i = 2 l_i y`, `d_i = c_i^2 y` (both `<= Y_LO`), the
 /// coefficients `b~_n = b_n y^n` of `ln phi` and `a~_n = a_n y^n` are bounded, and the sum is
 /// `y^2 sum_n a~_n / (e^((n + 2) H) - 1)`.
-fn series_below(c1s: f32, c2s: f32, tl1: f32, tl2: f32, y: f32) -> f32 {
+fn series_below(c1s: f32, c2s: f32, tl1: f32, tl2: f32, y: f32, geom: vec4<f32>) -> f32 {
     let x1 = tl1 * y;
     let x2 = tl2 * y;
     let d1 = c1s * y;
@@ -141,21 +197,23 @@ fn series_below(c1s: f32, c2s: f32, tl1: f32, tl2: f32, y: f32) -> f32 {
     let a1 = b1;
     let a2 = 0.5 * (b1 * a1 + 2.0 * b2);
     let a3 = (1.0 / 3.0) * (b1 * a2 + 2.0 * b2 * a1 + 3.0 * b3);
-    let tail = geom(0u) + a1 * geom(1u) + a2 * geom(2u) + a3 * geom(3u);
+    let tail = geom.x + a1 * geom.y + a2 * geom.z + a3 * geom.w;
     return tail * y * y;
 }
 
 /// The trapezoid rule in `t = ln w` (items 1 to 3): nodes `w_k = w_r e^((k - k0) H)` from the
 /// first node at or below `Y_LO / (1 + q + 2 l1)`, the nodes below it summed by
 /// [`series_below`], each exponent against the reference `w_r = 2 / (1 + q)`, the top truncated
-/// by the monotone bound, in chunks of 8 nodes.
-fn trapezoid(c1s: f32, c2s: f32, tl1: f32, tl2: f32) -> f32 {
+/// by the monotone bound, in chunks of 8 nodes; the constants of `rule` (the first node's
+/// offset `k0 h` at most 87, so that `e^(-k0 h)` is a normal f32).
+fn trapezoid_rule(c1s: f32, c2s: f32, tl1: f32, tl2: f32, rule: TrapezoidRule) -> f32 {
+    let hs = rule.h;
     let beta = 1.0 + c1s + c2s;
     let ib = 1.0 / beta;
     let w_r = 2.0 * ib;
-    // k0 H >= ln(w_r / w_lo), w_lo = Y_LO / (beta + 2 l1).
-    let k0 = min(ceil(math::ln(2.0 / Y_LO * (beta + tl1) * ib) / H), f32(CHUNKS * 8u - 1u));
-    let w_first = w_r * math::exp(-k0 * H);
+    // k0 h >= ln(w_r / w_lo), w_lo = Y / (beta + 2 l1).
+    let k0 = min(ceil(math::ln(2.0 / rule.y_lo * (beta + tl1) * ib) / hs), min(f32(rule.nodes - 1u), floor(87.0 / hs)));
+    let w_first = w_r * math::exp(-k0 * hs);
     // The reference exponent x_r = -w_r - E(w_r); E(w) - E(w_r) = sum c_i^2 (w - w_r) /
     // (p_i(w) p_i(w_r)) without cancellation.
     let pr1 = 1.0 + tl1 * w_r;
@@ -164,15 +222,15 @@ fn trapezoid(c1s: f32, c2s: f32, tl1: f32, tl2: f32) -> f32 {
     let k2 = c2s * (w_r / pr2);
     let x_r = -w_r - k1 - k2;
     let scale = w_r * w_r * math::exp(x_r);
-    // Per node, v = w / w_r = e^((k - k0) H), p_i = 1 + (2 l_i w_r) v:
+    // Per node, v = w / w_r = e^((k - k0) hs), p_i = 1 + (2 l_i w_r) v:
     // g / scale = exp(2 ln v - (v - 1)(w_r + k1 / p1 + k2 / p2)) / sqrt(p1 p2).
     let t1 = tl1 * w_r;
     let t2 = tl2 * w_r;
-    let stop = EPS_T * H * w_r * w_r;
+    let stop = rule.eps_t * hs * w_r * w_r;
     var sum = 0.0;
-    for (var ch = 0u; ch < CHUNKS; ch++) {
+    for (var ch = 0u; ch < rule.nodes / 8u; ch++) {
         let kb = f32(ch * 8u) - k0;
-        var v = math::exp(kb * H);
+        var v = math::exp(kb * hs);
         var part = 0.0;
         var last = 0.0;
         var vl = v;
@@ -180,11 +238,11 @@ fn trapezoid(c1s: f32, c2s: f32, tl1: f32, tl2: f32) -> f32 {
             let ip1 = 1.0 / (1.0 + t1 * v);
             let ip2 = 1.0 / (1.0 + t2 * v);
             let a = w_r + k1 * ip1 + k2 * ip2;
-            let x = 2.0 * H * (kb + f32(jj)) - (v - 1.0) * a;
+            let x = 2.0 * hs * (kb + f32(jj)) - (v - 1.0) * a;
             last = math::exp(x) * sqrt(ip1) * sqrt(ip2);
             part += last;
             vl = v;
-            v = v * EXP_H;
+            v = v * rule.exp_h;
         }
         sum += part;
         // Item 3: the nodes above the last sum to at most g_last b / w_last^2.
@@ -194,7 +252,7 @@ fn trapezoid(c1s: f32, c2s: f32, tl1: f32, tl2: f32) -> f32 {
             break;
         }
     }
-    return H * (sum * scale + series_below(c1s, c2s, tl1, tl2, w_first));
+    return hs * (sum * scale + series_below(c1s, c2s, tl1, tl2, w_first, rule.geom));
 }
 
 /// The 8-node Gauss-Hermite rule for the standard normal density: positive node `k`

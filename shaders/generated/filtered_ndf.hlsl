@@ -3,6 +3,17 @@
 // Names are those of shaders/generated/filtered_ndf.wgsl (module path as prefix);
 // the documentation is in the WGSL modules under shaders/. The entry point at the
 // end exists only because naga translates one: delete it when pasting.
+struct ndf_roughness_matrix_RoughnessMatrix {
+    float2 axis;
+    float2 eig;
+    float2 eig_c;
+    float2 inv_eig;
+    float sqrt_det;
+    float det;
+    float tau;
+    int _end_pad_0;
+};
+
 struct footprint_jacobian_Polar {
     float3 h;
     int _pad1_0;
@@ -28,29 +39,6 @@ struct kernel_covariance_Covariance {
     float s_xy;
     float s_yy;
     float det;
-};
-
-struct filter_deferred_KernelConvention {
-    uint domain;
-    uint norm;
-    float scale;
-    float exponent;
-    float bias;
-    float clamp_;
-    uint combine;
-    bool saturate_;
-    float perceptual_floor;
-};
-
-struct ndf_roughness_matrix_RoughnessMatrix {
-    float2 axis;
-    float2 eig;
-    float2 eig_c;
-    float2 inv_eig;
-    float sqrt_det;
-    float det;
-    float tau;
-    int _end_pad_0;
 };
 
 struct ndf_roughness_isotropic_Isotropic {
@@ -80,6 +68,38 @@ struct filter_gaussian_Gaussian {
     float sigma;
 };
 
+struct filter_lean_LeanMoments {
+    float2 mean;
+    int _pad1_0;
+    int _pad1_1;
+    float3 second;
+    int _end_pad_0;
+};
+
+struct filter_deferred_KernelConvention {
+    uint domain;
+    uint norm;
+    float scale;
+    float exponent;
+    float bias;
+    float clamp_;
+    uint combine;
+    bool saturate_;
+    float perceptual_floor;
+};
+
+struct filter_gaussian_ggx_quad_TrapezoidRule {
+    float h;
+    float exp_h;
+    float eps_t;
+    float y_lo;
+    float4 geom;
+    uint nodes;
+    int _end_pad_0;
+    int _end_pad_1;
+    int _end_pad_2;
+};
+
 struct filter_gaussian_ggx_GaussianFilteredGgx {
     ndf_roughness_matrix_RoughnessMatrix a;
     float2 inv_sqrt_l;
@@ -87,20 +107,13 @@ struct filter_gaussian_ggx_GaussianFilteredGgx {
     float2 tl;
     float norm;
     kernel_covariance_Covariance k;
-    int _end_pad_0;
+    uint tol;
 };
 
 struct filter_gaussian_ggx_ExactGaussian {
     kernel_clamp_ClampRules clamps;
     float sigma;
-};
-
-struct filter_lean_LeanMoments {
-    float2 mean;
-    int _pad1_0;
-    int _pad1_1;
-    float3 second;
-    int _end_pad_0;
+    uint tolerance;
 };
 
 struct filter_projected_Projected {
@@ -144,24 +157,22 @@ filter_gaussian_Gaussian Constructfilter_gaussian_Gaussian(kernel_clamp_ClampRul
     return ret;
 }
 
-filter_gaussian_ggx_ExactGaussian Constructfilter_gaussian_ggx_ExactGaussian(kernel_clamp_ClampRules arg0, float arg1) {
-    filter_gaussian_ggx_ExactGaussian ret = (filter_gaussian_ggx_ExactGaussian)0;
-    ret.clamps = arg0;
-    ret.sigma = arg1;
+filter_gaussian_ggx_quad_TrapezoidRule Constructfilter_gaussian_ggx_quad_TrapezoidRule(float arg0, float arg1, float arg2, float arg3, float4 arg4, uint arg5) {
+    filter_gaussian_ggx_quad_TrapezoidRule ret = (filter_gaussian_ggx_quad_TrapezoidRule)0;
+    ret.h = arg0;
+    ret.exp_h = arg1;
+    ret.eps_t = arg2;
+    ret.y_lo = arg3;
+    ret.geom = arg4;
+    ret.nodes = arg5;
     return ret;
 }
 
-filter_deferred_KernelConvention Constructfilter_deferred_KernelConvention(uint arg0, uint arg1, float arg2, float arg3, float arg4, float arg5, uint arg6, bool arg7, float arg8) {
-    filter_deferred_KernelConvention ret = (filter_deferred_KernelConvention)0;
-    ret.domain = arg0;
-    ret.norm = arg1;
-    ret.scale = arg2;
-    ret.exponent = arg3;
-    ret.bias = arg4;
-    ret.clamp_ = arg5;
-    ret.combine = arg6;
-    ret.saturate_ = arg7;
-    ret.perceptual_floor = arg8;
+filter_gaussian_ggx_ExactGaussian Constructfilter_gaussian_ggx_ExactGaussian(kernel_clamp_ClampRules arg0, float arg1, uint arg2) {
+    filter_gaussian_ggx_ExactGaussian ret = (filter_gaussian_ggx_ExactGaussian)0;
+    ret.clamps = arg0;
+    ret.sigma = arg1;
+    ret.tolerance = arg2;
     return ret;
 }
 
@@ -184,6 +195,20 @@ filter_rect_lobe_Rect Constructfilter_rect_lobe_Rect(kernel_clamp_ClampRules arg
     return ret;
 }
 
+filter_deferred_KernelConvention Constructfilter_deferred_KernelConvention(uint arg0, uint arg1, float arg2, float arg3, float arg4, float arg5, uint arg6, bool arg7, float arg8) {
+    filter_deferred_KernelConvention ret = (filter_deferred_KernelConvention)0;
+    ret.domain = arg0;
+    ret.norm = arg1;
+    ret.scale = arg2;
+    ret.exponent = arg3;
+    ret.bias = arg4;
+    ret.clamp_ = arg5;
+    ret.combine = arg6;
+    ret.saturate_ = arg7;
+    ret.perceptual_floor = arg8;
+    return ret;
+}
+
 static const float math_PI = 3.1415927;
 static const float math_HALF_PI = 1.5707964;
 static const float math_QUARTER_PI = 0.7853982;
@@ -197,11 +222,22 @@ static const float math_LN_2_ = 0.6931472;
 static const float math_SQRT_TAU = 2.5066283;
 static const float math_LOG2_E = 1.442695;
 static const float math_SQRT_2_ = 1.4142135;
-static const float ndf_roughness_ALPHA_MIN = 1e-8;
-static const float ndf_roughness_ALPHA_MAX = 10000.0;
 static const float footprint_jacobian_HZ_MIN = 1e-6;
 static const float footprint_SIGMA_PIXEL = 0.5;
 static const float kernel_covariance_KERNEL_MAX = 100000000.0;
+static const float ndf_roughness_ALPHA_MIN = 1e-8;
+static const float ndf_roughness_ALPHA_MAX = 10000.0;
+static const float ndf_beckmann_EXP_SPLIT = 80.0;
+static const float ndf_beckmann_SQRT_PI = 1.7724539;
+static const uint kernel_clamp_FLOOR_NONE = 0u;
+static const uint kernel_clamp_FLOOR_CONSTANT = 1u;
+static const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
+static const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
+static const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
+static const kernel_clamp_ClampRules kernel_clamp_NO_RULES = Constructkernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
+static const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
+static const filter_gaussian_Gaussian filter_gaussian_TK19_GAUSSIAN = Constructfilter_gaussian_Gaussian(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
+static const filter_gaussian_Gaussian filter_gaussian_KHPL16_GAUSSIAN = Constructfilter_gaussian_Gaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
 static const float filter_deferred_KAPPA = 0.18;
 static const uint filter_deferred_DOMAIN_ALPHA_SQ = 0u;
 static const uint filter_deferred_DOMAIN_ALPHA = 1u;
@@ -216,17 +252,6 @@ static const uint filter_deferred_COMBINE_MAX = 1u;
 static const uint filter_deferred_BANDWIDTH_MAX = 0u;
 static const uint filter_deferred_BANDWIDTH_TRACE = 1u;
 static const uint filter_deferred_BANDWIDTH_AVERAGE = 2u;
-static const float ndf_beckmann_EXP_SPLIT = 80.0;
-static const float ndf_beckmann_SQRT_PI = 1.7724539;
-static const uint kernel_clamp_FLOOR_NONE = 0u;
-static const uint kernel_clamp_FLOOR_CONSTANT = 1u;
-static const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
-static const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
-static const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
-static const kernel_clamp_ClampRules kernel_clamp_NO_RULES = Constructkernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
-static const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
-static const filter_gaussian_Gaussian filter_gaussian_TK19_GAUSSIAN = Constructfilter_gaussian_Gaussian(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
-static const filter_gaussian_Gaussian filter_gaussian_KHPL16_GAUSSIAN = Constructfilter_gaussian_Gaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
 static const float filter_gaussian_ggx_quad_FAR = 320000.0;
 static const float filter_gaussian_ggx_quad_H = 0.5;
 static const float filter_gaussian_ggx_quad_EXP_H = 1.6487212;
@@ -236,12 +261,30 @@ static const uint filter_gaussian_ggx_quad_CHUNKS = 22u;
 static const float filter_gaussian_ggx_quad_GL_RATIO = 0.0177;
 static const float filter_gaussian_ggx_quad_GL_PLATEAU = 20.0;
 static const float filter_gaussian_ggx_quad_GL_WIDE = 28000000000.0;
+static const filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_FULL_RULE = Constructfilter_gaussian_ggx_quad_TrapezoidRule(0.5, 1.6487212, 1e-7, 0.054, float4(0.5819767, 0.28721693, 0.15651764, 0.08942549), 176u);
+static const uint filter_gaussian_ggx_quad_TOL_FULL = 0u;
+static const uint filter_gaussian_ggx_quad_TOL_1E4_ = 1u;
+static const uint filter_gaussian_ggx_quad_TOL_1E3_ = 2u;
+static const uint filter_gaussian_ggx_quad_TOL_1E2_ = 3u;
 static const float filter_gaussian_ggx_quad_GH_MAX = 0.01;
 static const float filter_gaussian_ggx_quad_S_MAX = 0.25;
 static const float filter_gaussian_ggx_quad_S_COEF = 0.25;
 static const float filter_gaussian_ggx_quad_S_EPS = 1e-8;
 static const uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
-static const filter_gaussian_ggx_ExactGaussian filter_gaussian_ggx_KHPL16_EXACT_GAUSSIAN = Constructfilter_gaussian_ggx_ExactGaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
+static const uint filter_gaussian_ggx_TOL_FULL = 0u;
+static const uint filter_gaussian_ggx_TOL_1E4_ = 1u;
+static const uint filter_gaussian_ggx_TOL_1E3_ = 2u;
+static const uint filter_gaussian_ggx_TOL_1E2_ = 3u;
+static const filter_gaussian_ggx_ExactGaussian filter_gaussian_ggx_KHPL16_EXACT_GAUSSIAN = Constructfilter_gaussian_ggx_ExactGaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5, 0u);
+static const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
+static const filter_projected_Projected filter_projected_TK21_PROJECTED = Constructfilter_projected_Projected(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
+static const filter_proxy_Proxy filter_proxy_KHPL16_PROXY = Constructfilter_proxy_Proxy(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
+static const float filter_rect_BIG = 1e18;
+static const float filter_rect_FAR2_ = 0.25;
+static const uint filter_rect_TIER_CLOSED = 0u;
+static const float filter_rect_lambda_BIG_K = 1000000000000.0;
+static const filter_rect_lobe_Rect filter_rect_lobe_KHPL16_RECT = Constructfilter_rect_lobe_Rect(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
+static const filter_rect_lobe_Rect filter_rect_lobe_GDC2016_RECT = Constructfilter_rect_lobe_Rect(Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true));
 static const filter_deferred_KernelConvention filter_presets_TK19_TRACE = Constructfilter_deferred_KernelConvention(0u, 0u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
 static const filter_deferred_KernelConvention filter_presets_TK19_AVERAGE = Constructfilter_deferred_KernelConvention(0u, 0u, 0.25, 1.0, 0.0, 0.18, 0u, true, 0.0);
 static const filter_deferred_KernelConvention filter_presets_TK19_MAX = Constructfilter_deferred_KernelConvention(0u, 2u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
@@ -254,15 +297,6 @@ static const filter_deferred_KernelConvention filter_presets_O3DE = Constructfil
 static const filter_deferred_KernelConvention filter_presets_UNREAL = Constructfilter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 static const filter_deferred_KernelConvention filter_presets_BABYLON = Constructfilter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 static const filter_deferred_KernelConvention filter_presets_THREE_JS = Constructfilter_deferred_KernelConvention(2u, 3u, 1.0, 1.0, 0.0, 3.4028235e38, 0u, true, 0.0525);
-static const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
-static const filter_projected_Projected filter_projected_TK21_PROJECTED = Constructfilter_projected_Projected(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
-static const filter_proxy_Proxy filter_proxy_KHPL16_PROXY = Constructfilter_proxy_Proxy(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
-static const float filter_rect_BIG = 1e18;
-static const float filter_rect_FAR2_ = 0.25;
-static const uint filter_rect_TIER_CLOSED = 0u;
-static const float filter_rect_lambda_BIG_K = 1000000000000.0;
-static const filter_rect_lobe_Rect filter_rect_lobe_KHPL16_RECT = Constructfilter_rect_lobe_Rect(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
-static const filter_rect_lobe_Rect filter_rect_lobe_GDC2016_RECT = Constructfilter_rect_lobe_Rect(Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true));
 static const float sampling_ONE_MINUS_EPS = 0.99999994;
 static const float sampling_beckmann_X_MAX = 9.0;
 static const uint sampling_beckmann_MAX_ITERATIONS = 64u;
@@ -274,9 +308,9 @@ float math_atan(float x)
     float t = (float)0;
     float r = (float)0;
 
-    float a_16 = abs(x);
-    bool inv = (a_16 > 1.0);
-    t = (inv ? (1.0 / a_16) : a_16);
+    float a_17 = abs(x);
+    bool inv = (a_17 > 1.0);
+    t = (inv ? (1.0 / a_17) : a_17);
     float _e8 = t;
     bool shift = (_e8 > math_TAN_EIGHTH_PI);
     float _e11 = t;
@@ -310,20 +344,20 @@ float2 math_sincos_turns(float u)
     float2 cs = (float2)0;
 
     float q_4 = round((4.0 * u));
-    float r_76 = (u - (0.25 * q_4));
-    float z_3 = (r_76 * r_76);
-    float s_20 = (r_76 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855));
+    float r_79 = (u - (0.25 * q_4));
+    float z_3 = (r_79 * r_79);
+    float s_22 = (r_79 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855));
     float c_14 = ((((((((59.22017 * z_3) - 85.44285) * z_3) + 64.939316) * z_3) - 19.739208) * z_3) + 1.0);
     int k_24 = (naga_f2i32(q_4) & int(3));
-    cs = float2(c_14, s_20);
+    cs = float2(c_14, s_22);
     if ((k_24 == int(1))) {
-        cs = float2(-(s_20), c_14);
+        cs = float2(-(s_22), c_14);
     } else {
         if ((k_24 == int(2))) {
-            cs = float2(-(c_14), -(s_20));
+            cs = float2(-(c_14), -(s_22));
         } else {
             if ((k_24 == int(3))) {
-                cs = float2(s_20, -(c_14));
+                cs = float2(s_22, -(c_14));
             }
         }
     }
@@ -333,31 +367,31 @@ float2 math_sincos_turns(float u)
 
 float math_hypot(float x_1, float y)
 {
-    float m_44 = max(abs(x_1), abs(y));
-    if ((m_44 <= 0.0)) {
+    float m_49 = max(abs(x_1), abs(y));
+    if ((m_49 <= 0.0)) {
         return 0.0;
     }
-    float a_17 = (x_1 / m_44);
-    float b_4 = (y / m_44);
-    return (m_44 * sqrt(((a_17 * a_17) + (b_4 * b_4))));
+    float a_18 = (x_1 / m_49);
+    float b_4 = (y / m_49);
+    return (m_49 * sqrt(((a_18 * a_18) + (b_4 * b_4))));
 }
 
 float math_exp(float x_2)
 {
     float xc = clamp(x_2, -87.0, 88.0);
-    float n_6 = round((xc * math_LOG2_E));
-    float r_77 = ((xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO));
-    float r2_ = (r_77 * r_77);
-    float p_6 = (((1.0 + r_77) + ((0.4999999 + (0.1666642 * r_77)) * r2_)) + (((0.041668225 + (0.008374816 * r_77)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
-    float s_21 = asfloat((uint(asint(asuint(naga_f2i32(n_6)) + asuint(int(127)))) << 23u));
-    return ((x_2 >= -87.0) ? (p_6 * s_21) : 0.0);
+    float n_5 = round((xc * math_LOG2_E));
+    float r_80 = ((xc - (n_5 * math_LN2_HI)) - (n_5 * math_LN2_LO));
+    float r2_ = (r_80 * r_80);
+    float p_6 = (((1.0 + r_80) + ((0.4999999 + (0.1666642 * r_80)) * r2_)) + (((0.041668225 + (0.008374816 * r_80)) + (0.0013836846 * r2_)) * (r2_ * r2_)));
+    float s_23 = asfloat((uint(asint(asuint(naga_f2i32(n_5)) + asuint(int(127)))) << 23u));
+    return ((x_2 >= -87.0) ? (p_6 * s_23) : 0.0);
 }
 
 float math_atanh2_(float z)
 {
-    float z2_3 = (z * z);
-    float s_22 = (((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3);
-    return ((2.0 * z) + ((2.0 * z) * s_22));
+    float z2_4 = (z * z);
+    float s_24 = (((((((((z2_4 * 0.09090909) + 0.11111111) * z2_4) + 0.14285715) * z2_4) + 0.2) * z2_4) + 0.33333334) * z2_4);
+    return ((2.0 * z) + ((2.0 * z) * s_24));
 }
 
 float math_ln(float x_3)
@@ -419,9 +453,133 @@ float3 math_nan_to_zero3_(float3 v_1)
     return float3(_e2, _e4, _e6);
 }
 
-float ndf_roughness_clamp_alpha(float alpha)
+ndf_roughness_matrix_RoughnessMatrix Constructndf_roughness_matrix_RoughnessMatrix(float2 arg0, float2 arg1, float2 arg2, float2 arg3, float arg4, float arg5, float arg6) {
+    ndf_roughness_matrix_RoughnessMatrix ret = (ndf_roughness_matrix_RoughnessMatrix)0;
+    ret.axis = arg0;
+    ret.eig = arg1;
+    ret.eig_c = arg2;
+    ret.inv_eig = arg3;
+    ret.sqrt_det = arg4;
+    ret.det = arg5;
+    ret.tau = arg6;
+    return ret;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(float2 axis, float2 alpha)
 {
-    return ((alpha >= ndf_roughness_ALPHA_MIN) ? min(alpha, ndf_roughness_ALPHA_MAX) : ndf_roughness_ALPHA_MIN);
+    float2 l_5 = (alpha * alpha);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix = Constructndf_roughness_matrix_RoughnessMatrix(axis, l_5, l_5, ((1.0).xx / l_5), (alpha.x * alpha.y), (l_5.x * l_5.y), 0.0);
+    return ndf_roughness_matrix_roughnessmatrix;
+}
+
+float2 ndf_roughness_matrix_clamped_eigenvalues(float2 l, float det, float tau)
+{
+    if ((det >= tau)) {
+        return l;
+    }
+    float h_21 = (0.5 * (l.x + l.y));
+    float gap = (tau - det);
+    float t_11 = (gap / (h_21 + sqrt(((h_21 * h_21) + gap))));
+    float l1_ = (l.x + t_11);
+    return float2(l1_, (tau / l1_));
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(float2 axis_1, float2 l_1, float det_1, float tau_1)
+{
+    const float2 _e4 = ndf_roughness_matrix_clamped_eigenvalues(l_1, det_1, tau_1);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_1 = Constructndf_roughness_matrix_RoughnessMatrix(axis_1, l_1, _e4, ((1.0).xx / _e4), sqrt(max(det_1, tau_1)), det_1, tau_1);
+    return ndf_roughness_matrix_roughnessmatrix_1;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det_2, float tau_2)
+{
+    float2 v_2 = (float2)0;
+
+    float half_diff = (0.5 * (a11_ - a22_));
+    float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
+    float l1_1 = ((0.5 * (a11_ + a22_)) + rad);
+    float l2_2 = (max(det_2, 0.0) / l1_1);
+    float big = (rad + abs(half_diff));
+    v_2 = ((half_diff < 0.0) ? float2(a12_, big) : float2(big, a12_));
+    if ((big <= 0.0)) {
+        v_2 = float2(1.0, 0.0);
+    }
+    float2 _e32 = v_2;
+    float2 _e33 = v_2;
+    float2 axis_2 = (_e32 / (length(_e33)).xx);
+    const ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, float2(l1_1, l2_2), det_2, tau_2);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_2 = _e38;
+    return ndf_roughness_matrix_roughnessmatrix_2;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(float a11_1, float a12_1, float a22_1)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_entries_det(a11_1, a12_1, a22_1, ((a11_1 * a22_1) - (a12_1 * a12_1)), 0.0);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_3 = _e7;
+    return ndf_roughness_matrix_roughnessmatrix_3;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_1, float det_clamp)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_eigenbasis(r_1.axis, r_1.eig, r_1.det, max(det_clamp, 0.0));
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_4 = _e7;
+    return ndf_roughness_matrix_roughnessmatrix_4;
+}
+
+float2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, float2 v_3)
+{
+    return float2(((r_2.axis.x * v_3.x) + (r_2.axis.y * v_3.y)), ((r_2.axis.x * v_3.y) - (r_2.axis.y * v_3.x)));
+}
+
+float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, float2 s)
+{
+    const float2 _e2 = ndf_roughness_matrix_rotate(r_3, s);
+    return dot((_e2 * _e2), r_3.inv_eig);
+}
+
+float ndf_roughness_matrix_quadratic(ndf_roughness_matrix_RoughnessMatrix r_4, float2 w)
+{
+    const float2 _e2 = ndf_roughness_matrix_rotate(r_4, w);
+    return dot((_e2 * _e2), r_4.eig_c);
+}
+
+float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5)
+{
+    return r_5.sqrt_det;
+}
+
+float3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, float2 l_2)
+{
+    float c_15 = r_6.axis.x;
+    float s_25 = r_6.axis.y;
+    return float3((((l_2.x * c_15) * c_15) + ((l_2.y * s_25) * s_25)), (((l_2.x - l_2.y) * c_15) * s_25), (((l_2.x * s_25) * s_25) + ((l_2.y * c_15) * c_15)));
+}
+
+float3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7)
+{
+    const float3 _e2 = ndf_roughness_matrix_entries_of(r_7, r_7.eig);
+    return _e2;
+}
+
+float3 ndf_roughness_matrix_clamped_entries(ndf_roughness_matrix_RoughnessMatrix r_8)
+{
+    const float3 _e2 = ndf_roughness_matrix_entries_of(r_8, r_8.eig_c);
+    return _e2;
+}
+
+float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_9)
+{
+    return r_9.det;
+}
+
+float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10)
+{
+    return max(r_10.det, r_10.tau);
+}
+
+float ndf_roughness_matrix_own_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_11)
+{
+    return ((r_11.tau > r_11.det) ? r_11.tau : 0.0);
 }
 
 footprint_jacobian_Polar Constructfootprint_jacobian_Polar(float3 arg0, float2 arg1) {
@@ -435,21 +593,21 @@ footprint_jacobian_Polar footprint_jacobian_polar(float3 h_in)
 {
     float2 cs_1 = float2(1.0, 0.0);
 
-    float big = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
-    if ((big <= 0.0)) {
+    float big_1 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if ((big_1 <= 0.0)) {
         const footprint_jacobian_Polar footprint_jacobian_polar_1 = Constructfootprint_jacobian_Polar(float3(0.0, 0.0, 1.0), float2(1.0, 0.0));
         return footprint_jacobian_polar_1;
     }
-    float3 h0_ = (h_in / (big).xxx);
-    float3 h_21 = (h0_ / (length(h0_)).xxx);
-    float qs_3 = max(abs(h_21.x), abs(h_21.y));
+    float3 h0_ = (h_in / (big_1).xxx);
+    float3 h_22 = (h0_ / (length(h0_)).xxx);
+    float qs_3 = max(abs(h_22.x), abs(h_22.y));
     if ((qs_3 > 0.0)) {
-        float2 q_5 = (h_21.xy / (qs_3).xx);
+        float2 q_5 = (h_22.xy / (qs_3).xx);
         cs_1 = (q_5 / (length(q_5)).xx);
     }
-    if ((h_21.z >= footprint_jacobian_HZ_MIN)) {
+    if ((h_22.z >= footprint_jacobian_HZ_MIN)) {
         float2 _e44 = cs_1;
-        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_21, _e44);
+        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_22, _e44);
         return footprint_jacobian_polar_2;
     }
     float2 _e47 = cs_1;
@@ -494,18 +652,18 @@ float2x2 footprint_jacobian_sphere_to_projected(float3 h_3)
 float2x2 footprint_jacobian_projected_to_slope(float3 h_in_1)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
-    float3 h_22 = _e1.h;
-    float k_25 = (-1.0 / ((h_22.z * h_22.z) * h_22.z));
-    float xy = (h_22.x * h_22.y);
-    return float2x2((float2(((h_22.x * h_22.x) + (h_22.z * h_22.z)), xy) * k_25), (float2(xy, ((h_22.y * h_22.y) + (h_22.z * h_22.z))) * k_25));
+    float3 h_23 = _e1.h;
+    float k_25 = (-1.0 / ((h_23.z * h_23.z) * h_23.z));
+    float xy_1 = (h_23.x * h_23.y);
+    return float2x2((float2(((h_23.x * h_23.x) + (h_23.z * h_23.z)), xy_1) * k_25), (float2(xy_1, ((h_23.y * h_23.y) + (h_23.z * h_23.z))) * k_25));
 }
 
 float2x2 footprint_jacobian_slope_to_projected(float3 h_in_2)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    float3 h_23 = _e1.h;
-    float xy_1 = (h_23.x * h_23.y);
-    return float2x2((float2(((h_23.y * h_23.y) + (h_23.z * h_23.z)), -(xy_1)) * -(h_23.z)), (float2(-(xy_1), ((h_23.x * h_23.x) + (h_23.z * h_23.z))) * -(h_23.z)));
+    float3 h_24 = _e1.h;
+    float xy_2 = (h_24.x * h_24.y);
+    return float2x2((float2(((h_24.y * h_24.y) + (h_24.z * h_24.z)), -(xy_2)) * -(h_24.z)), (float2(-(xy_2), ((h_24.x * h_24.x) + (h_24.z * h_24.z))) * -(h_24.z)));
 }
 
 float2x2 footprint_jacobian_sphere_to_slope(float3 h_4)
@@ -525,8 +683,8 @@ float footprint_jacobian_det_projected_to_slope(float3 h_6)
 {
     const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
     float z_4 = _e1.h.z;
-    float z2_4 = (z_4 * z_4);
-    return (1.0 / (z2_4 * z2_4));
+    float z2_5 = (z_4 * z_4);
+    return (1.0 / (z2_5 * z2_5));
 }
 
 float footprint_jacobian_det_sphere_to_slope(float3 h_7)
@@ -569,8 +727,8 @@ footprint_Footprint footprint_from_projected_derivatives(float2 dp_u, float2 dp_
 
 footprint_Footprint footprint_from_projected_derivatives_in_slope(float3 h_10, float2 dp_u_1, float2 dp_v_1)
 {
-    float big_1 = max(max(abs(h_10.x), abs(h_10.y)), abs(h_10.z));
-    if ((big_1 <= 0.0)) {
+    float big_2 = max(max(abs(h_10.x), abs(h_10.y)), abs(h_10.z));
+    if ((big_2 <= 0.0)) {
         const footprint_Footprint footprint_footprint_2 = Constructfootprint_Footprint((0.0).xx, (0.0).xx);
         return footprint_footprint_2;
     }
@@ -677,19 +835,19 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         const kernel_covariance_Covariance kernel_covariance_covariance_6 = c_3;
         return kernel_covariance_covariance_6;
     }
-    float a_18 = (c_3.s_xx / scale);
+    float a_19 = (c_3.s_xx / scale);
     float b_6 = (c_3.s_xy / scale);
     float e_3 = (c_3.s_yy / scale);
-    float d_3 = (0.5 * (a_18 - e_3));
-    float r_78 = sqrt(((d_3 * d_3) + (b_6 * b_6)));
-    float lmax_1 = (((0.5 * (a_18 + e_3)) + r_78) * scale);
+    float d_3 = (0.5 * (a_19 - e_3));
+    float r_81 = sqrt(((d_3 * d_3) + (b_6 * b_6)));
+    float lmax_1 = (((0.5 * (a_19 + e_3)) + r_81) * scale);
     if ((lmax_1 <= max_eig)) {
         const kernel_covariance_Covariance kernel_covariance_covariance_7 = c_3;
         return kernel_covariance_covariance_7;
     }
     float lmin_1 = max((c_3.det / lmax_1), 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = (r_78 < 1e-18);
+        local = (r_81 < 1e-18);
     } else {
         local = true;
     }
@@ -698,10 +856,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         const kernel_covariance_Covariance kernel_covariance_covariance_8 = Constructkernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
         return kernel_covariance_covariance_8;
     }
-    float p_7 = (r_78 + abs(d_3));
+    float p_7 = (r_81 + abs(d_3));
     float q_6 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
     float2 ee = ((d_3 >= 0.0) ? float2(p_7, q_6) : float2(q_6, p_7));
-    float inv_1 = (1.0 / (2.0 * r_78));
+    float inv_1 = (1.0 / (2.0 * r_81));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_6 * inv_1);
     float p22_ = (ee.y * inv_1);
@@ -803,278 +961,6 @@ kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covar
     return kernel_covariance_covariance_12;
 }
 
-float filter_deferred_from_alpha(uint domain, float alpha_1)
-{
-    if ((domain == filter_deferred_DOMAIN_ALPHA)) {
-        return alpha_1;
-    }
-    if ((domain == filter_deferred_DOMAIN_PERCEPTUAL)) {
-        return sqrt(alpha_1);
-    }
-    float a2_ = (alpha_1 * alpha_1);
-    if ((domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
-        return ((a2_ < 1.0) ? (a2_ / (1.0 - a2_)) : math_F32_MAX);
-    }
-    return a2_;
-}
-
-float filter_deferred_to_alpha(uint domain_1, float v_2)
-{
-    if ((domain_1 == filter_deferred_DOMAIN_ALPHA)) {
-        return v_2;
-    }
-    if ((domain_1 == filter_deferred_DOMAIN_PERCEPTUAL)) {
-        return (v_2 * v_2);
-    }
-    if ((domain_1 == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
-        return ((v_2 < math_F32_MAX) ? sqrt((v_2 / (1.0 + v_2))) : 1.0);
-    }
-    return sqrt(v_2);
-}
-
-float filter_deferred_max_eigenvalue(float a_1, float b_1, float c_5)
-{
-    const float _e9 = math_hypot((0.5 * (a_1 - c_5)), b_1);
-    return max(((0.5 * (a_1 + c_5)) + _e9), 0.0);
-}
-
-float filter_deferred_norm_eval(uint norm, float3 dn_u_in_1, float3 dn_v_in_1)
-{
-    const float3 _e3 = math_nan_to_zero3_(dn_u_in_1);
-    const float3 _e4 = math_nan_to_zero3_(dn_v_in_1);
-    float a_19 = dot(_e3, _e3);
-    float c_15 = dot(_e4, _e4);
-    if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
-        return max(a_19, c_15);
-    }
-    if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        const float _e13 = filter_deferred_max_eigenvalue(a_19, dot(_e3, _e4), c_15);
-        return _e13;
-    }
-    if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        float3 m_45 = max(abs(_e3), abs(_e4));
-        return max(max(m_45.x, m_45.y), m_45.z);
-    }
-    return (a_19 + c_15);
-}
-
-float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_1)
-{
-    const bool _e7 = math_is_nan(k_1);
-    return (_e7 ? conv.clamp_ : min(max(k_1, 0.0), conv.clamp_));
-}
-
-float filter_deferred_widening(filter_deferred_KernelConvention conv_1, float3 dn_u, float3 dn_v)
-{
-    bool local_8 = (bool)0;
-    float raw = (float)0;
-
-    float3 lim = (3.4028235e38).xxx;
-    if (!(any((abs(dn_u) > lim)))) {
-        local_8 = any((abs(dn_v) > lim));
-    } else {
-        local_8 = true;
-    }
-    bool _e15 = local_8;
-    if (_e15) {
-        return conv_1.clamp_;
-    }
-    const float _e18 = filter_deferred_norm_eval(conv_1.norm, dn_u, dn_v);
-    raw = _e18;
-    if ((conv_1.exponent != 1.0)) {
-        raw = ((_e18 > 0.0) ? pow(_e18, conv_1.exponent) : 0.0);
-    }
-    float _e30 = raw;
-    const float _e34 = filter_deferred_clamp_widening(conv_1, ((conv_1.scale * _e30) + conv_1.bias));
-    return _e34;
-}
-
-float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, float alpha_in, float k_2)
-{
-    float alpha_2 = (float)0;
-    float out_ = (float)0;
-
-    alpha_2 = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
-    float _e7 = alpha_2;
-    alpha_2 = max(_e7, (conv_2.perceptual_floor * conv_2.perceptual_floor));
-    float _e13 = alpha_2;
-    const float _e14 = filter_deferred_from_alpha(conv_2.domain, _e13);
-    const float _e15 = filter_deferred_clamp_widening(conv_2, k_2);
-    out_ = ((conv_2.combine == filter_deferred_COMBINE_MAX) ? max(_e14, _e15) : (_e14 + _e15));
-    if (conv_2.saturate_) {
-        float _e24 = out_;
-        out_ = min(_e24, 1.0);
-    }
-    float _e28 = out_;
-    const float _e29 = filter_deferred_to_alpha(conv_2.domain, _e28);
-    return clamp(_e29, 0.0, ndf_roughness_ALPHA_MAX);
-}
-
-float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_3, float3 dn_u_1, float3 dn_v_1)
-{
-    const float _e4 = filter_deferred_widening(conv_3, dn_u_1, dn_v_1);
-    const float _e5 = filter_deferred_apply_widening(conv_3, alpha_3, _e4);
-    return _e5;
-}
-
-kernel_covariance_Covariance filter_deferred_normal_difference_covariance(float3 dn_u_2, float3 dn_v_2, float sigma_1)
-{
-    float sigma_sq = (sigma_1 * sigma_1);
-    float3 x_14 = (cross(dn_u_2, dn_v_2) * sigma_sq);
-    const kernel_covariance_Covariance kernel_covariance_covariance_13 = Constructkernel_covariance_Covariance((dot(dn_u_2, dn_u_2) * sigma_sq), (dot(dn_u_2, dn_v_2) * sigma_sq), (dot(dn_v_2, dn_v_2) * sigma_sq), dot(x_14, x_14));
-    return kernel_covariance_covariance_13;
-}
-
-float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel)
-{
-    const float _e3 = math_nan_to_zero(kernel.s_xx);
-    const float _e5 = math_nan_to_zero(kernel.s_xy);
-    const float _e7 = math_nan_to_zero(kernel.s_yy);
-    if ((bandwidth == filter_deferred_BANDWIDTH_MAX)) {
-        const float _e10 = filter_deferred_max_eigenvalue(_e3, _e5, _e7);
-        return (2.0 * _e10);
-    }
-    float t_10 = (_e3 + _e7);
-    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_10) : t_10);
-}
-
-float filter_deferred_filtered_alpha(float alpha_4, kernel_covariance_Covariance kernel_1, uint bandwidth_1, float kappa)
-{
-    filter_deferred_KernelConvention conv_4 = Constructfilter_deferred_KernelConvention(filter_deferred_DOMAIN_ALPHA_SQ, filter_deferred_NORM_SUM_SQUARED, 0.5, 1.0, 0.0, kappa, filter_deferred_COMBINE_ADD, true, 0.0);
-    const float _e13 = filter_deferred_bandwidth_alpha2_(bandwidth_1, kernel_1);
-    const float _e14 = filter_deferred_apply_widening(conv_4, alpha_4, _e13);
-    return _e14;
-}
-
-ndf_roughness_matrix_RoughnessMatrix Constructndf_roughness_matrix_RoughnessMatrix(float2 arg0, float2 arg1, float2 arg2, float2 arg3, float arg4, float arg5, float arg6) {
-    ndf_roughness_matrix_RoughnessMatrix ret = (ndf_roughness_matrix_RoughnessMatrix)0;
-    ret.axis = arg0;
-    ret.eig = arg1;
-    ret.eig_c = arg2;
-    ret.inv_eig = arg3;
-    ret.sqrt_det = arg4;
-    ret.det = arg5;
-    ret.tau = arg6;
-    return ret;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(float2 axis, float2 alpha_5)
-{
-    float2 l_5 = (alpha_5 * alpha_5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix = Constructndf_roughness_matrix_RoughnessMatrix(axis, l_5, l_5, ((1.0).xx / l_5), (alpha_5.x * alpha_5.y), (l_5.x * l_5.y), 0.0);
-    return ndf_roughness_matrix_roughnessmatrix;
-}
-
-float2 ndf_roughness_matrix_clamped_eigenvalues(float2 l, float det, float tau)
-{
-    if ((det >= tau)) {
-        return l;
-    }
-    float h_24 = (0.5 * (l.x + l.y));
-    float gap = (tau - det);
-    float t_11 = (gap / (h_24 + sqrt(((h_24 * h_24) + gap))));
-    float l1_ = (l.x + t_11);
-    return float2(l1_, (tau / l1_));
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(float2 axis_1, float2 l_1, float det_1, float tau_1)
-{
-    const float2 _e4 = ndf_roughness_matrix_clamped_eigenvalues(l_1, det_1, tau_1);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_1 = Constructndf_roughness_matrix_RoughnessMatrix(axis_1, l_1, _e4, ((1.0).xx / _e4), sqrt(max(det_1, tau_1)), det_1, tau_1);
-    return ndf_roughness_matrix_roughnessmatrix_1;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det_2, float tau_2)
-{
-    float2 v_3 = (float2)0;
-
-    float half_diff = (0.5 * (a11_ - a22_));
-    float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
-    float l1_1 = ((0.5 * (a11_ + a22_)) + rad);
-    float l2_2 = (max(det_2, 0.0) / l1_1);
-    float big_2 = (rad + abs(half_diff));
-    v_3 = ((half_diff < 0.0) ? float2(a12_, big_2) : float2(big_2, a12_));
-    if ((big_2 <= 0.0)) {
-        v_3 = float2(1.0, 0.0);
-    }
-    float2 _e32 = v_3;
-    float2 _e33 = v_3;
-    float2 axis_2 = (_e32 / (length(_e33)).xx);
-    const ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, float2(l1_1, l2_2), det_2, tau_2);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_2 = _e38;
-    return ndf_roughness_matrix_roughnessmatrix_2;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(float a11_1, float a12_1, float a22_1)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_entries_det(a11_1, a12_1, a22_1, ((a11_1 * a22_1) - (a12_1 * a12_1)), 0.0);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_3 = _e7;
-    return ndf_roughness_matrix_roughnessmatrix_3;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_1, float det_clamp)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_eigenbasis(r_1.axis, r_1.eig, r_1.det, max(det_clamp, 0.0));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_4 = _e7;
-    return ndf_roughness_matrix_roughnessmatrix_4;
-}
-
-float2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, float2 v_4)
-{
-    return float2(((r_2.axis.x * v_4.x) + (r_2.axis.y * v_4.y)), ((r_2.axis.x * v_4.y) - (r_2.axis.y * v_4.x)));
-}
-
-float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, float2 s)
-{
-    const float2 _e2 = ndf_roughness_matrix_rotate(r_3, s);
-    return dot((_e2 * _e2), r_3.inv_eig);
-}
-
-float ndf_roughness_matrix_quadratic(ndf_roughness_matrix_RoughnessMatrix r_4, float2 w)
-{
-    const float2 _e2 = ndf_roughness_matrix_rotate(r_4, w);
-    return dot((_e2 * _e2), r_4.eig_c);
-}
-
-float ndf_roughness_matrix_sqrt_det(ndf_roughness_matrix_RoughnessMatrix r_5)
-{
-    return r_5.sqrt_det;
-}
-
-float3 ndf_roughness_matrix_entries_of(ndf_roughness_matrix_RoughnessMatrix r_6, float2 l_2)
-{
-    float c_16 = r_6.axis.x;
-    float s_23 = r_6.axis.y;
-    return float3((((l_2.x * c_16) * c_16) + ((l_2.y * s_23) * s_23)), (((l_2.x - l_2.y) * c_16) * s_23), (((l_2.x * s_23) * s_23) + ((l_2.y * c_16) * c_16)));
-}
-
-float3 ndf_roughness_matrix_entries(ndf_roughness_matrix_RoughnessMatrix r_7)
-{
-    const float3 _e2 = ndf_roughness_matrix_entries_of(r_7, r_7.eig);
-    return _e2;
-}
-
-float3 ndf_roughness_matrix_clamped_entries(ndf_roughness_matrix_RoughnessMatrix r_8)
-{
-    const float3 _e2 = ndf_roughness_matrix_entries_of(r_8, r_8.eig_c);
-    return _e2;
-}
-
-float ndf_roughness_matrix_determinant(ndf_roughness_matrix_RoughnessMatrix r_9)
-{
-    return r_9.det;
-}
-
-float ndf_roughness_matrix_clamped_det(ndf_roughness_matrix_RoughnessMatrix r_10)
-{
-    return max(r_10.det, r_10.tau);
-}
-
-float ndf_roughness_matrix_own_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_11)
-{
-    return ((r_11.tau > r_11.det) ? r_11.tau : 0.0);
-}
-
 float ndf_g1_of(float lambda_w, float w_dot_m)
 {
     return ((w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0);
@@ -1082,15 +968,20 @@ float ndf_g1_of(float lambda_w, float w_dot_m)
 
 float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m)
 {
-    bool local_9 = (bool)0;
+    bool local_8 = (bool)0;
 
     if ((i_dot_m > 0.0)) {
-        local_9 = (o_dot_m > 0.0);
+        local_8 = (o_dot_m > 0.0);
     } else {
-        local_9 = false;
+        local_8 = false;
     }
-    bool _e16 = local_9;
+    bool _e16 = local_8;
     return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
+}
+
+float ndf_roughness_clamp_alpha(float alpha_1)
+{
+    return ((alpha_1 >= ndf_roughness_ALPHA_MIN) ? min(alpha_1, ndf_roughness_ALPHA_MAX) : ndf_roughness_ALPHA_MIN);
 }
 
 ndf_roughness_isotropic_Isotropic Constructndf_roughness_isotropic_Isotropic(float arg0, float arg1) {
@@ -1100,9 +991,9 @@ ndf_roughness_isotropic_Isotropic Constructndf_roughness_isotropic_Isotropic(flo
     return ret;
 }
 
-ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_6)
+ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha_2)
 {
-    const float _e1 = ndf_roughness_clamp_alpha(alpha_6);
+    const float _e1 = ndf_roughness_clamp_alpha(alpha_2);
     const ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_isotropic = Constructndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
     return ndf_roughness_isotropic_isotropic;
 }
@@ -1114,8 +1005,8 @@ float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_
 
 float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_13, float2 w_1)
 {
-    float2 s_24 = (w_1 * r_13.alpha);
-    return dot(s_24, s_24);
+    float2 s_26 = (w_1 * r_13.alpha);
+    return dot(s_26, s_26);
 }
 
 float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_14)
@@ -1137,10 +1028,10 @@ ndf_roughness_axis_aligned_AxisAligned Constructndf_roughness_axis_aligned_AxisA
     return ret;
 }
 
-ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(float2 alpha_7)
+ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(float2 alpha_3)
 {
-    const float _e2 = ndf_roughness_clamp_alpha(alpha_7.x);
-    const float _e4 = ndf_roughness_clamp_alpha(alpha_7.y);
+    const float _e2 = ndf_roughness_clamp_alpha(alpha_3.x);
+    const float _e4 = ndf_roughness_clamp_alpha(alpha_3.y);
     float2 a_20 = float2(_e2, _e4);
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned = Constructndf_roughness_axis_aligned_AxisAligned(a_20, ((1.0).xx / (a_20 * a_20)));
     return ndf_roughness_axis_aligned_axisaligned;
@@ -1153,8 +1044,8 @@ float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAl
 
 float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_17, float2 w_2)
 {
-    float2 s_25 = (w_2 * r_17.alpha);
-    return dot(s_25, s_25);
+    float2 s_27 = (w_2 * r_17.alpha);
+    return dot(s_27, s_27);
 }
 
 float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_18)
@@ -1177,44 +1068,44 @@ float ndf_ggx_p22_of(float q, float sqrt_det)
 
 float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1)
 {
-    bool local_10 = (bool)0;
+    bool local_9 = (bool)0;
 
     float t_13 = (q_xy + (m_z * m_z));
     float v_16 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
     if ((m_z > 0.0)) {
-        local_10 = (v_16 <= math_F32_MAX);
+        local_9 = (v_16 <= math_F32_MAX);
     } else {
-        local_10 = false;
+        local_9 = false;
     }
-    bool _e18 = local_10;
+    bool _e18 = local_9;
     return (_e18 ? v_16 : 0.0);
 }
 
 float ndf_ggx_lambda_of(float q_1, float abs_wz)
 {
+    bool local_10 = (bool)0;
     bool local_11 = (bool)0;
-    bool local_12 = (bool)0;
 
     if ((q_1 <= 0.0)) {
-        local_11 = (abs_wz >= 0.0);
+        local_10 = (abs_wz >= 0.0);
     } else {
-        local_11 = false;
+        local_10 = false;
     }
-    bool _e9 = local_11;
+    bool _e9 = local_10;
     if (_e9) {
         return 0.0;
     }
     if (!(!((abs_wz > 0.0)))) {
-        local_12 = !((q_1 > 0.0));
+        local_11 = !((q_1 > 0.0));
     } else {
-        local_12 = true;
+        local_11 = true;
     }
-    bool _e21 = local_12;
+    bool _e21 = local_11;
     if (_e21) {
         return math_F32_MAX;
     }
-    float r_79 = sqrt(((abs_wz * abs_wz) + q_1));
-    return (q_1 / ((2.0 * abs_wz) * (r_79 + abs_wz)));
+    float r_82 = sqrt(((abs_wz * abs_wz) + q_1));
+    return (q_1 / ((2.0 * abs_wz) * (r_82 + abs_wz)));
 }
 
 float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_20, float2 s_3)
@@ -1331,9 +1222,9 @@ float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, float3 i_2, f
     return _e8;
 }
 
-float ndf_beckmann_exp_neg_times(float x_7, float k_3, float ln_k)
+float ndf_beckmann_exp_neg_times(float x_7, float k_1, float ln_k)
 {
-    return ((x_7 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_7)) : (exp(-(x_7)) * k_3));
+    return ((x_7 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_7)) : (exp(-(x_7)) * k_1));
 }
 
 float ndf_beckmann_p22_of(float q_2, float sqrt_det_2)
@@ -1345,43 +1236,43 @@ float ndf_beckmann_p22_of(float q_2, float sqrt_det_2)
 
 float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3)
 {
-    bool local_13 = (bool)0;
+    bool local_12 = (bool)0;
 
-    float z2_5 = (m_z_1 * m_z_1);
-    float x_15 = (q_xy_1 / z2_5);
-    float k_27 = (1.0 / (((math_PI * sqrt_det_3) * z2_5) * z2_5));
+    float z2_6 = (m_z_1 * m_z_1);
+    float x_14 = (q_xy_1 / z2_6);
+    float k_27 = (1.0 / (((math_PI * sqrt_det_3) * z2_6) * z2_6));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    const float _e21 = ndf_beckmann_exp_neg_times(x_15, k_27, ln_k_1);
+    const float _e21 = ndf_beckmann_exp_neg_times(x_14, k_27, ln_k_1);
     if ((m_z_1 > 0.0)) {
-        local_13 = (_e21 <= math_F32_MAX);
+        local_12 = (_e21 <= math_F32_MAX);
     } else {
-        local_13 = false;
+        local_12 = false;
     }
-    bool _e29 = local_13;
+    bool _e29 = local_12;
     return (_e29 ? _e21 : 0.0);
 }
 
 float ndf_beckmann_lambda_of(float q_3, float abs_wz_1)
 {
+    bool local_13 = (bool)0;
     bool local_14 = (bool)0;
-    bool local_15 = (bool)0;
     float p = -3.849172e-5;
 
     if ((q_3 <= 0.0)) {
-        local_14 = (abs_wz_1 >= 0.0);
+        local_13 = (abs_wz_1 >= 0.0);
     } else {
-        local_14 = false;
+        local_13 = false;
     }
-    bool _e9 = local_14;
+    bool _e9 = local_13;
     if (_e9) {
         return 0.0;
     }
     if (!(!((abs_wz_1 > 0.0)))) {
-        local_15 = !((q_3 > 0.0));
+        local_14 = !((q_3 > 0.0));
     } else {
-        local_15 = true;
+        local_14 = true;
     }
-    bool _e21 = local_15;
+    bool _e21 = local_14;
     if (_e21) {
         return math_F32_MAX;
     }
@@ -1550,12 +1441,12 @@ kernel_rect_BoundingRect kernel_rect_from_footprint(footprint_Footprint fp_in_1)
     return kernel_rect_boundingrect;
 }
 
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_50, float sigma_2)
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_50, float sigma_1)
 {
-    float2 w_24 = (r_50.half_extent * (2.0 * sigma_2));
+    float2 w_24 = (r_50.half_extent * (2.0 * sigma_1));
     float2 v_17 = (w_24 * w_24);
-    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_17.x, 0.0, v_17.y, (v_17.x * v_17.y));
-    return kernel_covariance_covariance_14;
+    const kernel_covariance_Covariance kernel_covariance_covariance_13 = Constructkernel_covariance_Covariance(v_17.x, 0.0, v_17.y, (v_17.x * v_17.y));
+    return kernel_covariance_covariance_13;
 }
 
 footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_in_2)
@@ -1584,7 +1475,7 @@ footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footpr
     return footprint_footprint_9;
 }
 
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_51, float2 alpha_8)
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_51, float2 alpha_4)
 {
     float2 f_1 = (0.0).xx;
 
@@ -1592,7 +1483,7 @@ kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kern
         f_1 = (rules_1.floor_).xx;
     } else {
         if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
-            f_1 = min(abs(alpha_8), (rules_1.floor_).xx);
+            f_1 = min(abs(alpha_4), (rules_1.floor_).xx);
         }
     }
     float lambda_2 = max(rules_1.max_extent, 0.0);
@@ -1602,71 +1493,71 @@ kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kern
     return kernel_rect_boundingrect_1;
 }
 
-kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_4)
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_2)
 {
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_4);
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_2);
     if ((rules_2.kappa >= math_F32_MAX)) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_15 = _e2;
-        return kernel_covariance_covariance_15;
+        const kernel_covariance_Covariance kernel_covariance_covariance_14 = _e2;
+        return kernel_covariance_covariance_14;
     }
     const kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
-    const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e11;
-    return kernel_covariance_covariance_16;
+    const kernel_covariance_Covariance kernel_covariance_covariance_15 = _e11;
+    return kernel_covariance_covariance_15;
 }
 
-float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_2)
+float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_1)
 {
-    const float _e2 = ndf_roughness_matrix_own_det_clamp(a_2);
-    const float _e3 = ndf_roughness_matrix_clamped_det(a_2);
+    const float _e2 = ndf_roughness_matrix_own_det_clamp(a_1);
+    const float _e3 = ndf_roughness_matrix_clamped_det(a_1);
     return (rules_3.det_clamp ? _e3 : _e2);
 }
 
-kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_2, float sigma_3)
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_2, float sigma_2)
 {
     const footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_2);
-    const kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_3);
+    const kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_2);
     const kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
-    const kernel_covariance_Covariance kernel_covariance_covariance_17 = _e5;
-    return kernel_covariance_covariance_17;
+    const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e5;
+    return kernel_covariance_covariance_16;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance k_5, float tau_3)
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3)
 {
-    const float3 _e3 = ndf_roughness_matrix_entries(a_3);
-    float c_17 = a_3.axis.x;
-    float s_26 = a_3.axis.y;
-    float k1_1 = max(((((c_17 * c_17) * k_5.s_xx) + (((2.0 * c_17) * s_26) * k_5.s_xy)) + ((s_26 * s_26) * k_5.s_yy)), 0.0);
-    float k2_1 = max(((((s_26 * s_26) * k_5.s_xx) - (((2.0 * c_17) * s_26) * k_5.s_xy)) + ((c_17 * c_17) * k_5.s_yy)), 0.0);
-    const float _e38 = ndf_roughness_matrix_determinant(a_3);
-    float det_4 = ((_e38 + (2.0 * ((a_3.eig.y * k1_1) + (a_3.eig.x * k2_1)))) + (4.0 * max(k_5.det, 0.0)));
-    const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_5.s_xx)), (_e3.y + (2.0 * k_5.s_xy)), (_e3.z + (2.0 * k_5.s_yy)), det_4, max(tau_3, 0.0));
+    const float3 _e3 = ndf_roughness_matrix_entries(a_2);
+    float c_16 = a_2.axis.x;
+    float s_28 = a_2.axis.y;
+    float k1_1 = max(((((c_16 * c_16) * k_3.s_xx) + (((2.0 * c_16) * s_28) * k_3.s_xy)) + ((s_28 * s_28) * k_3.s_yy)), 0.0);
+    float k2_1 = max(((((s_28 * s_28) * k_3.s_xx) - (((2.0 * c_16) * s_28) * k_3.s_xy)) + ((c_16 * c_16) * k_3.s_yy)), 0.0);
+    const float _e38 = ndf_roughness_matrix_determinant(a_2);
+    float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * max(k_3.det, 0.0)));
+    const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_7 = _e72;
     return ndf_roughness_matrix_roughnessmatrix_7;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_2)
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel)
 {
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
-    const float _e3 = ndf_roughness_matrix_clamped_det(a_4);
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e2, _e3);
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel);
+    const float _e3 = ndf_roughness_matrix_clamped_det(a_3);
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_3, _e2, _e3);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_8 = _e4;
     return ndf_roughness_matrix_roughnessmatrix_8;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_5, kernel_covariance_Covariance kernel_3, float det_clamp_1)
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_1, float det_clamp_1)
 {
-    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
-    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_5);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_5, _e3, max(det_clamp_1, _e4));
+    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_1);
+    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_4);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_4, _e3, max(det_clamp_1, _e4));
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_9 = _e6;
     return ndf_roughness_matrix_roughnessmatrix_9;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_6, footprint_Footprint fp_3, float sigma_4)
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_5, footprint_Footprint fp_3, float sigma_3)
 {
-    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_3, sigma_4);
-    const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_6);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_6, _e4, _e5);
+    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_3, sigma_3);
+    const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_5);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_5, _e4, _e5);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_10 = _e6;
     return ndf_roughness_matrix_roughnessmatrix_10;
 }
@@ -1690,6 +1581,241 @@ float filter_gaussian_d_beckmann_gaussian(filter_gaussian_Gaussian method_2, ndf
     const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_2, material_2, fp_6);
     const float _e5 = ndf_beckmann_d_matrix(_e4, m_19);
     return _e5;
+}
+
+kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_20)
+{
+    const kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_20.second.x - (m_20.mean.x * m_20.mean.x)), (m_20.second.y - (m_20.mean.x * m_20.mean.y)), (m_20.second.z - (m_20.mean.y * m_20.mean.y)));
+    const kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
+    const kernel_covariance_Covariance kernel_covariance_covariance_17 = _e26;
+    return kernel_covariance_covariance_17;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments)
+{
+    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
+    const kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
+    const kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_6, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_12;
+}
+
+filter_lean_LeanMoments Constructfilter_lean_LeanMoments(float2 arg0, float3 arg1) {
+    filter_lean_LeanMoments ret = (filter_lean_LeanMoments)0;
+    ret.mean = arg0;
+    ret.second = arg1;
+    return ret;
+}
+
+filter_lean_LeanMoments bake_moments_from_texels(float4 rgba, float xy)
+{
+    const filter_lean_LeanMoments filter_lean_leanmoments = Constructfilter_lean_LeanMoments(rgba.xy, float3(rgba.z, xy, rgba.w));
+    return filter_lean_leanmoments;
+}
+
+filter_lean_LeanMoments bake_moments_sample_grad(Texture2D<float4> moments_1, Texture2D<float4> moments_xy, SamplerState s_9, float2 uv, float2 ddx_uv, float2 ddy_uv)
+{
+    float4 rgba_1 = moments_1.SampleGrad(s_9, uv, ddx_uv, ddy_uv);
+    float4 _e7 = moments_xy.SampleGrad(s_9, uv, ddx_uv, ddy_uv);
+    float xy_3 = _e7.x;
+    const filter_lean_LeanMoments _e9 = bake_moments_from_texels(rgba_1, xy_3);
+    const filter_lean_LeanMoments filter_lean_leanmoments_1 = _e9;
+    return filter_lean_leanmoments_1;
+}
+
+filter_lean_LeanMoments bake_moments_sample_level(Texture2D<float4> moments_2, Texture2D<float4> moments_xy_1, SamplerState s_10, float2 uv_1, float level)
+{
+    float4 rgba_2 = moments_2.SampleLevel(s_10, uv_1, level);
+    float4 _e6 = moments_xy_1.SampleLevel(s_10, uv_1, level);
+    float xy_4 = _e6.x;
+    const filter_lean_LeanMoments _e8 = bake_moments_from_texels(rgba_2, xy_4);
+    const filter_lean_LeanMoments filter_lean_leanmoments_2 = _e8;
+    return filter_lean_leanmoments_2;
+}
+
+ndf_roughness_isotropic_Isotropic bake_roughness_from_perceptual(float r_52)
+{
+    const ndf_roughness_isotropic_Isotropic _e2 = ndf_roughness_isotropic_from_alpha((r_52 * r_52));
+    const ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_isotropic_1 = _e2;
+    return ndf_roughness_isotropic_isotropic_1;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_anisotropic(float3 lobe)
+{
+    const float2 _e4 = math_sincos_turns((lobe.z * 0.15915494));
+    const float _e6 = ndf_roughness_clamp_alpha(lobe.x);
+    const float _e8 = ndf_roughness_clamp_alpha(lobe.y);
+    float2 a_22 = float2(_e6, _e8);
+    const ndf_roughness_matrix_RoughnessMatrix _e10 = ndf_roughness_matrix_from_eigen(_e4, a_22);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e10;
+    return ndf_roughness_matrix_roughnessmatrix_13;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_khr_anisotropy(float r_53, float4 anisotropy)
+{
+    float2 d_4 = ((2.0 * anisotropy.xy) - (1.0).xx);
+    float len = length(d_4);
+    float2 axis_3 = ((len > 0.0) ? (d_4 / (len).xx) : float2(1.0, 0.0));
+    float alpha_b = (r_53 * r_53);
+    float b_7 = anisotropy.z;
+    float alpha_t = lerp(alpha_b, 1.0, (b_7 * b_7));
+    const float _e22 = ndf_roughness_clamp_alpha(alpha_t);
+    const float _e23 = ndf_roughness_clamp_alpha(alpha_b);
+    float2 a_23 = float2(_e22, _e23);
+    const ndf_roughness_matrix_RoughnessMatrix _e25 = ndf_roughness_matrix_from_eigen(axis_3, a_23);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_14 = _e25;
+    return ndf_roughness_matrix_roughnessmatrix_14;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_matrix_texel(float4 t_1)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = ndf_roughness_matrix_from_entries(t_1.x, t_1.y, t_1.z);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_15 = _e4;
+    return ndf_roughness_matrix_roughnessmatrix_15;
+}
+
+float filter_deferred_from_alpha(uint domain, float alpha_5)
+{
+    if ((domain == filter_deferred_DOMAIN_ALPHA)) {
+        return alpha_5;
+    }
+    if ((domain == filter_deferred_DOMAIN_PERCEPTUAL)) {
+        return sqrt(alpha_5);
+    }
+    float a2_ = (alpha_5 * alpha_5);
+    if ((domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
+        return ((a2_ < 1.0) ? (a2_ / (1.0 - a2_)) : math_F32_MAX);
+    }
+    return a2_;
+}
+
+float filter_deferred_to_alpha(uint domain_1, float v_4)
+{
+    if ((domain_1 == filter_deferred_DOMAIN_ALPHA)) {
+        return v_4;
+    }
+    if ((domain_1 == filter_deferred_DOMAIN_PERCEPTUAL)) {
+        return (v_4 * v_4);
+    }
+    if ((domain_1 == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
+        return ((v_4 < math_F32_MAX) ? sqrt((v_4 / (1.0 + v_4))) : 1.0);
+    }
+    return sqrt(v_4);
+}
+
+float filter_deferred_max_eigenvalue(float a_7, float b_1, float c_5)
+{
+    const float _e9 = math_hypot((0.5 * (a_7 - c_5)), b_1);
+    return max(((0.5 * (a_7 + c_5)) + _e9), 0.0);
+}
+
+float filter_deferred_norm_eval(uint norm, float3 dn_u_in_1, float3 dn_v_in_1)
+{
+    const float3 _e3 = math_nan_to_zero3_(dn_u_in_1);
+    const float3 _e4 = math_nan_to_zero3_(dn_v_in_1);
+    float a_24 = dot(_e3, _e3);
+    float c_17 = dot(_e4, _e4);
+    if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
+        return max(a_24, c_17);
+    }
+    if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
+        const float _e13 = filter_deferred_max_eigenvalue(a_24, dot(_e3, _e4), c_17);
+        return _e13;
+    }
+    if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
+        float3 m_50 = max(abs(_e3), abs(_e4));
+        return max(max(m_50.x, m_50.y), m_50.z);
+    }
+    return (a_24 + c_17);
+}
+
+float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_4)
+{
+    const bool _e7 = math_is_nan(k_4);
+    return (_e7 ? conv.clamp_ : min(max(k_4, 0.0), conv.clamp_));
+}
+
+float filter_deferred_widening(filter_deferred_KernelConvention conv_1, float3 dn_u, float3 dn_v)
+{
+    bool local_15 = (bool)0;
+    float raw = (float)0;
+
+    float3 lim = (3.4028235e38).xxx;
+    if (!(any((abs(dn_u) > lim)))) {
+        local_15 = any((abs(dn_v) > lim));
+    } else {
+        local_15 = true;
+    }
+    bool _e15 = local_15;
+    if (_e15) {
+        return conv_1.clamp_;
+    }
+    const float _e18 = filter_deferred_norm_eval(conv_1.norm, dn_u, dn_v);
+    raw = _e18;
+    if ((conv_1.exponent != 1.0)) {
+        raw = ((_e18 > 0.0) ? pow(_e18, conv_1.exponent) : 0.0);
+    }
+    float _e30 = raw;
+    const float _e34 = filter_deferred_clamp_widening(conv_1, ((conv_1.scale * _e30) + conv_1.bias));
+    return _e34;
+}
+
+float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, float alpha_in, float k_5)
+{
+    float alpha_6 = (float)0;
+    float out_ = (float)0;
+
+    alpha_6 = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
+    float _e7 = alpha_6;
+    alpha_6 = max(_e7, (conv_2.perceptual_floor * conv_2.perceptual_floor));
+    float _e13 = alpha_6;
+    const float _e14 = filter_deferred_from_alpha(conv_2.domain, _e13);
+    const float _e15 = filter_deferred_clamp_widening(conv_2, k_5);
+    out_ = ((conv_2.combine == filter_deferred_COMBINE_MAX) ? max(_e14, _e15) : (_e14 + _e15));
+    if (conv_2.saturate_) {
+        float _e24 = out_;
+        out_ = min(_e24, 1.0);
+    }
+    float _e28 = out_;
+    const float _e29 = filter_deferred_to_alpha(conv_2.domain, _e28);
+    return clamp(_e29, 0.0, ndf_roughness_ALPHA_MAX);
+}
+
+float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_7, float3 dn_u_1, float3 dn_v_1)
+{
+    const float _e4 = filter_deferred_widening(conv_3, dn_u_1, dn_v_1);
+    const float _e5 = filter_deferred_apply_widening(conv_3, alpha_7, _e4);
+    return _e5;
+}
+
+kernel_covariance_Covariance filter_deferred_normal_difference_covariance(float3 dn_u_2, float3 dn_v_2, float sigma_4)
+{
+    float sigma_sq = (sigma_4 * sigma_4);
+    float3 x_15 = (cross(dn_u_2, dn_v_2) * sigma_sq);
+    const kernel_covariance_Covariance kernel_covariance_covariance_18 = Constructkernel_covariance_Covariance((dot(dn_u_2, dn_u_2) * sigma_sq), (dot(dn_u_2, dn_v_2) * sigma_sq), (dot(dn_v_2, dn_v_2) * sigma_sq), dot(x_15, x_15));
+    return kernel_covariance_covariance_18;
+}
+
+float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel_2)
+{
+    const float _e3 = math_nan_to_zero(kernel_2.s_xx);
+    const float _e5 = math_nan_to_zero(kernel_2.s_xy);
+    const float _e7 = math_nan_to_zero(kernel_2.s_yy);
+    if ((bandwidth == filter_deferred_BANDWIDTH_MAX)) {
+        const float _e10 = filter_deferred_max_eigenvalue(_e3, _e5, _e7);
+        return (2.0 * _e10);
+    }
+    float t_15 = (_e3 + _e7);
+    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_15) : t_15);
+}
+
+float filter_deferred_filtered_alpha(float alpha_8, kernel_covariance_Covariance kernel_3, uint bandwidth_1, float kappa)
+{
+    filter_deferred_KernelConvention conv_4 = Constructfilter_deferred_KernelConvention(filter_deferred_DOMAIN_ALPHA_SQ, filter_deferred_NORM_SUM_SQUARED, 0.5, 1.0, 0.0, kappa, filter_deferred_COMBINE_ADD, true, 0.0);
+    const float _e13 = filter_deferred_bandwidth_alpha2_(bandwidth_1, kernel_3);
+    const float _e14 = filter_deferred_apply_widening(conv_4, alpha_8, _e13);
+    return _e14;
 }
 
 float filter_gaussian_ggx_quad_laguerre_node(uint k_6)
@@ -1804,25 +1930,7 @@ float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, floa
     return ((_e53 * ib_1) * ib_1);
 }
 
-float filter_gaussian_ggx_quad_geom(uint n)
-{
-    switch(n) {
-        case 0u: {
-            return 0.5819767;
-        }
-        case 1u: {
-            return 0.28721693;
-        }
-        case 2u: {
-            return 0.15651764;
-        }
-        default: {
-            return 0.08942549;
-        }
-    }
-}
-
-float filter_gaussian_ggx_quad_series_below(float c1s_1, float c2s_1, float tl1_2, float tl2_2, float y_1)
+float filter_gaussian_ggx_quad_series_below(float c1s_1, float c2s_1, float tl1_2, float tl2_2, float y_1, float4 geom)
 {
     float x1_ = (tl1_2 * y_1);
     float x2_2 = (tl2_2 * y_1);
@@ -1833,15 +1941,15 @@ float filter_gaussian_ggx_quad_series_below(float c1s_1, float c2s_1, float tl1_
     float b3_ = (-((((d1_ * x1_) * x1_) + ((d2_ * x2_2) * x2_2))) - (0.16666667 * (((x1_ * x1_) * x1_) + ((x2_2 * x2_2) * x2_2))));
     float a2_1 = (0.5 * ((a1_ * a1_) + (2.0 * b2_)));
     float a3_ = (0.33333334 * (((a1_ * a2_1) + ((2.0 * b2_) * a1_)) + (3.0 * b3_)));
-    const float _e56 = filter_gaussian_ggx_quad_geom(0u);
-    const float _e58 = filter_gaussian_ggx_quad_geom(1u);
-    const float _e62 = filter_gaussian_ggx_quad_geom(2u);
-    const float _e66 = filter_gaussian_ggx_quad_geom(3u);
-    float tail = (((_e56 + (a1_ * _e58)) + (a2_1 * _e62)) + (a3_ * _e66));
+    float tail = (((geom.x + (a1_ * geom.y)) + (a2_1 * geom.z)) + (a3_ * geom.w));
     return ((tail * y_1) * y_1);
 }
 
-float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, float tl2_3)
+uint naga_div(uint lhs, uint rhs) {
+    return lhs / (rhs == 0u ? 1u : rhs);
+}
+
+float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl1_3, float tl2_3, filter_gaussian_ggx_quad_TrapezoidRule rule)
 {
     float sum = 0.0;
     uint ch = 0u;
@@ -1851,47 +1959,48 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
     float vl = (float)0;
     uint jj = (uint)0;
 
+    float hs = rule.h;
     float beta_1 = ((1.0 + c1s_2) + c2s_2);
     float ib_2 = (1.0 / beta_1);
     float w_r = (2.0 * ib_2);
-    const float _e15 = math_ln(((37.037037 * (beta_1 + tl1_3)) * ib_2));
-    float k0_ = min(ceil((_e15 / filter_gaussian_ggx_quad_H)), 175.0);
-    const float _e24 = math_exp((-(k0_) * filter_gaussian_ggx_quad_H));
-    float w_first = (w_r * _e24);
+    const float _e19 = math_ln((((2.0 / rule.y_lo) * (beta_1 + tl1_3)) * ib_2));
+    float k0_ = min(ceil((_e19 / hs)), min(float((rule.nodes - 1u)), floor((87.0 / hs))));
+    const float _e33 = math_exp((-(k0_) * hs));
+    float w_first = (w_r * _e33);
     float pr1_ = (1.0 + (tl1_3 * w_r));
     float pr2_ = (1.0 + (tl2_3 * w_r));
     float k1_2 = (c1s_2 * (w_r / pr1_));
     float k2_2 = (c2s_2 * (w_r / pr2_));
     float x_r = ((-(w_r) - k1_2) - k2_2);
-    const float _e40 = math_exp(x_r);
-    float scale_2 = ((w_r * w_r) * _e40);
+    const float _e49 = math_exp(x_r);
+    float scale_2 = ((w_r * w_r) * _e49);
     float t1_3 = (tl1_3 * w_r);
     float t2_1 = (tl2_3 * w_r);
-    float stop = ((5e-8 * w_r) * w_r);
+    float stop = (((rule.eps_t * hs) * w_r) * w_r);
     uint2 loop_bound_1 = uint2(4294967295u, 4294967295u);
     bool loop_init_1 = true;
     while(true) {
         if (all(loop_bound_1 == uint2(0u, 0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e136 = ch;
-            ch = (_e136 + 1u);
+            uint _e148 = ch;
+            ch = (_e148 + 1u);
         }
         loop_init_1 = false;
-        uint _e51 = ch;
-        if ((_e51 < filter_gaussian_ggx_quad_CHUNKS)) {
+        uint _e61 = ch;
+        if ((_e61 < naga_div(rule.nodes, 8u))) {
         } else {
             break;
         }
         {
-            uint _e54 = ch;
-            float kb = (float((_e54 * 8u)) - k0_);
-            const float _e61 = math_exp((kb * filter_gaussian_ggx_quad_H));
-            v_5 = _e61;
+            uint _e66 = ch;
+            float kb = (float((_e66 * 8u)) - k0_);
+            const float _e72 = math_exp((kb * hs));
+            v_5 = _e72;
             part = 0.0;
             last = 0.0;
-            float _e67 = v_5;
-            vl = _e67;
+            float _e78 = v_5;
+            vl = _e78;
             jj = 0u;
             uint2 loop_bound_2 = uint2(4294967295u, 4294967295u);
             bool loop_init_2 = true;
@@ -1899,53 +2008,53 @@ float filter_gaussian_ggx_quad_trapezoid(float c1s_2, float c2s_2, float tl1_3, 
                 if (all(loop_bound_2 == uint2(0u, 0u))) { break; }
                 loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
                 if (!loop_init_2) {
-                    uint _e113 = jj;
-                    jj = (_e113 + 1u);
+                    uint _e125 = jj;
+                    jj = (_e125 + 1u);
                 }
                 loop_init_2 = false;
-                uint _e71 = jj;
-                if ((_e71 < 8u)) {
+                uint _e82 = jj;
+                if ((_e82 < 8u)) {
                 } else {
                     break;
                 }
                 {
-                    float _e74 = v_5;
-                    float ip1_1 = (1.0 / (1.0 + (t1_3 * _e74)));
-                    float _e80 = v_5;
-                    float ip2_1 = (1.0 / (1.0 + (t2_1 * _e80)));
-                    float a_22 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
-                    uint _e91 = jj;
-                    float _e95 = v_5;
-                    float x_16 = ((1.0 * (kb + float(_e91))) - ((_e95 - 1.0) * a_22));
-                    const float _e100 = math_exp(x_16);
-                    last = ((_e100 * sqrt(ip1_1)) * sqrt(ip2_1));
-                    float _e105 = part;
-                    float _e106 = last;
-                    part = (_e105 + _e106);
-                    float _e108 = v_5;
-                    vl = _e108;
-                    float _e109 = v_5;
-                    v_5 = (_e109 * filter_gaussian_ggx_quad_EXP_H);
+                    float _e85 = v_5;
+                    float ip1_1 = (1.0 / (1.0 + (t1_3 * _e85)));
+                    float _e91 = v_5;
+                    float ip2_1 = (1.0 / (1.0 + (t2_1 * _e91)));
+                    float a_25 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
+                    uint _e103 = jj;
+                    float _e107 = v_5;
+                    float x_16 = (((2.0 * hs) * (kb + float(_e103))) - ((_e107 - 1.0) * a_25));
+                    const float _e112 = math_exp(x_16);
+                    last = ((_e112 * sqrt(ip1_1)) * sqrt(ip2_1));
+                    float _e117 = part;
+                    float _e118 = last;
+                    part = (_e117 + _e118);
+                    float _e120 = v_5;
+                    vl = _e120;
+                    float _e121 = v_5;
+                    v_5 = (_e121 * rule.exp_h);
                 }
             }
-            float _e115 = sum;
-            float _e116 = part;
-            sum = (_e115 + _e116);
-            float _e118 = vl;
-            float wl = (_e118 * w_r);
-            float b_7 = ((wl >= 2.0) ? (1.0 + wl) : 7.47);
-            float _e126 = last;
-            float _e128 = sum;
+            float _e127 = sum;
+            float _e128 = part;
+            sum = (_e127 + _e128);
             float _e130 = vl;
-            float _e132 = vl;
-            if (((_e126 * b_7) <= (((stop * _e128) * _e130) * _e132))) {
+            float wl = (_e130 * w_r);
+            float b_8 = ((wl >= 2.0) ? (1.0 + wl) : 7.47);
+            float _e138 = last;
+            float _e140 = sum;
+            float _e142 = vl;
+            float _e144 = vl;
+            if (((_e138 * b_8) <= (((stop * _e140) * _e142) * _e144))) {
                 break;
             }
         }
     }
-    float _e139 = sum;
-    const float _e141 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first);
-    return (filter_gaussian_ggx_quad_H * ((_e139 * scale_2) + _e141));
+    float _e150 = sum;
+    const float _e153 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first, rule.geom);
+    return (hs * ((_e150 * scale_2) + _e153));
 }
 
 float filter_gaussian_ggx_quad_mixture_integral(float v1s_1, float v2s_1, float z2_2, float tl1_4, float tl2_4)
@@ -1976,8 +2085,60 @@ float filter_gaussian_ggx_quad_mixture_integral(float v1s_1, float v2s_1, float 
         return _e37;
     }
     float iz2_ = (1.0 / z2_2);
-    const float _e42 = filter_gaussian_ggx_quad_trapezoid((v1s_1 * iz2_), (v2s_1 * iz2_), tl1_4, tl2_4);
-    return ((_e42 * iz2_) * iz2_);
+    const float _e43 = filter_gaussian_ggx_quad_trapezoid_rule((v1s_1 * iz2_), (v2s_1 * iz2_), tl1_4, tl2_4, filter_gaussian_ggx_quad_FULL_RULE);
+    return ((_e43 * iz2_) * iz2_);
+}
+
+float filter_gaussian_ggx_quad_reduced_far(uint tol)
+{
+    switch(tol) {
+        case 1u: {
+            return 1500.0;
+        }
+        case 2u: {
+            return 500.0;
+        }
+        default: {
+            return 160.0;
+        }
+    }
+}
+
+filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_reduced_rule(uint tol_1)
+{
+    switch(tol_1) {
+        case 1u: {
+            const filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_trapezoidrule = Constructfilter_gaussian_ggx_quad_TrapezoidRule(0.6, 1.8221188, 1e-5, 0.12, float4(0.43101275, 0.19803363, 0.09976877, 0.052395698), 144u);
+            return filter_gaussian_ggx_quad_trapezoidrule;
+        }
+        case 2u: {
+            const filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_trapezoidrule_1 = Constructfilter_gaussian_ggx_quad_TrapezoidRule(0.75, 2.117, 0.0001, 0.2, float4(0.28721693, 0.11781705, 0.052395698, 0.02408415), 112u);
+            return filter_gaussian_ggx_quad_trapezoidrule_1;
+        }
+        default: {
+            const filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_trapezoidrule_2 = Constructfilter_gaussian_ggx_quad_TrapezoidRule(1.0, 2.7182817, 0.0005, 0.35, float4(0.15651764, 0.052395698, 0.01865736, 0.006783655), 88u);
+            return filter_gaussian_ggx_quad_trapezoidrule_2;
+        }
+    }
+}
+
+float filter_gaussian_ggx_quad_j_tol(float v1s_2, float v2s_2, float z2_3, float tl1_5, float tl2_5, uint tol_2)
+{
+    if ((tol_2 == filter_gaussian_ggx_quad_TOL_FULL)) {
+        const float _e8 = filter_gaussian_ggx_quad_mixture_integral(v1s_2, v2s_2, z2_3, tl1_5, tl2_5);
+        return _e8;
+    }
+    float beta_m_2 = ((z2_3 + v1s_2) + v2s_2);
+    const float _e12 = filter_gaussian_ggx_quad_reduced_far(tol_2);
+    const float _e14 = math_ln((beta_m_2 / z2_3));
+    if ((((tl1_5 * z2_3) * (_e12 + (12.0 * _e14))) <= beta_m_2)) {
+        const float _e20 = filter_gaussian_ggx_quad_far_tail(beta_m_2, v1s_2, v2s_2, tl1_5, tl2_5, z2_3);
+        return _e20;
+    }
+    float iz2_1 = (1.0 / z2_3);
+    const filter_gaussian_ggx_quad_TrapezoidRule _e25 = filter_gaussian_ggx_quad_reduced_rule(tol_2);
+    const float _e26 = filter_gaussian_ggx_quad_trapezoid_rule((v1s_2 * iz2_1), (v2s_2 * iz2_1), tl1_5, tl2_5, _e25);
+    return ((_e26 * iz2_1) * iz2_1);
 }
 
 float filter_gaussian_ggx_quad_hermite_node(uint k_9)
@@ -2018,17 +2179,17 @@ float filter_gaussian_ggx_quad_hermite_weight(uint k_10)
 
 float filter_gaussian_ggx_quad_h_of(float y_2)
 {
-    float r_52 = (float)0;
+    float r_54 = (float)0;
 
-    float a_23 = abs(y_2);
-    if ((a_23 > 1.0)) {
-        float i_12 = (1.0 / a_23);
-        r_52 = (a_23 * sqrt((1.0 + (i_12 * i_12))));
+    float a_26 = abs(y_2);
+    if ((a_26 > 1.0)) {
+        float i_12 = (1.0 / a_26);
+        r_54 = (a_26 * sqrt((1.0 + (i_12 * i_12))));
     } else {
-        r_52 = sqrt((1.0 + (y_2 * y_2)));
+        r_54 = sqrt((1.0 + (y_2 * y_2)));
     }
-    float _e16 = r_52;
-    float _e18 = r_52;
+    float _e16 = r_54;
+    float _e18 = r_54;
     return ((y_2 >= 0.0) ? (1.0 / (_e18 + y_2)) : (_e16 - y_2));
 }
 
@@ -2186,7 +2347,18 @@ float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2)
     return _e9;
 }
 
-filter_gaussian_ggx_GaussianFilteredGgx Constructfilter_gaussian_ggx_GaussianFilteredGgx(ndf_roughness_matrix_RoughnessMatrix arg0, float2 arg1, float2 arg2, float2 arg3, float arg4, kernel_covariance_Covariance arg5) {
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_with_tolerance(filter_gaussian_ggx_GaussianFilteredGgx g, uint tol_3)
+{
+    filter_gaussian_ggx_GaussianFilteredGgx out_1 = (filter_gaussian_ggx_GaussianFilteredGgx)0;
+
+    out_1 = g;
+    out_1.tol = tol_3;
+    filter_gaussian_ggx_GaussianFilteredGgx _e4 = out_1;
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx = _e4;
+    return filter_gaussian_ggx_gaussianfilteredggx;
+}
+
+filter_gaussian_ggx_GaussianFilteredGgx Constructfilter_gaussian_ggx_GaussianFilteredGgx(ndf_roughness_matrix_RoughnessMatrix arg0, float2 arg1, float2 arg2, float2 arg3, float arg4, kernel_covariance_Covariance arg5, uint arg6) {
     filter_gaussian_ggx_GaussianFilteredGgx ret = (filter_gaussian_ggx_GaussianFilteredGgx)0;
     ret.a = arg0;
     ret.inv_sqrt_l = arg1;
@@ -2194,21 +2366,22 @@ filter_gaussian_ggx_GaussianFilteredGgx Constructfilter_gaussian_ggx_GaussianFil
     ret.tl = arg3;
     ret.norm = arg4;
     ret.k = arg5;
+    ret.tol = arg6;
     return ret;
 }
 
-filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance kernel_4)
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_4)
 {
     float l2_ = 0.0;
     float2 v_6 = float2(1.0, 0.0);
 
     const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
-    float c_18 = a_7.axis.x;
-    float s_27 = a_7.axis.y;
-    float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((s_27 * s_27) * _e2.s_yy)), 0.0);
-    float k22_ = max(((((s_27 * s_27) * _e2.s_xx) - (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
-    float k12_ = ((((c_18 * c_18) - (s_27 * s_27)) * _e2.s_xy) + ((c_18 * s_27) * (_e2.s_yy - _e2.s_xx)));
-    float2 l_7 = a_7.eig_c;
+    float c_18 = a_8.axis.x;
+    float s_29 = a_8.axis.y;
+    float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_29) * _e2.s_xy)) + ((s_29 * s_29) * _e2.s_yy)), 0.0);
+    float k22_ = max(((((s_29 * s_29) * _e2.s_xx) - (((2.0 * c_18) * s_29) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
+    float k12_ = ((((c_18 * c_18) - (s_29 * s_29)) * _e2.s_xy) + ((c_18 * s_29) * (_e2.s_yy - _e2.s_xx)));
+    float2 l_7 = a_8.eig_c;
     float2 isl = ((1.0).xx / sqrt(l_7));
     float c11_ = ((k11_ * isl.x) * isl.x);
     float c22_ = ((k22_ * isl.y) * isl.y);
@@ -2229,38 +2402,38 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roug
     }
     float2 _e102 = v_6;
     float _e105 = l2_;
-    const float _e110 = ndf_roughness_matrix_sqrt_det(a_7);
-    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx = Constructfilter_gaussian_ggx_GaussianFilteredGgx(a_7, isl, _e102, float2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2);
-    return filter_gaussian_ggx_gaussianfilteredggx;
+    const float _e110 = ndf_roughness_matrix_sqrt_det(a_8);
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_1 = Constructfilter_gaussian_ggx_GaussianFilteredGgx(a_8, isl, _e102, float2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2, filter_gaussian_ggx_TOL_FULL);
+    return filter_gaussian_ggx_gaussianfilteredggx_1;
 }
 
-float2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g, float2 s_9)
+float2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g_1, float2 s_11)
 {
-    const float2 _e3 = ndf_roughness_matrix_rotate(g.a, s_9);
-    float2 u_19 = (_e3 * g.inv_sqrt_l);
-    float2 c_19 = float2(((g.v.x * u_19.x) + (g.v.y * u_19.y)), ((g.v.x * u_19.y) - (g.v.y * u_19.x)));
+    const float2 _e3 = ndf_roughness_matrix_rotate(g_1.a, s_11);
+    float2 u_19 = (_e3 * g_1.inv_sqrt_l);
+    float2 c_19 = float2(((g_1.v.x * u_19.x) + (g_1.v.y * u_19.y)), ((g_1.v.x * u_19.y) - (g_1.v.y * u_19.x)));
     return (c_19 * c_19);
 }
 
-float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_1, float2 s_10)
+float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_2, float2 s_12)
 {
-    const float2 _e2 = filter_gaussian_ggx_whiten(g_1, s_10);
-    const float _e11 = filter_gaussian_ggx_quad_mixture_integral(_e2.x, _e2.y, 1.0, g_1.tl.x, g_1.tl.y);
-    return (g_1.norm * _e11);
+    const float2 _e2 = filter_gaussian_ggx_whiten(g_2, s_12);
+    const float _e12 = filter_gaussian_ggx_quad_j_tol(_e2.x, _e2.y, 1.0, g_2.tl.x, g_2.tl.y, g_2.tol);
+    return (g_2.norm * _e12);
 }
 
-float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_2, float3 m_20)
+float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_3, float3 m_21)
 {
-    if (!((m_20.z > 0.0))) {
+    if (!((m_21.z > 0.0))) {
         return 0.0;
     }
-    const float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_20.xy);
-    const float _e19 = filter_gaussian_ggx_quad_mixture_integral(_e8.x, _e8.y, (m_20.z * m_20.z), g_2.tl.x, g_2.tl.y);
-    float v_18 = (g_2.norm * _e19);
+    const float2 _e8 = filter_gaussian_ggx_whiten(g_3, m_21.xy);
+    const float _e20 = filter_gaussian_ggx_quad_j_tol(_e8.x, _e8.y, (m_21.z * m_21.z), g_3.tl.x, g_3.tl.y, g_3.tol);
+    float v_18 = (g_3.norm * _e20);
     return ((v_18 <= math_F32_MAX) ? v_18 : 0.0);
 }
 
-float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, float3 w_15)
+float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_4, float3 w_15)
 {
     float big_4 = max(max(abs(w_15.x), abs(w_15.y)), abs(w_15.z));
     if (!((big_4 > 0.0))) {
@@ -2269,8 +2442,8 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, fl
     float3 ws = (w_15 / (big_4).xxx);
     float3 o_9 = (ws / (length(ws)).xxx);
     float oz_3 = abs(o_9.z);
-    const float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_9.xy);
-    kernel_covariance_Covariance kk = g_3.k;
+    const float _e27 = ndf_roughness_matrix_quadratic(g_4.a, o_9.xy);
+    kernel_covariance_Covariance kk = g_4.k;
     float qs_4 = max(((((kk.s_xx * o_9.x) * o_9.x) + (((2.0 * kk.s_xy) * o_9.x) * o_9.y)) + ((kk.s_yy * o_9.y) * o_9.y)), 0.0);
     if ((qs_4 <= 0.0)) {
         const float _e52 = ndf_ggx_lambda_of(_e27, oz_3);
@@ -2287,18 +2460,18 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_3, fl
     return _e61;
 }
 
-float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_4, float3 w_16, float3 m_21)
+float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 w_16, float3 m_22)
 {
-    const float _e3 = filter_gaussian_ggx_lambda(g_4, w_16);
-    const float _e5 = ndf_g1_of(_e3, dot(w_16, m_21));
+    const float _e3 = filter_gaussian_ggx_lambda(g_5, w_16);
+    const float _e5 = ndf_g1_of(_e3, dot(w_16, m_22));
     return _e5;
 }
 
-float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 i_6, float3 o_6, float3 m_22)
+float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_6, float3 i_6, float3 o_6, float3 m_23)
 {
-    const float _e4 = filter_gaussian_ggx_lambda(g_5, i_6);
-    const float _e5 = filter_gaussian_ggx_lambda(g_5, o_6);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_22), dot(o_6, m_22));
+    const float _e4 = filter_gaussian_ggx_lambda(g_6, i_6);
+    const float _e5 = filter_gaussian_ggx_lambda(g_6, o_6);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_23), dot(o_6, m_23));
     return _e8;
 }
 
@@ -2306,87 +2479,16 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_exact_gaussian_lobe(
 {
     const kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_7, method_3.sigma);
     const filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
-    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_1 = _e6;
-    return filter_gaussian_ggx_gaussianfilteredggx_1;
+    const filter_gaussian_ggx_GaussianFilteredGgx _e8 = filter_gaussian_ggx_with_tolerance(_e6, method_3.tolerance);
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_2 = _e8;
+    return filter_gaussian_ggx_gaussianfilteredggx_2;
 }
 
-float filter_gaussian_ggx_d_ggx_exact_gaussian(filter_gaussian_ggx_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_8, float3 m_23)
+float filter_gaussian_ggx_d_ggx_exact_gaussian(filter_gaussian_ggx_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_8, float3 m_24)
 {
     const filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_gaussian_ggx_exact_gaussian_lobe(method_4, material_4, fp_8);
-    const float _e5 = filter_gaussian_ggx_d(_e4, m_23);
+    const float _e5 = filter_gaussian_ggx_d(_e4, m_24);
     return _e5;
-}
-
-kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_24)
-{
-    const kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_24.second.x - (m_24.mean.x * m_24.mean.x)), (m_24.second.y - (m_24.mean.x * m_24.mean.y)), (m_24.second.z - (m_24.mean.y * m_24.mean.y)));
-    const kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
-    const kernel_covariance_Covariance kernel_covariance_covariance_18 = _e26;
-    return kernel_covariance_covariance_18;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments)
-{
-    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
-    const kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
-    const kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_8, _e5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_12;
-}
-
-filter_deferred_KernelConvention filter_presets_preset(uint i_7)
-{
-    switch(i_7) {
-        case 0u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention = filter_presets_TK19_MAX;
-            return filter_deferred_kernelconvention;
-        }
-        case 1u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_1 = filter_presets_TK19_TRACE;
-            return filter_deferred_kernelconvention_1;
-        }
-        case 2u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_2 = filter_presets_TK19_AVERAGE;
-            return filter_deferred_kernelconvention_2;
-        }
-        case 3u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_3 = filter_presets_TK21_LISTING;
-            return filter_deferred_kernelconvention_3;
-        }
-        case 4u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_4 = filter_presets_FILAMENT;
-            return filter_deferred_kernelconvention_4;
-        }
-        case 5u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_5 = filter_presets_UNITY_HDRP;
-            return filter_deferred_kernelconvention_5;
-        }
-        case 6u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_6 = filter_presets_UNITY_HDRP_PROJECTED;
-            return filter_deferred_kernelconvention_6;
-        }
-        case 7u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_7 = filter_presets_GODOT;
-            return filter_deferred_kernelconvention_7;
-        }
-        case 8u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_8 = filter_presets_O3DE;
-            return filter_deferred_kernelconvention_8;
-        }
-        case 9u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_9 = filter_presets_UNREAL;
-            return filter_deferred_kernelconvention_9;
-        }
-        case 10u: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_10 = filter_presets_BABYLON;
-            return filter_deferred_kernelconvention_10;
-        }
-        default: {
-            const filter_deferred_KernelConvention filter_deferred_kernelconvention_11 = filter_presets_THREE_JS;
-            return filter_deferred_kernelconvention_11;
-        }
-    }
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance k_12, float tau_4)
@@ -2400,28 +2502,28 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     float2 excess = (a_9.eig - lc);
     float2 p_8 = (lc / ((1.0).xx - lc));
     float c_20 = a_9.axis.x;
-    float s_28 = a_9.axis.y;
-    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_28) * s_28));
-    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_28);
-    float p22_1 = (((p_8.x * s_28) * s_28) + ((p_8.y * c_20) * c_20));
-    float k1_3 = max(((((c_20 * c_20) * k_12.s_xx) + (((2.0 * c_20) * s_28) * k_12.s_xy)) + ((s_28 * s_28) * k_12.s_yy)), 0.0);
-    float k2_3 = max(((((s_28 * s_28) * k_12.s_xx) - (((2.0 * c_20) * s_28) * k_12.s_xy)) + ((c_20 * c_20) * k_12.s_yy)), 0.0);
-    float d_4 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_12.det, 0.0)));
+    float s_30 = a_9.axis.y;
+    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_30) * s_30));
+    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_30);
+    float p22_1 = (((p_8.x * s_30) * s_30) + ((p_8.y * c_20) * c_20));
+    float k1_3 = max(((((c_20 * c_20) * k_12.s_xx) + (((2.0 * c_20) * s_30) * k_12.s_xy)) + ((s_30 * s_30) * k_12.s_yy)), 0.0);
+    float k2_3 = max(((((s_30 * s_30) * k_12.s_xx) - (((2.0 * c_20) * s_30) * k_12.s_xy)) + ((c_20 * c_20) * k_12.s_yy)), 0.0);
+    float d_5 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_12.det, 0.0)));
     float q11_ = (p11_1 + (2.0 * k_12.s_xx));
     float q12_ = (p12_1 + (2.0 * k_12.s_xy));
     float q22_ = (p22_1 + (2.0 * k_12.s_yy));
-    float den_1 = (((1.0 + q11_) + q22_) + d_4);
-    b11_ = ((q11_ + d_4) / den_1);
+    float den_1 = (((1.0 + q11_) + q22_) + d_5);
+    b11_ = ((q11_ + d_5) / den_1);
     b12_ = (q12_ / den_1);
-    b22_ = ((q22_ + d_4) / den_1);
-    det_3 = (d_4 / den_1);
+    b22_ = ((q22_ + d_5) / den_1);
+    det_3 = (d_5 / den_1);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_28) * s_28)));
+        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_30) * s_30)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_28));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_30));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_28) * s_28) + ((excess.y * c_20) * c_20)));
+        b22_ = (_e130 + (((excess.x * s_30) * s_30) + ((excess.y * c_20) * c_20)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -2434,8 +2536,8 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     float _e151 = b22_;
     float _e154 = det_3;
     const ndf_roughness_matrix_RoughnessMatrix _e157 = ndf_roughness_matrix_from_entries_det(max(_e147, _e146.x), _e150, max(_e151, _e146.z), _e154, max(tau_4, 0.0));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e157;
-    return ndf_roughness_matrix_roughnessmatrix_13;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_16 = _e157;
+    return ndf_roughness_matrix_roughnessmatrix_16;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_10, kernel_covariance_Covariance kernel_5)
@@ -2443,8 +2545,8 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_ma
     const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_5);
     const float _e3 = ndf_roughness_matrix_clamped_det(a_10);
     const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_10, _e2, _e3);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_14 = _e4;
-    return ndf_roughness_matrix_roughnessmatrix_14;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_17 = _e4;
+    return ndf_roughness_matrix_roughnessmatrix_17;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_11, kernel_covariance_Covariance kernel_6, float det_clamp_2)
@@ -2452,8 +2554,8 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(n
     const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
     const float _e4 = ndf_roughness_matrix_own_det_clamp(a_11);
     const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_11, _e3, max(det_clamp_2, _e4));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_15 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_15;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_18 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_18;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_9, float sigma_5)
@@ -2461,15 +2563,15 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(kernel_cl
     const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_9, sigma_5);
     const float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
     const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_16 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_16;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_19 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_19;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_lobe(filter_projected_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_10)
 {
     const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_10, method_5.sigma);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_17 = _e5;
-    return ndf_roughness_matrix_roughnessmatrix_17;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_20 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_20;
 }
 
 float filter_projected_d_ggx_projected(filter_projected_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_11, float3 m_25)
@@ -2483,9 +2585,9 @@ float filter_proxy_effective_alpha(float alpha_9, float half_extent)
 {
     float h_27 = abs(half_extent);
     const float _e3 = math_hypot(alpha_9, h_27);
-    float t_15 = ((_e3 > 0.0) ? (h_27 / _e3) : 0.0);
-    const float _e9 = math_atan(t_15);
-    float ratio = ((t_15 > 0.0) ? (t_15 / _e9) : 1.0);
+    float t_16 = ((_e3 > 0.0) ? (h_27 / _e3) : 0.0);
+    const float _e9 = math_atan(t_16);
+    float ratio = ((t_16 > 0.0) ? (t_16 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
 }
 
@@ -2495,19 +2597,19 @@ float filter_proxy_effective_alpha_simple(float alpha_10, float half_extent_1)
     return _e3;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_53, float2 half_extent_2)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_55, float2 half_extent_2)
 {
-    const float _e5 = filter_proxy_effective_alpha(r_53.alpha.x, half_extent_2.x);
-    const float _e9 = filter_proxy_effective_alpha(r_53.alpha.y, half_extent_2.y);
+    const float _e5 = filter_proxy_effective_alpha(r_55.alpha.x, half_extent_2.x);
+    const float _e9 = filter_proxy_effective_alpha(r_55.alpha.y, half_extent_2.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_1 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_1;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_54, float2 half_extent_3)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_56, float2 half_extent_3)
 {
-    const float _e5 = filter_proxy_effective_alpha_simple(r_54.alpha.x, half_extent_3.x);
-    const float _e9 = filter_proxy_effective_alpha_simple(r_54.alpha.y, half_extent_3.y);
+    const float _e5 = filter_proxy_effective_alpha_simple(r_56.alpha.x, half_extent_3.x);
+    const float _e9 = filter_proxy_effective_alpha_simple(r_56.alpha.y, half_extent_3.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_2 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_2;
@@ -2544,12 +2646,12 @@ uint filter_rect_tier(float h2_, float l2_1)
     return filter_rect_TIER_CLOSED;
 }
 
-float filter_rect_gl_node(uint n_1, uint k_13)
+float filter_rect_gl_node(uint n, uint k_13)
 {
-    if ((n_1 == 2u)) {
+    if ((n == 2u)) {
         return 0.57735026;
     }
-    if ((n_1 == 4u)) {
+    if ((n == 4u)) {
         return ((k_13 == 0u) ? 0.33998105 : 0.8611363);
     }
     if ((k_13 == 0u)) {
@@ -2558,12 +2660,12 @@ float filter_rect_gl_node(uint n_1, uint k_13)
     return ((k_13 == 1u) ? 0.6612094 : 0.9324695);
 }
 
-float filter_rect_gl_weight(uint n_2, uint k_14)
+float filter_rect_gl_weight(uint n_1, uint k_14)
 {
-    if ((n_2 == 2u)) {
+    if ((n_1 == 2u)) {
         return 0.5;
     }
-    if ((n_2 == 4u)) {
+    if ((n_1 == 4u)) {
         return ((k_14 == 0u) ? 0.32607257 : 0.17392743);
     }
     if ((k_14 == 0u)) {
@@ -2574,15 +2676,11 @@ float filter_rect_gl_weight(uint n_2, uint k_14)
 
 float filter_rect_f(float u_1, float v_7)
 {
-    float t_16 = ((1.0 + (u_1 * u_1)) + (v_7 * v_7));
-    return (1.0 / (t_16 * t_16));
+    float t_17 = ((1.0 + (u_1 * u_1)) + (v_7 * v_7));
+    return (1.0 / (t_17 * t_17));
 }
 
-uint naga_div(uint lhs, uint rhs) {
-    return lhs / (rhs == 0u ? 1u : rhs);
-}
-
-float filter_rect_gl_mean(uint n_3, float u_2, float c_6, float h_12)
+float filter_rect_gl_mean(uint n_2, float u_2, float c_6, float h_12)
 {
     float acc_2 = 0.0;
     uint k_15 = 0u;
@@ -2598,19 +2696,19 @@ float filter_rect_gl_mean(uint n_3, float u_2, float c_6, float h_12)
         }
         loop_init_6 = false;
         uint _e8 = k_15;
-        if ((_e8 < naga_div(n_3, 2u))) {
+        if ((_e8 < naga_div(n_2, 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_15;
-            const float _e13 = filter_rect_gl_node(n_3, _e12);
-            float a_24 = (h_12 * _e13);
+            const float _e13 = filter_rect_gl_node(n_2, _e12);
+            float a_27 = (h_12 * _e13);
             float _e15 = acc_2;
             uint _e16 = k_15;
-            const float _e17 = filter_rect_gl_weight(n_3, _e16);
-            const float _e19 = filter_rect_f(u_2, (c_6 - a_24));
-            const float _e21 = filter_rect_f(u_2, (c_6 + a_24));
+            const float _e17 = filter_rect_gl_weight(n_2, _e16);
+            const float _e19 = filter_rect_f(u_2, (c_6 - a_27));
+            const float _e21 = filter_rect_f(u_2, (c_6 + a_27));
             acc_2 = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -2630,26 +2728,26 @@ float filter_rect_atan2_upper(float y_3, float x_8)
 
 float filter_rect_delta_minus_sin(float d, float sin_d)
 {
-    float s_11 = (float)0;
+    float s_13 = (float)0;
 
     if ((d < 1.0)) {
         float d2_1 = (d * d);
-        s_11 = (1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909))));
-        float _e17 = s_11;
-        s_11 = (1.0 - ((d2_1 * 0.023809524) * _e17));
-        float _e23 = s_11;
-        s_11 = (1.0 - ((d2_1 * 0.05) * _e23));
-        float _e30 = s_11;
+        s_13 = (1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909))));
+        float _e17 = s_13;
+        s_13 = (1.0 - ((d2_1 * 0.023809524) * _e17));
+        float _e23 = s_13;
+        s_13 = (1.0 - ((d2_1 * 0.05) * _e23));
+        float _e30 = s_13;
         return (((d * d2_1) * 0.16666667) * _e30);
     }
     return (d - sin_d);
 }
 
-float filter_rect_mean_1d(float4 i_8, float c2_)
+float filter_rect_mean_1d(float4 i_7, float c2_)
 {
-    float x0_ = ((i_8.z >= 0.0) ? i_8.x : -(i_8.y));
-    float x1_1 = ((i_8.z >= 0.0) ? i_8.y : -(i_8.x));
-    float dx = (2.0 * i_8.w);
+    float x0_ = ((i_7.z >= 0.0) ? i_7.x : -(i_7.y));
+    float x1_1 = ((i_7.z >= 0.0) ? i_7.y : -(i_7.x));
+    float dx = (2.0 * i_7.w);
     float c_21 = sqrt(c2_);
     float r02_ = (c2_ + (x0_ * x0_));
     float r12_ = (c2_ + (x1_1 * x1_1));
@@ -2657,9 +2755,9 @@ float filter_rect_mean_1d(float4 i_8, float c2_)
     const float _e27 = filter_rect_atan2_upper((c_21 * dx), (c2_ + x01_));
     float inv_2 = (1.0 / (((2.0 * c_21) * c2_) * dx));
     if ((x0_ <= 0.0)) {
-        float s_29 = (rsqrt(r02_) * rsqrt(r12_));
-        float q_7 = min(((c2_ - x01_) * s_29), 1.0);
-        return ((_e27 * inv_2) + ((q_7 * s_29) * (0.5 / c2_)));
+        float s_31 = (rsqrt(r02_) * rsqrt(r12_));
+        float q_7 = min(((c2_ - x01_) * s_31), 1.0);
+        return ((_e27 * inv_2) + ((q_7 * s_31) * (0.5 / c2_)));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
     float p2_1 = ((2.0 * r02_) * r12_);
@@ -2667,7 +2765,7 @@ float filter_rect_mean_1d(float4 i_8, float c2_)
     return ((_e57 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1));
 }
 
-float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, float4 other)
+float filter_rect_gl_mean_1d(uint n_3, float c_7, float h_13, float4 other)
 {
     float acc_3 = 0.0;
     uint k_16 = 0u;
@@ -2683,19 +2781,19 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, float4 other)
         }
         loop_init_7 = false;
         uint _e8 = k_16;
-        if ((_e8 < naga_div(n_4, 2u))) {
+        if ((_e8 < naga_div(n_3, 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_16;
-            const float _e13 = filter_rect_gl_node(n_4, _e12);
-            float a_25 = (h_13 * _e13);
-            float x0_1 = (c_7 - a_25);
-            float x1_2 = (c_7 + a_25);
+            const float _e13 = filter_rect_gl_node(n_3, _e12);
+            float a_28 = (h_13 * _e13);
+            float x0_1 = (c_7 - a_28);
+            float x1_2 = (c_7 + a_28);
             float _e17 = acc_3;
             uint _e18 = k_16;
-            const float _e19 = filter_rect_gl_weight(n_4, _e18);
+            const float _e19 = filter_rect_gl_weight(n_3, _e18);
             const float _e23 = filter_rect_mean_1d(other, (1.0 + (x0_1 * x0_1)));
             const float _e27 = filter_rect_mean_1d(other, (1.0 + (x1_2 * x1_2)));
             acc_3 = (_e17 + (_e19 * (_e23 + _e27)));
@@ -2708,9 +2806,9 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, float4 other)
 float filter_rect_edge(float u_3, float dv, float v01_)
 {
     float s2_1 = (1.0 + (u_3 * u_3));
-    float s_30 = sqrt(s2_1);
-    const float _e10 = filter_rect_atan2_upper((dv * s_30), (s2_1 + v01_));
-    return ((u_3 / s_30) * _e10);
+    float s_32 = sqrt(s2_1);
+    const float _e10 = filter_rect_atan2_upper((dv * s_32), (s2_1 + v01_));
+    return ((u_3 / s_32) * _e10);
 }
 
 float filter_rect_edges(float4 u_4, float4 v_8)
@@ -2774,9 +2872,9 @@ float filter_rect_polar_near(float x2_, float lo, float hi)
         {
             uint _e16 = k_19;
             const float _e17 = filter_rect_gl8_node(_e16);
-            float d_5 = (h_29 * _e17);
-            float q0_ = (1.0 + ((c_22 - d_5) * (c_22 - d_5)));
-            float q1_ = (1.0 + ((c_22 + d_5) * (c_22 + d_5)));
+            float d_6 = (h_29 * _e17);
+            float q0_ = (1.0 + ((c_22 - d_6) * (c_22 - d_6)));
+            float q1_ = (1.0 + ((c_22 + d_6) * (c_22 + d_6)));
             float _e29 = acc_4;
             uint _e30 = k_19;
             const float _e31 = filter_rect_gl8_weight(_e30);
@@ -2812,9 +2910,9 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
         {
             uint _e16 = k_20;
             const float _e17 = filter_rect_gl8_node(_e16);
-            float d_6 = (h_30 * _e17);
-            float t0_2 = ((c_23 - d_6) * (c_23 - d_6));
-            float t1_4 = ((c_23 + d_6) * (c_23 + d_6));
+            float d_7 = (h_30 * _e17);
+            float t0_2 = ((c_23 - d_7) * (c_23 - d_7));
+            float t1_4 = ((c_23 + d_7) * (c_23 + d_7));
             float _e25 = acc_5;
             uint _e26 = k_20;
             const float _e27 = filter_rect_gl8_weight(_e26);
@@ -2880,9 +2978,9 @@ float filter_rect_far_field(float4 u_5, float4 v_11)
     return (i_14 / ((4.0 * u_5.w) * v_11.w));
 }
 
-float filter_rect_gap(float4 i_9)
+float filter_rect_gap(float4 i_8)
 {
-    return max(max(i_9.x, -(i_9.y)), 0.0);
+    return max(max(i_8.x, -(i_8.y)), 0.0);
 }
 
 float filter_rect_mean_f(float4 u_6, float4 v_12)
@@ -2935,12 +3033,12 @@ float filter_rect_mean_f(float4 u_6, float4 v_12)
         {
             uint _e60 = k_21;
             const float _e61 = filter_rect_gl_node(_e14, _e60);
-            float a_26 = (u_6.w * _e61);
+            float a_29 = (u_6.w * _e61);
             float _e63 = acc_6;
             uint _e64 = k_21;
             const float _e65 = filter_rect_gl_weight(_e14, _e64);
-            const float _e70 = filter_rect_gl_mean(_e25, (u_6.z - a_26), v_12.z, v_12.w);
-            const float _e75 = filter_rect_gl_mean(_e25, (u_6.z + a_26), v_12.z, v_12.w);
+            const float _e70 = filter_rect_gl_mean(_e25, (u_6.z - a_29), v_12.z, v_12.w);
+            const float _e75 = filter_rect_gl_mean(_e25, (u_6.z + a_29), v_12.z, v_12.w);
             acc_6 = (_e63 + (_e65 * (_e70 + _e75)));
         }
     }
@@ -2956,7 +3054,7 @@ float4 filter_rect_interval(float c_8, float h_14, float a_15)
     return float4(lo_4, hi_3, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
 }
 
-float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_55, float2 center_, float2 half_extent_4)
+float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_57, float2 center_, float2 half_extent_4)
 {
     bool local_20 = (bool)0;
 
@@ -2967,17 +3065,17 @@ float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_55, float2 c
     }
     bool _e12 = local_20;
     if (_e12) {
-        const float _e13 = ndf_ggx_p22_axis_aligned(r_55, center_);
+        const float _e13 = ndf_ggx_p22_axis_aligned(r_57, center_);
         return _e13;
     }
-    float2 a_27 = r_55.alpha;
-    const float4 _e18 = filter_rect_interval(center_.x, half_extent_4.x, a_27.x);
-    const float4 _e22 = filter_rect_interval(center_.y, half_extent_4.y, a_27.y);
+    float2 a_30 = r_57.alpha;
+    const float4 _e18 = filter_rect_interval(center_.x, half_extent_4.x, a_30.x);
+    const float4 _e22 = filter_rect_interval(center_.y, half_extent_4.y, a_30.y);
     const float _e23 = filter_rect_mean_f(_e18, _e22);
-    return max((_e23 * (math_INV_PI / (a_27.x * a_27.y))), 0.0);
+    return max((_e23 * (math_INV_PI / (a_30.x * a_30.y))), 0.0);
 }
 
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_56, float3 h_15, float2 half_extent_5)
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_58, float3 h_15, float2 half_extent_5)
 {
     bool local_21 = (bool)0;
 
@@ -2991,22 +3089,22 @@ float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_56, float3 h_1
     }
     bool _e17 = local_21;
     if (_e17) {
-        const float _e18 = ndf_ggx_d_axis_aligned(r_56, h_15);
+        const float _e18 = ndf_ggx_d_axis_aligned(r_58, h_15);
         return _e18;
     }
-    const float _e24 = filter_rect_p22_rect(r_56, (-(h_15.xy) / (h_15.z).xx), half_extent_5);
-    float z2_6 = (h_15.z * h_15.z);
-    return min((_e24 / (z2_6 * z2_6)), math_F32_MAX);
+    const float _e24 = filter_rect_p22_rect(r_58, (-(h_15.xy) / (h_15.z).xx), half_extent_5);
+    float z2_7 = (h_15.z * h_15.z);
+    return min((_e24 / (z2_7 * z2_7)), math_F32_MAX);
 }
 
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_57, float2 hpp, float3 h_16, float2 footprint)
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_59, float2 hpp, float3 h_16, float2 footprint)
 {
     bool local_22 = (bool)0;
 
-    float a_28 = r_57.alpha.x;
-    float b_8 = r_57.alpha.y;
-    float a_2_ = (a_28 * a_28);
-    float b_2_ = (b_8 * b_8);
+    float a_31 = r_59.alpha.x;
+    float b_9 = r_59.alpha.y;
+    float a_2_ = (a_31 * a_31);
+    float b_2_ = (b_9 * b_9);
     float x1_3 = (hpp.x - footprint.x);
     float x2_4 = (hpp.x + footprint.x);
     float y1_ = (hpp.y - footprint.y);
@@ -3015,14 +3113,14 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_57, fl
     float sx2_ = sqrt(((x2_4 * x2_4) + a_2_));
     float sy1_ = sqrt(((y1_ * y1_) + b_2_));
     float sy2_ = sqrt(((y2_ * y2_) + b_2_));
-    const float _e37 = math_atan(((y1_ * a_28) / (sx1_ * b_8)));
-    const float _e41 = math_atan(((y2_ * a_28) / (sx1_ * b_8)));
-    const float _e48 = math_atan(((y1_ * a_28) / (sx2_ * b_8)));
-    const float _e53 = math_atan(((y2_ * a_28) / (sx2_ * b_8)));
-    const float _e62 = math_atan(((x1_3 * b_8) / (a_28 * sy1_)));
-    const float _e66 = math_atan(((x2_4 * b_8) / (a_28 * sy1_)));
-    const float _e73 = math_atan(((x1_3 * b_8) / (a_28 * sy2_)));
-    const float _e78 = math_atan(((x2_4 * b_8) / (a_28 * sy2_)));
+    const float _e37 = math_atan(((y1_ * a_31) / (sx1_ * b_9)));
+    const float _e41 = math_atan(((y2_ * a_31) / (sx1_ * b_9)));
+    const float _e48 = math_atan(((y1_ * a_31) / (sx2_ * b_9)));
+    const float _e53 = math_atan(((y2_ * a_31) / (sx2_ * b_9)));
+    const float _e62 = math_atan(((x1_3 * b_9) / (a_31 * sy1_)));
+    const float _e66 = math_atan(((x2_4 * b_9) / (a_31 * sy1_)));
+    const float _e73 = math_atan(((x1_3 * b_9) / (a_31 * sy2_)));
+    const float _e78 = math_atan(((x2_4 * b_9) / (a_31 * sy2_)));
     float val = ((((x1_3 * (_e37 - _e41)) / sx1_) + ((x2_4 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_)));
     float den_2 = ((6.2831855 * (x1_3 - x2_4)) * (y1_ - y2_));
     float hz4_ = (((h_16.z * h_16.z) * h_16.z) * h_16.z);
@@ -3036,59 +3134,59 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_57, fl
     return (_e109 ? v_19 : 0.0);
 }
 
-float filter_rect_lambda_rho(float t_1)
+float filter_rect_lambda_rho(float t_2)
 {
-    float a_29 = abs(t_1);
-    if ((a_29 > 1.0)) {
-        float i_15 = (1.0 / a_29);
-        return (a_29 * sqrt((1.0 + (i_15 * i_15))));
+    float a_32 = abs(t_2);
+    if ((a_32 > 1.0)) {
+        float i_15 = (1.0 / a_32);
+        return (a_32 * sqrt((1.0 + (i_15 * i_15))));
     }
-    return sqrt((1.0 + (t_1 * t_1)));
+    return sqrt((1.0 + (t_2 * t_2)));
 }
 
-float filter_rect_lambda_e_neg(float t_2, float r_58)
+float filter_rect_lambda_e_neg(float t_3, float r_60)
 {
-    return ((t_2 >= 0.0) ? (1.0 / (r_58 + t_2)) : (r_58 - t_2));
+    return ((t_3 >= 0.0) ? (1.0 / (r_60 + t_3)) : (r_60 - t_3));
 }
 
-float filter_rect_lambda_asinh_of(float t_3, float r_59)
+float filter_rect_lambda_asinh_of(float t_4, float r_61)
 {
     float v_13 = (float)0;
 
-    float a_30 = abs(t_3);
-    if ((a_30 > 1.0)) {
-        const float _e7 = math_ln((a_30 + r_59));
+    float a_33 = abs(t_4);
+    if ((a_33 > 1.0)) {
+        const float _e7 = math_ln((a_33 + r_61));
         v_13 = _e7;
     } else {
-        const float _e13 = math_ln_1p((a_30 + ((a_30 * a_30) / (1.0 + r_59))));
+        const float _e13 = math_ln_1p((a_33 + ((a_33 * a_33) / (1.0 + r_61))));
         v_13 = _e13;
     }
     float _e14 = v_13;
     float _e15 = v_13;
-    return ((t_3 < 0.0) ? -(_e15) : _e14);
+    return ((t_4 < 0.0) ? -(_e15) : _e14);
 }
 
-float filter_rect_lambda_psi(float t_4)
-{
-    const float _e1 = filter_rect_lambda_rho(t_4);
-    const float _e2 = filter_rect_lambda_e_neg(t_4, _e1);
-    return (0.5 * _e2);
-}
-
-float filter_rect_lambda_psi1_(float t_5)
+float filter_rect_lambda_psi(float t_5)
 {
     const float _e1 = filter_rect_lambda_rho(t_5);
     const float _e2 = filter_rect_lambda_e_neg(t_5, _e1);
-    const float _e3 = filter_rect_lambda_asinh_of(t_5, _e1);
-    return (0.25 * (_e3 - ((0.5 * _e2) * _e2)));
+    return (0.5 * _e2);
 }
 
-float filter_rect_lambda_psi2_(float t_6)
+float filter_rect_lambda_psi1_(float t_6)
 {
     const float _e1 = filter_rect_lambda_rho(t_6);
     const float _e2 = filter_rect_lambda_e_neg(t_6, _e1);
     const float _e3 = filter_rect_lambda_asinh_of(t_6, _e1);
-    return (0.25 * ((((t_6 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336)));
+    return (0.25 * (_e3 - ((0.5 * _e2) * _e2)));
+}
+
+float filter_rect_lambda_psi2_(float t_7)
+{
+    const float _e1 = filter_rect_lambda_rho(t_7);
+    const float _e2 = filter_rect_lambda_e_neg(t_7, _e1);
+    const float _e3 = filter_rect_lambda_asinh_of(t_7, _e1);
+    return (0.25 * ((((t_7 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336)));
 }
 
 float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_17)
@@ -3097,10 +3195,10 @@ float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_17)
     const float _e4 = filter_rect_lambda_rho(t1_);
     const float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     const float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_31 = (_e5 + _e6);
-    float d_7 = ((w_17 * s_31) / (_e3 + _e4));
-    const float _e12 = math_ln_1p((d_7 / _e6));
-    return (0.25 * (_e12 + ((0.5 * d_7) * s_31)));
+    float s_33 = (_e5 + _e6);
+    float d_8 = ((w_17 * s_33) / (_e3 + _e4));
+    const float _e12 = math_ln_1p((d_8 / _e6));
+    return (0.25 * (_e12 + ((0.5 * d_8) * s_33)));
 }
 
 float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_18)
@@ -3109,24 +3207,24 @@ float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_18)
     return (_e3 / w_18);
 }
 
-uint filter_rect_lambda_rule(uint t_7)
+uint filter_rect_lambda_rule(uint t_8)
 {
-    return ((t_7 == filter_rect_TIER_CLOSED) ? 6u : t_7);
+    return ((t_8 == filter_rect_TIER_CLOSED) ? 6u : t_8);
 }
 
-float filter_rect_lambda_mean_psi1_(float t_8, float k_22)
+float filter_rect_lambda_mean_psi1_(float t_9, float k_22)
 {
     float acc_7 = 0.0;
     uint j = 0u;
 
     if ((k_22 == 0.0)) {
-        const float _e4 = filter_rect_lambda_psi1_(t_8);
+        const float _e4 = filter_rect_lambda_psi1_(t_9);
         return _e4;
     }
-    const uint _e9 = filter_rect_tier((k_22 * k_22), (1.0 + (t_8 * t_8)));
+    const uint _e9 = filter_rect_tier((k_22 * k_22), (1.0 + (t_9 * t_9)));
     if ((_e9 == filter_rect_TIER_CLOSED)) {
-        const float _e13 = filter_rect_lambda_psi2_((t_8 + k_22));
-        const float _e15 = filter_rect_lambda_psi2_((t_8 - k_22));
+        const float _e13 = filter_rect_lambda_psi2_((t_9 + k_22));
+        const float _e15 = filter_rect_lambda_psi2_((t_9 - k_22));
         return ((_e13 - _e15) / (2.0 * k_22));
     }
     uint2 loop_bound_11 = uint2(4294967295u, 4294967295u);
@@ -3147,12 +3245,12 @@ float filter_rect_lambda_mean_psi1_(float t_8, float k_22)
         {
             uint _e28 = j;
             const float _e29 = filter_rect_gl_node(_e9, _e28);
-            float a_31 = (k_22 * _e29);
+            float a_34 = (k_22 * _e29);
             float _e31 = acc_7;
             uint _e32 = j;
             const float _e33 = filter_rect_gl_weight(_e9, _e32);
-            const float _e35 = filter_rect_lambda_psi1_((t_8 - a_31));
-            const float _e37 = filter_rect_lambda_psi1_((t_8 + a_31));
+            const float _e35 = filter_rect_lambda_psi1_((t_9 - a_34));
+            const float _e37 = filter_rect_lambda_psi1_((t_9 + a_34));
             acc_7 = (_e31 + (_e33 * (_e35 + _e37)));
         }
     }
@@ -3160,12 +3258,12 @@ float filter_rect_lambda_mean_psi1_(float t_8, float k_22)
     return _e44;
 }
 
-float filter_rect_lambda_gl_psi(uint t_9, float c_9, float h_17)
+float filter_rect_lambda_gl_psi(uint t_10, float c_9, float h_17)
 {
     float acc_8 = 0.0;
     uint j_1 = 0u;
 
-    const uint _e3 = filter_rect_lambda_rule(t_9);
+    const uint _e3 = filter_rect_lambda_rule(t_10);
     uint2 loop_bound_12 = uint2(4294967295u, 4294967295u);
     bool loop_init_12 = true;
     while(true) {
@@ -3184,12 +3282,12 @@ float filter_rect_lambda_gl_psi(uint t_9, float c_9, float h_17)
         {
             uint _e12 = j_1;
             const float _e13 = filter_rect_gl_node(_e3, _e12);
-            float a_32 = (h_17 * _e13);
+            float a_35 = (h_17 * _e13);
             float _e15 = acc_8;
             uint _e16 = j_1;
             const float _e17 = filter_rect_gl_weight(_e3, _e16);
-            const float _e19 = filter_rect_lambda_psi((c_9 - a_32));
-            const float _e21 = filter_rect_lambda_psi((c_9 + a_32));
+            const float _e19 = filter_rect_lambda_psi((c_9 - a_35));
+            const float _e21 = filter_rect_lambda_psi((c_9 + a_35));
             acc_8 = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -3229,12 +3327,12 @@ float filter_rect_lambda_expected_psi(float m_27, float k1_, float k2_, float lo
             {
                 uint _e32 = j_2;
                 const float _e33 = filter_rect_gl_node(_e13, _e32);
-                float a_33 = (kl * _e33);
+                float a_36 = (kl * _e33);
                 float _e35 = acc_9;
                 uint _e36 = j_2;
                 const float _e37 = filter_rect_gl_weight(_e13, _e36);
-                const float _e39 = filter_rect_lambda_gl_psi(_e23, (m_27 - a_33), ks);
-                const float _e41 = filter_rect_lambda_gl_psi(_e23, (m_27 + a_33), ks);
+                const float _e39 = filter_rect_lambda_gl_psi(_e23, (m_27 - a_36), ks);
+                const float _e41 = filter_rect_lambda_gl_psi(_e23, (m_27 + a_36), ks);
                 acc_9 = (_e35 + (_e37 * (_e39 + _e41)));
             }
         }
@@ -3284,7 +3382,7 @@ float filter_rect_lambda_expected_psi(float m_27, float k1_, float k2_, float lo
     return ((_e89 - _e90) / w_26);
 }
 
-float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_60, float2 half_extent_6, float3 w_in)
+float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_62, float2 half_extent_6, float3 w_in)
 {
     float3 w_19 = (float3)0;
     bool local_23 = (bool)0;
@@ -3320,7 +3418,7 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_60
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    float2 alpha_12 = r_60.alpha;
+    float2 alpha_12 = r_62.alpha;
     float2 ha = min(abs(half_extent_6), (alpha_12 * filter_rect_lambda_BIG_K));
     float _e63 = w_19.x;
     float ux = (abs(_e63) / _e46);
@@ -3339,7 +3437,7 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_60
     bool _e92 = local_25;
     if (_e92) {
         float3 _e93 = w_19;
-        const float _e94 = ndf_ggx_lambda_axis_aligned(r_60, _e93);
+        const float _e94 = ndf_ggx_lambda_axis_aligned(r_62, _e93);
         return _e94;
     }
     float mm = ((wz / _e46) / _e74);
@@ -3372,36 +3470,36 @@ filter_rect_lobe_RectFilteredGgx filter_rect_lobe_rect_lobe(filter_rect_lobe_Rec
     return filter_rect_lobe_rectfilteredggx;
 }
 
-float filter_rect_lobe_p22_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe, float2 s_12)
+float filter_rect_lobe_p22_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_1, float2 s_14)
 {
-    const float _e4 = filter_rect_p22_rect(lobe.roughness, s_12, lobe.half_extent);
+    const float _e4 = filter_rect_p22_rect(lobe_1.roughness, s_14, lobe_1.half_extent);
     return _e4;
 }
 
-float filter_rect_lobe_d_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_1, float3 m_28)
+float filter_rect_lobe_d_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_2, float3 m_28)
 {
-    const float _e4 = filter_rect_d_rect(lobe_1.roughness, m_28, lobe_1.half_extent);
+    const float _e4 = filter_rect_d_rect(lobe_2.roughness, m_28, lobe_2.half_extent);
     return _e4;
 }
 
-float filter_rect_lobe_lambda_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_2, float3 w_20)
+float filter_rect_lobe_lambda_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_3, float3 w_20)
 {
-    const float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_20);
+    const float _e4 = filter_rect_lambda_lambda_rect(lobe_3.roughness, lobe_3.half_extent, w_20);
     return _e4;
 }
 
-float filter_rect_lobe_g1_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_3, float3 w_21, float3 m_29)
+float filter_rect_lobe_g1_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_4, float3 w_21, float3 m_29)
 {
-    const float _e3 = filter_rect_lobe_lambda_rect_filtered(lobe_3, w_21);
+    const float _e3 = filter_rect_lobe_lambda_rect_filtered(lobe_4, w_21);
     const float _e5 = ndf_g1_of(_e3, dot(w_21, m_29));
     return _e5;
 }
 
-float filter_rect_lobe_g2_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_4, float3 i_10, float3 o_7, float3 m_30)
+float filter_rect_lobe_g2_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_5, float3 i_9, float3 o_7, float3 m_30)
 {
-    const float _e4 = filter_rect_lobe_lambda_rect_filtered(lobe_4, i_10);
-    const float _e5 = filter_rect_lobe_lambda_rect_filtered(lobe_4, o_7);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_10, m_30), dot(o_7, m_30));
+    const float _e4 = filter_rect_lobe_lambda_rect_filtered(lobe_5, i_9);
+    const float _e5 = filter_rect_lobe_lambda_rect_filtered(lobe_5, o_7);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_30), dot(o_7, m_30));
     return _e8;
 }
 
@@ -3412,16 +3510,135 @@ float filter_rect_lobe_d_ggx_rect(filter_rect_lobe_Rect method_10, ndf_roughness
     return _e5;
 }
 
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_lean_widened(ndf_roughness_matrix_RoughnessMatrix a_16, filter_lean_LeanMoments moments_3)
+{
+    const kernel_covariance_Covariance _e2 = filter_lean_covariance(moments_3);
+    const ndf_roughness_matrix_RoughnessMatrix _e3 = filter_gaussian_gaussian(a_16, _e2);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_21 = _e3;
+    return ndf_roughness_matrix_roughnessmatrix_21;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_lean_widened_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_63, filter_lean_LeanMoments moments_4)
+{
+    const kernel_covariance_Covariance _e2 = filter_lean_covariance(moments_4);
+    float2 a_37 = r_63.alpha;
+    const ndf_roughness_axis_aligned_AxisAligned _e12 = ndf_roughness_axis_aligned_from_alpha(sqrt(((a_37 * a_37) + (2.0 * float2(_e2.s_xx, _e2.s_yy)))));
+    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_4 = _e12;
+    return ndf_roughness_axis_aligned_axisaligned_4;
+}
+
+float3 filter_lean_nested_lean_mean_normal(filter_lean_LeanMoments moments_5)
+{
+    return normalize(float3(-(moments_5.mean), 1.0));
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_gaussian_lobe(filter_gaussian_Gaussian m_32, ndf_roughness_matrix_RoughnessMatrix material_11, footprint_Footprint fp_16, filter_lean_LeanMoments moments_6)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_lean_nested_lean_widened(material_11, moments_6);
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_gaussian_lobe(m_32, _e4, fp_16);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_22 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_22;
+}
+
+filter_gaussian_ggx_GaussianFilteredGgx filter_lean_nested_exact_gaussian_lobe(filter_gaussian_ggx_ExactGaussian m_33, ndf_roughness_matrix_RoughnessMatrix material_12, footprint_Footprint fp_17, filter_lean_LeanMoments moments_7)
+{
+    const kernel_covariance_Covariance _e6 = kernel_clamp_pixel_kernel(m_33.clamps, fp_17, m_33.sigma);
+    const kernel_covariance_Covariance _e7 = filter_lean_covariance(moments_7);
+    const kernel_covariance_Covariance _e8 = kernel_covariance_add(_e6, _e7);
+    const filter_gaussian_ggx_GaussianFilteredGgx _e9 = filter_gaussian_ggx_from_kernel(material_12, _e8);
+    const filter_gaussian_ggx_GaussianFilteredGgx _e11 = filter_gaussian_ggx_with_tolerance(_e9, m_33.tolerance);
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_3 = _e11;
+    return filter_gaussian_ggx_gaussianfilteredggx_3;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_projected_lobe(filter_projected_Projected m_34, ndf_roughness_matrix_RoughnessMatrix material_13, footprint_Footprint fp_18, filter_lean_LeanMoments moments_8)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_lean_nested_lean_widened(material_13, moments_8);
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_projected_lobe(m_34, _e4, fp_18);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_23 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_23;
+}
+
+filter_rect_lobe_RectFilteredGgx filter_lean_nested_rect_lobe(filter_rect_lobe_Rect m_35, ndf_roughness_axis_aligned_AxisAligned material_14, footprint_Footprint fp_19, filter_lean_LeanMoments moments_9)
+{
+    const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_lean_nested_lean_widened_axis_aligned(material_14, moments_9);
+    const filter_rect_lobe_RectFilteredGgx _e5 = filter_rect_lobe_rect_lobe(m_35, _e4, fp_19);
+    const filter_rect_lobe_RectFilteredGgx filter_rect_lobe_rectfilteredggx_1 = _e5;
+    return filter_rect_lobe_rectfilteredggx_1;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_proxy_lobe(filter_proxy_Proxy m_36, ndf_roughness_axis_aligned_AxisAligned material_15, footprint_Footprint fp_20, filter_lean_LeanMoments moments_10)
+{
+    const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_lean_nested_lean_widened_axis_aligned(material_15, moments_10);
+    const ndf_roughness_axis_aligned_AxisAligned _e5 = filter_proxy_proxy_lobe(m_36, _e4, fp_20);
+    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_5 = _e5;
+    return ndf_roughness_axis_aligned_axisaligned_5;
+}
+
+filter_deferred_KernelConvention filter_presets_preset(uint i_10)
+{
+    switch(i_10) {
+        case 0u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention = filter_presets_TK19_MAX;
+            return filter_deferred_kernelconvention;
+        }
+        case 1u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_1 = filter_presets_TK19_TRACE;
+            return filter_deferred_kernelconvention_1;
+        }
+        case 2u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_2 = filter_presets_TK19_AVERAGE;
+            return filter_deferred_kernelconvention_2;
+        }
+        case 3u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_3 = filter_presets_TK21_LISTING;
+            return filter_deferred_kernelconvention_3;
+        }
+        case 4u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_4 = filter_presets_FILAMENT;
+            return filter_deferred_kernelconvention_4;
+        }
+        case 5u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_5 = filter_presets_UNITY_HDRP;
+            return filter_deferred_kernelconvention_5;
+        }
+        case 6u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_6 = filter_presets_UNITY_HDRP_PROJECTED;
+            return filter_deferred_kernelconvention_6;
+        }
+        case 7u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_7 = filter_presets_GODOT;
+            return filter_deferred_kernelconvention_7;
+        }
+        case 8u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_8 = filter_presets_O3DE;
+            return filter_deferred_kernelconvention_8;
+        }
+        case 9u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_9 = filter_presets_UNREAL;
+            return filter_deferred_kernelconvention_9;
+        }
+        case 10u: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_10 = filter_presets_BABYLON;
+            return filter_deferred_kernelconvention_10;
+        }
+        default: {
+            const filter_deferred_KernelConvention filter_deferred_kernelconvention_11 = filter_presets_THREE_JS;
+            return filter_deferred_kernelconvention_11;
+        }
+    }
+}
+
 float2 footprint_slope_slope_from_sphere(float3 h_18)
 {
     float z_6 = max(h_18.z, math_F32_MIN_POSITIVE);
     return clamp((-(h_18.xy) / (z_6).xx), (-3.4028235e38).xx, (3.4028235e38).xx);
 }
 
-float3 footprint_slope_sphere_from_slope(float2 s_13)
+float3 footprint_slope_sphere_from_slope(float2 s_15)
 {
-    float k_30 = max(max(abs(s_13.x), abs(s_13.y)), 1.0);
-    float3 v_20 = float3((-(s_13) / (k_30).xx), (1.0 / k_30));
+    float k_30 = max(max(abs(s_15.x), abs(s_15.y)), 1.0);
+    float3 v_20 = float3((-(s_15) / (k_30).xx), (1.0 / k_30));
     return (v_20 / (length(v_20)).xxx);
 }
 
@@ -3447,9 +3664,9 @@ float2 footprint_slope_slope_from_projected(float2 p_2)
     return _e2;
 }
 
-float2 footprint_slope_projected_from_slope(float2 s_14)
+float2 footprint_slope_projected_from_slope(float2 s_16)
 {
-    const float3 _e1 = footprint_slope_sphere_from_slope(s_14);
+    const float3 _e1 = footprint_slope_sphere_from_slope(s_16);
     const float2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
 }
@@ -3462,11 +3679,11 @@ sampling_Warp Constructsampling_Warp(float arg0, float arg1, float arg2) {
     return ret;
 }
 
-sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_61)
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_64)
 {
-    const float3 _e1 = ndf_roughness_matrix_clamped_entries(r_61);
+    const float3 _e1 = ndf_roughness_matrix_clamped_entries(r_64);
     float l_xx = sqrt(_e1.x);
-    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_61.sqrt_det / l_xx));
+    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_64.sqrt_det / l_xx));
     return sampling_warp_1;
 }
 
@@ -3481,9 +3698,9 @@ float3 sampling_stretch(sampling_Warp l_3, float3 w_22)
     return float3(((l_3.l_xx * w_22.x) + (l_3.l_yx * w_22.y)), (l_3.l_yy * w_22.y), w_22.z);
 }
 
-float3 sampling_unstretch(sampling_Warp l_4, float3 n_5)
+float3 sampling_unstretch(sampling_Warp l_4, float3 n_4)
 {
-    const float3 _e14 = sampling_normalize_scaled(float3((l_4.l_xx * n_5.x), ((l_4.l_yx * n_5.x) + (l_4.l_yy * n_5.y)), n_5.z));
+    const float3 _e14 = sampling_normalize_scaled(float3((l_4.l_xx * n_4.x), ((l_4.l_yx * n_4.x) + (l_4.l_yy * n_4.y)), n_4.z));
     return _e14;
 }
 
@@ -3492,9 +3709,9 @@ float sampling_clamp_unit(float u_7)
     return ((u_7 >= 0.0) ? min(u_7, sampling_ONE_MINUS_EPS) : 0.0);
 }
 
-float3 sampling_reflect(float3 wo, float3 m_32)
+float3 sampling_reflect(float3 wo, float3 m_37)
 {
-    return (((2.0 * dot(wo, m_32)) * m_32) - wo);
+    return (((2.0 * dot(wo, m_37)) * m_37) - wo);
 }
 
 float3 sampling_ggx_standard_visible(float3 wi, float2 u_8)
@@ -3505,14 +3722,14 @@ float3 sampling_ggx_standard_visible(float3 wi, float2 u_8)
     return (float3((sin_theta_1 * _e3), z_7) + wi);
 }
 
-float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_62, float3 wo_1, float2 u_9)
+float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_65, float3 wo_1, float2 u_9)
 {
     bool local_26 = (bool)0;
 
     if (!((wo_1.z > 0.0))) {
         return (0.0).xxx;
     }
-    const sampling_Warp _e9 = sampling_warp(r_62);
+    const sampling_Warp _e9 = sampling_warp(r_65);
     const float3 _e10 = sampling_normalize_scaled(wo_1);
     const float3 _e11 = sampling_stretch(_e9, _e10);
     const float3 _e12 = sampling_normalize_scaled(_e11);
@@ -3536,29 +3753,29 @@ float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_62,
     return ((_e36.z > 0.0) ? _e36 : (0.0).xxx);
 }
 
-float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_63, float2 u_10)
+float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_66, float2 u_10)
 {
     const float _e3 = sampling_clamp_unit(u_10.x);
     const float _e5 = sampling_clamp_unit(u_10.y);
     const float2 _e6 = math_sincos_turns(_e5);
-    float3 n_7 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
-    const sampling_Warp _e13 = sampling_warp(r_63);
-    const float3 _e14 = sampling_unstretch(_e13, n_7);
+    float3 n_6 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
+    const sampling_Warp _e13 = sampling_warp(r_66);
+    const float3 _e14 = sampling_unstretch(_e13, n_6);
     return _e14;
 }
 
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_64, float3 m_33)
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_67, float3 m_38)
 {
-    const float _e2 = ndf_ggx_d_matrix(r_64, m_33);
-    return ((m_33.z > 0.0) ? (_e2 * m_33.z) : 0.0);
+    const float _e2 = ndf_ggx_d_matrix(r_67, m_38);
+    return ((m_38.z > 0.0) ? (_e2 * m_38.z) : 0.0);
 }
 
-float sampling_visible_normal_pdf_of(float3 wo_2, float3 m_34, float d_1, float lambda)
+float sampling_visible_normal_pdf_of(float3 wo_2, float3 m_39, float d_1, float lambda)
 {
     bool local_27 = (bool)0;
     bool local_28 = (bool)0;
 
-    float wom = dot(wo_2, m_34);
+    float wom = dot(wo_2, m_39);
     float v_21 = ((wom * d_1) / (wo_2.z * (1.0 + lambda)));
     if ((wo_2.z > 0.0)) {
         local_27 = (wom > 0.0);
@@ -3575,22 +3792,22 @@ float sampling_visible_normal_pdf_of(float3 wo_2, float3 m_34, float d_1, float 
     return (_e25 ? v_21 : 0.0);
 }
 
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_65, float3 wo_3, float3 m_35)
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_68, float3 wo_3, float3 m_40)
 {
-    const float _e3 = ndf_ggx_d_matrix(r_65, m_35);
-    const float _e4 = ndf_ggx_lambda_matrix(r_65, wo_3);
-    const float _e5 = sampling_visible_normal_pdf_of(wo_3, m_35, _e3, _e4);
+    const float _e3 = ndf_ggx_d_matrix(r_68, m_40);
+    const float _e4 = ndf_ggx_lambda_matrix(r_68, wo_3);
+    const float _e5 = sampling_visible_normal_pdf_of(wo_3, m_40, _e3, _e4);
     return _e5;
 }
 
-float sampling_reflection_pdf_of(float3 o_8, float3 m_36, float d_2, float lambda_1)
+float sampling_reflection_pdf_of(float3 o_8, float3 m_41, float d_2, float lambda_1)
 {
     bool local_29 = (bool)0;
     bool local_30 = (bool)0;
 
     float v_22 = (d_2 / ((4.0 * o_8.z) * (1.0 + lambda_1)));
     if ((o_8.z > 0.0)) {
-        local_29 = (dot(o_8, m_36) > 0.0);
+        local_29 = (dot(o_8, m_41) > 0.0);
     } else {
         local_29 = false;
     }
@@ -3604,16 +3821,16 @@ float sampling_reflection_pdf_of(float3 o_8, float3 m_36, float d_2, float lambd
     return (_e26 ? v_22 : 0.0);
 }
 
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_66, float3 wo_4, float3 m_37)
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_69, float3 wo_4, float3 m_42)
 {
     const float3 _e3 = sampling_normalize_scaled(wo_4);
-    const float _e4 = ndf_ggx_d_matrix(r_66, m_37);
-    const float _e5 = ndf_ggx_lambda_matrix(r_66, _e3);
-    const float _e6 = sampling_reflection_pdf_of(_e3, m_37, _e4, _e5);
+    const float _e4 = ndf_ggx_d_matrix(r_69, m_42);
+    const float _e5 = ndf_ggx_lambda_matrix(r_69, _e3);
+    const float _e6 = sampling_reflection_pdf_of(_e3, m_42, _e4, _e5);
     return _e6;
 }
 
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_67, float3 wo_5, float3 wi_1)
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_70, float3 wo_5, float3 wi_1)
 {
     if (!((wo_5.z > 0.0))) {
         return 0.0;
@@ -3621,11 +3838,11 @@ float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_67, float3 
     const float3 _e8 = sampling_normalize_scaled(wo_5);
     const float3 _e9 = sampling_normalize_scaled(wi_1);
     float3 h_32 = (_e8 + _e9);
-    float len = length(h_32);
-    if (!((len > 0.0))) {
+    float len_1 = length(h_32);
+    if (!((len_1 > 0.0))) {
         return 0.0;
     }
-    const float _e18 = sampling_reflection_pdf_from_normal(r_67, wo_5, (h_32 / (len).xxx));
+    const float _e18 = sampling_reflection_pdf_from_normal(r_70, wo_5, (h_32 / (len_1).xxx));
     return _e18;
 }
 
@@ -3633,51 +3850,51 @@ float sampling_beckmann_erfcx(float z_1)
 {
     float p_3 = 0.17087276;
 
-    float t_17 = (1.0 / (1.0 + (0.5 * z_1)));
+    float t_18 = (1.0 / (1.0 + (0.5 * z_1)));
     float _e9 = p_3;
-    p_3 = ((_e9 * t_17) - 0.82215226);
+    p_3 = ((_e9 * t_18) - 0.82215226);
     float _e13 = p_3;
-    p_3 = ((_e13 * t_17) + 1.4885159);
+    p_3 = ((_e13 * t_18) + 1.4885159);
     float _e17 = p_3;
-    p_3 = ((_e17 * t_17) - 1.135204);
+    p_3 = ((_e17 * t_18) - 1.135204);
     float _e21 = p_3;
-    p_3 = ((_e21 * t_17) + 0.27886808);
+    p_3 = ((_e21 * t_18) + 0.27886808);
     float _e25 = p_3;
-    p_3 = ((_e25 * t_17) - 0.18628806);
+    p_3 = ((_e25 * t_18) - 0.18628806);
     float _e29 = p_3;
-    p_3 = ((_e29 * t_17) + 0.09678418);
+    p_3 = ((_e29 * t_18) + 0.09678418);
     float _e33 = p_3;
-    p_3 = ((_e33 * t_17) + 0.37409195);
+    p_3 = ((_e33 * t_18) + 0.37409195);
     float _e37 = p_3;
-    p_3 = ((_e37 * t_17) + 1.0000237);
+    p_3 = ((_e37 * t_18) + 1.0000237);
     float _e41 = p_3;
-    p_3 = ((_e41 * t_17) - 1.2655122);
+    p_3 = ((_e41 * t_18) - 1.2655122);
     float _e45 = p_3;
     const float _e46 = math_exp(_e45);
-    return (t_17 * _e46);
+    return (t_18 * _e46);
 }
 
-float sampling_beckmann_upper_tail(float x_10, float c_10, float s_15)
+float sampling_beckmann_upper_tail(float x_10, float c_10, float s_17)
 {
     const float _e5 = math_exp((-(x_10) * x_10));
     const float _e8 = sampling_beckmann_erfcx(x_10);
-    return ((0.5 * _e5) * ((c_10 * _e8) - (s_15 * sampling_beckmann_INV_SQRT_PI)));
+    return ((0.5 * _e5) * ((c_10 * _e8) - (s_17 * sampling_beckmann_INV_SQRT_PI)));
 }
 
-float2 sampling_beckmann_cdf_terms(float x_11, float c_11, float s_16)
+float2 sampling_beckmann_cdf_terms(float x_11, float c_11, float s_18)
 {
     float k_23 = (float)0;
 
     const float _e5 = math_exp((-(x_11) * x_11));
     if ((x_11 <= 0.0)) {
         const float _e12 = sampling_beckmann_erfcx(-(x_11));
-        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_16 * sampling_beckmann_INV_SQRT_PI)));
+        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_18 * sampling_beckmann_INV_SQRT_PI)));
     } else {
-        const float _e18 = sampling_beckmann_upper_tail(x_11, c_11, s_16);
+        const float _e18 = sampling_beckmann_upper_tail(x_11, c_11, s_18);
         k_23 = (c_11 - _e18);
     }
     float _e20 = k_23;
-    return float2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_16 * x_11))));
+    return float2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_18 * x_11))));
 }
 
 float sampling_beckmann_erfinv_guess(float x_12)
@@ -3685,11 +3902,11 @@ float sampling_beckmann_erfinv_guess(float x_12)
     float w_23 = (float)0;
     float p_4 = (float)0;
 
-    float a_34 = ((1.0 - x_12) * (1.0 + x_12));
-    if (!((a_34 > 0.0))) {
+    float a_38 = ((1.0 - x_12) * (1.0 + x_12));
+    if (!((a_38 > 0.0))) {
         return 0.0;
     }
-    const float _e10 = math_ln(a_34);
+    const float _e10 = math_ln(a_38);
     w_23 = -(_e10);
     float _e14 = w_23;
     if ((_e14 < 5.0)) {
@@ -3753,7 +3970,7 @@ float sampling_beckmann_erfinv_guess(float x_12)
     return (_e106 * x_12);
 }
 
-float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u_11)
+float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_19, float u_11)
 {
     float lo_3 = -9.0;
     float hi_2 = (float)0;
@@ -3761,13 +3978,13 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u
     float x_13 = (float)0;
     float dx_old = (float)0;
     uint i_11 = 0u;
-    float g_6 = (float)0;
+    float g_7 = (float)0;
     bool local_32 = (bool)0;
     bool local_33 = (bool)0;
 
-    float hi0_ = ((s_17 > 0.0) ? min((c_12 / s_17), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
+    float hi0_ = ((s_19 > 0.0) ? min((c_12 / s_19), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
     hi_2 = hi0_;
-    const float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_17);
+    const float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_19);
     float norm_1 = _e13.x;
     bool upper = (u_11 > 0.5);
     float goal = ((upper ? (1.0 - u_11) : u_11) * norm_1);
@@ -3775,8 +3992,8 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u
         float _e24 = lo_3;
         return _e24;
     }
-    const float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_17);
-    float tol = (4.7683716e-7 * goal);
+    const float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_19);
+    float tol_4 = (4.7683716e-7 * goal);
     const float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_11) - 1.0));
     float _e35 = hi_2;
     float _e40 = lo_3;
@@ -3808,20 +4025,20 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u
         }
         {
             float _e59 = x_13;
-            const float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_17);
-            g_6 = (_e60.x - goal);
+            const float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_19);
+            g_7 = (_e60.x - goal);
             if (upper) {
                 float _e66 = x_13;
-                const float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_17);
+                const float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_19);
                 float _e69 = x_13;
-                g_6 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
+                g_7 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
             }
-            float _e74 = g_6;
-            if ((abs(_e74) <= tol)) {
+            float _e74 = g_7;
+            if ((abs(_e74) <= tol_4)) {
                 float _e77 = x_13;
                 return _e77;
             }
-            float _e78 = g_6;
+            float _e78 = g_7;
             if ((_e78 < 0.0)) {
                 float _e81 = x_13;
                 lo_3 = _e81;
@@ -3837,7 +4054,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u
                 float _e94 = hi_2;
                 return (0.5 * (_e93 + _e94));
             }
-            float _e98 = g_6;
+            float _e98 = g_7;
             float step_ = (_e98 / _e60.y);
             float _e101 = x_13;
             float xn = (_e101 - step_);
@@ -3850,7 +4067,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u
             }
             bool _e110 = local_32;
             if (_e110) {
-                float _e113 = g_6;
+                float _e113 = g_7;
                 float _e117 = dx_old;
                 local_33 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
             } else {
@@ -3882,7 +4099,7 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_17, float u
 float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_12)
 {
     float c_13 = 1.0;
-    float s_18 = 0.0;
+    float s_20 = 0.0;
     bool local_34 = (bool)0;
     bool local_35 = (bool)0;
 
@@ -3901,16 +4118,16 @@ float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta,
     if (_e21) {
         const float _e22 = math_hypot(cos_theta, sin_theta);
         c_13 = (cos_theta / _e22);
-        s_18 = (sin_theta / _e22);
+        s_20 = (sin_theta / _e22);
     }
     float _e25 = c_13;
-    float _e26 = s_18;
+    float _e26 = s_20;
     const float _e27 = sampling_clamp_unit(u_12);
     const float _e28 = sampling_beckmann_invert_visible_slope_cdf(_e25, _e26, _e27);
     return _e28;
 }
 
-float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_68, float2 u_13)
+float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_71, float2 u_13)
 {
     const float _e3 = sampling_clamp_unit(u_13.x);
     const float _e5 = sampling_clamp_unit(u_13.y);
@@ -3918,20 +4135,20 @@ float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_68
     const float _e9 = math_ln((1.0 - _e3));
     const float _e14 = math_ln_1p((_e3 / (1.0 - _e3)));
     float e_6 = ((_e3 < 0.5) ? _e14 : -(_e9));
-    float3 n_8 = float3((sqrt(e_6) * _e6), 1.0);
-    const sampling_Warp _e22 = sampling_warp(r_68);
-    const float3 _e23 = sampling_unstretch(_e22, n_8);
+    float3 n_7 = float3((sqrt(e_6) * _e6), 1.0);
+    const sampling_Warp _e22 = sampling_warp(r_71);
+    const float3 _e23 = sampling_unstretch(_e22, n_7);
     return _e23;
 }
 
-float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_69, float3 wo_6, float2 u_14)
+float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_72, float3 wo_6, float2 u_14)
 {
     bool local_36 = (bool)0;
 
     if (!((wo_6.z > 0.0))) {
         return (0.0).xxx;
     }
-    const sampling_Warp _e9 = sampling_warp(r_69);
+    const sampling_Warp _e9 = sampling_warp(r_72);
     const float3 _e10 = sampling_normalize_scaled(wo_6);
     const float3 _e11 = sampling_stretch(_e9, _e10);
     const float3 _e12 = sampling_normalize_scaled(_e11);
@@ -3944,8 +4161,8 @@ float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMat
     const float _e34 = sampling_beckmann_invert_visible_slope_cdf(_e12.z, _e21, _e33);
     const float _e38 = sampling_clamp_unit(u_14.y);
     const float _e39 = sampling_beckmann_invert_visible_slope_cdf(1.0, 0.0, _e38);
-    float2 t_18 = float2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
-    const float3 _e54 = sampling_unstretch(_e9, float3(-(t_18), 1.0));
+    float2 t_19 = float2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
+    const float3 _e54 = sampling_unstretch(_e9, float3(-(t_19), 1.0));
     if ((_e54.z > 0.0)) {
         local_36 = (dot(wo_6, _e54) > 0.0);
     } else {
@@ -3959,26 +4176,26 @@ float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMat
     return ((_e65.z > 0.0) ? _e65 : (0.0).xxx);
 }
 
-float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_70, float3 m_38)
+float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_73, float3 m_43)
 {
-    const float _e2 = ndf_beckmann_d_matrix(r_70, m_38);
-    return ((m_38.z > 0.0) ? (_e2 * m_38.z) : 0.0);
+    const float _e2 = ndf_beckmann_d_matrix(r_73, m_43);
+    return ((m_43.z > 0.0) ? (_e2 * m_43.z) : 0.0);
 }
 
-float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_71, float3 wo_7, float3 m_39)
+float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_74, float3 wo_7, float3 m_44)
 {
-    const float _e3 = ndf_beckmann_d_matrix(r_71, m_39);
-    const float _e4 = ndf_beckmann_lambda_matrix(r_71, wo_7);
-    const float _e5 = sampling_visible_normal_pdf_of(wo_7, m_39, _e3, _e4);
+    const float _e3 = ndf_beckmann_d_matrix(r_74, m_44);
+    const float _e4 = ndf_beckmann_lambda_matrix(r_74, wo_7);
+    const float _e5 = sampling_visible_normal_pdf_of(wo_7, m_44, _e3, _e4);
     return _e5;
 }
 
-float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_72, float3 wo_8, float3 m_40)
+float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_75, float3 wo_8, float3 m_45)
 {
     const float3 _e3 = sampling_normalize_scaled(wo_8);
-    const float _e4 = ndf_beckmann_d_matrix(r_72, m_40);
-    const float _e5 = ndf_beckmann_lambda_matrix(r_72, _e3);
-    const float _e6 = sampling_reflection_pdf_of(_e3, m_40, _e4, _e5);
+    const float _e4 = ndf_beckmann_d_matrix(r_75, m_45);
+    const float _e5 = ndf_beckmann_lambda_matrix(r_75, _e3);
+    const float _e6 = sampling_reflection_pdf_of(_e3, m_45, _e4, _e5);
     return _e6;
 }
 
@@ -3989,7 +4206,7 @@ float2 sampling_gaussian_ggx_split_bits(float u_15)
     return float2(((hi_5 + 0.5) / 4096.0), (x_20 - hi_5));
 }
 
-float3 sampling_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_7, float2 u_16)
+float3 sampling_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_8, float2 u_16)
 {
     float2 ax_1 = float2(1.0, 0.0);
 
@@ -3998,15 +4215,15 @@ float3 sampling_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredG
     const float _e6 = sampling_clamp_unit(u_16.y);
     const float2 _e7 = sampling_gaussian_ggx_split_bits(_e6);
     const float2 _e15 = math_sincos_turns(_e7.x);
-    float2 t_19 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
-    const sampling_Warp _e18 = sampling_warp(g_7.a);
-    float2 gs = float2((_e18.l_xx * t_19.x), ((_e18.l_yx * t_19.x) + (_e18.l_yy * t_19.y)));
+    float2 t_20 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
+    const sampling_Warp _e18 = sampling_warp(g_8.a);
+    float2 gs = float2((_e18.l_xx * t_20.x), ((_e18.l_yx * t_20.x) + (_e18.l_yy * t_20.y)));
     const float _e33 = math_ln((1.0 - _e4.y));
     const float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
     float e_7 = ((_e4.y < 0.5) ? _e40 : -(_e33));
     const float2 _e49 = math_sincos_turns(_e7.y);
     float2 y_4 = (sqrt((2.0 * e_7)) * _e49);
-    kernel_covariance_Covariance k_31 = g_7.k;
+    kernel_covariance_Covariance k_31 = g_8.k;
     const float2 _e52 = kernel_covariance_eigenvalues(k_31);
     float khalf = (0.5 * (k_31.s_xx - k_31.s_yy));
     const float _e59 = math_hypot(khalf, k_31.s_xy);
@@ -4020,15 +4237,15 @@ float3 sampling_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredG
     float _e94 = ax_1.y;
     float _e99 = ax_1.y;
     float _e103 = ax_1.x;
-    float2 s_32 = (gs + float2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
-    const float3 _e112 = sampling_normalize_scaled(float3(-(s_32), 1.0));
+    float2 s_34 = (gs + float2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
+    const float3 _e112 = sampling_normalize_scaled(float3(-(s_34), 1.0));
     return float3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
 }
 
-float sampling_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_8, float3 m_41)
+float sampling_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_9, float3 m_46)
 {
-    const float _e2 = filter_gaussian_ggx_d(g_8, m_41);
-    return ((m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0);
+    const float _e2 = filter_gaussian_ggx_d(g_9, m_46);
+    return ((m_46.z > 0.0) ? (_e2 * m_46.z) : 0.0);
 }
 
 float sampling_rect_sanitized_half_extent(float h_20, float alpha_11)
@@ -4037,45 +4254,45 @@ float sampling_rect_sanitized_half_extent(float h_20, float alpha_11)
     return ((v_23 >= 0.0) ? min(v_23, (filter_rect_BIG * alpha_11)) : 0.0);
 }
 
-float3 sampling_rect_normal_of_slope(float2 s_19)
+float3 sampling_rect_normal_of_slope(float2 s_21)
 {
-    const float3 _e4 = sampling_normalize_scaled(float3(-(s_19), 1.0));
+    const float3 _e4 = sampling_normalize_scaled(float3(-(s_21), 1.0));
     return float3(_e4.xy, max(_e4.z, math_F32_MIN_POSITIVE));
 }
 
-float3 sampling_rect_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_73, float2 half_extent_7, float2 u_17, float2 u_box)
+float3 sampling_rect_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_76, float2 half_extent_7, float2 u_17, float2 u_box)
 {
-    float2 a_35 = r_73.alpha;
-    const float _e7 = sampling_rect_sanitized_half_extent(half_extent_7.x, a_35.x);
-    const float _e10 = sampling_rect_sanitized_half_extent(half_extent_7.y, a_35.y);
+    float2 a_39 = r_76.alpha;
+    const float _e7 = sampling_rect_sanitized_half_extent(half_extent_7.x, a_39.x);
+    const float _e10 = sampling_rect_sanitized_half_extent(half_extent_7.y, a_39.y);
     float2 h_33 = float2(_e7, _e10);
     const float _e13 = sampling_clamp_unit(u_17.x);
     const float _e15 = sampling_clamp_unit(u_17.y);
     const float2 _e16 = math_sincos_turns(_e15);
     float rad_1 = sqrt((_e13 / (1.0 - _e13)));
-    float2 g_9 = (-(a_35) * (rad_1 * _e16));
+    float2 g_10 = (-(a_39) * (rad_1 * _e16));
     const float _e25 = sampling_clamp_unit(u_box.x);
     const float _e27 = sampling_clamp_unit(u_box.y);
-    float2 b_9 = float2(_e25, _e27);
-    float2 d_8 = (((2.0 * b_9) - (1.0).xx) * h_33);
-    const float3 _e36 = sampling_rect_normal_of_slope((g_9 + d_8));
+    float2 b_10 = float2(_e25, _e27);
+    float2 d_9 = (((2.0 * b_10) - (1.0).xx) * h_33);
+    const float3 _e36 = sampling_rect_normal_of_slope((g_10 + d_9));
     return _e36;
 }
 
-float sampling_rect_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_74, float2 half_extent_8, float3 m_42)
+float sampling_rect_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_77, float2 half_extent_8, float3 m_47)
 {
-    const float _e3 = filter_rect_d_rect(r_74, m_42, half_extent_8);
-    return ((m_42.z > 0.0) ? (_e3 * m_42.z) : 0.0);
+    const float _e3 = filter_rect_d_rect(r_77, m_47, half_extent_8);
+    return ((m_47.z > 0.0) ? (_e3 * m_47.z) : 0.0);
 }
 
-float sampling_rect_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_75, float2 half_extent_9, float3 wo_9, float3 m_43)
+float sampling_rect_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_78, float2 half_extent_9, float3 wo_9, float3 m_48)
 {
     bool local_37 = (bool)0;
     bool local_38 = (bool)0;
 
-    float wom_1 = dot(wo_9, m_43);
+    float wom_1 = dot(wo_9, m_48);
     if (!(!((wo_9.z > 0.0)))) {
-        local_37 = !((m_43.z > 0.0));
+        local_37 = !((m_48.z > 0.0));
     } else {
         local_37 = true;
     }
@@ -4089,8 +4306,8 @@ float sampling_rect_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAlign
     if (_e25) {
         return 0.0;
     }
-    const float _e27 = filter_rect_d_rect(r_75, m_43, half_extent_9);
-    const float _e30 = filter_rect_lambda_lambda_rect(r_75, half_extent_9, wo_9);
+    const float _e27 = filter_rect_d_rect(r_78, m_48, half_extent_9);
+    const float _e30 = filter_rect_lambda_lambda_rect(r_78, half_extent_9, wo_9);
     float v_24 = ((wom_1 * _e27) / (wo_9.z * (1.0 + _e30)));
     return ((v_24 <= math_F32_MAX) ? v_24 : 0.0);
 }

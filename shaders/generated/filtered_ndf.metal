@@ -9,6 +9,16 @@
 
 using metal::uint;
 
+struct ndf_roughness_matrix_RoughnessMatrix {
+    metal::float2 axis;
+    metal::float2 eig;
+    metal::float2 eig_c;
+    metal::float2 inv_eig;
+    float sqrt_det;
+    float det;
+    float tau;
+    char _pad7[4];
+};
 struct footprint_jacobian_Polar {
     metal::float3 h;
     metal::float2 cs;
@@ -27,28 +37,6 @@ struct kernel_covariance_Covariance {
     float s_xy;
     float s_yy;
     float det;
-};
-struct filter_deferred_KernelConvention {
-    uint domain;
-    uint norm;
-    float scale;
-    float exponent;
-    float bias;
-    float clamp;
-    uint combine;
-    bool saturate;
-    char _pad8[3];
-    float perceptual_floor;
-};
-struct ndf_roughness_matrix_RoughnessMatrix {
-    metal::float2 axis;
-    metal::float2 eig;
-    metal::float2 eig_c;
-    metal::float2 inv_eig;
-    float sqrt_det;
-    float det;
-    float tau;
-    char _pad7[4];
 };
 struct ndf_roughness_isotropic_Isotropic {
     float alpha;
@@ -73,6 +61,32 @@ struct filter_gaussian_Gaussian {
     kernel_clamp_ClampRules clamps;
     float sigma;
 };
+struct filter_lean_LeanMoments {
+    metal::float2 mean;
+    char _pad1[8];
+    metal::float3 second;
+};
+struct filter_deferred_KernelConvention {
+    uint domain;
+    uint norm;
+    float scale;
+    float exponent;
+    float bias;
+    float clamp;
+    uint combine;
+    bool saturate;
+    char _pad8[3];
+    float perceptual_floor;
+};
+struct filter_gaussian_ggx_quad_TrapezoidRule {
+    float h;
+    float exp_h;
+    float eps_t;
+    float y_lo;
+    metal::float4 geom;
+    uint nodes;
+    char _pad6[12];
+};
 struct filter_gaussian_ggx_GaussianFilteredGgx {
     ndf_roughness_matrix_RoughnessMatrix a;
     metal::float2 inv_sqrt_l;
@@ -80,16 +94,12 @@ struct filter_gaussian_ggx_GaussianFilteredGgx {
     metal::float2 tl;
     float norm;
     kernel_covariance_Covariance k;
-    char _pad6[4];
+    uint tol;
 };
 struct filter_gaussian_ggx_ExactGaussian {
     kernel_clamp_ClampRules clamps;
     float sigma;
-};
-struct filter_lean_LeanMoments {
-    metal::float2 mean;
-    char _pad1[8];
-    metal::float3 second;
+    uint tolerance;
 };
 struct filter_projected_Projected {
     kernel_clamp_ClampRules clamps;
@@ -123,11 +133,22 @@ constant float math_LN_2_ = 0.6931472;
 constant float math_SQRT_TAU = 2.5066283;
 constant float math_LOG2_E = 1.442695;
 constant float math_SQRT_2_ = 1.4142135;
-constant float ndf_roughness_ALPHA_MIN = 0.00000001;
-constant float ndf_roughness_ALPHA_MAX = 10000.0;
 constant float footprint_jacobian_HZ_MIN = 0.000001;
 constant float footprint_SIGMA_PIXEL = 0.5;
 constant float kernel_covariance_KERNEL_MAX = 100000000.0;
+constant float ndf_roughness_ALPHA_MIN = 0.00000001;
+constant float ndf_roughness_ALPHA_MAX = 10000.0;
+constant float ndf_beckmann_EXP_SPLIT = 80.0;
+constant float ndf_beckmann_SQRT_PI = 1.7724539;
+constant uint kernel_clamp_FLOOR_NONE = 0u;
+constant uint kernel_clamp_FLOOR_CONSTANT = 1u;
+constant uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
+constant kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true};
+constant kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true};
+constant kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules {340282350000000000000000000000000000000.0, 0u, 0.0, 340282350000000000000000000000000000000.0, false};
+constant kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true};
+constant filter_gaussian_Gaussian filter_gaussian_TK19_GAUSSIAN = filter_gaussian_Gaussian {kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true}, 0.5};
+constant filter_gaussian_Gaussian filter_gaussian_KHPL16_GAUSSIAN = filter_gaussian_Gaussian {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}, 0.5};
 constant float filter_deferred_KAPPA = 0.18;
 constant uint filter_deferred_DOMAIN_ALPHA_SQ = 0u;
 constant uint filter_deferred_DOMAIN_ALPHA = 1u;
@@ -142,17 +163,6 @@ constant uint filter_deferred_COMBINE_MAX = 1u;
 constant uint filter_deferred_BANDWIDTH_MAX = 0u;
 constant uint filter_deferred_BANDWIDTH_TRACE = 1u;
 constant uint filter_deferred_BANDWIDTH_AVERAGE = 2u;
-constant float ndf_beckmann_EXP_SPLIT = 80.0;
-constant float ndf_beckmann_SQRT_PI = 1.7724539;
-constant uint kernel_clamp_FLOOR_NONE = 0u;
-constant uint kernel_clamp_FLOOR_CONSTANT = 1u;
-constant uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
-constant kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true};
-constant kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true};
-constant kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules {340282350000000000000000000000000000000.0, 0u, 0.0, 340282350000000000000000000000000000000.0, false};
-constant kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true};
-constant filter_gaussian_Gaussian filter_gaussian_TK19_GAUSSIAN = filter_gaussian_Gaussian {kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true}, 0.5};
-constant filter_gaussian_Gaussian filter_gaussian_KHPL16_GAUSSIAN = filter_gaussian_Gaussian {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}, 0.5};
 constant float filter_gaussian_ggx_quad_FAR = 320000.0;
 constant float filter_gaussian_ggx_quad_H = 0.5;
 constant float filter_gaussian_ggx_quad_EXP_H = 1.6487212;
@@ -162,12 +172,30 @@ constant uint filter_gaussian_ggx_quad_CHUNKS = 22u;
 constant float filter_gaussian_ggx_quad_GL_RATIO = 0.0177;
 constant float filter_gaussian_ggx_quad_GL_PLATEAU = 20.0;
 constant float filter_gaussian_ggx_quad_GL_WIDE = 28000000000.0;
+constant filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_FULL_RULE = filter_gaussian_ggx_quad_TrapezoidRule {0.5, 1.6487212, 0.0000001, 0.054, metal::float4(0.5819767, 0.28721693, 0.15651764, 0.08942549), 176u};
+constant uint filter_gaussian_ggx_quad_TOL_FULL = 0u;
+constant uint filter_gaussian_ggx_quad_TOL_1E4_ = 1u;
+constant uint filter_gaussian_ggx_quad_TOL_1E3_ = 2u;
+constant uint filter_gaussian_ggx_quad_TOL_1E2_ = 3u;
 constant float filter_gaussian_ggx_quad_GH_MAX = 0.01;
 constant float filter_gaussian_ggx_quad_S_MAX = 0.25;
 constant float filter_gaussian_ggx_quad_S_COEF = 0.25;
 constant float filter_gaussian_ggx_quad_S_EPS = 0.00000001;
 constant uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
-constant filter_gaussian_ggx_ExactGaussian filter_gaussian_ggx_KHPL16_EXACT_GAUSSIAN = filter_gaussian_ggx_ExactGaussian {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}, 0.5};
+constant uint filter_gaussian_ggx_TOL_FULL = 0u;
+constant uint filter_gaussian_ggx_TOL_1E4_ = 1u;
+constant uint filter_gaussian_ggx_TOL_1E3_ = 2u;
+constant uint filter_gaussian_ggx_TOL_1E2_ = 3u;
+constant filter_gaussian_ggx_ExactGaussian filter_gaussian_ggx_KHPL16_EXACT_GAUSSIAN = filter_gaussian_ggx_ExactGaussian {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}, 0.5, 0u};
+constant float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
+constant filter_projected_Projected filter_projected_TK21_PROJECTED = filter_projected_Projected {kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true}, 0.5};
+constant filter_proxy_Proxy filter_proxy_KHPL16_PROXY = filter_proxy_Proxy {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}};
+constant float filter_rect_BIG = 1000000000000000000.0;
+constant float filter_rect_FAR2_ = 0.25;
+constant uint filter_rect_TIER_CLOSED = 0u;
+constant float filter_rect_lambda_BIG_K = 1000000000000.0;
+constant filter_rect_lobe_Rect filter_rect_lobe_KHPL16_RECT = filter_rect_lobe_Rect {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}};
+constant filter_rect_lobe_Rect filter_rect_lobe_GDC2016_RECT = filter_rect_lobe_Rect {kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true}};
 constant filter_deferred_KernelConvention filter_presets_TK19_TRACE = filter_deferred_KernelConvention {0u, 0u, 0.5, 1.0, 0.0, 0.18, 0u, true, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_TK19_AVERAGE = filter_deferred_KernelConvention {0u, 0u, 0.25, 1.0, 0.0, 0.18, 0u, true, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_TK19_MAX = filter_deferred_KernelConvention {0u, 2u, 0.5, 1.0, 0.0, 0.18, 0u, true, {}, 0.0};
@@ -180,15 +208,6 @@ constant filter_deferred_KernelConvention filter_presets_O3DE = filter_deferred_
 constant filter_deferred_KernelConvention filter_presets_UNREAL = filter_deferred_KernelConvention {2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_BABYLON = filter_deferred_KernelConvention {2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, {}, 0.0};
 constant filter_deferred_KernelConvention filter_presets_THREE_JS = filter_deferred_KernelConvention {2u, 3u, 1.0, 1.0, 0.0, 340282350000000000000000000000000000000.0, 0u, true, {}, 0.0525};
-constant float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
-constant filter_projected_Projected filter_projected_TK21_PROJECTED = filter_projected_Projected {kernel_clamp_ClampRules {1.0, 1u, 0.001, 0.18, true}, 0.5};
-constant filter_proxy_Proxy filter_proxy_KHPL16_PROXY = filter_proxy_Proxy {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}};
-constant float filter_rect_BIG = 1000000000000000000.0;
-constant float filter_rect_FAR2_ = 0.25;
-constant uint filter_rect_TIER_CLOSED = 0u;
-constant float filter_rect_lambda_BIG_K = 1000000000000.0;
-constant filter_rect_lobe_Rect filter_rect_lobe_KHPL16_RECT = filter_rect_lobe_Rect {kernel_clamp_ClampRules {1.0, 0u, 0.0, 340282350000000000000000000000000000000.0, true}};
-constant filter_rect_lobe_Rect filter_rect_lobe_GDC2016_RECT = filter_rect_lobe_Rect {kernel_clamp_ClampRules {1.0, 2u, 0.1, 340282350000000000000000000000000000000.0, true}};
 constant float sampling_ONE_MINUS_EPS = 0.99999994;
 constant float sampling_beckmann_X_MAX = 9.0;
 constant uint sampling_beckmann_MAX_ITERATIONS = 64u;
@@ -200,9 +219,9 @@ float math_atan(
 ) {
     float t = {};
     float r = {};
-    float a_16 = metal::abs(x);
-    bool inv = a_16 > 1.0;
-    t = inv ? (1.0 / a_16) : a_16;
+    float a_17 = metal::abs(x);
+    bool inv = a_17 > 1.0;
+    t = inv ? (1.0 / a_17) : a_17;
     float _e8 = t;
     bool shift = _e8 > math_TAN_EIGHTH_PI;
     float _e11 = t;
@@ -236,20 +255,20 @@ metal::float2 math_sincos_turns(
 ) {
     metal::float2 cs = {};
     float q_4 = metal::rint(4.0 * u);
-    float r_76 = u - (0.25 * q_4);
-    float z_3 = r_76 * r_76;
-    float s_20 = r_76 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855);
+    float r_79 = u - (0.25 * q_4);
+    float z_3 = r_79 * r_79;
+    float s_22 = r_79 * ((((((((41.47283 * z_3) - 76.69787) * z_3) + 81.6052) * z_3) - 41.3417) * z_3) + 6.2831855);
     float c_14 = (((((((59.22017 * z_3) - 85.44285) * z_3) + 64.939316) * z_3) - 19.739208) * z_3) + 1.0;
     int k_24 = naga_f2i32(q_4) & 3;
-    cs = metal::float2(c_14, s_20);
+    cs = metal::float2(c_14, s_22);
     if (k_24 == 1) {
-        cs = metal::float2(-(s_20), c_14);
+        cs = metal::float2(-(s_22), c_14);
     } else {
         if (k_24 == 2) {
-            cs = metal::float2(-(c_14), -(s_20));
+            cs = metal::float2(-(c_14), -(s_22));
         } else {
             if (k_24 == 3) {
-                cs = metal::float2(s_20, -(c_14));
+                cs = metal::float2(s_22, -(c_14));
             }
         }
     }
@@ -261,33 +280,33 @@ float math_hypot(
     float x_1,
     float y
 ) {
-    float m_44 = metal::max(metal::abs(x_1), metal::abs(y));
-    if (m_44 <= 0.0) {
+    float m_49 = metal::max(metal::abs(x_1), metal::abs(y));
+    if (m_49 <= 0.0) {
         return 0.0;
     }
-    float a_17 = x_1 / m_44;
-    float b_4 = y / m_44;
-    return m_44 * metal::sqrt((a_17 * a_17) + (b_4 * b_4));
+    float a_18 = x_1 / m_49;
+    float b_4 = y / m_49;
+    return m_49 * metal::sqrt((a_18 * a_18) + (b_4 * b_4));
 }
 
 float math_exp(
     float x_2
 ) {
     float xc = metal::clamp(x_2, -87.0, 88.0);
-    float n_6 = metal::rint(xc * math_LOG2_E);
-    float r_77 = (xc - (n_6 * math_LN2_HI)) - (n_6 * math_LN2_LO);
-    float r2_ = r_77 * r_77;
-    float p_6 = ((1.0 + r_77) + ((0.4999999 + (0.1666642 * r_77)) * r2_)) + (((0.041668225 + (0.008374816 * r_77)) + (0.0013836846 * r2_)) * (r2_ * r2_));
-    float s_21 = as_type<float>(static_cast<uint>(as_type<int>(as_type<uint>(naga_f2i32(n_6)) + as_type<uint>(127))) << 23u);
-    return (x_2 >= -87.0) ? (p_6 * s_21) : 0.0;
+    float n_5 = metal::rint(xc * math_LOG2_E);
+    float r_80 = (xc - (n_5 * math_LN2_HI)) - (n_5 * math_LN2_LO);
+    float r2_ = r_80 * r_80;
+    float p_6 = ((1.0 + r_80) + ((0.4999999 + (0.1666642 * r_80)) * r2_)) + (((0.041668225 + (0.008374816 * r_80)) + (0.0013836846 * r2_)) * (r2_ * r2_));
+    float s_23 = as_type<float>(static_cast<uint>(as_type<int>(as_type<uint>(naga_f2i32(n_5)) + as_type<uint>(127))) << 23u);
+    return (x_2 >= -87.0) ? (p_6 * s_23) : 0.0;
 }
 
 float math_atanh2_(
     float z
 ) {
-    float z2_3 = z * z;
-    float s_22 = ((((((((z2_3 * 0.09090909) + 0.11111111) * z2_3) + 0.14285715) * z2_3) + 0.2) * z2_3) + 0.33333334) * z2_3;
-    return (2.0 * z) + ((2.0 * z) * s_22);
+    float z2_4 = z * z;
+    float s_24 = ((((((((z2_4 * 0.09090909) + 0.11111111) * z2_4) + 0.14285715) * z2_4) + 0.2) * z2_4) + 0.33333334) * z2_4;
+    return (2.0 * z) + ((2.0 * z) * s_24);
 }
 
 float math_ln(
@@ -354,30 +373,168 @@ metal::float3 math_nan_to_zero3_(
     return metal::float3(_e2, _e4, _e6);
 }
 
-float ndf_roughness_clamp_alpha(
-    float alpha
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(
+    metal::float2 axis,
+    metal::float2 alpha
 ) {
-    return (alpha >= ndf_roughness_ALPHA_MIN) ? metal::min(alpha, ndf_roughness_ALPHA_MAX) : ndf_roughness_ALPHA_MIN;
+    metal::float2 l_5 = alpha * alpha;
+    return ndf_roughness_matrix_RoughnessMatrix {axis, l_5, l_5, metal::float2(1.0) / l_5, alpha.x * alpha.y, l_5.x * l_5.y, 0.0};
+}
+
+metal::float2 ndf_roughness_matrix_clamped_eigenvalues(
+    metal::float2 l,
+    float det,
+    float tau
+) {
+    if (det >= tau) {
+        return l;
+    }
+    float h_21 = 0.5 * (l.x + l.y);
+    float gap = tau - det;
+    float t_11 = gap / (h_21 + metal::sqrt((h_21 * h_21) + gap));
+    float l1_ = l.x + t_11;
+    return metal::float2(l1_, tau / l1_);
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(
+    metal::float2 axis_1,
+    metal::float2 l_1,
+    float det_1,
+    float tau_1
+) {
+    metal::float2 _e4 = ndf_roughness_matrix_clamped_eigenvalues(l_1, det_1, tau_1);
+    return ndf_roughness_matrix_RoughnessMatrix {axis_1, l_1, _e4, metal::float2(1.0) / _e4, metal::sqrt(metal::max(det_1, tau_1)), det_1, tau_1};
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(
+    float a11_,
+    float a12_,
+    float a22_,
+    float det_2,
+    float tau_2
+) {
+    metal::float2 v_2 = {};
+    float half_diff = 0.5 * (a11_ - a22_);
+    float rad = metal::sqrt((half_diff * half_diff) + (a12_ * a12_));
+    float l1_1 = (0.5 * (a11_ + a22_)) + rad;
+    float l2_2 = metal::max(det_2, 0.0) / l1_1;
+    float big = rad + metal::abs(half_diff);
+    v_2 = (half_diff < 0.0) ? metal::float2(a12_, big) : metal::float2(big, a12_);
+    if (big <= 0.0) {
+        v_2 = metal::float2(1.0, 0.0);
+    }
+    metal::float2 _e32 = v_2;
+    metal::float2 _e33 = v_2;
+    metal::float2 axis_2 = _e32 / metal::float2(metal::length(_e33));
+    ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, metal::float2(l1_1, l2_2), det_2, tau_2);
+    return _e38;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(
+    float a11_1,
+    float a12_1,
+    float a22_1
+) {
+    ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_entries_det(a11_1, a12_1, a22_1, (a11_1 * a22_1) - (a12_1 * a12_1), 0.0);
+    return _e7;
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(
+    ndf_roughness_matrix_RoughnessMatrix r_1,
+    float det_clamp
+) {
+    ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_eigenbasis(r_1.axis, r_1.eig, r_1.det, metal::max(det_clamp, 0.0));
+    return _e7;
+}
+
+metal::float2 ndf_roughness_matrix_rotate(
+    ndf_roughness_matrix_RoughnessMatrix r_2,
+    metal::float2 v_3
+) {
+    return metal::float2((r_2.axis.x * v_3.x) + (r_2.axis.y * v_3.y), (r_2.axis.x * v_3.y) - (r_2.axis.y * v_3.x));
+}
+
+float ndf_roughness_matrix_inv_quadratic(
+    ndf_roughness_matrix_RoughnessMatrix r_3,
+    metal::float2 s
+) {
+    metal::float2 _e2 = ndf_roughness_matrix_rotate(r_3, s);
+    return metal::dot(_e2 * _e2, r_3.inv_eig);
+}
+
+float ndf_roughness_matrix_quadratic(
+    ndf_roughness_matrix_RoughnessMatrix r_4,
+    metal::float2 w
+) {
+    metal::float2 _e2 = ndf_roughness_matrix_rotate(r_4, w);
+    return metal::dot(_e2 * _e2, r_4.eig_c);
+}
+
+float ndf_roughness_matrix_sqrt_det(
+    ndf_roughness_matrix_RoughnessMatrix r_5
+) {
+    return r_5.sqrt_det;
+}
+
+metal::float3 ndf_roughness_matrix_entries_of(
+    ndf_roughness_matrix_RoughnessMatrix r_6,
+    metal::float2 l_2
+) {
+    float c_15 = r_6.axis.x;
+    float s_25 = r_6.axis.y;
+    return metal::float3(((l_2.x * c_15) * c_15) + ((l_2.y * s_25) * s_25), ((l_2.x - l_2.y) * c_15) * s_25, ((l_2.x * s_25) * s_25) + ((l_2.y * c_15) * c_15));
+}
+
+metal::float3 ndf_roughness_matrix_entries(
+    ndf_roughness_matrix_RoughnessMatrix r_7
+) {
+    metal::float3 _e2 = ndf_roughness_matrix_entries_of(r_7, r_7.eig);
+    return _e2;
+}
+
+metal::float3 ndf_roughness_matrix_clamped_entries(
+    ndf_roughness_matrix_RoughnessMatrix r_8
+) {
+    metal::float3 _e2 = ndf_roughness_matrix_entries_of(r_8, r_8.eig_c);
+    return _e2;
+}
+
+float ndf_roughness_matrix_determinant(
+    ndf_roughness_matrix_RoughnessMatrix r_9
+) {
+    return r_9.det;
+}
+
+float ndf_roughness_matrix_clamped_det(
+    ndf_roughness_matrix_RoughnessMatrix r_10
+) {
+    return metal::max(r_10.det, r_10.tau);
+}
+
+float ndf_roughness_matrix_own_det_clamp(
+    ndf_roughness_matrix_RoughnessMatrix r_11
+) {
+    return (r_11.tau > r_11.det) ? r_11.tau : 0.0;
 }
 
 footprint_jacobian_Polar footprint_jacobian_polar(
     metal::float3 h_in
 ) {
     metal::float2 cs_1 = metal::float2(1.0, 0.0);
-    float big = metal::max(metal::max(metal::abs(h_in.x), metal::abs(h_in.y)), metal::abs(h_in.z));
-    if (big <= 0.0) {
+    float big_1 = metal::max(metal::max(metal::abs(h_in.x), metal::abs(h_in.y)), metal::abs(h_in.z));
+    if (big_1 <= 0.0) {
         return footprint_jacobian_Polar {metal::float3(0.0, 0.0, 1.0), metal::float2(1.0, 0.0)};
     }
-    metal::float3 h0_ = h_in / metal::float3(big);
-    metal::float3 h_21 = h0_ / metal::float3(metal::length(h0_));
-    float qs_3 = metal::max(metal::abs(h_21.x), metal::abs(h_21.y));
+    metal::float3 h0_ = h_in / metal::float3(big_1);
+    metal::float3 h_22 = h0_ / metal::float3(metal::length(h0_));
+    float qs_3 = metal::max(metal::abs(h_22.x), metal::abs(h_22.y));
     if (qs_3 > 0.0) {
-        metal::float2 q_5 = h_21.xy / metal::float2(qs_3);
+        metal::float2 q_5 = h_22.xy / metal::float2(qs_3);
         cs_1 = q_5 / metal::float2(metal::length(q_5));
     }
-    if (h_21.z >= footprint_jacobian_HZ_MIN) {
+    if (h_22.z >= footprint_jacobian_HZ_MIN) {
         metal::float2 _e44 = cs_1;
-        return footprint_jacobian_Polar {h_21, _e44};
+        return footprint_jacobian_Polar {h_22, _e44};
     }
     metal::float2 _e47 = cs_1;
     metal::float2 _e51 = cs_1;
@@ -418,19 +575,19 @@ metal::float2x2 footprint_jacobian_projected_to_slope(
     metal::float3 h_in_1
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
-    metal::float3 h_22 = _e1.h;
+    metal::float3 h_23 = _e1.h;
     float k_25 = -1.0 / ((_e1.h.z * _e1.h.z) * _e1.h.z);
-    float xy = _e1.h.x * _e1.h.y;
-    return metal::float2x2(metal::float2((_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z), xy) * k_25, metal::float2(xy, (_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z)) * k_25);
+    float xy_1 = _e1.h.x * _e1.h.y;
+    return metal::float2x2(metal::float2((_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z), xy_1) * k_25, metal::float2(xy_1, (_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z)) * k_25);
 }
 
 metal::float2x2 footprint_jacobian_slope_to_projected(
     metal::float3 h_in_2
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    metal::float3 h_23 = _e1.h;
-    float xy_1 = _e1.h.x * _e1.h.y;
-    return metal::float2x2(metal::float2((_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z), -(xy_1)) * -(_e1.h.z), metal::float2(-(xy_1), (_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z)) * -(_e1.h.z));
+    metal::float3 h_24 = _e1.h;
+    float xy_2 = _e1.h.x * _e1.h.y;
+    return metal::float2x2(metal::float2((_e1.h.y * _e1.h.y) + (_e1.h.z * _e1.h.z), -(xy_2)) * -(_e1.h.z), metal::float2(-(xy_2), (_e1.h.x * _e1.h.x) + (_e1.h.z * _e1.h.z)) * -(_e1.h.z));
 }
 
 metal::float2x2 footprint_jacobian_sphere_to_slope(
@@ -453,8 +610,8 @@ float footprint_jacobian_det_projected_to_slope(
 ) {
     footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
     float z_4 = _e1.h.z;
-    float z2_4 = z_4 * z_4;
-    return 1.0 / (z2_4 * z2_4);
+    float z2_5 = z_4 * z_4;
+    return 1.0 / (z2_5 * z2_5);
 }
 
 float footprint_jacobian_det_sphere_to_slope(
@@ -500,8 +657,8 @@ footprint_Footprint footprint_from_projected_derivatives_in_slope(
     metal::float2 dp_u_1,
     metal::float2 dp_v_1
 ) {
-    float big_1 = metal::max(metal::max(metal::abs(h_10.x), metal::abs(h_10.y)), metal::abs(h_10.z));
-    if (big_1 <= 0.0) {
+    float big_2 = metal::max(metal::max(metal::abs(h_10.x), metal::abs(h_10.y)), metal::abs(h_10.z));
+    if (big_2 <= 0.0) {
         return footprint_Footprint {metal::float2(0.0), metal::float2(0.0)};
     }
     metal::float2x2 _e18 = footprint_jacobian_projected_to_slope(h_10);
@@ -604,18 +761,18 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
     if (scale <= 0.0) {
         return c_3;
     }
-    float a_18 = c_3.s_xx / scale;
+    float a_19 = c_3.s_xx / scale;
     float b_6 = c_3.s_xy / scale;
     float e_3 = c_3.s_yy / scale;
-    float d_3 = 0.5 * (a_18 - e_3);
-    float r_78 = metal::sqrt((d_3 * d_3) + (b_6 * b_6));
-    float lmax_1 = ((0.5 * (a_18 + e_3)) + r_78) * scale;
+    float d_3 = 0.5 * (a_19 - e_3);
+    float r_81 = metal::sqrt((d_3 * d_3) + (b_6 * b_6));
+    float lmax_1 = ((0.5 * (a_19 + e_3)) + r_81) * scale;
     if (lmax_1 <= max_eig) {
         return c_3;
     }
     float lmin_1 = metal::max(c_3.det / lmax_1, 0.0);
     if (!((lmin_1 >= max_eig))) {
-        local = r_78 < 0.000000000000000001;
+        local = r_81 < 0.000000000000000001;
     } else {
         local = true;
     }
@@ -623,10 +780,10 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(
     if (_e46) {
         return kernel_covariance_Covariance {max_eig, 0.0, max_eig, max_eig * max_eig};
     }
-    float p_7 = r_78 + metal::abs(d_3);
+    float p_7 = r_81 + metal::abs(d_3);
     float q_6 = (p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0;
     metal::float2 ee = (d_3 >= 0.0) ? metal::float2(p_7, q_6) : metal::float2(q_6, p_7);
-    float inv_1 = 1.0 / (2.0 * r_78);
+    float inv_1 = 1.0 / (2.0 * r_81);
     float p11_ = ee.x * inv_1;
     float p12_ = b_6 * inv_1;
     float p22_ = ee.y * inv_1;
@@ -724,321 +881,6 @@ kernel_covariance_Covariance kernel_covariance_sanitized(
     return _e114;
 }
 
-float filter_deferred_from_alpha(
-    uint domain,
-    float alpha_1
-) {
-    if (domain == filter_deferred_DOMAIN_ALPHA) {
-        return alpha_1;
-    }
-    if (domain == filter_deferred_DOMAIN_PERCEPTUAL) {
-        return metal::sqrt(alpha_1);
-    }
-    float a2_ = alpha_1 * alpha_1;
-    if (domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ) {
-        return (a2_ < 1.0) ? (a2_ / (1.0 - a2_)) : math_F32_MAX;
-    }
-    return a2_;
-}
-
-float filter_deferred_to_alpha(
-    uint domain_1,
-    float v_2
-) {
-    if (domain_1 == filter_deferred_DOMAIN_ALPHA) {
-        return v_2;
-    }
-    if (domain_1 == filter_deferred_DOMAIN_PERCEPTUAL) {
-        return v_2 * v_2;
-    }
-    if (domain_1 == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ) {
-        return (v_2 < math_F32_MAX) ? metal::sqrt(v_2 / (1.0 + v_2)) : 1.0;
-    }
-    return metal::sqrt(v_2);
-}
-
-float filter_deferred_max_eigenvalue(
-    float a_1,
-    float b_1,
-    float c_5
-) {
-    float _e9 = math_hypot(0.5 * (a_1 - c_5), b_1);
-    return metal::max((0.5 * (a_1 + c_5)) + _e9, 0.0);
-}
-
-float filter_deferred_norm_eval(
-    uint norm,
-    metal::float3 dn_u_in_1,
-    metal::float3 dn_v_in_1
-) {
-    metal::float3 _e3 = math_nan_to_zero3_(dn_u_in_1);
-    metal::float3 _e4 = math_nan_to_zero3_(dn_v_in_1);
-    float a_19 = metal::dot(_e3, _e3);
-    float c_15 = metal::dot(_e4, _e4);
-    if (norm == filter_deferred_NORM_MAX_SQUARED) {
-        return metal::max(a_19, c_15);
-    }
-    if (norm == filter_deferred_NORM_MAX_EIGENVALUE) {
-        float _e13 = filter_deferred_max_eigenvalue(a_19, metal::dot(_e3, _e4), c_15);
-        return _e13;
-    }
-    if (norm == filter_deferred_NORM_MAX_ABS_COMPONENT) {
-        metal::float3 m_45 = metal::max(metal::abs(_e3), metal::abs(_e4));
-        return metal::max(metal::max(m_45.x, m_45.y), m_45.z);
-    }
-    return a_19 + c_15;
-}
-
-float filter_deferred_clamp_widening(
-    filter_deferred_KernelConvention conv,
-    float k_1
-) {
-    bool _e7 = math_is_nan(k_1);
-    return _e7 ? conv.clamp : metal::min(metal::max(k_1, 0.0), conv.clamp);
-}
-
-float filter_deferred_widening(
-    filter_deferred_KernelConvention conv_1,
-    metal::float3 dn_u,
-    metal::float3 dn_v
-) {
-    bool local_8 = {};
-    float raw = {};
-    metal::float3 lim = metal::float3(340282350000000000000000000000000000000.0);
-    if (!(metal::any(metal::abs(dn_u) > lim))) {
-        local_8 = metal::any(metal::abs(dn_v) > lim);
-    } else {
-        local_8 = true;
-    }
-    bool _e15 = local_8;
-    if (_e15) {
-        return conv_1.clamp;
-    }
-    float _e18 = filter_deferred_norm_eval(conv_1.norm, dn_u, dn_v);
-    raw = _e18;
-    if (conv_1.exponent != 1.0) {
-        raw = (_e18 > 0.0) ? metal::pow(_e18, conv_1.exponent) : 0.0;
-    }
-    float _e30 = raw;
-    float _e34 = filter_deferred_clamp_widening(conv_1, (conv_1.scale * _e30) + conv_1.bias);
-    return _e34;
-}
-
-float filter_deferred_apply_widening(
-    filter_deferred_KernelConvention conv_2,
-    float alpha_in,
-    float k_2
-) {
-    float alpha_2 = {};
-    float out = {};
-    alpha_2 = metal::clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
-    float _e7 = alpha_2;
-    alpha_2 = metal::max(_e7, conv_2.perceptual_floor * conv_2.perceptual_floor);
-    float _e13 = alpha_2;
-    float _e14 = filter_deferred_from_alpha(conv_2.domain, _e13);
-    float _e15 = filter_deferred_clamp_widening(conv_2, k_2);
-    out = (conv_2.combine == filter_deferred_COMBINE_MAX) ? metal::max(_e14, _e15) : (_e14 + _e15);
-    if (conv_2.saturate) {
-        float _e24 = out;
-        out = metal::min(_e24, 1.0);
-    }
-    float _e28 = out;
-    float _e29 = filter_deferred_to_alpha(conv_2.domain, _e28);
-    return metal::clamp(_e29, 0.0, ndf_roughness_ALPHA_MAX);
-}
-
-float filter_deferred_apply(
-    filter_deferred_KernelConvention conv_3,
-    float alpha_3,
-    metal::float3 dn_u_1,
-    metal::float3 dn_v_1
-) {
-    float _e4 = filter_deferred_widening(conv_3, dn_u_1, dn_v_1);
-    float _e5 = filter_deferred_apply_widening(conv_3, alpha_3, _e4);
-    return _e5;
-}
-
-kernel_covariance_Covariance filter_deferred_normal_difference_covariance(
-    metal::float3 dn_u_2,
-    metal::float3 dn_v_2,
-    float sigma_1
-) {
-    float sigma_sq = sigma_1 * sigma_1;
-    metal::float3 x_14 = metal::cross(dn_u_2, dn_v_2) * sigma_sq;
-    return kernel_covariance_Covariance {metal::dot(dn_u_2, dn_u_2) * sigma_sq, metal::dot(dn_u_2, dn_v_2) * sigma_sq, metal::dot(dn_v_2, dn_v_2) * sigma_sq, metal::dot(x_14, x_14)};
-}
-
-float filter_deferred_bandwidth_alpha2_(
-    uint bandwidth,
-    kernel_covariance_Covariance kernel_
-) {
-    float _e3 = math_nan_to_zero(kernel_.s_xx);
-    float _e5 = math_nan_to_zero(kernel_.s_xy);
-    float _e7 = math_nan_to_zero(kernel_.s_yy);
-    if (bandwidth == filter_deferred_BANDWIDTH_MAX) {
-        float _e10 = filter_deferred_max_eigenvalue(_e3, _e5, _e7);
-        return 2.0 * _e10;
-    }
-    float t_10 = _e3 + _e7;
-    return (bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_10) : t_10;
-}
-
-float filter_deferred_filtered_alpha(
-    float alpha_4,
-    kernel_covariance_Covariance kernel_1,
-    uint bandwidth_1,
-    float kappa
-) {
-    filter_deferred_KernelConvention conv_4 = filter_deferred_KernelConvention {filter_deferred_DOMAIN_ALPHA_SQ, filter_deferred_NORM_SUM_SQUARED, 0.5, 1.0, 0.0, kappa, filter_deferred_COMBINE_ADD, true, {}, 0.0};
-    float _e13 = filter_deferred_bandwidth_alpha2_(bandwidth_1, kernel_1);
-    float _e14 = filter_deferred_apply_widening(conv_4, alpha_4, _e13);
-    return _e14;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(
-    metal::float2 axis,
-    metal::float2 alpha_5
-) {
-    metal::float2 l_5 = alpha_5 * alpha_5;
-    return ndf_roughness_matrix_RoughnessMatrix {axis, l_5, l_5, metal::float2(1.0) / l_5, alpha_5.x * alpha_5.y, l_5.x * l_5.y, 0.0};
-}
-
-metal::float2 ndf_roughness_matrix_clamped_eigenvalues(
-    metal::float2 l,
-    float det,
-    float tau
-) {
-    if (det >= tau) {
-        return l;
-    }
-    float h_24 = 0.5 * (l.x + l.y);
-    float gap = tau - det;
-    float t_11 = gap / (h_24 + metal::sqrt((h_24 * h_24) + gap));
-    float l1_ = l.x + t_11;
-    return metal::float2(l1_, tau / l1_);
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(
-    metal::float2 axis_1,
-    metal::float2 l_1,
-    float det_1,
-    float tau_1
-) {
-    metal::float2 _e4 = ndf_roughness_matrix_clamped_eigenvalues(l_1, det_1, tau_1);
-    return ndf_roughness_matrix_RoughnessMatrix {axis_1, l_1, _e4, metal::float2(1.0) / _e4, metal::sqrt(metal::max(det_1, tau_1)), det_1, tau_1};
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(
-    float a11_,
-    float a12_,
-    float a22_,
-    float det_2,
-    float tau_2
-) {
-    metal::float2 v_3 = {};
-    float half_diff = 0.5 * (a11_ - a22_);
-    float rad = metal::sqrt((half_diff * half_diff) + (a12_ * a12_));
-    float l1_1 = (0.5 * (a11_ + a22_)) + rad;
-    float l2_2 = metal::max(det_2, 0.0) / l1_1;
-    float big_2 = rad + metal::abs(half_diff);
-    v_3 = (half_diff < 0.0) ? metal::float2(a12_, big_2) : metal::float2(big_2, a12_);
-    if (big_2 <= 0.0) {
-        v_3 = metal::float2(1.0, 0.0);
-    }
-    metal::float2 _e32 = v_3;
-    metal::float2 _e33 = v_3;
-    metal::float2 axis_2 = _e32 / metal::float2(metal::length(_e33));
-    ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, metal::float2(l1_1, l2_2), det_2, tau_2);
-    return _e38;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries(
-    float a11_1,
-    float a12_1,
-    float a22_1
-) {
-    ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_entries_det(a11_1, a12_1, a22_1, (a11_1 * a22_1) - (a12_1 * a12_1), 0.0);
-    return _e7;
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(
-    ndf_roughness_matrix_RoughnessMatrix r_1,
-    float det_clamp
-) {
-    ndf_roughness_matrix_RoughnessMatrix _e7 = ndf_roughness_matrix_from_eigenbasis(r_1.axis, r_1.eig, r_1.det, metal::max(det_clamp, 0.0));
-    return _e7;
-}
-
-metal::float2 ndf_roughness_matrix_rotate(
-    ndf_roughness_matrix_RoughnessMatrix r_2,
-    metal::float2 v_4
-) {
-    return metal::float2((r_2.axis.x * v_4.x) + (r_2.axis.y * v_4.y), (r_2.axis.x * v_4.y) - (r_2.axis.y * v_4.x));
-}
-
-float ndf_roughness_matrix_inv_quadratic(
-    ndf_roughness_matrix_RoughnessMatrix r_3,
-    metal::float2 s
-) {
-    metal::float2 _e2 = ndf_roughness_matrix_rotate(r_3, s);
-    return metal::dot(_e2 * _e2, r_3.inv_eig);
-}
-
-float ndf_roughness_matrix_quadratic(
-    ndf_roughness_matrix_RoughnessMatrix r_4,
-    metal::float2 w
-) {
-    metal::float2 _e2 = ndf_roughness_matrix_rotate(r_4, w);
-    return metal::dot(_e2 * _e2, r_4.eig_c);
-}
-
-float ndf_roughness_matrix_sqrt_det(
-    ndf_roughness_matrix_RoughnessMatrix r_5
-) {
-    return r_5.sqrt_det;
-}
-
-metal::float3 ndf_roughness_matrix_entries_of(
-    ndf_roughness_matrix_RoughnessMatrix r_6,
-    metal::float2 l_2
-) {
-    float c_16 = r_6.axis.x;
-    float s_23 = r_6.axis.y;
-    return metal::float3(((l_2.x * c_16) * c_16) + ((l_2.y * s_23) * s_23), ((l_2.x - l_2.y) * c_16) * s_23, ((l_2.x * s_23) * s_23) + ((l_2.y * c_16) * c_16));
-}
-
-metal::float3 ndf_roughness_matrix_entries(
-    ndf_roughness_matrix_RoughnessMatrix r_7
-) {
-    metal::float3 _e2 = ndf_roughness_matrix_entries_of(r_7, r_7.eig);
-    return _e2;
-}
-
-metal::float3 ndf_roughness_matrix_clamped_entries(
-    ndf_roughness_matrix_RoughnessMatrix r_8
-) {
-    metal::float3 _e2 = ndf_roughness_matrix_entries_of(r_8, r_8.eig_c);
-    return _e2;
-}
-
-float ndf_roughness_matrix_determinant(
-    ndf_roughness_matrix_RoughnessMatrix r_9
-) {
-    return r_9.det;
-}
-
-float ndf_roughness_matrix_clamped_det(
-    ndf_roughness_matrix_RoughnessMatrix r_10
-) {
-    return metal::max(r_10.det, r_10.tau);
-}
-
-float ndf_roughness_matrix_own_det_clamp(
-    ndf_roughness_matrix_RoughnessMatrix r_11
-) {
-    return (r_11.tau > r_11.det) ? r_11.tau : 0.0;
-}
-
 float ndf_g1_of(
     float lambda_w,
     float w_dot_m
@@ -1052,20 +894,26 @@ float ndf_g2_of(
     float i_dot_m,
     float o_dot_m
 ) {
-    bool local_9 = {};
+    bool local_8 = {};
     if (i_dot_m > 0.0) {
-        local_9 = o_dot_m > 0.0;
+        local_8 = o_dot_m > 0.0;
     } else {
-        local_9 = false;
+        local_8 = false;
     }
-    bool _e16 = local_9;
+    bool _e16 = local_8;
     return _e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0;
 }
 
-ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(
-    float alpha_6
+float ndf_roughness_clamp_alpha(
+    float alpha_1
 ) {
-    float _e1 = ndf_roughness_clamp_alpha(alpha_6);
+    return (alpha_1 >= ndf_roughness_ALPHA_MIN) ? metal::min(alpha_1, ndf_roughness_ALPHA_MAX) : ndf_roughness_ALPHA_MIN;
+}
+
+ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(
+    float alpha_2
+) {
+    float _e1 = ndf_roughness_clamp_alpha(alpha_2);
     return ndf_roughness_isotropic_Isotropic {_e1, 1.0 / (_e1 * _e1)};
 }
 
@@ -1080,8 +928,8 @@ float ndf_roughness_isotropic_quadratic(
     ndf_roughness_isotropic_Isotropic r_13,
     metal::float2 w_1
 ) {
-    metal::float2 s_24 = w_1 * r_13.alpha;
-    return metal::dot(s_24, s_24);
+    metal::float2 s_26 = w_1 * r_13.alpha;
+    return metal::dot(s_26, s_26);
 }
 
 float ndf_roughness_isotropic_sqrt_det(
@@ -1098,10 +946,10 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(
 }
 
 ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(
-    metal::float2 alpha_7
+    metal::float2 alpha_3
 ) {
-    float _e2 = ndf_roughness_clamp_alpha(alpha_7.x);
-    float _e4 = ndf_roughness_clamp_alpha(alpha_7.y);
+    float _e2 = ndf_roughness_clamp_alpha(alpha_3.x);
+    float _e4 = ndf_roughness_clamp_alpha(alpha_3.y);
     metal::float2 a_20 = metal::float2(_e2, _e4);
     return ndf_roughness_axis_aligned_AxisAligned {a_20, metal::float2(1.0) / (a_20 * a_20)};
 }
@@ -1117,8 +965,8 @@ float ndf_roughness_axis_aligned_quadratic(
     ndf_roughness_axis_aligned_AxisAligned r_17,
     metal::float2 w_2
 ) {
-    metal::float2 s_25 = w_2 * r_17.alpha;
-    return metal::dot(s_25, s_25);
+    metal::float2 s_27 = w_2 * r_17.alpha;
+    return metal::dot(s_27, s_27);
 }
 
 float ndf_roughness_axis_aligned_sqrt_det(
@@ -1147,15 +995,15 @@ float ndf_ggx_d_of(
     float m_z,
     float sqrt_det_1
 ) {
-    bool local_10 = {};
+    bool local_9 = {};
     float t_13 = q_xy + (m_z * m_z);
     float v_16 = 1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13);
     if (m_z > 0.0) {
-        local_10 = v_16 <= math_F32_MAX;
+        local_9 = v_16 <= math_F32_MAX;
     } else {
-        local_10 = false;
+        local_9 = false;
     }
-    bool _e18 = local_10;
+    bool _e18 = local_9;
     return _e18 ? v_16 : 0.0;
 }
 
@@ -1163,28 +1011,28 @@ float ndf_ggx_lambda_of(
     float q_1,
     float abs_wz
 ) {
+    bool local_10 = {};
     bool local_11 = {};
-    bool local_12 = {};
     if (q_1 <= 0.0) {
-        local_11 = abs_wz >= 0.0;
+        local_10 = abs_wz >= 0.0;
     } else {
-        local_11 = false;
+        local_10 = false;
     }
-    bool _e9 = local_11;
+    bool _e9 = local_10;
     if (_e9) {
         return 0.0;
     }
     if (!(!((abs_wz > 0.0)))) {
-        local_12 = !((q_1 > 0.0));
+        local_11 = !((q_1 > 0.0));
     } else {
-        local_12 = true;
+        local_11 = true;
     }
-    bool _e21 = local_12;
+    bool _e21 = local_11;
     if (_e21) {
         return math_F32_MAX;
     }
-    float r_79 = metal::sqrt((abs_wz * abs_wz) + q_1);
-    return q_1 / ((2.0 * abs_wz) * (r_79 + abs_wz));
+    float r_82 = metal::sqrt((abs_wz * abs_wz) + q_1);
+    return q_1 / ((2.0 * abs_wz) * (r_82 + abs_wz));
 }
 
 float ndf_ggx_p22_isotropic(
@@ -1342,10 +1190,10 @@ float ndf_ggx_g2_matrix(
 
 float ndf_beckmann_exp_neg_times(
     float x_7,
-    float k_3,
+    float k_1,
     float ln_k
 ) {
-    return (x_7 > ndf_beckmann_EXP_SPLIT) ? metal::exp(ln_k - x_7) : (metal::exp(-(x_7)) * k_3);
+    return (x_7 > ndf_beckmann_EXP_SPLIT) ? metal::exp(ln_k - x_7) : (metal::exp(-(x_7)) * k_1);
 }
 
 float ndf_beckmann_p22_of(
@@ -1362,18 +1210,18 @@ float ndf_beckmann_d_of(
     float m_z_1,
     float sqrt_det_3
 ) {
-    bool local_13 = {};
-    float z2_5 = m_z_1 * m_z_1;
-    float x_15 = q_xy_1 / z2_5;
-    float k_27 = 1.0 / (((math_PI * sqrt_det_3) * z2_5) * z2_5);
+    bool local_12 = {};
+    float z2_6 = m_z_1 * m_z_1;
+    float x_14 = q_xy_1 / z2_6;
+    float k_27 = 1.0 / (((math_PI * sqrt_det_3) * z2_6) * z2_6);
     float ln_k_1 = -((metal::log(math_PI * sqrt_det_3) + (4.0 * metal::log(metal::max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_15, k_27, ln_k_1);
+    float _e21 = ndf_beckmann_exp_neg_times(x_14, k_27, ln_k_1);
     if (m_z_1 > 0.0) {
-        local_13 = _e21 <= math_F32_MAX;
+        local_12 = _e21 <= math_F32_MAX;
     } else {
-        local_13 = false;
+        local_12 = false;
     }
-    bool _e29 = local_13;
+    bool _e29 = local_12;
     return _e29 ? _e21 : 0.0;
 }
 
@@ -1381,24 +1229,24 @@ float ndf_beckmann_lambda_of(
     float q_3,
     float abs_wz_1
 ) {
+    bool local_13 = {};
     bool local_14 = {};
-    bool local_15 = {};
     float p = -0.00003849172;
     if (q_3 <= 0.0) {
-        local_14 = abs_wz_1 >= 0.0;
+        local_13 = abs_wz_1 >= 0.0;
     } else {
-        local_14 = false;
+        local_13 = false;
     }
-    bool _e9 = local_14;
+    bool _e9 = local_13;
     if (_e9) {
         return 0.0;
     }
     if (!(!((abs_wz_1 > 0.0)))) {
-        local_15 = !((q_3 > 0.0));
+        local_14 = !((q_3 > 0.0));
     } else {
-        local_15 = true;
+        local_14 = true;
     }
-    bool _e21 = local_15;
+    bool _e21 = local_14;
     if (_e21) {
         return math_F32_MAX;
     }
@@ -1602,9 +1450,9 @@ kernel_rect_BoundingRect kernel_rect_from_footprint(
 
 kernel_covariance_Covariance kernel_rect_covariance(
     kernel_rect_BoundingRect r_50,
-    float sigma_2
+    float sigma_1
 ) {
-    metal::float2 w_24 = r_50.half_extent * (2.0 * sigma_2);
+    metal::float2 w_24 = r_50.half_extent * (2.0 * sigma_1);
     metal::float2 v_17 = w_24 * w_24;
     return kernel_covariance_Covariance {v_17.x, 0.0, v_17.y, v_17.x * v_17.y};
 }
@@ -1636,14 +1484,14 @@ footprint_Footprint kernel_clamp_footprint(
 kernel_rect_BoundingRect kernel_clamp_rect(
     kernel_clamp_ClampRules rules_1,
     kernel_rect_BoundingRect r_51,
-    metal::float2 alpha_8
+    metal::float2 alpha_4
 ) {
     metal::float2 f_1 = metal::float2(0.0);
     if (rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT) {
         f_1 = metal::float2(rules_1.floor);
     } else {
         if (rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED) {
-            f_1 = metal::min(metal::abs(alpha_8), metal::float2(rules_1.floor));
+            f_1 = metal::min(metal::abs(alpha_4), metal::float2(rules_1.floor));
         }
     }
     float lambda_2 = metal::max(rules_1.max_extent, 0.0);
@@ -1654,9 +1502,9 @@ kernel_rect_BoundingRect kernel_clamp_rect(
 
 kernel_covariance_Covariance kernel_clamp_kernel(
     kernel_clamp_ClampRules rules_2,
-    kernel_covariance_Covariance k_4
+    kernel_covariance_Covariance k_2
 ) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_4);
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_2);
     if (rules_2.kappa >= math_F32_MAX) {
         return _e2;
     }
@@ -1666,70 +1514,70 @@ kernel_covariance_Covariance kernel_clamp_kernel(
 
 float kernel_clamp_det_clamp_for(
     kernel_clamp_ClampRules rules_3,
-    ndf_roughness_matrix_RoughnessMatrix a_2
+    ndf_roughness_matrix_RoughnessMatrix a_1
 ) {
-    float _e2 = ndf_roughness_matrix_own_det_clamp(a_2);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_2);
+    float _e2 = ndf_roughness_matrix_own_det_clamp(a_1);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_1);
     return rules_3.det_clamp ? _e3 : _e2;
 }
 
 kernel_covariance_Covariance kernel_clamp_pixel_kernel(
     kernel_clamp_ClampRules rules_4,
     footprint_Footprint fp_2,
-    float sigma_3
+    float sigma_2
 ) {
     footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_2);
-    kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_3);
+    kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_2);
     kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
     return _e5;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(
-    ndf_roughness_matrix_RoughnessMatrix a_3,
-    kernel_covariance_Covariance k_5,
+    ndf_roughness_matrix_RoughnessMatrix a_2,
+    kernel_covariance_Covariance k_3,
     float tau_3
 ) {
-    metal::float3 _e3 = ndf_roughness_matrix_entries(a_3);
-    float c_17 = a_3.axis.x;
-    float s_26 = a_3.axis.y;
-    float k1_1 = metal::max((((c_17 * c_17) * k_5.s_xx) + (((2.0 * c_17) * s_26) * k_5.s_xy)) + ((s_26 * s_26) * k_5.s_yy), 0.0);
-    float k2_1 = metal::max((((s_26 * s_26) * k_5.s_xx) - (((2.0 * c_17) * s_26) * k_5.s_xy)) + ((c_17 * c_17) * k_5.s_yy), 0.0);
-    float _e38 = ndf_roughness_matrix_determinant(a_3);
-    float det_4 = (_e38 + (2.0 * ((a_3.eig.y * k1_1) + (a_3.eig.x * k2_1)))) + (4.0 * metal::max(k_5.det, 0.0));
-    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det(_e3.x + (2.0 * k_5.s_xx), _e3.y + (2.0 * k_5.s_xy), _e3.z + (2.0 * k_5.s_yy), det_4, metal::max(tau_3, 0.0));
+    metal::float3 _e3 = ndf_roughness_matrix_entries(a_2);
+    float c_16 = a_2.axis.x;
+    float s_28 = a_2.axis.y;
+    float k1_1 = metal::max((((c_16 * c_16) * k_3.s_xx) + (((2.0 * c_16) * s_28) * k_3.s_xy)) + ((s_28 * s_28) * k_3.s_yy), 0.0);
+    float k2_1 = metal::max((((s_28 * s_28) * k_3.s_xx) - (((2.0 * c_16) * s_28) * k_3.s_xy)) + ((c_16 * c_16) * k_3.s_yy), 0.0);
+    float _e38 = ndf_roughness_matrix_determinant(a_2);
+    float det_4 = (_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * metal::max(k_3.det, 0.0));
+    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det(_e3.x + (2.0 * k_3.s_xx), _e3.y + (2.0 * k_3.s_xy), _e3.z + (2.0 * k_3.s_yy), det_4, metal::max(tau_3, 0.0));
     return _e72;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(
-    ndf_roughness_matrix_RoughnessMatrix a_4,
-    kernel_covariance_Covariance kernel_2
+    ndf_roughness_matrix_RoughnessMatrix a_3,
+    kernel_covariance_Covariance kernel_
 ) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_2);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_4);
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_4, _e2, _e3);
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_3);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_3, _e2, _e3);
     return _e4;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(
-    ndf_roughness_matrix_RoughnessMatrix a_5,
-    kernel_covariance_Covariance kernel_3,
+    ndf_roughness_matrix_RoughnessMatrix a_4,
+    kernel_covariance_Covariance kernel_1,
     float det_clamp_1
 ) {
-    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_3);
-    float _e4 = ndf_roughness_matrix_own_det_clamp(a_5);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_5, _e3, metal::max(det_clamp_1, _e4));
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_1);
+    float _e4 = ndf_roughness_matrix_own_det_clamp(a_4);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_4, _e3, metal::max(det_clamp_1, _e4));
     return _e6;
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(
     kernel_clamp_ClampRules rules_5,
-    ndf_roughness_matrix_RoughnessMatrix a_6,
+    ndf_roughness_matrix_RoughnessMatrix a_5,
     footprint_Footprint fp_3,
-    float sigma_4
+    float sigma_3
 ) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_3, sigma_4);
-    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_6);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_6, _e4, _e5);
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_3, sigma_3);
+    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_5);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_5, _e4, _e5);
     return _e6;
 }
 
@@ -1762,6 +1610,275 @@ float filter_gaussian_d_beckmann_gaussian(
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_2, material_2, fp_6);
     float _e5 = ndf_beckmann_d_matrix(_e4, m_19);
     return _e5;
+}
+
+kernel_covariance_Covariance filter_lean_covariance(
+    filter_lean_LeanMoments m_20
+) {
+    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries(m_20.second.x - (m_20.mean.x * m_20.mean.x), m_20.second.y - (m_20.mean.x * m_20.mean.y), m_20.second.z - (m_20.mean.y * m_20.mean.y));
+    kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
+    return _e26;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(
+    ndf_roughness_matrix_RoughnessMatrix a_6,
+    kernel_covariance_Covariance pixel,
+    filter_lean_LeanMoments moments
+) {
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
+    kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
+    kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_6, _e5);
+    return _e6;
+}
+
+filter_lean_LeanMoments bake_moments_from_texels(
+    metal::float4 rgba,
+    float xy
+) {
+    return filter_lean_LeanMoments {rgba.xy, {}, metal::float3(rgba.z, xy, rgba.w)};
+}
+
+filter_lean_LeanMoments bake_moments_sample_grad(
+    metal::texture2d<float, metal::access::sample> moments_1,
+    metal::texture2d<float, metal::access::sample> moments_xy,
+    metal::sampler s_9,
+    metal::float2 uv,
+    metal::float2 ddx_uv,
+    metal::float2 ddy_uv
+) {
+    metal::float4 rgba_1 = moments_1.sample(s_9, uv, metal::gradient2d(ddx_uv, ddy_uv));
+    metal::float4 _e7 = moments_xy.sample(s_9, uv, metal::gradient2d(ddx_uv, ddy_uv));
+    float xy_3 = _e7.x;
+    filter_lean_LeanMoments _e9 = bake_moments_from_texels(rgba_1, xy_3);
+    return _e9;
+}
+
+filter_lean_LeanMoments bake_moments_sample_level(
+    metal::texture2d<float, metal::access::sample> moments_2,
+    metal::texture2d<float, metal::access::sample> moments_xy_1,
+    metal::sampler s_10,
+    metal::float2 uv_1,
+    float level
+) {
+    metal::float4 rgba_2 = moments_2.sample(s_10, uv_1, metal::level(level));
+    metal::float4 _e6 = moments_xy_1.sample(s_10, uv_1, metal::level(level));
+    float xy_4 = _e6.x;
+    filter_lean_LeanMoments _e8 = bake_moments_from_texels(rgba_2, xy_4);
+    return _e8;
+}
+
+ndf_roughness_isotropic_Isotropic bake_roughness_from_perceptual(
+    float r_52
+) {
+    ndf_roughness_isotropic_Isotropic _e2 = ndf_roughness_isotropic_from_alpha(r_52 * r_52);
+    return _e2;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_anisotropic(
+    metal::float3 lobe
+) {
+    metal::float2 _e4 = math_sincos_turns(lobe.z * 0.15915494);
+    float _e6 = ndf_roughness_clamp_alpha(lobe.x);
+    float _e8 = ndf_roughness_clamp_alpha(lobe.y);
+    metal::float2 a_22 = metal::float2(_e6, _e8);
+    ndf_roughness_matrix_RoughnessMatrix _e10 = ndf_roughness_matrix_from_eigen(_e4, a_22);
+    return _e10;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_khr_anisotropy(
+    float r_53,
+    metal::float4 anisotropy
+) {
+    metal::float2 d_4 = (2.0 * anisotropy.xy) - metal::float2(1.0);
+    float len = metal::length(d_4);
+    metal::float2 axis_3 = (len > 0.0) ? (d_4 / metal::float2(len)) : metal::float2(1.0, 0.0);
+    float alpha_b = r_53 * r_53;
+    float b_7 = anisotropy.z;
+    float alpha_t = metal::mix(alpha_b, 1.0, b_7 * b_7);
+    float _e22 = ndf_roughness_clamp_alpha(alpha_t);
+    float _e23 = ndf_roughness_clamp_alpha(alpha_b);
+    metal::float2 a_23 = metal::float2(_e22, _e23);
+    ndf_roughness_matrix_RoughnessMatrix _e25 = ndf_roughness_matrix_from_eigen(axis_3, a_23);
+    return _e25;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_matrix_texel(
+    metal::float4 t_1
+) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = ndf_roughness_matrix_from_entries(t_1.x, t_1.y, t_1.z);
+    return _e4;
+}
+
+float filter_deferred_from_alpha(
+    uint domain,
+    float alpha_5
+) {
+    if (domain == filter_deferred_DOMAIN_ALPHA) {
+        return alpha_5;
+    }
+    if (domain == filter_deferred_DOMAIN_PERCEPTUAL) {
+        return metal::sqrt(alpha_5);
+    }
+    float a2_ = alpha_5 * alpha_5;
+    if (domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ) {
+        return (a2_ < 1.0) ? (a2_ / (1.0 - a2_)) : math_F32_MAX;
+    }
+    return a2_;
+}
+
+float filter_deferred_to_alpha(
+    uint domain_1,
+    float v_4
+) {
+    if (domain_1 == filter_deferred_DOMAIN_ALPHA) {
+        return v_4;
+    }
+    if (domain_1 == filter_deferred_DOMAIN_PERCEPTUAL) {
+        return v_4 * v_4;
+    }
+    if (domain_1 == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ) {
+        return (v_4 < math_F32_MAX) ? metal::sqrt(v_4 / (1.0 + v_4)) : 1.0;
+    }
+    return metal::sqrt(v_4);
+}
+
+float filter_deferred_max_eigenvalue(
+    float a_7,
+    float b_1,
+    float c_5
+) {
+    float _e9 = math_hypot(0.5 * (a_7 - c_5), b_1);
+    return metal::max((0.5 * (a_7 + c_5)) + _e9, 0.0);
+}
+
+float filter_deferred_norm_eval(
+    uint norm,
+    metal::float3 dn_u_in_1,
+    metal::float3 dn_v_in_1
+) {
+    metal::float3 _e3 = math_nan_to_zero3_(dn_u_in_1);
+    metal::float3 _e4 = math_nan_to_zero3_(dn_v_in_1);
+    float a_24 = metal::dot(_e3, _e3);
+    float c_17 = metal::dot(_e4, _e4);
+    if (norm == filter_deferred_NORM_MAX_SQUARED) {
+        return metal::max(a_24, c_17);
+    }
+    if (norm == filter_deferred_NORM_MAX_EIGENVALUE) {
+        float _e13 = filter_deferred_max_eigenvalue(a_24, metal::dot(_e3, _e4), c_17);
+        return _e13;
+    }
+    if (norm == filter_deferred_NORM_MAX_ABS_COMPONENT) {
+        metal::float3 m_50 = metal::max(metal::abs(_e3), metal::abs(_e4));
+        return metal::max(metal::max(m_50.x, m_50.y), m_50.z);
+    }
+    return a_24 + c_17;
+}
+
+float filter_deferred_clamp_widening(
+    filter_deferred_KernelConvention conv,
+    float k_4
+) {
+    bool _e7 = math_is_nan(k_4);
+    return _e7 ? conv.clamp : metal::min(metal::max(k_4, 0.0), conv.clamp);
+}
+
+float filter_deferred_widening(
+    filter_deferred_KernelConvention conv_1,
+    metal::float3 dn_u,
+    metal::float3 dn_v
+) {
+    bool local_15 = {};
+    float raw = {};
+    metal::float3 lim = metal::float3(340282350000000000000000000000000000000.0);
+    if (!(metal::any(metal::abs(dn_u) > lim))) {
+        local_15 = metal::any(metal::abs(dn_v) > lim);
+    } else {
+        local_15 = true;
+    }
+    bool _e15 = local_15;
+    if (_e15) {
+        return conv_1.clamp;
+    }
+    float _e18 = filter_deferred_norm_eval(conv_1.norm, dn_u, dn_v);
+    raw = _e18;
+    if (conv_1.exponent != 1.0) {
+        raw = (_e18 > 0.0) ? metal::pow(_e18, conv_1.exponent) : 0.0;
+    }
+    float _e30 = raw;
+    float _e34 = filter_deferred_clamp_widening(conv_1, (conv_1.scale * _e30) + conv_1.bias);
+    return _e34;
+}
+
+float filter_deferred_apply_widening(
+    filter_deferred_KernelConvention conv_2,
+    float alpha_in,
+    float k_5
+) {
+    float alpha_6 = {};
+    float out = {};
+    alpha_6 = metal::clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
+    float _e7 = alpha_6;
+    alpha_6 = metal::max(_e7, conv_2.perceptual_floor * conv_2.perceptual_floor);
+    float _e13 = alpha_6;
+    float _e14 = filter_deferred_from_alpha(conv_2.domain, _e13);
+    float _e15 = filter_deferred_clamp_widening(conv_2, k_5);
+    out = (conv_2.combine == filter_deferred_COMBINE_MAX) ? metal::max(_e14, _e15) : (_e14 + _e15);
+    if (conv_2.saturate) {
+        float _e24 = out;
+        out = metal::min(_e24, 1.0);
+    }
+    float _e28 = out;
+    float _e29 = filter_deferred_to_alpha(conv_2.domain, _e28);
+    return metal::clamp(_e29, 0.0, ndf_roughness_ALPHA_MAX);
+}
+
+float filter_deferred_apply(
+    filter_deferred_KernelConvention conv_3,
+    float alpha_7,
+    metal::float3 dn_u_1,
+    metal::float3 dn_v_1
+) {
+    float _e4 = filter_deferred_widening(conv_3, dn_u_1, dn_v_1);
+    float _e5 = filter_deferred_apply_widening(conv_3, alpha_7, _e4);
+    return _e5;
+}
+
+kernel_covariance_Covariance filter_deferred_normal_difference_covariance(
+    metal::float3 dn_u_2,
+    metal::float3 dn_v_2,
+    float sigma_4
+) {
+    float sigma_sq = sigma_4 * sigma_4;
+    metal::float3 x_15 = metal::cross(dn_u_2, dn_v_2) * sigma_sq;
+    return kernel_covariance_Covariance {metal::dot(dn_u_2, dn_u_2) * sigma_sq, metal::dot(dn_u_2, dn_v_2) * sigma_sq, metal::dot(dn_v_2, dn_v_2) * sigma_sq, metal::dot(x_15, x_15)};
+}
+
+float filter_deferred_bandwidth_alpha2_(
+    uint bandwidth,
+    kernel_covariance_Covariance kernel_2
+) {
+    float _e3 = math_nan_to_zero(kernel_2.s_xx);
+    float _e5 = math_nan_to_zero(kernel_2.s_xy);
+    float _e7 = math_nan_to_zero(kernel_2.s_yy);
+    if (bandwidth == filter_deferred_BANDWIDTH_MAX) {
+        float _e10 = filter_deferred_max_eigenvalue(_e3, _e5, _e7);
+        return 2.0 * _e10;
+    }
+    float t_15 = _e3 + _e7;
+    return (bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_15) : t_15;
+}
+
+float filter_deferred_filtered_alpha(
+    float alpha_8,
+    kernel_covariance_Covariance kernel_3,
+    uint bandwidth_1,
+    float kappa
+) {
+    filter_deferred_KernelConvention conv_4 = filter_deferred_KernelConvention {filter_deferred_DOMAIN_ALPHA_SQ, filter_deferred_NORM_SUM_SQUARED, 0.5, 1.0, 0.0, kappa, filter_deferred_COMBINE_ADD, true, {}, 0.0};
+    float _e13 = filter_deferred_bandwidth_alpha2_(bandwidth_1, kernel_3);
+    float _e14 = filter_deferred_apply_widening(conv_4, alpha_8, _e13);
+    return _e14;
 }
 
 float filter_gaussian_ggx_quad_laguerre_node(
@@ -1889,31 +2006,13 @@ float filter_gaussian_ggx_quad_laguerre(
     return (_e53 * ib_1) * ib_1;
 }
 
-float filter_gaussian_ggx_quad_geom(
-    uint n
-) {
-    switch(n) {
-        case 0u: {
-            return 0.5819767;
-        }
-        case 1u: {
-            return 0.28721693;
-        }
-        case 2u: {
-            return 0.15651764;
-        }
-        default: {
-            return 0.08942549;
-        }
-    }
-}
-
 float filter_gaussian_ggx_quad_series_below(
     float c1s_1,
     float c2s_1,
     float tl1_2,
     float tl2_2,
-    float y_1
+    float y_1,
+    metal::float4 geom
 ) {
     float x1_ = tl1_2 * y_1;
     float x2_2 = tl2_2 * y_1;
@@ -1924,19 +2023,20 @@ float filter_gaussian_ggx_quad_series_below(
     float b3_ = -((((d1_ * x1_) * x1_) + ((d2_ * x2_2) * x2_2))) - (0.16666667 * (((x1_ * x1_) * x1_) + ((x2_2 * x2_2) * x2_2)));
     float a2_1 = 0.5 * ((a1_ * a1_) + (2.0 * b2_));
     float a3_ = 0.33333334 * (((a1_ * a2_1) + ((2.0 * b2_) * a1_)) + (3.0 * b3_));
-    float _e56 = filter_gaussian_ggx_quad_geom(0u);
-    float _e58 = filter_gaussian_ggx_quad_geom(1u);
-    float _e62 = filter_gaussian_ggx_quad_geom(2u);
-    float _e66 = filter_gaussian_ggx_quad_geom(3u);
-    float tail = ((_e56 + (a1_ * _e58)) + (a2_1 * _e62)) + (a3_ * _e66);
+    float tail = ((geom.x + (a1_ * geom.y)) + (a2_1 * geom.z)) + (a3_ * geom.w);
     return (tail * y_1) * y_1;
 }
 
-float filter_gaussian_ggx_quad_trapezoid(
+uint naga_div(uint lhs, uint rhs) {
+    return lhs / metal::select(rhs, 1u, rhs == 0u);
+}
+
+float filter_gaussian_ggx_quad_trapezoid_rule(
     float c1s_2,
     float c2s_2,
     float tl1_3,
-    float tl2_3
+    float tl2_3,
+    filter_gaussian_ggx_quad_TrapezoidRule rule
 ) {
     float sum = 0.0;
     uint ch = 0u;
@@ -1945,47 +2045,48 @@ float filter_gaussian_ggx_quad_trapezoid(
     float last = {};
     float vl = {};
     uint jj = {};
+    float hs = rule.h;
     float beta_1 = (1.0 + c1s_2) + c2s_2;
     float ib_2 = 1.0 / beta_1;
     float w_r = 2.0 * ib_2;
-    float _e15 = math_ln((37.037037 * (beta_1 + tl1_3)) * ib_2);
-    float k0_ = metal::min(metal::ceil(_e15 / filter_gaussian_ggx_quad_H), 175.0);
-    float _e24 = math_exp(-(k0_) * filter_gaussian_ggx_quad_H);
-    float w_first = w_r * _e24;
+    float _e19 = math_ln(((2.0 / rule.y_lo) * (beta_1 + tl1_3)) * ib_2);
+    float k0_ = metal::min(metal::ceil(_e19 / hs), metal::min(static_cast<float>(rule.nodes - 1u), metal::floor(87.0 / hs)));
+    float _e33 = math_exp(-(k0_) * hs);
+    float w_first = w_r * _e33;
     float pr1_ = 1.0 + (tl1_3 * w_r);
     float pr2_ = 1.0 + (tl2_3 * w_r);
     float k1_2 = c1s_2 * (w_r / pr1_);
     float k2_2 = c2s_2 * (w_r / pr2_);
     float x_r = (-(w_r) - k1_2) - k2_2;
-    float _e40 = math_exp(x_r);
-    float scale_2 = (w_r * w_r) * _e40;
+    float _e49 = math_exp(x_r);
+    float scale_2 = (w_r * w_r) * _e49;
     float t1_3 = tl1_3 * w_r;
     float t2_1 = tl2_3 * w_r;
-    float stop = (0.00000005 * w_r) * w_r;
+    float stop = ((rule.eps_t * hs) * w_r) * w_r;
     uint2 loop_bound_1 = uint2(4294967295u);
     bool loop_init_1 = true;
     while(true) {
         if (metal::all(loop_bound_1 == uint2(0u))) { break; }
         loop_bound_1 -= uint2(loop_bound_1.y == 0u, 1u);
         if (!loop_init_1) {
-            uint _e136 = ch;
-            ch = _e136 + 1u;
+            uint _e148 = ch;
+            ch = _e148 + 1u;
         }
         loop_init_1 = false;
-        uint _e51 = ch;
-        if (_e51 < filter_gaussian_ggx_quad_CHUNKS) {
+        uint _e61 = ch;
+        if (_e61 < naga_div(rule.nodes, 8u)) {
         } else {
             break;
         }
         {
-            uint _e54 = ch;
-            float kb = static_cast<float>(_e54 * 8u) - k0_;
-            float _e61 = math_exp(kb * filter_gaussian_ggx_quad_H);
-            v_5 = _e61;
+            uint _e66 = ch;
+            float kb = static_cast<float>(_e66 * 8u) - k0_;
+            float _e72 = math_exp(kb * hs);
+            v_5 = _e72;
             part = 0.0;
             last = 0.0;
-            float _e67 = v_5;
-            vl = _e67;
+            float _e78 = v_5;
+            vl = _e78;
             jj = 0u;
             uint2 loop_bound_2 = uint2(4294967295u);
             bool loop_init_2 = true;
@@ -1993,53 +2094,53 @@ float filter_gaussian_ggx_quad_trapezoid(
                 if (metal::all(loop_bound_2 == uint2(0u))) { break; }
                 loop_bound_2 -= uint2(loop_bound_2.y == 0u, 1u);
                 if (!loop_init_2) {
-                    uint _e113 = jj;
-                    jj = _e113 + 1u;
+                    uint _e125 = jj;
+                    jj = _e125 + 1u;
                 }
                 loop_init_2 = false;
-                uint _e71 = jj;
-                if (_e71 < 8u) {
+                uint _e82 = jj;
+                if (_e82 < 8u) {
                 } else {
                     break;
                 }
                 {
-                    float _e74 = v_5;
-                    float ip1_1 = 1.0 / (1.0 + (t1_3 * _e74));
-                    float _e80 = v_5;
-                    float ip2_1 = 1.0 / (1.0 + (t2_1 * _e80));
-                    float a_22 = (w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1);
-                    uint _e91 = jj;
-                    float _e95 = v_5;
-                    float x_16 = (1.0 * (kb + static_cast<float>(_e91))) - ((_e95 - 1.0) * a_22);
-                    float _e100 = math_exp(x_16);
-                    last = (_e100 * metal::sqrt(ip1_1)) * metal::sqrt(ip2_1);
-                    float _e105 = part;
-                    float _e106 = last;
-                    part = _e105 + _e106;
-                    float _e108 = v_5;
-                    vl = _e108;
-                    float _e109 = v_5;
-                    v_5 = _e109 * filter_gaussian_ggx_quad_EXP_H;
+                    float _e85 = v_5;
+                    float ip1_1 = 1.0 / (1.0 + (t1_3 * _e85));
+                    float _e91 = v_5;
+                    float ip2_1 = 1.0 / (1.0 + (t2_1 * _e91));
+                    float a_25 = (w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1);
+                    uint _e103 = jj;
+                    float _e107 = v_5;
+                    float x_16 = ((2.0 * hs) * (kb + static_cast<float>(_e103))) - ((_e107 - 1.0) * a_25);
+                    float _e112 = math_exp(x_16);
+                    last = (_e112 * metal::sqrt(ip1_1)) * metal::sqrt(ip2_1);
+                    float _e117 = part;
+                    float _e118 = last;
+                    part = _e117 + _e118;
+                    float _e120 = v_5;
+                    vl = _e120;
+                    float _e121 = v_5;
+                    v_5 = _e121 * rule.exp_h;
                 }
             }
-            float _e115 = sum;
-            float _e116 = part;
-            sum = _e115 + _e116;
-            float _e118 = vl;
-            float wl = _e118 * w_r;
-            float b_7 = (wl >= 2.0) ? (1.0 + wl) : 7.47;
-            float _e126 = last;
-            float _e128 = sum;
+            float _e127 = sum;
+            float _e128 = part;
+            sum = _e127 + _e128;
             float _e130 = vl;
-            float _e132 = vl;
-            if ((_e126 * b_7) <= (((stop * _e128) * _e130) * _e132)) {
+            float wl = _e130 * w_r;
+            float b_8 = (wl >= 2.0) ? (1.0 + wl) : 7.47;
+            float _e138 = last;
+            float _e140 = sum;
+            float _e142 = vl;
+            float _e144 = vl;
+            if ((_e138 * b_8) <= (((stop * _e140) * _e142) * _e144)) {
                 break;
             }
         }
     }
-    float _e139 = sum;
-    float _e141 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first);
-    return filter_gaussian_ggx_quad_H * ((_e139 * scale_2) + _e141);
+    float _e150 = sum;
+    float _e153 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first, rule.geom);
+    return hs * ((_e150 * scale_2) + _e153);
 }
 
 float filter_gaussian_ggx_quad_mixture_integral(
@@ -2074,8 +2175,65 @@ float filter_gaussian_ggx_quad_mixture_integral(
         return _e37;
     }
     float iz2_ = 1.0 / z2_2;
-    float _e42 = filter_gaussian_ggx_quad_trapezoid(v1s_1 * iz2_, v2s_1 * iz2_, tl1_4, tl2_4);
-    return (_e42 * iz2_) * iz2_;
+    float _e43 = filter_gaussian_ggx_quad_trapezoid_rule(v1s_1 * iz2_, v2s_1 * iz2_, tl1_4, tl2_4, filter_gaussian_ggx_quad_FULL_RULE);
+    return (_e43 * iz2_) * iz2_;
+}
+
+float filter_gaussian_ggx_quad_reduced_far(
+    uint tol
+) {
+    switch(tol) {
+        case 1u: {
+            return 1500.0;
+        }
+        case 2u: {
+            return 500.0;
+        }
+        default: {
+            return 160.0;
+        }
+    }
+}
+
+filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_reduced_rule(
+    uint tol_1
+) {
+    switch(tol_1) {
+        case 1u: {
+            return filter_gaussian_ggx_quad_TrapezoidRule {0.6, 1.8221188, 0.00001, 0.12, metal::float4(0.43101275, 0.19803363, 0.09976877, 0.052395698), 144u};
+        }
+        case 2u: {
+            return filter_gaussian_ggx_quad_TrapezoidRule {0.75, 2.117, 0.0001, 0.2, metal::float4(0.28721693, 0.11781705, 0.052395698, 0.02408415), 112u};
+        }
+        default: {
+            return filter_gaussian_ggx_quad_TrapezoidRule {1.0, 2.7182817, 0.0005, 0.35, metal::float4(0.15651764, 0.052395698, 0.01865736, 0.006783655), 88u};
+        }
+    }
+}
+
+float filter_gaussian_ggx_quad_j_tol(
+    float v1s_2,
+    float v2s_2,
+    float z2_3,
+    float tl1_5,
+    float tl2_5,
+    uint tol_2
+) {
+    if (tol_2 == filter_gaussian_ggx_quad_TOL_FULL) {
+        float _e8 = filter_gaussian_ggx_quad_mixture_integral(v1s_2, v2s_2, z2_3, tl1_5, tl2_5);
+        return _e8;
+    }
+    float beta_m_2 = (z2_3 + v1s_2) + v2s_2;
+    float _e12 = filter_gaussian_ggx_quad_reduced_far(tol_2);
+    float _e14 = math_ln(beta_m_2 / z2_3);
+    if (((tl1_5 * z2_3) * (_e12 + (12.0 * _e14))) <= beta_m_2) {
+        float _e20 = filter_gaussian_ggx_quad_far_tail(beta_m_2, v1s_2, v2s_2, tl1_5, tl2_5, z2_3);
+        return _e20;
+    }
+    float iz2_1 = 1.0 / z2_3;
+    filter_gaussian_ggx_quad_TrapezoidRule _e25 = filter_gaussian_ggx_quad_reduced_rule(tol_2);
+    float _e26 = filter_gaussian_ggx_quad_trapezoid_rule(v1s_2 * iz2_1, v2s_2 * iz2_1, tl1_5, tl2_5, _e25);
+    return (_e26 * iz2_1) * iz2_1;
 }
 
 float filter_gaussian_ggx_quad_hermite_node(
@@ -2119,16 +2277,16 @@ float filter_gaussian_ggx_quad_hermite_weight(
 float filter_gaussian_ggx_quad_h_of(
     float y_2
 ) {
-    float r_52 = {};
-    float a_23 = metal::abs(y_2);
-    if (a_23 > 1.0) {
-        float i_12 = 1.0 / a_23;
-        r_52 = a_23 * metal::sqrt(1.0 + (i_12 * i_12));
+    float r_54 = {};
+    float a_26 = metal::abs(y_2);
+    if (a_26 > 1.0) {
+        float i_12 = 1.0 / a_26;
+        r_54 = a_26 * metal::sqrt(1.0 + (i_12 * i_12));
     } else {
-        r_52 = metal::sqrt(1.0 + (y_2 * y_2));
+        r_54 = metal::sqrt(1.0 + (y_2 * y_2));
     }
-    float _e16 = r_52;
-    float _e18 = r_52;
+    float _e16 = r_54;
+    float _e18 = r_54;
     return (y_2 >= 0.0) ? (1.0 / (_e18 + y_2)) : (_e16 - y_2);
 }
 
@@ -2303,24 +2461,35 @@ float filter_gaussian_ggx_quad_lambda(
     return _e9;
 }
 
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_with_tolerance(
+    filter_gaussian_ggx_GaussianFilteredGgx g,
+    uint tol_3
+) {
+    filter_gaussian_ggx_GaussianFilteredGgx out_1 = {};
+    out_1 = g;
+    out_1.tol = tol_3;
+    filter_gaussian_ggx_GaussianFilteredGgx _e4 = out_1;
+    return _e4;
+}
+
 filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(
-    ndf_roughness_matrix_RoughnessMatrix a_7,
+    ndf_roughness_matrix_RoughnessMatrix a_8,
     kernel_covariance_Covariance kernel_4
 ) {
     float l2_ = 0.0;
     metal::float2 v_6 = metal::float2(1.0, 0.0);
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
-    float c_18 = a_7.axis.x;
-    float s_27 = a_7.axis.y;
-    float k11_ = metal::max((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((s_27 * s_27) * _e2.s_yy), 0.0);
-    float k22_ = metal::max((((s_27 * s_27) * _e2.s_xx) - (((2.0 * c_18) * s_27) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy), 0.0);
-    float k12_ = (((c_18 * c_18) - (s_27 * s_27)) * _e2.s_xy) + ((c_18 * s_27) * (_e2.s_yy - _e2.s_xx));
-    metal::float2 l_7 = a_7.eig_c;
+    float c_18 = a_8.axis.x;
+    float s_29 = a_8.axis.y;
+    float k11_ = metal::max((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_29) * _e2.s_xy)) + ((s_29 * s_29) * _e2.s_yy), 0.0);
+    float k22_ = metal::max((((s_29 * s_29) * _e2.s_xx) - (((2.0 * c_18) * s_29) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy), 0.0);
+    float k12_ = (((c_18 * c_18) - (s_29 * s_29)) * _e2.s_xy) + ((c_18 * s_29) * (_e2.s_yy - _e2.s_xx));
+    metal::float2 l_7 = a_8.eig_c;
     metal::float2 isl = metal::float2(1.0) / metal::sqrt(l_7);
     float c11_ = (k11_ * isl.x) * isl.x;
     float c22_ = (k22_ * isl.y) * isl.y;
     float c12_ = (k12_ * isl.x) * isl.y;
-    float det_c = metal::max(_e2.det, 0.0) / (a_7.eig_c.x * a_7.eig_c.y);
+    float det_c = metal::max(_e2.det, 0.0) / (a_8.eig_c.x * a_8.eig_c.y);
     float half_ = 0.5 * (c11_ - c22_);
     float _e75 = math_hypot(half_, c12_);
     float l1_2 = (0.5 * (c11_ + c22_)) + _e75;
@@ -2336,44 +2505,44 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(
     }
     metal::float2 _e102 = v_6;
     float _e105 = l2_;
-    float _e110 = ndf_roughness_matrix_sqrt_det(a_7);
-    return filter_gaussian_ggx_GaussianFilteredGgx {a_7, isl, _e102, metal::float2(2.0 * l1_2, 2.0 * _e105), math_INV_PI / _e110, _e2};
+    float _e110 = ndf_roughness_matrix_sqrt_det(a_8);
+    return filter_gaussian_ggx_GaussianFilteredGgx {a_8, isl, _e102, metal::float2(2.0 * l1_2, 2.0 * _e105), math_INV_PI / _e110, _e2, filter_gaussian_ggx_TOL_FULL};
 }
 
 metal::float2 filter_gaussian_ggx_whiten(
-    filter_gaussian_ggx_GaussianFilteredGgx g,
-    metal::float2 s_9
+    filter_gaussian_ggx_GaussianFilteredGgx g_1,
+    metal::float2 s_11
 ) {
-    metal::float2 _e3 = ndf_roughness_matrix_rotate(g.a, s_9);
-    metal::float2 u_19 = _e3 * g.inv_sqrt_l;
-    metal::float2 c_19 = metal::float2((g.v.x * u_19.x) + (g.v.y * u_19.y), (g.v.x * u_19.y) - (g.v.y * u_19.x));
+    metal::float2 _e3 = ndf_roughness_matrix_rotate(g_1.a, s_11);
+    metal::float2 u_19 = _e3 * g_1.inv_sqrt_l;
+    metal::float2 c_19 = metal::float2((g_1.v.x * u_19.x) + (g_1.v.y * u_19.y), (g_1.v.x * u_19.y) - (g_1.v.y * u_19.x));
     return c_19 * c_19;
 }
 
 float filter_gaussian_ggx_p22_(
-    filter_gaussian_ggx_GaussianFilteredGgx g_1,
-    metal::float2 s_10
+    filter_gaussian_ggx_GaussianFilteredGgx g_2,
+    metal::float2 s_12
 ) {
-    metal::float2 _e2 = filter_gaussian_ggx_whiten(g_1, s_10);
-    float _e11 = filter_gaussian_ggx_quad_mixture_integral(_e2.x, _e2.y, 1.0, g_1.tl.x, g_1.tl.y);
-    return g_1.norm * _e11;
+    metal::float2 _e2 = filter_gaussian_ggx_whiten(g_2, s_12);
+    float _e12 = filter_gaussian_ggx_quad_j_tol(_e2.x, _e2.y, 1.0, g_2.tl.x, g_2.tl.y, g_2.tol);
+    return g_2.norm * _e12;
 }
 
 float filter_gaussian_ggx_d(
-    filter_gaussian_ggx_GaussianFilteredGgx g_2,
-    metal::float3 m_20
+    filter_gaussian_ggx_GaussianFilteredGgx g_3,
+    metal::float3 m_21
 ) {
-    if (!((m_20.z > 0.0))) {
+    if (!((m_21.z > 0.0))) {
         return 0.0;
     }
-    metal::float2 _e8 = filter_gaussian_ggx_whiten(g_2, m_20.xy);
-    float _e19 = filter_gaussian_ggx_quad_mixture_integral(_e8.x, _e8.y, m_20.z * m_20.z, g_2.tl.x, g_2.tl.y);
-    float v_18 = g_2.norm * _e19;
+    metal::float2 _e8 = filter_gaussian_ggx_whiten(g_3, m_21.xy);
+    float _e20 = filter_gaussian_ggx_quad_j_tol(_e8.x, _e8.y, m_21.z * m_21.z, g_3.tl.x, g_3.tl.y, g_3.tol);
+    float v_18 = g_3.norm * _e20;
     return (v_18 <= math_F32_MAX) ? v_18 : 0.0;
 }
 
 float filter_gaussian_ggx_lambda(
-    filter_gaussian_ggx_GaussianFilteredGgx g_3,
+    filter_gaussian_ggx_GaussianFilteredGgx g_4,
     metal::float3 w_15
 ) {
     float big_4 = metal::max(metal::max(metal::abs(w_15.x), metal::abs(w_15.y)), metal::abs(w_15.z));
@@ -2383,9 +2552,9 @@ float filter_gaussian_ggx_lambda(
     metal::float3 ws = w_15 / metal::float3(big_4);
     metal::float3 o_9 = ws / metal::float3(metal::length(ws));
     float oz_3 = metal::abs(o_9.z);
-    float _e27 = ndf_roughness_matrix_quadratic(g_3.a, o_9.xy);
-    kernel_covariance_Covariance kk = g_3.k;
-    float qs_4 = metal::max((((g_3.k.s_xx * o_9.x) * o_9.x) + (((2.0 * g_3.k.s_xy) * o_9.x) * o_9.y)) + ((g_3.k.s_yy * o_9.y) * o_9.y), 0.0);
+    float _e27 = ndf_roughness_matrix_quadratic(g_4.a, o_9.xy);
+    kernel_covariance_Covariance kk = g_4.k;
+    float qs_4 = metal::max((((g_4.k.s_xx * o_9.x) * o_9.x) + (((2.0 * g_4.k.s_xy) * o_9.x) * o_9.y)) + ((g_4.k.s_yy * o_9.y) * o_9.y), 0.0);
     if (qs_4 <= 0.0) {
         float _e52 = ndf_ggx_lambda_of(_e27, oz_3);
         return _e52;
@@ -2402,24 +2571,24 @@ float filter_gaussian_ggx_lambda(
 }
 
 float filter_gaussian_ggx_g1_(
-    filter_gaussian_ggx_GaussianFilteredGgx g_4,
+    filter_gaussian_ggx_GaussianFilteredGgx g_5,
     metal::float3 w_16,
-    metal::float3 m_21
+    metal::float3 m_22
 ) {
-    float _e3 = filter_gaussian_ggx_lambda(g_4, w_16);
-    float _e5 = ndf_g1_of(_e3, metal::dot(w_16, m_21));
+    float _e3 = filter_gaussian_ggx_lambda(g_5, w_16);
+    float _e5 = ndf_g1_of(_e3, metal::dot(w_16, m_22));
     return _e5;
 }
 
 float filter_gaussian_ggx_g2_(
-    filter_gaussian_ggx_GaussianFilteredGgx g_5,
+    filter_gaussian_ggx_GaussianFilteredGgx g_6,
     metal::float3 i_6,
     metal::float3 o_6,
-    metal::float3 m_22
+    metal::float3 m_23
 ) {
-    float _e4 = filter_gaussian_ggx_lambda(g_5, i_6);
-    float _e5 = filter_gaussian_ggx_lambda(g_5, o_6);
-    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_6, m_22), metal::dot(o_6, m_22));
+    float _e4 = filter_gaussian_ggx_lambda(g_6, i_6);
+    float _e5 = filter_gaussian_ggx_lambda(g_6, o_6);
+    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_6, m_23), metal::dot(o_6, m_23));
     return _e8;
 }
 
@@ -2430,81 +2599,19 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_exact_gaussian_lobe(
 ) {
     kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_7, method_3.sigma);
     filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
-    return _e6;
+    filter_gaussian_ggx_GaussianFilteredGgx _e8 = filter_gaussian_ggx_with_tolerance(_e6, method_3.tolerance);
+    return _e8;
 }
 
 float filter_gaussian_ggx_d_ggx_exact_gaussian(
     filter_gaussian_ggx_ExactGaussian method_4,
     ndf_roughness_matrix_RoughnessMatrix material_4,
     footprint_Footprint fp_8,
-    metal::float3 m_23
+    metal::float3 m_24
 ) {
     filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_gaussian_ggx_exact_gaussian_lobe(method_4, material_4, fp_8);
-    float _e5 = filter_gaussian_ggx_d(_e4, m_23);
+    float _e5 = filter_gaussian_ggx_d(_e4, m_24);
     return _e5;
-}
-
-kernel_covariance_Covariance filter_lean_covariance(
-    filter_lean_LeanMoments m_24
-) {
-    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries(m_24.second.x - (m_24.mean.x * m_24.mean.x), m_24.second.y - (m_24.mean.x * m_24.mean.y), m_24.second.z - (m_24.mean.y * m_24.mean.y));
-    kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
-    return _e26;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(
-    ndf_roughness_matrix_RoughnessMatrix a_8,
-    kernel_covariance_Covariance pixel,
-    filter_lean_LeanMoments moments
-) {
-    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
-    kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
-    kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_8, _e5);
-    return _e6;
-}
-
-filter_deferred_KernelConvention filter_presets_preset(
-    uint i_7
-) {
-    switch(i_7) {
-        case 0u: {
-            return filter_presets_TK19_MAX;
-        }
-        case 1u: {
-            return filter_presets_TK19_TRACE;
-        }
-        case 2u: {
-            return filter_presets_TK19_AVERAGE;
-        }
-        case 3u: {
-            return filter_presets_TK21_LISTING;
-        }
-        case 4u: {
-            return filter_presets_FILAMENT;
-        }
-        case 5u: {
-            return filter_presets_UNITY_HDRP;
-        }
-        case 6u: {
-            return filter_presets_UNITY_HDRP_PROJECTED;
-        }
-        case 7u: {
-            return filter_presets_GODOT;
-        }
-        case 8u: {
-            return filter_presets_O3DE;
-        }
-        case 9u: {
-            return filter_presets_UNREAL;
-        }
-        case 10u: {
-            return filter_presets_BABYLON;
-        }
-        default: {
-            return filter_presets_THREE_JS;
-        }
-    }
 }
 
 ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(
@@ -2520,28 +2627,28 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(
     metal::float2 excess = a_9.eig - lc;
     metal::float2 p_8 = lc / (metal::float2(1.0) - lc);
     float c_20 = a_9.axis.x;
-    float s_28 = a_9.axis.y;
-    float p11_1 = ((p_8.x * c_20) * c_20) + ((p_8.y * s_28) * s_28);
-    float p12_1 = ((p_8.x - p_8.y) * c_20) * s_28;
-    float p22_1 = ((p_8.x * s_28) * s_28) + ((p_8.y * c_20) * c_20);
-    float k1_3 = metal::max((((c_20 * c_20) * k_12.s_xx) + (((2.0 * c_20) * s_28) * k_12.s_xy)) + ((s_28 * s_28) * k_12.s_yy), 0.0);
-    float k2_3 = metal::max((((s_28 * s_28) * k_12.s_xx) - (((2.0 * c_20) * s_28) * k_12.s_xy)) + ((c_20 * c_20) * k_12.s_yy), 0.0);
-    float d_4 = ((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * metal::max(k_12.det, 0.0));
+    float s_30 = a_9.axis.y;
+    float p11_1 = ((p_8.x * c_20) * c_20) + ((p_8.y * s_30) * s_30);
+    float p12_1 = ((p_8.x - p_8.y) * c_20) * s_30;
+    float p22_1 = ((p_8.x * s_30) * s_30) + ((p_8.y * c_20) * c_20);
+    float k1_3 = metal::max((((c_20 * c_20) * k_12.s_xx) + (((2.0 * c_20) * s_30) * k_12.s_xy)) + ((s_30 * s_30) * k_12.s_yy), 0.0);
+    float k2_3 = metal::max((((s_30 * s_30) * k_12.s_xx) - (((2.0 * c_20) * s_30) * k_12.s_xy)) + ((c_20 * c_20) * k_12.s_yy), 0.0);
+    float d_5 = ((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * metal::max(k_12.det, 0.0));
     float q11_ = p11_1 + (2.0 * k_12.s_xx);
     float q12_ = p12_1 + (2.0 * k_12.s_xy);
     float q22_ = p22_1 + (2.0 * k_12.s_yy);
-    float den_1 = ((1.0 + q11_) + q22_) + d_4;
-    b11_ = (q11_ + d_4) / den_1;
+    float den_1 = ((1.0 + q11_) + q22_) + d_5;
+    b11_ = (q11_ + d_5) / den_1;
     b12_ = q12_ / den_1;
-    b22_ = (q22_ + d_4) / den_1;
-    det_3 = d_4 / den_1;
+    b22_ = (q22_ + d_5) / den_1;
+    det_3 = d_5 / den_1;
     if (metal::max(excess.x, excess.y) > 0.0) {
         float _e114 = b11_;
-        b11_ = _e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_28) * s_28));
+        b11_ = _e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_30) * s_30));
         float _e123 = b12_;
-        b12_ = _e123 + (((excess.x - excess.y) * c_20) * s_28);
+        b12_ = _e123 + (((excess.x - excess.y) * c_20) * s_30);
         float _e130 = b22_;
-        b22_ = _e130 + (((excess.x * s_28) * s_28) + ((excess.y * c_20) * c_20));
+        b22_ = _e130 + (((excess.x * s_30) * s_30) + ((excess.y * c_20) * c_20));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
@@ -2616,9 +2723,9 @@ float filter_proxy_effective_alpha(
 ) {
     float h_27 = metal::abs(half_extent);
     float _e3 = math_hypot(alpha_9, h_27);
-    float t_15 = (_e3 > 0.0) ? (h_27 / _e3) : 0.0;
-    float _e9 = math_atan(t_15);
-    float ratio = (t_15 > 0.0) ? (t_15 / _e9) : 1.0;
+    float t_16 = (_e3 > 0.0) ? (h_27 / _e3) : 0.0;
+    float _e9 = math_atan(t_16);
+    float ratio = (t_16 > 0.0) ? (t_16 / _e9) : 1.0;
     return _e3 * metal::sqrt(ratio);
 }
 
@@ -2631,21 +2738,21 @@ float filter_proxy_effective_alpha_simple(
 }
 
 ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(
-    ndf_roughness_axis_aligned_AxisAligned r_53,
+    ndf_roughness_axis_aligned_AxisAligned r_55,
     metal::float2 half_extent_2
 ) {
-    float _e5 = filter_proxy_effective_alpha(r_53.alpha.x, half_extent_2.x);
-    float _e9 = filter_proxy_effective_alpha(r_53.alpha.y, half_extent_2.y);
+    float _e5 = filter_proxy_effective_alpha(r_55.alpha.x, half_extent_2.x);
+    float _e9 = filter_proxy_effective_alpha(r_55.alpha.y, half_extent_2.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(metal::float2(_e5, _e9));
     return _e11;
 }
 
 ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(
-    ndf_roughness_axis_aligned_AxisAligned r_54,
+    ndf_roughness_axis_aligned_AxisAligned r_56,
     metal::float2 half_extent_3
 ) {
-    float _e5 = filter_proxy_effective_alpha_simple(r_54.alpha.x, half_extent_3.x);
-    float _e9 = filter_proxy_effective_alpha_simple(r_54.alpha.y, half_extent_3.y);
+    float _e5 = filter_proxy_effective_alpha_simple(r_56.alpha.x, half_extent_3.x);
+    float _e9 = filter_proxy_effective_alpha_simple(r_56.alpha.y, half_extent_3.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(metal::float2(_e5, _e9));
     return _e11;
 }
@@ -2690,13 +2797,13 @@ uint filter_rect_tier(
 }
 
 float filter_rect_gl_node(
-    uint n_1,
+    uint n,
     uint k_13
 ) {
-    if (n_1 == 2u) {
+    if (n == 2u) {
         return 0.57735026;
     }
-    if (n_1 == 4u) {
+    if (n == 4u) {
         return (k_13 == 0u) ? 0.33998105 : 0.8611363;
     }
     if (k_13 == 0u) {
@@ -2706,13 +2813,13 @@ float filter_rect_gl_node(
 }
 
 float filter_rect_gl_weight(
-    uint n_2,
+    uint n_1,
     uint k_14
 ) {
-    if (n_2 == 2u) {
+    if (n_1 == 2u) {
         return 0.5;
     }
-    if (n_2 == 4u) {
+    if (n_1 == 4u) {
         return (k_14 == 0u) ? 0.32607257 : 0.17392743;
     }
     if (k_14 == 0u) {
@@ -2725,16 +2832,12 @@ float filter_rect_f(
     float u_1,
     float v_7
 ) {
-    float t_16 = (1.0 + (u_1 * u_1)) + (v_7 * v_7);
-    return 1.0 / (t_16 * t_16);
-}
-
-uint naga_div(uint lhs, uint rhs) {
-    return lhs / metal::select(rhs, 1u, rhs == 0u);
+    float t_17 = (1.0 + (u_1 * u_1)) + (v_7 * v_7);
+    return 1.0 / (t_17 * t_17);
 }
 
 float filter_rect_gl_mean(
-    uint n_3,
+    uint n_2,
     float u_2,
     float c_6,
     float h_12
@@ -2752,19 +2855,19 @@ float filter_rect_gl_mean(
         }
         loop_init_6 = false;
         uint _e8 = k_15;
-        if (_e8 < naga_div(n_3, 2u)) {
+        if (_e8 < naga_div(n_2, 2u)) {
         } else {
             break;
         }
         {
             uint _e12 = k_15;
-            float _e13 = filter_rect_gl_node(n_3, _e12);
-            float a_24 = h_12 * _e13;
+            float _e13 = filter_rect_gl_node(n_2, _e12);
+            float a_27 = h_12 * _e13;
             float _e15 = acc_2;
             uint _e16 = k_15;
-            float _e17 = filter_rect_gl_weight(n_3, _e16);
-            float _e19 = filter_rect_f(u_2, c_6 - a_24);
-            float _e21 = filter_rect_f(u_2, c_6 + a_24);
+            float _e17 = filter_rect_gl_weight(n_2, _e16);
+            float _e19 = filter_rect_f(u_2, c_6 - a_27);
+            float _e21 = filter_rect_f(u_2, c_6 + a_27);
             acc_2 = _e15 + (_e17 * (_e19 + _e21));
         }
     }
@@ -2788,27 +2891,27 @@ float filter_rect_delta_minus_sin(
     float d,
     float sin_d
 ) {
-    float s_11 = {};
+    float s_13 = {};
     if (d < 1.0) {
         float d2_1 = d * d;
-        s_11 = 1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909)));
-        float _e17 = s_11;
-        s_11 = 1.0 - ((d2_1 * 0.023809524) * _e17);
-        float _e23 = s_11;
-        s_11 = 1.0 - ((d2_1 * 0.05) * _e23);
-        float _e30 = s_11;
+        s_13 = 1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909)));
+        float _e17 = s_13;
+        s_13 = 1.0 - ((d2_1 * 0.023809524) * _e17);
+        float _e23 = s_13;
+        s_13 = 1.0 - ((d2_1 * 0.05) * _e23);
+        float _e30 = s_13;
         return ((d * d2_1) * 0.16666667) * _e30;
     }
     return d - sin_d;
 }
 
 float filter_rect_mean_1d(
-    metal::float4 i_8,
+    metal::float4 i_7,
     float c2_
 ) {
-    float x0_ = (i_8.z >= 0.0) ? i_8.x : -(i_8.y);
-    float x1_1 = (i_8.z >= 0.0) ? i_8.y : -(i_8.x);
-    float dx = 2.0 * i_8.w;
+    float x0_ = (i_7.z >= 0.0) ? i_7.x : -(i_7.y);
+    float x1_1 = (i_7.z >= 0.0) ? i_7.y : -(i_7.x);
+    float dx = 2.0 * i_7.w;
     float c_21 = metal::sqrt(c2_);
     float r02_ = c2_ + (x0_ * x0_);
     float r12_ = c2_ + (x1_1 * x1_1);
@@ -2816,9 +2919,9 @@ float filter_rect_mean_1d(
     float _e27 = filter_rect_atan2_upper(c_21 * dx, c2_ + x01_);
     float inv_2 = 1.0 / (((2.0 * c_21) * c2_) * dx);
     if (x0_ <= 0.0) {
-        float s_29 = metal::rsqrt(r02_) * metal::rsqrt(r12_);
-        float q_7 = metal::min((c2_ - x01_) * s_29, 1.0);
-        return (_e27 * inv_2) + ((q_7 * s_29) * (0.5 / c2_));
+        float s_31 = metal::rsqrt(r02_) * metal::rsqrt(r12_);
+        float q_7 = metal::min((c2_ - x01_) * s_31, 1.0);
+        return (_e27 * inv_2) + ((q_7 * s_31) * (0.5 / c2_));
     }
     float rr = metal::sqrt(r02_) * metal::sqrt(r12_);
     float p2_1 = (2.0 * r02_) * r12_;
@@ -2827,7 +2930,7 @@ float filter_rect_mean_1d(
 }
 
 float filter_rect_gl_mean_1d(
-    uint n_4,
+    uint n_3,
     float c_7,
     float h_13,
     metal::float4 other
@@ -2845,19 +2948,19 @@ float filter_rect_gl_mean_1d(
         }
         loop_init_7 = false;
         uint _e8 = k_16;
-        if (_e8 < naga_div(n_4, 2u)) {
+        if (_e8 < naga_div(n_3, 2u)) {
         } else {
             break;
         }
         {
             uint _e12 = k_16;
-            float _e13 = filter_rect_gl_node(n_4, _e12);
-            float a_25 = h_13 * _e13;
-            float x0_1 = c_7 - a_25;
-            float x1_2 = c_7 + a_25;
+            float _e13 = filter_rect_gl_node(n_3, _e12);
+            float a_28 = h_13 * _e13;
+            float x0_1 = c_7 - a_28;
+            float x1_2 = c_7 + a_28;
             float _e17 = acc_3;
             uint _e18 = k_16;
-            float _e19 = filter_rect_gl_weight(n_4, _e18);
+            float _e19 = filter_rect_gl_weight(n_3, _e18);
             float _e23 = filter_rect_mean_1d(other, 1.0 + (x0_1 * x0_1));
             float _e27 = filter_rect_mean_1d(other, 1.0 + (x1_2 * x1_2));
             acc_3 = _e17 + (_e19 * (_e23 + _e27));
@@ -2873,9 +2976,9 @@ float filter_rect_edge(
     float v01_
 ) {
     float s2_1 = 1.0 + (u_3 * u_3);
-    float s_30 = metal::sqrt(s2_1);
-    float _e10 = filter_rect_atan2_upper(dv * s_30, s2_1 + v01_);
-    return (u_3 / s_30) * _e10;
+    float s_32 = metal::sqrt(s2_1);
+    float _e10 = filter_rect_atan2_upper(dv * s_32, s2_1 + v01_);
+    return (u_3 / s_32) * _e10;
 }
 
 float filter_rect_edges(
@@ -2945,9 +3048,9 @@ float filter_rect_polar_near(
         {
             uint _e16 = k_19;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_5 = h_29 * _e17;
-            float q0_ = 1.0 + ((c_22 - d_5) * (c_22 - d_5));
-            float q1_ = 1.0 + ((c_22 + d_5) * (c_22 + d_5));
+            float d_6 = h_29 * _e17;
+            float q0_ = 1.0 + ((c_22 - d_6) * (c_22 - d_6));
+            float q1_ = 1.0 + ((c_22 + d_6) * (c_22 + d_6));
             float _e29 = acc_4;
             uint _e30 = k_19;
             float _e31 = filter_rect_gl8_weight(_e30);
@@ -2985,9 +3088,9 @@ float filter_rect_polar_far(
         {
             uint _e16 = k_20;
             float _e17 = filter_rect_gl8_node(_e16);
-            float d_6 = h_30 * _e17;
-            float t0_2 = (c_23 - d_6) * (c_23 - d_6);
-            float t1_4 = (c_23 + d_6) * (c_23 + d_6);
+            float d_7 = h_30 * _e17;
+            float t0_2 = (c_23 - d_7) * (c_23 - d_7);
+            float t1_4 = (c_23 + d_7) * (c_23 + d_7);
             float _e25 = acc_5;
             uint _e26 = k_20;
             float _e27 = filter_rect_gl8_weight(_e26);
@@ -3060,9 +3163,9 @@ float filter_rect_far_field(
 }
 
 float filter_rect_gap(
-    metal::float4 i_9
+    metal::float4 i_8
 ) {
-    return metal::max(metal::max(i_9.x, -(i_9.y)), 0.0);
+    return metal::max(metal::max(i_8.x, -(i_8.y)), 0.0);
 }
 
 float filter_rect_mean_f(
@@ -3116,12 +3219,12 @@ float filter_rect_mean_f(
         {
             uint _e60 = k_21;
             float _e61 = filter_rect_gl_node(_e14, _e60);
-            float a_26 = u_6.w * _e61;
+            float a_29 = u_6.w * _e61;
             float _e63 = acc_6;
             uint _e64 = k_21;
             float _e65 = filter_rect_gl_weight(_e14, _e64);
-            float _e70 = filter_rect_gl_mean(_e25, u_6.z - a_26, v_12.z, v_12.w);
-            float _e75 = filter_rect_gl_mean(_e25, u_6.z + a_26, v_12.z, v_12.w);
+            float _e70 = filter_rect_gl_mean(_e25, u_6.z - a_29, v_12.z, v_12.w);
+            float _e75 = filter_rect_gl_mean(_e25, u_6.z + a_29, v_12.z, v_12.w);
             acc_6 = _e63 + (_e65 * (_e70 + _e75));
         }
     }
@@ -3141,7 +3244,7 @@ metal::float4 filter_rect_interval(
 }
 
 float filter_rect_p22_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_55,
+    ndf_roughness_axis_aligned_AxisAligned r_57,
     metal::float2 center,
     metal::float2 half_extent_4
 ) {
@@ -3153,18 +3256,18 @@ float filter_rect_p22_rect(
     }
     bool _e12 = local_20;
     if (_e12) {
-        float _e13 = ndf_ggx_p22_axis_aligned(r_55, center);
+        float _e13 = ndf_ggx_p22_axis_aligned(r_57, center);
         return _e13;
     }
-    metal::float2 a_27 = r_55.alpha;
-    metal::float4 _e18 = filter_rect_interval(center.x, half_extent_4.x, r_55.alpha.x);
-    metal::float4 _e22 = filter_rect_interval(center.y, half_extent_4.y, r_55.alpha.y);
+    metal::float2 a_30 = r_57.alpha;
+    metal::float4 _e18 = filter_rect_interval(center.x, half_extent_4.x, r_57.alpha.x);
+    metal::float4 _e22 = filter_rect_interval(center.y, half_extent_4.y, r_57.alpha.y);
     float _e23 = filter_rect_mean_f(_e18, _e22);
-    return metal::max(_e23 * (math_INV_PI / (r_55.alpha.x * r_55.alpha.y)), 0.0);
+    return metal::max(_e23 * (math_INV_PI / (r_57.alpha.x * r_57.alpha.y)), 0.0);
 }
 
 float filter_rect_d_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_56,
+    ndf_roughness_axis_aligned_AxisAligned r_58,
     metal::float3 h_15,
     metal::float2 half_extent_5
 ) {
@@ -3179,25 +3282,25 @@ float filter_rect_d_rect(
     }
     bool _e17 = local_21;
     if (_e17) {
-        float _e18 = ndf_ggx_d_axis_aligned(r_56, h_15);
+        float _e18 = ndf_ggx_d_axis_aligned(r_58, h_15);
         return _e18;
     }
-    float _e24 = filter_rect_p22_rect(r_56, -(h_15.xy) / metal::float2(h_15.z), half_extent_5);
-    float z2_6 = h_15.z * h_15.z;
-    return metal::min(_e24 / (z2_6 * z2_6), math_F32_MAX);
+    float _e24 = filter_rect_p22_rect(r_58, -(h_15.xy) / metal::float2(h_15.z), half_extent_5);
+    float z2_7 = h_15.z * h_15.z;
+    return metal::min(_e24 / (z2_7 * z2_7), math_F32_MAX);
 }
 
 float filter_rect_d_rect_printed(
-    ndf_roughness_axis_aligned_AxisAligned r_57,
+    ndf_roughness_axis_aligned_AxisAligned r_59,
     metal::float2 hpp,
     metal::float3 h_16,
     metal::float2 footprint
 ) {
     bool local_22 = {};
-    float a_28 = r_57.alpha.x;
-    float b_8 = r_57.alpha.y;
-    float a_2_ = a_28 * a_28;
-    float b_2_ = b_8 * b_8;
+    float a_31 = r_59.alpha.x;
+    float b_9 = r_59.alpha.y;
+    float a_2_ = a_31 * a_31;
+    float b_2_ = b_9 * b_9;
     float x1_3 = hpp.x - footprint.x;
     float x2_4 = hpp.x + footprint.x;
     float y1_ = hpp.y - footprint.y;
@@ -3206,14 +3309,14 @@ float filter_rect_d_rect_printed(
     float sx2_ = metal::sqrt((x2_4 * x2_4) + a_2_);
     float sy1_ = metal::sqrt((y1_ * y1_) + b_2_);
     float sy2_ = metal::sqrt((y2_ * y2_) + b_2_);
-    float _e37 = math_atan((y1_ * a_28) / (sx1_ * b_8));
-    float _e41 = math_atan((y2_ * a_28) / (sx1_ * b_8));
-    float _e48 = math_atan((y1_ * a_28) / (sx2_ * b_8));
-    float _e53 = math_atan((y2_ * a_28) / (sx2_ * b_8));
-    float _e62 = math_atan((x1_3 * b_8) / (a_28 * sy1_));
-    float _e66 = math_atan((x2_4 * b_8) / (a_28 * sy1_));
-    float _e73 = math_atan((x1_3 * b_8) / (a_28 * sy2_));
-    float _e78 = math_atan((x2_4 * b_8) / (a_28 * sy2_));
+    float _e37 = math_atan((y1_ * a_31) / (sx1_ * b_9));
+    float _e41 = math_atan((y2_ * a_31) / (sx1_ * b_9));
+    float _e48 = math_atan((y1_ * a_31) / (sx2_ * b_9));
+    float _e53 = math_atan((y2_ * a_31) / (sx2_ * b_9));
+    float _e62 = math_atan((x1_3 * b_9) / (a_31 * sy1_));
+    float _e66 = math_atan((x2_4 * b_9) / (a_31 * sy1_));
+    float _e73 = math_atan((x1_3 * b_9) / (a_31 * sy2_));
+    float _e78 = math_atan((x2_4 * b_9) / (a_31 * sy2_));
     float val = (((x1_3 * (_e37 - _e41)) / sx1_) + ((x2_4 * (-(_e48) + _e53)) / sx2_)) + ((((y1_ * sy2_) * (_e62 - _e66)) + ((y2_ * sy1_) * (-(_e73) + _e78))) / (sy1_ * sy2_));
     float den_2 = (6.2831855 * (x1_3 - x2_4)) * (y1_ - y2_);
     float hz4_ = ((h_16.z * h_16.z) * h_16.z) * h_16.z;
@@ -3228,65 +3331,65 @@ float filter_rect_d_rect_printed(
 }
 
 float filter_rect_lambda_rho(
-    float t_1
+    float t_2
 ) {
-    float a_29 = metal::abs(t_1);
-    if (a_29 > 1.0) {
-        float i_15 = 1.0 / a_29;
-        return a_29 * metal::sqrt(1.0 + (i_15 * i_15));
+    float a_32 = metal::abs(t_2);
+    if (a_32 > 1.0) {
+        float i_15 = 1.0 / a_32;
+        return a_32 * metal::sqrt(1.0 + (i_15 * i_15));
     }
-    return metal::sqrt(1.0 + (t_1 * t_1));
+    return metal::sqrt(1.0 + (t_2 * t_2));
 }
 
 float filter_rect_lambda_e_neg(
-    float t_2,
-    float r_58
+    float t_3,
+    float r_60
 ) {
-    return (t_2 >= 0.0) ? (1.0 / (r_58 + t_2)) : (r_58 - t_2);
+    return (t_3 >= 0.0) ? (1.0 / (r_60 + t_3)) : (r_60 - t_3);
 }
 
 float filter_rect_lambda_asinh_of(
-    float t_3,
-    float r_59
+    float t_4,
+    float r_61
 ) {
     float v_13 = {};
-    float a_30 = metal::abs(t_3);
-    if (a_30 > 1.0) {
-        float _e7 = math_ln(a_30 + r_59);
+    float a_33 = metal::abs(t_4);
+    if (a_33 > 1.0) {
+        float _e7 = math_ln(a_33 + r_61);
         v_13 = _e7;
     } else {
-        float _e13 = math_ln_1p(a_30 + ((a_30 * a_30) / (1.0 + r_59)));
+        float _e13 = math_ln_1p(a_33 + ((a_33 * a_33) / (1.0 + r_61)));
         v_13 = _e13;
     }
     float _e14 = v_13;
     float _e15 = v_13;
-    return (t_3 < 0.0) ? -(_e15) : _e14;
+    return (t_4 < 0.0) ? -(_e15) : _e14;
 }
 
 float filter_rect_lambda_psi(
-    float t_4
-) {
-    float _e1 = filter_rect_lambda_rho(t_4);
-    float _e2 = filter_rect_lambda_e_neg(t_4, _e1);
-    return 0.5 * _e2;
-}
-
-float filter_rect_lambda_psi1_(
     float t_5
 ) {
     float _e1 = filter_rect_lambda_rho(t_5);
     float _e2 = filter_rect_lambda_e_neg(t_5, _e1);
-    float _e3 = filter_rect_lambda_asinh_of(t_5, _e1);
-    return 0.25 * (_e3 - ((0.5 * _e2) * _e2));
+    return 0.5 * _e2;
 }
 
-float filter_rect_lambda_psi2_(
+float filter_rect_lambda_psi1_(
     float t_6
 ) {
     float _e1 = filter_rect_lambda_rho(t_6);
     float _e2 = filter_rect_lambda_e_neg(t_6, _e1);
     float _e3 = filter_rect_lambda_asinh_of(t_6, _e1);
-    return 0.25 * ((((t_6 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336));
+    return 0.25 * (_e3 - ((0.5 * _e2) * _e2));
+}
+
+float filter_rect_lambda_psi2_(
+    float t_7
+) {
+    float _e1 = filter_rect_lambda_rho(t_7);
+    float _e2 = filter_rect_lambda_e_neg(t_7, _e1);
+    float _e3 = filter_rect_lambda_asinh_of(t_7, _e1);
+    return 0.25 * ((((t_7 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336));
 }
 
 float filter_rect_lambda_psi1_diff(
@@ -3298,10 +3401,10 @@ float filter_rect_lambda_psi1_diff(
     float _e4 = filter_rect_lambda_rho(t1_);
     float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_31 = _e5 + _e6;
-    float d_7 = (w_17 * s_31) / (_e3 + _e4);
-    float _e12 = math_ln_1p(d_7 / _e6);
-    return 0.25 * (_e12 + ((0.5 * d_7) * s_31));
+    float s_33 = _e5 + _e6;
+    float d_8 = (w_17 * s_33) / (_e3 + _e4);
+    float _e12 = math_ln_1p(d_8 / _e6);
+    return 0.25 * (_e12 + ((0.5 * d_8) * s_33));
 }
 
 float filter_rect_lambda_mean_psi(
@@ -3314,25 +3417,25 @@ float filter_rect_lambda_mean_psi(
 }
 
 uint filter_rect_lambda_rule(
-    uint t_7
+    uint t_8
 ) {
-    return (t_7 == filter_rect_TIER_CLOSED) ? 6u : t_7;
+    return (t_8 == filter_rect_TIER_CLOSED) ? 6u : t_8;
 }
 
 float filter_rect_lambda_mean_psi1_(
-    float t_8,
+    float t_9,
     float k_22
 ) {
     float acc_7 = 0.0;
     uint j = 0u;
     if (k_22 == 0.0) {
-        float _e4 = filter_rect_lambda_psi1_(t_8);
+        float _e4 = filter_rect_lambda_psi1_(t_9);
         return _e4;
     }
-    uint _e9 = filter_rect_tier(k_22 * k_22, 1.0 + (t_8 * t_8));
+    uint _e9 = filter_rect_tier(k_22 * k_22, 1.0 + (t_9 * t_9));
     if (_e9 == filter_rect_TIER_CLOSED) {
-        float _e13 = filter_rect_lambda_psi2_(t_8 + k_22);
-        float _e15 = filter_rect_lambda_psi2_(t_8 - k_22);
+        float _e13 = filter_rect_lambda_psi2_(t_9 + k_22);
+        float _e15 = filter_rect_lambda_psi2_(t_9 - k_22);
         return (_e13 - _e15) / (2.0 * k_22);
     }
     uint2 loop_bound_11 = uint2(4294967295u);
@@ -3353,12 +3456,12 @@ float filter_rect_lambda_mean_psi1_(
         {
             uint _e28 = j;
             float _e29 = filter_rect_gl_node(_e9, _e28);
-            float a_31 = k_22 * _e29;
+            float a_34 = k_22 * _e29;
             float _e31 = acc_7;
             uint _e32 = j;
             float _e33 = filter_rect_gl_weight(_e9, _e32);
-            float _e35 = filter_rect_lambda_psi1_(t_8 - a_31);
-            float _e37 = filter_rect_lambda_psi1_(t_8 + a_31);
+            float _e35 = filter_rect_lambda_psi1_(t_9 - a_34);
+            float _e37 = filter_rect_lambda_psi1_(t_9 + a_34);
             acc_7 = _e31 + (_e33 * (_e35 + _e37));
         }
     }
@@ -3367,13 +3470,13 @@ float filter_rect_lambda_mean_psi1_(
 }
 
 float filter_rect_lambda_gl_psi(
-    uint t_9,
+    uint t_10,
     float c_9,
     float h_17
 ) {
     float acc_8 = 0.0;
     uint j_1 = 0u;
-    uint _e3 = filter_rect_lambda_rule(t_9);
+    uint _e3 = filter_rect_lambda_rule(t_10);
     uint2 loop_bound_12 = uint2(4294967295u);
     bool loop_init_12 = true;
     while(true) {
@@ -3392,12 +3495,12 @@ float filter_rect_lambda_gl_psi(
         {
             uint _e12 = j_1;
             float _e13 = filter_rect_gl_node(_e3, _e12);
-            float a_32 = h_17 * _e13;
+            float a_35 = h_17 * _e13;
             float _e15 = acc_8;
             uint _e16 = j_1;
             float _e17 = filter_rect_gl_weight(_e3, _e16);
-            float _e19 = filter_rect_lambda_psi(c_9 - a_32);
-            float _e21 = filter_rect_lambda_psi(c_9 + a_32);
+            float _e19 = filter_rect_lambda_psi(c_9 - a_35);
+            float _e21 = filter_rect_lambda_psi(c_9 + a_35);
             acc_8 = _e15 + (_e17 * (_e19 + _e21));
         }
     }
@@ -3440,12 +3543,12 @@ float filter_rect_lambda_expected_psi(
             {
                 uint _e32 = j_2;
                 float _e33 = filter_rect_gl_node(_e13, _e32);
-                float a_33 = kl * _e33;
+                float a_36 = kl * _e33;
                 float _e35 = acc_9;
                 uint _e36 = j_2;
                 float _e37 = filter_rect_gl_weight(_e13, _e36);
-                float _e39 = filter_rect_lambda_gl_psi(_e23, m_27 - a_33, ks);
-                float _e41 = filter_rect_lambda_gl_psi(_e23, m_27 + a_33, ks);
+                float _e39 = filter_rect_lambda_gl_psi(_e23, m_27 - a_36, ks);
+                float _e41 = filter_rect_lambda_gl_psi(_e23, m_27 + a_36, ks);
                 acc_9 = _e35 + (_e37 * (_e39 + _e41));
             }
         }
@@ -3496,7 +3599,7 @@ float filter_rect_lambda_expected_psi(
 }
 
 float filter_rect_lambda_lambda_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_60,
+    ndf_roughness_axis_aligned_AxisAligned r_62,
     metal::float2 half_extent_6,
     metal::float3 w_in
 ) {
@@ -3533,17 +3636,17 @@ float filter_rect_lambda_lambda_rect(
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    metal::float2 alpha_12 = r_60.alpha;
+    metal::float2 alpha_12 = r_62.alpha;
     metal::float2 ha = metal::min(metal::abs(half_extent_6), alpha_12 * filter_rect_lambda_BIG_K);
     float _e63 = w_19.x;
     float ux = metal::abs(_e63) / _e46;
     float _e67 = w_19.y;
     float uy = metal::abs(_e67) / _e46;
-    float px = ux * r_60.alpha.x;
-    float py = uy * r_60.alpha.y;
+    float px = ux * r_62.alpha.x;
+    float py = uy * r_62.alpha.y;
     float _e74 = math_hypot(px, py);
-    float k1_4 = (px / _e74) * (ha.x / r_60.alpha.x);
-    float k2_4 = (py / _e74) * (ha.y / r_60.alpha.y);
+    float k1_4 = (px / _e74) * (ha.x / r_62.alpha.x);
+    float k2_4 = (py / _e74) * (ha.y / r_62.alpha.y);
     if (k1_4 == 0.0) {
         local_25 = k2_4 == 0.0;
     } else {
@@ -3552,7 +3655,7 @@ float filter_rect_lambda_lambda_rect(
     bool _e92 = local_25;
     if (_e92) {
         metal::float3 _e93 = w_19;
-        float _e94 = ndf_ggx_lambda_axis_aligned(r_60, _e93);
+        float _e94 = ndf_ggx_lambda_axis_aligned(r_62, _e93);
         return _e94;
     }
     float mm = (wz / _e46) / _e74;
@@ -3581,48 +3684,48 @@ filter_rect_lobe_RectFilteredGgx filter_rect_lobe_rect_lobe(
 }
 
 float filter_rect_lobe_p22_rect_filtered(
-    filter_rect_lobe_RectFilteredGgx lobe,
-    metal::float2 s_12
+    filter_rect_lobe_RectFilteredGgx lobe_1,
+    metal::float2 s_14
 ) {
-    float _e4 = filter_rect_p22_rect(lobe.roughness, s_12, lobe.half_extent);
+    float _e4 = filter_rect_p22_rect(lobe_1.roughness, s_14, lobe_1.half_extent);
     return _e4;
 }
 
 float filter_rect_lobe_d_rect_filtered(
-    filter_rect_lobe_RectFilteredGgx lobe_1,
+    filter_rect_lobe_RectFilteredGgx lobe_2,
     metal::float3 m_28
 ) {
-    float _e4 = filter_rect_d_rect(lobe_1.roughness, m_28, lobe_1.half_extent);
+    float _e4 = filter_rect_d_rect(lobe_2.roughness, m_28, lobe_2.half_extent);
     return _e4;
 }
 
 float filter_rect_lobe_lambda_rect_filtered(
-    filter_rect_lobe_RectFilteredGgx lobe_2,
+    filter_rect_lobe_RectFilteredGgx lobe_3,
     metal::float3 w_20
 ) {
-    float _e4 = filter_rect_lambda_lambda_rect(lobe_2.roughness, lobe_2.half_extent, w_20);
+    float _e4 = filter_rect_lambda_lambda_rect(lobe_3.roughness, lobe_3.half_extent, w_20);
     return _e4;
 }
 
 float filter_rect_lobe_g1_rect_filtered(
-    filter_rect_lobe_RectFilteredGgx lobe_3,
+    filter_rect_lobe_RectFilteredGgx lobe_4,
     metal::float3 w_21,
     metal::float3 m_29
 ) {
-    float _e3 = filter_rect_lobe_lambda_rect_filtered(lobe_3, w_21);
+    float _e3 = filter_rect_lobe_lambda_rect_filtered(lobe_4, w_21);
     float _e5 = ndf_g1_of(_e3, metal::dot(w_21, m_29));
     return _e5;
 }
 
 float filter_rect_lobe_g2_rect_filtered(
-    filter_rect_lobe_RectFilteredGgx lobe_4,
-    metal::float3 i_10,
+    filter_rect_lobe_RectFilteredGgx lobe_5,
+    metal::float3 i_9,
     metal::float3 o_7,
     metal::float3 m_30
 ) {
-    float _e4 = filter_rect_lobe_lambda_rect_filtered(lobe_4, i_10);
-    float _e5 = filter_rect_lobe_lambda_rect_filtered(lobe_4, o_7);
-    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_10, m_30), metal::dot(o_7, m_30));
+    float _e4 = filter_rect_lobe_lambda_rect_filtered(lobe_5, i_9);
+    float _e5 = filter_rect_lobe_lambda_rect_filtered(lobe_5, o_7);
+    float _e8 = ndf_g2_of(_e4, _e5, metal::dot(i_9, m_30), metal::dot(o_7, m_30));
     return _e8;
 }
 
@@ -3637,6 +3740,132 @@ float filter_rect_lobe_d_ggx_rect(
     return _e5;
 }
 
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_lean_widened(
+    ndf_roughness_matrix_RoughnessMatrix a_16,
+    filter_lean_LeanMoments moments_3
+) {
+    kernel_covariance_Covariance _e2 = filter_lean_covariance(moments_3);
+    ndf_roughness_matrix_RoughnessMatrix _e3 = filter_gaussian_gaussian(a_16, _e2);
+    return _e3;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_lean_widened_axis_aligned(
+    ndf_roughness_axis_aligned_AxisAligned r_63,
+    filter_lean_LeanMoments moments_4
+) {
+    kernel_covariance_Covariance _e2 = filter_lean_covariance(moments_4);
+    metal::float2 a_37 = r_63.alpha;
+    ndf_roughness_axis_aligned_AxisAligned _e12 = ndf_roughness_axis_aligned_from_alpha(metal::sqrt((a_37 * a_37) + (2.0 * metal::float2(_e2.s_xx, _e2.s_yy))));
+    return _e12;
+}
+
+metal::float3 filter_lean_nested_lean_mean_normal(
+    filter_lean_LeanMoments moments_5
+) {
+    return metal::normalize(metal::float3(-(moments_5.mean), 1.0));
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_gaussian_lobe(
+    filter_gaussian_Gaussian m_32,
+    ndf_roughness_matrix_RoughnessMatrix material_11,
+    footprint_Footprint fp_16,
+    filter_lean_LeanMoments moments_6
+) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_lean_nested_lean_widened(material_11, moments_6);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_gaussian_lobe(m_32, _e4, fp_16);
+    return _e5;
+}
+
+filter_gaussian_ggx_GaussianFilteredGgx filter_lean_nested_exact_gaussian_lobe(
+    filter_gaussian_ggx_ExactGaussian m_33,
+    ndf_roughness_matrix_RoughnessMatrix material_12,
+    footprint_Footprint fp_17,
+    filter_lean_LeanMoments moments_7
+) {
+    kernel_covariance_Covariance _e6 = kernel_clamp_pixel_kernel(m_33.clamps, fp_17, m_33.sigma);
+    kernel_covariance_Covariance _e7 = filter_lean_covariance(moments_7);
+    kernel_covariance_Covariance _e8 = kernel_covariance_add(_e6, _e7);
+    filter_gaussian_ggx_GaussianFilteredGgx _e9 = filter_gaussian_ggx_from_kernel(material_12, _e8);
+    filter_gaussian_ggx_GaussianFilteredGgx _e11 = filter_gaussian_ggx_with_tolerance(_e9, m_33.tolerance);
+    return _e11;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_projected_lobe(
+    filter_projected_Projected m_34,
+    ndf_roughness_matrix_RoughnessMatrix material_13,
+    footprint_Footprint fp_18,
+    filter_lean_LeanMoments moments_8
+) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_lean_nested_lean_widened(material_13, moments_8);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_projected_lobe(m_34, _e4, fp_18);
+    return _e5;
+}
+
+filter_rect_lobe_RectFilteredGgx filter_lean_nested_rect_lobe(
+    filter_rect_lobe_Rect m_35,
+    ndf_roughness_axis_aligned_AxisAligned material_14,
+    footprint_Footprint fp_19,
+    filter_lean_LeanMoments moments_9
+) {
+    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_lean_nested_lean_widened_axis_aligned(material_14, moments_9);
+    filter_rect_lobe_RectFilteredGgx _e5 = filter_rect_lobe_rect_lobe(m_35, _e4, fp_19);
+    return _e5;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_proxy_lobe(
+    filter_proxy_Proxy m_36,
+    ndf_roughness_axis_aligned_AxisAligned material_15,
+    footprint_Footprint fp_20,
+    filter_lean_LeanMoments moments_10
+) {
+    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_lean_nested_lean_widened_axis_aligned(material_15, moments_10);
+    ndf_roughness_axis_aligned_AxisAligned _e5 = filter_proxy_proxy_lobe(m_36, _e4, fp_20);
+    return _e5;
+}
+
+filter_deferred_KernelConvention filter_presets_preset(
+    uint i_10
+) {
+    switch(i_10) {
+        case 0u: {
+            return filter_presets_TK19_MAX;
+        }
+        case 1u: {
+            return filter_presets_TK19_TRACE;
+        }
+        case 2u: {
+            return filter_presets_TK19_AVERAGE;
+        }
+        case 3u: {
+            return filter_presets_TK21_LISTING;
+        }
+        case 4u: {
+            return filter_presets_FILAMENT;
+        }
+        case 5u: {
+            return filter_presets_UNITY_HDRP;
+        }
+        case 6u: {
+            return filter_presets_UNITY_HDRP_PROJECTED;
+        }
+        case 7u: {
+            return filter_presets_GODOT;
+        }
+        case 8u: {
+            return filter_presets_O3DE;
+        }
+        case 9u: {
+            return filter_presets_UNREAL;
+        }
+        case 10u: {
+            return filter_presets_BABYLON;
+        }
+        default: {
+            return filter_presets_THREE_JS;
+        }
+    }
+}
+
 metal::float2 footprint_slope_slope_from_sphere(
     metal::float3 h_18
 ) {
@@ -3645,10 +3874,10 @@ metal::float2 footprint_slope_slope_from_sphere(
 }
 
 metal::float3 footprint_slope_sphere_from_slope(
-    metal::float2 s_13
+    metal::float2 s_15
 ) {
-    float k_30 = metal::max(metal::max(metal::abs(s_13.x), metal::abs(s_13.y)), 1.0);
-    metal::float3 v_20 = metal::float3(-(s_13) / metal::float2(k_30), 1.0 / k_30);
+    float k_30 = metal::max(metal::max(metal::abs(s_15.x), metal::abs(s_15.y)), 1.0);
+    metal::float3 v_20 = metal::float3(-(s_15) / metal::float2(k_30), 1.0 / k_30);
     return v_20 / metal::float3(metal::length(v_20));
 }
 
@@ -3678,19 +3907,19 @@ metal::float2 footprint_slope_slope_from_projected(
 }
 
 metal::float2 footprint_slope_projected_from_slope(
-    metal::float2 s_14
+    metal::float2 s_16
 ) {
-    metal::float3 _e1 = footprint_slope_sphere_from_slope(s_14);
+    metal::float3 _e1 = footprint_slope_sphere_from_slope(s_16);
     metal::float2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
 }
 
 sampling_Warp sampling_warp(
-    ndf_roughness_matrix_RoughnessMatrix r_61
+    ndf_roughness_matrix_RoughnessMatrix r_64
 ) {
-    metal::float3 _e1 = ndf_roughness_matrix_clamped_entries(r_61);
+    metal::float3 _e1 = ndf_roughness_matrix_clamped_entries(r_64);
     float l_xx = metal::sqrt(_e1.x);
-    return sampling_Warp {l_xx, _e1.y / l_xx, r_61.sqrt_det / l_xx};
+    return sampling_Warp {l_xx, _e1.y / l_xx, r_64.sqrt_det / l_xx};
 }
 
 metal::float3 sampling_normalize_scaled(
@@ -3709,9 +3938,9 @@ metal::float3 sampling_stretch(
 
 metal::float3 sampling_unstretch(
     sampling_Warp l_4,
-    metal::float3 n_5
+    metal::float3 n_4
 ) {
-    metal::float3 _e14 = sampling_normalize_scaled(metal::float3(l_4.l_xx * n_5.x, (l_4.l_yx * n_5.x) + (l_4.l_yy * n_5.y), n_5.z));
+    metal::float3 _e14 = sampling_normalize_scaled(metal::float3(l_4.l_xx * n_4.x, (l_4.l_yx * n_4.x) + (l_4.l_yy * n_4.y), n_4.z));
     return _e14;
 }
 
@@ -3723,9 +3952,9 @@ float sampling_clamp_unit(
 
 metal::float3 sampling_reflect(
     metal::float3 wo,
-    metal::float3 m_32
+    metal::float3 m_37
 ) {
-    return ((2.0 * metal::dot(wo, m_32)) * m_32) - wo;
+    return ((2.0 * metal::dot(wo, m_37)) * m_37) - wo;
 }
 
 metal::float3 sampling_ggx_standard_visible(
@@ -3739,7 +3968,7 @@ metal::float3 sampling_ggx_standard_visible(
 }
 
 metal::float3 sampling_sample_visible_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_62,
+    ndf_roughness_matrix_RoughnessMatrix r_65,
     metal::float3 wo_1,
     metal::float2 u_9
 ) {
@@ -3747,7 +3976,7 @@ metal::float3 sampling_sample_visible_normal(
     if (!((wo_1.z > 0.0))) {
         return metal::float3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_62);
+    sampling_Warp _e9 = sampling_warp(r_65);
     metal::float3 _e10 = sampling_normalize_scaled(wo_1);
     metal::float3 _e11 = sampling_stretch(_e9, _e10);
     metal::float3 _e12 = sampling_normalize_scaled(_e11);
@@ -3772,35 +4001,35 @@ metal::float3 sampling_sample_visible_normal(
 }
 
 metal::float3 sampling_sample_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_63,
+    ndf_roughness_matrix_RoughnessMatrix r_66,
     metal::float2 u_10
 ) {
     float _e3 = sampling_clamp_unit(u_10.x);
     float _e5 = sampling_clamp_unit(u_10.y);
     metal::float2 _e6 = math_sincos_turns(_e5);
-    metal::float3 n_7 = metal::float3(metal::sqrt(_e3) * _e6, metal::sqrt(1.0 - _e3));
-    sampling_Warp _e13 = sampling_warp(r_63);
-    metal::float3 _e14 = sampling_unstretch(_e13, n_7);
+    metal::float3 n_6 = metal::float3(metal::sqrt(_e3) * _e6, metal::sqrt(1.0 - _e3));
+    sampling_Warp _e13 = sampling_warp(r_66);
+    metal::float3 _e14 = sampling_unstretch(_e13, n_6);
     return _e14;
 }
 
 float sampling_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_64,
-    metal::float3 m_33
+    ndf_roughness_matrix_RoughnessMatrix r_67,
+    metal::float3 m_38
 ) {
-    float _e2 = ndf_ggx_d_matrix(r_64, m_33);
-    return (m_33.z > 0.0) ? (_e2 * m_33.z) : 0.0;
+    float _e2 = ndf_ggx_d_matrix(r_67, m_38);
+    return (m_38.z > 0.0) ? (_e2 * m_38.z) : 0.0;
 }
 
 float sampling_visible_normal_pdf_of(
     metal::float3 wo_2,
-    metal::float3 m_34,
+    metal::float3 m_39,
     float d_1,
     float lambda
 ) {
     bool local_27 = {};
     bool local_28 = {};
-    float wom = metal::dot(wo_2, m_34);
+    float wom = metal::dot(wo_2, m_39);
     float v_21 = (wom * d_1) / (wo_2.z * (1.0 + lambda));
     if (wo_2.z > 0.0) {
         local_27 = wom > 0.0;
@@ -3818,19 +4047,19 @@ float sampling_visible_normal_pdf_of(
 }
 
 float sampling_visible_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_65,
+    ndf_roughness_matrix_RoughnessMatrix r_68,
     metal::float3 wo_3,
-    metal::float3 m_35
+    metal::float3 m_40
 ) {
-    float _e3 = ndf_ggx_d_matrix(r_65, m_35);
-    float _e4 = ndf_ggx_lambda_matrix(r_65, wo_3);
-    float _e5 = sampling_visible_normal_pdf_of(wo_3, m_35, _e3, _e4);
+    float _e3 = ndf_ggx_d_matrix(r_68, m_40);
+    float _e4 = ndf_ggx_lambda_matrix(r_68, wo_3);
+    float _e5 = sampling_visible_normal_pdf_of(wo_3, m_40, _e3, _e4);
     return _e5;
 }
 
 float sampling_reflection_pdf_of(
     metal::float3 o_8,
-    metal::float3 m_36,
+    metal::float3 m_41,
     float d_2,
     float lambda_1
 ) {
@@ -3838,7 +4067,7 @@ float sampling_reflection_pdf_of(
     bool local_30 = {};
     float v_22 = d_2 / ((4.0 * o_8.z) * (1.0 + lambda_1));
     if (o_8.z > 0.0) {
-        local_29 = metal::dot(o_8, m_36) > 0.0;
+        local_29 = metal::dot(o_8, m_41) > 0.0;
     } else {
         local_29 = false;
     }
@@ -3853,19 +4082,19 @@ float sampling_reflection_pdf_of(
 }
 
 float sampling_reflection_pdf_from_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_66,
+    ndf_roughness_matrix_RoughnessMatrix r_69,
     metal::float3 wo_4,
-    metal::float3 m_37
+    metal::float3 m_42
 ) {
     metal::float3 _e3 = sampling_normalize_scaled(wo_4);
-    float _e4 = ndf_ggx_d_matrix(r_66, m_37);
-    float _e5 = ndf_ggx_lambda_matrix(r_66, _e3);
-    float _e6 = sampling_reflection_pdf_of(_e3, m_37, _e4, _e5);
+    float _e4 = ndf_ggx_d_matrix(r_69, m_42);
+    float _e5 = ndf_ggx_lambda_matrix(r_69, _e3);
+    float _e6 = sampling_reflection_pdf_of(_e3, m_42, _e4, _e5);
     return _e6;
 }
 
 float sampling_reflection_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_67,
+    ndf_roughness_matrix_RoughnessMatrix r_70,
     metal::float3 wo_5,
     metal::float3 wi_1
 ) {
@@ -3875,11 +4104,11 @@ float sampling_reflection_pdf(
     metal::float3 _e8 = sampling_normalize_scaled(wo_5);
     metal::float3 _e9 = sampling_normalize_scaled(wi_1);
     metal::float3 h_32 = _e8 + _e9;
-    float len = metal::length(h_32);
-    if (!((len > 0.0))) {
+    float len_1 = metal::length(h_32);
+    if (!((len_1 > 0.0))) {
         return 0.0;
     }
-    float _e18 = sampling_reflection_pdf_from_normal(r_67, wo_5, h_32 / metal::float3(len));
+    float _e18 = sampling_reflection_pdf_from_normal(r_70, wo_5, h_32 / metal::float3(len_1));
     return _e18;
 }
 
@@ -3887,56 +4116,56 @@ float sampling_beckmann_erfcx(
     float z_1
 ) {
     float p_3 = 0.17087276;
-    float t_17 = 1.0 / (1.0 + (0.5 * z_1));
+    float t_18 = 1.0 / (1.0 + (0.5 * z_1));
     float _e9 = p_3;
-    p_3 = (_e9 * t_17) - 0.82215226;
+    p_3 = (_e9 * t_18) - 0.82215226;
     float _e13 = p_3;
-    p_3 = (_e13 * t_17) + 1.4885159;
+    p_3 = (_e13 * t_18) + 1.4885159;
     float _e17 = p_3;
-    p_3 = (_e17 * t_17) - 1.135204;
+    p_3 = (_e17 * t_18) - 1.135204;
     float _e21 = p_3;
-    p_3 = (_e21 * t_17) + 0.27886808;
+    p_3 = (_e21 * t_18) + 0.27886808;
     float _e25 = p_3;
-    p_3 = (_e25 * t_17) - 0.18628806;
+    p_3 = (_e25 * t_18) - 0.18628806;
     float _e29 = p_3;
-    p_3 = (_e29 * t_17) + 0.09678418;
+    p_3 = (_e29 * t_18) + 0.09678418;
     float _e33 = p_3;
-    p_3 = (_e33 * t_17) + 0.37409195;
+    p_3 = (_e33 * t_18) + 0.37409195;
     float _e37 = p_3;
-    p_3 = (_e37 * t_17) + 1.0000237;
+    p_3 = (_e37 * t_18) + 1.0000237;
     float _e41 = p_3;
-    p_3 = (_e41 * t_17) - 1.2655122;
+    p_3 = (_e41 * t_18) - 1.2655122;
     float _e45 = p_3;
     float _e46 = math_exp(_e45);
-    return t_17 * _e46;
+    return t_18 * _e46;
 }
 
 float sampling_beckmann_upper_tail(
     float x_10,
     float c_10,
-    float s_15
+    float s_17
 ) {
     float _e5 = math_exp(-(x_10) * x_10);
     float _e8 = sampling_beckmann_erfcx(x_10);
-    return (0.5 * _e5) * ((c_10 * _e8) - (s_15 * sampling_beckmann_INV_SQRT_PI));
+    return (0.5 * _e5) * ((c_10 * _e8) - (s_17 * sampling_beckmann_INV_SQRT_PI));
 }
 
 metal::float2 sampling_beckmann_cdf_terms(
     float x_11,
     float c_11,
-    float s_16
+    float s_18
 ) {
     float k_23 = {};
     float _e5 = math_exp(-(x_11) * x_11);
     if (x_11 <= 0.0) {
         float _e12 = sampling_beckmann_erfcx(-(x_11));
-        k_23 = (0.5 * _e5) * ((c_11 * _e12) + (s_16 * sampling_beckmann_INV_SQRT_PI));
+        k_23 = (0.5 * _e5) * ((c_11 * _e12) + (s_18 * sampling_beckmann_INV_SQRT_PI));
     } else {
-        float _e18 = sampling_beckmann_upper_tail(x_11, c_11, s_16);
+        float _e18 = sampling_beckmann_upper_tail(x_11, c_11, s_18);
         k_23 = c_11 - _e18;
     }
     float _e20 = k_23;
-    return metal::float2(_e20, (sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_16 * x_11)));
+    return metal::float2(_e20, (sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_18 * x_11)));
 }
 
 float sampling_beckmann_erfinv_guess(
@@ -3944,11 +4173,11 @@ float sampling_beckmann_erfinv_guess(
 ) {
     float w_23 = {};
     float p_4 = {};
-    float a_34 = (1.0 - x_12) * (1.0 + x_12);
-    if (!((a_34 > 0.0))) {
+    float a_38 = (1.0 - x_12) * (1.0 + x_12);
+    if (!((a_38 > 0.0))) {
         return 0.0;
     }
-    float _e10 = math_ln(a_34);
+    float _e10 = math_ln(a_38);
     w_23 = -(_e10);
     float _e14 = w_23;
     if (_e14 < 5.0) {
@@ -4014,7 +4243,7 @@ float sampling_beckmann_erfinv_guess(
 
 float sampling_beckmann_invert_visible_slope_cdf(
     float c_12,
-    float s_17,
+    float s_19,
     float u_11
 ) {
     float lo_3 = -9.0;
@@ -4023,12 +4252,12 @@ float sampling_beckmann_invert_visible_slope_cdf(
     float x_13 = {};
     float dx_old = {};
     uint i_11 = 0u;
-    float g_6 = {};
+    float g_7 = {};
     bool local_32 = {};
     bool local_33 = {};
-    float hi0_ = (s_17 > 0.0) ? metal::min(c_12 / s_17, sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX;
+    float hi0_ = (s_19 > 0.0) ? metal::min(c_12 / s_19, sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX;
     hi_2 = hi0_;
-    metal::float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_17);
+    metal::float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_19);
     float norm_1 = _e13.x;
     bool upper = u_11 > 0.5;
     float goal = (upper ? (1.0 - u_11) : u_11) * norm_1;
@@ -4036,8 +4265,8 @@ float sampling_beckmann_invert_visible_slope_cdf(
         float _e24 = lo_3;
         return _e24;
     }
-    float _e27 = sampling_beckmann_upper_tail(metal::max(hi0_, 0.0), c_12, s_17);
-    float tol = 0.00000047683716 * goal;
+    float _e27 = sampling_beckmann_upper_tail(metal::max(hi0_, 0.0), c_12, s_19);
+    float tol_4 = 0.00000047683716 * goal;
     float _e34 = sampling_beckmann_erfinv_guess((2.0 * u_11) - 1.0);
     float _e35 = hi_2;
     float _e40 = lo_3;
@@ -4069,20 +4298,20 @@ float sampling_beckmann_invert_visible_slope_cdf(
         }
         {
             float _e59 = x_13;
-            metal::float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_17);
-            g_6 = _e60.x - goal;
+            metal::float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_19);
+            g_7 = _e60.x - goal;
             if (upper) {
                 float _e66 = x_13;
-                float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_17);
+                float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_19);
                 float _e69 = x_13;
-                g_6 = goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x));
+                g_7 = goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x));
             }
-            float _e74 = g_6;
-            if (metal::abs(_e74) <= tol) {
+            float _e74 = g_7;
+            if (metal::abs(_e74) <= tol_4) {
                 float _e77 = x_13;
                 return _e77;
             }
-            float _e78 = g_6;
+            float _e78 = g_7;
             if (_e78 < 0.0) {
                 float _e81 = x_13;
                 lo_3 = _e81;
@@ -4098,7 +4327,7 @@ float sampling_beckmann_invert_visible_slope_cdf(
                 float _e94 = hi_2;
                 return 0.5 * (_e93 + _e94);
             }
-            float _e98 = g_6;
+            float _e98 = g_7;
             float step = _e98 / _e60.y;
             float _e101 = x_13;
             float xn = _e101 - step;
@@ -4111,7 +4340,7 @@ float sampling_beckmann_invert_visible_slope_cdf(
             }
             bool _e110 = local_32;
             if (_e110) {
-                float _e113 = g_6;
+                float _e113 = g_7;
                 float _e117 = dx_old;
                 local_33 = metal::abs(2.0 * _e113) <= metal::abs(_e117 * _e60.y);
             } else {
@@ -4146,7 +4375,7 @@ float sampling_beckmann_visible_slope_quantile(
     float u_12
 ) {
     float c_13 = 1.0;
-    float s_18 = 0.0;
+    float s_20 = 0.0;
     bool local_34 = {};
     bool local_35 = {};
     if (cos_theta >= 0.0) {
@@ -4164,17 +4393,17 @@ float sampling_beckmann_visible_slope_quantile(
     if (_e21) {
         float _e22 = math_hypot(cos_theta, sin_theta);
         c_13 = cos_theta / _e22;
-        s_18 = sin_theta / _e22;
+        s_20 = sin_theta / _e22;
     }
     float _e25 = c_13;
-    float _e26 = s_18;
+    float _e26 = s_20;
     float _e27 = sampling_clamp_unit(u_12);
     float _e28 = sampling_beckmann_invert_visible_slope_cdf(_e25, _e26, _e27);
     return _e28;
 }
 
 metal::float3 sampling_beckmann_sample_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_68,
+    ndf_roughness_matrix_RoughnessMatrix r_71,
     metal::float2 u_13
 ) {
     float _e3 = sampling_clamp_unit(u_13.x);
@@ -4183,14 +4412,14 @@ metal::float3 sampling_beckmann_sample_normal(
     float _e9 = math_ln(1.0 - _e3);
     float _e14 = math_ln_1p(_e3 / (1.0 - _e3));
     float e_6 = (_e3 < 0.5) ? _e14 : -(_e9);
-    metal::float3 n_8 = metal::float3(metal::sqrt(e_6) * _e6, 1.0);
-    sampling_Warp _e22 = sampling_warp(r_68);
-    metal::float3 _e23 = sampling_unstretch(_e22, n_8);
+    metal::float3 n_7 = metal::float3(metal::sqrt(e_6) * _e6, 1.0);
+    sampling_Warp _e22 = sampling_warp(r_71);
+    metal::float3 _e23 = sampling_unstretch(_e22, n_7);
     return _e23;
 }
 
 metal::float3 sampling_beckmann_sample_visible_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_69,
+    ndf_roughness_matrix_RoughnessMatrix r_72,
     metal::float3 wo_6,
     metal::float2 u_14
 ) {
@@ -4198,7 +4427,7 @@ metal::float3 sampling_beckmann_sample_visible_normal(
     if (!((wo_6.z > 0.0))) {
         return metal::float3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_69);
+    sampling_Warp _e9 = sampling_warp(r_72);
     metal::float3 _e10 = sampling_normalize_scaled(wo_6);
     metal::float3 _e11 = sampling_stretch(_e9, _e10);
     metal::float3 _e12 = sampling_normalize_scaled(_e11);
@@ -4211,8 +4440,8 @@ metal::float3 sampling_beckmann_sample_visible_normal(
     float _e34 = sampling_beckmann_invert_visible_slope_cdf(_e12.z, _e21, _e33);
     float _e38 = sampling_clamp_unit(u_14.y);
     float _e39 = sampling_beckmann_invert_visible_slope_cdf(1.0, 0.0, _e38);
-    metal::float2 t_18 = metal::float2((phi.x * _e34) - (phi.y * _e39), (phi.y * _e34) + (phi.x * _e39));
-    metal::float3 _e54 = sampling_unstretch(_e9, metal::float3(-(t_18), 1.0));
+    metal::float2 t_19 = metal::float2((phi.x * _e34) - (phi.y * _e39), (phi.y * _e34) + (phi.x * _e39));
+    metal::float3 _e54 = sampling_unstretch(_e9, metal::float3(-(t_19), 1.0));
     if (_e54.z > 0.0) {
         local_36 = metal::dot(wo_6, _e54) > 0.0;
     } else {
@@ -4227,33 +4456,33 @@ metal::float3 sampling_beckmann_sample_visible_normal(
 }
 
 float sampling_beckmann_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_70,
-    metal::float3 m_38
+    ndf_roughness_matrix_RoughnessMatrix r_73,
+    metal::float3 m_43
 ) {
-    float _e2 = ndf_beckmann_d_matrix(r_70, m_38);
-    return (m_38.z > 0.0) ? (_e2 * m_38.z) : 0.0;
+    float _e2 = ndf_beckmann_d_matrix(r_73, m_43);
+    return (m_43.z > 0.0) ? (_e2 * m_43.z) : 0.0;
 }
 
 float sampling_beckmann_visible_normal_pdf(
-    ndf_roughness_matrix_RoughnessMatrix r_71,
+    ndf_roughness_matrix_RoughnessMatrix r_74,
     metal::float3 wo_7,
-    metal::float3 m_39
+    metal::float3 m_44
 ) {
-    float _e3 = ndf_beckmann_d_matrix(r_71, m_39);
-    float _e4 = ndf_beckmann_lambda_matrix(r_71, wo_7);
-    float _e5 = sampling_visible_normal_pdf_of(wo_7, m_39, _e3, _e4);
+    float _e3 = ndf_beckmann_d_matrix(r_74, m_44);
+    float _e4 = ndf_beckmann_lambda_matrix(r_74, wo_7);
+    float _e5 = sampling_visible_normal_pdf_of(wo_7, m_44, _e3, _e4);
     return _e5;
 }
 
 float sampling_beckmann_reflection_pdf_from_normal(
-    ndf_roughness_matrix_RoughnessMatrix r_72,
+    ndf_roughness_matrix_RoughnessMatrix r_75,
     metal::float3 wo_8,
-    metal::float3 m_40
+    metal::float3 m_45
 ) {
     metal::float3 _e3 = sampling_normalize_scaled(wo_8);
-    float _e4 = ndf_beckmann_d_matrix(r_72, m_40);
-    float _e5 = ndf_beckmann_lambda_matrix(r_72, _e3);
-    float _e6 = sampling_reflection_pdf_of(_e3, m_40, _e4, _e5);
+    float _e4 = ndf_beckmann_d_matrix(r_75, m_45);
+    float _e5 = ndf_beckmann_lambda_matrix(r_75, _e3);
+    float _e6 = sampling_reflection_pdf_of(_e3, m_45, _e4, _e5);
     return _e6;
 }
 
@@ -4266,7 +4495,7 @@ metal::float2 sampling_gaussian_ggx_split_bits(
 }
 
 metal::float3 sampling_gaussian_ggx_sample_normal(
-    filter_gaussian_ggx_GaussianFilteredGgx g_7,
+    filter_gaussian_ggx_GaussianFilteredGgx g_8,
     metal::float2 u_16
 ) {
     metal::float2 ax_1 = metal::float2(1.0, 0.0);
@@ -4275,20 +4504,20 @@ metal::float3 sampling_gaussian_ggx_sample_normal(
     float _e6 = sampling_clamp_unit(u_16.y);
     metal::float2 _e7 = sampling_gaussian_ggx_split_bits(_e6);
     metal::float2 _e15 = math_sincos_turns(_e7.x);
-    metal::float2 t_19 = metal::sqrt(_e4.x / (1.0 - _e4.x)) * _e15;
-    sampling_Warp _e18 = sampling_warp(g_7.a);
-    metal::float2 gs = metal::float2(_e18.l_xx * t_19.x, (_e18.l_yx * t_19.x) + (_e18.l_yy * t_19.y));
+    metal::float2 t_20 = metal::sqrt(_e4.x / (1.0 - _e4.x)) * _e15;
+    sampling_Warp _e18 = sampling_warp(g_8.a);
+    metal::float2 gs = metal::float2(_e18.l_xx * t_20.x, (_e18.l_yx * t_20.x) + (_e18.l_yy * t_20.y));
     float _e33 = math_ln(1.0 - _e4.y);
     float _e40 = math_ln_1p(_e4.y / (1.0 - _e4.y));
     float e_7 = (_e4.y < 0.5) ? _e40 : -(_e33);
     metal::float2 _e49 = math_sincos_turns(_e7.y);
     metal::float2 y_4 = metal::sqrt(2.0 * e_7) * _e49;
-    kernel_covariance_Covariance k_31 = g_7.k;
+    kernel_covariance_Covariance k_31 = g_8.k;
     metal::float2 _e52 = kernel_covariance_eigenvalues(k_31);
-    float khalf = 0.5 * (g_7.k.s_xx - g_7.k.s_yy);
-    float _e59 = math_hypot(khalf, g_7.k.s_xy);
+    float khalf = 0.5 * (g_8.k.s_xx - g_8.k.s_yy);
+    float _e59 = math_hypot(khalf, g_8.k.s_xy);
     if (_e59 > 0.0) {
-        metal::float2 w_28 = (khalf >= 0.0) ? metal::float2(_e59 + khalf, g_7.k.s_xy) : metal::float2(g_7.k.s_xy, _e59 - khalf);
+        metal::float2 w_28 = (khalf >= 0.0) ? metal::float2(_e59 + khalf, g_8.k.s_xy) : metal::float2(g_8.k.s_xy, _e59 - khalf);
         float _e77 = math_hypot(w_28.x, w_28.y);
         ax_1 = w_28 / metal::float2(_e77);
     }
@@ -4297,17 +4526,17 @@ metal::float3 sampling_gaussian_ggx_sample_normal(
     float _e94 = ax_1.y;
     float _e99 = ax_1.y;
     float _e103 = ax_1.x;
-    metal::float2 s_32 = gs + metal::float2((_e90 * kk_1.x) - (_e94 * kk_1.y), (_e99 * kk_1.x) + (_e103 * kk_1.y));
-    metal::float3 _e112 = sampling_normalize_scaled(metal::float3(-(s_32), 1.0));
+    metal::float2 s_34 = gs + metal::float2((_e90 * kk_1.x) - (_e94 * kk_1.y), (_e99 * kk_1.x) + (_e103 * kk_1.y));
+    metal::float3 _e112 = sampling_normalize_scaled(metal::float3(-(s_34), 1.0));
     return metal::float3(_e112.xy, metal::max(_e112.z, math_F32_MIN_POSITIVE));
 }
 
 float sampling_gaussian_ggx_normal_pdf(
-    filter_gaussian_ggx_GaussianFilteredGgx g_8,
-    metal::float3 m_41
+    filter_gaussian_ggx_GaussianFilteredGgx g_9,
+    metal::float3 m_46
 ) {
-    float _e2 = filter_gaussian_ggx_d(g_8, m_41);
-    return (m_41.z > 0.0) ? (_e2 * m_41.z) : 0.0;
+    float _e2 = filter_gaussian_ggx_d(g_9, m_46);
+    return (m_46.z > 0.0) ? (_e2 * m_46.z) : 0.0;
 }
 
 float sampling_rect_sanitized_half_extent(
@@ -4319,55 +4548,55 @@ float sampling_rect_sanitized_half_extent(
 }
 
 metal::float3 sampling_rect_normal_of_slope(
-    metal::float2 s_19
+    metal::float2 s_21
 ) {
-    metal::float3 _e4 = sampling_normalize_scaled(metal::float3(-(s_19), 1.0));
+    metal::float3 _e4 = sampling_normalize_scaled(metal::float3(-(s_21), 1.0));
     return metal::float3(_e4.xy, metal::max(_e4.z, math_F32_MIN_POSITIVE));
 }
 
 metal::float3 sampling_rect_sample_normal_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_73,
+    ndf_roughness_axis_aligned_AxisAligned r_76,
     metal::float2 half_extent_7,
     metal::float2 u_17,
     metal::float2 u_box
 ) {
-    metal::float2 a_35 = r_73.alpha;
-    float _e7 = sampling_rect_sanitized_half_extent(half_extent_7.x, r_73.alpha.x);
-    float _e10 = sampling_rect_sanitized_half_extent(half_extent_7.y, r_73.alpha.y);
+    metal::float2 a_39 = r_76.alpha;
+    float _e7 = sampling_rect_sanitized_half_extent(half_extent_7.x, r_76.alpha.x);
+    float _e10 = sampling_rect_sanitized_half_extent(half_extent_7.y, r_76.alpha.y);
     metal::float2 h_33 = metal::float2(_e7, _e10);
     float _e13 = sampling_clamp_unit(u_17.x);
     float _e15 = sampling_clamp_unit(u_17.y);
     metal::float2 _e16 = math_sincos_turns(_e15);
     float rad_1 = metal::sqrt(_e13 / (1.0 - _e13));
-    metal::float2 g_9 = -(a_35) * (rad_1 * _e16);
+    metal::float2 g_10 = -(a_39) * (rad_1 * _e16);
     float _e25 = sampling_clamp_unit(u_box.x);
     float _e27 = sampling_clamp_unit(u_box.y);
-    metal::float2 b_9 = metal::float2(_e25, _e27);
-    metal::float2 d_8 = ((2.0 * b_9) - metal::float2(1.0)) * h_33;
-    metal::float3 _e36 = sampling_rect_normal_of_slope(g_9 + d_8);
+    metal::float2 b_10 = metal::float2(_e25, _e27);
+    metal::float2 d_9 = ((2.0 * b_10) - metal::float2(1.0)) * h_33;
+    metal::float3 _e36 = sampling_rect_normal_of_slope(g_10 + d_9);
     return _e36;
 }
 
 float sampling_rect_normal_pdf_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_74,
+    ndf_roughness_axis_aligned_AxisAligned r_77,
     metal::float2 half_extent_8,
-    metal::float3 m_42
+    metal::float3 m_47
 ) {
-    float _e3 = filter_rect_d_rect(r_74, m_42, half_extent_8);
-    return (m_42.z > 0.0) ? (_e3 * m_42.z) : 0.0;
+    float _e3 = filter_rect_d_rect(r_77, m_47, half_extent_8);
+    return (m_47.z > 0.0) ? (_e3 * m_47.z) : 0.0;
 }
 
 float sampling_rect_visible_normal_pdf_rect(
-    ndf_roughness_axis_aligned_AxisAligned r_75,
+    ndf_roughness_axis_aligned_AxisAligned r_78,
     metal::float2 half_extent_9,
     metal::float3 wo_9,
-    metal::float3 m_43
+    metal::float3 m_48
 ) {
     bool local_37 = {};
     bool local_38 = {};
-    float wom_1 = metal::dot(wo_9, m_43);
+    float wom_1 = metal::dot(wo_9, m_48);
     if (!(!((wo_9.z > 0.0)))) {
-        local_37 = !((m_43.z > 0.0));
+        local_37 = !((m_48.z > 0.0));
     } else {
         local_37 = true;
     }
@@ -4381,8 +4610,8 @@ float sampling_rect_visible_normal_pdf_rect(
     if (_e25) {
         return 0.0;
     }
-    float _e27 = filter_rect_d_rect(r_75, m_43, half_extent_9);
-    float _e30 = filter_rect_lambda_lambda_rect(r_75, half_extent_9, wo_9);
+    float _e27 = filter_rect_d_rect(r_78, m_48, half_extent_9);
+    float _e30 = filter_rect_lambda_lambda_rect(r_78, half_extent_9, wo_9);
     float v_24 = (wom_1 * _e27) / (wo_9.z * (1.0 + _e30));
     return (v_24 <= math_F32_MAX) ? v_24 : 0.0;
 }

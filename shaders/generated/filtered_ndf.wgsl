@@ -191,23 +191,188 @@ fn math_nan_to_zero3(v: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(math_nan_to_zero(v.x), math_nan_to_zero(v.y), math_nan_to_zero(v.z));
 }
 
-// ---- filtered_ndf::ndf::roughness (shaders/ndf/roughness/mod.wgsl) ----
-// The roughness forms (`src/.../roughness/`): a roughness is the matrix `A` of TK19
-// supplement section 1 (Heitz 2014 section 5.4). Both NDFs depend on a slope `s` only through
-// `s^T A^-1 s` and `sqrt(det A)`, and Smith's `Lambda(w)` only through `w_xy^T A w_xy`: each
-// form (`isotropic`, `axis_aligned`, `matrix`) provides those three numbers as
-// `inv_quadratic`, `quadratic` and `sqrt_det`, and the NDF modules take them as arguments.
-// This module holds what the three share.
+// ---- filtered_ndf::ndf::roughness::matrix (shaders/ndf/roughness/matrix.wgsl) ----
+/// A symmetric positive-definite roughness matrix `A = [[a11, a12], [a12, a22]]` (TK19
+/// supplement section 1; Heitz 2014 section 5.4) with the TK19 determinant clamp `tau`
+/// (supplement, "Practical Implementation"; `det_clamp` in the Rust API), mirroring
+/// `RoughnessMatrix` of `src/.../ndf/roughness/matrix.rs`.
+///
+/// **The determinant clamp: one clamped matrix.** Every function (`D`, `P22`, `Lambda`, the
+/// sampler's warp) evaluates one matrix `A_c`: `A` itself when `det A >= tau`, else
+/// `A_c = A + t I` with `t > 0` the root of `det(A + t I) = tau`,
+/// `t = (tau - det A) / (tr(A) / 2 + sqrt(tr(A)^2 / 4 + tau - det A))` (no cancellation). So
+/// `det A_c = max(det A, tau)` and the density is normalised for `A_c` (TK19's literal
+/// `sqrt(max(det A, tau))` with `A^-1 = adj(A) / max(det A, tau)` is not: its integral is
+/// `sqrt(tau / det A)`). `A_c - A = t I` shares `A`'s eigenvectors, so in the eigenbasis
+/// `A_c = R diag(l1 + t, l2 + t) R^T`, and with `(l1 + t)(l2 + t) = tau` the clamped minor
+/// eigenvalue is `tau / (l1 + t)`, a quotient of positive numbers (no cancellation whatever
+/// `t`). Filters add their kernel to `A` as given ([`entries`], [`determinant`]) and clamp the
+/// result with `det A_c` ([`clamped_det`]), as the Rust filters do.
+///
+/// **Representation: the eigenbasis.** `A = R diag(l1, l2) R^T` with `R = [e1, e2]`,
+/// `e1 = axis`, `e2 = (-axis.y, axis.x)`. Both quadratic forms are then sums of two
+/// non-negative squares of the rotated vector. The Rust crate evaluates the matrix form in
+/// f64 (an LDL form); WGSL has only f32, where the LDL form (and the entries of `A^-1`)
+/// cancel to a relative `cond(A) eps`. In the eigenbasis a rotation error `d theta` changes
+/// `s^T A^-1 s` by at most `sqrt(cond A) d theta` relative (first order, from the cross term
+/// `2 r1 r2 (1/l1 - 1/l2) d theta`, bounded with `|r_i| <= sqrt(l_i q)`), and the rotated
+/// components carry at most 4 ulp of `|s|`, so
+///
+/// `|d q| / q <= eps (8 + 8 sqrt(cond A_c)) + (relative error of the eigenvalues)`,
+///
+/// `eps = 2^-23`, `cond A_c = (l1 + t) / (l2 + t)`. The eigenvalues come from the constructor:
+/// [`from_eigen`] takes them exactly (the way to build a rotated anisotropic material);
+/// [`from_entries_det`] takes `det A` from the caller (the filters pass it as a sum of
+/// non-negative terms), `l1` is a sum of non-negative terms and `l2 = det / l1`, both within
+/// a few ulp; [`from_entries`] forms `det A = a11 a22 - a12^2` in f32, which cancels to a
+/// relative `cond(A) eps`: use it only for well-conditioned matrices. The clamp adds at most
+/// 5 ulp to the clamped eigenvalues (`t` within 4 ulp of its own value; `l1 + t` a sum of
+/// positive terms; `tau / (l1 + t)` one division).
+///
+/// NaN: none of these functions tests for NaN (WGSL lets a driver assume none occurs).
+struct ndf_roughness_matrix_RoughnessMatrix {
+    /// Unit eigenvector `e1 = (c, s)` of `l1`; `e2 = (-s, c)`.
+    axis: vec2<f32>,
+    /// Eigenvalues `(l1, l2)` of `A` as given, along `(e1, e2)` (both `> 0`).
+    eig: vec2<f32>,
+    /// Eigenvalues of `A_c`: `(l1 + t, tau / (l1 + t))`, or `eig` when the clamp is inactive.
+    eig_c: vec2<f32>,
+    /// Eigenvalues of `A_c^-1` along `(e1, e2)`: `1 / eig_c`.
+    inv_eig: vec2<f32>,
+    /// `sqrt(det A_c) = sqrt(max(det A, tau))`.
+    sqrt_det: f32,
+    /// `det A` as the constructor had it (`l1 l2`, or the caller's sum of non-negative terms).
+    det: f32,
+    /// The clamp `tau` (0: none).
+    tau: f32,
+}
 
-/// Smallest supported roughness `alpha` (`A`'s smallest eigenvalue is `ALPHA_MIN^2`).
-const ndf_roughness_ALPHA_MIN: f32 = 1e-8;
-/// Largest supported roughness `alpha` (`A`'s largest eigenvalue is `ALPHA_MAX^2`).
-const ndf_roughness_ALPHA_MAX: f32 = 1e4;
+/// `A = R diag(alpha_x^2, alpha_y^2) R^T` with `R = [axis, perp(axis)]` for a unit `axis`
+/// (the tangent-space direction of `alpha_x`), no determinant clamp: a rotated anisotropic
+/// material. `alpha` is not clamped (the caller keeps it in `[ALPHA_MIN, ALPHA_MAX]`).
+fn ndf_roughness_matrix_from_eigen(axis: vec2<f32>, alpha: vec2<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
+    let l = alpha * alpha;
+    return ndf_roughness_matrix_RoughnessMatrix(axis, l, l, 1.0 / l, alpha.x * alpha.y, l.x * l.y, 0.0);
+}
 
-/// `alpha` clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust `clamp_alpha`; a NaN that the
-/// driver preserves maps to `ALPHA_MIN`).
-fn ndf_roughness_clamp_alpha(alpha: f32) -> f32 {
-    return select(ndf_roughness_ALPHA_MIN, min(alpha, ndf_roughness_ALPHA_MAX), alpha >= ndf_roughness_ALPHA_MIN);
+/// The clamped eigenvalues `(l1 + t, tau / (l1 + t))` of `A_c` for `A`'s eigenvalues `l`
+/// (`l1 >= l2`), `det = l1 l2` as the caller has it and the clamp `tau`; `l` itself when
+/// `det >= tau` (type docs).
+fn ndf_roughness_matrix_clamped_eigenvalues(l: vec2<f32>, det: f32, tau: f32) -> vec2<f32> {
+    if det >= tau {
+        return l;
+    }
+    let h = 0.5 * (l.x + l.y);
+    let gap = tau - det;
+    let t = gap / (h + sqrt(h * h + gap));
+    let l1 = l.x + t;
+    return vec2<f32>(l1, tau / l1);
+}
+
+/// A matrix from its eigenbasis, its eigenvalues `l` (`l1 >= l2`, `l2 >= 0`), the
+/// determinant `det` of `A` as the caller has it (`l1 l2`, or a sum of non-negative terms) and
+/// the clamp `tau >= 0` (0: none).
+fn ndf_roughness_matrix_from_eigenbasis(axis: vec2<f32>, l: vec2<f32>, det: f32, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    let lc = ndf_roughness_matrix_clamped_eigenvalues(l, det, tau);
+    return ndf_roughness_matrix_RoughnessMatrix(axis, l, lc, 1.0 / lc, sqrt(max(det, tau)), det, tau);
+}
+
+/// The eigen-decomposition of `A` from its entries and its determinant `det` (computed by
+/// the caller without cancellation, e.g. as a sum of non-negative terms), with the
+/// determinant clamp `tau >= 0` (0: none; the type docs for `A_c`). The caller guarantees
+/// `a11 > 0`, `a22 > 0` and `max(det, tau) > 0` (the Rust `from_entries`; no checks).
+///
+/// `l1 = (a11 + a22) / 2 + hypot((a11 - a22) / 2, a12)` (no cancellation), `l2 = det / l1`;
+/// the eigenvector of `l1` from whichever row of `A - l2 I` avoids cancellation. Entries up
+/// to `1e18` in magnitude (the squares stay finite).
+fn ndf_roughness_matrix_from_entries_det(a11: f32, a12: f32, a22: f32, det: f32, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    let half_diff = 0.5 * (a11 - a22);
+    let rad = sqrt(half_diff * half_diff + a12 * a12);
+    let l1 = 0.5 * (a11 + a22) + rad;
+    let l2 = max(det, 0.0) / l1;
+    // e1 from the row whose diagonal part does not cancel: (rad + |d|, a12) when a11 >= a22,
+    // else (a12, rad + |d|); any axis when A is isotropic.
+    let big = rad + abs(half_diff);
+    var v = select(vec2<f32>(big, a12), vec2<f32>(a12, big), half_diff < 0.0);
+    if big <= 0.0 {
+        v = vec2<f32>(1.0, 0.0);
+    }
+    let axis = v / length(v);
+    return ndf_roughness_matrix_from_eigenbasis(axis, vec2<f32>(l1, l2), det, tau);
+}
+
+/// [`from_entries_det`] with `det = a11 a22 - a12^2` formed here in f32 (relative error up
+/// to `cond(A) eps`, see the type docs) and no clamp. For well-conditioned matrices.
+fn ndf_roughness_matrix_from_entries(a11: f32, a12: f32, a22: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_entries_det(a11, a12, a22, a11 * a22 - a12 * a12, 0.0);
+}
+
+/// The same matrix `A` evaluated with the determinant clamp `tau = det_clamp` (the Rust
+/// `with_det_clamp`; `<= 0`: none): `A_c` recomputed from `A`'s eigenvalues.
+fn ndf_roughness_matrix_with_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix, det_clamp: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_eigenbasis(r.axis, r.eig, r.det, max(det_clamp, 0.0));
+}
+
+/// `v` in the eigenbasis: `(v . e1, v . e2)`.
+fn ndf_roughness_matrix_rotate(r: ndf_roughness_matrix_RoughnessMatrix, v: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(r.axis.x * v.x + r.axis.y * v.y, r.axis.x * v.y - r.axis.y * v.x);
+}
+
+/// `s^T A_c^-1 s = u1^2 / (l1 + t) + u2^2 / (l2 + t)` for the rotated `u` (error bound in the
+/// type docs).
+fn ndf_roughness_matrix_inv_quadratic(r: ndf_roughness_matrix_RoughnessMatrix, s: vec2<f32>) -> f32 {
+    let u = ndf_roughness_matrix_rotate(r, s);
+    return dot(u * u, r.inv_eig);
+}
+
+/// `w^T A_c w = u1^2 (l1 + t) + u2^2 (l2 + t)` (Smith's projected roughness of the matrix the
+/// density evaluates).
+fn ndf_roughness_matrix_quadratic(r: ndf_roughness_matrix_RoughnessMatrix, w: vec2<f32>) -> f32 {
+    let u = ndf_roughness_matrix_rotate(r, w);
+    return dot(u * u, r.eig_c);
+}
+
+/// `sqrt(det A_c) = sqrt(max(det A, tau))`.
+fn ndf_roughness_matrix_sqrt_det(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return r.sqrt_det;
+}
+
+/// The entries `(a11, a12, a22)` of the matrix with eigenvalues `l` in `r`'s eigenbasis: sums
+/// of non-negative terms on the diagonal (within a few ulp of `l1`).
+fn ndf_roughness_matrix_entries_of(r: ndf_roughness_matrix_RoughnessMatrix, l: vec2<f32>) -> vec3<f32> {
+    let c = r.axis.x;
+    let s = r.axis.y;
+    return vec3<f32>(l.x * c * c + l.y * s * s, (l.x - l.y) * c * s, l.x * s * s + l.y * c * c);
+}
+
+/// The entries `(a11, a12, a22)` of `A` as given: what a filter adds its kernel to.
+fn ndf_roughness_matrix_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
+    return ndf_roughness_matrix_entries_of(r, r.eig);
+}
+
+/// The entries of `A_c`, the matrix every function evaluates (`A`'s own when the clamp is
+/// inactive).
+fn ndf_roughness_matrix_clamped_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
+    return ndf_roughness_matrix_entries_of(r, r.eig_c);
+}
+
+/// `det A` (without the clamp), as the constructor had it.
+fn ndf_roughness_matrix_determinant(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return r.det;
+}
+
+/// `det A_c = max(det A, tau)`: the clamp a filter of this lobe uses (the Rust
+/// `clamped_det`, `lobe_det`), so that a kernel too small to change the entries meets the
+/// clamp with equality (and returns the lobe unchanged).
+fn ndf_roughness_matrix_clamped_det(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return max(r.det, r.tau);
+}
+
+/// The lobe's own clamp: `det A_c = tau` where the clamp is active (`tau > det A`), else 0
+/// (the Rust `own_det_clamp`). Every filter clamps with at least this, so that filtering never
+/// drops a clamped matrix's clamp (its entries may be far sharper than `A_c`).
+fn ndf_roughness_matrix_own_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return select(0.0, r.tau, r.tau > r.det);
 }
 
 // ---- filtered_ndf::footprint::jacobian (shaders/footprint/jacobian.wgsl) ----
@@ -590,401 +755,6 @@ fn kernel_covariance_sanitized(c_in: kernel_covariance_Covariance) -> kernel_cov
     return kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance(s_xx, s_xy, s_yy, 0.0), kernel_covariance_KERNEL_MAX);
 }
 
-// ---- filtered_ndf::filter::deferred (shaders/filter/deferred.wgsl) ----
-// Isotropic "deferred" roughness filtering: one scalar roughness widened by the spread of
-// the shading normal across a pixel (TK19 section 4; KHPL16 section 5.4), mirroring
-// `src/.../filter/deferred.rs`. The published engine conventions are values of
-// [`KernelConvention`] in `filter::presets`.
-
-/// TK19's clamp `kappa` on the kernel's squared roughness (TK19 eq. 1), slope^2.
-const filter_deferred_KAPPA: f32 = 0.18;
-
-/// `v = alpha^2` (TK19, Filament, Unity HDRP, O3DE).
-const filter_deferred_DOMAIN_ALPHA_SQ: u32 = 0u;
-/// `v = alpha` (Godot 4, whose "roughness squared" is `alpha`).
-const filter_deferred_DOMAIN_ALPHA: u32 = 1u;
-/// `v = sqrt(alpha)`, the perceptual roughness (Unreal, three.js, Babylon.js).
-const filter_deferred_DOMAIN_PERCEPTUAL: u32 = 2u;
-/// `v = alpha^2 / (1 - alpha^2)`, TK21's projected-space squared roughness (Unity HDRP
-/// `ProjectedSpaceNormalFiltering`); `alpha >= 1` maps to `F32_MAX`.
-const filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ: u32 = 3u;
-
-/// `|dn_u|^2 + |dn_v|^2` (TK19 eq. 4).
-const filter_deferred_NORM_SUM_SQUARED: u32 = 0u;
-/// `max(|dn_u|^2, |dn_v|^2)` (Vlachos 2015; Unreal, Babylon.js).
-const filter_deferred_NORM_MAX_SQUARED: u32 = 1u;
-/// The largest eigenvalue of the Gram matrix of `dn_u, dn_v` (TK19 eq. 1, `sigma^2 = 1`).
-const filter_deferred_NORM_MAX_EIGENVALUE: u32 = 2u;
-/// The largest absolute component of either difference, not squared (three.js).
-const filter_deferred_NORM_MAX_ABS_COMPONENT: u32 = 3u;
-
-/// `v' = v + k` (variances add).
-const filter_deferred_COMBINE_ADD: u32 = 0u;
-/// `v' = max(v, k)` (a roughness floor: Vlachos 2015, Unreal).
-const filter_deferred_COMBINE_MAX: u32 = 1u;
-
-/// TK19 eq. 1: `2 lambda_max(Sigma)`.
-const filter_deferred_BANDWIDTH_MAX: u32 = 0u;
-/// TK19 eq. 2, 4: `2 tr(Sigma)`.
-const filter_deferred_BANDWIDTH_TRACE: u32 = 1u;
-/// TK19 eq. 5: `tr(Sigma)`.
-const filter_deferred_BANDWIDTH_AVERAGE: u32 = 2u;
-
-/// How one engine turns normal differences into a widened roughness (the Rust
-/// `KernelConvention`). [`apply`] computes: (1) `alpha = max(alpha, perceptual_floor^2)`,
-/// `v = domain(alpha)`; (2) `k = min(max(scale norm^exponent + bias, 0), clamp)`;
-/// (3) `v' = v + k` or `max(v, k)`, then `min(v', 1)` if `saturate`; (4) `alpha_bar` from
-/// `v'`, clamped to `[0, ALPHA_MAX]`.
-struct filter_deferred_KernelConvention {
-    /// `DOMAIN_*`.
-    domain: u32,
-    /// `NORM_*`.
-    norm: u32,
-    /// Factor on `norm^exponent` (TK19's `2 sigma^2` is 0.5).
-    scale: f32,
-    /// Exponent on the norm (1 for the variance forms, Unreal's 0.333).
-    exponent: f32,
-    /// Added after scaling.
-    bias: f32,
-    /// Upper bound of the kernel in domain units (`F32_MAX`: none).
-    clamp: f32,
-    /// `COMBINE_*`.
-    combine: u32,
-    /// Final `min(v', 1)` (HLSL `saturate`).
-    saturate: bool,
-    /// Minimum perceptual roughness `sqrt(alpha)` enforced first (0: none).
-    perceptual_floor: f32,
-}
-
-/// `alpha -> v` in `domain` (`alpha >= 0`).
-fn filter_deferred_from_alpha(domain: u32, alpha: f32) -> f32 {
-    if domain == filter_deferred_DOMAIN_ALPHA {
-        return alpha;
-    }
-    if domain == filter_deferred_DOMAIN_PERCEPTUAL {
-        return sqrt(alpha);
-    }
-    let a2 = alpha * alpha;
-    if domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ {
-        return select(math_F32_MAX, a2 / (1.0 - a2), a2 < 1.0);
-    }
-    return a2;
-}
-
-/// `v -> alpha`, the inverse of [`from_alpha`] for `v >= 0`.
-fn filter_deferred_to_alpha(domain: u32, v: f32) -> f32 {
-    if domain == filter_deferred_DOMAIN_ALPHA {
-        return v;
-    }
-    if domain == filter_deferred_DOMAIN_PERCEPTUAL {
-        return v * v;
-    }
-    if domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ {
-        return select(1.0, sqrt(v / (1.0 + v)), v < math_F32_MAX);
-    }
-    return sqrt(v);
-}
-
-/// The largest eigenvalue of `[[a, b], [b, c]]` (no cancellation: mean plus radius), `>= 0`.
-fn filter_deferred_max_eigenvalue(a: f32, b: f32, c: f32) -> f32 {
-    return max(0.5 * (a + c) + math_hypot(0.5 * (a - c), b), 0.0);
-}
-
-/// The measure `norm` of `(dn_u, dn_v)`, `>= 0`. The NaN policy (as the Rust `Norm::eval`):
-/// a NaN entry of a difference counts as 0 (`math::nan_to_zero3`, decided on the bits).
-fn filter_deferred_norm_eval(norm: u32, dn_u_in: vec3<f32>, dn_v_in: vec3<f32>) -> f32 {
-    let dn_u = math_nan_to_zero3(dn_u_in);
-    let dn_v = math_nan_to_zero3(dn_v_in);
-    let a = dot(dn_u, dn_u);
-    let c = dot(dn_v, dn_v);
-    if norm == filter_deferred_NORM_MAX_SQUARED {
-        return max(a, c);
-    }
-    if norm == filter_deferred_NORM_MAX_EIGENVALUE {
-        return filter_deferred_max_eigenvalue(a, dot(dn_u, dn_v), c);
-    }
-    if norm == filter_deferred_NORM_MAX_ABS_COMPONENT {
-        let m = max(abs(dn_u), abs(dn_v));
-        return max(max(m.x, m.y), m.z);
-    }
-    return a + c;
-}
-
-/// `min(max(k, 0), clamp)`; a NaN `k` (which only an infinite difference gives, `inf * 0`,
-/// once NaN entries count as 0) is the clamp: an infinite difference saturates.
-fn filter_deferred_clamp_widening(conv: filter_deferred_KernelConvention, k: f32) -> f32 {
-    return select(min(max(k, 0.0), conv.clamp), conv.clamp, math_is_nan(k));
-}
-
-/// The widening `min(max(scale norm^exponent + bias, 0), clamp)` in domain units (the kernel's
-/// contribution to the roughness value). `pow` is the
-/// driver's (`exp2(e log2 n)`: within `3 + 2 |e log2 n|` ulp plus `log2`'s error); a zero
-/// norm gives `max(bias, 0)`.
-fn filter_deferred_widening(conv: filter_deferred_KernelConvention, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
-    // An infinite entry (where the driver keeps infinities) saturates: the clamp, as the Rust
-    // widening of an infinite norm (decided here, before `inf * 0` can meet a `max`).
-    let lim = vec3<f32>(math_F32_MAX);
-    if any(abs(dn_u) > lim) || any(abs(dn_v) > lim) {
-        return conv.clamp;
-    }
-    let n = filter_deferred_norm_eval(conv.norm, dn_u, dn_v);
-    var raw = n;
-    if conv.exponent != 1.0 {
-        raw = select(0.0, pow(n, conv.exponent), n > 0.0);
-    }
-    return filter_deferred_clamp_widening(conv, conv.scale * raw + conv.bias);
-}
-
-/// Steps 1, 3, 4 of [`apply`] for a widening `k` already in domain units (clamped here).
-/// A negative `alpha` counts as 0; the result is in `[0, ALPHA_MAX]`.
-fn filter_deferred_apply_widening(conv: filter_deferred_KernelConvention, alpha_in: f32, k: f32) -> f32 {
-    var alpha = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
-    alpha = max(alpha, conv.perceptual_floor * conv.perceptual_floor);
-    let v = filter_deferred_from_alpha(conv.domain, alpha);
-    let kc = filter_deferred_clamp_widening(conv, k);
-    var out = select(v + kc, max(v, kc), conv.combine == filter_deferred_COMBINE_MAX);
-    if conv.saturate {
-        out = min(out, 1.0);
-    }
-    return clamp(filter_deferred_to_alpha(conv.domain, out), 0.0, ndf_roughness_ALPHA_MAX);
-}
-
-/// The filtered roughness `alpha_bar` for material roughness `alpha` and world-space normal
-/// differences `dn_u`, `dn_v` (`ddx(normal)`, `ddy(normal)`; TK19 Listing 2).
-fn filter_deferred_apply(conv: filter_deferred_KernelConvention, alpha: f32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
-    return filter_deferred_apply_widening(conv, alpha, filter_deferred_widening(conv, dn_u, dn_v));
-}
-
-/// The Gram covariance `sigma^2 [[dn_u.dn_u, dn_u.dn_v], [dn_u.dn_v, dn_v.dn_v]]` of two
-/// normal differences, `sigma` the pixel filter's standard deviation in pixels (its trace is
-/// TK19's `sigma^2 (|dn_u|^2 + |dn_v|^2)`; use only its invariants). Determinant
-/// `sigma^4 |dn_u x dn_v|^2` (Lagrange's identity, no cancellation).
-fn filter_deferred_normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>, sigma: f32) -> kernel_covariance_Covariance {
-    let sigma_sq = sigma * sigma;
-    let x = cross(dn_u, dn_v) * sigma_sq;
-    return kernel_covariance_Covariance(
-        dot(dn_u, dn_u) * sigma_sq,
-        dot(dn_u, dn_v) * sigma_sq,
-        dot(dn_v, dn_v) * sigma_sq,
-        dot(x, x),
-    );
-}
-
-/// The kernel's squared roughness of a bandwidth (`BANDWIDTH_*`) before the clamp:
-/// `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`.
-fn filter_deferred_bandwidth_alpha2(bandwidth: u32, kernel: kernel_covariance_Covariance) -> f32 {
-    // A NaN entry counts as 0 (the NaN policy, as the Rust `Bandwidth::alpha2`).
-    let s_xx = math_nan_to_zero(kernel.s_xx);
-    let s_xy = math_nan_to_zero(kernel.s_xy);
-    let s_yy = math_nan_to_zero(kernel.s_yy);
-    if bandwidth == filter_deferred_BANDWIDTH_MAX {
-        return 2.0 * filter_deferred_max_eigenvalue(s_xx, s_xy, s_yy);
-    }
-    let t = s_xx + s_yy;
-    return select(t, 2.0 * t, bandwidth == filter_deferred_BANDWIDTH_TRACE);
-}
-
-/// TK19 eq. 1, 4 or 5 from a slope-domain covariance:
-/// `alpha_bar = sqrt(saturate(alpha^2 + min(kernel, kappa)))`.
-fn filter_deferred_filtered_alpha(alpha: f32, kernel: kernel_covariance_Covariance, bandwidth: u32, kappa: f32) -> f32 {
-    let conv = filter_deferred_KernelConvention(
-        filter_deferred_DOMAIN_ALPHA_SQ,
-        filter_deferred_NORM_SUM_SQUARED,
-        0.5,
-        1.0,
-        0.0,
-        kappa,
-        filter_deferred_COMBINE_ADD,
-        true,
-        0.0,
-    );
-    return filter_deferred_apply_widening(conv, alpha, filter_deferred_bandwidth_alpha2(bandwidth, kernel));
-}
-
-// ---- filtered_ndf::ndf::roughness::matrix (shaders/ndf/roughness/matrix.wgsl) ----
-/// A symmetric positive-definite roughness matrix `A = [[a11, a12], [a12, a22]]` (TK19
-/// supplement section 1; Heitz 2014 section 5.4) with the TK19 determinant clamp `tau`
-/// (supplement, "Practical Implementation"; `det_clamp` in the Rust API), mirroring
-/// `RoughnessMatrix` of `src/.../ndf/roughness/matrix.rs`.
-///
-/// **The determinant clamp: one clamped matrix.** Every function (`D`, `P22`, `Lambda`, the
-/// sampler's warp) evaluates one matrix `A_c`: `A` itself when `det A >= tau`, else
-/// `A_c = A + t I` with `t > 0` the root of `det(A + t I) = tau`,
-/// `t = (tau - det A) / (tr(A) / 2 + sqrt(tr(A)^2 / 4 + tau - det A))` (no cancellation). So
-/// `det A_c = max(det A, tau)` and the density is normalised for `A_c` (TK19's literal
-/// `sqrt(max(det A, tau))` with `A^-1 = adj(A) / max(det A, tau)` is not: its integral is
-/// `sqrt(tau / det A)`). `A_c - A = t I` shares `A`'s eigenvectors, so in the eigenbasis
-/// `A_c = R diag(l1 + t, l2 + t) R^T`, and with `(l1 + t)(l2 + t) = tau` the clamped minor
-/// eigenvalue is `tau / (l1 + t)`, a quotient of positive numbers (no cancellation whatever
-/// `t`). Filters add their kernel to `A` as given ([`entries`], [`determinant`]) and clamp the
-/// result with `det A_c` ([`clamped_det`]), as the Rust filters do.
-///
-/// **Representation: the eigenbasis.** `A = R diag(l1, l2) R^T` with `R = [e1, e2]`,
-/// `e1 = axis`, `e2 = (-axis.y, axis.x)`. Both quadratic forms are then sums of two
-/// non-negative squares of the rotated vector. The Rust crate evaluates the matrix form in
-/// f64 (an LDL form); WGSL has only f32, where the LDL form (and the entries of `A^-1`)
-/// cancel to a relative `cond(A) eps`. In the eigenbasis a rotation error `d theta` changes
-/// `s^T A^-1 s` by at most `sqrt(cond A) d theta` relative (first order, from the cross term
-/// `2 r1 r2 (1/l1 - 1/l2) d theta`, bounded with `|r_i| <= sqrt(l_i q)`), and the rotated
-/// components carry at most 4 ulp of `|s|`, so
-///
-/// `|d q| / q <= eps (8 + 8 sqrt(cond A_c)) + (relative error of the eigenvalues)`,
-///
-/// `eps = 2^-23`, `cond A_c = (l1 + t) / (l2 + t)`. The eigenvalues come from the constructor:
-/// [`from_eigen`] takes them exactly (the way to build a rotated anisotropic material);
-/// [`from_entries_det`] takes `det A` from the caller (the filters pass it as a sum of
-/// non-negative terms), `l1` is a sum of non-negative terms and `l2 = det / l1`, both within
-/// a few ulp; [`from_entries`] forms `det A = a11 a22 - a12^2` in f32, which cancels to a
-/// relative `cond(A) eps`: use it only for well-conditioned matrices. The clamp adds at most
-/// 5 ulp to the clamped eigenvalues (`t` within 4 ulp of its own value; `l1 + t` a sum of
-/// positive terms; `tau / (l1 + t)` one division).
-///
-/// NaN: none of these functions tests for NaN (WGSL lets a driver assume none occurs).
-struct ndf_roughness_matrix_RoughnessMatrix {
-    /// Unit eigenvector `e1 = (c, s)` of `l1`; `e2 = (-s, c)`.
-    axis: vec2<f32>,
-    /// Eigenvalues `(l1, l2)` of `A` as given, along `(e1, e2)` (both `> 0`).
-    eig: vec2<f32>,
-    /// Eigenvalues of `A_c`: `(l1 + t, tau / (l1 + t))`, or `eig` when the clamp is inactive.
-    eig_c: vec2<f32>,
-    /// Eigenvalues of `A_c^-1` along `(e1, e2)`: `1 / eig_c`.
-    inv_eig: vec2<f32>,
-    /// `sqrt(det A_c) = sqrt(max(det A, tau))`.
-    sqrt_det: f32,
-    /// `det A` as the constructor had it (`l1 l2`, or the caller's sum of non-negative terms).
-    det: f32,
-    /// The clamp `tau` (0: none).
-    tau: f32,
-}
-
-/// `A = R diag(alpha_x^2, alpha_y^2) R^T` with `R = [axis, perp(axis)]` for a unit `axis`
-/// (the tangent-space direction of `alpha_x`), no determinant clamp: a rotated anisotropic
-/// material. `alpha` is not clamped (the caller keeps it in `[ALPHA_MIN, ALPHA_MAX]`).
-fn ndf_roughness_matrix_from_eigen(axis: vec2<f32>, alpha: vec2<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
-    let l = alpha * alpha;
-    return ndf_roughness_matrix_RoughnessMatrix(axis, l, l, 1.0 / l, alpha.x * alpha.y, l.x * l.y, 0.0);
-}
-
-/// The clamped eigenvalues `(l1 + t, tau / (l1 + t))` of `A_c` for `A`'s eigenvalues `l`
-/// (`l1 >= l2`), `det = l1 l2` as the caller has it and the clamp `tau`; `l` itself when
-/// `det >= tau` (type docs).
-fn ndf_roughness_matrix_clamped_eigenvalues(l: vec2<f32>, det: f32, tau: f32) -> vec2<f32> {
-    if det >= tau {
-        return l;
-    }
-    let h = 0.5 * (l.x + l.y);
-    let gap = tau - det;
-    let t = gap / (h + sqrt(h * h + gap));
-    let l1 = l.x + t;
-    return vec2<f32>(l1, tau / l1);
-}
-
-/// A matrix from its eigenbasis, its eigenvalues `l` (`l1 >= l2`, `l2 >= 0`), the
-/// determinant `det` of `A` as the caller has it (`l1 l2`, or a sum of non-negative terms) and
-/// the clamp `tau >= 0` (0: none).
-fn ndf_roughness_matrix_from_eigenbasis(axis: vec2<f32>, l: vec2<f32>, det: f32, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
-    let lc = ndf_roughness_matrix_clamped_eigenvalues(l, det, tau);
-    return ndf_roughness_matrix_RoughnessMatrix(axis, l, lc, 1.0 / lc, sqrt(max(det, tau)), det, tau);
-}
-
-/// The eigen-decomposition of `A` from its entries and its determinant `det` (computed by
-/// the caller without cancellation, e.g. as a sum of non-negative terms), with the
-/// determinant clamp `tau >= 0` (0: none; the type docs for `A_c`). The caller guarantees
-/// `a11 > 0`, `a22 > 0` and `max(det, tau) > 0` (the Rust `from_entries`; no checks).
-///
-/// `l1 = (a11 + a22) / 2 + hypot((a11 - a22) / 2, a12)` (no cancellation), `l2 = det / l1`;
-/// the eigenvector of `l1` from whichever row of `A - l2 I` avoids cancellation. Entries up
-/// to `1e18` in magnitude (the squares stay finite).
-fn ndf_roughness_matrix_from_entries_det(a11: f32, a12: f32, a22: f32, det: f32, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
-    let half_diff = 0.5 * (a11 - a22);
-    let rad = sqrt(half_diff * half_diff + a12 * a12);
-    let l1 = 0.5 * (a11 + a22) + rad;
-    let l2 = max(det, 0.0) / l1;
-    // e1 from the row whose diagonal part does not cancel: (rad + |d|, a12) when a11 >= a22,
-    // else (a12, rad + |d|); any axis when A is isotropic.
-    let big = rad + abs(half_diff);
-    var v = select(vec2<f32>(big, a12), vec2<f32>(a12, big), half_diff < 0.0);
-    if big <= 0.0 {
-        v = vec2<f32>(1.0, 0.0);
-    }
-    let axis = v / length(v);
-    return ndf_roughness_matrix_from_eigenbasis(axis, vec2<f32>(l1, l2), det, tau);
-}
-
-/// [`from_entries_det`] with `det = a11 a22 - a12^2` formed here in f32 (relative error up
-/// to `cond(A) eps`, see the type docs) and no clamp. For well-conditioned matrices.
-fn ndf_roughness_matrix_from_entries(a11: f32, a12: f32, a22: f32) -> ndf_roughness_matrix_RoughnessMatrix {
-    return ndf_roughness_matrix_from_entries_det(a11, a12, a22, a11 * a22 - a12 * a12, 0.0);
-}
-
-/// The same matrix `A` evaluated with the determinant clamp `tau = det_clamp` (the Rust
-/// `with_det_clamp`; `<= 0`: none): `A_c` recomputed from `A`'s eigenvalues.
-fn ndf_roughness_matrix_with_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix, det_clamp: f32) -> ndf_roughness_matrix_RoughnessMatrix {
-    return ndf_roughness_matrix_from_eigenbasis(r.axis, r.eig, r.det, max(det_clamp, 0.0));
-}
-
-/// `v` in the eigenbasis: `(v . e1, v . e2)`.
-fn ndf_roughness_matrix_rotate(r: ndf_roughness_matrix_RoughnessMatrix, v: vec2<f32>) -> vec2<f32> {
-    return vec2<f32>(r.axis.x * v.x + r.axis.y * v.y, r.axis.x * v.y - r.axis.y * v.x);
-}
-
-/// `s^T A_c^-1 s = u1^2 / (l1 + t) + u2^2 / (l2 + t)` for the rotated `u` (error bound in the
-/// type docs).
-fn ndf_roughness_matrix_inv_quadratic(r: ndf_roughness_matrix_RoughnessMatrix, s: vec2<f32>) -> f32 {
-    let u = ndf_roughness_matrix_rotate(r, s);
-    return dot(u * u, r.inv_eig);
-}
-
-/// `w^T A_c w = u1^2 (l1 + t) + u2^2 (l2 + t)` (Smith's projected roughness of the matrix the
-/// density evaluates).
-fn ndf_roughness_matrix_quadratic(r: ndf_roughness_matrix_RoughnessMatrix, w: vec2<f32>) -> f32 {
-    let u = ndf_roughness_matrix_rotate(r, w);
-    return dot(u * u, r.eig_c);
-}
-
-/// `sqrt(det A_c) = sqrt(max(det A, tau))`.
-fn ndf_roughness_matrix_sqrt_det(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return r.sqrt_det;
-}
-
-/// The entries `(a11, a12, a22)` of the matrix with eigenvalues `l` in `r`'s eigenbasis: sums
-/// of non-negative terms on the diagonal (within a few ulp of `l1`).
-fn ndf_roughness_matrix_entries_of(r: ndf_roughness_matrix_RoughnessMatrix, l: vec2<f32>) -> vec3<f32> {
-    let c = r.axis.x;
-    let s = r.axis.y;
-    return vec3<f32>(l.x * c * c + l.y * s * s, (l.x - l.y) * c * s, l.x * s * s + l.y * c * c);
-}
-
-/// The entries `(a11, a12, a22)` of `A` as given: what a filter adds its kernel to.
-fn ndf_roughness_matrix_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
-    return ndf_roughness_matrix_entries_of(r, r.eig);
-}
-
-/// The entries of `A_c`, the matrix every function evaluates (`A`'s own when the clamp is
-/// inactive).
-fn ndf_roughness_matrix_clamped_entries(r: ndf_roughness_matrix_RoughnessMatrix) -> vec3<f32> {
-    return ndf_roughness_matrix_entries_of(r, r.eig_c);
-}
-
-/// `det A` (without the clamp), as the constructor had it.
-fn ndf_roughness_matrix_determinant(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return r.det;
-}
-
-/// `det A_c = max(det A, tau)`: the clamp a filter of this lobe uses (the Rust
-/// `clamped_det`, `lobe_det`), so that a kernel too small to change the entries meets the
-/// clamp with equality (and returns the lobe unchanged).
-fn ndf_roughness_matrix_clamped_det(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return max(r.det, r.tau);
-}
-
-/// The lobe's own clamp: `det A_c = tau` where the clamp is active (`tau > det A`), else 0
-/// (the Rust `own_det_clamp`). Every filter clamps with at least this, so that filtering never
-/// drops a clamped matrix's clamp (its entries may be far sharper than `A_c`).
-fn ndf_roughness_matrix_own_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return select(0.0, r.tau, r.tau > r.det);
-}
-
 // ---- filtered_ndf::ndf (shaders/ndf/mod.wgsl) ----
 // What every NDF shares (`src/.../ndf/mod.rs`, the `Ndf` trait): the Smith terms derived
 // from `Lambda` once. Conventions (all NDFs, all roughness forms): tangent frame with `z` the
@@ -1021,6 +791,25 @@ fn ndf_g1_of(lambda_w: f32, w_dot_m: f32) -> f32 {
 /// section 1; Heitz 2014 eq. 99) from both `Lambda`s and both dot products. In `[0, 1]`.
 fn ndf_g2_of(lambda_i: f32, lambda_o: f32, i_dot_m: f32, o_dot_m: f32) -> f32 {
     return select(0.0, 1.0 / (1.0 + lambda_i + lambda_o), i_dot_m > 0.0 && o_dot_m > 0.0);
+}
+
+// ---- filtered_ndf::ndf::roughness (shaders/ndf/roughness/mod.wgsl) ----
+// The roughness forms (`src/.../roughness/`): a roughness is the matrix `A` of TK19
+// supplement section 1 (Heitz 2014 section 5.4). Both NDFs depend on a slope `s` only through
+// `s^T A^-1 s` and `sqrt(det A)`, and Smith's `Lambda(w)` only through `w_xy^T A w_xy`: each
+// form (`isotropic`, `axis_aligned`, `matrix`) provides those three numbers as
+// `inv_quadratic`, `quadratic` and `sqrt_det`, and the NDF modules take them as arguments.
+// This module holds what the three share.
+
+/// Smallest supported roughness `alpha` (`A`'s smallest eigenvalue is `ALPHA_MIN^2`).
+const ndf_roughness_ALPHA_MIN: f32 = 1e-8;
+/// Largest supported roughness `alpha` (`A`'s largest eigenvalue is `ALPHA_MAX^2`).
+const ndf_roughness_ALPHA_MAX: f32 = 1e4;
+
+/// `alpha` clamped into `[ALPHA_MIN, ALPHA_MAX]` (the Rust `clamp_alpha`; a NaN that the
+/// driver preserves maps to `ALPHA_MIN`).
+fn ndf_roughness_clamp_alpha(alpha: f32) -> f32 {
+    return select(ndf_roughness_ALPHA_MIN, min(alpha, ndf_roughness_ALPHA_MAX), alpha >= ndf_roughness_ALPHA_MIN);
 }
 
 // ---- filtered_ndf::ndf::roughness::isotropic (shaders/ndf/roughness/isotropic.wgsl) ----
@@ -1636,6 +1425,367 @@ fn filter_gaussian_d_beckmann_gaussian(method: filter_gaussian_Gaussian, materia
     return ndf_beckmann_d_matrix(filter_gaussian_gaussian_lobe(method, material, fp), m);
 }
 
+// ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
+// LEAN mapping's moments and the nested convolution of KHPL16 section 5.5, eq. 21,
+// mirroring `src/.../filter/lean.rs`.
+
+/// First and second moments of normal-map slopes (Olano and Baker 2010), linearly
+/// filterable: `mean = E[s]`, `second = (E[s_x^2], E[s_x s_y], E[s_y^2])`.
+struct filter_lean_LeanMoments {
+    /// `(E[s_x], E[s_y])`.
+    mean: vec2<f32>,
+    /// `(E[s_x^2], E[s_x s_y], E[s_y^2])`.
+    second: vec3<f32>,
+}
+
+/// The covariance of the normal-map slopes, `E[s s^T] - E[s] E[s]^T` (LEAN eq. 5; KHPL16's
+/// `K_L`), `cov::sanitized` (mip filtering can make it slightly indefinite). Its
+/// determinant is formed from the differences (cancelling for elongated moments).
+fn filter_lean_covariance(m: filter_lean_LeanMoments) -> kernel_covariance_Covariance {
+    let c = kernel_covariance_from_entries(
+        m.second.x - m.mean.x * m.mean.x,
+        m.second.y - m.mean.x * m.mean.y,
+        m.second.z - m.mean.y * m.mean.y,
+    );
+    return kernel_covariance_sanitized(c);
+}
+
+/// `K_L * K_P * D = (K_L * K_P) * D` (KHPL16 eq. 21): the covariances add and the sum is
+/// filtered by `gaussian::gaussian` (`A' = A + 2 (Sigma_L + Sigma_P)`, `tau = det A`).
+fn filter_lean_lean(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    pixel: kernel_covariance_Covariance,
+    moments: filter_lean_LeanMoments,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian(a, kernel_covariance_add(kernel_covariance_sanitized(pixel), filter_lean_covariance(moments)));
+}
+
+// ---- filtered_ndf::bake::moments (shaders/bake/moments.wgsl) ----
+// The baked LEAN moment chain (`src/bake`, `filtered_ndf::bake::bake_rows`) as two textures
+// with all their mips, sampled by the hardware's trilinear or anisotropic filtering. Every
+// moment is linear in the texel weights, so a filtered fetch is the moments of the filter's
+// footprint on the base level (to the chain's storage rounding): the covariance is formed
+// after filtering, never filtered itself.
+//
+// | texture | format | channels |
+// |---|---|---|
+// | `moments` | `rgba16float` (filterable everywhere) or `rgba32float` (`float32-filterable`) | `(E[s_x], E[s_y], E[s_x^2], E[s_y^2])` |
+// | `moments_xy` | `r16float` or `r32float` | `E[s_x s_y]` |
+//
+// (the layout the command-line baker writes, `moments.ktx2` and `moments_xy.ktx2`: RGBA + R
+// because no filterable three-channel float format exists in WebGPU). Slopes are the bake's:
+// `s = -n_xy / n_z` in its OpenGL tangent frame (`x` along `+u`, `y` up the image, i.e. along
+// `-v` in WebGPU's texture coordinates when the image's first row is its top).
+
+/// The moments of one filtered fetch of each texture: `rgba = (E[s_x], E[s_y], E[s_x^2],
+/// E[s_y^2])`, `xy = E[s_x s_y]` (the Rust `bake::lean_moments` of the texel
+/// `[rgba.x, rgba.y, rgba.z, xy, rgba.w]`).
+fn bake_moments_from_texels(rgba: vec4<f32>, xy: f32) -> filter_lean_LeanMoments {
+    return filter_lean_LeanMoments(rgba.xy, vec3<f32>(rgba.z, xy, rgba.w));
+}
+
+/// The moments over a pixel footprint: both textures sampled with explicit derivatives of
+/// `uv` (`textureSampleGrad`: trilinear or anisotropic, as `s` is set up; any shader stage,
+/// uniform control flow not required). In a fragment shader pass `dpdx(uv)`, `dpdy(uv)`.
+fn bake_moments_sample_grad(
+    moments: texture_2d<f32>,
+    moments_xy: texture_2d<f32>,
+    s: sampler,
+    uv: vec2<f32>,
+    ddx_uv: vec2<f32>,
+    ddy_uv: vec2<f32>,
+) -> filter_lean_LeanMoments {
+    let rgba = textureSampleGrad(moments, s, uv, ddx_uv, ddy_uv);
+    let xy = textureSampleGrad(moments_xy, s, uv, ddx_uv, ddy_uv).x;
+    return bake_moments_from_texels(rgba, xy);
+}
+
+/// The moments at an explicit level of detail (`textureSampleLevel`: bilinear within a
+/// level, linear between levels with a linear mipmap filter): for ray tracing, compute
+/// shaders, or a level chosen from the footprint by the caller.
+fn bake_moments_sample_level(
+    moments: texture_2d<f32>,
+    moments_xy: texture_2d<f32>,
+    s: sampler,
+    uv: vec2<f32>,
+    level: f32,
+) -> filter_lean_LeanMoments {
+    let rgba = textureSampleLevel(moments, s, uv, level);
+    let xy = textureSampleLevel(moments_xy, s, uv, level).x;
+    return bake_moments_from_texels(rgba, xy);
+}
+
+// ---- filtered_ndf::bake::roughness (shaders/bake/roughness.wgsl) ----
+// A baked roughness chain (`src/bake/fit.rs`: the GGX or Beckmann lobe closest to each mip
+// texel's distribution of normals) read back as the lobe, mirroring `src/bake/decode.rs`.
+// Fetch the texel with the hardware's filtering as any material texture; each function takes
+// the fetched value(s) in the encoding the chain was stored in:
+//
+// | stored | function | lobe |
+// |---|---|---|
+// | `alpha` (`r16float`) | `isotropic::from_alpha` | `Isotropic` |
+// | glTF perceptual roughness `r = sqrt(alpha)` (metallic-roughness G channel) | `from_perceptual` | `Isotropic` |
+// | `[alpha_x, alpha_y, angle]` (`fit::AnisotropicAlpha`) | `from_anisotropic` | `RoughnessMatrix` |
+// | `KHR_materials_anisotropy`: roughness `r` and the anisotropy texel | `from_khr_anisotropy` | `RoughnessMatrix` |
+// | the roughness matrix `(A11, A12, A22, 1)` (`rgba16float`) | `from_matrix_texel` | `RoughnessMatrix` |
+//
+// Filtering the stored values is the engines' convention (a mip of perceptual roughness is
+// not the perceptual roughness of the mip); the chain's fits are per texel, so fetch at texel
+// centres of the level for the exact fit.
+
+/// glTF's perceptual roughness `r` as the isotropic lobe `alpha = r^2` (the Rust
+/// `bake::decode::alpha_from_perceptual`), clamped as `isotropic::from_alpha`.
+fn bake_roughness_from_perceptual(r: f32) -> ndf_roughness_isotropic_Isotropic {
+    return ndf_roughness_isotropic_from_alpha(r * r);
+}
+
+/// The anisotropic lobe `[alpha_x, alpha_y, angle]` (`alpha_x` along the direction at `angle`
+/// radians from `+x` towards `+y`) as the matrix `A = R diag(alpha_x^2, alpha_y^2) R^T` (the
+/// Rust `AnisotropicAlpha::matrix`); the angle's cosine and sine by `math::sincos_turns`
+/// (the driver's `cos`, `sin` may err by `2^-11`), the alphas clamped into
+/// `[ALPHA_MIN, ALPHA_MAX]`.
+fn bake_roughness_from_anisotropic(lobe: vec3<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
+    let axis = math_sincos_turns(lobe.z * (0.5 * math_INV_PI));
+    let a = vec2<f32>(ndf_roughness_clamp_alpha(lobe.x), ndf_roughness_clamp_alpha(lobe.y));
+    return ndf_roughness_matrix_from_eigen(axis, a);
+}
+
+/// The lobe of `KHR_materials_anisotropy` (the Rust `KhrAnisotropy::alpha`): the
+/// metallic-roughness texture's perceptual roughness `r` (`alpha_b = r^2` across the
+/// anisotropy direction) and the anisotropy texel as fetched from its unorm texture:
+/// direction `(cos, sin) = 2 rg - 1` (normalised: 8-bit channels are not unit), strength `b`,
+/// `alpha_t = mix(alpha_b, 1, b^2)` along the direction (the extension's definition).
+/// Multiply `b` by the material's `anisotropyStrength` and rotate the direction by its
+/// `anisotropyRotation` before calling, as the extension says. A zero direction is `+x`.
+fn bake_roughness_from_khr_anisotropy(r: f32, anisotropy: vec4<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
+    let d = 2.0 * anisotropy.xy - 1.0;
+    let len = length(d);
+    let axis = select(vec2<f32>(1.0, 0.0), d / len, len > 0.0);
+    let alpha_b = r * r;
+    let b = anisotropy.z;
+    let alpha_t = mix(alpha_b, 1.0, b * b);
+    let a = vec2<f32>(ndf_roughness_clamp_alpha(alpha_t), ndf_roughness_clamp_alpha(alpha_b));
+    return ndf_roughness_matrix_from_eigen(axis, a);
+}
+
+/// The roughness matrix stored as `(A11, A12, A22, 1)` (the baker's `--store alpha
+/// --anisotropic`): `matrix::from_entries` (its determinant formed in f32, within
+/// `cond(A) eps`).
+fn bake_roughness_from_matrix_texel(t: vec4<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_entries(t.x, t.y, t.z);
+}
+
+// ---- filtered_ndf::filter::deferred (shaders/filter/deferred.wgsl) ----
+// Isotropic "deferred" roughness filtering: one scalar roughness widened by the spread of
+// the shading normal across a pixel (TK19 section 4; KHPL16 section 5.4), mirroring
+// `src/.../filter/deferred.rs`. The published engine conventions are values of
+// [`KernelConvention`] in `filter::presets`.
+
+/// TK19's clamp `kappa` on the kernel's squared roughness (TK19 eq. 1), slope^2.
+const filter_deferred_KAPPA: f32 = 0.18;
+
+/// `v = alpha^2` (TK19, Filament, Unity HDRP, O3DE).
+const filter_deferred_DOMAIN_ALPHA_SQ: u32 = 0u;
+/// `v = alpha` (Godot 4, whose "roughness squared" is `alpha`).
+const filter_deferred_DOMAIN_ALPHA: u32 = 1u;
+/// `v = sqrt(alpha)`, the perceptual roughness (Unreal, three.js, Babylon.js).
+const filter_deferred_DOMAIN_PERCEPTUAL: u32 = 2u;
+/// `v = alpha^2 / (1 - alpha^2)`, TK21's projected-space squared roughness (Unity HDRP
+/// `ProjectedSpaceNormalFiltering`); `alpha >= 1` maps to `F32_MAX`.
+const filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ: u32 = 3u;
+
+/// `|dn_u|^2 + |dn_v|^2` (TK19 eq. 4).
+const filter_deferred_NORM_SUM_SQUARED: u32 = 0u;
+/// `max(|dn_u|^2, |dn_v|^2)` (Vlachos 2015; Unreal, Babylon.js).
+const filter_deferred_NORM_MAX_SQUARED: u32 = 1u;
+/// The largest eigenvalue of the Gram matrix of `dn_u, dn_v` (TK19 eq. 1, `sigma^2 = 1`).
+const filter_deferred_NORM_MAX_EIGENVALUE: u32 = 2u;
+/// The largest absolute component of either difference, not squared (three.js).
+const filter_deferred_NORM_MAX_ABS_COMPONENT: u32 = 3u;
+
+/// `v' = v + k` (variances add).
+const filter_deferred_COMBINE_ADD: u32 = 0u;
+/// `v' = max(v, k)` (a roughness floor: Vlachos 2015, Unreal).
+const filter_deferred_COMBINE_MAX: u32 = 1u;
+
+/// TK19 eq. 1: `2 lambda_max(Sigma)`.
+const filter_deferred_BANDWIDTH_MAX: u32 = 0u;
+/// TK19 eq. 2, 4: `2 tr(Sigma)`.
+const filter_deferred_BANDWIDTH_TRACE: u32 = 1u;
+/// TK19 eq. 5: `tr(Sigma)`.
+const filter_deferred_BANDWIDTH_AVERAGE: u32 = 2u;
+
+/// How one engine turns normal differences into a widened roughness (the Rust
+/// `KernelConvention`). [`apply`] computes: (1) `alpha = max(alpha, perceptual_floor^2)`,
+/// `v = domain(alpha)`; (2) `k = min(max(scale norm^exponent + bias, 0), clamp)`;
+/// (3) `v' = v + k` or `max(v, k)`, then `min(v', 1)` if `saturate`; (4) `alpha_bar` from
+/// `v'`, clamped to `[0, ALPHA_MAX]`.
+struct filter_deferred_KernelConvention {
+    /// `DOMAIN_*`.
+    domain: u32,
+    /// `NORM_*`.
+    norm: u32,
+    /// Factor on `norm^exponent` (TK19's `2 sigma^2` is 0.5).
+    scale: f32,
+    /// Exponent on the norm (1 for the variance forms, Unreal's 0.333).
+    exponent: f32,
+    /// Added after scaling.
+    bias: f32,
+    /// Upper bound of the kernel in domain units (`F32_MAX`: none).
+    clamp: f32,
+    /// `COMBINE_*`.
+    combine: u32,
+    /// Final `min(v', 1)` (HLSL `saturate`).
+    saturate: bool,
+    /// Minimum perceptual roughness `sqrt(alpha)` enforced first (0: none).
+    perceptual_floor: f32,
+}
+
+/// `alpha -> v` in `domain` (`alpha >= 0`).
+fn filter_deferred_from_alpha(domain: u32, alpha: f32) -> f32 {
+    if domain == filter_deferred_DOMAIN_ALPHA {
+        return alpha;
+    }
+    if domain == filter_deferred_DOMAIN_PERCEPTUAL {
+        return sqrt(alpha);
+    }
+    let a2 = alpha * alpha;
+    if domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ {
+        return select(math_F32_MAX, a2 / (1.0 - a2), a2 < 1.0);
+    }
+    return a2;
+}
+
+/// `v -> alpha`, the inverse of [`from_alpha`] for `v >= 0`.
+fn filter_deferred_to_alpha(domain: u32, v: f32) -> f32 {
+    if domain == filter_deferred_DOMAIN_ALPHA {
+        return v;
+    }
+    if domain == filter_deferred_DOMAIN_PERCEPTUAL {
+        return v * v;
+    }
+    if domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ {
+        return select(1.0, sqrt(v / (1.0 + v)), v < math_F32_MAX);
+    }
+    return sqrt(v);
+}
+
+/// The largest eigenvalue of `[[a, b], [b, c]]` (no cancellation: mean plus radius), `>= 0`.
+fn filter_deferred_max_eigenvalue(a: f32, b: f32, c: f32) -> f32 {
+    return max(0.5 * (a + c) + math_hypot(0.5 * (a - c), b), 0.0);
+}
+
+/// The measure `norm` of `(dn_u, dn_v)`, `>= 0`. The NaN policy (as the Rust `Norm::eval`):
+/// a NaN entry of a difference counts as 0 (`math::nan_to_zero3`, decided on the bits).
+fn filter_deferred_norm_eval(norm: u32, dn_u_in: vec3<f32>, dn_v_in: vec3<f32>) -> f32 {
+    let dn_u = math_nan_to_zero3(dn_u_in);
+    let dn_v = math_nan_to_zero3(dn_v_in);
+    let a = dot(dn_u, dn_u);
+    let c = dot(dn_v, dn_v);
+    if norm == filter_deferred_NORM_MAX_SQUARED {
+        return max(a, c);
+    }
+    if norm == filter_deferred_NORM_MAX_EIGENVALUE {
+        return filter_deferred_max_eigenvalue(a, dot(dn_u, dn_v), c);
+    }
+    if norm == filter_deferred_NORM_MAX_ABS_COMPONENT {
+        let m = max(abs(dn_u), abs(dn_v));
+        return max(max(m.x, m.y), m.z);
+    }
+    return a + c;
+}
+
+/// `min(max(k, 0), clamp)`; a NaN `k` (which only an infinite difference gives, `inf * 0`,
+/// once NaN entries count as 0) is the clamp: an infinite difference saturates.
+fn filter_deferred_clamp_widening(conv: filter_deferred_KernelConvention, k: f32) -> f32 {
+    return select(min(max(k, 0.0), conv.clamp), conv.clamp, math_is_nan(k));
+}
+
+/// The widening `min(max(scale norm^exponent + bias, 0), clamp)` in domain units (the kernel's
+/// contribution to the roughness value). `pow` is the
+/// driver's (`exp2(e log2 n)`: within `3 + 2 |e log2 n|` ulp plus `log2`'s error); a zero
+/// norm gives `max(bias, 0)`.
+fn filter_deferred_widening(conv: filter_deferred_KernelConvention, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+    // An infinite entry (where the driver keeps infinities) saturates: the clamp, as the Rust
+    // widening of an infinite norm (decided here, before `inf * 0` can meet a `max`).
+    let lim = vec3<f32>(math_F32_MAX);
+    if any(abs(dn_u) > lim) || any(abs(dn_v) > lim) {
+        return conv.clamp;
+    }
+    let n = filter_deferred_norm_eval(conv.norm, dn_u, dn_v);
+    var raw = n;
+    if conv.exponent != 1.0 {
+        raw = select(0.0, pow(n, conv.exponent), n > 0.0);
+    }
+    return filter_deferred_clamp_widening(conv, conv.scale * raw + conv.bias);
+}
+
+/// Steps 1, 3, 4 of [`apply`] for a widening `k` already in domain units (clamped here).
+/// A negative `alpha` counts as 0; the result is in `[0, ALPHA_MAX]`.
+fn filter_deferred_apply_widening(conv: filter_deferred_KernelConvention, alpha_in: f32, k: f32) -> f32 {
+    var alpha = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
+    alpha = max(alpha, conv.perceptual_floor * conv.perceptual_floor);
+    let v = filter_deferred_from_alpha(conv.domain, alpha);
+    let kc = filter_deferred_clamp_widening(conv, k);
+    var out = select(v + kc, max(v, kc), conv.combine == filter_deferred_COMBINE_MAX);
+    if conv.saturate {
+        out = min(out, 1.0);
+    }
+    return clamp(filter_deferred_to_alpha(conv.domain, out), 0.0, ndf_roughness_ALPHA_MAX);
+}
+
+/// The filtered roughness `alpha_bar` for material roughness `alpha` and world-space normal
+/// differences `dn_u`, `dn_v` (`ddx(normal)`, `ddy(normal)`; TK19 Listing 2).
+fn filter_deferred_apply(conv: filter_deferred_KernelConvention, alpha: f32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+    return filter_deferred_apply_widening(conv, alpha, filter_deferred_widening(conv, dn_u, dn_v));
+}
+
+/// The Gram covariance `sigma^2 [[dn_u.dn_u, dn_u.dn_v], [dn_u.dn_v, dn_v.dn_v]]` of two
+/// normal differences, `sigma` the pixel filter's standard deviation in pixels (its trace is
+/// TK19's `sigma^2 (|dn_u|^2 + |dn_v|^2)`; use only its invariants). Determinant
+/// `sigma^4 |dn_u x dn_v|^2` (Lagrange's identity, no cancellation).
+fn filter_deferred_normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>, sigma: f32) -> kernel_covariance_Covariance {
+    let sigma_sq = sigma * sigma;
+    let x = cross(dn_u, dn_v) * sigma_sq;
+    return kernel_covariance_Covariance(
+        dot(dn_u, dn_u) * sigma_sq,
+        dot(dn_u, dn_v) * sigma_sq,
+        dot(dn_v, dn_v) * sigma_sq,
+        dot(x, x),
+    );
+}
+
+/// The kernel's squared roughness of a bandwidth (`BANDWIDTH_*`) before the clamp:
+/// `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`.
+fn filter_deferred_bandwidth_alpha2(bandwidth: u32, kernel: kernel_covariance_Covariance) -> f32 {
+    // A NaN entry counts as 0 (the NaN policy, as the Rust `Bandwidth::alpha2`).
+    let s_xx = math_nan_to_zero(kernel.s_xx);
+    let s_xy = math_nan_to_zero(kernel.s_xy);
+    let s_yy = math_nan_to_zero(kernel.s_yy);
+    if bandwidth == filter_deferred_BANDWIDTH_MAX {
+        return 2.0 * filter_deferred_max_eigenvalue(s_xx, s_xy, s_yy);
+    }
+    let t = s_xx + s_yy;
+    return select(t, 2.0 * t, bandwidth == filter_deferred_BANDWIDTH_TRACE);
+}
+
+/// TK19 eq. 1, 4 or 5 from a slope-domain covariance:
+/// `alpha_bar = sqrt(saturate(alpha^2 + min(kernel, kappa)))`.
+fn filter_deferred_filtered_alpha(alpha: f32, kernel: kernel_covariance_Covariance, bandwidth: u32, kappa: f32) -> f32 {
+    let conv = filter_deferred_KernelConvention(
+        filter_deferred_DOMAIN_ALPHA_SQ,
+        filter_deferred_NORM_SUM_SQUARED,
+        0.5,
+        1.0,
+        0.0,
+        kappa,
+        filter_deferred_COMBINE_ADD,
+        true,
+        0.0,
+    );
+    return filter_deferred_apply_widening(conv, alpha, filter_deferred_bandwidth_alpha2(bandwidth, kernel));
+}
+
 // ---- filtered_ndf::filter::gaussian_ggx_quad (shaders/filter/gaussian_ggx_quad.wgsl) ----
 // The quadrature rules of the exact Gaussian-filtered GGX (`gaussian_ggx.wgsl`), the f32
 // rules of the Rust crate's `src/.../filter/gaussian_ggx_quad.rs` (derivations and bounds in
@@ -1700,7 +1850,7 @@ fn filter_gaussian_ggx_quad_laguerre_weight(k: u32) -> f32 {
 }
 
 /// `J / z2^2` for `c_i^2 = v_i^2 / z2` from `(v1^2, v2^2)`, `z2 > 0` and `(2 l1, 2 l2)`,
-/// `2 l1 >= 2 l2 >= 0` (the Rust `j`): `J(c)` itself for `z2 = 1` (a slope), `J / m_z^4` for a
+/// `2 l1 >= 2 l2 >= 0` (the Rust `mixture_integral`): `J(c)` itself for `z2 = 1` (a slope), `J / m_z^4` for a
 /// normal (`z2 = m_z^2`, `v = T m_xy`) without forming the slope. The rule by `q = |c|^2` and
 /// the kernel ratio (module docs).
 fn filter_gaussian_ggx_quad_mixture_integral(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
@@ -1713,7 +1863,7 @@ fn filter_gaussian_ggx_quad_mixture_integral(v1s: f32, v2s: f32, z2: f32, tl1: f
         return filter_gaussian_ggx_quad_laguerre(beta_m, v1s, v2s, z2, tl1, tl2);
     }
     let iz2 = 1.0 / z2;
-    return filter_gaussian_ggx_quad_trapezoid(v1s * iz2, v2s * iz2, tl1, tl2) * iz2 * iz2;
+    return filter_gaussian_ggx_quad_trapezoid_rule(v1s * iz2, v2s * iz2, tl1, tl2, filter_gaussian_ggx_quad_FULL_RULE) * iz2 * iz2;
 }
 
 /// The far-tail series of `J` (item 5), homogeneous as [`mixture_integral`]:
@@ -1747,14 +1897,70 @@ fn filter_gaussian_ggx_quad_laguerre(beta_m: f32, v1s: f32, v2s: f32, z2: f32, t
     return acc * ib * ib;
 }
 
-/// The geometric sums `1 / (e^((n + 2) H) - 1)` of the series below the first node.
-fn filter_gaussian_ggx_quad_geom(n: u32) -> f32 {
-    switch n {
-        case 0u: { return 0.5819767068693265; }
-        case 1u: { return 0.2872169167888683; }
-        case 2u: { return 0.15651764274966565; }
-        default: { return 0.08942548983385201; }
+/// The constants of a trapezoid rule in `ln w` (items 2 and 3, and the Rust `Tolerance`
+/// settings): step `h`, `e^h`, the truncation tolerance, the first node's bound `Y`, the
+/// geometric sums `1 / (e^((n + 2) h) - 1)`, `n < 4`, of the series below the first node, and
+/// the most nodes (a multiple of 8, `nodes h <= 88`: every `e^(k h)` finite in f32).
+struct filter_gaussian_ggx_quad_TrapezoidRule {
+    h: f32,
+    exp_h: f32,
+    eps_t: f32,
+    y_lo: f32,
+    geom: vec4<f32>,
+    nodes: u32,
+}
+
+/// The full rule (step 0.5).
+const filter_gaussian_ggx_quad_FULL_RULE: filter_gaussian_ggx_quad_TrapezoidRule = filter_gaussian_ggx_quad_TrapezoidRule(filter_gaussian_ggx_quad_H, filter_gaussian_ggx_quad_EXP_H, filter_gaussian_ggx_quad_EPS_T, filter_gaussian_ggx_quad_Y_LO, vec4<f32>(0.5819767068693265, 0.2872169167888683, 0.15651764274966565, 0.08942548983385201), filter_gaussian_ggx_quad_CHUNKS * 8u);
+
+/// The accuracy settings (the Rust `Tolerance`): `TOL_FULL` the rules above; the others the
+/// far-tail series where `2 l1 (K + 12 ln(1 + q)) <= 1 + q`, else the trapezoid rule of
+/// [`reduced_rule`], with the relative bounds `1e-4`, `1e-3`, `1e-2` (Rust module docs,
+/// "Tolerance settings"); their constants are the Rust rules' (written by `generate`). `ln` is
+/// `math::ln` here, not the Rust upper bound, so the switch can sit a few ulp of `1 + q` away
+/// from the Rust one: both rules hold their bounds on both sides. The truncation test runs
+/// every 8 nodes (Rust: 4), so the WGSL never stops earlier than the Rust rule.
+const filter_gaussian_ggx_quad_TOL_FULL: u32 = 0u;
+const filter_gaussian_ggx_quad_TOL_1E4: u32 = 1u;
+const filter_gaussian_ggx_quad_TOL_1E3: u32 = 2u;
+const filter_gaussian_ggx_quad_TOL_1E2: u32 = 3u;
+
+// BEGIN reduced rules
+// Written by `cargo run -p filtered-ndf-gpu --bin generate` from the Rust rules
+// (`filtered_ndf::testing::tolerance_rules`); do not edit.
+
+/// The far-tail switch `K` of a reduced setting (`TOL_1E4`, `TOL_1E3`, else `TOL_1E2`).
+fn filter_gaussian_ggx_quad_reduced_far(tol: u32) -> f32 {
+    switch tol {
+        case 1u: { return 1500.0; }
+        case 2u: { return 500.0; }
+        default: { return 160.0; }
     }
+}
+
+/// The trapezoid rule of a reduced setting (`TOL_1E4`, `TOL_1E3`, else `TOL_1E2`): the
+/// Rust rule's constants, its node count rounded down to the 8-node chunks of
+/// [`trapezoid_rule`].
+fn filter_gaussian_ggx_quad_reduced_rule(tol: u32) -> filter_gaussian_ggx_quad_TrapezoidRule {
+    switch tol {
+        case 1u: { return filter_gaussian_ggx_quad_TrapezoidRule(0.6, 1.8221188003905089, 1e-5, 0.12, vec4<f32>(0.43101276069333316, 0.19803362651500594, 0.09976877209617539, 0.05239569649125596), 144u); }
+        case 2u: { return filter_gaussian_ggx_quad_TrapezoidRule(0.75, 2.117000016612675, 0.0001, 0.2, vec4<f32>(0.2872169167888682, 0.11781705030408056, 0.05239569649125593, 0.02408415079352912), 112u); }
+        default: { return filter_gaussian_ggx_quad_TrapezoidRule(1.0, 2.718281828459045, 0.0005, 0.35, vec4<f32>(0.15651764274966568, 0.05239569649125596, 0.01865736036377405, 0.006783654906304232), 88u); }
+    }
+}
+// END reduced rules
+
+/// `J / z2^2` (as [`mixture_integral`]) at the accuracy setting `tol` (`TOL_FULL` to `TOL_1E2`).
+fn filter_gaussian_ggx_quad_j_tol(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32, tol: u32) -> f32 {
+    if tol == filter_gaussian_ggx_quad_TOL_FULL {
+        return filter_gaussian_ggx_quad_mixture_integral(v1s, v2s, z2, tl1, tl2);
+    }
+    let beta_m = z2 + v1s + v2s;
+    if tl1 * z2 * (filter_gaussian_ggx_quad_reduced_far(tol) + 12.0 * math_ln(beta_m / z2)) <= beta_m {
+        return filter_gaussian_ggx_quad_far_tail(beta_m, v1s, v2s, tl1, tl2, z2);
+    }
+    let iz2 = 1.0 / z2;
+    return filter_gaussian_ggx_quad_trapezoid_rule(v1s * iz2, v2s * iz2, tl1, tl2, filter_gaussian_ggx_quad_reduced_rule(tol)) * iz2 * iz2;
 }
 
 /// The nodes below `w_first` (item 2): `sum_k w_k^2 phi(w_k)` over `w_k = w_first e^(-k H)`,
@@ -1762,7 +1968,7 @@ fn filter_gaussian_ggx_quad_geom(n: u32) -> f32 {
 /// Scaled by `y = w_first`: with `x_i = 2 l_i y`, `d_i = c_i^2 y` (both `<= Y_LO`), the
 /// coefficients `b~_n = b_n y^n` of `ln phi` and `a~_n = a_n y^n` are bounded, and the sum is
 /// `y^2 sum_n a~_n / (e^((n + 2) H) - 1)`.
-fn filter_gaussian_ggx_quad_series_below(c1s: f32, c2s: f32, tl1: f32, tl2: f32, y: f32) -> f32 {
+fn filter_gaussian_ggx_quad_series_below(c1s: f32, c2s: f32, tl1: f32, tl2: f32, y: f32, geom: vec4<f32>) -> f32 {
     let x1 = tl1 * y;
     let x2 = tl2 * y;
     let d1 = c1s * y;
@@ -1776,21 +1982,23 @@ fn filter_gaussian_ggx_quad_series_below(c1s: f32, c2s: f32, tl1: f32, tl2: f32,
     let a1 = b1;
     let a2 = 0.5 * (b1 * a1 + 2.0 * b2);
     let a3 = (1.0 / 3.0) * (b1 * a2 + 2.0 * b2 * a1 + 3.0 * b3);
-    let tail = filter_gaussian_ggx_quad_geom(0u) + a1 * filter_gaussian_ggx_quad_geom(1u) + a2 * filter_gaussian_ggx_quad_geom(2u) + a3 * filter_gaussian_ggx_quad_geom(3u);
+    let tail = geom.x + a1 * geom.y + a2 * geom.z + a3 * geom.w;
     return tail * y * y;
 }
 
 /// The trapezoid rule in `t = ln w` (items 1 to 3): nodes `w_k = w_r e^((k - k0) H)` from the
 /// first node at or below `Y_LO / (1 + q + 2 l1)`, the nodes below it summed by
 /// [`series_below`], each exponent against the reference `w_r = 2 / (1 + q)`, the top truncated
-/// by the monotone bound, in chunks of 8 nodes.
-fn filter_gaussian_ggx_quad_trapezoid(c1s: f32, c2s: f32, tl1: f32, tl2: f32) -> f32 {
+/// by the monotone bound, in chunks of 8 nodes; the constants of `rule` (the first node's
+/// offset `k0 h` at most 87, so that `e^(-k0 h)` is a normal f32).
+fn filter_gaussian_ggx_quad_trapezoid_rule(c1s: f32, c2s: f32, tl1: f32, tl2: f32, rule: filter_gaussian_ggx_quad_TrapezoidRule) -> f32 {
+    let hs = rule.h;
     let beta = 1.0 + c1s + c2s;
     let ib = 1.0 / beta;
     let w_r = 2.0 * ib;
-    // k0 H >= ln(w_r / w_lo), w_lo = Y_LO / (beta + 2 l1).
-    let k0 = min(ceil(math_ln(2.0 / filter_gaussian_ggx_quad_Y_LO * (beta + tl1) * ib) / filter_gaussian_ggx_quad_H), f32(filter_gaussian_ggx_quad_CHUNKS * 8u - 1u));
-    let w_first = w_r * math_exp(-k0 * filter_gaussian_ggx_quad_H);
+    // k0 h >= ln(w_r / w_lo), w_lo = Y / (beta + 2 l1).
+    let k0 = min(ceil(math_ln(2.0 / rule.y_lo * (beta + tl1) * ib) / hs), min(f32(rule.nodes - 1u), floor(87.0 / hs)));
+    let w_first = w_r * math_exp(-k0 * hs);
     // The reference exponent x_r = -w_r - E(w_r); E(w) - E(w_r) = sum c_i^2 (w - w_r) /
     // (p_i(w) p_i(w_r)) without cancellation.
     let pr1 = 1.0 + tl1 * w_r;
@@ -1799,15 +2007,15 @@ fn filter_gaussian_ggx_quad_trapezoid(c1s: f32, c2s: f32, tl1: f32, tl2: f32) ->
     let k2 = c2s * (w_r / pr2);
     let x_r = -w_r - k1 - k2;
     let scale = w_r * w_r * math_exp(x_r);
-    // Per node, v = w / w_r = e^((k - k0) H), p_i = 1 + (2 l_i w_r) v:
+    // Per node, v = w / w_r = e^((k - k0) hs), p_i = 1 + (2 l_i w_r) v:
     // g / scale = exp(2 ln v - (v - 1)(w_r + k1 / p1 + k2 / p2)) / sqrt(p1 p2).
     let t1 = tl1 * w_r;
     let t2 = tl2 * w_r;
-    let stop = filter_gaussian_ggx_quad_EPS_T * filter_gaussian_ggx_quad_H * w_r * w_r;
+    let stop = rule.eps_t * hs * w_r * w_r;
     var sum = 0.0;
-    for (var ch = 0u; ch < filter_gaussian_ggx_quad_CHUNKS; ch++) {
+    for (var ch = 0u; ch < rule.nodes / 8u; ch++) {
         let kb = f32(ch * 8u) - k0;
-        var v = math_exp(kb * filter_gaussian_ggx_quad_H);
+        var v = math_exp(kb * hs);
         var part = 0.0;
         var last = 0.0;
         var vl = v;
@@ -1815,11 +2023,11 @@ fn filter_gaussian_ggx_quad_trapezoid(c1s: f32, c2s: f32, tl1: f32, tl2: f32) ->
             let ip1 = 1.0 / (1.0 + t1 * v);
             let ip2 = 1.0 / (1.0 + t2 * v);
             let a = w_r + k1 * ip1 + k2 * ip2;
-            let x = 2.0 * filter_gaussian_ggx_quad_H * (kb + f32(jj)) - (v - 1.0) * a;
+            let x = 2.0 * hs * (kb + f32(jj)) - (v - 1.0) * a;
             last = math_exp(x) * sqrt(ip1) * sqrt(ip2);
             part += last;
             vl = v;
-            v = v * filter_gaussian_ggx_quad_EXP_H;
+            v = v * rule.exp_h;
         }
         sum += part;
         // Item 3: the nodes above the last sum to at most g_last b / w_last^2.
@@ -1829,7 +2037,7 @@ fn filter_gaussian_ggx_quad_trapezoid(c1s: f32, c2s: f32, tl1: f32, tl2: f32) ->
             break;
         }
     }
-    return filter_gaussian_ggx_quad_H * (sum * scale + filter_gaussian_ggx_quad_series_below(c1s, c2s, tl1, tl2, w_first));
+    return hs * (sum * scale + filter_gaussian_ggx_quad_series_below(c1s, c2s, tl1, tl2, w_first, rule.geom));
 }
 
 /// The 8-node Gauss-Hermite rule for the standard normal density: positive node `k`
@@ -1998,6 +2206,25 @@ struct filter_gaussian_ggx_GaussianFilteredGgx {
     norm: f32,
     /// The sanitised kernel (for `Lambda`'s `o^T Sigma o`).
     k: kernel_covariance_Covariance,
+    /// The accuracy setting of `p22` and `d` (the Rust `Tolerance`): one of the `TOL_*`
+    /// constants.
+    tol: u32,
+}
+
+/// The accuracy settings of the density (the Rust `Tolerance`; bounds in its module docs,
+/// "Tolerance settings"): the full rules (relative error `1.8e-6`, the default), then `1e-4`,
+/// `1e-3` and `1e-2`. Out-of-range values act as `TOL_1E2`.
+const filter_gaussian_ggx_TOL_FULL: u32 = filter_gaussian_ggx_quad_TOL_FULL;
+const filter_gaussian_ggx_TOL_1E4: u32 = filter_gaussian_ggx_quad_TOL_1E4;
+const filter_gaussian_ggx_TOL_1E3: u32 = filter_gaussian_ggx_quad_TOL_1E3;
+const filter_gaussian_ggx_TOL_1E2: u32 = filter_gaussian_ggx_quad_TOL_1E2;
+
+/// The lobe `g` with its density at the accuracy setting `tol` (the Rust
+/// `GaussianFilteredGgx::with_tolerance`); `Lambda` and the samplers are unchanged.
+fn filter_gaussian_ggx_with_tolerance(g: filter_gaussian_ggx_GaussianFilteredGgx, tol: u32) -> filter_gaussian_ggx_GaussianFilteredGgx {
+    var out = g;
+    out.tol = tol;
+    return out;
 }
 
 /// The lobe of GGX roughness `a` (evaluated as its `A_c`) filtered by the kernel `kernel`
@@ -2030,7 +2257,7 @@ fn filter_gaussian_ggx_from_kernel(a: ndf_roughness_matrix_RoughnessMatrix, kern
     } else if l1 > 0.0 {
         l2 = l1;
     }
-    return filter_gaussian_ggx_GaussianFilteredGgx(a, isl, v, vec2<f32>(2.0 * l1, 2.0 * l2), math_INV_PI / ndf_roughness_matrix_sqrt_det(a), k);
+    return filter_gaussian_ggx_GaussianFilteredGgx(a, isl, v, vec2<f32>(2.0 * l1, 2.0 * l2), math_INV_PI / ndf_roughness_matrix_sqrt_det(a), k, filter_gaussian_ggx_TOL_FULL);
 }
 
 /// `(c1^2, c2^2)` of a tangent-plane vector `s` (a slope, or `m_xy` of a normal).
@@ -2044,7 +2271,7 @@ fn filter_gaussian_ggx_whiten(g: filter_gaussian_ggx_GaussianFilteredGgx, s: vec
 /// underflows.
 fn filter_gaussian_ggx_p22(g: filter_gaussian_ggx_GaussianFilteredGgx, s: vec2<f32>) -> f32 {
     let c = filter_gaussian_ggx_whiten(g, s);
-    return g.norm * filter_gaussian_ggx_quad_mixture_integral(c.x, c.y, 1.0, g.tl.x, g.tl.y);
+    return g.norm * filter_gaussian_ggx_quad_j_tol(c.x, c.y, 1.0, g.tl.x, g.tl.y, g.tol);
 }
 
 /// `D(m) = P22_Sigma(s(m)) / m_z^4` per steradian for a unit micronormal (the Rust `d`): `0`
@@ -2055,7 +2282,7 @@ fn filter_gaussian_ggx_d(g: filter_gaussian_ggx_GaussianFilteredGgx, m: vec3<f32
         return 0.0;
     }
     let c = filter_gaussian_ggx_whiten(g, m.xy);
-    let v = g.norm * filter_gaussian_ggx_quad_mixture_integral(c.x, c.y, m.z * m.z, g.tl.x, g.tl.y);
+    let v = g.norm * filter_gaussian_ggx_quad_j_tol(c.x, c.y, m.z * m.z, g.tl.x, g.tl.y, g.tol);
     return select(0.0, v, v <= math_F32_MAX);
 }
 
@@ -2106,244 +2333,22 @@ struct filter_gaussian_ggx_ExactGaussian {
     clamps: kernel_clamp_ClampRules,
     /// The standard deviation of the Gaussian pixel filter, in pixels.
     sigma: f32,
+    /// The accuracy setting of the GGX lobe's density (`TOL_*`, the Rust `Tolerance`).
+    tolerance: u32,
 }
 
 /// The unbiased filter of the footprint: `lambda = 1` (KHPL16 section 5.2), no `kappa`,
-/// `sigma = 0.5`.
-const filter_gaussian_ggx_KHPL16_EXACT_GAUSSIAN: filter_gaussian_ggx_ExactGaussian = filter_gaussian_ggx_ExactGaussian(kernel_clamp_KHPL16_RULES, footprint_SIGMA_PIXEL);
+/// `sigma = 0.5`, the full accuracy.
+const filter_gaussian_ggx_KHPL16_EXACT_GAUSSIAN: filter_gaussian_ggx_ExactGaussian = filter_gaussian_ggx_ExactGaussian(kernel_clamp_KHPL16_RULES, footprint_SIGMA_PIXEL, filter_gaussian_ggx_TOL_FULL);
 
 /// The GGX lobe of the exact Gaussian filter (the Rust `ExactGaussian::lobe` for GGX).
 fn filter_gaussian_ggx_exact_gaussian_lobe(method: filter_gaussian_ggx_ExactGaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> filter_gaussian_ggx_GaussianFilteredGgx {
-    return filter_gaussian_ggx_from_kernel(material, kernel_clamp_pixel_kernel(method.clamps, fp, method.sigma));
+    return filter_gaussian_ggx_with_tolerance(filter_gaussian_ggx_from_kernel(material, kernel_clamp_pixel_kernel(method.clamps, fp, method.sigma)), method.tolerance);
 }
 
 /// `D(m)` of [`exact_gaussian_lobe`].
 fn filter_gaussian_ggx_d_ggx_exact_gaussian(method: filter_gaussian_ggx_ExactGaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
     return filter_gaussian_ggx_d(filter_gaussian_ggx_exact_gaussian_lobe(method, material, fp), m);
-}
-
-// ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
-// LEAN mapping's moments and the nested convolution of KHPL16 section 5.5, eq. 21,
-// mirroring `src/.../filter/lean.rs`.
-
-/// First and second moments of normal-map slopes (Olano and Baker 2010), linearly
-/// filterable: `mean = E[s]`, `second = (E[s_x^2], E[s_x s_y], E[s_y^2])`.
-struct filter_lean_LeanMoments {
-    /// `(E[s_x], E[s_y])`.
-    mean: vec2<f32>,
-    /// `(E[s_x^2], E[s_x s_y], E[s_y^2])`.
-    second: vec3<f32>,
-}
-
-/// The covariance of the normal-map slopes, `E[s s^T] - E[s] E[s]^T` (LEAN eq. 5; KHPL16's
-/// `K_L`), `cov::sanitized` (mip filtering can make it slightly indefinite). Its
-/// determinant is formed from the differences (cancelling for elongated moments).
-fn filter_lean_covariance(m: filter_lean_LeanMoments) -> kernel_covariance_Covariance {
-    let c = kernel_covariance_from_entries(
-        m.second.x - m.mean.x * m.mean.x,
-        m.second.y - m.mean.x * m.mean.y,
-        m.second.z - m.mean.y * m.mean.y,
-    );
-    return kernel_covariance_sanitized(c);
-}
-
-/// `K_L * K_P * D = (K_L * K_P) * D` (KHPL16 eq. 21): the covariances add and the sum is
-/// filtered by `gaussian::gaussian` (`A' = A + 2 (Sigma_L + Sigma_P)`, `tau = det A`).
-fn filter_lean_lean(
-    a: ndf_roughness_matrix_RoughnessMatrix,
-    pixel: kernel_covariance_Covariance,
-    moments: filter_lean_LeanMoments,
-) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian(a, kernel_covariance_add(kernel_covariance_sanitized(pixel), filter_lean_covariance(moments)));
-}
-
-// ---- filtered_ndf::filter::presets (shaders/filter/presets.wgsl) ----
-// The published isotropic specular-antialiasing conventions as `deferred::KernelConvention`
-// values, mirroring `src/.../filter/presets.rs` (whose docs give each source, formula and
-// engine default). `alpha` is the GGX roughness, `p = sqrt(alpha)` the perceptual one.
-// Names that would end in a digit carry a suffix (naga renames such identifiers).
-//
-// | preset | domain | kernel | clamp | combine, saturate |
-// |---|---|---|---|---|
-// | TK19_TRACE, O3DE | alpha^2 | 0.5 (|dn_u|^2 + |dn_v|^2) | 0.18 | add, yes |
-// | TK19_AVERAGE | alpha^2 | 0.25 (...) | 0.18 | add, yes |
-// | TK19_MAX | alpha^2 | 0.5 lambda_max(Gram) | 0.18 | add, yes |
-// | TK21_LISTING | alpha^2 | (...) / (2 pi) | 0.18 | add, yes |
-// | FILAMENT | alpha^2 | 0.3 (...), perceptual floor 0.045 | 0.04 | add, yes |
-// | UNITY_HDRP | alpha^2 | 0.2 (...) | 0.04 | add, yes |
-// | UNITY_HDRP_PROJECTED | alpha^2 / (1 - alpha^2) | 0.2 (...) | 0.04 | add, yes |
-// | GODOT | alpha | 0.5 (...) | 0.18 | add, yes |
-// | UNREAL, BABYLON | p | max(|dn_u|^2, |dn_v|^2)^0.333 | 1 | max, no |
-// | THREE_JS | p | max abs component, floor 0.0525 | none | add, yes |
-
-/// TK19 eq. 4 and Listing 2 (trace bandwidth): `saturate(alpha^2 + min(0.5 (|dn_u|^2 +
-/// |dn_v|^2), 0.18))`.
-const filter_presets_TK19_TRACE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.5,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// TK19 eq. 5 (average of the eigenvalues): kernel `0.25 (|dn_u|^2 + |dn_v|^2)`.
-const filter_presets_TK19_AVERAGE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.25,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// TK19 eq. 1 (tightest conservative isotropic kernel): `0.5 lambda_max` of the Gram matrix.
-const filter_presets_TK19_MAX: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_MAX_EIGENVALUE,
-    0.5,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Tokuyoshi and Kaplanyan 2021, Listing 5: `saturate(alpha^2 + min((|dn_u|^2 +
-/// |dn_v|^2) / (2 pi), 0.18))`.
-const filter_presets_TK21_LISTING: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.159154943091895,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Filament `normalFiltering`: variance 0.15 (kernel `0.3 (...)`), threshold `0.2^2`,
-/// perceptual roughness floor 0.045.
-const filter_presets_FILAMENT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.3,
-    1.0,
-    0.0,
-    0.04,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.045,
-);
-/// Unity HDRP `NormalFiltering`: screen-space variance 0.1 (kernel `0.2 (...)`),
-/// threshold `0.2^2`.
-const filter_presets_UNITY_HDRP: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.2,
-    1.0,
-    0.0,
-    0.04,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Unity HDRP `ProjectedSpaceNormalFiltering` (after TK21): [`UNITY_HDRP`] in the domain
-/// `alpha^2 / (1 - alpha^2)`.
-const filter_presets_UNITY_HDRP_PROJECTED: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.2,
-    1.0,
-    0.0,
-    0.04,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Godot 4 screen-space roughness limiter: TK19's formula on `alpha` (amount 0.25, limit
-/// 0.18).
-const filter_presets_GODOT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.5,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// O3DE `CalculateSpecularAA`: TK19 Listing 2 verbatim, identical to [`TK19_TRACE`].
-const filter_presets_O3DE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_ALPHA_SQ,
-    filter_deferred_NORM_SUM_SQUARED,
-    0.5,
-    1.0,
-    0.0,
-    0.18,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0,
-);
-/// Unreal `NormalCurvatureToRoughness`: `max(p, max(|dn_x|^2, |dn_y|^2)^0.333)`.
-const filter_presets_UNREAL: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_PERCEPTUAL,
-    filter_deferred_NORM_MAX_SQUARED,
-    1.0,
-    0.333,
-    0.0,
-    1.0,
-    filter_deferred_COMBINE_MAX,
-    false,
-    0.0,
-);
-/// Babylon.js (Vlachos 2015), the analytic-light path: as [`UNREAL`].
-const filter_presets_BABYLON: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_PERCEPTUAL,
-    filter_deferred_NORM_MAX_SQUARED,
-    1.0,
-    0.333,
-    0.0,
-    1.0,
-    filter_deferred_COMBINE_MAX,
-    false,
-    0.0,
-);
-/// three.js: `min(max(p, 0.0525) + max abs component of dn, 1)` on the perceptual roughness.
-const filter_presets_THREE_JS: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
-    filter_deferred_DOMAIN_PERCEPTUAL,
-    filter_deferred_NORM_MAX_ABS_COMPONENT,
-    1.0,
-    1.0,
-    0.0,
-    math_F32_MAX,
-    filter_deferred_COMBINE_ADD,
-    true,
-    0.0525,
-);
-
-/// Every preset, in the order of the Rust `presets::ALL`: TK19 max, trace, average, TK21,
-/// Filament, Unity HDRP, Unity HDRP projected, Godot, O3DE, Unreal, Babylon.js, three.js.
-fn filter_presets_preset(i: u32) -> filter_deferred_KernelConvention {
-    switch i {
-        case 0u: { return filter_presets_TK19_MAX; }
-        case 1u: { return filter_presets_TK19_TRACE; }
-        case 2u: { return filter_presets_TK19_AVERAGE; }
-        case 3u: { return filter_presets_TK21_LISTING; }
-        case 4u: { return filter_presets_FILAMENT; }
-        case 5u: { return filter_presets_UNITY_HDRP; }
-        case 6u: { return filter_presets_UNITY_HDRP_PROJECTED; }
-        case 7u: { return filter_presets_GODOT; }
-        case 8u: { return filter_presets_O3DE; }
-        case 9u: { return filter_presets_UNREAL; }
-        case 10u: { return filter_presets_BABYLON; }
-        default: { return filter_presets_THREE_JS; }
-    }
 }
 
 // ---- filtered_ndf::filter::projected (shaders/filter/projected.wgsl) ----
@@ -3208,6 +3213,282 @@ fn filter_rect_lobe_g2_rect_filtered(lobe: filter_rect_lobe_RectFilteredGgx, i: 
 /// `D(m)` of [`rect_lobe`].
 fn filter_rect_lobe_d_ggx_rect(method: filter_rect_lobe_Rect, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
     return filter_rect_lobe_d_rect_filtered(filter_rect_lobe_rect_lobe(method, material, fp), m);
+}
+
+// ---- filtered_ndf::filter::lean_nested (shaders/filter/lean_nested.wgsl) ----
+// LEAN moments nested into every method of the front door (KHPL16 section 5.5, eq. 21),
+// mirroring `src/.../filter/lean_nested.rs` (`Lean<M>`): the material is widened by the LEAN
+// kernel, `A_L = A + 2 Sigma_L` (`lean_widened`), then each method filters the widened lobe
+// over the pixel footprint as it filters a material. The clamp rules act on the pixel kernel
+// only. `moments` come from the baked chain (`bake::moments::sample_grad`).
+//
+// | method | nested lobe function | evaluate with |
+// |---|---|---|
+// | `gaussian::Gaussian` | `gaussian_lobe` | `ggx::*_matrix`, `beckmann::*_matrix` |
+// | `gaussian_ggx::ExactGaussian` | `exact_gaussian_lobe` (GGX: one kernel `Sigma_L + K_P`, exact); Beckmann: `gaussian_lobe` | `gaussian_ggx::*` |
+// | `projected::Projected` | `projected_lobe` | `ggx::*_matrix` |
+// | `lobe::Rect` (`filter::rect::lobe`) | `rect_lobe` (the widened diagonal, `lean_widened_axis_aligned`) | `lobe::*_rect_filtered` |
+// | `proxy::Proxy` | `proxy_lobe` (likewise) | `ggx::*_axis_aligned` |
+
+/// `A_L = A + 2 Sigma_L`, `Sigma_L = lean::covariance(moments)` (PSD-projected), with the
+/// determinant clamp `tau = det A` (the Rust `lean_widened`; `gaussian::gaussian`).
+fn filter_lean_nested_lean_widened(a: ndf_roughness_matrix_RoughnessMatrix, moments: filter_lean_LeanMoments) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian(a, filter_lean_covariance(moments));
+}
+
+/// The box methods' lobe: `alpha_i' = sqrt(alpha_i^2 + 2 (Sigma_L)_ii)`, the diagonal of
+/// `A_L` (the Rust `lean_widened_axis_aligned`), clamped as `axis_aligned::from_alpha`.
+fn filter_lean_nested_lean_widened_axis_aligned(r: ndf_roughness_axis_aligned_AxisAligned, moments: filter_lean_LeanMoments) -> ndf_roughness_axis_aligned_AxisAligned {
+    let c = filter_lean_covariance(moments);
+    let a = r.alpha;
+    return ndf_roughness_axis_aligned_from_alpha(sqrt(a * a + 2.0 * vec2<f32>(c.s_xx, c.s_yy)));
+}
+
+/// The texel's shading normal, `normalize(-E[s_x], -E[s_y], 1)` (the Rust `lean_mean_normal`).
+fn filter_lean_nested_lean_mean_normal(moments: filter_lean_LeanMoments) -> vec3<f32> {
+    return normalize(vec3<f32>(-moments.mean, 1.0));
+}
+
+/// `Lean<Gaussian>::lobe`: `gaussian::gaussian_lobe` of the widened material.
+fn filter_lean_nested_gaussian_lobe(
+    m: filter_gaussian_Gaussian,
+    material: ndf_roughness_matrix_RoughnessMatrix,
+    fp: footprint_Footprint,
+    moments: filter_lean_LeanMoments,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian_lobe(m, filter_lean_nested_lean_widened(material, moments), fp);
+}
+
+/// `Lean<ExactGaussian>::lobe` for GGX: the exact Gaussian-filtered GGX of the material over
+/// one kernel, the method's clamped pixel kernel plus `Sigma_L` (both Gaussians, so they add),
+/// at the method's accuracy setting.
+fn filter_lean_nested_exact_gaussian_lobe(
+    m: filter_gaussian_ggx_ExactGaussian,
+    material: ndf_roughness_matrix_RoughnessMatrix,
+    fp: footprint_Footprint,
+    moments: filter_lean_LeanMoments,
+) -> filter_gaussian_ggx_GaussianFilteredGgx {
+    let k = kernel_covariance_add(kernel_clamp_pixel_kernel(m.clamps, fp, m.sigma), filter_lean_covariance(moments));
+    return filter_gaussian_ggx_with_tolerance(filter_gaussian_ggx_from_kernel(material, k), m.tolerance);
+}
+
+/// `Lean<Projected>::lobe`: `projected::projected_lobe` of the widened material.
+fn filter_lean_nested_projected_lobe(
+    m: filter_projected_Projected,
+    material: ndf_roughness_matrix_RoughnessMatrix,
+    fp: footprint_Footprint,
+    moments: filter_lean_LeanMoments,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_projected_projected_lobe(m, filter_lean_nested_lean_widened(material, moments), fp);
+}
+
+/// `Lean<Rect>::lobe`: `lobe::rect_lobe` of the widened axis-aligned lobe.
+fn filter_lean_nested_rect_lobe(
+    m: filter_rect_lobe_Rect,
+    material: ndf_roughness_axis_aligned_AxisAligned,
+    fp: footprint_Footprint,
+    moments: filter_lean_LeanMoments,
+) -> filter_rect_lobe_RectFilteredGgx {
+    return filter_rect_lobe_rect_lobe(m, filter_lean_nested_lean_widened_axis_aligned(material, moments), fp);
+}
+
+/// `Lean<Proxy>::lobe`: `proxy::proxy_lobe` of the widened axis-aligned lobe.
+fn filter_lean_nested_proxy_lobe(
+    m: filter_proxy_Proxy,
+    material: ndf_roughness_axis_aligned_AxisAligned,
+    fp: footprint_Footprint,
+    moments: filter_lean_LeanMoments,
+) -> ndf_roughness_axis_aligned_AxisAligned {
+    return filter_proxy_proxy_lobe(m, filter_lean_nested_lean_widened_axis_aligned(material, moments), fp);
+}
+
+// ---- filtered_ndf::filter::presets (shaders/filter/presets.wgsl) ----
+// The published isotropic specular-antialiasing conventions as `deferred::KernelConvention`
+// values, mirroring `src/.../filter/presets.rs` (whose docs give each source, formula and
+// engine default). `alpha` is the GGX roughness, `p = sqrt(alpha)` the perceptual one.
+// Names that would end in a digit carry a suffix (naga renames such identifiers).
+//
+// | preset | domain | kernel | clamp | combine, saturate |
+// |---|---|---|---|---|
+// | TK19_TRACE, O3DE | alpha^2 | 0.5 (|dn_u|^2 + |dn_v|^2) | 0.18 | add, yes |
+// | TK19_AVERAGE | alpha^2 | 0.25 (...) | 0.18 | add, yes |
+// | TK19_MAX | alpha^2 | 0.5 lambda_max(Gram) | 0.18 | add, yes |
+// | TK21_LISTING | alpha^2 | (...) / (2 pi) | 0.18 | add, yes |
+// | FILAMENT | alpha^2 | 0.3 (...), perceptual floor 0.045 | 0.04 | add, yes |
+// | UNITY_HDRP | alpha^2 | 0.2 (...) | 0.04 | add, yes |
+// | UNITY_HDRP_PROJECTED | alpha^2 / (1 - alpha^2) | 0.2 (...) | 0.04 | add, yes |
+// | GODOT | alpha | 0.5 (...) | 0.18 | add, yes |
+// | UNREAL, BABYLON | p | max(|dn_u|^2, |dn_v|^2)^0.333 | 1 | max, no |
+// | THREE_JS | p | max abs component, floor 0.0525 | none | add, yes |
+
+/// TK19 eq. 4 and Listing 2 (trace bandwidth): `saturate(alpha^2 + min(0.5 (|dn_u|^2 +
+/// |dn_v|^2), 0.18))`.
+const filter_presets_TK19_TRACE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// TK19 eq. 5 (average of the eigenvalues): kernel `0.25 (|dn_u|^2 + |dn_v|^2)`.
+const filter_presets_TK19_AVERAGE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.25,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// TK19 eq. 1 (tightest conservative isotropic kernel): `0.5 lambda_max` of the Gram matrix.
+const filter_presets_TK19_MAX: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_MAX_EIGENVALUE,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Tokuyoshi and Kaplanyan 2021, Listing 5: `saturate(alpha^2 + min((|dn_u|^2 +
+/// |dn_v|^2) / (2 pi), 0.18))`.
+const filter_presets_TK21_LISTING: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.159154943091895,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Filament `normalFiltering`: variance 0.15 (kernel `0.3 (...)`), threshold `0.2^2`,
+/// perceptual roughness floor 0.045.
+const filter_presets_FILAMENT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.3,
+    1.0,
+    0.0,
+    0.04,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.045,
+);
+/// Unity HDRP `NormalFiltering`: screen-space variance 0.1 (kernel `0.2 (...)`),
+/// threshold `0.2^2`.
+const filter_presets_UNITY_HDRP: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.2,
+    1.0,
+    0.0,
+    0.04,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Unity HDRP `ProjectedSpaceNormalFiltering` (after TK21): [`UNITY_HDRP`] in the domain
+/// `alpha^2 / (1 - alpha^2)`.
+const filter_presets_UNITY_HDRP_PROJECTED: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.2,
+    1.0,
+    0.0,
+    0.04,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Godot 4 screen-space roughness limiter: TK19's formula on `alpha` (amount 0.25, limit
+/// 0.18).
+const filter_presets_GODOT: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// O3DE `CalculateSpecularAA`: TK19 Listing 2 verbatim, identical to [`TK19_TRACE`].
+const filter_presets_O3DE: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_ALPHA_SQ,
+    filter_deferred_NORM_SUM_SQUARED,
+    0.5,
+    1.0,
+    0.0,
+    0.18,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0,
+);
+/// Unreal `NormalCurvatureToRoughness`: `max(p, max(|dn_x|^2, |dn_y|^2)^0.333)`.
+const filter_presets_UNREAL: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PERCEPTUAL,
+    filter_deferred_NORM_MAX_SQUARED,
+    1.0,
+    0.333,
+    0.0,
+    1.0,
+    filter_deferred_COMBINE_MAX,
+    false,
+    0.0,
+);
+/// Babylon.js (Vlachos 2015), the analytic-light path: as [`UNREAL`].
+const filter_presets_BABYLON: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PERCEPTUAL,
+    filter_deferred_NORM_MAX_SQUARED,
+    1.0,
+    0.333,
+    0.0,
+    1.0,
+    filter_deferred_COMBINE_MAX,
+    false,
+    0.0,
+);
+/// three.js: `min(max(p, 0.0525) + max abs component of dn, 1)` on the perceptual roughness.
+const filter_presets_THREE_JS: filter_deferred_KernelConvention = filter_deferred_KernelConvention(
+    filter_deferred_DOMAIN_PERCEPTUAL,
+    filter_deferred_NORM_MAX_ABS_COMPONENT,
+    1.0,
+    1.0,
+    0.0,
+    math_F32_MAX,
+    filter_deferred_COMBINE_ADD,
+    true,
+    0.0525,
+);
+
+/// Every preset, in the order of the Rust `presets::ALL`: TK19 max, trace, average, TK21,
+/// Filament, Unity HDRP, Unity HDRP projected, Godot, O3DE, Unreal, Babylon.js, three.js.
+fn filter_presets_preset(i: u32) -> filter_deferred_KernelConvention {
+    switch i {
+        case 0u: { return filter_presets_TK19_MAX; }
+        case 1u: { return filter_presets_TK19_TRACE; }
+        case 2u: { return filter_presets_TK19_AVERAGE; }
+        case 3u: { return filter_presets_TK21_LISTING; }
+        case 4u: { return filter_presets_FILAMENT; }
+        case 5u: { return filter_presets_UNITY_HDRP; }
+        case 6u: { return filter_presets_UNITY_HDRP_PROJECTED; }
+        case 7u: { return filter_presets_GODOT; }
+        case 8u: { return filter_presets_O3DE; }
+        case 9u: { return filter_presets_UNREAL; }
+        case 10u: { return filter_presets_BABYLON; }
+        default: { return filter_presets_THREE_JS; }
+    }
 }
 
 // ---- filtered_ndf::footprint::slope (shaders/footprint/slope.wgsl) ----

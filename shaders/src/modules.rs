@@ -12,9 +12,9 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../math.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::ndf::roughness",
-        file: "ndf/roughness/mod.wgsl",
-        source: include_str!("../ndf/roughness/mod.wgsl"),
+        import_path: "filtered_ndf::ndf::roughness::matrix",
+        file: "ndf/roughness/matrix.wgsl",
+        source: include_str!("../ndf/roughness/matrix.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::footprint::jacobian",
@@ -32,19 +32,14 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../kernel/covariance.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::filter::deferred",
-        file: "filter/deferred.wgsl",
-        source: include_str!("../filter/deferred.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::ndf::roughness::matrix",
-        file: "ndf/roughness/matrix.wgsl",
-        source: include_str!("../ndf/roughness/matrix.wgsl"),
-    },
-    Module {
         import_path: "filtered_ndf::ndf",
         file: "ndf/mod.wgsl",
         source: include_str!("../ndf/mod.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::ndf::roughness",
+        file: "ndf/roughness/mod.wgsl",
+        source: include_str!("../ndf/roughness/mod.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::ndf::roughness::isotropic",
@@ -82,6 +77,26 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../filter/gaussian.wgsl"),
     },
     Module {
+        import_path: "filtered_ndf::filter::lean",
+        file: "filter/lean.wgsl",
+        source: include_str!("../filter/lean.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::bake::moments",
+        file: "bake/moments.wgsl",
+        source: include_str!("../bake/moments.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::bake::roughness",
+        file: "bake/roughness.wgsl",
+        source: include_str!("../bake/roughness.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::filter::deferred",
+        file: "filter/deferred.wgsl",
+        source: include_str!("../filter/deferred.wgsl"),
+    },
+    Module {
         import_path: "filtered_ndf::filter::gaussian_ggx_quad",
         file: "filter/gaussian_ggx_quad.wgsl",
         source: include_str!("../filter/gaussian_ggx_quad.wgsl"),
@@ -90,16 +105,6 @@ pub const MODULES: &[Module] = &[
         import_path: "filtered_ndf::filter::gaussian_ggx",
         file: "filter/gaussian_ggx.wgsl",
         source: include_str!("../filter/gaussian_ggx.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::filter::lean",
-        file: "filter/lean.wgsl",
-        source: include_str!("../filter/lean.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::filter::presets",
-        file: "filter/presets.wgsl",
-        source: include_str!("../filter/presets.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::filter::projected",
@@ -125,6 +130,16 @@ pub const MODULES: &[Module] = &[
         import_path: "filtered_ndf::filter::rect::lobe",
         file: "filter/rect/lobe.wgsl",
         source: include_str!("../filter/rect/lobe.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::filter::lean_nested",
+        file: "filter/lean_nested.wgsl",
+        source: include_str!("../filter/lean_nested.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::filter::presets",
+        file: "filter/presets.wgsl",
+        source: include_str!("../filter/presets.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::footprint::slope",

@@ -15,6 +15,10 @@
 //! - **Storage** ([`store_f32`], [`store_f16`]): the five moments per texel.
 //! - **Fits** ([`fit`]): the GGX and Beckmann roughness (isotropic, or anisotropic with its
 //!   angle) closest to each texel's distribution of normals, by total variation.
+//! - **Decoding** ([`decode`]): a stored roughness chain read back as the lobe
+//!   (`KHR_materials_anisotropy`'s encoding, the anisotropic matrix, perceptual roughness);
+//!   `shaders/bake/roughness.wgsl` mirrors it, `shaders/bake/moments.wgsl` samples the moment
+//!   chain on the GPU.
 //! - **Bands** ([`bake_rows`]): rows `r0..r1` of one level, every requested output at once;
 //!   bands of different rows or levels are independent, so a caller can bake them on as
 //!   many threads as it likes (the command-line baker uses rayon across rows).
@@ -45,6 +49,7 @@
 //!   second moment past that needs `|s| > 256`, a normal within 0.22 degrees of the horizon):
 //!   the covariance within `2^-11 (E[s_x^2] + 2 E[s_x]^2) + 3 * 2^-25`.
 
+pub mod decode;
 pub mod f16;
 pub mod fit;
 pub mod footprint;

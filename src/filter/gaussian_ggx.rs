@@ -417,9 +417,9 @@ impl GaussianFilteredGgx {
         let [tl1, tl2] = self.tl;
         match tol::index(self.tol) {
             None => quad::mixture_integral(v1s, v2s, z2, tl1, tl2),
-            Some(0) => tol::j::<0>(v1s, v2s, z2, tl1, tl2),
-            Some(1) => tol::j::<1>(v1s, v2s, z2, tl1, tl2),
-            Some(_) => tol::j::<2>(v1s, v2s, z2, tl1, tl2),
+            Some(0) => tol::mixture_integral::<0>(v1s, v2s, z2, tl1, tl2),
+            Some(1) => tol::mixture_integral::<1>(v1s, v2s, z2, tl1, tl2),
+            Some(_) => tol::mixture_integral::<2>(v1s, v2s, z2, tl1, tl2),
         }
     }
 

@@ -86,6 +86,25 @@ const RULES: [Rule; 3] = [
     rule(1.0, core::f64::consts::E, 160.0, 5e-4, 0.35),
 ];
 
+/// The constants of the reduced setting `RULES[s]` as the rule holds them: the far-tail
+/// switch `K`, the step `h`, `e^h`, the truncation tolerance, `Y`, the geometric sums and the
+/// node count. The one source of the WGSL mirror's constants
+/// ([`crate::testing::tolerance_rules`]).
+#[cfg(feature = "testing")]
+#[allow(dead_code, reason = "read from the f64 instance only")]
+pub(crate) fn constants(s: usize) -> (f64, f64, f64, f64, f64, [f64; 4], usize) {
+    let r = &RULES[s];
+    (
+        r.far,
+        r.h,
+        r.ratio[1].to_f64(),
+        r.eps_t,
+        r.y_lo,
+        r.geom,
+        r.len,
+    )
+}
+
 /// The index of a reduced setting in [`RULES`] (`None` for [`Tolerance::Full`]).
 #[inline(always)]
 pub(super) const fn index(t: Tolerance) -> Option<usize> {
@@ -105,10 +124,10 @@ pub(super) fn takes_far(rule: &Rule, beta_m: f64, z2: f64, tl1: f64) -> bool {
     tl1 * z2 * (rule.far + 12.0 * ln_upper(beta_m / z2)) <= beta_m
 }
 
-/// `J / z2^2` by the rule `RULES[S]` (the reduced counterpart of `gaussian_ggx_quad::j`, same
+/// `J / z2^2` by the rule `RULES[S]` (the reduced counterpart of `gaussian_ggx_quad::mixture_integral`, same
 /// arguments).
 #[inline]
-pub(super) fn j<const S: usize>(v1s: f64, v2s: f64, z2: f64, tl1: f64, tl2: f64) -> f64 {
+pub(super) fn mixture_integral<const S: usize>(v1s: f64, v2s: f64, z2: f64, tl1: f64, tl2: f64) -> f64 {
     let rule = const { &RULES[S] };
     let beta_m = z2 + v1s + v2s;
     if takes_far(rule, beta_m, z2, tl1) {

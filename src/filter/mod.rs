@@ -33,8 +33,9 @@ mod exp_poly;
 mod gaussian;
 mod gaussian_ggx;
 mod gaussian_ggx_quad;
-mod gaussian_ggx_tol;
+pub(crate) mod gaussian_ggx_tol;
 mod lean;
+mod lean_nested;
 pub mod method;
 pub mod presets;
 mod projected;
@@ -52,6 +53,7 @@ pub(crate) use gaussian_ggx_quad::{
     SAMPLE_T0, TrapezoidState, beckmann_lambda_fast, sample_component,
 };
 pub use lean::{LeanMoments, lean};
+pub use lean_nested::{Lean, lean_mean_normal, lean_widened, lean_widened_axis_aligned};
 pub use method::{Filterable, Method};
 pub(crate) use projected::ProjectedBase;
 pub use projected::{PROJECTED_EIGEN_MAX, Projected, projected, projected_with_det_clamp};

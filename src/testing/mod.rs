@@ -58,3 +58,4 @@ pub mod quadrature;
 pub mod rng;
 pub mod shading;
 pub mod strategies;
+pub mod tolerance_rules;

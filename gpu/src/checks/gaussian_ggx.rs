@@ -455,5 +455,183 @@ y(3u, gaussian_ggx_sampling::normal_pdf(g, x3(10u)));";
 
 /// The checks of `shaders/filter/gaussian_ggx.wgsl`.
 pub fn all() -> Vec<Check> {
-    vec![front_door(2000), domain(2000), sampling(1000)]
+    let mut all = vec![front_door(2000), domain(2000)];
+    all.extend(settings(2000));
+    all.push(sampling(1000));
+    all
+}
+
+/// The far-tail switches `K` of the reduced settings (`Tolerance::Rel1e4`, `Rel1e3`,
+/// `Rel1e2`), read from the Rust rules.
+fn far_switches() -> [f64; 3] {
+    filtered_ndf::testing::tolerance_rules::reduced_rules().map(|r| r.far)
+}
+
+/// The reduced accuracy settings (`gaussian_ggx::TOL_1E4`, `TOL_1E3`, `TOL_1E2`, the Rust
+/// `Tolerance`), one check per setting: `p22` and `d` against the `f64` lobe at the full setting
+/// (within `1.1e-11` of the convolution, `tests/gaussian_ggx.rs`), on two sets of cases:
+/// the cases of [`domain`], and cases on both sides of each setting's far-tail switch
+/// `2 l1 (K + 12 ln(1 + q)) <= 1 + q` (the only switch of a reduced setting: the far-tail series
+/// on one side, the trapezoid rule on the other): isotropic materials (`alpha` `0.3`, `0.01`),
+/// kernels `kw^2 (e1 e1^T + r^2 e2^T e2)` (`r` `1`, `0.1`), `1 + q` from `1` (the peak) to
+/// `1e5`, and `2 l1` at `1 -+ 1e-3` and `1 -+ 0.2` times the switch's value for `K` of each
+/// setting (the side asserted from the `f64` lobe's `l1` and `q`).
+///
+/// Tolerance: the setting's proven bound (`1e-4`, `1e-3`, `1e-2` relative, Rust module docs
+/// "Tolerance settings"; it includes the `f32` node exponent's `1.6e-5`) plus the full
+/// setting's `f32` tolerance of the same case ([`density_ulps`]: the set-up's rounding
+/// amplified by the condition numbers, and `R = 30` ulp of rules and arithmetic, of which the
+/// full rule's own `1.8e-6` is not in a reduced rule's error: it over-counts by 15 ulp). The
+/// shader's set-up is the same at every setting, and its rounding enters a reduced rule as it
+/// enters the full one.
+fn settings(n: usize) -> Vec<Check> {
+    // The cases: inputs, the f64 full-setting p22 and d, and their full-setting f32 ulps.
+    let mut cases: Vec<(Vec<f32>, [f64; 2], [f64; 2])> = Vec::new();
+    // One case: the material, the footprint vectors and the slope; `None` where the
+    // reference underflows.
+    let add = |cases: &mut Vec<(Vec<f32>, [f64; 2], [f64; 2])>,
+               axis: [f32; 2],
+               al: [f32; 2],
+               u: [f32; 2],
+               v: [f32; 2],
+               s: [f32; 2]|
+     -> Option<()> {
+        let am = matrix_from_eigen(axis, al)?;
+        let kernel = Footprint::from_slope_derivatives(v2(u), v2(v)).covariance(1.0);
+        let lobe = GaussianFilteredGgx::new(am, kernel);
+        let sd = v2(s);
+        let m = DVec3::new(-sd.x, -sd.y, 1.0).normalize();
+        let m32 = [m.x as f32, m.y as f32, m.z as f32];
+        let md = v3(m32);
+        let (p, d) = (lobe.p22(sd), lobe.d(md));
+        if !(p > 1e-30 && d > 1e-30) {
+            return None;
+        }
+        let mut input = axis.to_vec();
+        input.extend(al);
+        input.extend(u);
+        input.extend(v);
+        input.extend(s);
+        input.extend(m32);
+        let ms = DVec2::new(-md.x / md.z, -md.y / md.z);
+        let ulps = [
+            density_ulps(&am, &kernel, sd),
+            density_ulps(&am, &kernel, ms),
+        ];
+        cases.push((input, [p, d], ulps));
+        Some(())
+    };
+    let mut rng = SplitMix64(0x701E_0053);
+    let mut made = 0;
+    while made < n {
+        let Some(DomainCase {
+            axis,
+            al,
+            am,
+            u,
+            v,
+            kernel,
+            ..
+        }) = domain_case(&mut rng, made)
+        else {
+            continue;
+        };
+        let (a11, a12, a22) = am.entries();
+        let (f11, f12, f22) = (
+            a11 + 2.0 * kernel.s11,
+            a12 + 2.0 * kernel.s12,
+            a22 + 2.0 * kernel.s22,
+        );
+        let l11 = f11.sqrt();
+        let l21 = f12 / l11;
+        let l22 = (f22 - l21 * l21).max(0.0).sqrt();
+        let rho = if made % 2 == 0 {
+            rng.range(0.0, 50.0)
+        } else {
+            10f64.powf(rng.range(-3.0, 1.7))
+        };
+        let t = rng.range(0.0, core::f64::consts::TAU);
+        let (ex, ey) = (t.cos(), t.sin());
+        let s = [
+            (rho * l11 * ex) as f32,
+            (rho * (l21 * ex + l22 * ey)) as f32,
+        ];
+        if add(&mut cases, axis, al, u, v, s).is_some() {
+            made += 1;
+        }
+    }
+    // Both sides of each setting's far-tail switch.
+    let mut sides = [0usize; 2];
+    for far in far_switches() {
+        for alpha in [0.3f64, 0.01] {
+            for r in [1.0f64, 0.1] {
+                for beta in [1.0f64, 2.0, 30.0, 1e3, 1e5] {
+                    for delta in [-0.2, -1e-3, 1e-3, 0.2] {
+                        // 2 l1 = 2 kw^2 / alpha^2 at (1 + delta) times the switch's value.
+                        let tl1 = beta / (far + 12.0 * beta.ln()) * (1.0 + delta);
+                        let kw = alpha * (0.5 * tl1).sqrt();
+                        let phi = rng.range(0.0, core::f64::consts::TAU);
+                        let sl = alpha * (beta - 1.0).sqrt();
+                        let s = [(sl * phi.cos()) as f32, (sl * phi.sin()) as f32];
+                        let (u, v) = ([kw as f32, 0.0], [0.0, (r * kw) as f32]);
+                        let (axis, al) = ([1.0f32, 0.0], [alpha as f32, alpha as f32]);
+                        // The side, from the f64 lobe of the f32 inputs.
+                        let am = matrix_from_eigen(axis, al).expect("an isotropic material");
+                        let kernel =
+                            Footprint::from_slope_derivatives(v2(u), v2(v)).covariance(1.0);
+                        let (l1, _) = GaussianFilteredGgx::new(am, kernel).kernel_ratio();
+                        let b = 1.0 + v2(s).length_squared() / (alpha as f32 as f64).powi(2);
+                        let switch = 2.0 * l1 * (far + 12.0 * b.ln()) / b;
+                        let far_side = switch <= 1.0;
+                        assert!(
+                            (switch - 1.0).abs() >= 0.5 * delta.abs() && far_side == (delta < 0.0),
+                            "switch case K = {far}, 1 + q = {beta}, delta = {delta}: {switch}"
+                        );
+                        if add(&mut cases, axis, al, u, v, s).is_some() {
+                            sides[usize::from(far_side)] += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        sides[0] >= 100 && sides[1] >= 100,
+        "switch cases per side: {sides:?}"
+    );
+    [("TOL_1E4", 1e-4), ("TOL_1E3", 1e-3), ("TOL_1E2", 1e-2)]
+        .into_iter()
+        .map(|(setting, bound)| {
+            let body = format!(
+                "let a = matrix::from_eigen(x2(0u), x2(2u));
+let k = footprint::covariance(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
+let g = gaussian_ggx::with_tolerance(gaussian_ggx::from_kernel(a, k), gaussian_ggx::{setting});
+y(0u, gaussian_ggx::p22(g, x2(8u)));
+y(1u, gaussian_ggx::d(g, x3(10u)));"
+            );
+            let mut c = Check::new(
+                &format!(
+                    "gaussian_ggx::{{p22, d}} at {setting} (tests/gaussian_ggx.rs domain; both sides of each far-tail switch)"
+                ),
+                IMPORTS,
+                &body,
+                13,
+                2,
+            )
+            .tolerance(&format!(
+                "the setting's proven bound {bound:e} / EPS + the full setting's f32 density ulps (checks/gaussian_ggx.rs)"
+            ));
+            for (input, expect, ulps) in &cases {
+                c.case(
+                    input.clone(),
+                    expect.to_vec(),
+                    vec![
+                        Tol::ulps(ulps[0] + bound / EPS),
+                        Tol::ulps(ulps[1] + bound / EPS),
+                    ],
+                );
+            }
+            c
+        })
+        .collect()
 }

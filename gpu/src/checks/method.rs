@@ -223,7 +223,7 @@ pub fn all() -> Vec<Check> {
     checks
 }
 
-/// `method::g1_rect_filtered(lobe, w, h)` of the box lobe at the trade table's shading points
+/// `lobe::g1_rect_filtered(lobe, w, h)` of the box lobe at the trade table's shading points
 /// (views `w` from `upper_hemisphere(89.9)`, micronormals `h` from `upper_hemisphere(89)`).
 ///
 /// Tolerance: `G1 = chi+(w.m) / (1 + Lambda(w))` carries the bound of its `Lambda`
@@ -233,10 +233,10 @@ pub fn all() -> Vec<Check> {
 /// shader may answer 0 or the value: the tolerance there is the value (absolute).
 fn g1_rect_filtered(pts: &[Point], name: &str, m: Rect) -> Check {
     let body = format!(
-        "{PROLOGUE}\ny(0u, method::g1_rect_filtered(method::rect_lobe(method::{name}, r, fp), w, h));"
+        "{PROLOGUE}\ny(0u, lobe::g1_rect_filtered(lobe::rect_lobe(lobe::{name}, r, fp), w, h));"
     );
     let mut c = Check::new(
-        &format!("method::g1_rect_filtered (method::{name})"),
+        &format!("lobe::g1_rect_filtered (lobe::{name})"),
         IMPORTS,
         &body,
         15,
@@ -259,7 +259,7 @@ fn g1_rect_filtered(pts: &[Point], name: &str, m: Rect) -> Check {
     c
 }
 
-/// `method::p22_rect_filtered` of the box lobe `method::rect_lobe(method, r, fp)` at the
+/// `lobe::p22_rect_filtered` of the box lobe `lobe::rect_lobe(method, r, fp)` at the
 /// trade table's shading points, at two slopes each: the half vector's `-h_xy / h_z` (rounded
 /// to f32, as the shader reads it), and a slope drawn uniformly in the box widened by half
 /// (`s_i = t_i H_i`, `t_i` in `[-1.5, 1.5]`), where the filtered lobe is flat-topped and its
@@ -272,10 +272,10 @@ fn g1_rect_filtered(pts: &[Point], name: &str, m: Rect) -> Check {
 /// reference, [`super::rect::log_sensitivity`]) times one ulp.
 fn p22_rect_filtered(pts: &[Point], name: &str, m: Rect) -> Check {
     let body = format!(
-        "{PROLOGUE}\ny(0u, method::p22_rect_filtered(method::rect_lobe(method::{name}, r, fp), x2(15u)));"
+        "{PROLOGUE}\ny(0u, lobe::p22_rect_filtered(lobe::rect_lobe(lobe::{name}, r, fp), x2(15u)));"
     );
     let mut c = Check::new(
-        &format!("method::p22_rect_filtered (method::{name})"),
+        &format!("lobe::p22_rect_filtered (lobe::{name})"),
         IMPORTS,
         &body,
         17,

@@ -14,9 +14,11 @@
 //! the output's units where results may be subnormal, else 0. The derivation of each is a
 //! comment at the check.
 
+pub mod bake;
 pub mod filters;
 pub mod footprint;
 pub mod gaussian_ggx;
+pub mod lean_nested;
 pub mod math;
 pub mod method;
 pub mod nan_policy;
@@ -44,6 +46,8 @@ pub const GROUPS: &[(&str, Group)] = &[
     ("nan_policy", nan_policy::all),
     ("gaussian_ggx", gaussian_ggx::all),
     ("method", method::all),
+    ("lean_nested", lean_nested::all),
+    ("bake", bake::all),
     ("sampling", sampling::all),
     ("sampling_beckmann", sampling_beckmann::all),
 ];
@@ -144,6 +148,8 @@ pub struct Check {
     pub n_out: usize,
     /// The cases.
     pub cases: Vec<Case>,
+    /// Textures bound beside the buffers ([`harness::Textures`]), if the snippet samples any.
+    pub textures: Option<std::sync::Arc<harness::Textures>>,
 }
 
 impl Check {
@@ -157,7 +163,14 @@ impl Check {
             n_in,
             n_out,
             cases: Vec::new(),
+            textures: None,
         }
+    }
+
+    /// Binds `textures` for the snippet (declared by [`harness::TEXTURE_DECLARATIONS`]).
+    pub fn with_textures(mut self, textures: std::sync::Arc<harness::Textures>) -> Self {
+        self.textures = Some(textures);
+        self
     }
 
     /// Sets the stated tolerance.
@@ -220,7 +233,27 @@ pub fn run(check: &Check) -> Result<Outcome, String> {
         n_in: check.n_in,
         n_out: check.n_out,
     };
-    let out = harness::run(&kernel, &input).map_err(|e| format!("{}: {e}", check.name))?;
+    if let Some(t) = &check.textures
+        && !t.half
+        && !harness::float32_filterable()?
+    {
+        return Ok(Outcome {
+            name: check.name.clone(),
+            cases: 0,
+            worst_rel: 0.0,
+            worst_abs: 0.0,
+            worst_of_tol: 0.0,
+            tolerance: "not run: the adapter lacks float32-filterable".into(),
+            worst_case: String::new(),
+            failures: Vec::new(),
+            n_failed: 0,
+        });
+    }
+    let out = match &check.textures {
+        Some(t) => harness::run_textured(&kernel, &input, t),
+        None => harness::run(&kernel, &input),
+    }
+    .map_err(|e| format!("{}: {e}", check.name))?;
     let mut o = Outcome {
         name: check.name.clone(),
         cases: check.cases.len(),

@@ -12,7 +12,7 @@ use filtered_ndf_demo::image_out::{Image, Rgb8, contact_sheet};
 use filtered_ndf_demo::methods::{Family, Method};
 use filtered_ndf_demo::options::{FIX_ROUTES, Options};
 use filtered_ndf_demo::render::FootprintRoute;
-use filtered_ndf_demo::scene::Scene;
+use filtered_ndf_demo::scene::{Scene, SceneKind};
 use filtered_ndf_demo::{glints, image_out, metrics, normal_map, parallel, render, temporal};
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -44,7 +44,7 @@ fn parse_args() -> Options {
         presets: true,
         investigate: true,
         fix: true,
-        scene: "both",
+        scene: "all",
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -64,7 +64,8 @@ fn parse_args() -> Options {
                 o.scene = match value.as_str() {
                     "water" => "water",
                     "normal-map" => "normal-map",
-                    "both" => "both",
+                    "bumpy" => "bumpy",
+                    "all" => "all",
                     _ => usage(),
                 }
             }
@@ -98,18 +99,63 @@ fn main() -> std::io::Result<()> {
     parallel::init_threads(o.threads);
     std::fs::create_dir_all(&o.out)?;
     let start = Instant::now();
-    if o.scene == "normal-map" {
-        let md = normal_map::run(&o)?;
-        print!("{md}");
-        std::fs::write(o.out.join("normal_map.md"), md)?;
-        println!("\nTotal {:.1} s.", start.elapsed().as_secs_f64());
-        return Ok(());
+    let mut md = String::new();
+    let mut times = Vec::new();
+    for name in ["water", "normal-map", "bumpy"] {
+        if o.scene != "all" && o.scene != name {
+            continue;
+        }
+        let t = Instant::now();
+        let section = match name {
+            "water" => run_scene(&o, SceneKind::Water)?,
+            "normal-map" => normal_map::run(&o)?,
+            _ => {
+                // The bumpy spheres: no texture, so no windowed moments (the fix routes would
+                // repeat the ray-differential rows), and no false-glint investigation.
+                let b = Options {
+                    out: o.out.join("bumpy"),
+                    fix: false,
+                    investigate: false,
+                    ..o.clone()
+                };
+                std::fs::create_dir_all(&b.out)?;
+                run_scene(&b, SceneKind::Bumpy)?
+            }
+        };
+        print!("{section}");
+        md.push_str(&section);
+        times.push(format!("{name} {:.0} s", t.elapsed().as_secs_f64()));
     }
+    std::fs::write(o.out.join("results.md"), md)?;
+    println!(
+        "\nTotal {:.1} s ({}). Images, contact sheets, plots and results.md in {}",
+        start.elapsed().as_secs_f64(),
+        times.join(", "),
+        o.out.display()
+    );
+    Ok(())
+}
+
+/// The water or the bumpy spheres: the still frame of every method and preset against the
+/// reference (and the reference's own error), the fix routes, the investigation, the other
+/// footprint route, the temporal test; images into `o.out`, the results as markdown.
+fn run_scene(o: &Options, kind: SceneKind) -> std::io::Result<String> {
+    // The water's sections keep their titles; the other scenes' name themselves.
+    let title = match kind {
+        SceneKind::Water => String::new(),
+        _ => format!("{}: ", capitalise(kind.name())),
+    };
     let cam = camera_at(0, o.width, o.height);
-    let scene = Scene::new(cam.lod());
+    let scene = Scene::of(kind, cam.lod());
     eprintln!(
-        "highlights: {}x{}, reference {} spp, {} frames, {} threads, footprints: {:?}",
-        o.width, o.height, o.spp, o.frames, o.threads, o.route
+        "highlights, {}: {}x{}, reference {} spp, {} frames, {} threads, footprints: {:?}",
+        kind.name(),
+        o.width,
+        o.height,
+        o.spp,
+        o.frames,
+        o.threads,
+        o.route
     );
 
     let t = Instant::now();
@@ -123,6 +169,25 @@ fn main() -> std::io::Result<()> {
         Some("reference"),
     );
     let ref_time = t.elapsed().as_secs_f64();
+    // The reference's own error: against an independent reference of four times the samples.
+    let t = Instant::now();
+    let reference_4n = render::reference(
+        &scene,
+        &cam,
+        o.width,
+        o.height,
+        4 * o.spp,
+        o.seed ^ render::SEED_4N,
+        Some("reference x4 (its error)"),
+    );
+    let ref4_time = t.elapsed().as_secs_f64();
+    let reference_error = [Family::Beckmann, Family::Ggx].map(|f| {
+        metrics::reference_error(
+            (reference.full(f), reference.specular(f)),
+            (reference_4n.full(f), reference_4n.specular(f)),
+            o.exposure,
+        )
+    });
 
     let t = Instant::now();
     let gb = render::gbuffer(&scene, &cam, o.width, o.height);
@@ -136,7 +201,7 @@ fn main() -> std::io::Result<()> {
     for family in [Family::Beckmann, Family::Ggx] {
         let img = reference.full(family);
         let name = format!("reference-{}", family.name().to_lowercase());
-        save(&o, &name, img)?;
+        save(o, &name, img)?;
         tiles.push((
             format!("Reference {} {}spp", family.name(), o.spp),
             img.to_rgb8(o.exposure),
@@ -147,9 +212,12 @@ fn main() -> std::io::Result<()> {
     // test below), and the LDR-FLIP maps.
     let mut scores: Vec<(Method, FootprintRoute, metrics::Scores)> = Vec::new();
     let mut flip_tiles: Vec<(String, Rgb8)> = Vec::new();
+    // Per method on `o.route`: the shading time (ms, this machine, one run).
+    let mut shade_times: Vec<(Method, f64)> = Vec::new();
     for &method in &o.methods {
         let t = Instant::now();
         let frame = render::shade_frame(&scene, &gb, &derivs, method);
+        shade_times.push((method, t.elapsed().as_secs_f64() * 1e3));
         let ms = base_ms + t.elapsed().as_secs_f64() * 1e3;
         let img = &frame.total;
         let fam = method.family();
@@ -181,7 +249,7 @@ fn main() -> std::io::Result<()> {
             ms
         )
         .unwrap();
-        save(&o, method.slug(), img)?;
+        save(o, method.slug(), img)?;
         tiles.push((method.label().to_string(), img.to_rgb8(o.exposure)));
     }
     // The false-glint fix: the footprint methods again on each fix route (windowed moments,
@@ -198,6 +266,8 @@ fn main() -> std::io::Result<()> {
     // Per fix route: the time to build the per-pixel filters and the mean time to shade a
     // frame with them (ms, this machine, one run).
     let mut fix_cost = String::new();
+    // Per fix route: (filter inputs, mean shading), ms per frame.
+    let mut fix_times: Vec<(FootprintRoute, f64, f64)> = Vec::new();
     if !fixed.is_empty() {
         writeln!(fix_cost, "| route | filter inputs, ms per frame | shading, ms per frame (mean over {} methods) |", fixed.len()).unwrap();
         writeln!(fix_cost, "|---|---:|---:|").unwrap();
@@ -230,7 +300,7 @@ fn main() -> std::io::Result<()> {
             scores.push((method, route, sc));
             let slug = format!("{}-{}", method.slug(), route_slug(route));
             image_out::save(&map.to_rgb8(), &o.out.join(format!("flip-{slug}.png")))?;
-            save(&o, &slug, &frame.total)?;
+            save(o, &slug, &frame.total)?;
             fixed_tiles.push((
                 temporal::variant_label(method, route),
                 frame.total.to_rgb8(o.exposure),
@@ -243,6 +313,7 @@ fn main() -> std::io::Result<()> {
             shade_ms / fixed.len() as f64
         )
         .unwrap();
+        fix_times.push((route, build_ms, shade_ms / fixed.len() as f64));
         let zoom = if o.width <= 320 { 2 } else { 1 };
         image_out::save(
             &contact_sheet(&fixed_tiles, 3, zoom),
@@ -282,9 +353,7 @@ fn main() -> std::io::Result<()> {
     // (offline) against 2x2-quad differences (what a GPU does).
     let other = match o.route {
         FootprintRoute::Quad => FootprintRoute::RayDifferentials,
-        FootprintRoute::RayDifferentials | FootprintRoute::Moments | FootprintRoute::SubWindows => {
-            FootprintRoute::Quad
-        }
+        _ => FootprintRoute::Quad,
     };
     let other_derivs = gb.derivatives(&scene, other);
     let mut route_table = String::new();
@@ -310,78 +379,63 @@ fn main() -> std::io::Result<()> {
         &o.out.join("flip_sheet.png"),
     )?;
 
-    println!(
-        "## Still frame ({}x{}, 1 shading sample per pixel, footprints: {})\n",
-        o.width,
-        o.height,
-        route_name(o.route)
-    );
-    print!("{table}");
-    if o.presets {
-        println!("\n## Engine presets on the same frame\n");
-        print!("{preset_table}");
-    }
-    println!("\n## Both footprint routes on the same frame\n");
-    print!("{route_table}");
-    if !fix_cost.is_empty() {
-        println!("\n## The false-glint fix's cost on the still frame\n");
-        print!("{fix_cost}");
-    }
-    println!(
-        "\nReference: {} spp per pixel ({:.1} s); doubling {} -> {} spp changes each RMSE by at most {:.2}%{}.",
-        o.spp,
-        ref_time,
-        o.spp / 2,
-        o.spp,
-        100.0 * worst_change,
-        if worst_change < 0.01 {
-            " (< 1%: converged)"
-        } else {
-            " (>= 1%: raise --spp)"
-        }
-    );
-
     let glints_md = if o.investigate {
-        glints::investigate(&o, &scene, &cam, &gb, &reference)?
+        glints::investigate(o, &scene, &cam, &gb, &reference)?
     } else {
         String::new()
     };
-    print!("{glints_md}");
     let presets = if o.presets {
         Method::presets()
     } else {
         Vec::new()
     };
     let temporal = (o.frames >= 2)
-        .then(|| temporal::run(&o, &presets, &fixed))
+        .then(|| temporal::run(o, kind, &presets, &fixed))
         .transpose()?;
     let temporal_md = temporal
         .as_ref()
         .map_or(String::new(), |t| t.markdown.clone());
-    print!("{temporal_md}");
-    let lead = lead_table(&scores, temporal.as_ref());
-    println!("\n## What a viewer sees\n\n{lead}");
+    let (rows, references) = lead_rows(&scores, temporal.as_ref(), &reference_error, o.spp);
+    let lead = metrics::lead_table_with(&rows, &references);
+    let groups = route_groups(
+        &scores,
+        o.route,
+        (base_ms, &shade_times),
+        &fix_times,
+        (o.width, o.height),
+    );
+    let standing = metrics::standing_table(&groups, &rows, &references);
     let mut md = String::new();
     writeln!(
         md,
-        "## What a viewer sees (still frame and temporal test)\n\n{lead}"
+        "## {title}Where each route stands ({})\n\nPer route, its best method against unfiltered of the same NDF: the metrics it beats unfiltered on by more than the reference's own error (the first rows of the next table), and what the route costs on the CPU (this machine, one run).\n\n{standing}",
+        kind.name()
+    )
+    .unwrap();
+    writeln!(
+        md,
+        "## {title}What a viewer sees (still frame and temporal test)\n\n{lead}"
     )
     .unwrap();
     md.push_str(&glints_md);
     writeln!(
         md,
-        "## Still frame ({}x{}, 1 shading sample per pixel, footprints: {})\n\n{table}",
+        "## {title}Still frame ({}x{}, 1 shading sample per pixel, footprints: {})\n\n{table}",
         o.width,
         o.height,
         route_name(o.route)
     )
     .unwrap();
     if o.presets {
-        writeln!(md, "## Engine presets on the same frame\n\n{preset_table}").unwrap();
+        writeln!(
+            md,
+            "## {title}Engine presets on the same frame\n\n{preset_table}"
+        )
+        .unwrap();
     }
     writeln!(
         md,
-        "## Both footprint routes on the same frame\n\n{route_table}"
+        "## {title}Both footprint routes on the same frame\n\n{route_table}"
     )
     .unwrap();
     if !fix_cost.is_empty() {
@@ -391,26 +445,25 @@ fn main() -> std::io::Result<()> {
         )
         .unwrap();
     }
-    writeln!(md, "Reference: {} spp; doubling {} -> {} spp changes each RMSE by at most {:.2}%.\n{temporal_md}", o.spp, o.spp / 2, o.spp, 100.0 * worst_change).unwrap();
-    if o.scene == "both" {
-        let nm = normal_map::run(&o)?;
-        print!("{nm}");
-        md.push_str(&nm);
-    }
-    std::fs::write(o.out.join("results.md"), md)?;
-    println!(
-        "\nTotal {:.1} s. Images, contact sheet, plot and results.md in {}",
-        start.elapsed().as_secs_f64(),
-        o.out.display()
-    );
-    Ok(())
+    writeln!(md, "Reference: {} spp ({ref_time:.1} s; its error against {} spp, {ref4_time:.1} s: the lead table's first rows); doubling {} -> {} spp changes each RMSE by at most {:.2}%.\n{temporal_md}", o.spp, 4 * o.spp, o.spp / 2, o.spp, 100.0 * worst_change).unwrap();
+    Ok(md)
 }
 
-/// Issue 21's table for the CPU demo's methods, presets and variants ([`metrics::lead_table`]).
-fn lead_table(
+/// `s` with its first letter upper case.
+fn capitalise(s: &str) -> String {
+    let mut c = s.chars();
+    c.next()
+        .map_or(String::new(), |f| f.to_uppercase().chain(c).collect())
+}
+
+/// Issue 21's rows for the CPU demo's methods, presets and variants, and the references' own
+/// errors as the verdicts' margins (one row per NDF; [`metrics::lead_table_with`]).
+fn lead_rows(
     scores: &[(Method, FootprintRoute, metrics::Scores)],
     temporal: Option<&temporal::Temporal>,
-) -> String {
+    reference_error: &[metrics::Scores; 2],
+    spp: usize,
+) -> (Vec<metrics::LeadRow>, Vec<metrics::LeadRow>) {
     let flicker = |m: Method, r: FootprintRoute| {
         temporal.and_then(|tp| {
             let i = tp.methods.iter().position(|&x| x == (m, r))?;
@@ -431,7 +484,85 @@ fn lead_table(
             flicker: flicker(m, route),
         })
         .collect();
-    metrics::lead_table(&rows)
+    let references: Vec<metrics::LeadRow> = [Family::Beckmann, Family::Ggx]
+        .into_iter()
+        .map(|f| metrics::LeadRow {
+            label: format!(
+                "{}, {}",
+                metrics::reference_error_label(spp, temporal.map(|tp| tp.spp)),
+                f.name()
+            ),
+            ndf: f.name(),
+            baseline: false,
+            scores: reference_error[f as usize],
+            flicker: temporal.map(|tp| metrics::Flicker {
+                error: tp.reference_error[f as usize],
+                energy: f64::NAN,
+                peak_variation: f64::NAN,
+            }),
+        })
+        .collect();
+    (rows, references)
+}
+
+/// The routes of the "where each route stands" table, over the rows of `scores` (in its
+/// order): unfiltered; the footprint methods on `route`; the deferred conventions (TK19's
+/// isotropic kernels and the engine presets, from normal differences); each fix route. Costs:
+/// `base` = (G-buffer and `route`'s derivatives, per-method shading) and `fixes` = (route,
+/// filter inputs, mean shading), ms per frame at `size`.
+fn route_groups(
+    scores: &[(Method, FootprintRoute, metrics::Scores)],
+    route: FootprintRoute,
+    (base_ms, shade): (f64, &[(Method, f64)]),
+    fixes: &[(FootprintRoute, f64, f64)],
+    (w, h): (usize, usize),
+) -> Vec<metrics::RouteGroup> {
+    let mean_shade = |keep: &dyn Fn(Method) -> bool| {
+        let v: Vec<f64> = shade
+            .iter()
+            .filter(|(m, _)| keep(*m))
+            .map(|x| x.1)
+            .collect();
+        v.iter().sum::<f64>() / v.len().max(1) as f64
+    };
+    let cost = |inputs: f64, shading: f64| {
+        format!("{inputs:.0} ms inputs + {shading:.1} ms shading per frame ({w}x{h}, CPU)")
+    };
+    let indices = |keep: &dyn Fn(Method, FootprintRoute) -> bool| {
+        scores
+            .iter()
+            .enumerate()
+            .filter(|(_, (m, r, _))| keep(*m, *r))
+            .map(|(i, _)| i)
+            .collect::<Vec<_>>()
+    };
+    let unfiltered = |m: Method| matches!(m, Method::Unfiltered(_));
+    let deferred = |m: Method| !m.uses_footprint() && !unfiltered(m);
+    let mut groups = vec![
+        metrics::RouteGroup {
+            name: "unfiltered".to_string(),
+            rows: indices(&|m, _| unfiltered(m)),
+            cost: cost(base_ms, mean_shade(&unfiltered)),
+        },
+        metrics::RouteGroup {
+            name: format!("footprint methods, {}", route_name(route)),
+            rows: indices(&|m, r| m.uses_footprint() && r == route),
+            cost: cost(base_ms, mean_shade(&|m| m.uses_footprint())),
+        },
+        metrics::RouteGroup {
+            name: "deferred conventions (normal differences)".to_string(),
+            rows: indices(&|m, _| deferred(m)),
+            cost: cost(base_ms, mean_shade(&deferred)),
+        },
+    ];
+    for &(fix, inputs, shading) in fixes {
+        groups.push(metrics::RouteGroup {
+            name: format!("footprint methods, {}", route_name(fix)),
+            rows: indices(&|m, r| m.uses_footprint() && r == fix),
+            cost: cost(inputs, shading),
+        });
+    }
+    groups
 }
 
 fn save(o: &Options, name: &str, img: &Image) -> std::io::Result<()> {
@@ -442,6 +573,8 @@ fn save(o: &Options, name: &str, img: &Image) -> std::io::Result<()> {
 fn route_slug(r: FootprintRoute) -> &'static str {
     match r {
         FootprintRoute::SubWindows => "subwindows",
+        FootprintRoute::SubFootprints => "subfootprints",
+        FootprintRoute::KurtosisSplit => "kurtosis",
         _ => "moments",
     }
 }
@@ -452,5 +585,11 @@ fn route_name(r: FootprintRoute) -> &'static str {
         FootprintRoute::RayDifferentials => "ray differentials + M (offline)",
         FootprintRoute::Moments => "windowed slope moments (the false-glint fix)",
         FootprintRoute::SubWindows => "windowed moments of 4x4 traced sub-windows (the mixture)",
+        FootprintRoute::SubFootprints => {
+            "windowed moments of 2x2 sub-footprints on the tangent plane (4 lookups)"
+        }
+        FootprintRoute::KurtosisSplit => {
+            "windowed moments split in two by the slopes' fourth moment (kurtosis)"
+        }
     }
 }

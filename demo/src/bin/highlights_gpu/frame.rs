@@ -2,7 +2,7 @@
 //! `Scene` uniform of `shaders/scene.wgsl`, and the scissor rectangle of each sphere.
 
 use crate::camera::Camera;
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneKind};
 use glam::Vec3;
 
 /// The `Scene` uniform (`shaders/scene.wgsl`), field for field.
@@ -22,6 +22,10 @@ pub struct SceneUniform {
     wavelengths: [[f32; 4]; 8],
     spheres: [[f32; 4]; 5],
     sphere_albedo: [[f32; 4]; 5],
+    bumpy: [f32; 4],
+    bumps: [[f32; 4]; 8],
+    bump_phases: [[f32; 4]; 2],
+    sky: [[f32; 4]; 2],
 }
 
 fn v4(v: Vec3, w: f32) -> [f32; 4] {
@@ -32,8 +36,9 @@ impl SceneUniform {
     /// The uniform of `scene` seen through `cam`.
     pub fn new(scene: &Scene, cam: &Camera) -> Self {
         let p = scene.params();
-        assert_eq!(p.waves.len(), 8, "scene.wgsl: N_WAVES");
-        assert_eq!(p.spheres.len(), 5, "scene.wgsl: N_SPHERES");
+        assert!(p.waves.len() <= 8, "scene.wgsl: N_WAVES");
+        assert!(p.bumps.len() <= 8, "scene.wgsl: N_WAVES");
+        assert!(p.spheres.len() <= 5, "scene.wgsl: N_SPHERES");
         let [corner, step_x, step_y] = cam.basis();
         let mut u = Self {
             eye: v4(cam.eye, cam.pixel_angle()),
@@ -54,7 +59,20 @@ impl SceneUniform {
             wavelengths: [[0.0; 4]; 8],
             spheres: [[0.0; 4]; 5],
             sphere_albedo: [[0.0; 4]; 5],
+            bumpy: [
+                f32::from(u8::from(p.kind == SceneKind::Bumpy)),
+                p.spheres.len() as f32,
+                p.bump_bound,
+                p.bump_lipschitz,
+            ],
+            bumps: [[0.0; 4]; 8],
+            bump_phases: [[0.0; 4]; 2],
+            sky: [v4(scene.sky[0], 0.0), v4(scene.sky[1], 0.0)],
         };
+        for (i, b) in p.bumps.iter().enumerate() {
+            u.bumps[i] = [b[0], b[1], b[2], b[3]];
+            u.bump_phases[i / 4][i % 4] = b[4];
+        }
         for (i, w) in p.waves.iter().enumerate() {
             u.waves[i] = [w[0], w[1], w[2], w[3]];
             u.wavelengths[i] = [w[4], 0.0, 0.0, 0.0];
@@ -70,18 +88,19 @@ impl SceneUniform {
 /// A pixel rectangle `(x, y, width, height)`.
 pub type Rect = (u32, u32, u32, u32);
 
-/// The scissor rectangle of each sphere: the image rectangle around the projections of the
-/// corners of its bounding box (the projection of a convex body in front of the eye lies in
+/// The scissor rectangle of each sphere (in the bumpy scene, of each bumpy sphere's shell,
+/// radius `R + sum a_i`): the image rectangle around the projections of the corners of its
+/// bounding box (the projection of a convex body in front of the eye lies in
 /// the hull of its box's corners), widened by two pixels and to whole 2x2 quads so that every
 /// quad with a pixel of the sphere runs whole. The full image where a corner is behind the
 /// eye.
 pub fn sphere_scissors(scene: &Scene, cam: &Camera, width: u32, height: u32) -> Vec<Rect> {
     let full = (0, 0, width, height);
-    scene
-        .params()
-        .spheres
+    let p = scene.params();
+    p.spheres
         .iter()
         .map(|&(c, r, _)| {
+            let r = r + p.bump_bound;
             let mut lo = (f32::MAX, f32::MAX);
             let mut hi = (f32::MIN, f32::MIN);
             for k in 0..8 {

@@ -33,10 +33,12 @@ mod passes;
 mod report;
 
 use filtered_ndf_gpu::harness::Choice;
+use scene::SceneKind;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 /// Command-line options.
+#[derive(Clone)]
 pub struct Options {
     pub width: u32,
     pub height: u32,
@@ -52,12 +54,16 @@ pub struct Options {
     /// Fail unless every GPU frame matches the CPU demo's quad-difference frame of the same
     /// method (see [`report::check`]).
     pub check: bool,
+    /// Which scenes: `water`, `bumpy` or `all`.
+    pub scene: &'static str,
 }
 
 fn usage() -> ! {
     eprintln!(
-        "usage: highlights_gpu [--quick | --full] [--check] [--width N] [--height N] [--spp N]\n\
-         \x20                     [--frames N] [--repeats N] [--out DIR] [--threads N] [--seed N]\n\
+        "usage: highlights_gpu [--quick | --full] [--check] [--scene water|bumpy|all] [--width N]\n\
+         \x20                     [--height N] [--spp N] [--frames N] [--repeats N] [--out DIR]\n\
+         \x20                     [--threads N] [--seed N]\n\
+         \x20 --scene: the water (images in DIR), the bumpy spheres (DIR/bumpy), or both (default)\n\
          \x20 --quick: 128x80, reference 64 spp, 8 temporal frames (CI, software drivers)\n\
          \x20 default: 256x160, reference 512 spp, 16 frames (the CPU demo's frame)\n\
          \x20 --full:  1280x800, reference 16 spp, 16 frames (for a real GPU; the CPU\n\
@@ -82,6 +88,7 @@ fn parse_args() -> Options {
         exposure: 1.0,
         preset: "default",
         check: false,
+        scene: "all",
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -116,9 +123,17 @@ fn parse_args() -> Options {
             "--threads" => o.threads = num(&value).max(1),
             "--seed" => o.seed = num(&value) as u64,
             "--out" => o.out = PathBuf::from(value),
+            "--scene" => {
+                o.scene = match value.as_str() {
+                    "water" => "water",
+                    "bumpy" => "bumpy",
+                    "all" => "all",
+                    _ => usage(),
+                }
+            }
             _ => usage(),
         }
-        if flag != "--out" && flag != "--threads" {
+        if !matches!(flag.as_str(), "--out" | "--threads" | "--scene") {
             o.preset = "custom";
         }
     }
@@ -154,9 +169,26 @@ fn run() -> Result<(), String> {
     let t = std::time::Instant::now();
     renderer.prepare(&gpu, &report::routes())?;
     let compile_s = t.elapsed().as_secs_f64();
-    let still = report::still(&o, &gpu, &mut renderer)?;
-    let temporal = report::temporal(&o, &gpu, &mut renderer)?;
-    let md = report::markdown(&o, &gpu, compile_s, &still, &temporal);
+    let mut md = String::new();
+    let (mut passed, mut failures) = (0, Vec::new());
+    for kind in [SceneKind::Water, SceneKind::Bumpy] {
+        if o.scene != "all" && o.scene != kind.slug() {
+            continue;
+        }
+        // The water's images in `--out`, the other scenes' in a folder of their own.
+        let out = match kind {
+            SceneKind::Water => o.out.clone(),
+            _ => o.out.join(kind.slug()),
+        };
+        std::fs::create_dir_all(&out).map_err(|e| format!("{}: {e}", out.display()))?;
+        let ok = Options { out, ..o.clone() };
+        let still = report::still(&ok, kind, &gpu, &mut renderer)?;
+        let temporal = report::temporal(&ok, kind, &gpu, &mut renderer)?;
+        md.push_str(&report::markdown(&ok, &gpu, compile_s, &still, &temporal));
+        let failed = report::check(&still);
+        passed += still.rows.len() - failed.len();
+        failures.extend(failed.into_iter().map(|f| format!("{}: {f}", kind.name())));
+    }
     print!("{md}");
     std::fs::write(o.out.join("results.md"), &md).map_err(|e| e.to_string())?;
     println!(
@@ -165,10 +197,8 @@ fn run() -> Result<(), String> {
         o.out.display()
     );
     if o.check {
-        let failures = report::check(&still);
         println!(
-            "highlights_gpu check: {} passed, {} failed",
-            still.rows.len() - failures.len(),
+            "highlights_gpu check: {passed} passed, {} failed",
             failures.len()
         );
         if !failures.is_empty() {

@@ -445,7 +445,7 @@ impl Renderer {
             for (i, group) in self.objects.iter().enumerate() {
                 let (x, y, w, h) = match i {
                     0 => (0, 0, t.width, t.height),
-                    _ => self.scissors[i - 1],
+                    _ => self.scissors.get(i - 1).copied().unwrap_or((0, 0, 0, 0)),
                 };
                 if w == 0 || h == 0 {
                     continue;

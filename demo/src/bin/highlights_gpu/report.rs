@@ -12,7 +12,7 @@ use crate::passes::{Renderer, Route};
 use crate::peaks::{distance, mean, variation};
 use crate::plot::{PALETTE, Series, line_plot};
 use crate::render::{self, FootprintRoute};
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneKind};
 use crate::{Options, parallel};
 use rayon::prelude::*;
 use std::fmt::Write as _;
@@ -89,7 +89,11 @@ pub struct Row {
 
 /// The still frame's results.
 pub struct Still {
+    pub kind: SceneKind,
     pub rows: Vec<Row>,
+    /// Per family (Beckmann, GGX): the reference's own error, its scores against an
+    /// independent reference of four times the samples.
+    pub reference_error: [Scores; 2],
     /// The fraction of pixels the CPU quad route differences with their own quad partners.
     pub same_quads: f64,
     pub reference_s: f64,
@@ -108,10 +112,15 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 /// Frame 0: every route on the GPU, the CPU reference and the CPU demo's frames, the times,
 /// the images, the contact sheet and the side-by-side figure.
-pub fn still(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Still, String> {
+pub fn still(
+    o: &Options,
+    kind: SceneKind,
+    gpu: &Gpu,
+    renderer: &mut Renderer,
+) -> Result<Still, String> {
     let (w, h) = (o.width as usize, o.height as usize);
     let cam = camera_at(0, w, h);
-    let scene = Scene::new(cam.lod());
+    let scene = Scene::of(kind, cam.lod());
     renderer.resize(gpu, o.width, o.height);
     renderer.begin_frame(gpu, &scene, &cam)?;
     let mut frames = Vec::new();
@@ -146,6 +155,22 @@ pub fn still(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Still, S
     let t = std::time::Instant::now();
     let reference = render::reference(&scene, &cam, w, h, o.spp, o.seed, Some("CPU reference"));
     let reference_s = t.elapsed().as_secs_f64();
+    let reference_4n = render::reference(
+        &scene,
+        &cam,
+        w,
+        h,
+        4 * o.spp,
+        o.seed ^ render::SEED_4N,
+        Some("CPU reference x4 (its error)"),
+    );
+    let reference_error = [Family::Beckmann, Family::Ggx].map(|f| {
+        metrics::reference_error(
+            (reference.full(f), reference.specular(f)),
+            (reference_4n.full(f), reference_4n.specular(f)),
+            o.exposure,
+        )
+    });
     let gb = render::gbuffer(&scene, &cam, w, h);
     let rays = gb.derivatives(&scene, FootprintRoute::RayDifferentials);
     let quad = gb.derivatives(&scene, FootprintRoute::Quad);
@@ -245,7 +270,9 @@ pub fn still(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Still, S
     let figure = contact_sheet(&side_by_side, 3, zoom);
     save(&figure, &o.out.join("gpu_vs_cpu.png")).map_err(|e| e.to_string())?;
     Ok(Still {
+        kind,
         rows,
+        reference_error,
         same_quads,
         reference_s,
         visibility_time,
@@ -264,12 +291,20 @@ pub struct Temporal {
     pub routes: Vec<(Route, [Vec<f32>; 3])>,
     /// Per route (in `routes`' order): the GPU frames' flicker against the reference's.
     pub flicker: Vec<Flicker>,
+    /// Per family: the reference sequence's flicker error against an independent sequence of
+    /// four times the samples, over its flicker energy.
+    pub reference_error: [f64; 2],
 }
 
 /// The temporal test (KHPL16 Fig. 12) on GPU frames: the CPU demo's camera dolly, frames at
 /// half resolution, the peak luminance of each frame for every route, beside the CPU
 /// reference's and the CPU demo's.
-pub fn temporal(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Temporal, String> {
+pub fn temporal(
+    o: &Options,
+    kind: SceneKind,
+    gpu: &Gpu,
+    renderer: &mut Renderer,
+) -> Result<Temporal, String> {
     let (w, h) = (
         (o.width / DOWNSCALE).max(2).div_ceil(2) * 2,
         (o.height / DOWNSCALE).max(2).div_ceil(2) * 2,
@@ -286,18 +321,32 @@ pub fn temporal(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Tempo
             .map(|r| (r, [Vec::new(), Vec::new(), Vec::new()]))
             .collect(),
         flicker: Vec::new(),
+        reference_error: [0.0; 2],
     };
     let mut lums: Vec<Vec<Vec<f32>>> = vec![Vec::new(); out.routes.len()];
     let mut ref_lums = [Vec::new(), Vec::new()];
+    let mut ref4_lums = [Vec::new(), Vec::new()];
     let bar = parallel::bar("temporal frames", o.frames);
     for f in 0..o.frames {
         let cam = camera_at(f, w as usize, h as usize);
-        let scene = Scene::new(cam.lod());
+        let scene = Scene::of(kind, cam.lod());
         renderer.begin_frame(gpu, &scene, &cam)?;
         let reference = render::reference(&scene, &cam, w as usize, h as usize, spp, o.seed, None);
         for (k, img) in reference.full.iter().enumerate() {
             out.reference[k].push(img.peak());
             ref_lums[k].push(display_luminance(img, o.exposure));
+        }
+        let reference_4n = render::reference(
+            &scene,
+            &cam,
+            w as usize,
+            h as usize,
+            4 * spp,
+            o.seed ^ render::SEED_4N,
+            None,
+        );
+        for (k, img) in reference_4n.full.iter().enumerate() {
+            ref4_lums[k].push(display_luminance(img, o.exposure));
         }
         let gb = render::gbuffer(&scene, &cam, w as usize, h as usize);
         let rays = gb.derivatives(&scene, FootprintRoute::RayDifferentials);
@@ -314,6 +363,8 @@ pub fn temporal(o: &Options, gpu: &Gpu, renderer: &mut Renderer) -> Result<Tempo
     }
     bar.finish_and_clear();
     let ref_energy = ref_lums.each_ref().map(|l| flicker_energy(l));
+    out.reference_error =
+        [0, 1].map(|k| flicker_error(&ref_lums[k], &ref4_lums[k]) / ref_energy[k]);
     out.flicker = out
         .routes
         .iter()
@@ -394,9 +445,17 @@ pub fn check(s: &Still) -> Vec<String> {
 pub fn markdown(o: &Options, gpu: &Gpu, compile_s: f64, s: &Still, t: &Temporal) -> String {
     let mut md = String::new();
     let software = gpu.is_software();
+    // The water's sections keep their titles; the other scenes' name themselves.
+    let title = match s.kind {
+        SceneKind::Water => String::new(),
+        k => {
+            let name = k.name();
+            format!("{}{}: ", name[..1].to_uppercase(), &name[1..])
+        }
+    };
     writeln!(
         md,
-        "## What a viewer sees: GPU frames ({}x{}, temporal test {} frames at {}x{})\n",
+        "## {title}What a viewer sees: GPU frames ({}x{}, temporal test {} frames at {}x{})\n",
         o.width,
         o.height,
         t.reference[0].len(),
@@ -424,11 +483,77 @@ pub fn markdown(o: &Options, gpu: &Gpu, compile_s: f64, s: &Still, t: &Temporal)
             }
         })
         .collect();
-    md.push_str(&metrics::lead_table(&rows));
+    let temporal = t.reference[0].len() >= 2;
+    let references: Vec<LeadRow> = [Family::Beckmann, Family::Ggx]
+        .into_iter()
+        .map(|f| LeadRow {
+            label: format!(
+                "{}, {}",
+                metrics::reference_error_label(o.spp, temporal.then_some(t.spp)),
+                f.name()
+            ),
+            ndf: f.name(),
+            baseline: false,
+            scores: s.reference_error[f as usize],
+            flicker: temporal.then(|| Flicker {
+                error: t.reference_error[f as usize],
+                energy: f64::NAN,
+                peak_variation: f64::NAN,
+            }),
+        })
+        .collect();
+    // Where each route stands: per route its best method, and the GPU time of the route's
+    // methods relative to unfiltered GGX on the same route (their range).
+    let group = |name: &str, keep: &dyn Fn(Route) -> bool| {
+        let idx: Vec<usize> = (0..s.rows.len())
+            .filter(|&i| keep(s.rows[i].route))
+            .collect();
+        let rel: Vec<f64> = idx
+            .iter()
+            .map(|&i| {
+                let r = &s.rows[i];
+                let base = s
+                    .rows
+                    .iter()
+                    .find(|b| b.route == baseline(r.route))
+                    .map_or(r.time, |b| b.time);
+                r.time / base
+            })
+            .collect();
+        let (lo, hi) = rel
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+        metrics::RouteGroup {
+            name: name.to_string(),
+            rows: idx,
+            cost: format!("{lo:.2}-{hi:.2}x unfiltered GGX's GPU time"),
+        }
+    };
+    let is_unfiltered = |r: Route| matches!(cpu_method(r), Method::Unfiltered(_));
+    let groups = [
+        group("unfiltered (forward and deferred)", &is_unfiltered),
+        group(
+            "forward, half-vector filters on quad derivatives",
+            &|r| matches!(r, Route::Forward(m) if m.uses_footprint()),
+        ),
+        group("forward, TK19's isotropic kernels", &|r| {
+            matches!(r, Route::Forward(m) if !m.uses_footprint()) && !is_unfiltered(r)
+        }),
+        group("deferred conventions", &|r| {
+            matches!(r, Route::Deferred(Some(_)))
+        }),
+    ];
+    writeln!(
+        md,
+        "### {title}Where each route stands on the GPU\n\n{}\n### {title}Every route on the GPU\n",
+        metrics::standing_table(&groups, &rows, &references)
+    )
+    .unwrap();
+    md.push_str(&metrics::lead_table_with(&rows, &references));
     writeln!(md).unwrap();
     writeln!(
         md,
-        "## GPU frames against the CPU reference ({}x{}, 1 shading sample per pixel, quad derivatives)\n",
+        "## {title}GPU frames against the CPU reference ({}x{}, 1 shading sample per pixel, quad derivatives)\n",
         o.width, o.height
     )
     .unwrap();
@@ -481,7 +606,7 @@ pub fn markdown(o: &Options, gpu: &Gpu, compile_s: f64, s: &Still, t: &Temporal)
         .unwrap();
     }
 
-    writeln!(md, "\n## GPU time per method\n").unwrap();
+    writeln!(md, "\n## {title}GPU time per method\n").unwrap();
     writeln!(
         md,
         "{}: {}. Each route's passes (forward: one pass of six draws; deferred: the G-buffer \
@@ -524,7 +649,7 @@ pub fn markdown(o: &Options, gpu: &Gpu, compile_s: f64, s: &Still, t: &Temporal)
     if !t.reference[0].is_empty() {
         writeln!(
             md,
-            "\n## Temporal test on GPU frames ({} frames, {}x{}, reference {} spp)\n",
+            "\n## {title}Temporal test on GPU frames ({} frames, {}x{}, reference {} spp)\n",
             t.reference[0].len(),
             t.width,
             t.height,

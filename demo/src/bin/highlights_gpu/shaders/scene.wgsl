@@ -1,15 +1,18 @@
 #define_import_path highlights::scene
 
-// The demonstration's scene on the GPU: the same analytic surfaces as
-// `demo/src/scene.rs` (wavy water with its level of detail, five spheres, one point
-// light), with the parameters of that one description uploaded as `Scene` (see
-// `demo/src/bin/highlights_gpu/frame.rs`). Each function mirrors the Rust one of the same name.
+// The demonstration's scenes on the GPU: the same analytic surfaces as
+// `demo/src/scene.rs` (wavy water with its level of detail and five spheres; or the bumpy
+// spheres of `demo/src/bumpy.rs`; one point light), with the parameters of that one
+// description uploaded as `Scene` (see `demo/src/bin/highlights_gpu/frame.rs`). Each function
+// mirrors the Rust one of the same name.
 
 /// Waves and spheres (the sizes of `scene.rs`).
 const N_WAVES: u32 = 8u;
 const N_SPHERES: u32 = 5u;
 /// Wavelength, in pixel footprints, under which a wave starts to fade (`LOD_PIXELS`).
 const LOD_PIXELS: f32 = 2.0;
+/// The bumpy spheres' march: its minimum step relative to `t` (`BUMPY_MIN_STEP`).
+const BUMPY_MIN_STEP: f32 = 4e-4;
 /// Visibility codes (`visibility.z`): the sky; the water is object 0, sphere `i` is `i + 1`.
 const SKY: f32 = -1.0;
 
@@ -35,9 +38,18 @@ struct Scene {
     /// Per wave: `(k_x, k_z, amplitude, phase)` and `(wavelength, -, -, -)`.
     waves: array<vec4<f32>, 8>,
     wavelengths: array<vec4<f32>, 8>,
-    /// Per sphere: centre (xyz), radius (w); albedo (rgb).
+    /// Per sphere: centre (xyz), radius (w); albedo (rgb). In the bumpy scene, the bumpy
+    /// spheres' base spheres.
     spheres: array<vec4<f32>, 5>,
     sphere_albedo: array<vec4<f32>, 5>,
+    /// The bumpy scene (x = 1; 0: the water scene), its number of spheres (y), the bumps'
+    /// `sum a_i` (z) and the field's Lipschitz constant `L` (w).
+    bumpy: vec4<f32>,
+    /// Per bump wave: `k` (xyz), amplitude (w); the phases, four per vector.
+    bumps: array<vec4<f32>, 8>,
+    bump_phases: array<vec4<f32>, 2>,
+    /// The background's horizon and zenith radiance (rgb).
+    sky: array<vec4<f32>, 2>,
 }
 
 @group(0) @binding(0) var<uniform> scene: Scene;
@@ -67,10 +79,10 @@ fn ray_dir(pixel: vec2<f32>) -> vec3<f32> {
     return normalize(scene.corner.xyz + pixel.x * scene.step_x.xyz + pixel.y * scene.step_y.xyz);
 }
 
-/// The dim sky gradient: `Scene::sky`.
+/// The background's gradient from horizon to zenith: `Scene::sky`.
 fn sky(dir: vec3<f32>) -> vec3<f32> {
     let k = clamp(dir.y, 0.0, 1.0);
-    return mix(vec3<f32>(0.25, 0.3, 0.42), vec3<f32>(0.05, 0.09, 0.2), sqrt(k));
+    return mix(scene.sky[0].xyz, scene.sky[1].xyz, sqrt(k));
 }
 
 /// `(sin x, cos x)` with the reduction of `fast_sin` (Cody-Waite by `pi`) and odd / even
@@ -244,9 +256,109 @@ fn sphere_surface(i: u32, d: vec3<f32>) -> Surface {
     return Surface(p, n, scene.sphere_albedo[i].xyz, scene.light_intensity.w);
 }
 
+/// Whether this is the bumpy scene.
+fn is_bumpy() -> bool {
+    return scene.bumpy.x > 0.5;
+}
+
+/// `F(q)` of the bumpy sphere of base radius `radius`: `Bumps::field`.
+fn bumpy_field(radius: f32, q: vec3<f32>) -> f32 {
+    var h = 0.0;
+    for (var i = 0u; i < N_WAVES; i++) {
+        let w = scene.bumps[i];
+        h += w.w * fast_sincos(dot(w.xyz, q) + scene.bump_phases[i / 4u][i % 4u]).x;
+    }
+    return length(q) - radius - h;
+}
+
+/// The unit normal `grad F / |grad F|` at `q`: `Bumps::normal_and_shape`.
+fn bumpy_normal(q: vec3<f32>) -> vec3<f32> {
+    var g = normalize(q);
+    for (var i = 0u; i < N_WAVES; i++) {
+        let w = scene.bumps[i];
+        g -= w.xyz * (w.w * fast_sincos(dot(w.xyz, q) + scene.bump_phases[i / 4u][i % 4u]).y);
+    }
+    return normalize(g);
+}
+
+/// The first crossing of the ray `o + t d` with bumpy sphere `i` before `t_max`, or `-1`:
+/// `Bumps::crossing` (steps of `max(F / L, BUMPY_MIN_STEP t)` in the shell, six bisections,
+/// one secant step).
+fn bumpy_t(i: u32, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> f32 {
+    let s = scene.spheres[i];
+    let oc = o - s.xyz;
+    let outer = s.w + scene.bumpy.z;
+    let b = dot(oc, d);
+    let disc = b * b - (dot(oc, oc) - outer * outer);
+    if disc < 0.0 {
+        return -1.0;
+    }
+    let sq = sqrt(disc);
+    var t = max(-b - sq, 0.0);
+    let t_end = min(-b + sq, t_max);
+    if t_end <= t {
+        return -1.0;
+    }
+    var f_cur = bumpy_field(s.w, oc + t * d);
+    if f_cur < 0.0 {
+        return -1.0;
+    }
+    for (var k = 0; k < 400; k++) {
+        if t >= t_end {
+            return -1.0;
+        }
+        let step = max(max(f_cur / scene.bumpy.w, BUMPY_MIN_STEP * t), 1e-5);
+        let t_next = min(t + step, t_end);
+        let f_next = bumpy_field(s.w, oc + t_next * d);
+        if f_next < 0.0 {
+            var lo = t;
+            var hi = t_next;
+            var flo = f_cur;
+            var fhi = f_next;
+            for (var j = 0; j < 6; j++) {
+                let mid = 0.5 * (lo + hi);
+                let fm = bumpy_field(s.w, oc + mid * d);
+                if fm < 0.0 {
+                    hi = mid;
+                    fhi = fm;
+                } else {
+                    lo = mid;
+                    flo = fm;
+                }
+            }
+            return lo + (hi - lo) * flo / (flo - fhi);
+        }
+        t = t_next;
+        f_cur = f_next;
+    }
+    return -1.0;
+}
+
+/// Bumpy sphere `i`'s shading point along `d`; where the ray misses it, the point of the base
+/// sphere nearest the ray with the field's normal there (the surface continued past its
+/// silhouette for the quad's helper lanes).
+fn bumpy_surface(i: u32, d: vec3<f32>) -> Surface {
+    let s = scene.spheres[i];
+    let o = scene.eye.xyz;
+    let t = bumpy_t(i, o, d, 3.4e38);
+    var p = o + t * d;
+    if t < 0.0 {
+        let q = o + dot(s.xyz - o, d) * d;
+        p = s.xyz + s.w * normalize(q - s.xyz);
+    }
+    return Surface(p, bumpy_normal(p - s.xyz), scene.sphere_albedo[i].xyz, scene.light_intensity.w);
+}
+
 /// Object `index`'s shading point along `d` (0: the water, at the water layer's distance
-/// `layer_t` from the visibility pass; `1 + i`: sphere `i`).
+/// `layer_t` from the visibility pass; `1 + i`: sphere `i`, or bumpy sphere `i` in the bumpy
+/// scene, whose object 0 is the sky alone: a placeholder point, never shown).
 fn object_surface(index: u32, d: vec3<f32>, layer_t: f32) -> Surface {
+    if is_bumpy() {
+        if index == 0u {
+            return Surface(scene.eye.xyz + d, vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0), scene.light_intensity.w);
+        }
+        return bumpy_surface(index - 1u, d);
+    }
     if index == 0u {
         return water_at(d, layer_t);
     }
@@ -260,6 +372,16 @@ fn visibility(d: vec3<f32>) -> vec4<f32> {
     let o = scene.eye.xyz;
     var best = 3.4e38;
     var object = SKY;
+    if is_bumpy() {
+        for (var i = 0u; i < u32(scene.bumpy.y); i++) {
+            let t = bumpy_t(i, o, d, best);
+            if t >= 0.0 {
+                best = t;
+                object = f32(i + 1u);
+            }
+        }
+        return vec4<f32>(0.0, 0.0, object, 0.0);
+    }
     for (var i = 0u; i < N_SPHERES; i++) {
         let t = sphere_t(i, o, d);
         if t > 0.0 && t < best {
