@@ -1001,6 +1001,8 @@ fn wgsl_stage(path: &str) -> Stage {
     match segs.next() {
         None => Stage::Root,
         Some("math") => Stage::Foundation,
+        // `bake` is crate level in Rust (both precisions): beside the pipeline.
+        Some("bake") => Stage::Beside,
         Some(s) => stage_of(&["crate", "P", s].map(String::from)),
     }
 }
