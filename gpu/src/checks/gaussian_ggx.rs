@@ -604,7 +604,7 @@ fn settings(n: usize) -> Vec<Check> {
         .map(|(setting, bound)| {
             let body = format!(
                 "let a = matrix::from_eigen(x2(0u), x2(2u));
-let k = footprint::covariance(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
+let k = covariance::from_footprint(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
 let g = gaussian_ggx::with_tolerance(gaussian_ggx::from_kernel(a, k), gaussian_ggx::{setting});
 y(0u, gaussian_ggx::p22(g, x2(8u)));
 y(1u, gaussian_ggx::d(g, x3(10u)));"
