@@ -127,7 +127,13 @@ pub(super) fn takes_far(rule: &Rule, beta_m: f64, z2: f64, tl1: f64) -> bool {
 /// `J / z2^2` by the rule `RULES[S]` (the reduced counterpart of `gaussian_ggx_quad::mixture_integral`, same
 /// arguments).
 #[inline]
-pub(super) fn mixture_integral<const S: usize>(v1s: f64, v2s: f64, z2: f64, tl1: f64, tl2: f64) -> f64 {
+pub(super) fn mixture_integral<const S: usize>(
+    v1s: f64,
+    v2s: f64,
+    z2: f64,
+    tl1: f64,
+    tl2: f64,
+) -> f64 {
     let rule = const { &RULES[S] };
     let beta_m = z2 + v1s + v2s;
     if takes_far(rule, beta_m, z2, tl1) {

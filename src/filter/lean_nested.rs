@@ -29,7 +29,7 @@ use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{AxisAligned, Isotropic, Roughness, RoughnessMatrix};
 use super::{
-    ExactGaussian, GaussianFilteredGgx, Gaussian, LeanMoments, Method, Projected, Proxy, Rect,
+    ExactGaussian, Gaussian, GaussianFilteredGgx, LeanMoments, Method, Projected, Proxy, Rect,
     RectFilteredGgx, Vec3, gaussian,
 };
 use crate::math as m;
@@ -114,7 +114,9 @@ impl<R: Roughness> Method<Ggx<R>> for Lean<ExactGaussian> {
     #[inline]
     fn lobe(&self, material: &Ggx<R>, footprint: Footprint) -> Self::Lobe {
         let e = &self.method;
-        let pixel = e.clamps.kernel(e.clamps.footprint(footprint).covariance(e.sigma));
+        let pixel = e
+            .clamps
+            .kernel(e.clamps.footprint(footprint).covariance(e.sigma));
         let kernel: Covariance = pixel + self.moments.covariance();
         GaussianFilteredGgx::new(material.roughness, kernel).with_tolerance(e.tolerance)
     }

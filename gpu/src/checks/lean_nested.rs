@@ -186,7 +186,9 @@ pub fn all() -> Vec<Check> {
         );
         one(
             &format!("lean_nested::gaussian_lobe (Beckmann, gaussian::{name})"),
-            &format!("beckmann::d_matrix(lean_nested::gaussian_lobe(gaussian::{name}, a, fp, m), h)"),
+            &format!(
+                "beckmann::d_matrix(lean_nested::gaussian_lobe(gaussian::{name}, a, fp, m), h)"
+            ),
             &move |p| {
                 let h = v3(p.h);
                 let d = |mo: &LeanMoments| {
@@ -236,9 +238,7 @@ pub fn all() -> Vec<Check> {
     ] {
         one(
             &format!("lean_nested::rect_lobe (lobe::{name})"),
-            &format!(
-                "lobe::d_rect_filtered(lean_nested::rect_lobe(lobe::{name}, r, fp, m), h)"
-            ),
+            &format!("lobe::d_rect_filtered(lean_nested::rect_lobe(lobe::{name}, r, fp, m), h)"),
             &move |p| {
                 let h = v3(p.h);
                 let d =

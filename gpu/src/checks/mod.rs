@@ -273,7 +273,11 @@ pub fn run(check: &Check) -> Result<Outcome, String> {
             // Equal values (the same infinity included) differ by 0, not by `inf - inf`, and
             // an absolute tolerance stays absolute at an infinite reference (not `0 inf`).
             let err = if g == r { 0.0 } else { (g - r).abs() };
-            let allowed = if t.rel == 0.0 { t.abs } else { t.rel * r.abs() + t.abs };
+            let allowed = if t.rel == 0.0 {
+                t.abs
+            } else {
+                t.rel * r.abs() + t.abs
+            };
             let ok = err <= allowed;
             // Reported errors: relative where the relative part of the tolerance dominates
             // (`|ref|` well above the absolute part, which is the flush-to-zero floor or a

@@ -8,7 +8,6 @@ use super::dispatch::{SimdLoop, dispatch};
 use super::gather::{Scratch, second_lane_pass, sorted_pass};
 use super::kernel::Kernel;
 
-
 /// Blocks run by the scalar path alone after a block whose vector pass flagged more than half
 /// of its elements (then the vector pass probes again).
 const SCALAR_RUN: usize = 7;
