@@ -7,7 +7,7 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use filtered_ndf::f32::{
     AxisAligned, Beckmann, Covariance, Ggx, Ndf, NdfSampling, RoughnessMatrix, filter,
-    filter::rect, footprint::slope,
+    filter::rect, footprint::slope, sampling,
 };
 use filtered_ndf::testing::rng::SplitMix64;
 use glam::{Vec2, Vec3};
@@ -173,7 +173,7 @@ fn bench(c: &mut Criterion) {
         bch.iter(|| {
             let mut acc = Vec3::ZERO;
             for x in black_box(&xs) {
-                acc += rect::sample_normal_rect(x.r, x.half, x.u, x.u_box);
+                acc += sampling::rect::sample_normal_rect(x.r, x.half, x.u, x.u_box);
             }
             acc
         })
@@ -191,7 +191,7 @@ fn bench(c: &mut Criterion) {
         bch.iter(|| {
             let mut acc = Vec3::ZERO;
             for x in black_box(&xs) {
-                acc += rect::sample_visible_normal_rect(x.r, x.half, x.wo, x.u, x.u_box)
+                acc += sampling::rect::sample_visible_normal_rect(x.r, x.half, x.wo, x.u, x.u_box)
                     .unwrap_or(Vec3::ZERO);
             }
             acc

@@ -162,3 +162,26 @@ fn ln_1p(x: f32) -> f32 {
     }
     return ln(1.0 + x);
 }
+
+/// Whether `x` is NaN, decided on its bits (exponent all ones, mantissa non-zero): integer
+/// arithmetic, which no driver folds away under a no-NaN assumption (a float comparison such
+/// as `x != x` may be). The Rust `is_nan`.
+fn is_nan(x: f32) -> bool {
+    return (bitcast<u32>(x) & 0x7fffffffu) > 0x7f800000u;
+}
+
+/// `x` with NaN replaced by `0`: the NaN policy of footprints and normal differences (the Rust
+/// `vector::nan_to_zero`): a NaN entry carries no information and widens nothing.
+fn nan_to_zero(x: f32) -> f32 {
+    return select(x, 0.0, is_nan(x));
+}
+
+/// [`nan_to_zero`] per component of a 2-vector.
+fn nan_to_zero2(v: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(nan_to_zero(v.x), nan_to_zero(v.y));
+}
+
+/// [`nan_to_zero`] per component of a 3-vector.
+fn nan_to_zero3(v: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(nan_to_zero(v.x), nan_to_zero(v.y), nan_to_zero(v.z));
+}

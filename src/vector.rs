@@ -14,7 +14,7 @@ use crate::math as m;
 
 /// The squared lengths for which `v / sqrt(|v|^2)` needs no rescaling (module docs).
 #[inline(always)]
-fn direct(l2: F) -> bool {
+fn in_direct_range(l2: F) -> bool {
     (F::MIN_POSITIVE / F::EPSILON..=F::MAX).contains(&l2)
 }
 
@@ -24,7 +24,7 @@ fn direct(l2: F) -> bool {
 #[inline]
 pub fn length(v: Vec3) -> F {
     let l2 = v.length_squared();
-    if direct(l2) {
+    if in_direct_range(l2) {
         return m::sqrt(l2);
     }
     // `max_element` skips NaN: test the vector itself.
@@ -45,7 +45,7 @@ macro_rules! unit_and_length_of {
     ($v:expr) => {{
         let v = $v;
         let l2 = v.length_squared();
-        if direct(l2) {
+        if in_direct_range(l2) {
             let len = m::sqrt(l2);
             return Some((v / len, len));
         }
@@ -84,6 +84,20 @@ pub fn unit2_and_length(v: Vec2) -> Option<(Vec2, F)> {
 #[inline]
 pub fn unit2(v: Vec2) -> Option<Vec2> {
     unit2_and_length(v).map(|(u, _)| u)
+}
+
+/// `v` with each NaN component replaced by `0`, infinite components kept: the crate's policy
+/// for derivative inputs (footprints and normal differences, [`crate::contract`]): a NaN
+/// carries no information, so it contributes no widening.
+#[inline(always)]
+pub fn nan_to_zero(v: Vec3) -> Vec3 {
+    Vec3::select(v.is_nan_mask(), Vec3::ZERO, v)
+}
+
+/// [`nan_to_zero`] for a 2-vector.
+#[inline(always)]
+pub fn nan_to_zero2(v: Vec2) -> Vec2 {
+    Vec2::select(v.is_nan_mask(), Vec2::ZERO, v)
 }
 
 #[cfg(test)]

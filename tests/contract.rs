@@ -355,18 +355,22 @@ macro_rules! contract {
                     Vec2::Y,
                 );
                 assert!(fp.dh_u.is_finite() && fp.dh_u.length() > 1e10);
-                assert_eq!(
-                    Footprint::from_normal_differences(Vec3::new(INF, 0.0, 0.0), Vec3::ZERO),
-                    Footprint::ZERO
-                );
+                // An infinite difference saturates (an infinite entry, for the clamp rules).
+                let inf = Footprint::from_normal_differences(Vec3::new(INF, 0.0, 0.0), Vec3::ZERO);
+                assert!(inf.dh_u.x == INF && inf.dh_u.y == 0.0 && inf.dh_v == Vec2::ZERO);
                 let fp = Footprint::from_normal_differences(Vec3::new(1e-7, 0.0, -2.0), Vec3::ZERO);
                 assert!(fp.dh_u.is_finite());
-                // Plain arithmetic: NaN propagates.
+                // The kernel builders count a NaN entry as 0; max_extent is plain arithmetic.
                 let nanfp = Footprint::from_slope_derivatives(Vec2::new(NAN, 0.0), Vec2::ZERO);
-                assert!(nanfp.covariance(0.5).s11.is_nan() && nanfp.max_extent().is_nan());
-                // sanitized: NaN -> ZERO, inf -> KERNEL_MAX I, indefinite -> PSD.
+                assert_eq!(nanfp.covariance(0.5), Covariance::ZERO);
+                assert_eq!(nanfp.bounding_rect(), BoundingRect::new(Vec2::ZERO));
+                assert!(nanfp.max_extent().is_nan());
+                // sanitized: a NaN entry -> 0, inf -> KERNEL_MAX I, indefinite -> PSD.
                 let kmax = kernel::KERNEL_MAX;
-                assert_eq!(Covariance::new(NAN, 0.0, 1.0).sanitized(), Covariance::ZERO);
+                assert_eq!(
+                    Covariance::new(NAN, 0.0, 1.0).sanitized(),
+                    Covariance::new(0.0, 0.0, 1.0)
+                );
                 assert_eq!(
                     Covariance::new(INF, 0.0, 1.0).sanitized(),
                     Covariance::new(kmax, 0.0, kmax)
@@ -584,9 +588,12 @@ macro_rules! contract {
                 assert_eq!(filtered_alpha(INF, &sig, Bandwidth::Trace, KAPPA), 1.0);
                 for bw in [Bandwidth::Max, Bandwidth::Trace, Bandwidth::Average] {
                     let nan = Covariance::new(NAN, 0.0, 0.0);
-                    assert!(bw.alpha2(&nan).is_nan());
-                    // A NaN kernel counts as kappa (the maximal clamped kernel).
+                    assert_eq!(bw.alpha2(&nan), 0.0);
+                    // A NaN kernel entry counts as 0: no widening from it.
                     let a = filtered_alpha(0.1, &nan, bw, KAPPA);
+                    assert!((a * a - 0.01).abs() < TOL);
+                    // An infinite one counts as kappa (the maximal clamped kernel).
+                    let a = filtered_alpha(0.1, &Covariance::new(INF, 0.0, 0.0), bw, KAPPA);
                     assert!((a * a - (0.01 + KAPPA)).abs() < TOL);
                     // Indefinite: negative eigenvalues count as 0.
                     let v = filtered_alpha(0.1, &Covariance::new(-1.0, 0.0, -1.0), bw, KAPPA);
@@ -704,9 +711,19 @@ macro_rules! contract {
                     g::half_vector_jacobian_far_field(Vec3::new(NAN, 0.0, 1.0), &frame),
                     Mat2::ZERO
                 );
+                // An infinite Jacobian entry saturates (infinite entries, never NaN); a NaN one
+                // counts as 0.
+                let f = g::footprint(
+                    Mat2::from_cols(Vec2::splat(INF), Vec2::ZERO),
+                    &frame,
+                    Vec3::X,
+                    Vec3::Y,
+                );
+                let e = [f.dh_u.x, f.dh_u.y, f.dh_v.x, f.dh_v.y];
+                assert!(e.iter().all(|x| !x.is_nan()) && e.iter().any(|x| x.is_infinite()));
                 assert_eq!(
                     g::footprint(
-                        Mat2::from_cols(Vec2::splat(INF), Vec2::ZERO),
+                        Mat2::from_cols(Vec2::splat(NAN), Vec2::ZERO),
                         &frame,
                         Vec3::X,
                         Vec3::Y

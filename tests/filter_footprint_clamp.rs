@@ -194,7 +194,7 @@ fn half_vector_derivatives_bad_input() {
     let fp = d::Footprint::from_half_vector_derivatives(DVec3::Z, DVec3::X * 0.1, DVec3::Y);
     assert_eq!(fp.dh_u, DVec2::new(-0.1, 0.0));
     assert_eq!(fp.dh_v, DVec2::new(0.0, -1.0));
-    // Zero or non-finite h, non-finite derivatives: no information, the zero footprint.
+    // Zero or non-finite h: no direction, the zero footprint.
     let (x, y) = (Vec3::X * 0.01, Vec3::Y * 0.02);
     for h in [
         Vec3::ZERO,
@@ -206,10 +206,20 @@ fn half_vector_derivatives_bad_input() {
             s::Footprint::ZERO
         );
     }
-    for bad in [f32::NAN, f32::INFINITY] {
-        let fp = s::Footprint::from_half_vector_derivatives(Vec3::Z, Vec3::new(bad, 0.0, 0.0), y);
-        assert_eq!(fp, s::Footprint::ZERO);
-    }
+    // The NaN policy: a NaN derivative entry counts as 0 (the other entries still count); an
+    // infinite one gives an infinite entry, which the clamp rules saturate.
+    let fp = s::Footprint::from_half_vector_derivatives(Vec3::Z, Vec3::new(f32::NAN, 0.0, 0.0), y);
+    assert_eq!(
+        fp,
+        s::Footprint::from_half_vector_derivatives(Vec3::Z, Vec3::ZERO, y)
+    );
+    assert_ne!(fp, s::Footprint::ZERO);
+    let fp =
+        s::Footprint::from_half_vector_derivatives(Vec3::Z, Vec3::new(f32::INFINITY, 0.0, 0.0), y);
+    assert!(
+        fp.dh_u.x.is_infinite() && !fp.dh_u.is_nan() && !fp.dh_v.is_nan(),
+        "{fp:?}"
+    );
     // Zero derivatives: the zero footprint.
     let fp = s::Footprint::from_half_vector_derivatives(
         Vec3::new(0.3, 0.1, 0.9),
@@ -228,13 +238,17 @@ fn half_vector_derivatives_bad_input() {
         assert!(fp.dh_u.is_finite() && fp.dh_v.is_finite(), "{h}: {fp:?}");
         assert!(fp.dh_u.length().max(fp.dh_v.length()) > 1e3, "{h}: {fp:?}");
     }
-    // Huge finite derivatives: finite or zero, never NaN (products beyond F::MAX give ZERO).
+    // Huge finite derivatives: never NaN; a product beyond F::MAX is an infinite entry (the
+    // NaN policy), which the clamp rules saturate to extent lambda.
     let fp = s::Footprint::from_half_vector_derivatives(
         Vec3::new(0.6, 0.8, 1e-3),
         Vec3::splat(1e30),
         Vec3::new(-1e38, 1e38, 0.0),
     );
-    assert!(fp.dh_u.is_finite() && fp.dh_v.is_finite(), "{fp:?}");
+    assert!(!fp.dh_u.is_nan() && !fp.dh_v.is_nan(), "{fp:?}");
+    assert!(!fp.dh_v.is_finite(), "{fp:?}");
+    let c = s::ClampRules::default().footprint(fp);
+    assert!((c.max_extent() - 1.0).abs() < 1e-6, "{fp:?} -> {c:?}");
 }
 
 #[test]
@@ -261,8 +275,10 @@ fn max_extent_rescales_the_parallelogram_and_clamps_the_rectangle() {
         let c = rules.footprint(fp);
         assert!((c.max_extent() - 1.0).abs() < 1e-6, "{fp:?} -> {c:?}");
     }
+    // The NaN policy: a NaN entry counts as 0.
     let nan = s::Footprint::from_slope_derivatives(Vec2::new(f32::NAN, 0.0), Vec2::ONE);
-    assert_eq!(rules.footprint(nan), s::Footprint::ZERO);
+    assert_eq!(rules.footprint(nan), rules.footprint(nan.nan_to_zero()));
+    assert_eq!(rules.footprint(nan).dh_u, Vec2::ZERO);
     assert_eq!(rules.footprint(s::Footprint::ZERO), s::Footprint::ZERO);
     // Rectangle: per-axis clamp to [floor, lambda].
     let r = rules.rect(
@@ -321,9 +337,10 @@ fn kappa_caps_the_kernel_roughness_per_direction() {
 
 #[test]
 fn sanitized_covariance_contract() {
+    // A NaN entry counts as 0 (the NaN policy).
     assert_eq!(
         s::Covariance::new(f32::NAN, 0.0, 1.0).sanitized(),
-        s::Covariance::ZERO
+        s::Covariance::new(0.0, 0.0, 1.0)
     );
     let inf = s::Covariance::new(f32::INFINITY, 0.0, 1.0).sanitized();
     assert_eq!(inf, s::Covariance::new(1e8, 0.0, 1e8));

@@ -182,7 +182,7 @@ mod findings {
             let l = f64::filter::rect::lambda_rect(r, DVec2::new(1.57, hy), w);
             assert!(l >= lg, "half_y {hy:e}: {l:e} < {lg:e}");
         }
-        let m = f64::filter::rect::sample_visible_normal_rect(
+        let m = f64::sampling::rect::sample_visible_normal_rect(
             r,
             DVec2::new(1.57, 1.0),
             w,
@@ -546,7 +546,7 @@ mod findings {
         let wo = Vec3::new(1e30, 1e-30, 1.2156863);
         let half = Vec2::new(1e-30, f32::INFINITY);
         let u = Vec2::splat(1e30);
-        let m = f32::filter::rect::sample_visible_normal_rect(r, half, wo, u, u).unwrap();
+        let m = f32::sampling::rect::sample_visible_normal_rect(r, half, wo, u, u).unwrap();
         let wom = wo.as_dvec3().dot(m.as_dvec3());
         assert!(
             m.z > 0.0 && (m.length() - 1.0).abs() < 1e-6 && wom > 0.0,

@@ -462,9 +462,13 @@ fn bad_input_gives_zero_or_none() {
         rel(huge.as_dmat2(), unit.as_dmat2()) < 1e-6,
         "{huge} {unit}"
     );
-    // Footprints: NaN differentials give the zero footprint.
+    // Footprints: a NaN differential counts as 0 (the NaN policy), the other still counts.
     let fp = g32::footprint(Mat2::IDENTITY, &flat, Vec3::NAN, Vec3::X);
-    assert_eq!(fp, filtered_ndf::f32::Footprint::ZERO);
+    assert_eq!(
+        fp,
+        g32::footprint(Mat2::IDENTITY, &flat, Vec3::ZERO, Vec3::X)
+    );
+    assert_eq!(fp.dh_u, Vec2::ZERO);
     // A ray parallel to the plane has no transfer.
     let ray = g32::PinholeRay {
         origin: Vec3::Z,

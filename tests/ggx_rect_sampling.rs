@@ -1,5 +1,5 @@
-//! Sampling of the box-filtered GGX lobe (`rect::sample_normal_rect`,
-//! `rect::sample_visible_normal_rect`) against its own pdfs (`normal_pdf_rect` = `d_rect m_z`,
+//! Sampling of the box-filtered GGX lobe (`sampling::rect::sample_normal_rect`,
+//! `sampling::rect::sample_visible_normal_rect`) against its own pdfs (`normal_pdf_rect` = `d_rect m_z`,
 //! `visible_normal_pdf_rect` = `G1 max(0, wo.m) d_rect / wo_z` with `G1 = 1 / (1 + lambda_rect)`)
 //! by the crate's chi-square harness (`tests/common/chi2.rs`, from `tests/sampling_chi2.rs`):
 //! 40 000 samples, 40 x 40 cells of the whitened `(cos theta, phi)` grid, pooled below 5
@@ -16,7 +16,7 @@ mod chi2;
 mod common;
 
 use chi2::{ALPHA_SUITE, Radial, chi2_test};
-use filtered_ndf::f64::{AxisAligned, NdfSampling as _, filter::rect};
+use filtered_ndf::f64::{AxisAligned, NdfSampling as _, filter::rect, sampling};
 use filtered_ndf::{f32 as s, f64 as d};
 use glam::{DVec2, DVec3, Vec2, Vec3};
 
@@ -94,8 +94,8 @@ fn chi2_d_cos_and_visible_normals() {
             &g,
             Radial::Ggx,
             seed,
-            |u| rect::sample_normal_rect(r, h, u, b.next()),
-            |m| rect::normal_pdf_rect(r, h, m),
+            |u| sampling::rect::sample_normal_rect(r, h, u, b.next()),
+            |m| sampling::rect::normal_pdf_rect(r, h, m),
         );
         check(
             format!("alpha ({}, {}) H ({}, {}) D cos", l.0, l.1, l.2, l.3),
@@ -111,11 +111,12 @@ fn chi2_d_cos_and_visible_normals() {
                 Radial::Ggx,
                 seed,
                 |u| {
-                    let m = rect::sample_visible_normal_rect(r, h, wo, u, b.next()).unwrap();
+                    let m =
+                        sampling::rect::sample_visible_normal_rect(r, h, wo, u, b.next()).unwrap();
                     assert!(wo.dot(m) > 0.0, "{m} faces away from {wo}");
                     m
                 },
-                |m| rect::visible_normal_pdf_rect(r, h, wo, m),
+                |m| sampling::rect::visible_normal_pdf_rect(r, h, wo, m),
             );
             check(
                 format!("alpha ({}, {}) H ({}, {}) vis {deg:>4}", l.0, l.1, l.2, l.3),
@@ -141,8 +142,8 @@ fn chi2_view_along_an_axis() {
             &grid(l),
             Radial::Ggx,
             seed,
-            |u| rect::sample_visible_normal_rect(r, h, wo, u, b.next()).unwrap(),
-            |m| rect::visible_normal_pdf_rect(r, h, wo, m),
+            |u| sampling::rect::sample_visible_normal_rect(r, h, wo, u, b.next()).unwrap(),
+            |m| sampling::rect::visible_normal_pdf_rect(r, h, wo, m),
         );
         check(
             format!(
@@ -173,8 +174,8 @@ fn chi2_f32_samplers_against_the_f64_pdf() {
         &grid,
         Radial::Ggx,
         9000,
-        |u| s::filter::rect::sample_normal_rect(r32, h32, f(u), f(b.next())).as_dvec3(),
-        |m| rect::normal_pdf_rect(r64, h64, m),
+        |u| s::sampling::rect::sample_normal_rect(r32, h32, f(u), f(b.next())).as_dvec3(),
+        |m| sampling::rect::normal_pdf_rect(r64, h64, m),
     );
     check("f32 D cos".into(), out, &mut failures);
     let wo = view(80.0, 1.0);
@@ -186,11 +187,11 @@ fn chi2_f32_samplers_against_the_f64_pdf() {
         Radial::Ggx,
         9001,
         |u| {
-            s::filter::rect::sample_visible_normal_rect(r32, h32, wo32, f(u), f(b.next()))
+            s::sampling::rect::sample_visible_normal_rect(r32, h32, wo32, f(u), f(b.next()))
                 .unwrap()
                 .as_dvec3()
         },
-        |m| rect::visible_normal_pdf_rect(r64, h64, wo64, m),
+        |m| sampling::rect::visible_normal_pdf_rect(r64, h64, wo64, m),
     );
     check("f32 vis 80".into(), out, &mut failures);
     assert!(failures.is_empty(), "{failures:#?}");
@@ -206,11 +207,11 @@ fn zero_extent_is_ggx_bit_for_bit() {
         let u = Vec2::new(ux, uy);
         for h in [Vec2::ZERO, Vec2::new(f32::NAN, -0.0)] {
             assert_eq!(
-                s::filter::rect::sample_normal_rect(r, h, u, Vec2::new(0.3, 0.8)),
+                s::sampling::rect::sample_normal_rect(r, h, u, Vec2::new(0.3, 0.8)),
                 ggx.sample_normal(u)
             );
             assert_eq!(
-                s::filter::rect::sample_visible_normal_rect(r, h, wo, u, Vec2::new(0.3, 0.8)),
+                s::sampling::rect::sample_visible_normal_rect(r, h, wo, u, Vec2::new(0.3, 0.8)),
                 ggx.sample_visible_normal(wo, u)
             );
         }
@@ -232,22 +233,22 @@ fn pdfs_are_the_lobe() {
     ] {
         let m = m.normalize();
         let dd = rect::d_rect(r, m, h);
-        assert_eq!(rect::normal_pdf_rect(r, h, m), dd * m.z);
+        assert_eq!(sampling::rect::normal_pdf_rect(r, h, m), dd * m.z);
         let want = wo.dot(m).max(0.0) * dd / (wo.z * (1.0 + lam));
-        let got = rect::visible_normal_pdf_rect(r, h, wo, m);
+        let got = sampling::rect::visible_normal_pdf_rect(r, h, wo, m);
         assert!(
             (got - want).abs() <= 4.0 * f64::EPSILON * want,
             "{got} vs {want}"
         );
     }
     // Below the horizon / facing away / non-finite: 0.
-    assert_eq!(rect::normal_pdf_rect(r, h, -DVec3::Z), 0.0);
+    assert_eq!(sampling::rect::normal_pdf_rect(r, h, -DVec3::Z), 0.0);
     assert_eq!(
-        rect::visible_normal_pdf_rect(r, h, -DVec3::Z, DVec3::Z),
+        sampling::rect::visible_normal_pdf_rect(r, h, -DVec3::Z, DVec3::Z),
         0.0
     );
     assert_eq!(
-        rect::visible_normal_pdf_rect(
+        sampling::rect::visible_normal_pdf_rect(
             r,
             h,
             DVec3::new(1.0, 0.0, 0.01),
@@ -256,27 +257,45 @@ fn pdfs_are_the_lobe() {
         0.0
     );
     assert_eq!(
-        rect::visible_normal_pdf_rect(r, h, DVec3::NAN, DVec3::Z),
+        sampling::rect::visible_normal_pdf_rect(r, h, DVec3::NAN, DVec3::Z),
         0.0
     );
     assert!(
-        rect::sample_visible_normal_rect(r, h, DVec3::new(0.3, 0.0, 0.0), DVec2::ZERO, DVec2::ZERO)
+        sampling::rect::sample_visible_normal_rect(
+            r,
+            h,
+            DVec3::new(0.3, 0.0, 0.0),
+            DVec2::ZERO,
+            DVec2::ZERO
+        )
+        .is_none()
+    );
+    assert!(
+        sampling::rect::sample_visible_normal_rect(r, h, DVec3::NAN, DVec2::ZERO, DVec2::ZERO)
             .is_none()
     );
-    assert!(rect::sample_visible_normal_rect(r, h, DVec3::NAN, DVec2::ZERO, DVec2::ZERO).is_none());
     // A view within 1e-300 of the normal (f64): a sample, no overflow.
     for wo in [
         DVec3::new(1e-300, 0.0, 1.0),
         DVec3::new(1e-300, -1e-300, 1e-10),
     ] {
-        let m = rect::sample_visible_normal_rect(r, h, wo, DVec2::splat(0.3), DVec2::splat(0.7));
+        let m = sampling::rect::sample_visible_normal_rect(
+            r,
+            h,
+            wo,
+            DVec2::splat(0.3),
+            DVec2::splat(0.7),
+        );
         let m = m.expect("a sample");
         assert!(m.is_finite() && m.z > 0.0 && wo.dot(m) > 0.0, "{m}");
     }
     // The GGX of zero extent: the same pdfs as GGX's.
     let ggx = d::Ggx::new(r);
     let m = DVec3::new(0.1, 0.2, 1.0).normalize();
-    assert_eq!(rect::normal_pdf_rect(r, DVec2::ZERO, m), ggx.normal_pdf(m));
+    assert_eq!(
+        sampling::rect::normal_pdf_rect(r, DVec2::ZERO, m),
+        ggx.normal_pdf(m)
+    );
 }
 
 mod contract {
@@ -306,16 +325,16 @@ mod contract {
             let r = s::AxisAligned::new(ax, ay).unwrap();
             let h = Vec2::new(hx, hy);
             let (u, ub) = (Vec2::new(u0, u1), Vec2::new(u2, u3));
-            let m = s::filter::rect::sample_normal_rect(r, h, u, ub);
+            let m = s::sampling::rect::sample_normal_rect(r, h, u, ub);
             prop_assert!(m.is_finite() && m.z > 0.0 && (m.length() - 1.0).abs() < 1e-5, "{m}");
             let wo = Vec3::new(wx, wy, wz);
-            if let Some(m) = s::filter::rect::sample_visible_normal_rect(r, h, wo, u, ub) {
+            if let Some(m) = s::sampling::rect::sample_visible_normal_rect(r, h, wo, u, ub) {
                 prop_assert!(m.is_finite() && m.z > 0.0 && (m.length() - 1.0).abs() < 1e-5, "{m}");
                 prop_assert!(wo.dot(m) > 0.0 || wo.normalize().dot(m) > 0.0, "{wo} {m}");
             }
             let r64 = d::AxisAligned::new(ax as f64, ay as f64).unwrap();
             let wo64 = wo.as_dvec3();
-            let m = rect::sample_visible_normal_rect(r64, h.as_dvec2(), wo64, u.as_dvec2(), ub.as_dvec2());
+            let m = sampling::rect::sample_visible_normal_rect(r64, h.as_dvec2(), wo64, u.as_dvec2(), ub.as_dvec2());
             prop_assert!(m.is_some(), "no f64 sample for {wo64}");
             let m = m.unwrap();
             prop_assert!(m.is_finite() && m.z > 0.0 && wo64.dot(m) > 0.0, "{m}");
@@ -330,12 +349,12 @@ mod contract {
             let r = d::AxisAligned::new(0.05, 2e-3).unwrap();
             let (h, wo) = (DVec2::new(hx, hy), DVec3::new(wx, wy, wz));
             let (u, ub) = (DVec2::new(u0, u1), DVec2::new(u2, u3));
-            let m = rect::sample_normal_rect(r, h, u, ub);
+            let m = sampling::rect::sample_normal_rect(r, h, u, ub);
             prop_assert!(m.is_finite() && m.z > 0.0 && (m.length() - 1.0).abs() < 1e-12, "{m}");
             // As GGX's sampler (`NdfSampling`'s contract): `None` only where the view is within
             // the float range of the horizon, `wo_z / |wo|` below about 1e-300.
             let wn = wo / wo.abs().max_element();
-            match rect::sample_visible_normal_rect(r, h, wo, u, ub) {
+            match sampling::rect::sample_visible_normal_rect(r, h, wo, u, ub) {
                 Some(m) => prop_assert!(m.is_finite() && m.z > 0.0 && wn.dot(m) > 0.0, "{wo} {m}"),
                 None => prop_assert!(wn.z < 1e-290, "no sample for {wo}"),
             }

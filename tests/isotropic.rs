@@ -209,16 +209,24 @@ fn bad_input_is_documented_behaviour() {
     assert_eq!(t.apply(f64::NAN, d, d), zero);
     // +inf alpha is ALPHA_MAX, then saturated to 1.
     assert_eq!(t.apply(f64::INFINITY, d, d), 1.0);
-    // NaN or infinite normal differences give the maximal (clamped) kernel.
+    // An infinite normal difference gives the maximal (clamped) kernel; a NaN entry counts as
+    // 0 (the NaN policy).
     let kmax = (0.01f64 + 0.18).sqrt();
-    for bad in [
-        DVec3::NAN,
-        DVec3::new(f64::INFINITY, 0.0, 0.0),
-        DVec3::new(0.0, f64::NAN, 1.0),
-    ] {
-        for b in [Bandwidth::Max, Bandwidth::Trace, Bandwidth::Average] {
-            let got = b.convention().apply(0.1, bad, d);
-            assert!((got - kmax).abs() < 1e-15, "{b:?} {bad:?}: {got}");
+    for b in [Bandwidth::Max, Bandwidth::Trace, Bandwidth::Average] {
+        let got = b
+            .convention()
+            .apply(0.1, DVec3::new(f64::INFINITY, 0.0, 0.0), d);
+        assert!((got - kmax).abs() < 1e-15, "{b:?}: {got}");
+        for (bad, zeroed) in [
+            (DVec3::NAN, DVec3::ZERO),
+            (DVec3::new(0.0, f64::NAN, 1.0), DVec3::new(0.0, 0.0, 1.0)),
+        ] {
+            let c = b.convention();
+            assert_eq!(
+                c.apply(0.1, bad, d),
+                c.apply(0.1, zeroed, d),
+                "{b:?} {bad:?}"
+            );
         }
     }
     // Indefinite or NaN covariance in the covariance form: never NaN, within [alpha, 1].

@@ -402,17 +402,24 @@ fn every_preset_handles_bad_input_and_agrees_across_precisions() {
         DVec3::splat(1e300),
     ];
     for (name, c) in ALL {
-        // Never NaN; alpha in [0, 1] gives alpha_bar in [0, 1]; NaN, infinite or overflowing
-        // differences give exactly the maximal (clamped) kernel.
+        // Never NaN; alpha in [0, 1] gives alpha_bar in [0, 1]; infinite or overflowing
+        // differences give exactly the maximal (clamped) kernel; a NaN entry counts as 0 (the
+        // NaN policy).
         for &a in &[0.0, 1e-8, 0.04, 0.5, 1.0] {
             let good = c.apply(a, d, d);
             assert!((0.0..=1.0).contains(&good), "{name} a={a}: {good}");
+            let max = c.apply_widening(a, f64::INFINITY);
+            assert!(good <= max && max <= 1.0, "{name} a={a}: {good} {max}");
             for &b in &bad {
+                let zeroed = DVec3::select(b.is_nan_mask(), DVec3::ZERO, b);
                 for (u, v) in [(b, d), (d, b)] {
                     let got = c.apply(a, u, v);
-                    let max = c.apply_widening(a, f64::INFINITY);
-                    assert!(good <= max && max <= 1.0, "{name} a={a}: {good} {max}");
-                    assert_eq!(got, max, "{name} a={a} {u:?} {v:?}");
+                    if b.is_nan() {
+                        let (zu, zv) = if u == d { (d, zeroed) } else { (zeroed, d) };
+                        assert_eq!(got, c.apply(a, zu, zv), "{name} a={a} {u:?} {v:?}");
+                    } else {
+                        assert_eq!(got, max, "{name} a={a} {u:?} {v:?}");
+                    }
                 }
             }
         }

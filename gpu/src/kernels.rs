@@ -15,6 +15,8 @@ pub const IMPORTS: &str = "#import filtered_ndf::ndf::roughness::axis_aligned
 #import filtered_ndf::ndf::ggx
 #import filtered_ndf::ndf::beckmann
 #import filtered_ndf::footprint
+#import filtered_ndf::kernel::covariance
+#import filtered_ndf::kernel::rect as bounding
 #import filtered_ndf::kernel::clamp
 #import filtered_ndf::filter::gaussian
 #import filtered_ndf::filter::projected
@@ -54,31 +56,31 @@ pub fn rows() -> Vec<(String, String)> {
         ),
         (
             "GGX TK19 A+2Sigma (matrix)",
-            "ggx::d_matrix(clamp::filter_gaussian(clamp::DEFAULT_RULES, a, fp, 0.5), h)",
+            "ggx::d_matrix(gaussian::filter_gaussian(clamp::DEFAULT_RULES, a, fp, 0.5), h)",
         ),
         (
             "GGX TK19 A+2Sigma, no clamps",
-            "ggx::d_matrix(gaussian::gaussian(a, footprint::covariance(fp, 0.5)), h)",
+            "ggx::d_matrix(gaussian::gaussian(a, covariance::from_footprint(fp, 0.5)), h)",
         ),
         (
             "GGX TK21 projected",
-            "ggx::d_matrix(projected::projected(a, clamp::kernel(clamp::DEFAULT_RULES, footprint::covariance(clamp::footprint(clamp::DEFAULT_RULES, fp), 0.5))), h)",
+            "ggx::d_matrix(projected::projected(a, clamp::kernel(clamp::DEFAULT_RULES, covariance::from_footprint(clamp::footprint(clamp::DEFAULT_RULES, fp), 0.5))), h)",
         ),
         (
             "GGX exact rect (bounding box)",
-            "rect::d_rect(r, h, clamp::rect(clamp::ClampRules(1.0, clamp::FLOOR_NONE, 0.0, 0.18, true), footprint::bounding_rect(fp), r.alpha).half_extent)",
+            "rect::d_rect(r, h, clamp::rect(clamp::ClampRules(1.0, clamp::FLOOR_NONE, 0.0, 0.18, true), bounding::from_footprint(fp), r.alpha).half_extent)",
         ),
         (
             "GGX printed 8-term rect (GDC, eps floor)",
-            "rect::d_rect_printed(r, h.xy / h.z, h, clamp::rect(clamp::DEFAULT_RULES, footprint::bounding_rect(fp), r.alpha).half_extent)",
+            "rect::d_rect_printed(r, h.xy / h.z, h, clamp::rect(clamp::DEFAULT_RULES, bounding::from_footprint(fp), r.alpha).half_extent)",
         ),
         (
             "GGX proxy exact (eq. 19)",
-            "ggx::d_axis_aligned(proxy::proxy(r, clamp::rect(clamp::DEFAULT_RULES, footprint::bounding_rect(fp), r.alpha).half_extent), h)",
+            "ggx::d_axis_aligned(proxy::proxy(r, clamp::rect(clamp::DEFAULT_RULES, bounding::from_footprint(fp), r.alpha).half_extent), h)",
         ),
         (
             "GGX proxy simple (eq. 20)",
-            "ggx::d_axis_aligned(proxy::proxy_simple(r, clamp::rect(clamp::DEFAULT_RULES, footprint::bounding_rect(fp), r.alpha).half_extent), h)",
+            "ggx::d_axis_aligned(proxy::proxy_simple(r, clamp::rect(clamp::DEFAULT_RULES, bounding::from_footprint(fp), r.alpha).half_extent), h)",
         ),
         // Smith Lambda of the lobes whose Lambda is their own (not a trade-table column: the
         // cost of g1 / g2 beside D), `h` as the view.
@@ -89,7 +91,7 @@ pub fn rows() -> Vec<(String, String)> {
         ),
         (
             "GGX exact rect Lambda (box lobe)",
-            "box_lambda::lambda_rect(r, clamp::rect(clamp::KHPL16_RULES, footprint::bounding_rect(fp), r.alpha).half_extent, h)",
+            "box_lambda::lambda_rect(r, clamp::rect(clamp::KHPL16_RULES, bounding::from_footprint(fp), r.alpha).half_extent, h)",
         ),
     ]
     .iter()
@@ -122,11 +124,11 @@ pub fn rows() -> Vec<(String, String)> {
             ("Beckmann unfiltered", "beckmann::d_axis_aligned(r, h)"),
             (
                 "Beckmann KHPL16 A+2Sigma (exact)",
-                "beckmann::d_matrix(gaussian::gaussian(a, footprint::covariance(fp, 0.5)), h)",
+                "beckmann::d_matrix(gaussian::gaussian(a, covariance::from_footprint(fp, 0.5)), h)",
             ),
             (
                 "Beckmann A+2Sigma, default clamps",
-                "beckmann::d_matrix(clamp::filter_gaussian(clamp::DEFAULT_RULES, a, fp, 0.5), h)",
+                "beckmann::d_matrix(gaussian::filter_gaussian(clamp::DEFAULT_RULES, a, fp, 0.5), h)",
             ),
         ]
         .iter()

@@ -32,6 +32,7 @@ const IMPORTS: &str = "#import filtered_ndf::math
 #import filtered_ndf::footprint
 #import filtered_ndf::footprint::jacobian
 #import filtered_ndf::kernel::covariance
+#import filtered_ndf::kernel::rect as bounding
 #import filtered_ndf::kernel::clamp
 #import filtered_ndf::filter::gaussian
 #import filtered_ndf::filter::projected
@@ -41,7 +42,7 @@ const IMPORTS: &str = "#import filtered_ndf::math
 #import filtered_ndf::filter::proxy
 #import filtered_ndf::filter::deferred
 #import filtered_ndf::filter::presets
-#import filtered_ndf::filter::method
+#import filtered_ndf::filter::rect::lobe
 #import filtered_ndf::sampling
 #import filtered_ndf::sampling::beckmann as beckmann_sampling
 
@@ -167,15 +168,15 @@ fn point_beckmann_matrix(r: matrix::RoughnessMatrix, j: u32) -> f32 {
     return beckmann::lambda_matrix(r, x3(j + 1u));
 }
 
-fn point_rect(lobe: method::RectFilteredGgx, j: u32) -> f32 {
+fn point_rect(lobe: lobe::RectFilteredGgx, j: u32) -> f32 {
     let k = x(j);
     if k == 0.0 {
-        return method::d_rect_filtered(lobe, x3(j + 1u));
+        return lobe::d_rect_filtered(lobe, x3(j + 1u));
     }
     if k == 1.0 {
-        return method::p22_rect_filtered(lobe, x2(j + 1u));
+        return lobe::p22_rect_filtered(lobe, x2(j + 1u));
     }
-    return method::lambda_rect_filtered(lobe, x3(j + 1u));
+    return lobe::lambda_rect_filtered(lobe, x3(j + 1u));
 }";
 
 /// One kernel: the body of `eval()` and its slots.
@@ -265,7 +266,7 @@ y(0u, select(min(max(v, 1e-8), 1e4), v, x(8u) != 0.0));",
 
 const FILTER_ROUGHNESS: GpuKernel = GpuKernel {
     name: "filter_roughness",
-    body: "let k = footprint::covariance(oracle_footprint(5u), x(13u));
+    body: "let k = covariance::from_footprint(oracle_footprint(5u), x(13u));
 var af: matrix::RoughnessMatrix;
 if x(14u) == 0.0 {
     af = gaussian::gaussian(oracle_matrix(0u), k);
@@ -287,8 +288,8 @@ const GGX_RECT: GpuKernel = GpuKernel {
 const GGX_RECT_FOOTPRINT: GpuKernel = GpuKernel {
     name: "ggx_rect_footprint",
     body: "let r = axis_aligned::from_alpha(x2(0u));
-let he = clamp::rect(oracle_rules(10u), footprint::bounding_rect(oracle_footprint(2u)), r.alpha).half_extent;
-let lobe = method::RectFilteredGgx(r, he);
+let he = clamp::rect(oracle_rules(10u), bounding::from_footprint(oracle_footprint(2u)), r.alpha).half_extent;
+let lobe = lobe::RectFilteredGgx(r, he);
 if x(15u) == 3.0 {
     y2(0u, he);
 } else {
@@ -316,7 +317,7 @@ let rules = oracle_rules(15u);
 let sigma = x(20u);
 let pk = x(21u);
 if mth == 0.0 || (mth == 1.0 && !g) {
-    let lobe = method::gaussian_lobe(method::Gaussian(rules, sigma), oracle_matrix(2u), fp);
+    let lobe = gaussian::gaussian_lobe(gaussian::Gaussian(rules, sigma), oracle_matrix(2u), fp);
     if pk == 3.0 {
         y3(0u, matrix::entries(lobe));
     } else if g {
@@ -325,7 +326,7 @@ if mth == 0.0 || (mth == 1.0 && !g) {
         y(0u, point_beckmann_matrix(lobe, 21u));
     }
 } else if mth == 1.0 {
-    let lobe = method::exact_gaussian_lobe(method::ExactGaussian(rules, sigma, gaussian_ggx::TOL_FULL), oracle_matrix(2u), fp);
+    let lobe = gaussian_ggx::exact_gaussian_lobe(gaussian_ggx::ExactGaussian(rules, sigma, gaussian_ggx::TOL_FULL), oracle_matrix(2u), fp);
     if pk == 0.0 {
         y(0u, gaussian_ggx::d(lobe, x3(22u)));
     } else if pk == 1.0 {
@@ -334,21 +335,21 @@ if mth == 0.0 || (mth == 1.0 && !g) {
         y(0u, gaussian_ggx::lambda(lobe, x3(22u)));
     }
 } else if mth == 2.0 {
-    let lobe = method::projected_lobe(method::Projected(rules, sigma), oracle_matrix(2u), fp);
+    let lobe = projected::projected_lobe(projected::Projected(rules, sigma), oracle_matrix(2u), fp);
     if pk == 3.0 {
         y3(0u, matrix::entries(lobe));
     } else {
         y(0u, point_ggx_matrix(lobe, 21u));
     }
 } else if mth == 3.0 {
-    let lobe = method::rect_lobe(method::Rect(rules), oracle_axis_aligned(2u), fp);
+    let lobe = lobe::rect_lobe(lobe::Rect(rules), oracle_axis_aligned(2u), fp);
     if pk == 3.0 {
         y4(0u, vec4<f32>(lobe.roughness.alpha, lobe.half_extent));
     } else {
         y(0u, point_rect(lobe, 21u));
     }
 } else {
-    let lobe = method::proxy_lobe(method::Proxy(rules), oracle_axis_aligned(2u), fp);
+    let lobe = proxy::proxy_lobe(proxy::Proxy(rules), oracle_axis_aligned(2u), fp);
     if pk == 3.0 {
         y2(0u, lobe.alpha);
     } else {

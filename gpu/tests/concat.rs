@@ -15,6 +15,7 @@ fn concatenated_file_matches_composition() {
     all.extend(checks::sampling_beckmann::all());
     all.extend(checks::rect::all());
     all.extend(checks::rect_sample::all());
+    all.extend(checks::nan_policy::all());
     for c in &all {
         let k = Kernel {
             imports: &c.imports,

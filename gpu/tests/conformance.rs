@@ -32,6 +32,7 @@ groups!(
     filters,
     rect,
     rect_sample,
+    nan_policy,
     gaussian_ggx,
     method,
     lean_nested,

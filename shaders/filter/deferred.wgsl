@@ -103,8 +103,11 @@ fn max_eigenvalue(a: f32, b: f32, c: f32) -> f32 {
     return max(0.5 * (a + c) + math::hypot(0.5 * (a - c), b), 0.0);
 }
 
-/// The measure `norm` of `(dn_u, dn_v)`, `>= 0`.
-fn norm_eval(norm: u32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+/// The measure `norm` of `(dn_u, dn_v)`, `>= 0`. The NaN policy (as the Rust `Norm::eval`):
+/// a NaN entry of a difference counts as 0 (`math::nan_to_zero3`, decided on the bits).
+fn norm_eval(norm: u32, dn_u_in: vec3<f32>, dn_v_in: vec3<f32>) -> f32 {
+    let dn_u = math::nan_to_zero3(dn_u_in);
+    let dn_v = math::nan_to_zero3(dn_v_in);
     let a = dot(dn_u, dn_u);
     let c = dot(dn_v, dn_v);
     if norm == NORM_MAX_SQUARED {
@@ -120,9 +123,10 @@ fn norm_eval(norm: u32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
     return a + c;
 }
 
-/// `min(max(k, 0), clamp)`.
+/// `min(max(k, 0), clamp)`; a NaN `k` (which only an infinite difference gives, `inf * 0`,
+/// once NaN entries count as 0) is the clamp: an infinite difference saturates.
 fn clamp_widening(conv: KernelConvention, k: f32) -> f32 {
-    return min(max(k, 0.0), conv.clamp);
+    return select(min(max(k, 0.0), conv.clamp), conv.clamp, math::is_nan(k));
 }
 
 /// The widening `min(max(scale norm^exponent + bias, 0), clamp)` in domain units (the kernel's
@@ -130,6 +134,12 @@ fn clamp_widening(conv: KernelConvention, k: f32) -> f32 {
 /// driver's (`exp2(e log2 n)`: within `3 + 2 |e log2 n|` ulp plus `log2`'s error); a zero
 /// norm gives `max(bias, 0)`.
 fn widening(conv: KernelConvention, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+    // An infinite entry (where the driver keeps infinities) saturates: the clamp, as the Rust
+    // widening of an infinite norm (decided here, before `inf * 0` can meet a `max`).
+    let lim = vec3<f32>(math::F32_MAX);
+    if any(abs(dn_u) > lim) || any(abs(dn_v) > lim) {
+        return conv.clamp;
+    }
     let n = norm_eval(conv.norm, dn_u, dn_v);
     var raw = n;
     if conv.exponent != 1.0 {
@@ -176,10 +186,14 @@ fn normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>, sigma: f32) ->
 /// The kernel's squared roughness of a bandwidth (`BANDWIDTH_*`) before the clamp:
 /// `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`.
 fn bandwidth_alpha2(bandwidth: u32, kernel: covariance::Covariance) -> f32 {
+    // A NaN entry counts as 0 (the NaN policy, as the Rust `Bandwidth::alpha2`).
+    let s_xx = math::nan_to_zero(kernel.s_xx);
+    let s_xy = math::nan_to_zero(kernel.s_xy);
+    let s_yy = math::nan_to_zero(kernel.s_yy);
     if bandwidth == BANDWIDTH_MAX {
-        return 2.0 * max_eigenvalue(kernel.s_xx, kernel.s_xy, kernel.s_yy);
+        return 2.0 * max_eigenvalue(s_xx, s_xy, s_yy);
     }
-    let t = kernel.s_xx + kernel.s_yy;
+    let t = s_xx + s_yy;
     return select(t, 2.0 * t, bandwidth == BANDWIDTH_TRACE);
 }
 

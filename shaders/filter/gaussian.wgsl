@@ -1,7 +1,11 @@
 #define_import_path filtered_ndf::filter::gaussian
 
 #import filtered_ndf::ndf::roughness::matrix
+#import filtered_ndf::ndf::ggx
+#import filtered_ndf::ndf::beckmann
+#import filtered_ndf::footprint as pixel
 #import filtered_ndf::kernel::covariance
+#import filtered_ndf::kernel::clamp
 
 // Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
 // mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
@@ -57,4 +61,47 @@ fn gaussian_with_det_clamp(
     det_clamp: f32,
 ) -> matrix::RoughnessMatrix {
     return gaussian_sanitized(a, covariance::sanitized(kernel), max(det_clamp, matrix::own_det_clamp(a)));
+}
+
+/// The whole Gaussian pipeline: `clamp::footprint` -> `covariance::from_footprint` (`sigma` pixels)
+/// -> `clamp::kernel` -> `A' = A + 2 Sigma` with `tau = det A_c` if `det_clamp` (the TK19 matrix
+/// filter; exact for Beckmann). The result is the one clamped matrix of `matrix.wgsl`. The
+/// Rust `ClampRules::filter_gaussian`: the rules are the kernel stage's data, applied here.
+fn filter_gaussian(
+    rules: clamp::ClampRules,
+    a: matrix::RoughnessMatrix,
+    fp: pixel::Footprint,
+    sigma: f32,
+) -> matrix::RoughnessMatrix {
+    return gaussian_sanitized(a, clamp::pixel_kernel(rules, fp, sigma), clamp::det_clamp_for(rules, a));
+}
+
+/// `A' = A + 2 Sigma` with the clamped Gaussian pixel kernel (KHPL16 eq. 13-15; TK19 section
+/// 2.2): exact for Beckmann, TK19's approximation for GGX.
+struct Gaussian {
+    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
+    clamps: clamp::ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+}
+
+/// TK19: the default rules (`lambda = 1`, `kappa = 0.18`, the determinant clamp), `sigma = 0.5`.
+const TK19_GAUSSIAN: Gaussian = Gaussian(clamp::DEFAULT_RULES, pixel::SIGMA_PIXEL);
+/// KHPL16's parallelogram kernel: `lambda = 1` and the determinant clamp, no `kappa`.
+const KHPL16_GAUSSIAN: Gaussian = Gaussian(clamp::KHPL16_RULES, pixel::SIGMA_PIXEL);
+
+/// The lobe of `material` filtered by `method` over `fp` (the Rust `Gaussian::lobe`): the
+/// filtered roughness matrix, for `ggx::*_matrix` or `beckmann::*_matrix`.
+fn gaussian_lobe(method: Gaussian, material: matrix::RoughnessMatrix, fp: pixel::Footprint) -> matrix::RoughnessMatrix {
+    return filter_gaussian(method.clamps, material, fp, method.sigma);
+}
+
+/// `D(m)` of the GGX lobe of [`gaussian_lobe`].
+fn d_ggx_gaussian(method: Gaussian, material: matrix::RoughnessMatrix, fp: pixel::Footprint, m: vec3<f32>) -> f32 {
+    return ggx::d_matrix(gaussian_lobe(method, material, fp), m);
+}
+
+/// `D(m)` of the Beckmann lobe of [`gaussian_lobe`] (the exact Gaussian filter of Beckmann).
+fn d_beckmann_gaussian(method: Gaussian, material: matrix::RoughnessMatrix, fp: pixel::Footprint, m: vec3<f32>) -> f32 {
+    return beckmann::d_matrix(gaussian_lobe(method, material, fp), m);
 }

@@ -5,9 +5,10 @@
 #import filtered_ndf::ndf::ggx
 #import filtered_ndf::ndf::beckmann
 #import filtered_ndf::ndf::roughness::matrix
+#import filtered_ndf::footprint as pixel
 #import filtered_ndf::kernel::covariance
+#import filtered_ndf::kernel::clamp
 #import filtered_ndf::filter::gaussian_ggx_quad as quad
-#import filtered_ndf::sampling
 
 // The exact Gaussian-filtered GGX (`src/.../filter/gaussian_ggx.rs`, `GaussianFilteredGgx`):
 // the convolution of a GGX slope density of roughness `A` with a Gaussian kernel
@@ -174,52 +175,28 @@ fn g2(g: GaussianFilteredGgx, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
     return ndf::g2_of(lambda(g, i), lambda(g, o), dot(i, m), dot(o, m));
 }
 
-/// Two uniform numbers from one (the Rust `split` of the `f32` build): the high and the low
-/// twelve bits of `u` in `[0, 1)`, `((floor(4096 u) + 1/2) / 4096, frac(4096 u))`, both
-/// uniform on their grids and independent (every step exact in f32).
-fn split(u: f32) -> vec2<f32> {
-    let x = u * 4096.0;
-    let hi = floor(x);
-    return vec2<f32>((hi + 0.5) / 4096.0, x - hi);
+/// The exact Gaussian filter: the material's slope density convolved with the clamped pixel
+/// kernel (GGX: `GaussianFilteredGgx`; Beckmann: `A + 2 Sigma`, `gaussian::gaussian_lobe` with the
+/// same rules).
+struct ExactGaussian {
+    /// The clamp rules applied to the footprint and the kernel.
+    clamps: clamp::ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+    /// The accuracy setting of the GGX lobe's density (`TOL_*`, the Rust `Tolerance`).
+    tolerance: u32,
 }
 
-/// Samples a unit micronormal `m` of the filtered lobe with density `D(m) m_z` per steradian
-/// (KHPL16 eq. 2; the Rust `NdfSampling::sample_normal`). Exact: the filtered slope is the sum
-/// of two independent slopes (module docs: the convolution), a GGX slope of roughness `A_c`,
-/// `B t` with `B` its Cholesky factor (`sampling::warp`) and `|t|^2 = u1 / (1 - u1)` (the
-/// inverse radial CDF of unit-roughness GGX, Walter et al. 2007 eq. 35), and a kernel slope
-/// `N(0, Sigma)` by Box-Muller along the kernel's principal axes (the eigenvector of the
-/// larger eigenvalue from the row without cancellation, as Rust). The four uniform numbers are
-/// the high and low halves of the bits of `u.x` (`u1`, `u3`) and `u.y` (`u2`, `u4`), 12 bits
-/// each ([`split`]). `u` is clamped to `[0, 1 - 2^-24]`. Always `m_z > 0` (kept at the
-/// smallest normal f32 where the slope leaves the f32 range).
-fn sample_normal(g: GaussianFilteredGgx, u: vec2<f32>) -> vec3<f32> {
-    let a = split(sampling::clamp_unit(u.x));
-    let b = split(sampling::clamp_unit(u.y));
-    // The GGX slope B t.
-    let t = sqrt(a.x / (1.0 - a.x)) * math::sincos_turns(b.x);
-    let l = sampling::warp(g.a);
-    let gs = vec2<f32>(l.l_xx * t.x, l.l_yx * t.x + l.l_yy * t.y);
-    // The kernel slope: -2 ln(1 - u3) as ln_1p below 1/2 (no cancellation), exact above.
-    let e = select(-math::ln(1.0 - a.y), math::ln_1p(a.y / (1.0 - a.y)), a.y < 0.5);
-    let y = sqrt(2.0 * e) * math::sincos_turns(b.y);
-    let k = g.k;
-    let ev = covariance::eigenvalues(k);
-    let khalf = 0.5 * (k.s_xx - k.s_yy);
-    let krad = math::hypot(khalf, k.s_xy);
-    var ax = vec2<f32>(1.0, 0.0);
-    if krad > 0.0 {
-        let w = select(vec2<f32>(k.s_xy, krad - khalf), vec2<f32>(krad + khalf, k.s_xy), khalf >= 0.0);
-        ax = w / math::hypot(w.x, w.y);
-    }
-    let kk = vec2<f32>(sqrt(ev.y) * y.x, sqrt(ev.x) * y.y);
-    let s = gs + vec2<f32>(ax.x * kk.x - ax.y * kk.y, ax.y * kk.x + ax.x * kk.y);
-    let n = sampling::normalize_scaled(vec3<f32>(-s, 1.0));
-    return vec3<f32>(n.xy, max(n.z, math::F32_MIN_POSITIVE));
+/// The unbiased filter of the footprint: `lambda = 1` (KHPL16 section 5.2), no `kappa`,
+/// `sigma = 0.5`, the full accuracy.
+const KHPL16_EXACT_GAUSSIAN: ExactGaussian = ExactGaussian(clamp::KHPL16_RULES, pixel::SIGMA_PIXEL, TOL_FULL);
+
+/// The GGX lobe of the exact Gaussian filter (the Rust `ExactGaussian::lobe` for GGX).
+fn exact_gaussian_lobe(method: ExactGaussian, material: matrix::RoughnessMatrix, fp: pixel::Footprint) -> GaussianFilteredGgx {
+    return with_tolerance(from_kernel(material, clamp::pixel_kernel(method.clamps, fp, method.sigma)), method.tolerance);
 }
 
-/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
-/// `m_z <= 0`.
-fn normal_pdf(g: GaussianFilteredGgx, m: vec3<f32>) -> f32 {
-    return select(0.0, d(g, m) * m.z, m.z > 0.0);
+/// `D(m)` of [`exact_gaussian_lobe`].
+fn d_ggx_exact_gaussian(method: ExactGaussian, material: matrix::RoughnessMatrix, fp: pixel::Footprint, m: vec3<f32>) -> f32 {
+    return d(exact_gaussian_lobe(method, material, fp), m);
 }

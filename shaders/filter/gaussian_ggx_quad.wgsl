@@ -65,10 +65,10 @@ fn laguerre_weight(k: u32) -> f32 {
 }
 
 /// `J / z2^2` for `c_i^2 = v_i^2 / z2` from `(v1^2, v2^2)`, `z2 > 0` and `(2 l1, 2 l2)`,
-/// `2 l1 >= 2 l2 >= 0` (the Rust `j`): `J(c)` itself for `z2 = 1` (a slope), `J / m_z^4` for a
+/// `2 l1 >= 2 l2 >= 0` (the Rust `mixture_integral`): `J(c)` itself for `z2 = 1` (a slope), `J / m_z^4` for a
 /// normal (`z2 = m_z^2`, `v = T m_xy`) without forming the slope. The rule by `q = |c|^2` and
 /// the kernel ratio (module docs).
-fn j(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
+fn mixture_integral(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
     let beta_m = z2 + v1s + v2s;
     if beta_m >= FAR * tl1 * z2 {
         return far_tail(beta_m, v1s, v2s, tl1, tl2, z2);
@@ -81,7 +81,7 @@ fn j(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
     return trapezoid_rule(v1s * iz2, v2s * iz2, tl1, tl2, FULL_RULE) * iz2 * iz2;
 }
 
-/// The far-tail series of `J` (item 5), homogeneous as [`j`]:
+/// The far-tail series of `J` (item 5), homogeneous as [`mixture_integral`]:
 /// `J = beta^-2 (1 + 12 P z2 / beta^2 - 2 (l1 + l2) z2 / beta)`, `P = l1 c1^2 + l2 c2^2`
 /// (`P / beta` formed first: no overflow).
 fn far_tail(beta: f32, c1s: f32, c2s: f32, tl1: f32, tl2: f32, z2: f32) -> f32 {
@@ -92,7 +92,7 @@ fn far_tail(beta: f32, c1s: f32, c2s: f32, tl1: f32, tl2: f32, z2: f32) -> f32 {
 }
 
 /// Gauss-Laguerre in `v = (1 + q) w` (item 4): `J = beta^-2 sum W_k F(v_k / beta)`,
-/// `F(w) = exp(sum c_i^2 2 l_i w^2 / p_i) / sqrt(p1 p2)`; homogeneous as [`j`].
+/// `F(w) = exp(sum c_i^2 2 l_i w^2 / p_i) / sqrt(p1 p2)`; homogeneous as [`mixture_integral`].
 fn laguerre(beta_m: f32, v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
     let ib = 1.0 / beta_m;
     let t1 = tl1 * z2 * ib;
@@ -165,10 +165,10 @@ fn reduced_rule(tol: u32) -> TrapezoidRule {
 }
 // END reduced rules
 
-/// `J / z2^2` (as [`j`]) at the accuracy setting `tol` (`TOL_FULL` to `TOL_1E2`).
+/// `J / z2^2` (as [`mixture_integral`]) at the accuracy setting `tol` (`TOL_FULL` to `TOL_1E2`).
 fn j_tol(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32, tol: u32) -> f32 {
     if tol == TOL_FULL {
-        return j(v1s, v2s, z2, tl1, tl2);
+        return mixture_integral(v1s, v2s, z2, tl1, tl2);
     }
     let beta_m = z2 + v1s + v2s;
     if tl1 * z2 * (reduced_far(tol) + 12.0 * math::ln(beta_m / z2)) <= beta_m {

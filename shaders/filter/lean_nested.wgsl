@@ -8,7 +8,9 @@
 #import filtered_ndf::filter::gaussian
 #import filtered_ndf::filter::gaussian_ggx
 #import filtered_ndf::filter::lean
-#import filtered_ndf::filter::method
+#import filtered_ndf::filter::projected
+#import filtered_ndf::filter::proxy
+#import filtered_ndf::filter::rect::lobe
 
 // LEAN moments nested into every method of the front door (KHPL16 section 5.5, eq. 21),
 // mirroring `src/.../filter/lean_nested.rs` (`Lean<M>`): the material is widened by the LEAN
@@ -16,13 +18,13 @@
 // over the pixel footprint as it filters a material. The clamp rules act on the pixel kernel
 // only. `moments` come from the baked chain (`bake::moments::sample_grad`).
 //
-// | method (`filter::method`) | nested lobe function | evaluate with |
+// | method | nested lobe function | evaluate with |
 // |---|---|---|
-// | `Gaussian` | `gaussian_lobe` | `ggx::*_matrix`, `beckmann::*_matrix` |
-// | `ExactGaussian` | `exact_gaussian_lobe` (GGX: one kernel `Sigma_L + K_P`, exact); Beckmann: `gaussian_lobe` | `gaussian_ggx::*` |
-// | `Projected` | `projected_lobe` | `ggx::*_matrix` |
-// | `Rect` | `rect_lobe` (the widened diagonal, `lean_widened_axis_aligned`) | `method::*_rect_filtered` |
-// | `Proxy` | `proxy_lobe` (likewise) | `ggx::*_axis_aligned` |
+// | `gaussian::Gaussian` | `gaussian_lobe` | `ggx::*_matrix`, `beckmann::*_matrix` |
+// | `gaussian_ggx::ExactGaussian` | `exact_gaussian_lobe` (GGX: one kernel `Sigma_L + K_P`, exact); Beckmann: `gaussian_lobe` | `gaussian_ggx::*` |
+// | `projected::Projected` | `projected_lobe` | `ggx::*_matrix` |
+// | `lobe::Rect` (`filter::rect::lobe`) | `rect_lobe` (the widened diagonal, `lean_widened_axis_aligned`) | `lobe::*_rect_filtered` |
+// | `proxy::Proxy` | `proxy_lobe` (likewise) | `ggx::*_axis_aligned` |
 
 /// `A_L = A + 2 Sigma_L`, `Sigma_L = lean::covariance(moments)` (PSD-projected), with the
 /// determinant clamp `tau = det A` (the Rust `lean_widened`; `gaussian::gaussian`).
@@ -43,54 +45,55 @@ fn lean_mean_normal(moments: lean::LeanMoments) -> vec3<f32> {
     return normalize(vec3<f32>(-moments.mean, 1.0));
 }
 
-/// `Lean<Gaussian>::lobe`: `method::gaussian_lobe` of the widened material.
+/// `Lean<Gaussian>::lobe`: `gaussian::gaussian_lobe` of the widened material.
 fn gaussian_lobe(
-    m: method::Gaussian,
+    m: gaussian::Gaussian,
     material: matrix::RoughnessMatrix,
     fp: pixel::Footprint,
     moments: lean::LeanMoments,
 ) -> matrix::RoughnessMatrix {
-    return method::gaussian_lobe(m, lean_widened(material, moments), fp);
+    return gaussian::gaussian_lobe(m, lean_widened(material, moments), fp);
 }
 
 /// `Lean<ExactGaussian>::lobe` for GGX: the exact Gaussian-filtered GGX of the material over
-/// one kernel, the method's clamped pixel kernel plus `Sigma_L` (both Gaussians, so they add).
+/// one kernel, the method's clamped pixel kernel plus `Sigma_L` (both Gaussians, so they add),
+/// at the method's accuracy setting.
 fn exact_gaussian_lobe(
-    m: method::ExactGaussian,
+    m: gaussian_ggx::ExactGaussian,
     material: matrix::RoughnessMatrix,
     fp: pixel::Footprint,
     moments: lean::LeanMoments,
 ) -> gaussian_ggx::GaussianFilteredGgx {
     let k = cov::add(clamp::pixel_kernel(m.clamps, fp, m.sigma), lean::covariance(moments));
-    return gaussian_ggx::from_kernel(material, k);
+    return gaussian_ggx::with_tolerance(gaussian_ggx::from_kernel(material, k), m.tolerance);
 }
 
-/// `Lean<Projected>::lobe`: `method::projected_lobe` of the widened material.
+/// `Lean<Projected>::lobe`: `projected::projected_lobe` of the widened material.
 fn projected_lobe(
-    m: method::Projected,
+    m: projected::Projected,
     material: matrix::RoughnessMatrix,
     fp: pixel::Footprint,
     moments: lean::LeanMoments,
 ) -> matrix::RoughnessMatrix {
-    return method::projected_lobe(m, lean_widened(material, moments), fp);
+    return projected::projected_lobe(m, lean_widened(material, moments), fp);
 }
 
-/// `Lean<Rect>::lobe`: `method::rect_lobe` of the widened axis-aligned lobe.
+/// `Lean<Rect>::lobe`: `lobe::rect_lobe` of the widened axis-aligned lobe.
 fn rect_lobe(
-    m: method::Rect,
+    m: lobe::Rect,
     material: axis_aligned::AxisAligned,
     fp: pixel::Footprint,
     moments: lean::LeanMoments,
-) -> method::RectFilteredGgx {
-    return method::rect_lobe(m, lean_widened_axis_aligned(material, moments), fp);
+) -> lobe::RectFilteredGgx {
+    return lobe::rect_lobe(m, lean_widened_axis_aligned(material, moments), fp);
 }
 
-/// `Lean<Proxy>::lobe`: `method::proxy_lobe` of the widened axis-aligned lobe.
+/// `Lean<Proxy>::lobe`: `proxy::proxy_lobe` of the widened axis-aligned lobe.
 fn proxy_lobe(
-    m: method::Proxy,
+    m: proxy::Proxy,
     material: axis_aligned::AxisAligned,
     fp: pixel::Footprint,
     moments: lean::LeanMoments,
 ) -> axis_aligned::AxisAligned {
-    return method::proxy_lobe(m, lean_widened_axis_aligned(material, moments), fp);
+    return proxy::proxy_lobe(m, lean_widened_axis_aligned(material, moments), fp);
 }

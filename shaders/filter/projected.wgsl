@@ -1,7 +1,10 @@
 #define_import_path filtered_ndf::filter::projected
 
 #import filtered_ndf::ndf::roughness::matrix
+#import filtered_ndf::ndf::ggx
+#import filtered_ndf::footprint as pixel
 #import filtered_ndf::kernel::covariance
+#import filtered_ndf::kernel::clamp
 
 // Projected-space filtering (Tokuyoshi and Kaplanyan 2021, JCGT 10(2), Listing 1),
 // mirroring `src/.../filter/projected.rs`.
@@ -74,4 +77,39 @@ fn projected_sanitized(
     // Never below A on the diagonal (exact, by monotonicity), as in Rust.
     let e = matrix::entries(a);
     return matrix::from_entries_det(max(b11, e.x), b12, max(b22, e.z), det, max(tau, 0.0));
+}
+
+/// The projected-space pipeline (TK21), the rules as in `gaussian::filter_gaussian`: `clamp::footprint`
+/// -> `covariance::from_footprint` (`sigma` pixels; the footprint of the half vector's projected-disk
+/// derivatives, TK19 section 3.2) -> `clamp::kernel` -> [`projected_sanitized`] with
+/// `tau = det A_c` if `det_clamp` (the Rust `ClampRules::filter_projected`).
+fn filter_projected(
+    rules: clamp::ClampRules,
+    a: matrix::RoughnessMatrix,
+    fp: pixel::Footprint,
+    sigma: f32,
+) -> matrix::RoughnessMatrix {
+    return projected_sanitized(a, clamp::pixel_kernel(rules, fp, sigma), clamp::det_clamp_for(rules, a));
+}
+
+/// Projected-space filtering of GGX (Tokuyoshi and Kaplanyan 2021), the kernel of the
+/// footprint after the clamp rules.
+struct Projected {
+    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
+    clamps: clamp::ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+}
+
+/// TK21: the default rules, `sigma = 0.5`.
+const TK21_PROJECTED: Projected = Projected(clamp::DEFAULT_RULES, pixel::SIGMA_PIXEL);
+
+/// The GGX lobe of projected-space filtering (the Rust `Projected::lobe`), for `ggx::*_matrix`.
+fn projected_lobe(method: Projected, material: matrix::RoughnessMatrix, fp: pixel::Footprint) -> matrix::RoughnessMatrix {
+    return filter_projected(method.clamps, material, fp, method.sigma);
+}
+
+/// `D(m)` of [`projected_lobe`].
+fn d_ggx_projected(method: Projected, material: matrix::RoughnessMatrix, fp: pixel::Footprint, m: vec3<f32>) -> f32 {
+    return ggx::d_matrix(projected_lobe(method, material, fp), m);
 }

@@ -2,6 +2,10 @@
 
 #import filtered_ndf::math
 #import filtered_ndf::ndf::roughness::axis_aligned
+#import filtered_ndf::ndf::ggx
+#import filtered_ndf::footprint as pixel
+#import filtered_ndf::kernel::rect as bounding
+#import filtered_ndf::kernel::clamp
 
 // The GGX proxy of KHPL16 section 5.4 (eq. 18-20), mirroring `src/.../filter/proxy.rs`: an
 // effective roughness whose unfiltered GGX has the peak of the box-filtered GGX. Eq. 19
@@ -41,4 +45,25 @@ fn proxy_simple(r: axis_aligned::AxisAligned, half_extent: vec2<f32>) -> axis_al
         effective_alpha_simple(r.alpha.x, half_extent.x),
         effective_alpha_simple(r.alpha.y, half_extent.y),
     ));
+}
+
+/// The GGX proxy of KHPL16 section 5.4 (eq. 18-19, solved exactly): the axis-aligned GGX whose
+/// peak is the box-filtered peak over the clamped bounding rectangle, per axis.
+struct Proxy {
+    /// The clamp rules applied to the rectangle's half extents.
+    clamps: clamp::ClampRules,
+}
+
+/// KHPL16: half extents clamped to `lambda = 1`, no floor.
+const KHPL16_PROXY: Proxy = Proxy(clamp::KHPL16_RULES);
+
+/// The proxy roughness (the Rust `Proxy::lobe`), for `ggx::*_axis_aligned`.
+fn proxy_lobe(method: Proxy, material: axis_aligned::AxisAligned, fp: pixel::Footprint) -> axis_aligned::AxisAligned {
+    let h = clamp::rect(method.clamps, bounding::from_footprint(fp), material.alpha).half_extent;
+    return proxy(material, h);
+}
+
+/// `D(m)` of [`proxy_lobe`].
+fn d_ggx_proxy(method: Proxy, material: axis_aligned::AxisAligned, fp: pixel::Footprint, m: vec3<f32>) -> f32 {
+    return ggx::d_axis_aligned(proxy_lobe(method, material, fp), m);
 }

@@ -1,14 +1,20 @@
 #define_import_path filtered_ndf::footprint
 
+#import filtered_ndf::math
 #import filtered_ndf::footprint::jacobian
-#import filtered_ndf::kernel::covariance as cov
-#import filtered_ndf::kernel::rect as bounding
 
 // Pixel footprints in the slope domain (KHPL16 sections 4.2, 4.3; TK19 section 2.2),
 // mirroring `Footprint` of `src/.../footprint/mod.rs`: the slope change of the half vector
 // across one pixel step in `x` (`dh_u`) and in `y` (`dh_v`). A Gaussian pixel filter of
 // standard deviation `sigma` pixels carried into the slope domain has covariance
-// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`.
+// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`; the kernel stage builds it
+// (`kernel::covariance::from_footprint`) and the bounding rectangle
+// (`kernel::rect::from_footprint`).
+
+// NaN policy (the Rust `contract`, as in `src/.../footprint/mod.rs`): a NaN derivative entry
+// carries no information and counts as 0 (`math::nan_to_zero`, decided on the bits, so it
+// holds whatever a driver assumes about floats); an infinite entry saturates: the clamp
+// rules turn it into the widest kernel they allow (where the driver keeps infinities).
 
 /// The standard deviation of the pixel filter of KHPL16 and TK19, in pixels.
 const SIGMA_PIXEL: f32 = 0.5;
@@ -37,7 +43,7 @@ fn from_projected_derivatives(dp_u: vec2<f32>, dp_v: vec2<f32>) -> Footprint {
 /// The slope-domain footprint of disk derivatives at the half vector `h`:
 /// `dh = J(perp->par) dp` (TK19 supplement eq. 6, [`jacobian::projected_to_slope`]: `h`
 /// normalised, clamped to the horizon `h_z >= 1e-6` at constant azimuth). A zero `h` gives a
-/// zero footprint.
+/// zero footprint; a NaN derivative entry counts as 0 (module docs).
 fn from_projected_derivatives_in_slope(
     h: vec3<f32>,
     dp_u: vec2<f32>,
@@ -48,39 +54,26 @@ fn from_projected_derivatives_in_slope(
         return Footprint(vec2<f32>(0.0), vec2<f32>(0.0));
     }
     let j = jacobian::projected_to_slope(h);
-    return Footprint(j * dp_u, j * dp_v);
+    return Footprint(j * math::nan_to_zero2(dp_u), j * math::nan_to_zero2(dp_v));
 }
 
 /// The deferred footprint from normal differences to the neighbouring pixels (TK19 section
 /// 4.4, eq. 3) in the tangent frame of the current normal: `2 (dn)_xy / |2 e_z + dn|` per
 /// difference (the derivative of the half-way normal on the disk, whose length is `|dn|`
-/// for unit normals), the denominator clamped to `>= 1e-6`.
-fn from_normal_differences(dn_u: vec3<f32>, dn_v: vec3<f32>) -> Footprint {
+/// for unit normals), the denominator clamped to `>= 1e-6`. A NaN entry of a difference counts
+/// as 0 (module docs).
+fn from_normal_differences(dn_u_in: vec3<f32>, dn_v_in: vec3<f32>) -> Footprint {
+    let dn_u = math::nan_to_zero3(dn_u_in);
+    let dn_v = math::nan_to_zero3(dn_v_in);
     let lu = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_u), 1e-6);
     let lv = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_v), 1e-6);
     return Footprint(dn_u.xy * (2.0 / lu), dn_v.xy * (2.0 / lv));
 }
 
-/// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels, with
-/// `det Sigma = sigma^4 (dh_u x dh_v)^2` from the vectors (accurate for elongated kernels).
-fn covariance(fp: Footprint, sigma: f32) -> cov::Covariance {
-    let u = fp.dh_u;
-    let v = fp.dh_v;
-    let s2 = sigma * sigma;
-    let cross = (u.x * v.y - u.y * v.x) * s2;
-    return cov::Covariance(
-        (u.x * u.x + v.x * v.x) * s2,
-        (u.x * u.y + v.x * v.y) * s2,
-        (u.y * u.y + v.y * v.y) * s2,
-        cross * cross,
-    );
-}
-
-/// The axis-aligned bounding rectangle of the one-pixel parallelogram (KHPL16 section 5.3;
-/// GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
-/// `(|dh_u| + |dh_v|) / 2` per axis.
-fn bounding_rect(fp: Footprint) -> bounding::BoundingRect {
-    return bounding::BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
+/// The footprint with each NaN entry replaced by 0 (the Rust `Footprint::nan_to_zero`), as
+/// the kernel stage reads a footprint (module docs).
+fn nan_to_zero(fp: Footprint) -> Footprint {
+    return Footprint(math::nan_to_zero2(fp.dh_u), math::nan_to_zero2(fp.dh_v));
 }
 
 /// The largest centre-to-vertex distance of the one-pixel parallelogram,

@@ -17,19 +17,49 @@ struct ndf_roughness_matrix_RoughnessMatrix {
     float det;
     float tau;
 };
+struct footprint_jacobian_Polar {
+    vec3 h;
+    vec2 cs;
+};
+struct footprint_jacobian_SphericalBasis {
+    vec3 e_x;
+    vec3 e_y;
+};
+struct footprint_Footprint {
+    vec2 dh_u;
+    vec2 dh_v;
+};
 struct kernel_covariance_Covariance {
     float s_xx;
     float s_xy;
     float s_yy;
     float det;
 };
-struct filter_lean_LeanMoments {
-    vec2 mean;
-    vec3 second;
-};
 struct ndf_roughness_isotropic_Isotropic {
     float alpha;
     float inv_alpha_sq;
+};
+struct ndf_roughness_axis_aligned_AxisAligned {
+    vec2 alpha;
+    vec2 inv_alpha_sq;
+};
+struct kernel_rect_BoundingRect {
+    vec2 half_extent;
+};
+struct kernel_clamp_ClampRules {
+    float max_extent;
+    uint floor_kind;
+    float floor_;
+    float kappa;
+    bool det_clamp;
+};
+struct filter_gaussian_Gaussian {
+    kernel_clamp_ClampRules clamps;
+    float sigma;
+};
+struct filter_lean_LeanMoments {
+    vec2 mean;
+    vec3 second;
 };
 struct filter_deferred_KernelConvention {
     uint domain;
@@ -42,10 +72,6 @@ struct filter_deferred_KernelConvention {
     bool saturate;
     float perceptual_floor;
 };
-struct ndf_roughness_axis_aligned_AxisAligned {
-    vec2 alpha;
-    vec2 inv_alpha_sq;
-};
 struct filter_gaussian_ggx_quad_TrapezoidRule {
     float h;
     float exp_h;
@@ -53,11 +79,6 @@ struct filter_gaussian_ggx_quad_TrapezoidRule {
     float y_lo;
     vec4 geom;
     uint nodes;
-};
-struct sampling_Warp {
-    float l_xx;
-    float l_yx;
-    float l_yy;
 };
 struct filter_gaussian_ggx_GaussianFilteredGgx {
     ndf_roughness_matrix_RoughnessMatrix a;
@@ -68,50 +89,29 @@ struct filter_gaussian_ggx_GaussianFilteredGgx {
     kernel_covariance_Covariance k;
     uint tol;
 };
-struct footprint_jacobian_Polar {
-    vec3 h;
-    vec2 cs;
-};
-struct footprint_jacobian_SphericalBasis {
-    vec3 e_x;
-    vec3 e_y;
-};
-struct kernel_rect_BoundingRect {
-    vec2 half_extent;
-};
-struct footprint_Footprint {
-    vec2 dh_u;
-    vec2 dh_v;
-};
-struct kernel_clamp_ClampRules {
-    float max_extent;
-    uint floor_kind;
-    float floor_;
-    float kappa;
-    bool det_clamp;
-};
-struct filter_method_Gaussian {
-    kernel_clamp_ClampRules clamps;
-    float sigma;
-};
-struct filter_method_ExactGaussian {
+struct filter_gaussian_ggx_ExactGaussian {
     kernel_clamp_ClampRules clamps;
     float sigma;
     uint tolerance;
 };
-struct filter_method_Projected {
+struct filter_projected_Projected {
     kernel_clamp_ClampRules clamps;
     float sigma;
 };
-struct filter_method_Rect {
+struct filter_proxy_Proxy {
     kernel_clamp_ClampRules clamps;
 };
-struct filter_method_RectFilteredGgx {
+struct filter_rect_lobe_Rect {
+    kernel_clamp_ClampRules clamps;
+};
+struct filter_rect_lobe_RectFilteredGgx {
     ndf_roughness_axis_aligned_AxisAligned roughness;
     vec2 half_extent;
 };
-struct filter_method_Proxy {
-    kernel_clamp_ClampRules clamps;
+struct sampling_Warp {
+    float l_xx;
+    float l_yx;
+    float l_yy;
 };
 const float math_PI = 3.1415927;
 const float math_HALF_PI = 1.5707964;
@@ -126,9 +126,22 @@ const float math_LN_2_ = 0.6931472;
 const float math_SQRT_TAU = 2.5066283;
 const float math_LOG2_E = 1.442695;
 const float math_SQRT_2_ = 1.4142135;
+const float footprint_jacobian_HZ_MIN = 1e-6;
+const float footprint_SIGMA_PIXEL = 0.5;
 const float kernel_covariance_KERNEL_MAX = 100000000.0;
 const float ndf_roughness_ALPHA_MIN = 1e-8;
 const float ndf_roughness_ALPHA_MAX = 10000.0;
+const float ndf_beckmann_EXP_SPLIT = 80.0;
+const float ndf_beckmann_SQRT_PI = 1.7724539;
+const uint kernel_clamp_FLOOR_NONE = 0u;
+const uint kernel_clamp_FLOOR_CONSTANT = 1u;
+const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
+const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
+const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
+const kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
+const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
+const filter_gaussian_Gaussian filter_gaussian_TK19_GAUSSIAN = filter_gaussian_Gaussian(kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
+const filter_gaussian_Gaussian filter_gaussian_KHPL16_GAUSSIAN = filter_gaussian_Gaussian(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
 const float filter_deferred_KAPPA = 0.18;
 const uint filter_deferred_DOMAIN_ALPHA_SQ = 0u;
 const uint filter_deferred_DOMAIN_ALPHA = 1u;
@@ -143,8 +156,6 @@ const uint filter_deferred_COMBINE_MAX = 1u;
 const uint filter_deferred_BANDWIDTH_MAX = 0u;
 const uint filter_deferred_BANDWIDTH_TRACE = 1u;
 const uint filter_deferred_BANDWIDTH_AVERAGE = 2u;
-const float ndf_beckmann_EXP_SPLIT = 80.0;
-const float ndf_beckmann_SQRT_PI = 1.7724539;
 const float filter_gaussian_ggx_quad_FAR = 320000.0;
 const float filter_gaussian_ggx_quad_H = 0.5;
 const float filter_gaussian_ggx_quad_EXP_H = 1.6487212;
@@ -164,32 +175,20 @@ const float filter_gaussian_ggx_quad_S_MAX = 0.25;
 const float filter_gaussian_ggx_quad_S_COEF = 0.25;
 const float filter_gaussian_ggx_quad_S_EPS = 1e-8;
 const uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
-const float sampling_ONE_MINUS_EPS = 0.99999994;
 const uint filter_gaussian_ggx_TOL_FULL = 0u;
 const uint filter_gaussian_ggx_TOL_1E4_ = 1u;
 const uint filter_gaussian_ggx_TOL_1E3_ = 2u;
 const uint filter_gaussian_ggx_TOL_1E2_ = 3u;
-const float footprint_jacobian_HZ_MIN = 1e-6;
-const float footprint_SIGMA_PIXEL = 0.5;
+const filter_gaussian_ggx_ExactGaussian filter_gaussian_ggx_KHPL16_EXACT_GAUSSIAN = filter_gaussian_ggx_ExactGaussian(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5, 0u);
 const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
-const uint kernel_clamp_FLOOR_NONE = 0u;
-const uint kernel_clamp_FLOOR_CONSTANT = 1u;
-const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
-const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
-const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
-const kernel_clamp_ClampRules kernel_clamp_NO_RULES = kernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
-const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = kernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
+const filter_projected_Projected filter_projected_TK21_PROJECTED = filter_projected_Projected(kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
+const filter_proxy_Proxy filter_proxy_KHPL16_PROXY = filter_proxy_Proxy(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
 const float filter_rect_BIG = 1e18;
 const float filter_rect_FAR2_ = 0.25;
 const uint filter_rect_TIER_CLOSED = 0u;
 const float filter_rect_lambda_BIG_K = 1000000000000.0;
-const filter_method_Gaussian filter_method_TK19_GAUSSIAN = filter_method_Gaussian(kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
-const filter_method_Gaussian filter_method_KHPL16_GAUSSIAN = filter_method_Gaussian(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
-const filter_method_ExactGaussian filter_method_KHPL16_EXACT_GAUSSIAN = filter_method_ExactGaussian(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5, 0u);
-const filter_method_Projected filter_method_TK21_PROJECTED = filter_method_Projected(kernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
-const filter_method_Rect filter_method_KHPL16_RECT = filter_method_Rect(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
-const filter_method_Rect filter_method_GDC2016_RECT = filter_method_Rect(kernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true));
-const filter_method_Proxy filter_method_KHPL16_PROXY = filter_method_Proxy(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
+const filter_rect_lobe_Rect filter_rect_lobe_KHPL16_RECT = filter_rect_lobe_Rect(kernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
+const filter_rect_lobe_Rect filter_rect_lobe_GDC2016_RECT = filter_rect_lobe_Rect(kernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true));
 const filter_deferred_KernelConvention filter_presets_TK19_TRACE = filter_deferred_KernelConvention(0u, 0u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
 const filter_deferred_KernelConvention filter_presets_TK19_AVERAGE = filter_deferred_KernelConvention(0u, 0u, 0.25, 1.0, 0.0, 0.18, 0u, true, 0.0);
 const filter_deferred_KernelConvention filter_presets_TK19_MAX = filter_deferred_KernelConvention(0u, 2u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
@@ -202,6 +201,7 @@ const filter_deferred_KernelConvention filter_presets_O3DE = filter_deferred_Ker
 const filter_deferred_KernelConvention filter_presets_UNREAL = filter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 const filter_deferred_KernelConvention filter_presets_BABYLON = filter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 const filter_deferred_KernelConvention filter_presets_THREE_JS = filter_deferred_KernelConvention(2u, 3u, 1.0, 1.0, 0.0, 3.4028235e38, 0u, true, 0.0525);
+const float sampling_ONE_MINUS_EPS = 0.99999994;
 const float sampling_beckmann_X_MAX = 9.0;
 const uint sampling_beckmann_MAX_ITERATIONS = 64u;
 const float sampling_beckmann_INV_SQRT_PI = 0.5641896;
@@ -319,6 +319,28 @@ float math_ln_1p(float x_4) {
     return _e9;
 }
 
+bool math_is_nan(float x_5) {
+    return ((floatBitsToUint(x_5) & 2147483647u) > 2139095040u);
+}
+
+float math_nan_to_zero(float x_6) {
+    bool _e1 = math_is_nan(x_6);
+    return (_e1 ? 0.0 : x_6);
+}
+
+vec2 math_nan_to_zero2_(vec2 v) {
+    float _e2 = math_nan_to_zero(v.x);
+    float _e4 = math_nan_to_zero(v.y);
+    return vec2(_e2, _e4);
+}
+
+vec3 math_nan_to_zero3_(vec3 v_1) {
+    float _e2 = math_nan_to_zero(v_1.x);
+    float _e4 = math_nan_to_zero(v_1.y);
+    float _e6 = math_nan_to_zero(v_1.z);
+    return vec3(_e2, _e4, _e6);
+}
+
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigen(vec2 axis, vec2 alpha) {
     vec2 l_5 = (alpha * alpha);
     return ndf_roughness_matrix_RoughnessMatrix(axis, l_5, l_5, (vec2(1.0) / l_5), (alpha.x * alpha.y), (l_5.x * l_5.y), 0.0);
@@ -341,18 +363,18 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(vec2 a
 }
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det_2, float tau_2) {
-    vec2 v = vec2(0.0);
+    vec2 v_2 = vec2(0.0);
     float half_diff = (0.5 * (a11_ - a22_));
     float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
     float l1_1 = ((0.5 * (a11_ + a22_)) + rad);
     float l2_2 = (max(det_2, 0.0) / l1_1);
     float big = (rad + abs(half_diff));
-    v = ((half_diff < 0.0) ? vec2(a12_, big) : vec2(big, a12_));
+    v_2 = ((half_diff < 0.0) ? vec2(a12_, big) : vec2(big, a12_));
     if ((big <= 0.0)) {
-        v = vec2(1.0, 0.0);
+        v_2 = vec2(1.0, 0.0);
     }
-    vec2 _e32 = v;
-    vec2 _e33 = v;
+    vec2 _e32 = v_2;
+    vec2 _e33 = v_2;
     vec2 axis_2 = (_e32 / vec2(length(_e33)));
     ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, vec2(l1_1, l2_2), det_2, tau_2);
     return _e38;
@@ -368,8 +390,8 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(ndf_rou
     return _e7;
 }
 
-vec2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, vec2 v_1) {
-    return vec2(((r_2.axis.x * v_1.x) + (r_2.axis.y * v_1.y)), ((r_2.axis.x * v_1.y) - (r_2.axis.y * v_1.x)));
+vec2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, vec2 v_3) {
+    return vec2(((r_2.axis.x * v_3.x) + (r_2.axis.y * v_3.y)), ((r_2.axis.x * v_3.y) - (r_2.axis.y * v_3.x)));
 }
 
 float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, vec2 s) {
@@ -414,12 +436,150 @@ float ndf_roughness_matrix_own_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_
     return ((r_11.tau > r_11.det) ? r_11.tau : 0.0);
 }
 
+footprint_jacobian_Polar footprint_jacobian_polar(vec3 h_in) {
+    vec2 cs_1 = vec2(1.0, 0.0);
+    float big_1 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if ((big_1 <= 0.0)) {
+        return footprint_jacobian_Polar(vec3(0.0, 0.0, 1.0), vec2(1.0, 0.0));
+    }
+    vec3 h0_ = (h_in / vec3(big_1));
+    vec3 h_22 = (h0_ / vec3(length(h0_)));
+    float qs_3 = max(abs(h_22.x), abs(h_22.y));
+    if ((qs_3 > 0.0)) {
+        vec2 q_5 = (h_22.xy / vec2(qs_3));
+        cs_1 = (q_5 / vec2(length(q_5)));
+    }
+    if ((h_22.z >= footprint_jacobian_HZ_MIN)) {
+        vec2 _e44 = cs_1;
+        return footprint_jacobian_Polar(h_22, _e44);
+    }
+    vec2 _e47 = cs_1;
+    vec2 _e51 = cs_1;
+    return footprint_jacobian_Polar(vec3((1.0 * _e47), footprint_jacobian_HZ_MIN), _e51);
+}
+
+vec3 footprint_jacobian_sanitize(vec3 h) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h);
+    return _e1.h;
+}
+
+footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(vec3 h_1) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
+    float st = length(_e1.h.xy);
+    return footprint_jacobian_SphericalBasis(vec3((_e1.h.z * _e1.cs), -(st)), vec3(-(_e1.cs.y), _e1.cs.x, 0.0));
+}
+
+vec2 footprint_jacobian_spherical_components(vec3 h_2, vec3 dh) {
+    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_2);
+    return vec2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
+}
+
+mat2x2 footprint_jacobian_sphere_to_projected(vec3 h_3) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_3);
+    return mat2x2((_e1.h.z * _e1.cs), vec2(-(_e1.cs.y), _e1.cs.x));
+}
+
+mat2x2 footprint_jacobian_projected_to_slope(vec3 h_in_1) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
+    vec3 h_23 = _e1.h;
+    float k_25 = (-1.0 / ((h_23.z * h_23.z) * h_23.z));
+    float xy_1 = (h_23.x * h_23.y);
+    return mat2x2((vec2(((h_23.x * h_23.x) + (h_23.z * h_23.z)), xy_1) * k_25), (vec2(xy_1, ((h_23.y * h_23.y) + (h_23.z * h_23.z))) * k_25));
+}
+
+mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_2) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
+    vec3 h_24 = _e1.h;
+    float xy_2 = (h_24.x * h_24.y);
+    return mat2x2((vec2(((h_24.y * h_24.y) + (h_24.z * h_24.z)), -(xy_2)) * -(h_24.z)), (vec2(-(xy_2), ((h_24.x * h_24.x) + (h_24.z * h_24.z))) * -(h_24.z)));
+}
+
+mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_4) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
+    float k_26 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return mat2x2((_e1.cs * k_26), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_26));
+}
+
+float footprint_jacobian_det_sphere_to_projected(vec3 h_5) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
+    return _e1.h.z;
+}
+
+float footprint_jacobian_det_projected_to_slope(vec3 h_6) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
+    float z_4 = _e1.h.z;
+    float z2_5 = (z_4 * z_4);
+    return (1.0 / (z2_5 * z2_5));
+}
+
+float footprint_jacobian_det_sphere_to_slope(vec3 h_7) {
+    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
+    float z_5 = _e1.h.z;
+    return (1.0 / ((z_5 * z_5) * z_5));
+}
+
+vec2 footprint_jacobian_spherical_to_slope(vec3 h_8, vec2 e_1) {
+    mat2x2 _e2 = footprint_jacobian_sphere_to_slope(h_8);
+    return (_e2 * e_1);
+}
+
+vec2 footprint_jacobian_spherical_to_projected(vec3 h_9, vec2 e_2) {
+    mat2x2 _e2 = footprint_jacobian_sphere_to_projected(h_9);
+    return (_e2 * e_2);
+}
+
+footprint_Footprint footprint_from_slope_derivatives(vec2 dh_u, vec2 dh_v) {
+    return footprint_Footprint(dh_u, dh_v);
+}
+
+footprint_Footprint footprint_from_projected_derivatives(vec2 dp_u, vec2 dp_v) {
+    return footprint_Footprint(dp_u, dp_v);
+}
+
+footprint_Footprint footprint_from_projected_derivatives_in_slope(vec3 h_10, vec2 dp_u_1, vec2 dp_v_1) {
+    float big_2 = max(max(abs(h_10.x), abs(h_10.y)), abs(h_10.z));
+    if ((big_2 <= 0.0)) {
+        return footprint_Footprint(vec2(0.0), vec2(0.0));
+    }
+    mat2x2 _e18 = footprint_jacobian_projected_to_slope(h_10);
+    vec2 _e19 = math_nan_to_zero2_(dp_u_1);
+    vec2 _e21 = math_nan_to_zero2_(dp_v_1);
+    return footprint_Footprint((_e18 * _e19), (_e18 * _e21));
+}
+
+footprint_Footprint footprint_from_normal_differences(vec3 dn_u_in, vec3 dn_v_in) {
+    vec3 _e2 = math_nan_to_zero3_(dn_u_in);
+    vec3 _e3 = math_nan_to_zero3_(dn_v_in);
+    float lu = max(length((vec3(0.0, 0.0, 2.0) + _e2)), 1e-6);
+    float lv = max(length((vec3(0.0, 0.0, 2.0) + _e3)), 1e-6);
+    return footprint_Footprint((_e2.xy * (2.0 / lu)), (_e3.xy * (2.0 / lv)));
+}
+
+footprint_Footprint footprint_nan_to_zero(footprint_Footprint fp) {
+    vec2 _e2 = math_nan_to_zero2_(fp.dh_u);
+    vec2 _e4 = math_nan_to_zero2_(fp.dh_v);
+    return footprint_Footprint(_e2, _e4);
+}
+
+float footprint_max_extent(footprint_Footprint fp_1) {
+    return (0.5 * max(length((fp_1.dh_u + fp_1.dh_v)), length((fp_1.dh_u - fp_1.dh_v))));
+}
+
 kernel_covariance_Covariance kernel_covariance_zero() {
     return kernel_covariance_Covariance(0.0, 0.0, 0.0, 0.0);
 }
 
 kernel_covariance_Covariance kernel_covariance_from_entries(float s_xx, float s_xy, float s_yy) {
     return kernel_covariance_Covariance(s_xx, s_xy, s_yy, ((s_xx * s_yy) - (s_xy * s_xy)));
+}
+
+kernel_covariance_Covariance kernel_covariance_from_footprint(footprint_Footprint fp_in, float sigma) {
+    footprint_Footprint _e2 = footprint_nan_to_zero(fp_in);
+    vec2 u_18 = _e2.dh_u;
+    vec2 v_15 = _e2.dh_v;
+    float s2_ = (sigma * sigma);
+    float cross_ = (((u_18.x * v_15.y) - (u_18.y * v_15.x)) * s2_);
+    return kernel_covariance_Covariance((((u_18.x * u_18.x) + (v_15.x * v_15.x)) * s2_), (((u_18.x * u_18.y) + (v_15.x * v_15.y)) * s2_), (((u_18.y * u_18.y) + (v_15.y * v_15.y)) * s2_), (cross_ * cross_));
 }
 
 float kernel_covariance_trace(kernel_covariance_Covariance c) {
@@ -431,8 +591,8 @@ kernel_covariance_Covariance kernel_covariance_scaled(kernel_covariance_Covarian
 }
 
 kernel_covariance_Covariance kernel_covariance_add(kernel_covariance_Covariance a, kernel_covariance_Covariance b) {
-    float cross_ = (((a.s_xx * b.s_yy) + (a.s_yy * b.s_xx)) - ((2.0 * a.s_xy) * b.s_xy));
-    return kernel_covariance_Covariance((a.s_xx + b.s_xx), (a.s_xy + b.s_xy), (a.s_yy + b.s_yy), ((a.det + b.det) + cross_));
+    float cross_1 = (((a.s_xx * b.s_yy) + (a.s_yy * b.s_xx)) - ((2.0 * a.s_xy) * b.s_xy));
+    return kernel_covariance_Covariance((a.s_xx + b.s_xx), (a.s_xy + b.s_xy), (a.s_yy + b.s_yy), ((a.det + b.det) + cross_1));
 }
 
 vec2 kernel_covariance_eigenvalues(kernel_covariance_Covariance c_2) {
@@ -473,8 +633,8 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
         return kernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
     }
     float p_7 = (r_81 + abs(d_3));
-    float q_5 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
-    vec2 ee = ((d_3 >= 0.0) ? vec2(p_7, q_5) : vec2(q_5, p_7));
+    float q_6 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
+    vec2 ee = ((d_3 >= 0.0) ? vec2(p_7, q_6) : vec2(q_6, p_7));
     float inv_1 = (1.0 / (2.0 * r_81));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_6 * inv_1);
@@ -482,95 +642,108 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     return kernel_covariance_Covariance(((max_eig * p11_) + (lmin_1 * p22_)), ((max_eig - lmin_1) * p12_), ((max_eig * p22_) + (lmin_1 * p11_)), (max_eig * lmin_1));
 }
 
-kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covariance c_4) {
+kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covariance c_in) {
     bool local_1 = false;
     bool local_2 = false;
-    float big_1 = max(max(abs(c_4.s_xx), abs(c_4.s_yy)), abs(c_4.s_xy));
-    if ((big_1 > math_F32_MAX)) {
+    kernel_covariance_Covariance c_4 = kernel_covariance_Covariance(0.0, 0.0, 0.0, 0.0);
+    bool local_3 = false;
+    bool local_4 = false;
+    bool local_5 = false;
+    bool local_6 = false;
+    bool local_7 = false;
+    if (!((abs(c_in.s_xx) > math_F32_MAX))) {
+        local_1 = (abs(c_in.s_xy) > math_F32_MAX);
+    } else {
+        local_1 = true;
+    }
+    bool _e13 = local_1;
+    if (!(_e13)) {
+        local_2 = (abs(c_in.s_yy) > math_F32_MAX);
+    } else {
+        local_2 = true;
+    }
+    bool inf = local_2;
+    if (inf) {
         return kernel_covariance_Covariance(100000000.0, 0.0, 100000000.0, 1e16);
     }
-    if ((c_4.s_xx >= 0.0)) {
-        local_1 = (c_4.s_yy >= 0.0);
+    float _e29 = math_nan_to_zero(c_in.s_xx);
+    float _e31 = math_nan_to_zero(c_in.s_xy);
+    float _e33 = math_nan_to_zero(c_in.s_yy);
+    c_4 = kernel_covariance_Covariance(_e29, _e31, _e33, c_in.det);
+    float _e38 = c_4.det;
+    bool _e39 = math_is_nan(_e38);
+    if (!(_e39)) {
+        bool _e44 = math_is_nan(c_in.s_xx);
+        local_3 = _e44;
     } else {
-        local_1 = false;
+        local_3 = true;
     }
-    bool _e25 = local_1;
-    if (_e25) {
-        local_2 = (c_4.det >= 0.0);
+    bool _e46 = local_3;
+    if (!(_e46)) {
+        bool _e51 = math_is_nan(c_in.s_xy);
+        local_4 = _e51;
     } else {
-        local_2 = false;
+        local_4 = true;
     }
-    bool _e32 = local_2;
-    if (_e32) {
-        kernel_covariance_Covariance _e34 = kernel_covariance_clamp_eigenvalues(c_4, kernel_covariance_KERNEL_MAX);
-        return _e34;
+    bool _e53 = local_4;
+    if (!(_e53)) {
+        bool _e58 = math_is_nan(c_in.s_yy);
+        local_5 = _e58;
+    } else {
+        local_5 = true;
     }
-    float s_xx_1 = max(c_4.s_xx, 0.0);
-    float s_yy_1 = max(c_4.s_yy, 0.0);
+    bool _e60 = local_5;
+    if (_e60) {
+        float _e63 = c_4.s_xx;
+        float _e65 = c_4.s_yy;
+        float _e68 = c_4.s_xy;
+        float _e70 = c_4.s_xy;
+        c_4.det = ((_e63 * _e65) - (_e68 * _e70));
+    }
+    float _e74 = c_4.s_xx;
+    if ((_e74 >= 0.0)) {
+        float _e80 = c_4.s_yy;
+        local_6 = (_e80 >= 0.0);
+    } else {
+        local_6 = false;
+    }
+    bool _e84 = local_6;
+    if (_e84) {
+        float _e88 = c_4.det;
+        local_7 = (_e88 >= 0.0);
+    } else {
+        local_7 = false;
+    }
+    bool _e92 = local_7;
+    if (_e92) {
+        kernel_covariance_Covariance _e93 = c_4;
+        kernel_covariance_Covariance _e95 = kernel_covariance_clamp_eigenvalues(_e93, kernel_covariance_KERNEL_MAX);
+        return _e95;
+    }
+    float _e97 = c_4.s_xx;
+    float s_xx_1 = max(_e97, 0.0);
+    float _e101 = c_4.s_yy;
+    float s_yy_1 = max(_e101, 0.0);
     float bound = (sqrt(s_xx_1) * sqrt(s_yy_1));
-    float s_xy_1 = clamp(c_4.s_xy, -(bound), bound);
-    kernel_covariance_Covariance _e50 = kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance(s_xx_1, s_xy_1, s_yy_1, 0.0), kernel_covariance_KERNEL_MAX);
-    return _e50;
+    float _e108 = c_4.s_xy;
+    float s_xy_1 = clamp(_e108, -(bound), bound);
+    kernel_covariance_Covariance _e114 = kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance(s_xx_1, s_xy_1, s_yy_1, 0.0), kernel_covariance_KERNEL_MAX);
+    return _e114;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_1, kernel_covariance_Covariance k_1, float tau_3) {
-    vec3 _e3 = ndf_roughness_matrix_entries(a_1);
-    float c_16 = a_1.axis.x;
-    float s_26 = a_1.axis.y;
-    float k1_1 = max(((((c_16 * c_16) * k_1.s_xx) + (((2.0 * c_16) * s_26) * k_1.s_xy)) + ((s_26 * s_26) * k_1.s_yy)), 0.0);
-    float k2_1 = max(((((s_26 * s_26) * k_1.s_xx) - (((2.0 * c_16) * s_26) * k_1.s_xy)) + ((c_16 * c_16) * k_1.s_yy)), 0.0);
-    float _e38 = ndf_roughness_matrix_determinant(a_1);
-    float det_4 = ((_e38 + (2.0 * ((a_1.eig.y * k1_1) + (a_1.eig.x * k2_1)))) + (4.0 * max(k_1.det, 0.0)));
-    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_1.s_xx)), (_e3.y + (2.0 * k_1.s_xy)), (_e3.z + (2.0 * k_1.s_yy)), det_4, max(tau_3, 0.0));
-    return _e72;
+float ndf_g1_of(float lambda_w, float w_dot_m) {
+    return ((w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0);
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance kernel) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_2);
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_2, _e2, _e3);
-    return _e4;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel_1, float det_clamp_1) {
-    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_1);
-    float _e4 = ndf_roughness_matrix_own_det_clamp(a_3);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_3, _e3, max(det_clamp_1, _e4));
-    return _e6;
-}
-
-kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m) {
-    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m.second.x - (m.mean.x * m.mean.x)), (m.second.y - (m.mean.x * m.mean.y)), (m.second.z - (m.mean.y * m.mean.y)));
-    kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
-    return _e26;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments) {
-    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
-    kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
-    kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_4, _e5);
-    return _e6;
-}
-
-filter_lean_LeanMoments bake_moments_from_texels(vec4 rgba, float xy) {
-    return filter_lean_LeanMoments(rgba.xy, vec3(rgba.z, xy, rgba.w));
-}
-
-filter_lean_LeanMoments bake_moments_sample_grad(highp sampler2D moments_1, highp sampler2D moments_xy, vec2 uv, vec2 ddx_uv, vec2 ddy_uv) {
-    vec4 rgba_1 = textureGrad(moments_1, vec2(uv), ddx_uv, ddy_uv);
-    vec4 _e7 = textureGrad(moments_xy, vec2(uv), ddx_uv, ddy_uv);
-    float xy_1 = _e7.x;
-    filter_lean_LeanMoments _e9 = bake_moments_from_texels(rgba_1, xy_1);
-    return _e9;
-}
-
-filter_lean_LeanMoments bake_moments_sample_level(highp sampler2D moments_2, highp sampler2D moments_xy_1, vec2 uv_1, float level) {
-    vec4 rgba_2 = textureLod(moments_2, vec2(uv_1), level);
-    vec4 _e6 = textureLod(moments_xy_1, vec2(uv_1), level);
-    float xy_2 = _e6.x;
-    filter_lean_LeanMoments _e8 = bake_moments_from_texels(rgba_2, xy_2);
-    return _e8;
+float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m) {
+    bool local_8 = false;
+    if ((i_dot_m > 0.0)) {
+        local_8 = (o_dot_m > 0.0);
+    } else {
+        local_8 = false;
+    }
+    bool _e16 = local_8;
+    return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
 }
 
 float ndf_roughness_clamp_alpha(float alpha_1) {
@@ -582,13 +755,13 @@ ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha
     return ndf_roughness_isotropic_Isotropic(_e1, (1.0 / (_e1 * _e1)));
 }
 
-float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_12, vec2 s_3) {
-    return (dot(s_3, s_3) * r_12.inv_alpha_sq);
+float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_12, vec2 s_1) {
+    return (dot(s_1, s_1) * r_12.inv_alpha_sq);
 }
 
 float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_13, vec2 w_1) {
-    vec2 s_27 = (w_1 * r_13.alpha);
-    return dot(s_27, s_27);
+    vec2 s_26 = (w_1 * r_13.alpha);
+    return dot(s_26, s_26);
 }
 
 float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_14) {
@@ -600,8 +773,513 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_rough
     return _e6;
 }
 
-ndf_roughness_isotropic_Isotropic bake_roughness_from_perceptual(float r_16) {
-    ndf_roughness_isotropic_Isotropic _e2 = ndf_roughness_isotropic_from_alpha((r_16 * r_16));
+ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(vec2 alpha_3) {
+    float _e2 = ndf_roughness_clamp_alpha(alpha_3.x);
+    float _e4 = ndf_roughness_clamp_alpha(alpha_3.y);
+    vec2 a_20 = vec2(_e2, _e4);
+    return ndf_roughness_axis_aligned_AxisAligned(a_20, (vec2(1.0) / (a_20 * a_20)));
+}
+
+float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_16, vec2 s_2) {
+    return dot((s_2 * s_2), r_16.inv_alpha_sq);
+}
+
+float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_17, vec2 w_2) {
+    vec2 s_27 = (w_2 * r_17.alpha);
+    return dot(s_27, s_27);
+}
+
+float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_18) {
+    return (r_18.alpha.x * r_18.alpha.y);
+}
+
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_19) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), r_19.alpha);
+    return _e5;
+}
+
+float ndf_ggx_p22_of(float q, float sqrt_det) {
+    float t_12 = (1.0 + q);
+    return ((q >= 0.0) ? (1.0 / (((math_PI * sqrt_det) * t_12) * t_12)) : 0.0);
+}
+
+float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1) {
+    bool local_9 = false;
+    float t_13 = (q_xy + (m_z * m_z));
+    float v_16 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
+    if ((m_z > 0.0)) {
+        local_9 = (v_16 <= math_F32_MAX);
+    } else {
+        local_9 = false;
+    }
+    bool _e18 = local_9;
+    return (_e18 ? v_16 : 0.0);
+}
+
+float ndf_ggx_lambda_of(float q_1, float abs_wz) {
+    bool local_10 = false;
+    bool local_11 = false;
+    if ((q_1 <= 0.0)) {
+        local_10 = (abs_wz >= 0.0);
+    } else {
+        local_10 = false;
+    }
+    bool _e9 = local_10;
+    if (_e9) {
+        return 0.0;
+    }
+    if (!(!((abs_wz > 0.0)))) {
+        local_11 = !((q_1 > 0.0));
+    } else {
+        local_11 = true;
+    }
+    bool _e21 = local_11;
+    if (_e21) {
+        return math_F32_MAX;
+    }
+    float r_82 = sqrt(((abs_wz * abs_wz) + q_1));
+    return (q_1 / ((2.0 * abs_wz) * (r_82 + abs_wz)));
+}
+
+float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_20, vec2 s_3) {
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_20, s_3);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_20);
+    float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_21, vec3 m) {
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_21, m.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_21);
+    float _e6 = ndf_ggx_d_of(_e3, m.z, _e5);
+    return _e6;
+}
+
+float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_22, vec3 w_3) {
+    float _e3 = ndf_roughness_isotropic_quadratic(r_22, w_3.xy);
+    float _e6 = ndf_ggx_lambda_of(_e3, abs(w_3.z));
+    return _e6;
+}
+
+float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_23, vec3 w_4, vec3 m_1) {
+    float _e3 = ndf_ggx_lambda_isotropic(r_23, w_4);
+    float _e5 = ndf_g1_of(_e3, dot(w_4, m_1));
+    return _e5;
+}
+
+float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_24, vec3 i, vec3 o, vec3 m_2) {
+    float _e4 = ndf_ggx_lambda_isotropic(r_24, i);
+    float _e5 = ndf_ggx_lambda_isotropic(r_24, o);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_2), dot(o, m_2));
+    return _e8;
+}
+
+float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, vec2 s_4) {
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_25, s_4);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_25);
+    float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, vec3 m_3) {
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_26, m_3.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_26);
+    float _e6 = ndf_ggx_d_of(_e3, m_3.z, _e5);
+    return _e6;
+}
+
+float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, vec3 w_5) {
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_27, w_5.xy);
+    float _e6 = ndf_ggx_lambda_of(_e3, abs(w_5.z));
+    return _e6;
+}
+
+float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, vec3 w_6, vec3 m_4) {
+    float _e3 = ndf_ggx_lambda_axis_aligned(r_28, w_6);
+    float _e5 = ndf_g1_of(_e3, dot(w_6, m_4));
+    return _e5;
+}
+
+float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, vec3 i_1, vec3 o_1, vec3 m_5) {
+    float _e4 = ndf_ggx_lambda_axis_aligned(r_29, i_1);
+    float _e5 = ndf_ggx_lambda_axis_aligned(r_29, o_1);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_5), dot(o_1, m_5));
+    return _e8;
+}
+
+float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, vec2 s_5) {
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_30, s_5);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_30);
+    float _e4 = ndf_ggx_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, vec3 m_6) {
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_31, m_6.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_31);
+    float _e6 = ndf_ggx_d_of(_e3, m_6.z, _e5);
+    return _e6;
+}
+
+float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, vec3 w_7) {
+    float _e3 = ndf_roughness_matrix_quadratic(r_32, w_7.xy);
+    float _e6 = ndf_ggx_lambda_of(_e3, abs(w_7.z));
+    return _e6;
+}
+
+float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, vec3 w_8, vec3 m_7) {
+    float _e3 = ndf_ggx_lambda_matrix(r_33, w_8);
+    float _e5 = ndf_g1_of(_e3, dot(w_8, m_7));
+    return _e5;
+}
+
+float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, vec3 i_2, vec3 o_2, vec3 m_8) {
+    float _e4 = ndf_ggx_lambda_matrix(r_34, i_2);
+    float _e5 = ndf_ggx_lambda_matrix(r_34, o_2);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_8), dot(o_2, m_8));
+    return _e8;
+}
+
+float ndf_beckmann_exp_neg_times(float x_7, float k_1, float ln_k) {
+    return ((x_7 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_7)) : (exp(-(x_7)) * k_1));
+}
+
+float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
+    float den = (math_PI * sqrt_det_2);
+    float _e8 = ndf_beckmann_exp_neg_times(q_2, (1.0 / den), -(log(den)));
+    return ((q_2 >= 0.0) ? _e8 : 0.0);
+}
+
+float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3) {
+    bool local_12 = false;
+    float z2_6 = (m_z_1 * m_z_1);
+    float x_14 = (q_xy_1 / z2_6);
+    float k_27 = (1.0 / (((math_PI * sqrt_det_3) * z2_6) * z2_6));
+    float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
+    float _e21 = ndf_beckmann_exp_neg_times(x_14, k_27, ln_k_1);
+    if ((m_z_1 > 0.0)) {
+        local_12 = (_e21 <= math_F32_MAX);
+    } else {
+        local_12 = false;
+    }
+    bool _e29 = local_12;
+    return (_e29 ? _e21 : 0.0);
+}
+
+float ndf_beckmann_lambda_of(float q_3, float abs_wz_1) {
+    bool local_13 = false;
+    bool local_14 = false;
+    float p = -3.849172e-5;
+    if ((q_3 <= 0.0)) {
+        local_13 = (abs_wz_1 >= 0.0);
+    } else {
+        local_13 = false;
+    }
+    bool _e9 = local_13;
+    if (_e9) {
+        return 0.0;
+    }
+    if (!(!((abs_wz_1 > 0.0)))) {
+        local_14 = !((q_3 > 0.0));
+    } else {
+        local_14 = true;
+    }
+    bool _e21 = local_14;
+    if (_e21) {
+        return math_F32_MAX;
+    }
+    float a_21 = (abs_wz_1 / sqrt(q_3));
+    if ((a_21 > 9.5)) {
+        return 0.0;
+    }
+    float t_14 = ((a_21 - 3.0) / (a_21 + 3.0));
+    float _e35 = p;
+    p = ((_e35 * t_14) + 0.00028491428);
+    float _e39 = p;
+    p = ((_e39 * t_14) + 1.8268152e-5);
+    float _e43 = p;
+    p = ((_e43 * t_14) - 0.0018242653);
+    float _e47 = p;
+    p = ((_e47 * t_14) + 0.0013654069);
+    float _e51 = p;
+    p = ((_e51 * t_14) + 0.0055811945);
+    float _e55 = p;
+    p = ((_e55 * t_14) - 0.009357543);
+    float _e59 = p;
+    p = ((_e59 * t_14) - 0.0076571554);
+    float _e63 = p;
+    p = ((_e63 * t_14) + 0.036274612);
+    float _e67 = p;
+    p = ((_e67 * t_14) - 0.023293633);
+    float _e71 = p;
+    p = ((_e71 * t_14) - 0.07646358);
+    float _e75 = p;
+    p = ((_e75 * t_14) + 0.2117349);
+    float _e79 = p;
+    p = ((_e79 * t_14) - 0.23284179);
+    float _e83 = p;
+    p = ((_e83 * t_14) + 0.03307925);
+    float _e87 = p;
+    p = ((_e87 * t_14) + 1.0631379);
+    float _e91 = p;
+    float k_28 = (_e91 / ((2.0 * a_21) + 1.0));
+    return min(((exp((-(a_21) * a_21)) * k_28) / ((3.5449078 * a_21) * (a_21 + k_28))), math_F32_MAX);
+}
+
+float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_35, vec2 s_6) {
+    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_35, s_6);
+    float _e3 = ndf_roughness_isotropic_sqrt_det(r_35);
+    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_36, vec3 m_9) {
+    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_36, m_9.xy);
+    float _e5 = ndf_roughness_isotropic_sqrt_det(r_36);
+    float _e6 = ndf_beckmann_d_of(_e3, m_9.z, _e5);
+    return _e6;
+}
+
+float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_37, vec3 w_9) {
+    float _e3 = ndf_roughness_isotropic_quadratic(r_37, w_9.xy);
+    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
+    return _e6;
+}
+
+float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_38, vec3 w_10, vec3 m_10) {
+    float _e3 = ndf_beckmann_lambda_isotropic(r_38, w_10);
+    float _e5 = ndf_g1_of(_e3, dot(w_10, m_10));
+    return _e5;
+}
+
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_39, vec3 i_3, vec3 o_3, vec3 m_11) {
+    float _e4 = ndf_beckmann_lambda_isotropic(r_39, i_3);
+    float _e5 = ndf_beckmann_lambda_isotropic(r_39, o_3);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_11), dot(o_3, m_11));
+    return _e8;
+}
+
+float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_40, vec2 s_7) {
+    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_40, s_7);
+    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_40);
+    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_41, vec3 m_12) {
+    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_41, m_12.xy);
+    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_41);
+    float _e6 = ndf_beckmann_d_of(_e3, m_12.z, _e5);
+    return _e6;
+}
+
+float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, vec3 w_11) {
+    float _e3 = ndf_roughness_axis_aligned_quadratic(r_42, w_11.xy);
+    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
+    return _e6;
+}
+
+float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, vec3 w_12, vec3 m_13) {
+    float _e3 = ndf_beckmann_lambda_axis_aligned(r_43, w_12);
+    float _e5 = ndf_g1_of(_e3, dot(w_12, m_13));
+    return _e5;
+}
+
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, vec3 i_4, vec3 o_4, vec3 m_14) {
+    float _e4 = ndf_beckmann_lambda_axis_aligned(r_44, i_4);
+    float _e5 = ndf_beckmann_lambda_axis_aligned(r_44, o_4);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_14), dot(o_4, m_14));
+    return _e8;
+}
+
+float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_45, vec2 s_8) {
+    float _e2 = ndf_roughness_matrix_inv_quadratic(r_45, s_8);
+    float _e3 = ndf_roughness_matrix_sqrt_det(r_45);
+    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
+    return _e4;
+}
+
+float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_46, vec3 m_15) {
+    float _e3 = ndf_roughness_matrix_inv_quadratic(r_46, m_15.xy);
+    float _e5 = ndf_roughness_matrix_sqrt_det(r_46);
+    float _e6 = ndf_beckmann_d_of(_e3, m_15.z, _e5);
+    return _e6;
+}
+
+float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, vec3 w_13) {
+    float _e3 = ndf_roughness_matrix_quadratic(r_47, w_13.xy);
+    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
+    return _e6;
+}
+
+float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, vec3 w_14, vec3 m_16) {
+    float _e3 = ndf_beckmann_lambda_matrix(r_48, w_14);
+    float _e5 = ndf_g1_of(_e3, dot(w_14, m_16));
+    return _e5;
+}
+
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, vec3 i_5, vec3 o_5, vec3 m_17) {
+    float _e4 = ndf_beckmann_lambda_matrix(r_49, i_5);
+    float _e5 = ndf_beckmann_lambda_matrix(r_49, o_5);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_17), dot(o_5, m_17));
+    return _e8;
+}
+
+kernel_rect_BoundingRect kernel_rect_from_footprint(footprint_Footprint fp_in_1) {
+    footprint_Footprint _e1 = footprint_nan_to_zero(fp_in_1);
+    return kernel_rect_BoundingRect(((abs(_e1.dh_u) + abs(_e1.dh_v)) * 0.5));
+}
+
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_50, float sigma_1) {
+    vec2 w_24 = (r_50.half_extent * (2.0 * sigma_1));
+    vec2 v_17 = (w_24 * w_24);
+    return kernel_covariance_Covariance(v_17.x, 0.0, v_17.y, (v_17.x * v_17.y));
+}
+
+footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_in_2) {
+    footprint_Footprint _e2 = footprint_nan_to_zero(fp_in_2);
+    float l_6 = max(rules.max_extent, 0.0);
+    float scale_1 = max(max(abs(_e2.dh_u.x), abs(_e2.dh_u.y)), max(abs(_e2.dh_v.x), abs(_e2.dh_v.y)));
+    if ((scale_1 <= 0.0)) {
+        return _e2;
+    }
+    if ((scale_1 > math_F32_MAX)) {
+        vec2 iu = mix(vec2(0.0), sign(_e2.dh_u), greaterThan(abs(_e2.dh_u), vec2(3.4028235e38)));
+        vec2 iv = mix(vec2(0.0), sign(_e2.dh_v), greaterThan(abs(_e2.dh_v), vec2(3.4028235e38)));
+        float _e46 = footprint_max_extent(footprint_Footprint(iu, iv));
+        return footprint_Footprint(((iu / vec2(_e46)) * l_6), ((iv / vec2(_e46)) * l_6));
+    }
+    footprint_Footprint unit = footprint_Footprint((_e2.dh_u / vec2(scale_1)), (_e2.dh_v / vec2(scale_1)));
+    float _e61 = footprint_max_extent(unit);
+    if (((_e61 * scale_1) <= l_6)) {
+        return _e2;
+    }
+    return footprint_Footprint(((unit.dh_u / vec2(_e61)) * l_6), ((unit.dh_v / vec2(_e61)) * l_6));
+}
+
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_51, vec2 alpha_4) {
+    vec2 f_1 = vec2(0.0);
+    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
+        f_1 = vec2(rules_1.floor_);
+    } else {
+        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
+            f_1 = min(abs(alpha_4), vec2(rules_1.floor_));
+        }
+    }
+    float lambda_2 = max(rules_1.max_extent, 0.0);
+    vec2 h_25 = min(abs(r_51.half_extent), vec2(lambda_2));
+    vec2 _e25 = f_1;
+    return kernel_rect_BoundingRect(max(h_25, max(_e25, vec2(0.0))));
+}
+
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_2) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_2);
+    if ((rules_2.kappa >= math_F32_MAX)) {
+        return _e2;
+    }
+    kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
+    return _e11;
+}
+
+float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_1) {
+    float _e2 = ndf_roughness_matrix_own_det_clamp(a_1);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_1);
+    return (rules_3.det_clamp ? _e3 : _e2);
+}
+
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_2, float sigma_2) {
+    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_2);
+    kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_2);
+    kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
+    return _e5;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3) {
+    vec3 _e3 = ndf_roughness_matrix_entries(a_2);
+    float c_16 = a_2.axis.x;
+    float s_28 = a_2.axis.y;
+    float k1_1 = max(((((c_16 * c_16) * k_3.s_xx) + (((2.0 * c_16) * s_28) * k_3.s_xy)) + ((s_28 * s_28) * k_3.s_yy)), 0.0);
+    float k2_1 = max(((((s_28 * s_28) * k_3.s_xx) - (((2.0 * c_16) * s_28) * k_3.s_xy)) + ((c_16 * c_16) * k_3.s_yy)), 0.0);
+    float _e38 = ndf_roughness_matrix_determinant(a_2);
+    float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * max(k_3.det, 0.0)));
+    ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
+    return _e72;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel) {
+    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_3);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_3, _e2, _e3);
+    return _e4;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_1, float det_clamp_1) {
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_1);
+    float _e4 = ndf_roughness_matrix_own_det_clamp(a_4);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_4, _e3, max(det_clamp_1, _e4));
+    return _e6;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_5, footprint_Footprint fp_3, float sigma_3) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_3, sigma_3);
+    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_5);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_5, _e4, _e5);
+    return _e6;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_lobe(filter_gaussian_Gaussian method, ndf_roughness_matrix_RoughnessMatrix material, footprint_Footprint fp_4) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_filter_gaussian(method.clamps, material, fp_4, method.sigma);
+    return _e5;
+}
+
+float filter_gaussian_d_ggx_gaussian(filter_gaussian_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_5, vec3 m_18) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_1, material_1, fp_5);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_18);
+    return _e5;
+}
+
+float filter_gaussian_d_beckmann_gaussian(filter_gaussian_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_6, vec3 m_19) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_2, material_2, fp_6);
+    float _e5 = ndf_beckmann_d_matrix(_e4, m_19);
+    return _e5;
+}
+
+kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_20) {
+    kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_20.second.x - (m_20.mean.x * m_20.mean.x)), (m_20.second.y - (m_20.mean.x * m_20.mean.y)), (m_20.second.z - (m_20.mean.y * m_20.mean.y)));
+    kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
+    return _e26;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments) {
+    kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
+    kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
+    kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_6, _e5);
+    return _e6;
+}
+
+filter_lean_LeanMoments bake_moments_from_texels(vec4 rgba, float xy) {
+    return filter_lean_LeanMoments(rgba.xy, vec3(rgba.z, xy, rgba.w));
+}
+
+filter_lean_LeanMoments bake_moments_sample_grad(highp sampler2D moments_1, highp sampler2D moments_xy, vec2 uv, vec2 ddx_uv, vec2 ddy_uv) {
+    vec4 rgba_1 = textureGrad(moments_1, vec2(uv), ddx_uv, ddy_uv);
+    vec4 _e7 = textureGrad(moments_xy, vec2(uv), ddx_uv, ddy_uv);
+    float xy_3 = _e7.x;
+    filter_lean_LeanMoments _e9 = bake_moments_from_texels(rgba_1, xy_3);
+    return _e9;
+}
+
+filter_lean_LeanMoments bake_moments_sample_level(highp sampler2D moments_2, highp sampler2D moments_xy_1, vec2 uv_1, float level) {
+    vec4 rgba_2 = textureLod(moments_2, vec2(uv_1), level);
+    vec4 _e6 = textureLod(moments_xy_1, vec2(uv_1), level);
+    float xy_4 = _e6.x;
+    filter_lean_LeanMoments _e8 = bake_moments_from_texels(rgba_2, xy_4);
+    return _e8;
+}
+
+ndf_roughness_isotropic_Isotropic bake_roughness_from_perceptual(float r_52) {
+    ndf_roughness_isotropic_Isotropic _e2 = ndf_roughness_isotropic_from_alpha((r_52 * r_52));
     return _e2;
 }
 
@@ -609,22 +1287,22 @@ ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_anisotropic(vec3 lobe) 
     vec2 _e4 = math_sincos_turns((lobe.z * 0.15915494));
     float _e6 = ndf_roughness_clamp_alpha(lobe.x);
     float _e8 = ndf_roughness_clamp_alpha(lobe.y);
-    vec2 a_20 = vec2(_e6, _e8);
-    ndf_roughness_matrix_RoughnessMatrix _e10 = ndf_roughness_matrix_from_eigen(_e4, a_20);
+    vec2 a_22 = vec2(_e6, _e8);
+    ndf_roughness_matrix_RoughnessMatrix _e10 = ndf_roughness_matrix_from_eigen(_e4, a_22);
     return _e10;
 }
 
-ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_khr_anisotropy(float r_17, vec4 anisotropy) {
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_khr_anisotropy(float r_53, vec4 anisotropy) {
     vec2 d_4 = ((2.0 * anisotropy.xy) - vec2(1.0));
     float len = length(d_4);
     vec2 axis_3 = ((len > 0.0) ? (d_4 / vec2(len)) : vec2(1.0, 0.0));
-    float alpha_b = (r_17 * r_17);
+    float alpha_b = (r_53 * r_53);
     float b_7 = anisotropy.z;
     float alpha_t = mix(alpha_b, 1.0, (b_7 * b_7));
     float _e22 = ndf_roughness_clamp_alpha(alpha_t);
     float _e23 = ndf_roughness_clamp_alpha(alpha_b);
-    vec2 a_21 = vec2(_e22, _e23);
-    ndf_roughness_matrix_RoughnessMatrix _e25 = ndf_roughness_matrix_from_eigen(axis_3, a_21);
+    vec2 a_23 = vec2(_e22, _e23);
+    ndf_roughness_matrix_RoughnessMatrix _e25 = ndf_roughness_matrix_from_eigen(axis_3, a_23);
     return _e25;
 }
 
@@ -633,80 +1311,94 @@ ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_matrix_texel(vec4 t_1) 
     return _e4;
 }
 
-float filter_deferred_from_alpha(uint domain, float alpha_3) {
+float filter_deferred_from_alpha(uint domain, float alpha_5) {
     if ((domain == filter_deferred_DOMAIN_ALPHA)) {
-        return alpha_3;
+        return alpha_5;
     }
     if ((domain == filter_deferred_DOMAIN_PERCEPTUAL)) {
-        return sqrt(alpha_3);
+        return sqrt(alpha_5);
     }
-    float a2_ = (alpha_3 * alpha_3);
+    float a2_ = (alpha_5 * alpha_5);
     if ((domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
         return ((a2_ < 1.0) ? (a2_ / (1.0 - a2_)) : math_F32_MAX);
     }
     return a2_;
 }
 
-float filter_deferred_to_alpha(uint domain_1, float v_2) {
+float filter_deferred_to_alpha(uint domain_1, float v_4) {
     if ((domain_1 == filter_deferred_DOMAIN_ALPHA)) {
-        return v_2;
+        return v_4;
     }
     if ((domain_1 == filter_deferred_DOMAIN_PERCEPTUAL)) {
-        return (v_2 * v_2);
+        return (v_4 * v_4);
     }
     if ((domain_1 == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
-        return ((v_2 < math_F32_MAX) ? sqrt((v_2 / (1.0 + v_2))) : 1.0);
+        return ((v_4 < math_F32_MAX) ? sqrt((v_4 / (1.0 + v_4))) : 1.0);
     }
-    return sqrt(v_2);
+    return sqrt(v_4);
 }
 
-float filter_deferred_max_eigenvalue(float a_5, float b_1, float c_5) {
-    float _e9 = math_hypot((0.5 * (a_5 - c_5)), b_1);
-    return max(((0.5 * (a_5 + c_5)) + _e9), 0.0);
+float filter_deferred_max_eigenvalue(float a_7, float b_1, float c_5) {
+    float _e9 = math_hypot((0.5 * (a_7 - c_5)), b_1);
+    return max(((0.5 * (a_7 + c_5)) + _e9), 0.0);
 }
 
-float filter_deferred_norm_eval(uint norm, vec3 dn_u, vec3 dn_v) {
-    float a_22 = dot(dn_u, dn_u);
-    float c_17 = dot(dn_v, dn_v);
+float filter_deferred_norm_eval(uint norm, vec3 dn_u_in_1, vec3 dn_v_in_1) {
+    vec3 _e3 = math_nan_to_zero3_(dn_u_in_1);
+    vec3 _e4 = math_nan_to_zero3_(dn_v_in_1);
+    float a_24 = dot(_e3, _e3);
+    float c_17 = dot(_e4, _e4);
     if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
-        return max(a_22, c_17);
+        return max(a_24, c_17);
     }
     if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        float _e11 = filter_deferred_max_eigenvalue(a_22, dot(dn_u, dn_v), c_17);
-        return _e11;
+        float _e13 = filter_deferred_max_eigenvalue(a_24, dot(_e3, _e4), c_17);
+        return _e13;
     }
     if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        vec3 m_50 = max(abs(dn_u), abs(dn_v));
+        vec3 m_50 = max(abs(_e3), abs(_e4));
         return max(max(m_50.x, m_50.y), m_50.z);
     }
-    return (a_22 + c_17);
+    return (a_24 + c_17);
 }
 
-float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_2) {
-    return min(max(k_2, 0.0), conv.clamp_);
+float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_4) {
+    bool _e7 = math_is_nan(k_4);
+    return (_e7 ? conv.clamp_ : min(max(k_4, 0.0), conv.clamp_));
 }
 
-float filter_deferred_widening(filter_deferred_KernelConvention conv_1, vec3 dn_u_1, vec3 dn_v_1) {
+float filter_deferred_widening(filter_deferred_KernelConvention conv_1, vec3 dn_u, vec3 dn_v) {
+    bool local_15 = false;
     float raw = 0.0;
-    float _e4 = filter_deferred_norm_eval(conv_1.norm, dn_u_1, dn_v_1);
-    raw = _e4;
-    if ((conv_1.exponent != 1.0)) {
-        raw = ((_e4 > 0.0) ? pow(_e4, conv_1.exponent) : 0.0);
+    vec3 lim = vec3(3.4028235e38);
+    if (!(any(greaterThan(abs(dn_u), lim)))) {
+        local_15 = any(greaterThan(abs(dn_v), lim));
+    } else {
+        local_15 = true;
     }
-    float _e16 = raw;
-    float _e20 = filter_deferred_clamp_widening(conv_1, ((conv_1.scale * _e16) + conv_1.bias));
-    return _e20;
+    bool _e15 = local_15;
+    if (_e15) {
+        return conv_1.clamp_;
+    }
+    float _e18 = filter_deferred_norm_eval(conv_1.norm, dn_u, dn_v);
+    raw = _e18;
+    if ((conv_1.exponent != 1.0)) {
+        raw = ((_e18 > 0.0) ? pow(_e18, conv_1.exponent) : 0.0);
+    }
+    float _e30 = raw;
+    float _e34 = filter_deferred_clamp_widening(conv_1, ((conv_1.scale * _e30) + conv_1.bias));
+    return _e34;
 }
 
-float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, float alpha_in, float k_3) {
-    float alpha_4 = 0.0;
+float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, float alpha_in, float k_5) {
+    float alpha_6 = 0.0;
     float out_ = 0.0;
-    alpha_4 = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
-    float _e7 = alpha_4;
-    alpha_4 = max(_e7, (conv_2.perceptual_floor * conv_2.perceptual_floor));
-    float _e13 = alpha_4;
+    alpha_6 = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
+    float _e7 = alpha_6;
+    alpha_6 = max(_e7, (conv_2.perceptual_floor * conv_2.perceptual_floor));
+    float _e13 = alpha_6;
     float _e14 = filter_deferred_from_alpha(conv_2.domain, _e13);
-    float _e15 = filter_deferred_clamp_widening(conv_2, k_3);
+    float _e15 = filter_deferred_clamp_widening(conv_2, k_5);
     out_ = ((conv_2.combine == filter_deferred_COMBINE_MAX) ? max(_e14, _e15) : (_e14 + _e15));
     if (conv_2.saturate) {
         float _e24 = out_;
@@ -717,403 +1409,39 @@ float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, fl
     return clamp(_e29, 0.0, ndf_roughness_ALPHA_MAX);
 }
 
-float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_5, vec3 dn_u_2, vec3 dn_v_2) {
-    float _e4 = filter_deferred_widening(conv_3, dn_u_2, dn_v_2);
-    float _e5 = filter_deferred_apply_widening(conv_3, alpha_5, _e4);
+float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_7, vec3 dn_u_1, vec3 dn_v_1) {
+    float _e4 = filter_deferred_widening(conv_3, dn_u_1, dn_v_1);
+    float _e5 = filter_deferred_apply_widening(conv_3, alpha_7, _e4);
     return _e5;
 }
 
-kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_3, vec3 dn_v_3, float sigma) {
-    float sigma_sq = (sigma * sigma);
-    vec3 x_12 = (cross(dn_u_3, dn_v_3) * sigma_sq);
-    return kernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_12, x_12));
+kernel_covariance_Covariance filter_deferred_normal_difference_covariance(vec3 dn_u_2, vec3 dn_v_2, float sigma_4) {
+    float sigma_sq = (sigma_4 * sigma_4);
+    vec3 x_15 = (cross(dn_u_2, dn_v_2) * sigma_sq);
+    return kernel_covariance_Covariance((dot(dn_u_2, dn_u_2) * sigma_sq), (dot(dn_u_2, dn_v_2) * sigma_sq), (dot(dn_v_2, dn_v_2) * sigma_sq), dot(x_15, x_15));
 }
 
 float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel_2) {
+    float _e3 = math_nan_to_zero(kernel_2.s_xx);
+    float _e5 = math_nan_to_zero(kernel_2.s_xy);
+    float _e7 = math_nan_to_zero(kernel_2.s_yy);
     if ((bandwidth == filter_deferred_BANDWIDTH_MAX)) {
-        float _e7 = filter_deferred_max_eigenvalue(kernel_2.s_xx, kernel_2.s_xy, kernel_2.s_yy);
-        return (2.0 * _e7);
+        float _e10 = filter_deferred_max_eigenvalue(_e3, _e5, _e7);
+        return (2.0 * _e10);
     }
-    float t_12 = (kernel_2.s_xx + kernel_2.s_yy);
-    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_12) : t_12);
+    float t_15 = (_e3 + _e7);
+    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_15) : t_15);
 }
 
-float filter_deferred_filtered_alpha(float alpha_6, kernel_covariance_Covariance kernel_3, uint bandwidth_1, float kappa) {
+float filter_deferred_filtered_alpha(float alpha_8, kernel_covariance_Covariance kernel_3, uint bandwidth_1, float kappa) {
     filter_deferred_KernelConvention conv_4 = filter_deferred_KernelConvention(filter_deferred_DOMAIN_ALPHA_SQ, filter_deferred_NORM_SUM_SQUARED, 0.5, 1.0, 0.0, kappa, filter_deferred_COMBINE_ADD, true, 0.0);
     float _e13 = filter_deferred_bandwidth_alpha2_(bandwidth_1, kernel_3);
-    float _e14 = filter_deferred_apply_widening(conv_4, alpha_6, _e13);
+    float _e14 = filter_deferred_apply_widening(conv_4, alpha_8, _e13);
     return _e14;
 }
 
-float ndf_g1_of(float lambda_w, float w_dot_m) {
-    return ((w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0);
-}
-
-float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m) {
-    bool local_3 = false;
-    if ((i_dot_m > 0.0)) {
-        local_3 = (o_dot_m > 0.0);
-    } else {
-        local_3 = false;
-    }
-    bool _e16 = local_3;
-    return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
-}
-
-ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(vec2 alpha_7) {
-    float _e2 = ndf_roughness_clamp_alpha(alpha_7.x);
-    float _e4 = ndf_roughness_clamp_alpha(alpha_7.y);
-    vec2 a_23 = vec2(_e2, _e4);
-    return ndf_roughness_axis_aligned_AxisAligned(a_23, (vec2(1.0) / (a_23 * a_23)));
-}
-
-float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_18, vec2 s_4) {
-    return dot((s_4 * s_4), r_18.inv_alpha_sq);
-}
-
-float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_19, vec2 w_2) {
-    vec2 s_28 = (w_2 * r_19.alpha);
-    return dot(s_28, s_28);
-}
-
-float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_20) {
-    return (r_20.alpha.x * r_20.alpha.y);
-}
-
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_21) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(vec2(1.0, 0.0), r_21.alpha);
-    return _e5;
-}
-
-float ndf_ggx_p22_of(float q, float sqrt_det) {
-    float t_13 = (1.0 + q);
-    return ((q >= 0.0) ? (1.0 / (((math_PI * sqrt_det) * t_13) * t_13)) : 0.0);
-}
-
-float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1) {
-    bool local_4 = false;
-    float t_14 = (q_xy + (m_z * m_z));
-    float v_13 = (1.0 / (((math_PI * sqrt_det_1) * t_14) * t_14));
-    if ((m_z > 0.0)) {
-        local_4 = (v_13 <= math_F32_MAX);
-    } else {
-        local_4 = false;
-    }
-    bool _e18 = local_4;
-    return (_e18 ? v_13 : 0.0);
-}
-
-float ndf_ggx_lambda_of(float q_1, float abs_wz) {
-    bool local_5 = false;
-    bool local_6 = false;
-    if ((q_1 <= 0.0)) {
-        local_5 = (abs_wz >= 0.0);
-    } else {
-        local_5 = false;
-    }
-    bool _e9 = local_5;
-    if (_e9) {
-        return 0.0;
-    }
-    if (!(!((abs_wz > 0.0)))) {
-        local_6 = !((q_1 > 0.0));
-    } else {
-        local_6 = true;
-    }
-    bool _e21 = local_6;
-    if (_e21) {
-        return math_F32_MAX;
-    }
-    float r_82 = sqrt(((abs_wz * abs_wz) + q_1));
-    return (q_1 / ((2.0 * abs_wz) * (r_82 + abs_wz)));
-}
-
-float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_22, vec2 s_5) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_22, s_5);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_22);
-    float _e4 = ndf_ggx_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_23, vec3 m_1) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_23, m_1.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_23);
-    float _e6 = ndf_ggx_d_of(_e3, m_1.z, _e5);
-    return _e6;
-}
-
-float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_24, vec3 w_3) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_24, w_3.xy);
-    float _e6 = ndf_ggx_lambda_of(_e3, abs(w_3.z));
-    return _e6;
-}
-
-float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_25, vec3 w_4, vec3 m_2) {
-    float _e3 = ndf_ggx_lambda_isotropic(r_25, w_4);
-    float _e5 = ndf_g1_of(_e3, dot(w_4, m_2));
-    return _e5;
-}
-
-float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_26, vec3 i, vec3 o, vec3 m_3) {
-    float _e4 = ndf_ggx_lambda_isotropic(r_26, i);
-    float _e5 = ndf_ggx_lambda_isotropic(r_26, o);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_3), dot(o, m_3));
-    return _e8;
-}
-
-float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, vec2 s_6) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_27, s_6);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_27);
-    float _e4 = ndf_ggx_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, vec3 m_4) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_28, m_4.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_28);
-    float _e6 = ndf_ggx_d_of(_e3, m_4.z, _e5);
-    return _e6;
-}
-
-float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, vec3 w_5) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_29, w_5.xy);
-    float _e6 = ndf_ggx_lambda_of(_e3, abs(w_5.z));
-    return _e6;
-}
-
-float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_30, vec3 w_6, vec3 m_5) {
-    float _e3 = ndf_ggx_lambda_axis_aligned(r_30, w_6);
-    float _e5 = ndf_g1_of(_e3, dot(w_6, m_5));
-    return _e5;
-}
-
-float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_31, vec3 i_1, vec3 o_1, vec3 m_6) {
-    float _e4 = ndf_ggx_lambda_axis_aligned(r_31, i_1);
-    float _e5 = ndf_ggx_lambda_axis_aligned(r_31, o_1);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_6), dot(o_1, m_6));
-    return _e8;
-}
-
-float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, vec2 s_7) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_32, s_7);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_32);
-    float _e4 = ndf_ggx_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, vec3 m_7) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_33, m_7.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_33);
-    float _e6 = ndf_ggx_d_of(_e3, m_7.z, _e5);
-    return _e6;
-}
-
-float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, vec3 w_7) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_34, w_7.xy);
-    float _e6 = ndf_ggx_lambda_of(_e3, abs(w_7.z));
-    return _e6;
-}
-
-float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_35, vec3 w_8, vec3 m_8) {
-    float _e3 = ndf_ggx_lambda_matrix(r_35, w_8);
-    float _e5 = ndf_g1_of(_e3, dot(w_8, m_8));
-    return _e5;
-}
-
-float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_36, vec3 i_2, vec3 o_2, vec3 m_9) {
-    float _e4 = ndf_ggx_lambda_matrix(r_36, i_2);
-    float _e5 = ndf_ggx_lambda_matrix(r_36, o_2);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_9), dot(o_2, m_9));
-    return _e8;
-}
-
-float ndf_beckmann_exp_neg_times(float x_5, float k_4, float ln_k) {
-    return ((x_5 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_5)) : (exp(-(x_5)) * k_4));
-}
-
-float ndf_beckmann_p22_of(float q_2, float sqrt_det_2) {
-    float den = (math_PI * sqrt_det_2);
-    float _e8 = ndf_beckmann_exp_neg_times(q_2, (1.0 / den), -(log(den)));
-    return ((q_2 >= 0.0) ? _e8 : 0.0);
-}
-
-float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3) {
-    bool local_7 = false;
-    float z2_5 = (m_z_1 * m_z_1);
-    float x_13 = (q_xy_1 / z2_5);
-    float k_25 = (1.0 / (((math_PI * sqrt_det_3) * z2_5) * z2_5));
-    float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    float _e21 = ndf_beckmann_exp_neg_times(x_13, k_25, ln_k_1);
-    if ((m_z_1 > 0.0)) {
-        local_7 = (_e21 <= math_F32_MAX);
-    } else {
-        local_7 = false;
-    }
-    bool _e29 = local_7;
-    return (_e29 ? _e21 : 0.0);
-}
-
-float ndf_beckmann_lambda_of(float q_3, float abs_wz_1) {
-    bool local_8 = false;
-    bool local_9 = false;
-    float p = -3.849172e-5;
-    if ((q_3 <= 0.0)) {
-        local_8 = (abs_wz_1 >= 0.0);
-    } else {
-        local_8 = false;
-    }
-    bool _e9 = local_8;
-    if (_e9) {
-        return 0.0;
-    }
-    if (!(!((abs_wz_1 > 0.0)))) {
-        local_9 = !((q_3 > 0.0));
-    } else {
-        local_9 = true;
-    }
-    bool _e21 = local_9;
-    if (_e21) {
-        return math_F32_MAX;
-    }
-    float a_24 = (abs_wz_1 / sqrt(q_3));
-    if ((a_24 > 9.5)) {
-        return 0.0;
-    }
-    float t_15 = ((a_24 - 3.0) / (a_24 + 3.0));
-    float _e35 = p;
-    p = ((_e35 * t_15) + 0.00028491428);
-    float _e39 = p;
-    p = ((_e39 * t_15) + 1.8268152e-5);
-    float _e43 = p;
-    p = ((_e43 * t_15) - 0.0018242653);
-    float _e47 = p;
-    p = ((_e47 * t_15) + 0.0013654069);
-    float _e51 = p;
-    p = ((_e51 * t_15) + 0.0055811945);
-    float _e55 = p;
-    p = ((_e55 * t_15) - 0.009357543);
-    float _e59 = p;
-    p = ((_e59 * t_15) - 0.0076571554);
-    float _e63 = p;
-    p = ((_e63 * t_15) + 0.036274612);
-    float _e67 = p;
-    p = ((_e67 * t_15) - 0.023293633);
-    float _e71 = p;
-    p = ((_e71 * t_15) - 0.07646358);
-    float _e75 = p;
-    p = ((_e75 * t_15) + 0.2117349);
-    float _e79 = p;
-    p = ((_e79 * t_15) - 0.23284179);
-    float _e83 = p;
-    p = ((_e83 * t_15) + 0.03307925);
-    float _e87 = p;
-    p = ((_e87 * t_15) + 1.0631379);
-    float _e91 = p;
-    float k_26 = (_e91 / ((2.0 * a_24) + 1.0));
-    return min(((exp((-(a_24) * a_24)) * k_26) / ((3.5449078 * a_24) * (a_24 + k_26))), math_F32_MAX);
-}
-
-float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_37, vec2 s_8) {
-    float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_8);
-    float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
-    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_38, vec3 m_10) {
-    float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_10.xy);
-    float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
-    float _e6 = ndf_beckmann_d_of(_e3, m_10.z, _e5);
-    return _e6;
-}
-
-float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_39, vec3 w_9) {
-    float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
-    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
-    return _e6;
-}
-
-float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_40, vec3 w_10, vec3 m_11) {
-    float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
-    float _e5 = ndf_g1_of(_e3, dot(w_10, m_11));
-    return _e5;
-}
-
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_41, vec3 i_3, vec3 o_3, vec3 m_12) {
-    float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_3);
-    float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_12), dot(o_3, m_12));
-    return _e8;
-}
-
-float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, vec2 s_9) {
-    float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_9);
-    float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
-    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, vec3 m_13) {
-    float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_13.xy);
-    float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
-    float _e6 = ndf_beckmann_d_of(_e3, m_13.z, _e5);
-    return _e6;
-}
-
-float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, vec3 w_11) {
-    float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
-    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
-    return _e6;
-}
-
-float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_45, vec3 w_12, vec3 m_14) {
-    float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
-    float _e5 = ndf_g1_of(_e3, dot(w_12, m_14));
-    return _e5;
-}
-
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_46, vec3 i_4, vec3 o_4, vec3 m_15) {
-    float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_4);
-    float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_15), dot(o_4, m_15));
-    return _e8;
-}
-
-float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, vec2 s_10) {
-    float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_10);
-    float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
-    float _e4 = ndf_beckmann_p22_of(_e2, _e3);
-    return _e4;
-}
-
-float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, vec3 m_16) {
-    float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_16.xy);
-    float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
-    float _e6 = ndf_beckmann_d_of(_e3, m_16.z, _e5);
-    return _e6;
-}
-
-float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, vec3 w_13) {
-    float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
-    float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
-    return _e6;
-}
-
-float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_50, vec3 w_14, vec3 m_17) {
-    float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
-    float _e5 = ndf_g1_of(_e3, dot(w_14, m_17));
-    return _e5;
-}
-
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_51, vec3 i_5, vec3 o_5, vec3 m_18) {
-    float _e4 = ndf_beckmann_lambda_matrix(r_51, i_5);
-    float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_18), dot(o_5, m_18));
-    return _e8;
-}
-
-float filter_gaussian_ggx_quad_laguerre_node(uint k_5) {
-    switch(k_5) {
+float filter_gaussian_ggx_quad_laguerre_node(uint k_6) {
+    switch(k_6) {
         case 0u: {
             return 0.40938357;
         }
@@ -1141,8 +1469,8 @@ float filter_gaussian_ggx_quad_laguerre_node(uint k_5) {
     }
 }
 
-float filter_gaussian_ggx_quad_laguerre_weight(uint k_6) {
-    switch(k_6) {
+float filter_gaussian_ggx_quad_laguerre_weight(uint k_7) {
+    switch(k_7) {
         case 0u: {
             return 0.18763255;
         }
@@ -1179,7 +1507,7 @@ float filter_gaussian_ggx_quad_far_tail(float beta, float c1s, float c2s, float 
 
 float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, float z2_1, float tl1_1, float tl2_1) {
     float acc = 0.0;
-    uint k_7 = 0u;
+    uint k_8 = 0u;
     float ib_1 = (1.0 / beta_m);
     float t1_2 = ((tl1_1 * z2_1) * ib_1);
     float t2_ = ((tl2_1 * z2_1) * ib_1);
@@ -1188,17 +1516,17 @@ float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, floa
     bool loop_init = true;
     while(true) {
         if (!loop_init) {
-            uint _e51 = k_7;
-            k_7 = (_e51 + 1u);
+            uint _e51 = k_8;
+            k_8 = (_e51 + 1u);
         }
         loop_init = false;
-        uint _e20 = k_7;
+        uint _e20 = k_8;
         if ((_e20 < 8u)) {
         } else {
             break;
         }
         {
-            uint _e23 = k_7;
+            uint _e23 = k_8;
             float _e24 = filter_gaussian_ggx_quad_laguerre_node(_e23);
             float p1_ = (1.0 + (t1_2 * _e24));
             float p2_ = (1.0 + (t2_ * _e24));
@@ -1206,7 +1534,7 @@ float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, floa
             float ip2_ = (1.0 / p2_);
             float e_4 = ((_e24 * _e24) * ((g1_ * ip1_) + (g2_ * ip2_)));
             float _e40 = acc;
-            uint _e41 = k_7;
+            uint _e41 = k_8;
             float _e42 = filter_gaussian_ggx_quad_laguerre_weight(_e41);
             float _e43 = math_exp(e_4);
             acc = (_e40 + (((_e42 * _e43) * sqrt(ip1_)) * sqrt(ip2_)));
@@ -1233,7 +1561,7 @@ float filter_gaussian_ggx_quad_series_below(float c1s_1, float c2s_1, float tl1_
 float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl1_3, float tl2_3, filter_gaussian_ggx_quad_TrapezoidRule rule) {
     float sum = 0.0;
     uint ch = 0u;
-    float v_3 = 0.0;
+    float v_5 = 0.0;
     float part = 0.0;
     float last = 0.0;
     float vl = 0.0;
@@ -1252,7 +1580,7 @@ float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl
     float k2_2 = (c2s_2 * (w_r / pr2_));
     float x_r = ((-(w_r) - k1_2) - k2_2);
     float _e49 = math_exp(x_r);
-    float scale_1 = ((w_r * w_r) * _e49);
+    float scale_2 = ((w_r * w_r) * _e49);
     float t1_3 = (tl1_3 * w_r);
     float t2_1 = (tl2_3 * w_r);
     float stop = (((rule.eps_t * hs) * w_r) * w_r);
@@ -1272,10 +1600,10 @@ float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl
             uint _e66 = ch;
             float kb = (float((_e66 * 8u)) - k0_);
             float _e72 = math_exp((kb * hs));
-            v_3 = _e72;
+            v_5 = _e72;
             part = 0.0;
             last = 0.0;
-            float _e78 = v_3;
+            float _e78 = v_5;
             vl = _e78;
             jj = 0u;
             bool loop_init_2 = true;
@@ -1291,23 +1619,23 @@ float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl
                     break;
                 }
                 {
-                    float _e85 = v_3;
+                    float _e85 = v_5;
                     float ip1_1 = (1.0 / (1.0 + (t1_3 * _e85)));
-                    float _e91 = v_3;
+                    float _e91 = v_5;
                     float ip2_1 = (1.0 / (1.0 + (t2_1 * _e91)));
                     float a_25 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
                     uint _e103 = jj;
-                    float _e107 = v_3;
-                    float x_14 = (((2.0 * hs) * (kb + float(_e103))) - ((_e107 - 1.0) * a_25));
-                    float _e112 = math_exp(x_14);
+                    float _e107 = v_5;
+                    float x_16 = (((2.0 * hs) * (kb + float(_e103))) - ((_e107 - 1.0) * a_25));
+                    float _e112 = math_exp(x_16);
                     last = ((_e112 * sqrt(ip1_1)) * sqrt(ip2_1));
                     float _e117 = part;
                     float _e118 = last;
                     part = (_e117 + _e118);
-                    float _e120 = v_3;
+                    float _e120 = v_5;
                     vl = _e120;
-                    float _e121 = v_3;
-                    v_3 = (_e121 * rule.exp_h);
+                    float _e121 = v_5;
+                    v_5 = (_e121 * rule.exp_h);
                 }
             }
             float _e127 = sum;
@@ -1327,12 +1655,12 @@ float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl
     }
     float _e150 = sum;
     float _e153 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first, rule.geom);
-    return (hs * ((_e150 * scale_1) + _e153));
+    return (hs * ((_e150 * scale_2) + _e153));
 }
 
-float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1_4, float tl2_4) {
-    bool local_10 = false;
-    bool local_11 = false;
+float filter_gaussian_ggx_quad_mixture_integral(float v1s_1, float v2s_1, float z2_2, float tl1_4, float tl2_4) {
+    bool local_16 = false;
+    bool local_17 = false;
     float beta_m_1 = ((z2_2 + v1s_1) + v2s_1);
     if ((beta_m_1 >= ((filter_gaussian_ggx_quad_FAR * tl1_4) * z2_2))) {
         float _e11 = filter_gaussian_ggx_quad_far_tail(beta_m_1, v1s_1, v2s_1, tl1_4, tl2_4, z2_2);
@@ -1341,16 +1669,16 @@ float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1
     if (((tl1_4 * z2_2) <= (filter_gaussian_ggx_quad_GL_RATIO * beta_m_1))) {
         if (!((beta_m_1 <= (filter_gaussian_ggx_quad_GL_WIDE * z2_2)))) {
             float _e26 = math_ln((beta_m_1 / z2_2));
-            local_11 = (((tl1_4 * (filter_gaussian_ggx_quad_GL_PLATEAU + (1.5 * _e26))) * z2_2) <= beta_m_1);
+            local_17 = (((tl1_4 * (filter_gaussian_ggx_quad_GL_PLATEAU + (1.5 * _e26))) * z2_2) <= beta_m_1);
         } else {
-            local_11 = true;
+            local_17 = true;
         }
-        bool _e34 = local_11;
-        local_10 = _e34;
+        bool _e34 = local_17;
+        local_16 = _e34;
     } else {
-        local_10 = false;
+        local_16 = false;
     }
-    bool _e36 = local_10;
+    bool _e36 = local_16;
     if (_e36) {
         float _e37 = filter_gaussian_ggx_quad_laguerre(beta_m_1, v1s_1, v2s_1, z2_2, tl1_4, tl2_4);
         return _e37;
@@ -1390,7 +1718,7 @@ filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_reduced_rule(uin
 
 float filter_gaussian_ggx_quad_j_tol(float v1s_2, float v2s_2, float z2_3, float tl1_5, float tl2_5, uint tol_2) {
     if ((tol_2 == filter_gaussian_ggx_quad_TOL_FULL)) {
-        float _e8 = filter_gaussian_ggx_quad_j(v1s_2, v2s_2, z2_3, tl1_5, tl2_5);
+        float _e8 = filter_gaussian_ggx_quad_mixture_integral(v1s_2, v2s_2, z2_3, tl1_5, tl2_5);
         return _e8;
     }
     float beta_m_2 = ((z2_3 + v1s_2) + v2s_2);
@@ -1406,8 +1734,8 @@ float filter_gaussian_ggx_quad_j_tol(float v1s_2, float v2s_2, float z2_3, float
     return ((_e26 * iz2_1) * iz2_1);
 }
 
-float filter_gaussian_ggx_quad_hermite_node(uint k_8) {
-    switch(k_8) {
+float filter_gaussian_ggx_quad_hermite_node(uint k_9) {
+    switch(k_9) {
         case 0u: {
             return 0.5390798;
         }
@@ -1423,8 +1751,8 @@ float filter_gaussian_ggx_quad_hermite_node(uint k_8) {
     }
 }
 
-float filter_gaussian_ggx_quad_hermite_weight(uint k_9) {
-    switch(k_9) {
+float filter_gaussian_ggx_quad_hermite_weight(uint k_10) {
+    switch(k_10) {
         case 0u: {
             return 0.37301224;
         }
@@ -1441,46 +1769,46 @@ float filter_gaussian_ggx_quad_hermite_weight(uint k_9) {
 }
 
 float filter_gaussian_ggx_quad_h_of(float y_2) {
-    float r_52 = 0.0;
+    float r_54 = 0.0;
     float a_26 = abs(y_2);
     if ((a_26 > 1.0)) {
         float i_12 = (1.0 / a_26);
-        r_52 = (a_26 * sqrt((1.0 + (i_12 * i_12))));
+        r_54 = (a_26 * sqrt((1.0 + (i_12 * i_12))));
     } else {
-        r_52 = sqrt((1.0 + (y_2 * y_2)));
+        r_54 = sqrt((1.0 + (y_2 * y_2)));
     }
-    float _e16 = r_52;
-    float _e18 = r_52;
+    float _e16 = r_54;
+    float _e18 = r_54;
     return ((y_2 >= 0.0) ? (1.0 / (_e18 + y_2)) : (_e16 - y_2));
 }
 
 float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz) {
     float acc_1 = 0.0;
-    uint k_10 = 0u;
+    uint k_11 = 0u;
     float iq = (1.0 / qa);
     float z0_ = (oz * sqrt(iq));
     float fs = sqrt((qs * iq));
     bool loop_init_3 = true;
     while(true) {
         if (!loop_init_3) {
-            uint _e30 = k_10;
-            k_10 = (_e30 + 1u);
+            uint _e30 = k_11;
+            k_11 = (_e30 + 1u);
         }
         loop_init_3 = false;
-        uint _e13 = k_10;
+        uint _e13 = k_11;
         if ((_e13 < 4u)) {
         } else {
             break;
         }
         {
-            uint _e16 = k_10;
+            uint _e16 = k_11;
             float _e17 = filter_gaussian_ggx_quad_hermite_node(_e16);
-            float x_15 = (fs * _e17);
+            float x_17 = (fs * _e17);
             float _e19 = acc_1;
-            uint _e20 = k_10;
+            uint _e20 = k_11;
             float _e21 = filter_gaussian_ggx_quad_hermite_weight(_e20);
-            float _e23 = filter_gaussian_ggx_quad_h_of((z0_ - x_15));
-            float _e25 = filter_gaussian_ggx_quad_h_of((z0_ + x_15));
+            float _e23 = filter_gaussian_ggx_quad_h_of((z0_ - x_17));
+            float _e25 = filter_gaussian_ggx_quad_h_of((z0_ + x_17));
             acc_1 = (_e19 + (_e21 * (_e23 + _e25)));
         }
     }
@@ -1488,14 +1816,14 @@ float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz) {
     return (_e32 / (2.0 * z0_));
 }
 
-float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, float ie0_, float i2s2_, float e2_, float c_stop, float total_in) {
+float filter_gaussian_ggx_quad_sinh_run(bool up, float h_11, float rq, float e0_, float ie0_, float i2s2_, float e2_, float c_stop, float total_in) {
     float total = 0.0;
     uint ch_1 = 0u;
     float fl = 0.0;
     float xl = 0.0;
     float part_1 = 0.0;
     uint jj_1 = 0u;
-    bool local_12 = false;
+    bool local_18 = false;
     total = total_in;
     float sgn = (up ? 1.0 : -1.0);
     uint first = (up ? 0u : 1u);
@@ -1531,15 +1859,15 @@ float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, f
                 {
                     uint _e32 = ch_1;
                     uint _e36 = jj_1;
-                    float k_27 = float(((first + (_e32 * 8u)) + _e36));
-                    float _e43 = math_exp((((sgn * 0.5) * h) * k_27));
+                    float k_29 = float(((first + (_e32 * 8u)) + _e36));
+                    float _e43 = math_exp((((sgn * 0.5) * h_11) * k_29));
                     float it = (1.0 / _e43);
-                    float x_16 = (((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it));
-                    float arg = ((-(x_16) * x_16) * i2s2_);
+                    float x_18 = (((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it));
+                    float arg = ((-(x_18) * x_18) * i2s2_);
                     float it2_ = (it * it);
                     float _e58 = math_exp(arg);
                     fl = ((arg > -87.0) ? (_e58 * (1.0 + ((e2_ * it2_) * it2_))) : 0.0);
-                    xl = x_16;
+                    xl = x_18;
                     float _e68 = part_1;
                     float _e69 = fl;
                     part_1 = (_e68 + _e69);
@@ -1554,11 +1882,11 @@ float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, f
             if (done) {
                 float _e85 = fl;
                 float _e87 = total;
-                local_12 = (_e85 <= (filter_gaussian_ggx_quad_S_EPS * _e87));
+                local_18 = (_e85 <= (filter_gaussian_ggx_quad_S_EPS * _e87));
             } else {
-                local_12 = false;
+                local_18 = false;
             }
-            bool _e91 = local_12;
+            bool _e91 = local_18;
             if (_e91) {
                 break;
             }
@@ -1573,14 +1901,14 @@ float filter_gaussian_ggx_quad_lambda_sinh(float qa_1, float qs_1, float oz_1, f
     float root = (oz_1 + sqrt((qa_1 + (oz_1 * oz_1))));
     float e0_1 = (root / rq_1);
     float ie0_1 = (rq_1 / root);
-    float h_22 = min(filter_gaussian_ggx_quad_S_MAX, (filter_gaussian_ggx_quad_S_COEF * sqrt(sqrt(ds2_))));
+    float h_26 = min(filter_gaussian_ggx_quad_S_MAX, (filter_gaussian_ggx_quad_S_COEF * sqrt(sqrt(ds2_))));
     float i2s2_1 = (0.5 / qs_1);
-    float c_up = ((math_LN_2_ * qs_1) / (rq_1 * h_22));
-    float c_down = ((((2.0 * h_22) + math_LN_2_) * qs_1) / (rq_1 * h_22));
+    float c_up = ((math_LN_2_ * qs_1) / (rq_1 * h_26));
+    float c_down = ((((2.0 * h_26) + math_LN_2_) * qs_1) / (rq_1 * h_26));
     float e2_1 = (ie0_1 * ie0_1);
-    float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
-    float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
-    return (_e35 * ((h_22 * qa_1) / (((4.0 * oz_1) * sqrt(qs_1)) * math_SQRT_TAU)));
+    float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_26, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
+    float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_26, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
+    return (_e35 * ((h_26 * qa_1) / (((4.0 * oz_1) * sqrt(qs_1)) * math_SQRT_TAU)));
 }
 
 float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2) {
@@ -1593,154 +1921,6 @@ float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2) {
     return _e9;
 }
 
-sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_53) {
-    vec3 _e1 = ndf_roughness_matrix_clamped_entries(r_53);
-    float l_xx = sqrt(_e1.x);
-    return sampling_Warp(l_xx, (_e1.y / l_xx), (r_53.sqrt_det / l_xx));
-}
-
-vec3 sampling_normalize_scaled(vec3 v_4) {
-    vec3 w_24 = (v_4 / vec3(max(max(abs(v_4.x), abs(v_4.y)), abs(v_4.z))));
-    return (w_24 / vec3(length(w_24)));
-}
-
-vec3 sampling_stretch(sampling_Warp l_3, vec3 w_15) {
-    return vec3(((l_3.l_xx * w_15.x) + (l_3.l_yx * w_15.y)), (l_3.l_yy * w_15.y), w_15.z);
-}
-
-vec3 sampling_unstretch(sampling_Warp l_4, vec3 n) {
-    vec3 _e14 = sampling_normalize_scaled(vec3((l_4.l_xx * n.x), ((l_4.l_yx * n.x) + (l_4.l_yy * n.y)), n.z));
-    return _e14;
-}
-
-float sampling_clamp_unit(float u_1) {
-    return ((u_1 >= 0.0) ? min(u_1, sampling_ONE_MINUS_EPS) : 0.0);
-}
-
-vec3 sampling_reflect(vec3 wo, vec3 m_19) {
-    return (((2.0 * dot(wo, m_19)) * m_19) - wo);
-}
-
-vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_2) {
-    vec2 _e3 = math_sincos_turns(u_2.x);
-    float z_4 = (((1.0 - u_2.y) * (1.0 + wi.z)) - wi.z);
-    float sin_theta_1 = sqrt(clamp((1.0 - (z_4 * z_4)), 0.0, 1.0));
-    return (vec3((sin_theta_1 * _e3), z_4) + wi);
-}
-
-vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_54, vec3 wo_1, vec2 u_3) {
-    bool local_13 = false;
-    if (!((wo_1.z > 0.0))) {
-        return vec3(0.0);
-    }
-    sampling_Warp _e9 = sampling_warp(r_54);
-    vec3 _e10 = sampling_normalize_scaled(wo_1);
-    vec3 _e11 = sampling_stretch(_e9, _e10);
-    vec3 _e12 = sampling_normalize_scaled(_e11);
-    if (!((_e12.z > 0.0))) {
-        return vec3(0.0);
-    }
-    float _e20 = sampling_clamp_unit(u_3.x);
-    float _e22 = sampling_clamp_unit(u_3.y);
-    vec3 _e24 = sampling_ggx_standard_visible(_e12, vec2(_e20, _e22));
-    vec3 _e25 = sampling_unstretch(_e9, _e24);
-    if ((_e25.z > 0.0)) {
-        local_13 = (dot(wo_1, _e25) > 0.0);
-    } else {
-        local_13 = false;
-    }
-    bool _e35 = local_13;
-    if (_e35) {
-        return _e25;
-    }
-    vec3 _e36 = sampling_unstretch(_e9, _e12);
-    return ((_e36.z > 0.0) ? _e36 : vec3(0.0));
-}
-
-vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_55, vec2 u_4) {
-    float _e3 = sampling_clamp_unit(u_4.x);
-    float _e5 = sampling_clamp_unit(u_4.y);
-    vec2 _e6 = math_sincos_turns(_e5);
-    vec3 n_6 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
-    sampling_Warp _e13 = sampling_warp(r_55);
-    vec3 _e14 = sampling_unstretch(_e13, n_6);
-    return _e14;
-}
-
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_56, vec3 m_20) {
-    float _e2 = ndf_ggx_d_matrix(r_56, m_20);
-    return ((m_20.z > 0.0) ? (_e2 * m_20.z) : 0.0);
-}
-
-float sampling_visible_normal_pdf_of(vec3 wo_2, vec3 m_21, float d, float lambda) {
-    bool local_14 = false;
-    bool local_15 = false;
-    float wom = dot(wo_2, m_21);
-    float v_14 = ((wom * d) / (wo_2.z * (1.0 + lambda)));
-    if ((wo_2.z > 0.0)) {
-        local_14 = (wom > 0.0);
-    } else {
-        local_14 = false;
-    }
-    bool _e19 = local_14;
-    if (_e19) {
-        local_15 = (v_14 <= math_F32_MAX);
-    } else {
-        local_15 = false;
-    }
-    bool _e25 = local_15;
-    return (_e25 ? v_14 : 0.0);
-}
-
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_57, vec3 wo_3, vec3 m_22) {
-    float _e3 = ndf_ggx_d_matrix(r_57, m_22);
-    float _e4 = ndf_ggx_lambda_matrix(r_57, wo_3);
-    float _e5 = sampling_visible_normal_pdf_of(wo_3, m_22, _e3, _e4);
-    return _e5;
-}
-
-float sampling_reflection_pdf_of(vec3 o_6, vec3 m_23, float d_1, float lambda_1) {
-    bool local_16 = false;
-    bool local_17 = false;
-    float v_15 = (d_1 / ((4.0 * o_6.z) * (1.0 + lambda_1)));
-    if ((o_6.z > 0.0)) {
-        local_16 = (dot(o_6, m_23) > 0.0);
-    } else {
-        local_16 = false;
-    }
-    bool _e20 = local_16;
-    if (_e20) {
-        local_17 = (v_15 <= math_F32_MAX);
-    } else {
-        local_17 = false;
-    }
-    bool _e26 = local_17;
-    return (_e26 ? v_15 : 0.0);
-}
-
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_58, vec3 wo_4, vec3 m_24) {
-    vec3 _e3 = sampling_normalize_scaled(wo_4);
-    float _e4 = ndf_ggx_d_matrix(r_58, m_24);
-    float _e5 = ndf_ggx_lambda_matrix(r_58, _e3);
-    float _e6 = sampling_reflection_pdf_of(_e3, m_24, _e4, _e5);
-    return _e6;
-}
-
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_59, vec3 wo_5, vec3 wi_1) {
-    if (!((wo_5.z > 0.0))) {
-        return 0.0;
-    }
-    vec3 _e8 = sampling_normalize_scaled(wo_5);
-    vec3 _e9 = sampling_normalize_scaled(wi_1);
-    vec3 h_23 = (_e8 + _e9);
-    float len_1 = length(h_23);
-    if (!((len_1 > 0.0))) {
-        return 0.0;
-    }
-    float _e18 = sampling_reflection_pdf_from_normal(r_59, wo_5, (h_23 / vec3(len_1)));
-    return _e18;
-}
-
 filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_with_tolerance(filter_gaussian_ggx_GaussianFilteredGgx g, uint tol_3) {
     filter_gaussian_ggx_GaussianFilteredGgx out_1 = filter_gaussian_ggx_GaussianFilteredGgx(ndf_roughness_matrix_RoughnessMatrix(vec2(0.0), vec2(0.0), vec2(0.0), vec2(0.0), 0.0, 0.0, 0.0), vec2(0.0), vec2(0.0), vec2(0.0), 0.0, kernel_covariance_Covariance(0.0, 0.0, 0.0, 0.0), 0u);
     out_1 = g;
@@ -1749,44 +1929,44 @@ filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_with_tolerance(filte
     return _e4;
 }
 
-filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance kernel_4) {
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_4) {
     float l2_ = 0.0;
-    vec2 v_5 = vec2(1.0, 0.0);
+    vec2 v_6 = vec2(1.0, 0.0);
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
-    float c_18 = a_6.axis.x;
-    float s_29 = a_6.axis.y;
+    float c_18 = a_8.axis.x;
+    float s_29 = a_8.axis.y;
     float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_29) * _e2.s_xy)) + ((s_29 * s_29) * _e2.s_yy)), 0.0);
     float k22_ = max(((((s_29 * s_29) * _e2.s_xx) - (((2.0 * c_18) * s_29) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
     float k12_ = ((((c_18 * c_18) - (s_29 * s_29)) * _e2.s_xy) + ((c_18 * s_29) * (_e2.s_yy - _e2.s_xx)));
-    vec2 l_6 = a_6.eig_c;
-    vec2 isl = (vec2(1.0) / sqrt(l_6));
+    vec2 l_7 = a_8.eig_c;
+    vec2 isl = (vec2(1.0) / sqrt(l_7));
     float c11_ = ((k11_ * isl.x) * isl.x);
     float c22_ = ((k22_ * isl.y) * isl.y);
     float c12_ = ((k12_ * isl.x) * isl.y);
-    float det_c = (max(_e2.det, 0.0) / (l_6.x * l_6.y));
+    float det_c = (max(_e2.det, 0.0) / (l_7.x * l_7.y));
     float half_ = (0.5 * (c11_ - c22_));
     float _e75 = math_hypot(half_, c12_);
     float l1_2 = ((0.5 * (c11_ + c22_)) + _e75);
     if ((_e75 > 0.0)) {
-        float big_2 = (_e75 + abs(half_));
-        vec2 w_25 = ((half_ >= 0.0) ? vec2(big_2, c12_) : vec2(c12_, big_2));
-        v_5 = (w_25 / vec2(length(w_25)));
+        float big_3 = (_e75 + abs(half_));
+        vec2 w_25 = ((half_ >= 0.0) ? vec2(big_3, c12_) : vec2(c12_, big_3));
+        v_6 = (w_25 / vec2(length(w_25)));
         l2_ = min((det_c / l1_2), l1_2);
     } else {
         if ((l1_2 > 0.0)) {
             l2_ = l1_2;
         }
     }
-    vec2 _e102 = v_5;
+    vec2 _e102 = v_6;
     float _e105 = l2_;
-    float _e110 = ndf_roughness_matrix_sqrt_det(a_6);
-    return filter_gaussian_ggx_GaussianFilteredGgx(a_6, isl, _e102, vec2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2, filter_gaussian_ggx_TOL_FULL);
+    float _e110 = ndf_roughness_matrix_sqrt_det(a_8);
+    return filter_gaussian_ggx_GaussianFilteredGgx(a_8, isl, _e102, vec2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2, filter_gaussian_ggx_TOL_FULL);
 }
 
 vec2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g_1, vec2 s_11) {
     vec2 _e3 = ndf_roughness_matrix_rotate(g_1.a, s_11);
-    vec2 u_18 = (_e3 * g_1.inv_sqrt_l);
-    vec2 c_19 = vec2(((g_1.v.x * u_18.x) + (g_1.v.y * u_18.y)), ((g_1.v.x * u_18.y) - (g_1.v.y * u_18.x)));
+    vec2 u_19 = (_e3 * g_1.inv_sqrt_l);
+    vec2 c_19 = vec2(((g_1.v.x * u_19.x) + (g_1.v.y * u_19.y)), ((g_1.v.x * u_19.y) - (g_1.v.y * u_19.x)));
     return (c_19 * c_19);
 }
 
@@ -1796,28 +1976,28 @@ float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_2, vec2
     return (g_2.norm * _e12);
 }
 
-float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_3, vec3 m_25) {
-    if (!((m_25.z > 0.0))) {
+float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_3, vec3 m_21) {
+    if (!((m_21.z > 0.0))) {
         return 0.0;
     }
-    vec2 _e8 = filter_gaussian_ggx_whiten(g_3, m_25.xy);
-    float _e20 = filter_gaussian_ggx_quad_j_tol(_e8.x, _e8.y, (m_25.z * m_25.z), g_3.tl.x, g_3.tl.y, g_3.tol);
-    float v_16 = (g_3.norm * _e20);
-    return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
+    vec2 _e8 = filter_gaussian_ggx_whiten(g_3, m_21.xy);
+    float _e20 = filter_gaussian_ggx_quad_j_tol(_e8.x, _e8.y, (m_21.z * m_21.z), g_3.tl.x, g_3.tl.y, g_3.tol);
+    float v_18 = (g_3.norm * _e20);
+    return ((v_18 <= math_F32_MAX) ? v_18 : 0.0);
 }
 
-float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_4, vec3 w_16) {
-    float big_3 = max(max(abs(w_16.x), abs(w_16.y)), abs(w_16.z));
-    if (!((big_3 > 0.0))) {
-        return ((big_3 == 0.0) ? 0.0 : math_F32_MAX);
+float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_4, vec3 w_15) {
+    float big_4 = max(max(abs(w_15.x), abs(w_15.y)), abs(w_15.z));
+    if (!((big_4 > 0.0))) {
+        return ((big_4 == 0.0) ? 0.0 : math_F32_MAX);
     }
-    vec3 ws = (w_16 / vec3(big_3));
+    vec3 ws = (w_15 / vec3(big_4));
     vec3 o_9 = (ws / vec3(length(ws)));
     float oz_3 = abs(o_9.z);
     float _e27 = ndf_roughness_matrix_quadratic(g_4.a, o_9.xy);
     kernel_covariance_Covariance kk = g_4.k;
-    float qs_3 = max(((((kk.s_xx * o_9.x) * o_9.x) + (((2.0 * kk.s_xy) * o_9.x) * o_9.y)) + ((kk.s_yy * o_9.y) * o_9.y)), 0.0);
-    if ((qs_3 <= 0.0)) {
+    float qs_4 = max(((((kk.s_xx * o_9.x) * o_9.x) + (((2.0 * kk.s_xy) * o_9.x) * o_9.y)) + ((kk.s_yy * o_9.y) * o_9.y)), 0.0);
+    if ((qs_4 <= 0.0)) {
         float _e52 = ndf_ggx_lambda_of(_e27, oz_3);
         return _e52;
     }
@@ -1825,227 +2005,58 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_4, ve
         return math_F32_MAX;
     }
     if ((_e27 <= 0.0)) {
-        float _e60 = ndf_beckmann_lambda_of((2.0 * qs_3), oz_3);
+        float _e60 = ndf_beckmann_lambda_of((2.0 * qs_4), oz_3);
         return _e60;
     }
-    float _e61 = filter_gaussian_ggx_quad_lambda(_e27, qs_3, oz_3);
+    float _e61 = filter_gaussian_ggx_quad_lambda(_e27, qs_4, oz_3);
     return _e61;
 }
 
-float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_5, vec3 w_17, vec3 m_26) {
-    float _e3 = filter_gaussian_ggx_lambda(g_5, w_17);
-    float _e5 = ndf_g1_of(_e3, dot(w_17, m_26));
+float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_5, vec3 w_16, vec3 m_22) {
+    float _e3 = filter_gaussian_ggx_lambda(g_5, w_16);
+    float _e5 = ndf_g1_of(_e3, dot(w_16, m_22));
     return _e5;
 }
 
-float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_6, vec3 i_6, vec3 o_7, vec3 m_27) {
+float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_6, vec3 i_6, vec3 o_6, vec3 m_23) {
     float _e4 = filter_gaussian_ggx_lambda(g_6, i_6);
-    float _e5 = filter_gaussian_ggx_lambda(g_6, o_7);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_27), dot(o_7, m_27));
+    float _e5 = filter_gaussian_ggx_lambda(g_6, o_6);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_23), dot(o_6, m_23));
     return _e8;
 }
 
-vec2 filter_gaussian_ggx_split(float u_5) {
-    float x_17 = (u_5 * 4096.0);
-    float hi_3 = floor(x_17);
-    return vec2(((hi_3 + 0.5) / 4096.0), (x_17 - hi_3));
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_exact_gaussian_lobe(filter_gaussian_ggx_ExactGaussian method_3, ndf_roughness_matrix_RoughnessMatrix material_3, footprint_Footprint fp_7) {
+    kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_7, method_3.sigma);
+    filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
+    filter_gaussian_ggx_GaussianFilteredGgx _e8 = filter_gaussian_ggx_with_tolerance(_e6, method_3.tolerance);
+    return _e8;
 }
 
-vec3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_7, vec2 u_6) {
-    vec2 ax = vec2(1.0, 0.0);
-    float _e3 = sampling_clamp_unit(u_6.x);
-    vec2 _e4 = filter_gaussian_ggx_split(_e3);
-    float _e6 = sampling_clamp_unit(u_6.y);
-    vec2 _e7 = filter_gaussian_ggx_split(_e6);
-    vec2 _e15 = math_sincos_turns(_e7.x);
-    vec2 t_16 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
-    sampling_Warp _e18 = sampling_warp(g_7.a);
-    vec2 gs = vec2((_e18.l_xx * t_16.x), ((_e18.l_yx * t_16.x) + (_e18.l_yy * t_16.y)));
-    float _e33 = math_ln((1.0 - _e4.y));
-    float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
-    float e_5 = ((_e4.y < 0.5) ? _e40 : -(_e33));
-    vec2 _e49 = math_sincos_turns(_e7.y);
-    vec2 y_4 = (sqrt((2.0 * e_5)) * _e49);
-    kernel_covariance_Covariance k_28 = g_7.k;
-    vec2 _e52 = kernel_covariance_eigenvalues(k_28);
-    float khalf = (0.5 * (k_28.s_xx - k_28.s_yy));
-    float _e59 = math_hypot(khalf, k_28.s_xy);
-    if ((_e59 > 0.0)) {
-        vec2 w_26 = ((khalf >= 0.0) ? vec2((_e59 + khalf), k_28.s_xy) : vec2(k_28.s_xy, (_e59 - khalf)));
-        float _e77 = math_hypot(w_26.x, w_26.y);
-        ax = (w_26 / vec2(_e77));
-    }
-    vec2 kk_1 = vec2((sqrt(_e52.y) * y_4.x), (sqrt(_e52.x) * y_4.y));
-    float _e90 = ax.x;
-    float _e94 = ax.y;
-    float _e99 = ax.y;
-    float _e103 = ax.x;
-    vec2 s_30 = (gs + vec2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
-    vec3 _e112 = sampling_normalize_scaled(vec3(-(s_30), 1.0));
-    return vec3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
+float filter_gaussian_ggx_d_ggx_exact_gaussian(filter_gaussian_ggx_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_8, vec3 m_24) {
+    filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_gaussian_ggx_exact_gaussian_lobe(method_4, material_4, fp_8);
+    float _e5 = filter_gaussian_ggx_d(_e4, m_24);
+    return _e5;
 }
 
-float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_8, vec3 m_28) {
-    float _e2 = filter_gaussian_ggx_d(g_8, m_28);
-    return ((m_28.z > 0.0) ? (_e2 * m_28.z) : 0.0);
-}
-
-footprint_jacobian_Polar footprint_jacobian_polar(vec3 h_in) {
-    vec2 cs_1 = vec2(1.0, 0.0);
-    float big_4 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
-    if ((big_4 <= 0.0)) {
-        return footprint_jacobian_Polar(vec3(0.0, 0.0, 1.0), vec2(1.0, 0.0));
-    }
-    vec3 h0_ = (h_in / vec3(big_4));
-    vec3 h_24 = (h0_ / vec3(length(h0_)));
-    float qs_4 = max(abs(h_24.x), abs(h_24.y));
-    if ((qs_4 > 0.0)) {
-        vec2 q_6 = (h_24.xy / vec2(qs_4));
-        cs_1 = (q_6 / vec2(length(q_6)));
-    }
-    if ((h_24.z >= footprint_jacobian_HZ_MIN)) {
-        vec2 _e44 = cs_1;
-        return footprint_jacobian_Polar(h_24, _e44);
-    }
-    vec2 _e47 = cs_1;
-    vec2 _e51 = cs_1;
-    return footprint_jacobian_Polar(vec3((1.0 * _e47), footprint_jacobian_HZ_MIN), _e51);
-}
-
-vec3 footprint_jacobian_sanitize(vec3 h_1) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
-    return _e1.h;
-}
-
-footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(vec3 h_2) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_2);
-    float st = length(_e1.h.xy);
-    return footprint_jacobian_SphericalBasis(vec3((_e1.h.z * _e1.cs), -(st)), vec3(-(_e1.cs.y), _e1.cs.x, 0.0));
-}
-
-vec2 footprint_jacobian_spherical_components(vec3 h_3, vec3 dh) {
-    footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_3);
-    return vec2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
-}
-
-mat2x2 footprint_jacobian_sphere_to_projected(vec3 h_4) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
-    return mat2x2((_e1.h.z * _e1.cs), vec2(-(_e1.cs.y), _e1.cs.x));
-}
-
-mat2x2 footprint_jacobian_projected_to_slope(vec3 h_in_1) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
-    vec3 h_25 = _e1.h;
-    float k_29 = (-1.0 / ((h_25.z * h_25.z) * h_25.z));
-    float xy_3 = (h_25.x * h_25.y);
-    return mat2x2((vec2(((h_25.x * h_25.x) + (h_25.z * h_25.z)), xy_3) * k_29), (vec2(xy_3, ((h_25.y * h_25.y) + (h_25.z * h_25.z))) * k_29));
-}
-
-mat2x2 footprint_jacobian_slope_to_projected(vec3 h_in_2) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    vec3 h_26 = _e1.h;
-    float xy_4 = (h_26.x * h_26.y);
-    return mat2x2((vec2(((h_26.y * h_26.y) + (h_26.z * h_26.z)), -(xy_4)) * -(h_26.z)), (vec2(-(xy_4), ((h_26.x * h_26.x) + (h_26.z * h_26.z))) * -(h_26.z)));
-}
-
-mat2x2 footprint_jacobian_sphere_to_slope(vec3 h_5) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
-    float k_30 = (-1.0 / (_e1.h.z * _e1.h.z));
-    return mat2x2((_e1.cs * k_30), (vec2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_30));
-}
-
-float footprint_jacobian_det_sphere_to_projected(vec3 h_6) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
-    return _e1.h.z;
-}
-
-float footprint_jacobian_det_projected_to_slope(vec3 h_7) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
-    float z_5 = _e1.h.z;
-    float z2_6 = (z_5 * z_5);
-    return (1.0 / (z2_6 * z2_6));
-}
-
-float footprint_jacobian_det_sphere_to_slope(vec3 h_8) {
-    footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float z_6 = _e1.h.z;
-    return (1.0 / ((z_6 * z_6) * z_6));
-}
-
-vec2 footprint_jacobian_spherical_to_slope(vec3 h_9, vec2 e_1) {
-    mat2x2 _e2 = footprint_jacobian_sphere_to_slope(h_9);
-    return (_e2 * e_1);
-}
-
-vec2 footprint_jacobian_spherical_to_projected(vec3 h_10, vec2 e_2) {
-    mat2x2 _e2 = footprint_jacobian_sphere_to_projected(h_10);
-    return (_e2 * e_2);
-}
-
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_60, float sigma_1) {
-    vec2 w_27 = (r_60.half_extent * (2.0 * sigma_1));
-    vec2 v_17 = (w_27 * w_27);
-    return kernel_covariance_Covariance(v_17.x, 0.0, v_17.y, (v_17.x * v_17.y));
-}
-
-footprint_Footprint footprint_from_slope_derivatives(vec2 dh_u, vec2 dh_v) {
-    return footprint_Footprint(dh_u, dh_v);
-}
-
-footprint_Footprint footprint_from_projected_derivatives(vec2 dp_u, vec2 dp_v) {
-    return footprint_Footprint(dp_u, dp_v);
-}
-
-footprint_Footprint footprint_from_projected_derivatives_in_slope(vec3 h_11, vec2 dp_u_1, vec2 dp_v_1) {
-    float big_5 = max(max(abs(h_11.x), abs(h_11.y)), abs(h_11.z));
-    if ((big_5 <= 0.0)) {
-        return footprint_Footprint(vec2(0.0), vec2(0.0));
-    }
-    mat2x2 _e18 = footprint_jacobian_projected_to_slope(h_11);
-    return footprint_Footprint((_e18 * dp_u_1), (_e18 * dp_v_1));
-}
-
-footprint_Footprint footprint_from_normal_differences(vec3 dn_u_4, vec3 dn_v_4) {
-    float lu = max(length((vec3(0.0, 0.0, 2.0) + dn_u_4)), 1e-6);
-    float lv = max(length((vec3(0.0, 0.0, 2.0) + dn_v_4)), 1e-6);
-    return footprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
-}
-
-kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_2) {
-    vec2 u_19 = fp.dh_u;
-    vec2 v_18 = fp.dh_v;
-    float s2_ = (sigma_2 * sigma_2);
-    float cross_1 = (((u_19.x * v_18.y) - (u_19.y * v_18.x)) * s2_);
-    return kernel_covariance_Covariance((((u_19.x * u_19.x) + (v_18.x * v_18.x)) * s2_), (((u_19.x * u_19.y) + (v_18.x * v_18.y)) * s2_), (((u_19.y * u_19.y) + (v_18.y * v_18.y)) * s2_), (cross_1 * cross_1));
-}
-
-kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1) {
-    return kernel_rect_BoundingRect(((abs(fp_1.dh_u) + abs(fp_1.dh_v)) * 0.5));
-}
-
-float footprint_max_extent(footprint_Footprint fp_2) {
-    return (0.5 * max(length((fp_2.dh_u + fp_2.dh_v)), length((fp_2.dh_u - fp_2.dh_v))));
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance k_11, float tau_4) {
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance k_12, float tau_4) {
     float b11_ = 0.0;
     float b12_ = 0.0;
     float b22_ = 0.0;
     float det_3 = 0.0;
-    vec2 lc = min(a_7.eig, vec2(0.99));
-    vec2 excess = (a_7.eig - lc);
+    vec2 lc = min(a_9.eig, vec2(0.99));
+    vec2 excess = (a_9.eig - lc);
     vec2 p_8 = (lc / (vec2(1.0) - lc));
-    float c_20 = a_7.axis.x;
-    float s_31 = a_7.axis.y;
-    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_31) * s_31));
-    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_31);
-    float p22_1 = (((p_8.x * s_31) * s_31) + ((p_8.y * c_20) * c_20));
-    float k1_3 = max(((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_31) * k_11.s_xy)) + ((s_31 * s_31) * k_11.s_yy)), 0.0);
-    float k2_3 = max(((((s_31 * s_31) * k_11.s_xx) - (((2.0 * c_20) * s_31) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy)), 0.0);
-    float d_5 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
-    float q11_ = (p11_1 + (2.0 * k_11.s_xx));
-    float q12_ = (p12_1 + (2.0 * k_11.s_xy));
-    float q22_ = (p22_1 + (2.0 * k_11.s_yy));
+    float c_20 = a_9.axis.x;
+    float s_30 = a_9.axis.y;
+    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_30) * s_30));
+    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_30);
+    float p22_1 = (((p_8.x * s_30) * s_30) + ((p_8.y * c_20) * c_20));
+    float k1_3 = max(((((c_20 * c_20) * k_12.s_xx) + (((2.0 * c_20) * s_30) * k_12.s_xy)) + ((s_30 * s_30) * k_12.s_yy)), 0.0);
+    float k2_3 = max(((((s_30 * s_30) * k_12.s_xx) - (((2.0 * c_20) * s_30) * k_12.s_xy)) + ((c_20 * c_20) * k_12.s_yy)), 0.0);
+    float d_5 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_12.det, 0.0)));
+    float q11_ = (p11_1 + (2.0 * k_12.s_xx));
+    float q12_ = (p12_1 + (2.0 * k_12.s_xy));
+    float q22_ = (p22_1 + (2.0 * k_12.s_yy));
     float den_1 = (((1.0 + q11_) + q22_) + d_5);
     b11_ = ((q11_ + d_5) / den_1);
     b12_ = (q12_ / den_1);
@@ -2053,18 +2064,18 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     det_3 = (d_5 / den_1);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_31) * s_31)));
+        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_30) * s_30)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_31));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_30));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_31) * s_31) + ((excess.y * c_20) * c_20)));
+        b22_ = (_e130 + (((excess.x * s_30) * s_30) + ((excess.y * c_20) * c_20)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
         float _e143 = b12_;
         det_3 = ((_e139 * _e140) - (_e142 * _e143));
     }
-    vec3 _e146 = ndf_roughness_matrix_entries(a_7);
+    vec3 _e146 = ndf_roughness_matrix_entries(a_9);
     float _e147 = b11_;
     float _e150 = b12_;
     float _e151 = b22_;
@@ -2073,91 +2084,44 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     return _e157;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_5) {
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_10, kernel_covariance_Covariance kernel_5) {
     kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_5);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_8);
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_8, _e2, _e3);
+    float _e3 = ndf_roughness_matrix_clamped_det(a_10);
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_10, _e2, _e3);
     return _e4;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance kernel_6, float det_clamp_2) {
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_11, kernel_covariance_Covariance kernel_6, float det_clamp_2) {
     kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
-    float _e4 = ndf_roughness_matrix_own_det_clamp(a_9);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_9, _e3, max(det_clamp_2, _e4));
+    float _e4 = ndf_roughness_matrix_own_det_clamp(a_11);
+    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_11, _e3, max(det_clamp_2, _e4));
     return _e6;
 }
 
-footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3) {
-    float l_7 = max(rules.max_extent, 0.0);
-    float scale_2 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
-    if ((scale_2 <= 0.0)) {
-        return fp_3;
-    }
-    footprint_Footprint unit = footprint_Footprint((fp_3.dh_u / vec2(scale_2)), (fp_3.dh_v / vec2(scale_2)));
-    float _e29 = footprint_max_extent(unit);
-    if (((_e29 * scale_2) <= l_7)) {
-        return fp_3;
-    }
-    return footprint_Footprint(((unit.dh_u / vec2(_e29)) * l_7), ((unit.dh_v / vec2(_e29)) * l_7));
-}
-
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_61, vec2 alpha_8) {
-    vec2 f_1 = vec2(0.0);
-    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
-        f_1 = vec2(rules_1.floor_);
-    } else {
-        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
-            f_1 = min(abs(alpha_8), vec2(rules_1.floor_));
-        }
-    }
-    float lambda_2 = max(rules_1.max_extent, 0.0);
-    vec2 h_27 = min(abs(r_61.half_extent), vec2(lambda_2));
-    vec2 _e25 = f_1;
-    return kernel_rect_BoundingRect(max(h_27, max(_e25, vec2(0.0))));
-}
-
-kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_12) {
-    kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_12);
-    if ((rules_2.kappa >= math_F32_MAX)) {
-        return _e2;
-    }
-    kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
-    return _e11;
-}
-
-float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_10) {
-    float _e2 = ndf_roughness_matrix_own_det_clamp(a_10);
-    float _e3 = ndf_roughness_matrix_clamped_det(a_10);
-    return (rules_3.det_clamp ? _e3 : _e2);
-}
-
-kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_3) {
-    footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
-    kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_3);
-    kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
-    return _e5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_11, footprint_Footprint fp_5, float sigma_4) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
-    float _e5 = kernel_clamp_det_clamp_for(rules_5, a_11);
-    ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_11, _e4, _e5);
-    return _e6;
-}
-
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_6, float sigma_5) {
-    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_5);
+ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_9, float sigma_5) {
+    kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_9, sigma_5);
     float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
     ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
     return _e6;
 }
 
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_lobe(filter_projected_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_10) {
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_10, method_5.sigma);
+    return _e5;
+}
+
+float filter_projected_d_ggx_projected(filter_projected_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_11, vec3 m_25) {
+    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_lobe(method_6, material_6, fp_11);
+    float _e5 = ndf_ggx_d_matrix(_e4, m_25);
+    return _e5;
+}
+
 float filter_proxy_effective_alpha(float alpha_9, float half_extent) {
-    float h_28 = abs(half_extent);
-    float _e3 = math_hypot(alpha_9, h_28);
-    float t_17 = ((_e3 > 0.0) ? (h_28 / _e3) : 0.0);
-    float _e9 = math_atan(t_17);
-    float ratio = ((t_17 > 0.0) ? (t_17 / _e9) : 1.0);
+    float h_27 = abs(half_extent);
+    float _e3 = math_hypot(alpha_9, h_27);
+    float t_16 = ((_e3 > 0.0) ? (h_27 / _e3) : 0.0);
+    float _e9 = math_atan(t_16);
+    float ratio = ((t_16 > 0.0) ? (t_16 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
 }
 
@@ -2166,18 +2130,32 @@ float filter_proxy_effective_alpha_simple(float alpha_10, float half_extent_1) {
     return _e3;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_62, vec2 half_extent_2) {
-    float _e5 = filter_proxy_effective_alpha(r_62.alpha.x, half_extent_2.x);
-    float _e9 = filter_proxy_effective_alpha(r_62.alpha.y, half_extent_2.y);
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_55, vec2 half_extent_2) {
+    float _e5 = filter_proxy_effective_alpha(r_55.alpha.x, half_extent_2.x);
+    float _e9 = filter_proxy_effective_alpha(r_55.alpha.y, half_extent_2.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
     return _e11;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_63, vec2 half_extent_3) {
-    float _e5 = filter_proxy_effective_alpha_simple(r_63.alpha.x, half_extent_3.x);
-    float _e9 = filter_proxy_effective_alpha_simple(r_63.alpha.y, half_extent_3.y);
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_56, vec2 half_extent_3) {
+    float _e5 = filter_proxy_effective_alpha_simple(r_56.alpha.x, half_extent_3.x);
+    float _e9 = filter_proxy_effective_alpha_simple(r_56.alpha.y, half_extent_3.y);
     ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(vec2(_e5, _e9));
     return _e11;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_lobe(filter_proxy_Proxy method_7, ndf_roughness_axis_aligned_AxisAligned material_7, footprint_Footprint fp_12) {
+    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_12);
+    kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
+    vec2 h_28 = _e6.half_extent;
+    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_7, h_28);
+    return _e8;
+}
+
+float filter_proxy_d_ggx_proxy(filter_proxy_Proxy method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_13, vec3 m_26) {
+    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_proxy_proxy_lobe(method_8, material_8, fp_13);
+    float _e5 = ndf_ggx_d_axis_aligned(_e4, m_26);
+    return _e5;
 }
 
 uint filter_rect_tier(float h2_, float l2_1) {
@@ -2193,11 +2171,11 @@ uint filter_rect_tier(float h2_, float l2_1) {
     return filter_rect_TIER_CLOSED;
 }
 
-float filter_rect_gl_node(uint n_1, uint k_13) {
-    if ((n_1 == 2u)) {
+float filter_rect_gl_node(uint n, uint k_13) {
+    if ((n == 2u)) {
         return 0.57735026;
     }
-    if ((n_1 == 4u)) {
+    if ((n == 4u)) {
         return ((k_13 == 0u) ? 0.33998105 : 0.8611363);
     }
     if ((k_13 == 0u)) {
@@ -2206,11 +2184,11 @@ float filter_rect_gl_node(uint n_1, uint k_13) {
     return ((k_13 == 1u) ? 0.6612094 : 0.9324695);
 }
 
-float filter_rect_gl_weight(uint n_2, uint k_14) {
-    if ((n_2 == 2u)) {
+float filter_rect_gl_weight(uint n_1, uint k_14) {
+    if ((n_1 == 2u)) {
         return 0.5;
     }
-    if ((n_2 == 4u)) {
+    if ((n_1 == 4u)) {
         return ((k_14 == 0u) ? 0.32607257 : 0.17392743);
     }
     if ((k_14 == 0u)) {
@@ -2219,12 +2197,12 @@ float filter_rect_gl_weight(uint n_2, uint k_14) {
     return ((k_14 == 1u) ? 0.18038079 : 0.085662246);
 }
 
-float filter_rect_f(float u_7, float v_6) {
-    float t_18 = ((1.0 + (u_7 * u_7)) + (v_6 * v_6));
-    return (1.0 / (t_18 * t_18));
+float filter_rect_f(float u_1, float v_7) {
+    float t_17 = ((1.0 + (u_1 * u_1)) + (v_7 * v_7));
+    return (1.0 / (t_17 * t_17));
 }
 
-float filter_rect_gl_mean(uint n_3, float u_8, float c_6, float h_12) {
+float filter_rect_gl_mean(uint n_2, float u_2, float c_6, float h_12) {
     float acc_2 = 0.0;
     uint k_15 = 0u;
     bool loop_init_6 = true;
@@ -2235,19 +2213,19 @@ float filter_rect_gl_mean(uint n_3, float u_8, float c_6, float h_12) {
         }
         loop_init_6 = false;
         uint _e8 = k_15;
-        if ((_e8 < (n_3 / 2u))) {
+        if ((_e8 < (n_2 / 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_15;
-            float _e13 = filter_rect_gl_node(n_3, _e12);
+            float _e13 = filter_rect_gl_node(n_2, _e12);
             float a_27 = (h_12 * _e13);
             float _e15 = acc_2;
             uint _e16 = k_15;
-            float _e17 = filter_rect_gl_weight(n_3, _e16);
-            float _e19 = filter_rect_f(u_8, (c_6 - a_27));
-            float _e21 = filter_rect_f(u_8, (c_6 + a_27));
+            float _e17 = filter_rect_gl_weight(n_2, _e16);
+            float _e19 = filter_rect_f(u_2, (c_6 - a_27));
+            float _e21 = filter_rect_f(u_2, (c_6 + a_27));
             acc_2 = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -2255,28 +2233,28 @@ float filter_rect_gl_mean(uint n_3, float u_8, float c_6, float h_12) {
     return _e28;
 }
 
-float filter_rect_atan2_upper(float y_3, float x_6) {
-    if ((x_6 > 0.0)) {
-        float _e5 = math_atan((y_3 / x_6));
+float filter_rect_atan2_upper(float y_3, float x_8) {
+    if ((x_8 > 0.0)) {
+        float _e5 = math_atan((y_3 / x_8));
         return _e5;
     }
-    float _e9 = math_atan((-(x_6) / y_3));
+    float _e9 = math_atan((-(x_8) / y_3));
     return (math_HALF_PI + _e9);
 }
 
-float filter_rect_delta_minus_sin(float d_2, float sin_d) {
+float filter_rect_delta_minus_sin(float d, float sin_d) {
     float s_13 = 0.0;
-    if ((d_2 < 1.0)) {
-        float d2_1 = (d_2 * d_2);
+    if ((d < 1.0)) {
+        float d2_1 = (d * d);
         s_13 = (1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909))));
         float _e17 = s_13;
         s_13 = (1.0 - ((d2_1 * 0.023809524) * _e17));
         float _e23 = s_13;
         s_13 = (1.0 - ((d2_1 * 0.05) * _e23));
         float _e30 = s_13;
-        return (((d_2 * d2_1) * 0.16666667) * _e30);
+        return (((d * d2_1) * 0.16666667) * _e30);
     }
-    return (d_2 - sin_d);
+    return (d - sin_d);
 }
 
 float filter_rect_mean_1d(vec4 i_7, float c2_) {
@@ -2290,9 +2268,9 @@ float filter_rect_mean_1d(vec4 i_7, float c2_) {
     float _e27 = filter_rect_atan2_upper((c_21 * dx), (c2_ + x01_));
     float inv_2 = (1.0 / (((2.0 * c_21) * c2_) * dx));
     if ((x0_ <= 0.0)) {
-        float s_32 = (inversesqrt(r02_) * inversesqrt(r12_));
-        float q_7 = min(((c2_ - x01_) * s_32), 1.0);
-        return ((_e27 * inv_2) + ((q_7 * s_32) * (0.5 / c2_)));
+        float s_31 = (inversesqrt(r02_) * inversesqrt(r12_));
+        float q_7 = min(((c2_ - x01_) * s_31), 1.0);
+        return ((_e27 * inv_2) + ((q_7 * s_31) * (0.5 / c2_)));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
     float p2_1 = ((2.0 * r02_) * r12_);
@@ -2300,7 +2278,7 @@ float filter_rect_mean_1d(vec4 i_7, float c2_) {
     return ((_e57 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1));
 }
 
-float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, vec4 other) {
+float filter_rect_gl_mean_1d(uint n_3, float c_7, float h_13, vec4 other) {
     float acc_3 = 0.0;
     uint k_16 = 0u;
     bool loop_init_7 = true;
@@ -2311,19 +2289,19 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, vec4 other) {
         }
         loop_init_7 = false;
         uint _e8 = k_16;
-        if ((_e8 < (n_4 / 2u))) {
+        if ((_e8 < (n_3 / 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_16;
-            float _e13 = filter_rect_gl_node(n_4, _e12);
+            float _e13 = filter_rect_gl_node(n_3, _e12);
             float a_28 = (h_13 * _e13);
             float x0_1 = (c_7 - a_28);
             float x1_2 = (c_7 + a_28);
             float _e17 = acc_3;
             uint _e18 = k_16;
-            float _e19 = filter_rect_gl_weight(n_4, _e18);
+            float _e19 = filter_rect_gl_weight(n_3, _e18);
             float _e23 = filter_rect_mean_1d(other, (1.0 + (x0_1 * x0_1)));
             float _e27 = filter_rect_mean_1d(other, (1.0 + (x1_2 * x1_2)));
             acc_3 = (_e17 + (_e19 * (_e23 + _e27)));
@@ -2333,22 +2311,22 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, vec4 other) {
     return _e34;
 }
 
-float filter_rect_edge(float u_9, float dv, float v01_) {
-    float s2_1 = (1.0 + (u_9 * u_9));
-    float s_33 = sqrt(s2_1);
-    float _e10 = filter_rect_atan2_upper((dv * s_33), (s2_1 + v01_));
-    return ((u_9 / s_33) * _e10);
+float filter_rect_edge(float u_3, float dv, float v01_) {
+    float s2_1 = (1.0 + (u_3 * u_3));
+    float s_32 = sqrt(s2_1);
+    float _e10 = filter_rect_atan2_upper((dv * s_32), (s2_1 + v01_));
+    return ((u_3 / s_32) * _e10);
 }
 
-float filter_rect_edges(vec4 u_10, vec4 v_7) {
-    float du = (2.0 * u_10.w);
-    float dv_1 = (2.0 * v_7.w);
-    float v01_1 = (v_7.x * v_7.y);
-    float u01_ = (u_10.x * u_10.y);
-    float _e15 = filter_rect_edge(u_10.y, dv_1, v01_1);
-    float _e17 = filter_rect_edge(u_10.x, dv_1, v01_1);
-    float _e20 = filter_rect_edge(v_7.y, du, u01_);
-    float _e22 = filter_rect_edge(v_7.x, du, u01_);
+float filter_rect_edges(vec4 u_4, vec4 v_8) {
+    float du = (2.0 * u_4.w);
+    float dv_1 = (2.0 * v_8.w);
+    float v01_1 = (v_8.x * v_8.y);
+    float u01_ = (u_4.x * u_4.y);
+    float _e15 = filter_rect_edge(u_4.y, dv_1, v01_1);
+    float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
+    float _e20 = filter_rect_edge(v_8.y, du, u01_);
+    float _e22 = filter_rect_edge(v_8.x, du, u01_);
     float i_13 = (0.5 * ((_e15 - _e17) + (_e20 - _e22)));
     return (i_13 / (du * dv_1));
 }
@@ -2439,88 +2417,88 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1) {
     return (_e50 * (hi_1 - lo_1));
 }
 
-float filter_rect_edge_range(float ax_1, float a_13, float b_2) {
-    float v_8 = 0.0;
-    float x2_3 = (ax_1 * ax_1);
-    if ((a_13 < ax_1)) {
-        float _e7 = v_8;
-        float _e11 = filter_rect_polar_near(x2_3, (a_13 / ax_1), (min(b_2, ax_1) / ax_1));
-        v_8 = (_e7 + _e11);
+float filter_rect_edge_range(float ax, float a_13, float b_2) {
+    float v_9 = 0.0;
+    float x2_3 = (ax * ax);
+    if ((a_13 < ax)) {
+        float _e7 = v_9;
+        float _e11 = filter_rect_polar_near(x2_3, (a_13 / ax), (min(b_2, ax) / ax));
+        v_9 = (_e7 + _e11);
     }
-    if ((b_2 > ax_1)) {
-        float _e14 = v_8;
-        float _e18 = filter_rect_polar_far(x2_3, (ax_1 / b_2), (ax_1 / max(a_13, ax_1)));
-        v_8 = (_e14 + _e18);
+    if ((b_2 > ax)) {
+        float _e14 = v_9;
+        float _e18 = filter_rect_polar_far(x2_3, (ax / b_2), (ax / max(a_13, ax)));
+        v_9 = (_e14 + _e18);
     }
-    float _e20 = v_8;
+    float _e20 = v_9;
     return _e20;
 }
 
-float filter_rect_edge_polar(float x_7, float a_14, float b_3) {
-    float v_9 = 0.0;
-    float ax_2 = abs(x_7);
+float filter_rect_edge_polar(float x_9, float a_14, float b_3) {
+    float v_10 = 0.0;
+    float ax_2 = abs(x_9);
     if ((ax_2 < 1e-12)) {
         return 0.0;
     }
     if ((a_14 >= 0.0)) {
         float _e10 = filter_rect_edge_range(ax_2, a_14, b_3);
-        v_9 = _e10;
+        v_10 = _e10;
     } else {
         if ((b_3 <= 0.0)) {
             float _e15 = filter_rect_edge_range(ax_2, -(b_3), -(a_14));
-            v_9 = _e15;
+            v_10 = _e15;
         } else {
             float _e18 = filter_rect_edge_range(ax_2, 0.0, -(a_14));
             float _e20 = filter_rect_edge_range(ax_2, 0.0, b_3);
-            v_9 = (_e18 + _e20);
+            v_10 = (_e18 + _e20);
         }
     }
-    float _e22 = v_9;
-    float _e24 = v_9;
-    return ((x_7 > 0.0) ? _e24 : -(_e22));
+    float _e22 = v_10;
+    float _e24 = v_10;
+    return ((x_9 > 0.0) ? _e24 : -(_e22));
 }
 
-float filter_rect_far_field(vec4 u_11, vec4 v_10) {
-    float _e5 = filter_rect_edge_polar(u_11.y, v_10.x, v_10.y);
-    float _e9 = filter_rect_edge_polar(u_11.x, v_10.x, v_10.y);
-    float _e14 = filter_rect_edge_polar(v_10.y, u_11.x, u_11.y);
-    float _e18 = filter_rect_edge_polar(v_10.x, u_11.x, u_11.y);
+float filter_rect_far_field(vec4 u_5, vec4 v_11) {
+    float _e5 = filter_rect_edge_polar(u_5.y, v_11.x, v_11.y);
+    float _e9 = filter_rect_edge_polar(u_5.x, v_11.x, v_11.y);
+    float _e14 = filter_rect_edge_polar(v_11.y, u_5.x, u_5.y);
+    float _e18 = filter_rect_edge_polar(v_11.x, u_5.x, u_5.y);
     float i_14 = (-0.5 * ((_e5 - _e9) + (_e14 - _e18)));
-    return (i_14 / ((4.0 * u_11.w) * v_10.w));
+    return (i_14 / ((4.0 * u_5.w) * v_11.w));
 }
 
 float filter_rect_gap(vec4 i_8) {
     return max(max(i_8.x, -(i_8.y)), 0.0);
 }
 
-float filter_rect_mean_f(vec4 u_12, vec4 v_11) {
-    bool local_18 = false;
+float filter_rect_mean_f(vec4 u_6, vec4 v_12) {
+    bool local_19 = false;
     float acc_6 = 0.0;
     uint k_21 = 0u;
-    float _e2 = filter_rect_gap(u_12);
-    float _e3 = filter_rect_gap(v_11);
-    uint _e14 = filter_rect_tier((u_12.w * u_12.w), ((1.0 + (u_12.z * u_12.z)) + (_e3 * _e3)));
-    uint _e25 = filter_rect_tier((v_11.w * v_11.w), ((1.0 + (v_11.z * v_11.z)) + (_e2 * _e2)));
+    float _e2 = filter_rect_gap(u_6);
+    float _e3 = filter_rect_gap(v_12);
+    uint _e14 = filter_rect_tier((u_6.w * u_6.w), ((1.0 + (u_6.z * u_6.z)) + (_e3 * _e3)));
+    uint _e25 = filter_rect_tier((v_12.w * v_12.w), ((1.0 + (v_12.z * v_12.z)) + (_e2 * _e2)));
     if ((_e14 == filter_rect_TIER_CLOSED)) {
-        local_18 = (_e25 == filter_rect_TIER_CLOSED);
+        local_19 = (_e25 == filter_rect_TIER_CLOSED);
     } else {
-        local_18 = false;
+        local_19 = false;
     }
-    bool _e33 = local_18;
+    bool _e33 = local_19;
     if (_e33) {
         if ((((_e2 * _e2) + (_e3 * _e3)) > filter_rect_FAR2_)) {
-            float _e39 = filter_rect_far_field(u_12, v_11);
+            float _e39 = filter_rect_far_field(u_6, v_12);
             return _e39;
         }
-        float _e40 = filter_rect_edges(u_12, v_11);
+        float _e40 = filter_rect_edges(u_6, v_12);
         return _e40;
     }
     if ((_e14 == filter_rect_TIER_CLOSED)) {
-        float _e45 = filter_rect_gl_mean_1d(_e25, v_11.z, v_11.w, u_12);
+        float _e45 = filter_rect_gl_mean_1d(_e25, v_12.z, v_12.w, u_6);
         return _e45;
     }
     if ((_e25 == filter_rect_TIER_CLOSED)) {
-        float _e50 = filter_rect_gl_mean_1d(_e14, u_12.z, u_12.w, v_11);
+        float _e50 = filter_rect_gl_mean_1d(_e14, u_6.z, u_6.w, v_12);
         return _e50;
     }
     bool loop_init_10 = true;
@@ -2538,12 +2516,12 @@ float filter_rect_mean_f(vec4 u_12, vec4 v_11) {
         {
             uint _e60 = k_21;
             float _e61 = filter_rect_gl_node(_e14, _e60);
-            float a_29 = (u_12.w * _e61);
+            float a_29 = (u_6.w * _e61);
             float _e63 = acc_6;
             uint _e64 = k_21;
             float _e65 = filter_rect_gl_weight(_e14, _e64);
-            float _e70 = filter_rect_gl_mean(_e25, (u_12.z - a_29), v_11.z, v_11.w);
-            float _e75 = filter_rect_gl_mean(_e25, (u_12.z + a_29), v_11.z, v_11.w);
+            float _e70 = filter_rect_gl_mean(_e25, (u_6.z - a_29), v_12.z, v_12.w);
+            float _e75 = filter_rect_gl_mean(_e25, (u_6.z + a_29), v_12.z, v_12.w);
             acc_6 = (_e63 + (_e65 * (_e70 + _e75)));
         }
     }
@@ -2554,53 +2532,53 @@ float filter_rect_mean_f(vec4 u_12, vec4 v_11) {
 vec4 filter_rect_interval(float c_8, float h_14, float a_15) {
     float ah = abs(h_14);
     float lo_4 = clamp(((c_8 - ah) / a_15), -1e18, filter_rect_BIG);
-    float hi_4 = clamp(((c_8 + ah) / a_15), -1e18, filter_rect_BIG);
-    return vec4(lo_4, hi_4, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
+    float hi_3 = clamp(((c_8 + ah) / a_15), -1e18, filter_rect_BIG);
+    return vec4(lo_4, hi_3, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
 }
 
-float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_64, vec2 center, vec2 half_extent_4) {
-    bool local_19 = false;
+float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_57, vec2 center, vec2 half_extent_4) {
+    bool local_20 = false;
     if ((half_extent_4.x == 0.0)) {
-        local_19 = (half_extent_4.y == 0.0);
+        local_20 = (half_extent_4.y == 0.0);
     } else {
-        local_19 = false;
+        local_20 = false;
     }
-    bool _e12 = local_19;
+    bool _e12 = local_20;
     if (_e12) {
-        float _e13 = ndf_ggx_p22_axis_aligned(r_64, center);
+        float _e13 = ndf_ggx_p22_axis_aligned(r_57, center);
         return _e13;
     }
-    vec2 a_30 = r_64.alpha;
+    vec2 a_30 = r_57.alpha;
     vec4 _e18 = filter_rect_interval(center.x, half_extent_4.x, a_30.x);
     vec4 _e22 = filter_rect_interval(center.y, half_extent_4.y, a_30.y);
     float _e23 = filter_rect_mean_f(_e18, _e22);
     return max((_e23 * (math_INV_PI / (a_30.x * a_30.y))), 0.0);
 }
 
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_65, vec3 h_15, vec2 half_extent_5) {
-    bool local_20 = false;
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_58, vec3 h_15, vec2 half_extent_5) {
+    bool local_21 = false;
     if (!((h_15.z > 0.0))) {
         return 0.0;
     }
     if ((half_extent_5.x == 0.0)) {
-        local_20 = (half_extent_5.y == 0.0);
+        local_21 = (half_extent_5.y == 0.0);
     } else {
-        local_20 = false;
+        local_21 = false;
     }
-    bool _e17 = local_20;
+    bool _e17 = local_21;
     if (_e17) {
-        float _e18 = ndf_ggx_d_axis_aligned(r_65, h_15);
+        float _e18 = ndf_ggx_d_axis_aligned(r_58, h_15);
         return _e18;
     }
-    float _e24 = filter_rect_p22_rect(r_65, (-(h_15.xy) / vec2(h_15.z)), half_extent_5);
+    float _e24 = filter_rect_p22_rect(r_58, (-(h_15.xy) / vec2(h_15.z)), half_extent_5);
     float z2_7 = (h_15.z * h_15.z);
     return min((_e24 / (z2_7 * z2_7)), math_F32_MAX);
 }
 
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_66, vec2 hpp, vec3 h_16, vec2 footprint) {
-    bool local_21 = false;
-    float a_31 = r_66.alpha.x;
-    float b_9 = r_66.alpha.y;
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_59, vec2 hpp, vec3 h_16, vec2 footprint) {
+    bool local_22 = false;
+    float a_31 = r_59.alpha.x;
+    float b_9 = r_59.alpha.y;
     float a_2_ = (a_31 * a_31);
     float b_2_ = (b_9 * b_9);
     float x1_3 = (hpp.x - footprint.x);
@@ -2624,11 +2602,11 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_66, ve
     float hz4_ = (((h_16.z * h_16.z) * h_16.z) * h_16.z);
     float v_19 = ((val / den_2) / max(hz4_, 0.001));
     if ((abs(v_19) <= math_F32_MAX)) {
-        local_21 = (den_2 != 0.0);
+        local_22 = (den_2 != 0.0);
     } else {
-        local_21 = false;
+        local_22 = false;
     }
-    bool _e109 = local_21;
+    bool _e109 = local_22;
     return (_e109 ? v_19 : 0.0);
 }
 
@@ -2641,22 +2619,22 @@ float filter_rect_lambda_rho(float t_2) {
     return sqrt((1.0 + (t_2 * t_2)));
 }
 
-float filter_rect_lambda_e_neg(float t_3, float r_67) {
-    return ((t_3 >= 0.0) ? (1.0 / (r_67 + t_3)) : (r_67 - t_3));
+float filter_rect_lambda_e_neg(float t_3, float r_60) {
+    return ((t_3 >= 0.0) ? (1.0 / (r_60 + t_3)) : (r_60 - t_3));
 }
 
-float filter_rect_lambda_asinh_of(float t_4, float r_68) {
-    float v_12 = 0.0;
+float filter_rect_lambda_asinh_of(float t_4, float r_61) {
+    float v_13 = 0.0;
     float a_33 = abs(t_4);
     if ((a_33 > 1.0)) {
-        float _e7 = math_ln((a_33 + r_68));
-        v_12 = _e7;
+        float _e7 = math_ln((a_33 + r_61));
+        v_13 = _e7;
     } else {
-        float _e13 = math_ln_1p((a_33 + ((a_33 * a_33) / (1.0 + r_68))));
-        v_12 = _e13;
+        float _e13 = math_ln_1p((a_33 + ((a_33 * a_33) / (1.0 + r_61))));
+        v_13 = _e13;
     }
-    float _e14 = v_12;
-    float _e15 = v_12;
+    float _e14 = v_13;
+    float _e15 = v_13;
     return ((t_4 < 0.0) ? -(_e15) : _e14);
 }
 
@@ -2680,20 +2658,20 @@ float filter_rect_lambda_psi2_(float t_7) {
     return (0.25 * ((((t_7 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336)));
 }
 
-float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_18) {
+float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_17) {
     float _e3 = filter_rect_lambda_rho(t0_);
     float _e4 = filter_rect_lambda_rho(t1_);
     float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_34 = (_e5 + _e6);
-    float d_8 = ((w_18 * s_34) / (_e3 + _e4));
+    float s_33 = (_e5 + _e6);
+    float d_8 = ((w_17 * s_33) / (_e3 + _e4));
     float _e12 = math_ln_1p((d_8 / _e6));
-    return (0.25 * (_e12 + ((0.5 * d_8) * s_34)));
+    return (0.25 * (_e12 + ((0.5 * d_8) * s_33)));
 }
 
-float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_19) {
-    float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_19);
-    return (_e3 / w_19);
+float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_18) {
+    float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_18);
+    return (_e3 / w_18);
 }
 
 uint filter_rect_lambda_rule(uint t_8) {
@@ -2773,17 +2751,17 @@ float filter_rect_lambda_gl_psi(uint t_10, float c_9, float h_17) {
     return _e28;
 }
 
-float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo_2) {
+float filter_rect_lambda_expected_psi(float m_27, float k1_, float k2_, float lo_2) {
     float acc_9 = 0.0;
     uint j_2 = 0u;
     float acc_10 = 0.0;
     uint j_3 = 0u;
     float ks = min(k1_, k2_);
     float kl = max(k1_, k2_);
-    float near_l = max((m_29 - ks), 0.0);
+    float near_l = max((m_27 - ks), 0.0);
     uint _e13 = filter_rect_tier((kl * kl), (1.0 + (near_l * near_l)));
     if ((_e13 != filter_rect_TIER_CLOSED)) {
-        float near_s = max((m_29 - kl), 0.0);
+        float near_s = max((m_27 - kl), 0.0);
         uint _e23 = filter_rect_tier((ks * ks), (1.0 + (near_s * near_s)));
         bool loop_init_13 = true;
         while(true) {
@@ -2804,18 +2782,18 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
                 float _e35 = acc_9;
                 uint _e36 = j_2;
                 float _e37 = filter_rect_gl_weight(_e13, _e36);
-                float _e39 = filter_rect_lambda_gl_psi(_e23, (m_29 - a_36), ks);
-                float _e41 = filter_rect_lambda_gl_psi(_e23, (m_29 + a_36), ks);
+                float _e39 = filter_rect_lambda_gl_psi(_e23, (m_27 - a_36), ks);
+                float _e41 = filter_rect_lambda_gl_psi(_e23, (m_27 + a_36), ks);
                 acc_9 = (_e35 + (_e37 * (_e39 + _e41)));
             }
         }
         float _e48 = acc_9;
         return _e48;
     }
-    float hi_5 = (m_29 + kl);
-    float w_28 = (2.0 * kl);
+    float hi_4 = (m_27 + kl);
+    float w_26 = (2.0 * kl);
     if ((ks == 0.0)) {
-        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_5, w_28);
+        float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_4, w_26);
         return _e54;
     }
     uint _e59 = filter_rect_tier((ks * ks), (1.0 + (lo_2 * lo_2)));
@@ -2835,62 +2813,62 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
             {
                 uint _e70 = j_3;
                 float _e71 = filter_rect_gl_node(_e59, _e70);
-                float x_18 = (ks * _e71);
+                float x_19 = (ks * _e71);
                 float _e73 = acc_10;
                 uint _e74 = j_3;
                 float _e75 = filter_rect_gl_weight(_e59, _e74);
-                float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_18), (hi_5 + x_18), w_28);
-                float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_18), (hi_5 - x_18), w_28);
+                float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_19), (hi_4 + x_19), w_26);
+                float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_19), (hi_4 - x_19), w_26);
                 acc_10 = (_e73 + (_e75 * (_e78 + _e81)));
             }
         }
         float _e88 = acc_10;
         return _e88;
     }
-    float _e89 = filter_rect_lambda_mean_psi1_(hi_5, ks);
+    float _e89 = filter_rect_lambda_mean_psi1_(hi_4, ks);
     float _e90 = filter_rect_lambda_mean_psi1_(lo_2, ks);
-    return ((_e89 - _e90) / w_28);
+    return ((_e89 - _e90) / w_26);
 }
 
-float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_69, vec2 half_extent_6, vec3 w_in) {
-    vec3 w_20 = vec3(0.0);
-    bool local_22 = false;
+float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_62, vec2 half_extent_6, vec3 w_in) {
+    vec3 w_19 = vec3(0.0);
     bool local_23 = false;
     bool local_24 = false;
-    float big_6 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
-    w_20 = w_in;
-    if (!((big_6 > 1.1529215e18))) {
-        if ((big_6 < 8.6736174e-19)) {
-            local_23 = (big_6 > 0.0);
+    bool local_25 = false;
+    float big_5 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
+    w_19 = w_in;
+    if (!((big_5 > 1.1529215e18))) {
+        if ((big_5 < 8.6736174e-19)) {
+            local_24 = (big_5 > 0.0);
         } else {
-            local_23 = false;
+            local_24 = false;
         }
-        bool _e24 = local_23;
-        local_22 = _e24;
+        bool _e24 = local_24;
+        local_23 = _e24;
     } else {
-        local_22 = true;
+        local_23 = true;
     }
-    bool _e26 = local_22;
+    bool _e26 = local_23;
     if (_e26) {
-        int e_6 = (int(((floatBitsToUint(big_6) >> 23u) & 255u)) - 127);
-        w_20 = (w_in * uintBitsToFloat((uint((127 - e_6)) << 23u)));
+        int e_5 = (int(((floatBitsToUint(big_5) >> 23u) & 255u)) - 127);
+        w_19 = (w_in * uintBitsToFloat((uint((127 - e_5)) << 23u)));
     }
-    float _e43 = w_20.x;
-    float _e45 = w_20.y;
+    float _e43 = w_19.x;
+    float _e45 = w_19.y;
     float _e46 = math_hypot(_e43, _e45);
     if ((_e46 <= 0.0)) {
         return 0.0;
     }
-    float _e51 = w_20.z;
+    float _e51 = w_19.z;
     float wz = abs(_e51);
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    vec2 alpha_12 = r_69.alpha;
+    vec2 alpha_12 = r_62.alpha;
     vec2 ha = min(abs(half_extent_6), (alpha_12 * filter_rect_lambda_BIG_K));
-    float _e63 = w_20.x;
+    float _e63 = w_19.x;
     float ux = (abs(_e63) / _e46);
-    float _e67 = w_20.y;
+    float _e67 = w_19.y;
     float uy = (abs(_e67) / _e46);
     float px = (ux * alpha_12.x);
     float py = (uy * alpha_12.y);
@@ -2898,14 +2876,14 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_69
     float k1_4 = ((px / _e74) * (ha.x / alpha_12.x));
     float k2_4 = ((py / _e74) * (ha.y / alpha_12.y));
     if ((k1_4 == 0.0)) {
-        local_24 = (k2_4 == 0.0);
+        local_25 = (k2_4 == 0.0);
     } else {
-        local_24 = false;
+        local_25 = false;
     }
-    bool _e92 = local_24;
+    bool _e92 = local_25;
     if (_e92) {
-        vec3 _e93 = w_20;
-        float _e94 = ndf_ggx_lambda_axis_aligned(r_69, _e93);
+        vec3 _e93 = w_19;
+        float _e94 = ndf_ggx_lambda_axis_aligned(r_62, _e93);
         return _e94;
     }
     float mm = ((wz / _e46) / _e74);
@@ -2913,8 +2891,8 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_69
         return ((0.25 / mm) / mm);
     }
     bool long_x = (k1_4 >= k2_4);
-    float _e104 = w_20.y;
-    float _e107 = w_20.x;
+    float _e104 = w_19.y;
+    float _e107 = w_19.x;
     float wl_1 = (long_x ? abs(_e107) : abs(_e104));
     float hl = (long_x ? ha.x : ha.y);
     float lo_5 = (((wz - (wl_1 * hl)) / _e46) / _e74);
@@ -2922,99 +2900,44 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_69
     return (_e117 / mm);
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_method_gaussian_lobe(filter_method_Gaussian method, ndf_roughness_matrix_RoughnessMatrix material, footprint_Footprint fp_7) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_gaussian(method.clamps, material, fp_7, method.sigma);
-    return _e5;
-}
-
-float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, vec3 m_30) {
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_1, material_1, fp_8);
-    float _e5 = ndf_ggx_d_matrix(_e4, m_30);
-    return _e5;
-}
-
-float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_9, vec3 m_31) {
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_2, material_2, fp_9);
-    float _e5 = ndf_beckmann_d_matrix(_e4, m_31);
-    return _e5;
-}
-
-filter_gaussian_ggx_GaussianFilteredGgx filter_method_exact_gaussian_lobe(filter_method_ExactGaussian method_3, ndf_roughness_matrix_RoughnessMatrix material_3, footprint_Footprint fp_10) {
-    kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_10, method_3.sigma);
-    filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
-    filter_gaussian_ggx_GaussianFilteredGgx _e8 = filter_gaussian_ggx_with_tolerance(_e6, method_3.tolerance);
-    return _e8;
-}
-
-float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, vec3 m_32) {
-    filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_method_exact_gaussian_lobe(method_4, material_4, fp_11);
-    float _e5 = filter_gaussian_ggx_d(_e4, m_32);
-    return _e5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_method_projected_lobe(filter_method_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_12) {
-    ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
-    return _e5;
-}
-
-float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, vec3 m_33) {
-    ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_projected_lobe(method_6, material_6, fp_13);
-    float _e5 = ndf_ggx_d_matrix(_e4, m_33);
-    return _e5;
-}
-
-filter_method_RectFilteredGgx filter_method_rect_lobe(filter_method_Rect method_7, ndf_roughness_axis_aligned_AxisAligned material_7, footprint_Footprint fp_14) {
-    kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_14);
-    kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
+filter_rect_lobe_RectFilteredGgx filter_rect_lobe_rect_lobe(filter_rect_lobe_Rect method_9, ndf_roughness_axis_aligned_AxisAligned material_9, footprint_Footprint fp_14) {
+    kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_14);
+    kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
     vec2 h_31 = _e6.half_extent;
-    return filter_method_RectFilteredGgx(material_7, h_31);
+    return filter_rect_lobe_RectFilteredGgx(material_9, h_31);
 }
 
-float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe_1, vec2 s_14) {
+float filter_rect_lobe_p22_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_1, vec2 s_14) {
     float _e4 = filter_rect_p22_rect(lobe_1.roughness, s_14, lobe_1.half_extent);
     return _e4;
 }
 
-float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_2, vec3 m_34) {
-    float _e4 = filter_rect_d_rect(lobe_2.roughness, m_34, lobe_2.half_extent);
+float filter_rect_lobe_d_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_2, vec3 m_28) {
+    float _e4 = filter_rect_d_rect(lobe_2.roughness, m_28, lobe_2.half_extent);
     return _e4;
 }
 
-float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_3, vec3 w_21) {
-    float _e4 = filter_rect_lambda_lambda_rect(lobe_3.roughness, lobe_3.half_extent, w_21);
+float filter_rect_lobe_lambda_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_3, vec3 w_20) {
+    float _e4 = filter_rect_lambda_lambda_rect(lobe_3.roughness, lobe_3.half_extent, w_20);
     return _e4;
 }
 
-float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_4, vec3 w_22, vec3 m_35) {
-    float _e3 = filter_method_lambda_rect_filtered(lobe_4, w_22);
-    float _e5 = ndf_g1_of(_e3, dot(w_22, m_35));
+float filter_rect_lobe_g1_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_4, vec3 w_21, vec3 m_29) {
+    float _e3 = filter_rect_lobe_lambda_rect_filtered(lobe_4, w_21);
+    float _e5 = ndf_g1_of(_e3, dot(w_21, m_29));
     return _e5;
 }
 
-float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_5, vec3 i_9, vec3 o_8, vec3 m_36) {
-    float _e4 = filter_method_lambda_rect_filtered(lobe_5, i_9);
-    float _e5 = filter_method_lambda_rect_filtered(lobe_5, o_8);
-    float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_36), dot(o_8, m_36));
+float filter_rect_lobe_g2_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_5, vec3 i_9, vec3 o_7, vec3 m_30) {
+    float _e4 = filter_rect_lobe_lambda_rect_filtered(lobe_5, i_9);
+    float _e5 = filter_rect_lobe_lambda_rect_filtered(lobe_5, o_7);
+    float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_30), dot(o_7, m_30));
     return _e8;
 }
 
-float filter_method_d_ggx_rect(filter_method_Rect method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, vec3 m_37) {
-    filter_method_RectFilteredGgx _e4 = filter_method_rect_lobe(method_8, material_8, fp_15);
-    float _e5 = filter_method_d_rect_filtered(_e4, m_37);
-    return _e5;
-}
-
-ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(filter_method_Proxy method_9, ndf_roughness_axis_aligned_AxisAligned material_9, footprint_Footprint fp_16) {
-    kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_16);
-    kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
-    vec2 h_32 = _e6.half_extent;
-    ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_32);
-    return _e8;
-}
-
-float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, vec3 m_38) {
-    ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
-    float _e5 = ndf_ggx_d_axis_aligned(_e4, m_38);
+float filter_rect_lobe_d_ggx_rect(filter_rect_lobe_Rect method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_15, vec3 m_31) {
+    filter_rect_lobe_RectFilteredGgx _e4 = filter_rect_lobe_rect_lobe(method_10, material_10, fp_15);
+    float _e5 = filter_rect_lobe_d_rect_filtered(_e4, m_31);
     return _e5;
 }
 
@@ -3024,9 +2947,9 @@ ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_lean_widened(ndf_roughne
     return _e3;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_lean_widened_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_70, filter_lean_LeanMoments moments_4) {
+ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_lean_widened_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_63, filter_lean_LeanMoments moments_4) {
     kernel_covariance_Covariance _e2 = filter_lean_covariance(moments_4);
-    vec2 a_37 = r_70.alpha;
+    vec2 a_37 = r_63.alpha;
     ndf_roughness_axis_aligned_AxisAligned _e12 = ndf_roughness_axis_aligned_from_alpha(sqrt(((a_37 * a_37) + (2.0 * vec2(_e2.s_xx, _e2.s_yy)))));
     return _e12;
 }
@@ -3035,35 +2958,36 @@ vec3 filter_lean_nested_lean_mean_normal(filter_lean_LeanMoments moments_5) {
     return normalize(vec3(-(moments_5.mean), 1.0));
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_gaussian_lobe(filter_method_Gaussian m_39, ndf_roughness_matrix_RoughnessMatrix material_11, footprint_Footprint fp_18, filter_lean_LeanMoments moments_6) {
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_gaussian_lobe(filter_gaussian_Gaussian m_32, ndf_roughness_matrix_RoughnessMatrix material_11, footprint_Footprint fp_16, filter_lean_LeanMoments moments_6) {
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_lean_nested_lean_widened(material_11, moments_6);
-    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_method_gaussian_lobe(m_39, _e4, fp_18);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_gaussian_lobe(m_32, _e4, fp_16);
     return _e5;
 }
 
-filter_gaussian_ggx_GaussianFilteredGgx filter_lean_nested_exact_gaussian_lobe(filter_method_ExactGaussian m_40, ndf_roughness_matrix_RoughnessMatrix material_12, footprint_Footprint fp_19, filter_lean_LeanMoments moments_7) {
-    kernel_covariance_Covariance _e6 = kernel_clamp_pixel_kernel(m_40.clamps, fp_19, m_40.sigma);
+filter_gaussian_ggx_GaussianFilteredGgx filter_lean_nested_exact_gaussian_lobe(filter_gaussian_ggx_ExactGaussian m_33, ndf_roughness_matrix_RoughnessMatrix material_12, footprint_Footprint fp_17, filter_lean_LeanMoments moments_7) {
+    kernel_covariance_Covariance _e6 = kernel_clamp_pixel_kernel(m_33.clamps, fp_17, m_33.sigma);
     kernel_covariance_Covariance _e7 = filter_lean_covariance(moments_7);
     kernel_covariance_Covariance _e8 = kernel_covariance_add(_e6, _e7);
     filter_gaussian_ggx_GaussianFilteredGgx _e9 = filter_gaussian_ggx_from_kernel(material_12, _e8);
-    return _e9;
+    filter_gaussian_ggx_GaussianFilteredGgx _e11 = filter_gaussian_ggx_with_tolerance(_e9, m_33.tolerance);
+    return _e11;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_projected_lobe(filter_method_Projected m_41, ndf_roughness_matrix_RoughnessMatrix material_13, footprint_Footprint fp_20, filter_lean_LeanMoments moments_8) {
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_projected_lobe(filter_projected_Projected m_34, ndf_roughness_matrix_RoughnessMatrix material_13, footprint_Footprint fp_18, filter_lean_LeanMoments moments_8) {
     ndf_roughness_matrix_RoughnessMatrix _e4 = filter_lean_nested_lean_widened(material_13, moments_8);
-    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_method_projected_lobe(m_41, _e4, fp_20);
+    ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_projected_lobe(m_34, _e4, fp_18);
     return _e5;
 }
 
-filter_method_RectFilteredGgx filter_lean_nested_rect_lobe(filter_method_Rect m_42, ndf_roughness_axis_aligned_AxisAligned material_14, footprint_Footprint fp_21, filter_lean_LeanMoments moments_9) {
+filter_rect_lobe_RectFilteredGgx filter_lean_nested_rect_lobe(filter_rect_lobe_Rect m_35, ndf_roughness_axis_aligned_AxisAligned material_14, footprint_Footprint fp_19, filter_lean_LeanMoments moments_9) {
     ndf_roughness_axis_aligned_AxisAligned _e4 = filter_lean_nested_lean_widened_axis_aligned(material_14, moments_9);
-    filter_method_RectFilteredGgx _e5 = filter_method_rect_lobe(m_42, _e4, fp_21);
+    filter_rect_lobe_RectFilteredGgx _e5 = filter_rect_lobe_rect_lobe(m_35, _e4, fp_19);
     return _e5;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_proxy_lobe(filter_method_Proxy m_43, ndf_roughness_axis_aligned_AxisAligned material_15, footprint_Footprint fp_22, filter_lean_LeanMoments moments_10) {
+ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_proxy_lobe(filter_proxy_Proxy m_36, ndf_roughness_axis_aligned_AxisAligned material_15, footprint_Footprint fp_20, filter_lean_LeanMoments moments_10) {
     ndf_roughness_axis_aligned_AxisAligned _e4 = filter_lean_nested_lean_widened_axis_aligned(material_15, moments_10);
-    ndf_roughness_axis_aligned_AxisAligned _e5 = filter_method_proxy_lobe(m_43, _e4, fp_22);
+    ndf_roughness_axis_aligned_AxisAligned _e5 = filter_proxy_proxy_lobe(m_36, _e4, fp_20);
     return _e5;
 }
 
@@ -3108,77 +3032,19 @@ filter_deferred_KernelConvention filter_presets_preset(uint i_10) {
     }
 }
 
-float filter_rect_sample_half(float h_18, float alpha_11) {
-    float v_20 = abs(h_18);
-    return ((v_20 >= 0.0) ? min(v_20, (filter_rect_BIG * alpha_11)) : 0.0);
+vec2 footprint_slope_slope_from_sphere(vec3 h_18) {
+    float z_6 = max(h_18.z, math_F32_MIN_POSITIVE);
+    return clamp((-(h_18.xy) / vec2(z_6)), vec2(-3.4028235e38), vec2(3.4028235e38));
 }
 
-vec3 filter_rect_sample_normal_of_slope(vec2 s_15) {
-    vec3 _e4 = sampling_normalize_scaled(vec3(-(s_15), 1.0));
-    return vec3(_e4.xy, max(_e4.z, math_F32_MIN_POSITIVE));
+vec3 footprint_slope_sphere_from_slope(vec2 s_15) {
+    float k_30 = max(max(abs(s_15.x), abs(s_15.y)), 1.0);
+    vec3 v_20 = vec3((-(s_15) / vec2(k_30)), (1.0 / k_30));
+    return (v_20 / vec3(length(v_20)));
 }
 
-vec3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_71, vec2 half_extent_7, vec2 u_13, vec2 u_box) {
-    vec2 a_38 = r_71.alpha;
-    float _e7 = filter_rect_sample_half(half_extent_7.x, a_38.x);
-    float _e10 = filter_rect_sample_half(half_extent_7.y, a_38.y);
-    vec2 h_33 = vec2(_e7, _e10);
-    float _e13 = sampling_clamp_unit(u_13.x);
-    float _e15 = sampling_clamp_unit(u_13.y);
-    vec2 _e16 = math_sincos_turns(_e15);
-    float rad_1 = sqrt((_e13 / (1.0 - _e13)));
-    vec2 g_10 = (-(a_38) * (rad_1 * _e16));
-    float _e25 = sampling_clamp_unit(u_box.x);
-    float _e27 = sampling_clamp_unit(u_box.y);
-    vec2 b_10 = vec2(_e25, _e27);
-    vec2 d_9 = (((2.0 * b_10) - vec2(1.0)) * h_33);
-    vec3 _e36 = filter_rect_sample_normal_of_slope((g_10 + d_9));
-    return _e36;
-}
-
-float filter_rect_sample_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_72, vec2 half_extent_8, vec3 m_44) {
-    float _e3 = filter_rect_d_rect(r_72, m_44, half_extent_8);
-    return ((m_44.z > 0.0) ? (_e3 * m_44.z) : 0.0);
-}
-
-float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_73, vec2 half_extent_9, vec3 wo_6, vec3 m_45) {
-    bool local_25 = false;
-    bool local_26 = false;
-    float wom_1 = dot(wo_6, m_45);
-    if (!(!((wo_6.z > 0.0)))) {
-        local_25 = !((m_45.z > 0.0));
-    } else {
-        local_25 = true;
-    }
-    bool _e17 = local_25;
-    if (!(_e17)) {
-        local_26 = !((wom_1 > 0.0));
-    } else {
-        local_26 = true;
-    }
-    bool _e25 = local_26;
-    if (_e25) {
-        return 0.0;
-    }
-    float _e27 = filter_rect_d_rect(r_73, m_45, half_extent_9);
-    float _e30 = filter_rect_lambda_lambda_rect(r_73, half_extent_9, wo_6);
-    float v_21 = ((wom_1 * _e27) / (wo_6.z * (1.0 + _e30)));
-    return ((v_21 <= math_F32_MAX) ? v_21 : 0.0);
-}
-
-vec2 footprint_slope_slope_from_sphere(vec3 h_19) {
-    float z_7 = max(h_19.z, math_F32_MIN_POSITIVE);
-    return clamp((-(h_19.xy) / vec2(z_7)), vec2(-3.4028235e38), vec2(3.4028235e38));
-}
-
-vec3 footprint_slope_sphere_from_slope(vec2 s_16) {
-    float k_31 = max(max(abs(s_16.x), abs(s_16.y)), 1.0);
-    vec3 v_22 = vec3((-(s_16) / vec2(k_31)), (1.0 / k_31));
-    return (v_22 / vec3(length(v_22)));
-}
-
-vec2 footprint_slope_projected_from_sphere(vec3 h_20) {
-    return h_20.xy;
+vec2 footprint_slope_projected_from_sphere(vec3 h_19) {
+    return h_19.xy;
 }
 
 vec3 footprint_slope_sphere_from_projected(vec2 p_1) {
@@ -3196,66 +3062,214 @@ vec2 footprint_slope_slope_from_projected(vec2 p_2) {
     return _e2;
 }
 
-vec2 footprint_slope_projected_from_slope(vec2 s_17) {
-    vec3 _e1 = footprint_slope_sphere_from_slope(s_17);
+vec2 footprint_slope_projected_from_slope(vec2 s_16) {
+    vec3 _e1 = footprint_slope_sphere_from_slope(s_16);
     vec2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
 }
 
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_64) {
+    vec3 _e1 = ndf_roughness_matrix_clamped_entries(r_64);
+    float l_xx = sqrt(_e1.x);
+    return sampling_Warp(l_xx, (_e1.y / l_xx), (r_64.sqrt_det / l_xx));
+}
+
+vec3 sampling_normalize_scaled(vec3 v_14) {
+    vec3 w_27 = (v_14 / vec3(max(max(abs(v_14.x), abs(v_14.y)), abs(v_14.z))));
+    return (w_27 / vec3(length(w_27)));
+}
+
+vec3 sampling_stretch(sampling_Warp l_3, vec3 w_22) {
+    return vec3(((l_3.l_xx * w_22.x) + (l_3.l_yx * w_22.y)), (l_3.l_yy * w_22.y), w_22.z);
+}
+
+vec3 sampling_unstretch(sampling_Warp l_4, vec3 n_4) {
+    vec3 _e14 = sampling_normalize_scaled(vec3((l_4.l_xx * n_4.x), ((l_4.l_yx * n_4.x) + (l_4.l_yy * n_4.y)), n_4.z));
+    return _e14;
+}
+
+float sampling_clamp_unit(float u_7) {
+    return ((u_7 >= 0.0) ? min(u_7, sampling_ONE_MINUS_EPS) : 0.0);
+}
+
+vec3 sampling_reflect(vec3 wo, vec3 m_37) {
+    return (((2.0 * dot(wo, m_37)) * m_37) - wo);
+}
+
+vec3 sampling_ggx_standard_visible(vec3 wi, vec2 u_8) {
+    vec2 _e3 = math_sincos_turns(u_8.x);
+    float z_7 = (((1.0 - u_8.y) * (1.0 + wi.z)) - wi.z);
+    float sin_theta_1 = sqrt(clamp((1.0 - (z_7 * z_7)), 0.0, 1.0));
+    return (vec3((sin_theta_1 * _e3), z_7) + wi);
+}
+
+vec3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_65, vec3 wo_1, vec2 u_9) {
+    bool local_26 = false;
+    if (!((wo_1.z > 0.0))) {
+        return vec3(0.0);
+    }
+    sampling_Warp _e9 = sampling_warp(r_65);
+    vec3 _e10 = sampling_normalize_scaled(wo_1);
+    vec3 _e11 = sampling_stretch(_e9, _e10);
+    vec3 _e12 = sampling_normalize_scaled(_e11);
+    if (!((_e12.z > 0.0))) {
+        return vec3(0.0);
+    }
+    float _e20 = sampling_clamp_unit(u_9.x);
+    float _e22 = sampling_clamp_unit(u_9.y);
+    vec3 _e24 = sampling_ggx_standard_visible(_e12, vec2(_e20, _e22));
+    vec3 _e25 = sampling_unstretch(_e9, _e24);
+    if ((_e25.z > 0.0)) {
+        local_26 = (dot(wo_1, _e25) > 0.0);
+    } else {
+        local_26 = false;
+    }
+    bool _e35 = local_26;
+    if (_e35) {
+        return _e25;
+    }
+    vec3 _e36 = sampling_unstretch(_e9, _e12);
+    return ((_e36.z > 0.0) ? _e36 : vec3(0.0));
+}
+
+vec3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_66, vec2 u_10) {
+    float _e3 = sampling_clamp_unit(u_10.x);
+    float _e5 = sampling_clamp_unit(u_10.y);
+    vec2 _e6 = math_sincos_turns(_e5);
+    vec3 n_6 = vec3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
+    sampling_Warp _e13 = sampling_warp(r_66);
+    vec3 _e14 = sampling_unstretch(_e13, n_6);
+    return _e14;
+}
+
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_67, vec3 m_38) {
+    float _e2 = ndf_ggx_d_matrix(r_67, m_38);
+    return ((m_38.z > 0.0) ? (_e2 * m_38.z) : 0.0);
+}
+
+float sampling_visible_normal_pdf_of(vec3 wo_2, vec3 m_39, float d_1, float lambda) {
+    bool local_27 = false;
+    bool local_28 = false;
+    float wom = dot(wo_2, m_39);
+    float v_21 = ((wom * d_1) / (wo_2.z * (1.0 + lambda)));
+    if ((wo_2.z > 0.0)) {
+        local_27 = (wom > 0.0);
+    } else {
+        local_27 = false;
+    }
+    bool _e19 = local_27;
+    if (_e19) {
+        local_28 = (v_21 <= math_F32_MAX);
+    } else {
+        local_28 = false;
+    }
+    bool _e25 = local_28;
+    return (_e25 ? v_21 : 0.0);
+}
+
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_68, vec3 wo_3, vec3 m_40) {
+    float _e3 = ndf_ggx_d_matrix(r_68, m_40);
+    float _e4 = ndf_ggx_lambda_matrix(r_68, wo_3);
+    float _e5 = sampling_visible_normal_pdf_of(wo_3, m_40, _e3, _e4);
+    return _e5;
+}
+
+float sampling_reflection_pdf_of(vec3 o_8, vec3 m_41, float d_2, float lambda_1) {
+    bool local_29 = false;
+    bool local_30 = false;
+    float v_22 = (d_2 / ((4.0 * o_8.z) * (1.0 + lambda_1)));
+    if ((o_8.z > 0.0)) {
+        local_29 = (dot(o_8, m_41) > 0.0);
+    } else {
+        local_29 = false;
+    }
+    bool _e20 = local_29;
+    if (_e20) {
+        local_30 = (v_22 <= math_F32_MAX);
+    } else {
+        local_30 = false;
+    }
+    bool _e26 = local_30;
+    return (_e26 ? v_22 : 0.0);
+}
+
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_69, vec3 wo_4, vec3 m_42) {
+    vec3 _e3 = sampling_normalize_scaled(wo_4);
+    float _e4 = ndf_ggx_d_matrix(r_69, m_42);
+    float _e5 = ndf_ggx_lambda_matrix(r_69, _e3);
+    float _e6 = sampling_reflection_pdf_of(_e3, m_42, _e4, _e5);
+    return _e6;
+}
+
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_70, vec3 wo_5, vec3 wi_1) {
+    if (!((wo_5.z > 0.0))) {
+        return 0.0;
+    }
+    vec3 _e8 = sampling_normalize_scaled(wo_5);
+    vec3 _e9 = sampling_normalize_scaled(wi_1);
+    vec3 h_32 = (_e8 + _e9);
+    float len_1 = length(h_32);
+    if (!((len_1 > 0.0))) {
+        return 0.0;
+    }
+    float _e18 = sampling_reflection_pdf_from_normal(r_70, wo_5, (h_32 / vec3(len_1)));
+    return _e18;
+}
+
 float sampling_beckmann_erfcx(float z_1) {
     float p_3 = 0.17087276;
-    float t_19 = (1.0 / (1.0 + (0.5 * z_1)));
+    float t_18 = (1.0 / (1.0 + (0.5 * z_1)));
     float _e9 = p_3;
-    p_3 = ((_e9 * t_19) - 0.82215226);
+    p_3 = ((_e9 * t_18) - 0.82215226);
     float _e13 = p_3;
-    p_3 = ((_e13 * t_19) + 1.4885159);
+    p_3 = ((_e13 * t_18) + 1.4885159);
     float _e17 = p_3;
-    p_3 = ((_e17 * t_19) - 1.135204);
+    p_3 = ((_e17 * t_18) - 1.135204);
     float _e21 = p_3;
-    p_3 = ((_e21 * t_19) + 0.27886808);
+    p_3 = ((_e21 * t_18) + 0.27886808);
     float _e25 = p_3;
-    p_3 = ((_e25 * t_19) - 0.18628806);
+    p_3 = ((_e25 * t_18) - 0.18628806);
     float _e29 = p_3;
-    p_3 = ((_e29 * t_19) + 0.09678418);
+    p_3 = ((_e29 * t_18) + 0.09678418);
     float _e33 = p_3;
-    p_3 = ((_e33 * t_19) + 0.37409195);
+    p_3 = ((_e33 * t_18) + 0.37409195);
     float _e37 = p_3;
-    p_3 = ((_e37 * t_19) + 1.0000237);
+    p_3 = ((_e37 * t_18) + 1.0000237);
     float _e41 = p_3;
-    p_3 = ((_e41 * t_19) - 1.2655122);
+    p_3 = ((_e41 * t_18) - 1.2655122);
     float _e45 = p_3;
     float _e46 = math_exp(_e45);
-    return (t_19 * _e46);
+    return (t_18 * _e46);
 }
 
-float sampling_beckmann_upper_tail(float x_8, float c_10, float s_18) {
-    float _e5 = math_exp((-(x_8) * x_8));
-    float _e8 = sampling_beckmann_erfcx(x_8);
-    return ((0.5 * _e5) * ((c_10 * _e8) - (s_18 * sampling_beckmann_INV_SQRT_PI)));
+float sampling_beckmann_upper_tail(float x_10, float c_10, float s_17) {
+    float _e5 = math_exp((-(x_10) * x_10));
+    float _e8 = sampling_beckmann_erfcx(x_10);
+    return ((0.5 * _e5) * ((c_10 * _e8) - (s_17 * sampling_beckmann_INV_SQRT_PI)));
 }
 
-vec2 sampling_beckmann_cdf_terms(float x_9, float c_11, float s_19) {
+vec2 sampling_beckmann_cdf_terms(float x_11, float c_11, float s_18) {
     float k_23 = 0.0;
-    float _e5 = math_exp((-(x_9) * x_9));
-    if ((x_9 <= 0.0)) {
-        float _e12 = sampling_beckmann_erfcx(-(x_9));
-        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_19 * sampling_beckmann_INV_SQRT_PI)));
+    float _e5 = math_exp((-(x_11) * x_11));
+    if ((x_11 <= 0.0)) {
+        float _e12 = sampling_beckmann_erfcx(-(x_11));
+        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_18 * sampling_beckmann_INV_SQRT_PI)));
     } else {
-        float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_19);
+        float _e18 = sampling_beckmann_upper_tail(x_11, c_11, s_18);
         k_23 = (c_11 - _e18);
     }
     float _e20 = k_23;
-    return vec2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_19 * x_9))));
+    return vec2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_18 * x_11))));
 }
 
-float sampling_beckmann_erfinv_guess(float x_10) {
+float sampling_beckmann_erfinv_guess(float x_12) {
     float w_23 = 0.0;
     float p_4 = 0.0;
-    float a_39 = ((1.0 - x_10) * (1.0 + x_10));
-    if (!((a_39 > 0.0))) {
+    float a_38 = ((1.0 - x_12) * (1.0 + x_12));
+    if (!((a_38 > 0.0))) {
         return 0.0;
     }
-    float _e10 = math_ln(a_39);
+    float _e10 = math_ln(a_38);
     w_23 = -(_e10);
     float _e14 = w_23;
     if ((_e14 < 5.0)) {
@@ -3316,42 +3330,42 @@ float sampling_beckmann_erfinv_guess(float x_10) {
         p_4 = ((_e101 * _e102) + 2.8329768);
     }
     float _e106 = p_4;
-    return (_e106 * x_10);
+    return (_e106 * x_12);
 }
 
-float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_20, float u_14) {
+float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_19, float u_11) {
     float lo_3 = -9.0;
     float hi_2 = 0.0;
-    bool local_27 = false;
-    float x_11 = 0.0;
+    bool local_31 = false;
+    float x_13 = 0.0;
     float dx_old = 0.0;
     uint i_11 = 0u;
-    float g_9 = 0.0;
-    bool local_28 = false;
-    bool local_29 = false;
-    float hi0_ = ((s_20 > 0.0) ? min((c_12 / s_20), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
+    float g_7 = 0.0;
+    bool local_32 = false;
+    bool local_33 = false;
+    float hi0_ = ((s_19 > 0.0) ? min((c_12 / s_19), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
     hi_2 = hi0_;
-    vec2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_20);
+    vec2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_19);
     float norm_1 = _e13.x;
-    bool upper = (u_14 > 0.5);
-    float goal = ((upper ? (1.0 - u_14) : u_14) * norm_1);
+    bool upper = (u_11 > 0.5);
+    float goal = ((upper ? (1.0 - u_11) : u_11) * norm_1);
     if (!((goal > 0.0))) {
         float _e24 = lo_3;
         return _e24;
     }
-    float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_20);
+    float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_19);
     float tol_4 = (4.7683716e-7 * goal);
-    float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_14) - 1.0));
+    float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_11) - 1.0));
     float _e35 = hi_2;
     float _e40 = lo_3;
     if ((_e34 > _e40)) {
         float _e44 = hi_2;
-        local_27 = (_e34 < _e44);
+        local_31 = (_e34 < _e44);
     } else {
-        local_27 = false;
+        local_31 = false;
     }
-    bool _e47 = local_27;
-    x_11 = (_e47 ? _e34 : min(0.0, (0.5 * _e35)));
+    bool _e47 = local_31;
+    x_13 = (_e47 ? _e34 : min(0.0, (0.5 * _e35)));
     float _e50 = hi_2;
     float _e51 = lo_3;
     dx_old = (_e50 - _e51);
@@ -3368,62 +3382,62 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_20, float u
             break;
         }
         {
-            float _e59 = x_11;
-            vec2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_20);
-            g_9 = (_e60.x - goal);
+            float _e59 = x_13;
+            vec2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_19);
+            g_7 = (_e60.x - goal);
             if (upper) {
-                float _e66 = x_11;
-                float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_20);
-                float _e69 = x_11;
-                g_9 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
+                float _e66 = x_13;
+                float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_19);
+                float _e69 = x_13;
+                g_7 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
             }
-            float _e74 = g_9;
+            float _e74 = g_7;
             if ((abs(_e74) <= tol_4)) {
-                float _e77 = x_11;
+                float _e77 = x_13;
                 return _e77;
             }
-            float _e78 = g_9;
+            float _e78 = g_7;
             if ((_e78 < 0.0)) {
-                float _e81 = x_11;
+                float _e81 = x_13;
                 lo_3 = _e81;
             } else {
-                float _e82 = x_11;
+                float _e82 = x_13;
                 hi_2 = _e82;
             }
             float _e83 = hi_2;
             float _e84 = lo_3;
-            float _e87 = x_11;
+            float _e87 = x_13;
             if (((_e83 - _e84) <= (4.7683716e-7 * (1.0 + abs(_e87))))) {
                 float _e93 = lo_3;
                 float _e94 = hi_2;
                 return (0.5 * (_e93 + _e94));
             }
-            float _e98 = g_9;
+            float _e98 = g_7;
             float step_ = (_e98 / _e60.y);
-            float _e101 = x_11;
+            float _e101 = x_13;
             float xn = (_e101 - step_);
             float _e103 = lo_3;
             if ((xn > _e103)) {
                 float _e107 = hi_2;
-                local_28 = (xn < _e107);
+                local_32 = (xn < _e107);
             } else {
-                local_28 = false;
+                local_32 = false;
             }
-            bool _e110 = local_28;
+            bool _e110 = local_32;
             if (_e110) {
-                float _e113 = g_9;
+                float _e113 = g_7;
                 float _e117 = dx_old;
-                local_29 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
+                local_33 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
             } else {
-                local_29 = false;
+                local_33 = false;
             }
-            bool _e123 = local_29;
+            bool _e123 = local_33;
             if (_e123) {
                 dx_old = abs(step_);
-                x_11 = xn;
-                float _e127 = x_11;
+                x_13 = xn;
+                float _e127 = x_13;
                 if ((abs(step_) <= (2.3841858e-7 * (1.0 + abs(_e127))))) {
-                    float _e133 = x_11;
+                    float _e133 = x_13;
                     return _e133;
                 }
             } else {
@@ -3432,63 +3446,63 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_20, float u
                 dx_old = (0.5 * (_e134 - _e135));
                 float _e139 = lo_3;
                 float _e140 = hi_2;
-                x_11 = (0.5 * (_e139 + _e140));
+                x_13 = (0.5 * (_e139 + _e140));
             }
         }
     }
-    float _e147 = x_11;
+    float _e147 = x_13;
     return _e147;
 }
 
-float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_15) {
+float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_12) {
     float c_13 = 1.0;
-    float s_21 = 0.0;
-    bool local_30 = false;
-    bool local_31 = false;
+    float s_20 = 0.0;
+    bool local_34 = false;
+    bool local_35 = false;
     if ((cos_theta >= 0.0)) {
-        local_30 = (sin_theta >= 0.0);
+        local_34 = (sin_theta >= 0.0);
     } else {
-        local_30 = false;
+        local_34 = false;
     }
-    bool _e14 = local_30;
+    bool _e14 = local_34;
     if (_e14) {
-        local_31 = ((cos_theta + sin_theta) > 0.0);
+        local_35 = ((cos_theta + sin_theta) > 0.0);
     } else {
-        local_31 = false;
+        local_35 = false;
     }
-    bool _e21 = local_31;
+    bool _e21 = local_35;
     if (_e21) {
         float _e22 = math_hypot(cos_theta, sin_theta);
         c_13 = (cos_theta / _e22);
-        s_21 = (sin_theta / _e22);
+        s_20 = (sin_theta / _e22);
     }
     float _e25 = c_13;
-    float _e26 = s_21;
-    float _e27 = sampling_clamp_unit(u_15);
+    float _e26 = s_20;
+    float _e27 = sampling_clamp_unit(u_12);
     float _e28 = sampling_beckmann_invert_visible_slope_cdf(_e25, _e26, _e27);
     return _e28;
 }
 
-vec3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_74, vec2 u_16) {
-    float _e3 = sampling_clamp_unit(u_16.x);
-    float _e5 = sampling_clamp_unit(u_16.y);
+vec3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_71, vec2 u_13) {
+    float _e3 = sampling_clamp_unit(u_13.x);
+    float _e5 = sampling_clamp_unit(u_13.y);
     vec2 _e6 = math_sincos_turns(_e5);
     float _e9 = math_ln((1.0 - _e3));
     float _e14 = math_ln_1p((_e3 / (1.0 - _e3)));
-    float e_7 = ((_e3 < 0.5) ? _e14 : -(_e9));
-    vec3 n_7 = vec3((sqrt(e_7) * _e6), 1.0);
-    sampling_Warp _e22 = sampling_warp(r_74);
+    float e_6 = ((_e3 < 0.5) ? _e14 : -(_e9));
+    vec3 n_7 = vec3((sqrt(e_6) * _e6), 1.0);
+    sampling_Warp _e22 = sampling_warp(r_71);
     vec3 _e23 = sampling_unstretch(_e22, n_7);
     return _e23;
 }
 
-vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_75, vec3 wo_7, vec2 u_17) {
-    bool local_32 = false;
-    if (!((wo_7.z > 0.0))) {
+vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_72, vec3 wo_6, vec2 u_14) {
+    bool local_36 = false;
+    if (!((wo_6.z > 0.0))) {
         return vec3(0.0);
     }
-    sampling_Warp _e9 = sampling_warp(r_75);
-    vec3 _e10 = sampling_normalize_scaled(wo_7);
+    sampling_Warp _e9 = sampling_warp(r_72);
+    vec3 _e10 = sampling_normalize_scaled(wo_6);
     vec3 _e11 = sampling_stretch(_e9, _e10);
     vec3 _e12 = sampling_normalize_scaled(_e11);
     if (!((_e12.z > 0.0))) {
@@ -3496,18 +3510,18 @@ vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatri
     }
     float _e21 = math_hypot(_e12.x, _e12.y);
     vec2 phi = ((_e21 > 0.0) ? (_e12.xy / vec2(_e21)) : vec2(1.0, 0.0));
-    float _e33 = sampling_clamp_unit(u_17.x);
+    float _e33 = sampling_clamp_unit(u_14.x);
     float _e34 = sampling_beckmann_invert_visible_slope_cdf(_e12.z, _e21, _e33);
-    float _e38 = sampling_clamp_unit(u_17.y);
+    float _e38 = sampling_clamp_unit(u_14.y);
     float _e39 = sampling_beckmann_invert_visible_slope_cdf(1.0, 0.0, _e38);
-    vec2 t_20 = vec2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
-    vec3 _e54 = sampling_unstretch(_e9, vec3(-(t_20), 1.0));
+    vec2 t_19 = vec2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
+    vec3 _e54 = sampling_unstretch(_e9, vec3(-(t_19), 1.0));
     if ((_e54.z > 0.0)) {
-        local_32 = (dot(wo_7, _e54) > 0.0);
+        local_36 = (dot(wo_6, _e54) > 0.0);
     } else {
-        local_32 = false;
+        local_36 = false;
     }
-    bool _e64 = local_32;
+    bool _e64 = local_36;
     if (_e64) {
         return _e54;
     }
@@ -3515,24 +3529,127 @@ vec3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatri
     return ((_e65.z > 0.0) ? _e65 : vec3(0.0));
 }
 
-float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_76, vec3 m_46) {
-    float _e2 = ndf_beckmann_d_matrix(r_76, m_46);
-    return ((m_46.z > 0.0) ? (_e2 * m_46.z) : 0.0);
+float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_73, vec3 m_43) {
+    float _e2 = ndf_beckmann_d_matrix(r_73, m_43);
+    return ((m_43.z > 0.0) ? (_e2 * m_43.z) : 0.0);
 }
 
-float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_77, vec3 wo_8, vec3 m_47) {
-    float _e3 = ndf_beckmann_d_matrix(r_77, m_47);
-    float _e4 = ndf_beckmann_lambda_matrix(r_77, wo_8);
-    float _e5 = sampling_visible_normal_pdf_of(wo_8, m_47, _e3, _e4);
+float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_74, vec3 wo_7, vec3 m_44) {
+    float _e3 = ndf_beckmann_d_matrix(r_74, m_44);
+    float _e4 = ndf_beckmann_lambda_matrix(r_74, wo_7);
+    float _e5 = sampling_visible_normal_pdf_of(wo_7, m_44, _e3, _e4);
     return _e5;
 }
 
-float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_78, vec3 wo_9, vec3 m_48) {
-    vec3 _e3 = sampling_normalize_scaled(wo_9);
-    float _e4 = ndf_beckmann_d_matrix(r_78, m_48);
-    float _e5 = ndf_beckmann_lambda_matrix(r_78, _e3);
-    float _e6 = sampling_reflection_pdf_of(_e3, m_48, _e4, _e5);
+float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_75, vec3 wo_8, vec3 m_45) {
+    vec3 _e3 = sampling_normalize_scaled(wo_8);
+    float _e4 = ndf_beckmann_d_matrix(r_75, m_45);
+    float _e5 = ndf_beckmann_lambda_matrix(r_75, _e3);
+    float _e6 = sampling_reflection_pdf_of(_e3, m_45, _e4, _e5);
     return _e6;
+}
+
+vec2 sampling_gaussian_ggx_split_bits(float u_15) {
+    float x_20 = (u_15 * 4096.0);
+    float hi_5 = floor(x_20);
+    return vec2(((hi_5 + 0.5) / 4096.0), (x_20 - hi_5));
+}
+
+vec3 sampling_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_8, vec2 u_16) {
+    vec2 ax_1 = vec2(1.0, 0.0);
+    float _e3 = sampling_clamp_unit(u_16.x);
+    vec2 _e4 = sampling_gaussian_ggx_split_bits(_e3);
+    float _e6 = sampling_clamp_unit(u_16.y);
+    vec2 _e7 = sampling_gaussian_ggx_split_bits(_e6);
+    vec2 _e15 = math_sincos_turns(_e7.x);
+    vec2 t_20 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
+    sampling_Warp _e18 = sampling_warp(g_8.a);
+    vec2 gs = vec2((_e18.l_xx * t_20.x), ((_e18.l_yx * t_20.x) + (_e18.l_yy * t_20.y)));
+    float _e33 = math_ln((1.0 - _e4.y));
+    float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
+    float e_7 = ((_e4.y < 0.5) ? _e40 : -(_e33));
+    vec2 _e49 = math_sincos_turns(_e7.y);
+    vec2 y_4 = (sqrt((2.0 * e_7)) * _e49);
+    kernel_covariance_Covariance k_31 = g_8.k;
+    vec2 _e52 = kernel_covariance_eigenvalues(k_31);
+    float khalf = (0.5 * (k_31.s_xx - k_31.s_yy));
+    float _e59 = math_hypot(khalf, k_31.s_xy);
+    if ((_e59 > 0.0)) {
+        vec2 w_28 = ((khalf >= 0.0) ? vec2((_e59 + khalf), k_31.s_xy) : vec2(k_31.s_xy, (_e59 - khalf)));
+        float _e77 = math_hypot(w_28.x, w_28.y);
+        ax_1 = (w_28 / vec2(_e77));
+    }
+    vec2 kk_1 = vec2((sqrt(_e52.y) * y_4.x), (sqrt(_e52.x) * y_4.y));
+    float _e90 = ax_1.x;
+    float _e94 = ax_1.y;
+    float _e99 = ax_1.y;
+    float _e103 = ax_1.x;
+    vec2 s_34 = (gs + vec2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
+    vec3 _e112 = sampling_normalize_scaled(vec3(-(s_34), 1.0));
+    return vec3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
+}
+
+float sampling_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_9, vec3 m_46) {
+    float _e2 = filter_gaussian_ggx_d(g_9, m_46);
+    return ((m_46.z > 0.0) ? (_e2 * m_46.z) : 0.0);
+}
+
+float sampling_rect_sanitized_half_extent(float h_20, float alpha_11) {
+    float v_23 = abs(h_20);
+    return ((v_23 >= 0.0) ? min(v_23, (filter_rect_BIG * alpha_11)) : 0.0);
+}
+
+vec3 sampling_rect_normal_of_slope(vec2 s_21) {
+    vec3 _e4 = sampling_normalize_scaled(vec3(-(s_21), 1.0));
+    return vec3(_e4.xy, max(_e4.z, math_F32_MIN_POSITIVE));
+}
+
+vec3 sampling_rect_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_76, vec2 half_extent_7, vec2 u_17, vec2 u_box) {
+    vec2 a_39 = r_76.alpha;
+    float _e7 = sampling_rect_sanitized_half_extent(half_extent_7.x, a_39.x);
+    float _e10 = sampling_rect_sanitized_half_extent(half_extent_7.y, a_39.y);
+    vec2 h_33 = vec2(_e7, _e10);
+    float _e13 = sampling_clamp_unit(u_17.x);
+    float _e15 = sampling_clamp_unit(u_17.y);
+    vec2 _e16 = math_sincos_turns(_e15);
+    float rad_1 = sqrt((_e13 / (1.0 - _e13)));
+    vec2 g_10 = (-(a_39) * (rad_1 * _e16));
+    float _e25 = sampling_clamp_unit(u_box.x);
+    float _e27 = sampling_clamp_unit(u_box.y);
+    vec2 b_10 = vec2(_e25, _e27);
+    vec2 d_9 = (((2.0 * b_10) - vec2(1.0)) * h_33);
+    vec3 _e36 = sampling_rect_normal_of_slope((g_10 + d_9));
+    return _e36;
+}
+
+float sampling_rect_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_77, vec2 half_extent_8, vec3 m_47) {
+    float _e3 = filter_rect_d_rect(r_77, m_47, half_extent_8);
+    return ((m_47.z > 0.0) ? (_e3 * m_47.z) : 0.0);
+}
+
+float sampling_rect_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_78, vec2 half_extent_9, vec3 wo_9, vec3 m_48) {
+    bool local_37 = false;
+    bool local_38 = false;
+    float wom_1 = dot(wo_9, m_48);
+    if (!(!((wo_9.z > 0.0)))) {
+        local_37 = !((m_48.z > 0.0));
+    } else {
+        local_37 = true;
+    }
+    bool _e17 = local_37;
+    if (!(_e17)) {
+        local_38 = !((wom_1 > 0.0));
+    } else {
+        local_38 = true;
+    }
+    bool _e25 = local_38;
+    if (_e25) {
+        return 0.0;
+    }
+    float _e27 = filter_rect_d_rect(r_78, m_48, half_extent_9);
+    float _e30 = filter_rect_lambda_lambda_rect(r_78, half_extent_9, wo_9);
+    float v_24 = ((wom_1 * _e27) / (wo_9.z * (1.0 + _e30)));
+    return ((v_24 <= math_F32_MAX) ? v_24 : 0.0);
 }
 
 void main() {

@@ -14,71 +14,6 @@ struct ndf_roughness_matrix_RoughnessMatrix {
     int _end_pad_0;
 };
 
-struct kernel_covariance_Covariance {
-    float s_xx;
-    float s_xy;
-    float s_yy;
-    float det;
-};
-
-struct filter_lean_LeanMoments {
-    float2 mean;
-    int _pad1_0;
-    int _pad1_1;
-    float3 second;
-    int _end_pad_0;
-};
-
-struct ndf_roughness_isotropic_Isotropic {
-    float alpha;
-    float inv_alpha_sq;
-};
-
-struct filter_deferred_KernelConvention {
-    uint domain;
-    uint norm;
-    float scale;
-    float exponent;
-    float bias;
-    float clamp_;
-    uint combine;
-    bool saturate_;
-    float perceptual_floor;
-};
-
-struct ndf_roughness_axis_aligned_AxisAligned {
-    float2 alpha;
-    float2 inv_alpha_sq;
-};
-
-struct filter_gaussian_ggx_quad_TrapezoidRule {
-    float h;
-    float exp_h;
-    float eps_t;
-    float y_lo;
-    float4 geom;
-    uint nodes;
-    int _end_pad_0;
-    int _end_pad_1;
-    int _end_pad_2;
-};
-
-struct sampling_Warp {
-    float l_xx;
-    float l_yx;
-    float l_yy;
-};
-
-struct filter_gaussian_ggx_GaussianFilteredGgx {
-    ndf_roughness_matrix_RoughnessMatrix a;
-    float2 inv_sqrt_l;
-    float2 v;
-    float2 tl;
-    float norm;
-    kernel_covariance_Covariance k;
-    uint tol;
-};
-
 struct footprint_jacobian_Polar {
     float3 h;
     int _pad1_0;
@@ -94,13 +29,30 @@ struct footprint_jacobian_SphericalBasis {
     int _end_pad_0;
 };
 
-struct kernel_rect_BoundingRect {
-    float2 half_extent;
-};
-
 struct footprint_Footprint {
     float2 dh_u;
     float2 dh_v;
+};
+
+struct kernel_covariance_Covariance {
+    float s_xx;
+    float s_xy;
+    float s_yy;
+    float det;
+};
+
+struct ndf_roughness_isotropic_Isotropic {
+    float alpha;
+    float inv_alpha_sq;
+};
+
+struct ndf_roughness_axis_aligned_AxisAligned {
+    float2 alpha;
+    float2 inv_alpha_sq;
+};
+
+struct kernel_rect_BoundingRect {
+    float2 half_extent;
 };
 
 struct kernel_clamp_ClampRules {
@@ -111,34 +63,99 @@ struct kernel_clamp_ClampRules {
     bool det_clamp;
 };
 
-struct filter_method_Gaussian {
+struct filter_gaussian_Gaussian {
     kernel_clamp_ClampRules clamps;
     float sigma;
 };
 
-struct filter_method_ExactGaussian {
+struct filter_lean_LeanMoments {
+    float2 mean;
+    int _pad1_0;
+    int _pad1_1;
+    float3 second;
+    int _end_pad_0;
+};
+
+struct filter_deferred_KernelConvention {
+    uint domain;
+    uint norm;
+    float scale;
+    float exponent;
+    float bias;
+    float clamp_;
+    uint combine;
+    bool saturate_;
+    float perceptual_floor;
+};
+
+struct filter_gaussian_ggx_quad_TrapezoidRule {
+    float h;
+    float exp_h;
+    float eps_t;
+    float y_lo;
+    float4 geom;
+    uint nodes;
+    int _end_pad_0;
+    int _end_pad_1;
+    int _end_pad_2;
+};
+
+struct filter_gaussian_ggx_GaussianFilteredGgx {
+    ndf_roughness_matrix_RoughnessMatrix a;
+    float2 inv_sqrt_l;
+    float2 v;
+    float2 tl;
+    float norm;
+    kernel_covariance_Covariance k;
+    uint tol;
+};
+
+struct filter_gaussian_ggx_ExactGaussian {
     kernel_clamp_ClampRules clamps;
     float sigma;
     uint tolerance;
 };
 
-struct filter_method_Projected {
+struct filter_projected_Projected {
     kernel_clamp_ClampRules clamps;
     float sigma;
 };
 
-struct filter_method_Rect {
+struct filter_proxy_Proxy {
     kernel_clamp_ClampRules clamps;
 };
 
-struct filter_method_RectFilteredGgx {
+struct filter_rect_lobe_Rect {
+    kernel_clamp_ClampRules clamps;
+};
+
+struct filter_rect_lobe_RectFilteredGgx {
     ndf_roughness_axis_aligned_AxisAligned roughness;
     float2 half_extent;
 };
 
-struct filter_method_Proxy {
-    kernel_clamp_ClampRules clamps;
+struct sampling_Warp {
+    float l_xx;
+    float l_yx;
+    float l_yy;
 };
+
+kernel_clamp_ClampRules Constructkernel_clamp_ClampRules(float arg0, uint arg1, float arg2, float arg3, bool arg4) {
+    kernel_clamp_ClampRules ret = (kernel_clamp_ClampRules)0;
+    ret.max_extent = arg0;
+    ret.floor_kind = arg1;
+    ret.floor_ = arg2;
+    ret.kappa = arg3;
+    ret.det_clamp = arg4;
+    return ret;
+}
+
+filter_gaussian_Gaussian Constructfilter_gaussian_Gaussian(kernel_clamp_ClampRules arg0, float arg1) {
+    filter_gaussian_Gaussian ret = (filter_gaussian_Gaussian)0;
+    ret.clamps = arg0;
+    ret.sigma = arg1;
+    return ret;
+}
 
 filter_gaussian_ggx_quad_TrapezoidRule Constructfilter_gaussian_ggx_quad_TrapezoidRule(float arg0, float arg1, float arg2, float arg3, float4 arg4, uint arg5) {
     filter_gaussian_ggx_quad_TrapezoidRule ret = (filter_gaussian_ggx_quad_TrapezoidRule)0;
@@ -151,46 +168,29 @@ filter_gaussian_ggx_quad_TrapezoidRule Constructfilter_gaussian_ggx_quad_Trapezo
     return ret;
 }
 
-kernel_clamp_ClampRules Constructkernel_clamp_ClampRules(float arg0, uint arg1, float arg2, float arg3, bool arg4) {
-    kernel_clamp_ClampRules ret = (kernel_clamp_ClampRules)0;
-    ret.max_extent = arg0;
-    ret.floor_kind = arg1;
-    ret.floor_ = arg2;
-    ret.kappa = arg3;
-    ret.det_clamp = arg4;
-    return ret;
-}
-
-filter_method_Gaussian Constructfilter_method_Gaussian(kernel_clamp_ClampRules arg0, float arg1) {
-    filter_method_Gaussian ret = (filter_method_Gaussian)0;
-    ret.clamps = arg0;
-    ret.sigma = arg1;
-    return ret;
-}
-
-filter_method_ExactGaussian Constructfilter_method_ExactGaussian(kernel_clamp_ClampRules arg0, float arg1, uint arg2) {
-    filter_method_ExactGaussian ret = (filter_method_ExactGaussian)0;
+filter_gaussian_ggx_ExactGaussian Constructfilter_gaussian_ggx_ExactGaussian(kernel_clamp_ClampRules arg0, float arg1, uint arg2) {
+    filter_gaussian_ggx_ExactGaussian ret = (filter_gaussian_ggx_ExactGaussian)0;
     ret.clamps = arg0;
     ret.sigma = arg1;
     ret.tolerance = arg2;
     return ret;
 }
 
-filter_method_Projected Constructfilter_method_Projected(kernel_clamp_ClampRules arg0, float arg1) {
-    filter_method_Projected ret = (filter_method_Projected)0;
+filter_projected_Projected Constructfilter_projected_Projected(kernel_clamp_ClampRules arg0, float arg1) {
+    filter_projected_Projected ret = (filter_projected_Projected)0;
     ret.clamps = arg0;
     ret.sigma = arg1;
     return ret;
 }
 
-filter_method_Rect Constructfilter_method_Rect(kernel_clamp_ClampRules arg0) {
-    filter_method_Rect ret = (filter_method_Rect)0;
+filter_proxy_Proxy Constructfilter_proxy_Proxy(kernel_clamp_ClampRules arg0) {
+    filter_proxy_Proxy ret = (filter_proxy_Proxy)0;
     ret.clamps = arg0;
     return ret;
 }
 
-filter_method_Proxy Constructfilter_method_Proxy(kernel_clamp_ClampRules arg0) {
-    filter_method_Proxy ret = (filter_method_Proxy)0;
+filter_rect_lobe_Rect Constructfilter_rect_lobe_Rect(kernel_clamp_ClampRules arg0) {
+    filter_rect_lobe_Rect ret = (filter_rect_lobe_Rect)0;
     ret.clamps = arg0;
     return ret;
 }
@@ -222,9 +222,22 @@ static const float math_LN_2_ = 0.6931472;
 static const float math_SQRT_TAU = 2.5066283;
 static const float math_LOG2_E = 1.442695;
 static const float math_SQRT_2_ = 1.4142135;
+static const float footprint_jacobian_HZ_MIN = 1e-6;
+static const float footprint_SIGMA_PIXEL = 0.5;
 static const float kernel_covariance_KERNEL_MAX = 100000000.0;
 static const float ndf_roughness_ALPHA_MIN = 1e-8;
 static const float ndf_roughness_ALPHA_MAX = 10000.0;
+static const float ndf_beckmann_EXP_SPLIT = 80.0;
+static const float ndf_beckmann_SQRT_PI = 1.7724539;
+static const uint kernel_clamp_FLOOR_NONE = 0u;
+static const uint kernel_clamp_FLOOR_CONSTANT = 1u;
+static const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
+static const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
+static const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
+static const kernel_clamp_ClampRules kernel_clamp_NO_RULES = Constructkernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
+static const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
+static const filter_gaussian_Gaussian filter_gaussian_TK19_GAUSSIAN = Constructfilter_gaussian_Gaussian(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
+static const filter_gaussian_Gaussian filter_gaussian_KHPL16_GAUSSIAN = Constructfilter_gaussian_Gaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
 static const float filter_deferred_KAPPA = 0.18;
 static const uint filter_deferred_DOMAIN_ALPHA_SQ = 0u;
 static const uint filter_deferred_DOMAIN_ALPHA = 1u;
@@ -239,8 +252,6 @@ static const uint filter_deferred_COMBINE_MAX = 1u;
 static const uint filter_deferred_BANDWIDTH_MAX = 0u;
 static const uint filter_deferred_BANDWIDTH_TRACE = 1u;
 static const uint filter_deferred_BANDWIDTH_AVERAGE = 2u;
-static const float ndf_beckmann_EXP_SPLIT = 80.0;
-static const float ndf_beckmann_SQRT_PI = 1.7724539;
 static const float filter_gaussian_ggx_quad_FAR = 320000.0;
 static const float filter_gaussian_ggx_quad_H = 0.5;
 static const float filter_gaussian_ggx_quad_EXP_H = 1.6487212;
@@ -260,32 +271,20 @@ static const float filter_gaussian_ggx_quad_S_MAX = 0.25;
 static const float filter_gaussian_ggx_quad_S_COEF = 0.25;
 static const float filter_gaussian_ggx_quad_S_EPS = 1e-8;
 static const uint filter_gaussian_ggx_quad_S_MAX_CHUNKS = 512u;
-static const float sampling_ONE_MINUS_EPS = 0.99999994;
 static const uint filter_gaussian_ggx_TOL_FULL = 0u;
 static const uint filter_gaussian_ggx_TOL_1E4_ = 1u;
 static const uint filter_gaussian_ggx_TOL_1E3_ = 2u;
 static const uint filter_gaussian_ggx_TOL_1E2_ = 3u;
-static const float footprint_jacobian_HZ_MIN = 1e-6;
-static const float footprint_SIGMA_PIXEL = 0.5;
+static const filter_gaussian_ggx_ExactGaussian filter_gaussian_ggx_KHPL16_EXACT_GAUSSIAN = Constructfilter_gaussian_ggx_ExactGaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5, 0u);
 static const float filter_projected_PROJECTED_EIGEN_MAX = 0.99;
-static const uint kernel_clamp_FLOOR_NONE = 0u;
-static const uint kernel_clamp_FLOOR_CONSTANT = 1u;
-static const uint kernel_clamp_FLOOR_ALPHA_CAPPED = 2u;
-static const kernel_clamp_ClampRules kernel_clamp_DEFAULT_RULES = Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true);
-static const kernel_clamp_ClampRules kernel_clamp_KHPL16_RULES = Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true);
-static const kernel_clamp_ClampRules kernel_clamp_NO_RULES = Constructkernel_clamp_ClampRules(3.4028235e38, 0u, 0.0, 3.4028235e38, false);
-static const kernel_clamp_ClampRules kernel_clamp_GDC2016_RULES = Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true);
+static const filter_projected_Projected filter_projected_TK21_PROJECTED = Constructfilter_projected_Projected(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
+static const filter_proxy_Proxy filter_proxy_KHPL16_PROXY = Constructfilter_proxy_Proxy(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
 static const float filter_rect_BIG = 1e18;
 static const float filter_rect_FAR2_ = 0.25;
 static const uint filter_rect_TIER_CLOSED = 0u;
 static const float filter_rect_lambda_BIG_K = 1000000000000.0;
-static const filter_method_Gaussian filter_method_TK19_GAUSSIAN = Constructfilter_method_Gaussian(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
-static const filter_method_Gaussian filter_method_KHPL16_GAUSSIAN = Constructfilter_method_Gaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5);
-static const filter_method_ExactGaussian filter_method_KHPL16_EXACT_GAUSSIAN = Constructfilter_method_ExactGaussian(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true), 0.5, 0u);
-static const filter_method_Projected filter_method_TK21_PROJECTED = Constructfilter_method_Projected(Constructkernel_clamp_ClampRules(1.0, 1u, 0.001, 0.18, true), 0.5);
-static const filter_method_Rect filter_method_KHPL16_RECT = Constructfilter_method_Rect(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
-static const filter_method_Rect filter_method_GDC2016_RECT = Constructfilter_method_Rect(Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true));
-static const filter_method_Proxy filter_method_KHPL16_PROXY = Constructfilter_method_Proxy(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
+static const filter_rect_lobe_Rect filter_rect_lobe_KHPL16_RECT = Constructfilter_rect_lobe_Rect(Constructkernel_clamp_ClampRules(1.0, 0u, 0.0, 3.4028235e38, true));
+static const filter_rect_lobe_Rect filter_rect_lobe_GDC2016_RECT = Constructfilter_rect_lobe_Rect(Constructkernel_clamp_ClampRules(1.0, 2u, 0.1, 3.4028235e38, true));
 static const filter_deferred_KernelConvention filter_presets_TK19_TRACE = Constructfilter_deferred_KernelConvention(0u, 0u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
 static const filter_deferred_KernelConvention filter_presets_TK19_AVERAGE = Constructfilter_deferred_KernelConvention(0u, 0u, 0.25, 1.0, 0.0, 0.18, 0u, true, 0.0);
 static const filter_deferred_KernelConvention filter_presets_TK19_MAX = Constructfilter_deferred_KernelConvention(0u, 2u, 0.5, 1.0, 0.0, 0.18, 0u, true, 0.0);
@@ -298,6 +297,7 @@ static const filter_deferred_KernelConvention filter_presets_O3DE = Constructfil
 static const filter_deferred_KernelConvention filter_presets_UNREAL = Constructfilter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 static const filter_deferred_KernelConvention filter_presets_BABYLON = Constructfilter_deferred_KernelConvention(2u, 1u, 1.0, 0.333, 0.0, 1.0, 1u, false, 0.0);
 static const filter_deferred_KernelConvention filter_presets_THREE_JS = Constructfilter_deferred_KernelConvention(2u, 3u, 1.0, 1.0, 0.0, 3.4028235e38, 0u, true, 0.0525);
+static const float sampling_ONE_MINUS_EPS = 0.99999994;
 static const float sampling_beckmann_X_MAX = 9.0;
 static const uint sampling_beckmann_MAX_ITERATIONS = 64u;
 static const float sampling_beckmann_INV_SQRT_PI = 0.5641896;
@@ -427,6 +427,32 @@ float math_ln_1p(float x_4)
     return _e9;
 }
 
+bool math_is_nan(float x_5)
+{
+    return ((asuint(x_5) & 2147483647u) > 2139095040u);
+}
+
+float math_nan_to_zero(float x_6)
+{
+    const bool _e1 = math_is_nan(x_6);
+    return (_e1 ? 0.0 : x_6);
+}
+
+float2 math_nan_to_zero2_(float2 v)
+{
+    const float _e2 = math_nan_to_zero(v.x);
+    const float _e4 = math_nan_to_zero(v.y);
+    return float2(_e2, _e4);
+}
+
+float3 math_nan_to_zero3_(float3 v_1)
+{
+    const float _e2 = math_nan_to_zero(v_1.x);
+    const float _e4 = math_nan_to_zero(v_1.y);
+    const float _e6 = math_nan_to_zero(v_1.z);
+    return float3(_e2, _e4, _e6);
+}
+
 ndf_roughness_matrix_RoughnessMatrix Constructndf_roughness_matrix_RoughnessMatrix(float2 arg0, float2 arg1, float2 arg2, float2 arg3, float arg4, float arg5, float arg6) {
     ndf_roughness_matrix_RoughnessMatrix ret = (ndf_roughness_matrix_RoughnessMatrix)0;
     ret.axis = arg0;
@@ -467,19 +493,19 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_eigenbasis(float2
 
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_from_entries_det(float a11_, float a12_, float a22_, float det_2, float tau_2)
 {
-    float2 v = (float2)0;
+    float2 v_2 = (float2)0;
 
     float half_diff = (0.5 * (a11_ - a22_));
     float rad = sqrt(((half_diff * half_diff) + (a12_ * a12_)));
     float l1_1 = ((0.5 * (a11_ + a22_)) + rad);
     float l2_2 = (max(det_2, 0.0) / l1_1);
     float big = (rad + abs(half_diff));
-    v = ((half_diff < 0.0) ? float2(a12_, big) : float2(big, a12_));
+    v_2 = ((half_diff < 0.0) ? float2(a12_, big) : float2(big, a12_));
     if ((big <= 0.0)) {
-        v = float2(1.0, 0.0);
+        v_2 = float2(1.0, 0.0);
     }
-    float2 _e32 = v;
-    float2 _e33 = v;
+    float2 _e32 = v_2;
+    float2 _e33 = v_2;
     float2 axis_2 = (_e32 / (length(_e33)).xx);
     const ndf_roughness_matrix_RoughnessMatrix _e38 = ndf_roughness_matrix_from_eigenbasis(axis_2, float2(l1_1, l2_2), det_2, tau_2);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_2 = _e38;
@@ -500,9 +526,9 @@ ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_with_det_clamp(ndf_rou
     return ndf_roughness_matrix_roughnessmatrix_4;
 }
 
-float2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, float2 v_1)
+float2 ndf_roughness_matrix_rotate(ndf_roughness_matrix_RoughnessMatrix r_2, float2 v_3)
 {
-    return float2(((r_2.axis.x * v_1.x) + (r_2.axis.y * v_1.y)), ((r_2.axis.x * v_1.y) - (r_2.axis.y * v_1.x)));
+    return float2(((r_2.axis.x * v_3.x) + (r_2.axis.y * v_3.y)), ((r_2.axis.x * v_3.y) - (r_2.axis.y * v_3.x)));
 }
 
 float ndf_roughness_matrix_inv_quadratic(ndf_roughness_matrix_RoughnessMatrix r_3, float2 s)
@@ -556,6 +582,186 @@ float ndf_roughness_matrix_own_det_clamp(ndf_roughness_matrix_RoughnessMatrix r_
     return ((r_11.tau > r_11.det) ? r_11.tau : 0.0);
 }
 
+footprint_jacobian_Polar Constructfootprint_jacobian_Polar(float3 arg0, float2 arg1) {
+    footprint_jacobian_Polar ret = (footprint_jacobian_Polar)0;
+    ret.h = arg0;
+    ret.cs = arg1;
+    return ret;
+}
+
+footprint_jacobian_Polar footprint_jacobian_polar(float3 h_in)
+{
+    float2 cs_1 = float2(1.0, 0.0);
+
+    float big_1 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if ((big_1 <= 0.0)) {
+        const footprint_jacobian_Polar footprint_jacobian_polar_1 = Constructfootprint_jacobian_Polar(float3(0.0, 0.0, 1.0), float2(1.0, 0.0));
+        return footprint_jacobian_polar_1;
+    }
+    float3 h0_ = (h_in / (big_1).xxx);
+    float3 h_22 = (h0_ / (length(h0_)).xxx);
+    float qs_3 = max(abs(h_22.x), abs(h_22.y));
+    if ((qs_3 > 0.0)) {
+        float2 q_5 = (h_22.xy / (qs_3).xx);
+        cs_1 = (q_5 / (length(q_5)).xx);
+    }
+    if ((h_22.z >= footprint_jacobian_HZ_MIN)) {
+        float2 _e44 = cs_1;
+        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_22, _e44);
+        return footprint_jacobian_polar_2;
+    }
+    float2 _e47 = cs_1;
+    float2 _e51 = cs_1;
+    const footprint_jacobian_Polar footprint_jacobian_polar_3 = Constructfootprint_jacobian_Polar(float3((1.0 * _e47), footprint_jacobian_HZ_MIN), _e51);
+    return footprint_jacobian_polar_3;
+}
+
+float3 footprint_jacobian_sanitize(float3 h)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h);
+    return _e1.h;
+}
+
+footprint_jacobian_SphericalBasis Constructfootprint_jacobian_SphericalBasis(float3 arg0, float3 arg1) {
+    footprint_jacobian_SphericalBasis ret = (footprint_jacobian_SphericalBasis)0;
+    ret.e_x = arg0;
+    ret.e_y = arg1;
+    return ret;
+}
+
+footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(float3 h_1)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
+    float st = length(_e1.h.xy);
+    const footprint_jacobian_SphericalBasis footprint_jacobian_sphericalbasis = Constructfootprint_jacobian_SphericalBasis(float3((_e1.h.z * _e1.cs), -(st)), float3(-(_e1.cs.y), _e1.cs.x, 0.0));
+    return footprint_jacobian_sphericalbasis;
+}
+
+float2 footprint_jacobian_spherical_components(float3 h_2, float3 dh)
+{
+    const footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_2);
+    return float2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
+}
+
+float2x2 footprint_jacobian_sphere_to_projected(float3 h_3)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_3);
+    return float2x2((_e1.h.z * _e1.cs), float2(-(_e1.cs.y), _e1.cs.x));
+}
+
+float2x2 footprint_jacobian_projected_to_slope(float3 h_in_1)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
+    float3 h_23 = _e1.h;
+    float k_25 = (-1.0 / ((h_23.z * h_23.z) * h_23.z));
+    float xy_1 = (h_23.x * h_23.y);
+    return float2x2((float2(((h_23.x * h_23.x) + (h_23.z * h_23.z)), xy_1) * k_25), (float2(xy_1, ((h_23.y * h_23.y) + (h_23.z * h_23.z))) * k_25));
+}
+
+float2x2 footprint_jacobian_slope_to_projected(float3 h_in_2)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
+    float3 h_24 = _e1.h;
+    float xy_2 = (h_24.x * h_24.y);
+    return float2x2((float2(((h_24.y * h_24.y) + (h_24.z * h_24.z)), -(xy_2)) * -(h_24.z)), (float2(-(xy_2), ((h_24.x * h_24.x) + (h_24.z * h_24.z))) * -(h_24.z)));
+}
+
+float2x2 footprint_jacobian_sphere_to_slope(float3 h_4)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
+    float k_26 = (-1.0 / (_e1.h.z * _e1.h.z));
+    return float2x2((_e1.cs * k_26), (float2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_26));
+}
+
+float footprint_jacobian_det_sphere_to_projected(float3 h_5)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
+    return _e1.h.z;
+}
+
+float footprint_jacobian_det_projected_to_slope(float3 h_6)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
+    float z_4 = _e1.h.z;
+    float z2_5 = (z_4 * z_4);
+    return (1.0 / (z2_5 * z2_5));
+}
+
+float footprint_jacobian_det_sphere_to_slope(float3 h_7)
+{
+    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
+    float z_5 = _e1.h.z;
+    return (1.0 / ((z_5 * z_5) * z_5));
+}
+
+float2 footprint_jacobian_spherical_to_slope(float3 h_8, float2 e_1)
+{
+    const float2x2 _e2 = footprint_jacobian_sphere_to_slope(h_8);
+    return mul(e_1, _e2);
+}
+
+float2 footprint_jacobian_spherical_to_projected(float3 h_9, float2 e_2)
+{
+    const float2x2 _e2 = footprint_jacobian_sphere_to_projected(h_9);
+    return mul(e_2, _e2);
+}
+
+footprint_Footprint Constructfootprint_Footprint(float2 arg0, float2 arg1) {
+    footprint_Footprint ret = (footprint_Footprint)0;
+    ret.dh_u = arg0;
+    ret.dh_v = arg1;
+    return ret;
+}
+
+footprint_Footprint footprint_from_slope_derivatives(float2 dh_u, float2 dh_v)
+{
+    const footprint_Footprint footprint_footprint = Constructfootprint_Footprint(dh_u, dh_v);
+    return footprint_footprint;
+}
+
+footprint_Footprint footprint_from_projected_derivatives(float2 dp_u, float2 dp_v)
+{
+    const footprint_Footprint footprint_footprint_1 = Constructfootprint_Footprint(dp_u, dp_v);
+    return footprint_footprint_1;
+}
+
+footprint_Footprint footprint_from_projected_derivatives_in_slope(float3 h_10, float2 dp_u_1, float2 dp_v_1)
+{
+    float big_2 = max(max(abs(h_10.x), abs(h_10.y)), abs(h_10.z));
+    if ((big_2 <= 0.0)) {
+        const footprint_Footprint footprint_footprint_2 = Constructfootprint_Footprint((0.0).xx, (0.0).xx);
+        return footprint_footprint_2;
+    }
+    const float2x2 _e18 = footprint_jacobian_projected_to_slope(h_10);
+    const float2 _e19 = math_nan_to_zero2_(dp_u_1);
+    const float2 _e21 = math_nan_to_zero2_(dp_v_1);
+    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint(mul(_e19, _e18), mul(_e21, _e18));
+    return footprint_footprint_3;
+}
+
+footprint_Footprint footprint_from_normal_differences(float3 dn_u_in, float3 dn_v_in)
+{
+    const float3 _e2 = math_nan_to_zero3_(dn_u_in);
+    const float3 _e3 = math_nan_to_zero3_(dn_v_in);
+    float lu = max(length((float3(0.0, 0.0, 2.0) + _e2)), 1e-6);
+    float lv = max(length((float3(0.0, 0.0, 2.0) + _e3)), 1e-6);
+    const footprint_Footprint footprint_footprint_4 = Constructfootprint_Footprint((_e2.xy * (2.0 / lu)), (_e3.xy * (2.0 / lv)));
+    return footprint_footprint_4;
+}
+
+footprint_Footprint footprint_nan_to_zero(footprint_Footprint fp)
+{
+    const float2 _e2 = math_nan_to_zero2_(fp.dh_u);
+    const float2 _e4 = math_nan_to_zero2_(fp.dh_v);
+    const footprint_Footprint footprint_footprint_5 = Constructfootprint_Footprint(_e2, _e4);
+    return footprint_footprint_5;
+}
+
+float footprint_max_extent(footprint_Footprint fp_1)
+{
+    return (0.5 * max(length((fp_1.dh_u + fp_1.dh_v)), length((fp_1.dh_u - fp_1.dh_v))));
+}
+
 kernel_covariance_Covariance Constructkernel_covariance_Covariance(float arg0, float arg1, float arg2, float arg3) {
     kernel_covariance_Covariance ret = (kernel_covariance_Covariance)0;
     ret.s_xx = arg0;
@@ -577,6 +783,17 @@ kernel_covariance_Covariance kernel_covariance_from_entries(float s_xx, float s_
     return kernel_covariance_covariance_1;
 }
 
+kernel_covariance_Covariance kernel_covariance_from_footprint(footprint_Footprint fp_in, float sigma)
+{
+    const footprint_Footprint _e2 = footprint_nan_to_zero(fp_in);
+    float2 u_18 = _e2.dh_u;
+    float2 v_15 = _e2.dh_v;
+    float s2_ = (sigma * sigma);
+    float cross_ = (((u_18.x * v_15.y) - (u_18.y * v_15.x)) * s2_);
+    const kernel_covariance_Covariance kernel_covariance_covariance_2 = Constructkernel_covariance_Covariance((((u_18.x * u_18.x) + (v_15.x * v_15.x)) * s2_), (((u_18.x * u_18.y) + (v_15.x * v_15.y)) * s2_), (((u_18.y * u_18.y) + (v_15.y * v_15.y)) * s2_), (cross_ * cross_));
+    return kernel_covariance_covariance_2;
+}
+
 float kernel_covariance_trace(kernel_covariance_Covariance c)
 {
     return (c.s_xx + c.s_yy);
@@ -584,15 +801,15 @@ float kernel_covariance_trace(kernel_covariance_Covariance c)
 
 kernel_covariance_Covariance kernel_covariance_scaled(kernel_covariance_Covariance c_1, float k)
 {
-    const kernel_covariance_Covariance kernel_covariance_covariance_2 = Constructkernel_covariance_Covariance((c_1.s_xx * k), (c_1.s_xy * k), (c_1.s_yy * k), ((c_1.det * k) * k));
-    return kernel_covariance_covariance_2;
+    const kernel_covariance_Covariance kernel_covariance_covariance_3 = Constructkernel_covariance_Covariance((c_1.s_xx * k), (c_1.s_xy * k), (c_1.s_yy * k), ((c_1.det * k) * k));
+    return kernel_covariance_covariance_3;
 }
 
 kernel_covariance_Covariance kernel_covariance_add(kernel_covariance_Covariance a, kernel_covariance_Covariance b)
 {
-    float cross_ = (((a.s_xx * b.s_yy) + (a.s_yy * b.s_xx)) - ((2.0 * a.s_xy) * b.s_xy));
-    const kernel_covariance_Covariance kernel_covariance_covariance_3 = Constructkernel_covariance_Covariance((a.s_xx + b.s_xx), (a.s_xy + b.s_xy), (a.s_yy + b.s_yy), ((a.det + b.det) + cross_));
-    return kernel_covariance_covariance_3;
+    float cross_1 = (((a.s_xx * b.s_yy) + (a.s_yy * b.s_xx)) - ((2.0 * a.s_xy) * b.s_xy));
+    const kernel_covariance_Covariance kernel_covariance_covariance_4 = Constructkernel_covariance_Covariance((a.s_xx + b.s_xx), (a.s_xy + b.s_xy), (a.s_yy + b.s_yy), ((a.det + b.det) + cross_1));
+    return kernel_covariance_covariance_4;
 }
 
 float2 kernel_covariance_eigenvalues(kernel_covariance_Covariance c_2)
@@ -610,13 +827,13 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
 
     if (!((max_eig >= 0.0))) {
         const kernel_covariance_Covariance _e5 = kernel_covariance_zero();
-        const kernel_covariance_Covariance kernel_covariance_covariance_4 = _e5;
-        return kernel_covariance_covariance_4;
+        const kernel_covariance_Covariance kernel_covariance_covariance_5 = _e5;
+        return kernel_covariance_covariance_5;
     }
     float scale = max(max(abs(c_3.s_xx), abs(c_3.s_yy)), abs(c_3.s_xy));
     if ((scale <= 0.0)) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_5 = c_3;
-        return kernel_covariance_covariance_5;
+        const kernel_covariance_Covariance kernel_covariance_covariance_6 = c_3;
+        return kernel_covariance_covariance_6;
     }
     float a_19 = (c_3.s_xx / scale);
     float b_6 = (c_3.s_xy / scale);
@@ -625,8 +842,8 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     float r_81 = sqrt(((d_3 * d_3) + (b_6 * b_6)));
     float lmax_1 = (((0.5 * (a_19 + e_3)) + r_81) * scale);
     if ((lmax_1 <= max_eig)) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_6 = c_3;
-        return kernel_covariance_covariance_6;
+        const kernel_covariance_Covariance kernel_covariance_covariance_7 = c_3;
+        return kernel_covariance_covariance_7;
     }
     float lmin_1 = max((c_3.det / lmax_1), 0.0);
     if (!((lmin_1 >= max_eig))) {
@@ -636,137 +853,130 @@ kernel_covariance_Covariance kernel_covariance_clamp_eigenvalues(kernel_covarian
     }
     bool _e46 = local;
     if (_e46) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_7 = Constructkernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
-        return kernel_covariance_covariance_7;
+        const kernel_covariance_Covariance kernel_covariance_covariance_8 = Constructkernel_covariance_Covariance(max_eig, 0.0, max_eig, (max_eig * max_eig));
+        return kernel_covariance_covariance_8;
     }
     float p_7 = (r_81 + abs(d_3));
-    float q_5 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
-    float2 ee = ((d_3 >= 0.0) ? float2(p_7, q_5) : float2(q_5, p_7));
+    float q_6 = ((p_7 > 0.0) ? ((b_6 * b_6) / p_7) : 0.0);
+    float2 ee = ((d_3 >= 0.0) ? float2(p_7, q_6) : float2(q_6, p_7));
     float inv_1 = (1.0 / (2.0 * r_81));
     float p11_ = (ee.x * inv_1);
     float p12_ = (b_6 * inv_1);
     float p22_ = (ee.y * inv_1);
-    const kernel_covariance_Covariance kernel_covariance_covariance_8 = Constructkernel_covariance_Covariance(((max_eig * p11_) + (lmin_1 * p22_)), ((max_eig - lmin_1) * p12_), ((max_eig * p22_) + (lmin_1 * p11_)), (max_eig * lmin_1));
-    return kernel_covariance_covariance_8;
+    const kernel_covariance_Covariance kernel_covariance_covariance_9 = Constructkernel_covariance_Covariance(((max_eig * p11_) + (lmin_1 * p22_)), ((max_eig - lmin_1) * p12_), ((max_eig * p22_) + (lmin_1 * p11_)), (max_eig * lmin_1));
+    return kernel_covariance_covariance_9;
 }
 
-kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covariance c_4)
+kernel_covariance_Covariance kernel_covariance_sanitized(kernel_covariance_Covariance c_in)
 {
     bool local_1 = (bool)0;
     bool local_2 = (bool)0;
+    kernel_covariance_Covariance c_4 = (kernel_covariance_Covariance)0;
+    bool local_3 = (bool)0;
+    bool local_4 = (bool)0;
+    bool local_5 = (bool)0;
+    bool local_6 = (bool)0;
+    bool local_7 = (bool)0;
 
-    float big_1 = max(max(abs(c_4.s_xx), abs(c_4.s_yy)), abs(c_4.s_xy));
-    if ((big_1 > math_F32_MAX)) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_9 = Constructkernel_covariance_Covariance(100000000.0, 0.0, 100000000.0, 1e16);
-        return kernel_covariance_covariance_9;
-    }
-    if ((c_4.s_xx >= 0.0)) {
-        local_1 = (c_4.s_yy >= 0.0);
+    if (!((abs(c_in.s_xx) > math_F32_MAX))) {
+        local_1 = (abs(c_in.s_xy) > math_F32_MAX);
     } else {
-        local_1 = false;
+        local_1 = true;
     }
-    bool _e25 = local_1;
-    if (_e25) {
-        local_2 = (c_4.det >= 0.0);
+    bool _e13 = local_1;
+    if (!(_e13)) {
+        local_2 = (abs(c_in.s_yy) > math_F32_MAX);
     } else {
-        local_2 = false;
+        local_2 = true;
     }
-    bool _e32 = local_2;
-    if (_e32) {
-        const kernel_covariance_Covariance _e34 = kernel_covariance_clamp_eigenvalues(c_4, kernel_covariance_KERNEL_MAX);
-        const kernel_covariance_Covariance kernel_covariance_covariance_10 = _e34;
+    bool inf = local_2;
+    if (inf) {
+        const kernel_covariance_Covariance kernel_covariance_covariance_10 = Constructkernel_covariance_Covariance(100000000.0, 0.0, 100000000.0, 1e16);
         return kernel_covariance_covariance_10;
     }
-    float s_xx_1 = max(c_4.s_xx, 0.0);
-    float s_yy_1 = max(c_4.s_yy, 0.0);
+    const float _e29 = math_nan_to_zero(c_in.s_xx);
+    const float _e31 = math_nan_to_zero(c_in.s_xy);
+    const float _e33 = math_nan_to_zero(c_in.s_yy);
+    c_4 = Constructkernel_covariance_Covariance(_e29, _e31, _e33, c_in.det);
+    float _e38 = c_4.det;
+    const bool _e39 = math_is_nan(_e38);
+    if (!(_e39)) {
+        const bool _e44 = math_is_nan(c_in.s_xx);
+        local_3 = _e44;
+    } else {
+        local_3 = true;
+    }
+    bool _e46 = local_3;
+    if (!(_e46)) {
+        const bool _e51 = math_is_nan(c_in.s_xy);
+        local_4 = _e51;
+    } else {
+        local_4 = true;
+    }
+    bool _e53 = local_4;
+    if (!(_e53)) {
+        const bool _e58 = math_is_nan(c_in.s_yy);
+        local_5 = _e58;
+    } else {
+        local_5 = true;
+    }
+    bool _e60 = local_5;
+    if (_e60) {
+        float _e63 = c_4.s_xx;
+        float _e65 = c_4.s_yy;
+        float _e68 = c_4.s_xy;
+        float _e70 = c_4.s_xy;
+        c_4.det = ((_e63 * _e65) - (_e68 * _e70));
+    }
+    float _e74 = c_4.s_xx;
+    if ((_e74 >= 0.0)) {
+        float _e80 = c_4.s_yy;
+        local_6 = (_e80 >= 0.0);
+    } else {
+        local_6 = false;
+    }
+    bool _e84 = local_6;
+    if (_e84) {
+        float _e88 = c_4.det;
+        local_7 = (_e88 >= 0.0);
+    } else {
+        local_7 = false;
+    }
+    bool _e92 = local_7;
+    if (_e92) {
+        kernel_covariance_Covariance _e93 = c_4;
+        const kernel_covariance_Covariance _e95 = kernel_covariance_clamp_eigenvalues(_e93, kernel_covariance_KERNEL_MAX);
+        const kernel_covariance_Covariance kernel_covariance_covariance_11 = _e95;
+        return kernel_covariance_covariance_11;
+    }
+    float _e97 = c_4.s_xx;
+    float s_xx_1 = max(_e97, 0.0);
+    float _e101 = c_4.s_yy;
+    float s_yy_1 = max(_e101, 0.0);
     float bound = (sqrt(s_xx_1) * sqrt(s_yy_1));
-    float s_xy_1 = clamp(c_4.s_xy, -(bound), bound);
-    const kernel_covariance_Covariance _e50 = kernel_covariance_clamp_eigenvalues(Constructkernel_covariance_Covariance(s_xx_1, s_xy_1, s_yy_1, 0.0), kernel_covariance_KERNEL_MAX);
-    const kernel_covariance_Covariance kernel_covariance_covariance_11 = _e50;
-    return kernel_covariance_covariance_11;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_1, kernel_covariance_Covariance k_1, float tau_3)
-{
-    const float3 _e3 = ndf_roughness_matrix_entries(a_1);
-    float c_16 = a_1.axis.x;
-    float s_26 = a_1.axis.y;
-    float k1_1 = max(((((c_16 * c_16) * k_1.s_xx) + (((2.0 * c_16) * s_26) * k_1.s_xy)) + ((s_26 * s_26) * k_1.s_yy)), 0.0);
-    float k2_1 = max(((((s_26 * s_26) * k_1.s_xx) - (((2.0 * c_16) * s_26) * k_1.s_xy)) + ((c_16 * c_16) * k_1.s_yy)), 0.0);
-    const float _e38 = ndf_roughness_matrix_determinant(a_1);
-    float det_4 = ((_e38 + (2.0 * ((a_1.eig.y * k1_1) + (a_1.eig.x * k2_1)))) + (4.0 * max(k_1.det, 0.0)));
-    const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_1.s_xx)), (_e3.y + (2.0 * k_1.s_xy)), (_e3.z + (2.0 * k_1.s_yy)), det_4, max(tau_3, 0.0));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_5 = _e72;
-    return ndf_roughness_matrix_roughnessmatrix_5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance kernel)
-{
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel);
-    const float _e3 = ndf_roughness_matrix_clamped_det(a_2);
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_2, _e2, _e3);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_6 = _e4;
-    return ndf_roughness_matrix_roughnessmatrix_6;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel_1, float det_clamp_1)
-{
-    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_1);
-    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_3);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_3, _e3, max(det_clamp_1, _e4));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_7 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_7;
-}
-
-kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m)
-{
-    const kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m.second.x - (m.mean.x * m.mean.x)), (m.second.y - (m.mean.x * m.mean.y)), (m.second.z - (m.mean.y * m.mean.y)));
-    const kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
-    const kernel_covariance_Covariance kernel_covariance_covariance_12 = _e26;
+    float _e108 = c_4.s_xy;
+    float s_xy_1 = clamp(_e108, -(bound), bound);
+    const kernel_covariance_Covariance _e114 = kernel_covariance_clamp_eigenvalues(Constructkernel_covariance_Covariance(s_xx_1, s_xy_1, s_yy_1, 0.0), kernel_covariance_KERNEL_MAX);
+    const kernel_covariance_Covariance kernel_covariance_covariance_12 = _e114;
     return kernel_covariance_covariance_12;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments)
+float ndf_g1_of(float lambda_w, float w_dot_m)
 {
-    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
-    const kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
-    const kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_4, _e5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_8 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_8;
+    return ((w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0);
 }
 
-filter_lean_LeanMoments Constructfilter_lean_LeanMoments(float2 arg0, float3 arg1) {
-    filter_lean_LeanMoments ret = (filter_lean_LeanMoments)0;
-    ret.mean = arg0;
-    ret.second = arg1;
-    return ret;
-}
-
-filter_lean_LeanMoments bake_moments_from_texels(float4 rgba, float xy)
+float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m)
 {
-    const filter_lean_LeanMoments filter_lean_leanmoments = Constructfilter_lean_LeanMoments(rgba.xy, float3(rgba.z, xy, rgba.w));
-    return filter_lean_leanmoments;
-}
+    bool local_8 = (bool)0;
 
-filter_lean_LeanMoments bake_moments_sample_grad(Texture2D<float4> moments_1, Texture2D<float4> moments_xy, SamplerState s_1, float2 uv, float2 ddx_uv, float2 ddy_uv)
-{
-    float4 rgba_1 = moments_1.SampleGrad(s_1, uv, ddx_uv, ddy_uv);
-    float4 _e7 = moments_xy.SampleGrad(s_1, uv, ddx_uv, ddy_uv);
-    float xy_1 = _e7.x;
-    const filter_lean_LeanMoments _e9 = bake_moments_from_texels(rgba_1, xy_1);
-    const filter_lean_LeanMoments filter_lean_leanmoments_1 = _e9;
-    return filter_lean_leanmoments_1;
-}
-
-filter_lean_LeanMoments bake_moments_sample_level(Texture2D<float4> moments_2, Texture2D<float4> moments_xy_1, SamplerState s_2, float2 uv_1, float level)
-{
-    float4 rgba_2 = moments_2.SampleLevel(s_2, uv_1, level);
-    float4 _e6 = moments_xy_1.SampleLevel(s_2, uv_1, level);
-    float xy_2 = _e6.x;
-    const filter_lean_LeanMoments _e8 = bake_moments_from_texels(rgba_2, xy_2);
-    const filter_lean_LeanMoments filter_lean_leanmoments_2 = _e8;
-    return filter_lean_leanmoments_2;
+    if ((i_dot_m > 0.0)) {
+        local_8 = (o_dot_m > 0.0);
+    } else {
+        local_8 = false;
+    }
+    bool _e16 = local_8;
+    return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
 }
 
 float ndf_roughness_clamp_alpha(float alpha_1)
@@ -788,15 +998,15 @@ ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_from_alpha(float alpha
     return ndf_roughness_isotropic_isotropic;
 }
 
-float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_12, float2 s_3)
+float ndf_roughness_isotropic_inv_quadratic(ndf_roughness_isotropic_Isotropic r_12, float2 s_1)
 {
-    return (dot(s_3, s_3) * r_12.inv_alpha_sq);
+    return (dot(s_1, s_1) * r_12.inv_alpha_sq);
 }
 
 float ndf_roughness_isotropic_quadratic(ndf_roughness_isotropic_Isotropic r_13, float2 w_1)
 {
-    float2 s_27 = (w_1 * r_13.alpha);
-    return dot(s_27, s_27);
+    float2 s_26 = (w_1 * r_13.alpha);
+    return dot(s_26, s_26);
 }
 
 float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_14)
@@ -807,193 +1017,8 @@ float ndf_roughness_isotropic_sqrt_det(ndf_roughness_isotropic_Isotropic r_14)
 ndf_roughness_matrix_RoughnessMatrix ndf_roughness_isotropic_to_matrix(ndf_roughness_isotropic_Isotropic r_15)
 {
     const ndf_roughness_matrix_RoughnessMatrix _e6 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), (r_15.alpha).xx);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_9 = _e6;
-    return ndf_roughness_matrix_roughnessmatrix_9;
-}
-
-ndf_roughness_isotropic_Isotropic bake_roughness_from_perceptual(float r_16)
-{
-    const ndf_roughness_isotropic_Isotropic _e2 = ndf_roughness_isotropic_from_alpha((r_16 * r_16));
-    const ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_isotropic_1 = _e2;
-    return ndf_roughness_isotropic_isotropic_1;
-}
-
-ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_anisotropic(float3 lobe)
-{
-    const float2 _e4 = math_sincos_turns((lobe.z * 0.15915494));
-    const float _e6 = ndf_roughness_clamp_alpha(lobe.x);
-    const float _e8 = ndf_roughness_clamp_alpha(lobe.y);
-    float2 a_20 = float2(_e6, _e8);
-    const ndf_roughness_matrix_RoughnessMatrix _e10 = ndf_roughness_matrix_from_eigen(_e4, a_20);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_10 = _e10;
-    return ndf_roughness_matrix_roughnessmatrix_10;
-}
-
-ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_khr_anisotropy(float r_17, float4 anisotropy)
-{
-    float2 d_4 = ((2.0 * anisotropy.xy) - (1.0).xx);
-    float len = length(d_4);
-    float2 axis_3 = ((len > 0.0) ? (d_4 / (len).xx) : float2(1.0, 0.0));
-    float alpha_b = (r_17 * r_17);
-    float b_7 = anisotropy.z;
-    float alpha_t = lerp(alpha_b, 1.0, (b_7 * b_7));
-    const float _e22 = ndf_roughness_clamp_alpha(alpha_t);
-    const float _e23 = ndf_roughness_clamp_alpha(alpha_b);
-    float2 a_21 = float2(_e22, _e23);
-    const ndf_roughness_matrix_RoughnessMatrix _e25 = ndf_roughness_matrix_from_eigen(axis_3, a_21);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_11 = _e25;
-    return ndf_roughness_matrix_roughnessmatrix_11;
-}
-
-ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_matrix_texel(float4 t_1)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = ndf_roughness_matrix_from_entries(t_1.x, t_1.y, t_1.z);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e4;
-    return ndf_roughness_matrix_roughnessmatrix_12;
-}
-
-float filter_deferred_from_alpha(uint domain, float alpha_3)
-{
-    if ((domain == filter_deferred_DOMAIN_ALPHA)) {
-        return alpha_3;
-    }
-    if ((domain == filter_deferred_DOMAIN_PERCEPTUAL)) {
-        return sqrt(alpha_3);
-    }
-    float a2_ = (alpha_3 * alpha_3);
-    if ((domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
-        return ((a2_ < 1.0) ? (a2_ / (1.0 - a2_)) : math_F32_MAX);
-    }
-    return a2_;
-}
-
-float filter_deferred_to_alpha(uint domain_1, float v_2)
-{
-    if ((domain_1 == filter_deferred_DOMAIN_ALPHA)) {
-        return v_2;
-    }
-    if ((domain_1 == filter_deferred_DOMAIN_PERCEPTUAL)) {
-        return (v_2 * v_2);
-    }
-    if ((domain_1 == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
-        return ((v_2 < math_F32_MAX) ? sqrt((v_2 / (1.0 + v_2))) : 1.0);
-    }
-    return sqrt(v_2);
-}
-
-float filter_deferred_max_eigenvalue(float a_5, float b_1, float c_5)
-{
-    const float _e9 = math_hypot((0.5 * (a_5 - c_5)), b_1);
-    return max(((0.5 * (a_5 + c_5)) + _e9), 0.0);
-}
-
-float filter_deferred_norm_eval(uint norm, float3 dn_u, float3 dn_v)
-{
-    float a_22 = dot(dn_u, dn_u);
-    float c_17 = dot(dn_v, dn_v);
-    if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
-        return max(a_22, c_17);
-    }
-    if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
-        const float _e11 = filter_deferred_max_eigenvalue(a_22, dot(dn_u, dn_v), c_17);
-        return _e11;
-    }
-    if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
-        float3 m_50 = max(abs(dn_u), abs(dn_v));
-        return max(max(m_50.x, m_50.y), m_50.z);
-    }
-    return (a_22 + c_17);
-}
-
-float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_2)
-{
-    return min(max(k_2, 0.0), conv.clamp_);
-}
-
-float filter_deferred_widening(filter_deferred_KernelConvention conv_1, float3 dn_u_1, float3 dn_v_1)
-{
-    float raw = (float)0;
-
-    const float _e4 = filter_deferred_norm_eval(conv_1.norm, dn_u_1, dn_v_1);
-    raw = _e4;
-    if ((conv_1.exponent != 1.0)) {
-        raw = ((_e4 > 0.0) ? pow(_e4, conv_1.exponent) : 0.0);
-    }
-    float _e16 = raw;
-    const float _e20 = filter_deferred_clamp_widening(conv_1, ((conv_1.scale * _e16) + conv_1.bias));
-    return _e20;
-}
-
-float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, float alpha_in, float k_3)
-{
-    float alpha_4 = (float)0;
-    float out_ = (float)0;
-
-    alpha_4 = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
-    float _e7 = alpha_4;
-    alpha_4 = max(_e7, (conv_2.perceptual_floor * conv_2.perceptual_floor));
-    float _e13 = alpha_4;
-    const float _e14 = filter_deferred_from_alpha(conv_2.domain, _e13);
-    const float _e15 = filter_deferred_clamp_widening(conv_2, k_3);
-    out_ = ((conv_2.combine == filter_deferred_COMBINE_MAX) ? max(_e14, _e15) : (_e14 + _e15));
-    if (conv_2.saturate_) {
-        float _e24 = out_;
-        out_ = min(_e24, 1.0);
-    }
-    float _e28 = out_;
-    const float _e29 = filter_deferred_to_alpha(conv_2.domain, _e28);
-    return clamp(_e29, 0.0, ndf_roughness_ALPHA_MAX);
-}
-
-float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_5, float3 dn_u_2, float3 dn_v_2)
-{
-    const float _e4 = filter_deferred_widening(conv_3, dn_u_2, dn_v_2);
-    const float _e5 = filter_deferred_apply_widening(conv_3, alpha_5, _e4);
-    return _e5;
-}
-
-kernel_covariance_Covariance filter_deferred_normal_difference_covariance(float3 dn_u_3, float3 dn_v_3, float sigma)
-{
-    float sigma_sq = (sigma * sigma);
-    float3 x_12 = (cross(dn_u_3, dn_v_3) * sigma_sq);
-    const kernel_covariance_Covariance kernel_covariance_covariance_13 = Constructkernel_covariance_Covariance((dot(dn_u_3, dn_u_3) * sigma_sq), (dot(dn_u_3, dn_v_3) * sigma_sq), (dot(dn_v_3, dn_v_3) * sigma_sq), dot(x_12, x_12));
-    return kernel_covariance_covariance_13;
-}
-
-float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel_2)
-{
-    if ((bandwidth == filter_deferred_BANDWIDTH_MAX)) {
-        const float _e7 = filter_deferred_max_eigenvalue(kernel_2.s_xx, kernel_2.s_xy, kernel_2.s_yy);
-        return (2.0 * _e7);
-    }
-    float t_12 = (kernel_2.s_xx + kernel_2.s_yy);
-    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_12) : t_12);
-}
-
-float filter_deferred_filtered_alpha(float alpha_6, kernel_covariance_Covariance kernel_3, uint bandwidth_1, float kappa)
-{
-    filter_deferred_KernelConvention conv_4 = Constructfilter_deferred_KernelConvention(filter_deferred_DOMAIN_ALPHA_SQ, filter_deferred_NORM_SUM_SQUARED, 0.5, 1.0, 0.0, kappa, filter_deferred_COMBINE_ADD, true, 0.0);
-    const float _e13 = filter_deferred_bandwidth_alpha2_(bandwidth_1, kernel_3);
-    const float _e14 = filter_deferred_apply_widening(conv_4, alpha_6, _e13);
-    return _e14;
-}
-
-float ndf_g1_of(float lambda_w, float w_dot_m)
-{
-    return ((w_dot_m > 0.0) ? (1.0 / (1.0 + lambda_w)) : 0.0);
-}
-
-float ndf_g2_of(float lambda_i, float lambda_o, float i_dot_m, float o_dot_m)
-{
-    bool local_3 = (bool)0;
-
-    if ((i_dot_m > 0.0)) {
-        local_3 = (o_dot_m > 0.0);
-    } else {
-        local_3 = false;
-    }
-    bool _e16 = local_3;
-    return (_e16 ? (1.0 / ((1.0 + lambda_i) + lambda_o)) : 0.0);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_5 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_5;
 }
 
 ndf_roughness_axis_aligned_AxisAligned Constructndf_roughness_axis_aligned_AxisAligned(float2 arg0, float2 arg1) {
@@ -1003,79 +1028,79 @@ ndf_roughness_axis_aligned_AxisAligned Constructndf_roughness_axis_aligned_AxisA
     return ret;
 }
 
-ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(float2 alpha_7)
+ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_from_alpha(float2 alpha_3)
 {
-    const float _e2 = ndf_roughness_clamp_alpha(alpha_7.x);
-    const float _e4 = ndf_roughness_clamp_alpha(alpha_7.y);
-    float2 a_23 = float2(_e2, _e4);
-    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned = Constructndf_roughness_axis_aligned_AxisAligned(a_23, ((1.0).xx / (a_23 * a_23)));
+    const float _e2 = ndf_roughness_clamp_alpha(alpha_3.x);
+    const float _e4 = ndf_roughness_clamp_alpha(alpha_3.y);
+    float2 a_20 = float2(_e2, _e4);
+    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned = Constructndf_roughness_axis_aligned_AxisAligned(a_20, ((1.0).xx / (a_20 * a_20)));
     return ndf_roughness_axis_aligned_axisaligned;
 }
 
-float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_18, float2 s_4)
+float ndf_roughness_axis_aligned_inv_quadratic(ndf_roughness_axis_aligned_AxisAligned r_16, float2 s_2)
 {
-    return dot((s_4 * s_4), r_18.inv_alpha_sq);
+    return dot((s_2 * s_2), r_16.inv_alpha_sq);
 }
 
-float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_19, float2 w_2)
+float ndf_roughness_axis_aligned_quadratic(ndf_roughness_axis_aligned_AxisAligned r_17, float2 w_2)
 {
-    float2 s_28 = (w_2 * r_19.alpha);
-    return dot(s_28, s_28);
+    float2 s_27 = (w_2 * r_17.alpha);
+    return dot(s_27, s_27);
 }
 
-float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_20)
+float ndf_roughness_axis_aligned_sqrt_det(ndf_roughness_axis_aligned_AxisAligned r_18)
 {
-    return (r_20.alpha.x * r_20.alpha.y);
+    return (r_18.alpha.x * r_18.alpha.y);
 }
 
-ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_21)
+ndf_roughness_matrix_RoughnessMatrix ndf_roughness_axis_aligned_to_matrix(ndf_roughness_axis_aligned_AxisAligned r_19)
 {
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), r_21.alpha);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e5;
-    return ndf_roughness_matrix_roughnessmatrix_13;
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = ndf_roughness_matrix_from_eigen(float2(1.0, 0.0), r_19.alpha);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_6 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_6;
 }
 
 float ndf_ggx_p22_of(float q, float sqrt_det)
 {
-    float t_13 = (1.0 + q);
-    return ((q >= 0.0) ? (1.0 / (((math_PI * sqrt_det) * t_13) * t_13)) : 0.0);
+    float t_12 = (1.0 + q);
+    return ((q >= 0.0) ? (1.0 / (((math_PI * sqrt_det) * t_12) * t_12)) : 0.0);
 }
 
 float ndf_ggx_d_of(float q_xy, float m_z, float sqrt_det_1)
 {
-    bool local_4 = (bool)0;
+    bool local_9 = (bool)0;
 
-    float t_14 = (q_xy + (m_z * m_z));
-    float v_13 = (1.0 / (((math_PI * sqrt_det_1) * t_14) * t_14));
+    float t_13 = (q_xy + (m_z * m_z));
+    float v_16 = (1.0 / (((math_PI * sqrt_det_1) * t_13) * t_13));
     if ((m_z > 0.0)) {
-        local_4 = (v_13 <= math_F32_MAX);
+        local_9 = (v_16 <= math_F32_MAX);
     } else {
-        local_4 = false;
+        local_9 = false;
     }
-    bool _e18 = local_4;
-    return (_e18 ? v_13 : 0.0);
+    bool _e18 = local_9;
+    return (_e18 ? v_16 : 0.0);
 }
 
 float ndf_ggx_lambda_of(float q_1, float abs_wz)
 {
-    bool local_5 = (bool)0;
-    bool local_6 = (bool)0;
+    bool local_10 = (bool)0;
+    bool local_11 = (bool)0;
 
     if ((q_1 <= 0.0)) {
-        local_5 = (abs_wz >= 0.0);
+        local_10 = (abs_wz >= 0.0);
     } else {
-        local_5 = false;
+        local_10 = false;
     }
-    bool _e9 = local_5;
+    bool _e9 = local_10;
     if (_e9) {
         return 0.0;
     }
     if (!(!((abs_wz > 0.0)))) {
-        local_6 = !((q_1 > 0.0));
+        local_11 = !((q_1 > 0.0));
     } else {
-        local_6 = true;
+        local_11 = true;
     }
-    bool _e21 = local_6;
+    bool _e21 = local_11;
     if (_e21) {
         return math_F32_MAX;
     }
@@ -1083,123 +1108,123 @@ float ndf_ggx_lambda_of(float q_1, float abs_wz)
     return (q_1 / ((2.0 * abs_wz) * (r_82 + abs_wz)));
 }
 
-float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_22, float2 s_5)
+float ndf_ggx_p22_isotropic(ndf_roughness_isotropic_Isotropic r_20, float2 s_3)
 {
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_22, s_5);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_22);
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_20, s_3);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_20);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_23, float3 m_1)
+float ndf_ggx_d_isotropic(ndf_roughness_isotropic_Isotropic r_21, float3 m)
 {
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_23, m_1.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_23);
-    const float _e6 = ndf_ggx_d_of(_e3, m_1.z, _e5);
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_21, m.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_21);
+    const float _e6 = ndf_ggx_d_of(_e3, m.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_24, float3 w_3)
+float ndf_ggx_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_22, float3 w_3)
 {
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_24, w_3.xy);
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_22, w_3.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_3.z));
     return _e6;
 }
 
-float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_25, float3 w_4, float3 m_2)
+float ndf_ggx_g1_isotropic(ndf_roughness_isotropic_Isotropic r_23, float3 w_4, float3 m_1)
 {
-    const float _e3 = ndf_ggx_lambda_isotropic(r_25, w_4);
-    const float _e5 = ndf_g1_of(_e3, dot(w_4, m_2));
+    const float _e3 = ndf_ggx_lambda_isotropic(r_23, w_4);
+    const float _e5 = ndf_g1_of(_e3, dot(w_4, m_1));
     return _e5;
 }
 
-float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_26, float3 i, float3 o, float3 m_3)
+float ndf_ggx_g2_isotropic(ndf_roughness_isotropic_Isotropic r_24, float3 i, float3 o, float3 m_2)
 {
-    const float _e4 = ndf_ggx_lambda_isotropic(r_26, i);
-    const float _e5 = ndf_ggx_lambda_isotropic(r_26, o);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_3), dot(o, m_3));
+    const float _e4 = ndf_ggx_lambda_isotropic(r_24, i);
+    const float _e5 = ndf_ggx_lambda_isotropic(r_24, o);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i, m_2), dot(o, m_2));
     return _e8;
 }
 
-float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, float2 s_6)
+float ndf_ggx_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_25, float2 s_4)
 {
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_27, s_6);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_27);
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_25, s_4);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_25);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, float3 m_4)
+float ndf_ggx_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_26, float3 m_3)
 {
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_28, m_4.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_28);
-    const float _e6 = ndf_ggx_d_of(_e3, m_4.z, _e5);
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_26, m_3.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_26);
+    const float _e6 = ndf_ggx_d_of(_e3, m_3.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, float3 w_5)
+float ndf_ggx_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_27, float3 w_5)
 {
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_29, w_5.xy);
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_27, w_5.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_5.z));
     return _e6;
 }
 
-float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_30, float3 w_6, float3 m_5)
+float ndf_ggx_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_28, float3 w_6, float3 m_4)
 {
-    const float _e3 = ndf_ggx_lambda_axis_aligned(r_30, w_6);
-    const float _e5 = ndf_g1_of(_e3, dot(w_6, m_5));
+    const float _e3 = ndf_ggx_lambda_axis_aligned(r_28, w_6);
+    const float _e5 = ndf_g1_of(_e3, dot(w_6, m_4));
     return _e5;
 }
 
-float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_31, float3 i_1, float3 o_1, float3 m_6)
+float ndf_ggx_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_29, float3 i_1, float3 o_1, float3 m_5)
 {
-    const float _e4 = ndf_ggx_lambda_axis_aligned(r_31, i_1);
-    const float _e5 = ndf_ggx_lambda_axis_aligned(r_31, o_1);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_6), dot(o_1, m_6));
+    const float _e4 = ndf_ggx_lambda_axis_aligned(r_29, i_1);
+    const float _e5 = ndf_ggx_lambda_axis_aligned(r_29, o_1);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_1, m_5), dot(o_1, m_5));
     return _e8;
 }
 
-float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, float2 s_7)
+float ndf_ggx_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_30, float2 s_5)
 {
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_32, s_7);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_32);
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_30, s_5);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_30);
     const float _e4 = ndf_ggx_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, float3 m_7)
+float ndf_ggx_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_31, float3 m_6)
 {
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_33, m_7.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_33);
-    const float _e6 = ndf_ggx_d_of(_e3, m_7.z, _e5);
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_31, m_6.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_31);
+    const float _e6 = ndf_ggx_d_of(_e3, m_6.z, _e5);
     return _e6;
 }
 
-float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, float3 w_7)
+float ndf_ggx_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_32, float3 w_7)
 {
-    const float _e3 = ndf_roughness_matrix_quadratic(r_34, w_7.xy);
+    const float _e3 = ndf_roughness_matrix_quadratic(r_32, w_7.xy);
     const float _e6 = ndf_ggx_lambda_of(_e3, abs(w_7.z));
     return _e6;
 }
 
-float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_35, float3 w_8, float3 m_8)
+float ndf_ggx_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_33, float3 w_8, float3 m_7)
 {
-    const float _e3 = ndf_ggx_lambda_matrix(r_35, w_8);
-    const float _e5 = ndf_g1_of(_e3, dot(w_8, m_8));
+    const float _e3 = ndf_ggx_lambda_matrix(r_33, w_8);
+    const float _e5 = ndf_g1_of(_e3, dot(w_8, m_7));
     return _e5;
 }
 
-float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_36, float3 i_2, float3 o_2, float3 m_9)
+float ndf_ggx_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_34, float3 i_2, float3 o_2, float3 m_8)
 {
-    const float _e4 = ndf_ggx_lambda_matrix(r_36, i_2);
-    const float _e5 = ndf_ggx_lambda_matrix(r_36, o_2);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_9), dot(o_2, m_9));
+    const float _e4 = ndf_ggx_lambda_matrix(r_34, i_2);
+    const float _e5 = ndf_ggx_lambda_matrix(r_34, o_2);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_2, m_8), dot(o_2, m_8));
     return _e8;
 }
 
-float ndf_beckmann_exp_neg_times(float x_5, float k_4, float ln_k)
+float ndf_beckmann_exp_neg_times(float x_7, float k_1, float ln_k)
 {
-    return ((x_5 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_5)) : (exp(-(x_5)) * k_4));
+    return ((x_7 > ndf_beckmann_EXP_SPLIT) ? exp((ln_k - x_7)) : (exp(-(x_7)) * k_1));
 }
 
 float ndf_beckmann_p22_of(float q_2, float sqrt_det_2)
@@ -1211,201 +1236,591 @@ float ndf_beckmann_p22_of(float q_2, float sqrt_det_2)
 
 float ndf_beckmann_d_of(float q_xy_1, float m_z_1, float sqrt_det_3)
 {
-    bool local_7 = (bool)0;
+    bool local_12 = (bool)0;
 
-    float z2_5 = (m_z_1 * m_z_1);
-    float x_13 = (q_xy_1 / z2_5);
-    float k_25 = (1.0 / (((math_PI * sqrt_det_3) * z2_5) * z2_5));
+    float z2_6 = (m_z_1 * m_z_1);
+    float x_14 = (q_xy_1 / z2_6);
+    float k_27 = (1.0 / (((math_PI * sqrt_det_3) * z2_6) * z2_6));
     float ln_k_1 = -((log((math_PI * sqrt_det_3)) + (4.0 * log(max(m_z_1, math_F32_MIN_POSITIVE)))));
-    const float _e21 = ndf_beckmann_exp_neg_times(x_13, k_25, ln_k_1);
+    const float _e21 = ndf_beckmann_exp_neg_times(x_14, k_27, ln_k_1);
     if ((m_z_1 > 0.0)) {
-        local_7 = (_e21 <= math_F32_MAX);
+        local_12 = (_e21 <= math_F32_MAX);
     } else {
-        local_7 = false;
+        local_12 = false;
     }
-    bool _e29 = local_7;
+    bool _e29 = local_12;
     return (_e29 ? _e21 : 0.0);
 }
 
 float ndf_beckmann_lambda_of(float q_3, float abs_wz_1)
 {
-    bool local_8 = (bool)0;
-    bool local_9 = (bool)0;
+    bool local_13 = (bool)0;
+    bool local_14 = (bool)0;
     float p = -3.849172e-5;
 
     if ((q_3 <= 0.0)) {
-        local_8 = (abs_wz_1 >= 0.0);
+        local_13 = (abs_wz_1 >= 0.0);
     } else {
-        local_8 = false;
+        local_13 = false;
     }
-    bool _e9 = local_8;
+    bool _e9 = local_13;
     if (_e9) {
         return 0.0;
     }
     if (!(!((abs_wz_1 > 0.0)))) {
-        local_9 = !((q_3 > 0.0));
+        local_14 = !((q_3 > 0.0));
     } else {
-        local_9 = true;
+        local_14 = true;
     }
-    bool _e21 = local_9;
+    bool _e21 = local_14;
     if (_e21) {
         return math_F32_MAX;
     }
-    float a_24 = (abs_wz_1 / sqrt(q_3));
-    if ((a_24 > 9.5)) {
+    float a_21 = (abs_wz_1 / sqrt(q_3));
+    if ((a_21 > 9.5)) {
         return 0.0;
     }
-    float t_15 = ((a_24 - 3.0) / (a_24 + 3.0));
+    float t_14 = ((a_21 - 3.0) / (a_21 + 3.0));
     float _e35 = p;
-    p = ((_e35 * t_15) + 0.00028491428);
+    p = ((_e35 * t_14) + 0.00028491428);
     float _e39 = p;
-    p = ((_e39 * t_15) + 1.8268152e-5);
+    p = ((_e39 * t_14) + 1.8268152e-5);
     float _e43 = p;
-    p = ((_e43 * t_15) - 0.0018242653);
+    p = ((_e43 * t_14) - 0.0018242653);
     float _e47 = p;
-    p = ((_e47 * t_15) + 0.0013654069);
+    p = ((_e47 * t_14) + 0.0013654069);
     float _e51 = p;
-    p = ((_e51 * t_15) + 0.0055811945);
+    p = ((_e51 * t_14) + 0.0055811945);
     float _e55 = p;
-    p = ((_e55 * t_15) - 0.009357543);
+    p = ((_e55 * t_14) - 0.009357543);
     float _e59 = p;
-    p = ((_e59 * t_15) - 0.0076571554);
+    p = ((_e59 * t_14) - 0.0076571554);
     float _e63 = p;
-    p = ((_e63 * t_15) + 0.036274612);
+    p = ((_e63 * t_14) + 0.036274612);
     float _e67 = p;
-    p = ((_e67 * t_15) - 0.023293633);
+    p = ((_e67 * t_14) - 0.023293633);
     float _e71 = p;
-    p = ((_e71 * t_15) - 0.07646358);
+    p = ((_e71 * t_14) - 0.07646358);
     float _e75 = p;
-    p = ((_e75 * t_15) + 0.2117349);
+    p = ((_e75 * t_14) + 0.2117349);
     float _e79 = p;
-    p = ((_e79 * t_15) - 0.23284179);
+    p = ((_e79 * t_14) - 0.23284179);
     float _e83 = p;
-    p = ((_e83 * t_15) + 0.03307925);
+    p = ((_e83 * t_14) + 0.03307925);
     float _e87 = p;
-    p = ((_e87 * t_15) + 1.0631379);
+    p = ((_e87 * t_14) + 1.0631379);
     float _e91 = p;
-    float k_26 = (_e91 / ((2.0 * a_24) + 1.0));
-    return min(((exp((-(a_24) * a_24)) * k_26) / ((3.5449078 * a_24) * (a_24 + k_26))), math_F32_MAX);
+    float k_28 = (_e91 / ((2.0 * a_21) + 1.0));
+    return min(((exp((-(a_21) * a_21)) * k_28) / ((3.5449078 * a_21) * (a_21 + k_28))), math_F32_MAX);
 }
 
-float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_37, float2 s_8)
+float ndf_beckmann_p22_isotropic(ndf_roughness_isotropic_Isotropic r_35, float2 s_6)
 {
-    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_37, s_8);
-    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_37);
+    const float _e2 = ndf_roughness_isotropic_inv_quadratic(r_35, s_6);
+    const float _e3 = ndf_roughness_isotropic_sqrt_det(r_35);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_38, float3 m_10)
+float ndf_beckmann_d_isotropic(ndf_roughness_isotropic_Isotropic r_36, float3 m_9)
 {
-    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_38, m_10.xy);
-    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_38);
-    const float _e6 = ndf_beckmann_d_of(_e3, m_10.z, _e5);
+    const float _e3 = ndf_roughness_isotropic_inv_quadratic(r_36, m_9.xy);
+    const float _e5 = ndf_roughness_isotropic_sqrt_det(r_36);
+    const float _e6 = ndf_beckmann_d_of(_e3, m_9.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_39, float3 w_9)
+float ndf_beckmann_lambda_isotropic(ndf_roughness_isotropic_Isotropic r_37, float3 w_9)
 {
-    const float _e3 = ndf_roughness_isotropic_quadratic(r_39, w_9.xy);
+    const float _e3 = ndf_roughness_isotropic_quadratic(r_37, w_9.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_9.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_40, float3 w_10, float3 m_11)
+float ndf_beckmann_g1_isotropic(ndf_roughness_isotropic_Isotropic r_38, float3 w_10, float3 m_10)
 {
-    const float _e3 = ndf_beckmann_lambda_isotropic(r_40, w_10);
-    const float _e5 = ndf_g1_of(_e3, dot(w_10, m_11));
+    const float _e3 = ndf_beckmann_lambda_isotropic(r_38, w_10);
+    const float _e5 = ndf_g1_of(_e3, dot(w_10, m_10));
     return _e5;
 }
 
-float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_41, float3 i_3, float3 o_3, float3 m_12)
+float ndf_beckmann_g2_isotropic(ndf_roughness_isotropic_Isotropic r_39, float3 i_3, float3 o_3, float3 m_11)
 {
-    const float _e4 = ndf_beckmann_lambda_isotropic(r_41, i_3);
-    const float _e5 = ndf_beckmann_lambda_isotropic(r_41, o_3);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_12), dot(o_3, m_12));
+    const float _e4 = ndf_beckmann_lambda_isotropic(r_39, i_3);
+    const float _e5 = ndf_beckmann_lambda_isotropic(r_39, o_3);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_3, m_11), dot(o_3, m_11));
     return _e8;
 }
 
-float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, float2 s_9)
+float ndf_beckmann_p22_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_40, float2 s_7)
 {
-    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_42, s_9);
-    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_42);
+    const float _e2 = ndf_roughness_axis_aligned_inv_quadratic(r_40, s_7);
+    const float _e3 = ndf_roughness_axis_aligned_sqrt_det(r_40);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, float3 m_13)
+float ndf_beckmann_d_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_41, float3 m_12)
 {
-    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_43, m_13.xy);
-    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_43);
-    const float _e6 = ndf_beckmann_d_of(_e3, m_13.z, _e5);
+    const float _e3 = ndf_roughness_axis_aligned_inv_quadratic(r_41, m_12.xy);
+    const float _e5 = ndf_roughness_axis_aligned_sqrt_det(r_41);
+    const float _e6 = ndf_beckmann_d_of(_e3, m_12.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, float3 w_11)
+float ndf_beckmann_lambda_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_42, float3 w_11)
 {
-    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_44, w_11.xy);
+    const float _e3 = ndf_roughness_axis_aligned_quadratic(r_42, w_11.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_11.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_45, float3 w_12, float3 m_14)
+float ndf_beckmann_g1_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_43, float3 w_12, float3 m_13)
 {
-    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_45, w_12);
-    const float _e5 = ndf_g1_of(_e3, dot(w_12, m_14));
+    const float _e3 = ndf_beckmann_lambda_axis_aligned(r_43, w_12);
+    const float _e5 = ndf_g1_of(_e3, dot(w_12, m_13));
     return _e5;
 }
 
-float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_46, float3 i_4, float3 o_4, float3 m_15)
+float ndf_beckmann_g2_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_44, float3 i_4, float3 o_4, float3 m_14)
 {
-    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_46, i_4);
-    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_46, o_4);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_15), dot(o_4, m_15));
+    const float _e4 = ndf_beckmann_lambda_axis_aligned(r_44, i_4);
+    const float _e5 = ndf_beckmann_lambda_axis_aligned(r_44, o_4);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_4, m_14), dot(o_4, m_14));
     return _e8;
 }
 
-float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, float2 s_10)
+float ndf_beckmann_p22_matrix(ndf_roughness_matrix_RoughnessMatrix r_45, float2 s_8)
 {
-    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_47, s_10);
-    const float _e3 = ndf_roughness_matrix_sqrt_det(r_47);
+    const float _e2 = ndf_roughness_matrix_inv_quadratic(r_45, s_8);
+    const float _e3 = ndf_roughness_matrix_sqrt_det(r_45);
     const float _e4 = ndf_beckmann_p22_of(_e2, _e3);
     return _e4;
 }
 
-float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 m_16)
+float ndf_beckmann_d_matrix(ndf_roughness_matrix_RoughnessMatrix r_46, float3 m_15)
 {
-    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_48, m_16.xy);
-    const float _e5 = ndf_roughness_matrix_sqrt_det(r_48);
-    const float _e6 = ndf_beckmann_d_of(_e3, m_16.z, _e5);
+    const float _e3 = ndf_roughness_matrix_inv_quadratic(r_46, m_15.xy);
+    const float _e5 = ndf_roughness_matrix_sqrt_det(r_46);
+    const float _e6 = ndf_beckmann_d_of(_e3, m_15.z, _e5);
     return _e6;
 }
 
-float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, float3 w_13)
+float ndf_beckmann_lambda_matrix(ndf_roughness_matrix_RoughnessMatrix r_47, float3 w_13)
 {
-    const float _e3 = ndf_roughness_matrix_quadratic(r_49, w_13.xy);
+    const float _e3 = ndf_roughness_matrix_quadratic(r_47, w_13.xy);
     const float _e6 = ndf_beckmann_lambda_of(_e3, abs(w_13.z));
     return _e6;
 }
 
-float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_50, float3 w_14, float3 m_17)
+float ndf_beckmann_g1_matrix(ndf_roughness_matrix_RoughnessMatrix r_48, float3 w_14, float3 m_16)
 {
-    const float _e3 = ndf_beckmann_lambda_matrix(r_50, w_14);
-    const float _e5 = ndf_g1_of(_e3, dot(w_14, m_17));
+    const float _e3 = ndf_beckmann_lambda_matrix(r_48, w_14);
+    const float _e5 = ndf_g1_of(_e3, dot(w_14, m_16));
     return _e5;
 }
 
-float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_51, float3 i_5, float3 o_5, float3 m_18)
+float ndf_beckmann_g2_matrix(ndf_roughness_matrix_RoughnessMatrix r_49, float3 i_5, float3 o_5, float3 m_17)
 {
-    const float _e4 = ndf_beckmann_lambda_matrix(r_51, i_5);
-    const float _e5 = ndf_beckmann_lambda_matrix(r_51, o_5);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_18), dot(o_5, m_18));
+    const float _e4 = ndf_beckmann_lambda_matrix(r_49, i_5);
+    const float _e5 = ndf_beckmann_lambda_matrix(r_49, o_5);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_5, m_17), dot(o_5, m_17));
     return _e8;
 }
 
-float filter_gaussian_ggx_quad_laguerre_node(uint k_5)
+kernel_rect_BoundingRect Constructkernel_rect_BoundingRect(float2 arg0) {
+    kernel_rect_BoundingRect ret = (kernel_rect_BoundingRect)0;
+    ret.half_extent = arg0;
+    return ret;
+}
+
+kernel_rect_BoundingRect kernel_rect_from_footprint(footprint_Footprint fp_in_1)
 {
-    switch(k_5) {
+    const footprint_Footprint _e1 = footprint_nan_to_zero(fp_in_1);
+    const kernel_rect_BoundingRect kernel_rect_boundingrect = Constructkernel_rect_BoundingRect(((abs(_e1.dh_u) + abs(_e1.dh_v)) * 0.5));
+    return kernel_rect_boundingrect;
+}
+
+kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_50, float sigma_1)
+{
+    float2 w_24 = (r_50.half_extent * (2.0 * sigma_1));
+    float2 v_17 = (w_24 * w_24);
+    const kernel_covariance_Covariance kernel_covariance_covariance_13 = Constructkernel_covariance_Covariance(v_17.x, 0.0, v_17.y, (v_17.x * v_17.y));
+    return kernel_covariance_covariance_13;
+}
+
+footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_in_2)
+{
+    const footprint_Footprint _e2 = footprint_nan_to_zero(fp_in_2);
+    float l_6 = max(rules.max_extent, 0.0);
+    float scale_1 = max(max(abs(_e2.dh_u.x), abs(_e2.dh_u.y)), max(abs(_e2.dh_v.x), abs(_e2.dh_v.y)));
+    if ((scale_1 <= 0.0)) {
+        const footprint_Footprint footprint_footprint_6 = _e2;
+        return footprint_footprint_6;
+    }
+    if ((scale_1 > math_F32_MAX)) {
+        float2 iu = ((abs(_e2.dh_u) > (3.4028235e38).xx) ? sign(_e2.dh_u) : (0.0).xx);
+        float2 iv = ((abs(_e2.dh_v) > (3.4028235e38).xx) ? sign(_e2.dh_v) : (0.0).xx);
+        const float _e46 = footprint_max_extent(Constructfootprint_Footprint(iu, iv));
+        const footprint_Footprint footprint_footprint_7 = Constructfootprint_Footprint(((iu / (_e46).xx) * l_6), ((iv / (_e46).xx) * l_6));
+        return footprint_footprint_7;
+    }
+    footprint_Footprint unit = Constructfootprint_Footprint((_e2.dh_u / (scale_1).xx), (_e2.dh_v / (scale_1).xx));
+    const float _e61 = footprint_max_extent(unit);
+    if (((_e61 * scale_1) <= l_6)) {
+        const footprint_Footprint footprint_footprint_8 = _e2;
+        return footprint_footprint_8;
+    }
+    const footprint_Footprint footprint_footprint_9 = Constructfootprint_Footprint(((unit.dh_u / (_e61).xx) * l_6), ((unit.dh_v / (_e61).xx) * l_6));
+    return footprint_footprint_9;
+}
+
+kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_51, float2 alpha_4)
+{
+    float2 f_1 = (0.0).xx;
+
+    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
+        f_1 = (rules_1.floor_).xx;
+    } else {
+        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
+            f_1 = min(abs(alpha_4), (rules_1.floor_).xx);
+        }
+    }
+    float lambda_2 = max(rules_1.max_extent, 0.0);
+    float2 h_25 = min(abs(r_51.half_extent), (lambda_2).xx);
+    float2 _e25 = f_1;
+    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_25, max(_e25, (0.0).xx)));
+    return kernel_rect_boundingrect_1;
+}
+
+kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_2)
+{
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_2);
+    if ((rules_2.kappa >= math_F32_MAX)) {
+        const kernel_covariance_Covariance kernel_covariance_covariance_14 = _e2;
+        return kernel_covariance_covariance_14;
+    }
+    const kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
+    const kernel_covariance_Covariance kernel_covariance_covariance_15 = _e11;
+    return kernel_covariance_covariance_15;
+}
+
+float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_1)
+{
+    const float _e2 = ndf_roughness_matrix_own_det_clamp(a_1);
+    const float _e3 = ndf_roughness_matrix_clamped_det(a_1);
+    return (rules_3.det_clamp ? _e3 : _e2);
+}
+
+kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_2, float sigma_2)
+{
+    const footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_2);
+    const kernel_covariance_Covariance _e4 = kernel_covariance_from_footprint(_e3, sigma_2);
+    const kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
+    const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e5;
+    return kernel_covariance_covariance_16;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_sanitized(ndf_roughness_matrix_RoughnessMatrix a_2, kernel_covariance_Covariance k_3, float tau_3)
+{
+    const float3 _e3 = ndf_roughness_matrix_entries(a_2);
+    float c_16 = a_2.axis.x;
+    float s_28 = a_2.axis.y;
+    float k1_1 = max(((((c_16 * c_16) * k_3.s_xx) + (((2.0 * c_16) * s_28) * k_3.s_xy)) + ((s_28 * s_28) * k_3.s_yy)), 0.0);
+    float k2_1 = max(((((s_28 * s_28) * k_3.s_xx) - (((2.0 * c_16) * s_28) * k_3.s_xy)) + ((c_16 * c_16) * k_3.s_yy)), 0.0);
+    const float _e38 = ndf_roughness_matrix_determinant(a_2);
+    float det_4 = ((_e38 + (2.0 * ((a_2.eig.y * k1_1) + (a_2.eig.x * k2_1)))) + (4.0 * max(k_3.det, 0.0)));
+    const ndf_roughness_matrix_RoughnessMatrix _e72 = ndf_roughness_matrix_from_entries_det((_e3.x + (2.0 * k_3.s_xx)), (_e3.y + (2.0 * k_3.s_xy)), (_e3.z + (2.0 * k_3.s_yy)), det_4, max(tau_3, 0.0));
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_7 = _e72;
+    return ndf_roughness_matrix_roughnessmatrix_7;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian(ndf_roughness_matrix_RoughnessMatrix a_3, kernel_covariance_Covariance kernel)
+{
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel);
+    const float _e3 = ndf_roughness_matrix_clamped_det(a_3);
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_sanitized(a_3, _e2, _e3);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_8 = _e4;
+    return ndf_roughness_matrix_roughnessmatrix_8;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_4, kernel_covariance_Covariance kernel_1, float det_clamp_1)
+{
+    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_1);
+    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_4);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_4, _e3, max(det_clamp_1, _e4));
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_9 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_9;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_5, footprint_Footprint fp_3, float sigma_3)
+{
+    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_3, sigma_3);
+    const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_5);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_5, _e4, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_10 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_10;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_gaussian_gaussian_lobe(filter_gaussian_Gaussian method, ndf_roughness_matrix_RoughnessMatrix material, footprint_Footprint fp_4)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_filter_gaussian(method.clamps, material, fp_4, method.sigma);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_11 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_11;
+}
+
+float filter_gaussian_d_ggx_gaussian(filter_gaussian_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_5, float3 m_18)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_1, material_1, fp_5);
+    const float _e5 = ndf_ggx_d_matrix(_e4, m_18);
+    return _e5;
+}
+
+float filter_gaussian_d_beckmann_gaussian(filter_gaussian_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_6, float3 m_19)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_gaussian_gaussian_lobe(method_2, material_2, fp_6);
+    const float _e5 = ndf_beckmann_d_matrix(_e4, m_19);
+    return _e5;
+}
+
+kernel_covariance_Covariance filter_lean_covariance(filter_lean_LeanMoments m_20)
+{
+    const kernel_covariance_Covariance _e25 = kernel_covariance_from_entries((m_20.second.x - (m_20.mean.x * m_20.mean.x)), (m_20.second.y - (m_20.mean.x * m_20.mean.y)), (m_20.second.z - (m_20.mean.y * m_20.mean.y)));
+    const kernel_covariance_Covariance _e26 = kernel_covariance_sanitized(_e25);
+    const kernel_covariance_Covariance kernel_covariance_covariance_17 = _e26;
+    return kernel_covariance_covariance_17;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_lean_lean(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance pixel, filter_lean_LeanMoments moments)
+{
+    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(pixel);
+    const kernel_covariance_Covariance _e4 = filter_lean_covariance(moments);
+    const kernel_covariance_Covariance _e5 = kernel_covariance_add(_e3, _e4);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian(a_6, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_12 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_12;
+}
+
+filter_lean_LeanMoments Constructfilter_lean_LeanMoments(float2 arg0, float3 arg1) {
+    filter_lean_LeanMoments ret = (filter_lean_LeanMoments)0;
+    ret.mean = arg0;
+    ret.second = arg1;
+    return ret;
+}
+
+filter_lean_LeanMoments bake_moments_from_texels(float4 rgba, float xy)
+{
+    const filter_lean_LeanMoments filter_lean_leanmoments = Constructfilter_lean_LeanMoments(rgba.xy, float3(rgba.z, xy, rgba.w));
+    return filter_lean_leanmoments;
+}
+
+filter_lean_LeanMoments bake_moments_sample_grad(Texture2D<float4> moments_1, Texture2D<float4> moments_xy, SamplerState s_9, float2 uv, float2 ddx_uv, float2 ddy_uv)
+{
+    float4 rgba_1 = moments_1.SampleGrad(s_9, uv, ddx_uv, ddy_uv);
+    float4 _e7 = moments_xy.SampleGrad(s_9, uv, ddx_uv, ddy_uv);
+    float xy_3 = _e7.x;
+    const filter_lean_LeanMoments _e9 = bake_moments_from_texels(rgba_1, xy_3);
+    const filter_lean_LeanMoments filter_lean_leanmoments_1 = _e9;
+    return filter_lean_leanmoments_1;
+}
+
+filter_lean_LeanMoments bake_moments_sample_level(Texture2D<float4> moments_2, Texture2D<float4> moments_xy_1, SamplerState s_10, float2 uv_1, float level)
+{
+    float4 rgba_2 = moments_2.SampleLevel(s_10, uv_1, level);
+    float4 _e6 = moments_xy_1.SampleLevel(s_10, uv_1, level);
+    float xy_4 = _e6.x;
+    const filter_lean_LeanMoments _e8 = bake_moments_from_texels(rgba_2, xy_4);
+    const filter_lean_LeanMoments filter_lean_leanmoments_2 = _e8;
+    return filter_lean_leanmoments_2;
+}
+
+ndf_roughness_isotropic_Isotropic bake_roughness_from_perceptual(float r_52)
+{
+    const ndf_roughness_isotropic_Isotropic _e2 = ndf_roughness_isotropic_from_alpha((r_52 * r_52));
+    const ndf_roughness_isotropic_Isotropic ndf_roughness_isotropic_isotropic_1 = _e2;
+    return ndf_roughness_isotropic_isotropic_1;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_anisotropic(float3 lobe)
+{
+    const float2 _e4 = math_sincos_turns((lobe.z * 0.15915494));
+    const float _e6 = ndf_roughness_clamp_alpha(lobe.x);
+    const float _e8 = ndf_roughness_clamp_alpha(lobe.y);
+    float2 a_22 = float2(_e6, _e8);
+    const ndf_roughness_matrix_RoughnessMatrix _e10 = ndf_roughness_matrix_from_eigen(_e4, a_22);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_13 = _e10;
+    return ndf_roughness_matrix_roughnessmatrix_13;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_khr_anisotropy(float r_53, float4 anisotropy)
+{
+    float2 d_4 = ((2.0 * anisotropy.xy) - (1.0).xx);
+    float len = length(d_4);
+    float2 axis_3 = ((len > 0.0) ? (d_4 / (len).xx) : float2(1.0, 0.0));
+    float alpha_b = (r_53 * r_53);
+    float b_7 = anisotropy.z;
+    float alpha_t = lerp(alpha_b, 1.0, (b_7 * b_7));
+    const float _e22 = ndf_roughness_clamp_alpha(alpha_t);
+    const float _e23 = ndf_roughness_clamp_alpha(alpha_b);
+    float2 a_23 = float2(_e22, _e23);
+    const ndf_roughness_matrix_RoughnessMatrix _e25 = ndf_roughness_matrix_from_eigen(axis_3, a_23);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_14 = _e25;
+    return ndf_roughness_matrix_roughnessmatrix_14;
+}
+
+ndf_roughness_matrix_RoughnessMatrix bake_roughness_from_matrix_texel(float4 t_1)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = ndf_roughness_matrix_from_entries(t_1.x, t_1.y, t_1.z);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_15 = _e4;
+    return ndf_roughness_matrix_roughnessmatrix_15;
+}
+
+float filter_deferred_from_alpha(uint domain, float alpha_5)
+{
+    if ((domain == filter_deferred_DOMAIN_ALPHA)) {
+        return alpha_5;
+    }
+    if ((domain == filter_deferred_DOMAIN_PERCEPTUAL)) {
+        return sqrt(alpha_5);
+    }
+    float a2_ = (alpha_5 * alpha_5);
+    if ((domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
+        return ((a2_ < 1.0) ? (a2_ / (1.0 - a2_)) : math_F32_MAX);
+    }
+    return a2_;
+}
+
+float filter_deferred_to_alpha(uint domain_1, float v_4)
+{
+    if ((domain_1 == filter_deferred_DOMAIN_ALPHA)) {
+        return v_4;
+    }
+    if ((domain_1 == filter_deferred_DOMAIN_PERCEPTUAL)) {
+        return (v_4 * v_4);
+    }
+    if ((domain_1 == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ)) {
+        return ((v_4 < math_F32_MAX) ? sqrt((v_4 / (1.0 + v_4))) : 1.0);
+    }
+    return sqrt(v_4);
+}
+
+float filter_deferred_max_eigenvalue(float a_7, float b_1, float c_5)
+{
+    const float _e9 = math_hypot((0.5 * (a_7 - c_5)), b_1);
+    return max(((0.5 * (a_7 + c_5)) + _e9), 0.0);
+}
+
+float filter_deferred_norm_eval(uint norm, float3 dn_u_in_1, float3 dn_v_in_1)
+{
+    const float3 _e3 = math_nan_to_zero3_(dn_u_in_1);
+    const float3 _e4 = math_nan_to_zero3_(dn_v_in_1);
+    float a_24 = dot(_e3, _e3);
+    float c_17 = dot(_e4, _e4);
+    if ((norm == filter_deferred_NORM_MAX_SQUARED)) {
+        return max(a_24, c_17);
+    }
+    if ((norm == filter_deferred_NORM_MAX_EIGENVALUE)) {
+        const float _e13 = filter_deferred_max_eigenvalue(a_24, dot(_e3, _e4), c_17);
+        return _e13;
+    }
+    if ((norm == filter_deferred_NORM_MAX_ABS_COMPONENT)) {
+        float3 m_50 = max(abs(_e3), abs(_e4));
+        return max(max(m_50.x, m_50.y), m_50.z);
+    }
+    return (a_24 + c_17);
+}
+
+float filter_deferred_clamp_widening(filter_deferred_KernelConvention conv, float k_4)
+{
+    const bool _e7 = math_is_nan(k_4);
+    return (_e7 ? conv.clamp_ : min(max(k_4, 0.0), conv.clamp_));
+}
+
+float filter_deferred_widening(filter_deferred_KernelConvention conv_1, float3 dn_u, float3 dn_v)
+{
+    bool local_15 = (bool)0;
+    float raw = (float)0;
+
+    float3 lim = (3.4028235e38).xxx;
+    if (!(any((abs(dn_u) > lim)))) {
+        local_15 = any((abs(dn_v) > lim));
+    } else {
+        local_15 = true;
+    }
+    bool _e15 = local_15;
+    if (_e15) {
+        return conv_1.clamp_;
+    }
+    const float _e18 = filter_deferred_norm_eval(conv_1.norm, dn_u, dn_v);
+    raw = _e18;
+    if ((conv_1.exponent != 1.0)) {
+        raw = ((_e18 > 0.0) ? pow(_e18, conv_1.exponent) : 0.0);
+    }
+    float _e30 = raw;
+    const float _e34 = filter_deferred_clamp_widening(conv_1, ((conv_1.scale * _e30) + conv_1.bias));
+    return _e34;
+}
+
+float filter_deferred_apply_widening(filter_deferred_KernelConvention conv_2, float alpha_in, float k_5)
+{
+    float alpha_6 = (float)0;
+    float out_ = (float)0;
+
+    alpha_6 = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
+    float _e7 = alpha_6;
+    alpha_6 = max(_e7, (conv_2.perceptual_floor * conv_2.perceptual_floor));
+    float _e13 = alpha_6;
+    const float _e14 = filter_deferred_from_alpha(conv_2.domain, _e13);
+    const float _e15 = filter_deferred_clamp_widening(conv_2, k_5);
+    out_ = ((conv_2.combine == filter_deferred_COMBINE_MAX) ? max(_e14, _e15) : (_e14 + _e15));
+    if (conv_2.saturate_) {
+        float _e24 = out_;
+        out_ = min(_e24, 1.0);
+    }
+    float _e28 = out_;
+    const float _e29 = filter_deferred_to_alpha(conv_2.domain, _e28);
+    return clamp(_e29, 0.0, ndf_roughness_ALPHA_MAX);
+}
+
+float filter_deferred_apply(filter_deferred_KernelConvention conv_3, float alpha_7, float3 dn_u_1, float3 dn_v_1)
+{
+    const float _e4 = filter_deferred_widening(conv_3, dn_u_1, dn_v_1);
+    const float _e5 = filter_deferred_apply_widening(conv_3, alpha_7, _e4);
+    return _e5;
+}
+
+kernel_covariance_Covariance filter_deferred_normal_difference_covariance(float3 dn_u_2, float3 dn_v_2, float sigma_4)
+{
+    float sigma_sq = (sigma_4 * sigma_4);
+    float3 x_15 = (cross(dn_u_2, dn_v_2) * sigma_sq);
+    const kernel_covariance_Covariance kernel_covariance_covariance_18 = Constructkernel_covariance_Covariance((dot(dn_u_2, dn_u_2) * sigma_sq), (dot(dn_u_2, dn_v_2) * sigma_sq), (dot(dn_v_2, dn_v_2) * sigma_sq), dot(x_15, x_15));
+    return kernel_covariance_covariance_18;
+}
+
+float filter_deferred_bandwidth_alpha2_(uint bandwidth, kernel_covariance_Covariance kernel_2)
+{
+    const float _e3 = math_nan_to_zero(kernel_2.s_xx);
+    const float _e5 = math_nan_to_zero(kernel_2.s_xy);
+    const float _e7 = math_nan_to_zero(kernel_2.s_yy);
+    if ((bandwidth == filter_deferred_BANDWIDTH_MAX)) {
+        const float _e10 = filter_deferred_max_eigenvalue(_e3, _e5, _e7);
+        return (2.0 * _e10);
+    }
+    float t_15 = (_e3 + _e7);
+    return ((bandwidth == filter_deferred_BANDWIDTH_TRACE) ? (2.0 * t_15) : t_15);
+}
+
+float filter_deferred_filtered_alpha(float alpha_8, kernel_covariance_Covariance kernel_3, uint bandwidth_1, float kappa)
+{
+    filter_deferred_KernelConvention conv_4 = Constructfilter_deferred_KernelConvention(filter_deferred_DOMAIN_ALPHA_SQ, filter_deferred_NORM_SUM_SQUARED, 0.5, 1.0, 0.0, kappa, filter_deferred_COMBINE_ADD, true, 0.0);
+    const float _e13 = filter_deferred_bandwidth_alpha2_(bandwidth_1, kernel_3);
+    const float _e14 = filter_deferred_apply_widening(conv_4, alpha_8, _e13);
+    return _e14;
+}
+
+float filter_gaussian_ggx_quad_laguerre_node(uint k_6)
+{
+    switch(k_6) {
         case 0u: {
             return 0.40938357;
         }
@@ -1433,9 +1848,9 @@ float filter_gaussian_ggx_quad_laguerre_node(uint k_5)
     }
 }
 
-float filter_gaussian_ggx_quad_laguerre_weight(uint k_6)
+float filter_gaussian_ggx_quad_laguerre_weight(uint k_7)
 {
-    switch(k_6) {
+    switch(k_7) {
         case 0u: {
             return 0.18763255;
         }
@@ -1474,7 +1889,7 @@ float filter_gaussian_ggx_quad_far_tail(float beta, float c1s, float c2s, float 
 float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, float z2_1, float tl1_1, float tl2_1)
 {
     float acc = 0.0;
-    uint k_7 = 0u;
+    uint k_8 = 0u;
 
     float ib_1 = (1.0 / beta_m);
     float t1_2 = ((tl1_1 * z2_1) * ib_1);
@@ -1487,17 +1902,17 @@ float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, floa
         if (all(loop_bound == uint2(0u, 0u))) { break; }
         loop_bound -= uint2(loop_bound.y == 0u, 1u);
         if (!loop_init) {
-            uint _e51 = k_7;
-            k_7 = (_e51 + 1u);
+            uint _e51 = k_8;
+            k_8 = (_e51 + 1u);
         }
         loop_init = false;
-        uint _e20 = k_7;
+        uint _e20 = k_8;
         if ((_e20 < 8u)) {
         } else {
             break;
         }
         {
-            uint _e23 = k_7;
+            uint _e23 = k_8;
             const float _e24 = filter_gaussian_ggx_quad_laguerre_node(_e23);
             float p1_ = (1.0 + (t1_2 * _e24));
             float p2_ = (1.0 + (t2_ * _e24));
@@ -1505,7 +1920,7 @@ float filter_gaussian_ggx_quad_laguerre(float beta_m, float v1s, float v2s, floa
             float ip2_ = (1.0 / p2_);
             float e_4 = ((_e24 * _e24) * ((g1_ * ip1_) + (g2_ * ip2_)));
             float _e40 = acc;
-            uint _e41 = k_7;
+            uint _e41 = k_8;
             const float _e42 = filter_gaussian_ggx_quad_laguerre_weight(_e41);
             const float _e43 = math_exp(e_4);
             acc = (_e40 + (((_e42 * _e43) * sqrt(ip1_)) * sqrt(ip2_)));
@@ -1538,7 +1953,7 @@ float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl
 {
     float sum = 0.0;
     uint ch = 0u;
-    float v_3 = (float)0;
+    float v_5 = (float)0;
     float part = (float)0;
     float last = (float)0;
     float vl = (float)0;
@@ -1558,7 +1973,7 @@ float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl
     float k2_2 = (c2s_2 * (w_r / pr2_));
     float x_r = ((-(w_r) - k1_2) - k2_2);
     const float _e49 = math_exp(x_r);
-    float scale_1 = ((w_r * w_r) * _e49);
+    float scale_2 = ((w_r * w_r) * _e49);
     float t1_3 = (tl1_3 * w_r);
     float t2_1 = (tl2_3 * w_r);
     float stop = (((rule.eps_t * hs) * w_r) * w_r);
@@ -1581,10 +1996,10 @@ float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl
             uint _e66 = ch;
             float kb = (float((_e66 * 8u)) - k0_);
             const float _e72 = math_exp((kb * hs));
-            v_3 = _e72;
+            v_5 = _e72;
             part = 0.0;
             last = 0.0;
-            float _e78 = v_3;
+            float _e78 = v_5;
             vl = _e78;
             jj = 0u;
             uint2 loop_bound_2 = uint2(4294967295u, 4294967295u);
@@ -1603,23 +2018,23 @@ float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl
                     break;
                 }
                 {
-                    float _e85 = v_3;
+                    float _e85 = v_5;
                     float ip1_1 = (1.0 / (1.0 + (t1_3 * _e85)));
-                    float _e91 = v_3;
+                    float _e91 = v_5;
                     float ip2_1 = (1.0 / (1.0 + (t2_1 * _e91)));
                     float a_25 = ((w_r + (k1_2 * ip1_1)) + (k2_2 * ip2_1));
                     uint _e103 = jj;
-                    float _e107 = v_3;
-                    float x_14 = (((2.0 * hs) * (kb + float(_e103))) - ((_e107 - 1.0) * a_25));
-                    const float _e112 = math_exp(x_14);
+                    float _e107 = v_5;
+                    float x_16 = (((2.0 * hs) * (kb + float(_e103))) - ((_e107 - 1.0) * a_25));
+                    const float _e112 = math_exp(x_16);
                     last = ((_e112 * sqrt(ip1_1)) * sqrt(ip2_1));
                     float _e117 = part;
                     float _e118 = last;
                     part = (_e117 + _e118);
-                    float _e120 = v_3;
+                    float _e120 = v_5;
                     vl = _e120;
-                    float _e121 = v_3;
-                    v_3 = (_e121 * rule.exp_h);
+                    float _e121 = v_5;
+                    v_5 = (_e121 * rule.exp_h);
                 }
             }
             float _e127 = sum;
@@ -1639,13 +2054,13 @@ float filter_gaussian_ggx_quad_trapezoid_rule(float c1s_2, float c2s_2, float tl
     }
     float _e150 = sum;
     const float _e153 = filter_gaussian_ggx_quad_series_below(c1s_2, c2s_2, tl1_3, tl2_3, w_first, rule.geom);
-    return (hs * ((_e150 * scale_1) + _e153));
+    return (hs * ((_e150 * scale_2) + _e153));
 }
 
-float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1_4, float tl2_4)
+float filter_gaussian_ggx_quad_mixture_integral(float v1s_1, float v2s_1, float z2_2, float tl1_4, float tl2_4)
 {
-    bool local_10 = (bool)0;
-    bool local_11 = (bool)0;
+    bool local_16 = (bool)0;
+    bool local_17 = (bool)0;
 
     float beta_m_1 = ((z2_2 + v1s_1) + v2s_1);
     if ((beta_m_1 >= ((filter_gaussian_ggx_quad_FAR * tl1_4) * z2_2))) {
@@ -1655,16 +2070,16 @@ float filter_gaussian_ggx_quad_j(float v1s_1, float v2s_1, float z2_2, float tl1
     if (((tl1_4 * z2_2) <= (filter_gaussian_ggx_quad_GL_RATIO * beta_m_1))) {
         if (!((beta_m_1 <= (filter_gaussian_ggx_quad_GL_WIDE * z2_2)))) {
             const float _e26 = math_ln((beta_m_1 / z2_2));
-            local_11 = (((tl1_4 * (filter_gaussian_ggx_quad_GL_PLATEAU + (1.5 * _e26))) * z2_2) <= beta_m_1);
+            local_17 = (((tl1_4 * (filter_gaussian_ggx_quad_GL_PLATEAU + (1.5 * _e26))) * z2_2) <= beta_m_1);
         } else {
-            local_11 = true;
+            local_17 = true;
         }
-        bool _e34 = local_11;
-        local_10 = _e34;
+        bool _e34 = local_17;
+        local_16 = _e34;
     } else {
-        local_10 = false;
+        local_16 = false;
     }
-    bool _e36 = local_10;
+    bool _e36 = local_16;
     if (_e36) {
         const float _e37 = filter_gaussian_ggx_quad_laguerre(beta_m_1, v1s_1, v2s_1, z2_2, tl1_4, tl2_4);
         return _e37;
@@ -1710,7 +2125,7 @@ filter_gaussian_ggx_quad_TrapezoidRule filter_gaussian_ggx_quad_reduced_rule(uin
 float filter_gaussian_ggx_quad_j_tol(float v1s_2, float v2s_2, float z2_3, float tl1_5, float tl2_5, uint tol_2)
 {
     if ((tol_2 == filter_gaussian_ggx_quad_TOL_FULL)) {
-        const float _e8 = filter_gaussian_ggx_quad_j(v1s_2, v2s_2, z2_3, tl1_5, tl2_5);
+        const float _e8 = filter_gaussian_ggx_quad_mixture_integral(v1s_2, v2s_2, z2_3, tl1_5, tl2_5);
         return _e8;
     }
     float beta_m_2 = ((z2_3 + v1s_2) + v2s_2);
@@ -1726,9 +2141,9 @@ float filter_gaussian_ggx_quad_j_tol(float v1s_2, float v2s_2, float z2_3, float
     return ((_e26 * iz2_1) * iz2_1);
 }
 
-float filter_gaussian_ggx_quad_hermite_node(uint k_8)
+float filter_gaussian_ggx_quad_hermite_node(uint k_9)
 {
-    switch(k_8) {
+    switch(k_9) {
         case 0u: {
             return 0.5390798;
         }
@@ -1744,9 +2159,9 @@ float filter_gaussian_ggx_quad_hermite_node(uint k_8)
     }
 }
 
-float filter_gaussian_ggx_quad_hermite_weight(uint k_9)
+float filter_gaussian_ggx_quad_hermite_weight(uint k_10)
 {
-    switch(k_9) {
+    switch(k_10) {
         case 0u: {
             return 0.37301224;
         }
@@ -1764,24 +2179,24 @@ float filter_gaussian_ggx_quad_hermite_weight(uint k_9)
 
 float filter_gaussian_ggx_quad_h_of(float y_2)
 {
-    float r_52 = (float)0;
+    float r_54 = (float)0;
 
     float a_26 = abs(y_2);
     if ((a_26 > 1.0)) {
         float i_12 = (1.0 / a_26);
-        r_52 = (a_26 * sqrt((1.0 + (i_12 * i_12))));
+        r_54 = (a_26 * sqrt((1.0 + (i_12 * i_12))));
     } else {
-        r_52 = sqrt((1.0 + (y_2 * y_2)));
+        r_54 = sqrt((1.0 + (y_2 * y_2)));
     }
-    float _e16 = r_52;
-    float _e18 = r_52;
+    float _e16 = r_54;
+    float _e18 = r_54;
     return ((y_2 >= 0.0) ? (1.0 / (_e18 + y_2)) : (_e16 - y_2));
 }
 
 float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz)
 {
     float acc_1 = 0.0;
-    uint k_10 = 0u;
+    uint k_11 = 0u;
 
     float iq = (1.0 / qa);
     float z0_ = (oz * sqrt(iq));
@@ -1792,24 +2207,24 @@ float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz)
         if (all(loop_bound_3 == uint2(0u, 0u))) { break; }
         loop_bound_3 -= uint2(loop_bound_3.y == 0u, 1u);
         if (!loop_init_3) {
-            uint _e30 = k_10;
-            k_10 = (_e30 + 1u);
+            uint _e30 = k_11;
+            k_11 = (_e30 + 1u);
         }
         loop_init_3 = false;
-        uint _e13 = k_10;
+        uint _e13 = k_11;
         if ((_e13 < 4u)) {
         } else {
             break;
         }
         {
-            uint _e16 = k_10;
+            uint _e16 = k_11;
             const float _e17 = filter_gaussian_ggx_quad_hermite_node(_e16);
-            float x_15 = (fs * _e17);
+            float x_17 = (fs * _e17);
             float _e19 = acc_1;
-            uint _e20 = k_10;
+            uint _e20 = k_11;
             const float _e21 = filter_gaussian_ggx_quad_hermite_weight(_e20);
-            const float _e23 = filter_gaussian_ggx_quad_h_of((z0_ - x_15));
-            const float _e25 = filter_gaussian_ggx_quad_h_of((z0_ + x_15));
+            const float _e23 = filter_gaussian_ggx_quad_h_of((z0_ - x_17));
+            const float _e25 = filter_gaussian_ggx_quad_h_of((z0_ + x_17));
             acc_1 = (_e19 + (_e21 * (_e23 + _e25)));
         }
     }
@@ -1817,7 +2232,7 @@ float filter_gaussian_ggx_quad_lambda_hermite(float qa, float qs, float oz)
     return (_e32 / (2.0 * z0_));
 }
 
-float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, float ie0_, float i2s2_, float e2_, float c_stop, float total_in)
+float filter_gaussian_ggx_quad_sinh_run(bool up, float h_11, float rq, float e0_, float ie0_, float i2s2_, float e2_, float c_stop, float total_in)
 {
     float total = (float)0;
     uint ch_1 = 0u;
@@ -1825,7 +2240,7 @@ float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, f
     float xl = (float)0;
     float part_1 = (float)0;
     uint jj_1 = (uint)0;
-    bool local_12 = (bool)0;
+    bool local_18 = (bool)0;
 
     total = total_in;
     float sgn = (up ? 1.0 : -1.0);
@@ -1868,15 +2283,15 @@ float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, f
                 {
                     uint _e32 = ch_1;
                     uint _e36 = jj_1;
-                    float k_27 = float(((first + (_e32 * 8u)) + _e36));
-                    const float _e43 = math_exp((((sgn * 0.5) * h) * k_27));
+                    float k_29 = float(((first + (_e32 * 8u)) + _e36));
+                    const float _e43 = math_exp((((sgn * 0.5) * h_11) * k_29));
                     float it = (1.0 / _e43);
-                    float x_16 = (((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it));
-                    float arg = ((-(x_16) * x_16) * i2s2_);
+                    float x_18 = (((-0.5 * rq) * ((e0_ * _e43) + (ie0_ * it))) * (_e43 - it));
+                    float arg = ((-(x_18) * x_18) * i2s2_);
                     float it2_ = (it * it);
                     const float _e58 = math_exp(arg);
                     fl = ((arg > -87.0) ? (_e58 * (1.0 + ((e2_ * it2_) * it2_))) : 0.0);
-                    xl = x_16;
+                    xl = x_18;
                     float _e68 = part_1;
                     float _e69 = fl;
                     part_1 = (_e68 + _e69);
@@ -1891,11 +2306,11 @@ float filter_gaussian_ggx_quad_sinh_run(bool up, float h, float rq, float e0_, f
             if (done) {
                 float _e85 = fl;
                 float _e87 = total;
-                local_12 = (_e85 <= (filter_gaussian_ggx_quad_S_EPS * _e87));
+                local_18 = (_e85 <= (filter_gaussian_ggx_quad_S_EPS * _e87));
             } else {
-                local_12 = false;
+                local_18 = false;
             }
-            bool _e91 = local_12;
+            bool _e91 = local_18;
             if (_e91) {
                 break;
             }
@@ -1911,14 +2326,14 @@ float filter_gaussian_ggx_quad_lambda_sinh(float qa_1, float qs_1, float oz_1, f
     float root = (oz_1 + sqrt((qa_1 + (oz_1 * oz_1))));
     float e0_1 = (root / rq_1);
     float ie0_1 = (rq_1 / root);
-    float h_22 = min(filter_gaussian_ggx_quad_S_MAX, (filter_gaussian_ggx_quad_S_COEF * sqrt(sqrt(ds2_))));
+    float h_26 = min(filter_gaussian_ggx_quad_S_MAX, (filter_gaussian_ggx_quad_S_COEF * sqrt(sqrt(ds2_))));
     float i2s2_1 = (0.5 / qs_1);
-    float c_up = ((math_LN_2_ * qs_1) / (rq_1 * h_22));
-    float c_down = ((((2.0 * h_22) + math_LN_2_) * qs_1) / (rq_1 * h_22));
+    float c_up = ((math_LN_2_ * qs_1) / (rq_1 * h_26));
+    float c_down = ((((2.0 * h_26) + math_LN_2_) * qs_1) / (rq_1 * h_26));
     float e2_1 = (ie0_1 * ie0_1);
-    const float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
-    const float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_22, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
-    return (_e35 * ((h_22 * qa_1) / (((4.0 * oz_1) * sqrt(qs_1)) * math_SQRT_TAU)));
+    const float _e33 = filter_gaussian_ggx_quad_sinh_run(true, h_26, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_up, 0.0);
+    const float _e35 = filter_gaussian_ggx_quad_sinh_run(false, h_26, rq_1, e0_1, ie0_1, i2s2_1, e2_1, c_down, _e33);
+    return (_e35 * ((h_26 * qa_1) / (((4.0 * oz_1) * sqrt(qs_1)) * math_SQRT_TAU)));
 }
 
 float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2)
@@ -1930,181 +2345,6 @@ float filter_gaussian_ggx_quad_lambda(float qa_2, float qs_2, float oz_2)
     }
     const float _e9 = filter_gaussian_ggx_quad_lambda_sinh(qa_2, qs_2, oz_2, ds2_1);
     return _e9;
-}
-
-sampling_Warp Constructsampling_Warp(float arg0, float arg1, float arg2) {
-    sampling_Warp ret = (sampling_Warp)0;
-    ret.l_xx = arg0;
-    ret.l_yx = arg1;
-    ret.l_yy = arg2;
-    return ret;
-}
-
-sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_53)
-{
-    const float3 _e1 = ndf_roughness_matrix_clamped_entries(r_53);
-    float l_xx = sqrt(_e1.x);
-    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_53.sqrt_det / l_xx));
-    return sampling_warp_1;
-}
-
-float3 sampling_normalize_scaled(float3 v_4)
-{
-    float3 w_24 = (v_4 / (max(max(abs(v_4.x), abs(v_4.y)), abs(v_4.z))).xxx);
-    return (w_24 / (length(w_24)).xxx);
-}
-
-float3 sampling_stretch(sampling_Warp l_3, float3 w_15)
-{
-    return float3(((l_3.l_xx * w_15.x) + (l_3.l_yx * w_15.y)), (l_3.l_yy * w_15.y), w_15.z);
-}
-
-float3 sampling_unstretch(sampling_Warp l_4, float3 n)
-{
-    const float3 _e14 = sampling_normalize_scaled(float3((l_4.l_xx * n.x), ((l_4.l_yx * n.x) + (l_4.l_yy * n.y)), n.z));
-    return _e14;
-}
-
-float sampling_clamp_unit(float u_1)
-{
-    return ((u_1 >= 0.0) ? min(u_1, sampling_ONE_MINUS_EPS) : 0.0);
-}
-
-float3 sampling_reflect(float3 wo, float3 m_19)
-{
-    return (((2.0 * dot(wo, m_19)) * m_19) - wo);
-}
-
-float3 sampling_ggx_standard_visible(float3 wi, float2 u_2)
-{
-    const float2 _e3 = math_sincos_turns(u_2.x);
-    float z_4 = (((1.0 - u_2.y) * (1.0 + wi.z)) - wi.z);
-    float sin_theta_1 = sqrt(clamp((1.0 - (z_4 * z_4)), 0.0, 1.0));
-    return (float3((sin_theta_1 * _e3), z_4) + wi);
-}
-
-float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_54, float3 wo_1, float2 u_3)
-{
-    bool local_13 = (bool)0;
-
-    if (!((wo_1.z > 0.0))) {
-        return (0.0).xxx;
-    }
-    const sampling_Warp _e9 = sampling_warp(r_54);
-    const float3 _e10 = sampling_normalize_scaled(wo_1);
-    const float3 _e11 = sampling_stretch(_e9, _e10);
-    const float3 _e12 = sampling_normalize_scaled(_e11);
-    if (!((_e12.z > 0.0))) {
-        return (0.0).xxx;
-    }
-    const float _e20 = sampling_clamp_unit(u_3.x);
-    const float _e22 = sampling_clamp_unit(u_3.y);
-    const float3 _e24 = sampling_ggx_standard_visible(_e12, float2(_e20, _e22));
-    const float3 _e25 = sampling_unstretch(_e9, _e24);
-    if ((_e25.z > 0.0)) {
-        local_13 = (dot(wo_1, _e25) > 0.0);
-    } else {
-        local_13 = false;
-    }
-    bool _e35 = local_13;
-    if (_e35) {
-        return _e25;
-    }
-    const float3 _e36 = sampling_unstretch(_e9, _e12);
-    return ((_e36.z > 0.0) ? _e36 : (0.0).xxx);
-}
-
-float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_55, float2 u_4)
-{
-    const float _e3 = sampling_clamp_unit(u_4.x);
-    const float _e5 = sampling_clamp_unit(u_4.y);
-    const float2 _e6 = math_sincos_turns(_e5);
-    float3 n_6 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
-    const sampling_Warp _e13 = sampling_warp(r_55);
-    const float3 _e14 = sampling_unstretch(_e13, n_6);
-    return _e14;
-}
-
-float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_56, float3 m_20)
-{
-    const float _e2 = ndf_ggx_d_matrix(r_56, m_20);
-    return ((m_20.z > 0.0) ? (_e2 * m_20.z) : 0.0);
-}
-
-float sampling_visible_normal_pdf_of(float3 wo_2, float3 m_21, float d, float lambda)
-{
-    bool local_14 = (bool)0;
-    bool local_15 = (bool)0;
-
-    float wom = dot(wo_2, m_21);
-    float v_14 = ((wom * d) / (wo_2.z * (1.0 + lambda)));
-    if ((wo_2.z > 0.0)) {
-        local_14 = (wom > 0.0);
-    } else {
-        local_14 = false;
-    }
-    bool _e19 = local_14;
-    if (_e19) {
-        local_15 = (v_14 <= math_F32_MAX);
-    } else {
-        local_15 = false;
-    }
-    bool _e25 = local_15;
-    return (_e25 ? v_14 : 0.0);
-}
-
-float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_57, float3 wo_3, float3 m_22)
-{
-    const float _e3 = ndf_ggx_d_matrix(r_57, m_22);
-    const float _e4 = ndf_ggx_lambda_matrix(r_57, wo_3);
-    const float _e5 = sampling_visible_normal_pdf_of(wo_3, m_22, _e3, _e4);
-    return _e5;
-}
-
-float sampling_reflection_pdf_of(float3 o_6, float3 m_23, float d_1, float lambda_1)
-{
-    bool local_16 = (bool)0;
-    bool local_17 = (bool)0;
-
-    float v_15 = (d_1 / ((4.0 * o_6.z) * (1.0 + lambda_1)));
-    if ((o_6.z > 0.0)) {
-        local_16 = (dot(o_6, m_23) > 0.0);
-    } else {
-        local_16 = false;
-    }
-    bool _e20 = local_16;
-    if (_e20) {
-        local_17 = (v_15 <= math_F32_MAX);
-    } else {
-        local_17 = false;
-    }
-    bool _e26 = local_17;
-    return (_e26 ? v_15 : 0.0);
-}
-
-float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_58, float3 wo_4, float3 m_24)
-{
-    const float3 _e3 = sampling_normalize_scaled(wo_4);
-    const float _e4 = ndf_ggx_d_matrix(r_58, m_24);
-    const float _e5 = ndf_ggx_lambda_matrix(r_58, _e3);
-    const float _e6 = sampling_reflection_pdf_of(_e3, m_24, _e4, _e5);
-    return _e6;
-}
-
-float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_59, float3 wo_5, float3 wi_1)
-{
-    if (!((wo_5.z > 0.0))) {
-        return 0.0;
-    }
-    const float3 _e8 = sampling_normalize_scaled(wo_5);
-    const float3 _e9 = sampling_normalize_scaled(wi_1);
-    float3 h_23 = (_e8 + _e9);
-    float len_1 = length(h_23);
-    if (!((len_1 > 0.0))) {
-        return 0.0;
-    }
-    const float _e18 = sampling_reflection_pdf_from_normal(r_59, wo_5, (h_23 / (len_1).xxx));
-    return _e18;
 }
 
 filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_with_tolerance(filter_gaussian_ggx_GaussianFilteredGgx g, uint tol_3)
@@ -2130,48 +2370,48 @@ filter_gaussian_ggx_GaussianFilteredGgx Constructfilter_gaussian_ggx_GaussianFil
     return ret;
 }
 
-filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_6, kernel_covariance_Covariance kernel_4)
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_from_kernel(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_4)
 {
     float l2_ = 0.0;
-    float2 v_5 = float2(1.0, 0.0);
+    float2 v_6 = float2(1.0, 0.0);
 
     const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_4);
-    float c_18 = a_6.axis.x;
-    float s_29 = a_6.axis.y;
+    float c_18 = a_8.axis.x;
+    float s_29 = a_8.axis.y;
     float k11_ = max(((((c_18 * c_18) * _e2.s_xx) + (((2.0 * c_18) * s_29) * _e2.s_xy)) + ((s_29 * s_29) * _e2.s_yy)), 0.0);
     float k22_ = max(((((s_29 * s_29) * _e2.s_xx) - (((2.0 * c_18) * s_29) * _e2.s_xy)) + ((c_18 * c_18) * _e2.s_yy)), 0.0);
     float k12_ = ((((c_18 * c_18) - (s_29 * s_29)) * _e2.s_xy) + ((c_18 * s_29) * (_e2.s_yy - _e2.s_xx)));
-    float2 l_6 = a_6.eig_c;
-    float2 isl = ((1.0).xx / sqrt(l_6));
+    float2 l_7 = a_8.eig_c;
+    float2 isl = ((1.0).xx / sqrt(l_7));
     float c11_ = ((k11_ * isl.x) * isl.x);
     float c22_ = ((k22_ * isl.y) * isl.y);
     float c12_ = ((k12_ * isl.x) * isl.y);
-    float det_c = (max(_e2.det, 0.0) / (l_6.x * l_6.y));
+    float det_c = (max(_e2.det, 0.0) / (l_7.x * l_7.y));
     float half_ = (0.5 * (c11_ - c22_));
     const float _e75 = math_hypot(half_, c12_);
     float l1_2 = ((0.5 * (c11_ + c22_)) + _e75);
     if ((_e75 > 0.0)) {
-        float big_2 = (_e75 + abs(half_));
-        float2 w_25 = ((half_ >= 0.0) ? float2(big_2, c12_) : float2(c12_, big_2));
-        v_5 = (w_25 / (length(w_25)).xx);
+        float big_3 = (_e75 + abs(half_));
+        float2 w_25 = ((half_ >= 0.0) ? float2(big_3, c12_) : float2(c12_, big_3));
+        v_6 = (w_25 / (length(w_25)).xx);
         l2_ = min((det_c / l1_2), l1_2);
     } else {
         if ((l1_2 > 0.0)) {
             l2_ = l1_2;
         }
     }
-    float2 _e102 = v_5;
+    float2 _e102 = v_6;
     float _e105 = l2_;
-    const float _e110 = ndf_roughness_matrix_sqrt_det(a_6);
-    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_1 = Constructfilter_gaussian_ggx_GaussianFilteredGgx(a_6, isl, _e102, float2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2, filter_gaussian_ggx_TOL_FULL);
+    const float _e110 = ndf_roughness_matrix_sqrt_det(a_8);
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_1 = Constructfilter_gaussian_ggx_GaussianFilteredGgx(a_8, isl, _e102, float2((2.0 * l1_2), (2.0 * _e105)), (math_INV_PI / _e110), _e2, filter_gaussian_ggx_TOL_FULL);
     return filter_gaussian_ggx_gaussianfilteredggx_1;
 }
 
 float2 filter_gaussian_ggx_whiten(filter_gaussian_ggx_GaussianFilteredGgx g_1, float2 s_11)
 {
     const float2 _e3 = ndf_roughness_matrix_rotate(g_1.a, s_11);
-    float2 u_18 = (_e3 * g_1.inv_sqrt_l);
-    float2 c_19 = float2(((g_1.v.x * u_18.x) + (g_1.v.y * u_18.y)), ((g_1.v.x * u_18.y) - (g_1.v.y * u_18.x)));
+    float2 u_19 = (_e3 * g_1.inv_sqrt_l);
+    float2 c_19 = float2(((g_1.v.x * u_19.x) + (g_1.v.y * u_19.y)), ((g_1.v.x * u_19.y) - (g_1.v.y * u_19.x)));
     return (c_19 * c_19);
 }
 
@@ -2182,30 +2422,30 @@ float filter_gaussian_ggx_p22_(filter_gaussian_ggx_GaussianFilteredGgx g_2, floa
     return (g_2.norm * _e12);
 }
 
-float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_3, float3 m_25)
+float filter_gaussian_ggx_d(filter_gaussian_ggx_GaussianFilteredGgx g_3, float3 m_21)
 {
-    if (!((m_25.z > 0.0))) {
+    if (!((m_21.z > 0.0))) {
         return 0.0;
     }
-    const float2 _e8 = filter_gaussian_ggx_whiten(g_3, m_25.xy);
-    const float _e20 = filter_gaussian_ggx_quad_j_tol(_e8.x, _e8.y, (m_25.z * m_25.z), g_3.tl.x, g_3.tl.y, g_3.tol);
-    float v_16 = (g_3.norm * _e20);
-    return ((v_16 <= math_F32_MAX) ? v_16 : 0.0);
+    const float2 _e8 = filter_gaussian_ggx_whiten(g_3, m_21.xy);
+    const float _e20 = filter_gaussian_ggx_quad_j_tol(_e8.x, _e8.y, (m_21.z * m_21.z), g_3.tl.x, g_3.tl.y, g_3.tol);
+    float v_18 = (g_3.norm * _e20);
+    return ((v_18 <= math_F32_MAX) ? v_18 : 0.0);
 }
 
-float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_4, float3 w_16)
+float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_4, float3 w_15)
 {
-    float big_3 = max(max(abs(w_16.x), abs(w_16.y)), abs(w_16.z));
-    if (!((big_3 > 0.0))) {
-        return ((big_3 == 0.0) ? 0.0 : math_F32_MAX);
+    float big_4 = max(max(abs(w_15.x), abs(w_15.y)), abs(w_15.z));
+    if (!((big_4 > 0.0))) {
+        return ((big_4 == 0.0) ? 0.0 : math_F32_MAX);
     }
-    float3 ws = (w_16 / (big_3).xxx);
+    float3 ws = (w_15 / (big_4).xxx);
     float3 o_9 = (ws / (length(ws)).xxx);
     float oz_3 = abs(o_9.z);
     const float _e27 = ndf_roughness_matrix_quadratic(g_4.a, o_9.xy);
     kernel_covariance_Covariance kk = g_4.k;
-    float qs_3 = max(((((kk.s_xx * o_9.x) * o_9.x) + (((2.0 * kk.s_xy) * o_9.x) * o_9.y)) + ((kk.s_yy * o_9.y) * o_9.y)), 0.0);
-    if ((qs_3 <= 0.0)) {
+    float qs_4 = max(((((kk.s_xx * o_9.x) * o_9.x) + (((2.0 * kk.s_xy) * o_9.x) * o_9.y)) + ((kk.s_yy * o_9.y) * o_9.y)), 0.0);
+    if ((qs_4 <= 0.0)) {
         const float _e52 = ndf_ggx_lambda_of(_e27, oz_3);
         return _e52;
     }
@@ -2213,296 +2453,65 @@ float filter_gaussian_ggx_lambda(filter_gaussian_ggx_GaussianFilteredGgx g_4, fl
         return math_F32_MAX;
     }
     if ((_e27 <= 0.0)) {
-        const float _e60 = ndf_beckmann_lambda_of((2.0 * qs_3), oz_3);
+        const float _e60 = ndf_beckmann_lambda_of((2.0 * qs_4), oz_3);
         return _e60;
     }
-    const float _e61 = filter_gaussian_ggx_quad_lambda(_e27, qs_3, oz_3);
+    const float _e61 = filter_gaussian_ggx_quad_lambda(_e27, qs_4, oz_3);
     return _e61;
 }
 
-float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 w_17, float3 m_26)
+float filter_gaussian_ggx_g1_(filter_gaussian_ggx_GaussianFilteredGgx g_5, float3 w_16, float3 m_22)
 {
-    const float _e3 = filter_gaussian_ggx_lambda(g_5, w_17);
-    const float _e5 = ndf_g1_of(_e3, dot(w_17, m_26));
+    const float _e3 = filter_gaussian_ggx_lambda(g_5, w_16);
+    const float _e5 = ndf_g1_of(_e3, dot(w_16, m_22));
     return _e5;
 }
 
-float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_6, float3 i_6, float3 o_7, float3 m_27)
+float filter_gaussian_ggx_g2_(filter_gaussian_ggx_GaussianFilteredGgx g_6, float3 i_6, float3 o_6, float3 m_23)
 {
     const float _e4 = filter_gaussian_ggx_lambda(g_6, i_6);
-    const float _e5 = filter_gaussian_ggx_lambda(g_6, o_7);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_27), dot(o_7, m_27));
+    const float _e5 = filter_gaussian_ggx_lambda(g_6, o_6);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_6, m_23), dot(o_6, m_23));
     return _e8;
 }
 
-float2 filter_gaussian_ggx_split(float u_5)
+filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_exact_gaussian_lobe(filter_gaussian_ggx_ExactGaussian method_3, ndf_roughness_matrix_RoughnessMatrix material_3, footprint_Footprint fp_7)
 {
-    float x_17 = (u_5 * 4096.0);
-    float hi_3 = floor(x_17);
-    return float2(((hi_3 + 0.5) / 4096.0), (x_17 - hi_3));
+    const kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_7, method_3.sigma);
+    const filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
+    const filter_gaussian_ggx_GaussianFilteredGgx _e8 = filter_gaussian_ggx_with_tolerance(_e6, method_3.tolerance);
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_2 = _e8;
+    return filter_gaussian_ggx_gaussianfilteredggx_2;
 }
 
-float3 filter_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_7, float2 u_6)
+float filter_gaussian_ggx_d_ggx_exact_gaussian(filter_gaussian_ggx_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_8, float3 m_24)
 {
-    float2 ax = float2(1.0, 0.0);
-
-    const float _e3 = sampling_clamp_unit(u_6.x);
-    const float2 _e4 = filter_gaussian_ggx_split(_e3);
-    const float _e6 = sampling_clamp_unit(u_6.y);
-    const float2 _e7 = filter_gaussian_ggx_split(_e6);
-    const float2 _e15 = math_sincos_turns(_e7.x);
-    float2 t_16 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
-    const sampling_Warp _e18 = sampling_warp(g_7.a);
-    float2 gs = float2((_e18.l_xx * t_16.x), ((_e18.l_yx * t_16.x) + (_e18.l_yy * t_16.y)));
-    const float _e33 = math_ln((1.0 - _e4.y));
-    const float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
-    float e_5 = ((_e4.y < 0.5) ? _e40 : -(_e33));
-    const float2 _e49 = math_sincos_turns(_e7.y);
-    float2 y_4 = (sqrt((2.0 * e_5)) * _e49);
-    kernel_covariance_Covariance k_28 = g_7.k;
-    const float2 _e52 = kernel_covariance_eigenvalues(k_28);
-    float khalf = (0.5 * (k_28.s_xx - k_28.s_yy));
-    const float _e59 = math_hypot(khalf, k_28.s_xy);
-    if ((_e59 > 0.0)) {
-        float2 w_26 = ((khalf >= 0.0) ? float2((_e59 + khalf), k_28.s_xy) : float2(k_28.s_xy, (_e59 - khalf)));
-        const float _e77 = math_hypot(w_26.x, w_26.y);
-        ax = (w_26 / (_e77).xx);
-    }
-    float2 kk_1 = float2((sqrt(_e52.y) * y_4.x), (sqrt(_e52.x) * y_4.y));
-    float _e90 = ax.x;
-    float _e94 = ax.y;
-    float _e99 = ax.y;
-    float _e103 = ax.x;
-    float2 s_30 = (gs + float2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
-    const float3 _e112 = sampling_normalize_scaled(float3(-(s_30), 1.0));
-    return float3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
+    const filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_gaussian_ggx_exact_gaussian_lobe(method_4, material_4, fp_8);
+    const float _e5 = filter_gaussian_ggx_d(_e4, m_24);
+    return _e5;
 }
 
-float filter_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_8, float3 m_28)
-{
-    const float _e2 = filter_gaussian_ggx_d(g_8, m_28);
-    return ((m_28.z > 0.0) ? (_e2 * m_28.z) : 0.0);
-}
-
-footprint_jacobian_Polar Constructfootprint_jacobian_Polar(float3 arg0, float2 arg1) {
-    footprint_jacobian_Polar ret = (footprint_jacobian_Polar)0;
-    ret.h = arg0;
-    ret.cs = arg1;
-    return ret;
-}
-
-footprint_jacobian_Polar footprint_jacobian_polar(float3 h_in)
-{
-    float2 cs_1 = float2(1.0, 0.0);
-
-    float big_4 = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
-    if ((big_4 <= 0.0)) {
-        const footprint_jacobian_Polar footprint_jacobian_polar_1 = Constructfootprint_jacobian_Polar(float3(0.0, 0.0, 1.0), float2(1.0, 0.0));
-        return footprint_jacobian_polar_1;
-    }
-    float3 h0_ = (h_in / (big_4).xxx);
-    float3 h_24 = (h0_ / (length(h0_)).xxx);
-    float qs_4 = max(abs(h_24.x), abs(h_24.y));
-    if ((qs_4 > 0.0)) {
-        float2 q_6 = (h_24.xy / (qs_4).xx);
-        cs_1 = (q_6 / (length(q_6)).xx);
-    }
-    if ((h_24.z >= footprint_jacobian_HZ_MIN)) {
-        float2 _e44 = cs_1;
-        const footprint_jacobian_Polar footprint_jacobian_polar_2 = Constructfootprint_jacobian_Polar(h_24, _e44);
-        return footprint_jacobian_polar_2;
-    }
-    float2 _e47 = cs_1;
-    float2 _e51 = cs_1;
-    const footprint_jacobian_Polar footprint_jacobian_polar_3 = Constructfootprint_jacobian_Polar(float3((1.0 * _e47), footprint_jacobian_HZ_MIN), _e51);
-    return footprint_jacobian_polar_3;
-}
-
-float3 footprint_jacobian_sanitize(float3 h_1)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_1);
-    return _e1.h;
-}
-
-footprint_jacobian_SphericalBasis Constructfootprint_jacobian_SphericalBasis(float3 arg0, float3 arg1) {
-    footprint_jacobian_SphericalBasis ret = (footprint_jacobian_SphericalBasis)0;
-    ret.e_x = arg0;
-    ret.e_y = arg1;
-    return ret;
-}
-
-footprint_jacobian_SphericalBasis footprint_jacobian_spherical_basis(float3 h_2)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_2);
-    float st = length(_e1.h.xy);
-    const footprint_jacobian_SphericalBasis footprint_jacobian_sphericalbasis = Constructfootprint_jacobian_SphericalBasis(float3((_e1.h.z * _e1.cs), -(st)), float3(-(_e1.cs.y), _e1.cs.x, 0.0));
-    return footprint_jacobian_sphericalbasis;
-}
-
-float2 footprint_jacobian_spherical_components(float3 h_3, float3 dh)
-{
-    const footprint_jacobian_SphericalBasis _e2 = footprint_jacobian_spherical_basis(h_3);
-    return float2(dot(dh, _e2.e_x), dot(dh, _e2.e_y));
-}
-
-float2x2 footprint_jacobian_sphere_to_projected(float3 h_4)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_4);
-    return float2x2((_e1.h.z * _e1.cs), float2(-(_e1.cs.y), _e1.cs.x));
-}
-
-float2x2 footprint_jacobian_projected_to_slope(float3 h_in_1)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_1);
-    float3 h_25 = _e1.h;
-    float k_29 = (-1.0 / ((h_25.z * h_25.z) * h_25.z));
-    float xy_3 = (h_25.x * h_25.y);
-    return float2x2((float2(((h_25.x * h_25.x) + (h_25.z * h_25.z)), xy_3) * k_29), (float2(xy_3, ((h_25.y * h_25.y) + (h_25.z * h_25.z))) * k_29));
-}
-
-float2x2 footprint_jacobian_slope_to_projected(float3 h_in_2)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_in_2);
-    float3 h_26 = _e1.h;
-    float xy_4 = (h_26.x * h_26.y);
-    return float2x2((float2(((h_26.y * h_26.y) + (h_26.z * h_26.z)), -(xy_4)) * -(h_26.z)), (float2(-(xy_4), ((h_26.x * h_26.x) + (h_26.z * h_26.z))) * -(h_26.z)));
-}
-
-float2x2 footprint_jacobian_sphere_to_slope(float3 h_5)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_5);
-    float k_30 = (-1.0 / (_e1.h.z * _e1.h.z));
-    return float2x2((_e1.cs * k_30), (float2((-(_e1.h.z) * _e1.cs.y), (_e1.h.z * _e1.cs.x)) * k_30));
-}
-
-float footprint_jacobian_det_sphere_to_projected(float3 h_6)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_6);
-    return _e1.h.z;
-}
-
-float footprint_jacobian_det_projected_to_slope(float3 h_7)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_7);
-    float z_5 = _e1.h.z;
-    float z2_6 = (z_5 * z_5);
-    return (1.0 / (z2_6 * z2_6));
-}
-
-float footprint_jacobian_det_sphere_to_slope(float3 h_8)
-{
-    const footprint_jacobian_Polar _e1 = footprint_jacobian_polar(h_8);
-    float z_6 = _e1.h.z;
-    return (1.0 / ((z_6 * z_6) * z_6));
-}
-
-float2 footprint_jacobian_spherical_to_slope(float3 h_9, float2 e_1)
-{
-    const float2x2 _e2 = footprint_jacobian_sphere_to_slope(h_9);
-    return mul(e_1, _e2);
-}
-
-float2 footprint_jacobian_spherical_to_projected(float3 h_10, float2 e_2)
-{
-    const float2x2 _e2 = footprint_jacobian_sphere_to_projected(h_10);
-    return mul(e_2, _e2);
-}
-
-kernel_covariance_Covariance kernel_rect_covariance(kernel_rect_BoundingRect r_60, float sigma_1)
-{
-    float2 w_27 = (r_60.half_extent * (2.0 * sigma_1));
-    float2 v_17 = (w_27 * w_27);
-    const kernel_covariance_Covariance kernel_covariance_covariance_14 = Constructkernel_covariance_Covariance(v_17.x, 0.0, v_17.y, (v_17.x * v_17.y));
-    return kernel_covariance_covariance_14;
-}
-
-footprint_Footprint Constructfootprint_Footprint(float2 arg0, float2 arg1) {
-    footprint_Footprint ret = (footprint_Footprint)0;
-    ret.dh_u = arg0;
-    ret.dh_v = arg1;
-    return ret;
-}
-
-footprint_Footprint footprint_from_slope_derivatives(float2 dh_u, float2 dh_v)
-{
-    const footprint_Footprint footprint_footprint = Constructfootprint_Footprint(dh_u, dh_v);
-    return footprint_footprint;
-}
-
-footprint_Footprint footprint_from_projected_derivatives(float2 dp_u, float2 dp_v)
-{
-    const footprint_Footprint footprint_footprint_1 = Constructfootprint_Footprint(dp_u, dp_v);
-    return footprint_footprint_1;
-}
-
-footprint_Footprint footprint_from_projected_derivatives_in_slope(float3 h_11, float2 dp_u_1, float2 dp_v_1)
-{
-    float big_5 = max(max(abs(h_11.x), abs(h_11.y)), abs(h_11.z));
-    if ((big_5 <= 0.0)) {
-        const footprint_Footprint footprint_footprint_2 = Constructfootprint_Footprint((0.0).xx, (0.0).xx);
-        return footprint_footprint_2;
-    }
-    const float2x2 _e18 = footprint_jacobian_projected_to_slope(h_11);
-    const footprint_Footprint footprint_footprint_3 = Constructfootprint_Footprint(mul(dp_u_1, _e18), mul(dp_v_1, _e18));
-    return footprint_footprint_3;
-}
-
-footprint_Footprint footprint_from_normal_differences(float3 dn_u_4, float3 dn_v_4)
-{
-    float lu = max(length((float3(0.0, 0.0, 2.0) + dn_u_4)), 1e-6);
-    float lv = max(length((float3(0.0, 0.0, 2.0) + dn_v_4)), 1e-6);
-    const footprint_Footprint footprint_footprint_4 = Constructfootprint_Footprint((dn_u_4.xy * (2.0 / lu)), (dn_v_4.xy * (2.0 / lv)));
-    return footprint_footprint_4;
-}
-
-kernel_covariance_Covariance footprint_covariance(footprint_Footprint fp, float sigma_2)
-{
-    float2 u_19 = fp.dh_u;
-    float2 v_18 = fp.dh_v;
-    float s2_ = (sigma_2 * sigma_2);
-    float cross_1 = (((u_19.x * v_18.y) - (u_19.y * v_18.x)) * s2_);
-    const kernel_covariance_Covariance kernel_covariance_covariance_15 = Constructkernel_covariance_Covariance((((u_19.x * u_19.x) + (v_18.x * v_18.x)) * s2_), (((u_19.x * u_19.y) + (v_18.x * v_18.y)) * s2_), (((u_19.y * u_19.y) + (v_18.y * v_18.y)) * s2_), (cross_1 * cross_1));
-    return kernel_covariance_covariance_15;
-}
-
-kernel_rect_BoundingRect Constructkernel_rect_BoundingRect(float2 arg0) {
-    kernel_rect_BoundingRect ret = (kernel_rect_BoundingRect)0;
-    ret.half_extent = arg0;
-    return ret;
-}
-
-kernel_rect_BoundingRect footprint_bounding_rect(footprint_Footprint fp_1)
-{
-    const kernel_rect_BoundingRect kernel_rect_boundingrect = Constructkernel_rect_BoundingRect(((abs(fp_1.dh_u) + abs(fp_1.dh_v)) * 0.5));
-    return kernel_rect_boundingrect;
-}
-
-float footprint_max_extent(footprint_Footprint fp_2)
-{
-    return (0.5 * max(length((fp_2.dh_u + fp_2.dh_v)), length((fp_2.dh_u - fp_2.dh_v))));
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_roughness_matrix_RoughnessMatrix a_7, kernel_covariance_Covariance k_11, float tau_4)
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance k_12, float tau_4)
 {
     float b11_ = (float)0;
     float b12_ = (float)0;
     float b22_ = (float)0;
     float det_3 = (float)0;
 
-    float2 lc = min(a_7.eig, (0.99).xx);
-    float2 excess = (a_7.eig - lc);
+    float2 lc = min(a_9.eig, (0.99).xx);
+    float2 excess = (a_9.eig - lc);
     float2 p_8 = (lc / ((1.0).xx - lc));
-    float c_20 = a_7.axis.x;
-    float s_31 = a_7.axis.y;
-    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_31) * s_31));
-    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_31);
-    float p22_1 = (((p_8.x * s_31) * s_31) + ((p_8.y * c_20) * c_20));
-    float k1_3 = max(((((c_20 * c_20) * k_11.s_xx) + (((2.0 * c_20) * s_31) * k_11.s_xy)) + ((s_31 * s_31) * k_11.s_yy)), 0.0);
-    float k2_3 = max(((((s_31 * s_31) * k_11.s_xx) - (((2.0 * c_20) * s_31) * k_11.s_xy)) + ((c_20 * c_20) * k_11.s_yy)), 0.0);
-    float d_5 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_11.det, 0.0)));
-    float q11_ = (p11_1 + (2.0 * k_11.s_xx));
-    float q12_ = (p12_1 + (2.0 * k_11.s_xy));
-    float q22_ = (p22_1 + (2.0 * k_11.s_yy));
+    float c_20 = a_9.axis.x;
+    float s_30 = a_9.axis.y;
+    float p11_1 = (((p_8.x * c_20) * c_20) + ((p_8.y * s_30) * s_30));
+    float p12_1 = (((p_8.x - p_8.y) * c_20) * s_30);
+    float p22_1 = (((p_8.x * s_30) * s_30) + ((p_8.y * c_20) * c_20));
+    float k1_3 = max(((((c_20 * c_20) * k_12.s_xx) + (((2.0 * c_20) * s_30) * k_12.s_xy)) + ((s_30 * s_30) * k_12.s_yy)), 0.0);
+    float k2_3 = max(((((s_30 * s_30) * k_12.s_xx) - (((2.0 * c_20) * s_30) * k_12.s_xy)) + ((c_20 * c_20) * k_12.s_yy)), 0.0);
+    float d_5 = (((p_8.x * p_8.y) + (2.0 * ((p_8.y * k1_3) + (p_8.x * k2_3)))) + (4.0 * max(k_12.det, 0.0)));
+    float q11_ = (p11_1 + (2.0 * k_12.s_xx));
+    float q12_ = (p12_1 + (2.0 * k_12.s_xy));
+    float q22_ = (p22_1 + (2.0 * k_12.s_yy));
     float den_1 = (((1.0 + q11_) + q22_) + d_5);
     b11_ = ((q11_ + d_5) / den_1);
     b12_ = (q12_ / den_1);
@@ -2510,134 +2519,75 @@ ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_sanitized(ndf_ro
     det_3 = (d_5 / den_1);
     if ((max(excess.x, excess.y) > 0.0)) {
         float _e114 = b11_;
-        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_31) * s_31)));
+        b11_ = (_e114 + (((excess.x * c_20) * c_20) + ((excess.y * s_30) * s_30)));
         float _e123 = b12_;
-        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_31));
+        b12_ = (_e123 + (((excess.x - excess.y) * c_20) * s_30));
         float _e130 = b22_;
-        b22_ = (_e130 + (((excess.x * s_31) * s_31) + ((excess.y * c_20) * c_20)));
+        b22_ = (_e130 + (((excess.x * s_30) * s_30) + ((excess.y * c_20) * c_20)));
         float _e139 = b11_;
         float _e140 = b22_;
         float _e142 = b12_;
         float _e143 = b12_;
         det_3 = ((_e139 * _e140) - (_e142 * _e143));
     }
-    const float3 _e146 = ndf_roughness_matrix_entries(a_7);
+    const float3 _e146 = ndf_roughness_matrix_entries(a_9);
     float _e147 = b11_;
     float _e150 = b12_;
     float _e151 = b22_;
     float _e154 = det_3;
     const ndf_roughness_matrix_RoughnessMatrix _e157 = ndf_roughness_matrix_from_entries_det(max(_e147, _e146.x), _e150, max(_e151, _e146.z), _e154, max(tau_4, 0.0));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_14 = _e157;
-    return ndf_roughness_matrix_roughnessmatrix_14;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_8, kernel_covariance_Covariance kernel_5)
-{
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_5);
-    const float _e3 = ndf_roughness_matrix_clamped_det(a_8);
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_8, _e2, _e3);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_15 = _e4;
-    return ndf_roughness_matrix_roughnessmatrix_15;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_9, kernel_covariance_Covariance kernel_6, float det_clamp_2)
-{
-    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
-    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_9);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_9, _e3, max(det_clamp_2, _e4));
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_16 = _e6;
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_16 = _e157;
     return ndf_roughness_matrix_roughnessmatrix_16;
 }
 
-footprint_Footprint kernel_clamp_footprint(kernel_clamp_ClampRules rules, footprint_Footprint fp_3)
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected(ndf_roughness_matrix_RoughnessMatrix a_10, kernel_covariance_Covariance kernel_5)
 {
-    float l_7 = max(rules.max_extent, 0.0);
-    float scale_2 = max(max(abs(fp_3.dh_u.x), abs(fp_3.dh_u.y)), max(abs(fp_3.dh_v.x), abs(fp_3.dh_v.y)));
-    if ((scale_2 <= 0.0)) {
-        const footprint_Footprint footprint_footprint_5 = fp_3;
-        return footprint_footprint_5;
-    }
-    footprint_Footprint unit = Constructfootprint_Footprint((fp_3.dh_u / (scale_2).xx), (fp_3.dh_v / (scale_2).xx));
-    const float _e29 = footprint_max_extent(unit);
-    if (((_e29 * scale_2) <= l_7)) {
-        const footprint_Footprint footprint_footprint_6 = fp_3;
-        return footprint_footprint_6;
-    }
-    const footprint_Footprint footprint_footprint_7 = Constructfootprint_Footprint(((unit.dh_u / (_e29).xx) * l_7), ((unit.dh_v / (_e29).xx) * l_7));
-    return footprint_footprint_7;
-}
-
-kernel_rect_BoundingRect kernel_clamp_rect(kernel_clamp_ClampRules rules_1, kernel_rect_BoundingRect r_61, float2 alpha_8)
-{
-    float2 f_1 = (0.0).xx;
-
-    if ((rules_1.floor_kind == kernel_clamp_FLOOR_CONSTANT)) {
-        f_1 = (rules_1.floor_).xx;
-    } else {
-        if ((rules_1.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED)) {
-            f_1 = min(abs(alpha_8), (rules_1.floor_).xx);
-        }
-    }
-    float lambda_2 = max(rules_1.max_extent, 0.0);
-    float2 h_27 = min(abs(r_61.half_extent), (lambda_2).xx);
-    float2 _e25 = f_1;
-    const kernel_rect_BoundingRect kernel_rect_boundingrect_1 = Constructkernel_rect_BoundingRect(max(h_27, max(_e25, (0.0).xx)));
-    return kernel_rect_boundingrect_1;
-}
-
-kernel_covariance_Covariance kernel_clamp_kernel(kernel_clamp_ClampRules rules_2, kernel_covariance_Covariance k_12)
-{
-    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(k_12);
-    if ((rules_2.kappa >= math_F32_MAX)) {
-        const kernel_covariance_Covariance kernel_covariance_covariance_16 = _e2;
-        return kernel_covariance_covariance_16;
-    }
-    const kernel_covariance_Covariance _e11 = kernel_covariance_clamp_eigenvalues(_e2, (0.5 * max(rules_2.kappa, 0.0)));
-    const kernel_covariance_Covariance kernel_covariance_covariance_17 = _e11;
-    return kernel_covariance_covariance_17;
-}
-
-float kernel_clamp_det_clamp_for(kernel_clamp_ClampRules rules_3, ndf_roughness_matrix_RoughnessMatrix a_10)
-{
-    const float _e2 = ndf_roughness_matrix_own_det_clamp(a_10);
+    const kernel_covariance_Covariance _e2 = kernel_covariance_sanitized(kernel_5);
     const float _e3 = ndf_roughness_matrix_clamped_det(a_10);
-    return (rules_3.det_clamp ? _e3 : _e2);
-}
-
-kernel_covariance_Covariance kernel_clamp_pixel_kernel(kernel_clamp_ClampRules rules_4, footprint_Footprint fp_4, float sigma_3)
-{
-    const footprint_Footprint _e3 = kernel_clamp_footprint(rules_4, fp_4);
-    const kernel_covariance_Covariance _e4 = footprint_covariance(_e3, sigma_3);
-    const kernel_covariance_Covariance _e5 = kernel_clamp_kernel(rules_4, _e4);
-    const kernel_covariance_Covariance kernel_covariance_covariance_18 = _e5;
-    return kernel_covariance_covariance_18;
-}
-
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_gaussian(kernel_clamp_ClampRules rules_5, ndf_roughness_matrix_RoughnessMatrix a_11, footprint_Footprint fp_5, float sigma_4)
-{
-    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_5, fp_5, sigma_4);
-    const float _e5 = kernel_clamp_det_clamp_for(rules_5, a_11);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_gaussian_gaussian_sanitized(a_11, _e4, _e5);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_17 = _e6;
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_sanitized(a_10, _e2, _e3);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_17 = _e4;
     return ndf_roughness_matrix_roughnessmatrix_17;
 }
 
-ndf_roughness_matrix_RoughnessMatrix kernel_clamp_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_6, float sigma_5)
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_with_det_clamp(ndf_roughness_matrix_RoughnessMatrix a_11, kernel_covariance_Covariance kernel_6, float det_clamp_2)
 {
-    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_6, sigma_5);
-    const float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
-    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
+    const kernel_covariance_Covariance _e3 = kernel_covariance_sanitized(kernel_6);
+    const float _e4 = ndf_roughness_matrix_own_det_clamp(a_11);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_11, _e3, max(det_clamp_2, _e4));
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_18 = _e6;
     return ndf_roughness_matrix_roughnessmatrix_18;
 }
 
+ndf_roughness_matrix_RoughnessMatrix filter_projected_filter_projected(kernel_clamp_ClampRules rules_6, ndf_roughness_matrix_RoughnessMatrix a_12, footprint_Footprint fp_9, float sigma_5)
+{
+    const kernel_covariance_Covariance _e4 = kernel_clamp_pixel_kernel(rules_6, fp_9, sigma_5);
+    const float _e5 = kernel_clamp_det_clamp_for(rules_6, a_12);
+    const ndf_roughness_matrix_RoughnessMatrix _e6 = filter_projected_projected_sanitized(a_12, _e4, _e5);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_19 = _e6;
+    return ndf_roughness_matrix_roughnessmatrix_19;
+}
+
+ndf_roughness_matrix_RoughnessMatrix filter_projected_projected_lobe(filter_projected_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_10)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_filter_projected(method_5.clamps, material_5, fp_10, method_5.sigma);
+    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_20 = _e5;
+    return ndf_roughness_matrix_roughnessmatrix_20;
+}
+
+float filter_projected_d_ggx_projected(filter_projected_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_11, float3 m_25)
+{
+    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_projected_projected_lobe(method_6, material_6, fp_11);
+    const float _e5 = ndf_ggx_d_matrix(_e4, m_25);
+    return _e5;
+}
+
 float filter_proxy_effective_alpha(float alpha_9, float half_extent)
 {
-    float h_28 = abs(half_extent);
-    const float _e3 = math_hypot(alpha_9, h_28);
-    float t_17 = ((_e3 > 0.0) ? (h_28 / _e3) : 0.0);
-    const float _e9 = math_atan(t_17);
-    float ratio = ((t_17 > 0.0) ? (t_17 / _e9) : 1.0);
+    float h_27 = abs(half_extent);
+    const float _e3 = math_hypot(alpha_9, h_27);
+    float t_16 = ((_e3 > 0.0) ? (h_27 / _e3) : 0.0);
+    const float _e9 = math_atan(t_16);
+    float ratio = ((t_16 > 0.0) ? (t_16 / _e9) : 1.0);
     return (_e3 * sqrt(ratio));
 }
 
@@ -2647,22 +2597,39 @@ float filter_proxy_effective_alpha_simple(float alpha_10, float half_extent_1)
     return _e3;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_62, float2 half_extent_2)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy(ndf_roughness_axis_aligned_AxisAligned r_55, float2 half_extent_2)
 {
-    const float _e5 = filter_proxy_effective_alpha(r_62.alpha.x, half_extent_2.x);
-    const float _e9 = filter_proxy_effective_alpha(r_62.alpha.y, half_extent_2.y);
+    const float _e5 = filter_proxy_effective_alpha(r_55.alpha.x, half_extent_2.x);
+    const float _e9 = filter_proxy_effective_alpha(r_55.alpha.y, half_extent_2.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_1 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_1;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_63, float2 half_extent_3)
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_simple(ndf_roughness_axis_aligned_AxisAligned r_56, float2 half_extent_3)
 {
-    const float _e5 = filter_proxy_effective_alpha_simple(r_63.alpha.x, half_extent_3.x);
-    const float _e9 = filter_proxy_effective_alpha_simple(r_63.alpha.y, half_extent_3.y);
+    const float _e5 = filter_proxy_effective_alpha_simple(r_56.alpha.x, half_extent_3.x);
+    const float _e9 = filter_proxy_effective_alpha_simple(r_56.alpha.y, half_extent_3.y);
     const ndf_roughness_axis_aligned_AxisAligned _e11 = ndf_roughness_axis_aligned_from_alpha(float2(_e5, _e9));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_2 = _e11;
     return ndf_roughness_axis_aligned_axisaligned_2;
+}
+
+ndf_roughness_axis_aligned_AxisAligned filter_proxy_proxy_lobe(filter_proxy_Proxy method_7, ndf_roughness_axis_aligned_AxisAligned material_7, footprint_Footprint fp_12)
+{
+    const kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_12);
+    const kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
+    float2 h_28 = _e6.half_extent;
+    const ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_7, h_28);
+    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_3 = _e8;
+    return ndf_roughness_axis_aligned_axisaligned_3;
+}
+
+float filter_proxy_d_ggx_proxy(filter_proxy_Proxy method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_13, float3 m_26)
+{
+    const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_proxy_proxy_lobe(method_8, material_8, fp_13);
+    const float _e5 = ndf_ggx_d_axis_aligned(_e4, m_26);
+    return _e5;
 }
 
 uint filter_rect_tier(float h2_, float l2_1)
@@ -2679,12 +2646,12 @@ uint filter_rect_tier(float h2_, float l2_1)
     return filter_rect_TIER_CLOSED;
 }
 
-float filter_rect_gl_node(uint n_1, uint k_13)
+float filter_rect_gl_node(uint n, uint k_13)
 {
-    if ((n_1 == 2u)) {
+    if ((n == 2u)) {
         return 0.57735026;
     }
-    if ((n_1 == 4u)) {
+    if ((n == 4u)) {
         return ((k_13 == 0u) ? 0.33998105 : 0.8611363);
     }
     if ((k_13 == 0u)) {
@@ -2693,12 +2660,12 @@ float filter_rect_gl_node(uint n_1, uint k_13)
     return ((k_13 == 1u) ? 0.6612094 : 0.9324695);
 }
 
-float filter_rect_gl_weight(uint n_2, uint k_14)
+float filter_rect_gl_weight(uint n_1, uint k_14)
 {
-    if ((n_2 == 2u)) {
+    if ((n_1 == 2u)) {
         return 0.5;
     }
-    if ((n_2 == 4u)) {
+    if ((n_1 == 4u)) {
         return ((k_14 == 0u) ? 0.32607257 : 0.17392743);
     }
     if ((k_14 == 0u)) {
@@ -2707,13 +2674,13 @@ float filter_rect_gl_weight(uint n_2, uint k_14)
     return ((k_14 == 1u) ? 0.18038079 : 0.085662246);
 }
 
-float filter_rect_f(float u_7, float v_6)
+float filter_rect_f(float u_1, float v_7)
 {
-    float t_18 = ((1.0 + (u_7 * u_7)) + (v_6 * v_6));
-    return (1.0 / (t_18 * t_18));
+    float t_17 = ((1.0 + (u_1 * u_1)) + (v_7 * v_7));
+    return (1.0 / (t_17 * t_17));
 }
 
-float filter_rect_gl_mean(uint n_3, float u_8, float c_6, float h_12)
+float filter_rect_gl_mean(uint n_2, float u_2, float c_6, float h_12)
 {
     float acc_2 = 0.0;
     uint k_15 = 0u;
@@ -2729,19 +2696,19 @@ float filter_rect_gl_mean(uint n_3, float u_8, float c_6, float h_12)
         }
         loop_init_6 = false;
         uint _e8 = k_15;
-        if ((_e8 < naga_div(n_3, 2u))) {
+        if ((_e8 < naga_div(n_2, 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_15;
-            const float _e13 = filter_rect_gl_node(n_3, _e12);
+            const float _e13 = filter_rect_gl_node(n_2, _e12);
             float a_27 = (h_12 * _e13);
             float _e15 = acc_2;
             uint _e16 = k_15;
-            const float _e17 = filter_rect_gl_weight(n_3, _e16);
-            const float _e19 = filter_rect_f(u_8, (c_6 - a_27));
-            const float _e21 = filter_rect_f(u_8, (c_6 + a_27));
+            const float _e17 = filter_rect_gl_weight(n_2, _e16);
+            const float _e19 = filter_rect_f(u_2, (c_6 - a_27));
+            const float _e21 = filter_rect_f(u_2, (c_6 + a_27));
             acc_2 = (_e15 + (_e17 * (_e19 + _e21)));
         }
     }
@@ -2749,31 +2716,31 @@ float filter_rect_gl_mean(uint n_3, float u_8, float c_6, float h_12)
     return _e28;
 }
 
-float filter_rect_atan2_upper(float y_3, float x_6)
+float filter_rect_atan2_upper(float y_3, float x_8)
 {
-    if ((x_6 > 0.0)) {
-        const float _e5 = math_atan((y_3 / x_6));
+    if ((x_8 > 0.0)) {
+        const float _e5 = math_atan((y_3 / x_8));
         return _e5;
     }
-    const float _e9 = math_atan((-(x_6) / y_3));
+    const float _e9 = math_atan((-(x_8) / y_3));
     return (math_HALF_PI + _e9);
 }
 
-float filter_rect_delta_minus_sin(float d_2, float sin_d)
+float filter_rect_delta_minus_sin(float d, float sin_d)
 {
     float s_13 = (float)0;
 
-    if ((d_2 < 1.0)) {
-        float d2_1 = (d_2 * d_2);
+    if ((d < 1.0)) {
+        float d2_1 = (d * d);
         s_13 = (1.0 - ((d2_1 * 0.013888889) * (1.0 - (d2_1 * 0.009090909))));
         float _e17 = s_13;
         s_13 = (1.0 - ((d2_1 * 0.023809524) * _e17));
         float _e23 = s_13;
         s_13 = (1.0 - ((d2_1 * 0.05) * _e23));
         float _e30 = s_13;
-        return (((d_2 * d2_1) * 0.16666667) * _e30);
+        return (((d * d2_1) * 0.16666667) * _e30);
     }
-    return (d_2 - sin_d);
+    return (d - sin_d);
 }
 
 float filter_rect_mean_1d(float4 i_7, float c2_)
@@ -2788,9 +2755,9 @@ float filter_rect_mean_1d(float4 i_7, float c2_)
     const float _e27 = filter_rect_atan2_upper((c_21 * dx), (c2_ + x01_));
     float inv_2 = (1.0 / (((2.0 * c_21) * c2_) * dx));
     if ((x0_ <= 0.0)) {
-        float s_32 = (rsqrt(r02_) * rsqrt(r12_));
-        float q_7 = min(((c2_ - x01_) * s_32), 1.0);
-        return ((_e27 * inv_2) + ((q_7 * s_32) * (0.5 / c2_)));
+        float s_31 = (rsqrt(r02_) * rsqrt(r12_));
+        float q_7 = min(((c2_ - x01_) * s_31), 1.0);
+        return ((_e27 * inv_2) + ((q_7 * s_31) * (0.5 / c2_)));
     }
     float rr = (sqrt(r02_) * sqrt(r12_));
     float p2_1 = ((2.0 * r02_) * r12_);
@@ -2798,7 +2765,7 @@ float filter_rect_mean_1d(float4 i_7, float c2_)
     return ((_e57 * inv_2) + ((1.0 + ((((x0_ * x0_) + (x1_1 * x1_1)) + c2_) / (rr + x01_))) / p2_1));
 }
 
-float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, float4 other)
+float filter_rect_gl_mean_1d(uint n_3, float c_7, float h_13, float4 other)
 {
     float acc_3 = 0.0;
     uint k_16 = 0u;
@@ -2814,19 +2781,19 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, float4 other)
         }
         loop_init_7 = false;
         uint _e8 = k_16;
-        if ((_e8 < naga_div(n_4, 2u))) {
+        if ((_e8 < naga_div(n_3, 2u))) {
         } else {
             break;
         }
         {
             uint _e12 = k_16;
-            const float _e13 = filter_rect_gl_node(n_4, _e12);
+            const float _e13 = filter_rect_gl_node(n_3, _e12);
             float a_28 = (h_13 * _e13);
             float x0_1 = (c_7 - a_28);
             float x1_2 = (c_7 + a_28);
             float _e17 = acc_3;
             uint _e18 = k_16;
-            const float _e19 = filter_rect_gl_weight(n_4, _e18);
+            const float _e19 = filter_rect_gl_weight(n_3, _e18);
             const float _e23 = filter_rect_mean_1d(other, (1.0 + (x0_1 * x0_1)));
             const float _e27 = filter_rect_mean_1d(other, (1.0 + (x1_2 * x1_2)));
             acc_3 = (_e17 + (_e19 * (_e23 + _e27)));
@@ -2836,24 +2803,24 @@ float filter_rect_gl_mean_1d(uint n_4, float c_7, float h_13, float4 other)
     return _e34;
 }
 
-float filter_rect_edge(float u_9, float dv, float v01_)
+float filter_rect_edge(float u_3, float dv, float v01_)
 {
-    float s2_1 = (1.0 + (u_9 * u_9));
-    float s_33 = sqrt(s2_1);
-    const float _e10 = filter_rect_atan2_upper((dv * s_33), (s2_1 + v01_));
-    return ((u_9 / s_33) * _e10);
+    float s2_1 = (1.0 + (u_3 * u_3));
+    float s_32 = sqrt(s2_1);
+    const float _e10 = filter_rect_atan2_upper((dv * s_32), (s2_1 + v01_));
+    return ((u_3 / s_32) * _e10);
 }
 
-float filter_rect_edges(float4 u_10, float4 v_7)
+float filter_rect_edges(float4 u_4, float4 v_8)
 {
-    float du = (2.0 * u_10.w);
-    float dv_1 = (2.0 * v_7.w);
-    float v01_1 = (v_7.x * v_7.y);
-    float u01_ = (u_10.x * u_10.y);
-    const float _e15 = filter_rect_edge(u_10.y, dv_1, v01_1);
-    const float _e17 = filter_rect_edge(u_10.x, dv_1, v01_1);
-    const float _e20 = filter_rect_edge(v_7.y, du, u01_);
-    const float _e22 = filter_rect_edge(v_7.x, du, u01_);
+    float du = (2.0 * u_4.w);
+    float dv_1 = (2.0 * v_8.w);
+    float v01_1 = (v_8.x * v_8.y);
+    float u01_ = (u_4.x * u_4.y);
+    const float _e15 = filter_rect_edge(u_4.y, dv_1, v01_1);
+    const float _e17 = filter_rect_edge(u_4.x, dv_1, v01_1);
+    const float _e20 = filter_rect_edge(v_8.y, du, u01_);
+    const float _e22 = filter_rect_edge(v_8.x, du, u01_);
     float i_13 = (0.5 * ((_e15 - _e17) + (_e20 - _e22)));
     return (i_13 / (du * dv_1));
 }
@@ -2956,59 +2923,59 @@ float filter_rect_polar_far(float x2_1, float lo_1, float hi_1)
     return (_e50 * (hi_1 - lo_1));
 }
 
-float filter_rect_edge_range(float ax_1, float a_13, float b_2)
+float filter_rect_edge_range(float ax, float a_13, float b_2)
 {
-    float v_8 = 0.0;
+    float v_9 = 0.0;
 
-    float x2_3 = (ax_1 * ax_1);
-    if ((a_13 < ax_1)) {
-        float _e7 = v_8;
-        const float _e11 = filter_rect_polar_near(x2_3, (a_13 / ax_1), (min(b_2, ax_1) / ax_1));
-        v_8 = (_e7 + _e11);
+    float x2_3 = (ax * ax);
+    if ((a_13 < ax)) {
+        float _e7 = v_9;
+        const float _e11 = filter_rect_polar_near(x2_3, (a_13 / ax), (min(b_2, ax) / ax));
+        v_9 = (_e7 + _e11);
     }
-    if ((b_2 > ax_1)) {
-        float _e14 = v_8;
-        const float _e18 = filter_rect_polar_far(x2_3, (ax_1 / b_2), (ax_1 / max(a_13, ax_1)));
-        v_8 = (_e14 + _e18);
+    if ((b_2 > ax)) {
+        float _e14 = v_9;
+        const float _e18 = filter_rect_polar_far(x2_3, (ax / b_2), (ax / max(a_13, ax)));
+        v_9 = (_e14 + _e18);
     }
-    float _e20 = v_8;
+    float _e20 = v_9;
     return _e20;
 }
 
-float filter_rect_edge_polar(float x_7, float a_14, float b_3)
+float filter_rect_edge_polar(float x_9, float a_14, float b_3)
 {
-    float v_9 = (float)0;
+    float v_10 = (float)0;
 
-    float ax_2 = abs(x_7);
+    float ax_2 = abs(x_9);
     if ((ax_2 < 1e-12)) {
         return 0.0;
     }
     if ((a_14 >= 0.0)) {
         const float _e10 = filter_rect_edge_range(ax_2, a_14, b_3);
-        v_9 = _e10;
+        v_10 = _e10;
     } else {
         if ((b_3 <= 0.0)) {
             const float _e15 = filter_rect_edge_range(ax_2, -(b_3), -(a_14));
-            v_9 = _e15;
+            v_10 = _e15;
         } else {
             const float _e18 = filter_rect_edge_range(ax_2, 0.0, -(a_14));
             const float _e20 = filter_rect_edge_range(ax_2, 0.0, b_3);
-            v_9 = (_e18 + _e20);
+            v_10 = (_e18 + _e20);
         }
     }
-    float _e22 = v_9;
-    float _e24 = v_9;
-    return ((x_7 > 0.0) ? _e24 : -(_e22));
+    float _e22 = v_10;
+    float _e24 = v_10;
+    return ((x_9 > 0.0) ? _e24 : -(_e22));
 }
 
-float filter_rect_far_field(float4 u_11, float4 v_10)
+float filter_rect_far_field(float4 u_5, float4 v_11)
 {
-    const float _e5 = filter_rect_edge_polar(u_11.y, v_10.x, v_10.y);
-    const float _e9 = filter_rect_edge_polar(u_11.x, v_10.x, v_10.y);
-    const float _e14 = filter_rect_edge_polar(v_10.y, u_11.x, u_11.y);
-    const float _e18 = filter_rect_edge_polar(v_10.x, u_11.x, u_11.y);
+    const float _e5 = filter_rect_edge_polar(u_5.y, v_11.x, v_11.y);
+    const float _e9 = filter_rect_edge_polar(u_5.x, v_11.x, v_11.y);
+    const float _e14 = filter_rect_edge_polar(v_11.y, u_5.x, u_5.y);
+    const float _e18 = filter_rect_edge_polar(v_11.x, u_5.x, u_5.y);
     float i_14 = (-0.5 * ((_e5 - _e9) + (_e14 - _e18)));
-    return (i_14 / ((4.0 * u_11.w) * v_10.w));
+    return (i_14 / ((4.0 * u_5.w) * v_11.w));
 }
 
 float filter_rect_gap(float4 i_8)
@@ -3016,36 +2983,36 @@ float filter_rect_gap(float4 i_8)
     return max(max(i_8.x, -(i_8.y)), 0.0);
 }
 
-float filter_rect_mean_f(float4 u_12, float4 v_11)
+float filter_rect_mean_f(float4 u_6, float4 v_12)
 {
-    bool local_18 = (bool)0;
+    bool local_19 = (bool)0;
     float acc_6 = 0.0;
     uint k_21 = 0u;
 
-    const float _e2 = filter_rect_gap(u_12);
-    const float _e3 = filter_rect_gap(v_11);
-    const uint _e14 = filter_rect_tier((u_12.w * u_12.w), ((1.0 + (u_12.z * u_12.z)) + (_e3 * _e3)));
-    const uint _e25 = filter_rect_tier((v_11.w * v_11.w), ((1.0 + (v_11.z * v_11.z)) + (_e2 * _e2)));
+    const float _e2 = filter_rect_gap(u_6);
+    const float _e3 = filter_rect_gap(v_12);
+    const uint _e14 = filter_rect_tier((u_6.w * u_6.w), ((1.0 + (u_6.z * u_6.z)) + (_e3 * _e3)));
+    const uint _e25 = filter_rect_tier((v_12.w * v_12.w), ((1.0 + (v_12.z * v_12.z)) + (_e2 * _e2)));
     if ((_e14 == filter_rect_TIER_CLOSED)) {
-        local_18 = (_e25 == filter_rect_TIER_CLOSED);
+        local_19 = (_e25 == filter_rect_TIER_CLOSED);
     } else {
-        local_18 = false;
+        local_19 = false;
     }
-    bool _e33 = local_18;
+    bool _e33 = local_19;
     if (_e33) {
         if ((((_e2 * _e2) + (_e3 * _e3)) > filter_rect_FAR2_)) {
-            const float _e39 = filter_rect_far_field(u_12, v_11);
+            const float _e39 = filter_rect_far_field(u_6, v_12);
             return _e39;
         }
-        const float _e40 = filter_rect_edges(u_12, v_11);
+        const float _e40 = filter_rect_edges(u_6, v_12);
         return _e40;
     }
     if ((_e14 == filter_rect_TIER_CLOSED)) {
-        const float _e45 = filter_rect_gl_mean_1d(_e25, v_11.z, v_11.w, u_12);
+        const float _e45 = filter_rect_gl_mean_1d(_e25, v_12.z, v_12.w, u_6);
         return _e45;
     }
     if ((_e25 == filter_rect_TIER_CLOSED)) {
-        const float _e50 = filter_rect_gl_mean_1d(_e14, u_12.z, u_12.w, v_11);
+        const float _e50 = filter_rect_gl_mean_1d(_e14, u_6.z, u_6.w, v_12);
         return _e50;
     }
     uint2 loop_bound_10 = uint2(4294967295u, 4294967295u);
@@ -3066,12 +3033,12 @@ float filter_rect_mean_f(float4 u_12, float4 v_11)
         {
             uint _e60 = k_21;
             const float _e61 = filter_rect_gl_node(_e14, _e60);
-            float a_29 = (u_12.w * _e61);
+            float a_29 = (u_6.w * _e61);
             float _e63 = acc_6;
             uint _e64 = k_21;
             const float _e65 = filter_rect_gl_weight(_e14, _e64);
-            const float _e70 = filter_rect_gl_mean(_e25, (u_12.z - a_29), v_11.z, v_11.w);
-            const float _e75 = filter_rect_gl_mean(_e25, (u_12.z + a_29), v_11.z, v_11.w);
+            const float _e70 = filter_rect_gl_mean(_e25, (u_6.z - a_29), v_12.z, v_12.w);
+            const float _e75 = filter_rect_gl_mean(_e25, (u_6.z + a_29), v_12.z, v_12.w);
             acc_6 = (_e63 + (_e65 * (_e70 + _e75)));
         }
     }
@@ -3083,59 +3050,59 @@ float4 filter_rect_interval(float c_8, float h_14, float a_15)
 {
     float ah = abs(h_14);
     float lo_4 = clamp(((c_8 - ah) / a_15), -1e18, filter_rect_BIG);
-    float hi_4 = clamp(((c_8 + ah) / a_15), -1e18, filter_rect_BIG);
-    return float4(lo_4, hi_4, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
+    float hi_3 = clamp(((c_8 + ah) / a_15), -1e18, filter_rect_BIG);
+    return float4(lo_4, hi_3, clamp((c_8 / a_15), -1e18, filter_rect_BIG), min((ah / a_15), filter_rect_BIG));
 }
 
-float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_64, float2 center_, float2 half_extent_4)
+float filter_rect_p22_rect(ndf_roughness_axis_aligned_AxisAligned r_57, float2 center_, float2 half_extent_4)
 {
-    bool local_19 = (bool)0;
+    bool local_20 = (bool)0;
 
     if ((half_extent_4.x == 0.0)) {
-        local_19 = (half_extent_4.y == 0.0);
+        local_20 = (half_extent_4.y == 0.0);
     } else {
-        local_19 = false;
+        local_20 = false;
     }
-    bool _e12 = local_19;
+    bool _e12 = local_20;
     if (_e12) {
-        const float _e13 = ndf_ggx_p22_axis_aligned(r_64, center_);
+        const float _e13 = ndf_ggx_p22_axis_aligned(r_57, center_);
         return _e13;
     }
-    float2 a_30 = r_64.alpha;
+    float2 a_30 = r_57.alpha;
     const float4 _e18 = filter_rect_interval(center_.x, half_extent_4.x, a_30.x);
     const float4 _e22 = filter_rect_interval(center_.y, half_extent_4.y, a_30.y);
     const float _e23 = filter_rect_mean_f(_e18, _e22);
     return max((_e23 * (math_INV_PI / (a_30.x * a_30.y))), 0.0);
 }
 
-float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_65, float3 h_15, float2 half_extent_5)
+float filter_rect_d_rect(ndf_roughness_axis_aligned_AxisAligned r_58, float3 h_15, float2 half_extent_5)
 {
-    bool local_20 = (bool)0;
+    bool local_21 = (bool)0;
 
     if (!((h_15.z > 0.0))) {
         return 0.0;
     }
     if ((half_extent_5.x == 0.0)) {
-        local_20 = (half_extent_5.y == 0.0);
+        local_21 = (half_extent_5.y == 0.0);
     } else {
-        local_20 = false;
+        local_21 = false;
     }
-    bool _e17 = local_20;
+    bool _e17 = local_21;
     if (_e17) {
-        const float _e18 = ndf_ggx_d_axis_aligned(r_65, h_15);
+        const float _e18 = ndf_ggx_d_axis_aligned(r_58, h_15);
         return _e18;
     }
-    const float _e24 = filter_rect_p22_rect(r_65, (-(h_15.xy) / (h_15.z).xx), half_extent_5);
+    const float _e24 = filter_rect_p22_rect(r_58, (-(h_15.xy) / (h_15.z).xx), half_extent_5);
     float z2_7 = (h_15.z * h_15.z);
     return min((_e24 / (z2_7 * z2_7)), math_F32_MAX);
 }
 
-float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_66, float2 hpp, float3 h_16, float2 footprint)
+float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_59, float2 hpp, float3 h_16, float2 footprint)
 {
-    bool local_21 = (bool)0;
+    bool local_22 = (bool)0;
 
-    float a_31 = r_66.alpha.x;
-    float b_9 = r_66.alpha.y;
+    float a_31 = r_59.alpha.x;
+    float b_9 = r_59.alpha.y;
     float a_2_ = (a_31 * a_31);
     float b_2_ = (b_9 * b_9);
     float x1_3 = (hpp.x - footprint.x);
@@ -3159,11 +3126,11 @@ float filter_rect_d_rect_printed(ndf_roughness_axis_aligned_AxisAligned r_66, fl
     float hz4_ = (((h_16.z * h_16.z) * h_16.z) * h_16.z);
     float v_19 = ((val / den_2) / max(hz4_, 0.001));
     if ((abs(v_19) <= math_F32_MAX)) {
-        local_21 = (den_2 != 0.0);
+        local_22 = (den_2 != 0.0);
     } else {
-        local_21 = false;
+        local_22 = false;
     }
-    bool _e109 = local_21;
+    bool _e109 = local_22;
     return (_e109 ? v_19 : 0.0);
 }
 
@@ -3177,25 +3144,25 @@ float filter_rect_lambda_rho(float t_2)
     return sqrt((1.0 + (t_2 * t_2)));
 }
 
-float filter_rect_lambda_e_neg(float t_3, float r_67)
+float filter_rect_lambda_e_neg(float t_3, float r_60)
 {
-    return ((t_3 >= 0.0) ? (1.0 / (r_67 + t_3)) : (r_67 - t_3));
+    return ((t_3 >= 0.0) ? (1.0 / (r_60 + t_3)) : (r_60 - t_3));
 }
 
-float filter_rect_lambda_asinh_of(float t_4, float r_68)
+float filter_rect_lambda_asinh_of(float t_4, float r_61)
 {
-    float v_12 = (float)0;
+    float v_13 = (float)0;
 
     float a_33 = abs(t_4);
     if ((a_33 > 1.0)) {
-        const float _e7 = math_ln((a_33 + r_68));
-        v_12 = _e7;
+        const float _e7 = math_ln((a_33 + r_61));
+        v_13 = _e7;
     } else {
-        const float _e13 = math_ln_1p((a_33 + ((a_33 * a_33) / (1.0 + r_68))));
-        v_12 = _e13;
+        const float _e13 = math_ln_1p((a_33 + ((a_33 * a_33) / (1.0 + r_61))));
+        v_13 = _e13;
     }
-    float _e14 = v_12;
-    float _e15 = v_12;
+    float _e14 = v_13;
+    float _e15 = v_13;
     return ((t_4 < 0.0) ? -(_e15) : _e14);
 }
 
@@ -3222,22 +3189,22 @@ float filter_rect_lambda_psi2_(float t_7)
     return (0.25 * ((((t_7 * _e3) - _e1) + (0.25 * _e2)) + (((_e2 * _e2) * _e2) * 0.083333336)));
 }
 
-float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_18)
+float filter_rect_lambda_psi1_diff(float t0_, float t1_, float w_17)
 {
     const float _e3 = filter_rect_lambda_rho(t0_);
     const float _e4 = filter_rect_lambda_rho(t1_);
     const float _e5 = filter_rect_lambda_e_neg(t0_, _e3);
     const float _e6 = filter_rect_lambda_e_neg(t1_, _e4);
-    float s_34 = (_e5 + _e6);
-    float d_8 = ((w_18 * s_34) / (_e3 + _e4));
+    float s_33 = (_e5 + _e6);
+    float d_8 = ((w_17 * s_33) / (_e3 + _e4));
     const float _e12 = math_ln_1p((d_8 / _e6));
-    return (0.25 * (_e12 + ((0.5 * d_8) * s_34)));
+    return (0.25 * (_e12 + ((0.5 * d_8) * s_33)));
 }
 
-float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_19)
+float filter_rect_lambda_mean_psi(float t0_1, float t1_1, float w_18)
 {
-    const float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_19);
-    return (_e3 / w_19);
+    const float _e3 = filter_rect_lambda_psi1_diff(t0_1, t1_1, w_18);
+    return (_e3 / w_18);
 }
 
 uint filter_rect_lambda_rule(uint t_8)
@@ -3328,7 +3295,7 @@ float filter_rect_lambda_gl_psi(uint t_10, float c_9, float h_17)
     return _e28;
 }
 
-float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo_2)
+float filter_rect_lambda_expected_psi(float m_27, float k1_, float k2_, float lo_2)
 {
     float acc_9 = 0.0;
     uint j_2 = 0u;
@@ -3337,10 +3304,10 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
 
     float ks = min(k1_, k2_);
     float kl = max(k1_, k2_);
-    float near_l = max((m_29 - ks), 0.0);
+    float near_l = max((m_27 - ks), 0.0);
     const uint _e13 = filter_rect_tier((kl * kl), (1.0 + (near_l * near_l)));
     if ((_e13 != filter_rect_TIER_CLOSED)) {
-        float near_s = max((m_29 - kl), 0.0);
+        float near_s = max((m_27 - kl), 0.0);
         const uint _e23 = filter_rect_tier((ks * ks), (1.0 + (near_s * near_s)));
         uint2 loop_bound_13 = uint2(4294967295u, 4294967295u);
         bool loop_init_13 = true;
@@ -3364,18 +3331,18 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
                 float _e35 = acc_9;
                 uint _e36 = j_2;
                 const float _e37 = filter_rect_gl_weight(_e13, _e36);
-                const float _e39 = filter_rect_lambda_gl_psi(_e23, (m_29 - a_36), ks);
-                const float _e41 = filter_rect_lambda_gl_psi(_e23, (m_29 + a_36), ks);
+                const float _e39 = filter_rect_lambda_gl_psi(_e23, (m_27 - a_36), ks);
+                const float _e41 = filter_rect_lambda_gl_psi(_e23, (m_27 + a_36), ks);
                 acc_9 = (_e35 + (_e37 * (_e39 + _e41)));
             }
         }
         float _e48 = acc_9;
         return _e48;
     }
-    float hi_5 = (m_29 + kl);
-    float w_28 = (2.0 * kl);
+    float hi_4 = (m_27 + kl);
+    float w_26 = (2.0 * kl);
     if ((ks == 0.0)) {
-        const float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_5, w_28);
+        const float _e54 = filter_rect_lambda_mean_psi(lo_2, hi_4, w_26);
         return _e54;
     }
     const uint _e59 = filter_rect_tier((ks * ks), (1.0 + (lo_2 * lo_2)));
@@ -3398,64 +3365,64 @@ float filter_rect_lambda_expected_psi(float m_29, float k1_, float k2_, float lo
             {
                 uint _e70 = j_3;
                 const float _e71 = filter_rect_gl_node(_e59, _e70);
-                float x_18 = (ks * _e71);
+                float x_19 = (ks * _e71);
                 float _e73 = acc_10;
                 uint _e74 = j_3;
                 const float _e75 = filter_rect_gl_weight(_e59, _e74);
-                const float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_18), (hi_5 + x_18), w_28);
-                const float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_18), (hi_5 - x_18), w_28);
+                const float _e78 = filter_rect_lambda_mean_psi((lo_2 + x_19), (hi_4 + x_19), w_26);
+                const float _e81 = filter_rect_lambda_mean_psi((lo_2 - x_19), (hi_4 - x_19), w_26);
                 acc_10 = (_e73 + (_e75 * (_e78 + _e81)));
             }
         }
         float _e88 = acc_10;
         return _e88;
     }
-    const float _e89 = filter_rect_lambda_mean_psi1_(hi_5, ks);
+    const float _e89 = filter_rect_lambda_mean_psi1_(hi_4, ks);
     const float _e90 = filter_rect_lambda_mean_psi1_(lo_2, ks);
-    return ((_e89 - _e90) / w_28);
+    return ((_e89 - _e90) / w_26);
 }
 
-float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_69, float2 half_extent_6, float3 w_in)
+float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_62, float2 half_extent_6, float3 w_in)
 {
-    float3 w_20 = (float3)0;
-    bool local_22 = (bool)0;
+    float3 w_19 = (float3)0;
     bool local_23 = (bool)0;
     bool local_24 = (bool)0;
+    bool local_25 = (bool)0;
 
-    float big_6 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
-    w_20 = w_in;
-    if (!((big_6 > 1.1529215e18))) {
-        if ((big_6 < 8.6736174e-19)) {
-            local_23 = (big_6 > 0.0);
+    float big_5 = max(max(abs(w_in.x), abs(w_in.y)), abs(w_in.z));
+    w_19 = w_in;
+    if (!((big_5 > 1.1529215e18))) {
+        if ((big_5 < 8.6736174e-19)) {
+            local_24 = (big_5 > 0.0);
         } else {
-            local_23 = false;
+            local_24 = false;
         }
-        bool _e24 = local_23;
-        local_22 = _e24;
+        bool _e24 = local_24;
+        local_23 = _e24;
     } else {
-        local_22 = true;
+        local_23 = true;
     }
-    bool _e26 = local_22;
+    bool _e26 = local_23;
     if (_e26) {
-        int e_6 = asint(asuint(int(((asuint(big_6) >> 23u) & 255u))) - asuint(int(127)));
-        w_20 = (w_in * asfloat((uint(asint(asuint(int(127)) - asuint(e_6))) << 23u)));
+        int e_5 = asint(asuint(int(((asuint(big_5) >> 23u) & 255u))) - asuint(int(127)));
+        w_19 = (w_in * asfloat((uint(asint(asuint(int(127)) - asuint(e_5))) << 23u)));
     }
-    float _e43 = w_20.x;
-    float _e45 = w_20.y;
+    float _e43 = w_19.x;
+    float _e45 = w_19.y;
     const float _e46 = math_hypot(_e43, _e45);
     if ((_e46 <= 0.0)) {
         return 0.0;
     }
-    float _e51 = w_20.z;
+    float _e51 = w_19.z;
     float wz = abs(_e51);
     if (!((wz > 0.0))) {
         return math_F32_MAX;
     }
-    float2 alpha_12 = r_69.alpha;
+    float2 alpha_12 = r_62.alpha;
     float2 ha = min(abs(half_extent_6), (alpha_12 * filter_rect_lambda_BIG_K));
-    float _e63 = w_20.x;
+    float _e63 = w_19.x;
     float ux = (abs(_e63) / _e46);
-    float _e67 = w_20.y;
+    float _e67 = w_19.y;
     float uy = (abs(_e67) / _e46);
     float px = (ux * alpha_12.x);
     float py = (uy * alpha_12.y);
@@ -3463,14 +3430,14 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_69
     float k1_4 = ((px / _e74) * (ha.x / alpha_12.x));
     float k2_4 = ((py / _e74) * (ha.y / alpha_12.y));
     if ((k1_4 == 0.0)) {
-        local_24 = (k2_4 == 0.0);
+        local_25 = (k2_4 == 0.0);
     } else {
-        local_24 = false;
+        local_25 = false;
     }
-    bool _e92 = local_24;
+    bool _e92 = local_25;
     if (_e92) {
-        float3 _e93 = w_20;
-        const float _e94 = ndf_ggx_lambda_axis_aligned(r_69, _e93);
+        float3 _e93 = w_19;
+        const float _e94 = ndf_ggx_lambda_axis_aligned(r_62, _e93);
         return _e94;
     }
     float mm = ((wz / _e46) / _e74);
@@ -3478,8 +3445,8 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_69
         return ((0.25 / mm) / mm);
     }
     bool long_x = (k1_4 >= k2_4);
-    float _e104 = w_20.y;
-    float _e107 = w_20.x;
+    float _e104 = w_19.y;
+    float _e107 = w_19.x;
     float wl_1 = (long_x ? abs(_e107) : abs(_e104));
     float hl = (long_x ? ha.x : ha.y);
     float lo_5 = (((wz - (wl_1 * hl)) / _e46) / _e74);
@@ -3487,127 +3454,59 @@ float filter_rect_lambda_lambda_rect(ndf_roughness_axis_aligned_AxisAligned r_69
     return (_e117 / mm);
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_method_gaussian_lobe(filter_method_Gaussian method, ndf_roughness_matrix_RoughnessMatrix material, footprint_Footprint fp_7)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_gaussian(method.clamps, material, fp_7, method.sigma);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_19 = _e5;
-    return ndf_roughness_matrix_roughnessmatrix_19;
-}
-
-float filter_method_d_ggx_gaussian(filter_method_Gaussian method_1, ndf_roughness_matrix_RoughnessMatrix material_1, footprint_Footprint fp_8, float3 m_30)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_1, material_1, fp_8);
-    const float _e5 = ndf_ggx_d_matrix(_e4, m_30);
-    return _e5;
-}
-
-float filter_method_d_beckmann_gaussian(filter_method_Gaussian method_2, ndf_roughness_matrix_RoughnessMatrix material_2, footprint_Footprint fp_9, float3 m_31)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_gaussian_lobe(method_2, material_2, fp_9);
-    const float _e5 = ndf_beckmann_d_matrix(_e4, m_31);
-    return _e5;
-}
-
-filter_gaussian_ggx_GaussianFilteredGgx filter_method_exact_gaussian_lobe(filter_method_ExactGaussian method_3, ndf_roughness_matrix_RoughnessMatrix material_3, footprint_Footprint fp_10)
-{
-    const kernel_covariance_Covariance _e5 = kernel_clamp_pixel_kernel(method_3.clamps, fp_10, method_3.sigma);
-    const filter_gaussian_ggx_GaussianFilteredGgx _e6 = filter_gaussian_ggx_from_kernel(material_3, _e5);
-    const filter_gaussian_ggx_GaussianFilteredGgx _e8 = filter_gaussian_ggx_with_tolerance(_e6, method_3.tolerance);
-    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_2 = _e8;
-    return filter_gaussian_ggx_gaussianfilteredggx_2;
-}
-
-float filter_method_d_ggx_exact_gaussian(filter_method_ExactGaussian method_4, ndf_roughness_matrix_RoughnessMatrix material_4, footprint_Footprint fp_11, float3 m_32)
-{
-    const filter_gaussian_ggx_GaussianFilteredGgx _e4 = filter_method_exact_gaussian_lobe(method_4, material_4, fp_11);
-    const float _e5 = filter_gaussian_ggx_d(_e4, m_32);
-    return _e5;
-}
-
-ndf_roughness_matrix_RoughnessMatrix filter_method_projected_lobe(filter_method_Projected method_5, ndf_roughness_matrix_RoughnessMatrix material_5, footprint_Footprint fp_12)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = kernel_clamp_filter_projected(method_5.clamps, material_5, fp_12, method_5.sigma);
-    const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_20 = _e5;
-    return ndf_roughness_matrix_roughnessmatrix_20;
-}
-
-float filter_method_d_ggx_projected(filter_method_Projected method_6, ndf_roughness_matrix_RoughnessMatrix material_6, footprint_Footprint fp_13, float3 m_33)
-{
-    const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_method_projected_lobe(method_6, material_6, fp_13);
-    const float _e5 = ndf_ggx_d_matrix(_e4, m_33);
-    return _e5;
-}
-
-filter_method_RectFilteredGgx Constructfilter_method_RectFilteredGgx(ndf_roughness_axis_aligned_AxisAligned arg0, float2 arg1) {
-    filter_method_RectFilteredGgx ret = (filter_method_RectFilteredGgx)0;
+filter_rect_lobe_RectFilteredGgx Constructfilter_rect_lobe_RectFilteredGgx(ndf_roughness_axis_aligned_AxisAligned arg0, float2 arg1) {
+    filter_rect_lobe_RectFilteredGgx ret = (filter_rect_lobe_RectFilteredGgx)0;
     ret.roughness = arg0;
     ret.half_extent = arg1;
     return ret;
 }
 
-filter_method_RectFilteredGgx filter_method_rect_lobe(filter_method_Rect method_7, ndf_roughness_axis_aligned_AxisAligned material_7, footprint_Footprint fp_14)
+filter_rect_lobe_RectFilteredGgx filter_rect_lobe_rect_lobe(filter_rect_lobe_Rect method_9, ndf_roughness_axis_aligned_AxisAligned material_9, footprint_Footprint fp_14)
 {
-    const kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_14);
-    const kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_7.clamps, _e4, material_7.alpha);
+    const kernel_rect_BoundingRect _e4 = kernel_rect_from_footprint(fp_14);
+    const kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
     float2 h_31 = _e6.half_extent;
-    const filter_method_RectFilteredGgx filter_method_rectfilteredggx = Constructfilter_method_RectFilteredGgx(material_7, h_31);
-    return filter_method_rectfilteredggx;
+    const filter_rect_lobe_RectFilteredGgx filter_rect_lobe_rectfilteredggx = Constructfilter_rect_lobe_RectFilteredGgx(material_9, h_31);
+    return filter_rect_lobe_rectfilteredggx;
 }
 
-float filter_method_p22_rect_filtered(filter_method_RectFilteredGgx lobe_1, float2 s_14)
+float filter_rect_lobe_p22_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_1, float2 s_14)
 {
     const float _e4 = filter_rect_p22_rect(lobe_1.roughness, s_14, lobe_1.half_extent);
     return _e4;
 }
 
-float filter_method_d_rect_filtered(filter_method_RectFilteredGgx lobe_2, float3 m_34)
+float filter_rect_lobe_d_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_2, float3 m_28)
 {
-    const float _e4 = filter_rect_d_rect(lobe_2.roughness, m_34, lobe_2.half_extent);
+    const float _e4 = filter_rect_d_rect(lobe_2.roughness, m_28, lobe_2.half_extent);
     return _e4;
 }
 
-float filter_method_lambda_rect_filtered(filter_method_RectFilteredGgx lobe_3, float3 w_21)
+float filter_rect_lobe_lambda_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_3, float3 w_20)
 {
-    const float _e4 = filter_rect_lambda_lambda_rect(lobe_3.roughness, lobe_3.half_extent, w_21);
+    const float _e4 = filter_rect_lambda_lambda_rect(lobe_3.roughness, lobe_3.half_extent, w_20);
     return _e4;
 }
 
-float filter_method_g1_rect_filtered(filter_method_RectFilteredGgx lobe_4, float3 w_22, float3 m_35)
+float filter_rect_lobe_g1_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_4, float3 w_21, float3 m_29)
 {
-    const float _e3 = filter_method_lambda_rect_filtered(lobe_4, w_22);
-    const float _e5 = ndf_g1_of(_e3, dot(w_22, m_35));
+    const float _e3 = filter_rect_lobe_lambda_rect_filtered(lobe_4, w_21);
+    const float _e5 = ndf_g1_of(_e3, dot(w_21, m_29));
     return _e5;
 }
 
-float filter_method_g2_rect_filtered(filter_method_RectFilteredGgx lobe_5, float3 i_9, float3 o_8, float3 m_36)
+float filter_rect_lobe_g2_rect_filtered(filter_rect_lobe_RectFilteredGgx lobe_5, float3 i_9, float3 o_7, float3 m_30)
 {
-    const float _e4 = filter_method_lambda_rect_filtered(lobe_5, i_9);
-    const float _e5 = filter_method_lambda_rect_filtered(lobe_5, o_8);
-    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_36), dot(o_8, m_36));
+    const float _e4 = filter_rect_lobe_lambda_rect_filtered(lobe_5, i_9);
+    const float _e5 = filter_rect_lobe_lambda_rect_filtered(lobe_5, o_7);
+    const float _e8 = ndf_g2_of(_e4, _e5, dot(i_9, m_30), dot(o_7, m_30));
     return _e8;
 }
 
-float filter_method_d_ggx_rect(filter_method_Rect method_8, ndf_roughness_axis_aligned_AxisAligned material_8, footprint_Footprint fp_15, float3 m_37)
+float filter_rect_lobe_d_ggx_rect(filter_rect_lobe_Rect method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_15, float3 m_31)
 {
-    const filter_method_RectFilteredGgx _e4 = filter_method_rect_lobe(method_8, material_8, fp_15);
-    const float _e5 = filter_method_d_rect_filtered(_e4, m_37);
-    return _e5;
-}
-
-ndf_roughness_axis_aligned_AxisAligned filter_method_proxy_lobe(filter_method_Proxy method_9, ndf_roughness_axis_aligned_AxisAligned material_9, footprint_Footprint fp_16)
-{
-    const kernel_rect_BoundingRect _e4 = footprint_bounding_rect(fp_16);
-    const kernel_rect_BoundingRect _e6 = kernel_clamp_rect(method_9.clamps, _e4, material_9.alpha);
-    float2 h_32 = _e6.half_extent;
-    const ndf_roughness_axis_aligned_AxisAligned _e8 = filter_proxy_proxy(material_9, h_32);
-    const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_3 = _e8;
-    return ndf_roughness_axis_aligned_axisaligned_3;
-}
-
-float filter_method_d_ggx_proxy(filter_method_Proxy method_10, ndf_roughness_axis_aligned_AxisAligned material_10, footprint_Footprint fp_17, float3 m_38)
-{
-    const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_method_proxy_lobe(method_10, material_10, fp_17);
-    const float _e5 = ndf_ggx_d_axis_aligned(_e4, m_38);
+    const filter_rect_lobe_RectFilteredGgx _e4 = filter_rect_lobe_rect_lobe(method_10, material_10, fp_15);
+    const float _e5 = filter_rect_lobe_d_rect_filtered(_e4, m_31);
     return _e5;
 }
 
@@ -3619,10 +3518,10 @@ ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_lean_widened(ndf_roughne
     return ndf_roughness_matrix_roughnessmatrix_21;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_lean_widened_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_70, filter_lean_LeanMoments moments_4)
+ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_lean_widened_axis_aligned(ndf_roughness_axis_aligned_AxisAligned r_63, filter_lean_LeanMoments moments_4)
 {
     const kernel_covariance_Covariance _e2 = filter_lean_covariance(moments_4);
-    float2 a_37 = r_70.alpha;
+    float2 a_37 = r_63.alpha;
     const ndf_roughness_axis_aligned_AxisAligned _e12 = ndf_roughness_axis_aligned_from_alpha(sqrt(((a_37 * a_37) + (2.0 * float2(_e2.s_xx, _e2.s_yy)))));
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_4 = _e12;
     return ndf_roughness_axis_aligned_axisaligned_4;
@@ -3633,44 +3532,45 @@ float3 filter_lean_nested_lean_mean_normal(filter_lean_LeanMoments moments_5)
     return normalize(float3(-(moments_5.mean), 1.0));
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_gaussian_lobe(filter_method_Gaussian m_39, ndf_roughness_matrix_RoughnessMatrix material_11, footprint_Footprint fp_18, filter_lean_LeanMoments moments_6)
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_gaussian_lobe(filter_gaussian_Gaussian m_32, ndf_roughness_matrix_RoughnessMatrix material_11, footprint_Footprint fp_16, filter_lean_LeanMoments moments_6)
 {
     const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_lean_nested_lean_widened(material_11, moments_6);
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_method_gaussian_lobe(m_39, _e4, fp_18);
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_gaussian_gaussian_lobe(m_32, _e4, fp_16);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_22 = _e5;
     return ndf_roughness_matrix_roughnessmatrix_22;
 }
 
-filter_gaussian_ggx_GaussianFilteredGgx filter_lean_nested_exact_gaussian_lobe(filter_method_ExactGaussian m_40, ndf_roughness_matrix_RoughnessMatrix material_12, footprint_Footprint fp_19, filter_lean_LeanMoments moments_7)
+filter_gaussian_ggx_GaussianFilteredGgx filter_lean_nested_exact_gaussian_lobe(filter_gaussian_ggx_ExactGaussian m_33, ndf_roughness_matrix_RoughnessMatrix material_12, footprint_Footprint fp_17, filter_lean_LeanMoments moments_7)
 {
-    const kernel_covariance_Covariance _e6 = kernel_clamp_pixel_kernel(m_40.clamps, fp_19, m_40.sigma);
+    const kernel_covariance_Covariance _e6 = kernel_clamp_pixel_kernel(m_33.clamps, fp_17, m_33.sigma);
     const kernel_covariance_Covariance _e7 = filter_lean_covariance(moments_7);
     const kernel_covariance_Covariance _e8 = kernel_covariance_add(_e6, _e7);
     const filter_gaussian_ggx_GaussianFilteredGgx _e9 = filter_gaussian_ggx_from_kernel(material_12, _e8);
-    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_3 = _e9;
+    const filter_gaussian_ggx_GaussianFilteredGgx _e11 = filter_gaussian_ggx_with_tolerance(_e9, m_33.tolerance);
+    const filter_gaussian_ggx_GaussianFilteredGgx filter_gaussian_ggx_gaussianfilteredggx_3 = _e11;
     return filter_gaussian_ggx_gaussianfilteredggx_3;
 }
 
-ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_projected_lobe(filter_method_Projected m_41, ndf_roughness_matrix_RoughnessMatrix material_13, footprint_Footprint fp_20, filter_lean_LeanMoments moments_8)
+ndf_roughness_matrix_RoughnessMatrix filter_lean_nested_projected_lobe(filter_projected_Projected m_34, ndf_roughness_matrix_RoughnessMatrix material_13, footprint_Footprint fp_18, filter_lean_LeanMoments moments_8)
 {
     const ndf_roughness_matrix_RoughnessMatrix _e4 = filter_lean_nested_lean_widened(material_13, moments_8);
-    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_method_projected_lobe(m_41, _e4, fp_20);
+    const ndf_roughness_matrix_RoughnessMatrix _e5 = filter_projected_projected_lobe(m_34, _e4, fp_18);
     const ndf_roughness_matrix_RoughnessMatrix ndf_roughness_matrix_roughnessmatrix_23 = _e5;
     return ndf_roughness_matrix_roughnessmatrix_23;
 }
 
-filter_method_RectFilteredGgx filter_lean_nested_rect_lobe(filter_method_Rect m_42, ndf_roughness_axis_aligned_AxisAligned material_14, footprint_Footprint fp_21, filter_lean_LeanMoments moments_9)
+filter_rect_lobe_RectFilteredGgx filter_lean_nested_rect_lobe(filter_rect_lobe_Rect m_35, ndf_roughness_axis_aligned_AxisAligned material_14, footprint_Footprint fp_19, filter_lean_LeanMoments moments_9)
 {
     const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_lean_nested_lean_widened_axis_aligned(material_14, moments_9);
-    const filter_method_RectFilteredGgx _e5 = filter_method_rect_lobe(m_42, _e4, fp_21);
-    const filter_method_RectFilteredGgx filter_method_rectfilteredggx_1 = _e5;
-    return filter_method_rectfilteredggx_1;
+    const filter_rect_lobe_RectFilteredGgx _e5 = filter_rect_lobe_rect_lobe(m_35, _e4, fp_19);
+    const filter_rect_lobe_RectFilteredGgx filter_rect_lobe_rectfilteredggx_1 = _e5;
+    return filter_rect_lobe_rectfilteredggx_1;
 }
 
-ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_proxy_lobe(filter_method_Proxy m_43, ndf_roughness_axis_aligned_AxisAligned material_15, footprint_Footprint fp_22, filter_lean_LeanMoments moments_10)
+ndf_roughness_axis_aligned_AxisAligned filter_lean_nested_proxy_lobe(filter_proxy_Proxy m_36, ndf_roughness_axis_aligned_AxisAligned material_15, footprint_Footprint fp_20, filter_lean_LeanMoments moments_10)
 {
     const ndf_roughness_axis_aligned_AxisAligned _e4 = filter_lean_nested_lean_widened_axis_aligned(material_15, moments_10);
-    const ndf_roughness_axis_aligned_AxisAligned _e5 = filter_method_proxy_lobe(m_43, _e4, fp_22);
+    const ndf_roughness_axis_aligned_AxisAligned _e5 = filter_proxy_proxy_lobe(m_36, _e4, fp_20);
     const ndf_roughness_axis_aligned_AxisAligned ndf_roughness_axis_aligned_axisaligned_5 = _e5;
     return ndf_roughness_axis_aligned_axisaligned_5;
 }
@@ -3729,86 +3629,22 @@ filter_deferred_KernelConvention filter_presets_preset(uint i_10)
     }
 }
 
-float filter_rect_sample_half(float h_18, float alpha_11)
+float2 footprint_slope_slope_from_sphere(float3 h_18)
 {
-    float v_20 = abs(h_18);
-    return ((v_20 >= 0.0) ? min(v_20, (filter_rect_BIG * alpha_11)) : 0.0);
+    float z_6 = max(h_18.z, math_F32_MIN_POSITIVE);
+    return clamp((-(h_18.xy) / (z_6).xx), (-3.4028235e38).xx, (3.4028235e38).xx);
 }
 
-float3 filter_rect_sample_normal_of_slope(float2 s_15)
+float3 footprint_slope_sphere_from_slope(float2 s_15)
 {
-    const float3 _e4 = sampling_normalize_scaled(float3(-(s_15), 1.0));
-    return float3(_e4.xy, max(_e4.z, math_F32_MIN_POSITIVE));
+    float k_30 = max(max(abs(s_15.x), abs(s_15.y)), 1.0);
+    float3 v_20 = float3((-(s_15) / (k_30).xx), (1.0 / k_30));
+    return (v_20 / (length(v_20)).xxx);
 }
 
-float3 filter_rect_sample_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_71, float2 half_extent_7, float2 u_13, float2 u_box)
+float2 footprint_slope_projected_from_sphere(float3 h_19)
 {
-    float2 a_38 = r_71.alpha;
-    const float _e7 = filter_rect_sample_half(half_extent_7.x, a_38.x);
-    const float _e10 = filter_rect_sample_half(half_extent_7.y, a_38.y);
-    float2 h_33 = float2(_e7, _e10);
-    const float _e13 = sampling_clamp_unit(u_13.x);
-    const float _e15 = sampling_clamp_unit(u_13.y);
-    const float2 _e16 = math_sincos_turns(_e15);
-    float rad_1 = sqrt((_e13 / (1.0 - _e13)));
-    float2 g_10 = (-(a_38) * (rad_1 * _e16));
-    const float _e25 = sampling_clamp_unit(u_box.x);
-    const float _e27 = sampling_clamp_unit(u_box.y);
-    float2 b_10 = float2(_e25, _e27);
-    float2 d_9 = (((2.0 * b_10) - (1.0).xx) * h_33);
-    const float3 _e36 = filter_rect_sample_normal_of_slope((g_10 + d_9));
-    return _e36;
-}
-
-float filter_rect_sample_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_72, float2 half_extent_8, float3 m_44)
-{
-    const float _e3 = filter_rect_d_rect(r_72, m_44, half_extent_8);
-    return ((m_44.z > 0.0) ? (_e3 * m_44.z) : 0.0);
-}
-
-float filter_rect_sample_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_73, float2 half_extent_9, float3 wo_6, float3 m_45)
-{
-    bool local_25 = (bool)0;
-    bool local_26 = (bool)0;
-
-    float wom_1 = dot(wo_6, m_45);
-    if (!(!((wo_6.z > 0.0)))) {
-        local_25 = !((m_45.z > 0.0));
-    } else {
-        local_25 = true;
-    }
-    bool _e17 = local_25;
-    if (!(_e17)) {
-        local_26 = !((wom_1 > 0.0));
-    } else {
-        local_26 = true;
-    }
-    bool _e25 = local_26;
-    if (_e25) {
-        return 0.0;
-    }
-    const float _e27 = filter_rect_d_rect(r_73, m_45, half_extent_9);
-    const float _e30 = filter_rect_lambda_lambda_rect(r_73, half_extent_9, wo_6);
-    float v_21 = ((wom_1 * _e27) / (wo_6.z * (1.0 + _e30)));
-    return ((v_21 <= math_F32_MAX) ? v_21 : 0.0);
-}
-
-float2 footprint_slope_slope_from_sphere(float3 h_19)
-{
-    float z_7 = max(h_19.z, math_F32_MIN_POSITIVE);
-    return clamp((-(h_19.xy) / (z_7).xx), (-3.4028235e38).xx, (3.4028235e38).xx);
-}
-
-float3 footprint_slope_sphere_from_slope(float2 s_16)
-{
-    float k_31 = max(max(abs(s_16.x), abs(s_16.y)), 1.0);
-    float3 v_22 = float3((-(s_16) / (k_31).xx), (1.0 / k_31));
-    return (v_22 / (length(v_22)).xxx);
-}
-
-float2 footprint_slope_projected_from_sphere(float3 h_20)
-{
-    return h_20.xy;
+    return h_19.xy;
 }
 
 float3 footprint_slope_sphere_from_projected(float2 p_1)
@@ -3828,74 +3664,249 @@ float2 footprint_slope_slope_from_projected(float2 p_2)
     return _e2;
 }
 
-float2 footprint_slope_projected_from_slope(float2 s_17)
+float2 footprint_slope_projected_from_slope(float2 s_16)
 {
-    const float3 _e1 = footprint_slope_sphere_from_slope(s_17);
+    const float3 _e1 = footprint_slope_sphere_from_slope(s_16);
     const float2 _e2 = footprint_slope_projected_from_sphere(_e1);
     return _e2;
+}
+
+sampling_Warp Constructsampling_Warp(float arg0, float arg1, float arg2) {
+    sampling_Warp ret = (sampling_Warp)0;
+    ret.l_xx = arg0;
+    ret.l_yx = arg1;
+    ret.l_yy = arg2;
+    return ret;
+}
+
+sampling_Warp sampling_warp(ndf_roughness_matrix_RoughnessMatrix r_64)
+{
+    const float3 _e1 = ndf_roughness_matrix_clamped_entries(r_64);
+    float l_xx = sqrt(_e1.x);
+    const sampling_Warp sampling_warp_1 = Constructsampling_Warp(l_xx, (_e1.y / l_xx), (r_64.sqrt_det / l_xx));
+    return sampling_warp_1;
+}
+
+float3 sampling_normalize_scaled(float3 v_14)
+{
+    float3 w_27 = (v_14 / (max(max(abs(v_14.x), abs(v_14.y)), abs(v_14.z))).xxx);
+    return (w_27 / (length(w_27)).xxx);
+}
+
+float3 sampling_stretch(sampling_Warp l_3, float3 w_22)
+{
+    return float3(((l_3.l_xx * w_22.x) + (l_3.l_yx * w_22.y)), (l_3.l_yy * w_22.y), w_22.z);
+}
+
+float3 sampling_unstretch(sampling_Warp l_4, float3 n_4)
+{
+    const float3 _e14 = sampling_normalize_scaled(float3((l_4.l_xx * n_4.x), ((l_4.l_yx * n_4.x) + (l_4.l_yy * n_4.y)), n_4.z));
+    return _e14;
+}
+
+float sampling_clamp_unit(float u_7)
+{
+    return ((u_7 >= 0.0) ? min(u_7, sampling_ONE_MINUS_EPS) : 0.0);
+}
+
+float3 sampling_reflect(float3 wo, float3 m_37)
+{
+    return (((2.0 * dot(wo, m_37)) * m_37) - wo);
+}
+
+float3 sampling_ggx_standard_visible(float3 wi, float2 u_8)
+{
+    const float2 _e3 = math_sincos_turns(u_8.x);
+    float z_7 = (((1.0 - u_8.y) * (1.0 + wi.z)) - wi.z);
+    float sin_theta_1 = sqrt(clamp((1.0 - (z_7 * z_7)), 0.0, 1.0));
+    return (float3((sin_theta_1 * _e3), z_7) + wi);
+}
+
+float3 sampling_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_65, float3 wo_1, float2 u_9)
+{
+    bool local_26 = (bool)0;
+
+    if (!((wo_1.z > 0.0))) {
+        return (0.0).xxx;
+    }
+    const sampling_Warp _e9 = sampling_warp(r_65);
+    const float3 _e10 = sampling_normalize_scaled(wo_1);
+    const float3 _e11 = sampling_stretch(_e9, _e10);
+    const float3 _e12 = sampling_normalize_scaled(_e11);
+    if (!((_e12.z > 0.0))) {
+        return (0.0).xxx;
+    }
+    const float _e20 = sampling_clamp_unit(u_9.x);
+    const float _e22 = sampling_clamp_unit(u_9.y);
+    const float3 _e24 = sampling_ggx_standard_visible(_e12, float2(_e20, _e22));
+    const float3 _e25 = sampling_unstretch(_e9, _e24);
+    if ((_e25.z > 0.0)) {
+        local_26 = (dot(wo_1, _e25) > 0.0);
+    } else {
+        local_26 = false;
+    }
+    bool _e35 = local_26;
+    if (_e35) {
+        return _e25;
+    }
+    const float3 _e36 = sampling_unstretch(_e9, _e12);
+    return ((_e36.z > 0.0) ? _e36 : (0.0).xxx);
+}
+
+float3 sampling_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_66, float2 u_10)
+{
+    const float _e3 = sampling_clamp_unit(u_10.x);
+    const float _e5 = sampling_clamp_unit(u_10.y);
+    const float2 _e6 = math_sincos_turns(_e5);
+    float3 n_6 = float3((sqrt(_e3) * _e6), sqrt((1.0 - _e3)));
+    const sampling_Warp _e13 = sampling_warp(r_66);
+    const float3 _e14 = sampling_unstretch(_e13, n_6);
+    return _e14;
+}
+
+float sampling_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_67, float3 m_38)
+{
+    const float _e2 = ndf_ggx_d_matrix(r_67, m_38);
+    return ((m_38.z > 0.0) ? (_e2 * m_38.z) : 0.0);
+}
+
+float sampling_visible_normal_pdf_of(float3 wo_2, float3 m_39, float d_1, float lambda)
+{
+    bool local_27 = (bool)0;
+    bool local_28 = (bool)0;
+
+    float wom = dot(wo_2, m_39);
+    float v_21 = ((wom * d_1) / (wo_2.z * (1.0 + lambda)));
+    if ((wo_2.z > 0.0)) {
+        local_27 = (wom > 0.0);
+    } else {
+        local_27 = false;
+    }
+    bool _e19 = local_27;
+    if (_e19) {
+        local_28 = (v_21 <= math_F32_MAX);
+    } else {
+        local_28 = false;
+    }
+    bool _e25 = local_28;
+    return (_e25 ? v_21 : 0.0);
+}
+
+float sampling_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_68, float3 wo_3, float3 m_40)
+{
+    const float _e3 = ndf_ggx_d_matrix(r_68, m_40);
+    const float _e4 = ndf_ggx_lambda_matrix(r_68, wo_3);
+    const float _e5 = sampling_visible_normal_pdf_of(wo_3, m_40, _e3, _e4);
+    return _e5;
+}
+
+float sampling_reflection_pdf_of(float3 o_8, float3 m_41, float d_2, float lambda_1)
+{
+    bool local_29 = (bool)0;
+    bool local_30 = (bool)0;
+
+    float v_22 = (d_2 / ((4.0 * o_8.z) * (1.0 + lambda_1)));
+    if ((o_8.z > 0.0)) {
+        local_29 = (dot(o_8, m_41) > 0.0);
+    } else {
+        local_29 = false;
+    }
+    bool _e20 = local_29;
+    if (_e20) {
+        local_30 = (v_22 <= math_F32_MAX);
+    } else {
+        local_30 = false;
+    }
+    bool _e26 = local_30;
+    return (_e26 ? v_22 : 0.0);
+}
+
+float sampling_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_69, float3 wo_4, float3 m_42)
+{
+    const float3 _e3 = sampling_normalize_scaled(wo_4);
+    const float _e4 = ndf_ggx_d_matrix(r_69, m_42);
+    const float _e5 = ndf_ggx_lambda_matrix(r_69, _e3);
+    const float _e6 = sampling_reflection_pdf_of(_e3, m_42, _e4, _e5);
+    return _e6;
+}
+
+float sampling_reflection_pdf(ndf_roughness_matrix_RoughnessMatrix r_70, float3 wo_5, float3 wi_1)
+{
+    if (!((wo_5.z > 0.0))) {
+        return 0.0;
+    }
+    const float3 _e8 = sampling_normalize_scaled(wo_5);
+    const float3 _e9 = sampling_normalize_scaled(wi_1);
+    float3 h_32 = (_e8 + _e9);
+    float len_1 = length(h_32);
+    if (!((len_1 > 0.0))) {
+        return 0.0;
+    }
+    const float _e18 = sampling_reflection_pdf_from_normal(r_70, wo_5, (h_32 / (len_1).xxx));
+    return _e18;
 }
 
 float sampling_beckmann_erfcx(float z_1)
 {
     float p_3 = 0.17087276;
 
-    float t_19 = (1.0 / (1.0 + (0.5 * z_1)));
+    float t_18 = (1.0 / (1.0 + (0.5 * z_1)));
     float _e9 = p_3;
-    p_3 = ((_e9 * t_19) - 0.82215226);
+    p_3 = ((_e9 * t_18) - 0.82215226);
     float _e13 = p_3;
-    p_3 = ((_e13 * t_19) + 1.4885159);
+    p_3 = ((_e13 * t_18) + 1.4885159);
     float _e17 = p_3;
-    p_3 = ((_e17 * t_19) - 1.135204);
+    p_3 = ((_e17 * t_18) - 1.135204);
     float _e21 = p_3;
-    p_3 = ((_e21 * t_19) + 0.27886808);
+    p_3 = ((_e21 * t_18) + 0.27886808);
     float _e25 = p_3;
-    p_3 = ((_e25 * t_19) - 0.18628806);
+    p_3 = ((_e25 * t_18) - 0.18628806);
     float _e29 = p_3;
-    p_3 = ((_e29 * t_19) + 0.09678418);
+    p_3 = ((_e29 * t_18) + 0.09678418);
     float _e33 = p_3;
-    p_3 = ((_e33 * t_19) + 0.37409195);
+    p_3 = ((_e33 * t_18) + 0.37409195);
     float _e37 = p_3;
-    p_3 = ((_e37 * t_19) + 1.0000237);
+    p_3 = ((_e37 * t_18) + 1.0000237);
     float _e41 = p_3;
-    p_3 = ((_e41 * t_19) - 1.2655122);
+    p_3 = ((_e41 * t_18) - 1.2655122);
     float _e45 = p_3;
     const float _e46 = math_exp(_e45);
-    return (t_19 * _e46);
+    return (t_18 * _e46);
 }
 
-float sampling_beckmann_upper_tail(float x_8, float c_10, float s_18)
+float sampling_beckmann_upper_tail(float x_10, float c_10, float s_17)
 {
-    const float _e5 = math_exp((-(x_8) * x_8));
-    const float _e8 = sampling_beckmann_erfcx(x_8);
-    return ((0.5 * _e5) * ((c_10 * _e8) - (s_18 * sampling_beckmann_INV_SQRT_PI)));
+    const float _e5 = math_exp((-(x_10) * x_10));
+    const float _e8 = sampling_beckmann_erfcx(x_10);
+    return ((0.5 * _e5) * ((c_10 * _e8) - (s_17 * sampling_beckmann_INV_SQRT_PI)));
 }
 
-float2 sampling_beckmann_cdf_terms(float x_9, float c_11, float s_19)
+float2 sampling_beckmann_cdf_terms(float x_11, float c_11, float s_18)
 {
     float k_23 = (float)0;
 
-    const float _e5 = math_exp((-(x_9) * x_9));
-    if ((x_9 <= 0.0)) {
-        const float _e12 = sampling_beckmann_erfcx(-(x_9));
-        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_19 * sampling_beckmann_INV_SQRT_PI)));
+    const float _e5 = math_exp((-(x_11) * x_11));
+    if ((x_11 <= 0.0)) {
+        const float _e12 = sampling_beckmann_erfcx(-(x_11));
+        k_23 = ((0.5 * _e5) * ((c_11 * _e12) + (s_18 * sampling_beckmann_INV_SQRT_PI)));
     } else {
-        const float _e18 = sampling_beckmann_upper_tail(x_9, c_11, s_19);
+        const float _e18 = sampling_beckmann_upper_tail(x_11, c_11, s_18);
         k_23 = (c_11 - _e18);
     }
     float _e20 = k_23;
-    return float2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_19 * x_9))));
+    return float2(_e20, ((sampling_beckmann_INV_SQRT_PI * _e5) * (c_11 - (s_18 * x_11))));
 }
 
-float sampling_beckmann_erfinv_guess(float x_10)
+float sampling_beckmann_erfinv_guess(float x_12)
 {
     float w_23 = (float)0;
     float p_4 = (float)0;
 
-    float a_39 = ((1.0 - x_10) * (1.0 + x_10));
-    if (!((a_39 > 0.0))) {
+    float a_38 = ((1.0 - x_12) * (1.0 + x_12));
+    if (!((a_38 > 0.0))) {
         return 0.0;
     }
-    const float _e10 = math_ln(a_39);
+    const float _e10 = math_ln(a_38);
     w_23 = -(_e10);
     float _e14 = w_23;
     if ((_e14 < 5.0)) {
@@ -3956,44 +3967,44 @@ float sampling_beckmann_erfinv_guess(float x_10)
         p_4 = ((_e101 * _e102) + 2.8329768);
     }
     float _e106 = p_4;
-    return (_e106 * x_10);
+    return (_e106 * x_12);
 }
 
-float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_20, float u_14)
+float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_19, float u_11)
 {
     float lo_3 = -9.0;
     float hi_2 = (float)0;
-    bool local_27 = (bool)0;
-    float x_11 = (float)0;
+    bool local_31 = (bool)0;
+    float x_13 = (float)0;
     float dx_old = (float)0;
     uint i_11 = 0u;
-    float g_9 = (float)0;
-    bool local_28 = (bool)0;
-    bool local_29 = (bool)0;
+    float g_7 = (float)0;
+    bool local_32 = (bool)0;
+    bool local_33 = (bool)0;
 
-    float hi0_ = ((s_20 > 0.0) ? min((c_12 / s_20), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
+    float hi0_ = ((s_19 > 0.0) ? min((c_12 / s_19), sampling_beckmann_X_MAX) : sampling_beckmann_X_MAX);
     hi_2 = hi0_;
-    const float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_20);
+    const float2 _e13 = sampling_beckmann_cdf_terms(hi0_, c_12, s_19);
     float norm_1 = _e13.x;
-    bool upper = (u_14 > 0.5);
-    float goal = ((upper ? (1.0 - u_14) : u_14) * norm_1);
+    bool upper = (u_11 > 0.5);
+    float goal = ((upper ? (1.0 - u_11) : u_11) * norm_1);
     if (!((goal > 0.0))) {
         float _e24 = lo_3;
         return _e24;
     }
-    const float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_20);
+    const float _e27 = sampling_beckmann_upper_tail(max(hi0_, 0.0), c_12, s_19);
     float tol_4 = (4.7683716e-7 * goal);
-    const float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_14) - 1.0));
+    const float _e34 = sampling_beckmann_erfinv_guess(((2.0 * u_11) - 1.0));
     float _e35 = hi_2;
     float _e40 = lo_3;
     if ((_e34 > _e40)) {
         float _e44 = hi_2;
-        local_27 = (_e34 < _e44);
+        local_31 = (_e34 < _e44);
     } else {
-        local_27 = false;
+        local_31 = false;
     }
-    bool _e47 = local_27;
-    x_11 = (_e47 ? _e34 : min(0.0, (0.5 * _e35)));
+    bool _e47 = local_31;
+    x_13 = (_e47 ? _e34 : min(0.0, (0.5 * _e35)));
     float _e50 = hi_2;
     float _e51 = lo_3;
     dx_old = (_e50 - _e51);
@@ -4013,62 +4024,62 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_20, float u
             break;
         }
         {
-            float _e59 = x_11;
-            const float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_20);
-            g_9 = (_e60.x - goal);
+            float _e59 = x_13;
+            const float2 _e60 = sampling_beckmann_cdf_terms(_e59, c_12, s_19);
+            g_7 = (_e60.x - goal);
             if (upper) {
-                float _e66 = x_11;
-                const float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_20);
-                float _e69 = x_11;
-                g_9 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
+                float _e66 = x_13;
+                const float _e67 = sampling_beckmann_upper_tail(_e66, c_12, s_19);
+                float _e69 = x_13;
+                g_7 = (goal - ((_e69 > 0.0) ? (_e67 - _e27) : (norm_1 - _e60.x)));
             }
-            float _e74 = g_9;
+            float _e74 = g_7;
             if ((abs(_e74) <= tol_4)) {
-                float _e77 = x_11;
+                float _e77 = x_13;
                 return _e77;
             }
-            float _e78 = g_9;
+            float _e78 = g_7;
             if ((_e78 < 0.0)) {
-                float _e81 = x_11;
+                float _e81 = x_13;
                 lo_3 = _e81;
             } else {
-                float _e82 = x_11;
+                float _e82 = x_13;
                 hi_2 = _e82;
             }
             float _e83 = hi_2;
             float _e84 = lo_3;
-            float _e87 = x_11;
+            float _e87 = x_13;
             if (((_e83 - _e84) <= (4.7683716e-7 * (1.0 + abs(_e87))))) {
                 float _e93 = lo_3;
                 float _e94 = hi_2;
                 return (0.5 * (_e93 + _e94));
             }
-            float _e98 = g_9;
+            float _e98 = g_7;
             float step_ = (_e98 / _e60.y);
-            float _e101 = x_11;
+            float _e101 = x_13;
             float xn = (_e101 - step_);
             float _e103 = lo_3;
             if ((xn > _e103)) {
                 float _e107 = hi_2;
-                local_28 = (xn < _e107);
+                local_32 = (xn < _e107);
             } else {
-                local_28 = false;
+                local_32 = false;
             }
-            bool _e110 = local_28;
+            bool _e110 = local_32;
             if (_e110) {
-                float _e113 = g_9;
+                float _e113 = g_7;
                 float _e117 = dx_old;
-                local_29 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
+                local_33 = (abs((2.0 * _e113)) <= abs((_e117 * _e60.y)));
             } else {
-                local_29 = false;
+                local_33 = false;
             }
-            bool _e123 = local_29;
+            bool _e123 = local_33;
             if (_e123) {
                 dx_old = abs(step_);
-                x_11 = xn;
-                float _e127 = x_11;
+                x_13 = xn;
+                float _e127 = x_13;
                 if ((abs(step_) <= (2.3841858e-7 * (1.0 + abs(_e127))))) {
-                    float _e133 = x_11;
+                    float _e133 = x_13;
                     return _e133;
                 }
             } else {
@@ -4077,68 +4088,68 @@ float sampling_beckmann_invert_visible_slope_cdf(float c_12, float s_20, float u
                 dx_old = (0.5 * (_e134 - _e135));
                 float _e139 = lo_3;
                 float _e140 = hi_2;
-                x_11 = (0.5 * (_e139 + _e140));
+                x_13 = (0.5 * (_e139 + _e140));
             }
         }
     }
-    float _e147 = x_11;
+    float _e147 = x_13;
     return _e147;
 }
 
-float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_15)
+float sampling_beckmann_visible_slope_quantile(float cos_theta, float sin_theta, float u_12)
 {
     float c_13 = 1.0;
-    float s_21 = 0.0;
-    bool local_30 = (bool)0;
-    bool local_31 = (bool)0;
+    float s_20 = 0.0;
+    bool local_34 = (bool)0;
+    bool local_35 = (bool)0;
 
     if ((cos_theta >= 0.0)) {
-        local_30 = (sin_theta >= 0.0);
+        local_34 = (sin_theta >= 0.0);
     } else {
-        local_30 = false;
+        local_34 = false;
     }
-    bool _e14 = local_30;
+    bool _e14 = local_34;
     if (_e14) {
-        local_31 = ((cos_theta + sin_theta) > 0.0);
+        local_35 = ((cos_theta + sin_theta) > 0.0);
     } else {
-        local_31 = false;
+        local_35 = false;
     }
-    bool _e21 = local_31;
+    bool _e21 = local_35;
     if (_e21) {
         const float _e22 = math_hypot(cos_theta, sin_theta);
         c_13 = (cos_theta / _e22);
-        s_21 = (sin_theta / _e22);
+        s_20 = (sin_theta / _e22);
     }
     float _e25 = c_13;
-    float _e26 = s_21;
-    const float _e27 = sampling_clamp_unit(u_15);
+    float _e26 = s_20;
+    const float _e27 = sampling_clamp_unit(u_12);
     const float _e28 = sampling_beckmann_invert_visible_slope_cdf(_e25, _e26, _e27);
     return _e28;
 }
 
-float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_74, float2 u_16)
+float3 sampling_beckmann_sample_normal(ndf_roughness_matrix_RoughnessMatrix r_71, float2 u_13)
 {
-    const float _e3 = sampling_clamp_unit(u_16.x);
-    const float _e5 = sampling_clamp_unit(u_16.y);
+    const float _e3 = sampling_clamp_unit(u_13.x);
+    const float _e5 = sampling_clamp_unit(u_13.y);
     const float2 _e6 = math_sincos_turns(_e5);
     const float _e9 = math_ln((1.0 - _e3));
     const float _e14 = math_ln_1p((_e3 / (1.0 - _e3)));
-    float e_7 = ((_e3 < 0.5) ? _e14 : -(_e9));
-    float3 n_7 = float3((sqrt(e_7) * _e6), 1.0);
-    const sampling_Warp _e22 = sampling_warp(r_74);
+    float e_6 = ((_e3 < 0.5) ? _e14 : -(_e9));
+    float3 n_7 = float3((sqrt(e_6) * _e6), 1.0);
+    const sampling_Warp _e22 = sampling_warp(r_71);
     const float3 _e23 = sampling_unstretch(_e22, n_7);
     return _e23;
 }
 
-float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_75, float3 wo_7, float2 u_17)
+float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMatrix r_72, float3 wo_6, float2 u_14)
 {
-    bool local_32 = (bool)0;
+    bool local_36 = (bool)0;
 
-    if (!((wo_7.z > 0.0))) {
+    if (!((wo_6.z > 0.0))) {
         return (0.0).xxx;
     }
-    const sampling_Warp _e9 = sampling_warp(r_75);
-    const float3 _e10 = sampling_normalize_scaled(wo_7);
+    const sampling_Warp _e9 = sampling_warp(r_72);
+    const float3 _e10 = sampling_normalize_scaled(wo_6);
     const float3 _e11 = sampling_stretch(_e9, _e10);
     const float3 _e12 = sampling_normalize_scaled(_e11);
     if (!((_e12.z > 0.0))) {
@@ -4146,18 +4157,18 @@ float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMat
     }
     const float _e21 = math_hypot(_e12.x, _e12.y);
     float2 phi = ((_e21 > 0.0) ? (_e12.xy / (_e21).xx) : float2(1.0, 0.0));
-    const float _e33 = sampling_clamp_unit(u_17.x);
+    const float _e33 = sampling_clamp_unit(u_14.x);
     const float _e34 = sampling_beckmann_invert_visible_slope_cdf(_e12.z, _e21, _e33);
-    const float _e38 = sampling_clamp_unit(u_17.y);
+    const float _e38 = sampling_clamp_unit(u_14.y);
     const float _e39 = sampling_beckmann_invert_visible_slope_cdf(1.0, 0.0, _e38);
-    float2 t_20 = float2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
-    const float3 _e54 = sampling_unstretch(_e9, float3(-(t_20), 1.0));
+    float2 t_19 = float2(((phi.x * _e34) - (phi.y * _e39)), ((phi.y * _e34) + (phi.x * _e39)));
+    const float3 _e54 = sampling_unstretch(_e9, float3(-(t_19), 1.0));
     if ((_e54.z > 0.0)) {
-        local_32 = (dot(wo_7, _e54) > 0.0);
+        local_36 = (dot(wo_6, _e54) > 0.0);
     } else {
-        local_32 = false;
+        local_36 = false;
     }
-    bool _e64 = local_32;
+    bool _e64 = local_36;
     if (_e64) {
         return _e54;
     }
@@ -4165,27 +4176,140 @@ float3 sampling_beckmann_sample_visible_normal(ndf_roughness_matrix_RoughnessMat
     return ((_e65.z > 0.0) ? _e65 : (0.0).xxx);
 }
 
-float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_76, float3 m_46)
+float sampling_beckmann_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_73, float3 m_43)
 {
-    const float _e2 = ndf_beckmann_d_matrix(r_76, m_46);
-    return ((m_46.z > 0.0) ? (_e2 * m_46.z) : 0.0);
+    const float _e2 = ndf_beckmann_d_matrix(r_73, m_43);
+    return ((m_43.z > 0.0) ? (_e2 * m_43.z) : 0.0);
 }
 
-float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_77, float3 wo_8, float3 m_47)
+float sampling_beckmann_visible_normal_pdf(ndf_roughness_matrix_RoughnessMatrix r_74, float3 wo_7, float3 m_44)
 {
-    const float _e3 = ndf_beckmann_d_matrix(r_77, m_47);
-    const float _e4 = ndf_beckmann_lambda_matrix(r_77, wo_8);
-    const float _e5 = sampling_visible_normal_pdf_of(wo_8, m_47, _e3, _e4);
+    const float _e3 = ndf_beckmann_d_matrix(r_74, m_44);
+    const float _e4 = ndf_beckmann_lambda_matrix(r_74, wo_7);
+    const float _e5 = sampling_visible_normal_pdf_of(wo_7, m_44, _e3, _e4);
     return _e5;
 }
 
-float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_78, float3 wo_9, float3 m_48)
+float sampling_beckmann_reflection_pdf_from_normal(ndf_roughness_matrix_RoughnessMatrix r_75, float3 wo_8, float3 m_45)
 {
-    const float3 _e3 = sampling_normalize_scaled(wo_9);
-    const float _e4 = ndf_beckmann_d_matrix(r_78, m_48);
-    const float _e5 = ndf_beckmann_lambda_matrix(r_78, _e3);
-    const float _e6 = sampling_reflection_pdf_of(_e3, m_48, _e4, _e5);
+    const float3 _e3 = sampling_normalize_scaled(wo_8);
+    const float _e4 = ndf_beckmann_d_matrix(r_75, m_45);
+    const float _e5 = ndf_beckmann_lambda_matrix(r_75, _e3);
+    const float _e6 = sampling_reflection_pdf_of(_e3, m_45, _e4, _e5);
     return _e6;
+}
+
+float2 sampling_gaussian_ggx_split_bits(float u_15)
+{
+    float x_20 = (u_15 * 4096.0);
+    float hi_5 = floor(x_20);
+    return float2(((hi_5 + 0.5) / 4096.0), (x_20 - hi_5));
+}
+
+float3 sampling_gaussian_ggx_sample_normal(filter_gaussian_ggx_GaussianFilteredGgx g_8, float2 u_16)
+{
+    float2 ax_1 = float2(1.0, 0.0);
+
+    const float _e3 = sampling_clamp_unit(u_16.x);
+    const float2 _e4 = sampling_gaussian_ggx_split_bits(_e3);
+    const float _e6 = sampling_clamp_unit(u_16.y);
+    const float2 _e7 = sampling_gaussian_ggx_split_bits(_e6);
+    const float2 _e15 = math_sincos_turns(_e7.x);
+    float2 t_20 = (sqrt((_e4.x / (1.0 - _e4.x))) * _e15);
+    const sampling_Warp _e18 = sampling_warp(g_8.a);
+    float2 gs = float2((_e18.l_xx * t_20.x), ((_e18.l_yx * t_20.x) + (_e18.l_yy * t_20.y)));
+    const float _e33 = math_ln((1.0 - _e4.y));
+    const float _e40 = math_ln_1p((_e4.y / (1.0 - _e4.y)));
+    float e_7 = ((_e4.y < 0.5) ? _e40 : -(_e33));
+    const float2 _e49 = math_sincos_turns(_e7.y);
+    float2 y_4 = (sqrt((2.0 * e_7)) * _e49);
+    kernel_covariance_Covariance k_31 = g_8.k;
+    const float2 _e52 = kernel_covariance_eigenvalues(k_31);
+    float khalf = (0.5 * (k_31.s_xx - k_31.s_yy));
+    const float _e59 = math_hypot(khalf, k_31.s_xy);
+    if ((_e59 > 0.0)) {
+        float2 w_28 = ((khalf >= 0.0) ? float2((_e59 + khalf), k_31.s_xy) : float2(k_31.s_xy, (_e59 - khalf)));
+        const float _e77 = math_hypot(w_28.x, w_28.y);
+        ax_1 = (w_28 / (_e77).xx);
+    }
+    float2 kk_1 = float2((sqrt(_e52.y) * y_4.x), (sqrt(_e52.x) * y_4.y));
+    float _e90 = ax_1.x;
+    float _e94 = ax_1.y;
+    float _e99 = ax_1.y;
+    float _e103 = ax_1.x;
+    float2 s_34 = (gs + float2(((_e90 * kk_1.x) - (_e94 * kk_1.y)), ((_e99 * kk_1.x) + (_e103 * kk_1.y))));
+    const float3 _e112 = sampling_normalize_scaled(float3(-(s_34), 1.0));
+    return float3(_e112.xy, max(_e112.z, math_F32_MIN_POSITIVE));
+}
+
+float sampling_gaussian_ggx_normal_pdf(filter_gaussian_ggx_GaussianFilteredGgx g_9, float3 m_46)
+{
+    const float _e2 = filter_gaussian_ggx_d(g_9, m_46);
+    return ((m_46.z > 0.0) ? (_e2 * m_46.z) : 0.0);
+}
+
+float sampling_rect_sanitized_half_extent(float h_20, float alpha_11)
+{
+    float v_23 = abs(h_20);
+    return ((v_23 >= 0.0) ? min(v_23, (filter_rect_BIG * alpha_11)) : 0.0);
+}
+
+float3 sampling_rect_normal_of_slope(float2 s_21)
+{
+    const float3 _e4 = sampling_normalize_scaled(float3(-(s_21), 1.0));
+    return float3(_e4.xy, max(_e4.z, math_F32_MIN_POSITIVE));
+}
+
+float3 sampling_rect_sample_normal_rect(ndf_roughness_axis_aligned_AxisAligned r_76, float2 half_extent_7, float2 u_17, float2 u_box)
+{
+    float2 a_39 = r_76.alpha;
+    const float _e7 = sampling_rect_sanitized_half_extent(half_extent_7.x, a_39.x);
+    const float _e10 = sampling_rect_sanitized_half_extent(half_extent_7.y, a_39.y);
+    float2 h_33 = float2(_e7, _e10);
+    const float _e13 = sampling_clamp_unit(u_17.x);
+    const float _e15 = sampling_clamp_unit(u_17.y);
+    const float2 _e16 = math_sincos_turns(_e15);
+    float rad_1 = sqrt((_e13 / (1.0 - _e13)));
+    float2 g_10 = (-(a_39) * (rad_1 * _e16));
+    const float _e25 = sampling_clamp_unit(u_box.x);
+    const float _e27 = sampling_clamp_unit(u_box.y);
+    float2 b_10 = float2(_e25, _e27);
+    float2 d_9 = (((2.0 * b_10) - (1.0).xx) * h_33);
+    const float3 _e36 = sampling_rect_normal_of_slope((g_10 + d_9));
+    return _e36;
+}
+
+float sampling_rect_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_77, float2 half_extent_8, float3 m_47)
+{
+    const float _e3 = filter_rect_d_rect(r_77, m_47, half_extent_8);
+    return ((m_47.z > 0.0) ? (_e3 * m_47.z) : 0.0);
+}
+
+float sampling_rect_visible_normal_pdf_rect(ndf_roughness_axis_aligned_AxisAligned r_78, float2 half_extent_9, float3 wo_9, float3 m_48)
+{
+    bool local_37 = (bool)0;
+    bool local_38 = (bool)0;
+
+    float wom_1 = dot(wo_9, m_48);
+    if (!(!((wo_9.z > 0.0)))) {
+        local_37 = !((m_48.z > 0.0));
+    } else {
+        local_37 = true;
+    }
+    bool _e17 = local_37;
+    if (!(_e17)) {
+        local_38 = !((wom_1 > 0.0));
+    } else {
+        local_38 = true;
+    }
+    bool _e25 = local_38;
+    if (_e25) {
+        return 0.0;
+    }
+    const float _e27 = filter_rect_d_rect(r_78, m_48, half_extent_9);
+    const float _e30 = filter_rect_lambda_lambda_rect(r_78, half_extent_9, wo_9);
+    float v_24 = ((wom_1 * _e27) / (wo_9.z * (1.0 + _e30)));
+    return ((v_24 <= math_F32_MAX) ? v_24 : 0.0);
 }
 
 float4 filtered_ndf_entry() : SV_Target0

@@ -168,6 +168,29 @@ fn math_ln_1p(x: f32) -> f32 {
     return math_ln(1.0 + x);
 }
 
+/// Whether `x` is NaN, decided on its bits (exponent all ones, mantissa non-zero): integer
+/// arithmetic, which no driver folds away under a no-NaN assumption (a float comparison such
+/// as `x != x` may be). The Rust `is_nan`.
+fn math_is_nan(x: f32) -> bool {
+    return (bitcast<u32>(x) & 0x7fffffffu) > 0x7f800000u;
+}
+
+/// `x` with NaN replaced by `0`: the NaN policy of footprints and normal differences (the Rust
+/// `vector::nan_to_zero`): a NaN entry carries no information and widens nothing.
+fn math_nan_to_zero(x: f32) -> f32 {
+    return select(x, 0.0, math_is_nan(x));
+}
+
+/// [`nan_to_zero`] per component of a 2-vector.
+fn math_nan_to_zero2(v: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(math_nan_to_zero(v.x), math_nan_to_zero(v.y));
+}
+
+/// [`nan_to_zero`] per component of a 3-vector.
+fn math_nan_to_zero3(v: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(math_nan_to_zero(v.x), math_nan_to_zero(v.y), math_nan_to_zero(v.z));
+}
+
 // ---- filtered_ndf::ndf::roughness::matrix (shaders/ndf/roughness/matrix.wgsl) ----
 /// A symmetric positive-definite roughness matrix `A = [[a11, a12], [a12, a22]]` (TK19
 /// supplement section 1; Heitz 2014 section 5.4) with the TK19 determinant clamp `tau`
@@ -352,6 +375,231 @@ fn ndf_roughness_matrix_own_det_clamp(r: ndf_roughness_matrix_RoughnessMatrix) -
     return select(0.0, r.tau, r.tau > r.det);
 }
 
+// ---- filtered_ndf::footprint::jacobian (shaders/footprint/jacobian.wgsl) ----
+// Jacobians between the three half-vector domains (TK19 supplement section 2, eq. 1-7) and
+// the error propagation of TK19 section 3.1, mirroring `src/.../footprint/jacobian.rs`.
+// Matrices are the paper's `J[i][j] = d out_i / d in_j` stored column-major (WGSL
+// `mat2x2<f32>` like glam's `Mat2`): column `j` is the derivative with respect to input `j`,
+// and `J * v` is the paper's product. Spherical changes are the arc lengths `(psi_x, psi_y)`
+// along `e_x = (cos theta cos phi, cos theta sin phi, -sin theta)` and
+// `e_y = (-sin phi, cos phi, 0)`. Input: `h` is normalised here; a zero `h` is the pole;
+// `h_z` is clamped to `HZ_MIN` at constant azimuth; at the pole `phi = 0`.
+// (Non-finite input: WGSL lets a driver assume it never occurs.)
+
+/// Smallest `h_z` the Jacobians use (`1 / HZ_MIN^4 = 1e24` stays finite in f32).
+const footprint_jacobian_HZ_MIN: f32 = 1e-6;
+
+/// A half vector reduced to what the Jacobians need: the sanitised unit `h` and
+/// `(cos phi, sin phi)`.
+struct footprint_jacobian_Polar {
+    /// The sanitised unit half vector.
+    h: vec3<f32>,
+    /// `(cos phi, sin phi)` of its azimuth (`(1, 0)` at the pole).
+    cs: vec2<f32>,
+}
+
+/// Normalise (after scaling by the largest component), take the azimuth from `h_xy` scaled
+/// to unit size, clamp `h_z >= HZ_MIN` keeping the azimuth.
+fn footprint_jacobian_polar(h_in: vec3<f32>) -> footprint_jacobian_Polar {
+    let big = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
+    if big <= 0.0 {
+        return footprint_jacobian_Polar(vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(1.0, 0.0));
+    }
+    let h0 = h_in / big;
+    let h = h0 / length(h0);
+    let qs = max(abs(h.x), abs(h.y));
+    var cs = vec2<f32>(1.0, 0.0);
+    if qs > 0.0 {
+        let q = h.xy / qs;
+        cs = q / length(q);
+    }
+    if h.z >= footprint_jacobian_HZ_MIN {
+        return footprint_jacobian_Polar(h, cs);
+    }
+    let st = sqrt(1.0 - footprint_jacobian_HZ_MIN * footprint_jacobian_HZ_MIN);
+    return footprint_jacobian_Polar(vec3<f32>(st * cs, footprint_jacobian_HZ_MIN), cs);
+}
+
+/// The unit half vector the Jacobians use for input `h` (normalised, zero -> the pole,
+/// `h_z >= HZ_MIN` at constant azimuth).
+fn footprint_jacobian_sanitize(h: vec3<f32>) -> vec3<f32> {
+    return footprint_jacobian_polar(h).h;
+}
+
+/// The spherical basis `(e_x, e_y)` at `h` (TK19 supplement eq. 3, columns 1 and 2).
+struct footprint_jacobian_SphericalBasis {
+    /// `e_x`, along the great circle through `h` and `n`, away from `n`.
+    e_x: vec3<f32>,
+    /// `e_y = n x h / |n x h|`.
+    e_y: vec3<f32>,
+}
+
+/// `(e_x, e_y)` at `h`: `e_x = (cos theta cos phi, cos theta sin phi, -sin theta)`,
+/// `e_y = (-sin phi, cos phi, 0)`; `(+x, +y)` at the pole.
+fn footprint_jacobian_spherical_basis(h: vec3<f32>) -> footprint_jacobian_SphericalBasis {
+    let p = footprint_jacobian_polar(h);
+    let st = length(p.h.xy);
+    return footprint_jacobian_SphericalBasis(
+        vec3<f32>(p.h.z * p.cs, -st),
+        vec3<f32>(-p.cs.y, p.cs.x, 0.0),
+    );
+}
+
+/// `(dh . e_x, dh . e_y)` (radians) of a tangent change `dh` of the unit half vector (TK19
+/// section 3.1).
+fn footprint_jacobian_spherical_components(h: vec3<f32>, dh: vec3<f32>) -> vec2<f32> {
+    let b = footprint_jacobian_spherical_basis(h);
+    return vec2<f32>(dot(dh, b.e_x), dot(dh, b.e_y));
+}
+
+/// `J(o->perp) = [[h_z cos phi, -sin phi], [h_z sin phi, cos phi]]` (TK19 supplement eq. 4),
+/// determinant `h_z`; `I` at the pole.
+fn footprint_jacobian_sphere_to_projected(h: vec3<f32>) -> mat2x2<f32> {
+    let p = footprint_jacobian_polar(h);
+    return mat2x2<f32>(p.h.z * p.cs, vec2<f32>(-p.cs.y, p.cs.x));
+}
+
+/// `J(perp->par) = -1 / h_z^3 [[h_x^2 + h_z^2, h_x h_y], [h_x h_y, h_y^2 + h_z^2]]` (TK19
+/// supplement eq. 6, with `1 - h_y^2` written as `h_x^2 + h_z^2` for accuracy at the
+/// horizon); determinant `1 / h_z^4`; `-I` at the pole.
+fn footprint_jacobian_projected_to_slope(h_in: vec3<f32>) -> mat2x2<f32> {
+    let h = footprint_jacobian_polar(h_in).h;
+    let k = -1.0 / (h.z * h.z * h.z);
+    let xy = h.x * h.y;
+    return mat2x2<f32>(
+        vec2<f32>(h.x * h.x + h.z * h.z, xy) * k,
+        vec2<f32>(xy, h.y * h.y + h.z * h.z) * k,
+    );
+}
+
+/// `J(par->perp) = -h_z [[h_y^2 + h_z^2, -h_x h_y], [-h_x h_y, h_x^2 + h_z^2]]`, the inverse
+/// of [`projected_to_slope`]; determinant `h_z^4`; `-I` at the pole.
+fn footprint_jacobian_slope_to_projected(h_in: vec3<f32>) -> mat2x2<f32> {
+    let h = footprint_jacobian_polar(h_in).h;
+    let xy = h.x * h.y;
+    return mat2x2<f32>(
+        vec2<f32>(h.y * h.y + h.z * h.z, -xy) * -h.z,
+        vec2<f32>(-xy, h.x * h.x + h.z * h.z) * -h.z,
+    );
+}
+
+/// `J(o->par) = -1 / h_z^2 [[cos phi, -h_z sin phi], [sin phi, h_z cos phi]]` (TK19
+/// supplement eq. 7; section 3.1); determinant `1 / h_z^3`; `-I` at the pole.
+fn footprint_jacobian_sphere_to_slope(h: vec3<f32>) -> mat2x2<f32> {
+    let p = footprint_jacobian_polar(h);
+    let k = -1.0 / (p.h.z * p.h.z);
+    return mat2x2<f32>(p.cs * k, vec2<f32>(-p.h.z * p.cs.y, p.h.z * p.cs.x) * k);
+}
+
+/// `det J(o->perp) = h_z` (TK19 section 3.2), in `[HZ_MIN, 1]`.
+fn footprint_jacobian_det_sphere_to_projected(h: vec3<f32>) -> f32 {
+    return footprint_jacobian_polar(h).h.z;
+}
+
+/// `det J(perp->par) = 1 / h_z^4`, in `[1, 1e24]`.
+fn footprint_jacobian_det_projected_to_slope(h: vec3<f32>) -> f32 {
+    let z = footprint_jacobian_polar(h).h.z;
+    let z2 = z * z;
+    return 1.0 / (z2 * z2);
+}
+
+/// `det J(o->par) = 1 / h_z^3` (TK19 section 3.1), in `[1, 1e18]`.
+fn footprint_jacobian_det_sphere_to_slope(h: vec3<f32>) -> f32 {
+    let z = footprint_jacobian_polar(h).h.z;
+    return 1.0 / (z * z * z);
+}
+
+/// A spherical error `(eps_x, eps_y)` mapped to the slope domain, `J(o->par) eps` (TK19
+/// section 3.1).
+fn footprint_jacobian_spherical_to_slope(h: vec3<f32>, e: vec2<f32>) -> vec2<f32> {
+    return footprint_jacobian_sphere_to_slope(h) * e;
+}
+
+/// The same error mapped to the projected disk, `J(o->perp) eps` (TK19 section 3.2).
+fn footprint_jacobian_spherical_to_projected(h: vec3<f32>, e: vec2<f32>) -> vec2<f32> {
+    return footprint_jacobian_sphere_to_projected(h) * e;
+}
+
+// ---- filtered_ndf::footprint (shaders/footprint/mod.wgsl) ----
+// Pixel footprints in the slope domain (KHPL16 sections 4.2, 4.3; TK19 section 2.2),
+// mirroring `Footprint` of `src/.../footprint/mod.rs`: the slope change of the half vector
+// across one pixel step in `x` (`dh_u`) and in `y` (`dh_v`). A Gaussian pixel filter of
+// standard deviation `sigma` pixels carried into the slope domain has covariance
+// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`; the kernel stage builds it
+// (`kernel::covariance::from_footprint`) and the bounding rectangle
+// (`kernel::rect::from_footprint`).
+
+// NaN policy (the Rust `contract`, as in `src/.../footprint/mod.rs`): a NaN derivative entry
+// carries no information and counts as 0 (`math::nan_to_zero`, decided on the bits, so it
+// holds whatever a driver assumes about floats); an infinite entry saturates: the clamp
+// rules turn it into the widest kernel they allow (where the driver keeps infinities).
+
+/// The standard deviation of the pixel filter of KHPL16 and TK19, in pixels.
+const footprint_SIGMA_PIXEL: f32 = 0.5;
+
+/// A slope-domain pixel footprint.
+struct footprint_Footprint {
+    /// Slope change per pixel step along the image `x` axis.
+    dh_u: vec2<f32>,
+    /// Slope change per pixel step along the image `y` axis.
+    dh_v: vec2<f32>,
+}
+
+/// From slope-domain derivatives, e.g. `dpdx`/`dpdy` of the slope of `h` (KHPL16 section
+/// 5.1).
+fn footprint_from_slope_derivatives(dh_u: vec2<f32>, dh_v: vec2<f32>) -> footprint_Footprint {
+    return footprint_Footprint(dh_u, dh_v);
+}
+
+/// From derivatives of the projected half vector `p = h_xy` (TK19 section 3.2, Listing 1:
+/// `ddx(halfvectorTS.xy)`), used as slope changes directly, as TK19 does (no Jacobian: the
+/// bandwidth shrinks by `h_z` at grazing half vectors relative to the sphere).
+fn footprint_from_projected_derivatives(dp_u: vec2<f32>, dp_v: vec2<f32>) -> footprint_Footprint {
+    return footprint_Footprint(dp_u, dp_v);
+}
+
+/// The slope-domain footprint of disk derivatives at the half vector `h`:
+/// `dh = J(perp->par) dp` (TK19 supplement eq. 6, [`jacobian::projected_to_slope`]: `h`
+/// normalised, clamped to the horizon `h_z >= 1e-6` at constant azimuth). A zero `h` gives a
+/// zero footprint; a NaN derivative entry counts as 0 (module docs).
+fn footprint_from_projected_derivatives_in_slope(
+    h: vec3<f32>,
+    dp_u: vec2<f32>,
+    dp_v: vec2<f32>,
+) -> footprint_Footprint {
+    let big = max(max(abs(h.x), abs(h.y)), abs(h.z));
+    if big <= 0.0 {
+        return footprint_Footprint(vec2<f32>(0.0), vec2<f32>(0.0));
+    }
+    let j = footprint_jacobian_projected_to_slope(h);
+    return footprint_Footprint(j * math_nan_to_zero2(dp_u), j * math_nan_to_zero2(dp_v));
+}
+
+/// The deferred footprint from normal differences to the neighbouring pixels (TK19 section
+/// 4.4, eq. 3) in the tangent frame of the current normal: `2 (dn)_xy / |2 e_z + dn|` per
+/// difference (the derivative of the half-way normal on the disk, whose length is `|dn|`
+/// for unit normals), the denominator clamped to `>= 1e-6`. A NaN entry of a difference counts
+/// as 0 (module docs).
+fn footprint_from_normal_differences(dn_u_in: vec3<f32>, dn_v_in: vec3<f32>) -> footprint_Footprint {
+    let dn_u = math_nan_to_zero3(dn_u_in);
+    let dn_v = math_nan_to_zero3(dn_v_in);
+    let lu = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_u), 1e-6);
+    let lv = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_v), 1e-6);
+    return footprint_Footprint(dn_u.xy * (2.0 / lu), dn_v.xy * (2.0 / lv));
+}
+
+/// The footprint with each NaN entry replaced by 0 (the Rust `Footprint::nan_to_zero`), as
+/// the kernel stage reads a footprint (module docs).
+fn footprint_nan_to_zero(fp: footprint_Footprint) -> footprint_Footprint {
+    return footprint_Footprint(math_nan_to_zero2(fp.dh_u), math_nan_to_zero2(fp.dh_v));
+}
+
+/// The largest centre-to-vertex distance of the one-pixel parallelogram,
+/// `max(|dh_u + dh_v|, |dh_u - dh_v|) / 2`: the extent clamped by KHPL16 section 5.2.
+fn footprint_max_extent(fp: footprint_Footprint) -> f32 {
+    return 0.5 * max(length(fp.dh_u + fp.dh_v), length(fp.dh_u - fp.dh_v));
+}
+
 // ---- filtered_ndf::kernel::covariance (shaders/kernel/covariance.wgsl) ----
 // A symmetric positive semi-definite slope-domain covariance (KHPL16 section 4.3, TK19
 // section 2.2), mirroring `Covariance` of `src/.../kernel/covariance.rs`.
@@ -367,7 +615,7 @@ const kernel_covariance_KERNEL_MAX: f32 = 1e8;
 /// determinant is computed once, where it is accurate, and carried: from footprint vectors
 /// as `sigma^4 (dh_u x dh_v)^2`, from a clamp as the product of the new eigenvalues, from a
 /// sum as `det a + det b + (a_xx b_yy + a_yy b_xx - 2 a_xy b_xy)`. Build covariances with the
-/// functions of this module (or `footprint::covariance`), not the struct constructor.
+/// functions of this module (e.g. [`from_footprint`]), not the struct constructor.
 struct kernel_covariance_Covariance {
     /// Variance along the tangent `x`.
     s_xx: f32,
@@ -388,6 +636,24 @@ fn kernel_covariance_zero() -> kernel_covariance_Covariance {
 /// `eps (s_xx s_yy + s_xy^2)` absolute).
 fn kernel_covariance_from_entries(s_xx: f32, s_xy: f32, s_yy: f32) -> kernel_covariance_Covariance {
     return kernel_covariance_Covariance(s_xx, s_xy, s_yy, s_xx * s_yy - s_xy * s_xy);
+}
+
+/// The Gaussian pixel kernel of a footprint, `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`
+/// (TK19 section 2.2), `sigma` in pixels, with `det Sigma = sigma^4 (dh_u x dh_v)^2` from the
+/// vectors (accurate for elongated kernels). The Rust `Covariance::from_footprint`; a NaN
+/// footprint entry counts as 0 (`pixel::nan_to_zero`).
+fn kernel_covariance_from_footprint(fp_in: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
+    let fp = footprint_nan_to_zero(fp_in);
+    let u = fp.dh_u;
+    let v = fp.dh_v;
+    let s2 = sigma * sigma;
+    let cross = (u.x * v.y - u.y * v.x) * s2;
+    return kernel_covariance_Covariance(
+        (u.x * u.x + v.x * v.x) * s2,
+        (u.x * u.y + v.x * v.y) * s2,
+        (u.y * u.y + v.y * v.y) * s2,
+        cross * cross,
+    );
 }
 
 /// `tr(Sigma) = lambda_min + lambda_max` (TK19 eq. 2).
@@ -467,12 +733,17 @@ fn kernel_covariance_clamp_eigenvalues(c: kernel_covariance_Covariance, max_eig:
 /// determinant would cancel. Otherwise negative variances are raised to 0 and `|s_xy|`
 /// lowered to `sqrt(s_xx s_yy)` (the nearest PSD matrix with the same diagonal, determinant
 /// 0). An infinite entry (where the driver keeps infinities) gives the widest kernel
-/// `KERNEL_MAX I`. Then [`clamp_eigenvalues`] with `KERNEL_MAX`. (The Rust version also maps
-/// NaN to [`zero`]; WGSL lets a driver assume NaN never occurs.)
-fn kernel_covariance_sanitized(c: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
-    let big = max(max(abs(c.s_xx), abs(c.s_yy)), abs(c.s_xy));
-    if big > math_F32_MAX {
+/// `KERNEL_MAX I`; otherwise a NaN entry counts as 0 (decided on its bits, `math::nan_to_zero`;
+/// a NaN determinant is recomputed from the entries). Then [`clamp_eigenvalues`] with
+/// `KERNEL_MAX`. As the Rust `Covariance::sanitized`.
+fn kernel_covariance_sanitized(c_in: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
+    let inf = abs(c_in.s_xx) > math_F32_MAX || abs(c_in.s_xy) > math_F32_MAX || abs(c_in.s_yy) > math_F32_MAX;
+    if inf {
         return kernel_covariance_Covariance(kernel_covariance_KERNEL_MAX, 0.0, kernel_covariance_KERNEL_MAX, kernel_covariance_KERNEL_MAX * kernel_covariance_KERNEL_MAX);
+    }
+    var c = kernel_covariance_Covariance(math_nan_to_zero(c_in.s_xx), math_nan_to_zero(c_in.s_xy), math_nan_to_zero(c_in.s_yy), c_in.det);
+    if math_is_nan(c.det) || math_is_nan(c_in.s_xx) || math_is_nan(c_in.s_xy) || math_is_nan(c_in.s_yy) {
+        c.det = c.s_xx * c.s_yy - c.s_xy * c.s_xy;
     }
     if c.s_xx >= 0.0 && c.s_yy >= 0.0 && c.det >= 0.0 {
         return kernel_covariance_clamp_eigenvalues(c, kernel_covariance_KERNEL_MAX);
@@ -484,151 +755,42 @@ fn kernel_covariance_sanitized(c: kernel_covariance_Covariance) -> kernel_covari
     return kernel_covariance_clamp_eigenvalues(kernel_covariance_Covariance(s_xx, s_xy, s_yy, 0.0), kernel_covariance_KERNEL_MAX);
 }
 
-// ---- filtered_ndf::filter::gaussian (shaders/filter/gaussian.wgsl) ----
-// Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
-// mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
+// ---- filtered_ndf::ndf (shaders/ndf/mod.wgsl) ----
+// What every NDF shares (`src/.../ndf/mod.rs`, the `Ndf` trait): the Smith terms derived
+// from `Lambda` once. Conventions (all NDFs, all roughness forms): tangent frame with `z` the
+// shading normal; slope of a micronormal `s = -m_xy / m_z` (TK19 supplement eq. 5);
+// `p22(s)` per unit slope area, integrating to 1 over the plane; `d(m) = p22(s(m)) / m_z^4`
+// per steradian with `integral d(m) m_z dm = 1` (KHPL16 eq. 2).
 //
-// The determinant clamp: the result is evaluated as the one clamped matrix `A'_c` of
-// `matrix.wgsl` (`A' + t I` where `det A' < tau`). In exact arithmetic
-// `det(A + 2 Sigma) >= det A`, and here the filtered determinant is a sum of non-negative
-// terms that contains `det A` itself, so with `tau = det A_c` of an unclamped material the
-// clamp is inactive (equality for a zero kernel); it acts for a material that is itself
-// clamped (`tau = det A_c > det A`) and for an explicit `tau` above the filtered determinant.
-
-/// `A + 2 K` for a sanitised kernel `K`, with its determinant
-/// `det(A + 2 K) = det A + 2 tr(adj(A) K) + 4 det K`, every term non-negative for `A` positive
-/// definite and `K` PSD, so that the filtered minor axis keeps its relative accuracy (f32
-/// would cancel in `b11 b22 - b12^2`): with `A = R diag(l) R^T`,
-/// `tr(adj(A) K) = l2 e1^T K e1 + l1 e2^T K e2`, and `det K` as the kernel carries it.
-/// Evaluated with the determinant clamp `tau` (`<= 0`: none). `A` is the material's matrix as
-/// given ([`matrix::entries`]; a clamped material is filtered as `A + 2 K` with its own `tau`,
-/// as in Rust).
-fn filter_gaussian_gaussian_sanitized(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
-    let e = ndf_roughness_matrix_entries(a);
-    let c = a.axis.x;
-    let s = a.axis.y;
-    let k1 = max(c * c * k.s_xx + 2.0 * c * s * k.s_xy + s * s * k.s_yy, 0.0);
-    let k2 = max(s * s * k.s_xx - 2.0 * c * s * k.s_xy + c * c * k.s_yy, 0.0);
-    let det = ndf_roughness_matrix_determinant(a) + 2.0 * (a.eig.y * k1 + a.eig.x * k2) + 4.0 * max(k.det, 0.0);
-    return ndf_roughness_matrix_from_entries_det(
-        e.x + 2.0 * k.s_xx,
-        e.y + 2.0 * k.s_xy,
-        e.z + 2.0 * k.s_yy,
-        det,
-        max(tau, 0.0),
-    );
-}
-
-/// `A' = A + 2 Sigma`, evaluated with the determinant clamp `tau = det A_c` of the material
-/// (TK19 supplement; no bias in exact arithmetic since `det(A + 2 Sigma) >= det A`). Beckmann:
-/// exact (KHPL16 eq. 15, covariances of Gaussians add with `A = 2 B`). GGX: the TK19 section
-/// 2.2 / KHPL16 approximation. The kernel is `covariance::sanitized` first. Accuracy: the
-/// filtered matrix is evaluated in its eigenbasis with `det` from non-negative terms
-/// (`matrix.wgsl`: `s^T A'^-1 s` within `eps (10 + 16 sqrt(cond A'))`, the extra
-/// `8 sqrt(cond)` for the rounding of the kernel's entries).
-fn filter_gaussian_gaussian(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), ndf_roughness_matrix_clamped_det(a));
-}
-
-/// [`gaussian`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
-/// filtered determinant here is never below `det A`, so no fallback is needed), at least the
-/// material's own clamp ([`matrix::own_det_clamp`]): the Rust `gaussian_with_det_clamp`.
-fn filter_gaussian_gaussian_with_det_clamp(
-    a: ndf_roughness_matrix_RoughnessMatrix,
-    kernel: kernel_covariance_Covariance,
-    det_clamp: f32,
-) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), max(det_clamp, ndf_roughness_matrix_own_det_clamp(a)));
-}
-
-// ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
-// LEAN mapping's moments and the nested convolution of KHPL16 section 5.5, eq. 21,
-// mirroring `src/.../filter/lean.rs`.
-
-/// First and second moments of normal-map slopes (Olano and Baker 2010), linearly
-/// filterable: `mean = E[s]`, `second = (E[s_x^2], E[s_x s_y], E[s_y^2])`.
-struct filter_lean_LeanMoments {
-    /// `(E[s_x], E[s_y])`.
-    mean: vec2<f32>,
-    /// `(E[s_x^2], E[s_x s_y], E[s_y^2])`.
-    second: vec3<f32>,
-}
-
-/// The covariance of the normal-map slopes, `E[s s^T] - E[s] E[s]^T` (LEAN eq. 5; KHPL16's
-/// `K_L`), `cov::sanitized` (mip filtering can make it slightly indefinite). Its
-/// determinant is formed from the differences (cancelling for elongated moments).
-fn filter_lean_covariance(m: filter_lean_LeanMoments) -> kernel_covariance_Covariance {
-    let c = kernel_covariance_from_entries(
-        m.second.x - m.mean.x * m.mean.x,
-        m.second.y - m.mean.x * m.mean.y,
-        m.second.z - m.mean.y * m.mean.y,
-    );
-    return kernel_covariance_sanitized(c);
-}
-
-/// `K_L * K_P * D = (K_L * K_P) * D` (KHPL16 eq. 21): the covariances add and the sum is
-/// filtered by `gaussian::gaussian` (`A' = A + 2 (Sigma_L + Sigma_P)`, `tau = det A`).
-fn filter_lean_lean(
-    a: ndf_roughness_matrix_RoughnessMatrix,
-    pixel: kernel_covariance_Covariance,
-    moments: filter_lean_LeanMoments,
-) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian(a, kernel_covariance_add(kernel_covariance_sanitized(pixel), filter_lean_covariance(moments)));
-}
-
-// ---- filtered_ndf::bake::moments (shaders/bake/moments.wgsl) ----
-// The baked LEAN moment chain (`src/bake`, `filtered_ndf::bake::bake_rows`) as two textures
-// with all their mips, sampled by the hardware's trilinear or anisotropic filtering. Every
-// moment is linear in the texel weights, so a filtered fetch is the moments of the filter's
-// footprint on the base level (to the chain's storage rounding): the covariance is formed
-// after filtering, never filtered itself.
+// WGSL has no generics: the NDF modules (`ggx`, `beckmann`) take the numbers a roughness
+// form reduces to (`inv_quadratic`, `quadratic`, `sqrt_det` of the `roughness` modules) and
+// add one entry point per form (`d_isotropic`, `d_axis_aligned`, `d_matrix`, ...). The
+// form-independent cores carry the suffix `_of` (`p22_of`, `d_of`, `lambda_of`, `g1_of`,
+// `g2_of`): naga renames any identifier that ends in a digit when it writes a module back
+// out, which naga_oil refuses for composable modules, so `p22`, `g1`, `g2` cannot be names
+// of their own.
 //
-// | texture | format | channels |
-// |---|---|---|
-// | `moments` | `rgba16float` (filterable everywhere) or `rgba32float` (`float32-filterable`) | `(E[s_x], E[s_y], E[s_x^2], E[s_y^2])` |
-// | `moments_xy` | `r16float` or `r32float` | `E[s_x s_y]` |
-//
-// (the layout the command-line baker writes, `moments.ktx2` and `moments_xy.ktx2`: RGBA + R
-// because no filterable three-channel float format exists in WebGPU). Slopes are the bake's:
-// `s = -n_xy / n_z` in its OpenGL tangent frame (`x` along `+u`, `y` up the image, i.e. along
-// `-v` in WebGPU's texture coordinates when the image's first row is its top).
+// NaN policy. The Rust crate decides it once (`src/.../ndf/mod.rs`): a NaN argument
+// contributes nothing, `p22 = d = 0` and `lambda = +inf` (so `g1 = g2 = 0`), both families,
+// every form. WGSL lets a driver assume that no NaN occurs at run time, so the shaders do not
+// test for one and promise nothing where a driver takes that licence. Where it costs nothing
+// (the comparisons every function makes anyway), they are written so that a NaN fails them
+// and the result is the Rust one: `d_of` and `p22_of` return 0 (`select` on `m_z > 0`,
+// `q >= 0`), `lambda_of` returns `F32_MAX` (the shaders' `+inf`), `g1_of` and `g2_of` return 0
+// (`w.m > 0`). Mesa's lavapipe and llvmpipe keep these comparisons.
 
-/// The moments of one filtered fetch of each texture: `rgba = (E[s_x], E[s_y], E[s_x^2],
-/// E[s_y^2])`, `xy = E[s_x s_y]` (the Rust `bake::lean_moments` of the texel
-/// `[rgba.x, rgba.y, rgba.z, xy, rgba.w]`).
-fn bake_moments_from_texels(rgba: vec4<f32>, xy: f32) -> filter_lean_LeanMoments {
-    return filter_lean_LeanMoments(rgba.xy, vec3<f32>(rgba.z, xy, rgba.w));
+/// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` from `Lambda(w)` and `w.m` (TK19
+/// supplement section 1). In `[0, 1]`; `0` for `w.m <= 0`. (A grazing `w` has
+/// `Lambda = F32_MAX` in the shaders, so `G1` is `0` up to rounding.)
+fn ndf_g1_of(lambda_w: f32, w_dot_m: f32) -> f32 {
+    return select(0.0, 1.0 / (1.0 + lambda_w), w_dot_m > 0.0);
 }
 
-/// The moments over a pixel footprint: both textures sampled with explicit derivatives of
-/// `uv` (`textureSampleGrad`: trilinear or anisotropic, as `s` is set up; any shader stage,
-/// uniform control flow not required). In a fragment shader pass `dpdx(uv)`, `dpdy(uv)`.
-fn bake_moments_sample_grad(
-    moments: texture_2d<f32>,
-    moments_xy: texture_2d<f32>,
-    s: sampler,
-    uv: vec2<f32>,
-    ddx_uv: vec2<f32>,
-    ddy_uv: vec2<f32>,
-) -> filter_lean_LeanMoments {
-    let rgba = textureSampleGrad(moments, s, uv, ddx_uv, ddy_uv);
-    let xy = textureSampleGrad(moments_xy, s, uv, ddx_uv, ddy_uv).x;
-    return bake_moments_from_texels(rgba, xy);
-}
-
-/// The moments at an explicit level of detail (`textureSampleLevel`: bilinear within a
-/// level, linear between levels with a linear mipmap filter): for ray tracing, compute
-/// shaders, or a level chosen from the footprint by the caller.
-fn bake_moments_sample_level(
-    moments: texture_2d<f32>,
-    moments_xy: texture_2d<f32>,
-    s: sampler,
-    uv: vec2<f32>,
-    level: f32,
-) -> filter_lean_LeanMoments {
-    let rgba = textureSampleLevel(moments, s, uv, level);
-    let xy = textureSampleLevel(moments_xy, s, uv, level).x;
-    return bake_moments_from_texels(rgba, xy);
+/// Height-correlated masking-shadowing
+/// `G2(i, o, m) = chi+(i.m) chi+(o.m) / (1 + Lambda(i) + Lambda(o))` (TK19 supplement
+/// section 1; Heitz 2014 eq. 99) from both `Lambda`s and both dot products. In `[0, 1]`.
+fn ndf_g2_of(lambda_i: f32, lambda_o: f32, i_dot_m: f32, o_dot_m: f32) -> f32 {
+    return select(0.0, 1.0 / (1.0 + lambda_i + lambda_o), i_dot_m > 0.0 && o_dot_m > 0.0);
 }
 
 // ---- filtered_ndf::ndf::roughness (shaders/ndf/roughness/mod.wgsl) ----
@@ -686,301 +848,6 @@ fn ndf_roughness_isotropic_sqrt_det(r: ndf_roughness_isotropic_Isotropic) -> f32
 /// This roughness as a [`matrix::RoughnessMatrix`], `alpha^2 I` (no determinant clamp).
 fn ndf_roughness_isotropic_to_matrix(r: ndf_roughness_isotropic_Isotropic) -> ndf_roughness_matrix_RoughnessMatrix {
     return ndf_roughness_matrix_from_eigen(vec2<f32>(1.0, 0.0), vec2<f32>(r.alpha));
-}
-
-// ---- filtered_ndf::bake::roughness (shaders/bake/roughness.wgsl) ----
-// A baked roughness chain (`src/bake/fit.rs`: the GGX or Beckmann lobe closest to each mip
-// texel's distribution of normals) read back as the lobe, mirroring `src/bake/decode.rs`.
-// Fetch the texel with the hardware's filtering as any material texture; each function takes
-// the fetched value(s) in the encoding the chain was stored in:
-//
-// | stored | function | lobe |
-// |---|---|---|
-// | `alpha` (`r16float`) | `isotropic::from_alpha` | `Isotropic` |
-// | glTF perceptual roughness `r = sqrt(alpha)` (metallic-roughness G channel) | `from_perceptual` | `Isotropic` |
-// | `[alpha_x, alpha_y, angle]` (`fit::AnisotropicAlpha`) | `from_anisotropic` | `RoughnessMatrix` |
-// | `KHR_materials_anisotropy`: roughness `r` and the anisotropy texel | `from_khr_anisotropy` | `RoughnessMatrix` |
-// | the roughness matrix `(A11, A12, A22, 1)` (`rgba16float`) | `from_matrix_texel` | `RoughnessMatrix` |
-//
-// Filtering the stored values is the engines' convention (a mip of perceptual roughness is
-// not the perceptual roughness of the mip); the chain's fits are per texel, so fetch at texel
-// centres of the level for the exact fit.
-
-/// glTF's perceptual roughness `r` as the isotropic lobe `alpha = r^2` (the Rust
-/// `bake::decode::alpha_from_perceptual`), clamped as `isotropic::from_alpha`.
-fn bake_roughness_from_perceptual(r: f32) -> ndf_roughness_isotropic_Isotropic {
-    return ndf_roughness_isotropic_from_alpha(r * r);
-}
-
-/// The anisotropic lobe `[alpha_x, alpha_y, angle]` (`alpha_x` along the direction at `angle`
-/// radians from `+x` towards `+y`) as the matrix `A = R diag(alpha_x^2, alpha_y^2) R^T` (the
-/// Rust `AnisotropicAlpha::matrix`); the angle's cosine and sine by `math::sincos_turns`
-/// (the driver's `cos`, `sin` may err by `2^-11`), the alphas clamped into
-/// `[ALPHA_MIN, ALPHA_MAX]`.
-fn bake_roughness_from_anisotropic(lobe: vec3<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
-    let axis = math_sincos_turns(lobe.z * (0.5 * math_INV_PI));
-    let a = vec2<f32>(ndf_roughness_clamp_alpha(lobe.x), ndf_roughness_clamp_alpha(lobe.y));
-    return ndf_roughness_matrix_from_eigen(axis, a);
-}
-
-/// The lobe of `KHR_materials_anisotropy` (the Rust `KhrAnisotropy::alpha`): the
-/// metallic-roughness texture's perceptual roughness `r` (`alpha_b = r^2` across the
-/// anisotropy direction) and the anisotropy texel as fetched from its unorm texture:
-/// direction `(cos, sin) = 2 rg - 1` (normalised: 8-bit channels are not unit), strength `b`,
-/// `alpha_t = mix(alpha_b, 1, b^2)` along the direction (the extension's definition).
-/// Multiply `b` by the material's `anisotropyStrength` and rotate the direction by its
-/// `anisotropyRotation` before calling, as the extension says. A zero direction is `+x`.
-fn bake_roughness_from_khr_anisotropy(r: f32, anisotropy: vec4<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
-    let d = 2.0 * anisotropy.xy - 1.0;
-    let len = length(d);
-    let axis = select(vec2<f32>(1.0, 0.0), d / len, len > 0.0);
-    let alpha_b = r * r;
-    let b = anisotropy.z;
-    let alpha_t = mix(alpha_b, 1.0, b * b);
-    let a = vec2<f32>(ndf_roughness_clamp_alpha(alpha_t), ndf_roughness_clamp_alpha(alpha_b));
-    return ndf_roughness_matrix_from_eigen(axis, a);
-}
-
-/// The roughness matrix stored as `(A11, A12, A22, 1)` (the baker's `--store alpha
-/// --anisotropic`): `matrix::from_entries` (its determinant formed in f32, within
-/// `cond(A) eps`).
-fn bake_roughness_from_matrix_texel(t: vec4<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
-    return ndf_roughness_matrix_from_entries(t.x, t.y, t.z);
-}
-
-// ---- filtered_ndf::filter::deferred (shaders/filter/deferred.wgsl) ----
-// Isotropic "deferred" roughness filtering: one scalar roughness widened by the spread of
-// the shading normal across a pixel (TK19 section 4; KHPL16 section 5.4), mirroring
-// `src/.../filter/deferred.rs`. The published engine conventions are values of
-// [`KernelConvention`] in `filter::presets`.
-
-/// TK19's clamp `kappa` on the kernel's squared roughness (TK19 eq. 1), slope^2.
-const filter_deferred_KAPPA: f32 = 0.18;
-
-/// `v = alpha^2` (TK19, Filament, Unity HDRP, O3DE).
-const filter_deferred_DOMAIN_ALPHA_SQ: u32 = 0u;
-/// `v = alpha` (Godot 4, whose "roughness squared" is `alpha`).
-const filter_deferred_DOMAIN_ALPHA: u32 = 1u;
-/// `v = sqrt(alpha)`, the perceptual roughness (Unreal, three.js, Babylon.js).
-const filter_deferred_DOMAIN_PERCEPTUAL: u32 = 2u;
-/// `v = alpha^2 / (1 - alpha^2)`, TK21's projected-space squared roughness (Unity HDRP
-/// `ProjectedSpaceNormalFiltering`); `alpha >= 1` maps to `F32_MAX`.
-const filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ: u32 = 3u;
-
-/// `|dn_u|^2 + |dn_v|^2` (TK19 eq. 4).
-const filter_deferred_NORM_SUM_SQUARED: u32 = 0u;
-/// `max(|dn_u|^2, |dn_v|^2)` (Vlachos 2015; Unreal, Babylon.js).
-const filter_deferred_NORM_MAX_SQUARED: u32 = 1u;
-/// The largest eigenvalue of the Gram matrix of `dn_u, dn_v` (TK19 eq. 1, `sigma^2 = 1`).
-const filter_deferred_NORM_MAX_EIGENVALUE: u32 = 2u;
-/// The largest absolute component of either difference, not squared (three.js).
-const filter_deferred_NORM_MAX_ABS_COMPONENT: u32 = 3u;
-
-/// `v' = v + k` (variances add).
-const filter_deferred_COMBINE_ADD: u32 = 0u;
-/// `v' = max(v, k)` (a roughness floor: Vlachos 2015, Unreal).
-const filter_deferred_COMBINE_MAX: u32 = 1u;
-
-/// TK19 eq. 1: `2 lambda_max(Sigma)`.
-const filter_deferred_BANDWIDTH_MAX: u32 = 0u;
-/// TK19 eq. 2, 4: `2 tr(Sigma)`.
-const filter_deferred_BANDWIDTH_TRACE: u32 = 1u;
-/// TK19 eq. 5: `tr(Sigma)`.
-const filter_deferred_BANDWIDTH_AVERAGE: u32 = 2u;
-
-/// How one engine turns normal differences into a widened roughness (the Rust
-/// `KernelConvention`). [`apply`] computes: (1) `alpha = max(alpha, perceptual_floor^2)`,
-/// `v = domain(alpha)`; (2) `k = min(max(scale norm^exponent + bias, 0), clamp)`;
-/// (3) `v' = v + k` or `max(v, k)`, then `min(v', 1)` if `saturate`; (4) `alpha_bar` from
-/// `v'`, clamped to `[0, ALPHA_MAX]`.
-struct filter_deferred_KernelConvention {
-    /// `DOMAIN_*`.
-    domain: u32,
-    /// `NORM_*`.
-    norm: u32,
-    /// Factor on `norm^exponent` (TK19's `2 sigma^2` is 0.5).
-    scale: f32,
-    /// Exponent on the norm (1 for the variance forms, Unreal's 0.333).
-    exponent: f32,
-    /// Added after scaling.
-    bias: f32,
-    /// Upper bound of the kernel in domain units (`F32_MAX`: none).
-    clamp: f32,
-    /// `COMBINE_*`.
-    combine: u32,
-    /// Final `min(v', 1)` (HLSL `saturate`).
-    saturate: bool,
-    /// Minimum perceptual roughness `sqrt(alpha)` enforced first (0: none).
-    perceptual_floor: f32,
-}
-
-/// `alpha -> v` in `domain` (`alpha >= 0`).
-fn filter_deferred_from_alpha(domain: u32, alpha: f32) -> f32 {
-    if domain == filter_deferred_DOMAIN_ALPHA {
-        return alpha;
-    }
-    if domain == filter_deferred_DOMAIN_PERCEPTUAL {
-        return sqrt(alpha);
-    }
-    let a2 = alpha * alpha;
-    if domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ {
-        return select(math_F32_MAX, a2 / (1.0 - a2), a2 < 1.0);
-    }
-    return a2;
-}
-
-/// `v -> alpha`, the inverse of [`from_alpha`] for `v >= 0`.
-fn filter_deferred_to_alpha(domain: u32, v: f32) -> f32 {
-    if domain == filter_deferred_DOMAIN_ALPHA {
-        return v;
-    }
-    if domain == filter_deferred_DOMAIN_PERCEPTUAL {
-        return v * v;
-    }
-    if domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ {
-        return select(1.0, sqrt(v / (1.0 + v)), v < math_F32_MAX);
-    }
-    return sqrt(v);
-}
-
-/// The largest eigenvalue of `[[a, b], [b, c]]` (no cancellation: mean plus radius), `>= 0`.
-fn filter_deferred_max_eigenvalue(a: f32, b: f32, c: f32) -> f32 {
-    return max(0.5 * (a + c) + math_hypot(0.5 * (a - c), b), 0.0);
-}
-
-/// The measure `norm` of `(dn_u, dn_v)`, `>= 0`.
-fn filter_deferred_norm_eval(norm: u32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
-    let a = dot(dn_u, dn_u);
-    let c = dot(dn_v, dn_v);
-    if norm == filter_deferred_NORM_MAX_SQUARED {
-        return max(a, c);
-    }
-    if norm == filter_deferred_NORM_MAX_EIGENVALUE {
-        return filter_deferred_max_eigenvalue(a, dot(dn_u, dn_v), c);
-    }
-    if norm == filter_deferred_NORM_MAX_ABS_COMPONENT {
-        let m = max(abs(dn_u), abs(dn_v));
-        return max(max(m.x, m.y), m.z);
-    }
-    return a + c;
-}
-
-/// `min(max(k, 0), clamp)`.
-fn filter_deferred_clamp_widening(conv: filter_deferred_KernelConvention, k: f32) -> f32 {
-    return min(max(k, 0.0), conv.clamp);
-}
-
-/// The widening `min(max(scale norm^exponent + bias, 0), clamp)` in domain units (the kernel's
-/// contribution to the roughness value). `pow` is the
-/// driver's (`exp2(e log2 n)`: within `3 + 2 |e log2 n|` ulp plus `log2`'s error); a zero
-/// norm gives `max(bias, 0)`.
-fn filter_deferred_widening(conv: filter_deferred_KernelConvention, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
-    let n = filter_deferred_norm_eval(conv.norm, dn_u, dn_v);
-    var raw = n;
-    if conv.exponent != 1.0 {
-        raw = select(0.0, pow(n, conv.exponent), n > 0.0);
-    }
-    return filter_deferred_clamp_widening(conv, conv.scale * raw + conv.bias);
-}
-
-/// Steps 1, 3, 4 of [`apply`] for a widening `k` already in domain units (clamped here).
-/// A negative `alpha` counts as 0; the result is in `[0, ALPHA_MAX]`.
-fn filter_deferred_apply_widening(conv: filter_deferred_KernelConvention, alpha_in: f32, k: f32) -> f32 {
-    var alpha = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
-    alpha = max(alpha, conv.perceptual_floor * conv.perceptual_floor);
-    let v = filter_deferred_from_alpha(conv.domain, alpha);
-    let kc = filter_deferred_clamp_widening(conv, k);
-    var out = select(v + kc, max(v, kc), conv.combine == filter_deferred_COMBINE_MAX);
-    if conv.saturate {
-        out = min(out, 1.0);
-    }
-    return clamp(filter_deferred_to_alpha(conv.domain, out), 0.0, ndf_roughness_ALPHA_MAX);
-}
-
-/// The filtered roughness `alpha_bar` for material roughness `alpha` and world-space normal
-/// differences `dn_u`, `dn_v` (`ddx(normal)`, `ddy(normal)`; TK19 Listing 2).
-fn filter_deferred_apply(conv: filter_deferred_KernelConvention, alpha: f32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
-    return filter_deferred_apply_widening(conv, alpha, filter_deferred_widening(conv, dn_u, dn_v));
-}
-
-/// The Gram covariance `sigma^2 [[dn_u.dn_u, dn_u.dn_v], [dn_u.dn_v, dn_v.dn_v]]` of two
-/// normal differences, `sigma` the pixel filter's standard deviation in pixels (its trace is
-/// TK19's `sigma^2 (|dn_u|^2 + |dn_v|^2)`; use only its invariants). Determinant
-/// `sigma^4 |dn_u x dn_v|^2` (Lagrange's identity, no cancellation).
-fn filter_deferred_normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>, sigma: f32) -> kernel_covariance_Covariance {
-    let sigma_sq = sigma * sigma;
-    let x = cross(dn_u, dn_v) * sigma_sq;
-    return kernel_covariance_Covariance(
-        dot(dn_u, dn_u) * sigma_sq,
-        dot(dn_u, dn_v) * sigma_sq,
-        dot(dn_v, dn_v) * sigma_sq,
-        dot(x, x),
-    );
-}
-
-/// The kernel's squared roughness of a bandwidth (`BANDWIDTH_*`) before the clamp:
-/// `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`.
-fn filter_deferred_bandwidth_alpha2(bandwidth: u32, kernel: kernel_covariance_Covariance) -> f32 {
-    if bandwidth == filter_deferred_BANDWIDTH_MAX {
-        return 2.0 * filter_deferred_max_eigenvalue(kernel.s_xx, kernel.s_xy, kernel.s_yy);
-    }
-    let t = kernel.s_xx + kernel.s_yy;
-    return select(t, 2.0 * t, bandwidth == filter_deferred_BANDWIDTH_TRACE);
-}
-
-/// TK19 eq. 1, 4 or 5 from a slope-domain covariance:
-/// `alpha_bar = sqrt(saturate(alpha^2 + min(kernel, kappa)))`.
-fn filter_deferred_filtered_alpha(alpha: f32, kernel: kernel_covariance_Covariance, bandwidth: u32, kappa: f32) -> f32 {
-    let conv = filter_deferred_KernelConvention(
-        filter_deferred_DOMAIN_ALPHA_SQ,
-        filter_deferred_NORM_SUM_SQUARED,
-        0.5,
-        1.0,
-        0.0,
-        kappa,
-        filter_deferred_COMBINE_ADD,
-        true,
-        0.0,
-    );
-    return filter_deferred_apply_widening(conv, alpha, filter_deferred_bandwidth_alpha2(bandwidth, kernel));
-}
-
-// ---- filtered_ndf::ndf (shaders/ndf/mod.wgsl) ----
-// What every NDF shares (`src/.../ndf/mod.rs`, the `Ndf` trait): the Smith terms derived
-// from `Lambda` once. Conventions (all NDFs, all roughness forms): tangent frame with `z` the
-// shading normal; slope of a micronormal `s = -m_xy / m_z` (TK19 supplement eq. 5);
-// `p22(s)` per unit slope area, integrating to 1 over the plane; `d(m) = p22(s(m)) / m_z^4`
-// per steradian with `integral d(m) m_z dm = 1` (KHPL16 eq. 2).
-//
-// WGSL has no generics: the NDF modules (`ggx`, `beckmann`) take the numbers a roughness
-// form reduces to (`inv_quadratic`, `quadratic`, `sqrt_det` of the `roughness` modules) and
-// add one entry point per form (`d_isotropic`, `d_axis_aligned`, `d_matrix`, ...). The
-// form-independent cores carry the suffix `_of` (`p22_of`, `d_of`, `lambda_of`, `g1_of`,
-// `g2_of`): naga renames any identifier that ends in a digit when it writes a module back
-// out, which naga_oil refuses for composable modules, so `p22`, `g1`, `g2` cannot be names
-// of their own.
-//
-// NaN policy. The Rust crate decides it once (`src/.../ndf/mod.rs`): a NaN argument
-// contributes nothing, `p22 = d = 0` and `lambda = +inf` (so `g1 = g2 = 0`), both families,
-// every form. WGSL lets a driver assume that no NaN occurs at run time, so the shaders do not
-// test for one and promise nothing where a driver takes that licence. Where it costs nothing
-// (the comparisons every function makes anyway), they are written so that a NaN fails them
-// and the result is the Rust one: `d_of` and `p22_of` return 0 (`select` on `m_z > 0`,
-// `q >= 0`), `lambda_of` returns `F32_MAX` (the shaders' `+inf`), `g1_of` and `g2_of` return 0
-// (`w.m > 0`). Mesa's lavapipe and llvmpipe keep these comparisons.
-
-/// Smith masking `G1(w, m) = chi+(w.m) / (1 + Lambda(w))` from `Lambda(w)` and `w.m` (TK19
-/// supplement section 1). In `[0, 1]`; `0` for `w.m <= 0`. (A grazing `w` has
-/// `Lambda = F32_MAX` in the shaders, so `G1` is `0` up to rounding.)
-fn ndf_g1_of(lambda_w: f32, w_dot_m: f32) -> f32 {
-    return select(0.0, 1.0 / (1.0 + lambda_w), w_dot_m > 0.0);
-}
-
-/// Height-correlated masking-shadowing
-/// `G2(i, o, m) = chi+(i.m) chi+(o.m) / (1 + Lambda(i) + Lambda(o))` (TK19 supplement
-/// section 1; Heitz 2014 eq. 99) from both `Lambda`s and both dot products. In `[0, 1]`.
-fn ndf_g2_of(lambda_i: f32, lambda_o: f32, i_dot_m: f32, o_dot_m: f32) -> f32 {
-    return select(0.0, 1.0 / (1.0 + lambda_i + lambda_o), i_dot_m > 0.0 && o_dot_m > 0.0);
 }
 
 // ---- filtered_ndf::ndf::roughness::axis_aligned (shaders/ndf/roughness/axis_aligned.wgsl) ----
@@ -1322,6 +1189,603 @@ fn ndf_beckmann_g2_matrix(r: ndf_roughness_matrix_RoughnessMatrix, i: vec3<f32>,
     return ndf_g2_of(ndf_beckmann_lambda_matrix(r, i), ndf_beckmann_lambda_matrix(r, o), dot(i, m), dot(o, m));
 }
 
+// ---- filtered_ndf::kernel::rect (shaders/kernel/rect.wgsl) ----
+// The axis-aligned slope-domain rectangle of KHPL16 section 5.3 (the `footprint` of the
+// GDC 2016 `GGXRectIntegral`), mirroring `BoundingRect` of `src/.../kernel/rect.rs`.
+
+/// A rectangle centred on the half vector's slope, by its half-extents (slope units, `>= 0`).
+/// It bounds the one-pixel parallelogram: `half_extent = (|dh_u| + |dh_v|) / 2`.
+struct kernel_rect_BoundingRect {
+    /// Half-extents along the tangent `x` and bitangent `y`.
+    half_extent: vec2<f32>,
+}
+
+/// The axis-aligned bounding rectangle of a footprint's one-pixel parallelogram (KHPL16
+/// section 5.3; GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
+/// `(|dh_u| + |dh_v|) / 2` per axis. The Rust `BoundingRect::from_footprint`; a NaN footprint
+/// entry counts as 0 (`pixel::nan_to_zero`).
+fn kernel_rect_from_footprint(fp_in: footprint_Footprint) -> kernel_rect_BoundingRect {
+    let fp = footprint_nan_to_zero(fp_in);
+    return kernel_rect_BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
+}
+
+/// The Gaussian-equivalent diagonal covariance `diag((2 sigma h_x)^2, (2 sigma h_y)^2)`
+/// (`sigma` in pixels; GDC 2016 Beckmann listing `rghns_sq += fp * fp * 2`, TK19 Listing 3).
+fn kernel_rect_covariance(r: kernel_rect_BoundingRect, sigma: f32) -> kernel_covariance_Covariance {
+    let w = r.half_extent * (2.0 * sigma);
+    let v = w * w;
+    return kernel_covariance_Covariance(v.x, 0.0, v.y, v.x * v.y);
+}
+
+// ---- filtered_ndf::kernel::clamp (shaders/kernel/clamp.wgsl) ----
+// The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, GDC 2016,
+// TK19 eq. 1 and supplement), mirroring `ClampRules` of `src/.../kernel/clamp.rs`. A rule is
+// off when its bound is `F32_MAX` (`max_extent`, `kappa`; the Rust `F::INFINITY`),
+// `FLOOR_NONE`, or `det_clamp = false`. Constants mirror `ClampRules::DEFAULT`, `KHPL16`,
+// `NONE`, `GDC2016` (`*_RULES`: WGSL names may not end in a digit here, see shaders/README.md).
+// The rules are data: the filters apply them (`filter::gaussian::filter_gaussian`,
+// `filter::projected::filter_projected`).
+
+/// No rectangle floor.
+const kernel_clamp_FLOOR_NONE: u32 = 0u;
+/// Half-extents `>= floor` on both axes (KHPL16 section 5.2, `epsilon = 1e-3`).
+const kernel_clamp_FLOOR_CONSTANT: u32 = 1u;
+/// Half-extents `>= min(alpha_axis, floor)` per axis (GDC 2016 `min(roughness, 0.1)`).
+const kernel_clamp_FLOOR_ALPHA_CAPPED: u32 = 2u;
+
+/// The clamping rules.
+struct kernel_clamp_ClampRules {
+    /// `lambda`: the largest centre-to-vertex extent of the parallelogram and the largest
+    /// rectangle half-extent (slope units).
+    max_extent: f32,
+    /// `FLOOR_NONE`, `FLOOR_CONSTANT` or `FLOOR_ALPHA_CAPPED`.
+    floor_kind: u32,
+    /// The floor's constant (`epsilon`, or the cap of `FLOOR_ALPHA_CAPPED`).
+    floor: f32,
+    /// `kappa`: the largest kernel roughness^2 `2 lambda_i(Sigma)` per eigen-direction.
+    kappa: f32,
+    /// Evaluate filtered matrices with `tau = det(A_unfiltered)`.
+    det_clamp: bool,
+}
+
+/// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
+const kernel_clamp_DEFAULT_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_CONSTANT, 1e-3, 0.18, true);
+/// KHPL16's rules for its exact kernels: `lambda = 1` (section 5.2) and the determinant clamp;
+/// no rectangle floor (the exact rectangle integral needs none), no `kappa` (a TK19 addition).
+const kernel_clamp_KHPL16_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, true);
+/// No clamping (unbiased; for references and the exact rectangle integral).
+const kernel_clamp_NO_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(math_F32_MAX, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, false);
+/// The GDC 2016 listing: `fp = clamp(fp, min(roughness, 0.1), 1)`, no `kappa`, with `tau`.
+const kernel_clamp_GDC2016_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_ALPHA_CAPPED, 0.1, math_F32_MAX, true);
+
+/// The maximum-extent rule on a parallelogram (KHPL16 section 5.2): both vectors scaled by
+/// `min(1, lambda / max_extent)`, keeping the shape. The extent is measured on the
+/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0. The NaN
+/// policy, as the Rust `ClampRules::footprint`: a NaN entry counts as 0; infinite entries
+/// (where the driver keeps them) keep their sign, the finite ones become 0, and the result
+/// has extent `lambda`, the widest footprint the rule allows.
+fn kernel_clamp_footprint(rules: kernel_clamp_ClampRules, fp_in: footprint_Footprint) -> footprint_Footprint {
+    let fp = footprint_nan_to_zero(fp_in);
+    let l = max(rules.max_extent, 0.0);
+    let scale = max(max(abs(fp.dh_u.x), abs(fp.dh_u.y)), max(abs(fp.dh_v.x), abs(fp.dh_v.y)));
+    if scale <= 0.0 {
+        return fp;
+    }
+    if scale > math_F32_MAX {
+        let iu = select(vec2<f32>(0.0), sign(fp.dh_u), abs(fp.dh_u) > vec2<f32>(math_F32_MAX));
+        let iv = select(vec2<f32>(0.0), sign(fp.dh_v), abs(fp.dh_v) > vec2<f32>(math_F32_MAX));
+        let e = footprint_max_extent(footprint_Footprint(iu, iv));
+        return footprint_Footprint(iu / e * l, iv / e * l);
+    }
+    let unit = footprint_Footprint(fp.dh_u / scale, fp.dh_v / scale);
+    let e = footprint_max_extent(unit);
+    if e * scale <= l {
+        return fp;
+    }
+    return footprint_Footprint(unit.dh_u / e * l, unit.dh_v / e * l);
+}
+
+/// The rectangle rules: half-extents taken by magnitude, clamped to `[floor, lambda]` per
+/// axis (KHPL16 section 5.2; GDC 2016 `clamp(fp, fp_min, fp_max)`), `alpha` the lobe's
+/// per-axis roughness for `FLOOR_ALPHA_CAPPED`; if the floor exceeds `lambda` the floor wins.
+fn kernel_clamp_rect(rules: kernel_clamp_ClampRules, r: kernel_rect_BoundingRect, alpha: vec2<f32>) -> kernel_rect_BoundingRect {
+    var f = vec2<f32>(0.0);
+    if rules.floor_kind == kernel_clamp_FLOOR_CONSTANT {
+        f = vec2<f32>(rules.floor);
+    } else if rules.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED {
+        f = min(abs(alpha), vec2<f32>(rules.floor));
+    }
+    let lambda = max(rules.max_extent, 0.0);
+    let h = min(abs(r.half_extent), vec2<f32>(lambda));
+    return kernel_rect_BoundingRect(max(h, max(f, vec2<f32>(0.0))));
+}
+
+/// The kernel-roughness rule of TK19 eq. 1 in matrix form: `2 Sigma'` has the eigenvalues
+/// `min(2 lambda_i, kappa)` and `Sigma`'s eigenvectors, after `covariance::sanitized`. A
+/// negative `kappa` counts as 0.
+fn kernel_clamp_kernel(rules: kernel_clamp_ClampRules, k: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
+    let s = kernel_covariance_sanitized(k);
+    if rules.kappa >= math_F32_MAX {
+        return s;
+    }
+    return kernel_covariance_clamp_eigenvalues(s, 0.5 * max(rules.kappa, 0.0));
+}
+
+/// The determinant clamp `tau` for filtering `a` (the Rust `det_clamp_for`): `det A_c` of the
+/// unfiltered lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a
+/// clamped matrix its `max(det A, tau)`) if `det_clamp`, else the material's own clamp
+/// ([`matrix::own_det_clamp`]: 0 unless it is a clamped matrix).
+fn kernel_clamp_det_clamp_for(rules: kernel_clamp_ClampRules, a: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
+    return select(ndf_roughness_matrix_own_det_clamp(a), ndf_roughness_matrix_clamped_det(a), rules.det_clamp);
+}
+
+/// The clamped pixel kernel of a footprint: [`footprint`] -> `covariance::from_footprint` (`sigma`
+/// pixels) -> [`kernel`] (sanitised once).
+fn kernel_clamp_pixel_kernel(rules: kernel_clamp_ClampRules, fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
+    return kernel_clamp_kernel(rules, kernel_covariance_from_footprint(kernel_clamp_footprint(rules, fp), sigma));
+}
+
+// ---- filtered_ndf::filter::gaussian (shaders/filter/gaussian.wgsl) ----
+// Gaussian NDF filtering in roughness-matrix form (KHPL16 eq. 13-15, TK19 section 2.2),
+// mirroring `src/.../filter/gaussian.rs`. A roughness form converts with its `to_matrix`.
+//
+// The determinant clamp: the result is evaluated as the one clamped matrix `A'_c` of
+// `matrix.wgsl` (`A' + t I` where `det A' < tau`). In exact arithmetic
+// `det(A + 2 Sigma) >= det A`, and here the filtered determinant is a sum of non-negative
+// terms that contains `det A` itself, so with `tau = det A_c` of an unclamped material the
+// clamp is inactive (equality for a zero kernel); it acts for a material that is itself
+// clamped (`tau = det A_c > det A`) and for an explicit `tau` above the filtered determinant.
+
+/// `A + 2 K` for a sanitised kernel `K`, with its determinant
+/// `det(A + 2 K) = det A + 2 tr(adj(A) K) + 4 det K`, every term non-negative for `A` positive
+/// definite and `K` PSD, so that the filtered minor axis keeps its relative accuracy (f32
+/// would cancel in `b11 b22 - b12^2`): with `A = R diag(l) R^T`,
+/// `tr(adj(A) K) = l2 e1^T K e1 + l1 e2^T K e2`, and `det K` as the kernel carries it.
+/// Evaluated with the determinant clamp `tau` (`<= 0`: none). `A` is the material's matrix as
+/// given ([`matrix::entries`]; a clamped material is filtered as `A + 2 K` with its own `tau`,
+/// as in Rust).
+fn filter_gaussian_gaussian_sanitized(a: ndf_roughness_matrix_RoughnessMatrix, k: kernel_covariance_Covariance, tau: f32) -> ndf_roughness_matrix_RoughnessMatrix {
+    let e = ndf_roughness_matrix_entries(a);
+    let c = a.axis.x;
+    let s = a.axis.y;
+    let k1 = max(c * c * k.s_xx + 2.0 * c * s * k.s_xy + s * s * k.s_yy, 0.0);
+    let k2 = max(s * s * k.s_xx - 2.0 * c * s * k.s_xy + c * c * k.s_yy, 0.0);
+    let det = ndf_roughness_matrix_determinant(a) + 2.0 * (a.eig.y * k1 + a.eig.x * k2) + 4.0 * max(k.det, 0.0);
+    return ndf_roughness_matrix_from_entries_det(
+        e.x + 2.0 * k.s_xx,
+        e.y + 2.0 * k.s_xy,
+        e.z + 2.0 * k.s_yy,
+        det,
+        max(tau, 0.0),
+    );
+}
+
+/// `A' = A + 2 Sigma`, evaluated with the determinant clamp `tau = det A_c` of the material
+/// (TK19 supplement; no bias in exact arithmetic since `det(A + 2 Sigma) >= det A`). Beckmann:
+/// exact (KHPL16 eq. 15, covariances of Gaussians add with `A = 2 B`). GGX: the TK19 section
+/// 2.2 / KHPL16 approximation. The kernel is `covariance::sanitized` first. Accuracy: the
+/// filtered matrix is evaluated in its eigenbasis with `det` from non-negative terms
+/// (`matrix.wgsl`: `s^T A'^-1 s` within `eps (10 + 16 sqrt(cond A'))`, the extra
+/// `8 sqrt(cond)` for the rounding of the kernel's entries).
+fn filter_gaussian_gaussian(a: ndf_roughness_matrix_RoughnessMatrix, kernel: kernel_covariance_Covariance) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), ndf_roughness_matrix_clamped_det(a));
+}
+
+/// [`gaussian`] with an explicit determinant clamp `tau = det_clamp` (`<= 0`: none; the
+/// filtered determinant here is never below `det A`, so no fallback is needed), at least the
+/// material's own clamp ([`matrix::own_det_clamp`]): the Rust `gaussian_with_det_clamp`.
+fn filter_gaussian_gaussian_with_det_clamp(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    kernel: kernel_covariance_Covariance,
+    det_clamp: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian_sanitized(a, kernel_covariance_sanitized(kernel), max(det_clamp, ndf_roughness_matrix_own_det_clamp(a)));
+}
+
+/// The whole Gaussian pipeline: `clamp::footprint` -> `covariance::from_footprint` (`sigma` pixels)
+/// -> `clamp::kernel` -> `A' = A + 2 Sigma` with `tau = det A_c` if `det_clamp` (the TK19 matrix
+/// filter; exact for Beckmann). The result is the one clamped matrix of `matrix.wgsl`. The
+/// Rust `ClampRules::filter_gaussian`: the rules are the kernel stage's data, applied here.
+fn filter_gaussian_filter_gaussian(
+    rules: kernel_clamp_ClampRules,
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    fp: footprint_Footprint,
+    sigma: f32,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian_sanitized(a, kernel_clamp_pixel_kernel(rules, fp, sigma), kernel_clamp_det_clamp_for(rules, a));
+}
+
+/// `A' = A + 2 Sigma` with the clamped Gaussian pixel kernel (KHPL16 eq. 13-15; TK19 section
+/// 2.2): exact for Beckmann, TK19's approximation for GGX.
+struct filter_gaussian_Gaussian {
+    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
+    clamps: kernel_clamp_ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+}
+
+/// TK19: the default rules (`lambda = 1`, `kappa = 0.18`, the determinant clamp), `sigma = 0.5`.
+const filter_gaussian_TK19_GAUSSIAN: filter_gaussian_Gaussian = filter_gaussian_Gaussian(kernel_clamp_DEFAULT_RULES, footprint_SIGMA_PIXEL);
+/// KHPL16's parallelogram kernel: `lambda = 1` and the determinant clamp, no `kappa`.
+const filter_gaussian_KHPL16_GAUSSIAN: filter_gaussian_Gaussian = filter_gaussian_Gaussian(kernel_clamp_KHPL16_RULES, footprint_SIGMA_PIXEL);
+
+/// The lobe of `material` filtered by `method` over `fp` (the Rust `Gaussian::lobe`): the
+/// filtered roughness matrix, for `ggx::*_matrix` or `beckmann::*_matrix`.
+fn filter_gaussian_gaussian_lobe(method: filter_gaussian_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_filter_gaussian(method.clamps, material, fp, method.sigma);
+}
+
+/// `D(m)` of the GGX lobe of [`gaussian_lobe`].
+fn filter_gaussian_d_ggx_gaussian(method: filter_gaussian_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return ndf_ggx_d_matrix(filter_gaussian_gaussian_lobe(method, material, fp), m);
+}
+
+/// `D(m)` of the Beckmann lobe of [`gaussian_lobe`] (the exact Gaussian filter of Beckmann).
+fn filter_gaussian_d_beckmann_gaussian(method: filter_gaussian_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return ndf_beckmann_d_matrix(filter_gaussian_gaussian_lobe(method, material, fp), m);
+}
+
+// ---- filtered_ndf::filter::lean (shaders/filter/lean.wgsl) ----
+// LEAN mapping's moments and the nested convolution of KHPL16 section 5.5, eq. 21,
+// mirroring `src/.../filter/lean.rs`.
+
+/// First and second moments of normal-map slopes (Olano and Baker 2010), linearly
+/// filterable: `mean = E[s]`, `second = (E[s_x^2], E[s_x s_y], E[s_y^2])`.
+struct filter_lean_LeanMoments {
+    /// `(E[s_x], E[s_y])`.
+    mean: vec2<f32>,
+    /// `(E[s_x^2], E[s_x s_y], E[s_y^2])`.
+    second: vec3<f32>,
+}
+
+/// The covariance of the normal-map slopes, `E[s s^T] - E[s] E[s]^T` (LEAN eq. 5; KHPL16's
+/// `K_L`), `cov::sanitized` (mip filtering can make it slightly indefinite). Its
+/// determinant is formed from the differences (cancelling for elongated moments).
+fn filter_lean_covariance(m: filter_lean_LeanMoments) -> kernel_covariance_Covariance {
+    let c = kernel_covariance_from_entries(
+        m.second.x - m.mean.x * m.mean.x,
+        m.second.y - m.mean.x * m.mean.y,
+        m.second.z - m.mean.y * m.mean.y,
+    );
+    return kernel_covariance_sanitized(c);
+}
+
+/// `K_L * K_P * D = (K_L * K_P) * D` (KHPL16 eq. 21): the covariances add and the sum is
+/// filtered by `gaussian::gaussian` (`A' = A + 2 (Sigma_L + Sigma_P)`, `tau = det A`).
+fn filter_lean_lean(
+    a: ndf_roughness_matrix_RoughnessMatrix,
+    pixel: kernel_covariance_Covariance,
+    moments: filter_lean_LeanMoments,
+) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_gaussian_gaussian(a, kernel_covariance_add(kernel_covariance_sanitized(pixel), filter_lean_covariance(moments)));
+}
+
+// ---- filtered_ndf::bake::moments (shaders/bake/moments.wgsl) ----
+// The baked LEAN moment chain (`src/bake`, `filtered_ndf::bake::bake_rows`) as two textures
+// with all their mips, sampled by the hardware's trilinear or anisotropic filtering. Every
+// moment is linear in the texel weights, so a filtered fetch is the moments of the filter's
+// footprint on the base level (to the chain's storage rounding): the covariance is formed
+// after filtering, never filtered itself.
+//
+// | texture | format | channels |
+// |---|---|---|
+// | `moments` | `rgba16float` (filterable everywhere) or `rgba32float` (`float32-filterable`) | `(E[s_x], E[s_y], E[s_x^2], E[s_y^2])` |
+// | `moments_xy` | `r16float` or `r32float` | `E[s_x s_y]` |
+//
+// (the layout the command-line baker writes, `moments.ktx2` and `moments_xy.ktx2`: RGBA + R
+// because no filterable three-channel float format exists in WebGPU). Slopes are the bake's:
+// `s = -n_xy / n_z` in its OpenGL tangent frame (`x` along `+u`, `y` up the image, i.e. along
+// `-v` in WebGPU's texture coordinates when the image's first row is its top).
+
+/// The moments of one filtered fetch of each texture: `rgba = (E[s_x], E[s_y], E[s_x^2],
+/// E[s_y^2])`, `xy = E[s_x s_y]` (the Rust `bake::lean_moments` of the texel
+/// `[rgba.x, rgba.y, rgba.z, xy, rgba.w]`).
+fn bake_moments_from_texels(rgba: vec4<f32>, xy: f32) -> filter_lean_LeanMoments {
+    return filter_lean_LeanMoments(rgba.xy, vec3<f32>(rgba.z, xy, rgba.w));
+}
+
+/// The moments over a pixel footprint: both textures sampled with explicit derivatives of
+/// `uv` (`textureSampleGrad`: trilinear or anisotropic, as `s` is set up; any shader stage,
+/// uniform control flow not required). In a fragment shader pass `dpdx(uv)`, `dpdy(uv)`.
+fn bake_moments_sample_grad(
+    moments: texture_2d<f32>,
+    moments_xy: texture_2d<f32>,
+    s: sampler,
+    uv: vec2<f32>,
+    ddx_uv: vec2<f32>,
+    ddy_uv: vec2<f32>,
+) -> filter_lean_LeanMoments {
+    let rgba = textureSampleGrad(moments, s, uv, ddx_uv, ddy_uv);
+    let xy = textureSampleGrad(moments_xy, s, uv, ddx_uv, ddy_uv).x;
+    return bake_moments_from_texels(rgba, xy);
+}
+
+/// The moments at an explicit level of detail (`textureSampleLevel`: bilinear within a
+/// level, linear between levels with a linear mipmap filter): for ray tracing, compute
+/// shaders, or a level chosen from the footprint by the caller.
+fn bake_moments_sample_level(
+    moments: texture_2d<f32>,
+    moments_xy: texture_2d<f32>,
+    s: sampler,
+    uv: vec2<f32>,
+    level: f32,
+) -> filter_lean_LeanMoments {
+    let rgba = textureSampleLevel(moments, s, uv, level);
+    let xy = textureSampleLevel(moments_xy, s, uv, level).x;
+    return bake_moments_from_texels(rgba, xy);
+}
+
+// ---- filtered_ndf::bake::roughness (shaders/bake/roughness.wgsl) ----
+// A baked roughness chain (`src/bake/fit.rs`: the GGX or Beckmann lobe closest to each mip
+// texel's distribution of normals) read back as the lobe, mirroring `src/bake/decode.rs`.
+// Fetch the texel with the hardware's filtering as any material texture; each function takes
+// the fetched value(s) in the encoding the chain was stored in:
+//
+// | stored | function | lobe |
+// |---|---|---|
+// | `alpha` (`r16float`) | `isotropic::from_alpha` | `Isotropic` |
+// | glTF perceptual roughness `r = sqrt(alpha)` (metallic-roughness G channel) | `from_perceptual` | `Isotropic` |
+// | `[alpha_x, alpha_y, angle]` (`fit::AnisotropicAlpha`) | `from_anisotropic` | `RoughnessMatrix` |
+// | `KHR_materials_anisotropy`: roughness `r` and the anisotropy texel | `from_khr_anisotropy` | `RoughnessMatrix` |
+// | the roughness matrix `(A11, A12, A22, 1)` (`rgba16float`) | `from_matrix_texel` | `RoughnessMatrix` |
+//
+// Filtering the stored values is the engines' convention (a mip of perceptual roughness is
+// not the perceptual roughness of the mip); the chain's fits are per texel, so fetch at texel
+// centres of the level for the exact fit.
+
+/// glTF's perceptual roughness `r` as the isotropic lobe `alpha = r^2` (the Rust
+/// `bake::decode::alpha_from_perceptual`), clamped as `isotropic::from_alpha`.
+fn bake_roughness_from_perceptual(r: f32) -> ndf_roughness_isotropic_Isotropic {
+    return ndf_roughness_isotropic_from_alpha(r * r);
+}
+
+/// The anisotropic lobe `[alpha_x, alpha_y, angle]` (`alpha_x` along the direction at `angle`
+/// radians from `+x` towards `+y`) as the matrix `A = R diag(alpha_x^2, alpha_y^2) R^T` (the
+/// Rust `AnisotropicAlpha::matrix`); the angle's cosine and sine by `math::sincos_turns`
+/// (the driver's `cos`, `sin` may err by `2^-11`), the alphas clamped into
+/// `[ALPHA_MIN, ALPHA_MAX]`.
+fn bake_roughness_from_anisotropic(lobe: vec3<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
+    let axis = math_sincos_turns(lobe.z * (0.5 * math_INV_PI));
+    let a = vec2<f32>(ndf_roughness_clamp_alpha(lobe.x), ndf_roughness_clamp_alpha(lobe.y));
+    return ndf_roughness_matrix_from_eigen(axis, a);
+}
+
+/// The lobe of `KHR_materials_anisotropy` (the Rust `KhrAnisotropy::alpha`): the
+/// metallic-roughness texture's perceptual roughness `r` (`alpha_b = r^2` across the
+/// anisotropy direction) and the anisotropy texel as fetched from its unorm texture:
+/// direction `(cos, sin) = 2 rg - 1` (normalised: 8-bit channels are not unit), strength `b`,
+/// `alpha_t = mix(alpha_b, 1, b^2)` along the direction (the extension's definition).
+/// Multiply `b` by the material's `anisotropyStrength` and rotate the direction by its
+/// `anisotropyRotation` before calling, as the extension says. A zero direction is `+x`.
+fn bake_roughness_from_khr_anisotropy(r: f32, anisotropy: vec4<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
+    let d = 2.0 * anisotropy.xy - 1.0;
+    let len = length(d);
+    let axis = select(vec2<f32>(1.0, 0.0), d / len, len > 0.0);
+    let alpha_b = r * r;
+    let b = anisotropy.z;
+    let alpha_t = mix(alpha_b, 1.0, b * b);
+    let a = vec2<f32>(ndf_roughness_clamp_alpha(alpha_t), ndf_roughness_clamp_alpha(alpha_b));
+    return ndf_roughness_matrix_from_eigen(axis, a);
+}
+
+/// The roughness matrix stored as `(A11, A12, A22, 1)` (the baker's `--store alpha
+/// --anisotropic`): `matrix::from_entries` (its determinant formed in f32, within
+/// `cond(A) eps`).
+fn bake_roughness_from_matrix_texel(t: vec4<f32>) -> ndf_roughness_matrix_RoughnessMatrix {
+    return ndf_roughness_matrix_from_entries(t.x, t.y, t.z);
+}
+
+// ---- filtered_ndf::filter::deferred (shaders/filter/deferred.wgsl) ----
+// Isotropic "deferred" roughness filtering: one scalar roughness widened by the spread of
+// the shading normal across a pixel (TK19 section 4; KHPL16 section 5.4), mirroring
+// `src/.../filter/deferred.rs`. The published engine conventions are values of
+// [`KernelConvention`] in `filter::presets`.
+
+/// TK19's clamp `kappa` on the kernel's squared roughness (TK19 eq. 1), slope^2.
+const filter_deferred_KAPPA: f32 = 0.18;
+
+/// `v = alpha^2` (TK19, Filament, Unity HDRP, O3DE).
+const filter_deferred_DOMAIN_ALPHA_SQ: u32 = 0u;
+/// `v = alpha` (Godot 4, whose "roughness squared" is `alpha`).
+const filter_deferred_DOMAIN_ALPHA: u32 = 1u;
+/// `v = sqrt(alpha)`, the perceptual roughness (Unreal, three.js, Babylon.js).
+const filter_deferred_DOMAIN_PERCEPTUAL: u32 = 2u;
+/// `v = alpha^2 / (1 - alpha^2)`, TK21's projected-space squared roughness (Unity HDRP
+/// `ProjectedSpaceNormalFiltering`); `alpha >= 1` maps to `F32_MAX`.
+const filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ: u32 = 3u;
+
+/// `|dn_u|^2 + |dn_v|^2` (TK19 eq. 4).
+const filter_deferred_NORM_SUM_SQUARED: u32 = 0u;
+/// `max(|dn_u|^2, |dn_v|^2)` (Vlachos 2015; Unreal, Babylon.js).
+const filter_deferred_NORM_MAX_SQUARED: u32 = 1u;
+/// The largest eigenvalue of the Gram matrix of `dn_u, dn_v` (TK19 eq. 1, `sigma^2 = 1`).
+const filter_deferred_NORM_MAX_EIGENVALUE: u32 = 2u;
+/// The largest absolute component of either difference, not squared (three.js).
+const filter_deferred_NORM_MAX_ABS_COMPONENT: u32 = 3u;
+
+/// `v' = v + k` (variances add).
+const filter_deferred_COMBINE_ADD: u32 = 0u;
+/// `v' = max(v, k)` (a roughness floor: Vlachos 2015, Unreal).
+const filter_deferred_COMBINE_MAX: u32 = 1u;
+
+/// TK19 eq. 1: `2 lambda_max(Sigma)`.
+const filter_deferred_BANDWIDTH_MAX: u32 = 0u;
+/// TK19 eq. 2, 4: `2 tr(Sigma)`.
+const filter_deferred_BANDWIDTH_TRACE: u32 = 1u;
+/// TK19 eq. 5: `tr(Sigma)`.
+const filter_deferred_BANDWIDTH_AVERAGE: u32 = 2u;
+
+/// How one engine turns normal differences into a widened roughness (the Rust
+/// `KernelConvention`). [`apply`] computes: (1) `alpha = max(alpha, perceptual_floor^2)`,
+/// `v = domain(alpha)`; (2) `k = min(max(scale norm^exponent + bias, 0), clamp)`;
+/// (3) `v' = v + k` or `max(v, k)`, then `min(v', 1)` if `saturate`; (4) `alpha_bar` from
+/// `v'`, clamped to `[0, ALPHA_MAX]`.
+struct filter_deferred_KernelConvention {
+    /// `DOMAIN_*`.
+    domain: u32,
+    /// `NORM_*`.
+    norm: u32,
+    /// Factor on `norm^exponent` (TK19's `2 sigma^2` is 0.5).
+    scale: f32,
+    /// Exponent on the norm (1 for the variance forms, Unreal's 0.333).
+    exponent: f32,
+    /// Added after scaling.
+    bias: f32,
+    /// Upper bound of the kernel in domain units (`F32_MAX`: none).
+    clamp: f32,
+    /// `COMBINE_*`.
+    combine: u32,
+    /// Final `min(v', 1)` (HLSL `saturate`).
+    saturate: bool,
+    /// Minimum perceptual roughness `sqrt(alpha)` enforced first (0: none).
+    perceptual_floor: f32,
+}
+
+/// `alpha -> v` in `domain` (`alpha >= 0`).
+fn filter_deferred_from_alpha(domain: u32, alpha: f32) -> f32 {
+    if domain == filter_deferred_DOMAIN_ALPHA {
+        return alpha;
+    }
+    if domain == filter_deferred_DOMAIN_PERCEPTUAL {
+        return sqrt(alpha);
+    }
+    let a2 = alpha * alpha;
+    if domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ {
+        return select(math_F32_MAX, a2 / (1.0 - a2), a2 < 1.0);
+    }
+    return a2;
+}
+
+/// `v -> alpha`, the inverse of [`from_alpha`] for `v >= 0`.
+fn filter_deferred_to_alpha(domain: u32, v: f32) -> f32 {
+    if domain == filter_deferred_DOMAIN_ALPHA {
+        return v;
+    }
+    if domain == filter_deferred_DOMAIN_PERCEPTUAL {
+        return v * v;
+    }
+    if domain == filter_deferred_DOMAIN_PROJECTED_ALPHA_SQ {
+        return select(1.0, sqrt(v / (1.0 + v)), v < math_F32_MAX);
+    }
+    return sqrt(v);
+}
+
+/// The largest eigenvalue of `[[a, b], [b, c]]` (no cancellation: mean plus radius), `>= 0`.
+fn filter_deferred_max_eigenvalue(a: f32, b: f32, c: f32) -> f32 {
+    return max(0.5 * (a + c) + math_hypot(0.5 * (a - c), b), 0.0);
+}
+
+/// The measure `norm` of `(dn_u, dn_v)`, `>= 0`. The NaN policy (as the Rust `Norm::eval`):
+/// a NaN entry of a difference counts as 0 (`math::nan_to_zero3`, decided on the bits).
+fn filter_deferred_norm_eval(norm: u32, dn_u_in: vec3<f32>, dn_v_in: vec3<f32>) -> f32 {
+    let dn_u = math_nan_to_zero3(dn_u_in);
+    let dn_v = math_nan_to_zero3(dn_v_in);
+    let a = dot(dn_u, dn_u);
+    let c = dot(dn_v, dn_v);
+    if norm == filter_deferred_NORM_MAX_SQUARED {
+        return max(a, c);
+    }
+    if norm == filter_deferred_NORM_MAX_EIGENVALUE {
+        return filter_deferred_max_eigenvalue(a, dot(dn_u, dn_v), c);
+    }
+    if norm == filter_deferred_NORM_MAX_ABS_COMPONENT {
+        let m = max(abs(dn_u), abs(dn_v));
+        return max(max(m.x, m.y), m.z);
+    }
+    return a + c;
+}
+
+/// `min(max(k, 0), clamp)`; a NaN `k` (which only an infinite difference gives, `inf * 0`,
+/// once NaN entries count as 0) is the clamp: an infinite difference saturates.
+fn filter_deferred_clamp_widening(conv: filter_deferred_KernelConvention, k: f32) -> f32 {
+    return select(min(max(k, 0.0), conv.clamp), conv.clamp, math_is_nan(k));
+}
+
+/// The widening `min(max(scale norm^exponent + bias, 0), clamp)` in domain units (the kernel's
+/// contribution to the roughness value). `pow` is the
+/// driver's (`exp2(e log2 n)`: within `3 + 2 |e log2 n|` ulp plus `log2`'s error); a zero
+/// norm gives `max(bias, 0)`.
+fn filter_deferred_widening(conv: filter_deferred_KernelConvention, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+    // An infinite entry (where the driver keeps infinities) saturates: the clamp, as the Rust
+    // widening of an infinite norm (decided here, before `inf * 0` can meet a `max`).
+    let lim = vec3<f32>(math_F32_MAX);
+    if any(abs(dn_u) > lim) || any(abs(dn_v) > lim) {
+        return conv.clamp;
+    }
+    let n = filter_deferred_norm_eval(conv.norm, dn_u, dn_v);
+    var raw = n;
+    if conv.exponent != 1.0 {
+        raw = select(0.0, pow(n, conv.exponent), n > 0.0);
+    }
+    return filter_deferred_clamp_widening(conv, conv.scale * raw + conv.bias);
+}
+
+/// Steps 1, 3, 4 of [`apply`] for a widening `k` already in domain units (clamped here).
+/// A negative `alpha` counts as 0; the result is in `[0, ALPHA_MAX]`.
+fn filter_deferred_apply_widening(conv: filter_deferred_KernelConvention, alpha_in: f32, k: f32) -> f32 {
+    var alpha = clamp(alpha_in, 0.0, ndf_roughness_ALPHA_MAX);
+    alpha = max(alpha, conv.perceptual_floor * conv.perceptual_floor);
+    let v = filter_deferred_from_alpha(conv.domain, alpha);
+    let kc = filter_deferred_clamp_widening(conv, k);
+    var out = select(v + kc, max(v, kc), conv.combine == filter_deferred_COMBINE_MAX);
+    if conv.saturate {
+        out = min(out, 1.0);
+    }
+    return clamp(filter_deferred_to_alpha(conv.domain, out), 0.0, ndf_roughness_ALPHA_MAX);
+}
+
+/// The filtered roughness `alpha_bar` for material roughness `alpha` and world-space normal
+/// differences `dn_u`, `dn_v` (`ddx(normal)`, `ddy(normal)`; TK19 Listing 2).
+fn filter_deferred_apply(conv: filter_deferred_KernelConvention, alpha: f32, dn_u: vec3<f32>, dn_v: vec3<f32>) -> f32 {
+    return filter_deferred_apply_widening(conv, alpha, filter_deferred_widening(conv, dn_u, dn_v));
+}
+
+/// The Gram covariance `sigma^2 [[dn_u.dn_u, dn_u.dn_v], [dn_u.dn_v, dn_v.dn_v]]` of two
+/// normal differences, `sigma` the pixel filter's standard deviation in pixels (its trace is
+/// TK19's `sigma^2 (|dn_u|^2 + |dn_v|^2)`; use only its invariants). Determinant
+/// `sigma^4 |dn_u x dn_v|^2` (Lagrange's identity, no cancellation).
+fn filter_deferred_normal_difference_covariance(dn_u: vec3<f32>, dn_v: vec3<f32>, sigma: f32) -> kernel_covariance_Covariance {
+    let sigma_sq = sigma * sigma;
+    let x = cross(dn_u, dn_v) * sigma_sq;
+    return kernel_covariance_Covariance(
+        dot(dn_u, dn_u) * sigma_sq,
+        dot(dn_u, dn_v) * sigma_sq,
+        dot(dn_v, dn_v) * sigma_sq,
+        dot(x, x),
+    );
+}
+
+/// The kernel's squared roughness of a bandwidth (`BANDWIDTH_*`) before the clamp:
+/// `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`.
+fn filter_deferred_bandwidth_alpha2(bandwidth: u32, kernel: kernel_covariance_Covariance) -> f32 {
+    // A NaN entry counts as 0 (the NaN policy, as the Rust `Bandwidth::alpha2`).
+    let s_xx = math_nan_to_zero(kernel.s_xx);
+    let s_xy = math_nan_to_zero(kernel.s_xy);
+    let s_yy = math_nan_to_zero(kernel.s_yy);
+    if bandwidth == filter_deferred_BANDWIDTH_MAX {
+        return 2.0 * filter_deferred_max_eigenvalue(s_xx, s_xy, s_yy);
+    }
+    let t = s_xx + s_yy;
+    return select(t, 2.0 * t, bandwidth == filter_deferred_BANDWIDTH_TRACE);
+}
+
+/// TK19 eq. 1, 4 or 5 from a slope-domain covariance:
+/// `alpha_bar = sqrt(saturate(alpha^2 + min(kernel, kappa)))`.
+fn filter_deferred_filtered_alpha(alpha: f32, kernel: kernel_covariance_Covariance, bandwidth: u32, kappa: f32) -> f32 {
+    let conv = filter_deferred_KernelConvention(
+        filter_deferred_DOMAIN_ALPHA_SQ,
+        filter_deferred_NORM_SUM_SQUARED,
+        0.5,
+        1.0,
+        0.0,
+        kappa,
+        filter_deferred_COMBINE_ADD,
+        true,
+        0.0,
+    );
+    return filter_deferred_apply_widening(conv, alpha, filter_deferred_bandwidth_alpha2(bandwidth, kernel));
+}
+
 // ---- filtered_ndf::filter::gaussian_ggx_quad (shaders/filter/gaussian_ggx_quad.wgsl) ----
 // The quadrature rules of the exact Gaussian-filtered GGX (`gaussian_ggx.wgsl`), the f32
 // rules of the Rust crate's `src/.../filter/gaussian_ggx_quad.rs` (derivations and bounds in
@@ -1386,10 +1850,10 @@ fn filter_gaussian_ggx_quad_laguerre_weight(k: u32) -> f32 {
 }
 
 /// `J / z2^2` for `c_i^2 = v_i^2 / z2` from `(v1^2, v2^2)`, `z2 > 0` and `(2 l1, 2 l2)`,
-/// `2 l1 >= 2 l2 >= 0` (the Rust `j`): `J(c)` itself for `z2 = 1` (a slope), `J / m_z^4` for a
+/// `2 l1 >= 2 l2 >= 0` (the Rust `mixture_integral`): `J(c)` itself for `z2 = 1` (a slope), `J / m_z^4` for a
 /// normal (`z2 = m_z^2`, `v = T m_xy`) without forming the slope. The rule by `q = |c|^2` and
 /// the kernel ratio (module docs).
-fn filter_gaussian_ggx_quad_j(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
+fn filter_gaussian_ggx_quad_mixture_integral(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
     let beta_m = z2 + v1s + v2s;
     if beta_m >= filter_gaussian_ggx_quad_FAR * tl1 * z2 {
         return filter_gaussian_ggx_quad_far_tail(beta_m, v1s, v2s, tl1, tl2, z2);
@@ -1402,7 +1866,7 @@ fn filter_gaussian_ggx_quad_j(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -
     return filter_gaussian_ggx_quad_trapezoid_rule(v1s * iz2, v2s * iz2, tl1, tl2, filter_gaussian_ggx_quad_FULL_RULE) * iz2 * iz2;
 }
 
-/// The far-tail series of `J` (item 5), homogeneous as [`j`]:
+/// The far-tail series of `J` (item 5), homogeneous as [`mixture_integral`]:
 /// `J = beta^-2 (1 + 12 P z2 / beta^2 - 2 (l1 + l2) z2 / beta)`, `P = l1 c1^2 + l2 c2^2`
 /// (`P / beta` formed first: no overflow).
 fn filter_gaussian_ggx_quad_far_tail(beta: f32, c1s: f32, c2s: f32, tl1: f32, tl2: f32, z2: f32) -> f32 {
@@ -1413,7 +1877,7 @@ fn filter_gaussian_ggx_quad_far_tail(beta: f32, c1s: f32, c2s: f32, tl1: f32, tl
 }
 
 /// Gauss-Laguerre in `v = (1 + q) w` (item 4): `J = beta^-2 sum W_k F(v_k / beta)`,
-/// `F(w) = exp(sum c_i^2 2 l_i w^2 / p_i) / sqrt(p1 p2)`; homogeneous as [`j`].
+/// `F(w) = exp(sum c_i^2 2 l_i w^2 / p_i) / sqrt(p1 p2)`; homogeneous as [`mixture_integral`].
 fn filter_gaussian_ggx_quad_laguerre(beta_m: f32, v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32) -> f32 {
     let ib = 1.0 / beta_m;
     let t1 = tl1 * z2 * ib;
@@ -1486,10 +1950,10 @@ fn filter_gaussian_ggx_quad_reduced_rule(tol: u32) -> filter_gaussian_ggx_quad_T
 }
 // END reduced rules
 
-/// `J / z2^2` (as [`j`]) at the accuracy setting `tol` (`TOL_FULL` to `TOL_1E2`).
+/// `J / z2^2` (as [`mixture_integral`]) at the accuracy setting `tol` (`TOL_FULL` to `TOL_1E2`).
 fn filter_gaussian_ggx_quad_j_tol(v1s: f32, v2s: f32, z2: f32, tl1: f32, tl2: f32, tol: u32) -> f32 {
     if tol == filter_gaussian_ggx_quad_TOL_FULL {
-        return filter_gaussian_ggx_quad_j(v1s, v2s, z2, tl1, tl2);
+        return filter_gaussian_ggx_quad_mixture_integral(v1s, v2s, z2, tl1, tl2);
     }
     let beta_m = z2 + v1s + v2s;
     if tl1 * z2 * (filter_gaussian_ggx_quad_reduced_far(tol) + 12.0 * math_ln(beta_m / z2)) <= beta_m {
@@ -1695,171 +2159,6 @@ fn filter_gaussian_ggx_quad_lambda(qa: f32, qs: f32, oz: f32) -> f32 {
     return filter_gaussian_ggx_quad_lambda_sinh(qa, qs, oz, ds2);
 }
 
-// ---- filtered_ndf::sampling (shaders/sampling/mod.wgsl) ----
-// Importance sampling of GGX with a roughness matrix, and the pdfs for multiple importance
-// sampling, mirroring `src/.../sampling/mod.rs` (GGX, `NdfSampling`). Densities per
-// steradian: `D(m) m_z` (KHPL16 eq. 2) and the visible normals
-// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014 eq. 16); the reflected direction
-// `wi = reflect(wo, m)` has `D_wo(m) / (4 wo.m)` (Walter et al. 2007 eq. 14).
-//
-// One linear warp for every roughness: with `A = L L^T` (lower Cholesky factor), slopes
-// `s = L t` map the unit-roughness NDF of `t` to the NDF of `A`; the visible normals of `A`
-// seen from `wo` are the image of the unit-roughness visible normals seen from
-// `normalize(L^T wo_xy, wo_z)` (Heitz and d'Eon 2014 section 4; the same algebra for any
-// `L`). The unit-roughness GGX sampler is the spherical caps of Dupuy and Benyoub 2023
-// (listing 3). The angle `2 pi u` goes through `math::sincos_turns` (WGSL allows the driver
-// `sin`/`cos` an absolute `2^-11`).
-//
-// Out of domain: `wo_z <= 0` has no visible normal: the samplers return the zero vector
-// (the Rust `None`) and the pdfs 0. `u` is clamped to `[0, 1 - 2^-24]`. `wo` need not be
-// normalised; `m` must be a unit vector for the pdfs.
-
-/// The largest f32 below 1: the upper clamp of the uniform numbers.
-const sampling_ONE_MINUS_EPS: f32 = 0.99999994;
-
-/// The lower Cholesky factor `L = [[l_xx, 0], [l_yx, l_yy]]` of a roughness, `A = L L^T`.
-struct sampling_Warp {
-    /// `sqrt(a11)`.
-    l_xx: f32,
-    /// `a12 / sqrt(a11)`.
-    l_yx: f32,
-    /// `sqrt(det A) / sqrt(a11)`.
-    l_yy: f32,
-}
-
-/// The warp of a roughness matrix: the Cholesky factor of the clamped matrix `A_c` that the
-/// density evaluates (`matrix.wgsl`; entries from its eigenbasis, `sqrt(det A_c)` as stored),
-/// so that the sampled lobe is the one `D` describes.
-fn sampling_warp(r: ndf_roughness_matrix_RoughnessMatrix) -> sampling_Warp {
-    let e = ndf_roughness_matrix_clamped_entries(r);
-    let l_xx = sqrt(e.x);
-    return sampling_Warp(l_xx, e.y / l_xx, r.sqrt_det / l_xx);
-}
-
-/// `v / |v|` after scaling by the largest component (no overflow or underflow of the
-/// squares). `v` non-zero.
-fn sampling_normalize_scaled(v: vec3<f32>) -> vec3<f32> {
-    let w = v / max(max(abs(v.x), abs(v.y)), abs(v.z));
-    return w / length(w);
-}
-
-/// `(L^T w_xy, w_z)`: a view direction into the unit-roughness space (unnormalised).
-fn sampling_stretch(l: sampling_Warp, w: vec3<f32>) -> vec3<f32> {
-    return vec3<f32>(l.l_xx * w.x + l.l_yx * w.y, l.l_yy * w.y, w.z);
-}
-
-/// `normalize(L n_xy, n_z)`: a unit-roughness normal back to roughness `A`.
-fn sampling_unstretch(l: sampling_Warp, n: vec3<f32>) -> vec3<f32> {
-    return sampling_normalize_scaled(vec3<f32>(l.l_xx * n.x, l.l_yx * n.x + l.l_yy * n.y, n.z));
-}
-
-/// A uniform number clamped into `[0, 1 - 2^-24]` (negative values to 0).
-fn sampling_clamp_unit(u: f32) -> f32 {
-    return select(0.0, min(u, sampling_ONE_MINUS_EPS), u >= 0.0);
-}
-
-/// Mirror reflection of `wo` about the unit normal `m`: `2 (wo.m) m - wo` (Walter et al.
-/// 2007 eq. 13).
-fn sampling_reflect(wo: vec3<f32>, m: vec3<f32>) -> vec3<f32> {
-    return 2.0 * dot(wo, m) * m - wo;
-}
-
-/// Unit-roughness GGX visible normal by spherical caps (Dupuy and Benyoub 2023): a uniform
-/// point `c` on the cap `z >= -wi_z` of the unit sphere, returned as `c + wi` (unnormalised).
-fn sampling_ggx_standard_visible(wi: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
-    let cs = math_sincos_turns(u.x);
-    let z = (1.0 - u.y) * (1.0 + wi.z) - wi.z;
-    let sin_theta = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
-    return vec3<f32>(sin_theta * cs, z) + wi;
-}
-
-/// Samples a visible micronormal `m` of GGX with roughness `r` from `u` in `[0, 1)^2`, with
-/// density `D_wo(m)` per steradian (Heitz 2014 eq. 16). The zero vector if `wo_z <= 0` (or
-/// the view is grazing to within the f32 range); otherwise a unit `m` with `m_z > 0` and
-/// `wo.m > 0` (should rounding break either, the lobe centre `unstretch(wi)` is returned,
-/// as in Rust).
-fn sampling_sample_visible_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
-    if !(wo.z > 0.0) {
-        return vec3<f32>(0.0);
-    }
-    let l = sampling_warp(r);
-    let wi = sampling_normalize_scaled(sampling_stretch(l, sampling_normalize_scaled(wo)));
-    if !(wi.z > 0.0) {
-        return vec3<f32>(0.0);
-    }
-    let n = sampling_ggx_standard_visible(wi, vec2<f32>(sampling_clamp_unit(u.x), sampling_clamp_unit(u.y)));
-    let m = sampling_unstretch(l, n);
-    if m.z > 0.0 && dot(wo, m) > 0.0 {
-        return m;
-    }
-    let c = sampling_unstretch(l, wi);
-    return select(vec3<f32>(0.0), c, c.z > 0.0);
-}
-
-/// Samples `m` with density `D(m) m_z` per steradian (the NDF itself): in the unit-roughness
-/// space `|t|^2 = u1 / (1 - u1)`, `n = (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))`,
-/// `phi = 2 pi u2`, then warped by `L`. Always `m_z > 0`.
-fn sampling_sample_normal(r: ndf_roughness_matrix_RoughnessMatrix, u: vec2<f32>) -> vec3<f32> {
-    let u1 = sampling_clamp_unit(u.x);
-    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
-    let n = vec3<f32>(sqrt(u1) * cs, sqrt(1.0 - u1));
-    return sampling_unstretch(sampling_warp(r), n);
-}
-
-/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
-/// `m_z <= 0`.
-fn sampling_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
-    return select(0.0, ndf_ggx_d_matrix(r, m) * m.z, m.z > 0.0);
-}
-
-/// The visible-normal density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian
-/// (Heitz 2014 eq. 16) for a unit `m`; 0 for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
-fn sampling_visible_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    return sampling_visible_normal_pdf_of(wo, m, ndf_ggx_d_matrix(r, m), ndf_ggx_lambda_matrix(r, wo));
-}
-
-/// [`visible_normal_pdf`] from `D(m)` and `Lambda(wo)` of any NDF (GGX here, Beckmann in
-/// `sampling::beckmann`): `(wo.m) D / (wo_z (1 + Lambda))`; 0 for `wo_z <= 0`, `wo.m <= 0`
-/// and where the quotient is not finite.
-fn sampling_visible_normal_pdf_of(wo: vec3<f32>, m: vec3<f32>, d: f32, lambda: f32) -> f32 {
-    let wom = dot(wo, m);
-    let v = wom * d / (wo.z * (1.0 + lambda));
-    return select(0.0, v, wo.z > 0.0 && wom > 0.0 && v <= math_F32_MAX);
-}
-
-/// The density per steradian of `wi = reflect(wo, m)` for the unit half vector `m` itself:
-/// `G1(wo) D(m) / (4 wo_z)` (Walter et al. 2007 eq. 14, `wo` normalised here); 0 for
-/// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
-fn sampling_reflection_pdf_from_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    let o = sampling_normalize_scaled(wo);
-    return sampling_reflection_pdf_of(o, m, ndf_ggx_d_matrix(r, m), ndf_ggx_lambda_matrix(r, o));
-}
-
-/// [`reflection_pdf_from_normal`] from the normalised `o = normalize_scaled(wo)`, `D(m)` and
-/// `Lambda(o)` of any NDF: `D / (4 o_z (1 + Lambda))`; 0 for `o_z <= 0` (`wo_z <= 0`, or a
-/// `wo_z` that vanishes against `wo_xy`), `o.m <= 0` and where the quotient is not finite.
-fn sampling_reflection_pdf_of(o: vec3<f32>, m: vec3<f32>, d: f32, lambda: f32) -> f32 {
-    let v = d / (4.0 * o.z * (1.0 + lambda));
-    return select(0.0, v, o.z > 0.0 && dot(o, m) > 0.0 && v <= math_F32_MAX);
-}
-
-/// The density per steradian of `wi` when `m` is drawn by [`sample_visible_normal`] and
-/// `wi = reflect(wo, m)`: [`reflection_pdf_from_normal`] with `m = normalize(wo + wi)`
-/// (both normalised first). 0 for `wo_z <= 0` and for `wi = -wo`. The recomputed half vector
-/// carries a direction error of about `eps / (2 wo.m)`: for a sampled direction prefer
-/// [`reflection_pdf_from_normal`] with the sampled `m`.
-fn sampling_reflection_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
-    if !(wo.z > 0.0) {
-        return 0.0;
-    }
-    let h = sampling_normalize_scaled(wo) + sampling_normalize_scaled(wi);
-    let len = length(h);
-    if !(len > 0.0) {
-        return 0.0;
-    }
-    return sampling_reflection_pdf_from_normal(r, wo, h / len);
-}
-
 // ---- filtered_ndf::filter::gaussian_ggx (shaders/filter/gaussian_ggx.wgsl) ----
 // The exact Gaussian-filtered GGX (`src/.../filter/gaussian_ggx.rs`, `GaussianFilteredGgx`):
 // the convolution of a GGX slope density of roughness `A` with a Gaussian kernel
@@ -2026,304 +2325,30 @@ fn filter_gaussian_ggx_g2(g: filter_gaussian_ggx_GaussianFilteredGgx, i: vec3<f3
     return ndf_g2_of(filter_gaussian_ggx_lambda(g, i), filter_gaussian_ggx_lambda(g, o), dot(i, m), dot(o, m));
 }
 
-/// Two uniform numbers from one (the Rust `split` of the `f32` build): the high and the low
-/// twelve bits of `u` in `[0, 1)`, `((floor(4096 u) + 1/2) / 4096, frac(4096 u))`, both
-/// uniform on their grids and independent (every step exact in f32).
-fn filter_gaussian_ggx_split(u: f32) -> vec2<f32> {
-    let x = u * 4096.0;
-    let hi = floor(x);
-    return vec2<f32>((hi + 0.5) / 4096.0, x - hi);
+/// The exact Gaussian filter: the material's slope density convolved with the clamped pixel
+/// kernel (GGX: `GaussianFilteredGgx`; Beckmann: `A + 2 Sigma`, `gaussian::gaussian_lobe` with the
+/// same rules).
+struct filter_gaussian_ggx_ExactGaussian {
+    /// The clamp rules applied to the footprint and the kernel.
+    clamps: kernel_clamp_ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+    /// The accuracy setting of the GGX lobe's density (`TOL_*`, the Rust `Tolerance`).
+    tolerance: u32,
 }
 
-/// Samples a unit micronormal `m` of the filtered lobe with density `D(m) m_z` per steradian
-/// (KHPL16 eq. 2; the Rust `NdfSampling::sample_normal`). Exact: the filtered slope is the sum
-/// of two independent slopes (module docs: the convolution), a GGX slope of roughness `A_c`,
-/// `B t` with `B` its Cholesky factor (`sampling::warp`) and `|t|^2 = u1 / (1 - u1)` (the
-/// inverse radial CDF of unit-roughness GGX, Walter et al. 2007 eq. 35), and a kernel slope
-/// `N(0, Sigma)` by Box-Muller along the kernel's principal axes (the eigenvector of the
-/// larger eigenvalue from the row without cancellation, as Rust). The four uniform numbers are
-/// the high and low halves of the bits of `u.x` (`u1`, `u3`) and `u.y` (`u2`, `u4`), 12 bits
-/// each ([`split`]). `u` is clamped to `[0, 1 - 2^-24]`. Always `m_z > 0` (kept at the
-/// smallest normal f32 where the slope leaves the f32 range).
-fn filter_gaussian_ggx_sample_normal(g: filter_gaussian_ggx_GaussianFilteredGgx, u: vec2<f32>) -> vec3<f32> {
-    let a = filter_gaussian_ggx_split(sampling_clamp_unit(u.x));
-    let b = filter_gaussian_ggx_split(sampling_clamp_unit(u.y));
-    // The GGX slope B t.
-    let t = sqrt(a.x / (1.0 - a.x)) * math_sincos_turns(b.x);
-    let l = sampling_warp(g.a);
-    let gs = vec2<f32>(l.l_xx * t.x, l.l_yx * t.x + l.l_yy * t.y);
-    // The kernel slope: -2 ln(1 - u3) as ln_1p below 1/2 (no cancellation), exact above.
-    let e = select(-math_ln(1.0 - a.y), math_ln_1p(a.y / (1.0 - a.y)), a.y < 0.5);
-    let y = sqrt(2.0 * e) * math_sincos_turns(b.y);
-    let k = g.k;
-    let ev = kernel_covariance_eigenvalues(k);
-    let khalf = 0.5 * (k.s_xx - k.s_yy);
-    let krad = math_hypot(khalf, k.s_xy);
-    var ax = vec2<f32>(1.0, 0.0);
-    if krad > 0.0 {
-        let w = select(vec2<f32>(k.s_xy, krad - khalf), vec2<f32>(krad + khalf, k.s_xy), khalf >= 0.0);
-        ax = w / math_hypot(w.x, w.y);
-    }
-    let kk = vec2<f32>(sqrt(ev.y) * y.x, sqrt(ev.x) * y.y);
-    let s = gs + vec2<f32>(ax.x * kk.x - ax.y * kk.y, ax.y * kk.x + ax.x * kk.y);
-    let n = sampling_normalize_scaled(vec3<f32>(-s, 1.0));
-    return vec3<f32>(n.xy, max(n.z, math_F32_MIN_POSITIVE));
+/// The unbiased filter of the footprint: `lambda = 1` (KHPL16 section 5.2), no `kappa`,
+/// `sigma = 0.5`, the full accuracy.
+const filter_gaussian_ggx_KHPL16_EXACT_GAUSSIAN: filter_gaussian_ggx_ExactGaussian = filter_gaussian_ggx_ExactGaussian(kernel_clamp_KHPL16_RULES, footprint_SIGMA_PIXEL, filter_gaussian_ggx_TOL_FULL);
+
+/// The GGX lobe of the exact Gaussian filter (the Rust `ExactGaussian::lobe` for GGX).
+fn filter_gaussian_ggx_exact_gaussian_lobe(method: filter_gaussian_ggx_ExactGaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> filter_gaussian_ggx_GaussianFilteredGgx {
+    return filter_gaussian_ggx_with_tolerance(filter_gaussian_ggx_from_kernel(material, kernel_clamp_pixel_kernel(method.clamps, fp, method.sigma)), method.tolerance);
 }
 
-/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
-/// `m_z <= 0`.
-fn filter_gaussian_ggx_normal_pdf(g: filter_gaussian_ggx_GaussianFilteredGgx, m: vec3<f32>) -> f32 {
-    return select(0.0, filter_gaussian_ggx_d(g, m) * m.z, m.z > 0.0);
-}
-
-// ---- filtered_ndf::footprint::jacobian (shaders/footprint/jacobian.wgsl) ----
-// Jacobians between the three half-vector domains (TK19 supplement section 2, eq. 1-7) and
-// the error propagation of TK19 section 3.1, mirroring `src/.../footprint/jacobian.rs`.
-// Matrices are the paper's `J[i][j] = d out_i / d in_j` stored column-major (WGSL
-// `mat2x2<f32>` like glam's `Mat2`): column `j` is the derivative with respect to input `j`,
-// and `J * v` is the paper's product. Spherical changes are the arc lengths `(psi_x, psi_y)`
-// along `e_x = (cos theta cos phi, cos theta sin phi, -sin theta)` and
-// `e_y = (-sin phi, cos phi, 0)`. Input: `h` is normalised here; a zero `h` is the pole;
-// `h_z` is clamped to `HZ_MIN` at constant azimuth; at the pole `phi = 0`.
-// (Non-finite input: WGSL lets a driver assume it never occurs.)
-
-/// Smallest `h_z` the Jacobians use (`1 / HZ_MIN^4 = 1e24` stays finite in f32).
-const footprint_jacobian_HZ_MIN: f32 = 1e-6;
-
-/// A half vector reduced to what the Jacobians need: the sanitised unit `h` and
-/// `(cos phi, sin phi)`.
-struct footprint_jacobian_Polar {
-    /// The sanitised unit half vector.
-    h: vec3<f32>,
-    /// `(cos phi, sin phi)` of its azimuth (`(1, 0)` at the pole).
-    cs: vec2<f32>,
-}
-
-/// Normalise (after scaling by the largest component), take the azimuth from `h_xy` scaled
-/// to unit size, clamp `h_z >= HZ_MIN` keeping the azimuth.
-fn footprint_jacobian_polar(h_in: vec3<f32>) -> footprint_jacobian_Polar {
-    let big = max(max(abs(h_in.x), abs(h_in.y)), abs(h_in.z));
-    if big <= 0.0 {
-        return footprint_jacobian_Polar(vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(1.0, 0.0));
-    }
-    let h0 = h_in / big;
-    let h = h0 / length(h0);
-    let qs = max(abs(h.x), abs(h.y));
-    var cs = vec2<f32>(1.0, 0.0);
-    if qs > 0.0 {
-        let q = h.xy / qs;
-        cs = q / length(q);
-    }
-    if h.z >= footprint_jacobian_HZ_MIN {
-        return footprint_jacobian_Polar(h, cs);
-    }
-    let st = sqrt(1.0 - footprint_jacobian_HZ_MIN * footprint_jacobian_HZ_MIN);
-    return footprint_jacobian_Polar(vec3<f32>(st * cs, footprint_jacobian_HZ_MIN), cs);
-}
-
-/// The unit half vector the Jacobians use for input `h` (normalised, zero -> the pole,
-/// `h_z >= HZ_MIN` at constant azimuth).
-fn footprint_jacobian_sanitize(h: vec3<f32>) -> vec3<f32> {
-    return footprint_jacobian_polar(h).h;
-}
-
-/// The spherical basis `(e_x, e_y)` at `h` (TK19 supplement eq. 3, columns 1 and 2).
-struct footprint_jacobian_SphericalBasis {
-    /// `e_x`, along the great circle through `h` and `n`, away from `n`.
-    e_x: vec3<f32>,
-    /// `e_y = n x h / |n x h|`.
-    e_y: vec3<f32>,
-}
-
-/// `(e_x, e_y)` at `h`: `e_x = (cos theta cos phi, cos theta sin phi, -sin theta)`,
-/// `e_y = (-sin phi, cos phi, 0)`; `(+x, +y)` at the pole.
-fn footprint_jacobian_spherical_basis(h: vec3<f32>) -> footprint_jacobian_SphericalBasis {
-    let p = footprint_jacobian_polar(h);
-    let st = length(p.h.xy);
-    return footprint_jacobian_SphericalBasis(
-        vec3<f32>(p.h.z * p.cs, -st),
-        vec3<f32>(-p.cs.y, p.cs.x, 0.0),
-    );
-}
-
-/// `(dh . e_x, dh . e_y)` (radians) of a tangent change `dh` of the unit half vector (TK19
-/// section 3.1).
-fn footprint_jacobian_spherical_components(h: vec3<f32>, dh: vec3<f32>) -> vec2<f32> {
-    let b = footprint_jacobian_spherical_basis(h);
-    return vec2<f32>(dot(dh, b.e_x), dot(dh, b.e_y));
-}
-
-/// `J(o->perp) = [[h_z cos phi, -sin phi], [h_z sin phi, cos phi]]` (TK19 supplement eq. 4),
-/// determinant `h_z`; `I` at the pole.
-fn footprint_jacobian_sphere_to_projected(h: vec3<f32>) -> mat2x2<f32> {
-    let p = footprint_jacobian_polar(h);
-    return mat2x2<f32>(p.h.z * p.cs, vec2<f32>(-p.cs.y, p.cs.x));
-}
-
-/// `J(perp->par) = -1 / h_z^3 [[h_x^2 + h_z^2, h_x h_y], [h_x h_y, h_y^2 + h_z^2]]` (TK19
-/// supplement eq. 6, with `1 - h_y^2` written as `h_x^2 + h_z^2` for accuracy at the
-/// horizon); determinant `1 / h_z^4`; `-I` at the pole.
-fn footprint_jacobian_projected_to_slope(h_in: vec3<f32>) -> mat2x2<f32> {
-    let h = footprint_jacobian_polar(h_in).h;
-    let k = -1.0 / (h.z * h.z * h.z);
-    let xy = h.x * h.y;
-    return mat2x2<f32>(
-        vec2<f32>(h.x * h.x + h.z * h.z, xy) * k,
-        vec2<f32>(xy, h.y * h.y + h.z * h.z) * k,
-    );
-}
-
-/// `J(par->perp) = -h_z [[h_y^2 + h_z^2, -h_x h_y], [-h_x h_y, h_x^2 + h_z^2]]`, the inverse
-/// of [`projected_to_slope`]; determinant `h_z^4`; `-I` at the pole.
-fn footprint_jacobian_slope_to_projected(h_in: vec3<f32>) -> mat2x2<f32> {
-    let h = footprint_jacobian_polar(h_in).h;
-    let xy = h.x * h.y;
-    return mat2x2<f32>(
-        vec2<f32>(h.y * h.y + h.z * h.z, -xy) * -h.z,
-        vec2<f32>(-xy, h.x * h.x + h.z * h.z) * -h.z,
-    );
-}
-
-/// `J(o->par) = -1 / h_z^2 [[cos phi, -h_z sin phi], [sin phi, h_z cos phi]]` (TK19
-/// supplement eq. 7; section 3.1); determinant `1 / h_z^3`; `-I` at the pole.
-fn footprint_jacobian_sphere_to_slope(h: vec3<f32>) -> mat2x2<f32> {
-    let p = footprint_jacobian_polar(h);
-    let k = -1.0 / (p.h.z * p.h.z);
-    return mat2x2<f32>(p.cs * k, vec2<f32>(-p.h.z * p.cs.y, p.h.z * p.cs.x) * k);
-}
-
-/// `det J(o->perp) = h_z` (TK19 section 3.2), in `[HZ_MIN, 1]`.
-fn footprint_jacobian_det_sphere_to_projected(h: vec3<f32>) -> f32 {
-    return footprint_jacobian_polar(h).h.z;
-}
-
-/// `det J(perp->par) = 1 / h_z^4`, in `[1, 1e24]`.
-fn footprint_jacobian_det_projected_to_slope(h: vec3<f32>) -> f32 {
-    let z = footprint_jacobian_polar(h).h.z;
-    let z2 = z * z;
-    return 1.0 / (z2 * z2);
-}
-
-/// `det J(o->par) = 1 / h_z^3` (TK19 section 3.1), in `[1, 1e18]`.
-fn footprint_jacobian_det_sphere_to_slope(h: vec3<f32>) -> f32 {
-    let z = footprint_jacobian_polar(h).h.z;
-    return 1.0 / (z * z * z);
-}
-
-/// A spherical error `(eps_x, eps_y)` mapped to the slope domain, `J(o->par) eps` (TK19
-/// section 3.1).
-fn footprint_jacobian_spherical_to_slope(h: vec3<f32>, e: vec2<f32>) -> vec2<f32> {
-    return footprint_jacobian_sphere_to_slope(h) * e;
-}
-
-/// The same error mapped to the projected disk, `J(o->perp) eps` (TK19 section 3.2).
-fn footprint_jacobian_spherical_to_projected(h: vec3<f32>, e: vec2<f32>) -> vec2<f32> {
-    return footprint_jacobian_sphere_to_projected(h) * e;
-}
-
-// ---- filtered_ndf::kernel::rect (shaders/kernel/rect.wgsl) ----
-// The axis-aligned slope-domain rectangle of KHPL16 section 5.3 (the `footprint` of the
-// GDC 2016 `GGXRectIntegral`), mirroring `BoundingRect` of `src/.../kernel/rect.rs`.
-
-/// A rectangle centred on the half vector's slope, by its half-extents (slope units, `>= 0`).
-/// It bounds the one-pixel parallelogram: `half_extent = (|dh_u| + |dh_v|) / 2`.
-struct kernel_rect_BoundingRect {
-    /// Half-extents along the tangent `x` and bitangent `y`.
-    half_extent: vec2<f32>,
-}
-
-/// The Gaussian-equivalent diagonal covariance `diag((2 sigma h_x)^2, (2 sigma h_y)^2)`
-/// (`sigma` in pixels; GDC 2016 Beckmann listing `rghns_sq += fp * fp * 2`, TK19 Listing 3).
-fn kernel_rect_covariance(r: kernel_rect_BoundingRect, sigma: f32) -> kernel_covariance_Covariance {
-    let w = r.half_extent * (2.0 * sigma);
-    let v = w * w;
-    return kernel_covariance_Covariance(v.x, 0.0, v.y, v.x * v.y);
-}
-
-// ---- filtered_ndf::footprint (shaders/footprint/mod.wgsl) ----
-// Pixel footprints in the slope domain (KHPL16 sections 4.2, 4.3; TK19 section 2.2),
-// mirroring `Footprint` of `src/.../footprint/mod.rs`: the slope change of the half vector
-// across one pixel step in `x` (`dh_u`) and in `y` (`dh_v`). A Gaussian pixel filter of
-// standard deviation `sigma` pixels carried into the slope domain has covariance
-// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`.
-
-/// The standard deviation of the pixel filter of KHPL16 and TK19, in pixels.
-const footprint_SIGMA_PIXEL: f32 = 0.5;
-
-/// A slope-domain pixel footprint.
-struct footprint_Footprint {
-    /// Slope change per pixel step along the image `x` axis.
-    dh_u: vec2<f32>,
-    /// Slope change per pixel step along the image `y` axis.
-    dh_v: vec2<f32>,
-}
-
-/// From slope-domain derivatives, e.g. `dpdx`/`dpdy` of the slope of `h` (KHPL16 section
-/// 5.1).
-fn footprint_from_slope_derivatives(dh_u: vec2<f32>, dh_v: vec2<f32>) -> footprint_Footprint {
-    return footprint_Footprint(dh_u, dh_v);
-}
-
-/// From derivatives of the projected half vector `p = h_xy` (TK19 section 3.2, Listing 1:
-/// `ddx(halfvectorTS.xy)`), used as slope changes directly, as TK19 does (no Jacobian: the
-/// bandwidth shrinks by `h_z` at grazing half vectors relative to the sphere).
-fn footprint_from_projected_derivatives(dp_u: vec2<f32>, dp_v: vec2<f32>) -> footprint_Footprint {
-    return footprint_Footprint(dp_u, dp_v);
-}
-
-/// The slope-domain footprint of disk derivatives at the half vector `h`:
-/// `dh = J(perp->par) dp` (TK19 supplement eq. 6, [`jacobian::projected_to_slope`]: `h`
-/// normalised, clamped to the horizon `h_z >= 1e-6` at constant azimuth). A zero `h` gives a
-/// zero footprint.
-fn footprint_from_projected_derivatives_in_slope(
-    h: vec3<f32>,
-    dp_u: vec2<f32>,
-    dp_v: vec2<f32>,
-) -> footprint_Footprint {
-    let big = max(max(abs(h.x), abs(h.y)), abs(h.z));
-    if big <= 0.0 {
-        return footprint_Footprint(vec2<f32>(0.0), vec2<f32>(0.0));
-    }
-    let j = footprint_jacobian_projected_to_slope(h);
-    return footprint_Footprint(j * dp_u, j * dp_v);
-}
-
-/// The deferred footprint from normal differences to the neighbouring pixels (TK19 section
-/// 4.4, eq. 3) in the tangent frame of the current normal: `2 (dn)_xy / |2 e_z + dn|` per
-/// difference (the derivative of the half-way normal on the disk, whose length is `|dn|`
-/// for unit normals), the denominator clamped to `>= 1e-6`.
-fn footprint_from_normal_differences(dn_u: vec3<f32>, dn_v: vec3<f32>) -> footprint_Footprint {
-    let lu = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_u), 1e-6);
-    let lv = max(length(vec3<f32>(0.0, 0.0, 2.0) + dn_v), 1e-6);
-    return footprint_Footprint(dn_u.xy * (2.0 / lu), dn_v.xy * (2.0 / lv));
-}
-
-/// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels, with
-/// `det Sigma = sigma^4 (dh_u x dh_v)^2` from the vectors (accurate for elongated kernels).
-fn footprint_covariance(fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
-    let u = fp.dh_u;
-    let v = fp.dh_v;
-    let s2 = sigma * sigma;
-    let cross = (u.x * v.y - u.y * v.x) * s2;
-    return kernel_covariance_Covariance(
-        (u.x * u.x + v.x * v.x) * s2,
-        (u.x * u.y + v.x * v.y) * s2,
-        (u.y * u.y + v.y * v.y) * s2,
-        cross * cross,
-    );
-}
-
-/// The axis-aligned bounding rectangle of the one-pixel parallelogram (KHPL16 section 5.3;
-/// GDC 2016 `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`): half-extent
-/// `(|dh_u| + |dh_v|) / 2` per axis.
-fn footprint_bounding_rect(fp: footprint_Footprint) -> kernel_rect_BoundingRect {
-    return kernel_rect_BoundingRect((abs(fp.dh_u) + abs(fp.dh_v)) * 0.5);
-}
-
-/// The largest centre-to-vertex distance of the one-pixel parallelogram,
-/// `max(|dh_u + dh_v|, |dh_u - dh_v|) / 2`: the extent clamped by KHPL16 section 5.2.
-fn footprint_max_extent(fp: footprint_Footprint) -> f32 {
-    return 0.5 * max(length(fp.dh_u + fp.dh_v), length(fp.dh_u - fp.dh_v));
+/// `D(m)` of [`exact_gaussian_lobe`].
+fn filter_gaussian_ggx_d_ggx_exact_gaussian(method: filter_gaussian_ggx_ExactGaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return filter_gaussian_ggx_d(filter_gaussian_ggx_exact_gaussian_lobe(method, material, fp), m);
 }
 
 // ---- filtered_ndf::filter::projected (shaders/filter/projected.wgsl) ----
@@ -2400,125 +2425,39 @@ fn filter_projected_projected_sanitized(
     return ndf_roughness_matrix_from_entries_det(max(b11, e.x), b12, max(b22, e.z), det, max(tau, 0.0));
 }
 
-// ---- filtered_ndf::kernel::clamp (shaders/kernel/clamp.wgsl) ----
-// The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, GDC 2016,
-// TK19 eq. 1 and supplement), mirroring `ClampRules` of `src/.../kernel/clamp.rs`. A rule is
-// off when its bound is `F32_MAX` (`max_extent`, `kappa`; the Rust `F::INFINITY`),
-// `FLOOR_NONE`, or `det_clamp = false`. Constants mirror `ClampRules::DEFAULT`, `KHPL16`,
-// `NONE`, `GDC2016` (`*_RULES`: WGSL names may not end in a digit here, see shaders/README.md).
-
-/// No rectangle floor.
-const kernel_clamp_FLOOR_NONE: u32 = 0u;
-/// Half-extents `>= floor` on both axes (KHPL16 section 5.2, `epsilon = 1e-3`).
-const kernel_clamp_FLOOR_CONSTANT: u32 = 1u;
-/// Half-extents `>= min(alpha_axis, floor)` per axis (GDC 2016 `min(roughness, 0.1)`).
-const kernel_clamp_FLOOR_ALPHA_CAPPED: u32 = 2u;
-
-/// The clamping rules.
-struct kernel_clamp_ClampRules {
-    /// `lambda`: the largest centre-to-vertex extent of the parallelogram and the largest
-    /// rectangle half-extent (slope units).
-    max_extent: f32,
-    /// `FLOOR_NONE`, `FLOOR_CONSTANT` or `FLOOR_ALPHA_CAPPED`.
-    floor_kind: u32,
-    /// The floor's constant (`epsilon`, or the cap of `FLOOR_ALPHA_CAPPED`).
-    floor: f32,
-    /// `kappa`: the largest kernel roughness^2 `2 lambda_i(Sigma)` per eigen-direction.
-    kappa: f32,
-    /// Evaluate filtered matrices with `tau = det(A_unfiltered)`.
-    det_clamp: bool,
-}
-
-/// The papers' defaults: `lambda = 1`, `epsilon = 1e-3`, `kappa = 0.18`, `tau = det A`.
-const kernel_clamp_DEFAULT_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_CONSTANT, 1e-3, 0.18, true);
-/// KHPL16's rules for its exact kernels: `lambda = 1` (section 5.2) and the determinant clamp;
-/// no rectangle floor (the exact rectangle integral needs none), no `kappa` (a TK19 addition).
-const kernel_clamp_KHPL16_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, true);
-/// No clamping (unbiased; for references and the exact rectangle integral).
-const kernel_clamp_NO_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(math_F32_MAX, kernel_clamp_FLOOR_NONE, 0.0, math_F32_MAX, false);
-/// The GDC 2016 listing: `fp = clamp(fp, min(roughness, 0.1), 1)`, no `kappa`, with `tau`.
-const kernel_clamp_GDC2016_RULES: kernel_clamp_ClampRules = kernel_clamp_ClampRules(1.0, kernel_clamp_FLOOR_ALPHA_CAPPED, 0.1, math_F32_MAX, true);
-
-/// The maximum-extent rule on a parallelogram (KHPL16 section 5.2): both vectors scaled by
-/// `min(1, lambda / max_extent)`, keeping the shape. The extent is measured on the
-/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0.
-fn kernel_clamp_footprint(rules: kernel_clamp_ClampRules, fp: footprint_Footprint) -> footprint_Footprint {
-    let l = max(rules.max_extent, 0.0);
-    let scale = max(max(abs(fp.dh_u.x), abs(fp.dh_u.y)), max(abs(fp.dh_v.x), abs(fp.dh_v.y)));
-    if scale <= 0.0 {
-        return fp;
-    }
-    let unit = footprint_Footprint(fp.dh_u / scale, fp.dh_v / scale);
-    let e = footprint_max_extent(unit);
-    if e * scale <= l {
-        return fp;
-    }
-    return footprint_Footprint(unit.dh_u / e * l, unit.dh_v / e * l);
-}
-
-/// The rectangle rules: half-extents taken by magnitude, clamped to `[floor, lambda]` per
-/// axis (KHPL16 section 5.2; GDC 2016 `clamp(fp, fp_min, fp_max)`), `alpha` the lobe's
-/// per-axis roughness for `FLOOR_ALPHA_CAPPED`; if the floor exceeds `lambda` the floor wins.
-fn kernel_clamp_rect(rules: kernel_clamp_ClampRules, r: kernel_rect_BoundingRect, alpha: vec2<f32>) -> kernel_rect_BoundingRect {
-    var f = vec2<f32>(0.0);
-    if rules.floor_kind == kernel_clamp_FLOOR_CONSTANT {
-        f = vec2<f32>(rules.floor);
-    } else if rules.floor_kind == kernel_clamp_FLOOR_ALPHA_CAPPED {
-        f = min(abs(alpha), vec2<f32>(rules.floor));
-    }
-    let lambda = max(rules.max_extent, 0.0);
-    let h = min(abs(r.half_extent), vec2<f32>(lambda));
-    return kernel_rect_BoundingRect(max(h, max(f, vec2<f32>(0.0))));
-}
-
-/// The kernel-roughness rule of TK19 eq. 1 in matrix form: `2 Sigma'` has the eigenvalues
-/// `min(2 lambda_i, kappa)` and `Sigma`'s eigenvectors, after `covariance::sanitized`. A
-/// negative `kappa` counts as 0.
-fn kernel_clamp_kernel(rules: kernel_clamp_ClampRules, k: kernel_covariance_Covariance) -> kernel_covariance_Covariance {
-    let s = kernel_covariance_sanitized(k);
-    if rules.kappa >= math_F32_MAX {
-        return s;
-    }
-    return kernel_covariance_clamp_eigenvalues(s, 0.5 * max(rules.kappa, 0.0));
-}
-
-/// The determinant clamp `tau` for filtering `a` (the Rust `det_clamp_for`): `det A_c` of the
-/// unfiltered lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a
-/// clamped matrix its `max(det A, tau)`) if `det_clamp`, else the material's own clamp
-/// ([`matrix::own_det_clamp`]: 0 unless it is a clamped matrix).
-fn kernel_clamp_det_clamp_for(rules: kernel_clamp_ClampRules, a: ndf_roughness_matrix_RoughnessMatrix) -> f32 {
-    return select(ndf_roughness_matrix_own_det_clamp(a), ndf_roughness_matrix_clamped_det(a), rules.det_clamp);
-}
-
-/// The clamped pixel kernel of a footprint: [`footprint`] -> `pixel::covariance` (`sigma`
-/// pixels) -> [`kernel`] (sanitised once).
-fn kernel_clamp_pixel_kernel(rules: kernel_clamp_ClampRules, fp: footprint_Footprint, sigma: f32) -> kernel_covariance_Covariance {
-    return kernel_clamp_kernel(rules, footprint_covariance(kernel_clamp_footprint(rules, fp), sigma));
-}
-
-/// The whole Gaussian pipeline: [`footprint`] -> `pixel::covariance` (`sigma` pixels)
-/// -> [`kernel`] -> `A' = A + 2 Sigma` with `tau = det A_c` if `det_clamp` (the TK19 matrix
-/// filter; exact for Beckmann). The result is the one clamped matrix of `matrix.wgsl`.
-fn kernel_clamp_filter_gaussian(
-    rules: kernel_clamp_ClampRules,
-    a: ndf_roughness_matrix_RoughnessMatrix,
-    fp: footprint_Footprint,
-    sigma: f32,
-) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_gaussian_gaussian_sanitized(a, kernel_clamp_pixel_kernel(rules, fp, sigma), kernel_clamp_det_clamp_for(rules, a));
-}
-
-/// The projected-space pipeline (TK21), the rules as in [`filter_gaussian`]: [`footprint`]
-/// -> `pixel::covariance` (`sigma` pixels; the footprint of the half vector's projected-disk
-/// derivatives, TK19 section 3.2) -> [`kernel`] -> `projected::projected_sanitized` with
+/// The projected-space pipeline (TK21), the rules as in `gaussian::filter_gaussian`: `clamp::footprint`
+/// -> `covariance::from_footprint` (`sigma` pixels; the footprint of the half vector's projected-disk
+/// derivatives, TK19 section 3.2) -> `clamp::kernel` -> [`projected_sanitized`] with
 /// `tau = det A_c` if `det_clamp` (the Rust `ClampRules::filter_projected`).
-fn kernel_clamp_filter_projected(
+fn filter_projected_filter_projected(
     rules: kernel_clamp_ClampRules,
     a: ndf_roughness_matrix_RoughnessMatrix,
     fp: footprint_Footprint,
     sigma: f32,
 ) -> ndf_roughness_matrix_RoughnessMatrix {
     return filter_projected_projected_sanitized(a, kernel_clamp_pixel_kernel(rules, fp, sigma), kernel_clamp_det_clamp_for(rules, a));
+}
+
+/// Projected-space filtering of GGX (Tokuyoshi and Kaplanyan 2021), the kernel of the
+/// footprint after the clamp rules.
+struct filter_projected_Projected {
+    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
+    clamps: kernel_clamp_ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    sigma: f32,
+}
+
+/// TK21: the default rules, `sigma = 0.5`.
+const filter_projected_TK21_PROJECTED: filter_projected_Projected = filter_projected_Projected(kernel_clamp_DEFAULT_RULES, footprint_SIGMA_PIXEL);
+
+/// The GGX lobe of projected-space filtering (the Rust `Projected::lobe`), for `ggx::*_matrix`.
+fn filter_projected_projected_lobe(method: filter_projected_Projected, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> ndf_roughness_matrix_RoughnessMatrix {
+    return filter_projected_filter_projected(method.clamps, material, fp, method.sigma);
+}
+
+/// `D(m)` of [`projected_lobe`].
+fn filter_projected_d_ggx_projected(method: filter_projected_Projected, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return ndf_ggx_d_matrix(filter_projected_projected_lobe(method, material, fp), m);
 }
 
 // ---- filtered_ndf::filter::proxy (shaders/filter/proxy.wgsl) ----
@@ -2560,6 +2499,27 @@ fn filter_proxy_proxy_simple(r: ndf_roughness_axis_aligned_AxisAligned, half_ext
         filter_proxy_effective_alpha_simple(r.alpha.x, half_extent.x),
         filter_proxy_effective_alpha_simple(r.alpha.y, half_extent.y),
     ));
+}
+
+/// The GGX proxy of KHPL16 section 5.4 (eq. 18-19, solved exactly): the axis-aligned GGX whose
+/// peak is the box-filtered peak over the clamped bounding rectangle, per axis.
+struct filter_proxy_Proxy {
+    /// The clamp rules applied to the rectangle's half extents.
+    clamps: kernel_clamp_ClampRules,
+}
+
+/// KHPL16: half extents clamped to `lambda = 1`, no floor.
+const filter_proxy_KHPL16_PROXY: filter_proxy_Proxy = filter_proxy_Proxy(kernel_clamp_KHPL16_RULES);
+
+/// The proxy roughness (the Rust `Proxy::lobe`), for `ggx::*_axis_aligned`.
+fn filter_proxy_proxy_lobe(method: filter_proxy_Proxy, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint) -> ndf_roughness_axis_aligned_AxisAligned {
+    let h = kernel_clamp_rect(method.clamps, kernel_rect_from_footprint(fp), material.alpha).half_extent;
+    return filter_proxy_proxy(material, h);
+}
+
+/// `D(m)` of [`proxy_lobe`].
+fn filter_proxy_d_ggx_proxy(method: filter_proxy_Proxy, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return ndf_ggx_d_axis_aligned(filter_proxy_proxy_lobe(method, material, fp), m);
 }
 
 // ---- filtered_ndf::filter::rect (shaders/filter/rect.wgsl) ----
@@ -3191,124 +3151,27 @@ fn filter_rect_lambda_lambda_rect(r: ndf_roughness_axis_aligned_AxisAligned, hal
     return filter_rect_lambda_expected_psi(mm, k1, k2, lo) / mm;
 }
 
-// ---- filtered_ndf::filter::method (shaders/filter/method.wgsl) ----
-// The front door (`src/.../filter/method.rs`): one call from what a shader has (a material
-// roughness and a pixel footprint) to a filtered lobe whose functions describe one
-// distribution. WGSL has no traits, so each method is a small struct (its clamp rules and
-// pixel filter width, with the Rust presets as constants) and a `*_lobe` function that returns
-// the lobe, plus a `d_*` function that returns the filtered `D(m)` in one call:
-//
-// | method (Rust) | constants | lobe function | the lobe, evaluated with |
-// |---|---|---|---|
-// | `Gaussian` | `TK19_GAUSSIAN`, `KHPL16_GAUSSIAN` | `gaussian_lobe` | `matrix::RoughnessMatrix`: `ggx::*_matrix` (TK19's `A + 2 Sigma`), `beckmann::*_matrix` (exact) |
-// | `ExactGaussian` | `KHPL16_EXACT_GAUSSIAN` | `exact_gaussian_lobe` | `gaussian_ggx::GaussianFilteredGgx`: `gaussian_ggx::{p22, d, lambda, g1, g2}`; for Beckmann the exact filter is `gaussian_lobe` with the same rules |
-// | `Projected` | `TK21_PROJECTED` | `projected_lobe` | `matrix::RoughnessMatrix`: `ggx::*_matrix` |
-// | `Rect` | `KHPL16_RECT`, `GDC2016_RECT` | `rect_lobe` | [`RectFilteredGgx`]: `p22_rect_filtered`, `d_rect_filtered`, `lambda_rect_filtered` (the box lobe's own), `g1_rect_filtered`, `g2_rect_filtered` |
-// | `Proxy` | `KHPL16_PROXY` | `proxy_lobe` | `axis_aligned::AxisAligned`: `ggx::*_axis_aligned` |
-//
-// The materials: a roughness matrix for the Gaussian methods (an isotropic or axis-aligned
-// material converts with its `to_matrix`), an axis-aligned roughness for the box methods (their
-// rectangle is axis-aligned; an isotropic `alpha` is `axis_aligned::from_alpha(vec2(alpha))`,
-// as the Rust `From<Isotropic>`). The footprint: `footprint::Footprint` from whichever
-// derivatives the shader has (`footprint.wgsl`); `Projected` wants the projected-disk
-// derivatives (TK19 section 3.2), a slope footprint is exact at `h = n`.
-// (Names: WGSL identifiers may not end in a digit here, see shaders/README.md, so the Rust
-// `Gaussian::TK19` is `TK19_GAUSSIAN`.)
-
-/// `A' = A + 2 Sigma` with the clamped Gaussian pixel kernel (KHPL16 eq. 13-15; TK19 section
-/// 2.2): exact for Beckmann, TK19's approximation for GGX.
-struct filter_method_Gaussian {
-    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
-    clamps: kernel_clamp_ClampRules,
-    /// The standard deviation of the Gaussian pixel filter, in pixels.
-    sigma: f32,
-}
-
-/// TK19: the default rules (`lambda = 1`, `kappa = 0.18`, the determinant clamp), `sigma = 0.5`.
-const filter_method_TK19_GAUSSIAN: filter_method_Gaussian = filter_method_Gaussian(kernel_clamp_DEFAULT_RULES, footprint_SIGMA_PIXEL);
-/// KHPL16's parallelogram kernel: `lambda = 1` and the determinant clamp, no `kappa`.
-const filter_method_KHPL16_GAUSSIAN: filter_method_Gaussian = filter_method_Gaussian(kernel_clamp_KHPL16_RULES, footprint_SIGMA_PIXEL);
-
-/// The lobe of `material` filtered by `method` over `fp` (the Rust `Gaussian::lobe`): the
-/// filtered roughness matrix, for `ggx::*_matrix` or `beckmann::*_matrix`.
-fn filter_method_gaussian_lobe(method: filter_method_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> ndf_roughness_matrix_RoughnessMatrix {
-    return kernel_clamp_filter_gaussian(method.clamps, material, fp, method.sigma);
-}
-
-/// `D(m)` of the GGX lobe of [`gaussian_lobe`].
-fn filter_method_d_ggx_gaussian(method: filter_method_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
-    return ndf_ggx_d_matrix(filter_method_gaussian_lobe(method, material, fp), m);
-}
-
-/// `D(m)` of the Beckmann lobe of [`gaussian_lobe`] (the exact Gaussian filter of Beckmann).
-fn filter_method_d_beckmann_gaussian(method: filter_method_Gaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
-    return ndf_beckmann_d_matrix(filter_method_gaussian_lobe(method, material, fp), m);
-}
-
-/// The exact Gaussian filter: the material's slope density convolved with the clamped pixel
-/// kernel (GGX: `GaussianFilteredGgx`; Beckmann: `A + 2 Sigma`, [`gaussian_lobe`] with the
-/// same rules).
-struct filter_method_ExactGaussian {
-    /// The clamp rules applied to the footprint and the kernel.
-    clamps: kernel_clamp_ClampRules,
-    /// The standard deviation of the Gaussian pixel filter, in pixels.
-    sigma: f32,
-    /// The accuracy setting of the GGX lobe's density (`gaussian_ggx::TOL_*`, the Rust
-    /// `Tolerance`).
-    tolerance: u32,
-}
-
-/// The unbiased filter of the footprint: `lambda = 1` (KHPL16 section 5.2), no `kappa`,
-/// `sigma = 0.5`, the full accuracy.
-const filter_method_KHPL16_EXACT_GAUSSIAN: filter_method_ExactGaussian = filter_method_ExactGaussian(kernel_clamp_KHPL16_RULES, footprint_SIGMA_PIXEL, filter_gaussian_ggx_TOL_FULL);
-
-/// The GGX lobe of the exact Gaussian filter (the Rust `ExactGaussian::lobe` for GGX).
-fn filter_method_exact_gaussian_lobe(method: filter_method_ExactGaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> filter_gaussian_ggx_GaussianFilteredGgx {
-    return filter_gaussian_ggx_with_tolerance(filter_gaussian_ggx_from_kernel(material, kernel_clamp_pixel_kernel(method.clamps, fp, method.sigma)), method.tolerance);
-}
-
-/// `D(m)` of [`exact_gaussian_lobe`].
-fn filter_method_d_ggx_exact_gaussian(method: filter_method_ExactGaussian, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
-    return filter_gaussian_ggx_d(filter_method_exact_gaussian_lobe(method, material, fp), m);
-}
-
-/// Projected-space filtering of GGX (Tokuyoshi and Kaplanyan 2021), the kernel of the
-/// footprint after the clamp rules.
-struct filter_method_Projected {
-    /// The clamp rules applied to the footprint, the kernel and the filtered matrix.
-    clamps: kernel_clamp_ClampRules,
-    /// The standard deviation of the Gaussian pixel filter, in pixels.
-    sigma: f32,
-}
-
-/// TK21: the default rules, `sigma = 0.5`.
-const filter_method_TK21_PROJECTED: filter_method_Projected = filter_method_Projected(kernel_clamp_DEFAULT_RULES, footprint_SIGMA_PIXEL);
-
-/// The GGX lobe of projected-space filtering (the Rust `Projected::lobe`), for `ggx::*_matrix`.
-fn filter_method_projected_lobe(method: filter_method_Projected, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint) -> ndf_roughness_matrix_RoughnessMatrix {
-    return kernel_clamp_filter_projected(method.clamps, material, fp, method.sigma);
-}
-
-/// `D(m)` of [`projected_lobe`].
-fn filter_method_d_ggx_projected(method: filter_method_Projected, material: ndf_roughness_matrix_RoughnessMatrix, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
-    return ndf_ggx_d_matrix(filter_method_projected_lobe(method, material, fp), m);
-}
+// ---- filtered_ndf::filter::rect::lobe (shaders/filter/rect/lobe.wgsl) ----
+// The box-filter method and its lobe (`src/.../filter/rect/lobe.rs`): `Rect` (KHPL16 section
+// 5.3, the footprint's bounding rectangle after the clamp rules) gives `RectFilteredGgx`, the
+// axis-aligned GGX averaged over that rectangle (`boxed::p22_rect`, `boxed::d_rect`), with its
+// own Smith `Lambda` (`box_lambda::lambda_rect`). Its sampler is `sampling::rect`.
 
 /// The exact box filter of KHPL16 section 5.3 over the footprint's bounding rectangle, its half
 /// extents clamped by the rules (`clamp::rect`).
-struct filter_method_Rect {
+struct filter_rect_lobe_Rect {
     /// The clamp rules applied to the rectangle's half extents.
     clamps: kernel_clamp_ClampRules,
 }
 
 /// KHPL16 with the exact integral: half extents clamped to `lambda = 1`, no floor.
-const filter_method_KHPL16_RECT: filter_method_Rect = filter_method_Rect(kernel_clamp_KHPL16_RULES);
+const filter_rect_lobe_KHPL16_RECT: filter_rect_lobe_Rect = filter_rect_lobe_Rect(kernel_clamp_KHPL16_RULES);
 /// The GDC 2016 listing's clamps: half extents in `[min(alpha, 0.1), 1]`.
-const filter_method_GDC2016_RECT: filter_method_Rect = filter_method_Rect(kernel_clamp_GDC2016_RULES);
+const filter_rect_lobe_GDC2016_RECT: filter_rect_lobe_Rect = filter_rect_lobe_Rect(kernel_clamp_GDC2016_RULES);
 
 /// The exactly box-filtered GGX lobe (the Rust `RectFilteredGgx`): the material's slope density
 /// averaged over `[-half_extent, half_extent]` around each slope.
-struct filter_method_RectFilteredGgx {
+struct filter_rect_lobe_RectFilteredGgx {
     /// The material's roughness.
     roughness: ndf_roughness_axis_aligned_AxisAligned,
     /// The rectangle's half extents (slope units, `>= 0`).
@@ -3316,61 +3179,40 @@ struct filter_method_RectFilteredGgx {
 }
 
 /// The box-filtered lobe of `material` over `fp` (the Rust `Rect::lobe`).
-fn filter_method_rect_lobe(method: filter_method_Rect, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint) -> filter_method_RectFilteredGgx {
-    let h = kernel_clamp_rect(method.clamps, footprint_bounding_rect(fp), material.alpha).half_extent;
-    return filter_method_RectFilteredGgx(material, h);
+fn filter_rect_lobe_rect_lobe(method: filter_rect_lobe_Rect, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint) -> filter_rect_lobe_RectFilteredGgx {
+    let h = kernel_clamp_rect(method.clamps, kernel_rect_from_footprint(fp), material.alpha).half_extent;
+    return filter_rect_lobe_RectFilteredGgx(material, h);
 }
 
-/// `P22(s)` of the box lobe (`rect::p22_rect`).
-fn filter_method_p22_rect_filtered(lobe: filter_method_RectFilteredGgx, s: vec2<f32>) -> f32 {
+/// `P22(s)` of the box lobe (`boxed::p22_rect`).
+fn filter_rect_lobe_p22_rect_filtered(lobe: filter_rect_lobe_RectFilteredGgx, s: vec2<f32>) -> f32 {
     return filter_rect_p22_rect(lobe.roughness, s, lobe.half_extent);
 }
 
-/// `D(m)` of the box lobe (`rect::d_rect`).
-fn filter_method_d_rect_filtered(lobe: filter_method_RectFilteredGgx, m: vec3<f32>) -> f32 {
+/// `D(m)` of the box lobe (`boxed::d_rect`).
+fn filter_rect_lobe_d_rect_filtered(lobe: filter_rect_lobe_RectFilteredGgx, m: vec3<f32>) -> f32 {
     return filter_rect_d_rect(lobe.roughness, m, lobe.half_extent);
 }
 
 /// Smith `Lambda(w)` of the box lobe: the box-filtered distribution's own
-/// (`rect::lambda::lambda_rect`), so that `g1`, `g2` and `d` describe one distribution.
-fn filter_method_lambda_rect_filtered(lobe: filter_method_RectFilteredGgx, w: vec3<f32>) -> f32 {
+/// (`lambda::lambda_rect`), so that `g1`, `g2` and `d` describe one distribution.
+fn filter_rect_lobe_lambda_rect_filtered(lobe: filter_rect_lobe_RectFilteredGgx, w: vec3<f32>) -> f32 {
     return filter_rect_lambda_lambda_rect(lobe.roughness, lobe.half_extent, w);
 }
 
 /// `G1(w, m)` of the box lobe.
-fn filter_method_g1_rect_filtered(lobe: filter_method_RectFilteredGgx, w: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g1_of(filter_method_lambda_rect_filtered(lobe, w), dot(w, m));
+fn filter_rect_lobe_g1_rect_filtered(lobe: filter_rect_lobe_RectFilteredGgx, w: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g1_of(filter_rect_lobe_lambda_rect_filtered(lobe, w), dot(w, m));
 }
 
 /// `G2(i, o, m)` of the box lobe (height-correlated).
-fn filter_method_g2_rect_filtered(lobe: filter_method_RectFilteredGgx, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
-    return ndf_g2_of(filter_method_lambda_rect_filtered(lobe, i), filter_method_lambda_rect_filtered(lobe, o), dot(i, m), dot(o, m));
+fn filter_rect_lobe_g2_rect_filtered(lobe: filter_rect_lobe_RectFilteredGgx, i: vec3<f32>, o: vec3<f32>, m: vec3<f32>) -> f32 {
+    return ndf_g2_of(filter_rect_lobe_lambda_rect_filtered(lobe, i), filter_rect_lobe_lambda_rect_filtered(lobe, o), dot(i, m), dot(o, m));
 }
 
 /// `D(m)` of [`rect_lobe`].
-fn filter_method_d_ggx_rect(method: filter_method_Rect, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
-    return filter_method_d_rect_filtered(filter_method_rect_lobe(method, material, fp), m);
-}
-
-/// The GGX proxy of KHPL16 section 5.4 (eq. 18-19, solved exactly): the axis-aligned GGX whose
-/// peak is the box-filtered peak over the clamped bounding rectangle, per axis.
-struct filter_method_Proxy {
-    /// The clamp rules applied to the rectangle's half extents.
-    clamps: kernel_clamp_ClampRules,
-}
-
-/// KHPL16: half extents clamped to `lambda = 1`, no floor.
-const filter_method_KHPL16_PROXY: filter_method_Proxy = filter_method_Proxy(kernel_clamp_KHPL16_RULES);
-
-/// The proxy roughness (the Rust `Proxy::lobe`), for `ggx::*_axis_aligned`.
-fn filter_method_proxy_lobe(method: filter_method_Proxy, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint) -> ndf_roughness_axis_aligned_AxisAligned {
-    let h = kernel_clamp_rect(method.clamps, footprint_bounding_rect(fp), material.alpha).half_extent;
-    return filter_proxy_proxy(material, h);
-}
-
-/// `D(m)` of [`proxy_lobe`].
-fn filter_method_d_ggx_proxy(method: filter_method_Proxy, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
-    return ndf_ggx_d_axis_aligned(filter_method_proxy_lobe(method, material, fp), m);
+fn filter_rect_lobe_d_ggx_rect(method: filter_rect_lobe_Rect, material: ndf_roughness_axis_aligned_AxisAligned, fp: footprint_Footprint, m: vec3<f32>) -> f32 {
+    return filter_rect_lobe_d_rect_filtered(filter_rect_lobe_rect_lobe(method, material, fp), m);
 }
 
 // ---- filtered_ndf::filter::lean_nested (shaders/filter/lean_nested.wgsl) ----
@@ -3380,13 +3222,13 @@ fn filter_method_d_ggx_proxy(method: filter_method_Proxy, material: ndf_roughnes
 // over the pixel footprint as it filters a material. The clamp rules act on the pixel kernel
 // only. `moments` come from the baked chain (`bake::moments::sample_grad`).
 //
-// | method (`filter::method`) | nested lobe function | evaluate with |
+// | method | nested lobe function | evaluate with |
 // |---|---|---|
-// | `Gaussian` | `gaussian_lobe` | `ggx::*_matrix`, `beckmann::*_matrix` |
-// | `ExactGaussian` | `exact_gaussian_lobe` (GGX: one kernel `Sigma_L + K_P`, exact); Beckmann: `gaussian_lobe` | `gaussian_ggx::*` |
-// | `Projected` | `projected_lobe` | `ggx::*_matrix` |
-// | `Rect` | `rect_lobe` (the widened diagonal, `lean_widened_axis_aligned`) | `method::*_rect_filtered` |
-// | `Proxy` | `proxy_lobe` (likewise) | `ggx::*_axis_aligned` |
+// | `gaussian::Gaussian` | `gaussian_lobe` | `ggx::*_matrix`, `beckmann::*_matrix` |
+// | `gaussian_ggx::ExactGaussian` | `exact_gaussian_lobe` (GGX: one kernel `Sigma_L + K_P`, exact); Beckmann: `gaussian_lobe` | `gaussian_ggx::*` |
+// | `projected::Projected` | `projected_lobe` | `ggx::*_matrix` |
+// | `lobe::Rect` (`filter::rect::lobe`) | `rect_lobe` (the widened diagonal, `lean_widened_axis_aligned`) | `lobe::*_rect_filtered` |
+// | `proxy::Proxy` | `proxy_lobe` (likewise) | `ggx::*_axis_aligned` |
 
 /// `A_L = A + 2 Sigma_L`, `Sigma_L = lean::covariance(moments)` (PSD-projected), with the
 /// determinant clamp `tau = det A` (the Rust `lean_widened`; `gaussian::gaussian`).
@@ -3407,56 +3249,57 @@ fn filter_lean_nested_lean_mean_normal(moments: filter_lean_LeanMoments) -> vec3
     return normalize(vec3<f32>(-moments.mean, 1.0));
 }
 
-/// `Lean<Gaussian>::lobe`: `method::gaussian_lobe` of the widened material.
+/// `Lean<Gaussian>::lobe`: `gaussian::gaussian_lobe` of the widened material.
 fn filter_lean_nested_gaussian_lobe(
-    m: filter_method_Gaussian,
+    m: filter_gaussian_Gaussian,
     material: ndf_roughness_matrix_RoughnessMatrix,
     fp: footprint_Footprint,
     moments: filter_lean_LeanMoments,
 ) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_method_gaussian_lobe(m, filter_lean_nested_lean_widened(material, moments), fp);
+    return filter_gaussian_gaussian_lobe(m, filter_lean_nested_lean_widened(material, moments), fp);
 }
 
 /// `Lean<ExactGaussian>::lobe` for GGX: the exact Gaussian-filtered GGX of the material over
-/// one kernel, the method's clamped pixel kernel plus `Sigma_L` (both Gaussians, so they add).
+/// one kernel, the method's clamped pixel kernel plus `Sigma_L` (both Gaussians, so they add),
+/// at the method's accuracy setting.
 fn filter_lean_nested_exact_gaussian_lobe(
-    m: filter_method_ExactGaussian,
+    m: filter_gaussian_ggx_ExactGaussian,
     material: ndf_roughness_matrix_RoughnessMatrix,
     fp: footprint_Footprint,
     moments: filter_lean_LeanMoments,
 ) -> filter_gaussian_ggx_GaussianFilteredGgx {
     let k = kernel_covariance_add(kernel_clamp_pixel_kernel(m.clamps, fp, m.sigma), filter_lean_covariance(moments));
-    return filter_gaussian_ggx_from_kernel(material, k);
+    return filter_gaussian_ggx_with_tolerance(filter_gaussian_ggx_from_kernel(material, k), m.tolerance);
 }
 
-/// `Lean<Projected>::lobe`: `method::projected_lobe` of the widened material.
+/// `Lean<Projected>::lobe`: `projected::projected_lobe` of the widened material.
 fn filter_lean_nested_projected_lobe(
-    m: filter_method_Projected,
+    m: filter_projected_Projected,
     material: ndf_roughness_matrix_RoughnessMatrix,
     fp: footprint_Footprint,
     moments: filter_lean_LeanMoments,
 ) -> ndf_roughness_matrix_RoughnessMatrix {
-    return filter_method_projected_lobe(m, filter_lean_nested_lean_widened(material, moments), fp);
+    return filter_projected_projected_lobe(m, filter_lean_nested_lean_widened(material, moments), fp);
 }
 
-/// `Lean<Rect>::lobe`: `method::rect_lobe` of the widened axis-aligned lobe.
+/// `Lean<Rect>::lobe`: `lobe::rect_lobe` of the widened axis-aligned lobe.
 fn filter_lean_nested_rect_lobe(
-    m: filter_method_Rect,
+    m: filter_rect_lobe_Rect,
     material: ndf_roughness_axis_aligned_AxisAligned,
     fp: footprint_Footprint,
     moments: filter_lean_LeanMoments,
-) -> filter_method_RectFilteredGgx {
-    return filter_method_rect_lobe(m, filter_lean_nested_lean_widened_axis_aligned(material, moments), fp);
+) -> filter_rect_lobe_RectFilteredGgx {
+    return filter_rect_lobe_rect_lobe(m, filter_lean_nested_lean_widened_axis_aligned(material, moments), fp);
 }
 
-/// `Lean<Proxy>::lobe`: `method::proxy_lobe` of the widened axis-aligned lobe.
+/// `Lean<Proxy>::lobe`: `proxy::proxy_lobe` of the widened axis-aligned lobe.
 fn filter_lean_nested_proxy_lobe(
-    m: filter_method_Proxy,
+    m: filter_proxy_Proxy,
     material: ndf_roughness_axis_aligned_AxisAligned,
     fp: footprint_Footprint,
     moments: filter_lean_LeanMoments,
 ) -> ndf_roughness_axis_aligned_AxisAligned {
-    return filter_method_proxy_lobe(m, filter_lean_nested_lean_widened_axis_aligned(material, moments), fp);
+    return filter_proxy_proxy_lobe(m, filter_lean_nested_lean_widened_axis_aligned(material, moments), fp);
 }
 
 // ---- filtered_ndf::filter::presets (shaders/filter/presets.wgsl) ----
@@ -3648,75 +3491,6 @@ fn filter_presets_preset(i: u32) -> filter_deferred_KernelConvention {
     }
 }
 
-// ---- filtered_ndf::filter::rect::sample (shaders/filter/rect/sample.wgsl) ----
-// Importance sampling of the box-filtered GGX lobe (`boxed::d_rect`, `lambda::lambda_rect`)
-// and its pdfs, mirroring `src/.../filter/rect/sample.rs`.
-//
-// `D(m) m_z`: the lobe's slope is `s = g + delta` with `g` axis-aligned GGX and `delta`
-// uniform on the box `[-H_x, H_x] x [-H_y, H_y]` (its density is the box mean of `P22`,
-// `boxed::p22_rect`, KHPL16 eq. 16), so a GGX slope plus a uniform offset is an exact sample:
-// four uniform numbers, `u` for the GGX slope and `u_box` for the offset (the lobe's
-// conditional CDFs have no closed form, so two numbers would need a root find per
-// dimension). Visible normals: `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014
-// eq. 16) with the box lobe's own `Lambda`; its density is here, its sampler (an offset drawn
-// by its projected-area weight, two Newton solves over `Psi_1` means) is not yet.
-//
-// Out of domain: `u` components clamped to `[0, 1 - 2^-24]`; half extents by magnitude, at
-// most `1e18 alpha` (`boxed::BIG`; the Rust crate `1e60 alpha`); a sampled `m` is a unit
-// vector with `m_z > 0` (a slope beyond the f32 range keeps `m_z` at the smallest normal).
-
-/// A half extent as `boxed::p22_rect` reads it, in slope units: `|h|`, at most `BIG alpha`
-/// (NaN as 0 where the driver keeps the comparison).
-fn filter_rect_sample_half(h: f32, alpha: f32) -> f32 {
-    let v = abs(h);
-    return select(0.0, min(v, filter_rect_BIG * alpha), v >= 0.0);
-}
-
-/// The unit normal `normalize(-s, 1)` of the slope `s` (scaled first: no square overflows),
-/// `m_z` kept at the smallest normal f32 where it underflows.
-fn filter_rect_sample_normal_of_slope(s: vec2<f32>) -> vec3<f32> {
-    let n = sampling_normalize_scaled(vec3<f32>(-s, 1.0));
-    return vec3<f32>(n.xy, max(n.z, math_F32_MIN_POSITIVE));
-}
-
-/// Samples a unit micronormal `m` of the box-filtered GGX lobe (roughness `r`, slope-domain
-/// half extents `half_extent`) with density `D(m) m_z` per steradian, `D` = `boxed::d_rect`
-/// (KHPL16 eq. 16 per steradian): the axis-aligned GGX slope
-/// `g = -alpha sqrt(u1 / (1 - u1)) (cos phi, sin phi)`, `phi = 2 pi u2` (the GGX sampler's
-/// `D(m) m_z`, Walter et al. 2007 eq. 35-36 with the anisotropic stretch), plus the offset
-/// `(2 u_box - 1) H` uniform in the box. Exact; four uniform numbers in `[0, 1)`. Zero half
-/// extents: the GGX sample (the same direction as `sampling::sample_normal`).
-fn filter_rect_sample_sample_normal_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, u: vec2<f32>, u_box: vec2<f32>) -> vec3<f32> {
-    let a = r.alpha;
-    let h = vec2<f32>(filter_rect_sample_half(half_extent.x, a.x), filter_rect_sample_half(half_extent.y, a.y));
-    let u1 = sampling_clamp_unit(u.x);
-    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
-    let rad = sqrt(u1 / (1.0 - u1));
-    let g = -a * (rad * cs);
-    let b = vec2<f32>(sampling_clamp_unit(u_box.x), sampling_clamp_unit(u_box.y));
-    let d = (2.0 * b - 1.0) * h;
-    return filter_rect_sample_normal_of_slope(g + d);
-}
-
-/// The density of [`sample_normal_rect`], `D(m) m_z` per steradian with `D` =
-/// `boxed::d_rect`, for a unit `m`; 0 for `m_z <= 0`.
-fn filter_rect_sample_normal_pdf_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, m: vec3<f32>) -> f32 {
-    return select(0.0, filter_rect_d_rect(r, m, half_extent) * m.z, m.z > 0.0);
-}
-
-/// The visible-normal density of the box lobe,
-/// `D_wo(m) = max(0, wo.m) D(m) / (wo_z (1 + Lambda(wo)))` per steradian (Heitz 2014 eq. 16)
-/// for a unit `m`, `D` = `boxed::d_rect`, `Lambda` = `lambda::lambda_rect`. 0 for
-/// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`; `wo` need not be normalised.
-fn filter_rect_sample_visible_normal_pdf_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, wo: vec3<f32>, m: vec3<f32>) -> f32 {
-    let wom = dot(wo, m);
-    if !(wo.z > 0.0) || !(m.z > 0.0) || !(wom > 0.0) {
-        return 0.0;
-    }
-    let v = wom * filter_rect_d_rect(r, m, half_extent) / (wo.z * (1.0 + filter_rect_lambda_lambda_rect(r, half_extent, wo)));
-    return select(0.0, v, v <= math_F32_MAX);
-}
-
 // ---- filtered_ndf::footprint::slope (shaders/footprint/slope.wgsl) ----
 // The three half-vector domains and the maps between them (TK19 supplement eq. 1-5),
 // mirroring `src/.../footprint/slope.rs`: the sphere (unit `h`, tangent frame, `z` = shading
@@ -3769,6 +3543,171 @@ fn footprint_slope_slope_from_projected(p: vec2<f32>) -> vec2<f32> {
 /// Disk point of a slope, `p = -s / sqrt(1 + |s|^2)`.
 fn footprint_slope_projected_from_slope(s: vec2<f32>) -> vec2<f32> {
     return footprint_slope_projected_from_sphere(footprint_slope_sphere_from_slope(s));
+}
+
+// ---- filtered_ndf::sampling (shaders/sampling/mod.wgsl) ----
+// Importance sampling of GGX with a roughness matrix, and the pdfs for multiple importance
+// sampling, mirroring `src/.../sampling/mod.rs` (GGX, `NdfSampling`). Densities per
+// steradian: `D(m) m_z` (KHPL16 eq. 2) and the visible normals
+// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014 eq. 16); the reflected direction
+// `wi = reflect(wo, m)` has `D_wo(m) / (4 wo.m)` (Walter et al. 2007 eq. 14).
+//
+// One linear warp for every roughness: with `A = L L^T` (lower Cholesky factor), slopes
+// `s = L t` map the unit-roughness NDF of `t` to the NDF of `A`; the visible normals of `A`
+// seen from `wo` are the image of the unit-roughness visible normals seen from
+// `normalize(L^T wo_xy, wo_z)` (Heitz and d'Eon 2014 section 4; the same algebra for any
+// `L`). The unit-roughness GGX sampler is the spherical caps of Dupuy and Benyoub 2023
+// (listing 3). The angle `2 pi u` goes through `math::sincos_turns` (WGSL allows the driver
+// `sin`/`cos` an absolute `2^-11`).
+//
+// Out of domain: `wo_z <= 0` has no visible normal: the samplers return the zero vector
+// (the Rust `None`) and the pdfs 0. `u` is clamped to `[0, 1 - 2^-24]`. `wo` need not be
+// normalised; `m` must be a unit vector for the pdfs.
+
+/// The largest f32 below 1: the upper clamp of the uniform numbers.
+const sampling_ONE_MINUS_EPS: f32 = 0.99999994;
+
+/// The lower Cholesky factor `L = [[l_xx, 0], [l_yx, l_yy]]` of a roughness, `A = L L^T`.
+struct sampling_Warp {
+    /// `sqrt(a11)`.
+    l_xx: f32,
+    /// `a12 / sqrt(a11)`.
+    l_yx: f32,
+    /// `sqrt(det A) / sqrt(a11)`.
+    l_yy: f32,
+}
+
+/// The warp of a roughness matrix: the Cholesky factor of the clamped matrix `A_c` that the
+/// density evaluates (`matrix.wgsl`; entries from its eigenbasis, `sqrt(det A_c)` as stored),
+/// so that the sampled lobe is the one `D` describes.
+fn sampling_warp(r: ndf_roughness_matrix_RoughnessMatrix) -> sampling_Warp {
+    let e = ndf_roughness_matrix_clamped_entries(r);
+    let l_xx = sqrt(e.x);
+    return sampling_Warp(l_xx, e.y / l_xx, r.sqrt_det / l_xx);
+}
+
+/// `v / |v|` after scaling by the largest component (no overflow or underflow of the
+/// squares). `v` non-zero.
+fn sampling_normalize_scaled(v: vec3<f32>) -> vec3<f32> {
+    let w = v / max(max(abs(v.x), abs(v.y)), abs(v.z));
+    return w / length(w);
+}
+
+/// `(L^T w_xy, w_z)`: a view direction into the unit-roughness space (unnormalised).
+fn sampling_stretch(l: sampling_Warp, w: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(l.l_xx * w.x + l.l_yx * w.y, l.l_yy * w.y, w.z);
+}
+
+/// `normalize(L n_xy, n_z)`: a unit-roughness normal back to roughness `A`.
+fn sampling_unstretch(l: sampling_Warp, n: vec3<f32>) -> vec3<f32> {
+    return sampling_normalize_scaled(vec3<f32>(l.l_xx * n.x, l.l_yx * n.x + l.l_yy * n.y, n.z));
+}
+
+/// A uniform number clamped into `[0, 1 - 2^-24]` (negative values to 0).
+fn sampling_clamp_unit(u: f32) -> f32 {
+    return select(0.0, min(u, sampling_ONE_MINUS_EPS), u >= 0.0);
+}
+
+/// Mirror reflection of `wo` about the unit normal `m`: `2 (wo.m) m - wo` (Walter et al.
+/// 2007 eq. 13).
+fn sampling_reflect(wo: vec3<f32>, m: vec3<f32>) -> vec3<f32> {
+    return 2.0 * dot(wo, m) * m - wo;
+}
+
+/// Unit-roughness GGX visible normal by spherical caps (Dupuy and Benyoub 2023): a uniform
+/// point `c` on the cap `z >= -wi_z` of the unit sphere, returned as `c + wi` (unnormalised).
+fn sampling_ggx_standard_visible(wi: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
+    let cs = math_sincos_turns(u.x);
+    let z = (1.0 - u.y) * (1.0 + wi.z) - wi.z;
+    let sin_theta = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
+    return vec3<f32>(sin_theta * cs, z) + wi;
+}
+
+/// Samples a visible micronormal `m` of GGX with roughness `r` from `u` in `[0, 1)^2`, with
+/// density `D_wo(m)` per steradian (Heitz 2014 eq. 16). The zero vector if `wo_z <= 0` (or
+/// the view is grazing to within the f32 range); otherwise a unit `m` with `m_z > 0` and
+/// `wo.m > 0` (should rounding break either, the lobe centre `unstretch(wi)` is returned,
+/// as in Rust).
+fn sampling_sample_visible_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, u: vec2<f32>) -> vec3<f32> {
+    if !(wo.z > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let l = sampling_warp(r);
+    let wi = sampling_normalize_scaled(sampling_stretch(l, sampling_normalize_scaled(wo)));
+    if !(wi.z > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let n = sampling_ggx_standard_visible(wi, vec2<f32>(sampling_clamp_unit(u.x), sampling_clamp_unit(u.y)));
+    let m = sampling_unstretch(l, n);
+    if m.z > 0.0 && dot(wo, m) > 0.0 {
+        return m;
+    }
+    let c = sampling_unstretch(l, wi);
+    return select(vec3<f32>(0.0), c, c.z > 0.0);
+}
+
+/// Samples `m` with density `D(m) m_z` per steradian (the NDF itself): in the unit-roughness
+/// space `|t|^2 = u1 / (1 - u1)`, `n = (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))`,
+/// `phi = 2 pi u2`, then warped by `L`. Always `m_z > 0`.
+fn sampling_sample_normal(r: ndf_roughness_matrix_RoughnessMatrix, u: vec2<f32>) -> vec3<f32> {
+    let u1 = sampling_clamp_unit(u.x);
+    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
+    let n = vec3<f32>(sqrt(u1) * cs, sqrt(1.0 - u1));
+    return sampling_unstretch(sampling_warp(r), n);
+}
+
+/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
+/// `m_z <= 0`.
+fn sampling_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, m: vec3<f32>) -> f32 {
+    return select(0.0, ndf_ggx_d_matrix(r, m) * m.z, m.z > 0.0);
+}
+
+/// The visible-normal density `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian
+/// (Heitz 2014 eq. 16) for a unit `m`; 0 for `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
+fn sampling_visible_normal_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+    return sampling_visible_normal_pdf_of(wo, m, ndf_ggx_d_matrix(r, m), ndf_ggx_lambda_matrix(r, wo));
+}
+
+/// [`visible_normal_pdf`] from `D(m)` and `Lambda(wo)` of any NDF (GGX here, Beckmann in
+/// `sampling::beckmann`): `(wo.m) D / (wo_z (1 + Lambda))`; 0 for `wo_z <= 0`, `wo.m <= 0`
+/// and where the quotient is not finite.
+fn sampling_visible_normal_pdf_of(wo: vec3<f32>, m: vec3<f32>, d: f32, lambda: f32) -> f32 {
+    let wom = dot(wo, m);
+    let v = wom * d / (wo.z * (1.0 + lambda));
+    return select(0.0, v, wo.z > 0.0 && wom > 0.0 && v <= math_F32_MAX);
+}
+
+/// The density per steradian of `wi = reflect(wo, m)` for the unit half vector `m` itself:
+/// `G1(wo) D(m) / (4 wo_z)` (Walter et al. 2007 eq. 14, `wo` normalised here); 0 for
+/// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`.
+fn sampling_reflection_pdf_from_normal(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+    let o = sampling_normalize_scaled(wo);
+    return sampling_reflection_pdf_of(o, m, ndf_ggx_d_matrix(r, m), ndf_ggx_lambda_matrix(r, o));
+}
+
+/// [`reflection_pdf_from_normal`] from the normalised `o = normalize_scaled(wo)`, `D(m)` and
+/// `Lambda(o)` of any NDF: `D / (4 o_z (1 + Lambda))`; 0 for `o_z <= 0` (`wo_z <= 0`, or a
+/// `wo_z` that vanishes against `wo_xy`), `o.m <= 0` and where the quotient is not finite.
+fn sampling_reflection_pdf_of(o: vec3<f32>, m: vec3<f32>, d: f32, lambda: f32) -> f32 {
+    let v = d / (4.0 * o.z * (1.0 + lambda));
+    return select(0.0, v, o.z > 0.0 && dot(o, m) > 0.0 && v <= math_F32_MAX);
+}
+
+/// The density per steradian of `wi` when `m` is drawn by [`sample_visible_normal`] and
+/// `wi = reflect(wo, m)`: [`reflection_pdf_from_normal`] with `m = normalize(wo + wi)`
+/// (both normalised first). 0 for `wo_z <= 0` and for `wi = -wo`. The recomputed half vector
+/// carries a direction error of about `eps / (2 wo.m)`: for a sampled direction prefer
+/// [`reflection_pdf_from_normal`] with the sampled `m`.
+fn sampling_reflection_pdf(r: ndf_roughness_matrix_RoughnessMatrix, wo: vec3<f32>, wi: vec3<f32>) -> f32 {
+    if !(wo.z > 0.0) {
+        return 0.0;
+    }
+    let h = sampling_normalize_scaled(wo) + sampling_normalize_scaled(wi);
+    let len = length(h);
+    if !(len > 0.0) {
+        return 0.0;
+    }
+    return sampling_reflection_pdf_from_normal(r, wo, h / len);
 }
 
 // ---- filtered_ndf::sampling::beckmann (shaders/sampling/beckmann.wgsl) ----
@@ -4034,4 +3973,128 @@ fn sampling_beckmann_reflection_pdf_from_normal(r: ndf_roughness_matrix_Roughnes
     let o = sampling_normalize_scaled(wo);
     let d = ndf_beckmann_d_matrix(r, m);
     return sampling_reflection_pdf_of(o, m, d, ndf_beckmann_lambda_matrix(r, o));
+}
+
+// ---- filtered_ndf::sampling::gaussian_ggx (shaders/sampling/gaussian_ggx.wgsl) ----
+// Importance sampling of the exact Gaussian-filtered GGX lobe (`filter::gaussian_ggx`),
+// mirroring `src/.../sampling/gaussian_ggx.rs`: normals with density `D(m) m_z`, exactly, as
+// the sum of a GGX slope and an independent kernel slope.
+
+/// Two uniform numbers from one (the Rust `split_bits` of the `f32` build): the high and the low
+/// twelve bits of `u` in `[0, 1)`, `((floor(4096 u) + 1/2) / 4096, frac(4096 u))`, both
+/// uniform on their grids and independent (every step exact in f32).
+fn sampling_gaussian_ggx_split_bits(u: f32) -> vec2<f32> {
+    let x = u * 4096.0;
+    let hi = floor(x);
+    return vec2<f32>((hi + 0.5) / 4096.0, x - hi);
+}
+
+/// Samples a unit micronormal `m` of the filtered lobe with density `D(m) m_z` per steradian
+/// (KHPL16 eq. 2; the Rust `NdfSampling::sample_normal`). Exact: the filtered slope is the sum
+/// of two independent slopes (module docs: the convolution), a GGX slope of roughness `A_c`,
+/// `B t` with `B` its Cholesky factor (`sampling::warp`) and `|t|^2 = u1 / (1 - u1)` (the
+/// inverse radial CDF of unit-roughness GGX, Walter et al. 2007 eq. 35), and a kernel slope
+/// `N(0, Sigma)` by Box-Muller along the kernel's principal axes (the eigenvector of the
+/// larger eigenvalue from the row without cancellation, as Rust). The four uniform numbers are
+/// the high and low halves of the bits of `u.x` (`u1`, `u3`) and `u.y` (`u2`, `u4`), 12 bits
+/// each ([`split_bits`]). `u` is clamped to `[0, 1 - 2^-24]`. Always `m_z > 0` (kept at the
+/// smallest normal f32 where the slope leaves the f32 range).
+fn sampling_gaussian_ggx_sample_normal(g: filter_gaussian_ggx_GaussianFilteredGgx, u: vec2<f32>) -> vec3<f32> {
+    let a = sampling_gaussian_ggx_split_bits(sampling_clamp_unit(u.x));
+    let b = sampling_gaussian_ggx_split_bits(sampling_clamp_unit(u.y));
+    // The GGX slope B t.
+    let t = sqrt(a.x / (1.0 - a.x)) * math_sincos_turns(b.x);
+    let l = sampling_warp(g.a);
+    let gs = vec2<f32>(l.l_xx * t.x, l.l_yx * t.x + l.l_yy * t.y);
+    // The kernel slope: -2 ln(1 - u3) as ln_1p below 1/2 (no cancellation), exact above.
+    let e = select(-math_ln(1.0 - a.y), math_ln_1p(a.y / (1.0 - a.y)), a.y < 0.5);
+    let y = sqrt(2.0 * e) * math_sincos_turns(b.y);
+    let k = g.k;
+    let ev = kernel_covariance_eigenvalues(k);
+    let khalf = 0.5 * (k.s_xx - k.s_yy);
+    let krad = math_hypot(khalf, k.s_xy);
+    var ax = vec2<f32>(1.0, 0.0);
+    if krad > 0.0 {
+        let w = select(vec2<f32>(k.s_xy, krad - khalf), vec2<f32>(krad + khalf, k.s_xy), khalf >= 0.0);
+        ax = w / math_hypot(w.x, w.y);
+    }
+    let kk = vec2<f32>(sqrt(ev.y) * y.x, sqrt(ev.x) * y.y);
+    let s = gs + vec2<f32>(ax.x * kk.x - ax.y * kk.y, ax.y * kk.x + ax.x * kk.y);
+    let n = sampling_normalize_scaled(vec3<f32>(-s, 1.0));
+    return vec3<f32>(n.xy, max(n.z, math_F32_MIN_POSITIVE));
+}
+
+/// The density of [`sample_normal`], `D(m) m_z` per steradian, for a unit `m`; 0 for
+/// `m_z <= 0`.
+fn sampling_gaussian_ggx_normal_pdf(g: filter_gaussian_ggx_GaussianFilteredGgx, m: vec3<f32>) -> f32 {
+    return select(0.0, filter_gaussian_ggx_d(g, m) * m.z, m.z > 0.0);
+}
+
+// ---- filtered_ndf::sampling::rect (shaders/sampling/rect.wgsl) ----
+// Importance sampling of the box-filtered GGX lobe (`boxed::d_rect`, `lambda::lambda_rect`)
+// and its pdfs, mirroring `src/.../sampling/rect.rs`.
+//
+// `D(m) m_z`: the lobe's slope is `s = g + delta` with `g` axis-aligned GGX and `delta`
+// uniform on the box `[-H_x, H_x] x [-H_y, H_y]` (its density is the box mean of `P22`,
+// `boxed::p22_rect`, KHPL16 eq. 16), so a GGX slope plus a uniform offset is an exact sample:
+// four uniform numbers, `u` for the GGX slope and `u_box` for the offset (the lobe's
+// conditional CDFs have no closed form, so two numbers would need a root find per
+// dimension). Visible normals: `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014
+// eq. 16) with the box lobe's own `Lambda`; its density is here, its sampler (an offset drawn
+// by its projected-area weight, two Newton solves over `Psi_1` means) is not yet.
+//
+// Out of domain: `u` components clamped to `[0, 1 - 2^-24]`; half extents by magnitude, at
+// most `1e18 alpha` (`boxed::BIG`; the Rust crate `1e60 alpha`); a sampled `m` is a unit
+// vector with `m_z > 0` (a slope beyond the f32 range keeps `m_z` at the smallest normal).
+
+/// A half extent as `boxed::p22_rect` reads it, in slope units: `|h|`, at most `BIG alpha`
+/// (NaN as 0 where the driver keeps the comparison).
+fn sampling_rect_sanitized_half_extent(h: f32, alpha: f32) -> f32 {
+    let v = abs(h);
+    return select(0.0, min(v, filter_rect_BIG * alpha), v >= 0.0);
+}
+
+/// The unit normal `normalize(-s, 1)` of the slope `s` (scaled first: no square overflows),
+/// `m_z` kept at the smallest normal f32 where it underflows.
+fn sampling_rect_normal_of_slope(s: vec2<f32>) -> vec3<f32> {
+    let n = sampling_normalize_scaled(vec3<f32>(-s, 1.0));
+    return vec3<f32>(n.xy, max(n.z, math_F32_MIN_POSITIVE));
+}
+
+/// Samples a unit micronormal `m` of the box-filtered GGX lobe (roughness `r`, slope-domain
+/// half extents `half_extent`) with density `D(m) m_z` per steradian, `D` = `boxed::d_rect`
+/// (KHPL16 eq. 16 per steradian): the axis-aligned GGX slope
+/// `g = -alpha sqrt(u1 / (1 - u1)) (cos phi, sin phi)`, `phi = 2 pi u2` (the GGX sampler's
+/// `D(m) m_z`, Walter et al. 2007 eq. 35-36 with the anisotropic stretch), plus the offset
+/// `(2 u_box - 1) H` uniform in the box. Exact; four uniform numbers in `[0, 1)`. Zero half
+/// extents: the GGX sample (the same direction as `sampling::sample_normal`).
+fn sampling_rect_sample_normal_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, u: vec2<f32>, u_box: vec2<f32>) -> vec3<f32> {
+    let a = r.alpha;
+    let h = vec2<f32>(sampling_rect_sanitized_half_extent(half_extent.x, a.x), sampling_rect_sanitized_half_extent(half_extent.y, a.y));
+    let u1 = sampling_clamp_unit(u.x);
+    let cs = math_sincos_turns(sampling_clamp_unit(u.y));
+    let rad = sqrt(u1 / (1.0 - u1));
+    let g = -a * (rad * cs);
+    let b = vec2<f32>(sampling_clamp_unit(u_box.x), sampling_clamp_unit(u_box.y));
+    let d = (2.0 * b - 1.0) * h;
+    return sampling_rect_normal_of_slope(g + d);
+}
+
+/// The density of [`sample_normal_rect`], `D(m) m_z` per steradian with `D` =
+/// `boxed::d_rect`, for a unit `m`; 0 for `m_z <= 0`.
+fn sampling_rect_normal_pdf_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, m: vec3<f32>) -> f32 {
+    return select(0.0, filter_rect_d_rect(r, m, half_extent) * m.z, m.z > 0.0);
+}
+
+/// The visible-normal density of the box lobe,
+/// `D_wo(m) = max(0, wo.m) D(m) / (wo_z (1 + Lambda(wo)))` per steradian (Heitz 2014 eq. 16)
+/// for a unit `m`, `D` = `boxed::d_rect`, `Lambda` = `lambda::lambda_rect`. 0 for
+/// `wo_z <= 0`, `wo.m <= 0`, `m_z <= 0`; `wo` need not be normalised.
+fn sampling_rect_visible_normal_pdf_rect(r: ndf_roughness_axis_aligned_AxisAligned, half_extent: vec2<f32>, wo: vec3<f32>, m: vec3<f32>) -> f32 {
+    let wom = dot(wo, m);
+    if !(wo.z > 0.0) || !(m.z > 0.0) || !(wom > 0.0) {
+        return 0.0;
+    }
+    let v = wom * filter_rect_d_rect(r, m, half_extent) / (wo.z * (1.0 + filter_rect_lambda_lambda_rect(r, half_extent, wo)));
+    return select(0.0, v, v <= math_F32_MAX);
 }

@@ -5,14 +5,14 @@
 #import filtered_ndf::kernel::covariance
 #import filtered_ndf::kernel::rect as bounding
 #import filtered_ndf::ndf::roughness::matrix
-#import filtered_ndf::filter::gaussian
-#import filtered_ndf::filter::projected
 
 // The clamping rules of NDF filtering as one configurable set (KHPL16 section 5.2, GDC 2016,
 // TK19 eq. 1 and supplement), mirroring `ClampRules` of `src/.../kernel/clamp.rs`. A rule is
 // off when its bound is `F32_MAX` (`max_extent`, `kappa`; the Rust `F::INFINITY`),
 // `FLOOR_NONE`, or `det_clamp = false`. Constants mirror `ClampRules::DEFAULT`, `KHPL16`,
 // `NONE`, `GDC2016` (`*_RULES`: WGSL names may not end in a digit here, see shaders/README.md).
+// The rules are data: the filters apply them (`filter::gaussian::filter_gaussian`,
+// `filter::projected::filter_projected`).
 
 /// No rectangle floor.
 const FLOOR_NONE: u32 = 0u;
@@ -48,12 +48,22 @@ const GDC2016_RULES: ClampRules = ClampRules(1.0, FLOOR_ALPHA_CAPPED, 0.1, math:
 
 /// The maximum-extent rule on a parallelogram (KHPL16 section 5.2): both vectors scaled by
 /// `min(1, lambda / max_extent)`, keeping the shape. The extent is measured on the
-/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0.
-fn footprint(rules: ClampRules, fp: pixel::Footprint) -> pixel::Footprint {
+/// footprint scaled to unit size (no overflow). A negative `lambda` counts as 0. The NaN
+/// policy, as the Rust `ClampRules::footprint`: a NaN entry counts as 0; infinite entries
+/// (where the driver keeps them) keep their sign, the finite ones become 0, and the result
+/// has extent `lambda`, the widest footprint the rule allows.
+fn footprint(rules: ClampRules, fp_in: pixel::Footprint) -> pixel::Footprint {
+    let fp = pixel::nan_to_zero(fp_in);
     let l = max(rules.max_extent, 0.0);
     let scale = max(max(abs(fp.dh_u.x), abs(fp.dh_u.y)), max(abs(fp.dh_v.x), abs(fp.dh_v.y)));
     if scale <= 0.0 {
         return fp;
+    }
+    if scale > math::F32_MAX {
+        let iu = select(vec2<f32>(0.0), sign(fp.dh_u), abs(fp.dh_u) > vec2<f32>(math::F32_MAX));
+        let iv = select(vec2<f32>(0.0), sign(fp.dh_v), abs(fp.dh_v) > vec2<f32>(math::F32_MAX));
+        let e = pixel::max_extent(pixel::Footprint(iu, iv));
+        return pixel::Footprint(iu / e * l, iv / e * l);
     }
     let unit = pixel::Footprint(fp.dh_u / scale, fp.dh_v / scale);
     let e = pixel::max_extent(unit);
@@ -97,33 +107,8 @@ fn det_clamp_for(rules: ClampRules, a: matrix::RoughnessMatrix) -> f32 {
     return select(matrix::own_det_clamp(a), matrix::clamped_det(a), rules.det_clamp);
 }
 
-/// The clamped pixel kernel of a footprint: [`footprint`] -> `pixel::covariance` (`sigma`
+/// The clamped pixel kernel of a footprint: [`footprint`] -> `covariance::from_footprint` (`sigma`
 /// pixels) -> [`kernel`] (sanitised once).
 fn pixel_kernel(rules: ClampRules, fp: pixel::Footprint, sigma: f32) -> covariance::Covariance {
-    return kernel(rules, pixel::covariance(footprint(rules, fp), sigma));
-}
-
-/// The whole Gaussian pipeline: [`footprint`] -> `pixel::covariance` (`sigma` pixels)
-/// -> [`kernel`] -> `A' = A + 2 Sigma` with `tau = det A_c` if `det_clamp` (the TK19 matrix
-/// filter; exact for Beckmann). The result is the one clamped matrix of `matrix.wgsl`.
-fn filter_gaussian(
-    rules: ClampRules,
-    a: matrix::RoughnessMatrix,
-    fp: pixel::Footprint,
-    sigma: f32,
-) -> matrix::RoughnessMatrix {
-    return gaussian::gaussian_sanitized(a, pixel_kernel(rules, fp, sigma), det_clamp_for(rules, a));
-}
-
-/// The projected-space pipeline (TK21), the rules as in [`filter_gaussian`]: [`footprint`]
-/// -> `pixel::covariance` (`sigma` pixels; the footprint of the half vector's projected-disk
-/// derivatives, TK19 section 3.2) -> [`kernel`] -> `projected::projected_sanitized` with
-/// `tau = det A_c` if `det_clamp` (the Rust `ClampRules::filter_projected`).
-fn filter_projected(
-    rules: ClampRules,
-    a: matrix::RoughnessMatrix,
-    fp: pixel::Footprint,
-    sigma: f32,
-) -> matrix::RoughnessMatrix {
-    return projected::projected_sanitized(a, pixel_kernel(rules, fp, sigma), det_clamp_for(rules, a));
+    return kernel(rules, covariance::from_footprint(footprint(rules, fp), sigma));
 }

@@ -1,6 +1,7 @@
 #define_import_path filtered_ndf::kernel::covariance
 
 #import filtered_ndf::math
+#import filtered_ndf::footprint as pixel
 
 // A symmetric positive semi-definite slope-domain covariance (KHPL16 section 4.3, TK19
 // section 2.2), mirroring `Covariance` of `src/.../kernel/covariance.rs`.
@@ -16,7 +17,7 @@ const KERNEL_MAX: f32 = 1e8;
 /// determinant is computed once, where it is accurate, and carried: from footprint vectors
 /// as `sigma^4 (dh_u x dh_v)^2`, from a clamp as the product of the new eigenvalues, from a
 /// sum as `det a + det b + (a_xx b_yy + a_yy b_xx - 2 a_xy b_xy)`. Build covariances with the
-/// functions of this module (or `footprint::covariance`), not the struct constructor.
+/// functions of this module (e.g. [`from_footprint`]), not the struct constructor.
 struct Covariance {
     /// Variance along the tangent `x`.
     s_xx: f32,
@@ -37,6 +38,24 @@ fn zero() -> Covariance {
 /// `eps (s_xx s_yy + s_xy^2)` absolute).
 fn from_entries(s_xx: f32, s_xy: f32, s_yy: f32) -> Covariance {
     return Covariance(s_xx, s_xy, s_yy, s_xx * s_yy - s_xy * s_xy);
+}
+
+/// The Gaussian pixel kernel of a footprint, `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)`
+/// (TK19 section 2.2), `sigma` in pixels, with `det Sigma = sigma^4 (dh_u x dh_v)^2` from the
+/// vectors (accurate for elongated kernels). The Rust `Covariance::from_footprint`; a NaN
+/// footprint entry counts as 0 (`pixel::nan_to_zero`).
+fn from_footprint(fp_in: pixel::Footprint, sigma: f32) -> Covariance {
+    let fp = pixel::nan_to_zero(fp_in);
+    let u = fp.dh_u;
+    let v = fp.dh_v;
+    let s2 = sigma * sigma;
+    let cross = (u.x * v.y - u.y * v.x) * s2;
+    return Covariance(
+        (u.x * u.x + v.x * v.x) * s2,
+        (u.x * u.y + v.x * v.y) * s2,
+        (u.y * u.y + v.y * v.y) * s2,
+        cross * cross,
+    );
 }
 
 /// `tr(Sigma) = lambda_min + lambda_max` (TK19 eq. 2).
@@ -116,12 +135,17 @@ fn clamp_eigenvalues(c: Covariance, max_eig: f32) -> Covariance {
 /// determinant would cancel. Otherwise negative variances are raised to 0 and `|s_xy|`
 /// lowered to `sqrt(s_xx s_yy)` (the nearest PSD matrix with the same diagonal, determinant
 /// 0). An infinite entry (where the driver keeps infinities) gives the widest kernel
-/// `KERNEL_MAX I`. Then [`clamp_eigenvalues`] with `KERNEL_MAX`. (The Rust version also maps
-/// NaN to [`zero`]; WGSL lets a driver assume NaN never occurs.)
-fn sanitized(c: Covariance) -> Covariance {
-    let big = max(max(abs(c.s_xx), abs(c.s_yy)), abs(c.s_xy));
-    if big > math::F32_MAX {
+/// `KERNEL_MAX I`; otherwise a NaN entry counts as 0 (decided on its bits, `math::nan_to_zero`;
+/// a NaN determinant is recomputed from the entries). Then [`clamp_eigenvalues`] with
+/// `KERNEL_MAX`. As the Rust `Covariance::sanitized`.
+fn sanitized(c_in: Covariance) -> Covariance {
+    let inf = abs(c_in.s_xx) > math::F32_MAX || abs(c_in.s_xy) > math::F32_MAX || abs(c_in.s_yy) > math::F32_MAX;
+    if inf {
         return Covariance(KERNEL_MAX, 0.0, KERNEL_MAX, KERNEL_MAX * KERNEL_MAX);
+    }
+    var c = Covariance(math::nan_to_zero(c_in.s_xx), math::nan_to_zero(c_in.s_xy), math::nan_to_zero(c_in.s_yy), c_in.det);
+    if math::is_nan(c.det) || math::is_nan(c_in.s_xx) || math::is_nan(c_in.s_xy) || math::is_nan(c_in.s_yy) {
+        c.det = c.s_xx * c.s_yy - c.s_xy * c.s_xy;
     }
     if c.s_xx >= 0.0 && c.s_yy >= 0.0 && c.det >= 0.0 {
         return clamp_eigenvalues(c, KERNEL_MAX);

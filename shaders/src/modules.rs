@@ -17,24 +17,24 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../ndf/roughness/matrix.wgsl"),
     },
     Module {
+        import_path: "filtered_ndf::footprint::jacobian",
+        file: "footprint/jacobian.wgsl",
+        source: include_str!("../footprint/jacobian.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::footprint",
+        file: "footprint/mod.wgsl",
+        source: include_str!("../footprint/mod.wgsl"),
+    },
+    Module {
         import_path: "filtered_ndf::kernel::covariance",
         file: "kernel/covariance.wgsl",
         source: include_str!("../kernel/covariance.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::filter::gaussian",
-        file: "filter/gaussian.wgsl",
-        source: include_str!("../filter/gaussian.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::filter::lean",
-        file: "filter/lean.wgsl",
-        source: include_str!("../filter/lean.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::bake::moments",
-        file: "bake/moments.wgsl",
-        source: include_str!("../bake/moments.wgsl"),
+        import_path: "filtered_ndf::ndf",
+        file: "ndf/mod.wgsl",
+        source: include_str!("../ndf/mod.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::ndf::roughness",
@@ -45,21 +45,6 @@ pub const MODULES: &[Module] = &[
         import_path: "filtered_ndf::ndf::roughness::isotropic",
         file: "ndf/roughness/isotropic.wgsl",
         source: include_str!("../ndf/roughness/isotropic.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::bake::roughness",
-        file: "bake/roughness.wgsl",
-        source: include_str!("../bake/roughness.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::filter::deferred",
-        file: "filter/deferred.wgsl",
-        source: include_str!("../filter/deferred.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::ndf",
-        file: "ndf/mod.wgsl",
-        source: include_str!("../ndf/mod.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::ndf::roughness::axis_aligned",
@@ -77,14 +62,44 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../ndf/beckmann.wgsl"),
     },
     Module {
+        import_path: "filtered_ndf::kernel::rect",
+        file: "kernel/rect.wgsl",
+        source: include_str!("../kernel/rect.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::kernel::clamp",
+        file: "kernel/clamp.wgsl",
+        source: include_str!("../kernel/clamp.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::filter::gaussian",
+        file: "filter/gaussian.wgsl",
+        source: include_str!("../filter/gaussian.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::filter::lean",
+        file: "filter/lean.wgsl",
+        source: include_str!("../filter/lean.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::bake::moments",
+        file: "bake/moments.wgsl",
+        source: include_str!("../bake/moments.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::bake::roughness",
+        file: "bake/roughness.wgsl",
+        source: include_str!("../bake/roughness.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::filter::deferred",
+        file: "filter/deferred.wgsl",
+        source: include_str!("../filter/deferred.wgsl"),
+    },
+    Module {
         import_path: "filtered_ndf::filter::gaussian_ggx_quad",
         file: "filter/gaussian_ggx_quad.wgsl",
         source: include_str!("../filter/gaussian_ggx_quad.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::sampling",
-        file: "sampling/mod.wgsl",
-        source: include_str!("../sampling/mod.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::filter::gaussian_ggx",
@@ -92,29 +107,9 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../filter/gaussian_ggx.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::footprint::jacobian",
-        file: "footprint/jacobian.wgsl",
-        source: include_str!("../footprint/jacobian.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::kernel::rect",
-        file: "kernel/rect.wgsl",
-        source: include_str!("../kernel/rect.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::footprint",
-        file: "footprint/mod.wgsl",
-        source: include_str!("../footprint/mod.wgsl"),
-    },
-    Module {
         import_path: "filtered_ndf::filter::projected",
         file: "filter/projected.wgsl",
         source: include_str!("../filter/projected.wgsl"),
-    },
-    Module {
-        import_path: "filtered_ndf::kernel::clamp",
-        file: "kernel/clamp.wgsl",
-        source: include_str!("../kernel/clamp.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::filter::proxy",
@@ -132,9 +127,9 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../filter/rect/lambda.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::filter::method",
-        file: "filter/method.wgsl",
-        source: include_str!("../filter/method.wgsl"),
+        import_path: "filtered_ndf::filter::rect::lobe",
+        file: "filter/rect/lobe.wgsl",
+        source: include_str!("../filter/rect/lobe.wgsl"),
     },
     Module {
         import_path: "filtered_ndf::filter::lean_nested",
@@ -147,18 +142,28 @@ pub const MODULES: &[Module] = &[
         source: include_str!("../filter/presets.wgsl"),
     },
     Module {
-        import_path: "filtered_ndf::filter::rect::sample",
-        file: "filter/rect/sample.wgsl",
-        source: include_str!("../filter/rect/sample.wgsl"),
-    },
-    Module {
         import_path: "filtered_ndf::footprint::slope",
         file: "footprint/slope.wgsl",
         source: include_str!("../footprint/slope.wgsl"),
     },
     Module {
+        import_path: "filtered_ndf::sampling",
+        file: "sampling/mod.wgsl",
+        source: include_str!("../sampling/mod.wgsl"),
+    },
+    Module {
         import_path: "filtered_ndf::sampling::beckmann",
         file: "sampling/beckmann.wgsl",
         source: include_str!("../sampling/beckmann.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::sampling::gaussian_ggx",
+        file: "sampling/gaussian_ggx.wgsl",
+        source: include_str!("../sampling/gaussian_ggx.wgsl"),
+    },
+    Module {
+        import_path: "filtered_ndf::sampling::rect",
+        file: "sampling/rect.wgsl",
+        source: include_str!("../sampling/rect.wgsl"),
     },
 ];

@@ -50,8 +50,9 @@
 //! has the same trace as `Sigma` exactly and the same eigenvalues to first order in `|dn|`
 //! (exactly when both average normals share one tangent frame).
 
-use super::super::kernel::Covariance;
+use super::super::kernel::{Covariance, SIGMA_PIXEL};
 use super::super::ndf::roughness::{ALPHA_MAX, Isotropic};
+use super::super::vector;
 use super::{F, Vec3};
 use crate::math as m;
 
@@ -75,13 +76,20 @@ pub enum Bandwidth {
 
 impl Bandwidth {
     /// The kernel's squared roughness before the clamp, from a slope-domain covariance
-    /// (slope^2): `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`. For `Max` a covariance with a
-    /// non-finite entry gives NaN and a negative eigenvalue is clamped to 0; `Trace` and
-    /// `Average` read only the diagonal (NaN for a NaN variance, `+inf` for an infinite one,
-    /// negative for negative variances). [`filtered_alpha`] treats NaN and `+inf` as the
-    /// maximal, clamped kernel and a negative kernel as 0.
+    /// (slope^2): `2 lambda_max`, `2 tr(Sigma)` or `tr(Sigma)`. A NaN entry counts as `0` (the
+    /// crate's NaN policy, [`crate::contract`]). For `Max` a covariance with an infinite entry
+    /// gives NaN (no eigenvalue) and a negative eigenvalue is clamped to 0; `Trace` and
+    /// `Average` read only the diagonal (`+inf` for an infinite variance, negative for
+    /// negative variances). [`filtered_alpha`] treats NaN and `+inf` as the maximal, clamped
+    /// kernel and a negative kernel as 0.
     #[inline]
     pub fn alpha2(self, kernel: &Covariance) -> F {
+        let zero_nan = |x: F| if x.is_nan() { 0.0 } else { x };
+        let kernel = &Covariance::new(
+            zero_nan(kernel.s11),
+            zero_nan(kernel.s12),
+            zero_nan(kernel.s22),
+        );
         match self {
             Self::Max => 2.0 * lambda_max(kernel),
             Self::Trace => 2.0 * kernel.trace(),
@@ -90,16 +98,29 @@ impl Bandwidth {
     }
 
     /// The same variant as a [`KernelConvention`] on world-space normal differences, with
-    /// TK19's defaults (`sigma^2 = 0.25`, `kappa = 0.18` on `alpha^2`, final saturate):
-    /// [`presets::TK19_MAX`](super::presets::TK19_MAX),
-    /// [`presets::TK19_TRACE`](super::presets::TK19_TRACE),
-    /// [`presets::TK19_AVERAGE`](super::presets::TK19_AVERAGE).
+    /// TK19's defaults (Listing 2: `sigma^2 = 0.25`, `kappa = 0.18` on `alpha^2`, final
+    /// saturate): the kernel `2 sigma^2 lambda_max(Gram)` ([`Norm::MaxEigenvalue`]),
+    /// `2 sigma^2 (|dn_u|^2 + |dn_v|^2)` or `sigma^2 (|dn_u|^2 + |dn_v|^2)`
+    /// ([`Norm::SumSquared`]). The presets `TK19_MAX`, `TK19_TRACE` and `TK19_AVERAGE` are
+    /// these values.
     #[inline]
     pub const fn convention(self) -> KernelConvention {
-        match self {
-            Self::Max => super::presets::TK19_MAX,
-            Self::Trace => super::presets::TK19_TRACE,
-            Self::Average => super::presets::TK19_AVERAGE,
+        let s2 = SIGMA_PIXEL * SIGMA_PIXEL;
+        let (norm, scale) = match self {
+            Self::Max => (Norm::MaxEigenvalue, 2.0 * s2),
+            Self::Trace => (Norm::SumSquared, 2.0 * s2),
+            Self::Average => (Norm::SumSquared, s2),
+        };
+        KernelConvention {
+            domain: Domain::Alpha2,
+            norm,
+            scale,
+            exponent: 1.0,
+            bias: 0.0,
+            clamp: KAPPA,
+            combine: Combine::Add,
+            saturate: true,
+            perceptual_floor: 0.0,
         }
     }
 }
@@ -129,7 +150,7 @@ pub fn normal_difference_covariance(dn_u: Vec3, dn_v: Vec3, sigma: F) -> Covaria
 /// TK19 eq. 1, 4 or 5 from a slope-domain covariance: `alpha_bar = sqrt(saturate(alpha^2 +
 /// min(kernel, kappa)))` with `kernel = bandwidth.alpha2(kernel)`, `kappa` = [`KAPPA`] by
 /// default. Bad input: see [`KernelConvention::apply_widening`] (negative or NaN `alpha` counts
-/// as 0, a NaN kernel as `kappa`).
+/// as 0); a NaN kernel entry counts as `0`, an infinite one gives `kappa`.
 #[inline]
 pub fn filtered_alpha(alpha: F, kernel: &Covariance, bandwidth: Bandwidth, kappa: F) -> F {
     KernelConvention {
@@ -211,14 +232,17 @@ pub enum Norm {
 }
 
 impl Norm {
-    /// The measure of `(dn_u, dn_v)` (`>= 0`; NaN if an input is NaN, and for
-    /// [`Norm::MaxEigenvalue`] also if the Gram matrix overflows).
+    /// The measure of `(dn_u, dn_v)` (`>= 0`). A NaN entry of a difference counts as `0` (the
+    /// crate's NaN policy: it carries no information, [`crate::contract`]); an infinite entry
+    /// gives `+inf`, or for [`Norm::MaxEigenvalue`] NaN (as does a Gram matrix that
+    /// overflows), which the widening saturates to its clamp.
     #[inline]
     pub fn eval(self, dn_u: Vec3, dn_v: Vec3) -> F {
         let (v, ok) = self.eval_lane(dn_u, dn_v);
         if ok {
             v
         } else {
+            let (dn_u, dn_v) = (vector::nan_to_zero(dn_u), vector::nan_to_zero(dn_v));
             lambda_max(&normal_difference_covariance(dn_u, dn_v, 1.0))
         }
     }
@@ -227,30 +251,19 @@ impl Norm {
     /// `(measure, ok)`, the measure equal to [`Norm::eval`]'s where `ok`. Only
     /// [`Norm::MaxEigenvalue`] can fail (not `ok` off the eigenvalue routine's fast path:
     /// non-finite or overflowing Gram entries), then `eval` takes the full routine.
+    /// The single place the deferred route applies the NaN policy to its input: each NaN entry
+    /// of the differences is replaced by `0` first, so no measure below sees a NaN (an
+    /// infinite entry gives `+inf`, or NaN through `inf * 0` in the Gram matrix).
     #[inline(always)]
     pub(crate) fn eval_lane(self, dn_u: Vec3, dn_v: Vec3) -> (F, bool) {
+        let (dn_u, dn_v) = (vector::nan_to_zero(dn_u), vector::nan_to_zero(dn_v));
         match self {
             Self::SumSquared => (dn_u.dot(dn_u) + dn_v.dot(dn_v), true),
-            Self::MaxSquared => {
-                let (a, b) = (dn_u.dot(dn_u), dn_v.dot(dn_v));
-                (
-                    if a.is_nan() | b.is_nan() {
-                        F::NAN
-                    } else {
-                        a.max(b)
-                    },
-                    true,
-                )
-            }
+            Self::MaxSquared => (dn_u.dot(dn_u).max(dn_v.dot(dn_v)), true),
             Self::MaxEigenvalue => {
                 normal_difference_covariance(dn_u, dn_v, 1.0).max_eigenvalue_lane()
             }
-            Self::MaxAbsComponent => {
-                // Vec3::max drops a NaN operand: test the inputs, not the result.
-                let nan = dn_u.is_nan() | dn_v.is_nan();
-                let v = dn_u.abs().max(dn_v.abs()).max_element();
-                (if nan { F::NAN } else { v }, true)
-            }
+            Self::MaxAbsComponent => (dn_u.abs().max(dn_v.abs()).max_element(), true),
         }
     }
 }
@@ -271,7 +284,8 @@ pub enum Combine {
 /// 1. `p = max(sqrt(alpha), perceptual_floor)` and `v = domain.from_alpha(p^2)` (the floor is
 ///    the engine's minimum perceptual roughness, applied before filtering; 0 = none);
 /// 2. `k = scale * norm(dn_u, dn_v)^exponent + bias`, then `k = min(max(k, 0), clamp)` (the
-///    clamp is in `domain` units; a NaN `k` becomes `clamp`, the maximal kernel);
+///    clamp is in `domain` units): a NaN entry of a difference counts as `0`, an infinite one
+///    gives `clamp`, the maximal kernel (the crate's NaN policy, [`crate::contract`]);
 /// 3. `v' = v + k` or `max(v, k)` ([`Combine`]), then `min(v', 1)` if `saturate`;
 /// 4. `alpha_bar = domain.to_alpha(v')`, clamped to `[0, ALPHA_MAX]`.
 ///
@@ -300,9 +314,9 @@ pub struct KernelConvention {
 
 impl KernelConvention {
     /// The widening `min(max(scale * norm^exponent + bias, 0), clamp)` in `domain` units (the
-    /// kernel's contribution to the roughness value),
-    /// with NaN (from NaN normal differences) mapped to `clamp`. Zero differences give
-    /// `max(bias, 0)` for `exponent > 0`.
+    /// kernel's contribution to the roughness value). A NaN entry of a difference counts as `0`
+    /// ([`Norm::eval`]); an infinite one saturates to `clamp` (the widest kernel of the
+    /// convention). Zero differences give `max(bias, 0)` for `exponent > 0`.
     #[inline]
     pub fn widening(&self, dn_u: Vec3, dn_v: Vec3) -> F {
         let n = self.norm.eval(dn_u, dn_v);
@@ -315,13 +329,15 @@ impl KernelConvention {
     }
 
     /// The widening from `raw = norm^exponent`: `min(max(scale * raw + bias, 0), clamp)`,
-    /// NaN -> `clamp` (shared by [`KernelConvention::widening`] and the batch lane).
+    /// NaN -> `clamp` (shared by [`KernelConvention::widening`] and the batch lane; a NaN here
+    /// comes from an infinite difference, the norm having dropped NaN entries).
     #[inline(always)]
     pub(crate) fn widening_of(&self, raw: F) -> F {
         self.clamp_widening(self.scale * raw + self.bias)
     }
 
-    /// `min(max(k, 0), clamp)`, NaN -> `clamp`.
+    /// `min(max(k, 0), clamp)`, NaN -> `clamp` (the saturated kernel: see
+    /// [`KernelConvention::widening_of`]).
     #[inline(always)]
     fn clamp_widening(&self, k: F) -> F {
         if k.is_nan() {
@@ -358,8 +374,8 @@ impl KernelConvention {
 
     /// The filtered roughness `alpha_bar` for material roughness `alpha` and world-space
     /// normal differences `dn_u`, `dn_v` (see the type docs for the steps and
-    /// [`apply_widening`](Self::apply_widening) for bad input; infinite or NaN differences give
-    /// the clamped maximal kernel).
+    /// [`apply_widening`](Self::apply_widening) for bad input; a NaN entry of a difference
+    /// counts as `0`, an infinite one gives the clamped maximal kernel).
     #[inline]
     pub fn apply(&self, alpha: F, dn_u: Vec3, dn_v: Vec3) -> F {
         self.apply_widening(alpha, self.widening(dn_u, dn_v))

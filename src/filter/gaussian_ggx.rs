@@ -217,19 +217,22 @@
 //!    seeded views of the tests' lobes): worst `8.8e-13` (`f64`), `1.8e-7` (`f32`).
 //!
 //! # Bad input
-//! The kernel is [`Covariance::sanitized`] (NaN: no filtering; infinite: the widest kernel;
+//! The kernel is [`Covariance::sanitized`] (a NaN entry counts as `0`; infinite: the widest kernel;
 //! indefinite: the nearest PSD matrix with the same diagonal; eigenvalues capped at
 //! `KERNEL_MAX`), so every finite or non-finite input gives a finite lobe. `p22`, `d`,
 //! `lambda` never return NaN: non-finite arguments give `0` (`p22`, `d`) and `lambda` follows
 //! [`Ndf::lambda`] (`+inf` at grazing, `0` at normal incidence).
 
-use super::super::kernel::Covariance;
+use super::super::footprint::Footprint;
+use super::super::kernel::{ClampRules, Covariance, SIGMA_PIXEL};
 use super::super::ndf::beckmann::Beckmann;
 use super::super::ndf::ggx::{Ggx, ggx_lambda};
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
 use super::super::ndf::{Ndf, rescale_direction};
-use super::gaussian_ggx_quad::{self as quad, WIDE};
+use super::gaussian::Gaussian;
+use super::gaussian_ggx_quad as quad;
 use super::gaussian_ggx_tol as tol;
+use super::method::Method;
 use super::tolerance::Tolerance;
 use super::{F, Vec2, Vec3};
 use crate::math::{self as m, Real};
@@ -268,11 +271,11 @@ pub struct GaussianFilteredGgx {
     /// `1 / (pi sqrt(det A))`.
     norm: f64,
     /// The lower Cholesky factor `B = [[b11, 0], [b21, b22]]` of `A` (`b22 = sqrt(det A) / b11`).
-    b: [f64; 3],
+    pub(crate) b: [f64; 3],
     /// The sanitised kernel `(s11, s12, s22)`.
-    k: [f64; 3],
+    pub(crate) k: [f64; 3],
     /// The unfiltered roughness as a matrix (the `Beckmann` components of the sampler).
-    a: RoughnessMatrix,
+    pub(crate) a: RoughnessMatrix,
     /// The accuracy setting of `p22` and `d`.
     tol: Tolerance,
 }
@@ -405,46 +408,24 @@ impl GaussianFilteredGgx {
             // |s| beyond ~1e150: the density is below every representable positive value.
             return 0.0;
         }
-        self.norm * self.j(c1s, c2s, 1.0)
+        self.norm * self.mixture_integral(c1s, c2s, 1.0)
     }
 
-    /// `J / z2^2` (`quad::j`) by the rules of the lobe's setting.
+    /// `J / z2^2` (`quad::mixture_integral`) by the rules of the lobe's setting.
     #[inline(always)]
-    fn j(&self, v1s: f64, v2s: f64, z2: f64) -> f64 {
+    fn mixture_integral(&self, v1s: f64, v2s: f64, z2: f64) -> f64 {
         let [tl1, tl2] = self.tl;
         match tol::index(self.tol) {
-            None => quad::j(v1s, v2s, z2, tl1, tl2),
-            Some(0) => tol::j::<0>(v1s, v2s, z2, tl1, tl2),
-            Some(1) => tol::j::<1>(v1s, v2s, z2, tl1, tl2),
-            Some(_) => tol::j::<2>(v1s, v2s, z2, tl1, tl2),
+            None => quad::mixture_integral(v1s, v2s, z2, tl1, tl2),
+            Some(0) => tol::mixture_integral::<0>(v1s, v2s, z2, tl1, tl2),
+            Some(1) => tol::mixture_integral::<1>(v1s, v2s, z2, tl1, tl2),
+            Some(_) => tol::mixture_integral::<2>(v1s, v2s, z2, tl1, tl2),
         }
-    }
-
-    /// The kernel's principal standard deviations and the unit axis of the first:
-    /// `(sd1, sd2, cos, sin)` (sampling).
-    fn kernel_axes(&self) -> [f64; 4] {
-        let [s11, s12, s22] = self.k;
-        let k = Covariance::new(F::from_f64(s11), F::from_f64(s12), F::from_f64(s22));
-        let (ksd2, ksd1) = k.eigenvalues();
-        let khalf = 0.5 * (s11 - s22);
-        let krad = m::hypot(khalf, s12);
-        let (kx, ky) = if krad > 0.0 {
-            let (vx, vy) = if khalf >= 0.0 {
-                (krad + khalf, s12)
-            } else {
-                (s12, krad - khalf)
-            };
-            let n = m::hypot(vx, vy);
-            (vx / n, vy / n)
-        } else {
-            (1.0, 0.0)
-        };
-        [m::sqrt(ksd1.to_f64()), m::sqrt(ksd2.to_f64()), kx, ky]
     }
 
     /// `(o^T A o, o^T Sigma o)` for a tangent-plane vector `o`, in `f64`.
     #[inline]
-    fn projected(&self, ox: f64, oy: f64) -> (f64, f64) {
+    pub(crate) fn projected(&self, ox: f64, oy: f64) -> (f64, f64) {
         let [b11, b21, b22] = self.b;
         // o^T B B^T o = (B^T o)^2.
         let u = b11 * ox + b21 * oy;
@@ -457,7 +438,7 @@ impl GaussianFilteredGgx {
 
 impl GaussianFilteredGgx {
     /// [`Ndf::d`] in lanes (`batch::gaussian_filtered_ggx_d`): the same checks as selects,
-    /// the same whitening and `J` by `quad::j_lane` (without `TRAPEZOID` the far tail or
+    /// the same whitening and `J` by `quad::mixture_integral_lane` (without `TRAPEZOID` the far tail or
     /// Gauss-Laguerre, with it the trapezoid rule's first chunks), so the value of [`Ndf::d`]
     /// bit for bit where not flagged; flagged (`slow`) where `d` takes a rule the lane does
     /// not hold. `(value, slow)`.
@@ -468,7 +449,7 @@ impl GaussianFilteredGgx {
         let z2 = z * z;
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
         let [tl1, tl2] = self.tl;
-        let (v, ok) = quad::j_lane::<TRAPEZOID>(v1s, v2s, z2, tl1, tl2);
+        let (v, ok) = quad::mixture_integral_lane::<TRAPEZOID>(v1s, v2s, z2, tl1, tl2);
         finish_lane(self.norm, v, live, ok & self.full())
     }
 
@@ -483,7 +464,7 @@ impl GaussianFilteredGgx {
         let z2 = z * z;
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
         let [tl1, tl2] = self.tl;
-        let (v, ok, more, st) = quad::j_trapezoid_first(v1s, v2s, z2, tl1, tl2);
+        let (v, ok, more, st) = quad::mixture_integral_trapezoid_first(v1s, v2s, z2, tl1, tl2);
         let full = self.full();
         let (d, slow) = finish_lane(self.norm, v, live, ok & full);
         (d, slow, live & more & full, st)
@@ -497,7 +478,7 @@ impl GaussianFilteredGgx {
         let z2 = z * z;
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
         let [tl1, tl2] = self.tl;
-        let (v, ok) = quad::j_trapezoid_rest(v1s, v2s, z2, tl1, tl2, st);
+        let (v, ok) = quad::mixture_integral_trapezoid_rest(v1s, v2s, z2, tl1, tl2, st);
         finish_lane(self.norm, v, live_lane(mn), ok & self.full())
     }
 }
@@ -558,7 +539,7 @@ impl Ndf for GaussianFilteredGgx {
         let z = mn.z.to_f64();
         let z2 = z * z;
         let (v1s, v2s) = self.whiten(mn.x.to_f64(), mn.y.to_f64());
-        let v = self.j(v1s, v2s, z2);
+        let v = self.mixture_integral(v1s, v2s, z2);
         let d = F::from_f64(self.norm * v);
         if d.is_finite() { d } else { 0.0 }
     }
@@ -604,97 +585,89 @@ impl Ndf for GaussianFilteredGgx {
     }
 }
 
-/// A uniform number from `[0, 1)` (NaN and out-of-range values clamped, as the other samplers).
-#[inline]
-fn unit(u: F) -> f64 {
-    let u = u.to_f64();
-    if u >= 0.0 {
-        u.min(1.0 - 0.5 * f64::EPSILON)
-    } else {
-        0.0
-    }
+/// The exact Gaussian filter: the material's slope density convolved with the pixel kernel
+/// `N(0, Sigma)`, `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` after the clamp rules
+/// ([`ClampRules::footprint`], [`ClampRules::kernel`]). For GGX the lobe is
+/// [`GaussianFilteredGgx`] (what [`Gaussian`] approximates by `A + 2 Sigma`); for Beckmann the
+/// exact filter is `A + 2 Sigma` itself, so this gives the same lobe as [`Gaussian`] with the
+/// same rules: a renderer switches NDF without switching method.
+///
+/// `tolerance` sets the accuracy of the GGX lobe's density ([`Tolerance`]: the proven relative
+/// bound of each setting and its rules in the module docs of [`GaussianFilteredGgx`]); the
+/// Beckmann lobe is exact at every setting.
+///
+/// ```
+/// use filtered_ndf::f32::prelude::*;
+/// use glam::{Vec2, Vec3};
+///
+/// let material = Ggx::isotropic(0.05).unwrap();
+/// let footprint = Footprint::from_slope_derivatives(Vec2::new(0.04, 0.0), Vec2::new(0.0, 0.03));
+/// let fast = material.filtered(footprint, ExactGaussian::KHPL16.with_tolerance(Tolerance::Rel1e3));
+/// let full = material.filtered(footprint, ExactGaussian::KHPL16);
+/// let h = Vec3::new(0.03, 0.01, 1.0).normalize();
+/// assert!((fast.d(h) - full.d(h)).abs() <= 1e-3 * full.d(h));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ExactGaussian {
+    /// The clamp rules applied to the footprint and the kernel (for Beckmann also the
+    /// determinant clamp of the filtered matrix).
+    pub clamps: ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    pub sigma: F,
+    /// The accuracy setting of the GGX lobe's density ([`Tolerance::Full`] unless asked).
+    pub tolerance: Tolerance,
 }
 
-/// Two uniform numbers from one: the high and the low half of its bits (`2^12` levels each
-/// from an `f32`, `2^26` from an `f64`). Both uniform on their grids, independent.
-#[inline]
-fn split(u: f64) -> (f64, f64) {
-    let k = if WIDE { 67_108_864.0 } else { 4096.0 };
-    let x = u * k;
-    // Truncation by conversion (`x` in `[0, k)`; no `floor` in `core`).
-    let hi = (x as u64) as f64;
-    ((hi + 0.5) / k, x - hi)
-}
+impl ExactGaussian {
+    /// The unbiased filter of the footprint: the maximum extent `lambda = 1` of KHPL16
+    /// section 5.2 (a first-order footprint wider than that is not trustworthy), no `kappa`;
+    /// `sigma = 0.5` pixels.
+    pub const KHPL16: Self = Self {
+        clamps: ClampRules::KHPL16,
+        sigma: SIGMA_PIXEL,
+        tolerance: Tolerance::Full,
+    };
 
-impl super::super::sampling::NdfSampling for GaussianFilteredGgx {
-    /// Exact: the filtered slope is the sum of two independent slopes, a GGX slope of
-    /// roughness `A` (`B t`, `|t|^2 = u / (1 - u)`, the inverse radial CDF of unit-roughness
-    /// GGX) and a kernel slope `N(0, Sigma)` (Box-Muller along the kernel's principal axes).
-    /// The four uniform numbers are the high and low halves of the bits of `u.x` and `u.y`
-    /// (12 bits each from an `f32`, 26 from an `f64`).
+    /// This method with the GGX lobe's density at the accuracy setting `tolerance`
+    /// ([`Tolerance`]; e.g. `ExactGaussian::KHPL16.with_tolerance(Tolerance::Rel1e3)`).
     #[inline]
-    fn sample_normal(&self, u: Vec2) -> Vec3 {
-        let (u1, u3) = split(unit(u.x));
-        let (u2, u4) = split(unit(u.y));
-        let tau = core::f64::consts::TAU;
-        let r = m::sqrt(u1 / (1.0 - u1));
-        let (tx, ty) = (r * m::cos(tau * u2), r * m::sin(tau * u2));
-        let [b11, b21, b22] = self.b;
-        let g = (b11 * tx, b21 * tx + b22 * ty);
-        let rk = m::sqrt(-2.0 * m::ln(1.0 - u3));
-        let (y1, y2) = (rk * m::cos(tau * u4), rk * m::sin(tau * u4));
-        let [sd1, sd2, kx, ky] = self.kernel_axes();
-        let (k1, k2) = (sd1 * y1, sd2 * y2);
-        let s = (g.0 + kx * k1 - ky * k2, g.1 + ky * k1 + kx * k2);
-        let mm = crate::f64::footprint::slope::sphere_from_slope(glam::DVec2::new(s.0, s.1));
-        Vec3::new(
-            F::from_f64(mm.x),
-            F::from_f64(mm.y),
-            F::from_f64(mm.z).max(F::MIN_POSITIVE),
-        )
-        .normalize()
+    #[must_use]
+    pub const fn with_tolerance(self, tolerance: Tolerance) -> Self {
+        Self { tolerance, ..self }
     }
 
-    /// Visible normals of the mixture (module docs): with the sampler's fixed grid `w_k`
-    /// (step `0.5` in `ln w` from `w = 8.3e-7` to `39`) and weights `W_k = 0.5 w_k e^-w_k`
-    /// (the trapezoid rule in `ln w` of `e^-w dw`), the filtered lobe is approximated by the
-    /// discrete mixture `sum W_k D_k` of the Beckmann lobes `D_k` of roughness
-    /// `A / w_k + 2 Sigma`. The visible normals of a mixture are the mixture of its components'
-    /// visible normals with weights `W_k (1 + Lambda_k(wo))` (`D_wo = (wo.m)+ D / (wo_z (1 +
-    /// Lambda))` and `Lambda = sum W_k Lambda_k`): a component is drawn by inverting the
-    /// cumulative weights with `u.x` (the remainder, rescaled to `[0, 1)`, is reused), then its
-    /// visible normal exactly ([`Beckmann`]'s sampler, any matrix form). The drawn density equals
-    /// the quadrature of `D_wo` on this grid: its relative error is the rule's discretisation
-    /// error (`<= 1.6e-6`, module docs) for normals whose slope has `|c|^2 < ~1e5`, and the
-    /// mixture mass below the grid (`~8e-7`) is missing from the far tail. The weights use a
-    /// fast Beckmann `Lambda` (Numerical Recipes' Chebyshev fit of `erfc`, relative error
-    /// `< 1.2e-7`), computed for the 36 components at once in SIMD lanes: the weights, hence
-    /// the choice of the component, are within `2.1e-7` (`f32`) / `1.9e-8` (`f64`) relative
-    /// of the exact mixture's.
-    fn sample_visible_normal(&self, wo: Vec3, u: Vec2) -> Option<Vec3> {
-        if !(wo.is_finite() && wo.z > 0.0) {
-            return None;
+    /// The clamped pixel kernel of `footprint`.
+    #[inline]
+    fn kernel(&self, footprint: Footprint) -> Covariance {
+        let rules = self.clamps;
+        rules.kernel(rules.footprint(footprint).covariance(self.sigma))
+    }
+}
+
+impl Default for ExactGaussian {
+    /// [`ExactGaussian::KHPL16`].
+    fn default() -> Self {
+        Self::KHPL16
+    }
+}
+
+impl<R: Roughness> Method<Ggx<R>> for ExactGaussian {
+    type Lobe = GaussianFilteredGgx;
+    #[inline]
+    fn lobe(&self, material: &Ggx<R>, footprint: Footprint) -> Self::Lobe {
+        GaussianFilteredGgx::new(material.roughness, self.kernel(footprint))
+            .with_tolerance(self.tolerance)
+    }
+}
+
+impl<R: Roughness> Method<Beckmann<R>> for ExactGaussian {
+    type Lobe = Beckmann<RoughnessMatrix>;
+    #[inline]
+    fn lobe(&self, material: &Beckmann<R>, footprint: Footprint) -> Self::Lobe {
+        Gaussian {
+            clamps: self.clamps,
+            sigma: self.sigma,
         }
-        let big = wo.abs().max_element().to_f64();
-        let (ox, oy, oz) = (
-            wo.x.to_f64() / big,
-            wo.y.to_f64() / big,
-            wo.z.to_f64() / big,
-        );
-        let n = m::sqrt(ox * ox + oy * oy + oz * oz);
-        let (ox, oy, oz) = (ox / n, oy / n, oz / n);
-        let (qa, qs) = self.projected(ox, oy);
-        let (k, ux) = quad::sample_component(qa, qs, oz, unit(u.x));
-        let (a11, a12, a22) = self.a.clamped_entries();
-        let [s11, s12, s22] = self.k;
-        let iw = m::exp(-quad::SAMPLE_T0 - 0.5 * k as f64);
-        let sd = self.a.sqrt_det().to_f64() * iw;
-        let comp = RoughnessMatrix::from_entries(
-            F::from_f64(a11.to_f64() * iw + 2.0 * s11),
-            F::from_f64(a12.to_f64() * iw + 2.0 * s12),
-            F::from_f64(a22.to_f64() * iw + 2.0 * s22),
-            sd * sd,
-        );
-        Beckmann::new(comp).sample_visible_normal(wo, Vec2::new(F::from_f64(ux), u.y))
+        .lobe(material, footprint)
     }
 }

@@ -154,27 +154,27 @@ const GL_PLATEAU: f64 = if WIDE { 31.5 } else { 20.0 };
 /// Below `1 + q = GL_WIDE`, `GL_PLATEAU + 1.5 ln(1 + q) <= 1 / GL_RATIO`.
 const GL_WIDE: f64 = if WIDE { 7e19 } else { 2.8e10 };
 
-/// `J / z2^2` for `c_i^2 = v_i^2 / z2` (module docs) from `(v1^2, v2^2)`, `z2 > 0` and
+/// The mixture integral `J` (module docs) as `J / z2^2` for `c_i^2 = v_i^2 / z2` from `(v1^2, v2^2)`, `z2 > 0` and
 /// `(2 l1, 2 l2)`, `2 l1 >= 2 l2 >= 0`, finite: `J(c)` itself for `z2 = 1` (a slope), `J / m_z^4`
 /// for a normal `m` (`z2 = m_z^2`, `v = T m_xy`), without forming the slope. `> 0` unless it
 /// underflows.
 #[inline]
-pub(super) fn j(v1s: f64, v2s: f64, z2: f64, tl1: f64, tl2: f64) -> f64 {
+pub(super) fn mixture_integral(v1s: f64, v2s: f64, z2: f64, tl1: f64, tl2: f64) -> f64 {
     let beta_m = z2 + v1s + v2s;
     let (far, laguerre) = rule(beta_m, z2, tl1);
     if far {
         return far_tail(beta_m, v1s, v2s, tl1, tl2, z2);
     }
     if laguerre {
-        return j_laguerre::<false>(beta_m, v1s, v2s, z2, tl1, tl2);
+        return mixture_integral_laguerre::<false>(beta_m, v1s, v2s, z2, tl1, tl2);
     }
     let iz2 = 1.0 / z2;
-    j_trapezoid(v1s * iz2, v2s * iz2, tl1, tl2) * iz2 * iz2
+    mixture_integral_trapezoid(v1s * iz2, v2s * iz2, tl1, tl2) * iz2 * iz2
 }
 
-/// The rule [`j`] takes for `beta_m = z2 + v1s + v2s`: `(far, laguerre)`, the far tail where
+/// The rule [`mixture_integral`] takes for `beta_m = z2 + v1s + v2s`: `(far, laguerre)`, the far tail where
 /// `far`, else Gauss-Laguerre where `laguerre`, else the trapezoid rule. Branch-free (`&`,
-/// `|` of compares; shared with the batch lane [`j_lane`]).
+/// `|` of compares; shared with the batch lane [`mixture_integral_lane`]).
 #[inline(always)]
 fn rule(beta_m: f64, z2: f64, tl1: f64) -> (bool, bool) {
     let far = beta_m >= FAR * tl1 * z2;
@@ -187,22 +187,22 @@ fn rule(beta_m: f64, z2: f64, tl1: f64) -> (bool, bool) {
     (far, laguerre)
 }
 
-/// Whether [`j`] takes the trapezoid rule (neither the far tail nor Gauss-Laguerre).
+/// Whether [`mixture_integral`] takes the trapezoid rule (neither the far tail nor Gauss-Laguerre).
 #[inline(always)]
 pub(super) fn takes_trapezoid(v1s: f64, v2s: f64, z2: f64, tl1: f64) -> bool {
     let (far, laguerre) = rule(z2 + v1s + v2s, z2, tl1);
     !(far | laguerre)
 }
 
-/// [`j`] in lanes (`batch`'s exact Gaussian-filtered GGX): the same operations as [`j`], so
+/// [`mixture_integral`] in lanes (`batch`'s exact Gaussian-filtered GGX): the same operations as [`mixture_integral`], so
 /// the same value bit for bit where `ok`. Without `TRAPEZOID` the far tail or
-/// Gauss-Laguerre, selected by [`rule`], `ok` false where [`j`] takes the trapezoid rule;
-/// with `TRAPEZOID` the trapezoid rule alone ([`j_trapezoid_lane`], its first chunks), `ok`
-/// false where [`j`] takes another rule or runs it longer. Two lanes, not one: a select
+/// Gauss-Laguerre, selected by [`rule`], `ok` false where [`mixture_integral`] takes the trapezoid rule;
+/// with `TRAPEZOID` the trapezoid rule alone ([`mixture_integral_trapezoid_lane`], its first chunks), `ok`
+/// false where [`mixture_integral`] takes another rule or runs it longer. Two lanes, not one: a select
 /// computes every rule it holds for every element, and the trapezoid rule's 24 (`f32`) or 36
 /// (`f64`) nodes would cost the elements that do not need them 4 times their own rule.
 #[inline(always)]
-pub(super) fn j_lane<const TRAPEZOID: bool>(
+pub(super) fn mixture_integral_lane<const TRAPEZOID: bool>(
     v1s: f64,
     v2s: f64,
     z2: f64,
@@ -213,13 +213,13 @@ pub(super) fn j_lane<const TRAPEZOID: bool>(
     let (far, laguerre) = rule(beta_m, z2, tl1);
     if TRAPEZOID {
         let iz2 = 1.0 / z2;
-        let (t, ok) = j_trapezoid_lane(v1s * iz2, v2s * iz2, tl1, tl2);
+        let (t, ok) = mixture_integral_trapezoid_lane(v1s * iz2, v2s * iz2, tl1, tl2);
         (t * iz2 * iz2, ok & !(far | laguerre))
     } else {
         let v = if far {
             far_tail(beta_m, v1s, v2s, tl1, tl2, z2)
         } else {
-            j_laguerre::<true>(beta_m, v1s, v2s, z2, tl1, tl2)
+            mixture_integral_laguerre::<true>(beta_m, v1s, v2s, z2, tl1, tl2)
         };
         (v, far | laguerre)
     }
@@ -241,12 +241,12 @@ pub(super) fn far_tail(beta: f64, c1s: f64, c2s: f64, tl1: f64, tl2: f64, z2: f6
 }
 
 /// Gauss-Laguerre in `v = (1 + q) w` (item 4): `J = beta^-2 sum W_k F(v_k / beta)`,
-/// `F(w) = exp(sum c_i^2 2 l_i w^2 / p_i) / sqrt(p1 p2)`; homogeneous as [`j`]
+/// `F(w) = exp(sum c_i^2 2 l_i w^2 / p_i) / sqrt(p1 p2)`; homogeneous as [`mixture_integral`]
 /// (`beta = beta_m / z2`, `c_i^2 = v_i^2 / z2`; the result is `J / z2^2`). `LANE`: the
 /// nodes as straight-line code (for a batch lane), else as a loop; the same operations, so
 /// the same value bit for bit.
 #[inline(always)]
-fn j_laguerre<const LANE: bool>(
+fn mixture_integral_laguerre<const LANE: bool>(
     beta_m: f64,
     v1s: f64,
     v2s: f64,
@@ -276,7 +276,7 @@ fn j_laguerre<const LANE: bool>(
     sum_tree(acc).to_f64() * ib * ib
 }
 
-/// One node of [`j_laguerre`]: `W_k F(v_k / beta)` from `[2 l1 / beta, 2 l2 / beta,
+/// One node of [`mixture_integral_laguerre`]: `W_k F(v_k / beta)` from `[2 l1 / beta, 2 l2 / beta,
 /// c1^2 2 l1 / beta^2, c2^2 2 l2 / beta^2]`.
 #[inline(always)]
 fn laguerre_node(v: F, wt: F, [t1, t2, g1, g2]: [F; 4]) -> F {
@@ -326,7 +326,7 @@ pub(super) fn sum_tree<const N: usize>(mut a: [F; N]) -> F {
 /// correction, the exponent evaluated against the reference `w_r = 2 / (1 + q)`, the top
 /// truncated by the monotone bound.
 #[inline]
-fn j_trapezoid(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> f64 {
+fn mixture_integral_trapezoid(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> f64 {
     let t = Trapezoid::new::<false>(c1s, c2s, tl1, tl2);
     let mut tot = [0.0; CH];
     let mut sum: F = 0.0;
@@ -345,13 +345,13 @@ fn j_trapezoid(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> f64 {
     t.total(sum, c1s, c2s, tl1, tl2)
 }
 
-/// [`j_trapezoid`] in lanes: the same set-up, chunks and truncation test, the first
+/// [`mixture_integral_trapezoid`] in lanes: the same set-up, chunks and truncation test, the first
 /// [`TRAP_CHUNKS`] chunks as straight-line code, the loop's `break` as a select (the chunks
 /// after the one that stops it leave the sums as they were), so the same value bit for bit
 /// where `ok`; `ok` is false where the scalar loop runs longer (or the sum is NaN).
 #[inline(always)]
 #[allow(unused_assignments)] // The last chunk's partial sums are not read again.
-fn j_trapezoid_lane(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> (f64, bool) {
+fn mixture_integral_trapezoid_lane(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> (f64, bool) {
     const { assert!(TRAP_CHUNKS * CH <= NODES) };
     let t = Trapezoid::new::<true>(c1s, c2s, tl1, tl2);
     let mut tot = [0.0; CH];
@@ -370,11 +370,11 @@ fn j_trapezoid_lane(c1s: f64, c2s: f64, tl1: f64, tl2: f64) -> (f64, bool) {
     (t.total(sum, c1s, c2s, tl1, tl2), done)
 }
 
-/// Chunks of the first stage of [`j_trapezoid_first`] and [`j_trapezoid_rest`]: what most
+/// Chunks of the first stage of [`mixture_integral_trapezoid_first`] and [`mixture_integral_trapezoid_rest`]: what most
 /// elements of a heavily filtered lobe need (the batch bench's heavy kernel `2 l1 = 1`: 78 %
 /// of its trapezoid elements stop after 2 chunks of 8 in `f32`, the others after 3; in `f64`
-/// they stop after 7 or 8 chunks of 4 ([`TRAP_CHUNKS`]), and 7 measured faster than one
-/// stage: 86-89 against 91-98 ns per element).
+/// they stop after 7 or 8 chunks of 4 ([`TRAP_CHUNKS`]), and a first stage of 7 is faster
+/// than one stage of all of them, `benches/batch.rs`).
 const FIRST_CHUNKS: usize = if WIDE { 7 } else { 2 };
 
 /// Values of `F` in a [`TrapezoidState`]: the partial sums after the first chunks (`CH`).
@@ -391,12 +391,12 @@ pub(crate) struct TrapezoidState {
     pub(crate) f: [F; STATE_F],
 }
 
-/// [`j_lane`]`::<true>` in two stages, its first: the set-up and the first [`FIRST_CHUNKS`]
+/// [`mixture_integral_lane`]`::<true>` in two stages, its first: the set-up and the first [`FIRST_CHUNKS`]
 /// chunks. Returns `(value, ok, more, state)`: where `more` is false, `(value, ok)` is
-/// [`j_lane`]`::<true>`'s, bit for bit; where it is true (the trapezoid rule's element, not
-/// stopped yet) [`j_trapezoid_rest`] finishes from `state`.
+/// [`mixture_integral_lane`]`::<true>`'s, bit for bit; where it is true (the trapezoid rule's element, not
+/// stopped yet) [`mixture_integral_trapezoid_rest`] finishes from `state`.
 #[inline(always)]
-pub(super) fn j_trapezoid_first(
+pub(super) fn mixture_integral_trapezoid_first(
     v1s: f64,
     v2s: f64,
     z2: f64,
@@ -425,13 +425,13 @@ pub(super) fn j_trapezoid_first(
     (v, done & !other, !(done | other), TrapezoidState { f: tot })
 }
 
-/// The second stage of [`j_trapezoid_first`] (same arguments, and its state): the set-up
+/// The second stage of [`mixture_integral_trapezoid_first`] (same arguments, and its state): the set-up
 /// again, then the chunks after the first ones from the partial sums, the truncation test's
-/// `break` as a select as in [`j_trapezoid_lane`]. `(value, ok)` as [`j_lane`]`::<true>`'s
-/// for an element that [`j_trapezoid_first`] did not finish, bit for bit.
+/// `break` as a select as in [`mixture_integral_trapezoid_lane`]. `(value, ok)` as [`mixture_integral_lane`]`::<true>`'s
+/// for an element that [`mixture_integral_trapezoid_first`] did not finish, bit for bit.
 #[inline(always)]
 #[allow(unused_assignments)] // The last chunk's partial sums are not read again.
-pub(super) fn j_trapezoid_rest(
+pub(super) fn mixture_integral_trapezoid_rest(
     v1s: f64,
     v2s: f64,
     z2: f64,
@@ -464,12 +464,12 @@ fn chunk(r: &'static [F; NODES], c: usize) -> &'static [F; CH] {
     r[c * CH..].first_chunk::<CH>().unwrap_or(&[0.0; CH])
 }
 
-/// Chunks of [`j_trapezoid_lane`]: the longest run of the rule on the lobes a filter meets
+/// Chunks of [`mixture_integral_trapezoid_lane`]: the longest run of the rule on the lobes a filter meets
 /// (measured, the batch bench's heavy kernel `2 l1 = 1` over its realistic half vectors: 2
 /// or 3 chunks of 8 in `f32`, 7 or 8 of 4 in `f64`); the lane flags what takes longer.
 const TRAP_CHUNKS: usize = if WIDE { 9 } else { 3 };
 
-/// The set-up of [`j_trapezoid`] for one argument `(c1^2, c2^2)`: the node constants of
+/// The set-up of [`mixture_integral_trapezoid`] for one argument `(c1^2, c2^2)`: the node constants of
 /// [`trapezoid_chunk`], the truncation test's and the series correction's.
 struct Trapezoid {
     /// `[v0, 2 l1 w_r, 2 l2 w_r, w_r, k1, k2, l0]` ([`trapezoid_chunk`]).
@@ -530,7 +530,7 @@ impl Trapezoid {
     /// One chunk of nodes (ratios `rk`, their logarithms `lk`) added to the partial sums
     /// `tot`: `(tot, their sum, stop)`, `stop` where the truncation test (item 3: the nodes
     /// above the last sum to at most `g_last b / w_last^2`) ends the rule or the sum is NaN.
-    /// `LANE`: the nodes as straight-line code (see [`j_laguerre`]).
+    /// `LANE`: the nodes as straight-line code (see [`mixture_integral_laguerre`]).
     #[inline(always)]
     fn step<const LANE: bool>(
         &self,
@@ -558,7 +558,7 @@ impl Trapezoid {
     }
 }
 
-/// One chunk of [`j_trapezoid`]'s nodes: `g(t) / scale` at `v = v0 r_k` (see there), from the
+/// One chunk of [`mixture_integral_trapezoid`]'s nodes: `g(t) / scale` at `v = v0 r_k` (see there), from the
 /// constants `[v0, 2 l1 w_r, 2 l2 w_r, w_r, k1, k2, l0]`. `LANE`: straight-line code.
 #[inline(always)]
 fn trapezoid_chunk<const LANE: bool>(c: [F; 7], rk: &[F; CH], lk: &[F; CH]) -> [F; CH] {
@@ -848,7 +848,7 @@ fn sinh_chunk(
 /// from `w = 8.3e-7` to `w = 39`.
 pub(super) const SAMPLE_N: usize = 36;
 /// `ln w_0` of the sampler's grid.
-pub(super) const SAMPLE_T0: f64 = -14.0;
+pub(crate) const SAMPLE_T0: f64 = -14.0;
 
 /// `(w_k, W_k = w_k e^-w_k / 2)` of the sampler's grid (the trapezoid rule in `ln w`, step
 /// `1/2`, of `e^-w dw`), in `F`.
@@ -915,7 +915,7 @@ pub(crate) fn beckmann_lambda_fast(a: F) -> F {
 /// for `qa = o^T A o`, `qs = o^T Sigma o`, `oz = o_z` of a unit `o` with `oz > 0`, by inverting
 /// the cumulative weights at `u` in `[0, 1)`: the index and the remainder rescaled to
 /// `[0, 1]`.
-pub(super) fn sample_component(qa: f64, qs: f64, oz: f64, u: f64) -> (usize, f64) {
+pub(crate) fn sample_component(qa: f64, qs: f64, oz: f64, u: f64) -> (usize, f64) {
     // a_k = oz / sqrt(qa / w_k + 2 qs), bounded below (oz ~ 0: Lambda ~ 1 / a; the largest
     // weight then dominates and stays finite).
     let (fqa, fqs, foz) = (F::from_f64(qa), F::from_f64(2.0 * qs), F::from_f64(oz));
@@ -978,8 +978,8 @@ mod tests {
                     let q = 10f64.powf(-4.0 + 7.0 * i as f64 / 199.0);
                     for &split in &[1.0, 0.7, 0.2, 0.0] {
                         let (c1s, c2s) = (q * split, q * (1.0 - split));
-                        let want = j_trapezoid(c1s, c2s, tl1, tl2);
-                        let (got, ok) = j_trapezoid_lane(c1s, c2s, tl1, tl2);
+                        let want = mixture_integral_trapezoid(c1s, c2s, tl1, tl2);
+                        let (got, ok) = mixture_integral_trapezoid_lane(c1s, c2s, tl1, tl2);
                         if ok {
                             assert_eq!(got.to_bits(), want.to_bits(), "{c1s} {c2s} {tl1} {tl2}");
                             taken += 1;
@@ -1010,8 +1010,8 @@ mod tests {
         assert!(chunks[1..].iter().filter(|&&c| c > 0).count() >= TRAP_CHUNKS.min(2));
     }
 
-    /// The trapezoid lane in two stages (`j_trapezoid_first`, then `j_trapezoid_rest` where
-    /// it leaves the element unfinished) equals the one-pass lane `j_lane::<true>`, value and
+    /// The trapezoid lane in two stages (`mixture_integral_trapezoid_first`, then `mixture_integral_trapezoid_rest` where
+    /// it leaves the element unfinished) equals the one-pass lane `mixture_integral_lane::<true>`, value and
     /// flag, bit for bit, on the arguments of a normal (`z2 < 1`) and a slope (`z2 = 1`),
     /// every rule's region included; both outcomes of the first stage occur.
     #[test]
@@ -1024,11 +1024,12 @@ mod tests {
                     let q = 10f64.powf(-4.0 + 7.0 * i as f64 / 119.0);
                     for &(split, z2) in &[(1.0, 1.0), (0.6, 0.8), (0.1, 0.3), (0.0, 1.0)] {
                         let (v1s, v2s) = (q * split * z2, q * (1.0 - split) * z2);
-                        let (want, want_ok) = j_lane::<true>(v1s, v2s, z2, tl1, tl2);
-                        let (v, ok, more, st) = j_trapezoid_first(v1s, v2s, z2, tl1, tl2);
+                        let (want, want_ok) = mixture_integral_lane::<true>(v1s, v2s, z2, tl1, tl2);
+                        let (v, ok, more, st) =
+                            mixture_integral_trapezoid_first(v1s, v2s, z2, tl1, tl2);
                         let (got, got_ok) = if more {
                             rest += 1;
-                            j_trapezoid_rest(v1s, v2s, z2, tl1, tl2, &st)
+                            mixture_integral_trapezoid_rest(v1s, v2s, z2, tl1, tl2, &st)
                         } else {
                             first += 1;
                             (v, ok)

@@ -124,10 +124,16 @@ pub(super) fn takes_far(rule: &Rule, beta_m: f64, z2: f64, tl1: f64) -> bool {
     tl1 * z2 * (rule.far + 12.0 * ln_upper(beta_m / z2)) <= beta_m
 }
 
-/// `J / z2^2` by the rule `RULES[S]` (the reduced counterpart of `gaussian_ggx_quad::j`, same
+/// `J / z2^2` by the rule `RULES[S]` (the reduced counterpart of `gaussian_ggx_quad::mixture_integral`, same
 /// arguments).
 #[inline]
-pub(super) fn j<const S: usize>(v1s: f64, v2s: f64, z2: f64, tl1: f64, tl2: f64) -> f64 {
+pub(super) fn mixture_integral<const S: usize>(
+    v1s: f64,
+    v2s: f64,
+    z2: f64,
+    tl1: f64,
+    tl2: f64,
+) -> f64 {
     let rule = const { &RULES[S] };
     let beta_m = z2 + v1s + v2s;
     if takes_far(rule, beta_m, z2, tl1) {

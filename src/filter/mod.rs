@@ -47,16 +47,16 @@ pub(crate) use exp_poly::{
     LN2_HI_F32, LN2_LO_F32, MAGIC_F32, MAGIC_F64, exp_f32_poly, exp_f32_reduced, exp_f64,
     exp_f64_reduced,
 };
-pub use gaussian::{gaussian, gaussian_with_det_clamp};
-pub(crate) use gaussian::{gaussian_entries, gaussian_sanitized};
-pub use gaussian_ggx::GaussianFilteredGgx;
-pub(crate) use gaussian_ggx_quad::{TrapezoidState, beckmann_lambda_fast};
+pub use gaussian::{Gaussian, gaussian, gaussian_with_det_clamp};
+pub use gaussian_ggx::{ExactGaussian, GaussianFilteredGgx};
+pub(crate) use gaussian_ggx_quad::{
+    SAMPLE_T0, TrapezoidState, beckmann_lambda_fast, sample_component,
+};
 pub use lean::{LeanMoments, lean};
 pub use lean_nested::{Lean, lean_mean_normal, lean_widened, lean_widened_axis_aligned};
-pub use method::{
-    ExactGaussian, Filterable, Gaussian, Method, Projected, Proxy, Rect, RectFilteredGgx,
-};
+pub use method::{Filterable, Method};
 pub(crate) use projected::ProjectedBase;
-pub(crate) use projected::projected_sanitized;
-pub use projected::{PROJECTED_EIGEN_MAX, projected, projected_with_det_clamp};
+pub use projected::{PROJECTED_EIGEN_MAX, Projected, projected, projected_with_det_clamp};
+pub use proxy::Proxy;
+pub use rect::{Rect, RectFilteredGgx};
 pub use tolerance::Tolerance;

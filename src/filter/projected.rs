@@ -1,9 +1,14 @@
-//! Projected-space filtering (Tokuyoshi and Kaplanyan 2021, JCGT 10(2)).
+//! Projected-space filtering (Tokuyoshi and Kaplanyan 2021, JCGT 10(2)): the filter, its
+//! pipeline through the clamp rules ([`ClampRules::filter_projected`]) and its method
+//! ([`Projected`]).
 
-use super::super::kernel::Covariance;
+use super::super::footprint::Footprint;
+use super::super::kernel::{ClampRules, Covariance, SIGMA_PIXEL};
+use super::super::ndf::ggx::Ggx;
 use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
 use super::F;
 use super::gaussian::{filter_tau, valid_clamp};
+use super::method::Method;
 use crate::math::Real;
 
 /// The largest eigenvalue of `A` that [`projected`] maps to projected space: `0.99`
@@ -74,6 +79,45 @@ pub(crate) fn projected_sanitized<R: Roughness>(
     let base = ProjectedBase::new(roughness);
     let b = base.entries(k);
     RoughnessMatrix::from_entries(b.0, b.1, b.2, valid_clamp(roughness, b, tau))
+}
+
+/// The projected-space pipeline on the clamp rules (the rules are data, the filter applies
+/// them).
+impl ClampRules {
+    /// The projected-space pipeline (TK21), the rules as in [`ClampRules::filter_gaussian`]:
+    /// [`ClampRules::footprint`] -> [`Footprint::covariance`] (`sigma` pixels; the footprint
+    /// of the half vector's projected-disk derivatives, TK19 section 3.2) ->
+    /// [`ClampRules::kernel`] -> [`projected`], with the determinant clamp `tau = det(A)` if
+    /// `det_clamp` (else as [`projected_with_det_clamp`] with `0`).
+    ///
+    /// Always inlined, as [`ClampRules::filter_gaussian`] (a footprint passed through memory
+    /// stalls on store forwarding).
+    #[inline(always)]
+    pub fn filter_projected<R: Roughness>(
+        &self,
+        roughness: R,
+        fp: Footprint,
+        sigma: F,
+    ) -> RoughnessMatrix {
+        let k = self.kernel(self.footprint(fp).covariance(sigma));
+        projected_sanitized(roughness, k, self.det_clamp_wide(roughness))
+    }
+
+    /// [`ClampRules::filter_projected`] in `batch`'s lane form up to the entries of `A'`, as
+    /// [`ClampRules::filter_gaussian_entries_lane`] (with the kernel's sanity decided exactly):
+    /// the same kernel, then the projected filter's kernel part on the lobe's part `base`
+    /// (`ProjectedBase::new(roughness)`, once per batch).
+    #[inline(always)]
+    pub(crate) fn filter_projected_entries_lane<R: Roughness>(
+        &self,
+        roughness: R,
+        base: &ProjectedBase,
+        fp: Footprint,
+        sigma: F,
+    ) -> ((F, F, F), f64, bool) {
+        let (k, ok) = self.kernel_lane::<true>(fp, sigma);
+        (base.entries(k), self.det_clamp_wide(roughness), ok)
+    }
 }
 
 /// The lobe's part of [`projected`] (its eigenvalue split `A = A_c + excess`, `P = A_c (I -
@@ -152,6 +196,50 @@ impl ProjectedBase {
             (q.0 + d) / den + e.0,
             q.1 / den + e.1,
             (q.2 + d) / den + e.2,
+        )
+    }
+}
+
+/// Projected-space filtering of GGX (Tokuyoshi and Kaplanyan 2021, JCGT 10(2)): `P = A (I -
+/// A)^-1`, `P' = P + 2 Sigma`, `A' = P' (I + P')^-1` ([`projected`]), with the kernel
+/// `Sigma` of the footprint after the clamp rules ([`ClampRules::filter_projected`]: maximum
+/// extent, `kappa`, determinant clamp). The footprint should hold projected-disk derivatives (see the
+/// [front door](super::method)). Where it is wrong (`docs/tradeoff.md`, "Where each approximation is
+/// wrong"; a slope footprint, exact at `h = n`): as TK19, `D` errs by more than 10 % once the
+/// footprint is wider than about 0.3 lobe widths, except within one lobe width of the peak
+/// (there from 0.7 to 2 lobe widths of footprint); up to 600 % far in the tails.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Projected {
+    /// The clamp rules applied to the footprint and the kernel.
+    pub clamps: ClampRules,
+    /// The standard deviation of the Gaussian pixel filter, in pixels.
+    pub sigma: F,
+}
+
+impl Projected {
+    /// TK21's configuration: [`ClampRules::default`] and `sigma = 0.5` pixels (TK21's
+    /// `SIGMA2 = 1 / (2 pi)` is a variance of its own pixel filter; set `sigma` to
+    /// `sqrt(1 / (2 pi))` to reproduce it).
+    pub const TK21: Self = Self {
+        clamps: ClampRules::DEFAULT,
+        sigma: SIGMA_PIXEL,
+    };
+}
+
+impl Default for Projected {
+    /// [`Projected::TK21`].
+    fn default() -> Self {
+        Self::TK21
+    }
+}
+
+impl<R: Roughness> Method<Ggx<R>> for Projected {
+    type Lobe = Ggx<RoughnessMatrix>;
+    #[inline]
+    fn lobe(&self, material: &Ggx<R>, footprint: Footprint) -> Self::Lobe {
+        Ggx::new(
+            self.clamps
+                .filter_projected(material.roughness, footprint, self.sigma),
         )
     }
 }

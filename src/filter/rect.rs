@@ -46,10 +46,10 @@
 //! `9.6e-9` at `0.1`, `2.5e-14` at `0.02`; 6 points `1.1e-8` at `0.25`, `1.2e-14` at `0.08`;
 //! 8 points `3e-14` at `0.18`; 10 points `2.9e-15` at `0.25`). The `f32` tiers stay below
 //! `3.1e-8` (both sides of a switch agree to that, a quarter of an `f32` ulp at worst); the
-//! `f64` ones below `5e-14` per axis. Until issue 17 the `f64` build used the `f32` tiers, and
-//! its "loss of digits far in the tail" (`1.6e-9` at `3e4` lobe widths with a 1000:1 box) was
-//! this truncation (the 2-point rule near its switch), not cancellation; two real losses are
-//! fixed with it (below: the series of `delta - sin delta` and the four-edge form far out).
+//! `f64` ones below `5e-14` per axis: the `f64` build needs its own tiers, since the `f32`
+//! ones truncate at `1e-9` far in the tail (`3e4` lobe widths with a 1000:1 box). Two other
+//! losses of digits are avoided below: the series of `delta - sin delta` and, far out, the
+//! polar form instead of the four edges.
 //! 1. **Both axes short**: the tensor Gauss-Legendre rule of the two tiers (4 to 36 nodes in
 //!    `f32`, one division per row of nodes; up to 100 in `f64`).
 //! 2. **One long side** (say `u`): the closed form of case 3 while its cancellation allows
@@ -71,8 +71,8 @@
 //!    length directly: `2 I = sum over edges of +/- u_e / S_e atan2(Delta v S_e, S_e^2 + v_0 v_1)`,
 //!    `S_e = sqrt(1 + u_e^2)`. Four `atan2` (each one `atan`) instead of eight `atan`. The edge
 //!    terms are angles of order one while the integral of a rectangle at distance `D` from the
-//!    peak is of order `1 / D^2`: the form cancels like `1e-15 D^2` (measured; up to `1.5e-8`
-//!    at `D ~ 2e4` before issue 17). Beyond `D = 316` (`f32`) or `D = 10` (`f64`) the polar
+//!    peak is of order `1 / D^2`: the form cancels like `1e-15 D^2` (measured: `1.5e-8` at
+//!    `D ~ 2e4`). Beyond `D = 316` (`f32`) or `D = 10` (`f64`) the polar
 //!    form is used instead (`far_field`): with `g(r) = 1 / (1 + r^2)`, `f dA` is the exterior
 //!    derivative of `-g / 2 d theta` (polar angle about the peak), so the integral is
 //!    `-1/2` times the contour integral of `g d theta`, one positive integral per edge in the
@@ -85,8 +85,7 @@
 //! Measured (`tests/ggx_rect.rs`, 2000 seeded samples over alpha `1e-4..1`, anisotropy up to
 //! `100`, `|center|` components up to 4, half sides `1e-8..1`, against `f64` adaptive
 //! quadrature over the offsets from the centre): `f32` relative error median `2.1e-8`, max
-//! `6.4e-8` (about one ulp); `f64` median `2e-16`, max `4.2e-14` (before issue 17: max
-//! `2.4e-8`). A scan of 20000 cases per tier combination (slopes to `1e5` lobe widths, boxes to
+//! `6.4e-8` (about one ulp); `f64` median `2e-16`, max `4.2e-14`. A scan of 20000 cases per tier combination (slopes to `1e5` lobe widths, boxes to
 //! 10000:1) against 80-digit arithmetic: `f64` at most `8e-14` in every case of the case
 //! analysis. The printed formula in `f32` on the same sample: median `3.1e-3`, max `4e14`.
 //! Far in the tail of a very sharp lobe (normalised distance `|center| / alpha ~ 1e8`, e.g.
@@ -95,9 +94,9 @@
 //!
 //! # The box lobe
 //! [`lambda_rect`] is the exact Smith `Lambda` of this distribution (module `lambda`), so
-//! that `d_rect`, `G1 = 1 / (1 + lambda_rect)` and `G2` describe one lobe; [`sample_normal_rect`]
-//! and [`sample_visible_normal_rect`] sample it exactly, with the pdfs [`normal_pdf_rect`] and
-//! [`visible_normal_pdf_rect`] (module `sample`).
+//! that `d_rect`, `G1 = 1 / (1 + lambda_rect)` and `G2` describe one lobe: [`RectFilteredGgx`]
+//! (module `lobe`, with its method [`Rect`]). The sampling stage samples it exactly, with its
+//! pdfs (`sampling::rect`).
 //!
 //! # Inputs outside the domain
 //! Negative half extents are used by their absolute value (the rectangle is the same); NaN half
@@ -115,18 +114,17 @@ use crate::math::{self as m, Real};
 
 mod gauss;
 mod lambda;
+mod lobe;
 mod printed;
-mod sample;
 pub(crate) use gauss::{
     CLOSED_INDEX, GL2_X, GL4_W, GL4_X, GL6_W, GL6_X, GL8_W, GL8_X, GL10_W, GL10_X, Tier, WIDE,
     gl_of, rule, tier,
 };
 use gauss::{tier_index, tier_of_index};
 pub use lambda::lambda_rect;
+pub(crate) use lambda::{mean_psi, mean_psi1, psi, psi1_diff, scaled};
+pub use lobe::{Rect, RectFilteredGgx};
 pub use printed::d_rect_printed;
-pub use sample::{
-    normal_pdf_rect, sample_normal_rect, sample_visible_normal_rect, visible_normal_pdf_rect,
-};
 
 const PI64: f64 = core::f64::consts::PI;
 
@@ -215,7 +213,7 @@ fn delta_minus_sin(d: f64, sin_d: f64) -> f64 {
         // d^3/6 (1 - d^2/20 (1 - d^2/42 (1 - d^2/72 (1 - d^2/110 (1 - d^2/156 ...))))), the
         // Taylor series through d^13 / 13!: the first term left out, d^15 / 15!, is 4.6e-12
         // relative at d = 1, far below f32 rounding; in f64 three more factors (through
-        // d^19 / 19!) leave 1.2e-19 (issue 17: the truncation showed as 6.6e-13 in `mean_1d`).
+        // d^19 / 19!) leave 1.2e-19 (the shorter series would show as 6.6e-13 in `mean_1d`).
         let s = if WIDE {
             1.0 - d2
                 * (1.0 / 156.0)
@@ -298,7 +296,7 @@ fn mean_f(uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
 
 /// The tensor Gauss-Legendre rule of tiers `(t, t2)` (neither `Closed`): rows along `u` by
 /// `t`, each row's mean along `v` by [`gl_f_by`] of tier `t2`. Written out rather than through
-/// `gl_of`'s closure: the closure (two call sites) was not inlined, a call per row.
+/// `gl_of`'s closure: with two call sites the closure is not inlined, a call per row.
 #[inline(always)]
 fn tensor(t: Tier, t2: Tier, uc: f64, vc: f64, hu: f64, hv: f64) -> f64 {
     tensor_by::<false>(t, t2, uc, vc, hu, hv).0
@@ -663,8 +661,8 @@ impl RectSetup {
     /// Precondition: `self.tiers == (tu, tv)`, which the caller has established by
     /// classifying the element with this same setup's [`RectSetup::tier_indices`] (`batch`'s
     /// class of each element; debug builds assert it there). The lane does not test it again:
-    /// the second evaluation of the same comparisons took 3 % of `batch::d_rect` (`f32`;
-    /// without it the tiers are dead code in the lane). An element of another pair (`batch`'s
+    /// a second evaluation of the same comparisons would cost the lane time for nothing (with
+    /// the precondition the tiers are dead code in the lane). An element of another pair (`batch`'s
     /// padding of a pass, whose results it discards) gives a value of no meaning, without a
     /// panic.
     #[inline(always)]

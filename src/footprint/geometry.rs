@@ -38,9 +38,11 @@
 //!
 //! ## Bad input
 //! Nothing here panics or returns NaN. A degenerate configuration (the shading point on the
-//! eye or the light, `i + o = 0`, or any non-finite input or intermediate) gives the zero
-//! matrix / zero footprint (no filtering). A half vector at or below the shading horizon is
-//! clamped to `H . n >= jacobian::HZ_MIN |H|` as in [`super::jacobian`].
+//! eye or the light, `i + o = 0`, or a non-finite position or direction) gives the zero
+//! matrix (no filtering). The footprints follow the NaN policy of footprints (the module docs
+//! of [`super`]): a NaN derivative or Jacobian entry counts as `0`, an infinite one saturates.
+//! A half vector at or below the shading horizon is clamped to
+//! `H . n >= jacobian::HZ_MIN |H|` as in [`super::jacobian`].
 
 use super::super::vector;
 use super::Footprint;
@@ -232,34 +234,42 @@ pub fn half_vector_jacobian_deferred(frame: &ShadingFrame) -> Mat2 {
 /// The slope-domain footprint `(dh_u, dh_v) = (M dx_u, M dx_v)` (KHPL16 section 4.2, eq. 5)
 /// from tangent-plane ray differentials `dx_u`, `dx_v` (world vectors, `L` per pixel, e.g.
 /// from [`tangent_plane_differentials`]); their normal components are ignored. Slope per
-/// pixel. Non-finite results give [`Footprint::ZERO`].
+/// pixel. NaN entries of `jac`, `dx_u`, `dx_v` and of the frame's `s`, `t` count as `0`;
+/// infinite ones (or products beyond `F::MAX`) give infinite entries, which the clamp rules
+/// saturate.
 #[inline]
 pub fn footprint(jac: Mat2, frame: &ShadingFrame, dx_u: Vec3, dx_v: Vec3) -> Footprint {
-    let local = |d: Vec3| Vec2::new(d.dot(frame.s), d.dot(frame.t));
-    let f = Footprint::from_slope_derivatives(jac * local(dx_u), jac * local(dx_v));
-    if f.dh_u.is_finite() && f.dh_v.is_finite() {
-        f
-    } else {
-        Footprint::ZERO
-    }
+    let (s, t) = (vector::nan_to_zero(frame.s), vector::nan_to_zero(frame.t));
+    let local = |d: Vec3| {
+        let d = vector::nan_to_zero(d);
+        Vec2::new(d.dot(s), d.dot(t))
+    };
+    let jac = Mat2::from_cols(
+        vector::nan_to_zero2(jac.x_axis),
+        vector::nan_to_zero2(jac.y_axis),
+    );
+    saturated(jac * local(dx_u), jac * local(dx_v))
+}
+
+/// A footprint mapped from NaN-free inputs: a NaN entry there comes from an infinite input
+/// (`inf * 0`, `inf - inf`) and becomes `+inf`, which the clamp rules saturate (the policy of
+/// the module docs of [`super`]).
+fn saturated(dh_u: Vec2, dh_v: Vec2) -> Footprint {
+    let sat = |v: Vec2| Vec2::select(v.is_nan_mask(), Vec2::splat(F::INFINITY), v);
+    Footprint::from_slope_derivatives(sat(dh_u), sat(dh_v))
 }
 
 /// TK19 section 3.2: the same footprint for the projected half vector `p = h_xy` (the disk
 /// domain), `dp = J(par->perp) d sigma` ([`jacobian::slope_to_projected`] at the local unit
 /// half vector `h`, e.g. from [`half_vector`]). Returned in a [`Footprint`] whose vectors are
 /// projected-disk (not slope) changes per pixel, the quantities TK19 feeds to its covariance
-/// `sigma^2 [dp_u; dp_v]^T [dp_u; dp_v]`. A non-finite footprint (or result) gives
-/// [`Footprint::ZERO`].
+/// `sigma^2 [dp_u; dp_v]^T [dp_u; dp_v]`. NaN footprint entries count as `0`; infinite ones (or
+/// products beyond `F::MAX`) give infinite entries, which the clamp rules saturate.
 #[inline]
 pub fn footprint_projected(slope_footprint: Footprint, h: Vec3) -> Footprint {
     let j = jacobian::slope_to_projected(h);
-    let f = Footprint::from_slope_derivatives(j * slope_footprint.dh_u, j * slope_footprint.dh_v);
-    // Non-finite input (or overflow): the zero footprint of the module docs, not NaN.
-    if f.dh_u.is_finite() && f.dh_v.is_finite() {
-        f
-    } else {
-        Footprint::ZERO
-    }
+    let f = slope_footprint.nan_to_zero();
+    saturated(j * f.dh_u, j * f.dh_v)
 }
 
 /// A pinhole camera ray and its derivatives with respect to the image coordinates `(u, v)`

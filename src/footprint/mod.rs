@@ -15,14 +15,20 @@
 //!   [`Footprint::from_projected_derivatives_in_slope`] mapped to slope space); normal
 //!   differences ([`Footprint::from_normal_differences`], TK19 eq. 3); ray differentials
 //!   through the geometry's `M` ([`Footprint::from_ray_differentials`], KHPL16 4.2).
-//! - Kernel shapes (the next stage, [`super::kernel`]): [`Covariance`] (the Gaussian,
-//!   [`Footprint::covariance`]) and [`BoundingRect`] (the conservative rectangle of KHPL16
-//!   5.3, [`Footprint::bounding_rect`]).
+//! - Kernel shapes are the next stage's ([`super::kernel`]), which builds them from a
+//!   footprint: the Gaussian `Covariance::from_footprint` (also `footprint.covariance(sigma)`)
+//!   and the conservative rectangle of KHPL16 5.3, `BoundingRect::from_footprint` (also
+//!   `footprint.bounding_rect()`).
+//! - NaN and infinite derivatives (the crate's one policy for footprints and normal
+//!   differences, [`crate::contract`]): a NaN entry carries no information and counts as `0`
+//!   (no widening from it); a `+-inf` entry saturates: the clamp rules turn it into the widest
+//!   kernel they allow. The constructors below drop NaN inputs before mapping them and keep
+//!   infinite results infinite ([`Footprint::nan_to_zero`]); the kernel stage applies the same
+//!   substitution to a footprint built from raw values.
 //! - [`slope`]: the maps between the sphere, the projected disk and the slope plane;
 //!   [`jacobian`]: their Jacobians (TK19 supplement); [`geometry`]: the half-vector Jacobian
 //!   `M` and ray-differential footprints (KHPL16 section 4).
 
-use super::kernel::{BoundingRect, Covariance};
 use super::vector;
 use super::{F, Mat2, Vec2, Vec3};
 
@@ -48,7 +54,8 @@ impl Footprint {
     };
 
     /// From slope-domain derivatives, e.g. `ddx`/`ddy` of the slope of `h` (KHPL16 section
-    /// 5.1) or `dx_u M`, `dx_v M` from ray differentials (KHPL16 section 4.2).
+    /// 5.1) or `dx_u M`, `dx_v M` from ray differentials (KHPL16 section 4.2). Stored as given:
+    /// the kernel stage reads a NaN entry as `0` and saturates an infinite one (module docs).
     #[inline]
     pub const fn from_slope_derivatives(dh_u: Vec2, dh_v: Vec2) -> Self {
         Self { dh_u, dh_v }
@@ -63,7 +70,8 @@ impl Footprint {
     /// grazing half vectors. Dropping it shrinks the bandwidth there by `det J_o->perp = h_z`
     /// relative to the sphere (TK19 section 3.2) and equals the slope footprint at `h = n`,
     /// where `J = -I`. Units: disk units per pixel, used as slope units. For the exact slope
-    /// change use [`Footprint::from_projected_derivatives_in_slope`].
+    /// change use [`Footprint::from_projected_derivatives_in_slope`]. Stored as given (NaN and
+    /// infinite entries: module docs).
     #[inline]
     pub const fn from_projected_derivatives(dp_u: Vec2, dp_v: Vec2) -> Self {
         Self {
@@ -78,14 +86,17 @@ impl Footprint {
     /// `s = -p / sqrt(1 - |p|^2)`. `h` is normalised and clamped to `h_z >= 1e-6`
     /// ([`jacobian::HZ_MIN`], at constant azimuth) as in [`jacobian`]: the footprint of a grazing
     /// or back-facing half vector is then huge and finite (clamp it with
-    /// [`super::ClampRules::footprint`]). A zero or non-finite `h`, and a non-finite result
-    /// (NaN derivatives, or products beyond `F::MAX`), give [`Footprint::ZERO`].
+    /// [`super::ClampRules::footprint`]). A zero or non-finite `h` gives [`Footprint::ZERO`]
+    /// (no direction to map along). A NaN derivative entry counts as `0`; an infinite one, or
+    /// a product beyond `F::MAX`, gives an infinite entry, which the clamp rules saturate
+    /// (module docs).
     pub fn from_projected_derivatives_in_slope(h: Vec3, dp_u: Vec2, dp_v: Vec2) -> Self {
         if vector::unit(h).is_none() {
             return Self::ZERO;
         }
         let j = jacobian::projected_to_slope(h);
-        Self::finite_or_zero(j * dp_u, j * dp_v)
+        let (dp_u, dp_v) = (vector::nan_to_zero2(dp_u), vector::nan_to_zero2(dp_v));
+        Self::saturated(j * dp_u, j * dp_v)
     }
 
     /// The slope-domain footprint of the screen-space derivatives of the tangent-space half
@@ -100,8 +111,9 @@ impl Footprint {
     /// - Grazing and back-facing `h` (`h_z < 1e-6`, [`jacobian::HZ_MIN`]): clamped to the
     ///   horizon at constant azimuth; the footprint is huge and finite (clamp it with
     ///   [`super::ClampRules::footprint`]).
-    /// - A zero or non-finite `h`, zero derivatives, and a non-finite result (NaN
-    ///   derivatives, or products beyond `F::MAX`) give [`Footprint::ZERO`]. Never NaN, never
+    /// - A zero or non-finite `h` and zero derivatives give [`Footprint::ZERO`]. A NaN
+    ///   derivative entry counts as `0`; an infinite one, or a product beyond `F::MAX`, gives
+    ///   an infinite entry, which the clamp rules saturate (module docs). Never NaN, never
     ///   panics.
     ///
     /// Units: `dh` per pixel (unit-vector change, i.e. radians); the result in slope per pixel.
@@ -110,8 +122,11 @@ impl Footprint {
             return Self::ZERO;
         }
         let [ds_x, ds_y] = jacobian::unit_vector_to_slope(h);
-        let ds = |d: Vec3| Vec2::new(ds_x.dot(d), ds_y.dot(d));
-        Self::finite_or_zero(ds(dh_dx), ds(dh_dy))
+        let ds = |d: Vec3| {
+            let d = vector::nan_to_zero(d);
+            Vec2::new(ds_x.dot(d), ds_y.dot(d))
+        };
+        Self::saturated(ds(dh_dx), ds(dh_dy))
     }
 
     /// The footprint of ray differentials through the half-vector Jacobian `M` of the
@@ -128,13 +143,27 @@ impl Footprint {
         geometry::footprint(m, frame, dx_u, dx_v)
     }
 
-    /// `(dh_u, dh_v)` if both are finite, else [`Footprint::ZERO`].
+    /// `(dh_u, dh_v)` mapped from derivatives without NaN: a NaN entry there can only come
+    /// from an infinite input (`inf * 0`, `inf - inf`), so it becomes `+inf` (saturated, its
+    /// sign unknown); finite and infinite entries are kept.
     #[inline]
-    fn finite_or_zero(dh_u: Vec2, dh_v: Vec2) -> Self {
-        if dh_u.is_finite() && dh_v.is_finite() {
-            Self { dh_u, dh_v }
-        } else {
-            Self::ZERO
+    fn saturated(dh_u: Vec2, dh_v: Vec2) -> Self {
+        let sat = |v: Vec2| Vec2::select(v.is_nan_mask(), Vec2::splat(F::INFINITY), v);
+        Self {
+            dh_u: sat(dh_u),
+            dh_v: sat(dh_v),
+        }
+    }
+
+    /// This footprint with each NaN entry replaced by `0`: the crate's NaN policy for
+    /// footprints (module docs; [`crate::contract`]), applied by the kernel stage wherever a
+    /// kernel is built from a footprint (`Covariance::from_footprint`,
+    /// `BoundingRect::from_footprint`, `ClampRules::footprint`). Infinite entries are kept.
+    #[inline(always)]
+    pub fn nan_to_zero(self) -> Self {
+        Self {
+            dh_u: vector::nan_to_zero2(self.dh_u),
+            dh_v: vector::nan_to_zero2(self.dh_v),
         }
     }
 
@@ -150,25 +179,21 @@ impl Footprint {
     /// the tangential part of `dn_u`. Hence `tr(covariance(sigma)) = sigma^2 (|dn_u|^2 +
     /// |dn_v|^2)` (TK19 eq. 4). Near-opposite normals (`n_u ~ -n`) have no half-way normal;
     /// the denominator is clamped to `>= 1e-6` (a huge, finite footprint; zero for exactly
-    /// opposite normals, which have no tangential difference). Non-finite input gives
-    /// [`Footprint::ZERO`].
+    /// opposite normals, which have no tangential difference). A NaN entry of a difference
+    /// counts as `0`; an infinite one gives an infinite entry, which the clamp rules saturate
+    /// (module docs).
     pub fn from_normal_differences(dn_u: Vec3, dn_v: Vec3) -> Self {
-        if !(dn_u.is_finite() && dn_v.is_finite()) {
-            return Self::ZERO;
-        }
         let half = |d: Vec3| {
+            let d = vector::nan_to_zero(d);
             let len = (Vec3::new(0.0, 0.0, 2.0) + d).length().max(1e-6);
             Vec2::new(d.x, d.y) * (2.0 / len)
         };
-        Self {
-            dh_u: half(dn_u),
-            dh_v: half(dn_v),
-        }
+        Self::saturated(half(dn_u), half(dn_v))
     }
 
     /// [`Footprint::from_normal_differences`] for world-space differences and a world-space
     /// orthonormal tangent frame `(t, b, n)`: the differences are first expressed in the frame
-    /// (`(t.dn, b.dn, n.dn)`).
+    /// (`(t.dn, b.dn, n.dn)`), after their NaN entries are replaced by `0` (module docs).
     pub fn from_world_normal_differences(
         t: Vec3,
         b: Vec3,
@@ -176,35 +201,16 @@ impl Footprint {
         dn_u: Vec3,
         dn_v: Vec3,
     ) -> Self {
-        let local = |d: Vec3| Vec3::new(t.dot(d), b.dot(d), n.dot(d));
+        let local = |d: Vec3| {
+            let d = vector::nan_to_zero(d);
+            Vec3::new(t.dot(d), b.dot(d), n.dot(d))
+        };
         Self::from_normal_differences(local(dn_u), local(dn_v))
-    }
-
-    /// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels.
-    #[inline]
-    pub fn covariance(self, sigma: F) -> Covariance {
-        let (u, v) = (self.dh_u, self.dh_v);
-        Covariance::new(
-            u.x * u.x + v.x * v.x,
-            u.x * u.y + v.x * v.y,
-            u.y * u.y + v.y * v.y,
-        ) * (sigma * sigma)
-    }
-
-    /// The axis-aligned bounding rectangle of the one-pixel parallelogram
-    /// `{a dh_u + b dh_v : |a|, |b| <= 1/2}` (KHPL16 section 5.3; GDC 2016 listing
-    /// `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`; TK19 Listing 3 `abs(dU) + abs(dV)`
-    /// is its full side): half-extent `(|dh_u| + |dh_v|) / 2` per axis.
-    #[inline]
-    pub fn bounding_rect(self) -> BoundingRect {
-        BoundingRect {
-            half_extent: (self.dh_u.abs() + self.dh_v.abs()) * 0.5,
-        }
     }
 
     /// The largest distance from the centre to a vertex of the one-pixel parallelogram,
     /// `max(|dh_u + dh_v|, |dh_u - dh_v|) / 2`: the extent clamped by KHPL16 section 5.2.
-    /// It bounds both half-extents of [`Footprint::bounding_rect`] (unless the squares in the
+    /// It bounds both half-extents of the footprint's bounding rectangle (unless the squares in the
     /// lengths underflow: vectors below about `1e-19` in `f32`, `1e-154` in `f64`, give `0`).
     #[inline]
     pub fn max_extent(self) -> F {

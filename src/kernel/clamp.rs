@@ -5,6 +5,10 @@
 //! holds the papers' defaults; [`ClampRules::NONE`] disables all of them (the unbiased
 //! filter, for references); [`ClampRules::GDC2016`] is the GDC listing's configuration.
 //!
+//! The rules are data: the filters apply them ([`ClampRules::filter_gaussian`] in
+//! `filter::gaussian`, [`ClampRules::filter_projected`] in `filter::projected`, the methods of
+//! `filter`).
+//!
 //! | rule | field | default | protects against | costs |
 //! |---|---|---|---|---|
 //! | maximum extent | `max_extent` | `lambda = 1` (KHPL16 5.2) | footprints that cover the slope plane (grazing views, silhouettes, quad extrapolation): false highlights and flattened lobes | footprints wider than `lambda` are under-filtered: aliasing is left where the footprint estimate exceeds `lambda` |
@@ -13,9 +17,8 @@
 //! | kernel roughness | `kappa` | `kappa = 0.18` (TK19 eq. 1) | derivative estimation errors at edges and grazing angles (TK19 3.1) that blow the kernel up | kernel roughness^2 is capped at `kappa` per eigen-direction: under-filtering (residual aliasing) where `2 lambda > kappa`, i.e. where the footprint is wider than `sqrt(0.18) = 0.42` in roughness units |
 //! | determinant clamp | `det_clamp` | on, `tau = det(A)` (TK19 supplement) | an elongated filtered matrix whose determinant lost its digits when its entries were rounded (the inverse explodes) | none in exact arithmetic (`det(A + 2 Sigma) >= det(A)`); in floats, where it is active, it adds `t I` to the filtered matrix (`det = tau`, see `RoughnessMatrix`): the filtered peak never exceeds the unfiltered one |
 
-use super::super::filter;
 use super::super::footprint::Footprint;
-use super::super::ndf::roughness::{Roughness, RoughnessMatrix};
+use super::super::ndf::roughness::Roughness;
 use super::{BoundingRect, Covariance, KERNEL_MAX};
 use super::{F, Vec2};
 use crate::math::{self as m, Real};
@@ -96,11 +99,12 @@ impl ClampRules {
 
     /// The maximum-extent rule on a parallelogram (KHPL16 section 5.2, "rescaling the
     /// parallelogram"): both vectors are scaled by `min(1, lambda / max_extent)`, keeping the
-    /// shape. Non-finite input: a NaN component gives [`Footprint::ZERO`]; infinite
-    /// components keep their sign (finite ones become `0`) and the result is rescaled to
-    /// extent `lambda` (with an infinite `lambda` they are returned unchanged, and the
-    /// filters' [`Covariance::sanitized`] turns them into the widest kernel). A NaN or
-    /// negative `lambda` is treated as `0`.
+    /// shape. Non-finite input (the NaN policy, [`crate::contract`]): a NaN component counts
+    /// as `0` ([`Footprint::nan_to_zero`]); infinite components keep their sign (finite ones
+    /// become `0`) and the result is rescaled to extent `lambda`, the widest footprint the rule
+    /// allows (with an infinite `lambda` they are returned unchanged, and the filters'
+    /// [`Covariance::sanitized`] turns them into the widest kernel). A NaN or negative
+    /// `lambda` is treated as `0`.
     #[inline]
     pub fn footprint(&self, fp: Footprint) -> Footprint {
         // Fast path (every finite footprint of a real pixel): the squared extent against
@@ -118,27 +122,26 @@ impl ClampRules {
     /// `max_extent`); shared with `batch`'s lanes.
     #[inline(always)]
     fn footprint_within(&self, fp: Footprint) -> bool {
-        let l = self.max_extent;
-        let (p, q) = (fp.dh_u + fp.dh_v, fp.dh_u - fp.dh_v);
-        let e2 = 0.25 * p.length_squared().max(q.length_squared());
-        (l >= 0.0) & (e2 <= l * l) & (e2 <= F::MAX)
+        extent_within(self.max_extent, fp)
     }
 
     /// [`ClampRules::footprint`] beyond its fast path, for `max_extent = l`. Out of line and
-    /// taking the components by value, a speed measure: by reference, a footprint assembled
-    /// from four scalars in the caller (as in the batch loops) was stored as four floats and
-    /// read back as vectors, a store-forwarding stall. Measured (`f32`, 4096 elements,
-    /// fastest of 200 runs): `batch::ggx_d_filtered` took 112 us against 38 us for its scalar
-    /// loop with footprints inside the extent, 306 against 209 us with every footprint
-    /// clamped; by value, 35 and 197 us, as fast as the scalar loop.
+    /// taking the components by value, for speed: passed by reference, a footprint assembled
+    /// from four scalars in the caller (as in the batch loops) is stored as four floats and
+    /// read back as vectors, a store-forwarding stall that costs the batch loops their
+    /// vector speed (`benches/batch.rs`, `ggx_d_filtered`).
     #[cold]
     #[inline(never)]
     fn footprint_general(l: F, ux: F, uy: F, vx: F, vy: F) -> Footprint {
-        let fp = Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy));
-        let c = [ux, uy, vx, vy];
-        if c.iter().any(|x| x.is_nan()) {
-            return Footprint::ZERO;
+        let fp =
+            Footprint::from_slope_derivatives(Vec2::new(ux, uy), Vec2::new(vx, vy)).nan_to_zero();
+        // With its NaN entries zeroed, a footprint within the extent is returned as the fast
+        // path returns it (the same test, so that `fp` and `fp.nan_to_zero()` agree bit for
+        // bit even where the squared extent underflows).
+        if extent_within(l, fp) {
+            return fp;
         }
+        let c = [fp.dh_u.x, fp.dh_u.y, fp.dh_v.x, fp.dh_v.y];
         let lambda = if l >= 0.0 { l } else { 0.0 };
         if c.iter().any(|x| x.is_infinite()) {
             if !lambda.is_finite() {
@@ -174,8 +177,8 @@ impl ClampRules {
     /// lobe's per-axis roughness for [`ExtentFloor::AlphaCapped`]. If the floor exceeds
     /// `lambda` the floor wins (as GLSL `clamp` with `min > max` is undefined, we pick the
     /// conservative side). NaN half-extents become `0` before the floor; `+inf` becomes
-    /// `lambda` (and stays infinite under [`ClampRules::NONE`]); negative values are taken by
-    /// magnitude.
+    /// `lambda`, the widest rectangle the rule allows (and stays infinite under
+    /// [`ClampRules::NONE`]); negative values are taken by magnitude.
     #[inline]
     pub fn rect(&self, r: BoundingRect, alpha: Vec2) -> BoundingRect {
         self.rect_bounds(alpha).apply(r)
@@ -231,7 +234,7 @@ impl ClampRules {
 
     /// The determinant clamp `tau` for filtering `roughness`: `det(A)` of the unfiltered
     /// lobe (`alpha_x^2 alpha_y^2` for an axis-aligned one, TK19 supplement; for a clamped
-    /// [`RoughnessMatrix`] its `det A_c`) if `det_clamp`, else `0` (but a clamped
+    /// [`RoughnessMatrix`](super::super::ndf::roughness::RoughnessMatrix) its `det A_c`) if `det_clamp`, else `0` (but a clamped
     /// `RoughnessMatrix` keeps its own clamp, `det A_c`, either way). The determinant is the one
     /// every filter clamps with (computed in `f64` from the entries by
     /// `det_wide`), rounded to `F`.
@@ -250,73 +253,9 @@ impl ClampRules {
         }
     }
 
-    /// The whole Gaussian pipeline: [`ClampRules::footprint`] -> [`Footprint::covariance`]
-    /// (`sigma` pixels) -> [`ClampRules::kernel`] -> `A' = A + 2 Sigma`
-    /// ([`filter::gaussian`]), with the determinant clamp `tau = det(A)` if `det_clamp`
-    /// (else as [`filter::gaussian_with_det_clamp`] with `0`). The kernel is sanitised once
-    /// (by [`ClampRules::kernel`]). Exact for Beckmann, the TK19 approximation for GGX.
-    ///
-    /// Always inlined (a speed measure): called out of line, the footprint argument travels
-    /// through memory, and a footprint assembled from four scalars just before the call (the
-    /// batch loops; a shader's `ddx`/`ddy`) is read back with wider loads than it was stored
-    /// with, a store-forwarding stall: `batch::ggx_d_filtered` (`f32`, 4096 elements) took
-    /// 122 instead of 34 us.
-    #[inline(always)]
-    pub fn filter_gaussian<R: Roughness>(
-        &self,
-        roughness: R,
-        fp: Footprint,
-        sigma: F,
-    ) -> RoughnessMatrix {
-        let k = self.kernel(self.footprint(fp).covariance(sigma));
-        filter::gaussian_sanitized(roughness, k, self.det_clamp_wide(roughness))
-    }
-
-    /// [`ClampRules::filter_gaussian`] in `batch`'s lane form (branch-free) up to the entries
-    /// of `A' = A + 2 Sigma`: `((a11, a12, a22), tau, ok)`, the entries `filter_gaussian`'s
-    /// (before its determinant clamp) bit for bit where `ok`, i.e. where the footprint and
-    /// kernel rules take their fast path or common case (the footprint within `max_extent`;
-    /// the kernel sane, then within `kappa / 2` or clamped by the eigenvalue clamp's common
-    /// case); `tau` the determinant clamp it applies (`f64`; `0` without `det_clamp`). Where
-    /// `det A' >= tau` (the caller's test), `filter_gaussian` returns the matrix of these
-    /// entries unclamped. The composition of the same pieces, not a second formula. With
-    /// `EXACT` the kernel's sanity is decided exactly (with `f64` products in `f32`), else in
-    /// `F` alone ([`Covariance::is_sane_sure`]: a nearly singular kernel is flagged), which
-    /// keeps an `f32` lane at the full vector width.
-    #[inline(always)]
-    pub(crate) fn filter_gaussian_entries_lane<R: Roughness, const EXACT: bool>(
-        &self,
-        roughness: R,
-        fp: Footprint,
-        sigma: F,
-    ) -> ((F, F, F), f64, bool) {
-        let (k, ok) = self.kernel_lane::<EXACT>(fp, sigma);
-        (
-            filter::gaussian_entries(roughness, k),
-            self.det_clamp_wide(roughness),
-            ok,
-        )
-    }
-
-    /// [`ClampRules::filter_projected`] in `batch`'s lane form up to the entries of `A'`, as
-    /// [`ClampRules::filter_gaussian_entries_lane`] (with the kernel's sanity decided exactly):
-    /// the same kernel, then the projected filter's kernel part on the lobe's part `base`
-    /// (`ProjectedBase::new(roughness)`, once per batch).
-    #[inline(always)]
-    pub(crate) fn filter_projected_entries_lane<R: Roughness>(
-        &self,
-        roughness: R,
-        base: &filter::ProjectedBase,
-        fp: Footprint,
-        sigma: F,
-    ) -> ((F, F, F), f64, bool) {
-        let (k, ok) = self.kernel_lane::<true>(fp, sigma);
-        (base.entries(k), self.det_clamp_wide(roughness), ok)
-    }
-
     /// `kernel(footprint(fp).covariance(sigma))` of the filters' lanes: `(kernel, ok)`, the
     /// scalar rules' kernel bit for bit where `ok` (the footprint within `max_extent`; the
-    /// kernel sane, decided exactly with `EXACT`, else by [`Covariance::is_sane_sure`]; then
+    /// kernel sane, decided exactly with `EXACT`, else by [`Covariance::is_sane_conservative`]; then
     /// within `kappa / 2` or clamped by the eigenvalue clamp's common case).
     #[inline(always)]
     pub(crate) fn kernel_lane<const EXACT: bool>(
@@ -326,7 +265,11 @@ impl ClampRules {
     ) -> (Covariance, bool) {
         // `kernel`: the sanitiser's fast path, then the eigenvalue clamp of the kappa rule.
         let k = fp.covariance(sigma);
-        let sane = if EXACT { k.is_sane() } else { k.is_sane_sure() };
+        let sane = if EXACT {
+            k.is_sane()
+        } else {
+            k.is_sane_conservative()
+        };
         let (clamped, clamp_ok) = k.clamp_eigenvalues_lane(self.half_kappa());
         let off = self.kappa_off();
         let k = if off { k } else { clamped };
@@ -334,9 +277,9 @@ impl ClampRules {
     }
 
     /// The per-batch constants of [`Narrow::entries`] for `roughness` and `sigma`, computed
-    /// once per call of a batch function (inside the lane loop, the conditional division of
-    /// `mu` and the conditional load of `kappa` kept LLVM from vectorising the AVX2 loop:
-    /// `batch::beckmann_d_filtered` took 23 ns per element instead of 4.7, `f32`).
+    /// once per call of a batch function: inside the lane loop, the conditional division of
+    /// `mu` and the conditional load of `kappa` keep LLVM from vectorising the AVX2 loop of
+    /// `batch::beckmann_d_filtered`.
     #[inline(always)]
     pub(crate) fn narrow<R: Roughness>(&self, roughness: R, sigma: F) -> Narrow {
         // The kernel in units of sigma^2, Sigma = sigma^2 Sigma_0.
@@ -359,26 +302,6 @@ impl ClampRules {
             s_ok: scale <= F::MAX,
             a: roughness.entries_f(),
         }
-    }
-
-    /// The projected-space pipeline (TK21), the rules as in [`ClampRules::filter_gaussian`]:
-    /// [`ClampRules::footprint`] -> [`Footprint::covariance`] (`sigma` pixels; the footprint
-    /// of the half vector's projected-disk derivatives, TK19 section 3.2) ->
-    /// [`ClampRules::kernel`] -> [`filter::projected`], with the determinant clamp
-    /// `tau = det(A)` if `det_clamp` (else as [`filter::projected_with_det_clamp`] with `0`).
-    ///
-    /// Always inlined, as [`ClampRules::filter_gaussian`] (the footprint through memory
-    /// stalls: `batch::ggx_d_filtered_projected`'s scalar path took 66 instead of 38 ns per
-    /// element, `f32`).
-    #[inline(always)]
-    pub fn filter_projected<R: Roughness>(
-        &self,
-        roughness: R,
-        fp: Footprint,
-        sigma: F,
-    ) -> RoughnessMatrix {
-        let k = self.kernel(self.footprint(fp).covariance(sigma));
-        filter::projected_sanitized(roughness, k, self.det_clamp_wide(roughness))
     }
 }
 
@@ -493,10 +416,65 @@ fn scaled_to(fp: Footprint, e: F) -> Footprint {
     Footprint::from_slope_derivatives(fp.dh_u / cur * e, fp.dh_v / cur * e)
 }
 
+/// Whether `fp` is finite with extent at most `l` (and `l >= 0`), by its squared extent
+/// against `l^2` (no square root, no division): the fast path of [`ClampRules::footprint`].
+#[inline(always)]
+fn extent_within(l: F, fp: Footprint) -> bool {
+    let (p, q) = (fp.dh_u + fp.dh_v, fp.dh_u - fp.dh_v);
+    let e2 = 0.25 * p.length_squared().max(q.length_squared());
+    (l >= 0.0) & (e2 <= l * l) & (e2 <= F::MAX)
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::super::ndf::roughness::AxisAligned;
     use super::*;
+
+    /// Which of `Narrow::entries`' cases the reference took.
+    #[derive(PartialEq)]
+    enum Split {
+        Kept,
+        Clamped,
+        Isotropic,
+    }
+
+    /// The entries of `A' = A + 2 Sigma'` in `f64`, computed independently of
+    /// `Narrow::entries`: the kernel `Sigma = sigma^2 (u u^T + v v^T)` of the footprint
+    /// `[u_x, u_y, v_x, v_y]`, its eigenvalues from `hypot` and the footprint's determinant, its
+    /// eigenvectors from `atan2`, both eigenvalues clamped to `kappa / 2` and the kernel rebuilt
+    /// from them; `A = diag(alpha^2, (1.5 alpha)^2)` rounded to `F` as the lobe stores it.
+    fn reference_entries(fp: [f64; 4], sigma: F, kappa: F, alpha: f64) -> ([f64; 3], Split) {
+        let [ux, uy, vx, vy] = fp;
+        let s2 = sigma.to_f64() * sigma.to_f64();
+        let (a, b, cc) = (
+            s2 * (ux * ux + vx * vx),
+            s2 * (ux * uy + vx * vy),
+            s2 * (uy * uy + vy * vy),
+        );
+        let det = s2 * s2 * (ux * vy - uy * vx).powi(2);
+        let lmax = 0.5 * (a + cc) + (0.5 * (a - cc)).hypot(b);
+        let lmin = if lmax > 0.0 { det / lmax } else { 0.0 };
+        let m = 0.5 * kappa.to_f64();
+        // The larger eigenvalue's direction.
+        let phi = 0.5 * b.atan2(0.5 * (a - cc));
+        let (ec, es) = (phi.cos(), phi.sin());
+        let (p, q) = (lmax.min(m), lmin.min(m));
+        let split = if lmin >= m {
+            Split::Isotropic
+        } else if lmax > m {
+            Split::Clamped
+        } else {
+            Split::Kept
+        };
+        let (ax, ay) = (alpha * alpha, (1.5 * alpha) * (1.5 * alpha));
+        let (ax, ay) = (F::from_f64(ax).to_f64(), F::from_f64(ay).to_f64());
+        let want = [
+            ax + 2.0 * (p * ec * ec + q * es * es),
+            2.0 * (p - q) * ec * es,
+            ay + 2.0 * (p * es * es + q * ec * ec),
+        ];
+        (want, split)
+    }
 
     /// `Narrow::entries` (`f32`) against the pipeline in `f64` on the same
     /// inputs, computed independently (the kernel's eigenvalues from `hypot` and the
@@ -546,31 +524,10 @@ mod tests {
                             continue;
                         }
                         ok_n += 1;
-                        // The reference, in `f64`.
-                        let (ux, uy, vx, vy) = (ux.to_f64(), uy.to_f64(), vx.to_f64(), vy.to_f64());
-                        let s2 = sigma.to_f64() * sigma.to_f64();
-                        let (a, b, cc) = (
-                            s2 * (ux * ux + vx * vx),
-                            s2 * (ux * uy + vx * vy),
-                            s2 * (uy * uy + vy * vy),
-                        );
-                        let det = s2 * s2 * (ux * vy - uy * vx).powi(2);
-                        let lmax = 0.5 * (a + cc) + (0.5 * (a - cc)).hypot(b);
-                        let lmin = if lmax > 0.0 { det / lmax } else { 0.0 };
-                        let m = 0.5 * kappa.to_f64();
-                        // The larger eigenvalue's direction.
-                        let phi = 0.5 * b.atan2(0.5 * (a - cc));
-                        let (ec, es) = (phi.cos(), phi.sin());
-                        let (p, q) = (lmax.min(m), lmin.min(m));
-                        clamped += usize::from(lmax > m && lmin < m);
-                        iso += usize::from(lmin >= m);
-                        let (ax, ay) = (alpha * alpha, (1.5 * alpha) * (1.5 * alpha));
-                        let (ax, ay) = (F::from_f64(ax).to_f64(), F::from_f64(ay).to_f64());
-                        let want = [
-                            ax + 2.0 * (p * ec * ec + q * es * es),
-                            2.0 * (p - q) * ec * es,
-                            ay + 2.0 * (p * es * es + q * ec * ec),
-                        ];
+                        let fp = [ux, uy, vx, vy].map(|x| x.to_f64());
+                        let (want, split) = reference_entries(fp, sigma, kappa, alpha);
+                        clamped += usize::from(split == Split::Clamped);
+                        iso += usize::from(split == Split::Isotropic);
                         let got = [b11.to_f64(), b12.to_f64(), b22.to_f64()];
                         let scale = [want[0], (want[0] * want[2]).sqrt(), want[2]];
                         for j in 0..3 {
@@ -582,7 +539,7 @@ mod tests {
                                  alpha {alpha}, footprint {:?})",
                                 got[j],
                                 want[j],
-                                (ux, uy, vx, vy)
+                                fp
                             );
                         }
                     }

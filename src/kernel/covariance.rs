@@ -2,6 +2,7 @@
 //! TK19 section 2.2), with the eigenvalue clamp of TK19 eq. 1 and the sanitiser every filter
 //! applies first.
 
+use super::super::footprint::Footprint;
 use super::super::ndf::roughness::ALPHA_MAX;
 use super::F;
 use crate::math::{self as m, Real};
@@ -31,6 +32,23 @@ impl Covariance {
     #[inline]
     pub const fn new(s11: F, s12: F, s22: F) -> Self {
         Self { s11, s12, s22 }
+    }
+
+    /// The Gaussian pixel kernel of a footprint carried into the slope domain:
+    /// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2; KHPL16 eq. 13 with
+    /// `sigma` folded into the vectors), `sigma` the pixel filter's standard deviation in pixels
+    /// (0.5 in both papers). Entries in slope^2. A NaN footprint entry counts as `0` (the NaN
+    /// policy, [`Footprint::nan_to_zero`]); infinite ones give infinite entries, which
+    /// [`Covariance::sanitized`] saturates.
+    #[inline]
+    pub fn from_footprint(fp: Footprint, sigma: F) -> Self {
+        let fp = fp.nan_to_zero();
+        let (u, v) = (fp.dh_u, fp.dh_v);
+        Self::new(
+            u.x * u.x + v.x * v.x,
+            u.x * u.y + v.x * v.y,
+            u.y * u.y + v.y * v.y,
+        ) * (sigma * sigma)
     }
 
     /// `tr(Sigma) = lambda_min + lambda_max` (TK19 eq. 2).
@@ -113,10 +131,9 @@ impl Covariance {
     /// [`Covariance::eigenvalues`] of a matrix with a negative mean, of finite entries whose
     /// eigenvalue (or sum, or difference) overflows, or with NaN entries (`(0, 0)`).
     ///
-    /// Out of line (a speed measure, not part of the formula): inlined, it changed how the
-    /// isotropic conventions' `Norm` match compiles (it calls `eigenvalues` for
-    /// `MaxEigenvalue`), and `benches/filtered.rs` `isotropic/f32/preset_three.js` took
-    /// 7.4 instead of 4.5 us per 1024 evaluations (fastest of nine `--quick` runs).
+    /// Out of line (for speed, not part of the formula): inlined, it changes how the isotropic
+    /// conventions' `Norm` match compiles (it calls `eigenvalues` for `MaxEigenvalue`) and
+    /// slows every convention (`benches/filtered.rs`, `isotropic/*`).
     #[cold]
     #[inline(never)]
     fn eigenvalues_general(self) -> (F, F) {
@@ -167,7 +184,7 @@ impl Covariance {
         if psd(a, b, c) && a + c <= FAST_EIGEN_MAX && self.psd_within(max) {
             return self;
         }
-        Self::clamp_eigenvalues_general(a, b, c, max).detached()
+        Self::clamp_eigenvalues_general(a, b, c, max).fresh_values()
     }
 
     /// [`Covariance::clamp_eigenvalues`] of a kernel that [`Covariance::sanitized`] returned
@@ -177,7 +194,7 @@ impl Covariance {
         if self.psd_within(max) {
             return self;
         }
-        Self::clamp_eigenvalues_general(self.s11, self.s12, self.s22, max).detached()
+        Self::clamp_eigenvalues_general(self.s11, self.s12, self.s22, max).fresh_values()
     }
 
     /// Whether the largest eigenvalue of a finite PSD matrix is at most `max` (NaN: false),
@@ -202,7 +219,7 @@ impl Covariance {
     }
 
     /// The general case of [`Covariance::clamp_eigenvalues`] (out of line, with
-    /// [`Covariance::detached`] at its call sites).
+    /// [`Covariance::fresh_values`] at its call sites).
     #[cold]
     #[inline(never)]
     fn clamp_eigenvalues_general(s11: F, s12: F, s22: F, max: F) -> Self {
@@ -279,7 +296,7 @@ impl Covariance {
         if recip {
             return (lmin, lmax);
         }
-        let (up, big_s, big) = Self::big(k, s, r);
+        let (up, big_s, big) = Self::larger_magnitude_eigenvalue(k, s, r);
         let (s11, s12, s22) = (this.s11, this.s12, this.s22);
         let other = if big.is_finite() && big != 0.0 {
             let (lo, hi) = Self::lo_hi(s11, s22);
@@ -295,7 +312,7 @@ impl Covariance {
     /// The eigenvalue of larger magnitude of the unit-size matrix `s` of radius `r`, `mean
     /// +/- r` with the sign of `mean` (no cancellation): `(mean >= 0, big_s, big_s k)`.
     #[inline(always)]
-    fn big(k: F, s: Self, r: F) -> (bool, F, F) {
+    fn larger_magnitude_eigenvalue(k: F, s: Self, r: F) -> (bool, F, F) {
         let mean = 0.5 * (s.s11 + s.s22);
         let up = mean >= 0.0;
         let big_s = if up { mean + r } else { mean - r };
@@ -325,7 +342,7 @@ impl Covariance {
     #[allow(clippy::manual_range_contains)] // `&` of compares: no branch in the lane.
     fn eigen_pair_recip(this: Self, k: F, s: Self, r: F) -> (F, F, bool) {
         let (s11, s12, s22) = (this.s11, this.s12, this.s22);
-        let (up, _, big) = Self::big(k, s, r);
+        let (up, _, big) = Self::larger_magnitude_eigenvalue(k, s, r);
         let ib = 1.0 / big;
         let recip = (ib.abs() >= F::MIN_POSITIVE) & (ib.abs() < F::INFINITY);
         let (lo, hi) = Self::lo_hi(s11, s22);
@@ -401,7 +418,7 @@ impl Covariance {
         } else {
             v
         }
-        .detached();
+        .fresh_values();
         let fast = self.psd_within(max);
         let ok = fast
             | ((max >= 0.0)
@@ -417,8 +434,10 @@ impl Covariance {
     /// A finite, symmetric positive semi-definite covariance whose eigenvalues are at most
     /// [`KERNEL_MAX`] (`ALPHA_MAX^2`, a kernel already wider than the widest supported lobe):
     ///
-    /// - any NaN entry: [`Covariance::ZERO`] (no information, no filtering);
-    /// - any infinite entry: `KERNEL_MAX * I` (the widest kernel, direction unknown);
+    /// - any infinite entry: `KERNEL_MAX * I` (the widest kernel, direction unknown; a NaN
+    ///   beside it is what `inf * 0` gives);
+    /// - otherwise a NaN entry counts as `0` (no information, no widening from it: the crate's
+    ///   NaN policy, [`crate::contract`]);
     /// - negative variances are raised to `0` and `|s12|` lowered to `sqrt(s11 s22)` (the
     ///   nearest PSD matrix with the same diagonal; only rounding produces these from
     ///   [`Footprint::covariance`](super::super::Footprint::covariance));
@@ -434,7 +453,7 @@ impl Covariance {
         if self.is_sane() {
             return self;
         }
-        Self::sanitized_general(a, b, c).detached()
+        Self::sanitized_general(a, b, c).fresh_values()
     }
 
     /// Whether [`Covariance::sanitized`] returns `self` by its fast path: finite, positive
@@ -449,23 +468,21 @@ impl Covariance {
     /// the rounded products cannot decide: `b^2` within `2 eps` of `a c`): for `batch`'s
     /// `f32` lanes, which an `f64` product would hold to half their width. `f64`: `is_sane`.
     #[inline(always)]
-    pub(crate) fn is_sane_sure(self) -> bool {
+    pub(crate) fn is_sane_conservative(self) -> bool {
         let (a, b, c) = (self.s11, self.s12, self.s22);
-        psd_sure(a, b, c) & (a + c <= KERNEL_MAX)
+        psd_conservative(a, b, c) & (a + c <= KERNEL_MAX)
     }
 
     /// The general case of [`Covariance::sanitized`] (out of line, with
-    /// [`Covariance::detached`] at its call site).
+    /// [`Covariance::fresh_values`] at its call site).
     #[cold]
     #[inline(never)]
     fn sanitized_general(a: F, b: F, c: F) -> Self {
-        let e = [a, b, c];
-        if e.iter().any(|x| x.is_nan()) {
-            return Self::ZERO;
-        }
-        if e.iter().any(|x| x.is_infinite()) {
+        if [a, b, c].iter().any(|x| x.is_infinite()) {
             return Self::new(KERNEL_MAX, 0.0, KERNEL_MAX);
         }
+        let zero_nan = |x: F| if x.is_nan() { 0.0 } else { x };
+        let (a, b, c) = (zero_nan(a), zero_nan(b), zero_nan(c));
         let s11 = a.max(0.0);
         let s22 = c.max(0.0);
         let bound = m::sqrt(s11) * m::sqrt(s22);
@@ -476,15 +493,13 @@ impl Covariance {
 
 impl Covariance {
     /// The result of an out-of-line general path as fresh values (`x + 0`, which only turns
-    /// `-0` into `+0`). A speed measure, not part of any formula: an aggregate comes back from
-    /// a call through memory, and returned as is the compiler also wrote the inlined fast
-    /// path's value into that memory and read it back with loads straddling the stores (a
-    /// store-forwarding stall). Measured (`benches/filtered.rs`, `--quick`, fastest of five
-    /// runs per build): `ggx_matrix/f64/tk21_projected` takes 2.2 to 2.3 times as long without
-    /// it (93.6 vs 41.6 us per 1024 evaluations on a loaded machine); the other kernels are
-    /// unaffected within noise.
+    /// `-0` into `+0`). Not part of any formula: an aggregate comes back from an out-of-line
+    /// call through memory, and returned as is the compiler also writes the inlined fast
+    /// path's value into that memory and reads it back with loads straddling the stores (a
+    /// store-forwarding stall); the additions keep the values in registers
+    /// (`benches/filtered.rs`, `ggx_matrix/*/tk21_projected`, shows the difference).
     #[inline(always)]
-    fn detached(self) -> Self {
+    fn fresh_values(self) -> Self {
         Self::new(self.s11 + 0.0, self.s12 + 0.0, self.s22 + 0.0)
     }
 }
@@ -524,7 +539,7 @@ fn psd(a: F, b: F, c: F) -> bool {
 /// `b^2 <= a c (1 - 2 u) / (1 - u) < a c` exactly (`u = eps / 2`; a subnormal `fl(b^2)` is
 /// off by at most `2^-150 < 2 u a c`).
 #[inline(always)]
-fn psd_sure(a: F, b: F, c: F) -> bool {
+fn psd_conservative(a: F, b: F, c: F) -> bool {
     if core::mem::size_of::<F>() == 8 {
         return psd(a, b, c);
     }
@@ -557,6 +572,15 @@ fn radius_direct(d: F, b: F) -> (F, bool) {
 
 /// The largest kernel eigenvalue kept by [`Covariance::sanitized`] (slope^2): `ALPHA_MAX^2`.
 pub const KERNEL_MAX: F = ALPHA_MAX * ALPHA_MAX;
+
+impl Footprint {
+    /// `Sigma = sigma^2 (dh_u dh_u^T + dh_v dh_v^T)` (TK19 section 2.2), `sigma` in pixels:
+    /// [`Covariance::from_footprint`].
+    #[inline]
+    pub fn covariance(self, sigma: F) -> Covariance {
+        Covariance::from_footprint(self, sigma)
+    }
+}
 
 impl core::ops::Add for Covariance {
     type Output = Self;

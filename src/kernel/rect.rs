@@ -1,5 +1,6 @@
 //! The conservative rectangle kernel of KHPL16 section 5.3 and its Gaussian equivalent.
 
+use super::super::footprint::Footprint;
 use super::{Covariance, F, Vec2};
 
 /// An axis-aligned slope-domain rectangle centred on the half vector's slope, stored by its
@@ -8,7 +9,7 @@ use super::{Covariance, F, Vec2};
 ///
 /// Convention: the rectangle bounds the *one-pixel* parallelogram (`|a|, |b| <= 1/2` pixel
 /// steps), so `half_extent = (|dh_u| + |dh_v|) / 2` and the full side `w = |dh_u| + |dh_v|`
-/// is TK19 Listing 3's `boundingRectangle`. Half-extents were chosen because the rectangle
+/// is TK19 Listing 3's `boundingRectangle`. Half-extents are stored because the rectangle
 /// integral takes them and the clamps of the GDC listing act on them.
 ///
 /// Its Gaussian equivalent ([`BoundingRect::covariance`]) treats the full side like the
@@ -31,11 +32,36 @@ impl BoundingRect {
         Self { half_extent }
     }
 
+    /// The axis-aligned bounding rectangle of the one-pixel parallelogram
+    /// `{a dh_u + b dh_v : |a|, |b| <= 1/2}` of a footprint (KHPL16 section 5.3; GDC 2016
+    /// listing `fp = (abs(dFdx(hpp)) + abs(dFdy(hpp))) * 0.5`; TK19 Listing 3
+    /// `abs(dU) + abs(dV)` is its full side): half-extent `(|dh_u| + |dh_v|) / 2` per axis. A
+    /// NaN footprint entry counts as `0` (the NaN policy, [`Footprint::nan_to_zero`]); an
+    /// infinite one gives an infinite half extent, which [`ClampRules::rect`] saturates.
+    ///
+    /// [`ClampRules::rect`]: super::ClampRules::rect
+    #[inline]
+    pub fn from_footprint(fp: Footprint) -> Self {
+        let fp = fp.nan_to_zero();
+        Self {
+            half_extent: (fp.dh_u.abs() + fp.dh_v.abs()) * 0.5,
+        }
+    }
+
     /// The Gaussian-equivalent diagonal covariance `diag((2 sigma h_x)^2, (2 sigma h_y)^2)`
     /// (see the type docs), `sigma` in pixels.
     #[inline]
     pub fn covariance(self, sigma: F) -> Covariance {
         let w = self.half_extent * (2.0 * sigma);
         Covariance::new(w.x * w.x, 0.0, w.y * w.y)
+    }
+}
+
+impl Footprint {
+    /// The axis-aligned bounding rectangle of the one-pixel parallelogram:
+    /// [`BoundingRect::from_footprint`].
+    #[inline]
+    pub fn bounding_rect(self) -> BoundingRect {
+        BoundingRect::from_footprint(self)
     }
 }

@@ -53,6 +53,8 @@ use super::ndf::roughness::Roughness;
 use super::{F, PI, Vec2, Vec3};
 
 pub mod beckmann;
+mod gaussian_ggx;
+pub mod rect;
 use crate::math::{self as m, Real};
 
 /// Largest float below 1: the upper clamp of the uniform numbers.

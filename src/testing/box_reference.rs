@@ -4,11 +4,11 @@
 //!
 //! The integration variable is the offset `delta` from the centre, over `[-H, H]` exactly,
 //! with the density evaluated at `center + delta`. Integrating over `[c - H, c + H]` instead
-//! (as this reference did before issue 17) divides an integral over the *rounded* interval by
-//! the exact width `2 H`: for a rectangle of half side `H` at distance `|c|` that is a relative
-//! error up to `1.1e-16 |c| / H` (`6e-7` for a `1e-8` rectangle at slope 100), which had been
-//! read as an error of the code under test. Rounding `c + delta` only moves a node by
-//! `1.1e-16 |c|`, a relative change of the integrand of a few `1e-16`.
+//! would divide an integral over the *rounded* interval by the exact width `2 H`: for a
+//! rectangle of half side `H` at distance `|c|` that is a relative error up to
+//! `1.1e-16 |c| / H` (`6e-7` for a `1e-8` rectangle at slope 100), which would be read as an
+//! error of the code under test. Rounding `c + delta` only moves a node by `1.1e-16 |c|`, a
+//! relative change of the integrand of a few `1e-16`.
 
 use super::quadrature::{Estimate, Tolerance, integrate, integrate_2d};
 use crate::f64::{AxisAligned, Ggx, Ndf, Vec2};

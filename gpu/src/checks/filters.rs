@@ -77,6 +77,7 @@ const IMPORTS: &str = "#import filtered_ndf::ndf::roughness::axis_aligned
 #import filtered_ndf::ndf::beckmann
 #import filtered_ndf::footprint
 #import filtered_ndf::kernel::covariance
+#import filtered_ndf::kernel::rect as bounding
 #import filtered_ndf::kernel::clamp
 #import filtered_ndf::filter::gaussian
 #import filtered_ndf::filter::projected
@@ -205,7 +206,7 @@ fn clamp_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
                 "gaussian::gaussian_with_det_clamp ({}, clamp active)",
                 if ggx { "GGX" } else { "Beckmann" }
             ),
-            "gaussian::gaussian_with_det_clamp(a, footprint::covariance(fp, 0.5), x(9u))",
+            "gaussian::gaussian_with_det_clamp(a, covariance::from_footprint(fp, 0.5), x(9u))",
             ggx,
             pts,
             &taus,
@@ -219,7 +220,7 @@ fn clamp_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
     });
     checks.push(filtered_row_tau(
         "projected::projected_with_det_clamp (GGX, clamp active)",
-        "projected::projected_with_det_clamp(a, footprint::covariance(fp, 0.5), x(9u))",
+        "projected::projected_with_det_clamp(a, covariance::from_footprint(fp, 0.5), x(9u))",
         true,
         pts,
         &taus,
@@ -235,17 +236,19 @@ fn clamp_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
         RoughnessMatrix::new_with_det_clamp(a.x * a.x, 0.0, a.y * a.y, tau.into())
             .expect("in range")
     };
-    for (ggx, f) in [
-        (true, "filter_gaussian"),
-        (false, "filter_gaussian"),
-        (true, "filter_projected"),
+    for (ggx, module, f) in [
+        (true, "gaussian", "filter_gaussian"),
+        (false, "gaussian", "filter_gaussian"),
+        (true, "projected", "filter_projected"),
     ] {
         checks.push(filtered_row_tau(
             &format!(
-                "clamp::{f} ({}, default rules, clamped material)",
+                "{module}::{f} ({}, default rules, clamped material)",
                 if ggx { "GGX" } else { "Beckmann" }
             ),
-            &format!("clamp::{f}(clamp::DEFAULT_RULES, matrix::with_det_clamp(a, x(9u)), fp, 0.5)"),
+            &format!(
+                "{module}::{f}(clamp::DEFAULT_RULES, matrix::with_det_clamp(a, x(9u)), fp, 0.5)"
+            ),
             ggx,
             pts,
             &taus,
@@ -273,11 +276,11 @@ fn entries_rows(pts: &[Point], sigma: f64) -> Vec<Check> {
     for (name, call) in [
         (
             "matrix::entries(gaussian::gaussian)",
-            "gaussian::gaussian(a, footprint::covariance(fp, 0.5))",
+            "gaussian::gaussian(a, covariance::from_footprint(fp, 0.5))",
         ),
         (
             "matrix::entries(projected::projected)",
-            "projected::projected(a, footprint::covariance(fp, 0.5))",
+            "projected::projected(a, covariance::from_footprint(fp, 0.5))",
         ),
     ] {
         let body = format!("{PROLOGUE}\ny3(0u, matrix::entries({call}));");
@@ -344,22 +347,22 @@ pub fn all() -> Vec<Check> {
 
     // The trade table's matrix rows.
     checks.push(filtered_row(
-        "clamp::filter_gaussian (GGX, TK19 A+2Sigma, default clamps)",
-        "clamp::filter_gaussian(clamp::DEFAULT_RULES, a, fp, 0.5)",
+        "gaussian::filter_gaussian (GGX, TK19 A+2Sigma, default clamps)",
+        "gaussian::filter_gaussian(clamp::DEFAULT_RULES, a, fp, 0.5)",
         true,
         &pts,
         &|p| ClampRules::default().filter_gaussian(p.alpha(), p.fp(), sigma),
     ));
     checks.push(filtered_row(
         "gaussian::gaussian (GGX, TK19 A+2Sigma, no clamps)",
-        "gaussian::gaussian(a, footprint::covariance(fp, 0.5))",
+        "gaussian::gaussian(a, covariance::from_footprint(fp, 0.5))",
         true,
         &pts,
         &|p| filter::gaussian(p.alpha(), p.fp().covariance(sigma)),
     ));
     checks.push(filtered_row(
         "projected::projected (GGX, TK21, default clamps)",
-        "projected::projected(a, clamp::kernel(clamp::DEFAULT_RULES, footprint::covariance(clamp::footprint(clamp::DEFAULT_RULES, fp), 0.5)))",
+        "projected::projected(a, clamp::kernel(clamp::DEFAULT_RULES, covariance::from_footprint(clamp::footprint(clamp::DEFAULT_RULES, fp), 0.5)))",
         true,
         &pts,
         &|p| {
@@ -370,21 +373,21 @@ pub fn all() -> Vec<Check> {
     ));
     checks.push(filtered_row(
         "gaussian::gaussian (Beckmann, KHPL16 A+2Sigma exact)",
-        "gaussian::gaussian(a, footprint::covariance(fp, 0.5))",
+        "gaussian::gaussian(a, covariance::from_footprint(fp, 0.5))",
         false,
         &pts,
         &|p| filter::gaussian(p.alpha(), p.fp().covariance(sigma)),
     ));
     checks.push(filtered_row(
-        "clamp::filter_gaussian (Beckmann, default clamps)",
-        "clamp::filter_gaussian(clamp::DEFAULT_RULES, a, fp, 0.5)",
+        "gaussian::filter_gaussian (Beckmann, default clamps)",
+        "gaussian::filter_gaussian(clamp::DEFAULT_RULES, a, fp, 0.5)",
         false,
         &pts,
         &|p| ClampRules::default().filter_gaussian(p.alpha(), p.fp(), sigma),
     ));
     checks.push(filtered_row(
-        "clamp::filter_projected (GGX, TK21, default clamps)",
-        "clamp::filter_projected(clamp::DEFAULT_RULES, a, fp, 0.5)",
+        "projected::filter_projected (GGX, TK21, default clamps)",
+        "projected::filter_projected(clamp::DEFAULT_RULES, a, fp, 0.5)",
         true,
         &pts,
         &|p| ClampRules::default().filter_projected(p.alpha(), p.fp(), sigma),
@@ -397,7 +400,7 @@ pub fn all() -> Vec<Check> {
     for (simple, name) in [(false, "proxy::proxy"), (true, "proxy::proxy_simple")] {
         let f = if simple { "proxy_simple" } else { "proxy" };
         let body = format!(
-            "{PROLOGUE}\nlet he = clamp::rect(clamp::DEFAULT_RULES, footprint::bounding_rect(fp), r.alpha).half_extent;\ny(0u, ggx::d_axis_aligned(proxy::{f}(r, he), h));"
+            "{PROLOGUE}\nlet he = clamp::rect(clamp::DEFAULT_RULES, bounding::from_footprint(fp), r.alpha).half_extent;\ny(0u, ggx::d_axis_aligned(proxy::{f}(r, he), h));"
         );
         let ulps = if simple { 8.0 } else { 12.0 };
         let mut c = Check::new(&format!("{name} (GGX D of the proxy)"), IMPORTS, &body, 9, 1)
@@ -533,7 +536,7 @@ y(2u, deferred::filtered_alpha(x(0u), s, deferred::BANDWIDTH_AVERAGE, deferred::
 /// minor eigenvalue and `sqrt(det)` carry it) to the filtered-`D` rule.
 fn lean_row(points: &[Point]) -> Check {
     let body = format!(
-        "{PROLOGUE}\nlet m = lean::LeanMoments(x2(9u), x3(11u));\nlet af = lean::lean(a, footprint::covariance(fp, 0.5), m);\ny(0u, ggx::d_matrix(af, h));"
+        "{PROLOGUE}\nlet m = lean::LeanMoments(x2(9u), x3(11u));\nlet af = lean::lean(a, covariance::from_footprint(fp, 0.5), m);\ny(0u, ggx::d_matrix(af, h));"
     );
     let mut c = Check::new("lean::lean (GGX, pixel kernel + LEAN moments)", IMPORTS, &body, 14, 1)
         .tolerance("GGX D of A' (2 (err_q + 1) + 16 ulp) plus 10 delta / det A' for the f32 moments' covariance, delta = 4 EPS (sec_xx c_yy + sec_yy c_xx + 2 |sec_xy c_xy|) + 2 EPS (c_xx c_yy + c_xy^2)");

@@ -353,17 +353,17 @@ pub fn all() -> Vec<Check> {
     let fpi = "#import filtered_ndf::footprint";
     let fps = footprints(2000, "footprint fp");
     let mut c = Check::new(
-        "footprint::covariance",
+        "covariance::from_footprint",
         "#import filtered_ndf::footprint\n#import filtered_ndf::kernel::covariance",
-        "let c = footprint::covariance(footprint::from_slope_derivatives(x2(0u), x2(2u)), x(4u)); y4(0u, vec4<f32>(c.s_xx, c.s_xy, c.s_yy, c.det));",
+        "let c = covariance::from_footprint(footprint::from_slope_derivatives(x2(0u), x2(2u)), x(4u)); y4(0u, vec4<f32>(c.s_xx, c.s_xy, c.s_yy, c.det));",
         5,
         4,
     )
     .tolerance("s_xx, s_yy 3 ulp (sums of squares); s_xy 3 EPS (|u_x u_y| + |v_x v_y|) sigma^2; det 6 ulp + 3 EPS |cross| (|u_x v_y| + |u_y v_x|) sigma^4 + the f64 reference's 4e-16 s_xx s_yy");
     let mut cr = Check::new(
-        "footprint::bounding_rect",
-        fpi,
-        "y2(0u, footprint::bounding_rect(footprint::from_slope_derivatives(x2(0u), x2(2u))).half_extent);",
+        "rect::from_footprint (kernel)",
+        "#import filtered_ndf::footprint\n#import filtered_ndf::kernel::rect",
+        "y2(0u, rect::from_footprint(footprint::from_slope_derivatives(x2(0u), x2(2u))).half_extent);",
         4,
         2,
     )
@@ -493,8 +493,7 @@ pub fn all() -> Vec<Check> {
 fn kernel_checks(fps: &[([f32; 2], [f32; 2])], rng: &mut SplitMix64) -> Vec<Check> {
     let mut checks = Vec::new();
     let imports = "#import filtered_ndf::footprint\n#import filtered_ndf::kernel::covariance\n#import filtered_ndf::kernel::rect\n#import filtered_ndf::kernel::clamp";
-    let from_fp =
-        "let c = footprint::covariance(footprint::from_slope_derivatives(x2(0u), x2(2u)), 0.5);";
+    let from_fp = "let c = covariance::from_footprint(footprint::from_slope_derivatives(x2(0u), x2(2u)), 0.5);";
 
     // eigenvalues: lambda_max = mean + hypot (8 ulp on top of the entries' 3), lambda_min =
     // det / lambda_max (the carried det's tolerance plus 3 ulp).
@@ -636,7 +635,7 @@ fn kernel_checks(fps: &[([f32; 2], [f32; 2])], rng: &mut SplitMix64) -> Vec<Chec
         4,
         4,
     )
-    .tolerance("entries as footprint::covariance plus 2 ulp; det 12 ulp, the carried determinants' tolerance, and 4 EPS (|a_xx b_yy| + |a_yy b_xx| + 2 |a_xy b_xy|) for the cross term, which cancels for kernels elongated along one direction");
+    .tolerance("entries as covariance::from_footprint plus 2 ulp; det 12 ulp, the carried determinants' tolerance, and 4 EPS (|a_xx b_yy| + |a_yy b_xx| + 2 |a_xy b_xy|) for the cross term, which cancels for kernels elongated along one direction");
     let mut crc = Check::new(
         "rect::covariance",
         imports,

@@ -102,8 +102,10 @@ fn g_ulps(lambda: f64, lambda_ulps: f64) -> f64 {
 const IMPORTS: &str = "#import filtered_ndf::ndf::roughness::axis_aligned
 #import filtered_ndf::ndf::roughness::matrix
 #import filtered_ndf::footprint
+#import filtered_ndf::kernel::covariance
 #import filtered_ndf::kernel::clamp
-#import filtered_ndf::filter::gaussian_ggx";
+#import filtered_ndf::filter::gaussian_ggx
+#import filtered_ndf::sampling::gaussian_ggx as gaussian_ggx_sampling";
 
 /// The front-door cases: `ExactGaussian::KHPL16` of an axis-aligned material.
 fn front_door(n: usize) -> Check {
@@ -230,7 +232,7 @@ fn domain_case(rng: &mut SplitMix64, made: usize) -> Option<DomainCase> {
 /// two vectors.
 fn domain(n: usize) -> Check {
     let body = "let a = matrix::from_eigen(x2(0u), x2(2u));
-let k = footprint::covariance(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
+let k = covariance::from_footprint(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
 let g = gaussian_ggx::from_kernel(a, k);
 y(0u, gaussian_ggx::p22(g, x2(8u)));
 y(1u, gaussian_ggx::d(g, x3(10u)));
@@ -347,12 +349,12 @@ fn split12(u: f32) -> (f64, f64) {
 /// (`density_ulps` at the slope of `m`) plus 2 ulp.
 fn sampling(n: usize) -> Check {
     let body = "let a = matrix::from_eigen(x2(0u), x2(2u));
-let k = footprint::covariance(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
+let k = covariance::from_footprint(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
 let g = gaussian_ggx::from_kernel(a, k);
-y3(0u, gaussian_ggx::sample_normal(g, x2(8u)));
-y(3u, gaussian_ggx::normal_pdf(g, x3(10u)));";
+y3(0u, gaussian_ggx_sampling::sample_normal(g, x2(8u)));
+y(3u, gaussian_ggx_sampling::normal_pdf(g, x3(10u)));";
     let mut c = Check::new(
-        "gaussian_ggx::{sample_normal, normal_pdf} (tests/gaussian_ggx.rs domain)",
+        "sampling::gaussian_ggx::{sample_normal, normal_pdf} (tests/gaussian_ggx.rs domain)",
         IMPORTS,
         body,
         13,
@@ -602,7 +604,7 @@ fn settings(n: usize) -> Vec<Check> {
         .map(|(setting, bound)| {
             let body = format!(
                 "let a = matrix::from_eigen(x2(0u), x2(2u));
-let k = footprint::covariance(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
+let k = covariance::from_footprint(footprint::from_slope_derivatives(x2(4u), x2(6u)), 1.0);
 let g = gaussian_ggx::with_tolerance(gaussian_ggx::from_kernel(a, k), gaussian_ggx::{setting});
 y(0u, gaussian_ggx::p22(g, x2(8u)));
 y(1u, gaussian_ggx::d(g, x3(10u)));"

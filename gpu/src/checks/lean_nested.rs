@@ -138,7 +138,10 @@ const IMPORTS: &str = "#import filtered_ndf::ndf::roughness::axis_aligned
 #import filtered_ndf::footprint
 #import filtered_ndf::filter::lean
 #import filtered_ndf::filter::gaussian_ggx
-#import filtered_ndf::filter::method
+#import filtered_ndf::filter::gaussian
+#import filtered_ndf::filter::projected
+#import filtered_ndf::filter::rect::lobe
+#import filtered_ndf::filter::proxy
 #import filtered_ndf::filter::lean_nested";
 
 const PROLOGUE: &str = "let r = axis_aligned::from_alpha(x2(0u));
@@ -168,8 +171,8 @@ pub fn all() -> Vec<Check> {
         ("KHPL16_GAUSSIAN", Gaussian::KHPL16),
     ] {
         one(
-            &format!("lean_nested::gaussian_lobe (GGX, method::{name})"),
-            &format!("ggx::d_matrix(lean_nested::gaussian_lobe(method::{name}, a, fp, m), h)"),
+            &format!("lean_nested::gaussian_lobe (GGX, gaussian::{name})"),
+            &format!("ggx::d_matrix(lean_nested::gaussian_lobe(gaussian::{name}, a, fp, m), h)"),
             &move |p| {
                 let h = v3(p.h);
                 let d =
@@ -182,8 +185,10 @@ pub fn all() -> Vec<Check> {
             },
         );
         one(
-            &format!("lean_nested::gaussian_lobe (Beckmann, method::{name})"),
-            &format!("beckmann::d_matrix(lean_nested::gaussian_lobe(method::{name}, a, fp, m), h)"),
+            &format!("lean_nested::gaussian_lobe (Beckmann, gaussian::{name})"),
+            &format!(
+                "beckmann::d_matrix(lean_nested::gaussian_lobe(gaussian::{name}, a, fp, m), h)"
+            ),
             &move |p| {
                 let h = v3(p.h);
                 let d = |mo: &LeanMoments| {
@@ -198,8 +203,8 @@ pub fn all() -> Vec<Check> {
         );
     }
     one(
-        "lean_nested::projected_lobe (method::TK21_PROJECTED)",
-        "ggx::d_matrix(lean_nested::projected_lobe(method::TK21_PROJECTED, a, fp, m), h)",
+        "lean_nested::projected_lobe (projected::TK21_PROJECTED)",
+        "ggx::d_matrix(lean_nested::projected_lobe(projected::TK21_PROJECTED, a, fp, m), h)",
         &|p| {
             let h = v3(p.h);
             let d = |mo: &LeanMoments| {
@@ -213,8 +218,8 @@ pub fn all() -> Vec<Check> {
         },
     );
     one(
-        "lean_nested::exact_gaussian_lobe (method::KHPL16_EXACT_GAUSSIAN)",
-        "gaussian_ggx::d(lean_nested::exact_gaussian_lobe(method::KHPL16_EXACT_GAUSSIAN, a, fp, m), h)",
+        "lean_nested::exact_gaussian_lobe (gaussian_ggx::KHPL16_EXACT_GAUSSIAN)",
+        "gaussian_ggx::d(lean_nested::exact_gaussian_lobe(gaussian_ggx::KHPL16_EXACT_GAUSSIAN, a, fp, m), h)",
         &|p| {
             let h = v3(p.h);
             let e = ExactGaussian::KHPL16;
@@ -232,10 +237,8 @@ pub fn all() -> Vec<Check> {
         ("GDC2016_RECT", Rect::GDC2016),
     ] {
         one(
-            &format!("lean_nested::rect_lobe (method::{name})"),
-            &format!(
-                "method::d_rect_filtered(lean_nested::rect_lobe(method::{name}, r, fp, m), h)"
-            ),
+            &format!("lean_nested::rect_lobe (lobe::{name})"),
+            &format!("lobe::d_rect_filtered(lean_nested::rect_lobe(lobe::{name}, r, fp, m), h)"),
             &move |p| {
                 let h = v3(p.h);
                 let d =
@@ -262,8 +265,8 @@ pub fn all() -> Vec<Check> {
         );
     }
     one(
-        "lean_nested::proxy_lobe (method::KHPL16_PROXY)",
-        "ggx::d_axis_aligned(lean_nested::proxy_lobe(method::KHPL16_PROXY, r, fp, m), h)",
+        "lean_nested::proxy_lobe (proxy::KHPL16_PROXY)",
+        "ggx::d_axis_aligned(lean_nested::proxy_lobe(proxy::KHPL16_PROXY, r, fp, m), h)",
         &|p| {
             let h = v3(p.h);
             let d = |mo: &LeanMoments| {

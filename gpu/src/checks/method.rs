@@ -67,8 +67,11 @@ const IMPORTS: &str = "#import filtered_ndf::ndf::roughness::axis_aligned
 #import filtered_ndf::ndf::ggx
 #import filtered_ndf::ndf::beckmann
 #import filtered_ndf::footprint
+#import filtered_ndf::filter::gaussian
 #import filtered_ndf::filter::gaussian_ggx
-#import filtered_ndf::filter::method";
+#import filtered_ndf::filter::projected
+#import filtered_ndf::filter::rect::lobe
+#import filtered_ndf::filter::proxy";
 
 const PROLOGUE: &str = "let r = axis_aligned::from_alpha(x2(0u));
 let a = axis_aligned::to_matrix(r);
@@ -98,8 +101,8 @@ pub fn all() -> Vec<Check> {
             Gaussian::KHPL16
         };
         one(
-            &format!("method::d_ggx_gaussian (method::{name})"),
-            &format!("method::d_ggx_gaussian(method::{name}, a, fp, h)"),
+            &format!("gaussian::d_ggx_gaussian (gaussian::{name})"),
+            &format!("gaussian::d_ggx_gaussian(gaussian::{name}, a, fp, h)"),
             &move |p| {
                 let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
                 let h = v3(p.h);
@@ -110,8 +113,8 @@ pub fn all() -> Vec<Check> {
             },
         );
         one(
-            &format!("method::d_beckmann_gaussian (method::{name})"),
-            &format!("method::d_beckmann_gaussian(method::{name}, a, fp, h)"),
+            &format!("gaussian::d_beckmann_gaussian (gaussian::{name})"),
+            &format!("gaussian::d_beckmann_gaussian(gaussian::{name}, a, fp, h)"),
             &move |p| {
                 let lobe = Beckmann::new(p.material()).filtered(p.fp(), m);
                 let h = v3(p.h);
@@ -123,8 +126,8 @@ pub fn all() -> Vec<Check> {
         );
     }
     one(
-        "method::d_ggx_projected (method::TK21_PROJECTED)",
-        "method::d_ggx_projected(method::TK21_PROJECTED, a, fp, h)",
+        "projected::d_ggx_projected (projected::TK21_PROJECTED)",
+        "projected::d_ggx_projected(projected::TK21_PROJECTED, a, fp, h)",
         &|p| {
             let lobe = Ggx::new(p.material()).filtered(p.fp(), Projected::TK21);
             let h = v3(p.h);
@@ -139,8 +142,8 @@ pub fn all() -> Vec<Check> {
         r.kernel(r.footprint(p.fp()).covariance(0.5))
     };
     one(
-        "method::d_ggx_exact_gaussian (method::KHPL16_EXACT_GAUSSIAN)",
-        "method::d_ggx_exact_gaussian(method::KHPL16_EXACT_GAUSSIAN, a, fp, h)",
+        "gaussian_ggx::d_ggx_exact_gaussian (gaussian_ggx::KHPL16_EXACT_GAUSSIAN)",
+        "gaussian_ggx::d_ggx_exact_gaussian(gaussian_ggx::KHPL16_EXACT_GAUSSIAN, a, fp, h)",
         &|p| {
             let lobe = Ggx::new(p.material()).filtered(p.fp(), ExactGaussian::KHPL16);
             let h = v3(p.h);
@@ -151,8 +154,8 @@ pub fn all() -> Vec<Check> {
         },
     );
     one(
-        "gaussian_ggx::lambda(method::exact_gaussian_lobe) (method::KHPL16_EXACT_GAUSSIAN)",
-        "gaussian_ggx::lambda(method::exact_gaussian_lobe(method::KHPL16_EXACT_GAUSSIAN, a, fp), w)",
+        "gaussian_ggx::lambda(gaussian_ggx::exact_gaussian_lobe) (gaussian_ggx::KHPL16_EXACT_GAUSSIAN)",
+        "gaussian_ggx::lambda(gaussian_ggx::exact_gaussian_lobe(gaussian_ggx::KHPL16_EXACT_GAUSSIAN, a, fp), w)",
         &|p| {
             let lobe = Ggx::new(p.material()).filtered(p.fp(), ExactGaussian::KHPL16);
             let w = v3(p.w);
@@ -164,8 +167,8 @@ pub fn all() -> Vec<Check> {
     for (name, gdc) in [("KHPL16_RECT", false), ("GDC2016_RECT", true)] {
         let m = if gdc { Rect::GDC2016 } else { Rect::KHPL16 };
         one(
-            &format!("method::d_ggx_rect (method::{name})"),
-            &format!("method::d_ggx_rect(method::{name}, r, fp, h)"),
+            &format!("lobe::d_ggx_rect (lobe::{name})"),
+            &format!("lobe::d_ggx_rect(lobe::{name}, r, fp, h)"),
             &move |p| {
                 let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
                 let h = v3(p.h);
@@ -175,8 +178,8 @@ pub fn all() -> Vec<Check> {
             },
         );
         one(
-            &format!("method::lambda_rect_filtered (method::{name})"),
-            &format!("method::lambda_rect_filtered(method::rect_lobe(method::{name}, r, fp), w)"),
+            &format!("lobe::lambda_rect_filtered (lobe::{name})"),
+            &format!("lobe::lambda_rect_filtered(lobe::rect_lobe(lobe::{name}, r, fp), w)"),
             &move |p| {
                 let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
                 let w = v3(p.w);
@@ -185,8 +188,8 @@ pub fn all() -> Vec<Check> {
             },
         );
         one(
-            &format!("method::g2_rect_filtered (method::{name})"),
-            &format!("method::g2_rect_filtered(method::rect_lobe(method::{name}, r, fp), w, o, h)"),
+            &format!("lobe::g2_rect_filtered (lobe::{name})"),
+            &format!("lobe::g2_rect_filtered(lobe::rect_lobe(lobe::{name}, r, fp), w, o, h)"),
             &move |p| {
                 let lobe = Ggx::new(p.material()).filtered(p.fp(), m);
                 let (w, o, h) = (v3(p.w), v3(p.o), v3(p.h));
@@ -200,8 +203,8 @@ pub fn all() -> Vec<Check> {
         );
     }
     one(
-        "method::d_ggx_proxy (method::KHPL16_PROXY)",
-        "method::d_ggx_proxy(method::KHPL16_PROXY, r, fp, h)",
+        "proxy::d_ggx_proxy (proxy::KHPL16_PROXY)",
+        "proxy::d_ggx_proxy(proxy::KHPL16_PROXY, r, fp, h)",
         &|p| {
             let lobe = Ggx::new(p.material()).filtered(p.fp(), Proxy::KHPL16);
             (
@@ -220,7 +223,7 @@ pub fn all() -> Vec<Check> {
     checks
 }
 
-/// `method::g1_rect_filtered(lobe, w, h)` of the box lobe at the trade table's shading points
+/// `lobe::g1_rect_filtered(lobe, w, h)` of the box lobe at the trade table's shading points
 /// (views `w` from `upper_hemisphere(89.9)`, micronormals `h` from `upper_hemisphere(89)`).
 ///
 /// Tolerance: `G1 = chi+(w.m) / (1 + Lambda(w))` carries the bound of its `Lambda`
@@ -230,10 +233,10 @@ pub fn all() -> Vec<Check> {
 /// shader may answer 0 or the value: the tolerance there is the value (absolute).
 fn g1_rect_filtered(pts: &[Point], name: &str, m: Rect) -> Check {
     let body = format!(
-        "{PROLOGUE}\ny(0u, method::g1_rect_filtered(method::rect_lobe(method::{name}, r, fp), w, h));"
+        "{PROLOGUE}\ny(0u, lobe::g1_rect_filtered(lobe::rect_lobe(lobe::{name}, r, fp), w, h));"
     );
     let mut c = Check::new(
-        &format!("method::g1_rect_filtered (method::{name})"),
+        &format!("lobe::g1_rect_filtered (lobe::{name})"),
         IMPORTS,
         &body,
         15,
@@ -256,7 +259,7 @@ fn g1_rect_filtered(pts: &[Point], name: &str, m: Rect) -> Check {
     c
 }
 
-/// `method::p22_rect_filtered` of the box lobe `method::rect_lobe(method, r, fp)` at the
+/// `lobe::p22_rect_filtered` of the box lobe `lobe::rect_lobe(method, r, fp)` at the
 /// trade table's shading points, at two slopes each: the half vector's `-h_xy / h_z` (rounded
 /// to f32, as the shader reads it), and a slope drawn uniformly in the box widened by half
 /// (`s_i = t_i H_i`, `t_i` in `[-1.5, 1.5]`), where the filtered lobe is flat-topped and its
@@ -269,10 +272,10 @@ fn g1_rect_filtered(pts: &[Point], name: &str, m: Rect) -> Check {
 /// reference, [`super::rect::log_sensitivity`]) times one ulp.
 fn p22_rect_filtered(pts: &[Point], name: &str, m: Rect) -> Check {
     let body = format!(
-        "{PROLOGUE}\ny(0u, method::p22_rect_filtered(method::rect_lobe(method::{name}, r, fp), x2(15u)));"
+        "{PROLOGUE}\ny(0u, lobe::p22_rect_filtered(lobe::rect_lobe(lobe::{name}, r, fp), x2(15u)));"
     );
     let mut c = Check::new(
-        &format!("method::p22_rect_filtered (method::{name})"),
+        &format!("lobe::p22_rect_filtered (lobe::{name})"),
         IMPORTS,
         &body,
         17,

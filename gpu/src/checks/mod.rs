@@ -21,6 +21,7 @@ pub mod gaussian_ggx;
 pub mod lean_nested;
 pub mod math;
 pub mod method;
+pub mod nan_policy;
 pub mod ndf;
 pub mod rect;
 pub mod rect_sample;
@@ -42,6 +43,7 @@ pub const GROUPS: &[(&str, Group)] = &[
     ("filters", filters::all),
     ("rect", rect::all),
     ("rect_sample", rect_sample::all),
+    ("nan_policy", nan_policy::all),
     ("gaussian_ggx", gaussian_ggx::all),
     ("method", method::all),
     ("lean_nested", lean_nested::all),
@@ -268,8 +270,14 @@ pub fn run(check: &Check) -> Result<Outcome, String> {
             let g = f64::from(out[i * check.n_out + j]);
             let r = c.expect[j];
             let t = c.tol[j];
-            let err = (g - r).abs();
-            let allowed = t.rel * r.abs() + t.abs;
+            // Equal values (the same infinity included) differ by 0, not by `inf - inf`, and
+            // an absolute tolerance stays absolute at an infinite reference (not `0 inf`).
+            let err = if g == r { 0.0 } else { (g - r).abs() };
+            let allowed = if t.rel == 0.0 {
+                t.abs
+            } else {
+                t.rel * r.abs() + t.abs
+            };
             let ok = err <= allowed;
             // Reported errors: relative where the relative part of the tolerance dominates
             // (`|ref|` well above the absolute part, which is the flush-to-zero floor or a

@@ -1,4 +1,4 @@
-//! `shaders/filter/rect/sample.wgsl`: the box lobe's `D(m) m_z` sampler and its pdfs.
+//! `shaders/sampling/rect.wgsl`: the box lobe's `D(m) m_z` sampler and its pdfs.
 //!
 //! Cases: alpha from `strategies::axis_aligned()`, the half extents of the trade table (the
 //! bounding box of `strategies::footprint()` under KHPL16's rules, as `checks::rect` draws
@@ -20,26 +20,27 @@
 use super::rect::{d_rect_ulps, lambda_rect_ulps};
 use super::{Check, EPS, Tol, draw};
 use crate::reference::{
-    AxisAligned, ClampRules, DVec2, Footprint, SplitMix64, rect, strategies, v2, v3,
+    AxisAligned, ClampRules, DVec2, Footprint, SplitMix64, sampling, strategies, v2, v3,
 };
 
-/// The checks of `filter/rect/sample.wgsl`.
+/// The checks of `sampling/rect.wgsl`.
 pub fn all() -> Vec<Check> {
-    let imports = "#import filtered_ndf::ndf::roughness::axis_aligned\n#import filtered_ndf::filter::rect::sample";
+    let imports =
+        "#import filtered_ndf::ndf::roughness::axis_aligned\n#import filtered_ndf::sampling::rect";
     let pre = "let r = axis_aligned::from_alpha(x2(0u));\nlet he = x2(2u);\nlet wo = x3(4u);\nlet u = x2(7u);\nlet ub = x2(9u);\n";
     let mut sn = Check::new(
-        "rect::sample::sample_normal_rect",
+        "sampling::rect::sample_normal_rect",
         imports,
-        &format!("{pre}y3(0u, sample::sample_normal_rect(r, he, u, ub));"),
+        &format!("{pre}y3(0u, rect::sample_normal_rect(r, he, u, ub));"),
         11,
         3,
     )
     .tolerance("|ds| / sqrt(1 + |s|^2) + 8 EPS absolute per component, |ds| = 10 EPS rad (alpha_x + alpha_y) + 3 EPS |delta| + EPS |s| (module docs)");
     let mut pd = Check::new(
-        "rect::sample::{normal_pdf_rect, visible_normal_pdf_rect}",
+        "sampling::rect::{normal_pdf_rect, visible_normal_pdf_rect}",
         imports,
         &format!(
-            "{pre}let m = x3(11u);\ny(0u, sample::normal_pdf_rect(r, he, m));\ny(1u, sample::visible_normal_pdf_rect(r, he, wo, m));"
+            "{pre}let m = x3(11u);\ny(0u, rect::normal_pdf_rect(r, he, m));\ny(1u, rect::visible_normal_pdf_rect(r, he, wo, m));"
         ),
         14,
         2,
@@ -85,7 +86,7 @@ pub fn all() -> Vec<Check> {
             DVec2::new(us[2].into(), us[3].into()),
         );
 
-        let m = rect::sample_normal_rect(r, hd, u, ub);
+        let m = sampling::rect::sample_normal_rect(r, hd, u, ub);
         // The tolerance's terms, from the reference's own slope.
         let (u1, ax, ay) = (u.x, r.alpha().x, r.alpha().y);
         let rad = (u1 / (1.0 - u1)).sqrt();
@@ -98,7 +99,7 @@ pub fn all() -> Vec<Check> {
         sn.case(input.clone(), vec![m.x, m.y, m.z], vec![Tol::abs(t); 3]);
 
         // The pdfs at the reference's visible sample (the normals a renderer evaluates).
-        let Some(mv) = rect::sample_visible_normal_rect(r, hd, wd, u, ub) else {
+        let Some(mv) = sampling::rect::sample_visible_normal_rect(r, hd, wd, u, ub) else {
             continue;
         };
         let m32 = [mv.x as f32, mv.y as f32, mv.z as f32];
@@ -114,8 +115,8 @@ pub fn all() -> Vec<Check> {
         pd.case(
             input,
             vec![
-                rect::normal_pdf_rect(r, hd, md),
-                rect::visible_normal_pdf_rect(r, hd, wd, md),
+                sampling::rect::normal_pdf_rect(r, hd, md),
+                sampling::rect::visible_normal_pdf_rect(r, hd, wd, md),
             ],
             vec![Tol::ulps(t_d + 2.0), Tol::ulps(t_d + t_l + 2.0 / wom + 4.0)],
         );

@@ -2,8 +2,10 @@
 //! and the scalar path over the elements the lanes flagged.
 
 use super::super::super::F;
-use super::driver::BLOCK;
 use super::kernel::{Kernel, MAX_OUTPUTS, MID};
+
+/// Elements per block: the vector pass and the fix-up scan of a block run while it is in L1.
+pub(crate) const BLOCK: usize = 512;
 
 /// The elements `start..end` of the columns.
 #[derive(Clone, Copy)]

@@ -3,13 +3,10 @@
 //! block from what the last block flagged.
 
 use super::super::super::F;
-use super::block::{Block, Blocks, lane_pass, scalar_pass};
+use super::block::{BLOCK, Block, Blocks, lane_pass, scalar_pass};
 use super::dispatch::{SimdLoop, dispatch};
 use super::gather::{Scratch, second_lane_pass, sorted_pass};
 use super::kernel::Kernel;
-
-/// Elements per block: the vector pass and the fix-up scan of a block run while it is in L1.
-pub(crate) const BLOCK: usize = 512;
 
 /// Blocks run by the scalar path alone after a block whose vector pass flagged more than half
 /// of its elements (then the vector pass probes again).

@@ -3,8 +3,7 @@
 //! sorted by [`Kernel::second`] where most of it belongs to the second lane.
 
 use super::super::super::F;
-use super::block::{Block, BlockBuffer, element, long_enough, mark, marked_lane};
-use super::driver::BLOCK;
+use super::block::{BLOCK, Block, BlockBuffer, element, long_enough, mark, marked_lane};
 use super::kernel::{CARRY, Carry, Kernel, MAX_OUTPUTS};
 
 /// Elements per gather (the gathered columns: `(I + O) GATHER` floats).

@@ -153,7 +153,7 @@ impl FilteredNdf for Beckmann<RoughnessMatrix> {
 /// [`ClampRules::filter_gaussian`] evaluated by the NDF `N(A')` at `h_i`. In `f32` two lanes
 /// (a [`Kernel::TIERED`] kernel), both with the rules' fast paths and the eigenvalue clamp's
 /// common case ([`ClampRules::filter_gaussian_entries_lane`]): the first decides everything
-/// in `f32` (the kernel's sanity by [`Covariance::is_sane_sure`]) and evaluates `D` by
+/// in `f32` (the kernel's sanity by [`Covariance::is_sane_conservative`]) and evaluates `D` by
 /// [`FilteredNdf::d_entries_lane`], so that it runs at the full `f32` vector width (for
 /// Beckmann, [`FilteredNdf::NARROW`], the narrow lane instead:
 /// `Narrow::entries`, in two loops, [`Kernel::STAGED`]); the
@@ -161,7 +161,7 @@ impl FilteredNdf for Beckmann<RoughnessMatrix> {
 /// products, the scalar path's matrix, the NDF's lane `D`). What the second flags goes to the
 /// scalar route. In `f64` the first lane alone (the two would be the same).
 ///
-/// [`Covariance::is_sane_sure`]: super::super::super::kernel::Covariance::is_sane_sure
+/// [`Covariance::is_sane_conservative`]: super::super::super::kernel::Covariance::is_sane_conservative
 #[inline]
 fn d_filtered<R: Roughness, N: FilteredNdf>(
     r: &R,

@@ -74,7 +74,7 @@ use crate::math::{self as m, Real};
 /// overflows nor underflows, nor do the visible sampler's squares of `w_i delta_i`; `Lambda`
 /// is homogeneous of degree 0. Unit vectors pass unchanged; a non-finite `w` too.
 #[inline]
-pub(super) fn scaled(w: Vec3) -> (f64, f64, f64) {
+pub(crate) fn scaled(w: Vec3) -> (f64, f64, f64) {
     scaled_to(w, 0)
 }
 
@@ -118,7 +118,7 @@ fn rho(t: f64) -> f64 {
 
 /// `e^(-asinh t) = sqrt(1 + t^2) - t`, without cancellation, and `sqrt(1 + t^2)`.
 #[inline(always)]
-fn e_neg(t: f64) -> (f64, f64) {
+fn exp_neg_asinh(t: f64) -> (f64, f64) {
     let r = rho(t);
     (if t >= 0.0 { 1.0 / (r + t) } else { r - t }, r)
 }
@@ -133,21 +133,21 @@ fn asinh(t: f64, r: f64) -> f64 {
 
 /// `psi(t) = E[(X - t)^+]` of the unit GGX marginal, `(sqrt(1 + t^2) - t) / 2`.
 #[inline(always)]
-pub(super) fn psi(t: f64) -> f64 {
-    0.5 * e_neg(t).0
+pub(crate) fn psi(t: f64) -> f64 {
+    0.5 * exp_neg_asinh(t).0
 }
 
 /// `Psi_1`, an antiderivative of `psi`: `(asinh t - E^2 / 2) / 4`.
 #[inline]
 fn psi1(t: f64) -> f64 {
-    let (e, r) = e_neg(t);
+    let (e, r) = exp_neg_asinh(t);
     0.25 * (asinh(t, r) - 0.5 * e * e)
 }
 
 /// `Psi_2`, an antiderivative of `Psi_1`: `(t asinh t - rho + E / 4 + E^3 / 12) / 4`.
 #[inline]
 fn psi2(t: f64) -> f64 {
-    let (e, r) = e_neg(t);
+    let (e, r) = exp_neg_asinh(t);
     0.25 * (t * asinh(t, r) - r + 0.25 * e + e * e * e * (1.0 / 12.0))
 }
 
@@ -155,9 +155,9 @@ fn psi2(t: f64) -> f64 {
 /// exactly (module docs, case 2): `(ln(1 + d / E_1) + d (E_0 + E_1) / 2) / 4`,
 /// `d = E_0 - E_1 = w (E_0 + E_1) / (rho_0 + rho_1)`; all terms `>= 0`.
 #[inline]
-pub(super) fn psi1_diff(t0: f64, t1: f64, w: f64) -> f64 {
-    let (e0, r0) = e_neg(t0);
-    let (e1, r1) = e_neg(t1);
+pub(crate) fn psi1_diff(t0: f64, t1: f64, w: f64) -> f64 {
+    let (e0, r0) = exp_neg_asinh(t0);
+    let (e1, r1) = exp_neg_asinh(t1);
     let s = e0 + e1;
     let d = w * s / (r0 + r1);
     0.25 * (ln_1p(d / e1) + 0.5 * d * s)
@@ -165,13 +165,13 @@ pub(super) fn psi1_diff(t0: f64, t1: f64, w: f64) -> f64 {
 
 /// The mean of `psi` over `[t0, t1]`, `w = t1 - t0 > 0` given exactly.
 #[inline]
-pub(super) fn mean_psi(t0: f64, t1: f64, w: f64) -> f64 {
+pub(crate) fn mean_psi(t0: f64, t1: f64, w: f64) -> f64 {
     psi1_diff(t0, t1, w) / w
 }
 
 /// `A(t)`: the mean of `Psi_1` over `[t - k, t + k]` (module docs, case 3).
 #[inline]
-pub(super) fn mean_psi1(t: f64, k: f64) -> f64 {
+pub(crate) fn mean_psi1(t: f64, k: f64) -> f64 {
     if k == 0.0 {
         return psi1(t);
     }

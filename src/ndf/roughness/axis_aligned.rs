@@ -1,8 +1,8 @@
 //! The axis-aligned roughness form `A = diag(alpha_x^2, alpha_y^2)`.
 
 use super::{
-    F, Isotropic, Roughness, RoughnessError, RoughnessMatrix, Vec2, check_alpha, clamp_alpha,
-    det_wide, over_z2, sealed,
+    F, Roughness, RoughnessError, RoughnessMatrix, Vec2, check_alpha, clamp_alpha, det_wide,
+    over_z2, sealed,
 };
 
 /// Axis-aligned anisotropic roughness `(alpha_x, alpha_y)` along the tangent and bitangent:
@@ -34,8 +34,9 @@ impl AxisAligned {
         Self::from_valid(Vec2::new(clamp_alpha(alpha_x), clamp_alpha(alpha_y)))
     }
 
+    /// From per-axis roughness already in `[ALPHA_MIN, ALPHA_MAX]`.
     #[inline]
-    fn from_valid(alpha: Vec2) -> Self {
+    pub(super) fn from_valid(alpha: Vec2) -> Self {
         Self {
             alpha,
             alpha2: alpha * alpha,
@@ -51,10 +52,11 @@ impl AxisAligned {
     }
 }
 
-impl From<Isotropic> for AxisAligned {
+impl From<AxisAligned> for RoughnessMatrix {
+    /// Equal to `RoughnessMatrix::new(alpha_x^2, 0, alpha_y^2)` (squares rounded to `F`).
     #[inline]
-    fn from(r: Isotropic) -> Self {
-        Self::from_valid(Vec2::splat(r.alpha()))
+    fn from(r: AxisAligned) -> Self {
+        r.to_matrix()
     }
 }
 

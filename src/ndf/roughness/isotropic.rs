@@ -87,3 +87,19 @@ impl Roughness for Isotropic {
         AxisAligned::from(*self).to_matrix()
     }
 }
+
+impl From<Isotropic> for AxisAligned {
+    /// `(alpha, alpha)`.
+    #[inline]
+    fn from(r: Isotropic) -> Self {
+        Self::from_valid(Vec2::splat(r.alpha()))
+    }
+}
+
+impl From<Isotropic> for RoughnessMatrix {
+    /// Equal to `RoughnessMatrix::new(alpha^2, 0, alpha^2)` (the square rounded to `F`).
+    #[inline]
+    fn from(r: Isotropic) -> Self {
+        r.to_matrix()
+    }
+}

@@ -1,10 +1,7 @@
 //! The full-matrix roughness form: any symmetric positive-definite `A`, with the TK19
 //! determinant clamp.
 
-use super::{
-    ALPHA_MAX, ALPHA_MIN, AxisAligned, F, Isotropic, Mat2, Roughness, RoughnessError, Vec2,
-    det_wide, sealed,
-};
+use super::{ALPHA_MAX, ALPHA_MIN, F, Mat2, Roughness, RoughnessError, Vec2, det_wide, sealed};
 use crate::math::{self as m, Real};
 
 /// Full symmetric positive-definite roughness matrix `A = [[a11, a12], [a12, a22]]` (TK19
@@ -69,9 +66,9 @@ use crate::math::{self as m, Real};
 #[derive(Clone, Copy, Debug)]
 // Fields in 16-byte groups of what is read together, the groups 16-byte aligned: a copy of
 // the matrix through memory (passed by value, or spilled) is written in 16-byte pieces, and a
-// vector load of two fields across two pieces cannot be forwarded from those stores. What it
-// buys, measured (1024 GGX `D`, the matrix passed by value through `black_box`): 2.4 instead
-// of 16.9 us in `f32`, 2.2 instead of 16.4 us in `f64` (the default field order stalls).
+// vector load of two fields across two pieces cannot be forwarded from those stores (with the
+// default field order, GGX `D` of a matrix passed by value stalls on every call;
+// `benches/ndf.rs`).
 #[repr(C, align(16))]
 pub struct RoughnessMatrix {
     /// `c = det A_c = max(det A, tau)`, in `f64`.
@@ -351,22 +348,6 @@ impl RoughnessMatrix {
         let matrix_ok = (4.0 * bb <= 3.0 * pr) & (c >= c_min);
         let eval_ok = (den >= LOW) & (den <= F::MAX) & (num <= F::MAX);
         (num * t, n, matrix_ok, eval_ok)
-    }
-}
-
-impl From<AxisAligned> for RoughnessMatrix {
-    /// Equal to `RoughnessMatrix::new(alpha_x^2, 0, alpha_y^2)` (squares rounded to `F`).
-    #[inline]
-    fn from(r: AxisAligned) -> Self {
-        r.to_matrix()
-    }
-}
-
-impl From<Isotropic> for RoughnessMatrix {
-    /// Equal to `RoughnessMatrix::new(alpha^2, 0, alpha^2)` (the square rounded to `F`).
-    #[inline]
-    fn from(r: Isotropic) -> Self {
-        r.to_matrix()
     }
 }
 

@@ -12,7 +12,8 @@
 //! | [`RoughnessMatrix`] `A` | any symmetric positive definite | 3 mul, 2 mul-adds, in `f64` |
 //!
 //! Conversions go one way: `Isotropic -> AxisAligned -> RoughnessMatrix`, each equal to the
-//! checked constructor of the wider form with the squared roughness rounded to `F`.
+//! checked constructor of the wider form with the squared roughness rounded to `F`, and each
+//! written in the narrower form's file (a form's file knows only the wider forms).
 //! Roughness is dimensionless (a slope-domain length: `alpha` is the slope at which the GGX
 //! density falls to a quarter of its peak).
 //!
@@ -101,10 +102,9 @@ pub(crate) mod sealed {
 ///   `det >= a11 a22 / 16` and the error is at most `(31 + 1) eps / 2 = 16 eps` relative);
 ///   beyond, Kahan's algorithm with two fused multiply-adds (within `2 eps`, Jeannerod, Louvet
 ///   and Muller 2013). The threshold keeps the fused multiply-adds, library calls without the
-///   `fma` target feature, off every lobe of condition number below about 60; what that buys
-///   against the threshold `a12^2 <= a11 a22 / 2` (3 ulps), measured on the realistic cases of
-///   `benches/filtered.rs` (`f64`, best of 6 runs, us per 1024): filtered Beckmann 14.7 against
-///   19.8, TK21 projected GGX 24.3 against 28.2.
+///   `fma` target feature, off every lobe of condition number below about 60 (a lower
+///   threshold, `a12^2 <= a11 a22 / 2`, would bound the plain formula's error by 3 ulps but
+///   send the realistic filtered lobes of `benches/filtered.rs` to the slower branch).
 #[inline]
 pub(crate) fn det_wide(a11: F, a12: F, a22: F) -> f64 {
     let (d, direct) = det_wide_direct(a11, a12, a22);

@@ -8,7 +8,7 @@ macro_rules! filter_prec {
         use crate::$prec::kernel::KERNEL_MAX;
         use crate::$prec::{
             Beckmann, BoundingRect, ClampRules, Covariance, ExtentFloor, F, Footprint, Ggx,
-            LeanMoments, Roughness, Vec2, filter,
+            LeanMoments, Roughness, Vec2, Vec3, filter,
         };
         use $d::{TOL, f, v2, v3};
         use crate::math::Real;
@@ -90,19 +90,31 @@ macro_rules! filter_prec {
                 }
             }
         }
-        // Always finite (a non-finite result is `ZERO`); `ZERO` for a non-finite `h`.
+        // Never NaN (the NaN policy: a NaN entry counts as 0, an infinite one saturates to an
+        // infinite entry); `ZERO` for a non-finite `h`; the same as with NaN entries zeroed.
+        let zero_nan = |v: Vec3| Vec3::select(v.is_nan_mask(), Vec3::ZERO, v);
         let fh = Footprint::from_half_vector_derivatives(h, n_u, n_v);
-        assert!(fp_fin(&fh), "half_vector_derivatives({h:?}, {n_u:?}, {n_v:?}) = {fh:?}");
-        if !h.is_finite() || !(n_u.is_finite() && n_v.is_finite()) {
-            assert_eq!(fh, Footprint::ZERO, "half_vector_derivatives: non-finite input");
+        assert!(!fp_nan(&fh), "half_vector_derivatives({h:?}, {n_u:?}, {n_v:?}) = {fh:?}");
+        if !h.is_finite() {
+            assert_eq!(fh, Footprint::ZERO, "half_vector_derivatives: non-finite h");
         }
+        assert_eq!(
+            fh,
+            Footprint::from_half_vector_derivatives(h, zero_nan(n_u), zero_nan(n_v)),
+            "half_vector_derivatives: NaN entries count as 0"
+        );
         let fnd = Footprint::from_normal_differences(n_u, n_v);
-        if !(n_u.is_finite() && n_v.is_finite()) {
-            assert_eq!(fnd, Footprint::ZERO, "normal differences: non-finite");
+        assert!(!fp_nan(&fnd), "from_normal_differences({n_u:?}, {n_v:?}) = {fnd:?}");
+        assert_eq!(
+            fnd,
+            Footprint::from_normal_differences(zero_nan(n_u), zero_nan(n_v)),
+            "normal differences: NaN entries count as 0"
+        );
+        if n_u.is_finite() && n_v.is_finite() {
+            assert!(fp_fin(&fnd), "from_normal_differences({n_u:?}, {n_v:?}) = {fnd:?}");
         }
-        assert!(fp_fin(&fnd), "from_normal_differences({n_u:?}, {n_v:?}) = {fnd:?}");
         let fw = Footprint::from_world_normal_differences(t, bt, n, n_u, n_v);
-        assert!(fp_fin(&fw), "from_world_normal_differences = {fw:?}");
+        assert!(!fp_nan(&fw), "from_world_normal_differences = {fw:?}");
 
         if fp_fin(&fp) {
             let r = fp.bounding_rect();
@@ -177,19 +189,20 @@ macro_rules! filter_prec {
             }
         }
         let sa = cov.sanitized();
-        if cov.s11.is_nan() || cov.s12.is_nan() || cov.s22.is_nan() {
-            assert_eq!(sa, Covariance::ZERO, "sanitized NaN");
-        } else if !cov_fin(&cov) {
+        let entries = [cov.s11, cov.s12, cov.s22];
+        if entries.iter().any(|x| x.is_infinite()) {
             assert_eq!(sa, Covariance::new(KERNEL_MAX, 0.0, KERNEL_MAX), "sanitized inf");
+        } else if entries.iter().any(|x| x.is_nan()) {
+            let z = |x: F| if x.is_nan() { 0.0 } else { x };
+            let zeroed = Covariance::new(z(cov.s11), z(cov.s12), z(cov.s22)).sanitized();
+            assert_eq!(sa, zeroed, "sanitized: a NaN entry counts as 0");
         }
         kernel_ok(&sa, KERNEL_MAX, "sanitized");
 
         // --- Clamp rules.
         let lambda = if rules.max_extent >= 0.0 { rules.max_extent } else { 0.0 };
         let cf = rules.footprint(fp);
-        if fp_nan(&fp) {
-            assert_eq!(cf, Footprint::ZERO, "rules.footprint NaN");
-        }
+        assert_eq!(cf, rules.footprint(fp.nan_to_zero()), "rules.footprint: NaN entries as 0");
         assert!(!fp_nan(&cf), "rules.footprint({fp:?}) = {cf:?} with {rules:?}");
         // Above `F::MAX / 2` the rescaled vectors (length up to `2 lambda`) may overflow.
         if lambda <= 1e30 {
@@ -278,9 +291,10 @@ macro_rules! filter_prec {
 ///
 /// - `Footprint` constructors: `from_projected_derivatives_in_slope` is [`ZERO`] for a
 ///   non-finite `h`, NaN-free for finite input and finite for a unit `h` and disk
-///   derivatives `|dp| <= 2`; `from_half_vector_derivatives` is always finite, [`ZERO`] for
-///   non-finite input; `from_normal_differences` / `from_world_normal_differences` are
-///   always finite ([`ZERO`] for non-finite input); `bounding_rect` and `max_extent` are
+///   derivatives `|dp| <= 2`; `from_half_vector_derivatives` is never NaN, [`ZERO`] for a
+///   non-finite `h`; it and `from_normal_differences` equal their value with the NaN entries
+///   of the derivatives zeroed (the NaN policy), `from_normal_differences` finite for finite
+///   input, `from_world_normal_differences` never NaN; `bounding_rect` and `max_extent` are
 ///   `>= 0` and `max_extent` bounds both half-extents; `covariance` is PSD when finite.
 /// - `Covariance`: `eigenvalues` `>= 0`, `min <= max`, and for finite input within
 ///   `TOL (lambda_max + det_err)` of the reference's (clamped to `>= 0`; `det_err` the
@@ -289,10 +303,10 @@ macro_rules! filter_prec {
 ///   non-finite input, else finite, PSD with eigenvalues `<= max` for every input (also
 ///   indefinite), and within `TOL c_max` of `V clamp(Lambda, 0, max) V^T` computed by
 ///   [`crate::testing::linalg`];
-///   `sanitized` is finite, PSD, eigenvalues `<= KERNEL_MAX`, `ZERO` for NaN,
-///   `KERNEL_MAX I` for infinite entries.
-/// - `ClampRules` (default, `NONE`, `GDC2016` and arbitrary fields): `footprint` is `ZERO`
-///   for NaN input, NaN-free, finite with extent `<= lambda` for a finite `lambda`; `rect`
+///   `sanitized` is finite, PSD, eigenvalues `<= KERNEL_MAX`, `KERNEL_MAX I` for infinite
+///   entries, else its value with the NaN entries zeroed.
+/// - `ClampRules` (default, `NONE`, `GDC2016` and arbitrary fields): `footprint` equals its
+///   value with the NaN entries zeroed, NaN-free, finite with extent `<= lambda` for a finite `lambda`; `rect`
 ///   is NaN-free, `>= 0`, finite for finite `lambda`, `<= lambda` without floor, `>= epsilon`
 ///   with a constant floor; `kernel` is finite PSD with eigenvalues `<= kappa / 2`;
 ///   `det_clamp_for` finite `>= 0`.

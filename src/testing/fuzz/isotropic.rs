@@ -9,7 +9,7 @@ macro_rules! isotropic_prec {
             Bandwidth, Combine, Domain, KAPPA, KernelConvention, Norm, filtered_alpha,
             normal_difference_covariance,
         };
-        use crate::$prec::{ALPHA_MAX, Covariance, filter::presets};
+        use crate::$prec::{ALPHA_MAX, Covariance, Vec3, filter::presets};
         use $d::{TOL, f, v3};
         let b: &mut Bytes<'_> = $b;
         let head = b.byte();
@@ -52,22 +52,29 @@ macro_rules! isotropic_prec {
         };
         use crate::$prec::F;
 
-        // Bandwidth kernels: documented NaN for non-finite input (Max: any entry; Trace and
-        // Average: the diagonal), `>= 0` for a finite PSD covariance.
+        // Bandwidth kernels: a NaN entry counts as 0 (the NaN policy); documented NaN for an
+        // infinite entry of `Max`, `>= 0` for a finite PSD covariance.
         let kv = bw.alpha2(&cov);
-        let fin = cov.s11.is_finite() && cov.s12.is_finite() && cov.s22.is_finite();
+        let z = |x: F| if x.is_nan() { 0.0 } else { x };
+        let zeroed = Covariance::new(z(cov.s11), z(cov.s12), z(cov.s22));
+        let same = bw.alpha2(&zeroed);
+        assert!(
+            kv.to_bits() == same.to_bits() || (kv.is_nan() && same.is_nan()),
+            "{bw:?}.kernel({cov:?}) = {kv:?}, with NaN entries zeroed {same:?}"
+        );
+        let inf = [zeroed.s11, zeroed.s12, zeroed.s22]
+            .iter()
+            .any(|x| x.is_infinite());
         match bw {
             Bandwidth::Max => {
-                if fin {
-                    assert!(kv >= 0.0, "{bw:?}.kernel({cov:?}) = {kv:?}");
-                } else {
+                if inf {
                     assert!(kv.is_nan(), "{bw:?}.kernel({cov:?}) = {kv:?}");
+                } else {
+                    assert!(kv >= 0.0, "{bw:?}.kernel({cov:?}) = {kv:?}");
                 }
             }
             _ => {
-                if cov.s11.is_nan() || cov.s22.is_nan() {
-                    assert!(kv.is_nan(), "{bw:?}.kernel({cov:?}) = {kv:?}");
-                } else if cov.s11 >= 0.0 && cov.s22 >= 0.0 {
+                if zeroed.s11 >= 0.0 && zeroed.s22 >= 0.0 {
                     assert!(kv >= 0.0, "{bw:?}.kernel({cov:?}) = {kv:?}");
                 }
             }
@@ -108,7 +115,8 @@ macro_rules! isotropic_prec {
                 assert!(a >= 0.0, "{dom:?}.to_alpha({k:?}) = {a:?}");
             }
         }
-        // Norms: >= 0, NaN exactly for NaN input (MaxEigenvalue also on Gram overflow).
+        // Norms: >= 0; a NaN entry counts as 0 (MaxEigenvalue NaN on an infinite entry or a
+        // Gram overflow).
         for norm in [
             Norm::SumSquared,
             Norm::MaxSquared,
@@ -116,9 +124,14 @@ macro_rules! isotropic_prec {
             Norm::MaxAbsComponent,
         ] {
             let v = norm.eval(dn_u, dn_v);
-            if dn_u.is_nan() || dn_v.is_nan() {
-                assert!(v.is_nan(), "{norm:?}.eval(NaN) = {v:?}");
-            } else if dn_u.is_finite() && dn_v.is_finite() && norm != Norm::MaxEigenvalue {
+            let zero_nan = |d: Vec3| Vec3::select(d.is_nan_mask(), Vec3::ZERO, d);
+            let same = norm.eval(zero_nan(dn_u), zero_nan(dn_v));
+            assert!(
+                v.to_bits() == same.to_bits() || (v.is_nan() && same.is_nan()),
+                "{norm:?}.eval({dn_u:?}, {dn_v:?}) = {v:?}, with NaN entries zeroed {same:?}"
+            );
+            let (dn_u, dn_v) = (zero_nan(dn_u), zero_nan(dn_v));
+            if dn_u.is_finite() && dn_v.is_finite() && norm != Norm::MaxEigenvalue {
                 assert!(v >= 0.0, "{norm:?}.eval({dn_u:?}, {dn_v:?}) = {v:?}");
             } else {
                 assert!(
@@ -161,11 +174,12 @@ macro_rules! isotropic_prec {
 }
 
 /// The isotropic-filtering contract on fuzzer bytes, in both precisions. Panics on a
-/// violation of: `Bandwidth::kernel` NaN for non-finite input (`Max`: any entry; `Trace`,
-/// `Average`: a NaN variance) and `>= 0` otherwise for a PSD diagonal; `filtered_alpha` in
+/// violation of: `Bandwidth::kernel` equal to its value with the NaN entries zeroed (the NaN
+/// policy), NaN for an infinite entry (`Max`) and `>= 0` otherwise for a PSD diagonal; `filtered_alpha` in
 /// `[0, ALPHA_MAX]` for any input, never below `alpha` for `alpha` in `[0, 1]` with `KAPPA`;
 /// `Domain::{from_alpha, to_alpha}` `>= 0` for `>= 0` input and inverse to each other;
-/// `Norm::eval` `>= 0`, NaN exactly for NaN input (and Gram overflow for `MaxEigenvalue`);
+/// `Norm::eval` equal to its value with the NaN entries zeroed, `>= 0` (NaN for `MaxEigenvalue`
+/// only on an infinite entry or a Gram overflow);
 /// `KernelConvention` with arbitrary fields: `kernel` in `[0, clamp]`, `apply` and
 /// `apply_widening` in `[0, ALPHA_MAX]`; every preset of `presets::ALL` and
 /// `Bandwidth::convention` in range and never below `min(alpha, saturation cap)`.

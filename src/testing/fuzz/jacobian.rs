@@ -152,8 +152,29 @@ macro_rules! jacobian_prec {
         assert!(m_fin(md), "half_vector_jacobian_deferred = {md:?}");
         let _ = frame.to_local(e1);
         for jm in [mj, mf, md, m2(b)] {
+            // Never NaN; infinite entries only from infinite input or overflow (the NaN
+            // policy saturates them).
             let f1 = footprint(jm, &frame, dx_u, dx_v);
-            assert!(fp_fin(&f1), "footprint = {f1:?}");
+            assert!(
+                !(f1.dh_u.is_nan() || f1.dh_v.is_nan()),
+                "footprint = {f1:?}"
+            );
+            // A bound on every product of the map and on the frame projections before it
+            // (sums of three terms, then of two); NaN entries count as 0 (the policy).
+            let amax = |xs: &[F]| {
+                xs.iter()
+                    .fold(0.0, |m: F, x| if x.abs() > m { x.abs() } else { m })
+            };
+            let big = 6.0
+                * amax(&jm.to_cols_array()).max(1.0)
+                * amax(&frame.s.to_array()).max(amax(&frame.t.to_array()))
+                * amax(&dx_u.to_array()).max(amax(&dx_v.to_array()));
+            if big <= 1e30 {
+                assert!(
+                    fp_fin(&f1),
+                    "footprint = {f1:?} for {jm:?}, {frame:?}, {dx_u:?}, {dx_v:?}"
+                );
+            }
         }
         let fpp = footprint_projected(fp, h);
         assert!(
@@ -183,8 +204,8 @@ macro_rules! jacobian_prec {
 /// determinants in `[HZ_MIN, 1]`, `[1, 1e24]`, `[1, 1e18]`; `spherical_components`,
 /// `spherical_to_slope`, `spherical_to_projected` NaN-free / finite for finite vectors that
 /// cannot overflow; the slope maps finite (unit directions in the upper hemisphere) for finite
-/// input; `geometry::half_vector` NaN-free, the three half-vector Jacobians and `footprint`
-/// finite for any input, `footprint_projected` NaN-free (finite for finite footprints), the
+/// input; `geometry::half_vector` NaN-free, the three half-vector Jacobians finite for any
+/// input, `footprint` NaN-free (finite where the frame projections and the products stay below `1e30`), `footprint_projected` NaN-free (finite for finite footprints), the
 /// differentials of `tangent_plane_differentials` finite when returned.
 pub fn check_jacobian(data: &[u8]) {
     jacobian_prec!(d64, f64, &mut Bytes::new(data));

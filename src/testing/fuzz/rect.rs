@@ -5,7 +5,7 @@ use super::dec::{d32, d64};
 
 macro_rules! rect_prec {
     ($d:ident, $prec:ident, $b:expr) => {{
-        use crate::$prec::{AxisAligned, F, Ggx, Ndf, filter::proxy, filter::rect};
+        use crate::$prec::{AxisAligned, F, Ggx, Ndf, filter::proxy, filter::rect, sampling};
         use $d::{TOL, f, v2, v3};
         let b: &mut Bytes<'_> = $b;
         let head = b.byte();
@@ -106,21 +106,21 @@ macro_rules! rect_prec {
         // The box lobe's samplers: unit micronormals above the horizon; None only for a view
         // at or below the horizon, or non-finite.
         let (u, ub) = (v2(b), v2(b));
-        let m = rect::sample_normal_rect(r, half, u, ub);
+        let m = sampling::rect::sample_normal_rect(r, half, u, ub);
         assert!(
             m.is_finite() && m.z > 0.0 && (m.length() - 1.0).abs() < 1e-3,
             "sample_normal_rect({r:?}, {half:?}, {u:?}, {ub:?}) = {m:?}"
         );
-        let pdf = rect::normal_pdf_rect(r, half, m);
+        let pdf = sampling::rect::normal_pdf_rect(r, half, m);
         assert!(pdf.is_finite() && pdf >= 0.0, "normal_pdf_rect = {pdf:?}");
         let wo = $d::dir(b, head & 2 != 0);
-        match rect::sample_visible_normal_rect(r, half, wo, u, ub) {
+        match sampling::rect::sample_visible_normal_rect(r, half, wo, u, ub) {
             Some(mv) => {
                 assert!(
                     mv.is_finite() && mv.z > 0.0 && (mv.length() - 1.0).abs() < 1e-3,
                     "sample_visible_normal_rect({r:?}, {half:?}, {wo:?}) = {mv:?}"
                 );
-                let vp = rect::visible_normal_pdf_rect(r, half, wo, mv);
+                let vp = sampling::rect::visible_normal_pdf_rect(r, half, wo, mv);
                 assert!(
                     vp.is_finite() && vp >= 0.0,
                     "visible_normal_pdf_rect = {vp:?}"

@@ -11,11 +11,14 @@
 #import filtered_ndf::footprint
 #import filtered_ndf::footprint::slope
 #import filtered_ndf::footprint::jacobian
+#import filtered_ndf::kernel::covariance
+#import filtered_ndf::kernel::rect as bounding
 #import filtered_ndf::kernel::clamp
 #import filtered_ndf::ndf::roughness::isotropic
 #import filtered_ndf::ndf::roughness::axis_aligned
 #import filtered_ndf::ndf::ggx
 #import filtered_ndf::ndf::beckmann
+#import filtered_ndf::filter::gaussian
 #import filtered_ndf::filter::rect
 #import filtered_ndf::filter::proxy
 #import filtered_ndf::filter::projected
@@ -61,12 +64,12 @@ fn filtered_d(h: vec3<f32>, alpha: f32, fp: footprint::Footprint, dn_u: vec3<f32
         }
         case 2u: {
             // KHPL16 eq. 13-15: A' = A + 2 Sigma on Beckmann.
-            let a = clamp::filter_gaussian(KHPL16_RULES, isotropic::to_matrix(r), fp, footprint::SIGMA_PIXEL);
+            let a = gaussian::filter_gaussian(KHPL16_RULES, isotropic::to_matrix(r), fp, footprint::SIGMA_PIXEL);
             return beckmann::d_matrix(a, h);
         }
         case 3u, 4u: {
             // KHPL16 section 5.3: the bounding rectangle, half-extents clamped to lambda = 1.
-            let half = clamp::rect(KHPL16_RULES, footprint::bounding_rect(fp), vec2<f32>(alpha)).half_extent;
+            let half = clamp::rect(KHPL16_RULES, bounding::from_footprint(fp), vec2<f32>(alpha)).half_extent;
             if METHOD == 3u {
                 return rect::d_rect(aa, h, half);
             }
@@ -78,11 +81,11 @@ fn filtered_d(h: vec3<f32>, alpha: f32, fp: footprint::Footprint, dn_u: vec3<f32
             let fp_p = footprint::Footprint(j * fp.dh_u, j * fp.dh_v);
             let a = isotropic::to_matrix(r);
             if METHOD == 5u {
-                return ggx::d_matrix(clamp::filter_gaussian(clamp::DEFAULT_RULES, a, fp_p, footprint::SIGMA_PIXEL), h);
+                return ggx::d_matrix(gaussian::filter_gaussian(clamp::DEFAULT_RULES, a, fp_p, footprint::SIGMA_PIXEL), h);
             }
             // TK21: the same kernel added in projected space.
             let rules = clamp::DEFAULT_RULES;
-            let k = clamp::kernel(rules, footprint::covariance(clamp::footprint(rules, fp_p), footprint::SIGMA_PIXEL));
+            let k = clamp::kernel(rules, covariance::from_footprint(clamp::footprint(rules, fp_p), footprint::SIGMA_PIXEL));
             return ggx::d_matrix(projected::projected(a, k), h);
         }
         default: {

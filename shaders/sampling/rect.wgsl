@@ -1,4 +1,4 @@
-#define_import_path filtered_ndf::filter::rect::sample
+#define_import_path filtered_ndf::sampling::rect
 
 #import filtered_ndf::math
 #import filtered_ndf::ndf::roughness::axis_aligned
@@ -7,7 +7,7 @@
 #import filtered_ndf::sampling
 
 // Importance sampling of the box-filtered GGX lobe (`boxed::d_rect`, `lambda::lambda_rect`)
-// and its pdfs, mirroring `src/.../filter/rect/sample.rs`.
+// and its pdfs, mirroring `src/.../sampling/rect.rs`.
 //
 // `D(m) m_z`: the lobe's slope is `s = g + delta` with `g` axis-aligned GGX and `delta`
 // uniform on the box `[-H_x, H_x] x [-H_y, H_y]` (its density is the box mean of `P22`,
@@ -24,7 +24,7 @@
 
 /// A half extent as `boxed::p22_rect` reads it, in slope units: `|h|`, at most `BIG alpha`
 /// (NaN as 0 where the driver keeps the comparison).
-fn half(h: f32, alpha: f32) -> f32 {
+fn sanitized_half_extent(h: f32, alpha: f32) -> f32 {
     let v = abs(h);
     return select(0.0, min(v, boxed::BIG * alpha), v >= 0.0);
 }
@@ -45,7 +45,7 @@ fn normal_of_slope(s: vec2<f32>) -> vec3<f32> {
 /// extents: the GGX sample (the same direction as `sampling::sample_normal`).
 fn sample_normal_rect(r: axis_aligned::AxisAligned, half_extent: vec2<f32>, u: vec2<f32>, u_box: vec2<f32>) -> vec3<f32> {
     let a = r.alpha;
-    let h = vec2<f32>(half(half_extent.x, a.x), half(half_extent.y, a.y));
+    let h = vec2<f32>(sanitized_half_extent(half_extent.x, a.x), sanitized_half_extent(half_extent.y, a.y));
     let u1 = sampling::clamp_unit(u.x);
     let cs = math::sincos_turns(sampling::clamp_unit(u.y));
     let rad = sqrt(u1 / (1.0 - u1));

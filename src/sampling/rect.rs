@@ -1,10 +1,10 @@
-//! Exact importance sampling of the box-filtered GGX lobe ([`super::d_rect`],
-//! [`super::lambda_rect`]): the NDF `D(m) m_z` and the distribution of visible normals, with
+//! Exact importance sampling of the box-filtered GGX lobe ([`RectFilteredGgx`]; its density
+//! [`d_rect`], its [`lambda_rect`]): the NDF `D(m) m_z` and the distribution of visible normals, with
 //! their pdfs.
 //!
 //! # `D(m) m_z`
 //! The lobe's slope is `s = g + delta` with `g` axis-aligned GGX and `delta` uniform on the box
-//! `[-H_x, H_x] x [-H_y, H_y]`: its density is the box mean of `P22`, i.e. [`super::p22_rect`]
+//! `[-H_x, H_x] x [-H_y, H_y]`: its density is the box mean of `P22`, i.e. [`p22_rect`](super::super::filter::rect::p22_rect)
 //! at `s`, and `D(m) m_z dm = P(s) ds`. So a GGX slope (the unit-roughness sample of
 //! [`NdfSampling::sample_normal`] for `Ggx`, warped by `alpha`) plus a uniform offset is an
 //! exact sample. **Four uniform numbers**: `u` for the GGX slope (as `NdfSampling`) and `u_box`
@@ -16,12 +16,12 @@
 //!
 //! # Visible normals
 //! `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` (Heitz 2014 eq. 16) with `G1 = 1 / (1 + Lambda)`,
-//! `Lambda` = [`super::lambda_rect`]. In slopes the visible density is proportional to
+//! `Lambda` = [`lambda_rect`]. In slopes the visible density is proportional to
 //! `(wo_z - wo_xy.s)^+ P(s) = E_delta[(wo'_z - wo_xy.g)^+ P_GGX(g)]` with
 //! `wo'_z = wo_z - wo_xy.delta`: for a fixed offset, the visible slopes of GGX seen from the
 //! sheared direction `wo' = (wo_xy, wo'_z)` (which may point below the horizon), whose total
 //! weight is `|wo_xy| psi(u.delta - mu)` (the projected area `mu + E[(q - mu')^+]` of the
-//! shifted GGX, `psi` of [`super::lambda_rect`]'s module docs, `u`, `mu` as there). So:
+//! shifted GGX, `psi` of [`lambda_rect`]'s module docs, `u`, `mu` as there). So:
 //! 1. draw the offset `delta` with density proportional to `psi(u.delta - mu)` on the box. In
 //!    units of the projected roughness `a` the weight depends on `v = v_l + v_s`,
 //!    `v_i = u_i delta_i / a` uniform on `[-k_i, k_i]`: `v_l` (the longer projected side) by
@@ -43,32 +43,35 @@
 //! # Out-of-domain input
 //! As [`NdfSampling`]: `u` components clamped to `[0, 1 - eps/2]`, NaN to `0`; the visible
 //! sampler returns `None` for `wo_z <= 0` or non-finite `wo`; half extents sanitised as in
-//! [`super::p22_rect`] (magnitude, NaN as `0`, at most `1e60 alpha`). Zero half extents give
+//! [`p22_rect`](super::super::filter::rect::p22_rect) (magnitude, NaN as `0`, at most `1e60 alpha`). Zero half extents give
 //! GGX's own samplers bit for bit. A sampled `m` is a finite unit vector with `m_z > 0` (in `f32`
 //! a slope beyond `1e38` has its `m_z` rounded up to the smallest normal float), and the visible
 //! sample has `wo.m > 0` (should rounding break it, the centre of the sheared GGX is used, as
 //! the GGX sampler does).
 
-use super::super::super::ndf::ggx::Ggx;
-use super::super::super::ndf::roughness::AxisAligned;
-use super::super::super::sampling::NdfSampling;
-use super::lambda::{mean_psi, mean_psi1, psi, psi1_diff, scaled};
-use super::{BIG, F, Tier, Vec2, Vec3, d_rect, gl_of, lambda_rect, tier};
+use super::super::filter::RectFilteredGgx;
+use super::super::filter::rect::{
+    BIG, Tier, d_rect, gl_of, lambda_rect, mean_psi, mean_psi1, psi, psi1_diff, scaled, tier,
+};
+use super::super::ndf::ggx::Ggx;
+use super::super::ndf::roughness::AxisAligned;
+use super::NdfSampling;
+use super::{F, Vec2, Vec3};
 use crate::math::{self as m, Real};
 
 const PI64: f64 = core::f64::consts::PI;
 
 /// Clamps a uniform number into `[0, 1 - eps/2]` of `F` (NaN to `0`), as `f64`.
 #[inline]
-fn unit(u: F) -> f64 {
+fn uniform_f64(u: F) -> f64 {
     const ONE_MINUS_EPS: F = 1.0 - 0.5 * F::EPSILON;
     (if u >= 0.0 { u.min(ONE_MINUS_EPS) } else { 0.0 }).to_f64()
 }
 
-/// A half extent sanitised as [`super::p22_rect`] does, in slope units: `|h|`, NaN as `0`, at
+/// A half extent sanitised as [`p22_rect`](super::super::filter::rect::p22_rect) does, in slope units: `|h|`, NaN as `0`, at
 /// most `1e60 alpha`.
 #[inline]
-fn half(h: F, alpha: f64) -> f64 {
+fn sanitized_half_extent(h: F, alpha: f64) -> f64 {
     let v = h.to_f64().abs();
     if v.is_nan() { 0.0 } else { v.min(BIG * alpha) }
 }
@@ -89,30 +92,33 @@ fn normal_of_slope(sx: f64, sy: f64) -> Vec3 {
 }
 
 /// Samples a unit micronormal `m` of the box-filtered GGX lobe with density `D(m) m_z` per
-/// steradian, `D` = [`super::d_rect`] (module docs): the GGX slope of `u` (as
+/// steradian, `D` = [`d_rect`] (module docs): the GGX slope of `u` (as
 /// [`NdfSampling::sample_normal`]) plus the offset `(2 u_box - 1) H` uniform in the box. Exact;
 /// four uniform numbers in `[0, 1)`. Zero half extents: GGX's sampler bit for bit.
 #[inline]
 pub fn sample_normal_rect(r: AxisAligned, half_extent: Vec2, u: Vec2, u_box: Vec2) -> Vec3 {
     let alpha = r.alpha();
     let (ax, ay) = (alpha.x.to_f64(), alpha.y.to_f64());
-    let (hx, hy) = (half(half_extent.x, ax), half(half_extent.y, ay));
+    let (hx, hy) = (
+        sanitized_half_extent(half_extent.x, ax),
+        sanitized_half_extent(half_extent.y, ay),
+    );
     if hx == 0.0 && hy == 0.0 {
         return Ggx::new(r).sample_normal(u);
     }
     // Unit-roughness GGX: |t|^2 = u1 / (1 - u1), phi = 2 pi u2; slope -alpha t (the sign of
     // the GGX sampler's normal (sqrt(u1) cos phi, sqrt(u1) sin phi, sqrt(1 - u1))).
-    let (u1, u2) = (unit(u.x), unit(u.y));
+    let (u1, u2) = (uniform_f64(u.x), uniform_f64(u.y));
     let rad = m::sqrt(u1 / (1.0 - u1));
     let phi = 2.0 * PI64 * u2;
     let (gx, gy) = (-ax * rad * m::cos(phi), -ay * rad * m::sin(phi));
-    let dx = (2.0 * unit(u_box.x) - 1.0) * hx;
-    let dy = (2.0 * unit(u_box.y) - 1.0) * hy;
+    let dx = (2.0 * uniform_f64(u_box.x) - 1.0) * hx;
+    let dy = (2.0 * uniform_f64(u_box.y) - 1.0) * hy;
     normal_of_slope(gx + dx, gy + dy)
 }
 
 /// The density of [`sample_normal_rect`], `D(m) m_z` per steradian with `D` =
-/// [`super::d_rect`], for a unit `m`; `0` for `m_z <= 0` and non-finite `m`.
+/// [`d_rect`], for a unit `m`; `0` for `m_z <= 0` and non-finite `m`.
 #[inline]
 pub fn normal_pdf_rect(r: AxisAligned, half_extent: Vec2, m: Vec3) -> F {
     if !m.is_finite() || m.z <= 0.0 {
@@ -126,7 +132,7 @@ pub fn normal_pdf_rect(r: AxisAligned, half_extent: Vec2, m: Vec3) -> F {
 /// the Gauss-Legendre rule of the positive differences while `k` is short next to the branch
 /// points (`L^2 = 1 + min(t0^2, t1^2)`), else the difference of the means of `Psi_1`.
 #[inline]
-fn cum(t0: f64, t1: f64, w: f64, k: f64) -> f64 {
+fn mean_psi1_diff(t0: f64, t1: f64, w: f64, k: f64) -> f64 {
     if k == 0.0 {
         return psi1_diff(t0, t1, w);
     }
@@ -141,7 +147,7 @@ fn cum(t0: f64, t1: f64, w: f64, k: f64) -> f64 {
 /// `y`, `f(lo) <= y <= f(hi)`: Newton steps kept inside a bisection bracket, until a step or
 /// the bracket is below `4e-16` of the larger of `|x|` and the initial bracket (at most 100
 /// evaluations; bisection alone needs fewer than that to reach the tolerance).
-fn invert(mut lo: f64, mut hi: f64, y: f64, f: impl Fn(f64) -> (f64, f64)) -> f64 {
+fn invert_increasing(mut lo: f64, mut hi: f64, y: f64, f: impl Fn(f64) -> (f64, f64)) -> f64 {
     let width = hi - lo;
     let mut x = 0.5 * (lo + hi);
     for _ in 0..100 {
@@ -174,9 +180,9 @@ fn sample_offsets(m: f64, kl: f64, ks: f64, ul: f64, us: f64) -> (f64, f64) {
     // v_l: the marginal CDF is cum(-k_l - m, v - m, k_s) / cum(-k_l - m, k_l - m, k_s), its
     // derivative the mean of psi over [v - m - k_s, v - m + k_s].
     let t0 = -kl - m;
-    let total = cum(t0, kl - m, 2.0 * kl, ks);
-    let vl = invert(-kl, kl, ul * total, |v| {
-        let c = cum(t0, v - m, v + kl, ks);
+    let total = mean_psi1_diff(t0, kl - m, 2.0 * kl, ks);
+    let vl = invert_increasing(-kl, kl, ul * total, |v| {
+        let c = mean_psi1_diff(t0, v - m, v + kl, ks);
         let d = if ks == 0.0 {
             psi(v - m)
         } else {
@@ -190,15 +196,15 @@ fn sample_offsets(m: f64, kl: f64, ks: f64, ul: f64, us: f64) -> (f64, f64) {
     // v_s given v_l: density psi(v_s + v_l - m) on [-k_s, k_s].
     let c = vl - m;
     let total = psi1_diff(c - ks, c + ks, 2.0 * ks);
-    let vs = invert(-ks, ks, us * total, |v| {
+    let vs = invert_increasing(-ks, ks, us * total, |v| {
         (psi1_diff(c - ks, c + v, v + ks), psi(c + v))
     });
     (vl, vs)
 }
 
 /// Samples a visible micronormal of the box-filtered GGX lobe seen from `wo`, with density
-/// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian, `D` = [`super::d_rect`],
-/// `G1 = 1 / (1 + Lambda)`, `Lambda` = [`super::lambda_rect`] (module docs: the offset by its
+/// `D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo_z` per steradian, `D` = [`d_rect`],
+/// `G1 = 1 / (1 + Lambda)`, `Lambda` = [`lambda_rect`] (module docs: the offset by its
 /// projected-area weight, then GGX's visible normals seen from the sheared direction). Four
 /// uniform numbers: `u_box` for the offset, `u` for the GGX visible normal. `None` if
 /// `wo_z <= 0` or `wo` is not finite. Zero half extents: GGX's sampler bit for bit (which
@@ -218,14 +224,17 @@ pub fn sample_visible_normal_rect(
     }
     let alpha = r.alpha();
     let (ax, ay) = (alpha.x.to_f64(), alpha.y.to_f64());
-    let (hx, hy) = (half(half_extent.x, ax), half(half_extent.y, ay));
+    let (hx, hy) = (
+        sanitized_half_extent(half_extent.x, ax),
+        sanitized_half_extent(half_extent.y, ay),
+    );
     if hx == 0.0 && hy == 0.0 {
         return Ggx::new(r).sample_visible_normal(wo, u);
     }
     // wo scaled by a power of two into [2^-400, 2^400] (homogeneous; no overflow below).
     let (wx, wy, wz) = scaled(wo);
     let l = m::hypot(wx, wy);
-    let (bx, by) = (unit(u_box.x), unit(u_box.y));
+    let (bx, by) = (uniform_f64(u_box.x), uniform_f64(u_box.y));
     let uniform = ((2.0 * bx - 1.0) * hx, (2.0 * by - 1.0) * hy);
     let (dx, dy) = if l == 0.0 {
         // Normal incidence: every offset sees the same projected area.
@@ -277,7 +286,7 @@ fn visible_with_offset(
     let wi = (sx / norm, sy / norm, wz_shear / norm);
     // Spherical cap (Dupuy and Benyoub 2023, listing 3): c uniform on z >= -wi_z, n = c + wi,
     // written so that neither n_z = (1 - u_y)(1 + wi_z) nor 1 - c_z = u_y (1 + wi_z) cancels.
-    let (u1, u2) = (unit(u.x), unit(u.y));
+    let (u1, u2) = (uniform_f64(u.x), uniform_f64(u.y));
     let one_plus = if wi.2 < -0.5 {
         (wi.0 * wi.0 + wi.1 * wi.1) / (1.0 - wi.2)
     } else {
@@ -320,7 +329,7 @@ fn visible_with_offset(
 
 /// The density of [`sample_visible_normal_rect`],
 /// `D_wo(m) = max(0, wo.m) D(m) / (wo_z (1 + Lambda(wo)))` per steradian for a unit `m`, with
-/// `D` = [`super::d_rect`] and `Lambda` = [`super::lambda_rect`]. `0` for `wo_z <= 0`,
+/// `D` = [`d_rect`] and `Lambda` = [`lambda_rect`]. `0` for `wo_z <= 0`,
 /// `wo.m <= 0`, `m_z <= 0` or non-finite input.
 #[inline]
 pub fn visible_normal_pdf_rect(r: AxisAligned, half_extent: Vec2, wo: Vec3, m: Vec3) -> F {
@@ -333,4 +342,34 @@ pub fn visible_normal_pdf_rect(r: AxisAligned, half_extent: Vec2, wo: Vec3, m: V
     }
     let v = wom * d_rect(r, m, half_extent) / (wo.z * (1.0 + lambda_rect(r, half_extent, wo)));
     if v.is_finite() { v } else { 0.0 }
+}
+
+/// The box lobe's exact samplers (four uniform numbers, see the module docs) and their pdfs.
+impl RectFilteredGgx {
+    /// A micronormal with density `D(m) m_z` ([`sample_normal_rect`]: the GGX slope of
+    /// `u` plus the offset of `u_box` in the box). Exact.
+    #[inline]
+    pub fn sample_normal(&self, u: Vec2, u_box: Vec2) -> Vec3 {
+        sample_normal_rect(self.roughness, self.half_extent, u, u_box)
+    }
+
+    /// The density `D(m) m_z` of [`RectFilteredGgx::sample_normal`] per steradian.
+    #[inline]
+    pub fn normal_pdf(&self, m: Vec3) -> F {
+        normal_pdf_rect(self.roughness, self.half_extent, m)
+    }
+
+    /// A visible micronormal seen from `wo`, density `G1(wo) max(0, wo.m) D(m) / wo_z`
+    /// ([`sample_visible_normal_rect`]). Exact; `None` for `wo_z <= 0` or non-finite
+    /// `wo`.
+    #[inline]
+    pub fn sample_visible_normal(&self, wo: Vec3, u: Vec2, u_box: Vec2) -> Option<Vec3> {
+        sample_visible_normal_rect(self.roughness, self.half_extent, wo, u, u_box)
+    }
+
+    /// The density of [`RectFilteredGgx::sample_visible_normal`] per steradian.
+    #[inline]
+    pub fn visible_normal_pdf(&self, wo: Vec3, m: Vec3) -> F {
+        visible_normal_pdf_rect(self.roughness, self.half_extent, wo, m)
+    }
 }
