@@ -68,7 +68,7 @@
 //! [`GaussianFilteredGgx`](super::GaussianFilteredGgx), `4` for the box-filtered lobe
 //! [`RectFilteredGgx`] (`u[0..2]` for the GGX visible normal, `u[2..4]` for the offset in the
 //! box: its conditional CDFs have no closed form, so an exact sample takes two more numbers,
-//! [`rect::sample_visible_normal_rect`](super::filter::rect::sample_visible_normal_rect)). A
+//! [`sampling::rect::sample_visible_normal_rect`](super::sampling::rect::sample_visible_normal_rect)). A
 //! quasi-Monte Carlo renderer draws `sample_dimension()` dimensions per bounce.
 //!
 //! ## The lobes
