@@ -3,9 +3,12 @@
 //! rasterised with wgpu, headless, every filter fed by the GPU's 2x2-quad derivatives
 //! (`dpdxFine` / `dpdyFine`) of the shaded quantities, in forward shading (per light, the
 //! half vector's derivatives) and in deferred shading (a G-buffer pass that stores the
-//! roughness filtered from the normal's derivatives, then a lighting pass). The frames are
-//! compared with the CPU demo's ray-traced reference of the same camera and scene, and with
-//! the CPU demo's own one-sample frames.
+//! roughness filtered from the normal's derivatives, then a lighting pass); and on the water,
+//! the CPU demo's moments route in forward shading (`shaders/moments.wgsl`: the waves' slope
+//! moments over the pixel's Gaussian window, from the camera's analytic ray differentials,
+//! plus the parallax, nested into each footprint method's kernel; ray differentials on the
+//! spheres). The frames are compared with the CPU demo's ray-traced reference of the same
+//! camera and scene, and with the CPU demo's own one-sample frames of the same filter inputs.
 //!
 //! Run: `cargo run --release -p filtered-ndf-demo --features gpu --bin highlights_gpu -- [--quick | --full]
 //! [--check] [--width 256] [--height 160] [--spp 512] [--frames 16] [--repeats 31] [--out DIR]
@@ -56,7 +59,18 @@ pub struct Options {
     pub check: bool,
     /// Which scenes: `water`, `bumpy` or `all`.
     pub scene: &'static str,
+    /// The footprint methods shaded on the moments route (the water only; see
+    /// [`passes::Route::Moments`]).
+    pub moments: Vec<methods::Method>,
 }
+
+/// The footprint methods of the moments route in quick mode (CI's run on software drivers,
+/// within its time): the best of each kernel family on the CPU demo's moments route
+/// (`docs/highlights.md`), KHPL16's Gaussian on Beckmann and TK19's projected kernel on GGX.
+const MOMENTS_QUICK: [methods::Method; 2] = [
+    methods::Method::BeckmannParallelogram,
+    methods::Method::Tk19Projected,
+];
 
 fn usage() -> ! {
     eprintln!(
@@ -64,12 +78,14 @@ fn usage() -> ! {
          \x20                     [--height N] [--spp N] [--frames N] [--repeats N] [--out DIR]\n\
          \x20                     [--threads N] [--seed N]\n\
          \x20 --scene: the water (images in DIR), the bumpy spheres (DIR/bumpy), or both (default)\n\
-         \x20 --quick: 128x80, reference 64 spp, 8 temporal frames (CI, software drivers)\n\
+         \x20 --quick: 128x80, reference 64 spp, 8 temporal frames, the moments route for two\n\
+         \x20          methods (CI, software drivers)\n\
          \x20 default: 256x160, reference 512 spp, 16 frames (the CPU demo's frame)\n\
          \x20 --full:  1280x800, reference 16 spp, 16 frames (for a real GPU; the CPU\n\
          \x20          reference is then the slow part)\n\
-         \x20 --check: fail unless each GPU frame's RMSE is within 5 % of the CPU demo's frame\n\
-         \x20          with quad differences (the same derivatives, computed on the CPU)\n\
+         \x20 --check: fail unless each GPU frame agrees with the CPU demo's frame of the same\n\
+         \x20          filter inputs (quad differences or the moments route, computed on the\n\
+         \x20          CPU) within 0.5 % of the latter's RMSE\n\
          \x20 adapter: FILTERED_NDF_GPU_BACKEND=vulkan|gl|any"
     );
     std::process::exit(2)
@@ -89,6 +105,10 @@ fn parse_args() -> Options {
         preset: "default",
         check: false,
         scene: "all",
+        moments: passes::FORWARD
+            .into_iter()
+            .filter(|m| m.uses_footprint())
+            .collect(),
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -96,6 +116,7 @@ fn parse_args() -> Options {
             "--quick" => {
                 (o.width, o.height, o.spp, o.frames, o.repeats) = (128, 80, 64, 8, 11);
                 o.preset = "quick";
+                o.moments = MOMENTS_QUICK.to_vec();
                 continue;
             }
             "--full" => {
@@ -165,16 +186,19 @@ fn run() -> Result<(), String> {
         o.frames,
         gpu.label()
     );
+    let kinds: Vec<SceneKind> = [SceneKind::Water, SceneKind::Bumpy]
+        .into_iter()
+        .filter(|k| o.scene == "all" || o.scene == k.slug())
+        .collect();
     let mut renderer = passes::Renderer::new(&gpu)?;
     let t = std::time::Instant::now();
-    renderer.prepare(&gpu, &report::routes())?;
+    for &kind in &kinds {
+        renderer.prepare(&gpu, &report::routes(kind, &o.moments))?;
+    }
     let compile_s = t.elapsed().as_secs_f64();
     let mut md = String::new();
     let (mut passed, mut failures) = (0, Vec::new());
-    for kind in [SceneKind::Water, SceneKind::Bumpy] {
-        if o.scene != "all" && o.scene != kind.slug() {
-            continue;
-        }
+    for kind in kinds {
         // The water's images in `--out`, the other scenes' in a folder of their own.
         let out = match kind {
             SceneKind::Water => o.out.clone(),

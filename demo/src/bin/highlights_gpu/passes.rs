@@ -10,9 +10,10 @@ use naga_oil::compose::{ComposableModuleDescriptor, Composer, NagaModuleDescript
 use std::borrow::Cow;
 use wgpu::util::DeviceExt;
 
-/// The example's own WGSL: two modules and four top-level shaders.
+/// The example's own WGSL: three modules and four top-level shaders.
 const SCENE_WGSL: &str = include_str!("shaders/scene.wgsl");
 const SHADING_WGSL: &str = include_str!("shaders/shading.wgsl");
+const MOMENTS_WGSL: &str = include_str!("shaders/moments.wgsl");
 const VISIBILITY_WGSL: &str = include_str!("shaders/visibility.wgsl");
 const FORWARD_WGSL: &str = include_str!("shaders/forward.wgsl");
 const GBUFFER_WGSL: &str = include_str!("shaders/gbuffer.wgsl");
@@ -44,6 +45,12 @@ pub const FORWARD: [Method; 10] = {
 pub enum Route {
     /// One pass: per light, the half vector's quad derivatives and the method's filter.
     Forward(Method),
+    /// The forward pass of a footprint method (`Method::uses_footprint`) on the CPU demo's
+    /// moments route (`FootprintRoute::Moments`, `shaders/moments.wgsl`): on the water the
+    /// kernel of the slope moments over the pixel's Gaussian window plus the parallax, centred
+    /// on the window's mean normal; on the spheres the ray-differential footprint. No quad
+    /// derivative; the water scene only (its bumpy spheres have no such inputs here).
+    Moments(Method),
     /// A G-buffer pass storing the roughness filtered by a convention of `presets::ALL`
     /// (`None`: unfiltered) from the normal's quad derivatives, then a lighting pass.
     Deferred(Option<usize>),
@@ -55,10 +62,11 @@ impl Route {
     fn constant(self) -> u32 {
         match self {
             Route::Forward(Method::Preset(i)) => 10 + i as u32,
-            Route::Forward(m) => FORWARD
+            Route::Forward(m) | Route::Moments(m) => FORWARD
                 .iter()
                 .position(|&x| x == m)
-                .expect("a method of FORWARD") as u32,
+                .expect("a method of FORWARD")
+                as u32,
             Route::Deferred(p) => p.map_or(12, |i| i as u32),
         }
     }
@@ -66,7 +74,7 @@ impl Route {
     /// Passes per frame.
     pub fn passes(self) -> u32 {
         match self {
-            Route::Forward(_) => 1,
+            Route::Forward(_) | Route::Moments(_) => 1,
             Route::Deferred(_) => 2,
         }
     }
@@ -197,6 +205,10 @@ impl Renderer {
             (
                 SHADING_WGSL,
                 "demo/src/bin/highlights_gpu/shaders/shading.wgsl",
+            ),
+            (
+                MOMENTS_WGSL,
+                "demo/src/bin/highlights_gpu/shaders/moments.wgsl",
             ),
         ] {
             let added = composer.add_composable_module(ComposableModuleDescriptor {
@@ -384,10 +396,16 @@ impl Renderer {
                 continue;
             }
             let (base, name, constant, targets) = match route {
-                Route::Forward(_) => (FORWARD_WGSL, "forward.wgsl", "METHOD", 1),
+                Route::Forward(_) | Route::Moments(_) => {
+                    (FORWARD_WGSL, "forward.wgsl", "METHOD", 1)
+                }
                 Route::Deferred(_) => (GBUFFER_WGSL, "gbuffer.wgsl", "PRESET", 3),
             };
-            let source = format!("{base}\nconst {constant}: u32 = {}u;\n", route.constant());
+            let mut source = format!("{base}\nconst {constant}: u32 = {}u;\n", route.constant());
+            if let Route::Forward(_) | Route::Moments(_) = route {
+                let moments = matches!(route, Route::Moments(_));
+                source.push_str(&format!("const MOMENTS: bool = {moments};\n"));
+            }
             let module = compose(&mut self.composer, &source, name)?;
             let label = format!("{route:?}");
             let p = pipeline(
@@ -435,7 +453,7 @@ impl Renderer {
         let writes = |k| timer.and_then(|t| t.writes(k));
         let t = self.t();
         let targets: Vec<&wgpu::TextureView> = match route {
-            Route::Forward(_) => vec![&t.output_view],
+            Route::Forward(_) | Route::Moments(_) => vec![&t.output_view],
             Route::Deferred(_) => t.gbuffer.iter().collect(),
         };
         {

@@ -1,13 +1,17 @@
-// Forward shading of one object with one filtering method (the host prepends
+// Forward shading of one object with one filtering method (the host appends
 // `const METHOD: u32 = ...;`, the index in `passes.rs`'s `FORWARD`, or 10 + a preset's
-// index): per light, the half vector and its quad derivatives, the method's filtered `D`, the
-// reflectance of `render::radiance`. One draw per object (the host sets `object.index` and a
-// scissor around each sphere); every pixel evaluates the object, visible or not, so that the
-// 2x2-quad derivatives of its visible pixels difference that object only (as helper lanes do
-// for a rasterised triangle), and the pixels that see something else discard at the end.
+// index, and `const MOMENTS: bool = ...;`): per light, the half vector and its quad
+// derivatives, or with `MOMENTS` the moments route's inputs (`highlights::moments`: the
+// water's windowed slope moments, ray differentials on the spheres), the method's filtered
+// `D`, the reflectance of `render::radiance`. One draw per object (the host sets
+// `object.index` and a scissor around each sphere); every pixel evaluates the object, visible
+// or not, so that the 2x2-quad derivatives of its visible pixels difference that object only
+// (as helper lanes do for a rasterised triangle), and the pixels that see something else
+// discard at the end.
 
 #import highlights::scene
 #import highlights::shading
+#import highlights::moments
 #import filtered_ndf::footprint
 #import filtered_ndf::footprint::slope
 #import filtered_ndf::footprint::jacobian
@@ -48,6 +52,12 @@ fn family() -> u32 {
         return shading::BECKMANN;
     }
     return shading::GGX;
+}
+
+/// Whether the method filters over the half vector's footprint (`Method::uses_footprint`;
+/// the others read the normal differences, or nothing).
+fn uses_footprint() -> bool {
+    return METHOD >= 2u && METHOD <= 6u;
 }
 
 /// The method's (filtered) `D` at the local half vector `h`: `methods::filtered_d`.
@@ -125,11 +135,18 @@ fn fs(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<u32> {
     let s_own = slope::slope_from_sphere(scene::to_local(f, l.h));
     let dh_u = side.x * (slope_of(f, s.normal, l.h + side.x * dh_x, s.normal + side.x * dn_u) - s_own);
     let dh_v = side.y * (slope_of(f, s.normal, l.h + side.y * dh_y, s.normal + side.y * dn_v) - s_own);
-    let fp = footprint::from_slope_derivatives(dh_u, dh_v);
-    let dens = filtered_d(scene::to_local(f, l.h), s.alpha, fp, dn_u, dn_v);
+    var fp = footprint::from_slope_derivatives(dh_u, dh_v);
+    var h_lobe = scene::to_local(f, l.h);
+    let seen = i32(vis.z);
+    // The moments route's inputs need no neighbour: computed where the object is seen only.
+    if MOMENTS && uses_footprint() && seen == i32(object.index) {
+        let m = moments::filter_input(object.index, s, pixel, l.wi, l.dist_sq, l.h);
+        fp = m.fp;
+        h_lobe = m.h;
+    }
+    let dens = filtered_d(h_lobe, s.alpha, fp, dn_u, dn_v);
     color += shading::radiance(s, l, family(), dens);
 
-    let seen = i32(vis.z);
     if object.index == 0u && seen < 0 {
         return bitcast<vec4<u32>>(vec4<f32>(scene::sky(d), 1.0));
     }
