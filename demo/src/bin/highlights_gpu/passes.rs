@@ -1,6 +1,6 @@
 //! The shaders (composed with naga_oil over the crate's WGSL modules) and the passes of one
-//! frame: visibility, then either the forward pass of one method or the G-buffer and
-//! lighting passes of one deferred convention.
+//! frame: visibility, then either the forward pass of one method, or the G-buffer and
+//! lighting passes of one deferred convention or of one method on the moments route.
 
 use crate::frame::{Rect, SceneUniform, sphere_scissors};
 use crate::gpu::{Gpu, Timer};
@@ -10,19 +10,21 @@ use naga_oil::compose::{ComposableModuleDescriptor, Composer, NagaModuleDescript
 use std::borrow::Cow;
 use wgpu::util::DeviceExt;
 
-/// The example's own WGSL: three modules and four top-level shaders.
+/// The example's own WGSL: four modules and five top-level shaders.
 const SCENE_WGSL: &str = include_str!("shaders/scene.wgsl");
 const SHADING_WGSL: &str = include_str!("shaders/shading.wgsl");
 const MOMENTS_WGSL: &str = include_str!("shaders/moments.wgsl");
+const METHODS_WGSL: &str = include_str!("shaders/methods.wgsl");
 const VISIBILITY_WGSL: &str = include_str!("shaders/visibility.wgsl");
 const FORWARD_WGSL: &str = include_str!("shaders/forward.wgsl");
 const GBUFFER_WGSL: &str = include_str!("shaders/gbuffer.wgsl");
 const LIGHTING_WGSL: &str = include_str!("shaders/lighting.wgsl");
+const LIGHTING_MOMENTS_WGSL: &str = include_str!("shaders/lighting_moments.wgsl");
 
 /// Objects drawn per frame: the water (and sky), then the spheres.
 const OBJECTS: usize = 6;
 
-/// The methods `forward.wgsl`'s `METHOD` switch shades, in its order: the first ten of
+/// The methods `methods.wgsl`'s `filtered_d` shades, in its order: the first ten of
 /// `Method::ALL` (the CPU demo's exact Gaussian-filtered GGX is not shaded on the GPU here).
 pub const FORWARD: [Method; 10] = {
     use crate::methods::{Family, IsoVariant};
@@ -54,15 +56,22 @@ pub enum Route {
     /// A G-buffer pass storing the roughness filtered by a convention of `presets::ALL`
     /// (`None`: unfiltered) from the normal's quad derivatives, then a lighting pass.
     Deferred(Option<usize>),
+    /// [`Route::Moments`] in deferred shading: a G-buffer pass storing the water's windowed
+    /// slope moments (independent of the light; `gbuffer.wgsl`'s `fs_moments`), then a
+    /// lighting pass forming the method's kernel with the light's parallax
+    /// (`lighting_moments.wgsl`). The same formulas at the same pixel centres as the forward
+    /// moments route.
+    DeferredMoments(Method),
 }
 
 impl Route {
-    /// The index the shaders specialise on: `forward.wgsl`'s `METHOD` (the index in
-    /// [`FORWARD`], or 10 + a preset's) or `gbuffer.wgsl`'s `PRESET` (12: none).
+    /// The index the shaders specialise on: `METHOD` of `forward.wgsl` and
+    /// `lighting_moments.wgsl` (the index in [`FORWARD`], or 10 + a preset's) or
+    /// `gbuffer.wgsl`'s `PRESET` (12: none).
     fn constant(self) -> u32 {
         match self {
             Route::Forward(Method::Preset(i)) => 10 + i as u32,
-            Route::Forward(m) | Route::Moments(m) => FORWARD
+            Route::Forward(m) | Route::Moments(m) | Route::DeferredMoments(m) => FORWARD
                 .iter()
                 .position(|&x| x == m)
                 .expect("a method of FORWARD")
@@ -75,7 +84,7 @@ impl Route {
     pub fn passes(self) -> u32 {
         match self {
             Route::Forward(_) | Route::Moments(_) => 1,
-            Route::Deferred(_) => 2,
+            Route::Deferred(_) | Route::DeferredMoments(_) => 2,
         }
     }
 }
@@ -106,9 +115,15 @@ pub struct Renderer {
     objects: Vec<wgpu::BindGroup>,
     bgl_scene_vis: wgpu::BindGroupLayout,
     bgl_lighting: wgpu::BindGroupLayout,
+    bgl_lighting_moments: wgpu::BindGroupLayout,
     layout_objects: wgpu::PipelineLayout,
+    layout_lighting_moments: wgpu::PipelineLayout,
     visibility: wgpu::RenderPipeline,
     lighting: wgpu::RenderPipeline,
+    /// The deferred moments route's G-buffer pass (one for every method; built by
+    /// [`Renderer::prepare`] when a route needs it).
+    gbuffer_moments: Option<wgpu::RenderPipeline>,
+    /// Per route, its pipeline (the deferred moments routes: their lighting pass).
     pipelines: Vec<(Route, wgpu::RenderPipeline)>,
     targets: Option<Targets>,
     scissors: Vec<Rect>,
@@ -119,11 +134,14 @@ struct Targets {
     width: u32,
     height: u32,
     visibility: wgpu::TextureView,
-    gbuffer: [wgpu::TextureView; 3],
+    /// The G-buffer's targets; the fourth only on the deferred moments route (the window's
+    /// slope moments).
+    gbuffer: [wgpu::TextureView; 4],
     output: wgpu::Texture,
     output_view: wgpu::TextureView,
     scene_vis: wgpu::BindGroup,
     lighting_group: wgpu::BindGroup,
+    lighting_moments_group: wgpu::BindGroup,
 }
 
 fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
@@ -166,7 +184,7 @@ const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Uint;
 fn pipeline(
     gpu: &Gpu,
     layout: &wgpu::PipelineLayout,
-    module: &wgpu::ShaderModule,
+    (module, fragment): (&wgpu::ShaderModule, &str),
     targets: usize,
     label: &str,
 ) -> wgpu::RenderPipeline {
@@ -186,7 +204,7 @@ fn pipeline(
             multisample: wgpu::MultisampleState::default(),
             fragment: Some(wgpu::FragmentState {
                 module,
-                entry_point: Some("fs"),
+                entry_point: Some(fragment),
                 compilation_options: Default::default(),
                 targets: &targets,
             }),
@@ -209,6 +227,10 @@ impl Renderer {
             (
                 MOMENTS_WGSL,
                 "demo/src/bin/highlights_gpu/shaders/moments.wgsl",
+            ),
+            (
+                METHODS_WGSL,
+                "demo/src/bin/highlights_gpu/shaders/methods.wgsl",
             ),
         ] {
             let added = composer.add_composable_module(ComposableModuleDescriptor {
@@ -246,6 +268,16 @@ impl Renderer {
                 texture_entry(3),
             ],
         );
+        let bgl_lighting_moments = bgl(
+            "lighting+moments",
+            &[
+                uniform_entry(0),
+                texture_entry(1),
+                texture_entry(2),
+                texture_entry(3),
+                texture_entry(4),
+            ],
+        );
         let layout = |groups: &[Option<&wgpu::BindGroupLayout>]| {
             device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
                 label: None,
@@ -256,6 +288,7 @@ impl Renderer {
         let layout_scene = layout(&[Some(&bgl_scene)]);
         let layout_objects = layout(&[Some(&bgl_scene_vis), Some(&bgl_object)]);
         let layout_lighting = layout(&[Some(&bgl_lighting)]);
+        let layout_lighting_moments = layout(&[Some(&bgl_lighting_moments)]);
 
         let scene_only = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("scene"),
@@ -287,7 +320,8 @@ impl Renderer {
 
         let mut build = |source: &str, name: &str, layout: &wgpu::PipelineLayout| {
             let module = compose(&mut composer, source, name)?;
-            Ok::<_, String>(pipeline(gpu, layout, &shader(gpu, module, name), 1, name))
+            let module = shader(gpu, module, name);
+            Ok::<_, String>(pipeline(gpu, layout, (&module, "fs"), 1, name))
         };
         let visibility = build(VISIBILITY_WGSL, "visibility.wgsl", &layout_scene)?;
         let lighting = build(LIGHTING_WGSL, "lighting.wgsl", &layout_lighting)?;
@@ -301,9 +335,12 @@ impl Renderer {
             objects,
             bgl_scene_vis,
             bgl_lighting,
+            bgl_lighting_moments,
             layout_objects,
+            layout_lighting_moments,
             visibility,
             lighting,
+            gbuffer_moments: None,
             pipelines: Vec::new(),
             targets: None,
             scissors: Vec::new(),
@@ -325,13 +362,9 @@ impl Renderer {
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
         let visibility_texture = gpu.target("visibility", width, height);
         let visibility = view(&visibility_texture);
-        let gbuffer_textures = ["normal+alpha", "position+alpha", "albedo"]
+        let gbuffer_textures = ["normal+alpha", "position+alpha", "albedo", "slope moments"]
             .map(|label| gpu.target(label, width, height));
-        let gbuffer = [
-            view(&gbuffer_textures[0]),
-            view(&gbuffer_textures[1]),
-            view(&gbuffer_textures[2]),
-        ];
+        let gbuffer = gbuffer_textures.each_ref().map(view);
         let output = gpu.target("output", width, height);
         let output_view = view(&output);
 
@@ -349,28 +382,30 @@ impl Renderer {
                 },
             ],
         });
-        let lighting_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("lighting"),
-            layout: bgl_lighting,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: scene.as_entire_binding(),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 1,
-                    resource: wgpu::BindingResource::TextureView(&gbuffer[0]),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&gbuffer[1]),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::TextureView(&gbuffer[2]),
-                },
-            ],
-        });
+        // The scene uniform and the first `n` G-buffer targets.
+        let lighting = |label: &str, layout: &wgpu::BindGroupLayout, n: usize| {
+            let entries: Vec<wgpu::BindGroupEntry> = std::iter::once(wgpu::BindGroupEntry {
+                binding: 0,
+                resource: scene.as_entire_binding(),
+            })
+            .chain(
+                gbuffer[..n]
+                    .iter()
+                    .zip(1..)
+                    .map(|(v, binding)| wgpu::BindGroupEntry {
+                        binding,
+                        resource: wgpu::BindingResource::TextureView(v),
+                    }),
+            )
+            .collect();
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(label),
+                layout,
+                entries: &entries,
+            })
+        };
+        let lighting_group = lighting("lighting", bgl_lighting, 3);
+        let lighting_moments_group = lighting("lighting+moments", &self.bgl_lighting_moments, 4);
         self.targets = Some(Targets {
             width,
             height,
@@ -380,6 +415,7 @@ impl Renderer {
             output_view,
             scene_vis,
             lighting_group,
+            lighting_moments_group,
         });
     }
 
@@ -395,26 +431,36 @@ impl Renderer {
             if self.pipelines.iter().any(|(r, _)| *r == route) {
                 continue;
             }
+            if matches!(route, Route::DeferredMoments(_)) && self.gbuffer_moments.is_none() {
+                let source = format!("{GBUFFER_WGSL}\nconst PRESET: u32 = 12u;\n");
+                let module = compose(&mut self.composer, &source, "gbuffer.wgsl")?;
+                let label = "G-buffer of the moments route";
+                let module = shader(gpu, module, label);
+                let p = pipeline(gpu, &self.layout_objects, (&module, "fs_moments"), 4, label);
+                self.gbuffer_moments = Some(p);
+            }
             let (base, name, constant, targets) = match route {
                 Route::Forward(_) | Route::Moments(_) => {
                     (FORWARD_WGSL, "forward.wgsl", "METHOD", 1)
                 }
                 Route::Deferred(_) => (GBUFFER_WGSL, "gbuffer.wgsl", "PRESET", 3),
+                Route::DeferredMoments(_) => {
+                    (LIGHTING_MOMENTS_WGSL, "lighting_moments.wgsl", "METHOD", 1)
+                }
             };
             let mut source = format!("{base}\nconst {constant}: u32 = {}u;\n", route.constant());
             if let Route::Forward(_) | Route::Moments(_) = route {
                 let moments = matches!(route, Route::Moments(_));
                 source.push_str(&format!("const MOMENTS: bool = {moments};\n"));
             }
+            let layout = match route {
+                Route::DeferredMoments(_) => &self.layout_lighting_moments,
+                _ => &self.layout_objects,
+            };
             let module = compose(&mut self.composer, &source, name)?;
             let label = format!("{route:?}");
-            let p = pipeline(
-                gpu,
-                &self.layout_objects,
-                &shader(gpu, module, &label),
-                targets,
-                &label,
-            );
+            let module = shader(gpu, module, &label);
+            let p = pipeline(gpu, layout, (&module, "fs"), targets, &label);
             self.pipelines.push((route, p));
         }
         match pollster::block_on(scope.pop()) {
@@ -444,21 +490,33 @@ impl Renderer {
 
     /// Records the passes of `route` into `enc` (timed by `timer` if given).
     pub fn record(&self, enc: &mut wgpu::CommandEncoder, route: Route, timer: Option<&Timer>) {
-        let pipeline = &self
+        let own = &self
             .pipelines
             .iter()
             .find(|(r, _)| *r == route)
             .expect("Renderer::prepare first")
             .1;
+        // The pass that draws the objects, and the lighting pass of the deferred routes.
+        let (objects, lighting) = match route {
+            Route::Forward(_) | Route::Moments(_) => (own, None),
+            Route::Deferred(_) => (own, Some((&self.lighting, &self.t().lighting_group))),
+            Route::DeferredMoments(_) => (
+                self.gbuffer_moments
+                    .as_ref()
+                    .expect("Renderer::prepare first"),
+                Some((own, &self.t().lighting_moments_group)),
+            ),
+        };
         let writes = |k| timer.and_then(|t| t.writes(k));
         let t = self.t();
         let targets: Vec<&wgpu::TextureView> = match route {
             Route::Forward(_) | Route::Moments(_) => vec![&t.output_view],
-            Route::Deferred(_) => t.gbuffer.iter().collect(),
+            Route::Deferred(_) => t.gbuffer[..3].iter().collect(),
+            Route::DeferredMoments(_) => t.gbuffer.iter().collect(),
         };
         {
             let mut pass = begin(enc, &targets, writes(0));
-            pass.set_pipeline(pipeline);
+            pass.set_pipeline(objects);
             pass.set_bind_group(0, &t.scene_vis, &[]);
             for (i, group) in self.objects.iter().enumerate() {
                 let (x, y, w, h) = match i {
@@ -473,10 +531,10 @@ impl Renderer {
                 pass.draw(0..3, 0..1);
             }
         }
-        if let Route::Deferred(_) = route {
+        if let Some((pipeline, group)) = lighting {
             let mut pass = begin(enc, &[&t.output_view], writes(1));
-            pass.set_pipeline(&self.lighting);
-            pass.set_bind_group(0, &t.lighting_group, &[]);
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, group, &[]);
             pass.draw(0..3, 0..1);
         }
     }

@@ -23,26 +23,31 @@ const DOWNSCALE: u32 = 2;
 const SPP_DIVISOR: usize = 4;
 
 /// Every route rendered in scene `kind`: each method of the CPU demo in forward shading, on
-/// the water each of `moments` (footprint methods) on the moments route, then unfiltered GGX
-/// and each engine preset in deferred shading.
+/// the water each of `moments` (footprint methods) on the forward moments route, then
+/// unfiltered GGX and each engine preset in deferred shading, then on the water each of
+/// `moments` on the deferred moments route.
 pub fn routes(kind: SceneKind, moments: &[Method]) -> Vec<Route> {
     let forward = crate::passes::FORWARD.iter().map(|&m| Route::Forward(m));
-    let moments = crate::passes::FORWARD
+    let on_moments: Vec<Method> = crate::passes::FORWARD
         .iter()
         .copied()
         .filter(|m| m.uses_footprint() && moments.contains(m))
         .filter(|_| kind == SceneKind::Water)
-        .map(Route::Moments);
+        .collect();
     let deferred = std::iter::once(None)
         .chain((0..filtered_ndf::f32::filter::presets::ALL.len()).map(Some))
         .map(Route::Deferred);
-    forward.chain(moments).chain(deferred).collect()
+    forward
+        .chain(on_moments.iter().map(|&m| Route::Moments(m)))
+        .chain(deferred)
+        .chain(on_moments.iter().map(|&m| Route::DeferredMoments(m)))
+        .collect()
 }
 
 /// The CPU demo's method that a route renders.
 fn cpu_method(route: Route) -> Method {
     match route {
-        Route::Forward(m) | Route::Moments(m) => m,
+        Route::Forward(m) | Route::Moments(m) | Route::DeferredMoments(m) => m,
         Route::Deferred(None) => Method::Unfiltered(Family::Ggx),
         Route::Deferred(Some(i)) => Method::Preset(i),
     }
@@ -53,6 +58,7 @@ fn route_name(route: Route) -> &'static str {
         Route::Forward(_) => "forward",
         Route::Moments(_) => "forward, moments",
         Route::Deferred(_) => "deferred",
+        Route::DeferredMoments(_) => "deferred, moments",
     }
 }
 
@@ -62,6 +68,7 @@ fn route_slug(route: Route) -> &'static str {
         Route::Forward(_) => "forward",
         Route::Moments(_) => "moments",
         Route::Deferred(_) => "deferred",
+        Route::DeferredMoments(_) => "deferred-moments",
     }
 }
 
@@ -73,7 +80,7 @@ fn slug(route: Route) -> String {
 /// moments route for [`Route::Moments`], its 2x2-quad differences for the others.
 fn cpu_route(route: Route) -> FootprintRoute {
     match route {
-        Route::Moments(_) => FootprintRoute::Moments,
+        Route::Moments(_) | Route::DeferredMoments(_) => FootprintRoute::Moments,
         _ => FootprintRoute::Quad,
     }
 }
@@ -82,7 +89,7 @@ fn cpu_route(route: Route) -> FootprintRoute {
 fn baseline(route: Route) -> Route {
     match route {
         Route::Forward(_) | Route::Moments(_) => Route::Forward(Method::Unfiltered(Family::Ggx)),
-        Route::Deferred(_) => Route::Deferred(None),
+        Route::Deferred(_) | Route::DeferredMoments(_) => Route::Deferred(None),
     }
 }
 
@@ -291,6 +298,7 @@ pub fn still(
             Route::Forward(_) => "GPU fwd",
             Route::Moments(_) => "GPU moments",
             Route::Deferred(_) => "GPU def",
+            Route::DeferredMoments(_) => "GPU def moments",
         };
         tiles.push((format!("{prefix}: {}", m.label()), rgb.clone()));
         if let Some(rays) = rays {
@@ -440,7 +448,7 @@ pub fn temporal(
             let name = match route {
                 Route::Forward(m) => format!("GPU fwd: {}", m.label()),
                 Route::Moments(m) => format!("GPU moments: {}", m.label()),
-                Route::Deferred(_) => continue,
+                Route::Deferred(_) | Route::DeferredMoments(_) => continue,
             };
             series.push(Series {
                 label: name,
@@ -584,6 +592,7 @@ fn row_label(route: Route) -> String {
     let m = cpu_method(route);
     match route {
         Route::Moments(_) => format!("{} + moments (forward)", m.label()),
+        Route::DeferredMoments(_) => format!("{} + moments (deferred)", m.label()),
         _ => format!("{} ({})", m.label(), route_name(route)),
     }
 }
@@ -682,6 +691,10 @@ pub fn markdown(o: &Options, gpu: &Gpu, compile_s: f64, s: &Still, t: &Temporal)
             "forward, windowed slope moments on the water (ray differentials on the spheres)",
             &|r| matches!(r, Route::Moments(_)),
         ),
+        group(
+            "deferred, windowed slope moments in the G-buffer, kernel per light",
+            &|r| matches!(r, Route::DeferredMoments(_)),
+        ),
     ];
     writeln!(
         md,
@@ -754,9 +767,9 @@ pub fn markdown(o: &Options, gpu: &Gpu, compile_s: f64, s: &Still, t: &Temporal)
     writeln!(md, "\n## {title}GPU time per method\n").unwrap();
     writeln!(
         md,
-        "{}: {}. Each route's passes (forward and moments: one pass of six draws; deferred: the G-buffer \
-         pass and the lighting pass), median of {} runs, relative to unfiltered GGX on the same \
-         route (the moments route: forward); the visibility pass that every route reads ({:.3} ms) is not included. Pipelines \
+        "{}: {}. Each route's passes (forward: one pass of six draws; deferred: the G-buffer \
+         pass and the lighting pass), median of {} runs, relative to unfiltered GGX in the same \
+         shading (forward or deferred); the visibility pass that every route reads ({:.3} ms) is not included. Pipelines \
          compiled in {:.1} s.{}\n",
         gpu.label(),
         s.timer,

@@ -190,11 +190,30 @@ fn footprint_of(k: covariance::Covariance, sigma: f32) -> pixel::Footprint {
     return pixel::from_slope_derivatives(e1 * (sqrt(max(l1, 0.0)) / sigma), e2 * (sqrt(max(l2, 0.0)) / sigma));
 }
 
+/// The window's slope moments at the shading point `s` of object `index` seen through the
+/// pixel centre `centre`: on the water (object 0) the waves' moments over the pixel's Gaussian
+/// window ([`gradient_moments`] over [`window`]), zero on the spheres (which the moments route
+/// filters by their ray differentials). Independent of the light: the deferred route stores
+/// them in its G-buffer.
+fn window_moments(index: u32, s: scene::Surface, centre: vec2<f32>) -> GradientMoments {
+    if index != 0u {
+        return GradientMoments(vec2<f32>(0.0), vec3<f32>(0.0));
+    }
+    let d = plane_differentials(centre, s.position, s.normal);
+    return gradient_moments(s.position.x, s.position.z, window(d));
+}
+
 /// The moments route's inputs at the shading point `s` of object `index` (0: the water;
 /// `1 + i`: sphere `i` of the water scene) seen through the pixel centre `centre`, for the
 /// light direction `wi` at squared distance `dist_sq` and the world half vector `h_w`
 /// (`GBuffer::moment_derivatives`, then `render::component_d`'s rotation of `h`).
 fn filter_input(index: u32, s: scene::Surface, centre: vec2<f32>, wi: vec3<f32>, dist_sq: f32, h_w: vec3<f32>) -> FilterInput {
+    return filter_input_with(index, s, centre, wi, dist_sq, h_w, window_moments(index, s, centre));
+}
+
+/// [`filter_input`] with the window's moments `g` given ([`window_moments`], e.g. read back
+/// from a G-buffer).
+fn filter_input_with(index: u32, s: scene::Surface, centre: vec2<f32>, wi: vec3<f32>, dist_sq: f32, h_w: vec3<f32>, g: GradientMoments) -> FilterInput {
     let f = scene::tangent_frame(s.normal);
     let light = s.position + wi * sqrt(dist_sq);
     let d = plane_differentials(centre, s.position, s.normal);
@@ -205,7 +224,6 @@ fn filter_input(index: u32, s: scene::Surface, centre: vec2<f32>, wi: vec3<f32>,
         let w = mat2x2<f32>(1.0 / r, 0.0, 0.0, 1.0 / r);
         return FilterInput(ray_footprint(s.position, light, f, w, d), h);
     }
-    let g = gradient_moments(s.position.x, s.position.z, window(d));
     // The parallax: the ray-differential footprint of a flat surface.
     let parallax = ray_footprint(s.position, light, f, mat2x2<f32>(0.0, 0.0, 0.0, 0.0), d);
     // Height gradient -> slope of the normal in this frame: the normal is
