@@ -50,21 +50,27 @@ fn fs(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<u32> {
     let dn_v = dpdyFine(s.normal);
     let f = scene::tangent_frame(s.normal);
     var color = vec3<f32>(0.0);
-    // Per light (one here): the half vector, its quad neighbours' half vectors, the footprint.
+    // Per light (one here): the half vector and the footprint: its quad neighbours' half
+    // vectors, or the moments route's inputs.
     let l = shading::light_at(s);
-    let dh_x = dpdxFine(l.h);
-    let dh_y = dpdyFine(l.h);
-    let s_own = slope::slope_from_sphere(scene::to_local(f, l.h));
-    let dh_u = side.x * (slope_of(f, s.normal, l.h + side.x * dh_x, s.normal + side.x * dn_u) - s_own);
-    let dh_v = side.y * (slope_of(f, s.normal, l.h + side.y * dh_y, s.normal + side.y * dn_v) - s_own);
-    var fp = footprint::from_slope_derivatives(dh_u, dh_v);
+    var fp = footprint::Footprint(vec2<f32>(0.0), vec2<f32>(0.0));
     var h_lobe = scene::to_local(f, l.h);
     let seen = i32(vis.z);
-    // The moments route's inputs need no neighbour: computed where the object is seen only.
-    if MOMENTS && methods::uses_footprint(METHOD) && seen == i32(object.index) {
-        let m = moments::filter_input(object.index, s, pixel, l.wi, l.dist_sq, l.h);
-        fp = m.fp;
-        h_lobe = m.h;
+    if MOMENTS && methods::uses_footprint(METHOD) {
+        // No neighbour needed: computed where the object is seen only (the other pixels
+        // discard below).
+        if seen == i32(object.index) {
+            let m = moments::filter_input(object.index, s, pixel, l.wi, l.dist_sq, l.h);
+            fp = m.fp;
+            h_lobe = m.h;
+        }
+    } else {
+        let dh_x = dpdxFine(l.h);
+        let dh_y = dpdyFine(l.h);
+        let s_own = slope::slope_from_sphere(h_lobe);
+        let dh_u = side.x * (slope_of(f, s.normal, l.h + side.x * dh_x, s.normal + side.x * dn_u) - s_own);
+        let dh_v = side.y * (slope_of(f, s.normal, l.h + side.y * dh_y, s.normal + side.y * dn_v) - s_own);
+        fp = footprint::from_slope_derivatives(dh_u, dh_v);
     }
     let dens = methods::filtered_d(METHOD, h_lobe, s.alpha, fp, dn_u, dn_v);
     color += shading::radiance(s, l, methods::family(METHOD), dens);
