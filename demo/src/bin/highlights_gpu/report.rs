@@ -777,12 +777,20 @@ pub fn markdown(o: &Options, gpu: &Gpu, compile_s: f64, s: &Still, t: &Temporal)
         o.repeats,
         s.visibility_time * 1e3,
         compile_s,
-        if software {
-            " **A software rasteriser: only the ratios count**, not the milliseconds (and \
-             its ratios weigh arithmetic as a CPU does, not as a GPU's wide ALUs and \
-             special-function units do)."
-        } else {
-            ""
+        match (software, gpu.info.backend) {
+            (true, wgpu::Backend::Vulkan) => {
+                " **A software rasteriser, and on lavapipe not even the ratios count**: its \
+                 times are mostly the driver's own per-draw work on the submitting thread, \
+                 which differs between pipelines whatever their arithmetic (profiled in \
+                 docs/gpu_moments.md); the GL run (llvmpipe, the same rasteriser without \
+                 lavapipe) times the shaders."
+            }
+            (true, _) => {
+                " **A software rasteriser: only the ratios count**, not the milliseconds (and \
+                 its ratios weigh arithmetic as a CPU does, not as a GPU's wide ALUs and \
+                 special-function units do)."
+            }
+            _ => "",
         }
     )
     .unwrap();
