@@ -181,13 +181,13 @@ pub struct FilteredNdfExtension {
     /// widening), NaN as `None`.
     pub kappa: Option<f32>,
     /// The moment texture `(E[s_x], E[s_y], E[s_x^2], E[s_y^2])` of the normal map
-    /// (`Rgba16Float` or `Rgba32Float` with its mip chain; [`crate::moment_images`]). Its
-    /// sampler samples both moment textures.
+    /// (`Rgba16Float`, or `Rgba32Float` where the device filters it, with its mip chain;
+    /// [`crate::moment_images`]). Its sampler samples both moment textures.
     #[texture(101)]
     #[sampler(102)]
     pub moments: Option<Handle<Image>>,
-    /// The moment texture `E[s_x s_y]` (`R16Float` or `R32Float`, the same size and mips as
-    /// [`Self::moments`]).
+    /// The moment texture `E[s_x s_y]` (`R16Float`, or `R32Float` where the device filters it;
+    /// the same size and mips as [`Self::moments`]).
     #[texture(103)]
     pub moments_xy: Option<Handle<Image>>,
 }

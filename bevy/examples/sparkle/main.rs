@@ -27,9 +27,11 @@
 //!
 //! `--check` exits with status 1 if a pipeline fails (a shader that does not compose, an
 //! import that never resolves), a frame is black or not finite, the plugin switched off does
-//! not render what `StandardMaterial` renders, or the plugin's default is not closer to the
-//! reference than unfiltered Bevy in RMSE (HDR) and lost highlights (not FLIP, not flicker:
-//! see docs/bevy.md). `--docs FILE`
+//! not render what `StandardMaterial` renders, the plugin with the moment chain renders what
+//! the plugin without it renders, or the plugin's default or its moment-chain row is not
+//! closer to the reference than unfiltered Bevy in RMSE (HDR) and lost highlights, by the
+//! margins of `RMSE_CLAIM` and `LOST_CLAIM` (not FLIP, not flicker: see docs/bevy.md).
+//! `--docs FILE`
 //! rewrites the generated part of FILE (between its `sparkle:begin` and `sparkle:end` marks)
 //! and writes the images beside it in a folder of the file's name. Runs on Mesa's lavapipe
 //! (Vulkan) without a GPU.
@@ -150,6 +152,13 @@ struct View {
 const PLUGIN_DEFAULT: &str = "plugin: TK19 trace (default)";
 /// The label of the plugin switched off.
 const PLUGIN_OFF: &str = "plugin: off";
+/// `--check`: the claimed RMSE (HDR) of the plugin's rows, at most this fraction of
+/// unfiltered Bevy's (docs/bevy.md: the measured ratios are near 0.3, the reference's own
+/// error 0.24 of unfiltered's).
+const RMSE_CLAIM: f64 = 0.5;
+/// `--check`: the claimed lost highlights of the plugin's rows, at most this fraction of
+/// unfiltered Bevy's (measured: below 0.1; the reference's own, 0.21 of unfiltered's).
+const LOST_CLAIM: f64 = 0.25;
 /// The label of the plugin's default with the moment chain.
 const PLUGIN_LEAN: &str = "plugin + moment chain (LEAN), TK19 trace (default)";
 
@@ -689,29 +698,47 @@ fn check(
             ));
         }
     }
-    // What the figures support (docs/bevy.md): the plugin's default is closer to the
-    // reference than unfiltered Bevy in linear radiance (RMSE) and loses fewer of the
-    // reference's highlights, both by far more than the reference's own error (its 4x4
-    // against 8x8 supersampling). It is not closer on FLIP, and the flicker error of the 4x4
-    // reference against the 8x8 one exceeds every method's, so neither is claimed.
+    // What the figures support (docs/bevy.md): the plugin's default, and the plugin with the
+    // moment chain, are closer to the reference than unfiltered Bevy in linear radiance
+    // (RMSE) and lose fewer of the reference's highlights, each by a margin above the
+    // reference's own error (its 4x4 against 8x8 supersampling: RMSE 9.2 against
+    // unfiltered's 38, lost highlights 659 against 3125 over 12 frames). Neither is closer on
+    // FLIP, and the flicker error of the 4x4 reference against the 8x8 one exceeds every
+    // method's, so neither is claimed.
     let base = &rows[0];
-    match rows.iter().find(|r| r.label == PLUGIN_DEFAULT) {
-        Some(p) => {
-            let mut missing = Vec::new();
-            if p.rmse_hdr >= base.rmse_hdr {
-                missing.push("RMSE (HDR)");
+    for label in [PLUGIN_DEFAULT, PLUGIN_LEAN] {
+        match rows.iter().find(|r| r.label == label) {
+            Some(p) => {
+                let mut missing = Vec::new();
+                if p.rmse_hdr > RMSE_CLAIM * base.rmse_hdr {
+                    missing.push(format!("RMSE (HDR) at most {RMSE_CLAIM} x unfiltered's"));
+                }
+                if p.lost_highlights as f64 > LOST_CLAIM * base.lost_highlights as f64 {
+                    missing.push(format!(
+                        "lost highlights at most {LOST_CLAIM} x unfiltered's"
+                    ));
+                }
+                if !missing.is_empty() {
+                    failures.push(format!("{label}: not {}", missing.join(", ")));
+                }
             }
-            if p.lost_highlights >= base.lost_highlights {
-                missing.push("lost highlights");
-            }
-            if !missing.is_empty() {
-                failures.push(format!(
-                    "{PLUGIN_DEFAULT} not closer to the reference than unfiltered on {}",
-                    missing.join(", ")
-                ));
-            }
+            None => failures.push(format!("no {label} row")),
         }
-        None => failures.push(format!("no {PLUGIN_DEFAULT} row")),
+    }
+    // The moment chain is bound and read: its frames are not the plugin's default ones.
+    let find = |label: &str| views.iter().position(|v| v.label == label);
+    if let (Some(d), Some(l)) = (find(PLUGIN_DEFAULT), find(PLUGIN_LEAN)) {
+        let largest = frames[l]
+            .iter()
+            .zip(&frames[d])
+            .flat_map(|(a, b)| a.data.iter().zip(&b.data))
+            .map(|(p, q)| ((*p - *q).abs() / (q.abs() + glam::Vec3::splat(1e-3))).max_element())
+            .fold(0.0f32, f32::max);
+        if largest <= 1e-3 {
+            failures.push(format!(
+                "{PLUGIN_LEAN} renders what {PLUGIN_DEFAULT} renders (the moment chain is not read)"
+            ));
+        }
     }
     if failures.is_empty() {
         Ok(())
