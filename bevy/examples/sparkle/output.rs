@@ -6,7 +6,7 @@ use filtered_ndf_demo::image_out::{self, Image};
 use std::path::{Path, PathBuf};
 
 /// The frame in the middle of the move of the unfiltered, PR, plugin and plugin-with-moments
-/// rows and the reference, side by side; and the frame-to-frame change of display luminance at the same
+/// rows (trilinear, and anisotropic without `--quick`) and the reference, side by side; and the frame-to-frame change of display luminance at the same
 /// frame (what flickers). Returns the folder.
 pub fn write_images(
     o: &Options,
@@ -16,10 +16,12 @@ pub fn write_images(
     exposure: f32,
     dir: &Path,
 ) -> Result<PathBuf, String> {
-    let lean = views[..methods]
-        .iter()
-        .position(|v| v.label == crate::PLUGIN_LEAN);
-    let shown: Vec<usize> = (0..3).chain(lean).chain([methods]).collect();
+    let find = |label: &str| views[..methods].iter().position(|v| v.label == label);
+    let lean = [crate::PLUGIN_LEAN, crate::PLUGIN_LEAN_ANISOTROPIC].map(find);
+    let shown: Vec<usize> = (0..3)
+        .chain(lean.into_iter().flatten())
+        .chain([methods])
+        .collect();
     let columns = if shown.len() > 4 { 3 } else { 2 };
     let mid = o.frames / 2;
     let zoom = if o.quick { 2 } else { 1 };
