@@ -163,7 +163,7 @@ const LOST_CLAIM: f64 = 0.25;
 /// The label of the plugin's default with the moment chain.
 const PLUGIN_LEAN: &str = "plugin + moment chain (LEAN)";
 /// The label of the plugin's default with the moment chain and a 16x anisotropic sampler.
-const PLUGIN_LEAN_ANISOTROPIC: &str = "plugin + moment chain (LEAN), 16x anisotropic";
+const PLUGIN_LEAN_ANISOTROPIC: &str = "plugin + moment chain (LEAN), aniso 16x";
 
 fn views(o: &Options) -> Vec<View> {
     let method = |label: &str, shading| View {
