@@ -24,68 +24,9 @@ use filtered_ndf::testing::quadrature::Tolerance;
 use filtered_ndf::testing::rng::SplitMix64 as Rng;
 use glam::{DVec2, DVec3, Vec2, Vec3};
 
-/// One seeded case, with every input representable in `f32` (so that both precisions and the
-/// reference see the same numbers).
-#[derive(Clone, Copy, Debug)]
-struct Case {
-    a: (f32, f32, f32),
-    k: (f32, f32, f32),
-    s: (f32, f32),
-}
-
-fn rotated(l1: f64, l2: f64, phi: f64) -> (f64, f64, f64) {
-    let (c, sn) = (phi.cos(), phi.sin());
-    (
-        c * c * l1 + sn * sn * l2,
-        c * sn * (l1 - l2),
-        sn * sn * l1 + c * c * l2,
-    )
-}
-
-fn cases(n: usize, seed: u64) -> Vec<Case> {
-    let mut r = Rng(seed);
-    let mut out = Vec::new();
-    while out.len() < n {
-        let i = out.len();
-        let alpha = 10f64.powf(r.range(-4.0, 0.0));
-        let aniso = 10f64.powf(r.range(0.0, 2.0));
-        let (a11, a12, a22) = rotated(alpha * alpha, (alpha / aniso).powi(2), r.range(0.0, 3.2));
-        let a = (a11 as f32, a12 as f32, a22 as f32);
-        let Ok(a32) = s::RoughnessMatrix::new(a.0, a.1, a.2) else {
-            continue;
-        };
-        let _ = a32;
-        let kw = 10f64.powf(r.range(-3.0, 3.0));
-        let k1 = (alpha * kw).powi(2);
-        let k2 = match i % 8 {
-            0 => 0.0,
-            1 => 0.0,
-            _ => k1 * 10f64.powf(r.range(-4.0, 0.0)),
-        };
-        let k1 = if i % 8 == 0 { 0.0 } else { k1 };
-        let (k11, k12, k22) = rotated(k1, k2, r.range(0.0, 3.2));
-        let k = (k11 as f32, k12 as f32, k22 as f32);
-        // s = rho L u with L the Cholesky factor of A + 2 Sigma.
-        let (f11, f12, f22) = (a11 + 2.0 * k11, a12 + 2.0 * k12, a22 + 2.0 * k22);
-        let l11 = f11.sqrt();
-        let l21 = f12 / l11;
-        let l22 = (f22 - l21 * l21).max(0.0).sqrt();
-        let rho = if i % 2 == 0 {
-            r.range(0.0, 50.0)
-        } else {
-            10f64.powf(r.range(-3.0, 1.7))
-        };
-        let th = r.range(0.0, std::f64::consts::TAU);
-        let (ux, uy) = (th.cos(), th.sin());
-        let sv = (rho * l11 * ux, rho * (l21 * ux + l22 * uy));
-        out.push(Case {
-            a,
-            k,
-            s: (sv.0 as f32, sv.1 as f32),
-        });
-    }
-    out
-}
+#[path = "common/gaussian_cases.rs"]
+mod gaussian_cases;
+use gaussian_cases::{Case, cases, rotated};
 
 fn lobe64(c: &Case) -> (d::RoughnessMatrix, d::Covariance, DVec2) {
     let a = d::RoughnessMatrix::new(c.a.0 as f64, c.a.1 as f64, c.a.2 as f64).unwrap();

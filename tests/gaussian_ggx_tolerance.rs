@@ -50,70 +50,9 @@ fn ln_upper(x: f64) -> f64 {
     e * std::f64::consts::LN_2 + (x / e.exp2() - 1.0)
 }
 
-/// One case, every input representable in `f32`.
-#[derive(Clone, Copy, Debug)]
-struct Case {
-    a: (f32, f32, f32),
-    k: (f32, f32, f32),
-    s: (f32, f32),
-}
-
-fn rotated(l1: f64, l2: f64, phi: f64) -> (f64, f64, f64) {
-    let (c, sn) = (phi.cos(), phi.sin());
-    (
-        c * c * l1 + sn * sn * l2,
-        c * sn * (l1 - l2),
-        sn * sn * l1 + c * c * l2,
-    )
-}
-
-/// The domain of `tests/gaussian_ggx.rs` (its generator, seeded).
-fn cases(n: usize, seed: u64) -> Vec<Case> {
-    let mut r = Rng(seed);
-    let mut out = Vec::new();
-    while out.len() < n {
-        let i = out.len();
-        let alpha = 10f64.powf(r.range(-4.0, 0.0));
-        let aniso = 10f64.powf(r.range(0.0, 2.0));
-        let (a11, a12, a22) = rotated(alpha * alpha, (alpha / aniso).powi(2), r.range(0.0, 3.2));
-        let a = (a11 as f32, a12 as f32, a22 as f32);
-        if s::RoughnessMatrix::new(a.0, a.1, a.2).is_err() {
-            continue;
-        }
-        let kw = 10f64.powf(r.range(-3.0, 3.0));
-        let k1 = if i % 8 == 0 {
-            0.0
-        } else {
-            (alpha * kw).powi(2)
-        };
-        let k2 = if i % 8 < 2 {
-            0.0
-        } else {
-            k1 * 10f64.powf(r.range(-4.0, 0.0))
-        };
-        let (k11, k12, k22) = rotated(k1, k2, r.range(0.0, 3.2));
-        let (f11, f12, f22) = (a11 + 2.0 * k11, a12 + 2.0 * k12, a22 + 2.0 * k22);
-        let l11 = f11.sqrt();
-        let l21 = f12 / l11;
-        let l22 = (f22 - l21 * l21).max(0.0).sqrt();
-        let rho = if i % 2 == 0 {
-            r.range(0.0, 50.0)
-        } else {
-            10f64.powf(r.range(-3.0, 1.7))
-        };
-        let th = r.range(0.0, std::f64::consts::TAU);
-        let (ux, uy) = (th.cos(), th.sin());
-        out.push(Case {
-            a,
-            k: (k11 as f32, k12 as f32, k22 as f32),
-            s: (
-                (rho * l11 * ux) as f32,
-                (rho * (l21 * ux + l22 * uy)) as f32,
-            ),
-        });
-    }
-    out
-}
+#[path = "common/gaussian_cases.rs"]
+mod gaussian_cases;
+use gaussian_cases::{Case, cases, rotated};
 
 /// Worst relative error per reduced setting `(f64, f32)` over `cs`, asserting each bound.
 fn check(cs: &[Case]) -> [(f64, f64); 3] {

@@ -1,10 +1,16 @@
 //! [`FilteredNdfExtension`]: the per-material knobs of the roughness filter, and
 //! [`FilteredNdfMaterial`], `StandardMaterial` extended by them.
 
+use crate::moments::MomentImages;
 use crate::plugin::MATERIAL_SHADER;
-use bevy::pbr::{ExtendedMaterial, MaterialExtension};
+use bevy::mesh::MeshVertexBufferLayoutRef;
+use bevy::pbr::{
+    ExtendedMaterial, MaterialExtension, MaterialExtensionKey, MaterialExtensionPipeline,
+};
 use bevy::prelude::*;
-use bevy::render::render_resource::{AsBindGroup, ShaderType};
+use bevy::render::render_resource::{
+    AsBindGroup, RenderPipelineDescriptor, ShaderType, SpecializedMeshPipelineError,
+};
 use bevy::shader::ShaderRef;
 use filtered_ndf::f32::filter::deferred::{Combine, Domain, KernelConvention, Norm};
 use filtered_ndf::f32::filter::presets;
@@ -116,18 +122,48 @@ impl RoughnessFilter {
 }
 
 /// The knobs of the roughness filter, per material: the extension of
-/// [`FilteredNdfMaterial`]. The fragment shader (`src/shaders/material.wgsl`) takes the
-/// screen-space differences `dn_u = dpdxFine(N)`, `dn_v = dpdyFine(N)` of the normal-mapped
-/// world normal `N` and replaces the perceptual roughness `p` by `sqrt(alpha_bar)`, `alpha_bar`
-/// the [`filter`](Self::filter)'s convention applied to `alpha = clamp(p, 0.089, 1)^2` with
-/// the kernel scaled for [`sigma`](Self::sigma) and clamped at [`kappa`](Self::kappa); the
-/// clear coat's roughness likewise with its own normal. Bevy's lighting then evaluates its GGX
-/// lobe with the filtered roughness (forward), or the G-buffer stores it (deferred).
+/// [`FilteredNdfMaterial`], and optionally the normal map's baked LEAN moment chain.
 ///
-/// The default is TK19's trace kernel as published: `alpha_bar^2 = min(alpha^2 + min(0.5
-/// (|dn_u|^2 + |dn_v|^2), 0.18), 1)`.
-#[derive(Asset, AsBindGroup, Reflect, Debug, Clone, Copy, PartialEq)]
+/// **Without moments** (the default), the fragment shader (`src/shaders/material.wgsl`) takes
+/// the screen-space differences `dn_u = dpdxFine(N)`, `dn_v = dpdyFine(N)` of the
+/// normal-mapped world normal `N` and replaces the perceptual roughness `p` by
+/// `sqrt(alpha_bar)`, `alpha_bar` the [`filter`](Self::filter)'s convention applied to `alpha
+/// = clamp(p, 0.089, 1)^2` with the kernel scaled for [`sigma`](Self::sigma) and clamped at
+/// [`kappa`](Self::kappa); the clear coat's roughness likewise with its own normal. Bevy's
+/// lighting then evaluates its GGX lobe with the filtered roughness (forward), or the G-buffer
+/// stores it (deferred).
+///
+/// **With moments** ([`Self::with_moments`]: both [`moments`](Self::moments) and
+/// [`moments_xy`](Self::moments_xy) set, the shader def `FILTERED_NDF_MOMENTS`), for a mesh
+/// with UVs and tangents, the normal map's detail comes from the moments instead of from the
+/// differences of the normal-mapped normal (LEAN mapping, Olano and Baker 2010; KHPL16 section
+/// 5.5, eq. 21):
+/// 1. both textures are fetched at the normal map's UV (`uv_transform` applied; `uv_b` where
+///    the normal map uses it) with `textureSampleGrad` and the UV's screen derivatives (scaled
+///    by the view's mip bias, as Bevy fetches the normal map): the hardware's trilinear
+///    filter averages the moments over the pixel's footprint (WGSL `bake::moments`);
+/// 2. the shading normal is the mean slope's, `normalize(-E[s_x], -E[s_y], 1)`
+///    (`lean_nested::lean_mean_normal`), through Bevy's own normal mapping (its TBN,
+///    `flip_normal_map_y`, double-sidedness), in place of the normal-map sample;
+/// 3. the material's lobe is widened by the texel's slope covariance `Sigma_L = E[s s^T] -
+///    E[s] E[s]^T` (`lean_nested::lean_widened`: `A_L = alpha^2 I + 2 Sigma_L`, KHPL16 eq.
+///    21), made isotropic for Bevy's lobe by its trace: `alpha_L^2 = alpha^2 + tr(Sigma_L)`
+///    (the mean of `A_L`'s eigenvalues, keeping the lobe's total slope variance);
+/// 4. the derivative filter is applied to `alpha_L` with the differences of the *geometric*
+///    (interpolated vertex) normal, not of the normal-mapped one: the normal map's detail is
+///    already in `Sigma_L`, and counting it again from its differences would widen twice.
+///    On a flat surface the derivative term is zero and the lobe is LEAN's alone; on a curved
+///    one it adds the curvature's spread across the pixel. `kappa` bounds only this
+///    derivative term, never `Sigma_L` (the texel's measured distribution, not an estimate).
+///
+/// [`RoughnessFilter::Off`] leaves the material as `StandardMaterial` renders it, moments or
+/// not. The clear coat is filtered from its own normal's differences in both cases.
+///
+/// The default is TK19's trace kernel as published, without moments: `alpha_bar^2 =
+/// min(alpha^2 + min(0.5 (|dn_u|^2 + |dn_v|^2), 0.18), 1)`.
+#[derive(Asset, AsBindGroup, Reflect, Debug, Clone, PartialEq)]
 #[uniform(100, FilteredNdfUniform)]
+#[bind_group_data(FilteredNdfKey)]
 pub struct FilteredNdfExtension {
     /// The convention ([`RoughnessFilter::Off`]: the roughness as the material gives it).
     pub filter: RoughnessFilter,
@@ -144,7 +180,36 @@ pub struct FilteredNdfExtension {
     /// discontinuities). `None`: the preset's own. A negative value counts as 0 (no
     /// widening), NaN as `None`.
     pub kappa: Option<f32>,
+    /// The moment texture `(E[s_x], E[s_y], E[s_x^2], E[s_y^2])` of the normal map
+    /// (`Rgba16Float`, or `Rgba32Float` where the device filters it, with its mip chain;
+    /// [`crate::moment_images`]). Its sampler samples both moment textures.
+    #[texture(101)]
+    #[sampler(102)]
+    pub moments: Option<Handle<Image>>,
+    /// The moment texture `E[s_x s_y]` (`R16Float`, or `R32Float` where the device filters it;
+    /// the same size and mips as [`Self::moments`]).
+    #[texture(103)]
+    pub moments_xy: Option<Handle<Image>>,
 }
+
+/// The pipeline key of [`FilteredNdfExtension`]: whether its moment chain is bound (both
+/// textures set), which defines `FILTERED_NDF_MOMENTS` in the fragment shader.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct FilteredNdfKey {
+    /// Both moment textures are set.
+    pub moments: bool,
+}
+
+impl From<&FilteredNdfExtension> for FilteredNdfKey {
+    fn from(e: &FilteredNdfExtension) -> Self {
+        Self {
+            moments: e.moments.is_some() && e.moments_xy.is_some(),
+        }
+    }
+}
+
+/// The shader def of a material with its moment chain bound.
+pub const MOMENTS_SHADER_DEF: &str = "FILTERED_NDF_MOMENTS";
 
 impl Default for FilteredNdfExtension {
     fn default() -> Self {
@@ -159,6 +224,8 @@ impl FilteredNdfExtension {
             filter,
             sigma: SIGMA_PIXEL,
             kappa: None,
+            moments: None,
+            moments_xy: None,
         }
     }
 
@@ -174,6 +241,25 @@ impl FilteredNdfExtension {
             ..self
         }
     }
+
+    /// With the normal map's moment chain: `moments` and `moments_xy` the handles of a
+    /// [`MomentImages`]' two images added to `Assets<Image>` (see the type docs for what the
+    /// shader does with them). The chain must be the moments of the material's
+    /// `normal_map_texture`, sampled at its UV.
+    pub fn with_moments(self, moments: Handle<Image>, moments_xy: Handle<Image>) -> Self {
+        Self {
+            moments: Some(moments),
+            moments_xy: Some(moments_xy),
+            ..self
+        }
+    }
+
+    /// With the moment chain `images`, added to `assets` ([`Self::with_moments`]).
+    pub fn with_moment_images(self, images: MomentImages, assets: &mut Assets<Image>) -> Self {
+        let moments = assets.add(images.moments);
+        let moments_xy = assets.add(images.moments_xy);
+        self.with_moments(moments, moments_xy)
+    }
 }
 
 impl MaterialExtension for FilteredNdfExtension {
@@ -183,6 +269,20 @@ impl MaterialExtension for FilteredNdfExtension {
 
     fn deferred_fragment_shader() -> ShaderRef {
         ShaderRef::Handle(MATERIAL_SHADER)
+    }
+
+    fn specialize(
+        _pipeline: &MaterialExtensionPipeline,
+        descriptor: &mut RenderPipelineDescriptor,
+        _layout: &MeshVertexBufferLayoutRef,
+        key: MaterialExtensionKey<Self>,
+    ) -> Result<(), SpecializedMeshPipelineError> {
+        if key.bind_group_data.moments
+            && let Some(fragment) = descriptor.fragment.as_mut()
+        {
+            fragment.shader_defs.push(MOMENTS_SHADER_DEF.into());
+        }
+        Ok(())
     }
 }
 
@@ -402,14 +502,26 @@ mod tests {
     fn sigma_scales_the_kernel_as_a_variance() {
         let e = FilteredNdfExtension::new(RoughnessFilter::Tk19Trace);
         // (1 / 0.5)^2 = 4 and (0.25 / 0.5)^2 = 1/4, exact in binary.
-        assert_eq!(FilteredNdfUniform::from(&e.with_sigma(1.0)).scale, 2.0);
-        assert_eq!(FilteredNdfUniform::from(&e.with_sigma(0.25)).scale, 0.125);
+        assert_eq!(
+            FilteredNdfUniform::from(&e.clone().with_sigma(1.0)).scale,
+            2.0
+        );
+        assert_eq!(
+            FilteredNdfUniform::from(&e.clone().with_sigma(0.25)).scale,
+            0.125
+        );
         for bad in [-1.0, f32::NAN, -0.0] {
-            assert_eq!(FilteredNdfUniform::from(&e.with_sigma(bad)).scale, 0.0);
+            assert_eq!(
+                FilteredNdfUniform::from(&e.clone().with_sigma(bad)).scale,
+                0.0
+            );
         }
         // An infinite or overflowing width gives the largest finite scale, not infinity.
         for big in [f32::INFINITY, 1e30] {
-            assert_eq!(FilteredNdfUniform::from(&e.with_sigma(big)).scale, f32::MAX);
+            assert_eq!(
+                FilteredNdfUniform::from(&e.clone().with_sigma(big)).scale,
+                f32::MAX
+            );
         }
     }
 
@@ -423,19 +535,97 @@ mod tests {
     }
 
     #[test]
+    fn the_moment_chain_needs_both_textures() {
+        let e = FilteredNdfExtension::default();
+        assert_eq!(FilteredNdfKey::from(&e), FilteredNdfKey { moments: false });
+        let (a, b) = (Handle::<Image>::default(), Handle::<Image>::default());
+        let both = e.clone().with_moments(a.clone(), b);
+        assert_eq!(
+            FilteredNdfKey::from(&both),
+            FilteredNdfKey { moments: true }
+        );
+        let one = FilteredNdfExtension {
+            moments: Some(a),
+            ..e
+        };
+        assert_eq!(
+            FilteredNdfKey::from(&one),
+            FilteredNdfKey { moments: false }
+        );
+        // The uniform does not depend on the textures.
+        assert_eq!(
+            FilteredNdfUniform::from(&both),
+            FilteredNdfUniform::from(&FilteredNdfExtension::default())
+        );
+    }
+
+    #[test]
+    fn the_shaders_call_functions_the_crate_exports() {
+        // Every `module::function(` the plugin's WGSL calls from the crate's modules exists in
+        // that module's source (a renamed or removed function fails here, not at the first
+        // pipeline compile).
+        let lean_src = include_str!("shaders/lean.wgsl");
+        let material_src = include_str!("shaders/material.wgsl");
+        for (path, name, caller) in [
+            (
+                "filtered_ndf::filter::lean_nested",
+                "lean_widened",
+                lean_src,
+            ),
+            (
+                "filtered_ndf::filter::lean_nested",
+                "lean_mean_normal",
+                lean_src,
+            ),
+            (
+                "filtered_ndf::ndf::roughness::isotropic",
+                "to_matrix",
+                lean_src,
+            ),
+            (
+                "filtered_ndf::ndf::roughness::isotropic",
+                "from_alpha",
+                lean_src,
+            ),
+            ("filtered_ndf::ndf::roughness::matrix", "entries", lean_src),
+            ("filtered_ndf::bake::moments", "sample_grad", material_src),
+        ] {
+            let module = MODULES
+                .iter()
+                .find(|m| m.import_path == path)
+                .unwrap_or_else(|| panic!("{path} is a module of the crate"));
+            let short = path.rsplit("::").next().unwrap_or(path);
+            assert!(
+                caller.contains(&format!("{short}::{name}(")),
+                "the plugin calls {short}::{name}"
+            );
+            assert!(
+                module.source.contains(&format!("fn {name}(")),
+                "{path} defines {name}"
+            );
+        }
+    }
+
+    #[test]
     fn kappa_overrides_the_clamp() {
         // Filament's clamp is its `specularAntiAliasingThreshold` 0.2 squared, in f32.
         let filament_clamp = 0.2f32 * 0.2;
         let e = FilteredNdfExtension::new(RoughnessFilter::Filament);
         assert_eq!(FilteredNdfUniform::from(&e).clamp, filament_clamp);
-        assert_eq!(FilteredNdfUniform::from(&e.with_kappa(0.1)).clamp, 0.1);
-        assert_eq!(FilteredNdfUniform::from(&e.with_kappa(-3.0)).clamp, 0.0);
         assert_eq!(
-            FilteredNdfUniform::from(&e.with_kappa(f32::NAN)).clamp,
+            FilteredNdfUniform::from(&e.clone().with_kappa(0.1)).clamp,
+            0.1
+        );
+        assert_eq!(
+            FilteredNdfUniform::from(&e.clone().with_kappa(-3.0)).clamp,
+            0.0
+        );
+        assert_eq!(
+            FilteredNdfUniform::from(&e.clone().with_kappa(f32::NAN)).clamp,
             filament_clamp
         );
         assert_eq!(
-            FilteredNdfUniform::from(&e.with_kappa(f32::INFINITY)).clamp,
+            FilteredNdfUniform::from(&e.clone().with_kappa(f32::INFINITY)).clamp,
             f32::MAX
         );
         // three.js has no clamp: the largest finite value stands for none.

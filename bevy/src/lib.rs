@@ -38,15 +38,22 @@
 //! - [`FilteredNdfMaterial`] is `ExtendedMaterial<StandardMaterial, FilteredNdfExtension>`:
 //!   every `StandardMaterial` field works as before; [`FilteredNdfExtension`] holds the knobs
 //!   (which published kernel convention, the pixel filter's width `sigma`, the clamp
-//!   `kappa`). Forward and deferred rendering.
+//!   `kappa`) and optionally the normal map's baked LEAN moment chain. Forward and deferred
+//!   rendering.
+//! - [`moment_images`] bakes a normal map's moment chain in memory (`filtered_ndf::bake`)
+//!   into the two textures [`FilteredNdfExtension::with_moments`] takes.
 //!
 //! The filter is TK19's (Tokuyoshi and Kaplanyan 2019, sect. 4, Listing 2) in each engine's
 //! convention (`filtered_ndf::f32::filter::presets`): the roughness widened by the
-//! screen-space differences of the normal-mapped shading normal across the pixel quad.
+//! screen-space differences of the normal-mapped shading normal across the pixel quad. With
+//! the moment chain, the normal map's detail comes from its LEAN moments instead (KHPL16
+//! eq. 21: the lobe widened by the slope covariance of the pixel's texel footprint, the normal
+//! of the mean slope), and the differences are the geometric normal's.
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
 pub mod extension;
+pub mod moments;
 pub mod plugin;
 
 /// The WGSL modules of `filtered-ndf` (the `filtered-ndf-wgsl` crate): [`wgsl::MODULES`], each
@@ -54,6 +61,10 @@ pub mod plugin;
 pub use filtered_ndf_wgsl as wgsl;
 
 pub use extension::{
-    FilteredNdfExtension, FilteredNdfMaterial, FilteredNdfUniform, RoughnessFilter, SIGMA_BOX_PIXEL,
+    FilteredNdfExtension, FilteredNdfKey, FilteredNdfMaterial, FilteredNdfUniform,
+    MOMENTS_SHADER_DEF, RoughnessFilter, SIGMA_BOX_PIXEL,
 };
-pub use plugin::{FilteredNdfPlugin, FilteredNdfShaders, MATERIAL_SHADER, ROUGHNESS_IMPORT_PATH};
+pub use moments::{MomentBakeError, MomentImages, moment_images};
+pub use plugin::{
+    FilteredNdfPlugin, FilteredNdfShaders, LEAN_IMPORT_PATH, MATERIAL_SHADER, ROUGHNESS_IMPORT_PATH,
+};

@@ -11,16 +11,22 @@ use bevy::shader::Shader;
 /// struct `FilterSettings` and `filter_perceptual_roughness`, for shaders of your own.
 pub const ROUGHNESS_IMPORT_PATH: &str = "filtered_ndf_bevy::roughness";
 
+/// The import path of this crate's WGSL module of the moment chain (`src/shaders/lean.wgsl`):
+/// the mean slope's normal-map texel and the LEAN-widened perceptual roughness.
+pub const LEAN_IMPORT_PATH: &str = "filtered_ndf_bevy::lean";
+
 /// The fragment shader of [`FilteredNdfMaterial`] (forward and deferred).
 pub const MATERIAL_SHADER: Handle<Shader> = uuid_handle!("fadec2a8-498d-4925-851e-2881c4ddd6c5");
 
 /// The source of `filtered_ndf_bevy::roughness`.
 const ROUGHNESS_WGSL: &str = include_str!("shaders/roughness.wgsl");
+/// The source of `filtered_ndf_bevy::lean`.
+const LEAN_WGSL: &str = include_str!("shaders/lean.wgsl");
 /// The source of [`MATERIAL_SHADER`].
 const MATERIAL_WGSL: &str = include_str!("shaders/material.wgsl");
 
-/// Adds every WGSL module of `filtered-ndf` ([`wgsl::MODULES`]) and `filtered_ndf_bevy::roughness`
-/// to `Assets<Shader>` under their import paths (their handles kept in
+/// Adds every WGSL module of `filtered-ndf` ([`wgsl::MODULES`]), `filtered_ndf_bevy::roughness`
+/// and `filtered_ndf_bevy::lean` to `Assets<Shader>` under their import paths (their handles kept in
 /// [`FilteredNdfShaders`], so that Bevy's composer finds them for as long as the app runs),
 /// the material's shader as [`MATERIAL_SHADER`], and the [`MaterialPlugin`] of
 /// [`FilteredNdfMaterial`]. Add it after `DefaultPlugins` (it needs `Assets<Shader>`).
@@ -28,7 +34,7 @@ const MATERIAL_WGSL: &str = include_str!("shaders/material.wgsl");
 pub struct FilteredNdfPlugin;
 
 /// The strong handles of the shader modules [`FilteredNdfPlugin`] added, in the order of
-/// [`wgsl::MODULES`], then `filtered_ndf_bevy::roughness`. Bevy frees an asset whose last
+/// [`wgsl::MODULES`], then `filtered_ndf_bevy::roughness` and `filtered_ndf_bevy::lean`. Bevy frees an asset whose last
 /// strong handle is dropped, and an import whose module is gone fails to compose.
 #[derive(Resource, Clone, Debug)]
 pub struct FilteredNdfShaders {
@@ -52,6 +58,7 @@ impl Plugin for FilteredNdfPlugin {
             ROUGHNESS_WGSL,
             "filtered_ndf_bevy/roughness.wgsl",
         )));
+        modules.push(shaders.add(Shader::from_wgsl(LEAN_WGSL, "filtered_ndf_bevy/lean.wgsl")));
         // A uuid id is not an index id, so `insert` has no generation to reject.
         let _ = shaders.insert(
             &MATERIAL_SHADER,

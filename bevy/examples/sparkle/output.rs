@@ -5,8 +5,8 @@ use crate::{Options, View};
 use filtered_ndf_demo::image_out::{self, Image};
 use std::path::{Path, PathBuf};
 
-/// The frame in the middle of the move of the unfiltered, PR and plugin rows and the
-/// reference, side by side; and the frame-to-frame change of display luminance at the same
+/// The frame in the middle of the move of the unfiltered, PR, plugin and plugin-with-moments
+/// rows (trilinear, and anisotropic without `--quick`) and the reference, side by side; and the frame-to-frame change of display luminance at the same
 /// frame (what flickers). Returns the folder.
 pub fn write_images(
     o: &Options,
@@ -16,14 +16,20 @@ pub fn write_images(
     exposure: f32,
     dir: &Path,
 ) -> Result<PathBuf, String> {
-    let shown: Vec<usize> = (0..3).chain([methods]).collect();
+    let find = |label: &str| views[..methods].iter().position(|v| v.label == label);
+    let lean = [crate::PLUGIN_LEAN, crate::PLUGIN_LEAN_ANISOTROPIC].map(find);
+    let shown: Vec<usize> = (0..3)
+        .chain(lean.into_iter().flatten())
+        .chain([methods])
+        .collect();
+    let columns = if shown.len() > 4 { 3 } else { 2 };
     let mid = o.frames / 2;
     let zoom = if o.quick { 2 } else { 1 };
     let tiles: Vec<(String, image_out::Rgb8)> = shown
         .iter()
         .map(|&i| (views[i].label.clone(), frames[i][mid].to_rgb8(exposure)))
         .collect();
-    let sheet = image_out::contact_sheet(&tiles, 2, zoom);
+    let sheet = image_out::contact_sheet(&tiles, columns, zoom);
     let path = dir.join("sparkle_frame.png");
     image_out::save(&sheet, &path).map_err(|e| format!("{}: {e}", path.display()))?;
     if mid > 0 {
@@ -50,7 +56,7 @@ pub fn write_images(
                 )
             })
             .collect();
-        let sheet = image_out::contact_sheet(&diff_tiles, 2, zoom);
+        let sheet = image_out::contact_sheet(&diff_tiles, columns, zoom);
         let path = dir.join("sparkle_flicker.png");
         image_out::save(&sheet, &path).map_err(|e| format!("{}: {e}", path.display()))?;
     }

@@ -1,5 +1,5 @@
 //! The scene: a lake of water-like ripples (a tiled normal map of a sum of sines, no mip chain,
-//! as a PNG loads in Bevy) at low roughness under a low point light across the lake, seen from
+//! as a PNG loads in Bevy; [`normal_map_mipmapped`] adds a box-filtered chain) at low roughness under a low point light across the lake, seen from
 //! a few metres up: ripples a few pixels wide near the camera, about one pixel where the
 //! light's reflection is, a few per pixel at the far shore, so that the highlights sparkle;
 //! the camera's short move along the shore. The ripples are at most a few per pixel, so that a
@@ -79,9 +79,8 @@ fn slopes() -> Vec<Vec2> {
     s
 }
 
-/// The tangent-space normal map of the ripples (`Rgba8Unorm`, linear, `n * 0.5 + 0.5`),
-/// repeating, bilinear, without mip levels.
-pub fn normal_map() -> Image {
+/// The texels of the ripples' tangent-space normal map (`Rgba8Unorm`, `n * 0.5 + 0.5`).
+fn normal_map_texels() -> Vec<u8> {
     let n = NORMAL_MAP_SIZE;
     let mut data = Vec::with_capacity(4 * n * n);
     for s in slopes() {
@@ -91,25 +90,69 @@ pub fn normal_map() -> Image {
         }
         data.push(255);
     }
-    let mut image = Image::new(
+    data
+}
+
+/// A linear `Rgba8Unorm` image of the normal map's size with `levels` mips in `data`,
+/// repeating, bilinear within a level and linear between levels.
+fn normal_map_image(data: Vec<u8>, levels: u32) -> Image {
+    let n = NORMAL_MAP_SIZE as u32;
+    let mut image = Image::new_uninit(
         Extent3d {
-            width: n as u32,
-            height: n as u32,
+            width: n,
+            height: n,
             depth_or_array_layers: 1,
         },
         TextureDimension::D2,
-        data,
         TextureFormat::Rgba8Unorm,
         RenderAssetUsages::RENDER_WORLD,
     );
+    image.texture_descriptor.mip_level_count = levels;
+    image.data = Some(data);
     image.sampler = ImageSampler::Descriptor(ImageSamplerDescriptor {
         address_mode_u: ImageAddressMode::Repeat,
         address_mode_v: ImageAddressMode::Repeat,
         mag_filter: ImageFilterMode::Linear,
         min_filter: ImageFilterMode::Linear,
+        mipmap_filter: ImageFilterMode::Linear,
         ..default()
     });
     image
+}
+
+/// The tangent-space normal map of the ripples (`Rgba8Unorm`, linear, `n * 0.5 + 0.5`),
+/// repeating, bilinear, without mip levels.
+pub fn normal_map() -> Image {
+    normal_map_image(normal_map_texels(), 1)
+}
+
+/// The normal map with its mip chain as a texture pipeline generates it: each level the 2 x 2
+/// box average of the level above, texel values (so the stored vectors, not renormalised:
+/// Bevy normalises the normal after its tangent frame), rounded to 8 bits.
+pub fn normal_map_mipmapped() -> Image {
+    let mut level = normal_map_texels();
+    let mut size = NORMAL_MAP_SIZE;
+    let mut data = level.clone();
+    let mut levels = 1;
+    while size > 1 {
+        let half = size / 2;
+        let mut next = Vec::with_capacity(4 * half * half);
+        for y in 0..half {
+            for x in 0..half {
+                for c in 0..4 {
+                    let at = |dx: usize, dy: usize| {
+                        u32::from(level[4 * ((2 * y + dy) * size + 2 * x + dx) + c])
+                    };
+                    let sum = at(0, 0) + at(1, 0) + at(0, 1) + at(1, 1);
+                    next.push(((sum + 2) / 4) as u8);
+                }
+            }
+        }
+        data.extend_from_slice(&next);
+        (level, size) = (next, half);
+        levels += 1;
+    }
+    normal_map_image(data, levels)
 }
 
 /// The water plane's mesh: positions, normals and UVs of Bevy's plane, and the constant

@@ -8,13 +8,10 @@
 // PBR lighting evaluates its GGX lobe. Bevy's convention: `alpha = perceptual_roughness^2`
 // (`pbr_lighting::perceptualRoughnessToRoughness`).
 //
-// Extension point, the baked moment chain (LEAN moments of a normal map, Olano and Baker
-// 2010, sampled through the hardware's trilinear filter): the normal map's slope covariance
-// `Sigma_L` of the texel footprint widens the material's lobe first, `alpha_L^2 = alpha^2 +
-// tr(Sigma_L)` (KHPL16 eq. 21, the nested convolution, isotropic by its trace), and the
-// derivative kernel of this module is then applied to `alpha_L`:
-// `filter_perceptual_roughness(s, sqrt(alpha_L), dn_u, dn_v)`. The derivative kernel's clamp
-// `kappa` bounds only its own estimate, not the baked variance.
+// With the normal map's baked moment chain (`filtered_ndf_bevy::lean`), the lobe this module
+// filters is the material's widened by the texel's LEAN covariance (KHPL16 eq. 21), and the
+// differences are those of the geometric normal: the normal map's detail is in the moments.
+// The derivative kernel's clamp `kappa` bounds only its own estimate, not the baked variance.
 
 /// The per-material settings: a `deferred::KernelConvention` as uniform data (the Rust
 /// `FilteredNdfUniform`; the enumerations as `u32`, `saturate` as 0 or 1), and `enabled`
